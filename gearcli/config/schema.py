@@ -1,0 +1,194 @@
+"""The design file, one pydantic model per TOML table (DESIGN.md section 2).
+
+Units are in the key names (``_mm``, ``_deg``, ``_MPa`` ...) and stay as the user wrote them here;
+conversion to SI happens in the design layer. Every model forbids unknown keys and rejects NaN and
+infinity; numbers are strict (a string ``"21"`` is not a tooth count), except that an integer is
+accepted where a float is expected, as TOML users write ``module = 12``.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal, Optional, Union
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+PositiveFloat = Annotated[float, Field(gt=0)]
+NonNegFloat = Annotated[float, Field(ge=0)]
+
+METHODS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+
+
+class _Table(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+
+class Material(_Table):
+    density_kg_m3: PositiveFloat
+    youngs_modulus_MPa: PositiveFloat
+    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)]
+
+
+class Gear(_Table):
+    """One gear of a stage: pinion (driving) or gear (driven)."""
+
+    teeth: Annotated[int, Field(ge=5, le=10000)]
+    face_width_mm: PositiveFloat
+    hand: Optional[Literal["left", "right", "spur"]] = None
+    material: str = "steel"
+    profile_shift: Annotated[float, Field(ge=-1.5, le=1.5)] = 0.0
+    inertia_kg_m2: Optional[PositiveFloat] = None
+
+
+class ContactOverride(_Table):
+    """The mesh force law (Adams IMPACT). In ``[contact]`` every key has the seed's default; in a
+    stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh."""
+
+    stiffness: Optional[Union[Literal["hertz", "iso6336"], PositiveFloat]] = None
+    exponent: Optional[Annotated[float, Field(ge=1.0, le=3.0)]] = None
+    damping_Ns_mm: Optional[NonNegFloat] = None
+    full_damping_penetration_mm: Optional[PositiveFloat] = None
+    time_varying: Optional[bool] = None
+
+
+class Contact(_Table):
+    stiffness: Union[Literal["hertz", "iso6336"], PositiveFloat] = "hertz"
+    exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
+    damping_Ns_mm: NonNegFloat = 50.0
+    full_damping_penetration_mm: PositiveFloat = 0.1
+    time_varying: bool = False
+
+    def merged(self, override: Optional[ContactOverride]) -> "Contact":
+        """This law with a stage's overrides applied."""
+        if override is None:
+            return self
+        changes = {k: v for k, v in override.model_dump().items() if v is not None}
+        return self.model_copy(update=changes)
+
+
+class Stage(_Table):
+    """One gear pair, in the order power flows. The pinion drives the gear."""
+
+    normal_module_mm: PositiveFloat
+    normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
+    helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
+    pinion: Gear
+    gear: Gear
+    backlash_mm: NonNegFloat = 0.0
+    efficiency: Annotated[float, Field(gt=0, le=1)] = 1.0
+    mesh: Optional[ContactOverride] = None
+
+
+class Input(_Table):
+    """The input drive. Exactly one speed key: the prescribed speed (``drive = "speed"``) or, with
+    ``drive = "torque"``, the nominal speed the train starts at."""
+
+    speed_deg_s: Optional[PositiveFloat] = None
+    speed_rpm: Optional[PositiveFloat] = None
+    speed_rad_s: Optional[PositiveFloat] = None
+    ramp_s: NonNegFloat = 0.0
+    drive: Literal["speed", "torque"] = "speed"
+    torque_Nm: Optional[float] = None
+    torque_Nmm: Optional[float] = None
+
+    @model_validator(mode="after")
+    def _one_speed_one_torque(self) -> "Input":
+        given = [k for k in ("speed_deg_s", "speed_rpm", "speed_rad_s") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError(
+                "give exactly one of speed_deg_s, speed_rpm, speed_rad_s"
+                + (f" (got {', '.join(given)})" if given else "")
+            )
+        torques = [k for k in ("torque_Nm", "torque_Nmm") if getattr(self, k) is not None]
+        if len(torques) > 1:
+            raise ValueError("give at most one of torque_Nm, torque_Nmm")
+        if self.drive == "torque" and not torques:
+            raise ValueError('drive = "torque" needs torque_Nm or torque_Nmm')
+        if self.drive == "speed" and torques:
+            raise ValueError('torque_Nm/torque_Nmm are only used with drive = "torque"')
+        return self
+
+    @property
+    def speed_rad_s_value(self) -> float:
+        import math
+
+        if self.speed_rad_s is not None:
+            return self.speed_rad_s
+        if self.speed_rpm is not None:
+            return self.speed_rpm * 2 * math.pi / 60
+        return math.radians(self.speed_deg_s)
+
+    @property
+    def torque_Nm_value(self) -> Optional[float]:
+        if self.torque_Nm is not None:
+            return self.torque_Nm
+        if self.torque_Nmm is not None:
+            return self.torque_Nmm / 1000.0
+        return None
+
+
+class Load(_Table):
+    """Torque on the output shaft, resisting its rotation (negative: load reversal)."""
+
+    torque_Nmm: Optional[float] = None
+    torque_Nm: Optional[float] = None
+    ramp_s: NonNegFloat = 0.0
+    application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
+
+    @model_validator(mode="after")
+    def _one_torque(self) -> "Load":
+        given = [k for k in ("torque_Nmm", "torque_Nm") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of torque_Nmm, torque_Nm" + (f" (got {', '.join(given)})" if given else ""))
+        return self
+
+    @property
+    def torque_Nm_value(self) -> float:
+        return self.torque_Nm if self.torque_Nm is not None else self.torque_Nmm / 1000.0
+
+
+class Target(_Table):
+    output_speed_rpm: Optional[PositiveFloat] = None
+    output_speed_deg_s: Optional[PositiveFloat] = None
+    tolerance_percent: Annotated[float, Field(gt=0, le=100)] = 5.0
+
+    @model_validator(mode="after")
+    def _one_speed(self) -> "Target":
+        if (self.output_speed_rpm is None) == (self.output_speed_deg_s is None):
+            raise ValueError("give exactly one of output_speed_rpm, output_speed_deg_s")
+        return self
+
+    @property
+    def output_speed_rpm_value(self) -> float:
+        if self.output_speed_rpm is not None:
+            return self.output_speed_rpm
+        return self.output_speed_deg_s / 6.0
+
+
+MAX_STEPS = 2_000_000  # output samples are held in memory: 2e6 rows x ~16 channels x 8 B = 256 MB
+
+
+class Simulation(_Table):
+    duration_s: PositiveFloat = 0.5
+    steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] = 2000
+    method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
+    rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
+    window_start_s: Optional[NonNegFloat] = None
+
+
+class DesignFile(_Table):
+    """The whole design file."""
+
+    title: str = ""
+    materials: dict[str, Material] = Field(
+        default_factory=lambda: {"steel": Material(density_kg_m3=7800, youngs_modulus_MPa=2.07e5, poisson_ratio=0.29)}
+    )
+    stage: Annotated[list[Stage], Field(min_length=1, max_length=50)]
+    contact: Contact = Contact()
+    input: Input
+    load: Load
+    target: Optional[Target] = None
+    simulation: Simulation = Simulation()
+
+    def contact_for(self, k: int) -> Contact:
+        """The contact law of mesh k (0-based): ``[contact]`` with ``[stage.mesh]`` applied."""
+        return self.contact.merged(self.stage[k].mesh)

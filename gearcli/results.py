@@ -1,0 +1,164 @@
+"""Frozen result objects shared by the core layers and the writers.
+
+Field names carry their units, as the JSON output does (DESIGN.md section 5). Stage and shaft
+indices in these objects are 1-based, as an engineer numbers them (stage 1 is the input stage).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+
+# ----------------------------------------------------------------------------------------- design
+@dataclass(frozen=True)
+class StaticForces:
+    """Static tooth forces on the pinion pitch circle, N (signed: negative under load reversal)."""
+
+    tangential: float
+    radial: float
+    axial: float
+    normal: float
+
+
+@dataclass(frozen=True)
+class GearResult:
+    teeth: int
+    hand: str  # "left" | "right" | "spur"
+    profile_shift: float
+    face_width_mm: float
+    pitch_diameter_mm: float
+    base_diameter_mm: float
+    tip_diameter_mm: float
+    root_diameter_mm: float
+    speed_deg_s: float
+    speed_rpm: float
+    torque_Nmm: float
+    inertia_kg_m2: float
+    inertia_given: bool  # True when the design file gave inertia_kg_m2
+
+
+@dataclass(frozen=True)
+class StageResult:
+    index: int  # 1-based
+    ratio: float
+    efficiency: float
+    normal_module_mm: float
+    transverse_module_mm: float
+    normal_pressure_angle_deg: float
+    transverse_pressure_angle_deg: float
+    working_pressure_angle_deg: float  # transverse, at the working centre distance
+    helix_angle_deg: float
+    base_helix_angle_deg: float
+    center_distance_mm: float  # working centre distance (= reference one when x1 + x2 = 0)
+    transverse_base_pitch_mm: float  # p_bt = pi m_t cos(alpha_t)
+    face_width_mm: float  # the smaller of the two: the contact width b
+    contact_ratio_transverse: float
+    overlap_ratio: float
+    contact_ratio_total: float
+    mesh_frequency_Hz: float
+    equivalent_radius_mm: float
+    effective_modulus_MPa: float
+    hertz_stiffness_N_mm1_5: float  # K = 4/3 sqrt(R) E*, for exponent 1.5
+    static_approach_mm: float  # h_0 = (|F_n| / K)^(1/e) with the stage's contact law
+    linearised_stiffness_N_mm: float  # k_lin = e K h_0^(e-1)
+    static_force_N: StaticForces
+    iso6336_single_pair_stiffness_N_mm_um: float  # c'
+    iso6336_mesh_stiffness_N_mm_um: float  # c_gamma_alpha
+    backlash_mm: float
+    pinion: GearResult
+    gear: GearResult
+
+
+@dataclass(frozen=True)
+class ShaftResult:
+    """A rigid shaft: shaft 1 carries pinion 1, shaft k+1 carries gear k and pinion k+1."""
+
+    index: int  # 1-based
+    speed_deg_s: float
+    speed_rpm: float
+    torque_Nmm: float  # torque the shaft transmits (input side of its pinion, or the load)
+    inertia_kg_m2: float
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    title: str
+    stages: tuple[StageResult, ...]
+    shafts: tuple[ShaftResult, ...]
+    total_ratio: float
+    input_speed_deg_s: float
+    output_speed_deg_s: float
+    output_speed_rpm: float
+    input_torque_Nmm: float
+    output_torque_Nmm: float
+    warnings: tuple[str, ...]
+
+
+# ------------------------------------------------------------------------------------- simulation
+@dataclass(frozen=True)
+class ChannelStats:
+    mean: float
+    min: float
+    max: float
+    std: float
+
+
+@dataclass(frozen=True)
+class StageDynamics:
+    index: int  # 1-based
+    tangential_N: ChannelStats  # over the steady window
+    radial_N: ChannelStats
+    axial_N: ChannelStats
+    penetration_mm: ChannelStats
+    static_tangential_N: float  # the design's static F_t at full load
+    peak_tangential_N: float  # largest |F_t| over the whole run (run-up included)
+    peak_time_s: float
+    dynamic_factor: float  # peak / |static|; nan-free: 0 when the static force is 0
+
+
+@dataclass(frozen=True)
+class SolverStats:
+    method: str  # the scipy method that ran
+    requested_method: str  # as in the design file ("auto" ...)
+    choice_reason: str  # why auto chose it, or "as requested"
+    rtol: float
+    atol: dict[str, float]  # per state group: {"deflection_m": ..., "speed_rad_s": ...}
+    nfev: int
+    njev: int
+    nlu: int
+    steps: int  # accepted integrator steps
+    wall_s: float  # integration only, excluding imports and model assembly
+    energy_residual: float  # (W_in - W_load - E_damp - dKE - dPE) / max(|W_in|, |W_load|, KE_end)
+    status: int  # solve_ivp status (0: reached the end)
+    message: str
+
+
+@dataclass(frozen=True)
+class EnergyBalance:
+    """Energies in J over the run; residual = input - load - damping - kinetic - potential."""
+
+    input_work_J: float
+    load_work_J: float
+    damping_loss_J: float
+    kinetic_change_J: float
+    potential_change_J: float
+    residual_relative: float
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    time_s: np.ndarray
+    channels: dict[str, np.ndarray]  # CSV column name -> series (DESIGN.md section 5 order)
+    window_s: tuple[float, float]
+    ratio: float  # dynamic ratio mean(omega_in) / mean(omega_out) over the window
+    output_speed_deg_s: float  # mean over the window
+    input_speed_deg_s: float  # mean over the window
+    stages: tuple[StageDynamics, ...]
+    solver: SolverStats
+    energy: EnergyBalance
+    warnings: tuple[str, ...] = field(default_factory=tuple)
+    natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
+    extra: Optional[dict] = None
