@@ -1,0 +1,208 @@
+"""The command line: parse, load, call the core, hand results to ``gearcli.io``.
+
+Library errors become one-line messages on stderr with fixed exit codes (0 ok, 1 the run failed,
+2 bad usage or bad design file, 130 interrupted); a traceback only with ``--debug``. Heavy modules
+(scipy) are imported inside the commands that need them, so ``gearcli design`` starts fast.
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+from pathlib import Path
+from typing import Callable, Optional
+
+import click
+
+from gearcli import __version__
+from gearcli.errors import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, DesignError, GearcliError
+
+FORMATS = ("table", "csv", "json")
+SUFFIX_FORMAT = {".json": "json", ".csv": "csv", ".md": "markdown", ".markdown": "markdown", ".txt": "table"}
+
+
+def _fail(message: str, code: int) -> None:
+    click.echo(f"gearcli: {message}", err=True)
+    sys.exit(code)
+
+
+def guarded(fn: Callable) -> Callable:
+    """Run a command body; map errors to messages and exit codes (traceback only with --debug)."""
+
+    @functools.wraps(fn)
+    def wrapper(*args, debug: bool = False, **kwargs):
+        debug = debug or bool(click.get_current_context().find_root().params.get("debug"))
+        try:
+            return fn(*args, **kwargs)
+        except GearcliError as exc:
+            if debug:
+                raise
+            _fail(str(exc), exc.exit_code)
+        except KeyboardInterrupt:
+            _fail("interrupted", EXIT_INTERRUPTED)
+        except (click.exceptions.Exit, click.ClickException, SystemExit):
+            raise
+        except Exception as exc:  # a bug: say so plainly, never a traceback without --debug
+            if debug:
+                raise
+            _fail(f"internal error: {type(exc).__name__}: {exc} (run with --debug for the traceback)", EXIT_FAILED)
+
+    return wrapper
+
+
+def io_options(formats: tuple[str, ...] = FORMATS) -> Callable:
+    """The options every data command shares: --set, --format, -o, --debug."""
+
+    def decorate(fn: Callable) -> Callable:
+        fn = click.option("--debug", is_flag=True, help="Show tracebacks on errors.")(fn)
+        fn = click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True),
+                          help="Write to FILE atomically (format from its suffix unless --format).")(fn)
+        fn = click.option("--format", "fmt", type=click.Choice(formats),
+                          help="Output format [default: table on a terminal, csv in a pipe].")(fn)
+        fn = click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+                          help="Override a design-file key, e.g. --set stage.0.pinion.teeth=22 (repeatable).")(fn)
+        return fn
+
+    return decorate
+
+
+def choose_format(fmt: Optional[str], output: Optional[str], allowed: tuple[str, ...]) -> str:
+    if fmt:
+        return fmt
+    if output:
+        inferred = SUFFIX_FORMAT.get(Path(output).suffix.lower(), "csv")
+        return inferred if inferred in allowed else "csv"
+    return "table" if sys.stdout.isatty() else "csv"
+
+
+def emit(text: str, output: Optional[str]) -> None:
+    """Data to ``-o FILE`` (atomically) or to stdout."""
+    if output:
+        from gearcli.io.atomic import write_atomic
+
+        write_atomic(output, text)
+    else:
+        click.echo(text, nl=False)
+
+
+def emit_tables(renderables, output: Optional[str]) -> None:
+    from gearcli.io.tables import render
+
+    if output or not sys.stdout.isatty():
+        emit(render(renderables), output)
+    else:
+        from rich.console import Console
+
+        render(renderables, console=Console())
+
+
+def warn(lines) -> None:
+    for line in lines:
+        click.echo(f"warning: {line}", err=True)
+
+
+def load_and_design(path: str, overrides):
+    """Load and validate the design file, then run the design calculations."""
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+
+    loaded = load_design(path, overrides, stdin=click.get_binary_stream("stdin"))
+    try:
+        design = compute_design(loaded.design)
+    except DesignError as exc:
+        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
+    return loaded, design
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="gearcli")
+@click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
+def cli(debug: bool) -> None:
+    """Design check and torsional dynamics of multi-stage helical gear reducers.
+
+    FILE is a TOML design file ('-' reads stdin); `gearcli init` writes a starter one.
+    """
+
+
+@cli.command()
+@click.argument("file", type=str)
+@io_options()
+@guarded
+def design(file: str, overrides, fmt, output) -> None:
+    """Ratios, speeds, torques, helical geometry, contact ratios, stiffness and static forces."""
+    from gearcli.io import serialize
+
+    loaded, result = load_and_design(file, overrides)
+    fmt = choose_format(fmt, output, FORMATS)
+    if fmt == "json":
+        emit(serialize.to_json(serialize.with_meta(serialize.design_dict(result), loaded.sha256)), output)
+    elif fmt == "csv":
+        emit(serialize.design_csv(result), output)
+    else:
+        from gearcli.io.tables import design_tables
+
+        emit_tables(design_tables(result), output)
+    warn(result.warnings)
+
+
+@cli.command()
+@click.argument("file", type=str)
+@io_options()
+@click.option("--series", is_flag=True, help="Include the time series in JSON output (CSV always has them).")
+@guarded
+def simulate(file: str, overrides, fmt, output, series: bool) -> None:
+    """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
+    from gearcli.io import serialize
+    from gearcli.simulate import run_simulation
+
+    loaded, design_result = load_and_design(file, overrides)
+    warn(design_result.warnings)
+    fmt = choose_format(fmt, output, FORMATS)
+    result = run_simulation(loaded.design, design_result, want_series=True)
+    if fmt == "json":
+        doc = serialize.with_meta(serialize.simulation_dict(result, series=series), loaded.sha256)
+        emit(serialize.to_json(doc), output)
+    elif fmt == "csv":
+        emit(serialize.simulation_csv(result), output)
+    else:
+        from gearcli.io.tables import simulation_tables
+
+        emit_tables(simulation_tables(result), output)
+    warn(result.warnings)
+
+
+@cli.command()
+@click.argument("file", required=False, type=click.Path(dir_okay=False))
+@click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
+@click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
+@guarded
+def init(file: Optional[str], force: bool) -> None:
+    """Write a commented starter design file (the seed reducer) to FILE, or to stdout."""
+    from gearcli.config import starter_toml
+
+    if file and Path(file).exists() and not force:
+        _fail(f"{file}: exists; use --force to overwrite", EXIT_USAGE)
+    emit(starter_toml(), file)
+    if file:
+        click.echo(f"wrote {file}; try: gearcli design {file}", err=True)
+
+
+@cli.command()
+@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True), help="Write to FILE atomically.")
+@click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
+@guarded
+def schema(output: Optional[str]) -> None:
+    """Print the JSON Schema of the design file."""
+    import json
+
+    from gearcli.config import json_schema
+
+    emit(json.dumps(json_schema(), indent=2) + "\n", output)
+
+
+def main() -> None:
+    cli(prog_name="gearcli")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

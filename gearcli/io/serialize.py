@@ -1,0 +1,115 @@
+"""Result objects to plain dicts and CSV text: the machine-readable contract of DESIGN.md section 5."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io
+import json
+import math
+from typing import Any, Iterable, Sequence
+
+import gearcli
+from gearcli.results import DesignResult, SimulationResult
+
+
+def _plain(obj: Any) -> Any:
+    """Dataclasses, tuples and numpy scalars/arrays to JSON-ready Python values."""
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        return {f.name: _plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+    if isinstance(obj, dict):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if hasattr(obj, "tolist"):  # numpy array or scalar
+        return obj.tolist()
+    return obj
+
+
+def with_meta(payload: dict, sha256: str) -> dict:
+    """Every JSON document carries the tool version and the hash of its input."""
+    return {"gearcli_version": gearcli.__version__, "input_sha256": sha256, **payload}
+
+
+def design_dict(result: DesignResult) -> dict:
+    return _plain(result)
+
+
+def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
+    stages = [
+        {k: _plain(getattr(s, k)) for k in ("index", "tangential_N", "radial_N", "axial_N", "penetration_mm",
+                                              "static_tangential_N", "peak_tangential_N", "peak_time_s",
+                                              "dynamic_factor")}
+        for s in result.stages
+    ]
+    out = {
+        "summary": {
+            "ratio": result.ratio,
+            "input_speed_deg_s": result.input_speed_deg_s,
+            "output_speed_deg_s": result.output_speed_deg_s,
+            "window_s": list(result.window_s),
+            "stages": stages,
+            "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
+        },
+        "solver": _plain(result.solver),
+        "energy": _plain(result.energy),
+        "warnings": list(result.warnings),
+    }
+    if series:
+        out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in result.channels.items()}}
+    return out
+
+
+def to_json(doc: dict) -> str:
+    """Strict JSON: a NaN or infinity in a result is a bug, not an output (``allow_nan=False``)."""
+    return json.dumps(doc, indent=2, allow_nan=False) + "\n"
+
+
+def csv_text(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> str:
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(header)
+    for row in rows:
+        writer.writerow([_cell(v) for v in row])
+    return buf.getvalue()
+
+
+def _cell(v: Any) -> Any:
+    if isinstance(v, float):
+        if not math.isfinite(v):
+            raise ValueError("non-finite value in CSV output")
+        return repr(v)
+    return v
+
+
+def flatten(d: dict, prefix: str = "") -> dict:
+    """{"pinion": {"teeth": 21}} -> {"pinion_teeth": 21}; lists are left out."""
+    flat: dict = {}
+    for k, v in d.items():
+        name = f"{prefix}{k}"
+        if isinstance(v, dict):
+            flat.update(flatten(v, name + "_"))
+        elif not isinstance(v, (list, tuple)):
+            flat[name] = v
+    return flat
+
+
+def design_csv(result: DesignResult) -> str:
+    """One row per stage, nested objects flattened (``pinion_pitch_diameter_mm``)."""
+    rows = [flatten(s) for s in design_dict(result)["stages"]]
+    header = list(rows[0])
+    return csv_text(header, ([r[h] for h in header] for r in rows))
+
+
+def simulation_csv(result: SimulationResult) -> str:
+    """One row per output sample: ``time_s`` then the channels in contract order."""
+    import numpy as np
+
+    header = ["time_s", *result.channels]
+    data = np.column_stack([result.time_s, *result.channels.values()])
+    if not np.all(np.isfinite(data)):
+        raise ValueError("non-finite value in CSV output")
+    buf = io.StringIO()
+    buf.write(",".join(header) + "\n")
+    np.savetxt(buf, data, delimiter=",", fmt="%.10g")
+    return buf.getvalue()
