@@ -22,7 +22,8 @@ SUFFIX_FORMAT = {".json": "json", ".csv": "csv", ".md": "markdown", ".markdown":
 
 
 def _fail(message: str, code: int) -> None:
-    click.echo(f"gearcli: {message}", err=True)
+    for line in message.splitlines() or [""]:
+        click.echo(f"gearcli: {line}", err=True)
     sys.exit(code)
 
 
@@ -198,6 +199,122 @@ def schema(output: Optional[str]) -> None:
     from gearcli.config import json_schema
 
     emit(json.dumps(json_schema(), indent=2) + "\n", output)
+
+
+# ------------------------------------------------------------------------------------------ report
+REPORT_FORMATS = ("table", "json", "markdown")
+
+
+def _report_format(fmt: Optional[str], output: Optional[str]) -> str:
+    """--format, else from -o's suffix (markdown unless .json/.txt), else table on a terminal and
+    markdown in a pipe (a report does not fit CSV)."""
+    if fmt:
+        return fmt
+    if output:
+        inferred = SUFFIX_FORMAT.get(Path(output).suffix.lower())
+        return inferred if inferred in REPORT_FORMATS else "markdown"
+    return "table" if sys.stdout.isatty() else "markdown"
+
+
+def _parse_rtols(ctx, param, value: Optional[str]):
+    if value is None:
+        return None
+    try:
+        rtols = tuple(float(v) for v in value.split(",") if v.strip())
+    except ValueError:
+        raise click.BadParameter(f"{value!r}: give comma-separated numbers, e.g. 1e-3,1e-6,1e-9") from None
+    bad = [r for r in rtols if not 1e-13 <= r <= 1e-2]
+    if not rtols or bad:
+        raise click.BadParameter("every rtol must lie in [1e-13, 1e-2]" + (f", got {bad[0]:g}" if bad else ""))
+    return rtols
+
+
+class _StderrProgress:
+    """A rich progress bar on stderr when it is a terminal; a silent no-op otherwise."""
+
+    def __init__(self) -> None:
+        self.bar = None
+
+    def __enter__(self):
+        if sys.stderr.isatty():
+            from rich.console import Console
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+            self.bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
+                                TimeElapsedColumn(), console=Console(stderr=True), transient=True)
+            self.bar.__enter__()
+            self.task = self.bar.add_task("report", total=None)
+        return self
+
+    def __call__(self, label: str, done: int, total: int) -> None:
+        if self.bar is not None:
+            self.bar.update(self.task, description=label, completed=done, total=total)
+
+    def __exit__(self, *exc) -> None:
+        if self.bar is not None:
+            self.bar.__exit__(*exc)
+
+
+@cli.command()
+@click.argument("file", type=str)
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="Override a design-file key, e.g. --set simulation.duration_s=0.25 (repeatable).")
+@click.option("--format", "fmt", type=click.Choice(REPORT_FORMATS),
+              help="Output format [default: table on a terminal, markdown in a pipe].")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True),
+              help="Write to FILE atomically (format from its suffix: .json, .md, .txt).")
+@click.option("--accuracy", type=click.FloatRange(1e-12, 0.5), default=1e-4, show_default=True,
+              help="Relative accuracy the recommended solver setting must meet.")
+@click.option("--quick", is_flag=True, help="Skip the accuracy study (one simulation).")
+@click.option("--rtols", callback=_parse_rtols, metavar="LIST",
+              help="The accuracy ladder's tolerances, comma-separated [default: 1e-3,1e-4,...,1e-9].")
+@click.option("--plots", "plots_dir", type=click.Path(file_okay=False),
+              help="Write speeds.png, mesh_forces.png, spectrum.png, work_precision.png to DIR (needs matplotlib).")
+@click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
+@guarded
+def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtols, plots_dir) -> None:
+    """Theory against simulation, the numerical error against run time, and plots."""
+    from gearcli.io import serialize
+    from gearcli.report import LadderSpec, build_report
+
+    loaded, design_result = load_and_design(file, overrides)
+    warn(design_result.warnings)
+    fmt = _report_format(fmt, output)
+    spec = LadderSpec(rtols=rtols) if rtols else LadderSpec()
+    with _StderrProgress() as progress:
+        rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
+                           progress=progress)
+    if fmt == "json":
+        from gearcli.io.report_json import report_dict
+
+        emit(serialize.to_json(serialize.with_meta(report_dict(rep), loaded.sha256)), output)
+    elif fmt == "markdown":
+        from gearcli.io.markdown import report_markdown
+
+        emit(report_markdown(rep, loaded.sha256), output)
+    else:
+        from gearcli.io.report_tables import report_tables
+
+        emit_tables(report_tables(rep), output)
+    warn(rep.warnings)
+    if plots_dir:
+        _write_report_plots(rep, plots_dir)
+
+
+def _write_report_plots(rep, plots_dir: str) -> None:
+    """A missing optional dependency for an optional output: warn how to install it, exit 0."""
+    from gearcli.io.plots import PlotsUnavailable, write_plots
+
+    try:
+        paths = write_plots(rep, plots_dir)
+    except PlotsUnavailable as exc:
+        warn([f"{exc}; the report itself is complete"])
+        return
+    except OSError as exc:
+        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
+    click.echo(f"wrote {', '.join(p.name for p in paths)} to {plots_dir}", err=True)
+    if rep.accuracy is None:
+        click.echo("work_precision.png needs the accuracy study: run without --quick", err=True)
 
 
 def main() -> None:

@@ -7,6 +7,7 @@ from typing import Iterable, Sequence
 
 from rich.console import Console, RenderableType
 from rich.table import Table
+from rich.text import Text
 
 from gearcli.results import DesignResult, SimulationResult
 
@@ -21,7 +22,7 @@ def _quantity_table(title: str, columns: Sequence[str], rows: Iterable[tuple[str
     for col in columns:
         table.add_column(col, justify="right")
     for label, cells in rows:
-        table.add_row(label, *cells)
+        table.add_row(Text(label), *cells)  # Text: '[mm]' is a unit, not rich markup
     return table
 
 
@@ -89,10 +90,10 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     for name in ("stage", "channel", "mean", "std", "min", "max"):
         forces.add_column(name, justify="left" if name in ("stage", "channel") else "right")
     for s in r.stages:
-        forces.add_row(str(s.index), "F_t [N]", *_stats_cells(s.tangential_N))
-        forces.add_row("", "F_r [N]", *_stats_cells(s.radial_N))
-        forces.add_row("", "F_a [N]", *_stats_cells(s.axial_N))
-        forces.add_row("", "penetration [mm]", *_stats_cells(s.penetration_mm), end_section=True)
+        forces.add_row(str(s.index), Text("F_t [N]"), *_stats_cells(s.tangential_N))
+        forces.add_row("", Text("F_r [N]"), *_stats_cells(s.radial_N))
+        forces.add_row("", Text("F_a [N]"), *_stats_cells(s.axial_N))
+        forces.add_row("", Text("penetration [mm]"), *_stats_cells(s.penetration_mm), end_section=True)
     peaks = _quantity_table("static theory and peaks", [f"stage {s.index}" for s in r.stages], [
         ("static F_t [N]", [_g(s.static_tangential_N) for s in r.stages]),
         ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in r.stages]),

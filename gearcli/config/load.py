@@ -1,0 +1,224 @@
+"""Loading a design file: bytes -> TOML -> ``--set`` overrides -> validated :class:`DesignFile`.
+
+Every failure is a :class:`~gearcli.errors.ConfigError` naming the file (``source``) and the key
+path (``key``), e.g. ``configs/x.toml: stage[1].pinion.teeth: must be ≥ 5, got 3``. Several
+validation errors raise :class:`ConfigErrors`, whose text has one such line per error.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import re
+import sys
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import BinaryIO, Optional, Sequence
+
+from pydantic import ValidationError
+
+from gearcli.config import overrides as _overrides
+from gearcli.config.keys import format_path
+from gearcli.config.messages import translate
+from gearcli.config.schema import DesignFile
+from gearcli.config.starter import json_schema, starter_toml
+from gearcli.errors import ConfigError
+
+__all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN"]
+
+MAX_BYTES = 10 * 1024 * 1024  # a design file is a few kB; anything this big is the wrong file
+MAX_LINES_REPORTED = 20
+STDIN = "<stdin>"
+_INIT_HINT = "`gearcli init FILE` writes a starter design file"
+
+
+class ConfigErrors(ConfigError):
+    """Several errors in one design file: ``str()`` is one ``file: key: message`` line each.
+    ``source``, ``key`` and ``message`` are the first error's; ``errors`` holds them all."""
+
+    def __init__(self, errors: Sequence[ConfigError]):
+        self.errors = tuple(errors)
+        first = self.errors[0]
+        super().__init__(first.message, source=first.source, key=first.key)
+
+    def format(self) -> str:
+        lines = [e.format() for e in self.errors[:MAX_LINES_REPORTED]]
+        extra = len(self.errors) - MAX_LINES_REPORTED
+        if extra > 0:
+            lines.append(f"{self.errors[0].source}: ... and {extra} more error{'s' if extra > 1 else ''}")
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class LoadedDesign:
+    """A validated design file.
+
+    ``source``: the path as given, or ``"<stdin>"``. ``sha256``: hex digest of the raw bytes read;
+    with ``--set`` overrides, of the raw bytes followed by ``b"\\0--set " + override`` (UTF-8) for
+    each override in order, so runs with different overrides differ while a run without any has
+    the plain ``sha256sum`` of the file (NUL never occurs in a valid TOML file, so this is
+    unambiguous). ``raw``: the TOML data after the overrides, as validated."""
+
+    design: DesignFile
+    source: str
+    sha256: str
+    raw: dict
+
+
+def load_design(path: str, overrides: Sequence[str] = (), *, stdin: Optional[BinaryIO] = None) -> LoadedDesign:
+    """Read, parse, override and validate a design file; ``path == "-"`` reads ``stdin`` (default
+    ``sys.stdin.buffer``). Raises :class:`ConfigError` (or :class:`ConfigErrors`) on any problem."""
+    source = STDIN if path == "-" else path
+    raw = _read(path, stdin)
+    data = _parse(raw, source)
+    paths = _overrides.apply_all(data, overrides)
+    design = _validate(data, source, paths)
+    return LoadedDesign(design=design, source=source, sha256=_digest(raw, overrides), raw=data)
+
+
+def _digest(raw: bytes, overrides: Sequence[str]) -> str:
+    h = hashlib.sha256(raw)
+    for text in overrides:
+        h.update(b"\0--set " + text.encode("utf-8", "surrogateescape"))
+    return h.hexdigest()
+
+
+def _read(path: str, stdin: Optional[BinaryIO]) -> bytes:
+    """The raw bytes of the file (or stdin), at most :data:`MAX_BYTES`."""
+    if path == "-":
+        stream = stdin if stdin is not None else sys.stdin.buffer
+        source = STDIN
+        try:
+            raw = stream.read(MAX_BYTES + 1)
+        except OSError as exc:
+            raise ConfigError(f"cannot read standard input: {exc.strerror or exc}", source=STDIN) from None
+    else:
+        source = path
+        raw = _read_file(path)
+    if len(raw) > MAX_BYTES:
+        size = f"larger than {MAX_BYTES // 2**20} MB"
+        raise ConfigError(f"{size}; a design file is a few kB (wrong file?)", source=source)
+    return raw
+
+
+def _read_file(path: str) -> bytes:
+    p = Path(path)
+    if not path:
+        raise ConfigError("no design file given (" + _INIT_HINT + ")")
+    try:
+        if p.is_dir():
+            raise ConfigError("is a directory, not a design file", source=path)
+        with p.open("rb") as fh:
+            return fh.read(MAX_BYTES + 1)
+    except FileNotFoundError:
+        raise ConfigError(f"no such file ({_INIT_HINT})", source=path) from None
+    except PermissionError:
+        raise ConfigError("permission denied", source=path) from None
+    except IsADirectoryError:
+        raise ConfigError("is a directory, not a design file", source=path) from None
+    except OSError as exc:
+        raise ConfigError(f"cannot read: {exc.strerror or exc}", source=path) from None
+    except ValueError:  # e.g. an embedded NUL byte
+        raise ConfigError("not a valid file name", source=repr(path)) from None
+
+
+def _parse(raw: bytes, source: str) -> dict:
+    """Bytes -> TOML data, with clear messages for empty, binary, non-UTF-8 and malformed input."""
+    if not raw.strip():
+        raise ConfigError(f"file is empty ({_INIT_HINT})", source=source)
+    if b"\0" in raw:
+        raise ConfigError("binary data, not a TOML design file", source=source)
+    try:
+        text = raw.decode("utf-8").removeprefix("\ufeff")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
+        raise ConfigError(f"not UTF-8 text: byte 0x{raw[exc.start]:02x} at line {line}, column {column} "
+                          "(save the file as UTF-8)", source=source) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(_syntax_message(str(exc), text), source=source) from None
+    except ValueError as exc:  # an integer longer than sys.get_int_max_str_digits()
+        limit = sys.get_int_max_str_digits()
+        raise ConfigError(f"TOML syntax error: an integer with more than {limit} digits", source=source) from None
+    except RecursionError:
+        raise ConfigError("TOML syntax error: arrays or inline tables nested too deeply", source=source) from None
+    if not data:
+        raise ConfigError(f"file is empty: no keys, only comments ({_INIT_HINT})", source=source)
+    return data
+
+
+_AT = re.compile(r"^(?P<what>.*?) \(at (?:line (?P<line>\d+), column (?P<col>\d+)|end of document)\)$", re.S)
+_TWICE = re.compile(r"Cannot declare \((?P<key>.*?),?\) twice")
+
+
+def _syntax_message(error: str, text: str) -> str:
+    """tomllib's ``Invalid value (at line 3, column 5)`` -> ``TOML syntax error at line 3, column 5:
+    invalid value (...)  | the line |``."""
+    m = _AT.match(error)
+    what = m.group("what") if m else error
+    line = int(m.group("line")) if m and m.group("line") else None
+    col = int(m.group("col")) if m and m.group("col") else None
+    lines = text.splitlines()
+    if what == "Cannot overwrite a value":
+        if line is None:
+            line = _duplicate_line(text)
+        header = line is not None and 0 < line <= len(lines) and lines[line - 1].lstrip().startswith("[")
+        what = ("this table clashes with an earlier key or table of the same name (every stage is [[stage]])"
+                if header else "a key is given twice (or a key and a table share a name)")
+    elif (t := _TWICE.match(what)) is not None:
+        name = ".".join(part.strip().strip("'\"") for part in t.group("key").split(","))
+        what = f"table [{name}] is declared twice"
+    elif what == "Invalid value":
+        word = re.match(r"[A-Za-z_][\w-]*", lines[line - 1][col - 1:]) if line and col and line <= len(lines) else None
+        what = f'invalid value (text needs quotes: "{word.group()}")' if word else "invalid value"
+    else:
+        what = what[:1].lower() + what[1:]
+    where = f"line {line}" + (f", column {col}" if col else "") if line else "the end of the file"
+    snippet = ""
+    if line and 0 < line <= len(lines) and lines[line - 1].strip():
+        shown = lines[line - 1].strip()
+        snippet = f": {shown[:60]}{'…' if len(shown) > 60 else ''}"
+    return f"TOML syntax error at {where}: {what}{snippet}"
+
+
+def _duplicate_line(text: str) -> Optional[int]:
+    """The line that redefines a key, when tomllib only says "at end of document": the shortest
+    prefix of the file that fails the same way (binary search; best effort)."""
+    lines = text.splitlines(keepends=True)
+
+    def fails(n: int) -> bool:
+        try:
+            tomllib.loads("".join(lines[:n]))
+        except tomllib.TOMLDecodeError as exc:
+            return str(exc).startswith("Cannot overwrite a value")
+        except (ValueError, RecursionError):
+            return False
+        return False
+
+    lo, hi = 1, len(lines)
+    if not fails(hi):
+        return None
+    while lo < hi:
+        mid = (lo + hi) // 2
+        lo, hi = (lo, mid) if fails(mid) else (mid + 1, hi)
+    return lo
+
+
+def _validate(data: dict, source: str, paths: Sequence[tuple]) -> DesignFile:
+    """The validated model, or ConfigError(s) naming each wrong key (``--set`` as the source of
+    errors at or below an overridden key)."""
+    try:
+        return DesignFile.model_validate(data)
+    except ValidationError as exc:
+        errors = [
+            ConfigError(text, key=format_path(path) or None,
+                        source=_overrides.SOURCE if _overrides.blamed(path, paths) else source)
+            for path, text in translate(exc)
+        ]
+    except RecursionError:
+        raise ConfigError("nested too deeply to validate", source=source) from None
+    if len(errors) == 1:
+        raise errors[0]
+    raise ConfigErrors(errors)

@@ -1,0 +1,166 @@
+"""``--set KEY=VALUE``: command-line overrides of design-file keys, applied before validation.
+
+KEY is dotted; numeric segments index arrays (``stage.0.pinion.teeth``; ``stage[0].pinion.teeth``,
+the form error messages print, is accepted too). KEY must name a key of the schema, present in
+the file or not: a missing key or table is created. VALUE is read as a TOML value
+(``22`` int, ``1e-8`` float, ``true`` bool, ``"x"`` string, ``{ ... }`` inline table), and as
+a bare string when it is not one (``hand=left``).
+
+Setting one key of a group where the schema wants exactly one (``input.speed_rpm`` when the file
+has ``speed_deg_s``) removes the others of the group: the user means to change the speed, not to
+give it twice.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass
+from typing import Any, Sequence
+
+from pydantic import BaseModel
+
+from gearcli.config.keys import Segment, container, format_path, is_model, item_type, unknown_key_hint, unwrap
+from gearcli.config.messages import got
+from gearcli.config.schema import DesignFile, Input, Load, Target
+from gearcli.errors import ConfigError
+
+SOURCE = "--set"
+
+#: Keys of which a table holds exactly one (or at most one): setting one replaces its siblings.
+EXCLUSIVE: dict[type[BaseModel], tuple[tuple[str, ...], ...]] = {
+    Input: (("speed_deg_s", "speed_rpm", "speed_rad_s"), ("torque_Nm", "torque_Nmm")),
+    Load: (("torque_Nmm", "torque_Nm"),),
+    Target: (("output_speed_rpm", "output_speed_deg_s"),),
+}
+
+
+@dataclass(frozen=True)
+class Override:
+    """One parsed ``--set``: the key as typed, its path, and the value."""
+
+    text: str
+    key: str
+    path: tuple[Segment, ...]
+    value: Any
+
+
+def parse_value(text: str) -> Any:
+    """A TOML value (``22``, ``1e-8``, ``true``, ``"x"``, ``[1, 2]``), else the text as a string."""
+    try:
+        parsed = tomllib.loads("v = " + text)
+    except (ValueError, RecursionError):  # TOMLDecodeError is a ValueError
+        return text
+    return parsed["v"] if list(parsed) == ["v"] else text
+
+
+def _split_key(key: str) -> list[str]:
+    key = re.sub(r"\[(\d+)\]", r".\1", key.strip())
+    return key.split(".")
+
+
+def parse(text: str) -> Override:
+    """``"stage.0.pinion.teeth=22"`` -> an :class:`Override` (the path is checked by :func:`apply`)."""
+    key, sep, value = text.partition("=")
+    key = key.strip()
+    if not sep or not key:
+        raise ConfigError(f"expected KEY=VALUE, got {text!r} (e.g. --set input.speed_rpm=1450)", source=SOURCE)
+    segments = _split_key(key)
+    if any(s == "" for s in segments):
+        raise ConfigError("empty key segment (keys look like stage.0.pinion.teeth)", source=SOURCE, key=key)
+    path = tuple(int(s) if s.isdigit() else s for s in segments)
+    return Override(text, key, path, parse_value(value.strip()))
+
+
+def _fail(ov: Override, message: str) -> ConfigError:
+    return ConfigError(message, source=SOURCE, key=ov.key)
+
+
+def _descend(ov: Override, child: Any, child_tp: Any, depth: int) -> Any:
+    """Check that the data under ``ov.path[:depth + 1]`` can hold keys; return it."""
+    here = format_path(ov.path[: depth + 1])
+    want = list if container(child_tp) == "list" else dict
+    if not (is_model(child_tp) or container(child_tp)):
+        raise _fail(ov, f"{here} is a value, not a table")
+    if not isinstance(child, want):
+        what = "an array of tables" if want is list else "a table"
+        raise _fail(ov, f"{here} is {got(child)} in the file, not {what}")
+    return child
+
+
+def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[Any, Any]:
+    """The schema type and the data one segment down from ``node``, created when absent.
+    For the last segment only the schema is checked and the data is None."""
+    where = format_path(ov.path[:depth]) or "the design file"
+    last = depth == len(ov.path) - 1
+    if container(tp) == "list":
+        if not isinstance(seg, int):
+            example = ".".join(map(str, ov.path[:depth] + (0,) + ov.path[depth:]))
+            raise _fail(ov, f"{where} is an array: give an index, e.g. {example}")
+        if seg >= len(node):
+            n = len(node)
+            have = f"{n} {where} entr{'y' if n == 1 else 'ies'}" + (f" (0–{n - 1})" if n else "")
+            raise _fail(ov, f"index {seg} is out of range: the file has {have}")
+        child_tp = item_type(tp)
+        return (child_tp, None) if last else (child_tp, _descend(ov, node[seg], child_tp, depth))
+    if is_model(tp):
+        if not isinstance(seg, str) or seg not in tp.model_fields:
+            raise _fail(ov, f"unknown key '{seg}' in {where}{unknown_key_hint(str(seg), tp)}")
+        child_tp = unwrap(tp.model_fields[seg].annotation)
+    elif container(tp) == "dict":
+        child_tp = item_type(tp)
+    else:
+        raise _fail(ov, f"{where} is a value, not a table")
+    if last:
+        return child_tp, None
+    if not (is_model(child_tp) or container(child_tp)):
+        raise _fail(ov, f"{format_path(ov.path[: depth + 1])} is a value, not a table")
+    if seg not in node:
+        node[seg] = _new_table(tp, seg, child_tp)
+    return child_tp, _descend(ov, node[seg], child_tp, depth)
+
+
+def _new_table(tp: Any, seg: Segment, child_tp: Any) -> Any:
+    """An empty table (or array) for a key the file lacks; a table of named entries starts from
+    the schema's default, so ``materials.alu.*`` adds aluminium without losing the default steel."""
+    if container(child_tp) == "list":
+        return []
+    if is_model(tp) and container(child_tp) == "dict":
+        default = tp.model_fields[seg].get_default(call_default_factory=True)
+        if isinstance(default, dict):
+            return {k: v.model_dump() if isinstance(v, BaseModel) else v for k, v in default.items()}
+    return {}
+
+
+def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
+    """Set ``ov`` in the TOML data in place, after checking its key against the schema. Returns
+    the path of what it wrote: the key, or the outermost table it had to create for it."""
+    tp: Any = DesignFile
+    node: Any = data
+    written = ov.path
+    for depth, seg in enumerate(ov.path[:-1]):
+        if written == ov.path and isinstance(node, dict) and seg not in node:
+            written = ov.path[: depth + 1]
+        tp, node = _step(ov, node, tp, seg, depth)
+    last = ov.path[-1]
+    _step(ov, node, tp, last, len(ov.path) - 1)  # checks the last key exists in the schema
+    if isinstance(node, dict):
+        for group in EXCLUSIVE.get(tp, ()):
+            if last in group:
+                for sibling in group:
+                    node.pop(sibling, None)
+    node[last] = ov.value
+    return written
+
+
+def apply_all(data: dict, texts: Sequence[str]) -> list[tuple[Segment, ...]]:
+    """Apply every ``--set`` in order (a later one wins); the paths written, see :func:`blamed`."""
+    return [apply(data, parse(text)) for text in texts]
+
+
+def blamed(path: Sequence[Segment], written: Sequence[tuple[Segment, ...]]) -> bool:
+    """Whether an error at ``path`` comes from a ``--set``: it lies at or below a written path
+    (a wrong value, a key missing from a table the override created), or above one (a table-level
+    rule such as "exactly one speed" broken by the override)."""
+    path = tuple(path)
+    return any(path[: len(w)] == w or w[: len(path)] == path for w in written)
