@@ -7,9 +7,10 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Optional
+from typing import TYPE_CHECKING, Optional
 
-import numpy as np
+if TYPE_CHECKING:  # the design path never imports numpy: `gearcli design` starts fast
+    import numpy as np
 
 
 # ----------------------------------------------------------------------------------------- design

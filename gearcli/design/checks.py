@@ -1,0 +1,156 @@
+"""Design checks: errors that stop the design, warnings that do not (DESIGN.md sections 1 and 3).
+
+Errors raise ``DesignError`` with a 0-based key path (``stage[0].gear.hand``); the CLI adds the file.
+Warnings are one line each, name the stage (1-based, as an engineer counts) and carry the numbers.
+
+Choices where the contract is silent:
+
+- Module, helix angle and pressure angle are stage-level keys in the design file, so a pinion and
+  gear that disagree on them cannot be written down: there is nothing to check.
+- β = 0 makes a spur pair whatever the hands say. Hands given on a spur pair are not an error (a sweep
+  over β may pass through 0), but a warning asks whether ``helix_angle_deg`` was forgotten, since it
+  defaults to 0. The result then reports hand "spur".
+- Limits: undercut below z_min = 2 (1 − x) cos β / sin² α_t (h_aP = m_n, ISO 21771 / DIN 3960);
+  ε_α < 1.2 (common design minimum, the ISO 6336 c_γα reduction threshold) and ε_α < 1 (interrupted
+  transverse contact) as separate messages; b/d1 outside 0.2 … 1.5 (Niemann/Winter, Maschinenelemente II:
+  b/d1 ≲ 1.1–1.6 for straddle-mounted pinions depending on hardening, 1.5 taken as the upper end;
+  below 0.2 the face is so narrow that the module, not the width, carries the load); normal tip
+  thickness s_an < 0.2 m_n (pointed teeth, Niemann/Winter's minimum for through-hardened gears).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Iterable, Optional
+
+from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
+from gearcli.errors import DesignError
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile, Material, Stage
+    from gearcli.results import GearResult, StageResult
+
+HANDS = ("left", "right")
+OPPOSITE = {"left": "right", "right": "left"}
+MIN_CONTACT_RATIO = 1.2
+FACE_RATIO_RANGE = (0.2, 1.5)  # b / d1
+MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
+
+
+# ------------------------------------------------------------------------------------------ errors
+def check_inputs(cfg: "DesignFile") -> None:
+    """Refuse unknown materials and impossible helix hands, before any arithmetic."""
+    for k, stage in enumerate(cfg.stage):
+        for part in ("pinion", "gear"):
+            check_material(getattr(stage, part).material, cfg.materials, f"stage[{k}].{part}.material")
+        check_hands(stage, k)
+
+
+def check_material(name: str, materials: dict[str, "Material"], key: str) -> None:
+    if name not in materials:
+        known = ", ".join(sorted(materials)) or "none"
+        raise DesignError(f"unknown material {name!r}: define [materials.{name}] (defined: {known})", key=key)
+
+
+def check_hands(stage: "Stage", k: int) -> None:
+    """A helical pair (β > 0) needs a hand on each gear, and opposite hands (external pair)."""
+    if stage.helix_angle_deg == 0.0:
+        return
+    hands = {"pinion": stage.pinion.hand, "gear": stage.gear.hand}
+    for part, other in (("pinion", "gear"), ("gear", "pinion")):
+        if hands[part] not in HANDS:
+            need = f'"{OPPOSITE[hands[other]]}" (opposite to the {other})' if hands[other] in HANDS \
+                else '"left" or "right"'
+            got = f'"{hands[part]}"' if hands[part] else "no hand"
+            raise DesignError(f"helix angle β = {stage.helix_angle_deg:g}° needs hand = {need}, got {got}",
+                              key=f"stage[{k}].{part}.hand")
+    if hands["pinion"] == hands["gear"]:
+        raise DesignError(f'an external helical pair needs opposite hands: the pinion is "{hands["pinion"]}", '
+                          f'so the gear must be "{OPPOSITE[hands["pinion"]]}"', key=f"stage[{k}].gear.hand")
+
+
+# ---------------------------------------------------------------------------------------- warnings
+def design_warnings(cfg: "DesignFile", stages: Iterable["StageResult"], output_speed_rpm: float) -> tuple[str, ...]:
+    """Every warning of the design, train-level first, then stage by stage."""
+    found = [target_speed_warning(cfg, output_speed_rpm)]
+    for stage, stage_cfg in zip(stages, cfg.stage):
+        found.append(spur_hand_warning(stage.index, stage_cfg))
+        found.extend(undercut_warning(stage, gear) for gear in (stage.pinion, stage.gear))
+        found.append(contact_ratio_warning(stage))
+        found.append(face_width_warning(stage))
+        found.extend(tip_thickness_warning(stage, gear) for gear in (stage.pinion, stage.gear))
+    return tuple(w for w in found if w)
+
+
+def target_speed_warning(cfg: "DesignFile", output_speed_rpm: float) -> Optional[str]:
+    if cfg.target is None:
+        return None
+    target = cfg.target.output_speed_rpm_value
+    deviation = 100.0 * (output_speed_rpm - target) / target
+    if abs(deviation) <= cfg.target.tolerance_percent:
+        return None
+    return (f"output speed {output_speed_rpm:.4g} rpm misses the target {target:.4g} rpm by {deviation:+.1f} % "
+            f"(tolerance ±{cfg.target.tolerance_percent:g} %)")
+
+
+def spur_hand_warning(index: int, stage_cfg: "Stage") -> Optional[str]:
+    given = [f'{part} "{getattr(stage_cfg, part).hand}"' for part in ("pinion", "gear")
+             if getattr(stage_cfg, part).hand in HANDS]
+    if stage_cfg.helix_angle_deg != 0.0 or not given:
+        return None
+    return (f"stage {index}: hand given ({', '.join(given)}) but helix_angle_deg = 0, a spur pair; "
+            "the hands are ignored (forgot helix_angle_deg?)")
+
+
+def undercut_warning(stage: "StageResult", gear: "GearResult") -> Optional[str]:
+    beta, alpha_t = math.radians(stage.helix_angle_deg), math.radians(stage.transverse_pressure_angle_deg)
+    z_min = undercut_limit_teeth(gear.profile_shift, beta, alpha_t)
+    if gear.teeth >= z_min:
+        return None
+    x_needed = undercut_min_profile_shift(gear.teeth, beta, alpha_t)
+    return (f"stage {stage.index}: {_part(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
+            f"(x = {gear.profile_shift:+.2f}, β = {stage.helix_angle_deg:g}°): undercut risk; "
+            f"use a profile shift x ≥ {x_needed:+.2f} or more teeth")
+
+
+def contact_ratio_warning(stage: "StageResult") -> Optional[str]:
+    eps, total = stage.contact_ratio_transverse, stage.contact_ratio_total
+    if eps < 1.0:
+        overlap = "the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous"
+        return (f"stage {stage.index}: transverse contact ratio ε_α = {eps:.3f} < 1: contact is interrupted in "
+                f"every transverse section; total ε_γ = {total:.3f}, {overlap}")
+    if eps < MIN_CONTACT_RATIO:
+        return (f"stage {stage.index}: transverse contact ratio ε_α = {eps:.3f} < {MIN_CONTACT_RATIO}: little "
+                "margin for tip relief, pitch and centre-distance errors")
+    return None
+
+
+def face_width_warning(stage: "StageResult") -> Optional[str]:
+    ratio = stage.face_width_mm / stage.pinion.pitch_diameter_mm
+    low, high = FACE_RATIO_RANGE
+    if ratio > high:
+        return (f"stage {stage.index}: face width / pinion pitch diameter b/d1 = {stage.face_width_mm:g}/"
+                f"{stage.pinion.pitch_diameter_mm:.4g} = {ratio:.2f} > {high}: the load concentrates along the "
+                "face (misalignment, shaft bending); usual b/d1 ≤ 1.1–1.6")
+    if ratio < low:
+        return (f"stage {stage.index}: face width / pinion pitch diameter b/d1 = {stage.face_width_mm:g}/"
+                f"{stage.pinion.pitch_diameter_mm:.4g} = {ratio:.2f} < {low}: a very narrow face; a smaller "
+                "pinion or a wider face would use the material better")
+    return None
+
+
+def tip_thickness_warning(stage: "StageResult", gear: "GearResult") -> Optional[str]:
+    m_n = stage.normal_module_mm
+    s_an = normal_tip_thickness_mm(gear.teeth, m_n, gear.profile_shift, math.radians(stage.helix_angle_deg),
+                                   math.radians(stage.normal_pressure_angle_deg), gear.tip_diameter_mm)
+    limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
+    if s_an >= limit:
+        return None
+    what = "pointed tooth: the flanks meet below the tip circle" if s_an <= 0 else "thin tooth tip"
+    return (f"stage {stage.index}: {_part(stage, gear)} {what}, normal tip thickness s_an = {s_an:.3g} mm "
+            f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm (x = {gear.profile_shift:+.2f}); "
+            "reduce the profile shift")
+
+
+def _part(stage: "StageResult", gear: "GearResult") -> str:
+    return "pinion" if gear is stage.pinion else "gear"

@@ -1,0 +1,154 @@
+"""``compute_design``: the design file in, a ``DesignResult`` out (DESIGN.md section 3).
+
+This module only assembles: every formula lives, with its source, in ``geometry`` (ISO 21771),
+``kinematics``, ``forces``, ``stiffness`` (Hertz, ISO 6336-1), ``inertia`` and ``checks``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from gearcli.design import stiffness as stf
+from gearcli.design.checks import check_inputs, design_warnings
+from gearcli.design.forces import static_forces
+from gearcli.design.geometry import InfeasibleGeometry, PairGeometry, pair_geometry
+from gearcli.design.inertia import gear_inertia_kg_m2, shaft_inertias_kg_m2
+from gearcli.design.kinematics import Train, mesh_frequency_Hz, speed_deg_s, speed_rpm, train
+from gearcli.errors import DesignError
+from gearcli.results import DesignResult, GearResult, ShaftResult, StageResult, StaticForces
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile, Gear, Material, Stage
+
+
+def compute_design(cfg: "DesignFile") -> DesignResult:
+    """Ratios, speeds, torques, geometry, contact ratios, stiffness, static forces and warnings.
+
+    Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
+    a helical pair without opposite hands, or a pair whose teeth cannot mesh.
+    """
+    check_inputs(cfg)
+    kin = train(tuple((s.pinion.teeth, s.gear.teeth) for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
+                cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
+    stages = tuple(_stage_result(cfg, k, kin) for k in range(len(cfg.stage)))
+    out = kin.shaft_speeds_rad_s[-1]
+    return DesignResult(
+        title=cfg.title,
+        stages=stages,
+        shafts=_shaft_results(stages, kin),
+        total_ratio=kin.total_ratio,
+        input_speed_deg_s=speed_deg_s(kin.shaft_speeds_rad_s[0]),
+        output_speed_deg_s=speed_deg_s(out),
+        output_speed_rpm=speed_rpm(out),
+        input_torque_Nmm=kin.shaft_torque_Nmm(0),
+        output_torque_Nmm=kin.load_torque_Nmm,
+        warnings=design_warnings(cfg, stages, speed_rpm(out)),
+    )
+
+
+def _geometry(stage: "Stage", k: int) -> PairGeometry:
+    try:
+        return pair_geometry(stage.normal_module_mm, stage.normal_pressure_angle_deg, stage.helix_angle_deg,
+                             (stage.pinion.teeth, stage.gear.teeth),
+                             (stage.pinion.profile_shift, stage.gear.profile_shift),
+                             (stage.pinion.face_width_mm, stage.gear.face_width_mm))
+    except InfeasibleGeometry as exc:
+        key = f"stage[{k}]" + (f".{exc.part}.{exc.field}" if exc.part else "")
+        raise DesignError(exc.message, key=key) from None
+
+
+@dataclass(frozen=True)
+class _Stiffness:
+    equivalent_radius_mm: float
+    effective_modulus_MPa: float
+    hertz_N_mm1_5: float
+    single_pair_N_mm_um: float
+    mesh_N_mm_um: float
+    approach_mm: float
+    linearised_N_mm: float
+
+
+def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForces,
+               materials: tuple["Material", "Material"]) -> _Stiffness:
+    """Hertz (seed 3.3), ISO 6336-1 c' and c_γα, and the static point of the stage's own contact law."""
+    stage, law = cfg.stage[k], cfg.contact_for(k)
+    radius = stf.equivalent_radius_mm(0.5 * geo.pitch_diameter_mm[0], 0.5 * geo.pitch_diameter_mm[1])
+    modulus = stf.effective_modulus_MPa(materials[0].youngs_modulus_MPa, materials[0].poisson_ratio,
+                                        materials[1].youngs_modulus_MPa, materials[1].poisson_ratio)
+    hertz = stf.hertz_stiffness_N_mm1_5(radius, modulus)
+    zn = tuple(stf.virtual_teeth(g.teeth, geo.helix_rad, geo.base_helix_rad) for g in (stage.pinion, stage.gear))
+    f_t_ref = stf.reference_tangential_force_N(forces.tangential, geo.face_width_mm)
+    line_load = f_t_ref * cfg.load.application_factor / geo.face_width_mm
+    c_single = stf.single_pair_stiffness_N_mm_um(zn[0], zn[1], stage.pinion.profile_shift, stage.gear.profile_shift,
+                                                 geo.helix_rad, stage.normal_pressure_angle_deg, line_load)
+    c_mesh = stf.mesh_stiffness_N_mm_um(c_single, geo.contact_ratio_transverse)
+    coefficient = stf.law_coefficient_N_mm_e(
+        law.stiffness, law.exponent, hertz=hertz,
+        iso_normal_stiffness_N_mm=stf.iso6336_normal_stiffness_N_mm(c_mesh, geo.face_width_mm, geo.base_helix_rad),
+        iso_reference_normal_force_N=stf.iso_reference_normal_force_N(
+            forces.tangential, geo.face_width_mm, geo.normal_pressure_rad, geo.helix_rad))
+    h0 = stf.static_approach_mm(forces.normal, coefficient, law.exponent)
+    return _Stiffness(radius, modulus, hertz, c_single, c_mesh, h0,
+                      stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0))
+
+
+def _gear_result(gear: "Gear", i: int, geo: PairGeometry, helical: bool, density_kg_m3: float,
+                 speed_rad_s: float, torque_Nmm: float) -> GearResult:
+    d = geo.pitch_diameter_mm[i]
+    return GearResult(
+        teeth=gear.teeth,
+        hand=gear.hand if helical else "spur",
+        profile_shift=gear.profile_shift,
+        face_width_mm=gear.face_width_mm,
+        pitch_diameter_mm=d,
+        base_diameter_mm=geo.base_diameter_mm[i],
+        tip_diameter_mm=geo.tip_diameter_mm[i],
+        root_diameter_mm=geo.root_diameter_mm[i],
+        speed_deg_s=speed_deg_s(speed_rad_s),
+        speed_rpm=speed_rpm(speed_rad_s),
+        torque_Nmm=torque_Nmm,
+        inertia_kg_m2=gear_inertia_kg_m2(gear.inertia_kg_m2, density_kg_m3, gear.face_width_mm, d),
+        inertia_given=gear.inertia_kg_m2 is not None,
+    )
+
+
+def _stage_result(cfg: "DesignFile", k: int, kin: Train) -> StageResult:
+    stage = cfg.stage[k]
+    geo = _geometry(stage, k)
+    materials = (cfg.materials[stage.pinion.material], cfg.materials[stage.gear.material])
+    t_pinion, t_gear = kin.stage_torques_Nmm[k]
+    forces = static_forces(t_pinion, 0.5 * geo.pitch_diameter_mm[0], geo.normal_pressure_rad,
+                           geo.transverse_pressure_rad, geo.helix_rad)
+    s = _stiffness(cfg, k, geo, forces, materials)
+    w_p, w_g, helical = kin.shaft_speeds_rad_s[k], kin.shaft_speeds_rad_s[k + 1], stage.helix_angle_deg > 0
+    return StageResult(
+        index=k + 1, ratio=kin.ratios[k], efficiency=stage.efficiency,
+        normal_module_mm=stage.normal_module_mm, transverse_module_mm=geo.transverse_module_mm,
+        normal_pressure_angle_deg=stage.normal_pressure_angle_deg,
+        transverse_pressure_angle_deg=math.degrees(geo.transverse_pressure_rad),
+        working_pressure_angle_deg=math.degrees(geo.working_pressure_rad),
+        helix_angle_deg=stage.helix_angle_deg, base_helix_angle_deg=math.degrees(geo.base_helix_rad),
+        center_distance_mm=geo.center_distance_mm, transverse_base_pitch_mm=geo.transverse_base_pitch_mm,
+        face_width_mm=geo.face_width_mm, contact_ratio_transverse=geo.contact_ratio_transverse,
+        overlap_ratio=geo.overlap_ratio, contact_ratio_total=geo.contact_ratio_transverse + geo.overlap_ratio,
+        mesh_frequency_Hz=mesh_frequency_Hz(stage.pinion.teeth, w_p),
+        equivalent_radius_mm=s.equivalent_radius_mm, effective_modulus_MPa=s.effective_modulus_MPa,
+        hertz_stiffness_N_mm1_5=s.hertz_N_mm1_5, static_approach_mm=s.approach_mm,
+        linearised_stiffness_N_mm=s.linearised_N_mm, static_force_N=forces,
+        iso6336_single_pair_stiffness_N_mm_um=s.single_pair_N_mm_um, iso6336_mesh_stiffness_N_mm_um=s.mesh_N_mm_um,
+        backlash_mm=stage.backlash_mm,
+        pinion=_gear_result(stage.pinion, 0, geo, helical, materials[0].density_kg_m3, w_p, t_pinion),
+        gear=_gear_result(stage.gear, 1, geo, helical, materials[1].density_kg_m3, w_g, t_gear),
+    )
+
+
+def _shaft_results(stages: tuple[StageResult, ...], kin: Train) -> tuple[ShaftResult, ...]:
+    inertias = shaft_inertias_kg_m2(tuple(s.pinion.inertia_kg_m2 for s in stages),
+                                    tuple(s.gear.inertia_kg_m2 for s in stages))
+    return tuple(
+        ShaftResult(index=j + 1, speed_deg_s=speed_deg_s(w), speed_rpm=speed_rpm(w),
+                    torque_Nmm=kin.shaft_torque_Nmm(j), inertia_kg_m2=inertias[j])
+        for j, w in enumerate(kin.shaft_speeds_rad_s)
+    )

@@ -1,0 +1,221 @@
+"""Cylindrical involute gear geometry, ISO 21771 notation (DESIGN.md section 3).
+
+Angles are in radians, lengths in mm (the unit of the design file's keys), every name says which.
+Each function is one formula of ISO 21771:2007; ``pair_geometry`` strings them together for one
+external gear pair and refuses geometry that cannot mesh (``InfeasibleGeometry``).
+
+Conventions where the standard leaves a choice:
+
+- Tip diameter d_a = d + 2 m_n (1 + x), without tip shortening (k = 0): with a positive sum of
+  profile shifts the tips stand slightly taller than a shortened-tip design and ε_α comes out a few
+  ten-thousandths larger (SDP/SI's helical example, tips shortened by 0.002 mm: 1.2947 against 1.2939).
+- Centre distance is the working one, a_w, from the sum of profile shifts (no backlash allowance).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional
+
+HALF_PI = 0.5 * math.pi
+
+
+class InfeasibleGeometry(ValueError):
+    """A pair that cannot mesh. ``part`` ("pinion", "gear" or None) and ``field`` name the key to blame."""
+
+    def __init__(self, message: str, part: Optional[str] = None, field: Optional[str] = None):
+        super().__init__(message)
+        self.message = message
+        self.part = part
+        self.field = field
+
+
+# --------------------------------------------------------------------------------------- involute
+def involute(alpha_rad: float) -> float:
+    """inv α = tan α − α (ISO 21771, 4.3.2)."""
+    return math.tan(alpha_rad) - alpha_rad
+
+
+def inverse_involute(value: float, *, tol_rad: float = 1e-15, max_iter: int = 60) -> float:
+    """The angle α in (0, π/2) with inv α = ``value`` > 0, by Newton's method.
+
+    inv is convex and increasing on (0, π/2) with d(inv)/dα = tan² α. The start α0 = (3 v)^(1/3)
+    (from inv α = α³/3 + 2α⁵/15 + ... ≥ α³/3) lies at or right of the root, so the iterates
+    decrease monotonically onto it; a handful of steps reach machine precision.
+    """
+    if not value > 0.0:
+        raise ValueError(f"inverse involute needs a positive value, got {value!r}")
+    alpha = min((3.0 * value) ** (1.0 / 3.0), HALF_PI - 1e-9)
+    for _ in range(max_iter):
+        step = (involute(alpha) - value) / math.tan(alpha) ** 2
+        alpha -= step
+        if abs(step) <= tol_rad * max(1.0, alpha):
+            return alpha
+    raise ValueError(f"inverse involute did not converge for {value!r}")
+
+
+# ------------------------------------------------------------------------------ one gear (ISO 21771)
+def transverse_module_mm(normal_module_mm: float, helix_rad: float) -> float:
+    """m_t = m_n / cos β."""
+    return normal_module_mm / math.cos(helix_rad)
+
+
+def transverse_pressure_angle_rad(normal_pressure_rad: float, helix_rad: float) -> float:
+    """α_t = atan(tan α_n / cos β)."""
+    return math.atan(math.tan(normal_pressure_rad) / math.cos(helix_rad))
+
+
+def base_helix_angle_rad(helix_rad: float, transverse_pressure_rad: float) -> float:
+    """β_b = atan(tan β cos α_t)."""
+    return math.atan(math.tan(helix_rad) * math.cos(transverse_pressure_rad))
+
+
+def pitch_diameter_mm(teeth: int, transverse_module: float) -> float:
+    """Reference (pitch) diameter d = z m_t."""
+    return teeth * transverse_module
+
+
+def base_diameter_mm(pitch_diameter: float, transverse_pressure_rad: float) -> float:
+    """d_b = d cos α_t."""
+    return pitch_diameter * math.cos(transverse_pressure_rad)
+
+
+def tip_diameter_mm(pitch_diameter: float, normal_module_mm: float, profile_shift: float) -> float:
+    """d_a = d + 2 m_n (1 + x): addendum h_aP = m_n, no tip shortening."""
+    return pitch_diameter + 2.0 * normal_module_mm * (1.0 + profile_shift)
+
+
+def root_diameter_mm(pitch_diameter: float, normal_module_mm: float, profile_shift: float) -> float:
+    """d_f = d − 2.5 m_n + 2 x m_n: dedendum h_fP = 1.25 m_n."""
+    return pitch_diameter - 2.5 * normal_module_mm + 2.0 * profile_shift * normal_module_mm
+
+
+def transverse_base_pitch_mm(transverse_module: float, transverse_pressure_rad: float) -> float:
+    """p_bt = π m_t cos α_t."""
+    return math.pi * transverse_module * math.cos(transverse_pressure_rad)
+
+
+# ------------------------------------------------------------------------------------- the pair
+def working_pressure_angle_rad(transverse_pressure_rad: float, normal_pressure_rad: float,
+                               shift_sum: float, teeth_sum: int) -> float:
+    """α_wt from inv α_wt = inv α_t + 2 tan α_n (x1 + x2)/(z1 + z2) (ISO 21771, eq. for zero backlash)."""
+    value = involute(transverse_pressure_rad) + 2.0 * math.tan(normal_pressure_rad) * shift_sum / teeth_sum
+    if value <= 0.0:
+        raise InfeasibleGeometry(
+            f"the sum of profile shifts x1 + x2 = {shift_sum:.3f} is too negative for "
+            f"z1 + z2 = {teeth_sum}: inv α_wt = {value:.3g} ≤ 0, the pair cannot mesh", "pinion", "profile_shift")
+    return inverse_involute(value)
+
+
+def center_distance_mm(pitch_diameter_1: float, pitch_diameter_2: float,
+                       transverse_pressure_rad: float, working_pressure_rad: float) -> float:
+    """Working centre distance a_w = a cos α_t / cos α_wt with a = (d1 + d2)/2."""
+    reference = 0.5 * (pitch_diameter_1 + pitch_diameter_2)
+    return reference * math.cos(transverse_pressure_rad) / math.cos(working_pressure_rad)
+
+
+def transverse_contact_ratio(tip_1: float, base_1: float, tip_2: float, base_2: float,
+                             center_distance: float, working_pressure_rad: float, base_pitch: float) -> float:
+    """ε_α = (√(r_a1² − r_b1²) + √(r_a2² − r_b2²) − a_w sin α_wt) / p_bt (ISO 21771)."""
+    approach = math.sqrt(max(0.25 * (tip_1 ** 2 - base_1 ** 2), 0.0))
+    recess = math.sqrt(max(0.25 * (tip_2 ** 2 - base_2 ** 2), 0.0))
+    return (approach + recess - center_distance * math.sin(working_pressure_rad)) / base_pitch
+
+
+def overlap_ratio(face_width: float, helix_rad: float, normal_module_mm: float) -> float:
+    """ε_β = b sin β / (π m_n), b the common (smaller) face width."""
+    return face_width * math.sin(helix_rad) / (math.pi * normal_module_mm)
+
+
+# ---------------------------------------------------------------------------- design-rule checks
+def undercut_limit_teeth(profile_shift: float, helix_rad: float, transverse_pressure_rad: float,
+                         addendum_factor: float = 1.0) -> float:
+    """Theoretical undercut limit z_min = 2 (h_aP/m_n − x) cos β / sin² α_t (rack-generated teeth).
+
+    h_aP/m_n = 1 is the practical DIN 3960 / ISO 21771 value (the tool tip radius lets a few teeth
+    fewer pass in practice, so this limit errs on the safe side). Spur 20°: z_min = 17.1.
+    """
+    return 2.0 * (addendum_factor - profile_shift) * math.cos(helix_rad) / math.sin(transverse_pressure_rad) ** 2
+
+
+def undercut_min_profile_shift(teeth: int, helix_rad: float, transverse_pressure_rad: float,
+                               addendum_factor: float = 1.0) -> float:
+    """The profile shift that just avoids undercut: ``undercut_limit_teeth`` solved for x,
+    x_min = h_aP/m_n − z sin² α_t / (2 cos β)."""
+    return addendum_factor - teeth * math.sin(transverse_pressure_rad) ** 2 / (2.0 * math.cos(helix_rad))
+
+
+def normal_tip_thickness_mm(teeth: int, normal_module_mm: float, profile_shift: float, helix_rad: float,
+                            normal_pressure_rad: float, tip_diameter: float) -> float:
+    """Normal tooth thickness at the tip circle, s_an = s_at cos β_a (ISO 21771, 5.4).
+
+    s_t = m_t (π/2 + 2 x tan α_n) at the reference circle; s_at = d_a (s_t/d + inv α_t − inv α_at)
+    with cos α_at = d_b/d_a; tan β_a = tan β d_a/d. Negative when the tooth comes to a point early.
+    """
+    m_t = transverse_module_mm(normal_module_mm, helix_rad)
+    alpha_t = transverse_pressure_angle_rad(normal_pressure_rad, helix_rad)
+    d = pitch_diameter_mm(teeth, m_t)
+    alpha_at = math.acos(min(base_diameter_mm(d, alpha_t) / tip_diameter, 1.0))
+    s_t = m_t * (HALF_PI + 2.0 * profile_shift * math.tan(normal_pressure_rad))
+    s_at = tip_diameter * (s_t / d + involute(alpha_t) - involute(alpha_at))
+    beta_a = math.atan(math.tan(helix_rad) * tip_diameter / d)
+    return s_at * math.cos(beta_a)
+
+
+# ------------------------------------------------------------------------------- assembled pair
+@dataclass(frozen=True)
+class PairGeometry:
+    """Everything ISO 21771 gives for one external pair; angles in rad, lengths in mm."""
+
+    normal_module_mm: float
+    transverse_module_mm: float
+    normal_pressure_rad: float
+    transverse_pressure_rad: float
+    working_pressure_rad: float
+    helix_rad: float
+    base_helix_rad: float
+    pitch_diameter_mm: tuple[float, float]  # (pinion, gear)
+    base_diameter_mm: tuple[float, float]
+    tip_diameter_mm: tuple[float, float]
+    root_diameter_mm: tuple[float, float]
+    center_distance_mm: float  # working
+    transverse_base_pitch_mm: float
+    face_width_mm: float  # the smaller one
+    contact_ratio_transverse: float
+    overlap_ratio: float
+
+
+def pair_geometry(normal_module: float, normal_pressure_deg: float, helix_deg: float,
+                  teeth: tuple[int, int], shifts: tuple[float, float], widths_mm: tuple[float, float]) -> PairGeometry:
+    """The geometry of one external pair (pinion, gear); raises ``InfeasibleGeometry`` if it cannot mesh."""
+    a_n, beta = math.radians(normal_pressure_deg), math.radians(helix_deg)
+    m_t = transverse_module_mm(normal_module, beta)
+    a_t = transverse_pressure_angle_rad(a_n, beta)
+    a_wt = working_pressure_angle_rad(a_t, a_n, shifts[0] + shifts[1], teeth[0] + teeth[1])
+    d = tuple(pitch_diameter_mm(z, m_t) for z in teeth)
+    d_b = tuple(base_diameter_mm(di, a_t) for di in d)
+    d_a = tuple(tip_diameter_mm(di, normal_module, x) for di, x in zip(d, shifts))
+    d_f = tuple(root_diameter_mm(di, normal_module, x) for di, x in zip(d, shifts))
+    _require_sound_blanks(d_b, d_a, d_f)
+    a_w = center_distance_mm(d[0], d[1], a_t, a_wt)
+    p_bt = transverse_base_pitch_mm(m_t, a_t)
+    eps_a = transverse_contact_ratio(d_a[0], d_b[0], d_a[1], d_b[1], a_w, a_wt, p_bt)
+    if eps_a <= 0.0:
+        raise InfeasibleGeometry(f"the tips do not reach the line of action (ε_α = {eps_a:.3f} ≤ 0): "
+                                 "the teeth never mesh; raise the profile shifts or the tooth counts",
+                                 "pinion", "profile_shift")
+    b = min(widths_mm)
+    return PairGeometry(normal_module, m_t, a_n, a_t, a_wt, beta, base_helix_angle_rad(beta, a_t), d, d_b, d_a,
+                        d_f, a_w, p_bt, b, eps_a, overlap_ratio(b, beta, normal_module))
+
+
+def _require_sound_blanks(d_b: tuple, d_a: tuple, d_f: tuple) -> None:
+    for part, base, tip, root in zip(("pinion", "gear"), d_b, d_a, d_f):
+        if root <= 0.0:
+            raise InfeasibleGeometry(f"root diameter d_f = {root:.4g} mm ≤ 0: too few teeth for this "
+                                     "negative profile shift", part, "profile_shift")
+        if tip <= base:
+            raise InfeasibleGeometry(f"tip diameter d_a = {tip:.4g} mm does not exceed the base diameter "
+                                     f"d_b = {base:.4g} mm: no involute flank; raise the profile shift",
+                                     part, "profile_shift")

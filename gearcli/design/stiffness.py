@@ -1,0 +1,146 @@
+"""Mesh stiffness: the seed's Hertz law, ISO 6336-1 method B, and the coefficient K of a contact law.
+
+Units: lengths mm, moduli MPa (= N/mm²), forces N; ISO stiffnesses in N/(mm·µm) as the standard
+writes them; K of the force law F = K h^e in N/mm^e.
+
+Zero load. ISO 6336-1's low-load factor (F_t K_A / b / 100)^0.25 vanishes with the load, and the
+secant K = F_n0 / h_0^e of an ``iso6336`` law is undefined at F_n0 = 0. Both are evaluated at the
+static tangential force floored at ``MIN_LINE_LOAD_N_mm`` = 1 N per mm of face width: the single-pair
+stiffness then never drops below (K_A/100)^0.25 ≈ 0.32 of its full-load value, stays continuous in the
+load, and the iso6336 coefficient is calibrated at the same (small) load the stiffness was evaluated at.
+Hertz and numeric laws need no floor; for e > 1 an unloaded mesh has h_0 = 0 and k_lin = 0.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Union
+
+from gearcli.design.forces import normal_force_N
+
+if TYPE_CHECKING:  # the design layer never imports the config package at run time
+    from gearcli.config.schema import Contact
+    from gearcli.results import StageResult
+
+MIN_LINE_LOAD_N_mm = 1.0  # floor of |F_t| / b for the ISO 6336 evaluation (see the module docstring)
+UM_PER_MM = 1000.0
+
+# ISO 6336-1:2006, clause 9 (method B, basic formulas): q' = C1 + C2/zn1 + ... + C9 x2², mm·µm/N
+ISO6336_C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
+C_M = 0.8  # theoretical to measured stiffness, solid blanks (ISO 6336-1, clause 9)
+C_R = 1.0  # gear blank factor, solid disc gears (ISO 6336-1, clause 9)
+FULL_LOAD_LINE_LOAD_N_mm = 100.0  # above this F_t K_A / b, c' no longer depends on the load
+
+
+# ------------------------------------------------------------------------ Hertz (seed section 3.3)
+def equivalent_radius_mm(radius_1_mm: float, radius_2_mm: float) -> float:
+    """1/R = 1/r1 + 1/r2 (pitch radii, as the seed paper takes them)."""
+    return radius_1_mm * radius_2_mm / (radius_1_mm + radius_2_mm)
+
+
+def effective_modulus_MPa(youngs_1_MPa: float, poisson_1: float, youngs_2_MPa: float, poisson_2: float) -> float:
+    """1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2 (Hertz; the seed's 1.144e5 MPa is an erratum for 1.130e5)."""
+    return 1.0 / ((1.0 - poisson_1 ** 2) / youngs_1_MPa + (1.0 - poisson_2 ** 2) / youngs_2_MPa)
+
+
+def hertz_stiffness_N_mm1_5(equivalent_radius: float, effective_modulus: float) -> float:
+    """K = 4/3 √R E* (sphere on plane, seed eq. in 3.3), N/mm^1.5 with R in mm and E* in MPa."""
+    return 4.0 / 3.0 * math.sqrt(equivalent_radius) * effective_modulus
+
+
+# ------------------------------------------------------------------- ISO 6336-1, method B (basic)
+def virtual_teeth(teeth: int, helix_rad: float, base_helix_rad: float) -> float:
+    """z_n = z / (cos² β_b cos β) (ISO 6336-1, virtual spur gear of the normal section)."""
+    return teeth / (math.cos(base_helix_rad) ** 2 * math.cos(helix_rad))
+
+
+def flexibility_q_prime(zn1: float, zn2: float, x1: float, x2: float) -> float:
+    """q' = C1 + C2/zn1 + C3/zn2 + C4 x1 + C5 x1/zn1 + C6 x2 + C7 x2/zn2 + C8 x1² + C9 x2², mm·µm/N."""
+    c1, c2, c3, c4, c5, c6, c7, c8, c9 = ISO6336_C
+    return (c1 + c2 / zn1 + c3 / zn2 + c4 * x1 + c5 * x1 / zn1 + c6 * x2 + c7 * x2 / zn2
+            + c8 * x1 ** 2 + c9 * x2 ** 2)
+
+
+def basic_rack_factor(normal_pressure_deg: float, dedendum_factor: float = 1.25) -> float:
+    """C_B = [1 + 0.5 (1.2 − h_fP/m_n)] [1 − 0.02 (20° − α_n)] (ISO 6336-1, clause 9)."""
+    return (1.0 + 0.5 * (1.2 - dedendum_factor)) * (1.0 - 0.02 * (20.0 - normal_pressure_deg))
+
+
+def low_load_factor(line_load_N_mm: float) -> float:
+    """(F_t K_A / b / 100)^0.25 below 100 N/mm, else 1 (ISO 6336-1, clause 9)."""
+    return min(line_load_N_mm / FULL_LOAD_LINE_LOAD_N_mm, 1.0) ** 0.25
+
+
+def reference_tangential_force_N(tangential_force_N: float, face_width_mm: float) -> float:
+    """|F_t| floored at 1 N/mm of face width: the load the ISO stiffness is evaluated at."""
+    return max(abs(tangential_force_N), MIN_LINE_LOAD_N_mm * face_width_mm)
+
+
+def single_pair_stiffness_N_mm_um(zn1: float, zn2: float, x1: float, x2: float, helix_rad: float,
+                                  normal_pressure_deg: float, line_load_N_mm: float) -> float:
+    """c' = c'_th C_M C_R C_B cos β × low-load factor, c'_th = 1/q' (ISO 6336-1, clause 9)."""
+    c_th = 1.0 / flexibility_q_prime(zn1, zn2, x1, x2)
+    return (c_th * C_M * C_R * basic_rack_factor(normal_pressure_deg) * math.cos(helix_rad)
+            * low_load_factor(line_load_N_mm))
+
+
+def mesh_stiffness_N_mm_um(single_pair: float, contact_ratio_transverse: float) -> float:
+    """c_γα = c' (0.75 ε_α + 0.25), reduced by 10 % when ε_α < 1.2 (ISO 6336-1, clause 9)."""
+    c_gamma = single_pair * (0.75 * contact_ratio_transverse + 0.25)
+    return 0.9 * c_gamma if contact_ratio_transverse < 1.2 else c_gamma
+
+
+def iso6336_normal_stiffness_N_mm(mesh_stiffness: float, face_width_mm: float, base_helix_rad: float) -> float:
+    """k_n = k_t / cos² β_b with k_t = c_γα b (DESIGN.md section 4); N/µm × 1000 = N/mm."""
+    return mesh_stiffness * face_width_mm * UM_PER_MM / math.cos(base_helix_rad) ** 2
+
+
+def iso6336_coefficient_N_mm_e(normal_stiffness_N_mm: float, normal_force_N: float, exponent: float) -> float:
+    """K with K h_0^e = F_n0 at the ISO deflection h_0 = F_n0 / k_n, i.e. K = F_n0^(1−e) k_n^e (= k_n for e = 1)."""
+    return normal_force_N ** (1.0 - exponent) * normal_stiffness_N_mm ** exponent
+
+
+# ---------------------------------------------------------------------------- the contact law's K
+def law_coefficient_N_mm_e(stiffness: Union[str, float], exponent: float, *, hertz: float,
+                           iso_normal_stiffness_N_mm: float, iso_reference_normal_force_N: float) -> float:
+    """K of F = K h^e for a law ``stiffness`` = "hertz" | "iso6336" | a number (N/mm^e)."""
+    if stiffness == "hertz":
+        return hertz  # 4/3 √R E*, used as-is whatever the exponent
+    if stiffness == "iso6336":
+        return iso6336_coefficient_N_mm_e(iso_normal_stiffness_N_mm, iso_reference_normal_force_N, exponent)
+    return float(stiffness)
+
+
+def iso_reference_normal_force_N(tangential_force_N: float, face_width_mm: float,
+                                 normal_pressure_rad: float, helix_rad: float) -> float:
+    """F_n0: the normal force behind F_t,ref = ``reference_tangential_force_N`` (|F_n| unless floored)."""
+    return normal_force_N(reference_tangential_force_N(tangential_force_N, face_width_mm),
+                          normal_pressure_rad, helix_rad)
+
+
+def contact_stiffness_N_mm_e(stage: "StageResult", contact: "Contact") -> float:
+    """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
+
+    "hertz": the stage's 4/3 √R E*; a number: that number; "iso6336": K such that at the static load
+    F_n0 the mesh deflects h_0 = F_n0 / k_n, k_n = c_γα b / cos² β_b (DESIGN.md section 4); F_n0 is
+    floored at 1 N/mm of face width when the load is (near) zero (see the module docstring).
+    """
+    beta_b = math.radians(stage.base_helix_angle_deg)
+    k_n = iso6336_normal_stiffness_N_mm(stage.iso6336_mesh_stiffness_N_mm_um, stage.face_width_mm, beta_b)
+    f_n0 = iso_reference_normal_force_N(stage.static_force_N.tangential, stage.face_width_mm,
+                                        math.radians(stage.normal_pressure_angle_deg),
+                                        math.radians(stage.helix_angle_deg))
+    return law_coefficient_N_mm_e(contact.stiffness, contact.exponent, hertz=stage.hertz_stiffness_N_mm1_5,
+                                  iso_normal_stiffness_N_mm=k_n, iso_reference_normal_force_N=f_n0)
+
+
+def static_approach_mm(normal_force_N: float, coefficient: float, exponent: float) -> float:
+    """h_0 = (|F_n| / K)^(1/e): the normal approach under the static load."""
+    return (abs(normal_force_N) / coefficient) ** (1.0 / exponent)
+
+
+def linearised_stiffness_N_mm(coefficient: float, exponent: float, approach_mm: float) -> float:
+    """k_lin = dF/dh = e K h_0^(e−1) (= K for e = 1, 0 for e > 1 at zero load)."""
+    if exponent == 1.0:
+        return coefficient
+    return exponent * coefficient * approach_mm ** (exponent - 1.0)
