@@ -153,12 +153,12 @@ def design(file: str, overrides, fmt, output) -> None:
 @guarded
 def simulate(file: str, overrides, fmt, output, series: bool) -> None:
     """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
+    loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
+    warn(design_result.warnings)
+    fmt = choose_format(fmt, output, FORMATS)
     from gearcli.io import serialize
     from gearcli.simulate import run_simulation
 
-    loaded, design_result = load_and_design(file, overrides)
-    warn(design_result.warnings)
-    fmt = choose_format(fmt, output, FORMATS)
     result = run_simulation(loaded.design, design_result, want_series=True)
     if fmt == "json":
         doc = serialize.with_meta(serialize.simulation_dict(result, series=series), loaded.sha256)
