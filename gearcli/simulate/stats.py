@@ -1,0 +1,113 @@
+"""Steady-state window, channel statistics, per-stage dynamics and the simulation's warnings."""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+import numpy as np
+
+from gearcli.errors import ConfigError
+from gearcli.model.spec import ModelSpec
+from gearcli.results import ChannelStats, StageDynamics
+
+SETTLE_FRACTION = 0.2  # of the time left after the slower ramp (DESIGN.md section 4)
+WARN_ENERGY_RESIDUAL = 1e-3
+WARN_PENETRATION_MODULE_FRACTION = 0.10
+WARN_PEAK_OVER_RIGID = 2.0  # smooth run-ups amplify the rigid-body force by a few % (seed: 1.05)
+NO_RAMP_WINDOW_FRACTION = 0.8  # window start when the ramps outlast the run: the last 20 %
+
+
+def steady_window(spec: ModelSpec, duration_s: float,
+                  start_s: Optional[float]) -> tuple[tuple[float, float], list[str]]:
+    """``(from, to)`` of the steady window and any warning about it.
+
+    Default: from the end of the slower ramp (input and load) plus 20 % of the remaining time, to the
+    end. ``start_s`` (``simulation.window_start_s``) overrides the start.
+    """
+    if start_s is not None:
+        if start_s >= duration_s:
+            raise ConfigError(f"must be below simulation.duration_s = {duration_s:g} s, got {start_s:g}",
+                              key="simulation.window_start_s")
+        return (float(start_s), duration_s), []
+    ramps = max(spec.drive.ramp_s, spec.load.ramp_s)
+    if ramps >= duration_s:
+        start = NO_RAMP_WINDOW_FRACTION * duration_s
+        return (start, duration_s), [f"the ramps ({ramps:g} s) outlast the run ({duration_s:g} s): the statistics "
+                                     f"window [{start:.4g}, {duration_s:g}] s is not steady; lengthen duration_s"]
+    return (ramps + SETTLE_FRACTION * (duration_s - ramps), duration_s), []
+
+
+def window_mask(t: np.ndarray, window: tuple[float, float]) -> np.ndarray:
+    eps = 1e-9 * max(1.0, abs(window[1]))
+    return (t >= window[0] - eps) & (t <= window[1] + eps)
+
+
+def channel_stats(x: np.ndarray, mask: np.ndarray) -> ChannelStats:
+    w = x[mask]
+    return ChannelStats(float(w.mean()), float(w.min()), float(w.max()), float(w.std()))
+
+
+def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: np.ndarray, fa: np.ndarray,
+                   pen_mm: np.ndarray, static_tangential_N: float) -> StageDynamics:
+    """Window statistics and the run's peak |F_t| (over the output samples) of stage ``k`` (0-based)."""
+    i = int(np.argmax(np.abs(ft)))
+    peak = float(abs(ft[i]))
+    factor = peak / abs(static_tangential_N) if static_tangential_N != 0 else 0.0
+    return StageDynamics(k + 1, channel_stats(ft, mask), channel_stats(fr, mask), channel_stats(fa, mask),
+                         channel_stats(pen_mm, mask), float(static_tangential_N), peak, float(t[i]), factor)
+
+
+def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray],
+                     static_penetration_m: np.ndarray) -> list[str]:
+    """Penetration beyond the full-damping depth or 10 % of the module; loss of contact on the loaded
+    flank in the steady window (a loaded mesh that separates or crosses to its other flank rattles).
+
+    The full-damping depth d is read two ways: the seed paper calls it the "maximum allowable
+    penetration", while in Adams it is only where the damping ramp ends, often set below the static
+    approach on purpose (configs/industrial_two_stage.toml). The warning is given only when the static
+    penetration lies below d, i.e. when the law was set up in the seed's sense and a transient exceeds it.
+    """
+    out = []
+    for k, (m, pen) in enumerate(zip(spec.meshes, penetration_m)):
+        deepest = float(np.max(np.abs(pen)))
+        if m.damping_Ns_m > 0 and static_penetration_m[k] < m.full_damping_m < deepest:
+            out.append(f"stage {k + 1}: penetration reached {deepest * 1e3:.3g} mm, beyond the full-damping depth "
+                       f"{m.full_damping_m * 1e3:.3g} mm (the damping saturates there)")
+        if m.normal_module_m > 0 and deepest > WARN_PENETRATION_MODULE_FRACTION * m.normal_module_m:
+            out.append(f"stage {k + 1}: penetration reached {deepest * 1e3:.3g} mm, more than 10 % of the normal "
+                       f"module ({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity")
+        loaded = math.copysign(1.0, m.static_tangential_N)  # the flank that carries the static load
+        lost = loaded * pen[mask] <= 0.0
+        if m.static_tangential_N != 0 and np.any(lost):
+            flank = "drive" if loaded > 0 else "back"
+            out.append(f"stage {k + 1}: the loaded ({flank}) flank loses contact in the steady window "
+                       f"({100.0 * lost.mean():.3g} % of the samples): tooth impacts (rattle) — the load is too "
+                       "small for the vibration")
+    return out
+
+
+def peak_warnings(spec: ModelSpec, peak_line_forces_N, rigid_line_forces_N) -> list[str]:
+    """A run-up peak far above the rigid-body estimate is an impact or a numerical artefact."""
+    out = []
+    for k, (peak, rigid) in enumerate(zip(peak_line_forces_N, rigid_line_forces_N)):
+        if rigid > 0 and peak > WARN_PEAK_OVER_RIGID * rigid:
+            out.append(f"stage {k + 1}: peak mesh force is {peak / rigid:.3g}x the rigid-body estimate of the run "
+                       "(inertia plus load): a violent impact or a numerical artefact — check with a tighter rtol")
+    return out
+
+
+def model_warnings(spec: ModelSpec) -> list[str]:
+    out = []
+    for k, m in enumerate(spec.meshes):
+        if m.efficiency < 1.0:
+            out.append(f"stage {k + 1}: efficiency {m.efficiency:g} is not modelled in the dynamics (lossless "
+                       "meshes); simulated forces follow the lossless torques, the design's static ones include losses")
+    return out
+
+
+def ratio_of(mean_in: float, mean_out: float) -> tuple[float, list[str]]:
+    """mean w_in / mean w_out; 0 with a warning when the output stands still."""
+    if abs(mean_out) <= 1e-12 * max(abs(mean_in), 1.0) or not math.isfinite(mean_in / mean_out):
+        return 0.0, ["the output shaft stands still in the steady window: the dynamic ratio is undefined (0)"]
+    return mean_in / mean_out, []
