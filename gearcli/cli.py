@@ -97,6 +97,22 @@ def emit_tables(renderables, output: Optional[str]) -> None:
         render(renderables, console=Console())
 
 
+def emit_as(fmt: str, output: Optional[str], result, *, sha256: str, json_doc: Callable[[], dict],
+            csv_text: Callable[[], str], table_builder: str) -> None:
+    """Write ``result`` in ``fmt``; only the chosen builder runs, and rich is imported only for tables
+    (``table_builder`` names a function of :mod:`gearcli.io.tables`). JSON gets the meta keys."""
+    if fmt == "json":
+        from gearcli.io.serialize import to_json, with_meta
+
+        emit(to_json(with_meta(json_doc(), sha256)), output)
+    elif fmt == "csv":
+        emit(csv_text(), output)
+    else:
+        from gearcli.io import tables
+
+        emit_tables(getattr(tables, table_builder)(result), output)
+
+
 def warn(lines) -> None:
     for line in lines:
         click.echo(f"warning: {line}", err=True)
@@ -134,15 +150,9 @@ def design(file: str, overrides, fmt, output) -> None:
     from gearcli.io import serialize
 
     loaded, result = load_and_design(file, overrides)
-    fmt = choose_format(fmt, output, FORMATS)
-    if fmt == "json":
-        emit(serialize.to_json(serialize.with_meta(serialize.design_dict(result), loaded.sha256)), output)
-    elif fmt == "csv":
-        emit(serialize.design_csv(result), output)
-    else:
-        from gearcli.io.tables import design_tables
-
-        emit_tables(design_tables(result), output)
+    emit_as(choose_format(fmt, output, FORMATS), output, result, sha256=loaded.sha256,
+            json_doc=lambda: serialize.design_dict(result),
+            csv_text=lambda: serialize.design_csv(result), table_builder="design_tables")
     warn(result.warnings)
 
 
@@ -159,16 +169,10 @@ def simulate(file: str, overrides, fmt, output, series: bool) -> None:
     from gearcli.io import serialize
     from gearcli.simulate import run_simulation
 
-    result = run_simulation(loaded.design, design_result, want_series=True)
-    if fmt == "json":
-        doc = serialize.with_meta(serialize.simulation_dict(result, series=series), loaded.sha256)
-        emit(serialize.to_json(doc), output)
-    elif fmt == "csv":
-        emit(serialize.simulation_csv(result), output)
-    else:
-        from gearcli.io.tables import simulation_tables
-
-        emit_tables(simulation_tables(result), output)
+    result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
+    emit_as(fmt, output, result, sha256=loaded.sha256,
+            json_doc=lambda: serialize.simulation_dict(result, series=series),
+            csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
     warn(result.warnings)
 
 
@@ -296,7 +300,7 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
         from gearcli.io.report_tables import report_tables
 
         emit_tables(report_tables(rep), output)
-    warn(rep.warnings)
+    warn(w for w in rep.warnings if w not in design_result.warnings)  # design ones went out first
     if plots_dir:
         _write_report_plots(rep, plots_dir)
 
