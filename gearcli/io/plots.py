@@ -1,0 +1,217 @@
+"""``gearcli report --plots DIR``: four PNG figures, drawn with matplotlib's Agg canvas.
+
+matplotlib is an optional extra (``pip install 'gearcli[plot]'``) and is imported only here, inside
+:func:`write_plots`; without it :class:`PlotsUnavailable` says how to install it. The figures use the
+object-oriented API (``Figure`` + ``FigureCanvasAgg``), never pyplot, so no global backend state is
+touched. Files are written atomically.
+"""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+
+from gearcli.io.atomic import write_atomic
+from gearcli.report.result import Report
+
+INSTALL_HINT = "pip install 'gearcli[plot]'  (or: pip install matplotlib)"
+FILES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
+DPI = 110
+
+
+class PlotsUnavailable(ImportError):
+    """matplotlib is not installed."""
+
+
+def _figure(rows: int, cols: int = 1, *, height: float = 2.3, width: float = 9.0, width_ratios=None, **kw):
+    try:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+    except ImportError as exc:
+        raise PlotsUnavailable(f"--plots needs matplotlib: {INSTALL_HINT}") from exc
+    fig = Figure(figsize=(width, max(3.2, height * rows + 0.8)), dpi=DPI, layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(rows, cols, squeeze=False, width_ratios=width_ratios, **kw)
+    return fig, axes
+
+
+def _save(fig, path: Path) -> Path:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=DPI)
+    write_atomic(path, buf.getvalue())
+    return path
+
+
+def _shade_window(ax, window) -> None:
+    ax.axvspan(window[0], window[1], color="0.92", zorder=0, label="steady window")
+
+
+def _zoom(ax, t: np.ndarray, y: np.ndarray, window, color: str) -> None:
+    """The steady window alone, where the fluctuation is visible."""
+    mask = (t >= window[0]) & (t <= window[1])
+    ax.plot(t[mask], y[mask], lw=0.9, color=color)
+    ax.set_xlim(window[0], window[1])
+    if mask.any():  # head room for the legend above the trace
+        lo, hi = float(np.min(y[mask])), float(np.max(y[mask]))
+        pad = max(hi - lo, 1e-4 * max(abs(hi), 1.0))  # a constant trace gets a ±0.01 % band
+        ax.set_ylim(lo - 0.08 * pad, hi + 0.45 * pad)
+    ax.ticklabel_format(axis="y", useOffset=False)
+    ax.grid(alpha=0.3)
+
+
+def speeds_figure(r: Report):
+    sim, shafts = r.simulation, r.design.shafts
+    fig, axes = _figure(len(shafts), 2, sharex="col", height=1.8, width=12.0, width_ratios=(3, 2))
+    for (ax, zoom), shaft in zip(axes, shafts):
+        series = sim.channels.get(f"shaft{shaft.index}_speed_deg_s")
+        _shade_window(ax, sim.window_s)
+        if series is not None:
+            ax.plot(sim.time_s, series, lw=1.0, color="C0", label="simulated")
+            _zoom(zoom, sim.time_s, series, sim.window_s, "C0")
+        for a in (ax, zoom):
+            a.axhline(shaft.speed_deg_s, ls="--", lw=1.0, color="k", label=f"design {shaft.speed_deg_s:.5g} °/s")
+        name = "input" if shaft.index == 1 else ("output" if shaft.index == len(shafts) else "intermediate")
+        ax.set_ylabel(f"shaft {shaft.index}\n[°/s]")
+        ax.set_title(f"shaft {shaft.index} ({name})", fontsize=9, loc="left")
+        zoom.set_title(f"shaft {shaft.index}, steady window", fontsize=9, loc="left")
+        ax.legend(loc="lower right", fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time [s]")
+    axes[-1, 1].set_xlabel("time [s]")
+    fig.suptitle(f"Shaft speeds — {r.title or 'design'}", fontsize=11)
+    return fig
+
+
+def mesh_forces_figure(r: Report):
+    sim = r.simulation
+    fig, axes = _figure(len(r.stages), 2, sharex="col", height=2.1, width=12.0, width_ratios=(3, 2))
+    for (ax, zoom), s in zip(axes, r.stages):
+        series = sim.channels.get(f"stage{s.stage}_tangential_N")
+        color = f"C{(s.stage - 1) % 10}"
+        _shade_window(ax, sim.window_s)
+        if series is not None:
+            ax.plot(sim.time_s, series, lw=0.8, color=color, label="F_t simulated")
+            _zoom(zoom, sim.time_s, series, sim.window_s, color)
+        for a in (ax, zoom):
+            a.axhline(s.static_tangential_N, ls="--", lw=1.2, color="k", label=f"static F_t {s.static_tangential_N:.5g} N")
+        zoom.axhline(s.tangential_N.mean, ls=":", lw=1.2, color="C3", label=f"mean {s.tangential_N.mean:.5g} N")
+        ax.plot([s.peak_time_s], [s.peak_tangential_N], "v", color="C3", ms=6,
+                label=f"run-up peak {s.peak_tangential_N:.5g} N (×{s.dynamic_factor:.3g})")
+        ax.set_ylabel("F_t [N]")
+        ax.set_title(f"stage {s.stage}: tangential mesh force", fontsize=9, loc="left")
+        zoom.set_title(f"stage {s.stage}, steady window (std {s.tangential_N.std:.3g} N)", fontsize=9, loc="left")
+        ax.legend(loc="upper right", fontsize=8)
+        zoom.legend(loc="upper right", fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time [s]")
+    axes[-1, 1].set_xlabel("time [s]")
+    fig.suptitle("Tangential mesh forces (dashed: static theory)", fontsize=11)
+    return fig
+
+
+def spectrum_figure(r: Report):
+    fig, axes = _figure(len(r.stages), sharex=True, height=2.0)
+    natural = [f for f in r.natural_frequencies_Hz if f > 0]
+    for ax, s in zip(axes[:, 0], r.stages):
+        sp = s.spectrum
+        if sp.frequency_Hz.size > 1:
+            amp = np.where(sp.amplitude_N > 0, sp.amplitude_N, np.nan)
+            ax.semilogy(sp.frequency_Hz[1:], amp[1:], lw=0.9, color=f"C{s.stage - 1}", label="|F_t| amplitude")
+        ax.axvline(sp.mesh_frequency_Hz, color="k", ls="--", lw=1.2, label=f"mesh {sp.mesh_frequency_Hz:.4g} Hz")
+        for j, fn in enumerate(f for f in natural if f <= sp.nyquist_Hz):
+            ax.axvline(fn, color="C3", ls=":", lw=1.2, label="natural frequencies" if j == 0 else None)
+        if sp.peak_frequency_Hz is not None:
+            ax.plot([sp.peak_frequency_Hz], [sp.peak_amplitude_N], "o", mfc="none", color="k", ms=7,
+                    label=f"peak {sp.peak_frequency_Hz:.4g} ± {sp.resolution_Hz:.2g} Hz")
+        ax.set_ylabel("amplitude [N]")
+        ax.set_title(f"stage {s.stage}", fontsize=9, loc="left")
+        ax.legend(loc="upper right", fontsize=8)
+        ax.grid(alpha=0.3, which="both")
+    if r.stages:
+        sp = r.stages[0].spectrum
+        axes[-1, 0].set_xlim(0, _spectrum_xmax(r))
+        fig.suptitle(f"F_t spectrum over the steady window {sp.window_s[0]:.3g}–{sp.window_s[1]:.3g} s "
+                     f"(Hann, detrended; resolution {sp.resolution_Hz:.2g} Hz)", fontsize=11)
+    axes[-1, 0].set_xlabel("frequency [Hz]")
+    return fig
+
+
+def _spectrum_xmax(r: Report) -> float:
+    """2.5 times the highest line of interest (mesh frequency, natural frequency, peak), within Nyquist."""
+    nyq = r.stages[0].spectrum.nyquist_Hz
+    lines = [s.spectrum.mesh_frequency_Hz for s in r.stages] + list(r.natural_frequencies_Hz)
+    lines += [s.spectrum.peak_frequency_Hz or 0.0 for s in r.stages]
+    lines = [f for f in lines if 0 < f <= nyq]
+    return min(nyq, 2.5 * max(lines)) if lines and nyq > 0 else (nyq or 1.0)
+
+
+ERROR_PANELS = (("speed", "mean output speed"), ("mean_force", "mean F_t (worst stage)"),
+                ("peak_force", "run-up peak F_t (worst stage)"))
+
+
+def work_precision_figure(r: Report):
+    study = r.accuracy
+    fig, axes = _figure(1, 3, sharey=True, height=3.9, width=12.5)
+    methods = list(dict.fromkeys(run.method for run in study.runs))
+    unc = study.reference.uncertainty
+    ok = [x for x in study.runs if x.failure is None]
+    errors = [e for x in ok for q, _ in ERROR_PANELS if (e := x.error(q))] + [unc, study.requested_accuracy]
+    low, high = min(e for e in errors if e > 0) / 4, max(errors) * 3
+    for ax, (q, title) in zip(axes[0], ERROR_PANELS):
+        for i, m in enumerate(methods):
+            runs = sorted((x for x in ok if x.method == m and x.error(q)), key=lambda x: x.rtol, reverse=True)
+            if not runs:
+                continue
+            label = m if m == runs[0].method_used else f"{m} ({runs[0].method_used})"
+            ax.loglog([x.wall_s for x in runs], [x.error(q) for x in runs], "o-", color=f"C{i}", ms=4, lw=1.2,
+                      label=label)
+            if i == 0:  # the rtol of each rung, on the first method's line
+                for x in runs:
+                    ax.annotate(f"{x.rtol:.0e}", (x.wall_s, x.error(q)), textcoords="offset points",
+                                xytext=(4, 3), fontsize=6.5, color=f"C{i}")
+        ax.axhline(study.requested_accuracy, color="k", ls="--", lw=1.0,
+                   label=f"target {study.requested_accuracy:g}")
+        ax.axhspan(low, unc, color="0.85", zorder=0, label=f"below reference resolution (< {unc:.1e})")
+        _mark(ax, study.recommended, q, "*", "recommended (cheapest meeting the target)", 15)
+        _mark(ax, study.file_run, q, "s", "the file's settings", 10)
+        ax.set_ylim(low, high)
+        ax.set_title(f"error of the {title}", fontsize=9)
+        ax.set_xlabel("wall time [s]")
+        ax.grid(alpha=0.3, which="both")
+    axes[0, 0].set_ylabel("relative error against the reference")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=4, fontsize=8)
+    ref = study.reference
+    fig.suptitle(f"Work against precision — reference {ref.method} rtol {ref.rtol:g}, checked with "
+                 f"{ref.check_method} rtol {ref.check_rtol:g} (uncertainty {unc:.1e})", fontsize=11)
+    return fig
+
+
+def _mark(ax, run, q: str, marker: str, label: str, size: float) -> None:
+    if run is not None and run.failure is None and run.error(q):
+        ax.plot([run.wall_s], [run.error(q)], marker, mfc="none", mec="k", ms=size, label=label)
+
+
+def write_plots(r: Report, directory: str | Path) -> list[Path]:
+    """Write the figures into ``directory`` (created if needed); returns the paths written.
+    ``work_precision.png`` needs the accuracy study, so it is left out with ``--quick``."""
+    out = Path(directory)
+    figures = [("speeds.png", speeds_figure), ("mesh_forces.png", mesh_forces_figure),
+               ("spectrum.png", spectrum_figure)]
+    if r.accuracy is not None:
+        figures.append(("work_precision.png", work_precision_figure))
+    _figure_check()
+    out.mkdir(parents=True, exist_ok=True)
+    return [_save(make(r), out / name) for name, make in figures]
+
+
+def _figure_check() -> Optional[None]:
+    """Fail early (before any directory is made) when matplotlib is missing."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError as exc:
+        raise PlotsUnavailable(f"--plots needs matplotlib: {INSTALL_HINT}") from exc
+    return None

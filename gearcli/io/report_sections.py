@@ -1,0 +1,172 @@
+"""A report as titled sections of text cells, shared by the rich-table and the markdown writers.
+
+Each section is a table (headers, rows of strings, column alignment) with notes under it; the two
+writers only differ in how they draw it. Errors below the reference's resolution are shown as
+``< u`` (u the reference's uncertainty), never as a number that would suggest a precision the study
+cannot resolve.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional, Sequence
+
+from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
+
+LABELS = {
+    "ratio": "ratio i",
+    "input_speed_deg_s": "input speed [°/s]",
+    "output_speed_deg_s": "output speed [°/s]",
+    "tangential_N": "F_t mean [N]",
+    "radial_N": "F_r mean [N]",
+    "axial_N": "F_a mean [N]",
+}
+STAGE_LABELS = {"output_speed_deg_s": "gear speed [°/s]", "ratio": "stage ratio"}
+
+
+@dataclass(frozen=True)
+class Section:
+    title: str
+    headers: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    align: str  # one "l" or "r" per column
+    notes: tuple[str, ...] = ()
+
+
+def g(v: Optional[float], digits: int = 5) -> str:
+    return "–" if v is None else f"{v:.{digits}g}"
+
+
+def percent(v: Optional[float]) -> str:
+    return "–" if v is None else f"{v:+.3g}"
+
+
+def quantity_label(stage: Optional[int], quantity: str) -> str:
+    if stage is not None and quantity in STAGE_LABELS:
+        return STAGE_LABELS[quantity]
+    return LABELS.get(quantity, quantity)
+
+
+def comparison_section(r: Report) -> Section:
+    rows = tuple(("train" if row.stage is None else str(row.stage), quantity_label(row.stage, row.quantity),
+                  g(row.theory, 6), g(row.simulated, 6), percent(row.error_percent)) for row in r.comparison)
+    w0, w1 = r.simulation.window_s
+    return Section("Theory against simulation", ("stage", "quantity", "theory (static)", "simulated (mean)",
+                                                 "error [%]"), rows, "llrrr",
+                   (f"simulated: mean over the steady window {w0:.4g}–{w1:.4g} s; error = (simulated − theory)"
+                    " / |theory|",))
+
+
+def fluctuation_section(r: Report) -> Section:
+    rows = []
+    for s in r.stages:
+        for name, st in (("F_t [N]", s.tangential_N), ("F_r [N]", s.radial_N), ("F_a [N]", s.axial_N)):
+            rows.append((str(s.stage) if name.startswith("F_t") else "", name, g(st.mean), g(st.std, 3),
+                         g(st.min), g(st.max)))
+    return Section("Mesh force fluctuation over the steady window", ("stage", "force", "mean", "std", "min", "max"),
+                   tuple(rows), "llrrrr")
+
+
+def peaks_section(r: Report) -> Section:
+    rows = tuple((str(s.stage), g(s.static_tangential_N), g(s.peak_tangential_N), g(s.peak_time_s, 3),
+                  g(s.dynamic_factor, 4)) for s in r.stages)
+    return Section("Run-up peak and dynamic factor", ("stage", "static F_t [N]", "peak |F_t| [N]", "at t [s]",
+                                                      "dynamic factor"), rows, "lrrrr",
+                   ("peak over the whole run, run-up included; dynamic factor = peak / |static F_t|",))
+
+
+def spectrum_section(r: Report) -> Section:
+    rows = []
+    for s in r.stages:
+        sp = s.spectrum
+        peak = "–" if sp.peak_frequency_Hz is None else f"{sp.peak_frequency_Hz:.4g} ± {sp.resolution_Hz:.2g}"
+        rows.append((str(s.stage), peak, g(sp.peak_amplitude_N, 3), g(sp.mesh_frequency_Hz, 4), sp.matches))
+    notes = []
+    if r.stages:
+        sp = r.stages[0].spectrum
+        notes.append(f"FFT of the detrended F_t over {sp.window_s[0]:.4g}–{sp.window_s[1]:.4g} s with a Hann window: "
+                     f"resolution 1/T = {sp.resolution_Hz:.3g} Hz, Nyquist {sp.nyquist_Hz:.4g} Hz")
+    nat = r.natural_frequencies_Hz
+    notes.append("linearised natural frequencies [Hz]: " + (", ".join(f"{f:.4g}" for f in nat) if nat else "none given"))
+    return Section("Dominant frequency of each mesh force", ("stage", "peak [Hz]", "amplitude [N]",
+                                                             "mesh frequency [Hz]", "nearest line"),
+                   tuple(rows), "lrrrl", tuple(notes))
+
+
+def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
+    e = run.error(quantity)
+    if e is None:
+        return "–"
+    if run.below_reference_resolution.get(quantity):
+        return f"< {uncertainty:.1e}"
+    return f"{e:.2e}"
+
+
+def accuracy_section(study: AccuracyStudy) -> Section:
+    ref, rec = study.reference, study.recommended
+    rows = []
+    for run in study.runs:
+        marks = " ".join(m for m, on in (("★", run is rec), ("file", run.file_settings)) if on)
+        method = run.method if run.method == run.method_used else f"{run.method} ({run.method_used})"
+        if run.failure:
+            rows.append((method, f"{run.rtol:.0e}", "–", "–", "–", "–", "–", run.failure[:60] + (" " + marks if marks else "")))
+            continue
+        cells = [error_cell(run, q, ref.uncertainty) for q in ("speed", "mean_force", "peak_force")]
+        rows.append((method, f"{run.rtol:.0e}", f"{run.wall_s:.3f}", str(run.nfev), *cells,
+                     ("yes" if run.meets_accuracy else "no") + (f"  {marks}" if marks else "")))
+    return Section(f"Numerical accuracy: work against precision (target {study.requested_accuracy:g})",
+                   ("method", "rtol", "wall [s]", "nfev", "error ω_out", "error mean F_t", "error peak F_t",
+                    "meets"), tuple(rows), "lrrrrrrl", tuple(accuracy_notes(study)))
+
+
+def accuracy_notes(study: AccuracyStudy) -> list[str]:
+    ref, rec, fr = study.reference, study.recommended, study.file_run
+    notes = [
+        f"reference: {ref.method} at rtol {ref.rtol:g} ({ref.wall_s:.2f} s, nfev {ref.nfev}); checked against "
+        f"{ref.check_method} at rtol {ref.check_rtol:g} ({ref.check_wall_s:.2f} s): uncertainty {ref.uncertainty:.1e} "
+        f"(largest relative difference); '< u' = below reference resolution",
+        "★ cheapest meeting the target: " + (f"{rec.method} at rtol {rec.rtol:g} ({rec.wall_s:.3f} s, nfev {rec.nfev})"
+                                             if rec else "none"),
+    ]
+    if fr is not None:
+        notes.append(f"the file's settings ({fr.method}, rtol {fr.rtol:g}) "
+                     + ("meet" if study.file_settings_meet_accuracy else "do NOT meet")
+                     + f" the target {study.requested_accuracy:g}")
+    return notes + list(study.notes)
+
+
+def solver_lines(r: Report) -> list[str]:
+    sv, sim = r.simulation.solver, r.simulation
+    return [
+        f"solver {sv.method} ({sv.choice_reason}), rtol {sv.rtol:g}: {sv.steps} steps, nfev {sv.nfev}, "
+        f"njev {sv.njev}, wall {sv.wall_s:.3g} s",
+        f"energy balance residual {sv.energy_residual:.2e} (input work − load work − damping loss − ΔKE − ΔPE, "
+        "relative to the largest energy)",
+        f"dynamic ratio {sim.ratio:.6g}, output {sim.output_speed_deg_s:.6g} °/s = {sim.output_speed_deg_s / 6:.5g} rpm",
+    ]
+
+
+def sections(r: Report) -> list[Section]:
+    out = [comparison_section(r), fluctuation_section(r), peaks_section(r), spectrum_section(r)]
+    if r.accuracy is not None:
+        out.append(accuracy_section(r.accuracy))
+    return out
+
+
+def method_paragraph(study: AccuracyStudy) -> str:
+    """How the numbers of the accuracy study were obtained, for a reader of the markdown report."""
+    ref = study.reference
+    rtols = sorted({r.rtol for r in study.runs}, reverse=True)
+    methods = list(dict.fromkeys(r.method for r in study.runs))
+    return (
+        f"The scene was run with {', '.join(methods)} at rtol {', '.join(f'{x:g}' for x in rtols)}. "
+        f"Each run's error is relative to a reference run ({ref.method} at rtol {ref.rtol:g}). The reference was "
+        f"checked by an independent run with a different method ({ref.check_method} at rtol {ref.check_rtol:g}); "
+        f"the largest relative difference between the two over the compared quantities, {ref.uncertainty:.1e}, "
+        f"is the reference's own uncertainty, and errors below it are reported as below the reference resolution "
+        f"(\"< {ref.uncertainty:.1e}\"). Compared quantities: the mean output speed over the steady window, the mean "
+        f"F_t (largest relative error over the stages) and the run-up peak |F_t| (largest over the stages). A "
+        f"setting meets the target {study.requested_accuracy:g} when max(error, uncertainty) is within it for all "
+        f"three; ★ marks the cheapest such setting by wall time (integration only). Wall times are from this "
+        f"machine and vary from run to run by some per cent."
+    )

@@ -1,0 +1,253 @@
+"""Work-precision study: numerical error of the simulation against its run time.
+
+The scene runs over a ladder of relative tolerances for several methods. Each run's error is
+measured against a reference run at a much tighter tolerance, and the reference is itself checked by
+a second tight run with a different method (explicit against implicit): the largest relative
+difference between the two is the reference's ``uncertainty``. An error below that cannot be
+resolved and is flagged ``below_reference_resolution`` (its number is kept, but it is only an upper
+bound of nothing: the true error may be anywhere below the uncertainty).
+
+A run meets a requested accuracy when ``max(error, uncertainty) <= accuracy`` for the three compared
+quantities (window-mean output speed, per-stage mean F_t, per-stage run-up peak |F_t|).
+The recommended setting is the cheapest run that meets it: least wall time, then fewest nfev.
+"""
+
+from __future__ import annotations
+
+import statistics
+from dataclasses import dataclass
+from typing import Callable, Iterable, Optional, Union
+
+from gearcli.errors import GearcliError, SimulationError
+from gearcli.report.result import QUANTITIES, AccuracyRun, AccuracyStudy, ReferenceRun, RunMetrics
+from gearcli.results import SimulationResult
+
+DEFAULT_RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
+#: when a method picked by "auto" is also on the ladder, the other method of its family runs instead
+SAME_FAMILY = {"DOP853": "RK45", "RK45": "DOP853", "Radau": "BDF", "BDF": "Radau", "LSODA": "BDF"}
+
+RunFn = Callable[[str, float], SimulationResult]  # (method, rtol) -> result (series not needed)
+ProgressFn = Callable[[str, int, int], None]  # (label, runs done, runs planned)
+
+
+@dataclass(frozen=True)
+class LadderSpec:
+    """What the study runs.
+
+    ``reference``/``check``: (method, rtol) of the reference and of its independent check. ``None``
+    picks DOP853 at 1e-12 checked by Radau at 1e-10: an explicit high-order method at a tight
+    tolerance is the cheapest accurate reference on these scenes, stiff ones included (on
+    configs/stiff_linear_mesh.toml it takes 2.5 s against 12 s for Radau at 1e-11, and the two agree to
+    6e-11). Only when the scene's stiffness indicator max|λ|·T exceeds ``explicit_reference_limit``
+    (stability alone would then cost DOP853 more than ~2 max|λ|·T = 4e5 evaluations) does the pair
+    become Radau at 1e-11 checked by BDF at 1e-10. ``max_run_s``: once a run of a method takes longer,
+    its tighter rungs are skipped (a note says so), so a stiff scene cannot run for hours.
+    """
+
+    rtols: tuple[float, ...] = DEFAULT_RTOLS
+    methods: tuple[str, ...] = ("auto", "DOP853", "Radau")
+    reference: Optional[tuple[str, float]] = None
+    check: Optional[tuple[str, float]] = None
+    max_run_s: float = 15.0
+    explicit_reference_limit: float = 2e5
+
+    def reference_pair(self, stiffness_indicator: Optional[float] = None
+                       ) -> tuple[tuple[str, float], tuple[str, float]]:
+        stiff = stiffness_indicator is not None and stiffness_indicator > self.explicit_reference_limit
+        ref = self.reference or (("Radau", 1e-11) if stiff else ("DOP853", 1e-12))
+        check = self.check or (("BDF", 1e-10) if stiff else ("Radau", 1e-10))
+        return ref, check
+
+
+# ------------------------------------------------------------------------------------------ errors
+def _rel(value: float, ref: float, scale: float) -> float:
+    return abs(value - ref) / (abs(ref) if ref != 0 else max(abs(scale), 1.0))
+
+
+def relative_errors(m: RunMetrics, ref: RunMetrics) -> dict[str, float]:
+    """Relative errors of ``m`` against ``ref``; forces: the largest over the stages."""
+    speed = _rel(m.output_speed_deg_s, ref.output_speed_deg_s, 1.0)
+    mean = max((_rel(a, b, p) for a, b, p in zip(m.mean_tangential_N, ref.mean_tangential_N,
+                                                    ref.peak_tangential_N)), default=0.0)
+    peak = max((_rel(a, b, 1.0) for a, b in zip(m.peak_tangential_N, ref.peak_tangential_N)), default=0.0)
+    return {"speed": speed, "mean_force": mean, "peak_force": peak}
+
+
+def meets(errors: dict[str, Optional[float]], uncertainty: float, accuracy: float) -> bool:
+    """True when every error, or the reference's uncertainty where larger, is within ``accuracy``."""
+    return all(e is not None and max(e, uncertainty) <= accuracy for e in errors.values())
+
+
+# ------------------------------------------------------------------------------------------- plan
+def ladder_method(method: str, auto_choice: Optional[str], methods: Iterable[str]) -> str:
+    """A method that "auto" resolves to, when "auto" is also on the ladder, is swapped for its family
+    sibling (DOP853 <-> RK45, Radau <-> BDF), so that no setting runs twice."""
+    if method != "auto" and method == auto_choice and "auto" in methods:
+        return SAME_FAMILY.get(method, method)
+    return method
+
+
+def ladder_methods(methods: Iterable[str], auto_choice: Optional[str]) -> tuple[str, ...]:
+    methods = tuple(methods)
+    out: list[str] = []
+    for m in methods:
+        m = ladder_method(m, auto_choice, methods)
+        if m not in out:
+            out.append(m)
+    return tuple(out)
+
+
+def _same_rtol(a: float, b: float) -> bool:
+    return abs(a - b) <= 1e-9 * max(abs(a), abs(b))
+
+
+# ------------------------------------------------------------------------------------------- runs
+Outcome = Union[SimulationResult, str]  # a result, or why there is none
+
+
+def reference_run(ref: SimulationResult, check: SimulationResult, ref_rtol: float,
+                  check_rtol: float) -> ReferenceRun:
+    ref_m = RunMetrics.of(ref)
+    differences = relative_errors(RunMetrics.of(check), ref_m)
+    return ReferenceRun(
+        method=ref.solver.method, rtol=ref_rtol, wall_s=ref.solver.wall_s, nfev=ref.solver.nfev,
+        check_method=check.solver.method, check_rtol=check_rtol, check_wall_s=check.solver.wall_s,
+        check_nfev=check.solver.nfev, uncertainty=max(differences.values()), differences=differences,
+        metrics=ref_m,
+    )
+
+
+def measure(sim: SimulationResult, method: str, rtol: float, ref: ReferenceRun, accuracy: float,
+            file_settings: bool) -> AccuracyRun:
+    errors = relative_errors(RunMetrics.of(sim), ref.metrics)
+    return AccuracyRun(
+        method=method, method_used=sim.solver.method, rtol=rtol, wall_s=sim.solver.wall_s, nfev=sim.solver.nfev,
+        njev=sim.solver.njev, steps=sim.solver.steps, error_speed=errors["speed"],
+        error_mean_force=errors["mean_force"], error_peak_force=errors["peak_force"],
+        below_reference_resolution={q: errors[q] < ref.uncertainty for q in QUANTITIES},
+        meets_accuracy=meets(errors, ref.uncertainty, accuracy), file_settings=file_settings,
+    )
+
+
+def failed(method: str, rtol: float, reason: str, file_settings: bool) -> AccuracyRun:
+    return AccuracyRun(method, method, rtol, 0.0, 0, 0, 0, None, None, None,
+                       {q: False for q in QUANTITIES}, False, file_settings, reason)
+
+
+class _Runner:
+    """Runs settings one by one, counting them for the progress callback; failures become text."""
+
+    def __init__(self, run: RunFn, progress: Optional[ProgressFn], total: int):
+        self.run, self.tick, self.total, self.done = run, progress or (lambda *a: None), total, 0
+
+    def __call__(self, method: str, rtol: float, role: str = "") -> Outcome:
+        self.tick(f"{role + ' ' if role else ''}{method} rtol {rtol:g}", self.done, self.total)
+        self.done += 1
+        try:
+            return self.run(method, rtol)
+        except GearcliError as exc:
+            return str(exc)
+
+
+def accuracy_study(
+    run: RunFn,
+    *,
+    file_method: str,
+    file_rtol: float,
+    accuracy: float = 1e-4,
+    spec: LadderSpec = LadderSpec(),
+    auto_choice: Optional[str] = None,
+    stiffness_indicator: Optional[float] = None,
+    progress: Optional[ProgressFn] = None,
+) -> AccuracyStudy:
+    """Run the ladder (auto first, to learn what it resolves to), the file's own settings when they
+    are not a rung, then the reference and its check; measure every run against the reference.
+    ``auto_choice`` (what "auto" resolves to) and ``stiffness_indicator`` (max|λ|·T) come from the
+    file's own run when known. Raises SimulationError when the reference or its check fails."""
+    rtols = sorted(spec.rtols, reverse=True)
+    in_ladder = file_method in spec.methods and any(_same_rtol(r, file_rtol) for r in rtols)
+    runner = _Runner(run, progress, len(spec.methods) * len(rtols) + 2 + (0 if in_ladder else 1))
+    outcomes, slow = _ladder(runner, spec, rtols, auto_choice, (file_method, file_rtol))
+    if not any(_is_file(m, r, file_method, file_rtol) for m, r, _ in outcomes):  # e.g. swapped for a sibling
+        runner.total += 1 if in_ladder else 0
+        outcomes.append((file_method, file_rtol, runner(file_method, file_rtol)))
+    ref = _reference(runner, spec.reference_pair(stiffness_indicator))
+    runner.tick("done", runner.total, runner.total)
+    runs = []
+    for m, r, o in outcomes:
+        is_file = _is_file(m, r, file_method, file_rtol)
+        runs.append(measure(o, m, r, ref, accuracy, is_file) if isinstance(o, SimulationResult)
+                    else failed(m, r, o, is_file))
+    ok = [x for x in runs if x.meets_accuracy]
+    best = min(ok, key=lambda x: (x.wall_s, x.nfev)) if ok else None
+    file_run = next(x for x in runs if x.file_settings)
+    return AccuracyStudy(accuracy, ref, tuple(runs), best, file_run.meets_accuracy,
+                         tuple(_notes(ref, runs, accuracy, slow)))
+
+
+def _ladder(runner: "_Runner", spec: LadderSpec, rtols: list[float], auto_choice: Optional[str],
+            file_setting: tuple[str, float]) -> tuple[list[tuple[str, float, Outcome]], dict[str, float]]:
+    """Every method over the rtols, loose to tight; "auto" first so its choice is known before the
+    siblings are picked. Returns (method, rtol, outcome) triples and the methods that became slow."""
+    outcomes: list[tuple[str, float, Outcome]] = []
+    slow: dict[str, float] = {}
+    for m in sorted(spec.methods, key=lambda m: m != "auto"):
+        m = ladder_method(m, auto_choice, spec.methods)
+        if any(m == done for done, _, _ in outcomes):
+            runner.total -= len(rtols)
+            continue
+        for r in rtols:
+            if m in slow and not _is_file(m, r, *file_setting):
+                outcomes.append((m, r, f"skipped: the {m} rung before took {slow[m]:.1f} s"))
+                runner.total -= 1
+                continue
+            outcome = runner(m, r)
+            outcomes.append((m, r, outcome))
+            if isinstance(outcome, SimulationResult):
+                auto_choice = auto_choice or (outcome.solver.method if m == "auto" else None)
+                if outcome.solver.wall_s > spec.max_run_s:
+                    slow[m] = outcome.solver.wall_s
+    return outcomes, slow
+
+
+def _is_file(method: str, rtol: float, file_method: str, file_rtol: float) -> bool:
+    return method == file_method and _same_rtol(rtol, file_rtol)
+
+
+def _reference(runner: _Runner, pair) -> ReferenceRun:
+    (ref_method, ref_rtol), (check_method, check_rtol) = pair
+    results = []
+    for role, (method, rtol) in zip(("reference", "check"), pair):
+        outcome = runner(method, rtol, role)
+        if not isinstance(outcome, SimulationResult):
+            raise SimulationError(f"accuracy reference run ({method}, rtol {rtol:g}) failed: {outcome}; "
+                                  "use --quick to skip the accuracy study")
+        results.append(outcome)
+    return reference_run(*results, ref_rtol, check_rtol)
+
+
+def _notes(ref: ReferenceRun, runs: list[AccuracyRun], accuracy: float, slow: dict) -> list[str]:
+    notes = []
+    if ref.uncertainty > accuracy:
+        notes.append(f"the reference's own uncertainty {ref.uncertainty:.1e} exceeds the requested accuracy "
+                     f"{accuracy:.0e}: no setting can be certified; tighten the reference")
+    for method, wall in slow.items():
+        notes.append(f"{method}: tighter rungs skipped after a run of {wall:.1f} s")
+    for r in runs:
+        if r.failure and not r.failure.startswith("skipped"):
+            notes.append(f"{r.method} rtol {r.rtol:g} failed: {r.failure}")
+    return notes
+
+
+def struggling_runs(runs: Iterable[AccuracyRun], ladder: Iterable[AccuracyRun], factor: float = 5.0) -> list[str]:
+    """Those of ``runs`` whose nfev is more than ``factor`` times the median nfev of the ``ladder``'s
+    runs at the same rtol."""
+    ladder = [r for r in ladder if r.failure is None]
+    out = []
+    for r in (r for r in runs if r.failure is None):
+        peers = [p.nfev for p in ladder if _same_rtol(p.rtol, r.rtol)]
+        if len(peers) >= 3 and r.nfev > factor * statistics.median(peers):
+            out.append(f"{r.method} at rtol {r.rtol:g} needed {r.nfev} function evaluations, "
+                       f"{r.nfev / statistics.median(peers):.0f}x the ladder's median at that rtol: "
+                       "the solver struggles (stiffness or a discontinuity)")
+    return out

@@ -1,0 +1,66 @@
+"""Assemble a :class:`Report`: the file's own simulation, theory against it, and the accuracy study."""
+
+from __future__ import annotations
+
+from typing import Callable, Optional
+
+from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
+from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
+from gearcli.report.compare import comparison_rows, stage_reports
+from gearcli.report.result import Report
+from gearcli.results import DesignResult, SimulationResult
+
+SimulateFn = Callable[..., SimulationResult]  # gearcli.simulate.run_simulation's signature
+
+
+def build_report(
+    cfg,
+    design: DesignResult,
+    *,
+    accuracy: float = 1e-4,
+    quick: bool = False,
+    spec: LadderSpec = LadderSpec(),
+    progress: Optional[ProgressFn] = None,
+    simulate: Optional[SimulateFn] = None,
+) -> Report:
+    """Run the design file's scene with its own ``[simulation]`` settings and compare it with the
+    design's static values; unless ``quick``, add the work-precision study (see ``report.accuracy``).
+
+    ``cfg`` is the validated ``DesignFile``; ``simulate`` defaults to ``gearcli.simulate.run_simulation``
+    (tests pass a stand-in); ``progress(label, done, total)`` is called before each run.
+    """
+    if simulate is None:
+        from gearcli.simulate import run_simulation as simulate
+    tick = progress or (lambda label, done, total: None)
+    sim_cfg = cfg.simulation
+    planned = 1 if quick else 1 + 2 + len(spec.rtols) * len(spec.methods)
+    tick(f"simulation ({sim_cfg.method}, rtol {sim_cfg.rtol:g})", 0, planned)
+    sim = simulate(cfg, design, want_series=True)
+    stages = stage_reports(design, sim)
+    study = None
+    if not quick:
+        def run(method: str, rtol: float) -> SimulationResult:
+            return simulate(cfg, design, method=method, rtol=rtol, want_series=False)
+
+        study = accuracy_study(
+            run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
+            auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
+            stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
+            progress=lambda label, done, total: tick(label, done + 1, total + 1),
+        )
+    warnings = _merge(
+        design.warnings,
+        sim.warnings,
+        energy_check(sim),
+        sampling_checks(stages, sim.natural_frequencies_Hz),
+        accuracy_checks(study, sim_cfg.method, sim_cfg.rtol),
+    )
+    return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim),
+                  stages=stages, accuracy=study, warnings=warnings)
+
+
+def _merge(*groups) -> tuple[str, ...]:
+    out: list[str] = []
+    for group in groups:
+        out += [w for w in group if w not in out]
+    return tuple(out)

@@ -1,0 +1,57 @@
+"""The report's own checks on a simulation, beside the warnings the simulation already gives.
+
+Contact loss and penetration beyond the full-damping depth are the simulation's own warnings
+(``gearcli.simulate.stats``, which knows which flank is loaded and when a full-damping depth below
+the static approach is deliberate); the report adds what only it can see: the energy balance
+against a limit, lines the output sampling cannot resolve, and the accuracy study's verdicts.
+Each check returns plain sentences; nothing here prints.
+"""
+
+from __future__ import annotations
+
+from typing import Optional, Sequence
+
+from gearcli.report.accuracy import struggling_runs
+from gearcli.report.result import AccuracyStudy, StageReport
+from gearcli.results import SimulationResult
+
+#: |energy residual| above this (relative to the largest energy) is worth a warning
+ENERGY_RESIDUAL_LIMIT = 1e-3
+
+
+def energy_check(sim: SimulationResult, limit: float = ENERGY_RESIDUAL_LIMIT) -> list[str]:
+    """|residual| beyond ``limit``, either sign (a negative residual means energy was created), unless
+    the simulation already said so."""
+    r = sim.solver.energy_residual
+    if abs(r) > limit and not any("energy balance" in w for w in sim.warnings):
+        return [f"energy balance residual {r:.2e} exceeds ±{limit:.0e} of the largest energy: the integration "
+                "is not accurate enough (tighten rtol) or the model books energy it does not account for"]
+    return []
+
+
+def sampling_checks(stages: Sequence[StageReport], natural_Hz: Sequence[float]) -> list[str]:
+    """Lines above the Nyquist frequency of the output sampling alias in the spectrum."""
+    if not stages or stages[0].spectrum.nyquist_Hz <= 0:
+        return []
+    nyq = stages[0].spectrum.nyquist_Hz
+    out = [f"stage {s.stage}: mesh frequency {s.spectrum.mesh_frequency_Hz:.4g} Hz is above the Nyquist frequency "
+           f"{nyq:.4g} Hz of the output samples; raise simulation.steps" for s in stages
+           if s.spectrum.mesh_frequency_Hz > nyq]
+    above = [f for f in natural_Hz if f > nyq]
+    if above:
+        out.append(f"{len(above)} natural frequenc{'y' if len(above) == 1 else 'ies'} (up to {max(above):.4g} Hz) "
+                   f"above the Nyquist frequency {nyq:.4g} Hz of the output samples: they alias in the "
+                   "spectrum; raise simulation.steps to see them")
+    return out
+
+
+def accuracy_checks(study: Optional[AccuracyStudy], file_method: str, file_rtol: float) -> list[str]:
+    if study is None:
+        return []
+    out = struggling_runs([r for r in study.runs if r.file_settings or r.method == "auto"], study.runs)
+    if not study.file_settings_meet_accuracy:
+        rec = study.recommended
+        hint = (f"; the cheapest that does: method = \"{rec.method}\", rtol = {rec.rtol:g}" if rec else "")
+        out.append(f"the file's [simulation] settings (method = \"{file_method}\", rtol = {file_rtol:g}) do not "
+                   f"meet the requested accuracy {study.requested_accuracy:g}{hint}")
+    return out

@@ -1,0 +1,84 @@
+"""Theory against simulation (seed paper section 4.1-4.2, with the corrected theory values).
+
+Theory is the design layer's static answer (ratios z2/z1, shaft speeds down the train, tooth forces
+F_t = T / r, F_r = F_t tan α_t, F_a = F_t tan β); simulation is the mean over the steady window.
+"""
+
+from __future__ import annotations
+
+from typing import Optional, Sequence
+
+import numpy as np
+
+from gearcli.report.result import ComparisonRow, StageReport
+from gearcli.report.spectrum import force_spectrum, window_mask
+from gearcli.results import DesignResult, SimulationResult
+
+
+def relative_error_percent(simulated: float, theory: float) -> Optional[float]:
+    """Signed ``100 (simulated - theory) / |theory|``; ``None`` when the theory value is 0."""
+    if theory == 0 or not np.isfinite(theory):
+        return None
+    return 100.0 * (simulated - theory) / abs(theory)
+
+
+def _row(stage: Optional[int], quantity: str, theory: float, simulated: float) -> ComparisonRow:
+    return ComparisonRow(stage, quantity, float(theory), float(simulated),
+                         relative_error_percent(float(simulated), float(theory)))
+
+
+def shaft_mean_speeds_deg_s(sim: SimulationResult, n_shafts: int) -> list[float]:
+    """Mean speed of every shaft over the steady window, from the ``shaft{i}_speed_deg_s`` series.
+
+    The input and output means are taken from the simulation's own summary, so the report and
+    ``gearcli simulate`` agree to the last digit.
+    """
+    mask = window_mask(sim.time_s, sim.window_s)
+    means = []
+    for i in range(1, n_shafts + 1):
+        series = sim.channels.get(f"shaft{i}_speed_deg_s")
+        means.append(float(np.mean(series[mask])) if series is not None and mask.any() else float("nan"))
+    means[0] = float(sim.input_speed_deg_s)
+    means[-1] = float(sim.output_speed_deg_s)
+    return means
+
+
+def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[ComparisonRow, ...]:
+    """Train rows (ratio, input and output speed), then per stage: ratio, gear speed, F_t, F_r, F_a."""
+    speeds = shaft_mean_speeds_deg_s(sim, len(design.shafts))
+    rows = [
+        _row(None, "ratio", design.total_ratio, sim.ratio),
+        _row(None, "input_speed_deg_s", design.input_speed_deg_s, sim.input_speed_deg_s),
+        _row(None, "output_speed_deg_s", design.output_speed_deg_s, sim.output_speed_deg_s),
+    ]
+    for st, dyn in zip(design.stages, sim.stages):
+        k = st.index
+        pinion_speed, gear_speed = speeds[k - 1], speeds[k]
+        ratio_sim = pinion_speed / gear_speed if gear_speed != 0 else float("nan")
+        static = st.static_force_N
+        rows += [
+            _row(k, "ratio", st.ratio, ratio_sim),
+            _row(k, "output_speed_deg_s", st.gear.speed_deg_s, gear_speed),
+            _row(k, "tangential_N", static.tangential, dyn.tangential_N.mean),
+            _row(k, "radial_N", static.radial, dyn.radial_N.mean),
+            _row(k, "axial_N", static.axial, dyn.axial_N.mean),
+        ]
+    return tuple(r for r in rows if np.isfinite(r.simulated))
+
+
+def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageReport, ...]:
+    """Fluctuation, run-up peak, dynamic factor and the F_t spectrum of every mesh."""
+    out = []
+    natural: Sequence[float] = tuple(sim.natural_frequencies_Hz)
+    for st, dyn in zip(design.stages, sim.stages):
+        series = sim.channels.get(f"stage{st.index}_tangential_N")
+        if series is None:
+            series = np.zeros_like(sim.time_s)
+        spectrum = force_spectrum(sim.time_s, series, sim.window_s, stage=st.index,
+                                  mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural)
+        out.append(StageReport(
+            stage=st.index, tangential_N=dyn.tangential_N, radial_N=dyn.radial_N, axial_N=dyn.axial_N,
+            static_tangential_N=dyn.static_tangential_N, peak_tangential_N=dyn.peak_tangential_N,
+            peak_time_s=dyn.peak_time_s, dynamic_factor=dyn.dynamic_factor, spectrum=spectrum,
+        ))
+    return tuple(out)

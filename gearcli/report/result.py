@@ -1,0 +1,171 @@
+"""Frozen result objects of ``gearcli report``: theory against simulation, spectra, accuracy study.
+
+The report layer computes; ``gearcli.io`` formats. Stage indices are 1-based (``None`` for rows that
+belong to the whole train), and quantity names carry their units as in the JSON output.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from gearcli.results import ChannelStats, DesignResult, SimulationResult
+
+
+# ------------------------------------------------------------------------------ theory vs simulation
+@dataclass(frozen=True)
+class ComparisonRow:
+    """One design (static) value against the simulated mean over the steady window.
+
+    ``error_percent`` is signed, ``100 (simulated - theory) / |theory|``; ``None`` when theory is 0.
+    """
+
+    stage: Optional[int]  # None: a train-level row
+    quantity: str  # "ratio", "input_speed_deg_s", "output_speed_deg_s", "tangential_N", ...
+    theory: float
+    simulated: float
+    error_percent: Optional[float]
+
+
+@dataclass(frozen=True, eq=False)
+class Spectrum:
+    """Amplitude spectrum of one stage's detrended F_t over the steady window (Hann window).
+
+    ``amplitude_N`` is scaled so that a pure sine of amplitude A shows a peak of A (coherent gain of
+    the Hann window removed). ``peak_frequency_Hz`` is the centre of the largest non-DC bin, good to
+    ``resolution_Hz`` = 1 / T_window; ``None`` when the force does not fluctuate.
+    """
+
+    stage: int
+    frequency_Hz: np.ndarray
+    amplitude_N: np.ndarray
+    peak_frequency_Hz: Optional[float]
+    peak_amplitude_N: float
+    resolution_Hz: float
+    nyquist_Hz: float
+    window_s: tuple[float, float]
+    mesh_frequency_Hz: float
+    matches: str  # what the peak lies next to: "mesh frequency", "natural frequency 2", "none", ...
+
+
+@dataclass(frozen=True, eq=False)
+class StageReport:
+    """The fluctuation of one mesh over the steady window, its run-up peak and its spectrum."""
+
+    stage: int
+    tangential_N: ChannelStats
+    radial_N: ChannelStats
+    axial_N: ChannelStats
+    static_tangential_N: float
+    peak_tangential_N: float
+    peak_time_s: float
+    dynamic_factor: float
+    spectrum: Spectrum
+
+
+# ------------------------------------------------------------------------------- numerical accuracy
+QUANTITIES = ("speed", "mean_force", "peak_force")
+
+
+@dataclass(frozen=True)
+class RunMetrics:
+    """What the accuracy study compares between runs: window-mean output speed, per-stage mean F_t
+    and per-stage run-up peak |F_t|."""
+
+    output_speed_deg_s: float
+    mean_tangential_N: tuple[float, ...]
+    peak_tangential_N: tuple[float, ...]
+
+    @classmethod
+    def of(cls, sim: SimulationResult) -> "RunMetrics":
+        return cls(
+            output_speed_deg_s=float(sim.output_speed_deg_s),
+            mean_tangential_N=tuple(float(s.tangential_N.mean) for s in sim.stages),
+            peak_tangential_N=tuple(float(s.peak_tangential_N) for s in sim.stages),
+        )
+
+
+@dataclass(frozen=True)
+class ReferenceRun:
+    """The tight-tolerance reference and the independent check that bounds its own error.
+
+    ``uncertainty`` is the largest relative difference between the two runs over the three compared
+    quantities (``differences`` gives each); errors below it cannot be resolved.
+    """
+
+    method: str
+    rtol: float
+    wall_s: float
+    nfev: int
+    check_method: str
+    check_rtol: float
+    check_wall_s: float
+    check_nfev: int
+    uncertainty: float
+    differences: dict[str, float]
+    metrics: RunMetrics
+
+
+@dataclass(frozen=True)
+class AccuracyRun:
+    """One rung of the work-precision ladder, with its errors relative to the reference.
+
+    Errors are relative (not %): speed = |Δ mean ω_out| / |ω_out,ref|; mean_force and peak_force are
+    the largest over the stages of |Δ| / |ref|. ``None`` when the run failed (``failure`` says why).
+    """
+
+    method: str  # as requested ("auto", "DOP853", ...)
+    method_used: str  # the scipy method that ran
+    rtol: float
+    wall_s: float
+    nfev: int
+    njev: int
+    steps: int
+    error_speed: Optional[float]
+    error_mean_force: Optional[float]
+    error_peak_force: Optional[float]
+    below_reference_resolution: dict[str, bool]
+    meets_accuracy: bool
+    file_settings: bool = False  # the design file's own [simulation] method and rtol
+    failure: Optional[str] = None
+
+    def error(self, quantity: str) -> Optional[float]:
+        return getattr(self, f"error_{quantity}")
+
+
+@dataclass(frozen=True)
+class AccuracyStudy:
+    requested_accuracy: float
+    reference: ReferenceRun
+    runs: tuple[AccuracyRun, ...]
+    recommended: Optional[AccuracyRun]  # cheapest (least wall time, then nfev) meeting the accuracy
+    file_settings_meet_accuracy: bool
+    notes: tuple[str, ...] = ()
+
+    @property
+    def file_run(self) -> Optional[AccuracyRun]:
+        return next((r for r in self.runs if r.file_settings), None)
+
+
+# ------------------------------------------------------------------------------------ the report
+@dataclass(frozen=True, eq=False)
+class Report:
+    """Everything ``gearcli report`` shows, for one design file and its own simulation settings."""
+
+    title: str
+    design: DesignResult
+    simulation: SimulationResult  # the run with the file's own [simulation] settings, with series
+    comparison: tuple[ComparisonRow, ...]
+    stages: tuple[StageReport, ...]
+    accuracy: Optional[AccuracyStudy]  # None with --quick
+    warnings: tuple[str, ...] = field(default_factory=tuple)
+
+    @property
+    def natural_frequencies_Hz(self) -> tuple[float, ...]:
+        return tuple(self.simulation.natural_frequencies_Hz)
+
+    @property
+    def energy_residual(self) -> float:
+        return float(self.simulation.solver.energy_residual)

@@ -1,0 +1,261 @@
+"""Unit tests of the report core on synthetic results (no solver): spectrum, comparison, accuracy study.
+
+The synthetic runs have a known error law, error = C_method * rtol^p_method, so the study's errors,
+flags and recommendation can be checked against numbers computed by hand.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from gearcli.report import LadderSpec, accuracy_study, force_spectrum, relative_errors
+from gearcli.report.accuracy import ladder_methods, meets, struggling_runs
+from gearcli.report.compare import comparison_rows, relative_error_percent, stage_reports
+from gearcli.report.result import RunMetrics
+from gearcli.report.spectrum import name_peak
+from test_report_fakes import LAW, FakeSolver, fake_design, fake_report, fake_simulation
+
+
+# ------------------------------------------------------------------------------------- spectrum
+def test_spectrum_finds_a_sine_and_its_amplitude():
+    fs, f0, amp = 4000.0, 210.0, 12.0
+    t = np.arange(0, 0.5 + 1e-12, 1 / fs)
+    force = 1851.0 + 40.0 * t + amp * np.sin(2 * np.pi * f0 * t)  # trend + ripple
+    sp = force_spectrum(t, force, (0.244, 0.5), stage=1, mesh_frequency_Hz=210.0, natural_frequencies_Hz=(900.0,))
+    # window 0.256 s, 1025 samples: resolution 1/(1025/4000) = 3.90 Hz
+    assert_allclose(sp.resolution_Hz, fs / sp.frequency_Hz.size / 2, rtol=2e-3)
+    assert abs(sp.peak_frequency_Hz - f0) <= sp.resolution_Hz, "peak within one bin of the true line"
+    # a Hann-windowed sine between bins loses up to 15 % (scalloping); amplitude scaled to A
+    assert_allclose(sp.peak_amplitude_N, amp, rtol=0.16)
+    assert sp.matches == "mesh frequency"
+    assert_allclose(sp.nyquist_Hz, fs / 2, rtol=1e-3)
+
+
+def test_spectrum_of_a_constant_force_has_no_peak():
+    t = np.linspace(0, 0.5, 2001)
+    sp = force_spectrum(t, np.full_like(t, 1851.0), (0.25, 0.5), stage=1, mesh_frequency_Hz=210.0)
+    assert sp.peak_frequency_Hz is None and sp.matches == "no fluctuation"
+
+
+def test_spectrum_with_too_few_samples_is_empty_not_an_error():
+    t = np.linspace(0, 0.5, 11)
+    sp = force_spectrum(t, np.sin(t), (0.4, 0.5), stage=1, mesh_frequency_Hz=10.0)
+    assert sp.peak_frequency_Hz is None and sp.frequency_Hz.size == 0
+
+
+def test_name_peak_prefers_the_nearest_line_within_two_bins():
+    assert name_peak(212.0, 4.0, 210.0, (900.0,)) == "mesh frequency"
+    assert name_peak(421.0, 4.0, 210.0, ()) == "mesh harmonic 2"
+    assert name_peak(903.0, 4.0, 210.0, (150.0, 900.0)) == "natural frequency 2"
+    assert name_peak(500.0, 4.0, 210.0, (900.0,)) == "none"
+
+
+# ------------------------------------------------------------------------------------- comparison
+def test_relative_error_is_signed_and_none_for_zero_theory():
+    assert_allclose(relative_error_percent(1796.0, 1851.0), -2.971, atol=1e-3)  # the seed's F_t, signed
+    assert relative_error_percent(5.0, 0.0) is None
+
+
+def test_comparison_rows_against_a_design_with_known_errors():
+    design = fake_design()
+    sim = fake_simulation(design, speed_err=-1e-3, force_err=2e-3)
+    rows = {(r.stage, r.quantity): r for r in comparison_rows(design, sim)}
+    assert_allclose(rows[(None, "ratio")].theory, 6.0, rtol=1e-12)
+    # output 0.1 % slow: ratio 0.1 % high; error_percent = 100 (1/(1-1e-3) - 1)
+    assert_allclose(rows[(None, "ratio")].error_percent, 100 * (1 / (1 - 1e-3) - 1), rtol=1e-9)
+    assert_allclose(rows[(None, "output_speed_deg_s")].error_percent, -0.1, rtol=1e-9)
+    # the 160 Hz ripple makes 40 whole periods in the 0.25 s window: its sample mean is 0
+    assert_allclose(rows[(1, "tangential_N")].error_percent, 0.2, atol=1e-3)
+    assert_allclose(rows[(2, "radial_N")].error_percent, 0.2, atol=1e-3)
+    assert rows[(1, "axial_N")].error_percent is None  # spur: F_a theory is 0
+    assert_allclose(rows[(2, "ratio")].error_percent, 100 * (1 / (1 - 1e-3) - 1), rtol=1e-9)  # last stage
+
+
+def test_stage_reports_carry_the_spectrum_of_each_mesh():
+    design = fake_design()
+    reps = stage_reports(design, fake_simulation(design, ripple_Hz=160.0))
+    assert [r.stage for r in reps] == [1, 2]
+    for r in reps:
+        assert abs(r.spectrum.peak_frequency_Hz - 160.0) <= r.spectrum.resolution_Hz
+        assert r.spectrum.matches == "natural frequency 1"
+
+
+# ------------------------------------------------------------------------------------- accuracy
+def test_relative_errors_take_the_worst_stage():
+    ref = RunMetrics(100.0, (1000.0, 2000.0), (1500.0, 3000.0))
+    m = RunMetrics(100.1, (1001.0, 2010.0), (1500.0, 2970.0))
+    e = relative_errors(m, ref)
+    assert_allclose([e["speed"], e["mean_force"], e["peak_force"]], [1e-3, 5e-3, 1e-2], rtol=1e-9)
+
+
+def test_meets_uses_the_larger_of_error_and_uncertainty():
+    assert meets({"speed": 1e-6, "mean_force": 1e-6, "peak_force": 1e-6}, 1e-8, 1e-4)
+    assert not meets({"speed": 1e-6, "mean_force": 1e-6, "peak_force": 1e-6}, 1e-3, 1e-4)
+    assert not meets({"speed": None, "mean_force": 1e-6, "peak_force": 1e-6}, 1e-8, 1e-4)
+
+
+def test_ladder_swaps_the_method_auto_resolves_to_for_its_sibling():
+    assert ladder_methods(("auto", "DOP853", "Radau"), "DOP853") == ("auto", "RK45", "Radau")
+    assert ladder_methods(("auto", "DOP853", "Radau"), "Radau") == ("auto", "DOP853", "BDF")
+    assert ladder_methods(("auto", "DOP853", "Radau"), None) == ("auto", "DOP853", "Radau")
+
+
+def test_the_file_settings_run_once_on_the_ladder_or_are_added_to_it():
+    design = fake_design()
+    solver = FakeSolver(design)
+    study = accuracy_study(solver, file_method="auto", file_rtol=3e-7, auto_choice="DOP853",
+                           spec=LadderSpec(rtols=(1e-3, 1e-6)))
+    assert solver.calls.count(("auto", 3e-7)) == 1
+    assert [(r.method, r.rtol) for r in study.runs if r.file_settings] == [("auto", 3e-7)]
+    solver.calls.clear()
+    study = accuracy_study(solver, file_method="auto", file_rtol=1e-6, spec=LadderSpec(rtols=(1e-3, 1e-6)))
+    assert solver.calls.count(("auto", 1e-6)) == 1 and len(study.runs) == 6
+
+
+def test_a_file_method_that_auto_also_picks_still_runs_at_the_file_rtol():
+    solver = FakeSolver(fake_design(), auto="DOP853")
+    study = accuracy_study(solver, file_method="DOP853", file_rtol=1e-6, spec=LadderSpec(rtols=(1e-3, 1e-6)))
+    assert {r.method for r in study.runs} == {"auto", "RK45", "Radau", "DOP853"}
+    assert [(r.method, r.rtol) for r in study.runs if r.file_settings] == [("DOP853", 1e-6)]
+
+
+def test_the_reference_is_explicit_unless_the_scene_is_very_stiff():
+    assert LadderSpec().reference_pair(None) == (("DOP853", 1e-12), ("Radau", 1e-10))
+    assert LadderSpec().reference_pair(3.6e4) == (("DOP853", 1e-12), ("Radau", 1e-10))
+    assert LadderSpec().reference_pair(1e6) == (("Radau", 1e-11), ("BDF", 1e-10))
+    assert LadderSpec(reference=("RK45", 1e-10)).reference_pair(1e6)[0] == ("RK45", 1e-10)
+
+
+def test_accuracy_study_errors_flags_and_recommendation():
+    design = fake_design()
+    solver = FakeSolver(design)
+    spec = LadderSpec(rtols=(1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9))
+    study = accuracy_study(solver, file_method="auto", file_rtol=1e-6, accuracy=1e-4, spec=spec)
+    ref = study.reference
+    # reference DOP853 at 1e-12: error 3e-12; check Radau at 1e-10: error 3e-9; uncertainty ~ 3e-9
+    assert (ref.method, ref.rtol, ref.check_method, ref.check_rtol) == ("DOP853", 1e-12, "Radau", 1e-10)
+    assert_allclose(ref.uncertainty, 3e-9, rtol=0.01)
+    assert {r.method for r in study.runs} == {"auto", "RK45", "Radau"}  # auto is DOP853: RK45 instead
+    assert solver.calls[0][0] == "auto", "auto runs first, to learn what it resolves to"
+    for run in study.runs:
+        c, p, _ = LAW[run.method_used]
+        true = c * run.rtol**p
+        if true > 10 * ref.uncertainty:  # resolvable: measured error = true error within the reference's
+            assert_allclose(run.error_speed, true, rtol=0.05)
+        assert run.below_reference_resolution["speed"] == (run.error_speed < ref.uncertainty)
+    rec = study.recommended
+    # meets 1e-4: DOP853 (auto) at rtol <= 3e-5 -> 1e-5 rung; RK45 at 1e-5; Radau at 1e-6; cheapest: auto 1e-5
+    assert (rec.method, rec.rtol) == ("auto", 1e-5)
+    assert study.file_settings_meet_accuracy
+    assert study.file_run.method == "auto" and study.file_run.rtol == 1e-6
+
+
+def test_accuracy_study_flags_errors_below_the_reference_resolution():
+    design = fake_design()
+    study = accuracy_study(FakeSolver(design), file_method="Radau", file_rtol=1e-3, accuracy=1e-6,
+                           spec=LadderSpec(rtols=(1e-3, 1e-10), methods=("DOP853", "Radau")))
+    tight = next(r for r in study.runs if r.method == "DOP853" and r.rtol == 1e-10)
+    # error 3e-10 against an uncertainty of 3e-9 (Radau's error at the check's rtol 1e-10)
+    assert all(tight.below_reference_resolution.values())
+    assert tight.meets_accuracy  # max(3e-10, 3e-9) <= 1e-6
+    assert not study.file_settings_meet_accuracy  # Radau 1e-3: error 3e-2
+
+
+def test_a_failed_rung_is_recorded_and_the_study_goes_on():
+    from gearcli.errors import SimulationError
+
+    design = fake_design()
+    solver = FakeSolver(design)
+
+    def run(method, rtol):
+        if method == "RK45" and rtol == 1e-3:
+            raise SimulationError("step size too small")
+        return solver(method, rtol)
+
+    study = accuracy_study(run, file_method="DOP853", file_rtol=1e-6, spec=LadderSpec(rtols=(1e-3, 1e-6),
+                           methods=("DOP853", "RK45")))
+    bad = next(r for r in study.runs if r.failure)
+    assert bad.error_speed is None and not bad.meets_accuracy
+    assert any("step size too small" in n for n in study.notes)
+
+
+def test_struggling_run_is_flagged_against_the_ladder_median():
+    design = fake_design()
+    study = accuracy_study(FakeSolver(design), file_method="DOP853", file_rtol=1e-6,
+                           spec=LadderSpec(rtols=(1e-6,), methods=("DOP853", "RK45", "Radau")))
+    runs = list(study.runs)
+    assert struggling_runs(runs, runs) == []
+    heavy = runs[0].__class__(**{**runs[0].__dict__, "nfev": 100 * runs[0].nfev})
+    assert "struggles" in struggling_runs([heavy], [heavy, *runs[1:]])[0]
+
+
+def test_progress_counts_every_planned_run():
+    design = fake_design()
+    seen = []
+    accuracy_study(FakeSolver(design), file_method="DOP853", file_rtol=1e-6,
+                   spec=LadderSpec(rtols=(1e-3, 1e-6), methods=("DOP853", "Radau")),
+                   progress=lambda label, done, total: seen.append((done, total)))
+    assert seen[-1][0] == seen[-1][1] == 2 + 4  # reference + check + 4 rungs
+    assert all(d <= t for d, t in seen)
+
+
+@pytest.mark.parametrize("quick", [True, False])
+def test_build_report_with_a_stand_in_solver(quick):
+    rep = fake_report(quick=quick, rtols=(1e-4, 1e-7))
+    assert (rep.accuracy is None) == quick
+    assert len(rep.stages) == 2 and rep.comparison[0].quantity == "ratio"
+    assert rep.warnings == ()  # the fake run is clean: no check may fire
+
+
+# ------------------------------------------------------------------------------------------ checks
+def _with(sim, **solver_changes):
+    import dataclasses
+
+    return dataclasses.replace(sim, solver=dataclasses.replace(sim.solver, **solver_changes))
+
+
+def test_energy_check_warns_on_either_sign_but_not_twice():
+    from gearcli.report.checks import energy_check
+
+    sim = fake_simulation(fake_design())
+    assert energy_check(_with(sim, energy_residual=1e-7)) == []
+    assert "-2.00e-02" in energy_check(_with(sim, energy_residual=-2e-2))[0]  # energy created: warned too
+    import dataclasses
+
+    already = dataclasses.replace(_with(sim, energy_residual=2e-2), warnings=("energy balance residual 0.02 ...",))
+    assert energy_check(already) == []
+
+
+def test_sampling_check_names_lines_above_nyquist():
+    from gearcli.report.checks import sampling_checks
+
+    design = fake_design()
+    stages = stage_reports(design, fake_simulation(design))  # 2001 samples over 0.5 s: Nyquist 2000 Hz
+    assert sampling_checks(stages, (160.0, 900.0)) == []
+    msg = sampling_checks(stages, (160.0, 4700.0))
+    assert len(msg) == 1 and "4700 Hz" in msg[0] and "simulation.steps" in msg[0]
+
+
+def test_accuracy_check_says_what_to_use_instead():
+    from gearcli.report.checks import accuracy_checks
+
+    study = accuracy_study(FakeSolver(fake_design()), file_method="Radau", file_rtol=1e-3,
+                           spec=LadderSpec(rtols=(1e-3, 1e-5), methods=("DOP853", "Radau")))
+    msg = accuracy_checks(study, "Radau", 1e-3)
+    assert any('do not meet' in m and 'method = "DOP853", rtol = 1e-05' in m for m in msg), msg
+
+
+def test_a_failed_reference_is_an_error_not_a_study():
+    from gearcli.errors import SimulationError
+
+    solver = FakeSolver(fake_design())
+
+    def run(method, rtol):
+        if rtol < 1e-10:
+            raise SimulationError("budget exceeded")
+        return solver(method, rtol)
+
+    with pytest.raises(SimulationError, match="reference run .*--quick"):
+        accuracy_study(run, file_method="DOP853", file_rtol=1e-6, spec=LadderSpec(rtols=(1e-6,)))
