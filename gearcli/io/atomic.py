@@ -11,12 +11,23 @@ import tempfile
 from pathlib import Path
 
 
+def _final_mode(target: Path) -> int:
+    """The mode the file would get from ``open(target, "w")``: the replaced file's, else 0666 less umask."""
+    try:
+        return target.stat().st_mode & 0o7777
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
 def write_atomic(path: str | os.PathLike, data: str | bytes) -> None:
     """Write ``data`` to ``path`` atomically (same-directory temp file, fsync, ``os.replace``)."""
     target = Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
     try:
+        os.chmod(tmp, _final_mode(target))  # mkstemp makes 0600; a plain open() would honour the umask
         with os.fdopen(fd, "wb") as fh:
             fh.write(payload)
             fh.flush()

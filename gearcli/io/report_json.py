@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Optional
 
-from gearcli.io.serialize import _plain, simulation_dict
+from gearcli.io.serialize import plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
 
@@ -31,7 +31,7 @@ def design_summary(d: DesignResult) -> dict:
         "output_speed_rpm": d.output_speed_rpm,
         "input_torque_Nmm": d.input_torque_Nmm,
         "output_torque_Nmm": d.output_torque_Nmm,
-        "stages": [{k: _plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS} for s in d.stages],
+        "stages": [{k: plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS} for s in d.stages],
         "shaft_speeds_deg_s": [sh.speed_deg_s for sh in d.shafts],
         "warnings": list(d.warnings),
     }
@@ -41,9 +41,9 @@ def stage_dict(s: StageReport) -> dict:
     sp = s.spectrum
     return {
         "stage": s.stage,
-        "tangential_N": _plain(s.tangential_N),
-        "radial_N": _plain(s.radial_N),
-        "axial_N": _plain(s.axial_N),
+        "tangential_N": plain(s.tangential_N),
+        "radial_N": plain(s.radial_N),
+        "axial_N": plain(s.axial_N),
         "static_tangential_N": s.static_tangential_N,
         "peak_tangential_N": s.peak_tangential_N,
         "peak_time_s": s.peak_time_s,
@@ -61,7 +61,7 @@ def stage_dict(s: StageReport) -> dict:
 
 
 def run_dict(r: Optional[AccuracyRun]) -> Optional[dict]:
-    return None if r is None else _plain(dataclasses.asdict(r))
+    return None if r is None else plain(dataclasses.asdict(r))
 
 
 def accuracy_dict(study: Optional[AccuracyStudy]) -> Optional[dict]:
@@ -69,7 +69,7 @@ def accuracy_dict(study: Optional[AccuracyStudy]) -> Optional[dict]:
         return None
     ref = dataclasses.asdict(study.reference)
     ref.pop("metrics")
-    ref["values"] = _plain(study.reference.metrics)
+    ref["values"] = plain(study.reference.metrics)
     return {
         "requested_accuracy": study.requested_accuracy,
         "reference": ref,
@@ -85,7 +85,7 @@ def report_dict(r: Report) -> dict:
     sim.pop("warnings", None)  # merged into the report's own list
     return {
         "title": r.title,
-        "comparison": [_plain(row) for row in r.comparison],
+        "comparison": [plain(row) for row in r.comparison],
         "dynamics": [stage_dict(s) for s in r.stages],
         "natural_frequencies_Hz": list(r.natural_frequencies_Hz),
         "accuracy": accuracy_dict(r.accuracy),

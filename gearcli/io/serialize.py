@@ -13,14 +13,14 @@ import gearcli
 from gearcli.results import DesignResult, SimulationResult
 
 
-def _plain(obj: Any) -> Any:
+def plain(obj: Any) -> Any:
     """Dataclasses, tuples and numpy scalars/arrays to JSON-ready Python values."""
     if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        return {f.name: _plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+        return {f.name: plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
     if isinstance(obj, dict):
-        return {str(k): _plain(v) for k, v in obj.items()}
+        return {str(k): plain(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_plain(v) for v in obj]
+        return [plain(v) for v in obj]
     if hasattr(obj, "tolist"):  # numpy array or scalar
         return obj.tolist()
     return obj
@@ -32,12 +32,12 @@ def with_meta(payload: dict, sha256: str) -> dict:
 
 
 def design_dict(result: DesignResult) -> dict:
-    return _plain(result)
+    return plain(result)
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
     stages = [
-        {k: _plain(getattr(s, k)) for k in ("index", "tangential_N", "radial_N", "axial_N", "penetration_mm",
+        {k: plain(getattr(s, k)) for k in ("index", "tangential_N", "radial_N", "axial_N", "penetration_mm",
                                               "static_tangential_N", "peak_tangential_N", "peak_time_s",
                                               "dynamic_factor")}
         for s in result.stages
@@ -51,8 +51,8 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
             "stages": stages,
             "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
         },
-        "solver": _plain(result.solver),
-        "energy": _plain(result.energy),
+        "solver": plain(result.solver),
+        "energy": plain(result.energy),
         "warnings": list(result.warnings),
     }
     if series:
