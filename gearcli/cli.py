@@ -123,7 +123,7 @@ def load_and_design(path: str, overrides):
     from gearcli.config import load_design
     from gearcli.design import compute_design
 
-    loaded = load_design(path, overrides, stdin=click.get_binary_stream("stdin"))
+    loaded = load_design(path, overrides)  # "-" reads sys.stdin.buffer (CliRunner swaps it too)
     try:
         design = compute_design(loaded.design)
     except DesignError as exc:
