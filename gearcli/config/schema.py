@@ -12,8 +12,11 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-PositiveFloat = Annotated[float, Field(gt=0)]
-NonNegFloat = Annotated[float, Field(ge=0)]
+# Upper bounds are plausibility limits, far outside any real gearbox, that keep every derived quantity
+# (inertia ~ rho b d^4, forces, energies) finite in double precision.
+PositiveFloat = Annotated[float, Field(gt=0, le=1e15)]
+NonNegFloat = Annotated[float, Field(ge=0, le=1e15)]
+Torque = Annotated[float, Field(ge=-1e15, le=1e15)]
 
 METHODS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
@@ -23,8 +26,8 @@ class _Table(BaseModel):
 
 
 class Material(_Table):
-    density_kg_m3: PositiveFloat
-    youngs_modulus_MPa: PositiveFloat
+    density_kg_m3: Annotated[float, Field(gt=0, le=1e5)]  # osmium is 22,590
+    youngs_modulus_MPa: Annotated[float, Field(gt=0, le=1e7)]  # diamond is 1.2e6
     poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)]
 
 
@@ -32,11 +35,11 @@ class Gear(_Table):
     """One gear of a stage: pinion (driving) or gear (driven)."""
 
     teeth: Annotated[int, Field(ge=5, le=10000)]
-    face_width_mm: PositiveFloat
+    face_width_mm: Annotated[float, Field(gt=0, le=1e5)]
     hand: Optional[Literal["left", "right", "spur"]] = None
     material: str = "steel"
     profile_shift: Annotated[float, Field(ge=-1.5, le=1.5)] = 0.0
-    inertia_kg_m2: Optional[PositiveFloat] = None
+    inertia_kg_m2: Optional[Annotated[float, Field(gt=0, le=1e12)]] = None
 
 
 class ContactOverride(_Table):
@@ -68,7 +71,7 @@ class Contact(_Table):
 class Stage(_Table):
     """One gear pair, in the order power flows. The pinion drives the gear."""
 
-    normal_module_mm: PositiveFloat
+    normal_module_mm: Annotated[float, Field(gt=0, le=1e4)]
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
     pinion: Gear
@@ -87,8 +90,8 @@ class Input(_Table):
     speed_rad_s: Optional[PositiveFloat] = None
     ramp_s: NonNegFloat = 0.0
     drive: Literal["speed", "torque"] = "speed"
-    torque_Nm: Optional[float] = None
-    torque_Nmm: Optional[float] = None
+    torque_Nm: Optional[Torque] = None
+    torque_Nmm: Optional[Torque] = None
 
     @model_validator(mode="after")
     def _one_speed_one_torque(self) -> "Input":
@@ -129,8 +132,8 @@ class Input(_Table):
 class Load(_Table):
     """Torque on the output shaft, resisting its rotation (negative: load reversal)."""
 
-    torque_Nmm: Optional[float] = None
-    torque_Nm: Optional[float] = None
+    torque_Nmm: Optional[Torque] = None
+    torque_Nm: Optional[Torque] = None
     ramp_s: NonNegFloat = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
 

@@ -7,7 +7,7 @@ This module only assembles: every formula lives, with its source, in ``geometry`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, is_dataclass
 from typing import TYPE_CHECKING
 
 from gearcli.design import stiffness as stf
@@ -33,6 +33,8 @@ def compute_design(cfg: "DesignFile") -> DesignResult:
     kin = train(tuple((s.pinion.teeth, s.gear.teeth) for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                 cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
     stages = tuple(_stage_result(cfg, k, kin) for k in range(len(cfg.stage)))
+    for k, stage in enumerate(stages):
+        _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
     return DesignResult(
         title=cfg.title,
@@ -46,6 +48,18 @@ def compute_design(cfg: "DesignFile") -> DesignResult:
         output_torque_Nmm=kin.load_torque_Nmm,
         warnings=design_warnings(cfg, stages, speed_rpm(out)),
     )
+
+
+def _require_finite(obj, key: str) -> None:
+    """Every number of a stage result must be finite; a value in range that still overflows (a huge
+    module with a huge density) is a bad design file, not a result (exit 2, never inf in the output)."""
+    for f in fields(obj):
+        value = getattr(obj, f.name)
+        if is_dataclass(value):
+            _require_finite(value, key)
+        elif isinstance(value, float) and not math.isfinite(value):
+            raise DesignError(f"the design gives a non-finite {f.name} ({value}): check the magnitudes of "
+                              "module, face width, density, speed and torque", key=key)
 
 
 def _geometry(stage: "Stage", k: int) -> PairGeometry:

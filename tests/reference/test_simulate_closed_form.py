@@ -116,11 +116,12 @@ def test_free_vibration_never_gains_energy(c, k_mm, e, jp, jg, p0):
     y0[0] = p0 / CB
     kn = e * K * p0 ** (e - 1)  # linearised at p0: sets the run length (~8 periods)
     w = math.sqrt(kn * CB**2 * (R_P**2 / jp + R_G**2 / jg))
-    sim = simulate_model(model, duration_s=8 * 2 * math.pi / w, steps=800, method="DOP853", rtol=1e-9, y0=y0)
+    sim = simulate_model(model, duration_s=8 * 2 * math.pi / w, steps=800, method="DOP853", rtol=1e-10, y0=y0)
     wp, wg = speeds_rad_s(sim, 2)
     p = np.abs(sim.channels["stage1_penetration_mm"]) * 1e-3
     energy = 0.5 * (jp * wp**2 + jg * wg**2) + K * p ** (e + 1) / (e + 1)
-    # E is ~0.5 J w^2 ~ 1e3-1e4 J of rigid rotation plus the vibration; rtol 1e-9 keeps drift ~1e-9 E
+    # E is ~0.5 J w^2 ~ 1e3-1e4 J of rigid rotation plus the vibration; the global error of an rtol-controlled
+    # run grows with its step count (hypothesis found 1.4e-8 E at rtol 1e-9), so rtol 1e-10 keeps drift < 1e-8 E
     assert np.all(np.diff(energy) <= 1e-8 * energy[0])
     if c == 0.0:
         assert_allclose(energy, energy[0], rtol=1e-8)

@@ -198,3 +198,27 @@ def test_warnings_are_plain_strings_in_stage_order():
     assert all(isinstance(w, str) for w in ws)
     stages = [w.split(":")[0] for w in ws if w.startswith("stage")]
     assert stages == sorted(stages)
+
+
+def test_non_finite_stage_values_are_a_design_error_not_an_output():
+    # backstop behind the schema's plausibility bounds: any inf/nan in a stage result is refused
+    from dataclasses import dataclass
+
+    import pytest
+
+    from gearcli.design.compute import _require_finite
+    from gearcli.errors import DesignError
+
+    @dataclass(frozen=True)
+    class Inner:
+        inertia_kg_m2: float
+
+    @dataclass(frozen=True)
+    class Outer:
+        ratio: float
+        gear: Inner
+
+    _require_finite(Outer(2.0, Inner(1.0)), "stage[0]")  # finite: no error
+    with pytest.raises(DesignError) as err:
+        _require_finite(Outer(2.0, Inner(float("inf"))), "stage[1]")
+    assert err.value.key == "stage[1]" and "inertia_kg_m2" in err.value.message
