@@ -1,6 +1,8 @@
 """``gearcli simulate``: solver wrapper, method choice, steady-state statistics (DESIGN.md section 4).
 
-- ``solver``  one loop around scipy's ODE solvers: tolerances, samples, counters, failures
+- ``solver``  one loop around scipy's ODE solvers: tolerances, samples, counters, failures, restarts at
+              the ramp ends
+- ``guards``  cost budget from the scene, explicit-method feasibility, energy watch, force-noise warning
 - ``choice``  ``method = "auto"`` from the linearised stiffness
 - ``stats``   steady window, channel statistics, per-stage dynamics, warnings
 - ``run``     ``run_simulation`` (design file + design) and ``simulate_model`` (an assembled model)

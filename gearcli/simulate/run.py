@@ -13,17 +13,19 @@ from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import EnergyBalance, SimulationResult, SolverStats
 from gearcli.simulate import stats
 from gearcli.simulate.choice import EXPLICIT, IMPLICIT_METHOD, STIFFNESS_LIMIT, Choice, choose_method
-from gearcli.simulate.solver import (MAX_NFEV, STATUS_BUDGET, STATUS_FAILED, STATUS_FINISHED, STATUS_NONFINITE,
+from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
+from gearcli.simulate.solver import (STATUS_BUDGET, STATUS_ENERGY, STATUS_FAILED, STATUS_FINISHED, STATUS_NONFINITE,
                                      Integration, integrate)
 
 RAD_TO_DEG = 180.0 / math.pi
 
 
 def run_simulation(cfg, design, *, method: Optional[str] = None, rtol: Optional[float] = None,
-                   want_series: bool = True, max_nfev: int = MAX_NFEV) -> SimulationResult:
+                   want_series: bool = True, max_nfev: Optional[int] = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
-    are still computed from the full samples). Raises SimulationError on failure, never returns NaN."""
+    are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
+    (:func:`gearcli.simulate.guards.nfev_budget`). Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
@@ -32,18 +34,21 @@ def run_simulation(cfg, design, *, method: Optional[str] = None, rtol: Optional[
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: Optional[float] = None, want_series: bool = True,
-                   y0: Optional[np.ndarray] = None, max_nfev: int = MAX_NFEV) -> SimulationResult:
+                   y0: Optional[np.ndarray] = None, max_nfev: Optional[int] = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.layout`)."""
     spec = model.spec
     window, warnings = stats.steady_window(spec, duration_s, window_start_s)
     choice = choose_method(spec, duration_s, method)
+    if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
+        max_nfev = nfev_budget(choice.indicator, rtol)
+        require_feasible(choice, max_nfev)
     t_eval = np.linspace(0.0, duration_s, steps + 1)
     run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev)
     check(run, choice, duration_s)
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
-    warnings += stats.model_warnings(spec) + _choice_warnings(choice)
+    warnings += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
     result = _summarise(model, s, run, choice, window, energy, warnings, want_series)
     _require_finite(result)
     return result
@@ -126,12 +131,22 @@ def check(run: Integration, choice: Choice, duration_s: float) -> None:
             raise SimulationError(f"{where}: {run.message}. {_stiffness_hint(choice)}")
         raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics or the contacts "
                               "impact violently — shorten simulation.duration_s or loosen simulation.rtol")
-    if run.status == STATUS_NONFINITE:
-        raise SimulationError(f"{where}: the solution diverged (non-finite state). {_stiffness_hint(choice)}")
+    if run.status in (STATUS_NONFINITE, STATUS_ENERGY):
+        cause = "the solution diverged (non-finite state)" if run.status == STATUS_NONFINITE \
+            else "the solution is unstable"
+        raise SimulationError(f"{where}: {cause}: {run.message}. {_divergence_hint(choice, run)}")
     if run.status == STATUS_FAILED:
         raise SimulationError(f"{where}: the step size collapsed (solver: {run.message}); likely a violent contact "
                               "impact or a discontinuous stiffness — try method = \"Radau\" or a looser rtol")
     raise SimulationError(f"{where}: {run.message}")
+
+
+def _divergence_hint(choice: Choice, run: Integration) -> str:
+    """The fix for a diverging run: an implicit method for a stiff scene, else a tighter tolerance."""
+    if run.method in EXPLICIT:
+        return _stiffness_hint(choice)
+    return (f"tighten simulation.rtol (now {run.rtol:g}, try {run.rtol / 100:g}); if it persists, check the contact "
+            f"law of mesh stage {choice.stiffest_mesh + 1} (stiffness, exponent) and the inertias")
 
 
 def _stiffness_hint(choice: Choice) -> str:
