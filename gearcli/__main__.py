@@ -1,6 +1,21 @@
-"""``python -m gearcli``."""
+"""``python -m gearcli`` and the ``gearcli`` console script.
 
-from gearcli.cli import main
+The command-line module is imported inside :func:`main` so that a Ctrl-C during the start-up imports
+(click, pydantic, rich; scipy later for simulate) also ends with exit code 130 and one line, never a
+traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way.
+"""
+
+import sys
+
+
+def main() -> None:
+    try:
+        from gearcli.cli import main as run
+    except KeyboardInterrupt:
+        sys.stderr.write("gearcli: interrupted\n")
+        sys.exit(130)
+    run()
+
 
 if __name__ == "__main__":  # pragma: no cover
     main()

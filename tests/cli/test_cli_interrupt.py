@@ -55,3 +55,24 @@ def test_ctrl_c_leaves_an_existing_output_file_untouched(tmp_path):
     assert target.read_text() == "time_s,previous run\n0,1\n"
     assert target.stat().st_mtime_ns == before.st_mtime_ns and target.stat().st_ino == before.st_ino
     assert sorted(os.listdir(tmp_path)) == ["OUT.csv"]
+
+
+def test_ctrl_c_during_start_up_imports_is_exit_130_without_traceback(monkeypatch, capsys):
+    # the interrupt arrives while gearcli.cli (click, pydantic, rich) is being imported: the entry point
+    # must map it like any other interrupt. Simulated by making that import raise KeyboardInterrupt.
+    import builtins
+
+    from gearcli.__main__ import main
+
+    real_import = builtins.__import__
+
+    def interrupted_import(name, *args, **kwargs):
+        if name == "gearcli.cli":
+            raise KeyboardInterrupt
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", interrupted_import)
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code == 130
+    assert capsys.readouterr().err == "gearcli: interrupted\n"
