@@ -167,6 +167,7 @@ def method_paragraph(study: AccuracyStudy) -> str:
         f"(\"< {ref.uncertainty:.1e}\"). Compared quantities: the mean output speed over the steady window, the mean "
         f"F_t (largest relative error over the stages) and the run-up peak |F_t| (largest over the stages). A "
         f"setting meets the target {study.requested_accuracy:g} when max(error, uncertainty) is within it for all "
-        f"three; ★ marks the cheapest such setting by wall time (integration only). Wall times are from this "
-        f"machine and vary from run to run by some per cent."
+        f"three; ★ marks the cheapest such setting, priced as its evaluations times its method's median "
+        f"integration time per evaluation over the ladder (one run's wall time is too noisy to rank neighbouring "
+        f"rungs). Wall times are from this machine and vary from run to run by some per cent."
     )

@@ -9,7 +9,10 @@ bound of nothing: the true error may be anywhere below the uncertainty).
 
 A run meets a requested accuracy when ``max(error, uncertainty) <= accuracy`` for the three compared
 quantities (window-mean output speed, per-stage mean F_t, per-stage run-up peak |F_t|).
-The recommended setting is the cheapest run that meets it: least wall time, then fewest nfev.
+The recommended setting is the cheapest run that meets it. Its cost is ``nfev`` times its method's
+median wall time per evaluation over the ladder rather than its own wall time: two neighbouring rungs
+often differ by a few milliseconds, less than the timing noise of one run, and the pooled rate keeps
+the choice repeatable while still weighing an implicit method's dearer evaluations (Jacobians, LU).
 """
 
 from __future__ import annotations
@@ -179,10 +182,21 @@ def accuracy_study(
         runs.append(measure(o, m, r, ref, accuracy, is_file) if isinstance(o, SimulationResult)
                     else failed(m, r, o, is_file))
     ok = [x for x in runs if x.meets_accuracy]
-    best = min(ok, key=lambda x: (x.wall_s, x.nfev)) if ok else None
+    cost = _cost(runs)
+    best = min(ok, key=lambda x: (cost(x), x.nfev)) if ok else None
     file_run = next(x for x in runs if x.file_settings)
     return AccuracyStudy(accuracy, ref, tuple(runs), best, file_run.meets_accuracy,
                          tuple(_notes(ref, runs, accuracy, slow)))
+
+
+def _cost(runs: Iterable[AccuracyRun]) -> Callable[[AccuracyRun], float]:
+    """Estimated cost of a run: nfev x its method's median seconds per evaluation over the ladder."""
+    rates: dict[str, list[float]] = {}
+    for x in runs:
+        if x.failure is None and x.nfev:
+            rates.setdefault(x.method, []).append(x.wall_s / x.nfev)
+    per = {m: statistics.median(r) for m, r in rates.items()}
+    return lambda x: x.nfev * per[x.method] if x.method in per else float("inf")
 
 
 def _ladder(runner: "_Runner", spec: LadderSpec, rtols: list[float], auto_choice: Optional[str],

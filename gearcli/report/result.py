@@ -140,7 +140,7 @@ class AccuracyStudy:
     requested_accuracy: float
     reference: ReferenceRun
     runs: tuple[AccuracyRun, ...]
-    recommended: Optional[AccuracyRun]  # cheapest (least wall time, then nfev) meeting the accuracy
+    recommended: Optional[AccuracyRun]  # cheapest (nfev x the method's median s/eval) meeting the accuracy
     file_settings_meet_accuracy: bool
     notes: tuple[str, ...] = ()
 

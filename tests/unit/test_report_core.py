@@ -259,3 +259,24 @@ def test_a_failed_reference_is_an_error_not_a_study():
 
     with pytest.raises(SimulationError, match="reference run .*--quick"):
         accuracy_study(run, file_method="DOP853", file_rtol=1e-6, spec=LadderSpec(rtols=(1e-6,)))
+
+
+def test_recommendation_prices_runs_by_evaluations_not_by_one_noisy_wall_time():
+    # the seed's auto ladder as measured once: the 1e-5 rung took 59 ms against 50 ms for 1e-6 (timing
+    # noise: it needs 3892 evaluations against 5407). Priced at the method's median seconds per
+    # evaluation, 1e-5 is the cheaper of the two, as its evaluation count says; Radau's dearer
+    # evaluations keep it behind at equal nfev.
+    from gearcli.report.accuracy import _cost
+    from gearcli.report.result import AccuracyRun
+
+    def rung(method, rtol, wall, nfev):
+        return AccuracyRun(method, method, rtol, wall, nfev, 0, 0, 1e-6, 1e-6, 1e-6, {}, True)
+
+    runs = [rung("auto", 1e-4, 0.040, 2878), rung("auto", 1e-5, 0.059, 3892), rung("auto", 1e-6, 0.050, 5407),
+            rung("auto", 1e-7, 0.064, 7246), rung("Radau", 1e-5, 0.16, 3892), rung("Radau", 1e-6, 0.23, 9726)]
+    cost = _cost(runs)
+    by_cost = sorted(runs[1:3] + runs[4:5], key=cost)
+    assert [(r.method, r.rtol) for r in by_cost] == [("auto", 1e-5), ("auto", 1e-6), ("Radau", 1e-5)]
+    # a failed rung has no rate of its own and never looks cheap
+    failed = AccuracyRun("RK45", "RK45", 1e-3, 0.001, 10, 0, 0, None, None, None, {}, False, failure="budget")
+    assert cost(failed) == float("inf")
