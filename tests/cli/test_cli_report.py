@@ -7,6 +7,7 @@ Most tests use --quick (one simulation). The full ladder runs on a SHORT scene (
 from __future__ import annotations
 
 import json
+import statistics
 import struct
 import sys
 from pathlib import Path
@@ -178,8 +179,15 @@ def test_short_ladder_errors_fall_as_the_tolerance_tightens(short_ladder):
     assert sum(r["file_settings"] for r in acc["runs"]) == 1
     rec = acc["recommended"]
     assert rec is not None and rec["meets_accuracy"]
-    cheaper = [r for r in acc["runs"] if r["meets_accuracy"] and r["wall_s"] < rec["wall_s"]]
-    assert cheaper == []
+    # the contract: no setting meeting the target is cheaper, where a run's price is its evaluations at
+    # its method's median seconds per evaluation over the ladder (one run's wall time is too noisy to
+    # rank neighbouring rungs); within one method that is simply the fewest evaluations
+    ok = [r for r in acc["runs"] if r["meets_accuracy"]]
+    assert rec["nfev"] == min(r["nfev"] for r in ok if r["method"] == rec["method"])
+    rate = {m: statistics.median(r["wall_s"] / r["nfev"] for r in acc["runs"]
+                                 if r["method"] == m and r["nfev"] and r["failure"] is None)
+            for m in methods}
+    assert all(rec["nfev"] * rate[rec["method"]] <= r["nfev"] * rate[r["method"]] for r in ok)
     assert acc["requested_accuracy"] == 1e-4
 
 
