@@ -254,22 +254,11 @@ def _jac_mesh(lay: Layout, k: int) -> list[str]:
     return _contact_blocks(lay, k, body, [f"{n}{k} = 0.0" for n in names])
 
 
-def _force_gradient(lay: Layout, k: int) -> dict[int, str]:
-    """Column -> expression of dF_bt,k/dy (delta_k, the two speeds, and through theta_pinion)."""
-    m = lay.meshes[k]
-    g: dict[int, str] = {lay.i_delta(k): f"kd{k}"}
-    for shaft, r in ((k, m.base_radius_pinion_m), (k + 1, -m.base_radius_gear_m)):
-        col = lay.i_omega(shaft)
-        if col is not None:
-            g[col] = f"{lit(r)} * kv{k}"
-    if m.time_varying:
-        for col, coef in lay.angle_gradient(k).items():
-            g[col] = (g[col] + " + " if col in g else "") + f"{lit(coef)} * kt{k}"
-    return g
-
-
-def _integrand_gradient(lay: Layout, k: int, name: str) -> dict[int, str]:
-    """Column -> d(name_k)/dy for a mesh quadrature integrand (q: damping power, u: elastic power)."""
+def _gradient(lay: Layout, k: int, name: str) -> dict[int, str]:
+    """Column -> d(name_k)/dy of a mesh-k quantity whose partials the generated code holds as
+    ``{name}d{k}`` (delta_k), ``{name}v{k}`` (deflection rate) and ``{name}t{k}`` (mesh phase): the force
+    F_bt,k (name "k") or a quadrature integrand (q: damping power, u: elastic power). The speeds enter
+    through the deflection rate, the shaft angles through theta_pinion when the stiffness varies."""
     m = lay.meshes[k]
     g = {lay.i_delta(k): f"{name}d{k}"}
     for shaft, r in ((k, m.base_radius_pinion_m), (k + 1, -m.base_radius_gear_m)):
@@ -293,7 +282,7 @@ def jac_source(lay: Layout) -> str:
         lines += _jac_mesh(lay, k)
     lines.append(f"    J = _zeros(({lay.n_states}, {lay.n_states}))")
     rows: dict[int, dict[int, list[str]]] = {}
-    grads = [_force_gradient(lay, k) for k in range(lay.n_meshes)]
+    grads = [_gradient(lay, k, "k") for k in range(lay.n_meshes)]
     for k, m in enumerate(lay.meshes):  # d(delta_k)/dt = r_bp w_k - r_bg w_{k+1}
         row = rows.setdefault(lay.i_delta(k), {})
         for shaft, r in ((k, m.base_radius_pinion_m), (k + 1, -m.base_radius_gear_m)):
@@ -317,9 +306,9 @@ def jac_source(lay: Layout) -> str:
         rows.setdefault(q0 + 1, {})[lay.i_omega(lay.n_shafts - 1)] = ["TL"]
     for k, m in enumerate(lay.meshes):
         if m.damping_Ns_m > 0.0:
-            _add(rows.setdefault(q0 + 2, {}), _integrand_gradient(lay, k, "q"), "1.0")
+            _add(rows.setdefault(q0 + 2, {}), _gradient(lay, k, "q"), "1.0")
         if m.time_varying:
-            _add(rows.setdefault(q0 + 3, {}), _integrand_gradient(lay, k, "u"), "1.0")
+            _add(rows.setdefault(q0 + 3, {}), _gradient(lay, k, "u"), "1.0")
     for r in sorted(rows):
         for c in sorted(rows[r]):
             lines.append(f"    J[{r}, {c}] = " + " + ".join(rows[r][c]))
