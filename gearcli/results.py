@@ -39,6 +39,21 @@ class GearResult:
     torque_Nmm: float
     inertia_kg_m2: float
     inertia_given: bool  # True when the design file gave inertia_kg_m2
+    # ISO 6336-1 gear body; additive fields (issue 10), defaults for hand-made results
+    body_inertia_kg_m2: float = 0.0  # pi rho b (d_m^4 - d_bore^4)/32, or the given inertia: enters m_red
+    bore_diameter_mm: float | None = None
+    gear_blank_factor: float = 1.0  # C_R of this member (1 for a solid disc)
+    torque_Nm: float = 0.0
+    power_kW: float = 0.0  # torque x speed: positive when the power flows from pinion to gear
+
+
+@dataclass(frozen=True)
+class Iso6336Factors:
+    """The correction factors of c' = c'_th C_M C_R C_B cos beta (ISO 6336-1, clause 9)."""
+
+    C_M: float = 0.8
+    C_R: float = 1.0
+    C_B: float = 0.975
 
 
 @dataclass(frozen=True)
@@ -71,6 +86,15 @@ class StageResult:
     backlash_mm: float
     pinion: GearResult
     gear: GearResult
+    # ISO 21771 / ISO 6336-1 completeness (issue 10): additive, with defaults for hand-made results
+    tip_alteration_coefficient: float = 0.0  # k; tips shortened by k m_n (k <= 0)
+    iso6336_mesh_stiffness_beta_N_mm_um: float = 0.0  # c_gamma_beta = 0.85 c_gamma_alpha
+    iso6336_factors: Iso6336Factors = field(default_factory=Iso6336Factors)
+    reduced_mass_kg_mm: float = 0.0  # m_red per mm of face width, smaller wheel = 1
+    resonance_speed_rpm: float = 0.0  # n_E1 of the smaller wheel
+    resonance_ratio: float = 0.0  # N = n_smaller_wheel / n_E1
+    resonance_lower_limit: float = 0.85  # N_S
+    resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
 
 
 @dataclass(frozen=True)
@@ -82,6 +106,8 @@ class ShaftResult:
     speed_rpm: float
     torque_Nmm: float  # torque the shaft transmits (input side of its pinion, or the load)
     inertia_kg_m2: float
+    torque_Nm: float = 0.0
+    power_kW: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -96,6 +122,8 @@ class DesignResult:
     input_torque_Nmm: float
     output_torque_Nmm: float
     warnings: tuple[str, ...]
+    input_power_kW: float = 0.0
+    output_power_kW: float = 0.0
 
 
 # ------------------------------------------------------------------------------------- simulation

@@ -8,15 +8,20 @@ accepted where a float is expected, as TOML users write ``module = 12``.
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Literal, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 # Upper bounds are plausibility limits, far outside any real gearbox, that keep every derived quantity
 # (inertia ~ rho b d^4, forces, energies) finite in double precision.
 PositiveFloat = Annotated[float, Field(gt=0, le=1e15)]
 NonNegFloat = Annotated[float, Field(ge=0, le=1e15)]
 Torque = Annotated[float, Field(ge=-1e15, le=1e15)]
+Power = Annotated[float, Field(ge=-1e12, le=1e12)]  # kW; negative: load reversal (power flows back)
+
+INPUT_TORQUE_KEYS = ("torque_Nm", "torque_Nmm", "power_kW")
+LOAD_TORQUE_KEYS = ("torque_Nmm", "torque_Nm", "power_kW")
 
 METHODS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
@@ -40,6 +45,37 @@ class Gear(_Table):
     material: str = "steel"
     profile_shift: Annotated[float, Field(ge=-1.5, le=1.5)] = 0.0
     inertia_kg_m2: Optional[Annotated[float, Field(gt=0, le=1e12)]] = None
+    # gear body (ISO 6336-1): absent = solid disc; web and rim make a webbed blank (gear blank factor C_R)
+    bore_diameter_mm: Annotated[float, Field(gt=0, le=1e5)] | None = None
+    rim_thickness_mm: Annotated[float, Field(gt=0, le=1e5)] | None = None
+    web_thickness_mm: Annotated[float, Field(gt=0, le=1e5)] | None = None
+
+    @model_validator(mode="after")
+    def _web_needs_rim(self) -> Gear:
+        if (self.web_thickness_mm is None) != (self.rim_thickness_mm is None):
+            raise ValueError("a webbed gear body needs both web_thickness_mm and rim_thickness_mm "
+                             "(give both, or neither for a solid disc)")
+        return self
+
+    @property
+    def body_given(self) -> bool:
+        """True when any of bore_diameter_mm, rim_thickness_mm, web_thickness_mm is given."""
+        return any(v is not None for v in (self.bore_diameter_mm, self.rim_thickness_mm, self.web_thickness_mm))
+
+
+class BasicRack(_Table):
+    """The basic rack profile (ISO 53) in multiples of the normal module; default profile A."""
+
+    addendum: Annotated[float, Field(ge=0.5, le=2.0)] = 1.0  # h_aP*
+    dedendum: Annotated[float, Field(ge=0.5, le=2.5)] = 1.25  # h_fP*
+    root_radius: Annotated[float, Field(ge=0.0, le=1.0)] = 0.38  # rho_fP*
+
+    @model_validator(mode="after")
+    def _clearance(self) -> BasicRack:
+        if self.dedendum < self.addendum:
+            raise ValueError(f"dedendum ({self.dedendum:g}) must be at least the addendum ({self.addendum:g}): "
+                             "the bottom clearance h_fP* - h_aP* cannot be negative")
+        return self
 
 
 class ContactOverride(_Table):
@@ -79,6 +115,7 @@ class Stage(_Table):
     backlash_mm: NonNegFloat = 0.0
     efficiency: Annotated[float, Field(gt=0, le=1)] = 1.0
     mesh: Optional[ContactOverride] = None
+    basic_rack: BasicRack = BasicRack()
 
 
 class Input(_Table):
@@ -92,6 +129,8 @@ class Input(_Table):
     drive: Literal["speed", "torque"] = "speed"
     torque_Nm: Optional[Torque] = None
     torque_Nmm: Optional[Torque] = None
+    power_kW: Power | None = None  # converted to a torque at the nominal input speed
+    _torque_from_power_Nm: float | None = PrivateAttr(default=None)
 
     @model_validator(mode="after")
     def _one_speed_one_torque(self) -> "Input":
@@ -101,13 +140,15 @@ class Input(_Table):
                 "give exactly one of speed_deg_s, speed_rpm, speed_rad_s"
                 + (f" (got {', '.join(given)})" if given else "")
             )
-        torques = [k for k in ("torque_Nm", "torque_Nmm") if getattr(self, k) is not None]
+        torques = [k for k in INPUT_TORQUE_KEYS if getattr(self, k) is not None]
         if len(torques) > 1:
-            raise ValueError("give at most one of torque_Nm, torque_Nmm")
+            raise ValueError(f"give at most one of {', '.join(INPUT_TORQUE_KEYS)} (got {', '.join(torques)})")
         if self.drive == "torque" and not torques:
-            raise ValueError('drive = "torque" needs torque_Nm or torque_Nmm')
+            raise ValueError('drive = "torque" needs torque_Nm, torque_Nmm or power_kW')
         if self.drive == "speed" and torques:
-            raise ValueError('torque_Nm/torque_Nmm are only used with drive = "torque"')
+            raise ValueError('torque_Nm/torque_Nmm/power_kW are only used with drive = "torque"')
+        if self.power_kW is not None:  # the input speed is known here: P = T ω
+            self._torque_from_power_Nm = self.power_kW * 1000.0 / self.speed_rad_s_value
         return self
 
     @property
@@ -126,7 +167,7 @@ class Input(_Table):
             return self.torque_Nm
         if self.torque_Nmm is not None:
             return self.torque_Nmm / 1000.0
-        return None
+        return self._torque_from_power_Nm
 
 
 class Load(_Table):
@@ -136,17 +177,26 @@ class Load(_Table):
     torque_Nm: Optional[Torque] = None
     ramp_s: NonNegFloat = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
+    power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
+    _torque_from_power_Nm: float | None = PrivateAttr(default=None)
 
     @model_validator(mode="after")
     def _one_torque(self) -> "Load":
-        given = [k for k in ("torque_Nmm", "torque_Nm") if getattr(self, k) is not None]
+        given = [k for k in LOAD_TORQUE_KEYS if getattr(self, k) is not None]
         if len(given) != 1:
-            raise ValueError("give exactly one of torque_Nmm, torque_Nm" + (f" (got {', '.join(given)})" if given else ""))
+            raise ValueError(f"give exactly one of {', '.join(LOAD_TORQUE_KEYS)}"
+                             + (f" (got {', '.join(given)})" if given else ""))
         return self
 
     @property
     def torque_Nm_value(self) -> float:
-        return self.torque_Nm if self.torque_Nm is not None else self.torque_Nmm / 1000.0
+        if self.torque_Nm is not None:
+            return self.torque_Nm
+        if self.torque_Nmm is not None:
+            return self.torque_Nmm / 1000.0
+        if self._torque_from_power_Nm is None:
+            raise ValueError("[load] power_kW is converted to a torque by the DesignFile it belongs to")
+        return self._torque_from_power_Nm
 
 
 class Target(_Table):
@@ -193,6 +243,16 @@ class DesignFile(_Table):
     load: Load
     target: Optional[Target] = None
     simulation: Simulation = Simulation()
+
+    @model_validator(mode="after")
+    def _load_power_to_torque(self) -> DesignFile:
+        """[load] power_kW becomes the output torque at the nominal output speed, ω_in / Π z_gear/z_pinion."""
+        if self.load.power_kW is not None:
+            ratio = math.prod(s.gear.teeth / s.pinion.teeth for s in self.stage)
+            load = self.load.model_copy()  # never write into a Load another DesignFile may share
+            load._torque_from_power_Nm = self.load.power_kW * 1000.0 * ratio / self.input.speed_rad_s_value
+            object.__setattr__(self, "load", load)
+        return self
 
     def contact_for(self, k: int) -> Contact:
         """The contact law of mesh k (0-based): ``[contact]`` with ``[stage.mesh]`` applied."""

@@ -63,10 +63,10 @@ _COMMENTS = {
 #   time_varying = true scales K with the length of the contact lines over the mesh cycle""",
     "input": """\
 # [input]: the drive. Exactly one of speed_deg_s, speed_rpm, speed_rad_s; ramp_s >= 0 (0 = full speed at t = 0).
-#   drive = "speed" (prescribed speed, default) | "torque" (then torque_Nm or torque_Nmm drives a free input shaft)""",
+#   drive = "speed" (prescribed speed, default) | "torque" (then torque_Nm, torque_Nmm or power_kW drives a free input shaft)""",
     "load": """\
 # [load]: torque on the output shaft, resisting its rotation (negative = load reversal).
-#   Exactly one of torque_Nmm, torque_Nm; ramp_s >= 0; application_factor K_A in [1, 10] (default 1)""",
+#   Exactly one of torque_Nmm, torque_Nm, power_kW; ramp_s >= 0; application_factor K_A in [1, 10] (default 1)""",
     "target": """\
 # [target] (optional): the output speed the design must reach; a miss is a warning.
 #   Exactly one of output_speed_rpm, output_speed_deg_s; tolerance_percent in (0, 100]""",

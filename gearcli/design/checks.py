@@ -24,6 +24,7 @@ import math
 from typing import TYPE_CHECKING, Iterable, Optional
 
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
+from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.errors import DesignError
 
 if TYPE_CHECKING:
@@ -79,6 +80,7 @@ def design_warnings(cfg: "DesignFile", stages: Iterable["StageResult"], output_s
         found.append(contact_ratio_warning(stage))
         found.append(face_width_warning(stage))
         found.extend(tip_thickness_warning(stage, gear) for gear in (stage.pinion, stage.gear))
+        found.append(resonance_warning(stage))
     return tuple(w for w in found if w)
 
 
@@ -150,6 +152,26 @@ def tip_thickness_warning(stage: "StageResult", gear: "GearResult") -> Optional[
     return (f"stage {stage.index}: {_part(stage, gear)} {what}, normal tip thickness s_an = {s_an:.3g} mm "
             f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm (x = {gear.profile_shift:+.2f}); "
             "reduce the profile shift")
+
+
+def resonance_warning(stage: StageResult) -> str | None:
+    """ISO 6336-1 speed ranges: the main resonance N_S < N ≤ 1.15, and the subcritical resonances near
+    N = 1/2 and 1/3 (the main range's band divided by 2 and 3; ISO names the points, gearcli the band)."""
+    n, lower = stage.resonance_ratio, stage.resonance_lower_limit
+    head = (f"stage {stage.index}: resonance ratio N = n1/n_E1 = {n:.3f} (n_E1 = {stage.resonance_speed_rpm:.4g} rpm "
+            "of the smaller wheel, ISO 6336-1)")
+    if stage.resonance_range == "main resonance":
+        return (f"{head} lies in the main resonance range {lower:.2f} < N ≤ {MAIN_RESONANCE_UPPER}: the mesh "
+                "frequency meets the mesh's natural frequency; change the speed, the masses or the stiffness")
+    order = subharmonic_order(n, lower)
+    if order:
+        return (f"{head} lies near N = 1/{order} ({lower / order:.3f} < N ≤ {MAIN_RESONANCE_UPPER / order:.3f}) in "
+                f"the subcritical range: the mesh frequency's {_ordinal(order)} harmonic can excite the resonance")
+    return None
+
+
+def _ordinal(n: int) -> str:
+    return {2: "second", 3: "third"}.get(n, f"{n}th")
 
 
 def _part(stage: "StageResult", gear: "GearResult") -> str:

@@ -10,14 +10,21 @@ import math
 from dataclasses import dataclass, fields, is_dataclass
 from typing import TYPE_CHECKING
 
+from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.checks import check_inputs, design_warnings
 from gearcli.design.forces import static_forces
-from gearcli.design.geometry import InfeasibleGeometry, PairGeometry, pair_geometry
-from gearcli.design.inertia import gear_inertia_kg_m2, shaft_inertias_kg_m2
-from gearcli.design.kinematics import Train, mesh_frequency_Hz, speed_deg_s, speed_rpm, train
+from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
+from gearcli.design.inertia import (
+    annulus_inertia_kg_m2,
+    body_inertia_kg_m2,
+    gear_inertia_kg_m2,
+    mean_body_diameter_mm,
+    shaft_inertias_kg_m2,
+)
+from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train
 from gearcli.errors import DesignError
-from gearcli.results import DesignResult, GearResult, ShaftResult, StageResult, StaticForces
+from gearcli.results import DesignResult, GearResult, Iso6336Factors, ShaftResult, StageResult, StaticForces
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -47,6 +54,8 @@ def compute_design(cfg: "DesignFile") -> DesignResult:
         input_torque_Nmm=kin.shaft_torque_Nmm(0),
         output_torque_Nmm=kin.load_torque_Nmm,
         warnings=design_warnings(cfg, stages, speed_rpm(out)),
+        input_power_kW=power_kW(kin.shaft_torque_Nmm(0), kin.shaft_speeds_rad_s[0]),
+        output_power_kW=power_kW(kin.load_torque_Nmm, out),
     )
 
 
@@ -67,7 +76,9 @@ def _geometry(stage: "Stage", k: int) -> PairGeometry:
         return pair_geometry(stage.normal_module_mm, stage.normal_pressure_angle_deg, stage.helix_angle_deg,
                              (stage.pinion.teeth, stage.gear.teeth),
                              (stage.pinion.profile_shift, stage.gear.profile_shift),
-                             (stage.pinion.face_width_mm, stage.gear.face_width_mm))
+                             (stage.pinion.face_width_mm, stage.gear.face_width_mm),
+                             BasicRackFactors(stage.basic_rack.addendum, stage.basic_rack.dedendum,
+                                              stage.basic_rack.root_radius))
     except InfeasibleGeometry as exc:
         key = f"stage[{k}]" + (f".{exc.part}.{exc.field}" if exc.part else "")
         raise DesignError(exc.message, key=key) from None
@@ -82,6 +93,22 @@ class _Stiffness:
     mesh_N_mm_um: float
     approach_mm: float
     linearised_N_mm: float
+    factors: Iso6336Factors
+    line_load_N_mm: float  # F_t K_A / b at which c' was evaluated
+
+
+def _blank_factor(gear: Gear, normal_module_mm: float) -> float:
+    """C_R of one member: ISO 6336-1's webbed-blank formula, or 1 for a solid disc."""
+    if gear.web_thickness_mm is None or gear.rim_thickness_mm is None:
+        return stf.C_R
+    return stf.gear_blank_factor(gear.web_thickness_mm, gear.rim_thickness_mm, gear.face_width_mm, normal_module_mm)
+
+
+def _iso_factors(stage: Stage) -> Iso6336Factors:
+    """C_M, C_R (mean of the two members, as ISO 6336-1 takes it for blanks of different design), C_B."""
+    c_r = 0.5 * (_blank_factor(stage.pinion, stage.normal_module_mm) + _blank_factor(stage.gear, stage.normal_module_mm))
+    return Iso6336Factors(C_M=stf.C_M, C_R=c_r,
+                          C_B=stf.basic_rack_factor(stage.normal_pressure_angle_deg, stage.basic_rack.dedendum))
 
 
 def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForces,
@@ -92,11 +119,16 @@ def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForce
     modulus = stf.effective_modulus_MPa(materials[0].youngs_modulus_MPa, materials[0].poisson_ratio,
                                         materials[1].youngs_modulus_MPa, materials[1].poisson_ratio)
     hertz = stf.hertz_stiffness_N_mm1_5(radius, modulus)
-    zn = tuple(stf.virtual_teeth(g.teeth, geo.helix_rad, geo.base_helix_rad) for g in (stage.pinion, stage.gear))
+    teeth, shifts = (stage.pinion.teeth, stage.gear.teeth), (stage.pinion.profile_shift, stage.gear.profile_shift)
+    zn = stf.smaller_wheel_first(teeth, tuple(stf.virtual_teeth(z, geo.helix_rad, geo.base_helix_rad) for z in teeth),
+                                 shifts)
+    x = stf.smaller_wheel_first(teeth, shifts, shifts)
     f_t_ref = stf.reference_tangential_force_N(forces.tangential, geo.face_width_mm)
     line_load = f_t_ref * cfg.load.application_factor / geo.face_width_mm
-    c_single = stf.single_pair_stiffness_N_mm_um(zn[0], zn[1], stage.pinion.profile_shift, stage.gear.profile_shift,
-                                                 geo.helix_rad, stage.normal_pressure_angle_deg, line_load)
+    factors = _iso_factors(stage)
+    c_single = stf.single_pair_stiffness_N_mm_um(zn[0], zn[1], x[0], x[1], geo.helix_rad,
+                                                 stage.normal_pressure_angle_deg, line_load,
+                                                 blank_factor=factors.C_R, dedendum_factor=stage.basic_rack.dedendum)
     c_mesh = stf.mesh_stiffness_N_mm_um(c_single, geo.contact_ratio_transverse)
     coefficient = stf.law_coefficient_N_mm_e(
         law.stiffness, law.exponent, hertz=hertz,
@@ -105,12 +137,14 @@ def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForce
             forces.tangential, geo.face_width_mm, geo.normal_pressure_rad, geo.helix_rad))
     h0 = stf.static_approach_mm(forces.normal, coefficient, law.exponent)
     return _Stiffness(radius, modulus, hertz, c_single, c_mesh, h0,
-                      stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0))
+                      stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0), factors, line_load)
 
 
 def _gear_result(gear: "Gear", i: int, geo: PairGeometry, helical: bool, density_kg_m3: float,
                  speed_rad_s: float, torque_Nmm: float) -> GearResult:
     d = geo.pitch_diameter_mm[i]
+    d_m = mean_body_diameter_mm(geo.tip_diameter_mm[i], geo.root_diameter_mm[i])
+    body = body_inertia_kg_m2(gear.inertia_kg_m2, density_kg_m3, gear.face_width_mm, d_m, gear.bore_diameter_mm)
     return GearResult(
         teeth=gear.teeth,
         hand=gear.hand if helical else "spur",
@@ -123,9 +157,44 @@ def _gear_result(gear: "Gear", i: int, geo: PairGeometry, helical: bool, density
         speed_deg_s=speed_deg_s(speed_rad_s),
         speed_rpm=speed_rpm(speed_rad_s),
         torque_Nmm=torque_Nmm,
-        inertia_kg_m2=gear_inertia_kg_m2(gear.inertia_kg_m2, density_kg_m3, gear.face_width_mm, d),
+        inertia_kg_m2=_model_inertia_kg_m2(gear, density_kg_m3, d, d_m),
         inertia_given=gear.inertia_kg_m2 is not None,
+        body_inertia_kg_m2=body,
+        bore_diameter_mm=gear.bore_diameter_mm,
+        gear_blank_factor=_blank_factor(gear, geo.normal_module_mm),
+        torque_Nm=torque_Nmm / 1000.0,
+        power_kW=power_kW(torque_Nmm, speed_rad_s),
     )
+
+
+def _model_inertia_kg_m2(gear: Gear, density_kg_m3: float, pitch_mm: float, mean_mm: float) -> float:
+    """The inertia the torsional model uses: given; else ISO's body (d_m, bore) when the design file describes
+    the body (bore/rim/web); else, as before these keys existed, a solid disc of pitch diameter."""
+    if gear.inertia_kg_m2 is not None or not gear.body_given:
+        return gear_inertia_kg_m2(gear.inertia_kg_m2, density_kg_m3, gear.face_width_mm, pitch_mm)
+    return annulus_inertia_kg_m2(density_kg_m3, gear.face_width_mm, mean_mm, gear.bore_diameter_mm or 0.0)
+
+
+@dataclass(frozen=True)
+class _Resonance:
+    reduced_mass_kg_mm: float
+    speed_rpm: float
+    ratio: float
+    lower_limit: float
+    range: str
+
+
+def _resonance(pinion: GearResult, gear: GearResult, mesh_N_mm_um: float, line_load_N_mm: float) -> _Resonance:
+    """m_red, n_E1 and N of ISO 6336-1 with index 1 the smaller wheel (m_red is symmetric anyway)."""
+    masses = [res.body_mass_per_width_kg_mm(g.body_inertia_kg_m2, g.face_width_mm, g.base_diameter_mm)
+              for g in (pinion, gear)]
+    m_red = res.reduced_mass_kg_mm(masses[0], masses[1])
+    small = stf.smaller_wheel_first((pinion.teeth, gear.teeth), (pinion, gear),
+                                    (pinion.profile_shift, gear.profile_shift))[0]
+    n_e1 = res.resonance_speed_rpm(small.teeth, mesh_N_mm_um, m_red)
+    ratio = abs(small.speed_rpm) / n_e1
+    lower = res.lower_main_resonance_limit(line_load_N_mm)
+    return _Resonance(m_red, n_e1, ratio, lower, res.resonance_range(ratio, lower))
 
 
 def _stage_result(cfg: "DesignFile", k: int, kin: Train) -> StageResult:
@@ -137,6 +206,9 @@ def _stage_result(cfg: "DesignFile", k: int, kin: Train) -> StageResult:
                            geo.transverse_pressure_rad, geo.helix_rad)
     s = _stiffness(cfg, k, geo, forces, materials)
     w_p, w_g, helical = kin.shaft_speeds_rad_s[k], kin.shaft_speeds_rad_s[k + 1], stage.helix_angle_deg > 0
+    pinion = _gear_result(stage.pinion, 0, geo, helical, materials[0].density_kg_m3, w_p, t_pinion)
+    gear = _gear_result(stage.gear, 1, geo, helical, materials[1].density_kg_m3, w_g, t_gear)
+    r = _resonance(pinion, gear, s.mesh_N_mm_um, s.line_load_N_mm)
     return StageResult(
         index=k + 1, ratio=kin.ratios[k], efficiency=stage.efficiency,
         normal_module_mm=stage.normal_module_mm, transverse_module_mm=geo.transverse_module_mm,
@@ -152,9 +224,11 @@ def _stage_result(cfg: "DesignFile", k: int, kin: Train) -> StageResult:
         hertz_stiffness_N_mm1_5=s.hertz_N_mm1_5, static_approach_mm=s.approach_mm,
         linearised_stiffness_N_mm=s.linearised_N_mm, static_force_N=forces,
         iso6336_single_pair_stiffness_N_mm_um=s.single_pair_N_mm_um, iso6336_mesh_stiffness_N_mm_um=s.mesh_N_mm_um,
-        backlash_mm=stage.backlash_mm,
-        pinion=_gear_result(stage.pinion, 0, geo, helical, materials[0].density_kg_m3, w_p, t_pinion),
-        gear=_gear_result(stage.gear, 1, geo, helical, materials[1].density_kg_m3, w_g, t_gear),
+        backlash_mm=stage.backlash_mm, pinion=pinion, gear=gear,
+        tip_alteration_coefficient=geo.tip_alteration_coefficient,
+        iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(s.mesh_N_mm_um),
+        iso6336_factors=s.factors, reduced_mass_kg_mm=r.reduced_mass_kg_mm, resonance_speed_rpm=r.speed_rpm,
+        resonance_ratio=r.ratio, resonance_lower_limit=r.lower_limit, resonance_range=r.range,
     )
 
 
@@ -163,6 +237,7 @@ def _shaft_results(stages: tuple[StageResult, ...], kin: Train) -> tuple[ShaftRe
                                     tuple(s.gear.inertia_kg_m2 for s in stages))
     return tuple(
         ShaftResult(index=j + 1, speed_deg_s=speed_deg_s(w), speed_rpm=speed_rpm(w),
-                    torque_Nmm=kin.shaft_torque_Nmm(j), inertia_kg_m2=inertias[j])
+                    torque_Nmm=kin.shaft_torque_Nmm(j), inertia_kg_m2=inertias[j],
+                    torque_Nm=kin.shaft_torque_Nmm(j) / 1000.0, power_kW=power_kW(kin.shaft_torque_Nmm(j), w))
         for j, w in enumerate(kin.shaft_speeds_rad_s)
     )

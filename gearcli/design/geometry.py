@@ -6,10 +6,12 @@ external gear pair and refuses geometry that cannot mesh (``InfeasibleGeometry``
 
 Conventions where the standard leaves a choice:
 
-- Tip diameter d_a = d + 2 m_n (1 + x), without tip shortening (k = 0): with a positive sum of
-  profile shifts the tips stand slightly taller than a shortened-tip design and ε_α comes out a few
-  ten-thousandths larger (SDP/SI's helical example, tips shortened by 0.002 mm: 1.2947 against 1.2939).
+- The basic rack (ISO 53) is given per stage as multiples of m_n: addendum h_aP*, dedendum h_fP*,
+  root radius ρ_fP* (default profile A: 1.0, 1.25, 0.38).
 - Centre distance is the working one, a_w, from the sum of profile shifts (no backlash allowance).
+- Tips are shortened by the tip alteration k m_n = a_w − a − (x1 + x2) m_n (ISO 21771, k ≤ 0), so that
+  the bottom clearance at a_w stays the rack's h_fP* − h_aP*: d_a = d + 2 m_n (h_aP* + x + k). k = 0
+  exactly when x1 + x2 = 0.
 """
 
 from __future__ import annotations
@@ -81,14 +83,16 @@ def base_diameter_mm(pitch_diameter: float, transverse_pressure_rad: float) -> f
     return pitch_diameter * math.cos(transverse_pressure_rad)
 
 
-def tip_diameter_mm(pitch_diameter: float, normal_module_mm: float, profile_shift: float) -> float:
-    """d_a = d + 2 m_n (1 + x): addendum h_aP = m_n, no tip shortening."""
-    return pitch_diameter + 2.0 * normal_module_mm * (1.0 + profile_shift)
+def tip_diameter_mm(pitch_diameter: float, normal_module_mm: float, profile_shift: float,
+                    addendum_factor: float = 1.0, tip_alteration: float = 0.0) -> float:
+    """d_a = d + 2 m_n (h_aP* + x + k) (ISO 21771; h_aP* = 1 and k = 0 by default)."""
+    return pitch_diameter + 2.0 * normal_module_mm * (addendum_factor + profile_shift + tip_alteration)
 
 
-def root_diameter_mm(pitch_diameter: float, normal_module_mm: float, profile_shift: float) -> float:
-    """d_f = d − 2.5 m_n + 2 x m_n: dedendum h_fP = 1.25 m_n."""
-    return pitch_diameter - 2.5 * normal_module_mm + 2.0 * profile_shift * normal_module_mm
+def root_diameter_mm(pitch_diameter: float, normal_module_mm: float, profile_shift: float,
+                     dedendum_factor: float = 1.25) -> float:
+    """d_f = d − 2 m_n (h_fP* − x) (ISO 21771; h_fP* = 1.25 by default)."""
+    return pitch_diameter - 2.0 * normal_module_mm * (dedendum_factor - profile_shift)
 
 
 def transverse_base_pitch_mm(transverse_module: float, transverse_pressure_rad: float) -> float:
@@ -99,7 +103,12 @@ def transverse_base_pitch_mm(transverse_module: float, transverse_pressure_rad: 
 # ------------------------------------------------------------------------------------- the pair
 def working_pressure_angle_rad(transverse_pressure_rad: float, normal_pressure_rad: float,
                                shift_sum: float, teeth_sum: int) -> float:
-    """α_wt from inv α_wt = inv α_t + 2 tan α_n (x1 + x2)/(z1 + z2) (ISO 21771, eq. for zero backlash)."""
+    """α_wt from inv α_wt = inv α_t + 2 tan α_n (x1 + x2)/(z1 + z2) (ISO 21771, eq. for zero backlash).
+
+    x1 + x2 = 0 returns α_t itself (not a Newton solve of its involute), so that a_w = a and k = 0 exactly.
+    """
+    if shift_sum == 0.0:
+        return transverse_pressure_rad
     value = involute(transverse_pressure_rad) + 2.0 * math.tan(normal_pressure_rad) * shift_sum / teeth_sum
     if value <= 0.0:
         raise InfeasibleGeometry(
@@ -113,6 +122,13 @@ def center_distance_mm(pitch_diameter_1: float, pitch_diameter_2: float,
     """Working centre distance a_w = a cos α_t / cos α_wt with a = (d1 + d2)/2."""
     reference = 0.5 * (pitch_diameter_1 + pitch_diameter_2)
     return reference * math.cos(transverse_pressure_rad) / math.cos(working_pressure_rad)
+
+
+def tip_alteration_coefficient(center_distance: float, reference_center_distance: float, shift_sum: float,
+                               normal_module_mm: float) -> float:
+    """k = (a_w − a)/m_n − (x1 + x2) (ISO 21771, tip alteration coefficient; ≤ 0 because inv is convex):
+    the tips are shortened by k m_n so that the bottom clearance at a_w is that of the basic rack."""
+    return (center_distance - reference_center_distance) / normal_module_mm - shift_sum
 
 
 def transverse_contact_ratio(tip_1: float, base_1: float, tip_2: float, base_2: float,
@@ -184,10 +200,21 @@ class PairGeometry:
     face_width_mm: float  # the smaller one
     contact_ratio_transverse: float
     overlap_ratio: float
+    tip_alteration_coefficient: float = 0.0  # k (ISO 21771), tips shortened by k m_n (k <= 0)
+
+
+@dataclass(frozen=True)
+class BasicRackFactors:
+    """The basic rack (ISO 53) in multiples of m_n; the default is profile A."""
+
+    addendum: float = 1.0  # h_aP*
+    dedendum: float = 1.25  # h_fP*
+    root_radius: float = 0.38  # rho_fP*
 
 
 def pair_geometry(normal_module: float, normal_pressure_deg: float, helix_deg: float,
-                  teeth: tuple[int, int], shifts: tuple[float, float], widths_mm: tuple[float, float]) -> PairGeometry:
+                  teeth: tuple[int, int], shifts: tuple[float, float], widths_mm: tuple[float, float],
+                  rack: BasicRackFactors = BasicRackFactors()) -> PairGeometry:
     """The geometry of one external pair (pinion, gear); raises ``InfeasibleGeometry`` if it cannot mesh."""
     a_n, beta = math.radians(normal_pressure_deg), math.radians(helix_deg)
     m_t = transverse_module_mm(normal_module, beta)
@@ -195,10 +222,11 @@ def pair_geometry(normal_module: float, normal_pressure_deg: float, helix_deg: f
     a_wt = working_pressure_angle_rad(a_t, a_n, shifts[0] + shifts[1], teeth[0] + teeth[1])
     d = tuple(pitch_diameter_mm(z, m_t) for z in teeth)
     d_b = tuple(base_diameter_mm(di, a_t) for di in d)
-    d_a = tuple(tip_diameter_mm(di, normal_module, x) for di, x in zip(d, shifts))
-    d_f = tuple(root_diameter_mm(di, normal_module, x) for di, x in zip(d, shifts))
-    _require_sound_blanks(d_b, d_a, d_f)
     a_w = center_distance_mm(d[0], d[1], a_t, a_wt)
+    k = tip_alteration_coefficient(a_w, 0.5 * (d[0] + d[1]), shifts[0] + shifts[1], normal_module)
+    d_a = tuple(tip_diameter_mm(di, normal_module, x, rack.addendum, k) for di, x in zip(d, shifts))
+    d_f = tuple(root_diameter_mm(di, normal_module, x, rack.dedendum) for di, x in zip(d, shifts))
+    _require_sound_blanks(d_b, d_a, d_f)
     p_bt = transverse_base_pitch_mm(m_t, a_t)
     eps_a = transverse_contact_ratio(d_a[0], d_b[0], d_a[1], d_b[1], a_w, a_wt, p_bt)
     if eps_a <= 0.0:
@@ -207,7 +235,7 @@ def pair_geometry(normal_module: float, normal_pressure_deg: float, helix_deg: f
                                  "pinion", "profile_shift")
     b = min(widths_mm)
     return PairGeometry(normal_module, m_t, a_n, a_t, a_wt, beta, base_helix_angle_rad(beta, a_t), d, d_b, d_a,
-                        d_f, a_w, p_bt, b, eps_a, overlap_ratio(b, beta, normal_module))
+                        d_f, a_w, p_bt, b, eps_a, overlap_ratio(b, beta, normal_module), k)
 
 
 def _require_sound_blanks(d_b: tuple, d_a: tuple, d_f: tuple) -> None:

@@ -67,6 +67,11 @@ def speed_rpm(speed_rad_s: float) -> float:
     return speed_rad_s * RAD_S_TO_RPM
 
 
+def power_kW(torque_Nmm: float, speed_rad_s: float) -> float:
+    """P = T ω, kW from N·mm and rad/s (1 N·mm · 1 rad/s = 1e-3 W = 1e-6 kW)."""
+    return torque_Nmm * speed_rad_s * 1e-6
+
+
 @dataclass(frozen=True)
 class Train:
     """Ratios, shaft speeds (rad/s) and stage torques (N·mm) of the whole train."""

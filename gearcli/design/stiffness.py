@@ -30,6 +30,9 @@ ISO6336_C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 
 C_M = 0.8  # theoretical to measured stiffness, solid blanks (ISO 6336-1, clause 9)
 C_R = 1.0  # gear blank factor, solid disc gears (ISO 6336-1, clause 9)
 FULL_LOAD_LINE_LOAD_N_mm = 100.0  # above this F_t K_A / b, c' no longer depends on the load
+C_GAMMA_BETA_PER_ALPHA = 0.85  # c_gamma_beta = 0.85 c_gamma_alpha (ISO 6336-1, clause 9)
+WEB_RATIO_RANGE = (0.2, 1.2)  # b_s / b limits of the C_R formula (ISO 6336-1); values outside are clamped
+MIN_RIM_PER_MODULE = 1.0  # s_R / m_n below this is taken as 1 (ISO 6336-1)
 
 
 # ------------------------------------------------------------------------ Hertz (seed section 3.3)
@@ -61,6 +64,31 @@ def flexibility_q_prime(zn1: float, zn2: float, x1: float, x2: float) -> float:
             + c8 * x1 ** 2 + c9 * x2 ** 2)
 
 
+def smaller_wheel_first(teeth: tuple[int, int], values: tuple, shifts: tuple[float, float] = (0.0, 0.0)) -> tuple:
+    """``values`` (pinion, gear) reordered so that index 1 of ISO 6336-1 is the wheel with fewer teeth.
+
+    ISO 6336-1 numbers the smaller wheel 1 whichever member drives; gearcli numbers the driving member
+    (the pinion) first, so a speed-increasing stage (z_gear < z_pinion) swaps. Equal tooth counts, which
+    the standard does not order, put the smaller profile shift first (the smaller wheel by tip diameter),
+    so that the result never depends on which member drives.
+    """
+    gear_first = (teeth[1], shifts[1]) < (teeth[0], shifts[0])
+    return (values[1], values[0]) if gear_first else values
+
+
+def gear_blank_factor(web_thickness_mm: float, rim_thickness_mm: float, face_width_mm: float,
+                      normal_module_mm: float) -> float:
+    """C_R = 1 + ln(b_s/b) / (5 e^(s_R/(5 m_n))) for a webbed gear blank (ISO 6336-1, clause 9).
+
+    b_s the web thickness, s_R the rim thickness, b the face width. The standard's limits are applied
+    as it prescribes: b_s/b is clamped to [0.2, 1.2] and s_R/m_n is taken as at least 1.
+    """
+    low, high = WEB_RATIO_RANGE
+    web_ratio = min(max(web_thickness_mm / face_width_mm, low), high)
+    rim_ratio = max(rim_thickness_mm / normal_module_mm, MIN_RIM_PER_MODULE)
+    return 1.0 + math.log(web_ratio) / (5.0 * math.exp(rim_ratio / 5.0))
+
+
 def basic_rack_factor(normal_pressure_deg: float, dedendum_factor: float = 1.25) -> float:
     """C_B = [1 + 0.5 (1.2 − h_fP/m_n)] [1 − 0.02 (20° − α_n)] (ISO 6336-1, clause 9)."""
     return (1.0 + 0.5 * (1.2 - dedendum_factor)) * (1.0 - 0.02 * (20.0 - normal_pressure_deg))
@@ -77,17 +105,27 @@ def reference_tangential_force_N(tangential_force_N: float, face_width_mm: float
 
 
 def single_pair_stiffness_N_mm_um(zn1: float, zn2: float, x1: float, x2: float, helix_rad: float,
-                                  normal_pressure_deg: float, line_load_N_mm: float) -> float:
-    """c' = c'_th C_M C_R C_B cos β × low-load factor, c'_th = 1/q' (ISO 6336-1, clause 9)."""
+                                  normal_pressure_deg: float, line_load_N_mm: float, *,
+                                  blank_factor: float = C_R, dedendum_factor: float = 1.25) -> float:
+    """c' = c'_th C_M C_R C_B cos β × low-load factor, c'_th = 1/q' (ISO 6336-1, clause 9).
+
+    Index 1 is the smaller wheel (``smaller_wheel_first``); ``blank_factor`` is C_R, ``dedendum_factor``
+    the rack's h_fP* that sets C_B.
+    """
     c_th = 1.0 / flexibility_q_prime(zn1, zn2, x1, x2)
-    return (c_th * C_M * C_R * basic_rack_factor(normal_pressure_deg) * math.cos(helix_rad)
-            * low_load_factor(line_load_N_mm))
+    return (c_th * C_M * blank_factor * basic_rack_factor(normal_pressure_deg, dedendum_factor)
+            * math.cos(helix_rad) * low_load_factor(line_load_N_mm))
 
 
 def mesh_stiffness_N_mm_um(single_pair: float, contact_ratio_transverse: float) -> float:
     """c_γα = c' (0.75 ε_α + 0.25), reduced by 10 % when ε_α < 1.2 (ISO 6336-1, clause 9)."""
     c_gamma = single_pair * (0.75 * contact_ratio_transverse + 0.25)
     return 0.9 * c_gamma if contact_ratio_transverse < 1.2 else c_gamma
+
+
+def mesh_stiffness_beta_N_mm_um(mesh_stiffness: float) -> float:
+    """c_γβ = 0.85 c_γα (ISO 6336-1, clause 9): the mesh stiffness used for the face load factors."""
+    return C_GAMMA_BETA_PER_ALPHA * mesh_stiffness
 
 
 def iso6336_normal_stiffness_N_mm(mesh_stiffness: float, face_width_mm: float, base_helix_rad: float) -> float:

@@ -48,7 +48,8 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         row("base d_b1 [mm]", lambda st: st.pinion.base_diameter_mm),
         row("tip d_a1 [mm]", lambda st: st.pinion.tip_diameter_mm),
         row("root d_f1 [mm]", lambda st: st.pinion.root_diameter_mm),
-        row("centre distance a [mm]", lambda st: st.center_distance_mm),
+        row("working centre distance a_w [mm]", lambda st: st.center_distance_mm),
+        row("tip alteration k", lambda st: st.tip_alteration_coefficient, 4),
         row("contact ratio ε_α", lambda st: st.contact_ratio_transverse, 4),
         row("overlap ratio ε_β", lambda st: st.overlap_ratio, 4),
         row("total ε_γ", lambda st: st.contact_ratio_total, 4),
@@ -56,6 +57,8 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     loads = _quantity_table("loads and stiffness", cols, [
         row("pinion speed [rpm]", lambda st: st.pinion.speed_rpm),
         row("pinion torque [N·mm]", lambda st: st.pinion.torque_Nmm),
+        row("pinion torque [N·m]", lambda st: st.pinion.torque_Nm),
+        row("pinion power [kW]", lambda st: st.pinion.power_kW),
         row("mesh frequency [Hz]", lambda st: st.mesh_frequency_Hz),
         row("F_t tangential [N]", lambda st: st.static_force_N.tangential),
         row("F_r radial [N]", lambda st: st.static_force_N.radial),
@@ -68,15 +71,25 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         row("linearised k [N/mm]", lambda st: st.linearised_stiffness_N_mm, 4),
         row("ISO 6336 c′ [N/(mm·µm)]", lambda st: st.iso6336_single_pair_stiffness_N_mm_um, 4),
         row("ISO 6336 c_γα [N/(mm·µm)]", lambda st: st.iso6336_mesh_stiffness_N_mm_um, 4),
+        row("ISO 6336 c_γβ [N/(mm·µm)]", lambda st: st.iso6336_mesh_stiffness_beta_N_mm_um, 4),
+        ("ISO 6336 C_M / C_R / C_B", [f"{st.iso6336_factors.C_M:.3g} / {st.iso6336_factors.C_R:.4g} / "
+                                      f"{st.iso6336_factors.C_B:.4g}" for st in s]),
+        row("ISO 6336 m_red [kg/mm]", lambda st: st.reduced_mass_kg_mm, 4),
+        row("ISO 6336 n_E1 [rpm]", lambda st: st.resonance_speed_rpm),
+        row("ISO 6336 N = n1/n_E1", lambda st: st.resonance_ratio, 4),
+        ("ISO 6336 speed range", [st.resonance_range for st in s]),
     ])
     train = _quantity_table("shafts", [f"shaft {sh.index}" for sh in r.shafts], [
         ("speed [°/s]", [_g(sh.speed_deg_s) for sh in r.shafts]),
         ("speed [rpm]", [_g(sh.speed_rpm) for sh in r.shafts]),
         ("torque [N·mm]", [_g(sh.torque_Nmm) for sh in r.shafts]),
+        ("torque [N·m]", [_g(sh.torque_Nm) for sh in r.shafts]),
+        ("power [kW]", [_g(sh.power_kW) for sh in r.shafts]),
         ("inertia [kg·m²]", [_g(sh.inertia_kg_m2, 4) for sh in r.shafts]),
     ])
     summary = (f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
-               f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm")
+               f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm\n"
+               f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")
     return [geometry, loads, train, summary]
 
 
