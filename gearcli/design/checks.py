@@ -11,7 +11,7 @@ Choices where the contract is silent:
   over β may pass through 0), but a warning asks whether ``helix_angle_deg`` was forgotten, since it
   defaults to 0. The result then reports hand "spur".
 - Limits: undercut below z_min = 2 (1 − x) cos β / sin² α_t (h_aP = m_n, ISO 21771 / DIN 3960);
-  ε_α < 1.2 (common design minimum, the ISO 6336 c_γα reduction threshold) and ε_α < 1 (interrupted
+  ε_α < 1.2 (common design minimum) and ε_α < 1 (interrupted
   transverse contact) as separate messages; b/d1 outside 0.2 … 1.5 (Niemann/Winter, Maschinenelemente II:
   b/d1 ≲ 1.1–1.6 for straddle-mounted pinions depending on hardening, 1.5 taken as the upper end;
   below 0.2 the face is so narrow that the module, not the width, carries the load); normal tip

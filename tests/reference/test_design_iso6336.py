@@ -12,6 +12,7 @@ B. SDP/SI, "Elements of Metric Gear Technology", Table 11-1 (helical example wit
    d_a = 48.153/213.842, ε_α = 1.2939 (ISO 21771 tip alteration).
 C. D-Soft CylGear geometry output example (dsoftcon.be/CylGear/en/GeometryOutputHtml.htm): x = 0.494/0.487,
    a = 183.000, tips truncated by k = −0.063 m_n, ε_α = 1.397.
+D. KISSsoft ISO 6336:2006 method B reports of the NREL 5 MW gearbox: in test_design_iso6336_kisssoft.py.
 """
 
 from __future__ import annotations
