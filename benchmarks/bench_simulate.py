@@ -107,7 +107,7 @@ def part_c(factors) -> dict:
     for f in factors:
         cfg, design = scene(STIFF, [f"stage.0.mesh.stiffness={k1 * f!r}"] if f != 1.0 else [])
         from gearcli.simulate.choice import choose_method
-        from gearcli.model import spec_from_design
+        from gearcli.scene import spec_from_design
         choice = choose_method(spec_from_design(cfg, design), cfg.simulation.duration_s, "auto")
         row = {"stiffness_factor": f, "stiffness_N_mm": k1 * f, "indicator": choice.indicator,
                "auto_choice": choice.method}

@@ -160,10 +160,16 @@ def design(file: str, overrides, fmt, output) -> None:
 @click.argument("file", type=str)
 @io_options()
 @click.option("--series", is_flag=True, help="Include the time series in JSON output (CSV always has them).")
+@click.option("--dump-model", is_flag=True, help="Print the scene's generated equations (Python source) and exit.")
 @guarded
-def simulate(file: str, overrides, fmt, output, series: bool) -> None:
+def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool = False) -> None:
     """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
     loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
+    if dump_model:
+        from gearcli.scene import build_model
+
+        click.echo(build_model(loaded.design, design_result).source, nl=False)
+        return
     warn(design_result.warnings)
     fmt = choose_format(fmt, output, FORMATS)
     from gearcli.io import serialize
@@ -174,6 +180,29 @@ def simulate(file: str, overrides, fmt, output, series: bool) -> None:
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
     warn(result.warnings)
+
+
+@cli.command()
+@click.argument("file", type=str)
+@io_options()
+@guarded
+def modes(file: str, overrides, fmt, output) -> None:
+    """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, mesh orders."""
+    from gearcli.io import modes_out, serialize
+    from gearcli.model.modes import BOUNDARIES, modal_analysis
+    from gearcli.scene import build_model
+
+    loaded, design_result = load_and_design(file, overrides)
+    warn(design_result.warnings)
+    lay = build_model(loaded.design, design_result).layout
+    analyses = [modal_analysis(lay, b, duration_s=loaded.design.simulation.duration_s) for b in BOUNDARIES]
+    fmt = choose_format(fmt, output, FORMATS)
+    if fmt == "json":
+        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses), loaded.sha256)), output)
+    elif fmt == "csv":
+        emit(modes_out.modes_csv(analyses), output)
+    else:
+        emit_tables(modes_out.modes_tables(analyses), output)
 
 
 @cli.command()

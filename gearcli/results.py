@@ -191,3 +191,6 @@ class SimulationResult:
     warnings: tuple[str, ...] = field(default_factory=tuple)
     natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
     extra: Optional[dict] = None
+    diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic; warnings are their messages
+    natural_frequencies_boundary: str = "clamped_input"  # "clamped_input" (speed drive) or "free" (torque drive)
+    final_state: Optional[np.ndarray] = None  # state vector at the end of the run (model layout), for continuation

@@ -13,6 +13,8 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
+from gearcli.simulate.methods import NAMES as METHODS  # the one registry of integration methods
+
 # Upper bounds are plausibility limits, far outside any real gearbox, that keep every derived quantity
 # (inertia ~ rho b d^4, forces, energies) finite in double precision.
 PositiveFloat = Annotated[float, Field(gt=0, le=1e15)]
@@ -22,8 +24,6 @@ Power = Annotated[float, Field(ge=-1e12, le=1e12)]  # kW; negative: load reversa
 
 INPUT_TORQUE_KEYS = ("torque_Nm", "torque_Nmm", "power_kW")
 LOAD_TORQUE_KEYS = ("torque_Nmm", "torque_Nm", "power_kW")
-
-METHODS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
 
 class _Table(BaseModel):
@@ -104,6 +104,14 @@ class Contact(_Table):
         return self.model_copy(update=changes)
 
 
+class ShaftSpring(_Table):
+    """The torsional stiffness of the shaft that carries this stage's gear and the next stage's pinion
+    (absent: a rigid shaft, one body). For a solid round shaft k = G pi d^4 / (32 L)."""
+
+    stiffness_Nm_rad: PositiveFloat
+    damping_Nms_rad: NonNegFloat = 0.0
+
+
 class Stage(_Table):
     """One gear pair, in the order power flows. The pinion drives the gear."""
 
@@ -116,9 +124,27 @@ class Stage(_Table):
     efficiency: Annotated[float, Field(gt=0, le=1)] = 1.0
     mesh: Optional[ContactOverride] = None
     basic_rack: BasicRack = BasicRack()
+    shaft: Optional[ShaftSpring] = None
 
 
-class Input(_Table):
+class _Coupled(_Table):
+    """A body outside the reducer and the torsional coupling that joins it (both or neither)."""
+
+    inertia_kg_m2: Optional[Annotated[float, Field(gt=0, le=1e12)]] = None
+    coupling_stiffness_Nm_rad: Optional[PositiveFloat] = None
+    coupling_damping_Nms_rad: NonNegFloat = 0.0
+
+    def _check_coupling(self, table: str) -> None:
+        if (self.inertia_kg_m2 is None) != (self.coupling_stiffness_Nm_rad is None):
+            missing = "coupling_stiffness_Nm_rad" if self.coupling_stiffness_Nm_rad is None else "inertia_kg_m2"
+            raise ValueError(f"{table}.inertia_kg_m2 and {table}.coupling_stiffness_Nm_rad go together: "
+                             f"give {missing} too")
+        if self.inertia_kg_m2 is None and "coupling_damping_Nms_rad" in self.model_fields_set:
+            raise ValueError(f"{table}.coupling_damping_Nms_rad needs {table}.inertia_kg_m2 and "
+                             "coupling_stiffness_Nm_rad")
+
+
+class Input(_Coupled):
     """The input drive. Exactly one speed key: the prescribed speed (``drive = "speed"``) or, with
     ``drive = "torque"``, the nominal speed the train starts at."""
 
@@ -149,6 +175,7 @@ class Input(_Table):
             raise ValueError('torque_Nm/torque_Nmm/power_kW are only used with drive = "torque"')
         if self.power_kW is not None:  # the input speed is known here: P = T ω
             self._torque_from_power_Nm = self.power_kW * 1000.0 / self.speed_rad_s_value
+        self._check_coupling("input")
         return self
 
     @property
@@ -170,8 +197,9 @@ class Input(_Table):
         return self._torque_from_power_Nm
 
 
-class Load(_Table):
-    """Torque on the output shaft, resisting its rotation (negative: load reversal)."""
+class Load(_Coupled):
+    """Torque on the output shaft (or on the driven machine, when ``inertia_kg_m2`` and a coupling are
+    given), resisting its rotation (negative: load reversal)."""
 
     torque_Nmm: Optional[Torque] = None
     torque_Nm: Optional[Torque] = None
@@ -186,6 +214,7 @@ class Load(_Table):
         if len(given) != 1:
             raise ValueError(f"give exactly one of {', '.join(LOAD_TORQUE_KEYS)}"
                              + (f" (got {', '.join(given)})" if given else ""))
+        self._check_coupling("load")
         return self
 
     @property
@@ -252,6 +281,14 @@ class DesignFile(_Table):
             load = self.load.model_copy()  # never write into a Load another DesignFile may share
             load._torque_from_power_Nm = self.load.power_kW * 1000.0 * ratio / self.input.speed_rad_s_value
             object.__setattr__(self, "load", load)
+        return self
+
+    @model_validator(mode="after")
+    def _no_shaft_after_last_stage(self) -> "DesignFile":
+        if self.stage[-1].shaft is not None:
+            raise ValueError(f"stage[{len(self.stage) - 1}].shaft: the last stage's gear sits on the output shaft, "
+                             "which has no next pinion; a flexible output is [load] inertia_kg_m2 with "
+                             "coupling_stiffness_Nm_rad")
         return self
 
     def contact_for(self, k: int) -> Contact:

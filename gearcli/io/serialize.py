@@ -50,6 +50,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
             "window_s": list(result.window_s),
             "stages": stages,
             "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
+            "natural_frequencies_boundary": result.natural_frequencies_boundary,
         },
         "solver": plain(result.solver),
         "energy": plain(result.energy),

@@ -1,22 +1,20 @@
-"""The torsional model (DESIGN.md section 4): parameters, equations, Jacobian, outputs, linearisation.
+"""The torsional model: bodies and connectors, their elements, equations, Jacobian, outputs, linearisation.
 
-Layers: :mod:`spec` (plain SI parameters, and their assembly from a design), :mod:`layout` (the state
-vector), :mod:`codegen` (the scene's generated ``rhs``/``jac``), :mod:`equations` (``TorsionalModel``),
-:mod:`outputs` (vectorised channels and energies), :mod:`linear` (rigid-body loads, linearisation),
+Layers: :mod:`spec` (plain SI parameters), :mod:`elements` (one force law per element type),
+:mod:`assembly` (the chain of bodies and connectors, the state vector, plain arrays — the only place that
+knows indices), :mod:`codegen` (the scene's generated ``rhs``/``jac``), :mod:`equations`
+(``TorsionalModel``), :mod:`outputs` (channels and energies), :mod:`linear` (rigid-body loads,
+linearisation), :mod:`modes` (natural frequencies, mode shapes, strain-energy shares),
 :mod:`contact_lines` (time-varying mesh stiffness), :mod:`step` (STEP and the drive profile).
+The model never imports the design or the config layer: :mod:`gearcli.scene` builds its spec.
 """
 
+from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.contact_lines import contact_length_factor
 from gearcli.model.equations import Energy, TorsionalModel
 from gearcli.model.linear import Linearisation, linearise, rigid_line_forces_N, static_line_forces_N
-from gearcli.model.spec import DriveSpec, LoadSpec, MeshSpec, ModelSpec, spec_from_design
+from gearcli.model.spec import CoupledInertia, DriveSpec, FlexibleShaft, LoadSpec, MeshSpec, ModelSpec, SpringSpec
 
-
-def build_model(cfg, design) -> TorsionalModel:
-    """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
-    return TorsionalModel(spec_from_design(cfg, design))
-
-
-__all__ = ["DriveSpec", "Energy", "Linearisation", "LoadSpec", "MeshSpec", "ModelSpec", "TorsionalModel",
-           "build_model", "contact_length_factor", "linearise", "rigid_line_forces_N", "spec_from_design",
-           "static_line_forces_N"]
+__all__ = ["CoupledInertia", "DriveSpec", "Energy", "FlexibleShaft", "Layout", "Linearisation", "LoadSpec",
+           "MeshSpec", "ModelArrays", "ModelSpec", "SpringSpec", "TorsionalModel", "contact_length_factor",
+           "linearise", "rigid_line_forces_N", "static_line_forces_N"]

@@ -27,7 +27,6 @@ import math
 
 import numpy as np
 
-
 SPUR_OVERLAP = 1e-9  # below this overlap ratio the helical form is evaluated as its spur limit
 
 

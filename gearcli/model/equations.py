@@ -1,48 +1,46 @@
-"""The torsional model of a reducer: state layout, equations of motion, Jacobian, scales, energies.
+"""The torsional model of a drivetrain: equations of motion, Jacobian, scales, energies.
 
-Equations (SI; DESIGN.md section 4). Shaft i has inertia J_i and speed w_i; mesh k joins shaft k
-(pinion, base radius r_bp,k) and shaft k+1 (gear, r_bg,k):
+Equations (SI; README "Model"). Body i has inertia J_i and speed w_i; connector c joins bodies c and
+c+1 with radii r_a, r_b (:mod:`gearcli.model.assembly`) and carries the force F_c of its element
+(:mod:`gearcli.model.elements`):
 
-    delta_k' = r_bp,k w_k - r_bg,k w_{k+1}
-    J_i w_i' = r_bg,i-1 F_bt,i-1 - r_bp,i F_bt,i  (+ T_in on shaft 1 of a torque drive, - T_L on the last)
-
-with ``F_bt = +-cos(beta_b) F_n`` and the Adams IMPACT law ``F_n = K g p^e + STEP(p, 0, 0, d, C) p'``
-(clamped >= 0) on the penetration ``p`` beyond the gap of the normal approach ``h = cos(beta_b) delta``.
-``g = L(phi) / L_mean`` for time-varying stiffness, else 1.
+    delta_c' = r_a,c w_c - r_b,c w_{c+1}
+    J_i w_i' = r_b,i-1 F_i-1 - r_a,i F_i  (+ T_in on body 0 of a torque drive, - T_L on the last body)
 
 Energy balance, integrated with the states (quadrature states; cheaper and more accurate than
 integrating sampled output afterwards, and exact to the integrator's own accuracy):
 
     W_in - W_load - E_damp - dKE - dU_const - W_el,tv = 0
 
-``W_in = int T_in w_1``, ``W_load = int T_L w_n``, ``E_damp = int (F_n - K g p^e) p'`` (the damping
-force's work, including the part the clamp at F_n = 0 removes), ``U = sum K p^(e+1)/(e+1)`` for meshes of
-constant K, and for time-varying meshes ``W_el,tv = int K g p^e p'`` — the work done on their springs,
-which equals their potential change plus the parametric work ``-int (dg/dt) K p^(e+1)/(e+1)`` that the
-varying stiffness exchanges with the drive. The quadrature states get a huge absolute tolerance so
-they never steer the step size (they do dilute the RMS error norm by sqrt(n_dyn / n), a ~20 % looser
-effective tolerance for three stages; the accuracy study measures the actual error).
+``W_in = int T_in w_0``, ``W_load = int T_L w_N``, ``E_damp`` the elements' dissipated work, ``U`` the
+stored energy of the connectors of constant stiffness, and for time-varying meshes ``W_el,tv`` the work
+done on their springs, which equals their potential change plus the parametric work that the varying
+stiffness exchanges with the drive. The quadrature states get a huge absolute tolerance so they never
+steer the step size.
 
-Initial state: every mesh undeflected (delta = 0); speeds rigid-body consistent, at rest for a speed
-drive with a ramp, at the nominal speed for a speed drive without a ramp and for a torque drive.
+Initial state: every connector undeflected (delta = 0); speeds rigid-body consistent, at rest for a
+speed drive with a ramp, at the nominal speed for a speed drive without a ramp and for a torque drive.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
+from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.codegen import compile_functions
-from gearcli.model.layout import Layout
-from gearcli.model.linear import static_line_forces_N
+from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements import mesh as mesh_el
+from gearcli.model.linear import static_forces
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp_motion
 
 QUADRATURE_ATOL = 1e20  # J: excludes the energy quadratures from step-size control
 MIN_DEFLECTION_SCALE_M = 1e-6  # atol floor for unloaded meshes: 1 um of deflection
+MIN_TWIST_SCALE_RAD = 1e-6  # atol floor for unloaded springs: 1 urad of twist
 
 
 @dataclass(frozen=True)
@@ -68,7 +66,7 @@ class Energy:
 
 class TorsionalModel:
     """Compiled equations of one scene. ``rhs(t, y)`` and ``jac(t, y)`` are plain functions of the
-    state layout documented in :mod:`gearcli.model.layout`; ``source`` is their generated code."""
+    state layout documented in :mod:`gearcli.model.assembly`; ``source`` is their generated code."""
 
     def __init__(self, spec: ModelSpec):
         self.spec = spec
@@ -81,37 +79,69 @@ class TorsionalModel:
     def n_states(self) -> int:
         return self.layout.n_states
 
+    @property
+    def arrays(self) -> ModelArrays:
+        """The model as plain arrays (atol at rtol 1e-6; an engine rescales it by its own rtol)."""
+        return self.layout.arrays(self.atol(1e-6))
+
     # ------------------------------------------------------------------------------- start, scales
+    def _input_speed(self) -> float:
+        lay = self.layout
+        return ramp_motion(0.0, lay.drive.ramp_s, lay.drive.speed_rad_s)[1] if lay.speed_drive \
+            else lay.drive.speed_rad_s
+
     def initial_state(self) -> np.ndarray:
         lay = self.layout
         y0 = np.zeros(lay.n_states)
-        w_in = ramp_motion(0.0, lay.drive.ramp_s, lay.drive.speed_rad_s)[1] if lay.speed_drive \
-            else lay.drive.speed_rad_s
-        for i, rho in zip(lay.free_shafts, self.spec.speed_ratios[lay.free_shafts.start:]):
-            y0[lay.i_omega(i)] = rho * w_in
+        w_in = self._input_speed()
+        for i in lay.free_bodies:
+            y0[lay.i_omega(i)] = lay.bodies[i].ratio * w_in
         return y0
 
-    def deflection_scales_m(self) -> np.ndarray:
-        """Static deflection of each mesh at full load, floored (backlash half-gap, 1 um), m."""
-        F = np.abs(static_line_forces_N(self.spec))
+    def continue_state(self, y_prev: np.ndarray, model_prev: TorsionalModel) -> np.ndarray:
+        """Start state continuing a previous run's end ``y_prev`` (of ``model_prev``, same chain): keep the
+        deflections and the deflection rates, move the rigid-body speeds to this model's operating speed
+        (the input body's speed at t = 0); quadratures reset to 0."""
+        lay, prev = self.layout, model_prev.layout
+        if (lay.n_conn, lay.n_bodies, lay.speed_drive) != (prev.n_conn, prev.n_bodies, prev.speed_drive):
+            raise ValueError("continuation needs the same chain of bodies and connectors")
+        y = self.initial_state()
+        y[:lay.n_conn] = y_prev[:lay.n_conn]
+        w_prev_in = model_prev._input_speed()
+        for i in lay.free_bodies:  # same vibration about the new rigid speed
+            rigid_prev = prev.bodies[i].ratio * w_prev_in
+            y[lay.i_omega(i)] += y_prev[prev.i_omega(i)] - rigid_prev
+        if lay.i_theta is not None and prev.i_theta is not None:
+            y[lay.i_theta] = y_prev[prev.i_theta]
+        return y
+
+    def deflection_scales(self) -> np.ndarray:
+        """Static deflection of each connector at full load, floored (a mesh: backlash half-gap, 1 um;
+        a spring: 1 urad)."""
+        F = np.abs(static_forces(self.layout))
         out = np.empty(F.size)
-        for k, m in enumerate(self.spec.meshes):
-            cb = m.cos_beta_b
-            p0 = (F[k] / cb / m.stiffness_N_m_e) ** (1.0 / m.exponent)
-            out[k] = max(p0 / cb, 0.5 * m.backlash_m / cb, MIN_DEFLECTION_SCALE_M)
+        for c, x in enumerate(self.layout.connectors):
+            if x.kind == KIND_MESH:
+                out[c] = mesh_el.deflection_scale(x.params, F[c], MIN_DEFLECTION_SCALE_M)
+            else:
+                out[c] = max(abs(x.element.static_deflection(x.params, F[c])), MIN_TWIST_SCALE_RAD)
         return out
 
+    def deflection_scales_m(self) -> np.ndarray:
+        """Per mesh, in stage order (m)."""
+        return self.deflection_scales()[list(self.layout.stage_conn)]
+
     def speed_scales_rad_s(self) -> np.ndarray:
-        """Nominal speed of each free shaft, rad/s."""
-        rho = self.spec.speed_ratios
-        return np.array([rho[i] * self.spec.drive.speed_rad_s for i in self.layout.free_shafts])
+        """Nominal speed of each free body, rad/s."""
+        lay = self.layout
+        return np.array([lay.bodies[i].ratio * self.spec.drive.speed_rad_s for i in lay.free_bodies])
 
     def atol(self, rtol: float) -> np.ndarray:
         """Per-state absolute tolerance: rtol x the state's natural scale."""
         lay = self.layout
-        parts = [rtol * self.deflection_scales_m(), rtol * self.speed_scales_rad_s()]
+        parts = [rtol * self.deflection_scales(), rtol * self.speed_scales_rad_s()]
         if lay.has_theta_state:
-            parts.append(np.array([rtol * 2.0 * math.pi / max(m.pinion_teeth for m in lay.meshes)]))
+            parts.append(np.array([rtol * 2.0 * math.pi / max(m.pinion_teeth for m in self.spec.meshes)]))
         parts.append(np.full(lay.n_quad, QUADRATURE_ATOL))
         return np.concatenate(parts)
 

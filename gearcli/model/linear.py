@@ -1,24 +1,23 @@
 """Rigid-body loads and the linearised model: natural frequencies and the stiffness of the ODE.
 
-Rigid body (no mesh compliance): shaft speeds are ``rho_i w_1`` with ``rho_i`` the product of the base
-radius ratios up to shaft i. The gear of mesh k accelerates everything after it and carries the load:
+Rigid body (no compliance): body speeds are ``rho_i w_0`` with ``rho_i`` the product of the radius
+ratios ``r_a / r_b`` of the connectors up to body i. Connector c carries everything after it:
 
-    F_bt,k r_bg,k = sum_{i > k} J_i alpha_i rho_i / rho_{k+1} + T_L rho_n / rho_{k+1},   alpha_i = rho_i alpha_1,
+    F_c r_b,c = sum_{i > c} J_i alpha_i rho_i / rho_{c+1} + T_L rho_N / rho_{c+1},   alpha_i = rho_i alpha_0,
 
-with ``alpha_1`` the STEP profile's acceleration (speed drive) or ``(T_in - rho_n T_L) / J_eff``,
+with ``alpha_0`` the STEP profile's acceleration (speed drive) or ``(T_in - rho_N T_L) / J_eff``,
 ``J_eff = sum J_i rho_i^2`` (torque drive).
 
-Linearised about mesh forces F_bt,k (deflection coordinates, see :mod:`gearcli.model.layout`): the
-penetration is ``p0 = (F_n / K)^(1/e)``, ``F_n = |F_bt| / cos(beta_b)``, the normal stiffness
-``k_n = e K p0^(e-1)`` and damping ``c(p0) = STEP(p0, 0, 0, d, C)``; along the line of action
-``k_d = cos^2(beta_b) k_n``, ``c_d = cos^2(beta_b) c(p0)``. With ``R`` the map from free shaft speeds to
-deflection rates (``delta' = R w``) the deflections obey
+Linearised about connector forces F_c (deflection coordinates, :mod:`gearcli.model.assembly`): each
+element's force law is evaluated at the deflection that carries F_c (a mesh frozen at its mean — or
+stiffest — stiffness), giving the tangent stiffness ``k_c = dF/d delta`` and damping ``c_c = dF/d delta'``.
+With ``R`` the map from free body speeds to deflection rates (``delta' = R w``) the deflections obey
 
     delta'' = -M (K_d delta + C_d delta'),   M = R J^-1 R^T,
 
-so the oscillating modes live in the m-dimensional deflection space (a torque drive's rigid-body mode
-has no deflection). The first-order matrix ``[[0, I], [-M K_d, -M C_d]]`` gives the eigenvalues used for
-the method choice; the undamped natural frequencies are ``sqrt(eig(M K_d)) / 2 pi``.
+so the oscillating modes live in the deflection space (a free chain's rigid-body mode has no
+deflection). The first-order matrix ``[[0, I], [-M K_d, -M C_d]]`` gives the eigenvalues used for the
+method choice; the undamped natural frequencies are ``sqrt(eig(K^1/2 M K^1/2)) / 2 pi``.
 """
 
 from __future__ import annotations
@@ -28,59 +27,98 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.model.assembly import Layout
 from gearcli.model.contact_lines import contact_length_range
+from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
 
 
-def static_line_forces_N(spec: ModelSpec) -> np.ndarray:
-    """F_bt of every mesh at full load in steady state (lossless), N (signed)."""
-    rho = np.asarray(spec.speed_ratios)
-    r_bg = np.array([m.base_radius_gear_m for m in spec.meshes])
-    return spec.load.torque_Nm * rho[-1] / rho[1:] / r_bg
+def _lay(x) -> Layout:
+    return x if isinstance(x, Layout) else Layout.of(x)
 
 
-def rigid_line_forces_N(spec: ModelSpec, t: np.ndarray) -> np.ndarray:
-    """F_bt,k(t) of the rigid train, shape (meshes, len(t)), N."""
+def static_forces(lay: Layout) -> np.ndarray:
+    """Force of every connector at full load in steady state (lossless): N for meshes, N m for springs."""
+    rho = np.array([b.ratio for b in lay.bodies])
+    rb = np.array([x.rb for x in lay.connectors])
+    return lay.load.torque_Nm * rho[-1] / rho[1:] / rb
+
+
+def static_line_forces_N(spec: ModelSpec | Layout) -> np.ndarray:
+    """F_bt of every mesh at full load in steady state (lossless), N (signed), in stage order."""
+    lay = _lay(spec)
+    return static_forces(lay)[list(lay.stage_conn)]
+
+
+def rigid_forces(lay: Layout, t: np.ndarray) -> np.ndarray:
+    """Force of every connector of the rigid chain at times t, shape (connectors, len(t))."""
     t = np.asarray(t, dtype=float)
-    rho = np.asarray(spec.speed_ratios)
-    J = np.asarray(spec.inertias_kg_m2)
-    t_load = np.asarray(ramp(t, spec.load.ramp_s, spec.load.torque_Nm)) * np.ones_like(t)
-    if spec.drive.kind == "speed":
-        alpha1 = ramp_motion(t, spec.drive.ramp_s, spec.drive.speed_rad_s)[2] * np.ones_like(t)
+    rho = np.array([b.ratio for b in lay.bodies])
+    J = np.asarray(lay.inertias)
+    t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
+    if lay.speed_drive:
+        alpha0 = ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)[2] * np.ones_like(t)
     else:
-        t_in = np.asarray(ramp(t, spec.drive.ramp_s, spec.drive.torque_Nm)) * np.ones_like(t)
-        alpha1 = (t_in - rho[-1] * t_load) / float(J @ rho**2)
-    out = np.empty((len(spec.meshes), t.size))
-    for k, m in enumerate(spec.meshes):
-        downstream = float(J[k + 1:] @ rho[k + 1:] ** 2) / rho[k + 1]
-        out[k] = (downstream * alpha1 + t_load * rho[-1] / rho[k + 1]) / m.base_radius_gear_m
+        t_in = np.asarray(ramp(t, lay.drive.ramp_s, lay.drive.torque_Nm)) * np.ones_like(t)
+        alpha0 = (t_in - rho[-1] * t_load) / float(J @ rho**2)
+    out = np.empty((lay.n_conn, t.size))
+    for c, x in enumerate(lay.connectors):
+        downstream = float(J[c + 1:] @ rho[c + 1:] ** 2) / rho[c + 1]
+        out[c] = (downstream * alpha0 + t_load * rho[-1] / rho[c + 1]) / x.rb
     return out
 
 
-def rigid_input_torque_Nm(spec: ModelSpec, t: np.ndarray) -> np.ndarray:
-    """Input torque of the rigid train under a speed drive: J_eff alpha_1 + rho_n T_L."""
-    rho = np.asarray(spec.speed_ratios)
-    alpha1 = ramp_motion(np.asarray(t, float), spec.drive.ramp_s, spec.drive.speed_rad_s)[2]
-    t_load = ramp(np.asarray(t, float), spec.load.ramp_s, spec.load.torque_Nm)
-    return float(np.asarray(spec.inertias_kg_m2) @ rho**2) * alpha1 + rho[-1] * t_load
+def rigid_line_forces_N(spec: ModelSpec | Layout, t: np.ndarray) -> np.ndarray:
+    """F_bt,k(t) of the meshes of the rigid chain, shape (meshes, len(t)), N."""
+    lay = _lay(spec)
+    return rigid_forces(lay, t)[list(lay.stage_conn)]
 
 
-def peak_rigid_line_forces_N(spec: ModelSpec, duration_s: float, samples: int = 801) -> np.ndarray:
-    """Largest |F_bt,k| of the rigid train over [0, duration] (run-up inertia plus load)."""
-    end = min(duration_s, max(spec.drive.ramp_s, spec.load.ramp_s, 0.0)) or duration_s
+def rigid_input_torque_Nm(spec: ModelSpec | Layout, t: np.ndarray) -> np.ndarray:
+    """Torque on the input body of the rigid chain under a speed drive: J_eff alpha_0 + rho_N T_L."""
+    lay = _lay(spec)
+    rho = np.array([b.ratio for b in lay.bodies])
+    alpha0 = ramp_motion(np.asarray(t, float), lay.drive.ramp_s, lay.drive.speed_rad_s)[2]
+    t_load = ramp(np.asarray(t, float), lay.load.ramp_s, lay.load.torque_Nm)
+    return float(np.asarray(lay.inertias) @ rho**2) * alpha0 + rho[-1] * t_load
+
+
+def peak_rigid_forces(lay: Layout, duration_s: float, samples: int = 801) -> np.ndarray:
+    """Largest |F_c| of the rigid chain over [0, duration] (run-up inertia plus load), per connector."""
+    end = min(duration_s, max(lay.drive.ramp_s, lay.load.ramp_s, 0.0)) or duration_s
     t = np.linspace(0.0, end, samples)
-    return np.max(np.abs(rigid_line_forces_N(spec, t)), axis=1)
+    return np.max(np.abs(rigid_forces(lay, t)), axis=1)
+
+
+def peak_rigid_line_forces_N(spec: ModelSpec | Layout, duration_s: float, samples: int = 801) -> np.ndarray:
+    lay = _lay(spec)
+    return peak_rigid_forces(lay, duration_s, samples)[list(lay.stage_conn)]
 
 
 @dataclass(frozen=True)
 class Linearisation:
-    line_forces_N: np.ndarray  # the operating point, F_bt per mesh
-    penetration_m: np.ndarray  # p0 per mesh at that point
-    stiffness_N_m: np.ndarray  # k_d along the line of action
-    damping_Ns_m: np.ndarray  # c_d along the line of action
-    eigenvalues: np.ndarray  # of the first-order deflection system (2m)
+    forces: np.ndarray  # the operating point, per connector (N along a mesh, N m for a spring)
+    deflection: np.ndarray  # per connector: a mesh's penetration p0 (m), a spring's twist (rad)
+    stiffness: np.ndarray  # k_c = dF/d delta
+    damping: np.ndarray  # c_c = dF/d delta'
+    eigenvalues: np.ndarray  # of the first-order deflection system (2 nc)
     natural_frequencies_Hz: np.ndarray  # undamped, ascending
+    stage_conn: tuple[int, ...] = ()
+
+    @property
+    def line_forces_N(self) -> np.ndarray:
+        """Per mesh, in stage order."""
+        return self.forces[list(self.stage_conn)]
+
+    @property
+    def penetration_m(self) -> np.ndarray:
+        return self.deflection[list(self.stage_conn)]
+
+    @property
+    def stiffness_N_m(self) -> np.ndarray:
+        return self.stiffness[list(self.stage_conn)]
 
     @property
     def max_abs_eigenvalue(self) -> float:
@@ -92,35 +130,49 @@ class Linearisation:
         return float(nz.min()) if nz.size else 0.0
 
 
-def _speed_map(spec: ModelSpec) -> np.ndarray:
-    """R with delta' = R w over the free shafts."""
-    m = len(spec.meshes)
-    first = 1 if spec.drive.kind == "speed" else 0
-    R = np.zeros((m, m + 1))
-    for k, mesh in enumerate(spec.meshes):
-        R[k, k], R[k, k + 1] = mesh.base_radius_pinion_m, -mesh.base_radius_gear_m
-    return R[:, first:]
+def tangent(lay: Layout, c: int, F: float, *, stiffest_phase: bool = False) -> tuple[float, float, float]:
+    """(stiffness, damping, static deflection or penetration) of connector c carrying |F|, from the
+    element's own force law. A mesh is taken on its drive flank, without its gap, at its mean stiffness
+    (``stiffest_phase``: its largest contact-line factor); unloaded, a linear mesh keeps K, a Hertzian
+    one has no stiffness."""
+    x = lay.connectors[c]
+    F = abs(float(F))
+    if x.kind != KIND_MESH:
+        d0 = x.element.static_deflection(x.params, F)
+        _, k, cd, _, _, _ = x.element.force(x.params, d0, 0.0, 0.0)
+        return k, cd, d0
+    P = x.params
+    factor = contact_length_range(P[mesh_el.I_EA], P[mesh_el.I_EB])[1] if stiffest_phase and x.time_varying else 1.0
+    Q = mesh_el.linear_row(P, factor)
+    p0 = mesh_el.static_penetration(Q, F)
+    if p0 == 0.0 and Q[mesh_el.I_E] != 1.0:
+        return 0.0, 0.0, 0.0
+    _, k, cd, _, _, _ = mesh_el.force(Q, max(p0, 1e-300) / Q[mesh_el.I_CB], 0.0, 0.0)
+    return k, cd, p0
 
 
-def linearise(spec: ModelSpec, line_forces_N, *, stiffest_phase: bool = False) -> Linearisation:
-    """Linearise about the given mesh forces; ``stiffest_phase``: time-varying K at its largest factor."""
-    F = np.abs(np.asarray(line_forces_N, dtype=float))
-    kd, cd, pen = np.empty(F.size), np.empty(F.size), np.empty(F.size)
-    for k, m in enumerate(spec.meshes):
-        cb, e = m.cos_beta_b, m.exponent
-        K = m.stiffness_N_m_e
-        if m.time_varying and stiffest_phase:
-            K *= contact_length_range(m.contact_ratio, m.overlap_ratio)[1]
-        p0 = pen[k] = (F[k] / cb / K) ** (1.0 / e)
-        kn = K if e == 1.0 else e * K * p0 ** (e - 1.0)
-        s = min(p0 / m.full_damping_m, 1.0)
-        kd[k], cd[k] = cb * cb * kn, cb * cb * m.damping_Ns_m * s * s * (3.0 - 2.0 * s)
-    R = _speed_map(spec)
-    first = 1 if spec.drive.kind == "speed" else 0
-    M = R @ np.diag(1.0 / np.asarray(spec.inertias_kg_m2[first:])) @ R.T
+def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
+    """R with delta' = R w over the given bodies (default: the free ones)."""
+    free = lay.free_bodies if free is None else free
+    R = np.zeros((lay.n_conn, lay.n_bodies))
+    for c, x in enumerate(lay.connectors):
+        R[c, x.a], R[c, x.b] = x.ra, -x.rb
+    return R[:, free.start:free.stop]
+
+
+def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False) -> Linearisation:
+    """Linearise about the given connector forces (one per connector, or per mesh when the scene has
+    only meshes); ``stiffest_phase``: time-varying K at its largest factor."""
+    lay = _lay(spec)
+    F = np.abs(np.asarray(forces, dtype=float))
+    kd, cd, defl = np.empty(F.size), np.empty(F.size), np.empty(F.size)
+    for c in range(F.size):
+        kd[c], cd[c], defl[c] = tangent(lay, c, F[c], stiffest_phase=stiffest_phase)
+    R = speed_map(lay)
+    M = R @ np.diag(1.0 / np.asarray(lay.inertias[lay.free_bodies.start:])) @ R.T
     n = F.size
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-M * kd[None, :], -M * cd[None, :]]])
     sq = np.sqrt(kd)
     omega2 = np.linalg.eigvalsh(sq[:, None] * M * sq[None, :])
     freqs = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)
-    return Linearisation(F, pen, kd, cd, np.linalg.eigvals(A), np.sort(freqs))
+    return Linearisation(F, defl, kd, cd, np.linalg.eigvals(A), np.sort(freqs), lay.stage_conn)

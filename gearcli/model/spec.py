@@ -1,10 +1,11 @@
-"""Plain SI parameters of the torsional model, and their assembly from a design file and its design.
+"""Plain SI parameters of the torsional model (m, N, rad, s, kg m^2).
 
 Shaft 1 carries pinion 1; shaft k+1 carries gear k and pinion k+1; the last shaft carries the last
-gear. Mesh k joins shaft k (its pinion drives) and shaft k+1 (its gear is driven). Everything here is
-SI (m, N, rad, s, kg m^2); the design file's engineering units are converted once, in
-:func:`spec_from_design`: ``K`` in N/mm^e becomes N/m^e by ``K 1000^e``, damping N s/mm becomes N s/m
-by ``x 1000``, lengths mm become m by ``/ 1000``.
+gear. Mesh k joins shaft k (its pinion drives) and shaft k+1 (its gear is driven). Optional drivetrain
+elements: a motor rotor joined to shaft 1 by a coupling, a driven machine (drum) joined to the last
+shaft by a coupling, and flexible intermediate shafts (gear k and pinion k+1 then become two bodies
+joined by a torsional spring). The model layer never sees the design file: the design's engineering
+units are converted once, in :func:`gearcli.scene.spec_from_design`.
 
 Stage efficiency is not modelled in the dynamics (lossless meshes): a loss that depends on the
 direction of power flow is not a smooth force law, and the seed paper's model has none. A stage with
@@ -68,17 +69,56 @@ class LoadSpec:
 
 
 @dataclass(frozen=True)
+class SpringSpec:
+    """A torsional spring-damper (coupling or shaft): torque = k twist + c twist rate."""
+
+    stiffness_Nm_rad: float
+    damping_Nms_rad: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not (self.stiffness_Nm_rad > 0 and math.isfinite(self.stiffness_Nm_rad)):
+            raise ValueError("a spring needs a positive, finite stiffness")
+        if not (self.damping_Nms_rad >= 0 and math.isfinite(self.damping_Nms_rad)):
+            raise ValueError("a spring's damping must be non-negative and finite")
+
+
+@dataclass(frozen=True)
+class CoupledInertia:
+    """A body outside the reducer (motor rotor, driven drum) and the coupling that joins it."""
+
+    inertia_kg_m2: float
+    coupling: SpringSpec
+
+
+@dataclass(frozen=True)
+class FlexibleShaft:
+    """An intermediate shaft as two bodies: the gear end (``gear_end_kg_m2``, gear k's inertia) and the
+    pinion end (the rest of the shaft's inertia), joined by the shaft's torsional spring."""
+
+    spring: SpringSpec
+    gear_end_kg_m2: float
+
+
+@dataclass(frozen=True)
 class ModelSpec:
     meshes: tuple[MeshSpec, ...]
-    inertias_kg_m2: tuple[float, ...]  # one per shaft: len(meshes) + 1
+    inertias_kg_m2: tuple[float, ...]  # one per reducer shaft: len(meshes) + 1
     drive: DriveSpec
     load: LoadSpec
+    motor: CoupledInertia | None = None  # drive acts on it; joined to shaft 1
+    drum: CoupledInertia | None = None  # load acts on it; joined to the last shaft
+    shafts: tuple[FlexibleShaft | None, ...] = ()  # per intermediate shaft k = 1 .. n-1 (or empty)
 
     def __post_init__(self) -> None:
         if len(self.inertias_kg_m2) != len(self.meshes) + 1:
             raise ValueError("need one inertia per shaft: len(meshes) + 1")
         if not all(j > 0 and math.isfinite(j) for j in self.inertias_kg_m2):
             raise ValueError("shaft inertias must be positive and finite")
+        if self.shafts and len(self.shafts) != len(self.meshes) - 1:
+            raise ValueError("flexible shafts: one entry (or None) per intermediate shaft, len(meshes) - 1")
+        for k, s in enumerate(self.shafts):
+            if s is not None and not 0 < s.gear_end_kg_m2 < self.inertias_kg_m2[k + 1]:
+                raise ValueError("a flexible shaft's gear end must carry part of the shaft's inertia")
 
     @property
     def speed_ratios(self) -> tuple[float, ...]:
@@ -87,37 +127,3 @@ class ModelSpec:
         for m in self.meshes:
             out.append(out[-1] * m.base_radius_pinion_m / m.base_radius_gear_m)
         return tuple(out)
-
-
-def spec_from_design(cfg, design) -> ModelSpec:
-    """Assemble the model parameters from a validated ``DesignFile`` and its ``DesignResult``."""
-    from gearcli.design import contact_stiffness_N_mm_e
-
-    meshes = []
-    for k, st in enumerate(design.stages):
-        law = cfg.contact_for(k)
-        e = float(law.exponent)
-        meshes.append(MeshSpec(
-            base_radius_pinion_m=st.pinion.base_diameter_mm * MM / 2,
-            base_radius_gear_m=st.gear.base_diameter_mm * MM / 2,
-            base_helix_angle_rad=math.radians(st.base_helix_angle_deg),
-            transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
-            helix_angle_rad=math.radians(st.helix_angle_deg),
-            stiffness_N_m_e=float(contact_stiffness_N_mm_e(st, law)) * 1000.0**e,
-            exponent=e,
-            damping_Ns_m=law.damping_Ns_mm * 1000.0,
-            full_damping_m=law.full_damping_penetration_mm * MM,
-            backlash_m=st.backlash_mm * MM,
-            time_varying=bool(law.time_varying),
-            contact_ratio=st.contact_ratio_transverse,
-            overlap_ratio=st.overlap_ratio,
-            pinion_teeth=st.pinion.teeth,
-            normal_module_m=st.normal_module_mm * MM,
-            static_tangential_N=st.static_force_N.tangential,
-            efficiency=st.efficiency,
-        ))
-    inp = cfg.input
-    drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
-                      torque_Nm=inp.torque_Nm_value or 0.0)
-    load = LoadSpec(torque_Nm=cfg.load.torque_Nm_value, ramp_s=cfg.load.ramp_s)
-    return ModelSpec(tuple(meshes), tuple(s.inertia_kg_m2 for s in design.shafts), drive, load)

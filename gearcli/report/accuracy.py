@@ -18,8 +18,8 @@ the choice repeatable while still weighing an implicit method's dearer evaluatio
 from __future__ import annotations
 
 import statistics
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
-from typing import Callable, Iterable, Optional, Union
 
 from gearcli.errors import GearcliError, SimulationError
 from gearcli.report.result import QUANTITIES, AccuracyRun, AccuracyStudy, ReferenceRun, RunMetrics
@@ -49,12 +49,12 @@ class LadderSpec:
 
     rtols: tuple[float, ...] = DEFAULT_RTOLS
     methods: tuple[str, ...] = ("auto", "DOP853", "Radau")
-    reference: Optional[tuple[str, float]] = None
-    check: Optional[tuple[str, float]] = None
+    reference: tuple[str, float] | None = None
+    check: tuple[str, float] | None = None
     max_run_s: float = 15.0
     explicit_reference_limit: float = 2e5
 
-    def reference_pair(self, stiffness_indicator: Optional[float] = None
+    def reference_pair(self, stiffness_indicator: float | None = None
                        ) -> tuple[tuple[str, float], tuple[str, float]]:
         stiff = stiffness_indicator is not None and stiffness_indicator > self.explicit_reference_limit
         ref = self.reference or (("Radau", 1e-11) if stiff else ("DOP853", 1e-12))
@@ -71,18 +71,18 @@ def relative_errors(m: RunMetrics, ref: RunMetrics) -> dict[str, float]:
     """Relative errors of ``m`` against ``ref``; forces: the largest over the stages."""
     speed = _rel(m.output_speed_deg_s, ref.output_speed_deg_s, 1.0)
     mean = max((_rel(a, b, p) for a, b, p in zip(m.mean_tangential_N, ref.mean_tangential_N,
-                                                    ref.peak_tangential_N)), default=0.0)
-    peak = max((_rel(a, b, 1.0) for a, b in zip(m.peak_tangential_N, ref.peak_tangential_N)), default=0.0)
+                                                    ref.peak_tangential_N, strict=True)), default=0.0)
+    peak = max((_rel(a, b, 1.0) for a, b in zip(m.peak_tangential_N, ref.peak_tangential_N, strict=True)), default=0.0)
     return {"speed": speed, "mean_force": mean, "peak_force": peak}
 
 
-def meets(errors: dict[str, Optional[float]], uncertainty: float, accuracy: float) -> bool:
+def meets(errors: Mapping[str, float | None], uncertainty: float, accuracy: float) -> bool:
     """True when every error, or the reference's uncertainty where larger, is within ``accuracy``."""
     return all(e is not None and max(e, uncertainty) <= accuracy for e in errors.values())
 
 
 # ------------------------------------------------------------------------------------------- plan
-def ladder_method(method: str, auto_choice: Optional[str], methods: Iterable[str]) -> str:
+def ladder_method(method: str, auto_choice: str | None, methods: Iterable[str]) -> str:
     """A method that "auto" resolves to, when "auto" is also on the ladder, is swapped for its family
     sibling (DOP853 <-> RK45, Radau <-> BDF), so that no setting runs twice."""
     if method != "auto" and method == auto_choice and "auto" in methods:
@@ -90,7 +90,7 @@ def ladder_method(method: str, auto_choice: Optional[str], methods: Iterable[str
     return method
 
 
-def ladder_methods(methods: Iterable[str], auto_choice: Optional[str]) -> tuple[str, ...]:
+def ladder_methods(methods: Iterable[str], auto_choice: str | None) -> tuple[str, ...]:
     methods = tuple(methods)
     out: list[str] = []
     for m in methods:
@@ -105,7 +105,7 @@ def _same_rtol(a: float, b: float) -> bool:
 
 
 # ------------------------------------------------------------------------------------------- runs
-Outcome = Union[SimulationResult, str]  # a result, or why there is none
+Outcome = SimulationResult | str  # a result, or why there is none
 
 
 def reference_run(ref: SimulationResult, check: SimulationResult, ref_rtol: float,
@@ -140,7 +140,7 @@ def failed(method: str, rtol: float, reason: str, file_settings: bool) -> Accura
 class _Runner:
     """Runs settings one by one, counting them for the progress callback; failures become text."""
 
-    def __init__(self, run: RunFn, progress: Optional[ProgressFn], total: int):
+    def __init__(self, run: RunFn, progress: ProgressFn | None, total: int):
         self.run, self.tick, self.total, self.done = run, progress or (lambda *a: None), total, 0
 
     def __call__(self, method: str, rtol: float, role: str = "") -> Outcome:
@@ -159,9 +159,9 @@ def accuracy_study(
     file_rtol: float,
     accuracy: float = 1e-4,
     spec: LadderSpec = LadderSpec(),
-    auto_choice: Optional[str] = None,
-    stiffness_indicator: Optional[float] = None,
-    progress: Optional[ProgressFn] = None,
+    auto_choice: str | None = None,
+    stiffness_indicator: float | None = None,
+    progress: ProgressFn | None = None,
 ) -> AccuracyStudy:
     """Run the ladder (auto first, to learn what it resolves to), the file's own settings when they
     are not a rung, then the reference and its check; measure every run against the reference.
@@ -199,7 +199,7 @@ def _cost(runs: Iterable[AccuracyRun]) -> Callable[[AccuracyRun], float]:
     return lambda x: x.nfev * per[x.method] if x.method in per else float("inf")
 
 
-def _ladder(runner: "_Runner", spec: LadderSpec, rtols: list[float], auto_choice: Optional[str],
+def _ladder(runner: _Runner, spec: LadderSpec, rtols: list[float], auto_choice: str | None,
             file_setting: tuple[str, float]) -> tuple[list[tuple[str, float, Outcome]], dict[str, float]]:
     """Every method over the rtols, loose to tight; "auto" first so its choice is known before the
     siblings are picked. Returns (method, rtol, outcome) triples and the methods that became slow."""
@@ -231,13 +231,13 @@ def _is_file(method: str, rtol: float, file_method: str, file_rtol: float) -> bo
 def _reference(runner: _Runner, pair) -> ReferenceRun:
     (ref_method, ref_rtol), (check_method, check_rtol) = pair
     results = []
-    for role, (method, rtol) in zip(("reference", "check"), pair):
+    for role, (method, rtol) in zip(("reference", "check"), pair, strict=True):
         outcome = runner(method, rtol, role)
         if not isinstance(outcome, SimulationResult):
             raise SimulationError(f"accuracy reference run ({method}, rtol {rtol:g}) failed: {outcome}; "
                                   "use --quick to skip the accuracy study")
         results.append(outcome)
-    return reference_run(*results, ref_rtol, check_rtol)
+    return reference_run(results[0], results[1], ref_rtol, check_rtol)
 
 
 def _notes(ref: ReferenceRun, runs: list[AccuracyRun], accuracy: float, slow: dict) -> list[str]:

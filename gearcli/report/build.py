@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Callable, Optional
+from collections.abc import Callable
 
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
@@ -19,9 +19,9 @@ def build_report(
     *,
     accuracy: float = 1e-4,
     quick: bool = False,
-    spec: LadderSpec = LadderSpec(),
-    progress: Optional[ProgressFn] = None,
-    simulate: Optional[SimulateFn] = None,
+    spec: LadderSpec | None = None,
+    progress: ProgressFn | None = None,
+    simulate: SimulateFn | None = None,
 ) -> Report:
     """Run the design file's scene with its own ``[simulation]`` settings and compare it with the
     design's static values; unless ``quick``, add the work-precision study (see ``report.accuracy``).
@@ -29,8 +29,11 @@ def build_report(
     ``cfg`` is the validated ``DesignFile``; ``simulate`` defaults to ``gearcli.simulate.run_simulation``
     (tests pass a stand-in); ``progress(label, done, total)`` is called before each run.
     """
+    spec = spec or LadderSpec()
     if simulate is None:
-        from gearcli.simulate import run_simulation as simulate
+        from gearcli.simulate.run import run_simulation
+
+        simulate = run_simulation
     tick = progress or (lambda label, done, total: None)
     sim_cfg = cfg.simulation
     planned = 1 if quick else 1 + 2 + len(spec.rtols) * len(spec.methods)

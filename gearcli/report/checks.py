@@ -9,8 +9,9 @@ Each check returns plain sentences; nothing here prints.
 
 from __future__ import annotations
 
-from typing import Optional, Sequence
+from collections.abc import Sequence
 
+from gearcli.diagnostics import ENERGY_RESIDUAL, has
 from gearcli.report.accuracy import struggling_runs
 from gearcli.report.result import AccuracyStudy, StageReport
 from gearcli.results import SimulationResult
@@ -23,7 +24,7 @@ def energy_check(sim: SimulationResult, limit: float = ENERGY_RESIDUAL_LIMIT) ->
     """|residual| beyond ``limit``, either sign (a negative residual means energy was created), unless
     the simulation already said so."""
     r = sim.solver.energy_residual
-    if abs(r) > limit and not any("energy balance" in w for w in sim.warnings):
+    if abs(r) > limit and not has(sim.diagnostics, ENERGY_RESIDUAL):  # by code, never by message text
         return [f"energy balance residual {r:.2e} exceeds ±{limit:.0e} of the largest energy: the integration "
                 "is not accurate enough (tighten rtol) or the model books energy it does not account for"]
     return []
@@ -45,7 +46,7 @@ def sampling_checks(stages: Sequence[StageReport], natural_Hz: Sequence[float]) 
     return out
 
 
-def accuracy_checks(study: Optional[AccuracyStudy], file_method: str, file_rtol: float) -> list[str]:
+def accuracy_checks(study: AccuracyStudy | None, file_method: str, file_rtol: float) -> list[str]:
     if study is None:
         return []
     out = struggling_runs([r for r in study.runs if r.file_settings or r.method == "auto"], study.runs)

@@ -6,7 +6,7 @@ F_t = T / r, F_r = F_t tan α_t, F_a = F_t tan β); simulation is the mean over 
 
 from __future__ import annotations
 
-from typing import Optional, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -15,14 +15,14 @@ from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult, SimulationResult
 
 
-def relative_error_percent(simulated: float, theory: float) -> Optional[float]:
+def relative_error_percent(simulated: float, theory: float) -> float | None:
     """Signed ``100 (simulated - theory) / |theory|``; ``None`` when the theory value is 0."""
     if theory == 0 or not np.isfinite(theory):
         return None
     return 100.0 * (simulated - theory) / abs(theory)
 
 
-def _row(stage: Optional[int], quantity: str, theory: float, simulated: float) -> ComparisonRow:
+def _row(stage: int | None, quantity: str, theory: float, simulated: float) -> ComparisonRow:
     return ComparisonRow(stage, quantity, float(theory), float(simulated),
                          relative_error_percent(float(simulated), float(theory)))
 
@@ -51,7 +51,7 @@ def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[Compar
         _row(None, "input_speed_deg_s", design.input_speed_deg_s, sim.input_speed_deg_s),
         _row(None, "output_speed_deg_s", design.output_speed_deg_s, sim.output_speed_deg_s),
     ]
-    for st, dyn in zip(design.stages, sim.stages):
+    for st, dyn in zip(design.stages, sim.stages, strict=True):
         k = st.index
         pinion_speed, gear_speed = speeds[k - 1], speeds[k]
         ratio_sim = pinion_speed / gear_speed if gear_speed != 0 else float("nan")
@@ -70,7 +70,7 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
     """Fluctuation, run-up peak, dynamic factor and the F_t spectrum of every mesh."""
     out = []
     natural: Sequence[float] = tuple(sim.natural_frequencies_Hz)
-    for st, dyn in zip(design.stages, sim.stages):
+    for st, dyn in zip(design.stages, sim.stages, strict=True):
         series = sim.channels.get(f"stage{st.index}_tangential_N")
         if series is None:
             series = np.zeros_like(sim.time_s)

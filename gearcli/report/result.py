@@ -7,7 +7,6 @@ belong to the whole train), and quantity names carry their units as in the JSON 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Optional
 
 import numpy as np
 
@@ -22,11 +21,11 @@ class ComparisonRow:
     ``error_percent`` is signed, ``100 (simulated - theory) / |theory|``; ``None`` when theory is 0.
     """
 
-    stage: Optional[int]  # None: a train-level row
+    stage: int | None  # None: a train-level row
     quantity: str  # "ratio", "input_speed_deg_s", "output_speed_deg_s", "tangential_N", ...
     theory: float
     simulated: float
-    error_percent: Optional[float]
+    error_percent: float | None
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,7 +40,7 @@ class Spectrum:
     stage: int
     frequency_Hz: np.ndarray
     amplitude_N: np.ndarray
-    peak_frequency_Hz: Optional[float]
+    peak_frequency_Hz: float | None
     peak_amplitude_N: float
     resolution_Hz: float
     nyquist_Hz: float
@@ -79,7 +78,7 @@ class RunMetrics:
     peak_tangential_N: tuple[float, ...]
 
     @classmethod
-    def of(cls, sim: SimulationResult) -> "RunMetrics":
+    def of(cls, sim: SimulationResult) -> RunMetrics:
         return cls(
             output_speed_deg_s=float(sim.output_speed_deg_s),
             mean_tangential_N=tuple(float(s.tangential_N.mean) for s in sim.stages),
@@ -123,15 +122,15 @@ class AccuracyRun:
     nfev: int
     njev: int
     steps: int
-    error_speed: Optional[float]
-    error_mean_force: Optional[float]
-    error_peak_force: Optional[float]
+    error_speed: float | None
+    error_mean_force: float | None
+    error_peak_force: float | None
     below_reference_resolution: dict[str, bool]
     meets_accuracy: bool
     file_settings: bool = False  # the design file's own [simulation] method and rtol
-    failure: Optional[str] = None
+    failure: str | None = None
 
-    def error(self, quantity: str) -> Optional[float]:
+    def error(self, quantity: str) -> float | None:
         return getattr(self, f"error_{quantity}")
 
 
@@ -140,12 +139,12 @@ class AccuracyStudy:
     requested_accuracy: float
     reference: ReferenceRun
     runs: tuple[AccuracyRun, ...]
-    recommended: Optional[AccuracyRun]  # cheapest (nfev x the method's median s/eval) meeting the accuracy
+    recommended: AccuracyRun | None  # cheapest (nfev x the method's median s/eval) meeting the accuracy
     file_settings_meet_accuracy: bool
     notes: tuple[str, ...] = ()
 
     @property
-    def file_run(self) -> Optional[AccuracyRun]:
+    def file_run(self) -> AccuracyRun | None:
         return next((r for r in self.runs if r.file_settings), None)
 
 
@@ -159,7 +158,7 @@ class Report:
     simulation: SimulationResult  # the run with the file's own [simulation] settings, with series
     comparison: tuple[ComparisonRow, ...]
     stages: tuple[StageReport, ...]
-    accuracy: Optional[AccuracyStudy]  # None with --quick
+    accuracy: AccuracyStudy | None  # None with --quick
     warnings: tuple[str, ...] = field(default_factory=tuple)
 
     @property

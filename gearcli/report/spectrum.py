@@ -8,7 +8,7 @@ spectral line spreads over about ±2 bins, which is also the tolerance used to n
 
 from __future__ import annotations
 
-from typing import Optional, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -68,7 +68,7 @@ def name_peak(peak_Hz: float, resolution_Hz: float, mesh_Hz: float, natural_Hz: 
         lines.append((mesh_Hz, "mesh frequency"))
         lines += [(h * mesh_Hz, f"mesh harmonic {h}") for h in (2, 3)]
     lines += [(fn, f"natural frequency {j}") for j, fn in enumerate(natural_Hz, start=1) if fn > 0]
-    best: Optional[tuple[float, str]] = None
+    best: tuple[float, str] | None = None
     for f_line, name in lines:
         d = abs(f_line - peak_Hz)
         if d <= MATCH_BINS * resolution_Hz and (best is None or d < best[0]):

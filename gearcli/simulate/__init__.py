@@ -1,13 +1,27 @@
-"""``gearcli simulate``: solver wrapper, method choice, steady-state statistics (DESIGN.md section 4).
+"""``gearcli simulate``: solver wrapper, method choice, steady-state statistics (README "Model").
 
+- ``methods`` the one registry of integration methods (no scipy import)
 - ``solver``  one loop around scipy's ODE solvers: tolerances, samples, counters, failures, restarts at
               the ramp ends
 - ``guards``  cost budget from the scene, explicit-method feasibility, energy watch, force-noise warning
 - ``choice``  ``method = "auto"`` from the linearised stiffness
 - ``stats``   steady window, channel statistics, per-stage dynamics, warnings
 - ``run``     ``run_simulation`` (design file + design) and ``simulate_model`` (an assembled model)
+
+``run_simulation`` and ``simulate_model`` are imported on first use, so that ``gearcli.simulate.methods``
+(read by the design-file schema) does not pull in scipy.
 """
 
-from gearcli.simulate.run import run_simulation, simulate_model
+from __future__ import annotations
+
+from typing import Any
 
 __all__ = ["run_simulation", "simulate_model"]
+
+
+def __getattr__(name: str) -> Any:
+    if name in __all__:
+        from gearcli.simulate import run
+
+        return getattr(run, name)
+    raise AttributeError(name)

@@ -24,15 +24,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearcli.model import Linearisation, ModelSpec, linearise, static_line_forces_N
-from gearcli.model.linear import peak_rigid_line_forces_N
+from gearcli.model import Layout, Linearisation, ModelSpec, linearise
+from gearcli.model.linear import peak_rigid_forces, static_forces
+from gearcli.simulate.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 
-EXPLICIT_METHOD = "DOP853"
-IMPLICIT_METHOD = "Radau"
-EXPLICIT = ("RK45", "DOP853")
-STABILITY_RADIUS = {"DOP853": 6.0, "RK45": 2.0}  # along the imaginary axis (lightly damped modes)
-EVALS_PER_STEP = {"DOP853": 12, "RK45": 6}
 STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which "auto" integrates implicitly
+__all__ = ["EXPLICIT", "EXPLICIT_METHOD", "IMPLICIT_METHOD", "STIFFNESS_LIMIT", "Choice", "choose_method"]
 
 
 @dataclass(frozen=True)
@@ -44,50 +41,59 @@ class Choice:
     stiffness_ratio: float  # max|lambda| / min|lambda|
     at_full_load: Linearisation
     at_operating_point: Linearisation
-    stiffest_mesh: int  # 0-based index of the mesh with the highest single-mesh frequency
+    stiffest_mesh: int  # 0-based stage of the mesh with the highest single-mesh frequency
     spec: ModelSpec
+    layout: Layout
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:
-        """Undamped natural frequencies to report: at full load, or at the run-up load when a mesh of
-        exponent > 1 carries no static load (its linear stiffness would be 0); zero modes left out."""
-        unloaded = any(m.exponent > 1 and f == 0 for m, f in zip(self.spec.meshes, self.at_full_load.line_forces_N))
+        """Undamped natural frequencies to report: at full load, or at the run-up load when a connector
+        has no stiffness at full load (an unloaded Hertzian mesh); zero modes left out."""
+        unloaded = bool(np.any(self.at_full_load.stiffness == 0.0))
         lin = self.at_operating_point if unloaded else self.at_full_load
         return tuple(float(f) for f in lin.natural_frequencies_Hz if f > 0)
 
-    def explicit_evaluations(self, method: str = EXPLICIT_METHOD) -> float:
+    @property
+    def boundary(self) -> str:
+        """The boundary condition of the reported frequencies: a speed drive holds the input body."""
+        return "clamped_input" if self.layout.speed_drive else "free"
+
+    def explicit_evaluations(self, name: str = EXPLICIT_METHOD) -> float:
         """Fewest right-hand-side evaluations an explicit method needs for stability alone."""
-        return EVALS_PER_STEP[method] * self.indicator / STABILITY_RADIUS[method]
+        m = method(name)
+        return m.evals_per_step * self.indicator / m.stability_radius
 
 
-def _stiffest_mesh(lin: Linearisation, spec: ModelSpec) -> int:
+def _stiffest_mesh(lin: Linearisation, lay: Layout) -> int:
     """The mesh whose own mode (its stiffness against the two inertias it joins) is fastest."""
-    first = 1 if spec.drive.kind == "speed" else 0
-    J = spec.inertias_kg_m2
     own = []
-    for k, m in enumerate(spec.meshes):
-        mobility = (m.base_radius_pinion_m**2 / J[k] if k >= first else 0.0) + m.base_radius_gear_m**2 / J[k + 1]
-        own.append(lin.stiffness_N_m[k] * mobility)
+    for c in lay.stage_conn:
+        x = lay.connectors[c]
+        mobility = (x.ra**2 / lay.inertias[x.a] if lay.i_omega(x.a) is not None else 0.0) \
+            + x.rb**2 / lay.inertias[x.b]
+        own.append(lin.stiffness[c] * mobility)
     return int(np.argmax(own))
 
 
 def choose_method(spec: ModelSpec, duration_s: float, requested: str) -> Choice:
     """The method to run and why (``requested`` other than "auto" is kept, with the indicator)."""
-    static = static_line_forces_N(spec)
-    full = linearise(spec, static)
-    operating = np.maximum(np.abs(static), peak_rigid_line_forces_N(spec, duration_s))
-    op = linearise(spec, operating, stiffest_phase=True)
+    lay = Layout.of(spec)
+    static = static_forces(lay)
+    full = linearise(lay, static)
+    operating = np.maximum(np.abs(static), peak_rigid_forces(lay, duration_s))
+    op = linearise(lay, operating, stiffest_phase=True)
     lam = max(full.max_abs_eigenvalue, op.max_abs_eigenvalue)
     low = min((x for x in (full.min_abs_eigenvalue, op.min_abs_eigenvalue) if x > 0), default=0.0)
     indicator = lam * duration_s
     ratio = lam / low if low > 0 else math.inf
     summary = f"max|λ|·T = {indicator:.3g}"
-    if requested != "auto":
-        method, reason = requested, f"as requested ({summary})"
+    if requested != AUTO:
+        chosen, reason = requested, f"as requested ({summary})"
     elif indicator <= STIFFNESS_LIMIT:
-        method = EXPLICIT_METHOD
-        reason = f"{summary} ≤ {STIFFNESS_LIMIT:.0e}: explicit {method}"
+        chosen = EXPLICIT_METHOD
+        reason = f"{summary} ≤ {STIFFNESS_LIMIT:.0e}: explicit {chosen}"
     else:
-        method = IMPLICIT_METHOD
-        reason = f"{summary} > {STIFFNESS_LIMIT:.0e}: implicit {method} with the analytic Jacobian"
-    return Choice(method, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, spec), spec)
+        chosen = IMPLICIT_METHOD
+        reason = f"{summary} > {STIFFNESS_LIMIT:.0e}: implicit {chosen} with the analytic Jacobian"
+    return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay)
+

@@ -28,21 +28,24 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
 
 import numpy as np
 
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.linear import static_line_forces_N
+from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements import mesh as mesh_el
+from gearcli.model.linear import static_forces
 from gearcli.model.outputs import kinetic_energy, potential_energy, sample
-from gearcli.simulate.choice import EXPLICIT, IMPLICIT_METHOD, STIFFNESS_LIMIT, Choice
-from gearcli.simulate.solver import MAX_NFEV
+from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
+from gearcli.simulate.methods import IMPLICIT_METHOD, method
 
 COST_PER_UNIT = 30.0  # evaluations per unit of max|lambda| T at rtol 1e-6 (worst measured: 26)
 HEADROOM = 10.0
 FLOOR = 200_000  # ~1 s of right-hand sides: never stop a short soft run early
-CAP = MAX_NFEV  # 5e6: ~30 s of right-hand sides on a 2-core machine
+CAP = 5_000_000  # ~30 s of right-hand sides on a 2-core machine; then the run is called off
 EXPLICIT_CAP = 1_000_000  # stability-only cost beyond which an explicit method is refused (~10 s)
 ENERGY_MARGIN = 0.1  # of the scene's energy scale
 ENERGY_CHECK_EVERY = 16  # accepted steps between energy checks (divergence grows geometrically)
@@ -61,7 +64,7 @@ def nfev_budget(indicator: float, rtol: float) -> int:
 
 def require_feasible(choice: Choice, budget: int) -> None:
     """Refuse an explicit method whose stability limit alone would exceed the budget (or EXPLICIT_CAP)."""
-    if choice.method not in EXPLICIT:
+    if method(choice.method).implicit:
         return
     needed = choice.explicit_evaluations(choice.method)
     budget = min(budget, EXPLICIT_CAP)
@@ -99,13 +102,15 @@ class EnergyWatch:
         self.scale = max(self._nominal_scale(), abs(self.e0))
 
     def _nominal_scale(self) -> float:
-        """Kinetic energy of the rigid train at nominal speed plus elastic energy at full static load."""
-        spec, lay = self.model.spec, self.model.layout
-        rho = np.asarray(spec.speed_ratios)
-        ke = 0.5 * float(np.asarray(spec.inertias_kg_m2) @ (rho * spec.drive.speed_rad_s) ** 2)
-        F = np.abs(static_line_forces_N(spec))
-        u = sum(m.stiffness_N_m_e * (f / m.cos_beta_b / m.stiffness_N_m_e) ** ((m.exponent + 1) / m.exponent)
-                / (m.exponent + 1) for m, f in zip(lay.meshes, F))
+        """Kinetic energy of the rigid chain at nominal speed plus elastic energy at full static load
+        (each element's own stored energy at its static deflection; meshes at their mean stiffness)."""
+        lay = self.model.layout
+        rho = np.array([b.ratio for b in lay.bodies])
+        ke = 0.5 * float(np.asarray(lay.inertias) @ (rho * lay.drive.speed_rad_s) ** 2)
+        u = 0.0
+        for x, f in zip(lay.connectors, np.abs(static_forces(lay)), strict=True):
+            P = mesh_el.linear_row(x.params, 1.0) if x.kind == KIND_MESH else x.params
+            u += x.element.potential(P, x.element.static_deflection(P, f), 0.0)
         return max(ke + u, np.finfo(float).tiny)
 
     def _work(self, y: np.ndarray) -> float:
@@ -116,7 +121,7 @@ class EnergyWatch:
     def _stored(self, t: float, y: np.ndarray) -> float:
         """Kinetic energy + elastic energy of constant-stiffness meshes + work done on time-varying springs."""
         lay = self.model.layout
-        s = sample(lay, np.array([t]), y[:, None])
+        s = sample(lay, np.array([t]), y[:, None])  # the elements' own laws, one sample
         stored = float(kinetic_energy(lay, s.omega_rad_s)[0]) + float(potential_energy(lay, s, time_varying=False)[0])
         if lay.n_tv:
             stored += float(y[lay.i_quad + 3])
@@ -131,7 +136,7 @@ class EnergyWatch:
                 f"in ({report.created_J / report.scale_J:.2g}x the scene's energy scale of {report.scale_J:.3g} J)")
 
 
-def energy_watch(model: TorsionalModel, y0: np.ndarray) -> Optional[EnergyWatch]:
+def energy_watch(model: TorsionalModel, y0: np.ndarray) -> EnergyWatch | None:
     """An energy watch for the run, or None when the energy scale is degenerate (nothing moves)."""
     watch = EnergyWatch(model, y0)
     return watch if math.isfinite(watch.scale) and watch.scale > 0 else None
@@ -153,28 +158,29 @@ def force_noise(choice: Choice, rtol: float) -> np.ndarray:
     (configs/extreme/stiff_linear_10000x.toml), where DOP853 forced at rtol 1e-6 strays up to 15x the static
     force from the rigid-body answer, BDF 0.85x, LSODA 0.33x, while Radau stays within 0.4 %.
     """
-    spec = choice.spec
+    lay = choice.layout
     lin, full = choice.at_operating_point, choice.at_full_load
-    J = np.asarray(spec.inertias_kg_m2)
-    w = np.asarray(spec.speed_ratios) * spec.drive.speed_rad_s
-    first = 1 if spec.drive.kind == "speed" else 0
-    out = np.zeros(len(spec.meshes))
-    for k, m in enumerate(spec.meshes):
-        rp, rg = m.base_radius_pinion_m, m.base_radius_gear_m
-        mobility = (rp**2 / J[k] if k >= first else 0.0) + rg**2 / J[k + 1]
-        force = abs(float(full.line_forces_N[k])) or abs(float(lin.line_forces_N[k]))  # static, else run-up
-        if force > 0 and lin.stiffness_N_m[k] > 0:
-            v_tol = rtol * (rp * abs(w[k]) + rg * abs(w[k + 1]))
-            out[k] = v_tol * math.sqrt(lin.stiffness_N_m[k] / mobility) / force
+    J = np.asarray(lay.inertias)
+    w = np.array([b.ratio for b in lay.bodies]) * lay.drive.speed_rad_s
+    out = np.zeros(len(lay.stage_conn))
+    for k, c in enumerate(lay.stage_conn):
+        x = lay.connectors[c]
+        rp, rg = x.ra, x.rb
+        mobility = (rp**2 / J[x.a] if lay.i_omega(x.a) is not None else 0.0) + rg**2 / J[x.b]
+        force = abs(float(full.forces[c])) or abs(float(lin.forces[c]))  # static, else run-up
+        if force > 0 and lin.stiffness[c] > 0:
+            v_tol = rtol * (rp * abs(w[x.a]) + rg * abs(w[x.b]))
+            out[k] = v_tol * math.sqrt(lin.stiffness[c] / mobility) / force
     return out
 
 
-def force_noise_warnings(choice: Choice, rtol: float) -> list[str]:
+def force_noise_warnings(choice: Choice, rtol: float) -> list[Diagnostic]:
     """Warn when the tolerance cannot resolve a mesh force and the method will not damp the noise away."""
     if choice.method in DAMPS_UNRESOLVED:
         return []
     noise = force_noise(choice, rtol)
-    return [f"stage {k + 1}: at rtol {rtol:g} the shaft-speed tolerance resolves this mesh's force only to "
-            f"~{100 * x:.2g} % (the mesh is very stiff for its inertias); {choice.method} may show spurious force "
-            f"noise of that size or more: use method = \"Radau\" (or \"auto\")" for k, x in enumerate(noise)
-            if x > NOISE_WARN]
+    return [dg.warning(dg.FORCE_NOISE, f"stage {k + 1}: at rtol {rtol:g} the shaft-speed tolerance resolves this "
+                       f"mesh's force only to ~{100 * x:.2g} % (the mesh is very stiff for its inertias); "
+                       f"{choice.method} may show spurious force noise of that size or more: use method = "
+                       f"\"{IMPLICIT_METHOD}\" (or \"auto\")", stage=k + 1, relative_noise=float(x))
+            for k, x in enumerate(noise) if x > NOISE_WARN]

@@ -3,42 +3,60 @@
 from __future__ import annotations
 
 import math
-from typing import Optional
 
 import numpy as np
 
-from gearcli.errors import SimulationError
-from gearcli.model import TorsionalModel, spec_from_design
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
+from gearcli.errors import ConfigError, SimulationError
+from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import EnergyBalance, SimulationResult, SolverStats
 from gearcli.simulate import stats
-from gearcli.simulate.choice import EXPLICIT, IMPLICIT_METHOD, STIFFNESS_LIMIT, Choice, choose_method
+from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.solver import (STATUS_BUDGET, STATUS_ENERGY, STATUS_FAILED, STATUS_FINISHED, STATUS_NONFINITE,
-                                     Integration, integrate)
+from gearcli.simulate.methods import EXPLICIT, IMPLICIT_METHOD
+from gearcli.simulate.solver import (
+    STATUS_BUDGET,
+    STATUS_ENERGY,
+    STATUS_FAILED,
+    STATUS_FINISHED,
+    STATUS_NONFINITE,
+    Integration,
+    integrate,
+)
 
 RAD_TO_DEG = 180.0 / math.pi
+StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), penetration (mm)
 
 
-def run_simulation(cfg, design, *, method: Optional[str] = None, rtol: Optional[float] = None,
-                   want_series: bool = True, max_nfev: Optional[int] = None) -> SimulationResult:
+def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
+                   want_series: bool = True, max_nfev: int | None = None,
+                   y0: np.ndarray | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
-    (:func:`gearcli.simulate.guards.nfev_budget`). Raises SimulationError on failure, never returns NaN."""
+    (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
+    :meth:`gearcli.model.TorsionalModel.continue_state`). Raises SimulationError on failure, never
+    returns NaN."""
+    from gearcli.scene import spec_from_design
+
     sim = cfg.simulation
+    if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
+        raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
+                          key="simulation.window_start_s")
     return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev)
+                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
-                   rtol: float = 1e-6, window_start_s: Optional[float] = None, want_series: bool = True,
-                   y0: Optional[np.ndarray] = None, max_nfev: Optional[int] = None) -> SimulationResult:
+                   rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
+                   y0: np.ndarray | None = None, max_nfev: int | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
-    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.layout`)."""
+    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`)."""
     spec = model.spec
-    window, warnings = stats.steady_window(spec, duration_s, window_start_s)
+    window, diags = stats.steady_window(spec, duration_s, window_start_s)
     choice = choose_method(spec, duration_s, method)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
@@ -48,43 +66,58 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     check(run, choice, duration_s)
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
-    warnings += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
-    result = _summarise(model, s, run, choice, window, energy, warnings, want_series)
+    diags += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
+    diags += resonance_warnings(model, choice)
+    result = _summarise(model, s, run, choice, window, energy, diags, want_series)
     _require_finite(result)
     return result
 
 
-def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[tuple]]:
-    """DESIGN.md section 5 columns, in order; and per stage (F_t, F_r, F_a, penetration mm)."""
-    ch: dict[str, np.ndarray] = {f"shaft{i + 1}_speed_deg_s": s.omega_rad_s[i] * RAD_TO_DEG
-                                 for i in range(model.layout.n_shafts)}
+def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[StageSeries]]:
+    """The CSV columns, in order (README "Output"); and per stage (F_t, F_r, F_a, penetration mm).
+    Reducer shafts first (a flexible shaft reports its gear end), then the drivetrain's own channels."""
+    lay = model.layout
+    ch: dict[str, np.ndarray] = {f"shaft{i + 1}_speed_deg_s": s.omega_rad_s[b] * RAD_TO_DEG
+                                 for i, b in enumerate(lay.shaft_body)}
     ch["input_torque_Nmm"] = s.input_torque_Nm * 1e3
-    per_stage = []
+    per_stage: list[StageSeries] = []
     for k, ms in enumerate(s.meshes):
-        ft, fr, fa = tooth_forces(model.layout, k, ms.line_force_N)
+        ft, fr, fa = tooth_forces(lay, k, ms.line_force_N)
         pen = ms.penetration_m * 1e3
         ch.update({f"stage{k + 1}_tangential_N": ft, f"stage{k + 1}_radial_N": fr,
                    f"stage{k + 1}_axial_N": fa, f"stage{k + 1}_penetration_mm": pen})
         per_stage.append((ft, fr, fa, pen))
+    for shaft, c in sorted(lay.shaft_conn.items()):
+        ch[f"shaft{shaft + 1}_twist_deg"] = s.connectors[c].deflection * RAD_TO_DEG
+    if lay.motor_body is not None:
+        ch["motor_speed_deg_s"] = s.omega_rad_s[lay.motor_body] * RAD_TO_DEG
+    if lay.drum_body is not None:
+        ch["drum_speed_deg_s"] = s.omega_rad_s[lay.drum_body] * RAD_TO_DEG
+    for name, label in (("input_coupling_torque_Nm", "input coupling"), ("load_coupling_torque_Nm", "load coupling")):
+        named = lay.conn_named(label)
+        if named is not None:
+            ch[name] = s.connectors[named].force.copy()
     return ch, per_stage
 
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, window, energy,
-               warnings: list[str], want_series: bool) -> SimulationResult:
+               diags: list[Diagnostic], want_series: bool) -> SimulationResult:
     spec = model.spec
     mask = stats.window_mask(s.time_s, window)
     channels, per_stage = _channels(model, s)
     stages = tuple(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k], m.static_tangential_N)
                    for k, m in enumerate(spec.meshes))
-    w_in, w_out = float(s.omega_rad_s[0][mask].mean()), float(s.omega_rad_s[-1][mask].mean())
+    shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
+    w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
-    warnings += ratio_warnings + stats.contact_warnings(spec, mask, [ms.penetration_m for ms in s.meshes],
-                                                        choice.at_full_load.penetration_m)
-    warnings += stats.peak_warnings(spec, [float(np.max(np.abs(ms.line_force_N))) for ms in s.meshes],
-                                    choice.at_operating_point.line_forces_N)
+    diags += ratio_warnings + stats.contact_warnings(spec, mask, [ms.penetration_m for ms in s.meshes],
+                                                     choice.at_full_load.penetration_m)
+    diags += stats.peak_warnings(spec, [float(np.max(np.abs(ms.line_force_N))) for ms in s.meshes],
+                                 choice.at_operating_point.line_forces_N)
     if energy.residual_relative > stats.WARN_ENERGY_RESIDUAL:
-        warnings.append(f"energy balance residual {energy.residual_relative:.2g} exceeds "
-                        f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol")
+        diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
+                                f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
+                                residual=energy.residual_relative))
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -96,8 +129,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         time_s=s.time_s if want_series else np.empty(0), channels=channels if want_series else {},
         window_s=(float(window[0]), float(window[1])), ratio=ratio, output_speed_deg_s=w_out * RAD_TO_DEG,
         input_speed_deg_s=w_in * RAD_TO_DEG, stages=stages, solver=solver, energy=balance,
-        warnings=tuple(warnings),
-        natural_frequencies_Hz=choice.natural_frequencies_Hz,
+        warnings=dg.messages(diags), diagnostics=tuple(diags),
+        natural_frequencies_Hz=choice.natural_frequencies_Hz, natural_frequencies_boundary=choice.boundary,
+        final_state=run.y[:, -1].copy(),
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},
@@ -106,17 +140,35 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
     """The smallest absolute tolerance of each state group (deflections, speeds)."""
-    m, lay = model.layout.n_meshes, model.layout
-    return {"deflection_m": float(atol[:m].min()),
-            "speed_rad_s": float(atol[m:m + len(lay.free_shafts)].min())}
+    lay = model.layout
+    meshes = list(lay.stage_conn)
+    out = {"deflection_m": float(atol[meshes].min()),
+           "speed_rad_s": float(atol[lay.n_conn:lay.n_conn + len(lay.free_bodies)].min())}
+    springs = [c for c in range(lay.n_conn) if c not in meshes]
+    if springs:
+        out["twist_rad"] = float(atol[springs].min())
+    return out
 
 
-def _choice_warnings(choice: Choice) -> list[str]:
+def _choice_warnings(choice: Choice) -> list[Diagnostic]:
     if choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT:
-        return [f"the scene is stiff for an explicit method (max|λ|·T = {choice.indicator:.2g}, at least "
-                f"{choice.explicit_evaluations(choice.method):.2g} evaluations for stability alone): "
-                f'method = "auto" would use {IMPLICIT_METHOD}']
+        return [dg.warning(dg.STIFF_FOR_EXPLICIT, f"the scene is stiff for an explicit method (max|λ|·T = "
+                           f"{choice.indicator:.2g}, at least {choice.explicit_evaluations(choice.method):.2g} "
+                           f'evaluations for stability alone): method = "auto" would use {IMPLICIT_METHOD}',
+                           indicator=choice.indicator)]
     return []
+
+
+def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic]:
+    """A mesh order (1x, 2x mesh frequency) at the nominal speed within 10 % of a natural frequency, naming
+    the mode and its dominant element (:mod:`gearcli.model.modes`)."""
+    from gearcli.model.modes import resonances
+
+    out = []
+    for r in resonances(model.layout, boundary=choice.boundary):
+        out.append(dg.warning(dg.RESONANCE, r.message, mode=r.mode, frequency_Hz=r.frequency_Hz,
+                              excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element))
+    return out
 
 
 def check(run: Integration, choice: Choice, duration_s: float) -> None:

@@ -3,8 +3,9 @@
 The loop is the one ``scipy.integrate.solve_ivp`` runs (``OdeSolver.step`` until the end, dense output
 evaluated at the requested samples inside each step), written out here so that it can also count
 accepted steps, stop a run that exceeds its function-evaluation budget (an explicit method on a
-stiff scene would otherwise grind for minutes), stop at the first non-finite state and stop a run whose
-energy grows without input (:mod:`gearcli.simulate.guards`). Success is decided from the solver's
+stiff scene would otherwise grind for minutes), stop at the first non-finite state (checked once per
+accepted step, not on every evaluation; an overflow inside the right-hand side is caught at the step)
+and stop a run whose energy grows without input (:mod:`gearcli.simulate.guards`). Success is decided from the solver's
 ``status`` only, never from its message text; failures raise :class:`~gearcli.errors.SimulationError`
 with the likely cause and the fix.
 
@@ -22,17 +23,15 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Optional
 
 import numpy as np
-from scipy.integrate import BDF, DOP853, LSODA, RK45, OdeSolver, Radau
+from scipy.integrate import OdeSolver
 
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
-
-SOLVERS: dict[str, type[OdeSolver]] = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
-IMPLICIT = ("Radau", "BDF", "LSODA")  # take the analytic Jacobian
-MAX_NFEV = 5_000_000  # ~30 s of right-hand sides on a 2-core machine; then the run is called off
+from gearcli.simulate.guards import CAP as MAX_NFEV
+from gearcli.simulate.guards import EnergyWatch, energy_watch
+from gearcli.simulate.methods import METHODS, scipy_solver
 
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
 
@@ -54,36 +53,12 @@ class Integration:
     t_fail: float  # where it stopped
 
 
-class NonFinite(Exception):
-    """The right-hand side or the Jacobian came out non-finite (raised through scipy's step)."""
-
-    def __init__(self, what: str, t: float):
-        super().__init__(f"the {what} became non-finite at t = {t:.6g} s")
-
-
-def _finite(fun, what: str):
-    """``fun`` that raises :class:`NonFinite` instead of returning inf/NaN (or overflowing in Python
-    float arithmetic). Without it an implicit method hands the NaN to its LU solver, which raises a bare
-    ValueError from inside scipy; an explicit one shrinks its step until it reports a step-size failure."""
-
-    def wrapped(t, y):
-        try:
-            out = fun(t, y)
-        except OverflowError:
-            raise NonFinite(what, t) from None
-        if not np.isfinite(out.sum()):  # one reduction: inf and NaN propagate into the sum
-            raise NonFinite(what, t)
-        return out
-
-    return wrapped
-
-
 def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end: float, rtol: float,
             atol: np.ndarray) -> OdeSolver:
-    if method not in SOLVERS:
-        raise SimulationError(f"unknown integration method {method!r}; use one of {', '.join(SOLVERS)}")
-    extra = {"jac": _finite(model.jac, "Jacobian")} if method in IMPLICIT else {}
-    return SOLVERS[method](_finite(model.rhs, "right-hand side"), t0, y0, t_end, rtol=rtol, atol=atol, **extra)
+    if method not in METHODS:
+        raise SimulationError(f"unknown integration method {method!r}; use one of {', '.join(METHODS)}")
+    extra = {"jac": model.jac} if METHODS[method].takes_jacobian else {}
+    return scipy_solver(method)(model.rhs, t0, y0, t_end, rtol=rtol, atol=atol, **extra)
 
 
 def breakpoints(model: TorsionalModel, t_end: float) -> list[float]:
@@ -95,7 +70,7 @@ def breakpoints(model: TorsionalModel, t_end: float) -> list[float]:
     return sorted(kinks) + [t_end]
 
 
-def tolerances(model: TorsionalModel, rtol: float, watch) -> np.ndarray:
+def tolerances(model: TorsionalModel, rtol: float, watch: EnergyWatch | None) -> np.ndarray:
     """The model's absolute tolerances, with the energy quadratures brought under error control.
 
     The model leaves the work quadratures (W_in, W_load, E_damp, W_el) out of the step control
@@ -125,14 +100,12 @@ class _Counters:
 
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
-              y0: Optional[np.ndarray] = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True) -> Integration:
+              y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True) -> Integration:
     """Integrate from t = 0 to ``t_eval[-1]`` and sample at ``t_eval`` (ascending, starting at 0).
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error.
     """
-    from gearcli.simulate.guards import energy_watch
-
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
     watch = energy_watch(model, y) if watch_energy else None
     atol = tolerances(model, rtol, watch)
@@ -161,15 +134,15 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
         try:
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # judged below, not printed
                 msg = solver.step()
-        except NonFinite as exc:
-            return STATUS_NONFINITE, str(exc), done
+        except (OverflowError, ZeroDivisionError) as exc:  # Python float arithmetic of the right-hand side
+            return STATUS_NONFINITE, f"the right-hand side overflowed near t = {solver.t:.6g} s ({exc})", done
         except (ValueError, np.linalg.LinAlgError) as exc:  # an implicit method's LU met inf/NaN of its own
             return STATUS_NONFINITE, f"the solver's linear algebra failed ({type(exc).__name__}: {exc})", done
         if solver.status == "failed":
             return STATUS_FAILED, str(msg), done
         count.steps += 1
-        if not np.all(np.isfinite(solver.y)):
-            return STATUS_NONFINITE, "the state became non-finite", done
+        if not np.isfinite(solver.y.sum()):  # once per accepted step: inf and NaN propagate into the sum
+            return STATUS_NONFINITE, f"the state became non-finite at t = {solver.t:.6g} s", done
         upto = int(np.searchsorted(t_eval, solver.t, side="right"))
         if upto > done:
             out[:, done:upto] = solver.dense_output()(t_eval[done:upto]).reshape(n, -1)

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import math
-from typing import Optional
 
 import numpy as np
 
-from gearcli.errors import ConfigError
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
 from gearcli.model.spec import ModelSpec
 from gearcli.results import ChannelStats, StageDynamics
 
@@ -19,22 +19,23 @@ NO_RAMP_WINDOW_FRACTION = 0.8  # window start when the ramps outlast the run: th
 
 
 def steady_window(spec: ModelSpec, duration_s: float,
-                  start_s: Optional[float]) -> tuple[tuple[float, float], list[str]]:
+                  start_s: float | None) -> tuple[tuple[float, float], list[Diagnostic]]:
     """``(from, to)`` of the steady window and any warning about it.
 
     Default: from the end of the slower ramp (input and load) plus 20 % of the remaining time, to the
-    end. ``start_s`` (``simulation.window_start_s``) overrides the start.
+    end. ``start_s`` (``simulation.window_start_s``) overrides the start; it must lie before the end
+    (ValueError otherwise: the caller checks the design file).
     """
     if start_s is not None:
         if start_s >= duration_s:
-            raise ConfigError(f"must be below simulation.duration_s = {duration_s:g} s, got {start_s:g}",
-                              key="simulation.window_start_s")
+            raise ValueError(f"the window start {start_s:g} s is not before the end of the run {duration_s:g} s")
         return (float(start_s), duration_s), []
     ramps = max(spec.drive.ramp_s, spec.load.ramp_s)
     if ramps >= duration_s:
         start = NO_RAMP_WINDOW_FRACTION * duration_s
-        return (start, duration_s), [f"the ramps ({ramps:g} s) outlast the run ({duration_s:g} s): the statistics "
-                                     f"window [{start:.4g}, {duration_s:g}] s is not steady; lengthen duration_s"]
+        return (start, duration_s), [dg.warning(
+            dg.RAMPS_OUTLAST_RUN, f"the ramps ({ramps:g} s) outlast the run ({duration_s:g} s): the statistics "
+            f"window [{start:.4g}, {duration_s:g}] s is not steady; lengthen duration_s", ramps_s=ramps)]
     return (ramps + SETTLE_FRACTION * (duration_s - ramps), duration_s), []
 
 
@@ -59,7 +60,7 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
 
 
 def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray],
-                     static_penetration_m: np.ndarray) -> list[str]:
+                     static_penetration_m: np.ndarray) -> list[Diagnostic]:
     """Penetration beyond the full-damping depth or 10 % of the module; loss of contact on the loaded
     flank in the steady window (a loaded mesh that separates or crosses to its other flank rattles).
 
@@ -69,45 +70,51 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
     penetration lies below d, i.e. when the law was set up in the seed's sense and a transient exceeds it.
     """
     out = []
-    for k, (m, pen) in enumerate(zip(spec.meshes, penetration_m)):
+    for k, (m, pen) in enumerate(zip(spec.meshes, penetration_m, strict=True)):
         deepest = float(np.max(np.abs(pen)))
         if m.damping_Ns_m > 0 and static_penetration_m[k] < m.full_damping_m < deepest:
-            out.append(f"stage {k + 1}: penetration reached {deepest * 1e3:.3g} mm, beyond the full-damping depth "
-                       f"{m.full_damping_m * 1e3:.3g} mm (the damping saturates there)")
+            out.append(dg.warning(dg.PENETRATION_BEYOND_DAMPING, f"stage {k + 1}: penetration reached "
+                                  f"{deepest * 1e3:.3g} mm, beyond the full-damping depth {m.full_damping_m * 1e3:.3g} mm "
+                                  "(the damping saturates there)", stage=k + 1, penetration_m=deepest))
         if m.normal_module_m > 0 and deepest > WARN_PENETRATION_MODULE_FRACTION * m.normal_module_m:
-            out.append(f"stage {k + 1}: penetration reached {deepest * 1e3:.3g} mm, more than 10 % of the normal "
-                       f"module ({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity")
+            out.append(dg.warning(dg.PENETRATION_OVER_MODULE, f"stage {k + 1}: penetration reached "
+                                  f"{deepest * 1e3:.3g} mm, more than 10 % of the normal module "
+                                  f"({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity",
+                                  stage=k + 1, penetration_m=deepest))
         loaded = math.copysign(1.0, m.static_tangential_N)  # the flank that carries the static load
         lost = loaded * pen[mask] <= 0.0
         if m.static_tangential_N != 0 and np.any(lost):
             flank = "drive" if loaded > 0 else "back"
-            out.append(f"stage {k + 1}: the loaded ({flank}) flank loses contact in the steady window "
-                       f"({100.0 * lost.mean():.3g} % of the samples): tooth impacts (rattle) — the load is too "
-                       "small for the vibration")
+            out.append(dg.warning(dg.CONTACT_LOSS, f"stage {k + 1}: the loaded ({flank}) flank loses contact in the "
+                                  f"steady window ({100.0 * lost.mean():.3g} % of the samples): tooth impacts (rattle) "
+                                  "— the load is too small for the vibration", stage=k + 1, fraction=float(lost.mean())))
     return out
 
 
-def peak_warnings(spec: ModelSpec, peak_line_forces_N, rigid_line_forces_N) -> list[str]:
+def peak_warnings(spec: ModelSpec, peak_line_forces_N, rigid_line_forces_N) -> list[Diagnostic]:
     """A run-up peak far above the rigid-body estimate is an impact or a numerical artefact."""
     out = []
-    for k, (peak, rigid) in enumerate(zip(peak_line_forces_N, rigid_line_forces_N)):
+    for k, (peak, rigid) in enumerate(zip(peak_line_forces_N, rigid_line_forces_N, strict=True)):
         if rigid > 0 and peak > WARN_PEAK_OVER_RIGID * rigid:
-            out.append(f"stage {k + 1}: peak mesh force is {peak / rigid:.3g}x the rigid-body estimate of the run "
-                       "(inertia plus load): a violent impact or a numerical artefact — check with a tighter rtol")
+            out.append(dg.warning(dg.PEAK_OVER_RIGID, f"stage {k + 1}: peak mesh force is {peak / rigid:.3g}x the "
+                                  "rigid-body estimate of the run (inertia plus load): a violent impact or a numerical "
+                                  "artefact — check with a tighter rtol", stage=k + 1, ratio=peak / rigid))
     return out
 
 
-def model_warnings(spec: ModelSpec) -> list[str]:
+def model_warnings(spec: ModelSpec) -> list[Diagnostic]:
     out = []
     for k, m in enumerate(spec.meshes):
         if m.efficiency < 1.0:
-            out.append(f"stage {k + 1}: efficiency {m.efficiency:g} is not modelled in the dynamics (lossless "
-                       "meshes); simulated forces follow the lossless torques, the design's static ones include losses")
+            out.append(dg.warning(dg.EFFICIENCY_NOT_MODELLED, f"stage {k + 1}: efficiency {m.efficiency:g} is not "
+                                  "modelled in the dynamics (lossless meshes); simulated forces follow the lossless "
+                                  "torques, the design's static ones include losses", stage=k + 1))
     return out
 
 
-def ratio_of(mean_in: float, mean_out: float) -> tuple[float, list[str]]:
+def ratio_of(mean_in: float, mean_out: float) -> tuple[float, list[Diagnostic]]:
     """mean w_in / mean w_out; 0 with a warning when the output stands still."""
     if abs(mean_out) <= 1e-12 * max(abs(mean_in), 1.0) or not math.isfinite(mean_in / mean_out):
-        return 0.0, ["the output shaft stands still in the steady window: the dynamic ratio is undefined (0)"]
+        return 0.0, [dg.warning(dg.OUTPUT_STANDS_STILL,
+                                "the output shaft stands still in the steady window: the dynamic ratio is undefined (0)")]
     return mean_in / mean_out, []

@@ -110,3 +110,49 @@ def test_solver_failure_is_exit_1_with_cause_and_fix(tmp_path):
     assert res.exit_code == 1, res.stderr
     assert "Radau" in res.stderr and "Traceback" not in res.stderr
     assert out.read_text() == "previous\n"
+
+
+# ------------------------------------------------------------------------------ drivetrain, modes
+def test_drivetrain_scene_has_its_channels_and_a_labelled_boundary():
+    scene = str(Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer_drivetrain.toml")
+    res = CliRunner().invoke(cli, ["simulate", scene, "--format", "json", "--series",
+                                   "--set", "simulation.duration_s=0.3", "--set", "simulation.steps=300"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    assert doc["summary"]["natural_frequencies_boundary"] == "clamped_input"
+    for name in ("shaft2_twist_deg", "shaft3_twist_deg", "motor_speed_deg_s", "drum_speed_deg_s",
+                 "input_coupling_torque_Nm", "load_coupling_torque_Nm", "shaft4_speed_deg_s"):
+        assert name in doc["series"], name
+    assert "shaft5_speed_deg_s" not in doc["series"]  # shaft channels stay the reducer's
+
+
+def test_modes_command_json_and_dump_model():
+    scene = str(Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer_drivetrain.toml")
+    res = CliRunner().invoke(cli, ["modes", scene, "--format", "json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    free = doc["boundaries"]["free"]
+    assert free[0]["rigid"] and free[0]["frequency_Hz"] == 0.0
+    for mode in doc["boundaries"]["clamped_input"]:
+        assert abs(sum(mode["energy_share"].values()) - 1.0) < 1e-12
+    res = CliRunner().invoke(cli, ["simulate", scene, "--dump-model"])
+    assert res.exit_code == 0 and "def rhs(t, y):" in res.stdout and "def jac(t, y):" in res.stdout
+    csv_res = CliRunner().invoke(cli, ["modes", scene, "--format", "csv"])
+    assert csv_res.exit_code == 0 and csv_res.stdout.startswith("boundary,mode,frequency_Hz")
+
+
+def test_generated_code_shows_in_tracebacks():
+    import linecache
+    import traceback
+
+    from gearcli.model import DriveSpec, LoadSpec, ModelSpec, TorsionalModel
+    from gearcli.model.spec import MeshSpec
+
+    mesh = MeshSpec(0.06, 0.15, 0.17, 0.36, 0.19, 4e10, 1.5, 5e4, 1e-4)
+    model = TorsionalModel(ModelSpec((mesh,), (0.5, 8.0), DriveSpec("speed", 60.0), LoadSpec(100.0)))
+    try:
+        model.rhs(0.0, None)  # y.tolist() fails on the first generated line
+    except AttributeError as exc:
+        frames = traceback.extract_tb(exc.__traceback__)
+    assert frames[-1].filename.startswith("gearcli/model/_generated_")
+    assert "y.tolist()" in frames[-1].line and linecache.getline(frames[-1].filename, frames[-1].lineno)

@@ -1,0 +1,58 @@
+"""``gearcli modes`` output: JSON document, CSV rows, rich tables (the only place that formats modes)."""
+
+from __future__ import annotations
+
+from gearcli.model.modes import ModalAnalysis
+
+
+def modes_dict(analyses: list[ModalAnalysis]) -> dict:
+    """Both boundaries; per mode its frequency, shape per body, strain-energy share per element and the
+    mesh orders that cross it in the operating range."""
+    first = analyses[0]
+    return {
+        "bodies": list(first.bodies),
+        "elements": list(first.connectors),
+        "element_stiffness": list(first.stiffness),
+        "nominal_input_speed_rpm": first.nominal_input_rpm,
+        "speed_range_rpm": list(first.speed_range_rpm),
+        "boundaries": {a.boundary: [{
+            "mode": m.number, "frequency_Hz": m.frequency_Hz, "rigid": m.rigid,
+            "dominant_element": m.dominant,
+            "shape": dict(zip(a.bodies, m.shape, strict=True)),
+            "energy_share": dict(zip(a.connectors, m.energy_share, strict=True)),
+            "crossings": [{"excitation": c.excitation, "input_speed_rpm": c.input_speed_rpm} for c in m.crossings],
+        } for m in a.modes] for a in analyses},
+    }
+
+
+def modes_csv(analyses: list[ModalAnalysis]) -> str:
+    from gearcli.io.serialize import csv_text
+
+    first = analyses[0]
+    header = (["boundary", "mode", "frequency_Hz", "dominant_element"]
+              + [f"shape_{b.replace(' ', '_')}" for b in first.bodies]
+              + [f"energy_share_{c.replace(' ', '_')}" for c in first.connectors] + ["crossings_rpm"])
+    rows = []
+    for a in analyses:
+        for m in a.modes:
+            cross = "; ".join(f"{c.excitation} @ {c.input_speed_rpm:.5g}" for c in m.crossings)
+            rows.append([a.boundary, m.number, m.frequency_Hz, m.dominant, *m.shape, *m.energy_share, cross])
+    return csv_text(header, rows)
+
+
+def modes_tables(analyses: list[ModalAnalysis]) -> list:
+    from rich.table import Table
+    from rich.text import Text
+
+    out: list = []
+    for a in analyses:
+        t = Table(title=f"modes, {a.boundary} (linearised at full load; crossings for input 0 .. "
+                        f"{a.speed_range_rpm[1]:.5g} rpm)", title_justify="left", header_style="bold")
+        for col in ("mode", "f [Hz]", "dominant element (share)", "mesh orders crossing [input rpm]"):
+            t.add_column(col)
+        for m in a.modes:
+            share = "rigid-body rotation" if m.rigid else f"{m.dominant} ({100 * max(m.energy_share):.0f} %)"
+            cross = ", ".join(f"{c.excitation} @ {c.input_speed_rpm:.4g}" for c in m.crossings) or "-"
+            t.add_row(str(m.number), f"{m.frequency_Hz:.4g}", Text(share), Text(cross))
+        out.append(t)
+    return out

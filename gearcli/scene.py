@@ -1,0 +1,73 @@
+"""The design file and its design, as the torsional model's SI parameters (the design -> model boundary).
+
+The model layer (:mod:`gearcli.model`) never sees the design file: this module converts once, here.
+``K`` in N/mm^e becomes N/m^e by ``K 1000^e``, damping N s/mm becomes N s/m by ``x 1000``, lengths mm
+become m by ``/ 1000``; drivetrain keys are SI already (kg m^2, N m/rad, N m s/rad).
+A flexible intermediate shaft splits its inertia: the gear's on the gear end, the next pinion's on the
+pinion end (the design gives each gear's inertia).
+"""
+
+from __future__ import annotations
+
+import math
+
+from gearcli.design import contact_stiffness_N_mm_e
+from gearcli.model.spec import MM, CoupledInertia, DriveSpec, FlexibleShaft, LoadSpec, MeshSpec, ModelSpec, SpringSpec
+
+
+def _mesh(cfg, st, k: int) -> MeshSpec:
+    law = cfg.contact_for(k)
+    e = float(law.exponent)
+    return MeshSpec(
+        base_radius_pinion_m=st.pinion.base_diameter_mm * MM / 2,
+        base_radius_gear_m=st.gear.base_diameter_mm * MM / 2,
+        base_helix_angle_rad=math.radians(st.base_helix_angle_deg),
+        transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
+        helix_angle_rad=math.radians(st.helix_angle_deg),
+        stiffness_N_m_e=float(contact_stiffness_N_mm_e(st, law)) * 1000.0**e,
+        exponent=e,
+        damping_Ns_m=law.damping_Ns_mm * 1000.0,
+        full_damping_m=law.full_damping_penetration_mm * MM,
+        backlash_m=st.backlash_mm * MM,
+        time_varying=bool(law.time_varying),
+        contact_ratio=st.contact_ratio_transverse,
+        overlap_ratio=st.overlap_ratio,
+        pinion_teeth=st.pinion.teeth,
+        normal_module_m=st.normal_module_mm * MM,
+        static_tangential_N=st.static_force_N.tangential,
+        efficiency=st.efficiency,
+    )
+
+
+def _coupled(table) -> CoupledInertia | None:
+    if getattr(table, "inertia_kg_m2", None) is None:
+        return None
+    return CoupledInertia(table.inertia_kg_m2, SpringSpec(table.coupling_stiffness_Nm_rad,
+                                                          table.coupling_damping_Nms_rad))
+
+
+def _shafts(cfg, design) -> tuple[FlexibleShaft | None, ...]:
+    out = []
+    for k, stage in enumerate(cfg.stage[:-1]):
+        s = stage.shaft
+        out.append(None if s is None else FlexibleShaft(SpringSpec(s.stiffness_Nm_rad, s.damping_Nms_rad),
+                                                        design.stages[k].gear.inertia_kg_m2))
+    return tuple(out) if any(s is not None for s in out) else ()
+
+
+def spec_from_design(cfg, design) -> ModelSpec:
+    """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
+    meshes = tuple(_mesh(cfg, st, k) for k, st in enumerate(design.stages))
+    inp = cfg.input
+    drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
+                      torque_Nm=inp.torque_Nm_value or 0.0)
+    load = LoadSpec(torque_Nm=cfg.load.torque_Nm_value, ramp_s=cfg.load.ramp_s)
+    return ModelSpec(meshes, tuple(s.inertia_kg_m2 for s in design.shafts), drive, load,
+                     motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design))
+
+
+def build_model(cfg, design):
+    """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
+    from gearcli.model import TorsionalModel
+
+    return TorsionalModel(spec_from_design(cfg, design))
