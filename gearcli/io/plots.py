@@ -195,6 +195,9 @@ def _mark(ax, run, q: str, marker: str, label: str, size: float) -> None:
         ax.plot([run.wall_s], [run.error(q)], marker, mfc="none", mec="k", ms=size, label=label)
 
 
+FIGURE_NAMES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
+
+
 def write_plots(r: Report, directory: str | Path) -> list[Path]:
     """Write the figures into ``directory`` (created if needed); returns the paths written.
     ``work_precision.png`` needs the accuracy study, so it is left out with ``--quick``."""
