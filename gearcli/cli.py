@@ -164,7 +164,8 @@ def emit_tables(renderables, dest: Destination) -> None:
 
     target = _target(dest)
     if not target.is_stdout or not sys.stdout.isatty():
-        emit(render(renderables) or "", target)
+        encoding = (getattr(sys.stdout, "encoding", None) or "utf-8") if target.is_stdout else "utf-8"
+        emit(render(renderables, encoding=encoding) or "", target)
     else:
         render(renderables, console=terminal_console())
 

@@ -27,10 +27,10 @@ class ConfigError(GearcliError):
         super().__init__(self.format())
 
     def format(self) -> str:
-        from gearcli.io.text import shorten, visible
+        from gearcli.io.text import shorten
 
         where = ": ".join(shorten(p) for p in (self.source, self.key) if p)
-        message = visible(self.message)
+        message = shorten(self.message, 2000)
         return f"{where}: {message}" if where else message
 
 
@@ -43,10 +43,10 @@ class DesignError(GearcliError):
         self.key = key
         self.source = source
         self.message = message
-        from gearcli.io.text import shorten, visible
+        from gearcli.io.text import shorten
 
         where = ": ".join(shorten(p) for p in (source, key) if p)
-        super().__init__(f"{where}: {visible(message)}" if where else visible(message))
+        super().__init__(f"{where}: {shorten(message, 2000)}" if where else shorten(message, 2000))
 
 
 class SimulationError(GearcliError):

@@ -20,13 +20,13 @@ from pydantic import ValidationError
 from gearcli.config import overrides as _overrides
 from gearcli.config.keys import format_path
 from gearcli.config.messages import translate
+from gearcli.config.prescan import MAX_BYTES, check_bytes, check_text
 from gearcli.config.schema import DesignFile
 from gearcli.config.starter import json_schema, starter_toml
 from gearcli.errors import ConfigError
 
 __all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN"]
 
-MAX_BYTES = 10 * 1024 * 1024  # a design file is a few kB; anything this big is the wrong file
 MAX_LINES_REPORTED = 20
 STDIN = "<stdin>"
 _INIT_HINT = "`gearcli init FILE` writes a starter design file"
@@ -95,9 +95,7 @@ def _read(path: str, stdin: Optional[BinaryIO]) -> bytes:
     else:
         source = path
         raw = _read_file(path)
-    if len(raw) > MAX_BYTES:
-        size = f"larger than {MAX_BYTES // 2**20} MB"
-        raise ConfigError(f"{size}; a design file is a few kB (wrong file?)", source=source)
+    check_bytes(raw, source)
     return raw
 
 
@@ -126,8 +124,6 @@ def _parse(raw: bytes, source: str) -> dict:
     """Bytes -> TOML data, with clear messages for empty, binary, non-UTF-8 and malformed input."""
     if not raw.strip():
         raise ConfigError(f"file is empty ({_INIT_HINT})", source=source)
-    if b"\0" in raw:
-        raise ConfigError("binary data, not a TOML design file", source=source)
     try:
         text = raw.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError as exc:
@@ -135,6 +131,7 @@ def _parse(raw: bytes, source: str) -> dict:
         column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
         raise ConfigError(f"not UTF-8 text: byte 0x{raw[exc.start]:02x} at line {line}, column {column} "
                           "(save the file as UTF-8)", source=source) from None
+    check_text(text, source)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

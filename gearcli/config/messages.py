@@ -15,6 +15,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from gearcli.config.keys import Resolved, Segment, resolve, suggest, unknown_key_hint
+from gearcli.io.text import shorten
 
 _BOUNDS = {"greater_than": ("gt", ">"), "greater_than_equal": ("ge", "≥"),
            "less_than": ("lt", "<"), "less_than_equal": ("le", "≤")}
@@ -107,7 +108,7 @@ def message(err: dict, where: Resolved) -> str:
     t, ctx, inp = err["type"], err.get("ctx") or {}, err.get("input")
     if t == "extra_forbidden":
         hint = unknown_key_hint(str(where.path[-1]), where.parent) if where.parent else ""
-        return f"unknown key '{where.path[-1]}'{hint}"
+        return f"unknown key '{shorten(str(where.path[-1]))}'{hint}"
     if t == "missing":
         hint = _MISSING_TABLE.get(where.path) if len(where.path) == 1 else None
         return f"missing required key ({hint})" if hint else "missing required key"

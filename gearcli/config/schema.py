@@ -1,4 +1,4 @@
-"""The design file, one pydantic model per TOML table (DESIGN.md section 2).
+"""The design file, one pydantic model per TOML table (docs/design-file.md, generated from these models).
 
 Units are in the key names (``_mm``, ``_deg``, ``_MPa`` ...) and stay as the user wrote them here;
 conversion to SI happens in the design layer. Every model forbids unknown keys and rejects NaN and
@@ -10,13 +10,54 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
-# Upper bounds are plausibility limits, far outside any real gearbox, that keep every derived quantity
-# (inertia ~ rho b d^4, forces, energies) finite in double precision.
+# Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
+# tight enough that a unit mistake (1e15, a subnormal like 1e-320) is an error naming the key and the
+# bound, and every derived quantity (inertia ~ rho b d^4, forces, energies, the run's cost) stays finite.
+# Quantities that may be 0 (a ramp, damping, backlash, a torque) may not be *nearly* 0: a nonzero
+# magnitude below ``tiny`` is refused too (JSON Schema: a "not" range).
+
+
+def _not_tiny(tiny: float):
+    def check(v: float) -> float:
+        if v != 0 and abs(v) < tiny:
+            raise ValueError(f"must be 0 or at least {tiny:g} in magnitude, got {v!r} (a value this small is a "
+                             "mistake)")
+        return v
+
+    return check
+
+
+def Bounded(lo: float, hi: float, *, tiny: Optional[float] = None, lo_open: bool = False):
+    """A float in [lo, hi] (``lo_open``: (lo, hi]); with ``tiny``, also 0 < |x| < tiny refused."""
+    field = Field(gt=lo, le=hi) if lo_open else Field(ge=lo, le=hi)
+    if tiny is None:
+        return Annotated[float, field]
+    not_range = [{"exclusiveMinimum": 0, "exclusiveMaximum": tiny}]
+    if lo < 0:
+        not_range.append({"exclusiveMinimum": -tiny, "exclusiveMaximum": 0})
+    extra = {"not": {"anyOf": not_range}}
+    return Annotated[float, field, AfterValidator(_not_tiny(tiny)), Field(json_schema_extra=extra)]
+
+
+MAX_SPEED_RPM = 200_000.0  # a turbo-compressor pinion turns at ~60,000 rpm; this is generous
+MIN_SPEED_RPM = 1e-3  # one turn in ~17 hours
+MAX_TORQUE_NMM = 1e10  # 10 MN·m: beyond the largest mill and ship drives
+MAX_TIME_S = 3600.0  # durations, ramps and windows: one hour of simulated time
+SpeedRpm = Bounded(MIN_SPEED_RPM, MAX_SPEED_RPM)
+SpeedDegS = Bounded(MIN_SPEED_RPM * 6, MAX_SPEED_RPM * 6)
+SpeedRadS = Bounded(MIN_SPEED_RPM * 2 * 3.141592653589793 / 60, MAX_SPEED_RPM * 2 * 3.141592653589793 / 60)
+TorqueNmm = Bounded(-MAX_TORQUE_NMM, MAX_TORQUE_NMM, tiny=1e-3)
+TorqueNm = Bounded(-MAX_TORQUE_NMM / 1e3, MAX_TORQUE_NMM / 1e3, tiny=1e-6)
+Seconds = Bounded(0, MAX_TIME_S, tiny=1e-6)
+Stiffness = Bounded(1.0, 1e14)  # N/mm^e: linear meshes ~1e6 N/mm, Hertz K ~1e5 N/mm^1.5
+DampingNsmm = Bounded(0, 1e6, tiny=1e-9)
+DampingDepthMm = Bounded(1e-6, 10.0)
+# kept for code that imports them; every key now has its own bounds
 PositiveFloat = Annotated[float, Field(gt=0, le=1e15)]
 NonNegFloat = Annotated[float, Field(ge=0, le=1e15)]
-Torque = Annotated[float, Field(ge=-1e15, le=1e15)]
+Torque = TorqueNmm
 
 METHODS = ("auto", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
@@ -26,38 +67,38 @@ class _Table(BaseModel):
 
 
 class Material(_Table):
-    density_kg_m3: Annotated[float, Field(gt=0, le=1e5)]  # osmium is 22,590
-    youngs_modulus_MPa: Annotated[float, Field(gt=0, le=1e7)]  # diamond is 1.2e6
-    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)]
+    density_kg_m3: Bounded(100, 1e5)  # foams ~100, osmium 22,590
+    youngs_modulus_MPa: Bounded(1e3, 1e7)  # polymers ~1e3, diamond 1.2e6
+    poisson_ratio: Annotated[float, Field(ge=0.01, lt=0.5)]
 
 
 class Gear(_Table):
     """One gear of a stage: pinion (driving) or gear (driven)."""
 
     teeth: Annotated[int, Field(ge=5, le=10000)]
-    face_width_mm: Annotated[float, Field(gt=0, le=1e5)]
+    face_width_mm: Bounded(0.1, 1e4)
     hand: Optional[Literal["left", "right", "spur"]] = None
     material: str = "steel"
     profile_shift: Annotated[float, Field(ge=-1.5, le=1.5)] = 0.0
-    inertia_kg_m2: Optional[Annotated[float, Field(gt=0, le=1e12)]] = None
+    inertia_kg_m2: Optional[Bounded(1e-9, 1e6)] = None  # a 5 mm pinion ~1e-9; a mill girth gear ~1e5
 
 
 class ContactOverride(_Table):
     """The mesh force law (Adams IMPACT). In ``[contact]`` every key has the seed's default; in a
     stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh."""
 
-    stiffness: Optional[Union[Literal["hertz", "iso6336"], PositiveFloat]] = None
+    stiffness: Optional[Union[Literal["hertz", "iso6336"], Stiffness]] = None
     exponent: Optional[Annotated[float, Field(ge=1.0, le=3.0)]] = None
-    damping_Ns_mm: Optional[NonNegFloat] = None
-    full_damping_penetration_mm: Optional[PositiveFloat] = None
+    damping_Ns_mm: Optional[DampingNsmm] = None
+    full_damping_penetration_mm: Optional[DampingDepthMm] = None
     time_varying: Optional[bool] = None
 
 
 class Contact(_Table):
-    stiffness: Union[Literal["hertz", "iso6336"], PositiveFloat] = "hertz"
+    stiffness: Union[Literal["hertz", "iso6336"], Stiffness] = "hertz"
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
-    damping_Ns_mm: NonNegFloat = 50.0
-    full_damping_penetration_mm: PositiveFloat = 0.1
+    damping_Ns_mm: DampingNsmm = 50.0
+    full_damping_penetration_mm: DampingDepthMm = 0.1
     time_varying: bool = False
 
     def merged(self, override: Optional[ContactOverride]) -> "Contact":
@@ -71,13 +112,13 @@ class Contact(_Table):
 class Stage(_Table):
     """One gear pair, in the order power flows. The pinion drives the gear."""
 
-    normal_module_mm: Annotated[float, Field(gt=0, le=1e4)]
+    normal_module_mm: Bounded(0.05, 100)  # watch gears ~0.05; the largest girth gears ~50
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
     pinion: Gear
     gear: Gear
-    backlash_mm: NonNegFloat = 0.0
-    efficiency: Annotated[float, Field(gt=0, le=1)] = 1.0
+    backlash_mm: Bounded(0, 10, tiny=1e-6) = 0.0
+    efficiency: Bounded(0.1, 1) = 1.0
     mesh: Optional[ContactOverride] = None
 
 
@@ -85,13 +126,13 @@ class Input(_Table):
     """The input drive. Exactly one speed key: the prescribed speed (``drive = "speed"``) or, with
     ``drive = "torque"``, the nominal speed the train starts at."""
 
-    speed_deg_s: Optional[PositiveFloat] = None
-    speed_rpm: Optional[PositiveFloat] = None
-    speed_rad_s: Optional[PositiveFloat] = None
-    ramp_s: NonNegFloat = 0.0
+    speed_deg_s: Optional[SpeedDegS] = None
+    speed_rpm: Optional[SpeedRpm] = None
+    speed_rad_s: Optional[SpeedRadS] = None
+    ramp_s: Seconds = 0.0
     drive: Literal["speed", "torque"] = "speed"
-    torque_Nm: Optional[Torque] = None
-    torque_Nmm: Optional[Torque] = None
+    torque_Nm: Optional[TorqueNm] = None
+    torque_Nmm: Optional[TorqueNmm] = None
 
     @model_validator(mode="after")
     def _one_speed_one_torque(self) -> "Input":
@@ -132,9 +173,9 @@ class Input(_Table):
 class Load(_Table):
     """Torque on the output shaft, resisting its rotation (negative: load reversal)."""
 
-    torque_Nmm: Optional[Torque] = None
-    torque_Nm: Optional[Torque] = None
-    ramp_s: NonNegFloat = 0.0
+    torque_Nmm: Optional[TorqueNmm] = None
+    torque_Nm: Optional[TorqueNm] = None
+    ramp_s: Seconds = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
 
     @model_validator(mode="after")
@@ -150,8 +191,8 @@ class Load(_Table):
 
 
 class Target(_Table):
-    output_speed_rpm: Optional[PositiveFloat] = None
-    output_speed_deg_s: Optional[PositiveFloat] = None
+    output_speed_rpm: Optional[Bounded(1e-6, MAX_SPEED_RPM)] = None
+    output_speed_deg_s: Optional[Bounded(6e-6, MAX_SPEED_RPM * 6)] = None
     tolerance_percent: Annotated[float, Field(gt=0, le=100)] = 5.0
 
     @model_validator(mode="after")
@@ -173,18 +214,18 @@ MAX_STEPS = 2_000_000
 
 
 class Simulation(_Table):
-    duration_s: PositiveFloat = 0.5
+    duration_s: Bounded(1e-4, MAX_TIME_S) = 0.5
     steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] = 2000
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
-    window_start_s: Optional[NonNegFloat] = None
+    window_start_s: Optional[Bounded(0, MAX_TIME_S)] = None
 
 
 class DesignFile(_Table):
     """The whole design file."""
 
-    title: str = ""
-    materials: dict[str, Material] = Field(
+    title: Annotated[str, Field(max_length=200)] = ""
+    materials: Annotated[dict[str, Material], Field(max_length=50)] = Field(
         default_factory=lambda: {"steel": Material(density_kg_m3=7800, youngs_modulus_MPa=2.07e5, poisson_ratio=0.29)}
     )
     stage: Annotated[list[Stage], Field(min_length=1, max_length=50)]

@@ -9,7 +9,6 @@ cannot resolve.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional, Sequence
 
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
 
@@ -33,15 +32,15 @@ class Section:
     notes: tuple[str, ...] = ()
 
 
-def g(v: Optional[float], digits: int = 5) -> str:
+def g(v: float | None, digits: int = 5) -> str:
     return "–" if v is None else f"{v:.{digits}g}"
 
 
-def percent(v: Optional[float]) -> str:
+def percent(v: float | None) -> str:
     return "–" if v is None else f"{v:+.3g}"
 
 
-def quantity_label(stage: Optional[int], quantity: str) -> str:
+def quantity_label(stage: int | None, quantity: str) -> str:
     if stage is not None and quantity in STAGE_LABELS:
         return STAGE_LABELS[quantity]
     return LABELS.get(quantity, quantity)

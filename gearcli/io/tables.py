@@ -176,15 +176,27 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     return [forces, peaks, lines]
 
 
+class _Buffer(io.StringIO):
+    """A text buffer that tells rich the encoding of where the text goes (ASCII boxes when not UTF)."""
+
+    def __init__(self, encoding: str) -> None:
+        super().__init__()
+        self._encoding = encoding
+
+    @property
+    def encoding(self) -> str:  # type: ignore[override]
+        return self._encoding
+
+
 def render(renderables: Sequence[RenderableType], *, console: Console | None = None,
-           width: int | None = None) -> str | None:
+           width: int | None = None, encoding: str = "utf-8") -> str | None:
     """Print to ``console`` (a terminal) or, without one, return plain text (for ``-o`` or a pipe) at
-    ``width`` (default :func:`output_width`)."""
+    ``width`` (default :func:`output_width`), with ASCII boxes when ``encoding`` is not a UTF."""
     if console is not None:
         for item in renderables:
             console.print(item)
         return None
-    buf = io.StringIO()
+    buf = _Buffer(encoding)
     plain = Console(file=buf, width=width or output_width(), color_system=None, force_terminal=False,
                     highlight=False, markup=False, emoji=False)
     for item in renderables:
