@@ -350,7 +350,9 @@ class _StderrProgress:
     """A rich progress bar on stderr when it is a terminal; a silent no-op otherwise."""
 
     def __init__(self) -> None:
-        self.bar = None
+        from typing import Any
+
+        self.bar: Any = None
 
     def __enter__(self):
         if sys.stderr.isatty() and not is_quiet():

@@ -7,7 +7,7 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Optional
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the design path never imports numpy: `gearcli design` starts fast
     import numpy as np
@@ -162,4 +162,4 @@ class SimulationResult:
     energy: EnergyBalance
     warnings: tuple[str, ...] = field(default_factory=tuple)
     natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
-    extra: Optional[dict] = None
+    extra: dict | None = None

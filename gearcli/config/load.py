@@ -11,9 +11,10 @@ import hashlib
 import re
 import sys
 import tomllib
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import BinaryIO, Optional, Sequence
+from typing import BinaryIO
 
 from pydantic import ValidationError
 
@@ -65,7 +66,7 @@ class LoadedDesign:
     raw: dict
 
 
-def load_design(path: str, overrides: Sequence[str] = (), *, stdin: Optional[BinaryIO] = None) -> LoadedDesign:
+def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:
     """Read, parse, override and validate a design file; ``path == "-"`` reads ``stdin`` (default
     ``sys.stdin.buffer``). Raises :class:`ConfigError` (or :class:`ConfigErrors`) on any problem."""
     source = STDIN if path == "-" else path
@@ -83,7 +84,7 @@ def _digest(raw: bytes, overrides: Sequence[str]) -> str:
     return h.hexdigest()
 
 
-def _read(path: str, stdin: Optional[BinaryIO]) -> bytes:
+def _read(path: str, stdin: BinaryIO | None) -> bytes:
     """The raw bytes of the file (or stdin), at most :data:`MAX_BYTES`."""
     if path == "-":
         stream = stdin if stdin is not None else sys.stdin.buffer
@@ -136,7 +137,7 @@ def _parse(raw: bytes, source: str) -> dict:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(_syntax_message(str(exc), text), source=source) from None
-    except ValueError as exc:  # an integer longer than sys.get_int_max_str_digits()
+    except ValueError:  # an integer longer than sys.get_int_max_str_digits()
         limit = sys.get_int_max_str_digits()
         raise ConfigError(f"TOML syntax error: an integer with more than {limit} digits", source=source) from None
     except RecursionError:
@@ -180,7 +181,7 @@ def _syntax_message(error: str, text: str) -> str:
     return f"TOML syntax error at {where}: {what}{snippet}"
 
 
-def _duplicate_line(text: str) -> Optional[int]:
+def _duplicate_line(text: str) -> int | None:
     """The line that redefines a key, when tomllib only says "at end of document": the shortest
     prefix of the file that fails the same way (binary search; best effort)."""
     lines = text.splitlines(keepends=True)

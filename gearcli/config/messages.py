@@ -110,8 +110,8 @@ def message(err: dict, where: Resolved) -> str:
         hint = unknown_key_hint(str(where.path[-1]), where.parent) if where.parent else ""
         return f"unknown key '{shorten(str(where.path[-1]))}'{hint}"
     if t == "missing":
-        hint = _MISSING_TABLE.get(where.path) if len(where.path) == 1 else None
-        return f"missing required key ({hint})" if hint else "missing required key"
+        table_hint = _MISSING_TABLE.get((str(where.path[0]),)) if len(where.path) == 1 else None
+        return f"missing required key ({table_hint})" if table_hint else "missing required key"
     if t in _BOUNDS:
         name, sign = _BOUNDS[t]
         return f"must be {sign} {bound(ctx[name])}, got {number(inp)}"
@@ -170,7 +170,7 @@ def _superseded(groups: dict) -> set:
 
 def translate(exc: ValidationError) -> list[tuple[tuple[Segment, ...], str]]:
     """Every error of ``exc`` as ``(key path, message)``, in file order, one per key."""
-    groups: dict[tuple[Segment, ...], tuple[Resolved, list[dict]]] = {}
+    groups: dict[tuple[Segment, ...], tuple[Resolved, list[Any]]] = {}
     for err in exc.errors(include_url=False):
         where = resolve(err["loc"])
         groups.setdefault(where.path, (where, []))[1].append(err)

@@ -8,9 +8,12 @@ accepted where a float is expected, as TOML users write ``module = 12``.
 
 from __future__ import annotations
 
-from typing import Annotated, Literal, Optional, Union
+from dataclasses import dataclass
+from typing import Annotated, Any, Literal
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, GetCoreSchemaHandler, GetJsonSchemaHandler, model_validator
+from pydantic.json_schema import JsonSchemaValue
+from pydantic_core import core_schema
 
 # Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
 # tight enough that a unit mistake (1e15, a subnormal like 1e-320) is an error naming the key and the
@@ -19,41 +22,43 @@ from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validat
 # magnitude below ``tiny`` is refused too (JSON Schema: a "not" range).
 
 
-def _not_tiny(tiny: float):
-    def check(v: float) -> float:
-        if v != 0 and abs(v) < tiny:
-            raise ValueError(f"must be 0 or at least {tiny:g} in magnitude, got {v!r} (a value this small is a "
-                             "mistake)")
+@dataclass(frozen=True)
+class NotTiny:
+    """Annotation: 0 is allowed, but no magnitude in (0, tiny); in the JSON Schema a "not" range."""
+
+    tiny: float
+
+    def check(self, v: float) -> float:
+        if v != 0 and abs(v) < self.tiny:
+            raise ValueError(f"must be 0 or at least {self.tiny:g} in magnitude, got {v!r} (a value this small "
+                             "is a mistake)")
         return v
 
-    return check
+    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> Any:
+        return core_schema.no_info_after_validator_function(self.check, handler(source))
 
-
-def Bounded(lo: float, hi: float, *, tiny: Optional[float] = None, lo_open: bool = False):
-    """A float in [lo, hi] (``lo_open``: (lo, hi]); with ``tiny``, also 0 < |x| < tiny refused."""
-    field = Field(gt=lo, le=hi) if lo_open else Field(ge=lo, le=hi)
-    if tiny is None:
-        return Annotated[float, field]
-    not_range = [{"exclusiveMinimum": 0, "exclusiveMaximum": tiny}]
-    if lo < 0:
-        not_range.append({"exclusiveMinimum": -tiny, "exclusiveMaximum": 0})
-    extra = {"not": {"anyOf": not_range}}
-    return Annotated[float, field, AfterValidator(_not_tiny(tiny)), Field(json_schema_extra=extra)]
+    def __get_pydantic_json_schema__(self, schema: Any, handler: GetJsonSchemaHandler) -> JsonSchemaValue:
+        out = handler(schema)
+        ranges = [{"exclusiveMinimum": 0, "exclusiveMaximum": self.tiny},
+                  {"exclusiveMinimum": -self.tiny, "exclusiveMaximum": 0}]
+        out["not"] = {"anyOf": ranges if out.get("minimum", 0) < 0 else ranges[:1]}
+        return out
 
 
 MAX_SPEED_RPM = 200_000.0  # a turbo-compressor pinion turns at ~60,000 rpm; this is generous
 MIN_SPEED_RPM = 1e-3  # one turn in ~17 hours
 MAX_TORQUE_NMM = 1e10  # 10 MN·m: beyond the largest mill and ship drives
+RPM_TO_RAD_S = 2 * 3.141592653589793 / 60
 MAX_TIME_S = 3600.0  # durations, ramps and windows: one hour of simulated time
-SpeedRpm = Bounded(MIN_SPEED_RPM, MAX_SPEED_RPM)
-SpeedDegS = Bounded(MIN_SPEED_RPM * 6, MAX_SPEED_RPM * 6)
-SpeedRadS = Bounded(MIN_SPEED_RPM * 2 * 3.141592653589793 / 60, MAX_SPEED_RPM * 2 * 3.141592653589793 / 60)
-TorqueNmm = Bounded(-MAX_TORQUE_NMM, MAX_TORQUE_NMM, tiny=1e-3)
-TorqueNm = Bounded(-MAX_TORQUE_NMM / 1e3, MAX_TORQUE_NMM / 1e3, tiny=1e-6)
-Seconds = Bounded(0, MAX_TIME_S, tiny=1e-6)
-Stiffness = Bounded(1.0, 1e14)  # N/mm^e: linear meshes ~1e6 N/mm, Hertz K ~1e5 N/mm^1.5
-DampingNsmm = Bounded(0, 1e6, tiny=1e-9)
-DampingDepthMm = Bounded(1e-6, 10.0)
+SpeedRpm = Annotated[float, Field(ge=MIN_SPEED_RPM, le=MAX_SPEED_RPM)]
+SpeedDegS = Annotated[float, Field(ge=MIN_SPEED_RPM * 6, le=MAX_SPEED_RPM * 6)]
+SpeedRadS = Annotated[float, Field(ge=MIN_SPEED_RPM * RPM_TO_RAD_S, le=MAX_SPEED_RPM * RPM_TO_RAD_S)]
+TorqueNmm = Annotated[float, Field(ge=-MAX_TORQUE_NMM, le=MAX_TORQUE_NMM), NotTiny(1e-3)]
+TorqueNm = Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=MAX_TORQUE_NMM / 1e3), NotTiny(1e-6)]
+Seconds = Annotated[float, Field(ge=0, le=MAX_TIME_S), NotTiny(1e-6)]
+Stiffness = Annotated[float, Field(ge=1.0, le=1e14)]  # N/mm^e: linear meshes ~1e6 N/mm, Hertz K ~1e5 N/mm^1.5
+DampingNsmm = Annotated[float, Field(ge=0, le=1e6), NotTiny(1e-9)]
+DampingDepthMm = Annotated[float, Field(ge=1e-6, le=10.0)]
 # kept for code that imports them; every key now has its own bounds
 PositiveFloat = Annotated[float, Field(gt=0, le=1e15)]
 NonNegFloat = Annotated[float, Field(ge=0, le=1e15)]
@@ -67,8 +72,8 @@ class _Table(BaseModel):
 
 
 class Material(_Table):
-    density_kg_m3: Bounded(100, 1e5)  # foams ~100, osmium 22,590
-    youngs_modulus_MPa: Bounded(1e3, 1e7)  # polymers ~1e3, diamond 1.2e6
+    density_kg_m3: Annotated[float, Field(ge=100, le=1e5)]  # foams ~100, osmium 22,590
+    youngs_modulus_MPa: Annotated[float, Field(ge=1e3, le=1e7)]  # polymers ~1e3, diamond 1.2e6
     poisson_ratio: Annotated[float, Field(ge=0.01, lt=0.5)]
 
 
@@ -76,32 +81,32 @@ class Gear(_Table):
     """One gear of a stage: pinion (driving) or gear (driven)."""
 
     teeth: Annotated[int, Field(ge=5, le=10000)]
-    face_width_mm: Bounded(0.1, 1e4)
-    hand: Optional[Literal["left", "right", "spur"]] = None
+    face_width_mm: Annotated[float, Field(ge=0.1, le=1e4)]
+    hand: Literal["left", "right", "spur"] | None = None
     material: str = "steel"
     profile_shift: Annotated[float, Field(ge=-1.5, le=1.5)] = 0.0
-    inertia_kg_m2: Optional[Bounded(1e-9, 1e6)] = None  # a 5 mm pinion ~1e-9; a mill girth gear ~1e5
+    inertia_kg_m2: Annotated[float, Field(ge=1e-09, le=1000000.0)] | None = None  # a 5 mm pinion ~1e-9; a mill girth gear ~1e5
 
 
 class ContactOverride(_Table):
     """The mesh force law (Adams IMPACT). In ``[contact]`` every key has the seed's default; in a
     stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh."""
 
-    stiffness: Optional[Union[Literal["hertz", "iso6336"], Stiffness]] = None
-    exponent: Optional[Annotated[float, Field(ge=1.0, le=3.0)]] = None
-    damping_Ns_mm: Optional[DampingNsmm] = None
-    full_damping_penetration_mm: Optional[DampingDepthMm] = None
-    time_varying: Optional[bool] = None
+    stiffness: Literal["hertz", "iso6336"] | Stiffness | None = None
+    exponent: Annotated[float, Field(ge=1.0, le=3.0)] | None = None
+    damping_Ns_mm: DampingNsmm | None = None
+    full_damping_penetration_mm: DampingDepthMm | None = None
+    time_varying: bool | None = None
 
 
 class Contact(_Table):
-    stiffness: Union[Literal["hertz", "iso6336"], Stiffness] = "hertz"
+    stiffness: Literal["hertz", "iso6336"] | Stiffness = "hertz"
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
     damping_Ns_mm: DampingNsmm = 50.0
     full_damping_penetration_mm: DampingDepthMm = 0.1
     time_varying: bool = False
 
-    def merged(self, override: Optional[ContactOverride]) -> "Contact":
+    def merged(self, override: ContactOverride | None) -> Contact:
         """This law with a stage's overrides applied."""
         if override is None:
             return self
@@ -112,30 +117,30 @@ class Contact(_Table):
 class Stage(_Table):
     """One gear pair, in the order power flows. The pinion drives the gear."""
 
-    normal_module_mm: Bounded(0.05, 100)  # watch gears ~0.05; the largest girth gears ~50
+    normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]  # watch gears ~0.05; the largest girth gears ~50
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
     pinion: Gear
     gear: Gear
-    backlash_mm: Bounded(0, 10, tiny=1e-6) = 0.0
-    efficiency: Bounded(0.1, 1) = 1.0
-    mesh: Optional[ContactOverride] = None
+    backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
+    efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
+    mesh: ContactOverride | None = None
 
 
 class Input(_Table):
     """The input drive. Exactly one speed key: the prescribed speed (``drive = "speed"``) or, with
     ``drive = "torque"``, the nominal speed the train starts at."""
 
-    speed_deg_s: Optional[SpeedDegS] = None
-    speed_rpm: Optional[SpeedRpm] = None
-    speed_rad_s: Optional[SpeedRadS] = None
+    speed_deg_s: SpeedDegS | None = None
+    speed_rpm: SpeedRpm | None = None
+    speed_rad_s: SpeedRadS | None = None
     ramp_s: Seconds = 0.0
     drive: Literal["speed", "torque"] = "speed"
-    torque_Nm: Optional[TorqueNm] = None
-    torque_Nmm: Optional[TorqueNmm] = None
+    torque_Nm: TorqueNm | None = None
+    torque_Nmm: TorqueNmm | None = None
 
     @model_validator(mode="after")
-    def _one_speed_one_torque(self) -> "Input":
+    def _one_speed_one_torque(self) -> Input:
         given = [k for k in ("speed_deg_s", "speed_rpm", "speed_rad_s") if getattr(self, k) is not None]
         if len(given) != 1:
             raise ValueError(
@@ -159,10 +164,11 @@ class Input(_Table):
             return self.speed_rad_s
         if self.speed_rpm is not None:
             return self.speed_rpm * 2 * math.pi / 60
+        assert self.speed_deg_s is not None  # the validator requires exactly one speed
         return math.radians(self.speed_deg_s)
 
     @property
-    def torque_Nm_value(self) -> Optional[float]:
+    def torque_Nm_value(self) -> float | None:
         if self.torque_Nm is not None:
             return self.torque_Nm
         if self.torque_Nmm is not None:
@@ -173,13 +179,13 @@ class Input(_Table):
 class Load(_Table):
     """Torque on the output shaft, resisting its rotation (negative: load reversal)."""
 
-    torque_Nmm: Optional[TorqueNmm] = None
-    torque_Nm: Optional[TorqueNm] = None
+    torque_Nmm: TorqueNmm | None = None
+    torque_Nm: TorqueNm | None = None
     ramp_s: Seconds = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
 
     @model_validator(mode="after")
-    def _one_torque(self) -> "Load":
+    def _one_torque(self) -> Load:
         given = [k for k in ("torque_Nmm", "torque_Nm") if getattr(self, k) is not None]
         if len(given) != 1:
             raise ValueError("give exactly one of torque_Nmm, torque_Nm" + (f" (got {', '.join(given)})" if given else ""))
@@ -187,16 +193,19 @@ class Load(_Table):
 
     @property
     def torque_Nm_value(self) -> float:
-        return self.torque_Nm if self.torque_Nm is not None else self.torque_Nmm / 1000.0
+        if self.torque_Nm is not None:
+            return self.torque_Nm
+        assert self.torque_Nmm is not None  # the validator requires exactly one torque
+        return self.torque_Nmm / 1000.0
 
 
 class Target(_Table):
-    output_speed_rpm: Optional[Bounded(1e-6, MAX_SPEED_RPM)] = None
-    output_speed_deg_s: Optional[Bounded(6e-6, MAX_SPEED_RPM * 6)] = None
+    output_speed_rpm: Annotated[float, Field(ge=1e-06, le=MAX_SPEED_RPM)] | None = None
+    output_speed_deg_s: Annotated[float, Field(ge=6e-06, le=MAX_SPEED_RPM * 6)] | None = None
     tolerance_percent: Annotated[float, Field(gt=0, le=100)] = 5.0
 
     @model_validator(mode="after")
-    def _one_speed(self) -> "Target":
+    def _one_speed(self) -> Target:
         if (self.output_speed_rpm is None) == (self.output_speed_deg_s is None):
             raise ValueError("give exactly one of output_speed_rpm, output_speed_deg_s")
         return self
@@ -205,6 +214,7 @@ class Target(_Table):
     def output_speed_rpm_value(self) -> float:
         if self.output_speed_rpm is not None:
             return self.output_speed_rpm
+        assert self.output_speed_deg_s is not None  # the validator requires exactly one speed
         return self.output_speed_deg_s / 6.0
 
 
@@ -214,11 +224,11 @@ MAX_STEPS = 2_000_000
 
 
 class Simulation(_Table):
-    duration_s: Bounded(1e-4, MAX_TIME_S) = 0.5
+    duration_s: Annotated[float, Field(ge=1e-4, le=MAX_TIME_S)] = 0.5
     steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] = 2000
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
-    window_start_s: Optional[Bounded(0, MAX_TIME_S)] = None
+    window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
 
 
 class DesignFile(_Table):
@@ -232,7 +242,7 @@ class DesignFile(_Table):
     contact: Contact = Contact()
     input: Input
     load: Load
-    target: Optional[Target] = None
+    target: Target | None = None
     simulation: Simulation = Simulation()
 
     def contact_for(self, k: int) -> Contact:

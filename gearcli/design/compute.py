@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
 
 
-def compute_design(cfg: "DesignFile") -> DesignResult:
+def compute_design(cfg: DesignFile) -> DesignResult:
     """Ratios, speeds, torques, geometry, contact ratios, stiffness, static forces and warnings.
 
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
@@ -62,7 +62,7 @@ def _require_finite(obj, key: str) -> None:
                               "module, face width, density, speed and torque", key=key)
 
 
-def _geometry(stage: "Stage", k: int) -> PairGeometry:
+def _geometry(stage: Stage, k: int) -> PairGeometry:
     try:
         return pair_geometry(stage.normal_module_mm, stage.normal_pressure_angle_deg, stage.helix_angle_deg,
                              (stage.pinion.teeth, stage.gear.teeth),
@@ -84,8 +84,8 @@ class _Stiffness:
     linearised_N_mm: float
 
 
-def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForces,
-               materials: tuple["Material", "Material"]) -> _Stiffness:
+def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
+               materials: tuple[Material, Material]) -> _Stiffness:
     """Hertz (seed 3.3), ISO 6336-1 c' and c_γα, and the static point of the stage's own contact law."""
     stage, law = cfg.stage[k], cfg.contact_for(k)
     radius = stf.equivalent_radius_mm(0.5 * geo.pitch_diameter_mm[0], 0.5 * geo.pitch_diameter_mm[1])
@@ -108,12 +108,12 @@ def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForce
                       stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0))
 
 
-def _gear_result(gear: "Gear", i: int, geo: PairGeometry, helical: bool, density_kg_m3: float,
+def _gear_result(gear: Gear, i: int, geo: PairGeometry, helical: bool, density_kg_m3: float,
                  speed_rad_s: float, torque_Nmm: float) -> GearResult:
     d = geo.pitch_diameter_mm[i]
     return GearResult(
         teeth=gear.teeth,
-        hand=gear.hand if helical else "spur",
+        hand=(gear.hand or "spur") if helical else "spur",
         profile_shift=gear.profile_shift,
         face_width_mm=gear.face_width_mm,
         pitch_diameter_mm=d,
@@ -128,7 +128,7 @@ def _gear_result(gear: "Gear", i: int, geo: PairGeometry, helical: bool, density
     )
 
 
-def _stage_result(cfg: "DesignFile", k: int, kin: Train) -> StageResult:
+def _stage_result(cfg: DesignFile, k: int, kin: Train) -> StageResult:
     stage = cfg.stage[k]
     geo = _geometry(stage, k)
     materials = (cfg.materials[stage.pinion.material], cfg.materials[stage.gear.material])

@@ -47,7 +47,7 @@ def stage_torques_Nmm(load_torque_Nmm: float, ratios: tuple[float, ...],
     """
     torques: list[tuple[float, float]] = []
     gear_torque = load_torque_Nmm
-    for ratio, eta in zip(reversed(ratios), reversed(efficiencies)):
+    for ratio, eta in zip(reversed(ratios), reversed(efficiencies), strict=True):
         pinion = pinion_torque_Nmm(gear_torque, ratio, eta)
         torques.append((pinion, gear_torque))
         gear_torque = pinion

@@ -14,7 +14,7 @@ Hertz and numeric laws need no floor; for e > 1 an unloaded mesh has h_0 = 0 and
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Union
+from typing import TYPE_CHECKING
 
 from gearcli.design.forces import normal_force_N
 
@@ -101,7 +101,7 @@ def iso6336_coefficient_N_mm_e(normal_stiffness_N_mm: float, normal_force_N: flo
 
 
 # ---------------------------------------------------------------------------- the contact law's K
-def law_coefficient_N_mm_e(stiffness: Union[str, float], exponent: float, *, hertz: float,
+def law_coefficient_N_mm_e(stiffness: str | float, exponent: float, *, hertz: float,
                            iso_normal_stiffness_N_mm: float, iso_reference_normal_force_N: float) -> float:
     """K of F = K h^e for a law ``stiffness`` = "hertz" | "iso6336" | a number (N/mm^e)."""
     if stiffness == "hertz":
@@ -118,7 +118,7 @@ def iso_reference_normal_force_N(tangential_force_N: float, face_width_mm: float
                           normal_pressure_rad, helix_rad)
 
 
-def contact_stiffness_N_mm_e(stage: "StageResult", contact: "Contact") -> float:
+def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
 
     "hertz": the stage's 4/3 √R E*; a number: that number; "iso6336": K such that at the static load

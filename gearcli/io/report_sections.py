@@ -103,7 +103,7 @@ def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
 
 def accuracy_section(study: AccuracyStudy) -> Section:
     ref, rec = study.reference, study.recommended
-    rows = []
+    rows: list[tuple[str, ...]] = []
     for run in study.runs:
         marks = " ".join(m for m, on in (("★", run is rec), ("file", run.file_settings)) if on)
         method = run.method if run.method == run.method_used else f"{run.method} ({run.method_used})"

@@ -17,12 +17,11 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
-
 from handcalc import Train, read
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -158,7 +158,7 @@ class Train:
     @property
     def reflected_inertia(self) -> float:
         """J_eff = sum J_i rho_i^2, referred to the input shaft."""
-        return sum(j * r * r for j, r in zip(self.shaft_inertias, self.speed_ratios))
+        return sum(j * r * r for j, r in zip(self.shaft_inertias, self.speed_ratios, strict=True))
 
     # ------------------------------------------------------------------------- rigid motion
     def input_motion(self, t) -> tuple[np.ndarray, np.ndarray]:

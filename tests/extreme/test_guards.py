@@ -12,21 +12,21 @@ import time
 
 import numpy as np
 import pytest
+from catalogue import ROOT, SCENES, SCENES_DIR
 from click.testing import CliRunner
+from handcalc import Train, read
 from numpy.testing import assert_allclose
 
-from catalogue import SCENES, SCENES_DIR, ROOT
 from gearcli.cli import cli
 from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.errors import SimulationError
 from gearcli.model import DriveSpec, LoadSpec, MeshSpec, ModelSpec, TorsionalModel, spec_from_design
 from gearcli.simulate import run_simulation, simulate_model
+from gearcli.simulate.choice import choose_method
 from gearcli.simulate.guards import CAP, FLOOR, force_noise, nfev_budget
 from gearcli.simulate.run import check
-from gearcli.simulate.choice import choose_method
 from gearcli.simulate.solver import STATUS_FAILED, breakpoints, integrate
-from handcalc import Train, read
 
 
 def scene(name: str, overrides=()):

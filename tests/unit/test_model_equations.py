@@ -130,7 +130,7 @@ def test_generated_rhs_agrees_with_the_numpy_force_law(name):
             assert_allclose(f[q], s.input_torque_Nm[0] * w[0], rtol=1e-9, atol=1e-9)
             assert_allclose(f[q + 1], s.load_torque_Nm[0] * w[-1], rtol=1e-12, atol=1e-12)
             damping_power = sum((ms.normal_force_N[0] - ms.elastic_force_N[0]) * math.copysign(1, ms.penetration_m[0])
-                                * m.cos_beta_b * f[k] for k, (m, ms) in enumerate(zip(sp.meshes, s.meshes)))
+                                * m.cos_beta_b * f[k] for k, (m, ms) in enumerate(zip(sp.meshes, s.meshes, strict=True)))
             assert_allclose(f[q + 2], damping_power, rtol=1e-9, atol=1e-9)
 
 
