@@ -1,6 +1,6 @@
 """Frozen result objects shared by the core layers and the writers.
 
-Field names carry their units, as the JSON output does (DESIGN.md section 5). Stage and shaft
+Field names carry their units, as the JSON output does (docs/output.md). Stage and shaft
 indices in these objects are 1-based, as an engineer numbers them (stage 1 is the input stage).
 """
 
@@ -152,7 +152,7 @@ class EnergyBalance:
 @dataclass(frozen=True)
 class SimulationResult:
     time_s: np.ndarray
-    channels: dict[str, np.ndarray]  # CSV column name -> series (DESIGN.md section 5 order)
+    channels: dict[str, np.ndarray]  # CSV column name -> series (docs/output.md order)
     window_s: tuple[float, float]
     ratio: float  # dynamic ratio mean(omega_in) / mean(omega_out) over the window
     output_speed_deg_s: float  # mean over the window

@@ -1,4 +1,4 @@
-"""Design checks: errors that stop the design, warnings that do not (DESIGN.md sections 1 and 3).
+"""Design checks: errors that stop the design, warnings that do not (docs/physics.md, "Design calculations").
 
 Errors raise ``DesignError`` with a 0-based key path (``stage[0].gear.hand``); the CLI adds the file.
 Warnings are one line each, name the stage (1-based, as an engineer counts) and carry the numbers.

@@ -1,4 +1,4 @@
-"""``compute_design``: the design file in, a ``DesignResult`` out (DESIGN.md section 3).
+"""``compute_design``: the design file in, a ``DesignResult`` out (docs/physics.md, "Design calculations").
 
 This module only assembles: every formula lives, with its source, in ``geometry`` (ISO 21771),
 ``kinematics``, ``forces``, ``stiffness`` (Hertz, ISO 6336-1), ``inertia`` and ``checks``.

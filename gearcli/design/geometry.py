@@ -1,4 +1,4 @@
-"""Cylindrical involute gear geometry, ISO 21771 notation (DESIGN.md section 3).
+"""Cylindrical involute gear geometry, ISO 21771 notation (docs/physics.md, "Design calculations").
 
 Angles are in radians, lengths in mm (the unit of the design file's keys), every name says which.
 Each function is one formula of ISO 21771:2007; ``pair_geometry`` strings them together for one

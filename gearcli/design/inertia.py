@@ -1,4 +1,4 @@
-"""Mass moments of inertia of gears and shafts (DESIGN.md section 2)."""
+"""Mass moments of inertia of gears and shafts (docs/design-file.md)."""
 
 from __future__ import annotations
 

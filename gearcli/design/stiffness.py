@@ -91,7 +91,7 @@ def mesh_stiffness_N_mm_um(single_pair: float, contact_ratio_transverse: float) 
 
 
 def iso6336_normal_stiffness_N_mm(mesh_stiffness: float, face_width_mm: float, base_helix_rad: float) -> float:
-    """k_n = k_t / cos² β_b with k_t = c_γα b (DESIGN.md section 4); N/µm × 1000 = N/mm."""
+    """k_n = k_t / cos² β_b with k_t = c_γα b (docs/physics.md, "Torsional model"); N/µm × 1000 = N/mm."""
     return mesh_stiffness * face_width_mm * UM_PER_MM / math.cos(base_helix_rad) ** 2
 
 
@@ -122,7 +122,7 @@ def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
 
     "hertz": the stage's 4/3 √R E*; a number: that number; "iso6336": K such that at the static load
-    F_n0 the mesh deflects h_0 = F_n0 / k_n, k_n = c_γα b / cos² β_b (DESIGN.md section 4); F_n0 is
+    F_n0 the mesh deflects h_0 = F_n0 / k_n, k_n = c_γα b / cos² β_b (docs/physics.md, "Torsional model"); F_n0 is
     floored at 1 N/mm of face width when the load is (near) zero (see the module docstring).
     """
     beta_b = math.radians(stage.base_helix_angle_deg)

@@ -1,4 +1,4 @@
-"""The torsional model (DESIGN.md section 4): parameters, equations, Jacobian, outputs, linearisation.
+"""The torsional model (docs/physics.md, "Torsional model"): parameters, equations, Jacobian, outputs, linearisation.
 
 Layers: :mod:`spec` (plain SI parameters, and their assembly from a design), :mod:`layout` (the state
 vector), :mod:`codegen` (the scene's generated ``rhs``/``jac``), :mod:`equations` (``TorsionalModel``),

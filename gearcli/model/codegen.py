@@ -4,7 +4,7 @@ Why generate code: the model has a handful of states, where numpy's per-call ove
 arrays costs more than the arithmetic, and every branch a scene does not need (backlash, damping,
 time-varying stiffness, a free input shaft) is time spent on every one of the ~10^4 evaluations of a
 run. The generator writes scalar float code with every constant inlined as a literal and only the
-terms the scene uses (DESIGN.md section 4: "scenes leave out what they do not use"); ``y.tolist()``
+terms the scene uses (docs/physics.md, "Torsional model": "scenes leave out what they do not use"); ``y.tolist()``
 unpacks the state in one call. The source is kept on the model (``TorsionalModel.source``) for
 reading and debugging. The vectorised channels in :mod:`gearcli.model.outputs` are an independent
 numpy implementation of the same force law; a unit test holds the two together.
@@ -104,7 +104,7 @@ def _prologue(lay: Layout) -> list[str]:
 def _contact_blocks(lay: Layout, k: int, body: Callable[[str], list[str]], off: list[str]) -> list[str]:
     """``if`` blocks over the flanks of mesh k; ``body(sign)`` is the in-contact code with ``p``, ``pd``.
 
-    Drive flank when ``h > j/2``, back flank when ``h < -j/2`` (DESIGN.md section 4). Without backlash
+    Drive flank when ``h > j/2``, back flank when ``h < -j/2`` (docs/physics.md, "Torsional model"). Without backlash
     (j = 0) both flanks touch at h = 0, as in a tight mesh: a reversed load is carried by the back
     flank, and the gap offset is left out of the code.
     """

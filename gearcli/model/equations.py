@@ -1,6 +1,6 @@
 """The torsional model of a reducer: state layout, equations of motion, Jacobian, scales, energies.
 
-Equations (SI; DESIGN.md section 4). Shaft i has inertia J_i and speed w_i; mesh k joins shaft k
+Equations (SI; docs/physics.md, "Torsional model"). Shaft i has inertia J_i and speed w_i; mesh k joins shaft k
 (pinion, base radius r_bp,k) and shaft k+1 (gear, r_bg,k):
 
     delta_k' = r_bp,k w_k - r_bg,k w_{k+1}

@@ -2,7 +2,7 @@
 
 This is a second, independent implementation of the mesh force law of :mod:`gearcli.model.codegen`
 (array code instead of generated scalar code); ``tests/unit/test_model_equations.py`` holds the two
-together. Reported tooth forces (DESIGN.md section 4): ``F_t = F_bt cos(alpha_t)``,
+together. Reported tooth forces (docs/physics.md, "Torsional model"): ``F_t = F_bt cos(alpha_t)``,
 ``F_r = F_t tan(alpha_t)``, ``F_a = F_t tan(beta)`` — signed like the design's static forces (negative
 on the back flank, i.e. under load reversal). The penetration channel is the signed penetration
 beyond the gap: positive on the drive flank, negative on the back flank, 0 inside the backlash.

@@ -1,4 +1,4 @@
-"""``gearcli simulate``: solver wrapper, method choice, steady-state statistics (DESIGN.md section 4).
+"""``gearcli simulate``: solver wrapper, method choice, steady-state statistics (docs/physics.md, "Torsional model").
 
 - ``solver``  one loop around scipy's ODE solvers: tolerances, samples, counters, failures, restarts at
               the ramp ends

@@ -55,7 +55,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
 
 def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[tuple]]:
-    """DESIGN.md section 5 columns, in order; and per stage (F_t, F_r, F_a, penetration mm)."""
+    """docs/output.md columns, in order; and per stage (F_t, F_r, F_a, penetration mm)."""
     ch: dict[str, np.ndarray] = {f"shaft{i + 1}_speed_deg_s": s.omega_rad_s[i] * RAD_TO_DEG
                                  for i in range(model.layout.n_shafts)}
     ch["input_torque_Nmm"] = s.input_torque_Nm * 1e3

@@ -1,7 +1,7 @@
 """Hand calculations for the extreme-scene catalogue, straight from a design file's TOML.
 
 This module deliberately shares no code with ``gearcli``: it reads the TOML with ``tomllib`` and
-re-derives, from textbook formulas (DESIGN.md sections 3 and 4), what a rigid, lossless gear train
+re-derives, from textbook formulas (docs/physics.md), what a rigid, lossless gear train
 must do. The catalogue checks the simulation against these numbers, so a wrong formula in the product
 cannot hide behind the same wrong formula in the test.
 
