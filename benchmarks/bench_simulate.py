@@ -51,7 +51,7 @@ def metrics(sim) -> dict:
 
 def rel_errors(m: dict, ref: dict) -> dict:
     def worst(a, b):
-        return max(abs(x - y) / abs(y) for x, y in zip(a, b))
+        return max(abs(x - y) / abs(y) for x, y in zip(a, b, strict=True))
     return {"mean_Ft": worst(m["mean_Ft"], ref["mean_Ft"]), "peak_Ft": worst(m["peak_Ft"], ref["peak_Ft"]),
             "out_speed": abs(m["out_speed"] - ref["out_speed"]) / abs(ref["out_speed"])}
 
@@ -106,8 +106,8 @@ def part_c(factors) -> dict:
     rows = []
     for f in factors:
         cfg, design = scene(STIFF, [f"stage.0.mesh.stiffness={k1 * f!r}"] if f != 1.0 else [])
-        from gearcli.simulate.choice import choose_method
         from gearcli.scene import spec_from_design
+        from gearcli.simulate.choice import choose_method
         choice = choose_method(spec_from_design(cfg, design), cfg.simulation.duration_s, "auto")
         row = {"stiffness_factor": f, "stiffness_N_mm": k1 * f, "indicator": choice.indicator,
                "auto_choice": choice.method}

@@ -5,7 +5,10 @@ The command-line module is imported inside :func:`main` so that a Ctrl-C during 
 traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way.
 """
 
+import os
 import sys
+
+INTERRUPTED = (130, 143)  # SIGINT, SIGTERM: gearcli has said so and removed its temporary files
 
 
 def main() -> None:
@@ -14,7 +17,18 @@ def main() -> None:
     except KeyboardInterrupt:
         sys.stderr.write("gearcli: interrupted\n")
         sys.exit(130)
-    run()
+    try:
+        run()
+    except SystemExit as exc:
+        if exc.code in INTERRUPTED:
+            # CPython remembers a KeyboardInterrupt that passed through an interrupted import or exec even
+            # when gearcli caught it, and at shutdown re-kills itself with SIGINT (exit status -2 instead of
+            # 130: seen for a Ctrl-C ~0.2 s into `simulate`, while scipy loads). The interrupt is handled:
+            # leave now with the code gearcli chose.
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os._exit(exc.code)
+        raise
 
 
 if __name__ == "__main__":  # pragma: no cover

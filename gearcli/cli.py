@@ -8,58 +8,113 @@ Library errors become one-line messages on stderr with fixed exit codes (0 ok, 1
 from __future__ import annotations
 
 import functools
+import math
+import os
 import sys
+import warnings as warnings_module
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable, Optional
 
 import click
 
 from gearcli import __version__
-from gearcli.errors import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, DesignError, GearcliError
+from gearcli.errors import (
+    EXIT_FAILED,
+    EXIT_INTERRUPTED,
+    EXIT_TERMINATED,
+    EXIT_USAGE,
+    DesignError,
+    GearcliError,
+    OutputError,
+    Terminated,
+)
+from gearcli.io import output as outfiles
+from gearcli.io.text import shorten, visible
 
 FORMATS = ("table", "csv", "json")
-SUFFIX_FORMAT = {".json": "json", ".csv": "csv", ".md": "markdown", ".markdown": "markdown", ".txt": "table"}
+SUFFIX_FORMAT = outfiles.SUFFIX_FORMAT
 
 
 def _fail(message: str, code: int) -> None:
     for line in message.splitlines() or [""]:
-        click.echo(f"gearcli: {line}", err=True)
+        click.echo(f"gearcli: {visible(line)}", err=True)
     sys.exit(code)
 
 
+def _on_sigterm(signum, frame) -> None:
+    raise Terminated()
+
+
 def guarded(fn: Callable) -> Callable:
-    """Run a command body; map errors to messages and exit codes (traceback only with --debug)."""
+    """Run a command body; map errors to messages and exit codes (traceback only with --debug).
+    Numeric RuntimeWarnings are collected and reported as one plain warning each, never raw."""
 
     @functools.wraps(fn)
-    def wrapper(*args, debug: bool = False, **kwargs):
-        debug = debug or bool(click.get_current_context().find_root().params.get("debug"))
+    def wrapper(*args, debug: bool = False, quiet: bool = False, **kwargs):
+        root = click.get_current_context().find_root()
+        debug = debug or bool(root.params.get("debug"))
+        if quiet:
+            click.get_current_context().meta["gearcli.quiet"] = True
         try:
-            return fn(*args, **kwargs)
+            with warnings_module.catch_warnings(record=True) as caught:
+                warnings_module.simplefilter("always", RuntimeWarning)
+                try:
+                    return fn(*args, **kwargs)
+                finally:
+                    _report_numeric_warnings(caught)
         except GearcliError as exc:
             if debug:
                 raise
             _fail(str(exc), exc.exit_code)
         except KeyboardInterrupt:
             _fail("interrupted", EXIT_INTERRUPTED)
+        except Terminated:
+            _fail("terminated", EXIT_TERMINATED)
         except (click.exceptions.Exit, click.ClickException, SystemExit):
             raise
         except Exception as exc:  # a bug: say so plainly, never a traceback without --debug
             if debug:
                 raise
-            _fail(f"internal error: {type(exc).__name__}: {exc} (run with --debug for the traceback)", EXIT_FAILED)
+            _fail(f"internal error: {type(exc).__name__}: {shorten(str(exc), 200)} "
+                  "(run with --debug for the traceback)", EXIT_FAILED)
 
     return wrapper
 
 
+def _report_numeric_warnings(caught) -> None:
+    """numpy/scipy RuntimeWarnings as one line each (no source path, no repeated lines)."""
+    seen: list[str] = []
+    for w in caught:
+        if issubclass(w.category, RuntimeWarning) and str(w.message) not in seen:
+            seen.append(str(w.message))
+        elif not issubclass(w.category, RuntimeWarning):
+            warnings_module.showwarning(w.message, w.category, w.filename, w.lineno)
+    warn(f"numerical warning during the run: {shorten(m, 120)}" for m in seen)
+
+
+def quiet_option(fn: Callable) -> Callable:
+    return click.option("-q", "--quiet", is_flag=True,
+                        help="No warnings or progress on stderr (errors are still printed).")(fn)
+
+
+def is_quiet() -> bool:
+    ctx = click.get_current_context(silent=True)
+    while ctx is not None:
+        if ctx.meta.get("gearcli.quiet") or ctx.params.get("quiet"):
+            return True
+        ctx = ctx.parent
+    return False
+
+
 def io_options(formats: tuple[str, ...] = FORMATS) -> Callable:
-    """The options every data command shares: --set, --format, -o, --debug."""
+    """The options every data command shares: --set, --format, -o, -q, --debug."""
 
     def decorate(fn: Callable) -> Callable:
         fn = click.option("--debug", is_flag=True, help="Show tracebacks on errors.")(fn)
-        fn = click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True),
-                          help="Write to FILE atomically (format from its suffix unless --format).")(fn)
+        fn = quiet_option(fn)
+        fn = outfiles.output_option()(fn)
         fn = click.option("--format", "fmt", type=click.Choice(formats),
-                          help="Output format [default: table on a terminal, csv in a pipe].")(fn)
+                          help="Output format [default: from -o's suffix; table on a terminal, csv in a pipe].")(fn)
         fn = click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
                           help="Override a design-file key, e.g. --set stage.0.pinion.teeth=22 (repeatable).")(fn)
         return fn
@@ -67,55 +122,77 @@ def io_options(formats: tuple[str, ...] = FORMATS) -> Callable:
     return decorate
 
 
-def choose_format(fmt: Optional[str], output: Optional[str], allowed: tuple[str, ...]) -> str:
-    if fmt:
-        return fmt
-    if output:
-        inferred = SUFFIX_FORMAT.get(Path(output).suffix.lower(), "csv")
-        return inferred if inferred in allowed else "csv"
-    return "table" if sys.stdout.isatty() else "csv"
+def _tty_default(pipe_format: str) -> Callable[[], str]:
+    return lambda: "table" if sys.stdout.isatty() else pipe_format
 
 
-def emit(text: str, output: Optional[str]) -> None:
-    """Data to ``-o FILE`` (atomically) or to stdout."""
-    if output:
-        from gearcli.io.atomic import write_atomic
+def _context_inputs() -> tuple[str | None, ...]:
+    ctx = click.get_current_context(silent=True)
+    return (ctx.params.get("file"),) if ctx is not None else ()
 
-        write_atomic(output, text)
+
+def check_target(fmt: str | None, out: str | None, formats: tuple[str, ...] = FORMATS, *,
+                 pipe_format: str = "csv", file_default: str | None = None) -> outfiles.OutputTarget:
+    """Check ``-o`` against the command's input file and formats (exit 2 before any computation)."""
+    return outfiles.check_output(out, formats=formats, fmt=fmt, inputs=_context_inputs(),
+                               file_default=file_default or pipe_format, stdout_default=_tty_default(pipe_format))
+
+
+def choose_format(fmt: str | None, out: str | None, allowed: tuple[str, ...]) -> str:
+    """The format for ``--format``/``-o`` (kept for commands written before :func:`check_target`)."""
+    return check_target(fmt, out, allowed).fmt
+
+
+Destination = None | str | outfiles.OutputTarget
+
+
+def _target(dest: Destination) -> outfiles.OutputTarget:
+    if isinstance(dest, outfiles.OutputTarget):
+        return dest
+    if dest is None or dest == outfiles.STDOUT:
+        return outfiles.OutputTarget(fmt="")
+    return outfiles.OutputTarget(fmt="", path=outfiles.resolve_path(dest, _context_inputs()), shown=dest)
+
+
+def emit(text: str, dest: Destination) -> None:
+    """Data to the checked ``-o`` file (atomically, through a symlink) or to stdout."""
+    outfiles.write_output(_target(dest), text)
+
+
+def emit_tables(renderables, dest: Destination) -> None:
+    from gearcli.io.tables import render, terminal_console
+
+    target = _target(dest)
+    if not target.is_stdout or not sys.stdout.isatty():
+        encoding = (getattr(sys.stdout, "encoding", None) or "utf-8") if target.is_stdout else "utf-8"
+        emit(render(renderables, encoding=encoding) or "", target)
     else:
-        click.echo(text, nl=False)
+        render(renderables, console=terminal_console())
 
 
-def emit_tables(renderables, output: Optional[str]) -> None:
-    from gearcli.io.tables import render
-
-    if output or not sys.stdout.isatty():
-        emit(render(renderables), output)
-    else:
-        from rich.console import Console
-
-        render(renderables, console=Console())
-
-
-def emit_as(fmt: str, output: Optional[str], result, *, sha256: str, json_doc: Callable[[], dict],
+def emit_as(fmt: str, dest: Destination, result, *, sha256: str, json_doc: Callable[[], dict],
             csv_text: Callable[[], str], table_builder: str) -> None:
     """Write ``result`` in ``fmt``; only the chosen builder runs, and rich is imported only for tables
     (``table_builder`` names a function of :mod:`gearcli.io.tables`). JSON gets the meta keys."""
     if fmt == "json":
         from gearcli.io.serialize import to_json, with_meta
 
-        emit(to_json(with_meta(json_doc(), sha256)), output)
+        emit(to_json(with_meta(json_doc(), sha256)), dest)
     elif fmt == "csv":
-        emit(csv_text(), output)
+        emit(csv_text(), dest)
     else:
         from gearcli.io import tables
 
-        emit_tables(getattr(tables, table_builder)(result), output)
+        emit_tables(getattr(tables, table_builder)(result), dest)
 
 
 def warn(lines) -> None:
+    """Warnings on stderr, one line each, control characters escaped; nothing with ``-q``."""
+    if is_quiet():
+        return
     for line in lines:
-        click.echo(f"warning: {line}", err=True)
+        for part in str(line).splitlines() or [""]:
+            click.echo(f"warning: {visible(part)}", err=True)
 
 
 def load_and_design(path: str, overrides):
@@ -131,17 +208,31 @@ def load_and_design(path: str, overrides):
     return loaded, design
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(context_settings={"help_option_names": ["-h", "--help"]}, epilog="""\b
+Examples:
+  gearcli init mixer.toml
+  gearcli design mixer.toml
+  gearcli simulate mixer.toml -o run.csv
+  gearcli report mixer.toml -o report.md
+Shell completion (bash): eval "$(_GEARCLI_COMPLETE=bash_source gearcli)"
+""")
 @click.version_option(__version__, prog_name="gearcli")
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
-def cli(debug: bool) -> None:
+@quiet_option
+def cli(debug: bool, quiet: bool) -> None:
     """Design check and torsional dynamics of multi-stage helical gear reducers.
 
     FILE is a TOML design file ('-' reads stdin); `gearcli init` writes a starter one.
     """
 
 
-@cli.command()
+@cli.command(epilog="""\b
+Examples:
+  gearcli design mixer.toml
+  gearcli design mixer.toml --format json -o design.json
+  gearcli design mixer.toml --set stage.0.pinion.teeth=22 --format csv
+  gearcli init - | gearcli design -
+""")
 @click.argument("file", type=str)
 @io_options()
 @guarded
@@ -149,14 +240,21 @@ def design(file: str, overrides, fmt, output) -> None:
     """Ratios, speeds, torques, helical geometry, contact ratios, stiffness and static forces."""
     from gearcli.io import serialize
 
+    target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
-    emit_as(choose_format(fmt, output, FORMATS), output, result, sha256=loaded.sha256,
+    emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.design_dict(result),
             csv_text=lambda: serialize.design_csv(result), table_builder="design_tables")
     warn(result.warnings)
 
 
-@cli.command()
+@cli.command(epilog="""\b
+Examples:
+  gearcli simulate mixer.toml
+  gearcli simulate mixer.toml -o run.csv
+  gearcli simulate mixer.toml --format json --series -o run.json
+  gearcli simulate mixer.toml --set simulation.duration_s=2 --set simulation.steps=20000
+""")
 @click.argument("file", type=str)
 @io_options()
 @click.option("--series", is_flag=True, help="Include the time series in JSON output (CSV always has them).")
@@ -164,25 +262,33 @@ def design(file: str, overrides, fmt, output) -> None:
 @guarded
 def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool = False) -> None:
     """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
+    from gearcli.config.bounds import check_run_budget
+
+    target = check_target(fmt, output)
     loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
     if dump_model:
         from gearcli.scene import build_model
 
         click.echo(build_model(loaded.design, design_result).source, nl=False)
         return
+    check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
     warn(design_result.warnings)
-    fmt = choose_format(fmt, output, FORMATS)
     from gearcli.io import serialize
     from gearcli.simulate import run_simulation
 
     result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
-    emit_as(fmt, output, result, sha256=loaded.sha256,
+    emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
     warn(result.warnings)
 
 
-@cli.command()
+@cli.command(epilog="""\b
+Examples:
+  gearcli modes mixer.toml
+  gearcli modes mixer.toml --format json -o modes.json
+  gearcli modes mixer.toml --set stage.0.shaft.stiffness_Nm_rad=2e6
+""")
 @click.argument("file", type=str)
 @io_options()
 @guarded
@@ -192,64 +298,65 @@ def modes(file: str, overrides, fmt, output) -> None:
     from gearcli.model.modes import BOUNDARIES, modal_analysis
     from gearcli.scene import build_model
 
+    target = check_target(fmt, output)
     loaded, design_result = load_and_design(file, overrides)
     warn(design_result.warnings)
     lay = build_model(loaded.design, design_result).layout
     analyses = [modal_analysis(lay, b, duration_s=loaded.design.simulation.duration_s) for b in BOUNDARIES]
-    fmt = choose_format(fmt, output, FORMATS)
-    if fmt == "json":
-        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses), loaded.sha256)), output)
-    elif fmt == "csv":
-        emit(modes_out.modes_csv(analyses), output)
+    if target.fmt == "json":
+        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses), loaded.sha256)), target)
+    elif target.fmt == "csv":
+        emit(modes_out.modes_csv(analyses), target)
     else:
-        emit_tables(modes_out.modes_tables(analyses), output)
+        emit_tables(modes_out.modes_tables(analyses), target)
 
 
-@cli.command()
-@click.argument("file", required=False, type=click.Path(dir_okay=False))
+@cli.command(epilog="""\b
+Examples:
+  gearcli init mixer.toml
+  gearcli init - > mixer.toml
+""")
+@click.argument("file", required=False, type=str)
 @click.option("--force", is_flag=True, help="Overwrite FILE if it exists.")
+@quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
 @guarded
-def init(file: Optional[str], force: bool) -> None:
-    """Write a commented starter design file (the seed reducer) to FILE, or to stdout."""
+def init(file: str | None, force: bool) -> None:
+    """Write a commented starter design file (the seed reducer) to FILE, or to stdout ('-' or none)."""
     from gearcli.config import starter_toml
 
-    if file and Path(file).exists() and not force:
-        _fail(f"{file}: exists; use --force to overwrite", EXIT_USAGE)
-    emit(starter_toml(), file)
-    if file:
-        click.echo(f"wrote {file}; try: gearcli design {file}", err=True)
+    target = outfiles.check_output(file, formats=("toml",))
+    if target.path is not None and target.path.exists() and not force:
+        _fail(f"{visible(file or '')}: exists; use --force to overwrite", EXIT_USAGE)
+    emit(starter_toml(), target)
+    if target.path is not None and not is_quiet():
+        click.echo(f"wrote {visible(target.shown)}; try: gearcli design {visible(target.shown)}", err=True)
 
 
-@cli.command()
-@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True), help="Write to FILE atomically.")
+@cli.command(epilog="""\b
+Examples:
+  gearcli schema -o gearcli.schema.json
+  gearcli schema | python -m json.tool
+""")
+@outfiles.output_option("Write to FILE atomically ('-' is stdout).")
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
 @guarded
-def schema(output: Optional[str]) -> None:
+def schema(output: str | None) -> None:
     """Print the JSON Schema of the design file."""
     import json
 
     from gearcli.config import json_schema
 
-    emit(json.dumps(json_schema(), indent=2) + "\n", output)
+    target = outfiles.check_output(output, formats=("json",))
+    emit(json.dumps(json_schema(), indent=2) + "\n", target)
 
 
 # ------------------------------------------------------------------------------------------ report
 REPORT_FORMATS = ("table", "json", "markdown")
+MAX_RTOLS = 12  # the default ladder has 7 rungs; each rung is a full simulation
 
 
-def _report_format(fmt: Optional[str], output: Optional[str]) -> str:
-    """--format, else from -o's suffix (markdown unless .json/.txt), else table on a terminal and
-    markdown in a pipe (a report does not fit CSV)."""
-    if fmt:
-        return fmt
-    if output:
-        inferred = SUFFIX_FORMAT.get(Path(output).suffix.lower())
-        return inferred if inferred in REPORT_FORMATS else "markdown"
-    return "table" if sys.stdout.isatty() else "markdown"
-
-
-def _parse_rtols(ctx, param, value: Optional[str]):
+def _parse_rtols(ctx, param, value: str | None):
     if value is None:
         return None
     try:
@@ -259,17 +366,30 @@ def _parse_rtols(ctx, param, value: Optional[str]):
     bad = [r for r in rtols if not 1e-13 <= r <= 1e-2]
     if not rtols or bad:
         raise click.BadParameter("every rtol must lie in [1e-13, 1e-2]" + (f", got {bad[0]:g}" if bad else ""))
+    if len(rtols) > MAX_RTOLS:
+        raise click.BadParameter(f"at most {MAX_RTOLS} tolerances, got {len(rtols)}")
+    if len(set(rtols)) != len(rtols):
+        twice = next(r for r in rtols if rtols.count(r) > 1)
+        raise click.BadParameter(f"{twice:g} is given twice; each tolerance once")
     return rtols
+
+
+def _finite_accuracy(ctx, param, value: float) -> float:
+    if not math.isfinite(value) or not 1e-12 <= value <= 0.5:
+        raise click.BadParameter(f"must be a number in [1e-12, 0.5], got {value!r}")
+    return value
 
 
 class _StderrProgress:
     """A rich progress bar on stderr when it is a terminal; a silent no-op otherwise."""
 
     def __init__(self) -> None:
-        self.bar = None
+        from typing import Any
+
+        self.bar: Any = None
 
     def __enter__(self):
-        if sys.stderr.isatty():
+        if sys.stderr.isatty() and not is_quiet():
             from rich.console import Console
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -294,9 +414,8 @@ class _StderrProgress:
               help="Override a design-file key, e.g. --set simulation.duration_s=0.25 (repeatable).")
 @click.option("--format", "fmt", type=click.Choice(REPORT_FORMATS),
               help="Output format [default: table on a terminal, markdown in a pipe].")
-@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True),
-              help="Write to FILE atomically (format from its suffix: .json, .md, .txt).")
-@click.option("--accuracy", type=click.FloatRange(1e-12, 0.5), default=1e-4, show_default=True,
+@outfiles.output_option("Write to FILE atomically ('-' is stdout; format from the suffix: .json, .md, .txt).")
+@click.option("--accuracy", type=float, callback=_finite_accuracy, default=1e-4, show_default=True,
               help="Relative accuracy the recommended solver setting must meet.")
 @click.option("--quick", is_flag=True, help="Skip the accuracy study (one simulation).")
 @click.option("--rtols", callback=_parse_rtols, metavar="LIST",
@@ -304,35 +423,51 @@ class _StderrProgress:
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
               help="Also write speeds.png, mesh_forces.png, spectrum.png, work_precision.png to DIR. Needs "
                    "matplotlib (pip install 'gearcli[plot]'); without it: a warning, the rest of the report, exit 0.")
+@quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
 @guarded
 def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtols, plots_dir) -> None:
     """Theory against simulation, the numerical error against run time, and plots."""
+    from gearcli.config.bounds import check_report_budget
     from gearcli.io import serialize
     from gearcli.report import LadderSpec, build_report
 
+    target = check_target(fmt, output, REPORT_FORMATS, pipe_format="markdown")
+    if plots_dir:
+        _check_plots_dir(plots_dir, file, target)
     loaded, design_result = load_and_design(file, overrides)
-    warn(design_result.warnings)
-    fmt = _report_format(fmt, output)
     spec = LadderSpec(rtols=rtols) if rtols else LadderSpec()
+    check_report_budget(loaded.design, design_result, source=loaded.source)
+    warn(design_result.warnings)
+    fmt = target.fmt
     with _StderrProgress() as progress:
         rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
                            progress=progress)
     if fmt == "json":
         from gearcli.io.report_json import report_dict
 
-        emit(serialize.to_json(serialize.with_meta(report_dict(rep), loaded.sha256)), output)
+        emit(serialize.to_json(serialize.with_meta(report_dict(rep), loaded.sha256)), target)
     elif fmt == "markdown":
         from gearcli.io.markdown import report_markdown
 
-        emit(report_markdown(rep, loaded.sha256), output)
+        emit(report_markdown(rep, loaded.sha256), target)
     else:
         from gearcli.io.report_tables import report_tables
 
-        emit_tables(report_tables(rep), output)
+        emit_tables(report_tables(rep), target)
     warn(w for w in rep.warnings if w not in design_result.warnings)  # design ones went out first
     if plots_dir:
         _write_report_plots(rep, plots_dir)
+
+
+def _check_plots_dir(plots_dir: str, file: str, target) -> None:
+    """No plot may replace the input or the -o file, nor be written onto a directory or a device."""
+    from gearcli.io.plots import FIGURE_NAMES
+
+    if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
+        raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    outfiles.check_not_clobbering([Path(plots_dir) / name for name in FIGURE_NAMES],
+                                  [file, target.path], "--plots")
 
 
 def _write_report_plots(rep, plots_dir: str) -> None:
@@ -346,12 +481,18 @@ def _write_report_plots(rep, plots_dir: str) -> None:
         return
     except OSError as exc:
         _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
-    click.echo(f"wrote {', '.join(p.name for p in paths)} to {plots_dir}", err=True)
+    if is_quiet():
+        return
+    click.echo(f"wrote {', '.join(p.name for p in paths)} to {visible(plots_dir)}", err=True)
     if rep.accuracy is None:
         click.echo("work_precision.png needs the accuracy study: run without --quick", err=True)
 
 
 def main() -> None:
+    """The console script: SIGTERM unwinds like Ctrl-C (temporary files removed), then exit 143."""
+    import signal
+
+    signal.signal(signal.SIGTERM, _on_sigterm)
     cli(prog_name="gearcli")
 
 

@@ -1,4 +1,4 @@
-"""Typed errors and the exit codes the CLI maps them to (DESIGN.md section 5)."""
+"""Typed errors and the exit codes the CLI maps them to (docs/output.md, "Exit codes")."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ EXIT_OK = 0
 EXIT_FAILED = 1  # the run failed: solver failure, infeasible design
 EXIT_USAGE = 2  # bad usage or bad design file
 EXIT_INTERRUPTED = 130
+EXIT_TERMINATED = 143  # 128 + SIGTERM, as a shell reports it
 
 
 class GearcliError(Exception):
@@ -26,8 +27,11 @@ class ConfigError(GearcliError):
         super().__init__(self.format())
 
     def format(self) -> str:
-        where = ": ".join(p for p in (self.source, self.key) if p)
-        return f"{where}: {self.message}" if where else self.message
+        from gearcli.io.text import shorten
+
+        where = ": ".join(shorten(p) for p in (self.source, self.key) if p)
+        message = shorten(self.message, 2000)
+        return f"{where}: {message}" if where else message
 
 
 class DesignError(GearcliError):
@@ -39,11 +43,34 @@ class DesignError(GearcliError):
         self.key = key
         self.source = source
         self.message = message
-        where = ": ".join(p for p in (source, key) if p)
-        super().__init__(f"{where}: {message}" if where else message)
+        from gearcli.io.text import shorten
+
+        where = ": ".join(shorten(p) for p in (source, key) if p)
+        super().__init__(f"{where}: {shorten(message, 2000)}" if where else shorten(message, 2000))
 
 
 class SimulationError(GearcliError):
     """The integration failed or diverged; the message names the likely cause and the fix."""
 
     exit_code = EXIT_FAILED
+
+
+class OutputError(GearcliError):
+    """An output path that must not be written (a directory, a device, the input ...): nothing is written."""
+
+    exit_code = EXIT_USAGE
+
+    def __init__(self, message: str, *, path: str):
+        self.path = path
+        self.message = message
+        super().__init__(f"{path}: {message}")
+
+
+class ResourceError(GearcliError):
+    """A run whose memory or cost estimate exceeds a stated bound: refused before it starts."""
+
+    exit_code = EXIT_USAGE
+
+
+class Terminated(BaseException):
+    """SIGTERM arrived: unwinds like KeyboardInterrupt, so temporary files are removed (exit 143)."""

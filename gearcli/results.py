@@ -1,13 +1,13 @@
 """Frozen result objects shared by the core layers and the writers.
 
-Field names carry their units, as the JSON output does (DESIGN.md section 5). Stage and shaft
+Field names carry their units, as the JSON output does (docs/output.md). Stage and shaft
 indices in these objects are 1-based, as an engineer numbers them (stage 1 is the input stage).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Optional
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the design path never imports numpy: `gearcli design` starts fast
     import numpy as np
@@ -180,7 +180,7 @@ class EnergyBalance:
 @dataclass(frozen=True)
 class SimulationResult:
     time_s: np.ndarray
-    channels: dict[str, np.ndarray]  # CSV column name -> series (DESIGN.md section 5 order)
+    channels: dict[str, np.ndarray]  # CSV column name -> series (docs/output.md order)
     window_s: tuple[float, float]
     ratio: float  # dynamic ratio mean(omega_in) / mean(omega_out) over the window
     output_speed_deg_s: float  # mean over the window
@@ -190,7 +190,7 @@ class SimulationResult:
     energy: EnergyBalance
     warnings: tuple[str, ...] = field(default_factory=tuple)
     natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
-    extra: Optional[dict] = None
+    extra: dict | None = None
     diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic; warnings are their messages
     natural_frequencies_boundary: str = "clamped_input"  # "clamped_input" (speed drive) or "free" (torque drive)
-    final_state: Optional[np.ndarray] = None  # state vector at the end of the run (model layout), for continuation
+    final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation

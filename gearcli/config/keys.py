@@ -11,14 +11,15 @@ import difflib
 import json
 import re
 import types
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Annotated, Any, Optional, Sequence, Union, get_args, get_origin
+from typing import Annotated, Any, Union, get_args, get_origin
 
 from pydantic import BaseModel
 
 from gearcli.config.schema import DesignFile
 
-Segment = Union[str, int]
+Segment = str | int
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
@@ -53,7 +54,7 @@ def is_model(tp: Any) -> bool:
     return isinstance(tp, type) and issubclass(tp, BaseModel)
 
 
-def container(tp: Any) -> Optional[str]:
+def container(tp: Any) -> str | None:
     """``"list"`` or ``"dict"`` for ``list[...]`` / ``dict[str, ...]``, else None."""
     origin = get_origin(tp)
     return {list: "list", dict: "dict"}.get(origin)
@@ -79,7 +80,7 @@ def suggestions(word: str, options: Sequence[str]) -> list[str]:
     return [lower[close[0]]] if close else []
 
 
-def suggest(word: str, options: Sequence[str]) -> Optional[str]:
+def suggest(word: str, options: Sequence[str]) -> str | None:
     """The one option a mistyped ``word`` most likely means, or None."""
     found = suggestions(word, options)
     return found[0] if len(found) == 1 else None
@@ -113,14 +114,14 @@ class Resolved:
     model that owns the last key (for unknown-key hints), or None."""
 
     path: tuple[Segment, ...]
-    parent: Optional[type[BaseModel]]
+    parent: type[BaseModel] | None
 
 
 def resolve(loc: Sequence[Segment], root: type[BaseModel] = DesignFile) -> Resolved:
     """Walk a pydantic error ``loc`` through the schema from ``root``."""
     tp: Any = root
     path: list[Segment] = []
-    parent: Optional[type[BaseModel]] = None
+    parent: type[BaseModel] | None = None
     for seg in loc:
         kind = container(tp)
         if is_model(tp) and isinstance(seg, str):

@@ -11,22 +11,23 @@ import hashlib
 import re
 import sys
 import tomllib
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import BinaryIO, Optional, Sequence
+from typing import BinaryIO
 
 from pydantic import ValidationError
 
 from gearcli.config import overrides as _overrides
 from gearcli.config.keys import format_path
 from gearcli.config.messages import translate
+from gearcli.config.prescan import MAX_BYTES, check_bytes, check_text
 from gearcli.config.schema import DesignFile
 from gearcli.config.starter import json_schema, starter_toml
 from gearcli.errors import ConfigError
 
 __all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN"]
 
-MAX_BYTES = 10 * 1024 * 1024  # a design file is a few kB; anything this big is the wrong file
 MAX_LINES_REPORTED = 20
 STDIN = "<stdin>"
 _INIT_HINT = "`gearcli init FILE` writes a starter design file"
@@ -65,7 +66,7 @@ class LoadedDesign:
     raw: dict
 
 
-def load_design(path: str, overrides: Sequence[str] = (), *, stdin: Optional[BinaryIO] = None) -> LoadedDesign:
+def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:
     """Read, parse, override and validate a design file; ``path == "-"`` reads ``stdin`` (default
     ``sys.stdin.buffer``). Raises :class:`ConfigError` (or :class:`ConfigErrors`) on any problem."""
     source = STDIN if path == "-" else path
@@ -83,7 +84,7 @@ def _digest(raw: bytes, overrides: Sequence[str]) -> str:
     return h.hexdigest()
 
 
-def _read(path: str, stdin: Optional[BinaryIO]) -> bytes:
+def _read(path: str, stdin: BinaryIO | None) -> bytes:
     """The raw bytes of the file (or stdin), at most :data:`MAX_BYTES`."""
     if path == "-":
         stream = stdin if stdin is not None else sys.stdin.buffer
@@ -95,9 +96,7 @@ def _read(path: str, stdin: Optional[BinaryIO]) -> bytes:
     else:
         source = path
         raw = _read_file(path)
-    if len(raw) > MAX_BYTES:
-        size = f"larger than {MAX_BYTES // 2**20} MB"
-        raise ConfigError(f"{size}; a design file is a few kB (wrong file?)", source=source)
+    check_bytes(raw, source)
     return raw
 
 
@@ -126,8 +125,6 @@ def _parse(raw: bytes, source: str) -> dict:
     """Bytes -> TOML data, with clear messages for empty, binary, non-UTF-8 and malformed input."""
     if not raw.strip():
         raise ConfigError(f"file is empty ({_INIT_HINT})", source=source)
-    if b"\0" in raw:
-        raise ConfigError("binary data, not a TOML design file", source=source)
     try:
         text = raw.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError as exc:
@@ -135,11 +132,12 @@ def _parse(raw: bytes, source: str) -> dict:
         column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
         raise ConfigError(f"not UTF-8 text: byte 0x{raw[exc.start]:02x} at line {line}, column {column} "
                           "(save the file as UTF-8)", source=source) from None
+    check_text(text, source)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(_syntax_message(str(exc), text), source=source) from None
-    except ValueError as exc:  # an integer longer than sys.get_int_max_str_digits()
+    except ValueError:  # an integer longer than sys.get_int_max_str_digits()
         limit = sys.get_int_max_str_digits()
         raise ConfigError(f"TOML syntax error: an integer with more than {limit} digits", source=source) from None
     except RecursionError:
@@ -183,7 +181,7 @@ def _syntax_message(error: str, text: str) -> str:
     return f"TOML syntax error at {where}: {what}{snippet}"
 
 
-def _duplicate_line(text: str) -> Optional[int]:
+def _duplicate_line(text: str) -> int | None:
     """The line that redefines a key, when tomllib only says "at end of document": the shortest
     prefix of the file that fails the same way (binary search; best effort)."""
     lines = text.splitlines(keepends=True)

@@ -15,6 +15,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from gearcli.config.keys import Resolved, Segment, resolve, suggest, unknown_key_hint
+from gearcli.io.text import shorten
 
 _BOUNDS = {"greater_than": ("gt", ">"), "greater_than_equal": ("ge", "≥"),
            "less_than": ("lt", "<"), "less_than_equal": ("le", "≤")}
@@ -107,10 +108,10 @@ def message(err: dict, where: Resolved) -> str:
     t, ctx, inp = err["type"], err.get("ctx") or {}, err.get("input")
     if t == "extra_forbidden":
         hint = unknown_key_hint(str(where.path[-1]), where.parent) if where.parent else ""
-        return f"unknown key '{where.path[-1]}'{hint}"
+        return f"unknown key '{shorten(str(where.path[-1]))}'{hint}"
     if t == "missing":
-        hint = _MISSING_TABLE.get(where.path) if len(where.path) == 1 else None
-        return f"missing required key ({hint})" if hint else "missing required key"
+        table_hint = _MISSING_TABLE.get((str(where.path[0]),)) if len(where.path) == 1 else None
+        return f"missing required key ({table_hint})" if table_hint else "missing required key"
     if t in _BOUNDS:
         name, sign = _BOUNDS[t]
         return f"must be {sign} {bound(ctx[name])}, got {number(inp)}"
@@ -169,7 +170,7 @@ def _superseded(groups: dict) -> set:
 
 def translate(exc: ValidationError) -> list[tuple[tuple[Segment, ...], str]]:
     """Every error of ``exc`` as ``(key path, message)``, in file order, one per key."""
-    groups: dict[tuple[Segment, ...], tuple[Resolved, list[dict]]] = {}
+    groups: dict[tuple[Segment, ...], tuple[Resolved, list[Any]]] = {}
     for err in exc.errors(include_url=False):
         where = resolve(err["loc"])
         groups.setdefault(where.path, (where, []))[1].append(err)

@@ -15,8 +15,9 @@ from __future__ import annotations
 
 import re
 import tomllib
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import Any
 
 from pydantic import BaseModel
 
@@ -24,6 +25,7 @@ from gearcli.config.keys import Segment, container, format_path, is_model, item_
 from gearcli.config.messages import got
 from gearcli.config.schema import DesignFile, Input, Load, Target
 from gearcli.errors import ConfigError
+from gearcli.io.text import shorten
 
 SOURCE = "--set"
 
@@ -64,11 +66,12 @@ def parse(text: str) -> Override:
     key, sep, value = text.partition("=")
     key = key.strip()
     if not sep or not key:
-        raise ConfigError(f"expected KEY=VALUE, got {text!r} (e.g. --set input.speed_rpm=1450)", source=SOURCE)
+        raise ConfigError(f"expected KEY=VALUE, got {shorten(repr(text))} (e.g. --set input.speed_rpm=1450)",
+                          source=SOURCE)
     segments = _split_key(key)
     if any(s == "" for s in segments):
         raise ConfigError("empty key segment (keys look like stage.0.pinion.teeth)", source=SOURCE, key=key)
-    path = tuple(int(s) if s.isdigit() else s for s in segments)
+    path = tuple(int(s) if s.isascii() and s.isdigit() else s for s in segments)
     return Override(text, key, path, parse_value(value.strip()))
 
 
@@ -105,7 +108,7 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
         return (child_tp, None) if last else (child_tp, _descend(ov, node[seg], child_tp, depth))
     if is_model(tp):
         if not isinstance(seg, str) or seg not in tp.model_fields:
-            raise _fail(ov, f"unknown key '{seg}' in {where}{unknown_key_hint(str(seg), tp)}")
+            raise _fail(ov, f"unknown key '{shorten(str(seg))}' in {shorten(where)}{unknown_key_hint(str(seg), tp)}")
         child_tp = unwrap(tp.model_fields[seg].annotation)
     elif container(tp) == "dict":
         child_tp = item_type(tp)

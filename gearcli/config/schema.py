@@ -1,4 +1,4 @@
-"""The design file, one pydantic model per TOML table (DESIGN.md section 2).
+"""The design file, one pydantic model per TOML table (docs/design-file.md, generated from these models).
 
 Units are in the key names (``_mm``, ``_deg``, ``_MPa`` ...) and stay as the user wrote them here;
 conversion to SI happens in the design layer. Every model forbids unknown keys and rejects NaN and
@@ -9,18 +9,72 @@ accepted where a float is expected, as TOML users write ``module = 12``.
 from __future__ import annotations
 
 import math
-from typing import Annotated, Literal, Optional, Union
+from dataclasses import dataclass
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    GetCoreSchemaHandler,
+    GetJsonSchemaHandler,
+    PrivateAttr,
+    model_validator,
+)
+from pydantic.json_schema import JsonSchemaValue
+from pydantic_core import core_schema
 
 from gearcli.simulate.methods import NAMES as METHODS  # the one registry of integration methods
 
-# Upper bounds are plausibility limits, far outside any real gearbox, that keep every derived quantity
-# (inertia ~ rho b d^4, forces, energies) finite in double precision.
+# Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
+# tight enough that a unit mistake (1e15, a subnormal like 1e-320) is an error naming the key and the
+# bound, and every derived quantity (inertia ~ rho b d^4, forces, energies, the run's cost) stays finite.
+# Quantities that may be 0 (a ramp, damping, backlash, a torque) may not be *nearly* 0: a nonzero
+# magnitude below ``tiny`` is refused too (JSON Schema: a "not" range).
+
+
+@dataclass(frozen=True)
+class NotTiny:
+    """Annotation: 0 is allowed, but no magnitude in (0, tiny); in the JSON Schema a "not" range."""
+
+    tiny: float
+
+    def check(self, v: float) -> float:
+        if v != 0 and abs(v) < self.tiny:
+            raise ValueError(f"must be 0 or at least {self.tiny:g} in magnitude, got {v!r} (a value this small "
+                             "is a mistake)")
+        return v
+
+    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> Any:
+        return core_schema.no_info_after_validator_function(self.check, handler(source))
+
+    def __get_pydantic_json_schema__(self, schema: Any, handler: GetJsonSchemaHandler) -> JsonSchemaValue:
+        out = handler(schema)
+        ranges = [{"exclusiveMinimum": 0, "exclusiveMaximum": self.tiny},
+                  {"exclusiveMinimum": -self.tiny, "exclusiveMaximum": 0}]
+        out["not"] = {"anyOf": ranges if out.get("minimum", 0) < 0 else ranges[:1]}
+        return out
+
+
+MAX_SPEED_RPM = 200_000.0  # a turbo-compressor pinion turns at ~60,000 rpm; this is generous
+MIN_SPEED_RPM = 1e-3  # one turn in ~17 hours
+MAX_TORQUE_NMM = 1e10  # 10 MN·m: beyond the largest mill and ship drives
+RPM_TO_RAD_S = 2 * 3.141592653589793 / 60
+MAX_TIME_S = 3600.0  # durations, ramps and windows: one hour of simulated time
+SpeedRpm = Annotated[float, Field(ge=MIN_SPEED_RPM, le=MAX_SPEED_RPM)]
+SpeedDegS = Annotated[float, Field(ge=MIN_SPEED_RPM * 6, le=MAX_SPEED_RPM * 6)]
+SpeedRadS = Annotated[float, Field(ge=MIN_SPEED_RPM * RPM_TO_RAD_S, le=MAX_SPEED_RPM * RPM_TO_RAD_S)]
+TorqueNmm = Annotated[float, Field(ge=-MAX_TORQUE_NMM, le=MAX_TORQUE_NMM), NotTiny(1e-3)]
+TorqueNm = Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=MAX_TORQUE_NMM / 1e3), NotTiny(1e-6)]
+Seconds = Annotated[float, Field(ge=0, le=MAX_TIME_S), NotTiny(1e-6)]
+Stiffness = Annotated[float, Field(ge=1.0, le=1e14)]  # N/mm^e: linear meshes ~1e6 N/mm, Hertz K ~1e5 N/mm^1.5
+DampingNsmm = Annotated[float, Field(ge=0, le=1e6), NotTiny(1e-9)]
+DampingDepthMm = Annotated[float, Field(ge=1e-6, le=10.0)]
+# kept for code that imports them; every key now has its own bounds
 PositiveFloat = Annotated[float, Field(gt=0, le=1e15)]
 NonNegFloat = Annotated[float, Field(ge=0, le=1e15)]
-Torque = Annotated[float, Field(ge=-1e15, le=1e15)]
-Power = Annotated[float, Field(ge=-1e12, le=1e12)]  # kW; negative: load reversal (power flows back)
+Torque = TorqueNmm
+Power = Annotated[float, Field(ge=-1e6, le=1e6), NotTiny(1e-6)]  # kW (1 GW); negative: load reversal
 
 INPUT_TORQUE_KEYS = ("torque_Nm", "torque_Nmm", "power_kW")
 LOAD_TORQUE_KEYS = ("torque_Nmm", "torque_Nm", "power_kW")
@@ -31,24 +85,24 @@ class _Table(BaseModel):
 
 
 class Material(_Table):
-    density_kg_m3: Annotated[float, Field(gt=0, le=1e5)]  # osmium is 22,590
-    youngs_modulus_MPa: Annotated[float, Field(gt=0, le=1e7)]  # diamond is 1.2e6
-    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)]
+    density_kg_m3: Annotated[float, Field(ge=100, le=1e5)]  # foams ~100, osmium 22,590
+    youngs_modulus_MPa: Annotated[float, Field(ge=1e3, le=1e7)]  # polymers ~1e3, diamond 1.2e6
+    poisson_ratio: Annotated[float, Field(ge=0.01, lt=0.5)]
 
 
 class Gear(_Table):
     """One gear of a stage: pinion (driving) or gear (driven)."""
 
     teeth: Annotated[int, Field(ge=5, le=10000)]
-    face_width_mm: Annotated[float, Field(gt=0, le=1e5)]
-    hand: Optional[Literal["left", "right", "spur"]] = None
+    face_width_mm: Annotated[float, Field(ge=0.1, le=1e4)]
+    hand: Literal["left", "right", "spur"] | None = None
     material: str = "steel"
     profile_shift: Annotated[float, Field(ge=-1.5, le=1.5)] = 0.0
-    inertia_kg_m2: Optional[Annotated[float, Field(gt=0, le=1e12)]] = None
+    inertia_kg_m2: Annotated[float, Field(ge=1e-09, le=1000000.0)] | None = None  # a 5 mm pinion ~1e-9; a mill girth gear ~1e5
     # gear body (ISO 6336-1): absent = solid disc; web and rim make a webbed blank (gear blank factor C_R)
-    bore_diameter_mm: Annotated[float, Field(gt=0, le=1e5)] | None = None
-    rim_thickness_mm: Annotated[float, Field(gt=0, le=1e5)] | None = None
-    web_thickness_mm: Annotated[float, Field(gt=0, le=1e5)] | None = None
+    bore_diameter_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
+    rim_thickness_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
+    web_thickness_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
 
     @model_validator(mode="after")
     def _web_needs_rim(self) -> Gear:
@@ -82,21 +136,21 @@ class ContactOverride(_Table):
     """The mesh force law (Adams IMPACT). In ``[contact]`` every key has the seed's default; in a
     stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh."""
 
-    stiffness: Optional[Union[Literal["hertz", "iso6336"], PositiveFloat]] = None
-    exponent: Optional[Annotated[float, Field(ge=1.0, le=3.0)]] = None
-    damping_Ns_mm: Optional[NonNegFloat] = None
-    full_damping_penetration_mm: Optional[PositiveFloat] = None
-    time_varying: Optional[bool] = None
+    stiffness: Literal["hertz", "iso6336"] | Stiffness | None = None
+    exponent: Annotated[float, Field(ge=1.0, le=3.0)] | None = None
+    damping_Ns_mm: DampingNsmm | None = None
+    full_damping_penetration_mm: DampingDepthMm | None = None
+    time_varying: bool | None = None
 
 
 class Contact(_Table):
-    stiffness: Union[Literal["hertz", "iso6336"], PositiveFloat] = "hertz"
+    stiffness: Literal["hertz", "iso6336"] | Stiffness = "hertz"
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
-    damping_Ns_mm: NonNegFloat = 50.0
-    full_damping_penetration_mm: PositiveFloat = 0.1
+    damping_Ns_mm: DampingNsmm = 50.0
+    full_damping_penetration_mm: DampingDepthMm = 0.1
     time_varying: bool = False
 
-    def merged(self, override: Optional[ContactOverride]) -> "Contact":
+    def merged(self, override: ContactOverride | None) -> Contact:
         """This law with a stage's overrides applied."""
         if override is None:
             return self
@@ -104,35 +158,40 @@ class Contact(_Table):
         return self.model_copy(update=changes)
 
 
+TorsionStiffness = Annotated[float, Field(ge=1.0, le=1e11)]  # N·m/rad: a soft elastomer coupling ~10, a 1 m shaft ~1e9
+TorsionDamping = Annotated[float, Field(ge=0, le=1e8), NotTiny(1e-9)]  # N·m·s/rad
+BodyInertia = Annotated[float, Field(ge=1e-9, le=1e7)]  # kg·m²: a micro-motor rotor ~1e-7, a mill drum ~1e5
+
+
 class ShaftSpring(_Table):
     """The torsional stiffness of the shaft that carries this stage's gear and the next stage's pinion
     (absent: a rigid shaft, one body). For a solid round shaft k = G pi d^4 / (32 L)."""
 
-    stiffness_Nm_rad: PositiveFloat
-    damping_Nms_rad: NonNegFloat = 0.0
+    stiffness_Nm_rad: TorsionStiffness
+    damping_Nms_rad: TorsionDamping = 0.0
 
 
 class Stage(_Table):
     """One gear pair, in the order power flows. The pinion drives the gear."""
 
-    normal_module_mm: Annotated[float, Field(gt=0, le=1e4)]
+    normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]  # watch gears ~0.05; the largest girth gears ~50
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
     pinion: Gear
     gear: Gear
-    backlash_mm: NonNegFloat = 0.0
-    efficiency: Annotated[float, Field(gt=0, le=1)] = 1.0
-    mesh: Optional[ContactOverride] = None
+    backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
+    efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
+    mesh: ContactOverride | None = None
     basic_rack: BasicRack = BasicRack()
-    shaft: Optional[ShaftSpring] = None
+    shaft: ShaftSpring | None = None
 
 
 class _Coupled(_Table):
     """A body outside the reducer and the torsional coupling that joins it (both or neither)."""
 
-    inertia_kg_m2: Optional[Annotated[float, Field(gt=0, le=1e12)]] = None
-    coupling_stiffness_Nm_rad: Optional[PositiveFloat] = None
-    coupling_damping_Nms_rad: NonNegFloat = 0.0
+    inertia_kg_m2: BodyInertia | None = None
+    coupling_stiffness_Nm_rad: TorsionStiffness | None = None
+    coupling_damping_Nms_rad: TorsionDamping = 0.0
 
     def _check_coupling(self, table: str) -> None:
         if (self.inertia_kg_m2 is None) != (self.coupling_stiffness_Nm_rad is None):
@@ -148,18 +207,18 @@ class Input(_Coupled):
     """The input drive. Exactly one speed key: the prescribed speed (``drive = "speed"``) or, with
     ``drive = "torque"``, the nominal speed the train starts at."""
 
-    speed_deg_s: Optional[PositiveFloat] = None
-    speed_rpm: Optional[PositiveFloat] = None
-    speed_rad_s: Optional[PositiveFloat] = None
-    ramp_s: NonNegFloat = 0.0
+    speed_deg_s: SpeedDegS | None = None
+    speed_rpm: SpeedRpm | None = None
+    speed_rad_s: SpeedRadS | None = None
+    ramp_s: Seconds = 0.0
     drive: Literal["speed", "torque"] = "speed"
-    torque_Nm: Optional[Torque] = None
-    torque_Nmm: Optional[Torque] = None
+    torque_Nm: TorqueNm | None = None
+    torque_Nmm: TorqueNmm | None = None
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
 
     @model_validator(mode="after")
-    def _one_speed_one_torque(self) -> "Input":
+    def _one_speed_one_torque(self) -> Input:
         given = [k for k in ("speed_deg_s", "speed_rpm", "speed_rad_s") if getattr(self, k) is not None]
         if len(given) != 1:
             raise ValueError(
@@ -186,10 +245,11 @@ class Input(_Coupled):
             return self.speed_rad_s
         if self.speed_rpm is not None:
             return self.speed_rpm * 2 * math.pi / 60
+        assert self.speed_deg_s is not None  # the validator requires exactly one speed
         return math.radians(self.speed_deg_s)
 
     @property
-    def torque_Nm_value(self) -> Optional[float]:
+    def torque_Nm_value(self) -> float | None:
         if self.torque_Nm is not None:
             return self.torque_Nm
         if self.torque_Nmm is not None:
@@ -201,15 +261,15 @@ class Load(_Coupled):
     """Torque on the output shaft (or on the driven machine, when ``inertia_kg_m2`` and a coupling are
     given), resisting its rotation (negative: load reversal)."""
 
-    torque_Nmm: Optional[Torque] = None
-    torque_Nm: Optional[Torque] = None
-    ramp_s: NonNegFloat = 0.0
+    torque_Nmm: TorqueNmm | None = None
+    torque_Nm: TorqueNm | None = None
+    ramp_s: Seconds = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
     power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
 
     @model_validator(mode="after")
-    def _one_torque(self) -> "Load":
+    def _one_torque(self) -> Load:
         given = [k for k in LOAD_TORQUE_KEYS if getattr(self, k) is not None]
         if len(given) != 1:
             raise ValueError(f"give exactly one of {', '.join(LOAD_TORQUE_KEYS)}"
@@ -229,12 +289,12 @@ class Load(_Coupled):
 
 
 class Target(_Table):
-    output_speed_rpm: Optional[PositiveFloat] = None
-    output_speed_deg_s: Optional[PositiveFloat] = None
+    output_speed_rpm: Annotated[float, Field(ge=1e-06, le=MAX_SPEED_RPM)] | None = None
+    output_speed_deg_s: Annotated[float, Field(ge=6e-06, le=MAX_SPEED_RPM * 6)] | None = None
     tolerance_percent: Annotated[float, Field(gt=0, le=100)] = 5.0
 
     @model_validator(mode="after")
-    def _one_speed(self) -> "Target":
+    def _one_speed(self) -> Target:
         if (self.output_speed_rpm is None) == (self.output_speed_deg_s is None):
             raise ValueError("give exactly one of output_speed_rpm, output_speed_deg_s")
         return self
@@ -243,6 +303,7 @@ class Target(_Table):
     def output_speed_rpm_value(self) -> float:
         if self.output_speed_rpm is not None:
             return self.output_speed_rpm
+        assert self.output_speed_deg_s is not None  # the validator requires exactly one speed
         return self.output_speed_deg_s / 6.0
 
 
@@ -252,25 +313,25 @@ MAX_STEPS = 2_000_000
 
 
 class Simulation(_Table):
-    duration_s: PositiveFloat = 0.5
+    duration_s: Annotated[float, Field(ge=1e-4, le=MAX_TIME_S)] = 0.5
     steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] = 2000
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
-    window_start_s: Optional[NonNegFloat] = None
+    window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
 
 
 class DesignFile(_Table):
     """The whole design file."""
 
-    title: str = ""
-    materials: dict[str, Material] = Field(
+    title: Annotated[str, Field(max_length=200)] = ""
+    materials: Annotated[dict[str, Material], Field(max_length=50)] = Field(
         default_factory=lambda: {"steel": Material(density_kg_m3=7800, youngs_modulus_MPa=2.07e5, poisson_ratio=0.29)}
     )
     stage: Annotated[list[Stage], Field(min_length=1, max_length=50)]
     contact: Contact = Contact()
     input: Input
     load: Load
-    target: Optional[Target] = None
+    target: Target | None = None
     simulation: Simulation = Simulation()
 
     @model_validator(mode="after")
@@ -284,7 +345,7 @@ class DesignFile(_Table):
         return self
 
     @model_validator(mode="after")
-    def _no_shaft_after_last_stage(self) -> "DesignFile":
+    def _no_shaft_after_last_stage(self) -> DesignFile:
         if self.stage[-1].shaft is not None:
             raise ValueError(f"stage[{len(self.stage) - 1}].shaft: the last stage's gear sits on the output shaft, "
                              "which has no next pinion; a flexible output is [load] inertia_kg_m2 with "

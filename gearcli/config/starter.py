@@ -106,7 +106,7 @@ def json_schema() -> dict:
         "title": "gearcli design file",
         "description": (
             "A multi-stage helical gear reducer for gearcli (TOML). Units are in the key names; "
-            "unknown keys are errors. See DESIGN.md section 2."
+            "unknown keys are errors. See docs/design-file.md."
         ),
         **{k: v for k, v in schema.items() if k not in ("title", "description")},
     }

@@ -1,4 +1,4 @@
-"""Design checks: errors that stop the design, warnings that do not (DESIGN.md sections 1 and 3).
+"""Design checks: errors that stop the design, warnings that do not (docs/physics.md, "Design calculations").
 
 Errors raise ``DesignError`` with a 0-based key path (``stage[0].gear.hand``); the CLI adds the file.
 Warnings are one line each, name the stage (1-based, as an engineer counts) and carry the numbers.
@@ -21,7 +21,8 @@ Choices where the contract is silent:
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Iterable, Optional
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
@@ -39,7 +40,7 @@ MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 
 
 # ------------------------------------------------------------------------------------------ errors
-def check_inputs(cfg: "DesignFile") -> None:
+def check_inputs(cfg: DesignFile) -> None:
     """Refuse unknown materials and impossible helix hands, before any arithmetic."""
     for k, stage in enumerate(cfg.stage):
         for part in ("pinion", "gear"):
@@ -47,17 +48,17 @@ def check_inputs(cfg: "DesignFile") -> None:
         check_hands(stage, k)
 
 
-def check_material(name: str, materials: dict[str, "Material"], key: str) -> None:
+def check_material(name: str, materials: dict[str, Material], key: str) -> None:
     if name not in materials:
         known = ", ".join(sorted(materials)) or "none"
         raise DesignError(f"unknown material {name!r}: define [materials.{name}] (defined: {known})", key=key)
 
 
-def check_hands(stage: "Stage", k: int) -> None:
+def check_hands(stage: Stage, k: int) -> None:
     """A helical pair (β > 0) needs a hand on each gear, and opposite hands (external pair)."""
     if stage.helix_angle_deg == 0.0:
         return
-    hands = {"pinion": stage.pinion.hand, "gear": stage.gear.hand}
+    hands = {"pinion": stage.pinion.hand or "", "gear": stage.gear.hand or ""}
     for part, other in (("pinion", "gear"), ("gear", "pinion")):
         if hands[part] not in HANDS:
             need = f'"{OPPOSITE[hands[other]]}" (opposite to the {other})' if hands[other] in HANDS \
@@ -71,10 +72,10 @@ def check_hands(stage: "Stage", k: int) -> None:
 
 
 # ---------------------------------------------------------------------------------------- warnings
-def design_warnings(cfg: "DesignFile", stages: Iterable["StageResult"], output_speed_rpm: float) -> tuple[str, ...]:
+def design_warnings(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[str, ...]:
     """Every warning of the design, train-level first, then stage by stage."""
     found = [target_speed_warning(cfg, output_speed_rpm)]
-    for stage, stage_cfg in zip(stages, cfg.stage):
+    for stage, stage_cfg in zip(stages, cfg.stage, strict=True):
         found.append(spur_hand_warning(stage.index, stage_cfg))
         found.extend(undercut_warning(stage, gear) for gear in (stage.pinion, stage.gear))
         found.append(contact_ratio_warning(stage))
@@ -84,7 +85,7 @@ def design_warnings(cfg: "DesignFile", stages: Iterable["StageResult"], output_s
     return tuple(w for w in found if w)
 
 
-def target_speed_warning(cfg: "DesignFile", output_speed_rpm: float) -> Optional[str]:
+def target_speed_warning(cfg: DesignFile, output_speed_rpm: float) -> str | None:
     if cfg.target is None:
         return None
     target = cfg.target.output_speed_rpm_value
@@ -95,7 +96,7 @@ def target_speed_warning(cfg: "DesignFile", output_speed_rpm: float) -> Optional
             f"(tolerance ±{cfg.target.tolerance_percent:g} %)")
 
 
-def spur_hand_warning(index: int, stage_cfg: "Stage") -> Optional[str]:
+def spur_hand_warning(index: int, stage_cfg: Stage) -> str | None:
     given = [f'{part} "{getattr(stage_cfg, part).hand}"' for part in ("pinion", "gear")
              if getattr(stage_cfg, part).hand in HANDS]
     if stage_cfg.helix_angle_deg != 0.0 or not given:
@@ -104,7 +105,7 @@ def spur_hand_warning(index: int, stage_cfg: "Stage") -> Optional[str]:
             "the hands are ignored (forgot helix_angle_deg?)")
 
 
-def undercut_warning(stage: "StageResult", gear: "GearResult") -> Optional[str]:
+def undercut_warning(stage: StageResult, gear: GearResult) -> str | None:
     beta, alpha_t = math.radians(stage.helix_angle_deg), math.radians(stage.transverse_pressure_angle_deg)
     z_min = undercut_limit_teeth(gear.profile_shift, beta, alpha_t)
     if gear.teeth >= z_min:
@@ -115,7 +116,7 @@ def undercut_warning(stage: "StageResult", gear: "GearResult") -> Optional[str]:
             f"use a profile shift x ≥ {x_needed:+.2f} or more teeth")
 
 
-def contact_ratio_warning(stage: "StageResult") -> Optional[str]:
+def contact_ratio_warning(stage: StageResult) -> str | None:
     eps, total = stage.contact_ratio_transverse, stage.contact_ratio_total
     if eps < 1.0:
         overlap = "the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous"
@@ -127,7 +128,7 @@ def contact_ratio_warning(stage: "StageResult") -> Optional[str]:
     return None
 
 
-def face_width_warning(stage: "StageResult") -> Optional[str]:
+def face_width_warning(stage: StageResult) -> str | None:
     ratio = stage.face_width_mm / stage.pinion.pitch_diameter_mm
     low, high = FACE_RATIO_RANGE
     if ratio > high:
@@ -141,7 +142,7 @@ def face_width_warning(stage: "StageResult") -> Optional[str]:
     return None
 
 
-def tip_thickness_warning(stage: "StageResult", gear: "GearResult") -> Optional[str]:
+def tip_thickness_warning(stage: StageResult, gear: GearResult) -> str | None:
     m_n = stage.normal_module_mm
     s_an = normal_tip_thickness_mm(gear.teeth, m_n, gear.profile_shift, math.radians(stage.helix_angle_deg),
                                    math.radians(stage.normal_pressure_angle_deg), gear.tip_diameter_mm)
@@ -174,5 +175,5 @@ def _ordinal(n: int) -> str:
     return {2: "second", 3: "third"}.get(n, f"{n}th")
 
 
-def _part(stage: "StageResult", gear: "GearResult") -> str:
+def _part(stage: StageResult, gear: GearResult) -> str:
     return "pinion" if gear is stage.pinion else "gear"

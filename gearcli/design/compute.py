@@ -1,4 +1,4 @@
-"""``compute_design``: the design file in, a ``DesignResult`` out (DESIGN.md section 3).
+"""``compute_design``: the design file in, a ``DesignResult`` out (docs/physics.md, "Design calculations").
 
 This module only assembles: every formula lives, with its source, in ``geometry`` (ISO 21771),
 ``kinematics``, ``forces``, ``stiffness`` (Hertz, ISO 6336-1), ``inertia`` and ``checks``.
@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
 
 
-def compute_design(cfg: "DesignFile") -> DesignResult:
+def compute_design(cfg: DesignFile) -> DesignResult:
     """Ratios, speeds, torques, geometry, contact ratios, stiffness, static forces and warnings.
 
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
@@ -71,7 +71,7 @@ def _require_finite(obj, key: str) -> None:
                               "module, face width, density, speed and torque", key=key)
 
 
-def _geometry(stage: "Stage", k: int) -> PairGeometry:
+def _geometry(stage: Stage, k: int) -> PairGeometry:
     try:
         return pair_geometry(stage.normal_module_mm, stage.normal_pressure_angle_deg, stage.helix_angle_deg,
                              (stage.pinion.teeth, stage.gear.teeth),
@@ -111,8 +111,8 @@ def _iso_factors(stage: Stage) -> Iso6336Factors:
                           C_B=stf.basic_rack_factor(stage.normal_pressure_angle_deg, stage.basic_rack.dedendum))
 
 
-def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForces,
-               materials: tuple["Material", "Material"]) -> _Stiffness:
+def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
+               materials: tuple[Material, Material]) -> _Stiffness:
     """Hertz (seed 3.3), ISO 6336-1 c' and c_γα, and the static point of the stage's own contact law."""
     stage, law = cfg.stage[k], cfg.contact_for(k)
     radius = stf.equivalent_radius_mm(0.5 * geo.pitch_diameter_mm[0], 0.5 * geo.pitch_diameter_mm[1])
@@ -140,14 +140,14 @@ def _stiffness(cfg: "DesignFile", k: int, geo: PairGeometry, forces: StaticForce
                       stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0), factors, line_load)
 
 
-def _gear_result(gear: "Gear", i: int, geo: PairGeometry, helical: bool, density_kg_m3: float,
+def _gear_result(gear: Gear, i: int, geo: PairGeometry, helical: bool, density_kg_m3: float,
                  speed_rad_s: float, torque_Nmm: float) -> GearResult:
     d = geo.pitch_diameter_mm[i]
     d_m = mean_body_diameter_mm(geo.tip_diameter_mm[i], geo.root_diameter_mm[i])
     body = body_inertia_kg_m2(gear.inertia_kg_m2, density_kg_m3, gear.face_width_mm, d_m, gear.bore_diameter_mm)
     return GearResult(
         teeth=gear.teeth,
-        hand=gear.hand if helical else "spur",
+        hand=(gear.hand or "spur") if helical else "spur",
         profile_shift=gear.profile_shift,
         face_width_mm=gear.face_width_mm,
         pitch_diameter_mm=d,
@@ -197,7 +197,7 @@ def _resonance(pinion: GearResult, gear: GearResult, mesh_N_mm_um: float, line_l
     return _Resonance(m_red, n_e1, ratio, lower, res.resonance_range(ratio, lower))
 
 
-def _stage_result(cfg: "DesignFile", k: int, kin: Train) -> StageResult:
+def _stage_result(cfg: DesignFile, k: int, kin: Train) -> StageResult:
     stage = cfg.stage[k]
     geo = _geometry(stage, k)
     materials = (cfg.materials[stage.pinion.material], cfg.materials[stage.gear.material])

@@ -1,4 +1,4 @@
-"""Static tooth forces on the pinion's reference (pitch) circle (DESIGN.md section 3, seed section 4.2)."""
+"""Static tooth forces on the pinion's reference (pitch) circle (docs/physics.md, "Design calculations", seed section 4.2)."""
 
 from __future__ import annotations
 

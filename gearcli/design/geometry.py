@@ -1,4 +1,4 @@
-"""Cylindrical involute gear geometry, ISO 21771 notation (DESIGN.md section 3).
+"""Cylindrical involute gear geometry, ISO 21771 notation (docs/physics.md, "Design calculations").
 
 Angles are in radians, lengths in mm (the unit of the design file's keys), every name says which.
 Each function is one formula of ISO 21771:2007; ``pair_geometry`` strings them together for one
@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
 
 HALF_PI = 0.5 * math.pi
 
@@ -26,7 +25,7 @@ HALF_PI = 0.5 * math.pi
 class InfeasibleGeometry(ValueError):
     """A pair that cannot mesh. ``part`` ("pinion", "gear" or None) and ``field`` name the key to blame."""
 
-    def __init__(self, message: str, part: Optional[str] = None, field: Optional[str] = None):
+    def __init__(self, message: str, part: str | None = None, field: str | None = None):
         super().__init__(message)
         self.message = message
         self.part = part
@@ -220,12 +219,14 @@ def pair_geometry(normal_module: float, normal_pressure_deg: float, helix_deg: f
     m_t = transverse_module_mm(normal_module, beta)
     a_t = transverse_pressure_angle_rad(a_n, beta)
     a_wt = working_pressure_angle_rad(a_t, a_n, shifts[0] + shifts[1], teeth[0] + teeth[1])
-    d = tuple(pitch_diameter_mm(z, m_t) for z in teeth)
-    d_b = tuple(base_diameter_mm(di, a_t) for di in d)
+    d = (pitch_diameter_mm(teeth[0], m_t), pitch_diameter_mm(teeth[1], m_t))
+    d_b = (base_diameter_mm(d[0], a_t), base_diameter_mm(d[1], a_t))
     a_w = center_distance_mm(d[0], d[1], a_t, a_wt)
     k = tip_alteration_coefficient(a_w, 0.5 * (d[0] + d[1]), shifts[0] + shifts[1], normal_module)
-    d_a = tuple(tip_diameter_mm(di, normal_module, x, rack.addendum, k) for di, x in zip(d, shifts))
-    d_f = tuple(root_diameter_mm(di, normal_module, x, rack.dedendum) for di, x in zip(d, shifts))
+    d_a = (tip_diameter_mm(d[0], normal_module, shifts[0], rack.addendum, k),
+           tip_diameter_mm(d[1], normal_module, shifts[1], rack.addendum, k))
+    d_f = (root_diameter_mm(d[0], normal_module, shifts[0], rack.dedendum),
+           root_diameter_mm(d[1], normal_module, shifts[1], rack.dedendum))
     _require_sound_blanks(d_b, d_a, d_f)
     p_bt = transverse_base_pitch_mm(m_t, a_t)
     eps_a = transverse_contact_ratio(d_a[0], d_b[0], d_a[1], d_b[1], a_w, a_wt, p_bt)
@@ -239,7 +240,7 @@ def pair_geometry(normal_module: float, normal_pressure_deg: float, helix_deg: f
 
 
 def _require_sound_blanks(d_b: tuple, d_a: tuple, d_f: tuple) -> None:
-    for part, base, tip, root in zip(("pinion", "gear"), d_b, d_a, d_f):
+    for part, base, tip, root in zip(("pinion", "gear"), d_b, d_a, d_f, strict=True):
         if root <= 0.0:
             raise InfeasibleGeometry(f"root diameter d_f = {root:.4g} mm ≤ 0: too few teeth for this "
                                      "negative profile shift", part, "profile_shift")

@@ -1,9 +1,8 @@
-"""Mass moments of inertia of gears and shafts (DESIGN.md section 2)."""
+"""Mass moments of inertia of gears and shafts (docs/design-file.md)."""
 
 from __future__ import annotations
 
 import math
-from typing import Optional
 
 MM = 1e-3  # m per mm
 
@@ -32,7 +31,7 @@ def body_inertia_kg_m2(given_kg_m2: float | None, density_kg_m3: float, face_wid
     return annulus_inertia_kg_m2(density_kg_m3, face_width_mm, mean_diameter_mm, bore_mm or 0.0)
 
 
-def gear_inertia_kg_m2(given_kg_m2: Optional[float], density_kg_m3: float, face_width_mm: float,
+def gear_inertia_kg_m2(given_kg_m2: float | None, density_kg_m3: float, face_width_mm: float,
                        pitch_diameter_mm: float) -> float:
     """The design file's ``inertia_kg_m2`` if given, else a solid disc of pitch diameter and face width."""
     if given_kg_m2 is not None:
@@ -42,5 +41,5 @@ def gear_inertia_kg_m2(given_kg_m2: Optional[float], density_kg_m3: float, face_
 
 def shaft_inertias_kg_m2(pinions: tuple[float, ...], gears: tuple[float, ...]) -> tuple[float, ...]:
     """Shaft 1: pinion 1; shaft k+1: gear k + pinion k+1 (one rigid body); last shaft: the last gear."""
-    inner = tuple(g + p for g, p in zip(gears[:-1], pinions[1:]))
+    inner = tuple(g + p for g, p in zip(gears[:-1], pinions[1:], strict=True))
     return (pinions[0], *inner, gears[-1])

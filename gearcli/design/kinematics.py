@@ -1,4 +1,4 @@
-"""Speeds down the train and torques back up it (DESIGN.md section 3).
+"""Speeds down the train and torques back up it (docs/physics.md, "Design calculations").
 
 Shaft 1 carries pinion 1 (the input); shaft k+1 carries gear k and pinion k+1 (rigid); the last
 shaft carries the last gear and the load. Every speed is positive in its shaft's own running
@@ -47,7 +47,7 @@ def stage_torques_Nmm(load_torque_Nmm: float, ratios: tuple[float, ...],
     """
     torques: list[tuple[float, float]] = []
     gear_torque = load_torque_Nmm
-    for ratio, eta in zip(reversed(ratios), reversed(efficiencies)):
+    for ratio, eta in zip(reversed(ratios), reversed(efficiencies), strict=True):
         pinion = pinion_torque_Nmm(gear_torque, ratio, eta)
         torques.append((pinion, gear_torque))
         gear_torque = pinion

@@ -14,7 +14,7 @@ Hertz and numeric laws need no floor; for e > 1 an unloaded mesh has h_0 = 0 and
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Union
+from typing import TYPE_CHECKING
 
 from gearcli.design.forces import normal_force_N
 
@@ -132,7 +132,7 @@ def mesh_stiffness_beta_N_mm_um(mesh_stiffness: float) -> float:
 
 
 def iso6336_normal_stiffness_N_mm(mesh_stiffness: float, face_width_mm: float, base_helix_rad: float) -> float:
-    """k_n = k_t / cos² β_b with k_t = c_γα b (DESIGN.md section 4); N/µm × 1000 = N/mm."""
+    """k_n = k_t / cos² β_b with k_t = c_γα b (docs/physics.md, "Torsional model"); N/µm × 1000 = N/mm."""
     return mesh_stiffness * face_width_mm * UM_PER_MM / math.cos(base_helix_rad) ** 2
 
 
@@ -142,7 +142,7 @@ def iso6336_coefficient_N_mm_e(normal_stiffness_N_mm: float, normal_force_N: flo
 
 
 # ---------------------------------------------------------------------------- the contact law's K
-def law_coefficient_N_mm_e(stiffness: Union[str, float], exponent: float, *, hertz: float,
+def law_coefficient_N_mm_e(stiffness: str | float, exponent: float, *, hertz: float,
                            iso_normal_stiffness_N_mm: float, iso_reference_normal_force_N: float) -> float:
     """K of F = K h^e for a law ``stiffness`` = "hertz" | "iso6336" | a number (N/mm^e)."""
     if stiffness == "hertz":
@@ -159,11 +159,11 @@ def iso_reference_normal_force_N(tangential_force_N: float, face_width_mm: float
                           normal_pressure_rad, helix_rad)
 
 
-def contact_stiffness_N_mm_e(stage: "StageResult", contact: "Contact") -> float:
+def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
 
     "hertz": the stage's 4/3 √R E*; a number: that number; "iso6336": K such that at the static load
-    F_n0 the mesh deflects h_0 = F_n0 / k_n, k_n = c_γα b / cos² β_b (DESIGN.md section 4); F_n0 is
+    F_n0 the mesh deflects h_0 = F_n0 / k_n, k_n = c_γα b / cos² β_b (docs/physics.md, "Torsional model"); F_n0 is
     floored at 1 N/mm of face width when the load is (near) zero (see the module docstring).
     """
     beta_b = math.radians(stage.base_helix_angle_deg)

@@ -1,7 +1,8 @@
 """Atomic file output: write a temporary file beside the target, then rename it into place.
 
 A failed or interrupted run therefore never leaves a truncated file, and an existing file is only
-replaced once the new content is complete (DESIGN.md section 5).
+replaced once the new content is complete (docs/output.md, "Files"). Which paths may be written at all
+(no directory, device, FIFO or input file) is decided before by :mod:`gearcli.io.output`.
 """
 
 from __future__ import annotations
@@ -23,7 +24,9 @@ def _final_mode(target: Path) -> int:
 
 def write_atomic(path: str | os.PathLike, data: str | bytes) -> None:
     """Write ``data`` to ``path`` atomically (same-directory temp file, fsync, ``os.replace``)."""
-    target = Path(path)
+    target = Path(os.path.realpath(path))  # through a symlink: the link stays, its target is replaced
+    if target.exists() and not target.is_file():
+        raise IsADirectoryError(21, "not a regular file", str(path))
     payload = data.encode("utf-8") if isinstance(data, str) else data
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
     try:

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import gearcli
 from gearcli.io.report_sections import Section, method_paragraph, sections, solver_lines
+from gearcli.io.text import markdown_inline, visible
 from gearcli.report.result import Report
 
 
 def _escape(cell: str) -> str:
-    return cell.replace("|", "\\|")
+    """A table cell: literal text (controls escaped, so no line break can end the table), pipes escaped."""
+    return visible(cell).replace("|", "\\|")
 
 
 def pipe_table(section: Section) -> str:
@@ -24,12 +26,12 @@ def _section(section: Section, extra: str = "") -> str:
         parts += [extra, ""]
     parts.append(pipe_table(section))
     if section.notes:
-        parts += [""] + [f"- {n}" for n in section.notes]
+        parts += [""] + [f"- {visible(n)}" for n in section.notes]
     return "\n".join(parts) + "\n"
 
 
 def report_markdown(r: Report, sha256: str = "") -> str:
-    head = [f"# gearcli report: {r.title or 'design'}", ""]
+    head = [f"# gearcli report: {markdown_inline(r.title or 'design')}", ""]
     meta = f"gearcli {gearcli.__version__}" + (f", input sha256 `{sha256[:16]}…`" if sha256 else "")
     head += [meta, ""]
     body = []
@@ -41,6 +43,6 @@ def report_markdown(r: Report, sha256: str = "") -> str:
     if r.accuracy is None:
         body.append("## Numerical accuracy\n\nSkipped (`--quick`).\n")
     body.append("## Solver and energy balance\n\n" + "\n".join(f"- {line}" for line in solver_lines(r)) + "\n")
-    warnings = "\n".join(f"- {w}" for w in r.warnings) if r.warnings else "None."
+    warnings = "\n".join(f"- {visible(w)}" for w in r.warnings) if r.warnings else "None."
     body.append(f"## Warnings\n\n{warnings}\n")
     return "\n".join(head) + "\n" + "\n".join(body)

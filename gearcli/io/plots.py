@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
-from typing import Optional
 
 import numpy as np
 
@@ -65,7 +64,7 @@ def _zoom(ax, t: np.ndarray, y: np.ndarray, window, color: str) -> None:
 def speeds_figure(r: Report):
     sim, shafts = r.simulation, r.design.shafts
     fig, axes = _figure(len(shafts), 2, sharex="col", height=1.8, width=12.0, width_ratios=(3, 2))
-    for (ax, zoom), shaft in zip(axes, shafts):
+    for (ax, zoom), shaft in zip(axes, shafts, strict=True):
         series = sim.channels.get(f"shaft{shaft.index}_speed_deg_s")
         _shade_window(ax, sim.window_s)
         if series is not None:
@@ -88,7 +87,7 @@ def speeds_figure(r: Report):
 def mesh_forces_figure(r: Report):
     sim = r.simulation
     fig, axes = _figure(len(r.stages), 2, sharex="col", height=2.1, width=12.0, width_ratios=(3, 2))
-    for (ax, zoom), s in zip(axes, r.stages):
+    for (ax, zoom), s in zip(axes, r.stages, strict=True):
         series = sim.channels.get(f"stage{s.stage}_tangential_N")
         color = f"C{(s.stage - 1) % 10}"
         _shade_window(ax, sim.window_s)
@@ -115,7 +114,7 @@ def mesh_forces_figure(r: Report):
 def spectrum_figure(r: Report):
     fig, axes = _figure(len(r.stages), sharex=True, height=2.0)
     natural = [f for f in r.natural_frequencies_Hz if f > 0]
-    for ax, s in zip(axes[:, 0], r.stages):
+    for ax, s in zip(axes[:, 0], r.stages, strict=True):
         sp = s.spectrum
         if sp.frequency_Hz.size > 1:
             amp = np.where(sp.amplitude_N > 0, sp.amplitude_N, np.nan)
@@ -154,13 +153,14 @@ ERROR_PANELS = (("speed", "mean output speed"), ("mean_force", "mean F_t (worst 
 
 def work_precision_figure(r: Report):
     study = r.accuracy
+    assert study is not None, "work_precision.png needs the accuracy study"
     fig, axes = _figure(1, 3, sharey=True, height=3.9, width=12.5)
     methods = list(dict.fromkeys(run.method for run in study.runs))
     unc = study.reference.uncertainty
     ok = [x for x in study.runs if x.failure is None]
     errors = [e for x in ok for q, _ in ERROR_PANELS if (e := x.error(q))] + [unc, study.requested_accuracy]
     low, high = min(e for e in errors if e > 0) / 4, max(errors) * 3
-    for ax, (q, title) in zip(axes[0], ERROR_PANELS):
+    for ax, (q, title) in zip(axes[0], ERROR_PANELS, strict=True):
         for i, m in enumerate(methods):
             runs = sorted((x for x in ok if x.method == m and x.error(q)), key=lambda x: x.rtol, reverse=True)
             if not runs:
@@ -195,6 +195,9 @@ def _mark(ax, run, q: str, marker: str, label: str, size: float) -> None:
         ax.plot([run.wall_s], [run.error(q)], marker, mfc="none", mec="k", ms=size, label=label)
 
 
+FIGURE_NAMES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
+
+
 def write_plots(r: Report, directory: str | Path) -> list[Path]:
     """Write the figures into ``directory`` (created if needed); returns the paths written.
     ``work_precision.png`` needs the accuracy study, so it is left out with ``--quick``."""
@@ -208,7 +211,7 @@ def write_plots(r: Report, directory: str | Path) -> list[Path]:
     return [_save(make(r), out / name) for name, make in figures]
 
 
-def _figure_check() -> Optional[None]:
+def _figure_check() -> None:
     """Fail early (before any directory is made) when matplotlib is missing."""
     try:
         import matplotlib  # noqa: F401

@@ -11,7 +11,6 @@ relative (not %); an error below the reference's uncertainty keeps its number an
 from __future__ import annotations
 
 import dataclasses
-from typing import Optional
 
 from gearcli.io.serialize import plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
@@ -60,11 +59,11 @@ def stage_dict(s: StageReport) -> dict:
     }
 
 
-def run_dict(r: Optional[AccuracyRun]) -> Optional[dict]:
+def run_dict(r: AccuracyRun | None) -> dict | None:
     return None if r is None else plain(dataclasses.asdict(r))
 
 
-def accuracy_dict(study: Optional[AccuracyStudy]) -> Optional[dict]:
+def accuracy_dict(study: AccuracyStudy | None) -> dict | None:
     if study is None:
         return None
     ref = dataclasses.asdict(study.reference)

@@ -9,7 +9,6 @@ cannot resolve.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional, Sequence
 
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
 
@@ -33,15 +32,15 @@ class Section:
     notes: tuple[str, ...] = ()
 
 
-def g(v: Optional[float], digits: int = 5) -> str:
+def g(v: float | None, digits: int = 5) -> str:
     return "–" if v is None else f"{v:.{digits}g}"
 
 
-def percent(v: Optional[float]) -> str:
+def percent(v: float | None) -> str:
     return "–" if v is None else f"{v:+.3g}"
 
 
-def quantity_label(stage: Optional[int], quantity: str) -> str:
+def quantity_label(stage: int | None, quantity: str) -> str:
     if stage is not None and quantity in STAGE_LABELS:
         return STAGE_LABELS[quantity]
     return LABELS.get(quantity, quantity)
@@ -104,7 +103,7 @@ def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
 
 def accuracy_section(study: AccuracyStudy) -> Section:
     ref, rec = study.reference, study.recommended
-    rows = []
+    rows: list[tuple[str, ...]] = []
     for run in study.runs:
         marks = " ".join(m for m, on in (("★", run is rec), ("file", run.file_settings)) if on)
         method = run.method if run.method == run.method_used else f"{run.method} ({run.method_used})"

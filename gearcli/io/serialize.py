@@ -1,4 +1,4 @@
-"""Result objects to plain dicts and CSV text: the machine-readable contract of DESIGN.md section 5."""
+"""Result objects to plain dicts and CSV text: the machine-readable contract of docs/output.md."""
 
 from __future__ import annotations
 
@@ -7,9 +7,11 @@ import dataclasses
 import io
 import json
 import math
-from typing import Any, Iterable, Sequence
+from collections.abc import Iterable, Sequence
+from typing import Any
 
 import gearcli
+from gearcli.io.text import csv_text_cell
 from gearcli.results import DesignResult, SimulationResult
 
 
@@ -80,6 +82,8 @@ def _cell(v: Any) -> Any:
         if not math.isfinite(v):
             raise ValueError("non-finite value in CSV output")
         return repr(v)
+    if isinstance(v, str):  # text, never a number: no spreadsheet formula, no control characters
+        return csv_text_cell(v)
     return v
 
 

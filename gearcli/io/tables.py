@@ -1,29 +1,98 @@
-"""Rich tables for a person at a terminal. Builders return renderables; ``render`` turns them into text."""
+"""Rich tables for a person at a terminal. Builders return renderables; ``render`` turns them into text.
+
+A table never drops a number (docs/output.md, "Tables"): a table with a column per stage is split into
+several tables of as many stage columns as the width holds (stages 1–4, 5–8 ...), and every cell folds
+onto a second line rather than being cut with an ellipsis. Titles and labels are ``Text``: literal,
+never rich markup, control characters escaped.
+"""
 
 from __future__ import annotations
 
 import io
-from typing import Iterable, Sequence
+import os
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 
-from rich.console import Console, RenderableType
+from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 from rich.table import Table
 from rich.text import Text
 
+from gearcli.io.text import visible
 from gearcli.results import DesignResult, SimulationResult
+
+FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
+MIN_WIDTH = 20
+LABEL_WIDTH = 30  # the quantity column
+CELL_WIDTH = 13  # a number like -1.2346e+05 and its padding
+
+
+def text(value: str, style: str = "") -> Text:
+    """A literal Text (no markup) with control characters escaped."""
+    return Text(visible(value), style=style)
+
+
+def output_width(terminal: bool = False) -> int:
+    """COLUMNS when it is a usable number, else the terminal's width (on a terminal) or :data:`FILE_WIDTH`;
+    never less than :data:`MIN_WIDTH` (``COLUMNS=0`` or garbage means "not told")."""
+    try:
+        cols = int(os.environ.get("COLUMNS", ""))
+    except ValueError:
+        cols = 0
+    if cols >= MIN_WIDTH:
+        return cols
+    if terminal:
+        try:
+            size = os.get_terminal_size().columns
+        except OSError:
+            size = 0
+        return size if size >= MIN_WIDTH else FILE_WIDTH
+    return FILE_WIDTH
+
+
+def terminal_console() -> Console:
+    """The terminal's console: its width (see :func:`output_width`), no markup, no emoji codes."""
+    return Console(width=output_width(terminal=True), markup=False, emoji=False, highlight=False)
+
+
+@dataclass
+class StageColumns:
+    """A quantity table with one column per stage (or shaft), split into as many tables as the width needs."""
+
+    title: str
+    columns: Sequence[str]
+    rows: Sequence[tuple[str, Sequence[str]]]
+
+    def tables(self, width: int) -> list[Table]:
+        per = max(1, (width - LABEL_WIDTH) // CELL_WIDTH)
+        n = len(self.columns)
+        out = []
+        for lo in range(0, n, per):
+            hi = min(n, lo + per)
+            span = self.columns[lo] if hi - lo == 1 else f"{self.columns[lo]}–{self.columns[hi - 1]}"
+            title = self.title if hi - lo == n else f"{self.title} ({span})"
+            out.append(_table(title, self.columns[lo:hi], [(lab, cells[lo:hi]) for lab, cells in self.rows]))
+        return out
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
+        yield from self.tables(options.max_width)
 
 
 def _g(v: float, digits: int = 5) -> str:
     return f"{v:.{digits}g}"
 
 
-def _quantity_table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> Table:
-    table = Table(title=title, title_justify="left", header_style="bold")
-    table.add_column("quantity", style="cyan", no_wrap=True)
+def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> Table:
+    table = Table(title=text(title), title_justify="left", header_style="bold")
+    table.add_column("quantity", style="cyan", overflow="fold")
     for col in columns:
-        table.add_column(col, justify="right")
+        table.add_column(text(col), justify="right", overflow="fold", min_width=1)
     for label, cells in rows:
-        table.add_row(Text(label), *cells)  # Text: '[mm]' is a unit, not rich markup
+        table.add_row(text(label), *(text(c) for c in cells))  # Text: '[mm]' is a unit, not rich markup
     return table
+
+
+def _quantity_table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> StageColumns:
+    return StageColumns(title, list(columns), [(label, list(cells)) for label, cells in rows])
 
 
 def design_tables(r: DesignResult) -> list[RenderableType]:
@@ -87,9 +156,9 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         ("power [kW]", [_g(sh.power_kW) for sh in r.shafts]),
         ("inertia [kg·m²]", [_g(sh.inertia_kg_m2, 4) for sh in r.shafts]),
     ])
-    summary = (f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
-               f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm\n"
-               f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")
+    summary = text(f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
+                   f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm\n"
+                   f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")
     return [geometry, loads, train, summary]
 
 
@@ -98,10 +167,10 @@ def _stats_cells(st) -> list[str]:
 
 
 def simulation_tables(r: SimulationResult) -> list[RenderableType]:
-    forces = Table(title=f"mesh forces over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s",
+    forces = Table(title=text(f"mesh forces over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s"),
                    title_justify="left", header_style="bold")
     for name in ("stage", "channel", "mean", "std", "min", "max"):
-        forces.add_column(name, justify="left" if name in ("stage", "channel") else "right")
+        forces.add_column(name, justify="left" if name in ("stage", "channel") else "right", overflow="fold")
     for s in r.stages:
         forces.add_row(str(s.index), Text("F_t [N]"), *_stats_cells(s.tangential_N))
         forces.add_row("", Text("F_r [N]"), *_stats_cells(s.radial_N))
@@ -114,20 +183,35 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         ("dynamic factor", [_g(s.dynamic_factor, 4) for s in r.stages]),
     ])
     sv = r.solver
-    lines = (f"dynamic ratio {r.ratio:.6g}   output {r.output_speed_deg_s:.6g} °/s\n"
+    lines = text(f"dynamic ratio {r.ratio:.6g}   output {r.output_speed_deg_s:.6g} °/s\n"
              f"solver {sv.method} ({sv.choice_reason})  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  "
              f"njev {sv.njev}  wall {sv.wall_s:.3g} s  energy residual {sv.energy_residual:.2e}")
     return [forces, peaks, lines]
 
 
-def render(renderables: Sequence[RenderableType], *, console: Console | None = None, width: int = 110) -> str | None:
-    """Print to ``console`` (a terminal) or, without one, return plain text (for ``-o`` or a pipe)."""
+class _Buffer(io.StringIO):
+    """A text buffer that tells rich the encoding of where the text goes (ASCII boxes when not UTF)."""
+
+    def __init__(self, encoding: str) -> None:
+        super().__init__()
+        self._encoding = encoding
+
+    @property
+    def encoding(self) -> str:  # type: ignore[override]
+        return self._encoding
+
+
+def render(renderables: Sequence[RenderableType], *, console: Console | None = None,
+           width: int | None = None, encoding: str = "utf-8") -> str | None:
+    """Print to ``console`` (a terminal) or, without one, return plain text (for ``-o`` or a pipe) at
+    ``width`` (default :func:`output_width`), with ASCII boxes when ``encoding`` is not a UTF."""
     if console is not None:
         for item in renderables:
             console.print(item)
         return None
-    buf = io.StringIO()
-    plain = Console(file=buf, width=width, color_system=None, force_terminal=False, highlight=False)
+    buf = _Buffer(encoding)
+    plain = Console(file=buf, width=width or output_width(), color_system=None, force_terminal=False,
+                    highlight=False, markup=False, emoji=False)
     for item in renderables:
         plain.print(item)
     return buf.getvalue()

@@ -1,4 +1,4 @@
-"""The MSC Adams STEP function and the motion of a STEP-ramped speed (DESIGN.md section 4).
+"""The MSC Adams STEP function and the motion of a STEP-ramped speed (docs/physics.md, "Torsional model").
 
 ``STEP(x, x0, h0, x1, h1) = h0 + (h1 - h0) s^2 (3 - 2 s)``, ``s = (x - x0)/(x1 - x0)`` clamped to
 [0, 1]: a cubic with zero slope at both ends. A speed ramped as ``v STEP(t, 0, 0, T, 1)`` has the

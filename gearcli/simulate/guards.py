@@ -18,7 +18,7 @@ starts, naming the mesh that makes the scene stiff and the fix. Below it the exp
 with the stiffness warning of :mod:`gearcli.simulate.run`.
 
 Energy. With non-negative damping the model cannot create energy: kinetic plus stored elastic energy
-can grow at most by the net work the drive and the load put in (DESIGN.md section 4; the damping loss
+can grow at most by the net work the drive and the load put in (docs/physics.md, "Torsional model"; the damping loss
 and the tensile clamp only remove energy). :class:`EnergyWatch` checks this every few steps from the
 state and its work quadratures and flags a growth beyond ``ENERGY_MARGIN`` of the scene's energy scale,
 the signature of a numerical instability, long before the state overflows.

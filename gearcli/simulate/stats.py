@@ -11,7 +11,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.model.spec import ModelSpec
 from gearcli.results import ChannelStats, StageDynamics
 
-SETTLE_FRACTION = 0.2  # of the time left after the slower ramp (DESIGN.md section 4)
+SETTLE_FRACTION = 0.2  # of the time left after the slower ramp (docs/physics.md, "Torsional model")
 WARN_ENERGY_RESIDUAL = 1e-3
 WARN_PENETRATION_MODULE_FRACTION = 0.10
 WARN_PEAK_OVER_RIGID = 2.0  # smooth run-ups amplify the rigid-body force by a few % (seed: 1.05)

@@ -44,13 +44,32 @@ def _too_large() -> bytes:
     return (HERE / "zero_module.toml").read_bytes() + b"#" * (10 * 1024 * 1024) + b"\n"
 
 
+def _seed() -> bytes:
+    return (HERE / "inf_speed.toml").read_bytes().replace(b"speed_deg_s = inf", b"speed_deg_s = 3600")
+
+
+def _just_over_1_mib() -> bytes:
+    seed = _seed() + b"#"
+    return seed + b"#" * (1024 * 1024 + 1 - len(seed) - 1) + b"\n"
+
+
 #: Generated cases: file name -> (bytes factory or None for "do not create", expected fragment).
 GENERATED: dict[str, tuple] = {
     "empty.toml": (lambda: b"", "file is empty"),
     "whitespace_only.toml": (lambda: b"  \n\t\n", "file is empty"),
     "binary_garbage.toml": (lambda: bytes(range(256)) * 4, "binary data"),
     "not_utf8.toml": (lambda: 'title = "B\xe9ton mixer"\n'.encode("latin-1"), "not UTF-8"),
-    "too_large.toml": (_too_large, "larger than 10 MB"),
+    "too_large.toml": (_too_large, "larger than 1 MiB"),
+    "just_over_1_mib.toml": (_just_over_1_mib, "larger than 1 MiB"),
+    "utf16_bom.toml": (lambda: _seed().decode().encode("utf-16"), "UTF-16 text"),
+    "utf16_no_bom.toml": (lambda: _seed().decode().encode("utf-16-le"), "UTF-16 text"),
+    "utf32_bom.toml": (lambda: _seed().decode().encode("utf-32"), "UTF-32 text"),
+    "gzip.toml": (lambda: __import__("gzip").compress(_seed()), "gzip-compressed data"),
+    "nul_in_middle.toml": (lambda: _seed()[:100] + b"\0" + _seed()[100:], "binary data"),
+    "dotted_key_40000.toml": (lambda: b"a" + b".a" * 40000 + b" = 1\n", "nested too deeply"),
+    "quoted_dotted_key_deep.toml": (lambda: b'"a"' + b' . "a"' * 5000 + b" = 1\n", "nested too deeply"),
+    "inline_tables_deep.toml": (lambda: b"a = " + b"{b = " * 3000 + b"1" + b"}" * 3000 + b"\n", "nested too deeply"),
+    "keys_100000.toml": (lambda: b"".join(b"k%d=1\n" % i for i in range(100000)), "keys and tables"),
     "missing_file.toml": (None, "no such file"),
     "a_directory.toml": ("dir", "is a directory"),
 }

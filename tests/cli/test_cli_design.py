@@ -1,6 +1,6 @@
 """CLI tests for `gearcli design`, `init` and `schema`: every format and exit code.
 
-Reference numbers are the seed paper's corrected values (DESIGN.md section 3 errata), each with its
+Reference numbers are the seed paper's corrected values (docs/physics.md, "Design calculations" errata), each with its
 hand calculation beside it.
 """
 

@@ -1,4 +1,4 @@
-"""CLI tests for `gearcli simulate`: every format, the output contract of DESIGN.md section 5, exit codes.
+"""CLI tests for `gearcli simulate`: every format, the output contract of docs/output.md, exit codes.
 
 The seed scene is shortened (0.25 s, 500 steps) where only the format is under test; reference
 numbers are the corrected static theory of the seed paper (hand calculations beside them).

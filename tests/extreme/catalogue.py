@@ -17,12 +17,11 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
-
 from handcalc import Train, read
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -197,7 +196,7 @@ def check_dissipation(s: Series, train: Train, c: Check) -> tuple[float, str]:
 
 
 def check_energy_residual(s: Series, train: Train, c: Check, result=None) -> tuple[float, str]:
-    """The model's own energy balance residual (quadratures, DESIGN.md section 4)."""
+    """The model's own energy balance residual (quadratures, docs/physics.md, "Torsional model")."""
     r = result.energy.residual_relative
     return r, f"energy residual {r:.2g}"
 

@@ -1,7 +1,7 @@
 """Hand calculations for the extreme-scene catalogue, straight from a design file's TOML.
 
 This module deliberately shares no code with ``gearcli``: it reads the TOML with ``tomllib`` and
-re-derives, from textbook formulas (DESIGN.md sections 3 and 4), what a rigid, lossless gear train
+re-derives, from textbook formulas (docs/physics.md), what a rigid, lossless gear train
 must do. The catalogue checks the simulation against these numbers, so a wrong formula in the product
 cannot hide behind the same wrong formula in the test.
 
@@ -158,7 +158,7 @@ class Train:
     @property
     def reflected_inertia(self) -> float:
         """J_eff = sum J_i rho_i^2, referred to the input shaft."""
-        return sum(j * r * r for j, r in zip(self.shaft_inertias, self.speed_ratios))
+        return sum(j * r * r for j, r in zip(self.shaft_inertias, self.speed_ratios, strict=True))
 
     # ------------------------------------------------------------------------- rigid motion
     def input_motion(self, t) -> tuple[np.ndarray, np.ndarray]:

@@ -11,9 +11,9 @@ import json
 import math
 
 import pytest
+from catalogue import SCENES, SCENES_DIR, run_scene
 from click.testing import CliRunner
 
-from catalogue import SCENES, SCENES_DIR, run_scene
 from gearcli.cli import cli
 
 PARAMS = [pytest.param(s, id=s.name, marks=[pytest.mark.slow] if s.slow else []) for s in SCENES]

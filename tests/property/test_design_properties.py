@@ -84,7 +84,7 @@ def test_static_forces_scale_linearly_with_the_load(doc, scale):
     # (T_p = T_g η / i instead of T_g / (i η)), so a sign change is not a pure scaling
     scaled = copy.deepcopy(doc)
     scaled["load"]["torque_Nm"] *= scale
-    for a, b in zip(run(doc).stages, run(scaled).stages):
+    for a, b in zip(run(doc).stages, run(scaled).stages, strict=True):
         fa, fb = a.static_force_N, b.static_force_N
         assert_allclose([fb.tangential, fb.radial, fb.axial, fb.normal],
                         [scale * fa.tangential, scale * fa.radial, scale * fa.axial, scale * fa.normal], rtol=1e-11)
@@ -102,7 +102,7 @@ def test_overlap_ratio_is_proportional_to_face_width_and_epsilon_alpha_is_not(do
     for stage in wider["stage"]:
         for part in ("pinion", "gear"):
             stage[part]["face_width_mm"] *= scale
-    for a, b in zip(run(doc).stages, run(wider).stages):
+    for a, b in zip(run(doc).stages, run(wider).stages, strict=True):
         assert_allclose(b.overlap_ratio, scale * a.overlap_ratio, rtol=1e-12)
         assert_allclose(b.face_width_mm, scale * a.face_width_mm, rtol=1e-15)
         assert_allclose(b.contact_ratio_transverse, a.contact_ratio_transverse, rtol=1e-15)

@@ -1,5 +1,5 @@
 """The seed reducer (configs/concrete_mixer.toml) against the seed paper's corrected numbers and hand
-calculations (DESIGN.md section 3). Every expected value is worked out in the comment beside it;
+calculations (docs/physics.md, "Design calculations"). Every expected value is worked out in the comment beside it;
 none is copied from gearcli's own output.
 
 Hand-calculation constants, stage 1 (m_n = 12, α_n = 20°, β = 12°, z = 21/51, b = 190/180):

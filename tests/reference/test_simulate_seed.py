@@ -78,7 +78,7 @@ def test_dynamic_ratio_matches_the_design_ratio(seed):
 def test_mean_forces_match_static_theory(seed):
     # in steady state the mean mesh force balances the load; what remains is the window mean of the
     # lightly damped ringing the run-up leaves (its mean over a non-integer number of periods): < 0.5 %
-    for stage, (ft, fr, fa) in zip(seed.stages, static_forces()):
+    for stage, (ft, fr, fa) in zip(seed.stages, static_forces(), strict=True):
         assert_allclose([stage.tangential_N.mean, stage.radial_N.mean, stage.axial_N.mean], [ft, fr, fa], rtol=5e-3)
         assert_allclose(stage.static_tangential_N, ft, rtol=1e-6)  # the design's static F_t (6 digits)
 
@@ -135,7 +135,7 @@ def test_output_contract(seed):
 def test_default_tolerance_is_accurate(seed):
     # acceptance 2: against rtol 1e-10, means agree to < 1e-4 and peaks to < 1e-3 (relative)
     tight = run("concrete_mixer.toml", method=seed.solver.method, rtol=1e-10, want_series=False)
-    for a, b in zip(seed.stages, tight.stages):
+    for a, b in zip(seed.stages, tight.stages, strict=True):
         assert_allclose(a.tangential_N.mean, b.tangential_N.mean, rtol=1e-4)
         assert_allclose(a.peak_tangential_N, b.peak_tangential_N, rtol=1e-3)
     assert_allclose(seed.output_speed_deg_s, tight.output_speed_deg_s, rtol=1e-6)
@@ -155,7 +155,7 @@ def test_stiff_scene_is_integrated_implicitly_and_accurately():
     f_hand = math.sqrt(k_t * 0.29320**2 / (2.1123 + 0.18077)) / (2 * math.pi)
     assert_allclose(sim.natural_frequencies_Hz[-1], f_hand, rtol=0.01)
     ref = run("stiff_linear_mesh.toml", method="DOP853", rtol=1e-9, want_series=False)
-    for a, b in zip(sim.stages, ref.stages):
+    for a, b in zip(sim.stages, ref.stages, strict=True):
         assert_allclose(a.tangential_N.mean, b.tangential_N.mean, rtol=1e-4)
         assert_allclose(a.peak_tangential_N, b.peak_tangential_N, rtol=1e-3)
     assert sim.solver.energy_residual < 1e-4
@@ -165,7 +165,7 @@ def test_time_varying_backlash_scene_runs_as_its_header_says():
     # configs/mixer_time_varying_backlash.toml: means within 2.5 % of static theory, stage-1 rattle
     # warning, the energy balance closes with parametric work
     sim = run("mixer_time_varying_backlash.toml")
-    for stage, (ft, _, _) in zip(sim.stages, static_forces()):
+    for stage, (ft, _, _) in zip(sim.stages, static_forces(), strict=True):
         assert_allclose(stage.tangential_N.mean, ft, rtol=2.5e-2)
     assert any(w.startswith("stage 1: the loaded (drive) flank loses contact") for w in sim.warnings)
     assert sim.solver.energy_residual < 1e-5 and sim.extra["parametric_work_J"] != 0.0

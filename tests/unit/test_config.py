@@ -207,7 +207,7 @@ def test_did_you_mean_at_depth(tmp_path, seed_text):
         ('hand = "left",', 'hand = "Left",', "stage[0].pinion.hand",
          "must be 'left', 'right' or 'spur', got \"Left\" (did you mean 'left'?)"),
         ("poisson_ratio = 0.29", "poisson_ratio = 0.5", "materials.steel.poisson_ratio", "must be < 0.5, got 0.5"),
-        ('stiffness = "hertz"', "stiffness = 0", "contact.stiffness", "must be > 0, got 0"),
+        ('stiffness = "hertz"', "stiffness = 0", "contact.stiffness", "must be ≥ 1, got 0"),
         ('stiffness = "hertz"', "stiffness = [1]", "contact.stiffness", "must be 'hertz', 'iso6336' or a number, got an array"),
         ("[simulation]", '[simulation]\nwindow_start_s = "0.3"', "simulation.window_start_s",
          'must be a number, got "0.3" (remove the quotes)'),
@@ -232,7 +232,7 @@ def test_several_errors_one_line_each(tmp_path, seed_text):
     err = error_of(path)
     assert isinstance(err, ConfigErrors) and err.exit_code == EXIT_USAGE
     assert str(err).splitlines() == [
-        f"{path}: materials.steel.poisson_ratio: must be > 0, got -1",
+        f"{path}: materials.steel.poisson_ratio: must be ≥ 0.01, got -1",
         f"{path}: stage[0].pinion.teeth: must be ≥ 5, got 2",
         f"{path}: lod: unknown key 'lod' (did you mean 'load'?)",
     ]
@@ -272,8 +272,8 @@ def test_missing_file_directory_and_huge_file(tmp_path):
     assert str(error_of(str(tmp_path))) == f"{tmp_path}: is a directory, not a design file"
     big = tmp_path / "big.toml"
     big.write_bytes(b"#" * (10 * 1024 * 1024 + 1))
-    assert "larger than 10 MB" in str(error_of(str(big)))
-    assert "larger than 10 MB" in str(error_of("-", stdin=io.BytesIO(b" " * (10 * 1024 * 1024 + 1))))
+    assert "larger than 1 MiB" in str(error_of(str(big)))
+    assert "larger than 1 MiB" in str(error_of("-", stdin=io.BytesIO(b" " * (10 * 1024 * 1024 + 1))))
     assert "not a valid file name" in str(error_of("bad\0name.toml"))
 
 

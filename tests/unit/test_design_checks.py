@@ -10,8 +10,7 @@ from pathlib import Path
 import pytest
 
 from gearcli.config.schema import DesignFile
-from gearcli.design import compute_design
-from gearcli.design import checks
+from gearcli.design import checks, compute_design
 from gearcli.errors import DesignError
 
 SEED = Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer.toml"

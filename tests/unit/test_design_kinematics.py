@@ -28,7 +28,7 @@ def design(edit=None):
 
 def test_efficiencies_raise_the_input_torque():
     def edit(d):
-        for st, eta in zip(d["stage"], (0.98, 0.97, 0.96)):
+        for st, eta in zip(d["stage"], (0.98, 0.97, 0.96), strict=True):
             st["efficiency"] = eta
     r = design(edit)
     # T_in = T_out / (i1 i2 i3 η1 η2 η3) = 5.31e6 / (22.26891 · 0.98 · 0.97 · 0.96)

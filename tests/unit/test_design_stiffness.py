@@ -152,7 +152,7 @@ def test_zero_load_linear_law_keeps_its_stiffness():
 def test_load_reversal_mirrors_forces_and_keeps_the_approach(law):
     _, fwd = design(contact={"stiffness": law})
     _, rev = design(load_Nmm=-5.31e6, contact={"stiffness": law})
-    for a, b in zip(fwd.stages, rev.stages):
+    for a, b in zip(fwd.stages, rev.stages, strict=True):
         assert_allclose([b.static_force_N.tangential, b.static_force_N.normal],
                         [-a.static_force_N.tangential, -a.static_force_N.normal], rtol=1e-12)  # sign only
         assert_allclose(b.static_approach_mm, a.static_approach_mm, rtol=1e-12)  # back flank, same |F_n|

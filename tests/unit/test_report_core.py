@@ -9,13 +9,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
+from test_report_fakes import LAW, FakeSolver, fake_design, fake_report, fake_simulation
 
 from gearcli.report import LadderSpec, accuracy_study, force_spectrum, relative_errors
 from gearcli.report.accuracy import ladder_methods, meets, struggling_runs
 from gearcli.report.compare import comparison_rows, relative_error_percent, stage_reports
 from gearcli.report.result import RunMetrics
 from gearcli.report.spectrum import name_peak
-from test_report_fakes import LAW, FakeSolver, fake_design, fake_report, fake_simulation
 
 
 # ------------------------------------------------------------------------------------- spectrum

@@ -31,7 +31,7 @@ def _gear(teeth: int, speed: float) -> GearResult:
 
 def fake_design(ratios=(2.0, 3.0), input_speed=3600.0, ft=(1000.0, 2800.0)) -> DesignResult:
     stages, speed = [], input_speed
-    for k, (i, f) in enumerate(zip(ratios, ft), start=1):
+    for k, (i, f) in enumerate(zip(ratios, ft, strict=True), start=1):
         pin, gear = _gear(20, speed), _gear(int(20 * i), speed / i)
         stages.append(StageResult(
             index=k, ratio=i, efficiency=1.0, normal_module_mm=10, transverse_module_mm=10,

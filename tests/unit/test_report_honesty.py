@@ -20,9 +20,9 @@ ROOT = Path(__file__).resolve().parents[2]
 SEED = ROOT / "configs" / "concrete_mixer.toml"
 FACTOR = 3.0
 
-simulate = pytest.importorskip("gearcli.simulate")
-if not hasattr(simulate, "run_simulation"):  # pragma: no cover - while the simulation lands
-    pytest.skip("gearcli.simulate.run_simulation not available", allow_module_level=True)
+import gearcli.simulate as simulate  # noqa: E402  an import error is a failure, never a skip
+
+assert hasattr(simulate, "run_simulation")
 
 
 @pytest.fixture(scope="module")
@@ -38,9 +38,9 @@ def independent_errors(run, truth) -> dict[str, float]:
     """|Δ| / |truth| for the window-mean output speed, the worst stage's mean F_t and peak |F_t|."""
     speed = abs(run.output_speed_deg_s - truth.output_speed_deg_s) / abs(truth.output_speed_deg_s)
     mean = max(abs(a.tangential_N.mean - b.tangential_N.mean) / abs(b.tangential_N.mean)
-               for a, b in zip(run.stages, truth.stages))
+               for a, b in zip(run.stages, truth.stages, strict=True))
     peak = max(abs(a.peak_tangential_N - b.peak_tangential_N) / abs(b.peak_tangential_N)
-               for a, b in zip(run.stages, truth.stages))
+               for a, b in zip(run.stages, truth.stages, strict=True))
     return {"speed": speed, "mean_force": mean, "peak_force": peak}
 
 

@@ -7,13 +7,13 @@ import struct
 import sys
 
 import pytest
+from test_report_fakes import fake_report
 
 from gearcli.io.markdown import report_markdown
 from gearcli.io.report_json import report_dict
 from gearcli.io.report_tables import report_tables
 from gearcli.io.serialize import to_json, with_meta
 from gearcli.io.tables import render
-from test_report_fakes import fake_report
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 

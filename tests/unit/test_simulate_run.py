@@ -31,7 +31,10 @@ def mesh(**kw) -> MeshSpec:
     return MeshSpec(**base)
 
 
-def one_stage(k=2e8, load=300.0, drive=DriveSpec("speed", 50.0, 0.1), load_ramp=0.1, **kw) -> ModelSpec:
+DEFAULT_DRIVE = DriveSpec("speed", 50.0, 0.1)
+
+
+def one_stage(k=2e8, load=300.0, drive=DEFAULT_DRIVE, load_ramp=0.1, **kw) -> ModelSpec:
     return ModelSpec((mesh(stiffness_N_m_e=k, **kw),), (0.3, 2.5), drive, LoadSpec(load, load_ramp))
 
 
@@ -44,12 +47,14 @@ def seed(overrides=()):
 def test_window_starts_after_the_slower_ramp_plus_a_fifth_of_the_rest():
     spec = ModelSpec((mesh(),), (0.3, 2.5), DriveSpec("speed", 50.0, 0.1), LoadSpec(300.0, 0.3))
     (lo, hi), warnings = steady_window(spec, 1.3, None)
-    assert_allclose((lo, hi), (0.3 + 0.2 * 1.0, 1.3), rtol=1e-14) and not warnings
+    assert_allclose((lo, hi), (0.3 + 0.2 * 1.0, 1.3), rtol=1e-14)  # exact arithmetic up to rounding
+    assert not warnings
     assert steady_window(spec, 1.3, 0.9)[0] == (0.9, 1.3)  # simulation.window_start_s overrides
     with pytest.raises(ValueError, match="window start"):  # the design file is checked by run_simulation
         steady_window(spec, 1.3, 1.3)
     (lo, _), warnings = steady_window(spec, 0.25, None)  # ramps outlast the run
-    assert_allclose(lo, 0.2, rtol=1e-14) and "not steady" in warnings[0].message
+    assert_allclose(lo, 0.2, rtol=1e-14)
+    assert "not steady" in warnings[0].message
 
 
 def test_window_start_beyond_the_run_is_a_config_error():

@@ -1,0 +1,112 @@
+"""Resource bounds stated and enforced before a run starts (docs/design-file.md, "Limits").
+
+Memory. A simulation holds its output samples in memory (the state, the channels, then the text
+written). The peak is about ``samples x values per sample x bytes per value``; the bytes per value were
+measured at the steps cap on the seed reducer (README, "Numerical robustness": CSV 1.6 GB, JSON 0.9 GB,
+JSON with ``--series`` 5.6 GB for 2e6 x 19 values) and are rounded up here. A run whose estimate exceeds
+:data:`MEMORY_LIMIT_BYTES` is refused with the estimate and the ``simulation.steps`` that would fit.
+
+Cost. An adaptive integrator's cost follows ``max|lambda| T``: the fastest oscillation of the linearised
+train times the duration (gearcli.simulate.guards). Estimated here from the design alone (no scipy): each
+mesh's own angular frequency ``sqrt(k (r_b1^2 / J_1 + r_b2^2 / J_2))`` with the linearised stiffness at
+the static load (at least the stiffness of a 1 um approach, so an unloaded mesh is not free), and the mesh
+frequency when the stiffness varies in time. At ~30 evaluations per unit (the worst measured, see guards),
+a run whose estimate is absurd (:data:`ABSURD_EVALUATIONS`) is refused up front, naming the figure and the
+setting to change.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+from gearcli.errors import ResourceError
+
+MEMORY_LIMIT_BYTES = int(float(os.environ.get("GEARCLI_MEMORY_LIMIT_MB", "2048")) * 2**20)
+BYTES_PER_VALUE = {"csv": 48, "json": 28, "series": 160, "table": 28}  # measured peaks, rounded up
+EVALUATIONS_PER_UNIT = 30.0  # right-hand sides per unit of max|lambda| T at rtol 1e-6 (guards.COST_PER_UNIT)
+MAX_EVALUATIONS = 5e6  # one run: ~30 s of right-hand sides on a 2-core machine (guards.CAP)
+#: Estimates beyond this are refused as absurd (a unit mistake, not a scene). The estimate is an upper bound
+#: for explicit methods; implicit ones step over fast modes that are not excited (configs/extreme/
+#: unequal_inertias.toml: estimate 2.8e8, run within the 5e6 budget), so the margin is 100x the budget, and
+#: between the two the run's own budget stops it.
+ABSURD_EVALUATIONS = 100 * MAX_EVALUATIONS
+_MIN_APPROACH_M = 1e-6
+
+
+def values_per_sample(n_stages: int) -> int:
+    """time, one speed per shaft, the input torque, four channels per stage, and the state (2 per shaft)."""
+    shafts = n_stages + 1
+    return 1 + shafts + 1 + 4 * n_stages + 2 * shafts
+
+
+def memory_estimate_bytes(steps: int, n_stages: int, fmt: str, series: bool) -> float:
+    per_value = BYTES_PER_VALUE["series" if (fmt == "json" and series) else fmt if fmt in BYTES_PER_VALUE else "json"]
+    return (steps + 1) * values_per_sample(n_stages) * per_value
+
+
+def _gib(n: float) -> str:
+    return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
+
+
+def check_memory(cfg, *, fmt: str, series: bool, source: str) -> None:
+    steps, n = cfg.simulation.steps, len(cfg.stage)
+    need = memory_estimate_bytes(steps, n, fmt, series)
+    if need <= MEMORY_LIMIT_BYTES:
+        return
+    fit = int(MEMORY_LIMIT_BYTES / memory_estimate_bytes(1, n, fmt, series))
+    how = " or leave out --series" if fmt == "json" and series else ""
+    raise ResourceError(
+        f"{source}: simulation.steps: {steps} samples x {values_per_sample(n)} values would need about "
+        f"{_gib(need)} of memory, over the limit of {_gib(MEMORY_LIMIT_BYTES)}; set simulation.steps ≤ {fit}{how} "
+        "(or raise GEARCLI_MEMORY_LIMIT_MB)")
+
+
+def fastest_rad_s(cfg, design) -> float:
+    """The fastest angular frequency the integrator must follow, from the design (see the module text)."""
+    inertia = [sh.inertia_kg_m2 for sh in design.shafts]
+    fastest = 0.0
+    for k, st in enumerate(design.stages):
+        law = cfg.contact_for(k)
+        e = law.exponent
+        K = st.hertz_stiffness_N_mm1_5 * 1e3 ** e  # N/m^e (K was N/mm^e)
+        h = max(st.static_approach_mm * 1e-3, _MIN_APPROACH_M)
+        k_lin = e * K * h ** (e - 1.0) if not isinstance(law.stiffness, float) else st.linearised_stiffness_N_mm * 1e3
+        rb1, rb2 = st.pinion.base_diameter_mm / 2e3, st.gear.base_diameter_mm / 2e3
+        mobility = rb1**2 / inertia[k] + rb2**2 / inertia[k + 1]
+        fastest = max(fastest, math.sqrt(max(k_lin, 0.0) * mobility))
+        if law.time_varying:
+            fastest = max(fastest, 2 * math.pi * st.mesh_frequency_Hz)
+    return fastest
+
+
+def evaluations_estimate(cfg, design, rtol: float) -> float:
+    indicator = max(1.0, fastest_rad_s(cfg, design) * cfg.simulation.duration_s)
+    return EVALUATIONS_PER_UNIT * indicator * max(1.0, (1e-6 / rtol) ** 0.2)
+
+
+def check_cost(cfg, design, *, source: str) -> None:
+    """Refuse a run whose estimate is absurd (over :data:`ABSURD_EVALUATIONS`), before it starts."""
+    sim = cfg.simulation
+    total = evaluations_estimate(cfg, design, sim.rtol)
+    if math.isfinite(total) and total <= ABSURD_EVALUATIONS:
+        return
+    fit = sim.duration_s * ABSURD_EVALUATIONS / total if math.isfinite(total) and total > 0 else 0.0
+    raise ResourceError(
+        f"{source}: simulation.duration_s: this run would need about {total:.2g} right-hand-side evaluations "
+        f"(fastest oscillation {fastest_rad_s(cfg, design) / (2 * math.pi):.3g} Hz over {sim.duration_s:g} s), "
+        f"over the limit of {ABSURD_EVALUATIONS:.2g}; set simulation.duration_s ≤ {fit:.3g}, or check the "
+        "speeds, loads and inertias for a unit mistake")
+
+
+def check_run_budget(cfg, design, *, fmt: str, series: bool, source: str) -> None:
+    """``gearcli simulate``: memory and cost, before scipy is even imported."""
+    check_memory(cfg, fmt=fmt, series=series, source=source)
+    check_cost(cfg, design, source=source)
+
+
+def check_report_budget(cfg, design, *, source: str) -> None:
+    """``gearcli report``: the file's run (memory, cost); the ladder's runs are each bounded in time by the
+    study itself (``LadderSpec.max_run_s``) and by the run budget."""
+    check_memory(cfg, fmt="json", series=False, source=source)
+    check_cost(cfg, design, source=source)

@@ -1,0 +1,112 @@
+"""docs/design-file.md, generated from the JSON Schema (itself generated from the pydantic models), so
+the reference cannot drift from what validation accepts.
+
+Regenerate after a schema change (a test compares the committed file with this text)::
+
+    python -m gearcli.config.reference > docs/design-file.md
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from gearcli.config.prescan import MAX_BYTES, MAX_KEY_DEPTH, MAX_KEYS, MAX_NESTING
+from gearcli.config.starter import json_schema
+
+_TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material", "A material, referenced by name"),
+           ("[[stage]]", "Stage", "One gear pair per [[stage]], in the order power flows"),
+           ("stage pinion / gear", "Gear", "`pinion = { ... }` and `gear = { ... }` of a stage"),
+           ("[contact]", "Contact", "The mesh force law (Adams IMPACT)"),
+           ("[stage.mesh]", "ContactOverride", "Per-stage overrides of [contact]"),
+           ("[input]", "Input", "The input drive"), ("[load]", "Load", "The output load"),
+           ("[target]", "Target", "Optional: the output speed the design must reach"),
+           ("[simulation]", "Simulation", "Settings of `gearcli simulate` and `gearcli report`")]
+
+
+def _num(v: Any) -> str:
+    if isinstance(v, float) and v.is_integer() and abs(v) < 1e7:
+        return str(int(v))
+    return f"{v:g}" if isinstance(v, float) else json.dumps(v)
+
+
+def _kind(prop: dict, defs: dict) -> tuple[str, str]:
+    """(type, allowed values) of one property."""
+    if "$ref" in prop:
+        return "table", ""
+    options = prop.get("anyOf") or prop.get("oneOf")
+    if options:
+        parts = [_kind(o, defs) for o in options if o.get("type") != "null"]
+        return " or ".join(p[0] for p in parts), "; ".join(p[1] for p in parts if p[1])
+    if "enum" in prop:
+        return "string", ", ".join(json.dumps(v) for v in prop["enum"])
+    if "const" in prop:
+        return "string", json.dumps(prop["const"])
+    t = prop.get("type", "any")
+    if t == "object" and "additionalProperties" in prop:
+        return "tables by name", ""
+    if t == "array":
+        items = prop.get("minItems"), prop.get("maxItems")
+        return "array of tables", f"{items[0]} to {items[1]} entries" if all(i is not None for i in items) else ""
+    lo = prop.get("minimum", prop.get("exclusiveMinimum"))
+    hi = prop.get("maximum", prop.get("exclusiveMaximum"))
+    rng = ""
+    if lo is not None or hi is not None:
+        left = "(" if "exclusiveMinimum" in prop else "["
+        right = ")" if "exclusiveMaximum" in prop else "]"
+        rng = f"{left}{_num(lo) if lo is not None else '-inf'}, {_num(hi) if hi is not None else 'inf'}{right}"
+    if "not" in prop:
+        tiny = max(r["exclusiveMaximum"] for r in prop["not"]["anyOf"])
+        rng += f"; 0 or magnitude ≥ {_num(tiny)}"
+    if "maxLength" in prop:
+        rng = f"at most {prop['maxLength']} characters"
+    return {"number": "number", "integer": "integer", "boolean": "true/false", "string": "string"}.get(t, t), rng
+
+
+def _table(title: str, name: str, what: str, defs: dict, root: dict) -> list[str]:
+    model = root if name == "DesignFile" else defs[name]
+    required = set(model.get("required", []))
+    about = model["description"] if model.get("description") and name != "DesignFile" else what + "."
+    lines = [f"## {title or 'top level'}", "", about.replace("\n", " "), "",
+             "| key | type | allowed | default |", "|---|---|---|---|"]
+    for key, prop in model.get("properties", {}).items():
+        kind, allowed = _kind(prop, defs)
+        default = "required" if key in required else (_num(prop["default"]) if "default" in prop and
+                                                     prop["default"] is not None else "—")
+        if isinstance(prop.get("default"), dict):
+            default = "see below"
+        lines.append(f"| `{key}` | {kind} | {allowed.replace('|', '/')} | {default} |")
+    return lines + [""]
+
+
+def design_file_reference() -> str:
+    schema = json_schema()
+    defs = schema.get("$defs", {})
+    out = ["# The design file (reference)", "",
+           "Generated from the JSON Schema of the pydantic models by `python -m gearcli.config.reference`; "
+           "`gearcli schema` prints the schema itself. Do not edit by hand.", "",
+           "A design file is UTF-8 TOML (a BOM and CRLF line ends are accepted). Units are in the key names. "
+           "Unknown keys are errors. Every number has bounds: far outside any real reducer, yet tight enough "
+           "that a unit mistake (1e15, or a subnormal such as 1e-320) is an error naming the key and the bound. "
+           "Keys that may be 0 (ramps, damping, backlash, torques) refuse a nonzero magnitude below a small "
+           "threshold, shown as \"0 or magnitude ≥ …\".", "",
+           "Rules the schema states as text (validation enforces them): exactly one of `speed_deg_s`, `speed_rpm`, "
+           "`speed_rad_s` in `[input]`; at most one of `torque_Nm`, `torque_Nmm` there, required with "
+           "`drive = \"torque\"` and refused with `drive = \"speed\"`; exactly one torque in `[load]`; exactly one "
+           "speed in `[target]`; a helical stage's pinion and gear have opposite hands; every `material` names a "
+           "table of `[materials]` (steel is predefined).", "",
+           "## Limits", "",
+           f"- file size at most {MAX_BYTES // 2**20} MiB; at most {MAX_KEYS} keys and tables; dotted keys of at "
+           f"most {MAX_KEY_DEPTH} parts; arrays and inline tables nested at most {MAX_NESTING} deep. These are "
+           "checked on the raw text before the TOML parser runs.",
+           "- a simulation whose output would need more memory than `GEARCLI_MEMORY_LIMIT_MB` (default 2048) is "
+           "refused with the estimate and the `simulation.steps` that fits; one whose cost estimate is absurd "
+           "(over 5e8 right-hand-side evaluations) is refused with the `simulation.duration_s` that fits.", ""]
+    for title, name, what in _TABLES:
+        if name == "DesignFile" or name in defs:
+            out += _table(title, name, what, defs, schema)
+    return "\n".join(out).rstrip() + "\n"
+
+
+if __name__ == "__main__":  # pragma: no cover
+    print(design_file_reference(), end="")

@@ -1,0 +1,179 @@
+"""Where a command's data goes: ``-o FILE``, ``-o -`` (stdout) or stdout, and in which format.
+
+The one module that owns output files (docs/output.md, "Files"). Every command checks its ``-o`` with
+:func:`check_output` *before* it computes anything, then writes with :func:`write_output`:
+
+- ``-o -`` is stdout; no ``-o`` is stdout too.
+- A symlink is written through: its target is replaced atomically and the link stays.
+- A directory, a device, a FIFO or a socket is refused, as is a path ending in ``/``, a missing or
+  unwritable parent directory, and the command's own input file (by inode, so ``./in.toml`` or a link
+  to it count). Refusals are :class:`~gearcli.errors.OutputError` (exit 2, the path named), and nothing
+  is created on disk.
+- The suffix chooses the format (``.json``, ``.csv``, ``.md``, ``.txt``, ``.toml``); a suffix that
+  contradicts ``--format``, or names a format the command cannot write, is an error. An unknown suffix
+  takes ``--format`` or the command's default for files.
+
+New commands reuse :func:`output_option` (the click option) and these two functions.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+import sys
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+from gearcli.errors import OutputError
+from gearcli.io.text import shorten
+
+STDOUT = "-"
+
+#: What a suffix says about the format of the file's content.
+SUFFIX_FORMAT = {".json": "json", ".csv": "csv", ".md": "markdown", ".markdown": "markdown", ".txt": "table",
+                 ".toml": "toml"}
+
+
+@dataclass(frozen=True)
+class OutputTarget:
+    """A checked destination. ``path`` is the regular file to replace (a symlink's target), or None for
+    stdout; ``shown`` is the path as the user typed it (for messages); ``fmt`` the chosen format."""
+
+    fmt: str
+    path: Path | None = None
+    shown: str = STDOUT
+
+    @property
+    def is_stdout(self) -> bool:
+        return self.path is None
+
+
+def output_option(help_text: str = "Write to FILE atomically ('-' is stdout; the format follows the suffix).") \
+        -> Callable:
+    """The ``-o/--output`` click option every data command shares (a plain string: the checks are ours)."""
+    import click
+
+    return click.option("-o", "--output", type=str, metavar="FILE", help=help_text)
+
+
+def _kind(mode: int) -> str | None:
+    if stat.S_ISREG(mode):
+        return None
+    if stat.S_ISDIR(mode):
+        return "is a directory; give a file name"
+    if stat.S_ISFIFO(mode):
+        return "is a FIFO, not a regular file (use -o - and a shell redirection)"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "is a device, not a regular file (use -o - and a shell redirection)"
+    return "is not a regular file"
+
+
+def _refuse(shown: str, message: str) -> OutputError:
+    return OutputError(message, path=shorten(shown))
+
+
+def _same_file(target: Path, inputs: Iterable[str | None]) -> bool:
+    for given in inputs:
+        if not given or given == STDOUT:
+            continue
+        try:
+            if os.path.samefile(target, given):
+                return True
+        except (OSError, ValueError):
+            continue
+    return False
+
+
+def resolve_path(given: str, inputs: Iterable[str | None] = ()) -> Path:
+    """The regular file ``given`` names after symlinks, checked writable; :class:`OutputError` otherwise."""
+    if "\0" in given:
+        raise _refuse(repr(given), "not a valid file name")
+    if given.endswith(("/", os.sep)) or given in (".", ".."):
+        raise _refuse(given, "is a directory path; give a file name")
+    target = Path(os.path.realpath(given))
+    try:
+        st = target.stat()
+    except FileNotFoundError:
+        st = None
+    except OSError as exc:
+        raise _refuse(given, f"cannot write: {exc.strerror or exc}") from None
+    if st is not None:
+        if (why := _kind(st.st_mode)) is not None:
+            raise _refuse(given, why)
+        if _same_file(target, inputs):
+            raise _refuse(given, "is the input file; writing it would destroy the input")
+        if not os.access(target, os.W_OK):
+            raise _refuse(given, "permission denied")
+    parent = target.parent
+    if not parent.is_dir():
+        raise _refuse(given, f"no such directory: {shorten(str(Path(given).parent))}")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise _refuse(given, f"directory not writable: {shorten(str(Path(given).parent))}")
+    return target
+
+
+def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | None = None,
+                 inputs: Iterable[str | None] = (), file_default: str | None = None,
+                 stdout_default: Callable[[], str] | None = None) -> OutputTarget:
+    """Check ``-o`` and choose the format, before any computation.
+
+    ``formats``: what the command can write. ``fmt``: ``--format`` if given. ``file_default``: the format
+    of a file whose suffix says nothing (default: the first of ``formats``). ``stdout_default``: the
+    format for stdout without ``--format`` (default: ``file_default``)."""
+    file_default = file_default or formats[0]
+    if output is None or output == STDOUT:
+        chosen = fmt or (stdout_default() if stdout_default else file_default)
+        return OutputTarget(fmt=chosen)
+    path = resolve_path(output, inputs)
+    suffix = Path(output).suffix.lower()
+    said = SUFFIX_FORMAT.get(suffix)
+    if said is not None and said not in formats:
+        raise _refuse(output, f"this command cannot write {said} ({suffix}); it writes {', '.join(formats)}")
+    if said is not None and fmt is not None and fmt != said:
+        raise _refuse(output, f"the suffix {suffix} says {said} but --format is {fmt}; make them agree")
+    return OutputTarget(fmt=fmt or said or file_default, path=path, shown=output)
+
+
+def check_not_clobbering(paths: Iterable[Path], protected: Iterable[str | Path | None], option: str) -> None:
+    """Refuse ``paths`` (files a command will write besides ``-o``, e.g. ``--plots``) that would replace a
+    protected file (the input, the ``-o`` file)."""
+    for path in paths:
+        real = os.path.realpath(path)
+        for other in protected:
+            if other is None or str(other) == STDOUT:
+                continue
+            if real == os.path.realpath(other) or _same_file(Path(real), [str(other)]):
+                raise _refuse(str(path), f"{option} would overwrite {shorten(str(other))}; choose another directory")
+        if os.path.lexists(real):
+            try:
+                mode = os.stat(real).st_mode
+            except OSError:
+                continue
+            if (why := _kind(mode)) is not None:
+                raise _refuse(str(path), why)
+
+
+def write_output(target: OutputTarget, text: str) -> None:
+    """``text`` to the checked target: atomically to its file (through a symlink), else to stdout."""
+    if target.path is None:
+        _write_stdout(text)
+        return
+    from gearcli.io.atomic import write_atomic
+
+    try:
+        write_atomic(target.path, text)
+    except OSError as exc:
+        raise _refuse(target.shown, f"cannot write: {exc.strerror or exc}") from None
+
+
+def _write_stdout(text: str) -> None:
+    """Text to stdout in its encoding; a character the encoding lacks becomes an escape, never a crash."""
+    stream = sys.stdout
+    encoding = getattr(stream, "encoding", None) or "utf-8"
+    try:
+        text.encode(encoding)
+    except (UnicodeEncodeError, LookupError):
+        text = text.encode(encoding, "backslashreplace").decode(encoding, "replace")
+    stream.write(text)
+    stream.flush()

@@ -1,0 +1,63 @@
+"""User text (titles, names, keys) printed literally: never markup, never a control sequence.
+
+A title is data, so every writer passes it through one of these before it reaches a terminal, a
+markdown file, a CSV cell or an error message (docs/output.md, "Text fields"):
+
+- :func:`visible` replaces control characters (C0, DEL, C1: ESC, BEL, newline, carriage return ...) and
+  the bidirectional overrides with ``\\xNN``/``\\uNNNN`` escapes, so a title cannot move the cursor, ring
+  the bell, start an OSC-8 hyperlink, begin a new line that looks like one of gearcli's messages, or
+  reorder what is shown.
+- :func:`shorten` also caps the length (a 1 MB key name is shown as its start, its end and its length).
+- :func:`markdown_inline` also escapes the characters markdown would read as structure.
+- :func:`csv_text_cell` neutralises spreadsheet formulas in text (never numeric) CSV cells.
+Rich markup is avoided at the source: writers hand rich ``Text`` objects, never markup strings.
+"""
+
+from __future__ import annotations
+
+import re
+
+_BIDI = "\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f" + _BIDI + "\u2028\u2029]")
+_NAMED = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
+
+MAX_SHOWN = 240
+
+
+def _escape(ch: str) -> str:
+    if ch in _NAMED:
+        return _NAMED[ch]
+    code = ord(ch)
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+
+
+def visible(text: str) -> str:
+    """``text`` with every control and bidi-override character written as an escape."""
+    return _CONTROL.sub(lambda m: _escape(m.group()), text)
+
+
+def shorten(text: str, limit: int = MAX_SHOWN) -> str:
+    """:func:`visible`, and at most about ``limit`` characters: ``start…end (N characters)``."""
+    if len(text) > limit:
+        head, tail = text[: limit * 2 // 3], text[-(limit // 4):]
+        return f"{visible(head)}…{visible(tail)} ({len(text)} characters)"
+    return visible(text)
+
+
+_MD_SPECIAL = re.compile(r"([\\`*_{}\[\]<>()#+!|~])")
+
+
+def markdown_inline(text: str) -> str:
+    """``text`` as literal inline markdown: controls escaped (no line break, so no heading or list can
+    start), and markdown's structural characters backslash-escaped (no link, emphasis or HTML)."""
+    return _MD_SPECIAL.sub(r"\\\1", visible(text))
+
+
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+
+
+def csv_text_cell(text: str) -> str:
+    """A text CSV cell a spreadsheet will not run: a leading ``=``, ``+``, ``-`` or ``@`` gets a ``'``
+    (the OWASP advice for CSV injection); controls escaped. Numbers are never passed here."""
+    shown = visible(text)
+    return "'" + shown if text.startswith(_FORMULA_START) else shown
