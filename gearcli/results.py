@@ -163,3 +163,4 @@ class SimulationResult:
     warnings: tuple[str, ...] = field(default_factory=tuple)
     natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
     extra: Optional[dict] = None
+    final_state: Optional[np.ndarray] = None  # state vector at the end of the run (model layout), for continuation

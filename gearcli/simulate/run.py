@@ -21,15 +21,18 @@ RAD_TO_DEG = 180.0 / math.pi
 
 
 def run_simulation(cfg, design, *, method: Optional[str] = None, rtol: Optional[float] = None,
-                   want_series: bool = True, max_nfev: Optional[int] = None) -> SimulationResult:
+                   want_series: bool = True, max_nfev: Optional[int] = None,
+                   y0: Optional[np.ndarray] = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
-    (:func:`gearcli.simulate.guards.nfev_budget`). Raises SimulationError on failure, never returns NaN."""
+    (:func:`gearcli.simulate.guards.nfev_budget`). ``y0`` overrides the initial state (continuation;
+    ``SimulationResult.final_state`` of a previous run). Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev)
+                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev,
+                          y0=y0)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
@@ -97,7 +100,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         window_s=(float(window[0]), float(window[1])), ratio=ratio, output_speed_deg_s=w_out * RAD_TO_DEG,
         input_speed_deg_s=w_in * RAD_TO_DEG, stages=stages, solver=solver, energy=balance,
         warnings=tuple(warnings),
-        natural_frequencies_Hz=choice.natural_frequencies_Hz,
+        natural_frequencies_Hz=choice.natural_frequencies_Hz, final_state=np.array(run.y[:, -1]),
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},
