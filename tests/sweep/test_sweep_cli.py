@@ -159,3 +159,22 @@ def test_dask_local_cluster_gives_the_rows_of_the_process_pool(tmp_path):
     (fa, ra), (fb, rb) = read_csv(tmp_path / "pool.csv"), read_csv(tmp_path / "dask.csv")
     assert fa == fb and len(ra) == 16
     assert strip_wall(ra) == strip_wall(rb)
+
+
+def test_plots_response_campbell_and_distributions(tmp_path):
+    pytest.importorskip("matplotlib")
+    res = sweep("--vary", "input.speed_rpm=500,900", "--jobs", "1", "--plots", str(tmp_path / "p"))
+    assert res.exit_code == 0, res.stderr
+    assert sorted(p.name for p in (tmp_path / "p").iterdir()) == ["campbell.png", "response_input_speed_rpm.png"]
+    res = sweep("--samples", "3", "--random", "load.torque_Nm=normal(5310,200)", "--seed", "1", "--jobs", "1",
+                "--plots", str(tmp_path / "q"))
+    assert res.exit_code == 0 and [p.name for p in (tmp_path / "q").iterdir()] == ["distributions.png"]
+    assert all((tmp_path / d / n).read_bytes()[:4] == b"\x89PNG" for d, n in [("p", "campbell.png")])
+
+
+def test_plots_without_matplotlib_warn_and_exit_0(tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+    monkeypatch.setitem(sys.modules, "matplotlib.figure", None)
+    monkeypatch.setitem(sys.modules, "matplotlib.backends.backend_agg", None)
+    res = sweep("--vary", "input.speed_rpm=500", "--jobs", "1", "--plots", str(tmp_path / "p"))
+    assert res.exit_code == 0 and "pip install 'gearcli[plot]'" in res.stderr
