@@ -7,8 +7,9 @@ when that lands. Mesh-order lines: stage s meshes at ``z_p,s n_s / 60`` Hz with 
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import Any
 
 from gearcli.sweep.worker import Scene, load_point
 
