@@ -488,6 +488,68 @@ def _write_report_plots(rep, plots_dir: str) -> None:
         click.echo("work_precision.png needs the accuracy study: run without --quick", err=True)
 
 
+# ------------------------------------------------------------------------------------------- sweep
+SWEEP_FORMATS = ("csv", "json")
+
+
+@cli.command()
+@click.argument("file", type=str)
+@click.option("--vary", multiple=True, metavar="KEY=START:STOP:N|KEY=v1,v2,...",
+              help="Vary a key over N evenly spaced values (inclusive) or a list; several make a grid (repeatable).")
+@click.option("--random", "randoms", multiple=True, metavar="KEY=normal(MU,SIGMA)|KEY=uniform(A,B)",
+              help="Draw a key from a distribution, --samples times (repeatable).")
+@click.option("--samples", type=click.IntRange(1, 1_000_000), help="Number of random samples.")
+@click.option("--sampling", type=click.Choice(("lhs", "mc")), default="lhs", show_default=True,
+              help="Latin hypercube (lhs) or plain Monte Carlo (mc).")
+@click.option("--seed", type=click.IntRange(0, 2**63 - 1), help="Seed of the random samples (recorded in -o FILE).")
+@click.option("--direction", type=click.Choice(("up", "down", "both")),
+              help="Continuation along the first --vary key: each point starts from the previous one's final state.")
+@click.option("--jobs", type=click.IntRange(1, 4096), help="Local worker processes [default: all cores].")
+@click.option("--scheduler", metavar="ADDRESS",
+              help="Run the points on a Dask distributed cluster (pip install 'gearcli[distributed]').")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a key of the base scene.")
+@click.option("--format", "fmt", type=click.Choice(SWEEP_FORMATS), help="[default: from -o's suffix, else csv]")
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="Write rows to FILE as they finish (.csv or .json); a re-run skips the points done.")
+@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+              help="Response curves, Campbell diagram, histograms into DIR (pip install 'gearcli[plot]').")
+@click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
+@guarded
+def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, scheduler, overrides, fmt, output,
+          plots_dir) -> None:
+    """Simulate many operating points: grids, tolerance samples, continuation up and down in speed."""
+    from gearcli.io.sweep_progress import SweepProgress
+    from gearcli.sweep.session import prepare, run
+
+    fmt = fmt or ("json" if output and Path(output).suffix.lower() == ".json" else "csv")
+    session = prepare(file, overrides, vary=vary, randoms=randoms, samples=samples, sampling=sampling, seed=seed,
+                      direction=direction, jobs=jobs, scheduler=scheduler, output=output, fmt=fmt)
+    warn(session.design_warnings)
+    with SweepProgress(session.todo + session.done, session.done) as progress:
+        rows = run(session, progress.advance)
+    failed = sum(r.get("status") != "ok" for r in rows)
+    click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {output}" if output else ""),
+               err=True)
+    if plots_dir:
+        _write_sweep_plots(session, rows, plots_dir)
+    if failed:
+        sys.exit(EXIT_FAILED)
+
+
+def _write_sweep_plots(session, rows, plots_dir: str) -> None:
+    from gearcli.io.plots import PlotsUnavailable
+    from gearcli.io.sweep_plots import write_sweep_plots
+
+    try:
+        paths = write_sweep_plots(session, rows, plots_dir)
+    except PlotsUnavailable as exc:
+        warn([f"{exc}; the sweep itself is complete"])
+        return
+    except OSError as exc:
+        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
+    click.echo(f"wrote {', '.join(p.name for p in paths)} to {plots_dir}", err=True)
+
+
 def main() -> None:
     """The console script: SIGTERM unwinds like Ctrl-C (temporary files removed), then exit 143."""
     import signal

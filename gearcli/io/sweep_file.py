@@ -1,0 +1,231 @@
+"""Writing a sweep's rows as they arrive: a resumable ``-o FILE`` (CSV or JSON), or stdout.
+
+CSV file: the first line is a comment that identifies the sweep, then the header row, then one row per
+point, appended (and flushed) as each arrives::
+
+    # gearcli sweep: {"gearcli_version": "0.1.0", "input_sha256": "...", "sweep": {...}}
+    input.speed_rpm,direction,status,message,stage1_tangential_N_mean,...
+
+Read it with ``pandas.read_csv(path, skiprows=1)`` (or ``comment="#"``; messages never contain '#'),
+or skip the first line with any CSV reader. Empty cells are values the run does not provide.
+
+JSON file: one document ``{"gearcli_version", "input_sha256", "sweep", "columns", "rows": [{...}]}``.
+A JSON document cannot be appended to and stay valid, so it is rewritten atomically (temporary file,
+rename) at most once a second while rows arrive and once at the end, Ctrl-C included: the file on disk
+is always a complete document; a hard kill loses at most the last second of rows.
+
+Resume: an existing file whose identity (input hash and sweep arguments) equals this run's lends its
+rows; the run computes only the missing points. A different identity is an error (exit 2), never a
+mix. At the end the file is rewritten in the sweep's point order, so a resumed sweep leaves the same
+file as an uninterrupted one (except ``wall_s``). All whole-file writes go through :func:`_replace`.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, TextIO
+
+from gearcli.errors import ConfigError
+
+MARK = "# gearcli sweep: "
+JSON_EVERY_S = 1.0
+
+
+def _replace(path: Path, text: str) -> None:
+    """The one place a whole sweep file is written (atomically); swap for the shared -o helper."""
+    from gearcli.io.atomic import write_atomic
+
+    write_atomic(path, text)
+
+
+def _cell(v: Any) -> str:
+    if v is None:
+        return ""
+    if isinstance(v, float):
+        return repr(v) if math.isfinite(v) else ""
+    if isinstance(v, str):
+        return v.replace("#", "No.").replace("\n", "; ")
+    return str(v)
+
+
+def _json_value(v: Any) -> Any:
+    return None if isinstance(v, float) and not math.isfinite(v) else v
+
+
+def _csv_line(values: Sequence[Any]) -> str:
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerow([_cell(v) for v in values])
+    return buf.getvalue()
+
+
+class SweepFileError(ConfigError):
+    """The -o file belongs to another sweep or is not a sweep file (exit 2)."""
+
+
+class RowSink:
+    """Where rows go: ``add`` each as it arrives, ``finish`` with all rows in point order."""
+
+    def __init__(self, columns: Sequence[str], identity: dict):
+        self.columns = list(columns)
+        self.identity = identity
+        self.rows: list[dict] = []
+
+    def add(self, row: dict) -> None:
+        self.rows.append(row)
+
+    def finish(self, ordered: Sequence[dict]) -> None:
+        self.rows = list(ordered)
+
+    def close(self) -> None:
+        """On interruption: leave what is done."""
+
+
+def read_identity(path: str) -> tuple[dict | None, list[dict]]:
+    """The identity and the rows of an existing sweep file; (None, []) when there is none (or it is empty)."""
+    p = Path(path)
+    if not p.exists() or p.stat().st_size == 0:
+        return None, []
+    if p.is_dir():
+        raise SweepFileError("is a directory", source=path)
+    text = p.read_text(encoding="utf-8", errors="replace")
+    if p.suffix.lower() == ".json":
+        return _read_json(text, path)
+    return _read_csv(text, path)
+
+
+def _not_ours(path: str) -> SweepFileError:
+    return SweepFileError("exists and is not a gearcli sweep file; choose another -o FILE or remove it", source=path)
+
+
+def _read_csv(text: str, path: str) -> tuple[dict, list[dict]]:
+    first, _, rest = text.partition("\n")
+    if not first.startswith(MARK):
+        raise _not_ours(path)
+    try:
+        identity = json.loads(first[len(MARK):])
+    except ValueError:
+        raise _not_ours(path) from None
+    lines = list(csv.reader(io.StringIO(rest)))
+    if not lines:
+        return identity, []
+    header, body = lines[0], lines[1:]
+    if not text.endswith("\n") and body:  # a row cut short by a hard kill
+        body = body[:-1]
+    rows = [dict(zip(header, r, strict=True)) for r in body if len(r) == len(header)]
+    return identity, rows
+
+
+def _read_json(text: str, path: str) -> tuple[dict, list[dict]]:
+    try:
+        doc = json.loads(text)
+    except ValueError:
+        raise _not_ours(path) from None
+    if not isinstance(doc, dict) or "sweep" not in doc or not isinstance(doc.get("rows"), list):
+        raise _not_ours(path)
+    identity = {k: doc.get(k) for k in ("gearcli_version", "input_sha256", "sweep")}
+    return identity, list(doc["rows"])
+
+
+class CsvFile(RowSink):
+    def __init__(self, path: str, columns: Sequence[str], identity: dict, previous: Sequence[dict]):
+        super().__init__(columns, identity)
+        self.path = Path(path)
+        self.rows = list(previous)
+        _replace(self.path, self._text(self.rows))  # also drops a row a hard kill cut short
+        self.fh: TextIO | None = self.path.open("a", encoding="utf-8", newline="")
+
+    def _text(self, rows: Sequence[dict]) -> str:
+        return (MARK + json.dumps(self.identity, separators=(", ", ": ")) + "\n" + _csv_line(self.columns)
+                + "".join(_csv_line([r.get(c) for c in self.columns]) for r in rows))
+
+    def add(self, row: dict) -> None:
+        super().add(row)
+        assert self.fh is not None
+        self.fh.write(_csv_line([row.get(c) for c in self.columns]))  # one write per row: whole lines only
+        self.fh.flush()
+
+    def close(self) -> None:
+        if self.fh is not None:
+            self.fh.close()
+            self.fh = None
+
+    def finish(self, ordered: Sequence[dict]) -> None:
+        self.close()
+        super().finish(ordered)
+        _replace(self.path, self._text(self.rows))
+
+
+class JsonFile(RowSink):
+    def __init__(self, path: str, columns: Sequence[str], identity: dict, previous: Sequence[dict]):
+        super().__init__(columns, identity)
+        self.path = Path(path)
+        self.rows = list(previous)
+        self.written = 0.0
+        self._write()
+
+    def _write(self) -> None:
+        rows = [{c: _json_value(r.get(c)) for c in self.columns} for r in self.rows]
+        doc = {**self.identity, "columns": self.columns, "rows": rows}
+        _replace(self.path, json.dumps(doc, indent=1, allow_nan=False) + "\n")
+        self.written = time.monotonic()
+
+    def add(self, row: dict) -> None:
+        super().add(row)
+        if time.monotonic() - self.written >= JSON_EVERY_S:
+            self._write()
+
+    def close(self) -> None:
+        self._write()
+
+    def finish(self, ordered: Sequence[dict]) -> None:
+        super().finish(ordered)
+        self._write()
+
+
+class CsvStdout(RowSink):
+    """CSV to stdout: the header, then each row as it arrives (no identity line: nothing to resume)."""
+
+    def __init__(self, columns: Sequence[str], identity: dict, stream: TextIO | None = None):
+        super().__init__(columns, identity)
+        self.stream = stream or sys.stdout
+        self.stream.write(_csv_line(self.columns))
+        self.stream.flush()
+
+    def add(self, row: dict) -> None:
+        super().add(row)
+        self.stream.write(_csv_line([row.get(c) for c in self.columns]))
+        self.stream.flush()
+
+
+class JsonStdout(RowSink):
+    """JSON to stdout, once, at the end (or at an interruption, with the rows done)."""
+
+    def __init__(self, columns: Sequence[str], identity: dict, stream: TextIO | None = None):
+        super().__init__(columns, identity)
+        self.stream = stream or sys.stdout
+
+    def _write(self) -> None:
+        rows = [{c: _json_value(r.get(c)) for c in self.columns} for r in self.rows]
+        self.stream.write(json.dumps({**self.identity, "columns": self.columns, "rows": rows}, indent=1) + "\n")
+        self.stream.flush()
+
+    def close(self) -> None:
+        self._write()
+
+    def finish(self, ordered: Sequence[dict]) -> None:
+        super().finish(ordered)
+        self._write()
+
+
+def open_sink(output: str | None, fmt: str, columns: Sequence[str], identity: dict,
+              previous: Sequence[dict]) -> RowSink:
+    if output:
+        return (JsonFile if fmt == "json" else CsvFile)(output, columns, identity, previous)
+    return JsonStdout(columns, identity) if fmt == "json" else CsvStdout(columns, identity)

@@ -1,0 +1,169 @@
+"""``gearcli sweep --plots DIR``: response curves, a Campbell diagram, histograms and ECDFs (matplotlib Agg).
+
+- ``response_<key>.png`` for each ``--vary`` key: every statistic with data against the key, one column per
+  stage, each direction (up, down, or independent points) in its own colour and overlaid.
+- ``campbell.png`` when the input speed is swept: natural frequencies against input speed with the
+  1x and 2x mesh-order lines of each stage (a crossing is a potential resonance).
+- ``distributions.png`` for ``--random`` samples: histogram and empirical CDF of the main statistics.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from gearcli.io.plots import _figure, _save
+
+COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
+#: (title with unit, columns of one stage as {suffix: line style})
+FAMILIES = (
+    ("tangential force F_t (N)", {"tangential_N_mean": "-", "tangential_N_min": ":", "tangential_N_max": "--"}),
+    ("F_t standard deviation (N)", {"tangential_N_std": "-"}),
+    ("dynamic transmission error (µm)", {"dte_um_mean": "-", "dte_um_min": ":", "dte_um_max": "--"}),
+    ("DTE rms (µm)", {"dte_um_rms": "-"}),
+    ("contact loss (fraction of window)", {"contact_loss_fraction": "-"}),
+    ("dynamic factor peak/static F_t (-)", {"dynamic_factor": "-"}),
+)
+DISTRIBUTION_STATS = (("tangential_N_max", "peak F_t in window (N)"), ("tangential_N_std", "F_t std (N)"),
+                      ("dynamic_factor", "dynamic factor (-)"), ("dte_um_rms", "DTE rms (µm)"))
+
+
+def _num(v: Any) -> float:
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return float("nan")
+
+
+def _has(rows: Sequence[dict], col: str) -> bool:
+    return any(np.isfinite(_num(r.get(col))) for r in rows)
+
+
+def write_sweep_plots(session, rows: Sequence[dict], plots_dir: str) -> list[Path]:
+    out = Path(plots_dir)
+    ok = [r for r in rows if r.get("status") == "ok"]
+    n_stages = session.scene.n_stages
+    paths: list[Path] = []
+    figs = []
+    for axis in session.spec.axes:
+        figs.append((f"response_{axis.key.replace('.', '_')}.png", _response(ok, axis.key, session.spec, n_stages)))
+    speed = next((a for a in session.spec.axes if a.key in _speed_keys()), None)
+    if speed is not None:
+        figs.append(("campbell.png", _campbell(session, speed)))
+    if session.spec.randoms:
+        figs.append(("distributions.png", _distributions(ok, n_stages)))
+    out.mkdir(parents=True, exist_ok=True)
+    for name, fig in figs:
+        if fig is not None:
+            paths.append(_save(fig, out / name))
+    return paths
+
+
+def _speed_keys() -> tuple[str, ...]:
+    from gearcli.sweep.modes import SPEED_KEYS
+
+    return SPEED_KEYS
+
+
+def _groups(rows: Sequence[dict], key: str, keys: Sequence[str]) -> dict[tuple, list[dict]]:
+    """Rows per direction and combination of the other varied keys, each sorted by ``key``."""
+    others = [k for k in keys if k != key]
+    groups: dict[tuple, list[dict]] = {}
+    for r in rows:
+        groups.setdefault((r.get("direction"), *(str(r.get(k)) for k in others)), []).append(r)
+    return {g: sorted(rs, key=lambda r: _num(r.get(key))) for g, rs in groups.items()}
+
+
+def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
+    families = [(t, cols) for t, cols in FAMILIES
+                if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1) for c in cols)]
+    if not rows or not families:
+        return None
+    fig, axes = _figure(len(families) + 1, n_stages, height=2.1, width=4.2 * n_stages + 1, sharex=True)
+    others = [k for k in spec.keys if k != key]
+    groups = _groups(rows, key, spec.keys)
+    for i, (title, cols) in enumerate(families):
+        for k in range(1, n_stages + 1):
+            ax = axes[i][k - 1]
+            for g, rs in groups.items():
+                x = [_num(r.get(key)) for r in rs]
+                for c, style in cols.items():
+                    label = _label(g, others) + (f" {c.rsplit('_', 1)[-1]}" if len(cols) > 1 else "")
+                    ax.plot(x, [_num(r.get(f"stage{k}_{c}")) for r in rs], style, marker=".", ms=4, lw=1,
+                            color=COLOURS.get(str(g[0]), "k"), label=label)
+            ax.set_title(f"stage {k}: {title}", fontsize=9)
+            ax.grid(alpha=0.3)
+    ax = axes[-1][0]
+    for g, rs in groups.items():
+        ax.plot([_num(r.get(key)) for r in rs], [_num(r.get("output_speed_rpm")) for r in rs], marker=".",
+                color=COLOURS.get(str(g[0]), "k"), label=_label(g, others))
+    ax.set_title("output speed (rpm)", fontsize=9)
+    ax.grid(alpha=0.3)
+    for extra in axes[-1][1:]:
+        extra.set_visible(False)
+    axes[-1][0].set_xlabel(key)
+    for k in range(1, n_stages):
+        axes[-2][k].set_xlabel(key)
+        axes[-2][k].xaxis.set_tick_params(labelbottom=True)
+    axes[0][0].legend(fontsize=7, loc="best")
+    fig.suptitle(f"sweep response against {key}", fontsize=11)
+    return fig
+
+
+def _label(group: tuple, others: Sequence[str]) -> str:
+    extra = ", ".join(f"{k}={v}" for k, v in zip(others, group[1:], strict=True))
+    return str(group[0]) + (f" ({extra})" if extra else "")
+
+
+def _campbell(session, axis):
+    from gearcli.sweep.modes import campbell
+
+    fixed = [f"{a.key}={a.values[0]!r}" for a in session.spec.axes[1:] if a.key != axis.key]
+    values = sorted(axis.values, key=float)
+    pts = campbell(session.scene, axis.key, values, fixed)
+    fig, axes = _figure(1, 1, height=4.2, width=8.0)
+    ax = axes[0][0]
+    n = np.array([p.input_rpm for p in pts])
+    nmodes = max(len(p.natural_Hz) for p in pts)
+    for j in range(nmodes):
+        f = [p.natural_Hz[j] if j < len(p.natural_Hz) else np.nan for p in pts]
+        ax.plot(n, f, "k-", lw=1.5, label="natural frequencies (linearised, full load)" if j == 0 else None)
+    top = 1.15 * max(max(p.natural_Hz, default=1.0) for p in pts)
+    for s in range(len(pts[0].mesh_Hz)):
+        for order, style in ((1, "-"), (2, "--")):
+            ax.plot(n, [order * p.mesh_Hz[s] for p in pts], style, lw=1, color=f"C{s}",
+                    label=f"stage {s + 1} mesh {order}×")
+    ax.set_ylim(0, top)
+    ax.set_xlabel("input speed (rpm)")
+    ax.set_ylabel("frequency (Hz)")
+    ax.set_title("Campbell diagram: crossings of the mesh orders with a natural frequency are resonances", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", ncol=2)
+    return fig
+
+
+def _distributions(rows: Sequence[dict], n_stages: int):
+    stats = [(c, t) for c, t in DISTRIBUTION_STATS if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1))]
+    if not rows or not stats:
+        return None
+    fig, axes = _figure(len(stats), 2, height=2.3, width=9.0)
+    for i, (c, title) in enumerate(stats):
+        for k in range(1, n_stages + 1):
+            x = np.array([_num(r.get(f"stage{k}_{c}")) for r in rows])
+            x = np.sort(x[np.isfinite(x)])
+            if not x.size:
+                continue
+            axes[i][0].hist(x, bins=min(30, max(5, x.size // 5)), alpha=0.5, color=f"C{k - 1}", label=f"stage {k}")
+            axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=f"C{k - 1}", label=f"stage {k}")
+        axes[i][0].set_xlabel(title)
+        axes[i][0].set_ylabel("count")
+        axes[i][1].set_xlabel(title)
+        axes[i][1].set_ylabel("ECDF")
+        for a in axes[i]:
+            a.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle(f"distributions over {len(rows)} random samples", fontsize=11)
+    return fig

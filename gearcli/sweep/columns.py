@@ -1,0 +1,83 @@
+"""The columns of a sweep's output, and one row from one simulation result: the mapping lives here only.
+
+One row per point (docs: README "Sweeps"): the varied keys (named by their dotted key path),
+``direction``, ``status`` (``ok``/``failed``), ``message``, then per stage k
+``stage{k}_tangential_N_{mean,std,min,max}``, ``stage{k}_dte_um_{mean,rms,min,max}``,
+``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor``, then ``output_speed_rpm``, ``nfev``,
+``wall_s``. A cell the result does not provide is empty (``None``): the dynamic transmission error and
+the contact-loss fraction come from the excitation outputs; :data:`STAGE_STATISTICS` reads them from
+``StageDynamics.dte_um`` (an object with ``mean``/``rms``/``min``/``max``) and
+``StageDynamics.contact_loss_fraction`` when those exist, so they fill in without touching the sweep.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from typing import Any
+
+FIXED = ("direction", "status", "message")
+TRAILING = ("output_speed_rpm", "nfev", "wall_s")
+OK, FAILED = "ok", "failed"
+
+
+def _attr(*path: str) -> Callable[[Any], float | None]:
+    def get(obj: Any) -> float | None:
+        for name in path:
+            obj = getattr(obj, name, None)
+            if obj is None:
+                return None
+        value = float(obj)
+        return value if math.isfinite(value) else None
+
+    return get
+
+
+#: per-stage column suffix -> how to read it from one ``StageDynamics`` (the ONLY mapping)
+STAGE_STATISTICS: dict[str, Callable[[Any], float | None]] = {
+    "tangential_N_mean": _attr("tangential_N", "mean"),
+    "tangential_N_std": _attr("tangential_N", "std"),
+    "tangential_N_min": _attr("tangential_N", "min"),
+    "tangential_N_max": _attr("tangential_N", "max"),
+    "dte_um_mean": _attr("dte_um", "mean"),
+    "dte_um_rms": _attr("dte_um", "rms"),
+    "dte_um_min": _attr("dte_um", "min"),
+    "dte_um_max": _attr("dte_um", "max"),
+    "contact_loss_fraction": _attr("contact_loss_fraction"),
+    "dynamic_factor": _attr("dynamic_factor"),
+}
+
+
+def stage_columns(n_stages: int) -> list[str]:
+    return [f"stage{k}_{name}" for k in range(1, n_stages + 1) for name in STAGE_STATISTICS]
+
+
+def columns(keys: Sequence[str], n_stages: int) -> list[str]:
+    return [*keys, *FIXED, *stage_columns(n_stages), *TRAILING]
+
+
+def statistic_columns(n_stages: int) -> list[str]:
+    """The numeric result columns a response curve can show."""
+    return [*stage_columns(n_stages), "output_speed_rpm"]
+
+
+def ok_row(values: Sequence[tuple[str, Any]], direction: str, result, wall_s: float, n_stages: int,
+           message: str = "") -> dict[str, Any]:
+    row: dict[str, Any] = {**dict(values), "direction": direction, "status": OK, "message": message}
+    for k, st in enumerate(result.stages[:n_stages], start=1):
+        for name, get in STAGE_STATISTICS.items():
+            row[f"stage{k}_{name}"] = get(st)
+    row["output_speed_rpm"] = result.output_speed_deg_s / 6.0
+    row["nfev"] = int(result.solver.nfev)
+    row["wall_s"] = wall_s
+    return row
+
+
+def failed_row(values: Sequence[tuple[str, Any]], direction: str, message: str, wall_s: float) -> dict[str, Any]:
+    return {**dict(values), "direction": direction, "status": FAILED, "message": one_line(message),
+            "wall_s": wall_s}
+
+
+def one_line(message: str) -> str:
+    """A message for one CSV cell: lines joined with '; '."""
+    return "; ".join(line.strip() for line in str(message).splitlines() if line.strip())

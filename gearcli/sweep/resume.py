@@ -1,0 +1,68 @@
+"""A sweep's identity (what makes two runs the same sweep), and matching rows already written to points.
+
+Identity: the input's sha256 (the design file and the base ``--set`` overrides) and the sweep's
+arguments (:meth:`SweepSpec.arguments`: varied keys and values, distributions, samples, sampling, seed,
+direction). How the points are run (``--jobs``, ``--scheduler``) is not part of it. Without ``--seed`` a
+random sweep draws one and records it; a re-run without ``--seed`` reuses the recorded one.
+"""
+
+from __future__ import annotations
+
+import secrets
+from collections.abc import Sequence
+from typing import Any
+
+from gearcli.errors import ConfigError
+from gearcli.sweep.spec import SweepSpec, _ident_value
+
+
+def identity(spec: SweepSpec, sha256: str, version: str) -> dict:
+    return {"gearcli_version": version, "input_sha256": sha256, "sweep": spec.arguments()}
+
+
+def seed_for(user_seed: int | None, stored: dict | None, has_random: bool) -> int | None:
+    """The seed to use: the user's, else the one recorded in the output file, else a fresh one."""
+    if not has_random:
+        return user_seed
+    if user_seed is not None:
+        return user_seed
+    recorded = ((stored or {}).get("sweep") or {}).get("seed")
+    return int(recorded) if isinstance(recorded, int) else secrets.randbits(32)
+
+
+def check_same(stored: dict, current: dict, path: str) -> None:
+    """Raise (exit 2) when ``path`` holds a different sweep than this run's."""
+    diffs = []
+    if stored.get("input_sha256") != current["input_sha256"]:
+        diffs.append("the design file or its --set overrides changed (input sha256)")
+    a, b = stored.get("sweep") or {}, current["sweep"]
+    diffs += [f"--{name} differs" for name in b if a.get(name) != b[name]]
+    if diffs:
+        raise ConfigError(f"holds a different sweep: {'; '.join(diffs)}. Use another -o FILE, or remove this one "
+                          "to start over", source=path)
+
+
+def _parse_cell(v: Any) -> Any:
+    if isinstance(v, str):
+        try:
+            return float(v)
+        except ValueError:
+            return v
+    return v
+
+
+def row_ident(row: dict, keys: Sequence[str]) -> tuple:
+    """The ident (:attr:`Point.ident`) of a row read back from a file (CSV strings or JSON values)."""
+    return (str(row.get("direction")), *(_ident_value(_parse_cell(row.get(k))) for k in keys))
+
+
+def ordered(rows: Sequence[dict], spec: SweepSpec) -> list[dict]:
+    """Rows in the sweep's point order (a row this sweep does not know is dropped)."""
+    index = {p.ident: p.index for branch in spec.branches() for p in branch}
+    keyed = {}
+    for row in rows:
+        i = row.get("_index")
+        i = index.get(row_ident(row, spec.keys)) if i is None else i
+        if i is not None:
+            keyed[i] = row
+    return [keyed[i] for i in sorted(keyed)]

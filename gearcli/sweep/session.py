@@ -1,0 +1,91 @@
+"""One ``gearcli sweep`` run: check the arguments, match an existing ``-o`` file, run, write, order.
+
+:func:`prepare` does everything that can fail with a usage error (exit 2) before any point runs; then
+:func:`run` streams the rows to the output as they finish and, at the end, leaves them in point order.
+On Ctrl-C the output keeps every finished row and the interrupt propagates (exit 130 from the CLI).
+"""
+
+from __future__ import annotations
+
+import io
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from gearcli import __version__
+from gearcli.sweep.columns import FAILED, columns
+from gearcli.sweep.execute import default_jobs, execute, plan, require_distributed
+from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
+from gearcli.sweep.spec import SweepSpec, spec_from_options
+from gearcli.sweep.worker import Scene, Task, check_keys
+
+
+@dataclass
+class Session:
+    spec: SweepSpec
+    scene: Scene
+    cfg: object  # the validated base DesignFile
+    design: object  # its DesignResult
+    columns: list[str]
+    identity: dict
+    previous: list[dict]
+    tasks: list[Task]
+    todo: int
+    done: int
+    jobs: int
+    scheduler: str | None
+    output: str | None
+    fmt: str
+    design_warnings: tuple[str, ...]
+
+
+def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Sequence[str], samples: int | None,
+            sampling: str, seed: int | None, direction: str | None, jobs: int | None,
+            scheduler: str | None, output: str | None, fmt: str) -> Session:
+    from gearcli.config import load_design
+    from gearcli.config.load import _read
+    from gearcli.design import compute_design
+    from gearcli.errors import DesignError
+
+    raw = _read(file, None)
+    loaded = load_design(file, sets, stdin=io.BytesIO(raw))
+    try:
+        design = compute_design(loaded.design)
+    except DesignError as exc:
+        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
+    if scheduler:
+        require_distributed()
+    stored: dict | None = None
+    previous: list[dict] = []
+    if output:
+        from gearcli.io.sweep_file import read_identity
+
+        stored, previous = read_identity(output)
+    spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
+    scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
+    check_keys(scene, spec.branches()[0][0])
+    ident = identity(spec, loaded.sha256, __version__)
+    if stored is not None and output:
+        check_same(stored, ident, output)
+    done = {row_ident(r, spec.keys) for r in previous}
+    workers = jobs or default_jobs()
+    tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers)
+    previous = ordered(previous, spec)
+    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages)), ident, previous,
+                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings))
+
+
+def run(session: Session, on_row: Callable[[bool], None] = lambda failed: None) -> list[dict]:
+    """Run the session's tasks; every row goes to the output as it arrives. Returns all rows in point order."""
+    from gearcli.io.sweep_file import open_sink
+
+    sink = open_sink(session.output, session.fmt, session.columns, session.identity, session.previous)
+    try:
+        for row in execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler):
+            sink.add(row)
+            on_row(row.get("status") == FAILED)
+    except BaseException:
+        sink.close()
+        raise
+    rows = ordered(sink.rows, session.spec)
+    sink.finish(rows)
+    return rows

@@ -1,0 +1,253 @@
+"""What a sweep runs: the ``--vary`` grid, the ``--random`` samples, and the points they make.
+
+``--vary KEY=START:STOP:N`` is ``N`` evenly spaced values from START to STOP inclusive; ``--vary
+KEY=v1,v2,...`` is the listed values (each read as a TOML value, as ``--set`` reads it). Several
+``--vary`` make the grid of every combination; the first ``--vary`` changes slowest.
+
+``--random KEY=normal(mu,sigma)`` or ``KEY=uniform(a,b)`` with ``--samples N``: N points whose
+values are drawn by Latin hypercube sampling (``scipy.stats.qmc.LatinHypercube``, default) or plain
+Monte Carlo (``numpy.random.Generator``), reproducible with the seed. The uniform [0, 1) draws are
+mapped through each distribution's inverse CDF (``scipy.stats.norm.ppf``; ``a + (b - a) u``).
+
+A grid may be combined with random keys: every grid point gets the same N samples.
+
+``--direction up|down|both`` turns the grid into continuation branches along the FIRST ``--vary``
+key: ascending (``up``), descending (``down``) or both, one branch per combination of the other keys;
+each point of a branch starts from the final state of the previous one. Without ``--direction``
+every point starts cold (``direction = none``) and points run independently.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from gearcli.config.overrides import parse, parse_value
+from gearcli.errors import ConfigError
+
+DIRECTIONS = ("up", "down", "both")
+NO_DIRECTION = "none"
+SAMPLINGS = ("lhs", "mc")
+MAX_POINTS = 1_000_000
+_RANGE = re.compile(r"^\s*([^:]+):([^:]+):\s*(\d+)\s*$")
+_DIST = re.compile(r"^\s*(normal|uniform)\s*\(\s*([^,()]+)\s*,\s*([^,()]+)\s*\)\s*$", re.IGNORECASE)
+
+
+class SweepUsageError(ConfigError):
+    """A malformed ``--vary``/``--random``/``--samples`` option (exit 2)."""
+
+
+def canonical_key(key: str) -> str:
+    """``stage[0].pinion.teeth`` -> ``stage.0.pinion.teeth``: the column name of a varied key."""
+    return ".".join(str(s) for s in parse(f"{key}=0").path)
+
+
+@dataclass(frozen=True)
+class Axis:
+    key: str  # canonical dotted key path
+    values: tuple[Any, ...]
+
+
+@dataclass(frozen=True)
+class Distribution:
+    key: str
+    kind: str  # "normal" | "uniform"
+    a: float  # mu or lower bound
+    b: float  # sigma or upper bound
+
+    def ppf(self, u):
+        """Inverse CDF on uniform draws in [0, 1)."""
+        if self.kind == "uniform":
+            return self.a + (self.b - self.a) * u
+        from scipy.stats import norm
+
+        return norm.ppf(u, loc=self.a, scale=self.b)
+
+
+def _number(text: str, option: str, what: str) -> float:
+    try:
+        x = float(text)
+    except ValueError:
+        raise SweepUsageError(f"{what} must be a number, got {text.strip()!r}", source=option) from None
+    if not math.isfinite(x):
+        raise SweepUsageError(f"{what} must be finite, got {text.strip()!r}", source=option)
+    return x
+
+
+def _split(text: str, option: str, example: str) -> tuple[str, str]:
+    key, sep, value = text.partition("=")
+    if not sep or not key.strip() or not value.strip():
+        raise SweepUsageError(f"expected KEY={example}, got {text!r}", source=option)
+    try:
+        return canonical_key(key), value
+    except ConfigError as exc:
+        raise SweepUsageError(exc.message, source=option, key=key.strip()) from None
+
+
+def parse_vary(text: str) -> Axis:
+    """``input.speed_rpm=300:1500:13`` or ``stage.0.backlash_mm=0.1,0.2,0.3`` -> an :class:`Axis`."""
+    option = "--vary"
+    key, value = _split(text, option, "START:STOP:N or KEY=v1,v2,...")
+    m = _RANGE.match(value)
+    if m:
+        start, stop = _number(m[1], option, f"{key}: START"), _number(m[2], option, f"{key}: STOP")
+        n = int(m[3])
+        if n < 1:
+            raise SweepUsageError(f"{key}: N must be at least 1, got {n}", source=option)
+        values: tuple[Any, ...] = (start,) if n == 1 else tuple(start + (stop - start) * i / (n - 1) for i in range(n))
+        if all(re.fullmatch(r"\s*[+-]?\d+\s*", t) for t in (m[1], m[2])) and all(float(v).is_integer() for v in values):
+            values = tuple(int(v) for v in values)  # 17:25:9 is teeth 17, 18, ..., 25 (integers)
+        return Axis(key, values)
+    if ":" in value and "," not in value and not value.strip().startswith(("[", "{", '"')):
+        raise SweepUsageError(f"{key}: expected START:STOP:N with an integer N, got {value!r}", source=option)
+    items = [v.strip() for v in value.split(",")]
+    if any(not v for v in items):
+        raise SweepUsageError(f"{key}: empty value in {value!r}", source=option)
+    return Axis(key, tuple(parse_value(v) for v in items))
+
+
+def parse_random(text: str) -> Distribution:
+    """``stage.0.backlash_mm=normal(0.25,0.02)`` or ``...=uniform(0.2,0.3)`` -> a :class:`Distribution`."""
+    option = "--random"
+    key, value = _split(text, option, "normal(mu,sigma) or KEY=uniform(a,b)")
+    m = _DIST.match(value)
+    if not m:
+        raise SweepUsageError(f"{key}: expected normal(mu,sigma) or uniform(a,b), got {value!r}", source=option)
+    kind = m[1].lower()
+    a, b = _number(m[2], option, f"{key}: {kind} parameter"), _number(m[3], option, f"{key}: {kind} parameter")
+    if kind == "normal" and b <= 0:
+        raise SweepUsageError(f"{key}: normal(mu, sigma) needs sigma > 0, got {b:g}", source=option)
+    if kind == "uniform" and not b > a:
+        raise SweepUsageError(f"{key}: uniform(a, b) needs b > a, got ({a:g}, {b:g})", source=option)
+    return Distribution(key, kind, a, b)
+
+
+def unit_samples(n: int, dims: int, sampling: str, seed: int):
+    """``n x dims`` uniform draws in [0, 1): Latin hypercube (scipy) or plain Monte Carlo (numpy)."""
+    import numpy as np
+
+    if sampling == "lhs":
+        from scipy.stats import qmc
+
+        return qmc.LatinHypercube(d=dims, seed=np.random.default_rng(seed)).random(n)
+    return np.random.default_rng(seed).random((n, dims))
+
+
+@dataclass(frozen=True)
+class Point:
+    """One operating point: its position in the sweep's canonical order, and the values to set."""
+
+    index: int
+    values: tuple[tuple[str, Any], ...]  # (key, value) in column order
+    direction: str  # "up" | "down" | "none"
+
+    @property
+    def ident(self) -> tuple:
+        """What identifies a point in an output file (resume): direction and values."""
+        return (self.direction, *(_ident_value(v) for _, v in self.values))
+
+    def overrides(self) -> list[str]:
+        return [f"{k}={_toml(v)}" for k, v in self.values]
+
+
+def _ident_value(v: Any) -> str:
+    return repr(float(v)) if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)
+
+
+def _toml(v: Any) -> str:
+    import tomli_w
+
+    return tomli_w.dumps({"v": v})[4:].strip()
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    axes: tuple[Axis, ...] = ()
+    randoms: tuple[Distribution, ...] = ()
+    samples: int | None = None
+    sampling: str = "lhs"
+    seed: int | None = None
+    direction: str | None = None
+
+    def __post_init__(self) -> None:
+        keys = [a.key for a in self.axes] + [d.key for d in self.randoms]
+        dup = next((k for k in keys if keys.count(k) > 1), None)
+        if dup:
+            raise SweepUsageError(f"{dup} is varied twice", source="--vary/--random")
+        if not keys:
+            raise SweepUsageError("nothing to sweep: give --vary KEY=START:STOP:N or --samples N --random KEY=...",
+                                  source="gearcli sweep")
+        if self.randoms and not self.samples:
+            raise SweepUsageError("--random needs --samples N", source="--random")
+        if self.samples and not self.randoms:
+            raise SweepUsageError("--samples needs at least one --random KEY=normal(mu,sigma)", source="--samples")
+        if self.direction and not self.axes:
+            raise SweepUsageError("--direction continues along the first --vary key; give one", source="--direction")
+        if self.direction and self.direction not in DIRECTIONS:
+            raise SweepUsageError(f"must be one of {', '.join(DIRECTIONS)}", source="--direction")
+        if self.sampling not in SAMPLINGS:
+            raise SweepUsageError(f"must be one of {', '.join(SAMPLINGS)}", source="--sampling")
+        if self.randoms and self.seed is None:
+            raise ValueError("random samples need a seed (the CLI draws one when --seed is absent)")
+        if self.n_points > MAX_POINTS:
+            raise SweepUsageError(f"{self.n_points} points is more than {MAX_POINTS}", source="gearcli sweep")
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        return tuple(a.key for a in self.axes) + tuple(d.key for d in self.randoms)
+
+    @property
+    def n_points(self) -> int:
+        n = math.prod(len(a.values) for a in self.axes) * (self.samples or 1)
+        return n * (2 if self.direction == "both" else 1)
+
+    def branches(self) -> list[list[Point]]:
+        """The points in canonical order, grouped into branches: without a direction one single-point
+        branch per point (the grid product, first key slowest, then the samples); with one, a
+        continuation branch per direction and combination of the other keys and samples, running
+        along the first key (ascending for up, descending for down)."""
+        samples = self._random_values()
+        grids = [tuple(a.values) for a in self.axes]
+        if not self.direction:
+            combos = [g + s for g in itertools.product(*grids) for s in samples]
+            return [[Point(i, tuple(zip(self.keys, c, strict=True)), NO_DIRECTION)] for i, c in enumerate(combos)]
+        out: list[list[Point]] = []
+        index = 0
+        for direction in ("up", "down") if self.direction == "both" else (self.direction,):
+            first = grids[0][::-1] if direction == "down" else grids[0]
+            for rest in itertools.product(*grids[1:]):
+                for sample in samples:
+                    branch = [Point(index + j, tuple(zip(self.keys, (v, *rest, *sample), strict=True)), direction)
+                              for j, v in enumerate(first)]
+                    index += len(branch)
+                    out.append(branch)
+        return out
+
+    def _random_values(self) -> list[tuple[float, ...]]:
+        if not self.randoms:
+            return [()]
+        assert self.samples is not None and self.seed is not None
+        u = unit_samples(self.samples, len(self.randoms), self.sampling, self.seed)
+        cols = [d.ppf(u[:, j]) for j, d in enumerate(self.randoms)]
+        return [tuple(float(c[i]) for c in cols) for i in range(self.samples)]
+
+    def arguments(self) -> dict:
+        """The sweep's definition as plain data, stored in the output file (resume compares it)."""
+        return {"vary": [{"key": a.key, "values": [_plain(v) for v in a.values]} for a in self.axes],
+                "random": [{"key": d.key, "distribution": d.kind, "parameters": [d.a, d.b]} for d in self.randoms],
+                "samples": self.samples, "sampling": self.sampling if self.randoms else None,
+                "seed": self.seed if self.randoms else None, "direction": self.direction}
+
+
+def _plain(v: Any) -> Any:
+    return v if isinstance(v, (bool, int, float, str)) else str(v)
+
+
+def spec_from_options(vary: Sequence[str], random: Sequence[str], samples: int | None, sampling: str,
+                      seed: int | None, direction: str | None) -> SweepSpec:
+    return SweepSpec(tuple(parse_vary(v) for v in vary), tuple(parse_random(r) for r in random), samples,
+                     sampling, seed, direction)

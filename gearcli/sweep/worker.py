@@ -1,0 +1,115 @@
+"""Evaluating points: one branch (a task) at a time, in any process (local pool or a Dask worker).
+
+A :class:`Task` is plain picklable data: the design file's bytes (so a remote worker needs no access
+to the file), the base ``--set`` overrides, and the points. Each process parses a design file once
+(:func:`_base`, cached per process by its hash); points only apply their overrides, validate, compute the
+design and simulate. A point that fails (a value the schema rejects, an infeasible design, a solver
+failure) becomes a ``failed`` row with its message and the branch goes on, starting cold again.
+"""
+
+from __future__ import annotations
+
+import copy
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Any
+
+from gearcli.errors import GearcliError
+from gearcli.sweep.columns import failed_row, ok_row, one_line
+from gearcli.sweep.spec import Point
+
+
+@dataclass(frozen=True)
+class Scene:
+    """The base scene of a sweep: the design file's bytes, its name for messages, and ``--set``."""
+
+    raw: bytes
+    source: str
+    sets: tuple[str, ...] = ()
+    n_stages: int = 1
+
+
+@dataclass(frozen=True)
+class Task:
+    scene: Scene
+    points: tuple[Point, ...]
+    continuation: bool
+    skip: frozenset[int] = field(default_factory=frozenset)  # indices already written: computed, not returned
+
+
+@lru_cache(maxsize=8)
+def _base(raw: bytes, source: str) -> dict:
+    """The parsed TOML of a design file, once per process (points deep-copy it)."""
+    from gearcli.config.load import _parse
+
+    return _parse(raw, source)
+
+
+def load_point(scene: Scene, overrides: tuple[str, ...]):
+    """The validated ``DesignFile`` of a point: the base data, the base ``--set``s, then the point's."""
+    from gearcli.config.load import _validate
+    from gearcli.config.overrides import apply_all
+
+    data = copy.deepcopy(_base(scene.raw, scene.source))
+    paths = apply_all(data, (*scene.sets, *overrides))
+    return _validate(data, scene.source, paths)
+
+
+def _evaluate(scene: Scene, point: Point, prev: tuple[Any, Any] | None) -> tuple[Any, Any]:
+    """Simulate one point (continued from ``prev = (final_state, model)`` when given)."""
+    from gearcli.design import compute_design
+    from gearcli.scene import build_model
+    from gearcli.simulate import run_simulation
+    from gearcli.sweep.continuation import NO_RAMPS, continue_state
+
+    cfg = load_point(scene, tuple(point.overrides()) + (NO_RAMPS if prev else ()))
+    design = compute_design(cfg)
+    model = build_model(cfg, design)
+    y0 = continue_state(prev[0], prev[1], model) if prev else None
+    if prev and y0 is None:  # the chain changed: start cold, with the file's ramps
+        cfg = load_point(scene, tuple(point.overrides()))
+        design = compute_design(cfg)
+        model = build_model(cfg, design)
+    result = run_simulation(cfg, design, want_series=False, y0=y0)
+    return result, model
+
+
+def iter_task(task: Task) -> Iterator[dict]:
+    """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
+    prev = None
+    for point in task.points:
+        t0 = time.perf_counter()
+        try:
+            result, spec = _evaluate(task.scene, point, prev if task.continuation else None)
+        except GearcliError as exc:
+            prev = None
+            row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
+        except (ArithmeticError, ValueError, RuntimeError, OverflowError) as exc:  # a bug or a numerical failure
+            prev = None
+            row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
+        else:
+            prev = (result.final_state, spec) if result.final_state is not None else None
+            row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
+                         message=one_line("\n".join(result.warnings)))
+        if point.index not in task.skip:
+            yield {"_index": point.index, **row}
+
+
+def run_task(task: Task) -> list[dict]:
+    """A whole task in one call (what a pool or Dask worker runs)."""
+    return list(iter_task(task))
+
+
+def _message(exc: GearcliError, scene: Scene) -> str:
+    text = str(exc)
+    return text.replace("<stdin>", scene.source) if scene.source != "<stdin>" else text
+
+
+
+def check_keys(scene: Scene, point: Point) -> None:
+    """Raise ConfigError (exit 2) when a varied key is not a key ``--set`` accepts; values are checked per point."""
+    from gearcli.config.overrides import apply_all
+
+    apply_all(copy.deepcopy(_base(scene.raw, scene.source)), (*scene.sets, *point.overrides()))

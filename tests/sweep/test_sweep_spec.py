@@ -1,0 +1,117 @@
+"""Sweep definitions: the --vary grid, the --random samples and the output columns (README "Sweeps")."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.stats import norm
+
+from gearcli.sweep.columns import columns
+from gearcli.sweep.spec import SweepUsageError, canonical_key, parse_random, parse_vary, spec_from_options, unit_samples
+
+
+def test_range_is_inclusive_and_evenly_spaced():
+    axis = parse_vary("input.speed_rpm=300:1500:5")
+    assert axis.key == "input.speed_rpm"
+    assert axis.values == (300, 600, 900, 1200, 1500)  # (1500 - 300) / 4 = 300 rpm apart, by hand
+    assert all(isinstance(v, int) for v in axis.values)  # integer ends on integer steps stay integers (teeth)
+    assert parse_vary("x.y=0.1:0.2:3").values == pytest.approx((0.1, 0.15, 0.2), rel=1e-15)
+    assert parse_vary("a.b=5:5:1").values == (5,)
+
+
+def test_value_lists_read_as_toml_values():
+    assert parse_vary("stage.0.pinion.hand=left,right").values == ("left", "right")
+    assert parse_vary("stage[0].backlash_mm=0.1, 0.25").values == (0.1, 0.25)
+    assert canonical_key("stage[0].pinion.teeth") == "stage.0.pinion.teeth"
+
+
+@pytest.mark.parametrize("text", ["input.speed_rpm", "input.speed_rpm=", "=1,2", "input.speed_rpm=1:2",
+                                  "input.speed_rpm=a:2:3", "input.speed_rpm=1,,2", "input.speed_rpm=1:2:0"])
+def test_bad_vary_is_a_usage_error(text):
+    with pytest.raises(SweepUsageError) as err:
+        parse_vary(text)
+    assert err.value.exit_code == 2
+
+
+@pytest.mark.parametrize("text", ["k.x=normal(1)", "k.x=normal(1,0)", "k.x=uniform(2,1)", "k.x=gauss(1,2)",
+                                  "k.x=normal(a,1)"])
+def test_bad_random_is_a_usage_error(text):
+    with pytest.raises(SweepUsageError):
+        parse_random(text)
+
+
+def test_grid_is_the_product_first_key_slowest():
+    spec = spec_from_options(["input.speed_rpm=300:1500:3", "stage.0.backlash_mm=0.1,0.2"], [], None, "lhs", None,
+                             None)
+    points = [b[0] for b in spec.branches()]
+    assert all(len(b) == 1 for b in spec.branches())  # no continuation: each point on its own
+    expected = list(itertools.product((300, 900, 1500), (0.1, 0.2)))
+    assert [tuple(v for _, v in p.values) for p in points] == expected
+    assert [p.index for p in points] == list(range(6)) and {p.direction for p in points} == {"none"}
+    assert spec.n_points == 6
+
+
+def test_continuation_branches_run_along_the_first_key_both_ways():
+    spec = spec_from_options(["input.speed_rpm=300:1500:3", "stage.0.backlash_mm=0.1,0.2"], [], None, "lhs", None,
+                             "both")
+    branches = spec.branches()
+    assert len(branches) == 4 and spec.n_points == 12  # (up, down) x two backlash values
+    speeds = [[p.values[0][1] for p in b] for b in branches]
+    assert speeds == [[300, 900, 1500]] * 2 + [[1500, 900, 300]] * 2
+    assert [b[0].direction for b in branches] == ["up", "up", "down", "down"]
+    assert sorted(p.index for b in branches for p in b) == list(range(12))
+
+
+def test_column_names():
+    assert columns(["input.speed_rpm"], 1) == [
+        "input.speed_rpm", "direction", "status", "message",
+        "stage1_tangential_N_mean", "stage1_tangential_N_std", "stage1_tangential_N_min", "stage1_tangential_N_max",
+        "stage1_dte_um_mean", "stage1_dte_um_rms", "stage1_dte_um_min", "stage1_dte_um_max",
+        "stage1_contact_loss_fraction", "stage1_dynamic_factor", "output_speed_rpm", "nfev", "wall_s"]
+    cols = columns(["a.b", "c.d"], 3)
+    assert cols[:2] == ["a.b", "c.d"] and len(cols) == 2 + 3 + 3 * 10 + 3
+    assert cols.index("stage3_dynamic_factor") == len(cols) - 4
+
+
+def _random_spec(seed, sampling="lhs", n=20):
+    return spec_from_options([], ["stage.0.backlash_mm=normal(0.25,0.02)", "input.speed_rpm=uniform(500,700)"], n,
+                             sampling, seed, None)
+
+
+def _values(spec):
+    return np.array([[v for _, v in b[0].values] for b in spec.branches()])
+
+
+@pytest.mark.parametrize("sampling", ["lhs", "mc"])
+def test_random_samples_reproduce_with_the_same_seed(sampling):
+    a, b, c = _values(_random_spec(7, sampling)), _values(_random_spec(7, sampling)), _values(_random_spec(8, sampling))
+    assert_allclose(a, b, rtol=0, atol=0, err_msg="same seed, same samples, bit for bit")
+    assert not np.allclose(a, c)
+
+
+def test_latin_hypercube_puts_one_sample_in_each_stratum():
+    n = 20
+    x = _values(_random_spec(3, "lhs", n))
+    u = np.column_stack([norm.cdf(x[:, 0], loc=0.25, scale=0.02), (x[:, 1] - 500.0) / 200.0])  # back to [0, 1)
+    for j in range(2):
+        assert sorted(np.floor(u[:, j] * n).astype(int)) == list(range(n))  # the LHS property, per dimension
+    assert x[:, 1].min() >= 500 and x[:, 1].max() < 700
+
+
+def test_monte_carlo_is_numpys_generator():
+    u = unit_samples(5, 2, "mc", 11)
+    assert_allclose(u, np.random.default_rng(11).random((5, 2)), rtol=0, atol=0)
+
+
+def test_spec_rules():
+    with pytest.raises(SweepUsageError):
+        spec_from_options([], [], None, "lhs", None, None)  # nothing to sweep
+    with pytest.raises(SweepUsageError):
+        spec_from_options([], ["a.b=uniform(0,1)"], None, "lhs", 1, None)  # --random without --samples
+    with pytest.raises(SweepUsageError):
+        spec_from_options(["a.b=1,2", "a.b=3"], [], None, "lhs", None, None)  # the same key twice
+    with pytest.raises(SweepUsageError):
+        spec_from_options([], ["a.b=uniform(0,1)"], 3, "lhs", 1, "up")  # continuation needs a --vary key
