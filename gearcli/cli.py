@@ -238,10 +238,14 @@ Examples:
 @guarded
 def design(file: str, overrides, fmt, output) -> None:
     """Ratios, speeds, torques, helical geometry, contact ratios, stiffness and static forces."""
+    import dataclasses
+
     from gearcli.io import serialize
+    from gearcli.scene import resonance_warnings
 
     target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
+    result = dataclasses.replace(result, warnings=result.warnings + resonance_warnings(loaded.design, result))
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.design_dict(result),
             csv_text=lambda: serialize.design_csv(result), table_builder="design_tables")

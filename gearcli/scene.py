@@ -71,3 +71,16 @@ def build_model(cfg, design):
     from gearcli.model import TorsionalModel
 
     return TorsionalModel(spec_from_design(cfg, design))
+
+
+def resonance_warnings(cfg, design) -> tuple[str, ...]:
+    """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
+    the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
+    imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
+    its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
+    from gearcli.model.assembly import Layout
+    from gearcli.model.modes import resonances
+
+    lay = Layout.of(spec_from_design(cfg, design))
+    boundary = "clamped_input" if lay.speed_drive else "free"
+    return tuple(r.message for r in resonances(lay, boundary, duration_s=cfg.simulation.duration_s))
