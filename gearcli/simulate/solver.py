@@ -51,6 +51,8 @@ class Integration:
     status: int  # 0 reached the end; < 0 failed (see STATUS_*)
     message: str
     t_fail: float  # where it stopped
+    engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
+    compile_s: float = 0.0  # compiled engine: numba import and kernel load/compilation, not in wall_s
 
 
 def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end: float, rtol: float,
@@ -100,15 +102,20 @@ class _Counters:
 
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
-              y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True) -> Integration:
+              y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
+              engine: str = "python") -> Integration:
     """Integrate from t = 0 to ``t_eval[-1]`` and sample at ``t_eval`` (ascending, starting at 0).
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
-    the samples reached (the rest NaN); :func:`check` turns a failure into an error.
+    the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
+    "compiled" runs :mod:`gearcli.engine` (DOP853 only; the caller checks
+    :func:`gearcli.engine.unsupported` first), "python" scipy's solvers.
     """
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
     watch = energy_watch(model, y) if watch_energy else None
     atol = tolerances(model, rtol, watch)
+    if engine == "compiled":
+        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch)
     out = np.full((y.size, t_eval.size), np.nan)
     out[:, t_eval <= 0.0] = y[:, None]
     done = int(np.searchsorted(t_eval, 0.0, side="right"))
@@ -154,3 +161,46 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             if report.diverging:
                 return STATUS_ENERGY, watch.message(report), done
     return STATUS_FINISHED, "reached the end of the run", done
+
+
+def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
+                        atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None) -> Integration:
+    """The same run on the compiled kernel: same segments, tolerances (vectors), guards and statuses."""
+    from gearcli import engine
+
+    if method not in engine.COMPILED_METHODS:
+        raise SimulationError(f"the compiled engine integrates {', '.join(engine.COMPILED_METHODS)} only, "
+                              f"not {method}")
+    loaded = engine.load()
+    compile_s = loaded.load_s if not _COMPILED_USED else 0.0
+    _COMPILED_USED.append(True)
+    n = y.size
+    rtol_v = np.array(np.broadcast_to(np.asarray(rtol, dtype=float), (n,)))  # writable: one kernel signature
+    atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=float), (n,)))
+    breaks = np.array(breakpoints(model, float(t_eval[-1])), dtype=float)
+    from gearcli.simulate.guards import ENERGY_MARGIN
+
+    wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN]) if watch is not None else np.zeros(4)
+    every = np.int64(watch.every if watch is not None else 0)
+    t0 = time.perf_counter()
+    out, counters, floats, _ = loaded.kernel.dop853(engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float),
+                                                    np.ascontiguousarray(t_eval, dtype=float), breaks, rtol_v,
+                                                    atol_v, np.int64(max_nfev), every, wpar)
+    wall = time.perf_counter() - t0
+    nfev, steps, status, _done = (int(v) for v in counters)
+    t_end, created, scale = (float(v) for v in floats)
+    messages = {STATUS_FINISHED: "reached the end of the run",
+                STATUS_FAILED: "Required step size is less than spacing between numbers.",
+                STATUS_BUDGET: f"more than {max_nfev} right-hand-side evaluations",
+                STATUS_NONFINITE: f"the state became non-finite at t = {t_end:.6g} s"}
+    if status == STATUS_ENERGY and watch is not None:
+        from gearcli.simulate.guards import EnergyReport
+
+        message = watch.message(EnergyReport(created, scale))
+    else:
+        message = messages.get(status, f"status {status}")
+    return Integration(t_eval, out, method, float(np.max(rtol_v)) if np.ndim(rtol) else float(rtol), atol, nfev, 0, 0,
+                       steps, wall, status, message, t_end, engine="compiled", compile_s=compile_s)
+
+
+_COMPILED_USED: list[bool] = []  # the kernel's load time is reported by the first compiled run of a process

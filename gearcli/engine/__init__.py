@@ -1,0 +1,228 @@
+"""The compiled integration engine: the whole integration loop as machine code (the ``fast`` extra, numba).
+
+``[simulation] engine``: ``python`` is scipy's integrators around the generated right-hand side
+(:mod:`gearcli.simulate.solver`); ``compiled`` runs :mod:`gearcli.engine.kernel`, which reads the model as
+arrays (:class:`gearcli.model.ModelArrays`) and takes exactly scipy's DOP853 steps; ``auto`` picks per run
+(:func:`gearcli.engine.choose`).
+
+What the kernel supports is listed in :data:`SUPPORTED`; :func:`unsupported` names every feature of a scene
+outside it, and such a scene runs on the Python engine with that reason in ``solver.engine_reason``
+(never silently wrong).
+
+Compilation: once per installation (and after an upgrade of gearcli or numba), cached on disk under the
+user's cache directory (``$XDG_CACHE_HOME/gearcli/numba``, else ``~/.cache/gearcli/numba``), in a
+subdirectory named by a hash of the kernel's and the element laws' sources and numba's version, so a changed
+element law never runs stale machine code. The first compilation says so on stderr.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib.util
+import json
+import os
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+ENGINES = ("auto", "python", "compiled")
+COMPILED_METHODS = ("DOP853",)  # what the kernel integrates
+INSTALL_HINT = "pip install 'gearcli[fast]'"
+SUPPORTED = (
+    "connectors: torsional springs (couplings, flexible shafts) and gear meshes (Adams IMPACT law: Hertz or "
+    "linear stiffness, backlash on both flanks, STEP damping ramp, no tension)",
+    "time-varying mesh stiffness from the contact-line length",
+    "speed drive (exact STEP speed profile) or torque drive, STEP-ramped; STEP-ramped load torque",
+    "energy quadratures (input work, load work, damping loss, work on time-varying springs)",
+    "method DOP853 (scipy's steps, error norm, step control and dense output)",
+)
+# ModelArrays fields the kernel reads; any other field with content is a feature it does not know
+_KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_radii", "conn_param", "conn_harm",
+                 "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "load_value_Nm", "load_ramp_s",
+                 "load_fluct", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol"}
+_SOURCES = ("engine/kernel.py", "engine/tableau.py", "model/elements/__init__.py", "model/elements/mesh.py",
+            "model/elements/spring.py", "model/contact_lines.py")
+
+_state: dict = {}
+
+
+def available() -> bool:
+    """Whether numba (the ``fast`` extra) is installed."""
+    return "numba" in sys.modules or importlib.util.find_spec("numba") is not None
+
+
+def _known_params() -> dict[int, int]:
+    from gearcli.model.elements import KIND_MESH, KIND_SPRING, mesh, spring
+
+    return {KIND_SPRING: len(spring.PARAMS), KIND_MESH: len(mesh.PARAMS)}
+
+
+def unsupported(arrays, method: str) -> list[str]:
+    """The features of a scene (its model arrays and integration method) the kernel does not support;
+    empty when the compiled engine can run it."""
+    out = []
+    if method not in COMPILED_METHODS:
+        out.append(f"method {method} (the compiled engine integrates {', '.join(COMPILED_METHODS)} only)")
+    known = _known_params()
+    kinds = {int(k) for k in np.asarray(arrays.conn_kind)}
+    if kinds - set(known):
+        out.append(f"connector kinds {sorted(kinds - set(known))}")
+    param = np.asarray(arrays.conn_param)
+    for c, k in enumerate(np.asarray(arrays.conn_kind)):
+        if int(k) in known and np.any(param[c, known[int(k)]:] != 0.0):
+            out.append(f"element parameters beyond the known ones on connector {c}")
+            break
+    if np.any(np.asarray(arrays.conn_harm) != 0.0):
+        out.append("mesh excitation harmonics (transmission error, stiffness harmonics)")
+    if np.any(np.asarray(arrays.drive_ripple) != 0.0):
+        out.append("input torque ripple")
+    if np.any(np.asarray(arrays.load_fluct) != 0.0):
+        out.append("load fluctuation")
+    for f in dataclasses.fields(arrays):
+        if f.name not in _KNOWN_FIELDS and _has_content(getattr(arrays, f.name)):
+            out.append(f"model feature {f.name!r}")
+    return out
+
+
+def _has_content(v) -> bool:
+    if v is None or v is False:
+        return False
+    a = np.asarray(v)
+    if a.dtype == object:
+        return True
+    return bool(a.size) and bool(np.any(a != 0))
+
+
+def cache_root() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "gearcli" / "numba"
+
+
+def _source_key() -> str:
+    h = hashlib.sha1()
+    pkg = Path(__file__).resolve().parent.parent
+    for rel in _SOURCES:
+        h.update((pkg / rel).read_bytes())
+    try:
+        from importlib.metadata import version
+
+        h.update(version("numba").encode())
+    except Exception:  # pragma: no cover - numba without metadata
+        pass
+    return h.hexdigest()[:16]
+
+
+def cache_dir() -> Path:
+    """Where the compiled kernel is cached (one subdirectory per kernel source and numba version)."""
+    return cache_root() / _source_key()
+
+
+@dataclass(frozen=True)
+class Loaded:
+    kernel: object  # the gearcli.engine.kernel module
+    load_s: float  # numba import + cache load (or compilation), this process
+    compiled: bool  # compiled now (no cache)
+
+
+def load(quiet: bool = False) -> Loaded:
+    """Import numba and the kernel, compile it or load it from the cache; once per process. The first
+    compilation prints one line on stderr."""
+    if "loaded" in _state:
+        return _state["loaded"]
+    t0 = time.perf_counter()
+    cdir = cache_dir()
+    marker = cdir / "ready.json"
+    fresh = not marker.exists()
+    try:
+        cdir.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        pass
+    import numba  # noqa: F401 - the fast extra
+
+    import numba.core.config as ncfg
+
+    ncfg.CACHE_DIR = str(cdir)
+    if fresh and not quiet:
+        print(f"gearcli: compiling the integration engine once (about a minute); cached in {cdir}", file=sys.stderr)
+    from gearcli.engine import kernel
+
+    _warm_up(kernel)
+    load_s = time.perf_counter() - t0
+    if fresh:
+        try:
+            marker.write_text(json.dumps({"compile_s": load_s}))
+        except OSError:
+            pass
+    else:
+        _remember_load_time(load_s)
+    _state["loaded"] = Loaded(kernel, load_s, fresh)
+    return _state["loaded"]
+
+
+def _remember_load_time(load_s: float) -> None:
+    """The last measured numba import + cache load time (what ``auto`` weighs a one-shot run against)."""
+    try:
+        (cache_root() / "load_time.json").write_text(json.dumps({"load_s": load_s}))
+    except OSError:
+        pass
+
+
+def expected_load_s() -> float:
+    """What loading the kernel will cost this process: 0 when loaded, the last measured load time when
+    cached, a compilation's when not."""
+    if "loaded" in _state:
+        return 0.0
+    if not (cache_dir() / "ready.json").exists():
+        return 60.0
+    try:
+        return float(json.loads((cache_root() / "load_time.json").read_text())["load_s"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return DEFAULT_LOAD_S
+
+
+DEFAULT_LOAD_S = 0.6  # s: numba import + cache load on the 2-core reference machine, before any measurement
+
+
+def _tiny_model():
+    """Two bodies, one mesh and one spring: a model of every argument type, to compile or load once."""
+    from gearcli.model.elements import N_PARAM
+
+    param = np.zeros((2, N_PARAM))
+    param[0, :13] = (1.0, 1.0, 1e9, 1.5, 1e3, 1e4, 6e7, 0.0, 0.0, 1.5, 1.0, 20.0, 1e-4)
+    param[1, :2] = (1e4, 1.0)
+    return (np.array([1, 0], dtype=np.int64), np.array([[0, 1], [1, 2]], dtype=np.int64),
+            np.array([[0.1, 0.2], [1.0, 1.0]]), param, np.array([1.0, 2.0, 3.0]),
+            np.array([0, 2, -1, 4, 0, 0], dtype=np.int64), np.array([10.0, 0.01, 5.0, 0.01]))
+
+
+def _warm_up(kernel) -> None:
+    model = _tiny_model()
+    y0 = np.zeros(7)
+    t_eval = np.array([0.0, 1e-3])
+    tol = np.full(7, 1e-6)
+    kernel.dop853(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
+                  np.array([0.0, 0.0, 1.0, 0.1]))
+    kernel.evaluate(model, 0.0, y0)
+    kernel.evaluate_many(model, 0.0, y0, np.int64(1))
+
+
+def pack(arrays) -> tuple:
+    """The kernel's model tuple from :class:`~gearcli.model.ModelArrays`."""
+    from gearcli.model.elements import KIND_MESH
+    from gearcli.model.elements.mesh import I_TV
+
+    kind = np.ascontiguousarray(arrays.conn_kind, dtype=np.int64)
+    bodies = np.ascontiguousarray(arrays.conn_bodies, dtype=np.int64)
+    param = np.ascontiguousarray(arrays.conn_param, dtype=np.float64)
+    tv = [c for c in range(kind.size) if kind[c] == KIND_MESH and param[c, I_TV] != 0.0]
+    last_angle = max((int(bodies[c, 0]) for c in tv), default=0)
+    ipar = np.array([arrays.drive_kind, arrays.i_omega0, arrays.i_theta, arrays.i_quad, last_angle, len(tv)],
+                    dtype=np.int64)
+    fpar = np.array([arrays.drive_value, arrays.drive_ramp_s, arrays.load_value_Nm, arrays.load_ramp_s],
+                    dtype=np.float64)
+    return (kind, bodies, np.ascontiguousarray(arrays.conn_radii, dtype=np.float64), param,
+            np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar)

@@ -1,0 +1,512 @@
+"""The compiled kernel (numba): the scene's right-hand side read from :class:`~gearcli.model.ModelArrays`
+and scipy's DOP853 loop, step for step, with output sampling and the run's guards inside.
+
+Imported only through :func:`gearcli.engine.load` (which points numba's cache at the user's cache directory
+first). Nothing here closes over a scene: every function takes the model as arrays, so one compilation
+serves every design file and every sweep point.
+
+Right-hand side. The same assembly as the generated Python source (:mod:`gearcli.model.codegen`), term for
+term and in the same floating-point order, so both engines compute bit-identical derivatives: the speed
+drive's exact STEP motion (or the ramped drive torque), the ramped load, the body angles a time-varying
+mesh needs, each connector's force from its element law, the net torque on each free body, and the four
+work quadratures. The element laws are those of :mod:`gearcli.model.elements`, compiled from their own
+code (:func:`_jit_module`), never rewritten here.
+
+Integrator. ``scipy.integrate.DOP853`` (scipy/integrate/_ivp/rk.py and common.py) transcribed: the initial
+step of ``select_initial_step``, the stage sums, the combined 5th/3rd-order error norm, SAFETY 0.9,
+MIN_FACTOR 0.2, MAX_FACTOR 10, the rejected-step rule (no growth right after a rejection), the minimum step
+``10 ulp(t)``, the clamp at ``t_bound``, and the 7th-order dense output (three extra stages, counted in nfev
+as scipy counts them) at the requested samples. The run is integrated in segments between the ramp ends,
+with a fresh solver (and initial step) at each, as :mod:`gearcli.simulate.solver` does. Guards as there:
+non-finite state once per accepted step, the evaluation budget, the energy watch every ``every`` steps.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+
+import numba
+import numpy as np
+
+from gearcli.engine import tableau as tb
+from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements import mesh as _mesh_mod
+from gearcli.model.elements import spring as _spring_mod
+
+JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
+
+
+def _jit_module(mod) -> dict:
+    """numba-compiled copies of a module's own functions, each seeing the others' compiled copies (the
+    element laws call their helpers by module-global name)."""
+    scope = dict(mod.__dict__)
+    out = {}
+    for name, obj in mod.__dict__.items():
+        if isinstance(obj, types.FunctionType) and obj.__module__ == mod.__name__:
+            clone = types.FunctionType(obj.__code__, scope, name, obj.__defaults__, obj.__closure__)
+            clone.__qualname__ = obj.__qualname__
+            out[name] = numba.njit(**JIT)(clone)
+    scope.update(out)
+    return out
+
+
+_MESH = _jit_module(_mesh_mod)
+_SPRING = _jit_module(_spring_mod)
+mesh_force, mesh_potential, mesh_damped = _MESH["force"], _MESH["potential"], _MESH["damped"]
+spring_force, spring_potential, spring_damped = _SPRING["force"], _SPRING["potential"], _SPRING["damped"]
+I_TV, I_Z = _mesh_mod.I_TV, _mesh_mod.I_Z
+TWO_PI = 2.0 * math.pi
+
+# DOP853 (scipy's class attributes)
+N_STAGES = tb.N_STAGES
+A = np.ascontiguousarray(tb.A[:N_STAGES, :N_STAGES])
+B = np.ascontiguousarray(tb.B)
+C = np.ascontiguousarray(tb.C[:N_STAGES])
+E3 = np.ascontiguousarray(tb.E3)
+E5 = np.ascontiguousarray(tb.E5)
+D = np.ascontiguousarray(tb.D)
+A_EXTRA = np.ascontiguousarray(tb.A[N_STAGES + 1:])
+C_EXTRA = np.ascontiguousarray(tb.C[N_STAGES + 1:])
+N_EXT = tb.N_STAGES_EXTENDED
+N_INTERP = tb.INTERPOLATOR_POWER
+SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
+ERROR_EXPONENT = -1.0 / (7 + 1)  # error_estimator_order 7
+INITIAL_EXPONENT = 1.0 / (7 + 1)
+
+# ipar / fpar layout (gearcli.engine.pack)
+IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
+FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP = 0, 1, 2, 3
+
+
+@numba.njit(**JIT)
+def conn_force(kind, P, d, dd, phi):
+    if kind == KIND_MESH:
+        return mesh_force(P, d, dd, phi)
+    return spring_force(P, d, dd, phi)
+
+
+@numba.njit(**JIT)
+def conn_potential(kind, P, d, phi):
+    if kind == KIND_MESH:
+        return mesh_potential(P, d, phi)
+    return spring_potential(P, d, phi)
+
+
+@numba.njit(**JIT)
+def conn_damped(kind, P):
+    if kind == KIND_MESH:
+        return mesh_damped(P)
+    return spring_damped(P)
+
+
+@numba.njit(**JIT)
+def conn_tv(kind, P):
+    return kind == KIND_MESH and P[I_TV] != 0.0
+
+
+@numba.njit(**JIT)
+def ramp(t, value, ramp_s):
+    """``STEP(t, 0, 0, ramp_s, value)`` as the generated code writes it."""
+    if ramp_s <= 0.0 or value == 0.0:
+        return value
+    if t < ramp_s:
+        s = t * (1.0 / ramp_s)
+        return value * s * s * (3.0 - 2.0 * s)
+    return value
+
+
+@numba.njit(**JIT)
+def input_motion(t, v, T):
+    """(th0, w0, a0) of the speed drive's exact STEP profile."""
+    if T <= 0.0:
+        return v * t, v, 0.0
+    if t < T:
+        s = t * (1.0 / T)
+        return (v * T) * s * s * s * (1.0 - 0.5 * s), v * s * s * (3.0 - 2.0 * s), (6.0 * v / T) * s * (1.0 - s)
+    return v * (t - 0.5 * T), v, 0.0
+
+
+@numba.njit(**JIT)
+def body_speed(y, b, first, i_w0, w0):
+    if b < first:
+        return w0
+    return y[i_w0 + b - first]
+
+
+@numba.njit(**JIT)
+def rhs(t, y, dy, model, th, fc):
+    """dy = f(t, y) of the scene ``model``; ``th`` (n_bodies) and ``fc`` (n_conn) are scratch."""
+    kind, bodies, radii, param, inertia, ipar, fpar = model
+    nc = kind.shape[0]
+    nb = inertia.shape[0]
+    speed = ipar[IP_DRIVE] == 0
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    iq = ipar[IP_QUAD]
+    first = 1 if speed else 0
+    a0 = 0.0
+    tin = 0.0
+    if speed:
+        th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
+    else:
+        tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
+        w0 = y[i_w0]
+        th0 = y[i_th] if i_th >= 0 else 0.0
+    load = fpar[FP_LOAD] != 0.0
+    tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP]) if load else 0.0
+    th[0] = th0
+    for c in range(ipar[IP_LAST_ANGLE]):
+        th[c + 1] = (radii[c, 0] * th[c] - y[c]) * (1.0 / radii[c, 1])
+    damp = 0.0
+    tvp = 0.0
+    have_damp = False
+    have_tv = False
+    for c in range(nc):
+        a = bodies[c, 0]
+        b = bodies[c, 1]
+        P = param[c]
+        dd = radii[c, 0] * body_speed(y, a, first, i_w0, w0) - radii[c, 1] * body_speed(y, b, first, i_w0, w0)
+        tv = conn_tv(kind[c], P)
+        phi = (P[I_Z] / TWO_PI) * th[a] if tv else 0.0
+        f, _, _, _, q, u = conn_force(kind[c], P, y[c], dd, phi)
+        fc[c] = f
+        dy[c] = dd
+        if conn_damped(kind[c], P):
+            damp = damp + q if have_damp else q
+            have_damp = True
+        if tv:
+            tvp = tvp + u if have_tv else u
+            have_tv = True
+    for i in range(first, nb):
+        if i > 0:
+            x = radii[i - 1, 1] * fc[i - 1]
+            if i < nc:
+                x = x - radii[i, 0] * fc[i]
+        else:
+            x = -(radii[0, 0] * fc[0])
+        if i == 0 and not speed:
+            x = x + tin
+        if i == nb - 1 and load:
+            x = x - tl
+        dy[i_w0 + i - first] = x * (1.0 / inertia[i])
+    if i_th >= 0:
+        dy[i_th] = w0
+    if speed:
+        dy[iq] = (radii[0, 0] * fc[0] + inertia[0] * a0) * w0
+    else:
+        dy[iq] = tin * w0
+    dy[iq + 1] = tl * body_speed(y, nb - 1, first, i_w0, w0) if load else 0.0
+    dy[iq + 2] = damp
+    if ipar[IP_NTV] > 0:
+        dy[iq + 3] = tvp
+
+
+@numba.njit(**JIT)
+def stored_energy(t, y, model):
+    """Kinetic energy + elastic energy of the constant-stiffness connectors + work on time-varying
+    springs (the energy watch's ``_stored``)."""
+    kind, bodies, radii, param, inertia, ipar, fpar = model
+    speed = ipar[IP_DRIVE] == 0
+    first = 1 if speed else 0
+    w0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])[1] if speed else y[ipar[IP_W0]]
+    ke = 0.0
+    for i in range(inertia.shape[0]):
+        w = body_speed(y, i, first, ipar[IP_W0], w0)
+        ke += inertia[i] * (w * w)
+    total = 0.5 * ke
+    for c in range(kind.shape[0]):
+        if not conn_tv(kind[c], param[c]):
+            total += conn_potential(kind[c], param[c], y[c], 0.0)
+    if ipar[IP_NTV] > 0:
+        total += y[ipar[IP_QUAD] + 3]
+    return total
+
+
+@numba.njit(**JIT)
+def _rms(x, scale):
+    """scipy's ``norm(x / scale)``: ``sqrt(sum (x/scale)^2) / sqrt(n)``."""
+    s = 0.0
+    for i in range(x.size):
+        v = x[i] / scale[i]
+        s += v * v
+    return math.sqrt(s) / x.size ** 0.5
+
+
+@numba.njit(**JIT)
+def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, scale, diff):
+    """scipy's ``select_initial_step`` (max_step = inf, forward direction, error order 7)."""
+    n = y0.size
+    interval = abs(t_bound - t0)
+    if interval == 0.0:
+        return 0.0
+    for i in range(n):
+        scale[i] = atol[i] + abs(y0[i]) * rtol[i]
+    d0 = _rms(y0, scale)
+    d1 = _rms(f0, scale)
+    if d0 < 1e-5 or d1 < 1e-5:
+        h0 = 1e-6
+    else:
+        h0 = 0.01 * d0 / d1
+    h0 = min(h0, interval)
+    for i in range(n):
+        y1[i] = y0[i] + h0 * f0[i]
+    rhs(t0 + h0, y1, f1, model, th, fc)
+    for i in range(n):
+        diff[i] = f1[i] - f0[i]
+    d2 = _rms(diff, scale) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** INITIAL_EXPONENT
+    return min(100 * h0, h1, interval)
+
+
+@numba.njit(**JIT)
+def _stage_sum(K, a, s, h, y, dst):
+    """dst = y + (K[:s].T @ a[:s]) * h."""
+    for i in range(y.size):
+        acc = 0.0
+        for j in range(s):
+            acc += K[j, i] * a[j]
+        dst[i] = y[i] + acc * h
+
+
+@numba.njit(**JIT)
+def rk_step(t, y, f, h, K, y_new, f_new, ytmp, model, th, fc):
+    """scipy's ``rk_step`` for DOP853: 11 stages, then ``f(t + h, y_new)``."""
+    n = y.size
+    for i in range(n):
+        K[0, i] = f[i]
+    for s in range(1, N_STAGES):
+        _stage_sum(K, A[s], s, h, y, ytmp)
+        rhs(t + C[s] * h, ytmp, K[s], model, th, fc)
+    for i in range(n):
+        acc = 0.0
+        for j in range(N_STAGES):
+            acc += K[j, i] * B[j]
+        y_new[i] = y[i] + h * acc
+    rhs(t + h, y_new, f_new, model, th, fc)
+    for i in range(n):
+        K[N_STAGES, i] = f_new[i]
+
+
+@numba.njit(**JIT)
+def error_norm(K, h, scale):
+    """DOP853's combined 5th/3rd-order error estimate, as ``DOP853._estimate_error_norm``."""
+    n = scale.size
+    s5 = 0.0
+    s3 = 0.0
+    for i in range(n):
+        e5 = 0.0
+        e3 = 0.0
+        for j in range(N_STAGES + 1):
+            e5 += K[j, i] * E5[j]
+            e3 += K[j, i] * E3[j]
+        e5 = e5 / scale[i]
+        e3 = e3 / scale[i]
+        s5 += e5 * e5
+        s3 += e3 * e3
+    r5 = math.sqrt(s5)
+    r3 = math.sqrt(s3)
+    n5 = r5 * r5
+    n3 = r3 * r3
+    if n5 == 0.0 and n3 == 0.0:
+        return 0.0
+    denom = n5 + 0.01 * n3
+    return abs(h) * n5 / math.sqrt(denom * n)
+
+
+@numba.njit(**JIT)
+def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, model, th, fc):
+    """The three extra stages and the interpolant's coefficients F (INTERPOLATOR_POWER x n)."""
+    n = y.size
+    for k in range(A_EXTRA.shape[0]):
+        s = N_STAGES + 1 + k
+        _stage_sum(K, A_EXTRA[k], s, h, y_old, ytmp)
+        rhs(t_old + C_EXTRA[k] * h, ytmp, K[s], model, th, fc)
+    for i in range(n):
+        dy = y[i] - y_old[i]
+        f_old = K[0, i]
+        F[0, i] = dy
+        F[1, i] = h * f_old - dy
+        F[2, i] = 2 * dy - h * (f[i] + f_old)
+        for r in range(D.shape[0]):
+            acc = 0.0
+            for j in range(N_EXT):
+                acc += D[r, j] * K[j, i]
+            F[3 + r, i] = h * acc
+
+
+@numba.njit(**JIT)
+def dense_eval(t, t_old, h, y_old, F, out, col):
+    """``Dop853DenseOutput`` at one time, into ``out[:, col]``."""
+    x = (t - t_old) / h
+    for i in range(y_old.size):
+        v = 0.0
+        for k in range(N_INTERP):
+            v += F[N_INTERP - 1 - k, i]
+            if k % 2 == 0:
+                v *= x
+            else:
+                v *= 1 - x
+        out[i, col] = v + y_old[i]
+
+
+@numba.njit(**JIT)
+def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
+    """Integrate from t = 0 through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
+    sampling at ``t_eval``. ``watch_every`` 0 switches the energy watch off; ``wpar`` = (e0, w0, scale,
+    margin). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
+    created, energy scale])."""
+    n = y0.size
+    m = t_eval.size
+    out = np.full((n, m), np.nan)
+    nb = model[4].shape[0]
+    nc = model[0].shape[0]
+    th = np.zeros(nb)
+    fc = np.zeros(nc)
+    K = np.zeros((N_EXT, n))
+    F = np.zeros((N_INTERP, n))
+    y = y0.copy()
+    f = np.empty(n)
+    y_new = np.empty(n)
+    f_new = np.empty(n)
+    ytmp = np.empty(n)
+    scale = np.empty(n)
+    w1 = np.empty(n)
+    w2 = np.empty(n)
+    done = 0
+    while done < m and t_eval[done] <= 0.0:
+        out[:, done] = y
+        done += 1
+    for j in range(done, m):
+        if t_eval[j] <= 0.0:
+            out[:, j] = y
+    t = 0.0
+    nfev = 0
+    steps = 0
+    status = STATUS_FINISHED
+    created = 0.0
+    escale = wpar[2]
+    for seg in range(breaks.size):
+        t_bound = breaks[seg]
+        seg_nfev = 0
+        rhs(t, y, f, model, th, fc)
+        seg_nfev += 1
+        h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp)
+        seg_nfev += 1
+        while True:
+            min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+            if h_abs < min_step:
+                h_abs = min_step
+            accepted = False
+            rejected = False
+            h = 0.0
+            t_new = t
+            while not accepted:
+                if h_abs < min_step:
+                    break
+                h = h_abs
+                t_new = t + h
+                if t_new - t_bound > 0:
+                    t_new = t_bound
+                h = t_new - t
+                h_abs = abs(h)
+                rk_step(t, y, f, h, K, y_new, f_new, ytmp, model, th, fc)
+                seg_nfev += N_STAGES
+                for i in range(n):
+                    a = abs(y[i])
+                    b = abs(y_new[i])
+                    scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]  # np.maximum: NaN wins
+                err = error_norm(K, h, scale)
+                if err < 1:
+                    if err == 0:
+                        factor = MAX_FACTOR
+                    else:
+                        factor = SAFETY * err ** ERROR_EXPONENT
+                        if not factor < MAX_FACTOR:
+                            factor = MAX_FACTOR
+                    if rejected and not factor < 1.0:
+                        factor = 1.0
+                    h_abs *= factor
+                    accepted = True
+                else:
+                    factor = SAFETY * err ** ERROR_EXPONENT
+                    h_abs *= factor if factor > MIN_FACTOR else MIN_FACTOR
+                    rejected = True
+            if not accepted:
+                status = STATUS_FAILED
+                break
+            t_old = t
+            for i in range(n):
+                ytmp[i] = y[i]  # y_old
+                y[i] = y_new[i]
+                f[i] = f_new[i]
+            t = t_new
+            finished = t - t_bound >= 0
+            steps += 1
+            total = 0.0
+            for i in range(n):
+                total += y[i]
+            if not np.isfinite(total):
+                status = STATUS_NONFINITE
+                break
+            upto = done
+            while upto < m and t_eval[upto] <= t:
+                upto += 1
+            if upto > done:
+                # y_old is kept in w1 for the interpolant: ytmp is the stage scratch
+                for i in range(n):
+                    w1[i] = ytmp[i]
+                dense_coefficients(t_old, h, w1, y, f, K, F, ytmp, model, th, fc)
+                seg_nfev += A_EXTRA.shape[0]
+                hd = t - t_old
+                for j in range(done, upto):
+                    dense_eval(t_eval[j], t_old, hd, w1, F, out, j)
+                done = upto
+            if nfev + seg_nfev > max_nfev:
+                status = STATUS_BUDGET
+                break
+            if watch_every > 0 and (steps % watch_every == 0 or finished):
+                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
+                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
+                escale = max(wpar[2], abs(work - wpar[1]))
+                if created > wpar[3] * escale:
+                    status = STATUS_ENERGY
+                    break
+            if finished:
+                break
+        nfev += seg_nfev
+        if status != STATUS_FINISHED:
+            break
+    counters = np.array([nfev, steps, status, done], dtype=np.int64)
+    floats = np.array([t, created, escale])
+    return out, counters, floats, y
+
+
+@numba.njit(**JIT)
+def ipar_quad(model):
+    return model[5][IP_QUAD]
+
+
+@numba.njit(**JIT)
+def evaluate(model, t, y):
+    """One right-hand side evaluation (tests, benchmarks)."""
+    dy = np.empty(y.size)
+    rhs(t, y, dy, model, np.zeros(model[4].shape[0]), np.zeros(model[0].shape[0]))
+    return dy
+
+
+@numba.njit(**JIT)
+def evaluate_many(model, t, y, times):
+    """``times`` evaluations at one point (the benchmark's cost of one compiled evaluation)."""
+    dy = np.empty(y.size)
+    th = np.zeros(model[4].shape[0])
+    fc = np.zeros(model[0].shape[0])
+    acc = 0.0
+    for _ in range(times):
+        rhs(t, y, dy, model, th, fc)
+        acc += dy[0]
+    return acc
