@@ -44,7 +44,7 @@ SUPPORTED = (
 _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_radii", "conn_param", "conn_harm",
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "load_value_Nm", "load_ramp_s",
                  "load_fluct", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol"}
-_SOURCES = ("engine/kernel.py", "engine/tableau.py", "model/elements/__init__.py", "model/elements/mesh.py",
+_SOURCES = ("engine/kernel.py", "engine/tableau.py", "engine/blas.py", "model/elements/__init__.py", "model/elements/mesh.py",
             "model/elements/spring.py", "model/contact_lines.py")
 
 _state: dict = {}
@@ -107,6 +107,9 @@ def _source_key() -> str:
     pkg = Path(__file__).resolve().parent.parent
     for rel in _SOURCES:
         h.update((pkg / rel).read_bytes())
+    from gearcli.engine.blas import KEY
+
+    h.update(KEY.encode())
     try:
         from importlib.metadata import version
 

@@ -29,6 +29,7 @@ import types
 import numba
 import numpy as np
 
+from gearcli.engine import blas as _blas
 from gearcli.engine import tableau as tb
 from gearcli.model.elements import KIND_MESH
 from gearcli.model.elements import mesh as _mesh_mod
@@ -78,6 +79,73 @@ INITIAL_EXPONENT = 1.0 / (7 + 1)
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
 FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP = 0, 1, 2, 3
+
+# ----------------------------------------------------------------------------------- vector sums
+# scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
+@numba.njit(**JIT)
+def _gemv_t_loop(K, s, a, out):
+    """out = K[:s].T @ a[:s]."""
+    for i in range(K.shape[1]):
+        acc = 0.0
+        for j in range(s):
+            acc += K[j, i] * a[j]
+        out[i] = acc
+
+
+@numba.njit(**JIT)
+def _dot_loop(x):
+    acc = 0.0
+    for i in range(x.size):
+        acc += x[i] * x[i]
+    return acc
+
+
+@numba.njit(**JIT)
+def _gemm_loop(Dm, K, out):
+    """out = Dm @ K."""
+    for r in range(Dm.shape[0]):
+        for i in range(K.shape[1]):
+            acc = 0.0
+            for j in range(Dm.shape[1]):
+                acc += Dm[r, j] * K[j, i]
+            out[r, i] = acc
+
+
+HAVE_BLAS = _blas.register()
+if HAVE_BLAS:
+    assert _blas.FOUND is not None
+    _PATTERN, _WIDTH = _blas.FOUND[1], _blas.FOUND[2]
+    _nt = numba.types
+    _I = _nt.int64 if _WIDTH == 64 else _nt.int32
+    _ci = np.int64 if _WIDTH == 64 else np.int32
+    _E = _nt.int32  # CBLAS enums
+    _U = _nt.uintp  # pointers, passed as addresses
+    _F = _nt.float64
+    _dgemv = _nt.ExternalFunction(_PATTERN.format("dgemv"), _nt.void(_E, _E, _I, _I, _F, _U, _I, _U, _I, _F, _U, _I))
+    _dgemm = _nt.ExternalFunction(_PATTERN.format("dgemm"),
+                                  _nt.void(_E, _E, _E, _I, _I, _I, _F, _U, _I, _U, _I, _F, _U, _I))
+    _ddot = _nt.ExternalFunction(_PATTERN.format("ddot"), _F(_I, _U, _I, _U, _I))
+
+    @numba.njit(**JIT)
+    def _gemv_t_blas(K, s, a, out):
+        n = K.shape[1]
+        _dgemv(np.int32(102), np.int32(111), _ci(n), _ci(s), 1.0, K.ctypes.data, _ci(n), a.ctypes.data, _ci(1),
+               0.0, out.ctypes.data, _ci(1))
+
+    @numba.njit(**JIT)
+    def _dot_blas(x):
+        return _ddot(_ci(x.size), x.ctypes.data, _ci(1), x.ctypes.data, _ci(1))
+
+    @numba.njit(**JIT)
+    def _gemm_blas(Dm, K, out):
+        m, k = Dm.shape
+        n = K.shape[1]
+        _dgemm(np.int32(101), np.int32(111), np.int32(111), _ci(m), _ci(n), _ci(k), 1.0, Dm.ctypes.data, _ci(k),
+               K.ctypes.data, _ci(n), 0.0, out.ctypes.data, _ci(n))
+
+    gemv_t, dot_self, gemm = _gemv_t_blas, _dot_blas, _gemm_blas
+else:  # pragma: no cover - a numpy without a findable BLAS
+    gemv_t, dot_self, gemm = _gemv_t_loop, _dot_loop, _gemm_loop
 
 
 @numba.njit(**JIT)
@@ -225,17 +293,15 @@ def stored_energy(t, y, model):
 
 
 @numba.njit(**JIT)
-def _rms(x, scale):
-    """scipy's ``norm(x / scale)``: ``sqrt(sum (x/scale)^2) / sqrt(n)``."""
-    s = 0.0
+def _rms(x, scale, tmp):
+    """scipy's ``norm(x / scale)``: ``sqrt((x/scale) . (x/scale)) / sqrt(n)``."""
     for i in range(x.size):
-        v = x[i] / scale[i]
-        s += v * v
-    return math.sqrt(s) / x.size ** 0.5
+        tmp[i] = x[i] / scale[i]
+    return math.sqrt(dot_self(tmp)) / x.size ** 0.5
 
 
 @numba.njit(**JIT)
-def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, scale, diff):
+def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, scale, diff, tmp):
     """scipy's ``select_initial_step`` (max_step = inf, forward direction, error order 7)."""
     n = y0.size
     interval = abs(t_bound - t0)
@@ -243,8 +309,8 @@ def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, 
         return 0.0
     for i in range(n):
         scale[i] = atol[i] + abs(y0[i]) * rtol[i]
-    d0 = _rms(y0, scale)
-    d1 = _rms(f0, scale)
+    d0 = _rms(y0, scale, tmp)
+    d1 = _rms(f0, scale, tmp)
     if d0 < 1e-5 or d1 < 1e-5:
         h0 = 1e-6
     else:
@@ -255,7 +321,7 @@ def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, 
     rhs(t0 + h0, y1, f1, model, th, fc)
     for i in range(n):
         diff[i] = f1[i] - f0[i]
-    d2 = _rms(diff, scale) / h0
+    d2 = _rms(diff, scale, tmp) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
@@ -264,52 +330,41 @@ def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, 
 
 
 @numba.njit(**JIT)
-def _stage_sum(K, a, s, h, y, dst):
+def _stage_sum(K, a, s, h, y, dst, dv):
     """dst = y + (K[:s].T @ a[:s]) * h."""
+    gemv_t(K, s, a, dv)
     for i in range(y.size):
-        acc = 0.0
-        for j in range(s):
-            acc += K[j, i] * a[j]
-        dst[i] = y[i] + acc * h
+        dst[i] = y[i] + dv[i] * h
 
 
 @numba.njit(**JIT)
-def rk_step(t, y, f, h, K, y_new, f_new, ytmp, model, th, fc):
+def rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
     """scipy's ``rk_step`` for DOP853: 11 stages, then ``f(t + h, y_new)``."""
     n = y.size
     for i in range(n):
         K[0, i] = f[i]
     for s in range(1, N_STAGES):
-        _stage_sum(K, A[s], s, h, y, ytmp)
+        _stage_sum(K, A[s], s, h, y, ytmp, dv)
         rhs(t + C[s] * h, ytmp, K[s], model, th, fc)
+    gemv_t(K, N_STAGES, B, dv)
     for i in range(n):
-        acc = 0.0
-        for j in range(N_STAGES):
-            acc += K[j, i] * B[j]
-        y_new[i] = y[i] + h * acc
+        y_new[i] = y[i] + h * dv[i]
     rhs(t + h, y_new, f_new, model, th, fc)
     for i in range(n):
         K[N_STAGES, i] = f_new[i]
 
 
 @numba.njit(**JIT)
-def error_norm(K, h, scale):
+def error_norm(K, h, scale, e5, e3):
     """DOP853's combined 5th/3rd-order error estimate, as ``DOP853._estimate_error_norm``."""
     n = scale.size
-    s5 = 0.0
-    s3 = 0.0
+    gemv_t(K, N_STAGES + 1, E5, e5)
+    gemv_t(K, N_STAGES + 1, E3, e3)
     for i in range(n):
-        e5 = 0.0
-        e3 = 0.0
-        for j in range(N_STAGES + 1):
-            e5 += K[j, i] * E5[j]
-            e3 += K[j, i] * E3[j]
-        e5 = e5 / scale[i]
-        e3 = e3 / scale[i]
-        s5 += e5 * e5
-        s3 += e3 * e3
-    r5 = math.sqrt(s5)
-    r3 = math.sqrt(s3)
+        e5[i] = e5[i] / scale[i]
+        e3[i] = e3[i] / scale[i]
+    r5 = math.sqrt(dot_self(e5))
+    r3 = math.sqrt(dot_self(e3))
     n5 = r5 * r5
     n3 = r3 * r3
     if n5 == 0.0 and n3 == 0.0:
@@ -319,13 +374,14 @@ def error_norm(K, h, scale):
 
 
 @numba.njit(**JIT)
-def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, model, th, fc):
+def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, dv, DK, model, th, fc):
     """The three extra stages and the interpolant's coefficients F (INTERPOLATOR_POWER x n)."""
     n = y.size
     for k in range(A_EXTRA.shape[0]):
         s = N_STAGES + 1 + k
-        _stage_sum(K, A_EXTRA[k], s, h, y_old, ytmp)
+        _stage_sum(K, A_EXTRA[k], s, h, y_old, ytmp, dv)
         rhs(t_old + C_EXTRA[k] * h, ytmp, K[s], model, th, fc)
+    gemm(D, K, DK)
     for i in range(n):
         dy = y[i] - y_old[i]
         f_old = K[0, i]
@@ -333,10 +389,7 @@ def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, model, th, fc):
         F[1, i] = h * f_old - dy
         F[2, i] = 2 * dy - h * (f[i] + f_old)
         for r in range(D.shape[0]):
-            acc = 0.0
-            for j in range(N_EXT):
-                acc += D[r, j] * K[j, i]
-            F[3 + r, i] = h * acc
+            F[3 + r, i] = h * DK[r, i]
 
 
 @numba.njit(**JIT)
@@ -377,6 +430,9 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
     scale = np.empty(n)
     w1 = np.empty(n)
     w2 = np.empty(n)
+    dv = np.empty(n)
+    e3 = np.empty(n)
+    DK = np.empty((D.shape[0], n))
     done = 0
     while done < m and t_eval[done] <= 0.0:
         out[:, done] = y
@@ -395,7 +451,7 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
         seg_nfev = 0
         rhs(t, y, f, model, th, fc)
         seg_nfev += 1
-        h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp)
+        h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp, dv)
         seg_nfev += 1
         while True:
             min_step = 10 * abs(np.nextafter(t, np.inf) - t)
@@ -414,13 +470,13 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
                     t_new = t_bound
                 h = t_new - t
                 h_abs = abs(h)
-                rk_step(t, y, f, h, K, y_new, f_new, ytmp, model, th, fc)
+                rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc)
                 seg_nfev += N_STAGES
                 for i in range(n):
                     a = abs(y[i])
                     b = abs(y_new[i])
                     scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]  # np.maximum: NaN wins
-                err = error_norm(K, h, scale)
+                err = error_norm(K, h, scale, dv, e3)
                 if err < 1:
                     if err == 0:
                         factor = MAX_FACTOR
@@ -460,7 +516,7 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
                 # y_old is kept in w1 for the interpolant: ytmp is the stage scratch
                 for i in range(n):
                     w1[i] = ytmp[i]
-                dense_coefficients(t_old, h, w1, y, f, K, F, ytmp, model, th, fc)
+                dense_coefficients(t_old, h, w1, y, f, K, F, ytmp, dv, DK, model, th, fc)
                 seg_nfev += A_EXTRA.shape[0]
                 hd = t - t_old
                 for j in range(done, upto):
