@@ -24,6 +24,7 @@ EFFICIENCY_NOT_MODELLED = "efficiency_not_modelled"
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"
+ENGINE_FALLBACK = "engine_fallback"
 OTHER = "other"
 
 

@@ -163,6 +163,9 @@ class SolverStats:
     energy_residual: float  # (W_in - W_load - E_damp - dKE - dPE) / max(|W_in|, |W_load|, KE_end)
     status: int  # solve_ivp status (0: reached the end)
     message: str
+    engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
+    engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
+    compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -52,7 +53,9 @@ _state: dict = {}
 
 def available() -> bool:
     """Whether numba (the ``fast`` extra) is installed."""
-    return "numba" in sys.modules or importlib.util.find_spec("numba") is not None
+    if "numba" in sys.modules:
+        return sys.modules["numba"] is not None
+    return importlib.util.find_spec("numba") is not None
 
 
 def _known_params() -> dict[int, int]:
@@ -126,7 +129,7 @@ def cache_dir() -> Path:
 
 @dataclass(frozen=True)
 class Loaded:
-    kernel: object  # the gearcli.engine.kernel module
+    kernel: Any  # the gearcli.engine.kernel module
     load_s: float  # numba import + cache load (or compilation), this process
     compiled: bool  # compiled now (no cache)
 
@@ -145,10 +148,9 @@ def load(quiet: bool = False) -> Loaded:
     except OSError:
         pass
     import numba  # noqa: F401 - the fast extra
-
     import numba.core.config as ncfg
 
-    ncfg.CACHE_DIR = str(cdir)
+    ncfg.CACHE_DIR = str(cdir)  # type: ignore[attr-defined]
     if fresh and not quiet:
         print(f"gearcli: compiling the integration engine once (about a minute); cached in {cdir}", file=sys.stderr)
     from gearcli.engine import kernel
@@ -208,7 +210,7 @@ def _warm_up(kernel) -> None:
     t_eval = np.array([0.0, 1e-3])
     tol = np.full(7, 1e-6)
     kernel.dop853(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
-                  np.array([0.0, 0.0, 1.0, 0.1]))
+                  np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
     kernel.evaluate(model, 0.0, y0)
     kernel.evaluate_many(model, 0.0, y0, np.int64(1))
 
@@ -229,3 +231,70 @@ def pack(arrays) -> tuple:
                     dtype=np.float64)
     return (kind, bodies, np.ascontiguousarray(arrays.conn_radii, dtype=np.float64), param,
             np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar)
+
+
+# ------------------------------------------------------------------------------------------- auto
+# What a run costs on either engine, measured on the 2-core reference machine (benchmarks/bench_engine.py):
+# scipy's DOP853 around the generated right-hand side spends ~10 µs per evaluation (the seed: 5407
+# evaluations in 55 ms), the compiled loop ~0.3 µs. DOP853's evaluations follow the stiffness indicator
+# max|λ|·T: 4.2 to 31 per unit on the example scenes (the seed: 6.0); auto takes the low end, so that an
+# underestimate can only keep a run on the Python engine, never make it slower.
+PYTHON_S_PER_EVAL = 10e-6
+COMPILED_S_PER_EVAL = 0.3e-6
+EVALS_PER_UNIT_LOW = 4.0
+
+_runs = {"expected": 1}
+
+
+def expect_runs(n: int) -> None:
+    """Tell ``auto`` that this process will integrate about ``n`` runs (a sweep, a report): the one-time
+    cost of loading the kernel is shared by all of them."""
+    _runs["expected"] = max(1, int(n))
+
+
+def estimate_nfev(indicator: float, rtol: float) -> float:
+    """A low estimate of DOP853's evaluations for a scene of stiffness indicator max|λ|·T."""
+    return EVALS_PER_UNIT_LOW * max(indicator, 1.0) * max(1.0, (1e-6 / rtol) ** 0.2)
+
+
+@dataclass(frozen=True)
+class EngineChoice:
+    engine: str  # "python" or "compiled"
+    requested: str
+    reason: str
+    unsupported: tuple[str, ...] = ()
+
+
+def choose(requested: str, arrays, method: str, nfev_estimate: float) -> EngineChoice:
+    """The engine of one run. ``compiled`` without numba raises :class:`~gearcli.errors.ConfigError`
+    (a usage error naming the extra); a scene the kernel does not support runs on Python with the reason.
+
+    ``auto`` takes the compiled engine when it is installed, supports the scene, and is expected to be
+    faster including what loading it still costs this process (numba import and cache load, measured on
+    the last load; nothing once loaded; a full compilation when nothing is cached, so that a one-shot run
+    never waits for the compiler), that load cost shared by the runs announced with :func:`expect_runs`:
+    compiled when ``load / runs + nfev x 0.3 µs < nfev x 10 µs``.
+    """
+    from gearcli.errors import ConfigError
+
+    if requested == "python":
+        return EngineChoice("python", requested, "as requested")
+    have = available()
+    if requested == "compiled" and not have:
+        raise ConfigError(f'engine = "compiled" needs numba, the fast extra: {INSTALL_HINT}', key="simulation.engine")
+    missing = tuple(unsupported(arrays, method))
+    if missing:
+        return EngineChoice("python", requested, "the compiled engine does not support " + "; ".join(missing),
+                            missing)
+    if requested == "compiled":
+        return EngineChoice("compiled", requested, "as requested")
+    if not have:
+        return EngineChoice("python", requested, f"numba is not installed ({INSTALL_HINT} for the compiled engine)")
+    load_s = expected_load_s() / _runs["expected"]
+    python_s = nfev_estimate * PYTHON_S_PER_EVAL
+    compiled_s = load_s + nfev_estimate * COMPILED_S_PER_EVAL
+    if compiled_s < python_s:
+        return EngineChoice("compiled", requested, f"~{nfev_estimate:.2g} evaluations: ~{compiled_s:.2g} s compiled "
+                            f"(load included) against ~{python_s:.2g} s in Python")
+    return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations take ~{python_s:.2g} s in Python, less "
+                        f"than loading the compiled engine (~{load_s:.2g} s)")

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 import types
+from typing import Any
 
 import numba
 import numpy as np
@@ -35,7 +36,7 @@ from gearcli.model.elements import KIND_MESH
 from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import spring as _spring_mod
 
-JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
 
 
@@ -48,7 +49,7 @@ def _jit_module(mod) -> dict:
         if isinstance(obj, types.FunctionType) and obj.__module__ == mod.__name__:
             clone = types.FunctionType(obj.__code__, scope, name, obj.__defaults__, obj.__closure__)
             clone.__qualname__ = obj.__qualname__
-            out[name] = numba.njit(**JIT)(clone)
+            out[name] = jit(clone)
     scope.update(out)
     return out
 
@@ -82,7 +83,7 @@ FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP = 0, 1, 2, 3
 
 # ----------------------------------------------------------------------------------- vector sums
 # scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
-@numba.njit(**JIT)
+@jit
 def _gemv_t_loop(K, s, a, out):
     """out = K[:s].T @ a[:s]."""
     for i in range(K.shape[1]):
@@ -92,7 +93,7 @@ def _gemv_t_loop(K, s, a, out):
         out[i] = acc
 
 
-@numba.njit(**JIT)
+@jit
 def _dot_loop(x):
     acc = 0.0
     for i in range(x.size):
@@ -100,7 +101,7 @@ def _dot_loop(x):
     return acc
 
 
-@numba.njit(**JIT)
+@jit
 def _gemm_loop(Dm, K, out):
     """out = Dm @ K."""
     for r in range(Dm.shape[0]):
@@ -121,22 +122,22 @@ if HAVE_BLAS:
     _E = _nt.int32  # CBLAS enums
     _U = _nt.uintp  # pointers, passed as addresses
     _F = _nt.float64
-    _dgemv = _nt.ExternalFunction(_PATTERN.format("dgemv"), _nt.void(_E, _E, _I, _I, _F, _U, _I, _U, _I, _F, _U, _I))
-    _dgemm = _nt.ExternalFunction(_PATTERN.format("dgemm"),
+    _dgemv: Any = _nt.ExternalFunction(_PATTERN.format("dgemv"), _nt.void(_E, _E, _I, _I, _F, _U, _I, _U, _I, _F, _U, _I))
+    _dgemm: Any = _nt.ExternalFunction(_PATTERN.format("dgemm"),
                                   _nt.void(_E, _E, _E, _I, _I, _I, _F, _U, _I, _U, _I, _F, _U, _I))
-    _ddot = _nt.ExternalFunction(_PATTERN.format("ddot"), _F(_I, _U, _I, _U, _I))
+    _ddot: Any = _nt.ExternalFunction(_PATTERN.format("ddot"), _F(_I, _U, _I, _U, _I))
 
-    @numba.njit(**JIT)
+    @jit
     def _gemv_t_blas(K, s, a, out):
         n = K.shape[1]
         _dgemv(np.int32(102), np.int32(111), _ci(n), _ci(s), 1.0, K.ctypes.data, _ci(n), a.ctypes.data, _ci(1),
                0.0, out.ctypes.data, _ci(1))
 
-    @numba.njit(**JIT)
+    @jit
     def _dot_blas(x):
         return _ddot(_ci(x.size), x.ctypes.data, _ci(1), x.ctypes.data, _ci(1))
 
-    @numba.njit(**JIT)
+    @jit
     def _gemm_blas(Dm, K, out):
         m, k = Dm.shape
         n = K.shape[1]
@@ -148,33 +149,33 @@ else:  # pragma: no cover - a numpy without a findable BLAS
     gemv_t, dot_self, gemm = _gemv_t_loop, _dot_loop, _gemm_loop
 
 
-@numba.njit(**JIT)
+@jit
 def conn_force(kind, P, d, dd, phi):
     if kind == KIND_MESH:
         return mesh_force(P, d, dd, phi)
     return spring_force(P, d, dd, phi)
 
 
-@numba.njit(**JIT)
+@jit
 def conn_potential(kind, P, d, phi):
     if kind == KIND_MESH:
         return mesh_potential(P, d, phi)
     return spring_potential(P, d, phi)
 
 
-@numba.njit(**JIT)
+@jit
 def conn_damped(kind, P):
     if kind == KIND_MESH:
         return mesh_damped(P)
     return spring_damped(P)
 
 
-@numba.njit(**JIT)
+@jit
 def conn_tv(kind, P):
     return kind == KIND_MESH and P[I_TV] != 0.0
 
 
-@numba.njit(**JIT)
+@jit
 def ramp(t, value, ramp_s):
     """``STEP(t, 0, 0, ramp_s, value)`` as the generated code writes it."""
     if ramp_s <= 0.0 or value == 0.0:
@@ -185,7 +186,7 @@ def ramp(t, value, ramp_s):
     return value
 
 
-@numba.njit(**JIT)
+@jit
 def input_motion(t, v, T):
     """(th0, w0, a0) of the speed drive's exact STEP profile."""
     if T <= 0.0:
@@ -196,14 +197,14 @@ def input_motion(t, v, T):
     return v * (t - 0.5 * T), v, 0.0
 
 
-@numba.njit(**JIT)
+@jit
 def body_speed(y, b, first, i_w0, w0):
     if b < first:
         return w0
     return y[i_w0 + b - first]
 
 
-@numba.njit(**JIT)
+@jit
 def rhs(t, y, dy, model, th, fc):
     """dy = f(t, y) of the scene ``model``; ``th`` (n_bodies) and ``fc`` (n_conn) are scratch."""
     kind, bodies, radii, param, inertia, ipar, fpar = model
@@ -271,7 +272,7 @@ def rhs(t, y, dy, model, th, fc):
         dy[iq + 3] = tvp
 
 
-@numba.njit(**JIT)
+@jit
 def stored_energy(t, y, model):
     """Kinetic energy + elastic energy of the constant-stiffness connectors + work on time-varying
     springs (the energy watch's ``_stored``)."""
@@ -292,7 +293,7 @@ def stored_energy(t, y, model):
     return total
 
 
-@numba.njit(**JIT)
+@jit
 def _rms(x, scale, tmp):
     """scipy's ``norm(x / scale)``: ``sqrt((x/scale) . (x/scale)) / sqrt(n)``."""
     for i in range(x.size):
@@ -300,7 +301,7 @@ def _rms(x, scale, tmp):
     return math.sqrt(dot_self(tmp)) / x.size ** 0.5
 
 
-@numba.njit(**JIT)
+@jit
 def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, scale, diff, tmp):
     """scipy's ``select_initial_step`` (max_step = inf, forward direction, error order 7)."""
     n = y0.size
@@ -329,7 +330,7 @@ def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, 
     return min(100 * h0, h1, interval)
 
 
-@numba.njit(**JIT)
+@jit
 def _stage_sum(K, a, s, h, y, dst, dv):
     """dst = y + (K[:s].T @ a[:s]) * h."""
     gemv_t(K, s, a, dv)
@@ -337,7 +338,7 @@ def _stage_sum(K, a, s, h, y, dst, dv):
         dst[i] = y[i] + dv[i] * h
 
 
-@numba.njit(**JIT)
+@jit
 def rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
     """scipy's ``rk_step`` for DOP853: 11 stages, then ``f(t + h, y_new)``."""
     n = y.size
@@ -354,7 +355,7 @@ def rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
         K[N_STAGES, i] = f_new[i]
 
 
-@numba.njit(**JIT)
+@jit
 def error_norm(K, h, scale, e5, e3):
     """DOP853's combined 5th/3rd-order error estimate, as ``DOP853._estimate_error_norm``."""
     n = scale.size
@@ -373,7 +374,7 @@ def error_norm(K, h, scale, e5, e3):
     return abs(h) * n5 / math.sqrt(denom * n)
 
 
-@numba.njit(**JIT)
+@jit
 def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, dv, DK, model, th, fc):
     """The three extra stages and the interpolant's coefficients F (INTERPOLATOR_POWER x n)."""
     n = y.size
@@ -392,7 +393,7 @@ def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, dv, DK, model, th, fc)
             F[3 + r, i] = h * DK[r, i]
 
 
-@numba.njit(**JIT)
+@jit
 def dense_eval(t, t_old, h, y_old, F, out, col):
     """``Dop853DenseOutput`` at one time, into ``out[:, col]``."""
     x = (t - t_old) / h
@@ -407,11 +408,12 @@ def dense_eval(t, t_old, h, y_old, F, out, col):
         out[i, col] = v + y_old[i]
 
 
-@numba.njit(**JIT)
-def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
+@jit
+def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
     """Integrate from t = 0 through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
-    sampling at ``t_eval``. ``watch_every`` 0 switches the energy watch off; ``wpar`` = (e0, w0, scale,
-    margin). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
+    sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
+    energy watch off; ``wpar`` = (e0, w0, scale, margin). The times of the first ``trace.size`` accepted
+    steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
     created, energy scale])."""
     n = y0.size
     m = t_eval.size
@@ -503,6 +505,8 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
             t = t_new
             finished = t - t_bound >= 0
             steps += 1
+            if steps <= trace.size:
+                trace[steps - 1] = t
             total = 0.0
             for i in range(n):
                 total += y[i]
@@ -542,12 +546,12 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar):
     return out, counters, floats, y
 
 
-@numba.njit(**JIT)
+@jit
 def ipar_quad(model):
     return model[5][IP_QUAD]
 
 
-@numba.njit(**JIT)
+@jit
 def evaluate(model, t, y):
     """One right-hand side evaluation (tests, benchmarks)."""
     dy = np.empty(y.size)
@@ -555,7 +559,7 @@ def evaluate(model, t, y):
     return dy
 
 
-@numba.njit(**JIT)
+@jit
 def evaluate_many(model, t, y, times):
     """``times`` evaluations at one point (the benchmark's cost of one compiled evaluation)."""
     dy = np.empty(y.size)

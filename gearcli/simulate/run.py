@@ -8,6 +8,8 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
+from gearcli.engine import choose as choose_engine
+from gearcli.engine import estimate_nfev
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
@@ -47,14 +49,16 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
                           key="simulation.window_start_s")
     return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0)
+                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
+                          engine=sim.engine)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
-                   y0: np.ndarray | None = None, max_nfev: int | None = None) -> SimulationResult:
+                   y0: np.ndarray | None = None, max_nfev: int | None = None, engine: str = "auto") -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
-    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`)."""
+    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`); ``engine``
+    "auto", "python" or "compiled" (:func:`gearcli.engine.choose`)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     choice = choose_method(spec, duration_s, method)
@@ -62,13 +66,17 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
     t_eval = np.linspace(0.0, duration_s, steps + 1)
-    run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev)
+    eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol))
+    if eng.unsupported and engine == "compiled":
+        diags.append(dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
+                                f"{eng.reason}", unsupported=list(eng.unsupported)))
+    run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine)
     check(run, choice, duration_s)
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
     diags += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
-    result = _summarise(model, s, run, choice, window, energy, diags, want_series)
+    result = _summarise(model, s, run, choice, window, energy, diags, want_series, eng.reason)
     _require_finite(result)
     return result
 
@@ -101,7 +109,7 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
 
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, window, energy,
-               diags: list[Diagnostic], want_series: bool) -> SimulationResult:
+               diags: list[Diagnostic], want_series: bool, engine_reason: str = "as requested") -> SimulationResult:
     spec = model.spec
     mask = stats.window_mask(s.time_s, window)
     channels, per_stage = _channels(model, s)
@@ -122,7 +130,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
         nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
-        energy_residual=energy.residual_relative, status=run.status, message=run.message)
+        energy_residual=energy.residual_relative, status=run.status, message=run.message, engine=run.engine,
+        engine_reason=engine_reason, compile_s=run.compile_s)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(

@@ -185,7 +185,7 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     t0 = time.perf_counter()
     out, counters, floats, _ = loaded.kernel.dop853(engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float),
                                                     np.ascontiguousarray(t_eval, dtype=float), breaks, rtol_v,
-                                                    atol_v, np.int64(max_nfev), every, wpar)
+                                                    atol_v, np.int64(max_nfev), every, wpar, np.empty(0))
     wall = time.perf_counter() - t0
     nfev, steps, status, _done = (int(v) for v in counters)
     t_end, created, scale = (float(v) for v in floats)
