@@ -37,6 +37,12 @@ def build_report(
     tick = progress or (lambda label, done, total: None)
     sim_cfg = cfg.simulation
     planned = 1 if quick else 1 + 2 + len(spec.rtols) * len(spec.methods)
+    if not quick and sim_cfg.engine == "auto":  # the ladder (~25 runs, a reference at rtol 1e-12) always
+        from gearcli import engine  # repays loading the compiled engine: load it once, for every DOP853 rung
+
+        engine.expect_runs(planned)
+        if engine.available():
+            engine.load()
     tick(f"simulation ({sim_cfg.method}, rtol {sim_cfg.rtol:g})", 0, planned)
     sim = simulate(cfg, design, want_series=True)
     stages = stage_reports(design, sim)
