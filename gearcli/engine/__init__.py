@@ -168,6 +168,12 @@ def load(quiet: bool = False) -> Loaded:
     return _state["loaded"]
 
 
+def loaded_kernel() -> Any:
+    """The kernel module when this process has loaded it, else None (never loads it)."""
+    loaded = _state.get("loaded")
+    return loaded.kernel if loaded is not None else None
+
+
 def _remember_load_time(load_s: float) -> None:
     """The last measured numba import + cache load time (what ``auto`` weighs a one-shot run against)."""
     try:
@@ -213,6 +219,8 @@ def _warm_up(kernel) -> None:
                   np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
     kernel.evaluate(model, 0.0, y0)
     kernel.evaluate_many(model, 0.0, y0, np.int64(1))
+    for c in range(2):
+        kernel.connector_series(model[0][c], model[3][c], np.zeros(2), np.zeros(2), np.zeros(2))
 
 
 def pack(arrays) -> tuple:

@@ -57,6 +57,7 @@ def _jit_module(mod) -> dict:
 _MESH = _jit_module(_mesh_mod)
 _SPRING = _jit_module(_spring_mod)
 mesh_force, mesh_potential, mesh_damped = _MESH["force"], _MESH["potential"], _MESH["damped"]
+mesh_penetration = _MESH["penetration"]
 spring_force, spring_potential, spring_damped = _SPRING["force"], _SPRING["potential"], _SPRING["damped"]
 I_TV, I_Z = _mesh_mod.I_TV, _mesh_mod.I_Z
 TWO_PI = 2.0 * math.pi
@@ -570,3 +571,19 @@ def evaluate_many(model, t, y, times):
         rhs(t, y, dy, model, th, fc)
         acc += dy[0]
     return acc
+
+
+@jit
+def connector_series(kind, P, d, dd, phi):
+    """Force, stored energy and signed penetration of one connector at every sample (the output
+    channels of :func:`gearcli.model.outputs.connector_series`, through the same element laws)."""
+    n = d.size
+    F = np.empty(n)
+    U = np.empty(n)
+    pen = np.zeros(n)
+    for j in range(n):
+        F[j] = conn_force(kind, P, d[j], dd[j], phi[j])[0]
+        U[j] = conn_potential(kind, P, d[j], phi[j])
+        if kind == KIND_MESH:
+            pen[j] = mesh_penetration(P, d[j])
+    return F, U, pen
