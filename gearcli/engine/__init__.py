@@ -255,9 +255,10 @@ _runs = {"expected": 1}
 
 
 def expect_runs(n: int) -> None:
-    """Tell ``auto`` that this process will integrate about ``n`` runs (a sweep, a report): the one-time
-    cost of loading the kernel is shared by all of them."""
-    _runs["expected"] = max(1, int(n))
+    """Tell ``auto`` that this process will integrate about ``n`` more runs (a report's ladder, a sweep's
+    task): the one-time cost of loading the kernel is shared by all the runs announced in the process (a
+    sweep worker that gets one point per task switches once its points have added up)."""
+    _runs["expected"] += max(0, int(n))
 
 
 def estimate_nfev(indicator: float, rtol: float) -> float:
