@@ -587,3 +587,121 @@ def connector_series(kind, P, d, dd, phi):
         if kind == KIND_MESH:
             pen[j] = mesh_penetration(P, d[j])
     return F, U, pen
+
+
+# ------------------------------------------------------------------------------------ Jacobian
+mesh_power_gradient, spring_power_gradient = _MESH["power_gradient"], _SPRING["power_gradient"]
+
+
+@jit
+def conn_power_gradient(kind, P, d, dd, phi):
+    if kind == KIND_MESH:
+        return mesh_power_gradient(P, d, dd, phi)
+    return spring_power_gradient(P, d, dd, phi)
+
+
+@jit
+def _angle_gradient(body, model, ag):
+    """ag = d(theta_body)/dy: theta_{c+1} = (r_a theta_c - delta_c) / r_b from theta_0 (a state of a torque
+    drive; a function of t alone for a speed drive)."""
+    radii = model[2]
+    i_th = model[5][IP_THETA]
+    ag[:] = 0.0
+    if i_th >= 0:
+        ag[i_th] = 1.0
+    for c in range(body):
+        for j in range(ag.size):
+            ag[j] *= radii[c, 0] / radii[c, 1]
+        ag[c] -= 1.0 / radii[c, 1]
+
+
+@jit
+def _gradient(c, xd, xv, xt, model, first, g, ag):
+    """g = d(x_c)/dy of a connector quantity with partials xd (deflection), xv (rate), xt (mesh phase)."""
+    kind, bodies, radii, param = model[0], model[1], model[2], model[3]
+    i_w0 = model[5][IP_W0]
+    a = bodies[c, 0]
+    b = bodies[c, 1]
+    g[:] = 0.0
+    g[c] = xd
+    if a >= first:
+        g[i_w0 + a - first] += radii[c, 0] * xv
+    if b >= first:
+        g[i_w0 + b - first] += -radii[c, 1] * xv
+    if conn_tv(kind[c], param[c]) and xt != 0.0:
+        _angle_gradient(a, model, ag)
+        k = param[c, I_Z] / TWO_PI * xt
+        for j in range(g.size):
+            g[j] += ag[j] * k
+
+
+@jit
+def jacobian(t, y, Jm, model, th, g, ag):
+    """Jm = df/dy of :func:`rhs`, from the elements' own partials (as the generated ``jac``)."""
+    kind, bodies, radii, param, inertia, ipar, fpar = model
+    nc = kind.shape[0]
+    nb = inertia.shape[0]
+    n = y.size
+    speed = ipar[IP_DRIVE] == 0
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    iq = ipar[IP_QUAD]
+    first = 1 if speed else 0
+    tin = 0.0
+    if speed:
+        th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
+    else:
+        tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
+        w0 = y[i_w0]
+        th0 = y[i_th] if i_th >= 0 else 0.0
+    load = fpar[FP_LOAD] != 0.0
+    tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP]) if load else 0.0
+    th[0] = th0
+    for c in range(ipar[IP_LAST_ANGLE]):
+        th[c + 1] = (radii[c, 0] * th[c] - y[c]) * (1.0 / radii[c, 1])
+    Jm[:, :] = 0.0
+    for c in range(nc):
+        a = bodies[c, 0]
+        b = bodies[c, 1]
+        P = param[c]
+        ra = radii[c, 0]
+        rb = radii[c, 1]
+        dd = ra * body_speed(y, a, first, i_w0, w0) - rb * body_speed(y, b, first, i_w0, w0)
+        tv = conn_tv(kind[c], P)
+        phi = (P[I_Z] / TWO_PI) * th[a] if tv else 0.0
+        _, kd, kv, kt, _, _ = conn_force(kind[c], P, y[c], dd, phi)
+        if a >= first:
+            Jm[c, i_w0 + a - first] = ra
+        Jm[c, i_w0 + b - first] = -rb
+        _gradient(c, kd, kv, kt, model, first, g, ag)
+        for j in range(n):
+            if a >= first:
+                Jm[i_w0 + a - first, j] += (-ra / inertia[a]) * g[j]
+            Jm[i_w0 + b - first, j] += (rb / inertia[b]) * g[j]
+            if c == 0 and speed:
+                Jm[iq, j] += (ra * w0) * g[j]
+        if conn_damped(kind[c], P) or tv:
+            qd, qv, qt, ud, uv, ut = conn_power_gradient(kind[c], P, y[c], dd, phi)
+            if conn_damped(kind[c], P):
+                _gradient(c, qd, qv, qt, model, first, g, ag)
+                for j in range(n):
+                    Jm[iq + 2, j] += g[j]
+            if tv:
+                _gradient(c, ud, uv, ut, model, first, g, ag)
+                for j in range(n):
+                    Jm[iq + 3, j] += g[j]
+    if i_th >= 0:
+        Jm[i_th, i_w0] = 1.0
+    if not speed:
+        Jm[iq, i_w0] = tin
+    if load:
+        Jm[iq + 1, i_w0 + nb - 1 - first] = tl
+
+
+@jit
+def evaluate_jacobian(model, t, y):
+    """One Jacobian evaluation (tests)."""
+    n = y.size
+    Jm = np.zeros((n, n))
+    jacobian(t, y, Jm, model, np.zeros(model[4].shape[0]), np.zeros(n), np.zeros(n))
+    return Jm
