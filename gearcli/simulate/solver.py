@@ -183,11 +183,13 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN]) if watch is not None else np.zeros(4)
     every = np.int64(watch.every if watch is not None else 0)
     t0 = time.perf_counter()
-    out, counters, floats, _ = loaded.kernel.dop853(engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float),
-                                                    np.ascontiguousarray(t_eval, dtype=float), breaks, rtol_v,
-                                                    atol_v, np.int64(max_nfev), every, wpar, np.empty(0))
+    kernel = loaded.kernel.dop853 if method == "DOP853" else loaded.kernel.radau
+    out, counters, floats, _ = kernel(engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float),
+                                      np.ascontiguousarray(t_eval, dtype=float), breaks, rtol_v, atol_v,
+                                      np.int64(max_nfev), every, wpar, np.empty(0))
     wall = time.perf_counter() - t0
-    nfev, steps, status, _done = (int(v) for v in counters)
+    nfev, steps, status = (int(v) for v in counters[:3])
+    njev, nlu = (int(v) for v in counters[4:6]) if counters.size > 4 else (0, 0)
     t_end, created, scale = (float(v) for v in floats)
     messages = {STATUS_FINISHED: "reached the end of the run",
                 STATUS_FAILED: "Required step size is less than spacing between numbers.",
@@ -199,8 +201,8 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
         message = watch.message(EnergyReport(created, scale))
     else:
         message = messages.get(status, f"status {status}")
-    return Integration(t_eval, out, method, float(np.max(rtol_v)) if np.ndim(rtol) else float(rtol), atol, nfev, 0, 0,
-                       steps, wall, status, message, t_end, engine="compiled", compile_s=compile_s)
+    return Integration(t_eval, out, method, float(np.max(rtol_v)) if np.ndim(rtol) else float(rtol), atol, nfev, njev,
+                       nlu, steps, wall, status, message, t_end, engine="compiled", compile_s=compile_s)
 
 
 _COMPILED_USED: list[bool] = []  # the kernel's load time is reported by the first compiled run of a process
