@@ -31,8 +31,10 @@ from typing import Any
 import numpy as np
 
 ENGINES = ("auto", "python", "compiled")
-COMPILED_METHODS = ("DOP853", "Radau")  # what the kernel integrates
-BIT_IDENTICAL = ("DOP853",)  # takes scipy's steps bit for bit; Radau's LU differs from LAPACK's in the last bit
+COMPILED_METHODS = ("DOP853", "RK45", "Radau")  # what the kernel integrates
+# take scipy's steps bit for bit (RK45's samples agree to the last bits: its interpolant is summed in a loop);
+# Radau's LU differs from LAPACK's in the last bit, and its steps part after a while
+BIT_IDENTICAL = ("DOP853", "RK45")
 INSTALL_HINT = "pip install 'gearcli[fast]'"
 SUPPORTED = (
     "connectors: torsional springs (couplings, flexible shafts) and gear meshes (Adams IMPACT law: Hertz or "
@@ -41,6 +43,7 @@ SUPPORTED = (
     "speed drive (exact STEP speed profile) or torque drive, STEP-ramped; STEP-ramped load torque",
     "energy quadratures (input work, load work, damping loss, work on time-varying springs)",
     "method DOP853 (scipy's steps, error norm, step control and dense output, bit for bit)",
+    "method RK45 (scipy's steps bit for bit; samples to the last bits)",
     "method Radau (scipy's Radau IIA: Newton iteration, LU reuse, error estimate, step control, dense output; "
     "analytic Jacobian from the elements' partials)",
 )
@@ -220,6 +223,8 @@ def _warm_up(kernel) -> None:
     tol = np.full(7, 1e-6)
     kernel.dop853(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
                   np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
+    kernel.rk45(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
+                np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
     kernel.radau(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
                  np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
     kernel.evaluate(model, 0.0, y0)

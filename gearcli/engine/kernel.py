@@ -548,6 +548,201 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
     return out, counters, floats, y
 
 
+# RK45 (scipy's class attributes)
+RK45_STAGES = 6
+RK45_C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
+RK45_A = np.array([[0, 0, 0, 0, 0], [1 / 5, 0, 0, 0, 0], [3 / 40, 9 / 40, 0, 0, 0], [44 / 45, -56 / 15, 32 / 9, 0, 0],
+                   [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0],
+                   [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]])
+RK45_B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
+RK45_E = np.array([-71 / 57600, 0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
+RK45_P = np.array([
+    [1, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+    [0, 0, 0, 0],
+    [0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
+    [0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+    [0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
+    [0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+    [0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423]])
+RK45_ERROR_EXPONENT = -1.0 / (4 + 1)
+RK45_INITIAL_EXPONENT = 1.0 / (4 + 1)
+
+
+@jit
+def rk45_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
+    """scipy's ``rk_step`` for RK45: 5 stages, then ``f(t + h, y_new)``."""
+    n = y.size
+    for i in range(n):
+        K[0, i] = f[i]
+    for s in range(1, RK45_STAGES):
+        _stage_sum(K, RK45_A[s], s, h, y, ytmp, dv)
+        rhs(t + RK45_C[s] * h, ytmp, K[s], model, th, fc)
+    gemv_t(K, RK45_STAGES, RK45_B, dv)
+    for i in range(n):
+        y_new[i] = y[i] + h * dv[i]
+    rhs(t + h, y_new, f_new, model, th, fc)
+    for i in range(n):
+        K[RK45_STAGES, i] = f_new[i]
+
+
+@jit
+def rk45_error_norm(K, h, scale, e):
+    """``norm(np.dot(K.T, E) * h / scale)``."""
+    gemv_t(K, RK45_STAGES + 1, RK45_E, e)
+    for i in range(scale.size):
+        e[i] = e[i] * h / scale[i]
+    return math.sqrt(dot_self(e)) / scale.size ** 0.5
+
+
+@jit
+def rk45(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
+    """:func:`dop853` with scipy's RK45 (Dormand-Prince 5(4), quartic dense output): the same steps; the samples
+    agree to the last bits (the interpolant is summed in a loop, not by BLAS).
+
+    Integrate from t = 0 through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
+    sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
+    energy watch off; ``wpar`` = (e0, w0, scale, margin). The times of the first ``trace.size`` accepted
+    steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
+    created, energy scale])."""
+    n = y0.size
+    m = t_eval.size
+    out = np.full((n, m), np.nan)
+    nb = model[4].shape[0]
+    nc = model[0].shape[0]
+    th = np.zeros(nb)
+    fc = np.zeros(nc)
+    K = np.zeros((RK45_STAGES + 1, n))
+    Q = np.zeros((n, 4))
+    y = y0.copy()
+    f = np.empty(n)
+    y_new = np.empty(n)
+    f_new = np.empty(n)
+    ytmp = np.empty(n)
+    scale = np.empty(n)
+    w1 = np.empty(n)
+    w2 = np.empty(n)
+    dv = np.empty(n)
+    done = 0
+    while done < m and t_eval[done] <= 0.0:
+        out[:, done] = y
+        done += 1
+    for j in range(done, m):
+        if t_eval[j] <= 0.0:
+            out[:, j] = y
+    t = 0.0
+    nfev = 0
+    steps = 0
+    status = STATUS_FINISHED
+    created = 0.0
+    escale = wpar[2]
+    for seg in range(breaks.size):
+        t_bound = breaks[seg]
+        seg_nfev = 0
+        rhs(t, y, f, model, th, fc)
+        seg_nfev += 1
+        h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp, dv,
+                                    RK45_INITIAL_EXPONENT)
+        seg_nfev += 1
+        while True:
+            min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+            if h_abs < min_step:
+                h_abs = min_step
+            accepted = False
+            rejected = False
+            h = 0.0
+            t_new = t
+            while not accepted:
+                if h_abs < min_step:
+                    break
+                h = h_abs
+                t_new = t + h
+                if t_new - t_bound > 0:
+                    t_new = t_bound
+                h = t_new - t
+                h_abs = abs(h)
+                rk45_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc)
+                seg_nfev += RK45_STAGES
+                for i in range(n):
+                    a = abs(y[i])
+                    b = abs(y_new[i])
+                    scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]  # np.maximum: NaN wins
+                err = rk45_error_norm(K, h, scale, dv)
+                if err < 1:
+                    if err == 0:
+                        factor = MAX_FACTOR
+                    else:
+                        factor = SAFETY * err ** RK45_ERROR_EXPONENT
+                        if not factor < MAX_FACTOR:
+                            factor = MAX_FACTOR
+                    if rejected and not factor < 1.0:
+                        factor = 1.0
+                    h_abs *= factor
+                    accepted = True
+                else:
+                    factor = SAFETY * err ** RK45_ERROR_EXPONENT
+                    h_abs *= factor if factor > MIN_FACTOR else MIN_FACTOR
+                    rejected = True
+            if not accepted:
+                status = STATUS_FAILED
+                break
+            t_old = t
+            for i in range(n):
+                ytmp[i] = y[i]  # y_old
+                y[i] = y_new[i]
+                f[i] = f_new[i]
+            t = t_new
+            finished = t - t_bound >= 0
+            steps += 1
+            if steps <= trace.size:
+                trace[steps - 1] = t
+            total = 0.0
+            for i in range(n):
+                total += y[i]
+            if not np.isfinite(total):
+                status = STATUS_NONFINITE
+                break
+            upto = done
+            while upto < m and t_eval[upto] <= t:
+                upto += 1
+            if upto > done:
+                # y_old is kept in w1 for the interpolant: ytmp is the stage scratch
+                for i in range(n):
+                    w1[i] = ytmp[i]
+                hd = t - t_old
+                for i in range(n):
+                    for c in range(4):
+                        acc = 0.0
+                        for j in range(RK45_STAGES + 1):
+                            acc += K[j, i] * RK45_P[j, c]
+                        Q[i, c] = acc
+                for j in range(done, upto):
+                    x = (t_eval[j] - t_old) / hd
+                    x2 = x * x
+                    x3 = x2 * x
+                    x4 = x3 * x
+                    for i in range(n):
+                        out[i, j] = hd * (Q[i, 0] * x + Q[i, 1] * x2 + Q[i, 2] * x3 + Q[i, 3] * x4) + w1[i]
+                done = upto
+            if nfev + seg_nfev > max_nfev:
+                status = STATUS_BUDGET
+                break
+            if watch_every > 0 and (steps % watch_every == 0 or finished):
+                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
+                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
+                escale = max(wpar[2], abs(work - wpar[1]))
+                if created > wpar[3] * escale:
+                    status = STATUS_ENERGY
+                    break
+            if finished:
+                break
+        nfev += seg_nfev
+        if status != STATUS_FINISHED:
+            break
+    counters = np.array([nfev, steps, status, done], dtype=np.int64)
+    floats = np.array([t, created, escale])
+    return out, counters, floats, y
+
+
 @jit
 def ipar_quad(model):
     return model[5][IP_QUAD]

@@ -183,7 +183,7 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN]) if watch is not None else np.zeros(4)
     every = np.int64(watch.every if watch is not None else 0)
     t0 = time.perf_counter()
-    kernel = loaded.kernel.dop853 if method == "DOP853" else loaded.kernel.radau
+    kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]
     out, counters, floats, _ = kernel(engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float),
                                       np.ascontiguousarray(t_eval, dtype=float), breaks, rtol_v, atol_v,
                                       np.int64(max_nfev), every, wpar, np.empty(0))

@@ -36,9 +36,11 @@ def non_stiff(path: str) -> bool:
     return choose_method(model.spec, cfg.simulation.duration_s, "auto").method == "DOP853"
 
 
-def scipy_dop853(model, t_eval, rtol, atol):
-    """scipy.integrate.DOP853 over the run's segments: (samples, accepted step times, nfev)."""
-    from scipy.integrate import DOP853
+def scipy_dop853(model, t_eval, rtol, atol, method="DOP853"):
+    """scipy.integrate.DOP853 (or RK45) over the run's segments: (samples, accepted step times, nfev)."""
+    import scipy.integrate
+
+    DOP853 = getattr(scipy.integrate, method)
 
     y, t = model.initial_state(), 0.0
     out = np.full((y.size, t_eval.size), np.nan)
@@ -60,11 +62,11 @@ def scipy_dop853(model, t_eval, rtol, atol):
     return out, np.array(times), nfev
 
 
-def compiled_dop853(model, t_eval, rtol, atol, max_nfev=10**8):
+def compiled_dop853(model, t_eval, rtol, atol, max_nfev=10**8, method="DOP853"):
     k = engine.load(quiet=True).kernel
     n = model.n_states
     trace = np.full(10**6, np.nan)
-    out, counters, floats, _ = k.dop853(engine.pack(model.arrays), model.initial_state(), t_eval,
+    out, counters, floats, _ = getattr(k, method.lower())(engine.pack(model.arrays), model.initial_state(), t_eval,
                                         np.array(breakpoints(model, float(t_eval[-1]))),
                                         np.array(np.broadcast_to(rtol, (n,)), dtype=float),
                                         np.array(np.broadcast_to(atol, (n,)), dtype=float), np.int64(max_nfev),
@@ -73,7 +75,7 @@ def compiled_dop853(model, t_eval, rtol, atol, max_nfev=10**8):
     return out, trace[:steps], nfev, status
 
 
-def assert_same(ref, got):
+def assert_same(ref, got, samples_rtol=1e-9):
     out_r, times_r, nfev_r = ref
     out_c, times_c, nfev_c, status = got
     assert status == 0
@@ -81,7 +83,7 @@ def assert_same(ref, got):
     assert times_c.size == times_r.size
     np.testing.assert_array_equal(times_c, times_r)  # the same accepted steps, to the bit
     scale = np.maximum(np.max(np.abs(out_r), axis=1, keepdims=True), 1e-300)
-    assert np.max(np.abs(out_c - out_r) / scale) <= 1e-9
+    assert np.max(np.abs(out_c - out_r) / scale) <= samples_rtol
 
 
 @pytest.mark.parametrize("path", FILES, ids=lambda p: Path(p).stem)
@@ -162,3 +164,16 @@ def test_output_channels_compiled_are_the_element_laws_to_the_bit(name, monkeypa
         np.testing.assert_array_equal(a.force, b.force)
         np.testing.assert_array_equal(a.potential_J, b.potential_J)
         np.testing.assert_array_equal(a.penetration_m, b.penetration_m)
+
+
+@pytest.mark.parametrize("name", ["concrete_mixer", "backlash_oscillator", "mixer_time_varying_backlash",
+                                  "concrete_mixer_drivetrain", "extreme/rattle_zero_load"])
+def test_rk45_same_steps_as_scipy(name):
+    """The compiled RK45: scipy's accepted steps and nfev; samples to the last bits (its quartic interpolant
+    is summed in a loop, not through BLAS)."""
+    cfg, model = scene(str(ROOT / "configs" / f"{name}.toml"))
+    rtol = cfg.simulation.rtol
+    t_eval = np.linspace(0.0, cfg.simulation.duration_s, cfg.simulation.steps + 1)
+    atol = model.atol(rtol)
+    assert_same(scipy_dop853(model, t_eval, rtol, atol, "RK45"),
+                compiled_dop853(model, t_eval, rtol, atol, method="RK45"), samples_rtol=1e-12)
