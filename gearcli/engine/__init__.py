@@ -24,6 +24,8 @@ import json
 import os
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -261,7 +263,7 @@ PYTHON_S_PER_EVAL = 10e-6
 COMPILED_S_PER_EVAL = 0.3e-6
 EVALS_PER_UNIT_LOW = 4.0
 
-_runs = {"expected": 1}
+_runs = {"expected": 1, "active": 0}
 
 
 def expect_runs(n: int) -> None:
@@ -269,6 +271,19 @@ def expect_runs(n: int) -> None:
     task): the one-time cost of loading the kernel is shared by all the runs announced in the process (a
     sweep worker that gets one point per task switches once its points have added up)."""
     _runs["expected"] += max(0, int(n))
+
+
+@contextmanager
+def batch(n: int) -> Iterator[None]:
+    """A batch of about ``n`` runs (a report's ladder, a sweep task): announced to ``auto`` (:func:`expect_runs`),
+    and inside it ``auto`` may also take the compiled methods that agree with scipy to the tolerance rather than
+    to the bit (Radau). Outside any batch a run gives scipy's numbers whatever is installed."""
+    expect_runs(n)
+    _runs["active"] += 1
+    try:
+        yield
+    finally:
+        _runs["active"] -= 1
 
 
 def estimate_nfev(indicator: float, rtol: float) -> float:
@@ -293,8 +308,8 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float) -> EngineC
     the last load; nothing once loaded; a full compilation when nothing is cached, so that a one-shot run
     never waits for the compiler), that load cost shared by the runs announced with :func:`expect_runs`:
     compiled when ``load / runs + nfev x 0.3 µs < nfev x 10 µs``. A method the kernel does not reproduce
-    bit for bit (Radau) is taken by ``auto`` only when runs were announced (a report, a sweep), so a one-shot
-    ``simulate`` gives scipy's numbers whatever is installed.
+    bit for bit (Radau) is taken by ``auto`` only inside a :func:`batch` (a report's ladder, a sweep task), so
+    a one-shot ``simulate`` gives scipy's numbers whatever is installed.
     """
     from gearcli.errors import ConfigError
 
@@ -311,7 +326,7 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float) -> EngineC
         return EngineChoice("compiled", requested, "as requested")
     if not have:
         return EngineChoice("python", requested, f"numba is not installed ({INSTALL_HINT} for the compiled engine)")
-    if method not in BIT_IDENTICAL and _runs["expected"] <= 1:
+    if method not in BIT_IDENTICAL and _runs["active"] == 0:
         return EngineChoice("python", requested, f"a one-shot {method} run stays on scipy: the compiled {method} agrees "
                             "with it to the tolerance, not to the bit (auto uses it for reports and sweeps)")
     load_s = expected_load_s() / _runs["expected"]

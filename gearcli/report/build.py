@@ -51,12 +51,15 @@ def build_report(
         def run(method: str, rtol: float) -> SimulationResult:
             return simulate(cfg, design, method=method, rtol=rtol, want_series=False)
 
-        study = accuracy_study(
-            run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
-            auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
-            stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
-            progress=lambda label, done, total: tick(label, done + 1, total + 1),
-        )
+        from gearcli import engine
+
+        with engine.batch(0):  # the ladder: auto may run Radau compiled too (labelled)
+            study = accuracy_study(
+                run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
+                auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
+                stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
+                progress=lambda label, done, total: tick(label, done + 1, total + 1),
+            )
     warnings = _merge(
         design.warnings,
         sim.warnings,

@@ -80,24 +80,24 @@ def iter_task(task: Task) -> Iterator[dict]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
     from gearcli import engine
 
-    engine.expect_runs(len(task.points))  # engine = "auto": loading the compiled engine is shared by the points
-    prev = None
-    for point in task.points:
-        t0 = time.perf_counter()
-        try:
-            result, spec = _evaluate(task.scene, point, prev if task.continuation else None)
-        except GearcliError as exc:
-            prev = None
-            row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
-        except (ArithmeticError, ValueError, RuntimeError, OverflowError) as exc:  # a bug or a numerical failure
-            prev = None
-            row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
-        else:
-            prev = (result.final_state, spec) if result.final_state is not None else None
-            row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
-                         message=one_line("\n".join(result.warnings)))
-        if point.index not in task.skip:
-            yield {"_index": point.index, **row}
+    with engine.batch(len(task.points)):  # engine = "auto": the kernel's load is shared by the points
+        prev = None
+        for point in task.points:
+            t0 = time.perf_counter()
+            try:
+                result, spec = _evaluate(task.scene, point, prev if task.continuation else None)
+            except GearcliError as exc:
+                prev = None
+                row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
+            except (ArithmeticError, ValueError, RuntimeError, OverflowError) as exc:  # a bug or a numerical failure
+                prev = None
+                row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
+            else:
+                prev = (result.final_state, spec) if result.final_state is not None else None
+                row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
+                             message=one_line("\n".join(result.warnings)))
+            if point.index not in task.skip:
+                yield {"_index": point.index, **row}
 
 
 def run_task(task: Task) -> list[dict]:

@@ -58,8 +58,11 @@ def test_auto_weighs_the_load_cost_against_the_python_run(monkeypatch):
     assert engine.choose("auto", arrays, "Radau", 1e6).engine == "python"  # one-shot: scipy's numbers, to the bit
     engine.expect_runs(999)
     assert engine.choose("auto", arrays, "DOP853", 1e4).engine == "compiled"
-    assert engine.choose("auto", arrays, "Radau", 1e6).engine == "compiled"
-    assert engine.choose("auto", arrays, "BDF", 1e6).engine == "python"
+    assert engine.choose("auto", arrays, "Radau", 1e6).engine == "python"  # outside a batch
+    with engine.batch(10):  # a report's ladder, a sweep task
+        assert engine.choose("auto", arrays, "Radau", 1e6).engine == "compiled"
+        assert engine.choose("auto", arrays, "BDF", 1e6).engine == "python"
+    assert engine.choose("auto", arrays, "Radau", 1e6).engine == "python"
     assert engine.choose("python", arrays, "DOP853", 1e9).engine == "python"
 
 
