@@ -8,8 +8,8 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
+from gearcli.engine import EngineChoice, estimate_nfev
 from gearcli.engine import choose as choose_engine
-from gearcli.engine import estimate_nfev
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
@@ -67,6 +67,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         require_feasible(choice, max_nfev)
     t_eval = np.linspace(0.0, duration_s, steps + 1)
     eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol))
+    eng = _loadable(eng)
     if eng.unsupported and engine == "compiled":
         diags.append(dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                                 f"{eng.reason}", unsupported=list(eng.unsupported)))
@@ -79,6 +80,21 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     result = _summarise(model, s, run, choice, window, energy, diags, want_series, eng.reason)
     _require_finite(result)
     return result
+
+
+def _loadable(eng: EngineChoice) -> EngineChoice:
+    """``auto``'s compiled choice, or Python with the reason when the kernel cannot be loaded or compiled here
+    (an explicit ``compiled`` lets the error through)."""
+    if eng.engine != "compiled" or eng.requested != "auto":
+        return eng
+    from gearcli import engine
+
+    try:
+        engine.load()
+    except Exception as exc:  # numba cannot compile or cache here: scipy runs it
+        return EngineChoice("python", eng.requested, f"the compiled engine could not be loaded ({type(exc).__name__}: "
+                            f"{exc})")
+    return eng
 
 
 def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[StageSeries]]:

@@ -51,10 +51,10 @@ def test_auto_weighs_the_load_cost_against_the_python_run(monkeypatch):
     per run and 10^4 evaluations go compiled too."""
     monkeypatch.setattr(engine, "available", lambda: True)
     monkeypatch.setattr(engine, "expected_load_s", lambda: 0.5)
+    monkeypatch.setitem(engine._runs, "expected", 1)  # a fresh process: nothing announced
     arrays = seed_arrays()
     assert engine.choose("auto", arrays, "DOP853", 1e4).engine == "python"
     assert engine.choose("auto", arrays, "DOP853", 1e6).engine == "compiled"
-    monkeypatch.setitem(engine._runs, "expected", 1)
     assert engine.choose("auto", arrays, "Radau", 1e6).engine == "python"  # one-shot: scipy's numbers, to the bit
     engine.expect_runs(999)
     assert engine.choose("auto", arrays, "DOP853", 1e4).engine == "compiled"
