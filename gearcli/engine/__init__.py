@@ -299,9 +299,10 @@ class EngineChoice:
     unsupported: tuple[str, ...] = ()
 
 
-def choose(requested: str, arrays, method: str, nfev_estimate: float) -> EngineChoice:
+def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tuple[str, ...] = ()) -> EngineChoice:
     """The engine of one run. ``compiled`` without numba raises :class:`~gearcli.errors.ConfigError`
-    (a usage error naming the extra); a scene the kernel does not support runs on Python with the reason.
+    (a usage error naming the extra); a scene the kernel does not support (or with the caller's reasons
+    ``also``) runs on Python with the reason.
 
     ``auto`` takes the compiled engine when it is installed, supports the scene, and is expected to be
     faster including what loading it still costs this process (numba import and cache load, measured on
@@ -318,7 +319,7 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float) -> EngineC
     have = available()
     if requested == "compiled" and not have:
         raise ConfigError(f'engine = "compiled" needs numba, the fast extra: {INSTALL_HINT}', key="simulation.engine")
-    missing = tuple(unsupported(arrays, method))
+    missing = tuple(unsupported(arrays, method)) + tuple(also)
     if missing:
         return EngineChoice("python", requested, "the compiled engine does not support " + "; ".join(missing),
                             missing)

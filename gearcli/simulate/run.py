@@ -66,7 +66,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
     t_eval = np.linspace(0.0, duration_s, steps + 1)
-    eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol))
+    replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
+    eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol), replaced)
     eng = _loadable(eng)
     if eng.unsupported and engine == "compiled":
         diags.append(dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
