@@ -121,12 +121,9 @@ def _source_key() -> str:
     from gearcli.engine.blas import KEY
 
     h.update(KEY.encode())
-    try:
-        from importlib.metadata import version
-
-        h.update(version("numba").encode())
-    except Exception:  # pragma: no cover - numba without metadata
-        pass
+    spec = importlib.util.find_spec("numba")  # the installed numba (its path and version stamp), without importing it
+    if spec is not None and spec.origin:
+        h.update(f"{spec.origin}:{os.stat(spec.origin).st_mtime_ns}".encode())
     return h.hexdigest()[:16]
 
 
@@ -260,6 +257,7 @@ def pack(arrays) -> tuple:
 # max|λ|·T: 4.2 to 31 per unit on the example scenes (the seed: 6.0); auto takes the low end, so that an
 # underestimate can only keep a run on the Python engine, never make it slower.
 PYTHON_S_PER_EVAL = 10e-6
+MIN_LOAD_S = 0.15  # s: numba's import alone, on the reference machine
 COMPILED_S_PER_EVAL = 0.3e-6
 EVALS_PER_UNIT_LOW = 4.0
 
@@ -327,11 +325,14 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
         return EngineChoice("compiled", requested, "as requested")
     if not have:
         return EngineChoice("python", requested, f"numba is not installed ({INSTALL_HINT} for the compiled engine)")
+    python_s = nfev_estimate * PYTHON_S_PER_EVAL
+    if "loaded" not in _state and python_s < MIN_LOAD_S / _runs["expected"]:  # not worth even a look at the cache
+        return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations take ~{python_s:.2g} s in Python, "
+                            f"less than importing numba alone (~{MIN_LOAD_S:g} s)")
     if method not in BIT_IDENTICAL and _runs["active"] == 0:
         return EngineChoice("python", requested, f"a one-shot {method} run stays on scipy: the compiled {method} agrees "
                             "with it to the tolerance, not to the bit (auto uses it for reports and sweeps)")
     load_s = expected_load_s() / _runs["expected"]
-    python_s = nfev_estimate * PYTHON_S_PER_EVAL
     compiled_s = load_s + nfev_estimate * COMPILED_S_PER_EVAL
     if compiled_s < python_s:
         return EngineChoice("compiled", requested, f"~{nfev_estimate:.2g} evaluations: ~{compiled_s:.2g} s compiled "
