@@ -37,6 +37,7 @@ class Task:
     points: tuple[Point, ...]
     continuation: bool
     skip: frozenset[int] = field(default_factory=frozenset)  # indices already written: computed, not returned
+    runs_hint: int = 0  # about how many points the worker running this task will do (engine = "auto")
 
 
 @lru_cache(maxsize=8)
@@ -80,7 +81,7 @@ def iter_task(task: Task) -> Iterator[dict]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
     from gearcli import engine
 
-    with engine.batch(len(task.points)):  # engine = "auto": the kernel's load is shared by the points
+    with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
         prev = None
         for point in task.points:
             t0 = time.perf_counter()
