@@ -32,8 +32,10 @@ from typing import Any
 
 import numpy as np
 
+from gearcli.simulate.methods import METHODS
+
 ENGINES = ("auto", "python", "compiled")
-COMPILED_METHODS = ("DOP853", "RK45", "Radau")  # what the kernel integrates
+COMPILED_METHODS = tuple(n for n, m in METHODS.items() if "compiled" in m.engines)  # the registry's word
 # take scipy's steps bit for bit (RK45's samples agree to the last bits: its interpolant is summed in a loop);
 # Radau's LU differs from LAPACK's in the last bit, and its steps part after a while
 BIT_IDENTICAL = ("DOP853", "RK45")
