@@ -19,7 +19,10 @@ _TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material",
            ("stage pinion / gear", "Gear", "`pinion = { ... }` and `gear = { ... }` of a stage"),
            ("[contact]", "Contact", "The mesh force law (Adams IMPACT)"),
            ("[stage.mesh]", "ContactOverride", "Per-stage overrides of [contact]"),
-           ("[input]", "Input", "The input drive"), ("[load]", "Load", "The output load"),
+           ("[input]", "Input", "The input drive"),
+           ("input.torque_ripple = [{ ... }]", "Ripple", "One harmonic of the input torque"),
+           ("[load]", "Load", "The output load"),
+           ("load.fluctuation = [{ ... }]", "Fluctuation", "One harmonic of the load torque"),
            ("[target]", "Target", "Optional: the output speed the design must reach"),
            ("[simulation]", "Simulation", "Settings of `gearcli simulate` and `gearcli report`")]
 
@@ -47,7 +50,13 @@ def _kind(prop: dict, defs: dict) -> tuple[str, str]:
         return "tables by name", ""
     if t == "array":
         items = prop.get("minItems"), prop.get("maxItems")
-        return "array of tables", f"{items[0]} to {items[1]} entries" if all(i is not None for i in items) else ""
+        count = f"{items[0]} to {items[1]} entries" if all(i is not None for i in items) else \
+            f"at most {items[1]} entries" if items[1] is not None else ""
+        item = prop.get("items", {})
+        if "$ref" in item:
+            return "array of tables", count
+        kind, rng = _kind(item, defs)
+        return f"array of {kind}s", "; ".join(x for x in (count, f"each {rng}" if rng else "") if x)
     lo = prop.get("minimum", prop.get("exclusiveMinimum"))
     hi = prop.get("maximum", prop.get("exclusiveMaximum"))
     rng = ""

@@ -132,23 +132,75 @@ class BasicRack(_Table):
         return self
 
 
+# Mesh excitation (harmonics j = 1, 2, ... of the mesh phase z_p theta_p): at most MAX_HARMONICS of each
+# kind (gearcli.model.elements.N_HARM; a test keeps the two equal).
+MAX_HARMONICS = 8
+TransmissionErrorUm = Annotated[float, Field(ge=-1000.0, le=1000.0)]  # um: ground gears ~1, rough ones ~50
+PhaseDeg = Annotated[float, Field(ge=-360.0, le=360.0)]
+StiffnessHarmonic = Annotated[float, Field(gt=-1.0, lt=1.0)]  # fraction of K; sum of |s_j| below 1
+DampingRatio = Annotated[float, Field(ge=0.0, le=10.0)]  # gear meshes: 0.03 .. 0.17 (Kahraman & Singh)
+_HARMONIC_KEYS = (("transmission_error_um", "transmission_error_phase_deg"),
+                  ("stiffness_harmonics", "stiffness_harmonics_phase_deg"))
+
+
+def check_harmonics(law, where: str) -> None:
+    """Phases no more than amplitudes; stiffness harmonics that keep K positive (ValueError naming the key)."""
+    for amp, phase in _HARMONIC_KEYS:
+        a, p = getattr(law, amp), getattr(law, phase)
+        if p is not None and len(p) > len(a or []):
+            raise ValueError(f"{where}{phase} has {len(p)} entries but {where}{amp} only {len(a or [])}: "
+                             "give at most one phase per harmonic")
+    s = law.stiffness_harmonics or []
+    if sum(abs(v) for v in s) >= 1.0:
+        raise ValueError(f"{where}stiffness_harmonics: the sum of |s_j| is {sum(abs(v) for v in s):g}, it must stay "
+                         "below 1 so that the mesh stiffness K (1 - sum s_j cos(j phi + psi_j)) stays positive")
+
+
 class ContactOverride(_Table):
-    """The mesh force law (Adams IMPACT). In ``[contact]`` every key has the seed's default; in a
-    stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh."""
+    """The mesh force law (Adams IMPACT) and its excitation. In ``[contact]`` every key has the seed's
+    default; in a stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh.
+    Excitation (harmonics j = 1, 2, ... of the mesh phase phi = z_p theta_p): the static transmission error
+    e(phi) = sum e_j cos(j phi + psi_j) (um, along the transverse line of action; the mesh acts on
+    q = delta - e), stiffness harmonics K (1 - sum s_j cos(j phi + psi_j)), phases in degrees (default 0);
+    ``damping_ratio`` zeta replaces the IMPACT damping by viscous damping c = 2 zeta sqrt(k_lin m_e) on
+    q' at all times, also inside the backlash."""
 
     stiffness: Literal["hertz", "iso6336"] | Stiffness | None = None
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] | None = None
     damping_Ns_mm: DampingNsmm | None = None
     full_damping_penetration_mm: DampingDepthMm | None = None
     time_varying: bool | None = None
+    transmission_error_um: Annotated[list[TransmissionErrorUm], Field(max_length=MAX_HARMONICS)] | None = None
+    transmission_error_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
+    stiffness_harmonics: Annotated[list[StiffnessHarmonic], Field(max_length=MAX_HARMONICS)] | None = None
+    stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
+    damping_ratio: DampingRatio | None = None
+
+    @model_validator(mode="after")
+    def _harmonics(self) -> ContactOverride:
+        if self.transmission_error_um is not None or self.stiffness_harmonics is not None:
+            check_harmonics(self, "")
+        return self
 
 
 class Contact(_Table):
+    """The mesh force law (Adams IMPACT) and its excitation; see ``[stage.mesh]``."""
+
     stiffness: Literal["hertz", "iso6336"] | Stiffness = "hertz"
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
     damping_Ns_mm: DampingNsmm = 50.0
     full_damping_penetration_mm: DampingDepthMm = 0.1
     time_varying: bool = False
+    transmission_error_um: Annotated[list[TransmissionErrorUm], Field(max_length=MAX_HARMONICS)] = []
+    transmission_error_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
+    stiffness_harmonics: Annotated[list[StiffnessHarmonic], Field(max_length=MAX_HARMONICS)] = []
+    stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
+    damping_ratio: DampingRatio | None = None
+
+    @model_validator(mode="after")
+    def _harmonics(self) -> Contact:
+        check_harmonics(self, "")
+        return self
 
     def merged(self, override: ContactOverride | None) -> Contact:
         """This law with a stage's overrides applied."""
@@ -186,6 +238,20 @@ class Stage(_Table):
     shaft: ShaftSpring | None = None
 
 
+class Ripple(_Table):
+    """One harmonic of the input torque: T_in (1 + amplitude_percent / 100 cos(order theta_in))."""
+
+    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0)]
+    order: Annotated[float, Field(gt=0.0, le=1000.0)]  # per input revolution (a 4-pole motor's slot order ~36)
+
+
+class Fluctuation(_Table):
+    """One harmonic of the load torque: T_L (1 + amplitude_percent / 100 sin(2 pi frequency_Hz t))."""
+
+    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0)]
+    frequency_Hz: Annotated[float, Field(ge=1e-3, le=1e5)]
+
+
 class _Coupled(_Table):
     """A body outside the reducer and the torsional coupling that joins it (both or neither)."""
 
@@ -215,7 +281,15 @@ class Input(_Coupled):
     torque_Nm: TorqueNm | None = None
     torque_Nmm: TorqueNmm | None = None
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
+    torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS)] = []  # drive = "torque" only
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
+
+    @model_validator(mode="after")
+    def _ripple_needs_torque_drive(self) -> Input:
+        if self.torque_ripple and self.drive != "torque":
+            raise ValueError('input.torque_ripple needs drive = "torque": a speed drive prescribes the input '
+                             "motion, so a torque ripple would act on nothing")
+        return self
 
     @model_validator(mode="after")
     def _one_speed_one_torque(self) -> Input:
@@ -266,6 +340,7 @@ class Load(_Coupled):
     ramp_s: Seconds = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
     power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
+    fluctuation: Annotated[list[Fluctuation], Field(max_length=MAX_HARMONICS)] = []
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
 
     @model_validator(mode="after")
@@ -350,6 +425,14 @@ class DesignFile(_Table):
             raise ValueError(f"stage[{len(self.stage) - 1}].shaft: the last stage's gear sits on the output shaft, "
                              "which has no next pinion; a flexible output is [load] inertia_kg_m2 with "
                              "coupling_stiffness_Nm_rad")
+        return self
+
+    @model_validator(mode="after")
+    def _merged_harmonics(self) -> DesignFile:
+        """A stage's phases against the amplitudes it inherits from [contact]."""
+        for k, stage in enumerate(self.stage):
+            if stage.mesh is not None:
+                check_harmonics(self.contact_for(k), f"stage[{k}].mesh.")
         return self
 
     def contact_for(self, k: int) -> Contact:
