@@ -154,3 +154,27 @@ def test_viscous_coefficient_from_the_chain():
     cb = math.cos(math.radians(11.0))
     p0 = (500.0 / 0.15 / cb / 4e10) ** (2 / 3)
     assert_allclose(model.layout.connectors[0].params[mesh_el.I_KLIN], cb**2 * 1.5 * 4e10 * p0**0.5, rtol=1e-12)
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_energy_balance_with_every_excitation(name):
+    # W_in (drive + the TE's work) - W_load - E_damp - dKE - dU + parametric work = 0: the quadratures
+    # integrate the actual (rippled, fluctuating) torques and the TE's power -F e' phi'. At rtol 1e-9 the
+    # residual must be a small fraction of the damping loss, the smallest term of the balance (in the
+    # viscous scenes the TE supplies most of it)
+    from gearcli.simulate.solver import integrate
+
+    model = TorsionalModel(SCENES[name])
+    t = np.linspace(0.0, 0.25, 2001)
+    it = integrate(model, t, "DOP853", 1e-9)
+    assert it.status == 0, it.message
+    en = model.energy(sample(model.layout, t, it.y), it.y)
+    assert en.damping_loss_J > 1e-3 * max(abs(en.input_work_J), abs(en.load_work_J))
+    assert abs(en.residual_J) < 1e-5 * en.damping_loss_J, en
+
+
+def test_schema_harmonics_cap_is_the_model_row_width():
+    from gearcli.config.schema import MAX_HARMONICS
+    from gearcli.model.elements import N_HARM
+
+    assert MAX_HARMONICS == N_HARM
