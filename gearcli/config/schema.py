@@ -148,8 +148,8 @@ def check_harmonics(law, where: str) -> None:
     for amp, phase in _HARMONIC_KEYS:
         a, p = getattr(law, amp), getattr(law, phase)
         if p is not None and len(p) > len(a or []):
-            raise ValueError(f"{where}{phase} has {len(p)} entries but {where}{amp} only {len(a or [])}: "
-                             "give at most one phase per harmonic")
+            raise ValueError(f"{where}{phase} has {len(p)} entries for {len(a or [])} harmonics ({amp}): give at "
+                             "most one phase per harmonic")
     s = law.stiffness_harmonics or []
     if sum(abs(v) for v in s) >= 1.0:
         raise ValueError(f"{where}stiffness_harmonics: the sum of |s_j| is {sum(abs(v) for v in s):g}, it must stay "
