@@ -103,7 +103,10 @@ def design_file_reference() -> str:
            "`speed_rad_s` in `[input]`; at most one of `torque_Nm`, `torque_Nmm` there, required with "
            "`drive = \"torque\"` and refused with `drive = \"speed\"`; exactly one torque in `[load]`; exactly one "
            "speed in `[target]`; a helical stage's pinion and gear have opposite hands; every `material` names a "
-           "table of `[materials]` (steel is predefined).", "",
+           "table of `[materials]` (steel is predefined); no more `transmission_error_phase_deg` than "
+           "`transmission_error_um` entries, nor `stiffness_harmonics_phase_deg` than `stiffness_harmonics` (a "
+           "stage's `[stage.mesh]` counted with what it inherits from `[contact]`); the `stiffness_harmonics` sum "
+           "to less than 1 in magnitude; `input.torque_ripple` only with `drive = \"torque\"`.", "",
            "## Limits", "",
            f"- file size at most {MAX_BYTES // 2**20} MiB; at most {MAX_KEYS} keys and tables; dotted keys of at "
            f"most {MAX_KEY_DEPTH} parts; arrays and inline tables nested at most {MAX_NESTING} deep. These are "

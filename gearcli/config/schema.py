@@ -19,6 +19,8 @@ from pydantic import (
     GetCoreSchemaHandler,
     GetJsonSchemaHandler,
     PrivateAttr,
+    ValidationInfo,
+    field_validator,
     model_validator,
 )
 from pydantic.json_schema import JsonSchemaValue
@@ -144,16 +146,29 @@ _HARMONIC_KEYS = (("transmission_error_um", "transmission_error_phase_deg"),
 
 
 def check_harmonics(law, where: str) -> None:
-    """Phases no more than amplitudes; stiffness harmonics that keep K positive (ValueError naming the key)."""
+    """Phases no more than amplitudes (ValueError naming the key); ``where`` prefixes the key path."""
     for amp, phase in _HARMONIC_KEYS:
         a, p = getattr(law, amp), getattr(law, phase)
         if p is not None and len(p) > len(a or []):
             raise ValueError(f"{where}{phase} has {len(p)} entries for {len(a or [])} harmonics ({amp}): give at "
                              "most one phase per harmonic")
-    s = law.stiffness_harmonics or []
-    if sum(abs(v) for v in s) >= 1.0:
-        raise ValueError(f"{where}stiffness_harmonics: the sum of |s_j| is {sum(abs(v) for v in s):g}, it must stay "
-                         "below 1 so that the mesh stiffness K (1 - sum s_j cos(j phi + psi_j)) stays positive")
+
+
+def _phases_fit(v: list[float] | None, info: ValidationInfo) -> list[float] | None:
+    """Field validator of a phase list: no more phases than the amplitudes given before it."""
+    amp = {p: a for a, p in _HARMONIC_KEYS}[str(info.field_name)]
+    a = info.data.get(amp)
+    if v is not None and a is not None and len(v) > len(a):
+        raise ValueError(f"{len(v)} phases for {len(a)} harmonics ({amp}): give at most one phase per harmonic")
+    return v
+
+
+def _keeps_k_positive(v: list[float] | None) -> list[float] | None:
+    """Field validator of stiffness harmonics: sum |s_j| < 1 keeps K (1 - sum s_j cos(...)) positive."""
+    if v is not None and sum(abs(x) for x in v) >= 1.0:
+        raise ValueError(f"the sum of |s_j| is {sum(abs(x) for x in v):g}, it must stay below 1 so that the mesh "
+                         "stiffness K (1 - sum s_j cos(j phi + psi_j)) stays positive")
+    return v
 
 
 class ContactOverride(_Table):
@@ -176,11 +191,8 @@ class ContactOverride(_Table):
     stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
     damping_ratio: DampingRatio | None = None
 
-    @model_validator(mode="after")
-    def _harmonics(self) -> ContactOverride:
-        if self.transmission_error_um is not None or self.stiffness_harmonics is not None:
-            check_harmonics(self, "")
-        return self
+    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(_phases_fit)
+    _k_positive = field_validator("stiffness_harmonics")(_keeps_k_positive)
 
 
 class Contact(_Table):
@@ -197,10 +209,8 @@ class Contact(_Table):
     stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
     damping_ratio: DampingRatio | None = None
 
-    @model_validator(mode="after")
-    def _harmonics(self) -> Contact:
-        check_harmonics(self, "")
-        return self
+    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(_phases_fit)
+    _k_positive = field_validator("stiffness_harmonics")(_keeps_k_positive)
 
     def merged(self, override: ContactOverride | None) -> Contact:
         """This law with a stage's overrides applied."""
@@ -284,12 +294,13 @@ class Input(_Coupled):
     torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS)] = []  # drive = "torque" only
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
 
-    @model_validator(mode="after")
-    def _ripple_needs_torque_drive(self) -> Input:
-        if self.torque_ripple and self.drive != "torque":
-            raise ValueError('input.torque_ripple needs drive = "torque": a speed drive prescribes the input '
-                             "motion, so a torque ripple would act on nothing")
-        return self
+    @field_validator("torque_ripple")
+    @classmethod
+    def _ripple_needs_torque_drive(cls, v: list[Ripple], info: ValidationInfo) -> list[Ripple]:
+        if v and info.data.get("drive") != "torque":
+            raise ValueError('needs drive = "torque": a speed drive prescribes the input motion, so a torque '
+                             "ripple would act on nothing")
+        return v
 
     @model_validator(mode="after")
     def _one_speed_one_torque(self) -> Input:
