@@ -265,7 +265,7 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
                        "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation}
     for c, x in enumerate(lay.connectors):
         namespace[f"_P{c}"] = x.params
-        namespace[f"_force{c}"] = x.element.force
+        namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
         namespace[f"_power{c}"] = x.element.power_gradient
     source = source_of(lay)
     digest = hashlib.sha1(source.encode()).hexdigest()[:12]

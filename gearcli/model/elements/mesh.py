@@ -201,27 +201,29 @@ def _damping(P, p):
     return P[I_C], 0.0
 
 
-def _law(P, q, qd, phi):
-    """(F_bt, dF/dq, dF/dq', dF/dphi at fixed q, damping power, power into a time-varying spring)."""
+def law(P, q, qd, phi, wphi=0.0):
+    """The force law on the dynamic transmission error: (F_bt, dF/dq, dF/dq', dF/dphi at fixed q, 0,
+    damping power, power into a time-varying spring, 0). It is :func:`force` itself for a mesh without
+    transmission error (q = delta; the generated code calls it directly there, one call fewer)."""
     touching, p, pd, sc = _contact(P, q, qd)
     if P[I_VIS] != 0.0:
         cv = P[I_CV]
         if not touching:
-            return cv * qd, 0.0, cv, 0.0, cv * qd * qd, 0.0
+            return cv * qd, 0.0, cv, 0.0, 0.0, cv * qd * qd, 0.0, 0.0
         fe, ke, fph, _ = _elastic(P, p, phi)
-        u = fe * pd if time_varying(P) else 0.0
-        return sc * fe + cv * qd, P[I_CB2] * ke, cv, sc * fph, cv * qd * qd, u
+        u = fe * pd if (P[I_TV] != 0.0 or P[I_NKS] != 0.0) else 0.0
+        return sc * fe + cv * qd, P[I_CB2] * ke, cv, sc * fph, 0.0, cv * qd * qd, u, 0.0
     if not touching:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     fe, ke, fph, _ = _elastic(P, p, phi)
-    u = fe * pd if time_varying(P) else 0.0
+    u = fe * pd if (P[I_TV] != 0.0 or P[I_NKS] != 0.0) else 0.0
     if P[I_C] > 0.0:
         c, dc = _damping(P, p)
         fn = fe + c * pd
         if fn > 0.0:
-            return sc * fn, P[I_CB2] * (ke + dc * pd), P[I_CB2] * c, sc * fph, (fn - fe) * pd, u
-        return 0.0, 0.0, 0.0, 0.0, (0.0 - fe) * pd, u  # clamped: the damper cancels the spring
-    return sc * fe, P[I_CB2] * ke, 0.0, sc * fph, 0.0, u
+            return sc * fn, P[I_CB2] * (ke + dc * pd), P[I_CB2] * c, sc * fph, 0.0, (fn - fe) * pd, u, 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, (0.0 - fe) * pd, u, 0.0  # clamped: the damper cancels the spring
+    return sc * fe, P[I_CB2] * ke, 0.0, sc * fph, 0.0, 0.0, u, 0.0
 
 
 def _law_power_gradient(P, q, qd, phi):
@@ -256,10 +258,9 @@ def force(P, d, dd, phi, wphi):
     """(F_bt, dF/d delta, dF/d delta', dF/d phi, dF/d phi', damping power, power into a time-varying
     spring, power of the transmission error on the bodies)."""
     if P[I_NTE] == 0.0:
-        f, kd, kv, kt, pq, pu = _law(P, d, dd, phi)
-        return f, kd, kv, kt, 0.0, pq, pu, 0.0
+        return law(P, d, dd, phi)
     q, qd, e1, e2 = _excited(P, d, dd, phi, wphi)
-    f, kd, kv, kt, pq, pu = _law(P, q, qd, phi)
+    f, kd, kv, kt, _, pq, pu, _ = law(P, q, qd, phi)
     return f, kd, kv, kt - kd * e1 - kv * e2 * wphi, -kv * e1, pq, pu, -f * e1 * wphi
 
 
