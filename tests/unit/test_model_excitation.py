@@ -11,7 +11,16 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from gearcli.model import DriveSpec, LoadSpec, MeshSpec, ModelSpec, TorsionalModel
+from gearcli.model import (
+    CoupledInertia,
+    DriveSpec,
+    FlexibleShaft,
+    LoadSpec,
+    MeshSpec,
+    ModelSpec,
+    SpringSpec,
+    TorsionalModel,
+)
 from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.outputs import sample
 
@@ -37,6 +46,12 @@ SCENES = {
         (mesh(damping_ratio=0.07, backlash_m=3e-5, exponent=1.0, stiffness_N_m_e=4e8, **TE, **KS),
          mesh(damping_ratio=0.05, pinion_teeth=17, base_radius_pinion_m=0.08, **TE)), (0.5, 8.0, 40.0),
         DriveSpec("speed", 60.0, 0.1), LoadSpec(500.0, 0.05, fluctuation=((0.2, 3.0), (0.05, 40.0)))),
+    "drivetrain: motor, flexible shaft, drum; TE on both meshes, speed drive": ModelSpec(
+        (mesh(damping_ratio=0.05, exponent=1.0, stiffness_N_m_e=4e8, **TE),
+         mesh(pinion_teeth=17, base_radius_pinion_m=0.08, **TE, **KS)), (0.5, 8.0, 40.0),
+        DriveSpec("speed", 60.0, 0.1), LoadSpec(500.0, 0.05),
+        motor=CoupledInertia(0.2, SpringSpec(3e4, 5.0)), drum=CoupledInertia(300.0, SpringSpec(2e6, 50.0)),
+        shafts=(FlexibleShaft(SpringSpec(5e5, 10.0), 4.0),)),
     "TE only, viscous, torque drive, ripple": ModelSpec(
         (mesh(damping_ratio=0.1, **TE),), (0.5, 8.0),
         DriveSpec("torque", 60.0, 0.0, 200.0, ripple=((0.2, 1.0),)), LoadSpec(400.0)),
@@ -49,10 +64,13 @@ def state(model: TorsionalModel, rng: np.random.Generator, flank: int, gap: bool
     lay = model.layout
     y = model.initial_state()
     for i in lay.free_bodies:
-        y[lay.i_omega(i)] = (1.0 + 0.05 * rng.standard_normal()) * model.spec.speed_ratios[i] * 60.0
-    for k, m in enumerate(model.spec.meshes):
+        y[lay.i_omega(i)] = (1.0 + 0.05 * rng.standard_normal()) * lay.bodies[i].ratio * 60.0
+    for c, m in zip(lay.stage_conn, model.spec.meshes, strict=True):
         p = 0.0 if gap else rng.uniform(0.1, 0.9) * m.full_damping_m
-        y[k] = flank * (p + 0.5 * m.backlash_m) / m.cos_beta_b  # about delta; the TE moves q around it
+        y[c] = flank * (p + 0.5 * m.backlash_m) / m.cos_beta_b  # about delta; the TE moves q around it
+    for c, x in enumerate(lay.connectors):
+        if x.kind == 0:  # a spring: some twist
+            y[c] = rng.uniform(-1, 1) * 1e-3
     if lay.i_theta is not None:
         y[lay.i_theta] = rng.uniform(0, 50.0)
     y[lay.i_quad:] = rng.uniform(-10, 10, lay.n_quad)
