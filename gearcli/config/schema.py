@@ -14,7 +14,6 @@ from typing import Annotated, Any, Literal
 
 from pydantic import (
     BaseModel,
-    ConfigDict,
     Field,
     GetCoreSchemaHandler,
     GetJsonSchemaHandler,
@@ -26,6 +25,19 @@ from pydantic import (
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
+from gearcli.config.excitation import (
+    MAX_HARMONICS,
+    STRICT,
+    DampingRatio,
+    Fluctuation,
+    PhaseDeg,
+    Ripple,
+    StiffnessHarmonic,
+    TransmissionErrorUm,
+    check_harmonics,
+    keeps_k_positive,
+    phases_fit,
+)
 from gearcli.simulate.methods import NAMES as METHODS  # the one registry of integration methods
 
 # Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
@@ -83,7 +95,7 @@ LOAD_TORQUE_KEYS = ("torque_Nmm", "torque_Nm", "power_kW")
 
 
 class _Table(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+    model_config = STRICT
 
 
 class Material(_Table):
@@ -134,43 +146,6 @@ class BasicRack(_Table):
         return self
 
 
-# Mesh excitation (harmonics j = 1, 2, ... of the mesh phase z_p theta_p): at most MAX_HARMONICS of each
-# kind (gearcli.model.elements.N_HARM; a test keeps the two equal).
-MAX_HARMONICS = 8
-TransmissionErrorUm = Annotated[float, Field(ge=-1000.0, le=1000.0)]  # um: ground gears ~1, rough ones ~50
-PhaseDeg = Annotated[float, Field(ge=-360.0, le=360.0)]
-StiffnessHarmonic = Annotated[float, Field(gt=-1.0, lt=1.0)]  # fraction of K; sum of |s_j| below 1
-DampingRatio = Annotated[float, Field(ge=0.0, le=10.0)]  # gear meshes: 0.03 .. 0.17 (Kahraman & Singh)
-_HARMONIC_KEYS = (("transmission_error_um", "transmission_error_phase_deg"),
-                  ("stiffness_harmonics", "stiffness_harmonics_phase_deg"))
-
-
-def check_harmonics(law, where: str) -> None:
-    """Phases no more than amplitudes (ValueError naming the key); ``where`` prefixes the key path."""
-    for amp, phase in _HARMONIC_KEYS:
-        a, p = getattr(law, amp), getattr(law, phase)
-        if p is not None and len(p) > len(a or []):
-            raise ValueError(f"{where}{phase} has {len(p)} entries for {len(a or [])} harmonics ({amp}): give at "
-                             "most one phase per harmonic")
-
-
-def _phases_fit(v: list[float] | None, info: ValidationInfo) -> list[float] | None:
-    """Field validator of a phase list: no more phases than the amplitudes given before it."""
-    amp = {p: a for a, p in _HARMONIC_KEYS}[str(info.field_name)]
-    a = info.data.get(amp)
-    if v is not None and a is not None and len(v) > len(a):
-        raise ValueError(f"{len(v)} phases for {len(a)} harmonics ({amp}): give at most one phase per harmonic")
-    return v
-
-
-def _keeps_k_positive(v: list[float] | None) -> list[float] | None:
-    """Field validator of stiffness harmonics: sum |s_j| < 1 keeps K (1 - sum s_j cos(...)) positive."""
-    if v is not None and sum(abs(x) for x in v) >= 1.0:
-        raise ValueError(f"the sum of |s_j| is {sum(abs(x) for x in v):g}, it must stay below 1 so that the mesh "
-                         "stiffness K (1 - sum s_j cos(j phi + psi_j)) stays positive")
-    return v
-
-
 class ContactOverride(_Table):
     """The mesh force law (Adams IMPACT) and its excitation. In ``[contact]`` every key has the seed's
     default; in a stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh.
@@ -191,8 +166,8 @@ class ContactOverride(_Table):
     stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
     damping_ratio: DampingRatio | None = None
 
-    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(_phases_fit)
-    _k_positive = field_validator("stiffness_harmonics")(_keeps_k_positive)
+    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(phases_fit)
+    _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
 
 
 class Contact(_Table):
@@ -209,8 +184,8 @@ class Contact(_Table):
     stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
     damping_ratio: DampingRatio | None = None
 
-    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(_phases_fit)
-    _k_positive = field_validator("stiffness_harmonics")(_keeps_k_positive)
+    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(phases_fit)
+    _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
 
     def merged(self, override: ContactOverride | None) -> Contact:
         """This law with a stage's overrides applied."""
@@ -246,20 +221,6 @@ class Stage(_Table):
     mesh: ContactOverride | None = None
     basic_rack: BasicRack = BasicRack()
     shaft: ShaftSpring | None = None
-
-
-class Ripple(_Table):
-    """One harmonic of the input torque: T_in (1 + amplitude_percent / 100 cos(order theta_in))."""
-
-    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0)]
-    order: Annotated[float, Field(gt=0.0, le=1000.0)]  # per input revolution (a 4-pole motor's slot order ~36)
-
-
-class Fluctuation(_Table):
-    """One harmonic of the load torque: T_L (1 + amplitude_percent / 100 sin(2 pi frequency_Hz t))."""
-
-    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0)]
-    frequency_Hz: Annotated[float, Field(ge=1e-3, le=1e5)]
 
 
 class _Coupled(_Table):
