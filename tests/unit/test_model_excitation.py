@@ -197,15 +197,3 @@ def test_schema_harmonics_cap_is_the_model_row_width():
 
     assert MAX_HARMONICS == N_HARM
 
-
-def test_excitation_frequencies_at_the_nominal_speed():
-    from gearcli.model.excitation import excitations
-
-    ex = excitations(TorsionalModel(SCENES["TE + harmonics + time-varying, IMPACT, torque drive with ripple, "
-                                           "load fluctuation"]).layout)
-    f_in = 60.0 / (2 * math.pi)  # the nominal 60 rad/s
-    # stage 1: 21 teeth on shaft 1; stage 2: 17 teeth on shaft 2, which turns at r_b1 / r_b2 = 0.06 / 0.15
-    assert [e.source for e in ex] == ["stage 1 mesh", "stage 2 mesh", "input torque ripple", "input torque ripple",
-                                      "load fluctuation"]
-    assert_allclose([e.frequency_Hz for e in ex], [21 * f_in, 17 * 0.4 * f_in, 2 * f_in, 6 * f_in, 3.0], rtol=1e-14)
-    assert [e.harmonics for e in ex] == [3, 3, 1, 1, 1]
