@@ -35,9 +35,9 @@ _MIN_APPROACH_M = 1e-6
 
 
 def values_per_sample(n_stages: int) -> int:
-    """time, one speed per shaft, the input torque, four channels per stage, and the state (2 per shaft)."""
+    """time, one speed per shaft, the input torque, five channels per stage, and the state (2 per shaft)."""
     shafts = n_stages + 1
-    return 1 + shafts + 1 + 4 * n_stages + 2 * shafts
+    return 1 + shafts + 1 + 5 * n_stages + 2 * shafts
 
 
 def memory_estimate_bytes(steps: int, n_stages: int, fmt: str, series: bool) -> float:
