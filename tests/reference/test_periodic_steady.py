@@ -82,7 +82,7 @@ def test_periodic_statistics_agree_with_a_long_window_over_whole_periods(periodi
     # miss the true one by half the largest change between neighbouring samples, on either grid
     pw = periodic.channels["stage1_tangential_N"][(periodic.time_s >= periodic.window_s[0] - 1e-9)]
     grids = 0.5 * (np.max(np.abs(np.diff(ft))) + np.max(np.abs(np.diff(pw))))
-    assert grids < 0.01 * (ft.max() - ft.min())  # the bound stays tight: under 1 % of the swing
+    assert grids < 0.02 * (ft.max() - ft.min())  # the bound stays tight: under 2 % of the swing
     assert_allclose([a.tangential_N.min, a.tangential_N.max], [ft.min(), ft.max()], atol=grids + PROMISE * ft.mean())
     assert a.contact_loss_fraction == 0.0 and a.regime == REGIME_NO_IMPACT
 
