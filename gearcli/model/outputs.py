@@ -77,7 +77,8 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     el, P = x.element, x.params
     d = Y[c]
     dd = x.ra * omega[x.a] - x.rb * omega[x.b]
-    phi = phase_per_rad(P) * theta[x.a] if x.time_varying else np.zeros_like(d)
+    # the mesh phase wherever angles are known (a time-varying mesh, or any excitation that needs them)
+    phi = phase_per_rad(P) * theta[x.a] if theta is not None and x.kind == KIND_MESH else np.zeros_like(d)
     n = d.size
     F, U, pen = np.empty(n), np.empty(n), np.zeros(n)
     q = d.copy()

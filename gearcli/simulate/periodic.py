@@ -35,6 +35,8 @@ from functools import reduce
 
 import numpy as np
 
+from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
+
 MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
 MAX_SUBHARMONIC = 8  # period-k responses looked for, k = 1 .. 8
 MAX_DENOMINATOR = 1000  # period ratios p/q with q up to this count as rational
@@ -330,7 +332,7 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     t_n = t_start + (n - k) * T if n >= k else t_start + n * T
     y_n = states[n - k] if n >= k else states[-1]
     per = max(math.ceil(steps / k), math.ceil(MIN_SAMPLES_PER_FASTEST * T / _fastest(lay, T)))
-    total = min(per * k, MAX_STATISTICS_SAMPLES)
+    total = min(per * k, max(steps, PERIODIC_STATISTICS_SAMPLES))  # the memory bound config.bounds checked
     fine = t_n + k * T * np.arange(total + 1) / total
     stats_run = integrate(model, fine, method, rtol, y0=y_n, t0=t_n)
     parts.append(stats_run)
@@ -339,9 +341,6 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     joined = _joined(parts, np.concatenate([parts[0].t, fine]), np.hstack([parts[0].y, stats_run.y]))
     steady = _steady(period, repeat, n, k, total // k, exhausted, cap)
     return PeriodicRun(joined, (float(fine[0]), float(fine[-1])), (float(fine[0]), float(fine[-2])), steady, period)
-
-
-MAX_STATISTICS_SAMPLES = 2_000_000  # the design file's own cap on output samples (config.schema.MAX_STEPS)
 
 
 def _fastest(layout, T: float) -> float:
