@@ -16,7 +16,7 @@ import numpy as np
 
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements.mesh import penetration, phase_per_rad
+from gearcli.model.elements.mesh import dynamic_transmission_error, penetration, phase_per_rad
 from gearcli.model.step import ramp, ramp_motion
 
 
@@ -26,6 +26,7 @@ class ConnectorSeries:
     deflection: np.ndarray  # delta (m or rad)
     penetration_m: np.ndarray  # mesh: signed penetration beyond the gap; spring: zeros
     potential_J: np.ndarray  # stored elastic energy
+    dte_m: np.ndarray  # mesh: dynamic transmission error q = delta - e(phi) (m); spring: the deflection
 
     @property
     def line_force_N(self) -> np.ndarray:
@@ -76,16 +77,19 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     el, P = x.element, x.params
     d = Y[c]
     dd = x.ra * omega[x.a] - x.rb * omega[x.b]
-    phi = phase_per_rad(P) * theta[x.a] if x.time_varying else np.zeros_like(d)
+    # the mesh phase wherever angles are known (a time-varying mesh, or any excitation that needs them)
+    phi = phase_per_rad(P) * theta[x.a] if theta is not None and x.kind == KIND_MESH else np.zeros_like(d)
     n = d.size
     F, U, pen = np.empty(n), np.empty(n), np.zeros(n)
+    q = d.copy()
     for j in range(n):
         dj, phj = float(d[j]), float(phi[j])
         F[j] = el.force(P, dj, float(dd[j]), phj)[0]
         U[j] = el.potential(P, dj, phj)
         if x.kind == KIND_MESH:
             pen[j] = penetration(P, dj)
-    return ConnectorSeries(F, d.copy(), pen, U)
+            q[j] = dynamic_transmission_error(P, dj, phj)
+    return ConnectorSeries(F, d.copy(), pen, U, q)
 
 
 def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:

@@ -155,6 +155,20 @@ def power_gradient(P, d, dd, phi):
     return qd, qv, qt, ud, uv, ut
 
 
+def transmission_error(P, phi):
+    """Static transmission error e(phi) along the transverse line of action (m) at the mesh phase ``phi``
+    (mesh cycles). None modelled yet: 0. The excitation (transmission-error harmonics) replaces this body;
+    the dynamic transmission error, the DTE channel and its statistics follow through
+    :func:`dynamic_transmission_error`."""
+    return 0.0
+
+
+def dynamic_transmission_error(P, d, phi):
+    """The mesh's dynamic transmission error q = delta - e(phi) along the transverse line of action (m):
+    the deflection the teeth actually take up (backlash gap included)."""
+    return d - transmission_error(P, phi)
+
+
 def penetration(P, d):
     """Signed penetration beyond the gap (m): + drive flank, - back flank, 0 inside the backlash."""
     touching, p, _, sc = _contact(P, d, 0.0)
