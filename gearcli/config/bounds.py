@@ -37,9 +37,9 @@ _MIN_APPROACH_M = 1e-6
 
 
 def values_per_sample(n_stages: int) -> int:
-    """time, one speed per shaft, the input torque, four channels per stage, and the state (2 per shaft)."""
+    """time, one speed per shaft, the input torque, five channels per stage, and the state (2 per shaft)."""
     shafts = n_stages + 1
-    return 1 + shafts + 1 + 4 * n_stages + 2 * shafts
+    return 1 + shafts + 1 + 5 * n_stages + 2 * shafts
 
 
 def memory_estimate_bytes(steps: int, n_stages: int, fmt: str, series: bool) -> float:
@@ -47,12 +47,25 @@ def memory_estimate_bytes(steps: int, n_stages: int, fmt: str, series: bool) -> 
     return (steps + 1) * values_per_sample(n_stages) * per_value
 
 
+#: ``steady = "periodic"``: the statistics periods are sampled ``steps`` times, or more when the fastest
+#: excitation needs it (64 samples per its period), up to this many (gearcli.simulate.periodic)
+PERIODIC_STATISTICS_SAMPLES = 100_000
+
+
+def output_samples(sim) -> int:
+    """Output samples of a run with ``[simulation]`` settings ``sim``, at most: ``steps`` (+1) for a window
+    run; for a periodic one the run-up (at most ``steps``) and the statistics periods."""
+    if getattr(sim, "steady", "window") == "periodic":
+        return sim.steps + max(sim.steps, PERIODIC_STATISTICS_SAMPLES)
+    return sim.steps
+
+
 def _gib(n: float) -> str:
     return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
 
 
 def check_memory(cfg, *, fmt: str, series: bool, source: str) -> None:
-    steps, n = cfg.simulation.steps, len(cfg.stage)
+    steps, n = output_samples(cfg.simulation), len(cfg.stage)
     need = memory_estimate_bytes(steps, n, fmt, series)
     if need <= MEMORY_LIMIT_BYTES:
         return

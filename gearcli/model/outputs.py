@@ -5,8 +5,8 @@ sample — the same function the right-hand side calls, so the channels cannot d
 Reported tooth forces (DESIGN contract, README "Model"): ``F_t = F_bt cos(alpha_t)``,
 ``F_r = F_t tan(alpha_t)``, ``F_a = F_t tan(beta)`` — signed like the design's static forces (negative
 on the back flank). A mesh's penetration channel is the signed penetration beyond the gap; its dynamic
-transmission error ``q = delta - e(phi)`` (:func:`gearcli.model.elements.mesh.dte`; the deflection when
-the mesh has no transmission error).
+transmission error ``q = delta - e(phi)`` (:func:`gearcli.model.elements.mesh.dynamic_transmission_error`;
+the deflection when the mesh has no transmission error).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import KIND_MESH, torque
-from gearcli.model.elements.mesh import dte, penetration, phase_per_rad
+from gearcli.model.elements.mesh import dynamic_transmission_error, penetration, phase_per_rad
 from gearcli.model.step import ramp, ramp_motion
 
 
@@ -89,7 +89,7 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
         U[j] = el.potential(P, dj, phj)
         if x.kind == KIND_MESH:
             pen[j] = penetration(P, dj, phj)
-            q[j] = dte(P, dj, phj)
+            q[j] = dynamic_transmission_error(P, dj, phj)
     return ConnectorSeries(F, d.copy(), pen, U, q)
 
 

@@ -277,20 +277,21 @@ def power_gradient(P, d, dd, phi, wphi):
             -kd * e1 * wphi, -kv * e1 * wphi, -(kt * e1 + f * e2) * wphi, -(kw * wphi + f) * e1)
 
 
-def dte(P, d, phi):
-    """The dynamic transmission error q = delta - e(phi), m."""
+def dynamic_transmission_error(P, d, phi):
+    """The mesh's dynamic transmission error q = delta - e(phi) along the transverse line of action (m): the
+    deflection the teeth actually take up (backlash gap included)."""
     return d - transmission_error(P, phi)[0] if P[I_NTE] != 0.0 else d
 
 
 def penetration(P, d, phi=0.0):
     """Signed penetration beyond the gap (m): + drive flank, - back flank, 0 inside the backlash."""
-    touching, p, _, sc = _contact(P, dte(P, d, phi), 0.0)
+    touching, p, _, sc = _contact(P, dynamic_transmission_error(P, d, phi), 0.0)
     return (p if sc > 0.0 else -p) if touching else 0.0
 
 
 def potential(P, d, phi):
     """Elastic energy K g p^(e+1) / (e+1) stored in the mesh, J."""
-    touching, p, _, _ = _contact(P, dte(P, d, phi), 0.0)
+    touching, p, _, _ = _contact(P, dynamic_transmission_error(P, d, phi), 0.0)
     if not touching:
         return 0.0
     kk = P[I_K] * contact_factor(phi, P[I_EA], P[I_EB]) if P[I_TV] != 0.0 else P[I_K]
