@@ -17,7 +17,7 @@ import math
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
-from oscillator import SAMPLES, mesh_rad_s, oscillator, run, tail
+from oscillator import SAMPLES, K, mesh_rad_s, oscillator, run, tail
 
 E = 5e-6  # m
 P0 = 10e-6  # m: static deflection F_s / k
@@ -74,12 +74,27 @@ def test_single_and_double_sided_impacts_as_published():
     # near resonance, e = 5 um: the linear amplitude (50 um) exceeds p0: the drive flank separates;
     # light load (p0 = 2 um) and e = 20 um: the gear crosses the backlash and hits the back flank
     single = oscillator(0.9, te_m=(E,), backlash_m=B)
-    _, q, _, _ = run(single, 300, q0=P0 + B / 2)
+    t, q, _, s = run(single, 300, q0=P0 + B / 2)
     assert _regime(tail(q, 20), B / 2) == "single-sided"
+    assert _reported(t, s) == "single-sided impact"
     double = oscillator(0.8, te_m=(4 * E,), backlash_m=B, p0_m=2e-6)
-    _, q, _, s = run(double, 300, q0=2e-6 + B / 2)
+    t, q, _, s = run(double, 300, q0=2e-6 + B / 2)
     assert _regime(tail(q, 20), B / 2) == "double-sided"
+    assert _reported(t, s) == "double-sided impact"
     assert (tail(s.connectors[0].force, 20) < 0).any()  # the back flank pushes
+    quiet = oscillator(0.6, te_m=(E,), backlash_m=B)
+    t, q, _, s = run(quiet, 300, q0=P0 + B / 2)
+    assert _regime(tail(q, 20), B / 2) == "no impact" and _reported(t, s) == "no impact"
+
+
+def _reported(t, s) -> str:
+    """The regime gearcli reports over the last 20 periods (gearcli.simulate.stats.mesh_response)."""
+    from gearcli.simulate.stats import mesh_response
+
+    mask = np.zeros(t.size, bool)
+    mask[-(20 * SAMPLES + 1):-1] = True
+    ms = s.connectors[0]
+    return mesh_response(t, mask, ms.dte_m * 1e6, ms.force, ms.penetration_m * 1e3, K * P0)["regime"]
 
 
 def test_coexisting_responses_inside_the_hysteresis_band():
