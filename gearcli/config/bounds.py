@@ -9,8 +9,10 @@ JSON with ``--series`` 5.6 GB for 2e6 x 19 values) and are rounded up here. A ru
 Cost. An adaptive integrator's cost follows ``max|lambda| T``: the fastest oscillation of the linearised
 train times the duration (gearcli.simulate.guards). Estimated here from the design alone (no scipy): each
 mesh's own angular frequency ``sqrt(k (r_b1^2 / J_1 + r_b2^2 / J_2))`` with the linearised stiffness at
-the static load (at least the stiffness of a 1 um approach, so an unloaded mesh is not free), and the mesh
-frequency when the stiffness varies in time. At ~30 evaluations per unit (the worst measured, see guards),
+the static load (at least the stiffness of a 1 um approach, so an unloaded mesh is not free), the mesh
+frequency when the stiffness varies in time, times the highest harmonic of a mesh excitation
+(transmission error, stiffness harmonics), the highest input torque-ripple order times the input speed and
+the highest load-fluctuation frequency. At ~30 evaluations per unit (the worst measured, see guards),
 a run whose estimate is absurd (:data:`ABSURD_EVALUATIONS`) is refused up front, naming the figure and the
 setting to change.
 """
@@ -88,8 +90,10 @@ def fastest_rad_s(cfg, design) -> float:
         rb1, rb2 = st.pinion.base_diameter_mm / 2e3, st.gear.base_diameter_mm / 2e3
         mobility = rb1**2 / inertia[k] + rb2**2 / inertia[k + 1]
         fastest = max(fastest, math.sqrt(max(k_lin, 0.0) * mobility))
-        if law.time_varying:
-            fastest = max(fastest, 2 * math.pi * st.mesh_frequency_Hz)
+        harmonics = max(len(law.transmission_error_um), len(law.stiffness_harmonics), int(law.time_varying))
+        fastest = max(fastest, 2 * math.pi * st.mesh_frequency_Hz * harmonics)
+    fastest = max([fastest] + [r.order * cfg.input.speed_rad_s_value for r in cfg.input.torque_ripple]
+                  + [2 * math.pi * f.frequency_Hz for f in cfg.load.fluctuation])
     return fastest
 
 

@@ -83,16 +83,18 @@ def time_fraction(t: np.ndarray, flag: np.ndarray, *, periodic: bool) -> float:
 
 def mesh_response(t: np.ndarray, mask: np.ndarray, dte_um: np.ndarray, ft: np.ndarray, pen_mm: np.ndarray,
                   static_tangential_N: float, *, periodic: bool = False) -> dict:
-    """DTE statistics (rms about the mean), the time fractions without contact (zero mesh force) and in
-    contact on the back flank, and the impact regime, over the window ``mask``.
+    """DTE statistics (rms about the mean), the time fractions without contact and in contact on the back
+    flank, and the impact regime, over the window ``mask``.
 
-    The loaded flank is the one the static load presses (the drive flank when the load is zero); the back
-    flank is the other one. Regime: "no impact" when no sample of the window has a zero mesh force,
-    "single-sided impact" when some has but none touches the back flank, else "double-sided impact".
+    Without contact: the teeth inside the backlash (zero penetration; a viscous ``damping_ratio`` mesh still
+    carries its damping force there) or pressed with a zero force (the IMPACT law's clamp). The loaded flank
+    is the one the static load presses (the drive flank when the load is zero); the back flank is the other
+    one. Regime: "no impact" when no sample of the window is without contact, "single-sided impact" when
+    some is but none touches the back flank, else "double-sided impact".
     """
     q, f, p = dte_um[mask], ft[mask], pen_mm[mask]
     loaded = -1.0 if static_tangential_N < 0 else 1.0
-    lost = f == 0.0
+    lost = (f == 0.0) | (p == 0.0)
     back = loaded * p < 0.0
     regime = REGIME_DOUBLE_SIDED if np.any(back) else REGIME_SINGLE_SIDED if np.any(lost) else REGIME_NO_IMPACT
     return {"dte_um": DteStats(float(q.mean()), float(q.std()), float(q.min()), float(q.max())),
