@@ -48,23 +48,25 @@ def _ramp_lines(name: str, value: float, ramp_s: float, indent: str = "    ") ->
 
 
 def _input_motion_lines(lay: Layout) -> list[str]:
-    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0."""
+    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0 (th0 from the
+    drive's start angle, written only when it is not 0)."""
     v, T = lay.drive.speed_rad_s, lay.drive.ramp_s
+    start = f" + {lit(lay.drive.angle_rad)}" if lay.drive.angle_rad != 0.0 else ""
     out = []
     if T <= 0.0:
         out += [f"    w0 = {lit(v)}", "    a0 = 0.0"]
         if lay.needs_angles:
-            out.append(f"    th0 = {lit(v)} * t")
+            out.append(f"    th0 = {lit(v)} * t{start}")
         return out
     out += [f"    if t < {lit(T)}:",
             f"        s = t * {lit(1.0 / T)}",
             f"        w0 = {lit(v)} * s * s * (3.0 - 2.0 * s)",
             f"        a0 = {lit(6.0 * v / T)} * s * (1.0 - s)"]
     if lay.needs_angles:
-        out.append(f"        th0 = {lit(v * T)} * s * s * s * (1.0 - 0.5 * s)")
+        out.append(f"        th0 = {lit(v * T)} * s * s * s * (1.0 - 0.5 * s){start}")
     out += ["    else:", f"        w0 = {lit(v)}", "        a0 = 0.0"]
     if lay.needs_angles:
-        out.append(f"        th0 = {lit(v)} * (t - {lit(0.5 * T)})")
+        out.append(f"        th0 = {lit(v)} * (t - {lit(0.5 * T)}){start}")
     return out
 
 

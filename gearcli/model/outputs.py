@@ -60,6 +60,8 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
     """Speeds of all bodies, their angles (if needed) and the input body's acceleration."""
     if lay.speed_drive:
         th0, w0, a0 = ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)
+        if lay.drive.angle_rad != 0.0:  # a continued sweep point's start angle
+            th0 = th0 + lay.drive.angle_rad
     else:
         th0 = Y[lay.i_theta] if lay.i_theta is not None else None
         w0, a0 = None, np.zeros_like(t)  # a torque drive's input torque is prescribed
