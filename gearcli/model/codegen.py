@@ -20,9 +20,12 @@ the load torque, ``Tin`` the drive torque of a torque drive (``dTin`` its d/d th
 from __future__ import annotations
 
 import hashlib
+import io
 import linecache
 import math
+import tokenize
 from collections.abc import Callable
+from functools import lru_cache
 
 import numpy as np
 
@@ -258,10 +261,42 @@ def source_of(lay: Layout) -> str:
     return _header(lay) + rhs_source(lay) + "\n\n" + jac_source(lay)
 
 
-def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
-    """Compile the scene's ``rhs(t, y)`` and ``jac(t, y)``; returns them and their source.
+def _template(source: str) -> tuple[str, tuple[float, ...]]:
+    """The source with every float literal replaced by a name ``_k{i}`` (what stays is the model's
+    structure), and the literals' values in order. Integers (array shapes and indices) stay: they are
+    structure. A name is an atom like a literal, so every expression keeps its meaning and its value."""
+    lines = source.splitlines(True)
+    values: list[float] = []
+    spans: list[tuple[int, int, int, str]] = []
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.NUMBER and not tok.string.isdigit():
+            spans.append((tok.start[0] - 1, tok.start[1], tok.end[1], f"_k{len(values)}"))
+            values.append(float(tok.string))
+    for row, a, b, name in reversed(spans):
+        lines[row] = lines[row][:a] + name + lines[row][b:]
+    return "".join(lines), tuple(values)
 
-    The source is registered with linecache under ``filename`` (unique per source), so a traceback
+
+@lru_cache(maxsize=64)
+def _compiled(template: str, n_constants: int):
+    """The code of a module defining ``_make(_k0, ..., _kN)`` that returns the ``rhs`` and ``jac`` of a
+    model structure as closures over its constants: compiled once per structure and process (a sweep's
+    points differ only in the constants)."""
+    params = ", ".join(f"_k{i}" for i in range(n_constants))
+    body = "".join("    " + line if line.strip() else line for line in template.splitlines(True))
+    module = f"def _make({params}):\n{body}\n    return rhs, jac\n"
+    digest = hashlib.sha1(module.encode()).hexdigest()[:12]
+    filename = f"gearcli/model/_generated_{digest}.py"
+    linecache.cache[filename] = (len(module), None, module.splitlines(True), filename)
+    return compile(module, filename, "exec")
+
+
+def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
+    """The scene's ``rhs(t, y)`` and ``jac(t, y)``; returns them and their source.
+
+    The source is the scene's own, with its constants as literals (``--dump-model``). What runs is its
+    structure (:func:`_template`), compiled once per process (:func:`_compiled`) and bound to this scene's
+    constants and element parameters; the compiled module is registered with linecache, so a traceback
     through the generated code shows its lines."""
     namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
                        "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation}
@@ -270,8 +305,7 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
         namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
         namespace[f"_power{c}"] = x.element.power_gradient
     source = source_of(lay)
-    digest = hashlib.sha1(source.encode()).hexdigest()[:12]
-    filename = f"gearcli/model/_generated_{digest}.py"
-    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
-    return namespace["rhs"], namespace["jac"], source
+    template, constants = _template(source)
+    exec(_compiled(template, len(constants)), namespace)  # noqa: S102 - our own generated source
+    rhs, jac = namespace["_make"](*constants)
+    return rhs, jac, source
