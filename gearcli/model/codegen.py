@@ -84,7 +84,8 @@ def _prologue(lay: Layout) -> list[str]:
     if lay.load.torque_Nm != 0.0:
         lines += _ramp_lines("TL", lay.load.torque_Nm, lay.load.ramp_s)
         if lay.fluctuation:
-            lines.append("    TL = TL * _fluct(_FLU, t)")
+            clock = f"t + {lit(lay.load.clock_s)}" if lay.load.clock_s != 0.0 else "t"
+            lines.append(f"    TL = TL * _fluct(_FLU, {clock})")
     for c in range(lay.last_angle_body):  # theta_{c+1} = (r_a theta_c - delta_c) / r_b
         x = lay.connectors[c]
         lines.append(f"    th{c + 1} = ({lit(x.ra)} * th{c} - d{c}) * {lit(1.0 / x.rb)}")

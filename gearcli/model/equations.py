@@ -114,7 +114,7 @@ class TorsionalModel:
         speeds from the previous run's speed at its end to this model's operating speed (the input body's
         speed at t = 0); quadratures reset to 0. The angles: a torque drive's input
         angle state is kept; a speed drive's is analytic, so this model should have been built with the
-        previous run's end angle as its drive's ``angle_rad`` (:func:`gearcli.sweep.continuation.carry_angle`),
+        previous run's end angle as its drive's ``angle_rad`` (:func:`gearcli.sweep.continuation.carry_phases`),
         or every mesh phase jumps back to the start while the vibration state goes on."""
         lay, prev = self.layout, model_prev.layout
         if (lay.n_conn, lay.n_bodies, lay.speed_drive) != (prev.n_conn, prev.n_bodies, prev.speed_drive):

@@ -109,7 +109,7 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
             t_in = t_in * np.array([torque.ripple(lay.ripple, float(th))[0] for th in theta[0]])
     t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
     if lay.fluctuation:
-        t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj)) for tj in t])
+        t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj) + lay.load.clock_s) for tj in t])
     return Sampled(t, omega, theta, t_in, t_load, conns, lay)
 
 

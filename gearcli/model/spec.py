@@ -87,11 +87,13 @@ class DriveSpec:
 @dataclass(frozen=True)
 class LoadSpec:
     """Torque resisting the last shaft's rotation, ``ramp(t, ramp_s, torque_Nm)`` (negative: reversal),
-    times the fluctuation (:mod:`gearcli.model.elements.torque`)."""
+    times the fluctuation (:mod:`gearcli.model.elements.torque`). ``clock_s``: the fluctuation's time at
+    t = 0 (0 for a run of its own; a continued sweep point carries the previous point's end time on)."""
 
     torque_Nm: float
     ramp_s: float = 0.0
     fluctuation: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, frequency Hz): x (1 + b sin 2 pi f t)
+    clock_s: float = 0.0  # the fluctuation is a function of t + clock_s
 
 
 @dataclass(frozen=True)

@@ -6,9 +6,10 @@ final state by :meth:`gearcli.model.TorsionalModel.continue_state`: every connec
 deflection rate kept (the vibration carries over, so a branch stays on it), every free body's speed moved
 to the new operating speed along the rigid-body motion (its deviation from rigid motion kept), the body
 angles kept (a torque drive's input-angle state as it was; a speed drive's analytic angle starts at the
-previous run's end angle, :func:`carry_angle`), energy quadratures reset to 0. Keeping the angles keeps
-every mesh phase ``z_p theta_p`` (time-varying stiffness, transmission error) continuous with the
-vibration state: restarted at 0, the excitation would jump by an arbitrary phase at every point and
+previous run's end angle, :func:`carry_phases`), a load fluctuation's clock going on from the previous
+run's end time, energy quadratures reset to 0. Keeping the angles keeps every mesh phase ``z_p theta_p``
+(time-varying stiffness, transmission error) and a torque ripple's phase continuous with the vibration
+state: restarted at 0, the excitation would jump by an arbitrary phase at every point and
 throw the response off its branch. When the varied key changes the chain (another number of bodies or
 connectors, another drive), the point starts cold, like the first point of a branch.
 """
@@ -33,11 +34,14 @@ class Carried:
     time_s: float
 
 
-def carry_angle(spec, prev: Carried):
-    """``spec`` (a ModelSpec) with the speed drive's start angle at the previous run's end angle;
-    unchanged for a torque drive (its angle is a state) or when the drive kind changed."""
-    prev_lay = prev.model.layout  # type: ignore[attr-defined]
-    if spec.drive.kind != "speed" or not prev_lay.speed_drive:
+def carry_phases(spec, prev: Carried):
+    """``spec`` (a ModelSpec) going on from the previous run's end: a speed drive's start angle at the
+    previous run's end angle (a torque drive's angle is a state, kept by ``continue_state``), the load
+    fluctuation's clock at the previous run's end time."""
+    prev_spec = prev.model.spec  # type: ignore[attr-defined]
+    if spec.load.fluctuation:
+        spec = dataclasses.replace(spec, load=dataclasses.replace(spec.load, clock_s=prev_spec.load.clock_s + prev.time_s))
+    if spec.drive.kind != "speed" or prev_spec.drive.kind != "speed":
         return spec
     angle = prev.model.input_angle(prev.time_s)  # type: ignore[attr-defined]
     return dataclasses.replace(spec, drive=dataclasses.replace(spec.drive, angle_rad=angle))

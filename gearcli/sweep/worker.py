@@ -64,14 +64,14 @@ def _evaluate(scene: Scene, point: Point, prev: Carried | None) -> tuple[Any, Ca
     from gearcli.design import compute_design
     from gearcli.scene import spec_from_design
     from gearcli.simulate import run_simulation
-    from gearcli.sweep.continuation import NO_RAMPS, carry_angle, continue_state
+    from gearcli.sweep.continuation import NO_RAMPS, carry_phases, continue_state
 
     cfg = load_point(scene, tuple(point.overrides()) + (NO_RAMPS if prev else ()))
     design = compute_design(cfg)
     spec = spec_from_design(cfg, design)
     y0 = None
     if prev is not None:
-        model = model_of(carry_angle(spec, prev))
+        model = model_of(carry_phases(spec, prev))
         y0 = continue_state(prev.state, prev.model, model, prev.time_s)
     if y0 is None:  # a cold start (the first point, or the chain changed), with the file's ramps
         if prev is not None:

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 from numpy.testing import assert_allclose
 
 from gearcli.config import load_design
@@ -59,11 +61,11 @@ def _te_run(sets: tuple[str, ...], duration_s: float, prev=None):
     from gearcli.model import TorsionalModel
     from gearcli.scene import spec_from_design
     from gearcli.simulate.run import simulate_model
-    from gearcli.sweep.continuation import Carried, carry_angle
+    from gearcli.sweep.continuation import Carried, carry_phases
 
     cfg = load_design(str(TE_SCENE), list(sets + (NO_RAMPS if prev else ()))).design
     spec = spec_from_design(cfg, compute_design(cfg))
-    model = TorsionalModel(carry_angle(spec, prev) if prev else spec)
+    model = TorsionalModel(carry_phases(spec, prev) if prev else spec)
     y0 = continue_state(prev.state, prev.model, model, prev.time_s) if prev else None
     res = simulate_model(model, duration_s=duration_s, steps=int(duration_s * 40000), rtol=1e-10, y0=y0,
                          want_series=False)
@@ -92,3 +94,48 @@ def test_a_continued_ramped_run_moves_the_speeds_from_its_end_not_its_start():
     y[lay.i_omega(1)] = 600 * 2 * np.pi / 60 * 21 / 51 + 0.3  # at the end of the old run: nominal + vibration
     y0 = continue_state(y, old, new, t_prev=2.0)
     assert_allclose(y0[lay.i_omega(1)], 900 * 2 * np.pi / 60 * 21 / 51 + 0.3, rtol=1e-12)
+
+
+def _no_ramps(spec):
+    import dataclasses
+
+    return dataclasses.replace(spec, drive=dataclasses.replace(spec.drive, ramp_s=0.0),
+                               load=dataclasses.replace(spec.load, ramp_s=0.0))
+
+
+def _scipy_run(m, y0, t_end):
+    """The end state of ``m`` from ``y0`` over [0, t_end], integrated by scipy's Radau directly."""
+    from scipy.integrate import solve_ivp
+
+    n = m.layout.n_dynamic
+    sol = solve_ivp(m.rhs, (0.0, t_end), y0, method="Radau", jac=m.jac, rtol=1e-9,
+                    atol=np.r_[m.atol(1e-9)[:n], np.full(m.n_states - n, 1e20)])
+    assert sol.success, sol.message
+    return sol.y[:, -1]
+
+
+@pytest.mark.parametrize("name", ["TE + harmonics + time-varying, IMPACT, torque drive with ripple, load fluctuation",
+                                  "TE + harmonics, viscous, speed drive, load fluctuation"])
+def test_continuing_keeps_the_ripple_and_the_load_fluctuation_in_phase(name):
+    # model level: a torque drive with an input torque ripple (its angle is a state) and a load fluctuation
+    # (a clock), and a speed drive with TE and fluctuation (an analytic angle); past the ramps, 0 -> T1 then
+    # a continued model (no ramps, as a sweep point) over T1 -> T ends where 0 -> T does
+    from gearcli.model import TorsionalModel
+    from gearcli.sweep.continuation import Carried, carry_phases
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit"))
+    from test_model_excitation import SCENES
+
+    spec = SCENES[name]
+    model = TorsionalModel(spec)
+    lay = model.layout
+    t1, t2 = 0.105, 0.01
+    whole = _scipy_run(model, model.initial_state(), t1 + t2)
+    first = _scipy_run(model, model.initial_state(), t1)
+    nxt = TorsionalModel(carry_phases(_no_ramps(spec), Carried(model, first, t1)))
+    y0 = continue_state(first, model, nxt, t1)
+    assert y0 is not None
+    second = _scipy_run(nxt, y0, t2)
+    n = lay.n_dynamic
+    scale = np.r_[model.deflection_scales(), model.speed_scales_rad_s(), [1.0] * (n - lay.n_conn - len(lay.free_bodies))]
+    assert_allclose(second[:n] / scale, whole[:n] / scale, rtol=0, atol=1e-5)
