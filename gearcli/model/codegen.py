@@ -5,9 +5,11 @@ costs more than the arithmetic, and every term a scene does not need (a free inp
 time-varying stiffness) is time spent on every one of the ~10^4 evaluations of a run. The generator
 writes the ASSEMBLY only — topology and constants inlined as literals, ``y.tolist()`` unpacking the state
 in one call — and calls each connector's element force law (:mod:`gearcli.model.elements`) for its force;
-no formula of an element is spelt here. The source is registered with :mod:`linecache` under a file
-name of its own, so tracebacks and debuggers show its lines, and ``gearcli simulate --dump-model``
-prints it.
+no formula of an element is spelt here. ``gearcli simulate --dump-model`` prints that source. What is
+compiled is its structure: the float literals become names bound as closure constants (the same values,
+so the same results), so the points of a sweep that differ only in numbers share one compilation per
+process (:func:`compile_functions`). The compiled module is registered with :mod:`linecache` under a
+file name of its own, so tracebacks and debuggers show its lines.
 
 Notation (SI): ``d{c}``/``dd{c}`` deflection of connector c and its rate, ``w{b}``/``a{b}``/``th{b}``
 speed, acceleration, angle of body b, ``f{c}`` the connector's force (N along a mesh's line of action,
