@@ -3,7 +3,8 @@
 A :class:`Task` is plain picklable data: the design file's bytes (so a remote worker needs no access
 to the file), the base ``--set`` overrides, and the points. Each process parses a design file once
 (:func:`_base`, cached per process by its hash); points only apply their overrides, validate, compute the
-design and simulate. A point that fails (a value the schema rejects, an infeasible design, a solver
+design, build one model (its generated code compiled once per model structure and process,
+:func:`gearcli.model.codegen.compile_functions`) and simulate. A point that fails (a value the schema rejects, an infeasible design, a solver
 failure) becomes a ``failed`` row with its message and the branch goes on, starting cold again.
 """
 
