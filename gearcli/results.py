@@ -238,4 +238,5 @@ class SimulationResult:
     diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic; warnings are their messages
     natural_frequencies_boundary: str = "clamped_input"  # "clamped_input" (speed drive) or "free" (torque drive)
     final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation
+    final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
     steady: SteadyState | None = None  # how the window was found ([simulation] steady)

@@ -5,9 +5,11 @@ costs more than the arithmetic, and every term a scene does not need (a free inp
 time-varying stiffness) is time spent on every one of the ~10^4 evaluations of a run. The generator
 writes the ASSEMBLY only — topology and constants inlined as literals, ``y.tolist()`` unpacking the state
 in one call — and calls each connector's element force law (:mod:`gearcli.model.elements`) for its force;
-no formula of an element is spelt here. The source is registered with :mod:`linecache` under a file
-name of its own, so tracebacks and debuggers show its lines, and ``gearcli simulate --dump-model``
-prints it.
+no formula of an element is spelt here. ``gearcli simulate --dump-model`` prints that source. What is
+compiled is its structure: the float literals become names bound as closure constants (the same values,
+so the same results), so the points of a sweep that differ only in numbers share one compilation per
+process (:func:`compile_functions`). The compiled module is registered with :mod:`linecache` under a
+file name of its own, so tracebacks and debuggers show its lines.
 
 Notation (SI): ``d{c}``/``dd{c}`` deflection of connector c and its rate, ``w{b}``/``a{b}``/``th{b}``
 speed, acceleration, angle of body b, ``f{c}`` the connector's force (N along a mesh's line of action,
@@ -20,9 +22,12 @@ the load torque, ``Tin`` the drive torque of a torque drive (``dTin`` its d/d th
 from __future__ import annotations
 
 import hashlib
+import io
 import linecache
 import math
+import tokenize
 from collections.abc import Callable
+from functools import lru_cache
 
 import numpy as np
 
@@ -48,23 +53,25 @@ def _ramp_lines(name: str, value: float, ramp_s: float, indent: str = "    ") ->
 
 
 def _input_motion_lines(lay: Layout) -> list[str]:
-    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0."""
+    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0 (th0 from the
+    drive's start angle, written only when it is not 0)."""
     v, T = lay.drive.speed_rad_s, lay.drive.ramp_s
+    start = f" + {lit(lay.drive.angle_rad)}" if lay.drive.angle_rad != 0.0 else ""
     out = []
     if T <= 0.0:
         out += [f"    w0 = {lit(v)}", "    a0 = 0.0"]
         if lay.needs_angles:
-            out.append(f"    th0 = {lit(v)} * t")
+            out.append(f"    th0 = {lit(v)} * t{start}")
         return out
     out += [f"    if t < {lit(T)}:",
             f"        s = t * {lit(1.0 / T)}",
             f"        w0 = {lit(v)} * s * s * (3.0 - 2.0 * s)",
             f"        a0 = {lit(6.0 * v / T)} * s * (1.0 - s)"]
     if lay.needs_angles:
-        out.append(f"        th0 = {lit(v * T)} * s * s * s * (1.0 - 0.5 * s)")
+        out.append(f"        th0 = {lit(v * T)} * s * s * s * (1.0 - 0.5 * s){start}")
     out += ["    else:", f"        w0 = {lit(v)}", "        a0 = 0.0"]
     if lay.needs_angles:
-        out.append(f"        th0 = {lit(v)} * (t - {lit(0.5 * T)})")
+        out.append(f"        th0 = {lit(v)} * (t - {lit(0.5 * T)}){start}")
     return out
 
 
@@ -79,7 +86,8 @@ def _prologue(lay: Layout) -> list[str]:
     if lay.load.torque_Nm != 0.0:
         lines += _ramp_lines("TL", lay.load.torque_Nm, lay.load.ramp_s)
         if lay.fluctuation:
-            lines.append("    TL = TL * _fluct(_FLU, t)")
+            clock = f"t + {lit(lay.load.clock_s)}" if lay.load.clock_s != 0.0 else "t"
+            lines.append(f"    TL = TL * _fluct(_FLU, {clock})")
     for c in range(lay.last_angle_body):  # theta_{c+1} = (r_a theta_c - delta_c) / r_b
         x = lay.connectors[c]
         lines.append(f"    th{c + 1} = ({lit(x.ra)} * th{c} - d{c}) * {lit(1.0 / x.rb)}")
@@ -256,10 +264,42 @@ def source_of(lay: Layout) -> str:
     return _header(lay) + rhs_source(lay) + "\n\n" + jac_source(lay)
 
 
-def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
-    """Compile the scene's ``rhs(t, y)`` and ``jac(t, y)``; returns them and their source.
+def _template(source: str) -> tuple[str, tuple[float, ...]]:
+    """The source with every float literal replaced by a name ``_k{i}`` (what stays is the model's
+    structure), and the literals' values in order. Integers (array shapes and indices) stay: they are
+    structure. A name is an atom like a literal, so every expression keeps its meaning and its value."""
+    lines = source.splitlines(True)
+    values: list[float] = []
+    spans: list[tuple[int, int, int, str]] = []
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.NUMBER and not tok.string.isdigit():
+            spans.append((tok.start[0] - 1, tok.start[1], tok.end[1], f"_k{len(values)}"))
+            values.append(float(tok.string))
+    for row, a, b, name in reversed(spans):
+        lines[row] = lines[row][:a] + name + lines[row][b:]
+    return "".join(lines), tuple(values)
 
-    The source is registered with linecache under ``filename`` (unique per source), so a traceback
+
+@lru_cache(maxsize=64)
+def _compiled(template: str, n_constants: int):
+    """The code of a module defining ``_make(_k0, ..., _kN)`` that returns the ``rhs`` and ``jac`` of a
+    model structure as closures over its constants: compiled once per structure and process (a sweep's
+    points differ only in the constants)."""
+    params = ", ".join(f"_k{i}" for i in range(n_constants))
+    body = "".join("    " + line if line.strip() else line for line in template.splitlines(True))
+    module = f"def _make({params}):\n{body}\n    return rhs, jac\n"
+    digest = hashlib.sha1(module.encode()).hexdigest()[:12]
+    filename = f"gearcli/model/_generated_{digest}.py"
+    linecache.cache[filename] = (len(module), None, module.splitlines(True), filename)
+    return compile(module, filename, "exec")
+
+
+def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
+    """The scene's ``rhs(t, y)`` and ``jac(t, y)``; returns them and their source.
+
+    The source is the scene's own, with its constants as literals (``--dump-model``). What runs is its
+    structure (:func:`_template`), compiled once per process (:func:`_compiled`) and bound to this scene's
+    constants and element parameters; the compiled module is registered with linecache, so a traceback
     through the generated code shows its lines."""
     namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
                        "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation}
@@ -268,8 +308,7 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
         namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
         namespace[f"_power{c}"] = x.element.power_gradient
     source = source_of(lay)
-    digest = hashlib.sha1(source.encode()).hexdigest()[:12]
-    filename = f"gearcli/model/_generated_{digest}.py"
-    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
-    return namespace["rhs"], namespace["jac"], source
+    template, constants = _template(source)
+    exec(_compiled(template, len(constants)), namespace)  # noqa: S102 - our own generated source
+    rhs, jac = namespace["_make"](*constants)
+    return rhs, jac, source

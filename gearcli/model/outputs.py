@@ -60,6 +60,8 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
     """Speeds of all bodies, their angles (if needed) and the input body's acceleration."""
     if lay.speed_drive:
         th0, w0, a0 = ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)
+        if lay.drive.angle_rad != 0.0:  # a continued sweep point's start angle
+            th0 = th0 + lay.drive.angle_rad
     else:
         th0 = Y[lay.i_theta] if lay.i_theta is not None else None
         w0, a0 = None, np.zeros_like(t)  # a torque drive's input torque is prescribed
@@ -107,7 +109,7 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
             t_in = t_in * np.array([torque.ripple(lay.ripple, float(th))[0] for th in theta[0]])
     t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
     if lay.fluctuation:
-        t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj)) for tj in t])
+        t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj) + lay.load.clock_s) for tj in t])
     return Sampled(t, omega, theta, t_in, t_load, conns, lay)
 
 

@@ -68,13 +68,16 @@ class DriveSpec:
     """``kind = "speed"``: shaft 1 follows ``ramp(t, ramp_s, speed_rad_s)`` exactly (no DOF).
     ``kind = "torque"``: shaft 1 is free, driven by ``ramp(t, ramp_s, torque_Nm)`` times the ripple
     (:mod:`gearcli.model.elements.torque`); every shaft starts at its nominal speed (rigid-body
-    consistent), so the run begins in motion, not at rest."""
+    consistent), so the run begins in motion, not at rest. ``angle_rad``: a speed drive's angle at
+    t = 0 (0 for a run of its own; a continued sweep point carries the previous point's end angle on, so
+    the mesh phases continue with the vibration state)."""
 
     kind: Literal["speed", "torque"]
     speed_rad_s: float
     ramp_s: float = 0.0
     torque_Nm: float = 0.0
     ripple: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, order per input revolution)
+    angle_rad: float = 0.0  # speed drive: theta_0(0)
 
     def __post_init__(self) -> None:
         if self.ripple and self.kind != "torque":
@@ -84,11 +87,13 @@ class DriveSpec:
 @dataclass(frozen=True)
 class LoadSpec:
     """Torque resisting the last shaft's rotation, ``ramp(t, ramp_s, torque_Nm)`` (negative: reversal),
-    times the fluctuation (:mod:`gearcli.model.elements.torque`)."""
+    times the fluctuation (:mod:`gearcli.model.elements.torque`). ``clock_s``: the fluctuation's time at
+    t = 0 (0 for a run of its own; a continued sweep point carries the previous point's end time on)."""
 
     torque_Nm: float
     ramp_s: float = 0.0
     fluctuation: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, frequency Hz): x (1 + b sin 2 pi f t)
+    clock_s: float = 0.0  # the fluctuation is a function of t + clock_s
 
 
 @dataclass(frozen=True)

@@ -33,12 +33,13 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] 
 
 def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
-                   y0: np.ndarray | None = None) -> SimulationResult:
+                   y0: np.ndarray | None = None, model: TorsionalModel | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
     (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
-    :meth:`gearcli.model.TorsionalModel.continue_state`). Raises SimulationError on failure, never
+    :meth:`gearcli.model.TorsionalModel.continue_state`); ``model``: the scene's model when the caller has
+    already built it (a sweep point), else built here. Raises SimulationError on failure, never
     returns NaN."""
     from gearcli.scene import spec_from_design
 
@@ -46,7 +47,9 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
         raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
                           key="simulation.window_start_s")
-    return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
+    if model is None:
+        model = TorsionalModel(spec_from_design(cfg, design))
+    return simulate_model(model, duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                           window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
                           steady=sim.steady)
@@ -196,7 +199,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         input_speed_deg_s=w_in * RAD_TO_DEG, stages=stages, solver=solver, energy=balance,
         warnings=dg.messages(diags), diagnostics=tuple(diags),
         natural_frequencies_Hz=choice.natural_frequencies_Hz, natural_frequencies_boundary=choice.boundary,
-        final_state=run.y[:, -1].copy(), steady=steady,
+        final_state=run.y[:, -1].copy(), final_time_s=float(run.t[-1]), steady=steady,
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},
