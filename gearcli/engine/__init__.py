@@ -44,8 +44,12 @@ SUPPORTED = (
     "connectors: torsional springs (couplings, flexible shafts) and gear meshes (Adams IMPACT law: Hertz or "
     "linear stiffness, backlash on both flanks, STEP damping ramp, no tension)",
     "time-varying mesh stiffness from the contact-line length",
-    "speed drive (exact STEP speed profile) or torque drive, STEP-ramped; STEP-ramped load torque",
-    "energy quadratures (input work, load work, damping loss, work on time-varying springs)",
+    "mesh excitation: transmission error (the law on q = delta - e), stiffness harmonics, viscous damping ratio",
+    "speed drive (exact STEP speed profile, start angle) or torque drive with torque ripple, STEP-ramped; "
+    "STEP-ramped load torque with load fluctuation (clock offset)",
+    "a run that starts at t0 > 0 (the periodic steady state's period-by-period runs, sweep continuation)",
+    "energy quadratures (input work with the transmission error's work, load work, damping loss, work on "
+    "time-varying springs)",
     "method DOP853 (scipy's steps, error norm, step control and dense output, bit for bit)",
     "method RK45 (scipy's steps bit for bit; samples to the last bits)",
     "method Radau (scipy's Radau IIA: Newton iteration, LU reuse, error estimate, step control, dense output; "
@@ -53,10 +57,10 @@ SUPPORTED = (
 )
 # ModelArrays fields the kernel reads; any other field with content is a feature it does not know
 _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_radii", "conn_param", "conn_harm",
-                 "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "load_value_Nm", "load_ramp_s",
-                 "load_fluct", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol"}
+                 "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
+                 "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol"}
 _SOURCES = ("engine/kernel.py", "engine/tableau.py", "engine/blas.py", "model/elements/__init__.py", "model/elements/mesh.py",
-            "model/elements/spring.py", "model/contact_lines.py")
+            "model/elements/spring.py", "model/elements/torque.py", "model/contact_lines.py")
 
 _state: dict = {}
 
@@ -69,9 +73,10 @@ def available() -> bool:
 
 
 def _known_params() -> dict[int, int]:
-    from gearcli.model.elements import KIND_MESH, KIND_SPRING, mesh, spring
+    """Entries of each kind's parameter row the kernel's compiled laws read (a mesh's: all, harmonics included)."""
+    from gearcli.model.elements import KIND_MESH, KIND_SPRING, N_PARAM, spring
 
-    return {KIND_SPRING: len(spring.PARAMS), KIND_MESH: len(mesh.PARAMS)}
+    return {KIND_SPRING: len(spring.PARAMS), KIND_MESH: N_PARAM}
 
 
 def unsupported(arrays, method: str) -> list[str]:
@@ -89,12 +94,6 @@ def unsupported(arrays, method: str) -> list[str]:
         if int(k) in known and np.any(param[c, known[int(k)]:] != 0.0):
             out.append(f"element parameters beyond the known ones on connector {c}")
             break
-    if np.any(np.asarray(arrays.conn_harm) != 0.0):
-        out.append("mesh excitation harmonics (transmission error, stiffness harmonics)")
-    if np.any(np.asarray(arrays.drive_ripple) != 0.0):
-        out.append("input torque ripple")
-    if np.any(np.asarray(arrays.load_fluct) != 0.0):
-        out.append("load fluctuation")
     for f in dataclasses.fields(arrays):
         if f.name not in _KNOWN_FIELDS and _has_content(getattr(arrays, f.name)):
             out.append(f"model feature {f.name!r}")
@@ -209,12 +208,16 @@ def _tiny_model():
     """Two bodies, one mesh and one spring: a model of every argument type, to compile or load once."""
     from gearcli.model.elements import N_PARAM
 
+    from gearcli.model.elements import mesh
+
     param = np.zeros((2, N_PARAM))
     param[0, :13] = (1.0, 1.0, 1e9, 1.5, 1e3, 1e4, 6e7, 0.0, 0.0, 1.5, 1.0, 20.0, 1e-4)
+    param[0, mesh.I_NTE], param[0, mesh.I_TE] = 1.0, 1e-6
     param[1, :2] = (1e4, 1.0)
     return (np.array([1, 0], dtype=np.int64), np.array([[0, 1], [1, 2]], dtype=np.int64),
             np.array([[0.1, 0.2], [1.0, 1.0]]), param, np.array([1.0, 2.0, 3.0]),
-            np.array([0, 2, -1, 4, 0, 0], dtype=np.int64), np.array([10.0, 0.01, 5.0, 0.01]))
+            np.array([0, 2, -1, 4, 0, 0], dtype=np.int64), np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]),
+            np.array([0.01, 2.0]), np.array([0.01, 5.0]))
 
 
 def _warm_up(kernel) -> None:
@@ -223,33 +226,36 @@ def _warm_up(kernel) -> None:
     t_eval = np.array([0.0, 1e-3])
     tol = np.full(7, 1e-6)
     kernel.dop853(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
-                  np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
+                  np.array([0.0, 0.0, 1.0, 0.1, 0.0]), np.empty(0))
     kernel.rk45(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
-                np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
+                np.array([0.0, 0.0, 1.0, 0.1, 0.0]), np.empty(0))
     kernel.radau(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16),
-                 np.array([0.0, 0.0, 1.0, 0.1]), np.empty(0))
+                 np.array([0.0, 0.0, 1.0, 0.1, 0.0]), np.empty(0))
     kernel.evaluate(model, 0.0, y0)
     kernel.evaluate_many(model, 0.0, y0, np.int64(1))
     for c in range(2):
-        kernel.connector_series(model[0][c], model[3][c], np.zeros(2), np.zeros(2), np.zeros(2))
+        kernel.connector_series(model[0][c], model[3][c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
 
 
 def pack(arrays) -> tuple:
     """The kernel's model tuple from :class:`~gearcli.model.ModelArrays`."""
-    from gearcli.model.elements import KIND_MESH
-    from gearcli.model.elements.mesh import I_TV
+    from gearcli.model.elements import KIND_MESH, mesh
 
     kind = np.ascontiguousarray(arrays.conn_kind, dtype=np.int64)
     bodies = np.ascontiguousarray(arrays.conn_bodies, dtype=np.int64)
     param = np.ascontiguousarray(arrays.conn_param, dtype=np.float64)
-    tv = [c for c in range(kind.size) if kind[c] == KIND_MESH and param[c, I_TV] != 0.0]
-    last_angle = max((int(bodies[c, 0]) for c in tv), default=0)
+    meshes = [c for c in range(kind.size) if kind[c] == KIND_MESH]
+    tv = [c for c in meshes if mesh.time_varying(param[c])]
+    phased = [c for c in meshes if mesh.phased(param[c])]
+    last_angle = max((int(bodies[c, 0]) for c in phased), default=0)
     ipar = np.array([arrays.drive_kind, arrays.i_omega0, arrays.i_theta, arrays.i_quad, last_angle, len(tv)],
                     dtype=np.int64)
-    fpar = np.array([arrays.drive_value, arrays.drive_ramp_s, arrays.load_value_Nm, arrays.load_ramp_s],
-                    dtype=np.float64)
+    fpar = np.array([arrays.drive_value, arrays.drive_ramp_s, arrays.load_value_Nm, arrays.load_ramp_s,
+                     arrays.drive_angle_rad, arrays.load_clock_s], dtype=np.float64)
+    ripple = np.ascontiguousarray(np.asarray(arrays.drive_ripple, dtype=np.float64).reshape(-1))
+    fluct = np.ascontiguousarray(np.asarray(arrays.load_fluct, dtype=np.float64).reshape(-1))
     return (kind, bodies, np.ascontiguousarray(arrays.conn_radii, dtype=np.float64), param,
-            np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar)
+            np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct)
 
 
 # ------------------------------------------------------------------------------------------- auto

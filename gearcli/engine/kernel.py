@@ -35,6 +35,7 @@ from gearcli.engine import tableau as tb
 from gearcli.model.elements import KIND_MESH
 from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import spring as _spring_mod
+from gearcli.model.elements import torque as _torque_mod
 
 jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
@@ -57,9 +58,11 @@ def _jit_module(mod) -> dict:
 _MESH = _jit_module(_mesh_mod)
 _SPRING = _jit_module(_spring_mod)
 mesh_force, mesh_potential, mesh_damped = _MESH["force"], _MESH["potential"], _MESH["damped"]
-mesh_penetration = _MESH["penetration"]
+mesh_penetration, mesh_dte = _MESH["penetration"], _MESH["dynamic_transmission_error"]
+_TORQUE = _jit_module(_torque_mod)
+torque_ripple, torque_fluctuation = _TORQUE["ripple"], _TORQUE["fluctuation"]
 spring_force, spring_potential, spring_damped = _SPRING["force"], _SPRING["potential"], _SPRING["damped"]
-I_TV, I_Z = _mesh_mod.I_TV, _mesh_mod.I_Z
+I_TV, I_Z, I_NKS, I_NTE = _mesh_mod.I_TV, _mesh_mod.I_Z, _mesh_mod.I_NKS, _mesh_mod.I_NTE
 TWO_PI = 2.0 * math.pi
 
 # DOP853 (scipy's class attributes)
@@ -80,7 +83,9 @@ INITIAL_EXPONENT = 1.0 / (7 + 1)
 
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
-FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP = 0, 1, 2, 3
+FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3, 4, 5
+# the model tuple: (kind, bodies, radii, param, inertia, ipar, fpar, ripple row, fluctuation row); the rows are
+# the flat (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque
 
 # ----------------------------------------------------------------------------------- vector sums
 # scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
@@ -151,10 +156,10 @@ else:  # pragma: no cover - a numpy without a findable BLAS
 
 
 @jit
-def conn_force(kind, P, d, dd, phi):
+def conn_force(kind, P, d, dd, phi, wphi):
     if kind == KIND_MESH:
-        return mesh_force(P, d, dd, phi)
-    return spring_force(P, d, dd, phi)
+        return mesh_force(P, d, dd, phi, wphi)
+    return spring_force(P, d, dd, phi, wphi)
 
 
 @jit
@@ -173,7 +178,20 @@ def conn_damped(kind, P):
 
 @jit
 def conn_tv(kind, P):
-    return kind == KIND_MESH and P[I_TV] != 0.0
+    """A time-varying stiffness (contact lines or stiffness harmonics): its work is a quadrature."""
+    return kind == KIND_MESH and (P[I_TV] != 0.0 or P[I_NKS] != 0.0)
+
+
+@jit
+def conn_phased(kind, P):
+    """The force depends on the mesh phase (time-varying stiffness or a transmission error)."""
+    return kind == KIND_MESH and (P[I_TV] != 0.0 or P[I_NKS] != 0.0 or P[I_NTE] != 0.0)
+
+
+@jit
+def conn_excited(kind, P):
+    """A transmission error: the force depends on the phase rate, and the TE does work on the bodies."""
+    return kind == KIND_MESH and P[I_NTE] != 0.0
 
 
 @jit
@@ -188,14 +206,54 @@ def ramp(t, value, ramp_s):
 
 
 @jit
-def input_motion(t, v, T):
-    """(th0, w0, a0) of the speed drive's exact STEP profile."""
+def input_motion(t, v, T, start):
+    """(th0, w0, a0) of the speed drive's exact STEP profile from the start angle ``start``."""
     if T <= 0.0:
-        return v * t, v, 0.0
-    if t < T:
+        th = v * t
+    elif t < T:
         s = t * (1.0 / T)
-        return (v * T) * s * s * s * (1.0 - 0.5 * s), v * s * s * (3.0 - 2.0 * s), (6.0 * v / T) * s * (1.0 - s)
-    return v * (t - 0.5 * T), v, 0.0
+        th = (v * T) * s * s * s * (1.0 - 0.5 * s)
+        if start != 0.0:
+            th = th + start
+        return th, v * s * s * (3.0 - 2.0 * s), (6.0 * v / T) * s * (1.0 - s)
+    else:
+        th = v * (t - 0.5 * T)
+    if start != 0.0:
+        th = th + start
+    return th, v, 0.0
+
+
+@jit
+def prologue(t, y, model, th):
+    """(speed drive, w0, a0, Tin, dTin/dth0, load, TL) at (t, y) and the body angles ``th`` the phased
+    meshes need, as the generated prologue forms them."""
+    radii, ipar, fpar, rip, flu = model[2], model[5], model[6], model[7], model[8]
+    speed = ipar[IP_DRIVE] == 0
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    a0 = 0.0
+    tin = 0.0
+    dtin = 0.0
+    if speed:
+        th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP], fpar[FP_ANGLE])
+    else:
+        tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
+        w0 = y[i_w0]
+        th0 = y[i_th] if i_th >= 0 else 0.0
+        if rip.size > 0:
+            r, dr = torque_ripple(rip, th0)
+            dtin = tin * dr
+            tin = tin * r
+    load = fpar[FP_LOAD] != 0.0
+    tl = 0.0
+    if load:
+        tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP])
+        if flu.size > 0:
+            tl = tl * torque_fluctuation(flu, t + fpar[FP_CLOCK] if fpar[FP_CLOCK] != 0.0 else t)
+    th[0] = th0
+    for c in range(ipar[IP_LAST_ANGLE]):
+        th[c + 1] = (radii[c, 0] * th[c] - y[c]) * (1.0 / radii[c, 1])
+    return speed, w0, a0, tin, dtin, load, tl
 
 
 @jit
@@ -207,28 +265,16 @@ def body_speed(y, b, first, i_w0, w0):
 
 @jit
 def rhs(t, y, dy, model, th, fc):
-    """dy = f(t, y) of the scene ``model``; ``th`` (n_bodies) and ``fc`` (n_conn) are scratch."""
-    kind, bodies, radii, param, inertia, ipar, fpar = model
+    """dy = f(t, y) of the scene ``model``; ``th`` (n_bodies) and ``fc`` (2 n_conn: forces, then the
+    transmission errors' powers) are scratch."""
+    kind, bodies, radii, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
     nc = kind.shape[0]
     nb = inertia.shape[0]
-    speed = ipar[IP_DRIVE] == 0
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
     iq = ipar[IP_QUAD]
+    speed, w0, a0, tin, _, load, tl = prologue(t, y, model, th)
     first = 1 if speed else 0
-    a0 = 0.0
-    tin = 0.0
-    if speed:
-        th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
-    else:
-        tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
-        w0 = y[i_w0]
-        th0 = y[i_th] if i_th >= 0 else 0.0
-    load = fpar[FP_LOAD] != 0.0
-    tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP]) if load else 0.0
-    th[0] = th0
-    for c in range(ipar[IP_LAST_ANGLE]):
-        th[c + 1] = (radii[c, 0] * th[c] - y[c]) * (1.0 / radii[c, 1])
     damp = 0.0
     tvp = 0.0
     have_damp = False
@@ -239,9 +285,11 @@ def rhs(t, y, dy, model, th, fc):
         P = param[c]
         dd = radii[c, 0] * body_speed(y, a, first, i_w0, w0) - radii[c, 1] * body_speed(y, b, first, i_w0, w0)
         tv = conn_tv(kind[c], P)
-        phi = (P[I_Z] / TWO_PI) * th[a] if tv else 0.0
-        f, _, _, _, q, u = conn_force(kind[c], P, y[c], dd, phi)
+        phi = (P[I_Z] / TWO_PI) * th[a] if conn_phased(kind[c], P) else 0.0
+        wphi = (P[I_Z] / TWO_PI) * body_speed(y, a, first, i_w0, w0) if conn_excited(kind[c], P) else 0.0
+        f, _, _, _, _, q, u, te = conn_force(kind[c], P, y[c], dd, phi, wphi)
         fc[c] = f
+        fc[nc + c] = te
         dy[c] = dd
         if conn_damped(kind[c], P):
             damp = damp + q if have_damp else q
@@ -264,9 +312,13 @@ def rhs(t, y, dy, model, th, fc):
     if i_th >= 0:
         dy[i_th] = w0
     if speed:
-        dy[iq] = (radii[0, 0] * fc[0] + inertia[0] * a0) * w0
+        p_in = (radii[0, 0] * fc[0] + inertia[0] * a0) * w0
     else:
-        dy[iq] = tin * w0
+        p_in = tin * w0
+    for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)
+        if conn_excited(kind[c], param[c]):
+            p_in = p_in + fc[nc + c]
+    dy[iq] = p_in
     dy[iq + 1] = tl * body_speed(y, nb - 1, first, i_w0, w0) if load else 0.0
     dy[iq + 2] = damp
     if ipar[IP_NTV] > 0:
@@ -277,18 +329,19 @@ def rhs(t, y, dy, model, th, fc):
 def stored_energy(t, y, model):
     """Kinetic energy + elastic energy of the constant-stiffness connectors + work on time-varying
     springs (the energy watch's ``_stored``)."""
-    kind, bodies, radii, param, inertia, ipar, fpar = model
-    speed = ipar[IP_DRIVE] == 0
+    kind, bodies, param, inertia, ipar = model[0], model[1], model[3], model[4], model[5]
+    th = np.zeros(inertia.shape[0])
+    speed, w0, _, _, _, _, _ = prologue(t, y, model, th)
     first = 1 if speed else 0
-    w0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])[1] if speed else y[ipar[IP_W0]]
     ke = 0.0
     for i in range(inertia.shape[0]):
         w = body_speed(y, i, first, ipar[IP_W0], w0)
         ke += inertia[i] * (w * w)
     total = 0.5 * ke
     for c in range(kind.shape[0]):
-        if not conn_tv(kind[c], param[c]):
-            total += conn_potential(kind[c], param[c], y[c], 0.0)
+        if not conn_tv(kind[c], param[c]):  # a transmission error's mesh at its phase
+            phi = (param[c, I_Z] / TWO_PI) * th[bodies[c, 0]] if conn_phased(kind[c], param[c]) else 0.0
+            total += conn_potential(kind[c], param[c], y[c], phi)
     if ipar[IP_NTV] > 0:
         total += y[ipar[IP_QUAD] + 3]
     return total
@@ -411,9 +464,9 @@ def dense_eval(t, t_old, h, y_old, F, out, col):
 
 @jit
 def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
-    """Integrate from t = 0 through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
+    """Integrate from t0 = ``wpar[4]`` through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
     sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
-    energy watch off; ``wpar`` = (e0, w0, scale, margin). The times of the first ``trace.size`` accepted
+    energy watch off; ``wpar`` = (e0, w0, scale, margin, t0). The times of the first ``trace.size`` accepted
     steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
     created, energy scale])."""
     n = y0.size
@@ -422,7 +475,7 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
     nb = model[4].shape[0]
     nc = model[0].shape[0]
     th = np.zeros(nb)
-    fc = np.zeros(nc)
+    fc = np.zeros(2 * nc)
     K = np.zeros((N_EXT, n))
     F = np.zeros((N_INTERP, n))
     y = y0.copy()
@@ -437,13 +490,13 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
     e3 = np.empty(n)
     DK = np.empty((D.shape[0], n))
     done = 0
-    while done < m and t_eval[done] <= 0.0:
+    while done < m and t_eval[done] <= wpar[4]:
         out[:, done] = y
         done += 1
     for j in range(done, m):
-        if t_eval[j] <= 0.0:
+        if t_eval[j] <= wpar[4]:
             out[:, j] = y
-    t = 0.0
+    t = wpar[4]  # the run's start (a continuation starts later)
     nfev = 0
     steps = 0
     status = STATUS_FINISHED
@@ -599,9 +652,9 @@ def rk45(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tra
     """:func:`dop853` with scipy's RK45 (Dormand-Prince 5(4), quartic dense output): the same steps; the samples
     agree to the last bits (the interpolant is summed in a loop, not by BLAS).
 
-    Integrate from t = 0 through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
+    Integrate from t0 = ``wpar[4]`` through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
     sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
-    energy watch off; ``wpar`` = (e0, w0, scale, margin). The times of the first ``trace.size`` accepted
+    energy watch off; ``wpar`` = (e0, w0, scale, margin, t0). The times of the first ``trace.size`` accepted
     steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
     created, energy scale])."""
     n = y0.size
@@ -610,7 +663,7 @@ def rk45(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tra
     nb = model[4].shape[0]
     nc = model[0].shape[0]
     th = np.zeros(nb)
-    fc = np.zeros(nc)
+    fc = np.zeros(2 * nc)
     K = np.zeros((RK45_STAGES + 1, n))
     Q = np.zeros((n, 4))
     y = y0.copy()
@@ -623,13 +676,13 @@ def rk45(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tra
     w2 = np.empty(n)
     dv = np.empty(n)
     done = 0
-    while done < m and t_eval[done] <= 0.0:
+    while done < m and t_eval[done] <= wpar[4]:
         out[:, done] = y
         done += 1
     for j in range(done, m):
-        if t_eval[j] <= 0.0:
+        if t_eval[j] <= wpar[4]:
             out[:, j] = y
-    t = 0.0
+    t = wpar[4]  # the run's start (a continuation starts later)
     nfev = 0
     steps = 0
     status = STATUS_FINISHED
@@ -752,7 +805,7 @@ def ipar_quad(model):
 def evaluate(model, t, y):
     """One right-hand side evaluation (tests, benchmarks)."""
     dy = np.empty(y.size)
-    rhs(t, y, dy, model, np.zeros(model[4].shape[0]), np.zeros(model[0].shape[0]))
+    rhs(t, y, dy, model, np.zeros(model[4].shape[0]), np.zeros(2 * model[0].shape[0]))
     return dy
 
 
@@ -761,7 +814,7 @@ def evaluate_many(model, t, y, times):
     """``times`` evaluations at one point (the benchmark's cost of one compiled evaluation)."""
     dy = np.empty(y.size)
     th = np.zeros(model[4].shape[0])
-    fc = np.zeros(model[0].shape[0])
+    fc = np.zeros(2 * model[0].shape[0])
     acc = 0.0
     for _ in range(times):
         rhs(t, y, dy, model, th, fc)
@@ -770,19 +823,22 @@ def evaluate_many(model, t, y, times):
 
 
 @jit
-def connector_series(kind, P, d, dd, phi):
-    """Force, stored energy and signed penetration of one connector at every sample (the output
-    channels of :func:`gearcli.model.outputs.connector_series`, through the same element laws)."""
+def connector_series(kind, P, d, dd, phi, wphi):
+    """Force, stored energy, signed penetration and dynamic transmission error of one connector at every
+    sample (the output channels of :func:`gearcli.model.outputs.connector_series`, through the same element
+    laws)."""
     n = d.size
     F = np.empty(n)
     U = np.empty(n)
     pen = np.zeros(n)
+    q = d.copy()
     for j in range(n):
-        F[j] = conn_force(kind, P, d[j], dd[j], phi[j])[0]
+        F[j] = conn_force(kind, P, d[j], dd[j], phi[j], wphi[j])[0]
         U[j] = conn_potential(kind, P, d[j], phi[j])
         if kind == KIND_MESH:
-            pen[j] = mesh_penetration(P, d[j])
-    return F, U, pen
+            pen[j] = mesh_penetration(P, d[j], phi[j])
+            q[j] = mesh_dte(P, d[j], phi[j])
+    return F, U, pen, q
 
 
 # ------------------------------------------------------------------------------------ Jacobian
@@ -790,10 +846,10 @@ mesh_power_gradient, spring_power_gradient = _MESH["power_gradient"], _SPRING["p
 
 
 @jit
-def conn_power_gradient(kind, P, d, dd, phi):
+def conn_power_gradient(kind, P, d, dd, phi, wphi):
     if kind == KIND_MESH:
-        return mesh_power_gradient(P, d, dd, phi)
-    return spring_power_gradient(P, d, dd, phi)
+        return mesh_power_gradient(P, d, dd, phi, wphi)
+    return spring_power_gradient(P, d, dd, phi, wphi)
 
 
 @jit
@@ -812,8 +868,9 @@ def _angle_gradient(body, model, ag):
 
 
 @jit
-def _gradient(c, xd, xv, xt, model, first, g, ag):
-    """g = d(x_c)/dy of a connector quantity with partials xd (deflection), xv (rate), xt (mesh phase)."""
+def _gradient(c, xd, xv, xt, xw, model, first, g, ag):
+    """g = d(x_c)/dy of a connector quantity with partials xd (deflection), xv (rate), xt (mesh phase),
+    xw (phase rate)."""
     kind, bodies, radii, param = model[0], model[1], model[2], model[3]
     i_w0 = model[5][IP_W0]
     a = bodies[c, 0]
@@ -824,37 +881,27 @@ def _gradient(c, xd, xv, xt, model, first, g, ag):
         g[i_w0 + a - first] += radii[c, 0] * xv
     if b >= first:
         g[i_w0 + b - first] += -radii[c, 1] * xv
-    if conn_tv(kind[c], param[c]) and xt != 0.0:
+    if conn_phased(kind[c], param[c]) and xt != 0.0:
         _angle_gradient(a, model, ag)
         k = param[c, I_Z] / TWO_PI * xt
         for j in range(g.size):
             g[j] += ag[j] * k
+    if conn_excited(kind[c], param[c]) and a >= first:
+        g[i_w0 + a - first] += param[c, I_Z] / TWO_PI * xw
 
 
 @jit
 def jacobian(t, y, Jm, model, th, g, ag):
     """Jm = df/dy of :func:`rhs`, from the elements' own partials (as the generated ``jac``)."""
-    kind, bodies, radii, param, inertia, ipar, fpar = model
+    kind, bodies, radii, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
     nc = kind.shape[0]
     nb = inertia.shape[0]
     n = y.size
-    speed = ipar[IP_DRIVE] == 0
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
     iq = ipar[IP_QUAD]
+    speed, w0, a0, tin, dtin, load, tl = prologue(t, y, model, th)
     first = 1 if speed else 0
-    tin = 0.0
-    if speed:
-        th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
-    else:
-        tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
-        w0 = y[i_w0]
-        th0 = y[i_th] if i_th >= 0 else 0.0
-    load = fpar[FP_LOAD] != 0.0
-    tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP]) if load else 0.0
-    th[0] = th0
-    for c in range(ipar[IP_LAST_ANGLE]):
-        th[c + 1] = (radii[c, 0] * th[c] - y[c]) * (1.0 / radii[c, 1])
     Jm[:, :] = 0.0
     for c in range(nc):
         a = bodies[c, 0]
@@ -864,32 +911,41 @@ def jacobian(t, y, Jm, model, th, g, ag):
         rb = radii[c, 1]
         dd = ra * body_speed(y, a, first, i_w0, w0) - rb * body_speed(y, b, first, i_w0, w0)
         tv = conn_tv(kind[c], P)
-        phi = (P[I_Z] / TWO_PI) * th[a] if tv else 0.0
-        _, kd, kv, kt, _, _ = conn_force(kind[c], P, y[c], dd, phi)
+        ex = conn_excited(kind[c], P)
+        phi = (P[I_Z] / TWO_PI) * th[a] if conn_phased(kind[c], P) else 0.0
+        wphi = (P[I_Z] / TWO_PI) * body_speed(y, a, first, i_w0, w0) if ex else 0.0
+        _, kd, kv, kt, kw, _, _, _ = conn_force(kind[c], P, y[c], dd, phi, wphi)
         if a >= first:
             Jm[c, i_w0 + a - first] = ra
         Jm[c, i_w0 + b - first] = -rb
-        _gradient(c, kd, kv, kt, model, first, g, ag)
+        _gradient(c, kd, kv, kt, kw, model, first, g, ag)
         for j in range(n):
             if a >= first:
                 Jm[i_w0 + a - first, j] += (-ra / inertia[a]) * g[j]
             Jm[i_w0 + b - first, j] += (rb / inertia[b]) * g[j]
             if c == 0 and speed:
                 Jm[iq, j] += (ra * w0) * g[j]
-        if conn_damped(kind[c], P) or tv:
-            qd, qv, qt, ud, uv, ut = conn_power_gradient(kind[c], P, y[c], dd, phi)
+        if conn_damped(kind[c], P) or tv or ex:
+            qd, qv, qt, qw, ud, uv, ut, uw, ed, ev, et, ew = conn_power_gradient(kind[c], P, y[c], dd, phi, wphi)
             if conn_damped(kind[c], P):
-                _gradient(c, qd, qv, qt, model, first, g, ag)
+                _gradient(c, qd, qv, qt, qw, model, first, g, ag)
                 for j in range(n):
                     Jm[iq + 2, j] += g[j]
             if tv:
-                _gradient(c, ud, uv, ut, model, first, g, ag)
+                _gradient(c, ud, uv, ut, uw, model, first, g, ag)
                 for j in range(n):
                     Jm[iq + 3, j] += g[j]
+            if ex:  # the transmission error's power is part of the input work
+                _gradient(c, ed, ev, et, ew, model, first, g, ag)
+                for j in range(n):
+                    Jm[iq, j] += g[j]
     if i_th >= 0:
         Jm[i_th, i_w0] = 1.0
     if not speed:
-        Jm[iq, i_w0] = tin
+        Jm[iq, i_w0] += tin
+        if dtin != 0.0 and i_th >= 0:  # a rippled drive torque depends on the input angle
+            Jm[i_w0, i_th] += dtin * (1.0 / inertia[0])
+            Jm[iq, i_th] += dtin * w0
     if load:
         Jm[iq + 1, i_w0 + nb - 1 - first] = tl
 
@@ -1081,7 +1137,7 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
     nb = model[4].shape[0]
     nc = model[0].shape[0]
     th = np.zeros(nb)
-    fc = np.zeros(nc)
+    fc = np.zeros(2 * nc)
     y = y0.copy()
     f = np.empty(n)
     f_new = np.empty(n)
@@ -1116,10 +1172,10 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
             rmin = rtol[i]
     newton_tol = max(10 * EPS / rmin, min(0.03, rmin ** 0.5))
     done = 0
-    while done < m and t_eval[done] <= 0.0:
+    while done < m and t_eval[done] <= wpar[4]:
         out[:, done] = y
         done += 1
-    t = 0.0
+    t = wpar[4]  # the run's start (a continuation starts later)
     nfev = 0
     njev = 0
     nlu = 0

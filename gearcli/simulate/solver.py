@@ -63,12 +63,12 @@ def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end
     return scipy_solver(method)(model.rhs, t0, y0, t_end, rtol=rtol, atol=atol, **extra)
 
 
-def breakpoints(model: TorsionalModel, t_end: float) -> list[float]:
-    """Segment ends: the ramp ends of the drive and the load inside the run, then ``t_end``."""
+def breakpoints(model: TorsionalModel, t_end: float, t0: float = 0.0) -> list[float]:
+    """Segment ends: the ramp ends of the drive and the load inside ``(t0, t_end)``, then ``t_end``."""
     spec = model.spec
     drive_value = spec.drive.speed_rad_s if spec.drive.kind == "speed" else spec.drive.torque_Nm
     kinks = {r for r, v in ((spec.drive.ramp_s, drive_value), (spec.load.ramp_s, spec.load.torque_Nm))
-             if v != 0.0 and 0.0 < r < t_end}
+             if v != 0.0 and t0 < r < t_end}
     return sorted(kinks) + [t_end]
 
 
@@ -103,32 +103,36 @@ class _Counters:
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
-              engine: str = "python") -> Integration:
-    """Integrate from t = 0 to ``t_eval[-1]`` and sample at ``t_eval`` (ascending, starting at 0).
+              t0: float = 0.0, engine: str = "python") -> Integration:
+    """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
+    (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
+    drive's and the load's profiles are functions of the absolute time.
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
     "compiled" runs :mod:`gearcli.engine` (DOP853 only; the caller checks
     :func:`gearcli.engine.unsupported` first), "python" scipy's solvers.
     """
+    if t0 != 0.0 and y0 is None:
+        raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
-    watch = energy_watch(model, y) if watch_energy else None
+    watch = energy_watch(model, y, t0) if watch_energy else None
     atol = tolerances(model, rtol, watch)
-    if engine == "compiled":
-        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch)
+    if engine == "compiled" and t_eval[-1] > t0:  # (an empty run is scipy's: nothing to integrate)
+        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0))
     out = np.full((y.size, t_eval.size), np.nan)
-    out[:, t_eval <= 0.0] = y[:, None]
-    done = int(np.searchsorted(t_eval, 0.0, side="right"))
+    out[:, t_eval <= t0] = y[:, None]
+    done = int(np.searchsorted(t_eval, t0, side="right"))
     count = _Counters()
-    t0, t, status, message = time.perf_counter(), 0.0, STATUS_FINISHED, "reached the end of the run"
-    for t_end in breakpoints(model, float(t_eval[-1])):
+    start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
+    for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch)
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
             break
-    wall = time.perf_counter() - t0
+    wall = time.perf_counter() - start
     return Integration(t_eval, out, method, rtol, atol, count.nfev, count.njev, count.nlu, count.steps, wall, status,
                        message, t)
 
@@ -164,8 +168,8 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
 
 
 def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
-                        atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None) -> Integration:
-    """The same run on the compiled kernel: same segments, tolerances (vectors), guards and statuses."""
+                        atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None, t0: float = 0.0) -> Integration:
+    """The same run on the compiled kernel: same start, segments, tolerances (vectors), guards and statuses."""
     from gearcli import engine
 
     if method not in engine.COMPILED_METHODS:
@@ -177,10 +181,11 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     n = y.size
     rtol_v = np.array(np.broadcast_to(np.asarray(rtol, dtype=float), (n,)))  # writable: one kernel signature
     atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=float), (n,)))
-    breaks = np.array(breakpoints(model, float(t_eval[-1])), dtype=float)
+    breaks = np.array(breakpoints(model, float(t_eval[-1]), t0), dtype=float)
     from gearcli.simulate.guards import ENERGY_MARGIN
 
-    wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN]) if watch is not None else np.zeros(4)
+    wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN, t0]) if watch is not None \
+        else np.array([0.0, 0.0, 0.0, 0.0, t0])
     every = np.int64(watch.every if watch is not None else 0)
     t0 = time.perf_counter()
     kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]

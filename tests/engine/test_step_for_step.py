@@ -70,7 +70,7 @@ def compiled_dop853(model, t_eval, rtol, atol, max_nfev=10**8, method="DOP853"):
                                         np.array(breakpoints(model, float(t_eval[-1]))),
                                         np.array(np.broadcast_to(rtol, (n,)), dtype=float),
                                         np.array(np.broadcast_to(atol, (n,)), dtype=float), np.int64(max_nfev),
-                                        np.int64(0), np.zeros(4), trace)
+                                        np.int64(0), np.zeros(5), trace)
     nfev, steps, status, _ = (int(v) for v in counters)
     return out, trace[:steps], nfev, status
 
