@@ -16,30 +16,31 @@ from gearcli.errors import ConfigError
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def seed_arrays():
+def seed_arrays(name: str = "concrete_mixer.toml"):
     from gearcli.config import load_design
     from gearcli.design import compute_design
     from gearcli.scene import build_model
 
-    cfg = load_design(str(ROOT / "configs" / "concrete_mixer.toml"), []).design
+    cfg = load_design(str(ROOT / "configs" / name), []).design
     return build_model(cfg, compute_design(cfg)).arrays
 
 
-def test_seed_is_supported_and_each_unknown_feature_is_named():
+def test_seed_and_excited_scenes_are_supported_and_each_unknown_feature_is_named():
     arrays = seed_arrays()
     assert engine.unsupported(arrays, "DOP853") == []
-    harm = np.zeros_like(arrays.conn_harm)
-    harm[0, 0, 0] = 1e-6  # a 1 um transmission error harmonic
-    cases = {
-        "mesh excitation harmonics": dataclasses.replace(arrays, conn_harm=harm),
-        "input torque ripple": dataclasses.replace(arrays, drive_ripple=np.array([[0.05, 1.0]])),
-        "load fluctuation": dataclasses.replace(arrays, load_fluct=np.array([[0.1, 2.0]])),
-    }
-    for feature, a in cases.items():
-        assert [r for r in engine.unsupported(a, "DOP853") if feature in r], feature
-    param = arrays.conn_param.copy()
-    param[0, -1] = 0.3  # a parameter column no element law of this kernel reads
-    assert any("element parameters" in r for r in engine.unsupported(dataclasses.replace(arrays, conn_param=param),
+    for name in ("concrete_mixer_te.toml", "spur_oscillator_te.toml", "concrete_mixer_drivetrain.toml"):
+        assert engine.unsupported(seed_arrays(name), "DOP853") == [], name  # excitation and springs: compiled
+    ripple = dataclasses.replace(arrays, drive_ripple=np.array([[0.05, 1.0]]), load_fluct=np.array([[0.1, 2.0]]))
+    assert engine.unsupported(ripple, "DOP853") == []
+    kind = arrays.conn_kind.copy()
+    kind[0] = 7  # a connector kind the kernel has no law for
+    assert any("connector kinds [7]" in r for r in engine.unsupported(dataclasses.replace(arrays, conn_kind=kind),
+                                                                       "DOP853"))
+    springs = seed_arrays("concrete_mixer_drivetrain.toml")
+    c = int(np.flatnonzero(springs.conn_kind == 0)[0])
+    param = springs.conn_param.copy()
+    param[c, -1] = 0.3  # a parameter column the spring law does not read
+    assert any("element parameters" in r for r in engine.unsupported(dataclasses.replace(springs, conn_param=param),
                                                                       "DOP853"))
     assert any("method BDF" in r for r in engine.unsupported(arrays, "BDF"))
     assert engine.unsupported(arrays, "Radau") == []
