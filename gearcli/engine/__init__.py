@@ -206,9 +206,7 @@ DEFAULT_LOAD_S = 0.6  # s: numba import + cache load on the 2-core reference mac
 
 def _tiny_model():
     """Two bodies, one mesh and one spring: a model of every argument type, to compile or load once."""
-    from gearcli.model.elements import N_PARAM
-
-    from gearcli.model.elements import mesh
+    from gearcli.model.elements import N_PARAM, mesh
 
     param = np.zeros((2, N_PARAM))
     param[0, :13] = (1.0, 1.0, 1e9, 1.5, 1e3, 1e4, 6e7, 0.0, 0.0, 1.5, 1.0, 20.0, 1e-4)
