@@ -19,6 +19,7 @@ import click
 
 from gearcli import __version__
 from gearcli.errors import (
+    EXIT_BROKEN_PIPE,
     EXIT_FAILED,
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
@@ -39,6 +40,19 @@ def _fail(message: str, code: int) -> None:
     for line in message.splitlines() or [""]:
         click.echo(f"gearcli: {visible(line)}", err=True)
     sys.exit(code)
+
+
+def _broken_pipe() -> None:
+    """The reader of our output went away (``| head -1``): exit 141 quietly, as a SIGPIPE'd program does.
+    stdout is pointed at /dev/null so that the interpreter's last flush cannot complain either."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            fd = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(fd, stream.fileno())
+            os.close(fd)
+        except (OSError, ValueError, AttributeError):
+            pass
+    sys.exit(EXIT_BROKEN_PIPE)
 
 
 def _on_sigterm(signum, frame) -> None:
@@ -66,6 +80,8 @@ def guarded(fn: Callable) -> Callable:
             if debug:
                 raise
             _fail(str(exc), exc.exit_code)
+        except BrokenPipeError:
+            _broken_pipe()
         except KeyboardInterrupt:
             _fail("interrupted", EXIT_INTERRUPTED)
         except Terminated:
@@ -559,7 +575,15 @@ def main() -> None:
     import signal
 
     signal.signal(signal.SIGTERM, _on_sigterm)
-    cli(prog_name="gearcli")
+    try:
+        cli(prog_name="gearcli")
+    except SystemExit as exc:
+        # click's own output (--help, --version) meets a closed pipe: click pacifies stdout and exits 1
+        if exc.code == 1 and type(sys.stdout).__name__.endswith("PacifyFlushWrapper"):
+            _broken_pipe()
+        raise
+    except BrokenPipeError:
+        _broken_pipe()
 
 
 if __name__ == "__main__":  # pragma: no cover

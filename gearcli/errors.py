@@ -7,6 +7,7 @@ EXIT_FAILED = 1  # the run failed: solver failure, infeasible design
 EXIT_USAGE = 2  # bad usage or bad design file
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143  # 128 + SIGTERM, as a shell reports it
+EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE: the reader went away (`gearcli ... | head -1`); nothing printed
 
 
 class GearcliError(Exception):

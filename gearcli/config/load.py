@@ -204,11 +204,22 @@ def _duplicate_line(text: str) -> int | None:
     return lo
 
 
+def _check_window(design: DesignFile, source: str, paths: Sequence[tuple]) -> None:
+    """simulation.window_start_s must fall inside the run (a cross-key check the models cannot state)."""
+    sim = design.simulation
+    if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
+        blamed = any(_overrides.blamed(("simulation", k), paths) for k in ("window_start_s", "duration_s"))
+        raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
+                          key="simulation.window_start_s", source=_overrides.SOURCE if blamed else source)
+
+
 def _validate(data: dict, source: str, paths: Sequence[tuple]) -> DesignFile:
     """The validated model, or ConfigError(s) naming each wrong key (``--set`` as the source of
     errors at or below an overridden key)."""
     try:
-        return DesignFile.model_validate(data)
+        design = DesignFile.model_validate(data)
+        _check_window(design, source, paths)
+        return design
     except ValidationError as exc:
         errors = [
             ConfigError(text, key=format_path(path) or None,
