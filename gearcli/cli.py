@@ -529,8 +529,8 @@ SWEEP_FORMATS = ("csv", "json")
               help="Run the points on a Dask distributed cluster (pip install 'gearcli[distributed]').")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a key of the base scene.")
 @click.option("--format", "fmt", type=click.Choice(SWEEP_FORMATS), help="[default: from -o's suffix, else csv]")
-@click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Write rows to FILE as they finish (.csv or .json); a re-run skips the points done.")
+@outfiles.output_option("Write rows to FILE as they finish (.csv or .json; '-' is stdout); a re-run skips the "
+                        "points done.")
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
               help="Response curves, Campbell diagram, histograms into DIR (pip install 'gearcli[plot]').")
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
@@ -541,9 +541,13 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
     from gearcli.io.sweep_progress import SweepProgress
     from gearcli.sweep.session import prepare, run
 
-    fmt = fmt or ("json" if output and Path(output).suffix.lower() == ".json" else "csv")
+    target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work
+    if plots_dir:
+        _check_sweep_plots_dir(plots_dir, file, target, vary)
+    output = target.shown if target.path is not None else None
     session = prepare(file, overrides, vary=vary, randoms=randoms, samples=samples, sampling=sampling, seed=seed,
-                      direction=direction, jobs=jobs, scheduler=scheduler, output=output, fmt=fmt)
+                      direction=direction, jobs=jobs, scheduler=scheduler,
+                      output=str(target.path) if target.path is not None else None, fmt=target.fmt)
     warn(session.design_warnings)
     with SweepProgress(session.todo + session.done, session.done) as progress:
         rows = run(session, progress.advance)
@@ -554,6 +558,15 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
         _write_sweep_plots(session, rows, plots_dir)
     if failed:
         sys.exit(EXIT_FAILED)
+
+
+def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
+    """As for report: no sweep figure may replace the input or the -o file."""
+    if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
+        raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    names = ["campbell.png", "distributions.png"]
+    names += [f"response_{v.split('=', 1)[0].strip().replace('.', '_')}.png" for v in vary]
+    outfiles.check_not_clobbering([Path(plots_dir) / n for n in names], [file, target.path], "--plots")
 
 
 def _write_sweep_plots(session, rows, plots_dir: str) -> None:
