@@ -181,8 +181,11 @@ def check(run: Integration, choice: Choice, duration_s: float) -> None:
     if run.status == STATUS_BUDGET:
         if run.method in EXPLICIT:
             raise SimulationError(f"{where}: {run.message}. {_stiffness_hint(choice)}")
-        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics or the contacts "
-                              "impact violently — shorten simulation.duration_s or loosen simulation.rtol")
+        freqs = choice.at_operating_point.natural_frequencies_Hz
+        fastest = f" (its fastest mode: {float(freqs[-1]):.3g} Hz)" if freqs.size else ""
+        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics{fastest} or the contacts "
+                              "impact violently — shorten simulation.duration_s, loosen simulation.rtol, or check "
+                              "for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
     if run.status in (STATUS_NONFINITE, STATUS_ENERGY):
         cause = "the solution diverged (non-finite state)" if run.status == STATUS_NONFINITE \
             else "the solution is unstable"
