@@ -102,7 +102,12 @@ def _coupling_rules() -> list[dict]:
             {"anyOf": [_required(*both), {"not": _required("coupling_damping_Nms_rad")}]}]
 
 
-def _hands_rule() -> dict:
+def _all_of(*rules: dict) -> Any:
+    """A model's ``json_schema_extra``: every rule holds."""
+    return {"allOf": list(rules)}
+
+
+def _hands_rule() -> Any:
     """β > 0 needs opposite hands given on pinion and gear (an external helical pair)."""
     def pair(p: str, g: str) -> dict:
         return {"properties": {"pinion": {"properties": {"hand": {"const": p}}, "required": ["hand"]},
@@ -249,12 +254,12 @@ class Input(_Coupled):
     torque_Nmm: TorqueNmm | None = None
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
-    model_config = ConfigDict(json_schema_extra={"allOf": [
+    model_config = ConfigDict(json_schema_extra=_all_of(
         *_exactly_one(("speed_deg_s", "speed_rpm", "speed_rad_s")), *_at_most_one(INPUT_TORQUE_KEYS),
         {"not": {**_required("drive"), "properties": {"drive": {"const": "torque"}},
                  "not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS]}}},
         {"not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS], "properties": {"drive": {"const": "speed"}}}},
-        *_coupling_rules()]})
+        *_coupling_rules()))
 
     @model_validator(mode="after")
     def _one_speed_one_torque(self) -> Input:
@@ -306,7 +311,7 @@ class Load(_Coupled):
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
     power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
-    model_config = ConfigDict(json_schema_extra={"allOf": [*_exactly_one(LOAD_TORQUE_KEYS), *_coupling_rules()]})
+    model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(LOAD_TORQUE_KEYS), *_coupling_rules()))
 
     @model_validator(mode="after")
     def _one_torque(self) -> Load:
@@ -332,7 +337,7 @@ class Target(_Table):
     output_speed_rpm: Annotated[float, Field(ge=1e-06, le=MAX_SPEED_RPM)] | None = None
     output_speed_deg_s: Annotated[float, Field(ge=6e-06, le=MAX_SPEED_RPM * 6)] | None = None
     tolerance_percent: Annotated[float, Field(gt=0, le=100)] = 5.0
-    model_config = ConfigDict(json_schema_extra={"allOf": _exactly_one(("output_speed_rpm", "output_speed_deg_s"))})
+    model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(("output_speed_rpm", "output_speed_deg_s"))))
 
     @model_validator(mode="after")
     def _one_speed(self) -> Target:
