@@ -27,6 +27,7 @@ from gearcli.errors import (
     DesignError,
     GearcliError,
     OutputError,
+    RunTooLong,
     Terminated,
 )
 from gearcli.io import output as outfiles
@@ -296,7 +297,10 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     from gearcli.io import serialize
     from gearcli.simulate import run_simulation
 
-    result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
+    try:
+        result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
+    except RunTooLong as exc:
+        raise RunTooLong(f"{loaded.source}: {exc}") from None
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
@@ -461,8 +465,11 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     warn(design_result.warnings)
     fmt = target.fmt
     with _StderrProgress() as progress:
-        rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
-                           progress=progress)
+        try:
+            rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
+                               progress=progress)
+        except RunTooLong as exc:
+            raise RunTooLong(f"{loaded.source}: {exc}") from None
     if fmt == "json":
         from gearcli.io.report_json import report_dict
 

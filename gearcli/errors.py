@@ -56,6 +56,13 @@ class SimulationError(GearcliError):
     exit_code = EXIT_FAILED
 
 
+class RunTooLong(SimulationError):
+    """A run stopped a few seconds in because its pace projects far over the computing budget: refused
+    like a resource estimate (exit 2), with the duration that would fit."""
+
+    exit_code = EXIT_USAGE
+
+
 class OutputError(GearcliError):
     """An output path that must not be written (a directory, a device, the input ...): nothing is written."""
 

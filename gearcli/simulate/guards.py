@@ -82,17 +82,20 @@ def priced_work_s(nfev: int, njev: int, nlu: int, steps: int, implicit: bool) ->
     return nfev * PRICE_S["eval"] + njev * PRICE_S["jac"] + nlu * PRICE_S["lu"] + steps * step
 
 
-def over_budget(work_s: float, t: float, t_start: float, t_end: float) -> str | None:
+def over_budget(work_s: float, t: float, t_start: float, t_end: float) -> tuple[str, str] | None:
     """Why a run that has used ``work_s`` priced seconds and reached ``t`` of [t_start, t_end] must stop now:
-    its budget is spent, or its pace projects to over :data:`PROJECTION_LIMIT` times the budget; else None."""
+    ``("spent", why)`` when its budget is used up, ``("projected", why)`` when its pace projects to over
+    :data:`PROJECTION_LIMIT` times the budget (the text names the duration that would fit); else None."""
     if work_s > WORK_CAP_S:
-        return f"it used its computing budget of ~{WORK_CAP_S:g} s"
+        return "spent", f"it used its computing budget of ~{WORK_CAP_S:g} s"
     if work_s > PROJECTION_AFTER_S:
         done = (t - t_start) / (t_end - t_start) if t_end > t_start else 1.0
         projected = work_s / done if done > 0 else math.inf
         if projected > PROJECTION_LIMIT * WORK_CAP_S:
-            return (f"at its pace ({100 * done:.2g} % of the run after ~{work_s:.2g} s of computing) it would need "
-                    f"about {_duration(projected)}, over {PROJECTION_LIMIT:g}x the budget of ~{WORK_CAP_S:g} s")
+            fit = t_start + (t - t_start) * WORK_CAP_S / work_s
+            return "projected", (f"at its pace ({100 * done:.2g} % of the run after ~{work_s:.2g} s of computing) it "
+                                 f"would need about {_duration(projected)}, over {PROJECTION_LIMIT:g}x the budget of "
+                                 f"~{WORK_CAP_S:g} s; simulation.duration_s ≤ {fit:.3g} s would fit")
     return None
 
 

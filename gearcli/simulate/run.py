@@ -8,7 +8,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
-from gearcli.errors import ConfigError, SimulationError
+from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import EnergyBalance, SimulationResult, SolverStats
@@ -22,6 +22,7 @@ from gearcli.simulate.solver import (
     STATUS_FAILED,
     STATUS_FINISHED,
     STATUS_NONFINITE,
+    STATUS_PROJECTED,
     Integration,
     integrate,
 )
@@ -178,6 +179,11 @@ def check(run: Integration, choice: Choice, duration_s: float) -> None:
             raise SimulationError(f"{run.method} returned non-finite values; {_stiffness_hint(choice)}")
         return
     where = f"{run.method} stopped at t = {run.t_fail:.4g} s of {duration_s:g} s"
+    if run.status == STATUS_PROJECTED:
+        freqs = choice.at_operating_point.natural_frequencies_Hz
+        fastest = f"; its fastest mode is {float(freqs[-1]):.3g} Hz" if freqs.size else ""
+        raise RunTooLong(f"{where}: {run.message}{fastest}. Shorten simulation.duration_s, loosen simulation.rtol, "
+                         "or check for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
     if run.status == STATUS_BUDGET:
         if run.method in EXPLICIT:
             raise SimulationError(f"{where}: {run.message}. {_stiffness_hint(choice)}")

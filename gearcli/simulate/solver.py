@@ -36,6 +36,7 @@ from gearcli.simulate.methods import METHODS, scipy_solver
 BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
 
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
+STATUS_PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
 
 
 @dataclass(frozen=True)
@@ -156,9 +157,11 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
         if count.steps % BUDGET_CHECK_EVERY == 0:
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
             work = priced_work_s(nfev, njev, nlu, count.steps, implicit)
-            if (why := over_budget(work, float(solver.t), *span)) is not None:
-                return STATUS_BUDGET, (f"{why} ({nfev} right-hand sides, {count.steps} steps, {nlu} LU "
-                                       f"decompositions, {njev} Jacobians)"), done
+            if (verdict := over_budget(work, float(solver.t), *span)) is not None:
+                kind, why = verdict
+                return (STATUS_PROJECTED if kind == "projected" else STATUS_BUDGET), (
+                    f"{why} ({nfev} right-hand sides, {count.steps} steps, {nlu} LU decompositions, "
+                    f"{njev} Jacobians)"), done
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
             report = watch.check(solver.t, solver.y)
             if report.diverging:

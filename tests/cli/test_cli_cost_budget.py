@@ -1,4 +1,4 @@
-"""Issue 11, resource bounds: a valid scene that would run for minutes is stopped early with a clear message.
+"""Issue 11, resource bounds: a valid scene that would run for minutes is refused a few seconds in (exit 2).
 
 The integration budget is priced per counter and per method (gearcli.simulate.guards.PRICE_S): an implicit
 step costs far more than an explicit one, so a cap on evaluations alone let Radau grind for many minutes on
@@ -38,16 +38,20 @@ def test_the_budget_stops_a_spent_run_and_a_hopeless_pace_but_not_a_fair_one():
     projected = after * 1.01 / 0.01
     verdict = guards.over_budget(after * 1.01, 0.01, 0.0, 1.0)
     assert (verdict is not None) == (projected > limit * cap)
+    if verdict is not None:  # the duration that fits: 1 % of the run per after * 1.01 s, so cap / that
+        assert verdict[0] == "projected" and f"≤ {0.01 * cap / (after * 1.01):.3g} s would fit" in verdict[1]
+    assert guards.over_budget(cap * 1.01, 0.99, 0.0, 1.0)[0] == "spent"
     assert guards.over_budget(after * 1.01, 0.5, 0.0, 1.0) is None  # half done: projected ~2 * after
 
 
 def test_a_tiny_load_inertia_on_a_stiff_coupling_is_stopped_early_with_the_fix():
     res = subprocess.run([sys.executable, "-m", "gearcli", "simulate", str(SCENE), *TINY_LOAD, "--format", "json"],
                          capture_output=True, text=True, timeout=120, env={"PYTHONPATH": str(ROOT), "PATH": ""})
-    assert res.returncode == 1, res.stderr
+    assert res.returncode == 2, res.stderr  # refused like a resource estimate, the file named
+    assert res.stderr.startswith(f"gearcli: {SCENE}: Radau stopped at t = "), res.stderr
     assert "Traceback" not in res.stderr and "internal error" not in res.stderr
     msg = res.stderr
-    assert "would need about" in msg and "shorten simulation.duration_s" in msg and "tiny inertia" in msg, msg
+    assert "would need about" in msg and "simulation.duration_s ≤" in msg and "tiny inertia" in msg, msg
     # stopped by the projection, i.e. a few priced seconds in: the counters in the message say so
     steps = int(re.search(r"(\d+) steps", msg).group(1))
     nfev = int(re.search(r"(\d+) right-hand sides", msg).group(1))
