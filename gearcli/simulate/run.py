@@ -11,11 +11,12 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import EnergyBalance, SimulationResult, SolverStats
+from gearcli.results import EnergyBalance, SimulationResult, SolverStats, SteadyState
 from gearcli.simulate import stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.methods import EXPLICIT, IMPLICIT_METHOD
+from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -28,7 +29,7 @@ from gearcli.simulate.solver import (
 )
 
 RAD_TO_DEG = 180.0 / math.pi
-StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), penetration (mm)
+StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), pen. (mm), DTE (um)
 
 
 def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
@@ -48,30 +49,88 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
                           key="simulation.window_start_s")
     return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0)
+                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
+                          steady=sim.steady)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
-                   y0: np.ndarray | None = None, max_nfev: int | None = None) -> SimulationResult:
+                   y0: np.ndarray | None = None, max_nfev: int | None = None,
+                   steady: str = "window") -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
-    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`)."""
+    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`).
+
+    ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
+    the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most
+    until ``duration_s`` (:mod:`gearcli.simulate.periodic`), and the statistics are taken over whole periods."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     choice = choose_method(spec, duration_s, method)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
-    t_eval = np.linspace(0.0, duration_s, steps + 1)
-    run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev)
+    mask_window, steady_state = window, None
+    if steady == "periodic":
+        diags = []  # the fixed window's warning does not apply: the window is found, not set
+        found = integrate_periodic(model, choice.method, rtol, steps=steps, duration_s=duration_s,
+                                   window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
+                                   fastest_rad_s=_fastest_rad_s(choice))
+        if isinstance(found, Integration):
+            check(found, choice, duration_s)
+            raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
+        run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
+        diags += steady_warnings(steady_state, found.period)
+    else:
+        t_eval = np.linspace(0.0, duration_s, steps + 1)
+        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev)
+        steady_state = window_steady(model)
     check(run, choice, duration_s)
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
     diags += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
-    result = _summarise(model, s, run, choice, window, energy, diags, want_series)
+    result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state)
     _require_finite(result)
     return result
+
+
+def _residual_text(residual: float | None) -> str:
+    return " (no period fits before simulation.duration_s)" if residual is None \
+        else f" (residual {residual:.3g} x the tolerance)"
+
+
+def _fastest_rad_s(choice: Choice) -> float:
+    freqs = choice.at_operating_point.natural_frequencies_Hz
+    return 2.0 * math.pi * float(np.max(freqs)) if np.size(freqs) else 0.0
+
+
+def window_steady(model: TorsionalModel) -> SteadyState:
+    """``steady = "window"``: the fixed window; the excitation period for information."""
+    period = scene_period(model.layout)
+    return SteadyState(mode="window", period_s=period.period_s, periods_to_converge=None, periodicity=None,
+                       converged=None, residual=None, period_source=period.source)
+
+
+def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnostic]:
+    """A response that did not repeat, or repeats only after k periods; a period that is not common."""
+    out = []
+    if not period.exact:
+        out.append(dg.warning(dg.PERIOD_NOT_COMMON, f"steady = \"periodic\": the excitations have no usable common "
+                              f"period; the period used is {period.source}", period_s=period.period_s))
+    if not steady.converged:
+        out.append(dg.warning(dg.NOT_PERIODIC, f"steady = \"periodic\": the response did not repeat over "
+                              f"{steady.periods_to_converge} excitation periods of {steady.period_s:.4g} s, nor after "
+                              f"2 .. {MAX_SUBHARMONIC} of them{_residual_text(steady.residual)}: "
+                              "not periodic (chaotic or quasi-periodic) or still settling — lengthen "
+                              f"simulation.duration_s to search longer (cap {MAX_PERIODS} periods); the statistics "
+                              f"are over the last {steady.window_periods} periods", periods=steady.periods_to_converge,
+                              residual=steady.residual))
+    elif steady.periodicity != "period-1":
+        out.append(dg.warning(dg.SUBHARMONIC, f"steady = \"periodic\": the response repeats only every "
+                              f"{steady.window_periods} excitation periods ({steady.periodicity}, a subharmonic "
+                              f"response); the statistics are over those {steady.window_periods} periods",
+                              periodicity=steady.periodicity))
+    return out
 
 
 def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[StageSeries]]:
@@ -85,9 +144,10 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
     for k, ms in enumerate(s.meshes):
         ft, fr, fa = tooth_forces(lay, k, ms.line_force_N)
         pen = ms.penetration_m * 1e3
+        dte = ms.dte_m * 1e6
         ch.update({f"stage{k + 1}_tangential_N": ft, f"stage{k + 1}_radial_N": fr,
-                   f"stage{k + 1}_axial_N": fa, f"stage{k + 1}_penetration_mm": pen})
-        per_stage.append((ft, fr, fa, pen))
+                   f"stage{k + 1}_axial_N": fa, f"stage{k + 1}_penetration_mm": pen, f"stage{k + 1}_dte_um": dte})
+        per_stage.append((ft, fr, fa, pen, dte))
     for shaft, c in sorted(lay.shaft_conn.items()):
         ch[f"shaft{shaft + 1}_twist_deg"] = s.connectors[c].deflection * RAD_TO_DEG
     if lay.motor_body is not None:
@@ -101,12 +161,17 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
     return ch, per_stage
 
 
-def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, window, energy,
-               diags: list[Diagnostic], want_series: bool) -> SimulationResult:
+def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
+               diags: list[Diagnostic], want_series: bool, steady: SteadyState) -> SimulationResult:
+    """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
+    the window without its closing sample, which starts the next period)."""
     spec = model.spec
-    mask = stats.window_mask(s.time_s, window)
+    window, mask_window = windows
+    mask = stats.window_mask(s.time_s, mask_window)
+    periodic = steady.mode == "periodic"
     channels, per_stage = _channels(model, s)
-    stages = tuple(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k], m.static_tangential_N)
+    stages = tuple(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k][:4], m.static_tangential_N,
+                                        per_stage[k][4], periodic=periodic)
                    for k, m in enumerate(spec.meshes))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
@@ -132,7 +197,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         input_speed_deg_s=w_in * RAD_TO_DEG, stages=stages, solver=solver, energy=balance,
         warnings=dg.messages(diags), diagnostics=tuple(diags),
         natural_frequencies_Hz=choice.natural_frequencies_Hz, natural_frequencies_boundary=choice.boundary,
-        final_state=run.y[:, -1].copy(),
+        final_state=run.y[:, -1].copy(), steady=steady,
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},

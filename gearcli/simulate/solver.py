@@ -64,12 +64,12 @@ def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end
     return scipy_solver(method)(model.rhs, t0, y0, t_end, rtol=rtol, atol=atol, **extra)
 
 
-def breakpoints(model: TorsionalModel, t_end: float) -> list[float]:
-    """Segment ends: the ramp ends of the drive and the load inside the run, then ``t_end``."""
+def breakpoints(model: TorsionalModel, t_end: float, t0: float = 0.0) -> list[float]:
+    """Segment ends: the ramp ends of the drive and the load inside ``(t0, t_end)``, then ``t_end``."""
     spec = model.spec
     drive_value = spec.drive.speed_rad_s if spec.drive.kind == "speed" else spec.drive.torque_Nm
     kinks = {r for r, v in ((spec.drive.ramp_s, drive_value), (spec.load.ramp_s, spec.load.torque_Nm))
-             if v != 0.0 and 0.0 < r < t_end}
+             if v != 0.0 and t0 < r < t_end}
     return sorted(kinks) + [t_end]
 
 
@@ -103,21 +103,26 @@ class _Counters:
 
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
-              y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True) -> Integration:
-    """Integrate from t = 0 to ``t_eval[-1]`` and sample at ``t_eval`` (ascending, starting at 0).
+              y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
+              t0: float = 0.0) -> Integration:
+    """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
+    (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
+    drive's and the load's profiles are functions of the absolute time.
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error.
     """
+    if t0 != 0.0 and y0 is None:
+        raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
-    watch = energy_watch(model, y) if watch_energy else None
+    watch = energy_watch(model, y, t0) if watch_energy else None
     atol = tolerances(model, rtol, watch)
     out = np.full((y.size, t_eval.size), np.nan)
-    out[:, t_eval <= 0.0] = y[:, None]
-    done = int(np.searchsorted(t_eval, 0.0, side="right"))
+    out[:, t_eval <= t0] = y[:, None]
+    done = int(np.searchsorted(t_eval, t0, side="right"))
     count = _Counters()
-    t0, t, status, message = time.perf_counter(), 0.0, STATUS_FINISHED, "reached the end of the run"
-    for t_end in breakpoints(model, float(t_eval[-1])):
+    start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
+    for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
                                          (0.0, float(t_eval[-1])), METHODS[method].implicit)
@@ -125,7 +130,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
             break
-    wall = time.perf_counter() - t0
+    wall = time.perf_counter() - start
     return Integration(t_eval, out, method, rtol, atol, count.nfev, count.njev, count.nlu, count.steps, wall, status,
                        message, t)
 

@@ -43,13 +43,20 @@ PLACES = {"Material": [("materials", "steel")], "Contact": [("contact",)], "Inpu
           "Load": [("load",)], "Target": [("target",)], "Simulation": [("simulation",)],
           "Stage": [("stage", 0), ("stage", 2)], "Gear": [("stage", 0, "pinion"), ("stage", 2, "gear")],
           "ContactOverride": [("stage", 1, "mesh")], "ShaftSpring": [("stage", 1, "shaft")],
-          "BasicRack": [("stage", 0, "basic_rack")]}
+          "BasicRack": [("stage", 0, "basic_rack")], "Ripple": [("input", "torque_ripple", 0)],
+          "Fluctuation": [("load", "fluctuation", 0)]}
+#: A complete entry for the array-of-tables keys, so that an edge value in one of its keys is what is tested;
+#: a torque ripple needs a torque drive (the seed's input torque is ~240 N m: 5310 N m / 22.27).
+ENTRIES = {"torque_ripple": {"amplitude_percent": 5.0, "order": 1.0},
+           "fluctuation": {"amplitude_percent": 5.0, "frequency_Hz": 10.0}}
 NUMBER_RE = re.compile(r"(?i)(?<![\w.])[-+]?(nan|inf|infinity)(?![\w])")
 
 
 def _number_schema(prop: dict) -> dict | None:
     for alt in prop.get("anyOf", [prop]):
         if alt.get("type") in ("number", "integer"):
+            return alt
+        if alt.get("type") == "array" and alt.get("items", {}).get("type") in ("number", "integer"):
             return alt
     return None
 
@@ -70,7 +77,12 @@ def numeric_keys() -> list[tuple[tuple, str, dict]]:
 
 
 def edge_values(kind: str, bounds: dict) -> list:
-    """Values below, at and above each bound, in a "not tiny" gap, and the classics of a careless file."""
+    """Values below, at and above each bound, in a "not tiny" gap, and the classics of a careless file.
+    An array of numbers gets each edge value of its items alone, none, and one entry too many."""
+    if kind == "array":
+        item = bounds["items"]
+        too_many = (bounds.get("maxItems") or 1000) + 1
+        return [[v] for v in edge_values(item["type"], item)] + [[], [1.0] * too_many, 1.0]
     lo = bounds.get("minimum", bounds.get("exclusiveMinimum"))
     hi = bounds.get("maximum", bounds.get("exclusiveMaximum"))
     vals: list = [0, -1, 10**20, 2**63 - 1, -(2**63), "12", True, [1.0], {"x": 1.0}, dt.date(1979, 5, 27)]
@@ -97,8 +109,12 @@ def _set(doc: dict, path: tuple, value) -> None:
     for part in path[:-1]:
         if isinstance(node, list):
             node = node[part]
+        elif part in ENTRIES:
+            node = node.setdefault(part, [dict(ENTRIES[part])])
         else:
             node = node.setdefault(part, {})
+    if "torque_ripple" in path:
+        doc["input"].update(drive="torque", torque_Nm=240.0)
     key = path[-1]
     for table, group in EXCLUSIVE:
         if path[0] == table and key in group:
