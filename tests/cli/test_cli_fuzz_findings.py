@@ -50,3 +50,16 @@ def test_a_window_after_the_end_of_the_run_is_refused_naming_the_file_or_set(tmp
     f.write_text(SEED.read_text() + "window_start_s = 0.5\n")  # [simulation] is the seed's last table
     res = run("design", f)
     assert_clean_exit_2(res, f"gearcli: {f}: simulation.window_start_s", "must be below")
+
+
+def test_a_subnormal_torque_ripple_order_is_refused_naming_the_key(tmp_path):
+    # was "internal error: ValueError: cannot convert NaN to integer ratio" after overflow warnings
+    f = tmp_path / "ripple.toml"
+    text = SEED.read_text().replace("[input]                        # 600 rpm motor, STEP(t, 0, 0, 0.18, 3600 deg/s)\n",
+                                    "[input]\ndrive = \"torque\"\ntorque_Nm = 240\n"
+                                    "torque_ripple = [{ amplitude_percent = 5, order = 5e-324 }]\n")
+    assert "torque_ripple" in text
+    f.write_text(text)
+    for cmd in ("design", "simulate"):
+        res = run(cmd, f, "--set", "simulation.duration_s=0.02", "--set", "simulation.steps=20")
+        assert_clean_exit_2(res, "input.torque_ripple[0].order", "must be ≥ 0.001")
