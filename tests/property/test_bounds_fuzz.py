@@ -4,7 +4,7 @@ Every number key the JSON Schema lists (it is generated from the validation mode
 and above each of its bounds, inside its "not tiny" gap, subnormals, 1e15, nan/inf, huge integers and
 values of the wrong type; hypothesis combines up to three such edits of the seed reducer into one TOML
 document. Through ``gearcli design`` and ``gearcli modes`` (and ``gearcli simulate`` on a short, coarse run
-for a cheaper subset) the outcome must be exit 0 or exit 2 with a clean message, never an internal error
+for a cheaper subset; and every key alone at every edge through ``design``) the outcome must be exit 0 or exit 2 with a clean message, never an internal error
 (exit 1), and no output may contain NaN or infinity. Bugs it found are pinned, one regression test each,
 in tests/cli/test_cli_fuzz_findings.py.
 """
@@ -203,3 +203,10 @@ def test_simulate_short_runs_exit_0_or_2_and_never_print_nan(data):
     value = data.draw(st.sampled_from(edge_values(kind, bounds)))
     changes = [*(e for e in SHORT_RUN if e[0] != path), (path, value)]
     check_run(["simulate"], document(changes), data.draw(st.sampled_from(["json", "csv"])))
+
+
+def test_every_numeric_key_at_every_edge_through_design():
+    """The exhaustive pass behind the random one: each key alone at each of its edge values (~2,800 runs)."""
+    for path, kind, bounds in numeric_keys():
+        for value in edge_values(kind, bounds):
+            check_run(["design"], document([(path, value)]), "json")
