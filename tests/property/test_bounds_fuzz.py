@@ -1,12 +1,13 @@
 """Fuzzing the bounds: generated design files with values at the edges of every numeric key of the schema.
 
-Every number key the JSON Schema lists (it is generated from the validation models) gets values below, at
-and above each of its bounds, inside its "not tiny" gap, subnormals, 1e15, nan/inf, huge integers and
-values of the wrong type; hypothesis combines up to three such edits of the seed reducer into one TOML
-document. Through ``gearcli design`` and ``gearcli modes`` (and ``gearcli simulate`` on a short, coarse run
-for a cheaper subset; and every key alone at every edge through ``design``) the outcome must be exit 0 or exit 2 with a clean message, never an internal error
-(exit 1), and no output may contain NaN or infinity. Bugs it found are pinned, one regression test each,
-in tests/cli/test_cli_fuzz_findings.py.
+Every number key the JSON Schema lists (it is generated from the validation models), and every array of
+numbers, gets values below, at and above each of its bounds, inside its "not tiny" gap, subnormals, 1e15,
+nan/inf, huge integers and values of the wrong type; hypothesis combines up to three such edits of the seed
+reducer into one TOML document, through ``gearcli design`` and ``gearcli modes``, and one edit at a time
+through ``gearcli simulate`` on a short, coarse run; an exhaustive pass sends every key alone at every edge
+through ``design``. The outcome must be exit 0 or exit 2 with a clean message naming the file, never an
+internal error (exit 1), and no output may contain NaN or infinity. Bugs it found are pinned, one
+regression test each, in tests/cli/test_cli_fuzz_findings.py.
 """
 
 from __future__ import annotations
