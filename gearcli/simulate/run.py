@@ -8,7 +8,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
-from gearcli.errors import ConfigError, SimulationError
+from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import EnergyBalance, SimulationResult, SolverStats, SteadyState
@@ -23,6 +23,7 @@ from gearcli.simulate.solver import (
     STATUS_FAILED,
     STATUS_FINISHED,
     STATUS_NONFINITE,
+    STATUS_PROJECTED,
     Integration,
     integrate,
 )
@@ -246,11 +247,19 @@ def check(run: Integration, choice: Choice, duration_s: float) -> None:
             raise SimulationError(f"{run.method} returned non-finite values; {_stiffness_hint(choice)}")
         return
     where = f"{run.method} stopped at t = {run.t_fail:.4g} s of {duration_s:g} s"
+    if run.status == STATUS_PROJECTED:
+        freqs = choice.at_operating_point.natural_frequencies_Hz
+        fastest = f"; its fastest mode is {float(freqs[-1]):.3g} Hz" if freqs.size else ""
+        raise RunTooLong(f"{where}: {run.message}{fastest}. Shorten simulation.duration_s, loosen simulation.rtol, "
+                         "or check for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
     if run.status == STATUS_BUDGET:
         if run.method in EXPLICIT:
             raise SimulationError(f"{where}: {run.message}. {_stiffness_hint(choice)}")
-        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics or the contacts "
-                              "impact violently — shorten simulation.duration_s or loosen simulation.rtol")
+        freqs = choice.at_operating_point.natural_frequencies_Hz
+        fastest = f" (its fastest mode: {float(freqs[-1]):.3g} Hz)" if freqs.size else ""
+        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics{fastest} or the contacts "
+                              "impact violently — shorten simulation.duration_s, loosen simulation.rtol, or check "
+                              "for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
     if run.status in (STATUS_NONFINITE, STATUS_ENERGY):
         cause = "the solution diverged (non-finite state)" if run.status == STATUS_NONFINITE \
             else "the solution is unstable"

@@ -30,10 +30,13 @@ from scipy.integrate import OdeSolver
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.simulate.guards import CAP as MAX_NFEV
-from gearcli.simulate.guards import EnergyWatch, energy_watch
+from gearcli.simulate.guards import EnergyWatch, energy_watch, over_budget, priced_work_s
 from gearcli.simulate.methods import METHODS, scipy_solver
 
+BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
+
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
+STATUS_PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
 
 
 @dataclass(frozen=True)
@@ -121,7 +124,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
-        status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch)
+        status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
+                                         (0.0, float(t_eval[-1])), METHODS[method].implicit)
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
@@ -132,7 +136,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
 
 
 def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, count: _Counters, max_nfev: int,
-             watch) -> tuple[int, str, int]:
+             watch, span: tuple[float, float] = (0.0, 0.0), implicit: bool = False) -> tuple[int, str, int]:
     """Step ``solver`` to its end, filling ``out`` at the samples passed; (status, message, samples done)."""
     n = out.shape[0]
     while solver.status == "running":
@@ -152,8 +156,17 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
         if upto > done:
             out[:, done:upto] = solver.dense_output()(t_eval[done:upto]).reshape(n, -1)
             done = upto
-        if count.nfev + solver.nfev > max_nfev:
+        nfev = count.nfev + solver.nfev
+        if nfev > max_nfev:
             return STATUS_BUDGET, f"more than {max_nfev} right-hand-side evaluations", done
+        if count.steps % BUDGET_CHECK_EVERY == 0:
+            njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
+            work = priced_work_s(nfev, njev, nlu, count.steps, implicit)
+            if (verdict := over_budget(work, float(solver.t), *span)) is not None:
+                kind, why = verdict
+                return (STATUS_PROJECTED if kind == "projected" else STATUS_BUDGET), (
+                    f"{why} ({nfev} right-hand sides, {count.steps} steps, {nlu} LU decompositions, "
+                    f"{njev} Jacobians)"), done
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
             report = watch.check(solver.t, solver.y)
             if report.diverging:

@@ -58,7 +58,11 @@ def test_window_starts_after_the_slower_ramp_plus_a_fifth_of_the_rest():
 
 
 def test_window_start_beyond_the_run_is_a_config_error():
-    cfg, design = seed(["simulation.window_start_s=0.6"])
+    with pytest.raises(ConfigError) as err:  # the loader refuses it, naming --set
+        seed(["simulation.window_start_s=0.6"])
+    assert err.value.key == "simulation.window_start_s" and err.value.exit_code == 2 and err.value.source == "--set"
+    cfg, design = seed()  # and so does the run, for a design built without the loader
+    cfg = cfg.model_copy(update={"simulation": cfg.simulation.model_copy(update={"window_start_s": 0.6})})
     with pytest.raises(ConfigError) as err:
         run_simulation(cfg, design)
     assert err.value.key == "simulation.window_start_s" and err.value.exit_code == 2
