@@ -24,6 +24,8 @@ EFFICIENCY_NOT_MODELLED = "efficiency_not_modelled"
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"
+STATISTICS_UNRESOLVED = "statistics_unresolved"
+DESIGN = "design"  # a warning of the design the simulation ran on
 OTHER = "other"
 
 

@@ -318,6 +318,7 @@ class Simulation(_Table):
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
     window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
+    error_estimate: bool = True
 
 
 class DesignFile(_Table):

@@ -136,9 +136,9 @@ class EnergyWatch:
                 f"in ({report.created_J / report.scale_J:.2g}x the scene's energy scale of {report.scale_J:.3g} J)")
 
 
-def energy_watch(model: TorsionalModel, y0: np.ndarray) -> EnergyWatch | None:
-    """An energy watch for the run, or None when the energy scale is degenerate (nothing moves)."""
-    watch = EnergyWatch(model, y0)
+def energy_watch(model: TorsionalModel, y0: np.ndarray, t0: float = 0.0) -> EnergyWatch | None:
+    """An energy watch for the run from ``(t0, y0)``, or None when the energy scale is degenerate."""
+    watch = EnergyWatch(model, y0, t0)
     return watch if math.isfinite(watch.scale) and watch.scale > 0 else None
 
 

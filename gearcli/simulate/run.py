@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -11,8 +12,8 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import EnergyBalance, SimulationResult, SolverStats
-from gearcli.simulate import stats
+from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats
+from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.methods import EXPLICIT, IMPLICIT_METHOD
@@ -32,31 +33,38 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r,
 
 def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
-                   y0: np.ndarray | None = None) -> SimulationResult:
+                   y0: np.ndarray | None = None, error_estimate: bool | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
     (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
-    :meth:`gearcli.model.TorsionalModel.continue_state`). Raises SimulationError on failure, never
-    returns NaN."""
+    :meth:`gearcli.model.TorsionalModel.continue_state`); ``error_estimate`` (default
+    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The
+    design's own warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     from gearcli.scene import spec_from_design
 
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
         raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
                           key="simulation.window_start_s")
+    estimate = sim.error_estimate if error_estimate is None else error_estimate
+    design_diags = [dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
     return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0)
+                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
+                          error_estimate=estimate, prior_diagnostics=design_diags)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
-                   y0: np.ndarray | None = None, max_nfev: int | None = None) -> SimulationResult:
+                   y0: np.ndarray | None = None, max_nfev: int | None = None, error_estimate: bool = True,
+                   prior_diagnostics: list[Diagnostic] | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
-    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`)."""
+    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
+    ``error_estimate`` runs the check pass (:mod:`gearcli.simulate.estimate`); ``prior_diagnostics`` (the design's warnings) lead the result's warnings."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
+    diags = list(prior_diagnostics or []) + diags
     choice = choose_method(spec, duration_s, method)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
@@ -68,9 +76,20 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     energy = model.energy(s, run.y)
     diags += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
-    result = _summarise(model, s, run, choice, window, energy, diags, want_series)
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev) if error_estimate else None
+    result = _summarise(model, s, run, choice, window, energy, diags, want_series, ref)
     _require_finite(result)
     return result
+
+
+def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness, ...]:
+    """The contact law each mesh used, in the design file's units: K (N/mm^e) and its slope at the static
+    load (the linearisation at full load; N/mm), with the static approach (mm)."""
+    lin = choice.at_full_load
+    return tuple(MeshStiffness(law_N_mm_e=m.stiffness_N_m_e / 1000.0**m.exponent, exponent=m.exponent,
+                               linearised_N_mm=float(lin.stiffness_N_m[k]) / 1000.0,
+                               static_approach_mm=float(lin.penetration_m[k]) * 1000.0)
+                 for k, m in enumerate(model.spec.meshes))
 
 
 def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[StageSeries]]:
@@ -101,11 +120,15 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
 
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, window, energy,
-               diags: list[Diagnostic], want_series: bool) -> SimulationResult:
+               diags: list[Diagnostic], want_series: bool, ref: estimate.CheckPass | None) -> SimulationResult:
     spec = model.spec
     mask = stats.window_mask(s.time_s, window)
     channels, per_stage = _channels(model, s)
-    stages = tuple(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k], m.static_tangential_N)
+    errors = ref.errors if ref is not None else ()
+    stiffness = mesh_stiffness(model, choice)
+    stages = tuple(replace(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k], m.static_tangential_N),
+                           error_estimate=errors[k] if k < len(errors) else None,
+                           mesh_stiffness=stiffness[k] if k < len(stiffness) else None)
                    for k, m in enumerate(spec.meshes))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
@@ -118,11 +141,14 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
+    if ref is not None:
+        diags += estimate.warnings(ref, run.method)
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
         nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
-        energy_residual=energy.residual_relative, status=run.status, message=run.message)
+        energy_residual=energy.residual_relative, status=run.status, message=run.message,
+        check_pass=ref.summary() if ref is not None else None)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(

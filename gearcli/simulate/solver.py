@@ -61,12 +61,12 @@ def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end
     return scipy_solver(method)(model.rhs, t0, y0, t_end, rtol=rtol, atol=atol, **extra)
 
 
-def breakpoints(model: TorsionalModel, t_end: float) -> list[float]:
-    """Segment ends: the ramp ends of the drive and the load inside the run, then ``t_end``."""
+def breakpoints(model: TorsionalModel, t_end: float, t0: float = 0.0) -> list[float]:
+    """Segment ends: the ramp ends of the drive and the load inside ``(t0, t_end)``, then ``t_end``."""
     spec = model.spec
     drive_value = spec.drive.speed_rad_s if spec.drive.kind == "speed" else spec.drive.torque_Nm
     kinks = {r for r, v in ((spec.drive.ramp_s, drive_value), (spec.load.ramp_s, spec.load.torque_Nm))
-             if v != 0.0 and 0.0 < r < t_end}
+             if v != 0.0 and t0 < r < t_end}
     return sorted(kinks) + [t_end]
 
 
@@ -100,28 +100,33 @@ class _Counters:
 
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
-              y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True) -> Integration:
-    """Integrate from t = 0 to ``t_eval[-1]`` and sample at ``t_eval`` (ascending, starting at 0).
+              y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
+              t0: float = 0.0, atol: np.ndarray | None = None) -> Integration:
+    """Integrate from ``t0`` (default 0) to ``t_eval[-1]`` and sample at ``t_eval`` (ascending, from
+    ``t0``). ``atol`` overrides the per-state absolute tolerances of :func:`tolerances` (an array of the
+    state's size, or a scalar); ``rtol`` is a scalar for every method.
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error.
     """
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
-    watch = energy_watch(model, y) if watch_energy else None
-    atol = tolerances(model, rtol, watch)
+    watch = energy_watch(model, y, t0) if watch_energy else None
+    if atol is None:
+        atol = tolerances(model, rtol, watch)
+    atol = np.broadcast_to(np.asarray(atol, dtype=float), y.shape).copy()
     out = np.full((y.size, t_eval.size), np.nan)
-    out[:, t_eval <= 0.0] = y[:, None]
-    done = int(np.searchsorted(t_eval, 0.0, side="right"))
+    out[:, t_eval <= t0] = y[:, None]
+    done = int(np.searchsorted(t_eval, t0, side="right"))
     count = _Counters()
-    t0, t, status, message = time.perf_counter(), 0.0, STATUS_FINISHED, "reached the end of the run"
-    for t_end in breakpoints(model, float(t_eval[-1])):
+    wall0, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
+    for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch)
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
             break
-    wall = time.perf_counter() - t0
+    wall = time.perf_counter() - wall0
     return Integration(t_eval, out, method, rtol, atol, count.nfev, count.njev, count.nlu, count.steps, wall, status,
                        message, t)
 

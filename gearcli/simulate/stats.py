@@ -54,7 +54,7 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
     """Window statistics and the run's peak |F_t| (over the output samples) of stage ``k`` (0-based)."""
     i = int(np.argmax(np.abs(ft)))
     peak = float(abs(ft[i]))
-    factor = peak / abs(static_tangential_N) if static_tangential_N != 0 else 0.0
+    factor = peak / abs(static_tangential_N) if static_tangential_N != 0 else None
     return StageDynamics(k + 1, channel_stats(ft, mask), channel_stats(fr, mask), channel_stats(fa, mask),
                          channel_stats(pen_mm, mask), float(static_tangential_N), peak, float(t[i]), factor)
 
