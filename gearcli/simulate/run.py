@@ -77,6 +77,10 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     diags += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev) if error_estimate else None
+    mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
+    if ref is not None and mode is not None:
+        ref, mode_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
+        diags += mode_diags
     result = _summarise(model, s, run, choice, window, energy, diags, want_series, ref)
     _require_finite(result)
     return result
