@@ -158,7 +158,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         rtol, scale = run.rtol * LOOSE_FACTOR, LOOSE_SAFETY
     t0 = time.perf_counter()
     fine = integrate(model, t_eval[i_s:], run.method, rtol, y0=run.y[:, i_s], t0=float(t_eval[i_s]),
-                     max_nfev=max_nfev)
+                     max_nfev=max_nfev, watch_energy=False)  # the run itself was watched
     nfev, njev, steps, status, message = fine.nfev, fine.njev, fine.steps, fine.status, fine.message
     errors: tuple[StatisticsError, ...] = ()
     if status == STATUS_FINISHED:
