@@ -87,13 +87,16 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
 
 def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness, ...]:
-    """The contact law each mesh used, in the design file's units: K (N/mm^e) and its slope at the static
-    load (the linearisation at full load; N/mm), with the static approach (mm)."""
-    lin = choice.at_full_load
-    return tuple(MeshStiffness(law_N_mm_e=m.stiffness_N_m_e / 1000.0**m.exponent, exponent=m.exponent,
-                               linearised_N_mm=float(lin.stiffness_N_m[k]) / 1000.0,
-                               static_approach_mm=float(lin.penetration_m[k]) * 1000.0)
-                 for k, m in enumerate(model.spec.meshes))
+    """The contact law each mesh used, in the design file's units: K (N/mm^e), and its slope along the normal
+    at the static approach h0 of the linearisation at full load, e K h0^(e-1) (N/mm; the design's
+    ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm)."""
+    out = []
+    for k, m in enumerate(model.spec.meshes):
+        K = m.stiffness_N_m_e / 1000.0**m.exponent
+        h0 = float(choice.at_full_load.penetration_m[k]) * 1000.0
+        slope = m.exponent * K * h0 ** (m.exponent - 1.0) if h0 > 0 or m.exponent == 1.0 else 0.0
+        out.append(MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0))
+    return tuple(out)
 
 
 def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[StageSeries]]:
