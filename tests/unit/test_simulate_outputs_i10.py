@@ -72,7 +72,7 @@ def test_dynamic_factor_is_null_without_static_force():
     sim = simulate_model(TorsionalModel(spec), duration_s=0.2, steps=200, method="DOP853", error_estimate=False)
     assert sim.stages[0].dynamic_factor is None
     assert simulation_dict(sim)["summary"]["stages"][0]["dynamic_factor"] is None
-    from gearcli.io.tables import simulation_tables, render
+    from gearcli.io.tables import render, simulation_tables
     text = render(simulation_tables(sim), width=160)
     assert "dynamic factor" in text and "—" in text.split("dynamic factor")[1].splitlines()[0]
 
