@@ -157,14 +157,15 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     else:
         rtol, scale = run.rtol * LOOSE_FACTOR, LOOSE_SAFETY
     t0 = time.perf_counter()
-    fine = integrate(model, t_eval[i_s:], run.method, rtol, y0=run.y[:, i_s], t0=float(t_eval[i_s]),
+    tw = t_eval[i_w:]
+    t_check = tw if i_s == i_w else np.concatenate(([t_eval[i_s]], tw))  # the start, then the window only
+    fine = integrate(model, t_check, run.method, rtol, y0=run.y[:, i_s], t0=float(t_eval[i_s]),
                      max_nfev=max_nfev, watch_energy=False)  # the run itself was watched
     nfev, njev, steps, status, message = fine.nfev, fine.njev, fine.steps, fine.status, fine.message
     errors: tuple[StatisticsError, ...] = ()
     if status == STATUS_FINISHED:
-        tw = t_eval[i_w:]
         s_def = sample(lay, tw, run.y[:, i_w:])
-        s_fine = sample(lay, tw, fine.y[:, i_w - i_s:])
+        s_fine = sample(lay, tw, fine.y[:, t_check.size - tw.size:])
         out = []
         for k, m in enumerate(model.spec.meshes):
             ft_d = tooth_forces(lay, k, s_def.meshes[k].line_force_N)[0]
