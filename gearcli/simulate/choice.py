@@ -97,3 +97,31 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str) -> Choice:
         reason = f"{summary} > {STIFFNESS_LIMIT:.0e}: implicit {chosen} with the analytic Jacobian"
     return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay)
 
+
+
+def unit_costs(spec: ModelSpec, repeat: int = 200) -> dict[str, float]:
+    """Microseconds per right-hand side, per Jacobian and per LU pair (Radau factors one real and one
+    complex matrix of the state's size) of the scene, measured (benchmarks/bench_auto.py)."""
+    import time
+
+    import scipy.linalg
+
+    from gearcli.model import TorsionalModel
+
+    model = TorsionalModel(spec)
+    y = model.initial_state()
+    y = y + 1e-9 * np.arange(y.size)
+    jac = np.asarray(model.jac(0.1, y), dtype=float)
+
+    def per_call(fn) -> float:
+        fn()
+        t0 = time.perf_counter()
+        for _ in range(repeat):
+            fn()
+        return (time.perf_counter() - t0) / repeat * 1e6
+
+    eye = np.eye(y.size)
+    return {"rhs": per_call(lambda: model.rhs(0.1, y)), "jac": per_call(lambda: model.jac(0.1, y)),
+            "lu_pair": per_call(lambda: (scipy.linalg.lu_factor(eye - 0.1 * jac, check_finite=False),
+                                         scipy.linalg.lu_factor((1 + 1j) * eye - 0.1 * jac, check_finite=False))),
+            "n_states": float(y.size)}
