@@ -58,17 +58,22 @@ def row(name: str, path: Path, overrides: list[str]) -> dict:
     cfg = load_design(str(path), overrides).design
     design = compute_design(cfg)
     spec = spec_from_design(cfg, design)
-    choice = choose_method(spec, cfg.simulation.duration_s, "auto")
+    choice = choose_method(spec, cfg.simulation.duration_s, "auto", cfg.simulation.rtol)
     d, r = timed(cfg, design, "DOP853"), timed(cfg, design, "Radau")
     walls = {m: x["wall_s"] for m, x in (("DOP853", d), ("Radau", r)) if "wall_s" in x}
     best = min(walls.values()) if walls else float("nan")
     auto = walls.get(choice.method, float("inf"))
-    return {"scene": name, "indicator": choice.indicator, "auto": choice.method, "reason": choice.reason,
+    return {"scene": name, "indicator": choice.indicator, "vibration_rad": choice.vibration_rad,
+            "predicted": list(choice.predicted_evals), "auto": choice.method, "reason": choice.reason,
             "DOP853": d, "Radau": r, "ratio": auto / best, "unit_costs_us": unit_costs(spec)}
 
 
+def us_per_eval(x: dict) -> str:
+    return f"{1e6 * x['wall_s'] / x['nfev']:.0f}" if "wall_s" in x else "–"
+
+
 def cell(x: dict) -> str:
-    return f"budget/failed" if "wall_s" not in x else f"{x['wall_s']:.3f} s, {x['nfev']} fev"
+    return "budget/failed" if "wall_s" not in x else f"{x['wall_s']:.3f} s, {x['nfev']} fev"
 
 
 def main() -> None:
@@ -77,15 +82,17 @@ def main() -> None:
     ap.add_argument("--json", default=None)
     args = ap.parse_args()
     rows = []
-    print("| scene | max\\|λ\\|·T | DOP853 | Radau | auto | auto / better |")
-    print("|---|---|---|---|---|---|")
+    print("| scene | max\\|λ\\|·T | P [rad] | predicted DOP853 / Radau | DOP853 | Radau | µs/eval D / R "
+          "| auto | auto / better |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for name, path, ov in scenes():
         if args.only and not any(o in name for o in args.only):
             continue
         r = row(name, path, ov)
         rows.append(r)
-        print(f"| {name} | {r['indicator']:.3g} | {cell(r['DOP853'])} | {cell(r['Radau'])} | {r['auto']} "
-              f"| {r['ratio']:.2f} |", flush=True)
+        print(f"| {name} | {r['indicator']:.3g} | {r['vibration_rad']:.3g} | {r['predicted'][0]:.3g} / "
+              f"{r['predicted'][1]:.3g} | {cell(r['DOP853'])} | {cell(r['Radau'])} | {us_per_eval(r['DOP853'])} / "
+              f"{us_per_eval(r['Radau'])} | {r['auto']} | {r['ratio']:.2f} |", flush=True)
     if args.json:
         Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
 

@@ -16,7 +16,7 @@ from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, Solv
 from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.methods import EXPLICIT, IMPLICIT_METHOD
+from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -65,7 +65,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     diags = list(prior_diagnostics or []) + diags
-    choice = choose_method(spec, duration_s, method)
+    choice = choose_method(spec, duration_s, method, rtol)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
@@ -74,14 +74,16 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     check(run, choice, duration_s)
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
-    diags += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
+    diags += stats.model_warnings(spec) + _choice_warnings(choice)
+    if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
+        diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev) if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
-    if ref is not None and mode is not None:
-        ref, mode_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
-        diags += mode_diags
-    result = _summarise(model, s, run, choice, window, energy, diags, want_series, ref)
+    stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
+    if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
+        ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
+    result = _summarise(model, s, run, choice, window, energy, diags, want_series, ref, stat_diags)
     _require_finite(result)
     return result
 
@@ -127,7 +129,8 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
 
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, window, energy,
-               diags: list[Diagnostic], want_series: bool, ref: estimate.CheckPass | None) -> SimulationResult:
+               diags: list[Diagnostic], want_series: bool, ref: estimate.CheckPass | None,
+               stat_diags: list[Diagnostic]) -> SimulationResult:
     spec = model.spec
     mask = stats.window_mask(s.time_s, window)
     channels, per_stage = _channels(model, s)
@@ -148,8 +151,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
-    if ref is not None:
-        diags += estimate.warnings(ref, run.method)
+    diags += stat_diags
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -184,7 +186,10 @@ def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
 
 
 def _choice_warnings(choice: Choice) -> list[Diagnostic]:
-    if choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT:
+    """A requested explicit method on a stiff scene where auto's cost model predicts Radau cheaper."""
+    explicit, implicit = choice.predicted_evals
+    if choice.requested != AUTO and choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT \
+            and implicit < explicit:
         return [dg.warning(dg.STIFF_FOR_EXPLICIT, f"the scene is stiff for an explicit method (max|λ|·T = "
                            f"{choice.indicator:.2g}, at least {choice.explicit_evaluations(choice.method):.2g} "
                            f'evaluations for stability alone): method = "auto" would use {IMPLICIT_METHOD}',

@@ -25,9 +25,9 @@ ROOT = Path(__file__).resolve().parents[2]
 QUANTITIES = ("mean", "min", "max", "std")
 SCENES = (
     "configs/concrete_mixer.toml",  # the seed: lightly damped, checked from t = 0 (loose check), resolved
-    "configs/industrial_two_stage.toml",  # damped: checked from the window (tight check), max warned
+    "configs/industrial_two_stage.toml",  # damped: checked from the window (tight check); auto: Radau
     "configs/concrete_mixer_loose_rtol.toml",  # rtol 1e-4: unresolved, warned
-    "configs/extreme/load_reversal.toml",  # errors of the reversal survive into the window
+    "configs/extreme/load_reversal.toml",  # errors of the reversal survive into the window: warned
     "configs/extreme/stiff_linear_100x.toml",
     "configs/extreme/five_stages.toml",
     "configs/extreme/heavy_damping.toml",  # Radau
@@ -84,8 +84,8 @@ def test_converged_run_carries_no_warning(rel):
 
 
 def test_suggested_rtol_resolves_the_warning():
-    """The rtol the warning names removes it (industrial_two_stage: max of stage 1 at the default rtol)."""
-    cfg, design = _scene("configs/industrial_two_stage.toml")
+    """The rtol the warning names removes it (load_reversal: min of stages 1-3 at the default rtol)."""
+    cfg, design = _scene("configs/extreme/load_reversal.toml")
     sim = run_simulation(cfg, design, want_series=False)
     suggestions = [d.data["rtol"] for d in sim.diagnostics if d.code == dg.STATISTICS_UNRESOLVED]
     assert suggestions, "the default run of this scene is expected to warn"
