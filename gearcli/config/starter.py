@@ -72,7 +72,8 @@ _COMMENTS = {
 #   Exactly one of output_speed_rpm, output_speed_deg_s; tolerance_percent in (0, 100]""",
     "simulation": """\
 # [simulation]: duration_s > 0; steps = output samples - 1; rtol in [1e-13, 1e-2];
-#   method = "auto" | "RK45" | "DOP853" | "Radau" | "BDF" | "LSODA"; optional window_start_s (statistics)""",
+#   method = "auto" | "RK45" | "DOP853" | "Radau" | "BDF" | "LSODA"; optional window_start_s (statistics);
+#   error_estimate = true (default: a check pass estimates the error of min/max/std; false skips it)""",
 }
 
 
