@@ -201,8 +201,10 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     if torque is not None and len(torque):
         lines.append(f"input torque at the end {torque[-1]:.5g} N·mm = {torque[-1] / 1000:.5g} N·m, power "
                      f"{torque[-1] / 1000 * r.input_speed_deg_s * math.pi / 180 / 1000:.5g} kW")
-    lines.append(f"solver {sv.method} ({sv.choice_reason})  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  "
-                 f"njev {sv.njev}  wall {sv.wall_s:.3g} s  energy residual {sv.energy_residual:.2e}")
+    lines.append(f"solver {sv.method}  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  njev {sv.njev}  "
+                 f"wall {sv.wall_s:.3g} s")
+    lines.append(f"energy residual {sv.energy_residual:.2e}")
+    lines.append(f"method: {sv.choice_reason}")
     if sv.check_pass:
         cp = sv.check_pass
         lines.append(f"error estimate: check pass at rtol {cp['rtol']:g} from {cp['from_s']:.4g} s, nfev {cp['nfev']}, "
