@@ -57,7 +57,7 @@ def row(path: Path) -> dict:
     check = sim.solver.check_pass or {}
     return {"scene": f"{path.parent.name}/{path.stem}", "method": sim.solver.method, "true": true, "estimated": est,
             "warned": bool(warned), "missed": missed, "nfev": base.solver.nfev, "check_nfev": check.get("nfev", 0),
-            "check_rtol": check.get("rtol", 0.0), "from_s": check.get("from_s", 0.0),
+            "check_rtol": check.get("rtol", 0.0), "passes": check.get("passes", 1), "from_s": check.get("from_s", 0.0),
             "cost": (sim.solver.nfev + check.get("nfev", 0)) / base.solver.nfev, "wall_ratio": wall / wall_base}
 
 
