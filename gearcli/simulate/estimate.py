@@ -1,4 +1,4 @@
-"""The error estimate of the window statistics: a check pass over the window (README "Accuracy").
+"""The error estimate of the window statistics: a check pass over the window (README "Honest statistics").
 
 ``mean`` is the integral of a channel and converges with the solution; ``min``, ``max``, ``std`` and the
 spectrum depend on how finely the solver resolves the oscillation. The run estimates their error from a

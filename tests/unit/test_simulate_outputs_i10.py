@@ -110,3 +110,18 @@ def test_suggested_rtol_scales_with_the_error():
     assert suggested_rtol(1e-6, 2e-3) == 1e-7  # 1e-6 * 0.5e-3 / 2e-3 = 2.5e-7 -> 1e-7
     assert suggested_rtol(1e-4, 1.0) == 1e-8
     assert suggested_rtol(1e-12, 1e3) == 1e-13  # the schema's floor
+
+
+def test_json_carries_the_error_estimate_and_the_check_pass():
+    out = _cli("simulate", str(SEED), "--format", "json")
+    doc = json.loads(out.stdout)
+    est = doc["summary"]["stages"][0]["error_estimate"]
+    assert set(est) == {"stage", "reference_N", "target_relative", "tangential_N", "spectrum_N", "relative",
+                        "dominant_frequency_Hz", "check_dominant_frequency_Hz", "unresolved", "suggested_rtol",
+                        "resolved"}
+    assert est["resolved"] is True and est["suggested_rtol"] is None and est["target_relative"] == TARGET
+    # the estimate refers to the stage's own mean force
+    assert_allclose(est["reference_N"], abs(doc["summary"]["stages"][0]["tangential_N"]["mean"]), rtol=1e-12)
+    cp = doc["solver"]["check_pass"]
+    assert {"rtol", "from_s", "estimate_factor", "nfev", "njev", "steps", "wall_s", "finished", "passes"} == set(cp)
+    assert cp["finished"] and cp["from_s"] == 0.0  # the seed is lightly damped: checked from the start
