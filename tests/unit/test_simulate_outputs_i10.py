@@ -125,3 +125,8 @@ def test_json_carries_the_error_estimate_and_the_check_pass():
     cp = doc["solver"]["check_pass"]
     assert {"rtol", "from_s", "estimate_factor", "nfev", "njev", "steps", "wall_s", "finished", "passes"} == set(cp)
     assert cp["finished"] and cp["from_s"] == 0.0  # the seed is lightly damped: checked from the start
+
+
+def test_design_warning_printed_once_on_stderr():
+    out = _cli("simulate", str(SEED), "--format", "json")
+    assert out.stderr.count("misses the target") == 1, out.stderr
