@@ -164,6 +164,22 @@ class MeshStiffness:
 
 
 @dataclass(frozen=True)
+class DteStats:
+    """Dynamic transmission error q = delta - e over the statistics window, um (``rms`` about the mean)."""
+
+    mean: float
+    rms: float
+    min: float
+    max: float
+
+
+#: Impact regimes of a mesh over the statistics window (the loaded flank: the one the static load presses)
+REGIME_NO_IMPACT = "no impact"  # the mesh force never drops to zero
+REGIME_SINGLE_SIDED = "single-sided impact"  # it loses contact but never touches the other flank
+REGIME_DOUBLE_SIDED = "double-sided impact"  # it also strikes the other (back) flank
+
+
+@dataclass(frozen=True)
 class StageDynamics:
     index: int  # 1-based
     tangential_N: ChannelStats  # over the steady window
@@ -176,6 +192,11 @@ class StageDynamics:
     dynamic_factor: float | None  # peak / |static|; None (JSON null) when the static force is 0
     error_estimate: StatisticsError | None = None  # None when no refinement pass ran
     mesh_stiffness: MeshStiffness | None = None
+    # mesh response over the statistics window (issue 13); defaults for hand-made results
+    dte_um: DteStats | None = None
+    contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
+    back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
+    regime: str = ""  # REGIME_*
 
 
 @dataclass(frozen=True)
@@ -209,6 +230,29 @@ class EnergyBalance:
 
 
 @dataclass(frozen=True)
+class SteadyState:
+    """How the statistics window was found (``[simulation] steady``).
+
+    ``mode = "window"``: the fixed window (``period_s`` the excitation period for information, the rest
+    None). ``mode = "periodic"``: the run went period by period past the ramps until the state at the
+    period boundaries repeated (Poincare map) within the run's tolerance; ``periodicity`` is "period-1",
+    "period-k" (a subharmonic: the state repeats after k periods) or "none" (no repeat up to the cap);
+    ``residual`` the last boundary mismatch in units of the tolerance (converged when <= 1).
+    """
+
+    mode: str  # "window" | "periodic"
+    period_s: float | None  # the common period of the excitations at the steady operating speed
+    periods_to_converge: int | None  # excitation periods integrated past the ramps until the repeat
+    periodicity: str | None  # "period-1" | "period-k" | "none"
+    converged: bool | None
+    residual: float | None
+    period_source: str = ""  # how period_s was formed (the excitations, or why the slowest one was taken)
+    window_periods: int | None = None  # whole excitation periods in the statistics window
+    samples_per_period: int | None = None
+    cap_periods: int | None = None
+
+
+@dataclass(frozen=True)
 class SimulationResult:
     time_s: np.ndarray
     channels: dict[str, np.ndarray]  # CSV column name -> series (docs/output.md order)
@@ -225,3 +269,5 @@ class SimulationResult:
     diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic; warnings are their messages
     natural_frequencies_boundary: str = "clamped_input"  # "clamped_input" (speed drive) or "free" (torque drive)
     final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation
+    final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
+    steady: SteadyState | None = None  # how the window was found ([simulation] steady)

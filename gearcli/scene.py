@@ -2,7 +2,8 @@
 
 The model layer (:mod:`gearcli.model`) never sees the design file: this module converts once, here.
 ``K`` in N/mm^e becomes N/m^e by ``K 1000^e``, damping N s/mm becomes N s/m by ``x 1000``, lengths mm
-become m by ``/ 1000``; drivetrain keys are SI already (kg m^2, N m/rad, N m s/rad).
+become m by ``/ 1000``; drivetrain keys are SI already (kg m^2, N m/rad, N m s/rad). Excitation: transmission
+error um -> m, phases deg -> rad, torque ripple and load fluctuation percent -> fractions.
 A flexible intermediate shaft splits its inertia: the gear's on the gear end, the next pinion's on the
 pinion end (the design gives each gear's inertia).
 """
@@ -36,6 +37,11 @@ def _mesh(cfg, st, k: int) -> MeshSpec:
         normal_module_m=st.normal_module_mm * MM,
         static_tangential_N=st.static_force_N.tangential,
         efficiency=st.efficiency,
+        transmission_error_m=tuple(v * 1e-6 for v in law.transmission_error_um),
+        transmission_error_phase_rad=tuple(math.radians(v) for v in law.transmission_error_phase_deg),
+        stiffness_harmonics=tuple(law.stiffness_harmonics),
+        stiffness_harmonics_phase_rad=tuple(math.radians(v) for v in law.stiffness_harmonics_phase_deg),
+        damping_ratio=law.damping_ratio,
     )
 
 
@@ -60,8 +66,10 @@ def spec_from_design(cfg, design) -> ModelSpec:
     meshes = tuple(_mesh(cfg, st, k) for k, st in enumerate(design.stages))
     inp = cfg.input
     drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
-                      torque_Nm=inp.torque_Nm_value or 0.0)
-    load = LoadSpec(torque_Nm=cfg.load.torque_Nm_value, ramp_s=cfg.load.ramp_s)
+                      torque_Nm=inp.torque_Nm_value or 0.0,
+                      ripple=tuple((r.amplitude_percent / 100.0, r.order) for r in inp.torque_ripple))
+    load = LoadSpec(torque_Nm=cfg.load.torque_Nm_value, ramp_s=cfg.load.ramp_s,
+                    fluctuation=tuple((f.amplitude_percent / 100.0, f.frequency_Hz) for f in cfg.load.fluctuation))
     return ModelSpec(meshes, tuple(s.inertia_kg_m2 for s in design.shafts), drive, load,
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design))
 

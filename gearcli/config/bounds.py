@@ -9,8 +9,10 @@ JSON with ``--series`` 5.6 GB for 2e6 x 19 values) and are rounded up here. A ru
 Cost. An adaptive integrator's cost follows ``max|lambda| T``: the fastest oscillation of the linearised
 train times the duration (gearcli.simulate.guards). Estimated here from the design alone (no scipy): each
 mesh's own angular frequency ``sqrt(k (r_b1^2 / J_1 + r_b2^2 / J_2))`` with the linearised stiffness at
-the static load (at least the stiffness of a 1 um approach, so an unloaded mesh is not free), and the mesh
-frequency when the stiffness varies in time. At ~30 evaluations per unit (the worst measured, see guards),
+the static load (at least the stiffness of a 1 um approach, so an unloaded mesh is not free), the mesh
+frequency when the stiffness varies in time, times the highest harmonic of a mesh excitation
+(transmission error, stiffness harmonics), the highest input torque-ripple order times the input speed and
+the highest load-fluctuation frequency. At ~30 evaluations per unit (the worst measured, see guards),
 a run whose estimate is absurd (:data:`ABSURD_EVALUATIONS`) is refused up front, naming the figure and the
 setting to change.
 """
@@ -35,9 +37,9 @@ _MIN_APPROACH_M = 1e-6
 
 
 def values_per_sample(n_stages: int) -> int:
-    """time, one speed per shaft, the input torque, four channels per stage, and the state (2 per shaft)."""
+    """time, one speed per shaft, the input torque, five channels per stage, and the state (2 per shaft)."""
     shafts = n_stages + 1
-    return 1 + shafts + 1 + 4 * n_stages + 2 * shafts
+    return 1 + shafts + 1 + 5 * n_stages + 2 * shafts
 
 
 def memory_estimate_bytes(steps: int, n_stages: int, fmt: str, series: bool) -> float:
@@ -45,12 +47,25 @@ def memory_estimate_bytes(steps: int, n_stages: int, fmt: str, series: bool) -> 
     return (steps + 1) * values_per_sample(n_stages) * per_value
 
 
+#: ``steady = "periodic"``: the statistics periods are sampled ``steps`` times, or more when the fastest
+#: excitation needs it (64 samples per its period), up to this many (gearcli.simulate.periodic)
+PERIODIC_STATISTICS_SAMPLES = 100_000
+
+
+def output_samples(sim) -> int:
+    """Output samples of a run with ``[simulation]`` settings ``sim``, at most: ``steps`` (+1) for a window
+    run; for a periodic one the run-up (at most ``steps``) and the statistics periods."""
+    if getattr(sim, "steady", "window") == "periodic":
+        return sim.steps + max(sim.steps, PERIODIC_STATISTICS_SAMPLES)
+    return sim.steps
+
+
 def _gib(n: float) -> str:
     return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
 
 
 def check_memory(cfg, *, fmt: str, series: bool, source: str) -> None:
-    steps, n = cfg.simulation.steps, len(cfg.stage)
+    steps, n = output_samples(cfg.simulation), len(cfg.stage)
     need = memory_estimate_bytes(steps, n, fmt, series)
     if need <= MEMORY_LIMIT_BYTES:
         return
@@ -75,8 +90,10 @@ def fastest_rad_s(cfg, design) -> float:
         rb1, rb2 = st.pinion.base_diameter_mm / 2e3, st.gear.base_diameter_mm / 2e3
         mobility = rb1**2 / inertia[k] + rb2**2 / inertia[k + 1]
         fastest = max(fastest, math.sqrt(max(k_lin, 0.0) * mobility))
-        if law.time_varying:
-            fastest = max(fastest, 2 * math.pi * st.mesh_frequency_Hz)
+        harmonics = max(len(law.transmission_error_um), len(law.stiffness_harmonics), int(law.time_varying))
+        fastest = max(fastest, 2 * math.pi * st.mesh_frequency_Hz * harmonics)
+    fastest = max([fastest] + [r.order * cfg.input.speed_rad_s_value for r in cfg.input.torque_ripple]
+                  + [2 * math.pi * f.frequency_Hz for f in cfg.load.fluctuation])
     return fastest
 
 

@@ -19,7 +19,10 @@ _TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material",
            ("stage pinion / gear", "Gear", "`pinion = { ... }` and `gear = { ... }` of a stage"),
            ("[contact]", "Contact", "The mesh force law (Adams IMPACT)"),
            ("[stage.mesh]", "ContactOverride", "Per-stage overrides of [contact]"),
-           ("[input]", "Input", "The input drive"), ("[load]", "Load", "The output load"),
+           ("[input]", "Input", "The input drive"),
+           ("input.torque_ripple = [{ ... }]", "Ripple", "One harmonic of the input torque"),
+           ("[load]", "Load", "The output load"),
+           ("load.fluctuation = [{ ... }]", "Fluctuation", "One harmonic of the load torque"),
            ("[target]", "Target", "Optional: the output speed the design must reach"),
            ("[simulation]", "Simulation", "Settings of `gearcli simulate` and `gearcli report`")]
 
@@ -47,7 +50,13 @@ def _kind(prop: dict, defs: dict) -> tuple[str, str]:
         return "tables by name", ""
     if t == "array":
         items = prop.get("minItems"), prop.get("maxItems")
-        return "array of tables", f"{items[0]} to {items[1]} entries" if all(i is not None for i in items) else ""
+        count = f"{items[0]} to {items[1]} entries" if all(i is not None for i in items) else \
+            f"at most {items[1]} entries" if items[1] is not None else ""
+        item = prop.get("items", {})
+        if "$ref" in item:
+            return "array of tables", count
+        kind, rng = _kind(item, defs)
+        return f"array of {kind}s", "; ".join(x for x in (count, f"each {rng}" if rng else "") if x)
     lo = prop.get("minimum", prop.get("exclusiveMinimum"))
     hi = prop.get("maximum", prop.get("exclusiveMaximum"))
     rng = ""
@@ -94,7 +103,10 @@ def design_file_reference() -> str:
            "`speed_rad_s` in `[input]`; at most one of `torque_Nm`, `torque_Nmm` there, required with "
            "`drive = \"torque\"` and refused with `drive = \"speed\"`; exactly one torque in `[load]`; exactly one "
            "speed in `[target]`; a helical stage's pinion and gear have opposite hands; every `material` names a "
-           "table of `[materials]` (steel is predefined).", "",
+           "table of `[materials]` (steel is predefined); no more `transmission_error_phase_deg` than "
+           "`transmission_error_um` entries, nor `stiffness_harmonics_phase_deg` than `stiffness_harmonics` (a "
+           "stage's `[stage.mesh]` counted with what it inherits from `[contact]`); the `stiffness_harmonics` sum "
+           "to less than 1 in magnitude; `input.torque_ripple` only with `drive = \"torque\"`.", "",
            "## Limits", "",
            f"- file size at most {MAX_BYTES // 2**20} MiB; at most {MAX_KEYS} keys and tables; dotted keys of at "
            f"most {MAX_KEY_DEPTH} parts; arrays and inline tables nested at most {MAX_NESTING} deep. These are "

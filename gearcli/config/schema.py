@@ -14,16 +14,30 @@ from typing import Annotated, Any, Literal
 
 from pydantic import (
     BaseModel,
-    ConfigDict,
     Field,
     GetCoreSchemaHandler,
     GetJsonSchemaHandler,
     PrivateAttr,
+    ValidationInfo,
+    field_validator,
     model_validator,
 )
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
+from gearcli.config.excitation import (
+    MAX_HARMONICS,
+    STRICT,
+    DampingRatio,
+    Fluctuation,
+    PhaseDeg,
+    Ripple,
+    StiffnessHarmonic,
+    TransmissionErrorUm,
+    check_harmonics,
+    keeps_k_positive,
+    phases_fit,
+)
 from gearcli.simulate.methods import NAMES as METHODS  # the one registry of integration methods
 
 # Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
@@ -81,7 +95,7 @@ LOAD_TORQUE_KEYS = ("torque_Nmm", "torque_Nm", "power_kW")
 
 
 class _Table(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+    model_config = STRICT
 
 
 class Material(_Table):
@@ -133,22 +147,45 @@ class BasicRack(_Table):
 
 
 class ContactOverride(_Table):
-    """The mesh force law (Adams IMPACT). In ``[contact]`` every key has the seed's default; in a
-    stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh."""
+    """The mesh force law (Adams IMPACT) and its excitation. In ``[contact]`` every key has the seed's
+    default; in a stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh.
+    Excitation (harmonics j = 1, 2, ... of the mesh phase phi = z_p theta_p): the static transmission error
+    e(phi) = sum e_j cos(j phi + psi_j) (um, along the transverse line of action; the mesh acts on
+    q = delta - e), stiffness harmonics K (1 - sum s_j cos(j phi + psi_j)), phases in degrees (default 0);
+    ``damping_ratio`` zeta replaces the IMPACT damping by viscous damping c = 2 zeta sqrt(k_lin m_e) on
+    q' at all times, also inside the backlash."""
 
     stiffness: Literal["hertz", "iso6336"] | Stiffness | None = None
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] | None = None
     damping_Ns_mm: DampingNsmm | None = None
     full_damping_penetration_mm: DampingDepthMm | None = None
     time_varying: bool | None = None
+    transmission_error_um: Annotated[list[TransmissionErrorUm], Field(max_length=MAX_HARMONICS)] | None = None
+    transmission_error_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
+    stiffness_harmonics: Annotated[list[StiffnessHarmonic], Field(max_length=MAX_HARMONICS)] | None = None
+    stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
+    damping_ratio: DampingRatio | None = None
+
+    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(phases_fit)
+    _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
 
 
 class Contact(_Table):
+    """The mesh force law (Adams IMPACT) and its excitation; see ``[stage.mesh]``."""
+
     stiffness: Literal["hertz", "iso6336"] | Stiffness = "hertz"
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
     damping_Ns_mm: DampingNsmm = 50.0
     full_damping_penetration_mm: DampingDepthMm = 0.1
     time_varying: bool = False
+    transmission_error_um: Annotated[list[TransmissionErrorUm], Field(max_length=MAX_HARMONICS)] = []
+    transmission_error_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
+    stiffness_harmonics: Annotated[list[StiffnessHarmonic], Field(max_length=MAX_HARMONICS)] = []
+    stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
+    damping_ratio: DampingRatio | None = None
+
+    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(phases_fit)
+    _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
 
     def merged(self, override: ContactOverride | None) -> Contact:
         """This law with a stage's overrides applied."""
@@ -215,7 +252,16 @@ class Input(_Coupled):
     torque_Nm: TorqueNm | None = None
     torque_Nmm: TorqueNmm | None = None
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
+    torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS)] = []  # drive = "torque" only
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
+
+    @field_validator("torque_ripple")
+    @classmethod
+    def _ripple_needs_torque_drive(cls, v: list[Ripple], info: ValidationInfo) -> list[Ripple]:
+        if v and info.data.get("drive") != "torque":
+            raise ValueError('needs drive = "torque": a speed drive prescribes the input motion, so a torque '
+                             "ripple would act on nothing")
+        return v
 
     @model_validator(mode="after")
     def _one_speed_one_torque(self) -> Input:
@@ -266,6 +312,7 @@ class Load(_Coupled):
     ramp_s: Seconds = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
     power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
+    fluctuation: Annotated[list[Fluctuation], Field(max_length=MAX_HARMONICS)] = []
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
 
     @model_validator(mode="after")
@@ -318,6 +365,7 @@ class Simulation(_Table):
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
     window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
+    steady: Literal["window", "periodic"] = "window"
     error_estimate: bool = True
 
 
@@ -351,6 +399,14 @@ class DesignFile(_Table):
             raise ValueError(f"stage[{len(self.stage) - 1}].shaft: the last stage's gear sits on the output shaft, "
                              "which has no next pinion; a flexible output is [load] inertia_kg_m2 with "
                              "coupling_stiffness_Nm_rad")
+        return self
+
+    @model_validator(mode="after")
+    def _merged_harmonics(self) -> DesignFile:
+        """A stage's phases against the amplitudes it inherits from [contact]."""
+        for k, stage in enumerate(self.stage):
+            if stage.mesh is not None:
+                check_harmonics(self.contact_for(k), f"stage[{k}].mesh.")
         return self
 
     def contact_for(self, k: int) -> Contact:

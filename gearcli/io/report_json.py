@@ -55,6 +55,7 @@ def stage_dict(s: StageReport) -> dict:
             "window_s": list(sp.window_s),
             "mesh_frequency_Hz": sp.mesh_frequency_Hz,
             "matches": sp.matches,
+            "mesh_orders": [plain(o) for o in sp.mesh_orders],
         },
     }
 

@@ -92,6 +92,19 @@ def spectrum_section(r: Report) -> Section:
                    tuple(rows), "lrrrl", tuple(notes))
 
 
+def mesh_orders_section(r: Report) -> Section:
+    rows = []
+    for s in r.stages:
+        for o in s.spectrum.mesh_orders:
+            rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
+    periodic = r.simulation.steady is not None and r.simulation.steady.mode == "periodic"
+    how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
+           if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
+    return Section("Mesh-order amplitudes", ("stage", "order", "frequency [Hz]", "F_t amplitude [N]",
+                                             "DTE amplitude [µm]"), tuple(rows), "lrrrr",
+                   (f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}",))
+
+
 def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
     e = run.error(quantity)
     if e is None:
@@ -146,7 +159,8 @@ def solver_lines(r: Report) -> list[str]:
 
 
 def sections(r: Report) -> list[Section]:
-    out = [comparison_section(r), fluctuation_section(r), peaks_section(r), spectrum_section(r)]
+    out = [comparison_section(r), fluctuation_section(r), peaks_section(r), spectrum_section(r),
+           mesh_orders_section(r)]
     if r.accuracy is not None:
         out.append(accuracy_section(r.accuracy))
     return out

@@ -178,11 +178,17 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         forces.add_row("", Text("F_r [N]"), *_stats_cells(s.radial_N))
         forces.add_row("", Text("F_a [N]"), *_stats_cells(s.axial_N))
         forces.add_row("", Text("penetration [mm]"), *_stats_cells(s.penetration_mm), end_section=True)
-    peaks = _quantity_table("static theory and peaks", [f"stage {s.index}" for s in r.stages], [
+    peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in r.stages], [
         ("static F_t [N]", [_g(s.static_tangential_N) for s in r.stages]),
         ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in r.stages]),
         ("at t [s]", [_g(s.peak_time_s, 3) for s in r.stages]),
         ("dynamic factor", [_g(s.dynamic_factor, 4) for s in r.stages]),
+        ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in r.stages]),
+        ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in r.stages]),
+        ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in r.stages]),
+        ("contact loss fraction", [_g(s.contact_loss_fraction, 3) for s in r.stages]),
+        ("back flank fraction", [_g(s.back_flank_fraction, 3) for s in r.stages]),
+        ("regime", [s.regime or "—" for s in r.stages]),
     ])
     rows = [("mesh stiffness K [N/mm^e]", [_g(m.law_N_mm_e) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
             ("exponent e", [_g(m.exponent, 3) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
@@ -205,15 +211,31 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
                  f"wall {sv.wall_s:.3g} s")
     lines.append(f"energy residual {sv.energy_residual:.2e}")
     lines.append(f"method: {sv.choice_reason}")
+    steady = steady_line(r)
+    if steady:
+        lines.append(steady)
     if sv.check_pass:
         cp = sv.check_pass
         lines.append(f"error estimate: check pass at rtol {cp['rtol']:g} from {cp['from_s']:.4g} s, nfev {cp['nfev']}, "
                      f"wall {cp['wall_s']:.3g} s")
+    # one Text per line: text() writes a control character (a newline too) as an escape
     return [forces, peaks, mesh, *(text(line) for line in lines)]
 
 
 def _est(e, q: str) -> float | None:
     return None if e is None else getattr(e.tangential_N, q)
+
+
+def steady_line(r: SimulationResult) -> str:
+    """The ``[simulation] steady`` outcome in one line (empty for a window run without excitation data)."""
+    st = r.steady
+    if st is None or st.mode != "periodic":
+        return ""
+    found = f"{st.periodicity}, converged" if st.converged else "none found (not periodic), not converged"
+    residual = f"{st.residual:.2g}" if st.residual is not None else "—"
+    return (f"steady periodic: period {_g(st.period_s or 0.0)} s, {st.periods_to_converge} periods searched "
+            f"(cap {st.cap_periods}), {found}, residual {residual} x tolerance, statistics over "
+            f"{st.window_periods} period(s)")
 
 
 class _Buffer(io.StringIO):

@@ -16,8 +16,14 @@ integrated directly, ``delta_c' = r_a w_c - r_b w_{c+1}``):
          | W_in, W_load, E_damp (, W_el_tv)]
 
 With ``drive = "speed"`` body 0 has no state (its motion is the analytic STEP profile); with
-``drive = "torque"`` it is free. Angles, needed only for the mesh phase of time-varying stiffness, come
+``drive = "torque"`` it is free. Angles, needed only for the mesh phase of phase-dependent meshes
+(time-varying stiffness, stiffness harmonics, transmission error) and for an input torque ripple, come
 from theta_0 (analytic, or the extra state) and ``theta_{c+1} = (r_a theta_c - delta_c) / r_b``.
+
+A mesh with ``damping_ratio`` gets its viscous damping here, where the chain is known
+(:func:`_viscous`): ``c = 2 zeta sqrt(k_lin m_e)``, k_lin the mesh's dF/d delta at the static load,
+``m_e = 1 / (r_a^2 / J_a + r_b^2 / J_b)`` from the two bodies it joins (a speed-driven body counts as
+infinitely heavy).
 """
 
 from __future__ import annotations
@@ -26,7 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from gearcli.model.elements import KIND_MESH, KIND_SPRING, N_HARM, N_PARAM, mesh, spring
+from gearcli.model.elements import KIND_MESH, KIND_SPRING, N_HARM, N_PARAM, mesh, spring, torque
 from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
@@ -62,6 +68,14 @@ class Connector:
     def time_varying(self) -> bool:
         return self.element.time_varying(self.params)
 
+    @property
+    def phased(self) -> bool:
+        return self.element.phased(self.params)
+
+    @property
+    def excited(self) -> bool:
+        return self.element.excited(self.params)
+
 
 def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
     bodies: list[Body] = []
@@ -91,7 +105,25 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
     if spec.drum is not None:
         join(KIND_SPRING, spring.pack(spec.drum.coupling), 1.0, 1.0, "load coupling")
         body(spec.drum.inertia_kg_m2, "drum")
-    return bodies, conns
+    return bodies, _viscous(spec, bodies, conns)
+
+
+MIN_APPROACH_M = 1e-6  # an unloaded Hertzian mesh's k_lin: at a 1 um approach (as the cost estimate)
+
+
+def _viscous(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
+    """Connectors with the viscous damping of every ``damping_ratio`` mesh filled in (module text)."""
+    out = []
+    for x in conns:
+        if x.kind == KIND_MESH and x.params[mesh.I_VIS] != 0.0:
+            F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb)  # static line force
+            k_lin = mesh.linear_stiffness(x.params, F, MIN_APPROACH_M)
+            held = x.a == 0 and spec.drive.kind == "speed"
+            m_e = 1.0 / ((0.0 if held else x.ra**2 / bodies[x.a].inertia) + x.rb**2 / bodies[x.b].inertia)
+            row = mesh.with_viscous(x.params, k_lin, m_e)
+            x = Connector(x.kind, x.a, x.b, x.ra, x.rb, tuple(float(v) for v in row), x.label, x.index)
+        out.append(x)
+    return out
 
 
 @dataclass(frozen=True)
@@ -105,13 +137,14 @@ class ModelArrays:
     conn_radii: np.ndarray  # float64[nc, 2]
     conn_param: np.ndarray  # float64[nc, N_PARAM]
     conn_harm: np.ndarray  # float64[nc, N_HARM, 4]: TE amplitude m, TE phase rad, stiffness harmonic, phase
+    #   (a copy of the mesh row's harmonics, gearcli.model.elements.mesh.I_TE ...; the row is authoritative)
     drive_kind: int  # 0 speed, 1 torque
     drive_value: float  # rad/s or N m
     drive_ramp_s: float
-    drive_ripple: np.ndarray  # float64[R, 2]: amplitude, order
+    drive_ripple: np.ndarray  # float64[R, 2]: amplitude (fraction), order per input revolution
     load_value_Nm: float
     load_ramp_s: float
-    load_fluct: np.ndarray  # float64[F, 2]: amplitude, frequency_Hz
+    load_fluct: np.ndarray  # float64[F, 2]: amplitude (fraction), frequency_Hz
     n_states: int
     i_delta0: int
     i_omega0: int
@@ -194,13 +227,23 @@ class Layout:
         return sum(x.time_varying for x in self.connectors)
 
     @property
+    def ripple(self) -> tuple[float, ...]:
+        """The input torque ripple row (:mod:`gearcli.model.elements.torque`); empty for none."""
+        return torque.flat(self.drive.ripple)
+
+    @property
+    def fluctuation(self) -> tuple[float, ...]:
+        """The load fluctuation row; empty for none."""
+        return torque.flat(self.load.fluctuation)
+
+    @property
     def needs_angles(self) -> bool:
-        return self.n_tv > 0
+        return any(x.phased for x in self.connectors) or bool(self.ripple)
 
     @property
     def last_angle_body(self) -> int:
-        """The last body whose angle a time-varying mesh needs (its pinion's body); -1 for none."""
-        return max((x.a for x in self.connectors if x.time_varying), default=-1)
+        """The last body whose angle a phase-dependent mesh needs (its pinion's body); -1 for none."""
+        return max((x.a for x in self.connectors if x.phased), default=-1)
 
     @property
     def has_theta_state(self) -> bool:
@@ -265,15 +308,19 @@ class Layout:
         conns = self.connectors
         nc = len(conns)
         param = np.zeros((nc, N_PARAM))
+        harm = np.zeros((nc, N_HARM, 4))
         for c, x in enumerate(conns):
             param[c] = x.params + (0.0,) * (N_PARAM - len(x.params))
+            if x.kind == KIND_MESH:
+                for i, start in enumerate((mesh.I_TE, mesh.I_TEP, mesh.I_KS, mesh.I_KSP)):
+                    harm[c, :, i] = param[c, start:start + N_HARM]
         drive = self.drive
         return ModelArrays(
             body_inertia=np.array(self.inertias), conn_kind=np.array([x.kind for x in conns], dtype=np.int64),
             conn_bodies=np.array([[x.a, x.b] for x in conns], dtype=np.int64).reshape(nc, 2),
             conn_radii=np.array([[x.ra, x.rb] for x in conns]).reshape(nc, 2), conn_param=param,
-            conn_harm=np.zeros((nc, N_HARM, 4)), drive_kind=0 if self.speed_drive else 1,
+            conn_harm=harm, drive_kind=0 if self.speed_drive else 1,
             drive_value=drive.speed_rad_s if self.speed_drive else drive.torque_Nm, drive_ramp_s=drive.ramp_s,
-            drive_ripple=np.zeros((0, 2)), load_value_Nm=self.load.torque_Nm, load_ramp_s=self.load.ramp_s,
-            load_fluct=np.zeros((0, 2)), n_states=self.n_states, i_delta0=0, i_omega0=self.n_conn,
+            drive_ripple=np.array(self.ripple, float).reshape(-1, 2), load_value_Nm=self.load.torque_Nm,
+            load_ramp_s=self.load.ramp_s, load_fluct=np.array(self.fluctuation, float).reshape(-1, 2), n_states=self.n_states, i_delta0=0, i_omega0=self.n_conn,
             i_theta=-1 if self.i_theta is None else self.i_theta, i_quad=self.i_quad, atol=np.asarray(atol, float))

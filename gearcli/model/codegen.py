@@ -5,27 +5,34 @@ costs more than the arithmetic, and every term a scene does not need (a free inp
 time-varying stiffness) is time spent on every one of the ~10^4 evaluations of a run. The generator
 writes the ASSEMBLY only — topology and constants inlined as literals, ``y.tolist()`` unpacking the state
 in one call — and calls each connector's element force law (:mod:`gearcli.model.elements`) for its force;
-no formula of an element is spelt here. The source is registered with :mod:`linecache` under a file
-name of its own, so tracebacks and debuggers show its lines, and ``gearcli simulate --dump-model``
-prints it.
+no formula of an element is spelt here. ``gearcli simulate --dump-model`` prints that source. What is
+compiled is its structure: the float literals become names bound as closure constants (the same values,
+so the same results), so the points of a sweep that differ only in numbers share one compilation per
+process (:func:`compile_functions`). The compiled module is registered with :mod:`linecache` under a
+file name of its own, so tracebacks and debuggers show its lines.
 
 Notation (SI): ``d{c}``/``dd{c}`` deflection of connector c and its rate, ``w{b}``/``a{b}``/``th{b}``
 speed, acceleration, angle of body b, ``f{c}`` the connector's force (N along a mesh's line of action,
 N m for a spring), ``q{c}``/``u{c}`` its damping power and the power into a time-varying spring, ``TL``
-the load torque, ``Tin`` the drive torque of a torque drive; ``kd``/``kv``/``kt`` the force's partials
-by deflection, rate and mesh phase, ``qd``... ``ut`` those of the two powers.
+the load torque, ``Tin`` the drive torque of a torque drive (``dTin`` its d/d th0 with a ripple);
+``kd``/``kv``/``kt``/``kw`` the force's partials by deflection, rate, mesh phase and phase rate,
+``te{c}`` the power of a transmission error on the bodies, ``qd``... ``ew`` the partials of the three powers.
 """
 
 from __future__ import annotations
 
 import hashlib
+import io
 import linecache
 import math
+import tokenize
 from collections.abc import Callable
+from functools import lru_cache
 
 import numpy as np
 
 from gearcli.model.assembly import Connector, Layout
+from gearcli.model.elements import torque
 from gearcli.model.elements.mesh import phase_per_rad
 
 
@@ -46,23 +53,25 @@ def _ramp_lines(name: str, value: float, ramp_s: float, indent: str = "    ") ->
 
 
 def _input_motion_lines(lay: Layout) -> list[str]:
-    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0."""
+    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0 (th0 from the
+    drive's start angle, written only when it is not 0)."""
     v, T = lay.drive.speed_rad_s, lay.drive.ramp_s
+    start = f" + {lit(lay.drive.angle_rad)}" if lay.drive.angle_rad != 0.0 else ""
     out = []
     if T <= 0.0:
         out += [f"    w0 = {lit(v)}", "    a0 = 0.0"]
         if lay.needs_angles:
-            out.append(f"    th0 = {lit(v)} * t")
+            out.append(f"    th0 = {lit(v)} * t{start}")
         return out
     out += [f"    if t < {lit(T)}:",
             f"        s = t * {lit(1.0 / T)}",
             f"        w0 = {lit(v)} * s * s * (3.0 - 2.0 * s)",
             f"        a0 = {lit(6.0 * v / T)} * s * (1.0 - s)"]
     if lay.needs_angles:
-        out.append(f"        th0 = {lit(v * T)} * s * s * s * (1.0 - 0.5 * s)")
+        out.append(f"        th0 = {lit(v * T)} * s * s * s * (1.0 - 0.5 * s){start}")
     out += ["    else:", f"        w0 = {lit(v)}", "        a0 = 0.0"]
     if lay.needs_angles:
-        out.append(f"        th0 = {lit(v)} * (t - {lit(0.5 * T)})")
+        out.append(f"        th0 = {lit(v)} * (t - {lit(0.5 * T)}){start}")
     return out
 
 
@@ -72,8 +81,13 @@ def _prologue(lay: Layout) -> list[str]:
         lines += _input_motion_lines(lay)
     else:
         lines += _ramp_lines("Tin", lay.drive.torque_Nm, lay.drive.ramp_s)
+        if lay.ripple:  # T_in x (1 + sum a cos(n th0)) (gearcli.model.elements.torque)
+            lines += ["    rip, drip = _ripple(_RIP, th0)", "    dTin = Tin * drip", "    Tin = Tin * rip"]
     if lay.load.torque_Nm != 0.0:
         lines += _ramp_lines("TL", lay.load.torque_Nm, lay.load.ramp_s)
+        if lay.fluctuation:
+            clock = f"t + {lit(lay.load.clock_s)}" if lay.load.clock_s != 0.0 else "t"
+            lines.append(f"    TL = TL * _fluct(_FLU, {clock})")
     for c in range(lay.last_angle_body):  # theta_{c+1} = (r_a theta_c - delta_c) / r_b
         x = lay.connectors[c]
         lines.append(f"    th{c + 1} = ({lit(x.ra)} * th{c} - d{c}) * {lit(1.0 / x.rb)}")
@@ -85,21 +99,29 @@ def _scaled(r: float, name: str) -> str:
 
 
 def _phase(x: Connector) -> str:
-    """The mesh phase phi = z_p theta_p / 2 pi (cycles) of a time-varying mesh; 0.0 otherwise."""
-    if not x.time_varying:
+    """The mesh phase phi = z_p theta_p / 2 pi (cycles) of a phase-dependent mesh; 0.0 otherwise."""
+    if not x.phased:
         return "0.0"
     return f"{lit(phase_per_rad(x.params))} * th{x.a}"
 
 
+def _phase_rate(x: Connector) -> str:
+    """phi' = z_p w_p / 2 pi of a mesh with a transmission error; 0.0 otherwise."""
+    if not x.excited:
+        return "0.0"
+    return f"{lit(phase_per_rad(x.params))} * w{x.a}"
+
+
 def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
     x = lay.connectors[c]
-    args = f"(_P{c}, d{c}, dd{c}, {_phase(x)})"
+    args = f"(_P{c}, d{c}, dd{c}, {_phase(x)}, {_phase_rate(x)})"
     out = [f"    dd{c} = {_scaled(x.ra, f'w{x.a}')} - {_scaled(x.rb, f'w{x.b}')}"]
     if not jacobian:
-        return out + [f"    f{c}, _, _, _, q{c}, u{c} = _force{c}{args}  # {x.label}"]
-    out.append(f"    f{c}, kd{c}, kv{c}, kt{c}, q{c}, u{c} = _force{c}{args}  # {x.label}")
-    if x.damped or x.time_varying:
-        out.append(f"    qd{c}, qv{c}, qt{c}, ud{c}, uv{c}, ut{c} = _power{c}{args}")
+        return out + [f"    f{c}, _, _, _, _, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}"]
+    out.append(f"    f{c}, kd{c}, kv{c}, kt{c}, kw{c}, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}")
+    if x.damped or x.time_varying or x.excited:
+        out.append(f"    qd{c}, qv{c}, qt{c}, qw{c}, ud{c}, uv{c}, ut{c}, uw{c}, ed{c}, ev{c}, et{c}, ew{c} = "
+                   f"_power{c}{args}")
     return out
 
 
@@ -124,6 +146,7 @@ def _quadrature_exprs(lay: Layout) -> list[str]:
         p_in = f"({lit(lay.connectors[0].ra)} * f0 + {lit(lay.inertias[0])} * a0) * w0"
     else:
         p_in = "Tin * w0"
+    p_in += "".join(f" + te{c}" for c, x in enumerate(lay.connectors) if x.excited)  # the TE's work
     p_load = f"TL * w{lay.n_bodies - 1}" if lay.load.torque_Nm != 0.0 else "0.0"
     damped = [f"q{c}" for c, x in enumerate(lay.connectors) if x.damped]
     out = [p_in, p_load, " + ".join(damped) if damped else "0.0"]
@@ -148,18 +171,22 @@ def rhs_source(lay: Layout) -> str:
 # ------------------------------------------------------------------------------------------ Jacobian
 def _gradient(lay: Layout, c: int, name: str) -> dict[int, str]:
     """Column -> d(name_c)/dy of a connector quantity whose partials the generated code holds as
-    ``{name}d{c}`` (deflection), ``{name}v{c}`` (deflection rate) and ``{name}t{c}`` (mesh phase): the
-    force (name "k") or a power (q: damping, u: time-varying spring). Speeds enter through the
-    deflection rate, body angles through the mesh phase z_p theta_p of a time-varying mesh."""
+    ``{name}d{c}`` (deflection), ``{name}v{c}`` (deflection rate), ``{name}t{c}`` (mesh phase) and
+    ``{name}w{c}`` (phase rate): the force (name "k") or a power (q: damping, u: time-varying spring,
+    e: transmission error). Speeds enter through the deflection rate and the phase rate z_p w_p of a
+    mesh with a transmission error, body angles through the mesh phase z_p theta_p."""
     x = lay.connectors[c]
     g = {lay.i_delta(c): f"{name}d{c}"}
     for body, r in ((x.a, x.ra), (x.b, -x.rb)):
         col = lay.i_omega(body)
         if col is not None:
             g[col] = f"{lit(r)} * {name}v{c}"
-    if x.time_varying:
+    if x.phased:
         for col, coef in lay.angle_gradient(x.a).items():
             g[col] = (g[col] + " + " if col in g else "") + f"{lit(coef * phase_per_rad(x.params))} * {name}t{c}"
+    col = lay.i_omega(x.a)
+    if x.excited and col is not None:
+        g[col] = g[col] + f" + {lit(phase_per_rad(x.params))} * {name}w{c}"
     return g
 
 
@@ -196,6 +223,12 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
         _add(rows.setdefault(q0, {}), grads[0], f"{lit(lay.connectors[0].ra)} * w0")
     else:
         rows.setdefault(q0, {})[_omega(lay, 0)] = ["Tin"]
+    if lay.ripple and lay.i_theta is not None:  # T_in depends on th0
+        rows[_omega(lay, 0)].setdefault(lay.i_theta, []).append(f"{lit(1.0 / lay.inertias[0])} * dTin")
+        rows[q0].setdefault(lay.i_theta, []).append("dTin * w0")
+    for c, x in enumerate(lay.connectors):
+        if x.excited:  # + the transmission error's power
+            _add(rows.setdefault(q0, {}), _gradient(lay, c, "e"), "1.0")
     if lay.load.torque_Nm != 0.0:
         rows.setdefault(q0 + 1, {})[_omega(lay, lay.n_bodies - 1)] = ["TL"]
     for c, x in enumerate(lay.connectors):
@@ -231,19 +264,51 @@ def source_of(lay: Layout) -> str:
     return _header(lay) + rhs_source(lay) + "\n\n" + jac_source(lay)
 
 
-def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
-    """Compile the scene's ``rhs(t, y)`` and ``jac(t, y)``; returns them and their source.
+def _template(source: str) -> tuple[str, tuple[float, ...]]:
+    """The source with every float literal replaced by a name ``_k{i}`` (what stays is the model's
+    structure), and the literals' values in order. Integers (array shapes and indices) stay: they are
+    structure. A name is an atom like a literal, so every expression keeps its meaning and its value."""
+    lines = source.splitlines(True)
+    values: list[float] = []
+    spans: list[tuple[int, int, int, str]] = []
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.NUMBER and not tok.string.isdigit():
+            spans.append((tok.start[0] - 1, tok.start[1], tok.end[1], f"_k{len(values)}"))
+            values.append(float(tok.string))
+    for row, a, b, name in reversed(spans):
+        lines[row] = lines[row][:a] + name + lines[row][b:]
+    return "".join(lines), tuple(values)
 
-    The source is registered with linecache under ``filename`` (unique per source), so a traceback
+
+@lru_cache(maxsize=64)
+def _compiled(template: str, n_constants: int):
+    """The code of a module defining ``_make(_k0, ..., _kN)`` that returns the ``rhs`` and ``jac`` of a
+    model structure as closures over its constants: compiled once per structure and process (a sweep's
+    points differ only in the constants)."""
+    params = ", ".join(f"_k{i}" for i in range(n_constants))
+    body = "".join("    " + line if line.strip() else line for line in template.splitlines(True))
+    module = f"def _make({params}):\n{body}\n    return rhs, jac\n"
+    digest = hashlib.sha1(module.encode()).hexdigest()[:12]
+    filename = f"gearcli/model/_generated_{digest}.py"
+    linecache.cache[filename] = (len(module), None, module.splitlines(True), filename)
+    return compile(module, filename, "exec")
+
+
+def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
+    """The scene's ``rhs(t, y)`` and ``jac(t, y)``; returns them and their source.
+
+    The source is the scene's own, with its constants as literals (``--dump-model``). What runs is its
+    structure (:func:`_template`), compiled once per process (:func:`_compiled`) and bound to this scene's
+    constants and element parameters; the compiled module is registered with linecache, so a traceback
     through the generated code shows its lines."""
-    namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt}
+    namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
+                       "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation}
     for c, x in enumerate(lay.connectors):
         namespace[f"_P{c}"] = x.params
-        namespace[f"_force{c}"] = x.element.force
+        namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
         namespace[f"_power{c}"] = x.element.power_gradient
     source = source_of(lay)
-    digest = hashlib.sha1(source.encode()).hexdigest()[:12]
-    filename = f"gearcli/model/_generated_{digest}.py"
-    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
-    return namespace["rhs"], namespace["jac"], source
+    template, constants = _template(source)
+    exec(_compiled(template, len(constants)), namespace)  # noqa: S102 - our own generated source
+    rhs, jac = namespace["_make"](*constants)
+    return rhs, jac, source

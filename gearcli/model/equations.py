@@ -85,10 +85,20 @@ class TorsionalModel:
         return self.layout.arrays(self.atol(1e-6))
 
     # ------------------------------------------------------------------------------- start, scales
-    def _input_speed(self) -> float:
+    def _input_speed(self, t: float = 0.0) -> float:
+        """The input body's rigid-body speed at time t: a speed drive's prescribed speed, a torque
+        drive's nominal speed."""
         lay = self.layout
-        return ramp_motion(0.0, lay.drive.ramp_s, lay.drive.speed_rad_s)[1] if lay.speed_drive \
+        return ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)[1] if lay.speed_drive \
             else lay.drive.speed_rad_s
+
+    def input_angle(self, t: float) -> float:
+        """The speed-driven input body's angle at time t (its start angle included); a torque drive's
+        angle is a state (ValueError)."""
+        drive = self.layout.drive
+        if not self.layout.speed_drive:
+            raise ValueError("a torque drive's input angle is a state")
+        return ramp_motion(t, drive.ramp_s, drive.speed_rad_s)[0] + drive.angle_rad
 
     def initial_state(self) -> np.ndarray:
         lay = self.layout
@@ -98,16 +108,21 @@ class TorsionalModel:
             y0[lay.i_omega(i)] = lay.bodies[i].ratio * w_in
         return y0
 
-    def continue_state(self, y_prev: np.ndarray, model_prev: TorsionalModel) -> np.ndarray:
-        """Start state continuing a previous run's end ``y_prev`` (of ``model_prev``, same chain): keep the
-        deflections and the deflection rates, move the rigid-body speeds to this model's operating speed
-        (the input body's speed at t = 0); quadratures reset to 0."""
+    def continue_state(self, y_prev: np.ndarray, model_prev: TorsionalModel, t_prev: float | None = None) -> np.ndarray:
+        """Start state continuing a previous run's end ``y_prev`` (of ``model_prev``, same chain, at its time
+        ``t_prev``; None: past its ramps): keep the deflections and the deflection rates, move the rigid-body
+        speeds from the previous run's speed at its end to this model's operating speed (the input body's
+        speed at t = 0); quadratures reset to 0. The angles: a torque drive's input
+        angle state is kept; a speed drive's is analytic, so this model should have been built with the
+        previous run's end angle as its drive's ``angle_rad`` (:func:`gearcli.sweep.continuation.carry_phases`),
+        or every mesh phase jumps back to the start while the vibration state goes on."""
         lay, prev = self.layout, model_prev.layout
         if (lay.n_conn, lay.n_bodies, lay.speed_drive) != (prev.n_conn, prev.n_bodies, prev.speed_drive):
             raise ValueError("continuation needs the same chain of bodies and connectors")
         y = self.initial_state()
         y[:lay.n_conn] = y_prev[:lay.n_conn]
-        w_prev_in = model_prev._input_speed()
+        t_end = max(prev.drive.ramp_s, prev.load.ramp_s) if t_prev is None else t_prev
+        w_prev_in = model_prev._input_speed(t_end)
         for i in lay.free_bodies:  # same vibration about the new rigid speed
             rigid_prev = prev.bodies[i].ratio * w_prev_in
             y[lay.i_omega(i)] += y_prev[prev.i_omega(i)] - rigid_prev

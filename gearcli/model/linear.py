@@ -139,7 +139,7 @@ def tangent(lay: Layout, c: int, F: float, *, stiffest_phase: bool = False) -> t
     F = abs(float(F))
     if x.kind != KIND_MESH:
         d0 = x.element.static_deflection(x.params, F)
-        _, k, cd, _, _, _ = x.element.force(x.params, d0, 0.0, 0.0)
+        _, k, cd, _, _, _, _, _ = x.element.force(x.params, d0, 0.0, 0.0, 0.0)
         return k, cd, d0
     P = x.params
     factor = contact_length_range(P[mesh_el.I_EA], P[mesh_el.I_EB])[1] if stiffest_phase and x.time_varying else 1.0
@@ -147,7 +147,7 @@ def tangent(lay: Layout, c: int, F: float, *, stiffest_phase: bool = False) -> t
     p0 = mesh_el.static_penetration(Q, F)
     if p0 == 0.0 and Q[mesh_el.I_E] != 1.0:
         return 0.0, 0.0, 0.0
-    _, k, cd, _, _, _ = mesh_el.force(Q, max(p0, 1e-300) / Q[mesh_el.I_CB], 0.0, 0.0)
+    _, k, cd, _, _, _, _, _ = mesh_el.force(Q, max(p0, 1e-300) / Q[mesh_el.I_CB], 0.0, 0.0, 0.0)
     return k, cd, p0
 
 

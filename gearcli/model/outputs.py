@@ -4,7 +4,9 @@ Every connector quantity is the element's :func:`force` (and :func:`potential`) 
 sample — the same function the right-hand side calls, so the channels cannot drift from the dynamics.
 Reported tooth forces (DESIGN contract, README "Model"): ``F_t = F_bt cos(alpha_t)``,
 ``F_r = F_t tan(alpha_t)``, ``F_a = F_t tan(beta)`` — signed like the design's static forces (negative
-on the back flank). A mesh's penetration channel is the signed penetration beyond the gap.
+on the back flank). A mesh's penetration channel is the signed penetration beyond the gap; its dynamic
+transmission error ``q = delta - e(phi)`` (:func:`gearcli.model.elements.mesh.dynamic_transmission_error`;
+the deflection when the mesh has no transmission error).
 """
 
 from __future__ import annotations
@@ -15,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements.mesh import penetration, phase_per_rad
+from gearcli.model.elements import KIND_MESH, torque
+from gearcli.model.elements.mesh import dynamic_transmission_error, penetration, phase_per_rad
 from gearcli.model.step import ramp, ramp_motion
 
 
@@ -26,6 +28,7 @@ class ConnectorSeries:
     deflection: np.ndarray  # delta (m or rad)
     penetration_m: np.ndarray  # mesh: signed penetration beyond the gap; spring: zeros
     potential_J: np.ndarray  # stored elastic energy
+    dte_m: np.ndarray  # mesh: dynamic transmission error q = delta - e(phi) (m); spring: the deflection
 
     @property
     def line_force_N(self) -> np.ndarray:
@@ -57,6 +60,8 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
     """Speeds of all bodies, their angles (if needed) and the input body's acceleration."""
     if lay.speed_drive:
         th0, w0, a0 = ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)
+        if lay.drive.angle_rad != 0.0:  # a continued sweep point's start angle
+            th0 = th0 + lay.drive.angle_rad
     else:
         th0 = Y[lay.i_theta] if lay.i_theta is not None else None
         w0, a0 = None, np.zeros_like(t)  # a torque drive's input torque is prescribed
@@ -76,16 +81,18 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     el, P = x.element, x.params
     d = Y[c]
     dd = x.ra * omega[x.a] - x.rb * omega[x.b]
-    phi = phase_per_rad(P) * theta[x.a] if x.time_varying else np.zeros_like(d)
+    phi = phase_per_rad(P) * theta[x.a] if x.phased else np.zeros_like(d)
+    wphi = phase_per_rad(P) * omega[x.a] if x.excited else np.zeros_like(d)
     n = d.size
-    F, U, pen = np.empty(n), np.empty(n), np.zeros(n)
+    F, U, pen, q = np.empty(n), np.empty(n), np.zeros(n), d.copy()
     for j in range(n):
         dj, phj = float(d[j]), float(phi[j])
-        F[j] = el.force(P, dj, float(dd[j]), phj)[0]
+        F[j] = el.force(P, dj, float(dd[j]), phj, float(wphi[j]))[0]
         U[j] = el.potential(P, dj, phj)
         if x.kind == KIND_MESH:
-            pen[j] = penetration(P, dj)
-    return ConnectorSeries(F, d.copy(), pen, U)
+            pen[j] = penetration(P, dj, phj)
+            q[j] = dynamic_transmission_error(P, dj, phj)
+    return ConnectorSeries(F, d.copy(), pen, U, q)
 
 
 def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
@@ -97,7 +104,12 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
         t_in = conns[0].force * lay.connectors[0].ra + lay.inertias[0] * a0
     else:
         t_in = np.asarray(ramp(t, lay.drive.ramp_s, lay.drive.torque_Nm)) * np.ones_like(t)
+        if lay.ripple:
+            assert theta is not None  # a ripple needs the input angle
+            t_in = t_in * np.array([torque.ripple(lay.ripple, float(th))[0] for th in theta[0]])
     t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
+    if lay.fluctuation:
+        t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj) + lay.load.clock_s) for tj in t])
     return Sampled(t, omega, theta, t_in, t_load, conns, lay)
 
 

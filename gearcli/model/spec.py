@@ -42,6 +42,21 @@ class MeshSpec:
     normal_module_m: float = 0.0  # for the "penetration > 10 % of the module" warning (0: no check)
     static_tangential_N: float = 0.0  # design's F_t at full load (signed)
     efficiency: float = 1.0  # reported only; not in the dynamics
+    # mesh excitation (gearcli.model.elements.mesh): harmonics j = 1, 2, ... of the mesh phase
+    transmission_error_m: tuple[float, ...] = ()  # e_j along the transverse line of action
+    transmission_error_phase_rad: tuple[float, ...] = ()  # psi_j (missing: 0)
+    stiffness_harmonics: tuple[float, ...] = ()  # s_j: K (1 - sum s_j cos(j phi + chi_j))
+    stiffness_harmonics_phase_rad: tuple[float, ...] = ()  # chi_j (missing: 0)
+    damping_ratio: float | None = None  # viscous c = 2 zeta sqrt(k_lin m_e) instead of the IMPACT ramp
+
+    def __post_init__(self) -> None:
+        if len(self.transmission_error_phase_rad) > len(self.transmission_error_m) or \
+                len(self.stiffness_harmonics_phase_rad) > len(self.stiffness_harmonics):
+            raise ValueError("more harmonic phases than amplitudes")
+        if sum(abs(s) for s in self.stiffness_harmonics) >= 1.0:
+            raise ValueError("stiffness harmonics: sum |s_j| must stay below 1 (K stays positive)")
+        if self.damping_ratio is not None and not (self.damping_ratio >= 0 and math.isfinite(self.damping_ratio)):
+            raise ValueError("damping_ratio must be non-negative and finite")
 
     @property
     def cos_beta_b(self) -> float:
@@ -51,21 +66,34 @@ class MeshSpec:
 @dataclass(frozen=True)
 class DriveSpec:
     """``kind = "speed"``: shaft 1 follows ``ramp(t, ramp_s, speed_rad_s)`` exactly (no DOF).
-    ``kind = "torque"``: shaft 1 is free, driven by ``ramp(t, ramp_s, torque_Nm)``; every shaft starts
-    at its nominal speed (rigid-body consistent), so the run begins in motion, not at rest."""
+    ``kind = "torque"``: shaft 1 is free, driven by ``ramp(t, ramp_s, torque_Nm)`` times the ripple
+    (:mod:`gearcli.model.elements.torque`); every shaft starts at its nominal speed (rigid-body
+    consistent), so the run begins in motion, not at rest. ``angle_rad``: a speed drive's angle at
+    t = 0 (0 for a run of its own; a continued sweep point carries the previous point's end angle on, so
+    the mesh phases continue with the vibration state)."""
 
     kind: Literal["speed", "torque"]
     speed_rad_s: float
     ramp_s: float = 0.0
     torque_Nm: float = 0.0
+    ripple: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, order per input revolution)
+    angle_rad: float = 0.0  # speed drive: theta_0(0)
+
+    def __post_init__(self) -> None:
+        if self.ripple and self.kind != "torque":
+            raise ValueError("a torque ripple needs a torque drive (a speed drive prescribes the motion)")
 
 
 @dataclass(frozen=True)
 class LoadSpec:
-    """Torque resisting the last shaft's rotation, ``ramp(t, ramp_s, torque_Nm)`` (negative: reversal)."""
+    """Torque resisting the last shaft's rotation, ``ramp(t, ramp_s, torque_Nm)`` (negative: reversal),
+    times the fluctuation (:mod:`gearcli.model.elements.torque`). ``clock_s``: the fluctuation's time at
+    t = 0 (0 for a run of its own; a continued sweep point carries the previous point's end time on)."""
 
     torque_Nm: float
     ramp_s: float = 0.0
+    fluctuation: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, frequency Hz): x (1 + b sin 2 pi f t)
+    clock_s: float = 0.0  # the fluctuation is a function of t + clock_s
 
 
 @dataclass(frozen=True)

@@ -75,7 +75,9 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
         if series is None:
             series = np.zeros_like(sim.time_s)
         spectrum = force_spectrum(sim.time_s, series, sim.window_s, stage=st.index,
-                                  mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural)
+                                  mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural,
+                                  dte_um=sim.channels.get(f"stage{st.index}_dte_um"),
+                                  whole_periods=sim.steady is not None and sim.steady.mode == "periodic")
         out.append(StageReport(
             stage=st.index, tangential_N=dyn.tangential_N, radial_N=dyn.radial_N, axial_N=dyn.axial_N,
             static_tangential_N=dyn.static_tangential_N, peak_tangential_N=dyn.peak_tangential_N,

@@ -28,6 +28,16 @@ class ComparisonRow:
     error_percent: float | None
 
 
+@dataclass(frozen=True)
+class MeshOrder:
+    """The amplitude of one mesh order (h x the mesh frequency) in a stage's F_t and DTE over the window."""
+
+    order: int  # h = 1, 2, 3 ...
+    frequency_Hz: float
+    tangential_N: float
+    dte_um: float | None  # None when the result carries no DTE channel
+
+
 @dataclass(frozen=True, eq=False)
 class Spectrum:
     """Amplitude spectrum of one stage's detrended F_t over the steady window (Hann window).
@@ -47,6 +57,7 @@ class Spectrum:
     window_s: tuple[float, float]
     mesh_frequency_Hz: float
     matches: str  # what the peak lies next to: "mesh frequency", "natural frequency 2", "none", ...
+    mesh_orders: tuple[MeshOrder, ...] = ()  # amplitudes at 1x, 2x, 3x ... the mesh frequency
 
 
 @dataclass(frozen=True, eq=False)

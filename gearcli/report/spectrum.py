@@ -1,4 +1,5 @@
-"""Dominant frequency of a mesh force over the steady window (numpy FFT, no scipy needed).
+"""Dominant frequency of a mesh force over the steady window (numpy FFT, no scipy needed), and the
+amplitudes of the mesh orders (1x, 2x, 3x the mesh frequency) in the force and the DTE.
 
 The force is detrended (least-squares line removed), multiplied by a Hann window and transformed
 with a real FFT. The amplitude is scaled by 2 / sum(w), so a sine of amplitude A shows a peak of
@@ -12,13 +13,57 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from gearcli.report.result import Spectrum
+from gearcli.report.result import MeshOrder, Spectrum
 
 MIN_SAMPLES = 16
 #: relative std (to max(|mean|, 1 N)) below which a force is treated as constant: no peak to name
 FLAT_RELATIVE = 1e-9
 #: a peak "matches" a line when it lies within this many bins of it (Hann main lobe half-width)
 MATCH_BINS = 2.0
+MESH_ORDERS = (1, 2, 3)  # the mesh orders listed per stage
+
+
+def order_amplitude(time_s: np.ndarray, x: np.ndarray, frequency_Hz: float, *, whole_periods: bool) -> float:
+    """Amplitude of the component of ``x`` at ``frequency_Hz`` (a sine of amplitude A gives A).
+
+    ``whole_periods``: the samples cover whole periods of the line on a uniform grid without their closing
+    sample (a periodic steady state): the plain discrete Fourier coefficient ``2 |mean(x e^(-i w t))|``,
+    exact for every harmonic of the period. Otherwise the record is detrended and Hann-weighted,
+    ``2 |sum(w x e^(-i w t))| / sum(w)``: no leakage from the record's ends, the other lines suppressed
+    once they lie more than ~2 resolution bins away.
+    """
+    t = np.asarray(time_s, float)
+    x = np.asarray(x, float)
+    if t.size < 2 or frequency_Hz <= 0:
+        return 0.0
+    phase = np.exp(-2j * np.pi * frequency_Hz * (t - t[0]))
+    if whole_periods:
+        return float(2.0 * abs(np.mean((x - x.mean()) * phase)))
+    u = t - t[0]
+    detrended = x - np.polyval(np.polyfit(u, x, 1), u)
+    w = np.hanning(t.size)
+    return float(2.0 * abs(np.sum(w * detrended * phase)) / w.sum())
+
+
+def mesh_orders(time_s: np.ndarray, force_N: np.ndarray, dte_um: np.ndarray | None, window_s: tuple[float, float],
+                mesh_frequency_Hz: float, *, whole_periods: bool = False,
+                orders: Sequence[int] = MESH_ORDERS) -> tuple[MeshOrder, ...]:
+    """F_t (and DTE) amplitudes at ``orders`` x the mesh frequency over ``window_s`` (:func:`order_amplitude`;
+    ``whole_periods`` leaves out the window's closing sample, the first of the next period)."""
+    t = np.asarray(time_s, float)
+    mask = window_mask(t, window_s)
+    if whole_periods:
+        mask &= t < window_s[1] - 1e-9 * max(1.0, abs(window_s[1]))
+    if mask.sum() < MIN_SAMPLES or mesh_frequency_Hz <= 0:
+        return ()
+    out = []
+    for h in orders:
+        f = h * mesh_frequency_Hz
+        dte = None if dte_um is None else order_amplitude(t[mask], np.asarray(dte_um)[mask], f,
+                                                           whole_periods=whole_periods)
+        out.append(MeshOrder(h, f, order_amplitude(t[mask], np.asarray(force_N)[mask], f, whole_periods=whole_periods),
+                             dte))
+    return tuple(out)
 
 
 def window_mask(time_s: np.ndarray, window_s: tuple[float, float]) -> np.ndarray:
@@ -35,8 +80,11 @@ def force_spectrum(
     stage: int,
     mesh_frequency_Hz: float,
     natural_frequencies_Hz: Sequence[float] = (),
+    dte_um: np.ndarray | None = None,
+    whole_periods: bool = False,
 ) -> Spectrum:
-    """Hann-windowed amplitude spectrum of the detrended force over ``window_s``; see the module doc."""
+    """Hann-windowed amplitude spectrum of the detrended force over ``window_s``; see the module doc. The
+    mesh orders (:func:`mesh_orders`) are listed too, from ``dte_um`` as well when it is given."""
     mask = window_mask(np.asarray(time_s, float), window_s)
     t = np.asarray(time_s, float)[mask]
     f = np.asarray(force_N, float)[mask]
@@ -57,8 +105,9 @@ def force_spectrum(
                         mesh_frequency_Hz, "no fluctuation")
     k = 1 + int(np.argmax(amplitude[1:]))  # skip the DC bin
     peak = float(freqs[k])
+    orders = mesh_orders(time_s, force_N, dte_um, window_s, mesh_frequency_Hz, whole_periods=whole_periods)
     return Spectrum(stage, freqs, amplitude, peak, float(amplitude[k]), resolution, float(freqs[-1]), window_s,
-                    mesh_frequency_Hz, name_peak(peak, resolution, mesh_frequency_Hz, natural_frequencies_Hz))
+                    mesh_frequency_Hz, name_peak(peak, resolution, mesh_frequency_Hz, natural_frequencies_Hz), orders)
 
 
 def name_peak(peak_Hz: float, resolution_Hz: float, mesh_Hz: float, natural_Hz: Sequence[float]) -> str:

@@ -137,7 +137,7 @@ class EnergyWatch:
 
 
 def energy_watch(model: TorsionalModel, y0: np.ndarray, t0: float = 0.0) -> EnergyWatch | None:
-    """An energy watch for the run from ``(t0, y0)``, or None when the energy scale is degenerate."""
+    """An energy watch for the run from ``(t0, y0)``, or None when the energy scale is degenerate (nothing moves)."""
     watch = EnergyWatch(model, y0, t0)
     return watch if math.isfinite(watch.scale) and watch.scale > 0 else None
 

@@ -12,11 +12,12 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats
+from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
 from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
+from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -28,53 +29,78 @@ from gearcli.simulate.solver import (
 )
 
 RAD_TO_DEG = 180.0 / math.pi
-StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), penetration (mm)
+StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), pen. (mm), DTE (um)
 
 
 def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
-                   y0: np.ndarray | None = None, error_estimate: bool | None = None) -> SimulationResult:
+                   y0: np.ndarray | None = None, model: TorsionalModel | None = None,
+                   error_estimate: bool | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
     (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
-    :meth:`gearcli.model.TorsionalModel.continue_state`); ``error_estimate`` (default
-    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The
-    design's own warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
+    :meth:`gearcli.model.TorsionalModel.continue_state`); ``model``: the scene's model when the caller has
+    already built it (a sweep point), else built here; ``error_estimate`` (default
+    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The design's own
+    warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     from gearcli.scene import spec_from_design
 
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
         raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
                           key="simulation.window_start_s")
-    estimate = sim.error_estimate if error_estimate is None else error_estimate
+    if model is None:
+        model = TorsionalModel(spec_from_design(cfg, design))
+    check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = [dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
-    return simulate_model(TorsionalModel(spec_from_design(cfg, design)), duration_s=sim.duration_s,
+    return simulate_model(model, duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                           window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
-                          error_estimate=estimate, prior_diagnostics=design_diags)
+                          steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
-                   y0: np.ndarray | None = None, max_nfev: int | None = None, error_estimate: bool = True,
+                   y0: np.ndarray | None = None, max_nfev: int | None = None,
+                   steady: str = "window", error_estimate: bool = True,
                    prior_diagnostics: list[Diagnostic] | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
-    ``error_estimate`` runs the check pass (:mod:`gearcli.simulate.estimate`); ``prior_diagnostics`` (the design's warnings) lead the result's warnings."""
+    ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
+    ``steady = "periodic"``, whose statistics come from a converged period); ``prior_diagnostics`` (the
+    design's warnings) lead the result's warnings.
+
+    ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
+    the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most
+    until ``duration_s`` (:mod:`gearcli.simulate.periodic`), and the statistics are taken over whole periods."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
-    diags = list(prior_diagnostics or []) + diags
+    prior = list(prior_diagnostics or [])
     choice = choose_method(spec, duration_s, method, rtol)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
-    t_eval = np.linspace(0.0, duration_s, steps + 1)
-    run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev)
+    mask_window, steady_state = window, None
+    if steady == "periodic":
+        diags = []  # the fixed window's warning does not apply: the window is found, not set
+        found = integrate_periodic(model, choice.method, rtol, steps=steps, duration_s=duration_s,
+                                   window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
+                                   fastest_rad_s=_fastest_rad_s(choice))
+        if isinstance(found, Integration):
+            check(found, choice, duration_s)
+            raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
+        run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
+        diags += steady_warnings(steady_state, found.period)
+    else:
+        t_eval = np.linspace(0.0, duration_s, steps + 1)
+        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev)
+        steady_state = window_steady(model)
     check(run, choice, duration_s)
+    error_estimate = error_estimate and steady != "periodic"
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
-    diags += stats.model_warnings(spec) + _choice_warnings(choice)
+    diags = prior + diags + stats.model_warnings(spec) + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
@@ -83,7 +109,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
-    result = _summarise(model, s, run, choice, window, energy, diags, want_series, ref, stat_diags)
+    result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
+                        ref, stat_diags)
     _require_finite(result)
     return result
 
@@ -101,6 +128,45 @@ def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness
     return tuple(out)
 
 
+def _residual_text(residual: float | None) -> str:
+    return " (no period fits before simulation.duration_s)" if residual is None \
+        else f" (residual {residual:.3g} x the tolerance)"
+
+
+def _fastest_rad_s(choice: Choice) -> float:
+    freqs = choice.at_operating_point.natural_frequencies_Hz
+    return 2.0 * math.pi * float(np.max(freqs)) if np.size(freqs) else 0.0
+
+
+def window_steady(model: TorsionalModel) -> SteadyState:
+    """``steady = "window"``: the fixed window; the excitation period for information."""
+    period = scene_period(model.layout)
+    return SteadyState(mode="window", period_s=period.period_s, periods_to_converge=None, periodicity=None,
+                       converged=None, residual=None, period_source=period.source)
+
+
+def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnostic]:
+    """A response that did not repeat, or repeats only after k periods; a period that is not common."""
+    out = []
+    if not period.exact:
+        out.append(dg.warning(dg.PERIOD_NOT_COMMON, f"steady = \"periodic\": the excitations have no usable common "
+                              f"period; the period used is {period.source}", period_s=period.period_s))
+    if not steady.converged:
+        out.append(dg.warning(dg.NOT_PERIODIC, f"steady = \"periodic\": the response did not repeat over "
+                              f"{steady.periods_to_converge} excitation periods of {steady.period_s:.4g} s, nor after "
+                              f"2 .. {MAX_SUBHARMONIC} of them{_residual_text(steady.residual)}: "
+                              "not periodic (chaotic or quasi-periodic) or still settling — lengthen "
+                              f"simulation.duration_s to search longer (cap {MAX_PERIODS} periods); the statistics "
+                              f"are over the last {steady.window_periods} periods", periods=steady.periods_to_converge,
+                              residual=steady.residual))
+    elif steady.periodicity != "period-1":
+        out.append(dg.warning(dg.SUBHARMONIC, f"steady = \"periodic\": the response repeats only every "
+                              f"{steady.window_periods} excitation periods ({steady.periodicity}, a subharmonic "
+                              f"response); the statistics are over those {steady.window_periods} periods",
+                              periodicity=steady.periodicity))
+    return out
+
+
 def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[StageSeries]]:
     """The CSV columns, in order (README "Output"); and per stage (F_t, F_r, F_a, penetration mm).
     Reducer shafts first (a flexible shaft reports its gear end), then the drivetrain's own channels."""
@@ -112,9 +178,10 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
     for k, ms in enumerate(s.meshes):
         ft, fr, fa = tooth_forces(lay, k, ms.line_force_N)
         pen = ms.penetration_m * 1e3
+        dte = ms.dte_m * 1e6
         ch.update({f"stage{k + 1}_tangential_N": ft, f"stage{k + 1}_radial_N": fr,
-                   f"stage{k + 1}_axial_N": fa, f"stage{k + 1}_penetration_mm": pen})
-        per_stage.append((ft, fr, fa, pen))
+                   f"stage{k + 1}_axial_N": fa, f"stage{k + 1}_penetration_mm": pen, f"stage{k + 1}_dte_um": dte})
+        per_stage.append((ft, fr, fa, pen, dte))
     for shaft, c in sorted(lay.shaft_conn.items()):
         ch[f"shaft{shaft + 1}_twist_deg"] = s.connectors[c].deflection * RAD_TO_DEG
     if lay.motor_body is not None:
@@ -128,15 +195,20 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
     return ch, per_stage
 
 
-def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, window, energy,
-               diags: list[Diagnostic], want_series: bool, ref: estimate.CheckPass | None,
-               stat_diags: list[Diagnostic]) -> SimulationResult:
+def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
+               diags: list[Diagnostic], want_series: bool, steady: SteadyState,
+               ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None) -> SimulationResult:
+    """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
+    the window without its closing sample, which starts the next period)."""
     spec = model.spec
-    mask = stats.window_mask(s.time_s, window)
+    window, mask_window = windows
+    mask = stats.window_mask(s.time_s, mask_window)
+    periodic = steady.mode == "periodic"
     channels, per_stage = _channels(model, s)
     errors = ref.errors if ref is not None else ()
     stiffness = mesh_stiffness(model, choice)
-    stages = tuple(replace(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k], m.static_tangential_N),
+    stages = tuple(replace(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k][:4], m.static_tangential_N,
+                                                per_stage[k][4], periodic=periodic),
                            error_estimate=errors[k] if k < len(errors) else None,
                            mesh_stiffness=stiffness[k] if k < len(stiffness) else None)
                    for k, m in enumerate(spec.meshes))
@@ -151,7 +223,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
-    diags += stat_diags
+    diags += stat_diags or []
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -166,7 +238,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         input_speed_deg_s=w_in * RAD_TO_DEG, stages=stages, solver=solver, energy=balance,
         warnings=dg.messages(diags), diagnostics=tuple(diags),
         natural_frequencies_Hz=choice.natural_frequencies_Hz, natural_frequencies_boundary=choice.boundary,
-        final_state=run.y[:, -1].copy(),
+        final_state=run.y[:, -1].copy(), final_time_s=float(run.t[-1]), steady=steady,
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},

@@ -102,13 +102,17 @@ class _Counters:
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
               t0: float = 0.0, atol: np.ndarray | None = None) -> Integration:
-    """Integrate from ``t0`` (default 0) to ``t_eval[-1]`` and sample at ``t_eval`` (ascending, from
-    ``t0``). ``atol`` overrides the per-state absolute tolerances of :func:`tolerances` (an array of the
-    state's size, or a scalar); ``rtol`` is a scalar for every method.
+    """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
+    (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
+    drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
+    absolute tolerances of :func:`tolerances` (an array of the state's size, or a scalar); ``rtol`` is a
+    scalar for every method.
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error.
     """
+    if t0 != 0.0 and y0 is None:
+        raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
     watch = energy_watch(model, y, t0) if watch_energy else None
     if atol is None:
@@ -118,7 +122,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     out[:, t_eval <= t0] = y[:, None]
     done = int(np.searchsorted(t_eval, t0, side="right"))
     count = _Counters()
-    wall0, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
+    start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch)
@@ -126,7 +130,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
             break
-    wall = time.perf_counter() - wall0
+    wall = time.perf_counter() - start
     return Integration(t_eval, out, method, rtol, atol, count.nfev, count.njev, count.nlu, count.steps, wall, status,
                        message, t)
 

@@ -9,7 +9,14 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.spec import ModelSpec
-from gearcli.results import ChannelStats, StageDynamics
+from gearcli.results import (
+    REGIME_DOUBLE_SIDED,
+    REGIME_NO_IMPACT,
+    REGIME_SINGLE_SIDED,
+    ChannelStats,
+    DteStats,
+    StageDynamics,
+)
 
 SETTLE_FRACTION = 0.2  # of the time left after the slower ramp (docs/physics.md, "Torsional model")
 WARN_ENERGY_RESIDUAL = 1e-3
@@ -50,13 +57,50 @@ def channel_stats(x: np.ndarray, mask: np.ndarray) -> ChannelStats:
 
 
 def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: np.ndarray, fa: np.ndarray,
-                   pen_mm: np.ndarray, static_tangential_N: float) -> StageDynamics:
-    """Window statistics and the run's peak |F_t| (over the output samples) of stage ``k`` (0-based)."""
+                   pen_mm: np.ndarray, static_tangential_N: float, dte_um: np.ndarray | None = None, *,
+                   periodic: bool = False) -> StageDynamics:
+    """Window statistics and the run's peak |F_t| (over the output samples) of stage ``k`` (0-based), and
+    the mesh response over the window (:func:`mesh_response`) when ``dte_um`` is given."""
     i = int(np.argmax(np.abs(ft)))
     peak = float(abs(ft[i]))
     factor = peak / abs(static_tangential_N) if static_tangential_N != 0 else None
+    response = {} if dte_um is None else mesh_response(t, mask, dte_um, ft, pen_mm, static_tangential_N,
+                                                       periodic=periodic)
     return StageDynamics(k + 1, channel_stats(ft, mask), channel_stats(fr, mask), channel_stats(fa, mask),
-                         channel_stats(pen_mm, mask), float(static_tangential_N), peak, float(t[i]), factor)
+                         channel_stats(pen_mm, mask), float(static_tangential_N), peak, float(t[i]), factor,
+                         **response)
+
+
+def time_fraction(t: np.ndarray, flag: np.ndarray, *, periodic: bool) -> float:
+    """Fraction of the window ``t[0] .. t[-1]`` where ``flag`` holds, from the samples: the trapezoid
+    rule on the sample grid; for whole periods sampled uniformly without their closing sample
+    (``periodic``), the plain mean, which is the trapezoid rule of the periodic signal."""
+    x = flag.astype(float)
+    if periodic or x.size < 2 or t[-1] <= t[0]:
+        return float(x.mean()) if x.size else 0.0
+    return float(np.sum(0.5 * (x[1:] + x[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+
+
+def mesh_response(t: np.ndarray, mask: np.ndarray, dte_um: np.ndarray, ft: np.ndarray, pen_mm: np.ndarray,
+                  static_tangential_N: float, *, periodic: bool = False) -> dict:
+    """DTE statistics (rms about the mean), the time fractions without contact and in contact on the back
+    flank, and the impact regime, over the window ``mask``.
+
+    Without contact: the teeth inside the backlash (zero penetration; a viscous ``damping_ratio`` mesh still
+    carries its damping force there) or pressed with a zero force (the IMPACT law's clamp). The loaded flank
+    is the one the static load presses (the drive flank when the load is zero); the back flank is the other
+    one. Regime: "no impact" when no sample of the window is without contact, "single-sided impact" when
+    some is but none touches the back flank, else "double-sided impact".
+    """
+    q, f, p = dte_um[mask], ft[mask], pen_mm[mask]
+    loaded = -1.0 if static_tangential_N < 0 else 1.0
+    lost = (f == 0.0) | (p == 0.0)
+    back = loaded * p < 0.0
+    regime = REGIME_DOUBLE_SIDED if np.any(back) else REGIME_SINGLE_SIDED if np.any(lost) else REGIME_NO_IMPACT
+    return {"dte_um": DteStats(float(q.mean()), float(q.std()), float(q.min()), float(q.max())),
+            "contact_loss_fraction": time_fraction(t[mask], lost, periodic=periodic),
+            "back_flank_fraction": time_fraction(t[mask], back, periodic=periodic),
+            "regime": regime}
 
 
 def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray],

@@ -3,7 +3,8 @@
 A :class:`Task` is plain picklable data: the design file's bytes (so a remote worker needs no access
 to the file), the base ``--set`` overrides, and the points. Each process parses a design file once
 (:func:`_base`, cached per process by its hash); points only apply their overrides, validate, compute the
-design and simulate. A point that fails (a value the schema rejects, an infeasible design, a solver
+design, build one model (its generated code compiled once per model structure and process,
+:func:`gearcli.model.codegen.compile_functions`) and simulate. A point that fails (a value the schema rejects, an infeasible design, a solver
 failure) becomes a ``failed`` row with its message and the branch goes on, starting cold again.
 """
 
@@ -18,6 +19,7 @@ from typing import Any
 
 from gearcli.errors import GearcliError
 from gearcli.sweep.columns import failed_row, ok_row, one_line
+from gearcli.sweep.continuation import Carried
 from gearcli.sweep.spec import Point
 
 
@@ -57,25 +59,40 @@ def load_point(scene: Scene, overrides: tuple[str, ...]):
     return _validate(data, scene.source, paths)
 
 
-def _evaluate(scene: Scene, point: Point, prev: tuple[Any, Any] | None) -> tuple[Any, Any]:
-    """Simulate one point (continued from ``prev = (final_state, model)`` when given)."""
+def _evaluate(scene: Scene, point: Point, prev: Carried | None) -> tuple[Any, Carried | None]:
+    """Simulate one point (continued from the previous point's ``prev`` when given); the result and
+    what it hands on to the next point."""
     from gearcli.design import compute_design
-    from gearcli.scene import build_model
+    from gearcli.scene import spec_from_design
     from gearcli.simulate import run_simulation
-    from gearcli.sweep.continuation import NO_RAMPS, continue_state
+    from gearcli.sweep.continuation import NO_RAMPS, carry_phases, continue_state
 
     cfg = load_point(scene, tuple(point.overrides()) + (NO_RAMPS if prev else ()))
     design = compute_design(cfg)
-    model = build_model(cfg, design)
-    y0 = continue_state(prev[0], prev[1], model) if prev else None
-    if prev and y0 is None:  # the chain changed: start cold, with the file's ramps
-        cfg = load_point(scene, tuple(point.overrides()))
-        design = compute_design(cfg)
-        model = build_model(cfg, design)
+    spec = spec_from_design(cfg, design)
+    y0 = None
+    if prev is not None:
+        model = model_of(carry_phases(spec, prev))
+        y0 = continue_state(prev.state, prev.model, model, prev.time_s)
+    if y0 is None:  # a cold start (the first point, or the chain changed), with the file's ramps
+        if prev is not None:
+            cfg = load_point(scene, tuple(point.overrides()))
+            design = compute_design(cfg)
+            spec = spec_from_design(cfg, design)
+        model = model_of(spec)
     # no check pass per point (it would double a sweep's cost; README "Honest statistics"): a point's statistics
     # are checked by `gearcli simulate` on that point
-    result = run_simulation(cfg, design, want_series=False, y0=y0, error_estimate=False)
-    return result, model
+    result = run_simulation(cfg, design, want_series=False, y0=y0, model=model, error_estimate=False)
+    if result.final_state is None or result.final_time_s is None:
+        return result, None
+    return result, Carried(model, result.final_state, result.final_time_s)
+
+
+def model_of(spec):
+    """The compiled model of a ModelSpec."""
+    from gearcli.model import TorsionalModel
+
+    return TorsionalModel(spec)
 
 
 def iter_task(task: Task) -> Iterator[dict]:
@@ -84,7 +101,7 @@ def iter_task(task: Task) -> Iterator[dict]:
     for point in task.points:
         t0 = time.perf_counter()
         try:
-            result, spec = _evaluate(task.scene, point, prev if task.continuation else None)
+            result, carried = _evaluate(task.scene, point, prev if task.continuation else None)
         except GearcliError as exc:
             prev = None
             row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
@@ -92,7 +109,7 @@ def iter_task(task: Task) -> Iterator[dict]:
             prev = None
             row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
         else:
-            prev = (result.final_state, spec) if result.final_state is not None else None
+            prev = carried
             row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
                          message=one_line("\n".join(result.warnings)))
         if point.index not in task.skip:

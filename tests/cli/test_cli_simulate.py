@@ -74,7 +74,7 @@ def test_csv_is_default_in_a_pipe_with_contract_columns():
     header = rows[0]
     expected = ["time_s", *[f"shaft{i}_speed_deg_s" for i in range(1, 5)], "input_torque_Nmm"]
     for k in range(1, 4):
-        expected += [f"stage{k}_{q}" for q in ("tangential_N", "radial_N", "axial_N", "penetration_mm")]
+        expected += [f"stage{k}_{q}" for q in ("tangential_N", "radial_N", "axial_N", "penetration_mm", "dte_um")]
     assert header == expected
     assert len(rows) == 1 + 501
     # at t = 0.25 s the input runs at the full 3600 deg/s (ramp over at 0.18 s): analytic STEP profile

@@ -125,8 +125,9 @@ def test_output_contract(seed):
     names = list(seed.channels)
     assert names[:5] == ["shaft1_speed_deg_s", "shaft2_speed_deg_s", "shaft3_speed_deg_s", "shaft4_speed_deg_s",
                          "input_torque_Nmm"]
-    assert names[5:9] == ["stage1_tangential_N", "stage1_radial_N", "stage1_axial_N", "stage1_penetration_mm"]
-    assert len(names) == 5 + 4 * 3 and seed.time_s.size == 2001
+    assert names[5:10] == ["stage1_tangential_N", "stage1_radial_N", "stage1_axial_N", "stage1_penetration_mm",
+                           "stage1_dte_um"]
+    assert len(names) == 5 + 5 * 3 and seed.time_s.size == 2001
     assert all(np.all(np.isfinite(v)) and v.size == 2001 for v in seed.channels.values())
     assert_allclose(seed.window_s, (0.18 + 0.2 * 0.32, 0.5), rtol=1e-12)
     assert set(seed.solver.atol) == {"deflection_m", "speed_rad_s"}

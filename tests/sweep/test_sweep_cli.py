@@ -55,7 +55,8 @@ def test_rows_one_per_point_and_a_failed_point_is_a_row(tmp_path):
     # window mean of stage 1's F_t = input torque / pitch radius, lossless: T_L / i_total / (z_1 m_n / cos(beta) / 2)
     f_t = 5310.0 / ((51 / 21) * (50 / 17) * (53 / 17)) / (21 * 12e-3 / math.cos(math.radians(12)) / 2)  # 1851 N
     assert [float(r["stage1_tangential_N_mean"]) for r in good] == pytest.approx([f_t] * 3, rel=0.02)  # ringing
-    assert all(r["stage1_dte_um_mean"] == "" and r["stage1_contact_loss_fraction"] == "" for r in good)  # issue 13
+    # issue 13: the mesh response fills in; the loaded seed mesh never lifts off, and its deflection is positive
+    assert all(float(r["stage1_contact_loss_fraction"]) == 0.0 and float(r["stage1_dte_um_mean"]) > 0 for r in good)
     assert "6 points, 3 failed" in res.stderr
 
 

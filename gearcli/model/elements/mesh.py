@@ -1,19 +1,33 @@
-"""Gear mesh along its transverse line of action: the MSC Adams IMPACT law (docs: README "Model").
+"""Gear mesh along its transverse line of action: the MSC Adams IMPACT law, or viscous damping, with
+mesh excitation (docs: README "Model", "Excitation").
 
-Deflection ``delta = r_bp theta_p - r_bg theta_g`` (m), normal approach ``h = cos(beta_b) delta``.
-Backlash j opens a gap of j/2 on each flank: drive-flank contact when ``h > j/2``, back-flank contact
-when ``h < -j/2``, no force between. On the penetration ``p`` beyond the gap
+Deflection ``delta = r_bp theta_p - r_bg theta_g`` (m). The mesh acts on the dynamic transmission error
+``q = delta - e(phi)`` (Kahraman & Singh, J. Sound Vib. 142(1), 1990): ``e`` is the static transmission
+error prescribed along the transverse line of action as harmonics of the mesh phase,
 
-    F_n = K g(phi) p^e + STEP(p, 0, 0, d, C) p'   clamped at 0 (never tensile),
-    F   = F_bt = +-cos(beta_b) F_n               (negative on the back flank),
+    e(phi) = sum_j e_j cos(2 pi j phi + psi_j),   q' = delta' - e'(phi) phi',   phi' = z_p w_p / 2 pi,
 
-``g = L(phi) / L_mean`` (total contact-line length over its mean; :mod:`gearcli.model.contact_lines`)
-for a time-varying mesh, else 1; ``phi = z_p theta_p / 2 pi`` the pinion's mesh phase in mesh cycles
-(:func:`phase_per_rad`). The damping
-dissipates ``(F_n - K g p^e) p'`` (including the part the clamp removes); the work into a time-varying
-spring is ``K g p^e p'``.
+``phi = z_p theta_p / 2 pi`` the pinion's mesh phase in mesh cycles (:func:`phase_per_rad`; DESIGN's
+radians are 2 pi phi). Normal approach ``h = cos(beta_b) q``. Backlash j opens a gap of j/2 on each
+flank: drive-flank contact when ``h > j/2``, back-flank contact when ``h < -j/2``, no elastic force
+between. On the penetration ``p`` beyond the gap
+
+    IMPACT:   F_n = K g(phi) p^e + STEP(p, 0, 0, d, C) p'   clamped at 0 (never tensile),
+              F   = F_bt = +-cos(beta_b) F_n               (negative on the back flank),
+    viscous:  F   = +-cos(beta_b) K g(phi) p^e + c q'      (``damping_ratio``: c q' at all times, also in
+              the gap; c = 2 zeta sqrt(k_lin m_e), k_lin the linearised dF/d delta at the static load, m_e
+              the equivalent mass; both computed by :mod:`gearcli.model.assembly`),
+
+``g(phi) = L(phi) / L_mean`` (total contact-line length over its mean;
+:mod:`gearcli.model.contact_lines`) for a time-varying mesh, else 1, times the stiffness harmonics
+``1 - sum_j s_j cos(2 pi j phi + chi_j)``. The damping dissipates ``(F_n - K g p^e) p'`` (IMPACT,
+including the part the clamp removes) or ``c q'^2``; the work into a time-varying spring is
+``K g p^e p'``; the transmission error does ``-F e'(phi) phi'`` on the bodies.
+
+Parameter row (:data:`PARAMS`, then the harmonics): ``N_HARM`` TE amplitudes (m) from :data:`I_TE`,
+their phases (rad) from :data:`I_TEP`, the stiffness harmonics from :data:`I_KS`, their phases from
+:data:`I_KSP`; unused entries 0.
 """
-
 from __future__ import annotations
 
 import math
@@ -21,12 +35,19 @@ import math
 import numpy as np
 
 from gearcli.model.contact_lines import SPUR_OVERLAP
-from gearcli.model.elements import N_PARAM
+from gearcli.model.elements import N_HARM, N_PARAM
 
 PARAMS = ("cos_beta_b", "cos2_beta_b", "stiffness_N_m_e", "exponent", "damping_Ns_m", "inv_full_damping_1_m",
           "damping_slope", "half_gap_m", "time_varying", "contact_ratio", "overlap_ratio", "pinion_teeth",
-          "full_damping_m")
-(I_CB, I_CB2, I_K, I_E, I_C, I_INVD, I_DC, I_HALF, I_TV, I_EA, I_EB, I_Z, I_D) = range(len(PARAMS))
+          "full_damping_m", "viscous", "viscous_damping_Ns_m", "damping_ratio", "k_lin_N_m", "m_e_kg",
+          "n_te", "n_ks")
+(I_CB, I_CB2, I_K, I_E, I_C, I_INVD, I_DC, I_HALF, I_TV, I_EA, I_EB, I_Z, I_D,
+ I_VIS, I_CV, I_ZETA, I_KLIN, I_ME, I_NTE, I_NKS) = range(len(PARAMS))
+I_TE = len(PARAMS)  # TE amplitudes, m
+I_TEP = I_TE + N_HARM  # TE phases, rad
+I_KS = I_TEP + N_HARM  # stiffness harmonics s_j (fractions of K)
+I_KSP = I_KS + N_HARM  # their phases, rad
+TWO_PI = 2.0 * math.pi
 
 
 def phase_per_rad(P) -> float:
@@ -39,10 +60,65 @@ def pack(spec) -> np.ndarray:
     cb = math.cos(spec.base_helix_angle_rad)
     d = spec.full_damping_m
     row = np.zeros(N_PARAM)
-    row[:len(PARAMS)] = (cb, cb * cb, spec.stiffness_N_m_e, spec.exponent, spec.damping_Ns_m, 1.0 / d,
-                         6.0 * spec.damping_Ns_m / d, 0.5 * spec.backlash_m, float(spec.time_varying),
-                         spec.contact_ratio, spec.overlap_ratio, float(spec.pinion_teeth), d)
+    te, ks = spec.transmission_error_m, spec.stiffness_harmonics
+    row[:I_VIS] = (cb, cb * cb, spec.stiffness_N_m_e, spec.exponent, spec.damping_Ns_m, 1.0 / d,
+                   6.0 * spec.damping_Ns_m / d, 0.5 * spec.backlash_m, float(spec.time_varying),
+                   spec.contact_ratio, spec.overlap_ratio, float(spec.pinion_teeth), d)
+    if spec.damping_ratio is not None:  # c, k_lin, m_e: filled by the assembly (with_viscous)
+        row[I_VIS], row[I_ZETA] = 1.0, spec.damping_ratio
+    if len(te) > N_HARM or len(ks) > N_HARM:
+        raise ValueError(f"at most {N_HARM} transmission-error and stiffness harmonics")
+    row[I_NTE], row[I_NKS] = len(te), len(ks)
+    row[I_TE:I_TE + len(te)] = te
+    row[I_TEP:I_TEP + len(spec.transmission_error_phase_rad)] = spec.transmission_error_phase_rad
+    row[I_KS:I_KS + len(ks)] = ks
+    row[I_KSP:I_KSP + len(spec.stiffness_harmonics_phase_rad)] = spec.stiffness_harmonics_phase_rad
     return row
+
+
+def with_viscous(P, k_lin, m_e):
+    """The row with the viscous damping c = 2 zeta sqrt(k_lin m_e) of a ``damping_ratio`` mesh."""
+    Q = np.array(P, dtype=float)
+    Q[I_KLIN], Q[I_ME] = k_lin, m_e
+    Q[I_CV] = 2.0 * Q[I_ZETA] * math.sqrt(k_lin * m_e)
+    return Q
+
+
+def linear_stiffness(P, F, floor_m):
+    """dF_bt/d delta at the line force F on the drive flank at mean stiffness: cos^2(beta_b) e K p0^(e-1);
+    an unloaded mesh with e > 1 at the penetration ``floor_m`` instead (it would have none)."""
+    e = P[I_E]
+    p0 = static_penetration(P, F)
+    if e != 1.0 and p0 <= 0.0:
+        p0 = floor_m
+    return P[I_CB2] * e * P[I_K] * p0 ** (e - 1.0)
+
+
+def transmission_error(P, phi):
+    """(e, de/dphi, d2e/dphi2) at the mesh phase phi (cycles): e = sum_j e_j cos(2 pi j phi + psi_j), m."""
+    e = e1 = e2 = 0.0
+    for j in range(int(P[I_NTE])):
+        w = TWO_PI * (j + 1)
+        a = P[I_TE + j]
+        arg = w * phi + P[I_TEP + j]
+        c = math.cos(arg)
+        s = math.sin(arg)
+        e += a * c
+        e1 -= a * w * s
+        e2 -= a * w * w * c
+    return e, e1, e2
+
+
+def harmonic_factor(P, phi):
+    """(1 - sum_j s_j cos(2 pi j phi + chi_j), its d/dphi): the stiffness harmonics' factor on K."""
+    h = 1.0
+    dh = 0.0
+    for j in range(int(P[I_NKS])):
+        w = TWO_PI * (j + 1)
+        arg = w * phi + P[I_KSP + j]
+        h -= P[I_KS + j] * math.cos(arg)
+        dh += P[I_KS + j] * w * math.sin(arg)
+    return h, dh
 
 
 def contact_factor(x, ea, eb):
@@ -101,6 +177,10 @@ def _elastic(P, p, phi):
     if P[I_TV] != 0.0:
         kph = P[I_K] * contact_slope(phi, P[I_EA], P[I_EB])
         kk = P[I_K] * contact_factor(phi, P[I_EA], P[I_EB])
+    if P[I_NKS] != 0.0:
+        h, dh = harmonic_factor(P, phi)
+        kph = kph * h + kk * dh
+        kk = kk * h
     if e == 1.0:
         fe, ke, pe = kk * p, kk, p
     elif e == 1.5:
@@ -121,52 +201,102 @@ def _damping(P, p):
     return P[I_C], 0.0
 
 
-def force(P, d, dd, phi):
-    """(F_bt, dF/d delta, dF/d delta', dF/d phi, damping power, power into a time-varying spring)."""
-    touching, p, pd, sc = _contact(P, d, dd)
+def law(P, q, qd, phi, wphi=0.0):
+    """The force law on the dynamic transmission error: (F_bt, dF/dq, dF/dq', dF/dphi at fixed q, 0,
+    damping power, power into a time-varying spring, 0). It is :func:`force` itself for a mesh without
+    transmission error (q = delta; the generated code calls it directly there, one call fewer)."""
+    touching, p, pd, sc = _contact(P, q, qd)
+    if P[I_VIS] != 0.0:
+        cv = P[I_CV]
+        if not touching:
+            return cv * qd, 0.0, cv, 0.0, 0.0, cv * qd * qd, 0.0, 0.0
+        fe, ke, fph, _ = _elastic(P, p, phi)
+        u = fe * pd if (P[I_TV] != 0.0 or P[I_NKS] != 0.0) else 0.0
+        return sc * fe + cv * qd, P[I_CB2] * ke, cv, sc * fph, 0.0, cv * qd * qd, u, 0.0
     if not touching:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     fe, ke, fph, _ = _elastic(P, p, phi)
-    u = fe * pd if P[I_TV] != 0.0 else 0.0
+    u = fe * pd if (P[I_TV] != 0.0 or P[I_NKS] != 0.0) else 0.0
     if P[I_C] > 0.0:
         c, dc = _damping(P, p)
         fn = fe + c * pd
         if fn > 0.0:
-            return sc * fn, P[I_CB2] * (ke + dc * pd), P[I_CB2] * c, sc * fph, (fn - fe) * pd, u
-        return 0.0, 0.0, 0.0, 0.0, (0.0 - fe) * pd, u  # clamped: the damper cancels the spring
-    return sc * fe, P[I_CB2] * ke, 0.0, sc * fph, 0.0, u
+            return sc * fn, P[I_CB2] * (ke + dc * pd), P[I_CB2] * c, sc * fph, 0.0, (fn - fe) * pd, u, 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, (0.0 - fe) * pd, u, 0.0  # clamped: the damper cancels the spring
+    return sc * fe, P[I_CB2] * ke, 0.0, sc * fph, 0.0, 0.0, u, 0.0
 
 
-def power_gradient(P, d, dd, phi):
-    """Partials of (damping power, time-varying spring power) by (delta, delta', phi)."""
-    touching, p, pd, sc = _contact(P, d, dd)
-    if not touching:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+def _law_power_gradient(P, q, qd, phi):
+    """Partials of (damping power, time-varying spring power) by (q, q', phi at fixed q)."""
+    touching, p, pd, sc = _contact(P, q, qd)
+    qd_ = qv = qt = ud = uv = ut = 0.0
+    if P[I_VIS] != 0.0:
+        qv = 2.0 * P[I_CV] * qd
+        if not touching:
+            return qd_, qv, qt, ud, uv, ut
+    elif not touching:
+        return qd_, qv, qt, ud, uv, ut
     fe, ke, fph, _ = _elastic(P, p, phi)
-    qd = qv = qt = ud = uv = ut = 0.0
-    if P[I_C] > 0.0:
+    if P[I_VIS] == 0.0 and P[I_C] > 0.0:
         c, dc = _damping(P, p)
         if fe + c * pd > 0.0:
-            qd, qv = sc * dc * pd * pd, 2.0 * sc * c * pd
+            qd_, qv = sc * dc * pd * pd, 2.0 * sc * c * pd
         else:
-            qd, qv, qt = -sc * ke * pd, -sc * fe, -fph * pd
-    if P[I_TV] != 0.0:
+            qd_, qv, qt = -sc * ke * pd, -sc * fe, -fph * pd
+    if time_varying(P):
         ud, uv, ut = sc * ke * pd, sc * fe, fph * pd
-    return qd, qv, qt, ud, uv, ut
+    return qd_, qv, qt, ud, uv, ut
 
 
-def penetration(P, d):
+def _excited(P, d, dd, phi, wphi):
+    """(q, q', e', e'') of a mesh with a transmission error."""
+    e, e1, e2 = transmission_error(P, phi)
+    return d - e, dd - e1 * wphi, e1, e2
+
+
+def force(P, d, dd, phi, wphi):
+    """(F_bt, dF/d delta, dF/d delta', dF/d phi, dF/d phi', damping power, power into a time-varying
+    spring, power of the transmission error on the bodies)."""
+    if P[I_NTE] == 0.0:
+        return law(P, d, dd, phi)
+    q, qd, e1, e2 = _excited(P, d, dd, phi, wphi)
+    f, kd, kv, kt, _, pq, pu, _ = law(P, q, qd, phi)
+    return f, kd, kv, kt - kd * e1 - kv * e2 * wphi, -kv * e1, pq, pu, -f * e1 * wphi
+
+
+def power_gradient(P, d, dd, phi, wphi):
+    """Partials of (damping power, time-varying spring power, transmission-error power) by
+    (delta, delta', phi, phi'): twelve numbers, power by power."""
+    if P[I_NTE] == 0.0:
+        a, b, c, x, y, z = _law_power_gradient(P, d, dd, phi)
+        return a, b, c, 0.0, x, y, z, 0.0, 0.0, 0.0, 0.0, 0.0
+    q, qd, e1, e2 = _excited(P, d, dd, phi, wphi)
+    a, b, c, x, y, z = _law_power_gradient(P, q, qd, phi)
+    f, kd, kv, kt, kw, _, _, _ = force(P, d, dd, phi, wphi)
+    return (a, b, c - a * e1 - b * e2 * wphi, -b * e1, x, y, z - x * e1 - y * e2 * wphi, -y * e1,
+            -kd * e1 * wphi, -kv * e1 * wphi, -(kt * e1 + f * e2) * wphi, -(kw * wphi + f) * e1)
+
+
+def dynamic_transmission_error(P, d, phi):
+    """The mesh's dynamic transmission error q = delta - e(phi) along the transverse line of action (m): the
+    deflection the teeth actually take up (backlash gap included)."""
+    return d - transmission_error(P, phi)[0] if P[I_NTE] != 0.0 else d
+
+
+def penetration(P, d, phi=0.0):
     """Signed penetration beyond the gap (m): + drive flank, - back flank, 0 inside the backlash."""
-    touching, p, _, sc = _contact(P, d, 0.0)
+    touching, p, _, sc = _contact(P, dynamic_transmission_error(P, d, phi), 0.0)
     return (p if sc > 0.0 else -p) if touching else 0.0
 
 
 def potential(P, d, phi):
     """Elastic energy K g p^(e+1) / (e+1) stored in the mesh, J."""
-    touching, p, _, _ = _contact(P, d, 0.0)
+    touching, p, _, _ = _contact(P, dynamic_transmission_error(P, d, phi), 0.0)
     if not touching:
         return 0.0
     kk = P[I_K] * contact_factor(phi, P[I_EA], P[I_EB]) if P[I_TV] != 0.0 else P[I_K]
+    if P[I_NKS] != 0.0:
+        kk *= harmonic_factor(P, phi)[0]
     e = P[I_E]
     return kk * p ** (e + 1.0) / (e + 1.0)
 
@@ -187,17 +317,30 @@ def deflection_scale(P, F, floor):
 
 
 def linear_row(P, factor):
-    """The parameter row of the mesh frozen at ``factor`` x its mean stiffness, without gap (linearisation)."""
+    """The parameter row of the mesh frozen at ``factor`` x its mean stiffness, without gap and without
+    excitation (linearisation)."""
     Q = np.array(P, dtype=float)
     Q[I_K] *= factor
     Q[I_TV] = 0.0
     Q[I_HALF] = 0.0
+    Q[I_NTE] = Q[I_NKS] = 0.0
     return Q
 
 
 def damped(P) -> bool:
-    return bool(P[I_C] > 0.0)
+    return bool(P[I_CV] > 0.0) if P[I_VIS] != 0.0 else bool(P[I_C] > 0.0)
 
 
 def time_varying(P) -> bool:
-    return bool(P[I_TV] != 0.0)
+    """The stiffness depends on the mesh phase (contact lines or stiffness harmonics)."""
+    return bool(P[I_TV] != 0.0 or P[I_NKS] != 0.0)
+
+
+def phased(P) -> bool:
+    """The force depends on the mesh phase (time-varying stiffness or a transmission error)."""
+    return bool(P[I_TV] != 0.0 or P[I_NKS] != 0.0 or P[I_NTE] != 0.0)
+
+
+def excited(P) -> bool:
+    """A transmission error: the force depends on the phase rate too, and the TE does work."""
+    return bool(P[I_NTE] != 0.0)

@@ -21,16 +21,16 @@ def pack(spec) -> np.ndarray:
     return row
 
 
-def force(P, d, dd, phi):
-    """Torque k d + c dd, its partials, the damping power c dd^2 (no time-varying stiffness)."""
+def force(P, d, dd, phi, wphi):
+    """Torque k d + c dd, its partials, the damping power c dd^2 (no phase, no time-varying stiffness)."""
     k = P[I_K]
     c = P[I_C]
-    return k * d + c * dd, k, c, 0.0, c * dd * dd, 0.0
+    return k * d + c * dd, k, c, 0.0, 0.0, c * dd * dd, 0.0, 0.0
 
 
-def power_gradient(P, d, dd, phi):
-    """Partials of (p_damp, p_elastic_tv) by (d, dd, phi)."""
-    return 0.0, 2.0 * P[I_C] * dd, 0.0, 0.0, 0.0, 0.0
+def power_gradient(P, d, dd, phi, wphi):
+    """Partials of (p_damp, p_elastic_tv, p_te) by (d, dd, phi, wphi)."""
+    return 0.0, 2.0 * P[I_C] * dd, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
 def potential(P, d, phi):
@@ -48,4 +48,12 @@ def damped(P) -> bool:
 
 
 def time_varying(P) -> bool:
+    return False
+
+
+def phased(P) -> bool:
+    return False
+
+
+def excited(P) -> bool:
     return False

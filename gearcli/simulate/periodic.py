@@ -1,0 +1,377 @@
+"""The periodic steady state: the excitation period, the Poincare map over it, subharmonics.
+
+Excitation period. Every excitation of the scene has its own period at the steady operating speed (the
+nominal input speed, after the ramps): a mesh whose stiffness or transmission error varies with its phase
+``phi = z_p theta_p`` repeats every mesh period ``60 / (z_p n_p)`` (n_p the pinion's speed in rpm); an input
+torque ripple of order o every ``1 / (o n_in / 60)``; a load fluctuation of frequency f every ``1 / f``.
+:func:`excitation_periods` lists them from the scene's arrays (:class:`gearcli.model.ModelArrays`: the
+time-varying meshes and the harmonic tables ``conn_harm``, ``drive_ripple``, ``load_fluct`` the
+excitation fills in), :func:`common_period` combines them: the least common period when the ratios of
+the periods are rational within a tolerance (with denominators up to :data:`MAX_DENOMINATOR`), else the
+slowest one, and it says which. A scene without any excitation has an equilibrium as its steady state;
+its period is then the slowest mesh period (any period would do).
+
+Poincare map. Past the ramps the run is integrated period by period, continuing from the state at the
+last boundary (:func:`gearcli.simulate.solver.integrate` with ``t0``, ``y0``); the dynamic states
+(deflections and free speeds: not the work quadratures, not the growing input angle) at consecutive
+boundaries are compared in the run's own error norm, ``max_i |y_i(n) - y_i(n-k)| / (rtol |y_i(n)| +
+atol_i)`` with the solver's atol vector (:func:`boundary_residual`). The response is periodic with
+period k T (k = 1 .. :data:`MAX_SUBHARMONIC`) when that residual is at most 1 at two consecutive
+boundaries; for k = 1 the slow approach of a lightly damped transient is also accounted for: the
+distance left to the fixed point, ``r rho / (1 - rho)`` with the contraction ``rho`` of the last
+residuals, must be within the tolerance too (:func:`detect_period`). Up to :data:`MAX_PERIODS` periods
+or as many as end by ``simulation.duration_s`` (and within the run's evaluation budget), after which the
+response is reported as not periodic ("none"): chaotic or quasi-periodic, or still settling. The
+statistics are then taken over the last k periods (``MAX_SUBHARMONIC`` when none repeated) of the search,
+integrated again from the boundary state with fine samples.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import reduce
+
+import numpy as np
+
+from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
+
+MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
+MAX_SUBHARMONIC = 8  # period-k responses looked for, k = 1 .. 8
+MAX_DENOMINATOR = 1000  # period ratios p/q with q up to this count as rational
+RATIO_RTOL = 1e-9  # relative tolerance of a rational period ratio
+MAX_COMMON_OVER_SLOWEST = 1000  # a least common period beyond this many slowest periods is not useful
+CONVERGED = 1.0  # residual (in units of the tolerance) at or below which two states are the same
+
+
+@dataclass(frozen=True)
+class Excitation:
+    label: str  # "stage 1 mesh", "input torque ripple order 2", "load fluctuation 3 Hz"
+    period_s: float
+
+
+@dataclass(frozen=True)
+class CommonPeriod:
+    period_s: float
+    source: str  # how it was formed
+    exact: bool  # True when it is a common period of every excitation
+
+
+def mesh_period_s(pinion_teeth: float, pinion_speed_rad_s: float) -> float:
+    """One mesh cycle, 2 pi / (z_p w_p) = 60 / (z_p n_p) s."""
+    return 2.0 * math.pi / (pinion_teeth * abs(pinion_speed_rad_s))
+
+
+def ripple_period_s(order: float, input_speed_rad_s: float) -> float:
+    """An input torque ripple of ``order`` per input revolution: 1 / (order n_in / 60) s."""
+    return 2.0 * math.pi / (abs(order) * abs(input_speed_rad_s))
+
+
+def excitation_periods(layout) -> list[Excitation]:
+    """The periods of the scene's excitations at its steady operating speed (see the module text).
+
+    Reads the layout's plain arrays: a mesh is excited when its stiffness varies in time or any of its
+    transmission-error or stiffness harmonics (``conn_harm[c, :, 0]``, ``[..., 2]``) is non-zero; the
+    drive's ripple rows (amplitude, order) and the load's fluctuation rows (amplitude, frequency_Hz) with a
+    non-zero amplitude each add theirs. The input body's nominal speed is the drive's speed.
+    """
+    from gearcli.model.elements import KIND_MESH
+    from gearcli.model.elements.mesh import I_Z
+
+    arr = layout.arrays(np.zeros(layout.n_states))
+    w_in = layout.drive.speed_rad_s
+    out: list[Excitation] = []
+    if w_in == 0.0:
+        return out
+    for c, x in enumerate(layout.connectors):
+        if x.kind != KIND_MESH:
+            continue
+        harm = arr.conn_harm[c]
+        if x.time_varying or np.any(harm[:, 0] != 0.0) or np.any(harm[:, 2] != 0.0):
+            w_p = layout.bodies[x.a].ratio * w_in
+            out.append(Excitation(x.label, mesh_period_s(x.params[I_Z], w_p)))
+    for amplitude, order in arr.drive_ripple:
+        if amplitude != 0.0 and order != 0.0:
+            out.append(Excitation(f"input torque ripple order {order:g}", ripple_period_s(order, w_in)))
+    for amplitude, frequency in arr.load_fluct:
+        if amplitude != 0.0 and frequency != 0.0:
+            out.append(Excitation(f"load fluctuation {frequency:g} Hz", 1.0 / abs(frequency)))
+    return out
+
+
+def unexcited_period(layout) -> float:
+    """The period used when nothing excites the scene: the slowest mesh period (the steady state is an
+    equilibrium, which repeats over any period)."""
+    from gearcli.model.elements import KIND_MESH
+    from gearcli.model.elements.mesh import I_Z
+
+    w_in = layout.drive.speed_rad_s
+    periods = [mesh_period_s(x.params[I_Z], layout.bodies[x.a].ratio * w_in)
+               for x in layout.connectors if x.kind == KIND_MESH and w_in != 0.0]
+    return max(periods, default=1.0)
+
+
+def _ratio(a: float, b: float) -> Fraction | None:
+    """a / b as p / q (q <= MAX_DENOMINATOR) when it is within RATIO_RTOL of one, else None."""
+    r = a / b
+    f = Fraction(r).limit_denominator(MAX_DENOMINATOR)
+    return f if abs(float(f) - r) <= RATIO_RTOL * r else None
+
+
+def common_period(excitations: list[Excitation]) -> CommonPeriod | None:
+    """The least common period of ``excitations`` (see the module text); None when there are none.
+
+    Each period is written as ``T_i = T_s p_i / q_i`` against the slowest one ``T_s``; the least common
+    period is ``T_s lcm(p_i) / gcd(q_i)``. When a ratio is not rational within tolerance, or the common
+    period would exceed :data:`MAX_COMMON_OVER_SLOWEST` slowest periods, the slowest period is returned
+    with ``exact = False`` and a source that says so.
+    """
+    if not excitations:
+        return None
+    slowest = max(excitations, key=lambda e: e.period_s)
+    fractions = []
+    for e in excitations:
+        f = _ratio(e.period_s, slowest.period_s)
+        if f is None:
+            return CommonPeriod(slowest.period_s, f"the slowest excitation ({slowest.label}): the period of "
+                                f"{e.label} is not a rational fraction of it, so the excitations have no common "
+                                "period", False)
+        fractions.append(f)
+    lcm_p = reduce(math.lcm, (f.numerator for f in fractions))
+    gcd_q = reduce(math.gcd, (f.denominator for f in fractions))
+    multiple = Fraction(lcm_p, gcd_q)
+    if multiple > MAX_COMMON_OVER_SLOWEST:
+        return CommonPeriod(slowest.period_s, f"the slowest excitation ({slowest.label}): the common period of "
+                            f"all excitations is {float(multiple):.6g} of its periods, too long to use", False)
+    labels = ", ".join(e.label for e in excitations)
+    if len(excitations) == 1:
+        return CommonPeriod(slowest.period_s, f"{slowest.label}", True)
+    return CommonPeriod(slowest.period_s * float(multiple),
+                        f"least common period of {labels} ({float(multiple):g} x the slowest)", True)
+
+
+def boundary_residual(y_now: np.ndarray, y_then: np.ndarray, rtol: float, atol: np.ndarray) -> float:
+    """``max_i |y_now_i - y_then_i| / (rtol |y_now_i| + atol_i)``: 1 is the run's tolerance."""
+    scale = rtol * np.abs(y_now) + atol
+    return float(np.max(np.abs(y_now - y_then) / scale)) if y_now.size else 0.0
+
+
+@dataclass(frozen=True)
+class Repeat:
+    k: int  # the state repeats after k periods; 0: no repeat found
+    residual: float  # the residual that decided it (units of the tolerance)
+
+
+def detect_period(boundaries: list[np.ndarray], rtol: float, atol: np.ndarray,
+                  max_k: int = MAX_SUBHARMONIC) -> Repeat:
+    """The smallest k for which the last boundary states repeat after k periods (see the module text).
+
+    ``boundaries`` are the dynamic states at consecutive period boundaries, oldest first (the last
+    :func:`history_needed` of them suffice). Returns ``Repeat(0, r1)`` (r1 the last one-period residual)
+    when none repeats yet.
+    """
+    n = len(boundaries)
+    r1 = boundary_residual(boundaries[-1], boundaries[-2], rtol, atol) if n >= 2 else math.inf
+    for k in range(1, max_k + 1):
+        if n < k + 2:
+            break
+        now = boundary_residual(boundaries[-1], boundaries[-1 - k], rtol, atol)
+        before = boundary_residual(boundaries[-2], boundaries[-2 - k], rtol, atol)
+        if now > CONVERGED or before > CONVERGED:
+            continue
+        if k == 1 and not _settled(boundaries, rtol, atol):
+            continue
+        if k > 1 and not _stationary(boundaries, k, rtol, atol):
+            continue
+        return Repeat(k, now)
+    return Repeat(0, r1)
+
+
+def history_needed(max_k: int = MAX_SUBHARMONIC) -> int:
+    """Boundary states :func:`detect_period` looks back over."""
+    return SUBHARMONIC_SPANS * max_k + 2
+
+
+SUBHARMONIC_SPANS = 3  # a period-k orbit must keep its one-period residuals over 3 k periods
+STATIONARY_SLACK = 0.01  # relative change of the one-period residual allowed over those spans
+SUBHARMONIC_SEPARATION = 10.0  # a period-k orbit's points lie this many tolerances apart, at least
+
+
+def _stationary(boundaries: list[np.ndarray], k: int, rtol: float, atol: np.ndarray) -> bool:
+    """A period-k orbit, not a transient caught in phase: a decaying free vibration whose frequency is
+    nearly a multiple of 1 / (k T) also repeats after k periods to within the tolerance while it dies out
+    (the one-period residual then shrinks); on a period-k orbit the one-period residual repeats too,
+    ``r1(n) = r1(n - j k)`` for j = 1 .. SUBHARMONIC_SPANS, to within 2 tolerance units and
+    :data:`STATIONARY_SLACK`; its points lie :data:`SUBHARMONIC_SEPARATION` tolerances apart (closer,
+    it is a period-1 response still settling); and the state repeats after 2k and 3k periods as well (a
+    quasi-periodic response whose frequency ratio is near a fraction with denominator k repeats after k
+    periods within the tolerance but drifts away over more)."""
+    if len(boundaries) < SUBHARMONIC_SPANS * k + 2:
+        return False
+
+    def r1(j: int) -> float:  # the one-period residual ending j boundaries before the last
+        return boundary_residual(boundaries[-1 - j], boundaries[-2 - j], rtol, atol)
+
+    now = r1(0)
+    if now < SUBHARMONIC_SEPARATION:  # the k points of the orbit are not told apart from one: period-1 settling
+        return False
+    spans = range(1, SUBHARMONIC_SPANS + 1)
+    if any(boundary_residual(boundaries[-1], boundaries[-1 - j * k], rtol, atol) > CONVERGED for j in spans):
+        return False  # a quasi-periodic response near a k-fold repeat drifts away over 2k, 3k periods
+    return all(abs(now - r1(j * k)) <= 2.0 * CONVERGED + STATIONARY_SLACK * now for j in spans)
+
+
+def _settled(boundaries: list[np.ndarray], rtol: float, atol: np.ndarray) -> bool:
+    """The one-period fixed point is within tolerance: the residuals shrink by rho per period, so the
+    distance left is about r rho / (1 - rho); rho from the last three residuals (noise-level residuals,
+    below 1/10 of the tolerance, count as settled)."""
+    if len(boundaries) < 4:
+        return False
+    r = [boundary_residual(boundaries[-j], boundaries[-j - 1], rtol, atol) for j in (1, 2, 3)]
+    if r[0] <= 0.1 * CONVERGED:
+        return True
+    rho = max(r[0] / r[1] if r[1] > 0 else 0.0, r[1] / r[2] if r[2] > 0 else 0.0)
+    if rho >= 1.0:
+        return False
+    return r[0] * rho / (1.0 - rho) <= CONVERGED
+
+
+# ----------------------------------------------------------------------------------------- the run
+MIN_SAMPLES_PER_FASTEST = 64  # statistics samples per period of the fastest excitation, at least
+FIRST_CHUNK, LAST_CHUNK = 4, 64  # periods integrated per solver start while looking for the repeat
+
+
+@dataclass(frozen=True)
+class PeriodicRun:
+    """The run-up samples ``[0, t_start]`` followed by the statistics periods ``[t_n, t_n + k T]``."""
+
+    run: object  # gearcli.simulate.solver.Integration (the two sampled parts; counters of all parts)
+    window_s: tuple[float, float]  # the statistics periods, whole
+    mask_window_s: tuple[float, float]  # the same without its last sample (the first one of the next period)
+    steady: object  # gearcli.results.SteadyState
+    period: CommonPeriod
+
+
+def scene_period(layout) -> CommonPeriod:
+    """:func:`common_period` of the scene's excitations, or the unexcited scene's period."""
+    found = common_period(excitation_periods(layout))
+    if found is not None:
+        return found
+    return CommonPeriod(unexcited_period(layout), "no excitation: the steady state is an equilibrium, checked over "
+                        "the slowest mesh period", True)
+
+
+def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -> np.ndarray:
+    """Absolute tolerances of the dynamic states for the boundary comparison: the solver's, with each
+    deflection's raised to what the speed tolerance allows it.
+
+    The deflection of a stiff connector follows from the difference of two speeds, each held to rtol x
+    its size: a deflection rate error of ``rtol (|r_a w_a| + |r_b w_b|)`` (the force-noise argument of
+    :func:`gearcli.simulate.guards.force_noise`) moves the deflection by that over ``1 / w_max`` of a
+    vibration (``w_max`` the fastest natural angular frequency). Below that the boundary states differ
+    by integration noise, not by the dynamics: on a linear, damped, time-varying mesh the deflection
+    residual stays at 10-300 x the solver's deflection atol while the speeds repeat to 0.01-1 x theirs.
+    """
+    out = np.array(atol[:layout.n_conn + len(layout.free_bodies)], dtype=float)
+    if fastest_rad_s <= 0:
+        return out
+    w = [b.ratio * layout.drive.speed_rad_s for b in layout.bodies]
+    for c, x in enumerate(layout.connectors):
+        rate = rtol * (abs(x.ra * w[x.a]) + abs(x.rb * w[x.b]))
+        out[c] = max(out[c], rate / fastest_rad_s)
+    return out
+
+
+def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_s: float,
+                       window_start_s: float | None, y0: np.ndarray | None, max_nfev: int,
+                       fastest_rad_s: float = 0.0):
+    """Run-up, the period-by-period search for the repeat, then the statistics periods finely sampled.
+
+    Returns a :class:`PeriodicRun`, or the failed part's ``Integration`` (status < 0) for the caller's
+    :func:`gearcli.simulate.run.check`. A search that runs out of evaluations stops early, unconverged.
+    """
+    from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
+
+    lay = model.layout
+    period = scene_period(lay)
+    T = period.period_s
+    t_start = max(lay.drive.ramp_s, lay.load.ramp_s, window_start_s or 0.0)
+    n_a = max(1, round(steps * t_start / duration_s)) if t_start > 0 else 0
+    parts = [integrate(model, np.linspace(0.0, t_start, n_a + 1), method, rtol, y0=y0, max_nfev=max_nfev)]
+    if parts[0].status != STATUS_FINISHED:
+        return parts[0]
+    dyn = lay.n_conn + len(lay.free_bodies)
+    atol = poincare_atol(lay, parts[0].atol, rtol, fastest_rad_s)
+    states = [parts[0].y[:, -1]]
+    cap = periods_cap(duration_s, t_start, T)
+    repeat, used, chunk, exhausted = Repeat(0, math.inf), parts[0].nfev, FIRST_CHUNK, False
+    while len(states) - 1 < cap and repeat.k == 0 and not exhausted:
+        n = len(states) - 1
+        m = min(chunk, cap - n)
+        t_n = t_start + n * T
+        r = integrate(model, t_start + T * np.arange(n, n + m + 1), method, rtol, y0=states[-1], t0=t_n,
+                      max_nfev=max(1, max_nfev - used))
+        used += r.nfev
+        parts.append(r)
+        if r.status == STATUS_BUDGET:
+            exhausted = True
+        elif r.status != STATUS_FINISHED:
+            return _joined(parts, r.t[:1], r.y[:, :1], status_from=r)
+        for j in range(1, m + 1):
+            if not np.all(np.isfinite(r.y[:, j])):
+                break
+            states.append(r.y[:, j])
+            repeat = detect_period([s[:dyn] for s in states[-history_needed():]], rtol, atol)
+            if repeat.k:
+                break
+        chunk = min(2 * chunk, LAST_CHUNK)
+    n = len(states) - 1
+    k = repeat.k or MAX_SUBHARMONIC
+    k = min(k, n) if n > 0 else 1
+    t_n = t_start + (n - k) * T if n >= k else t_start + n * T
+    y_n = states[n - k] if n >= k else states[-1]
+    per = max(math.ceil(steps / k), math.ceil(MIN_SAMPLES_PER_FASTEST * T / _fastest(lay, T)))
+    total = min(per * k, max(steps, PERIODIC_STATISTICS_SAMPLES))  # the memory bound config.bounds checked
+    fine = t_n + k * T * np.arange(total + 1) / total
+    stats_run = integrate(model, fine, method, rtol, y0=y_n, t0=t_n)
+    parts.append(stats_run)
+    if stats_run.status != STATUS_FINISHED:
+        return _joined(parts, stats_run.t[:1], stats_run.y[:, :1], status_from=stats_run)
+    joined = _joined(parts, np.concatenate([parts[0].t, fine]), np.hstack([parts[0].y, stats_run.y]))
+    steady = _steady(period, repeat, n, k, total // k, exhausted, cap)
+    return PeriodicRun(joined, (float(fine[0]), float(fine[-1])), (float(fine[0]), float(fine[-2])), steady, period)
+
+
+def _fastest(layout, T: float) -> float:
+    found = excitation_periods(layout)
+    return min((e.period_s for e in found), default=T)
+
+
+def periods_cap(duration_s: float, t_start: float, period_s: float) -> int:
+    """Periods the search may integrate past ``t_start``: as many as end by ``duration_s``, at most
+    :data:`MAX_PERIODS` (so ``simulation.duration_s`` bounds the cost, as in a window run)."""
+    fit = math.floor((duration_s - t_start) / period_s * (1.0 + 1e-12)) if duration_s > t_start else 0
+    return max(0, min(MAX_PERIODS, fit))
+
+
+def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exhausted: bool, cap: int):
+    from gearcli.results import SteadyState
+
+    kind = "none" if repeat.k == 0 else f"period-{repeat.k}"
+    source = period.source + ("" if not exhausted else "; the search stopped at the run's evaluation budget")
+    return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n, periodicity=kind,
+                       converged=repeat.k > 0, residual=float(repeat.residual) if math.isfinite(repeat.residual) else None,
+                       period_source=source,
+                       window_periods=k, samples_per_period=per, cap_periods=cap)
+
+
+def _joined(parts, t: np.ndarray, y: np.ndarray, status_from=None):
+    """One Integration with the samples ``(t, y)`` and the counters of all ``parts``."""
+    from dataclasses import replace
+
+    last = status_from or parts[-1]
+    return replace(parts[0], t=t, y=y, nfev=sum(p.nfev for p in parts), njev=sum(p.njev for p in parts),
+                   nlu=sum(p.nlu for p in parts), steps=sum(p.steps for p in parts),
+                   wall_s=sum(p.wall_s for p in parts), status=last.status, message=last.message,
+                   t_fail=last.t_fail)
