@@ -304,7 +304,7 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
-    warn(result.warnings)
+    warn(w for w in result.warnings if w not in design_result.warnings)  # the design's went out first
 
 
 @cli.command(epilog="""\b

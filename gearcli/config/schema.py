@@ -413,6 +413,7 @@ class Simulation(_Table):
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
     window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
     steady: Literal["window", "periodic"] = "window"
+    error_estimate: bool = True
 
 
 class DesignFile(_Table):

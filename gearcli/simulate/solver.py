@@ -104,10 +104,12 @@ class _Counters:
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
-              t0: float = 0.0) -> Integration:
+              t0: float = 0.0, atol: np.ndarray | None = None) -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
-    drive's and the load's profiles are functions of the absolute time.
+    drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
+    absolute tolerances of :func:`tolerances` (an array of the state's size, or a scalar); ``rtol`` is a
+    scalar for every method.
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error.
@@ -116,7 +118,9 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
         raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
     watch = energy_watch(model, y, t0) if watch_energy else None
-    atol = tolerances(model, rtol, watch)
+    if atol is None:
+        atol = tolerances(model, rtol, watch)
+    atol = np.broadcast_to(np.asarray(atol, dtype=float), y.shape).copy()
     out = np.full((y.size, t_eval.size), np.nan)
     out[:, t_eval <= t0] = y[:, None]
     done = int(np.searchsorted(t_eval, t0, side="right"))
