@@ -19,6 +19,7 @@ import click
 
 from gearcli import __version__
 from gearcli.errors import (
+    EXIT_BROKEN_PIPE,
     EXIT_FAILED,
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
@@ -26,6 +27,7 @@ from gearcli.errors import (
     DesignError,
     GearcliError,
     OutputError,
+    RunTooLong,
     Terminated,
 )
 from gearcli.io import output as outfiles
@@ -39,6 +41,19 @@ def _fail(message: str, code: int) -> None:
     for line in message.splitlines() or [""]:
         click.echo(f"gearcli: {visible(line)}", err=True)
     sys.exit(code)
+
+
+def _broken_pipe() -> None:
+    """The reader of our output went away (``| head -1``): exit 141 quietly, as a SIGPIPE'd program does.
+    stdout is pointed at /dev/null so that the interpreter's last flush cannot complain either."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            fd = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(fd, stream.fileno())
+            os.close(fd)
+        except (OSError, ValueError, AttributeError):
+            pass
+    sys.exit(EXIT_BROKEN_PIPE)
 
 
 def _on_sigterm(signum, frame) -> None:
@@ -66,6 +81,8 @@ def guarded(fn: Callable) -> Callable:
             if debug:
                 raise
             _fail(str(exc), exc.exit_code)
+        except BrokenPipeError:
+            _broken_pipe()
         except KeyboardInterrupt:
             _fail("interrupted", EXIT_INTERRUPTED)
         except Terminated:
@@ -280,11 +297,14 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     from gearcli.io import serialize
     from gearcli.simulate import run_simulation
 
-    result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
+    try:
+        result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
+    except RunTooLong as exc:
+        raise RunTooLong(f"{loaded.source}: {exc}") from None
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
-    warn(result.warnings)
+    warn(w for w in result.warnings if w not in design_result.warnings)  # the design's went out first
 
 
 @cli.command(epilog="""\b
@@ -445,8 +465,11 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     warn(design_result.warnings)
     fmt = target.fmt
     with _StderrProgress() as progress:
-        rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
-                           progress=progress)
+        try:
+            rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
+                               progress=progress)
+        except RunTooLong as exc:
+            raise RunTooLong(f"{loaded.source}: {exc}") from None
     if fmt == "json":
         from gearcli.io.report_json import report_dict
 
@@ -513,8 +536,8 @@ SWEEP_FORMATS = ("csv", "json")
               help="Run the points on a Dask distributed cluster (pip install 'gearcli[distributed]').")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a key of the base scene.")
 @click.option("--format", "fmt", type=click.Choice(SWEEP_FORMATS), help="[default: from -o's suffix, else csv]")
-@click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Write rows to FILE as they finish (.csv or .json); a re-run skips the points done.")
+@outfiles.output_option("Write rows to FILE as they finish (.csv or .json; '-' is stdout); a re-run skips the "
+                        "points done.")
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
               help="Response curves, Campbell diagram, histograms into DIR (pip install 'gearcli[plot]').")
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
@@ -525,9 +548,13 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
     from gearcli.io.sweep_progress import SweepProgress
     from gearcli.sweep.session import prepare, run
 
-    fmt = fmt or ("json" if output and Path(output).suffix.lower() == ".json" else "csv")
+    target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work
+    if plots_dir:
+        _check_sweep_plots_dir(plots_dir, file, target, vary)
+    output = target.shown if target.path is not None else None
     session = prepare(file, overrides, vary=vary, randoms=randoms, samples=samples, sampling=sampling, seed=seed,
-                      direction=direction, jobs=jobs, scheduler=scheduler, output=output, fmt=fmt)
+                      direction=direction, jobs=jobs, scheduler=scheduler,
+                      output=str(target.path) if target.path is not None else None, fmt=target.fmt)
     warn(session.design_warnings)
     with SweepProgress(session.todo + session.done, session.done) as progress:
         rows = run(session, progress.advance)
@@ -538,6 +565,15 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
         _write_sweep_plots(session, rows, plots_dir)
     if failed:
         sys.exit(EXIT_FAILED)
+
+
+def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
+    """As for report: no sweep figure may replace the input or the -o file."""
+    if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
+        raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    names = ["campbell.png", "distributions.png"]
+    names += [f"response_{v.split('=', 1)[0].strip().replace('.', '_')}.png" for v in vary]
+    outfiles.check_not_clobbering([Path(plots_dir) / n for n in names], [file, target.path], "--plots")
 
 
 def _write_sweep_plots(session, rows, plots_dir: str) -> None:
@@ -559,7 +595,15 @@ def main() -> None:
     import signal
 
     signal.signal(signal.SIGTERM, _on_sigterm)
-    cli(prog_name="gearcli")
+    try:
+        cli(prog_name="gearcli")
+    except SystemExit as exc:
+        # click's own output (--help, --version) meets a closed pipe: click pacifies stdout and exits 1
+        if exc.code == 1 and type(sys.stdout).__name__.endswith("PacifyFlushWrapper"):
+            _broken_pipe()
+        raise
+    except BrokenPipeError:
+        _broken_pipe()
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -25,6 +25,8 @@ STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"
 ENGINE_FALLBACK = "engine_fallback"
+STATISTICS_UNRESOLVED = "statistics_unresolved"
+DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap
 SUBHARMONIC = "subharmonic"  # steady = "periodic": the response repeats after k > 1 periods
 PERIOD_NOT_COMMON = "period_not_common"  # the excitations have no usable common period

@@ -7,6 +7,7 @@ EXIT_FAILED = 1  # the run failed: solver failure, infeasible design
 EXIT_USAGE = 2  # bad usage or bad design file
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143  # 128 + SIGTERM, as a shell reports it
+EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE: the reader went away (`gearcli ... | head -1`); nothing printed
 
 
 class GearcliError(Exception):
@@ -53,6 +54,13 @@ class SimulationError(GearcliError):
     """The integration failed or diverged; the message names the likely cause and the fix."""
 
     exit_code = EXIT_FAILED
+
+
+class RunTooLong(SimulationError):
+    """A run stopped a few seconds in because its pace projects far over the computing budget: refused
+    like a resource estimate (exit 2), with the duration that would fit."""
+
+    exit_code = EXIT_USAGE
 
 
 class OutputError(GearcliError):

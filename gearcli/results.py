@@ -136,6 +136,34 @@ class ChannelStats:
 
 
 @dataclass(frozen=True)
+class StatisticsError:
+    """Estimated error of one stage's window statistics of F_t (absolute, N), from the check pass
+    (gearcli.simulate.estimate); radial and axial forces share the relative error."""
+
+    stage: int  # 1-based
+    reference_N: float  # the force the target refers to: |mean F_t| (static |F_t| when the mean is 0)
+    target_relative: float
+    tangential_N: ChannelStats  # estimated error of mean, min, max, std: |check - run| / (CHECK_FACTOR - 1)
+    spectrum_N: float  # largest amplitude difference over the F_t spectrum (Hann, detrended)
+    relative: dict[str, float]  # mean, min, max, std, spectrum: error / reference_N
+    dominant_frequency_Hz: float  # of the run
+    check_dominant_frequency_Hz: float  # of the check pass
+    unresolved: tuple[str, ...]  # statistics beyond the target
+    suggested_rtol: float | None  # simulation.rtol that would resolve them (None when resolved)
+    resolved: bool = True  # no statistic beyond the target
+
+
+@dataclass(frozen=True)
+class MeshStiffness:
+    """The contact law the simulation used for one mesh: K in N/mm^e and its slope at the static load."""
+
+    law_N_mm_e: float  # K of F = K h^e, h in mm
+    exponent: float
+    linearised_N_mm: float  # e K h0^(e-1) at the static approach h0 (K itself for e = 1)
+    static_approach_mm: float
+
+
+@dataclass(frozen=True)
 class DteStats:
     """Dynamic transmission error q = delta - e over the statistics window, um (``rms`` about the mean)."""
 
@@ -161,7 +189,9 @@ class StageDynamics:
     static_tangential_N: float  # the design's static F_t at full load
     peak_tangential_N: float  # largest |F_t| over the whole run (run-up included)
     peak_time_s: float
-    dynamic_factor: float  # peak / |static|; nan-free: 0 when the static force is 0
+    dynamic_factor: float | None  # peak / |static|; None (JSON null) when the static force is 0
+    error_estimate: StatisticsError | None = None  # None when no refinement pass ran
+    mesh_stiffness: MeshStiffness | None = None
     # mesh response over the statistics window (issue 13); defaults for hand-made results
     dte_um: DteStats | None = None
     contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
@@ -184,6 +214,7 @@ class SolverStats:
     energy_residual: float  # (W_in - W_load - E_damp - dKE - dPE) / max(|W_in|, |W_load|, KE_end)
     status: int  # solve_ivp status (0: reached the end)
     message: str
+    check_pass: dict | None = None  # the error-estimate pass: rtol, from_s, nfev, njev, steps, wall_s, finished
     engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
     engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
     compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s

@@ -59,7 +59,8 @@ class Ripple(_Table):
     """One harmonic of the input torque: T_in (1 + amplitude_percent / 100 cos(order theta_in))."""
 
     amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0)]
-    order: Annotated[float, Field(gt=0.0, le=1000.0)]  # per input revolution (a 4-pole motor's slot order ~36)
+    order: Annotated[float, Field(ge=1e-3, le=1000.0)]  # per input revolution (a 4-pole motor's slot
+    # order ~36); at least 1e-3: a subnormal order overflowed the ripple's period (fuzz finding)
 
 
 class Fluctuation(_Table):

@@ -8,7 +8,9 @@ validation errors raise :class:`ConfigErrors`, whose text has one such line per 
 from __future__ import annotations
 
 import hashlib
+import os
 import re
+import stat
 import sys
 import tomllib
 from collections.abc import Sequence
@@ -100,6 +102,31 @@ def _read(path: str, stdin: BinaryIO | None) -> bytes:
     return raw
 
 
+def _read_bounded(path: str) -> bytes:
+    """At most MAX_BYTES + 1 bytes. A FIFO is opened without blocking (no writer: empty, never a hang);
+    /dev/zero and the like stop at the size limit."""
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    try:
+        if hasattr(os, "O_NONBLOCK"):
+            import fcntl
+
+            fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~os.O_NONBLOCK)
+        chunks, size = [], 0
+        while size <= MAX_BYTES:
+            chunk = os.read(fd, MAX_BYTES + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+        raw = b"".join(chunks)
+        if not raw and stat.S_ISFIFO(os.fstat(fd).st_mode):
+            raise ConfigError("is a FIFO with nothing written to it (no writer); pipe the file into '-' instead",
+                              source=path)
+        return raw
+    finally:
+        os.close(fd)
+
+
 def _read_file(path: str) -> bytes:
     p = Path(path)
     if not path:
@@ -107,8 +134,7 @@ def _read_file(path: str) -> bytes:
     try:
         if p.is_dir():
             raise ConfigError("is a directory, not a design file", source=path)
-        with p.open("rb") as fh:
-            return fh.read(MAX_BYTES + 1)
+        return _read_bounded(path)
     except FileNotFoundError:
         raise ConfigError(f"no such file ({_INIT_HINT})", source=path) from None
     except PermissionError:
@@ -204,11 +230,22 @@ def _duplicate_line(text: str) -> int | None:
     return lo
 
 
+def _check_window(design: DesignFile, source: str, paths: Sequence[tuple]) -> None:
+    """simulation.window_start_s must fall inside the run (a cross-key check the models cannot state)."""
+    sim = design.simulation
+    if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
+        blamed = any(_overrides.blamed(("simulation", k), paths) for k in ("window_start_s", "duration_s"))
+        raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
+                          key="simulation.window_start_s", source=_overrides.SOURCE if blamed else source)
+
+
 def _validate(data: dict, source: str, paths: Sequence[tuple]) -> DesignFile:
     """The validated model, or ConfigError(s) naming each wrong key (``--set`` as the source of
     errors at or below an overridden key)."""
     try:
-        return DesignFile.model_validate(data)
+        design = DesignFile.model_validate(data)
+        _check_window(design, source, paths)
+        return design
     except ValidationError as exc:
         errors = [
             ConfigError(text, key=format_path(path) or None,

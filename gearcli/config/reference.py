@@ -99,11 +99,13 @@ def design_file_reference() -> str:
            "that a unit mistake (1e15, or a subnormal such as 1e-320) is an error naming the key and the bound. "
            "Keys that may be 0 (ramps, damping, backlash, torques) refuse a nonzero magnitude below a small "
            "threshold, shown as \"0 or magnitude ≥ …\".", "",
-           "Rules the schema states as text (validation enforces them): exactly one of `speed_deg_s`, `speed_rpm`, "
-           "`speed_rad_s` in `[input]`; at most one of `torque_Nm`, `torque_Nmm` there, required with "
-           "`drive = \"torque\"` and refused with `drive = \"speed\"`; exactly one torque in `[load]`; exactly one "
-           "speed in `[target]`; a helical stage's pinion and gear have opposite hands; every `material` names a "
-           "table of `[materials]` (steel is predefined); no more `transmission_error_phase_deg` than "
+           "Rules between keys (the schema states them too, in `allOf`/`anyOf`/`not`): exactly one of "
+           "`speed_deg_s`, `speed_rpm`, `speed_rad_s` in `[input]`; at most one of `torque_Nm`, `torque_Nmm`, "
+           "`power_kW` there, required with `drive = \"torque\"` and refused with `drive = \"speed\"`; exactly one "
+           "torque in `[load]`; exactly one speed in `[target]`; `inertia_kg_m2` and `coupling_stiffness_Nm_rad` "
+           "together (coupling damping needs both); a helical stage's pinion and gear have opposite hands. Rules "
+           "the schema states only as text (validation enforces them): every `material` names a table of "
+           "`[materials]` (steel is predefined); no more `transmission_error_phase_deg` than "
            "`transmission_error_um` entries, nor `stiffness_harmonics_phase_deg` than `stiffness_harmonics` (a "
            "stage's `[stage.mesh]` counted with what it inherits from `[contact]`); the `stiffness_harmonics` sum "
            "to less than 1 in magnitude; `input.torque_ripple` only with `drive = \"torque\"`.", "",

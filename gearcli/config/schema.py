@@ -14,6 +14,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import (
     BaseModel,
+    ConfigDict,
     Field,
     GetCoreSchemaHandler,
     GetJsonSchemaHandler,
@@ -92,6 +93,43 @@ Power = Annotated[float, Field(ge=-1e6, le=1e6), NotTiny(1e-6)]  # kW (1 GW); ne
 
 INPUT_TORQUE_KEYS = ("torque_Nm", "torque_Nmm", "power_kW")
 LOAD_TORQUE_KEYS = ("torque_Nmm", "torque_Nm", "power_kW")
+
+
+# Rules between keys, stated in the JSON Schema as well as checked by the validators below, so that the
+# schema is never looser than validation (tests/unit/test_docs_and_schema.py). Only a material reference
+# (a name that must be a key of [materials]) cannot be said in JSON Schema; docs/design-file.md states it.
+def _required(*keys: str) -> dict:
+    return {"required": list(keys)}
+
+
+def _exactly_one(keys: tuple[str, ...]) -> list[dict]:
+    pairs = [_required(a, b) for i, a in enumerate(keys) for b in keys[i + 1:]]
+    return [{"anyOf": [_required(k) for k in keys]}, {"not": {"anyOf": pairs}}]
+
+
+def _at_most_one(keys: tuple[str, ...]) -> list[dict]:
+    return _exactly_one(keys)[1:]
+
+
+def _coupling_rules() -> list[dict]:
+    both = ("inertia_kg_m2", "coupling_stiffness_Nm_rad")
+    return [{"anyOf": [_required(*both), {"not": {"anyOf": [_required(k) for k in both]}}]},
+            {"anyOf": [_required(*both), {"not": _required("coupling_damping_Nms_rad")}]}]
+
+
+def _all_of(*rules: dict) -> Any:
+    """A model's ``json_schema_extra``: every rule holds."""
+    return {"allOf": list(rules)}
+
+
+def _hands_rule() -> Any:
+    """β > 0 needs opposite hands given on pinion and gear (an external helical pair)."""
+    def pair(p: str, g: str) -> dict:
+        return {"properties": {"pinion": {"properties": {"hand": {"const": p}}, "required": ["hand"]},
+                               "gear": {"properties": {"hand": {"const": g}}, "required": ["hand"]}}}
+
+    return {"anyOf": [{"properties": {"helix_angle_deg": {"maximum": 0}}}, pair("left", "right"),
+                      pair("right", "left")]}
 
 
 class _Table(BaseModel):
@@ -221,6 +259,7 @@ class Stage(_Table):
     mesh: ContactOverride | None = None
     basic_rack: BasicRack = BasicRack()
     shaft: ShaftSpring | None = None
+    model_config = ConfigDict(json_schema_extra=_hands_rule())
 
 
 class _Coupled(_Table):
@@ -254,6 +293,12 @@ class Input(_Coupled):
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
     torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS)] = []  # drive = "torque" only
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
+    model_config = ConfigDict(json_schema_extra=_all_of(
+        *_exactly_one(("speed_deg_s", "speed_rpm", "speed_rad_s")), *_at_most_one(INPUT_TORQUE_KEYS),
+        {"not": {**_required("drive"), "properties": {"drive": {"const": "torque"}},
+                 "not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS]}}},
+        {"not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS], "properties": {"drive": {"const": "speed"}}}},
+        *_coupling_rules()))
 
     @field_validator("torque_ripple")
     @classmethod
@@ -314,6 +359,7 @@ class Load(_Coupled):
     power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
     fluctuation: Annotated[list[Fluctuation], Field(max_length=MAX_HARMONICS)] = []
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
+    model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(LOAD_TORQUE_KEYS), *_coupling_rules()))
 
     @model_validator(mode="after")
     def _one_torque(self) -> Load:
@@ -339,6 +385,7 @@ class Target(_Table):
     output_speed_rpm: Annotated[float, Field(ge=1e-06, le=MAX_SPEED_RPM)] | None = None
     output_speed_deg_s: Annotated[float, Field(ge=6e-06, le=MAX_SPEED_RPM * 6)] | None = None
     tolerance_percent: Annotated[float, Field(gt=0, le=100)] = 5.0
+    model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(("output_speed_rpm", "output_speed_deg_s"))))
 
     @model_validator(mode="after")
     def _one_speed(self) -> Target:
@@ -367,6 +414,7 @@ class Simulation(_Table):
     engine: Literal["auto", "python", "compiled"] = "auto"
     window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
     steady: Literal["window", "periodic"] = "window"
+    error_estimate: bool = True
 
 
 class DesignFile(_Table):

@@ -73,7 +73,8 @@ _COMMENTS = {
     "simulation": """\
 # [simulation]: duration_s > 0; steps = output samples - 1; rtol in [1e-13, 1e-2];
 #   method = "auto" | "RK45" | "DOP853" | "Radau" | "BDF" | "LSODA"; optional window_start_s (statistics);
-#   steady = "window" (default) | "periodic" (run until the response repeats, statistics over whole periods)""",
+#   steady = "window" (default) | "periodic" (run until the response repeats, statistics over whole periods);
+#   error_estimate = true (default: a check pass estimates the error of min/max/std; false skips it)""",
 }
 
 

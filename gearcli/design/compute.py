@@ -140,6 +140,14 @@ def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
                       stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0), factors, line_load)
 
 
+def _check_bore(gear: Gear, root_diameter_mm: float, key: str) -> None:
+    """A bore must leave material under the tooth roots (else the body's inertia is zero or negative)."""
+    bore = gear.bore_diameter_mm
+    if bore is not None and gear.inertia_kg_m2 is None and bore >= root_diameter_mm:
+        raise DesignError(f"the bore ({bore:g} mm) must be smaller than the root diameter d_f = "
+                          f"{root_diameter_mm:.4g} mm of this gear", key=key)
+
+
 def _gear_result(gear: Gear, i: int, geo: PairGeometry, helical: bool, density_kg_m3: float,
                  speed_rad_s: float, torque_Nmm: float) -> GearResult:
     d = geo.pitch_diameter_mm[i]
@@ -206,6 +214,8 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train) -> StageResult:
                            geo.transverse_pressure_rad, geo.helix_rad)
     s = _stiffness(cfg, k, geo, forces, materials)
     w_p, w_g, helical = kin.shaft_speeds_rad_s[k], kin.shaft_speeds_rad_s[k + 1], stage.helix_angle_deg > 0
+    for i, part in enumerate(("pinion", "gear")):
+        _check_bore(getattr(stage, part), geo.root_diameter_mm[i], f"stage[{k}].{part}.bore_diameter_mm")
     pinion = _gear_result(stage.pinion, 0, geo, helical, materials[0].density_kg_m3, w_p, t_pinion)
     gear = _gear_result(stage.gear, 1, geo, helical, materials[1].density_kg_m3, w_g, t_gear)
     r = _resonance(pinion, gear, s.mesh_N_mm_um, s.line_load_N_mm)

@@ -87,6 +87,8 @@ def _same_file(target: Path, inputs: Iterable[str | None]) -> bool:
 
 def resolve_path(given: str, inputs: Iterable[str | None] = ()) -> Path:
     """The regular file ``given`` names after symlinks, checked writable; :class:`OutputError` otherwise."""
+    if not given:
+        raise _refuse("''", "an empty file name; give a file name, or '-' for stdout")
     if "\0" in given:
         raise _refuse(repr(given), "not a valid file name")
     if given.endswith(("/", os.sep)) or given in (".", ".."):

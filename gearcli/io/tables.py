@@ -9,6 +9,7 @@ never rich markup, control characters escaped.
 from __future__ import annotations
 
 import io
+import math
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -77,8 +78,9 @@ class StageColumns:
         yield from self.tables(options.max_width)
 
 
-def _g(v: float, digits: int = 5) -> str:
-    return f"{v:.{digits}g}"
+def _g(v: float | None, digits: int = 5) -> str:
+    """A number to ``digits`` significant digits; "—" where it is undefined (None)."""
+    return "—" if v is None else f"{v:.{digits}g}"
 
 
 def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> Table:
@@ -156,10 +158,10 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         ("power [kW]", [_g(sh.power_kW) for sh in r.shafts]),
         ("inertia [kg·m²]", [_g(sh.inertia_kg_m2, 4) for sh in r.shafts]),
     ])
-    summary = text(f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
-                   f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm\n"
-                   f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")
-    return [geometry, loads, train, summary]
+    summary = [text(f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
+                    f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
+               text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
+    return [geometry, loads, train, *summary]
 
 
 def _stats_cells(st) -> list[str]:
@@ -188,15 +190,40 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         ("back flank fraction", [_g(s.back_flank_fraction, 3) for s in r.stages]),
         ("regime", [s.regime or "—" for s in r.stages]),
     ])
+    rows = [("mesh stiffness K [N/mm^e]", [_g(m.law_N_mm_e) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
+            ("exponent e", [_g(m.exponent, 3) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
+            ("linearised at static load [N/mm]",
+             [_g(m.linearised_N_mm) if (m := s.mesh_stiffness) else "—" for s in r.stages])]
+    rows += [(f"est. error {q} F_t [N]", [_g(_est(s.error_estimate, q), 2) for s in r.stages])
+             for q in ("min", "max", "std")]
+    rows.append(("statistics resolved (1e-3)", [("—" if s.error_estimate is None else
+                                                  "yes" if s.error_estimate.resolved else "NO") for s in r.stages]))
+    mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in r.stages], rows)
     sv = r.solver
-    lines = [f"dynamic ratio {r.ratio:.6g}   output {r.output_speed_deg_s:.6g} °/s",
-             f"solver {sv.method} ({sv.choice_reason})  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  "
-             f"njev {sv.njev}  wall {sv.wall_s:.3g} s  energy residual {sv.energy_residual:.2e}"]
+    rpm = 60.0 / 360.0
+    torque = r.channels.get("input_torque_Nmm")
+    lines = [f"dynamic ratio {r.ratio:.6g}   output {r.output_speed_deg_s:.6g} °/s = {r.output_speed_deg_s * rpm:.5g} rpm"
+             f"   input {r.input_speed_deg_s:.6g} °/s = {r.input_speed_deg_s * rpm:.5g} rpm"]
+    if torque is not None and len(torque):
+        lines.append(f"input torque at the end {torque[-1]:.5g} N·mm = {torque[-1] / 1000:.5g} N·m, power "
+                     f"{torque[-1] / 1000 * r.input_speed_deg_s * math.pi / 180 / 1000:.5g} kW")
+    lines.append(f"solver {sv.method}  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  njev {sv.njev}  "
+                 f"wall {sv.wall_s:.3g} s")
+    lines.append(f"energy residual {sv.energy_residual:.2e}")
+    lines.append(f"method: {sv.choice_reason}")
     steady = steady_line(r)
     if steady:
         lines.append(steady)
+    if sv.check_pass:
+        cp = sv.check_pass
+        lines.append(f"error estimate: check pass at rtol {cp['rtol']:g} from {cp['from_s']:.4g} s, nfev {cp['nfev']}, "
+                     f"wall {cp['wall_s']:.3g} s")
     # one Text per line: text() writes a control character (a newline too) as an escape
-    return [forces, peaks, *(text(line) for line in lines)]
+    return [forces, peaks, mesh, *(text(line) for line in lines)]
+
+
+def _est(e, q: str) -> float | None:
+    return None if e is None else getattr(e.tangential_N, q)
 
 
 def steady_line(r: SimulationResult) -> str:

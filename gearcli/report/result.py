@@ -71,7 +71,7 @@ class StageReport:
     static_tangential_N: float
     peak_tangential_N: float
     peak_time_s: float
-    dynamic_factor: float
+    dynamic_factor: float | None  # None where the static force is 0
     spectrum: Spectrum
 
 

@@ -6,6 +6,7 @@
 - ``guards``  cost budget from the scene, explicit-method feasibility, energy watch, force-noise warning
 - ``choice``  ``method = "auto"`` from the linearised stiffness
 - ``stats``   steady window, channel statistics, per-stage dynamics, warnings
+- ``estimate`` the error estimate of the window statistics (a check pass at 10x rtol)
 - ``run``     ``run_simulation`` (design file + design) and ``simulate_model`` (an assembled model)
 
 ``run_simulation`` and ``simulate_model`` are imported on first use, so that ``gearcli.simulate.methods``

@@ -1,20 +1,35 @@
-"""``method = "auto"``: explicit or implicit, from the linearised stiffness of the scene.
+"""``method = "auto"``: explicit or implicit, from a cost model of both on the linearised scene.
 
 The model is linearised (:func:`gearcli.model.linearise`) twice: at full static load (the reported
 natural frequencies) and at the larger of the static and the rigid-body run-up force of each mesh,
 with a time-varying stiffness at its stiffest phase (a Hertz mesh stiffens with its load, so the run-up
 sets the largest eigenvalue). The stiffness indicator is ``max|lambda| T`` over both, T the run length.
 
-An explicit method needs at least ``max|lambda| T / R`` steps to stay stable, R the size of its
-stability region along the direction of the eigenvalue; the mesh modes are lightly damped, so that
-direction is near the imaginary axis, where R = 6.0 for DOP853 (12 evaluations per step) and only
-1-3 for RK45 (6 per step): DOP853 is the cheaper explicit method per unit of stability and the more
-accurate one (benchmarks/bench_simulate.py). The implicit Radau IIA (order 5, L-stable, analytic
-Jacobian) costs a roughly fixed ~1-4e4 evaluation-equivalents on these scenes whatever the stiffness,
-because its steps follow accuracy, not stability. The break-even measured on the seed reducer and its
-stiff variants (configs/stiff_linear_mesh.toml, and stiffer ones in the benchmark) lies at
-``max|lambda| T`` of about 1e4, i.e. ~2e4 explicit evaluations: auto picks DOP853 up to
-``STIFFNESS_LIMIT`` and Radau above it.
+Cost model (benchmarks/bench_auto.py, every scene of configs/ and configs/extreme/ and the seed at 10 s,
+both methods at the file's rtol; README "auto"):
+
+- DOP853 needs ``EXPLICIT_PER_UNIT`` = 2.6 evaluations per unit of ``max|lambda| T`` for stability alone
+  (12 evaluations per step, stability radius 6 along the imaginary axis, 1.3x for rejected steps,
+  measured 1.2-1.7 on stability-limited scenes), and ``EXPLICIT_PER_RAD`` = 6 per radian of the vibration it
+  must resolve (the seed: 5407 evaluations for 897 radians).
+- Radau needs ``IMPLICIT_FIXED`` = 1000 evaluations (run-up, restarts at the ramp ends; 983-1502 measured on
+  scenes with nothing to resolve) plus ``IMPLICIT_PER_RAD`` = 9.8 per radian of resolved vibration (the seed:
+  9781 for 897), and each of its evaluations costs ``IMPLICIT_COST_RATIO`` = 3 times a DOP853 one in wall
+  time (Newton iterations, LU pairs and Jacobians included: measured 2.6-3.6, per scene).
+- The vibration to resolve, P radians: the largest omega_j min(T, 5/sigma_j) over the modes of the
+  linearised chain that something excites, omega_j the mode's frequency and sigma_j its decay rate (from the
+  modal damping of the connectors). A mode is excited when a self-exciting mesh (Hertzian exponent,
+  time-varying stiffness or backlash) holds at least 1 % of its strain energy, or when the drive and load
+  ramps leave a residual vibration of at least rtol: 6/(omega T_r)^2 for a STEP ramp of T_r (1 for a ramp
+  of 0). A very stiff linear mesh ramped smoothly (configs/stiff_linear_mesh.toml) stays unexcited: Radau
+  steps over it, DOP853 must stay stable on it.
+
+``auto`` takes DOP853 unless Radau's predicted wall time is ``IMPLICIT_MARGIN`` = 1.6 times lower: DOP853
+costs max(2.6 max|lambda| T, 6 P), Radau 3 (1000 + 9.8 P) (the margin covers the spread of Radau's cost per
+evaluation, whose Jacobians and LU pairs vary by scene: configs/concrete_mixer_drivetrain.toml, predicted
+1.55x cheaper with Radau, measured 1.0-3.6x dearer under varying load). It replaces a threshold on ``max|lambda| T`` alone (1e4), which chose Radau for
+the seed run for 10 s (3.6x slower than DOP853) and DOP853 for configs/industrial_two_stage.toml (2x
+slower than Radau, whose damped mesh modes need no resolving).
 """
 
 from __future__ import annotations
@@ -28,7 +43,15 @@ from gearcli.model import Layout, Linearisation, ModelSpec, linearise
 from gearcli.model.linear import peak_rigid_forces, static_forces
 from gearcli.simulate.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 
-STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which "auto" integrates implicitly
+STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which a scene counts as stiff for an explicit method (warnings)
+EXPLICIT_PER_UNIT = 2.6  # DOP853 evaluations per unit of max|lambda| T (stability)
+EXPLICIT_PER_RAD = 6.0  # DOP853 evaluations per radian of resolved vibration
+IMPLICIT_FIXED = 1000.0  # Radau evaluations with nothing to resolve
+IMPLICIT_PER_RAD = 9.8  # Radau evaluations per radian of resolved vibration
+IMPLICIT_COST_RATIO = 3.0  # wall time of a Radau evaluation over a DOP853 one
+IMPLICIT_MARGIN = 1.6  # Radau only when predicted this much cheaper (its per-evaluation cost varies 2.6-3.6x)
+DECAY_TIMES = 5.0  # a mode's vibration lasts 5 / sigma after it is excited
+SELF_EXCITING_SHARE = 0.01  # strain-energy share of a nonlinear/time-varying/backlash mesh that excites a mode
 __all__ = ["EXPLICIT", "EXPLICIT_METHOD", "IMPLICIT_METHOD", "STIFFNESS_LIMIT", "Choice", "choose_method"]
 
 
@@ -44,6 +67,8 @@ class Choice:
     stiffest_mesh: int  # 0-based stage of the mesh with the highest single-mesh frequency
     spec: ModelSpec
     layout: Layout
+    vibration_rad: float = 0.0  # P: radians of excited, persisting vibration (cost model)
+    predicted_evals: tuple[float, float] = (0.0, 0.0)  # (DOP853 evaluations, Radau DOP853-equivalent ones)
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:
@@ -75,7 +100,72 @@ def _stiffest_mesh(lin: Linearisation, lay: Layout) -> int:
     return int(np.argmax(own))
 
 
-def choose_method(spec: ModelSpec, duration_s: float, requested: str) -> Choice:
+def _self_exciting(lay: Layout, spec: ModelSpec) -> np.ndarray:
+    """Per connector: a mesh whose force law makes its own harmonics (Hertzian, time-varying, backlash)."""
+    out = np.zeros(lay.n_conn, dtype=bool)
+    for k, c in enumerate(lay.stage_conn):
+        m = spec.meshes[k]
+        out[c] = m.exponent != 1.0 or m.time_varying or m.backlash_m > 0
+    return out
+
+
+def _ramp_excitation(spec: ModelSpec, omega: float) -> float:
+    """Residual vibration a STEP ramp of T_r leaves in a mode of omega, relative: 6/(omega T_r)^2, 1 if T_r = 0."""
+    drive_value = spec.drive.speed_rad_s if spec.drive.kind == "speed" else spec.drive.torque_Nm
+    out = 0.0
+    for ramp, value in ((spec.drive.ramp_s, drive_value), (spec.load.ramp_s, spec.load.torque_Nm)):
+        if value != 0:
+            out = max(out, 1.0 if ramp <= 0 else min(1.0, 6.0 / (omega * ramp) ** 2))
+    return out
+
+
+def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration_s: float, rtol: float) -> float:
+    """P: the largest omega_j min(T, 5/sigma_j) over the excited modes of the linearised chain (module doc)."""
+    from gearcli.model.linear import speed_map
+
+    first = 1 if lay.speed_drive else 0
+    if lay.n_bodies - first < 1:
+        return 0.0
+    R = speed_map(lay, range(first, lay.n_bodies))
+    J = np.asarray(lay.inertias[first:], dtype=float)
+    k, c = np.asarray(lin.stiffness, dtype=float), np.asarray(lin.damping, dtype=float)
+    inv_sqrt = 1.0 / np.sqrt(J)
+    w2, u = np.linalg.eigh(inv_sqrt[:, None] * (R.T @ (k[:, None] * R)) * inv_sqrt[None, :])
+    phi = inv_sqrt[:, None] * u
+    top = max(float(np.max(np.abs(w2))), np.finfo(float).tiny)
+    exciting = _self_exciting(lay, spec)
+    best = 0.0
+    for j in range(w2.size):
+        if w2[j] <= 1e-9 * top:
+            continue
+        omega = math.sqrt(w2[j])
+        d = R @ phi[:, j]
+        strain = k * d**2
+        share = float(strain[exciting].sum() / strain.sum()) if strain.sum() > 0 else 0.0
+        if share < SELF_EXCITING_SHARE and _ramp_excitation(spec, omega) < rtol:
+            continue
+        sigma = float(c @ d**2) / (2.0 * float(J @ phi[:, j] ** 2))
+        span = duration_s if sigma <= 0 else min(duration_s, DECAY_TIMES / sigma)
+        best = max(best, omega * span)
+    return best
+
+
+def _explicit_refused(indicator: float) -> bool:
+    """An explicit run whose stability alone exceeds the explicit budget would be refused (guards)."""
+    from gearcli.simulate.guards import EXPLICIT_CAP
+
+    m = method(EXPLICIT_METHOD)
+    return m.evals_per_step * indicator / m.stability_radius > EXPLICIT_CAP
+
+
+def predicted_costs(indicator: float, vibration_rad: float) -> tuple[float, float]:
+    """(DOP853, Radau) predicted wall time in DOP853 evaluations (module doc)."""
+    explicit = max(EXPLICIT_PER_UNIT * indicator, EXPLICIT_PER_RAD * vibration_rad)
+    implicit = IMPLICIT_COST_RATIO * (IMPLICIT_FIXED + IMPLICIT_PER_RAD * vibration_rad)
+    return explicit, implicit
+
+
+def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6) -> Choice:
     """The method to run and why (``requested`` other than "auto" is kept, with the indicator)."""
     lay = Layout.of(spec)
     static = static_forces(lay)
@@ -86,14 +176,46 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str) -> Choice:
     low = min((x for x in (full.min_abs_eigenvalue, op.min_abs_eigenvalue) if x > 0), default=0.0)
     indicator = lam * duration_s
     ratio = lam / low if low > 0 else math.inf
+    lin = op if bool(np.any(full.stiffness == 0.0)) else full
+    vib = vibration_radians(spec, lay, lin, duration_s, rtol)
+    explicit, implicit = predicted_costs(indicator, vib)
     summary = f"max|λ|·T = {indicator:.3g}"
+    costs = f"predicted cost DOP853 {explicit:.3g}, Radau {implicit:.3g} evaluation-equivalents"
     if requested != AUTO:
         chosen, reason = requested, f"as requested ({summary})"
-    elif indicator <= STIFFNESS_LIMIT:
+    elif explicit <= IMPLICIT_MARGIN * implicit and not _explicit_refused(indicator):
         chosen = EXPLICIT_METHOD
-        reason = f"{summary} ≤ {STIFFNESS_LIMIT:.0e}: explicit {chosen}"
+        reason = f"{summary}, {vib:.3g} rad of excited vibration: {costs}: explicit {chosen}"
     else:
         chosen = IMPLICIT_METHOD
-        reason = f"{summary} > {STIFFNESS_LIMIT:.0e}: implicit {chosen} with the analytic Jacobian"
-    return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay)
+        reason = f"{summary}, {vib:.3g} rad of excited vibration: {costs}: implicit {chosen} with the analytic Jacobian"
+    return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay,
+                  vib, (explicit, implicit))
 
+
+def unit_costs(spec: ModelSpec, repeat: int = 200) -> dict[str, float]:
+    """Microseconds per right-hand side, per Jacobian and per LU pair (Radau factors one real and one
+    complex matrix of the state's size) of the scene, measured (benchmarks/bench_auto.py)."""
+    import time
+
+    import scipy.linalg
+
+    from gearcli.model import TorsionalModel
+
+    model = TorsionalModel(spec)
+    y = model.initial_state()
+    y = y + 1e-9 * np.arange(y.size)
+    jac = np.asarray(model.jac(0.1, y), dtype=float)
+
+    def per_call(fn) -> float:
+        fn()
+        t0 = time.perf_counter()
+        for _ in range(repeat):
+            fn()
+        return (time.perf_counter() - t0) / repeat * 1e6
+
+    eye = np.eye(y.size)
+    return {"rhs": per_call(lambda: model.rhs(0.1, y)), "jac": per_call(lambda: model.jac(0.1, y)),
+            "lu_pair": per_call(lambda: (scipy.linalg.lu_factor(eye - 0.1 * jac, check_finite=False),
+                                         scipy.linalg.lu_factor((1 + 1j) * eye - 0.1 * jac, check_finite=False))),
+            "n_states": float(y.size)}

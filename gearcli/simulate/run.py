@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -10,14 +11,14 @@ from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice, estimate_nfev
 from gearcli.engine import choose as choose_engine
-from gearcli.errors import ConfigError, SimulationError
+from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import EnergyBalance, SimulationResult, SolverStats, SteadyState
-from gearcli.simulate import stats
+from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
+from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.methods import EXPLICIT, IMPLICIT_METHOD
+from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -25,6 +26,7 @@ from gearcli.simulate.solver import (
     STATUS_FAILED,
     STATUS_FINISHED,
     STATUS_NONFINITE,
+    STATUS_PROJECTED,
     Integration,
     integrate,
 )
@@ -35,14 +37,16 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] 
 
 def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
-                   y0: np.ndarray | None = None, model: TorsionalModel | None = None) -> SimulationResult:
+                   y0: np.ndarray | None = None, model: TorsionalModel | None = None,
+                   error_estimate: bool | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
     (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
     :meth:`gearcli.model.TorsionalModel.continue_state`); ``model``: the scene's model when the caller has
-    already built it (a sweep point), else built here. Raises SimulationError on failure, never
-    returns NaN."""
+    already built it (a sweep point), else built here; ``error_estimate`` (default
+    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The design's own
+    warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     from gearcli.scene import spec_from_design
 
     sim = cfg.simulation
@@ -51,35 +55,43 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
                           key="simulation.window_start_s")
     if model is None:
         model = TorsionalModel(spec_from_design(cfg, design))
+    check = sim.error_estimate if error_estimate is None else error_estimate
+    design_diags = [dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
     return simulate_model(model, duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                           window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
-                          steady=sim.steady, engine=sim.engine)
+                          steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
+                          engine=sim.engine)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
                    y0: np.ndarray | None = None, max_nfev: int | None = None,
-                   steady: str = "window", engine: str = "auto") -> SimulationResult:
+                   steady: str = "window", error_estimate: bool = True,
+                   prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto") -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
-    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`); ``engine``
-    "auto", "python" or "compiled" (:func:`gearcli.engine.choose`).
+    parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
+    ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
+    ``steady = "periodic"``, whose statistics come from a converged period); ``prior_diagnostics`` (the
+    design's warnings) lead the result's warnings; ``engine`` "auto", "python" or "compiled"
+    (:func:`gearcli.engine.choose`).
 
     ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
     the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most
     until ``duration_s`` (:mod:`gearcli.simulate.periodic`), and the statistics are taken over whole periods."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
-    choice = choose_method(spec, duration_s, method)
+    prior = list(prior_diagnostics or [])
+    choice = choose_method(spec, duration_s, method, rtol)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
     eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol), replaced)
     eng = _loadable(eng)
-    if eng.unsupported and engine == "compiled":
-        diags.append(dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
-                                f"{eng.reason}", unsupported=list(eng.unsupported)))
+    fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
+                           f"{eng.reason}", unsupported=list(eng.unsupported))] \
+        if eng.unsupported and engine == "compiled" else []
     mask_window, steady_state = window, None
     if steady == "periodic":
         diags = []  # the fixed window's warning does not apply: the window is found, not set
@@ -96,12 +108,20 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine)
         steady_state = window_steady(model)
     check(run, choice, duration_s)
+    error_estimate = error_estimate and steady != "periodic"
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
-    diags += stats.model_warnings(spec) + _choice_warnings(choice) + force_noise_warnings(choice, rtol)
+    diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
+    if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
+        diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev) if error_estimate else None
+    mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
+    stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
+    if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
+        ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
     result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
-                        eng.reason)
+                        ref, stat_diags, eng.reason)
     _require_finite(result)
     return result
 
@@ -119,6 +139,19 @@ def _loadable(eng: EngineChoice) -> EngineChoice:
         return EngineChoice("python", eng.requested, f"the compiled engine could not be loaded ({type(exc).__name__}: "
                             f"{exc})")
     return eng
+
+
+def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness, ...]:
+    """The contact law each mesh used, in the design file's units: K (N/mm^e), and its slope along the normal
+    at the static approach h0 of the linearisation at full load, e K h0^(e-1) (N/mm; the design's
+    ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm)."""
+    out = []
+    for k, m in enumerate(model.spec.meshes):
+        K = m.stiffness_N_m_e / 1000.0**m.exponent
+        h0 = float(choice.at_full_load.penetration_m[k]) * 1000.0
+        slope = m.exponent * K * h0 ** (m.exponent - 1.0) if h0 > 0 or m.exponent == 1.0 else 0.0
+        out.append(MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0))
+    return tuple(out)
 
 
 def _residual_text(residual: float | None) -> str:
@@ -190,6 +223,7 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
+               ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested") -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period)."""
@@ -198,8 +232,12 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     mask = stats.window_mask(s.time_s, mask_window)
     periodic = steady.mode == "periodic"
     channels, per_stage = _channels(model, s)
-    stages = tuple(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k][:4], m.static_tangential_N,
-                                        per_stage[k][4], periodic=periodic)
+    errors = ref.errors if ref is not None else ()
+    stiffness = mesh_stiffness(model, choice)
+    stages = tuple(replace(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k][:4], m.static_tangential_N,
+                                                per_stage[k][4], periodic=periodic),
+                           error_estimate=errors[k] if k < len(errors) else None,
+                           mesh_stiffness=stiffness[k] if k < len(stiffness) else None)
                    for k, m in enumerate(spec.meshes))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
@@ -212,12 +250,14 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
+    diags += stat_diags or []
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
         nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
-        energy_residual=energy.residual_relative, status=run.status, message=run.message, engine=run.engine,
-        engine_reason=engine_reason, compile_s=run.compile_s)
+        energy_residual=energy.residual_relative, status=run.status, message=run.message,
+        check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
+        compile_s=run.compile_s)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(
@@ -246,7 +286,10 @@ def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
 
 
 def _choice_warnings(choice: Choice) -> list[Diagnostic]:
-    if choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT:
+    """A requested explicit method on a stiff scene where auto's cost model predicts Radau cheaper."""
+    explicit, implicit = choice.predicted_evals
+    if choice.requested != AUTO and choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT \
+            and implicit < explicit:
         return [dg.warning(dg.STIFF_FOR_EXPLICIT, f"the scene is stiff for an explicit method (max|λ|·T = "
                            f"{choice.indicator:.2g}, at least {choice.explicit_evaluations(choice.method):.2g} "
                            f'evaluations for stability alone): method = "auto" would use {IMPLICIT_METHOD}',
@@ -273,11 +316,19 @@ def check(run: Integration, choice: Choice, duration_s: float) -> None:
             raise SimulationError(f"{run.method} returned non-finite values; {_stiffness_hint(choice)}")
         return
     where = f"{run.method} stopped at t = {run.t_fail:.4g} s of {duration_s:g} s"
+    if run.status == STATUS_PROJECTED:
+        freqs = choice.at_operating_point.natural_frequencies_Hz
+        fastest = f"; its fastest mode is {float(freqs[-1]):.3g} Hz" if freqs.size else ""
+        raise RunTooLong(f"{where}: {run.message}{fastest}. Shorten simulation.duration_s, loosen simulation.rtol, "
+                         "or check for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
     if run.status == STATUS_BUDGET:
         if run.method in EXPLICIT:
             raise SimulationError(f"{where}: {run.message}. {_stiffness_hint(choice)}")
-        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics or the contacts "
-                              "impact violently — shorten simulation.duration_s or loosen simulation.rtol")
+        freqs = choice.at_operating_point.natural_frequencies_Hz
+        fastest = f" (its fastest mode: {float(freqs[-1]):.3g} Hz)" if freqs.size else ""
+        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics{fastest} or the contacts "
+                              "impact violently — shorten simulation.duration_s, loosen simulation.rtol, or check "
+                              "for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
     if run.status in (STATUS_NONFINITE, STATUS_ENERGY):
         cause = "the solution diverged (non-finite state)" if run.status == STATUS_NONFINITE \
             else "the solution is unstable"

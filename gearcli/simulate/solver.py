@@ -30,10 +30,13 @@ from scipy.integrate import OdeSolver
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.simulate.guards import CAP as MAX_NFEV
-from gearcli.simulate.guards import EnergyWatch, energy_watch
+from gearcli.simulate.guards import EnergyWatch, energy_watch, over_budget, priced_work_s
 from gearcli.simulate.methods import METHODS, scipy_solver
 
+BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
+
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
+STATUS_PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
 
 
 @dataclass(frozen=True)
@@ -103,10 +106,12 @@ class _Counters:
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
-              t0: float = 0.0, engine: str = "python") -> Integration:
+              t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python") -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
-    drive's and the load's profiles are functions of the absolute time.
+    drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
+    absolute tolerances of :func:`tolerances` (an array of the state's size, or a scalar); ``rtol`` is a
+    scalar for every method.
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
@@ -117,7 +122,9 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
         raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
     y = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
     watch = energy_watch(model, y, t0) if watch_energy else None
-    atol = tolerances(model, rtol, watch)
+    if atol is None:
+        atol = tolerances(model, rtol, watch)
+    atol = np.broadcast_to(np.asarray(atol, dtype=float), y.shape).copy()
     if engine == "compiled" and t_eval[-1] > t0:  # (an empty run is scipy's: nothing to integrate)
         return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0))
     out = np.full((y.size, t_eval.size), np.nan)
@@ -127,7 +134,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
-        status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch)
+        status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
+                                         (0.0, float(t_eval[-1])), METHODS[method].implicit)
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
@@ -138,7 +146,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
 
 
 def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, count: _Counters, max_nfev: int,
-             watch) -> tuple[int, str, int]:
+             watch, span: tuple[float, float] = (0.0, 0.0), implicit: bool = False) -> tuple[int, str, int]:
     """Step ``solver`` to its end, filling ``out`` at the samples passed; (status, message, samples done)."""
     n = out.shape[0]
     while solver.status == "running":
@@ -158,8 +166,17 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
         if upto > done:
             out[:, done:upto] = solver.dense_output()(t_eval[done:upto]).reshape(n, -1)
             done = upto
-        if count.nfev + solver.nfev > max_nfev:
+        nfev = count.nfev + solver.nfev
+        if nfev > max_nfev:
             return STATUS_BUDGET, f"more than {max_nfev} right-hand-side evaluations", done
+        if count.steps % BUDGET_CHECK_EVERY == 0:
+            njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
+            work = priced_work_s(nfev, njev, nlu, count.steps, implicit)
+            if (verdict := over_budget(work, float(solver.t), *span)) is not None:
+                kind, why = verdict
+                return (STATUS_PROJECTED if kind == "projected" else STATUS_BUDGET), (
+                    f"{why} ({nfev} right-hand sides, {count.steps} steps, {nlu} LU decompositions, "
+                    f"{njev} Jacobians)"), done
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
             report = watch.check(solver.t, solver.y)
             if report.diverging:

@@ -63,7 +63,7 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
     the mesh response over the window (:func:`mesh_response`) when ``dte_um`` is given."""
     i = int(np.argmax(np.abs(ft)))
     peak = float(abs(ft[i]))
-    factor = peak / abs(static_tangential_N) if static_tangential_N != 0 else 0.0
+    factor = peak / abs(static_tangential_N) if static_tangential_N != 0 else None
     response = {} if dte_um is None else mesh_response(t, mask, dte_um, ft, pen_mm, static_tangential_N,
                                                        periodic=periodic)
     return StageDynamics(k + 1, channel_stats(ft, mask), channel_stats(fr, mask), channel_stats(fa, mask),
@@ -136,13 +136,25 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
 
 
 def peak_warnings(spec: ModelSpec, peak_line_forces_N, rigid_line_forces_N) -> list[Diagnostic]:
-    """A run-up peak far above the rigid-body estimate is an impact or a numerical artefact."""
+    """A run-up peak far above the rigid-body estimate is an impact or a numerical artefact; with a drive or
+    a load applied instantly (``ramp_s = 0``) it is the physical shock of that step, which no tolerance
+    removes: the fix named is then a ramp."""
+    instant = [name for name, ramp, value in (("[input]", spec.drive.ramp_s, spec.drive.speed_rad_s
+                                                if spec.drive.kind == "speed" else spec.drive.torque_Nm),
+                                               ("[load]", spec.load.ramp_s, spec.load.torque_Nm))
+               if ramp == 0 and value != 0]
+    if instant:
+        fix = (f"the {' and '.join(instant)} step{'s' if len(instant) > 1 else ''} at t = 0 (ramp_s = 0) "
+               "shock the mesh: give ramp_s > 0 (several periods of the lowest natural frequency) for a smooth "
+               "run-up; a tighter rtol does not change a physical shock")
+    else:
+        fix = "a violent impact or a numerical artefact — check with a tighter rtol"
     out = []
     for k, (peak, rigid) in enumerate(zip(peak_line_forces_N, rigid_line_forces_N, strict=True)):
         if rigid > 0 and peak > WARN_PEAK_OVER_RIGID * rigid:
             out.append(dg.warning(dg.PEAK_OVER_RIGID, f"stage {k + 1}: peak mesh force is {peak / rigid:.3g}x the "
-                                  "rigid-body estimate of the run (inertia plus load): a violent impact or a numerical "
-                                  "artefact — check with a tighter rtol", stage=k + 1, ratio=peak / rigid))
+                                  f"rigid-body estimate of the run (inertia plus load): {fix}", stage=k + 1,
+                                  ratio=peak / rigid))
     return out
 
 

@@ -98,6 +98,9 @@ def parse_vary(text: str) -> Axis:
         n = int(m[3])
         if n < 1:
             raise SweepUsageError(f"{key}: N must be at least 1, got {n}", source=option)
+        if n > MAX_POINTS:  # before the values are built: 1:2:1000000000 would take minutes and gigabytes
+            raise SweepUsageError(f"{key}: {n} values is more than the {MAX_POINTS} points a sweep may have",
+                                  source=option)
         values: tuple[Any, ...] = (start,) if n == 1 else tuple(start + (stop - start) * i / (n - 1) for i in range(n))
         if all(re.fullmatch(r"\s*[+-]?\d+\s*", t) for t in (m[1], m[2])) and all(float(v).is_integer() for v in values):
             values = tuple(int(v) for v in values)  # 17:25:9 is teeth 17, 18, ..., 25 (integers)

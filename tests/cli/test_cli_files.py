@@ -114,6 +114,21 @@ def test_read_only_directory_is_exit_2(work):
         ro.chmod(0o755)
 
 
+@pytest.mark.parametrize("command", ["design", "simulate", "report", "init", "schema"])
+def test_read_only_directory_is_exit_2_also_as_root(work, command, monkeypatch):
+    """As root a read-only directory is writable; deny it the way a read-only mount would (os.access)."""
+    ro = work / "ro"
+    ro.mkdir()
+    real = os.access
+    monkeypatch.setattr(os, "access", lambda p, mode, **kw: False if Path(p) == ro and mode & os.W_OK
+                        else real(p, mode, **kw))
+    out = "ro/x.toml" if command == "init" else "ro/x.json"
+    args = {"init": ["init", out], "schema": ["schema", "-o", out]}.get(command, [command, "in.toml", "-o", out])
+    res = run(*args)
+    assert_refused(res, "not writable", out)
+    assert listing(work / "ro") == []
+
+
 @pytest.mark.parametrize("command", COMMANDS)
 def test_a_directory_and_a_trailing_slash_are_refused(work, command):
     (work / "adir").mkdir()

@@ -17,6 +17,7 @@ from click.testing import CliRunner
 from handcalc import Train, read
 from numpy.testing import assert_allclose
 
+from gearcli import diagnostics as dg
 from gearcli.cli import cli
 from gearcli.config import load_design
 from gearcli.design import compute_design
@@ -76,7 +77,10 @@ def test_radau_across_the_ramp_end_follows_the_rigid_body_force(rtol):
         dev = np.abs(sim.channels[f"stage{k + 1}_tangential_N"] - train.rigid_tangential_N(k, sim.time_s))
         assert dev.max() < 0.02 * train.static_tangential_N(k), (k, dev.max())
     assert sim.energy.residual_relative < 1e-6  # quadratures under error control: no false energy warning
-    assert not sim.warnings
+    # no other warning; at rtol 1e-6 Radau's 51 steps cannot show the ~1 % ringing, and the run says so per
+    # stage (README "Honest statistics"); at 1e-7 its steps are fine enough not to be flagged
+    assert {d.code for d in sim.diagnostics} <= {dg.STATISTICS_UNRESOLVED}, sim.warnings
+    assert len(sim.diagnostics) == (3 if rtol == 1e-6 else 0), sim.warnings
 
 
 # ------------------------------------------------------------------------------------------ budget

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import io
+import os
 import tomllib
 from pathlib import Path
 
@@ -281,10 +282,14 @@ def test_unreadable_file(tmp_path, monkeypatch):
     path = tmp_path / "locked.toml"
     path.write_text("title = 'x'\n")
 
-    def deny(self, *args, **kwargs):
-        raise PermissionError(13, "Permission denied", str(self))
+    real_open = os.open
 
-    monkeypatch.setattr(Path, "open", deny)  # chmod 0 does not stop root
+    def deny(name, *args, **kwargs):
+        if str(name) == str(path):
+            raise PermissionError(13, "Permission denied", str(name))
+        return real_open(name, *args, **kwargs)
+
+    monkeypatch.setattr(os, "open", deny)  # chmod 0 does not stop root
     assert str(error_of(str(path))) == f"{path}: permission denied"
 
 

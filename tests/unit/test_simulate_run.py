@@ -58,7 +58,11 @@ def test_window_starts_after_the_slower_ramp_plus_a_fifth_of_the_rest():
 
 
 def test_window_start_beyond_the_run_is_a_config_error():
-    cfg, design = seed(["simulation.window_start_s=0.6"])
+    with pytest.raises(ConfigError) as err:  # the loader refuses it, naming --set
+        seed(["simulation.window_start_s=0.6"])
+    assert err.value.key == "simulation.window_start_s" and err.value.exit_code == 2 and err.value.source == "--set"
+    cfg, design = seed()  # and so does the run, for a design built without the loader
+    cfg = cfg.model_copy(update={"simulation": cfg.simulation.model_copy(update={"window_start_s": 0.6})})
     with pytest.raises(ConfigError) as err:
         run_simulation(cfg, design)
     assert err.value.key == "simulation.window_start_s" and err.value.exit_code == 2
@@ -178,3 +182,43 @@ def test_natural_frequencies_of_an_unloaded_hertz_mesh_come_from_the_runup_load(
     k_t = math.cos(0.17) ** 2 * 1.5 * 4e10 * math.sqrt(p)
     # (the peak at T/2 lies on the 801-point search grid, so only rounding separates the two)
     assert_allclose(choice.natural_frequencies_Hz, [math.sqrt(k_t * 0.15**2 / 2.5) / (2 * math.pi)], rtol=1e-9)
+
+
+# ------------------------------------------------------------------------- auto's cost model (issue 10)
+def test_ramp_excitation_closed_form():
+    from gearcli.simulate.choice import _ramp_excitation
+
+    spec = one_stage()  # drive and load STEP ramps of 0.1 s
+    assert_allclose(_ramp_excitation(spec, 2000.0), 6.0 / (2000.0 * 0.1) ** 2, rtol=1e-12)
+    instant = one_stage(drive=DriveSpec("speed", 50.0, 0.0))
+    assert _ramp_excitation(instant, 2000.0) == 1.0
+
+
+def test_vibration_radians_of_one_mesh_mode():
+    """One mesh, clamped pinion: one mode, |lambda| = w_n and sigma = -Re(lambda) of the linearisation;
+    an excited mode vibrates w_n min(T, 5/sigma) radians (undamped: w_n T)."""
+    from gearcli.simulate.choice import vibration_radians
+
+    for damping, T in ((0.0, 1.0), (2e3, 1.0)):
+        spec = one_stage(damping_Ns_m=damping, full_damping_m=1e-9)
+        choice = choose_method(spec, T, "auto")
+        lam = choice.at_full_load.eigenvalues[np.argmax(choice.at_full_load.eigenvalues.imag)]
+        w_n, sigma = abs(lam), -lam.real
+        expected = w_n * (T if sigma <= 0 else min(T, 5.0 / sigma))
+        assert_allclose(vibration_radians(spec, choice.layout, choice.at_full_load, T, 1e-6), expected, rtol=1e-6)
+        assert_allclose(choice.vibration_rad, expected, rtol=1e-6)
+    # a 1e5 x stiffer linear mesh ramped over 0.1 s: residual 6/(w_n T_r)^2 ~ 4e-9 < rtol, nothing to resolve
+    stiff = choose_method(one_stage(k=2e13), 1.0, "auto")
+    assert stiff.vibration_rad == 0.0 and stiff.method == "Radau"
+
+
+def test_auto_keeps_dop853_for_a_long_lightly_damped_run_and_takes_radau_for_damped_meshes():
+    """The two misjudgements of the old max|lambda| T threshold (measured in benchmarks/bench_auto.py): the
+    seed for 10 s (Radau 3.6x slower than DOP853) and the damped industrial reducer (DOP853 2x slower)."""
+    cfg, design = seed(["simulation.duration_s=10", "simulation.steps=40000"])
+    from gearcli.scene import spec_from_design
+
+    assert choose_method(spec_from_design(cfg, design), 10.0, "auto").method == "DOP853"
+    loaded = load_design(str(SEED.parent / "industrial_two_stage.toml"), [])
+    spec = spec_from_design(loaded.design, compute_design(loaded.design))
+    assert choose_method(spec, 0.5, "auto").method == "Radau"
