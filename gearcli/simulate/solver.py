@@ -115,7 +115,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
-    "compiled" runs :mod:`gearcli.engine` (DOP853 only; the caller checks
+    "compiled" runs :mod:`gearcli.engine` (DOP853, RK45, Radau; from ``t0`` too; the caller checks
     :func:`gearcli.engine.unsupported` first), "python" scipy's solvers.
     """
     if t0 != 0.0 and y0 is None:

@@ -37,7 +37,7 @@ MODELS.update({f"{name}, start angle and clock": _phased(spec) for name, spec in
 DURATION_S = 0.12  # past the ramps (0.1 s): ripple, fluctuation and TE all act
 
 
-@pytest.mark.parametrize("name", sorted(MODELS))
+@pytest.mark.parametrize("name", sorted(MODELS), ids=lambda n: n.replace(" ", "_"))
 def test_same_steps_as_scipy_with_every_excitation(name):
     """Issue 15's acceptance on the excitation scenes: the same accepted steps and nfev as scipy's DOP853 on
     the generated right-hand side, samples to 1e-9."""
@@ -48,7 +48,7 @@ def test_same_steps_as_scipy_with_every_excitation(name):
     assert_same(scipy_dop853(model, t_eval, 1e-6, atol), compiled_dop853(model, t_eval, 1e-6, atol))
 
 
-@pytest.mark.parametrize("name", sorted(MODELS))
+@pytest.mark.parametrize("name", sorted(MODELS), ids=lambda n: n.replace(" ", "_"))
 def test_compiled_jacobian_is_the_generated_one_with_every_excitation(name):
     """The kernel's Jacobian (the TE's phase-rate column, the ripple's input-angle column, the TE's power in
     the input work) equals the generated ``jac`` at states along a run."""
