@@ -24,6 +24,7 @@ EFFICIENCY_NOT_MODELLED = "efficiency_not_modelled"
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"
+ENGINE_FALLBACK = "engine_fallback"
 STATISTICS_UNRESOLVED = "statistics_unresolved"
 DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap

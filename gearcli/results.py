@@ -215,6 +215,9 @@ class SolverStats:
     status: int  # solve_ivp status (0: reached the end)
     message: str
     check_pass: dict | None = None  # the error-estimate pass: rtol, from_s, nfev, njev, steps, wall_s, finished
+    engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
+    engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
+    compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s
 
 
 @dataclass(frozen=True)

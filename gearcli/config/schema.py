@@ -411,6 +411,7 @@ class Simulation(_Table):
     steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] = 2000
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
+    engine: Literal["auto", "python", "compiled"] = "auto"
     window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
     steady: Literal["window", "periodic"] = "window"
     error_estimate: bool = True

@@ -120,6 +120,7 @@ def accuracy_section(study: AccuracyStudy) -> Section:
     for run in study.runs:
         marks = " ".join(m for m, on in (("★", run is rec), ("file", run.file_settings)) if on)
         method = run.method if run.method == run.method_used else f"{run.method} ({run.method_used})"
+        method += " [compiled]" if run.engine == "compiled" else ""
         if run.failure:
             rows.append((method, f"{run.rtol:.0e}", "–", "–", "–", "–", "–", run.failure[:60] + (" " + marks if marks else "")))
             continue

@@ -142,9 +142,11 @@ class ModelArrays:
     drive_value: float  # rad/s or N m
     drive_ramp_s: float
     drive_ripple: np.ndarray  # float64[R, 2]: amplitude (fraction), order per input revolution
+    drive_angle_rad: float  # a speed drive's angle at t = 0 (sweep continuation)
     load_value_Nm: float
     load_ramp_s: float
     load_fluct: np.ndarray  # float64[F, 2]: amplitude (fraction), frequency_Hz
+    load_clock_s: float  # the fluctuation's time at t = 0 (sweep continuation)
     n_states: int
     i_delta0: int
     i_omega0: int
@@ -321,6 +323,8 @@ class Layout:
             conn_radii=np.array([[x.ra, x.rb] for x in conns]).reshape(nc, 2), conn_param=param,
             conn_harm=harm, drive_kind=0 if self.speed_drive else 1,
             drive_value=drive.speed_rad_s if self.speed_drive else drive.torque_Nm, drive_ramp_s=drive.ramp_s,
-            drive_ripple=np.array(self.ripple, float).reshape(-1, 2), load_value_Nm=self.load.torque_Nm,
-            load_ramp_s=self.load.ramp_s, load_fluct=np.array(self.fluctuation, float).reshape(-1, 2), n_states=self.n_states, i_delta0=0, i_omega0=self.n_conn,
+            drive_ripple=np.array(self.ripple, float).reshape(-1, 2), drive_angle_rad=float(drive.angle_rad),
+            load_value_Nm=self.load.torque_Nm, load_ramp_s=self.load.ramp_s,
+            load_fluct=np.array(self.fluctuation, float).reshape(-1, 2), load_clock_s=float(self.load.clock_s),
+            n_states=self.n_states, i_delta0=0, i_omega0=self.n_conn,
             i_theta=-1 if self.i_theta is None else self.i_theta, i_quad=self.i_quad, atol=np.asarray(atol, float))

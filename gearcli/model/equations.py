@@ -74,6 +74,13 @@ class TorsionalModel:
         self.rhs: Callable[[float, np.ndarray], np.ndarray]
         self.jac: Callable[[float, np.ndarray], np.ndarray]
         self.rhs, self.jac, self.source = compile_functions(self.layout)
+        self._generated = (self.rhs, self.jac)
+
+    @property
+    def generated(self) -> bool:
+        """Whether ``rhs`` and ``jac`` are still the generated ones (the arrays describe them); False when a
+        caller replaced them (tests that sabotage a run), which only the Python engine can integrate."""
+        return self.rhs is self._generated[0] and self.jac is self._generated[1]
 
     @property
     def n_states(self) -> int:

@@ -84,6 +84,13 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     phi = phase_per_rad(P) * theta[x.a] if x.phased else np.zeros_like(d)
     wphi = phase_per_rad(P) * omega[x.a] if x.excited else np.zeros_like(d)
     n = d.size
+    kernel = _loaded_kernel()
+    if kernel is not None:  # the same element laws, compiled (gearcli.engine): identical numbers, ~100x faster
+        F, U, pen, q = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
+                                               np.ascontiguousarray(dd, dtype=float),
+                                               np.ascontiguousarray(phi, dtype=float),
+                                               np.ascontiguousarray(wphi, dtype=float))
+        return ConnectorSeries(F, d.copy(), pen, U, q)
     F, U, pen, q = np.empty(n), np.empty(n), np.zeros(n), d.copy()
     for j in range(n):
         dj, phj = float(d[j]), float(phi[j])
@@ -93,6 +100,14 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
             pen[j] = penetration(P, dj, phj)
             q[j] = dynamic_transmission_error(P, dj, phj)
     return ConnectorSeries(F, d.copy(), pen, U, q)
+
+
+def _loaded_kernel():
+    """The compiled engine's kernel if this process loaded it (never imports numba itself)."""
+    import sys
+
+    engine = sys.modules.get("gearcli.engine")
+    return engine.loaded_kernel() if engine is not None else None
 
 
 def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:

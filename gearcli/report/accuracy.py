@@ -129,6 +129,7 @@ def measure(sim: SimulationResult, method: str, rtol: float, ref: ReferenceRun, 
         error_mean_force=errors["mean_force"], error_peak_force=errors["peak_force"],
         below_reference_resolution={q: errors[q] < ref.uncertainty for q in QUANTITIES},
         meets_accuracy=meets(errors, ref.uncertainty, accuracy), file_settings=file_settings,
+        engine=sim.solver.engine,
     )
 
 

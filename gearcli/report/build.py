@@ -37,6 +37,15 @@ def build_report(
     tick = progress or (lambda label, done, total: None)
     sim_cfg = cfg.simulation
     planned = 1 if quick else 1 + 2 + len(spec.rtols) * len(spec.methods)
+    if not quick and sim_cfg.engine == "auto":  # the ladder (~25 runs, a reference at rtol 1e-12) always
+        from gearcli import engine  # repays loading the compiled engine: load it once, for every DOP853 rung
+
+        engine.expect_runs(planned)
+        if engine.available():
+            try:
+                engine.load()
+            except Exception:  # numba cannot compile or cache here: every run stays on scipy  # noqa: BLE001
+                pass
     tick(f"simulation ({sim_cfg.method}, rtol {sim_cfg.rtol:g})", 0, planned)
     sim = simulate(cfg, design, want_series=True)
     stages = stage_reports(design, sim)
@@ -45,12 +54,15 @@ def build_report(
         def run(method: str, rtol: float) -> SimulationResult:
             return simulate(cfg, design, method=method, rtol=rtol, want_series=False)
 
-        study = accuracy_study(
-            run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
-            auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
-            stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
-            progress=lambda label, done, total: tick(label, done + 1, total + 1),
-        )
+        from gearcli import engine
+
+        with engine.batch(0):  # the ladder: auto may run Radau compiled too (labelled)
+            study = accuracy_study(
+                run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
+                auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
+                stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
+                progress=lambda label, done, total: tick(label, done + 1, total + 1),
+            )
     warnings = _merge(
         design.warnings,
         sim.warnings,

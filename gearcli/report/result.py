@@ -140,6 +140,7 @@ class AccuracyRun:
     meets_accuracy: bool
     file_settings: bool = False  # the design file's own [simulation] method and rtol
     failure: str | None = None
+    engine: str = "python"  # where it ran: "python" (scipy) or "compiled" (gearcli.engine)
 
     def error(self, quantity: str) -> float | None:
         return getattr(self, f"error_{quantity}")

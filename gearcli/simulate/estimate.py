@@ -167,7 +167,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     while True:
         passes += 1
         fine = integrate(model, t_check, run.method, rtol, y0=run.y[:, i_s], t0=float(t_eval[i_s]),
-                         max_nfev=max_nfev, watch_energy=False)  # the run itself was watched
+                         max_nfev=max_nfev, watch_energy=False,  # the run itself was watched
+                         engine=run.engine)  # the run's engine: scipy's steps either way
         nfev, njev, steps = nfev + fine.nfev, njev + fine.njev, steps + fine.steps
         status, message = fine.status, fine.message
         errors: tuple[StatisticsError, ...] = ()

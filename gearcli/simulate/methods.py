@@ -4,7 +4,8 @@ Every other module (the design-file schema, the solver, ``method = "auto"``, the
 study) reads this table; nothing else lists method names. ``stability_radius`` is the size of an
 explicit method's stability region along the imaginary axis (the mesh modes are lightly damped),
 ``evals_per_step`` its right-hand-side evaluations per accepted step; ``sibling`` the method of the
-same family that an accuracy check pairs with it; ``engines`` where it runs ("python": scipy).
+same family that an accuracy check pairs with it; ``engines`` where it runs ("python": scipy; "compiled":
+gearcli.engine, the ``fast`` extra).
 """
 
 from __future__ import annotations
@@ -25,10 +26,11 @@ class Method:
 
 
 _INF = float("inf")
+_BOTH = ("python", "compiled")  # scipy's, and gearcli.engine's port of it
 METHODS: dict[str, Method] = {m.name: m for m in (
-    Method("RK45", False, False, 2.0, 6, "DOP853", summary="explicit Runge-Kutta 5(4), Dormand-Prince"),
-    Method("DOP853", False, False, 6.0, 12, "RK45", summary="explicit Runge-Kutta 8(5,3), Dormand-Prince"),
-    Method("Radau", True, True, _INF, 0, "BDF", summary="implicit Radau IIA order 5, L-stable"),
+    Method("RK45", False, False, 2.0, 6, "DOP853", _BOTH, summary="explicit Runge-Kutta 5(4), Dormand-Prince"),
+    Method("DOP853", False, False, 6.0, 12, "RK45", _BOTH, summary="explicit Runge-Kutta 8(5,3), Dormand-Prince"),
+    Method("Radau", True, True, _INF, 0, "BDF", _BOTH, summary="implicit Radau IIA order 5, L-stable"),
     Method("BDF", True, True, _INF, 0, "Radau", summary="implicit variable-order BDF"),
     Method("LSODA", True, True, _INF, 0, "BDF", summary="Adams/BDF switching (ODEPACK)"),
 )}

@@ -285,8 +285,9 @@ def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -
 
 def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_s: float,
                        window_start_s: float | None, y0: np.ndarray | None, max_nfev: int,
-                       fastest_rad_s: float = 0.0):
-    """Run-up, the period-by-period search for the repeat, then the statistics periods finely sampled.
+                       fastest_rad_s: float = 0.0, engine: str = "python"):
+    """Run-up, the period-by-period search for the repeat, then the statistics periods finely sampled
+    (every part on ``engine``: each period's run starts at its own t0 on either engine).
 
     Returns a :class:`PeriodicRun`, or the failed part's ``Integration`` (status < 0) for the caller's
     :func:`gearcli.simulate.run.check`. A search that runs out of evaluations stops early, unconverged.
@@ -298,7 +299,8 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     T = period.period_s
     t_start = max(lay.drive.ramp_s, lay.load.ramp_s, window_start_s or 0.0)
     n_a = max(1, round(steps * t_start / duration_s)) if t_start > 0 else 0
-    parts = [integrate(model, np.linspace(0.0, t_start, n_a + 1), method, rtol, y0=y0, max_nfev=max_nfev)]
+    parts = [integrate(model, np.linspace(0.0, t_start, n_a + 1), method, rtol, y0=y0, max_nfev=max_nfev,
+                       engine=engine)]
     if parts[0].status != STATUS_FINISHED:
         return parts[0]
     dyn = lay.n_conn + len(lay.free_bodies)
@@ -311,7 +313,7 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
         m = min(chunk, cap - n)
         t_n = t_start + n * T
         r = integrate(model, t_start + T * np.arange(n, n + m + 1), method, rtol, y0=states[-1], t0=t_n,
-                      max_nfev=max(1, max_nfev - used))
+                      max_nfev=max(1, max_nfev - used), engine=engine)
         used += r.nfev
         parts.append(r)
         if r.status == STATUS_BUDGET:
@@ -334,7 +336,7 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     per = max(math.ceil(steps / k), math.ceil(MIN_SAMPLES_PER_FASTEST * T / _fastest(lay, T)))
     total = min(per * k, max(steps, PERIODIC_STATISTICS_SAMPLES))  # the memory bound config.bounds checked
     fine = t_n + k * T * np.arange(total + 1) / total
-    stats_run = integrate(model, fine, method, rtol, y0=y_n, t0=t_n)
+    stats_run = integrate(model, fine, method, rtol, y0=y_n, t0=t_n, engine=engine)
     parts.append(stats_run)
     if stats_run.status != STATUS_FINISHED:
         return _joined(parts, stats_run.t[:1], stats_run.y[:, :1], status_from=stats_run)

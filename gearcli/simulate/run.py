@@ -9,6 +9,8 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
+from gearcli.engine import EngineChoice, estimate_nfev
+from gearcli.engine import choose as choose_engine
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
@@ -58,19 +60,21 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     return simulate_model(model, duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                           window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
-                          steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags)
+                          steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
+                          engine=sim.engine)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
                    y0: np.ndarray | None = None, max_nfev: int | None = None,
                    steady: str = "window", error_estimate: bool = True,
-                   prior_diagnostics: list[Diagnostic] | None = None) -> SimulationResult:
+                   prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto") -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
     ``steady = "periodic"``, whose statistics come from a converged period); ``prior_diagnostics`` (the
-    design's warnings) lead the result's warnings.
+    design's warnings) lead the result's warnings; ``engine`` "auto", "python" or "compiled"
+    (:func:`gearcli.engine.choose`).
 
     ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
     the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most
@@ -82,12 +86,18 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
+    replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
+    eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol), replaced)
+    eng = _loadable(eng)
+    fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
+                           f"{eng.reason}", unsupported=list(eng.unsupported))] \
+        if eng.unsupported and engine == "compiled" else []
     mask_window, steady_state = window, None
     if steady == "periodic":
         diags = []  # the fixed window's warning does not apply: the window is found, not set
         found = integrate_periodic(model, choice.method, rtol, steps=steps, duration_s=duration_s,
                                    window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
-                                   fastest_rad_s=_fastest_rad_s(choice))
+                                   fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine)
         if isinstance(found, Integration):
             check(found, choice, duration_s)
             raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
@@ -95,13 +105,13 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags += steady_warnings(steady_state, found.period)
     else:
         t_eval = np.linspace(0.0, duration_s, steps + 1)
-        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev)
+        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine)
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
-    diags = prior + diags + stats.model_warnings(spec) + _choice_warnings(choice)
+    diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
@@ -111,9 +121,24 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
     result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
-                        ref, stat_diags)
+                        ref, stat_diags, eng.reason)
     _require_finite(result)
     return result
+
+
+def _loadable(eng: EngineChoice) -> EngineChoice:
+    """``auto``'s compiled choice, or Python with the reason when the kernel cannot be loaded or compiled here
+    (an explicit ``compiled`` lets the error through)."""
+    if eng.engine != "compiled" or eng.requested != "auto":
+        return eng
+    from gearcli import engine
+
+    try:
+        engine.load()
+    except Exception as exc:  # numba cannot compile or cache here: scipy runs it
+        return EngineChoice("python", eng.requested, f"the compiled engine could not be loaded ({type(exc).__name__}: "
+                            f"{exc})")
+    return eng
 
 
 def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness, ...]:
@@ -198,7 +223,8 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
-               ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None) -> SimulationResult:
+               ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
+               engine_reason: str = "as requested") -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period)."""
     spec = model.spec
@@ -230,7 +256,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         atol=_atol_summary(model, run.atol),
         nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
         energy_residual=energy.residual_relative, status=run.status, message=run.message,
-        check_pass=ref.summary() if ref is not None else None)
+        check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
+        compile_s=run.compile_s)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(

@@ -54,6 +54,8 @@ class Integration:
     status: int  # 0 reached the end; < 0 failed (see STATUS_*)
     message: str
     t_fail: float  # where it stopped
+    engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
+    compile_s: float = 0.0  # compiled engine: numba import and kernel load/compilation, not in wall_s
 
 
 def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end: float, rtol: float,
@@ -104,7 +106,7 @@ class _Counters:
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
-              t0: float = 0.0, atol: np.ndarray | None = None) -> Integration:
+              t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python") -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
     drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
@@ -112,7 +114,9 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     scalar for every method.
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
-    the samples reached (the rest NaN); :func:`check` turns a failure into an error.
+    the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
+    "compiled" runs :mod:`gearcli.engine` (DOP853, RK45, Radau; from ``t0`` too; the caller checks
+    :func:`gearcli.engine.unsupported` first), "python" scipy's solvers.
     """
     if t0 != 0.0 and y0 is None:
         raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
@@ -121,6 +125,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     if atol is None:
         atol = tolerances(model, rtol, watch)
     atol = np.broadcast_to(np.asarray(atol, dtype=float), y.shape).copy()
+    if engine == "compiled" and t_eval[-1] > t0:  # (an empty run is scipy's: nothing to integrate)
+        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0))
     out = np.full((y.size, t_eval.size), np.nan)
     out[:, t_eval <= t0] = y[:, None]
     done = int(np.searchsorted(t_eval, t0, side="right"))
@@ -176,3 +182,49 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             if report.diverging:
                 return STATUS_ENERGY, watch.message(report), done
     return STATUS_FINISHED, "reached the end of the run", done
+
+
+def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
+                        atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None, t0: float = 0.0) -> Integration:
+    """The same run on the compiled kernel: same start, segments, tolerances (vectors), guards and statuses."""
+    from gearcli import engine
+
+    if method not in engine.COMPILED_METHODS:
+        raise SimulationError(f"the compiled engine integrates {', '.join(engine.COMPILED_METHODS)} only, "
+                              f"not {method}")
+    loaded = engine.load()
+    compile_s = loaded.load_s if not _COMPILED_USED else 0.0
+    _COMPILED_USED.append(True)
+    n = y.size
+    rtol_v = np.array(np.broadcast_to(np.asarray(rtol, dtype=float), (n,)))  # writable: one kernel signature
+    atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=float), (n,)))
+    breaks = np.array(breakpoints(model, float(t_eval[-1]), t0), dtype=float)
+    from gearcli.simulate.guards import ENERGY_MARGIN
+
+    wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN, t0]) if watch is not None \
+        else np.array([0.0, 0.0, 0.0, 0.0, t0])
+    every = np.int64(watch.every if watch is not None else 0)
+    t0 = time.perf_counter()
+    kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]
+    out, counters, floats, _ = kernel(engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float),
+                                      np.ascontiguousarray(t_eval, dtype=float), breaks, rtol_v, atol_v,
+                                      np.int64(max_nfev), every, wpar, np.empty(0))
+    wall = time.perf_counter() - t0
+    nfev, steps, status = (int(v) for v in counters[:3])
+    njev, nlu = (int(v) for v in counters[4:6]) if counters.size > 4 else (0, 0)
+    t_end, created, scale = (float(v) for v in floats)
+    messages = {STATUS_FINISHED: "reached the end of the run",
+                STATUS_FAILED: "Required step size is less than spacing between numbers.",
+                STATUS_BUDGET: f"more than {max_nfev} right-hand-side evaluations",
+                STATUS_NONFINITE: f"the state became non-finite at t = {t_end:.6g} s"}
+    if status == STATUS_ENERGY and watch is not None:
+        from gearcli.simulate.guards import EnergyReport
+
+        message = watch.message(EnergyReport(created, scale))
+    else:
+        message = messages.get(status, f"status {status}")
+    return Integration(t_eval, out, method, float(np.max(rtol_v)) if np.ndim(rtol) else float(rtol), atol, nfev, njev,
+                       nlu, steps, wall, status, message, t_end, engine="compiled", compile_s=compile_s)
+
+
+_COMPILED_USED: list[bool] = []  # the kernel's load time is reported by the first compiled run of a process

@@ -8,6 +8,7 @@ cancels what has not started and stops (the rows already yielded are kept by the
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import signal
@@ -48,7 +49,8 @@ def plan(spec: SweepSpec, scene: Scene, done: set[tuple], workers: int) -> tuple
         tasks.append(Task(scene, tuple(head), True, skip))
     size = batch_size(len(single), workers)
     tasks += [Task(scene, tuple(single[i:i + size]), False) for i in range(0, len(single), size)]
-    return tasks, todo
+    share = math.ceil(todo / max(1, workers))  # each worker's part of the sweep (engine = "auto" amortises over it)
+    return [dataclasses.replace(t, runs_hint=share) for t in tasks], todo
 
 
 def batch_size(n_points: int, workers: int) -> int:

@@ -39,6 +39,7 @@ class Task:
     points: tuple[Point, ...]
     continuation: bool
     skip: frozenset[int] = field(default_factory=frozenset)  # indices already written: computed, not returned
+    runs_hint: int = 0  # about how many points the worker running this task will do (engine = "auto")
 
 
 @lru_cache(maxsize=8)
@@ -97,23 +98,26 @@ def model_of(spec):
 
 def iter_task(task: Task) -> Iterator[dict]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
-    prev = None
-    for point in task.points:
-        t0 = time.perf_counter()
-        try:
-            result, carried = _evaluate(task.scene, point, prev if task.continuation else None)
-        except GearcliError as exc:
-            prev = None
-            row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
-        except (ArithmeticError, ValueError, RuntimeError, OverflowError) as exc:  # a bug or a numerical failure
-            prev = None
-            row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
-        else:
-            prev = carried
-            row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
-                         message=one_line("\n".join(result.warnings)))
-        if point.index not in task.skip:
-            yield {"_index": point.index, **row}
+    from gearcli import engine
+
+    with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
+        prev = None
+        for point in task.points:
+            t0 = time.perf_counter()
+            try:
+                result, carried = _evaluate(task.scene, point, prev if task.continuation else None)
+            except GearcliError as exc:
+                prev = None
+                row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
+            except (ArithmeticError, ValueError, RuntimeError, OverflowError) as exc:  # a bug or a numerical failure
+                prev = None
+                row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
+            else:
+                prev = carried
+                row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
+                             message=one_line("\n".join(result.warnings)))
+            if point.index not in task.skip:
+                yield {"_index": point.index, **row}
 
 
 def run_task(task: Task) -> list[dict]:

@@ -1,0 +1,148 @@
+"""The compiled engine against scipy, every ratio measured side by side in one run.
+
+    python benchmarks/bench_engine.py [--repeat 5] [--sweep-points 1000] [--no-report] [--json]
+
+(a) Seed integration (configs/concrete_mixer.toml, DOP853 at the file's rtol 1e-6): compiled kernel vs scipy's
+    DOP853 around the generated right-hand side, median wall of --repeat, nfev of each; the compiled run's
+    window-mean F_t error against a DOP853 reference at rtol 1e-12 (target: ratio <= 0.05, error <= 1e-5).
+(b) The floor: bare `python -c "import click, pydantic, rich, numpy, scipy.integrate"` (median of --repeat).
+(c) One-shot `gearcli simulate configs/concrete_mixer.toml --format json` (engine = auto), median of --repeat,
+    against the floor (target <= 1.3x).
+(d) Full `gearcli report configs/concrete_mixer.toml` (engine = auto) against the floor (target <= 3x).
+(e) A seed speed sweep of --sweep-points points (engine = auto, all cores) against the floor (target <= 15x).
+(f) The physical limit: the seed run's evaluations x the cost of one compiled evaluation (10^6 evaluations in a
+    compiled loop), beside the measured compiled integration.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+
+SEED = ROOT / "configs" / "concrete_mixer.toml"
+FLOOR = "import click, pydantic, rich, numpy, scipy.integrate"
+
+
+def wall(cmd: list[str], repeat: int) -> float:
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        subprocess.run(cmd, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def seed_model():
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+    from gearcli.scene import build_model
+
+    cfg = load_design(str(SEED), []).design
+    design = compute_design(cfg)
+    return cfg, design, build_model(cfg, design)
+
+
+def integration(repeat: int) -> dict:
+    from gearcli import engine
+    from gearcli.simulate import run_simulation
+    from gearcli.simulate.solver import integrate
+
+    cfg, design, model = seed_model()
+    t_eval = np.linspace(0.0, cfg.simulation.duration_s, cfg.simulation.steps + 1)
+    rtol = cfg.simulation.rtol
+    loaded = engine.load()
+    py = [integrate(model, t_eval, "DOP853", rtol) for _ in range(repeat)]
+    cc = [integrate(model, t_eval, "DOP853", rtol, engine="compiled") for _ in range(repeat)]
+    py_s = statistics.median(r.wall_s for r in py)
+    cc_s = statistics.median(r.wall_s for r in cc)
+
+    cfg_c = cfg.model_copy(update={"simulation": cfg.simulation.model_copy(update={"engine": "compiled"})})
+    run = run_simulation(cfg_c, design, method="DOP853", rtol=rtol, want_series=False)
+    ref = run_simulation(cfg_c, design, method="DOP853", rtol=1e-12, want_series=False)
+    err = max(abs(a.tangential_N.mean - b.tangential_N.mean) / abs(b.tangential_N.mean)
+              for a, b in zip(run.stages, ref.stages, strict=True))
+    y = model.initial_state()
+    packed = engine.pack(model.arrays)
+    n_eval = 1_000_000
+    loaded.kernel.evaluate_many(packed, 0.3, y, np.int64(10))
+    t0 = time.perf_counter()
+    loaded.kernel.evaluate_many(packed, 0.3, y, np.int64(n_eval))
+    per_eval = (time.perf_counter() - t0) / n_eval
+    return {"python_s": py_s, "compiled_s": cc_s, "ratio": cc_s / py_s, "nfev_python": py[0].nfev,
+            "nfev_compiled": cc[0].nfev, "steps": cc[0].steps, "mean_force_error": err,
+            "compiled_eval_s": per_eval, "physical_limit_s": cc[0].nfev * per_eval,
+            "python_eval_s": py_s / py[0].nfev, "load_s": loaded.load_s}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--sweep-points", type=int, default=1000)
+    ap.add_argument("--no-report", action="store_true")
+    ap.add_argument("--json", action="store_true")
+    args = ap.parse_args()
+    py = sys.executable
+    out: dict = {"integration": integration(args.repeat)}
+    floor = wall([py, "-c", FLOOR], args.repeat)
+    out["floor_s"] = floor
+    out["simulate_s"] = wall([py, "-m", "gearcli", "simulate", str(SEED), "--format", "json"], args.repeat)
+    out["simulate_python_s"] = wall([py, "-m", "gearcli", "simulate", str(SEED), "--format", "json", "--set",
+                                     "simulation.engine=python"], args.repeat)
+    if not args.no_report:
+        out["report_s"] = wall([py, "-m", "gearcli", "report", str(SEED)], 1)
+        out["report_python_s"] = wall([py, "-m", "gearcli", "report", str(SEED), "--set", "simulation.engine=python"], 1)
+    if args.sweep_points:
+        with tempfile.TemporaryDirectory() as tmp:
+            n = args.sweep_points
+            for name, extra in (("sweep_s", []), ("sweep_python_s", ["--set", "simulation.engine=python"])):
+                target = Path(tmp) / f"{name}.csv"
+                out[name] = wall([py, "-m", "gearcli", "sweep", str(SEED), "--vary",
+                                  f"input.speed_deg_s=1800:5400:{n}", "-o", str(target), *extra], 1)
+                target.unlink()
+    if args.json:
+        print(json.dumps(out, indent=2))
+        return
+    i = out["integration"]
+    rows = [
+        ("seed integration, compiled vs scipy DOP853", f"{i['compiled_s'] * 1e3:.2f} ms vs {i['python_s'] * 1e3:.1f} ms",
+         f"{i['ratio']:.3f}x", "<= 0.05x"),
+        ("  nfev (compiled / scipy), accepted steps", f"{i['nfev_compiled']} / {i['nfev_python']}, {i['steps']}", "", "equal"),
+        ("  mean F_t error vs rtol 1e-12", f"{i['mean_force_error']:.1e}", "", "<= 1e-5"),
+        ("  physical limit: nfev x one compiled evaluation", f"{i['physical_limit_s'] * 1e3:.2f} ms "
+         f"({i['compiled_eval_s'] * 1e9:.0f} ns/eval; scipy {i['python_eval_s'] * 1e6:.1f} us/eval)", "", ""),
+        ("  kernel load (numba import + cache)", f"{i['load_s']:.2f} s", "", ""),
+        ("floor: import click+pydantic+rich+numpy+scipy.integrate", f"{floor:.2f} s", "1x", ""),
+        ("one-shot gearcli simulate (auto)", f"{out['simulate_s']:.2f} s", f"{out['simulate_s'] / floor:.2f}x", "<= 1.3x"),
+        ("one-shot gearcli simulate (python)", f"{out['simulate_python_s']:.2f} s",
+         f"{out['simulate_python_s'] / floor:.2f}x", ""),
+    ]
+    if "report_s" in out:
+        rows += [("gearcli report (auto)", f"{out['report_s']:.2f} s", f"{out['report_s'] / floor:.1f}x", "<= 3x"),
+                 ("gearcli report (python)", f"{out['report_python_s']:.2f} s",
+                  f"{out['report_python_s'] / floor:.1f}x", "")]
+    if "sweep_s" in out:
+        rows += [(f"{args.sweep_points}-point speed sweep (auto)", f"{out['sweep_s']:.1f} s",
+                  f"{out['sweep_s'] / floor:.1f}x", "<= 15x"),
+                 (f"{args.sweep_points}-point speed sweep (python)", f"{out['sweep_python_s']:.1f} s",
+                  f"{out['sweep_python_s'] / floor:.1f}x", "")]
+    width = max(len(r[0]) for r in rows)
+    print(f"{'measure':{width}}  {'figure':>44}  {'ratio':>8}  target")
+    for name, fig, ratio, target in rows:
+        print(f"{name:{width}}  {fig:>44}  {ratio:>8}  {target}")
+
+
+if __name__ == "__main__":
+    main()

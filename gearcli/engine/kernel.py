@@ -1,0 +1,1354 @@
+"""The compiled kernel (numba): the scene's right-hand side read from :class:`~gearcli.model.ModelArrays`
+and scipy's DOP853 loop, step for step, with output sampling and the run's guards inside.
+
+Imported only through :func:`gearcli.engine.load` (which points numba's cache at the user's cache directory
+first). Nothing here closes over a scene: every function takes the model as arrays, so one compilation
+serves every design file and every sweep point.
+
+Right-hand side. The same assembly as the generated Python source (:mod:`gearcli.model.codegen`), term for
+term and in the same floating-point order, so both engines compute bit-identical derivatives: the speed
+drive's exact STEP motion (or the ramped drive torque), the ramped load, the body angles a time-varying
+mesh needs, each connector's force from its element law, the net torque on each free body, and the four
+work quadratures. The element laws are those of :mod:`gearcli.model.elements`, compiled from their own
+code (:func:`_jit_module`), never rewritten here.
+
+Integrator. ``scipy.integrate.DOP853`` (scipy/integrate/_ivp/rk.py and common.py) transcribed: the initial
+step of ``select_initial_step``, the stage sums, the combined 5th/3rd-order error norm, SAFETY 0.9,
+MIN_FACTOR 0.2, MAX_FACTOR 10, the rejected-step rule (no growth right after a rejection), the minimum step
+``10 ulp(t)``, the clamp at ``t_bound``, and the 7th-order dense output (three extra stages, counted in nfev
+as scipy counts them) at the requested samples. The run is integrated in segments between the ramp ends,
+with a fresh solver (and initial step) at each, as :mod:`gearcli.simulate.solver` does. Guards as there:
+non-finite state once per accepted step, the evaluation budget, the energy watch every ``every`` steps.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+from typing import Any
+
+import numba
+import numpy as np
+
+from gearcli.engine import blas as _blas
+from gearcli.engine import tableau as tb
+from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements import mesh as _mesh_mod
+from gearcli.model.elements import spring as _spring_mod
+from gearcli.model.elements import torque as _torque_mod
+
+jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
+STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
+
+
+def _jit_module(mod) -> dict:
+    """numba-compiled copies of a module's own functions, each seeing the others' compiled copies (the
+    element laws call their helpers by module-global name)."""
+    scope = dict(mod.__dict__)
+    out = {}
+    for name, obj in mod.__dict__.items():
+        if isinstance(obj, types.FunctionType) and obj.__module__ == mod.__name__:
+            clone = types.FunctionType(obj.__code__, scope, name, obj.__defaults__, obj.__closure__)
+            clone.__qualname__ = obj.__qualname__
+            out[name] = jit(clone)
+    scope.update(out)
+    return out
+
+
+_MESH = _jit_module(_mesh_mod)
+_SPRING = _jit_module(_spring_mod)
+mesh_force, mesh_potential, mesh_damped = _MESH["force"], _MESH["potential"], _MESH["damped"]
+mesh_penetration, mesh_dte = _MESH["penetration"], _MESH["dynamic_transmission_error"]
+_TORQUE = _jit_module(_torque_mod)
+torque_ripple, torque_fluctuation = _TORQUE["ripple"], _TORQUE["fluctuation"]
+spring_force, spring_potential, spring_damped = _SPRING["force"], _SPRING["potential"], _SPRING["damped"]
+I_TV, I_Z, I_NKS, I_NTE = _mesh_mod.I_TV, _mesh_mod.I_Z, _mesh_mod.I_NKS, _mesh_mod.I_NTE
+TWO_PI = 2.0 * math.pi
+
+# DOP853 (scipy's class attributes)
+N_STAGES = tb.N_STAGES
+A = np.ascontiguousarray(tb.A[:N_STAGES, :N_STAGES])
+B = np.ascontiguousarray(tb.B)
+C = np.ascontiguousarray(tb.C[:N_STAGES])
+E3 = np.ascontiguousarray(tb.E3)
+E5 = np.ascontiguousarray(tb.E5)
+D = np.ascontiguousarray(tb.D)
+A_EXTRA = np.ascontiguousarray(tb.A[N_STAGES + 1:])
+C_EXTRA = np.ascontiguousarray(tb.C[N_STAGES + 1:])
+N_EXT = tb.N_STAGES_EXTENDED
+N_INTERP = tb.INTERPOLATOR_POWER
+SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
+ERROR_EXPONENT = -1.0 / (7 + 1)  # error_estimator_order 7
+INITIAL_EXPONENT = 1.0 / (7 + 1)
+
+# ipar / fpar layout (gearcli.engine.pack)
+IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
+FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3, 4, 5
+# the model tuple: (kind, bodies, radii, param, inertia, ipar, fpar, ripple row, fluctuation row); the rows are
+# the flat (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque
+
+# ----------------------------------------------------------------------------------- vector sums
+# scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
+@jit
+def _gemv_t_loop(K, s, a, out):
+    """out = K[:s].T @ a[:s]."""
+    for i in range(K.shape[1]):
+        acc = 0.0
+        for j in range(s):
+            acc += K[j, i] * a[j]
+        out[i] = acc
+
+
+@jit
+def _dot_loop(x):
+    acc = 0.0
+    for i in range(x.size):
+        acc += x[i] * x[i]
+    return acc
+
+
+@jit
+def _gemm_loop(Dm, K, out):
+    """out = Dm @ K."""
+    for r in range(Dm.shape[0]):
+        for i in range(K.shape[1]):
+            acc = 0.0
+            for j in range(Dm.shape[1]):
+                acc += Dm[r, j] * K[j, i]
+            out[r, i] = acc
+
+
+HAVE_BLAS = _blas.register()
+if HAVE_BLAS:
+    assert _blas.FOUND is not None
+    _PATTERN, _WIDTH = _blas.FOUND[1], _blas.FOUND[2]
+    _nt = numba.types
+    _I = _nt.int64 if _WIDTH == 64 else _nt.int32
+    _ci = np.int64 if _WIDTH == 64 else np.int32
+    _E = _nt.int32  # CBLAS enums
+    _U = _nt.uintp  # pointers, passed as addresses
+    _F = _nt.float64
+    _dgemv: Any = _nt.ExternalFunction(_PATTERN.format("dgemv"), _nt.void(_E, _E, _I, _I, _F, _U, _I, _U, _I, _F, _U, _I))
+    _dgemm: Any = _nt.ExternalFunction(_PATTERN.format("dgemm"),
+                                  _nt.void(_E, _E, _E, _I, _I, _I, _F, _U, _I, _U, _I, _F, _U, _I))
+    _ddot: Any = _nt.ExternalFunction(_PATTERN.format("ddot"), _F(_I, _U, _I, _U, _I))
+
+    @jit
+    def _gemv_t_blas(K, s, a, out):
+        n = K.shape[1]
+        _dgemv(np.int32(102), np.int32(111), _ci(n), _ci(s), 1.0, K.ctypes.data, _ci(n), a.ctypes.data, _ci(1),
+               0.0, out.ctypes.data, _ci(1))
+
+    @jit
+    def _dot_blas(x):
+        return _ddot(_ci(x.size), x.ctypes.data, _ci(1), x.ctypes.data, _ci(1))
+
+    @jit
+    def _gemm_blas(Dm, K, out):
+        m, k = Dm.shape
+        n = K.shape[1]
+        _dgemm(np.int32(101), np.int32(111), np.int32(111), _ci(m), _ci(n), _ci(k), 1.0, Dm.ctypes.data, _ci(k),
+               K.ctypes.data, _ci(n), 0.0, out.ctypes.data, _ci(n))
+
+    gemv_t, dot_self, gemm = _gemv_t_blas, _dot_blas, _gemm_blas
+else:  # pragma: no cover - a numpy without a findable BLAS
+    gemv_t, dot_self, gemm = _gemv_t_loop, _dot_loop, _gemm_loop
+
+
+@jit
+def conn_force(kind, P, d, dd, phi, wphi):
+    if kind == KIND_MESH:
+        return mesh_force(P, d, dd, phi, wphi)
+    return spring_force(P, d, dd, phi, wphi)
+
+
+@jit
+def conn_potential(kind, P, d, phi):
+    if kind == KIND_MESH:
+        return mesh_potential(P, d, phi)
+    return spring_potential(P, d, phi)
+
+
+@jit
+def conn_damped(kind, P):
+    if kind == KIND_MESH:
+        return mesh_damped(P)
+    return spring_damped(P)
+
+
+@jit
+def conn_tv(kind, P):
+    """A time-varying stiffness (contact lines or stiffness harmonics): its work is a quadrature."""
+    return kind == KIND_MESH and (P[I_TV] != 0.0 or P[I_NKS] != 0.0)
+
+
+@jit
+def conn_phased(kind, P):
+    """The force depends on the mesh phase (time-varying stiffness or a transmission error)."""
+    return kind == KIND_MESH and (P[I_TV] != 0.0 or P[I_NKS] != 0.0 or P[I_NTE] != 0.0)
+
+
+@jit
+def conn_excited(kind, P):
+    """A transmission error: the force depends on the phase rate, and the TE does work on the bodies."""
+    return kind == KIND_MESH and P[I_NTE] != 0.0
+
+
+@jit
+def ramp(t, value, ramp_s):
+    """``STEP(t, 0, 0, ramp_s, value)`` as the generated code writes it."""
+    if ramp_s <= 0.0 or value == 0.0:
+        return value
+    if t < ramp_s:
+        s = t * (1.0 / ramp_s)
+        return value * s * s * (3.0 - 2.0 * s)
+    return value
+
+
+@jit
+def input_motion(t, v, T, start):
+    """(th0, w0, a0) of the speed drive's exact STEP profile from the start angle ``start``."""
+    if T <= 0.0:
+        th = v * t
+    elif t < T:
+        s = t * (1.0 / T)
+        th = (v * T) * s * s * s * (1.0 - 0.5 * s)
+        if start != 0.0:
+            th = th + start
+        return th, v * s * s * (3.0 - 2.0 * s), (6.0 * v / T) * s * (1.0 - s)
+    else:
+        th = v * (t - 0.5 * T)
+    if start != 0.0:
+        th = th + start
+    return th, v, 0.0
+
+
+@jit
+def prologue(t, y, model, th):
+    """(speed drive, w0, a0, Tin, dTin/dth0, load, TL) at (t, y) and the body angles ``th`` the phased
+    meshes need, as the generated prologue forms them."""
+    radii, ipar, fpar, rip, flu = model[2], model[5], model[6], model[7], model[8]
+    speed = ipar[IP_DRIVE] == 0
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    a0 = 0.0
+    tin = 0.0
+    dtin = 0.0
+    if speed:
+        th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP], fpar[FP_ANGLE])
+    else:
+        tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
+        w0 = y[i_w0]
+        th0 = y[i_th] if i_th >= 0 else 0.0
+        if rip.size > 0:
+            r, dr = torque_ripple(rip, th0)
+            dtin = tin * dr
+            tin = tin * r
+    load = fpar[FP_LOAD] != 0.0
+    tl = 0.0
+    if load:
+        tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP])
+        if flu.size > 0:
+            tl = tl * torque_fluctuation(flu, t + fpar[FP_CLOCK] if fpar[FP_CLOCK] != 0.0 else t)
+    th[0] = th0
+    for c in range(ipar[IP_LAST_ANGLE]):
+        th[c + 1] = (radii[c, 0] * th[c] - y[c]) * (1.0 / radii[c, 1])
+    return speed, w0, a0, tin, dtin, load, tl
+
+
+@jit
+def body_speed(y, b, first, i_w0, w0):
+    if b < first:
+        return w0
+    return y[i_w0 + b - first]
+
+
+@jit
+def rhs(t, y, dy, model, th, fc):
+    """dy = f(t, y) of the scene ``model``; ``th`` (n_bodies) and ``fc`` (2 n_conn: forces, then the
+    transmission errors' powers) are scratch."""
+    kind, bodies, radii, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
+    nc = kind.shape[0]
+    nb = inertia.shape[0]
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    iq = ipar[IP_QUAD]
+    speed, w0, a0, tin, _, load, tl = prologue(t, y, model, th)
+    first = 1 if speed else 0
+    damp = 0.0
+    tvp = 0.0
+    have_damp = False
+    have_tv = False
+    for c in range(nc):
+        a = bodies[c, 0]
+        b = bodies[c, 1]
+        P = param[c]
+        dd = radii[c, 0] * body_speed(y, a, first, i_w0, w0) - radii[c, 1] * body_speed(y, b, first, i_w0, w0)
+        tv = conn_tv(kind[c], P)
+        phi = (P[I_Z] / TWO_PI) * th[a] if conn_phased(kind[c], P) else 0.0
+        wphi = (P[I_Z] / TWO_PI) * body_speed(y, a, first, i_w0, w0) if conn_excited(kind[c], P) else 0.0
+        f, _, _, _, _, q, u, te = conn_force(kind[c], P, y[c], dd, phi, wphi)
+        fc[c] = f
+        fc[nc + c] = te
+        dy[c] = dd
+        if conn_damped(kind[c], P):
+            damp = damp + q if have_damp else q
+            have_damp = True
+        if tv:
+            tvp = tvp + u if have_tv else u
+            have_tv = True
+    for i in range(first, nb):
+        if i > 0:
+            x = radii[i - 1, 1] * fc[i - 1]
+            if i < nc:
+                x = x - radii[i, 0] * fc[i]
+        else:
+            x = -(radii[0, 0] * fc[0])
+        if i == 0 and not speed:
+            x = x + tin
+        if i == nb - 1 and load:
+            x = x - tl
+        dy[i_w0 + i - first] = x * (1.0 / inertia[i])
+    if i_th >= 0:
+        dy[i_th] = w0
+    if speed:
+        p_in = (radii[0, 0] * fc[0] + inertia[0] * a0) * w0
+    else:
+        p_in = tin * w0
+    for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)
+        if conn_excited(kind[c], param[c]):
+            p_in = p_in + fc[nc + c]
+    dy[iq] = p_in
+    dy[iq + 1] = tl * body_speed(y, nb - 1, first, i_w0, w0) if load else 0.0
+    dy[iq + 2] = damp
+    if ipar[IP_NTV] > 0:
+        dy[iq + 3] = tvp
+
+
+@jit
+def stored_energy(t, y, model):
+    """Kinetic energy + elastic energy of the constant-stiffness connectors + work on time-varying
+    springs (the energy watch's ``_stored``)."""
+    kind, bodies, param, inertia, ipar = model[0], model[1], model[3], model[4], model[5]
+    th = np.zeros(inertia.shape[0])
+    speed, w0, _, _, _, _, _ = prologue(t, y, model, th)
+    first = 1 if speed else 0
+    ke = 0.0
+    for i in range(inertia.shape[0]):
+        w = body_speed(y, i, first, ipar[IP_W0], w0)
+        ke += inertia[i] * (w * w)
+    total = 0.5 * ke
+    for c in range(kind.shape[0]):
+        if not conn_tv(kind[c], param[c]):  # a transmission error's mesh at its phase
+            phi = (param[c, I_Z] / TWO_PI) * th[bodies[c, 0]] if conn_phased(kind[c], param[c]) else 0.0
+            total += conn_potential(kind[c], param[c], y[c], phi)
+    if ipar[IP_NTV] > 0:
+        total += y[ipar[IP_QUAD] + 3]
+    return total
+
+
+@jit
+def _rms(x, scale, tmp):
+    """scipy's ``norm(x / scale)``: ``sqrt((x/scale) . (x/scale)) / sqrt(n)``."""
+    for i in range(x.size):
+        tmp[i] = x[i] / scale[i]
+    return math.sqrt(dot_self(tmp)) / x.size ** 0.5
+
+
+@jit
+def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, scale, diff, tmp, exponent):
+    """scipy's ``select_initial_step`` (max_step = inf, forward direction; ``exponent`` 1 / (error order + 1))."""
+    n = y0.size
+    interval = abs(t_bound - t0)
+    if interval == 0.0:
+        return 0.0
+    for i in range(n):
+        scale[i] = atol[i] + abs(y0[i]) * rtol[i]
+    d0 = _rms(y0, scale, tmp)
+    d1 = _rms(f0, scale, tmp)
+    if d0 < 1e-5 or d1 < 1e-5:
+        h0 = 1e-6
+    else:
+        h0 = 0.01 * d0 / d1
+    h0 = min(h0, interval)
+    for i in range(n):
+        y1[i] = y0[i] + h0 * f0[i]
+    rhs(t0 + h0, y1, f1, model, th, fc)
+    for i in range(n):
+        diff[i] = f1[i] - f0[i]
+    d2 = _rms(diff, scale, tmp) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** exponent
+    return min(100 * h0, h1, interval)
+
+
+@jit
+def _stage_sum(K, a, s, h, y, dst, dv):
+    """dst = y + (K[:s].T @ a[:s]) * h."""
+    gemv_t(K, s, a, dv)
+    for i in range(y.size):
+        dst[i] = y[i] + dv[i] * h
+
+
+@jit
+def rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
+    """scipy's ``rk_step`` for DOP853: 11 stages, then ``f(t + h, y_new)``."""
+    n = y.size
+    for i in range(n):
+        K[0, i] = f[i]
+    for s in range(1, N_STAGES):
+        _stage_sum(K, A[s], s, h, y, ytmp, dv)
+        rhs(t + C[s] * h, ytmp, K[s], model, th, fc)
+    gemv_t(K, N_STAGES, B, dv)
+    for i in range(n):
+        y_new[i] = y[i] + h * dv[i]
+    rhs(t + h, y_new, f_new, model, th, fc)
+    for i in range(n):
+        K[N_STAGES, i] = f_new[i]
+
+
+@jit
+def error_norm(K, h, scale, e5, e3):
+    """DOP853's combined 5th/3rd-order error estimate, as ``DOP853._estimate_error_norm``."""
+    n = scale.size
+    gemv_t(K, N_STAGES + 1, E5, e5)
+    gemv_t(K, N_STAGES + 1, E3, e3)
+    for i in range(n):
+        e5[i] = e5[i] / scale[i]
+        e3[i] = e3[i] / scale[i]
+    r5 = math.sqrt(dot_self(e5))
+    r3 = math.sqrt(dot_self(e3))
+    n5 = r5 * r5
+    n3 = r3 * r3
+    if n5 == 0.0 and n3 == 0.0:
+        return 0.0
+    denom = n5 + 0.01 * n3
+    return abs(h) * n5 / math.sqrt(denom * n)
+
+
+@jit
+def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, dv, DK, model, th, fc):
+    """The three extra stages and the interpolant's coefficients F (INTERPOLATOR_POWER x n)."""
+    n = y.size
+    for k in range(A_EXTRA.shape[0]):
+        s = N_STAGES + 1 + k
+        _stage_sum(K, A_EXTRA[k], s, h, y_old, ytmp, dv)
+        rhs(t_old + C_EXTRA[k] * h, ytmp, K[s], model, th, fc)
+    gemm(D, K, DK)
+    for i in range(n):
+        dy = y[i] - y_old[i]
+        f_old = K[0, i]
+        F[0, i] = dy
+        F[1, i] = h * f_old - dy
+        F[2, i] = 2 * dy - h * (f[i] + f_old)
+        for r in range(D.shape[0]):
+            F[3 + r, i] = h * DK[r, i]
+
+
+@jit
+def dense_eval(t, t_old, h, y_old, F, out, col):
+    """``Dop853DenseOutput`` at one time, into ``out[:, col]``."""
+    x = (t - t_old) / h
+    for i in range(y_old.size):
+        v = 0.0
+        for k in range(N_INTERP):
+            v += F[N_INTERP - 1 - k, i]
+            if k % 2 == 0:
+                v *= x
+            else:
+                v *= 1 - x
+        out[i, col] = v + y_old[i]
+
+
+@jit
+def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
+    """Integrate from t0 = ``wpar[4]`` through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
+    sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
+    energy watch off; ``wpar`` = (e0, w0, scale, margin, t0). The times of the first ``trace.size`` accepted
+    steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
+    created, energy scale])."""
+    n = y0.size
+    m = t_eval.size
+    out = np.full((n, m), np.nan)
+    nb = model[4].shape[0]
+    nc = model[0].shape[0]
+    th = np.zeros(nb)
+    fc = np.zeros(2 * nc)
+    K = np.zeros((N_EXT, n))
+    F = np.zeros((N_INTERP, n))
+    y = y0.copy()
+    f = np.empty(n)
+    y_new = np.empty(n)
+    f_new = np.empty(n)
+    ytmp = np.empty(n)
+    scale = np.empty(n)
+    w1 = np.empty(n)
+    w2 = np.empty(n)
+    dv = np.empty(n)
+    e3 = np.empty(n)
+    DK = np.empty((D.shape[0], n))
+    done = 0
+    while done < m and t_eval[done] <= wpar[4]:
+        out[:, done] = y
+        done += 1
+    for j in range(done, m):
+        if t_eval[j] <= wpar[4]:
+            out[:, j] = y
+    t = wpar[4]  # the run's start (a continuation starts later)
+    nfev = 0
+    steps = 0
+    status = STATUS_FINISHED
+    created = 0.0
+    escale = wpar[2]
+    for seg in range(breaks.size):
+        t_bound = breaks[seg]
+        seg_nfev = 0
+        rhs(t, y, f, model, th, fc)
+        seg_nfev += 1
+        h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp, dv,
+                                    INITIAL_EXPONENT)
+        seg_nfev += 1
+        while True:
+            min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+            if h_abs < min_step:
+                h_abs = min_step
+            accepted = False
+            rejected = False
+            h = 0.0
+            t_new = t
+            while not accepted:
+                if h_abs < min_step:
+                    break
+                h = h_abs
+                t_new = t + h
+                if t_new - t_bound > 0:
+                    t_new = t_bound
+                h = t_new - t
+                h_abs = abs(h)
+                rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc)
+                seg_nfev += N_STAGES
+                for i in range(n):
+                    a = abs(y[i])
+                    b = abs(y_new[i])
+                    scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]  # np.maximum: NaN wins
+                err = error_norm(K, h, scale, dv, e3)
+                if err < 1:
+                    if err == 0:
+                        factor = MAX_FACTOR
+                    else:
+                        factor = SAFETY * err ** ERROR_EXPONENT
+                        if not factor < MAX_FACTOR:
+                            factor = MAX_FACTOR
+                    if rejected and not factor < 1.0:
+                        factor = 1.0
+                    h_abs *= factor
+                    accepted = True
+                else:
+                    factor = SAFETY * err ** ERROR_EXPONENT
+                    h_abs *= factor if factor > MIN_FACTOR else MIN_FACTOR
+                    rejected = True
+            if not accepted:
+                status = STATUS_FAILED
+                break
+            t_old = t
+            for i in range(n):
+                ytmp[i] = y[i]  # y_old
+                y[i] = y_new[i]
+                f[i] = f_new[i]
+            t = t_new
+            finished = t - t_bound >= 0
+            steps += 1
+            if steps <= trace.size:
+                trace[steps - 1] = t
+            total = 0.0
+            for i in range(n):
+                total += y[i]
+            if not np.isfinite(total):
+                status = STATUS_NONFINITE
+                break
+            upto = done
+            while upto < m and t_eval[upto] <= t:
+                upto += 1
+            if upto > done:
+                # y_old is kept in w1 for the interpolant: ytmp is the stage scratch
+                for i in range(n):
+                    w1[i] = ytmp[i]
+                dense_coefficients(t_old, h, w1, y, f, K, F, ytmp, dv, DK, model, th, fc)
+                seg_nfev += A_EXTRA.shape[0]
+                hd = t - t_old
+                for j in range(done, upto):
+                    dense_eval(t_eval[j], t_old, hd, w1, F, out, j)
+                done = upto
+            if nfev + seg_nfev > max_nfev:
+                status = STATUS_BUDGET
+                break
+            if watch_every > 0 and (steps % watch_every == 0 or finished):
+                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
+                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
+                escale = max(wpar[2], abs(work - wpar[1]))
+                if created > wpar[3] * escale:
+                    status = STATUS_ENERGY
+                    break
+            if finished:
+                break
+        nfev += seg_nfev
+        if status != STATUS_FINISHED:
+            break
+    counters = np.array([nfev, steps, status, done], dtype=np.int64)
+    floats = np.array([t, created, escale])
+    return out, counters, floats, y
+
+
+# RK45 (scipy's class attributes)
+RK45_STAGES = 6
+RK45_C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
+RK45_A = np.array([[0, 0, 0, 0, 0], [1 / 5, 0, 0, 0, 0], [3 / 40, 9 / 40, 0, 0, 0], [44 / 45, -56 / 15, 32 / 9, 0, 0],
+                   [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0],
+                   [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]])
+RK45_B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
+RK45_E = np.array([-71 / 57600, 0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
+RK45_P = np.array([
+    [1, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+    [0, 0, 0, 0],
+    [0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
+    [0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+    [0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
+    [0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+    [0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423]])
+RK45_ERROR_EXPONENT = -1.0 / (4 + 1)
+RK45_INITIAL_EXPONENT = 1.0 / (4 + 1)
+
+
+@jit
+def rk45_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
+    """scipy's ``rk_step`` for RK45: 5 stages, then ``f(t + h, y_new)``."""
+    n = y.size
+    for i in range(n):
+        K[0, i] = f[i]
+    for s in range(1, RK45_STAGES):
+        _stage_sum(K, RK45_A[s], s, h, y, ytmp, dv)
+        rhs(t + RK45_C[s] * h, ytmp, K[s], model, th, fc)
+    gemv_t(K, RK45_STAGES, RK45_B, dv)
+    for i in range(n):
+        y_new[i] = y[i] + h * dv[i]
+    rhs(t + h, y_new, f_new, model, th, fc)
+    for i in range(n):
+        K[RK45_STAGES, i] = f_new[i]
+
+
+@jit
+def rk45_error_norm(K, h, scale, e):
+    """``norm(np.dot(K.T, E) * h / scale)``."""
+    gemv_t(K, RK45_STAGES + 1, RK45_E, e)
+    for i in range(scale.size):
+        e[i] = e[i] * h / scale[i]
+    return math.sqrt(dot_self(e)) / scale.size ** 0.5
+
+
+@jit
+def rk45(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
+    """:func:`dop853` with scipy's RK45 (Dormand-Prince 5(4), quartic dense output): the same steps; the samples
+    agree to the last bits (the interpolant is summed in a loop, not by BLAS).
+
+    Integrate from t0 = ``wpar[4]`` through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
+    sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
+    energy watch off; ``wpar`` = (e0, w0, scale, margin, t0). The times of the first ``trace.size`` accepted
+    steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
+    created, energy scale])."""
+    n = y0.size
+    m = t_eval.size
+    out = np.full((n, m), np.nan)
+    nb = model[4].shape[0]
+    nc = model[0].shape[0]
+    th = np.zeros(nb)
+    fc = np.zeros(2 * nc)
+    K = np.zeros((RK45_STAGES + 1, n))
+    Q = np.zeros((n, 4))
+    y = y0.copy()
+    f = np.empty(n)
+    y_new = np.empty(n)
+    f_new = np.empty(n)
+    ytmp = np.empty(n)
+    scale = np.empty(n)
+    w1 = np.empty(n)
+    w2 = np.empty(n)
+    dv = np.empty(n)
+    done = 0
+    while done < m and t_eval[done] <= wpar[4]:
+        out[:, done] = y
+        done += 1
+    for j in range(done, m):
+        if t_eval[j] <= wpar[4]:
+            out[:, j] = y
+    t = wpar[4]  # the run's start (a continuation starts later)
+    nfev = 0
+    steps = 0
+    status = STATUS_FINISHED
+    created = 0.0
+    escale = wpar[2]
+    for seg in range(breaks.size):
+        t_bound = breaks[seg]
+        seg_nfev = 0
+        rhs(t, y, f, model, th, fc)
+        seg_nfev += 1
+        h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp, dv,
+                                    RK45_INITIAL_EXPONENT)
+        seg_nfev += 1
+        while True:
+            min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+            if h_abs < min_step:
+                h_abs = min_step
+            accepted = False
+            rejected = False
+            h = 0.0
+            t_new = t
+            while not accepted:
+                if h_abs < min_step:
+                    break
+                h = h_abs
+                t_new = t + h
+                if t_new - t_bound > 0:
+                    t_new = t_bound
+                h = t_new - t
+                h_abs = abs(h)
+                rk45_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc)
+                seg_nfev += RK45_STAGES
+                for i in range(n):
+                    a = abs(y[i])
+                    b = abs(y_new[i])
+                    scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]  # np.maximum: NaN wins
+                err = rk45_error_norm(K, h, scale, dv)
+                if err < 1:
+                    if err == 0:
+                        factor = MAX_FACTOR
+                    else:
+                        factor = SAFETY * err ** RK45_ERROR_EXPONENT
+                        if not factor < MAX_FACTOR:
+                            factor = MAX_FACTOR
+                    if rejected and not factor < 1.0:
+                        factor = 1.0
+                    h_abs *= factor
+                    accepted = True
+                else:
+                    factor = SAFETY * err ** RK45_ERROR_EXPONENT
+                    h_abs *= factor if factor > MIN_FACTOR else MIN_FACTOR
+                    rejected = True
+            if not accepted:
+                status = STATUS_FAILED
+                break
+            t_old = t
+            for i in range(n):
+                ytmp[i] = y[i]  # y_old
+                y[i] = y_new[i]
+                f[i] = f_new[i]
+            t = t_new
+            finished = t - t_bound >= 0
+            steps += 1
+            if steps <= trace.size:
+                trace[steps - 1] = t
+            total = 0.0
+            for i in range(n):
+                total += y[i]
+            if not np.isfinite(total):
+                status = STATUS_NONFINITE
+                break
+            upto = done
+            while upto < m and t_eval[upto] <= t:
+                upto += 1
+            if upto > done:
+                # y_old is kept in w1 for the interpolant: ytmp is the stage scratch
+                for i in range(n):
+                    w1[i] = ytmp[i]
+                hd = t - t_old
+                for i in range(n):
+                    for c in range(4):
+                        acc = 0.0
+                        for j in range(RK45_STAGES + 1):
+                            acc += K[j, i] * RK45_P[j, c]
+                        Q[i, c] = acc
+                for j in range(done, upto):
+                    x = (t_eval[j] - t_old) / hd
+                    x2 = x * x
+                    x3 = x2 * x
+                    x4 = x3 * x
+                    for i in range(n):
+                        out[i, j] = hd * (Q[i, 0] * x + Q[i, 1] * x2 + Q[i, 2] * x3 + Q[i, 3] * x4) + w1[i]
+                done = upto
+            if nfev + seg_nfev > max_nfev:
+                status = STATUS_BUDGET
+                break
+            if watch_every > 0 and (steps % watch_every == 0 or finished):
+                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
+                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
+                escale = max(wpar[2], abs(work - wpar[1]))
+                if created > wpar[3] * escale:
+                    status = STATUS_ENERGY
+                    break
+            if finished:
+                break
+        nfev += seg_nfev
+        if status != STATUS_FINISHED:
+            break
+    counters = np.array([nfev, steps, status, done], dtype=np.int64)
+    floats = np.array([t, created, escale])
+    return out, counters, floats, y
+
+
+@jit
+def ipar_quad(model):
+    return model[5][IP_QUAD]
+
+
+@jit
+def evaluate(model, t, y):
+    """One right-hand side evaluation (tests, benchmarks)."""
+    dy = np.empty(y.size)
+    rhs(t, y, dy, model, np.zeros(model[4].shape[0]), np.zeros(2 * model[0].shape[0]))
+    return dy
+
+
+@jit
+def evaluate_many(model, t, y, times):
+    """``times`` evaluations at one point (the benchmark's cost of one compiled evaluation)."""
+    dy = np.empty(y.size)
+    th = np.zeros(model[4].shape[0])
+    fc = np.zeros(2 * model[0].shape[0])
+    acc = 0.0
+    for _ in range(times):
+        rhs(t, y, dy, model, th, fc)
+        acc += dy[0]
+    return acc
+
+
+@jit
+def connector_series(kind, P, d, dd, phi, wphi):
+    """Force, stored energy, signed penetration and dynamic transmission error of one connector at every
+    sample (the output channels of :func:`gearcli.model.outputs.connector_series`, through the same element
+    laws)."""
+    n = d.size
+    F = np.empty(n)
+    U = np.empty(n)
+    pen = np.zeros(n)
+    q = d.copy()
+    for j in range(n):
+        F[j] = conn_force(kind, P, d[j], dd[j], phi[j], wphi[j])[0]
+        U[j] = conn_potential(kind, P, d[j], phi[j])
+        if kind == KIND_MESH:
+            pen[j] = mesh_penetration(P, d[j], phi[j])
+            q[j] = mesh_dte(P, d[j], phi[j])
+    return F, U, pen, q
+
+
+# ------------------------------------------------------------------------------------ Jacobian
+mesh_power_gradient, spring_power_gradient = _MESH["power_gradient"], _SPRING["power_gradient"]
+
+
+@jit
+def conn_power_gradient(kind, P, d, dd, phi, wphi):
+    if kind == KIND_MESH:
+        return mesh_power_gradient(P, d, dd, phi, wphi)
+    return spring_power_gradient(P, d, dd, phi, wphi)
+
+
+@jit
+def _angle_gradient(body, model, ag):
+    """ag = d(theta_body)/dy: theta_{c+1} = (r_a theta_c - delta_c) / r_b from theta_0 (a state of a torque
+    drive; a function of t alone for a speed drive)."""
+    radii = model[2]
+    i_th = model[5][IP_THETA]
+    ag[:] = 0.0
+    if i_th >= 0:
+        ag[i_th] = 1.0
+    for c in range(body):
+        for j in range(ag.size):
+            ag[j] *= radii[c, 0] / radii[c, 1]
+        ag[c] -= 1.0 / radii[c, 1]
+
+
+@jit
+def _gradient(c, xd, xv, xt, xw, model, first, g, ag):
+    """g = d(x_c)/dy of a connector quantity with partials xd (deflection), xv (rate), xt (mesh phase),
+    xw (phase rate)."""
+    kind, bodies, radii, param = model[0], model[1], model[2], model[3]
+    i_w0 = model[5][IP_W0]
+    a = bodies[c, 0]
+    b = bodies[c, 1]
+    g[:] = 0.0
+    g[c] = xd
+    if a >= first:
+        g[i_w0 + a - first] += radii[c, 0] * xv
+    if b >= first:
+        g[i_w0 + b - first] += -radii[c, 1] * xv
+    if conn_phased(kind[c], param[c]) and xt != 0.0:
+        _angle_gradient(a, model, ag)
+        k = param[c, I_Z] / TWO_PI * xt
+        for j in range(g.size):
+            g[j] += ag[j] * k
+    if conn_excited(kind[c], param[c]) and a >= first:
+        g[i_w0 + a - first] += param[c, I_Z] / TWO_PI * xw
+
+
+@jit
+def jacobian(t, y, Jm, model, th, g, ag):
+    """Jm = df/dy of :func:`rhs`, from the elements' own partials (as the generated ``jac``)."""
+    kind, bodies, radii, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
+    nc = kind.shape[0]
+    nb = inertia.shape[0]
+    n = y.size
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    iq = ipar[IP_QUAD]
+    speed, w0, a0, tin, dtin, load, tl = prologue(t, y, model, th)
+    first = 1 if speed else 0
+    Jm[:, :] = 0.0
+    for c in range(nc):
+        a = bodies[c, 0]
+        b = bodies[c, 1]
+        P = param[c]
+        ra = radii[c, 0]
+        rb = radii[c, 1]
+        dd = ra * body_speed(y, a, first, i_w0, w0) - rb * body_speed(y, b, first, i_w0, w0)
+        tv = conn_tv(kind[c], P)
+        ex = conn_excited(kind[c], P)
+        phi = (P[I_Z] / TWO_PI) * th[a] if conn_phased(kind[c], P) else 0.0
+        wphi = (P[I_Z] / TWO_PI) * body_speed(y, a, first, i_w0, w0) if ex else 0.0
+        _, kd, kv, kt, kw, _, _, _ = conn_force(kind[c], P, y[c], dd, phi, wphi)
+        if a >= first:
+            Jm[c, i_w0 + a - first] = ra
+        Jm[c, i_w0 + b - first] = -rb
+        _gradient(c, kd, kv, kt, kw, model, first, g, ag)
+        for j in range(n):
+            if a >= first:
+                Jm[i_w0 + a - first, j] += (-ra / inertia[a]) * g[j]
+            Jm[i_w0 + b - first, j] += (rb / inertia[b]) * g[j]
+            if c == 0 and speed:
+                Jm[iq, j] += (ra * w0) * g[j]
+        if conn_damped(kind[c], P) or tv or ex:
+            qd, qv, qt, qw, ud, uv, ut, uw, ed, ev, et, ew = conn_power_gradient(kind[c], P, y[c], dd, phi, wphi)
+            if conn_damped(kind[c], P):
+                _gradient(c, qd, qv, qt, qw, model, first, g, ag)
+                for j in range(n):
+                    Jm[iq + 2, j] += g[j]
+            if tv:
+                _gradient(c, ud, uv, ut, uw, model, first, g, ag)
+                for j in range(n):
+                    Jm[iq + 3, j] += g[j]
+            if ex:  # the transmission error's power is part of the input work
+                _gradient(c, ed, ev, et, ew, model, first, g, ag)
+                for j in range(n):
+                    Jm[iq, j] += g[j]
+    if i_th >= 0:
+        Jm[i_th, i_w0] = 1.0
+    if not speed:
+        Jm[iq, i_w0] += tin
+        if dtin != 0.0 and i_th >= 0:  # a rippled drive torque depends on the input angle
+            Jm[i_w0, i_th] += dtin * (1.0 / inertia[0])
+            Jm[iq, i_th] += dtin * w0
+    if load:
+        Jm[iq + 1, i_w0 + nb - 1 - first] = tl
+
+
+@jit
+def evaluate_jacobian(model, t, y):
+    """One Jacobian evaluation (tests)."""
+    n = y.size
+    Jm = np.zeros((n, n))
+    jacobian(t, y, Jm, model, np.zeros(model[4].shape[0]), np.zeros(n), np.zeros(n))
+    return Jm
+
+
+# ------------------------------------------------------------------------------------- Radau IIA
+# scipy/integrate/_ivp/radau.py: the method's constants (Hairer & Wanner, "Solving ODEs II", Sec. IV.8)
+S6 = 6 ** 0.5
+RC = np.array([(4 - S6) / 10, (4 + S6) / 10, 1])
+RE = np.array([-13 - 7 * S6, -13 + 7 * S6, -1]) / 3
+MU_REAL = 3 + 3 ** (2 / 3) - 3 ** (1 / 3)
+MU_COMPLEX = (3 + 0.5 * (3 ** (1 / 3) - 3 ** (2 / 3)) - 0.5j * (3 ** (5 / 6) + 3 ** (7 / 6)))
+RT = np.array([[0.09443876248897524, -0.14125529502095421, 0.03002919410514742],
+               [0.25021312296533332, 0.20412935229379994, -0.38294211275726192],
+               [1.0, 1.0, 0.0]])
+RTI = np.array([[4.17871859155190428, 0.32768282076106237, 0.52337644549944951],
+                [-4.17871859155190428, -0.32768282076106237, 0.47662355450055044],
+                [0.50287263494578682, -2.57192694985560522, 0.59603920482822492]])
+RP = np.array([[13 / 3 + 7 * S6 / 3, -23 / 3 - 22 * S6 / 3, 10 / 3 + 5 * S6],
+               [13 / 3 - 7 * S6 / 3, -23 / 3 + 22 * S6 / 3, 10 / 3 - 5 * S6],
+               [1 / 3, -8 / 3, 10 / 3]])
+NEWTON_MAXITER = 6
+EPS = float(np.finfo(float).eps)
+
+
+@jit
+def lu_factor(A, piv):
+    """In-place LU with partial pivoting (real or complex), as LAPACK getrf."""
+    n = A.shape[0]
+    for k in range(n):
+        p = k
+        best = abs(A[k, k])
+        for i in range(k + 1, n):
+            v = abs(A[i, k])
+            if v > best:
+                best = v
+                p = i
+        piv[k] = p
+        if p != k:
+            for j in range(n):
+                tmp = A[k, j]
+                A[k, j] = A[p, j]
+                A[p, j] = tmp
+        if A[k, k] == 0:
+            continue
+        inv = 1.0 / A[k, k]
+        for i in range(k + 1, n):
+            A[i, k] *= inv
+            m = A[i, k]
+            if m != 0:
+                for j in range(k + 1, n):
+                    A[i, j] -= m * A[k, j]
+
+
+@jit
+def lu_solve(LU, piv, b):
+    """Solve in place LU x = b (b overwritten with x)."""
+    n = LU.shape[0]
+    for k in range(n):
+        p = piv[k]
+        if p != k:
+            tmp = b[k]
+            b[k] = b[p]
+            b[p] = tmp
+    for i in range(n):
+        acc = b[i]
+        for j in range(i):
+            acc -= LU[i, j] * b[j]
+        b[i] = acc
+    for i in range(n - 1, -1, -1):
+        acc = b[i]
+        for j in range(i + 1, n):
+            acc -= LU[i, j] * b[j]
+        b[i] = acc / LU[i, i]
+
+
+@jit
+def _rms_matrix(X, scale):
+    """scipy's ``norm(X / scale)`` of a (3, n) array."""
+    s = 0.0
+    for r in range(X.shape[0]):
+        for i in range(X.shape[1]):
+            v = X[r, i] / scale[i]
+            s += v * v
+    return math.sqrt(s) / X.size ** 0.5
+
+
+@jit
+def _factor(Jm, h, LUr, pr, LUc, pc):
+    n = Jm.shape[0]
+    mr = MU_REAL / h
+    mc = MU_COMPLEX / h
+    for i in range(n):
+        for j in range(n):
+            LUr[i, j] = -Jm[i, j]
+            LUc[i, j] = -Jm[i, j]
+        LUr[i, i] += mr
+        LUc[i, i] += mc
+    lu_factor(LUr, pr)
+    lu_factor(LUc, pc)
+
+
+@jit
+def collocation(t, y, h, Z0, scale, tol, LUr, pr, LUc, pc, Z, W, F, dW, br, bc, ytmp, model, th, fc):
+    """scipy's ``solve_collocation_system``: (converged, iterations, rate, evaluations); Z holds the result."""
+    n = y.size
+    mr = MU_REAL / h
+    mc = MU_COMPLEX / h
+    for r in range(3):
+        for i in range(n):
+            W[r, i] = RTI[r, 0] * Z0[0, i] + RTI[r, 1] * Z0[1, i] + RTI[r, 2] * Z0[2, i]
+            Z[r, i] = Z0[r, i]
+    dw_old = -1.0
+    rate = -1.0
+    converged = False
+    nfev = 0
+    k = 0
+    for k in range(NEWTON_MAXITER):
+        finite = True
+        for r in range(3):
+            for i in range(n):
+                ytmp[i] = y[i] + Z[r, i]
+            rhs(t + h * RC[r], ytmp, F[r], model, th, fc)
+            nfev += 1
+            for i in range(n):
+                if not np.isfinite(F[r, i]):
+                    finite = False
+        if not finite:
+            break
+        for i in range(n):
+            br[i] = F[0, i] * RTI[0, 0] + F[1, i] * RTI[0, 1] + F[2, i] * RTI[0, 2] - mr * W[0, i]
+            fcx = (F[0, i] * (RTI[1, 0] + 1j * RTI[2, 0]) + F[1, i] * (RTI[1, 1] + 1j * RTI[2, 1])
+                   + F[2, i] * (RTI[1, 2] + 1j * RTI[2, 2]))
+            bc[i] = fcx - mc * (W[1, i] + 1j * W[2, i])
+        lu_solve(LUr, pr, br)
+        lu_solve(LUc, pc, bc)
+        for i in range(n):
+            dW[0, i] = br[i]
+            dW[1, i] = bc[i].real
+            dW[2, i] = bc[i].imag
+        dw = _rms_matrix(dW, scale)
+        if dw_old >= 0.0:
+            rate = dw / dw_old
+        if rate >= 0.0 and (rate >= 1 or rate ** (NEWTON_MAXITER - k) / (1 - rate) * dw > tol):
+            break
+        for r in range(3):
+            for i in range(n):
+                W[r, i] += dW[r, i]
+        for r in range(3):
+            for i in range(n):
+                Z[r, i] = RT[r, 0] * W[0, i] + RT[r, 1] * W[1, i] + RT[r, 2] * W[2, i]
+        if dw == 0 or (rate >= 0.0 and rate / (1 - rate) * dw < tol):
+            converged = True
+            break
+        dw_old = dw
+    return converged, k + 1, rate, nfev
+
+
+@jit
+def predict_factor(h_abs, h_abs_old, err, err_old):
+    """scipy's ``predict_factor`` (old values < 0 stand for None)."""
+    if err_old < 0 or h_abs_old < 0 or err == 0:
+        multiplier = 1.0
+    else:
+        multiplier = h_abs / h_abs_old * (err_old / err) ** 0.25
+    m = multiplier if multiplier < 1 else 1.0
+    if err == 0:
+        return np.inf
+    return m * err ** -0.25
+
+
+@jit
+def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
+    """Radau IIA (order 5) as scipy's ``Radau`` with the analytic Jacobian: the same Newton iteration, LU
+    reuse, error estimate (refined after a rejection), step-size prediction and dense output; segments,
+    sampling, guards and returns as :func:`dop853` (counters add njev and nlu). rtol enters the Newton
+    tolerance through its smallest component."""
+    n = y0.size
+    m = t_eval.size
+    out = np.full((n, m), np.nan)
+    nb = model[4].shape[0]
+    nc = model[0].shape[0]
+    th = np.zeros(nb)
+    fc = np.zeros(2 * nc)
+    y = y0.copy()
+    f = np.empty(n)
+    f_new = np.empty(n)
+    y_new = np.empty(n)
+    ytmp = np.empty(n)
+    scale = np.empty(n)
+    w1 = np.empty(n)
+    w2 = np.empty(n)
+    w3 = np.empty(n)
+    w4 = np.empty(n)
+    err_v = np.empty(n)
+    ze = np.empty(n)
+    Jm = np.zeros((n, n))
+    g = np.zeros(n)
+    ag = np.zeros(n)
+    LUr = np.zeros((n, n))
+    LUc = np.zeros((n, n), dtype=np.complex128)
+    pr = np.zeros(n, dtype=np.int64)
+    pc = np.zeros(n, dtype=np.int64)
+    Z = np.zeros((3, n))
+    Z0 = np.zeros((3, n))
+    W = np.zeros((3, n))
+    F = np.zeros((3, n))
+    dW = np.zeros((3, n))
+    br = np.zeros(n)
+    bc = np.zeros(n, dtype=np.complex128)
+    Q = np.zeros((n, 3))
+    y_old = np.empty(n)
+    rmin = rtol[0]
+    for i in range(n):
+        if rtol[i] < rmin:
+            rmin = rtol[i]
+    newton_tol = max(10 * EPS / rmin, min(0.03, rmin ** 0.5))
+    done = 0
+    while done < m and t_eval[done] <= wpar[4]:
+        out[:, done] = y
+        done += 1
+    t = wpar[4]  # the run's start (a continuation starts later)
+    nfev = 0
+    njev = 0
+    nlu = 0
+    steps = 0
+    status = STATUS_FINISHED
+    created = 0.0
+    escale = wpar[2]
+    for seg in range(breaks.size):
+        t_bound = breaks[seg]
+        seg_nfev = 0
+        rhs(t, y, f, model, th, fc)
+        seg_nfev += 1
+        h_self = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, w3, w4, 0.25)
+        seg_nfev += 1
+        h_abs_old_self = -1.0
+        err_old_self = -1.0
+        have_sol = False
+        sol_t_old = 0.0
+        sol_h = 1.0
+        jacobian(t, y, Jm, model, th, g, ag)
+        njev += 1
+        current_jac = True
+        lu_ok = False
+        while True:
+            min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+            if h_self < min_step:
+                h_abs = min_step
+                h_abs_old = -1.0
+                err_old = -1.0
+            else:
+                h_abs = h_self
+                h_abs_old = h_abs_old_self
+                err_old = err_old_self
+            rejected = False
+            accepted = False
+            failed = False
+            h = 0.0
+            t_new = t
+            n_iter = 0
+            rate = -1.0
+            err = 0.0
+            safety = 0.9
+            while not accepted:
+                if h_abs < min_step:
+                    failed = True
+                    break
+                h = h_abs
+                t_new = t + h
+                if t_new - t_bound > 0:
+                    t_new = t_bound
+                h = t_new - t
+                h_abs = abs(h)
+                for r in range(3):
+                    if have_sol:
+                        x = (t + h * RC[r] - sol_t_old) / sol_h
+                        for i in range(n):
+                            Z0[r, i] = (Q[i, 0] * x + Q[i, 1] * x * x + Q[i, 2] * x * x * x + y_old[i]) - y[i]
+                    else:
+                        for i in range(n):
+                            Z0[r, i] = 0.0
+                for i in range(n):
+                    scale[i] = atol[i] + abs(y[i]) * rtol[i]
+                converged = False
+                while not converged:
+                    if not lu_ok:
+                        _factor(Jm, h, LUr, pr, LUc, pc)
+                        nlu += 2
+                        lu_ok = True
+                    converged, n_iter, rate, ne = collocation(t, y, h, Z0, scale, newton_tol, LUr, pr, LUc, pc, Z, W,
+                                                              F, dW, br, bc, ytmp, model, th, fc)
+                    seg_nfev += ne
+                    if not converged:
+                        if current_jac:
+                            break
+                        jacobian(t, y, Jm, model, th, g, ag)
+                        njev += 1
+                        current_jac = True
+                        lu_ok = False
+                if not converged:
+                    h_abs *= 0.5
+                    lu_ok = False
+                    continue
+                for i in range(n):
+                    y_new[i] = y[i] + Z[2, i]
+                    ze[i] = (Z[0, i] * RE[0] + Z[1, i] * RE[1] + Z[2, i] * RE[2]) / h
+                    err_v[i] = f[i] + ze[i]
+                lu_solve(LUr, pr, err_v)
+                for i in range(n):
+                    a = abs(y[i])
+                    b = abs(y_new[i])
+                    scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]
+                err = _rms(err_v, scale, w1)
+                safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
+                if rejected and err > 1:
+                    for i in range(n):
+                        ytmp[i] = y[i] + err_v[i]
+                    rhs(t, ytmp, w2, model, th, fc)
+                    seg_nfev += 1
+                    for i in range(n):
+                        err_v[i] = w2[i] + ze[i]
+                    lu_solve(LUr, pr, err_v)
+                    err = _rms(err_v, scale, w1)
+                if err > 1:
+                    factor = predict_factor(h_abs, h_abs_old, err, err_old)
+                    sf = safety * factor
+                    h_abs *= sf if sf > MIN_FACTOR else MIN_FACTOR
+                    lu_ok = False
+                    rejected = True
+                else:
+                    accepted = True
+            if failed:
+                status = STATUS_FAILED
+                break
+            recompute_jac = n_iter > 2 and rate > 1e-3
+            factor = predict_factor(h_abs, h_abs_old, err, err_old)
+            factor = safety * factor
+            if not factor < MAX_FACTOR:
+                factor = MAX_FACTOR
+            if not recompute_jac and factor < 1.2:
+                factor = 1.0
+            else:
+                lu_ok = False
+            rhs(t_new, y_new, f_new, model, th, fc)
+            seg_nfev += 1
+            if recompute_jac:
+                jacobian(t_new, y_new, Jm, model, th, g, ag)
+                njev += 1
+                current_jac = True
+            else:
+                current_jac = False
+            h_abs_old_self = h_self
+            err_old_self = err
+            h_self = h_abs * factor
+            for i in range(n):
+                y_old[i] = y[i]
+                y[i] = y_new[i]
+                f[i] = f_new[i]
+                for k in range(3):
+                    Q[i, k] = Z[0, i] * RP[0, k] + Z[1, i] * RP[1, k] + Z[2, i] * RP[2, k]
+            sol_t_old = t
+            t = t_new
+            sol_h = t - sol_t_old
+            have_sol = True
+            finished = t - t_bound >= 0
+            steps += 1
+            if steps <= trace.size:
+                trace[steps - 1] = t
+            total = 0.0
+            for i in range(n):
+                total += y[i]
+            if not np.isfinite(total):
+                status = STATUS_NONFINITE
+                break
+            while done < m and t_eval[done] <= t:
+                x = (t_eval[done] - sol_t_old) / sol_h
+                for i in range(n):
+                    out[i, done] = Q[i, 0] * x + Q[i, 1] * x * x + Q[i, 2] * x * x * x + y_old[i]
+                done += 1
+            if nfev + seg_nfev > max_nfev:
+                status = STATUS_BUDGET
+                break
+            if watch_every > 0 and (steps % watch_every == 0 or finished):
+                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
+                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
+                escale = max(wpar[2], abs(work - wpar[1]))
+                if created > wpar[3] * escale:
+                    status = STATUS_ENERGY
+                    break
+            if finished:
+                break
+        nfev += seg_nfev
+        if status != STATUS_FINISHED:
+            break
+    counters = np.array([nfev, steps, status, done, njev, nlu], dtype=np.int64)
+    floats = np.array([t, created, escale])
+    return out, counters, floats, y

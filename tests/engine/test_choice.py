@@ -1,0 +1,104 @@
+"""Which engine runs: what sends a scene to Python, auto's cost rule, the usage error without numba."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcli import engine
+from gearcli.errors import ConfigError
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def seed_arrays(name: str = "concrete_mixer.toml"):
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+    from gearcli.scene import build_model
+
+    cfg = load_design(str(ROOT / "configs" / name), []).design
+    return build_model(cfg, compute_design(cfg)).arrays
+
+
+def test_seed_and_excited_scenes_are_supported_and_each_unknown_feature_is_named():
+    arrays = seed_arrays()
+    assert engine.unsupported(arrays, "DOP853") == []
+    for name in ("concrete_mixer_te.toml", "spur_oscillator_te.toml", "concrete_mixer_drivetrain.toml"):
+        assert engine.unsupported(seed_arrays(name), "DOP853") == [], name  # excitation and springs: compiled
+    ripple = dataclasses.replace(arrays, drive_ripple=np.array([[0.05, 1.0]]), load_fluct=np.array([[0.1, 2.0]]))
+    assert engine.unsupported(ripple, "DOP853") == []
+    kind = arrays.conn_kind.copy()
+    kind[0] = 7  # a connector kind the kernel has no law for
+    assert any("connector kinds [7]" in r for r in engine.unsupported(dataclasses.replace(arrays, conn_kind=kind),
+                                                                       "DOP853"))
+    springs = seed_arrays("concrete_mixer_drivetrain.toml")
+    c = int(np.flatnonzero(springs.conn_kind == 0)[0])
+    param = springs.conn_param.copy()
+    param[c, -1] = 0.3  # a parameter column the spring law does not read
+    assert any("element parameters" in r for r in engine.unsupported(dataclasses.replace(springs, conn_param=param),
+                                                                      "DOP853"))
+    assert any("method BDF" in r for r in engine.unsupported(arrays, "BDF"))
+    assert engine.unsupported(arrays, "Radau") == []
+
+
+def test_auto_weighs_the_load_cost_against_the_python_run(monkeypatch):
+    """Python ~10 us per evaluation, compiled ~0.3 us plus the load: with a 0.5 s load, 10^4 evaluations
+    (0.1 s in Python) stay in Python and 10^6 (10 s) go compiled; shared by 1000 runs the load costs 0.5 ms
+    per run and 10^4 evaluations go compiled too."""
+    monkeypatch.setattr(engine, "available", lambda: True)
+    monkeypatch.setattr(engine, "expected_load_s", lambda: 0.5)
+    monkeypatch.setitem(engine._runs, "expected", 1)  # a fresh process: nothing announced
+    arrays = seed_arrays()
+    assert engine.choose("auto", arrays, "DOP853", 1e4).engine == "python"
+    assert engine.choose("auto", arrays, "DOP853", 1e6).engine == "compiled"
+    assert engine.choose("auto", arrays, "Radau", 1e6).engine == "python"  # one-shot: scipy's numbers, to the bit
+    engine.expect_runs(999)
+    assert engine.choose("auto", arrays, "DOP853", 1e4).engine == "compiled"
+    assert engine.choose("auto", arrays, "Radau", 1e6).engine == "python"  # outside a batch
+    with engine.batch(10):  # a report's ladder, a sweep task
+        assert engine.choose("auto", arrays, "Radau", 1e6).engine == "compiled"
+        assert engine.choose("auto", arrays, "BDF", 1e6).engine == "python"
+    assert engine.choose("auto", arrays, "Radau", 1e6).engine == "python"
+    assert engine.choose("python", arrays, "DOP853", 1e9).engine == "python"
+
+
+def test_compiled_without_numba_is_a_usage_error_naming_the_extra(monkeypatch):
+    monkeypatch.setattr(engine, "available", lambda: False)
+    with pytest.raises(ConfigError) as err:
+        engine.choose("compiled", seed_arrays(), "DOP853", 1e4)
+    assert "gearcli[fast]" in str(err.value)
+    assert engine.choose("auto", seed_arrays(), "DOP853", 1e9).engine == "python"
+
+
+def test_cli_exit_2_without_numba():
+    code = ("import sys; sys.modules['numba'] = None\n"
+            "from gearcli.__main__ import main\n"
+            "sys.argv = ['gearcli', 'simulate', 'configs/concrete_mixer.toml', '--set', 'simulation.engine=compiled']\n"
+            "main()\n")
+    proc = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 2
+    assert "gearcli[fast]" in proc.stderr and "simulation.engine" in proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+def test_unsupported_method_requested_compiled_runs_on_python_with_the_reason():
+    pytest.importorskip("numba")
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+    from gearcli.simulate import run_simulation
+
+    path = str(ROOT / "configs" / "stiff_linear_mesh.toml")
+    cfg = load_design(path, ["simulation.engine=compiled", "simulation.method=BDF", "simulation.steps=200"]).design
+    sim = run_simulation(cfg, compute_design(cfg), want_series=False)
+    assert sim.solver.method == "BDF" and sim.solver.engine == "python"
+    assert "method BDF" in sim.solver.engine_reason
+    assert any(d.code == "engine_fallback" for d in sim.diagnostics)
+    cfg = load_design(path, ["simulation.engine=compiled", "simulation.steps=200"]).design
+    sim = run_simulation(cfg, compute_design(cfg), want_series=False)
+    assert (sim.solver.method, sim.solver.engine) == ("Radau", "compiled")
+    assert sim.solver.njev > 0 and not any(d.code == "engine_fallback" for d in sim.diagnostics)
