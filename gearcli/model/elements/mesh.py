@@ -85,13 +85,14 @@ def with_viscous(P, k_lin, m_e):
 
 
 def linear_stiffness(P, F, floor_m):
-    """dF_bt/d delta at the line force F on the drive flank at mean stiffness: cos^2(beta_b) e K p0^(e-1);
-    an unloaded mesh with e > 1 at the penetration ``floor_m`` instead (it would have none)."""
+    """The linearised mesh stiffness of the viscous damping law, dF_n/dh = e K p0^(e-1) at the line force F
+    on the drive flank at mean stiffness (K itself for e = 1; the normal slope, as design's linearised
+    stiffness); an unloaded mesh with e > 1 at the penetration ``floor_m`` instead (it would have none)."""
     e = P[I_E]
     p0 = static_penetration(P, F)
     if e != 1.0 and p0 <= 0.0:
         p0 = floor_m
-    return P[I_CB2] * e * P[I_K] * p0 ** (e - 1.0)
+    return e * P[I_K] * p0 ** (e - 1.0)
 
 
 def transmission_error(P, phi):
