@@ -22,6 +22,12 @@ def _freeze_heap() -> None:
 
 
 def main() -> None:
+    import gc
+
+    # the start-up imports (click, pydantic, numpy, scipy, numba: a million objects, no garbage) run without the
+    # cyclic collector walking them again and again; a command turns it back on with
+    # gearcli.cli.collector_on() once its heavy imports are in, before any work that could make garbage
+    gc.disable()
     try:
         from gearcli.cli import main as run
     except KeyboardInterrupt:
