@@ -11,7 +11,23 @@ import sys
 INTERRUPTED = (130, 143)  # SIGINT, SIGTERM: gearcli has said so and removed its temporary files
 
 
+def _freeze_heap() -> None:
+    """The command is done: move every live object out of the collector's reach, so that the interpreter's
+    shutdown does not walk numpy's, scipy's and numba's module graphs in its final collections (measured:
+    ~0.2 s of a report's exit, with numba loaded; ~0.05 s of a one-shot simulate). Shutdown itself still
+    runs: atexit handlers, module teardown, output flushing."""
+    import gc
+
+    gc.freeze()
+
+
 def main() -> None:
+    import gc
+
+    # the start-up imports (click, pydantic, numpy, scipy, numba: a million objects, no garbage) run without the
+    # cyclic collector walking them again and again; a command turns it back on with
+    # gearcli.cli.collector_on() once its heavy imports are in, before any work that could make garbage
+    gc.disable()
     try:
         from gearcli.cli import main as run
     except KeyboardInterrupt:
@@ -20,6 +36,7 @@ def main() -> None:
     try:
         run()
     except SystemExit as exc:
+        _freeze_heap()
         if exc.code in INTERRUPTED:
             # CPython remembers a KeyboardInterrupt that passed through an interrupted import or exec even
             # when gearcli caught it, and at shutdown re-kills itself with SIGINT (exit status -2 instead of

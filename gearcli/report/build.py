@@ -31,9 +31,14 @@ def build_report(
     """
     spec = spec or LadderSpec()
     if simulate is None:
+        import functools
+
+        from gearcli.model import TorsionalModel
+        from gearcli.scene import spec_from_design
         from gearcli.simulate.run import run_simulation
 
-        simulate = run_simulation
+        # every run of the report is the same scene (only method and rtol change): one model, generated once
+        simulate = functools.partial(run_simulation, model=TorsionalModel(spec_from_design(cfg, design)))
     tick = progress or (lambda label, done, total: None)
     sim_cfg = cfg.simulation
     planned = 1 if quick else 1 + 2 + len(spec.rtols) * len(spec.methods)

@@ -39,7 +39,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
-from gearcli.model.outputs import sample, tooth_forces
+from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import ChannelStats, StatisticsError
 from gearcli.simulate.choice import Choice
 from gearcli.simulate.methods import method as method_info
@@ -145,8 +145,10 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
 
 
 def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float], *,
-           max_nfev: int) -> CheckPass:
-    """The check pass and its per-stage error estimates (module doc)."""
+           max_nfev: int, sampled: Sampled | None = None) -> CheckPass:
+    """The check pass and its per-stage error estimates (module doc). ``sampled``: the run's own samples at
+    ``run.t`` when the caller has them (their window part is the run's side of the comparison; the channels
+    are sample by sample, so the slice equals sampling the window again)."""
     lay = model.layout
     t_eval = run.t
     mask = (t_eval >= window[0] - 1e-9 * max(1.0, window[1]))
@@ -162,6 +164,10 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     t0 = time.perf_counter()
     tw = t_eval[i_w:]
     t_check = tw if i_s == i_w else np.concatenate(([t_eval[i_s]], tw))  # the start, then the window only
+    if sampled is None:
+        run_forces = [m.line_force_N for m in sample(lay, tw, run.y[:, i_w:]).meshes]
+    else:
+        run_forces = [m.line_force_N[i_w:] for m in sampled.meshes]
     nfev = njev = steps = 0
     passes = 0
     while True:
@@ -174,9 +180,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         errors: tuple[StatisticsError, ...] = ()
         if status != STATUS_FINISHED:
             break
-        s_def = sample(lay, tw, run.y[:, i_w:])
         s_fine = sample(lay, tw, fine.y[:, t_check.size - tw.size:])
-        errors = tuple(stage_error(k, tw, tooth_forces(lay, k, s_def.meshes[k].line_force_N)[0],
+        errors = tuple(stage_error(k, tw, tooth_forces(lay, k, run_forces[k])[0],
                                    tooth_forces(lay, k, s_fine.meshes[k].line_force_N)[0], m.static_tangential_N,
                                    run.rtol, scale) for k, m in enumerate(model.spec.meshes))
         if scale == 1.0 or all(e.resolved for e in errors):

@@ -1,0 +1,77 @@
+"""The faster paths of a one-shot run give what the plain ones give: the check pass on the run's own samples,
+the channels' scalar laws on Python floats, and the console script's collector switch."""
+
+from __future__ import annotations
+
+import gc
+from pathlib import Path
+
+import numpy as np
+
+from gearcli.cli import collector_on
+from gearcli.config import load_design
+from gearcli.design import compute_design
+from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements.mesh import dynamic_transmission_error, penetration
+from gearcli.model.outputs import connector_series, sample
+from gearcli.scene import build_model
+from gearcli.simulate import estimate
+from gearcli.simulate.choice import choose_method
+from gearcli.simulate.solver import integrate
+from gearcli.simulate.stats import steady_window
+
+SEED = Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer.toml"
+
+
+def _seed_run():
+    cfg = load_design(str(SEED), []).design
+    model = build_model(cfg, compute_design(cfg))
+    sim = cfg.simulation
+    choice = choose_method(model.spec, sim.duration_s, sim.method, sim.rtol)
+    run = integrate(model, np.linspace(0.0, sim.duration_s, sim.steps + 1), choice.method, sim.rtol,
+                    max_nfev=10**7, engine="python")
+    window, _ = steady_window(model.spec, sim.duration_s, sim.window_start_s)
+    return model, choice, run, window
+
+
+def test_check_pass_on_the_runs_own_samples_equals_sampling_the_window_again():
+    model, choice, run, window = _seed_run()
+    again = estimate.check_pass(model, run, choice, window, max_nfev=10**7)
+    reused = estimate.check_pass(model, run, choice, window, max_nfev=10**7,
+                                 sampled=sample(model.layout, run.t, run.y))
+    assert len(again.errors) == len(model.spec.meshes) == 3
+    assert again.errors == reused.errors  # every statistic's error, bit for bit
+    assert (again.nfev, again.rtol, again.from_s, again.passes) == (reused.nfev, reused.rtol, reused.from_s, reused.passes)
+
+
+def test_channels_are_the_scalar_law_at_each_sample():
+    model, _, run, _ = _seed_run()
+    lay = model.layout
+    s = sample(lay, run.t, run.y)
+    picks = [0, 1, run.t.size // 2, run.t.size - 1]
+    for c, x in enumerate(lay.connectors):
+        cs = connector_series(lay, c, run.y, s.omega_rad_s, s.theta_rad)
+        assert x.kind == KIND_MESH and cs.force.shape == run.t.shape
+        for j in picks:  # the element's own law, called here sample by sample on numpy scalars
+            d = run.y[c, j]
+            dd = x.ra * s.omega_rad_s[x.a, j] - x.rb * s.omega_rad_s[x.b, j]
+            assert cs.force[j] == x.element.force(x.params, d, dd, 0.0, 0.0)[0]
+            assert cs.potential_J[j] == x.element.potential(x.params, d, 0.0)
+            assert cs.penetration_m[j] == penetration(x.params, d, 0.0)
+            assert cs.dte_m[j] == dynamic_transmission_error(x.params, d, 0.0)
+        assert np.any(cs.force != 0.0)  # the meshes carry load
+
+
+def test_collector_on_turns_a_disabled_collector_on_and_leaves_an_enabled_one_alone():
+    was = gc.isenabled()
+    try:
+        gc.enable()
+        frozen = gc.get_freeze_count()
+        collector_on()
+        assert gc.isenabled() and gc.get_freeze_count() == frozen  # library use: nothing happens
+        gc.disable()
+        collector_on()
+        assert gc.isenabled() and gc.get_freeze_count() > 0  # the console script's start-up heap is frozen
+    finally:
+        gc.unfreeze()
+        (gc.enable if was else gc.disable)()
