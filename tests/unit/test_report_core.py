@@ -285,3 +285,22 @@ def test_recommendation_prices_runs_by_evaluations_not_by_one_noisy_wall_time():
     # a failed rung has no rate of its own and never looks cheap
     failed = AccuracyRun("RK45", "RK45", 1e-3, 0.001, 10, 0, 0, None, None, None, {}, False, failure="budget")
     assert cost(failed) == float("inf")
+
+
+def test_ladder_rungs_skip_the_check_pass_the_report_never_reads():
+    # a rung's error comes from the study's reference; only the report's own simulation estimates its statistics
+    from test_report_fakes import fake_cfg
+
+    from gearcli.report import build_report
+
+    design = fake_design()
+    solver = FakeSolver(design)
+    calls = []
+
+    def simulate(cfg_, design_, *, method=None, rtol=None, want_series=True, error_estimate=None):
+        calls.append((want_series, error_estimate))
+        return solver(method or cfg_.simulation.method, rtol or cfg_.simulation.rtol)
+
+    build_report(fake_cfg(), design, quick=False, spec=LadderSpec(rtols=(1e-4, 1e-6)), simulate=simulate)
+    assert calls[0] == (True, None)  # the report's simulation: the file's own setting
+    assert len(calls) > 3 and all(c == (False, False) for c in calls[1:])

@@ -123,7 +123,7 @@ def fake_report(quick: bool = False, rtols=(1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 
     design = fake_design()
     solver = FakeSolver(design)
 
-    def simulate(cfg_, design_, *, method=None, rtol=None, want_series=True):
+    def simulate(cfg_, design_, *, method=None, rtol=None, want_series=True, error_estimate=None):
         return solver(method or cfg_.simulation.method, rtol or cfg_.simulation.rtol)
 
     return build_report(fake_cfg(), design, quick=quick, spec=LadderSpec(rtols=rtols), simulate=simulate)
