@@ -9,6 +9,7 @@ import tomllib
 from pathlib import Path
 
 import pytest
+from jsonschema_subset import valid
 
 from gearcli.config import json_schema, load_design
 from gearcli.config.reference import design_file_reference
@@ -31,64 +32,6 @@ def test_no_file_cites_design_md_or_the_shared_directory():
                  and ("DESIGN" + ".md" in (ROOT / f).read_text(errors="replace")
                       or "../" + "shared" in (ROOT / f).read_text(errors="replace"))]  # spelled apart
     assert offenders == []
-
-
-# --------------------------------------------------------------------------- a tiny JSON Schema checker
-def valid(value, schema: dict, root: dict) -> bool:
-    """Whether ``value`` satisfies ``schema`` (the subset pydantic emits: $ref, anyOf, allOf, not, type,
-    enum, const, bounds, min/maxLength, min/maxItems, properties, required, additionalProperties)."""
-    if "$ref" in schema:
-        return valid(value, root["$defs"][schema["$ref"].rsplit("/", 1)[1]], root)
-    if "anyOf" in schema and not any(valid(value, s, root) for s in schema["anyOf"]):
-        return False
-    if "allOf" in schema and not all(valid(value, s, root) for s in schema["allOf"]):
-        return False
-    if "not" in schema and valid(value, schema["not"], root):
-        return False
-    if "enum" in schema and value not in schema["enum"]:
-        return False
-    if "const" in schema and value != schema["const"]:
-        return False
-    t = schema.get("type")
-    types = {"number": (int, float), "integer": (int,), "string": (str,), "boolean": (bool,), "object": (dict,),
-             "array": (list,), "null": (type(None),)}
-    if t is not None:
-        if not isinstance(value, types[t]) or (t in ("number", "integer") and isinstance(value, bool)):
-            return False
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        if value != value or value in (float("inf"), float("-inf")):
-            return False
-        for key, ok in (("minimum", value >= schema.get("minimum", value)),
-                        ("maximum", value <= schema.get("maximum", value))):
-            if key in schema and not ok:
-                return False
-        if "exclusiveMinimum" in schema and not value > schema["exclusiveMinimum"]:
-            return False
-        if "exclusiveMaximum" in schema and not value < schema["exclusiveMaximum"]:
-            return False
-    if isinstance(value, str) and len(value) > schema.get("maxLength", len(value)):
-        return False
-    if isinstance(value, list):
-        if not schema.get("minItems", 0) <= len(value) <= schema.get("maxItems", len(value)):
-            return False
-        if "items" in schema and not all(valid(v, schema["items"], root) for v in value):
-            return False
-    if isinstance(value, dict):
-        props = schema.get("properties", {})
-        if any(k not in value for k in schema.get("required", [])):
-            return False
-        extra = schema.get("additionalProperties", True)
-        for k, v in value.items():
-            if k in props:
-                if not valid(v, props[k], root):
-                    return False
-            elif extra is False:
-                return False
-            elif isinstance(extra, dict) and not valid(v, extra, root):
-                return False
-        if "maxProperties" in schema and len(value) > schema["maxProperties"]:
-            return False
-    return True
 
 
 def test_the_checker_itself():
