@@ -65,12 +65,15 @@ def contact_state(model: TorsionalModel, rng: np.random.Generator, flanks) -> np
     return y
 
 
-def fd_jacobian(model: TorsionalModel, t: float, y: np.ndarray) -> np.ndarray:
-    scale = np.concatenate([model.deflection_scales_m(), model.speed_scales_rad_s(),
-                            np.ones(model.n_states - model.layout.n_conn - len(model.layout.free_bodies))])
+def fd_jacobian(model: TorsionalModel, t: float, y: np.ndarray, rel_step: float = 1e-6) -> np.ndarray:
+    """Central differences of the right-hand side, each state stepped by ``rel_step`` of its scale (every
+    connector's deflection, every free body's speed, 1 for the angle and quadrature states)."""
+    lay = model.layout
+    scale = np.concatenate([model.deflection_scales(), model.speed_scales_rad_s(),
+                            np.ones(model.n_states - lay.n_conn - len(lay.free_bodies))])
     J = np.empty((y.size, y.size))
     for j in range(y.size):
-        h = 1e-6 * scale[j]
+        h = rel_step * scale[j]
         yp, ym = y.copy(), y.copy()
         yp[j] += h
         ym[j] -= h
