@@ -306,8 +306,9 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
     warn(design_result.warnings)
     from gearcli.io import serialize
-    from gearcli.simulate import run_simulation
+    from gearcli.simulate import background, run_simulation
 
+    background.allow()  # the console script's one-shot run: its check pass may take a second core
     collector_on()
     try:
         result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them

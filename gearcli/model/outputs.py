@@ -100,7 +100,7 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     if x.kind == KIND_MESH:
         pen = np.array([penetration(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
         q = np.array([dynamic_transmission_error(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)],
-                     dtype=float).reshape(n)
+                     dtype=float).reshape(n) if x.excited else d.copy()  # without a transmission error q = delta
     else:
         pen, q = np.zeros(n), d.copy()
     return ConnectorSeries(F, d.copy(), pen, U, q)

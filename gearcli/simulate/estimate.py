@@ -144,45 +144,102 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
         resolved=not unresolved)
 
 
-def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float], *,
-           max_nfev: int, sampled: Sampled | None = None) -> CheckPass:
-    """The check pass and its per-stage error estimates (module doc). ``sampled``: the run's own samples at
-    ``run.t`` when the caller has them (their window part is the run's side of the comparison; the channels
-    are sample by sample, so the slice equals sampling the window again)."""
-    lay = model.layout
-    t_eval = run.t
+@dataclass(frozen=True)
+class Plan:
+    """The span and tolerance of the check pass (module doc), fixed by the samples, the run's rtol, the
+    method choice and the window, so known before the run."""
+
+    i_w: int  # first window sample
+    i_s: int  # the sample the check pass starts from
+    rtol: float
+    scale: float
+
+
+def plan(t_eval: np.ndarray, rtol: float, choice: Choice, window: tuple[float, float]) -> Plan:
+    """Where the check pass starts and at which tolerance (module doc)."""
     mask = (t_eval >= window[0] - 1e-9 * max(1.0, window[1]))
     i_w = int(np.argmax(mask))
     t_start = start_time(choice, window)
     i_s = min(i_w, int(np.searchsorted(t_eval, t_start, side="right")) - 1)
     i_s = max(i_s, 0)
     share = (t_eval[-1] - t_eval[i_s]) / max(t_eval[-1] - t_eval[0], 1e-300)
-    if TIGHT_FACTOR ** 0.125 * share <= TIGHT_COST or run.rtol * LOOSE_FACTOR > MAX_RTOL:
-        rtol, scale = max(run.rtol / TIGHT_FACTOR, MIN_RTOL), 1.0
-    else:
-        rtol, scale = run.rtol * LOOSE_FACTOR, LOOSE_SAFETY
+    if TIGHT_FACTOR ** 0.125 * share <= TIGHT_COST or rtol * LOOSE_FACTOR > MAX_RTOL:
+        return Plan(i_w, i_s, max(rtol / TIGHT_FACTOR, MIN_RTOL), 1.0)
+    return Plan(i_w, i_s, rtol * LOOSE_FACTOR, LOOSE_SAFETY)
+
+
+def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, i_s: int, i_w: int, method: str,
+             rtol: float, max_nfev: int, engine: str) -> tuple[Integration, list[np.ndarray] | None, float]:
+    """One check pass from sample ``i_s`` (state ``y_start``) over the window samples ``t_eval[i_w:]``: the
+    integration, the meshes' line forces over the window (None when it did not finish) and the wall time."""
     t0 = time.perf_counter()
     tw = t_eval[i_w:]
     t_check = tw if i_s == i_w else np.concatenate(([t_eval[i_s]], tw))  # the start, then the window only
+    fine = integrate(model, t_check, method, rtol, y0=y_start, t0=float(t_eval[i_s]), max_nfev=max_nfev,
+                     watch_energy=False,  # the run itself was watched
+                     engine=engine)  # the run's engine: scipy's steps either way
+    forces = None
+    if fine.status == STATUS_FINISHED:
+        forces = [m.line_force_N for m in sample(model.layout, tw, fine.y[:, t_check.size - tw.size:]).meshes]
+    return fine, forces, time.perf_counter() - t0
+
+
+def start_early(model: TorsionalModel, t_eval: np.ndarray, y0: np.ndarray, method: str, rtol: float,
+                choice: Choice, window: tuple[float, float], max_nfev: int, engine: str):
+    """The first check pass started on a second core before the run, where it does not need the run: it starts
+    at the run's own start (a lightly damped scene such as the seed); None elsewhere or when
+    :mod:`gearcli.simulate.background` cannot fork. :func:`check_pass` takes its result (``early``)."""
+    from gearcli.simulate import background
+
+    if engine != "python" or not background.available():
+        return None
+    p = plan(t_eval, rtol, choice, window)
+    if p.i_s != 0:
+        return None
+    key = (p, method, max_nfev, engine)
+    return background.start(_light_pass, model, t_eval, y0, 0, p.i_w, method, p.rtol, max_nfev, engine, key=key)
+
+
+def _light_pass(*args):
+    """:func:`one_pass` without the integration's samples (the check compares the forces): less to send back."""
+    fine, forces, wall = one_pass(*args)
+    return replace(fine, t=fine.t[:0], y=fine.y[:, :0]), forces, wall
+
+
+def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float], *,
+               max_nfev: int, sampled: Sampled | None = None, early=None) -> CheckPass:
+    """The check pass and its per-stage error estimates (module doc). ``sampled``: the run's own samples at
+    ``run.t`` when the caller has them (their window part is the run's side of the comparison; the channels
+    are sample by sample, so the slice equals sampling the window again). ``early``: the first pass started
+    by :func:`start_early` (its value is taken when it was computed for this run's plan, else computed here)."""
+    lay = model.layout
+    t_eval = run.t
+    p = plan(t_eval, run.rtol, choice, window)
+    i_w, i_s, rtol, scale = p.i_w, p.i_s, p.rtol, p.scale
+    t0 = time.perf_counter()
+    tw = t_eval[i_w:]
     if sampled is None:
         run_forces = [m.line_force_N for m in sample(lay, tw, run.y[:, i_w:]).meshes]
     else:
         run_forces = [m.line_force_N[i_w:] for m in sampled.meshes]
+    done = early.result() if early is not None and early.key == (p, run.method, max_nfev, run.engine) else None
+    background_s = 0.0
     nfev = njev = steps = 0
     passes = 0
     while True:
         passes += 1
-        fine = integrate(model, t_check, run.method, rtol, y0=run.y[:, i_s], t0=float(t_eval[i_s]),
-                         max_nfev=max_nfev, watch_energy=False,  # the run itself was watched
-                         engine=run.engine)  # the run's engine: scipy's steps either way
+        if passes == 1 and done is not None:
+            fine, fine_forces, background_s = done
+        else:
+            fine, fine_forces, _ = one_pass(model, t_eval, run.y[:, i_s], i_s, i_w, run.method, rtol, max_nfev,
+                                            run.engine)
         nfev, njev, steps = nfev + fine.nfev, njev + fine.njev, steps + fine.steps
         status, message = fine.status, fine.message
         errors: tuple[StatisticsError, ...] = ()
-        if status != STATUS_FINISHED:
+        if status != STATUS_FINISHED or fine_forces is None:
             break
-        s_fine = sample(lay, tw, fine.y[:, t_check.size - tw.size:])
         errors = tuple(stage_error(k, tw, tooth_forces(lay, k, run_forces[k])[0],
-                                   tooth_forces(lay, k, s_fine.meshes[k].line_force_N)[0], m.static_tangential_N,
+                                   tooth_forces(lay, k, fine_forces[k])[0], m.static_tangential_N,
                                    run.rtol, scale) for k, m in enumerate(model.spec.meshes))
         if scale == 1.0 or all(e.resolved for e in errors):
             break
@@ -190,8 +247,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         # is the run's error to first order (a loose pass that rattles differently overstates it 1e5-fold:
         # configs/concrete_mixer_drivetrain.toml, stage 1 max estimated 4.3 of the mean, true 3e-5)
         rtol, scale = max(run.rtol / TIGHT_FACTOR, MIN_RTOL), 1.0
-    return CheckPass(rtol, float(t_eval[i_s]), scale, nfev, njev, steps, time.perf_counter() - t0, status, message,
-                     errors, passes)
+    wall = time.perf_counter() - t0 + background_s  # the work of the pass, wherever it ran
+    return CheckPass(rtol, float(t_eval[i_s]), scale, nfev, njev, steps, wall, status, message, errors, passes)
 
 
 def unresolved_mode(choice: Choice, run: Integration, duration_s: float) -> tuple[float, float] | None:
