@@ -6,8 +6,11 @@
     DOP853 around the generated right-hand side, median wall of --repeat, nfev of each; the compiled run's
     window-mean F_t error against a DOP853 reference at rtol 1e-12 (target: ratio <= 0.05, error <= 1e-5).
 (b) The floor: bare `python -c "import click, pydantic, rich, numpy, scipy.integrate"` (median of --repeat).
-(c) One-shot `gearcli simulate configs/concrete_mixer.toml --format json` (engine = auto), median of --repeat,
-    against the floor (target <= 1.3x).
+(c) One-shot `gearcli simulate configs/concrete_mixer.toml --format json` (engine = auto), median of --repeat
+    runs interleaved with the floor's, against the floor (target <= 1.3x); beside it the same on the Python
+    engine, without the second core (GEARCLI_SERIAL=1: the check pass after the run) and as
+    `python -m gearcli` (runpy's way in: ~0.03 s more). The command is the console script installed next to
+    this interpreter (what users run), else `python -m gearcli`.
 (d) Full `gearcli report configs/concrete_mixer.toml` (engine = auto) against the floor (target <= 3x).
 (e) A seed speed sweep of --sweep-points points (engine = auto, all cores) against the floor (target <= 15x).
 (f) The physical limit: the seed run's evaluations x the cost of one compiled evaluation (10^6 evaluations in a
@@ -36,13 +39,25 @@ FLOOR = "import click, pydantic, rich, numpy, scipy.integrate"
 
 
 def wall(cmd: list[str], repeat: int) -> float:
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    times = []
+    return interleaved({"cmd": cmd}, repeat)["cmd"]
+
+
+def interleaved(cmds: dict[str, list[str]], repeat: int, env_extra: dict[str, dict[str, str]] | None = None) -> dict:
+    """Median wall time of each command, the commands run in turn ``repeat`` times (noise hits them alike)."""
+    times: dict[str, list[float]] = {name: [] for name in cmds}
     for _ in range(repeat):
-        t0 = time.perf_counter()
-        subprocess.run(cmd, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+        for name, cmd in cmds.items():
+            env = dict(os.environ, PYTHONPATH=str(ROOT), **(env_extra or {}).get(name, {}))
+            t0 = time.perf_counter()
+            subprocess.run(cmd, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            times[name].append(time.perf_counter() - t0)
+    return {name: statistics.median(ts) for name, ts in times.items()}
+
+
+def gearcli_command() -> list[str]:
+    """The console script users run (installed next to this interpreter), else ``python -m gearcli``."""
+    script = Path(sys.executable).with_name("gearcli")
+    return [str(script)] if script.exists() else [sys.executable, "-m", "gearcli"]
 
 
 def seed_model():
@@ -96,20 +111,24 @@ def main() -> None:
     args = ap.parse_args()
     py = sys.executable
     out: dict = {"integration": integration(args.repeat)}
-    floor = wall([py, "-c", FLOOR], args.repeat)
-    out["floor_s"] = floor
-    out["simulate_s"] = wall([py, "-m", "gearcli", "simulate", str(SEED), "--format", "json"], args.repeat)
-    out["simulate_python_s"] = wall([py, "-m", "gearcli", "simulate", str(SEED), "--format", "json", "--set",
-                                     "simulation.engine=python"], args.repeat)
+    g = gearcli_command()
+    one_shot = [*g, "simulate", str(SEED), "--format", "json"]
+    shots = interleaved({"floor_s": [py, "-c", FLOOR], "simulate_s": one_shot,
+                         "simulate_python_s": [*one_shot, "--set", "simulation.engine=python"],
+                         "simulate_serial_s": one_shot, "simulate_module_s": [py, "-m", "gearcli", *one_shot[len(g):]]},
+                        args.repeat, {"simulate_serial_s": {"GEARCLI_SERIAL": "1"}})
+    out.update(shots)
+    out["command"] = " ".join(Path(c).name if i == 0 else c for i, c in enumerate(g))
+    floor = out["floor_s"]
     if not args.no_report:
-        out["report_s"] = wall([py, "-m", "gearcli", "report", str(SEED)], 1)
-        out["report_python_s"] = wall([py, "-m", "gearcli", "report", str(SEED), "--set", "simulation.engine=python"], 1)
+        out["report_s"] = wall([*g, "report", str(SEED)], 1)
+        out["report_python_s"] = wall([*g, "report", str(SEED), "--set", "simulation.engine=python"], 1)
     if args.sweep_points:
         with tempfile.TemporaryDirectory() as tmp:
             n = args.sweep_points
             for name, extra in (("sweep_s", []), ("sweep_python_s", ["--set", "simulation.engine=python"])):
                 target = Path(tmp) / f"{name}.csv"
-                out[name] = wall([py, "-m", "gearcli", "sweep", str(SEED), "--vary",
+                out[name] = wall([*g, "sweep", str(SEED), "--vary",
                                   f"input.speed_deg_s=1800:5400:{n}", "-o", str(target), *extra], 1)
                 target.unlink()
     if args.json:
@@ -128,6 +147,10 @@ def main() -> None:
         ("one-shot gearcli simulate (auto)", f"{out['simulate_s']:.2f} s", f"{out['simulate_s'] / floor:.2f}x", "<= 1.3x"),
         ("one-shot gearcli simulate (python)", f"{out['simulate_python_s']:.2f} s",
          f"{out['simulate_python_s'] / floor:.2f}x", ""),
+        ("  the same without the second core (GEARCLI_SERIAL=1)", f"{out['simulate_serial_s']:.2f} s",
+         f"{out['simulate_serial_s'] / floor:.2f}x", ""),
+        ("  the same as python -m gearcli", f"{out['simulate_module_s']:.2f} s",
+         f"{out['simulate_module_s'] / floor:.2f}x", ""),
     ]
     if "report_s" in out:
         rows += [("gearcli report (auto)", f"{out['report_s']:.2f} s", f"{out['report_s'] / floor:.1f}x", "<= 3x"),
@@ -139,6 +162,7 @@ def main() -> None:
                  (f"{args.sweep_points}-point speed sweep (python)", f"{out['sweep_python_s']:.1f} s",
                   f"{out['sweep_python_s'] / floor:.1f}x", "")]
     width = max(len(r[0]) for r in rows)
+    print(f"command: {out['command']} (medians of {args.repeat} interleaved runs)")
     print(f"{'measure':{width}}  {'figure':>44}  {'ratio':>8}  target")
     for name, fig, ratio, target in rows:
         print(f"{name:{width}}  {fig:>44}  {ratio:>8}  {target}")

@@ -35,6 +35,7 @@ from typing import Any
 
 SERIAL_ENV = "GEARCLI_SERIAL"
 _state = {"console": False, "allowed": False}
+_KEPT: list = []  # a child's original standard streams (see _detach)
 
 
 def console() -> None:
@@ -181,6 +182,10 @@ def _detach(parent: int) -> None:
     for fd in (0, 1, 2):
         os.dup2(devnull, fd)
     os.close(devnull)
+    # Python-level streams too (they may write to other descriptors: a test's capture); the parent's are kept
+    # alive, never flushed here, so that what the parent has buffered is written once, by the parent
+    _KEPT.extend((sys.stdout, sys.stderr))
+    sys.stdout = sys.stderr = open(os.devnull, "w")  # noqa: SIM115 - for the child's life
     try:
         import ctypes
 
