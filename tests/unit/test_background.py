@@ -192,3 +192,15 @@ def test_quick_exit_keeps_the_exit_code_of_a_bad_file(tmp_path):
     proc = _gearcli(["simulate", str(bad), "--format", "json"])
     assert proc.returncode == 2
     assert str(bad) in proc.stderr and "Traceback" not in proc.stderr
+
+
+@pytest.mark.skipif(sys.platform != "linux" or len(os.sched_getaffinity(0)) < 2 or os.environ.get("GEARCLI_FRESH"),
+                    reason="the background path forks on Linux with two CPUs only")
+def test_forking_tests_in_a_fresh_interpreter():
+    """The tests above skip in a test process that has loaded numba or started threads (the full suite does):
+    run them again where nothing else ran, and require that none of them skips."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT), GEARCLI_FRESH="1")
+    proc = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rs", __file__],
+                          cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-2000:]
+    assert "no fork here" not in proc.stdout and " passed" in proc.stdout, proc.stdout[-3000:]
