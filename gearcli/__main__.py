@@ -23,9 +23,9 @@ def _freeze_heap() -> None:
 
 def _leave_now(code: int) -> bool:
     """End the process now with ``code``, without the interpreter's teardown of the modules (numpy's, scipy's
-    and pydantic's: ~0.07 s of a one-shot command, measured by benchmarks/bench_engine.py), after what the
-    teardown would do for the user: the standard streams flushed, the atexit handlers run. Only when nothing
-    else runs (one Python thread) and the streams flush; else False, and the usual exit follows."""
+    and pydantic's: ~0.02 s of a one-shot `simulate` on the 2-core reference machine, measured side by side),
+    after what the teardown would do for the user: the standard streams flushed, the atexit handlers run. Only
+    when nothing else runs (one Python thread) and the streams flush; else False, and the usual exit follows."""
     import atexit
     import threading
 
