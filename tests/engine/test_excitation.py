@@ -23,6 +23,7 @@ ROOT = HERE.parents[1]
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "unit"))
 from test_model_excitation import SCENES  # noqa: E402
+from test_radau import assert_kernel_jacobian  # noqa: E402
 from test_step_for_step import assert_same, compiled_dop853, scene, scipy_dop853  # noqa: E402
 
 
@@ -56,12 +57,7 @@ def test_compiled_jacobian_is_the_generated_one_with_every_excitation(name):
     model = TorsionalModel(MODELS[name])
     t_eval = np.linspace(0.0, DURATION_S, 25)
     run = integrate(model, t_eval, "DOP853", 1e-6, engine="compiled")
-    packed = engine.pack(model.arrays)
-    for j in range(t_eval.size):
-        y = np.ascontiguousarray(run.y[:, j])
-        a = model.jac(float(t_eval[j]), y)
-        b = k.evaluate_jacobian(packed, float(t_eval[j]), y)
-        np.testing.assert_allclose(b, a, rtol=1e-12, atol=1e-13 * np.abs(a).max())
+    assert_kernel_jacobian(k, model, t_eval, run.y, rtol=1e-12)
 
 
 @pytest.mark.parametrize("name", ["spur_oscillator_te", "concrete_mixer_te"])

@@ -10,30 +10,19 @@ import math
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
-from test_model_equations import fd_jacobian
+from test_model_equations import fd_jacobian, mesh
 
 from gearcli.model import (
     CoupledInertia,
     DriveSpec,
     FlexibleShaft,
     LoadSpec,
-    MeshSpec,
     ModelSpec,
     SpringSpec,
     TorsionalModel,
 )
 from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.outputs import sample
-
-
-def mesh(**kw) -> MeshSpec:
-    base = dict(base_radius_pinion_m=0.06, base_radius_gear_m=0.15, base_helix_angle_rad=math.radians(11.0),
-                transverse_pressure_angle_rad=math.radians(20.4), helix_angle_rad=math.radians(11.7),
-                stiffness_N_m_e=4.0e10, exponent=1.5, damping_Ns_m=5.0e4, full_damping_m=1.0e-4,
-                contact_ratio=1.6, overlap_ratio=0.7, pinion_teeth=21, normal_module_m=0.006)
-    base.update(kw)
-    return MeshSpec(**base)
-
 
 TE = dict(transmission_error_m=(8e-6, 3e-6, 1e-6), transmission_error_phase_rad=(0.3, -1.1))
 KS = dict(stiffness_harmonics=(0.15, 0.05), stiffness_harmonics_phase_rad=(0.7,))
