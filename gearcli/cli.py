@@ -314,6 +314,10 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
         result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
+    if loaded.design.bearing:  # bearing reactions: channels and window statistics (docs/life.md)
+        from gearcli.life.channels import with_bearings
+
+        result = with_bearings(loaded.design, design_result, result)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")

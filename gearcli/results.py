@@ -111,6 +111,26 @@ class ShaftResult:
 
 
 @dataclass(frozen=True)
+class BearingResult:
+    """One bearing's static reaction on its shaft (N; y, z radial components, axial along x) and its ISO 281
+    basic rating life (None, JSON null, when the bearing carries no load or its shaft stands still)."""
+
+    shaft: int  # 1-based
+    position_mm: float
+    radial_N: float
+    radial_y_N: float
+    radial_z_N: float
+    axial_N: float
+    equivalent_load_N: float
+    L10_Mrev: float | None
+    L10_h: float | None
+    kind: str = "ball"
+    locating: bool = False
+    dynamic_load_rating_kN: float = 0.0
+    speed_rpm: float = 0.0
+
+
+@dataclass(frozen=True)
 class DesignResult:
     title: str
     stages: tuple[StageResult, ...]
@@ -124,6 +144,7 @@ class DesignResult:
     warnings: tuple[str, ...]
     input_power_kW: float = 0.0
     output_power_kW: float = 0.0
+    bearings: tuple[BearingResult, ...] = ()  # with [[bearing]] tables only (docs/life.md)
 
 
 # ------------------------------------------------------------------------------------- simulation

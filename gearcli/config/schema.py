@@ -26,6 +26,7 @@ from pydantic import (
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
+from gearcli.config.duty import AxialPositionMm, Bearing, CenterAngleDeg, Duty
 from gearcli.config.excitation import (
     MAX_HARMONICS,
     STRICT,
@@ -155,6 +156,7 @@ class Gear(_Table):
     bore_diameter_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
     rim_thickness_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
     web_thickness_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
+    axial_position_mm: AxialPositionMm | None = None  # gear centre along x (shaft statics, docs/life.md)
 
     @model_validator(mode="after")
     def _web_needs_rim(self) -> Gear:
@@ -259,6 +261,7 @@ class Stage(_Table):
     mesh: ContactOverride | None = None
     basic_rack: BasicRack = BasicRack()
     shaft: ShaftSpring | None = None
+    center_angle_deg: CenterAngleDeg = 0.0  # line of centres pinion -> gear, from y, cw seen from the input end
     model_config = ConfigDict(json_schema_extra=_hands_rule())
 
 
@@ -292,6 +295,7 @@ class Input(_Coupled):
     torque_Nmm: TorqueNmm | None = None
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
     torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS)] = []  # drive = "torque" only
+    rotation: Literal["cw", "ccw"] = "cw"  # seen from the input end looking along +x (shaft statics)
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
     model_config = ConfigDict(json_schema_extra=_all_of(
         *_exactly_one(("speed_deg_s", "speed_rpm", "speed_rad_s")), *_at_most_one(INPUT_TORQUE_KEYS),
@@ -430,6 +434,8 @@ class DesignFile(_Table):
     load: Load
     target: Target | None = None
     simulation: Simulation = Simulation()
+    bearing: Annotated[list[Bearing], Field(max_length=200)] = []  # shaft statics and ISO 281 (docs/life.md)
+    duty: Annotated[list[Duty], Field(max_length=200)] = []  # duty cycle of `gearcli life`
 
     @model_validator(mode="after")
     def _load_power_to_torque(self) -> DesignFile:

@@ -23,6 +23,7 @@ from gearcli.design.inertia import (
     shaft_inertias_kg_m2,
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train
+from gearcli.design.shafts import bearing_results
 from gearcli.errors import DesignError
 from gearcli.results import DesignResult, GearResult, Iso6336Factors, ShaftResult, StageResult, StaticForces
 
@@ -56,6 +57,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         warnings=design_warnings(cfg, stages, speed_rpm(out)),
         input_power_kW=power_kW(kin.shaft_torque_Nmm(0), kin.shaft_speeds_rad_s[0]),
         output_power_kW=power_kW(kin.load_torque_Nmm, out),
+        bearings=bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s]),
     )
 
 

@@ -34,7 +34,10 @@ def with_meta(payload: dict, sha256: str) -> dict:
 
 
 def design_dict(result: DesignResult) -> dict:
-    return plain(result)
+    out = plain(result)
+    if not result.bearings:  # a design file without [[bearing]] tables means what it meant before them
+        out.pop("bearings", None)
+    return out
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
@@ -60,6 +63,8 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
         "energy": plain(result.energy),
         "warnings": list(result.warnings),
     }
+    if result.extra and "bearings" in result.extra:  # only scenes with [[bearing]] tables (docs/life.md)
+        out["summary"]["bearings"] = plain(result.extra["bearings"])
     if series:
         out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in result.channels.items()}}
     return out

@@ -161,6 +161,10 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     summary = [text(f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
+    if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
+        from gearcli.io.life_tables import bearing_table
+
+        return [geometry, loads, train, bearing_table(r.bearings), *summary]
     return [geometry, loads, train, *summary]
 
 
@@ -219,6 +223,11 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         lines.append(f"error estimate: check pass at rtol {cp['rtol']:g} from {cp['from_s']:.4g} s, nfev {cp['nfev']}, "
                      f"wall {cp['wall_s']:.3g} s")
     # one Text per line: text() writes a control character (a newline too) as an escape
+    if r.extra and r.extra.get("bearings"):
+        from gearcli.io.life_tables import bearing_stats_table
+
+        return [forces, bearing_stats_table(r.window_s, r.extra["bearings"]), peaks, mesh,
+                *(text(line) for line in lines)]
     return [forces, peaks, mesh, *(text(line) for line in lines)]
 
 

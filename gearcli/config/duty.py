@@ -1,0 +1,82 @@
+"""Design-file tables of loads to life (docs/life.md): ``[[bearing]]`` rolling bearings under the shafts and
+``[[duty]]`` operating points of a duty cycle. :mod:`gearcli.config.schema` puts them into the design file.
+
+The rules between tables (a bearing's shaft exists, two bearings per shaft with exactly one locating, the
+gears of a supported shaft have axial positions) need the whole train; ``gearcli.design.shafts`` checks
+them and names the key.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from gearcli.config.excitation import STRICT
+
+AxialPositionMm = Annotated[float, Field(ge=-1e5, le=1e5)]  # along x from the housing plane, mm
+CenterAngleDeg = Annotated[float, Field(ge=-360.0, le=360.0)]
+DUTY_TORQUE_KEYS = ("torque_Nm", "torque_Nmm", "power_kW")
+MAX_DUTY_POINTS = 200
+MAX_BEARINGS = 200
+
+
+class _Table(BaseModel):
+    model_config = STRICT
+
+
+class BearingFactors(_Table):
+    """ISO 281 dynamic equivalent load P = F_r when F_a/F_r <= e, else X F_r + Y F_a (catalogue values)."""
+
+    e: Annotated[float, Field(ge=0.0, le=100.0)] = 0.0
+    X: Annotated[float, Field(ge=0.0, le=10.0)] = 1.0
+    Y: Annotated[float, Field(ge=0.0, le=100.0)] = 0.0
+
+
+class Bearing(_Table):
+    """A rolling bearing under one shaft: two per supported shaft, exactly one of them locating (it takes
+    the shaft's axial force). Shaft 1 carries pinion 1, shaft k+1 gear k and pinion k+1."""
+
+    shaft: Annotated[int, Field(ge=1, le=51)]
+    position_mm: AxialPositionMm
+    dynamic_load_rating_kN: Annotated[float, Field(ge=1e-3, le=1e5)]  # C
+    kind: Literal["ball", "roller"]
+    locating: bool = False
+    factors: BearingFactors = BearingFactors()
+
+
+class Duty(_Table):
+    """One operating point of the duty cycle: its share of the life in hours, the output torque (one of
+    torque_Nm, torque_Nmm, power_kW at the output speed) and the input speed; ``set`` holds any other key
+    of the design file as ``--set`` takes it (``{"load.fluctuation" = ...}``)."""
+
+    name: Annotated[str, Field(min_length=1, max_length=60)]
+    hours: Annotated[float, Field(gt=0.0, le=1e7)]
+    speed_rpm: Annotated[float, Field(ge=1e-3, le=200_000.0)]
+    torque_Nm: Annotated[float, Field(ge=-1e7, le=1e7)] | None = None
+    torque_Nmm: Annotated[float, Field(ge=-1e10, le=1e10)] | None = None
+    power_kW: Annotated[float, Field(ge=-1e6, le=1e6)] | None = None
+    set: Annotated[dict[str, Any], Field(max_length=50)] = {}
+    model_config = ConfigDict(json_schema_extra={"allOf": [
+        {"anyOf": [{"required": [k]} for k in DUTY_TORQUE_KEYS]},
+        {"not": {"anyOf": [{"required": [a, b]} for i, a in enumerate(DUTY_TORQUE_KEYS)
+                           for b in DUTY_TORQUE_KEYS[i + 1:]]}}]})
+
+    @model_validator(mode="after")
+    def _one_torque(self) -> Duty:
+        given = [k for k in DUTY_TORQUE_KEYS if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError(f"give exactly one of {', '.join(DUTY_TORQUE_KEYS)}"
+                             + (f" (got {', '.join(given)})" if given else ""))
+        return self
+
+    def output_torque_Nm(self, total_ratio: float) -> float:
+        """The output torque of this point; power_kW at the output speed speed_rpm / total_ratio."""
+        import math
+
+        if self.torque_Nm is not None:
+            return self.torque_Nm
+        if self.torque_Nmm is not None:
+            return self.torque_Nmm / 1000.0
+        assert self.power_kW is not None  # the validator requires exactly one torque key
+        return self.power_kW * 1000.0 / (self.speed_rpm * 2 * math.pi / 60 / total_ratio)

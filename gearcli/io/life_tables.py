@@ -1,0 +1,47 @@
+"""Tables of shaft statics, bearing lives and the load-to-life calculation (docs/life.md)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from rich.console import RenderableType
+from rich.table import Table
+
+from gearcli.io.tables import StageColumns, _g, text
+from gearcli.results import BearingResult
+
+
+def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: static reactions and ISO 281 life"
+                  ) -> StageColumns:
+    """One column per bearing: its place, reaction on the shaft (y, z, radial, axial), P, C, L10, L10h."""
+    b = bearings
+    return StageColumns(title, [f"bearing {j + 1}" for j in range(len(b))], [
+        ("shaft", [str(x.shaft) for x in b]),
+        ("position x [mm]", [_g(x.position_mm) for x in b]),
+        ("kind / locating", [f"{x.kind}{' / loc.' if x.locating else ''}" for x in b]),
+        ("speed [rpm]", [_g(x.speed_rpm) for x in b]),
+        ("reaction F_y [N]", [_g(x.radial_y_N) for x in b]),
+        ("reaction F_z [N]", [_g(x.radial_z_N) for x in b]),
+        ("radial F_r [N]", [_g(x.radial_N) for x in b]),
+        ("axial F_a [N]", [_g(x.axial_N) for x in b]),
+        ("equivalent load P [N]", [_g(x.equivalent_load_N) for x in b]),
+        ("rating C [kN]", [_g(x.dynamic_load_rating_kN) for x in b]),
+        ("L10 [10^6 rev]", [_g(x.L10_Mrev, 4) for x in b]),
+        ("L10h [h]", [_g(x.L10_h, 4) for x in b]),
+    ])
+
+
+def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[dict]) -> RenderableType:
+    """Window statistics of the bearing reaction channels of a simulation."""
+    table = Table(title=text(f"bearing reactions over the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s"),
+                  title_justify="left", header_style="bold")
+    for name in ("bearing", "shaft", "x [mm]", "channel", "mean", "std", "min", "max"):
+        table.add_column(name, justify="left" if name in ("bearing", "channel") else "right", overflow="fold")
+    for j, b in enumerate(bearings):
+        for label, key in (("radial [N]", "radial_N"), ("axial [N]", "axial_N")):
+            st = b[key]
+            first = label.startswith("radial")
+            table.add_row(str(j + 1) if first else "", str(b["shaft"]) if first else "",
+                          _g(b["position_mm"]) if first else "", text(label), _g(st.mean), _g(st.std, 3),
+                          _g(st.min), _g(st.max), end_section=not first)
+    return table

@@ -1,0 +1,69 @@
+"""Bearing reactions as simulation channels (docs/life.md): the shaft statics of
+:mod:`gearcli.design.shafts` applied sample by sample to the simulated mesh forces.
+
+A reaction component is linear in the stages' transverse line-of-action forces F_bt (the tangential and
+axial tooth forces) plus a term in |F_bt| (the radial force, which separates the wheels on either flank), so
+the statics is solved once per stage for a unit F_bt and the channels are sums of those influence
+coefficients times the force series. Only scenes with ``[[bearing]]`` tables compute them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from gearcli.design.shafts import ShaftLayout, stage_layout
+from gearcli.results import DesignResult, SimulationResult
+from gearcli.simulate.stats import channel_stats, window_mask
+
+
+def influence(lay: ShaftLayout, n_stages: int) -> tuple[np.ndarray, np.ndarray]:
+    """Coefficients (bearings x 3 components y, z, axial x stages): reaction = A @ F_bt + B @ |F_bt|.
+    The statics is evaluated at F_bt = +1 and -1 per stage: A = (R(+1) - R(-1))/2, B = (R(+1) + R(-1))/2."""
+    n_bearings = 2 * len(lay.shafts)
+    a = np.zeros((n_bearings, 3, n_stages))
+    b = np.zeros((n_bearings, 3, n_stages))
+    for k in range(n_stages):
+        plus, minus = ([float(sign) if i == k else 0.0 for i in range(n_stages)] for sign in (1, -1))
+        rp = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(plus)]
+        rm = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(minus)]
+        a[:, :, k] = 0.5 * (np.array(rp) - np.array(rm))
+        b[:, :, k] = 0.5 * (np.array(rp) + np.array(rm))
+    return a, b
+
+
+def line_force_series(design: DesignResult, channels: dict[str, np.ndarray]) -> np.ndarray:
+    """F_bt per stage (stages x samples) from the reported F_t = F_bt cos(alpha_t)."""
+    return np.array([channels[f"stage{s.index}_tangential_N"] / math.cos(math.radians(s.transverse_pressure_angle_deg))
+                     for s in design.stages])
+
+
+def reaction_series(lay: ShaftLayout, design: DesignResult, channels: dict[str, np.ndarray]) -> np.ndarray:
+    """(bearings x 3 x samples): y, z and axial reaction of each bearing, in [[bearing]] order."""
+    a, b = influence(lay, len(design.stages))
+    f = line_force_series(design, channels)
+    return np.einsum("bck,ks->bcs", a, f) + np.einsum("bck,ks->bcs", b, np.abs(f))
+
+
+def with_bearings(cfg, design: DesignResult, result: SimulationResult) -> SimulationResult:
+    """The result with ``bearing{j}_radial_N`` and ``bearing{j}_axial_N`` channels (j 1-based, [[bearing]] order)
+    and their window statistics in ``extra["bearings"]``; unchanged without ``[[bearing]]`` tables."""
+    lay = stage_layout(cfg, design.stages)
+    if lay is None:
+        return result
+    r = reaction_series(lay, design, result.channels)
+    channels = dict(result.channels)
+    mask = window_mask(result.time_s, result.window_s)
+    summary = []
+    specs = sorted((s for pair in lay.shafts.values() for s in pair), key=lambda s: s.index)
+    for j, spec in enumerate(specs):
+        radial, axial = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
+        channels[f"bearing{j + 1}_radial_N"] = radial
+        channels[f"bearing{j + 1}_axial_N"] = axial
+        summary.append({"shaft": spec.shaft, "position_mm": spec.position_mm,
+                        "radial_N": channel_stats(radial, mask), "axial_N": channel_stats(axial, mask)})
+    extra = dict(result.extra or {})
+    extra["bearings"] = summary
+    return dataclasses.replace(result, channels=channels, extra=extra)
