@@ -254,6 +254,7 @@ class StageDynamics:
     contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
     back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
     regime: str = ""  # REGIME_*
+    rating: RatingResult | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
 
 
 @dataclass(frozen=True)

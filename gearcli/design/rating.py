@@ -211,9 +211,34 @@ def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") ->
             if value < minima[mode]:
                 code = PITTING_LOW if mode == "pitting" else BENDING_LOW
                 what = "pitting (flank)" if mode == "pitting" else "tooth-root bending"
-                message = (f"stage {st.index} {part}: {what} safety {symbol} = {value:.3g} is below the minimum "
+                teeth = (st.pinion if part == "pinion" else st.gear).teeth
+                message = (f"stage {st.index} {part} (z = {teeth}): {what} safety {symbol} = {value:.3g} is below the minimum "
                            f"{minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} {r.K_v_source}{source}); widen the face, "
                            "raise the module or choose a stronger material")
                 out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,
                                    S_min=minima[mode]))
     return out
+
+
+# ------------------------------------------------------------------------- the simulated K_v
+def simulated_dynamic_factor(tangential_N, static_tangential_N: float) -> float:
+    """K_v from a run: max(1, steady-window max |F_t| / |static F_t|), ``tangential_N`` the window's statistics
+    (min, max) of F_t; 1 when the static force is 0 (no load to amplify)."""
+    if static_tangential_N == 0.0:
+        return 1.0
+    peak = max(abs(tangential_N.max), abs(tangential_N.min))
+    return max(1.0, peak / abs(static_tangential_N))
+
+
+def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
+    """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
+    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise."""
+    if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
+        return tuple(stages), []
+    out, diags = [], []
+    for k, sd in enumerate(stages):
+        k_v = simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N)
+        rated = replace(design.stages[k], rating=rate_stage(cfg, k, design.stages[k], simulated_k_v=k_v))
+        diags += safety_diagnostics(cfg, rated)
+        out.append(replace(sd, rating=rated.rating))
+    return tuple(out), diags
