@@ -159,9 +159,36 @@ def solver_lines(r: Report) -> list[str]:
     ]
 
 
+def rating_section(r: Report) -> Section | None:
+    """ISO 6336-1 K_v (theory) beside the simulated one (steady-window max |F_t| / static F_t), with the
+    smallest safeties at each (the simulated ones only when ``[rating] dynamic_factor = "simulated"``)."""
+    from gearcli.design.rating import simulated_dynamic_factor
+
+    rows = []
+    for st, sd in zip(r.design.stages, r.simulation.stages, strict=False):
+        if st.rating is None:
+            continue
+        iso, sim = st.rating, sd.rating
+        rows.append((str(st.index), f"{iso.K_v:.4g} ({iso.K_v_source})",
+                     g(simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N), 4),
+                     g(min(iso.pinion.S_H, iso.gear.S_H), 3), g(min(iso.pinion.S_F, iso.gear.S_F), 3),
+                     "—" if sim is None else g(min(sim.pinion.S_H, sim.gear.S_H), 3),
+                     "—" if sim is None else g(min(sim.pinion.S_F, sim.gear.S_F), 3)))
+    if not rows:
+        return None
+    return Section("Dynamic factor: ISO 6336-1 against the simulation",
+                   ("stage", "K_v ISO", "K_v simulated", "min S_H", "min S_F", "min S_H sim.", "min S_F sim."),
+                   tuple(rows), "lrrrrrr",
+                   ("K_v simulated = max(1, steady-window max |F_t| / static F_t); the safeties at it are rated "
+                    'with [rating] dynamic_factor = "simulated"',))
+
+
 def sections(r: Report) -> list[Section]:
     out = [comparison_section(r), fluctuation_section(r), peaks_section(r), spectrum_section(r),
            mesh_orders_section(r)]
+    rating = rating_section(r)
+    if rating is not None:
+        out.insert(3, rating)
     if r.accuracy is not None:
         out.append(accuracy_section(r.accuracy))
     return out

@@ -316,7 +316,7 @@ def test_json_schema_has_the_top_level_properties():
     schema = json_schema()
     assert schema["title"] == "gearcli design file" and schema["description"]
     assert set(schema["properties"]) == {"title", "materials", "stage", "contact", "input", "load", "target", "simulation",
-                                            "bearing", "duty"}
+                                            "bearing", "duty", "lubricant", "rating"}
     assert set(schema["required"]) == {"stage", "input", "load"}
     assert schema["additionalProperties"] is False
     import json
