@@ -609,6 +609,69 @@ def _write_sweep_plots(session, rows, plots_dir: str) -> None:
     click.echo(f"wrote {', '.join(p.name for p in paths)} to {plots_dir}", err=True)
 
 
+# -------------------------------------------------------------------------------------------- life
+@cli.command(epilog="""\b
+Examples:
+  gearcli life mixer_duty.toml --static
+  gearcli life mixer_duty.toml --format json -o life.json
+  gearcli life mixer_duty.toml --series torque_history.csv --static
+  gearcli life mixer_duty.toml --plots figures/
+""")
+@click.argument("file", type=str)
+@io_options()
+@click.option("--static", "static", is_flag=True,
+              help="Rate each duty point's static forces with the rating's K_v (one load class per point) "
+                   "instead of simulating it.")
+@click.option("--series", "series", metavar="FILE.csv",
+              help="A measured history (time_s,torque_Nm,speed_rpm) instead of the [[duty]] tables.")
+@click.option("--classes", type=click.IntRange(1, 1000), default=10, show_default=True,
+              help="Torque classes of a --series history.")
+@click.option("--miner", type=click.Choice(("iso", "elementary", "modified")), default="iso", show_default=True,
+              help="The S-N curve below the knee (ISO 6336-6 Miner variants, docs/life.md).")
+@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+              help="Also write pitting.png and bending.png (spectra against the S-N curves) to DIR "
+                   "(pip install 'gearcli[plot]').")
+@guarded
+def life(file: str, overrides, fmt, output, static: bool, series, classes: int, miner: str, plots_dir) -> None:
+    """Duty cycle to life: load spectra, ISO 6336-6 Miner damage per member, ISO 281 bearing lives."""
+    from gearcli.io.life_out import life_csv, life_dict
+    from gearcli.life import prepare
+    from gearcli.life.run import compute_life
+
+    target = check_target(fmt, output)
+    if plots_dir:
+        if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
+            raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+        outfiles.check_not_clobbering([Path(plots_dir) / n for n in ("pitting.png", "bending.png")],
+                                      [file, target.path], "--plots")
+    session = prepare(file, overrides, series=series, classes=classes)
+    warn(session.design.warnings)
+    collector_on()
+    with _StderrProgress() as progress:
+        result = compute_life(session.scene, session.points, route="static" if static else "dynamic",
+                              variant=miner, progress=progress)
+    emit_as(target.fmt, target, result, sha256=session.loaded.sha256, json_doc=lambda: life_dict(result),
+            csv_text=lambda: life_csv(result), table_builder="life_tables")
+    warn(w for w in result.warnings if w not in session.design.warnings)
+    if plots_dir:
+        _write_life_plots(result, plots_dir)
+
+
+def _write_life_plots(result, plots_dir: str) -> None:
+    from gearcli.io.life_plots import write_life_plots
+    from gearcli.io.plots import PlotsUnavailable
+
+    try:
+        paths = write_life_plots(result, plots_dir)
+    except PlotsUnavailable as exc:
+        warn([f"{exc}; the life calculation itself is complete"])
+        return
+    except OSError as exc:
+        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
+    if not is_quiet():
+        click.echo(f"wrote {', '.join(p.name for p in paths)} to {visible(plots_dir)}", err=True)
+
+
 def main() -> None:
     """The console script: SIGTERM unwinds like Ctrl-C (temporary files removed), then exit 143."""
     import signal

@@ -331,3 +331,10 @@ def render(renderables: Sequence[RenderableType], *, console: Console | None = N
     for item in renderables:
         plain.print(item)
     return buf.getvalue()
+
+
+def life_tables(r):
+    """``gearcli life`` tables (gearcli.io.life_out)."""
+    from gearcli.io.life_out import life_tables as build
+
+    return build(r)

@@ -1,0 +1,13 @@
+"""Loads to life (docs/life.md): duty cycles and measured histories, tooth-load spectra, ISO 6336-6 Miner
+damage on the ISO 6336-2/-3 S–N curves, and ISO 281 bearing lives over the duty.
+
+- ``duty``      the ``[[duty]]`` points, or a torque–speed history classed into points
+- ``spectra``   static (the rating's stress) and dynamic (mesh-cycle peaks of a simulation) load classes
+- ``miner``     S–N curves from the life factors Z_NT / Y_NT, the Miner variants, the spectrum safety
+- ``channels``  bearing reactions as simulation channels
+- ``run``       ``compute_life``: the points through the sweep's point machinery to a ``LifeResult``
+"""
+
+from gearcli.life.session import prepare
+
+__all__ = ["prepare"]

@@ -1,0 +1,126 @@
+"""``gearcli life`` output: JSON (docs/life.md, "Output"), CSV (one row per load class) and tables in the
+order of an ISO 6336-6 calculation: the duty, the spectrum of each member (class, load, cycles, stress, cycles
+to failure, damage), the damage sums, lives and safeties, then the bearings over the duty."""
+
+from __future__ import annotations
+
+from rich.console import RenderableType
+from rich.table import Table
+
+from gearcli.io.serialize import csv_text, plain
+from gearcli.io.tables import StageColumns, _g, text
+from gearcli.life.result import LifeResult, ModeLife
+
+MEMBERS = ("pinion", "gear")
+MODES = ("pitting", "bending")
+
+
+def life_dict(r: LifeResult) -> dict:
+    stages = [{"index": st.index, **{m: {mode: _mode_dict(getattr(getattr(st, m), mode)) for mode in MODES}
+                                      for m in MEMBERS}} for st in r.stages]
+    return {
+        "life": {"route": r.route, "miner": r.miner, "standard": r.standard, "hours": r.hours,
+                 "stages": stages, "bearings": plain(r.bearings), "points": plain(r.points)},
+        "warnings": list(r.warnings),
+    }
+
+
+def _mode_dict(ml: ModeLife) -> dict:
+    return {"damage": ml.damage, "life_h": ml.life_h, "safety": ml.safety, "curve": ml.curve,
+            "static_cycles": ml.static_cycles, "knee_cycles": ml.knee_cycles,
+            "bins": [{"force_N": b.force_N, "stress_MPa": b.stress_MPa, "cycles": b.cycles,
+                      "cycles_to_failure": b.cycles_to_failure, "damage": b.damage, "point": b.point,
+                      "endurance_MPa": b.endurance_MPa} for b in ml.bins]}
+
+
+def life_csv(r: LifeResult) -> str:
+    header = ["stage", "member", "mode", "point", "force_N", "stress_MPa", "cycles", "cycles_to_failure", "damage",
+              "damage_sum", "life_h", "safety"]
+    rows = []
+    for st in r.stages:
+        for m in MEMBERS:
+            for mode in MODES:
+                ml: ModeLife = getattr(getattr(st, m), mode)
+                for b in ml.bins:
+                    rows.append([st.index, m, mode, b.point, b.force_N, b.stress_MPa, b.cycles,
+                                 "" if b.cycles_to_failure is None else b.cycles_to_failure, b.damage, ml.damage,
+                                 "" if ml.life_h is None else ml.life_h, "" if ml.safety is None else ml.safety])
+    return csv_text(header, rows)
+
+
+def _duty_table(r: LifeResult) -> Table:
+    n = len(r.points[0].K_v) if r.points else 0
+    table = Table(title=text(f"duty ({r.route} route): {r.hours:.6g} h in {len(r.points)} point(s)"),
+                  title_justify="left", header_style="bold")
+    cols = ["point", "hours", "output torque [N·m]", "input speed [rpm]",
+            *(f"K_v stage {k + 1}" if r.route == "static" else f"max/static F_t st. {k + 1}" for k in range(n))]
+    for c in cols:
+        table.add_column(text(c), justify="left" if c == "point" else "right", overflow="fold")
+    for p in r.points:
+        table.add_row(text(p.name), _g(p.hours), _g(p.torque_Nm), _g(p.speed_rpm), *(_g(k, 4) for k in p.K_v))
+    return table
+
+
+def _spectrum_table(r: LifeResult, stage, member: str) -> Table:
+    """ISO 6336-6 style: one row per load class with its cycles, stresses, cycles to failure and damage."""
+    pit, ben = getattr(stage, member).pitting, getattr(stage, member).bending
+    table = Table(title=text(f"stage {stage.index} {member}: load spectrum and Miner damage"), title_justify="left",
+                  header_style="bold")
+    for c in ("point", "F_t [N]", "cycles n_i", "σ_H [MPa]", "N_i pitting", "n_i/N_i", "σ_F [MPa]", "N_i bending",
+              "n_i/N_i "):
+        table.add_column(text(c), justify="left" if c == "point" else "right", overflow="fold")
+    for bp, bb in zip(pit.bins, ben.bins, strict=True):
+        table.add_row(text(bp.point), _g(bp.force_N), _g(bp.cycles, 4), _g(bp.stress_MPa, 4),
+                      _g(bp.cycles_to_failure, 4), _g(bp.damage, 3), _g(bb.stress_MPa, 4),
+                      _g(bb.cycles_to_failure, 4), _g(bb.damage, 3))
+    table.add_row(text("sum"), "", _g(sum(b.cycles for b in pit.bins), 4), "", "", _g(pit.damage, 4), "", "",
+                  _g(ben.damage, 4), end_section=True)
+    return table
+
+
+def _summary(r: LifeResult) -> StageColumns:
+    cols: list[str] = []
+    rows: dict[str, list[str]] = {k: [] for k in ("D pitting", "life pitting [h]", "safety pitting (load)", "D bending",
+                                      "life bending [h]", "safety bending (load)")}
+    for st in r.stages:
+        for m in MEMBERS:
+            cols.append(f"stage {st.index} {m}")
+            for mode in MODES:
+                ml: ModeLife = getattr(getattr(st, m), mode)
+                rows[f"D {mode}"].append(_g(ml.damage, 4))
+                rows[f"life {mode} [h]"].append(_g(ml.life_h, 4))
+                rows[f"safety {mode} (load)"].append(_g(ml.safety, 4))
+    return StageColumns("Miner damage over the duty, life and spectrum safety", cols, list(rows.items()))
+
+
+def _bearings(r: LifeResult) -> StageColumns:
+    b = r.bearings
+    return StageColumns("bearings over the duty, ISO 281", [f"bearing {j + 1}" for j in range(len(b))], [
+        ("shaft", [str(x.shaft) for x in b]),
+        ("position x [mm]", [_g(x.position_mm) for x in b]),
+        ("kind", [x.kind for x in b]),
+        *[(f"P at {p.name} [N]", [_g(x.loads_N[i]) for x in b]) for i, p in enumerate(r.points)],
+        ("equivalent load P [N]", [_g(x.equivalent_load_N) for x in b]),
+        ("rating C [kN]", [_g(x.dynamic_load_rating_kN) for x in b]),
+        ("revolutions over the duty", [_g(x.revolutions, 4) for x in b]),
+        ("L10 [10^6 rev]", [_g(x.L10_Mrev, 4) for x in b]),
+        ("L10h [h]", [_g(x.L10_h, 4) for x in b]),
+    ])
+
+
+def life_tables(r: LifeResult) -> list[RenderableType]:
+    out: list[RenderableType] = [_duty_table(r)]
+    out += [_spectrum_table(r, st, m) for st in r.stages for m in MEMBERS]
+    out.append(_summary(r))
+    if r.bearings:
+        out.append(_bearings(r))
+    out.append(text(f"S–N curves: {r.miner}; stresses: {r.standard}, K_A = 1 (the spectrum is the load)"
+                    + ("" if r.route == "static" else ", K_v = 1 (the simulated mesh-cycle peaks replace it)")))
+    for p in r.points:
+        if p.solver:
+            s = p.solver
+            out.append(text(f"point {p.name}: {s['method']} ({s['engine']}) rtol {s['rtol']:g}, nfev {s['nfev']}, "
+                            f"wall {s['wall_s']:.3g} s, window {s['window_s'][0]:.4g}–{s['window_s'][1]:.4g} s, "
+                            f"mesh cycles {', '.join(str(c) for c in p.mesh_cycles)}, statistics "
+                            f"{'resolved' if s['statistics_resolved'] else 'NOT resolved'}"))
+    return out

@@ -1,0 +1,116 @@
+"""Duty cycles: the ``[[duty]]`` operating points of a design file, or a measured torque–speed history
+(``--series FILE.csv`` with ``time_s,torque_Nm,speed_rpm``) classed into points (docs/life.md, "Duty").
+
+A point becomes a design file through ``--set`` overrides of the base file (as a sweep point does): its
+input speed, its output torque, K_A = 1 (the spectrum is the load, ISO 6336-6) and the point's own ``set``.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from gearcli.errors import ConfigError
+
+MAX_SERIES_ROWS = 2_000_000
+DEFAULT_CLASSES = 10
+
+
+@dataclass(frozen=True)
+class DutyPoint:
+    """One operating point: hours at an output torque and input speed, and the other keys it sets."""
+
+    name: str
+    hours: float
+    torque_Nm: float  # output torque
+    speed_rpm: float  # input speed
+    sets: tuple[str, ...] = ()  # further --set texts (the [[duty]] table's ``set``)
+    key: str = ""  # where it came from, for messages: "duty[1]" or the series file
+
+    def overrides(self) -> tuple[str, ...]:
+        """The ``--set`` texts that turn the base design file into this point."""
+        return (f"input.speed_rpm={self.speed_rpm!r}", f"load.torque_Nm={self.torque_Nm!r}",
+                "load.application_factor=1.0", *self.sets)
+
+
+def toml_value(value: Any) -> str:
+    """A Python value of a TOML document written back as an inline TOML value (for ``--set``)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f'"{k}" = {toml_value(v)}' for k, v in value.items()) + "}"
+    raise ConfigError(f"cannot use a {type(value).__name__} value in a duty point's set table")
+
+
+def points_from_config(cfg) -> list[DutyPoint]:
+    """The ``[[duty]]`` tables as points (power_kW at the output speed of the point's input speed)."""
+    ratio = math.prod(s.gear.teeth / s.pinion.teeth for s in cfg.stage)
+    return [DutyPoint(d.name, d.hours, d.output_torque_Nm(ratio), d.speed_rpm,
+                      tuple(f"{k}={toml_value(v)}" for k, v in d.set.items()), f"duty[{i}]")
+            for i, d in enumerate(cfg.duty)]
+
+
+def read_series(text: str, source: str) -> tuple[list[float], list[float], list[float]]:
+    """time_s, torque_Nm, speed_rpm columns of a CSV text (ConfigError naming the file and row on bad data)."""
+    reader = csv.reader(io.StringIO(text))
+    header = [h.strip() for h in next(reader, [])]
+    need = ("time_s", "torque_Nm", "speed_rpm")
+    missing = [c for c in need if c not in header]
+    if missing:
+        raise ConfigError(f"needs the columns {', '.join(need)} (missing {', '.join(missing)})", source=source)
+    idx = [header.index(c) for c in need]
+    cols: tuple[list[float], list[float], list[float]] = ([], [], [])
+    for row_no, row in enumerate(reader, start=2):
+        if not row or all(not c.strip() for c in row):
+            continue
+        if row_no > MAX_SERIES_ROWS:
+            raise ConfigError(f"more than {MAX_SERIES_ROWS} rows", source=source)
+        try:
+            values = [float(row[i]) for i in idx]
+        except (ValueError, IndexError):
+            raise ConfigError(f"row {row_no}: expected three numbers, got {row!r}", source=source) from None
+        if not all(math.isfinite(v) for v in values):
+            raise ConfigError(f"row {row_no}: not a finite number", source=source)
+        for col, v in zip(cols, values, strict=True):
+            col.append(v)
+    t = cols[0]
+    if len(t) < 2:
+        raise ConfigError("needs at least two rows (each level holds from its time to the next row's)", source=source)
+    if any(b <= a for a, b in zip(t, t[1:], strict=False)):
+        raise ConfigError("time_s must increase from row to row", source=source)
+    return cols
+
+
+def points_from_series(time_s: Sequence[float], torque_Nm: Sequence[float], speed_rpm: Sequence[float],
+                       source: str, classes: int = DEFAULT_CLASSES) -> list[DutyPoint]:
+    """Time at level -> points: each row's torque and speed hold until the next row; the levels are put into
+    ``classes`` torque classes of equal width. A class's point carries the largest torque of the class (the
+    spectrum is not made milder by classing), its total time, and the speed that keeps its revolutions
+    (time-weighted mean), so each revolution at a level is a load cycle for the teeth."""
+    dt = [b - a for a, b in zip(time_s, time_s[1:], strict=False)]
+    levels = [(torque_Nm[i], speed_rpm[i], dt[i]) for i in range(len(dt)) if speed_rpm[i] > 0.0]
+    if not levels:
+        raise ConfigError("no row with a positive speed: nothing turns, nothing wears", source=source)
+    lo, hi = min(q for q, _, _ in levels), max(q for q, _, _ in levels)
+    width = (hi - lo) / classes if hi > lo else 1.0
+    groups: dict[int, list[tuple[float, float, float]]] = {}
+    for q, n, d in levels:
+        groups.setdefault(min(classes - 1, int((q - lo) / width)), []).append((q, n, d))
+    points = []
+    for c in sorted(groups):
+        g = groups[c]
+        seconds = sum(d for _, _, d in g)
+        speed = sum(n * d for _, n, d in g) / seconds
+        torque = max(g, key=lambda x: abs(x[0]))[0]
+        points.append(DutyPoint(f"class {c + 1}", seconds / 3600.0, torque, speed, (), source))
+    return points

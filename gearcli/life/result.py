@@ -1,0 +1,86 @@
+"""Result objects of ``gearcli life`` (JSON: docs/life.md, "Output")."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Bin:
+    """One load class of a member's spectrum: the tooth force it stands for, the stress it causes, the load
+    cycles at it and the cycles the S–N curve allows (None: unbounded, below a flat endurance limit)."""
+
+    point: str  # the duty point it belongs to
+    force_N: float  # tangential force at the reference circle (as the rating takes it)
+    stress_MPa: float
+    cycles: float
+    cycles_to_failure: float | None
+    damage: float
+    endurance_MPa: float  # the S–N curve's stress at its knee for this point (factor 1)
+
+
+@dataclass(frozen=True)
+class ModeLife:
+    """Miner damage of one member and failure mode over the duty."""
+
+    damage: float
+    life_h: float | None  # duty hours / damage (None: no damage)
+    safety: float | None  # load multiplier that makes D = 1 (None: none in 1e-3 .. 1e3)
+    bins: tuple[Bin, ...]
+    curve: str  # "Z_NT ISO 6336-2:2006 case_carburized" ...
+    static_cycles: float  # the S–N curve's static node (a bin above it is beyond the static strength)
+    knee_cycles: float
+    sn: object = None  # the SNCurve of the duty's first point (for plots; not in JSON)
+
+
+@dataclass(frozen=True)
+class MemberLife:
+    pitting: ModeLife
+    bending: ModeLife
+
+
+@dataclass(frozen=True)
+class StageLife:
+    index: int  # 1-based
+    pinion: MemberLife
+    gear: MemberLife
+
+
+@dataclass(frozen=True)
+class BearingLife:
+    """ISO 281 over the duty: the spectrum's equivalent load and the basic rating life it gives."""
+
+    shaft: int
+    position_mm: float
+    kind: str
+    dynamic_load_rating_kN: float
+    equivalent_load_N: float
+    revolutions: float  # over the duty's hours
+    L10_Mrev: float | None
+    L10_h: float | None
+    loads_N: tuple[float, ...]  # the equivalent load P of each duty point
+
+
+@dataclass(frozen=True)
+class PointRun:
+    """What one duty point was, and for the dynamic route how its simulation ran."""
+
+    name: str
+    hours: float
+    torque_Nm: float
+    speed_rpm: float
+    K_v: tuple[float, ...]  # per stage: the rating's (static route) or the simulated max/static (dynamic)
+    mesh_cycles: tuple[int, ...] = ()  # whole mesh cycles counted per stage (dynamic)
+    solver: dict | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
+
+
+@dataclass(frozen=True)
+class LifeResult:
+    route: str  # "static" | "dynamic"
+    miner: str  # the variant's name
+    standard: str  # the rating's edition
+    hours: float  # sum over the duty
+    points: tuple[PointRun, ...]
+    stages: tuple[StageLife, ...]
+    bearings: tuple[BearingLife, ...]
+    warnings: tuple[str, ...] = field(default_factory=tuple)

@@ -1,0 +1,225 @@
+"""``gearcli life``: duty points -> load spectra -> Miner damage, life and spectrum safety per member and
+failure mode (ISO 6336-6), and ISO 281 bearing lives over the duty (docs/life.md).
+
+Every duty point is a variant of the base design file made by ``--set`` overrides, loaded and validated
+by the sweep's point machinery (:func:`gearcli.sweep.worker.load_point`); the dynamic route simulates the
+points inside one ``engine.batch`` so that ``engine = "auto"`` takes the compiled engine for them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from gearcli.errors import ConfigError, DesignError, GearcliError
+from gearcli.life import spectra
+from gearcli.life.duty import DutyPoint
+from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
+from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
+
+MODES = ("pitting", "bending")
+MEMBERS = ("pinion", "gear")
+
+
+@dataclass(frozen=True)
+class _PointData:
+    """What the damage sums need of one evaluated point."""
+
+    point: DutyPoint
+    design: Any  # DesignResult with ratings (K_A = 1)
+    cfg: Any  # its DesignFile
+    loads: list  # StageLoads per stage
+    bearing_loads_N: tuple[float, ...]  # ISO 281 equivalent load of each bearing at this point
+    run: PointRun
+
+
+def _point_design(scene, point: DutyPoint, extra: tuple[str, ...] = ()):
+    """The validated DesignFile and design of a point; errors name the duty point."""
+    from gearcli.design import compute_design
+    from gearcli.sweep.worker import load_point
+
+    try:
+        cfg = load_point(scene, (*point.overrides(), *extra))
+        design = compute_design(cfg)
+    except ConfigError as exc:
+        raise ConfigError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
+    except DesignError as exc:
+        raise DesignError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
+    if cfg.rating is None:
+        raise ConfigError("gearcli life rates every member by ISO 6336-2/-3: add a [rating] table (with the "
+                          "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])",
+                          source=scene.source, key="rating")
+    return cfg, design
+
+
+def _static_point(scene, point: DutyPoint) -> _PointData:
+    cfg, design = _point_design(scene, point)
+    loads = [spectra.static_loads(st.static_force_N.tangential) for st in design.stages]
+    k_v = tuple(st.rating.K_v for st in design.stages)
+    return _PointData(point, design, cfg, loads, tuple(b.equivalent_load_N for b in design.bearings),
+                      PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
+
+
+def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]]:
+    from gearcli.simulate import run_simulation
+
+    cfg, design = _point_design(scene, point, ("rating.dynamic_factor=1.0",))  # the spectrum replaces K_v
+    steps = spectra.steps_for(cfg, design)
+    if steps != cfg.simulation.steps:
+        cfg, design = _point_design(scene, point, ("rating.dynamic_factor=1.0", f"simulation.steps={steps}"))
+    result = run_simulation(cfg, design, want_series=True)
+    loads = spectra.dynamic_loads(result, design)
+    bearing_loads = _dynamic_bearing_loads(cfg, design, result)
+    sv = result.solver
+    unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
+    solver = {"method": sv.method, "engine": sv.engine, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
+              "wall_s": sv.wall_s, "output_samples": steps + 1, "window_s": list(result.window_s),
+              "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
+              "energy_residual": sv.energy_residual}
+    k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)
+    run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
+                   tuple(ld.mesh_cycles for ld in loads), solver)
+    return _PointData(point, design, cfg, loads, bearing_loads, run), result.warnings
+
+
+def _dynamic_bearing_loads(cfg, design, result) -> tuple[float, ...]:
+    """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
+    window (at a steady speed, revolutions are proportional to time)."""
+    import numpy as np
+
+    from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
+    from gearcli.life.channels import reaction_series
+
+    lay = stage_layout(cfg, design.stages)
+    if lay is None:
+        return ()
+    t = result.time_s
+    mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
+    r = reaction_series(lay, design, {k: v[mask] for k, v in result.channels.items()})
+    specs = sorted((s for pair in lay.shafts.values() for s in pair), key=lambda s: s.index)
+    out = []
+    for j, spec in enumerate(specs):
+        fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
+        p = np.array([equivalent_load_N(a, b, spec.e, spec.X, spec.Y) for a, b in zip(fr, fa, strict=True)])
+        e = life_exponent(spec.kind)
+        out.append(float(np.mean(p**e) ** (1.0 / e)))
+    return tuple(out)
+
+
+# ------------------------------------------------------------------------------------- damage
+def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
+    from gearcli.design import rating_factors as rf
+
+    stage = cfg.stage[k]
+    treatment = str(cfg.materials[getattr(stage, member).material].treatment)
+    m = getattr(design.stages[k].rating, member)
+    optimum = cfg.rating.material_quality == "optimum"
+    if mode == "pitting":
+        return SNCurve(rf._znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
+    return SNCurve(rf._ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)
+
+
+def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
+    """The rating's stress of the point, scaled from its static force to ``force_N``."""
+    m = getattr(design.stages[k].rating, member)
+    ratio = force_N / abs(static_N) if static_N else 0.0
+    return m.sigma_H_MPa * math.sqrt(ratio) if mode == "pitting" else m.sigma_F_MPa * ratio
+
+
+def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
+               hours: float) -> ModeLife:
+    raw = []  # (point, force, stress, cycles, curve)
+    for pd in points:
+        st = pd.design.stages[k]
+        speed = abs(getattr(st, member).speed_rpm)
+        total = pd.point.hours * 60.0 * speed
+        curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
+        ld = pd.loads[k]
+        for force, share in zip(ld.forces_N, ld.shares, strict=True):
+            raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
+                        total * share, curve))
+    exponent = 0.5 if mode == "pitting" else 1.0
+
+    def damage_at(scale: float) -> float:
+        return sum(n / c.cycles_to_failure(s * scale**exponent) for _, _, s, n, c in raw)
+
+    bins = []
+    for name, force, stress, n, c in raw:
+        nf = c.cycles_to_failure(stress)
+        bins.append(Bin(name, force, stress, n, None if math.isinf(nf) else nf, 0.0 if math.isinf(nf) else n / nf,
+                        c.endurance_MPa))
+    d = sum(b.damage for b in bins)
+    first = raw[0][4]
+    return ModeLife(d, hours / d if d > 0 else None, spectrum_safety(damage_at), tuple(bins),
+                    f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
+                    first.static_cycles, first.knee[0], first)
+
+
+def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
+    from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivalent_load_N
+
+    base = points[0].design.bearings
+    out = []
+    for j, b in enumerate(base):
+        revs = [pd.point.hours * 60.0 * abs(pd.design.bearings[j].speed_rpm) for pd in points]
+        loads = [pd.bearing_loads_N[j] for pd in points]
+        p_eq = spectrum_equivalent_load_N(loads, revs, b.kind)
+        l10 = basic_life_Mrev(b.dynamic_load_rating_kN * 1e3, p_eq, b.kind)
+        hours = sum(pd.point.hours for pd in points)
+        mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
+        out.append(BearingLife(b.shaft, b.position_mm, b.kind, b.dynamic_load_rating_kN, p_eq, sum(revs), l10,
+                               life_hours(l10, mean_rpm), tuple(loads)))
+    return tuple(out)
+
+
+def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", variant: str = "iso",
+                 progress: Callable[[str, int, int], None] = lambda label, done, total: None) -> LifeResult:
+    """The life of every member and bearing over the duty ``points`` of the design file ``scene``."""
+    if not points:
+        raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
+                          "--series FILE.csv", source=scene.source, key="duty")
+    evaluated: list[_PointData] = []
+    warnings: list[str] = []
+    if route == "static":
+        for i, p in enumerate(points):
+            progress(p.name, i, len(points))
+            evaluated.append(_static_point(scene, p))
+    else:
+        from gearcli import engine
+
+        with engine.batch(len(points)):
+            for i, p in enumerate(points):
+                progress(p.name, i, len(points))
+                try:
+                    pd, run_warnings = _dynamic_point(scene, p)
+                except GearcliError as exc:
+                    if isinstance(exc, (ConfigError, DesignError)):
+                        raise
+                    raise type(exc)(f"duty point {p.name}: {exc}") from None
+                evaluated.append(pd)
+                warnings += [f"duty point {p.name}: {w}" for w in run_warnings]
+    hours = sum(p.hours for p in points)
+    first = evaluated[0].design
+    stages = tuple(
+        StageLife(k + 1, *(MemberLife(*(_mode_life(evaluated, k, member, mode, variant, hours) for mode in MODES))
+                           for member in MEMBERS))
+        for k in range(len(first.stages)))
+    warnings += _static_warnings(stages)
+    return LifeResult(route, VARIANT_NAMES[variant], first.stages[0].rating.standard, hours,
+                      tuple(pd.run for pd in evaluated), stages, _bearing_lives(evaluated), tuple(warnings))
+
+
+def _static_warnings(stages: Sequence[StageLife]) -> list[str]:
+    out = []
+    for st in stages:
+        for member in MEMBERS:
+            for mode in MODES:
+                ml: ModeLife = getattr(getattr(st, member), mode)
+                over = [b for b in ml.bins if b.cycles_to_failure is not None and b.cycles_to_failure < ml.static_cycles]
+                if over:
+                    out.append(f"stage {st.index} {member} {mode}: {len(over)} load class(es) beyond the static "
+                               f"strength (fewer than {ml.static_cycles:.3g} cycles to failure), e.g. at point "
+                               f"{over[0].point}: the finite-life slope is extrapolated there")
+    return out

@@ -1,0 +1,98 @@
+"""Load spectra per duty point (docs/life.md, "Spectra").
+
+Static route: the point's design with its ISO 6336 rating (K_A = 1, the rating's K_v): one bin per point,
+its force the static tangential force, its stress the rating's.
+Dynamic route: the point simulated (the sweep's point machinery, the compiled engine where it pays off) with
+K_v = 1 in the rating; every mesh cycle of the steady window is one tooth engagement, counted at the largest
+|F_t| it meets; the cycles are put into classes, and a class's stress is the rating's at K_v = 1 scaled to
+its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearcli.errors import SimulationError
+
+MESH_CLASSES = 20  # load classes of the dynamic spectrum per stage and point
+SAMPLES_PER_MESH_CYCLE = 16  # output samples per mesh cycle of the fastest mesh (the peaks need them)
+MAX_STEPS = 400_000
+
+
+@dataclass(frozen=True)
+class StageLoads:
+    """A stage's tooth-force classes at one point: forces (N, reference circle) and their share of the
+    engagements (sums to 1); ``static_N`` the point's static F_t."""
+
+    forces_N: tuple[float, ...]
+    shares: tuple[float, ...]
+    static_N: float
+    mesh_cycles: int
+
+
+def static_loads(static_N: float) -> StageLoads:
+    return StageLoads((abs(static_N),), (1.0,), static_N, 0)
+
+
+def pinion_angle_rad(t: np.ndarray, channels: dict[str, np.ndarray], shaft: int) -> np.ndarray:
+    """The angle of shaft ``shaft`` (1-based) from its speed channel (trapezoid), whatever its unit."""
+    for name, series in channels.items():
+        if name.startswith(f"shaft{shaft}_speed_"):
+            unit = name.removeprefix(f"shaft{shaft}_speed_")
+            scale = {"deg_s": math.pi / 180.0, "rpm": math.pi / 30.0, "rad_s": 1.0}.get(unit)
+            if scale is not None:
+                w = np.abs(series) * scale
+                return np.concatenate(([0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))))
+    raise SimulationError(f"no speed channel of shaft {shaft} to count the mesh cycles")
+
+
+def mesh_cycle_peaks(t: np.ndarray, ft: np.ndarray, angle_rad: np.ndarray, teeth: int) -> np.ndarray:
+    """max |F_t| over each whole mesh cycle (pinion phase z theta / 2 pi between integers) of the samples."""
+    phase = teeth * (angle_rad - angle_rad[0]) / (2.0 * math.pi)
+    cycle = np.floor(phase).astype(np.int64)
+    starts = np.flatnonzero(np.diff(cycle)) + 1  # first sample of each new cycle
+    if len(starts) < 2:
+        return np.empty(0)
+    return np.maximum.reduceat(np.abs(ft)[: starts[-1]], starts[:-1])  # cycle i: samples starts[i] .. starts[i+1]-1
+
+
+def classes(peaks: np.ndarray, static_N: float, n: int = MESH_CLASSES) -> StageLoads:
+    """Equal-width classes of the per-cycle peaks; each class stands at its largest peak (conservative by at
+    most one class width), its share the fraction of cycles in it."""
+    lo, hi = float(peaks.min()), float(peaks.max())
+    if hi - lo <= 1e-12 * max(hi, 1.0):
+        return StageLoads((hi,), (1.0,), static_N, len(peaks))
+    idx = np.minimum(((peaks - lo) / (hi - lo) * n).astype(np.int64), n - 1)
+    forces, shares = [], []
+    for c in range(n):
+        members = peaks[idx == c]
+        if len(members):
+            forces.append(float(members.max()))
+            shares.append(len(members) / len(peaks))
+    return StageLoads(tuple(forces), tuple(shares), static_N, len(peaks))
+
+
+def dynamic_loads(result, design) -> list[StageLoads]:
+    """Per stage, the classes of the mesh-cycle peaks of |F_t| over the run's steady window."""
+    t = result.time_s
+    mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
+    out = []
+    for k, st in enumerate(design.stages):
+        angle = pinion_angle_rad(t[mask], {n: c[mask] for n, c in result.channels.items()}, k + 1)
+        peaks = mesh_cycle_peaks(t[mask], result.channels[f"stage{k + 1}_tangential_N"][mask], angle,
+                                 st.pinion.teeth)
+        if len(peaks) == 0:
+            raise SimulationError(f"stage {k + 1}: the steady window holds no whole mesh cycle; lengthen "
+                                  "simulation.duration_s (--set simulation.duration_s=...)")
+        out.append(classes(peaks, st.static_force_N.tangential))
+    return out
+
+
+def steps_for(cfg, design) -> int:
+    """Output samples so that the fastest mesh gets SAMPLES_PER_MESH_CYCLE per cycle (at least the file's)."""
+    f_max = max(abs(st.mesh_frequency_Hz) for st in design.stages)
+    need = math.ceil(SAMPLES_PER_MESH_CYCLE * f_max * cfg.simulation.duration_s)
+    return int(min(MAX_STEPS, max(cfg.simulation.steps, need)))
