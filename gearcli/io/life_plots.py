@@ -31,12 +31,13 @@ def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
                 ml = getattr(getattr(st, member), mode)
                 curve: SNCurve = ml.sn
                 n = np.logspace(3, 12, 200)
-                ax.loglog(n, [curve.stress_at(x) for x in n], color=COLORS[member], lw=1.2,
+                ax.loglog(n, [curve.stress_at(x) for x in n], color=COLORS[member],
+                          lw=3.0 if member == "pinion" else 1.2, alpha=0.5 if member == "pinion" else 1.0,
                           label=f"{member} S–N")
                 bins = sorted(ml.bins, key=lambda b: -b.stress_MPa)
-                cum = np.cumsum([b.cycles for b in bins])
-                ax.step(cum, [b.stress_MPa for b in bins], where="pre", color=COLORS[member], ls="--", lw=1.2,
-                        label=f"{member} spectrum (D = {ml.damage:.3g})")
+                cum = np.cumsum([b.cycles for b in bins])  # cycles at or above each class's stress
+                ax.step([n[0], *cum], [bins[0].stress_MPa, *(b.stress_MPa for b in bins)], where="pre",
+                        color=COLORS[member], ls="--", lw=1.2, label=f"{member} spectrum (D = {ml.damage:.3g})")
             ax.set_title(f"stage {st.index}: {mode}", fontsize=9)
             ax.set_ylabel("σ_H [MPa]" if mode == "pitting" else "σ_F [MPa]")
             ax.grid(True, which="both", alpha=0.3)

@@ -44,6 +44,9 @@ def _point_design(scene, point: DutyPoint, extra: tuple[str, ...] = ()):
         cfg = load_point(scene, (*point.overrides(), *extra))
         design = compute_design(cfg)
     except ConfigError as exc:
+        own = [t.partition("=")[0].strip() for t in point.sets]
+        if exc.key in own:  # a key of the point's own set table
+            raise ConfigError(exc.message, source=scene.source, key=f"{point.key}.set.{exc.key}") from None
         raise ConfigError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
     except DesignError as exc:
         raise DesignError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
@@ -66,16 +69,18 @@ def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]
     from gearcli.simulate import run_simulation
 
     cfg, design = _point_design(scene, point, ("rating.dynamic_factor=1.0",))  # the spectrum replaces K_v
-    steps = spectra.steps_for(cfg, design)
-    if steps != cfg.simulation.steps:
-        cfg, design = _point_design(scene, point, ("rating.dynamic_factor=1.0", f"simulation.steps={steps}"))
+    duration = spectra.duration_for(cfg, design)
+    steps = spectra.steps_for(design, duration, cfg.simulation.steps)
+    if steps != cfg.simulation.steps or duration != cfg.simulation.duration_s:
+        cfg, design = _point_design(scene, point, ("rating.dynamic_factor=1.0", f"simulation.steps={steps}",
+                                                   f"simulation.duration_s={duration!r}"))
     result = run_simulation(cfg, design, want_series=True)
     loads = spectra.dynamic_loads(result, design)
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     sv = result.solver
     unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
-    solver = {"method": sv.method, "engine": sv.engine, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
-              "wall_s": sv.wall_s, "output_samples": steps + 1, "window_s": list(result.window_s),
+    solver = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
+              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": duration, "output_samples": steps + 1, "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "energy_residual": sv.energy_residual}
     k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)

@@ -20,6 +20,9 @@ from gearcli.errors import SimulationError
 MESH_CLASSES = 20  # load classes of the dynamic spectrum per stage and point
 SAMPLES_PER_MESH_CYCLE = 16  # output samples per mesh cycle of the fastest mesh (the peaks need them)
 MAX_STEPS = 400_000
+MIN_WINDOW_MESH_CYCLES = 40  # whole mesh cycles of the slowest mesh in the steady window
+SETTLE_FRACTION = 0.2  # gearcli.simulate.stats: the window starts 20 % of the time after the ramps
+MAX_DURATION_S = 600.0
 
 
 @dataclass(frozen=True)
@@ -91,8 +94,21 @@ def dynamic_loads(result, design) -> list[StageLoads]:
     return out
 
 
-def steps_for(cfg, design) -> int:
-    """Output samples so that the fastest mesh gets SAMPLES_PER_MESH_CYCLE per cycle (at least the file's)."""
+def duration_for(cfg, design) -> float:
+    """A run long enough that its steady window holds MIN_WINDOW_MESH_CYCLES of the slowest mesh (at least
+    the file's duration): the window is [ramps + 20 % of the rest, end], or [window_start_s, end]."""
+    f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)
+    window = MIN_WINDOW_MESH_CYCLES / f_min
+    sim = cfg.simulation
+    if sim.window_start_s is not None:
+        need = sim.window_start_s + window
+    else:
+        need = max(cfg.input.ramp_s, cfg.load.ramp_s) + window / (1.0 - SETTLE_FRACTION)
+    return float(min(MAX_DURATION_S, max(sim.duration_s, need)))
+
+
+def steps_for(design, duration_s: float, steps: int) -> int:
+    """Output samples so that the fastest mesh gets SAMPLES_PER_MESH_CYCLE per cycle (at least ``steps``)."""
     f_max = max(abs(st.mesh_frequency_Hz) for st in design.stages)
-    need = math.ceil(SAMPLES_PER_MESH_CYCLE * f_max * cfg.simulation.duration_s)
-    return int(min(MAX_STEPS, max(cfg.simulation.steps, need)))
+    need = math.ceil(SAMPLES_PER_MESH_CYCLE * f_max * duration_s)
+    return int(min(MAX_STEPS, max(steps, need)))
