@@ -70,7 +70,7 @@ def _spectrum_table(r: LifeResult, stage, member: str) -> Table:
               "n_i/N_i "):
         table.add_column(text(c), justify="left" if c == "point" else "right", overflow="fold")
     for bp, bb in zip(pit.bins, ben.bins, strict=True):
-        table.add_row(text(bp.point), _g(bp.force_N), _g(bp.cycles, 4), _g(bp.stress_MPa, 4),
+        table.add_row(text(bp.point), _g(bp.force_N, 4), _g(bp.cycles, 4), _g(bp.stress_MPa, 4),
                       _g(bp.cycles_to_failure, 4), _g(bp.damage, 3), _g(bb.stress_MPa, 4),
                       _g(bb.cycles_to_failure, 4), _g(bb.damage, 3))
     table.add_row(text("sum"), "", _g(sum(b.cycles for b in pit.bins), 4), "", "", _g(pit.damage, 4), "", "",
