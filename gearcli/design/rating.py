@@ -127,7 +127,7 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
         k_hb = rf.face_load_factor_estimate(st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb,
                                             b / g1.pitch_diameter_mm, treatments[small])
         k_hb_source = "estimated"
-    depth = max(0.5 * (g.tip_diameter_mm - g.root_diameter_mm) for g in members)
+    depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n  # h of b/h: the rack's depth
     k_fb = rf.face_load_factor_root(k_hb, b, depth)
     z_eps = rf.contact_ratio_factor(eps_a, eps_b)
     k_ha, k_fa = rf.transverse_load_factors(eps_a, eps_g, z_eps, st.iso6336_mesh_stiffness_N_mm_um,
