@@ -41,7 +41,7 @@ def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
             ax.set_title(f"stage {st.index}: {mode}", fontsize=9)
             ax.set_ylabel("σ_H [MPa]" if mode == "pitting" else "σ_F [MPa]")
             ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7, loc="lower left")
+            ax.legend(fontsize=7, loc="upper right")
         axes[-1, 0].set_xlabel("load cycles")
         paths.append(_save(fig, out_dir / name))
     return paths

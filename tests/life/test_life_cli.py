@@ -147,3 +147,23 @@ def test_series_without_a_column_is_exit_2(tmp_path):
     csv.write_text("time_s,torque_Nm\n0,1\n1,2\n")
     res = CliRunner().invoke(cli, ["life", str(path), "--static", "--series", str(csv)])
     assert res.exit_code == 2 and "speed_rpm" in res.stderr and str(csv) in res.stderr
+
+
+def test_tables_and_plots(tmp_path):
+    """The table output carries the ISO 6336-6 spectrum table and the bearings; --plots writes two PNGs."""
+    path = tmp_path / "scene.toml"
+    path.write_text(RATED)
+    plots = tmp_path / "figures"
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "table", "--plots", str(plots)])
+    assert res.exit_code == 0, res.output
+    assert "load spectrum and Miner damage" in res.stdout and "bearings over the duty, ISO 281" in res.stdout
+    pytest.importorskip("matplotlib")
+    for name in ("pitting.png", "bending.png"):
+        assert (plots / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_design_prints_the_bearing_table(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text(RATED)
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "table"])
+    assert res.exit_code == 0 and "bearings: static reactions and ISO 281 life" in res.stdout
