@@ -71,6 +71,7 @@ class PointRun:
     speed_rpm: float
     K_v: tuple[float, ...]  # per stage: the rating's (static route) or the simulated max/static (dynamic)
     mesh_cycles: tuple[int, ...] = ()  # whole mesh cycles counted per stage (dynamic)
+    peak_error: tuple[float, ...] = ()  # estimated relative error of the mesh-cycle peaks per stage (dynamic)
     solver: dict | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
 
 

@@ -20,6 +20,7 @@ from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 
 MODES = ("pitting", "bending")
+PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
 MEMBERS = ("pinion", "gear")
 
 
@@ -89,8 +90,15 @@ def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]
               "energy_residual": sv.energy_residual}
     k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
-                   tuple(ld.mesh_cycles for ld in loads), solver)
-    return _PointData(point, design, cfg, loads, bearing_loads, run), result.warnings
+                   mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
+                   peak_error=tuple(ld.peak_error for ld in loads))
+    warnings = list(result.warnings)
+    for k, ld in enumerate(loads):
+        if ld.peak_error > PEAK_TOLERANCE:
+            warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
+                            f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
+                            f"sample finer: --set simulation.steps={4 * steps}")
+    return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings)
 
 
 def _dynamic_bearing_loads(cfg, design, result) -> tuple[float, ...]:
