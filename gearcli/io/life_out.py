@@ -121,6 +121,7 @@ def life_tables(r: LifeResult) -> list[RenderableType]:
             s = p.solver
             out.append(text(f"point {p.name}: {s['method']} ({s['engine']}) rtol {s['rtol']:g}, nfev {s['nfev']}, "
                             f"wall {s['wall_s']:.3g} s, window {s['window_s'][0]:.4g}–{s['window_s'][1]:.4g} s, "
-                            f"mesh cycles {', '.join(str(c) for c in p.mesh_cycles)}, statistics "
+                            f"mesh cycles {', '.join(str(c) for c in p.mesh_cycles)}, peak error "
+                            f"{', '.join(f'{e:.1e}' for e in p.peak_error)}, statistics "
                             f"{'resolved' if s['statistics_resolved'] else 'NOT resolved'}"))
     return out

@@ -92,7 +92,7 @@ def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
                    peak_error=tuple(ld.peak_error for ld in loads))
-    warnings = list(result.warnings)
+    warnings = [w for w in result.warnings if w not in design.warnings]  # the point's rating at K_v = 1: superseded
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
