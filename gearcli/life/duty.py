@@ -37,6 +37,25 @@ class DutyPoint:
                 "load.application_factor=1.0", *self.sets)
 
 
+def with_drive(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
+    """A torque-driven input (``drive = "torque"``) gets each point's input torque too: the output torque
+    carried back through the stages (kinematics' pinion torque with the stage efficiencies), so that the
+    point runs at its speed instead of drifting from the file's input torque. A speed drive needs nothing."""
+    if cfg.input.drive != "torque":
+        return list(points)
+    from dataclasses import replace
+
+    from gearcli.design.kinematics import pinion_torque_Nmm
+
+    out = []
+    for p in points:
+        torque = p.torque_Nm * 1000.0
+        for stage in reversed(cfg.stage):
+            torque = pinion_torque_Nmm(torque, stage.gear.teeth / stage.pinion.teeth, stage.efficiency)
+        out.append(replace(p, sets=(f"input.torque_Nm={torque / 1000.0!r}", *p.sets)))
+    return out
+
+
 def toml_value(value: Any) -> str:
     """A Python value of a TOML document written back as an inline TOML value (for ``--set``)."""
     if isinstance(value, bool):

@@ -8,7 +8,14 @@ from dataclasses import dataclass
 from typing import Any
 
 from gearcli.errors import ConfigError, DesignError
-from gearcli.life.duty import DEFAULT_CLASSES, DutyPoint, points_from_config, points_from_series, read_series
+from gearcli.life.duty import (
+    DEFAULT_CLASSES,
+    DutyPoint,
+    points_from_config,
+    points_from_series,
+    read_series,
+    with_drive,
+)
 
 MAX_SERIES_BYTES = 64 * 1024 * 1024
 
@@ -54,6 +61,7 @@ def prepare(file: str, sets: Sequence[str], *, series: str | None = None,
         points = points_from_series(*cols, source=series, classes=classes)
     else:
         points = points_from_config(loaded.design)
+    points = with_drive(loaded.design, points)
     if loaded.design.rating is None:
         raise ConfigError("gearcli life rates every member by ISO 6336-2/-3: add a [rating] table (with the "
                           "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])",

@@ -147,3 +147,16 @@ def test_a_supported_shaft_needs_axial_positions():
     with pytest.raises(DesignError) as exc:
         design_of(text)
     assert exc.value.key == "stage[0].gear.axial_position_mm"
+
+
+def test_cli_bad_bearing_is_exit_2_naming_file_and_key(tmp_path):
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    path = tmp_path / "shaft.toml"
+    path.write_text(ONE_STAGE)
+    res = CliRunner().invoke(cli, ["design", str(path), "--set", "bearing.1.locating=true"])
+    assert res.exit_code == 2
+    assert f"{path}: bearing[0].locating: shaft 2 has 2 locating bearings" in res.stderr
+    assert "Traceback" not in res.stderr
