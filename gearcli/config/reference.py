@@ -26,7 +26,10 @@ _TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material",
            ("[target]", "Target", "Optional: the output speed the design must reach"),
            ("[simulation]", "Simulation", "Settings of `gearcli simulate` and `gearcli report`"),
            ("[lubricant]", "Lubricant", "Optional: the gear oil (Z_L of the strength rating)"),
-           ("[rating]", "Rating", "Optional: ISO 6336-2/-3 strength rating of every stage (docs/iso6336.md)")]
+           ("[rating]", "Rating", "Optional: ISO 6336-2/-3 strength rating of every stage (docs/iso6336.md)"),
+           ("[[bearing]]", "Bearing", "Optional: a rolling bearing under a shaft (docs/life.md)"),
+           ("bearing factors = { ... }", "BearingFactors", "ISO 281 equivalent-load factors of a bearing"),
+           ("[[duty]]", "Duty", "Optional: one operating point of the duty cycle of `gearcli life` (docs/life.md)")]
 
 
 def _num(v: Any) -> str:
