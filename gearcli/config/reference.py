@@ -113,7 +113,10 @@ def design_file_reference() -> str:
            "`[materials]` (steel is predefined); no more `transmission_error_phase_deg` than "
            "`transmission_error_um` entries, nor `stiffness_harmonics_phase_deg` than `stiffness_harmonics` (a "
            "stage's `[stage.mesh]` counted with what it inherits from `[contact]`); the `stiffness_harmonics` sum "
-           "to less than 1 in magnitude; `input.torque_ripple` only with `drive = \"torque\"`.", "",
+           "to less than 1 in magnitude; `input.torque_ripple` only with `drive = \"torque\"`; a shaft with "
+           "`[[bearing]]` tables has exactly two of them at different positions, exactly one `locating`, and "
+           "the gears on it give `axial_position_mm` (the design checks these); a `[[duty]]` point gives exactly "
+           "one of `torque_Nm`, `torque_Nmm`, `power_kW`.", "",
            "## Limits", "",
            f"- file size at most {MAX_BYTES // 2**20} MiB; at most {MAX_KEYS} keys and tables; dotted keys of at "
            f"most {MAX_KEY_DEPTH} parts; arrays and inline tables nested at most {MAX_NESTING} deep. These are "
