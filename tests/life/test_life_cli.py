@@ -177,3 +177,19 @@ def test_dynamic_bearing_loads_of_a_quiet_scene_equal_the_static_ones(tmp_path):
     for a, b in zip(dyn, static, strict=True):
         assert_allclose(a["loads_N"], b["loads_N"], rtol=1e-3)
         assert_allclose(a["L10_h"], b["L10_h"], rtol=4e-3)  # L10 ∝ P^-p, p <= 10/3
+
+
+def test_the_mixer_duty_config(tmp_path):
+    """configs/mixer_duty.toml: three duty points, bearings on every shaft, a finite life for every member."""
+    from pathlib import Path
+
+    cfg = Path(__file__).resolve().parents[2] / "configs" / "mixer_duty.toml"
+    res = CliRunner().invoke(cli, ["life", str(cfg), "--static", "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)["life"]
+    assert len(doc["stages"]) == 3 and len(doc["bearings"]) == 8 and doc["hours"] == 16500
+    for st in doc["stages"]:
+        for member in ("pinion", "gear"):
+            for mode in ("pitting", "bending"):
+                ml = st[member][mode]
+                assert len(ml["bins"]) == 3 and ml["damage"] > 0 and ml["safety"] > 1
