@@ -125,7 +125,7 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
     else:
         f_hb = rf.helix_slope_tolerance_um(g1.pitch_diameter_mm, b, grade)
         k_hb = rf.face_load_factor_estimate(st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb,
-                                            b / g1.pitch_diameter_mm, treatments[small])
+                                            b / g1.pitch_diameter_mm, (treatments[small], hlim[small], speed_m_s))
         k_hb_source = "estimated"
     depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n  # h of b/h: the rack's depth
     k_fb = rf.face_load_factor_root(k_hb, b, depth)

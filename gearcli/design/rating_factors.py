@@ -178,16 +178,27 @@ def dynamic_factor(ratio: float, lower_limit: float, eps_gamma: float, single_pa
 
 
 # -------------------------------------------------------------- ISO 6336-1: K_Hβ, K_Fβ, K_Hα, K_Fα
+def face_running_in_um(treatment: str, sigma_hlim: float, misalignment_um: float, speed_m_s: float) -> float:
+    """y_β of ISO 6336-1:2006, 7.6 (table): Eh, IF, NT, NV 0.15 F_βx (≤ 6 µm); St, V, GS, GGG 320/σ_Hlim F_βx
+    (≤ 25 600/σ_Hlim at 5 < v ≤ 10 m/s, ≤ 12 800/σ_Hlim above); GG 0.55 F_βx (≤ 45 µm, ≤ 22 µm)."""
+    if treatment in SURFACE_HARDENED:
+        return min(0.15 * misalignment_um, 6.0)
+    if treatment == "grey_iron":
+        cap = math.inf if speed_m_s <= 5 else 45.0 if speed_m_s <= 10 else 22.0
+        return min(0.55 * misalignment_um, cap)
+    cap = math.inf if speed_m_s <= 5 else (25600.0 if speed_m_s <= 10 else 12800.0) / sigma_hlim
+    return min(320.0 / sigma_hlim * misalignment_um, cap)
+
+
 def face_load_factor_estimate(mesh_beta: float, line_load_m: float, helix_slope_um: float, width_ratio: float,
-                              treatment: str) -> float:
+                              running_in: tuple[str, float, float]) -> float:
     """K_Hβ, method C of ISO 6336-1:2006 (7.6) for a pinion centred between its bearings, without lead
     correction: F_βx = 1.33 f_sh + f_ma, f_sh = 0.023 F_m/b (b/d1)² µm, f_ma = f_Hβ; F_βx ≥ max(0.005 F_m/b,
-    0.5 f_Hβ); y_β = 0.15 F_βx (≤ 6 µm) for surface-hardened, 320/σ_Hlim F_βx otherwise (taken 0.15 here);
+    0.5 f_Hβ); F_βy = F_βx − y_β (``running_in`` = treatment, σ_Hlim, v for ``face_running_in_um``);
     K_Hβ = 1 + c_γβ F_βy/(2 F_m/b), or √(2 c_γβ F_βy/(F_m/b)) above 2. ``line_load_m`` = F_m/b = F_t K_A K_v/b."""
     f_sh = 0.023 * line_load_m * width_ratio ** 2
     f_bx = max(1.33 * f_sh + helix_slope_um, 0.005 * line_load_m, 0.5 * helix_slope_um)
-    y_b = min(0.15 * f_bx, 6.0) if treatment in SURFACE_HARDENED else 0.15 * f_bx
-    f_by = f_bx - y_b
+    f_by = f_bx - face_running_in_um(running_in[0], running_in[1], f_bx, running_in[2])
     k = 1.0 + mesh_beta * f_by / (2.0 * line_load_m)
     return k if k <= 2.0 else math.sqrt(2.0 * mesh_beta * f_by / line_load_m)
 
