@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 
+from gearcli.io.report_sections import rating_comparison
 from gearcli.io.serialize import plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
@@ -91,6 +92,7 @@ def report_dict(r: Report) -> dict:
         "accuracy": accuracy_dict(r.accuracy),
         "energy_residual": r.energy_residual,
         "design": design_summary(r.design),
+        **({"rating": rating} if (rating := rating_comparison(r)) else {}),  # ISO against simulated K_v (issue 22)
         "simulation": sim,
         "warnings": list(r.warnings),
     }

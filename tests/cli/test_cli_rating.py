@@ -120,3 +120,19 @@ def test_simulate_without_simulated_dynamic_factor_has_no_rating_key():
     res = CliRunner().invoke(cli, args)
     assert res.exit_code == 0, res.output
     assert all("rating" not in s for s in json.loads(res.stdout)["summary"]["stages"])
+
+
+def test_report_prints_iso_beside_simulated_dynamic_factor():
+    args = ["report", RATED, "--quick", "--set", "rating.dynamic_factor=simulated", "--set", "simulation.duration_s=0.3",
+            "--set", "simulation.steps=600", "--format", "json"]
+    res = CliRunner().invoke(cli, args)
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    sim_stages = doc["simulation"]["summary"]["stages"]
+    assert [row["stage"] for row in doc["rating"]] == [1, 2]
+    for row, stage in zip(doc["rating"], sim_stages, strict=True):
+        assert row["K_v_iso_source"] == "iso" and row["K_v_iso"] > 1.0
+        assert_allclose(row["K_v_simulated"], stage["rating"]["K_v"], rtol=1e-12)
+        assert_allclose(row["min_S_H_simulated"], min(stage["rating"]["pinion"]["S_H"], stage["rating"]["gear"]["S_H"]))
+    md = CliRunner().invoke(cli, [*args[:-2], "--format", "table"], env={"COLUMNS": "120"})
+    assert md.exit_code == 0 and "Dynamic factor: ISO 6336-1 against the simulation" in md.stdout
