@@ -38,6 +38,8 @@ STRESS_CORRECTION_TEST_GEAR = 2.0  # Y_ST (ISO 6336-3:2006)
 HB_PER_HV = 0.95  # Brinell from Vickers for steels below ~450 HV (ISO 18265, approximately)
 PITTING_LOW = "pitting_safety_low"
 BENDING_LOW = "bending_safety_low"
+OUT_OF_RANGE = "rating_out_of_range"
+Q_S_RANGE = (1.0, 8.0)  # the notch parameter range of Y_S, method B (ISO 6336-3:2006, 7.2)
 
 
 # ------------------------------------------------------------------------------ required inputs
@@ -76,7 +78,30 @@ def rate_design(cfg: DesignFile, stages: tuple[StageResult, ...]) -> tuple[tuple
     if cfg.rating is None:
         return stages, ()
     rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) for k, st in enumerate(stages))
-    return rated, tuple(d for st in rated for d in safety_diagnostics(cfg, st))
+    return rated, tuple(d for k, st in enumerate(rated) for d in range_diagnostics(cfg, k, st)
+                        + safety_diagnostics(cfg, st))
+
+
+def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
+    """Warnings where the stage lies outside what method B covers: ε_α < 1 (no continuous mesh), and a
+    notch parameter q_s of the root outside 1 … 8 (Y_S's range)."""
+    out = []
+    if st.contact_ratio_transverse < 1.0:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index}: ε_α = {st.contact_ratio_transverse:.3g} < 1: ISO 6336 "
+                           "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",
+                           stage=st.index, quantity="contact_ratio_transverse", value=st.contact_ratio_transverse))
+    stage = cfg.stage[k]
+    for part in ("pinion", "gear"):
+        g = getattr(st, part)
+        form = rf.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
+                             math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg), g.profile_shift,
+                             g.tip_diameter_mm, g.pitch_diameter_mm, st.contact_ratio_transverse,
+                             (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+        if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
+            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
+                               f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
+                               stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
+    return out
 
 
 def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:
@@ -162,6 +187,12 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
         sig_hg = hlim[i] * z_nt * z_l * z_v * z_r * (z_w if i == soft else 1.0) * z_x
         form = rf.tooth_form(g.teeth, m_n, alpha_n, beta, beta_b, g.profile_shift, g.tip_diameter_mm,
                              g.pitch_diameter_mm, eps_a, (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+        if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
+            part = "pinion" if i == 0 else "gear"
+            raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
+                              f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
+                              "raise the profile shift or the tooth count to rate it",
+                              key=f"stage[{k}].{part}.profile_shift")
         y_b = rf.rim_factor(gear_cfg.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
         y_dt = rf.deep_tooth_factor(eps_a, beta_b, grade)
         b_f = min(g.face_width_mm, b + 2.0 * m_n)

@@ -198,7 +198,7 @@ def face_load_factor_estimate(mesh_beta: float, line_load_m: float, helix_slope_
     K_Hβ = 1 + c_γβ F_βy/(2 F_m/b), or √(2 c_γβ F_βy/(F_m/b)) above 2. ``line_load_m`` = F_m/b = F_t K_A K_v/b."""
     f_sh = 0.023 * line_load_m * width_ratio ** 2
     f_bx = max(1.33 * f_sh + helix_slope_um, 0.005 * line_load_m, 0.5 * helix_slope_um)
-    f_by = f_bx - face_running_in_um(running_in[0], running_in[1], f_bx, running_in[2])
+    f_by = max(f_bx - face_running_in_um(running_in[0], running_in[1], f_bx, running_in[2]), 0.0)
     k = 1.0 + mesh_beta * f_by / (2.0 * line_load_m)
     return k if k <= 2.0 else math.sqrt(2.0 * mesh_beta * f_by / line_load_m)
 
@@ -256,9 +256,12 @@ def single_pair_factors(tips: tuple[float, float], bases: tuple[float, float], t
     roll = [math.sqrt((tips[i] / bases[i]) ** 2 - 1.0) for i in (0, 1)]
     out = []
     for i, j in ((0, 1), (1, 0)):
-        m = math.tan(working_rad) / math.sqrt((roll[i] - 2.0 * math.pi / teeth[i])
-                                               * (roll[j] - (eps_alpha - 1.0) * 2.0 * math.pi / teeth[j]))
-        out.append(1.0 if eps_beta >= 1.0 else max(1.0, m - eps_beta * (m - 1.0)))
+        radicand = (roll[i] - 2.0 * math.pi / teeth[i]) * (roll[j] - (eps_alpha - 1.0) * 2.0 * math.pi / teeth[j])
+        if eps_beta >= 1.0 or radicand <= 0.0:  # no single-pair zone on this flank (ε_α ≤ 1: outside the method)
+            out.append(1.0)
+            continue
+        m = math.tan(working_rad) / math.sqrt(radicand)
+        out.append(max(1.0, m - eps_beta * (m - 1.0)))
     return out[0], out[1]
 
 
