@@ -24,6 +24,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
+from gearcli.design import rating_root as rr
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
@@ -93,7 +94,7 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
     stage = cfg.stage[k]
     for part in ("pinion", "gear"):
         g = getattr(st, part)
-        form = rf.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
+        form = rr.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
                              math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg), g.profile_shift,
                              g.tip_diameter_mm, g.pitch_diameter_mm, st.contact_ratio_transverse,
                              (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
@@ -176,7 +177,7 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
     rz_flank = 0.5 * sum(float(g.flank_roughness_Rz_um or 0.0) for g in cfg_members)
     z_r = rf.roughness_factor(low_hlim, rz_flank, rho[0] * rho[1] / (rho[0] + rho[1]))
     soft, z_w = _work_hardening(mats, treatments)
-    y_beta = rf.helix_factor_bending(eps_b, st.helix_angle_deg)
+    y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
 
     def member(i: int) -> MemberRating:
         g, gear_cfg = members[i], cfg_members[i]
@@ -185,7 +186,7 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
         z_x = 1.0
         sig_h = z_bd[i] * sigma_h
         sig_hg = hlim[i] * z_nt * z_l * z_v * z_r * (z_w if i == soft else 1.0) * z_x
-        form = rf.tooth_form(g.teeth, m_n, alpha_n, beta, beta_b, g.profile_shift, g.tip_diameter_mm,
+        form = rr.tooth_form(g.teeth, m_n, alpha_n, beta, beta_b, g.profile_shift, g.tip_diameter_mm,
                              g.pitch_diameter_mm, eps_a, (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
         if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
             part = "pinion" if i == 0 else "gear"
@@ -193,14 +194,14 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
                               f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
                               "raise the profile shift or the tooth count to rate it",
                               key=f"stage[{k}].{part}.profile_shift")
-        y_b = rf.rim_factor(gear_cfg.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
-        y_dt = rf.deep_tooth_factor(eps_a, beta_b, grade)
+        y_b = rr.rim_factor(gear_cfg.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
+        y_dt = rr.deep_tooth_factor(eps_a, beta_b, grade)
         b_f = min(g.face_width_mm, b + 2.0 * m_n)
         sig_f0 = f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_b * y_dt
         sig_f = sig_f0 * k_a * k_v * k_fb * k_fa
-        y_d = rf.relative_notch_sensitivity(treatments[i], form["q_s"])
-        y_r = rf.relative_surface_factor(treatments[i], float(gear_cfg.root_roughness_Rz_um or 0.0))
-        y_x = rf.size_factor_bending(treatments[i], m_n)
+        y_d = rr.relative_notch_sensitivity(treatments[i], form["q_s"])
+        y_r = rr.relative_surface_factor(treatments[i], float(gear_cfg.root_roughness_Rz_um or 0.0))
+        y_x = rr.size_factor_bending(treatments[i], m_n)
         y_nt = rf.life_factor_bending(treatments[i], cycles, rating.material_quality)
         sig_fg = flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
         return MemberRating(

@@ -27,6 +27,7 @@ from numpy.testing import assert_allclose
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
 from gearcli.design import rating_factors as rf
+from gearcli.design import rating_root as rr
 
 STEEL = {"density_kg_m3": 7830.0, "youngs_modulus_MPa": 206000.0, "poisson_ratio": 0.3,
          "treatment": "case_carburized", "contact_fatigue_limit_MPa": 1500.0, "bending_fatigue_limit_MPa": 430.0}
@@ -114,7 +115,7 @@ def test_tooth_form_geometry_of_method_b():
     """The root geometry behind Y_F and Y_S: sFn, roF, qs, den (printed, 30° tangent)."""
     _, stage, _, _, _ = _rated()
     beta, beta_b = math.radians(10.0), math.radians(stage.base_helix_angle_deg)
-    forms = [rf.tooth_form(g.teeth, 14.0, math.radians(20.0), beta, beta_b, g.profile_shift, g.tip_diameter_mm,
+    forms = [rr.tooth_form(g.teeth, 14.0, math.radians(20.0), beta, beta_b, g.profile_shift, g.tip_diameter_mm,
                            g.pitch_diameter_mm, stage.contact_ratio_transverse, (1.25, 0.38))
              for g in (stage.pinion, stage.gear)]
     assert_allclose([f["s_Fn"] for f in forms], [31.18, 32.75], atol=5e-3)  # sFn
@@ -208,7 +209,7 @@ def test_spur_sun_planet_tooth_root():
     planet, sun = r.pinion, r.gear
     assert_allclose([sun.Y_F, planet.Y_F], [1.56, 1.44], atol=5e-3)  # YF
     assert_allclose([sun.Y_S, planet.Y_S], [2.06, 2.14], atol=5e-3)  # YS
-    forms = {g.teeth: rf.tooth_form(g.teeth, 45.0, math.radians(20.0), 0.0, 0.0, g.profile_shift, g.tip_diameter_mm,
+    forms = {g.teeth: rr.tooth_form(g.teeth, 45.0, math.radians(20.0), 0.0, 0.0, g.profile_shift, g.tip_diameter_mm,
                                     g.pitch_diameter_mm, st.contact_ratio_transverse, (1.25, 0.38))
              for g in (st.pinion, st.gear)}
     sun_form, planet_form = forms[19], forms[17]
