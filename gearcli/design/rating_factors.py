@@ -220,8 +220,8 @@ def transverse_load_factors(eps_alpha: float, eps_gamma: float, z_eps: float, me
         k = 0.5 * eps_gamma * (0.9 + 0.4 * term)
     else:
         k = 0.9 + 0.4 * math.sqrt(2.0 * (eps_gamma - 1.0) / eps_gamma) * term
-    k_h = min(max(k, 1.0), eps_gamma / (eps_alpha * z_eps ** 2))
-    k_f = min(max(k, 1.0), eps_gamma / (0.25 * eps_alpha + 0.75))
+    k_h = max(min(k, eps_gamma / (eps_alpha * z_eps ** 2)), 1.0)  # the limits fall below 1 only for ε_α < 1
+    k_f = max(min(k, eps_gamma / (0.25 * eps_alpha + 0.75)), 1.0)
     return k_h, k_f
 
 
