@@ -12,6 +12,8 @@ ratio <= 1.5.
 The strength rating's cost (issue 22): `gearcli design` of the industrial two-stage reducer without and with
 its ``[rating]`` (configs/industrial_two_stage.toml and ..._rated.toml, the same stages), interleaved; the
 figure of merit is the ratio rated/unrated of the medians (target: no perceptible difference, ≤ 1.05).
+Where PYTHONDONTWRITEBYTECODE is set, run ``python -m compileall gearcli`` first, or the new modules are
+compiled from source on every run (an installed package ships them compiled).
 """
 
 from __future__ import annotations
