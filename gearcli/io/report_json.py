@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import dataclasses
 
-from gearcli.io.report_sections import rating_comparison
 from gearcli.io.serialize import plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
@@ -92,7 +91,7 @@ def report_dict(r: Report) -> dict:
         "accuracy": accuracy_dict(r.accuracy),
         "energy_residual": r.energy_residual,
         "design": design_summary(r.design),
-        **({"rating": rating} if (rating := rating_comparison(r)) else {}),  # ISO against simulated K_v (issue 22)
+        **({"rating": [plain(c) for c in r.rating]} if r.rating else {}),  # ISO against simulated K_v (issue 22)
         "simulation": sim,
         "warnings": list(r.warnings),
     }

@@ -159,31 +159,11 @@ def solver_lines(r: Report) -> list[str]:
     ]
 
 
-def rating_comparison(r: Report) -> list[dict]:
-    """Per rated stage: ISO 6336-1 K_v (theory) and the simulated one (steady-window max |F_t| / static F_t), with
-    the smallest safeties at each (the simulated ones only when ``[rating] dynamic_factor = "simulated"``)."""
-    from gearcli.design.rating import simulated_dynamic_factor
-
-    out = []
-    for st, sd in zip(r.design.stages, r.simulation.stages, strict=False):
-        if st.rating is None:
-            continue
-        iso, sim = st.rating, sd.rating
-        out.append({"stage": st.index, "K_v_iso": iso.K_v, "K_v_iso_source": iso.K_v_source,
-                    "K_v_simulated": simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N),
-                    "min_S_H_iso": min(iso.pinion.S_H, iso.gear.S_H), "min_S_F_iso": min(iso.pinion.S_F, iso.gear.S_F),
-                    "min_S_H_simulated": None if sim is None else min(sim.pinion.S_H, sim.gear.S_H),
-                    "min_S_F_simulated": None if sim is None else min(sim.pinion.S_F, sim.gear.S_F)})
-    return out
-
-
 def rating_section(r: Report) -> Section | None:
-    """ISO K_v beside the simulated K_v (:func:`rating_comparison`), one row per rated stage."""
-    rows = tuple((str(c["stage"]), f"{c['K_v_iso']:.4g} ({c['K_v_iso_source']})", g(c["K_v_simulated"], 4),
-                  g(c["min_S_H_iso"], 3), g(c["min_S_F_iso"], 3),
-                  "—" if c["min_S_H_simulated"] is None else g(c["min_S_H_simulated"], 3),
-                  "—" if c["min_S_F_simulated"] is None else g(c["min_S_F_simulated"], 3))
-                 for c in rating_comparison(r))
+    """ISO K_v beside the simulated K_v (``Report.rating``), one row per rated stage."""
+    rows = tuple((str(c.stage), f"{c.K_v_iso:.4g} ({c.K_v_iso_source})", g(c.K_v_simulated, 4),
+                  g(c.min_S_H_iso, 3), g(c.min_S_F_iso, 3), g(c.min_S_H_simulated, 3), g(c.min_S_F_simulated, 3))
+                 for c in r.rating)
     if not rows:
         return None
     return Section("Dynamic factor: ISO 6336-1 against the simulation",
