@@ -25,7 +25,6 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
-from gearcli.design.rating import check_rating_inputs
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.errors import DesignError
 
@@ -47,7 +46,10 @@ def check_inputs(cfg: DesignFile) -> None:
         for part in ("pinion", "gear"):
             check_material(getattr(stage, part).material, cfg.materials, f"stage[{k}].{part}.material")
         check_hands(stage, k)
-    check_rating_inputs(cfg)
+    if cfg.rating is not None:  # imported only for a rated design: an unrated one starts as fast as before
+        from gearcli.design.rating import check_rating_inputs
+
+        check_rating_inputs(cfg)
 
 
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:

@@ -23,7 +23,6 @@ from gearcli.design.inertia import (
     shaft_inertias_kg_m2,
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train
-from gearcli.design.rating import rate_design
 from gearcli.design.shafts import bearing_results
 from gearcli.diagnostics import messages
 from gearcli.errors import DesignError
@@ -43,7 +42,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     kin = train(tuple((s.pinion.teeth, s.gear.teeth) for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                 cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
     stages = tuple(_stage_result(cfg, k, kin) for k in range(len(cfg.stage)))
-    stages, rating_diagnostics = rate_design(cfg, stages)
+    rating_diagnostics: tuple = ()
+    if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
+        from gearcli.design.rating import rate_design
+
+        stages, rating_diagnostics = rate_design(cfg, stages)
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]

@@ -24,6 +24,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
+from gearcli.design import rating_root as rr
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
@@ -38,6 +39,8 @@ STRESS_CORRECTION_TEST_GEAR = 2.0  # Y_ST (ISO 6336-3:2006)
 HB_PER_HV = 0.95  # Brinell from Vickers for steels below ~450 HV (ISO 18265, approximately)
 PITTING_LOW = "pitting_safety_low"
 BENDING_LOW = "bending_safety_low"
+OUT_OF_RANGE = "rating_out_of_range"
+Q_S_RANGE = (1.0, 8.0)  # the notch parameter range of Y_S, method B (ISO 6336-3:2006, 7.2)
 
 
 # ------------------------------------------------------------------------------ required inputs
@@ -76,7 +79,30 @@ def rate_design(cfg: DesignFile, stages: tuple[StageResult, ...]) -> tuple[tuple
     if cfg.rating is None:
         return stages, ()
     rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) for k, st in enumerate(stages))
-    return rated, tuple(d for st in rated for d in safety_diagnostics(cfg, st))
+    return rated, tuple(d for k, st in enumerate(rated) for d in range_diagnostics(cfg, k, st)
+                        + safety_diagnostics(cfg, st))
+
+
+def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
+    """Warnings where the stage lies outside what method B covers: ε_α < 1 (no continuous mesh), and a
+    notch parameter q_s of the root outside 1 … 8 (Y_S's range)."""
+    out = []
+    if st.contact_ratio_transverse < 1.0:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index}: ε_α = {st.contact_ratio_transverse:.3g} < 1: ISO 6336 "
+                           "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",
+                           stage=st.index, quantity="contact_ratio_transverse", value=st.contact_ratio_transverse))
+    stage = cfg.stage[k]
+    for part in ("pinion", "gear"):
+        g = getattr(st, part)
+        form = rr.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
+                             math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg), g.profile_shift,
+                             g.tip_diameter_mm, g.pitch_diameter_mm, st.contact_ratio_transverse,
+                             (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+        if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
+            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
+                               f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
+                               stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
+    return out
 
 
 def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:
@@ -125,7 +151,7 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
     else:
         f_hb = rf.helix_slope_tolerance_um(g1.pitch_diameter_mm, b, grade)
         k_hb = rf.face_load_factor_estimate(st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb,
-                                            b / g1.pitch_diameter_mm, treatments[small])
+                                            b / g1.pitch_diameter_mm, (treatments[small], hlim[small], speed_m_s))
         k_hb_source = "estimated"
     depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n  # h of b/h: the rack's depth
     k_fb = rf.face_load_factor_root(k_hb, b, depth)
@@ -151,7 +177,7 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
     rz_flank = 0.5 * sum(float(g.flank_roughness_Rz_um or 0.0) for g in cfg_members)
     z_r = rf.roughness_factor(low_hlim, rz_flank, rho[0] * rho[1] / (rho[0] + rho[1]))
     soft, z_w = _work_hardening(mats, treatments)
-    y_beta = rf.helix_factor_bending(eps_b, st.helix_angle_deg)
+    y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
 
     def member(i: int) -> MemberRating:
         g, gear_cfg = members[i], cfg_members[i]
@@ -160,16 +186,22 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
         z_x = 1.0
         sig_h = z_bd[i] * sigma_h
         sig_hg = hlim[i] * z_nt * z_l * z_v * z_r * (z_w if i == soft else 1.0) * z_x
-        form = rf.tooth_form(g.teeth, m_n, alpha_n, beta, beta_b, g.profile_shift, g.tip_diameter_mm,
+        form = rr.tooth_form(g.teeth, m_n, alpha_n, beta, beta_b, g.profile_shift, g.tip_diameter_mm,
                              g.pitch_diameter_mm, eps_a, (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
-        y_b = rf.rim_factor(gear_cfg.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
-        y_dt = rf.deep_tooth_factor(eps_a, beta_b, grade)
+        if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
+            part = "pinion" if i == 0 else "gear"
+            raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
+                              f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
+                              "raise the profile shift or the tooth count to rate it",
+                              key=f"stage[{k}].{part}.profile_shift")
+        y_b = rr.rim_factor(gear_cfg.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
+        y_dt = rr.deep_tooth_factor(eps_a, beta_b, grade)
         b_f = min(g.face_width_mm, b + 2.0 * m_n)
         sig_f0 = f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_b * y_dt
         sig_f = sig_f0 * k_a * k_v * k_fb * k_fa
-        y_d = rf.relative_notch_sensitivity(treatments[i], form["q_s"])
-        y_r = rf.relative_surface_factor(treatments[i], float(gear_cfg.root_roughness_Rz_um or 0.0))
-        y_x = rf.size_factor_bending(treatments[i], m_n)
+        y_d = rr.relative_notch_sensitivity(treatments[i], form["q_s"])
+        y_r = rr.relative_surface_factor(treatments[i], float(gear_cfg.root_roughness_Rz_um or 0.0))
+        y_x = rr.size_factor_bending(treatments[i], m_n)
         y_nt = rf.life_factor_bending(treatments[i], cycles, rating.material_quality)
         sig_fg = flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
         return MemberRating(

@@ -160,25 +160,15 @@ def solver_lines(r: Report) -> list[str]:
 
 
 def rating_section(r: Report) -> Section | None:
-    """ISO 6336-1 K_v (theory) beside the simulated one (steady-window max |F_t| / static F_t), with the
-    smallest safeties at each (the simulated ones only when ``[rating] dynamic_factor = "simulated"``)."""
-    from gearcli.design.rating import simulated_dynamic_factor
-
-    rows = []
-    for st, sd in zip(r.design.stages, r.simulation.stages, strict=False):
-        if st.rating is None:
-            continue
-        iso, sim = st.rating, sd.rating
-        rows.append((str(st.index), f"{iso.K_v:.4g} ({iso.K_v_source})",
-                     g(simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N), 4),
-                     g(min(iso.pinion.S_H, iso.gear.S_H), 3), g(min(iso.pinion.S_F, iso.gear.S_F), 3),
-                     "—" if sim is None else g(min(sim.pinion.S_H, sim.gear.S_H), 3),
-                     "—" if sim is None else g(min(sim.pinion.S_F, sim.gear.S_F), 3)))
+    """ISO K_v beside the simulated K_v (``Report.rating``), one row per rated stage."""
+    rows = tuple((str(c.stage), f"{c.K_v_iso:.4g} ({c.K_v_iso_source})", g(c.K_v_simulated, 4),
+                  g(c.min_S_H_iso, 3), g(c.min_S_F_iso, 3), g(c.min_S_H_simulated, 3), g(c.min_S_F_simulated, 3))
+                 for c in r.rating)
     if not rows:
         return None
     return Section("Dynamic factor: ISO 6336-1 against the simulation",
                    ("stage", "K_v ISO", "K_v simulated", "min S_H", "min S_F", "min S_H sim.", "min S_F sim."),
-                   tuple(rows), "lrrrrrr",
+                   rows, "lrrrrrr",
                    ("K_v simulated = max(1, steady-window max |F_t| / static F_t); the safeties at it are rated "
                     'with [rating] dynamic_factor = "simulated"',))
 

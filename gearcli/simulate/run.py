@@ -56,7 +56,8 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     if model is None:
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
-    design_diags = [dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
+    coded = {d.message: d for d in getattr(design, "diagnostics", ())}  # keep a design warning's own code
+    design_diags = [coded.get(w) or dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
     result = simulate_model(model, duration_s=sim.duration_s,
                             steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                             window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,

@@ -120,3 +120,40 @@ def test_simulate_without_simulated_dynamic_factor_has_no_rating_key():
     res = CliRunner().invoke(cli, args)
     assert res.exit_code == 0, res.output
     assert all("rating" not in s for s in json.loads(res.stdout)["summary"]["stages"])
+
+
+def test_report_prints_iso_beside_simulated_dynamic_factor():
+    args = ["report", RATED, "--quick", "--set", "rating.dynamic_factor=simulated", "--set", "simulation.duration_s=0.3",
+            "--set", "simulation.steps=600", "--format", "json"]
+    res = CliRunner().invoke(cli, args)
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    sim_stages = doc["simulation"]["summary"]["stages"]
+    assert [row["stage"] for row in doc["rating"]] == [1, 2]
+    for row, stage in zip(doc["rating"], sim_stages, strict=True):
+        assert row["K_v_iso_source"] == "iso" and row["K_v_iso"] > 1.0
+        assert_allclose(row["K_v_simulated"], stage["rating"]["K_v"], rtol=1e-12)
+        assert_allclose(row["min_S_H_simulated"], min(stage["rating"]["pinion"]["S_H"], stage["rating"]["gear"]["S_H"]))
+    md = CliRunner().invoke(cli, [*args[:-2], "--format", "table"], env={"COLUMNS": "120"})
+    assert md.exit_code == 0 and "Dynamic factor: ISO 6336-1 against the simulation" in md.stdout
+
+
+def test_safety_warnings_carry_codes_and_data_in_design_and_simulate():
+    """The diagnostics mechanism: codes pitting_safety_low / bending_safety_low with stage, member, mode, S, S_min;
+    simulate keeps the design's codes and adds the simulated rating's own."""
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+    from gearcli.simulate import run_simulation
+
+    loaded = load_design(WIND, ["rating.dynamic_factor=simulated", "simulation.duration_s=0.3",
+                                "simulation.steps=300"])
+    design = compute_design(loaded.design)
+    codes = {(d.code, d.data["member"], d.data["mode"]) for d in design.diagnostics}
+    assert codes == {("pitting_safety_low", p, "pitting") for p in ("pinion", "gear")} | \
+        {("bending_safety_low", p, "bending") for p in ("pinion", "gear")}
+    for d in design.diagnostics:
+        assert d.data["stage"] == 1 and d.data["S"] < d.data["S_min"] and d.message in design.warnings
+    sim = run_simulation(loaded.design, design, want_series=False)
+    sim_codes = [d.code for d in sim.diagnostics if d.code.endswith("_safety_low")]
+    assert len(sim_codes) == 8  # the design's four (ISO K_v) and the simulated rating's four
+    assert sum("simulated" in d.message for d in sim.diagnostics if d.code.endswith("_safety_low")) == 4

@@ -27,6 +27,7 @@ from numpy.testing import assert_allclose
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
 from gearcli.design import rating_factors as rf
+from gearcli.design import rating_root as rr
 
 STEEL = {"density_kg_m3": 7830.0, "youngs_modulus_MPa": 206000.0, "poisson_ratio": 0.3,
          "treatment": "case_carburized", "contact_fatigue_limit_MPa": 1500.0, "bending_fatigue_limit_MPa": 430.0}
@@ -114,7 +115,7 @@ def test_tooth_form_geometry_of_method_b():
     """The root geometry behind Y_F and Y_S: sFn, roF, qs, den (printed, 30° tangent)."""
     _, stage, _, _, _ = _rated()
     beta, beta_b = math.radians(10.0), math.radians(stage.base_helix_angle_deg)
-    forms = [rf.tooth_form(g.teeth, 14.0, math.radians(20.0), beta, beta_b, g.profile_shift, g.tip_diameter_mm,
+    forms = [rr.tooth_form(g.teeth, 14.0, math.radians(20.0), beta, beta_b, g.profile_shift, g.tip_diameter_mm,
                            g.pitch_diameter_mm, stage.contact_ratio_transverse, (1.25, 0.38))
              for g in (stage.pinion, stage.gear)]
     assert_allclose([f["s_Fn"] for f in forms], [31.18, 32.75], atol=5e-3)  # sFn
@@ -155,3 +156,73 @@ def test_safe_stage_has_no_safety_warning():
     result, *_ = _rated()
     assert not any("safety" in w for w in result.warnings)
     assert result.diagnostics == ()
+
+
+# ------------------------------------------ stage_01.rtf: the spur sun–planet mesh of the planetary stage
+# Same report family ("CALCULATION OF A SPUR PLANETARY GEAR STAGE", ISO 6336:2006 method B, geometry to ISO 21771):
+# sun 19 / planet 17 teeth, m_n 45, spur, b 491, x 0.6170/0.8021, profile A, grade 6, 18CrNiMo7-6 case-carburized
+# (σ_Hlim 1500, σ_Flim 430), Rz 4.8 / 20 µm, oil ν40 220, 3 planets, sun torque 999650.9 N·m (a third per mesh),
+# sun 47.8 rpm, carrier 47.8/(1 + 56/19) rpm, K_A 1.25 and K_γ 1.10 (given here as K_A = 1.375), K_v user 1.01,
+# K_Hβ user 1.15, 175 200 h. gearcli rates the mesh as a two-wheel pair in the carrier's frame: the planet (ISO's
+# pinion) drives the sun at the relative speeds. Compared: every mesh-local figure. Not compared: the sun's life
+# factors (three planets load it three times per turn; gearcli counts one mesh), the planet's σ_FG (the report's
+# Y_M = 0.7 of an idler), σ_H and σ_F (the report's K_v·K_γ·K_Fβ product is not printed to enough digits).
+SUN = {"teeth": 19, "face_width_mm": 491.0, "profile_shift": 0.6170, "bore_diameter_mm": 482.33,
+       "rim_thickness_mm": 157.5, "web_thickness_mm": 122.75, **ROUGH}
+PLANET = {"teeth": 17, "face_width_mm": 491.0, "profile_shift": 0.8021, "bore_diameter_mm": 408.99,
+          "rim_thickness_mm": 157.5, "web_thickness_mm": 122.75, **ROUGH}
+
+
+def _sun_planet():
+    carrier = 47.8 / (1 + 56 / 19)
+    planet_rpm = (47.8 - carrier) * 19 / 17  # the report's "speed difference for planet bearing" 39.9 rpm
+    doc = {"materials": {"steel": STEEL},
+           "stage": [{"normal_module_mm": 45.0, "accuracy_grade": 6, "pinion": PLANET, "gear": SUN}],
+           "input": {"speed_rpm": planet_rpm}, "load": {"torque_Nm": 999650.9 / 3, "application_factor": 1.375},
+           "lubricant": {"viscosity_40C_mm2_s": 220.0},
+           "rating": {**RATING, "dynamic_factor": 1.01}}
+    stage = compute_design(DesignFile.model_validate(doc)).stages[0]
+    return stage, stage.rating
+
+
+def test_spur_sun_planet_pitting_factors():
+    st, r = _sun_planet()
+    planet, sun = r.pinion, r.gear
+    assert r.Z_beta == 1.0 and r.Y_beta == 1.0  # Zbet 1.000, Ybet 1.00 (spur)
+    assert_allclose(r.Z_H, 2.06, atol=5e-3)  # ZH (printed to 3 digits)
+    assert_allclose(r.Z_E, 189.81, atol=5e-3)  # ZE
+    assert_allclose(r.Z_eps, 0.981, atol=5e-4)  # Zeps = √((4 − ε_α)/3)
+    assert_allclose(r.sigma_H0_MPa, 759.92, atol=5e-3)  # sigH0
+    # ZB (planet, the smaller wheel) 1.05 and ZD (sun) 1.04 printed; to more digits they are σ_HB/σ_Hw:
+    # 1002.73/958.15 and 996.13/958.15
+    assert_allclose([planet.Z_BD, sun.Z_BD], [1.05, 1.04], atol=5e-3)
+    assert_allclose([planet.Z_BD, sun.Z_BD], [1002.73 / 958.15, 996.13 / 958.15], rtol=1e-5)
+    assert_allclose([r.Z_L, r.Z_V, r.Z_R, r.Z_W], [1.020, 0.961, 1.024, 1.000], atol=5e-4)  # ZL, ZV, ZR, ZW
+    assert_allclose(planet.load_cycles / 1e6, 419.0, atol=0.5)  # NL of the planet (printed 419.0 million)
+    assert_allclose(planet.Z_NT, 0.937, atol=5e-4)  # ZNT planet
+    assert_allclose(planet.sigma_HG_MPa, 1410.69, atol=5e-3)  # sigHG planet
+    assert_allclose(planet.sigma_HP_MPa, 1128.55, atol=5e-3)  # sigHP planet
+
+
+def test_spur_sun_planet_tooth_root():
+    st, r = _sun_planet()
+    planet, sun = r.pinion, r.gear
+    assert_allclose([sun.Y_F, planet.Y_F], [1.56, 1.44], atol=5e-3)  # YF
+    assert_allclose([sun.Y_S, planet.Y_S], [2.06, 2.14], atol=5e-3)  # YS
+    forms = {g.teeth: rr.tooth_form(g.teeth, 45.0, math.radians(20.0), 0.0, 0.0, g.profile_shift, g.tip_diameter_mm,
+                                    g.pitch_diameter_mm, st.contact_ratio_transverse, (1.25, 0.38))
+             for g in (st.pinion, st.gear)}
+    sun_form, planet_form = forms[19], forms[17]
+    assert_allclose([sun_form["h_Fe"], planet_form["h_Fe"]], [64.83, 65.24], atol=5e-3)  # hF
+    assert_allclose([math.degrees(sun_form["alpha_Fen"]), math.degrees(planet_form["alpha_Fen"])], [30.75, 33.33],
+                    atol=5e-3)  # alfFen
+    assert_allclose([sun_form["s_Fn"], planet_form["s_Fn"]], [101.18, 104.13], atol=5e-3)  # sFn
+    assert_allclose([sun_form["rho_F"], planet_form["rho_F"]], [18.12, 17.19], atol=5e-3)  # roF
+    assert [sun.Y_DT, planet.Y_DT, sun.Y_B, planet.Y_B] == [1.0, 1.0, 1.0, 1.0]  # YDT, YB
+    # sigF0 113.46/108.94; the planet's 108.94515 sits 1.5e-4 past the rounding edge: the profile shifts are printed
+    # to 4 decimals (±5e-5 moves Y_F Y_S by ~1e-5 relative), so 2e-5
+    assert_allclose([sun.sigma_F0_MPa, planet.sigma_F0_MPa], [113.46, 108.94], rtol=2e-5, atol=5e-3)
+    assert_allclose([sun.Y_delta_rel_T, planet.Y_delta_rel_T], [1.003, 1.005], atol=5e-4)  # YdrelT
+    assert_allclose([sun.Y_R_rel_T, planet.Y_R_rel_T], [0.957, 0.957], atol=5e-4)  # YRrelT
+    assert_allclose([sun.Y_X, planet.Y_X], [0.800, 0.800], atol=5e-4)  # YX (m_n 45 ≥ 25)
+    assert_allclose(planet.Y_NT, 0.906, atol=5e-4)  # YNT planet

@@ -316,7 +316,8 @@ def test_json_schema_has_the_top_level_properties():
     schema = json_schema()
     assert schema["title"] == "gearcli design file" and schema["description"]
     assert set(schema["properties"]) == {"title", "materials", "stage", "contact", "input", "load", "target", "simulation",
-                                            "bearing", "duty", "lubricant", "rating"}
+                                         "lubricant", "rating",  # the strength rating (issue 22)
+                                         "bearing", "duty"}  # loads to life (issue 24)
     assert set(schema["required"]) == {"stage", "input", "load"}
     assert schema["additionalProperties"] is False
     import json
