@@ -20,7 +20,7 @@ Choices where the contract is silent (docs/iso6336.md says each):
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
@@ -32,7 +32,7 @@ from gearcli.results import MemberRating, RatingResult
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
-    from gearcli.results import StageResult
+    from gearcli.results import GearResult, StageResult
 
 STANDARD = "ISO 6336:2006 method B"
 STRESS_CORRECTION_TEST_GEAR = 2.0  # Y_ST (ISO 6336-3:2006)
@@ -105,116 +105,185 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
     return out
 
 
-def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:
-    """The rating of stage ``k`` (0-based); ``simulated_k_v`` replaces K_v (``K_v_source = "simulated"``)."""
-    rating, stage = cfg.rating, cfg.stage[k]
-    assert rating is not None and stage.accuracy_grade is not None and cfg.lubricant is not None
-    assert cfg.lubricant.viscosity_40C_mm2_s is not None
-    cfg_members = (stage.pinion, stage.gear)
-    members = (st.pinion, st.gear)
-    mats = tuple(cfg.materials[g.material] for g in cfg_members)
+@dataclass(frozen=True)
+class _Mesh:
+    """A stage as the rating sees it: ISO's index 1 (``small``) is the wheel with fewer teeth."""
+
+    members: tuple[GearResult, GearResult]  # gearcli's pinion, gear
+    parts: tuple[Gear, Gear]  # their design-file tables
+    mats: tuple[Material, Material]
+    treatments: tuple[str, str]
+    hlim: tuple[float, float]  # σ_Hlim
+    flim: tuple[float, float]  # σ_Flim
+    small: int
+    large: int
+    f_t: float  # N, nominal, floored at 1 N/mm
+    k_a: float
+    speed_m_s: float  # pitch-line speed
+    grade: int
+
+    @property
+    def g1(self) -> GearResult:
+        return self.members[self.small]
+
+    @property
+    def g2(self) -> GearResult:
+        return self.members[self.large]
+
+
+@dataclass(frozen=True)
+class _LoadFactors:
+    k_v: float
+    k_v_source: str
+    k_hb: float
+    k_hb_source: str
+    k_fb: float
+    k_ha: float
+    k_fa: float
+    z_eps: float
+
+
+def _mesh(cfg: DesignFile, k: int, st: StageResult) -> _Mesh:
+    stage = cfg.stage[k]
+    assert stage.accuracy_grade is not None  # check_rating_inputs requires it
+    parts = (stage.pinion, stage.gear)
+    mats = (cfg.materials[parts[0].material], cfg.materials[parts[1].material])
     small, large = smaller_wheel_first((st.pinion.teeth, st.gear.teeth), (0, 1),
                                        (st.pinion.profile_shift, st.gear.profile_shift))
-    g1, g2 = members[small], members[large]
-    grade = stage.accuracy_grade
-    beta, beta_b = math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg)
-    alpha_n, alpha_t = math.radians(st.normal_pressure_angle_deg), math.radians(st.transverse_pressure_angle_deg)
-    alpha_wt = math.radians(st.working_pressure_angle_deg)
-    b, m_n = st.face_width_mm, st.normal_module_mm
-    u = g2.teeth / g1.teeth
-    f_t = reference_tangential_force_N(st.static_force_N.tangential, b)
-    k_a = cfg.load.application_factor
-    speed_m_s = max(math.pi * g1.pitch_diameter_mm * abs(g1.speed_rpm) / 60000.0, 1e-9)
-    eps_a, eps_b, eps_g = st.contact_ratio_transverse, st.overlap_ratio, st.contact_ratio_total
-    treatments = tuple(str(m.treatment) for m in mats)
-    hlim = tuple(float(m.contact_fatigue_limit_MPa or 0.0) for m in mats)
-    flim = tuple(float(m.bending_fatigue_limit_MPa or 0.0) for m in mats)
+    g1 = (st.pinion, st.gear)[small]
+    return _Mesh(members=(st.pinion, st.gear), parts=parts, mats=mats,
+                 treatments=(str(mats[0].treatment), str(mats[1].treatment)),
+                 hlim=(float(mats[0].contact_fatigue_limit_MPa or 0.0), float(mats[1].contact_fatigue_limit_MPa or 0.0)),
+                 flim=(float(mats[0].bending_fatigue_limit_MPa or 0.0), float(mats[1].bending_fatigue_limit_MPa or 0.0)),
+                 small=small, large=large,
+                 f_t=reference_tangential_force_N(st.static_force_N.tangential, st.face_width_mm),
+                 k_a=cfg.load.application_factor,
+                 speed_m_s=max(math.pi * g1.pitch_diameter_mm * abs(g1.speed_rpm) / 60000.0, 1e-9),
+                 grade=stage.accuracy_grade)
 
-    # ISO 6336-1: deviations of the grade, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα
-    f_pb = max(rf.single_pitch_tolerance_um(g.pitch_diameter_mm, m_n, grade) for g in members) * math.cos(alpha_t)
-    f_fa = max(rf.profile_form_tolerance_um(g.pitch_diameter_mm, m_n, grade) for g in members)
-    y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, speed_m_s) for t, h in zip(treatments, hlim, strict=True))
-    y_f = 0.5 * sum(rf.running_in_um(t, h, f_fa, speed_m_s) for t, h in zip(treatments, hlim, strict=True))
-    tip_relief = stage.tip_relief_um or 0.0  # C_a; running-in is in f_pb,eff and f_fα,eff, not here
-    line_load = f_t * k_a / b
+
+def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulated_k_v: float | None) -> _LoadFactors:
+    """ISO 6336-1: deviations of the grade, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα, and Z_ε (K_Hα's limit)."""
+    rating, stage = cfg.rating, cfg.stage[k]
+    assert rating is not None
+    alpha_t, b = math.radians(st.transverse_pressure_angle_deg), st.face_width_mm
+    f_pb = max(rf.single_pitch_tolerance_um(g.pitch_diameter_mm, st.normal_module_mm, mesh.grade)
+               for g in mesh.members) * math.cos(alpha_t)
+    f_fa = max(rf.profile_form_tolerance_um(g.pitch_diameter_mm, st.normal_module_mm, mesh.grade) for g in mesh.members)
+    pairs = tuple(zip(mesh.treatments, mesh.hlim, strict=True))
+    y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, mesh.speed_m_s) for t, h in pairs)
+    y_f = 0.5 * sum(rf.running_in_um(t, h, f_fa, mesh.speed_m_s) for t, h in pairs)
+    line_load = mesh.f_t * mesh.k_a / b
     if simulated_k_v is not None:
         k_v, k_v_source = max(1.0, simulated_k_v), "simulated"
     elif isinstance(rating.dynamic_factor, float):
         k_v, k_v_source = rating.dynamic_factor, "given"
-    else:
-        k_v = rf.dynamic_factor(st.resonance_ratio, st.resonance_lower_limit, eps_g,
+    else:  # C_a = tip_relief_um; running-in is in f_pb,eff and f_fα,eff, not in B_k
+        k_v = rf.dynamic_factor(st.resonance_ratio, st.resonance_lower_limit, st.contact_ratio_total,
                                 st.iso6336_single_pair_stiffness_N_mm_um, line_load, f_pb - y_a, f_fa - y_f,
-                                tip_relief)
+                                stage.tip_relief_um or 0.0)
         k_v_source = "iso"
     if rating.face_load_factor is not None:
         k_hb, k_hb_source = rating.face_load_factor, "given"
     else:
-        f_hb = rf.helix_slope_tolerance_um(g1.pitch_diameter_mm, b, grade)
-        k_hb = rf.face_load_factor_estimate(st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb,
-                                            b / g1.pitch_diameter_mm, (treatments[small], hlim[small], speed_m_s))
+        f_hb = rf.helix_slope_tolerance_um(mesh.g1.pitch_diameter_mm, b, mesh.grade)
+        k_hb = rf.face_load_factor_estimate(
+            st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb, b / mesh.g1.pitch_diameter_mm,
+            (mesh.treatments[mesh.small], mesh.hlim[mesh.small], mesh.speed_m_s))
         k_hb_source = "estimated"
-    depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n  # h of b/h: the rack's depth
-    k_fb = rf.face_load_factor_root(k_hb, b, depth)
-    z_eps = rf.contact_ratio_factor(eps_a, eps_b)
-    k_ha, k_fa = rf.transverse_load_factors(eps_a, eps_g, z_eps, st.iso6336_mesh_stiffness_N_mm_um,
-                                            max(f_pb, f_fa) - y_a, line_load * k_v * k_hb)
+    depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * st.normal_module_mm  # h of b/h: the rack's
+    z_eps = rf.contact_ratio_factor(st.contact_ratio_transverse, st.overlap_ratio)
+    k_ha, k_fa = rf.transverse_load_factors(st.contact_ratio_transverse, st.contact_ratio_total, z_eps,
+                                            st.iso6336_mesh_stiffness_N_mm_um, max(f_pb, f_fa) - y_a,
+                                            line_load * k_v * k_hb)
+    return _LoadFactors(k_v, k_v_source, k_hb, k_hb_source, rf.face_load_factor_root(k_hb, b, depth), k_ha, k_fa,
+                        z_eps)
 
+
+def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:
+    """The rating of stage ``k`` (0-based); ``simulated_k_v`` replaces K_v (``K_v_source = "simulated"``)."""
+    assert cfg.rating is not None and cfg.lubricant is not None and cfg.lubricant.viscosity_40C_mm2_s is not None
+    mesh = _mesh(cfg, k, st)
+    lf = _load_factors(cfg, k, st, mesh, simulated_k_v)
+    g1, g2, b = mesh.g1, mesh.g2, st.face_width_mm
+    alpha_wt = math.radians(st.working_pressure_angle_deg)
     # ISO 6336-2: contact stress and the stage-level factors
-    z_h = rf.zone_factor(beta_b, alpha_t, alpha_wt)
-    z_e = rf.elasticity_factor(mats[0].youngs_modulus_MPa, mats[0].poisson_ratio,
-                               mats[1].youngs_modulus_MPa, mats[1].poisson_ratio)
-    z_beta = rf.helix_factor_pitting(beta)
-    sigma_h0 = z_h * z_e * z_eps * z_beta * math.sqrt(f_t / (g1.pitch_diameter_mm * b) * (u + 1.0) / u)
-    sigma_h = sigma_h0 * math.sqrt(k_a * k_v * k_hb * k_ha)
+    z_h = rf.zone_factor(math.radians(st.base_helix_angle_deg), math.radians(st.transverse_pressure_angle_deg),
+                         alpha_wt)
+    z_e = rf.elasticity_factor(mesh.mats[0].youngs_modulus_MPa, mesh.mats[0].poisson_ratio,
+                               mesh.mats[1].youngs_modulus_MPa, mesh.mats[1].poisson_ratio)
+    z_beta = rf.helix_factor_pitting(math.radians(st.helix_angle_deg))
+    u = g2.teeth / g1.teeth
+    sigma_h0 = z_h * z_e * lf.z_eps * z_beta * math.sqrt(mesh.f_t / (g1.pitch_diameter_mm * b) * (u + 1.0) / u)
+    sigma_h = sigma_h0 * math.sqrt(mesh.k_a * lf.k_v * lf.k_hb * lf.k_ha)
     z_b, z_d = rf.single_pair_factors((g1.tip_diameter_mm, g2.tip_diameter_mm),
-                                      (g1.base_diameter_mm, g2.base_diameter_mm), (g1.teeth, g2.teeth),
-                                      alpha_wt, eps_a, eps_b)
-    z_bd = {small: z_b, large: z_d}
-    low_hlim = min(hlim)
-    z_l = rf.lubricant_factor(low_hlim, cfg.lubricant.viscosity_40C_mm2_s)
-    z_v = rf.velocity_factor(low_hlim, speed_m_s)
+                                      (g1.base_diameter_mm, g2.base_diameter_mm), (g1.teeth, g2.teeth), alpha_wt,
+                                      st.contact_ratio_transverse, st.overlap_ratio)
+    low_hlim = min(mesh.hlim)
     rho = [0.5 * g.base_diameter_mm * math.tan(alpha_wt) for g in (g1, g2)]
-    rz_flank = 0.5 * sum(float(g.flank_roughness_Rz_um or 0.0) for g in cfg_members)
-    z_r = rf.roughness_factor(low_hlim, rz_flank, rho[0] * rho[1] / (rho[0] + rho[1]))
-    soft, z_w = _work_hardening(mats, treatments)
-    y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
-
-    def member(i: int) -> MemberRating:
-        g, gear_cfg = members[i], cfg_members[i]
-        cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h
-        z_nt = rf.life_factor_pitting(treatments[i], cycles, rating.material_quality)
-        z_x = 1.0
-        sig_h = z_bd[i] * sigma_h
-        sig_hg = hlim[i] * z_nt * z_l * z_v * z_r * (z_w if i == soft else 1.0) * z_x
-        form = rr.tooth_form(g.teeth, m_n, alpha_n, beta, beta_b, g.profile_shift, g.tip_diameter_mm,
-                             g.pitch_diameter_mm, eps_a, (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
-        if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
-            part = "pinion" if i == 0 else "gear"
-            raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
-                              f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
-                              "raise the profile shift or the tooth count to rate it",
-                              key=f"stage[{k}].{part}.profile_shift")
-        y_b = rr.rim_factor(gear_cfg.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
-        y_dt = rr.deep_tooth_factor(eps_a, beta_b, grade)
-        b_f = min(g.face_width_mm, b + 2.0 * m_n)
-        sig_f0 = f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_b * y_dt
-        sig_f = sig_f0 * k_a * k_v * k_fb * k_fa
-        y_d = rr.relative_notch_sensitivity(treatments[i], form["q_s"])
-        y_r = rr.relative_surface_factor(treatments[i], float(gear_cfg.root_roughness_Rz_um or 0.0))
-        y_x = rr.size_factor_bending(treatments[i], m_n)
-        y_nt = rf.life_factor_bending(treatments[i], cycles, rating.material_quality)
-        sig_fg = flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
-        return MemberRating(
-            load_cycles=cycles, Z_BD=z_bd[i], sigma_H_MPa=sig_h, Z_NT=z_nt, Z_X=z_x, sigma_HG_MPa=sig_hg,
-            sigma_HP_MPa=sig_hg / rating.min_safety_pitting, S_H=sig_hg / sig_h, Y_F=form["Y_F"], Y_S=form["Y_S"],
-            Y_B=y_b, Y_DT=y_dt, sigma_F0_MPa=sig_f0, sigma_F_MPa=sig_f, Y_delta_rel_T=y_d, Y_R_rel_T=y_r, Y_X=y_x,
-            Y_NT=y_nt, sigma_FG_MPa=sig_fg, sigma_FP_MPa=sig_fg / rating.min_safety_bending, S_F=sig_fg / sig_f)
-
+    rz_flank = 0.5 * sum(float(g.flank_roughness_Rz_um or 0.0) for g in mesh.parts)
+    soft, z_w = _work_hardening(mesh.mats, mesh.treatments)
+    flank = _Flank(z_bd={mesh.small: z_b, mesh.large: z_d}, sigma_h=sigma_h,
+                   z_l=rf.lubricant_factor(low_hlim, cfg.lubricant.viscosity_40C_mm2_s),
+                   z_v=rf.velocity_factor(low_hlim, mesh.speed_m_s),
+                   z_r=rf.roughness_factor(low_hlim, rz_flank, rho[0] * rho[1] / (rho[0] + rho[1])),
+                   z_w={soft: z_w})
+    y_beta = rr.helix_factor_bending(st.overlap_ratio, st.helix_angle_deg)
     return RatingResult(
-        standard=STANDARD, K_A=k_a, K_v=k_v, K_v_source=k_v_source, K_Hbeta=k_hb, K_Hbeta_source=k_hb_source,
-        K_Fbeta=k_fb, K_Halpha=k_ha, K_Falpha=k_fa, Z_H=z_h, Z_E=z_e, Z_eps=z_eps, Z_beta=z_beta, Z_L=z_l,
-        Z_V=z_v, Z_R=z_r, Z_W=z_w, Y_beta=y_beta, sigma_H0_MPa=sigma_h0, sigma_H_MPa=sigma_h,
-        pinion=member(0), gear=member(1))
+        standard=STANDARD, K_A=mesh.k_a, K_v=lf.k_v, K_v_source=lf.k_v_source, K_Hbeta=lf.k_hb,
+        K_Hbeta_source=lf.k_hb_source, K_Fbeta=lf.k_fb, K_Halpha=lf.k_ha, K_Falpha=lf.k_fa, Z_H=z_h, Z_E=z_e,
+        Z_eps=lf.z_eps, Z_beta=z_beta, Z_L=flank.z_l, Z_V=flank.z_v, Z_R=flank.z_r, Z_W=z_w, Y_beta=y_beta,
+        sigma_H0_MPa=sigma_h0, sigma_H_MPa=sigma_h,
+        pinion=_member(cfg, k, st, mesh, lf, flank, y_beta, 0), gear=_member(cfg, k, st, mesh, lf, flank, y_beta, 1))
+
+
+@dataclass(frozen=True)
+class _Flank:
+    """The pitting factors a member's figures need: Z_B/Z_D by member index, σ_H at the pitch point, Z_L, Z_V, Z_R,
+    and Z_W by the index of the member it acts on."""
+
+    z_bd: dict[int, float]
+    sigma_h: float
+    z_l: float
+    z_v: float
+    z_r: float
+    z_w: dict[int, float]
+
+
+def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFactors, flank: _Flank, y_beta: float,
+            i: int) -> MemberRating:
+    """ISO 6336-2 and -3 figures of member ``i`` (0 pinion, 1 gear)."""
+    rating, stage = cfg.rating, cfg.stage[k]
+    assert rating is not None
+    g, part, m_n = mesh.members[i], mesh.parts[i], st.normal_module_mm
+    cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h
+    z_nt = rf.life_factor_pitting(mesh.treatments[i], cycles, rating.material_quality)
+    sig_h = flank.z_bd[i] * flank.sigma_h
+    sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1
+    form = rr.tooth_form(g.teeth, m_n, math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg),
+                         math.radians(st.base_helix_angle_deg), g.profile_shift, g.tip_diameter_mm,
+                         g.pitch_diameter_mm, st.contact_ratio_transverse,
+                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+    if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
+        raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
+                          f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
+                          "raise the profile shift or the tooth count to rate it",
+                          key=f"stage[{k}].{('pinion', 'gear')[i]}.profile_shift")
+    y_b = rr.rim_factor(part.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
+    y_dt = rr.deep_tooth_factor(st.contact_ratio_transverse, math.radians(st.base_helix_angle_deg), mesh.grade)
+    b_f = min(g.face_width_mm, st.face_width_mm + 2.0 * m_n)
+    sig_f0 = mesh.f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_b * y_dt
+    sig_f = sig_f0 * mesh.k_a * lf.k_v * lf.k_fb * lf.k_fa
+    y_d = rr.relative_notch_sensitivity(mesh.treatments[i], form["q_s"])
+    y_r = rr.relative_surface_factor(mesh.treatments[i], float(part.root_roughness_Rz_um or 0.0))
+    y_x = rr.size_factor_bending(mesh.treatments[i], m_n)
+    y_nt = rf.life_factor_bending(mesh.treatments[i], cycles, rating.material_quality)
+    sig_fg = mesh.flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
+    return MemberRating(
+        load_cycles=cycles, Z_BD=flank.z_bd[i], sigma_H_MPa=sig_h, Z_NT=z_nt, Z_X=1.0, sigma_HG_MPa=sig_hg,
+        sigma_HP_MPa=sig_hg / rating.min_safety_pitting, S_H=sig_hg / sig_h, Y_F=form["Y_F"], Y_S=form["Y_S"],
+        Y_B=y_b, Y_DT=y_dt, sigma_F0_MPa=sig_f0, sigma_F_MPa=sig_f, Y_delta_rel_T=y_d, Y_R_rel_T=y_r, Y_X=y_x,
+        Y_NT=y_nt, sigma_FG_MPa=sig_fg, sigma_FP_MPa=sig_fg / rating.min_safety_bending, S_F=sig_fg / sig_f)
 
 
 def _work_hardening(mats: tuple[Material, ...], treatments: tuple[str, ...]) -> tuple[int, float]:
