@@ -189,7 +189,7 @@ class StageDynamics:
     static_tangential_N: float  # the design's static F_t at full load
     peak_tangential_N: float  # largest |F_t| over the whole run (run-up included)
     peak_time_s: float
-    dynamic_factor: float | None  # peak / |static|; None (JSON null) when the static force is 0
+    dynamic_factor: float | None  # steady-window max |F_t| / |simulated static F_t|; None when that static is 0
     error_estimate: StatisticsError | None = None  # None when no refinement pass ran
     mesh_stiffness: MeshStiffness | None = None
     # mesh response over the statistics window (issue 13); defaults for hand-made results
@@ -197,6 +197,10 @@ class StageDynamics:
     contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
     back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
     regime: str = ""  # REGIME_*
+    # issue 21: the run-up overshoot apart from the steady dynamic factor; defaults for hand-made results
+    runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
+    simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
+    # the losses its dynamics model (lossless meshes today): the reference of both factors
 
 
 @dataclass(frozen=True)

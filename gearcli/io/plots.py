@@ -99,7 +99,7 @@ def mesh_forces_figure(r: Report):
         zoom.axhline(s.tangential_N.mean, ls=":", lw=1.2, color="C3", label=f"mean {s.tangential_N.mean:.5g} N")
         ax.plot([s.peak_time_s], [s.peak_tangential_N], "v", color="C3", ms=6,
                 label=f"run-up peak {s.peak_tangential_N:.5g} N"
-                + (f" (×{s.dynamic_factor:.3g})" if s.dynamic_factor is not None else ""))
+                + (f" (run-up factor {s.runup_factor:.3g})" if s.runup_factor is not None else ""))
         ax.set_ylabel("F_t [N]")
         ax.set_title(f"stage {s.stage}: tangential mesh force", fontsize=9, loc="left")
         zoom.set_title(f"stage {s.stage}, steady window (std {s.tangential_N.std:.3g} N)", fontsize=9, loc="left")

@@ -47,6 +47,7 @@ def stage_dict(s: StageReport) -> dict:
         "peak_tangential_N": s.peak_tangential_N,
         "peak_time_s": s.peak_time_s,
         "dynamic_factor": s.dynamic_factor,
+        "runup_factor": s.runup_factor,
         "spectrum": {
             "peak_frequency_Hz": sp.peak_frequency_Hz,
             "peak_amplitude_N": sp.peak_amplitude_N,

@@ -41,7 +41,8 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
     stages = [
         {k: plain(getattr(s, k)) for k in ("index", "tangential_N", "radial_N", "axial_N", "penetration_mm",
                                               "static_tangential_N", "peak_tangential_N", "peak_time_s",
-                                              "dynamic_factor", "dte_um", "contact_loss_fraction",
+                                              "dynamic_factor", "runup_factor", "simulated_static_tangential_N",
+                                              "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
         for s in result.stages
     ]

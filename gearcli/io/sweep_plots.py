@@ -25,7 +25,8 @@ FAMILIES = (
     ("dynamic transmission error (µm)", {"dte_um_mean": "-", "dte_um_min": ":", "dte_um_max": "--"}),
     ("DTE rms (µm)", {"dte_um_rms": "-"}),
     ("contact loss (fraction of window)", {"contact_loss_fraction": "-"}),
-    ("dynamic factor peak/static F_t (-)", {"dynamic_factor": "-"}),
+    ("dynamic factor: window max / static F_t (-)", {"dynamic_factor": "-"}),
+    ("run-up factor: run peak / static F_t (-)", {"runup_factor": "-"}),
 )
 DISTRIBUTION_STATS = (("tangential_N_max", "peak F_t in window (N)"), ("tangential_N_std", "F_t std (N)"),
                       ("dynamic_factor", "dynamic factor (-)"), ("dte_um_rms", "DTE rms (µm)"))

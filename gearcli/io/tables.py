@@ -180,9 +180,14 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         forces.add_row("", Text("penetration [mm]"), *_stats_cells(s.penetration_mm), end_section=True)
     peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in r.stages], [
         ("static F_t [N]", [_g(s.static_tangential_N) for s in r.stages]),
+        *([("static F_t as simulated [N]", [_g(s.simulated_static_tangential_N) for s in r.stages])]
+          if any(s.simulated_static_tangential_N is not None
+                 and abs(s.simulated_static_tangential_N - s.static_tangential_N)
+                 > 1e-9 * abs(s.static_tangential_N) for s in r.stages) else []),
         ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in r.stages]),
         ("at t [s]", [_g(s.peak_time_s, 3) for s in r.stages]),
-        ("dynamic factor", [_g(s.dynamic_factor, 4) for s in r.stages]),
+        ("dynamic factor (window max / static)", [_g(s.dynamic_factor, 4) for s in r.stages]),
+        ("run-up factor (run peak / static)", [_g(s.runup_factor, 4) for s in r.stages]),
         ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in r.stages]),
         ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in r.stages]),
         ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in r.stages]),

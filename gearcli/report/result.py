@@ -71,8 +71,9 @@ class StageReport:
     static_tangential_N: float
     peak_tangential_N: float
     peak_time_s: float
-    dynamic_factor: float | None  # None where the static force is 0
+    dynamic_factor: float | None  # steady-window max |F_t| / static; None where the static force is 0
     spectrum: Spectrum
+    runup_factor: float | None = None  # whole-run peak |F_t| / static (the start-up overshoot)
 
 
 # ------------------------------------------------------------------------------- numerical accuracy

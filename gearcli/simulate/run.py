@@ -245,8 +245,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     channels, per_stage = _channels(model, s)
     errors = ref.errors if ref is not None else ()
     stiffness = mesh_stiffness(model, choice)
+    simulated_static = simulated_static_tangential_N(model)
     stages = tuple(replace(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k][:4], m.static_tangential_N,
-                                                per_stage[k][4], periodic=periodic),
+                                                per_stage[k][4], periodic=periodic,
+                                                simulated_static_N=simulated_static[k]),
                            error_estimate=errors[k] if k < len(errors) else None,
                            mesh_stiffness=stiffness[k] if k < len(stiffness) else None)
                    for k, m in enumerate(spec.meshes))
@@ -282,6 +284,16 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},
     )
+
+
+def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
+    """Per stage, the static F_t of the load the simulation applies, with the losses its dynamics model (the
+    model's own steady-state connector forces: lossless meshes today, so a stage with efficiency < 1 differs
+    from the design's static F_t, which includes the losses): the reference of the dynamic and run-up factors."""
+    from gearcli.model.linear import static_line_forces_N
+
+    lay = model.layout
+    return [float(tooth_forces(lay, k, np.array([f]))[0][0]) for k, f in enumerate(static_line_forces_N(lay))]
 
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
