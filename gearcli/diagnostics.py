@@ -30,6 +30,7 @@ DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap
 SUBHARMONIC = "subharmonic"  # steady = "periodic": the response repeats after k > 1 periods
 PERIOD_NOT_COMMON = "period_not_common"  # the excitations have no usable common period
+WINDOW_RINGING = "window_ringing"  # a lightly damped mode still rings from the run-up through the window
 OTHER = "other"
 
 

@@ -264,6 +264,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
     diags += stat_diags or []
+    if not periodic:
+        diags += ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
+                                  [st.simulated_static_tangential_N or 0.0 for st in stages], window)
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -284,6 +287,31 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},
     )
+
+
+def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,
+                     forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
+    """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
+    that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
+    from gearcli.model.modes import modal_analysis
+    from gearcli.simulate import ringing
+
+    found = ringing.ringing(t, mask, forces_N, static_N, choice.at_full_load.eigenvalues, window)
+    if not found:
+        return []
+    modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
+    out = []
+    for r in found:
+        near = min(modes, key=lambda m: abs(m.frequency_Hz - r.frequency_Hz), default=None)
+        element = near.dominant if near is not None else ""
+        out.append(dg.warning(dg.WINDOW_RINGING, ringing.message(r, window, element), stage=r.stage,
+                              statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
+                              decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
+                              damping_ratio=r.damping_ratio, amplitude_start_N=r.amplitude_start_N,
+                              amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
+                              settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
+                              element=element))
+    return out
 
 
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
