@@ -349,14 +349,17 @@ def _choice_warnings(choice: Choice) -> list[Diagnostic]:
 
 
 def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic]:
-    """A mesh order (1x, 2x mesh frequency) at the nominal speed within 10 % of a natural frequency, naming
-    the mode and its dominant element (:mod:`gearcli.model.modes`)."""
+    """A mesh order (1x-3x mesh frequency) or shaft order (1x) at the nominal speed within 10 % of a natural
+    frequency that it excites (its meshes' share of the mode's strain energy over twice the modal damping
+    ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`)."""
     from gearcli.model.modes import resonances
 
     out = []
     for r in resonances(model.layout, boundary=choice.boundary):
         out.append(dg.warning(dg.RESONANCE, r.message, mode=r.mode, frequency_Hz=r.frequency_Hz,
-                              excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element))
+                              excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element,
+                              participation=r.participation, amplification=r.amplification,
+                              damping_ratio=r.damping_ratio, strength=r.strength))
     return out
 
 
