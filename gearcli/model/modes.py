@@ -101,7 +101,7 @@ def excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
     """(name, frequency over the input body's rotation frequency, connectors it acts through) of every order:
     each stage's mesh orders act through that mesh; a shaft's rotation order through the meshes of the gears
     it carries (shaft 1: stage 1's pinion; shaft k + 1: stage k's gear and stage k + 1's pinion)."""
-    out = []
+    out: list[tuple[str, float, tuple[int, ...]]] = []
     stages = lay.stage_conn
     for k, c in enumerate(stages):
         x = lay.connectors[c]
