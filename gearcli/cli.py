@@ -269,11 +269,13 @@ def design(file: str, overrides, fmt, output) -> None:
     import dataclasses
 
     from gearcli.io import serialize
-    from gearcli.scene import resonance_warnings
+    from gearcli.scene import resonance_diagnostics
 
     target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
-    result = dataclasses.replace(result, warnings=result.warnings + resonance_warnings(loaded.design, result))
+    found = resonance_diagnostics(loaded.design, result)
+    result = dataclasses.replace(result, warnings=result.warnings + tuple(d.message for d in found),
+                                 diagnostics=result.diagnostics + found)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.design_dict(result),
             csv_text=lambda: serialize.design_csv(result), table_builder="design_tables")
@@ -341,7 +343,10 @@ def modes(file: str, overrides, fmt, output) -> None:
     lay = build_model(loaded.design, design_result).layout
     analyses = [modal_analysis(lay, b, duration_s=loaded.design.simulation.duration_s) for b in BOUNDARIES]
     if target.fmt == "json":
-        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses), loaded.sha256)), target)
+        from gearcli.diagnostics import warning_objects
+
+        found = warning_objects(design_result.warnings, design_result.diagnostics)
+        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses, found), loaded.sha256)), target)
     elif target.fmt == "csv":
         emit(modes_out.modes_csv(analyses), target)
     else:

@@ -124,6 +124,7 @@ class DesignResult:
     warnings: tuple[str, ...]
     input_power_kW: float = 0.0
     output_power_kW: float = 0.0
+    diagnostics: tuple = ()  # gearcli.diagnostics.Diagnostic of the warnings (code, data); JSON writes these
 
 
 # ------------------------------------------------------------------------------------- simulation

@@ -5,7 +5,7 @@ from __future__ import annotations
 from gearcli.model.modes import ModalAnalysis
 
 
-def modes_dict(analyses: list[ModalAnalysis]) -> dict:
+def modes_dict(analyses: list[ModalAnalysis], warnings: list | None = None) -> dict:
     """Both boundaries; per mode its frequency, shape per body, strain-energy share per element and the
     mesh orders that cross it in the operating range."""
     first = analyses[0]
@@ -25,6 +25,7 @@ def modes_dict(analyses: list[ModalAnalysis]) -> dict:
                            "participation": c.participation, "amplification": c.amplification,
                            "strength": c.strength} for c in m.crossings],
         } for m in a.modes] for a in analyses},
+        "warnings": list(warnings or []),
     }
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 
+from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
@@ -32,7 +33,7 @@ def design_summary(d: DesignResult) -> dict:
         "output_torque_Nmm": d.output_torque_Nmm,
         "stages": [{k: plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS} for s in d.stages],
         "shaft_speeds_deg_s": [sh.speed_deg_s for sh in d.shafts],
-        "warnings": list(d.warnings),
+        "warnings": warning_objects(d.warnings, d.diagnostics),
     }
 
 
@@ -93,5 +94,5 @@ def report_dict(r: Report) -> dict:
         "energy_residual": r.energy_residual,
         "design": design_summary(r.design),
         "simulation": sim,
-        "warnings": list(r.warnings),
+        "warnings": warning_objects(r.warnings, r.diagnostics),
     }

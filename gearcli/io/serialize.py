@@ -11,6 +11,7 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 import gearcli
+from gearcli.diagnostics import warning_objects
 from gearcli.io.text import csv_text_cell
 from gearcli.results import DesignResult, SimulationResult
 
@@ -34,7 +35,10 @@ def with_meta(payload: dict, sha256: str) -> dict:
 
 
 def design_dict(result: DesignResult) -> dict:
-    return plain(result)
+    doc = plain(dataclasses.replace(result, diagnostics=()))
+    doc.pop("diagnostics", None)
+    doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
+    return doc
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
@@ -59,7 +63,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
         },
         "solver": plain(result.solver),
         "energy": plain(result.energy),
-        "warnings": list(result.warnings),
+        "warnings": warning_objects(result.warnings, result.diagnostics),
     }
     if series:
         out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in result.channels.items()}}

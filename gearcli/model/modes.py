@@ -175,6 +175,7 @@ class Resonance:
     amplification: float | None = None  # participation / (2 zeta); None: undamped
     damping_ratio: float = 0.0
     strength: str = ""  # "strongly" | "moderately"
+    stage: int | None = None  # the exciting mesh's stage (None for a shaft order)
 
 
 def _percent(x: float) -> str:
@@ -208,5 +209,6 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                    f"({100 * share:.0f} % of its strain energy); {c.strength} excited: the {source} "
                    f"holds {_percent(c.participation)} of the mode's strain energy ({gain})")
             out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, name, fe, msg, c.participation,
-                                 c.amplification, m.damping_ratio, c.strength))
+                                 c.amplification, m.damping_ratio, c.strength,
+                                 int(name.split()[1]) if name.startswith("stage ") else None))
     return out

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from gearcli import diagnostics as dg
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, stage_reports
@@ -77,8 +78,12 @@ def build_report(
         sampling_checks(stages, sim.natural_frequencies_Hz),
         accuracy_checks(study, sim_cfg.method, sim_cfg.rtol),
     )
+    diagnostics = (*getattr(design, "diagnostics", ()), *sim.diagnostics,
+                   *(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
+                   *(dg.warning(dg.SAMPLING, w) for w in sampling_checks(stages, sim.natural_frequencies_Hz)),
+                   *(dg.warning(dg.ACCURACY, w) for w in accuracy_checks(study, sim_cfg.method, sim_cfg.rtol)))
     return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim),
-                  stages=stages, accuracy=study, warnings=warnings)
+                  stages=stages, accuracy=study, warnings=warnings, diagnostics=diagnostics)
 
 
 def _merge(*groups) -> tuple[str, ...]:

@@ -173,6 +173,7 @@ class Report:
     stages: tuple[StageReport, ...]
     accuracy: AccuracyStudy | None  # None with --quick
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic of the warnings
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:

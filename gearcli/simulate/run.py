@@ -56,12 +56,18 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     if model is None:
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
-    design_diags = [dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
+    design_diags = _design_diagnostics(design)
     return simulate_model(model, duration_s=sim.duration_s,
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                           window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
                           steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
                           engine=sim.engine)
+
+
+def _design_diagnostics(design) -> list[Diagnostic]:
+    """The design's warnings as diagnostics (code ``design``, with the check's data where the design has it)."""
+    known = {d.message: d for d in getattr(design, "diagnostics", ())}
+    return [known.get(w) or dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
@@ -356,7 +362,7 @@ def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic
 
     out = []
     for r in resonances(model.layout, boundary=choice.boundary):
-        out.append(dg.warning(dg.RESONANCE, r.message, mode=r.mode, frequency_Hz=r.frequency_Hz,
+        out.append(dg.warning(dg.RESONANCE, r.message, stage=r.stage, mode=r.mode, frequency_Hz=r.frequency_Hz,
                               excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element,
                               participation=r.participation, amplification=r.amplification,
                               damping_ratio=r.damping_ratio, strength=r.strength))
