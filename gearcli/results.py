@@ -279,3 +279,4 @@ class SimulationResult:
     final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation
     final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
     steady: SteadyState | None = None  # how the window was found ([simulation] steady)
+    units: tuple[str, str] = ("deg_s", "Nmm")  # output speed and torque units: the design file's key suffixes

@@ -74,6 +74,15 @@ def spec_from_design(cfg, design) -> ModelSpec:
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design))
 
 
+def output_units(cfg) -> tuple[str, str]:
+    """(speed, torque) key suffixes the outputs use: the input's speed key (``deg_s``, ``rpm``, ``rad_s``) and
+    the load's torque key (``Nmm``, ``Nm``; ``power_kW`` gives N·m)."""
+    inp = cfg.input
+    speed = "rpm" if inp.speed_rpm is not None else "rad_s" if inp.speed_rad_s is not None else "deg_s"
+    torque = "Nmm" if getattr(cfg.load, "torque_Nmm", None) is not None else "Nm"
+    return speed, torque
+
+
 def build_model(cfg, design):
     """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
     from gearcli.model import TorsionalModel

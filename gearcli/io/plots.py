@@ -64,16 +64,21 @@ def _zoom(ax, t: np.ndarray, y: np.ndarray, window, color: str) -> None:
 def speeds_figure(r: Report):
     sim, shafts = r.simulation, r.design.shafts
     fig, axes = _figure(len(shafts), 2, sharex="col", height=1.8, width=12.0, width_ratios=(3, 2))
+    from gearcli.io.units import of_result
+
+    u = of_result(sim)
     for (ax, zoom), shaft in zip(axes, shafts, strict=True):
         series = sim.channels.get(f"shaft{shaft.index}_speed_deg_s")
         _shade_window(ax, sim.window_s)
         if series is not None:
+            series = u.speed_from_deg_s(series)
             ax.plot(sim.time_s, series, lw=1.0, color="C0", label="simulated")
             _zoom(zoom, sim.time_s, series, sim.window_s, "C0")
+        design_speed = u.speed_from_deg_s(shaft.speed_deg_s)
         for a in (ax, zoom):
-            a.axhline(shaft.speed_deg_s, ls="--", lw=1.0, color="k", label=f"design {shaft.speed_deg_s:.5g} °/s")
+            a.axhline(design_speed, ls="--", lw=1.0, color="k", label=f"design {design_speed:.5g} {u.speed_label}")
         name = "input" if shaft.index == 1 else ("output" if shaft.index == len(shafts) else "intermediate")
-        ax.set_ylabel(f"shaft {shaft.index}\n[°/s]")
+        ax.set_ylabel(f"shaft {shaft.index}\n[{u.speed_label}]")
         ax.set_title(f"shaft {shaft.index} ({name})", fontsize=9, loc="left")
         zoom.set_title(f"shaft {shaft.index}, steady window", fontsize=9, loc="left")
         ax.legend(loc="lower right", fontsize=8)

@@ -46,12 +46,26 @@ def quantity_label(stage: int | None, quantity: str) -> str:
     return LABELS.get(quantity, quantity)
 
 
+def _in_units(r: Report, quantity: str, label: str, value: float | None) -> tuple[str, float | None]:
+    """A speed row in the design file's speed unit (the comparison is kept in °/s)."""
+    from gearcli.io.units import of_result
+
+    u = of_result(r.simulation)
+    if not quantity.endswith("_deg_s") or u.speed == "deg_s":
+        return label, value
+    return label.replace("[°/s]", f"[{u.speed_label}]"), None if value is None else u.speed_from_deg_s(value)
+
+
 def comparison_section(r: Report) -> Section:
-    rows = tuple(("train" if row.stage is None else str(row.stage), quantity_label(row.stage, row.quantity),
-                  g(row.theory, 6), g(row.simulated, 6), percent(row.error_percent)) for row in r.comparison)
+    rows = []
+    for row in r.comparison:
+        label, theory = _in_units(r, row.quantity, quantity_label(row.stage, row.quantity), row.theory)
+        simulated = _in_units(r, row.quantity, label, row.simulated)[1]
+        rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
+                     percent(row.error_percent)))
     w0, w1 = r.simulation.window_s
     return Section("Theory against simulation", ("stage", "quantity", "theory (static)", "simulated (mean)",
-                                                 "error [%]"), rows, "llrrr",
+                                                 "error [%]"), tuple(rows), "llrrr",
                    (f"simulated: mean over the steady window {w0:.4g}–{w1:.4g} s; error = (simulated − theory)"
                     " / |theory|",))
 
@@ -158,7 +172,8 @@ def solver_lines(r: Report) -> list[str]:
         f"njev {sv.njev}, wall {sv.wall_s:.3g} s",
         f"energy balance residual {sv.energy_residual:.2e} (input work − load work − damping loss − ΔKE − ΔPE, "
         "relative to the largest energy)",
-        f"dynamic ratio {sim.ratio:.6g}, output {sim.output_speed_deg_s:.6g} °/s = {sim.output_speed_deg_s / 6:.5g} rpm",
+        f"dynamic ratio {sim.ratio:.6g}, output {sim.output_speed_deg_s:.6g} °/s = {sim.output_speed_deg_s / 6:.5g} rpm"
+        + ("" if sim.units[0] != "rad_s" else f" = {sim.output_speed_deg_s * 3.141592653589793 / 180:.5g} rad/s"),
     ]
 
 

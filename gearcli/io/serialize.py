@@ -50,11 +50,22 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
         for s in result.stages
     ]
+    from gearcli.io import units as output_units
+
+    u = output_units.of_result(result)
+    speeds = {} if u.speed == "deg_s" else {f"input_speed_{u.speed}": u.speed_from_deg_s(result.input_speed_deg_s),
+                                            f"output_speed_{u.speed}": u.speed_from_deg_s(result.output_speed_deg_s)}
+    means = output_units.input_torque_window_means(result)
+    torque = {} if means is None else {f"input_torque_{u.torque}": u.torque_from_Nm(means[0]),
+                                       "input_power_kW": means[1]}
     out = {
         "summary": {
             "ratio": result.ratio,
             "input_speed_deg_s": result.input_speed_deg_s,
             "output_speed_deg_s": result.output_speed_deg_s,
+            **speeds,
+            **torque,
+            "units": {"speed": u.speed, "torque": u.torque},
             "window_s": list(result.window_s),
             "stages": stages,
             "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
@@ -66,7 +77,8 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
         "warnings": warning_objects(result.warnings, result.diagnostics),
     }
     if series:
-        out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in result.channels.items()}}
+        shown = output_units.channels(result.channels, u)
+        out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in shown.items()}}
     return out
 
 
@@ -117,8 +129,11 @@ def simulation_csv(result: SimulationResult) -> str:
     """One row per output sample: ``time_s`` then the channels in contract order."""
     import numpy as np
 
-    header = ["time_s", *result.channels]
-    data = np.column_stack([result.time_s, *result.channels.values()])
+    from gearcli.io.units import channels, of_result
+
+    shown = channels(result.channels, of_result(result))
+    header = ["time_s", *shown]
+    data = np.column_stack([result.time_s, *shown.values()])
     if not np.all(np.isfinite(data)):
         raise ValueError("non-finite value in CSV output")
     buf = io.StringIO()

@@ -57,11 +57,14 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = _design_diagnostics(design)
-    return simulate_model(model, duration_s=sim.duration_s,
-                          steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
-                          steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
-                          engine=sim.engine)
+    from gearcli.scene import output_units
+
+    result = simulate_model(model, duration_s=sim.duration_s,
+                            steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
+                            window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
+                            steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
+                            engine=sim.engine)
+    return replace(result, units=output_units(cfg))
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
