@@ -450,7 +450,13 @@ class _StderrProgress:
             self.bar.__exit__(*exc)
 
 
-@cli.command()
+@cli.command(epilog="""\b
+Examples:
+  gearcli report mixer.toml -o report.md
+  gearcli report mixer.toml --quick --format json -o report.json
+  gearcli report mixer.toml --plots figures --accuracy 1e-5
+  gearcli report mixer.toml --rtols 1e-4,1e-6,1e-8 --set simulation.duration_s=0.3
+""")
 @click.argument("file", type=str)
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help="Override a design-file key, e.g. --set simulation.duration_s=0.25 (repeatable).")
@@ -538,7 +544,13 @@ def _write_report_plots(rep, plots_dir: str) -> None:
 SWEEP_FORMATS = ("csv", "json")
 
 
-@cli.command()
+@cli.command(epilog="""\b
+Examples:
+  gearcli sweep mixer.toml --vary input.speed_rpm=300:1500:13 -o speed.csv --plots figures
+  gearcli sweep mixer.toml --vary input.speed_rpm=300:1500:13 --direction both -o hysteresis.csv
+  gearcli sweep mixer.toml --vary load.torque_Nmm=2e6,5.31e6 --vary stage.0.backlash_mm=0,0.2 -o grid.json
+  gearcli sweep mixer.toml --random 'stage.0.backlash_mm=normal(0.25,0.02)' --samples 50 --seed 1 -o mc.csv
+""")
 @click.argument("file", type=str)
 @click.option("--vary", multiple=True, metavar="KEY=START:STOP:N|KEY=v1,v2,...",
               help="Vary a key over N evenly spaced values (inclusive) or a list; several make a grid (repeatable).")
