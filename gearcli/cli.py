@@ -327,17 +327,22 @@ Examples:
   gearcli modes mixer.toml
   gearcli modes mixer.toml --format json -o modes.json
   gearcli modes mixer.toml --set stage.0.shaft.stiffness_Nm_rad=2e6
+  gearcli modes mixer.toml --plots figures
 """)
 @click.argument("file", type=str)
 @io_options()
+@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+              help="Also write the Campbell diagram campbell.png to DIR (pip install 'gearcli[plot]').")
 @guarded
-def modes(file: str, overrides, fmt, output) -> None:
+def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, mesh orders."""
     from gearcli.io import modes_out, serialize
     from gearcli.model.modes import BOUNDARIES, modal_analysis
     from gearcli.scene import build_model
 
     target = check_target(fmt, output)
+    if plots_dir:
+        _check_sweep_plots_dir(plots_dir, file, target, ())
     loaded, design_result = load_and_design(file, overrides)
     warn(design_result.warnings)
     lay = build_model(loaded.design, design_result).layout
@@ -351,6 +356,28 @@ def modes(file: str, overrides, fmt, output) -> None:
         emit(modes_out.modes_csv(analyses), target)
     else:
         emit_tables(modes_out.modes_tables(analyses), target)
+    if plots_dir:
+        _write_campbell(loaded, lay, plots_dir)
+
+
+def _write_campbell(loaded, lay, plots_dir: str) -> None:
+    """``modes --plots``: the Campbell diagram at the drive's boundary; no matplotlib: a warning, exit 0."""
+    from gearcli.io import units
+    from gearcli.io.campbell import write_campbell
+    from gearcli.io.plots import PlotsUnavailable
+    from gearcli.model.modes import campbell_data
+
+    data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free",
+                         duration_s=loaded.design.simulation.duration_s)
+    try:
+        path = write_campbell(data, units.of_design_file(loaded.design), plots_dir, loaded.design.title)
+    except PlotsUnavailable as exc:
+        warn([f"{exc}; the modes output itself is complete"])
+        return
+    except OSError as exc:
+        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
+    if not is_quiet():
+        click.echo(f"wrote {path.name} to {visible(plots_dir)}", err=True)
 
 
 @cli.command(epilog="""\b

@@ -212,3 +212,47 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                                  c.amplification, m.damping_ratio, c.strength,
                                  int(name.split()[1]) if name.startswith("stage ") else None))
     return out
+
+
+@dataclass(frozen=True)
+class CampbellCrossing:
+    mode: int
+    frequency_Hz: float
+    crossing: Crossing
+
+
+@dataclass(frozen=True)
+class CampbellData:
+    """What a Campbell diagram shows: the modes (linearised at full load, so flat in speed), every order line
+    (mesh 1x-3x, shaft 1x) as frequency per input revolution, and each crossing with how strongly it is
+    excited, for input speeds 0 .. ``max_input_rpm``."""
+
+    boundary: str
+    nominal_input_rpm: float
+    max_input_rpm: float
+    modes: tuple[Mode, ...]  # the non-rigid ones
+    orders: tuple[tuple[str, float], ...]  # (name, Hz per input Hz)
+    crossings: tuple[CampbellCrossing, ...]
+
+    @property
+    def top_Hz(self) -> float:
+        """The highest order's frequency at the top speed: the frequency range worth drawing."""
+        return max((r for _, r in self.orders), default=1.0) * self.max_input_rpm / 60.0
+
+
+def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0,
+                  max_input_rpm: float | None = None) -> CampbellData:
+    """The Campbell diagram of the chain up to ``max_input_rpm`` (default ``SPEED_RANGE`` x nominal)."""
+    ana = modal_analysis(lay, boundary, duration_s=duration_s)
+    top = max_input_rpm if max_input_rpm is not None else SPEED_RANGE * ana.nominal_input_rpm
+    sources = excitation_sources(lay)
+    crossings = []
+    for m in ana.modes:
+        if m.rigid:
+            continue
+        for name, r, via in sources:
+            c = _crossing(name, r, m.frequency_Hz, np.asarray(m.energy_share), via, m.damping_ratio)
+            if c.input_speed_rpm <= top:
+                crossings.append(CampbellCrossing(m.number, m.frequency_Hz, c))
+    return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
+                        tuple((name, r) for name, r, _ in sources), tuple(crossings))
