@@ -1,4 +1,4 @@
-"""``gearcli report --plots DIR``: four PNG figures, drawn with matplotlib's Agg canvas.
+"""``gearcli report --plots DIR``: the Campbell diagram and four PNG figures, drawn with matplotlib's Agg canvas.
 
 matplotlib is an optional extra (``pip install 'gearcli[plot]'``) and is imported only here, inside
 :func:`write_plots`; without it :class:`PlotsUnavailable` says how to install it. The figures use the
@@ -201,7 +201,7 @@ def _mark(ax, run, q: str, marker: str, label: str, size: float) -> None:
         ax.plot([run.wall_s], [run.error(q)], marker, mfc="none", mec="k", ms=size, label=label)
 
 
-FIGURE_NAMES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
+FIGURE_NAMES = ("campbell.png", "speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
 
 
 def write_plots(r: Report, directory: str | Path) -> list[Path]:
@@ -214,7 +214,13 @@ def write_plots(r: Report, directory: str | Path) -> list[Path]:
         figures.append(("work_precision.png", work_precision_figure))
     _figure_check()
     out.mkdir(parents=True, exist_ok=True)
-    return [_save(make(r), out / name) for name, make in figures]
+    written = []
+    if r.campbell is not None:  # the engineering figure first
+        from gearcli.io.campbell import campbell_figure
+        from gearcli.io.units import of_result
+
+        written.append(_save(campbell_figure(r.campbell, of_result(r.simulation), r.title), out / "campbell.png"))
+    return written + [_save(make(r), out / name) for name, make in figures]
 
 
 def _figure_check() -> None:

@@ -49,6 +49,7 @@ def stage_dict(s: StageReport) -> dict:
         "peak_time_s": s.peak_time_s,
         "dynamic_factor": s.dynamic_factor,
         "runup_factor": s.runup_factor,
+        "simulated_static_tangential_N": s.simulated_static_tangential_N,
         "spectrum": {
             "peak_frequency_Hz": sp.peak_frequency_Hz,
             "peak_amplitude_N": sp.peak_amplitude_N,
@@ -85,14 +86,27 @@ def accuracy_dict(study: AccuracyStudy | None) -> dict | None:
 def report_dict(r: Report) -> dict:
     sim = simulation_dict(r.simulation, series=False)
     sim.pop("warnings", None)  # merged into the report's own list
-    return {
+    return {  # the engineering first, the numerical study after it
         "title": r.title,
+        "design": design_summary(r.design),
+        "modes": modes_summary(r),
         "comparison": [plain(row) for row in r.comparison],
         "dynamics": [stage_dict(s) for s in r.stages],
         "natural_frequencies_Hz": list(r.natural_frequencies_Hz),
-        "accuracy": accuracy_dict(r.accuracy),
-        "energy_residual": r.energy_residual,
-        "design": design_summary(r.design),
         "simulation": sim,
+        "energy_residual": r.energy_residual,
+        "accuracy": accuracy_dict(r.accuracy),
         "warnings": warning_objects(r.warnings, r.diagnostics),
     }
+
+
+def modes_summary(r: Report) -> dict | None:
+    """The modes at the drive's boundary (as ``gearcli modes``), null where the report did not compute them."""
+    if r.modes is None:
+        return None
+    from gearcli.io.modes_out import modes_dict
+
+    doc = modes_dict([r.modes])
+    doc.pop("warnings", None)
+    return {"boundary": r.modes.boundary, **{k: v for k, v in doc.items() if k != "boundaries"},
+            "modes": doc["boundaries"][r.modes.boundary]}

@@ -82,6 +82,6 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
             stage=st.index, tangential_N=dyn.tangential_N, radial_N=dyn.radial_N, axial_N=dyn.axial_N,
             static_tangential_N=dyn.static_tangential_N, peak_tangential_N=dyn.peak_tangential_N,
             peak_time_s=dyn.peak_time_s, dynamic_factor=dyn.dynamic_factor, spectrum=spectrum,
-            runup_factor=dyn.runup_factor,
+            runup_factor=dyn.runup_factor, simulated_static_tangential_N=dyn.simulated_static_tangential_N,
         ))
     return tuple(out)
