@@ -31,6 +31,8 @@ import numpy as np
 DECAY_WINDOWS = 5.0  # a mode with a decay time beyond 5 window lengths rings through the window
 MIN_FRACTION = 0.01  # of the stage's static force, at the window's end
 MAX_MODES = 6  # the slowest candidates fitted at once (the fit needs far fewer columns than samples)
+FIT_SAMPLES = 4000  # a longer window is thinned to about this many samples for the fit ...
+SAMPLES_PER_PERIOD = 16  # ... unless that leaves fewer per period of the fastest mode fitted
 
 
 @dataclass(frozen=True)
@@ -76,6 +78,12 @@ def fit_transient(t: np.ndarray, x: np.ndarray, modes: list[tuple[float, float]]
     0.25 .. 4 x it (the nonlinear meshes and couplings damp at their own amplitude: the envelope decides)."""
     if not modes or t.size < 2 * len(modes) + 4:
         return [0.0] * len(modes), [s for s, _ in modes]
+    # a long record is thinned for the fit (its cost is samples x columns x trials), keeping at least
+    # SAMPLES_PER_PERIOD samples per period of the fastest mode fitted
+    dt = (t[-1] - t[0]) / max(t.size - 1, 1)
+    fastest = max(w for _, w in modes)
+    stride = max(1, min(t.size // FIT_SAMPLES, int(2 * math.pi / (fastest * dt * SAMPLES_PER_PERIOD)) if dt > 0 else 1))
+    t, x = t[::stride], x[::stride]
     tau = t - t[0]
     modes = list(modes)
     if refine:
