@@ -126,8 +126,10 @@ def _campbell(session, axis):
     from gearcli.sweep.modes import campbell_diagram
 
     fixed = [f"{a.key}={a.values[0]!r}" for a in session.spec.axes[1:] if a.key != axis.key]
+    from gearcli.io.units import OutputUnits
+
     data, swept, units = campbell_diagram(session.scene, axis.key, sorted(axis.values, key=float), fixed)
-    return campbell_figure(data, units, swept=swept)
+    return campbell_figure(data, OutputUnits(*units), swept=swept)
 
 
 def _distributions(rows: Sequence[dict], n_stages: int):

@@ -49,13 +49,12 @@ def campbell(scene: Scene, key: str, values: Sequence[Any], fixed: Sequence[str]
 
 
 def campbell_diagram(scene: Scene, key: str, values: Sequence[Any], fixed: Sequence[str] = ()):
-    """(CampbellData, swept input speeds in rpm, output units) for ``gearcli sweep --plots``: the modes and
+    """(CampbellData, swept input speeds in rpm, (speed, torque) unit suffixes) for ``gearcli sweep --plots``: the modes and
     order lines of the scene at the file's own speed (the other keys at ``fixed``), over 0 .. the larger of
     1.2 x that speed and the fastest swept point: the same drawing as ``gearcli modes --plots``."""
     from gearcli.design import compute_design
-    from gearcli.io.units import of_design_file
     from gearcli.model.modes import SPEED_RANGE, campbell_data
-    from gearcli.scene import build_model
+    from gearcli.scene import build_model, output_units
 
     swept = [p.input_rpm for p in campbell(scene, key, values, fixed)]
     cfg = load_point(scene, tuple(fixed))
@@ -64,5 +63,5 @@ def campbell_diagram(scene: Scene, key: str, values: Sequence[Any], fixed: Seque
     nominal = design.stages[0].pinion.speed_rpm
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
                          max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
-    units = of_design_file(load_point(scene, (*fixed, f"{key}={float(values[0])!r}")))  # the swept key's unit
+    units = output_units(load_point(scene, (*fixed, f"{key}={float(values[0])!r}")))  # the swept key's unit
     return data, swept, units
