@@ -269,11 +269,13 @@ def design(file: str, overrides, fmt, output) -> None:
     import dataclasses
 
     from gearcli.io import serialize
-    from gearcli.scene import resonance_warnings
+    from gearcli.scene import resonance_diagnostics
 
     target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
-    result = dataclasses.replace(result, warnings=result.warnings + resonance_warnings(loaded.design, result))
+    found = resonance_diagnostics(loaded.design, result)
+    result = dataclasses.replace(result, warnings=result.warnings + tuple(d.message for d in found),
+                                 diagnostics=result.diagnostics + found)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.design_dict(result),
             csv_text=lambda: serialize.design_csv(result), table_builder="design_tables")
@@ -329,27 +331,57 @@ Examples:
   gearcli modes mixer.toml
   gearcli modes mixer.toml --format json -o modes.json
   gearcli modes mixer.toml --set stage.0.shaft.stiffness_Nm_rad=2e6
+  gearcli modes mixer.toml --plots figures
 """)
 @click.argument("file", type=str)
 @io_options()
+@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+              help="Also write the Campbell diagram campbell.png to DIR (pip install 'gearcli[plot]').")
 @guarded
-def modes(file: str, overrides, fmt, output) -> None:
+def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, mesh orders."""
     from gearcli.io import modes_out, serialize
     from gearcli.model.modes import BOUNDARIES, modal_analysis
     from gearcli.scene import build_model
 
     target = check_target(fmt, output)
+    if plots_dir:
+        _check_sweep_plots_dir(plots_dir, file, target, ())
     loaded, design_result = load_and_design(file, overrides)
     warn(design_result.warnings)
     lay = build_model(loaded.design, design_result).layout
     analyses = [modal_analysis(lay, b, duration_s=loaded.design.simulation.duration_s) for b in BOUNDARIES]
     if target.fmt == "json":
-        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses), loaded.sha256)), target)
+        from gearcli.diagnostics import warning_objects
+
+        found = warning_objects(design_result.warnings, design_result.diagnostics)
+        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses, found), loaded.sha256)), target)
     elif target.fmt == "csv":
         emit(modes_out.modes_csv(analyses), target)
     else:
         emit_tables(modes_out.modes_tables(analyses), target)
+    if plots_dir:
+        _write_campbell(loaded, lay, plots_dir)
+
+
+def _write_campbell(loaded, lay, plots_dir: str) -> None:
+    """``modes --plots``: the Campbell diagram at the drive's boundary; no matplotlib: a warning, exit 0."""
+    from gearcli.io import units
+    from gearcli.io.campbell import write_campbell
+    from gearcli.io.plots import PlotsUnavailable
+    from gearcli.model.modes import campbell_data
+
+    data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free",
+                         duration_s=loaded.design.simulation.duration_s)
+    try:
+        path = write_campbell(data, units.of_design_file(loaded.design), plots_dir, loaded.design.title)
+    except PlotsUnavailable as exc:
+        warn([f"{exc}; the modes output itself is complete"])
+        return
+    except OSError as exc:
+        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
+    if not is_quiet():
+        click.echo(f"wrote {path.name} to {visible(plots_dir)}", err=True)
 
 
 @cli.command(epilog="""\b
@@ -449,7 +481,13 @@ class _StderrProgress:
             self.bar.__exit__(*exc)
 
 
-@cli.command()
+@cli.command(epilog="""\b
+Examples:
+  gearcli report mixer.toml -o report.md
+  gearcli report mixer.toml --quick --format json -o report.json
+  gearcli report mixer.toml --plots figures --accuracy 1e-5
+  gearcli report mixer.toml --rtols 1e-4,1e-6,1e-8 --set simulation.duration_s=0.3
+""")
 @click.argument("file", type=str)
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help="Override a design-file key, e.g. --set simulation.duration_s=0.25 (repeatable).")
@@ -462,7 +500,7 @@ class _StderrProgress:
 @click.option("--rtols", callback=_parse_rtols, metavar="LIST",
               help="The accuracy ladder's tolerances, comma-separated [default: 1e-3,1e-4,...,1e-9].")
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
-              help="Also write speeds.png, mesh_forces.png, spectrum.png, work_precision.png to DIR. Needs "
+              help="Also write campbell.png, speeds.png, mesh_forces.png, spectrum.png, work_precision.png to DIR. Needs "
                    "matplotlib (pip install 'gearcli[plot]'); without it: a warning, the rest of the report, exit 0.")
 @quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
@@ -537,7 +575,13 @@ def _write_report_plots(rep, plots_dir: str) -> None:
 SWEEP_FORMATS = ("csv", "json")
 
 
-@cli.command()
+@cli.command(epilog="""\b
+Examples:
+  gearcli sweep mixer.toml --vary input.speed_rpm=300:1500:13 -o speed.csv --plots figures
+  gearcli sweep mixer.toml --vary input.speed_rpm=300:1500:13 --direction both -o hysteresis.csv
+  gearcli sweep mixer.toml --vary load.torque_Nmm=2e6,5.31e6 --vary stage.0.backlash_mm=0,0.2 -o grid.json
+  gearcli sweep mixer.toml --random 'stage.0.backlash_mm=normal(0.25,0.02)' --samples 50 --seed 1 -o mc.csv
+""")
 @click.argument("file", type=str)
 @click.option("--vary", multiple=True, metavar="KEY=START:STOP:N|KEY=v1,v2,...",
               help="Vary a key over N evenly spaced values (inclusive) or a list; several make a grid (repeatable).")

@@ -1,7 +1,8 @@
 """Diagnostics as data: what a computation noticed, with a stable code, a severity and its numbers.
 
 Results carry a tuple of :class:`Diagnostic`; the report and the CLI decide by ``code`` (never by
-matching message text), and the JSON ``warnings`` list stays the messages for the output contract.
+matching message text). The JSON ``warnings`` list holds one object per warning (:func:`warning_objects`):
+``code``, ``message`` and the diagnostic's data; tables, CSV and stderr print the messages.
 """
 
 from __future__ import annotations
@@ -30,6 +31,9 @@ DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap
 SUBHARMONIC = "subharmonic"  # steady = "periodic": the response repeats after k > 1 periods
 PERIOD_NOT_COMMON = "period_not_common"  # the excitations have no usable common period
+WINDOW_RINGING = "window_ringing"  # a lightly damped mode still rings from the run-up through the window
+SAMPLING = "sampling"  # report: a line above the Nyquist frequency of the output samples
+ACCURACY = "accuracy"  # report: the accuracy study's verdict on the file's solver settings
 OTHER = "other"
 
 
@@ -52,3 +56,46 @@ def messages(diags: Iterable[Diagnostic]) -> tuple[str, ...]:
 
 def has(diags: Iterable[Diagnostic], code: str) -> bool:
     return any(d.code == code for d in diags)
+
+
+#: JSON Schema of one entry of a JSON ``warnings`` list (docs/output.md, "Warnings")
+WARNING_SCHEMA: dict[str, Any] = {
+    "type": "object",
+    "required": ["code", "message"],
+    "properties": {
+        "code": {"type": "string", "pattern": "^[a-z][a-z0-9]*(_[a-z0-9]+)*$"},
+        "message": {"type": "string"},
+        "stage": {"anyOf": [{"type": "integer", "minimum": 1}, {"type": "null"}]},
+        "member": {"enum": ["pinion", "gear"]},
+    },
+}
+
+
+def _json_value(v: Any) -> Any:
+    """A data value as plain JSON: non-finite floats become null, numpy scalars and tuples plain."""
+    import math
+
+    if hasattr(v, "tolist"):
+        v = v.tolist()
+    if isinstance(v, float):
+        return v if math.isfinite(v) else None
+    if isinstance(v, (list, tuple)):
+        return [_json_value(x) for x in v]
+    if isinstance(v, dict):
+        return {str(k): _json_value(x) for k, x in v.items()}
+    return v
+
+
+def as_dict(d: Diagnostic) -> dict[str, Any]:
+    """One JSON ``warnings`` entry: ``code``, ``message``, then the diagnostic's data."""
+    data = {k: _json_value(v) for k, v in d.data.items() if k not in ("code", "message")}
+    return {"code": d.code, "message": d.message, **data}
+
+
+def warning_objects(messages_: Iterable[str], diags: Iterable[Diagnostic] = ()) -> list[dict[str, Any]]:
+    """The JSON ``warnings`` list: one object per message, in the messages' order, from the diagnostic
+    that carries it (code ``other`` for a message no diagnostic carries)."""
+    by_message: dict[str, Diagnostic] = {}
+    for d in diags:
+        by_message.setdefault(d.message, d)
+    return [as_dict(by_message.get(m) or Diagnostic(OTHER, "warning", m)) for m in messages_]

@@ -201,7 +201,7 @@ class DesignResult:
     input_power_kW: float = 0.0
     output_power_kW: float = 0.0
     bearings: tuple[BearingResult, ...] = ()  # with [[bearing]] tables only (docs/life.md)
-    diagnostics: tuple = ()  # gearcli.diagnostics.Diagnostic of the warnings that carry a code (the rating's)
+    diagnostics: tuple = ()  # gearcli.diagnostics.Diagnostic of the warnings (code, data); JSON writes these
 
 
 # ------------------------------------------------------------------------------------- simulation
@@ -267,7 +267,7 @@ class StageDynamics:
     static_tangential_N: float  # the design's static F_t at full load
     peak_tangential_N: float  # largest |F_t| over the whole run (run-up included)
     peak_time_s: float
-    dynamic_factor: float | None  # peak / |static|; None (JSON null) when the static force is 0
+    dynamic_factor: float | None  # steady-window max |F_t| / |simulated static F_t|; None when that static is 0
     error_estimate: StatisticsError | None = None  # None when no refinement pass ran
     mesh_stiffness: MeshStiffness | None = None
     # mesh response over the statistics window (issue 13); defaults for hand-made results
@@ -276,6 +276,10 @@ class StageDynamics:
     back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
     regime: str = ""  # REGIME_*
     rating: RatingResult | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
+    # issue 21: the run-up overshoot apart from the steady dynamic factor; defaults for hand-made results
+    runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
+    simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
+    # the losses its dynamics model (lossless meshes today): the reference of both factors
 
 
 @dataclass(frozen=True)
@@ -353,3 +357,4 @@ class SimulationResult:
     final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation
     final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
     steady: SteadyState | None = None  # how the window was found ([simulation] steady)
+    units: tuple[str, str] = ("deg_s", "Nmm")  # output speed and torque units: the design file's key suffixes

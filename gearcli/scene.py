@@ -74,6 +74,15 @@ def spec_from_design(cfg, design) -> ModelSpec:
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design))
 
 
+def output_units(cfg) -> tuple[str, str]:
+    """(speed, torque) key suffixes the outputs use: the input's speed key (``deg_s``, ``rpm``, ``rad_s``) and
+    the load's torque key (``Nmm``, ``Nm``; ``power_kW`` gives N·m)."""
+    inp = cfg.input
+    speed = "rpm" if inp.speed_rpm is not None else "rad_s" if inp.speed_rad_s is not None else "deg_s"
+    torque = "Nmm" if getattr(cfg.load, "torque_Nmm", None) is not None else "Nm"
+    return speed, torque
+
+
 def build_model(cfg, design):
     """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
     from gearcli.model import TorsionalModel
@@ -82,13 +91,23 @@ def build_model(cfg, design):
 
 
 def resonance_warnings(cfg, design) -> tuple[str, ...]:
+    """The messages of :func:`resonance_diagnostics`."""
+    return tuple(d.message for d in resonance_diagnostics(cfg, design))
+
+
+def resonance_diagnostics(cfg, design) -> tuple:
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
     its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
+    from gearcli import diagnostics as dg
     from gearcli.model.assembly import Layout
     from gearcli.model.modes import resonances
 
     lay = Layout.of(spec_from_design(cfg, design))
     boundary = "clamped_input" if lay.speed_drive else "free"
-    return tuple(r.message for r in resonances(lay, boundary, duration_s=cfg.simulation.duration_s))
+    return tuple(dg.warning(dg.RESONANCE, r.message, stage=r.stage, mode=r.mode, frequency_Hz=r.frequency_Hz,
+                            excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element,
+                            participation=r.participation, amplification=r.amplification,
+                            damping_ratio=r.damping_ratio, strength=r.strength, boundary=boundary)
+                 for r in resonances(lay, boundary, duration_s=cfg.simulation.duration_s))

@@ -3,10 +3,13 @@ validation (tests/unit/test_docs_and_schema.py checks the checker itself)."""
 
 from __future__ import annotations
 
+import re
+
 
 def valid(value, schema: dict, root: dict) -> bool:
     """Whether ``value`` satisfies ``schema`` (the subset pydantic emits: $ref, anyOf, allOf, not, type,
-    enum, const, bounds, min/maxLength, min/maxItems, properties, required, additionalProperties)."""
+    enum, const, bounds, min/maxLength, pattern, min/maxItems, items, properties, required,
+    additionalProperties)."""
     if "$ref" in schema:
         return valid(value, root["$defs"][schema["$ref"].rsplit("/", 1)[1]], root)
     if "anyOf" in schema and not any(valid(value, s, root) for s in schema["anyOf"]):
@@ -37,6 +40,8 @@ def valid(value, schema: dict, root: dict) -> bool:
         if "exclusiveMaximum" in schema and not value < schema["exclusiveMaximum"]:
             return False
     if isinstance(value, str) and len(value) > schema.get("maxLength", len(value)):
+        return False
+    if isinstance(value, str) and "pattern" in schema and re.search(schema["pattern"], value) is None:
         return False
     if isinstance(value, list):
         if not schema.get("minItems", 0) <= len(value) <= schema.get("maxItems", len(value)):

@@ -78,15 +78,40 @@ def check_hands(stage: Stage, k: int) -> None:
 # ---------------------------------------------------------------------------------------- warnings
 def design_warnings(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[str, ...]:
     """Every warning of the design, train-level first, then stage by stage."""
-    found = [target_speed_warning(cfg, output_speed_rpm)]
+    return tuple(d.message for d in design_diagnostics(cfg, stages, output_speed_rpm))
+
+
+def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple:
+    """The design's warnings as diagnostics (code ``design``; ``check`` names the check, with its stage,
+    member and numbers), in the order of :func:`design_warnings`."""
+    from gearcli.diagnostics import DESIGN, warning
+
+    found = []
+    if cfg.target is not None:
+        found.append((target_speed_warning(cfg, output_speed_rpm),
+                      {"check": "target_speed", "output_speed_rpm": output_speed_rpm,
+                       "target_rpm": cfg.target.output_speed_rpm_value,
+                       "tolerance_percent": cfg.target.tolerance_percent}))
     for stage, stage_cfg in zip(stages, cfg.stage, strict=True):
-        found.append(spur_hand_warning(stage.index, stage_cfg))
-        found.extend(undercut_warning(stage, gear) for gear in (stage.pinion, stage.gear))
-        found.append(contact_ratio_warning(stage))
-        found.append(face_width_warning(stage))
-        found.extend(tip_thickness_warning(stage, gear) for gear in (stage.pinion, stage.gear))
-        found.append(resonance_warning(stage))
-    return tuple(w for w in found if w)
+        at = {"stage": stage.index}
+        found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
+        for gear in (stage.pinion, stage.gear):
+            found.append((undercut_warning(stage, gear), {"check": "undercut", **at, "member": _part(stage, gear),
+                                                          "teeth": gear.teeth, "profile_shift": gear.profile_shift}))
+        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at,
+                                                     "contact_ratio_transverse": stage.contact_ratio_transverse,
+                                                     "contact_ratio_total": stage.contact_ratio_total}))
+        found.append((face_width_warning(stage), {"check": "face_width", **at,
+                                                  "face_width_ratio": stage.face_width_mm
+                                                  / stage.pinion.pitch_diameter_mm}))
+        for gear in (stage.pinion, stage.gear):
+            found.append((tip_thickness_warning(stage, gear), {"check": "tip_thickness", **at,
+                                                               "member": _part(stage, gear),
+                                                               "profile_shift": gear.profile_shift}))
+        found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at,
+                                                 "resonance_ratio": stage.resonance_ratio,
+                                                 "resonance_speed_rpm": stage.resonance_speed_rpm}))
+    return tuple(warning(DESIGN, w, **data) for w, data in found if w)
 
 
 def target_speed_warning(cfg: DesignFile, output_speed_rpm: float) -> str | None:

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_inputs, design_warnings
+from gearcli.design.checks import check_inputs, design_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
 from gearcli.design.inertia import (
@@ -24,7 +24,6 @@ from gearcli.design.inertia import (
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train
 from gearcli.design.shafts import bearing_results
-from gearcli.diagnostics import messages
 from gearcli.errors import DesignError
 from gearcli.results import DesignResult, GearResult, Iso6336Factors, ShaftResult, StageResult, StaticForces
 
@@ -50,6 +49,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
+    diagnostics = (*design_diagnostics(cfg, stages, speed_rpm(out)), *rating_diagnostics)
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -60,11 +60,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         output_speed_rpm=speed_rpm(out),
         input_torque_Nmm=kin.shaft_torque_Nmm(0),
         output_torque_Nmm=kin.load_torque_Nmm,
-        warnings=design_warnings(cfg, stages, speed_rpm(out)) + messages(rating_diagnostics),
+        warnings=tuple(d.message for d in diagnostics),
         input_power_kW=power_kW(kin.shaft_torque_Nmm(0), kin.shaft_speeds_rad_s[0]),
         output_power_kW=power_kW(kin.load_torque_Nmm, out),
         bearings=bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s]),
-        diagnostics=rating_diagnostics,
+        diagnostics=diagnostics,
     )
 
 

@@ -331,6 +331,13 @@ def simulated_dynamic_factor(tangential_N, static_tangential_N: float) -> float:
     return max(1.0, peak / abs(static_tangential_N))
 
 
+def stage_simulated_k_v(sd) -> float:
+    """K_v of one simulated stage (``StageDynamics``): max(1, its window max |F_t| over the static F_t of the
+    losses the run models, i.e. its ``dynamic_factor``; the design's static F_t where the run has none)."""
+    static = sd.simulated_static_tangential_N
+    return simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N if static is None else static)
+
+
 def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
     """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
     its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise."""
@@ -338,7 +345,7 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
         return tuple(stages), []
     out, diags = [], []
     for k, sd in enumerate(stages):
-        k_v = simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N)
+        k_v = stage_simulated_k_v(sd)
         rated = replace(design.stages[k], rating=rate_stage(cfg, k, design.stages[k], simulated_k_v=k_v))
         diags += safety_diagnostics(cfg, rated)
         out.append(replace(sd, rating=rated.rating))

@@ -5,7 +5,7 @@ from __future__ import annotations
 from gearcli.model.modes import ModalAnalysis
 
 
-def modes_dict(analyses: list[ModalAnalysis]) -> dict:
+def modes_dict(analyses: list[ModalAnalysis], warnings: list | None = None) -> dict:
     """Both boundaries; per mode its frequency, shape per body, strain-energy share per element and the
     mesh orders that cross it in the operating range."""
     first = analyses[0]
@@ -20,8 +20,12 @@ def modes_dict(analyses: list[ModalAnalysis]) -> dict:
             "dominant_element": m.dominant,
             "shape": dict(zip(a.bodies, m.shape, strict=True)),
             "energy_share": dict(zip(a.connectors, m.energy_share, strict=True)),
-            "crossings": [{"excitation": c.excitation, "input_speed_rpm": c.input_speed_rpm} for c in m.crossings],
+            "damping_ratio": m.damping_ratio,
+            "crossings": [{"excitation": c.excitation, "input_speed_rpm": c.input_speed_rpm,
+                           "participation": c.participation, "amplification": c.amplification,
+                           "strength": c.strength} for c in m.crossings],
         } for m in a.modes] for a in analyses},
+        "warnings": list(warnings or []),
     }
 
 
@@ -40,6 +44,11 @@ def modes_csv(analyses: list[ModalAnalysis]) -> str:
     return csv_text(header, rows)
 
 
+def _strength(c) -> str:
+    gain = "∞" if c.amplification is None else f"{c.amplification:.2g}"
+    return f"{100 * c.participation:.2g} %, {gain}"
+
+
 def modes_tables(analyses: list[ModalAnalysis]) -> list:
     from rich.table import Table
     from rich.text import Text
@@ -48,11 +57,13 @@ def modes_tables(analyses: list[ModalAnalysis]) -> list:
     for a in analyses:
         t = Table(title=f"modes, {a.boundary} (linearised at full load; crossings for input 0 .. "
                         f"{a.speed_range_rpm[1]:.5g} rpm)", title_justify="left", header_style="bold")
-        for col in ("mode", "f [Hz]", "dominant element (share)", "mesh orders crossing [input rpm]"):
+        for col in ("mode", "f [Hz]", "ζ [%]", "dominant element (share)",
+                    "orders crossing [input rpm] (exciting share, resonant gain s/2ζ)"):
             t.add_column(col)
         for m in a.modes:
             share = "rigid-body rotation" if m.rigid else f"{m.dominant} ({100 * max(m.energy_share):.0f} %)"
-            cross = ", ".join(f"{c.excitation} @ {c.input_speed_rpm:.4g}" for c in m.crossings) or "-"
-            t.add_row(str(m.number), f"{m.frequency_Hz:.4g}", Text(share), Text(cross))
+            cross = ", ".join(f"{c.excitation} @ {c.input_speed_rpm:.4g} ({_strength(c)})" for c in m.crossings) or "-"
+            t.add_row(str(m.number), f"{m.frequency_Hz:.4g}", "-" if m.rigid else f"{100 * m.damping_ratio:.2g}",
+                      Text(share), Text(cross))
         out.append(t)
     return out

@@ -1,4 +1,4 @@
-"""``gearcli report --plots DIR``: four PNG figures, drawn with matplotlib's Agg canvas.
+"""``gearcli report --plots DIR``: the Campbell diagram and four PNG figures, drawn with matplotlib's Agg canvas.
 
 matplotlib is an optional extra (``pip install 'gearcli[plot]'``) and is imported only here, inside
 :func:`write_plots`; without it :class:`PlotsUnavailable` says how to install it. The figures use the
@@ -64,16 +64,21 @@ def _zoom(ax, t: np.ndarray, y: np.ndarray, window, color: str) -> None:
 def speeds_figure(r: Report):
     sim, shafts = r.simulation, r.design.shafts
     fig, axes = _figure(len(shafts), 2, sharex="col", height=1.8, width=12.0, width_ratios=(3, 2))
+    from gearcli.io.units import of_result
+
+    u = of_result(sim)
     for (ax, zoom), shaft in zip(axes, shafts, strict=True):
         series = sim.channels.get(f"shaft{shaft.index}_speed_deg_s")
         _shade_window(ax, sim.window_s)
         if series is not None:
+            series = u.speed_from_deg_s(series)
             ax.plot(sim.time_s, series, lw=1.0, color="C0", label="simulated")
             _zoom(zoom, sim.time_s, series, sim.window_s, "C0")
+        design_speed = u.speed_from_deg_s(shaft.speed_deg_s)
         for a in (ax, zoom):
-            a.axhline(shaft.speed_deg_s, ls="--", lw=1.0, color="k", label=f"design {shaft.speed_deg_s:.5g} °/s")
+            a.axhline(design_speed, ls="--", lw=1.0, color="k", label=f"design {design_speed:.5g} {u.speed_label}")
         name = "input" if shaft.index == 1 else ("output" if shaft.index == len(shafts) else "intermediate")
-        ax.set_ylabel(f"shaft {shaft.index}\n[°/s]")
+        ax.set_ylabel(f"shaft {shaft.index}\n[{u.speed_label}]")
         ax.set_title(f"shaft {shaft.index} ({name})", fontsize=9, loc="left")
         zoom.set_title(f"shaft {shaft.index}, steady window", fontsize=9, loc="left")
         ax.legend(loc="lower right", fontsize=8)
@@ -99,7 +104,7 @@ def mesh_forces_figure(r: Report):
         zoom.axhline(s.tangential_N.mean, ls=":", lw=1.2, color="C3", label=f"mean {s.tangential_N.mean:.5g} N")
         ax.plot([s.peak_time_s], [s.peak_tangential_N], "v", color="C3", ms=6,
                 label=f"run-up peak {s.peak_tangential_N:.5g} N"
-                + (f" (×{s.dynamic_factor:.3g})" if s.dynamic_factor is not None else ""))
+                + (f" (run-up factor {s.runup_factor:.3g})" if s.runup_factor is not None else ""))
         ax.set_ylabel("F_t [N]")
         ax.set_title(f"stage {s.stage}: tangential mesh force", fontsize=9, loc="left")
         zoom.set_title(f"stage {s.stage}, steady window (std {s.tangential_N.std:.3g} N)", fontsize=9, loc="left")
@@ -196,7 +201,7 @@ def _mark(ax, run, q: str, marker: str, label: str, size: float) -> None:
         ax.plot([run.wall_s], [run.error(q)], marker, mfc="none", mec="k", ms=size, label=label)
 
 
-FIGURE_NAMES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
+FIGURE_NAMES = ("campbell.png", "speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
 
 
 def write_plots(r: Report, directory: str | Path) -> list[Path]:
@@ -209,7 +214,13 @@ def write_plots(r: Report, directory: str | Path) -> list[Path]:
         figures.append(("work_precision.png", work_precision_figure))
     _figure_check()
     out.mkdir(parents=True, exist_ok=True)
-    return [_save(make(r), out / name) for name, make in figures]
+    written = []
+    if r.campbell is not None:  # the engineering figure first
+        from gearcli.io.campbell import campbell_figure
+        from gearcli.io.units import of_result
+
+        written.append(_save(campbell_figure(r.campbell, of_result(r.simulation), r.title), out / "campbell.png"))
+    return written + [_save(make(r), out / name) for name, make in figures]
 
 
 def _figure_check() -> None:

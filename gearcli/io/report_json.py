@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 
+from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
@@ -32,7 +33,7 @@ def design_summary(d: DesignResult) -> dict:
         "output_torque_Nmm": d.output_torque_Nmm,
         "stages": [{k: plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS} for s in d.stages],
         "shaft_speeds_deg_s": [sh.speed_deg_s for sh in d.shafts],
-        "warnings": list(d.warnings),
+        "warnings": warning_objects(d.warnings, d.diagnostics),
     }
 
 
@@ -47,6 +48,8 @@ def stage_dict(s: StageReport) -> dict:
         "peak_tangential_N": s.peak_tangential_N,
         "peak_time_s": s.peak_time_s,
         "dynamic_factor": s.dynamic_factor,
+        "runup_factor": s.runup_factor,
+        "simulated_static_tangential_N": s.simulated_static_tangential_N,
         "spectrum": {
             "peak_frequency_Hz": sp.peak_frequency_Hz,
             "peak_amplitude_N": sp.peak_amplitude_N,
@@ -83,15 +86,28 @@ def accuracy_dict(study: AccuracyStudy | None) -> dict | None:
 def report_dict(r: Report) -> dict:
     sim = simulation_dict(r.simulation, series=False)
     sim.pop("warnings", None)  # merged into the report's own list
-    return {
+    return {  # the engineering first, the numerical study after it
         "title": r.title,
+        "design": design_summary(r.design),
+        "modes": modes_summary(r),
         "comparison": [plain(row) for row in r.comparison],
         "dynamics": [stage_dict(s) for s in r.stages],
         "natural_frequencies_Hz": list(r.natural_frequencies_Hz),
-        "accuracy": accuracy_dict(r.accuracy),
-        "energy_residual": r.energy_residual,
-        "design": design_summary(r.design),
         **({"rating": [plain(c) for c in r.rating]} if r.rating else {}),  # ISO against simulated K_v (issue 22)
         "simulation": sim,
-        "warnings": list(r.warnings),
+        "energy_residual": r.energy_residual,
+        "accuracy": accuracy_dict(r.accuracy),
+        "warnings": warning_objects(r.warnings, r.diagnostics),
     }
+
+
+def modes_summary(r: Report) -> dict | None:
+    """The modes at the drive's boundary (as ``gearcli modes``), null where the report did not compute them."""
+    if r.modes is None:
+        return None
+    from gearcli.io.modes_out import modes_dict
+
+    doc = modes_dict([r.modes])
+    doc.pop("warnings", None)
+    return {"boundary": r.modes.boundary, **{k: v for k, v in doc.items() if k != "boundaries"},
+            "modes": doc["boundaries"][r.modes.boundary]}

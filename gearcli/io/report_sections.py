@@ -46,12 +46,26 @@ def quantity_label(stage: int | None, quantity: str) -> str:
     return LABELS.get(quantity, quantity)
 
 
+def _in_units(r: Report, quantity: str, label: str, value: float | None) -> tuple[str, float | None]:
+    """A speed row in the design file's speed unit (the comparison is kept in °/s)."""
+    from gearcli.io.units import of_result
+
+    u = of_result(r.simulation)
+    if not quantity.endswith("_deg_s") or u.speed == "deg_s":
+        return label, value
+    return label.replace("[°/s]", f"[{u.speed_label}]"), None if value is None else u.speed_from_deg_s(value)
+
+
 def comparison_section(r: Report) -> Section:
-    rows = tuple(("train" if row.stage is None else str(row.stage), quantity_label(row.stage, row.quantity),
-                  g(row.theory, 6), g(row.simulated, 6), percent(row.error_percent)) for row in r.comparison)
+    rows = []
+    for row in r.comparison:
+        label, theory = _in_units(r, row.quantity, quantity_label(row.stage, row.quantity), row.theory)
+        simulated = _in_units(r, row.quantity, label, row.simulated)[1]
+        rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
+                     percent(row.error_percent)))
     w0, w1 = r.simulation.window_s
     return Section("Theory against simulation", ("stage", "quantity", "theory (static)", "simulated (mean)",
-                                                 "error [%]"), rows, "llrrr",
+                                                 "error [%]"), tuple(rows), "llrrr",
                    (f"simulated: mean over the steady window {w0:.4g}–{w1:.4g} s; error = (simulated − theory)"
                     " / |theory|",))
 
@@ -67,11 +81,17 @@ def fluctuation_section(r: Report) -> Section:
 
 
 def peaks_section(r: Report) -> Section:
-    rows = tuple((str(s.stage), g(s.static_tangential_N), g(s.peak_tangential_N), g(s.peak_time_s, 3),
-                  g(s.dynamic_factor, 4)) for s in r.stages)
-    return Section("Run-up peak and dynamic factor", ("stage", "static F_t [N]", "peak |F_t| [N]", "at t [s]",
-                                                      "dynamic factor"), rows, "lrrrr",
-                   ("peak over the whole run, run-up included; dynamic factor = peak / |static F_t|",))
+    rows = tuple((str(s.stage), g(s.static_tangential_N if s.simulated_static_tangential_N is None
+                                  else s.simulated_static_tangential_N),
+                  g(max(abs(s.tangential_N.max), abs(s.tangential_N.min))),
+                  g(s.dynamic_factor, 4),
+                  g(s.peak_tangential_N), g(s.peak_time_s, 3), g(s.runup_factor, 4)) for s in r.stages)
+    return Section("Dynamic factor and run-up peak", ("stage", "static F_t as simulated [N]", "window max |F_t| [N]",
+                                                      "dynamic factor", "run peak |F_t| [N]", "at t [s]",
+                                                      "run-up factor"), rows, "lrrrrrr",
+                   ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (with "
+                    "the losses the dynamics model: none, the meshes are lossless); "
+                    "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",))
 
 
 def spectrum_section(r: Report) -> Section:
@@ -155,7 +175,8 @@ def solver_lines(r: Report) -> list[str]:
         f"njev {sv.njev}, wall {sv.wall_s:.3g} s",
         f"energy balance residual {sv.energy_residual:.2e} (input work − load work − damping loss − ΔKE − ΔPE, "
         "relative to the largest energy)",
-        f"dynamic ratio {sim.ratio:.6g}, output {sim.output_speed_deg_s:.6g} °/s = {sim.output_speed_deg_s / 6:.5g} rpm",
+        f"dynamic ratio {sim.ratio:.6g}, output {sim.output_speed_deg_s:.6g} °/s = {sim.output_speed_deg_s / 6:.5g} rpm"
+        + ("" if sim.units[0] != "rad_s" else f" = {sim.output_speed_deg_s * 3.141592653589793 / 180:.5g} rad/s"),
     ]
 
 
@@ -173,12 +194,69 @@ def rating_section(r: Report) -> Section | None:
                     'with [rating] dynamic_factor = "simulated"',))
 
 
+def design_section(r: Report) -> Section:
+    """The geometry and loads of each stage: what the engineer checks first."""
+    from gearcli.io.units import of_result
+
+    u = of_result(r.simulation)
+    st = r.design.stages
+    rows = [
+        ("teeth z1 / z2", *(f"{s.pinion.teeth} / {s.gear.teeth}" for s in st)),
+        ("ratio", *(g(s.ratio, 5) for s in st)),
+        ("normal module m_n [mm]", *(g(s.normal_module_mm) for s in st)),
+        ("helix angle β [°]", *(g(s.helix_angle_deg) for s in st)),
+        ("centre distance a [mm]", *(g(s.center_distance_mm, 6) for s in st)),
+        ("face width b [mm]", *(g(s.face_width_mm) for s in st)),
+        ("contact ratios ε_α / ε_β", *(f"{s.contact_ratio_transverse:.3f} / {s.overlap_ratio:.3f}" for s in st)),
+        (f"pinion speed [{u.speed_label}]", *(g(u.speed_from_deg_s(s.pinion.speed_deg_s), 6) for s in st)),
+        (f"pinion torque [{u.torque_label}]", *(g(u.torque_from_Nmm(s.pinion.torque_Nmm), 6) for s in st)),
+        ("mesh frequency [Hz]", *(g(s.mesh_frequency_Hz) for s in st)),
+        ("static F_t [N]", *(g(s.static_force_N.tangential) for s in st)),
+        ("mesh stiffness c_γα [N/(mm·µm)]", *(g(s.iso6336_mesh_stiffness_N_mm_um, 4) for s in st)),
+    ]
+    d = r.design
+    notes = (f"total ratio {d.total_ratio:.6g}; input {g(u.speed_from_deg_s(d.input_speed_deg_s), 6)} {u.speed_label}, "
+             f"output {g(u.speed_from_deg_s(d.output_speed_deg_s), 6)} {u.speed_label}; input torque "
+             f"{g(u.torque_from_Nmm(d.input_torque_Nmm), 6)} {u.torque_label}, input power {d.input_power_kW:.5g} kW",)
+    return Section("Design", ("quantity", *(f"stage {s.index}" for s in st)), tuple(rows),
+                   "l" + "r" * len(st), notes)
+
+
+def modes_section(r: Report) -> Section | None:
+    """Natural frequencies, modal damping, dominant element and the orders near the nominal speed."""
+    from gearcli.model.modes import RESONANCE_BAND
+
+    ana = r.modes
+    if ana is None:
+        return None
+    rows = []
+    for m in ana.modes:
+        if m.rigid:
+            rows.append((str(m.number), "0", "–", "rigid-body rotation", "–"))
+            continue
+        near = [c for c in m.crossings
+                if abs(c.input_speed_rpm / ana.nominal_input_rpm - 1.0) <= RESONANCE_BAND]
+        cross = ", ".join(f"{c.excitation} at {c.input_speed_rpm:.4g} rpm ({c.strength})" for c in near) or "none"
+        rows.append((str(m.number), g(m.frequency_Hz, 5), f"{100 * m.damping_ratio:.2g}",
+                     f"{m.dominant} ({100 * max(m.energy_share):.0f} %)", cross))
+    return Section("Modes and resonances", ("mode", "f [Hz]", "ζ [%]", "dominant element (strain energy)",
+                                            f"orders within ±{100 * RESONANCE_BAND:.0f} % of the nominal speed"),
+                   tuple(rows), "lrrll",
+                   (f"linearised at full load, {ana.boundary.replace('_', ' ')}; "
+                    "the Campbell diagram (all orders 0 … 1.2 × nominal) is campbell.png with --plots",))
+
+
 def sections(r: Report) -> list[Section]:
-    out = [comparison_section(r), fluctuation_section(r), peaks_section(r), spectrum_section(r),
-           mesh_orders_section(r)]
-    rating = rating_section(r)
+    """Engineering first (design, modes, theory against simulation), the numerical study after it."""
+    out = [design_section(r)]
+    rating = rating_section(r)  # ISO K_v against the simulated one, after the design
     if rating is not None:
-        out.insert(3, rating)
+        out.append(rating)
+    modes = modes_section(r)
+    if modes is not None:
+        out.append(modes)
+    out += [comparison_section(r), peaks_section(r), fluctuation_section(r), spectrum_section(r),
+            mesh_orders_section(r)]
     if r.accuracy is not None:
         out.append(accuracy_section(r.accuracy))
     return out

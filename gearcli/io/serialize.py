@@ -11,6 +11,7 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 import gearcli
+from gearcli.diagnostics import warning_objects
 from gearcli.io.text import csv_text_cell
 from gearcli.results import DesignResult, SimulationResult
 
@@ -34,27 +35,40 @@ def with_meta(payload: dict, sha256: str) -> dict:
 
 
 def design_dict(result: DesignResult) -> dict:
-    out = plain(result)
+    doc = plain(dataclasses.replace(result, diagnostics=()))
+    doc.pop("diagnostics", None)
     if not result.bearings:  # a design file without [[bearing]] tables means what it meant before them
-        out.pop("bearings", None)
-    out.pop("diagnostics", None)  # the coded warnings; their messages are in "warnings"
-    return out
+        doc.pop("bearings", None)
+    doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
+    return doc
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
     stages = [
         {k: plain(getattr(s, k)) for k in ("index", "tangential_N", "radial_N", "axial_N", "penetration_mm",
                                               "static_tangential_N", "peak_tangential_N", "peak_time_s",
-                                              "dynamic_factor", "dte_um", "contact_loss_fraction",
+                                              "dynamic_factor", "runup_factor", "simulated_static_tangential_N",
+                                              "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
         | ({"rating": plain(s.rating)} if s.rating is not None else {})
         for s in result.stages
     ]
+    from gearcli.io import units as output_units
+
+    u = output_units.of_result(result)
+    speeds = {} if u.speed == "deg_s" else {f"input_speed_{u.speed}": u.speed_from_deg_s(result.input_speed_deg_s),
+                                            f"output_speed_{u.speed}": u.speed_from_deg_s(result.output_speed_deg_s)}
+    means = output_units.input_torque_window_means(result)
+    torque = {} if means is None else {f"input_torque_{u.torque}": u.torque_from_Nm(means[0]),
+                                       "input_power_kW": means[1]}
     out = {
         "summary": {
             "ratio": result.ratio,
             "input_speed_deg_s": result.input_speed_deg_s,
             "output_speed_deg_s": result.output_speed_deg_s,
+            **speeds,
+            **torque,
+            "units": {"speed": u.speed, "torque": u.torque},
             "window_s": list(result.window_s),
             "stages": stages,
             "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
@@ -63,12 +77,13 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
         },
         "solver": plain(result.solver),
         "energy": plain(result.energy),
-        "warnings": list(result.warnings),
+        "warnings": warning_objects(result.warnings, result.diagnostics),
     }
     if result.extra and "bearings" in result.extra:  # only scenes with [[bearing]] tables (docs/life.md)
         out["summary"]["bearings"] = plain(result.extra["bearings"])
     if series:
-        out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in result.channels.items()}}
+        shown = output_units.channels(result.channels, u)
+        out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in shown.items()}}
     return out
 
 
@@ -120,8 +135,11 @@ def simulation_csv(result: SimulationResult) -> str:
     """One row per output sample: ``time_s`` then the channels in contract order."""
     import numpy as np
 
-    header = ["time_s", *result.channels]
-    data = np.column_stack([result.time_s, *result.channels.values()])
+    from gearcli.io.units import channels, of_result
+
+    shown = channels(result.channels, of_result(result))
+    header = ["time_s", *shown]
+    data = np.column_stack([result.time_s, *shown.values()])
     if not np.all(np.isfinite(data)):
         raise ValueError("non-finite value in CSV output")
     buf = io.StringIO()

@@ -2,8 +2,8 @@
 
 - ``response_<key>.png`` for each ``--vary`` key: every statistic with data against the key, one column per
   stage, each direction (up, down, or independent points) in its own colour and overlaid.
-- ``campbell.png`` when the input speed is swept: natural frequencies against input speed with the
-  1x and 2x mesh-order lines of each stage (a crossing is a potential resonance).
+- ``campbell.png`` when the input speed is swept: the Campbell diagram of ``gearcli modes --plots``
+  (:mod:`gearcli.io.campbell`) over the swept range, the swept speeds marked.
 - ``distributions.png`` for ``--random`` samples: histogram and empirical CDF of the main statistics.
 """
 
@@ -25,7 +25,8 @@ FAMILIES = (
     ("dynamic transmission error (µm)", {"dte_um_mean": "-", "dte_um_min": ":", "dte_um_max": "--"}),
     ("DTE rms (µm)", {"dte_um_rms": "-"}),
     ("contact loss (fraction of window)", {"contact_loss_fraction": "-"}),
-    ("dynamic factor peak/static F_t (-)", {"dynamic_factor": "-"}),
+    ("dynamic factor: window max / static F_t (-)", {"dynamic_factor": "-"}),
+    ("run-up factor: run peak / static F_t (-)", {"runup_factor": "-"}),
 )
 DISTRIBUTION_STATS = (("tangential_N_max", "peak F_t in window (N)"), ("tangential_N_std", "F_t std (N)"),
                       ("dynamic_factor", "dynamic factor (-)"), ("dte_um_rms", "DTE rms (µm)"))
@@ -119,30 +120,16 @@ def _label(group: tuple, others: Sequence[str]) -> str:
 
 
 def _campbell(session, axis):
-    from gearcli.sweep.modes import campbell
+    """The Campbell diagram of ``gearcli modes --plots`` (:mod:`gearcli.io.campbell`), over the swept range,
+    with the swept speeds marked."""
+    from gearcli.io.campbell import campbell_figure
+    from gearcli.sweep.modes import campbell_diagram
 
     fixed = [f"{a.key}={a.values[0]!r}" for a in session.spec.axes[1:] if a.key != axis.key]
-    values = sorted(axis.values, key=float)
-    pts = campbell(session.scene, axis.key, values, fixed)
-    fig, axes = _figure(1, 1, height=4.2, width=8.0)
-    ax = axes[0][0]
-    n = np.array([p.input_rpm for p in pts])
-    nmodes = max(len(p.natural_Hz) for p in pts)
-    for j in range(nmodes):
-        f = [p.natural_Hz[j] if j < len(p.natural_Hz) else np.nan for p in pts]
-        ax.plot(n, f, "k-", lw=1.5, label="natural frequencies (linearised, full load)" if j == 0 else None)
-    top = 1.15 * max(max(p.natural_Hz, default=1.0) for p in pts)
-    for s in range(len(pts[0].mesh_Hz)):
-        for order, style in ((1, "-"), (2, "--")):
-            ax.plot(n, [order * p.mesh_Hz[s] for p in pts], style, lw=1, color=f"C{s}",
-                    label=f"stage {s + 1} mesh {order}×")
-    ax.set_ylim(0, top)
-    ax.set_xlabel("input speed (rpm)")
-    ax.set_ylabel("frequency (Hz)")
-    ax.set_title("Campbell diagram: crossings of the mesh orders with a natural frequency are resonances", fontsize=9)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left", ncol=2)
-    return fig
+    from gearcli.io.units import OutputUnits
+
+    data, swept, units = campbell_diagram(session.scene, axis.key, sorted(axis.values, key=float), fixed)
+    return campbell_figure(data, OutputUnits(*units), swept=swept)
 
 
 def _distributions(rows: Sequence[dict], n_stages: int):

@@ -9,7 +9,6 @@ never rich markup, control characters escaped.
 from __future__ import annotations
 
 import io
-import math
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -19,6 +18,7 @@ from rich.table import Table
 from rich.text import Text
 
 from gearcli.io.text import visible
+from gearcli.io.units import input_torque_window_means, of_result
 from gearcli.results import DesignResult, SimulationResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
@@ -240,9 +240,14 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         forces.add_row("", Text("penetration [mm]"), *_stats_cells(s.penetration_mm), end_section=True)
     peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in r.stages], [
         ("static F_t [N]", [_g(s.static_tangential_N) for s in r.stages]),
+        *([("static F_t as simulated [N]", [_g(s.simulated_static_tangential_N) for s in r.stages])]
+          if any(s.simulated_static_tangential_N is not None
+                 and abs(s.simulated_static_tangential_N - s.static_tangential_N)
+                 > 1e-9 * abs(s.static_tangential_N) for s in r.stages) else []),
         ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in r.stages]),
         ("at t [s]", [_g(s.peak_time_s, 3) for s in r.stages]),
-        ("dynamic factor", [_g(s.dynamic_factor, 4) for s in r.stages]),
+        ("dynamic factor (window max / static)", [_g(s.dynamic_factor, 4) for s in r.stages]),
+        ("run-up factor (run peak / static)", [_g(s.runup_factor, 4) for s in r.stages]),
         ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in r.stages]),
         ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in r.stages]),
         ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in r.stages]),
@@ -260,13 +265,13 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
                                                   "yes" if s.error_estimate.resolved else "NO") for s in r.stages]))
     mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in r.stages], rows)
     sv = r.solver
-    rpm = 60.0 / 360.0
-    torque = r.channels.get("input_torque_Nmm")
-    lines = [f"dynamic ratio {r.ratio:.6g}   output {r.output_speed_deg_s:.6g} °/s = {r.output_speed_deg_s * rpm:.5g} rpm"
-             f"   input {r.input_speed_deg_s:.6g} °/s = {r.input_speed_deg_s * rpm:.5g} rpm"]
-    if torque is not None and len(torque):
-        lines.append(f"input torque at the end {torque[-1]:.5g} N·mm = {torque[-1] / 1000:.5g} N·m, power "
-                     f"{torque[-1] / 1000 * r.input_speed_deg_s * math.pi / 180 / 1000:.5g} kW")
+    lines = [footer_speeds(r)]
+    means = input_torque_window_means(r)
+    if means is not None:
+        u = of_result(r)
+        both = f" = {means[0]:.5g} N·m" if u.torque == "Nmm" else ""
+        lines.append(f"input torque {u.torque_from_Nm(means[0]):.5g} {u.torque_label}{both}, power {means[1]:.5g} kW "
+                     f"(means over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s)")
     lines.append(f"solver {sv.method}  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  njev {sv.njev}  "
                  f"wall {sv.wall_s:.3g} s")
     lines.append(f"energy residual {sv.energy_residual:.2e}")
@@ -287,6 +292,17 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         return [forces, bearing_stats_table(r.window_s, r.extra["bearings"]), peaks, mesh, *simulated,
                 *(text(line) for line in lines)]
     return [forces, peaks, mesh, *simulated, *(text(line) for line in lines)]
+
+
+def footer_speeds(r: SimulationResult) -> str:
+    """The dynamic ratio and the window-mean speeds in the design file's speed unit (°/s and rpm for °/s)."""
+    u = of_result(r)
+
+    def speed(v: float) -> str:
+        if u.speed == "deg_s":
+            return f"{v:.6g} °/s = {v / 6.0:.5g} rpm"
+        return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}"
+    return f"dynamic ratio {r.ratio:.6g}   output {speed(r.output_speed_deg_s)}   input {speed(r.input_speed_deg_s)}"
 
 
 def _est(e, q: str) -> float | None:

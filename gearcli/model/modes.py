@@ -11,8 +11,17 @@ angles, ``delta = R theta``). Two boundaries:
 
 Each mode: frequency, shape (body angles, normalised to the largest |entry| = 1, that entry
 positive), each connector's share of the modal strain energy ``k_c (R phi)_c^2 / sum`` (sums to 1),
-and the mesh orders (1x and 2x each stage's mesh frequency) that cross it while the input body runs
-from 0 to ``SPEED_RANGE`` x its nominal speed.
+and the orders (1x, 2x, 3x each stage's mesh frequency, 1x each reducer shaft's rotation) that cross it
+while the input body runs from 0 to ``SPEED_RANGE`` x its nominal speed.
+
+Participation. A transmission error e at mesh c (or a shaft's runout, a 1x error at the meshes its gears
+take part in) drives mode j (mass-normalised shape phi, modal damping ratio zeta_j) with the modal force
+k_c (R phi)_c e; at resonance the mode's force in that mesh is k_c e s_cj / (2 zeta_j), s_cj the mesh's share of
+the mode's strain energy (k_c (R phi)_c^2 / omega_j^2). So a crossing is excited as strongly as
+``s / (2 zeta)`` (:attr:`Crossing.amplification`, the resonant force over the mesh's blocked error force k_c e;
+the quasi-static response of the whole chain is at most 1): a mode whose strain energy sits in another
+element is hardly excited by this mesh, however close the frequencies. zeta_j comes from the linearised
+damping of every element (c_c (R phi)_c^2 / (2 omega_j), mass-normalised).
 """
 
 from __future__ import annotations
@@ -27,7 +36,10 @@ from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
 
 SPEED_RANGE = 1.2  # operating range: 0 .. 1.2 x the nominal input speed
-MESH_ORDERS = (1, 2)  # harmonics of each stage's mesh frequency
+MESH_ORDERS = (1, 2, 3)  # harmonics of each stage's mesh frequency
+SHAFT_ORDERS = (1,)  # of each reducer shaft's rotation (runout, eccentricity)
+WARN_AMPLIFICATION = 0.1  # a crossing whose resonant force reaches 10 % of the blocked error force is warned
+STRONG_AMPLIFICATION = 1.0  # ... beyond the quasi-static response: strongly excited
 RIGID_TOL = 1e-9  # omega^2 below this x the largest: a rigid-body mode
 RESONANCE_BAND = 0.10  # |f_excitation - f_mode| / f_mode that the simulation warns about
 BOUNDARIES = ("clamped_input", "free")
@@ -35,9 +47,17 @@ BOUNDARIES = ("clamped_input", "free")
 
 @dataclass(frozen=True)
 class Crossing:
-    excitation: str  # "stage 1 mesh 1x"
+    excitation: str  # "stage 1 mesh 1x", "shaft 2 1x"
     hz_per_input_hz: float  # excitation frequency over the input body's rotation frequency
     input_speed_rpm: float  # input body speed at which it meets the mode
+    participation: float = 0.0  # the exciting meshes' (largest) share of the mode's strain energy
+    amplification: float | None = None  # participation / (2 zeta): None when the mode is undamped (unbounded)
+
+    @property
+    def strength(self) -> str:
+        """"strongly" (beyond the quasi-static response), "moderately" (>= 10 % of it), "weakly"."""
+        a = math.inf if self.amplification is None else self.amplification
+        return "strongly" if a >= STRONG_AMPLIFICATION else "moderately" if a >= WARN_AMPLIFICATION else "weakly"
 
 
 @dataclass(frozen=True)
@@ -49,6 +69,7 @@ class Mode:
     energy_share: tuple[float, ...]  # per connector; all 0 for a rigid mode
     dominant: str  # label of the connector with the largest share ("" for a rigid mode)
     crossings: tuple[Crossing, ...]
+    damping_ratio: float = 0.0  # modal, from the linearised element damping (0 for a rigid mode)
 
 
 @dataclass(frozen=True)
@@ -62,23 +83,40 @@ class ModalAnalysis:
     speed_range_rpm: tuple[float, float]
 
 
-def _stiffness(lay: Layout, duration_s: float) -> np.ndarray:
+def _tangents(lay: Layout, duration_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Tangent stiffness and damping of every connector at full load."""
     F = static_forces(lay)
-    k = np.array([tangent(lay, c, F[c])[0] for c in range(lay.n_conn)])
-    if np.any(k == 0.0):  # an unloaded Hertzian mesh: the run-up load, stiffest phase (as the simulation)
+    kc = np.array([tangent(lay, c, F[c])[:2] for c in range(lay.n_conn)])
+    if np.any(kc[:, 0] == 0.0):  # an unloaded Hertzian mesh: the run-up load, stiffest phase (as the simulation)
         op = np.maximum(np.abs(F), peak_rigid_forces(lay, duration_s))
-        k = np.array([tangent(lay, c, op[c], stiffest_phase=True)[0] for c in range(lay.n_conn)])
-    return k
+        kc = np.array([tangent(lay, c, op[c], stiffest_phase=True)[:2] for c in range(lay.n_conn)])
+    return kc[:, 0].copy(), kc[:, 1].copy()
+
+
+def _stiffness(lay: Layout, duration_s: float) -> np.ndarray:
+    return _tangents(lay, duration_s)[0]
+
+
+def excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
+    """(name, frequency over the input body's rotation frequency, connectors it acts through) of every order:
+    each stage's mesh orders act through that mesh; a shaft's rotation order through the meshes of the gears
+    it carries (shaft 1: stage 1's pinion; shaft k + 1: stage k's gear and stage k + 1's pinion)."""
+    out: list[tuple[str, float, tuple[int, ...]]] = []
+    stages = lay.stage_conn
+    for k, c in enumerate(stages):
+        x = lay.connectors[c]
+        for h in MESH_ORDERS:
+            out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * lay.bodies[x.a].ratio, (c,)))
+    for i, b in enumerate(lay.shaft_body):
+        via = tuple(stages[j] for j in (i - 1, i) if 0 <= j < len(stages))
+        for h in SHAFT_ORDERS:
+            out.append((f"shaft {i + 1} {h}x", h * lay.bodies[b].ratio, via))
+    return out
 
 
 def excitations(lay: Layout) -> list[tuple[str, float]]:
-    """(name, frequency over the input body's rotation frequency) of the mesh orders."""
-    out = []
-    for k, c in enumerate(lay.stage_conn):
-        x = lay.connectors[c]
-        for h in MESH_ORDERS:
-            out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * lay.bodies[x.a].ratio))
-    return out
+    """(name, frequency over the input body's rotation frequency) of the mesh and shaft orders."""
+    return [(name, r) for name, r, _ in excitation_sources(lay)]
 
 
 def _shape(v: np.ndarray) -> np.ndarray:
@@ -90,7 +128,7 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
     """Modes of the chain linearised at full load (``duration_s``: the run-up for an unloaded mesh)."""
     if boundary not in BOUNDARIES:
         raise ValueError(f"boundary must be one of {BOUNDARIES}")
-    k = _stiffness(lay, duration_s)
+    k, cd = _tangents(lay, duration_s)
     first = 1 if boundary == "clamped_input" else 0
     R = speed_map(lay, range(first, lay.n_bodies))
     J = np.asarray(lay.inertias[first:])
@@ -105,16 +143,23 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
         rigid = bool(w2[j] <= RIGID_TOL * top)
         f = 0.0 if rigid else math.sqrt(w2[j]) / (2.0 * math.pi)
         shape = np.concatenate([np.zeros(first), _shape(phi[:, j])])
-        strain = k * (R @ phi[:, j]) ** 2
+        rate = R @ phi[:, j]  # phi is mass-normalised (eigh of the symmetric form)
+        strain = k * rate**2
         share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
         dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
-        crossings = tuple(Crossing(name, r, 60.0 * f / r) for name, r in excitations(lay)
+        zeta = 0.0 if rigid else float(cd @ rate**2) / (2.0 * math.sqrt(w2[j]))
+        crossings = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
                           if not rigid and f / r <= SPEED_RANGE * f_in)
         modes.append(Mode(len(modes) + 1, f, rigid, tuple(float(v) for v in shape),
-                          tuple(float(s) for s in share), dominant, crossings))
+                          tuple(float(s) for s in share), dominant, crossings, zeta))
     rpm = 60.0 * f_in
     return ModalAnalysis(boundary, tuple(b.label for b in lay.bodies), tuple(x.label for x in lay.connectors),
                          tuple(float(v) for v in k), tuple(modes), rpm, (0.0, SPEED_RANGE * rpm))
+
+
+def _crossing(name: str, r: float, f: float, share: np.ndarray, via: tuple[int, ...], zeta: float) -> Crossing:
+    s = float(max((share[c] for c in via), default=0.0))
+    return Crossing(name, r, 60.0 * f / r, s, s / (2.0 * zeta) if zeta > 0 else None)
 
 
 @dataclass(frozen=True)
@@ -126,10 +171,20 @@ class Resonance:
     excitation: str
     excitation_Hz: float
     message: str
+    participation: float = 0.0  # the exciting meshes' share of the mode's strain energy
+    amplification: float | None = None  # participation / (2 zeta); None: undamped
+    damping_ratio: float = 0.0
+    strength: str = ""  # "strongly" | "moderately"
+    stage: int | None = None  # the exciting mesh's stage (None for a shaft order)
+
+
+def _percent(x: float) -> str:
+    return f"{100 * x:.2g} %" if x < 0.1 else f"{100 * x:.0f} %"
 
 
 def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0) -> list[Resonance]:
-    """Mesh orders at the nominal speed within ``RESONANCE_BAND`` of a natural frequency."""
+    """Orders at the nominal speed within ``RESONANCE_BAND`` of a natural frequency that excite the mode
+    (:attr:`Crossing.amplification` at least ``WARN_AMPLIFICATION``): mesh orders 1x-3x, shaft orders 1x."""
     ana = modal_analysis(lay, boundary, duration_s=duration_s)
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
     out = []
@@ -137,12 +192,67 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
         if m.rigid:
             continue
         share = max(m.energy_share)
-        for name, r in excitations(lay):
+        for name, r, via in excitation_sources(lay):
             fe = r * f_in
-            if abs(fe - m.frequency_Hz) <= RESONANCE_BAND * m.frequency_Hz:
-                msg = (f"resonance: the {name} order ({fe:.4g} Hz at the nominal input speed) lies within "
-                       f"{100 * abs(fe - m.frequency_Hz) / m.frequency_Hz:.2g} % of mode {m.number} "
-                       f"({m.frequency_Hz:.4g} Hz, {boundary}), dominated by the {m.dominant} "
-                       f"({100 * share:.0f} % of its strain energy)")
-                out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, name, fe, msg))
+            if abs(fe - m.frequency_Hz) > RESONANCE_BAND * m.frequency_Hz:
+                continue
+            c = _crossing(name, r, m.frequency_Hz, np.asarray(m.energy_share), via, m.damping_ratio)
+            if c.amplification is not None and c.amplification < WARN_AMPLIFICATION:
+                continue  # the exciting mesh holds too little of the mode's strain energy to drive it
+            source = lay.connectors[via[0]].label if len(via) == 1 else "meshes of shaft " + name.split()[1]
+            gain = (f"resonant response ≈ {c.amplification:.2g}x its blocked error force at "
+                    f"{100 * m.damping_ratio:.2g} % modal damping" if c.amplification is not None
+                    else "undamped: the response grows without bound")
+            msg = (f"resonance: the {name} order ({fe:.4g} Hz at the nominal input speed) lies within "
+                   f"{100 * abs(fe - m.frequency_Hz) / m.frequency_Hz:.2g} % of mode {m.number} "
+                   f"({m.frequency_Hz:.4g} Hz, {boundary}), dominated by the {m.dominant} "
+                   f"({100 * share:.0f} % of its strain energy); {c.strength} excited: the {source} "
+                   f"holds {_percent(c.participation)} of the mode's strain energy ({gain})")
+            out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, name, fe, msg, c.participation,
+                                 c.amplification, m.damping_ratio, c.strength,
+                                 int(name.split()[1]) if name.startswith("stage ") else None))
     return out
+
+
+@dataclass(frozen=True)
+class CampbellCrossing:
+    mode: int
+    frequency_Hz: float
+    crossing: Crossing
+
+
+@dataclass(frozen=True)
+class CampbellData:
+    """What a Campbell diagram shows: the modes (linearised at full load, so flat in speed), every order line
+    (mesh 1x-3x, shaft 1x) as frequency per input revolution, and each crossing with how strongly it is
+    excited, for input speeds 0 .. ``max_input_rpm``."""
+
+    boundary: str
+    nominal_input_rpm: float
+    max_input_rpm: float
+    modes: tuple[Mode, ...]  # the non-rigid ones
+    orders: tuple[tuple[str, float], ...]  # (name, Hz per input Hz)
+    crossings: tuple[CampbellCrossing, ...]
+
+    @property
+    def top_Hz(self) -> float:
+        """The highest order's frequency at the top speed: the frequency range worth drawing."""
+        return max((r for _, r in self.orders), default=1.0) * self.max_input_rpm / 60.0
+
+
+def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0,
+                  max_input_rpm: float | None = None) -> CampbellData:
+    """The Campbell diagram of the chain up to ``max_input_rpm`` (default ``SPEED_RANGE`` x nominal)."""
+    ana = modal_analysis(lay, boundary, duration_s=duration_s)
+    top = max_input_rpm if max_input_rpm is not None else SPEED_RANGE * ana.nominal_input_rpm
+    sources = excitation_sources(lay)
+    crossings = []
+    for m in ana.modes:
+        if m.rigid:
+            continue
+        for name, r, via in sources:
+            c = _crossing(name, r, m.frequency_Hz, np.asarray(m.energy_share), via, m.damping_ratio)
+            if c.input_speed_rpm <= top:
+                crossings.append(CampbellCrossing(m.number, m.frequency_Hz, c))
+    return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
+                        tuple((name, r) for name, r, _ in sources), tuple(crossings))

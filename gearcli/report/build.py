@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from gearcli import diagnostics as dg
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
@@ -30,6 +31,7 @@ def build_report(
     (tests pass a stand-in); ``progress(label, done, total)`` is called before each run.
     """
     spec = spec or LadderSpec()
+    modes = None
     if simulate is None:
         import functools
 
@@ -38,7 +40,9 @@ def build_report(
         from gearcli.simulate.run import run_simulation
 
         # every run of the report is the same scene (only method and rtol change): one model, generated once
-        simulate = functools.partial(run_simulation, model=TorsionalModel(spec_from_design(cfg, design)))
+        model = TorsionalModel(spec_from_design(cfg, design))
+        simulate = functools.partial(run_simulation, model=model)
+        modes = _modes(model.layout, cfg.simulation.duration_s)
     tick = progress or (lambda label, done, total: None)
     sim_cfg = cfg.simulation
     planned = 1 if quick else 1 + 2 + len(spec.rtols) * len(spec.methods)
@@ -77,8 +81,23 @@ def build_report(
         sampling_checks(stages, sim.natural_frequencies_Hz),
         accuracy_checks(study, sim_cfg.method, sim_cfg.rtol),
     )
+    diagnostics = (*getattr(design, "diagnostics", ()), *sim.diagnostics,
+                   *(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
+                   *(dg.warning(dg.SAMPLING, w) for w in sampling_checks(stages, sim.natural_frequencies_Hz)),
+                   *(dg.warning(dg.ACCURACY, w) for w in accuracy_checks(study, sim_cfg.method, sim_cfg.rtol)))
     return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim),
-                  stages=stages, accuracy=study, warnings=warnings, rating=rating_comparison(design, sim))
+                  stages=stages, accuracy=study, warnings=warnings, diagnostics=diagnostics,
+                  rating=rating_comparison(design, sim),
+                  modes=modes[0] if modes else None, campbell=modes[1] if modes else None)
+
+
+def _modes(lay, duration_s: float):
+    """The modal analysis at the drive's boundary and the Campbell data, for the report's engineering part."""
+    from gearcli.model.modes import campbell_data, modal_analysis
+
+    boundary = "clamped_input" if lay.speed_drive else "free"
+    return (modal_analysis(lay, boundary, duration_s=duration_s),
+            campbell_data(lay, boundary, duration_s=duration_s))
 
 
 def _merge(*groups) -> tuple[str, ...]:

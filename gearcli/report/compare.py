@@ -82,13 +82,14 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
             stage=st.index, tangential_N=dyn.tangential_N, radial_N=dyn.radial_N, axial_N=dyn.axial_N,
             static_tangential_N=dyn.static_tangential_N, peak_tangential_N=dyn.peak_tangential_N,
             peak_time_s=dyn.peak_time_s, dynamic_factor=dyn.dynamic_factor, spectrum=spectrum,
+            runup_factor=dyn.runup_factor, simulated_static_tangential_N=dyn.simulated_static_tangential_N,
         ))
     return tuple(out)
 
 
 def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[RatingComparison, ...]:
     """Per rated stage, ISO 6336-1's K_v beside the simulated one and the smallest safeties at each."""
-    from gearcli.design.rating import simulated_dynamic_factor  # one formula, shared with simulate's rating
+    from gearcli.design.rating import stage_simulated_k_v  # one formula, shared with simulate's rating
 
     out = []
     for st, sd in zip(design.stages, sim.stages, strict=False):
@@ -97,7 +98,7 @@ def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[Rati
         iso, at_sim = st.rating, sd.rating
         out.append(RatingComparison(
             stage=st.index, K_v_iso=iso.K_v, K_v_iso_source=iso.K_v_source,
-            K_v_simulated=simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N),
+            K_v_simulated=stage_simulated_k_v(sd),
             min_S_H_iso=min(iso.pinion.S_H, iso.gear.S_H), min_S_F_iso=min(iso.pinion.S_F, iso.gear.S_F),
             min_S_H_simulated=None if at_sim is None else min(at_sim.pinion.S_H, at_sim.gear.S_H),
             min_S_F_simulated=None if at_sim is None else min(at_sim.pinion.S_F, at_sim.gear.S_F)))

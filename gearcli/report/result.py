@@ -7,10 +7,14 @@ belong to the whole train), and quantity names carry their units as in the JSON 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from gearcli.results import ChannelStats, DesignResult, SimulationResult
+
+if TYPE_CHECKING:
+    from gearcli.model.modes import CampbellData, ModalAnalysis
 
 
 # ------------------------------------------------------------------------------ theory vs simulation
@@ -71,8 +75,10 @@ class StageReport:
     static_tangential_N: float
     peak_tangential_N: float
     peak_time_s: float
-    dynamic_factor: float | None  # None where the static force is 0
+    dynamic_factor: float | None  # steady-window max |F_t| / static; None where the static force is 0
     spectrum: Spectrum
+    runup_factor: float | None = None  # whole-run peak |F_t| / static (the start-up overshoot)
+    simulated_static_tangential_N: float | None = None  # the factors' reference: static F_t as simulated
 
 
 # ------------------------------------------------------------------------------- numerical accuracy
@@ -188,6 +194,9 @@ class Report:
     accuracy: AccuracyStudy | None  # None with --quick
     warnings: tuple[str, ...] = field(default_factory=tuple)
     rating: tuple[RatingComparison, ...] = ()  # with [rating] (issue 22)
+    diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic of the warnings
+    modes: ModalAnalysis | None = None  # at the drive's boundary (None: not computed, e.g. a stand-in simulation)
+    campbell: CampbellData | None = None  # for the Campbell figure
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:

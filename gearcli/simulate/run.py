@@ -56,8 +56,9 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     if model is None:
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
-    coded = {d.message: d for d in getattr(design, "diagnostics", ())}  # keep a design warning's own code
-    design_diags = [coded.get(w) or dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
+    design_diags = _design_diagnostics(design)
+    from gearcli.scene import output_units
+
     result = simulate_model(model, duration_s=sim.duration_s,
                             steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                             window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
@@ -68,7 +69,13 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     stages, rating_diags = simulated_ratings(cfg, design, result.stages)
     new = [d for d in rating_diags if d.message not in result.warnings]
     return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
-                   diagnostics=result.diagnostics + tuple(new))
+                   diagnostics=result.diagnostics + tuple(new), units=output_units(cfg))
+
+
+def _design_diagnostics(design) -> list[Diagnostic]:
+    """The design's warnings as diagnostics (code ``design``, with the check's data where the design has it)."""
+    known = {d.message: d for d in getattr(design, "diagnostics", ())}
+    return [known.get(w) or dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
@@ -252,8 +259,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     channels, per_stage = _channels(model, s)
     errors = ref.errors if ref is not None else ()
     stiffness = mesh_stiffness(model, choice)
+    simulated_static = simulated_static_tangential_N(model)
     stages = tuple(replace(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k][:4], m.static_tangential_N,
-                                                per_stage[k][4], periodic=periodic),
+                                                per_stage[k][4], periodic=periodic,
+                                                simulated_static_N=simulated_static[k]),
                            error_estimate=errors[k] if k < len(errors) else None,
                            mesh_stiffness=stiffness[k] if k < len(stiffness) else None)
                    for k, m in enumerate(spec.meshes))
@@ -269,6 +278,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
     diags += stat_diags or []
+    if not periodic:
+        diags += ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
+                                  [st.simulated_static_tangential_N or 0.0 for st in stages], window)
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -289,6 +301,41 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},
     )
+
+
+def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,
+                     forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
+    """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
+    that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
+    from gearcli.model.modes import modal_analysis
+    from gearcli.simulate import ringing
+
+    found = ringing.ringing(t, mask, forces_N, static_N, choice.at_full_load.eigenvalues, window)
+    if not found:
+        return []
+    modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
+    out = []
+    for r in found:
+        near = min(modes, key=lambda m: abs(m.frequency_Hz - r.frequency_Hz), default=None)
+        element = near.dominant if near is not None else ""
+        out.append(dg.warning(dg.WINDOW_RINGING, ringing.message(r, window, element), stage=r.stage,
+                              statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
+                              decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
+                              damping_ratio=r.damping_ratio, amplitude_start_N=r.amplitude_start_N,
+                              amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
+                              settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
+                              element=element))
+    return out
+
+
+def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
+    """Per stage, the static F_t of the load the simulation applies, with the losses its dynamics model (the
+    model's own steady-state connector forces: lossless meshes today, so a stage with efficiency < 1 differs
+    from the design's static F_t, which includes the losses): the reference of the dynamic and run-up factors."""
+    from gearcli.model.linear import static_line_forces_N
+
+    lay = model.layout
+    return [float(tooth_forces(lay, k, np.array([f]))[0][0]) for k, f in enumerate(static_line_forces_N(lay))]
 
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
@@ -316,14 +363,17 @@ def _choice_warnings(choice: Choice) -> list[Diagnostic]:
 
 
 def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic]:
-    """A mesh order (1x, 2x mesh frequency) at the nominal speed within 10 % of a natural frequency, naming
-    the mode and its dominant element (:mod:`gearcli.model.modes`)."""
+    """A mesh order (1x-3x mesh frequency) or shaft order (1x) at the nominal speed within 10 % of a natural
+    frequency that it excites (its meshes' share of the mode's strain energy over twice the modal damping
+    ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`)."""
     from gearcli.model.modes import resonances
 
     out = []
     for r in resonances(model.layout, boundary=choice.boundary):
-        out.append(dg.warning(dg.RESONANCE, r.message, mode=r.mode, frequency_Hz=r.frequency_Hz,
-                              excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element))
+        out.append(dg.warning(dg.RESONANCE, r.message, stage=r.stage, mode=r.mode, frequency_Hz=r.frequency_Hz,
+                              excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element,
+                              participation=r.participation, amplification=r.amplification,
+                              damping_ratio=r.damping_ratio, strength=r.strength))
     return out
 
 

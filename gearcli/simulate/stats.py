@@ -58,17 +58,25 @@ def channel_stats(x: np.ndarray, mask: np.ndarray) -> ChannelStats:
 
 def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: np.ndarray, fa: np.ndarray,
                    pen_mm: np.ndarray, static_tangential_N: float, dte_um: np.ndarray | None = None, *,
-                   periodic: bool = False) -> StageDynamics:
+                   periodic: bool = False, simulated_static_N: float | None = None) -> StageDynamics:
     """Window statistics and the run's peak |F_t| (over the output samples) of stage ``k`` (0-based), and
-    the mesh response over the window (:func:`mesh_response`) when ``dte_um`` is given."""
+    the mesh response over the window (:func:`mesh_response`) when ``dte_um`` is given.
+
+    Both factors refer to ``simulated_static_N``, the static F_t of the load the simulation applies with the
+    losses its dynamics model (default: the design's ``static_tangential_N``): ``dynamic_factor`` = the
+    steady window's max |F_t| over it (K_v as the rating means it), ``runup_factor`` = the whole run's
+    peak |F_t| over it (the start-up overshoot)."""
     i = int(np.argmax(np.abs(ft)))
     peak = float(abs(ft[i]))
-    factor = peak / abs(static_tangential_N) if static_tangential_N != 0 else None
+    ref = float(static_tangential_N if simulated_static_N is None else simulated_static_N)
+    window_max = float(np.max(np.abs(ft[mask]))) if np.any(mask) else math.nan
+    factor = window_max / abs(ref) if ref != 0 and math.isfinite(window_max) else None
+    runup = peak / abs(ref) if ref != 0 else None
     response = {} if dte_um is None else mesh_response(t, mask, dte_um, ft, pen_mm, static_tangential_N,
                                                        periodic=periodic)
     return StageDynamics(k + 1, channel_stats(ft, mask), channel_stats(fr, mask), channel_stats(fa, mask),
                          channel_stats(pen_mm, mask), float(static_tangential_N), peak, float(t[i]), factor,
-                         **response)
+                         **response, runup_factor=runup, simulated_static_tangential_N=ref)
 
 
 def time_fraction(t: np.ndarray, flag: np.ndarray, *, periodic: bool) -> float:

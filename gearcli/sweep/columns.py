@@ -3,7 +3,8 @@
 One row per point (docs: README "Sweeps"): the varied keys (named by their dotted key path),
 ``direction``, ``status`` (``ok``/``failed``), ``message``, then per stage k
 ``stage{k}_tangential_N_{mean,std,min,max}``, ``stage{k}_dte_um_{mean,rms,min,max}``,
-``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor``, then ``output_speed_rpm``, ``nfev``,
+``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor`` (steady-window max |F_t| / static),
+``stage{k}_runup_factor`` (whole-run peak / static), then ``output_speed_rpm``, ``nfev``,
 ``wall_s``. A cell the result does not provide is empty (``None``): the dynamic transmission error and
 the contact-loss fraction come from the excitation outputs; :data:`STAGE_STATISTICS` reads them from
 ``StageDynamics.dte_um`` (an object with ``mean``/``rms``/``min``/``max``) and
@@ -45,6 +46,7 @@ STAGE_STATISTICS: dict[str, Callable[[Any], float | None]] = {
     "dte_um_max": _attr("dte_um", "max"),
     "contact_loss_fraction": _attr("contact_loss_fraction"),
     "dynamic_factor": _attr("dynamic_factor"),
+    "runup_factor": _attr("runup_factor"),
 }
 
 

@@ -46,3 +46,22 @@ def campbell(scene: Scene, key: str, values: Sequence[Any], fixed: Sequence[str]
         mesh = tuple(st.pinion.teeth * st.pinion.speed_rpm / 60.0 for st in design.stages)
         out.append(CampbellPoint(design.stages[0].pinion.speed_rpm, natural_frequencies_Hz(cfg, design), mesh))
     return out
+
+
+def campbell_diagram(scene: Scene, key: str, values: Sequence[Any], fixed: Sequence[str] = ()):
+    """(CampbellData, swept input speeds in rpm, (speed, torque) unit suffixes) for ``gearcli sweep --plots``: the modes and
+    order lines of the scene at the file's own speed (the other keys at ``fixed``), over 0 .. the larger of
+    1.2 x that speed and the fastest swept point: the same drawing as ``gearcli modes --plots``."""
+    from gearcli.design import compute_design
+    from gearcli.model.modes import SPEED_RANGE, campbell_data
+    from gearcli.scene import build_model, output_units
+
+    swept = [p.input_rpm for p in campbell(scene, key, values, fixed)]
+    cfg = load_point(scene, tuple(fixed))
+    design = compute_design(cfg)
+    lay = build_model(cfg, design).layout
+    nominal = design.stages[0].pinion.speed_rpm
+    data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
+                         max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
+    units = output_units(load_point(scene, (*fixed, f"{key}={float(values[0])!r}")))  # the swept key's unit
+    return data, swept, units

@@ -55,7 +55,7 @@ def test_design_json_seed_acceptance_numbers(runner):
     assert_allclose(doc["stages"][0]["effective_modulus_MPa"], 1.130e5, rtol=5e-4)
     # K = 4/3 sqrt(91.24 mm) 1.130e5 MPa = 1.439e6 N/mm^1.5 (the paper's 2.87e6 is an erratum)
     assert_allclose(doc["stages"][0]["hertz_stiffness_N_mm1_5"], 1.439e6, rtol=5e-4)
-    assert any("23" in w and "rpm" in w for w in doc["warnings"]), doc["warnings"]
+    assert any("23" in w["message"] and "rpm" in w["message"] for w in doc["warnings"]), doc["warnings"]
     assert doc["gearcli_version"]
     assert len(doc["input_sha256"]) == 64
 

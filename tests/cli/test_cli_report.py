@@ -141,7 +141,8 @@ def test_plots_four_pngs_from_the_full_report(short_ladder):
     pytest.importorskip("matplotlib")
     _, stderr, plots = short_ladder
     names = sorted(p.name for p in plots.iterdir())
-    assert names == ["mesh_forces.png", "spectrum.png", "speeds.png", "work_precision.png"]
+    # issue 21: the report's engineering part has the Campbell diagram too
+    assert names == ["campbell.png", "mesh_forces.png", "spectrum.png", "speeds.png", "work_precision.png"]
     for p in plots.iterdir():
         width, height = png_size(p)
         assert p.stat().st_size > 20_000, p.name

@@ -120,8 +120,9 @@ def test_drivetrain_scene_has_its_channels_and_a_labelled_boundary():
     assert res.exit_code == 0, res.output
     doc = json.loads(res.stdout)
     assert doc["summary"]["natural_frequencies_boundary"] == "clamped_input"
+    # issue 21: torques in the unit of the load's key (this file: torque_Nmm), so the couplings' too
     for name in ("shaft2_twist_deg", "shaft3_twist_deg", "motor_speed_deg_s", "drum_speed_deg_s",
-                 "input_coupling_torque_Nm", "load_coupling_torque_Nm", "shaft4_speed_deg_s"):
+                 "input_coupling_torque_Nmm", "load_coupling_torque_Nmm", "shaft4_speed_deg_s"):
         assert name in doc["series"], name
     assert "shaft5_speed_deg_s" not in doc["series"]  # shaft channels stay the reducer's
 

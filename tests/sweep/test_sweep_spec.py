@@ -70,10 +70,11 @@ def test_column_names():
         "input.speed_rpm", "direction", "status", "message",
         "stage1_tangential_N_mean", "stage1_tangential_N_std", "stage1_tangential_N_min", "stage1_tangential_N_max",
         "stage1_dte_um_mean", "stage1_dte_um_rms", "stage1_dte_um_min", "stage1_dte_um_max",
-        "stage1_contact_loss_fraction", "stage1_dynamic_factor", "output_speed_rpm", "nfev", "wall_s"]
+        "stage1_contact_loss_fraction", "stage1_dynamic_factor", "stage1_runup_factor", "output_speed_rpm", "nfev",
+        "wall_s"]
     cols = columns(["a.b", "c.d"], 3)
-    assert cols[:2] == ["a.b", "c.d"] and len(cols) == 2 + 3 + 3 * 10 + 3
-    assert cols.index("stage3_dynamic_factor") == len(cols) - 4
+    assert cols[:2] == ["a.b", "c.d"] and len(cols) == 2 + 3 + 3 * 11 + 3
+    assert cols.index("stage3_dynamic_factor") == len(cols) - 5
 
 
 def _random_spec(seed, sampling="lhs", n=20):

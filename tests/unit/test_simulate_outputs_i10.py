@@ -42,8 +42,8 @@ def test_design_warnings_are_in_simulate_json_table_and_result():
     out = _cli("simulate", str(SEED), "--format", "json")
     assert out.returncode == 0, out.stderr
     doc = json.loads(out.stdout)
-    assert [w for w in doc["warnings"] if "misses the target" in w] == [w for w in design.warnings
-                                                                        if "misses the target" in w]
+    assert [w["message"] for w in doc["warnings"] if "misses the target" in w["message"]] == [
+        w for w in design.warnings if "misses the target" in w]
     table = _cli("simulate", str(SEED), "--format", "table")
     assert "misses the target" in table.stdout + table.stderr
 

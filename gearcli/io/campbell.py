@@ -1,0 +1,115 @@
+"""The Campbell diagram (matplotlib Agg), one drawing for ``gearcli modes --plots`` and ``gearcli sweep --plots``.
+
+Input speed from 0 to the top of the range (1.2 x nominal, or the sweep's range), frequency up to the highest
+order's frequency there, on a logarithmic axis when the modes and orders span more than two decades (a drum
+mode at 5 Hz and a mesh order at 5 kHz both stay readable). Each natural frequency is a horizontal line with its
++-10 % resonance margin band; every order line (mesh 1x-3x, shaft 1x) is drawn; every crossing is marked by how
+strongly the order excites the mode (its meshes' strain-energy share over twice the modal damping ratio: filled
+red strongly, orange moderately, small grey weakly); the nominal speed is a vertical line, and the crossings
+inside the margin at the nominal speed are labelled.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from gearcli.io.plots import _figure
+from gearcli.io.units import OutputUnits
+from gearcli.model.modes import RESONANCE_BAND, CampbellData
+
+STYLES = {"strongly": dict(marker="o", ms=8, mfc="tab:red", mec="darkred", zorder=6),
+          "moderately": dict(marker="o", ms=6.5, mfc="orange", mec="darkorange", zorder=5),
+          "weakly": dict(marker="o", ms=3.5, mfc="none", mec="0.55", zorder=4)}
+ORDER_STYLES = {1: "-", 2: "--", 3: ":"}
+
+
+def _speed(units: OutputUnits, rpm: Any) -> Any:
+    return units.speed_from_deg_s(rpm * 6.0)
+
+
+def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
+                    swept: Sequence[float] | None = None):
+    """The figure; ``swept``: input speeds (rpm) of a sweep's points, marked on the speed axis."""
+    import numpy as np
+
+    fig, axes = _figure(1, 1, height=5.6, width=11.0)
+    ax = axes[0][0]
+    top_speed = _speed(units, data.max_input_rpm)
+    low_f = min([m.frequency_Hz for m in data.modes] + [data.top_Hz / 20.0])
+    near_top = [m.frequency_Hz for m in data.modes if m.frequency_Hz <= 1.15 * data.top_Hz]
+    top_f = 1.1 * max(data.top_Hz, (1 + RESONANCE_BAND) * max(near_top, default=0.0))
+    log = top_f / max(low_f, 1e-9) > 100.0
+    bottom = low_f / 1.6 if log else 0.0
+    shown = [m for m in data.modes if m.frequency_Hz <= top_f]
+    for m in shown:
+        f = m.frequency_Hz
+        ax.axhspan(f * (1 - RESONANCE_BAND), f * (1 + RESONANCE_BAND), color="0.88", zorder=0, lw=0)
+        ax.axhline(f, color="k", lw=1.4, zorder=2)
+        ax.annotate(f"mode {m.number}: {f:.4g} Hz ({m.dominant}, ζ {100 * m.damping_ratio:.2g} %)",
+                    (top_speed, f), xytext=(-4, 3), textcoords="offset points", ha="right", va="bottom",
+                    fontsize=7.5, color="k", zorder=7)
+    n = np.linspace(0.0, data.max_input_rpm, 200)
+    stages = sorted({name.split(" mesh")[0] for name, _ in data.orders if name.startswith("stage ")})
+    for name, r in data.orders:
+        order = int(name.split()[-1].rstrip("x"))
+        style: Any
+        if name.startswith("stage "):
+            colour = f"C{stages.index(name.split(' mesh')[0]) % 10}"
+            style = ORDER_STYLES.get(order, "-.")
+        else:
+            colour, style = "0.45", (0, (6, 2, 1, 2))
+        line = r * n / 60.0
+        keep = line <= top_f * 1.05
+        ax.plot(_speed(units, n[keep]), line[keep], ls=style, lw=1.0, color=colour, label=name, zorder=3)
+    nominal = _speed(units, data.nominal_input_rpm)
+    ax.axvline(nominal, color="tab:purple", lw=1.5, ls="--", zorder=4,
+               label=f"nominal speed {nominal:.5g} {units.speed_label}")
+    seen: set[str] = set()
+    near = []
+    for c in data.crossings:
+        x, f, s = _speed(units, c.crossing.input_speed_rpm), c.frequency_Hz, c.crossing.strength
+        if f > top_f:
+            continue
+        label = f"crossing, {s} excited" if s not in seen else None
+        seen.add(s)
+        ax.plot([x], [f], ls="none", label=label, **STYLES[s])
+        if abs(c.crossing.input_speed_rpm / data.nominal_input_rpm - 1.0) <= RESONANCE_BAND and s != "weakly":
+            near.append(c)
+    for c in near:
+        ax.annotate(f"{c.crossing.excitation} × mode {c.mode}", (_speed(units, c.crossing.input_speed_rpm),
+                                                               c.frequency_Hz),
+                    xytext=(6, -12), textcoords="offset points", fontsize=7.5, color="darkred", zorder=8)
+    if swept:
+        xs = [_speed(units, v) for v in swept]
+        ax.plot(xs, [bottom if log else 0.0] * len(xs), "|", color="tab:purple", ms=10, clip_on=False,
+                label="swept points")
+    ax.set_xlim(0.0, top_speed)
+    if log:
+        ax.set_yscale("log")
+    ax.set_ylim(bottom, top_f)
+    ax.set_xlabel(f"input speed [{units.speed_label}]")
+    ax.set_ylabel("frequency [Hz]" + (" (log)" if log else ""))
+    ax.grid(alpha=0.3, which="both")
+    hidden = len(data.modes) - len(shown)
+    note = f"; {hidden} mode{'s' if hidden > 1 else ''} above the highest order not shown" if hidden else ""
+    fig.suptitle(f"Campbell diagram{' — ' + title if title else ''}", fontsize=11)
+    ax.set_title(f"modes {data.boundary.replace('_', ' ')}, linearised at full load; grey bands: ±"
+                 f"{100 * RESONANCE_BAND:.0f} % resonance margin{note}\nmarkers: crossings, by how strongly the "
+                 "order excites the mode (exciting meshes' strain-energy share / 2ζ)", fontsize=8.5, loc="left")
+    handles, labels = ax.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside right upper", fontsize=7.5)
+    return fig
+
+
+
+def write_campbell(data: CampbellData, units: OutputUnits, directory, title: str = ""):
+    """Write ``campbell.png`` into ``directory`` (created if needed); returns its path."""
+    from pathlib import Path
+
+    from gearcli.io.plots import _figure_check, _save
+
+    _figure_check()
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    return _save(campbell_figure(data, units, title), out / "campbell.png")

@@ -1,0 +1,93 @@
+"""Output units that follow the design file: speeds in the unit of the input's speed key, torques in the unit of
+the load's torque key (docs/output.md, "Units").
+
+The simulation keeps its channels in one internal naming (``shaft{i}_speed_deg_s``, ``input_torque_Nmm``,
+``*_coupling_torque_Nm``); the writers rename and convert them here, so a script reads the unit from the
+column name. A file with ``speed_deg_s`` and ``torque_Nmm`` (the seed) gets its channels unchanged, the same
+arrays under the same names.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+SPEED_UNITS = {"deg_s": ("°/s", 1.0), "rpm": ("rpm", 1.0 / 6.0), "rad_s": ("rad/s", math.pi / 180.0)}  # from °/s
+TORQUE_UNITS = {"Nmm": ("N·mm", 1000.0), "Nm": ("N·m", 1.0)}  # from N·m
+
+
+@dataclass(frozen=True)
+class OutputUnits:
+    speed: str = "deg_s"  # "deg_s" | "rpm" | "rad_s": the suffix of the input's speed key
+    torque: str = "Nmm"  # "Nmm" | "Nm": the suffix of the load's torque key (power_kW: N·m)
+
+    @property
+    def speed_label(self) -> str:
+        return SPEED_UNITS[self.speed][0]
+
+    @property
+    def torque_label(self) -> str:
+        return TORQUE_UNITS[self.torque][0]
+
+    def speed_from_deg_s(self, v):
+        factor = SPEED_UNITS[self.speed][1]
+        return v if factor == 1.0 else v * factor
+
+    def torque_from_Nm(self, v):
+        factor = TORQUE_UNITS[self.torque][1]
+        return v if factor == 1.0 else v * factor
+
+    def torque_from_Nmm(self, v):
+        return v if self.torque == "Nmm" else self.torque_from_Nm(v / 1000.0)
+
+
+DEFAULT = OutputUnits()
+
+
+def of_design_file(cfg) -> OutputUnits:
+    """The units a validated design file writes in."""
+    from gearcli.scene import output_units
+
+    return OutputUnits(*output_units(cfg))
+
+
+def of_result(result) -> OutputUnits:
+    """The units a simulation result is written in (its ``units``: speed and torque key suffixes)."""
+    units = getattr(result, "units", None)
+    return OutputUnits(*units) if units else DEFAULT
+
+
+def channels(ch: dict, units: OutputUnits | None) -> dict:
+    """The simulation's channels renamed and converted to ``units`` (same order)."""
+    u = units or DEFAULT
+    out = {}
+    for name, v in ch.items():
+        if name.endswith("_speed_deg_s") and u.speed != "deg_s":
+            out[name[: -len("deg_s")] + u.speed] = u.speed_from_deg_s(v)
+        elif name.endswith("_torque_Nmm") and u.torque != "Nmm":
+            out[name[: -len("Nmm")] + u.torque] = u.torque_from_Nmm(v)
+        elif name.endswith("_torque_Nm") and u.torque != "Nm":
+            out[name[: -len("Nm")] + u.torque] = u.torque_from_Nm(v)
+        else:
+            out[name] = v
+    return out
+
+
+def input_torque_window_means(result) -> tuple[float, float] | None:
+    """(mean input torque N·m, mean input power kW) over the statistics window, from the series: the power as
+    the mean of torque x speed of the driven body (the motor when there is one), not a product of means.
+    None without series."""
+    import numpy as np
+
+    torque = result.channels.get("input_torque_Nmm")
+    speed = result.channels.get("motor_speed_deg_s", result.channels.get("shaft1_speed_deg_s"))
+    if torque is None or speed is None or not len(torque):
+        return None
+    t = np.asarray(result.time_s)
+    eps = 1e-9 * max(1.0, abs(result.window_s[1]))
+    mask = (t >= result.window_s[0] - eps) & (t <= result.window_s[1] + eps)
+    if not mask.any():
+        return None
+    t_nm = np.asarray(torque)[mask] / 1000.0
+    power_kw = t_nm * np.radians(np.asarray(speed)[mask]) / 1000.0
+    return float(t_nm.mean()), float(power_kw.mean())

@@ -1,0 +1,94 @@
+"""Issue 21, field test: `gearcli modes FILE --plots DIR` draws a Campbell diagram worth a design review (speed
+to 1.2x nominal, frequency to the highest order there, a log axis for a wide span, crossings marked by how
+strongly they are excited, the nominal speed, the margin band); the sweep's Campbell is the same drawing."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from gearcli.cli import cli
+from gearcli.config import load_design
+from gearcli.design import compute_design
+from gearcli.io.units import OutputUnits
+from gearcli.model.assembly import Layout
+from gearcli.model.modes import campbell_data
+from gearcli.scene import spec_from_design
+
+pytest.importorskip("matplotlib")
+
+ROOT = Path(__file__).resolve().parents[2]
+CONVEYOR = str(ROOT / "configs" / "conveyor.toml")
+ONE_STAGE = str(ROOT / "configs" / "extreme" / "one_stage.toml")
+
+
+def _layout(path: str) -> Layout:
+    cfg = load_design(path, []).design
+    return Layout.of(spec_from_design(cfg, compute_design(cfg)))
+
+
+def test_campbell_data_of_one_stage_by_hand():
+    """21 teeth at 600 rpm: the mesh order 3x reaches 3 x 21 x 720 / 60 = 756 Hz at 1.2 x nominal; the mesh
+    order h meets the mode f at 60 f / (21 h) rpm."""
+    data = campbell_data(_layout(ONE_STAGE))
+    assert data.nominal_input_rpm == pytest.approx(600.0) and data.max_input_rpm == pytest.approx(720.0)
+    assert data.top_Hz == pytest.approx(3 * 21 * 720 / 60)
+    (mode,) = data.modes
+    for c in data.crossings:
+        if c.crossing.excitation.startswith("stage 1 mesh"):
+            h = int(c.crossing.excitation.split()[-1][0])
+            assert c.crossing.input_speed_rpm == pytest.approx(60 * mode.frequency_Hz / (21 * h), rel=1e-12)
+            assert c.crossing.input_speed_rpm <= 720.0
+
+
+def test_conveyor_figure_has_log_axis_nominal_line_margin_bands_and_marked_crossings():
+    from gearcli.io.campbell import campbell_figure
+
+    data = campbell_data(_layout(CONVEYOR))
+    fig = campbell_figure(data, OutputUnits("rpm", "Nm"), "conveyor")
+    ax = fig.axes[0]
+    assert ax.get_yscale() == "log"  # 4.9 Hz drum mode to a 1.7 kHz mesh order: three decades
+    assert ax.get_xlim() == pytest.approx((0.0, 1.2 * 1480.0))
+    assert ax.get_ylim()[1] >= data.top_Hz  # up to the highest order at 1.2 x nominal (1687 Hz)
+    assert data.top_Hz == pytest.approx(3 * 19 * 1.2 * 1480 / 60)
+    vertical = [ln for ln in ax.get_lines() if len(set(ln.get_xdata())) == 1 and "nominal" in ln.get_label()]
+    assert vertical and vertical[0].get_xdata()[0] == pytest.approx(1480.0)
+    bands = [p for p in ax.patches]  # one +-10 % band per mode drawn
+    assert len(bands) >= 3
+    markers = [ln for ln in ax.get_lines() if ln.get_marker() == "o"]
+    assert len(markers) == sum(c.frequency_Hz <= ax.get_ylim()[1] for c in data.crossings)
+    assert "input speed [rpm]" in ax.get_xlabel()
+
+
+def test_modes_plots_writes_a_png(tmp_path):
+    res = CliRunner().invoke(cli, ["modes", CONVEYOR, "--plots", str(tmp_path / "fig"), "--format", "json"])
+    assert res.exit_code == 0, res.output
+    png = (tmp_path / "fig" / "campbell.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20_000
+
+
+def test_sweep_campbell_is_the_same_drawing(tmp_path, monkeypatch):
+    from gearcli.io import campbell
+
+    calls = []
+    real = campbell.campbell_figure
+
+    def spy(data, units, title="", swept=None):
+        calls.append((data, units, swept))
+        return real(data, units, title, swept)
+
+    monkeypatch.setattr(campbell, "campbell_figure", spy)
+    out = tmp_path / "s.csv"
+    res = CliRunner().invoke(cli, ["sweep", str(ROOT / "configs" / "concrete_mixer.toml"), "--vary",
+                                   "input.speed_rpm=300:900:3", "--jobs", "1", "-o", str(out), "--plots",
+                                   str(tmp_path / "p")])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "p" / "campbell.png").exists()
+    ((data, units, swept),) = calls
+    assert swept == pytest.approx([300.0, 600.0, 900.0]) and units.speed == "rpm"
+    assert data.max_input_rpm == pytest.approx(900.0)  # the swept range beyond 1.2 x the file's 600 rpm
+    assert data.top_Hz == pytest.approx(3 * 21 * 900 / 60)
+    assert math.isclose(data.nominal_input_rpm, 600.0)
