@@ -18,6 +18,7 @@ from pathlib import Path
 import click
 
 from gearcli import __version__
+from gearcli.core.text import shorten, visible
 from gearcli.errors import (
     EXIT_BROKEN_PIPE,
     EXIT_FAILED,
@@ -31,7 +32,6 @@ from gearcli.errors import (
     Terminated,
 )
 from gearcli.io import output as outfiles
-from gearcli.io.text import shorten, visible
 
 FORMATS = ("table", "csv", "json")
 SUFFIX_FORMAT = outfiles.SUFFIX_FORMAT

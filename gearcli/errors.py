@@ -28,7 +28,7 @@ class ConfigError(GearcliError):
         super().__init__(self.format())
 
     def format(self) -> str:
-        from gearcli.io.text import shorten
+        from gearcli.core.text import shorten
 
         where = ": ".join(shorten(p) for p in (self.source, self.key) if p)
         message = shorten(self.message, 2000)
@@ -44,7 +44,7 @@ class DesignError(GearcliError):
         self.key = key
         self.source = source
         self.message = message
-        from gearcli.io.text import shorten
+        from gearcli.core.text import shorten
 
         where = ": ".join(shorten(p) for p in (source, key) if p)
         super().__init__(f"{where}: {shorten(message, 2000)}" if where else shorten(message, 2000))

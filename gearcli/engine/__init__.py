@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from gearcli.simulate.methods import METHODS
+from gearcli.core.methods import METHODS
 
 ENGINES = ("auto", "python", "compiled")
 COMPILED_METHODS = tuple(n for n, m in METHODS.items() if "compiled" in m.engines)  # the registry's word

@@ -25,8 +25,8 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+from gearcli.core.text import shorten
 from gearcli.errors import OutputError
-from gearcli.io.text import shorten
 
 STDOUT = "-"
 

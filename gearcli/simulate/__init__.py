@@ -9,7 +9,7 @@
 - ``estimate`` the error estimate of the window statistics (a check pass at 10x rtol)
 - ``run``     ``run_simulation`` (design file + design) and ``simulate_model`` (an assembled model)
 
-``run_simulation`` and ``simulate_model`` are imported on first use, so that ``gearcli.simulate.methods``
+``run_simulation`` and ``simulate_model`` are imported on first use, so that ``gearcli.core.methods``
 (read by the design-file schema) does not pull in scipy.
 """
 

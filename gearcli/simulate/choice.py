@@ -39,9 +39,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 from gearcli.model import Layout, Linearisation, ModelSpec, linearise
 from gearcli.model.linear import peak_rigid_forces, static_forces
-from gearcli.simulate.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 
 STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which a scene counts as stiff for an explicit method (warnings)
 EXPLICIT_PER_UNIT = 2.6  # DOP853 evaluations per unit of max|lambda| T (stability)

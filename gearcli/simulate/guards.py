@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.methods import IMPLICIT_METHOD, method
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
@@ -40,7 +41,6 @@ from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.linear import static_forces
 from gearcli.model.outputs import kinetic_energy, potential_energy, sample
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
-from gearcli.simulate.methods import IMPLICIT_METHOD, method
 
 #: What a run costs, priced per counter in seconds (measured on the 2-core benchmark machine with the
 #: generated model of 9-11 states; tests/extreme/test_guards.py checks the ratios): one right-hand side 5 µs,

@@ -8,6 +8,7 @@ from dataclasses import replace
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice, estimate_nfev
 from gearcli.engine import choose as choose_engine
@@ -18,7 +19,6 @@ from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, Solv
 from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
 from gearcli.simulate.solver import (
     STATUS_BUDGET,

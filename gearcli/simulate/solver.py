@@ -27,11 +27,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import OdeSolver
 
+from gearcli.core.methods import METHODS, scipy_solver
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.simulate.guards import CAP as MAX_NFEV
 from gearcli.simulate.guards import EnergyWatch, energy_watch, over_budget, priced_work_s
-from gearcli.simulate.methods import METHODS, scipy_solver
 
 BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
 
