@@ -35,6 +35,7 @@ from gearcli.model.codegen import compile_functions
 from gearcli.model.elements import KIND_MESH
 from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.linear import static_forces
+from gearcli.model.outputs import kinetic_energy, potential_energy
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp_motion
 
@@ -170,8 +171,6 @@ class TorsionalModel:
     # ------------------------------------------------------------------------------------ energy
     def energy(self, s, Y: np.ndarray) -> Energy:
         """Energy balance over the run from its samples ``s`` (``outputs.Sampled``) and states ``Y``."""
-        from gearcli.model.outputs import kinetic_energy, potential_energy
-
         lay = self.layout
         q = lay.i_quad
         ke = kinetic_energy(lay, s.omega_rad_s[:, [0, -1]])

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.cost import CAP, COST_PER_UNIT, EXPLICIT_CAP, FLOOR, HEADROOM
 from gearcli.core.methods import IMPLICIT_METHOD, method
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
@@ -56,11 +57,6 @@ WORK_CAP_S = 60.0  # priced seconds one run may use; then it is called off
 PROJECTION_AFTER_S = 5.0  # priced seconds after which the pace is projected to the end of the run
 PROJECTION_LIMIT = 4.0  # a projected total over this many times WORK_CAP_S stops the run at once
 
-COST_PER_UNIT = 30.0  # evaluations per unit of max|lambda| T at rtol 1e-6 (worst measured: 26)
-HEADROOM = 10.0
-FLOOR = 200_000  # ~1 s of right-hand sides: never stop a short soft run early
-CAP = 5_000_000  # ~30 s of right-hand sides on a 2-core machine; then the run is called off
-EXPLICIT_CAP = 1_000_000  # stability-only cost beyond which an explicit method is refused (~10 s)
 ENERGY_MARGIN = 0.1  # of the scene's energy scale
 ENERGY_CHECK_EVERY = 16  # accepted steps between energy checks (divergence grows geometrically)
 

@@ -36,6 +36,8 @@ from functools import reduce
 import numpy as np
 
 from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
+from gearcli.results import SteadyState
+from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
 MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
 MAX_SUBHARMONIC = 8  # period-k responses looked for, k = 1 .. 8
@@ -292,8 +294,6 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     Returns a :class:`PeriodicRun`, or the failed part's ``Integration`` (status < 0) for the caller's
     :func:`gearcli.simulate.run.check`. A search that runs out of evaluations stops early, unconverged.
     """
-    from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
-
     lay = model.layout
     period = scene_period(lay)
     T = period.period_s
@@ -358,8 +358,6 @@ def periods_cap(duration_s: float, t_start: float, period_s: float) -> int:
 
 
 def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exhausted: bool, cap: int):
-    from gearcli.results import SteadyState
-
     kind = "none" if repeat.k == 0 else f"period-{repeat.k}"
     source = period.source + ("" if not exhausted else "; the search stopped at the run's evaluation budget")
     return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n, periodicity=kind,
