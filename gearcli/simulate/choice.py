@@ -102,12 +102,9 @@ def _stiffest_mesh(lin: Linearisation, lay: Layout) -> int:
 
 
 def _self_exciting(lay: Layout, spec: ModelSpec) -> np.ndarray:
-    """Per connector: a mesh whose force law makes its own harmonics (Hertzian, time-varying, backlash)."""
-    out = np.zeros(lay.n_conn, dtype=bool)
-    for k, c in enumerate(lay.stage_conn):
-        m = spec.meshes[k]
-        out[c] = m.exponent != 1.0 or m.time_varying or m.backlash_m > 0
-    return out
+    """Per connector: an element whose force law makes its own harmonics (a mesh: Hertzian, time-varying,
+    backlash)."""
+    return np.array([x.element.self_exciting(x.params) for x in lay.connectors], dtype=bool)
 
 
 def _ramp_excitation(spec: ModelSpec, omega: float) -> float:

@@ -37,8 +37,6 @@ from gearcli.core.methods import IMPLICIT_METHOD, method
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.linear import static_forces
 from gearcli.model.outputs import kinetic_energy, potential_energy, sample
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
@@ -151,7 +149,7 @@ class EnergyWatch:
         ke = 0.5 * float(np.asarray(lay.inertias) @ (rho * lay.drive.speed_rad_s) ** 2)
         u = 0.0
         for x, f in zip(lay.connectors, np.abs(static_forces(lay)), strict=True):
-            P = mesh_el.linear_row(x.params, 1.0) if x.kind == KIND_MESH else x.params
+            P = x.element.linear_row(x.params, 1.0)
             u += x.element.potential(P, x.element.static_deflection(P, f), 0.0)
         return max(ke + u, np.finfo(float).tiny)
 
