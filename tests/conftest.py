@@ -28,6 +28,13 @@ def _x86_with_avx2() -> bool:
 if "OPENBLAS_CORETYPE" not in os.environ and _x86_with_avx2():
     os.environ["OPENBLAS_CORETYPE"] = "Haswell"
 
+# pytest-xdist's workers start with COLUMNS=80 and LINES=24 in their environment (a serial run has neither);
+# the tables size themselves by COLUMNS, so a worker would fold lines a serial run does not. Tests that
+# need a width set it themselves.
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    os.environ.pop("COLUMNS", None)
+    os.environ.pop("LINES", None)
+
 
 # The slow tier: tests of more than ~8 s each on the 2-core reference machine (measured with --durations).
 # They run in CI (`.ci/run`: -m "slow or not slow"); the default run (pyproject addopts: -m "not slow")
