@@ -36,8 +36,8 @@ if TYPE_CHECKING:
     from gearcli.results import SimulationResult
     from gearcli.sweep.session import Session, SinkFactory
 
-__all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "design", "simulate_spec", "load", "load_and_design", "modes",
-           "model_spec", "prepare_sweep", "report", "run_sweep", "simulate"]
+__all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "design", "load", "load_and_design", "model_spec",
+           "modes", "prepare_sweep", "report", "run_sweep", "simulate", "simulate_spec"]
 
 
 def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:
