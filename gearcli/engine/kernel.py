@@ -67,10 +67,11 @@ INITIAL_EXPONENT = 1.0 / (7 + 1)
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
 FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3, 4, 5
-# the model tuple: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree): bodies
-# and signed levers by connector and slot (-1 / 0 padded; gearcli.model.ModelArrays), the rows the flat
-# (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque, tree the connector that
-# gives each body's angle
+# the model tuple: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree, ptr,
+# pairs): bodies and signed levers by connector and slot (-1 / 0 padded; gearcli.model.ModelArrays), the rows
+# the flat (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque, tree the
+# connector that gives each body's angle, and per body b its (connector, slot) pairs pairs[ptr[b]:ptr[b + 1]]
+# in connector order (gearcli.engine.pack)
 
 # ----------------------------------------------------------------------------------- vector sums
 # scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
@@ -224,16 +225,14 @@ def deflection_rate(c, y, model, first, i_w0, w0):
 
 @jit
 def body_torque(i, model, fc):
-    """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index)."""
-    bodies, lev = model[1], model[2]
+    """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
+    the body's list of (connector, slot) pairs)."""
+    lev, ptr, pairs = model[2], model[10], model[11]
     x = 0.0
-    seen = False
-    for c in range(bodies.shape[0]):
-        for s in range(bodies.shape[1]):
-            if bodies[c, s] == i:
-                term = -lev[c, s] * fc[c]
-                x = x + term if seen else term
-                seen = True
+    for k in range(ptr[i], ptr[i + 1]):
+        c = pairs[k, 0]
+        term = -lev[c, pairs[k, 1]] * fc[c]
+        x = x + term if k > ptr[i] else term
     return x
 
 
