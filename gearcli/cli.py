@@ -18,20 +18,19 @@ from pathlib import Path
 import click
 
 from gearcli import __version__
+from gearcli.core.text import shorten, visible
 from gearcli.errors import (
     EXIT_BROKEN_PIPE,
     EXIT_FAILED,
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
-    DesignError,
     GearcliError,
     OutputError,
     RunTooLong,
     Terminated,
 )
 from gearcli.io import output as outfiles
-from gearcli.io.text import shorten, visible
 
 FORMATS = ("table", "csv", "json")
 SUFFIX_FORMAT = outfiles.SUFFIX_FORMAT
@@ -224,16 +223,10 @@ def warn(lines) -> None:
 
 
 def load_and_design(path: str, overrides):
-    """Load and validate the design file, then run the design calculations."""
-    from gearcli.config import load_design
-    from gearcli.design import compute_design
+    """Load and validate the design file, then run the design calculations (:mod:`gearcli.api`)."""
+    from gearcli import api
 
-    loaded = load_design(path, overrides)  # "-" reads sys.stdin.buffer (CliRunner swaps it too)
-    try:
-        design = compute_design(loaded.design)
-    except DesignError as exc:
-        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
-    return loaded, design
+    return api.load_and_design(path, overrides)  # "-" reads sys.stdin.buffer (CliRunner swaps it too)
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]}, epilog="""\b
@@ -340,17 +333,15 @@ Examples:
 @guarded
 def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, mesh orders."""
+    from gearcli import api
     from gearcli.io import modes_out, serialize
-    from gearcli.model.modes import BOUNDARIES, modal_analysis
-    from gearcli.scene import build_model
 
     target = check_target(fmt, output)
     if plots_dir:
         _check_sweep_plots_dir(plots_dir, file, target, ())
     loaded, design_result = load_and_design(file, overrides)
     warn(design_result.warnings)
-    lay = build_model(loaded.design, design_result).layout
-    analyses = [modal_analysis(lay, b, duration_s=loaded.design.simulation.duration_s) for b in BOUNDARIES]
+    analyses = api.modes(loaded.design, design_result)
     if target.fmt == "json":
         from gearcli.diagnostics import warning_objects
 
@@ -361,18 +352,15 @@ def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     else:
         emit_tables(modes_out.modes_tables(analyses), target)
     if plots_dir:
-        _write_campbell(loaded, lay, plots_dir)
+        _write_campbell(loaded, api.campbell(loaded.design, design_result), plots_dir)
 
 
-def _write_campbell(loaded, lay, plots_dir: str) -> None:
+def _write_campbell(loaded, data, plots_dir: str) -> None:
     """``modes --plots``: the Campbell diagram at the drive's boundary; no matplotlib: a warning, exit 0."""
     from gearcli.io import units
     from gearcli.io.campbell import write_campbell
     from gearcli.io.plots import PlotsUnavailable
-    from gearcli.model.modes import campbell_data
 
-    data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free",
-                         duration_s=loaded.design.simulation.duration_s)
     try:
         path = write_campbell(data, units.of_design_file(loaded.design), plots_dir, loaded.design.title)
     except PlotsUnavailable as exc:
@@ -507,9 +495,10 @@ Examples:
 @guarded
 def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtols, plots_dir) -> None:
     """Theory against simulation, the numerical error against run time, and plots."""
+    from gearcli import api
     from gearcli.config.bounds import check_report_budget
     from gearcli.io import serialize
-    from gearcli.report import LadderSpec, build_report
+    from gearcli.report import LadderSpec
 
     target = check_target(fmt, output, REPORT_FORMATS, pipe_format="markdown")
     if plots_dir:
@@ -522,8 +511,8 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     collector_on()
     with _StderrProgress() as progress:
         try:
-            rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
-                               progress=progress)
+            rep = api.report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
+                             progress=progress)
         except RunTooLong as exc:
             raise RunTooLong(f"{loaded.source}: {exc}") from None
     if fmt == "json":
@@ -607,8 +596,9 @@ Examples:
 def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, scheduler, overrides, fmt, output,
           plots_dir) -> None:
     """Simulate many operating points: grids, tolerance samples, continuation up and down in speed."""
+    from gearcli.api import prepare_sweep as prepare
+    from gearcli.api import run_sweep as run
     from gearcli.io.sweep_progress import SweepProgress
-    from gearcli.sweep.session import prepare, run
 
     collector_on()
     target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work

@@ -11,12 +11,18 @@ pinion end (the design gives each gear's inertia).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from gearcli.design import contact_stiffness_N_mm_e
 from gearcli.model.spec import MM, CoupledInertia, DriveSpec, FlexibleShaft, LoadSpec, MeshSpec, ModelSpec, SpringSpec
+from gearcli.results import DesignResult, StageResult
+
+if TYPE_CHECKING:  # the config layer is below this one; its pydantic models only name the types here
+    from gearcli.config.schema import DesignFile, Input, Load
+    from gearcli.model import TorsionalModel
 
 
-def _mesh(cfg, st, k: int) -> MeshSpec:
+def _mesh(cfg: DesignFile, st: StageResult, k: int) -> MeshSpec:
     law = cfg.contact_for(k)
     e = float(law.exponent)
     return MeshSpec(
@@ -45,14 +51,15 @@ def _mesh(cfg, st, k: int) -> MeshSpec:
     )
 
 
-def _coupled(table) -> CoupledInertia | None:
-    if getattr(table, "inertia_kg_m2", None) is None:
+def _coupled(table: Input | Load) -> CoupledInertia | None:
+    """The body outside the reducer and its coupling (the schema gives both or neither)."""
+    if table.inertia_kg_m2 is None or table.coupling_stiffness_Nm_rad is None:
         return None
     return CoupledInertia(table.inertia_kg_m2, SpringSpec(table.coupling_stiffness_Nm_rad,
                                                           table.coupling_damping_Nms_rad))
 
 
-def _shafts(cfg, design) -> tuple[FlexibleShaft | None, ...]:
+def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None, ...]:
     out = []
     for k, stage in enumerate(cfg.stage[:-1]):
         s = stage.shaft
@@ -61,7 +68,7 @@ def _shafts(cfg, design) -> tuple[FlexibleShaft | None, ...]:
     return tuple(out) if any(s is not None for s in out) else ()
 
 
-def spec_from_design(cfg, design) -> ModelSpec:
+def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
     meshes = tuple(_mesh(cfg, st, k) for k, st in enumerate(design.stages))
     inp = cfg.input
@@ -74,7 +81,7 @@ def spec_from_design(cfg, design) -> ModelSpec:
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design))
 
 
-def output_units(cfg) -> tuple[str, str]:
+def output_units(cfg: DesignFile) -> tuple[str, str]:
     """(speed, torque) key suffixes the outputs use: the input's speed key (``deg_s``, ``rpm``, ``rad_s``) and
     the load's torque key (``Nmm``, ``Nm``; ``power_kW`` gives N·m)."""
     inp = cfg.input
@@ -83,25 +90,25 @@ def output_units(cfg) -> tuple[str, str]:
     return speed, torque
 
 
-def build_model(cfg, design):
+def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
     """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
-    from gearcli.model import TorsionalModel
+    from gearcli.model import TorsionalModel  # lazy for start-up: ``gearcli design`` imports this module
 
     return TorsionalModel(spec_from_design(cfg, design))
 
 
-def resonance_warnings(cfg, design) -> tuple[str, ...]:
+def resonance_warnings(cfg: DesignFile, design: DesignResult) -> tuple[str, ...]:
     """The messages of :func:`resonance_diagnostics`."""
     return tuple(d.message for d in resonance_diagnostics(cfg, design))
 
 
-def resonance_diagnostics(cfg, design) -> tuple:
+def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple:
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
     its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
     from gearcli import diagnostics as dg
-    from gearcli.model.assembly import Layout
+    from gearcli.model.assembly import Layout  # lazy for start-up (numpy), as above
     from gearcli.model.modes import resonances
 
     lay = Layout.of(spec_from_design(cfg, design))

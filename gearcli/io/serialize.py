@@ -11,8 +11,8 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 import gearcli
+from gearcli.core.text import csv_text_cell
 from gearcli.diagnostics import warning_objects
-from gearcli.io.text import csv_text_cell
 from gearcli.results import DesignResult, SimulationResult
 
 

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from gearcli.io.plots import _figure, _save
+from gearcli.sweep.modes import SPEED_KEYS
 
 COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
 #: (title with unit, columns of one stage as {suffix: line style})
@@ -64,8 +65,6 @@ def write_sweep_plots(session, rows: Sequence[dict], plots_dir: str) -> list[Pat
 
 
 def _speed_keys() -> tuple[str, ...]:
-    from gearcli.sweep.modes import SPEED_KEYS
-
     return SPEED_KEYS
 
 

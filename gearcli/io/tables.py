@@ -17,7 +17,7 @@ from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 from rich.table import Table
 from rich.text import Text
 
-from gearcli.io.text import visible
+from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
 from gearcli.results import DesignResult, SimulationResult
 

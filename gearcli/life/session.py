@@ -46,11 +46,11 @@ def prepare(file: str, sets: Sequence[str], *, series: str | None = None,
             classes: int = DEFAULT_CLASSES) -> Session:
     """Read and validate the base file (exit 2 on bad input, before any point runs) and make the points."""
     from gearcli.config import load_design
-    from gearcli.config.load import _read
+    from gearcli.config.load import read_bytes
     from gearcli.design import compute_design
     from gearcli.sweep.worker import Scene
 
-    raw = _read(file, None)
+    raw = read_bytes(file, None)
     loaded = load_design(file, sets, stdin=io.BytesIO(raw))
     try:
         design = compute_design(loaded.design)

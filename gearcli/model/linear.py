@@ -28,9 +28,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.contact_lines import contact_length_range
-from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
 
@@ -40,10 +37,17 @@ def _lay(x) -> Layout:
 
 
 def static_forces(lay: Layout) -> np.ndarray:
-    """Force of every connector at full load in steady state (lossless): N for meshes, N m for springs."""
+    """Force of every connector at full load in steady state (lossless): N for meshes, N m for springs.
+
+    The statics of the power path (the parallel-stage chain): connector c carries the load torque to its
+    second body, ``T_L rho_N / rho_b / r_b``. A further element (``ModelSpec.elements``) is taken to carry
+    no static load (a damper; general statics come with the general topology)."""
     rho = np.array([b.ratio for b in lay.bodies])
+    rho_b = np.array([rho[x.b] for x in lay.connectors])
     rb = np.array([x.rb for x in lay.connectors])
-    return lay.load.torque_Nm * rho[-1] / rho[1:] / rb
+    out = lay.load.torque_Nm * rho[-1] / rho_b / rb
+    out[[c for c, x in enumerate(lay.connectors) if not x.role]] = 0.0
+    return out
 
 
 def static_line_forces_N(spec: ModelSpec | Layout) -> np.ndarray:
@@ -63,10 +67,11 @@ def rigid_forces(lay: Layout, t: np.ndarray) -> np.ndarray:
     else:
         t_in = np.asarray(ramp(t, lay.drive.ramp_s, lay.drive.torque_Nm)) * np.ones_like(t)
         alpha0 = (t_in - rho[-1] * t_load) / float(J @ rho**2)
-    out = np.empty((lay.n_conn, t.size))
+    out = np.zeros((lay.n_conn, t.size))
     for c, x in enumerate(lay.connectors):
-        downstream = float(J[c + 1:] @ rho[c + 1:] ** 2) / rho[c + 1]
-        out[c] = (downstream * alpha0 + t_load * rho[-1] / rho[c + 1]) / x.rb
+        if x.role:  # on the power path: everything beyond its second body (as static_forces)
+            downstream = float(J[x.b:] @ rho[x.b:] ** 2) / rho[x.b]
+            out[c] = (downstream * alpha0 + t_load * rho[-1] / rho[x.b]) / x.rb
     return out
 
 
@@ -136,19 +141,7 @@ def tangent(lay: Layout, c: int, F: float, *, stiffest_phase: bool = False) -> t
     (``stiffest_phase``: its largest contact-line factor); unloaded, a linear mesh keeps K, a Hertzian
     one has no stiffness."""
     x = lay.connectors[c]
-    F = abs(float(F))
-    if x.kind != KIND_MESH:
-        d0 = x.element.static_deflection(x.params, F)
-        _, k, cd, _, _, _, _, _ = x.element.force(x.params, d0, 0.0, 0.0, 0.0)
-        return k, cd, d0
-    P = x.params
-    factor = contact_length_range(P[mesh_el.I_EA], P[mesh_el.I_EB])[1] if stiffest_phase and x.time_varying else 1.0
-    Q = mesh_el.linear_row(P, factor)
-    p0 = mesh_el.static_penetration(Q, F)
-    if p0 == 0.0 and Q[mesh_el.I_E] != 1.0:
-        return 0.0, 0.0, 0.0
-    _, k, cd, _, _, _, _, _ = mesh_el.force(Q, max(p0, 1e-300) / Q[mesh_el.I_CB], 0.0, 0.0, 0.0)
-    return k, cd, p0
+    return x.element.tangent(x.params, abs(float(F)), stiffest_phase)
 
 
 def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
@@ -156,7 +149,8 @@ def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
     free = lay.free_bodies if free is None else free
     R = np.zeros((lay.n_conn, lay.n_bodies))
     for c, x in enumerate(lay.connectors):
-        R[c, x.a], R[c, x.b] = x.ra, -x.rb
+        for b, lever in zip(x.bodies, x.levers, strict=True):
+            R[c, b] = lever
     return R[:, free.start:free.stop]
 
 

@@ -4,21 +4,25 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli import engine
+from gearcli.core.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice, estimate_nfev
 from gearcli.engine import choose as choose_engine
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
+from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
+from gearcli.results import DesignResult, EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
+from gearcli.scene import output_units, spec_from_design
 from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -31,11 +35,14 @@ from gearcli.simulate.solver import (
     integrate,
 )
 
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile
+
 RAD_TO_DEG = 180.0 / math.pi
 StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), pen. (mm), DTE (um)
 
 
-def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
+def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
                    error_estimate: bool | None = None) -> SimulationResult:
@@ -47,8 +54,6 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     already built it (a sweep point), else built here; ``error_estimate`` (default
     ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
-    from gearcli.scene import spec_from_design
-
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
         raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
@@ -57,8 +62,6 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = _design_diagnostics(design)
-    from gearcli.scene import output_units
-
     result = simulate_model(model, duration_s=sim.duration_s,
                             steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                             window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
@@ -156,8 +159,6 @@ def _loadable(eng: EngineChoice) -> EngineChoice:
     (an explicit ``compiled`` lets the error through)."""
     if eng.engine != "compiled" or eng.requested != "auto":
         return eng
-    from gearcli import engine
-
     try:
         engine.load()
     except Exception as exc:  # numba cannot compile or cache here: scipy runs it
@@ -366,8 +367,6 @@ def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic
     """A mesh order (1x-3x mesh frequency) or shaft order (1x) at the nominal speed within 10 % of a natural
     frequency that it excites (its meshes' share of the mode's strain energy over twice the modal damping
     ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`)."""
-    from gearcli.model.modes import resonances
-
     out = []
     for r in resonances(model.layout, boundary=choice.boundary):
         out.append(dg.warning(dg.RESONANCE, r.message, stage=r.stage, mode=r.mode, frequency_Hz=r.frequency_Hz,
