@@ -21,6 +21,7 @@ from gearcli import __version__
 from gearcli.errors import (
     EXIT_BROKEN_PIPE,
     EXIT_FAILED,
+    EXIT_HANGUP,
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
@@ -60,6 +61,10 @@ def _on_sigterm(signum, frame) -> None:
     raise Terminated()
 
 
+def _on_sighup(signum, frame) -> None:
+    raise Terminated(EXIT_HANGUP)
+
+
 def guarded(fn: Callable) -> Callable:
     """Run a command body; map errors to messages and exit codes (traceback only with --debug).
     Numeric RuntimeWarnings are collected and reported as one plain warning each, never raw."""
@@ -85,7 +90,9 @@ def guarded(fn: Callable) -> Callable:
             _broken_pipe()
         except KeyboardInterrupt:
             _fail("interrupted", EXIT_INTERRUPTED)
-        except Terminated:
+        except Terminated as exc:
+            if exc.args == (EXIT_HANGUP,):
+                _fail("hangup", EXIT_HANGUP)
             _fail("terminated", EXIT_TERMINATED)
         except (click.exceptions.Exit, click.ClickException, SystemExit):
             raise
@@ -609,9 +616,16 @@ def main() -> None:
     """The console script: SIGTERM unwinds like Ctrl-C (temporary files removed), then exit 143."""
     import signal
 
+    from gearcli.io import streams
+
+    streams.guard()  # a closed stdout/stderr (>&-): a clean message, never a traceback
     signal.signal(signal.SIGTERM, _on_sigterm)
+    if hasattr(signal, "SIGHUP"):  # the terminal went away: unwind like SIGTERM (temporary files removed)
+        signal.signal(signal.SIGHUP, _on_sighup)
     try:
         cli(prog_name="gearcli")
+    except GearcliError as exc:  # click's own output (--help, --version) on a closed stdout
+        _fail(str(exc), exc.exit_code)
     except SystemExit as exc:
         # click's own output (--help, --version) meets a closed pipe: click pacifies stdout and exits 1
         if exc.code == 1 and type(sys.stdout).__name__.endswith("PacifyFlushWrapper"):

@@ -73,9 +73,22 @@ def _refuse(shown: str, message: str) -> OutputError:
     return OutputError(message, path=shorten(shown))
 
 
+def _is_stdin(target: Path) -> bool:
+    """``target`` is the file that standard input reads (``gearcli design - -o f.csv < f.csv``)."""
+    try:
+        st_in, st_out = os.fstat(0), os.stat(target)
+    except (OSError, ValueError):
+        return False
+    return stat.S_ISREG(st_in.st_mode) and (st_in.st_dev, st_in.st_ino) == (st_out.st_dev, st_out.st_ino)
+
+
 def _same_file(target: Path, inputs: Iterable[str | None]) -> bool:
     for given in inputs:
-        if not given or given == STDOUT:
+        if given == STDOUT:  # the input is stdin: compare what it reads by device and inode
+            if _is_stdin(target):
+                return True
+            continue
+        if not given:
             continue
         try:
             if os.path.samefile(target, given):
