@@ -79,8 +79,18 @@ def main() -> None:
             # when gearcli caught it, and at shutdown re-kills itself with SIGINT (exit status -2 instead of
             # 130: seen for a Ctrl-C ~0.2 s into `simulate`, while scipy loads). The interrupt is handled:
             # leave now with the code gearcli chose.
-            sys.stdout.flush()
-            sys.stderr.flush()
+            # The atexit handlers run first: multiprocessing's joins a sweep's (already stopped) workers and
+            # unlinks the pool's named semaphores, so its resource tracker has nothing to warn about.
+            import atexit
+
+            run_exitfuncs = getattr(atexit, "_run_exitfuncs", None)
+            if run_exitfuncs is not None:
+                run_exitfuncs()
+            try:
+                sys.stdout.flush()
+                sys.stderr.flush()
+            except (OSError, ValueError):
+                pass
             os._exit(exc.code)
         raise
 

@@ -514,6 +514,7 @@ def _check_plots_dir(plots_dir: str, file: str, target) -> None:
 
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     outfiles.check_not_clobbering([Path(plots_dir) / name for name in FIGURE_NAMES],
                                   [file, target.path], "--plots")
 
@@ -578,10 +579,11 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
                       direction=direction, jobs=jobs, scheduler=scheduler,
                       output=str(target.path) if target.path is not None else None, fmt=target.fmt)
     warn(session.design_warnings)
+    warn(session.notes)  # --jobs capped by the machine
     with SweepProgress(session.todo + session.done, session.done) as progress:
         rows = run(session, progress.advance)
     failed = sum(r.get("status") != "ok" for r in rows)
-    click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {output}" if output else ""),
+    click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
                err=True)
     if plots_dir:
         _write_sweep_plots(session, rows, plots_dir)
@@ -593,6 +595,7 @@ def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
     """As for report: no sweep figure may replace the input or the -o file."""
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     names = ["campbell.png", "distributions.png"]
     names += [f"response_{v.split('=', 1)[0].strip().replace('.', '_')}.png" for v in vary]
     outfiles.check_not_clobbering([Path(plots_dir) / n for n in names], [file, target.path], "--plots")
@@ -609,7 +612,7 @@ def _write_sweep_plots(session, rows, plots_dir: str) -> None:
         return
     except OSError as exc:
         _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
-    click.echo(f"wrote {', '.join(p.name for p in paths)} to {plots_dir}", err=True)
+    click.echo(f"wrote {', '.join(visible(p.name) for p in paths)} to {visible(plots_dir)}", err=True)
 
 
 def main() -> None:

@@ -169,6 +169,19 @@ def check_not_clobbering(paths: Iterable[Path], protected: Iterable[str | Path |
                 raise _refuse(str(path), why)
 
 
+def check_writable_dir(directory: str, option: str) -> None:
+    """Refuse a directory (``--plots DIR``) that cannot be written, or created, before any computation: the
+    directory itself when it exists, else the nearest existing parent it would be created in."""
+    probe = Path(directory)
+    while not probe.exists() and probe != probe.parent:
+        probe = probe.parent
+    if not probe.is_dir():
+        raise _refuse(directory, f"{option}: {shorten(str(probe))} is not a directory")
+    if not os.access(probe, os.W_OK | os.X_OK):
+        what = "directory not writable" if probe == Path(directory) else f"cannot create it in {shorten(str(probe))}"
+        raise _refuse(directory, f"{option}: {what}; choose a directory you can write")
+
+
 def write_output(target: OutputTarget, text: str) -> None:
     """``text`` to the checked target: atomically to its file (through a symlink), else to stdout."""
     if target.path is None:

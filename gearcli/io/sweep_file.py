@@ -33,6 +33,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from gearcli.errors import ConfigError
+from gearcli.io.text import csv_text_cell
 
 MARK = "# gearcli sweep: "
 JSON_EVERY_S = 1.0
@@ -50,8 +51,8 @@ def _cell(v: Any) -> str:
         return ""
     if isinstance(v, float):
         return repr(v) if math.isfinite(v) else ""
-    if isinstance(v, str):
-        return v.replace("#", "No.").replace("\n", "; ")
+    if isinstance(v, str):  # text: controls escaped, no spreadsheet formula (as every gearcli CSV), no '#'
+        return csv_text_cell(v.replace("#", "No.").replace("\n", "; "))
     return str(v)
 
 

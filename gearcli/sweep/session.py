@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from gearcli import __version__
 from gearcli.sweep.columns import FAILED, columns
-from gearcli.sweep.execute import default_jobs, execute, plan, require_distributed
+from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
 from gearcli.sweep.spec import SweepSpec, spec_from_options
 from gearcli.sweep.worker import Scene, Task, check_keys
@@ -36,6 +36,7 @@ class Session:
     output: str | None
     fmt: str
     design_warnings: tuple[str, ...]
+    notes: tuple[str, ...] = ()  # about the run itself (--jobs capped), printed as warnings
 
 
 def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Sequence[str], samples: int | None,
@@ -52,8 +53,9 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
         design = compute_design(loaded.design)
     except DesignError as exc:
         raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
-    if scheduler:
+    if scheduler is not None:  # '' too: an empty address is a mistake, never a silent local run
         require_distributed()
+        check_scheduler(scheduler)
     stored: dict | None = None
     previous: list[dict] = []
     if output:
@@ -67,11 +69,26 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
     if stored is not None and output:
         check_same(stored, ident, output)
     done = {row_ident(r, spec.keys) for r in previous}
-    workers = jobs or default_jobs()
+    workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
     tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers)
     previous = ordered(previous, spec)
     return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages)), ident, previous,
-                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings))
+                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+
+
+def capped_jobs(jobs: int | None, cfg, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:
+    """Local worker processes: ``--jobs`` (default: every usable core), at most what the machine's cores and
+    memory carry (:func:`gearcli.sweep.execute.jobs_cap`); a note when ``--jobs`` asked for more."""
+    if scheduler:
+        return jobs or default_jobs(), ()
+    from gearcli.config.bounds import memory_estimate_bytes, output_samples
+
+    cap, why = jobs_cap(memory_estimate_bytes(output_samples(cfg.simulation), n_stages, "json", False))
+    wanted = jobs or default_jobs()
+    if wanted <= cap:
+        return wanted, ()
+    note = f"--jobs {wanted} capped at {cap} worker process{'es' if cap != 1 else ''} ({why})"
+    return cap, (note,) if jobs else ()
 
 
 def run(session: Session, on_row: Callable[[bool], None] = lambda failed: None) -> list[dict]:
@@ -79,11 +96,15 @@ def run(session: Session, on_row: Callable[[bool], None] = lambda failed: None) 
     from gearcli.io.sweep_file import open_sink
 
     sink = open_sink(session.output, session.fmt, session.columns, session.identity, session.previous)
+    rows_in = execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler)
     try:
-        for row in execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler):
+        for row in rows_in:
             sink.add(row)
             on_row(row.get("status") == FAILED)
     except BaseException:
+        close = getattr(rows_in, "close", None)
+        if close is not None:  # a pool stops its workers now, whichever line the interrupt hit
+            close()
         sink.close()
         raise
     rows = ordered(sink.rows, session.spec)

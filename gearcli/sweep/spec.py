@@ -182,8 +182,7 @@ class SweepSpec:
         if dup:
             raise SweepUsageError(f"{dup} is varied twice", source="--vary/--random")
         if not keys:
-            raise SweepUsageError("nothing to sweep: give --vary KEY=START:STOP:N or --samples N --random KEY=...",
-                                  source="gearcli sweep")
+            raise SweepUsageError("nothing to sweep: give --vary KEY=START:STOP:N or --samples N --random KEY=...")
         if self.randoms and not self.samples:
             raise SweepUsageError("--random needs --samples N", source="--random")
         if self.samples and not self.randoms:
@@ -197,7 +196,7 @@ class SweepSpec:
         if self.randoms and self.seed is None:
             raise ValueError("random samples need a seed (the CLI draws one when --seed is absent)")
         if self.n_points > MAX_POINTS:
-            raise SweepUsageError(f"{self.n_points} points is more than {MAX_POINTS}", source="gearcli sweep")
+            raise SweepUsageError(f"{self.n_points} points is more than {MAX_POINTS}")
 
     @property
     def keys(self) -> tuple[str, ...]:
