@@ -239,7 +239,10 @@ def load_and_design(path: str, overrides):
     try:
         design = compute_design(loaded.design)
     except DesignError as exc:
-        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
+        from gearcli.config.overrides import SOURCE, blames_key
+
+        source = SOURCE if blames_key(exc.key, overrides) else loaded.source  # a --set's value: blame the --set
+        raise DesignError(exc.message, key=exc.key, source=source) from exc
     return loaded, design
 
 
@@ -308,7 +311,7 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     if dump_model:
         from gearcli.scene import build_model
 
-        click.echo(build_model(loaded.design, design_result).source, nl=False)
+        emit(build_model(loaded.design, design_result).source, target)  # -o FILE honoured (atomically)
         return
     check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
     warn(design_result.warnings)

@@ -12,6 +12,7 @@ import dataclasses
 import math
 import os
 import signal
+import sys
 from collections.abc import Iterable, Iterator, Sequence
 
 from gearcli.errors import ConfigError
@@ -111,7 +112,11 @@ def _inline(tasks: Iterable[Task]) -> Iterator[dict]:
 
 
 def _ignore_sigint() -> None:
+    """A pool worker's start: Ctrl-C is the parent's to handle; the compilation notice is the parent's too."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from gearcli import engine
+
+    engine.quiet_compilation()
 
 
 def _lost(task: Task, exc: BaseException) -> list[dict]:
@@ -125,6 +130,11 @@ def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[dict]:
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
+    from gearcli import engine
+
+    notice = engine.compilation_pending()
+    if notice:  # once, here, not once per worker
+        print(f"gearcli: {notice}", file=sys.stderr)
     ctx = multiprocessing.get_context("forkserver")
     ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate"])
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_ignore_sigint)

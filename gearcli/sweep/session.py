@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from gearcli import __version__
-from gearcli.sweep.columns import FAILED, columns
+from gearcli.sweep.columns import FAILED, OK, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
 from gearcli.sweep.spec import SweepSpec, spec_from_options
@@ -62,6 +62,7 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
         from gearcli.io.sweep_file import read_identity
 
         stored, previous = read_identity(output)
+        previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
     check_keys(scene, spec.branches()[0][0])
