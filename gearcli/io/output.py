@@ -138,6 +138,10 @@ def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | Non
     format for stdout without ``--format`` (default: ``file_default``)."""
     file_default = file_default or formats[0]
     if output is None or output == STDOUT:
+        if getattr(sys.stdout, "closed_stdout", False):  # `>&-`: say so now, not after the computing
+            from gearcli.errors import StdoutClosed
+
+            raise StdoutClosed()
         chosen = fmt or (stdout_default() if stdout_default else file_default)
         return OutputTarget(fmt=chosen)
     path = resolve_path(output, inputs)

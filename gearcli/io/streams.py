@@ -31,6 +31,8 @@ class _ClosedBinary(io.RawIOBase):
 class ClosedStdout(io.TextIOBase):
     """The stand-in for a closed stdout: not a terminal, UTF-8, every write refused."""
 
+    closed_stdout = True  # gearcli.io.output.check_output refuses stdout as a destination before any work
+
     def __init__(self) -> None:
         super().__init__()
         self.buffer = _ClosedBinary()

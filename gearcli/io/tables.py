@@ -1,8 +1,9 @@
 """Rich tables for a person at a terminal. Builders return renderables; ``render`` turns them into text.
 
-A table never drops a number (docs/output.md, "Tables"): a table with a column per stage is split into
-several tables of as many stage columns as the width holds (stages 1–4, 5–8 ...), and every cell folds
-onto a second line rather than being cut with an ellipsis. Titles and labels are ``Text``: literal,
+A table never cuts a number (docs/output.md, "Tables"): a table with a column per stage is split into
+several tables of as many stage columns as the width holds (stages 1–4, 5–8 ...), and every table is a
+:class:`FittedTable`, whose number columns are as wide as their numbers (labels and headers fold), and which
+leaves out its rightmost number columns, with a note, when even that does not fit. Titles and labels are ``Text``: literal,
 never rich markup, control characters escaped.
 """
 
