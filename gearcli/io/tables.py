@@ -95,7 +95,8 @@ class FittedTable:
     justify: Sequence[str] = ()  # per column "left"/"right" (default: right for numeric columns)
     styles: Sequence[str | None] = ()
     ends: Sequence[bool] = ()  # per row: a section ends after it
-    MIN_TEXT = 6  # a text column folds, but not narrower than this
+    MIN_TEXT = 5  # a text column folds, but not narrower than this
+    MAX_WORD = 12  # ... and keeps its words whole up to this length
 
     def _cells(self, c: int) -> list[str]:
         return [visible(r[c]) for r in self.rows]
@@ -106,34 +107,40 @@ class FittedTable:
     def _least(self, c: int) -> int:
         if self.numeric[c]:
             return max([cell_len(x) for x in self._cells(c)] + [1])
-        return min(self._natural(c), self.MIN_TEXT)
+        words = [cell_len(w) for x in [*self._cells(c), visible(self.headers[c])] for w in x.split()] or [1]
+        return min(self._natural(c), max(self.MIN_TEXT, min(max(words), self.MAX_WORD)))  # words whole if it can
+
+    def compact(self, width: int) -> bool:
+        """Whether the table needs its narrow form (no padding at the outer edges) to fit ``width``."""
+        n = len(self.headers)
+        return sum(self._natural(c) for c in range(n)) + 3 * n + 1 > width
 
     def columns_for(self, width: int) -> tuple[list[int], dict[int, int]]:
         """The columns kept at ``width`` and each one's width."""
         keep = list(range(len(self.headers)))
+        edge = 0 if self.compact(width) else 2
 
-        def frame(cols: list[int]) -> int:  # borders and padding: "│ a │ b │"
-            return 3 * len(cols) + 1
+        def frame(cols: list[int]) -> int:  # borders and padding: "│ a │ b │" (narrow form: "│a │ b│")
+            return 3 * len(cols) - 1 + edge
 
         while sum(self._least(c) for c in keep) + frame(keep) > width and sum(self.numeric[c] for c in keep) > 1:
             keep.remove(max(c for c in keep if self.numeric[c]))
-        widths = {c: self._least(c) for c in keep if self.numeric[c]}
-        text_cols = [c for c in keep if not self.numeric[c]]
+        widths = {c: self._least(c) for c in keep}
         room = max(0, width - frame(keep) - sum(widths.values()))
-        # text columns: each its natural width when all fit, else an even share (a narrow one gives its rest away)
-        for i, c in enumerate(sorted(text_cols, key=self._natural)):
-            share = room // (len(text_cols) - i)
-            widths[c] = max(1, min(self._natural(c), max(share, min(self._least(c), room))))
-            room = max(0, room - widths[c])
-        for c in sorted((c for c in keep if self.numeric[c]), key=lambda c: self._natural(c) - widths[c]):
-            grow = min(self._natural(c) - widths[c], room)  # width left over: a header on fewer lines
-            widths[c] += max(0, grow)
-            room -= max(0, grow)
+        # the width left over unfolds as many columns as it can, the cheapest first (a header of a few more
+        # characters before a long label); what remains is shared evenly among the rest
+        wanting = sorted((c for c in keep if self._natural(c) > widths[c]), key=lambda c: self._natural(c) - widths[c])
+        for i, c in enumerate(wanting):
+            need = self._natural(c) - widths[c]
+            share = need if need <= room else room // (len(wanting) - i)
+            widths[c] += share
+            room -= share
         return keep, widths
 
     def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
         keep, widths = self.columns_for(options.max_width)
-        table = Table(title=text(self.title), title_justify="left", header_style="bold")
+        table = Table(title=text(self.title), title_justify="left", header_style="bold",
+                      pad_edge=not self.compact(options.max_width))
         for c in keep:
             justify: Literal["left", "right"] = "right" if self.numeric[c] else "left"
             if self.justify:
