@@ -12,7 +12,6 @@ import dataclasses
 import math
 import os
 import signal
-import sys
 from collections.abc import Iterable, Iterator, Sequence
 
 from gearcli.errors import ConfigError
@@ -130,11 +129,6 @@ def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[dict]:
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    from gearcli import engine
-
-    notice = engine.compilation_pending()
-    if notice:  # once, here, not once per worker
-        print(f"gearcli: {notice}", file=sys.stderr)
     ctx = multiprocessing.get_context("forkserver")
     ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate"])
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_ignore_sigint)

@@ -72,6 +72,10 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
     done = {row_ident(r, spec.keys) for r in previous}
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
     tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers)
+    if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once
+        from gearcli import engine
+
+        notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
     return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages)), ident, previous,
                    tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)

@@ -520,6 +520,12 @@ def test_sweep_workers_leave_the_compilation_notice_to_the_parent(tmp_path, monk
         assert engine._state["quiet"] is True
     finally:
         signal.signal(signal.SIGINT, previous)
+    from gearcli.sweep.session import prepare
+
+    session = prepare(str(SEED), [], vary=["input.speed_deg_s=3000:3600:4"], randoms=[], samples=None,
+                      sampling="lhs", seed=None, direction=None, jobs=2, scheduler=None, output=None, fmt="csv")
+    if session.jobs > 1:  # a pool will run: the sweep itself carries the one notice
+        assert sum("compile the integration engine" in n for n in session.notes) == 1
 
 
 def test_no_double_prefix():
