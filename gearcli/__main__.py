@@ -8,7 +8,7 @@ traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same wa
 import os
 import sys
 
-INTERRUPTED = (130, 143)  # SIGINT, SIGTERM: gearcli has said so and removed its temporary files
+INTERRUPTED = (129, 130, 143)  # SIGHUP, SIGINT, SIGTERM: gearcli has said so and removed its temporary files
 
 
 def _freeze_heap() -> None:
@@ -49,6 +49,9 @@ def _leave_now(code: int) -> bool:
 def main() -> None:
     import gc
 
+    from gearcli.io import streams
+
+    streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
     # the start-up imports (click, pydantic, numpy, scipy, numba: a million objects, no garbage) run without the
     # cyclic collector walking them again and again; a command turns it back on with
     # gearcli.cli.collector_on() once its heavy imports are in, before any work that could make garbage
@@ -76,8 +79,18 @@ def main() -> None:
             # when gearcli caught it, and at shutdown re-kills itself with SIGINT (exit status -2 instead of
             # 130: seen for a Ctrl-C ~0.2 s into `simulate`, while scipy loads). The interrupt is handled:
             # leave now with the code gearcli chose.
-            sys.stdout.flush()
-            sys.stderr.flush()
+            # The atexit handlers run first: multiprocessing's joins a sweep's (already stopped) workers and
+            # unlinks the pool's named semaphores, so its resource tracker has nothing to warn about.
+            import atexit
+
+            run_exitfuncs = getattr(atexit, "_run_exitfuncs", None)
+            if run_exitfuncs is not None:
+                run_exitfuncs()
+            try:
+                sys.stdout.flush()
+                sys.stderr.flush()
+            except (OSError, ValueError):
+                pass
             os._exit(exc.code)
         raise
 

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, BinaryIO
 
 import gearcli.design as design_layer
 from gearcli.config import DesignFile, LoadedDesign, load_design
+from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.errors import DesignError
 from gearcli.io.sweep_file import open_sink, read_identity
 from gearcli.model.spec import ElementSpec, ModelSpec
@@ -46,20 +47,21 @@ def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = N
     return load_design(path, overrides, stdin=stdin)
 
 
-def design(loaded: LoadedDesign) -> DesignResult:
+def design(loaded: LoadedDesign, overrides: Sequence[str] = ()) -> DesignResult:
     """The design calculations of a loaded file; an infeasible design raises
-    :class:`~gearcli.errors.DesignError` naming the file."""
+    :class:`~gearcli.errors.DesignError` naming the file, or the ``--set`` whose value it is about."""
     try:
         return design_layer.compute_design(loaded.design)
     except DesignError as exc:
-        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
+        source = SOURCE if blames_key(exc.key, overrides) else loaded.source
+        raise DesignError(exc.message, key=exc.key, source=source) from exc
 
 
 def load_and_design(path: str, overrides: Sequence[str] = (), *,
                     stdin: BinaryIO | None = None) -> tuple[LoadedDesign, DesignResult]:
     """:func:`load`, then :func:`design`."""
     loaded = load(path, overrides, stdin=stdin)
-    return loaded, design(loaded)
+    return loaded, design(loaded, overrides)
 
 
 def model_spec(cfg: DesignFile, design_result: DesignResult) -> ModelSpec:

@@ -22,6 +22,7 @@ from gearcli.core.text import shorten, visible
 from gearcli.errors import (
     EXIT_BROKEN_PIPE,
     EXIT_FAILED,
+    EXIT_HANGUP,
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
@@ -59,6 +60,10 @@ def _on_sigterm(signum, frame) -> None:
     raise Terminated()
 
 
+def _on_sighup(signum, frame) -> None:
+    raise Terminated(EXIT_HANGUP)
+
+
 def guarded(fn: Callable) -> Callable:
     """Run a command body; map errors to messages and exit codes (traceback only with --debug).
     Numeric RuntimeWarnings are collected and reported as one plain warning each, never raw."""
@@ -84,7 +89,9 @@ def guarded(fn: Callable) -> Callable:
             _broken_pipe()
         except KeyboardInterrupt:
             _fail("interrupted", EXIT_INTERRUPTED)
-        except Terminated:
+        except Terminated as exc:
+            if exc.args == (EXIT_HANGUP,):
+                _fail("hangup", EXIT_HANGUP)
             _fail("terminated", EXIT_TERMINATED)
         except (click.exceptions.Exit, click.ClickException, SystemExit):
             raise
@@ -296,7 +303,7 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     if dump_model:
         from gearcli.scene import build_model
 
-        click.echo(build_model(loaded.design, design_result).source, nl=False)
+        emit(build_model(loaded.design, design_result).source, target)  # -o FILE honoured (atomically)
         return
     check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
     warn(design_result.warnings)
@@ -538,6 +545,7 @@ def _check_plots_dir(plots_dir: str, file: str, target) -> None:
 
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     outfiles.check_not_clobbering([Path(plots_dir) / name for name in FIGURE_NAMES],
                                   [file, target.path], "--plots")
 
@@ -609,10 +617,11 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
                       direction=direction, jobs=jobs, scheduler=scheduler,
                       output=str(target.path) if target.path is not None else None, fmt=target.fmt)
     warn(session.design_warnings)
+    warn(session.notes)  # --jobs capped by the machine
     with SweepProgress(session.todo + session.done, session.done) as progress:
         rows = run(session, progress.advance)
     failed = sum(r.get("status") != "ok" for r in rows)
-    click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {output}" if output else ""),
+    click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
                err=True)
     if plots_dir:
         _write_sweep_plots(session, rows, plots_dir)
@@ -624,6 +633,7 @@ def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
     """As for report: no sweep figure may replace the input or the -o file."""
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     names = ["campbell.png", "distributions.png"]
     names += [f"response_{v.split('=', 1)[0].strip().replace('.', '_')}.png" for v in vary]
     outfiles.check_not_clobbering([Path(plots_dir) / n for n in names], [file, target.path], "--plots")
@@ -640,7 +650,7 @@ def _write_sweep_plots(session, rows, plots_dir: str) -> None:
         return
     except OSError as exc:
         _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
-    click.echo(f"wrote {', '.join(p.name for p in paths)} to {plots_dir}", err=True)
+    click.echo(f"wrote {', '.join(visible(p.name) for p in paths)} to {visible(plots_dir)}", err=True)
 
 
 # -------------------------------------------------------------------------------------------- life
@@ -710,9 +720,16 @@ def main() -> None:
     """The console script: SIGTERM unwinds like Ctrl-C (temporary files removed), then exit 143."""
     import signal
 
+    from gearcli.io import streams
+
+    streams.guard()  # a closed stdout/stderr (>&-): a clean message, never a traceback
     signal.signal(signal.SIGTERM, _on_sigterm)
+    if hasattr(signal, "SIGHUP"):  # the terminal went away: unwind like SIGTERM (temporary files removed)
+        signal.signal(signal.SIGHUP, _on_sighup)
     try:
         cli(prog_name="gearcli")
+    except GearcliError as exc:  # click's own output (--help, --version) on a closed stdout
+        _fail(str(exc), exc.exit_code)
     except SystemExit as exc:
         # click's own output (--help, --version) meets a closed pipe: click pacifies stdout and exits 1
         if exc.code == 1 and type(sys.stdout).__name__.endswith("PacifyFlushWrapper"):

@@ -9,6 +9,7 @@ EXIT_FAILED = 1  # the run failed: solver failure, infeasible design
 EXIT_USAGE = 2  # bad usage or bad design file
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143  # 128 + SIGTERM, as a shell reports it
+EXIT_HANGUP = 129  # 128 + SIGHUP: the terminal went away; handled like SIGTERM
 EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE: the reader went away (`gearcli ... | head -1`); nothing printed
 
 
@@ -82,5 +83,16 @@ class ResourceError(GearcliError):
     exit_code = EXIT_USAGE
 
 
+class StdoutClosed(GearcliError):
+    """Standard output is closed (``>&-``) and the command has data for it (gearcli.io.streams)."""
+
+    exit_code = EXIT_USAGE
+
+    def __init__(self) -> None:
+        super().__init__("standard output is closed, so the output has nowhere to go: write it to a file with "
+                         "-o FILE, or leave stdout open")
+
+
 class Terminated(BaseException):
-    """SIGTERM arrived: unwinds like KeyboardInterrupt, so temporary files are removed (exit 143)."""
+    """SIGTERM (or SIGHUP: ``args == (EXIT_HANGUP,)``) arrived: unwinds like KeyboardInterrupt, so temporary
+    files are removed (exit 143, 129)."""

@@ -4,7 +4,7 @@ Memory. A simulation holds its output samples in memory (the state, the channels
 written). The peak is about ``samples x values per sample x bytes per value``; the bytes per value were
 measured at the steps cap on the seed reducer (README, "Numerical robustness": CSV 1.6 GB, JSON 0.9 GB,
 JSON with ``--series`` 5.6 GB for 2e6 x 19 values) and are rounded up here. A run whose estimate exceeds
-:data:`MEMORY_LIMIT_BYTES` is refused with the estimate and the ``simulation.steps`` that would fit.
+:func:`memory_limit_bytes` is refused with the estimate and the ``simulation.steps`` that would fit.
 
 Cost. An adaptive integrator's cost follows ``max|lambda| T``: the fastest oscillation of the linearised
 train times the duration (gearcli.simulate.guards). Estimated here from the design alone (no scipy): each
@@ -22,9 +22,29 @@ from __future__ import annotations
 import math
 import os
 
-from gearcli.errors import ResourceError
+from gearcli.core.text import shorten
+from gearcli.errors import ConfigError, ResourceError
 
-MEMORY_LIMIT_BYTES = int(float(os.environ.get("GEARCLI_MEMORY_LIMIT_MB", "2048")) * 2**20)
+MEMORY_LIMIT_VARIABLE = "GEARCLI_MEMORY_LIMIT_MB"
+DEFAULT_MEMORY_LIMIT_MB = 2048.0
+MAX_MEMORY_LIMIT_MB = 2.0**40  # a petabyte: beyond it the figure is a typo, not a machine
+
+
+def memory_limit_bytes() -> int:
+    """The memory bound: ``GEARCLI_MEMORY_LIMIT_MB`` (MiB, a finite number > 0) or 2048 MiB when unset. Anything
+    else (empty, garbage, nan, inf, 0, negative) is a usage error naming the variable (exit 2)."""
+    raw = os.environ.get(MEMORY_LIMIT_VARIABLE)
+    if raw is None:
+        return int(DEFAULT_MEMORY_LIMIT_MB * 2**20)
+    try:
+        mb = float(raw.strip())
+    except ValueError:
+        mb = math.nan
+    if not (math.isfinite(mb) and 0 < mb <= MAX_MEMORY_LIMIT_MB):
+        raise ConfigError(f"must be a number of MiB, > 0 and ≤ {MAX_MEMORY_LIMIT_MB:.0f}, got {shorten(repr(raw), 60)} "
+                          f"(unset it for the default {DEFAULT_MEMORY_LIMIT_MB:.0f})",
+                          source=f"environment variable {MEMORY_LIMIT_VARIABLE}")
+    return max(1, int(mb * 2**20))
 BYTES_PER_VALUE = {"csv": 48, "json": 28, "series": 160, "table": 28}  # measured peaks, rounded up
 EVALUATIONS_PER_UNIT = 30.0  # right-hand sides per unit of max|lambda| T at rtol 1e-6 (guards.COST_PER_UNIT)
 MAX_EVALUATIONS = 5e6  # one run: ~30 s of right-hand sides on a 2-core machine (guards.CAP)
@@ -65,16 +85,18 @@ def _gib(n: float) -> str:
 
 
 def check_memory(cfg, *, fmt: str, series: bool, source: str) -> None:
+    limit = memory_limit_bytes()
     steps, n = output_samples(cfg.simulation), len(cfg.stage)
     need = memory_estimate_bytes(steps, n, fmt, series)
-    if need <= MEMORY_LIMIT_BYTES:
+    if need <= limit:
         return
-    fit = int(MEMORY_LIMIT_BYTES / memory_estimate_bytes(1, n, fmt, series))
+    fit = int(limit / memory_estimate_bytes(1, n, fmt, series))
     how = " or leave out --series" if fmt == "json" and series else ""
     raise ResourceError(
         f"{source}: simulation.steps: {steps} samples x {values_per_sample(n)} values would need about "
-        f"{_gib(need)} of memory, over the limit of {_gib(MEMORY_LIMIT_BYTES)}; set simulation.steps ≤ {fit}{how} "
-        "(or raise GEARCLI_MEMORY_LIMIT_MB)")
+        f"{_gib(need)} of memory, over the limit of {_gib(limit)}; "
+        + (f"set simulation.steps ≤ {fit}{how} (or raise {MEMORY_LIMIT_VARIABLE})" if fit >= 1 else
+           f"no run fits in it: raise {MEMORY_LIMIT_VARIABLE}"))
 
 
 def fastest_rad_s(cfg, design) -> float:

@@ -10,16 +10,18 @@ from typing import Annotated
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo
 
+from gearcli.config.bounds_types import NotTiny
+
 #: every table of the design file: unknown keys, NaN, infinity and type coercion refused
 STRICT = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
 
 # Mesh excitation (harmonics j = 1, 2, ... of the mesh phase z_p theta_p): at most MAX_HARMONICS of each
 # kind (gearcli.model.elements.N_HARM; a test keeps the two equal).
 MAX_HARMONICS = 8
-TransmissionErrorUm = Annotated[float, Field(ge=-1000.0, le=1000.0)]  # um: ground gears ~1, rough ones ~50
+TransmissionErrorUm = Annotated[float, Field(ge=-1000.0, le=1000.0), NotTiny(1e-6)]  # um: ground gears ~1, rough ones ~50
 PhaseDeg = Annotated[float, Field(ge=-360.0, le=360.0)]
-StiffnessHarmonic = Annotated[float, Field(gt=-1.0, lt=1.0)]  # fraction of K; sum of |s_j| below 1
-DampingRatio = Annotated[float, Field(ge=0.0, le=10.0)]  # gear meshes: 0.03 .. 0.17 (Kahraman & Singh)
+StiffnessHarmonic = Annotated[float, Field(gt=-1.0, lt=1.0), NotTiny(1e-9)]  # fraction of K; sum of |s_j| below 1
+DampingRatio = Annotated[float, Field(ge=0.0, le=10.0), NotTiny(1e-9)]  # gear meshes: 0.03 .. 0.17 (Kahraman & Singh)
 _HARMONIC_KEYS = (("transmission_error_um", "transmission_error_phase_deg"),
                   ("stiffness_harmonics", "stiffness_harmonics_phase_deg"))
 
@@ -58,7 +60,7 @@ class _Table(BaseModel):
 class Ripple(_Table):
     """One harmonic of the input torque: T_in (1 + amplitude_percent / 100 cos(order theta_in))."""
 
-    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0)]
+    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0), NotTiny(1e-6)]
     order: Annotated[float, Field(ge=1e-3, le=1000.0)]  # per input revolution (a 4-pole motor's slot
     # order ~36); at least 1e-3: a subnormal order overflowed the ripple's period (fuzz finding)
 
@@ -66,5 +68,5 @@ class Ripple(_Table):
 class Fluctuation(_Table):
     """One harmonic of the load torque: T_L (1 + amplitude_percent / 100 sin(2 pi frequency_Hz t))."""
 
-    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0)]
+    amplitude_percent: Annotated[float, Field(ge=0.0, le=100.0), NotTiny(1e-6)]
     frequency_Hz: Annotated[float, Field(ge=1e-3, le=1e5)]

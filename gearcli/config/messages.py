@@ -124,7 +124,10 @@ def message(err: dict, where: Resolved) -> str:
     if t in ("too_short", "too_long"):
         n = ctx.get("min_length") if t == "too_short" else ctx.get("max_length")
         what = "at least" if t == "too_short" else "at most"
-        return f"needs {what} {n} entr{'y' if n == 1 else 'ies'}, got {ctx.get('actual_length')}"
+        actual = ctx.get("actual_length")
+        if actual is None and isinstance(inp, (dict, list, tuple, str)):  # pydantic leaves it out for a table
+            actual = len(inp)
+        return f"needs {what} {n} entr{'y' if n == 1 else 'ies'}, got {actual if actual is not None else 'more'}"
     if t == "value_error":
         return str(err["msg"]).removeprefix("Value error, ")
     text = str(err.get("msg", t))

@@ -98,7 +98,14 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
     last = depth == len(ov.path) - 1
     if container(tp) == "list":
         if not isinstance(seg, int):
-            example = ".".join(map(str, ov.path[:depth] + (0,) + ov.path[depth:]))
+            signed = isinstance(seg, str) and seg[:1] in "+-" and seg[1:].isdigit()
+            rest = ov.path[depth + 1:] if signed else ov.path[depth:]  # a signed index is replaced, not kept
+            example = ".".join(map(str, ov.path[:depth] + (0,) + rest))
+            if signed:
+                n = len(node) if isinstance(node, list) else 0
+                span = f" (0–{n - 1} here)" if n else ""
+                raise _fail(ov, f"{where} is an array: an index is a whole number from 0{span}, without a sign "
+                                f"(no counting from the end), e.g. {example}")
             raise _fail(ov, f"{where} is an array: give an index, e.g. {example}")
         if seg >= len(node):
             n = len(node)
@@ -159,6 +166,21 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
 def apply_all(data: dict, texts: Sequence[str]) -> list[tuple[Segment, ...]]:
     """Apply every ``--set`` in order (a later one wins); the paths written, see :func:`blamed`."""
     return [apply(data, parse(text)) for text in texts]
+
+
+def blames_key(key: str | None, overrides: Sequence[str]) -> bool:
+    """Whether a design error at ``key`` (``stage[0].gear.hand``) comes from a ``--set``: written at or around
+    it, or at its sibling member of the same stage (``--set stage.0.pinion.hand=right`` breaks the pair's
+    hands, reported at the gear)."""
+    if not key or not overrides:
+        return False
+    try:
+        path = parse(f"{key}=0").path
+        written = [parse(o).path for o in overrides]
+    except ConfigError:
+        return False
+    stage = path[:2] if len(path) >= 4 and path[0] == "stage" else None
+    return blamed(path, written) or (stage is not None and any(w[:2] == stage and len(w) > 2 for w in written))
 
 
 def blamed(path: Sequence[Segment], written: Sequence[tuple[Segment, ...]]) -> bool:

@@ -9,23 +9,19 @@ accepted where a float is expected, as TOML users write ``module = 12``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
 from pydantic import (
     BaseModel,
     ConfigDict,
     Field,
-    GetCoreSchemaHandler,
-    GetJsonSchemaHandler,
     PrivateAttr,
     ValidationInfo,
     field_validator,
     model_validator,
 )
-from pydantic.json_schema import JsonSchemaValue
-from pydantic_core import core_schema
 
+from gearcli.config.bounds_types import NotTiny
 from gearcli.config.duty import AxialPositionMm, Bearing, CenterAngleDeg, Duty
 from gearcli.config.excitation import (
     MAX_HARMONICS,
@@ -47,29 +43,6 @@ from gearcli.core.methods import NAMES as METHODS  # the one registry of integra
 # bound, and every derived quantity (inertia ~ rho b d^4, forces, energies, the run's cost) stays finite.
 # Quantities that may be 0 (a ramp, damping, backlash, a torque) may not be *nearly* 0: a nonzero
 # magnitude below ``tiny`` is refused too (JSON Schema: a "not" range).
-
-
-@dataclass(frozen=True)
-class NotTiny:
-    """Annotation: 0 is allowed, but no magnitude in (0, tiny); in the JSON Schema a "not" range."""
-
-    tiny: float
-
-    def check(self, v: float) -> float:
-        if v != 0 and abs(v) < self.tiny:
-            raise ValueError(f"must be 0 or at least {self.tiny:g} in magnitude, got {v!r} (a value this small "
-                             "is a mistake)")
-        return v
-
-    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> Any:
-        return core_schema.no_info_after_validator_function(self.check, handler(source))
-
-    def __get_pydantic_json_schema__(self, schema: Any, handler: GetJsonSchemaHandler) -> JsonSchemaValue:
-        out = handler(schema)
-        ranges = [{"exclusiveMinimum": 0, "exclusiveMaximum": self.tiny},
-                  {"exclusiveMinimum": -self.tiny, "exclusiveMaximum": 0}]
-        out["not"] = {"anyOf": ranges if out.get("minimum", 0) < 0 else ranges[:1]}
-        return out
 
 
 MAX_SPEED_RPM = 200_000.0  # a turbo-compressor pinion turns at ~60,000 rpm; this is generous
@@ -156,7 +129,7 @@ class Gear(_Table):
     face_width_mm: Annotated[float, Field(ge=0.1, le=1e4)]
     hand: Literal["left", "right", "spur"] | None = None
     material: str = "steel"
-    profile_shift: Annotated[float, Field(ge=-1.5, le=1.5)] = 0.0
+    profile_shift: Annotated[float, Field(ge=-1.5, le=1.5), NotTiny(1e-6)] = 0.0
     inertia_kg_m2: Annotated[float, Field(ge=1e-09, le=1000000.0)] | None = None  # a 5 mm pinion ~1e-9; a mill girth gear ~1e5
     # gear body (ISO 6336-1): absent = solid disc; web and rim make a webbed blank (gear blank factor C_R)
     bore_diameter_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
@@ -185,7 +158,7 @@ class BasicRack(_Table):
 
     addendum: Annotated[float, Field(ge=0.5, le=2.0)] = 1.0  # h_aP*
     dedendum: Annotated[float, Field(ge=0.5, le=2.5)] = 1.25  # h_fP*
-    root_radius: Annotated[float, Field(ge=0.0, le=1.0)] = 0.38  # rho_fP*
+    root_radius: Annotated[float, Field(ge=0.0, le=1.0), NotTiny(1e-6)] = 0.38  # rho_fP*
 
     @model_validator(mode="after")
     def _clearance(self) -> BasicRack:
@@ -262,7 +235,7 @@ class Stage(_Table):
 
     normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]  # watch gears ~0.05; the largest girth gears ~50
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
-    helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
+    helix_angle_deg: Annotated[float, Field(ge=0, lt=45), NotTiny(1e-6)] = 0.0
     pinion: Gear
     gear: Gear
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
@@ -399,7 +372,7 @@ class Load(_Coupled):
 class Target(_Table):
     output_speed_rpm: Annotated[float, Field(ge=1e-06, le=MAX_SPEED_RPM)] | None = None
     output_speed_deg_s: Annotated[float, Field(ge=6e-06, le=MAX_SPEED_RPM * 6)] | None = None
-    tolerance_percent: Annotated[float, Field(gt=0, le=100)] = 5.0
+    tolerance_percent: Annotated[float, Field(ge=1e-6, le=100)] = 5.0
     model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(("output_speed_rpm", "output_speed_deg_s"))))
 
     @model_validator(mode="after")
@@ -427,7 +400,7 @@ class Simulation(_Table):
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6
     engine: Literal["auto", "python", "compiled"] = "auto"
-    window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S)] | None = None
+    window_start_s: Annotated[float, Field(ge=0, le=MAX_TIME_S), NotTiny(1e-6)] | None = None
     steady: Literal["window", "periodic"] = "window"
     error_estimate: bool = True
 

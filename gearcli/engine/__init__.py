@@ -110,9 +110,43 @@ def _has_content(v) -> bool:
     return bool(a.size) and bool(np.any(a != 0))
 
 
+def _usable_dir(path: Path) -> str | None:
+    """Why ``path`` cannot hold the cache (None: it can): it must be absolute and be, or become, a writable
+    directory."""
+    if not path.is_absolute():
+        return "not an absolute path"
+    probe = path
+    while not probe.exists() and probe != probe.parent:
+        probe = probe.parent
+    if not probe.is_dir():
+        return f"{probe} is not a directory"
+    if not os.access(probe, os.W_OK | os.X_OK):
+        return f"{probe} is not writable"
+    return None
+
+
+def cache_choice() -> tuple[Path, str]:
+    """The cache root and, when ``$XDG_CACHE_HOME`` (or the home directory) cannot hold it, why another one is
+    used ('' when the first choice is used): $XDG_CACHE_HOME, else ~/.cache, else the temporary directory."""
+    import tempfile
+
+    why = ""
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    candidates = [("XDG_CACHE_HOME", Path(xdg))] if xdg else []
+    candidates += [("~/.cache", Path(os.path.expanduser("~")) / ".cache"),
+                   ("the temporary directory", Path(tempfile.gettempdir()) / f"gearcli-{os.getuid()}"
+                    if hasattr(os, "getuid") else Path(tempfile.gettempdir()) / "gearcli")]
+    for name, base in candidates:
+        root = base / "gearcli" / "numba" if name != "the temporary directory" else base / "numba"
+        problem = _usable_dir(root)
+        if problem is None:
+            return root, why
+        why = why or f"{name} cannot hold the cache ({problem})"
+    return candidates[-1][1] / "numba", why
+
+
 def cache_root() -> Path:
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "gearcli" / "numba"
+    return cache_choice()[0]
 
 
 def _source_key() -> str:
@@ -159,8 +193,8 @@ def load(quiet: bool = False) -> Loaded:
     import numba.core.config as ncfg
 
     ncfg.CACHE_DIR = str(cdir)  # type: ignore[attr-defined]
-    if fresh and not quiet:
-        print(f"gearcli: compiling the integration engine once (about a minute); cached in {cdir}", file=sys.stderr)
+    if fresh and not quiet and not _state.get("quiet"):
+        print(f"gearcli: compiling the integration engine once (about a minute); {_cache_words(cdir)}", file=sys.stderr)
     from gearcli.engine import kernel
 
     _warm_up(kernel)
@@ -174,6 +208,26 @@ def load(quiet: bool = False) -> Loaded:
         _remember_load_time(load_s)
     _state["loaded"] = Loaded(kernel, load_s, fresh)
     return _state["loaded"]
+
+
+def _cache_words(cdir: Path) -> str:
+    """Where the kernel is cached, and why not where the user pointed when that was unusable."""
+    why = cache_choice()[1]
+    return f"cached in {cdir}" + (f" ({why}; using this one instead)" if why else "")
+
+
+def quiet_compilation() -> None:
+    """This process does not announce a compilation (a sweep's pool worker: its parent announced it once)."""
+    _state["quiet"] = True
+
+
+def compilation_pending() -> str | None:
+    """The one-line notice for a parent whose workers may compile the kernel (numba installed, nothing cached);
+    None when nothing will be compiled."""
+    if importlib.util.find_spec("numba") is None or (cache_dir() / "ready.json").exists():
+        return None
+    return (f"the sweep's workers may compile the integration engine once (about a minute, when a point runs on "
+            f"it); {_cache_words(cache_dir())}")
 
 
 def loaded_kernel() -> Any:

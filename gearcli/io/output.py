@@ -74,9 +74,22 @@ def _refuse(shown: str, message: str) -> OutputError:
     return OutputError(message, path=shorten(shown))
 
 
+def _is_stdin(target: Path) -> bool:
+    """``target`` is the file that standard input reads (``gearcli design - -o f.csv < f.csv``)."""
+    try:
+        st_in, st_out = os.fstat(0), os.stat(target)
+    except (OSError, ValueError):
+        return False
+    return stat.S_ISREG(st_in.st_mode) and (st_in.st_dev, st_in.st_ino) == (st_out.st_dev, st_out.st_ino)
+
+
 def _same_file(target: Path, inputs: Iterable[str | None]) -> bool:
     for given in inputs:
-        if not given or given == STDOUT:
+        if given == STDOUT:  # the input is stdin: compare what it reads by device and inode
+            if _is_stdin(target):
+                return True
+            continue
+        if not given:
             continue
         try:
             if os.path.samefile(target, given):
@@ -126,6 +139,10 @@ def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | Non
     format for stdout without ``--format`` (default: ``file_default``)."""
     file_default = file_default or formats[0]
     if output is None or output == STDOUT:
+        if getattr(sys.stdout, "closed_stdout", False):  # `>&-`: say so now, not after the computing
+            from gearcli.errors import StdoutClosed
+
+            raise StdoutClosed()
         chosen = fmt or (stdout_default() if stdout_default else file_default)
         return OutputTarget(fmt=chosen)
     path = resolve_path(output, inputs)
@@ -155,6 +172,19 @@ def check_not_clobbering(paths: Iterable[Path], protected: Iterable[str | Path |
                 continue
             if (why := _kind(mode)) is not None:
                 raise _refuse(str(path), why)
+
+
+def check_writable_dir(directory: str, option: str) -> None:
+    """Refuse a directory (``--plots DIR``) that cannot be written, or created, before any computation: the
+    directory itself when it exists, else the nearest existing parent it would be created in."""
+    probe = Path(directory)
+    while not probe.exists() and probe != probe.parent:
+        probe = probe.parent
+    if not probe.is_dir():
+        raise _refuse(directory, f"{option}: {shorten(str(probe))} is not a directory")
+    if not os.access(probe, os.W_OK | os.X_OK):
+        what = "directory not writable" if probe == Path(directory) else f"cannot create it in {shorten(str(probe))}"
+        raise _refuse(directory, f"{option}: {what}; choose a directory you can write")
 
 
 def write_output(target: OutputTarget, text: str) -> None:

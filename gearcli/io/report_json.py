@@ -11,6 +11,7 @@ relative (not %); an error below the reference's uncertainty keeps its number an
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import plain, simulation_dict
@@ -83,7 +84,23 @@ def accuracy_dict(study: AccuracyStudy | None) -> dict | None:
     }
 
 
+def _finite(doc):
+    """``doc`` with every non-finite float as None (JSON null): JSON has no infinity or NaN, and a degenerate
+    window (a handful of samples) may leave a derived figure undefined."""
+    if isinstance(doc, dict):
+        return {k: _finite(v) for k, v in doc.items()}
+    if isinstance(doc, (list, tuple)):
+        return [_finite(v) for v in doc]
+    if isinstance(doc, float) and not math.isfinite(doc):
+        return None
+    return doc
+
+
 def report_dict(r: Report) -> dict:
+    return _finite(_report_dict(r))
+
+
+def _report_dict(r: Report) -> dict:
     sim = simulation_dict(r.simulation, series=False)
     sim.pop("warnings", None)  # merged into the report's own list
     return {  # the engineering first, the numerical study after it

@@ -3,25 +3,25 @@
 from __future__ import annotations
 
 from rich.console import Group, RenderableType
-from rich.table import Table
 from rich.text import Text
 
 from gearcli.io.report_sections import Section, sections, solver_lines
-from gearcli.io.tables import text
+from gearcli.io.tables import FittedTable, text
 from gearcli.report.result import Report
 
 
 def section_table(section: Section) -> RenderableType:
-    table = Table(title=text(section.title), title_justify="left", header_style="bold")
-    for header, align in zip(section.headers, section.align, strict=True):
-        table.add_column(text(header), justify="left" if align == "l" else "right", overflow="fold",
-                         style="cyan" if align == "l" and header in ("quantity", "force") else None)
+    """A report section as a table whose numbers (the right-aligned columns) are printed whole at any width."""
+    ends = [False] * len(section.rows)
     previous = None
-    for row in section.rows:
+    for i, row in enumerate(section.rows):
         if previous is not None and row[0] and row[0] != previous and section.align.startswith("ll"):
-            table.rows[-1].end_section = True
-        table.add_row(*(text(c) for c in row))
+            ends[i - 1] = True
         previous = row[0] or previous
+    table = FittedTable(section.title, section.headers, section.rows, [a == "r" for a in section.align],
+                        justify=["left" if a == "l" else "right" for a in section.align],
+                        styles=["cyan" if a == "l" and h in ("quantity", "force") else None
+                                for h, a in zip(section.headers, section.align, strict=True)], ends=ends)
     if not section.notes:
         return table
     return Group(table, text_lines(section.notes, "dim"), Text(""))

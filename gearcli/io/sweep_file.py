@@ -32,6 +32,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
+from gearcli.core.text import csv_text_cell
 from gearcli.errors import ConfigError
 from gearcli.io.atomic import write_atomic
 
@@ -49,8 +50,8 @@ def _cell(v: Any) -> str:
         return ""
     if isinstance(v, float):
         return repr(v) if math.isfinite(v) else ""
-    if isinstance(v, str):
-        return v.replace("#", "No.").replace("\n", "; ")
+    if isinstance(v, str):  # text: controls escaped, no spreadsheet formula (as every gearcli CSV), no '#'
+        return csv_text_cell(v.replace("#", "No.").replace("\n", "; "))
     return str(v)
 
 

@@ -1,8 +1,9 @@
 """Rich tables for a person at a terminal. Builders return renderables; ``render`` turns them into text.
 
-A table never drops a number (docs/output.md, "Tables"): a table with a column per stage is split into
-several tables of as many stage columns as the width holds (stages 1–4, 5–8 ...), and every cell folds
-onto a second line rather than being cut with an ellipsis. Titles and labels are ``Text``: literal,
+A table never cuts a number (docs/output.md, "Tables"): a table with a column per stage is split into
+several tables of as many stage columns as the width holds (stages 1–4, 5–8 ...), and every table is a
+:class:`FittedTable`, whose number columns are as wide as their numbers (labels and headers fold), and which
+leaves out its rightmost number columns, with a note, when even that does not fit. Titles and labels are ``Text``: literal,
 never rich markup, control characters escaped.
 """
 
@@ -12,7 +13,9 @@ import io
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import Literal
 
+from rich.cells import cell_len
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 from rich.table import Table
 from rich.text import Text
@@ -63,7 +66,7 @@ class StageColumns:
     columns: Sequence[str]
     rows: Sequence[tuple[str, Sequence[str]]]
 
-    def tables(self, width: int) -> list[Table]:
+    def tables(self, width: int) -> list[FittedTable]:
         per = max(1, (width - LABEL_WIDTH) // CELL_WIDTH)
         n = len(self.columns)
         out = []
@@ -78,19 +81,92 @@ class StageColumns:
         yield from self.tables(options.max_width)
 
 
+@dataclass
+class FittedTable:
+    """A table whose numbers are printed whole at any width (docs/output.md, "Tables"): a numeric column is
+    exactly as wide as its longest cell, text columns (labels, headers) share the rest and fold; when even that
+    does not fit, numeric columns are dropped from the right and a note under the table names them. Never a
+    cut number (0.012387 shown as 0.01238) nor one folded over lines."""
+
+    title: str
+    headers: Sequence[str]
+    rows: Sequence[Sequence[str]]
+    numeric: Sequence[bool]  # per column: its cells are numbers (never folded)
+    justify: Sequence[str] = ()  # per column "left"/"right" (default: right for numeric columns)
+    styles: Sequence[str | None] = ()
+    ends: Sequence[bool] = ()  # per row: a section ends after it
+    MIN_TEXT = 5  # a text column folds, but not narrower than this
+    MAX_WORD = 12  # ... and keeps its words whole up to this length
+
+    def _cells(self, c: int) -> list[str]:
+        return [visible(r[c]) for r in self.rows]
+
+    def _natural(self, c: int) -> int:
+        return max([cell_len(x) for x in self._cells(c)] + [cell_len(visible(self.headers[c])), 1])
+
+    def _least(self, c: int) -> int:
+        if self.numeric[c]:
+            return max([cell_len(x) for x in self._cells(c)] + [1])
+        words = [cell_len(w) for x in [*self._cells(c), visible(self.headers[c])] for w in x.split()] or [1]
+        return min(self._natural(c), max(self.MIN_TEXT, min(max(words), self.MAX_WORD)))  # words whole if it can
+
+    def compact(self, width: int) -> bool:
+        """Whether the table needs its narrow form (no padding at the outer edges) to fit ``width``."""
+        n = len(self.headers)
+        return sum(self._natural(c) for c in range(n)) + 3 * n + 1 > width
+
+    def columns_for(self, width: int) -> tuple[list[int], dict[int, int]]:
+        """The columns kept at ``width`` and each one's width."""
+        keep = list(range(len(self.headers)))
+        edge = 0 if self.compact(width) else 2
+
+        def frame(cols: list[int]) -> int:  # borders and padding: "│ a │ b │" (narrow form: "│a │ b│")
+            return 3 * len(cols) - 1 + edge
+
+        while sum(self._least(c) for c in keep) + frame(keep) > width and sum(self.numeric[c] for c in keep) > 1:
+            keep.remove(max(c for c in keep if self.numeric[c]))
+        widths = {c: self._least(c) for c in keep}
+        room = max(0, width - frame(keep) - sum(widths.values()))
+        # the width left over unfolds as many columns as it can, the cheapest first (a header of a few more
+        # characters before a long label); what remains is shared evenly among the rest
+        wanting = sorted((c for c in keep if self._natural(c) > widths[c]), key=lambda c: self._natural(c) - widths[c])
+        for i, c in enumerate(wanting):
+            need = self._natural(c) - widths[c]
+            share = need if need <= room else room // (len(wanting) - i)
+            widths[c] += share
+            room -= share
+        return keep, widths
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
+        keep, widths = self.columns_for(options.max_width)
+        table = Table(title=text(self.title), title_justify="left", header_style="bold",
+                      pad_edge=not self.compact(options.max_width))
+        for c in keep:
+            justify: Literal["left", "right"] = "right" if self.numeric[c] else "left"
+            if self.justify:
+                justify = "left" if self.justify[c] == "left" else "right"
+            style = self.styles[c] if self.styles else None
+            table.add_column(text(self.headers[c]), justify=justify, overflow="fold", width=widths[c],
+                             style=style or "")
+        for i, row in enumerate(self.rows):
+            table.add_row(*(text(row[c]) for c in keep), end_section=bool(self.ends and self.ends[i]))
+        yield table
+        dropped = [visible(self.headers[c]) for c in range(len(self.headers)) if c not in keep]
+        if dropped:
+            yield text(f"(column{'s' if len(dropped) > 1 else ''} {', '.join(dropped)} left out: "
+                       f"{options.max_width} characters are too narrow to print every number whole; widen the "
+                       "terminal (COLUMNS) or use --format csv/json)", "dim")
+
+
 def _g(v: float | None, digits: int = 5) -> str:
     """A number to ``digits`` significant digits; "—" where it is undefined (None)."""
     return "—" if v is None else f"{v:.{digits}g}"
 
 
-def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> Table:
-    table = Table(title=text(title), title_justify="left", header_style="bold")
-    table.add_column("quantity", style="cyan", overflow="fold")
-    for col in columns:
-        table.add_column(text(col), justify="right", overflow="fold", min_width=1)
-    for label, cells in rows:
-        table.add_row(text(label), *(text(c) for c in cells))  # Text: '[mm]' is a unit, not rich markup
-    return table
+def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> FittedTable:
+    body = [(label, *cells) for label, cells in rows]  # text(): '[mm]' is a unit, not rich markup
+    return FittedTable(title, ["quantity", *columns], body, [False] + [True] * len(columns),
+                       styles=["cyan"] + [None] * len(columns))
 
 
 def _quantity_table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> StageColumns:
@@ -229,15 +305,16 @@ def _stats_cells(st) -> list[str]:
 
 
 def simulation_tables(r: SimulationResult) -> list[RenderableType]:
-    forces = Table(title=text(f"mesh forces over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s"),
-                   title_justify="left", header_style="bold")
-    for name in ("stage", "channel", "mean", "std", "min", "max"):
-        forces.add_column(name, justify="left" if name in ("stage", "channel") else "right", overflow="fold")
+    force_rows: list[tuple[str, ...]] = []
+    ends: list[bool] = []
     for s in r.stages:
-        forces.add_row(str(s.index), Text("F_t [N]"), *_stats_cells(s.tangential_N))
-        forces.add_row("", Text("F_r [N]"), *_stats_cells(s.radial_N))
-        forces.add_row("", Text("F_a [N]"), *_stats_cells(s.axial_N))
-        forces.add_row("", Text("penetration [mm]"), *_stats_cells(s.penetration_mm), end_section=True)
+        force_rows += [(str(s.index), "F_t [N]", *_stats_cells(s.tangential_N)), ("", "F_r [N]", *_stats_cells(s.radial_N)),
+                 ("", "F_a [N]", *_stats_cells(s.axial_N)),
+                 ("", "penetration [mm]", *_stats_cells(s.penetration_mm))]
+        ends += [False, False, False, True]
+    forces = FittedTable(f"mesh forces over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s",
+                         ("stage", "channel", "mean", "std", "min", "max"), force_rows,
+                         (False, False, True, True, True, True), ends=ends)
     peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in r.stages], [
         ("static F_t [N]", [_g(s.static_tangential_N) for s in r.stages]),
         *([("static F_t as simulated [N]", [_g(s.simulated_static_tangential_N) for s in r.stages])]

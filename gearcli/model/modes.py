@@ -40,7 +40,6 @@ MESH_ORDERS = (1, 2, 3)  # harmonics of each stage's mesh frequency
 SHAFT_ORDERS = (1,)  # of each reducer shaft's rotation (runout, eccentricity)
 WARN_AMPLIFICATION = 0.1  # a crossing whose resonant force reaches 10 % of the blocked error force is warned
 STRONG_AMPLIFICATION = 1.0  # ... beyond the quasi-static response: strongly excited
-RIGID_TOL = 1e-9  # omega^2 below this x the largest: a rigid-body mode
 RESONANCE_BAND = 0.10  # |f_excitation - f_mode| / f_mode that the simulation warns about
 BOUNDARIES = ("clamped_input", "free")
 
@@ -119,6 +118,25 @@ def excitations(lay: Layout) -> list[tuple[str, float]]:
     return [(name, r) for name, r, _ in excitation_sources(lay)]
 
 
+def rigid_mode_count(lay: Layout, k: np.ndarray, clamped: int = 0) -> int:
+    """Rigid-body modes of the chain: its connected groups of bodies (joined by connectors of non-zero
+    stiffness) that hold none of the ``clamped`` first bodies. Counted on the graph, so a badly scaled
+    eigenproblem (1e-9 and 1e6 kg m^2 in one chain) cannot turn a slow elastic mode into a rigid one."""
+    parent = list(range(lay.n_bodies))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for c, x in enumerate(lay.connectors):
+        if k[c] > 0.0:
+            parent[root(x.a)] = root(x.b)
+    grounded = {root(i) for i in range(clamped)}
+    return len({root(i) for i in range(clamped, lay.n_bodies)} - grounded)
+
+
 def _shape(v: np.ndarray) -> np.ndarray:
     j = int(np.argmax(np.abs(v)))
     return v / v[j] if v[j] != 0 else v
@@ -134,14 +152,14 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
     J = np.asarray(lay.inertias[first:])
     inv_sqrt = 1.0 / np.sqrt(J)
     Kb = R.T @ (k[:, None] * R)
-    w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])
+    w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: symmetric, J^-1/2 K J^-1/2
     phi = inv_sqrt[:, None] * u  # body-angle shapes
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
-    top = max(float(np.max(np.abs(w2))), np.finfo(float).tiny)
+    n_rigid = rigid_mode_count(lay, k, clamped=first)
     modes: list[Mode] = []
-    for j in np.argsort(w2):
-        rigid = bool(w2[j] <= RIGID_TOL * top)
-        f = 0.0 if rigid else math.sqrt(w2[j]) / (2.0 * math.pi)
+    for rank, j in enumerate(np.argsort(w2)):
+        rigid = rank < n_rigid  # from the structure, never from a threshold on the eigenvalues
+        f = 0.0 if rigid else math.sqrt(max(float(w2[j]), 0.0)) / (2.0 * math.pi)
         shape = np.concatenate([np.zeros(first), _shape(phi[:, j])])
         rate = R @ phi[:, j]  # phi is mass-normalised (eigh of the symmetric form)
         strain = k * rate**2

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from gearcli import diagnostics as dg
 from gearcli import engine
+from gearcli.errors import RunTooLong
 from gearcli.model import TorsionalModel
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
@@ -19,6 +20,8 @@ from gearcli.simulate.run import run_simulation
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
+from gearcli.core.methods import METHODS
+from gearcli.simulate.guards import WORK_CAP_S, _duration, accuracy_factor, priced_work_s
 
 SimulateFn = Callable[..., SimulationResult]  # gearcli.simulate.run_simulation's signature
 
@@ -63,10 +66,15 @@ def build_report(
     stages = stage_reports(design, sim)
     study = None
     if not quick:
+        budget = ReportBudget(_work(sim), sim_cfg.duration_s)
+        budget.check_projection(sim_cfg.rtol, spec)
+
         def run(method: str, rtol: float) -> SimulationResult:
             # a rung's error is measured against the study's reference, so its own check pass (issue 10's
             # estimate, which doubles a run) would be computed and never read
-            return simulate(cfg, design, method=method, rtol=rtol, want_series=False, error_estimate=False)
+            out = simulate(cfg, design, method=method, rtol=rtol, want_series=False, error_estimate=False)
+            budget.spend(_work(out))
+            return out
 
         with engine.batch(0):  # the ladder: auto may run Radau compiled too (labelled)
             study = accuracy_study(
@@ -99,6 +107,49 @@ def _modes(lay, duration_s: float):
     boundary = "clamped_input" if lay.speed_drive else "free"
     return (modal_analysis(lay, boundary, duration_s=duration_s),
             campbell_data(lay, boundary, duration_s=duration_s))
+
+
+#: priced seconds (gearcli.simulate.guards.priced_work_s) a whole report may use: the file's run, the reference
+#: pair and the ladder together; each run is also bounded on its own by the run budget (guards.WORK_CAP_S)
+REPORT_WORK_CAP_S = 2 * WORK_CAP_S
+
+
+def _work(result: SimulationResult) -> float:
+    """A run's priced work from its counters (deterministic, unlike its wall clock)."""
+    sv = result.solver
+    return priced_work_s(sv.nfev, sv.njev, sv.nlu, sv.steps, bool(getattr(METHODS.get(sv.method), "implicit", False)))
+
+
+class ReportBudget:
+    """The report's run-time bound, the run budget's machinery applied to the whole study: before the ladder, its
+    cost is projected from the file's own run (each rung costs that run's work times the accuracy factor of its
+    rtol over the file's); a projection over :data:`REPORT_WORK_CAP_S` is refused at once, and the priced work
+    spent is checked after every run. Both raise :class:`RunTooLong` (exit 2) with the settings that would fit."""
+
+    def __init__(self, first_work_s: float, duration_s: float) -> None:
+        self.spent = first_work_s
+        self.duration_s = duration_s
+        self.first = max(first_work_s, 1e-9)
+
+    def _fit(self, total: float) -> str:
+        fit = self.duration_s * REPORT_WORK_CAP_S / total if total > 0 else self.duration_s
+        return f"use --quick (one run), or set simulation.duration_s ≤ {fit:.3g} s"
+
+    def check_projection(self, file_rtol: float, spec) -> None:
+        base = accuracy_factor(file_rtol)
+        (_, ref_rtol), (_, check_rtol) = spec.reference_pair()
+        rungs = sum(accuracy_factor(r) for r in spec.rtols) * len(spec.methods)
+        projected = self.first * (rungs + accuracy_factor(ref_rtol) + accuracy_factor(check_rtol)) / base
+        if self.spent + projected > REPORT_WORK_CAP_S:
+            raise RunTooLong(f"the accuracy study would need about {_duration(self.spent + projected)} of computing "
+                             f"({len(spec.rtols) * len(spec.methods) + 2} runs at the pace of the file's own run), over "
+                             f"the report's budget of ~{REPORT_WORK_CAP_S:g} s; {self._fit(self.spent + projected)}")
+
+    def spend(self, work_s: float) -> None:
+        self.spent += work_s
+        if self.spent > REPORT_WORK_CAP_S:
+            raise RunTooLong(f"the accuracy study used its computing budget of ~{REPORT_WORK_CAP_S:g} s before it "
+                             f"finished; {self._fit(self.spent)}")
 
 
 def _merge(*groups) -> tuple[str, ...]:

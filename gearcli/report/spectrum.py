@@ -91,7 +91,8 @@ def force_spectrum(
     n = t.size
     if n < MIN_SAMPLES or t[-1] <= t[0]:
         empty = np.zeros(0)
-        return Spectrum(stage, empty, empty, None, 0.0, float("inf") if n < 2 else 1.0 / (t[-1] - t[0]),
+        span = (t[-1] - t[0]) if n >= 2 else (window_s[1] - window_s[0])  # a window of < 2 samples: its length
+        return Spectrum(stage, empty, empty, None, 0.0, 1.0 / span if span > 0 else 0.0,
                         0.0, window_s, mesh_frequency_Hz, "too few samples in the window")
     dt = (t[-1] - t[0]) / (n - 1)
     x = t - t[0]

@@ -288,7 +288,15 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     period = scene_period(lay)
     T = period.period_s
     t_start = max(lay.drive.ramp_s, lay.load.ramp_s, window_start_s or 0.0)
-    n_a = max(1, round(steps * t_start / duration_s)) if t_start > 0 else 0
+    cap = periods_cap(duration_s, t_start, T)
+    if cap == 0:  # the search may not run past duration_s: refuse rather than integrate beyond it
+        from gearcli.errors import ConfigError
+
+        raise ConfigError(f"steady = \"periodic\" needs at least one excitation period ({T:.4g} s) between the end "
+                          f"of the ramps and window start ({t_start:.4g} s) and the end of the run "
+                          f"({duration_s:.4g} s); set simulation.duration_s ≥ {t_start + T:.4g} (a few periods "
+                          "more let the search find the repeat), or shorten the ramps", key="simulation.duration_s")
+    n_a = min(steps, max(1, round(steps * t_start / duration_s))) if t_start > 0 else 0  # at most `steps` samples
     parts = [integrate(model, np.linspace(0.0, t_start, n_a + 1), method, rtol, y0=y0, max_nfev=max_nfev,
                        engine=engine)]
     if parts[0].status != STATUS_FINISHED:
@@ -296,7 +304,6 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     dyn = lay.n_conn + len(lay.free_bodies)
     atol = poincare_atol(lay, parts[0].atol, rtol, fastest_rad_s)
     states = [parts[0].y[:, -1]]
-    cap = periods_cap(duration_s, t_start, T)
     repeat, used, chunk, exhausted = Repeat(0, math.inf), parts[0].nfev, FIRST_CHUNK, False
     while len(states) - 1 < cap and repeat.k == 0 and not exhausted:
         n = len(states) - 1

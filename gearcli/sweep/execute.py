@@ -14,6 +14,7 @@ import os
 import signal
 from collections.abc import Iterable, Iterator, Sequence
 
+from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
 from gearcli.sweep.columns import failed_row
 from gearcli.sweep.spec import Point, SweepSpec
@@ -24,8 +25,47 @@ MAX_BATCH = 32  # points per task: a few seconds of work, while a Ctrl-C or a lo
 TASKS_PER_WORKER = 4  # enough tasks to balance the load between workers
 
 
+WORKER_BASE_BYTES = 128 * 2**20  # a pool worker with gearcli, numpy and scipy loaded: ~90 MB RSS measured, rounded up
+
+
+def usable_cores() -> int:
+    """The cores this process may run on (its CPU affinity), else the machine's count."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+def available_memory_bytes() -> float | None:
+    """Memory available to new processes (``MemAvailable`` of /proc/meminfo), or None where unknown."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
 def default_jobs() -> int:
-    return os.cpu_count() or 1
+    return usable_cores()
+
+
+def jobs_cap(point_bytes: float) -> tuple[int, str]:
+    """The most worker processes this machine carries: one per usable core, and as many as the available
+    memory holds at ``WORKER_BASE_BYTES + point_bytes`` each (``point_bytes``: one point's samples, the memory
+    estimate of gearcli.config.bounds). Returns the cap and the reason in words."""
+    cores = usable_cores()
+    avail = available_memory_bytes()
+    per = WORKER_BASE_BYTES + max(0.0, point_bytes)
+    by_memory = max(1, int(avail // per)) if avail is not None else cores
+    cap = max(1, min(cores, by_memory))
+    memory = f", {avail / 2**30:.3g} GiB available at ~{per / 2**20:.0f} MiB per worker" if avail is not None else ""
+    return cap, f"{cores} usable core{'s' if cores != 1 else ''}{memory}"
 
 
 def plan(spec: SweepSpec, scene: Scene, done: set[tuple], workers: int) -> tuple[list[Task], int]:
@@ -72,7 +112,11 @@ def _inline(tasks: Iterable[Task]) -> Iterator[dict]:
 
 
 def _ignore_sigint() -> None:
+    """A pool worker's start: Ctrl-C is the parent's to handle; the compilation notice is the parent's too."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from gearcli import engine
+
+    engine.quiet_compilation()
 
 
 def _lost(task: Task, exc: BaseException) -> list[dict]:
@@ -97,8 +141,25 @@ def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[dict]:
             except Exception as exc:  # noqa: BLE001 - a broken worker: its points become failed rows
                 rows = _lost(futures[fut], exc)
             yield from rows
+    except BaseException:  # Ctrl-C, SIGTERM/SIGHUP, the consumer gone (GeneratorExit): no worker outlives us
+        _stop_workers(pool)
+        raise
     finally:
-        pool.shutdown(wait=False, cancel_futures=True)
+        pool.shutdown(wait=True, cancel_futures=True)  # joins the pool's thread: its queues and semaphores released
+
+
+def _stop_workers(pool) -> None:
+    """End the pool's workers now (each is mid-point; its rows are lost, the rows already yielded are kept).
+    ``ProcessPoolExecutor.terminate_workers`` exists from Python 3.14; before, the pool's own process table."""
+    terminate = getattr(pool, "terminate_workers", None)
+    if terminate is not None:
+        terminate()
+        return
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for proc in processes:
+        proc.terminate()
+    for proc in processes:
+        proc.join(timeout=10)
 
 
 def require_distributed() -> None:
@@ -108,14 +169,83 @@ def require_distributed() -> None:
         raise ConfigError(f"--scheduler needs dask.distributed: {DISTRIBUTED_HINT}", source="--scheduler") from None
 
 
+SCHEDULER_TIMEOUT_S = 5.0  # connecting, the scheduler's greeting, the client's handshake: each bounded
+SCHEDULER_SCHEMES = ("tcp", "tls", "ws", "wss", "ucx", "inproc")  # Dask's comm protocols; only tcp:// is probed
+MAX_GREETING_BYTES = 2**30  # the first frame a Dask scheduler sends is its handshake: a few dozen bytes
+
+
+def scheduler_endpoint(address: str) -> tuple[str, str, int]:
+    """``tcp://HOST:PORT`` (or another Dask protocol), ``HOST:PORT`` as (scheme, host, port); ConfigError otherwise."""
+    from urllib.parse import urlsplit
+
+    text = address.strip()
+    if not text:
+        raise ConfigError("an empty address: give the scheduler's tcp://HOST:PORT, or leave out --scheduler to run "
+                          "on this machine", source="--scheduler")
+    scheme, sep, _ = text.partition("://")
+    scheme = scheme.lower() if sep else "tcp"
+    if scheme not in SCHEDULER_SCHEMES:
+        raise ConfigError(f"{shorten(text)}: a Dask scheduler's address is tcp://HOST:PORT (or another Dask protocol: "
+                          f"{', '.join(SCHEDULER_SCHEMES[1:])}), not {shorten(scheme)}://", source="--scheduler")
+    if scheme == "inproc":  # a scheduler in this very process (a test, a library caller)
+        return scheme, text, 0
+    try:
+        parts = urlsplit(text if sep else f"tcp://{text}")
+        host, port = parts.hostname, parts.port
+    except ValueError:
+        host, port = None, None
+    if not host or port is None or port == 0 or parts.path not in ("", "/"):
+        raise ConfigError(f"{shorten(text)}: expected tcp://HOST:PORT (a Dask scheduler listens on 8786 by default)",
+                          source="--scheduler")
+    return scheme, host, port
+
+
+def check_scheduler(address: str, timeout_s: float = SCHEDULER_TIMEOUT_S) -> None:
+    """Fail fast and clearly (exit 2) unless a Dask scheduler answers at ``address``: the address well formed,
+    the port open within ``timeout_s``, and for tcp:// the scheduler's greeting (a Dask scheduler speaks first,
+    a length-prefixed frame) received within ``timeout_s``. A web server or any silent service is refused
+    here, before a client could read an HTTP status line as a frame length or wait on it for ever."""
+    import socket
+
+    scheme, host, port = scheduler_endpoint(address)
+    shown = shorten(address.strip())
+    if scheme == "inproc":
+        return
+    try:
+        sock = socket.create_connection((host, port), timeout=timeout_s)
+    except OSError as exc:
+        why = "no answer" if isinstance(exc, TimeoutError) else (exc.strerror or str(exc))
+        raise ConfigError(f"cannot reach a Dask scheduler at {shown}: {why}", source="--scheduler") from None
+    with sock:
+        if scheme != "tcp":
+            return
+        sock.settimeout(timeout_s)
+        greeting = b""
+        try:
+            while len(greeting) < 8:
+                chunk = sock.recv(8 - len(greeting))
+                if not chunk:
+                    break
+                greeting += chunk
+        except OSError:
+            pass
+    if len(greeting) < 8:
+        raise ConfigError(f"{shown} is not a Dask scheduler: it did not greet within {timeout_s:g} s (a Dask "
+                          "scheduler's address is tcp://HOST:8786 by default, not its dashboard)", source="--scheduler")
+    if greeting.startswith((b"HTTP", b"<")) or int.from_bytes(greeting, "little") > MAX_GREETING_BYTES:
+        raise ConfigError(f"{shown} is not a Dask scheduler: it speaks another protocol", source="--scheduler")
+
+
 def _dask(tasks: Sequence[Task], address: str) -> Iterator[dict]:
     require_distributed()
     from distributed import Client, as_completed
 
+    check_scheduler(address)
     try:
-        client = Client(address, timeout="10s")
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise ConfigError(f"cannot reach the Dask scheduler at {address}: {exc}", source="--scheduler") from None
+        client = Client(address, timeout=f"{SCHEDULER_TIMEOUT_S:g}s")
+    except (OSError, TimeoutError, ValueError, MemoryError) as exc:
+        raise ConfigError(f"cannot reach the Dask scheduler at {address}: {type(exc).__name__}: {exc}",
+                          source="--scheduler") from None
     futures = []
     try:
         futures = [client.submit(run_task, t, pure=False) for t in tasks]

@@ -22,8 +22,8 @@ from gearcli.config.load import read_bytes
 from gearcli.design import compute_design
 from gearcli.errors import DesignError
 from gearcli.results import DesignResult
-from gearcli.sweep.columns import FAILED, columns
-from gearcli.sweep.execute import default_jobs, execute, plan, require_distributed
+from gearcli.sweep.columns import FAILED, OK, columns
+from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
 from gearcli.sweep.spec import SweepSpec, spec_from_options
 from gearcli.sweep.worker import Scene, Task, check_keys
@@ -69,6 +69,7 @@ class Session:
     output: str | None
     fmt: str
     design_warnings: tuple[str, ...]
+    notes: tuple[str, ...] = ()  # about the run itself (--jobs capped), printed as warnings
 
 
 def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Sequence[str], samples: int | None,
@@ -81,12 +82,14 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
         design = compute_design(loaded.design)
     except DesignError as exc:
         raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
-    if scheduler:
+    if scheduler is not None:  # '' too: an empty address is a mistake, never a silent local run
         require_distributed()
+        check_scheduler(scheduler)
     stored: dict | None = None
     previous: list[dict] = []
     if output:
         stored, previous = read_previous(output)
+        previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
     check_keys(scene, spec.branches()[0][0])
@@ -94,21 +97,44 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
     if stored is not None and output:
         check_same(stored, ident, output)
     done = {row_ident(r, spec.keys) for r in previous}
-    workers = jobs or default_jobs()
+    workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
     tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers)
+    if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once
+        from gearcli import engine
+
+        notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
     return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages)), ident, previous,
-                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings))
+                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+
+
+def capped_jobs(jobs: int | None, cfg, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:
+    """Local worker processes: ``--jobs`` (default: every usable core), at most what the machine's cores and
+    memory carry (:func:`gearcli.sweep.execute.jobs_cap`); a note when ``--jobs`` asked for more."""
+    if scheduler:
+        return jobs or default_jobs(), ()
+    from gearcli.config.bounds import memory_estimate_bytes, output_samples
+
+    cap, why = jobs_cap(memory_estimate_bytes(output_samples(cfg.simulation), n_stages, "json", False))
+    wanted = jobs or default_jobs()
+    if wanted <= cap:
+        return wanted, ()
+    note = f"--jobs {wanted} capped at {cap} worker process{'es' if cap != 1 else ''} ({why})"
+    return cap, (note,) if jobs else ()
 
 
 def run(session: Session, open_sink: SinkFactory, on_row: Callable[[bool], None] = lambda failed: None) -> list[dict]:
     """Run the session's tasks; every row goes to the sink as it arrives. Returns all rows in point order."""
     sink = open_sink(session.output, session.fmt, session.columns, session.identity, session.previous)
+    rows_in = execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler)
     try:
-        for row in execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler):
+        for row in rows_in:
             sink.add(row)
             on_row(row.get("status") == FAILED)
     except BaseException:
+        close = getattr(rows_in, "close", None)
+        if close is not None:  # a pool stops its workers now, whichever line the interrupt hit
+            close()
         sink.close()
         raise
     rows = ordered(sink.rows, session.spec)

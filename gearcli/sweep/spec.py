@@ -182,8 +182,7 @@ class SweepSpec:
         if dup:
             raise SweepUsageError(f"{dup} is varied twice", source="--vary/--random")
         if not keys:
-            raise SweepUsageError("nothing to sweep: give --vary KEY=START:STOP:N or --samples N --random KEY=...",
-                                  source="gearcli sweep")
+            raise SweepUsageError("nothing to sweep: give --vary KEY=START:STOP:N or --samples N --random KEY=...")
         if self.randoms and not self.samples:
             raise SweepUsageError("--random needs --samples N", source="--random")
         if self.samples and not self.randoms:
@@ -197,7 +196,7 @@ class SweepSpec:
         if self.randoms and self.seed is None:
             raise ValueError("random samples need a seed (the CLI draws one when --seed is absent)")
         if self.n_points > MAX_POINTS:
-            raise SweepUsageError(f"{self.n_points} points is more than {MAX_POINTS}", source="gearcli sweep")
+            raise SweepUsageError(f"{self.n_points} points is more than {MAX_POINTS}")
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -221,7 +220,8 @@ class SweepSpec:
         out: list[list[Point]] = []
         index = 0
         for direction in ("up", "down") if self.direction == "both" else (self.direction,):
-            first = grids[0][::-1] if direction == "down" else grids[0]
+            ascending = _ascending(grids[0])
+            first = ascending[::-1] if direction == "down" else ascending
             for rest in itertools.product(*grids[1:]):
                 for sample in samples:
                     branch = [Point(index + j, tuple(zip(self.keys, (v, *rest, *sample), strict=True)), direction)
@@ -244,6 +244,15 @@ class SweepSpec:
                 "random": [{"key": d.key, "distribution": d.kind, "parameters": [d.a, d.b]} for d in self.randoms],
                 "samples": self.samples, "sampling": self.sampling if self.randoms else None,
                 "seed": self.seed if self.randoms else None, "direction": self.direction}
+
+
+def _ascending(values: tuple[Any, ...]) -> tuple[Any, ...]:
+    """The values of a continuation key in ascending order (``1500:300:3`` runs up as 300, 900, 1500);
+    values that do not compare (strings and numbers mixed) keep the order given."""
+    try:
+        return tuple(sorted(values))
+    except TypeError:
+        return tuple(values)
 
 
 def _plain(v: Any) -> Any:
