@@ -323,6 +323,41 @@ def rhs(t, y, dy, model, th, fc):
     dy[iq + 2] = damp
     if ipar[IP_NTV] > 0:
         dy[iq + 3] = tvp
+    if y.size > iq + 3 + (1 if ipar[IP_NTV] > 0 else 0):
+        variational_rhs(t, y, dy, model, th)
+
+
+@jit
+def n_model_states(model):
+    """The scene's own state count (an augmented state carries the variational equations after it)."""
+    ipar = model[5]
+    return ipar[IP_QUAD] + 3 + (1 if ipar[IP_NTV] > 0 else 0)
+
+
+@jit
+def n_dynamic(model):
+    """The dynamic states (deflections, free speeds) whose variational equations an augmented state carries."""
+    ipar = model[5]
+    return ipar[IP_THETA] if ipar[IP_THETA] >= 0 else ipar[IP_QUAD]
+
+
+@jit
+def variational_rhs(t, y, dy, model, th):
+    """The variational equations of an augmented state ``[y | Phi[:, 0] | ... | Phi[:, d-1]]``:
+    ``Phi' = J Phi`` with the dynamic block of the analytic Jacobian at ``(t, y)`` (gearcli.simulate.shooting)."""
+    ns = n_model_states(model)
+    d = n_dynamic(model)
+    Jm = np.zeros((ns, ns))
+    g = np.zeros(ns)
+    ag = np.zeros(ns)
+    jacobian(t, y[:ns], Jm, model, th, g, ag)
+    for k in range(d):
+        s = ns + k * d
+        for i in range(d):
+            acc = 0.0
+            for j in range(d):
+                acc += Jm[i, j] * y[s + j]
+            dy[s + i] = acc
 
 
 @jit
@@ -948,6 +983,14 @@ def jacobian(t, y, Jm, model, th, g, ag):
             Jm[iq, i_th] += dtin * w0
     if load:
         Jm[iq + 1, i_w0 + nb - 1 - first] = tl
+    ns = n_model_states(model)
+    if n > ns:  # an augmented state: the variational equations' blocks (block diagonal, see variational_rhs)
+        d = n_dynamic(model)
+        for k in range(d):
+            s = ns + k * d
+            for i in range(d):
+                for j in range(d):
+                    Jm[s + i, s + j] = Jm[i, j]
 
 
 @jit

@@ -19,7 +19,8 @@ from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
-from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
+from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
+from gearcli.simulate.shooting import integrate_shooting
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -92,18 +93,20 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
         if eng.unsupported and engine == "compiled" else []
-    mask_window, steady_state = window, None
+    mask_window, steady_state, energy_from = window, None, 0
     early = None  # the check pass started on a second core (gearcli.simulate.background), ended whatever happens
     try:
         if steady == "periodic":
             diags = []  # the fixed window's warning does not apply: the window is found, not set
-            found = integrate_periodic(model, choice.method, rtol, steps=steps, duration_s=duration_s,
+            found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
                                        window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
-                                       fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine)
+                                       fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
+                                       continued=y0 is not None)
             if isinstance(found, Integration):
                 check(found, choice, duration_s)
                 raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
             run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
+            energy_from = found.energy_from
             diags += steady_warnings(steady_state, found.period)
         else:
             t_eval = np.linspace(0.0, duration_s, steps + 1)
@@ -117,7 +120,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         check(run, choice, duration_s)
         error_estimate = error_estimate and steady != "periodic"
         s = sample(model.layout, run.t, run.y)
-        energy = model.energy(s, run.y)
+        energy = model.energy(s, run.y) if not energy_from else \
+            model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
         diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
         if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
             diags += force_noise_warnings(choice, rtol)
