@@ -30,6 +30,8 @@ DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap
 SUBHARMONIC = "subharmonic"  # steady = "periodic": the response repeats after k > 1 periods
 PERIOD_NOT_COMMON = "period_not_common"  # the excitations have no usable common period
+NEAR_BIFURCATION = "near_bifurcation"  # steady = "periodic": a Floquet multiplier near +1 (fold, jump) or -1
+SHOOTING_FALLBACK = "shooting_fallback"  # steady = "periodic": Newton on the period map failed; brute force
 OTHER = "other"
 
 

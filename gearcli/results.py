@@ -256,7 +256,7 @@ class SteadyState:
     # how the periodic orbit was found (gearcli.simulate.shooting): "shooting" (Newton on the period map) or
     # "brute force" (period by period until it repeats); Newton steps; the monodromy matrix's source; the
     # Floquet multipliers ((re, im), largest modulus first), stability and the bifurcation nearby ("none",
-    # "fold", "period doubling", "torus"); why shooting fell back to brute force, where it did
+    # "fold", "period doubling"); why shooting fell back to brute force, where it did
     method: str | None = None
     iterations: int | None = None
     monodromy: str | None = None

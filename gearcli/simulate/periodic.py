@@ -327,11 +327,11 @@ def statistics_grid(layout, period_s: float, k: int, steps: int) -> int:
 
 def search(model, method: str, rtol: float, parts: list, t_start: float, y_start: np.ndarray, period: CommonPeriod,
            atol: np.ndarray, *, steps: int, cap: int, max_nfev: int, used: int, engine: str,
-           periods_before: int = 0, shooting=None):
+           periods_before: int = 0, shooting=None, cap_total: int | None = None):
     """The brute-force search from ``(t_start, y_start)``: period by period until the state repeats (at most
     ``cap`` periods), then the statistics periods. ``parts[0]`` is the run-up (its samples lead the result's);
     ``periods_before`` periods were integrated before (by the shooting, whose summary ``shooting`` the
-    result's steady state carries on)."""
+    result's steady state carries on; ``cap_total`` the cap reported, that of the whole run)."""
     from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
     lay = model.layout
@@ -372,7 +372,8 @@ def search(model, method: str, rtol: float, parts: list, t_start: float, y_start
         return _joined(parts, stats_run.t[:1], stats_run.y[:, :1], status_from=stats_run)
     first = parts[0]
     joined = _joined(parts, np.concatenate([first.t, fine]), np.hstack([first.y, stats_run.y]))
-    steady = _steady(period, repeat, n, k, total // k, exhausted, cap, periods_before, shooting)
+    steady = _steady(period, repeat, n, k, total // k, exhausted, cap if cap_total is None else cap_total,
+                     periods_before, shooting)
     return PeriodicRun(joined, (float(fine[0]), float(fine[-1])), (float(fine[0]), float(fine[-2])), steady, period)
 
 
@@ -389,7 +390,7 @@ def periods_cap(duration_s: float, t_start: float, period_s: float) -> int:
 
 
 def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exhausted: bool, cap: int,
-            periods_before: int = 0, shooting=None):
+            periods_before: int = 0, shooting=None, cap_total: int | None = None):
     from gearcli.results import SteadyState
 
     kind = "none" if repeat.k == 0 else f"period-{repeat.k}"

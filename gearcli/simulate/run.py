@@ -20,7 +20,7 @@ from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
-from gearcli.simulate.shooting import integrate_shooting
+from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -200,7 +200,16 @@ def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnosti
                               f"simulation.duration_s to search longer (cap {MAX_PERIODS} periods); the statistics "
                               f"are over the last {steady.window_periods} periods", periods=steady.periods_to_converge,
                               residual=steady.residual))
-    elif steady.periodicity != "period-1":
+    if steady.method == "brute force" and steady.note.startswith(FALLBACK_NOTE):
+        out.append(dg.warning(dg.SHOOTING_FALLBACK, f"steady = \"periodic\": {steady.note}", note=steady.note))
+    if steady.bifurcation in ("fold", "period doubling") and steady.multipliers:
+        mu = max(steady.multipliers, key=lambda m: -abs(complex(*m) - (1.0 if steady.bifurcation == "fold" else -1.0)))
+        what = "a fold: the branch turns back nearby, the response may jump to another branch" \
+            if steady.bifurcation == "fold" else "a period doubling nearby"
+        out.append(dg.warning(dg.NEAR_BIFURCATION, f"steady = \"periodic\": Floquet multiplier {mu[0]:.3g} near "
+                              f"{'+1' if steady.bifurcation == 'fold' else '-1'}: {what}",
+                              bifurcation=steady.bifurcation, multiplier=mu))
+    if steady.converged and steady.periodicity != "period-1":
         out.append(dg.warning(dg.SUBHARMONIC, f"steady = \"periodic\": the response repeats only every "
                               f"{steady.window_periods} excitation periods ({steady.periodicity}, a subharmonic "
                               f"response); the statistics are over those {steady.window_periods} periods",

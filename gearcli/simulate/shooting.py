@@ -28,8 +28,9 @@ search and says why (impacts that change the map faster than Newton can follow, 
 
 Floquet multipliers. The eigenvalues of ``M`` at the orbit: the orbit is stable when they all lie inside
 the unit circle. A real multiplier near +1 (within :data:`NEAR`) means a fold nearby (the branch turns
-back: a jump); near -1 a period doubling; a complex pair near the unit circle a torus (Neimark-Sacker)
-bifurcation. For a linear system ``y' = A y + f(t)`` the multipliers are ``exp(lambda T)`` of the
+back: a jump); near -1 a period doubling. A complex pair near the unit circle is not classified: a lightly
+damped slow mode puts one there without any bifurcation (the conveyor's drum mode: 0.989 per period); the
+spectral radius says how close it is. For a linear system ``y' = A y + f(t)`` the multipliers are ``exp(lambda T)`` of the
 eigenvalues ``lambda`` of ``A`` (tests/unit/test_shooting.py checks it).
 """
 
@@ -37,6 +38,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -49,6 +51,7 @@ PREAMBLE_CONTINUED = 1  # ... when the run starts from the previous sweep point'
 NEAR = 0.1  # a multiplier this close to +1 or -1 (or a pair to the unit circle) marks a bifurcation nearby
 STABLE_SLACK = 1e-3  # a spectral radius up to 1 + this counts as the unit circle (the monodromy's own error)
 VAR_ATOL_FACTOR = 1e3  # monodromy entries held to this x the state's own accuracy (Newton needs ~1e-3)
+FALLBACK_NOTE = "shooting did not converge"  # how a fallback's note starts (its warning's test)
 FD_STEP = 1e-3  # finite-difference step, relative to the state's natural scale (its atol / rtol)
 
 
@@ -59,7 +62,7 @@ class Floquet:
     multipliers: tuple[tuple[float, float], ...]  # (re, im), largest modulus first
     spectral_radius: float
     stable: bool
-    bifurcation: str  # "none" | "fold" | "period doubling" | "torus"
+    bifurcation: str  # "none" | "fold" | "period doubling"
     critical: tuple[float, float] | None  # the multiplier that decides it (largest modulus when "none")
 
 
@@ -77,8 +80,6 @@ def floquet(M: np.ndarray, near: float = NEAR) -> Floquet:
             d = abs(m - target)
             if real and d < near and d < best:
                 kind, critical, best = name, (float(m.real), float(m.imag)), d
-        if not real and abs(abs(m) - 1.0) < near / 2 and kind == "none":
-            kind, critical = "torus", (float(m.real), float(m.imag))
     return Floquet(pairs, rho, rho <= 1.0 + STABLE_SLACK, kind, critical)
 
 
@@ -151,7 +152,7 @@ class Ledger:
 class Shot:
     """One period map evaluation: the finely sampled run from ``x`` (all states), its residual, ``M``."""
 
-    run: object  # gearcli.simulate.solver.Integration, the model's states only
+    run: Any  # gearcli.simulate.solver.Integration, the model's states only
     x: np.ndarray  # dynamic states at the start
     residual: float  # in tolerance units
     M: np.ndarray | None
@@ -200,7 +201,7 @@ class _Shooter:
                 r = integrate(self.model, grid, self.method, self.rtol, y0=ya, t0=self.t0, atol=atol,
                               max_nfev=budget, watch_energy=False, engine="compiled")
             else:
-                r = integrate(var, grid, self.method, self.rtol, y0=ya, t0=self.t0, atol=atol, max_nfev=budget,
+                r = integrate(var, grid, self.method, self.rtol, y0=ya, t0=self.t0, atol=atol, max_nfev=budget,  # type: ignore[arg-type]
                               watch_energy=False)
         else:
             r = integrate(self.model, grid, self.method, self.rtol, y0=y, t0=self.t0, atol=self.atol,
@@ -276,7 +277,7 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
         done = ledger.periods
         return pr.search(model, method, rtol, parts, t, y, period, patol, steps=steps, cap=max(0, cap - done),
                          max_nfev=max_nfev, used=sum(p.nfev for p in parts), engine=engine, periods_before=done,
-                         shooting=ledger)
+                         shooting=ledger, cap_total=cap)
 
     if not lay.speed_drive:
         return brute(t_start, first.y[:, -1], "a torque drive: the input body's angle and speed drift with the "
@@ -317,7 +318,7 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                    "the motion leaves it")
             continue
         return _result(model, parts, first, shot, fl, period, ledger, samples, cap)
-    return brute(t_motion, y_motion, f"shooting did not converge ({why}); brute force from the motion's state")
+    return brute(t_motion, y_motion, f"{FALLBACK_NOTE} ({why}); brute force from the motion's state")
 
 
 def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet] | None, str]:
