@@ -259,6 +259,7 @@ class SteadyState:
     # "fold", "period doubling"); why shooting fell back to brute force, where it did
     method: str | None = None
     iterations: int | None = None
+    attempts: int | None = None  # Newton starts (a restart follows more brute-force periods)
     monodromy: str | None = None
     multipliers: tuple[tuple[float, float], ...] | None = None
     spectral_radius: float | None = None

@@ -396,6 +396,7 @@ def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exha
     kind = "none" if repeat.k == 0 else f"period-{repeat.k}"
     source = period.source + ("" if not exhausted else "; the search stopped at the run's evaluation budget")
     extra = {} if shooting is None else {"iterations": shooting.iterations, "note": "; ".join(shooting.notes),
+                                         "attempts": shooting.attempts,
                                          "monodromy": shooting.monodromy}
     return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n + periods_before,
                        periodicity=kind, converged=repeat.k > 0,

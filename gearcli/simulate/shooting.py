@@ -368,7 +368,8 @@ def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: 
     steady = SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=ledger.periods,
                          periodicity="period-1", converged=True, residual=float(shot.residual),
                          period_source=period.source, window_periods=1, samples_per_period=samples, cap_periods=cap,
-                         method="shooting", iterations=ledger.iterations, monodromy=ledger.monodromy,
+                         method="shooting", iterations=ledger.iterations, attempts=ledger.attempts,
+                         monodromy=ledger.monodromy,
                          multipliers=fl.multipliers, spectral_radius=fl.spectral_radius, stable=fl.stable,
                          bifurcation=fl.bifurcation, note="; ".join(ledger.notes))
     t = fine.t

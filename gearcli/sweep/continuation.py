@@ -56,3 +56,49 @@ def continue_state(y_prev: np.ndarray, model_prev, model_new, t_prev: float | No
         return model_new.continue_state(y_prev, model_prev, t_prev)
     except ValueError:  # another chain of bodies and connectors
         return None
+
+
+# ------------------------------------------------------------------------------- jumps and folds
+JUMP_CHANGE = 0.3  # a relative change of a stage's DTE rms (or force std) this large between neighbours: a jump
+FOLD_BISECTIONS = 5  # parameter halvings that close in on the end of a branch
+
+
+def on_branch(prev, result) -> bool:
+    """Whether ``result`` (a periodic point continued from ``prev``'s orbit) stayed on ``prev``'s branch: its
+    shooting converged from the continued orbit at the first start, and no stage's DTE rms (force std when
+    no DTE) changed by :data:`JUMP_CHANGE` or more."""
+    st = result.steady
+    if st is None or st.method != "shooting" or (st.attempts or 1) > 1:
+        return False
+    for a, b in zip(prev.stages, result.stages, strict=False):
+        x = (a.dte_um.rms, b.dte_um.rms) if a.dte_um is not None and b.dte_um is not None \
+            else (a.tangential_N.std, b.tangential_N.std)
+        if abs(x[1] - x[0]) > JUMP_CHANGE * max(abs(x[0]), abs(x[1]), 1e-300):
+            return False
+    return True
+
+
+def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> str:
+    """The row's mark when a continued periodic point left its predecessor's branch: where the branch ended
+    (``refine(value)`` evaluates the scene at a value between the two, continued along the branch: the
+    bisection closes in on the fold) and the largest real-part Floquet multiplier there (heading to +1 at a
+    fold)."""
+    last, last_v, lo, hi = prev, v_prev, v_prev, v
+    for _ in range(FOLD_BISECTIONS if refine is not None else 0):
+        mid = 0.5 * (lo + hi)
+        got = refine(mid, last)
+        if got is not None and on_branch(last, got):
+            last, last_v, lo = got, mid, mid
+        else:
+            hi = mid
+    mus = last.steady.multipliers if last.steady is not None and last.steady.multipliers else ()
+    mu = max(mus, key=lambda m: m[0]) if mus else None
+    if mu is None:
+        fold = ""
+    elif abs(mu[1]) <= 1e-9 and mu[0] > 0.5:
+        fold = f"; there its Floquet multiplier {mu[0]:.3g} (real) heads to +1: a fold"
+    else:
+        fold = (f"; there its largest Floquet multiplier {mu[0]:.3g}{mu[1]:+.3g}i is not near +1: a non-smooth end "
+                "(a contact starting to open, impacts) rather than a smooth fold")
+    return (f"jump: the branch of the previous point ({key} = {v_prev:g}) ends between {last_v:.6g} and {hi:.6g}"
+            f"{fold}")
