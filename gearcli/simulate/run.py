@@ -20,7 +20,7 @@ from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
-from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting
+from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -88,7 +88,10 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
-    eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol), replaced)
+    nfev_estimate = estimate_nfev(choice.indicator, rtol)
+    if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
+        nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s)
+    eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced)
     eng = _loadable(eng)
     fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \

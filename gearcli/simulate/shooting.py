@@ -104,7 +104,11 @@ class Variational:
         out = np.empty_like(ya)
         out[:n] = self.model.rhs(t, y)
         J = np.asarray(self.model.jac(t, y))[:d, :d]
-        out[n:] = (J @ ya[n:].reshape(d, d, order="F")).reshape(-1, order="F")
+        phi = ya[n:].reshape(d, d, order="F")
+        acc = np.zeros((d, d))
+        for j in range(d):  # J @ Phi summed in the compiled kernel's order (both engines: the same numbers)
+            acc += np.outer(J[:, j], phi[j, :])
+        out[n:] = acc.reshape(-1, order="F")
         return out
 
     def jac(self, t: float, ya: np.ndarray) -> np.ndarray:
@@ -375,3 +379,21 @@ def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: 
     t = fine.t
     return PeriodicRun(joined, (float(t[0]), float(t[-1])), (float(t[0]), float(t[-2])), steady, period,
                        energy_from=first.t.size)
+
+
+PRICED_VARIATIONAL_PERIODS = 3  # variational periods a typical solve integrates (two Newton steps and the check)
+
+
+def priced_nfev(nfev_run: float, layout, duration_s: float, window_start_s: float | None) -> float:
+    """``engine = "auto"``'s price of a shooting run, in right-hand-side evaluations of the scene: ``nfev_run``
+    (the estimate for a run to ``duration_s``) scaled to the time actually integrated (the run-up, the
+    brute-force periods, :data:`PRICED_VARIATIONAL_PERIODS` periods with the variational equations), each
+    variational period weighted by ``1 + d``: every evaluation also forms the Jacobian's ``d x d`` block times the
+    ``d`` columns of the monodromy."""
+    from gearcli.simulate.periodic import scene_period
+
+    T = scene_period(layout).period_s
+    d = layout.n_conn + len(layout.free_bodies)
+    t_start = max(layout.drive.ramp_s, layout.load.ramp_s, window_start_s or 0.0)
+    span = t_start + T * (PREAMBLE_COLD + PRICED_VARIATIONAL_PERIODS * (1 + d))
+    return nfev_run * span / max(duration_s, 1e-300)
