@@ -177,12 +177,14 @@ class _Shooter:
     Newton iterate starts there)."""
 
     def __init__(self, model, method: str, rtol: float, atol_run: np.ndarray, patol: np.ndarray, t0: float,
-                 span_s: float, samples: int, engine: str, max_nfev: int, ledger: Ledger) -> None:
+                 span_s: float, samples: int, engine: str, max_nfev: int, ledger: Ledger,
+                 period_s: float | None = None) -> None:
         lay = model.layout
         self.model, self.method, self.rtol, self.engine, self.ledger = model, method, rtol, engine, ledger
         self.n, self.d = model.n_states, lay.n_conn + len(lay.free_bodies)
         self.atol, self.patol, self.t0, self.max_nfev = atol_run, patol, t0, max_nfev
         self.grid = t0 + span_s * np.arange(samples + 1) / samples
+        self.period_s = span_s if period_s is None else period_s  # the excitation period (the span is k of them)
         self.used = 0
         self.variational = bool(getattr(model, "generated", True))
         if not self.variational:
@@ -211,7 +213,7 @@ class _Shooter:
             r = integrate(self.model, grid, self.method, self.rtol, y0=y, t0=self.t0, atol=self.atol,
                           max_nfev=budget, watch_energy=False, engine=self.engine)
         self.used += r.nfev
-        self.ledger.periods += round((grid[-1] - grid[0]) / (self.grid[-1] - self.grid[0]))
+        self.ledger.periods += round((grid[-1] - grid[0]) / self.period_s)
         self.parts.append(r)
         return r
 
@@ -289,11 +291,10 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                      "in these states; brute force")
     if cap < 1:
         return brute(t_start, first.y[:, -1], "no whole period fits before simulation.duration_s")
-    samples = pr.statistics_grid(lay, T, 1, steps)
     y_motion, t_motion = first.y[:, -1], t_start  # the motion's own state (no Newton correction in it)
     preamble = PREAMBLE_CONTINUED if continued else PREAMBLE_COLD
-    why = ""
-    for attempt in range(RETRIES + 1):
+    why, k, attempt = "", 1, 0
+    while attempt <= RETRIES:
         m = min(preamble if attempt == 0 else RETRY_PERIODS, max(0, cap - ledger.periods - 2))
         if m > 0:
             from gearcli.simulate.solver import integrate
@@ -305,9 +306,11 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
             if r.status != 0:
                 return pr._joined(parts, r.t[:1], r.y[:, :1], status_from=r)
             y_motion, t_motion = r.y[:, -1], float(r.t[-1])
+        preamble = 0
         ledger.attempts += 1
-        shooter = _Shooter(model, method, rtol, first.atol, patol, t_motion, T, samples, engine,
-                           max(1, max_nfev - sum(p.nfev for p in parts)), ledger)
+        samples = pr.statistics_grid(lay, T, k, steps)
+        shooter = _Shooter(model, method, rtol, first.atol, patol, t_motion, k * T, samples, engine,
+                           max(1, max_nfev - sum(p.nfev for p in parts)), ledger, period_s=T)
         shooter.parts = parts
         found, why = _newton(shooter, y_motion, cap)
         if found is None:
@@ -315,14 +318,26 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                 return pr._joined(parts, parts[-1].t[:1], parts[-1].y[:, :1], status_from=parts[-1])
             if ledger.periods >= cap:
                 break
+            attempt += 1
             continue
         shot, fl = found
         if not fl.stable:
             why = (f"the orbit Newton found is unstable (Floquet multiplier of modulus {fl.spectral_radius:.4g}): "
                    "the motion leaves it")
+            if k == 1 and _flips(fl):  # a period doubling behind it: the period-2 orbit, from the same state
+                k = 2
+                ledger.notes.append("the period-1 orbit is unstable through a multiplier below -1: shooting over 2 "
+                                    "periods")
+                continue
+            attempt += 1
             continue
-        return _result(model, parts, first, shot, fl, period, ledger, samples, cap)
+        return _result(model, parts, first, shot, fl, period, ledger, samples, cap, k)
     return brute(t_motion, y_motion, f"{FALLBACK_NOTE} ({why}); brute force from the motion's state")
+
+
+def _flips(fl: Floquet) -> bool:
+    """A real multiplier at or below -1 + NEAR: the orbit lost (or is about to lose) stability by a flip."""
+    return any(abs(im) <= NEAR * 0.5 and re <= -1.0 + NEAR for re, im in fl.multipliers)
 
 
 def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet] | None, str]:
@@ -363,15 +378,17 @@ def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet]
     return None, f"no convergence in {MAX_NEWTON} Newton steps (residual {shot.residual:.3g} x the tolerance)"
 
 
-def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: Ledger, samples: int, cap: int):
+def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: Ledger, samples: int, cap: int,
+            k: int = 1):
     from gearcli.results import SteadyState
     from gearcli.simulate.periodic import PeriodicRun, _joined
 
     fine = shot.run
     joined = _joined(parts, np.concatenate([first.t, fine.t]), np.hstack([first.y, fine.y]))
     steady = SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=ledger.periods,
-                         periodicity="period-1", converged=True, residual=float(shot.residual),
-                         period_source=period.source, window_periods=1, samples_per_period=samples, cap_periods=cap,
+                         periodicity=f"period-{k}", converged=True, residual=float(shot.residual),
+                         period_source=period.source, window_periods=k, samples_per_period=samples // k,
+                         cap_periods=cap,
                          method="shooting", iterations=ledger.iterations, attempts=ledger.attempts,
                          monodromy=ledger.monodromy,
                          multipliers=fl.multipliers, spectral_radius=fl.spectral_radius, stable=fl.stable,
