@@ -19,7 +19,8 @@ converged at 1. The statistics come from the converged period's own integration 
 the converged iterate costs no extra period.
 
 Entering the basin. A few brute-force periods first (:data:`PREAMBLE_COLD` after the ramps,
-:data:`PREAMBLE_CONTINUED` when a sweep continues from the previous point's orbit). When Newton does not
+:data:`PREAMBLE_CONTINUED`, none, when a sweep continues from the previous point's orbit: natural
+continuation). When Newton does not
 converge within :data:`MAX_NEWTON` iterations, the damped step cannot reduce the residual, or the orbit it
 finds is unstable (a continuation past a fold lands on the middle, unstable branch; the motion does not stay
 there), :data:`RETRY_PERIODS` more brute-force periods are integrated from the last state reached by the
@@ -47,7 +48,7 @@ HALVINGS = 3  # step halvings of the damped Newton step
 RETRIES = 2  # Newton restarts after RETRY_PERIODS more brute-force periods
 RETRY_PERIODS = 10
 PREAMBLE_COLD = 3  # brute-force periods after the ramps before the first Newton step
-PREAMBLE_CONTINUED = 1  # ... when the run starts from the previous sweep point's orbit
+PREAMBLE_CONTINUED = 0  # ... when a sweep point starts from the previous point's orbit: Newton from it directly
 NEAR = 0.1  # a multiplier this close to +1 or -1 (or a pair to the unit circle) marks a bifurcation nearby
 STABLE_SLACK = 1e-3  # a spectral radius up to 1 + this counts as the unit circle (the monodromy's own error)
 VAR_ATOL_FACTOR = 1e3  # monodromy entries held to this x the state's own accuracy (Newton needs ~1e-3)
