@@ -397,8 +397,10 @@ def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exha
     source = period.source + ("" if not exhausted else "; the search stopped at the run's evaluation budget")
     extra = {} if shooting is None else {"iterations": shooting.iterations, "note": "; ".join(shooting.notes),
                                          "attempts": shooting.attempts,
-                                         "monodromy": shooting.monodromy}
-    return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n + periods_before,
+                                         "monodromy": shooting.monodromy if shooting.attempts else None}
+    # every period integrated past the ramps: the search's n, the k statistics periods integrated again from
+    # their boundary state, and the shooting's before a fallback
+    return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n + k + periods_before,
                        periodicity=kind, converged=repeat.k > 0,
                        residual=float(repeat.residual) if math.isfinite(repeat.residual) else None,
                        period_source=source, window_periods=k, samples_per_period=per, cap_periods=cap,
