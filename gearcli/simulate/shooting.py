@@ -314,9 +314,7 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                            max(1, max_nfev - sum(p.nfev for p in parts)), ledger, period_s=T)
         shooter.parts = parts
         found, why = _newton(shooter, y_motion, cap)
-        if found is None:
-            if parts[-1].status not in (0,) and parts[-1].status != -2:
-                return pr._joined(parts, parts[-1].t[:1], parts[-1].y[:, :1], status_from=parts[-1])
+        if found is None:  # (a Newton candidate is no state of the motion: its run failing is Newton's failure)
             if ledger.periods >= cap:
                 break
             attempt += 1

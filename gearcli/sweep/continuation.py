@@ -78,17 +78,37 @@ def on_branch(prev, result) -> bool:
     return True
 
 
+def _top_real(result) -> float | None:
+    """The largest real Floquet multiplier of a periodic result; None when its largest-real-part one is complex."""
+    mus = result.steady.multipliers if result.steady is not None and result.steady.multipliers else ()
+    if not mus:
+        return None
+    re, im = max(mus, key=lambda m: m[0])
+    return re if abs(im) <= 1e-9 else None
+
+
+def fold_estimate(v_a: float, mu_a: float, v_b: float, mu_b: float) -> float | None:
+    """Where a real multiplier reaches +1, from two points of a branch approaching a fold (saddle-node: the
+    distance to the fold goes as (1 - mu)^2, so (1 - mu)^2 is linear in the parameter near it); None when the
+    two do not approach +1."""
+    a, b = (1.0 - mu_a) ** 2, (1.0 - mu_b) ** 2
+    if not (mu_a < mu_b < 1.0) or a == b:
+        return None
+    return v_b + (v_b - v_a) * b / (a - b)
+
+
 def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> str:
     """The row's mark when a continued periodic point left its predecessor's branch: where the branch ended
-    (``refine(value)`` evaluates the scene at a value between the two, continued along the branch: the
-    bisection closes in on the fold) and the largest real-part Floquet multiplier there (heading to +1 at a
-    fold)."""
+    (``refine(value, last)`` evaluates the scene at a value between the two, continued along the branch from
+    ``last``: the bisection closes in on the end) and what its Floquet multipliers say there: a real one heading
+    to +1 is a fold, located where it reaches +1 (:func:`fold_estimate` from the last two points of the branch)."""
     last, last_v, lo, hi = prev, v_prev, v_prev, v
+    before, before_v = None, None
     for _ in range(FOLD_BISECTIONS if refine is not None else 0):
         mid = 0.5 * (lo + hi)
         got = refine(mid, last)
         if got is not None and on_branch(last, got):
-            last, last_v, lo = got, mid, mid
+            before, before_v, last, last_v, lo = last, last_v, got, mid, mid
         else:
             hi = mid
     mus = last.steady.multipliers if last.steady is not None and last.steady.multipliers else ()
@@ -97,6 +117,11 @@ def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> s
         fold = ""
     elif abs(mu[1]) <= 1e-9 and mu[0] > 0.5:
         fold = f"; there its Floquet multiplier {mu[0]:.3g} (real) heads to +1: a fold"
+        mu_before = _top_real(before) if before is not None else None
+        at = fold_estimate(before_v, mu_before, last_v, mu[0]) if mu_before is not None and before_v is not None \
+            else None
+        if at is not None and min(last_v, hi) - abs(hi - last_v) <= at <= max(last_v, hi) + abs(hi - last_v):
+            fold += f", reaching it at {key} = {at:.6g} (extrapolated)"
     else:
         fold = (f"; there its largest Floquet multiplier {mu[0]:.3g}{mu[1]:+.3g}i is not near +1: a non-smooth end "
                 "(a contact starting to open, impacts) rather than a smooth fold")

@@ -111,3 +111,4 @@ def test_sweep_up_and_down_through_the_coexistence_band_shows_both_branches_and_
     jumps_down = [r for r, row in down.items() if row["message"].startswith("jump")]
     assert len(jumps_up) == 1 and jumps_up[0] > 0.69 and len(jumps_down) == 1 and jumps_down[0] < 0.61
     assert "heads to +1: a fold" in down[jumps_down[0]]["message"]
+    assert "extrapolated" in down[jumps_down[0]]["message"]  # where the real multiplier reaches +1

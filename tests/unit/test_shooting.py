@@ -104,3 +104,13 @@ def test_monodromy_tolerances_scale_with_the_states():
     out = augmented_atol(atol, 2, 1e-6, factor=1.0)
     # Phi[i, k] maps a change of state k of its natural size atol_k / rtol to state i: held to atol_i
     assert_allclose(out[3:].reshape(2, 2, order="F") * (atol[:2] / 1e-6)[None, :], np.array([atol[:2]] * 2).T)
+
+
+def test_fold_location_from_two_multipliers_of_a_saddle_node_branch():
+    # near a saddle-node the real multiplier goes as mu = 1 - c sqrt(p - p*): two points give p* exactly
+    from gearcli.sweep.continuation import fold_estimate
+
+    p_star, c = 1404.09, 0.05
+    mu_a, mu_b = (1 - c * math.sqrt(p - p_star) for p in (1412.0, 1406.0))  # a branch swept down to its end
+    assert_allclose(fold_estimate(1412.0, mu_a, 1406.0, mu_b), p_star, rtol=1e-12)
+    assert fold_estimate(1406.0, mu_b, 1412.0, mu_a) is None  # moving away from +1: no fold ahead
