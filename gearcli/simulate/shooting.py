@@ -215,10 +215,12 @@ class _Shooter:
                           max_nfev=budget, watch_energy=False, engine=self.engine)
         self.used += r.nfev
         self.ledger.periods += round((grid[-1] - grid[0]) / self.period_s)
-        self.parts.append(r)
+        from dataclasses import replace
+
+        self.parts.append(replace(r, t=r.t[:1], y=r.y[:self.n, :1]))  # counters (and a failure's start) only
         return r
 
-    parts: list
+    parts: list  # the run's parts, for their counters: each shot's without its samples (memory: n + d^2 rows)
 
     def shot(self, y: np.ndarray, with_m: bool) -> Shot | None:
         """The period map from the full state ``y`` (its quadratures zeroed: the period's own work);
