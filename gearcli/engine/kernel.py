@@ -1024,8 +1024,13 @@ EPS = float(np.finfo(float).eps)
 
 @jit
 def lu_factor(A, piv):
-    """In-place LU with partial pivoting (real or complex), as LAPACK getrf."""
+    """In-place LU with partial pivoting (real or complex), as LAPACK getrf. A ``piv`` of 3 n entries also
+    receives each row's nonzero span of the factors (``piv[n + i]`` the first column of L's row i,
+    ``piv[2 n + i]`` one past the last column of U's row i) for :func:`lu_solve` to skip exact zeros: a block
+    diagonal matrix (the variational equations' augmented Jacobian) factors and solves block by block. The
+    skipped terms are exact zeros, so the numbers are those of the dense loops."""
     n = A.shape[0]
+    spans = piv.size >= 3 * n
     for k in range(n):
         p = k
         best = abs(A[k, k])
@@ -1042,19 +1047,35 @@ def lu_factor(A, piv):
                 A[p, j] = tmp
         if A[k, k] == 0:
             continue
+        end = n
+        if spans:  # the pivot row's last nonzero: the update of the rows below stops there
+            while end > k + 1 and A[k, end - 1] == 0:
+                end -= 1
         inv = 1.0 / A[k, k]
         for i in range(k + 1, n):
             A[i, k] *= inv
             m = A[i, k]
             if m != 0:
-                for j in range(k + 1, n):
+                for j in range(k + 1, end):
                     A[i, j] -= m * A[k, j]
+    if spans:
+        for i in range(n):
+            lo = 0
+            while lo < i and A[i, lo] == 0:
+                lo += 1
+            hi = n
+            while hi > i + 1 and A[i, hi - 1] == 0:
+                hi -= 1
+            piv[n + i] = lo
+            piv[2 * n + i] = hi
 
 
 @jit
 def lu_solve(LU, piv, b):
-    """Solve in place LU x = b (b overwritten with x)."""
+    """Solve in place LU x = b (b overwritten with x); with the row spans of :func:`lu_factor` in ``piv``,
+    over each row's nonzeros only."""
     n = LU.shape[0]
+    spans = piv.size >= 3 * n
     for k in range(n):
         p = piv[k]
         if p != k:
@@ -1063,12 +1084,12 @@ def lu_solve(LU, piv, b):
             b[p] = tmp
     for i in range(n):
         acc = b[i]
-        for j in range(i):
+        for j in range(piv[n + i] if spans else 0, i):
             acc -= LU[i, j] * b[j]
         b[i] = acc
     for i in range(n - 1, -1, -1):
         acc = b[i]
-        for j in range(i + 1, n):
+        for j in range(i + 1, piv[2 * n + i] if spans else n):
             acc -= LU[i, j] * b[j]
         b[i] = acc / LU[i, i]
 
@@ -1198,8 +1219,8 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
     ag = np.zeros(n)
     LUr = np.zeros((n, n))
     LUc = np.zeros((n, n), dtype=np.complex128)
-    pr = np.zeros(n, dtype=np.int64)
-    pc = np.zeros(n, dtype=np.int64)
+    pr = np.zeros(3 * n, dtype=np.int64)  # pivots and the factors' row spans (lu_factor)
+    pc = np.zeros(3 * n, dtype=np.int64)
     Z = np.zeros((3, n))
     Z0 = np.zeros((3, n))
     W = np.zeros((3, n))
