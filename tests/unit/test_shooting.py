@@ -114,3 +114,36 @@ def test_fold_location_from_two_multipliers_of_a_saddle_node_branch():
     mu_a, mu_b = (1 - c * math.sqrt(p - p_star) for p in (1412.0, 1406.0))  # a branch swept down to its end
     assert_allclose(fold_estimate(1412.0, mu_a, 1406.0, mu_b), p_star, rtol=1e-12)
     assert fold_estimate(1406.0, mu_b, 1412.0, mu_a) is None  # moving away from +1: no fold ahead
+
+
+def test_kernel_lu_with_row_spans_solves_block_diagonal_systems_as_the_dense_loops():
+    # the augmented Jacobian of the variational equations is block diagonal: the kernel's LU keeps each row's
+    # nonzero span and skips the exact zeros outside it; the numbers are those of the dense loops, bit for bit
+    pytest.importorskip("numba")
+    import scipy.linalg
+
+    from gearcli import engine
+
+    k = engine.load(quiet=True).kernel
+    rng = np.random.default_rng(3)
+    for dtype in (np.float64, np.complex128):
+        blocks = [rng.normal(size=(m, m)) + (1j * rng.normal(size=(m, m)) if dtype == np.complex128 else 0)
+                  for m in (5, 3, 3, 3)]
+        for blk in blocks:
+            blk[0, 0] = 0.0  # a row exchange inside each block
+        A = scipy.linalg.block_diag(*blocks).astype(dtype)
+        b = rng.normal(size=A.shape[0]).astype(dtype)
+        n = A.shape[0]
+        dense, spans = A.copy(), A.copy()
+        p_dense, p_spans = np.zeros(n, dtype=np.int64), np.zeros(3 * n, dtype=np.int64)
+        x_dense, x_spans = b.copy(), b.copy()
+        k.lu_factor(dense, p_dense)
+        k.lu_solve(dense, p_dense, x_dense)
+        k.lu_factor(spans, p_spans)
+        k.lu_solve(spans, p_spans, x_spans)
+        np.testing.assert_array_equal(x_spans, x_dense)
+        assert_allclose(A @ x_spans, b, atol=1e-10 * np.linalg.cond(A))
+        # each row's span stays inside its block
+        starts = np.repeat([0, 5, 8, 11], [5, 3, 3, 3])
+        assert np.all(p_spans[n:2 * n] >= starts) and np.all(p_spans[2 * n:] <= starts + np.repeat([5, 3, 3, 3],
+                                                                                                      [5, 3, 3, 3]))
