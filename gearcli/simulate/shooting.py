@@ -18,21 +18,23 @@ with the boundary comparison's absolute tolerances (:func:`gearcli.simulate.peri
 converged at 1. The statistics come from the converged period's own integration (sampled finely), so
 the converged iterate costs no extra period.
 
-Entering the basin. A few brute-force periods first (:data:`PREAMBLE_COLD` after the ramps,
-:data:`PREAMBLE_CONTINUED`, none, when a sweep continues from the previous point's orbit: natural
-continuation). When Newton does not
-converge within :data:`MAX_NEWTON` iterations, the damped step cannot reduce the residual, or the orbit it
-finds is unstable (a continuation past a fold lands on the middle, unstable branch; the motion does not stay
+Entering the basin. A few brute-force periods first (:data:`PREAMBLE_COLD` after the ramps; none when a sweep
+continues from the previous point's orbit: natural continuation, Newton starts from that orbit). When Newton
+does not converge within :data:`MAX_NEWTON` iterations, the damped step cannot reduce the residual, or the orbit
+it finds is unstable (a continuation past a fold lands on the middle, unstable branch; the motion does not stay
 there), :data:`RETRY_PERIODS` more brute-force periods are integrated from the last state reached by the
 motion and Newton starts again, :data:`RETRIES` times; after that the run goes back to the brute-force
-search and says why (impacts that change the map faster than Newton can follow, grazing contacts, chaos).
+search and says why (impacts that change the map faster than Newton can follow, grazing contacts, chaos). A
+period-1 orbit that is unstable through a real multiplier below -1 (a period doubling) is followed by Newton
+on the map over 2 T from the same state. A Newton candidate is no state of the motion: the energy balance is
+that of the statistics period alone, and a candidate whose run fails is Newton's failure, not the run's.
 
 Floquet multipliers. The eigenvalues of ``M`` at the orbit: the orbit is stable when they all lie inside
 the unit circle. A real multiplier near +1 (within :data:`NEAR`) means a fold nearby (the branch turns
 back: a jump); near -1 a period doubling. A complex pair near the unit circle is not classified: a lightly
 damped slow mode puts one there without any bifurcation (the conveyor's drum mode: 0.989 per period); the
-spectral radius says how close it is. For a linear system ``y' = A y + f(t)`` the multipliers are ``exp(lambda T)`` of the
-eigenvalues ``lambda`` of ``A`` (tests/unit/test_shooting.py checks it).
+spectral radius says how close it is. For a linear system ``y' = A y + f(t)`` the multipliers are
+``exp(lambda T)`` of the eigenvalues ``lambda`` of ``A`` (tests/unit/test_shooting.py checks it).
 """
 
 from __future__ import annotations
@@ -49,7 +51,7 @@ RETRIES = 2  # Newton restarts after RETRY_PERIODS more brute-force periods
 RETRY_PERIODS = 10
 PREAMBLE_COLD = 3  # brute-force periods after the ramps before the first Newton step
 PREAMBLE_CONTINUED = 0  # ... when a sweep point starts from the previous point's orbit: Newton from it directly
-NEAR = 0.1  # a multiplier this close to +1 or -1 (or a pair to the unit circle) marks a bifurcation nearby
+NEAR = 0.1  # a real multiplier this close to +1 or -1 marks a bifurcation nearby
 STABLE_SLACK = 1e-3  # a spectral radius up to 1 + this counts as the unit circle (the monodromy's own error)
 VAR_ATOL_FACTOR = 1e3  # monodromy entries held to this x the state's own accuracy (Newton needs ~1e-3)
 FALLBACK_NOTE = "shooting did not converge"  # how a fallback's note starts (its warning's test)
