@@ -34,6 +34,8 @@ PERIOD_NOT_COMMON = "period_not_common"  # the excitations have no usable common
 WINDOW_RINGING = "window_ringing"  # a lightly damped mode still rings from the run-up through the window
 SAMPLING = "sampling"  # report: a line above the Nyquist frequency of the output samples
 ACCURACY = "accuracy"  # report: the accuracy study's verdict on the file's solver settings
+NEAR_BIFURCATION = "near_bifurcation"  # steady = "periodic": a Floquet multiplier near +1 (fold, jump) or -1
+SHOOTING_FALLBACK = "shooting_fallback"  # steady = "periodic": Newton on the period map failed; brute force
 OTHER = "other"
 
 

@@ -336,6 +336,19 @@ class SteadyState:
     window_periods: int | None = None  # whole excitation periods in the statistics window
     samples_per_period: int | None = None
     cap_periods: int | None = None
+    # how the periodic orbit was found (gearcli.simulate.shooting): "shooting" (Newton on the period map) or
+    # "brute force" (period by period until it repeats); Newton steps; the monodromy matrix's source; the
+    # Floquet multipliers ((re, im), largest modulus first), stability and the bifurcation nearby ("none",
+    # "fold", "period doubling"); why shooting fell back to brute force, where it did
+    method: str | None = None
+    iterations: int | None = None
+    attempts: int | None = None  # Newton starts (a restart follows more brute-force periods)
+    monodromy: str | None = None
+    multipliers: tuple[tuple[float, float], ...] | None = None
+    spectral_radius: float | None = None
+    stable: bool | None = None
+    bifurcation: str | None = None
+    note: str = ""
 
 
 @dataclass(frozen=True)

@@ -290,6 +290,41 @@ def rhs(t, y, dy, model, th, fc):
     dy[iq + 2] = damp
     if ipar[IP_NTV] > 0:
         dy[iq + 3] = tvp
+    if y.size > iq + 3 + (1 if ipar[IP_NTV] > 0 else 0):
+        variational_rhs(t, y, dy, model, th)
+
+
+@jit
+def n_model_states(model):
+    """The scene's own state count (an augmented state carries the variational equations after it)."""
+    ipar = model[5]
+    return ipar[IP_QUAD] + 3 + (1 if ipar[IP_NTV] > 0 else 0)
+
+
+@jit
+def n_dynamic(model):
+    """The dynamic states (deflections, free speeds) whose variational equations an augmented state carries."""
+    ipar = model[5]
+    return ipar[IP_THETA] if ipar[IP_THETA] >= 0 else ipar[IP_QUAD]
+
+
+@jit
+def variational_rhs(t, y, dy, model, th):
+    """The variational equations of an augmented state ``[y | Phi[:, 0] | ... | Phi[:, d-1]]``:
+    ``Phi' = J Phi`` with the dynamic block of the analytic Jacobian at ``(t, y)`` (gearcli.simulate.shooting)."""
+    ns = n_model_states(model)
+    d = n_dynamic(model)
+    Jm = np.zeros((ns, ns))
+    g = np.zeros(ns)
+    ag = np.zeros(ns)
+    jacobian(t, y[:ns], Jm, model, th, g, ag)
+    for k in range(d):
+        s = ns + k * d
+        for i in range(d):
+            acc = 0.0
+            for j in range(d):
+                acc += Jm[i, j] * y[s + j]
+            dy[s + i] = acc
 
 
 @jit
@@ -911,6 +946,14 @@ def jacobian(t, y, Jm, model, th, g, ag):
             Jm[iq, i_th] += dtin * w0
     if load:
         Jm[iq + 1, i_w0 + nb - 1 - first] = tl
+    ns = n_model_states(model)
+    if n > ns:  # an augmented state: the variational equations' blocks (block diagonal, see variational_rhs)
+        d = n_dynamic(model)
+        for k in range(d):
+            s = ns + k * d
+            for i in range(d):
+                for j in range(d):
+                    Jm[s + i, s + j] = Jm[i, j]
 
 
 @jit
@@ -944,8 +987,13 @@ EPS = float(np.finfo(float).eps)
 
 @jit
 def lu_factor(A, piv):
-    """In-place LU with partial pivoting (real or complex), as LAPACK getrf."""
+    """In-place LU with partial pivoting (real or complex), as LAPACK getrf. A ``piv`` of 3 n entries also
+    receives each row's nonzero span of the factors (``piv[n + i]`` the first column of L's row i,
+    ``piv[2 n + i]`` one past the last column of U's row i) for :func:`lu_solve` to skip exact zeros: a block
+    diagonal matrix (the variational equations' augmented Jacobian) factors and solves block by block. The
+    skipped terms are exact zeros, so the numbers are those of the dense loops."""
     n = A.shape[0]
+    spans = piv.size >= 3 * n
     for k in range(n):
         p = k
         best = abs(A[k, k])
@@ -962,19 +1010,35 @@ def lu_factor(A, piv):
                 A[p, j] = tmp
         if A[k, k] == 0:
             continue
+        end = n
+        if spans:  # the pivot row's last nonzero: the update of the rows below stops there
+            while end > k + 1 and A[k, end - 1] == 0:
+                end -= 1
         inv = 1.0 / A[k, k]
         for i in range(k + 1, n):
             A[i, k] *= inv
             m = A[i, k]
             if m != 0:
-                for j in range(k + 1, n):
+                for j in range(k + 1, end):
                     A[i, j] -= m * A[k, j]
+    if spans:
+        for i in range(n):
+            lo = 0
+            while lo < i and A[i, lo] == 0:
+                lo += 1
+            hi = n
+            while hi > i + 1 and A[i, hi - 1] == 0:
+                hi -= 1
+            piv[n + i] = lo
+            piv[2 * n + i] = hi
 
 
 @jit
 def lu_solve(LU, piv, b):
-    """Solve in place LU x = b (b overwritten with x)."""
+    """Solve in place LU x = b (b overwritten with x); with the row spans of :func:`lu_factor` in ``piv``,
+    over each row's nonzeros only."""
     n = LU.shape[0]
+    spans = piv.size >= 3 * n
     for k in range(n):
         p = piv[k]
         if p != k:
@@ -983,12 +1047,12 @@ def lu_solve(LU, piv, b):
             b[p] = tmp
     for i in range(n):
         acc = b[i]
-        for j in range(i):
+        for j in range(piv[n + i] if spans else 0, i):
             acc -= LU[i, j] * b[j]
         b[i] = acc
     for i in range(n - 1, -1, -1):
         acc = b[i]
-        for j in range(i + 1, n):
+        for j in range(i + 1, piv[2 * n + i] if spans else n):
             acc -= LU[i, j] * b[j]
         b[i] = acc / LU[i, i]
 
@@ -1118,8 +1182,8 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
     ag = np.zeros(n)
     LUr = np.zeros((n, n))
     LUc = np.zeros((n, n), dtype=np.complex128)
-    pr = np.zeros(n, dtype=np.int64)
-    pc = np.zeros(n, dtype=np.int64)
+    pr = np.zeros(3 * n, dtype=np.int64)  # pivots and the factors' row spans (lu_factor)
+    pc = np.zeros(3 * n, dtype=np.int64)
     Z = np.zeros((3, n))
     Z0 = np.zeros((3, n))
     W = np.zeros((3, n))

@@ -393,9 +393,13 @@ def steady_line(r: SimulationResult) -> str:
         return ""
     found = f"{st.periodicity}, converged" if st.converged else "none found (not periodic), not converged"
     residual = f"{st.residual:.2g}" if st.residual is not None else "—"
-    return (f"steady periodic: period {_g(st.period_s or 0.0)} s, {st.periods_to_converge} periods searched "
+    how = "" if st.method is None else f", found by {st.method}" + (
+        f" ({st.iterations} Newton steps)" if st.method == "shooting" else "")
+    floq = "" if st.spectral_radius is None else (f", Floquet |mu|max {st.spectral_radius:.4g}"
+                                                  + ("" if st.bifurcation in (None, "none") else f" ({st.bifurcation} near)"))
+    return (f"steady periodic: period {_g(st.period_s or 0.0)} s{how}, {st.periods_to_converge} periods integrated "
             f"(cap {st.cap_periods}), {found}, residual {residual} x tolerance, statistics over "
-            f"{st.window_periods} period(s)")
+            f"{st.window_periods} period(s){floq}")
 
 
 class _Buffer(io.StringIO):

@@ -35,6 +35,7 @@ from functools import reduce
 import numpy as np
 
 from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
+from gearcli.errors import ConfigError
 from gearcli.results import SteadyState
 from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
@@ -243,6 +244,7 @@ class PeriodicRun:
     mask_window_s: tuple[float, float]  # the same without its last sample (the first one of the next period)
     steady: object  # gearcli.results.SteadyState
     period: CommonPeriod
+    energy_from: int = 0  # first sample of the energy balance (a Newton correction is no motion: after it)
 
 
 def scene_period(layout) -> CommonPeriod:
@@ -275,36 +277,43 @@ def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -
     return out
 
 
-def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_s: float,
-                       window_start_s: float | None, y0: np.ndarray | None, max_nfev: int,
-                       fastest_rad_s: float = 0.0, engine: str = "python"):
-    """Run-up, the period-by-period search for the repeat, then the statistics periods finely sampled
-    (every part on ``engine``: each period's run starts at its own t0 on either engine).
-
-    Returns a :class:`PeriodicRun`, or the failed part's ``Integration`` (status < 0) for the caller's
-    :func:`gearcli.simulate.run.check`. A search that runs out of evaluations stops early, unconverged.
-    """
+def run_up(model, method: str, rtol: float, *, steps: int, duration_s: float, window_start_s: float | None,
+           y0: np.ndarray | None, max_nfev: int, engine: str):
+    """The run from 0 to the end of the ramps (or ``window_start_s``), sampled as a window run would be (at
+    most ``steps`` samples); refused when not one excitation period fits between it and ``duration_s`` (the
+    search may not run past the run's duration)."""
     lay = model.layout
-    period = scene_period(lay)
-    T = period.period_s
     t_start = max(lay.drive.ramp_s, lay.load.ramp_s, window_start_s or 0.0)
-    cap = periods_cap(duration_s, t_start, T)
-    if cap == 0:  # the search may not run past duration_s: refuse rather than integrate beyond it
-        from gearcli.errors import ConfigError
-
+    T = scene_period(lay).period_s
+    if periods_cap(duration_s, t_start, T) == 0:
         raise ConfigError(f"steady = \"periodic\" needs at least one excitation period ({T:.4g} s) between the end "
                           f"of the ramps and window start ({t_start:.4g} s) and the end of the run "
                           f"({duration_s:.4g} s); set simulation.duration_s ≥ {t_start + T:.4g} (a few periods "
                           "more let the search find the repeat), or shorten the ramps", key="simulation.duration_s")
     n_a = min(steps, max(1, round(steps * t_start / duration_s))) if t_start > 0 else 0  # at most `steps` samples
-    parts = [integrate(model, np.linspace(0.0, t_start, n_a + 1), method, rtol, y0=y0, max_nfev=max_nfev,
-                       engine=engine)]
-    if parts[0].status != STATUS_FINISHED:
-        return parts[0]
+    return integrate(model, np.linspace(0.0, t_start, n_a + 1), method, rtol, y0=y0, max_nfev=max_nfev,
+                     engine=engine)
+
+
+def statistics_grid(layout, period_s: float, k: int, steps: int) -> int:
+    """Samples over the k statistics periods: ``steps`` per k periods, at least
+    :data:`MIN_SAMPLES_PER_FASTEST` per period of the fastest excitation, within the memory bound."""
+    per = max(math.ceil(steps / k), math.ceil(MIN_SAMPLES_PER_FASTEST * period_s / _fastest(layout, period_s)))
+    return min(per * k, max(steps, PERIODIC_STATISTICS_SAMPLES))  # the memory bound config.bounds checked
+
+
+def search(model, method: str, rtol: float, parts: list, t_start: float, y_start: np.ndarray, period: CommonPeriod,
+           atol: np.ndarray, *, steps: int, cap: int, max_nfev: int, used: int, engine: str,
+           periods_before: int = 0, shooting=None, cap_total: int | None = None):
+    """The brute-force search from ``(t_start, y_start)``: period by period until the state repeats (at most
+    ``cap`` periods), then the statistics periods. ``parts[0]`` is the run-up (its samples lead the result's);
+    ``periods_before`` periods were integrated before (by the shooting, whose summary ``shooting`` the
+    result's steady state carries on; ``cap_total`` the cap reported, that of the whole run)."""
+    lay = model.layout
+    T = period.period_s
     dyn = lay.n_conn + len(lay.free_bodies)
-    atol = poincare_atol(lay, parts[0].atol, rtol, fastest_rad_s)
-    states = [parts[0].y[:, -1]]
-    repeat, used, chunk, exhausted = Repeat(0, math.inf), parts[0].nfev, FIRST_CHUNK, False
+    states = [y_start]
+    repeat, chunk, exhausted = Repeat(0, math.inf), FIRST_CHUNK, False
     while len(states) - 1 < cap and repeat.k == 0 and not exhausted:
         n = len(states) - 1
         m = min(chunk, cap - n)
@@ -330,15 +339,16 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     k = min(k, n) if n > 0 else 1
     t_n = t_start + (n - k) * T if n >= k else t_start + n * T
     y_n = states[n - k] if n >= k else states[-1]
-    per = max(math.ceil(steps / k), math.ceil(MIN_SAMPLES_PER_FASTEST * T / _fastest(lay, T)))
-    total = min(per * k, max(steps, PERIODIC_STATISTICS_SAMPLES))  # the memory bound config.bounds checked
+    total = statistics_grid(lay, T, k, steps)
     fine = t_n + k * T * np.arange(total + 1) / total
     stats_run = integrate(model, fine, method, rtol, y0=y_n, t0=t_n, engine=engine)
     parts.append(stats_run)
     if stats_run.status != STATUS_FINISHED:
         return _joined(parts, stats_run.t[:1], stats_run.y[:, :1], status_from=stats_run)
-    joined = _joined(parts, np.concatenate([parts[0].t, fine]), np.hstack([parts[0].y, stats_run.y]))
-    steady = _steady(period, repeat, n, k, total // k, exhausted, cap)
+    first = parts[0]
+    joined = _joined(parts, np.concatenate([first.t, fine]), np.hstack([first.y, stats_run.y]))
+    steady = _steady(period, repeat, n, k, total // k, exhausted, cap if cap_total is None else cap_total,
+                     periods_before, shooting)
     return PeriodicRun(joined, (float(fine[0]), float(fine[-1])), (float(fine[0]), float(fine[-2])), steady, period)
 
 
@@ -354,13 +364,20 @@ def periods_cap(duration_s: float, t_start: float, period_s: float) -> int:
     return max(0, min(MAX_PERIODS, fit))
 
 
-def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exhausted: bool, cap: int):
+def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exhausted: bool, cap: int,
+            periods_before: int = 0, shooting=None, cap_total: int | None = None):
     kind = "none" if repeat.k == 0 else f"period-{repeat.k}"
     source = period.source + ("" if not exhausted else "; the search stopped at the run's evaluation budget")
-    return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n, periodicity=kind,
-                       converged=repeat.k > 0, residual=float(repeat.residual) if math.isfinite(repeat.residual) else None,
-                       period_source=source,
-                       window_periods=k, samples_per_period=per, cap_periods=cap)
+    extra = {} if shooting is None else {"iterations": shooting.iterations, "note": "; ".join(shooting.notes),
+                                         "attempts": shooting.attempts,
+                                         "monodromy": shooting.monodromy if shooting.attempts else None}
+    # every period integrated past the ramps: the search's n, the k statistics periods integrated again from
+    # their boundary state, and the shooting's before a fallback
+    return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n + k + periods_before,
+                       periodicity=kind, converged=repeat.k > 0,
+                       residual=float(repeat.residual) if math.isfinite(repeat.residual) else None,
+                       period_source=source, window_periods=k, samples_per_period=per, cap_periods=cap,
+                       method="brute force", **extra)
 
 
 def _joined(parts, t: np.ndarray, y: np.ndarray, status_from=None):

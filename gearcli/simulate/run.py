@@ -23,7 +23,8 @@ from gearcli.scene import output_units, spec_from_design
 from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
+from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
+from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -104,23 +105,28 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
-    eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol), replaced)
+    nfev_estimate = estimate_nfev(choice.indicator, rtol)
+    if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
+        nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s)
+    eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced)
     eng = _loadable(eng)
     fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
         if eng.unsupported and engine == "compiled" else []
-    mask_window, steady_state = window, None
+    mask_window, steady_state, energy_from = window, None, 0
     early = None  # the check pass started on a second core (gearcli.simulate.background), ended whatever happens
     try:
         if steady == "periodic":
             diags = []  # the fixed window's warning does not apply: the window is found, not set
-            found = integrate_periodic(model, choice.method, rtol, steps=steps, duration_s=duration_s,
+            found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
                                        window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
-                                       fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine)
+                                       fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
+                                       continued=y0 is not None)
             if isinstance(found, Integration):
                 check(found, choice, duration_s)
                 raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
             run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
+            energy_from = found.energy_from
             diags += steady_warnings(steady_state, found.period)
         else:
             t_eval = np.linspace(0.0, duration_s, steps + 1)
@@ -134,7 +140,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         check(run, choice, duration_s)
         error_estimate = error_estimate and steady != "periodic"
         s = sample(model.layout, run.t, run.y)
-        energy = model.energy(s, run.y)
+        energy = model.energy(s, run.y) if not energy_from else \
+            model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
         diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
         if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
             diags += force_noise_warnings(choice, rtol)
@@ -211,7 +218,16 @@ def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnosti
                               f"simulation.duration_s to search longer (cap {MAX_PERIODS} periods); the statistics "
                               f"are over the last {steady.window_periods} periods", periods=steady.periods_to_converge,
                               residual=steady.residual))
-    elif steady.periodicity != "period-1":
+    if steady.method == "brute force" and steady.note.startswith(FALLBACK_NOTE):
+        out.append(dg.warning(dg.SHOOTING_FALLBACK, f"steady = \"periodic\": {steady.note}", note=steady.note))
+    if steady.bifurcation in ("fold", "period doubling") and steady.multipliers:
+        mu = max(steady.multipliers, key=lambda m: -abs(complex(*m) - (1.0 if steady.bifurcation == "fold" else -1.0)))
+        what = "a fold: the branch turns back nearby, the response may jump to another branch" \
+            if steady.bifurcation == "fold" else "a period doubling nearby"
+        out.append(dg.warning(dg.NEAR_BIFURCATION, f"steady = \"periodic\": Floquet multiplier {mu[0]:.3g} near "
+                              f"{'+1' if steady.bifurcation == 'fold' else '-1'}: {what}",
+                              bifurcation=steady.bifurcation, multiplier=mu))
+    if steady.converged and steady.periodicity != "period-1":
         out.append(dg.warning(dg.SUBHARMONIC, f"steady = \"periodic\": the response repeats only every "
                               f"{steady.window_periods} excitation periods ({steady.periodicity}, a subharmonic "
                               f"response); the statistics are over those {steady.window_periods} periods",

@@ -56,3 +56,74 @@ def continue_state(y_prev: np.ndarray, model_prev, model_new, t_prev: float | No
         return model_new.continue_state(y_prev, model_prev, t_prev)
     except ValueError:  # another chain of bodies and connectors
         return None
+
+
+# ------------------------------------------------------------------------------- jumps and folds
+JUMP_CHANGE = 0.3  # a relative change of a stage's DTE rms (or force std) this large between neighbours: a jump
+FOLD_BISECTIONS = 5  # parameter halvings that close in on the end of a branch
+
+
+def on_branch(prev, result) -> bool:
+    """Whether ``result`` (a periodic point continued from ``prev``'s orbit) stayed on ``prev``'s branch: its
+    shooting converged from the continued orbit at the first start, and no stage's DTE rms (force std when
+    no DTE) changed by :data:`JUMP_CHANGE` or more."""
+    st = result.steady
+    if st is None or st.method != "shooting" or (st.attempts or 1) > 1:
+        return False
+    for a, b in zip(prev.stages, result.stages, strict=False):
+        x = (a.dte_um.rms, b.dte_um.rms) if a.dte_um is not None and b.dte_um is not None \
+            else (a.tangential_N.std, b.tangential_N.std)
+        if abs(x[1] - x[0]) > JUMP_CHANGE * max(abs(x[0]), abs(x[1]), 1e-300):
+            return False
+    return True
+
+
+def _top_real(result) -> float | None:
+    """The largest real Floquet multiplier of a periodic result; None when its largest-real-part one is complex."""
+    mus = result.steady.multipliers if result.steady is not None and result.steady.multipliers else ()
+    if not mus:
+        return None
+    re, im = max(mus, key=lambda m: m[0])
+    return re if abs(im) <= 1e-9 else None
+
+
+def fold_estimate(v_a: float, mu_a: float, v_b: float, mu_b: float) -> float | None:
+    """Where a real multiplier reaches +1, from two points of a branch approaching a fold (saddle-node: the
+    distance to the fold goes as (1 - mu)^2, so (1 - mu)^2 is linear in the parameter near it); None when the
+    two do not approach +1."""
+    a, b = (1.0 - mu_a) ** 2, (1.0 - mu_b) ** 2
+    if not (mu_a < mu_b < 1.0) or a == b:
+        return None
+    return v_b + (v_b - v_a) * b / (a - b)
+
+
+def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> str:
+    """The row's mark when a continued periodic point left its predecessor's branch: where the branch ended
+    (``refine(value, last)`` evaluates the scene at a value between the two, continued along the branch from
+    ``last``: the bisection closes in on the end) and what its Floquet multipliers say there: a real one heading
+    to +1 is a fold, located where it reaches +1 (:func:`fold_estimate` from the last two points of the branch)."""
+    last, last_v, lo, hi = prev, v_prev, v_prev, v
+    before, before_v = None, None
+    for _ in range(FOLD_BISECTIONS if refine is not None else 0):
+        mid = 0.5 * (lo + hi)
+        got = refine(mid, last)
+        if got is not None and on_branch(last, got):
+            before, before_v, last, last_v, lo = last, last_v, got, mid, mid
+        else:
+            hi = mid
+    mus = last.steady.multipliers if last.steady is not None and last.steady.multipliers else ()
+    mu = max(mus, key=lambda m: m[0]) if mus else None
+    if mu is None:
+        fold = ""
+    elif abs(mu[1]) <= 1e-9 and mu[0] > 0.5:
+        fold = f"; there its Floquet multiplier {mu[0]:.3g} (real) heads to +1: a fold"
+        mu_before = _top_real(before) if before is not None else None
+        at = fold_estimate(before_v, mu_before, last_v, mu[0]) if mu_before is not None and before_v is not None \
+            else None
+        if at is not None and min(last_v, hi) - abs(hi - last_v) <= at <= max(last_v, hi) + abs(hi - last_v):
+            fold += f", reaching it at {key} = {at:.6g} (extrapolated)"
+    else:
+        fold = (f"; there its largest Floquet multiplier {mu[0]:.3g}{mu[1]:+.3g}i is not near +1: a non-smooth end "
+                "(a contact starting to open, impacts) rather than a smooth fold")
+    return (f"jump: the branch of the previous point ({key} = {v_prev:g}) ends between {last_v:.6g} and {hi:.6g}"
+            f"{fold}")

@@ -95,22 +95,52 @@ def iter_task(task: Task) -> Iterator[dict]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
     with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
         prev = None
+        before: tuple | None = None  # (point, result, carried) of the previous ok point of the branch
         for point in task.points:
             t0 = time.perf_counter()
             try:
                 result, carried = _evaluate(task.scene, point, prev if task.continuation else None)
+                jump = _jump(task.scene, before, point, result) if task.continuation else ""
             except GearcliError as exc:
-                prev = None
+                prev = before = None
                 row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
             except (ArithmeticError, ValueError, RuntimeError, OverflowError) as exc:  # a bug or a numerical failure
-                prev = None
+                prev = before = None
                 row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
             else:
-                prev = carried
+                prev, before = carried, (point, result, carried)
                 row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
-                             message=one_line("\n".join(result.warnings)))
+                             message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings))))
             if point.index not in task.skip:
                 yield {"_index": point.index, **row}
+
+
+def _jump(scene: Scene, before: tuple | None, point: Point, result) -> str:
+    """A periodic point continued from ``before`` that left its branch: the row's jump mark, with the branch's
+    end closed in on by bisection of the one varied value (:func:`gearcli.sweep.continuation.jump_note`)."""
+    from gearcli.sweep.continuation import jump_note, on_branch
+
+    if before is None or result.steady is None or result.steady.mode != "periodic":
+        return ""
+    p0, r0, c0 = before
+    if on_branch(r0, result):
+        return ""
+    changed = [(k, a, b) for (k, a), (_, b) in zip(p0.values, point.values, strict=True) if a != b]
+    if len(changed) != 1 or not all(isinstance(v, (int, float)) for v in changed[0][1:]):
+        return f"jump: left the branch of the previous point ({one_line(str(p0.values))})"
+    key, v0, v1 = changed[0]
+    carried = {id(r0): c0}
+
+    def refine(value: float, last):
+        mid = Point(-1, tuple((k, value if k == key else v) for k, v in point.values), point.direction)
+        try:
+            got, c = _evaluate(scene, mid, carried[id(last)])
+        except GearcliError:
+            return None
+        carried[id(got)] = c
+        return got
+
+    return jump_note(key, float(v0), float(v1), r0, result, refine)
 
 
 def run_task(task: Task) -> list[dict]:
