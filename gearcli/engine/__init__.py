@@ -94,6 +94,10 @@ def unsupported(arrays, method: str) -> list[str]:
         if int(k) in known and np.any(param[c, known[int(k)]:] != 0.0):
             out.append(f"element parameters beyond the known ones on connector {c}")
             break
+    from gearcli.model.elements import KIND_MESH, mesh
+
+    if any(int(k) == KIND_MESH and mesh.lossy(param[c]) for c, k in enumerate(np.asarray(arrays.conn_kind))):
+        out.append("mesh losses (stage efficiency < 1)")
     for f in dataclasses.fields(arrays):
         if f.name not in _KNOWN_FIELDS and _has_content(getattr(arrays, f.name)):
             out.append(f"model feature {f.name!r}")

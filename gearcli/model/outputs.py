@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import KIND_MESH, torque
+from gearcli.model.elements import KIND_MESH, machine, torque
 from gearcli.model.elements.mesh import dynamic_transmission_error, penetration, phase_per_rad
 from gearcli.model.step import ramp, ramp_motion
 
@@ -120,7 +120,16 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     omega, theta, a0 = body_motion(lay, t, Y)
     conns = tuple(connector_series(lay, c, Y, omega, theta) for c in range(lay.n_conn))
     if lay.speed_drive:
-        t_in = conns[0].force * lay.connectors[0].ra + lay.inertias[0] * a0
+        f0 = conns[0].force
+        if lay.connectors[0].lossy:  # the pinion side of a lossy first mesh
+            x = lay.connectors[0]
+            f0 = np.array([machine_side(x.params, f, x.ra * wa, x.rb * wb) for f, wa, wb in
+                           zip(f0.tolist(), omega[x.a].tolist(), omega[x.b].tolist(), strict=True)])
+        t_in = f0 * lay.connectors[0].ra + lay.inertias[0] * a0
+    elif lay.motor_drive:
+        row = lay.motor_row
+        t_in = np.array([machine.motor_torque(row, tj, wj)[0] for tj, wj in zip(t.tolist(), omega[0].tolist(),
+                                                                                 strict=True)])
     else:
         t_in = np.asarray(ramp(t, lay.drive.ramp_s, lay.drive.torque_Nm)) * np.ones_like(t)
         if lay.ripple:
@@ -129,7 +138,16 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
     if lay.fluctuation:
         t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj) + lay.load.clock_s) for tj in t])
+    if lay.load_law:
+        t_load = t_load * np.array([machine.load_factor(lay.load_law, w)[0] for w in omega[-1].tolist()])
     return Sampled(t, omega, theta, t_in, t_load, conns, lay)
+
+
+def machine_side(P, f: float, va: float, vb: float) -> float:
+    """The pinion-side force of a lossy mesh (:func:`gearcli.model.elements.mesh.loss_factors`)."""
+    from gearcli.model.elements.mesh import loss_factors
+
+    return loss_factors(P, f, va, vb)[0]
 
 
 def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -27,7 +27,7 @@ from __future__ import annotations
 KIND_SPRING = 0  # torsional spring-damper: couplings, flexible shafts
 KIND_MESH = 1  # gear mesh along its transverse line of action (Adams IMPACT law)
 N_HARM = 8  # transmission-error / stiffness harmonics per mesh
-N_PARAM = 20 + 4 * N_HARM  # width of every parameter row (the mesh's: gearcli.model.elements.mesh.PARAMS)
+N_PARAM = 22 + 4 * N_HARM  # width of every parameter row (the mesh's: gearcli.model.elements.mesh.PARAMS)
 
 KIND_NAMES = {KIND_SPRING: "spring", KIND_MESH: "mesh"}
 
