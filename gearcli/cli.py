@@ -18,20 +18,19 @@ from pathlib import Path
 import click
 
 from gearcli import __version__
+from gearcli.core.text import shorten, visible
 from gearcli.errors import (
     EXIT_BROKEN_PIPE,
     EXIT_FAILED,
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
-    DesignError,
     GearcliError,
     OutputError,
     RunTooLong,
     Terminated,
 )
 from gearcli.io import output as outfiles
-from gearcli.io.text import shorten, visible
 
 FORMATS = ("table", "csv", "json")
 SUFFIX_FORMAT = outfiles.SUFFIX_FORMAT
@@ -224,16 +223,10 @@ def warn(lines) -> None:
 
 
 def load_and_design(path: str, overrides):
-    """Load and validate the design file, then run the design calculations."""
-    from gearcli.config import load_design
-    from gearcli.design import compute_design
+    """Load and validate the design file, then run the design calculations (:mod:`gearcli.api`)."""
+    from gearcli import api
 
-    loaded = load_design(path, overrides)  # "-" reads sys.stdin.buffer (CliRunner swaps it too)
-    try:
-        design = compute_design(loaded.design)
-    except DesignError as exc:
-        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
-    return loaded, design
+    return api.load_and_design(path, overrides)  # "-" reads sys.stdin.buffer (CliRunner swaps it too)
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]}, epilog="""\b
@@ -559,8 +552,9 @@ SWEEP_FORMATS = ("csv", "json")
 def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, scheduler, overrides, fmt, output,
           plots_dir) -> None:
     """Simulate many operating points: grids, tolerance samples, continuation up and down in speed."""
+    from gearcli.api import prepare_sweep as prepare
+    from gearcli.api import run_sweep as run
     from gearcli.io.sweep_progress import SweepProgress
-    from gearcli.sweep.session import prepare, run
 
     collector_on()
     target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work

@@ -2,12 +2,21 @@
 
 from __future__ import annotations
 
+from gearcli.core.text import shorten
+
 EXIT_OK = 0
 EXIT_FAILED = 1  # the run failed: solver failure, infeasible design
 EXIT_USAGE = 2  # bad usage or bad design file
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143  # 128 + SIGTERM, as a shell reports it
 EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE: the reader went away (`gearcli ... | head -1`); nothing printed
+
+
+def located(message: str, source: str | None, key: str | None) -> str:
+    """``source: key: message``, each part printed literally and capped (a hostile key cannot flood a terminal)."""
+    where = ": ".join(shorten(p) for p in (source, key) if p)
+    text = shorten(message, 2000)
+    return f"{where}: {text}" if where else text
 
 
 class GearcliError(Exception):
@@ -28,11 +37,7 @@ class ConfigError(GearcliError):
         super().__init__(self.format())
 
     def format(self) -> str:
-        from gearcli.io.text import shorten
-
-        where = ": ".join(shorten(p) for p in (self.source, self.key) if p)
-        message = shorten(self.message, 2000)
-        return f"{where}: {message}" if where else message
+        return located(self.message, self.source, self.key)
 
 
 class DesignError(GearcliError):
@@ -44,10 +49,7 @@ class DesignError(GearcliError):
         self.key = key
         self.source = source
         self.message = message
-        from gearcli.io.text import shorten
-
-        where = ": ".join(shorten(p) for p in (source, key) if p)
-        super().__init__(f"{where}: {shorten(message, 2000)}" if where else shorten(message, 2000))
+        super().__init__(located(message, source, key))
 
 
 class SimulationError(GearcliError):

@@ -72,7 +72,7 @@ def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | N
     """Read, parse, override and validate a design file; ``path == "-"`` reads ``stdin`` (default
     ``sys.stdin.buffer``). Raises :class:`ConfigError` (or :class:`ConfigErrors`) on any problem."""
     source = STDIN if path == "-" else path
-    raw = _read(path, stdin)
+    raw = read_bytes(path, stdin)
     data = _parse(raw, source)
     paths = _overrides.apply_all(data, overrides)
     design = _validate(data, source, paths)
@@ -86,7 +86,7 @@ def _digest(raw: bytes, overrides: Sequence[str]) -> str:
     return h.hexdigest()
 
 
-def _read(path: str, stdin: BinaryIO | None) -> bytes:
+def read_bytes(path: str, stdin: BinaryIO | None = None) -> bytes:
     """The raw bytes of the file (or stdin), at most :data:`MAX_BYTES`."""
     if path == "-":
         stream = stdin if stdin is not None else sys.stdin.buffer

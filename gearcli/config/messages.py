@@ -15,7 +15,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from gearcli.config.keys import Resolved, Segment, resolve, suggest, unknown_key_hint
-from gearcli.io.text import shorten
+from gearcli.core.text import shorten
 
 _BOUNDS = {"greater_than": ("gt", ">"), "greater_than_equal": ("ge", "≥"),
            "less_than": ("lt", "<"), "less_than_equal": ("le", "≤")}

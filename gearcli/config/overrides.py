@@ -24,8 +24,8 @@ from pydantic import BaseModel
 from gearcli.config.keys import Segment, container, format_path, is_model, item_type, unknown_key_hint, unwrap
 from gearcli.config.messages import got
 from gearcli.config.schema import DesignFile, Input, Load, Target
+from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
-from gearcli.io.text import shorten
 
 SOURCE = "--set"
 

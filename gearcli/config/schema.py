@@ -40,7 +40,7 @@ from gearcli.config.excitation import (
     phases_fit,
 )
 from gearcli.config.machine import Motor, Table, increasing_speeds
-from gearcli.simulate.methods import NAMES as METHODS  # the one registry of integration methods
+from gearcli.core.methods import NAMES as METHODS  # the one registry of integration methods
 
 # Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
 # tight enough that a unit mistake (1e15, a subnormal like 1e-320) is an error naming the key and the

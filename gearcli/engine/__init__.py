@@ -32,7 +32,9 @@ from typing import Any
 
 import numpy as np
 
-from gearcli.simulate.methods import METHODS
+from gearcli.core.methods import METHODS
+from gearcli.engine import blas
+from gearcli.model import elements
 
 ENGINES = ("auto", "python", "compiled")
 COMPILED_METHODS = tuple(n for n, m in METHODS.items() if "compiled" in m.engines)  # the registry's word
@@ -56,11 +58,11 @@ SUPPORTED = (
     "analytic Jacobian from the elements' partials)",
 )
 # ModelArrays fields the kernel reads; any other field with content is a feature it does not know
-_KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_radii", "conn_param", "conn_harm",
+_KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_levers", "conn_param", "body_tree",
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
                  "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol"}
-_SOURCES = ("engine/kernel.py", "engine/tableau.py", "engine/blas.py", "model/elements/__init__.py", "model/elements/mesh.py",
-            "model/elements/spring.py", "model/elements/torque.py", "model/contact_lines.py")
+_SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "model/elements/__init__.py",
+            "model/elements/torque.py", "model/contact_lines.py")  # + every compiled element's module (_source_key)
 
 _state: dict = {}
 
@@ -73,10 +75,9 @@ def available() -> bool:
 
 
 def _known_params() -> dict[int, int]:
-    """Entries of each kind's parameter row the kernel's compiled laws read (a mesh's: all, harmonics included)."""
-    from gearcli.model.elements import KIND_MESH, KIND_SPRING, N_PARAM, spring
-
-    return {KIND_SPRING: len(spring.PARAMS), KIND_MESH: N_PARAM}
+    """Entries of each compiled kind's parameter row its law reads (``ROW_WIDTH``, else its ``PARAMS``; a
+    mesh's: all, harmonics included)."""
+    return {et.kind: getattr(et.law, "ROW_WIDTH", len(et.law.PARAMS)) for et in elements.compiled_types()}
 
 
 def unsupported(arrays, method: str) -> list[str]:
@@ -123,9 +124,10 @@ def _source_key() -> str:
     pkg = Path(__file__).resolve().parent.parent
     for rel in _SOURCES:
         h.update((pkg / rel).read_bytes())
-    from gearcli.engine.blas import KEY
-
-    h.update(KEY.encode())
+    for et in elements.compiled_types():  # the registry: what the generated dispatch calls, and the laws' code
+        h.update(f"{et.kind}:{et.name}:{et.law.__name__}".encode())
+        h.update(Path(et.law.__file__ or "").read_bytes())
+    h.update(blas.KEY.encode())
     spec = importlib.util.find_spec("numba")  # the installed numba (its path and version stamp), without importing it
     if spec is not None and spec.origin:
         h.update(f"{spec.origin}:{os.stat(spec.origin).st_mtime_ns}".encode())
@@ -210,16 +212,19 @@ DEFAULT_LOAD_S = 0.6  # s: numba import + cache load on the 2-core reference mac
 
 def _tiny_model():
     """Two bodies, one mesh and one spring: a model of every argument type, to compile or load once."""
-    from gearcli.model.elements import N_PARAM, mesh
-
-    param = np.zeros((2, N_PARAM))
+    mesh = elements.mesh
+    param = np.zeros((2, elements.N_PARAM))
     param[0, :13] = (1.0, 1.0, 1e9, 1.5, 1e3, 1e4, 6e7, 0.0, 0.0, 1.5, 1.0, 20.0, 1e-4)
     param[0, mesh.I_NTE], param[0, mesh.I_TE] = 1.0, 1e-6
     param[1, :2] = (1e4, 1.0)
-    return (np.array([1, 0], dtype=np.int64), np.array([[0, 1], [1, 2]], dtype=np.int64),
-            np.array([[0.1, 0.2], [1.0, 1.0]]), param, np.array([1.0, 2.0, 3.0]),
-            np.array([0, 2, -1, 4, 0, 0], dtype=np.int64), np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]),
-            np.array([0.01, 2.0]), np.array([0.01, 5.0]))
+    bodies = np.full((2, elements.MAX_BODIES), -1, dtype=np.int64)
+    bodies[:, :2] = ((0, 1), (1, 2))
+    levers = np.zeros((2, elements.MAX_BODIES))
+    levers[:, :2] = ((0.1, -0.2), (1.0, -1.0))
+    return (np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
+            np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
+            np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
+            np.array([-1, 0, 1], dtype=np.int64))
 
 
 def _warm_up(kernel) -> None:
@@ -241,14 +246,12 @@ def _warm_up(kernel) -> None:
 
 def pack(arrays) -> tuple:
     """The kernel's model tuple from :class:`~gearcli.model.ModelArrays`."""
-    from gearcli.model.elements import KIND_MESH, mesh
-
     kind = np.ascontiguousarray(arrays.conn_kind, dtype=np.int64)
     bodies = np.ascontiguousarray(arrays.conn_bodies, dtype=np.int64)
     param = np.ascontiguousarray(arrays.conn_param, dtype=np.float64)
-    meshes = [c for c in range(kind.size) if kind[c] == KIND_MESH]
-    tv = [c for c in meshes if mesh.time_varying(param[c])]
-    phased = [c for c in meshes if mesh.phased(param[c])]
+    laws = [elements.law_of(k) for k in kind]
+    tv = [c for c in range(kind.size) if laws[c].time_varying(param[c])]
+    phased = [c for c in range(kind.size) if laws[c].phased(param[c])]
     last_angle = max((int(bodies[c, 0]) for c in phased), default=0)
     ipar = np.array([arrays.drive_kind, arrays.i_omega0, arrays.i_theta, arrays.i_quad, last_angle, len(tv)],
                     dtype=np.int64)
@@ -256,8 +259,9 @@ def pack(arrays) -> tuple:
                      arrays.drive_angle_rad, arrays.load_clock_s], dtype=np.float64)
     ripple = np.ascontiguousarray(np.asarray(arrays.drive_ripple, dtype=np.float64).reshape(-1))
     fluct = np.ascontiguousarray(np.asarray(arrays.load_fluct, dtype=np.float64).reshape(-1))
-    return (kind, bodies, np.ascontiguousarray(arrays.conn_radii, dtype=np.float64), param,
-            np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct)
+    return (kind, bodies, np.ascontiguousarray(arrays.conn_levers, dtype=np.float64), param,
+            np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct,
+            np.ascontiguousarray(arrays.body_tree, dtype=np.int64))
 
 
 # ------------------------------------------------------------------------------------------- auto

@@ -24,46 +24,29 @@ non-finite state once per accepted step, the evaluation budget, the energy watch
 from __future__ import annotations
 
 import math
-import types
 from typing import Any
 
 import numba
 import numpy as np
 
+from gearcli import engine as _engine
 from gearcli.engine import blas as _blas
+from gearcli.engine import dispatch as _dispatch
 from gearcli.engine import tableau as tb
-from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements import mesh as _mesh_mod
-from gearcli.model.elements import spring as _spring_mod
 from gearcli.model.elements import torque as _torque_mod
 
 jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
 
-
-def _jit_module(mod) -> dict:
-    """numba-compiled copies of a module's own functions, each seeing the others' compiled copies (the
-    element laws call their helpers by module-global name)."""
-    scope = dict(mod.__dict__)
-    out = {}
-    for name, obj in mod.__dict__.items():
-        if isinstance(obj, types.FunctionType) and obj.__module__ == mod.__name__:
-            clone = types.FunctionType(obj.__code__, scope, name, obj.__defaults__, obj.__closure__)
-            clone.__qualname__ = obj.__qualname__
-            out[name] = jit(clone)
-    scope.update(out)
-    return out
-
-
-_MESH = _jit_module(_mesh_mod)
-_SPRING = _jit_module(_spring_mod)
-mesh_force, mesh_potential, mesh_damped = _MESH["force"], _MESH["potential"], _MESH["damped"]
-mesh_penetration, mesh_dte = _MESH["penetration"], _MESH["dynamic_transmission_error"]
-_TORQUE = _jit_module(_torque_mod)
+# the element laws, dispatched by kind: generated from the registry (gearcli.engine.dispatch)
+_D = _dispatch.build(_engine.cache_dir())
+KINDS = _D.KINDS
+conn_force, conn_power_gradient, conn_potential = _D.conn_force, _D.conn_power_gradient, _D.conn_potential
+conn_channel, conn_n_channels, conn_damped = _D.conn_channel, _D.conn_n_channels, _D.conn_damped
+conn_tv, conn_phased, conn_excited = _D.conn_tv, _D.conn_phased, _D.conn_excited
+conn_phase_per_rad = _D.conn_phase_per_rad
+_TORQUE = _dispatch.jit_module(_torque_mod)
 torque_ripple, torque_fluctuation = _TORQUE["ripple"], _TORQUE["fluctuation"]
-spring_force, spring_potential, spring_damped = _SPRING["force"], _SPRING["potential"], _SPRING["damped"]
-I_TV, I_Z, I_NKS, I_NTE = _mesh_mod.I_TV, _mesh_mod.I_Z, _mesh_mod.I_NKS, _mesh_mod.I_NTE
-TWO_PI = 2.0 * math.pi
 
 # DOP853 (scipy's class attributes)
 N_STAGES = tb.N_STAGES
@@ -84,8 +67,10 @@ INITIAL_EXPONENT = 1.0 / (7 + 1)
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
 FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3, 4, 5
-# the model tuple: (kind, bodies, radii, param, inertia, ipar, fpar, ripple row, fluctuation row); the rows are
-# the flat (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque
+# the model tuple: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree): bodies
+# and signed levers by connector and slot (-1 / 0 padded; gearcli.model.ModelArrays), the rows the flat
+# (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque, tree the connector that
+# gives each body's angle
 
 # ----------------------------------------------------------------------------------- vector sums
 # scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
@@ -156,45 +141,6 @@ else:  # pragma: no cover - a numpy without a findable BLAS
 
 
 @jit
-def conn_force(kind, P, d, dd, phi, wphi):
-    if kind == KIND_MESH:
-        return mesh_force(P, d, dd, phi, wphi)
-    return spring_force(P, d, dd, phi, wphi)
-
-
-@jit
-def conn_potential(kind, P, d, phi):
-    if kind == KIND_MESH:
-        return mesh_potential(P, d, phi)
-    return spring_potential(P, d, phi)
-
-
-@jit
-def conn_damped(kind, P):
-    if kind == KIND_MESH:
-        return mesh_damped(P)
-    return spring_damped(P)
-
-
-@jit
-def conn_tv(kind, P):
-    """A time-varying stiffness (contact lines or stiffness harmonics): its work is a quadrature."""
-    return kind == KIND_MESH and (P[I_TV] != 0.0 or P[I_NKS] != 0.0)
-
-
-@jit
-def conn_phased(kind, P):
-    """The force depends on the mesh phase (time-varying stiffness or a transmission error)."""
-    return kind == KIND_MESH and (P[I_TV] != 0.0 or P[I_NKS] != 0.0 or P[I_NTE] != 0.0)
-
-
-@jit
-def conn_excited(kind, P):
-    """A transmission error: the force depends on the phase rate, and the TE does work on the bodies."""
-    return kind == KIND_MESH and P[I_NTE] != 0.0
-
-
-@jit
 def ramp(t, value, ramp_s):
     """``STEP(t, 0, 0, ramp_s, value)`` as the generated code writes it."""
     if ramp_s <= 0.0 or value == 0.0:
@@ -227,7 +173,7 @@ def input_motion(t, v, T, start):
 def prologue(t, y, model, th):
     """(speed drive, w0, a0, Tin, dTin/dth0, load, TL) at (t, y) and the body angles ``th`` the phased
     meshes need, as the generated prologue forms them."""
-    radii, ipar, fpar, rip, flu = model[2], model[5], model[6], model[7], model[8]
+    lev, ipar, fpar, rip, flu, tree = model[2], model[5], model[6], model[7], model[8], model[9]
     speed = ipar[IP_DRIVE] == 0
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
@@ -251,8 +197,10 @@ def prologue(t, y, model, th):
         if flu.size > 0:
             tl = tl * torque_fluctuation(flu, t + fpar[FP_CLOCK] if fpar[FP_CLOCK] != 0.0 else t)
     th[0] = th0
-    for c in range(ipar[IP_LAST_ANGLE]):
-        th[c + 1] = (radii[c, 0] * th[c] - y[c]) * (1.0 / radii[c, 1])
+    for b in range(1, ipar[IP_LAST_ANGLE] + 1):  # theta_b = (r_a theta_a - delta_c) / r_b along the tree
+        c = tree[b]
+        if c >= 0:
+            th[b] = (lev[c, 0] * th[model[1][c, 0]] - y[c]) * (1.0 / -lev[c, 1])
     return speed, w0, a0, tin, dtin, load, tl
 
 
@@ -264,10 +212,36 @@ def body_speed(y, b, first, i_w0, w0):
 
 
 @jit
+def deflection_rate(c, y, model, first, i_w0, w0):
+    """delta_c' = sum_j s_j r_j w_{bodies[j]}, in slot order."""
+    bodies, lev = model[1], model[2]
+    dd = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
+    for s in range(1, bodies.shape[1]):
+        if bodies[c, s] >= 0:
+            dd = dd + lev[c, s] * body_speed(y, bodies[c, s], first, i_w0, w0)
+    return dd
+
+
+@jit
+def body_torque(i, model, fc):
+    """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index)."""
+    bodies, lev = model[1], model[2]
+    x = 0.0
+    seen = False
+    for c in range(bodies.shape[0]):
+        for s in range(bodies.shape[1]):
+            if bodies[c, s] == i:
+                term = -lev[c, s] * fc[c]
+                x = x + term if seen else term
+                seen = True
+    return x
+
+
+@jit
 def rhs(t, y, dy, model, th, fc):
     """dy = f(t, y) of the scene ``model``; ``th`` (n_bodies) and ``fc`` (2 n_conn: forces, then the
     transmission errors' powers) are scratch."""
-    kind, bodies, radii, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
+    kind, bodies, param, inertia, ipar = model[0], model[1], model[3], model[4], model[5]
     nc = kind.shape[0]
     nb = inertia.shape[0]
     i_w0 = ipar[IP_W0]
@@ -281,12 +255,11 @@ def rhs(t, y, dy, model, th, fc):
     have_tv = False
     for c in range(nc):
         a = bodies[c, 0]
-        b = bodies[c, 1]
         P = param[c]
-        dd = radii[c, 0] * body_speed(y, a, first, i_w0, w0) - radii[c, 1] * body_speed(y, b, first, i_w0, w0)
+        dd = deflection_rate(c, y, model, first, i_w0, w0)
         tv = conn_tv(kind[c], P)
-        phi = (P[I_Z] / TWO_PI) * th[a] if conn_phased(kind[c], P) else 0.0
-        wphi = (P[I_Z] / TWO_PI) * body_speed(y, a, first, i_w0, w0) if conn_excited(kind[c], P) else 0.0
+        phi = conn_phase_per_rad(kind[c], P) * th[a] if conn_phased(kind[c], P) else 0.0
+        wphi = conn_phase_per_rad(kind[c], P) * body_speed(y, a, first, i_w0, w0) if conn_excited(kind[c], P) else 0.0
         f, _, _, _, _, q, u, te = conn_force(kind[c], P, y[c], dd, phi, wphi)
         fc[c] = f
         fc[nc + c] = te
@@ -298,12 +271,7 @@ def rhs(t, y, dy, model, th, fc):
             tvp = tvp + u if have_tv else u
             have_tv = True
     for i in range(first, nb):
-        if i > 0:
-            x = radii[i - 1, 1] * fc[i - 1]
-            if i < nc:
-                x = x - radii[i, 0] * fc[i]
-        else:
-            x = -(radii[0, 0] * fc[0])
+        x = body_torque(i, model, fc)
         if i == 0 and not speed:
             x = x + tin
         if i == nb - 1 and load:
@@ -312,7 +280,7 @@ def rhs(t, y, dy, model, th, fc):
     if i_th >= 0:
         dy[i_th] = w0
     if speed:
-        p_in = (radii[0, 0] * fc[0] + inertia[0] * a0) * w0
+        p_in = (-body_torque(0, model, fc) + inertia[0] * a0) * w0
     else:
         p_in = tin * w0
     for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)
@@ -340,7 +308,7 @@ def stored_energy(t, y, model):
     total = 0.5 * ke
     for c in range(kind.shape[0]):
         if not conn_tv(kind[c], param[c]):  # a transmission error's mesh at its phase
-            phi = (param[c, I_Z] / TWO_PI) * th[bodies[c, 0]] if conn_phased(kind[c], param[c]) else 0.0
+            phi = conn_phase_per_rad(kind[c], param[c]) * th[bodies[c, 0]] if conn_phased(kind[c], param[c]) else 0.0
             total += conn_potential(kind[c], param[c], y[c], phi)
     if ipar[IP_NTV] > 0:
         total += y[ipar[IP_QUAD] + 3]
@@ -824,76 +792,71 @@ def evaluate_many(model, t, y, times):
 
 @jit
 def connector_series(kind, P, d, dd, phi, wphi):
-    """Force, stored energy, signed penetration and dynamic transmission error of one connector at every
-    sample (the output channels of :func:`gearcli.model.outputs.connector_series`, through the same element
-    laws)."""
+    """Force, stored energy and the element's own output channels (its ``CHANNELS``, rows of ``ch``) of one
+    connector at every sample (:func:`gearcli.model.outputs.connector_series`, through the same element laws)."""
     n = d.size
     F = np.empty(n)
     U = np.empty(n)
-    pen = np.zeros(n)
-    q = d.copy()
+    ch = np.zeros((conn_n_channels(kind), n))
     for j in range(n):
         F[j] = conn_force(kind, P, d[j], dd[j], phi[j], wphi[j])[0]
         U[j] = conn_potential(kind, P, d[j], phi[j])
-        if kind == KIND_MESH:
-            pen[j] = mesh_penetration(P, d[j], phi[j])
-            q[j] = mesh_dte(P, d[j], phi[j])
-    return F, U, pen, q
+        for i in range(ch.shape[0]):
+            ch[i, j] = conn_channel(kind, P, i, d[j], phi[j])
+    return F, U, ch
 
 
 # ------------------------------------------------------------------------------------ Jacobian
-mesh_power_gradient, spring_power_gradient = _MESH["power_gradient"], _SPRING["power_gradient"]
-
-
-@jit
-def conn_power_gradient(kind, P, d, dd, phi, wphi):
-    if kind == KIND_MESH:
-        return mesh_power_gradient(P, d, dd, phi, wphi)
-    return spring_power_gradient(P, d, dd, phi, wphi)
-
-
 @jit
 def _angle_gradient(body, model, ag):
-    """ag = d(theta_body)/dy: theta_{c+1} = (r_a theta_c - delta_c) / r_b from theta_0 (a state of a torque
-    drive; a function of t alone for a speed drive)."""
-    radii = model[2]
+    """ag = d(theta_body)/dy: theta_b = (r_a theta_a - delta_c) / r_b along the tree from theta_0 (a state of
+    a torque drive; a function of t alone for a speed drive)."""
+    bodies, lev, tree = model[1], model[2], model[9]
     i_th = model[5][IP_THETA]
     ag[:] = 0.0
     if i_th >= 0:
         ag[i_th] = 1.0
-    for c in range(body):
+    depth = 0  # the path from body 0, walked from its root end
+    b = body
+    while b > 0:
+        depth += 1
+        b = bodies[tree[b], 0]
+    for k in range(depth, 0, -1):
+        b = body
+        for _ in range(k - 1):
+            b = bodies[tree[b], 0]
+        c = tree[b]
         for j in range(ag.size):
-            ag[j] *= radii[c, 0] / radii[c, 1]
-        ag[c] -= 1.0 / radii[c, 1]
+            ag[j] *= lev[c, 0] / -lev[c, 1]
+        ag[c] -= 1.0 / -lev[c, 1]
 
 
 @jit
 def _gradient(c, xd, xv, xt, xw, model, first, g, ag):
     """g = d(x_c)/dy of a connector quantity with partials xd (deflection), xv (rate), xt (mesh phase),
     xw (phase rate)."""
-    kind, bodies, radii, param = model[0], model[1], model[2], model[3]
+    kind, bodies, lev, param = model[0], model[1], model[2], model[3]
     i_w0 = model[5][IP_W0]
     a = bodies[c, 0]
-    b = bodies[c, 1]
     g[:] = 0.0
     g[c] = xd
-    if a >= first:
-        g[i_w0 + a - first] += radii[c, 0] * xv
-    if b >= first:
-        g[i_w0 + b - first] += -radii[c, 1] * xv
+    for s in range(bodies.shape[1]):
+        b = bodies[c, s]
+        if b >= first:
+            g[i_w0 + b - first] += lev[c, s] * xv
     if conn_phased(kind[c], param[c]) and xt != 0.0:
         _angle_gradient(a, model, ag)
-        k = param[c, I_Z] / TWO_PI * xt
+        k = conn_phase_per_rad(kind[c], param[c]) * xt
         for j in range(g.size):
             g[j] += ag[j] * k
     if conn_excited(kind[c], param[c]) and a >= first:
-        g[i_w0 + a - first] += param[c, I_Z] / TWO_PI * xw
+        g[i_w0 + a - first] += conn_phase_per_rad(kind[c], param[c]) * xw
 
 
 @jit
 def jacobian(t, y, Jm, model, th, g, ag):
     """Jm = df/dy of :func:`rhs`, from the elements' own partials (as the generated ``jac``)."""
-    kind, bodies, radii, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
+    kind, bodies, lev, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
     nc = kind.shape[0]
     nb = inertia.shape[0]
     n = y.size
@@ -905,26 +868,27 @@ def jacobian(t, y, Jm, model, th, g, ag):
     Jm[:, :] = 0.0
     for c in range(nc):
         a = bodies[c, 0]
-        b = bodies[c, 1]
         P = param[c]
-        ra = radii[c, 0]
-        rb = radii[c, 1]
-        dd = ra * body_speed(y, a, first, i_w0, w0) - rb * body_speed(y, b, first, i_w0, w0)
+        dd = deflection_rate(c, y, model, first, i_w0, w0)
         tv = conn_tv(kind[c], P)
         ex = conn_excited(kind[c], P)
-        phi = (P[I_Z] / TWO_PI) * th[a] if conn_phased(kind[c], P) else 0.0
-        wphi = (P[I_Z] / TWO_PI) * body_speed(y, a, first, i_w0, w0) if ex else 0.0
+        phi = conn_phase_per_rad(kind[c], P) * th[a] if conn_phased(kind[c], P) else 0.0
+        wphi = conn_phase_per_rad(kind[c], P) * body_speed(y, a, first, i_w0, w0) if ex else 0.0
         _, kd, kv, kt, kw, _, _, _ = conn_force(kind[c], P, y[c], dd, phi, wphi)
-        if a >= first:
-            Jm[c, i_w0 + a - first] = ra
-        Jm[c, i_w0 + b - first] = -rb
+        for s in range(bodies.shape[1]):
+            if bodies[c, s] >= first:
+                Jm[c, i_w0 + bodies[c, s] - first] = lev[c, s]
         _gradient(c, kd, kv, kt, kw, model, first, g, ag)
-        for j in range(n):
-            if a >= first:
-                Jm[i_w0 + a - first, j] += (-ra / inertia[a]) * g[j]
-            Jm[i_w0 + b - first, j] += (rb / inertia[b]) * g[j]
-            if c == 0 and speed:
-                Jm[iq, j] += (ra * w0) * g[j]
+        for s in range(bodies.shape[1]):  # body j takes -s_j r_j F: scattered by index
+            b = bodies[c, s]
+            if b >= first:
+                k = -lev[c, s] / inertia[b]
+                for j in range(n):
+                    Jm[i_w0 + b - first, j] += k * g[j]
+            elif b == 0 and speed:  # the drive's power: its reaction on body 0, times w0
+                k = lev[c, s] * w0
+                for j in range(n):
+                    Jm[iq, j] += k * g[j]
         if conn_damped(kind[c], P) or tv or ex:
             qd, qv, qt, qw, ud, uv, ut, uw, ed, ev, et, ew = conn_power_gradient(kind[c], P, y[c], dd, phi, wphi)
             if conn_damped(kind[c], P):

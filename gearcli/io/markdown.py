@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import gearcli
+from gearcli.core.text import markdown_inline, visible
 from gearcli.io.report_sections import Section, method_paragraph, sections, solver_lines
-from gearcli.io.text import markdown_inline, visible
 from gearcli.report.result import Report
 
 

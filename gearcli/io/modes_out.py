@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from gearcli.io.serialize import csv_text
 from gearcli.model.modes import ModalAnalysis
 
 
@@ -26,8 +27,6 @@ def modes_dict(analyses: list[ModalAnalysis]) -> dict:
 
 
 def modes_csv(analyses: list[ModalAnalysis]) -> str:
-    from gearcli.io.serialize import csv_text
-
     first = analyses[0]
     header = (["boundary", "mode", "frequency_Hz", "dominant_element"]
               + [f"shape_{b.replace(' ', '_')}" for b in first.bodies]

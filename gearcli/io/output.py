@@ -25,8 +25,9 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+from gearcli.core.text import shorten
 from gearcli.errors import OutputError
-from gearcli.io.text import shorten
+from gearcli.io.atomic import write_atomic
 
 STDOUT = "-"
 
@@ -161,8 +162,6 @@ def write_output(target: OutputTarget, text: str) -> None:
     if target.path is None:
         _write_stdout(text)
         return
-    from gearcli.io.atomic import write_atomic
-
     try:
         write_atomic(target.path, text)
     except OSError as exc:

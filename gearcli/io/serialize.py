@@ -11,7 +11,7 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 import gearcli
-from gearcli.io.text import csv_text_cell
+from gearcli.core.text import csv_text_cell
 from gearcli.results import DesignResult, SimulationResult
 
 

@@ -33,6 +33,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from gearcli.errors import ConfigError
+from gearcli.io.atomic import write_atomic
 
 MARK = "# gearcli sweep: "
 JSON_EVERY_S = 1.0
@@ -40,8 +41,6 @@ JSON_EVERY_S = 1.0
 
 def _replace(path: Path, text: str) -> None:
     """The one place a whole sweep file is written (atomically); swap for the shared -o helper."""
-    from gearcli.io.atomic import write_atomic
-
     write_atomic(path, text)
 
 

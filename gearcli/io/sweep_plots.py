@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from gearcli.io.plots import _figure, _save
+from gearcli.sweep.modes import SPEED_KEYS, campbell
 
 COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
 #: (title with unit, columns of one stage as {suffix: line style})
@@ -63,8 +64,6 @@ def write_sweep_plots(session, rows: Sequence[dict], plots_dir: str) -> list[Pat
 
 
 def _speed_keys() -> tuple[str, ...]:
-    from gearcli.sweep.modes import SPEED_KEYS
-
     return SPEED_KEYS
 
 
@@ -119,8 +118,6 @@ def _label(group: tuple, others: Sequence[str]) -> str:
 
 
 def _campbell(session, axis):
-    from gearcli.sweep.modes import campbell
-
     fixed = [f"{a.key}={a.values[0]!r}" for a in session.spec.axes[1:] if a.key != axis.key]
     values = sorted(axis.values, key=float)
     pts = campbell(session.scene, axis.key, values, fixed)

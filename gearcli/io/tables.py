@@ -18,7 +18,7 @@ from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 from rich.table import Table
 from rich.text import Text
 
-from gearcli.io.text import visible
+from gearcli.core.text import visible
 from gearcli.results import DesignResult, SimulationResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise

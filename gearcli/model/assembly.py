@@ -1,29 +1,35 @@
-"""The chain of bodies and connectors of one scene, and where every unknown lives in the state vector.
+"""Bodies and connectors of one scene by index, and where every unknown lives in the state vector.
 
-This module is the only one that knows indices. Bodies b = 0 .. N-1 in power-flow order:
+This module is the only one that knows indices. A connector is an element (:mod:`gearcli.model.elements`)
+placed between bodies it names by index, two or more, with a lever on each (a mesh: base radii, deflection
+along the line of action; a spring: 1, deflection = twist): ``delta_c = sum_j s_j r_j theta_{bodies[j]}``,
+and its force ``F`` puts ``-s_j r_j F`` on body ``bodies[j]`` (two bodies: ``delta = r_a theta_a - r_b
+theta_b``, ``-r_a F`` on a, ``+r_b F`` on b). Every consumer scatters forces to bodies by these indices.
+
+A parallel-stage reducer (:func:`_chain`) numbers its bodies in power-flow order,
 
     [motor]  shaft 1  [shaft k+1 gear end | shaft k+1 pinion end] ...  last shaft  [drum]
 
-Connector c joins bodies (c, c+1): the input coupling, the meshes, the flexible shafts, the load
-coupling, each with radii (r_a, r_b) so that its deflection is ``delta_c = r_a theta_c - r_b theta_{c+1}``
-(a mesh: base radii, deflection along the line of action; a spring: r = 1, deflection = twist).
+and its connector c joins bodies (c, c+1): the input coupling, the meshes, the flexible shafts, the load
+coupling. ``ModelSpec.elements`` adds further elements between any of these bodies.
 
 State vector (deflection coordinates, not absolute angles: a mesh deflection of ~1e-5 m formed as the
 difference of two ~1-10 m products of radius and angle would lose 5-6 of its 16 digits, so it is
-integrated directly, ``delta_c' = r_a w_c - r_b w_{c+1}``):
+integrated directly, ``delta_c' = sum_j s_j r_j w_{bodies[j]}``):
 
     y = [delta_0 .. delta_{nc-1} | w of the free bodies | theta_0 (torque drive, time-varying meshes only)
          | W_in, W_load, E_damp (, W_el_tv)]
 
 With ``drive = "speed"`` body 0 has no state (its motion is the analytic STEP profile); with
-``drive = "torque"`` it is free. Angles, needed only for the mesh phase of phase-dependent meshes
-(time-varying stiffness, stiffness harmonics, transmission error) and for an input torque ripple, come
-from theta_0 (analytic, or the extra state) and ``theta_{c+1} = (r_a theta_c - delta_c) / r_b``.
+``drive = "torque"`` it is free. The drive acts on body 0, the load on the last body. Angles, needed only
+for the phase of phase-dependent elements (time-varying stiffness, stiffness harmonics, transmission
+error) and for an input torque ripple, come from theta_0 (analytic, or the extra state) along a tree of
+two-body connectors (:attr:`Layout.tree`): ``theta_b = (r_a theta_a - delta_c) / r_b``.
 
-A mesh with ``damping_ratio`` gets its viscous damping here, where the chain is known
-(:func:`_viscous`): ``c = 2 zeta sqrt(k_lin m_e)``, k_lin the mesh's dF/d delta at the static load,
-``m_e = 1 / (r_a^2 / J_a + r_b^2 / J_b)`` from the two bodies it joins (a speed-driven body counts as
-infinitely heavy).
+Each element's row is completed here once the bodies are known (:func:`_assembled`): a mesh with
+``damping_ratio`` gets ``c = 2 zeta sqrt(k_lin m_e)``, k_lin the mesh's dF/d delta at the static load,
+``m_e = 1 / sum_j r_j^2 / J_j`` from the bodies it joins (a speed-driven body counts as infinitely heavy).
+The static forces are still those of the chain (:mod:`gearcli.model.linear`).
 """
 
 from __future__ import annotations
@@ -32,7 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from gearcli.model.elements import KIND_MESH, KIND_SPRING, N_HARM, N_PARAM, machine, mesh, spring, torque
+from gearcli.model.elements import KIND_MESH, MAX_BODIES, N_PARAM, kind_of, law_of, machine, mesh, torque
 from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
@@ -47,18 +53,43 @@ class Body:
 
 @dataclass(frozen=True)
 class Connector:
-    kind: int  # KIND_SPRING or KIND_MESH
-    a: int
-    b: int
-    ra: float
-    rb: float
+    """One element placed in the scene: its kind (:mod:`gearcli.model.elements`), the bodies it joins by
+    index and its lever on each (a mesh: base radii; a spring: 1), its parameter row, and its role."""
+
+    kind: int
+    bodies: tuple[int, ...]
+    radii: tuple[float, ...]
     params: tuple[float, ...]  # the element's parameter row, as Python floats
     label: str  # "input coupling", "stage 1 mesh", "shaft 2", "load coupling"
     index: int = -1  # 0-based stage of a mesh or reducer shaft of a flexible shaft; -1 for couplings
+    role: str = ""  # "mesh" (a stage's mesh), "shaft" (a flexible reducer shaft), "coupling", or "" (other)
 
     @property
     def element(self):
-        return mesh if self.kind == KIND_MESH else spring
+        """The element's law module (the registry's)."""
+        return law_of(self.kind)
+
+    @property
+    def a(self) -> int:
+        """The first body (a mesh's pinion: its phase is the element's)."""
+        return self.bodies[0]
+
+    @property
+    def b(self) -> int:
+        return self.bodies[1]
+
+    @property
+    def ra(self) -> float:
+        return self.radii[0]
+
+    @property
+    def rb(self) -> float:
+        return self.radii[1]
+
+    @property
+    def levers(self) -> tuple[float, ...]:
+        """Signed levers s_j r_j: delta = sum_j levers[j] theta_{bodies[j]}; body j takes -levers[j] F."""
+        return tuple(s * r for s, r in zip(self.element.SIGNS, self.radii, strict=True))
 
     @property
     def damped(self) -> bool:
@@ -82,7 +113,12 @@ class Connector:
         return self.element.excited(self.params)
 
 
+def _row(values) -> tuple[float, ...]:
+    return tuple(float(v) for v in values)
+
+
 def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
+    """The parallel-stage drivetrain: a chain of bodies, each connector joining the last body to a new one."""
     bodies: list[Body] = []
     conns: list[Connector] = []
 
@@ -90,27 +126,31 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
         ratio = 1.0 if not conns else bodies[-1].ratio * conns[-1].ra / conns[-1].rb
         bodies.append(Body(float(inertia), label, ratio))
 
-    def join(kind: int, row: np.ndarray, ra: float, rb: float, label: str, index: int = -1) -> None:
+    def join(name: str, part, ra: float, rb: float, label: str, role: str, index: int = -1) -> None:
+        kind = kind_of(name)
         n = len(bodies)
-        conns.append(Connector(kind, n - 1, n, ra, rb, tuple(float(v) for v in row), label, index))
+        conns.append(Connector(kind, (n - 1, n), (ra, rb), _row(law_of(kind).pack(part)), label, index, role))
 
     if spec.motor is not None:
         body(spec.motor.inertia_kg_m2, "motor")
-        join(KIND_SPRING, spring.pack(spec.motor.coupling), 1.0, 1.0, "input coupling")
+        join("spring", spec.motor.coupling, 1.0, 1.0, "input coupling", "coupling")
     body(spec.inertias_kg_m2[0], "shaft 1")
     for k, m in enumerate(spec.meshes):
-        join(KIND_MESH, mesh.pack(m), m.base_radius_pinion_m, m.base_radius_gear_m, f"stage {k + 1} mesh", k)
+        join("mesh", m, m.base_radius_pinion_m, m.base_radius_gear_m, f"stage {k + 1} mesh", "mesh", k)
         flex = spec.shafts[k] if k < len(spec.shafts) else None
         if flex is None:
             body(spec.inertias_kg_m2[k + 1], f"shaft {k + 2}")
             continue
         body(flex.gear_end_kg_m2, f"shaft {k + 2} gear end")
-        join(KIND_SPRING, spring.pack(flex.spring), 1.0, 1.0, f"shaft {k + 2}", k + 1)
+        join("spring", flex.spring, 1.0, 1.0, f"shaft {k + 2}", "shaft", k + 1)
         body(spec.inertias_kg_m2[k + 1] - flex.gear_end_kg_m2, f"shaft {k + 2} pinion end")
     if spec.drum is not None:
-        join(KIND_SPRING, spring.pack(spec.drum.coupling), 1.0, 1.0, "load coupling")
+        join("spring", spec.drum.coupling, 1.0, 1.0, "load coupling", "coupling")
         body(spec.drum.inertia_kg_m2, "drum")
-    return bodies, _loss_widths(spec, bodies, _viscous(spec, bodies, conns))
+    for e in spec.elements:  # further elements between bodies of the chain, by body index
+        kind = kind_of(e.name)
+        conns.append(Connector(kind, tuple(e.bodies), tuple(e.radii), _row(law_of(kind).pack(e.part)), e.label))
+    return bodies, _loss_widths(spec, bodies, _assembled(spec, bodies, conns))
 
 
 def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
@@ -122,27 +162,32 @@ def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) ->
             F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
             v = abs(x.ra * bodies[x.a].ratio * spec.drive.speed_rad_s)
             row = mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * v)
-            x = Connector(x.kind, x.a, x.b, x.ra, x.rb, tuple(float(v) for v in row), x.label, x.index)
+            x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role)
         out.append(x)
     return out
 
 
-MIN_APPROACH_M = 1e-6  # an unloaded Hertzian mesh's k_lin: at a 1 um approach (as the cost estimate)
-
-
-def _viscous(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
-    """Connectors with the viscous damping of every ``damping_ratio`` mesh filled in (module text)."""
+def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
+    """Each element's row once the bodies are known (:func:`ElementLaw.assembled`): the static force it
+    carries and the equivalent mass ``m_e = 1 / sum_j r_j^2 / J_j`` of the bodies it joins (a speed-driven
+    body counts as infinitely heavy). A ``damping_ratio`` mesh gets its viscous damping here."""
     out = []
     for x in conns:
-        if x.kind == KIND_MESH and x.params[mesh.I_VIS] != 0.0:
-            F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb)  # static line force
-            k_lin = mesh.linear_stiffness(x.params, F, MIN_APPROACH_M)
-            held = x.a == 0 and spec.drive.kind == "speed"
-            m_e = 1.0 / ((0.0 if held else x.ra**2 / bodies[x.a].inertia) + x.rb**2 / bodies[x.b].inertia)
-            row = mesh.with_viscous(x.params, k_lin, m_e)
-            x = Connector(x.kind, x.a, x.b, x.ra, x.rb, tuple(float(v) for v in row), x.label, x.index)
+        F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb)  # static force (chain)
+        mobility = [0.0 if (j == 0 and spec.drive.kind == "speed") else r**2 / bodies[j].inertia
+                    for j, r in zip(x.bodies, x.radii, strict=True)]
+        row = x.element.assembled(x.params, F, 1.0 / _ordered_sum(mobility))
+        if row is not x.params:
+            x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role)
         out.append(x)
     return out
+
+
+def _ordered_sum(values: list[float]) -> float:
+    total = values[0]
+    for v in values[1:]:
+        total = total + v
+    return total
 
 
 @dataclass(frozen=True)
@@ -151,12 +196,11 @@ class ModelArrays:
     every scene). Kinds and parameter rows: :mod:`gearcli.model.elements`."""
 
     body_inertia: np.ndarray  # float64[N]
-    conn_kind: np.ndarray  # int64[nc]
-    conn_bodies: np.ndarray  # int64[nc, 2]
-    conn_radii: np.ndarray  # float64[nc, 2]
+    conn_kind: np.ndarray  # int64[nc]: the element kind (gearcli.model.elements registry)
+    conn_bodies: np.ndarray  # int64[nc, MAX_BODIES]: the bodies each connector joins, -1 padded
+    conn_levers: np.ndarray  # float64[nc, MAX_BODIES]: signed levers s_j r_j (delta = sum lever theta), 0 padded
     conn_param: np.ndarray  # float64[nc, N_PARAM]
-    conn_harm: np.ndarray  # float64[nc, N_HARM, 4]: TE amplitude m, TE phase rad, stiffness harmonic, phase
-    #   (a copy of the mesh row's harmonics, gearcli.model.elements.mesh.I_TE ...; the row is authoritative)
+    body_tree: np.ndarray  # int64[N]: the two-body connector whose deflection gives a body's angle, -1 for body 0
     drive_kind: int  # 0 speed, 1 torque, 2 motor
     drive_value: float  # rad/s or N m
     drive_ramp_s: float
@@ -217,17 +261,17 @@ class Layout:
     @property
     def stage_conn(self) -> tuple[int, ...]:
         """Connector index of each mesh, in stage order."""
-        return tuple(c for c, x in enumerate(self.connectors) if x.kind == KIND_MESH)
+        return tuple(c for c, x in enumerate(self.connectors) if x.role == "mesh")
 
     @property
     def shaft_body(self) -> tuple[int, ...]:
         """Body of each reducer shaft: shaft 1 the input pinion's, the others their gear end."""
-        return (self.stage_conn[0],) + tuple(self.connectors[c].b for c in self.stage_conn)
+        return (self.connectors[self.stage_conn[0]].a,) + tuple(self.connectors[c].b for c in self.stage_conn)
 
     @property
     def shaft_conn(self) -> dict[int, int]:
         """Reducer shaft (0-based) -> its spring connector, for the flexible shafts."""
-        return {x.index: c for c, x in enumerate(self.connectors) if x.label.startswith("shaft ")}
+        return {x.index: c for c, x in enumerate(self.connectors) if x.role == "shaft"}
 
     def conn_named(self, label: str) -> int | None:
         return next((c for c, x in enumerate(self.connectors) if x.label == label), None)
@@ -333,14 +377,41 @@ class Layout:
             names.append("th0")
         return names + [f"_q{j}" for j in range(self.n_quad)]
 
+    @property
+    def tree(self) -> tuple[int, ...]:
+        """Per body, the two-body connector that gives its angle from an earlier body's,
+        ``theta_b = (r_a theta_a - delta_c) / r_b`` (the first connector with ``b`` as its second body and
+        an earlier first body); -1 for body 0 and for a body no such connector reaches."""
+        out = [-1] * self.n_bodies
+        for c, x in enumerate(self.connectors):
+            if len(x.bodies) == 2 and 0 <= x.a < x.b and out[x.b] < 0:
+                out[x.b] = c
+        return tuple(out)
+
+    def angle_path(self, body: int) -> list[int]:
+        """The tree connectors from body 0 to ``body``, in order (ValueError when the tree does not reach it)."""
+        tree = self.tree
+        path: list[int] = []
+        while body > 0:
+            c = tree[body]
+            if c < 0:
+                raise ValueError(f"no two-body connector gives the angle of body {body} ({self.bodies[body].label})")
+            path.append(c)
+            body = self.connectors[c].a
+        return path[::-1]
+
     def angle_gradient(self, body: int) -> dict[int, float]:
-        """d(theta_body)/dy as {column: coefficient}: theta_{c+1} = (r_a theta_c - delta_c) / r_b."""
+        """d(theta_body)/dy as {column: coefficient}: theta_b = (r_a theta_a - delta_c) / r_b along the tree."""
         grad: dict[int, float] = {self.i_theta: 1.0} if self.i_theta is not None else {}
-        for c in range(body):
+        for c in self.angle_path(body):
             x = self.connectors[c]
             grad = {col: x.ra / x.rb * v for col, v in grad.items()}
             grad[self.i_delta(c)] = grad.get(self.i_delta(c), 0.0) - 1.0 / x.rb
         return grad
+
+    def acting_on(self, body: int) -> list[tuple[int, int]]:
+        """(connector, slot) of every connector that acts on ``body``, in connector order."""
+        return [(c, j) for c, x in enumerate(self.connectors) for j, b in enumerate(x.bodies) if b == body]
 
     def body_speeds(self, y: np.ndarray, w0) -> np.ndarray:
         """Speeds of all bodies from states ``y`` (n_states, ...) and the input body's ``w0``."""
@@ -351,18 +422,18 @@ class Layout:
         conns = self.connectors
         nc = len(conns)
         param = np.zeros((nc, N_PARAM))
-        harm = np.zeros((nc, N_HARM, 4))
+        bodies = np.full((nc, MAX_BODIES), -1, dtype=np.int64)
+        levers = np.zeros((nc, MAX_BODIES))
         for c, x in enumerate(conns):
             param[c] = x.params + (0.0,) * (N_PARAM - len(x.params))
-            if x.kind == KIND_MESH:
-                for i, start in enumerate((mesh.I_TE, mesh.I_TEP, mesh.I_KS, mesh.I_KSP)):
-                    harm[c, :, i] = param[c, start:start + N_HARM]
+            bodies[c, :len(x.bodies)] = x.bodies
+            levers[c, :len(x.bodies)] = x.levers
         drive = self.drive
         return ModelArrays(
             body_inertia=np.array(self.inertias), conn_kind=np.array([x.kind for x in conns], dtype=np.int64),
-            conn_bodies=np.array([[x.a, x.b] for x in conns], dtype=np.int64).reshape(nc, 2),
-            conn_radii=np.array([[x.ra, x.rb] for x in conns]).reshape(nc, 2), conn_param=param,
-            conn_harm=harm, drive_kind=0 if self.speed_drive else 2 if self.motor_drive else 1,
+            conn_bodies=bodies, conn_levers=levers, conn_param=param,
+            body_tree=np.array(self.tree, dtype=np.int64),
+            drive_kind=0 if self.speed_drive else 2 if self.motor_drive else 1,
             drive_value=drive.speed_rad_s if self.speed_drive else drive.torque_Nm, drive_ramp_s=drive.ramp_s,
             drive_ripple=np.array(self.ripple, float).reshape(-1, 2), drive_angle_rad=float(drive.angle_rad),
             load_value_Nm=self.load.torque_Nm, load_ramp_s=self.load.ramp_s,

@@ -33,7 +33,7 @@ import numpy as np
 
 from gearcli.model.assembly import Connector, Layout
 from gearcli.model.elements import machine, torque
-from gearcli.model.elements.mesh import loss_factors, phase_per_rad
+from gearcli.model.elements.mesh import loss_factors
 
 
 def lit(x: float) -> str:
@@ -92,9 +92,12 @@ def _prologue(lay: Layout) -> list[str]:
             lines.append(f"    TL = TL * _fluct(_FLU, {clock})")
         if lay.load_law:  # T_L g(w_N): dTL = dT_L/dw_N
             lines += [f"    gL, dgL = _load(_LOD, w{lay.n_bodies - 1})", "    dTL = TL * dgL", "    TL = TL * gL"]
-    for c in range(lay.last_angle_body):  # theta_{c+1} = (r_a theta_c - delta_c) / r_b
-        x = lay.connectors[c]
-        lines.append(f"    th{c + 1} = ({lit(x.ra)} * th{c} - d{c}) * {lit(1.0 / x.rb)}")
+    tree = lay.tree
+    for b in range(1, lay.last_angle_body + 1):  # theta_b = (r_a theta_a - delta_c) / r_b along the tree
+        c = tree[b]
+        if c >= 0:
+            x = lay.connectors[c]
+            lines.append(f"    th{b} = ({lit(x.ra)} * th{x.a} - d{c}) * {lit(1.0 / x.rb)}")
     return lines
 
 
@@ -106,20 +109,24 @@ def _phase(x: Connector) -> str:
     """The mesh phase phi = z_p theta_p / 2 pi (cycles) of a phase-dependent mesh; 0.0 otherwise."""
     if not x.phased:
         return "0.0"
-    return f"{lit(phase_per_rad(x.params))} * th{x.a}"
+    return f"{lit(x.element.phase_per_rad(x.params))} * th{x.a}"
 
 
 def _phase_rate(x: Connector) -> str:
     """phi' = z_p w_p / 2 pi of a mesh with a transmission error; 0.0 otherwise."""
     if not x.excited:
         return "0.0"
-    return f"{lit(phase_per_rad(x.params))} * w{x.a}"
+    return f"{lit(x.element.phase_per_rad(x.params))} * w{x.a}"
 
 
 def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
     x = lay.connectors[c]
     args = f"(_P{c}, d{c}, dd{c}, {_phase(x)}, {_phase_rate(x)})"
-    out = [f"    dd{c} = {_scaled(x.ra, f'w{x.a}')} - {_scaled(x.rb, f'w{x.b}')}"]
+    rate = ""
+    for j, (body, r, s) in enumerate(zip(x.bodies, x.radii, x.element.SIGNS, strict=True)):
+        sign = ("-" if s < 0 else "") if j == 0 else (" - " if s < 0 else " + ")
+        rate += sign + _scaled(r, f"w{body}")  # delta' = sum_j s_j r_j w_j
+    out = [f"    dd{c} = {rate}"]
     if not jacobian:
         return out + [f"    f{c}, _, _, _, _, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}"] + _loss_lines(lay, c)
     out.append(f"    f{c}, kd{c}, kv{c}, kt{c}, kw{c}, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}")
@@ -147,18 +154,23 @@ def _loss_lines(lay: Layout, c: int, jacobian: bool = False) -> list[str]:
     return out
 
 
-def _side(lay: Layout, c: int, side: str) -> str:
-    """The force connector c puts on its ``side`` ("a": pinion, "b": gear) body: f, or f_a / f_b of a lossy mesh."""
-    return f"f{side}{c}" if lay.connectors[c].lossy else f"f{c}"
+def _side(lay: Layout, c: int, j: int) -> str:
+    """The force connector c puts on its body j (0: a mesh's pinion, 1: its gear): f, or f_a / f_b of a lossy
+    mesh."""
+    return f"f{'ab'[j]}{c}" if lay.connectors[c].lossy else f"f{c}"
+
+
+def _side_grad(grads, grads_side, c: int, j: int) -> dict[int, str]:
+    """d/dy of the force connector c puts on its body j (:func:`_side`)."""
+    return grads_side[c][j] if j < 2 else grads[c]
 
 
 def _body_torque(lay: Layout, i: int) -> str:
-    """Net torque on body i from its connectors, the drive and the load."""
+    """Net torque on body i from its connectors (-s_j r_j F each, scattered by index), the drive and the load."""
     terms = []
-    if i > 0:
-        terms.append(f"{lit(lay.connectors[i - 1].rb)} * {_side(lay, i - 1, 'b')}")
-    if i < lay.n_conn:
-        terms.append(f"- {lit(lay.connectors[i].ra)} * {_side(lay, i, 'a')}")
+    for c, j in lay.acting_on(i):
+        x = lay.connectors[c]
+        terms.append(f"{'+' if x.element.SIGNS[j] < 0 else '-'} {lit(x.radii[j])} * {_side(lay, c, j)}")
     if i == 0 and not lay.speed_drive:
         terms.append("+ Tin")
     if i == lay.n_bodies - 1 and lay.load.torque_Nm != 0.0:
@@ -170,7 +182,8 @@ def _body_torque(lay: Layout, i: int) -> str:
 def _quadrature_exprs(lay: Layout) -> list[str]:
     """Input power, load power, damping power, power into time-varying springs."""
     if lay.speed_drive:
-        p_in = f"({lit(lay.connectors[0].ra)} * {_side(lay, 0, 'a')} + {lit(lay.inertias[0])} * a0) * w0"
+        reaction = " + ".join(f"{lit(lay.connectors[c].levers[j])} * {_side(lay, c, j)}" for c, j in lay.acting_on(0))
+        p_in = f"({reaction} + {lit(lay.inertias[0])} * a0) * w0"
     else:
         p_in = "Tin * w0"
     p_in += "".join(f" + te{c}" for c, x in enumerate(lay.connectors) if x.excited)  # the TE's work
@@ -205,16 +218,17 @@ def _gradient(lay: Layout, c: int, name: str) -> dict[int, str]:
     mesh with a transmission error, body angles through the mesh phase z_p theta_p."""
     x = lay.connectors[c]
     g = {lay.i_delta(c): f"{name}d{c}"}
-    for body, r in ((x.a, x.ra), (x.b, -x.rb)):
+    for body, r in zip(x.bodies, x.levers, strict=True):
         col = lay.i_omega(body)
         if col is not None:
             g[col] = f"{lit(r)} * {name}v{c}"
+    per_rad = x.element.phase_per_rad(x.params)
     if x.phased:
         for col, coef in lay.angle_gradient(x.a).items():
-            g[col] = (g[col] + " + " if col in g else "") + f"{lit(coef * phase_per_rad(x.params))} * {name}t{c}"
+            g[col] = (g[col] + " + " if col in g else "") + f"{lit(coef * per_rad)} * {name}t{c}"
     col = lay.i_omega(x.a)
     if x.excited and col is not None:
-        g[col] = g[col] + f" + {lit(phase_per_rad(x.params))} * {name}w{c}"
+        g[col] = g[col] + f" + {lit(per_rad)} * {name}w{c}"
     return g
 
 
@@ -267,25 +281,23 @@ def _loss_gradient(lay: Layout, c: int, grad: dict[int, str]) -> dict[int, str]:
 def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
     rows: dict[int, dict[int, list[str]]] = {}
     grads = [_gradient(lay, c, "k") for c in range(lay.n_conn)]
-    grads_a = [_side_gradient(lay, c, g, "a") for c, g in enumerate(grads)]
-    grads_b = [_side_gradient(lay, c, g, "b") for c, g in enumerate(grads)]
-    for c, x in enumerate(lay.connectors):  # d(delta_c)/dt = r_a w_a - r_b w_b
+    grads_side = [[_side_gradient(lay, c, g, side) for side in ("a", "b")] for c, g in enumerate(grads)]
+    for c, x in enumerate(lay.connectors):  # d(delta_c)/dt = sum_j s_j r_j w_j
         row = rows.setdefault(lay.i_delta(c), {})
-        for body, r in ((x.a, x.ra), (x.b, -x.rb)):
+        for body, r in zip(x.bodies, x.levers, strict=True):
             col = lay.i_omega(body)
             if col is not None:
                 row[col] = [lit(r)]
-    for i in lay.free_bodies:  # J_i w_i' = r_b,i-1 f_{i-1} - r_a,i f_i (+ Tin - TL)
+    for i in lay.free_bodies:  # J_i w_i' = sum over its connectors of -s_j r_j f_c (+ Tin - TL)
         row = rows.setdefault(_omega(lay, i), {})
-        if i > 0:
-            _add(row, grads_b[i - 1], lit(lay.connectors[i - 1].rb / lay.inertias[i]))
-        if i < lay.n_conn:
-            _add(row, grads_a[i], lit(-lay.connectors[i].ra / lay.inertias[i]))
+        for c, j in lay.acting_on(i):
+            _add(row, _side_grad(grads, grads_side, c, j), lit(-lay.connectors[c].levers[j] / lay.inertias[i]))
     if lay.i_theta is not None:
         rows[lay.i_theta] = {_omega(lay, 0): ["1.0"]}
     q0 = lay.i_quad
-    if lay.speed_drive:  # P_in = (r_a0 f0 + J0 a0) w0, w0 prescribed
-        _add(rows.setdefault(q0, {}), grads_a[0], f"{lit(lay.connectors[0].ra)} * w0")
+    if lay.speed_drive:  # P_in = (sum s_j r_j f_c over body 0's connectors + J0 a0) w0, w0 prescribed
+        for c, j in lay.acting_on(0):
+            _add(rows.setdefault(q0, {}), _side_grad(grads, grads_side, c, j), f"{lit(lay.connectors[c].levers[j])} * w0")
     elif lay.motor_drive:  # P_in = T_m(w0) w0
         rows.setdefault(q0, {})[_omega(lay, 0)] = ["Tin + dTw * w0"]
         rows[_omega(lay, 0)].setdefault(_omega(lay, 0), []).append(f"{lit(1.0 / lay.inertias[0])} * dTw")
@@ -327,7 +339,7 @@ def jac_source(lay: Layout) -> str:
 
 def _header(lay: Layout) -> str:
     bodies = ", ".join(f"{i}: {b.label} (J = {b.inertia:.6g} kg m^2)" for i, b in enumerate(lay.bodies))
-    conns = ", ".join(f"{c}: {x.label} ({x.a}-{x.b})" for c, x in enumerate(lay.connectors))
+    conns = ", ".join(f"{c}: {x.label} ({'-'.join(map(str, x.bodies))})" for c, x in enumerate(lay.connectors))
     return (f"# generated by gearcli.model.codegen\n# bodies: {bodies}\n# connectors: {conns}\n"
             f"# state: {', '.join(lay.state_names)}\n\n")
 

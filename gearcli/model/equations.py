@@ -32,9 +32,8 @@ import numpy as np
 
 from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.codegen import compile_functions
-from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.linear import static_forces
+from gearcli.model.outputs import kinetic_energy, potential_energy
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp_motion
 
@@ -145,10 +144,8 @@ class TorsionalModel:
         F = np.abs(static_forces(self.layout))
         out = np.empty(F.size)
         for c, x in enumerate(self.layout.connectors):
-            if x.kind == KIND_MESH:
-                out[c] = mesh_el.deflection_scale(x.params, F[c], MIN_DEFLECTION_SCALE_M)
-            else:
-                out[c] = max(abs(x.element.static_deflection(x.params, F[c])), MIN_TWIST_SCALE_RAD)
+            floor = MIN_DEFLECTION_SCALE_M if x.role == "mesh" else MIN_TWIST_SCALE_RAD
+            out[c] = x.element.deflection_scale(x.params, F[c], floor)
         return out
 
     def deflection_scales_m(self) -> np.ndarray:
@@ -172,8 +169,6 @@ class TorsionalModel:
     # ------------------------------------------------------------------------------------ energy
     def energy(self, s, Y: np.ndarray) -> Energy:
         """Energy balance over the run from its samples ``s`` (``outputs.Sampled``) and states ``Y``."""
-        from gearcli.model.outputs import kinetic_energy, potential_energy
-
         lay = self.layout
         q = lay.i_quad
         ke = kinetic_energy(lay, s.omega_rad_s[:, [0, -1]])

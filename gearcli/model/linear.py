@@ -28,9 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.contact_lines import contact_length_range
-from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements import mesh as mesh_el
+from gearcli.model.elements import mesh
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
 
@@ -51,7 +49,7 @@ def static_forces(lay: Layout) -> np.ndarray:
         for c in range(lay.n_conn - 1, -1, -1):
             x = lay.connectors[c]
             if x.lossy:
-                eta = x.params[mesh_el.I_ETA]
+                eta = x.params[mesh.I_ETA]
                 factor *= 1.0 / eta if lay.load.torque_Nm >= 0 else eta
             out[c] *= factor
     return out
@@ -149,19 +147,7 @@ def tangent(lay: Layout, c: int, F: float, *, stiffest_phase: bool = False) -> t
     (``stiffest_phase``: its largest contact-line factor); unloaded, a linear mesh keeps K, a Hertzian
     one has no stiffness."""
     x = lay.connectors[c]
-    F = abs(float(F))
-    if x.kind != KIND_MESH:
-        d0 = x.element.static_deflection(x.params, F)
-        _, k, cd, _, _, _, _, _ = x.element.force(x.params, d0, 0.0, 0.0, 0.0)
-        return k, cd, d0
-    P = x.params
-    factor = contact_length_range(P[mesh_el.I_EA], P[mesh_el.I_EB])[1] if stiffest_phase and x.time_varying else 1.0
-    Q = mesh_el.linear_row(P, factor)
-    p0 = mesh_el.static_penetration(Q, F)
-    if p0 == 0.0 and Q[mesh_el.I_E] != 1.0:
-        return 0.0, 0.0, 0.0
-    _, k, cd, _, _, _, _, _ = mesh_el.force(Q, max(p0, 1e-300) / Q[mesh_el.I_CB], 0.0, 0.0, 0.0)
-    return k, cd, p0
+    return x.element.tangent(x.params, abs(float(F)), stiffest_phase)
 
 
 def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
@@ -169,7 +155,8 @@ def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
     free = lay.free_bodies if free is None else free
     R = np.zeros((lay.n_conn, lay.n_bodies))
     for c, x in enumerate(lay.connectors):
-        R[c, x.a], R[c, x.b] = x.ra, -x.rb
+        for b, lever in zip(x.bodies, x.levers, strict=True):
+            R[c, b] = lever
     return R[:, free.start:free.stop]
 
 

@@ -4,9 +4,11 @@ Every connector quantity is the element's :func:`force` (and :func:`potential`) 
 sample — the same function the right-hand side calls, so the channels cannot drift from the dynamics.
 Reported tooth forces (DESIGN contract, README "Model"): ``F_t = F_bt cos(alpha_t)``,
 ``F_r = F_t tan(alpha_t)``, ``F_a = F_t tan(beta)`` — signed like the design's static forces (negative
-on the back flank). A mesh's penetration channel is the signed penetration beyond the gap; its dynamic
-transmission error ``q = delta - e(phi)`` (:func:`gearcli.model.elements.mesh.dynamic_transmission_error`;
-the deflection when the mesh has no transmission error).
+on the back flank). An element's own channels are its ``CHANNELS`` (:mod:`gearcli.model.elements`): a
+mesh's ``penetration_m`` is the signed penetration beyond the gap, its ``dte_m`` the dynamic transmission
+error ``q = delta - e(phi)`` (:func:`gearcli.model.elements.mesh.dynamic_transmission_error`; the deflection
+when the mesh has no transmission error). Speeds and forces go to and from bodies by index (the connector's
+bodies and levers, :class:`gearcli.model.assembly.Connector`).
 """
 
 from __future__ import annotations
@@ -17,8 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import KIND_MESH, machine, torque
-from gearcli.model.elements.mesh import dynamic_transmission_error, penetration, phase_per_rad
+from gearcli.model.elements import machine, torque
 from gearcli.model.step import ramp, ramp_motion
 
 
@@ -70,8 +71,12 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
     if lay.needs_angles:
         theta = np.empty((lay.n_bodies, t.size))
         theta[0] = th0
-        for c, x in enumerate(lay.connectors):
-            theta[c + 1] = (x.ra * theta[c] - Y[c]) / x.rb
+        for b, c in enumerate(lay.tree):  # theta_b = (r_a theta_a - delta_c) / r_b, a < b
+            if c >= 0:
+                x = lay.connectors[c]
+                theta[b] = (x.ra * theta[x.a] - Y[c]) / x.rb
+            elif b > 0:
+                theta[b] = np.nan  # no two-body connector reaches it: no element reads its angle
     return omega, theta, np.asarray(a0)
 
 
@@ -80,29 +85,30 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     x = lay.connectors[c]
     el, P = x.element, x.params
     d = Y[c]
-    dd = x.ra * omega[x.a] - x.rb * omega[x.b]
-    phi = phase_per_rad(P) * theta[x.a] if x.phased else np.zeros_like(d)
-    wphi = phase_per_rad(P) * omega[x.a] if x.excited else np.zeros_like(d)
+    dd = None
+    for lever, b in zip(x.levers, x.bodies, strict=True):  # delta' = sum_j s_j r_j w_j, in slot order
+        dd = lever * omega[b] if dd is None else dd + lever * omega[b]
+    assert dd is not None
+    phi = el.phase_per_rad(P) * theta[x.a] if x.phased else np.zeros_like(d)
+    wphi = el.phase_per_rad(P) * omega[x.a] if x.excited else np.zeros_like(d)
     n = d.size
     kernel = _loaded_kernel()
-    if kernel is not None:  # the same element laws, compiled (gearcli.engine): identical numbers, ~100x faster
-        F, U, pen, q = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
-                                               np.ascontiguousarray(dd, dtype=float),
-                                               np.ascontiguousarray(phi, dtype=float),
-                                               np.ascontiguousarray(wphi, dtype=float))
-        return ConnectorSeries(F, d.copy(), pen, U, q)
-    # the scalar laws on Python floats (tolist: the same values as float(d[j]), without numpy's per-item cost)
-    force, potential = el.force, el.potential
-    ds, dds, phs, wphs = d.tolist(), dd.tolist(), phi.tolist(), wphi.tolist()
-    F = np.array([force(P, dj, ddj, phj, wj)[0] for dj, ddj, phj, wj in zip(ds, dds, phs, wphs, strict=True)],
-                 dtype=float).reshape(n)
-    U = np.array([potential(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
-    if x.kind == KIND_MESH:
-        pen = np.array([penetration(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
-        q = np.array([dynamic_transmission_error(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)],
-                     dtype=float).reshape(n) if x.excited else d.copy()  # without a transmission error q = delta
-    else:
-        pen, q = np.zeros(n), d.copy()
+    if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
+        F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
+                                           np.ascontiguousarray(dd, dtype=float),
+                                           np.ascontiguousarray(phi, dtype=float),
+                                           np.ascontiguousarray(wphi, dtype=float))
+        channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
+    else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
+        force, potential, channel = el.force, el.potential, el.channel
+        ds, dds, phs, wphs = d.tolist(), dd.tolist(), phi.tolist(), wphi.tolist()
+        F = np.array([force(P, dj, ddj, phj, wj)[0] for dj, ddj, phj, wj in zip(ds, dds, phs, wphs, strict=True)],
+                     dtype=float).reshape(n)
+        U = np.array([potential(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
+        channels = {name: np.array([channel(P, i, dj, phj) for dj, phj in zip(ds, phs, strict=True)],
+                                   dtype=float).reshape(n) for i, name in enumerate(el.CHANNELS)}
+    pen = channels.get("penetration_m", np.zeros(n))
+    q = channels.get("dte_m", d.copy()) if x.excited else d.copy()  # without a transmission error q = delta
     return ConnectorSeries(F, d.copy(), pen, U, q)
 
 
@@ -119,13 +125,12 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     t = np.asarray(t, dtype=float)
     omega, theta, a0 = body_motion(lay, t, Y)
     conns = tuple(connector_series(lay, c, Y, omega, theta) for c in range(lay.n_conn))
-    if lay.speed_drive:
-        f0 = conns[0].force
-        if lay.connectors[0].lossy:  # the pinion side of a lossy first mesh
-            x = lay.connectors[0]
-            f0 = np.array([machine_side(x.params, f, x.ra * wa, x.rb * wb) for f, wa, wb in
-                           zip(f0.tolist(), omega[x.a].tolist(), omega[x.b].tolist(), strict=True)])
-        t_in = f0 * lay.connectors[0].ra + lay.inertias[0] * a0
+    if lay.speed_drive:  # what the drive puts into body 0: its connectors' reactions and its inertia
+        t_in = None
+        for c, j in lay.acting_on(0):
+            term = _side_force(lay, c, j, conns[c].force, omega) * lay.connectors[c].levers[j]
+            t_in = term if t_in is None else t_in + term
+        t_in = (0.0 if t_in is None else t_in) + lay.inertias[0] * a0
     elif lay.motor_drive:
         row = lay.motor_row
         t_in = np.array([machine.motor_torque(row, tj, wj)[0] for tj, wj in zip(t.tolist(), omega[0].tolist(),
@@ -143,11 +148,16 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     return Sampled(t, omega, theta, t_in, t_load, conns, lay)
 
 
-def machine_side(P, f: float, va: float, vb: float) -> float:
-    """The pinion-side force of a lossy mesh (:func:`gearcli.model.elements.mesh.loss_factors`)."""
+def _side_force(lay: Layout, c: int, j: int, force: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """The force connector c puts on its body j: the law's, or a lossy mesh's pinion (j = 0) or gear (j = 1)
+    side (:func:`gearcli.model.elements.mesh.loss_factors`)."""
+    x = lay.connectors[c]
+    if not x.lossy or j > 1:
+        return force
     from gearcli.model.elements.mesh import loss_factors
 
-    return loss_factors(P, f, va, vb)[0]
+    return np.array([loss_factors(x.params, f, x.ra * wa, x.rb * wb)[j] for f, wa, wb in
+                     zip(force.tolist(), omega[x.a].tolist(), omega[x.b].tolist(), strict=True)])
 
 
 def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

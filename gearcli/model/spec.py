@@ -198,6 +198,25 @@ class FlexibleShaft:
 
 
 @dataclass(frozen=True)
+class ElementSpec:
+    """A further element of a registered type (:mod:`gearcli.model.elements`) placed between bodies given by
+    their index in the assembly (:class:`gearcli.model.assembly.Layout`), with its lever on each body (1 for
+    a torsional element) and what the element's ``pack`` takes (``part``)."""
+
+    name: str
+    bodies: tuple[int, ...]
+    radii: tuple[float, ...]
+    part: object
+    label: str = "element"
+
+    def __post_init__(self) -> None:
+        if len(self.bodies) != len(self.radii) or len(set(self.bodies)) != len(self.bodies):
+            raise ValueError("an element joins distinct bodies, one lever per body")
+        if not all(r > 0 and math.isfinite(r) for r in self.radii):
+            raise ValueError("an element's levers must be positive and finite")
+
+
+@dataclass(frozen=True)
 class ModelSpec:
     meshes: tuple[MeshSpec, ...]
     inertias_kg_m2: tuple[float, ...]  # one per reducer shaft: len(meshes) + 1
@@ -206,6 +225,7 @@ class ModelSpec:
     motor: CoupledInertia | None = None  # drive acts on it; joined to shaft 1
     drum: CoupledInertia | None = None  # load acts on it; joined to the last shaft
     shafts: tuple[FlexibleShaft | None, ...] = ()  # per intermediate shaft k = 1 .. n-1 (or empty)
+    elements: tuple[ElementSpec, ...] = ()  # further elements between the chain's bodies, by body index
 
     def __post_init__(self) -> None:
         if len(self.inertias_kg_m2) != len(self.meshes) + 1:

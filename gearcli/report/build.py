@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 
+from gearcli import engine
+from gearcli.model import TorsionalModel
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, stage_reports
 from gearcli.report.result import Report
 from gearcli.results import DesignResult, SimulationResult
+from gearcli.scene import spec_from_design
+from gearcli.simulate.run import run_simulation
 
 SimulateFn = Callable[..., SimulationResult]  # gearcli.simulate.run_simulation's signature
 
@@ -31,19 +36,13 @@ def build_report(
     """
     spec = spec or LadderSpec()
     if simulate is None:
-        import functools
-
-        from gearcli.model import TorsionalModel
-        from gearcli.scene import spec_from_design
-        from gearcli.simulate.run import run_simulation
-
         # every run of the report is the same scene (only method and rtol change): one model, generated once
-        simulate = functools.partial(run_simulation, model=TorsionalModel(spec_from_design(cfg, design)))
+        simulate = partial(run_simulation, model=TorsionalModel(spec_from_design(cfg, design)))
     tick = progress or (lambda label, done, total: None)
     sim_cfg = cfg.simulation
     planned = 1 if quick else 1 + 2 + len(spec.rtols) * len(spec.methods)
     if not quick and sim_cfg.engine == "auto":  # the ladder (~25 runs, a reference at rtol 1e-12) always
-        from gearcli import engine  # repays loading the compiled engine: load it once, for every DOP853 rung
+        # repays loading the compiled engine: load it once, for every DOP853 rung
 
         engine.expect_runs(planned)
         if engine.available():
@@ -60,8 +59,6 @@ def build_report(
             # a rung's error is measured against the study's reference, so its own check pass (issue 10's
             # estimate, which doubles a run) would be computed and never read
             return simulate(cfg, design, method=method, rtol=rtol, want_series=False, error_estimate=False)
-
-        from gearcli import engine
 
         with engine.batch(0):  # the ladder: auto may run Radau compiled too (labelled)
             study = accuracy_study(

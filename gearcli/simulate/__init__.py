@@ -1,6 +1,5 @@
 """``gearcli simulate``: solver wrapper, method choice, steady-state statistics (README "Model").
 
-- ``methods`` the one registry of integration methods (no scipy import)
 - ``solver``  one loop around scipy's ODE solvers: tolerances, samples, counters, failures, restarts at
               the ramp ends
 - ``guards``  cost budget from the scene, explicit-method feasibility, energy watch, force-noise warning
@@ -9,8 +8,9 @@
 - ``estimate`` the error estimate of the window statistics (a check pass at 10x rtol)
 - ``run``     ``run_simulation`` (design file + design) and ``simulate_model`` (an assembled model)
 
-``run_simulation`` and ``simulate_model`` are imported on first use, so that ``gearcli.simulate.methods``
-(read by the design-file schema) does not pull in scipy.
+``run_simulation`` and ``simulate_model`` are imported on first use (a lazy import for start-up time, hiding
+no cycle), so that importing one of the light modules here does not pull in scipy. The registry of methods
+lives in the leaf core (:mod:`gearcli.core.methods`).
 """
 
 from __future__ import annotations

@@ -39,9 +39,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.cost import EXPLICIT_CAP
+from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 from gearcli.model import Layout, Linearisation, ModelSpec, linearise
-from gearcli.model.linear import peak_rigid_forces, static_forces
-from gearcli.simulate.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
+from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces
 
 STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which a scene counts as stiff for an explicit method (warnings)
 EXPLICIT_PER_UNIT = 2.6  # DOP853 evaluations per unit of max|lambda| T (stability)
@@ -101,12 +102,9 @@ def _stiffest_mesh(lin: Linearisation, lay: Layout) -> int:
 
 
 def _self_exciting(lay: Layout, spec: ModelSpec) -> np.ndarray:
-    """Per connector: a mesh whose force law makes its own harmonics (Hertzian, time-varying, backlash)."""
-    out = np.zeros(lay.n_conn, dtype=bool)
-    for k, c in enumerate(lay.stage_conn):
-        m = spec.meshes[k]
-        out[c] = m.exponent != 1.0 or m.time_varying or m.backlash_m > 0
-    return out
+    """Per connector: an element whose force law makes its own harmonics (a mesh: Hertzian, time-varying,
+    backlash)."""
+    return np.array([x.element.self_exciting(x.params) for x in lay.connectors], dtype=bool)
 
 
 def _ramp_excitation(spec: ModelSpec, omega: float) -> float:
@@ -121,8 +119,6 @@ def _ramp_excitation(spec: ModelSpec, omega: float) -> float:
 
 def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration_s: float, rtol: float) -> float:
     """P: the largest omega_j min(T, 5/sigma_j) over the excited modes of the linearised chain (module doc)."""
-    from gearcli.model.linear import speed_map
-
     first = 1 if lay.speed_drive else 0
     if lay.n_bodies - first < 1:
         return 0.0
@@ -152,8 +148,6 @@ def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration
 
 def _explicit_refused(indicator: float) -> bool:
     """An explicit run whose stability alone exceeds the explicit budget would be refused (guards)."""
-    from gearcli.simulate.guards import EXPLICIT_CAP
-
     m = method(EXPLICIT_METHOD)
     return m.evals_per_step * indicator / m.stability_radius > EXPLICIT_CAP
 

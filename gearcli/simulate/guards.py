@@ -32,15 +32,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.cost import CAP, COST_PER_UNIT, EXPLICIT_CAP, FLOOR, HEADROOM
+from gearcli.core.methods import IMPLICIT_METHOD, method
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.elements import KIND_MESH
-from gearcli.model.elements import mesh as mesh_el
 from gearcli.model.linear import static_forces
 from gearcli.model.outputs import kinetic_energy, potential_energy, sample
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
-from gearcli.simulate.methods import IMPLICIT_METHOD, method
 
 #: What a run costs, priced per counter in seconds (measured on the 2-core benchmark machine with the
 #: generated model of 9-11 states; tests/extreme/test_guards.py checks the ratios): one right-hand side 5 µs,
@@ -56,11 +55,6 @@ WORK_CAP_S = 60.0  # priced seconds one run may use; then it is called off
 PROJECTION_AFTER_S = 5.0  # priced seconds after which the pace is projected to the end of the run
 PROJECTION_LIMIT = 4.0  # a projected total over this many times WORK_CAP_S stops the run at once
 
-COST_PER_UNIT = 30.0  # evaluations per unit of max|lambda| T at rtol 1e-6 (worst measured: 26)
-HEADROOM = 10.0
-FLOOR = 200_000  # ~1 s of right-hand sides: never stop a short soft run early
-CAP = 5_000_000  # ~30 s of right-hand sides on a 2-core machine; then the run is called off
-EXPLICIT_CAP = 1_000_000  # stability-only cost beyond which an explicit method is refused (~10 s)
 ENERGY_MARGIN = 0.1  # of the scene's energy scale
 ENERGY_CHECK_EVERY = 16  # accepted steps between energy checks (divergence grows geometrically)
 
@@ -155,7 +149,7 @@ class EnergyWatch:
         ke = 0.5 * float(np.asarray(lay.inertias) @ (rho * lay.drive.speed_rad_s) ** 2)
         u = 0.0
         for x, f in zip(lay.connectors, np.abs(static_forces(lay)), strict=True):
-            P = mesh_el.linear_row(x.params, 1.0) if x.kind == KIND_MESH else x.params
+            P = x.element.linear_row(x.params, 1.0)
             u += x.element.potential(P, x.element.static_deflection(P, f), 0.0)
         return max(ke + u, np.finfo(float).tiny)
 

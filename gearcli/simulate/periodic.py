@@ -4,9 +4,8 @@ Excitation period. Every excitation of the scene has its own period at the stead
 nominal input speed, after the ramps): a mesh whose stiffness or transmission error varies with its phase
 ``phi = z_p theta_p`` repeats every mesh period ``60 / (z_p n_p)`` (n_p the pinion's speed in rpm); an input
 torque ripple of order o every ``1 / (o n_in / 60)``; a load fluctuation of frequency f every ``1 / f``.
-:func:`excitation_periods` lists them from the scene's arrays (:class:`gearcli.model.ModelArrays`: the
-time-varying meshes and the harmonic tables ``conn_harm``, ``drive_ripple``, ``load_fluct`` the
-excitation fills in), :func:`common_period` combines them: the least common period when the ratios of
+:func:`excitation_periods` lists them from the scene's elements (each says whether it excites and the
+period of its cycle) and arrays (``drive_ripple``, ``load_fluct``), :func:`common_period` combines them: the least common period when the ratios of
 the periods are rational within a tolerance (with denominators up to :data:`MAX_DENOMINATOR`), else the
 slowest one, and it says which. A scene without any excitation has an equilibrium as its steady state;
 its period is then the slowest mesh period (any period would do).
@@ -36,6 +35,8 @@ from functools import reduce
 import numpy as np
 
 from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
+from gearcli.results import SteadyState
+from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
 MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
 MAX_SUBHARMONIC = 8  # period-k responses looked for, k = 1 .. 8
@@ -71,26 +72,20 @@ def ripple_period_s(order: float, input_speed_rad_s: float) -> float:
 def excitation_periods(layout) -> list[Excitation]:
     """The periods of the scene's excitations at its steady operating speed (see the module text).
 
-    Reads the layout's plain arrays: a mesh is excited when its stiffness varies in time or any of its
-    transmission-error or stiffness harmonics (``conn_harm[c, :, 0]``, ``[..., 2]``) is non-zero; the
-    drive's ripple rows (amplitude, order) and the load's fluctuation rows (amplitude, frequency_Hz) with a
-    non-zero amplitude each add theirs. The input body's nominal speed is the drive's speed.
+    An element that makes an excitation (``makes_excitation``: a mesh whose stiffness varies in time or
+    with a transmission-error or stiffness harmonic) adds the period of its own cycle at its first body's
+    nominal speed (``cycle_period_s``: the mesh period); the drive's ripple rows (amplitude, order) and the
+    load's fluctuation rows (amplitude, frequency_Hz) with a non-zero amplitude each add theirs. The input
+    body's nominal speed is the drive's speed.
     """
-    from gearcli.model.elements import KIND_MESH
-    from gearcli.model.elements.mesh import I_Z
-
     arr = layout.arrays(np.zeros(layout.n_states))
     w_in = layout.drive.speed_rad_s
     out: list[Excitation] = []
     if w_in == 0.0:
         return out
-    for c, x in enumerate(layout.connectors):
-        if x.kind != KIND_MESH:
-            continue
-        harm = arr.conn_harm[c]
-        if x.time_varying or np.any(harm[:, 0] != 0.0) or np.any(harm[:, 2] != 0.0):
-            w_p = layout.bodies[x.a].ratio * w_in
-            out.append(Excitation(x.label, mesh_period_s(x.params[I_Z], w_p)))
+    for x in layout.connectors:
+        if x.element.makes_excitation(x.params):
+            out.append(Excitation(x.label, x.element.cycle_period_s(x.params, layout.bodies[x.a].ratio * w_in)))
     for amplitude, order in arr.drive_ripple:
         if amplitude != 0.0 and order != 0.0:
             out.append(Excitation(f"input torque ripple order {order:g}", ripple_period_s(order, w_in)))
@@ -101,15 +96,12 @@ def excitation_periods(layout) -> list[Excitation]:
 
 
 def unexcited_period(layout) -> float:
-    """The period used when nothing excites the scene: the slowest mesh period (the steady state is an
-    equilibrium, which repeats over any period)."""
-    from gearcli.model.elements import KIND_MESH
-    from gearcli.model.elements.mesh import I_Z
-
+    """The period used when nothing excites the scene: the slowest element cycle, a mesh period (the steady
+    state is an equilibrium, which repeats over any period)."""
     w_in = layout.drive.speed_rad_s
-    periods = [mesh_period_s(x.params[I_Z], layout.bodies[x.a].ratio * w_in)
-               for x in layout.connectors if x.kind == KIND_MESH and w_in != 0.0]
-    return max(periods, default=1.0)
+    periods = [x.element.cycle_period_s(x.params, layout.bodies[x.a].ratio * w_in)
+               for x in layout.connectors if w_in != 0.0]
+    return max((p for p in periods if p > 0.0), default=1.0)
 
 
 def _ratio(a: float, b: float) -> Fraction | None:
@@ -292,8 +284,6 @@ def integrate_periodic(model, method: str, rtol: float, *, steps: int, duration_
     Returns a :class:`PeriodicRun`, or the failed part's ``Integration`` (status < 0) for the caller's
     :func:`gearcli.simulate.run.check`. A search that runs out of evaluations stops early, unconverged.
     """
-    from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
-
     lay = model.layout
     period = scene_period(lay)
     T = period.period_s
@@ -358,8 +348,6 @@ def periods_cap(duration_s: float, t_start: float, period_s: float) -> int:
 
 
 def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exhausted: bool, cap: int):
-    from gearcli.results import SteadyState
-
     kind = "none" if repeat.k == 0 else f"period-{repeat.k}"
     source = period.source + ("" if not exhausted else "; the search stopped at the run's evaluation budget")
     return SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=n, periodicity=kind,

@@ -8,17 +8,20 @@ from dataclasses import replace
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli import engine
+from gearcli.core.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice, estimate_nfev
 from gearcli.engine import choose as choose_engine
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
+from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
+from gearcli.scene import spec_from_design
 from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -47,8 +50,6 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
     already built it (a sweep point), else built here; ``error_estimate`` (default
     ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
-    from gearcli.scene import spec_from_design
-
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
         raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
@@ -142,8 +143,6 @@ def _loadable(eng: EngineChoice) -> EngineChoice:
     (an explicit ``compiled`` lets the error through)."""
     if eng.engine != "compiled" or eng.requested != "auto":
         return eng
-    from gearcli import engine
-
     try:
         engine.load()
     except Exception as exc:  # numba cannot compile or cache here: scipy runs it
@@ -311,8 +310,6 @@ def _choice_warnings(choice: Choice) -> list[Diagnostic]:
 def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic]:
     """A mesh order (1x, 2x mesh frequency) at the nominal speed within 10 % of a natural frequency, naming
     the mode and its dominant element (:mod:`gearcli.model.modes`)."""
-    from gearcli.model.modes import resonances
-
     out = []
     for r in resonances(model.layout, boundary=choice.boundary):
         out.append(dg.warning(dg.RESONANCE, r.message, mode=r.mode, frequency_Hz=r.frequency_Hz,

@@ -27,11 +27,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import OdeSolver
 
+from gearcli import engine
+from gearcli.core.methods import METHODS, scipy_solver
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.simulate.guards import CAP as MAX_NFEV
-from gearcli.simulate.guards import EnergyWatch, energy_watch, over_budget, priced_work_s
-from gearcli.simulate.methods import METHODS, scipy_solver
+from gearcli.simulate.guards import ENERGY_MARGIN, EnergyReport, EnergyWatch, energy_watch, over_budget, priced_work_s
 
 BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
 
@@ -187,7 +188,6 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
 def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
                         atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None, t0: float = 0.0) -> Integration:
     """The same run on the compiled kernel: same start, segments, tolerances (vectors), guards and statuses."""
-    from gearcli import engine
 
     if method not in engine.COMPILED_METHODS:
         raise SimulationError(f"the compiled engine integrates {', '.join(engine.COMPILED_METHODS)} only, "
@@ -199,7 +199,6 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     rtol_v = np.array(np.broadcast_to(np.asarray(rtol, dtype=float), (n,)))  # writable: one kernel signature
     atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=float), (n,)))
     breaks = np.array(breakpoints(model, float(t_eval[-1]), t0), dtype=float)
-    from gearcli.simulate.guards import ENERGY_MARGIN
 
     wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN, t0]) if watch is not None \
         else np.array([0.0, 0.0, 0.0, 0.0, t0])
@@ -218,7 +217,6 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
                 STATUS_BUDGET: f"more than {max_nfev} right-hand-side evaluations",
                 STATUS_NONFINITE: f"the state became non-finite at t = {t_end:.6g} s"}
     if status == STATUS_ENERGY and watch is not None:
-        from gearcli.simulate.guards import EnergyReport
 
         message = watch.message(EnergyReport(created, scale))
     else:

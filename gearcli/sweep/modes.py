@@ -10,6 +10,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from gearcli.design import compute_design
+from gearcli.model.modes import modal_analysis
+from gearcli.scene import build_model
 from gearcli.sweep.worker import Scene, load_point
 
 SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
@@ -19,9 +22,6 @@ def natural_frequencies_Hz(cfg, design) -> tuple[float, ...]:
     """The modes capability's frequencies (``gearcli modes``) at the boundary the drive imposes: a speed
     drive holds the input body (``clamped_input``), a torque drive leaves the chain ``free``; the rigid
     mode (0 Hz) left out."""
-    from gearcli.model.modes import modal_analysis
-    from gearcli.scene import build_model
-
     lay = build_model(cfg, design).layout
     boundary = "clamped_input" if lay.speed_drive else "free"
     analysis = modal_analysis(lay, boundary, duration_s=cfg.simulation.duration_s)
@@ -37,8 +37,6 @@ class CampbellPoint:
 
 def campbell(scene: Scene, key: str, values: Sequence[Any], fixed: Sequence[str] = ()) -> list[CampbellPoint]:
     """Natural and mesh frequencies at each swept input speed (the other keys at ``fixed`` overrides)."""
-    from gearcli.design import compute_design
-
     out = []
     for v in values:
         cfg = load_point(scene, (*fixed, f"{key}={float(v)!r}"))

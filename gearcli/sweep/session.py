@@ -3,6 +3,10 @@
 :func:`prepare` does everything that can fail with a usage error (exit 2) before any point runs; then
 :func:`run` streams the rows to the output as they finish and, at the end, leaves them in point order.
 On Ctrl-C the output keeps every finished row and the interrupt propagates (exit 130 from the CLI).
+
+The controller writes nothing itself: the caller (:mod:`gearcli.api`, the command layer) injects how an
+existing ``-o`` file is read (``read_previous``) and where the rows go (``open_sink``, a :class:`RowSink`
+factory; :mod:`gearcli.io.sweep_file` gives both).
 """
 
 from __future__ import annotations
@@ -10,8 +14,14 @@ from __future__ import annotations
 import io
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 from gearcli import __version__
+from gearcli.config import load_design
+from gearcli.config.load import read_bytes
+from gearcli.design import compute_design
+from gearcli.errors import DesignError
+from gearcli.results import DesignResult
 from gearcli.sweep.columns import FAILED, columns
 from gearcli.sweep.execute import default_jobs, execute, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
@@ -19,12 +29,35 @@ from gearcli.sweep.spec import SweepSpec, spec_from_options
 from gearcli.sweep.worker import Scene, Task, check_keys
 
 
+class RowSink(Protocol):
+    """Where rows go: ``add`` each as it arrives, ``finish`` with all rows in point order, ``close`` on an
+    interruption (leaving what is done); ``rows`` what it holds."""
+
+    rows: list[dict]
+
+    def add(self, row: dict) -> None: ...
+
+    def finish(self, ordered: Sequence[dict]) -> None: ...
+
+    def close(self) -> None: ...
+
+
+#: (output, format, columns, identity, previous rows) -> the sink
+SinkFactory = Callable[[str | None, str, Sequence[str], dict, Sequence[dict]], RowSink]
+#: the identity and rows of an existing output file; (None, []) when there is none
+PreviousReader = Callable[[str], tuple[dict | None, list[dict]]]
+
+
+def _none_previous(output: str) -> tuple[dict | None, list[dict]]:
+    return None, []
+
+
 @dataclass
 class Session:
     spec: SweepSpec
     scene: Scene
     cfg: object  # the validated base DesignFile
-    design: object  # its DesignResult
+    design: DesignResult
     columns: list[str]
     identity: dict
     previous: list[dict]
@@ -40,13 +73,9 @@ class Session:
 
 def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Sequence[str], samples: int | None,
             sampling: str, seed: int | None, direction: str | None, jobs: int | None,
-            scheduler: str | None, output: str | None, fmt: str) -> Session:
-    from gearcli.config import load_design
-    from gearcli.config.load import _read
-    from gearcli.design import compute_design
-    from gearcli.errors import DesignError
-
-    raw = _read(file, None)
+            scheduler: str | None, output: str | None, fmt: str,
+            read_previous: PreviousReader = _none_previous) -> Session:
+    raw = read_bytes(file)
     loaded = load_design(file, sets, stdin=io.BytesIO(raw))
     try:
         design = compute_design(loaded.design)
@@ -57,9 +86,7 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
     stored: dict | None = None
     previous: list[dict] = []
     if output:
-        from gearcli.io.sweep_file import read_identity
-
-        stored, previous = read_identity(output)
+        stored, previous = read_previous(output)
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
     check_keys(scene, spec.branches()[0][0])
@@ -74,10 +101,8 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
                    tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings))
 
 
-def run(session: Session, on_row: Callable[[bool], None] = lambda failed: None) -> list[dict]:
-    """Run the session's tasks; every row goes to the output as it arrives. Returns all rows in point order."""
-    from gearcli.io.sweep_file import open_sink
-
+def run(session: Session, open_sink: SinkFactory, on_row: Callable[[bool], None] = lambda failed: None) -> list[dict]:
+    """Run the session's tasks; every row goes to the sink as it arrives. Returns all rows in point order."""
     sink = open_sink(session.output, session.fmt, session.columns, session.identity, session.previous)
     try:
         for row in execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler):

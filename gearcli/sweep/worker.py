@@ -17,9 +17,16 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
 
+from gearcli import engine
+from gearcli.config.load import _parse, _validate
+from gearcli.config.overrides import apply_all
+from gearcli.design import compute_design
 from gearcli.errors import GearcliError
+from gearcli.model import TorsionalModel
+from gearcli.scene import spec_from_design
+from gearcli.simulate.run import run_simulation
 from gearcli.sweep.columns import failed_row, ok_row, one_line
-from gearcli.sweep.continuation import Carried
+from gearcli.sweep.continuation import NO_RAMPS, Carried, carry_phases, continue_state
 from gearcli.sweep.spec import Point
 
 
@@ -45,16 +52,11 @@ class Task:
 @lru_cache(maxsize=8)
 def _base(raw: bytes, source: str) -> dict:
     """The parsed TOML of a design file, once per process (points deep-copy it)."""
-    from gearcli.config.load import _parse
-
     return _parse(raw, source)
 
 
 def load_point(scene: Scene, overrides: tuple[str, ...]):
     """The validated ``DesignFile`` of a point: the base data, the base ``--set``s, then the point's."""
-    from gearcli.config.load import _validate
-    from gearcli.config.overrides import apply_all
-
     data = copy.deepcopy(_base(scene.raw, scene.source))
     paths = apply_all(data, (*scene.sets, *overrides))
     return _validate(data, scene.source, paths)
@@ -63,11 +65,6 @@ def load_point(scene: Scene, overrides: tuple[str, ...]):
 def _evaluate(scene: Scene, point: Point, prev: Carried | None) -> tuple[Any, Carried | None]:
     """Simulate one point (continued from the previous point's ``prev`` when given); the result and
     what it hands on to the next point."""
-    from gearcli.design import compute_design
-    from gearcli.scene import spec_from_design
-    from gearcli.simulate import run_simulation
-    from gearcli.sweep.continuation import NO_RAMPS, carry_phases, continue_state
-
     cfg = load_point(scene, tuple(point.overrides()) + (NO_RAMPS if prev else ()))
     design = compute_design(cfg)
     spec = spec_from_design(cfg, design)
@@ -91,15 +88,11 @@ def _evaluate(scene: Scene, point: Point, prev: Carried | None) -> tuple[Any, Ca
 
 def model_of(spec):
     """The compiled model of a ModelSpec."""
-    from gearcli.model import TorsionalModel
-
     return TorsionalModel(spec)
 
 
 def iter_task(task: Task) -> Iterator[dict]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
-    from gearcli import engine
-
     with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
         prev = None
         for point in task.points:
@@ -133,6 +126,4 @@ def _message(exc: GearcliError, scene: Scene) -> str:
 
 def check_keys(scene: Scene, point: Point) -> None:
     """Raise ConfigError (exit 2) when a varied key is not a key ``--set`` accepts; values are checked per point."""
-    from gearcli.config.overrides import apply_all
-
     apply_all(copy.deepcopy(_base(scene.raw, scene.source)), (*scene.sets, *point.overrides()))

@@ -1,39 +1,144 @@
-"""Element types of the torsional model: each module owns one force law, written once.
+"""Element types of the torsional model: one protocol, one registry (the element API).
 
-A connector joins bodies (a, b) = (c, c+1) of the chain with radii (r_a, r_b): its deflection is
-``delta = r_a theta_a - r_b theta_b``, its force ``F`` puts ``-r_a F`` on body a and ``+r_b F`` on body b.
-Every connector module defines ``PARAMS`` (the names of its parameter row), ``pack(spec)`` (the row,
-float64, padded to ``N_PARAM``) and
+An element joins two or more bodies, given by index, each through a lever (a radius; 1 for a torsional
+element). Its deflection is ``delta = sum_j s_j r_j theta_j`` with the signs ``SIGNS`` it declares (two
+bodies: ``(+1, -1)``, so ``delta = r_a theta_a - r_b theta_b``), and its force ``F`` puts ``-s_j r_j F`` on
+body j. The assembly (:mod:`gearcli.model.assembly`) is the only place that knows indices; the right-hand
+side, the Jacobian, the outputs, the linearisation and the compiled kernel scatter each element's force to
+its bodies by index and ask the element everything else through this protocol. Nothing outside an element
+module switches on its kind: the registry (:func:`register`, :func:`law_of`) replaces every kind switch.
+
+An element module (:class:`ElementLaw`) defines ``NAME``, ``SIGNS``, ``PARAMS`` (the names of its
+parameter row), ``CHANNELS`` (its output channels besides force, deflection and stored energy) and
 
     force(P, d, dd, phi, wphi) -> (F, dF_dd, dF_ddd, dF_dphi, dF_dwphi, p_damp, p_elastic_tv, p_te)
 
-in plain ``math`` on floats (so numba can compile it unchanged): ``P`` the parameter row (a tuple or
-an array), ``d``/``dd`` the deflection and its rate, ``phi`` the mesh phase in mesh cycles,
-``z_p theta_p / 2 pi``, and ``wphi = d phi/dt = z_p w_p / 2 pi`` its rate (both 0 for springs and for
-meshes that do not depend on their phase; cycles rather than radians so that the phase is formed
-exactly as before the element redesign: a rattling mesh is sensitive to its last bit),
-``p_damp`` the power the element dissipates, ``p_elastic_tv`` the power into a time-varying spring,
-``p_te`` the power a prescribed transmission error does on the bodies (``-F de/dt``; part of the input
-work). The right-hand side, the Jacobian, the output channels and the linearisation all call it.
-``power_gradient(P, d, dd, phi, wphi)`` gives the partials of the three power terms by
-(d, dd, phi, wphi) (the Jacobian's energy rows), ``potential(P, d, phi)`` the stored elastic energy,
-``static_deflection(P, F)`` the deflection that carries the force ``F`` in steady state.
+in plain ``math`` on floats (so numba can compile it unchanged): ``P`` the parameter row (a tuple or an
+array), ``d``/``dd`` the deflection and its rate, ``phi`` the phase in cycles of the element's first body,
+``phase_per_rad(P) theta_a`` (a mesh: ``z_p theta_p / 2 pi``), and ``wphi`` its rate (both 0 unless the
+element is ``phased``/``excited``; cycles rather than radians so that the phase is formed exactly as
+before the element redesign: a rattling mesh is sensitive to its last bit), ``p_damp`` the power the
+element dissipates, ``p_elastic_tv`` the power into a time-varying spring, ``p_te`` the power a prescribed
+motion (a transmission error) does on the bodies (``-F de/dt``; part of the input work).
+``power_gradient(P, d, dd, phi, wphi)`` gives the partials of the three powers by (d, dd, phi, wphi) (the
+Jacobian's energy rows), ``potential(P, d, phi)`` the stored elastic energy, ``channel(P, i, d, phi)`` the
+value of output channel ``CHANNELS[i]``, ``static_deflection(P, F)`` the deflection that carries ``F`` in
+steady state, ``deflection_scale(P, F, floor)`` the deflection's scale (absolute tolerances),
+``tangent(P, F, stiffest_phase)`` the (stiffness, damping, static deflection) of the law linearised at
+``|F|``, ``linear_row(P, factor)`` the row of the law frozen linear (energy scale), ``assembled(P, F,
+m_e)`` the row once the assembly knows the static force and the equivalent mass of the bodies it joins,
+``phase_per_rad(P)``, ``cycle_period_s(P, w)`` (the period of its own cycle at the speed ``w`` of its
+first body: a mesh's mesh period; 0 for none), ``makes_excitation(P)`` (it excites the scene once per such
+cycle: time-varying stiffness, transmission error, stiffness harmonics), ``self_exciting(P)`` (the law
+makes its own harmonics: Hertzian, time-varying, backlash) and the flags ``damped``, ``time_varying``,
+``phased``, ``excited``.
 
 Torques on the end bodies (input torque ripple, load fluctuation) are laws of :mod:`.torque`.
 """
 
 from __future__ import annotations
 
-KIND_SPRING = 0  # torsional spring-damper: couplings, flexible shafts
-KIND_MESH = 1  # gear mesh along its transverse line of action (Adams IMPACT law)
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Protocol
+
 N_HARM = 8  # transmission-error / stiffness harmonics per mesh
 N_PARAM = 22 + 4 * N_HARM  # width of every parameter row (the mesh's: gearcli.model.elements.mesh.PARAMS)
+MAX_BODIES = 3  # bodies one element may join (a planet's mesh: sun or ring, planet, carrier)
 
-KIND_NAMES = {KIND_SPRING: "spring", KIND_MESH: "mesh"}
+
+class ElementLaw(Protocol):
+    """What an element module provides (module text)."""
+
+    NAME: str
+    SIGNS: tuple[float, ...]
+    PARAMS: tuple[str, ...]
+    CHANNELS: tuple[str, ...]
+
+    def pack(self, spec: object) -> object: ...
+    def force(self, P, d, dd, phi, wphi) -> tuple: ...
+    def power_gradient(self, P, d, dd, phi, wphi) -> tuple: ...
+    def potential(self, P, d, phi) -> float: ...
+    def channel(self, P, i, d, phi) -> float: ...
+    def static_deflection(self, P, F) -> float: ...
+    def deflection_scale(self, P, F, floor) -> float: ...
+    def tangent(self, P, F, stiffest_phase) -> tuple[float, float, float]: ...
+    def linear_row(self, P, factor) -> object: ...
+    def assembled(self, P, F, m_e) -> object: ...
+    def phase_per_rad(self, P) -> float: ...
+    def cycle_period_s(self, P, w) -> float: ...
+    def makes_excitation(self, P) -> bool: ...
+    def self_exciting(self, P) -> bool: ...
+    def damped(self, P) -> bool: ...
+    def time_varying(self, P) -> bool: ...
+    def phased(self, P) -> bool: ...
+    def excited(self, P) -> bool: ...
 
 
-def module_of(kind: int):
-    """The element module of a connector kind."""
-    from gearcli.model.elements import mesh, spring
+@dataclass(frozen=True)
+class ElementType:
+    """A registered element type: its kind (the index the arrays carry), name and law module.
+    ``compiled``: the compiled kernel (:mod:`gearcli.engine`) dispatches to it (its module is compiled and
+    part of the kernel's cache key); an element registered without it runs on the Python engine."""
 
-    return {KIND_SPRING: spring, KIND_MESH: mesh}[kind]
+    kind: int
+    name: str
+    law: ModuleType
+    compiled: bool = False
+
+    @property
+    def n_bodies(self) -> int:
+        return len(self.law.SIGNS)
+
+
+_REGISTRY: dict[int, ElementType] = {}
+
+
+def register(law: ModuleType, *, compiled: bool = False) -> ElementType:
+    """Register an element module; its kind is the next free index (idempotent for the same module)."""
+    for et in _REGISTRY.values():
+        if et.law is law:
+            return et
+        if et.name == law.NAME:
+            raise ValueError(f"an element named {law.NAME!r} is registered already")
+    if not 2 <= len(law.SIGNS) <= MAX_BODIES:
+        raise ValueError(f"an element joins 2 to {MAX_BODIES} bodies, {law.NAME!r} declares {len(law.SIGNS)}")
+    if len(law.PARAMS) > N_PARAM:
+        raise ValueError(f"at most {N_PARAM} parameters per element, {law.NAME!r} has {len(law.PARAMS)}")
+    et = ElementType(len(_REGISTRY), law.NAME, law, compiled)
+    _REGISTRY[et.kind] = et
+    return et
+
+
+def element_type(kind: int) -> ElementType:
+    """The registered element of a kind (KeyError for an unknown one)."""
+    return _REGISTRY[int(kind)]
+
+
+def law_of(kind: int) -> ModuleType:
+    """The law module of a kind."""
+    return _REGISTRY[int(kind)].law
+
+
+def kind_of(name: str) -> int:
+    """The kind of a registered element name."""
+    for et in _REGISTRY.values():
+        if et.name == name:
+            return et.kind
+    raise KeyError(name)
+
+
+def registered() -> tuple[ElementType, ...]:
+    """Every registered element type, in kind order."""
+    return tuple(_REGISTRY[k] for k in sorted(_REGISTRY))
+
+
+def compiled_types() -> tuple[ElementType, ...]:
+    """The element types the compiled kernel dispatches to, in kind order."""
+    return tuple(et for et in registered() if et.compiled)
+
+
+from gearcli.model.elements import mesh, spring  # noqa: E402 - the built-in laws read N_PARAM above
+
+KIND_SPRING = register(spring, compiled=True).kind  # torsional spring-damper: couplings, flexible shafts
+KIND_MESH = register(mesh, compiled=True).kind  # gear mesh along its transverse line of action (Adams IMPACT)

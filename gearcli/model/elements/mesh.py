@@ -34,9 +34,14 @@ import math
 
 import numpy as np
 
-from gearcli.model.contact_lines import SPUR_OVERLAP
+from gearcli.model.contact_lines import SPUR_OVERLAP, contact_length_range
 from gearcli.model.elements import N_HARM, N_PARAM
 
+NAME = "mesh"
+SIGNS = (1.0, -1.0)  # delta = r_bp theta_p - r_bg theta_g
+CHANNELS = ("penetration_m", "dte_m")  # signed penetration beyond the gap, dynamic transmission error
+MIN_APPROACH_M = 1e-6  # an unloaded Hertzian mesh's k_lin: at a 1 um approach (as the cost estimate)
+ROW_WIDTH = N_PARAM  # the law reads the whole row: PARAMS, then the harmonics
 PARAMS = ("cos_beta_b", "cos2_beta_b", "stiffness_N_m_e", "exponent", "damping_Ns_m", "inv_full_damping_1_m",
           "damping_slope", "half_gap_m", "time_varying", "contact_ratio", "overlap_ratio", "pinion_teeth",
           "full_damping_m", "viscous", "viscous_damping_Ns_m", "damping_ratio", "k_lin_N_m", "m_e_kg",
@@ -360,6 +365,48 @@ def linear_row(P, factor):
     Q[I_HALF] = 0.0
     Q[I_NTE] = Q[I_NKS] = 0.0
     return Q
+
+
+def channel(P, i, d, phi):
+    """Output channel ``CHANNELS[i]``: the signed penetration, or the dynamic transmission error."""
+    return penetration(P, d, phi) if i == 0 else dynamic_transmission_error(P, d, phi)
+
+
+def tangent(P, F, stiffest_phase=False):
+    """(k, c, static penetration) at the line force |F|, on the drive flank without the gap at the mean
+    stiffness (``stiffest_phase``: the largest contact-line factor of a time-varying mesh); unloaded, a
+    linear mesh keeps K, a Hertzian one has no stiffness."""
+    factor = contact_length_range(P[I_EA], P[I_EB])[1] if stiffest_phase and time_varying(P) else 1.0
+    Q = linear_row(P, factor)
+    p0 = static_penetration(Q, F)
+    if p0 == 0.0 and Q[I_E] != 1.0:
+        return 0.0, 0.0, 0.0
+    _, k, cd, _, _, _, _, _ = force(Q, max(p0, 1e-300) / Q[I_CB], 0.0, 0.0, 0.0)
+    return k, cd, p0
+
+
+def assembled(P, F, m_e):
+    """A ``damping_ratio`` mesh's row with its viscous damping c = 2 zeta sqrt(k_lin m_e) (module text), from
+    the static line force F and the equivalent mass m_e of the bodies it joins; other meshes unchanged."""
+    if P[I_VIS] == 0.0:
+        return P
+    return with_viscous(P, linear_stiffness(P, F, MIN_APPROACH_M), m_e)
+
+
+def cycle_period_s(P, w):
+    """One mesh cycle at the pinion speed w: 2 pi / (z_p w_p) = 60 / (z_p n_p) s."""
+    return 2.0 * math.pi / (P[I_Z] * abs(w))
+
+
+def makes_excitation(P) -> bool:
+    """Time-varying stiffness, or any transmission-error or stiffness harmonic: once per mesh cycle."""
+    return bool(time_varying(P) or any(P[I_TE + j] != 0.0 for j in range(N_HARM))
+                or any(P[I_KS + j] != 0.0 for j in range(N_HARM)))
+
+
+def self_exciting(P) -> bool:
+    """The law makes its own harmonics: Hertzian, contact-line time variation, or backlash."""
+    return bool(P[I_E] != 1.0 or P[I_TV] != 0.0 or P[I_HALF] > 0.0)
 
 
 def damped(P) -> bool:

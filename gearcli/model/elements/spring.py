@@ -10,7 +10,10 @@ import numpy as np
 
 from gearcli.model.elements import N_PARAM
 
+NAME = "spring"
+SIGNS = (1.0, -1.0)  # twist = theta_a - theta_b
 PARAMS = ("stiffness_Nm_rad", "damping_Nms_rad")
+CHANNELS: tuple[str, ...] = ()
 I_K, I_C = 0, 1
 
 
@@ -38,9 +41,52 @@ def potential(P, d, phi):
     return 0.5 * P[I_K] * d * d
 
 
+def channel(P, i, d, phi):
+    """No channels of its own."""
+    return 0.0
+
+
 def static_deflection(P, F):
     """Twist that carries the torque F."""
     return F / P[I_K]
+
+
+def deflection_scale(P, F, floor):
+    """Scale of the twist for the absolute tolerance: the static twist, floored."""
+    return max(abs(static_deflection(P, F)), floor)
+
+
+def tangent(P, F, stiffest_phase=False):
+    """(k, c, static twist) at the torque |F|: the law is linear."""
+    d0 = static_deflection(P, abs(F))
+    _, k, cd, _, _, _, _, _ = force(P, d0, 0.0, 0.0, 0.0)
+    return k, cd, d0
+
+
+def linear_row(P, factor):
+    """The law is linear already: its own row."""
+    return P
+
+
+def assembled(P, F, m_e):
+    """Nothing to fill in from the bodies."""
+    return P
+
+
+def phase_per_rad(P):
+    return 0.0
+
+
+def cycle_period_s(P, w):
+    return 0.0
+
+
+def makes_excitation(P) -> bool:
+    return False
+
+
+def self_exciting(P) -> bool:
+    return False
 
 
 def damped(P) -> bool:
