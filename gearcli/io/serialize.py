@@ -55,6 +55,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
             "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
             "natural_frequencies_boundary": result.natural_frequencies_boundary,
             "steady": plain(result.steady),
+            **({"motor": plain((result.extra or {})["motor"])} if "motor" in (result.extra or {}) else {}),
         },
         "solver": plain(result.solver),
         "energy": plain(result.energy),
