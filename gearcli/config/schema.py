@@ -280,6 +280,27 @@ class _Coupled(_Table):
                              "coupling_stiffness_Nm_rad")
 
 
+_START_PARAMS = {"switch_speed_rpm": "star_delta", "voltage_ramp_s": "soft_start",
+                 "initial_voltage_fraction": "soft_start", "torque_limit_Nm": "vfd"}
+
+
+def _starting_rules() -> list[dict]:
+    """A starting method and its parameters need drive = "motor"; each parameter belongs to its method; star-delta
+    needs its switch-over speed, the soft start its ramp; ramp_s > 0 on a motor only for the VFD."""
+    motor = {**_required("drive"), "properties": {"drive": {"const": "motor"}}}
+    rules: list[dict] = [{"not": {"anyOf": [_required(k) for k in ("starting", *_START_PARAMS)], "not": motor}}]
+    for key, method in _START_PARAMS.items():
+        rules.append({"not": {**_required(key), "not": {**_required("starting"),
+                                                       "properties": {"starting": {"const": method}}}}})
+    for method, key in (("star_delta", "switch_speed_rpm"), ("soft_start", "voltage_ramp_s")):
+        rules.append({"not": {**_required("starting"), "properties": {"starting": {"const": method}},
+                              "not": _required(key)}})
+    rules.append({"not": {**motor, **_required("drive", "ramp_s"),
+                          "properties": {"drive": {"const": "motor"}, "ramp_s": {"exclusiveMinimum": 0}},
+                          "not": {**_required("starting"), "properties": {"starting": {"const": "vfd"}}}}})
+    return rules
+
+
 class Input(_Coupled):
     """The input drive. Exactly one speed key: the prescribed speed (``drive = "speed"``) or, with
     ``drive = "torque"``, the nominal speed the train starts at."""
@@ -309,6 +330,8 @@ class Input(_Coupled):
         {"not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS], "properties": {"drive": {"const": "motor"}},
                  **_required("drive")}},
         {"not": {**_required("drive"), "properties": {"drive": {"const": "motor"}}, "not": _required("motor")}},
+        {"not": {**_required("drive", "motor"), "properties": {"drive": {"const": "torque"}}}},
+        *_starting_rules(),
         *_coupling_rules()))
 
     @field_validator("torque_ripple")
@@ -334,6 +357,9 @@ class Input(_Coupled):
             raise ValueError('drive = "torque" needs torque_Nm, torque_Nmm or power_kW')
         if self.drive != "torque" and torques:
             raise ValueError('torque_Nm/torque_Nmm/power_kW are only used with drive = "torque"')
+        if self.drive == "torque" and self.motor is not None:
+            raise ValueError('motor: a torque drive prescribes the input torque; use drive = "motor" (or "speed", '
+                             "to check a speed ramp against the motor)")
         self._check_motor()
         if self.power_kW is not None:  # the input speed is known here: P = T ω
             self._torque_from_power_Nm = self.power_kW * 1000.0 / self.speed_rad_s_value
