@@ -156,3 +156,57 @@ def test_lossy_reducer_window_means_equal_the_design_static_forces():
         assert dyn.tangential_N.mean == pytest.approx(st.static_force_N.tangential, rel=1e-3)
     assert res.solver.energy_residual < 1e-9
     assert res.energy.damping_loss_J > 0
+
+
+# ------------------------------------------------------------------------------------- starting methods
+def _nameplate(**start) -> MotorSpec:
+    return MotorSpec.nameplate(15e3, 1460 * RPM, 1500 * RPM, 2.8, 2.3, **start)
+
+
+def test_starting_methods_scale_the_curve_as_stated():
+    direct = _nameplate()
+    t_r = 15e3 / (1460 * RPM)
+    # star-delta: a third of the torque (phase voltage / sqrt 3, torque ~ V^2) below the switch-over band
+    sd = _nameplate(starting="star_delta", start_parameters=(1300 * RPM, 0.0))
+    for n in (0.0, 600.0, 1280.0):
+        assert sd.torque(0.0, n * RPM) == pytest.approx(direct.curve(n * RPM) / 3.0, rel=1e-12)
+    assert sd.torque(0.0, 1300 * RPM) == pytest.approx(direct.curve(1300 * RPM), rel=1e-12)
+    # soft start: torque ~ V^2, from u0^2 at t = 0 to the full curve after the ramp
+    soft = _nameplate(starting="soft_start", start_parameters=(2.0, 0.4))
+    assert soft.torque(0.0, 0.0) == pytest.approx(0.16 * 2.3 * t_r, rel=1e-9)
+    assert soft.torque(1.0, 0.0) == pytest.approx((0.4 + 0.6 * 0.5) ** 2 * 2.3 * t_r, rel=1e-9)  # STEP(1/2) = 1/2
+    assert soft.torque(2.5, 1460 * RPM) == pytest.approx(t_r, rel=1e-9)
+    # VFD: the curve moves with the synchronous speed at constant slip speed; at half the ramp (STEP = 1/2) the
+    # rated slip speed 40 rpm below 750 rpm gives the rated torque
+    vfd = _nameplate(starting="vfd", start_parameters=(4.0, 0.0))
+    assert vfd.torque(2.0, (750 - 40) * RPM) == pytest.approx(t_r, rel=1e-9)
+    assert vfd.torque(0.0, 0.0) == 0.0
+    limited = _nameplate(starting="vfd", start_parameters=(4.0, 1.5 * t_r))
+    assert limited.torque(10.0, 1300 * RPM) == pytest.approx(1.5 * t_r, rel=1e-3)  # the limit (curve > 2.5 T_r)
+    assert limited.torque(10.0, 1460 * RPM) == pytest.approx(t_r, rel=1e-3)  # below it: the curve
+
+
+def test_a_speed_ramp_beyond_the_breakdown_torque_warns(tmp_path):
+    """The industrial reducer speed-driven to 1450 rpm in 5 ms with a 15 kW motor described: the run-up of
+    the rigid chain alone needs J_eq w / (ramp / 1.5) (STEP's peak acceleration 1.5 w / T) plus the load."""
+    path = ROOT / "configs/industrial_two_stage.toml"
+    motor = ('input.motor={rated_power_kW=15, rated_speed_rpm=1460, synchronous_speed_rpm=1500, '
+             'breakdown_torque_ratio=2.8, locked_rotor_torque_ratio=2.3}')
+    cfg = load_design_file(path, (motor, "input.ramp_s=0.005", "simulation.duration_s=0.2"))
+    design = compute_design(cfg)
+    res = run_simulation(cfg, design)
+    spec = spec_from_design(cfg, design)
+    rho = [1.0, 19 / 75, 19 / 75 * 19 / 68]
+    j_eq = sum(j * r * r for j, r in zip(spec.inertias_kg_m2, rho, strict=True))
+    assert j_eq * 1.5 * 1450 * RPM / 0.005 > 2.8 * 15e3 / (1460 * RPM)  # the closed form says it must warn
+    warned = [d for d in res.diagnostics if d.code == "ramp_over_breakdown"]
+    assert warned and warned[0].data["torque_Nm"] > warned[0].data["breakdown_torque_Nm"]
+    assert "motor_torque_Nm" in res.channels and "motor_speed_rpm" in res.channels
+    calm = run_simulation(*(lambda c: (c, compute_design(c)))(load_design_file(path, (motor,))))
+    assert not [d for d in calm.diagnostics if d.code == "ramp_over_breakdown"]  # 0.2 s is within the motor
+
+
+def test_an_unsettled_start_warns():
+    cfg = load_design_file(ROOT / "configs/fan_drive.toml", ("simulation.window_start_s=0.1",))
+    res = run_simulation(cfg, compute_design(cfg))
+    assert [d for d in res.diagnostics if d.code == "start_not_settled"]
