@@ -85,8 +85,13 @@ def motor_spec(inp) -> MotorSpec | None:
     if m.torque_speed is not None:
         table = tuple((float(n) * RPM, float(t)) for n, t in m.torque_speed)
         return MotorSpec(max(w for w, _ in table), table=table, **start)
-    return MotorSpec.nameplate(m.rated_power_kW * 1000.0, m.rated_speed_rpm * RPM, m.synchronous_speed_rpm * RPM,
-                               m.breakdown_torque_ratio, m.locked_rotor_torque_ratio, **start)
+    try:
+        return MotorSpec.nameplate(m.rated_power_kW * 1000.0, m.rated_speed_rpm * RPM, m.synchronous_speed_rpm * RPM,
+                                   m.breakdown_torque_ratio, m.locked_rotor_torque_ratio, **start)
+    except ValueError as exc:  # the schema keeps the nameplate consistent; a curve that still cannot be fitted
+        from gearcli.errors import ConfigError
+
+        raise ConfigError(str(exc), key="input.motor") from exc
 
 
 def load_spec(load_cfg) -> LoadSpec:

@@ -137,6 +137,12 @@ def test_fan_drive_operating_speed_and_start_time():
     assert motor["start_time_s"] == pytest.approx(t_start, rel=0.03)  # elastic couplings and meshes vs rigid
     assert not [d for d in res.diagnostics if d.code in ("motor_stalls", "start_not_settled")]
     assert res.solver.energy_residual < 1e-6
+    from gearcli.io.serialize import simulation_dict
+
+    summary = simulation_dict(res)["summary"]  # the JSON contract's keys
+    assert summary["start_time_s"] == motor["start_time_s"] and summary["operating_slip"] == motor["operating_slip"]
+    assert summary["operating_slip"] == pytest.approx(1.0 - w_op / (1500 * RPM), abs=0.1 / 1500)
+    assert {"motor_torque_Nm", "motor_speed_rpm"} <= set(res.channels)
 
 
 def test_fan_drive_four_times_the_load_warns_about_the_motor():
