@@ -25,7 +25,7 @@ import gearcli.design as design_layer
 from gearcli.config import DesignFile, LoadedDesign, load_design
 from gearcli.errors import DesignError
 from gearcli.io.sweep_file import open_sink, read_identity
-from gearcli.model.spec import ModelSpec
+from gearcli.model.spec import ElementSpec, ModelSpec
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
 
@@ -36,8 +36,8 @@ if TYPE_CHECKING:
     from gearcli.results import SimulationResult
     from gearcli.sweep.session import Session, SinkFactory
 
-__all__ = ["DesignFile", "LoadedDesign", "design", "load", "load_and_design", "modes",
-           "model_spec", "prepare_sweep", "report", "run_sweep", "simulate"]
+__all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "design", "load", "load_and_design", "model_spec",
+           "modes", "prepare_sweep", "report", "run_sweep", "simulate", "simulate_spec"]
 
 
 def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:
@@ -73,6 +73,17 @@ def simulate(cfg: DesignFile, design_result: DesignResult, *, method: str | None
     from gearcli.simulate import run_simulation
 
     return run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series)
+
+
+def simulate_spec(spec: ModelSpec, *, duration_s: float, steps: int, method: str = "auto", rtol: float = 1e-6,
+                  engine: str = "auto", error_estimate: bool = False) -> SimulationResult:
+    """One run of a model given by its SI parameters (a scene changed or extended in code: further elements
+    in ``spec.elements``, :class:`ElementSpec`)."""
+    from gearcli.model import TorsionalModel
+    from gearcli.simulate import simulate_model
+
+    return simulate_model(TorsionalModel(spec), duration_s=duration_s, steps=steps, method=method, rtol=rtol,
+                          engine=engine, error_estimate=error_estimate)
 
 
 def modes(cfg: DesignFile, design_result: DesignResult) -> list[ModalAnalysis]:

@@ -324,15 +324,13 @@ Examples:
 @guarded
 def modes(file: str, overrides, fmt, output) -> None:
     """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, mesh orders."""
+    from gearcli import api
     from gearcli.io import modes_out, serialize
-    from gearcli.model.modes import BOUNDARIES, modal_analysis
-    from gearcli.scene import build_model
 
     target = check_target(fmt, output)
     loaded, design_result = load_and_design(file, overrides)
     warn(design_result.warnings)
-    lay = build_model(loaded.design, design_result).layout
-    analyses = [modal_analysis(lay, b, duration_s=loaded.design.simulation.duration_s) for b in BOUNDARIES]
+    analyses = api.modes(loaded.design, design_result)
     if target.fmt == "json":
         emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses), loaded.sha256)), target)
     elif target.fmt == "csv":
@@ -458,9 +456,10 @@ class _StderrProgress:
 @guarded
 def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtols, plots_dir) -> None:
     """Theory against simulation, the numerical error against run time, and plots."""
+    from gearcli import api
     from gearcli.config.bounds import check_report_budget
     from gearcli.io import serialize
-    from gearcli.report import LadderSpec, build_report
+    from gearcli.report import LadderSpec
 
     target = check_target(fmt, output, REPORT_FORMATS, pipe_format="markdown")
     if plots_dir:
@@ -473,8 +472,8 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     collector_on()
     with _StderrProgress() as progress:
         try:
-            rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
-                               progress=progress)
+            rep = api.report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
+                             progress=progress)
         except RunTooLong as exc:
             raise RunTooLong(f"{loaded.source}: {exc}") from None
     if fmt == "json":

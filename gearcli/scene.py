@@ -11,8 +11,10 @@ pinion end (the design gives each gear's inertia).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from gearcli.design import contact_stiffness_N_mm_e
+from gearcli.errors import ConfigError
 from gearcli.model.spec import (
     MM,
     CoupledInertia,
@@ -24,11 +26,16 @@ from gearcli.model.spec import (
     MotorSpec,
     SpringSpec,
 )
+from gearcli.results import DesignResult, StageResult
+
+if TYPE_CHECKING:  # the config layer is below this one; its pydantic models only name the types here
+    from gearcli.config.schema import DesignFile, Input, Load
+    from gearcli.model import TorsionalModel
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 
 
-def _mesh(cfg, st, k: int) -> MeshSpec:
+def _mesh(cfg: DesignFile, st: StageResult, k: int) -> MeshSpec:
     law = cfg.contact_for(k)
     e = float(law.exponent)
     return MeshSpec(
@@ -57,14 +64,15 @@ def _mesh(cfg, st, k: int) -> MeshSpec:
     )
 
 
-def _coupled(table) -> CoupledInertia | None:
-    if getattr(table, "inertia_kg_m2", None) is None:
+def _coupled(table: Input | Load) -> CoupledInertia | None:
+    """The body outside the reducer and its coupling (the schema gives both or neither)."""
+    if table.inertia_kg_m2 is None or table.coupling_stiffness_Nm_rad is None:
         return None
     return CoupledInertia(table.inertia_kg_m2, SpringSpec(table.coupling_stiffness_Nm_rad,
                                                           table.coupling_damping_Nms_rad))
 
 
-def _shafts(cfg, design) -> tuple[FlexibleShaft | None, ...]:
+def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None, ...]:
     out = []
     for k, stage in enumerate(cfg.stage[:-1]):
         s = stage.shaft
@@ -73,7 +81,7 @@ def _shafts(cfg, design) -> tuple[FlexibleShaft | None, ...]:
     return tuple(out) if any(s is not None for s in out) else ()
 
 
-def motor_spec(inp) -> MotorSpec | None:
+def motor_spec(inp: Input) -> MotorSpec | None:
     """The induction motor of an ``[input]`` table (None without ``motor``): rpm -> rad/s, kW -> W."""
     m = inp.motor
     if m is None:
@@ -81,20 +89,20 @@ def motor_spec(inp) -> MotorSpec | None:
     params = {"star_delta": ((inp.switch_speed_rpm or 0.0) * RPM, 0.0),
               "soft_start": (inp.voltage_ramp_s or 0.0, inp.initial_voltage_fraction),
               "vfd": (inp.ramp_s, inp.torque_limit_Nm or 0.0)}.get(inp.starting, (0.0, 0.0))
-    start = {"starting": inp.starting, "start_parameters": params}
     if m.torque_speed is not None:
         table = tuple((float(n) * RPM, float(t)) for n, t in m.torque_speed)
-        return MotorSpec(max(w for w, _ in table), table=table, **start)
+        return MotorSpec(max(w for w, _ in table), inp.starting, params, table=table)
+    assert m.rated_power_kW is not None and m.rated_speed_rpm is not None and m.synchronous_speed_rpm is not None
+    assert m.breakdown_torque_ratio is not None and m.locked_rotor_torque_ratio is not None  # the schema's rule
     try:
         return MotorSpec.nameplate(m.rated_power_kW * 1000.0, m.rated_speed_rpm * RPM, m.synchronous_speed_rpm * RPM,
-                                   m.breakdown_torque_ratio, m.locked_rotor_torque_ratio, **start)
+                                   m.breakdown_torque_ratio, m.locked_rotor_torque_ratio, starting=inp.starting,
+                                   start_parameters=params)
     except ValueError as exc:  # the schema keeps the nameplate consistent; a curve that still cannot be fitted
-        from gearcli.errors import ConfigError
-
         raise ConfigError(str(exc), key="input.motor") from exc
 
 
-def load_spec(load_cfg) -> LoadSpec:
+def load_spec(load_cfg: Load) -> LoadSpec:
     """The load of a ``[load]`` table: a table's speeds rpm -> rad/s, its torque scale the largest |T|."""
     fluct = tuple((f.amplitude_percent / 100.0, f.frequency_Hz) for f in load_cfg.fluctuation)
     if load_cfg.torque_speed is not None:
@@ -105,7 +113,7 @@ def load_spec(load_cfg) -> LoadSpec:
                     speed_exponent=load_cfg.speed_exponent)
 
 
-def spec_from_design(cfg, design) -> ModelSpec:
+def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
     meshes = tuple(_mesh(cfg, st, k) for k, st in enumerate(design.stages))
     inp = cfg.input
@@ -118,19 +126,19 @@ def spec_from_design(cfg, design) -> ModelSpec:
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design))
 
 
-def build_model(cfg, design):
+def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
     """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
-    from gearcli.model import TorsionalModel
+    from gearcli.model import TorsionalModel  # lazy for start-up: ``gearcli design`` imports this module
 
     return TorsionalModel(spec_from_design(cfg, design))
 
 
-def resonance_warnings(cfg, design) -> tuple[str, ...]:
+def resonance_warnings(cfg: DesignFile, design: DesignResult) -> tuple[str, ...]:
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
     its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
-    from gearcli.model.assembly import Layout
+    from gearcli.model.assembly import Layout  # lazy for start-up (numpy), as above
     from gearcli.model.modes import resonances
 
     lay = Layout.of(spec_from_design(cfg, design))

@@ -27,3 +27,48 @@ def _x86_with_avx2() -> bool:
 
 if "OPENBLAS_CORETYPE" not in os.environ and _x86_with_avx2():
     os.environ["OPENBLAS_CORETYPE"] = "Haswell"
+
+# pytest-xdist's workers start with COLUMNS=80 and LINES=24 in their environment (a serial run has neither);
+# the tables size themselves by COLUMNS, so a worker would fold lines a serial run does not. Tests that
+# need a width set it themselves.
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    os.environ.pop("COLUMNS", None)
+    os.environ.pop("LINES", None)
+
+
+# The slow tier: tests of more than ~8 s each on the 2-core reference machine (measured with --durations).
+# They run in CI (`.ci/run`: -m "slow or not slow"); the default run (pyproject addopts: -m "not slow")
+# leaves them out so that the README's command stays near two minutes. The extreme catalogue marks its
+# slow scenes itself (tests/extreme/catalogue.py). CONTRIBUTING.md, "Test tiers".
+SLOW = (
+    "tests/cli/test_cli_report.py::test_plots_four_pngs_from_the_full_report",  # the full report's ladder
+    "tests/cli/test_cli_report.py::test_short_ladder_errors_fall_as_the_tolerance_tightens",
+    "tests/cli/test_cli_report.py::test_below_resolution_flags_agree_with_the_numbers",
+    "tests/engine/test_step_for_step.py::test_same_steps_as_scipy[spur_oscillator_te]",
+    "tests/extreme/test_guards.py::test_steps_at_the_cap_run_in_bounded_memory",
+    "tests/extreme/test_guards.py::test_the_costliest_measured_combination_finishes_within_its_budget",
+    "tests/cli/test_cli_hostile_audit.py::test_mypy_reports_nothing",  # CI runs mypy itself first
+    "tests/engine/test_radau.py::test_compiled_radau_error_same_order_as_scipy[extreme/unequal_inertias]",
+    "tests/cli/test_cli_cost_budget.py::test_a_tiny_load_inertia_on_a_stiff_coupling_is_stopped_early_with_the_fix",
+    "tests/property/test_bounds_fuzz.py::test_every_numeric_key_at_every_edge_through_design",
+    "tests/property/test_bounds_fuzz.py::test_design_and_modes_exit_0_or_2_and_never_print_nan",
+    "tests/sweep/test_sweep_continuation.py::test_continuing_keeps_the_ripple_and_the_load_fluctuation_in_phase",
+    "tests/unit/test_report_honesty.py::test_reported_error_of_the_default_settings_is_honest",
+    "tests/unit/test_report_io.py::test_plots_are_pngs_of_reasonable_size",
+    "tests/reference/test_excitation_parametric.py::test_principal_parametric_instability_where_floquet_puts_it",
+    "tests/reference/test_excitation_oscillator.py::test_single_and_double_sided_impacts_as_published",
+    "tests/reference/test_excitation_oscillator.py::test_coexisting_responses_inside_the_hysteresis_band",
+    "tests/cli/test_cli_hostile.py::test_report_in_a_latin_1_terminal_does_not_crash",
+)
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "slow: more than ~8 s on 2 cores; deselected by default, run by CI")
+
+
+def pytest_collection_modifyitems(config, items):
+    import pytest
+
+    for item in items:
+        if item.nodeid.startswith(SLOW):
+            item.add_marker(pytest.mark.slow)

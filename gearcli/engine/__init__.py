@@ -225,7 +225,8 @@ def _tiny_model():
     return (np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
             np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
             np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
-            np.array([-1, 0, 1], dtype=np.int64), np.zeros(machine.M_TAB), np.zeros(machine.L_TAB))
+            np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
+            np.zeros(machine.L_TAB))
 
 
 def _warm_up(kernel) -> None:
@@ -260,11 +261,26 @@ def pack(arrays) -> tuple:
                      arrays.drive_angle_rad, arrays.load_clock_s], dtype=np.float64)
     ripple = np.ascontiguousarray(np.asarray(arrays.drive_ripple, dtype=np.float64).reshape(-1))
     fluct = np.ascontiguousarray(np.asarray(arrays.load_fluct, dtype=np.float64).reshape(-1))
+    ptr, pairs = _acting_on(bodies, len(arrays.body_inertia))
     return (kind, bodies, np.ascontiguousarray(arrays.conn_levers, dtype=np.float64), param,
             np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct,
-            np.ascontiguousarray(arrays.body_tree, dtype=np.int64),
+            np.ascontiguousarray(arrays.body_tree, dtype=np.int64), ptr, pairs,
             np.ascontiguousarray(np.asarray(arrays.motor_row, dtype=np.float64).reshape(-1)),
             np.ascontiguousarray(np.asarray(arrays.load_law, dtype=np.float64).reshape(-1)))
+
+
+def _acting_on(bodies: np.ndarray, n_bodies: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per body, the (connector, slot) pairs that act on it in connector order, as ``pairs[ptr[b]:ptr[b + 1]]``
+    (the kernel's scatter of forces to bodies)."""
+    lists: list[list[tuple[int, int]]] = [[] for _ in range(n_bodies)]
+    for c in range(bodies.shape[0]):
+        for s in range(bodies.shape[1]):
+            if bodies[c, s] >= 0:
+                lists[int(bodies[c, s])].append((c, s))
+    ptr = np.zeros(n_bodies + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(x) for x in lists])
+    pairs = np.array([p for x in lists for p in x], dtype=np.int64).reshape(-1, 2)
+    return ptr, pairs
 
 
 # ------------------------------------------------------------------------------------------- auto

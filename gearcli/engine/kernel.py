@@ -74,10 +74,12 @@ INITIAL_EXPONENT = 1.0 / (7 + 1)
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
 FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3, 4, 5
-# the model tuple: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree): bodies
-# and signed levers by connector and slot (-1 / 0 padded; gearcli.model.ModelArrays), the rows the flat
-# (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque, tree the connector that
-# gives each body's angle
+# the model tuple: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree, ptr,
+# pairs): bodies and signed levers by connector and slot (-1 / 0 padded; gearcli.model.ModelArrays), the rows
+# the flat (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque, tree the
+# connector that gives each body's angle, per body b its (connector, slot) pairs pairs[ptr[b]:ptr[b + 1]]
+# in connector order (gearcli.engine.pack), then the motor's row and the load's speed law
+# (gearcli.model.elements.machine; empty when there is none)
 
 # ----------------------------------------------------------------------------------- vector sums
 # scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
@@ -182,7 +184,7 @@ def prologue(t, y, model, th):
     meshes need, as the generated prologue forms them; dTin is d/dth0 of a rippled drive torque, d/dw0 of a
     motor's."""
     lev, ipar, fpar, rip, flu, tree = model[2], model[5], model[6], model[7], model[8], model[9]
-    mrow, lrow = model[10], model[11]
+    mrow, lrow = model[12], model[13]
     speed = ipar[IP_DRIVE] == 0
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
@@ -260,21 +262,19 @@ def side_losses(c, f, y, model, first, i_w0, w0):
 
 @jit
 def body_torque(i, model, fc, y, first, i_w0, w0):
-    """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index); a lossy
-    mesh puts f_a on its pinion and f_b on its gear."""
-    bodies, lev = model[1], model[2]
+    """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
+    the body's list of (connector, slot) pairs); a lossy mesh puts f_a on its pinion and f_b on its gear."""
+    lev, ptr, pairs = model[2], model[10], model[11]
     x = 0.0
-    seen = False
-    for c in range(bodies.shape[0]):
-        for s in range(bodies.shape[1]):
-            if bodies[c, s] == i:
-                f = fc[c]
-                if s < 2 and lossy(model[0][c], model[3][c]):
-                    _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
-                    f = fa if s == 0 else fb
-                term = -lev[c, s] * f
-                x = x + term if seen else term
-                seen = True
+    for k in range(ptr[i], ptr[i + 1]):
+        c = pairs[k, 0]
+        s = pairs[k, 1]
+        f = fc[c]
+        if s < 2 and lossy(model[0][c], model[3][c]):
+            _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
+            f = fa if s == 0 else fb
+        term = -lev[c, s] * f
+        x = x + term if k > ptr[i] else term
     return x
 
 
@@ -976,7 +976,7 @@ def jacobian(t, y, Jm, model, th, g, ag):
             Jm[iq, i_th] += dtin * w0
     if load:
         last = i_w0 + nb - 1 - first
-        if model[11].size > 0:  # a speed-dependent load
+        if model[13].size > 0:  # a speed-dependent load
             Jm[iq + 1, last] = tl + dtl * body_speed(y, nb - 1, first, i_w0, w0)
             Jm[last, last] += (-1.0 / inertia[nb - 1]) * dtl
         else:

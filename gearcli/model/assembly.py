@@ -150,6 +150,8 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
     for e in spec.elements:  # further elements between bodies of the chain, by body index
         kind = kind_of(e.name)
         conns.append(Connector(kind, tuple(e.bodies), tuple(e.radii), _row(law_of(kind).pack(e.part)), e.label))
+        if not all(0 <= b < len(bodies) for b in e.bodies):
+            raise ValueError(f"element {e.label!r} joins bodies {e.bodies}; the scene has bodies 0 to {len(bodies) - 1}")
     return bodies, _loss_widths(spec, bodies, _assembled(spec, bodies, conns))
 
 
@@ -173,7 +175,8 @@ def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> l
     body counts as infinitely heavy). A ``damping_ratio`` mesh gets its viscous damping here."""
     out = []
     for x in conns:
-        F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb)  # static force (chain)
+        # the static force on the power path (as gearcli.model.linear.static_forces; a further element: none)
+        F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb) if x.role else 0.0
         mobility = [0.0 if (j == 0 and spec.drive.kind == "speed") else r**2 / bodies[j].inertia
                     for j, r in zip(x.bodies, x.radii, strict=True)]
         row = x.element.assembled(x.params, F, 1.0 / _ordered_sum(mobility))

@@ -38,12 +38,18 @@ def _lay(x) -> Layout:
 
 
 def static_forces(lay: Layout) -> np.ndarray:
-    """Force of every connector at full load in steady state: N for meshes, N m for springs. A lossy mesh's
-    force is its driving side's: the loads of the meshes after it divided by their efficiencies (times, for a
-    reversed load, whose power flows from the output)."""
+    """Force of every connector at full load in steady state: N for meshes, N m for springs.
+
+    The statics of the power path (the parallel-stage chain): connector c carries the load torque to its
+    second body, ``T_L rho_N / rho_b / r_b``. A further element (``ModelSpec.elements``) is taken to carry
+    no static load (a damper; general statics come with the general topology). A lossy mesh's force is its
+    driving side's: the loads of the meshes after it divided by their efficiencies (times, for a reversed
+    load, whose power flows from the output)."""
     rho = np.array([b.ratio for b in lay.bodies])
+    rho_b = np.array([rho[x.b] for x in lay.connectors])
     rb = np.array([x.rb for x in lay.connectors])
-    out = lay.load.torque_Nm * rho[-1] / rho[1:] / rb
+    out = lay.load.torque_Nm * rho[-1] / rho_b / rb
+    out[[c for c, x in enumerate(lay.connectors) if not x.role]] = 0.0
     if lay.n_lossy:
         factor = 1.0
         for c in range(lay.n_conn - 1, -1, -1):
@@ -74,10 +80,11 @@ def rigid_forces(lay: Layout, t: np.ndarray) -> np.ndarray:
     else:
         t_in = np.asarray(ramp(t, lay.drive.ramp_s, lay.drive.torque_Nm)) * np.ones_like(t)
         alpha0 = (t_in - rho[-1] * t_load) / float(J @ rho**2)
-    out = np.empty((lay.n_conn, t.size))
+    out = np.zeros((lay.n_conn, t.size))
     for c, x in enumerate(lay.connectors):
-        downstream = float(J[c + 1:] @ rho[c + 1:] ** 2) / rho[c + 1]
-        out[c] = (downstream * alpha0 + t_load * rho[-1] / rho[c + 1]) / x.rb
+        if x.role:  # on the power path: everything beyond its second body (as static_forces)
+            downstream = float(J[x.b:] @ rho[x.b:] ** 2) / rho[x.b]
+            out[c] = (downstream * alpha0 + t_load * rho[-1] / rho[x.b]) / x.rb
     return out
 
 

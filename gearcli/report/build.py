@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from functools import partial
+from typing import TYPE_CHECKING
 
 from gearcli import engine
 from gearcli.model import TorsionalModel
@@ -15,11 +16,14 @@ from gearcli.results import DesignResult, SimulationResult
 from gearcli.scene import spec_from_design
 from gearcli.simulate.run import run_simulation
 
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile
+
 SimulateFn = Callable[..., SimulationResult]  # gearcli.simulate.run_simulation's signature
 
 
 def build_report(
-    cfg,
+    cfg: DesignFile,
     design: DesignResult,
     *,
     accuracy: float = 1e-4,

@@ -41,7 +41,7 @@ import numpy as np
 
 from gearcli.core.cost import EXPLICIT_CAP
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
-from gearcli.model import Layout, Linearisation, ModelSpec, linearise
+from gearcli.model import Layout, Linearisation, ModelSpec, TorsionalModel, linearise
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces
 
 STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which a scene counts as stiff for an explicit method (warnings)
@@ -193,8 +193,6 @@ def unit_costs(spec: ModelSpec, repeat: int = 200) -> dict[str, float]:
     import time
 
     import scipy.linalg
-
-    from gearcli.model import TorsionalModel
 
     model = TorsionalModel(spec)
     y = model.initial_state()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,7 +18,7 @@ from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
+from gearcli.results import DesignResult, EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
 from gearcli.scene import spec_from_design
 from gearcli.simulate import estimate, stats
 from gearcli.simulate import motor as motor_side
@@ -35,11 +36,14 @@ from gearcli.simulate.solver import (
     integrate,
 )
 
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile
+
 RAD_TO_DEG = 180.0 / math.pi
 StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), pen. (mm), DTE (um)
 
 
-def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
+def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
                    error_estimate: bool | None = None) -> SimulationResult:

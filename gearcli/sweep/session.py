@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Protocol
 
 from gearcli import __version__
-from gearcli.config import load_design
+from gearcli.config import DesignFile, load_design
 from gearcli.config.load import read_bytes
 from gearcli.design import compute_design
 from gearcli.errors import DesignError
@@ -56,7 +56,7 @@ def _none_previous(output: str) -> tuple[dict | None, list[dict]]:
 class Session:
     spec: SweepSpec
     scene: Scene
-    cfg: object  # the validated base DesignFile
+    cfg: DesignFile  # the validated base design file
     design: DesignResult
     columns: list[str]
     identity: dict

@@ -94,8 +94,18 @@ class ElementType:
 _REGISTRY: dict[int, ElementType] = {}
 
 
+#: what an element module must define (:class:`ElementLaw`)
+PROTOCOL = ("NAME", "SIGNS", "PARAMS", "CHANNELS", "pack", "force", "power_gradient", "potential", "channel",
+            "static_deflection", "deflection_scale", "tangent", "linear_row", "assembled", "phase_per_rad",
+            "cycle_period_s", "makes_excitation", "self_exciting", "damped", "time_varying", "phased", "excited")
+
+
 def register(law: ModuleType, *, compiled: bool = False) -> ElementType:
-    """Register an element module; its kind is the next free index (idempotent for the same module)."""
+    """Register an element module; its kind is the next free index (idempotent for the same module).
+    ``compiled``: also compile it into the kernel (a new cache, compiled once)."""
+    missing = [name for name in PROTOCOL if not hasattr(law, name)]
+    if missing:
+        raise TypeError(f"{law.__name__} is not an element module: it lacks {', '.join(missing)}")
     for et in _REGISTRY.values():
         if et.law is law:
             return et

@@ -1,0 +1,45 @@
+"""The layers ARCHITECTURE.md lists are the ones import-linter enforces, and the code keeps them."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _documented_layers() -> list[str]:
+    text = (ROOT / "ARCHITECTURE.md").read_text(encoding="utf-8")
+    block = re.search(r"<!-- layers:[^>]*-->\s*```text\n(.*?)```", text, re.S)
+    assert block, "ARCHITECTURE.md lost its layer list"
+    return [line.strip() for line in block.group(1).splitlines() if line.strip()]
+
+
+def _contract_layers() -> list[str]:
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["importlinter"]
+    (contract,) = [c for c in config["contracts"] if c["type"] == "layers"]
+    return list(contract["layers"])
+
+
+def test_architecture_md_lists_the_contract_s_layers():
+    assert _documented_layers() == _contract_layers()
+
+
+def test_every_package_and_top_level_module_is_in_a_layer():
+    named = {m.strip() for layer in _contract_layers() for m in re.split(r"[|:]", layer)}
+    pkg = ROOT / "gearcli"
+    present = {f"gearcli.{p.stem}" for p in pkg.glob("*.py") if p.stem != "__init__"}
+    present |= {f"gearcli.{p.name}" for p in pkg.iterdir() if (p / "__init__.py").exists()}
+    assert present == named
+
+
+def test_the_code_keeps_the_layers():
+    pytest.importorskip("importlinter")  # the dev extra
+    script = Path(sys.executable).with_name("lint-imports")
+    res = subprocess.run([str(script), "--no-cache"], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stdout[-3000:]
