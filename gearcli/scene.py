@@ -14,12 +14,25 @@ import math
 from typing import TYPE_CHECKING
 
 from gearcli.design import contact_stiffness_N_mm_e
-from gearcli.model.spec import MM, CoupledInertia, DriveSpec, FlexibleShaft, LoadSpec, MeshSpec, ModelSpec, SpringSpec
+from gearcli.errors import ConfigError
+from gearcli.model.spec import (
+    MM,
+    CoupledInertia,
+    DriveSpec,
+    FlexibleShaft,
+    LoadSpec,
+    MeshSpec,
+    ModelSpec,
+    MotorSpec,
+    SpringSpec,
+)
 from gearcli.results import DesignResult, StageResult
 
 if TYPE_CHECKING:  # the config layer is below this one; its pydantic models only name the types here
     from gearcli.config.schema import DesignFile, Input, Load
     from gearcli.model import TorsionalModel
+
+RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 
 
 def _mesh(cfg: DesignFile, st: StageResult, k: int) -> MeshSpec:
@@ -68,15 +81,47 @@ def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None
     return tuple(out) if any(s is not None for s in out) else ()
 
 
+def motor_spec(inp: Input) -> MotorSpec | None:
+    """The induction motor of an ``[input]`` table (None without ``motor``): rpm -> rad/s, kW -> W."""
+    m = inp.motor
+    if m is None:
+        return None
+    params = {"star_delta": ((inp.switch_speed_rpm or 0.0) * RPM, 0.0),
+              "soft_start": (inp.voltage_ramp_s or 0.0, inp.initial_voltage_fraction),
+              "vfd": (inp.ramp_s, inp.torque_limit_Nm or 0.0)}.get(inp.starting, (0.0, 0.0))
+    if m.torque_speed is not None:
+        table = tuple((float(n) * RPM, float(t)) for n, t in m.torque_speed)
+        return MotorSpec(max(w for w, _ in table), inp.starting, params, table=table)
+    assert m.rated_power_kW is not None and m.rated_speed_rpm is not None and m.synchronous_speed_rpm is not None
+    assert m.breakdown_torque_ratio is not None and m.locked_rotor_torque_ratio is not None  # the schema's rule
+    try:
+        return MotorSpec.nameplate(m.rated_power_kW * 1000.0, m.rated_speed_rpm * RPM, m.synchronous_speed_rpm * RPM,
+                                   m.breakdown_torque_ratio, m.locked_rotor_torque_ratio, starting=inp.starting,
+                                   start_parameters=params)
+    except ValueError as exc:  # the schema keeps the nameplate consistent; a curve that still cannot be fitted
+        raise ConfigError(str(exc), key="input.motor") from exc
+
+
+def load_spec(load_cfg: Load) -> LoadSpec:
+    """The load of a ``[load]`` table: a table's speeds rpm -> rad/s, its torque scale the largest |T|."""
+    fluct = tuple((f.amplitude_percent / 100.0, f.frequency_Hz) for f in load_cfg.fluctuation)
+    if load_cfg.torque_speed is not None:
+        table = tuple((float(n) * RPM, float(t)) for n, t in load_cfg.torque_speed)
+        return LoadSpec(torque_Nm=max(abs(t) for _, t in table), ramp_s=load_cfg.ramp_s, fluctuation=fluct,
+                        table=table)
+    return LoadSpec(torque_Nm=load_cfg.torque_Nm_value, ramp_s=load_cfg.ramp_s, fluctuation=fluct,
+                    speed_exponent=load_cfg.speed_exponent)
+
+
 def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
     meshes = tuple(_mesh(cfg, st, k) for k, st in enumerate(design.stages))
     inp = cfg.input
     drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
                       torque_Nm=inp.torque_Nm_value or 0.0,
-                      ripple=tuple((r.amplitude_percent / 100.0, r.order) for r in inp.torque_ripple))
-    load = LoadSpec(torque_Nm=cfg.load.torque_Nm_value, ramp_s=cfg.load.ramp_s,
-                    fluctuation=tuple((f.amplitude_percent / 100.0, f.frequency_Hz) for f in cfg.load.fluctuation))
+                      ripple=tuple((r.amplitude_percent / 100.0, r.order) for r in inp.torque_ripple),
+                      motor=motor_spec(inp))
+    load = load_spec(cfg.load)
     return ModelSpec(meshes, tuple(s.inertia_kg_m2 for s in design.shafts), drive, load,
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design))
 

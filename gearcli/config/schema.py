@@ -36,6 +36,7 @@ from gearcli.config.excitation import (
     keeps_k_positive,
     phases_fit,
 )
+from gearcli.config.machine import Motor, Table, increasing_speeds
 from gearcli.core.methods import NAMES as METHODS  # the one registry of integration methods
 
 # Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
@@ -266,6 +267,27 @@ class _Coupled(_Table):
                              "coupling_stiffness_Nm_rad")
 
 
+_START_PARAMS = {"switch_speed_rpm": "star_delta", "voltage_ramp_s": "soft_start",
+                 "initial_voltage_fraction": "soft_start", "torque_limit_Nm": "vfd"}
+
+
+def _starting_rules() -> list[dict]:
+    """A starting method and its parameters need drive = "motor"; each parameter belongs to its method; star-delta
+    needs its switch-over speed, the soft start its ramp; ramp_s > 0 on a motor only for the VFD."""
+    motor = {**_required("drive"), "properties": {"drive": {"const": "motor"}}}
+    rules: list[dict] = [{"not": {"anyOf": [_required(k) for k in ("starting", *_START_PARAMS)], "not": motor}}]
+    for key, method in _START_PARAMS.items():
+        rules.append({"not": {**_required(key), "not": {**_required("starting"),
+                                                       "properties": {"starting": {"const": method}}}}})
+    for method, key in (("star_delta", "switch_speed_rpm"), ("soft_start", "voltage_ramp_s")):
+        rules.append({"not": {**_required("starting"), "properties": {"starting": {"const": method}},
+                              "not": _required(key)}})
+    rules.append({"not": {**motor, **_required("drive", "ramp_s"),
+                          "properties": {"drive": {"const": "motor"}, "ramp_s": {"exclusiveMinimum": 0}},
+                          "not": {**_required("starting"), "properties": {"starting": {"const": "vfd"}}}}})
+    return rules
+
+
 class Input(_Coupled):
     """The input drive. Exactly one speed key: the prescribed speed (``drive = "speed"``) or, with
     ``drive = "torque"``, the nominal speed the train starts at."""
@@ -274,18 +296,30 @@ class Input(_Coupled):
     speed_rpm: SpeedRpm | None = None
     speed_rad_s: SpeedRadS | None = None
     ramp_s: Seconds = 0.0
-    drive: Literal["speed", "torque"] = "speed"
+    drive: Literal["speed", "torque", "motor"] = "speed"
     torque_Nm: TorqueNm | None = None
     torque_Nmm: TorqueNmm | None = None
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
     torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS)] = []  # drive = "torque" only
     rotation: Literal["cw", "ccw"] = "cw"  # seen from the input end looking along +x (shaft statics)
+    # an induction motor (drive = "motor"; with drive = "speed" it checks that the motor can follow the ramp)
+    motor: Motor | None = None
+    starting: Literal["direct", "star_delta", "soft_start", "vfd"] = "direct"
+    switch_speed_rpm: Annotated[float, Field(ge=1.0, le=MAX_SPEED_RPM)] | None = None  # star_delta
+    voltage_ramp_s: Annotated[float, Field(ge=1e-3, le=MAX_TIME_S)] | None = None  # soft_start
+    initial_voltage_fraction: Annotated[float, Field(ge=0.05, le=1.0)] = 0.3  # soft_start
+    torque_limit_Nm: Annotated[float, Field(gt=0.0, le=MAX_TORQUE_NMM / 1e3)] | None = None  # vfd
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
     model_config = ConfigDict(json_schema_extra=_all_of(
         *_exactly_one(("speed_deg_s", "speed_rpm", "speed_rad_s")), *_at_most_one(INPUT_TORQUE_KEYS),
         {"not": {**_required("drive"), "properties": {"drive": {"const": "torque"}},
                  "not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS]}}},
         {"not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS], "properties": {"drive": {"const": "speed"}}}},
+        {"not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS], "properties": {"drive": {"const": "motor"}},
+                 **_required("drive")}},
+        {"not": {**_required("drive"), "properties": {"drive": {"const": "motor"}}, "not": _required("motor")}},
+        {"not": {**_required("drive", "motor"), "properties": {"drive": {"const": "torque"}}}},
+        *_starting_rules(),
         *_coupling_rules()))
 
     @field_validator("torque_ripple")
@@ -309,12 +343,39 @@ class Input(_Coupled):
             raise ValueError(f"give at most one of {', '.join(INPUT_TORQUE_KEYS)} (got {', '.join(torques)})")
         if self.drive == "torque" and not torques:
             raise ValueError('drive = "torque" needs torque_Nm, torque_Nmm or power_kW')
-        if self.drive == "speed" and torques:
+        if self.drive != "torque" and torques:
             raise ValueError('torque_Nm/torque_Nmm/power_kW are only used with drive = "torque"')
+        if self.drive == "torque" and self.motor is not None:
+            raise ValueError('motor: a torque drive prescribes the input torque; use drive = "motor" (or "speed", '
+                             "to check a speed ramp against the motor)")
+        self._check_motor()
         if self.power_kW is not None:  # the input speed is known here: P = T ω
             self._torque_from_power_Nm = self.power_kW * 1000.0 / self.speed_rad_s_value
         self._check_coupling("input")
         return self
+
+    def _check_motor(self) -> None:
+        if self.drive == "motor" and self.motor is None:
+            raise ValueError('drive = "motor" needs motor = { rated_power_kW, rated_speed_rpm, synchronous_speed_rpm, '
+                             "breakdown_torque_ratio, locked_rotor_torque_ratio } or motor = { torque_speed = [...] }")
+        if self.drive != "motor":
+            extra = [k for k in ("switch_speed_rpm", "voltage_ramp_s", "torque_limit_Nm", "starting",
+                                 "initial_voltage_fraction") if k in self.model_fields_set]
+            if extra:
+                raise ValueError(f'{", ".join(extra)}: a starting method needs drive = "motor"')
+            return
+        need = {"star_delta": "switch_speed_rpm", "soft_start": "voltage_ramp_s"}.get(self.starting)
+        if need is not None and getattr(self, need) is None:
+            raise ValueError(f'starting = "{self.starting}" needs {need}')
+        own = {"star_delta": {"switch_speed_rpm"}, "soft_start": {"voltage_ramp_s", "initial_voltage_fraction"},
+               "vfd": {"torque_limit_Nm"}}.get(self.starting, set())
+        stray = [k for k in ("switch_speed_rpm", "voltage_ramp_s", "initial_voltage_fraction", "torque_limit_Nm")
+                 if k in self.model_fields_set and k not in own]
+        if stray:
+            raise ValueError(f'{", ".join(stray)}: not a parameter of starting = "{self.starting}"')
+        if self.ramp_s > 0 and self.starting != "vfd":
+            raise ValueError('ramp_s: with drive = "motor" only the VFD ramps its speed (starting = "vfd"); the other '
+                             "starts follow the motor's curve")
 
     @property
     def speed_rad_s_value(self) -> float:
@@ -346,14 +407,27 @@ class Load(_Coupled):
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
     power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
     fluctuation: Annotated[list[Fluctuation], Field(max_length=MAX_HARMONICS)] = []
+    # torque against speed: a power law of the load body's speed (the torque given at the nominal output
+    # speed), or a table [[rpm, N·m], ...] of the output speed (then no torque key: the table gives it)
+    speed_exponent: Literal[0, 1, 2] = 0
+    torque_speed: Table | None = None
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
-    model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(LOAD_TORQUE_KEYS), *_coupling_rules()))
+    model_config = ConfigDict(json_schema_extra=_all_of(
+        *_at_most_one(LOAD_TORQUE_KEYS),
+        {"anyOf": [_required(k) for k in (*LOAD_TORQUE_KEYS, "torque_speed")]},
+        {"not": {**_required("torque_speed"), "anyOf": [_required(k) for k in (*LOAD_TORQUE_KEYS, "speed_exponent")]}},
+        *_coupling_rules()))
 
     @model_validator(mode="after")
     def _one_torque(self) -> Load:
         given = [k for k in LOAD_TORQUE_KEYS if getattr(self, k) is not None]
-        if len(given) != 1:
-            raise ValueError(f"give exactly one of {', '.join(LOAD_TORQUE_KEYS)}"
+        if self.torque_speed is not None:
+            if given or "speed_exponent" in self.model_fields_set:
+                raise ValueError(f"torque_speed gives the load's torque: no {', '.join((*given, 'speed_exponent')[:1])} "
+                                 "beside it")
+            increasing_speeds(self.torque_speed, "torque_speed", non_negative=True)
+        elif len(given) != 1:
+            raise ValueError(f"give exactly one of {', '.join(LOAD_TORQUE_KEYS)} or torque_speed"
                              + (f" (got {', '.join(given)})" if given else ""))
         self._check_coupling("load")
         return self
@@ -445,11 +519,23 @@ class DesignFile(_Table):
 
     @model_validator(mode="after")
     def _load_power_to_torque(self) -> DesignFile:
-        """[load] power_kW becomes the output torque at the nominal output speed, ω_in / Π z_gear/z_pinion."""
+        """[load] power_kW becomes the output torque at the nominal output speed, ω_in / Π z_gear/z_pinion;
+        a [load] torque_speed table gives its torque at that speed."""
+        ratio = math.prod(s.gear.teeth / s.pinion.teeth for s in self.stage)
         if self.load.power_kW is not None:
-            ratio = math.prod(s.gear.teeth / s.pinion.teeth for s in self.stage)
             load = self.load.model_copy()  # never write into a Load another DesignFile may share
             load._torque_from_power_Nm = self.load.power_kW * 1000.0 * ratio / self.input.speed_rad_s_value
+            object.__setattr__(self, "load", load)
+        elif self.load.torque_speed is not None:
+            import numpy as np
+
+            table = np.array(self.load.torque_speed, dtype=float)
+            n_out = self.input.speed_rad_s_value / ratio * 60.0 / (2.0 * math.pi)
+            load = self.load.model_copy()
+            load._torque_from_power_Nm = float(np.interp(n_out, table[:, 0], table[:, 1]))
+            if load._torque_from_power_Nm == 0.0:
+                raise ValueError(f"load.torque_speed: the table's torque at the nominal output speed ({n_out:.4g} rpm) "
+                                 "is 0; the design needs a load there")
             object.__setattr__(self, "load", load)
         return self
 

@@ -63,10 +63,15 @@ _COMMENTS = {
 #   time_varying = true scales K with the length of the contact lines over the mesh cycle""",
     "input": """\
 # [input]: the drive. Exactly one of speed_deg_s, speed_rpm, speed_rad_s; ramp_s >= 0 (0 = full speed at t = 0).
-#   drive = "speed" (prescribed speed, default) | "torque" (then torque_Nm, torque_Nmm or power_kW drives a free input shaft)""",
+#   drive = "speed" (prescribed speed, default) | "torque" (then torque_Nm, torque_Nmm or power_kW drives a free input shaft)
+#   | "motor" (an induction motor from rest: motor = { rated_power_kW, rated_speed_rpm, synchronous_speed_rpm,
+#   breakdown_torque_ratio, locked_rotor_torque_ratio } or { torque_speed = [[rpm, N·m], ...] };
+#   starting = "direct" | "star_delta" | "soft_start" | "vfd"; the speed key is then the nominal speed)""",
     "load": """\
 # [load]: torque on the output shaft, resisting its rotation (negative = load reversal).
-#   Exactly one of torque_Nmm, torque_Nm, power_kW; ramp_s >= 0; application_factor K_A in [1, 10] (default 1)""",
+#   Exactly one of torque_Nmm, torque_Nm, power_kW; ramp_s >= 0; application_factor K_A in [1, 10] (default 1)
+#   speed_exponent = 0 | 1 | 2 (torque ~ speed^k, the torque given at the nominal output speed), or instead of
+#   a torque key a table torque_speed = [[rpm, N·m], ...] of the output speed""",
     "target": """\
 # [target] (optional): the output speed the design must reach; a miss is a warning.
 #   Exactly one of output_speed_rpm, output_speed_deg_s; tolerance_percent in (0, 100]""",

@@ -49,6 +49,8 @@ SUPPORTED = (
     "mesh excitation: transmission error (the law on q = delta - e), stiffness harmonics, viscous damping ratio",
     "speed drive (exact STEP speed profile, start angle) or torque drive with torque ripple, STEP-ramped; "
     "STEP-ramped load torque with load fluctuation (clock offset)",
+    "induction-motor drive (extended Kloss or table curve; direct, star-delta, soft start, VFD); speed-dependent "
+    "load (power law or table); mesh losses (stage efficiency in the power-flow direction)",
     "a run that starts at t0 > 0 (the periodic steady state's period-by-period runs, sweep continuation)",
     "energy quadratures (input work with the transmission error's work, load work, damping loss, work on "
     "time-varying springs)",
@@ -60,9 +62,10 @@ SUPPORTED = (
 # ModelArrays fields the kernel reads; any other field with content is a feature it does not know
 _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_levers", "conn_param", "body_tree",
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
-                 "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol"}
+                 "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol",
+                 "motor_row", "load_law"}
 _SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "model/elements/__init__.py",
-            "model/elements/torque.py", "model/contact_lines.py")  # + every compiled element's module (_source_key)
+            "model/elements/torque.py", "model/elements/machine.py", "model/contact_lines.py")  # + every compiled element's module (_source_key)
 
 _state: dict = {}
 
@@ -262,6 +265,8 @@ DEFAULT_LOAD_S = 0.6  # s: numba import + cache load on the 2-core reference mac
 
 def _tiny_model():
     """Two bodies, one mesh and one spring: a model of every argument type, to compile or load once."""
+    from gearcli.model.elements import machine
+
     mesh = elements.mesh
     param = np.zeros((2, elements.N_PARAM))
     param[0, :13] = (1.0, 1.0, 1e9, 1.5, 1e3, 1e4, 6e7, 0.0, 0.0, 1.5, 1.0, 20.0, 1e-4)
@@ -274,7 +279,8 @@ def _tiny_model():
     return (np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
             np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
             np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
-            np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3))
+            np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
+            np.zeros(machine.L_TAB))
 
 
 def _warm_up(kernel) -> None:
@@ -312,7 +318,9 @@ def pack(arrays) -> tuple:
     ptr, pairs = _acting_on(bodies, len(arrays.body_inertia))
     return (kind, bodies, np.ascontiguousarray(arrays.conn_levers, dtype=np.float64), param,
             np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct,
-            np.ascontiguousarray(arrays.body_tree, dtype=np.int64), ptr, pairs)
+            np.ascontiguousarray(arrays.body_tree, dtype=np.int64), ptr, pairs,
+            np.ascontiguousarray(np.asarray(arrays.motor_row, dtype=np.float64).reshape(-1)),
+            np.ascontiguousarray(np.asarray(arrays.load_law, dtype=np.float64).reshape(-1)))
 
 
 def _acting_on(bodies: np.ndarray, n_bodies: int) -> tuple[np.ndarray, np.ndarray]:

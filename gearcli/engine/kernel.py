@@ -33,6 +33,9 @@ from gearcli import engine as _engine
 from gearcli.engine import blas as _blas
 from gearcli.engine import dispatch as _dispatch
 from gearcli.engine import tableau as tb
+from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements import machine as _machine_mod
+from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import torque as _torque_mod
 
 jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
@@ -47,6 +50,10 @@ conn_tv, conn_phased, conn_excited = _D.conn_tv, _D.conn_phased, _D.conn_excited
 conn_phase_per_rad = _D.conn_phase_per_rad
 _TORQUE = _dispatch.jit_module(_torque_mod)
 torque_ripple, torque_fluctuation = _TORQUE["ripple"], _TORQUE["fluctuation"]
+_MACHINE = _dispatch.jit_module(_machine_mod)  # the motor's curve and start, the load's speed law
+motor_torque, load_factor = _MACHINE["motor_torque"], _MACHINE["load_factor"]
+mesh_loss_factors = _D._mesh_loss_factors  # a lossy mesh's two side forces (the registry compiled the mesh law)
+I_ETA = _mesh_mod.I_ETA
 
 # DOP853 (scipy's class attributes)
 N_STAGES = tb.N_STAGES
@@ -70,8 +77,9 @@ FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3,
 # the model tuple: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree, ptr,
 # pairs): bodies and signed levers by connector and slot (-1 / 0 padded; gearcli.model.ModelArrays), the rows
 # the flat (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque, tree the
-# connector that gives each body's angle, and per body b its (connector, slot) pairs pairs[ptr[b]:ptr[b + 1]]
-# in connector order (gearcli.engine.pack)
+# connector that gives each body's angle, per body b its (connector, slot) pairs pairs[ptr[b]:ptr[b + 1]]
+# in connector order (gearcli.engine.pack), then the motor's row and the load's speed law
+# (gearcli.model.elements.machine; empty when there is none)
 
 # ----------------------------------------------------------------------------------- vector sums
 # scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
@@ -172,9 +180,11 @@ def input_motion(t, v, T, start):
 
 @jit
 def prologue(t, y, model, th):
-    """(speed drive, w0, a0, Tin, dTin/dth0, load, TL) at (t, y) and the body angles ``th`` the phased
-    meshes need, as the generated prologue forms them."""
+    """(speed drive, w0, a0, Tin, dTin, load, TL, dTL/dw_N) at (t, y) and the body angles ``th`` the phased
+    meshes need, as the generated prologue forms them; dTin is d/dth0 of a rippled drive torque, d/dw0 of a
+    motor's."""
     lev, ipar, fpar, rip, flu, tree = model[2], model[5], model[6], model[7], model[8], model[9]
+    mrow, lrow = model[12], model[13]
     speed = ipar[IP_DRIVE] == 0
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
@@ -183,6 +193,10 @@ def prologue(t, y, model, th):
     dtin = 0.0
     if speed:
         th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP], fpar[FP_ANGLE])
+    elif ipar[IP_DRIVE] == 2:  # an induction motor at its speed
+        w0 = y[i_w0]
+        th0 = y[i_th] if i_th >= 0 else 0.0
+        tin, dtin = motor_torque(mrow, t, w0)
     else:
         tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
         w0 = y[i_w0]
@@ -197,12 +211,18 @@ def prologue(t, y, model, th):
         tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP])
         if flu.size > 0:
             tl = tl * torque_fluctuation(flu, t + fpar[FP_CLOCK] if fpar[FP_CLOCK] != 0.0 else t)
+    dtl = 0.0
+    if load and lrow.size > 0:  # T_L g(w_N)
+        nb = model[4].shape[0]
+        g, dg = load_factor(lrow, body_speed(y, nb - 1, 1 if speed else 0, i_w0, w0))
+        dtl = tl * dg
+        tl = tl * g
     th[0] = th0
     for b in range(1, ipar[IP_LAST_ANGLE] + 1):  # theta_b = (r_a theta_a - delta_c) / r_b along the tree
         c = tree[b]
         if c >= 0:
             th[b] = (lev[c, 0] * th[model[1][c, 0]] - y[c]) * (1.0 / -lev[c, 1])
-    return speed, w0, a0, tin, dtin, load, tl
+    return speed, w0, a0, tin, dtin, load, tl, dtl
 
 
 @jit
@@ -224,14 +244,36 @@ def deflection_rate(c, y, model, first, i_w0, w0):
 
 
 @jit
-def body_torque(i, model, fc):
+def lossy(kind, P):
+    """A mesh that loses (1 - eta) of the power it transmits."""
+    return kind == KIND_MESH and 0.0 < P[I_ETA] < 1.0
+
+
+@jit
+def side_losses(c, f, y, model, first, i_w0, w0):
+    """A lossy mesh's forces on its pinion and gear side and their partials (mesh.loss_factors), from
+    v_a = r_a w_a and v_b = r_b w_b (levers (r_a, -r_b))."""
+    bodies, lev = model[1], model[2]
+    va = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
+    vb = -lev[c, 1] * body_speed(y, bodies[c, 1], first, i_w0, w0)
+    fa, fb, aa, ba, ab, bb = mesh_loss_factors(model[3][c], f, va, vb)
+    return va, vb, fa, fb, aa, ba, ab, bb
+
+
+@jit
+def body_torque(i, model, fc, y, first, i_w0, w0):
     """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
-    the body's list of (connector, slot) pairs)."""
+    the body's list of (connector, slot) pairs); a lossy mesh puts f_a on its pinion and f_b on its gear."""
     lev, ptr, pairs = model[2], model[10], model[11]
     x = 0.0
     for k in range(ptr[i], ptr[i + 1]):
         c = pairs[k, 0]
-        term = -lev[c, pairs[k, 1]] * fc[c]
+        s = pairs[k, 1]
+        f = fc[c]
+        if s < 2 and lossy(model[0][c], model[3][c]):
+            _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
+            f = fa if s == 0 else fb
+        term = -lev[c, s] * f
         x = x + term if k > ptr[i] else term
     return x
 
@@ -246,7 +288,7 @@ def rhs(t, y, dy, model, th, fc):
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
     iq = ipar[IP_QUAD]
-    speed, w0, a0, tin, _, load, tl = prologue(t, y, model, th)
+    speed, w0, a0, tin, _, load, tl, _ = prologue(t, y, model, th)
     first = 1 if speed else 0
     damp = 0.0
     tvp = 0.0
@@ -269,8 +311,14 @@ def rhs(t, y, dy, model, th, fc):
         if tv:
             tvp = tvp + u if have_tv else u
             have_tv = True
+    for c in range(nc):  # the meshes' losses, after the damping (the generated sum's order)
+        if lossy(kind[c], param[c]):
+            va, vb, fa, fb, _, _, _, _ = side_losses(c, fc[c], y, model, first, i_w0, w0)
+            ql = va * (fa - fc[c]) - vb * (fb - fc[c])
+            damp = damp + ql if have_damp else ql
+            have_damp = True
     for i in range(first, nb):
-        x = body_torque(i, model, fc)
+        x = body_torque(i, model, fc, y, first, i_w0, w0)
         if i == 0 and not speed:
             x = x + tin
         if i == nb - 1 and load:
@@ -279,7 +327,7 @@ def rhs(t, y, dy, model, th, fc):
     if i_th >= 0:
         dy[i_th] = w0
     if speed:
-        p_in = (-body_torque(0, model, fc) + inertia[0] * a0) * w0
+        p_in = (-body_torque(0, model, fc, y, first, i_w0, w0) + inertia[0] * a0) * w0
     else:
         p_in = tin * w0
     for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)
@@ -333,7 +381,7 @@ def stored_energy(t, y, model):
     springs (the energy watch's ``_stored``)."""
     kind, bodies, param, inertia, ipar = model[0], model[1], model[3], model[4], model[5]
     th = np.zeros(inertia.shape[0])
-    speed, w0, _, _, _, _, _ = prologue(t, y, model, th)
+    speed, w0, _, _, _, _, _, _ = prologue(t, y, model, th)
     first = 1 if speed else 0
     ke = 0.0
     for i in range(inertia.shape[0]):
@@ -897,7 +945,7 @@ def jacobian(t, y, Jm, model, th, g, ag):
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
     iq = ipar[IP_QUAD]
-    speed, w0, a0, tin, dtin, load, tl = prologue(t, y, model, th)
+    speed, w0, a0, tin, dtin, load, tl, dtl = prologue(t, y, model, th)
     first = 1 if speed else 0
     Jm[:, :] = 0.0
     for c in range(nc):
@@ -913,16 +961,30 @@ def jacobian(t, y, Jm, model, th, g, ag):
             if bodies[c, s] >= first:
                 Jm[c, i_w0 + bodies[c, s] - first] = lev[c, s]
         _gradient(c, kd, kv, kt, kw, model, first, g, ag)
+        loses = lossy(kind[c], P)
+        va = vb = fa = fb = aa = ba = ab = bb = 0.0
+        if loses:
+            f = conn_force(kind[c], P, y[c], dd, phi, wphi)[0]
+            va, vb, fa, fb, aa, ba, ab, bb = side_losses(c, f, y, model, first, i_w0, w0)
         for s in range(bodies.shape[1]):  # body j takes -s_j r_j F: scattered by index
             b = bodies[c, s]
+            side_a, side_b = (aa, ba) if s == 0 else (ab, bb)  # a lossy mesh's side: A dF/dy + B dv/dy
             if b >= first:
                 k = -lev[c, s] / inertia[b]
                 for j in range(n):
-                    Jm[i_w0 + b - first, j] += k * g[j]
+                    Jm[i_w0 + b - first, j] += k * (_side_row(c, s, j, g[j], side_a, side_b, model, first, i_w0)
+                                                    if loses and s < 2 else g[j])
             elif b == 0 and speed:  # the drive's power: its reaction on body 0, times w0
                 k = lev[c, s] * w0
                 for j in range(n):
-                    Jm[iq, j] += k * g[j]
+                    Jm[iq, j] += k * (_side_row(c, s, j, g[j], side_a, side_b, model, first, i_w0)
+                                      if loses and s < 2 else g[j])
+        if loses:  # the loss power va (fa - f) - vb (fb - f): lf dF/dy + lv dv/dy + (fa - f) r_a, -(fb - f) r_b
+            f = conn_force(kind[c], P, y[c], dd, phi, wphi)[0]
+            lf = va * (aa - 1.0) - vb * (ab - 1.0)
+            lv = va * ba - vb * bb
+            for j in range(n):
+                Jm[iq + 2, j] += _loss_row(c, j, g[j], lf, lv, fa - f, fb - f, model, first, i_w0)
         if conn_damped(kind[c], P) or tv or ex:
             qd, qv, qt, qw, ud, uv, ut, uw, ed, ev, et, ew = conn_power_gradient(kind[c], P, y[c], dd, phi, wphi)
             if conn_damped(kind[c], P):
@@ -939,13 +1001,21 @@ def jacobian(t, y, Jm, model, th, g, ag):
                     Jm[iq, j] += g[j]
     if i_th >= 0:
         Jm[i_th, i_w0] = 1.0
-    if not speed:
+    if ipar[IP_DRIVE] == 2:  # a motor: P_in = T_m(w0) w0, T_m'(w0) on body 0
+        Jm[iq, i_w0] += tin + dtin * w0
+        Jm[i_w0, i_w0] += (1.0 / inertia[0]) * dtin
+    elif not speed:
         Jm[iq, i_w0] += tin
         if dtin != 0.0 and i_th >= 0:  # a rippled drive torque depends on the input angle
             Jm[i_w0, i_th] += dtin * (1.0 / inertia[0])
             Jm[iq, i_th] += dtin * w0
     if load:
-        Jm[iq + 1, i_w0 + nb - 1 - first] = tl
+        last = i_w0 + nb - 1 - first
+        if model[13].size > 0:  # a speed-dependent load
+            Jm[iq + 1, last] = tl + dtl * body_speed(y, nb - 1, first, i_w0, w0)
+            Jm[last, last] += (-1.0 / inertia[nb - 1]) * dtl
+        else:
+            Jm[iq + 1, last] = tl
     ns = n_model_states(model)
     if n > ns:  # an augmented state: the variational equations' blocks (block diagonal, see variational_rhs)
         d = n_dynamic(model)
@@ -954,6 +1024,44 @@ def jacobian(t, y, Jm, model, th, g, ag):
             for i in range(d):
                 for j in range(d):
                     Jm[s + i, s + j] = Jm[i, j]
+
+
+@jit
+def _speed_column(c, j, model, first, i_w0):
+    """d v/dy_j of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (0: y_j is no speed of its bodies)."""
+    bodies, lev = model[1], model[2]
+    out = 0.0
+    hit = False
+    for s in range(2):
+        b = bodies[c, s]
+        if b >= first and j == i_w0 + b - first:
+            r = lev[c, s] if s == 0 else -lev[c, s]
+            out = out + 0.5 * r if hit else 0.5 * r
+            hit = True
+    return out, hit
+
+
+@jit
+def _side_row(c, s, j, gj, a_coef, b_coef, model, first, i_w0):
+    """d(f_side)/dy_j = A dF/dy_j + B dv/dy_j, in the generated expression's order."""
+    dv, hit = _speed_column(c, j, model, first, i_w0)
+    x = a_coef * gj
+    return x + dv * b_coef if hit else x
+
+
+@jit
+def _loss_row(c, j, gj, lf, lv, da, db, model, first, i_w0):
+    """d(loss power)/dy_j: lf dF/dy_j + lv dv/dy_j + (f_a - f) r_a [y_j = w_a] - (f_b - f) r_b [y_j = w_b]."""
+    bodies, lev = model[1], model[2]
+    dv, hit = _speed_column(c, j, model, first, i_w0)
+    x = lf * gj
+    if hit:
+        x = x + dv * lv
+    if bodies[c, 0] >= first and j == i_w0 + bodies[c, 0] - first:
+        x = x + lev[c, 0] * da
+    if bodies[c, 1] >= first and j == i_w0 + bodies[c, 1] - first:
+        x = x + lev[c, 1] * db  # -(f_b - f) r_b, lever -r_b
+    return x
 
 
 @jit

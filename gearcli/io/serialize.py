@@ -74,6 +74,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
             "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
             "natural_frequencies_boundary": result.natural_frequencies_boundary,
             "steady": plain(result.steady),
+            **_motor_keys((result.extra or {}).get("motor")),
         },
         "solver": plain(result.solver),
         "energy": plain(result.energy),
@@ -85,6 +86,16 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
         shown = output_units.channels(result.channels, u)
         out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in shown.items()}}
     return out
+
+
+def _motor_keys(motor: dict | None) -> dict:
+    """A motor run's summary keys: ``start_time_s`` and ``operating_slip`` beside the other keys, the rest in
+    ``motor`` (docs/output.md)."""
+    if motor is None:
+        return {}
+    rest = {k: v for k, v in motor.items() if k not in ("start_time_s", "operating_slip")}
+    top = {k: motor[k] for k in ("start_time_s", "operating_slip") if k in motor}
+    return {**plain(top), "motor": plain(rest)}
 
 
 def to_json(doc: dict) -> str:

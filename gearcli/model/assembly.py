@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from gearcli.model.elements import MAX_BODIES, N_PARAM, kind_of, law_of, torque
+from gearcli.model.elements import KIND_MESH, MAX_BODIES, N_PARAM, kind_of, law_of, machine, mesh, torque
 from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
@@ -96,6 +96,11 @@ class Connector:
         return self.element.damped(self.params)
 
     @property
+    def lossy(self) -> bool:
+        """A mesh that loses (1 - eta) of the power it transmits (:func:`.mesh.loss_factors`)."""
+        return self.kind == KIND_MESH and mesh.lossy(self.params)
+
+    @property
     def time_varying(self) -> bool:
         return self.element.time_varying(self.params)
 
@@ -147,7 +152,21 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
         conns.append(Connector(kind, tuple(e.bodies), tuple(e.radii), _row(law_of(kind).pack(e.part)), e.label))
         if not all(0 <= b < len(bodies) for b in e.bodies):
             raise ValueError(f"element {e.label!r} joins bodies {e.bodies}; the scene has bodies 0 to {len(bodies) - 1}")
-    return bodies, _assembled(spec, bodies, conns)
+    return bodies, _loss_widths(spec, bodies, _assembled(spec, bodies, conns))
+
+
+def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
+    """Connectors with the power scale of every lossy mesh's power-flow sign filled in: ``LOSS_WIDTH`` x the
+    static line force (at least 1 N) x the nominal pitch-line speed."""
+    out = []
+    for x in conns:
+        if x.kind == KIND_MESH and mesh.lossy(x.params):
+            F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
+            v = abs(x.ra * bodies[x.a].ratio * spec.drive.speed_rad_s)
+            row = mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * v)
+            x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role)
+        out.append(x)
+    return out
 
 
 def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
@@ -185,7 +204,7 @@ class ModelArrays:
     conn_levers: np.ndarray  # float64[nc, MAX_BODIES]: signed levers s_j r_j (delta = sum lever theta), 0 padded
     conn_param: np.ndarray  # float64[nc, N_PARAM]
     body_tree: np.ndarray  # int64[N]: the two-body connector whose deflection gives a body's angle, -1 for body 0
-    drive_kind: int  # 0 speed, 1 torque
+    drive_kind: int  # 0 speed, 1 torque, 2 motor
     drive_value: float  # rad/s or N m
     drive_ramp_s: float
     drive_ripple: np.ndarray  # float64[R, 2]: amplitude (fraction), order per input revolution
@@ -194,6 +213,8 @@ class ModelArrays:
     load_ramp_s: float
     load_fluct: np.ndarray  # float64[F, 2]: amplitude (fraction), frequency_Hz
     load_clock_s: float  # the fluctuation's time at t = 0 (sweep continuation)
+    motor_row: np.ndarray  # float64[M]: the motor's curve and start (gearcli.model.elements.machine); empty: none
+    load_law: np.ndarray  # float64[L]: a speed-dependent load's law; empty: constant torque
     n_states: int
     i_delta0: int
     i_omega0: int
@@ -270,6 +291,26 @@ class Layout:
     @property
     def speed_drive(self) -> bool:
         return self.drive.kind == "speed"
+
+    @property
+    def motor_drive(self) -> bool:
+        return self.drive.kind == "motor"
+
+    @property
+    def motor_row(self) -> tuple[float, ...]:
+        """The motor's row (:mod:`gearcli.model.elements.machine`) of a motor drive; empty otherwise."""
+        motor = self.drive.motor
+        return machine.motor_row(motor) if self.motor_drive and motor is not None else ()
+
+    @property
+    def load_law(self) -> tuple[float, ...]:
+        """The load's speed law row (empty: a constant torque), on the last body's nominal speed."""
+        w_n = self.bodies[-1].ratio * self.drive.speed_rad_s
+        return machine.load_row(self.load.speed_exponent, w_n, self.load.table, abs(self.load.torque_Nm) or 1.0)
+
+    @property
+    def n_lossy(self) -> int:
+        return sum(x.lossy for x in self.connectors)
 
     @property
     def n_tv(self) -> int:
@@ -394,10 +435,12 @@ class Layout:
         return ModelArrays(
             body_inertia=np.array(self.inertias), conn_kind=np.array([x.kind for x in conns], dtype=np.int64),
             conn_bodies=bodies, conn_levers=levers, conn_param=param,
-            body_tree=np.array(self.tree, dtype=np.int64), drive_kind=0 if self.speed_drive else 1,
+            body_tree=np.array(self.tree, dtype=np.int64),
+            drive_kind=0 if self.speed_drive else 2 if self.motor_drive else 1,
             drive_value=drive.speed_rad_s if self.speed_drive else drive.torque_Nm, drive_ramp_s=drive.ramp_s,
             drive_ripple=np.array(self.ripple, float).reshape(-1, 2), drive_angle_rad=float(drive.angle_rad),
             load_value_Nm=self.load.torque_Nm, load_ramp_s=self.load.ramp_s,
             load_fluct=np.array(self.fluctuation, float).reshape(-1, 2), load_clock_s=float(self.load.clock_s),
+            motor_row=np.array(self.motor_row, float), load_law=np.array(self.load_law, float),
             n_states=self.n_states, i_delta0=0, i_omega0=self.n_conn,
             i_theta=-1 if self.i_theta is None else self.i_theta, i_quad=self.i_quad, atol=np.asarray(atol, float))

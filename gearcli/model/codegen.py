@@ -32,7 +32,8 @@ from functools import lru_cache
 import numpy as np
 
 from gearcli.model.assembly import Connector, Layout
-from gearcli.model.elements import torque
+from gearcli.model.elements import machine, torque
+from gearcli.model.elements.mesh import loss_factors
 
 
 def lit(x: float) -> str:
@@ -78,6 +79,8 @@ def _prologue(lay: Layout) -> list[str]:
     lines = [f"    {', '.join(lay.state_names)}, = y.tolist()"]
     if lay.speed_drive:
         lines += _input_motion_lines(lay)
+    elif lay.motor_drive:  # the motor's torque at its speed (gearcli.model.elements.machine), dTw = dTin/dw0
+        lines.append("    Tin, dTw = _motor(_MOT, t, w0)")
     else:
         lines += _ramp_lines("Tin", lay.drive.torque_Nm, lay.drive.ramp_s)
         if lay.ripple:  # T_in x (1 + sum a cos(n th0)) (gearcli.model.elements.torque)
@@ -87,6 +90,8 @@ def _prologue(lay: Layout) -> list[str]:
         if lay.fluctuation:
             clock = f"t + {lit(lay.load.clock_s)}" if lay.load.clock_s != 0.0 else "t"
             lines.append(f"    TL = TL * _fluct(_FLU, {clock})")
+        if lay.load_law:  # T_L g(w_N): dTL = dT_L/dw_N
+            lines += [f"    gL, dgL = _load(_LOD, w{lay.n_bodies - 1})", "    dTL = TL * dgL", "    TL = TL * gL"]
     tree = lay.tree
     for b in range(1, lay.last_angle_body + 1):  # theta_b = (r_a theta_a - delta_c) / r_b along the tree
         c = tree[b]
@@ -123,12 +128,41 @@ def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
         rate += sign + _scaled(r, f"w{body}")  # delta' = sum_j s_j r_j w_j
     out = [f"    dd{c} = {rate}"]
     if not jacobian:
-        return out + [f"    f{c}, _, _, _, _, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}"]
+        return out + [f"    f{c}, _, _, _, _, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}"] + _loss_lines(lay, c)
     out.append(f"    f{c}, kd{c}, kv{c}, kt{c}, kw{c}, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}")
+    out += _loss_lines(lay, c, jacobian=True)
     if x.damped or x.time_varying or x.excited:
         out.append(f"    qd{c}, qv{c}, qt{c}, qw{c}, ud{c}, uv{c}, ut{c}, uw{c}, ed{c}, ev{c}, et{c}, ew{c} = "
                    f"_power{c}{args}")
     return out
+
+
+def _loss_lines(lay: Layout, c: int, jacobian: bool = False) -> list[str]:
+    """A lossy mesh: the forces on its pinion (fa) and gear (fb) side and the loss power ql
+    (:func:`gearcli.model.elements.mesh.loss_factors`); with the Jacobian, their partials by f and v, and
+    the loss power's (lf by f, lv by v)."""
+    x = lay.connectors[c]
+    if not x.lossy:
+        return []
+    out = [f"    va{c} = {_scaled(x.ra, f'w{x.a}')}", f"    vb{c} = {_scaled(x.rb, f'w{x.b}')}"]
+    parts = f"Aa{c}, Ba{c}, Ab{c}, Bb{c}" if jacobian else "_, _, _, _"
+    out.append(f"    fa{c}, fb{c}, {parts} = _loss(_P{c}, f{c}, va{c}, vb{c})")
+    out.append(f"    ql{c} = va{c} * (fa{c} - f{c}) - vb{c} * (fb{c} - f{c})")
+    if jacobian:
+        out += [f"    lf{c} = va{c} * (Aa{c} - 1.0) - vb{c} * (Ab{c} - 1.0)",
+                f"    lv{c} = va{c} * Ba{c} - vb{c} * Bb{c}"]
+    return out
+
+
+def _side(lay: Layout, c: int, j: int) -> str:
+    """The force connector c puts on its body j (0: a mesh's pinion, 1: its gear): f, or f_a / f_b of a lossy
+    mesh."""
+    return f"f{'ab'[j]}{c}" if lay.connectors[c].lossy else f"f{c}"
+
+
+def _side_grad(grads, grads_side, c: int, j: int) -> dict[int, str]:
+    """d/dy of the force connector c puts on its body j (:func:`_side`)."""
+    return grads_side[c][j] if j < 2 else grads[c]
 
 
 def _body_torque(lay: Layout, i: int) -> str:
@@ -136,7 +170,7 @@ def _body_torque(lay: Layout, i: int) -> str:
     terms = []
     for c, j in lay.acting_on(i):
         x = lay.connectors[c]
-        terms.append(f"{'+' if x.element.SIGNS[j] < 0 else '-'} {lit(x.radii[j])} * f{c}")
+        terms.append(f"{'+' if x.element.SIGNS[j] < 0 else '-'} {lit(x.radii[j])} * {_side(lay, c, j)}")
     if i == 0 and not lay.speed_drive:
         terms.append("+ Tin")
     if i == lay.n_bodies - 1 and lay.load.torque_Nm != 0.0:
@@ -148,13 +182,14 @@ def _body_torque(lay: Layout, i: int) -> str:
 def _quadrature_exprs(lay: Layout) -> list[str]:
     """Input power, load power, damping power, power into time-varying springs."""
     if lay.speed_drive:
-        reaction = " + ".join(f"{lit(lay.connectors[c].levers[j])} * f{c}" for c, j in lay.acting_on(0))
+        reaction = " + ".join(f"{lit(lay.connectors[c].levers[j])} * {_side(lay, c, j)}" for c, j in lay.acting_on(0))
         p_in = f"({reaction} + {lit(lay.inertias[0])} * a0) * w0"
     else:
         p_in = "Tin * w0"
     p_in += "".join(f" + te{c}" for c, x in enumerate(lay.connectors) if x.excited)  # the TE's work
     p_load = f"TL * w{lay.n_bodies - 1}" if lay.load.torque_Nm != 0.0 else "0.0"
     damped = [f"q{c}" for c, x in enumerate(lay.connectors) if x.damped]
+    damped += [f"ql{c}" for c, x in enumerate(lay.connectors) if x.lossy]  # mesh losses count as dissipation
     out = [p_in, p_load, " + ".join(damped) if damped else "0.0"]
     if lay.n_tv:
         out.append(" + ".join(f"u{c}" for c, x in enumerate(lay.connectors) if x.time_varying))
@@ -208,9 +243,45 @@ def _omega(lay: Layout, body: int) -> int:
     return col
 
 
+def _speed_gradient(lay: Layout, c: int) -> dict[int, float]:
+    """d v/dy of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2."""
+    x = lay.connectors[c]
+    g: dict[int, float] = {}
+    for body, r in ((x.a, x.ra), (x.b, x.rb)):
+        col = lay.i_omega(body)
+        if col is not None:
+            g[col] = g.get(col, 0.0) + 0.5 * r
+    return g
+
+
+def _side_gradient(lay: Layout, c: int, grad: dict[int, str], side: str) -> dict[int, str]:
+    """d(f_side)/dy of a lossy mesh: A d f/dy + B dv/dy (``grad`` is df/dy); the force's own otherwise."""
+    if not lay.connectors[c].lossy:
+        return grad
+    out = {col: f"A{side}{c} * ({expr})" for col, expr in grad.items()}
+    for col, coef in _speed_gradient(lay, c).items():
+        out[col] = (out[col] + " + " if col in out else "") + f"{lit(coef)} * B{side}{c}"
+    return out
+
+
+def _loss_gradient(lay: Layout, c: int, grad: dict[int, str]) -> dict[int, str]:
+    """d(ql)/dy of a lossy mesh: lf df/dy + lv dv/dy + (fa - f) r_a at w_a - (fb - f) r_b at w_b."""
+    x = lay.connectors[c]
+    out = {col: f"lf{c} * ({expr})" for col, expr in grad.items()}
+    terms = {col: [f"{lit(coef)} * lv{c}"] for col, coef in _speed_gradient(lay, c).items()}
+    for body, r, side, sign in ((x.a, x.ra, "a", ""), (x.b, x.rb, "b", "-")):
+        col = lay.i_omega(body)
+        if col is not None:
+            terms.setdefault(col, []).append(f"{sign}{lit(r)} * (f{side}{c} - f{c})")
+    for col, ts in terms.items():
+        out[col] = " + ".join(([out[col]] if col in out else []) + ts)
+    return out
+
+
 def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
     rows: dict[int, dict[int, list[str]]] = {}
     grads = [_gradient(lay, c, "k") for c in range(lay.n_conn)]
+    grads_side = [[_side_gradient(lay, c, g, side) for side in ("a", "b")] for c, g in enumerate(grads)]
     for c, x in enumerate(lay.connectors):  # d(delta_c)/dt = sum_j s_j r_j w_j
         row = rows.setdefault(lay.i_delta(c), {})
         for body, r in zip(x.bodies, x.levers, strict=True):
@@ -220,13 +291,16 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
     for i in lay.free_bodies:  # J_i w_i' = sum over its connectors of -s_j r_j f_c (+ Tin - TL)
         row = rows.setdefault(_omega(lay, i), {})
         for c, j in lay.acting_on(i):
-            _add(row, grads[c], lit(-lay.connectors[c].levers[j] / lay.inertias[i]))
+            _add(row, _side_grad(grads, grads_side, c, j), lit(-lay.connectors[c].levers[j] / lay.inertias[i]))
     if lay.i_theta is not None:
         rows[lay.i_theta] = {_omega(lay, 0): ["1.0"]}
     q0 = lay.i_quad
     if lay.speed_drive:  # P_in = (sum s_j r_j f_c over body 0's connectors + J0 a0) w0, w0 prescribed
         for c, j in lay.acting_on(0):
-            _add(rows.setdefault(q0, {}), grads[c], f"{lit(lay.connectors[c].levers[j])} * w0")
+            _add(rows.setdefault(q0, {}), _side_grad(grads, grads_side, c, j), f"{lit(lay.connectors[c].levers[j])} * w0")
+    elif lay.motor_drive:  # P_in = T_m(w0) w0
+        rows.setdefault(q0, {})[_omega(lay, 0)] = ["Tin + dTw * w0"]
+        rows[_omega(lay, 0)].setdefault(_omega(lay, 0), []).append(f"{lit(1.0 / lay.inertias[0])} * dTw")
     else:
         rows.setdefault(q0, {})[_omega(lay, 0)] = ["Tin"]
     if lay.ripple and lay.i_theta is not None:  # T_in depends on th0
@@ -236,10 +310,15 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
         if x.excited:  # + the transmission error's power
             _add(rows.setdefault(q0, {}), _gradient(lay, c, "e"), "1.0")
     if lay.load.torque_Nm != 0.0:
-        rows.setdefault(q0 + 1, {})[_omega(lay, lay.n_bodies - 1)] = ["TL"]
+        last = _omega(lay, lay.n_bodies - 1)
+        rows.setdefault(q0 + 1, {})[last] = ["TL + dTL * w" + str(lay.n_bodies - 1)] if lay.load_law else ["TL"]
+        if lay.load_law:
+            rows[last].setdefault(last, []).append(f"{lit(-1.0 / lay.inertias[-1])} * dTL")
     for c, x in enumerate(lay.connectors):
         if x.damped:
             _add(rows.setdefault(q0 + 2, {}), _gradient(lay, c, "q"), "1.0")
+        if x.lossy:
+            _add(rows.setdefault(q0 + 2, {}), _loss_gradient(lay, c, grads[c]), "1.0")
         if x.time_varying:
             _add(rows.setdefault(q0 + 3, {}), _gradient(lay, c, "u"), "1.0")
     return rows
@@ -308,7 +387,9 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
     constants and element parameters; the compiled module is registered with linecache, so a traceback
     through the generated code shows its lines."""
     namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
-                       "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation}
+                       "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation,
+                       "_motor": machine.motor_torque, "_MOT": lay.motor_row, "_load": machine.load_factor,
+                       "_LOD": lay.load_law, "_loss": loss_factors}
     for c, x in enumerate(lay.connectors):
         namespace[f"_P{c}"] = x.params
         namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)

@@ -95,6 +95,8 @@ class TorsionalModel:
         """The input body's rigid-body speed at time t: a speed drive's prescribed speed, a torque
         drive's nominal speed."""
         lay = self.layout
+        if lay.motor_drive:
+            return 0.0  # a motor starts the train from rest
         return ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)[1] if lay.speed_drive \
             else lay.drive.speed_rad_s
 

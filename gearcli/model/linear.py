@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
+from gearcli.model.elements import mesh
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
 
@@ -37,16 +38,26 @@ def _lay(x) -> Layout:
 
 
 def static_forces(lay: Layout) -> np.ndarray:
-    """Force of every connector at full load in steady state (lossless): N for meshes, N m for springs.
+    """Force of every connector at full load in steady state: N for meshes, N m for springs.
 
     The statics of the power path (the parallel-stage chain): connector c carries the load torque to its
     second body, ``T_L rho_N / rho_b / r_b``. A further element (``ModelSpec.elements``) is taken to carry
-    no static load (a damper; general statics come with the general topology)."""
+    no static load (a damper; general statics come with the general topology). A lossy mesh's force is its
+    driving side's: the loads of the meshes after it divided by their efficiencies (times, for a reversed
+    load, whose power flows from the output)."""
     rho = np.array([b.ratio for b in lay.bodies])
     rho_b = np.array([rho[x.b] for x in lay.connectors])
     rb = np.array([x.rb for x in lay.connectors])
     out = lay.load.torque_Nm * rho[-1] / rho_b / rb
     out[[c for c, x in enumerate(lay.connectors) if not x.role]] = 0.0
+    if lay.n_lossy:
+        factor = 1.0
+        for c in range(lay.n_conn - 1, -1, -1):
+            x = lay.connectors[c]
+            if x.lossy:
+                eta = x.params[mesh.I_ETA]
+                factor *= 1.0 / eta if lay.load.torque_Nm >= 0 else eta
+            out[c] *= factor
     return out
 
 
@@ -64,6 +75,8 @@ def rigid_forces(lay: Layout, t: np.ndarray) -> np.ndarray:
     t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
     if lay.speed_drive:
         alpha0 = ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)[2] * np.ones_like(t)
+    elif lay.motor_drive and lay.drive.motor is not None:  # run-up at the motor's largest torque
+        alpha0 = (lay.drive.motor.peak_torque_Nm - rho[-1] * t_load) / float(J @ rho**2)
     else:
         t_in = np.asarray(ramp(t, lay.drive.ramp_s, lay.drive.torque_Nm)) * np.ones_like(t)
         alpha0 = (t_in - rho[-1] * t_load) / float(J @ rho**2)

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import torque
+from gearcli.model.elements import machine, torque
 from gearcli.model.step import ramp, ramp_motion
 
 
@@ -128,9 +128,13 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     if lay.speed_drive:  # what the drive puts into body 0: its connectors' reactions and its inertia
         t_in = None
         for c, j in lay.acting_on(0):
-            term = conns[c].force * lay.connectors[c].levers[j]
+            term = _side_force(lay, c, j, conns[c].force, omega) * lay.connectors[c].levers[j]
             t_in = term if t_in is None else t_in + term
         t_in = (0.0 if t_in is None else t_in) + lay.inertias[0] * a0
+    elif lay.motor_drive:
+        row = lay.motor_row
+        t_in = np.array([machine.motor_torque(row, tj, wj)[0] for tj, wj in zip(t.tolist(), omega[0].tolist(),
+                                                                                 strict=True)])
     else:
         t_in = np.asarray(ramp(t, lay.drive.ramp_s, lay.drive.torque_Nm)) * np.ones_like(t)
         if lay.ripple:
@@ -139,7 +143,21 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
     if lay.fluctuation:
         t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj) + lay.load.clock_s) for tj in t])
+    if lay.load_law:
+        t_load = t_load * np.array([machine.load_factor(lay.load_law, w)[0] for w in omega[-1].tolist()])
     return Sampled(t, omega, theta, t_in, t_load, conns, lay)
+
+
+def _side_force(lay: Layout, c: int, j: int, force: np.ndarray, omega: np.ndarray) -> np.ndarray:
+    """The force connector c puts on its body j: the law's, or a lossy mesh's pinion (j = 0) or gear (j = 1)
+    side (:func:`gearcli.model.elements.mesh.loss_factors`)."""
+    x = lay.connectors[c]
+    if not x.lossy or j > 1:
+        return force
+    from gearcli.model.elements.mesh import loss_factors
+
+    return np.array([loss_factors(x.params, f, x.ra * wa, x.rb * wb)[j] for f, wa, wb in
+                     zip(force.tolist(), omega[x.a].tolist(), omega[x.b].tolist(), strict=True)])
 
 
 def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

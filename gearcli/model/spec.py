@@ -7,9 +7,9 @@ shaft by a coupling, and flexible intermediate shafts (gear k and pinion k+1 the
 joined by a torsional spring). The model layer never sees the design file: the design's engineering
 units are converted once, in :func:`gearcli.scene.spec_from_design`.
 
-Stage efficiency is not modelled in the dynamics (lossless meshes): a loss that depends on the
-direction of power flow is not a smooth force law, and the seed paper's model has none. A stage with
-``efficiency < 1`` gets a warning from the simulation.
+Stage efficiency acts in the dynamics: a mesh with ``efficiency < 1`` passes on eta of its force in the
+direction of power flow (:func:`gearcli.model.elements.mesh.loss_factors`). A drive may be an induction
+motor (:class:`MotorSpec`), a load may depend on speed (:class:`LoadSpec`).
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ class MeshSpec:
     pinion_teeth: int = 20  # mesh phase z_p theta_p / 2 pi
     normal_module_m: float = 0.0  # for the "penetration > 10 % of the module" warning (0: no check)
     static_tangential_N: float = 0.0  # design's F_t at full load (signed)
-    efficiency: float = 1.0  # reported only; not in the dynamics
+    efficiency: float = 1.0  # eta: the mesh passes on eta of its force in the power-flow direction
     # mesh excitation (gearcli.model.elements.mesh): harmonics j = 1, 2, ... of the mesh phase
     transmission_error_m: tuple[float, ...] = ()  # e_j along the transverse line of action
     transmission_error_phase_rad: tuple[float, ...] = ()  # psi_j (missing: 0)
@@ -64,24 +64,85 @@ class MeshSpec:
 
 
 @dataclass(frozen=True)
+class MotorSpec:
+    """An induction motor (:mod:`gearcli.model.elements.machine`): the extended Kloss curve (breakdown torque,
+    breakdown slip, shape term a) or a table of (speed rad/s, torque N m), and its starting method with its two
+    parameters: star_delta (switch-over speed rad/s, 0), soft_start (voltage ramp s, initial voltage
+    fraction), vfd (speed ramp s, torque limit N m or 0), direct (0, 0)."""
+
+    synchronous_speed_rad_s: float
+    starting: Literal["direct", "star_delta", "soft_start", "vfd"] = "direct"
+    start_parameters: tuple[float, float] = (0.0, 0.0)
+    breakdown_torque_Nm: float = 0.0
+    breakdown_slip: float = 0.0
+    kloss_a: float = 0.0
+    rated_torque_Nm: float = 0.0  # nameplate (0 for a table)
+    rated_speed_rad_s: float = 0.0
+    table: tuple[tuple[float, float], ...] = ()
+
+    def __post_init__(self) -> None:
+        if not (self.synchronous_speed_rad_s > 0 and math.isfinite(self.synchronous_speed_rad_s)):
+            raise ValueError("a motor needs a positive synchronous speed")
+        if self.table and (len(self.table) < 2 or any(b[0] <= a[0] for a, b in zip(self.table, self.table[1:], strict=False))):
+            raise ValueError("a torque-speed table needs two or more points at increasing speeds")
+
+    @classmethod
+    def nameplate(cls, rated_power_W: float, rated_speed_rad_s: float, synchronous_speed_rad_s: float,
+                  breakdown_ratio: float, locked_ratio: float, **start) -> MotorSpec:
+        """The extended Kloss curve through the nameplate's rated, breakdown and locked-rotor points."""
+        from gearcli.model.elements.machine import kloss_fit
+
+        if not 0 < rated_speed_rad_s < synchronous_speed_rad_s:
+            raise ValueError("the rated speed must lie between 0 and the synchronous speed")
+        t_r = rated_power_W / rated_speed_rad_s
+        sb, a = kloss_fit(t_r, breakdown_ratio, locked_ratio, 1.0 - rated_speed_rad_s / synchronous_speed_rad_s)
+        return cls(synchronous_speed_rad_s, breakdown_torque_Nm=breakdown_ratio * t_r, breakdown_slip=sb,
+                   kloss_a=a, rated_torque_Nm=t_r, rated_speed_rad_s=rated_speed_rad_s, **start)
+
+    def torque(self, t: float, w: float) -> float:
+        """The motor's torque (N m) at time t and speed w (rad/s), starting method included."""
+        from gearcli.model.elements.machine import motor_row, motor_torque
+
+        return motor_torque(motor_row(self), t, w)[0]
+
+    def curve(self, w: float) -> float:
+        """The bare curve's torque (N m) at speed w (the running motor, after any start)."""
+        from gearcli.model.elements.machine import motor_curve, motor_row
+
+        return motor_curve(motor_row(self), w, self.synchronous_speed_rad_s)[0]
+
+    @property
+    def peak_torque_Nm(self) -> float:
+        """The curve's largest torque at or below synchronous speed (the breakdown torque)."""
+        if self.table:
+            return max(t for _, t in self.table)
+        return self.breakdown_torque_Nm
+
+
+@dataclass(frozen=True)
 class DriveSpec:
     """``kind = "speed"``: shaft 1 follows ``ramp(t, ramp_s, speed_rad_s)`` exactly (no DOF).
     ``kind = "torque"``: shaft 1 is free, driven by ``ramp(t, ramp_s, torque_Nm)`` times the ripple
     (:mod:`gearcli.model.elements.torque`); every shaft starts at its nominal speed (rigid-body
-    consistent), so the run begins in motion, not at rest. ``angle_rad``: a speed drive's angle at
+    consistent), so the run begins in motion, not at rest. ``kind = "motor"``: shaft 1 (or the motor rotor)
+    is free, driven by the ``motor``'s torque at its speed; every body starts at rest; ``speed_rad_s`` is the
+    nominal speed (the load law's reference). ``angle_rad``: a speed drive's angle at
     t = 0 (0 for a run of its own; a continued sweep point carries the previous point's end angle on, so
     the mesh phases continue with the vibration state)."""
 
-    kind: Literal["speed", "torque"]
+    kind: Literal["speed", "torque", "motor"]
     speed_rad_s: float
     ramp_s: float = 0.0
     torque_Nm: float = 0.0
     ripple: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, order per input revolution)
     angle_rad: float = 0.0  # speed drive: theta_0(0)
+    motor: MotorSpec | None = None  # kind = "motor"; with a speed drive: the motor that must follow the ramp
 
     def __post_init__(self) -> None:
         if self.ripple and self.kind != "torque":
             raise ValueError("a torque ripple needs a torque drive (a speed drive prescribes the motion)")
+        if self.kind == "motor" and self.motor is None:
+            raise ValueError('drive kind "motor" needs a MotorSpec')
 
 
 @dataclass(frozen=True)
@@ -94,6 +155,15 @@ class LoadSpec:
     ramp_s: float = 0.0
     fluctuation: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, frequency Hz): x (1 + b sin 2 pi f t)
     clock_s: float = 0.0  # the fluctuation is a function of t + clock_s
+    speed_exponent: int = 0  # 0 constant, 1 linear, 2 quadratic in the load body's speed (torque_Nm at nominal)
+    table: tuple[tuple[float, float], ...] = ()  # (load body speed rad/s, N m); torque_Nm is then max |T|
+
+    def __post_init__(self) -> None:
+        if self.speed_exponent not in (0, 1, 2):
+            raise ValueError("speed_exponent must be 0, 1 or 2")
+        if self.table and (len(self.table) < 2 or self.table[0][0] < 0
+                           or any(b[0] <= a[0] for a, b in zip(self.table, self.table[1:], strict=False))):
+            raise ValueError("a load table needs two or more points at increasing, non-negative speeds")
 
 
 @dataclass(frozen=True)

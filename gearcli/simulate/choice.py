@@ -110,8 +110,13 @@ def _self_exciting(lay: Layout, spec: ModelSpec) -> np.ndarray:
 def _ramp_excitation(spec: ModelSpec, omega: float) -> float:
     """Residual vibration a STEP ramp of T_r leaves in a mode of omega, relative: 6/(omega T_r)^2, 1 if T_r = 0."""
     drive_value = spec.drive.speed_rad_s if spec.drive.kind == "speed" else spec.drive.torque_Nm
+    drive_ramp = spec.drive.ramp_s
+    motor = spec.drive.motor
+    if spec.drive.kind == "motor" and motor is not None:  # a start: the motor's torque, over its own ramp if any
+        drive_value = motor.peak_torque_Nm
+        drive_ramp = motor.start_parameters[0] if motor.starting in ("soft_start", "vfd") else 0.0
     out = 0.0
-    for ramp, value in ((spec.drive.ramp_s, drive_value), (spec.load.ramp_s, spec.load.torque_Nm)):
+    for ramp, value in ((drive_ramp, drive_value), (spec.load.ramp_s, spec.load.torque_Nm)):
         if value != 0:
             out = max(out, 1.0 if ramp <= 0 else min(1.0, 6.0 / (omega * ramp) ** 2))
     return out

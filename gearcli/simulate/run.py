@@ -21,6 +21,7 @@ from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
 from gearcli.scene import output_units, spec_from_design
 from gearcli.simulate import estimate, stats
+from gearcli.simulate import motor as motor_side
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
@@ -256,6 +257,9 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
         ch["motor_speed_deg_s"] = s.omega_rad_s[lay.motor_body] * RAD_TO_DEG
     if lay.drum_body is not None:
         ch["drum_speed_deg_s"] = s.omega_rad_s[lay.drum_body] * RAD_TO_DEG
+    if lay.drive.motor is not None:  # the motor (drive = "motor", or the one a speed ramp is checked against)
+        ch["motor_torque_Nm"] = s.input_torque_Nm.copy()
+        ch["motor_speed_rpm"] = s.omega_rad_s[0] * (60.0 / (2.0 * math.pi))
     for name, label in (("input_coupling_torque_Nm", "input coupling"), ("load_coupling_torque_Nm", "load coupling")):
         named = lay.conn_named(label)
         if named is not None:
@@ -290,6 +294,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                                      choice.at_full_load.penetration_m)
     diags += stats.peak_warnings(spec, [float(np.max(np.abs(ms.line_force_N))) for ms in s.meshes],
                                  choice.at_operating_point.line_forces_N)
+    motor_summary = None
+    if model.layout.drive.motor is not None:
+        motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
+                                                        mask, window)
+        diags += motor_diags
     if energy.residual_relative > stats.WARN_ENERGY_RESIDUAL:
         diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
@@ -316,7 +325,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         final_state=run.y[:, -1].copy(), final_time_s=float(run.t[-1]), steady=steady,
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
-               "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz]},
+               "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
+               **({"motor": motor_summary} if motor_summary is not None else {})},
     )
 
 

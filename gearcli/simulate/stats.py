@@ -167,13 +167,8 @@ def peak_warnings(spec: ModelSpec, peak_line_forces_N, rigid_line_forces_N) -> l
 
 
 def model_warnings(spec: ModelSpec) -> list[Diagnostic]:
-    out = []
-    for k, m in enumerate(spec.meshes):
-        if m.efficiency < 1.0:
-            out.append(dg.warning(dg.EFFICIENCY_NOT_MODELLED, f"stage {k + 1}: efficiency {m.efficiency:g} is not "
-                                  "modelled in the dynamics (lossless meshes); simulated forces follow the lossless "
-                                  "torques, the design's static ones include losses", stage=k + 1))
-    return out
+    """Warnings about the model itself, before the run (none at present: stage efficiencies act in the dynamics)."""
+    return []
 
 
 def ratio_of(mean_in: float, mean_out: float) -> tuple[float, list[Diagnostic]]:

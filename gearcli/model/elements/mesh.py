@@ -45,9 +45,10 @@ ROW_WIDTH = N_PARAM  # the law reads the whole row: PARAMS, then the harmonics
 PARAMS = ("cos_beta_b", "cos2_beta_b", "stiffness_N_m_e", "exponent", "damping_Ns_m", "inv_full_damping_1_m",
           "damping_slope", "half_gap_m", "time_varying", "contact_ratio", "overlap_ratio", "pinion_teeth",
           "full_damping_m", "viscous", "viscous_damping_Ns_m", "damping_ratio", "k_lin_N_m", "m_e_kg",
-          "n_te", "n_ks")
+          "n_te", "n_ks", "efficiency", "loss_width_W")
 (I_CB, I_CB2, I_K, I_E, I_C, I_INVD, I_DC, I_HALF, I_TV, I_EA, I_EB, I_Z, I_D,
- I_VIS, I_CV, I_ZETA, I_KLIN, I_ME, I_NTE, I_NKS) = range(len(PARAMS))
+ I_VIS, I_CV, I_ZETA, I_KLIN, I_ME, I_NTE, I_NKS, I_ETA, I_LW) = range(len(PARAMS))
+LOSS_WIDTH = 1e-3  # the power-flow sign's tanh width: 1e-3 of the static force times the nominal pitch-line speed
 I_TE = len(PARAMS)  # TE amplitudes, m
 I_TEP = I_TE + N_HARM  # TE phases, rad
 I_KS = I_TEP + N_HARM  # stiffness harmonics s_j (fractions of K)
@@ -74,6 +75,7 @@ def pack(spec) -> np.ndarray:
     if len(te) > N_HARM or len(ks) > N_HARM:
         raise ValueError(f"at most {N_HARM} transmission-error and stiffness harmonics")
     row[I_NTE], row[I_NKS] = len(te), len(ks)
+    row[I_ETA] = spec.efficiency  # the loss's width is filled by the assembly (with_loss_width)
     row[I_TE:I_TE + len(te)] = te
     row[I_TEP:I_TEP + len(spec.transmission_error_phase_rad)] = spec.transmission_error_phase_rad
     row[I_KS:I_KS + len(ks)] = ks
@@ -87,6 +89,38 @@ def with_viscous(P, k_lin, m_e):
     Q[I_KLIN], Q[I_ME] = k_lin, m_e
     Q[I_CV] = 2.0 * Q[I_ZETA] * math.sqrt(k_lin * m_e)
     return Q
+
+
+def with_loss_width(P, width_W):
+    """The row with the power scale of the power-flow sign (:func:`loss_factors`)."""
+    Q = np.array(P, dtype=float)
+    Q[I_LW] = width_W
+    return Q
+
+
+def lossy(P) -> bool:
+    """The mesh loses (1 - eta) of the power it transmits (0 < eta < 1)."""
+    return bool(0.0 < P[I_ETA] < 1.0)
+
+
+def loss_factors(P, f, va, vb):
+    """The forces the mesh puts on its two bodies when it loses (1 - eta) of the power it transmits, and their
+    partials: (f_a, f_b, df_a/df, df_a/dv, df_b/df, df_b/dv), ``f`` the line force of the law, ``va = r_a w_a``
+    and ``vb = r_b w_b`` the pitch-line speeds of the pinion and the gear, ``v = (va + vb) / 2``.
+
+    The driven side gets eta f, the driving side f: ``f_a = f (1 - c (1 - s))``, ``f_b = f (1 - c (1 + s))``,
+    ``c = (1 - eta) / 2``, ``s = tanh(f v / W)`` the power-flow sign regularised over the power W
+    (``loss_width_W``): power from pinion to gear (s = 1) loses on the gear side, from gear to pinion
+    (s = -1, a reversed load or an overrunning gear) on the pinion side. The loss power
+    ``va (f_a - f) - vb (f_b - f)`` is (1 - eta) f v s >= 0 up to the deflection rate's share."""
+    v = 0.5 * (va + vb)
+    w = P[I_LW]
+    s = math.tanh(f * v / w)
+    c = 0.5 * (1.0 - P[I_ETA])
+    ga = 1.0 - c * (1.0 - s)
+    gb = 1.0 - c * (1.0 + s)
+    gx = c * (1.0 - s * s) / w
+    return f * ga, f * gb, ga + f * gx * v, f * f * gx, gb - f * gx * v, -f * f * gx
 
 
 def linear_stiffness(P, F, floor_m):

@@ -1,0 +1,59 @@
+"""Design-file tables of the machines at the ends of the train: the induction motor's nameplate or
+torque-speed table (``[input] motor``) and a load's torque-speed table (``[load] torque_speed``)."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+MAX_TABLE = 32
+NAMEPLATE = ("rated_power_kW", "rated_speed_rpm", "synchronous_speed_rpm", "breakdown_torque_ratio",
+             "locked_rotor_torque_ratio")
+
+TablePoint = Annotated[list[Annotated[float, Field(ge=-1e7, le=1e7)]], Field(min_length=2, max_length=2)]
+Table = Annotated[list[TablePoint], Field(min_length=2, max_length=MAX_TABLE)]
+
+
+def increasing_speeds(points: list[list[float]], what: str, *, non_negative: bool = False) -> None:
+    speeds = [p[0] for p in points]
+    if any(b <= a for a, b in zip(speeds, speeds[1:], strict=False)):
+        raise ValueError(f"{what}: the speeds (first entry of each [rpm, N·m] pair) must increase")
+    if non_negative and speeds[0] < 0:
+        raise ValueError(f"{what}: speeds must be 0 or more (the law is mirrored for reverse rotation)")
+
+
+class Motor(BaseModel):
+    """An induction motor: the five nameplate values (an extended Kloss curve through the rated, breakdown and
+    locked-rotor points) or a torque-speed table ``[[rpm, N·m], ...]``, linear between its points."""
+
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True, json_schema_extra={"anyOf": [
+        {"required": list(NAMEPLATE), "not": {"required": ["torque_speed"]}},
+        {"required": ["torque_speed"], "not": {"anyOf": [{"required": [k]} for k in NAMEPLATE]}}]})
+
+    rated_power_kW: Annotated[float, Field(ge=1e-3, le=1e5)] | None = None
+    rated_speed_rpm: Annotated[float, Field(ge=1.0, le=200_000.0)] | None = None
+    synchronous_speed_rpm: Annotated[float, Field(ge=1.0, le=200_000.0)] | None = None
+    breakdown_torque_ratio: Annotated[float, Field(gt=1.0, le=10.0)] | None = None
+    locked_rotor_torque_ratio: Annotated[float, Field(gt=0.0, le=10.0)] | None = None
+    torque_speed: Table | None = None
+
+    @model_validator(mode="after")
+    def _one_description(self) -> Motor:
+        given = [k for k in NAMEPLATE if getattr(self, k) is not None]
+        if self.torque_speed is not None:
+            if given:
+                raise ValueError(f"give the nameplate ({', '.join(NAMEPLATE)}) or torque_speed, not both")
+            increasing_speeds(self.torque_speed, "torque_speed")
+            return self
+        if len(given) != len(NAMEPLATE):
+            missing = [k for k in NAMEPLATE if getattr(self, k) is None]
+            raise ValueError(f"a motor needs torque_speed or all five nameplate values; missing {', '.join(missing)}")
+        assert self.rated_speed_rpm is not None and self.synchronous_speed_rpm is not None
+        assert self.breakdown_torque_ratio is not None and self.locked_rotor_torque_ratio is not None
+        if not self.rated_speed_rpm < self.synchronous_speed_rpm:
+            raise ValueError("rated_speed_rpm must be below synchronous_speed_rpm (an induction motor runs with slip)")
+        if not self.locked_rotor_torque_ratio < self.breakdown_torque_ratio:
+            raise ValueError("locked_rotor_torque_ratio must be below breakdown_torque_ratio (the breakdown torque is "
+                             "the curve's maximum)")
+        return self

@@ -1,0 +1,126 @@
+"""The motor's side of a run: its steady operating point from the curves, the start time and slip of the
+simulated start, and the warnings (stall, a ramp beyond the breakdown torque, an unsettled start).
+
+Operating point: the motor torque T_m(w) (after its start: full voltage, star-delta in delta, the VFD at its
+full synchronous speed and torque limit) against the load reflected to the motor, ``T_L(w rho_N) rho_N / prod
+eta`` (power flowing forward through every lossy mesh), rho_N the output's speed over the motor's. From rest
+the motor accelerates while ``T_m > T_refl``; it settles at the first speed where the net torque reaches 0. The
+motor's stable branch lies above its breakdown speed (the curve's largest torque); a motor whose first
+crossing from rest is not on that branch (or that cannot start at all) stalls: a warning.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
+from gearcli.model.assembly import Layout
+from gearcli.model.elements import machine, mesh
+
+START_FRACTION = 0.98  # start time: to 98 % of the operating speed
+RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
+STEADY_T = 1e12  # s: a time past every start ramp
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    speed_rad_s: float | None  # where the motor settles from rest: the first crossing (None: it cannot start)
+    stable_rad_s: float | None  # the crossing on the curve's stable branch (above the breakdown speed); None: none
+    breakdown_rad_s: float  # the speed of the curve's largest torque
+    synchronous_rad_s: float
+
+    @property
+    def reaches(self) -> bool:
+        """The motor runs up to its stable branch: the first crossing from rest is the stable one."""
+        return self.speed_rad_s is not None and self.speed_rad_s == self.stable_rad_s
+
+
+def reflected_load(lay: Layout, w: float) -> float:
+    """The load torque at the motor (N m) when the motor turns at w in steady state."""
+    rho = lay.bodies[-1].ratio
+    g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
+    eta = math.prod(x.params[mesh.I_ETA] for x in lay.connectors if x.lossy)
+    t = lay.load.torque_Nm * g * rho
+    return t / eta if t >= 0 else t * eta
+
+
+def operating_point(lay: Layout, samples: int = 4000) -> OperatingPoint:
+    """The motor's steady operating point against the reflected load (module text)."""
+    row = lay.motor_row if lay.motor_drive else machine.motor_row(lay.drive.motor)
+    ws = row[machine.M_WS]
+
+    def net(w: float) -> float:
+        return machine.motor_torque(row, STEADY_T, w)[0] - reflected_load(lay, w)
+
+    grid = np.linspace(0.0, ws, samples + 1)
+    f = np.array([net(w) for w in grid])
+    curve = np.array([machine.motor_torque(row, STEADY_T, w)[0] for w in grid])
+    w_b = float(grid[int(np.argmax(curve))])
+    down = [i for i in range(samples) if f[i] > 0.0 >= f[i + 1]]  # net torque falls through 0: stable crossings
+    crossings = [float(brentq(net, grid[i], grid[i + 1], xtol=1e-12 * ws)) if f[i + 1] < 0.0 else float(grid[i + 1])
+                 for i in down]
+    stable = [c for c in crossings if c >= w_b]
+    first = None if f[0] <= 0.0 or not crossings else crossings[0]
+    return OperatingPoint(first, stable[-1] if stable else None, w_b, ws)
+
+
+def start_time(t: np.ndarray, w: np.ndarray, operating_rad_s: float | None) -> float | None:
+    """The first time the motor reaches 98 % of its operating speed (None: never in the run)."""
+    if operating_rad_s is None or operating_rad_s <= 0:
+        return None
+    hit = np.nonzero(w >= START_FRACTION * operating_rad_s)[0]
+    if hit.size == 0:
+        return None
+    i = int(hit[0])
+    if i == 0:
+        return float(t[0])
+    w0, w1 = w[i - 1], w[i]  # linear between the samples
+    return float(t[i - 1] + (t[i] - t[i - 1]) * (START_FRACTION * operating_rad_s - w0) / (w1 - w0))
+
+
+def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray, mask: np.ndarray,
+            window: tuple[float, float]) -> tuple[dict, list[Diagnostic]]:
+    """The JSON ``summary.motor`` object and the motor's warnings of one run."""
+    motor = lay.drive.motor
+    assert motor is not None
+    op = operating_point(lay)
+    diags: list[Diagnostic] = []
+    ws = op.synchronous_rad_s
+    if lay.speed_drive:  # a prescribed ramp: can the described motor deliver what it needs?
+        need = float(np.max(t_motor))
+        if need > motor.peak_torque_Nm:
+            i = int(np.argmax(t_motor))
+            diags.append(dg.warning(dg.RAMP_OVER_BREAKDOWN, f"the prescribed speed ramp needs {need:.4g} N·m at "
+                                    f"{t[i]:.3g} s, {need / motor.peak_torque_Nm:.2f}x the motor's breakdown torque "
+                                    f"({motor.peak_torque_Nm:.4g} N·m): the motor cannot follow it; lengthen "
+                                    "[input] ramp_s or simulate drive = \"motor\"", torque_Nm=need,
+                                    breakdown_torque_Nm=motor.peak_torque_Nm))
+        return {"synchronous_speed_rpm": ws * RAD_S_TO_RPM, "peak_required_torque_Nm": need}, diags
+    rpm = RAD_S_TO_RPM
+    if not op.reaches:
+        where = ("at standstill: it cannot start" if op.speed_rad_s is None else
+                 f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm")
+        aim = ("" if op.stable_rad_s is None else
+               f", so it never reaches its operating point {op.stable_rad_s * rpm:.5g} rpm")
+        diags.append(dg.warning(dg.MOTOR_STALLS, "the motor's curve cannot carry the load (reflected through the "
+                                f"reducer, losses included): it stalls {where}{aim}; a larger motor or a smaller load",
+                                stall_speed_rpm=None if op.speed_rad_s is None else op.speed_rad_s * rpm,
+                                operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm))
+    t_start = start_time(t, w_motor, op.speed_rad_s)
+    if op.reaches and (t_start is None or t_start > window[0]):
+        when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
+        diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
+                                f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
+                                "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
+    w_mean = float(w_motor[mask].mean())
+    out = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
+           "operating_slip": (ws - w_mean) / ws,
+           "operating_point_rpm": None if op.speed_rad_s is None else op.speed_rad_s * RAD_S_TO_RPM,
+           "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
+           "mean_torque_Nm": float(t_motor[mask].mean())}
+    return out, diags
