@@ -1,6 +1,9 @@
 """Record the simulate summary of every scene in configs/ and configs/extreme/ (the golden numbers).
 
-    PYTHONPATH=$PWD python tests/golden/make_golden.py [--only NAME ...]
+    OPENBLAS_CORETYPE=Haswell PYTHONPATH=$PWD python tests/golden/make_golden.py [--only NAME ...]
+
+(the OpenBLAS kernel tests/conftest.py pins for the test session: Newton's linear solves in a periodic run
+round differently on other kernels, and the integer counters must match exactly.)
 
 Each scene runs with the method and rtol its file gives (``run_simulation`` defaults) and its numbers
 go to tests/golden/<dir>__<name>.json. ``test_golden.py`` re-runs the scenes and requires agreement to
@@ -40,6 +43,9 @@ def summary_numbers(path: Path) -> dict:
     from gearcli.simulate import run_simulation
 
     cfg = load_design(str(path), []).design
+    # the scipy path, whatever auto would pick: the compiled engine's choice depends on what the process has
+    # already compiled or loaded, and a compiled Radau (or Newton's variational periods) takes other steps
+    cfg = cfg.model_copy(update={"simulation": cfg.simulation.model_copy(update={"engine": "python"})})
     sim = run_simulation(cfg, compute_design(cfg), want_series=False)
     stages = []
     for s in sim.stages:
