@@ -6,6 +6,14 @@ The command is the console script installed next to this interpreter (what users
 gearcli`` adds runpy's way in), else ``python -m gearcli``. Both commands run as fresh interpreters, interleaved (baseline, design, baseline, design, ...), so
 machine noise hits both alike; the figure of merit is the ratio of the medians. Target (issue 2):
 ratio <= 1.5.
+
+    python benchmarks/bench_design.py --rating [--repeat 15] [--json]
+
+The strength rating's cost (issue 22): `gearcli design` of the industrial two-stage reducer without and with
+its ``[rating]`` (configs/industrial_two_stage.toml and ..._rated.toml, the same stages), interleaved; the
+figure of merit is the ratio rated/unrated of the medians (target: no perceptible difference, ≤ 1.05).
+Where PYTHONDONTWRITEBYTECODE is set, run ``python -m compileall gearcli`` first, or the new modules are
+compiled from source on every run (an installed package ships them compiled).
 """
 
 from __future__ import annotations
@@ -32,11 +40,38 @@ def wall(cmd: list[str]) -> float:
     return time.perf_counter() - t0
 
 
+def _command(config: Path) -> list[str]:
+    return [*DESIGN[:-4], "design", str(config), "--format", "json"]
+
+
+def rating_cost(repeat: int) -> dict:
+    """Medians of `gearcli design` on the same reducer without and with [rating], interleaved."""
+    plain = _command(ROOT / "configs" / "industrial_two_stage.toml")
+    rated = _command(ROOT / "configs" / "industrial_two_stage_rated.toml")
+    wall(plain), wall(rated)
+    a, b = [], []
+    for _ in range(repeat):
+        a.append(wall(plain))
+        b.append(wall(rated))
+    return {"unrated_median_s": statistics.median(a), "rated_median_s": statistics.median(b),
+            "ratio": statistics.median(b) / statistics.median(a), "repeat": repeat, "target_ratio": 1.05}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=15)
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--rating", action="store_true", help="time the strength rating: rated vs unrated design")
     args = ap.parse_args()
+    if args.rating:
+        out = rating_cost(args.repeat)
+        if args.json:
+            print(json.dumps(out, indent=2))
+        else:
+            print(f"design industrial_two_stage.toml        median {out['unrated_median_s']*1e3:7.1f} ms")
+            print(f"design industrial_two_stage_rated.toml  median {out['rated_median_s']*1e3:7.1f} ms")
+            print(f"ratio rated/unrated = {out['ratio']:.3f}  (target <= 1.05, {args.repeat} interleaved runs each)")
+        return
     wall(BASELINE), wall(DESIGN)  # warm the file cache
     base, design = [], []
     for _ in range(args.repeat):

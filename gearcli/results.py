@@ -57,6 +57,61 @@ class Iso6336Factors:
 
 
 @dataclass(frozen=True)
+class MemberRating:
+    """ISO 6336-2/-3 figures of one member (docs/iso6336.md, "Strength rating"); JSON ``rating.pinion|gear``."""
+
+    load_cycles: float
+    Z_BD: float  # Z_B of the smaller wheel, Z_D of the larger (ISO's pinion and wheel)
+    sigma_H_MPa: float  # sigma_HB / sigma_HD
+    Z_NT: float
+    Z_X: float
+    sigma_HG_MPa: float
+    sigma_HP_MPa: float
+    S_H: float
+    Y_F: float
+    Y_S: float
+    Y_B: float
+    Y_DT: float
+    sigma_F0_MPa: float
+    sigma_F_MPa: float
+    Y_delta_rel_T: float
+    Y_R_rel_T: float
+    Y_X: float
+    Y_NT: float
+    sigma_FG_MPa: float
+    sigma_FP_MPa: float
+    S_F: float
+
+
+@dataclass(frozen=True)
+class RatingResult:
+    """The strength rating of one stage, ISO 6336:2006 method B; JSON ``stages[k].rating``."""
+
+    standard: str
+    K_A: float
+    K_v: float
+    K_v_source: str  # "iso" | "simulated" | "given"
+    K_Hbeta: float
+    K_Hbeta_source: str  # "given" | "estimated"
+    K_Fbeta: float
+    K_Halpha: float
+    K_Falpha: float
+    Z_H: float
+    Z_E: float
+    Z_eps: float
+    Z_beta: float
+    Z_L: float
+    Z_V: float
+    Z_R: float
+    Z_W: float
+    Y_beta: float
+    sigma_H0_MPa: float
+    sigma_H_MPa: float  # at the operating pitch point (Z_B = Z_D = 1)
+    pinion: MemberRating
+    gear: MemberRating
+
+
+@dataclass(frozen=True)
 class StageResult:
     index: int  # 1-based
     ratio: float
@@ -95,6 +150,7 @@ class StageResult:
     resonance_ratio: float = 0.0  # N = n_smaller_wheel / n_E1
     resonance_lower_limit: float = 0.85  # N_S
     resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
+    rating: RatingResult | None = None  # ISO 6336-2/-3 (issue 22); None without [rating]
 
 
 @dataclass(frozen=True)
@@ -124,6 +180,7 @@ class DesignResult:
     warnings: tuple[str, ...]
     input_power_kW: float = 0.0
     output_power_kW: float = 0.0
+    diagnostics: tuple = ()  # gearcli.diagnostics.Diagnostic of the warnings that carry a code (the rating's)
 
 
 # ------------------------------------------------------------------------------------- simulation
@@ -197,6 +254,7 @@ class StageDynamics:
     contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
     back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
     regime: str = ""  # REGIME_*
+    rating: RatingResult | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,9 @@ _TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material",
            ("[load]", "Load", "The output load"),
            ("load.fluctuation = [{ ... }]", "Fluctuation", "One harmonic of the load torque"),
            ("[target]", "Target", "Optional: the output speed the design must reach"),
-           ("[simulation]", "Simulation", "Settings of `gearcli simulate` and `gearcli report`")]
+           ("[simulation]", "Simulation", "Settings of `gearcli simulate` and `gearcli report`"),
+           ("[lubricant]", "Lubricant", "Optional: the gear oil (Z_L of the strength rating)"),
+           ("[rating]", "Rating", "Optional: ISO 6336-2/-3 strength rating of every stage (docs/iso6336.md)")]
 
 
 def _num(v: Any) -> str:

@@ -140,6 +140,12 @@ class Material(_Table):
     density_kg_m3: Annotated[float, Field(ge=100, le=1e5)]  # foams ~100, osmium 22,590
     youngs_modulus_MPa: Annotated[float, Field(ge=1e3, le=1e7)]  # polymers ~1e3, diamond 1.2e6
     poisson_ratio: Annotated[float, Field(ge=0.01, lt=0.5)]
+    # strength rating (ISO 6336-5), required for the materials a stage uses once [rating] is present
+    treatment: Literal["case_carburized", "nitrided", "nitrocarburized", "induction_hardened", "flame_hardened",
+                       "through_hardened", "structural_steel", "cast_steel", "nodular_iron", "grey_iron"] | None = None
+    contact_fatigue_limit_MPa: Annotated[float, Field(ge=100, le=3000)] | None = None  # sigma_Hlim
+    bending_fatigue_limit_MPa: Annotated[float, Field(ge=20, le=1500)] | None = None  # sigma_Flim
+    surface_hardness_HV: Annotated[float, Field(ge=50, le=1500)] | None = None  # Z_W of a softer wheel
 
 
 class Gear(_Table):
@@ -155,6 +161,9 @@ class Gear(_Table):
     bore_diameter_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
     rim_thickness_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
     web_thickness_mm: Annotated[float, Field(ge=0.1, le=1e4)] | None = None
+    # strength rating (ISO 6336-2/-3): mean peak-to-valley roughness of the flank and of the root fillet
+    flank_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
+    root_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
 
     @model_validator(mode="after")
     def _web_needs_rim(self) -> Gear:
@@ -259,6 +268,8 @@ class Stage(_Table):
     mesh: ContactOverride | None = None
     basic_rack: BasicRack = BasicRack()
     shaft: ShaftSpring | None = None
+    accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
+    tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: running-in C_ay)
     model_config = ConfigDict(json_schema_extra=_hands_rule())
 
 
@@ -417,6 +428,26 @@ class Simulation(_Table):
     error_estimate: bool = True
 
 
+class Lubricant(_Table):
+    """The gear oil (ISO 6336-2: Z_L from the 40 °C viscosity; the others are recorded)."""
+
+    viscosity_40C_mm2_s: Annotated[float, Field(ge=2, le=10000)] | None = None
+    viscosity_100C_mm2_s: Annotated[float, Field(ge=1, le=1000)] | None = None
+    temperature_C: Annotated[float, Field(ge=-60, le=300)] | None = None
+
+
+class Rating(_Table):
+    """Strength rating of every stage, ISO 6336-2 (pitting) and -3 (tooth root), 2006 editions, method B.
+    With this table present, every key the rating needs is required (materials, accuracy, roughness, oil)."""
+
+    required_life_h: Annotated[float, Field(ge=1e-3, le=1e7)]  # load cycles N_L = 60 n t per member
+    face_load_factor: Annotated[float, Field(ge=1, le=10)] | None = None  # K_Hbeta; absent: an ISO estimate
+    min_safety_pitting: Annotated[float, Field(ge=0.5, le=10)] = 1.0  # S_Hmin
+    min_safety_bending: Annotated[float, Field(ge=0.5, le=10)] = 1.4  # S_Fmin
+    material_quality: Literal["normal", "optimum"] = "normal"  # Z_NT, Y_NT at 1e10 cycles: 0.85 or 1.0
+    dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
+
+
 class DesignFile(_Table):
     """The whole design file."""
 
@@ -430,6 +461,8 @@ class DesignFile(_Table):
     load: Load
     target: Target | None = None
     simulation: Simulation = Simulation()
+    lubricant: Lubricant | None = None
+    rating: Rating | None = None
 
     @model_validator(mode="after")
     def _load_power_to_torque(self) -> DesignFile:

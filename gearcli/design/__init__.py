@@ -8,6 +8,8 @@ Pure ``math``; never imports scipy (``gearcli design`` must start fast). Modules
 - ``stiffness``   Hertz (seed section 3.3), ISO 6336-1 method B, the contact law's coefficient K
 - ``inertia``     gear and shaft inertias
 - ``checks``      design errors (``DesignError``) and warnings
+- ``rating``      ISO 6336-2/-3 strength rating of a stage (``rating_factors``: ISO 6336-1, -2, -5 factors;
+                  ``rating_root``: ISO 6336-3 tooth-root factors)
 - ``compute``     ``compute_design``, which assembles the ``DesignResult``
 """
 

@@ -46,6 +46,10 @@ def check_inputs(cfg: DesignFile) -> None:
         for part in ("pinion", "gear"):
             check_material(getattr(stage, part).material, cfg.materials, f"stage[{k}].{part}.material")
         check_hands(stage, k)
+    if cfg.rating is not None:  # imported only for a rated design: an unrated one starts as fast as before
+        from gearcli.design.rating import check_rating_inputs
+
+        check_rating_inputs(cfg)
 
 
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:

@@ -23,6 +23,7 @@ from gearcli.design.inertia import (
     shaft_inertias_kg_m2,
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train
+from gearcli.diagnostics import messages
 from gearcli.errors import DesignError
 from gearcli.results import DesignResult, GearResult, Iso6336Factors, ShaftResult, StageResult, StaticForces
 
@@ -40,6 +41,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     kin = train(tuple((s.pinion.teeth, s.gear.teeth) for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                 cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
     stages = tuple(_stage_result(cfg, k, kin) for k in range(len(cfg.stage)))
+    rating_diagnostics: tuple = ()
+    if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
+        from gearcli.design.rating import rate_design
+
+        stages, rating_diagnostics = rate_design(cfg, stages)
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
@@ -53,9 +59,10 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         output_speed_rpm=speed_rpm(out),
         input_torque_Nmm=kin.shaft_torque_Nmm(0),
         output_torque_Nmm=kin.load_torque_Nmm,
-        warnings=design_warnings(cfg, stages, speed_rpm(out)),
+        warnings=design_warnings(cfg, stages, speed_rpm(out)) + messages(rating_diagnostics),
         input_power_kW=power_kW(kin.shaft_torque_Nmm(0), kin.shaft_speeds_rad_s[0]),
         output_power_kW=power_kW(kin.load_torque_Nmm, out),
+        diagnostics=rating_diagnostics,
     )
 
 

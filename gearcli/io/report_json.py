@@ -91,6 +91,7 @@ def report_dict(r: Report) -> dict:
         "accuracy": accuracy_dict(r.accuracy),
         "energy_residual": r.energy_residual,
         "design": design_summary(r.design),
+        **({"rating": [plain(c) for c in r.rating]} if r.rating else {}),  # ISO against simulated K_v (issue 22)
         "simulation": sim,
         "warnings": list(r.warnings),
     }

@@ -159,9 +159,26 @@ def solver_lines(r: Report) -> list[str]:
     ]
 
 
+def rating_section(r: Report) -> Section | None:
+    """ISO K_v beside the simulated K_v (``Report.rating``), one row per rated stage."""
+    rows = tuple((str(c.stage), f"{c.K_v_iso:.4g} ({c.K_v_iso_source})", g(c.K_v_simulated, 4),
+                  g(c.min_S_H_iso, 3), g(c.min_S_F_iso, 3), g(c.min_S_H_simulated, 3), g(c.min_S_F_simulated, 3))
+                 for c in r.rating)
+    if not rows:
+        return None
+    return Section("Dynamic factor: ISO 6336-1 against the simulation",
+                   ("stage", "K_v ISO", "K_v simulated", "min S_H", "min S_F", "min S_H sim.", "min S_F sim."),
+                   rows, "lrrrrrr",
+                   ("K_v simulated = max(1, steady-window max |F_t| / static F_t); the safeties at it are rated "
+                    'with [rating] dynamic_factor = "simulated"',))
+
+
 def sections(r: Report) -> list[Section]:
     out = [comparison_section(r), fluctuation_section(r), peaks_section(r), spectrum_section(r),
            mesh_orders_section(r)]
+    rating = rating_section(r)
+    if rating is not None:
+        out.insert(3, rating)
     if r.accuracy is not None:
         out.append(accuracy_section(r.accuracy))
     return out

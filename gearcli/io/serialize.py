@@ -34,7 +34,9 @@ def with_meta(payload: dict, sha256: str) -> dict:
 
 
 def design_dict(result: DesignResult) -> dict:
-    return plain(result)
+    out = plain(result)
+    out.pop("diagnostics", None)  # the coded warnings; their messages are in "warnings"
+    return out
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
@@ -43,6 +45,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
                                               "static_tangential_N", "peak_tangential_N", "peak_time_s",
                                               "dynamic_factor", "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
+        | ({"rating": plain(s.rating)} if s.rating is not None else {})
         for s in result.stages
     ]
     out = {
@@ -103,7 +106,8 @@ def flatten(d: dict, prefix: str = "") -> dict:
 
 def design_csv(result: DesignResult) -> str:
     """One row per stage, nested objects flattened (``pinion_pitch_diameter_mm``)."""
-    rows = [flatten(s) for s in design_dict(result)["stages"]]
+    rows = [flatten({k: v for k, v in s.items() if not (k == "rating" and v is None)})
+            for s in design_dict(result)["stages"]]
     header = list(rows[0])
     return csv_text(header, ([r[h] for h in header] for r in rows))
 

@@ -161,7 +161,62 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     summary = [text(f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
-    return [geometry, loads, train, *summary]
+    rated = [st for st in s if st.rating is not None]
+    return [geometry, loads, *([rating_table(rated)] if rated else []), train, *summary]
+
+
+def rating_table(stages, title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
+    """Factors, stresses, permissible stresses and safeties per member, in the order of a KISSsoft report
+    (general factors, tooth root, flank); per-member cells read "pinion / gear"."""
+    cols = [f"stage {st.index}" for st in stages]
+
+    def one(label, fn, digits=4):
+        return label, [_g(fn(st.rating), digits) for st in stages]
+
+    def two(label, name, digits=4):
+        return label, [f"{_g(getattr(st.rating.pinion, name), digits)} / {_g(getattr(st.rating.gear, name), digits)}"
+                       for st in stages]
+
+    return _quantity_table(title, cols, [
+        one("application factor K_A", lambda r: r.K_A),
+        ("dynamic factor K_v", [f"{st.rating.K_v:.4g} ({st.rating.K_v_source})" for st in stages]),
+        ("face load factor K_Hβ", [f"{st.rating.K_Hbeta:.4g} ({st.rating.K_Hbeta_source})" for st in stages]),
+        one("face load factor K_Fβ", lambda r: r.K_Fbeta),
+        one("transverse load factor K_Hα", lambda r: r.K_Halpha),
+        one("transverse load factor K_Fα", lambda r: r.K_Falpha),
+        two("load cycles N_L p / g", "load_cycles"),
+        two("tooth form Y_F p / g", "Y_F"),
+        two("stress correction Y_S p / g", "Y_S"),
+        one("helix factor Y_β", lambda r: r.Y_beta),
+        two("rim factor Y_B p / g", "Y_B"),
+        two("deep tooth Y_DT p / g", "Y_DT"),
+        two("nominal root σ_F0 [MPa] p / g", "sigma_F0_MPa"),
+        two("root stress σ_F [MPa] p / g", "sigma_F_MPa"),
+        two("notch Y_δrelT p / g", "Y_delta_rel_T"),
+        two("surface Y_RrelT p / g", "Y_R_rel_T"),
+        two("size Y_X p / g", "Y_X"),
+        two("life Y_NT p / g", "Y_NT"),
+        two("root limit σ_FG [MPa] p / g", "sigma_FG_MPa"),
+        two("permissible σ_FP [MPa] p / g", "sigma_FP_MPa"),
+        two("root safety S_F p / g", "S_F", 3),
+        one("zone factor Z_H", lambda r: r.Z_H),
+        one("elasticity Z_E [√MPa]", lambda r: r.Z_E),
+        one("contact ratio Z_ε", lambda r: r.Z_eps),
+        one("helix factor Z_β", lambda r: r.Z_beta),
+        one("nominal contact σ_H0 [MPa]", lambda r: r.sigma_H0_MPa),
+        one("contact σ_H (pitch) [MPa]", lambda r: r.sigma_H_MPa),
+        two("single pair Z_B / Z_D", "Z_BD"),
+        two("contact σ_HB / σ_HD [MPa]", "sigma_H_MPa"),
+        one("lubricant Z_L", lambda r: r.Z_L),
+        one("velocity Z_V", lambda r: r.Z_V),
+        one("roughness Z_R", lambda r: r.Z_R),
+        one("work hardening Z_W", lambda r: r.Z_W),
+        two("life Z_NT p / g", "Z_NT"),
+        two("size Z_X p / g", "Z_X"),
+        two("pitting limit σ_HG [MPa] p / g", "sigma_HG_MPa"),
+        two("permissible σ_HP [MPa] p / g", "sigma_HP_MPa"),
+        two("flank safety S_H p / g", "S_H", 3),
+    ])
 
 
 def _stats_cells(st) -> list[str]:
@@ -219,7 +274,9 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         lines.append(f"error estimate: check pass at rtol {cp['rtol']:g} from {cp['from_s']:.4g} s, nfev {cp['nfev']}, "
                      f"wall {cp['wall_s']:.3g} s")
     # one Text per line: text() writes a control character (a newline too) as an escape
-    return [forces, peaks, mesh, *(text(line) for line in lines)]
+    rated = [st for st in r.stages if st.rating is not None]
+    simulated = [rating_table(rated, "strength rating at the simulated K_v, ISO 6336:2006 method B")] if rated else []
+    return [forces, peaks, mesh, *simulated, *(text(line) for line in lines)]
 
 
 def _est(e, q: str) -> float | None:

@@ -10,7 +10,7 @@ from gearcli import engine
 from gearcli.model import TorsionalModel
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
-from gearcli.report.compare import comparison_rows, stage_reports
+from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
 from gearcli.report.result import Report
 from gearcli.results import DesignResult, SimulationResult
 from gearcli.scene import spec_from_design
@@ -79,7 +79,7 @@ def build_report(
         accuracy_checks(study, sim_cfg.method, sim_cfg.rtol),
     )
     return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim),
-                  stages=stages, accuracy=study, warnings=warnings)
+                  stages=stages, accuracy=study, warnings=warnings, rating=rating_comparison(design, sim))
 
 
 def _merge(*groups) -> tuple[str, ...]:

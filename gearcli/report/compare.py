@@ -10,7 +10,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from gearcli.report.result import ComparisonRow, StageReport
+from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult, SimulationResult
 
@@ -83,4 +83,22 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
             static_tangential_N=dyn.static_tangential_N, peak_tangential_N=dyn.peak_tangential_N,
             peak_time_s=dyn.peak_time_s, dynamic_factor=dyn.dynamic_factor, spectrum=spectrum,
         ))
+    return tuple(out)
+
+
+def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[RatingComparison, ...]:
+    """Per rated stage, ISO 6336-1's K_v beside the simulated one and the smallest safeties at each."""
+    from gearcli.design.rating import simulated_dynamic_factor  # one formula, shared with simulate's rating
+
+    out = []
+    for st, sd in zip(design.stages, sim.stages, strict=False):
+        if st.rating is None:
+            continue
+        iso, at_sim = st.rating, sd.rating
+        out.append(RatingComparison(
+            stage=st.index, K_v_iso=iso.K_v, K_v_iso_source=iso.K_v_source,
+            K_v_simulated=simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N),
+            min_S_H_iso=min(iso.pinion.S_H, iso.gear.S_H), min_S_F_iso=min(iso.pinion.S_F, iso.gear.S_F),
+            min_S_H_simulated=None if at_sim is None else min(at_sim.pinion.S_H, at_sim.gear.S_H),
+            min_S_F_simulated=None if at_sim is None else min(at_sim.pinion.S_F, at_sim.gear.S_F)))
     return tuple(out)

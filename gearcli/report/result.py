@@ -161,6 +161,21 @@ class AccuracyStudy:
 
 
 # ------------------------------------------------------------------------------------ the report
+@dataclass(frozen=True)
+class RatingComparison:
+    """One rated stage: ISO 6336-1's K_v (theory) beside the simulated one, with the smallest safeties at each
+    (the simulated ones only when ``[rating] dynamic_factor = "simulated"``, else None)."""
+
+    stage: int
+    K_v_iso: float
+    K_v_iso_source: str  # "iso" | "given"
+    K_v_simulated: float  # max(1, steady-window max |F_t| / static F_t)
+    min_S_H_iso: float
+    min_S_F_iso: float
+    min_S_H_simulated: float | None
+    min_S_F_simulated: float | None
+
+
 @dataclass(frozen=True, eq=False)
 class Report:
     """Everything ``gearcli report`` shows, for one design file and its own simulation settings."""
@@ -172,6 +187,7 @@ class Report:
     stages: tuple[StageReport, ...]
     accuracy: AccuracyStudy | None  # None with --quick
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    rating: tuple[RatingComparison, ...] = ()  # with [rating] (issue 22)
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:

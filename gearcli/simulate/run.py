@@ -61,12 +61,19 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     if model is None:
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
-    design_diags = [dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
-    return simulate_model(model, duration_s=sim.duration_s,
-                          steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                          window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
-                          steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
-                          engine=sim.engine)
+    coded = {d.message: d for d in getattr(design, "diagnostics", ())}  # keep a design warning's own code
+    design_diags = [coded.get(w) or dg.warning(dg.DESIGN, w) for w in getattr(design, "warnings", ())]
+    result = simulate_model(model, duration_s=sim.duration_s,
+                            steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
+                            window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
+                            steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
+                            engine=sim.engine)
+    from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
+
+    stages, rating_diags = simulated_ratings(cfg, design, result.stages)
+    new = [d for d in rating_diags if d.message not in result.warnings]
+    return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
+                   diagnostics=result.diagnostics + tuple(new))
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",

@@ -315,7 +315,8 @@ def test_starter_toml_comments_every_table():
 def test_json_schema_has_the_top_level_properties():
     schema = json_schema()
     assert schema["title"] == "gearcli design file" and schema["description"]
-    assert set(schema["properties"]) == {"title", "materials", "stage", "contact", "input", "load", "target", "simulation"}
+    assert set(schema["properties"]) == {"title", "materials", "stage", "contact", "input", "load", "target", "simulation",
+                                         "lubricant", "rating"}  # the last two: the strength rating (issue 22)
     assert set(schema["required"]) == {"stage", "input", "load"}
     assert schema["additionalProperties"] is False
     import json

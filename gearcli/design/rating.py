@@ -1,0 +1,345 @@
+"""Strength rating of a stage: ISO 6336-2 (pitting) and ISO 6336-3 (tooth root), 2006 editions, method B,
+with the load factors of ISO 6336-1 (docs/iso6336.md, "Strength rating").
+
+Assembles the factors of ``rating_factors`` on a stage the design has computed: geometry, c′, c_γα, c_γβ,
+N = n1/n_E1 and N_S come from the ``StageResult`` (ISO 6336-1 and ISO 21771 are not computed twice).
+
+Choices where the contract is silent (docs/iso6336.md says each):
+
+- ISO's pinion (index 1) is the wheel with fewer teeth whichever member drives; JSON ``pinion``/``gear`` are
+  gearcli's members (driving/driven), and ``Z_BD`` is Z_B on the smaller wheel, Z_D on the larger.
+- F_t is the nominal tangential force at the reference circle, floored at 1 N per mm of face width as the
+  stiffness is (so an unloaded stage gets large, finite safeties rather than infinities).
+- Pitch and profile deviations come from the stage's accuracy grade by ISO 1328-1:1995 at the range means;
+  the larger of the two members counts. K_Hα uses max(f_pb, f_fα) − y_α, as the published KISSsoft
+  report of the NREL 5 MW stage does (its K_Hα = 1.069 follows from f_fα, not from f_pb).
+- Z_L, Z_V, Z_R take the lower σ_Hlim of the pair; Z_W acts on the through-hardened member of a pair with a
+  surface-hardened mate (HB ≈ 0.95 HV from ``surface_hardness_HV``), 1 otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+from gearcli.design import rating_factors as rf
+from gearcli.design import rating_root as rr
+from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
+from gearcli.diagnostics import Diagnostic, warning
+from gearcli.errors import DesignError
+from gearcli.results import MemberRating, RatingResult
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile, Gear, Material
+    from gearcli.results import GearResult, StageResult
+
+STANDARD = "ISO 6336:2006 method B"
+STRESS_CORRECTION_TEST_GEAR = 2.0  # Y_ST (ISO 6336-3:2006)
+HB_PER_HV = 0.95  # Brinell from Vickers for steels below ~450 HV (ISO 18265, approximately)
+PITTING_LOW = "pitting_safety_low"
+BENDING_LOW = "bending_safety_low"
+OUT_OF_RANGE = "rating_out_of_range"
+Q_S_RANGE = (1.0, 8.0)  # the notch parameter range of Y_S, method B (ISO 6336-3:2006, 7.2)
+
+
+# ------------------------------------------------------------------------------ required inputs
+def check_rating_inputs(cfg: DesignFile) -> None:
+    """With ``[rating]`` present, every key the rating needs must be given (``DesignError`` naming it)."""
+    if cfg.rating is None:
+        return
+    if cfg.lubricant is None or cfg.lubricant.viscosity_40C_mm2_s is None:
+        raise DesignError("the strength rating ([rating]) needs the oil's viscosity at 40 °C (Z_L): add "
+                          "[lubricant] viscosity_40C_mm2_s", key="lubricant.viscosity_40C_mm2_s")
+    used: set[str] = set()
+    for k, stage in enumerate(cfg.stage):
+        if stage.accuracy_grade is None:
+            raise DesignError("the strength rating ([rating]) needs the ISO 1328-1 accuracy grade of every stage "
+                              "(K_v, K_Hα)", key=f"stage[{k}].accuracy_grade")
+        for part in ("pinion", "gear"):
+            gear: Gear = getattr(stage, part)
+            for name, what in (("flank_roughness_Rz_um", "Z_R"), ("root_roughness_Rz_um", "Y_RrelT")):
+                if getattr(gear, name) is None:
+                    raise DesignError(f"the strength rating ([rating]) needs the roughness Rz of every member "
+                                      f"({what})", key=f"stage[{k}].{part}.{name}")
+            used.add(gear.material)
+    for name in sorted(used):
+        material = cfg.materials.get(name)
+        if material is None:
+            continue  # check_material names the unknown material
+        for key in ("treatment", "contact_fatigue_limit_MPa", "bending_fatigue_limit_MPa"):
+            if getattr(material, key) is None:
+                raise DesignError(f"the strength rating ([rating]) needs {key} of every material a stage uses "
+                                  "(ISO 6336-5)", key=f"materials.{name}.{key}")
+
+
+# ---------------------------------------------------------------------------------- the rating
+def rate_design(cfg: DesignFile, stages: tuple[StageResult, ...]) -> tuple[tuple[StageResult, ...], tuple]:
+    """Every stage with its ``rating`` (unchanged without ``[rating]``) and the safety warnings."""
+    if cfg.rating is None:
+        return stages, ()
+    rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) for k, st in enumerate(stages))
+    return rated, tuple(d for k, st in enumerate(rated) for d in range_diagnostics(cfg, k, st)
+                        + safety_diagnostics(cfg, st))
+
+
+def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
+    """Warnings where the stage lies outside what method B covers: ε_α < 1 (no continuous mesh), and a
+    notch parameter q_s of the root outside 1 … 8 (Y_S's range)."""
+    out = []
+    if st.contact_ratio_transverse < 1.0:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index}: ε_α = {st.contact_ratio_transverse:.3g} < 1: ISO 6336 "
+                           "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",
+                           stage=st.index, quantity="contact_ratio_transverse", value=st.contact_ratio_transverse))
+    stage = cfg.stage[k]
+    for part in ("pinion", "gear"):
+        g = getattr(st, part)
+        form = rr.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
+                             math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg), g.profile_shift,
+                             g.tip_diameter_mm, g.pitch_diameter_mm, st.contact_ratio_transverse,
+                             (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+        if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
+            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
+                               f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
+                               stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
+    return out
+
+
+@dataclass(frozen=True)
+class _Mesh:
+    """A stage as the rating sees it: ISO's index 1 (``small``) is the wheel with fewer teeth."""
+
+    members: tuple[GearResult, GearResult]  # gearcli's pinion, gear
+    parts: tuple[Gear, Gear]  # their design-file tables
+    mats: tuple[Material, Material]
+    treatments: tuple[str, str]
+    hlim: tuple[float, float]  # σ_Hlim
+    flim: tuple[float, float]  # σ_Flim
+    small: int
+    large: int
+    f_t: float  # N, nominal, floored at 1 N/mm
+    k_a: float
+    speed_m_s: float  # pitch-line speed
+    grade: int
+
+    @property
+    def g1(self) -> GearResult:
+        return self.members[self.small]
+
+    @property
+    def g2(self) -> GearResult:
+        return self.members[self.large]
+
+
+@dataclass(frozen=True)
+class _LoadFactors:
+    k_v: float
+    k_v_source: str
+    k_hb: float
+    k_hb_source: str
+    k_fb: float
+    k_ha: float
+    k_fa: float
+    z_eps: float
+
+
+def _mesh(cfg: DesignFile, k: int, st: StageResult) -> _Mesh:
+    stage = cfg.stage[k]
+    assert stage.accuracy_grade is not None  # check_rating_inputs requires it
+    parts = (stage.pinion, stage.gear)
+    mats = (cfg.materials[parts[0].material], cfg.materials[parts[1].material])
+    small, large = smaller_wheel_first((st.pinion.teeth, st.gear.teeth), (0, 1),
+                                       (st.pinion.profile_shift, st.gear.profile_shift))
+    g1 = (st.pinion, st.gear)[small]
+    return _Mesh(members=(st.pinion, st.gear), parts=parts, mats=mats,
+                 treatments=(str(mats[0].treatment), str(mats[1].treatment)),
+                 hlim=(float(mats[0].contact_fatigue_limit_MPa or 0.0), float(mats[1].contact_fatigue_limit_MPa or 0.0)),
+                 flim=(float(mats[0].bending_fatigue_limit_MPa or 0.0), float(mats[1].bending_fatigue_limit_MPa or 0.0)),
+                 small=small, large=large,
+                 f_t=reference_tangential_force_N(st.static_force_N.tangential, st.face_width_mm),
+                 k_a=cfg.load.application_factor,
+                 speed_m_s=max(math.pi * g1.pitch_diameter_mm * abs(g1.speed_rpm) / 60000.0, 1e-9),
+                 grade=stage.accuracy_grade)
+
+
+def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulated_k_v: float | None) -> _LoadFactors:
+    """ISO 6336-1: deviations of the grade, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα, and Z_ε (K_Hα's limit)."""
+    rating, stage = cfg.rating, cfg.stage[k]
+    assert rating is not None
+    alpha_t, b = math.radians(st.transverse_pressure_angle_deg), st.face_width_mm
+    f_pb = max(rf.single_pitch_tolerance_um(g.pitch_diameter_mm, st.normal_module_mm, mesh.grade)
+               for g in mesh.members) * math.cos(alpha_t)
+    f_fa = max(rf.profile_form_tolerance_um(g.pitch_diameter_mm, st.normal_module_mm, mesh.grade) for g in mesh.members)
+    pairs = tuple(zip(mesh.treatments, mesh.hlim, strict=True))
+    y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, mesh.speed_m_s) for t, h in pairs)
+    y_f = 0.5 * sum(rf.running_in_um(t, h, f_fa, mesh.speed_m_s) for t, h in pairs)
+    line_load = mesh.f_t * mesh.k_a / b
+    if simulated_k_v is not None:
+        k_v, k_v_source = max(1.0, simulated_k_v), "simulated"
+    elif isinstance(rating.dynamic_factor, float):
+        k_v, k_v_source = rating.dynamic_factor, "given"
+    else:  # C_a = tip_relief_um; running-in is in f_pb,eff and f_fα,eff, not in B_k
+        k_v = rf.dynamic_factor(st.resonance_ratio, st.resonance_lower_limit, st.contact_ratio_total,
+                                st.iso6336_single_pair_stiffness_N_mm_um, line_load, f_pb - y_a, f_fa - y_f,
+                                stage.tip_relief_um or 0.0)
+        k_v_source = "iso"
+    if rating.face_load_factor is not None:
+        k_hb, k_hb_source = rating.face_load_factor, "given"
+    else:
+        f_hb = rf.helix_slope_tolerance_um(mesh.g1.pitch_diameter_mm, b, mesh.grade)
+        k_hb = rf.face_load_factor_estimate(
+            st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb, b / mesh.g1.pitch_diameter_mm,
+            (mesh.treatments[mesh.small], mesh.hlim[mesh.small], mesh.speed_m_s))
+        k_hb_source = "estimated"
+    depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * st.normal_module_mm  # h of b/h: the rack's
+    z_eps = rf.contact_ratio_factor(st.contact_ratio_transverse, st.overlap_ratio)
+    k_ha, k_fa = rf.transverse_load_factors(st.contact_ratio_transverse, st.contact_ratio_total, z_eps,
+                                            st.iso6336_mesh_stiffness_N_mm_um, max(f_pb, f_fa) - y_a,
+                                            line_load * k_v * k_hb)
+    return _LoadFactors(k_v, k_v_source, k_hb, k_hb_source, rf.face_load_factor_root(k_hb, b, depth), k_ha, k_fa,
+                        z_eps)
+
+
+def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:
+    """The rating of stage ``k`` (0-based); ``simulated_k_v`` replaces K_v (``K_v_source = "simulated"``)."""
+    assert cfg.rating is not None and cfg.lubricant is not None and cfg.lubricant.viscosity_40C_mm2_s is not None
+    mesh = _mesh(cfg, k, st)
+    lf = _load_factors(cfg, k, st, mesh, simulated_k_v)
+    g1, g2, b = mesh.g1, mesh.g2, st.face_width_mm
+    alpha_wt = math.radians(st.working_pressure_angle_deg)
+    # ISO 6336-2: contact stress and the stage-level factors
+    z_h = rf.zone_factor(math.radians(st.base_helix_angle_deg), math.radians(st.transverse_pressure_angle_deg),
+                         alpha_wt)
+    z_e = rf.elasticity_factor(mesh.mats[0].youngs_modulus_MPa, mesh.mats[0].poisson_ratio,
+                               mesh.mats[1].youngs_modulus_MPa, mesh.mats[1].poisson_ratio)
+    z_beta = rf.helix_factor_pitting(math.radians(st.helix_angle_deg))
+    u = g2.teeth / g1.teeth
+    sigma_h0 = z_h * z_e * lf.z_eps * z_beta * math.sqrt(mesh.f_t / (g1.pitch_diameter_mm * b) * (u + 1.0) / u)
+    sigma_h = sigma_h0 * math.sqrt(mesh.k_a * lf.k_v * lf.k_hb * lf.k_ha)
+    z_b, z_d = rf.single_pair_factors((g1.tip_diameter_mm, g2.tip_diameter_mm),
+                                      (g1.base_diameter_mm, g2.base_diameter_mm), (g1.teeth, g2.teeth), alpha_wt,
+                                      st.contact_ratio_transverse, st.overlap_ratio)
+    low_hlim = min(mesh.hlim)
+    rho = [0.5 * g.base_diameter_mm * math.tan(alpha_wt) for g in (g1, g2)]
+    rz_flank = 0.5 * sum(float(g.flank_roughness_Rz_um or 0.0) for g in mesh.parts)
+    soft, z_w = _work_hardening(mesh.mats, mesh.treatments)
+    flank = _Flank(z_bd={mesh.small: z_b, mesh.large: z_d}, sigma_h=sigma_h,
+                   z_l=rf.lubricant_factor(low_hlim, cfg.lubricant.viscosity_40C_mm2_s),
+                   z_v=rf.velocity_factor(low_hlim, mesh.speed_m_s),
+                   z_r=rf.roughness_factor(low_hlim, rz_flank, rho[0] * rho[1] / (rho[0] + rho[1])),
+                   z_w={soft: z_w})
+    y_beta = rr.helix_factor_bending(st.overlap_ratio, st.helix_angle_deg)
+    return RatingResult(
+        standard=STANDARD, K_A=mesh.k_a, K_v=lf.k_v, K_v_source=lf.k_v_source, K_Hbeta=lf.k_hb,
+        K_Hbeta_source=lf.k_hb_source, K_Fbeta=lf.k_fb, K_Halpha=lf.k_ha, K_Falpha=lf.k_fa, Z_H=z_h, Z_E=z_e,
+        Z_eps=lf.z_eps, Z_beta=z_beta, Z_L=flank.z_l, Z_V=flank.z_v, Z_R=flank.z_r, Z_W=z_w, Y_beta=y_beta,
+        sigma_H0_MPa=sigma_h0, sigma_H_MPa=sigma_h,
+        pinion=_member(cfg, k, st, mesh, lf, flank, y_beta, 0), gear=_member(cfg, k, st, mesh, lf, flank, y_beta, 1))
+
+
+@dataclass(frozen=True)
+class _Flank:
+    """The pitting factors a member's figures need: Z_B/Z_D by member index, σ_H at the pitch point, Z_L, Z_V, Z_R,
+    and Z_W by the index of the member it acts on."""
+
+    z_bd: dict[int, float]
+    sigma_h: float
+    z_l: float
+    z_v: float
+    z_r: float
+    z_w: dict[int, float]
+
+
+def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFactors, flank: _Flank, y_beta: float,
+            i: int) -> MemberRating:
+    """ISO 6336-2 and -3 figures of member ``i`` (0 pinion, 1 gear)."""
+    rating, stage = cfg.rating, cfg.stage[k]
+    assert rating is not None
+    g, part, m_n = mesh.members[i], mesh.parts[i], st.normal_module_mm
+    cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h
+    z_nt = rf.life_factor_pitting(mesh.treatments[i], cycles, rating.material_quality)
+    sig_h = flank.z_bd[i] * flank.sigma_h
+    sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1
+    form = rr.tooth_form(g.teeth, m_n, math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg),
+                         math.radians(st.base_helix_angle_deg), g.profile_shift, g.tip_diameter_mm,
+                         g.pitch_diameter_mm, st.contact_ratio_transverse,
+                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+    if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
+        raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
+                          f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
+                          "raise the profile shift or the tooth count to rate it",
+                          key=f"stage[{k}].{('pinion', 'gear')[i]}.profile_shift")
+    y_b = rr.rim_factor(part.rim_thickness_mm, 0.5 * (g.tip_diameter_mm - g.root_diameter_mm))
+    y_dt = rr.deep_tooth_factor(st.contact_ratio_transverse, math.radians(st.base_helix_angle_deg), mesh.grade)
+    b_f = min(g.face_width_mm, st.face_width_mm + 2.0 * m_n)
+    sig_f0 = mesh.f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_b * y_dt
+    sig_f = sig_f0 * mesh.k_a * lf.k_v * lf.k_fb * lf.k_fa
+    y_d = rr.relative_notch_sensitivity(mesh.treatments[i], form["q_s"])
+    y_r = rr.relative_surface_factor(mesh.treatments[i], float(part.root_roughness_Rz_um or 0.0))
+    y_x = rr.size_factor_bending(mesh.treatments[i], m_n)
+    y_nt = rf.life_factor_bending(mesh.treatments[i], cycles, rating.material_quality)
+    sig_fg = mesh.flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
+    return MemberRating(
+        load_cycles=cycles, Z_BD=flank.z_bd[i], sigma_H_MPa=sig_h, Z_NT=z_nt, Z_X=1.0, sigma_HG_MPa=sig_hg,
+        sigma_HP_MPa=sig_hg / rating.min_safety_pitting, S_H=sig_hg / sig_h, Y_F=form["Y_F"], Y_S=form["Y_S"],
+        Y_B=y_b, Y_DT=y_dt, sigma_F0_MPa=sig_f0, sigma_F_MPa=sig_f, Y_delta_rel_T=y_d, Y_R_rel_T=y_r, Y_X=y_x,
+        Y_NT=y_nt, sigma_FG_MPa=sig_fg, sigma_FP_MPa=sig_fg / rating.min_safety_bending, S_F=sig_fg / sig_f)
+
+
+def _work_hardening(mats: tuple[Material, ...], treatments: tuple[str, ...]) -> tuple[int, float]:
+    """(index of the member Z_W acts on, Z_W): the through-hardened member of a pair whose mate is surface-
+    hardened; (-1, 1.0) otherwise."""
+    hard = [t in rf.SURFACE_HARDENED for t in treatments]
+    if hard[0] == hard[1]:
+        return -1, 1.0
+    soft = 1 if hard[0] else 0
+    hv = mats[soft].surface_hardness_HV
+    return soft, rf.work_hardening_factor(None if hv is None else HB_PER_HV * hv)
+
+
+# ------------------------------------------------------------------------------------ warnings
+def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") -> list[Diagnostic]:
+    """A warning for every safety below its minimum, naming stage, member and failure mode."""
+    r = st.rating
+    if r is None or cfg.rating is None:
+        return []
+    out = []
+    minima = {"pitting": cfg.rating.min_safety_pitting, "bending": cfg.rating.min_safety_bending}
+    for part in ("pinion", "gear"):
+        m: MemberRating = getattr(r, part)
+        for mode, value, symbol, norm in (("pitting", m.S_H, "S_H", "ISO 6336-2"),
+                                          ("bending", m.S_F, "S_F", "ISO 6336-3")):
+            if value < minima[mode]:
+                code = PITTING_LOW if mode == "pitting" else BENDING_LOW
+                what = "pitting (flank)" if mode == "pitting" else "tooth-root bending"
+                teeth = (st.pinion if part == "pinion" else st.gear).teeth
+                message = (f"stage {st.index} {part} (z = {teeth}): {what} safety {symbol} = {value:.3g} is below the minimum "
+                           f"{minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} {r.K_v_source}{source}); widen the face, "
+                           "raise the module or choose a stronger material")
+                out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,
+                                   S_min=minima[mode]))
+    return out
+
+
+# ------------------------------------------------------------------------- the simulated K_v
+def simulated_dynamic_factor(tangential_N, static_tangential_N: float) -> float:
+    """K_v from a run: max(1, steady-window max |F_t| / |static F_t|), ``tangential_N`` the window's statistics
+    (min, max) of F_t; 1 when the static force is 0 (no load to amplify)."""
+    if static_tangential_N == 0.0:
+        return 1.0
+    peak = max(abs(tangential_N.max), abs(tangential_N.min))
+    return max(1.0, peak / abs(static_tangential_N))
+
+
+def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
+    """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
+    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise."""
+    if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
+        return tuple(stages), []
+    out, diags = [], []
+    for k, sd in enumerate(stages):
+        k_v = simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N)
+        rated = replace(design.stages[k], rating=rate_stage(cfg, k, design.stages[k], simulated_k_v=k_v))
+        diags += safety_diagnostics(cfg, rated)
+        out.append(replace(sd, rating=rated.rating))
+    return tuple(out), diags

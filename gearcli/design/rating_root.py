@@ -1,0 +1,118 @@
+"""The tooth-root factors of ISO 6336-3:2006 (method B), one formula per function (docs/iso6336.md).
+
+Lengths in mm, stresses in N/mm². Pure ``math``, like ``rating_factors`` (ISO 6336-1, -2, -5).
+"""
+
+from __future__ import annotations
+
+import math
+
+from gearcli.design.rating_factors import SURFACE_HARDENED
+
+
+def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, helix_rad: float,
+               base_helix_rad: float, profile_shift: float, tip_diameter: float, reference_diameter: float,
+               eps_alpha: float, rack: tuple[float, float]) -> dict[str, float]:
+    """Y_F, Y_S and the root geometry by method B (ISO 6336-3:2006, 6.2 and 7.2) for an external gear cut by
+    the basic rack (h_fP*, ρ_fP*) without protuberance: the 30° tangent to the root fillet, θ by iteration.
+
+    Returns ``Y_F``, ``Y_S``, ``s_Fn``, ``h_Fe``, ``rho_F``, ``alpha_Fen`` (rad), ``q_s``, ``d_en``.
+    """
+    m, an = normal_module, normal_pressure_rad
+    h_fp, rho_fp = rack[0] * m, rack[1] * m
+    z_n = teeth / (math.cos(base_helix_rad) ** 2 * math.cos(helix_rad))
+    e = math.pi / 4.0 * m - h_fp * math.tan(an) - (1.0 - math.sin(an)) * rho_fp / math.cos(an)
+    g = rho_fp / m - h_fp / m + profile_shift
+    h = 2.0 / z_n * (math.pi / 2.0 - e / m) - math.pi / 3.0
+    theta = math.pi / 6.0
+    for _ in range(100):
+        new = 2.0 * g / z_n * math.tan(theta) - h
+        if abs(new - theta) < 1e-13:
+            theta = new
+            break
+        theta = new
+    s_fn = m * (z_n * math.sin(math.pi / 3.0 - theta) + math.sqrt(3.0) * (g / math.cos(theta) - rho_fp / m))
+    rho_f = m * (rho_fp / m + 2.0 * g * g / (math.cos(theta) * (z_n * math.cos(theta) ** 2 - 2.0 * g)))
+    d_n = m * z_n
+    d_bn = d_n * math.cos(an)
+    d_an = d_n + tip_diameter - reference_diameter
+    eps_an = eps_alpha / math.cos(base_helix_rad) ** 2
+    p = math.pi * reference_diameter * math.cos(helix_rad) * math.cos(an) / teeth
+    d_en = 2.0 * math.sqrt((math.sqrt((d_an / 2.0) ** 2 - (d_bn / 2.0) ** 2) - p * (eps_an - 1.0)) ** 2
+                           + (d_bn / 2.0) ** 2)
+    alpha_en = math.acos(d_bn / d_en)
+    gamma_e = (0.5 * math.pi + 2.0 * profile_shift * math.tan(an)) / z_n + (math.tan(an) - an) \
+        - (math.tan(alpha_en) - alpha_en)
+    alpha_fen = alpha_en - gamma_e
+    h_fe = 0.5 * m * ((math.cos(gamma_e) - math.sin(gamma_e) * math.tan(alpha_fen)) * d_en / m
+                      - z_n * math.cos(math.pi / 3.0 - theta) - g / math.cos(theta) + rho_fp / m)
+    y_f = 6.0 * (h_fe / m) * math.cos(alpha_fen) / ((s_fn / m) ** 2 * math.cos(an))
+    ell = s_fn / h_fe
+    q_s = s_fn / (2.0 * rho_f)
+    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell))
+    return {"Y_F": y_f, "Y_S": y_s, "s_Fn": s_fn, "h_Fe": h_fe, "rho_F": rho_f, "alpha_Fen": alpha_fen,
+            "q_s": q_s, "d_en": d_en}
+
+
+def helix_factor_bending(overlap_ratio: float, helix_deg: float) -> float:
+    """Y_β = 1 − ε_β β/120° with ε_β ≤ 1 and β ≤ 30° (ISO 6336-3:2006, 9)."""
+    return 1.0 - min(overlap_ratio, 1.0) * min(helix_deg, 30.0) / 120.0
+
+
+def rim_factor(rim_thickness_mm: float | None, tooth_depth_mm: float) -> float:
+    """Y_B = 1 for s_R/h_t ≥ 1.2 (or a solid blank), 1.6 ln(2.242 h_t/s_R) for 0.5 < s_R/h_t < 1.2 (ISO 6336-3:2006,
+    10; below 0.5 the standard does not apply and the 0.5 value is used)."""
+    if rim_thickness_mm is None:
+        return 1.0
+    ratio = max(rim_thickness_mm / tooth_depth_mm, 0.5)
+    return 1.0 if ratio >= 1.2 else 1.6 * math.log(2.242 / ratio)
+
+
+def deep_tooth_factor(eps_alpha: float, base_helix_rad: float, grade: int) -> float:
+    """Y_DT (ISO 6336-3:2006, 11): with ε_αn = ε_α/cos² β_b, 1 unless grade ≤ 4 and ε_αn > 2.05, then
+    −0.666 ε_αn + 2.366 up to 2.5 and 0.7 above."""
+    eps_an = eps_alpha / math.cos(base_helix_rad) ** 2
+    if grade > 4 or eps_an <= 2.05:
+        return 1.0
+    return -0.666 * eps_an + 2.366 if eps_an <= 2.5 else 0.7
+
+
+# slip-layer thickness ρ′ (mm) of ISO 6336-3:2006, 12.3 (Table 5); where it depends on the yield strength,
+# the value of a typical grade is taken (docs/iso6336.md says which)
+_SLIP_LAYER_MM = {"case_carburized": 0.0030, "induction_hardened": 0.0030, "flame_hardened": 0.0030,
+                  "nitrided": 0.1005, "nitrocarburized": 0.1005, "through_hardened": 0.0194,
+                  "cast_steel": 0.0194, "nodular_iron": 0.0194, "structural_steel": 0.0445,
+                  "grey_iron": 0.3095}
+
+
+def relative_notch_sensitivity(treatment: str, q_s: float) -> float:
+    """Y_δrelT = (1 + √(ρ′ χ*)) / (1 + √(ρ′ χ*_T)), χ* = (1 + 2 q_s)/5, χ*_T = 1.2 (ISO 6336-3:2006, 12.3)."""
+    rho = _SLIP_LAYER_MM[treatment]
+    return (1.0 + math.sqrt(rho * (1.0 + 2.0 * q_s) / 5.0)) / (1.0 + math.sqrt(rho * 1.2))
+
+
+def relative_surface_factor(treatment: str, rz_um: float) -> float:
+    """Y_RrelT (ISO 6336-3:2006, 13.3), 1 ≤ R_z ≤ 40 µm: 1.674 − 0.529 (R_z + 1)^0.1 (V, GGG, Eh, IF),
+    5.306 − 4.203 (R_z + 1)^0.01 (St), 4.299 − 3.259 (R_z + 1)^0.005 (GG, NT, NV); below 1 µm: 1.120, 1.070, 1.025."""
+    if treatment == "structural_steel":
+        a, b, p, smooth = 5.306, 4.203, 0.01, 1.070
+    elif treatment in ("grey_iron", "nitrided", "nitrocarburized"):
+        a, b, p, smooth = 4.299, 3.259, 0.005, 1.025
+    else:
+        a, b, p, smooth = 1.674, 0.529, 0.1, 1.120
+    if rz_um < 1.0:
+        return smooth
+    return a - b * (min(rz_um, 40.0) + 1.0) ** p
+
+
+def size_factor_bending(treatment: str, normal_module_mm: float) -> float:
+    """Y_X (ISO 6336-3:2006, 14, Table 6): 1 up to m_n = 5; St, V, GS, GGG (perl.): 1.03 − 0.006 m_n (≥ 0.85);
+    Eh, IF, NT, NV: 1.05 − 0.01 m_n (≥ 0.8); GG, GGG (ferr.): 1.075 − 0.015 m_n (≥ 0.7)."""
+    m = normal_module_mm
+    if m <= 5.0:
+        return 1.0
+    if treatment in SURFACE_HARDENED:
+        return max(1.05 - 0.01 * m, 0.8)
+    if treatment == "grey_iron":
+        return max(1.075 - 0.015 * m, 0.7)
+    return max(1.03 - 0.006 * m, 0.85)
