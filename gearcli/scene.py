@@ -14,6 +14,7 @@ import math
 from typing import TYPE_CHECKING
 
 from gearcli.design import contact_stiffness_N_mm_e
+from gearcli.errors import DesignError
 from gearcli.model.spec import MM, CoupledInertia, DriveSpec, FlexibleShaft, LoadSpec, MeshSpec, ModelSpec, SpringSpec
 from gearcli.results import DesignResult, StageResult
 
@@ -61,7 +62,7 @@ def _coupled(table: Input | Load) -> CoupledInertia | None:
 
 def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None, ...]:
     out = []
-    for k, stage in enumerate(cfg.stage[:-1]):
+    for k, stage in enumerate(cfg.stage[:-1]):  # parallel stages only (spec_from_design)
         s = stage.shaft
         out.append(None if s is None else FlexibleShaft(SpringSpec(s.stiffness_Nm_rad, s.damping_Nms_rad),
                                                         design.stages[k].gear.inertia_kg_m2))
@@ -70,6 +71,11 @@ def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None
 
 def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
+    for st in design.stages:
+        if st.planetary is not None:
+            raise DesignError(f"stage {st.index} is planetary: the torsional model (simulate, modes, sweep, report) "
+                              "does not build planetary stages yet; `gearcli design` rates them",
+                              key=f"stage[{st.index - 1}].type")
     meshes = tuple(_mesh(cfg, st, k) for k, st in enumerate(design.stages))
     inp = cfg.input
     drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,

@@ -127,6 +127,8 @@ def message(err: dict, where: Resolved) -> str:
         return f"needs {what} {n} entr{'y' if n == 1 else 'ies'}, got {ctx.get('actual_length')}"
     if t == "value_error":
         return str(err["msg"]).removeprefix("Value error, ")
+    if t == "union_tag_invalid":  # a stage's type
+        return f"type must be \"parallel\" or \"planetary\", got {shorten(str(ctx.get('tag')))!r}"
     text = str(err.get("msg", t))
     return text.replace("Input should be", "must be")
 

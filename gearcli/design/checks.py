@@ -42,7 +42,8 @@ MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 # ------------------------------------------------------------------------------------------ errors
 def check_inputs(cfg: DesignFile) -> None:
     """Refuse unknown materials and impossible helix hands, before any arithmetic."""
-    for k, stage in enumerate(cfg.stage):
+    for k in range(len(cfg.stage)):
+        stage = cfg.pair(k)
         for part in ("pinion", "gear"):
             check_material(getattr(stage, part).material, cfg.materials, f"stage[{k}].{part}.material")
         check_hands(stage, k)
@@ -79,7 +80,8 @@ def check_hands(stage: Stage, k: int) -> None:
 def design_warnings(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[str, ...]:
     """Every warning of the design, train-level first, then stage by stage."""
     found = [target_speed_warning(cfg, output_speed_rpm)]
-    for stage, stage_cfg in zip(stages, cfg.stage, strict=True):
+    for k, stage in enumerate(stages):
+        stage_cfg = cfg.pair(k)
         found.append(spur_hand_warning(stage.index, stage_cfg))
         found.extend(undercut_warning(stage, gear) for gear in (stage.pinion, stage.gear))
         found.append(contact_ratio_warning(stage))
