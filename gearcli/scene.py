@@ -98,7 +98,10 @@ def resonance_warnings(cfg: DesignFile, design: DesignResult) -> tuple[str, ...]
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
-    its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
+    its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy. None for a
+    train with a planetary stage (the torsional model does not build those yet)."""
+    if any(st.planetary is not None for st in design.stages):
+        return ()
     from gearcli.model.assembly import Layout  # lazy for start-up (numpy), as above
     from gearcli.model.modes import resonances
 
