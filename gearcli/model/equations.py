@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.errors import DesignError
 from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.codegen import compile_functions
 from gearcli.model.linear import static_forces
@@ -68,6 +69,11 @@ class TorsionalModel:
     state layout documented in :mod:`gearcli.model.assembly`; ``source`` is their generated code."""
 
     def __init__(self, spec: ModelSpec):
+        for k, p in enumerate(spec.planetary):
+            if p is not None:
+                raise DesignError(f"stage {k + 1} is planetary: simulate, sweep and report do not integrate planetary "
+                                  "stages yet (`gearcli design` rates them, `gearcli modes` gives their modes)",
+                                  key=f"stage[{k}].type")
         self.spec = spec
         self.layout = Layout.of(spec)
         self.rhs: Callable[[float, np.ndarray], np.ndarray]

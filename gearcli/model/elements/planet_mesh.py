@@ -1,0 +1,44 @@
+"""A planet's mesh with the sun or the ring when all three bodies move: planet, sun (or ring), carrier.
+
+The same force law as :mod:`gearcli.model.elements.mesh` (the Adams IMPACT law or viscous damping, with
+its excitation), on the deflection along the mesh's line of action with the carrier's motion in the
+kinematics (absolute body angles, the planet's included):
+
+    sun–planet:   delta = r_bp theta_p + r_bs theta_s - r_c cos(alpha_wt,sp) theta_c
+    ring–planet:  delta = -r_bp theta_p + r_br theta_r - r_c cos(alpha_wt,rp) theta_c
+
+(r_c cos alpha_wt,sp = r_bs + r_bp and r_c cos alpha_wt,rp = r_br - r_bp: the carrier term is what makes
+the relative rotations theta_s - theta_c, theta_p - theta_c appear). The levers carry the signs (``SIGNS``
+are all +1; :class:`gearcli.model.spec.PlanetarySpec` gives the signed levers); the first body is the planet,
+whose angle sets the mesh phase ``z_p theta_p / 2 pi`` (``pinion_teeth`` = z_p). A mesh with a held
+member joins two bodies and is a plain :mod:`~gearcli.model.elements.mesh`.
+"""
+
+from __future__ import annotations
+
+from gearcli.model.elements.mesh import (  # noqa: F401 - the element protocol, re-exported
+    CHANNELS,
+    PARAMS,
+    ROW_WIDTH,
+    assembled,
+    channel,
+    cycle_period_s,
+    damped,
+    deflection_scale,
+    excited,
+    force,
+    linear_row,
+    makes_excitation,
+    pack,
+    phase_per_rad,
+    phased,
+    potential,
+    power_gradient,
+    self_exciting,
+    static_deflection,
+    tangent,
+    time_varying,
+)
+
+NAME = "planet_mesh"
+SIGNS = (1.0, 1.0, 1.0)  # delta = sum_j r_j theta_j with signed levers r_j
