@@ -256,6 +256,10 @@ class StageDynamics:
     back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
     regime: str = ""  # REGIME_*
     rating: RatingResult | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
+    # a planetary stage (issue 25): every planet's sun and ring mesh; the largest planet's window-mean sun-mesh
+    # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
+    planets: tuple[PlanetDynamics, ...] = ()
+    load_sharing_factor: float | None = None
 
 
 @dataclass(frozen=True)
@@ -393,3 +397,18 @@ class PlanetaryResult:
     equal_spacing: bool  # (z_s + z_r) / N integer
     tip_clearance_between_planets_mm: float  # 2 a sin(π/N) − d_a,planet (adjacency)
     concentricity_mm: float  # a_w(planet–ring) − a_w(sun–planet)
+
+
+@dataclass(frozen=True)
+class PlanetMeshDynamics:
+    """One planet mesh over the statistics window: F_t (N) and the dynamic transmission error (um)."""
+
+    tangential_N: ChannelStats
+    dte_um: DteStats
+
+
+@dataclass(frozen=True)
+class PlanetDynamics:
+    index: int  # 1-based
+    sun: PlanetMeshDynamics
+    ring: PlanetMeshDynamics

@@ -133,7 +133,14 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
         planet_teeth=p.planet.teeth, ring_teeth=p.ring.teeth, base_radius_sun_m=r_bs, base_radius_planet_m=r_bp,
         base_radius_ring_m=r_br, lever_sun_carrier_m=r_bs + r_bp, lever_ring_carrier_m=r_br - r_bp,
         third_inertia_kg_m2=inertia[third], planet_inertia_kg_m2=p.planet.inertia_kg_m2, sun_mesh=sun_mesh,
-        ring_mesh=ring_mesh, unit_speeds=(unit["sun"], unit["carrier"], unit["ring"]))
+        ring_mesh=ring_mesh, unit_speeds=(unit["sun"], unit["carrier"], unit["ring"]),
+        planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)))
+
+
+def _planet_errors_um(cfg: DesignFile, k: int) -> list[float]:
+    stage = cfg.stage[k]
+    planet = getattr(stage, "planet", None)
+    return list(planet.position_error_um or []) if planet is not None else []
 
 
 def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:

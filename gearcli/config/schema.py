@@ -286,6 +286,9 @@ class Planet(Gear):
 
     count: Annotated[int, Field(ge=1, le=20)]
     mass_kg: Annotated[float, Field(ge=1e-6, le=1e6)] | None = None  # else from geometry (a solid disc)
+    # per planet, its position error along its sun mesh's line of action (a constant transmission error, um;
+    # positive: that planet meets the sun early and carries more); the simulation's load sharing sees it
+    position_error_um: Annotated[list[Annotated[float, Field(ge=-1000, le=1000)]], Field(max_length=20)] | None = None
 
 
 class Carrier(_Table):
@@ -336,6 +339,10 @@ class PlanetaryStage(_Table):
         if self.input == self.fixed:
             raise ValueError(f"input and fixed name the same member ({self.input!r}): the held member "
                              "cannot be driven; name two different members of sun, carrier, ring")
+        errors = self.planet.position_error_um
+        if errors is not None and len(errors) != self.planet.count:
+            raise ValueError(f"planet.position_error_um needs one value per planet ({self.planet.count}), "
+                             f"got {len(errors)}")
         if self.ring.teeth <= self.sun.teeth + 2 * self.planet.teeth - 3:
             raise ValueError(f"ring.teeth ({self.ring.teeth}) must be about sun.teeth + 2 planet.teeth "
                              f"({self.sun.teeth + 2 * self.planet.teeth}): the planets must fit between sun and ring")

@@ -88,7 +88,7 @@ def sun_planet_stage(stage: PlanetaryStage) -> Stage:
     """The sun–planet mesh as a parallel stage (pinion = sun, gear = planet), for the external-pair code."""
     from gearcli.config.schema import Gear, Stage
 
-    planet = Gear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg"}))
+    planet = Gear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg", "position_error_um"}))
     return Stage.model_validate({
         "normal_module_mm": stage.normal_module_mm, "normal_pressure_angle_deg": stage.normal_pressure_angle_deg,
         "helix_angle_deg": stage.helix_angle_deg, "pinion": stage.sun.model_dump(), "gear": planet.model_dump(),

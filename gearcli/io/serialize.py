@@ -69,6 +69,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
                                               "dynamic_factor", "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
         | ({"rating": plain(s.rating)} if s.rating is not None else {})
+        | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]
     out = {

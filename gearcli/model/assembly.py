@@ -35,7 +35,7 @@ The static forces are still those of the chain (:mod:`gearcli.model.linear`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -69,6 +69,8 @@ class Connector:
     load_lever: float = 0.0
     planet: int = -1  # a planet mesh: its planet (0-based) and which mesh ("sun" or "ring")
     gear: str = ""
+    chain_in: int = -1  # a planet mesh: the body of its stage's input member (the reducer shaft before it)
+    initial_deflection: float = 0.0  # a planet's position error along its sun mesh (m): delta - R theta
 
     @property
     def element(self):
@@ -203,15 +205,17 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
                 kind, radii = kind_of("planet_mesh"), tuple(lev)
             else:
                 kind, radii = kind_of("mesh"), (lev[0], -lev[1])
+            # planet 1's sun mesh stands for the stage where a stage has one mesh (role "mesh": its F_t, DTE,
+            # stiffness and error estimate); every planet mesh has its own channels besides
+            role = "mesh" if (j == 0 and gear == "sun") else "planet"
+            offset = p.planet_offsets_m[j] if (gear == "sun" and p.planet_offsets_m) else 0.0
             conns.append(Connector(kind, tuple(idx), radii, row, f"stage {k + 1} planet {j + 1} {gear} mesh", k,
-                                   "planet", n_out, per_output, j, gear))
+                                   role, n_out, per_output, j, gear, n_in, offset))
 
 
 def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec):
     """A planet mesh's law: the mesh phase counted on the planet's absolute angle (z_eff theta_p / 2 pi, the
     relative mesh frequency under rigid kinematics), its harmonics shifted by the planet's phase offset."""
-    from dataclasses import replace
-
     w_p, w_c = p.planet_unit_speed, p.unit_speed("carrier")
     z_eff = abs(p.planet_teeth * (w_p - w_c) / w_p) if w_p != 0.0 else float(p.planet_teeth)
     shift = 2.0 * math.pi * offset_cycles
@@ -232,14 +236,13 @@ def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> l
     for x in conns:
         # the static force on the power path (as gearcli.model.linear.static_forces; a further element: none)
         F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb) if x.role else 0.0
-        if x.role == "planet":
+        if x.load_body >= 0:  # a planet mesh: its share of the planetary's output torque
             F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever)
         mobility = [0.0 if (j == 0 and spec.drive.kind == "speed") else r**2 / bodies[j].inertia
                     for j, r in zip(x.bodies, x.radii, strict=True)]
         row = x.element.assembled(x.params, F, 1.0 / _ordered_sum(mobility))
         if row is not x.params:
-            x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role, x.load_body, x.load_lever,
-                          x.planet, x.gear)
+            x = replace(x, params=_row(row))
         out.append(x)
     return out
 
@@ -325,7 +328,9 @@ class Layout:
     @property
     def shaft_body(self) -> tuple[int, ...]:
         """Body of each reducer shaft: shaft 1 the input pinion's, the others their gear end."""
-        return (self.connectors[self.stage_conn[0]].a,) + tuple(self.connectors[c].b for c in self.stage_conn)
+        first = self.connectors[self.stage_conn[0]]
+        return ((first.chain_in if first.chain_in >= 0 else first.a),) + tuple(
+            x.load_body if x.load_body >= 0 else x.b for x in (self.connectors[c] for c in self.stage_conn))
 
     @property
     def shaft_conn(self) -> dict[int, int]:

@@ -69,13 +69,14 @@ class TorsionalModel:
     state layout documented in :mod:`gearcli.model.assembly`; ``source`` is their generated code."""
 
     def __init__(self, spec: ModelSpec):
-        for k, p in enumerate(spec.planetary):
-            if p is not None:
-                raise DesignError(f"stage {k + 1} is planetary: simulate, sweep and report do not integrate planetary "
-                                  "stages yet (`gearcli design` rates them, `gearcli modes` gives their modes)",
-                                  key=f"stage[{k}].type")
         self.spec = spec
         self.layout = Layout.of(spec)
+        for x in self.layout.connectors:
+            if x.load_body >= 0 and x.phased:
+                raise DesignError(f"stage {x.index + 1} is planetary: its meshes' transmission error, stiffness "
+                                  "harmonics and time-varying stiffness are not integrated yet (they need the planets' "
+                                  "angles); `gearcli modes` and `gearcli design` take them",
+                                  key=f"stage[{x.index}].mesh")
         self.rhs: Callable[[float, np.ndarray], np.ndarray]
         self.jac: Callable[[float, np.ndarray], np.ndarray]
         self.rhs, self.jac, self.source = compile_functions(self.layout)
@@ -118,6 +119,8 @@ class TorsionalModel:
         w_in = self._input_speed()
         for i in lay.free_bodies:
             y0[lay.i_omega(i)] = lay.bodies[i].ratio * w_in
+        for c, x in enumerate(lay.connectors):  # a planet's position error: delta = R theta + e
+            y0[lay.i_delta(c)] = x.initial_deflection
         return y0
 
     def continue_state(self, y_prev: np.ndarray, model_prev: TorsionalModel, t_prev: float | None = None) -> np.ndarray:
@@ -159,7 +162,7 @@ class TorsionalModel:
     def speed_scales_rad_s(self) -> np.ndarray:
         """Nominal speed of each free body, rad/s."""
         lay = self.layout
-        return np.array([lay.bodies[i].ratio * self.spec.drive.speed_rad_s for i in lay.free_bodies])
+        return np.array([abs(lay.bodies[i].ratio) * self.spec.drive.speed_rad_s for i in lay.free_bodies])
 
     def atol(self, rtol: float) -> np.ndarray:
         """Per-state absolute tolerance: rtol x the state's natural scale."""

@@ -178,6 +178,7 @@ class PlanetarySpec:
     ring_mesh: MeshSpec
     unit_speeds: tuple[float, float, float]  # sun, carrier, ring
     planet_angles_rad: tuple[float, ...] = ()  # per planet, its position psi_j on the carrier; empty: 2 pi j / N
+    planet_offsets_m: tuple[float, ...] = ()  # per planet, a position error along its sun mesh (a constant TE)
 
     def mesh_phase_cycles(self, j: int, gear: str) -> float:
         """Planet j's mesh phase against planet 1's, in mesh cycles (Parker & Lin 2004): z_s psi_j / 2 pi for
