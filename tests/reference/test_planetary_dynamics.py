@@ -1,0 +1,88 @@
+"""A planetary stage in the time domain against kinematics, statics and a hand model of load sharing.
+
+Scene: sun 24, three planets 30, ring 84 (held), m_n 4, spur, x = 0 (so the working pitch radii are the
+reference ones), the sun speed-driven, the carrier carrying the load. Linear meshes (exponent 1, ISO 6336-1
+stiffness c_gamma_alpha b) with viscous damping, ramps of 0.05 s, statistics over the last 0.1 s.
+
+- Willis: omega_sun / omega_carrier = 1 + z_r / z_s (ring held), to 1e-6.
+- Statics with identical planets: each planet's window-mean sun-mesh F_t = T_sun / (N r_w), T_sun = T_load /
+  (1 + z_r/z_s) (lossless), to 1e-3; load-sharing factor 1.
+- A position error e on planet 1 along its sun mesh: with the sun's motion prescribed and the carrier loaded,
+  each planet's sun and ring meshes act in series, k_eq = k_sp k_rp / (k_sp + k_rp); planet equilibrium and the
+  carrier's moment balance (sum of the planet forces fixed) give F_j = F_mean + k_eq (e_j - mean(e)), so the
+  load-sharing factor is 1 + k_eq e (1 - 1/N) / F_mean (along the line of action; F_t scales every planet alike).
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from numpy.testing import assert_allclose
+
+from gearcli.config.schema import DesignFile
+from gearcli.design import compute_design
+from gearcli.simulate import run_simulation
+
+Z_S, Z_P, Z_R, N, M_N = 24, 30, 84, 3, 4.0
+T_LOAD = 400.0
+
+
+def _run(errors_um=None, **sim):
+    planet = {"teeth": Z_P, "face_width_mm": 40.0, "count": N}
+    if errors_um is not None:
+        planet["position_error_um"] = errors_um
+    doc = {"stage": [{"type": "planetary", "normal_module_mm": M_N, "sun": {"teeth": Z_S, "face_width_mm": 40.0},
+                      "planet": planet, "ring": {"teeth": Z_R, "face_width_mm": 40.0},
+                      "carrier": {"inertia_kg_m2": 0.8}, "fixed": "ring", "input": "sun"}],
+           "contact": {"stiffness": "iso6336", "exponent": 1.0, "damping_ratio": 0.2},
+           "input": {"speed_rpm": 300.0, "ramp_s": 0.05}, "load": {"torque_Nm": T_LOAD, "ramp_s": 0.05},
+           "simulation": {"duration_s": 0.3, "steps": 600, "window_start_s": 0.2, "rtol": 1e-9, **sim}}
+    cfg = DesignFile.model_validate(doc)
+    design = compute_design(cfg)
+    return design, run_simulation(cfg, design, want_series=True)
+
+
+@pytest.fixture(scope="module")
+def equal():
+    return _run()
+
+
+def test_willis_ratio(equal):
+    _, sim = equal
+    assert_allclose(sim.ratio, 1 + Z_R / Z_S, rtol=1e-6)
+
+
+def test_identical_planets_share_the_sun_torque_equally(equal):
+    design, sim = equal
+    st = sim.stages[0]
+    assert len(st.planets) == N
+    t_sun = T_LOAD / (1 + Z_R / Z_S)
+    r_w = 0.5e-3 * design.stages[0].pinion.pitch_diameter_mm  # x = 0: r_w = r = z m / 2
+    assert_allclose(r_w, 0.5e-3 * Z_S * M_N, rtol=1e-15)
+    for p in st.planets:
+        assert_allclose(abs(p.sun.tangential_N.mean), t_sun / (N * r_w), rtol=1e-3)
+        assert_allclose(abs(p.ring.tangential_N.mean), t_sun / (N * r_w), rtol=1e-3)  # planet equilibrium
+    assert_allclose(st.load_sharing_factor, 1.0, atol=1e-6)
+    # the stage's own channels are planet 1's sun mesh
+    assert_allclose(st.tangential_N.mean, st.planets[0].sun.tangential_N.mean, rtol=1e-12)
+    assert "stage1_planet3_ring_tangential_N" in sim.channels and "stage1_planet2_sun_dte_um" in sim.channels
+
+
+@pytest.mark.parametrize("error_um", [2.0, 5.0])
+def test_a_planet_with_a_position_error_carries_more_as_the_hand_model_says(error_um):
+    design, sim = _run([error_um, 0.0, 0.0])
+    st, ds = sim.stages[0], design.stages[0]
+    k_sp = ds.iso6336_mesh_stiffness_N_mm_um * ds.face_width_mm * 1e6  # N/(mm um) x mm -> N/m
+    k_rp = ds.planetary.planet_ring.iso6336_mesh_stiffness_N_mm_um * ds.planetary.planet_ring.face_width_mm * 1e6
+    k_eq = k_sp * k_rp / (k_sp + k_rp)
+    t_sun = T_LOAD / (1 + Z_R / Z_S)
+    f_mean_bt = t_sun / (N * 0.5e-3 * ds.pinion.base_diameter_mm)  # along the line of action
+    e = error_um * 1e-6
+    assert_allclose(st.load_sharing_factor, 1 + k_eq * e * (1 - 1 / N) / f_mean_bt, rtol=1e-3)
+    # planets 2 and 3 each give up half of what planet 1 gains
+    alpha_t = math.radians(20.0)
+    extra = k_eq * e * (1 - 1 / N) * math.cos(alpha_t)
+    assert_allclose(abs(st.planets[0].sun.tangential_N.mean), f_mean_bt * math.cos(alpha_t) + extra, rtol=1e-3)
+    for p in st.planets[1:]:
+        assert_allclose(abs(p.sun.tangential_N.mean), f_mean_bt * math.cos(alpha_t) - extra / 2, rtol=1e-3)
