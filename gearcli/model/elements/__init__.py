@@ -152,4 +152,4 @@ from gearcli.model.elements import mesh, planet_mesh, spring  # noqa: E402 - the
 
 KIND_SPRING = register(spring, compiled=True).kind  # torsional spring-damper: couplings, flexible shafts
 KIND_MESH = register(mesh, compiled=True).kind  # gear mesh along its transverse line of action (Adams IMPACT)
-KIND_PLANET_MESH = register(planet_mesh).kind  # a planet's mesh joining planet, sun or ring, and carrier
+KIND_PLANET_MESH = register(planet_mesh, compiled=True).kind  # a planet's mesh joining planet, sun or ring, and carrier
