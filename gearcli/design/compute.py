@@ -39,8 +39,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
     pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
-    check_inputs(pairs)
-    pl.check_planetary_inputs(cfg)
+    check_inputs(cfg)
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                             cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
     stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))

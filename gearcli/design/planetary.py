@@ -318,3 +318,16 @@ def check_planetary_inputs(cfg: DesignFile) -> None:
     for k, stage in enumerate(cfg.stage):
         if isinstance(stage, PlanetaryStage):
             check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
+
+
+def planetary_key(cfg: DesignFile, key: str | None) -> str | None:
+    """A key of the sun–planet pair (``stage[k].pinion.x``) as the design file names it (``stage[k].sun.x``)."""
+    from gearcli.config.schema import PlanetaryStage
+
+    if key is None or not key.startswith("stage["):
+        return key
+    k = int(key[len("stage["):key.index("]")])
+    if k < len(cfg.stage) and isinstance(cfg.stage[k], PlanetaryStage):
+        head = f"stage[{k}]."
+        return key.replace(head + "pinion.", head + "sun.").replace(head + "gear.", head + "planet.")
+    return key
