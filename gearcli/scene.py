@@ -81,7 +81,7 @@ def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None
 
 def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
-    meshes = tuple(_mesh(cfg, st, k) for k, st in enumerate(design.stages))
+    meshes = tuple(_signed(_mesh(cfg, st, k), st) for k, st in enumerate(design.stages))
     planetary = tuple(_planetary(cfg, st, k, meshes[k]) for k, st in enumerate(design.stages))
     inp = cfg.input
     drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
@@ -92,6 +92,20 @@ def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     return ModelSpec(meshes, tuple(s.inertia_kg_m2 for s in design.shafts), drive, load,
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design),
                      planetary=planetary if any(p is not None for p in planetary) else ())
+
+
+def _signed(mesh: MeshSpec, st: StageResult) -> MeshSpec:
+    """A planet mesh's static F_t with the sign its deflection has in the model: the moment balance of the output
+    member, N c_out F = T_out sign(w_out), c_out = -r_bs (sun), r_bs + r_br (carrier), -r_br (ring)
+    (:func:`gearcli.model.assembly._planetary`); a parallel stage's as the design gives it."""
+    p = st.planetary
+    if p is None:
+        return mesh
+    from gearcli.config.schema import willis_speeds
+
+    sign_out = 1.0 if willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)[p.output] >= 0 else -1.0
+    sign = sign_out * (1.0 if p.output == "carrier" else -1.0)
+    return replace(mesh, static_tangential_N=sign * mesh.static_tangential_N)
 
 
 def _output_inertia(st: StageResult) -> float:
@@ -154,10 +168,7 @@ def resonance_warnings(cfg: DesignFile, design: DesignResult) -> tuple[str, ...]
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
-    its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy. None for a
-    train with a planetary stage (the torsional model does not build those yet)."""
-    if any(st.planetary is not None for st in design.stages):
-        return ()
+    its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
     from gearcli.model.assembly import Layout  # lazy for start-up (numpy), as above
     from gearcli.model.modes import resonances
 

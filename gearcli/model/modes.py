@@ -77,7 +77,7 @@ def excitations(lay: Layout) -> list[tuple[str, float]]:
     for k, c in enumerate(lay.stage_conn):
         x = lay.connectors[c]
         for h in MESH_ORDERS:
-            out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * lay.bodies[x.a].ratio))
+            out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * abs(lay.bodies[x.a].ratio)))
     return out
 
 
