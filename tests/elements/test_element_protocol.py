@@ -97,3 +97,24 @@ def test_a_damper_across_the_whole_train_conserves_energy(damper):
     assert run.energy.damping_loss_J > 10 * base.energy.damping_loss_J  # it dissipates, much more than the rest
     assert_allclose(run.output_speed_deg_s / run.input_speed_deg_s, base.output_speed_deg_s / base.input_speed_deg_s,
                     rtol=1e-3)  # and leaves the kinematics alone
+
+
+def test_a_three_body_element_scatters_to_its_three_bodies():
+    """Motor, shaft 1 and the drum with levers that cancel on the rigid motion (r_a w_0 - r_b w_1 + r_c w_N = 0):
+    it damps the train's vibration through three bodies at once, and the energy balance closes only if its
+    force reaches each of them with its own lever."""
+    import three_body_damper
+
+    et = elements.register(three_body_damper)
+    assert et.n_bodies == 3
+    spec, duration = _drivetrain()
+    ratio = spec.speed_ratios[-1]
+    drum = 1 + len(spec.meshes) + sum(s is not None for s in spec.shafts) + 1
+    # rigid: w_0 = w_1 = w, w_N = ratio w  ->  1.0 w - 2.0 w + (1 / ratio) ratio w = 0
+    three = dataclasses.replace(spec, elements=(
+        api.ElementSpec(et.name, (0, 1, drum), (1.0, 2.0, 1.0 / ratio), 500.0, "three-body damper"),))
+    base, run = _run(spec, duration), _run(three, duration)
+    assert abs(run.energy.residual_relative) < 1e-9
+    assert run.energy.damping_loss_J > base.energy.damping_loss_J
+    assert_allclose(run.output_speed_deg_s / run.input_speed_deg_s, base.output_speed_deg_s / base.input_speed_deg_s,
+                    rtol=1e-3)

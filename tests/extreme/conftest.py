@@ -1,4 +1,5 @@
-"""The extreme catalogue's marker: ``slow`` scenes (> ~2 s) still run in CI; ``-m "not slow"`` skips them locally."""
+"""The extreme catalogue's marker: ``slow`` scenes (> ~2 s) are left out of the default run (pyproject addopts
+``-m "not slow"``) and run in CI (``-m "slow or not slow"``), like the tests in tests/conftest.py's SLOW."""
 
 
 def pytest_configure(config):
