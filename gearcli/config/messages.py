@@ -175,6 +175,8 @@ def translate(exc: ValidationError) -> list[tuple[tuple[Segment, ...], str]]:
     groups: dict[tuple[Segment, ...], tuple[Resolved, list[Any]]] = {}
     for err in exc.errors(include_url=False):
         where = resolve(err["loc"])
+        if err["type"] == "union_tag_invalid":  # a stage's type: name the key
+            where = Resolved(where.path + ("type",), where.parent)
         groups.setdefault(where.path, (where, []))[1].append(err)
     skip = _superseded(groups)
     out = []
