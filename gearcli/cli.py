@@ -25,6 +25,7 @@ from gearcli.errors import (
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
+    DesignError,
     GearcliError,
     OutputError,
     RunTooLong,
@@ -307,6 +308,8 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
         result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
+    except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
+        raise DesignError(exc.message, key=exc.key, source=loaded.source) from None
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")

@@ -428,6 +428,8 @@ class Layout:
         an earlier first body); -1 for body 0 and for a body no such connector reaches."""
         out = [-1] * self.n_bodies
         for c, x in enumerate(self.connectors):
+            if x.load_body >= 0:  # a planet mesh: the planet's and the members' angles are coupled in pairs
+                continue
             if len(x.bodies) == 2 and 0 <= x.a < x.b and out[x.b] < 0:
                 out[x.b] = c
         return tuple(out)
