@@ -200,6 +200,15 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
                     b, sgn = where[member]
                     idx.append(b)
                     lev.append(sgn * lever)
+            # the mesh phase is counted on the input member's angle (the chain's body, on the angle tree):
+            # first in the connector, with a zero lever where it is not part of this mesh
+            if n_in in idx:
+                i = idx.index(n_in)
+                idx.insert(0, idx.pop(i))
+                lev.insert(0, lev.pop(i))
+            else:
+                idx.insert(0, n_in)
+                lev.insert(0, 0.0)
             row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh, p.mesh_phase_cycles(j, gear), p)))
             if len(idx) == 3:
                 kind, radii = kind_of("planet_mesh"), tuple(lev)
@@ -214,10 +223,10 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
 
 
 def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec):
-    """A planet mesh's law: the mesh phase counted on the planet's absolute angle (z_eff theta_p / 2 pi, the
-    relative mesh frequency under rigid kinematics), its harmonics shifted by the planet's phase offset."""
-    w_p, w_c = p.planet_unit_speed, p.unit_speed("carrier")
-    z_eff = abs(p.planet_teeth * (w_p - w_c) / w_p) if w_p != 0.0 else float(p.planet_teeth)
+    """A planet mesh's law: the mesh phase counted on the input member's angle, z_eff theta_in / 2 pi with
+    z_eff = z_s |w_s - w_c| / |w_in| (mesh cycles per input radian under rigid kinematics: the mesh frequency
+    is z_s |w_s - w_c| / 2 pi), its harmonics shifted by the planet's phase offset."""
+    z_eff = p.sun_teeth * abs(p.unit_speed("sun") - p.unit_speed("carrier")) / abs(p.unit_speed(p.input))
     shift = 2.0 * math.pi * offset_cycles
     te_phase = tuple(list(mesh.transmission_error_phase_rad) + [0.0] * len(mesh.transmission_error_m))
     ks_phase = tuple(list(mesh.stiffness_harmonics_phase_rad) + [0.0] * len(mesh.stiffness_harmonics))
