@@ -276,7 +276,26 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     # one Text per line: text() writes a control character (a newline too) as an escape
     rated = [st for st in r.stages if st.rating is not None]
     simulated = [rating_table(rated, "strength rating at the simulated K_v, ISO 6336:2006 method B")] if rated else []
-    return [forces, peaks, mesh, *simulated, *(text(line) for line in lines)]
+    return [forces, peaks, mesh, *_planet_tables(r), *simulated, *(text(line) for line in lines)]
+
+
+def _planet_tables(r: SimulationResult) -> list[RenderableType]:
+    """A planetary stage: every planet's sun- and ring-mesh F_t and DTE over the window, the sharing factor."""
+    out: list[RenderableType] = []
+    for s in r.stages:
+        if not s.planets:
+            continue
+        t = Table(title=text(f"stage {s.index}: planets over the steady window (load-sharing factor "
+                             f"{_g(s.load_sharing_factor, 5)})"), title_justify="left", header_style="bold")
+        for name in ("planet", "mesh", "F_t mean [N]", "F_t std [N]", "DTE mean [µm]", "DTE rms [µm]"):
+            t.add_column(name, justify="left" if name in ("planet", "mesh") else "right", overflow="fold")
+        for p in s.planets:
+            for label, m in (("sun", p.sun), ("ring", p.ring)):
+                t.add_row(str(p.index) if label == "sun" else "", label, _g(m.tangential_N.mean),
+                          _g(m.tangential_N.std, 3), _g(m.dte_um.mean), _g(m.dte_um.rms, 3),
+                          end_section=label == "ring")
+        out.append(t)
+    return out
 
 
 def _est(e, q: str) -> float | None:
