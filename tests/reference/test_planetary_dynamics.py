@@ -149,3 +149,32 @@ def test_sequential_phasing_cancels_the_rotational_response():
     assert in_phase.std() > 0.1  # deg/s
     assert sequential.std() < 1e-6 * in_phase.std()  # cancelled to round-off (~1e-13 deg/s against ~0.5)
     assert max(p.sun.tangential_N.std for p in seq.stages[0].planets) > 1.0  # the planets themselves vibrate
+
+
+@pytest.mark.parametrize(("fixed", "driven"), [("ring", "sun"), ("ring", "carrier"), ("carrier", "sun"),
+                                               ("carrier", "ring"), ("sun", "ring"), ("sun", "carrier")])
+def test_every_held_and_driven_member(fixed, driven):
+    """Willis' ratio by hand for each arrangement (u = z_r/z_s): ring held 1 + u, carrier held u (the ring turns
+    backwards), sun held (1 + u)/u; the output member's torque T_L gives the sun's by the moment balance
+    (sun 1 : ring u : carrier 1 + u), and each planet's mean sun-mesh |F_t| = T_sun / (N r_s)."""
+    u = Z_R / Z_S
+    ratio = {("ring", "sun"): 1 + u, ("ring", "carrier"): 1 / (1 + u), ("carrier", "sun"): u,
+             ("carrier", "ring"): 1 / u, ("sun", "ring"): (1 + u) / u, ("sun", "carrier"): u / (1 + u)}[(fixed, driven)]
+    output = next(m for m in ("sun", "carrier", "ring") if m not in (fixed, driven))
+    t_sun = T_LOAD / {"sun": 1.0, "ring": u, "carrier": 1 + u}[output]
+    doc = {"stage": [{"type": "planetary", "normal_module_mm": M_N, "sun": {"teeth": Z_S, "face_width_mm": 40.0},
+                      "planet": {"teeth": Z_P, "face_width_mm": 40.0, "count": N},
+                      "ring": {"teeth": Z_R, "face_width_mm": 40.0}, "carrier": {"inertia_kg_m2": 0.8},
+                      "fixed": fixed, "input": driven}],
+           "contact": {"stiffness": "iso6336", "exponent": 1.0, "damping_ratio": 0.2},
+           "input": {"speed_rpm": 300.0, "ramp_s": 0.05}, "load": {"torque_Nm": T_LOAD, "ramp_s": 0.05},
+           "simulation": {"duration_s": 0.3, "steps": 600, "window_start_s": 0.2, "rtol": 1e-9}}
+    cfg = DesignFile.model_validate(doc)
+    design = compute_design(cfg)
+    sim = run_simulation(cfg, design)
+    assert_allclose(design.total_ratio, ratio, rtol=1e-12)
+    assert_allclose(sim.ratio, ratio, rtol=1e-6)
+    for p in sim.stages[0].planets:
+        assert_allclose(abs(p.sun.tangential_N.mean), t_sun / (N * 0.5e-3 * Z_S * M_N), rtol=1e-3)
+    assert_allclose(sim.stages[0].load_sharing_factor, 1.0, atol=1e-6)
+    assert sim.energy.residual_relative < 1e-8
