@@ -93,3 +93,14 @@ def test_transmission_error_on_planet_meshes_runs(runner, tmp_path):
               "--set", "stage.0.mesh.transmission_error_um=[2.0]")
     assert res.exit_code == 0, res.stderr
     assert len(json.loads(out.read_text())["summary"]["stages"][0]["planets"]) == 3
+
+
+def test_report_compares_the_output_member_and_the_flank_sign(runner, tmp_path):
+    out = tmp_path / "report.json"
+    res = run(runner, "report", STAGE, "--quick", "--format", "json", "-o", str(out))
+    assert res.exit_code == 0, res.stderr
+    rows = json.loads(out.read_text())["comparison"]
+    stage_rows = {r["quantity"]: r for r in rows if r["stage"] == 1}
+    # the sun (output) at 12.127 rpm x (1 + 56/19); F_t theory with the model's flank sign
+    assert_allclose(stage_rows["output_speed_deg_s"]["theory"], 12.127 * 6 * (1 + 56 / 19), rtol=1e-12)
+    assert abs(stage_rows["tangential_N"]["error_percent"]) < 0.01
