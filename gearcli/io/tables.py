@@ -162,7 +162,37 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
-    return [geometry, loads, *([rating_table(rated)] if rated else []), train, *summary]
+    return [geometry, loads, *([rating_table(rated)] if rated else []), *_planetary_design(r), train, *summary]
+
+
+def _planetary_design(r: DesignResult) -> list[RenderableType]:
+    """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh."""
+    s = [st for st in r.stages if st.planetary is not None]
+    ps = [st.planetary for st in r.stages if st.planetary is not None]
+    if not ps:
+        return []
+    rows = [
+        ("held / driven / output", [f"{p.fixed} / {p.input} / {p.output}" for p in ps]),
+        ("teeth sun / planet / ring, planets", [f"{p.sun.teeth} / {p.planet.teeth} / {p.ring.teeth}, "
+                                                f"{p.planet_count}" for p in ps]),
+        ("ratio |ω_in/ω_out|", [_g(p.ratio, 6) for p in ps]),
+        ("speeds sun / carrier / ring [rpm]", [f"{_g(p.sun.speed_rpm)} / {_g(p.carrier.speed_rpm)} / "
+                                               f"{_g(p.ring.speed_rpm)}" for p in ps]),
+        ("torques sun / carrier / ring [N·m]", [f"{_g(p.sun.torque_Nm)} / {_g(p.carrier.torque_Nm)} / "
+                                                f"{_g(p.ring.torque_Nm)}" for p in ps]),
+        ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
+                                     f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
+        ("planet–ring α_wt [°]", [_g(p.planet_ring.working_pressure_angle_deg) for p in ps]),
+        ("planet–ring ε_α", [_g(p.planet_ring.contact_ratio_transverse, 4) for p in ps]),
+        ("planet–ring c′ / c_γα [N/(mm·µm)]", [f"{_g(p.planet_ring.iso6336_single_pair_stiffness_N_mm_um)} / "
+                                              f"{_g(p.planet_ring.iso6336_mesh_stiffness_N_mm_um)}" for p in ps]),
+        ("F_t per planet mesh [N]", [_g(p.planet_ring.static_force_N.tangential) for p in ps]),
+        ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
+        ("equal spacing, load-sharing K_γ", [f"{'yes' if p.equal_spacing else 'NO'}, {_g(p.load_sharing_factor, 4)}"
+                                            for p in ps]),
+    ]
+    return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
+                            [f"stage {st.index}" for st in s], rows)]
 
 
 def rating_table(stages, title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
