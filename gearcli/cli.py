@@ -26,6 +26,7 @@ from gearcli.errors import (
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
+    DesignError,
     GearcliError,
     OutputError,
     RunTooLong,
@@ -316,6 +317,8 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
         result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
+    except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
+        raise DesignError(exc.message, key=exc.key, source=loaded.source) from None
     if loaded.design.bearing:  # bearing reactions: channels and window statistics (docs/life.md)
         from gearcli.life.channels import with_bearings
 

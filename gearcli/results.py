@@ -151,6 +151,7 @@ class StageResult:
     resonance_lower_limit: float = 0.85  # N_S
     resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
     rating: RatingResult | None = None  # ISO 6336-2/-3 (issue 22); None without [rating]
+    planetary: PlanetaryResult | None = None  # a planetary stage: this result is its sun–planet mesh
 
 
 @dataclass(frozen=True)
@@ -280,6 +281,10 @@ class StageDynamics:
     runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
     simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
     # the losses its dynamics model (lossless meshes today): the reference of both factors
+    # a planetary stage (issue 25): every planet's sun and ring mesh; the largest planet's window-mean sun-mesh
+    # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
+    planets: tuple[PlanetDynamics, ...] = ()
+    load_sharing_factor: float | None = None
 
 
 @dataclass(frozen=True)
@@ -371,3 +376,78 @@ class SimulationResult:
     final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
     steady: SteadyState | None = None  # how the window was found ([simulation] steady)
     units: tuple[str, str] = ("deg_s", "Nmm")  # output speed and torque units: the design file's key suffixes
+
+
+# ------------------------------------------------------------------------------ planetary stages (issue 25)
+@dataclass(frozen=True)
+class CarrierResult:
+    """The planet carrier: its speed and torque, its own inertia and the planets' translational N m_p r_c²."""
+
+    radius_mm: float  # r_c, the working centre distance of the sun–planet mesh
+    speed_deg_s: float
+    speed_rpm: float
+    torque_Nmm: float
+    torque_Nm: float
+    power_kW: float
+    own_inertia_kg_m2: float
+    planets_translational_inertia_kg_m2: float
+    inertia_kg_m2: float  # own + planets' translational
+
+
+@dataclass(frozen=True)
+class InternalMeshResult:
+    """The planet–ring mesh of one planet (ISO 21771 internal gear geometry, ISO 6336-1 stiffness)."""
+
+    working_pressure_angle_deg: float
+    center_distance_mm: float
+    transverse_base_pitch_mm: float
+    face_width_mm: float
+    contact_ratio_transverse: float
+    overlap_ratio: float
+    contact_ratio_total: float
+    static_force_N: StaticForces  # per planet, on the planet's reference circle (= the sun mesh's F_t)
+    equivalent_radius_mm: float  # r_p r_r / (r_r − r_p): a convex flank on a concave one
+    hertz_stiffness_N_mm1_5: float
+    iso6336_single_pair_stiffness_N_mm_um: float
+    iso6336_mesh_stiffness_N_mm_um: float
+    iso6336_mesh_stiffness_beta_N_mm_um: float
+    iso6336_factors: Iso6336Factors
+    mesh_frequency_Hz: float
+    rating: None = None  # ISO 6336-2/-3 factors of an internal gear are not covered (docs/iso6336.md)
+
+
+@dataclass(frozen=True)
+class PlanetaryResult:
+    """What a planetary stage adds to its sun–planet mesh: members, the ring mesh, assembly checks."""
+
+    fixed: str
+    input: str
+    output: str
+    planet_count: int
+    ratio: float  # |ω_input / ω_output|
+    willis_ratio: float  # i_0 = −z_r / z_s (carrier held)
+    sun: GearResult  # absolute speeds; torque of the member (all planets)
+    planet: GearResult  # speed relative to the carrier; torque per planet
+    ring: GearResult
+    carrier: CarrierResult
+    planet_mass_kg: float
+    planet_ring: InternalMeshResult
+    load_sharing_factor: float  # K_gamma
+    equal_spacing: bool  # (z_s + z_r) / N integer
+    tip_clearance_between_planets_mm: float  # 2 a sin(π/N) − d_a,planet (adjacency)
+    concentricity_mm: float  # a_w(planet–ring) − a_w(sun–planet)
+
+
+@dataclass(frozen=True)
+class PlanetMeshDynamics:
+    """One planet mesh over the statistics window: F_t (N) and the dynamic transmission error (um)."""
+
+    tangential_N: ChannelStats
+    dte_um: DteStats
+
+
+@dataclass(frozen=True)
+class PlanetDynamics:
+    index: int  # 1-based
+    sun: PlanetMeshDynamics
+    ring: PlanetMeshDynamics

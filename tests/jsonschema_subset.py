@@ -7,12 +7,14 @@ import re
 
 
 def valid(value, schema: dict, root: dict) -> bool:
-    """Whether ``value`` satisfies ``schema`` (the subset pydantic emits: $ref, anyOf, allOf, not, type,
+    """Whether ``value`` satisfies ``schema`` (the subset pydantic emits: $ref, anyOf, oneOf, allOf, not, type,
     enum, const, bounds, min/maxLength, pattern, min/maxItems, items, properties, required,
     additionalProperties)."""
     if "$ref" in schema:
         return valid(value, root["$defs"][schema["$ref"].rsplit("/", 1)[1]], root)
     if "anyOf" in schema and not any(valid(value, s, root) for s in schema["anyOf"]):
+        return False
+    if "oneOf" in schema and sum(valid(value, s, root) for s in schema["oneOf"]) != 1:
         return False
     if "allOf" in schema and not all(valid(value, s, root) for s in schema["allOf"]):
         return False

@@ -117,6 +117,17 @@ class Resolved:
     parent: type[BaseModel] | None
 
 
+def tagged(tp: Any, tag: str) -> Any:
+    """The member of a tagged union of models whose ``type`` is ``tag`` (the stage union), or None."""
+    if get_origin(tp) not in (Union, types.UnionType):
+        return None
+    for arg in get_args(tp):
+        model = unwrap(arg)
+        if is_model(model) and "type" in model.model_fields and tag in get_args(model.model_fields["type"].annotation):
+            return model
+    return None
+
+
 def resolve(loc: Sequence[Segment], root: type[BaseModel] = DesignFile) -> Resolved:
     """Walk a pydantic error ``loc`` through the schema from ``root``."""
     tp: Any = root
@@ -137,6 +148,8 @@ def resolve(loc: Sequence[Segment], root: type[BaseModel] = DesignFile) -> Resol
         elif kind == "dict" and isinstance(seg, str):
             path.append(seg)
             tp = item_type(tp)
+        elif isinstance(seg, str) and tagged(tp, seg) is not None:  # a stage's type tag: not a key
+            tp = tagged(tp, seg)
         else:  # a leaf: what follows is a union-member tag
             break
     return Resolved(tuple(path), parent)

@@ -130,6 +130,8 @@ def message(err: dict, where: Resolved) -> str:
         return f"needs {what} {n} entr{'y' if n == 1 else 'ies'}, got {actual if actual is not None else 'more'}"
     if t == "value_error":
         return str(err["msg"]).removeprefix("Value error, ")
+    if t == "union_tag_invalid":  # a stage's type
+        return f"type must be \"parallel\" or \"planetary\", got {shorten(str(ctx.get('tag')))!r}"
     text = str(err.get("msg", t))
     return text.replace("Input should be", "must be")
 
@@ -176,6 +178,8 @@ def translate(exc: ValidationError) -> list[tuple[tuple[Segment, ...], str]]:
     groups: dict[tuple[Segment, ...], tuple[Resolved, list[Any]]] = {}
     for err in exc.errors(include_url=False):
         where = resolve(err["loc"])
+        if err["type"] == "union_tag_invalid":  # a stage's type: name the key
+            where = Resolved(where.path + ("type",), where.parent)
         groups.setdefault(where.path, (where, []))[1].append(err)
     skip = _superseded(groups)
     out = []

@@ -21,7 +21,16 @@ from typing import Any
 
 from pydantic import BaseModel
 
-from gearcli.config.keys import Segment, container, format_path, is_model, item_type, unknown_key_hint, unwrap
+from gearcli.config.keys import (
+    Segment,
+    container,
+    format_path,
+    is_model,
+    item_type,
+    tagged,
+    unknown_key_hint,
+    unwrap,
+)
 from gearcli.config.messages import got
 from gearcli.config.schema import DesignFile, Input, Load, Target
 from gearcli.core.text import shorten
@@ -112,6 +121,8 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
             have = f"{n} {where} entr{'y' if n == 1 else 'ies'}" + (f" (0–{n - 1})" if n else "")
             raise _fail(ov, f"index {seg} is out of range: the file has {have}")
         child_tp = item_type(tp)
+        if isinstance(node[seg], dict):  # a stage: the member of the stage union its ``type`` names
+            child_tp = tagged(child_tp, str(node[seg].get("type", "parallel"))) or child_tp
         return (child_tp, None) if last else (child_tp, _descend(ov, node[seg], child_tp, depth))
     if is_model(tp):
         if not isinstance(seg, str) or seg not in tp.model_fields:

@@ -14,8 +14,10 @@ from typing import Annotated, Any, Literal
 from pydantic import (
     BaseModel,
     ConfigDict,
+    Discriminator,
     Field,
     PrivateAttr,
+    Tag,
     ValidationInfo,
     field_validator,
     model_validator,
@@ -247,7 +249,113 @@ class Stage(_Table):
     center_angle_deg: CenterAngleDeg = 0.0  # line of centres pinion -> gear, from y, cw seen from the input end
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: running-in C_ay)
+    type: Literal["parallel"] = "parallel"  # a planetary stage says type = "planetary"
     model_config = ConfigDict(json_schema_extra=_hands_rule())
+
+    @property
+    def speed_ratio(self) -> float:
+        """ω_in / ω_out = z_gear / z_pinion."""
+        return self.gear.teeth / self.pinion.teeth
+
+
+class Planet(Gear):
+    """The planets of a planetary stage: one gear description and how many there are."""
+
+    count: Annotated[int, Field(ge=1, le=20)]
+    mass_kg: Annotated[float, Field(ge=1e-6, le=1e6)] | None = None  # else from geometry (a solid disc)
+    # per planet, its position error along its sun mesh's line of action (a constant transmission error, um;
+    # positive: that planet meets the sun early and carries more); the simulation's load sharing sees it
+    position_error_um: Annotated[list[Annotated[float, Field(ge=-1000, le=1000)]], Field(max_length=20)] | None = None
+
+
+class Carrier(_Table):
+    """The planet carrier's own body (the planets' translational inertia N m_p r_c² is added to it)."""
+
+    inertia_kg_m2: BodyInertia | None = None  # absent: 0 of its own
+
+
+PlanetaryMember = Literal["sun", "carrier", "ring"]
+
+
+def _members_rule() -> Any:
+    """``input`` and ``fixed`` (defaults "sun" and "ring") name different members."""
+    same = [{**_required("input", "fixed"), "properties": {"input": {"const": m}, "fixed": {"const": m}}}
+            for m in ("sun", "carrier", "ring")]
+    same += [{"properties": {"input": {"const": "ring"}}, "not": _required("fixed")},
+             {"properties": {"fixed": {"const": "sun"}}, "not": _required("input")}]
+    return {"not": {"anyOf": same}}
+
+
+class PlanetaryStage(_Table):
+    """A simple planetary stage: sun, ``planet.count`` equally spaced planets on a carrier, an internal ring
+    (``ring.teeth`` is the number of internal teeth, given positive). One member is held (``fixed``); the
+    previous stage (or the input) drives ``input``; the third member is the output the next stage (or the
+    load) is driven by."""
+
+    type: Literal["planetary"]
+    normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]
+    normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
+    helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
+    sun: Gear
+    planet: Planet
+    ring: Gear
+    carrier: Carrier = Carrier()
+    fixed: PlanetaryMember = "ring"
+    input: PlanetaryMember = "sun"
+    backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
+    efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
+    mesh: ContactOverride | None = None
+    basic_rack: BasicRack = BasicRack()
+    shaft: ShaftSpring | None = None
+    accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None
+    tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None
+    model_config = ConfigDict(json_schema_extra=_members_rule())
+
+    @model_validator(mode="after")
+    def _members(self) -> PlanetaryStage:
+        if self.input == self.fixed:
+            raise ValueError(f"input and fixed name the same member ({self.input!r}): the held member "
+                             "cannot be driven; name two different members of sun, carrier, ring")
+        errors = self.planet.position_error_um
+        if errors is not None and len(errors) != self.planet.count:
+            raise ValueError(f"planet.position_error_um needs one value per planet ({self.planet.count}), "
+                             f"got {len(errors)}")
+        if self.ring.teeth <= self.sun.teeth + 2 * self.planet.teeth - 3:
+            raise ValueError(f"ring.teeth ({self.ring.teeth}) must be about sun.teeth + 2 planet.teeth "
+                             f"({self.sun.teeth + 2 * self.planet.teeth}): the planets must fit between sun and ring")
+        return self
+
+    @property
+    def output(self) -> str:
+        """The member that drives the next stage (or the load): neither held nor driven."""
+        return next(m for m in ("sun", "carrier", "ring") if m not in (self.input, self.fixed))
+
+    @property
+    def speed_ratio(self) -> float:
+        """|ω_in / ω_out| from Willis' equation ω_s − ω_c = −(z_r/z_s)(ω_r − ω_c) with the held member at rest."""
+        return 1.0 / abs(willis_speeds(self.sun.teeth, self.ring.teeth, self.fixed, self.input)[self.output])
+
+
+def willis_speeds(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]:
+    """Signed member speeds for a unit speed of ``driven`` with ``fixed`` at rest, from Willis' equation
+    ω_s = (1 + u) ω_c − u ω_r, u = z_r/z_s (a planetary's three members keep one degree of freedom)."""
+    u = z_ring / z_sun
+    motions = ({"sun": -u, "carrier": 0.0, "ring": 1.0},  # carrier held
+               {"sun": 1.0 + u, "carrier": 1.0, "ring": 0.0},  # ring held
+               {"sun": 0.0, "carrier": u, "ring": 1.0 + u})  # sun held
+    motion = next(m for m in motions if m[fixed] == 0.0)
+    return {m: v / motion[driven] for m, v in motion.items()}
+
+
+def _stage_tag(value: Any) -> str:
+    """The union tag of a stage table: its ``type``, "parallel" when absent."""
+    if isinstance(value, dict):
+        return str(value.get("type", "parallel"))
+    return str(getattr(value, "type", "parallel"))
+
+
+AnyStage = Annotated[Annotated[Stage, Tag("parallel")] | Annotated[PlanetaryStage, Tag("planetary")],
+                     Discriminator(_stage_tag)]
 
 
 class _Coupled(_Table):
@@ -497,6 +605,7 @@ class Rating(_Table):
     min_safety_bending: Annotated[float, Field(ge=0.5, le=10)] = 1.4  # S_Fmin
     material_quality: Literal["normal", "optimum"] = "normal"  # Z_NT, Y_NT at 1e10 cycles: 0.85 or 1.0
     dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
+    load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
 
 
 class DesignFile(_Table):
@@ -506,7 +615,7 @@ class DesignFile(_Table):
     materials: Annotated[dict[str, Material], Field(max_length=50)] = Field(
         default_factory=lambda: {"steel": Material(density_kg_m3=7800, youngs_modulus_MPa=2.07e5, poisson_ratio=0.29)}
     )
-    stage: Annotated[list[Stage], Field(min_length=1, max_length=50)]
+    stage: Annotated[list[AnyStage], Field(min_length=1, max_length=50)]
     contact: Contact = Contact()
     input: Input
     load: Load
@@ -521,7 +630,7 @@ class DesignFile(_Table):
     def _load_power_to_torque(self) -> DesignFile:
         """[load] power_kW becomes the output torque at the nominal output speed, ω_in / Π z_gear/z_pinion;
         a [load] torque_speed table gives its torque at that speed."""
-        ratio = math.prod(s.gear.teeth / s.pinion.teeth for s in self.stage)
+        ratio = math.prod(s.speed_ratio for s in self.stage)
         if self.load.power_kW is not None:
             load = self.load.model_copy()  # never write into a Load another DesignFile may share
             load._torque_from_power_Nm = self.load.power_kW * 1000.0 * ratio / self.input.speed_rad_s_value
@@ -554,6 +663,14 @@ class DesignFile(_Table):
             if stage.mesh is not None:
                 check_harmonics(self.contact_for(k), f"stage[{k}].mesh.")
         return self
+
+    def pair(self, k: int) -> Stage:
+        """Stage k as a gear pair: a parallel stage (a planetary one is seen as its sun–planet pair through
+        ``design.planetary.pair_equivalent``)."""
+        stage = self.stage[k]
+        if not isinstance(stage, Stage):
+            raise TypeError(f"stage[{k}] is a planetary stage, not a gear pair")
+        return stage
 
     def contact_for(self, k: int) -> Contact:
         """The contact law of mesh k (0-based): ``[contact]`` with ``[stage.mesh]`` applied."""

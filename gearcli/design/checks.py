@@ -41,15 +41,24 @@ MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 
 # ------------------------------------------------------------------------------------------ errors
 def check_inputs(cfg: DesignFile) -> None:
-    """Refuse unknown materials and impossible helix hands, before any arithmetic."""
-    for k, stage in enumerate(cfg.stage):
-        for part in ("pinion", "gear"):
-            check_material(getattr(stage, part).material, cfg.materials, f"stage[{k}].{part}.material")
-        check_hands(stage, k)
-    if cfg.rating is not None:  # imported only for a rated design: an unrated one starts as fast as before
-        from gearcli.design.rating import check_rating_inputs
+    """Refuse unknown materials and impossible helix hands, before any arithmetic. A planetary stage is
+    checked as its sun–planet pair (keys named ``sun``/``planet``) and its ring."""
+    from gearcli.design.planetary import check_planetary_inputs, pair_equivalent, planetary_key
 
-        check_rating_inputs(cfg)
+    pairs = pair_equivalent(cfg)
+    try:
+        for k in range(len(pairs.stage)):
+            stage = pairs.pair(k)
+            for part in ("pinion", "gear"):
+                check_material(getattr(stage, part).material, pairs.materials, f"stage[{k}].{part}.material")
+            check_hands(stage, k)
+        if cfg.rating is not None:  # imported only for a rated design: an unrated one starts as fast as before
+            from gearcli.design.rating import check_rating_inputs
+
+            check_rating_inputs(pairs)
+    except DesignError as exc:
+        raise DesignError(exc.message, key=planetary_key(cfg, exc.key), source=exc.source) from None
+    check_planetary_inputs(cfg)
 
 
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:
@@ -92,7 +101,8 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                       {"check": "target_speed", "output_speed_rpm": output_speed_rpm,
                        "target_rpm": cfg.target.output_speed_rpm_value,
                        "tolerance_percent": cfg.target.tolerance_percent}))
-    for stage, stage_cfg in zip(stages, cfg.stage, strict=True):
+    for k, stage in enumerate(stages):
+        stage_cfg = cfg.pair(k)
         at = {"stage": stage.index}
         found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):

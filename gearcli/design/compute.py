@@ -7,9 +7,10 @@ This module only assembles: every formula lives, with its source, in ``geometry`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, is_dataclass
+from dataclasses import dataclass, fields, is_dataclass, replace
 from typing import TYPE_CHECKING
 
+from gearcli.design import planetary as pl
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.checks import check_inputs, design_diagnostics
@@ -22,8 +23,9 @@ from gearcli.design.inertia import (
     mean_body_diameter_mm,
     shaft_inertias_kg_m2,
 )
-from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train
+from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results
+from gearcli.diagnostics import DESIGN, warning
 from gearcli.errors import DesignError
 from gearcli.results import DesignResult, GearResult, Iso6336Factors, ShaftResult, StageResult, StaticForces
 
@@ -37,19 +39,23 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
+    pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
     check_inputs(cfg)
-    kin = train(tuple((s.pinion.teeth, s.gear.teeth) for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
-                cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
-    stages = tuple(_stage_result(cfg, k, kin) for k in range(len(cfg.stage)))
+    kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
+                            cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
+    stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
     if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
         from gearcli.design.rating import rate_design
 
-        stages, rating_diagnostics = rate_design(cfg, stages)
+        rated, rating_diagnostics = rate_design(pairs, tuple(_with_k_gamma(s) for s in stages))
+        stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
-    diagnostics = (*design_diagnostics(cfg, stages, speed_rpm(out)), *rating_diagnostics)
+    planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
+                      for st in stages for w in pl.planetary_warnings(st))
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *rating_diagnostics)
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -66,6 +72,29 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         bearings=bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s]),
         diagnostics=diagnostics,
     )
+
+
+def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
+    """A parallel stage as before; a planetary stage as its sun–planet mesh (in the carrier's frame, per
+    planet) with its members and planet–ring mesh attached (``design.planetary``)."""
+    from gearcli.config.schema import PlanetaryStage
+
+    stage = cfg.stage[k]
+    if not isinstance(stage, PlanetaryStage):
+        return _stage_result(pairs, k, kin)
+    return pl.planetary_result(cfg, k, kin, _stage_result(pairs, k, pl.mesh_train(k, stage, kin)))
+
+
+def _with_k_gamma(stage: StageResult) -> StageResult:
+    """A planetary stage's sun–planet mesh as rated: the most loaded planet's, K_gamma times the mean."""
+    if stage.planetary is None or stage.planetary.load_sharing_factor == 1.0:
+        return stage
+    k = stage.planetary.load_sharing_factor
+    f = stage.static_force_N
+    return replace(stage, static_force_N=StaticForces(k * f.tangential, k * f.radial, k * f.axial, k * f.normal),
+                   pinion=replace(stage.pinion, torque_Nmm=k * stage.pinion.torque_Nmm,
+                                  torque_Nm=k * stage.pinion.torque_Nm),
+                   gear=replace(stage.gear, torque_Nmm=k * stage.gear.torque_Nmm, torque_Nm=k * stage.gear.torque_Nm))
 
 
 def _require_finite(obj, key: str) -> None:
@@ -123,7 +152,7 @@ def _iso_factors(stage: Stage) -> Iso6336Factors:
 def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
                materials: tuple[Material, Material]) -> _Stiffness:
     """Hertz (seed 3.3), ISO 6336-1 c' and c_γα, and the static point of the stage's own contact law."""
-    stage, law = cfg.stage[k], cfg.contact_for(k)
+    stage, law = cfg.pair(k), cfg.contact_for(k)
     radius = stf.equivalent_radius_mm(0.5 * geo.pitch_diameter_mm[0], 0.5 * geo.pitch_diameter_mm[1])
     modulus = stf.effective_modulus_MPa(materials[0].youngs_modulus_MPa, materials[0].poisson_ratio,
                                         materials[1].youngs_modulus_MPa, materials[1].poisson_ratio)
@@ -215,7 +244,7 @@ def _resonance(pinion: GearResult, gear: GearResult, mesh_N_mm_um: float, line_l
 
 
 def _stage_result(cfg: DesignFile, k: int, kin: Train) -> StageResult:
-    stage = cfg.stage[k]
+    stage = cfg.pair(k)
     geo = _geometry(stage, k)
     materials = (cfg.materials[stage.pinion.material], cfg.materials[stage.gear.material])
     t_pinion, t_gear = kin.stage_torques_Nmm[k]
@@ -251,9 +280,18 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train) -> StageResult:
     )
 
 
+def _chain_inertia(stage: StageResult, side: str) -> float:
+    """The inertia a stage puts on its input (pinion) or output (gear) shaft: a planetary's member there."""
+    p = stage.planetary
+    if p is None:
+        return (stage.pinion if side == "input" else stage.gear).inertia_kg_m2
+    member = p.input if side == "input" else p.output
+    return {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}[member]
+
+
 def _shaft_results(stages: tuple[StageResult, ...], kin: Train) -> tuple[ShaftResult, ...]:
-    inertias = shaft_inertias_kg_m2(tuple(s.pinion.inertia_kg_m2 for s in stages),
-                                    tuple(s.gear.inertia_kg_m2 for s in stages))
+    inertias = shaft_inertias_kg_m2(tuple(_chain_inertia(s, "input") for s in stages),
+                                    tuple(_chain_inertia(s, "output") for s in stages))
     return tuple(
         ShaftResult(index=j + 1, speed_deg_s=speed_deg_s(w), speed_rpm=speed_rpm(w),
                     torque_Nmm=kin.shaft_torque_Nmm(j), inertia_kg_m2=inertias[j],

@@ -95,6 +95,12 @@ class Train:
 def train(teeth: tuple[tuple[int, int], ...], efficiencies: tuple[float, ...],
           input_speed_rad_s: float, load_torque_Nmm: float) -> Train:
     """The kinematics of a train of stages given as (z_pinion, z_gear) pairs in power-flow order."""
-    ratios = tuple(stage_ratio(zp, zg) for zp, zg in teeth)
+    return train_from_ratios(tuple(stage_ratio(zp, zg) for zp, zg in teeth), efficiencies, input_speed_rad_s,
+                             load_torque_Nmm)
+
+
+def train_from_ratios(ratios: tuple[float, ...], efficiencies: tuple[float, ...], input_speed_rad_s: float,
+                      load_torque_Nmm: float) -> Train:
+    """The kinematics of a train of stages given by their speed ratios |ω_in / ω_out| (any stage type)."""
     return Train(ratios, shaft_speeds_rad_s(input_speed_rad_s, ratios),
                  stage_torques_Nmm(load_torque_Nmm, ratios, efficiencies), load_torque_Nmm)

@@ -91,7 +91,7 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
         out.append(warning(OUT_OF_RANGE, f"stage {st.index}: ε_α = {st.contact_ratio_transverse:.3g} < 1: ISO 6336 "
                            "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",
                            stage=st.index, quantity="contact_ratio_transverse", value=st.contact_ratio_transverse))
-    stage = cfg.stage[k]
+    stage = cfg.pair(k)
     for part in ("pinion", "gear"):
         g = getattr(st, part)
         form = rr.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
@@ -144,7 +144,7 @@ class _LoadFactors:
 
 
 def _mesh(cfg: DesignFile, k: int, st: StageResult) -> _Mesh:
-    stage = cfg.stage[k]
+    stage = cfg.pair(k)
     assert stage.accuracy_grade is not None  # check_rating_inputs requires it
     parts = (stage.pinion, stage.gear)
     mats = (cfg.materials[parts[0].material], cfg.materials[parts[1].material])
@@ -164,7 +164,7 @@ def _mesh(cfg: DesignFile, k: int, st: StageResult) -> _Mesh:
 
 def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulated_k_v: float | None) -> _LoadFactors:
     """ISO 6336-1: deviations of the grade, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα, and Z_ε (K_Hα's limit)."""
-    rating, stage = cfg.rating, cfg.stage[k]
+    rating, stage = cfg.rating, cfg.pair(k)
     assert rating is not None
     alpha_t, b = math.radians(st.transverse_pressure_angle_deg), st.face_width_mm
     f_pb = max(rf.single_pitch_tolerance_um(g.pitch_diameter_mm, st.normal_module_mm, mesh.grade)
@@ -253,7 +253,7 @@ class _Flank:
 def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFactors, flank: _Flank, y_beta: float,
             i: int) -> MemberRating:
     """ISO 6336-2 and -3 figures of member ``i`` (0 pinion, 1 gear)."""
-    rating, stage = cfg.rating, cfg.stage[k]
+    rating, stage = cfg.rating, cfg.pair(k)
     assert rating is not None
     g, part, m_n = mesh.members[i], mesh.parts[i], st.normal_module_mm
     cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h

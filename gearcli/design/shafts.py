@@ -207,7 +207,11 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     shafts = {s: _pair(s, specs) for s, specs in sorted(by_shaft.items())}
     sense = 1 if cfg.input.rotation == "cw" else -1
     meshes = []
-    for k, stage in enumerate(cfg.stage):
+    for k in range(len(cfg.stage)):
+        if getattr(cfg.stage[k], "type", "parallel") == "planetary":
+            raise DesignError("the shaft statics of a planetary stage are not modelled: [[bearing]] tables need a "
+                              "train of parallel stages", key=f"stage[{k}].type")
+        stage = cfg.pair(k)
         phi = math.radians(stage.center_angle_deg)
         u = (0.0, math.cos(phi), math.sin(phi))
         hand = {"right": 1, "left": -1}.get(stage.pinion.hand or "spur", 0) if stage.helix_angle_deg > 0 else 0

@@ -39,8 +39,31 @@ def design_dict(result: DesignResult) -> dict:
     doc.pop("diagnostics", None)
     if not result.bearings:  # a design file without [[bearing]] tables means what it meant before them
         doc.pop("bearings", None)
+    doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
     return doc
+
+
+_STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_module_mm", "normal_pressure_angle_deg",
+               "transverse_pressure_angle_deg", "helix_angle_deg", "base_helix_angle_deg")
+
+
+def _parallel_stage(stage: dict) -> dict:
+    stage.pop("planetary", None)
+    return stage
+
+
+def _planetary_stage(stage: dict) -> dict:
+    """A planetary stage's JSON: type, members (sun, planet, ring, carrier), ratio and the two meshes per planet."""
+    p = stage.pop("planetary")
+    head = {k: stage.pop(k) for k in _STAGE_KEYS}
+    stage.pop("pinion")
+    stage.pop("gear")
+    ring_mesh = p.pop("planet_ring")
+    planet = {**p.pop("planet"), "count": p["planet_count"], "mass_kg": p.pop("planet_mass_kg")}
+    return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
+            "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,
+            "meshes": [{"name": "sun_planet", **stage}, {"name": "planet_ring", **ring_mesh}]}
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
@@ -51,6 +74,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
                                               "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
         | ({"rating": plain(s.rating)} if s.rating is not None else {})
+        | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]
     from gearcli.io import units as output_units
@@ -136,10 +160,19 @@ def flatten(d: dict, prefix: str = "") -> dict:
 
 def design_csv(result: DesignResult) -> str:
     """One row per stage, nested objects flattened (``pinion_pitch_diameter_mm``)."""
-    rows = [flatten({k: v for k, v in s.items() if not (k == "rating" and v is None)})
+    rows = [flatten({k: v for k, v in _named_meshes(s).items() if not (k == "rating" and v is None)})
             for s in design_dict(result)["stages"]]
     header = list(rows[0])
-    return csv_text(header, ([r[h] for h in header] for r in rows))
+    header += [h for r in rows[1:] for h in r if h not in header]  # a planetary stage's columns after
+    return csv_text(header, ([r.get(h, "") for h in header] for r in rows))
+
+
+def _named_meshes(stage: dict) -> dict:
+    """A planetary stage's ``meshes`` list as ``{name: mesh}`` (CSV columns ``sun_planet_...``)."""
+    if "meshes" not in stage:
+        return stage
+    return {**{k: v for k, v in stage.items() if k != "meshes"},
+            **{m["name"]: {k: v for k, v in m.items() if k != "name"} for m in stage["meshes"]}}
 
 
 def simulation_csv(result: SimulationResult) -> str:

@@ -238,12 +238,43 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
+    planetary = _planetary_design(r)
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
         from gearcli.io.life_tables import bearing_table
 
-        return [geometry, loads, *([rating_table(rated)] if rated else []), train, bearing_table(r.bearings),
-                *summary]
-    return [geometry, loads, *([rating_table(rated)] if rated else []), train, *summary]
+        return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, train,
+                bearing_table(r.bearings), *summary]
+    return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, train, *summary]
+
+
+def _planetary_design(r: DesignResult) -> list[RenderableType]:
+    """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh."""
+    s = [st for st in r.stages if st.planetary is not None]
+    ps = [st.planetary for st in r.stages if st.planetary is not None]
+    if not ps:
+        return []
+    rows = [
+        ("held / driven / output", [f"{p.fixed} / {p.input} / {p.output}" for p in ps]),
+        ("teeth sun / planet / ring, planets", [f"{p.sun.teeth} / {p.planet.teeth} / {p.ring.teeth}, "
+                                                f"{p.planet_count}" for p in ps]),
+        ("ratio |ω_in/ω_out|", [_g(p.ratio, 6) for p in ps]),
+        ("speeds sun / carrier / ring [rpm]", [f"{_g(p.sun.speed_rpm)} / {_g(p.carrier.speed_rpm)} / "
+                                               f"{_g(p.ring.speed_rpm)}" for p in ps]),
+        ("torques sun / carrier / ring [N·m]", [f"{_g(p.sun.torque_Nm)} / {_g(p.carrier.torque_Nm)} / "
+                                                f"{_g(p.ring.torque_Nm)}" for p in ps]),
+        ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
+                                     f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
+        ("planet–ring α_wt [°]", [_g(p.planet_ring.working_pressure_angle_deg) for p in ps]),
+        ("planet–ring ε_α", [_g(p.planet_ring.contact_ratio_transverse, 4) for p in ps]),
+        ("planet–ring c′ / c_γα [N/(mm·µm)]", [f"{_g(p.planet_ring.iso6336_single_pair_stiffness_N_mm_um)} / "
+                                              f"{_g(p.planet_ring.iso6336_mesh_stiffness_N_mm_um)}" for p in ps]),
+        ("F_t per planet mesh [N]", [_g(p.planet_ring.static_force_N.tangential) for p in ps]),
+        ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
+        ("equal spacing, load-sharing K_γ", [f"{'yes' if p.equal_spacing else 'NO'}, {_g(p.load_sharing_factor, 4)}"
+                                            for p in ps]),
+    ]
+    return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
+                            [f"stage {st.index}" for st in s], rows)]
 
 
 def rating_table(stages, title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
@@ -372,9 +403,28 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     if r.extra and r.extra.get("bearings"):  # [[bearing]] tables (docs/life.md)
         from gearcli.io.life_tables import bearing_stats_table
 
-        return [forces, bearing_stats_table(r.window_s, r.extra["bearings"]), peaks, mesh, *simulated,
-                *(text(line) for line in lines)]
-    return [forces, peaks, mesh, *simulated, *(text(line) for line in lines)]
+        return [forces, bearing_stats_table(r.window_s, r.extra["bearings"]), peaks, mesh, *_planet_tables(r),
+                *simulated, *(text(line) for line in lines)]
+    return [forces, peaks, mesh, *_planet_tables(r), *simulated, *(text(line) for line in lines)]
+
+
+def _planet_tables(r: SimulationResult) -> list[RenderableType]:
+    """A planetary stage: every planet's sun- and ring-mesh F_t and DTE over the window, the sharing factor."""
+    out: list[RenderableType] = []
+    for s in r.stages:
+        if not s.planets:
+            continue
+        t = Table(title=text(f"stage {s.index}: planets over the steady window (load-sharing factor "
+                             f"{_g(s.load_sharing_factor, 5)})"), title_justify="left", header_style="bold")
+        for name in ("planet", "mesh", "F_t mean [N]", "F_t std [N]", "DTE mean [µm]", "DTE rms [µm]"):
+            t.add_column(name, justify="left" if name in ("planet", "mesh") else "right", overflow="fold")
+        for p in s.planets:
+            for label, m in (("sun", p.sun), ("ring", p.ring)):
+                t.add_row(str(p.index) if label == "sun" else "", label, _g(m.tangential_N.mean),
+                          _g(m.tangential_N.std, 3), _g(m.dte_um.mean), _g(m.dte_um.rms, 3),
+                          end_section=label == "ring")
+        out.append(t)
+    return out
 
 
 def footer_speeds(r: SimulationResult) -> str:

@@ -34,12 +34,13 @@ The static forces are still those of the chain (:mod:`gearcli.model.linear`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from gearcli.model.elements import KIND_MESH, MAX_BODIES, N_PARAM, kind_of, law_of, machine, mesh, torque
-from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec
+from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec, PlanetarySpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
 
@@ -62,7 +63,14 @@ class Connector:
     params: tuple[float, ...]  # the element's parameter row, as Python floats
     label: str  # "input coupling", "stage 1 mesh", "shaft 2", "load coupling"
     index: int = -1  # 0-based stage of a mesh or reducer shaft of a flexible shaft; -1 for couplings
-    role: str = ""  # "mesh" (a stage's mesh), "shaft" (a flexible reducer shaft), "coupling", or "" (other)
+    role: str = ""  # "mesh" (a stage's mesh), "shaft" (a flexible reducer shaft), "coupling", "planet" (a
+    # planet's sun or ring mesh), or "" (other)
+    load_body: int = -1  # a planet mesh: its static force is T_L rho_N / rho[load_body] * load_lever
+    load_lever: float = 0.0
+    planet: int = -1  # a planet mesh: its planet (0-based) and which mesh ("sun" or "ring")
+    gear: str = ""
+    chain_in: int = -1  # a planet mesh: the body of its stage's input member (the reducer shaft before it)
+    initial_deflection: float = 0.0  # a planet's position error along its sun mesh (m): delta - R theta
 
     @property
     def element(self):
@@ -122,8 +130,9 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
     bodies: list[Body] = []
     conns: list[Connector] = []
 
-    def body(inertia: float, label: str) -> None:
-        ratio = 1.0 if not conns else bodies[-1].ratio * conns[-1].ra / conns[-1].rb
+    def body(inertia: float, label: str, ratio: float | None = None) -> None:
+        if ratio is None:
+            ratio = 1.0 if not conns else bodies[-1].ratio * conns[-1].ra / conns[-1].rb
         bodies.append(Body(float(inertia), label, ratio))
 
     def join(name: str, part, ra: float, rb: float, label: str, role: str, index: int = -1) -> None:
@@ -136,12 +145,20 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
         join("spring", spec.motor.coupling, 1.0, 1.0, "input coupling", "coupling")
     body(spec.inertias_kg_m2[0], "shaft 1")
     for k, m in enumerate(spec.meshes):
-        join("mesh", m, m.base_radius_pinion_m, m.base_radius_gear_m, f"stage {k + 1} mesh", "mesh", k)
         flex = spec.shafts[k] if k < len(spec.shafts) else None
+        planetary = spec.planetary[k] if k < len(spec.planetary) else None
+        if planetary is not None:
+            out_inertia = spec.inertias_kg_m2[k + 1] if flex is None else flex.gear_end_kg_m2
+            _planetary(planetary, k, bodies, conns, body, out_inertia)
+            if flex is None:
+                continue
+        else:
+            join("mesh", m, m.base_radius_pinion_m, m.base_radius_gear_m, f"stage {k + 1} mesh", "mesh", k)
         if flex is None:
             body(spec.inertias_kg_m2[k + 1], f"shaft {k + 2}")
             continue
-        body(flex.gear_end_kg_m2, f"shaft {k + 2} gear end")
+        if planetary is None:
+            body(flex.gear_end_kg_m2, f"shaft {k + 2} gear end")
         join("spring", flex.spring, 1.0, 1.0, f"shaft {k + 2}", "shaft", k + 1)
         body(spec.inertias_kg_m2[k + 1] - flex.gear_end_kg_m2, f"shaft {k + 2} pinion end")
     if spec.drum is not None:
@@ -169,6 +186,76 @@ def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) ->
     return out
 
 
+def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connector], body, out_inertia: float) -> None:
+    """A planetary stage after its input member's body (the last one): the third member (unless held), the
+    planets, then the output member's body; each planet's sun and ring meshes (:class:`PlanetarySpec`).
+    The output body turns in its own running direction (its levers carry the sign of its Willis speed); the
+    other members and the planets in the input member's sense."""
+    n_in, rho_in = len(bodies) - 1, bodies[-1].ratio
+    sign_out = 1.0 if p.unit_speed(p.output) >= 0.0 else -1.0
+    where: dict[str, tuple[int, float]] = {p.input: (n_in, 1.0)}
+    if p.third != p.fixed:
+        body(p.third_inertia_kg_m2, f"stage {k + 1} {p.third}", rho_in * p.unit_speed(p.third))
+        where[p.third] = (len(bodies) - 1, 1.0)
+    first_planet = len(bodies)
+    for j in range(p.planets):
+        body(p.planet_inertia_kg_m2, f"stage {k + 1} planet {j + 1}", rho_in * p.planet_unit_speed)
+    body(out_inertia, f"shaft {k + 2}", rho_in * abs(p.unit_speed(p.output)))
+    n_out = len(bodies) - 1
+    where[p.output] = (n_out, sign_out)
+    # static force of every planet mesh per unit output torque: N c_out F = T_out sign_out (lossless)
+    c_out = {"sun": -p.base_radius_sun_m, "ring": -p.base_radius_ring_m,
+             "carrier": p.base_radius_sun_m + p.base_radius_ring_m}[p.output]
+    per_output = sign_out / (p.planets * c_out)
+    for j in range(p.planets):
+        planet = first_planet + j
+        for gear, mesh_law, levers in (
+                ("sun", p.sun_mesh, {"sun": p.base_radius_sun_m, "carrier": -p.lever_sun_carrier_m}),
+                ("ring", p.ring_mesh, {"ring": p.base_radius_ring_m, "carrier": -p.lever_ring_carrier_m})):
+            idx = [planet]
+            lev = [p.base_radius_planet_m if gear == "sun" else -p.base_radius_planet_m]
+            for member, lever in levers.items():
+                if member in where:
+                    b, sgn = where[member]
+                    idx.append(b)
+                    lev.append(sgn * lever)
+            # the mesh phase is counted on the input member's angle (the chain's body, on the angle tree):
+            # first in the connector, with a zero lever where it is not part of this mesh
+            if n_in in idx:
+                i = idx.index(n_in)
+                idx.insert(0, idx.pop(i))
+                lev.insert(0, lev.pop(i))
+            else:
+                idx.insert(0, n_in)
+                lev.insert(0, 0.0)
+            row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p)))
+            if len(idx) == 3:
+                kind, radii = kind_of("planet_mesh"), tuple(lev)
+            else:
+                kind, radii = kind_of("mesh"), (lev[0], -lev[1])
+            # planet 1's sun mesh stands for the stage where a stage has one mesh (role "mesh": its F_t, DTE,
+            # stiffness and error estimate); every planet mesh has its own channels besides
+            role = "mesh" if (j == 0 and gear == "sun") else "planet"
+            offset = p.planet_offsets_m[j] if (gear == "sun" and p.planet_offsets_m) else 0.0
+            conns.append(Connector(kind, tuple(idx), radii, row, f"stage {k + 1} planet {j + 1} {gear} mesh", k,
+                                   role, n_out, per_output, j, gear, n_in, offset))
+
+
+def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec):
+    """A planet mesh's law: the mesh phase counted on the input member's angle, z_eff theta_in / 2 pi with
+    z_eff = z_s |w_s - w_c| / |w_in| (mesh cycles per input radian under rigid kinematics: the mesh frequency
+    is z_s |w_s - w_c| / 2 pi), its harmonics shifted by the planet's phase offset."""
+    z_eff = p.sun_teeth * abs(p.unit_speed("sun") - p.unit_speed("carrier")) / abs(p.unit_speed(p.input))
+    shift = 2.0 * math.pi * offset_cycles
+    te_phase = tuple(list(mesh.transmission_error_phase_rad) + [0.0] * len(mesh.transmission_error_m))
+    ks_phase = tuple(list(mesh.stiffness_harmonics_phase_rad) + [0.0] * len(mesh.stiffness_harmonics))
+    return replace(mesh, pinion_teeth=z_eff,
+                   transmission_error_phase_rad=tuple(te_phase[i] + (i + 1) * shift
+                                                      for i in range(len(mesh.transmission_error_m))),
+                   stiffness_harmonics_phase_rad=tuple(ks_phase[i] + (i + 1) * shift
+                                                       for i in range(len(mesh.stiffness_harmonics))))
+
+
 def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
     """Each element's row once the bodies are known (:func:`ElementLaw.assembled`): the static force it
     carries and the equivalent mass ``m_e = 1 / sum_j r_j^2 / J_j`` of the bodies it joins (a speed-driven
@@ -177,11 +264,13 @@ def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> l
     for x in conns:
         # the static force on the power path (as gearcli.model.linear.static_forces; a further element: none)
         F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb) if x.role else 0.0
+        if x.load_body >= 0:  # a planet mesh: its share of the planetary's output torque
+            F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever)
         mobility = [0.0 if (j == 0 and spec.drive.kind == "speed") else r**2 / bodies[j].inertia
                     for j, r in zip(x.bodies, x.radii, strict=True)]
         row = x.element.assembled(x.params, F, 1.0 / _ordered_sum(mobility))
         if row is not x.params:
-            x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role)
+            x = replace(x, params=_row(row))
         out.append(x)
     return out
 
@@ -269,7 +358,9 @@ class Layout:
     @property
     def shaft_body(self) -> tuple[int, ...]:
         """Body of each reducer shaft: shaft 1 the input pinion's, the others their gear end."""
-        return (self.connectors[self.stage_conn[0]].a,) + tuple(self.connectors[c].b for c in self.stage_conn)
+        first = self.connectors[self.stage_conn[0]]
+        return ((first.chain_in if first.chain_in >= 0 else first.a),) + tuple(
+            x.load_body if x.load_body >= 0 else x.b for x in (self.connectors[c] for c in self.stage_conn))
 
     @property
     def shaft_conn(self) -> dict[int, int]:
@@ -387,6 +478,8 @@ class Layout:
         an earlier first body); -1 for body 0 and for a body no such connector reaches."""
         out = [-1] * self.n_bodies
         for c, x in enumerate(self.connectors):
+            if x.load_body >= 0:  # a planet mesh: the planet's and the members' angles are coupled in pairs
+                continue
             if len(x.bodies) == 2 and 0 <= x.a < x.b and out[x.b] < 0:
                 out[x.b] = c
         return tuple(out)

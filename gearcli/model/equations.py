@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.errors import DesignError
 from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.codegen import compile_functions
 from gearcli.model.linear import static_forces
@@ -70,6 +71,19 @@ class TorsionalModel:
     def __init__(self, spec: ModelSpec):
         self.spec = spec
         self.layout = Layout.of(spec)
+        first_planetary = min((x.index for x in self.layout.connectors if x.load_body >= 0), default=None)
+        for x in self.layout.connectors:
+            if first_planetary is None or not x.phased:
+                continue
+            if x.load_body >= 0 and x.time_varying:
+                raise DesignError(f"stage {x.index + 1} is planetary: time-varying contact-line stiffness is not "
+                                  "phased between planets yet; use stiffness_harmonics (phased from the geometry)",
+                                  key=f"stage[{x.index}].mesh.time_varying")
+            if x.load_body < 0 and x.index > first_planetary:
+                raise DesignError(f"stage {x.index + 1}: a mesh's transmission error, stiffness harmonics or "
+                                  f"time-varying stiffness after the planetary stage {first_planetary + 1} is not "
+                                  "integrated yet (its phase needs the planetary output's angle); `gearcli modes` "
+                                  "and `gearcli design` take them", key=f"stage[{x.index}].mesh")
         self.rhs: Callable[[float, np.ndarray], np.ndarray]
         self.jac: Callable[[float, np.ndarray], np.ndarray]
         self.rhs, self.jac, self.source = compile_functions(self.layout)
@@ -114,6 +128,8 @@ class TorsionalModel:
         w_in = self._input_speed()
         for i in lay.free_bodies:
             y0[lay.i_omega(i)] = lay.bodies[i].ratio * w_in
+        for c, x in enumerate(lay.connectors):  # a planet's position error: delta = R theta + e
+            y0[lay.i_delta(c)] = x.initial_deflection
         return y0
 
     def continue_state(self, y_prev: np.ndarray, model_prev: TorsionalModel, t_prev: float | None = None) -> np.ndarray:
@@ -155,7 +171,7 @@ class TorsionalModel:
     def speed_scales_rad_s(self) -> np.ndarray:
         """Nominal speed of each free body, rad/s."""
         lay = self.layout
-        return np.array([lay.bodies[i].ratio * self.spec.drive.speed_rad_s for i in lay.free_bodies])
+        return np.array([abs(lay.bodies[i].ratio) * self.spec.drive.speed_rad_s for i in lay.free_bodies])
 
     def atol(self, rtol: float) -> np.ndarray:
         """Per-state absolute tolerance: rtol x the state's natural scale."""

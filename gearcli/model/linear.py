@@ -50,6 +50,9 @@ def static_forces(lay: Layout) -> np.ndarray:
     rb = np.array([x.rb for x in lay.connectors])
     out = lay.load.torque_Nm * rho[-1] / rho_b / rb
     out[[c for c, x in enumerate(lay.connectors) if not x.role]] = 0.0
+    for c, x in enumerate(lay.connectors):
+        if x.load_body >= 0:  # a planet mesh: its share of the planetary's output torque
+            out[c] = lay.load.torque_Nm * rho[-1] / rho[x.load_body] * x.load_lever
     if lay.n_lossy:
         factor = 1.0
         for c in range(lay.n_conn - 1, -1, -1):
@@ -82,7 +85,9 @@ def rigid_forces(lay: Layout, t: np.ndarray) -> np.ndarray:
         alpha0 = (t_in - rho[-1] * t_load) / float(J @ rho**2)
     out = np.zeros((lay.n_conn, t.size))
     for c, x in enumerate(lay.connectors):
-        if x.role:  # on the power path: everything beyond its second body (as static_forces)
+        if x.load_body >= 0:  # a planet mesh: the load's share only (the run-up inertia of a planetary is not split)
+            out[c] = t_load * rho[-1] / rho[x.load_body] * x.load_lever
+        elif x.role:  # on the power path: everything beyond its second body (as static_forces)
             downstream = float(J[x.b:] @ rho[x.b:] ** 2) / rho[x.b]
             out[c] = (downstream * alpha0 + t_load * rho[-1] / rho[x.b]) / x.rb
     return out

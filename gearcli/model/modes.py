@@ -105,11 +105,11 @@ def excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
     for k, c in enumerate(stages):
         x = lay.connectors[c]
         for h in MESH_ORDERS:
-            out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * lay.bodies[x.a].ratio, (c,)))
+            out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * abs(lay.bodies[x.a].ratio), (c,)))
     for i, b in enumerate(lay.shaft_body):
         via = tuple(stages[j] for j in (i - 1, i) if 0 <= j < len(stages))
         for h in SHAFT_ORDERS:
-            out.append((f"shaft {i + 1} {h}x", h * lay.bodies[b].ratio, via))
+            out.append((f"shaft {i + 1} {h}x", h * abs(lay.bodies[b].ratio), via))
     return out
 
 
@@ -131,8 +131,10 @@ def rigid_mode_count(lay: Layout, k: np.ndarray, clamped: int = 0) -> int:
         return i
 
     for c, x in enumerate(lay.connectors):
+        joined = [b for b, r in zip(x.bodies, x.radii, strict=True) if r != 0.0]  # a planet mesh joins three
         if k[c] > 0.0:
-            parent[root(x.a)] = root(x.b)
+            for b in joined[1:]:
+                parent[root(b)] = root(joined[0])
     grounded = {root(i) for i in range(clamped)}
     return len({root(i) for i in range(clamped, lay.n_bodies)} - grounded)
 

@@ -56,12 +56,18 @@ def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[Compar
         pinion_speed, gear_speed = speeds[k - 1], speeds[k]
         ratio_sim = pinion_speed / gear_speed if gear_speed != 0 else float("nan")
         static = st.static_force_N
+        out_speed, sign = st.gear.speed_deg_s, 1.0
+        if st.planetary is not None:  # the output member's speed; F_t with the flank sign the model gives it
+            p = st.planetary
+            out_speed = abs({"sun": p.sun, "ring": p.ring}[p.output].speed_deg_s if p.output != "carrier"
+                            else p.carrier.speed_deg_s)
+            sign = -1.0 if (dyn.static_tangential_N < 0) != (static.tangential < 0) else 1.0
         rows += [
             _row(k, "ratio", st.ratio, ratio_sim),
-            _row(k, "output_speed_deg_s", st.gear.speed_deg_s, gear_speed),
-            _row(k, "tangential_N", static.tangential, dyn.tangential_N.mean),
-            _row(k, "radial_N", static.radial, dyn.radial_N.mean),
-            _row(k, "axial_N", static.axial, dyn.axial_N.mean),
+            _row(k, "output_speed_deg_s", out_speed, gear_speed),
+            _row(k, "tangential_N", sign * static.tangential, dyn.tangential_N.mean),
+            _row(k, "radial_N", sign * static.radial, dyn.radial_N.mean),
+            _row(k, "axial_N", sign * static.axial, dyn.axial_N.mean),
         ]
     return tuple(r for r in rows if np.isfinite(r.simulated))
 

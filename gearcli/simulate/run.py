@@ -18,7 +18,18 @@ from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import DesignResult, EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
+from gearcli.results import (
+    DesignResult,
+    DteStats,
+    EnergyBalance,
+    MeshStiffness,
+    PlanetDynamics,
+    PlanetMeshDynamics,
+    SimulationResult,
+    SolverStats,
+    StageDynamics,
+    SteadyState,
+)
 from gearcli.scene import output_units, spec_from_design
 from gearcli.simulate import estimate, stats
 from gearcli.simulate import motor as motor_side
@@ -251,6 +262,9 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
         ch.update({f"stage{k + 1}_tangential_N": ft, f"stage{k + 1}_radial_N": fr,
                    f"stage{k + 1}_axial_N": fa, f"stage{k + 1}_penetration_mm": pen, f"stage{k + 1}_dte_um": dte})
         per_stage.append((ft, fr, fa, pen, dte))
+    for (k, j, gear), (ft, dte) in planet_series(model, s).items():  # a planetary stage: every planet mesh
+        ch[f"stage{k + 1}_planet{j + 1}_{gear}_tangential_N"] = ft
+        ch[f"stage{k + 1}_planet{j + 1}_{gear}_dte_um"] = dte
     for shaft, c in sorted(lay.shaft_conn.items()):
         ch[f"shaft{shaft + 1}_twist_deg"] = s.connectors[c].deflection * RAD_TO_DEG
     if lay.motor_body is not None:
@@ -265,6 +279,40 @@ def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray],
         if named is not None:
             ch[name] = s.connectors[named].force.copy()
     return ch, per_stage
+
+
+def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]]:
+    """(stage, planet, "sun" | "ring") -> (F_t in N, DTE in um) of every planet mesh, in connector order."""
+    lay = model.layout
+    out: dict = {}
+    for c, x in enumerate(lay.connectors):
+        if x.load_body >= 0:
+            ft = tooth_forces(lay, x.index, s.connectors[c].line_force_N)[0]
+            out[(x.index, x.planet, x.gear)] = (ft, s.connectors[c].dte_m * 1e6)
+    return out
+
+
+def _planets(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> tuple[tuple[PlanetDynamics, ...],
+                                                                                     float | None]:
+    """Stage k's planets over the window, and the load-sharing factor (largest window-mean |F_t| of the sun
+    meshes over their mean); empty and None for a parallel stage."""
+    series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
+    if not series:
+        return (), None
+
+    def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
+        q = dte[mask]
+        return PlanetMeshDynamics(stats.channel_stats(ft, mask), DteStats(float(q.mean()), float(q.std()),
+                                                                         float(q.min()), float(q.max())))
+
+    n = 1 + max(j for j, _ in series)
+    planets = tuple(PlanetDynamics(j + 1, mesh(*series[(j, "sun")]), mesh(*series[(j, "ring")])) for j in range(n))
+    means = np.array([abs(p.sun.tangential_N.mean) for p in planets])
+    return planets, (float(means.max() / means.mean()) if means.mean() > 0 else None)
+
+
+def _with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharing: float | None) -> StageDynamics:
+    return replace(st, planets=planets, load_sharing_factor=sharing) if planets else st
 
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
@@ -287,6 +335,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                            error_estimate=errors[k] if k < len(errors) else None,
                            mesh_stiffness=stiffness[k] if k < len(stiffness) else None)
                    for k, m in enumerate(spec.meshes))
+    stages = tuple(_with_planets(st, *_planets(model, s, mask, k)) for k, st in enumerate(stages))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)

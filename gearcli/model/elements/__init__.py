@@ -148,7 +148,8 @@ def compiled_types() -> tuple[ElementType, ...]:
     return tuple(et for et in registered() if et.compiled)
 
 
-from gearcli.model.elements import mesh, spring  # noqa: E402 - the built-in laws read N_PARAM above
+from gearcli.model.elements import mesh, planet_mesh, spring  # noqa: E402 - the built-in laws read N_PARAM above
 
 KIND_SPRING = register(spring, compiled=True).kind  # torsional spring-damper: couplings, flexible shafts
 KIND_MESH = register(mesh, compiled=True).kind  # gear mesh along its transverse line of action (Adams IMPACT)
+KIND_PLANET_MESH = register(planet_mesh, compiled=True).kind  # a planet's mesh joining planet, sun or ring, and carrier

@@ -1,0 +1,333 @@
+"""Planetary stages: internal-gear geometry (ISO 21771), Willis kinematics, assembly and adjacency checks,
+per-planet forces with the load-sharing factor K_gamma, ISO 6336-1 stiffness of the planet–ring mesh
+(docs/physics.md, "Planetary stages").
+
+A planetary stage is designed as its sun–planet mesh (an external pair, computed by the parallel-stage
+code in the carrier's frame: the sun drives the planet at the relative speed ω_s − ω_c with a third, a
+N-th, of the sun torque) plus what this module adds: the members' absolute speeds and torques, the
+carrier, and the planet–ring internal mesh.
+
+Internal gear conventions (ISO 21771:2007): the ring's teeth are given positive in the design file and
+its profile shift with the sign ISO 21771 and the commercial reports print (a negative x_r moves the ring's
+tip circle outwards, away from the planets). With signed
+tooth numbers z_r < 0 every external formula holds; written with |z_r|:
+
+- d_r = |z_r| m_t, d_br = d_r cos α_t, d_ar = d_r − 2 m_n (h_aP* + x_r), d_fr = d_r + 2 m_n (h_fP* − x_r)
+  (no tip alteration on the ring);
+- inv α_wt = inv α_t + 2 tan α_n (x_p + x_r) / (z_p − |z_r|);  a_w = (|z_r| − z_p) m_t cos α_t / (2 cos α_wt);
+- ε_α = [√(r_ap² − r_bp²) − √(r_ar² − r_br²) + a_w sin α_wt] / p_bt.
+
+ISO 6336-1's single stiffness q' of an internal mesh is evaluated with z_n2 = ∞ (the internal gear's
+terms C3/z_n2 and C7 x2/z_n2 vanish) and x2 = x_r; C_R is the mean of the planet's and the ring's
+blank factors, as for any pair of different blanks.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+from gearcli.design import stiffness as stf
+from gearcli.design.geometry import (
+    base_diameter_mm,
+    base_helix_angle_rad,
+    inverse_involute,
+    involute,
+    overlap_ratio,
+    pitch_diameter_mm,
+    transverse_base_pitch_mm,
+    transverse_module_mm,
+    transverse_pressure_angle_rad,
+)
+from gearcli.design.inertia import annulus_inertia_kg_m2
+from gearcli.design.kinematics import Train, power_kW, speed_deg_s, speed_rpm
+from gearcli.errors import DesignError
+from gearcli.results import (
+    CarrierResult,
+    GearResult,
+    InternalMeshResult,
+    Iso6336Factors,
+    PlanetaryResult,
+    StageResult,
+    StaticForces,
+)
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile, Gear, Material, PlanetaryStage, Stage
+
+MEMBERS = ("sun", "carrier", "ring")
+DEFAULT_RING_RIM_MODULES = 3.0  # ring body below the root, in modules, when no rim thickness is given
+
+
+# ------------------------------------------------------------------------------ kinematics
+def member_speeds(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]:
+    """Signed member speeds for a unit speed of ``driven`` with ``fixed`` at rest (Willis)."""
+    from gearcli.config.schema import willis_speeds
+
+    return willis_speeds(z_sun, z_ring, fixed, driven)
+
+
+def torque_factors(z_sun: int, z_ring: int) -> dict[str, float]:
+    """|T_member| / |T_sun| from the moment balance of a planet: sun 1, ring z_r/z_s, carrier 1 + z_r/z_s."""
+    u = z_ring / z_sun
+    return {"sun": 1.0, "ring": u, "carrier": 1.0 + u}
+
+
+def sun_torque_Nmm(stage: PlanetaryStage, input_torque_Nmm: float, output_torque_Nmm: float) -> float:
+    """The sun's torque: the input's or the output's when the sun is one, else from the output member."""
+    if stage.input == "sun":
+        return input_torque_Nmm
+    if stage.output == "sun":
+        return output_torque_Nmm
+    return output_torque_Nmm / torque_factors(stage.sun.teeth, stage.ring.teeth)[stage.output]
+
+
+# --------------------------------------------------------------------------- equivalent pair
+def sun_planet_stage(stage: PlanetaryStage) -> Stage:
+    """The sun–planet mesh as a parallel stage (pinion = sun, gear = planet), for the external-pair code."""
+    from gearcli.config.schema import Gear, Stage
+
+    planet = Gear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg", "position_error_um"}))
+    return Stage.model_validate({
+        "normal_module_mm": stage.normal_module_mm, "normal_pressure_angle_deg": stage.normal_pressure_angle_deg,
+        "helix_angle_deg": stage.helix_angle_deg, "pinion": stage.sun.model_dump(), "gear": planet.model_dump(),
+        "backlash_mm": stage.backlash_mm, "efficiency": stage.efficiency,
+        "mesh": None if stage.mesh is None else stage.mesh.model_dump(),
+        "basic_rack": stage.basic_rack.model_dump(), "accuracy_grade": stage.accuracy_grade,
+        "tip_relief_um": stage.tip_relief_um})
+
+
+def pair_equivalent(cfg: DesignFile) -> DesignFile:
+    """``cfg`` with every planetary stage replaced by its sun–planet pair (the parallel-stage code's view)."""
+    from gearcli.config.schema import PlanetaryStage
+
+    if not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
+        return cfg
+    stages = [sun_planet_stage(s) if isinstance(s, PlanetaryStage) else s for s in cfg.stage]
+    return cfg.model_copy(update={"stage": stages})
+
+
+def mesh_train(k: int, stage: PlanetaryStage, kin: Train) -> Train:
+    """A train whose stage k is the sun–planet mesh in the carrier's frame: sun at |ω_s − ω_c|, a 1/N of
+    the sun torque, the planet at |ω_s − ω_c| z_s/z_p."""
+    w_in = kin.shaft_speeds_rad_s[k]
+    w = member_speeds(stage.sun.teeth, stage.ring.teeth, stage.fixed, stage.input)
+    relative = abs(w["sun"] - w["carrier"]) * w_in
+    t_sun = sun_torque_Nmm(stage, *kin.stage_torques_Nmm[k]) / stage.planet.count
+    ratio = stage.planet.teeth / stage.sun.teeth
+    pad = k * (1.0,)
+    return Train(ratios=(*pad, ratio), shaft_speeds_rad_s=(*(k * (0.0,)), relative, relative / ratio),
+                 stage_torques_Nmm=(*(k * ((0.0, 0.0),)), (t_sun, t_sun * ratio)),
+                 load_torque_Nmm=kin.load_torque_Nmm)
+
+
+# ------------------------------------------------------------------------- internal geometry
+@dataclass(frozen=True)
+class InternalGeometry:
+    pitch_diameter_mm: float
+    base_diameter_mm: float
+    tip_diameter_mm: float
+    root_diameter_mm: float
+    working_pressure_rad: float
+    center_distance_mm: float
+    transverse_base_pitch_mm: float
+    contact_ratio_transverse: float
+    overlap_ratio: float
+    face_width_mm: float
+
+
+def ring_geometry(normal_module: float, normal_pressure_deg: float, helix_deg: float, z_planet: int,
+                  x_planet: float, planet_tip_mm: float, z_ring: int, x_ring: float, face_width_mm: float,
+                  addendum: float = 1.0, dedendum: float = 1.25) -> InternalGeometry:
+    """The ring's diameters and the planet–ring mesh (ISO 21771, internal gear; module docstring)."""
+    alpha_n, beta = math.radians(normal_pressure_deg), math.radians(helix_deg)
+    m_t = transverse_module_mm(normal_module, beta)
+    alpha_t = transverse_pressure_angle_rad(alpha_n, beta)
+    d_r, d_p = pitch_diameter_mm(z_ring, m_t), pitch_diameter_mm(z_planet, m_t)
+    db_r, db_p = base_diameter_mm(d_r, alpha_t), base_diameter_mm(d_p, alpha_t)
+    da_r = d_r - 2.0 * normal_module * (addendum + x_ring)
+    df_r = d_r + 2.0 * normal_module * (dedendum - x_ring)
+    inv_wt = involute(alpha_t) + 2.0 * math.tan(alpha_n) * (x_planet + x_ring) / (z_planet - z_ring)
+    if inv_wt <= 0.0:
+        raise ValueError("the profile shifts leave no working pressure angle for the planet–ring mesh")
+    alpha_wt = inverse_involute(inv_wt)
+    a_w = 0.5 * (z_ring - z_planet) * m_t * math.cos(alpha_t) / math.cos(alpha_wt)
+    p_bt = transverse_base_pitch_mm(m_t, alpha_t)
+    if da_r <= db_r:
+        raise ValueError(f"the ring's tip circle (d_a = {da_r:.4g} mm) lies inside its base circle "
+                         f"(d_b = {db_r:.4g} mm): a smaller (more negative) ring profile shift is needed")
+    g_alpha = (math.sqrt(max(0.25 * (planet_tip_mm ** 2 - db_p ** 2), 0.0))
+               - math.sqrt(0.25 * (da_r ** 2 - db_r ** 2)) + a_w * math.sin(alpha_wt))
+    return InternalGeometry(d_r, db_r, da_r, df_r, alpha_wt, a_w, p_bt, g_alpha / p_bt,
+                            overlap_ratio(face_width_mm, beta, normal_module), face_width_mm)
+
+
+# ------------------------------------------------------------------------------ the stage
+def _blank(gear: Gear, normal_module: float) -> float:
+    if gear.web_thickness_mm is None or gear.rim_thickness_mm is None:
+        return stf.C_R
+    return stf.gear_blank_factor(gear.web_thickness_mm, gear.rim_thickness_mm, gear.face_width_mm, normal_module)
+
+
+def _ring_inertia_kg_m2(ring: Gear, normal_module: float, geo: InternalGeometry, density: float) -> float:
+    if ring.inertia_kg_m2 is not None:
+        return ring.inertia_kg_m2
+    rim = ring.rim_thickness_mm if ring.rim_thickness_mm is not None else DEFAULT_RING_RIM_MODULES * normal_module
+    return annulus_inertia_kg_m2(density, ring.face_width_mm, geo.root_diameter_mm + 2.0 * rim, geo.tip_diameter_mm)
+
+
+def planet_mass_kg(planet_cfg, planet: GearResult, density: float) -> float:
+    """Given ``mass_kg``, else a disc of pitch diameter and face width with the bore, if any."""
+    if planet_cfg.mass_kg is not None:
+        return float(planet_cfg.mass_kg)
+    bore = planet.bore_diameter_mm or 0.0
+    return density * math.pi / 4.0 * (planet.pitch_diameter_mm ** 2 - bore ** 2) * planet.face_width_mm * 1e-9
+
+
+def _member(g: GearResult, speed_rad_s: float, torque_Nmm: float) -> GearResult:
+    return replace(g, speed_deg_s=speed_deg_s(speed_rad_s), speed_rpm=speed_rpm(speed_rad_s), torque_Nmm=torque_Nmm,
+                   torque_Nm=torque_Nmm / 1000.0, power_kW=power_kW(torque_Nmm, speed_rad_s))
+
+
+def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> StageResult:
+    """The planetary stage k: its sun–planet ``mesh`` (computed in the carrier's frame) with the members,
+    the carrier and the planet–ring mesh attached."""
+    from gearcli.config.schema import PlanetaryStage
+
+    stage = cfg.stage[k]
+    assert isinstance(stage, PlanetaryStage)
+    n, z_s, z_p, z_r = stage.planet.count, stage.sun.teeth, stage.planet.teeth, stage.ring.teeth
+    ring_mat: Material = cfg.materials[stage.ring.material]
+    planet_mat: Material = cfg.materials[stage.planet.material]
+    try:
+        geo = ring_geometry(stage.normal_module_mm, stage.normal_pressure_angle_deg, stage.helix_angle_deg, z_p,
+                            stage.planet.profile_shift, mesh.gear.tip_diameter_mm, z_r, stage.ring.profile_shift,
+                            min(stage.planet.face_width_mm, stage.ring.face_width_mm), stage.basic_rack.addendum,
+                            stage.basic_rack.dedendum)
+    except ValueError as exc:
+        raise DesignError(str(exc), key=f"stage[{k}].ring.profile_shift") from None
+    w_in = kin.shaft_speeds_rad_s[k]
+    unit = member_speeds(z_s, z_r, stage.fixed, stage.input)
+    speeds = {m: unit[m] * w_in for m in MEMBERS}
+    t_in, t_out = kin.stage_torques_Nmm[k]
+    t_sun = sun_torque_Nmm(stage, t_in, t_out)
+    factors = torque_factors(z_s, z_r)
+    torques = {m: t_sun * factors[m] for m in MEMBERS}
+    torques[stage.input], torques[stage.output] = t_in, t_out
+    # the members
+    sun = _member(mesh.pinion, speeds["sun"], torques["sun"])
+    m_t = transverse_module_mm(stage.normal_module_mm, math.radians(stage.helix_angle_deg))
+    ring_body = _ring_inertia_kg_m2(stage.ring, stage.normal_module_mm, geo, ring_mat.density_kg_m3)
+    ring = GearResult(
+        teeth=z_r, hand=(stage.ring.hand or "spur") if stage.helix_angle_deg > 0 else "spur",
+        profile_shift=stage.ring.profile_shift, face_width_mm=stage.ring.face_width_mm,
+        pitch_diameter_mm=geo.pitch_diameter_mm, base_diameter_mm=geo.base_diameter_mm,
+        tip_diameter_mm=geo.tip_diameter_mm, root_diameter_mm=geo.root_diameter_mm,
+        speed_deg_s=speed_deg_s(speeds["ring"]), speed_rpm=speed_rpm(speeds["ring"]), torque_Nmm=torques["ring"],
+        inertia_kg_m2=ring_body, inertia_given=stage.ring.inertia_kg_m2 is not None, body_inertia_kg_m2=ring_body,
+        bore_diameter_mm=None, gear_blank_factor=_blank(stage.ring, stage.normal_module_mm),
+        torque_Nm=torques["ring"] / 1000.0, power_kW=power_kW(torques["ring"], speeds["ring"]))
+    planet = mesh.gear
+    m_p = planet_mass_kg(stage.planet, planet, planet_mat.density_kg_m3)
+    r_c = mesh.center_distance_mm
+    own = stage.carrier.inertia_kg_m2 or 0.0
+    translational = n * m_p * (r_c * 1e-3) ** 2
+    carrier = CarrierResult(
+        radius_mm=r_c, speed_deg_s=speed_deg_s(speeds["carrier"]), speed_rpm=speed_rpm(speeds["carrier"]),
+        torque_Nmm=torques["carrier"], torque_Nm=torques["carrier"] / 1000.0,
+        power_kW=power_kW(torques["carrier"], speeds["carrier"]), own_inertia_kg_m2=own,
+        planets_translational_inertia_kg_m2=translational, inertia_kg_m2=own + translational)
+    # the planet–ring mesh
+    ring_mesh = _ring_mesh(cfg, k, stage, geo, mesh, planet_mat, ring_mat, m_t)
+    k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
+    adjacency = 2.0 * r_c * math.sin(math.pi / n) - planet.tip_diameter_mm if n > 1 else math.inf
+    result = PlanetaryResult(
+        fixed=stage.fixed, input=stage.input, output=stage.output, planet_count=n, ratio=kin.ratios[k],
+        willis_ratio=-z_r / z_s, sun=sun, planet=planet, ring=ring, carrier=carrier, planet_mass_kg=m_p,
+        planet_ring=ring_mesh, load_sharing_factor=k_gamma, equal_spacing=(z_s + z_r) % n == 0,
+        tip_clearance_between_planets_mm=adjacency if math.isfinite(adjacency) else 0.0,
+        concentricity_mm=geo.center_distance_mm - r_c)
+    return replace(mesh, ratio=kin.ratios[k], planetary=result)
+
+
+def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult,
+               planet_mat: Material, ring_mat: Material, m_t: float) -> InternalMeshResult:
+    """Forces, Hertz and ISO 6336-1 stiffness of one planet–ring mesh."""
+    beta = math.radians(stage.helix_angle_deg)
+    alpha_t = transverse_pressure_angle_rad(math.radians(stage.normal_pressure_angle_deg), beta)
+    beta_b = base_helix_angle_rad(beta, alpha_t)
+    forces = mesh.static_force_N  # F_t = T_s/(N r_s) = T_r/(N r_r): the same on the planet's both flanks
+    r_p, r_r = 0.5 * mesh.gear.pitch_diameter_mm, 0.5 * geo.pitch_diameter_mm
+    radius = r_p * r_r / (r_r - r_p)
+    modulus = stf.effective_modulus_MPa(planet_mat.youngs_modulus_MPa, planet_mat.poisson_ratio,
+                                        ring_mat.youngs_modulus_MPa, ring_mat.poisson_ratio)
+    zn_p = stf.virtual_teeth(stage.planet.teeth, beta, beta_b)
+    c_r = 0.5 * (_blank(stage.planet, stage.normal_module_mm) + _blank(stage.ring, stage.normal_module_mm))
+    factors = Iso6336Factors(C_M=stf.C_M, C_R=c_r,
+                             C_B=stf.basic_rack_factor(stage.normal_pressure_angle_deg, stage.basic_rack.dedendum))
+    f_t_ref = stf.reference_tangential_force_N(forces.tangential, geo.face_width_mm)
+    line_load = f_t_ref * cfg.load.application_factor / geo.face_width_mm
+    c_single = stf.single_pair_stiffness_N_mm_um(zn_p, math.inf, stage.planet.profile_shift, stage.ring.profile_shift,
+                                                 beta, stage.normal_pressure_angle_deg, line_load, blank_factor=c_r,
+                                                 dedendum_factor=stage.basic_rack.dedendum)
+    c_mesh = stf.mesh_stiffness_N_mm_um(c_single, geo.contact_ratio_transverse)
+    w_rel = abs(mesh.gear.speed_deg_s) * math.pi / 180.0
+    return InternalMeshResult(
+        working_pressure_angle_deg=math.degrees(geo.working_pressure_rad), center_distance_mm=geo.center_distance_mm,
+        transverse_base_pitch_mm=geo.transverse_base_pitch_mm, face_width_mm=geo.face_width_mm,
+        contact_ratio_transverse=geo.contact_ratio_transverse, overlap_ratio=geo.overlap_ratio,
+        contact_ratio_total=geo.contact_ratio_transverse + geo.overlap_ratio,
+        static_force_N=StaticForces(forces.tangential, forces.tangential * math.tan(alpha_t), forces.axial,
+                                    forces.normal),
+        equivalent_radius_mm=radius, hertz_stiffness_N_mm1_5=stf.hertz_stiffness_N_mm1_5(radius, modulus),
+        iso6336_single_pair_stiffness_N_mm_um=c_single, iso6336_mesh_stiffness_N_mm_um=c_mesh,
+        iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(c_mesh), iso6336_factors=factors,
+        mesh_frequency_Hz=stage.planet.teeth * w_rel / (2.0 * math.pi))
+
+
+# ---------------------------------------------------------------------------------- warnings
+def planetary_warnings(stage_result: StageResult) -> list[str]:
+    """Assembly (equal spacing), adjacency, concentricity and the ring mesh's contact ratio."""
+    p = stage_result.planetary
+    if p is None:
+        return []
+    i, out = stage_result.index, []
+    n, z_s, z_r = p.planet_count, p.sun.teeth, p.ring.teeth
+    if not p.equal_spacing:
+        out.append(f"stage {i}: (z_s + z_r)/N = ({z_s} + {z_r})/{n} is not an integer: {n} planets cannot be "
+                   "equally spaced (assembly condition)")
+    if n > 1 and p.tip_clearance_between_planets_mm <= 0.0:
+        out.append(f"stage {i}: neighbouring planets collide: their tip circles (d_a = {p.planet.tip_diameter_mm:.4g} "
+                   f"mm) overlap by {-p.tip_clearance_between_planets_mm:.4g} mm at 2 a sin(π/N) (adjacency)")
+    tol = 0.01 * stage_result.normal_module_mm
+    if abs(p.concentricity_mm) > tol:
+        out.append(f"stage {i}: the planet–ring working centre distance differs from the sun–planet one by "
+                   f"{p.concentricity_mm:+.4g} mm (more than 0.01 m_n): adjust the profile shifts (concentricity)")
+    if p.planet_ring.contact_ratio_transverse < 1.2:
+        out.append(f"stage {i}: planet–ring transverse contact ratio {p.planet_ring.contact_ratio_transverse:.3f} "
+                   "< 1.2")
+    return out
+
+
+def check_planetary_inputs(cfg: DesignFile) -> None:
+    """The ring's material must be defined (the sun and planet are checked as the sun–planet pair)."""
+    from gearcli.config.schema import PlanetaryStage
+    from gearcli.design.checks import check_material
+
+    for k, stage in enumerate(cfg.stage):
+        if isinstance(stage, PlanetaryStage):
+            check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
+
+
+def planetary_key(cfg: DesignFile, key: str | None) -> str | None:
+    """A key of the sun–planet pair (``stage[k].pinion.x``) as the design file names it (``stage[k].sun.x``)."""
+    from gearcli.config.schema import PlanetaryStage
+
+    if key is None or not key.startswith("stage["):
+        return key
+    k = int(key[len("stage["):key.index("]")])
+    if k < len(cfg.stage) and isinstance(cfg.stage[k], PlanetaryStage):
+        head = f"stage[{k}]."
+        return key.replace(head + "pinion.", head + "sun.").replace(head + "gear.", head + "planet.")
+    return key

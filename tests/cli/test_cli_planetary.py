@@ -1,0 +1,106 @@
+"""CLI tests for planetary stages: the design JSON and CSV of a mixed train, modes, simulate's per-planet
+outputs, and what the model refuses (exit 2 naming file and key, no output file)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+ROOT = Path(__file__).resolve().parents[2]
+GEARBOX = str(ROOT / "configs" / "wind_turbine_gearbox.toml")
+STAGE = str(ROOT / "configs" / "planetary_stage.toml")
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    return CliRunner()
+
+
+def run(runner, *args):
+    return runner.invoke(cli, list(args), catch_exceptions=False)
+
+
+def test_design_json_of_a_mixed_train(runner):
+    res = run(runner, "design", GEARBOX, "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    doc = json.loads(res.stdout)
+    first, second, third = doc["stages"]
+    for st, (zs, zr) in ((first, (19, 56)), (second, (18, 93))):
+        assert st["type"] == "planetary"
+        assert {"sun", "planet", "ring", "carrier", "ratio", "meshes"} <= set(st)
+        assert [m["name"] for m in st["meshes"]] == ["sun_planet", "planet_ring"]
+        assert st["meshes"][1]["rating"] is None and st["meshes"][0]["rating"] is not None
+        assert_allclose(st["ratio"], 1 / (1 + zr / zs), rtol=1e-12)  # carrier in, sun out, ring held
+        assert st["ring"]["speed_rpm"] == 0.0 and st["planet"]["count"] == 3
+        assert_allclose(st["carrier"]["torque_Nm"], st["sun"]["torque_Nm"] * (1 + zr / zs), rtol=1e-12)
+    assert "type" not in third and {"pinion", "gear"} <= set(third)  # the parallel stage's output unchanged
+    # the train: 1/(1 + 56/19) / (1 + 93/18) * 24/95
+    assert_allclose(doc["total_ratio"], 1 / (1 + 56 / 19) / (1 + 93 / 18) * 24 / 95, rtol=1e-12)
+    # a stage after a planetary one is driven by its output member: stage 2's carrier turns as stage 1's sun
+    assert_allclose(second["carrier"]["speed_rpm"], first["sun"]["speed_rpm"], rtol=1e-12)
+    assert_allclose(third["pinion"]["speed_rpm"], second["sun"]["speed_rpm"], rtol=1e-12)
+
+
+def test_design_csv_has_the_union_of_the_columns(runner):
+    res = run(runner, "design", GEARBOX, "--format", "csv")
+    assert res.exit_code == 0, res.stderr
+    rows = list(csv.DictReader(io.StringIO(res.stdout)))
+    assert len(rows) == 3
+    assert rows[0]["planet_ring_iso6336_mesh_stiffness_N_mm_um"] and rows[2]["planet_ring_iso6336_mesh_stiffness_N_mm_um"] == ""
+    assert rows[2]["pinion_teeth"] == "95" and rows[0]["sun_teeth"] == "19"
+
+
+def test_modes_of_a_planetary_stage(runner):
+    res = run(runner, "modes", STAGE, "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    doc = json.loads(res.stdout)
+    text = json.dumps(doc)
+    assert "stage 1 planet 3" in text
+
+
+def test_simulate_reports_every_planet(runner, tmp_path):
+    out = tmp_path / "sim.json"
+    res = run(runner, "simulate", STAGE, "--format", "json", "-o", str(out), "--set", "simulation.duration_s=0.3")
+    assert res.exit_code == 0, res.stderr
+    st = json.loads(out.read_text())["summary"]["stages"][0]
+    assert len(st["planets"]) == 3 and set(st["planets"][0]) == {"index", "sun", "ring"}
+    assert_allclose(st["load_sharing_factor"], 1.0, atol=1e-9)
+
+
+def test_what_the_time_domain_refuses_names_file_and_key(runner, tmp_path):
+    """Time-varying contact-line stiffness on planet meshes (not phased between planets), and a phased mesh
+    after a planetary stage (its phase would need the planetary output's angle): exit 2, no output file."""
+    for path, setting, key in ((STAGE, "stage.0.mesh.time_varying=true", "stage[0].mesh.time_varying"),
+                               (GEARBOX, "stage.2.mesh.transmission_error_um=[2.0]", "stage[2].mesh")):
+        out = tmp_path / "sim.csv"
+        res = runner.invoke(cli, ["simulate", path, "-o", str(out), "--set", setting])
+        assert res.exit_code == 2, res.output
+        assert f"{path}: {key}:" in res.stderr and "Traceback" not in res.stderr
+        assert not out.exists()
+
+
+def test_transmission_error_on_planet_meshes_runs(runner, tmp_path):
+    out = tmp_path / "sim.json"
+    res = run(runner, "simulate", STAGE, "--format", "json", "-o", str(out), "--set", "simulation.duration_s=0.3",
+              "--set", "stage.0.mesh.transmission_error_um=[2.0]")
+    assert res.exit_code == 0, res.stderr
+    assert len(json.loads(out.read_text())["summary"]["stages"][0]["planets"]) == 3
+
+
+def test_report_compares_the_output_member_and_the_flank_sign(runner, tmp_path):
+    out = tmp_path / "report.json"
+    res = run(runner, "report", STAGE, "--quick", "--format", "json", "-o", str(out))
+    assert res.exit_code == 0, res.stderr
+    rows = json.loads(out.read_text())["comparison"]
+    stage_rows = {r["quantity"]: r for r in rows if r["stage"] == 1}
+    # the sun (output) at 12.127 rpm x (1 + 56/19); F_t theory with the model's flank sign
+    assert_allclose(stage_rows["output_speed_deg_s"]["theory"], 12.127 * 6 * (1 + 56 / 19), rtol=1e-12)
+    assert abs(stage_rows["tangential_N"]["error_percent"]) < 0.01
