@@ -2,9 +2,9 @@
 
 The linearised chain at full load gives every mode's damped frequency ``omega_d`` and decay rate ``sigma``
 (the eigenvalues of the first-order deflection system, :mod:`gearcli.model.linear`). A mode whose decay
-time ``1 / sigma`` exceeds :data:`DECAY_WINDOWS` window lengths decays by less than ``1 - exp(-1/5)`` = 18 %
-across the window: the window cannot tell its run-up vibration from a steady one, so its std, min, max and
-the dynamic factor take it for steady. For such modes the window's F_t of every stage is fitted by least
+time ``1 / sigma`` exceeds the window's length (:data:`DECAY_WINDOWS`) decays by less than ``1 - exp(-1)`` =
+63 % across the window: the window cannot tell its run-up vibration from a steady one, so its std, min, max
+and the dynamic factor take it for steady. For such modes the window's F_t of every stage is fitted by least
 squares with the free decay itself,
 
     F_t(t) ~ c + sum_j e^(-sigma_j (t - t0)) (a_j cos omega_j (t - t0) + b_j sin omega_j (t - t0)),
@@ -16,9 +16,9 @@ stage's static force is warned about, with what would settle it: a later window 
 vibration has decayed to that fraction), more damping on the element that dominates the mode, or the
 periodic steady state.
 
-A mode that decays within a few windows (the seed reducer's 58 Hz mode decays in 1.0 s, four of its 0.26 s
-windows) is left to the window: over many of its periods the statistics average it, and the error estimate
-and the README describe what remains.
+The mean averages a ringing mode out over many of its periods; std, min and max do not. The seed reducer,
+which has no excitation, is such a case: its 58 Hz mode decays in ~1.1 s, four of its 0.26 s windows, and
+the window's std of stage 1's F_t (476 N) is that transient; it is warned about.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-DECAY_WINDOWS = 5.0  # a mode with a decay time beyond 5 window lengths rings through the window
+DECAY_WINDOWS = 1.0  # a mode whose decay time exceeds the window length rings through it
 MIN_FRACTION = 0.01  # of the stage's static force, at the window's end
 MAX_MODES = 6  # the slowest candidates fitted at once (the fit needs far fewer columns than samples)
 FIT_SAMPLES = 4000  # a longer window is thinned to about this many samples for the fit ...
