@@ -203,17 +203,6 @@ def emit_as(fmt: str, dest: Destination, result, *, sha256: str, json_doc: Calla
         emit_tables(getattr(tables, table_builder)(result), dest)
 
 
-def collector_on() -> None:
-    """The console script starts with the cyclic garbage collector off (:mod:`gearcli.__main__`): freeze what the
-    start-up imports built (never walked again) and turn the collector on for the command's work. A no-op when
-    the collector is on (gearcli used as a library, tests)."""
-    import gc
-
-    if not gc.isenabled():
-        gc.freeze()
-        gc.enable()
-
-
 def warn(lines) -> None:
     """Warnings on stderr, one line each, control characters escaped; nothing with ``-q``."""
     if is_quiet():
@@ -306,10 +295,8 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
     warn(design_result.warnings)
     from gearcli.io import serialize
-    from gearcli.simulate import background, run_simulation
+    from gearcli.simulate import run_simulation
 
-    background.allow()  # the console script's one-shot run: its check pass may take a second core
-    collector_on()
     try:
         result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
     except RunTooLong as exc:
@@ -477,7 +464,6 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     check_report_budget(loaded.design, design_result, source=loaded.source)
     warn(design_result.warnings)
     fmt = target.fmt
-    collector_on()
     with _StderrProgress() as progress:
         try:
             rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
@@ -562,7 +548,6 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
     from gearcli.io.sweep_progress import SweepProgress
     from gearcli.sweep.session import prepare, run
 
-    collector_on()
     target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work
     if plots_dir:
         _check_sweep_plots_dir(plots_dir, file, target, vary)

@@ -93,40 +93,29 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
         if eng.unsupported and engine == "compiled" else []
     mask_window, steady_state = window, None
-    early = None  # the check pass started on a second core (gearcli.simulate.background), ended whatever happens
-    try:
-        if steady == "periodic":
-            diags = []  # the fixed window's warning does not apply: the window is found, not set
-            found = integrate_periodic(model, choice.method, rtol, steps=steps, duration_s=duration_s,
-                                       window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
-                                       fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine)
-            if isinstance(found, Integration):
-                check(found, choice, duration_s)
-                raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
-            run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
-            diags += steady_warnings(steady_state, found.period)
-        else:
-            t_eval = np.linspace(0.0, duration_s, steps + 1)
-            y_start = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
-            # the check pass on a second core, alongside the run, where it does not need the run (module
-            # gearcli.simulate.background: the console script only; the same numbers as after the run)
-            early = estimate.start_early(model, t_eval, y_start, choice.method, rtol, choice, window, max_nfev,
-                                         eng.engine) if error_estimate else None
-            run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine)
-            steady_state = window_steady(model)
-        check(run, choice, duration_s)
-        error_estimate = error_estimate and steady != "periodic"
-        s = sample(model.layout, run.t, run.y)
-        energy = model.energy(s, run.y)
-        diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
-        if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
-            diags += force_noise_warnings(choice, rtol)
-        diags += resonance_warnings(model, choice)
-        ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s, early=early) \
-            if error_estimate else None
-    finally:
-        if early is not None:
-            early.close()
+    if steady == "periodic":
+        diags = []  # the fixed window's warning does not apply: the window is found, not set
+        found = integrate_periodic(model, choice.method, rtol, steps=steps, duration_s=duration_s,
+                                   window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
+                                   fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine)
+        if isinstance(found, Integration):
+            check(found, choice, duration_s)
+            raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
+        run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
+        diags += steady_warnings(steady_state, found.period)
+    else:
+        t_eval = np.linspace(0.0, duration_s, steps + 1)
+        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine)
+        steady_state = window_steady(model)
+    check(run, choice, duration_s)
+    error_estimate = error_estimate and steady != "periodic"
+    s = sample(model.layout, run.t, run.y)
+    energy = model.energy(s, run.y)
+    diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
+    if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
+        diags += force_noise_warnings(choice, rtol)
+    diags += resonance_warnings(model, choice)
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
