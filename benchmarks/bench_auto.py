@@ -20,6 +20,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
 from gearcli.config import load_design  # noqa: E402
 from gearcli.design import compute_design  # noqa: E402
@@ -32,12 +33,25 @@ BUDGET = 3_000_000
 REPEAT = 3
 
 
+def excitation_scenes():
+    """benchmarks/bench_excitation.py's scenes: the spur oscillator with a transmission error, 300 mesh periods
+    below, at and above its mesh resonance."""
+    from bench_excitation import PERIODS, SCENE, SPEEDS_RPM
+
+    out = []
+    for rpm in SPEEDS_RPM:
+        duration = PERIODS * 60.0 / (25 * rpm)
+        out.append((f"excitation/spur_te @ {rpm:g} rpm", SCENE,
+                    [f"input.speed_rpm={rpm}", f"simulation.duration_s={duration!r}", f"simulation.steps={PERIODS * 20}"]))
+    return out
+
+
 def scenes():
     seed = ROOT / "configs" / "concrete_mixer.toml"
     out = [(f"{p.parent.name}/{p.stem}", p, []) for p in sorted((ROOT / "configs").glob("*.toml"))]
     out.append(("configs/concrete_mixer @ 10 s", seed, ["simulation.duration_s=10", "simulation.steps=40000"]))
     out += [(f"{p.parent.name}/{p.stem}", p, []) for p in sorted((ROOT / "configs" / "extreme").glob("*.toml"))]
-    return out
+    return out + excitation_scenes()
 
 
 def timed(cfg, design, method: str) -> dict:

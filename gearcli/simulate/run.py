@@ -9,8 +9,9 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
-from gearcli.engine import EngineChoice, estimate_nfev
+from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
+from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
@@ -18,7 +19,8 @@ from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, Solv
 from gearcli.simulate import estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
+from gearcli.simulate.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
+from gearcli.simulate.methods import method as method_info
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, integrate_periodic, scene_period
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -82,12 +84,13 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
-    choice = choose_method(spec, duration_s, method, rtol)
+    replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
+    candidates = engine_options(engine, model.arrays, (EXPLICIT_METHOD, IMPLICIT_METHOD), replaced)
+    choice = choose_method(spec, duration_s, method, rtol, candidates)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
-    replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
-    eng = choose_engine(engine, model.arrays, choice.method, estimate_nfev(choice.indicator, rtol), replaced)
+    eng = choose_engine(engine, model.arrays, choice.method, predicted_nfev(choice), replaced)
     eng = _loadable(eng)
     fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
@@ -124,6 +127,11 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                         ref, stat_diags, eng.reason)
     _require_finite(result)
     return result
+
+
+def predicted_nfev(choice: Choice) -> float:
+    """The cost model's evaluations for the chosen method (an explicit one: DOP853's; an implicit one: Radau's)."""
+    return choice.predicted_evals[1 if method_info(choice.method).implicit else 0]
 
 
 def _loadable(eng: EngineChoice) -> EngineChoice:
@@ -287,7 +295,7 @@ def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
 
 def _choice_warnings(choice: Choice) -> list[Diagnostic]:
     """A requested explicit method on a stiff scene where auto's cost model predicts Radau cheaper."""
-    explicit, implicit = choice.predicted_evals
+    explicit, implicit = choice.predicted_s
     if choice.requested != AUTO and choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT \
             and implicit < explicit:
         return [dg.warning(dg.STIFF_FOR_EXPLICIT, f"the scene is stiff for an explicit method (max|λ|·T = "

@@ -27,16 +27,18 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import OdeSolver
 
+from gearcli.engine import status as st
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.simulate.guards import CAP as MAX_NFEV
+from gearcli.simulate import cost
+from gearcli.simulate.cost import BUDGET_CHECK_EVERY
+from gearcli.simulate.cost import CAP as MAX_NFEV
 from gearcli.simulate.guards import EnergyWatch, energy_watch, over_budget, priced_work_s
 from gearcli.simulate.methods import METHODS, scipy_solver
 
-BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
-
-STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
-STATUS_PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
+# how a run ended (gearcli.engine.status: one set of codes for both engines)
+STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
+STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED
 
 
 @dataclass(frozen=True)
@@ -171,17 +173,27 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             return STATUS_BUDGET, f"more than {max_nfev} right-hand-side evaluations", done
         if count.steps % BUDGET_CHECK_EVERY == 0:
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
-            work = priced_work_s(nfev, njev, nlu, count.steps, implicit)
-            if (verdict := over_budget(work, float(solver.t), *span)) is not None:
-                kind, why = verdict
-                return (STATUS_PROJECTED if kind == "projected" else STATUS_BUDGET), (
-                    f"{why} ({nfev} right-hand sides, {count.steps} steps, {nlu} LU decompositions, "
-                    f"{njev} Jacobians)"), done
+            stop = _budget_stop(nfev, njev, nlu, count.steps, implicit, float(solver.t), span)
+            if stop is not None:
+                return (*stop, done)
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
             report = watch.check(solver.t, solver.y)
             if report.diverging:
                 return STATUS_ENERGY, watch.message(report), done
     return STATUS_FINISHED, "reached the end of the run", done
+
+
+def _budget_stop(nfev: int, njev: int, nlu: int, steps: int, implicit: bool, t: float,
+                 span: tuple[float, float]) -> tuple[int, str] | None:
+    """(status, message) when the priced work budget stops the run here (:func:`gearcli.simulate.guards.over_budget`),
+    else None: the same verdict on either engine (the kernel checks the same prices at the same steps)."""
+    work = priced_work_s(nfev, njev, nlu, steps, implicit)
+    verdict = over_budget(work, t, *span)
+    if verdict is None:
+        return None
+    kind, why = verdict
+    return (STATUS_PROJECTED if kind == "projected" else STATUS_BUDGET), (
+        f"{why} ({nfev} right-hand sides, {steps} steps, {nlu} LU decompositions, {njev} Jacobians)")
 
 
 def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
@@ -201,8 +213,12 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     breaks = np.array(breakpoints(model, float(t_eval[-1]), t0), dtype=float)
     from gearcli.simulate.guards import ENERGY_MARGIN
 
-    wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN, t0]) if watch is not None \
-        else np.array([0.0, 0.0, 0.0, 0.0, t0])
+    implicit = METHODS[method].implicit
+    watch_par = [watch.e0, watch.w0, watch.scale, ENERGY_MARGIN] if watch is not None else [0.0, 0.0, 0.0, 0.0]
+    p = cost.PRICE_S["python"]  # the work budget's prices, as on the Python engine (gearcli.simulate.cost)
+    wpar = np.array([*watch_par, t0, cost.WORK_CAP_S, cost.PROJECTION_AFTER_S, cost.PROJECTION_LIMIT,
+                     float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
+                     p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])])
     every = np.int64(watch.every if watch is not None else 0)
     t0 = time.perf_counter()
     kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]
@@ -215,12 +231,16 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     t_end, created, scale = (float(v) for v in floats)
     messages = {STATUS_FINISHED: "reached the end of the run",
                 STATUS_FAILED: "Required step size is less than spacing between numbers.",
-                STATUS_BUDGET: f"more than {max_nfev} right-hand-side evaluations",
                 STATUS_NONFINITE: f"the state became non-finite at t = {t_end:.6g} s"}
     if status == STATUS_ENERGY and watch is not None:
         from gearcli.simulate.guards import EnergyReport
 
         message = watch.message(EnergyReport(created, scale))
+    elif status == STATUS_BUDGET and nfev > max_nfev:
+        message = f"more than {max_nfev} right-hand-side evaluations"
+    elif status in (STATUS_BUDGET, STATUS_PROJECTED):
+        stop = _budget_stop(nfev, njev, nlu, steps, implicit, t_end, (0.0, float(t_eval[-1])))
+        message = stop[1] if stop is not None else f"more than {max_nfev} right-hand-side evaluations"
     else:
         message = messages.get(status, f"status {status}")
     return Integration(t_eval, out, method, float(np.max(rtol_v)) if np.ndim(rtol) else float(rtol), atol, nfev, njev,
