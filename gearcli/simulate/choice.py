@@ -22,7 +22,7 @@ What each method needs (the constants and their measurements: :mod:`gearcli.simu
 
 Each is priced on the engine that would run it (the compiled engine's ~0.4 µs per evaluation, or scipy's
 ~10 µs, plus what loading the compiled engine still costs this process), and ``auto`` takes DOP853 unless
-Radau's predicted wall time is ``IMPLICIT_MARGIN`` times lower.
+Radau's predicted wall time (loading the engine aside) is ``IMPLICIT_MARGIN`` times lower.
 """
 
 from __future__ import annotations
@@ -185,18 +185,20 @@ def excited_radians(spec: ModelSpec, lay: Layout, duration_s: float) -> float:
 
 def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float = 0.0, rtol: float = 1e-6,
                     engines: dict[str, dict[str, float]] | None = None) -> tuple[tuple[float, float],
-                                                                             tuple[float, float], tuple[str, str]]:
-    """((DOP853, Radau) evaluations, (DOP853, Radau) predicted wall seconds, the engine each is priced on).
-    ``engines``: per method, the engines that may run it and what loading each still costs this process
-    (default: Python only)."""
+                                                                             tuple[float, float], tuple[str, str],
+                                                                             tuple[float, float]]:
+    """((DOP853, Radau) evaluations, (DOP853, Radau) predicted wall seconds, the engine each is priced on, and
+    the part of each wall time that is loading the engine). ``engines``: per method, the engines that may run
+    it and what loading each still costs this process (default: Python only)."""
     nfev = predicted_evaluations(indicator, vibration_rad, excited_rad, rtol)
-    walls, names = [], []
+    walls, names, loads = [], [], []
     for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), nfev, strict=True):
         options = (engines or {}).get(name) or {"python": 0.0}
         best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e]))
         walls.append(predicted_wall_s(best, name, n, options[best]))
         names.append(best)
-    return nfev, (walls[0], walls[1]), (names[0], names[1])
+        loads.append(options[best])
+    return nfev, (walls[0], walls[1]), (names[0], names[1]), (loads[0], loads[1])
 
 
 def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6,
@@ -216,14 +218,14 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     lin = op if bool(np.any(full.stiffness == 0.0)) else full
     vib = vibration_radians(spec, lay, lin, duration_s, rtol)
     exc = excited_radians(spec, lay, duration_s)
-    nfev, walls, on = predicted_costs(indicator, vib, exc, rtol, engines)
+    nfev, walls, on, loads = predicted_costs(indicator, vib, exc, rtol, engines)
     summary = f"max|λ|·T = {indicator:.3g}"
     costs = (f"predicted DOP853 {nfev[0]:.2g} evaluations ~{walls[0]:.2g} s ({on[0]}), Radau {nfev[1]:.2g} "
              f"~{walls[1]:.2g} s ({on[1]})")
     why = f"{summary}, {vib:.3g} rad of excited vibration, {exc:.3g} rad of excitation: {costs}"
     if requested != AUTO:
         chosen, reason = requested, f"as requested ({summary})"
-    elif walls[0] <= IMPLICIT_MARGIN * walls[1] and not _explicit_refused(indicator):
+    elif walls[0] <= loads[1] + IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator):
         chosen = EXPLICIT_METHOD
         reason = f"{why}: explicit {chosen}"
     else:
