@@ -295,10 +295,13 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
     warn(design_result.warnings)
     from gearcli.io import serialize
+    from gearcli.io.progress import TerminalProgress
     from gearcli.simulate import run_simulation
 
     try:
-        result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
+        with TerminalProgress("simulate", enabled=not is_quiet()) as progress:  # a long run on a terminal
+            result = run_simulation(loaded.design, design_result, want_series=True,  # the statistics need them
+                                    progress=progress.fraction)
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
@@ -404,34 +407,6 @@ def _finite_accuracy(ctx, param, value: float) -> float:
     return value
 
 
-class _StderrProgress:
-    """A rich progress bar on stderr when it is a terminal; a silent no-op otherwise."""
-
-    def __init__(self) -> None:
-        from typing import Any
-
-        self.bar: Any = None
-
-    def __enter__(self):
-        if sys.stderr.isatty() and not is_quiet():
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-            self.bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
-                                TimeElapsedColumn(), console=Console(stderr=True), transient=True)
-            self.bar.__enter__()
-            self.task = self.bar.add_task("report", total=None)
-        return self
-
-    def __call__(self, label: str, done: int, total: int) -> None:
-        if self.bar is not None:
-            self.bar.update(self.task, description=label, completed=done, total=total)
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.__exit__(*exc)
-
-
 @cli.command()
 @click.argument("file", type=str)
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
@@ -464,7 +439,9 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     check_report_budget(loaded.design, design_result, source=loaded.source)
     warn(design_result.warnings)
     fmt = target.fmt
-    with _StderrProgress() as progress:
+    from gearcli.io.progress import TerminalProgress
+
+    with TerminalProgress("report", enabled=not is_quiet()) as progress:
         try:
             rep = build_report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
                                progress=progress)

@@ -6,3 +6,4 @@ BUDGET = -2  # the evaluation budget or the priced work budget is spent
 NONFINITE = -3  # the state became non-finite
 ENERGY = -4  # the energy watch saw energy created (a numerical instability)
 PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
+SWITCH = -6  # stopped to go on on the compiled engine: its pace on scipy projected far over the prediction

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -16,7 +17,7 @@ from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import EnergyBalance, MeshStiffness, SimulationResult, SolverStats, SteadyState
-from gearcli.simulate import estimate, stats
+from gearcli.simulate import cost, estimate, stats
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
@@ -29,6 +30,7 @@ from gearcli.simulate.solver import (
     STATUS_FINISHED,
     STATUS_NONFINITE,
     STATUS_PROJECTED,
+    STATUS_SWITCH,
     Integration,
     integrate,
 )
@@ -40,7 +42,8 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] 
 def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
-                   error_estimate: bool | None = None) -> SimulationResult:
+                   error_estimate: bool | None = None,
+                   progress: Callable[[float], None] | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
@@ -63,20 +66,22 @@ def run_simulation(cfg, design, *, method: str | None = None, rtol: float | None
                           steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                           window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
                           steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
-                          engine=sim.engine)
+                          engine=sim.engine, progress=progress)
 
 
 def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, method: str = "auto",
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
                    y0: np.ndarray | None = None, max_nfev: int | None = None,
                    steady: str = "window", error_estimate: bool = True,
-                   prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto") -> SimulationResult:
+                   prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto",
+                   progress: Callable[[float], None] | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
     ``steady = "periodic"``, whose statistics come from a converged period); ``prior_diagnostics`` (the
     design's warnings) lead the result's warnings; ``engine`` "auto", "python" or "compiled"
-    (:func:`gearcli.engine.choose`).
+    (:func:`gearcli.engine.choose`); ``progress`` is called with the fraction of the run done (a terminal's
+    progress bar, :mod:`gearcli.io.progress`; Python engine runs, which are the long ones).
 
     ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
     the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most
@@ -108,13 +113,22 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags += steady_warnings(steady_state, found.period)
     else:
         t_eval = np.linspace(0.0, duration_s, steps + 1)
-        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine)
+        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
+                        pace_limit_s=_pace_limit(eng, choice, model), progress=progress)
+        if run.status == STATUS_SWITCH:  # scipy far slower than predicted: the compiled engine runs it instead
+            fallback.append(dg.warning(dg.SLOW_PACE, f"{run.method} on scipy was far slower than the cost model "
+                                       f"predicted ({run.message}): the run went on on the compiled engine"))
+            eng = _loadable(EngineChoice("compiled", eng.requested, f"switched from scipy at t = {run.t_fail:.3g} s: "
+                                         f"{run.message}"))
+            run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
+                            progress=progress)
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y)
-    diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
+    diags = prior + diags + fallback + _pace_warnings(run, choice) + stats.model_warnings(spec) \
+        + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice)
@@ -127,6 +141,40 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                         ref, stat_diags, eng.reason)
     _require_finite(result)
     return result
+
+
+def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> float | None:
+    """The wall time past which an ``auto`` run on scipy goes on on the compiled engine instead (its pace
+    projected over ``PACE_SWITCH_FACTOR`` times its prediction and over the compiled engine's, load included),
+    or None when no switch is possible (another engine requested, numba missing or not compiled yet, an
+    unsupported scene)."""
+    from gearcli import engine
+
+    if eng.requested != "auto" or eng.engine != "python" or eng.unsupported or not engine.available():
+        return None
+    if not getattr(model, "generated", True) or engine.unsupported(model.arrays, choice.method):
+        return None
+    load = engine.load_share_s()
+    if load >= cost.COMPILE_S:  # never into a compilation
+        return None
+    n = predicted_nfev(choice)
+    return max(cost.PACE_SWITCH_FACTOR * cost.predicted_wall_s("python", choice.method, n),
+               cost.predicted_wall_s("compiled", choice.method, n, load))
+
+
+def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
+    """A run far slower than the cost model predicted for its method on its engine says so, with both figures."""
+    if run.method not in (EXPLICIT_METHOD, IMPLICIT_METHOD):
+        return []
+    n = predicted_nfev(choice)
+    predicted = cost.predicted_wall_s(run.engine, run.method, n)
+    if run.wall_s < cost.PACE_MIN_S or run.wall_s < cost.PACE_WARN_FACTOR * predicted:
+        return []
+    return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.wall_s:.3g} s, "
+                       f"{run.wall_s / predicted:.2g}x the ~{predicted:.2g} s the cost model predicted "
+                       f"({run.nfev} evaluations against {n:.2g} predicted); method = \"auto\" may have chosen "
+                       "the slower method here (README, \"Choosing the method: auto\")",
+                       wall_s=run.wall_s, predicted_s=predicted, nfev=run.nfev, predicted_nfev=n)]
 
 
 def predicted_nfev(choice: Choice) -> float:

@@ -22,6 +22,7 @@ back to the resolution of the tolerance (tests/extreme/test_guards.py).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -39,6 +40,7 @@ from gearcli.simulate.methods import METHODS, scipy_solver
 # how a run ended (gearcli.engine.status: one set of codes for both engines)
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
 STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED
+STATUS_SWITCH = st.SWITCH
 
 
 @dataclass(frozen=True)
@@ -108,7 +110,8 @@ class _Counters:
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
-              t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python") -> Integration:
+              t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python",
+              pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None) -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
     drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
@@ -119,6 +122,11 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
     "compiled" runs :mod:`gearcli.engine` (DOP853, RK45, Radau; from ``t0`` too; the caller checks
     :func:`gearcli.engine.unsupported` first), "python" scipy's solvers.
+
+    ``pace_limit_s`` (Python engine): once the run has taken ``cost.PACE_SWITCH_AFTER_S`` of wall time, a pace
+    that projects the whole run over this many seconds stops it with ``STATUS_SWITCH`` (the caller goes on on
+    the compiled engine). ``progress``: called with the fraction of the run done, every few hundred steps (a
+    terminal's progress bar; never printed here).
     """
     if t0 != 0.0 and y0 is None:
         raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
@@ -137,7 +145,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
-                                         (0.0, float(t_eval[-1])), METHODS[method].implicit)
+                                         (0.0, float(t_eval[-1])), METHODS[method].implicit,
+                                         _Pace(start, float(t0), float(t_eval[-1]), pace_limit_s, progress))
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
@@ -147,8 +156,31 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
                        message, t)
 
 
+@dataclass(frozen=True)
+class _Pace:
+    """The run's wall clock against its pace limit, and its progress callback."""
+    start: float  # perf_counter at the run's start
+    t0: float
+    t_end: float
+    limit_s: float | None
+    progress: Callable[[float], None] | None
+
+    def check(self, t: float) -> tuple[int, str] | None:
+        done = (t - self.t0) / (self.t_end - self.t0) if self.t_end > self.t0 else 1.0
+        if self.progress is not None:
+            self.progress(done)
+        if self.limit_s is None:
+            return None
+        wall = time.perf_counter() - self.start
+        if wall > cost.PACE_SWITCH_AFTER_S and done > 0 and wall / done > self.limit_s:
+            return STATUS_SWITCH, (f"at its pace on scipy ({100 * done:.2g} % after {wall:.2g} s) the run would take "
+                                   f"~{wall / done:.2g} s, over {self.limit_s:.2g} s")
+        return None
+
+
 def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, count: _Counters, max_nfev: int,
-             watch, span: tuple[float, float] = (0.0, 0.0), implicit: bool = False) -> tuple[int, str, int]:
+             watch, span: tuple[float, float] = (0.0, 0.0), implicit: bool = False,
+             pace: _Pace | None = None) -> tuple[int, str, int]:
     """Step ``solver`` to its end, filling ``out`` at the samples passed; (status, message, samples done)."""
     n = out.shape[0]
     while solver.status == "running":
@@ -174,6 +206,8 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
         if count.steps % BUDGET_CHECK_EVERY == 0:
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
             stop = _budget_stop(nfev, njev, nlu, count.steps, implicit, float(solver.t), span)
+            if stop is None and pace is not None:
+                stop = pace.check(float(solver.t))
             if stop is not None:
                 return (*stop, done)
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
