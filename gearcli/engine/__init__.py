@@ -287,12 +287,16 @@ def load_share_s() -> float:
 def options(requested: str, arrays, methods: tuple[str, ...], also: tuple[str, ...] = ()) -> dict[str, dict[str, float]]:
     """Per method, the engines that may run it under ``requested`` and what loading each still costs this
     process: what ``auto``'s method choice prices (:func:`gearcli.simulate.choice.predicted_costs`)."""
+    from gearcli.simulate.cost import KEEP, REFERENCE_KEEP_S
+
     out: dict[str, dict[str, float]] = {}
     compiled_ok = requested != "python" and available()
     for m in methods:
         opts = {"python": 0.0} if requested != "compiled" else {}
         if compiled_ok and not unsupported(arrays, m) and not also:
             opts["compiled"] = load_share_s()
+            if requested == "auto" and m not in BIT_IDENTICAL and _runs["active"] == 0:
+                opts[KEEP] = REFERENCE_KEEP_S  # :func:`choose`'s rule for a one-shot run of such a method
         out[m] = opts or {"python": 0.0}
     return out
 
@@ -311,14 +315,15 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
     ``also``) runs on Python with the reason.
 
     ``auto`` takes the compiled engine for every method it has (Radau included, one-shot runs too: its results
-    agree with scipy's to the tolerance) when it is installed, supports the scene, and is predicted faster
+    agree with scipy's to the tolerance; a one-shot run of such a method only when it saves at least
+    ``REFERENCE_KEEP_S``, else scipy's reference numbers) when it is installed, supports the scene, and is predicted faster
     including what loading it still costs this process (numba import and cache load, measured on the last
     load; nothing once loaded; a full compilation when nothing is cached, so that a one-shot run never waits
     for the compiler), that load shared by the runs announced with :func:`expect_runs`. The prices:
     :mod:`gearcli.simulate.cost`.
     """
     from gearcli.errors import ConfigError
-    from gearcli.simulate.cost import MIN_LOAD_S, predicted_wall_s
+    from gearcli.simulate.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
 
     if requested == "python":
         return EngineChoice("python", requested, "as requested")
@@ -339,6 +344,10 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
                             f"less than importing numba alone (~{MIN_LOAD_S:g} s)")
     load_s = load_share_s()
     compiled_s = predicted_wall_s("compiled", method, nfev_estimate, load_s)
+    if method not in BIT_IDENTICAL and _runs["active"] == 0 and python_s - compiled_s < REFERENCE_KEEP_S:
+        return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations: the compiled {method} (which "
+                            f"agrees with scipy to the tolerance, not step for step) would save less than "
+                            f"{REFERENCE_KEEP_S:g} s of ~{python_s:.2g} s: scipy's, the reference")
     if compiled_s < python_s:
         return EngineChoice("compiled", requested, f"~{nfev_estimate:.2g} evaluations: ~{compiled_s:.2g} s compiled "
                             f"(load included) against ~{python_s:.2g} s in Python")

@@ -18,7 +18,7 @@ What each method needs (the constants and their measurements: :mod:`gearcli.simu
   the run (a mesh's transmission error, stiffness harmonics or contact-line stiffness: harmonic x pinion teeth
   x pinion angle; torque ripple: order x input angle; load fluctuation: 2 pi f T), the angles from the drive's
   STEP profile. The forced response must be resolved over the whole run by either method;
-- DOP853: max(2.6 max|lambda| T, 6 P + 40 E) evaluations; Radau: 1000 + 9.8 P + 25 E.
+- DOP853: max(2.6 max|lambda| T, 6 P + 35 E) evaluations; Radau: 1000 + 17 P + 30 E.
 
 Each is priced on the engine that would run it (the compiled engine's ~0.4 µs per evaluation, or scipy's
 ~10 µs, plus what loading the compiled engine still costs this process), and ``auto`` takes DOP853 unless
@@ -37,6 +37,7 @@ from gearcli.model.linear import peak_rigid_forces, static_forces
 from gearcli.simulate.cost import (
     EXPLICIT_CAP,
     IMPLICIT_MARGIN,
+    KEEP,
     STIFFNESS_LIMIT,
     predicted_evaluations,
     predicted_wall_s,
@@ -193,8 +194,12 @@ def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float =
     nfev = predicted_evaluations(indicator, vibration_rad, excited_rad, rtol)
     walls, names, loads = [], [], []
     for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), nfev, strict=True):
-        options = (engines or {}).get(name) or {"python": 0.0}
+        options = dict((engines or {}).get(name) or {"python": 0.0})
+        keep = options.pop(KEEP, None)  # a one-shot run stays on scipy unless compiling saves `keep` s
         best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e]))
+        if keep is not None and best != "python" and "python" in options and \
+                predicted_wall_s("python", name, n) - predicted_wall_s(best, name, n, options[best]) < keep:
+            best = "python"
         walls.append(predicted_wall_s(best, name, n, options[best]))
         names.append(best)
         loads.append(options[best])

@@ -82,10 +82,10 @@ def priced_work_s(nfev: int, njev: int, nlu: int, steps: int, implicit: bool) ->
 
 # ------------------------------------------------------------------------------------ auto's prediction
 EXPLICIT_PER_UNIT = 2.6  # DOP853 evaluations per unit of max|lambda| T (stability radius, rejected steps)
-EXPLICIT_PER_RAD = 6.0  # DOP853 evaluations per radian of resolved free vibration (the seed: 5407 for 897)
+EXPLICIT_PER_RAD = 6.0  # DOP853 evaluations per radian of resolved free vibration (the seed: 5407 for 578)
 EXPLICIT_PER_EXCITED_RAD = 35.0  # DOP853 evaluations per radian of the highest excitation harmonic
 IMPLICIT_FIXED = 1000.0  # Radau evaluations with nothing to resolve (run-up, restarts at the ramp ends)
-IMPLICIT_PER_RAD = 9.8  # Radau evaluations per radian of resolved free vibration
+IMPLICIT_PER_RAD = 17.0  # Radau evaluations per radian of resolved free vibration (measured 15-50, median 26)
 IMPLICIT_PER_EXCITED_RAD = 30.0  # Radau evaluations per radian of the highest excitation harmonic
 #: Radau only when its predicted wall time is this much lower (its cost per evaluation varies by scene)
 IMPLICIT_MARGIN = 1.3
@@ -111,6 +111,11 @@ def predicted_evaluations(indicator: float, vibration_rad: float, excited_rad: f
 COMPILE_S = 60.0  # s: compiling the kernel when nothing is cached (measured 45-70 s on the 2-core machine)
 DEFAULT_LOAD_S = 0.6  # s: numba import + cache load on the 2-core reference machine, before any measurement
 MIN_LOAD_S = 0.15  # s: numba's import alone
+#: a one-shot run of a method the compiled engine reproduces to the tolerance but not step for step (Radau)
+#: stays on scipy, the reference implementation, unless the compiled engine is predicted to save at least this
+#: (the conveyor's Radau: ~9 s; the example scenes' Radau runs: 0.03-0.2 s, whose recorded numbers then stay)
+REFERENCE_KEEP_S = 0.5
+KEEP = "keep_reference_s"  # the key of an engine-options entry that carries REFERENCE_KEEP_S (gearcli.engine.options)
 
 # -------------------------------------------------------------------------------------- the run's pace
 #: a run whose measured wall time exceeds its prediction this many times (and PACE_MIN_S) says so
