@@ -286,17 +286,16 @@ def load_share_s() -> float:
 
 def options(requested: str, arrays, methods: tuple[str, ...], also: tuple[str, ...] = ()) -> dict[str, dict[str, float]]:
     """Per method, the engines that may run it under ``requested`` and what loading each still costs this
-    process: what ``auto``'s method choice prices (:func:`gearcli.simulate.choice.predicted_costs`)."""
-    from gearcli.simulate.cost import KEEP, REFERENCE_KEEP_S
-
+    process: what ``auto``'s method choice prices (:func:`gearcli.simulate.choice.predicted_costs`). The method is
+    chosen at the compiled engine's prices wherever it may run; :func:`choose` may still keep a short one-shot
+    Radau run on scipy (``REFERENCE_KEEP_S``), so that the choice of the method does not depend on whether this
+    process happens to have loaded the kernel."""
     out: dict[str, dict[str, float]] = {}
     compiled_ok = requested != "python" and available()
     for m in methods:
         opts = {"python": 0.0} if requested != "compiled" else {}
         if compiled_ok and not unsupported(arrays, m) and not also:
             opts["compiled"] = load_share_s()
-            if requested == "auto" and m not in BIT_IDENTICAL and _runs["active"] == 0:
-                opts[KEEP] = REFERENCE_KEEP_S  # :func:`choose`'s rule for a one-shot run of such a method
         out[m] = opts or {"python": 0.0}
     return out
 

@@ -37,7 +37,6 @@ from gearcli.model.linear import peak_rigid_forces, static_forces
 from gearcli.simulate.cost import (
     EXPLICIT_CAP,
     IMPLICIT_MARGIN,
-    KEEP,
     STIFFNESS_LIMIT,
     predicted_evaluations,
     predicted_wall_s,
@@ -194,12 +193,8 @@ def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float =
     nfev = predicted_evaluations(indicator, vibration_rad, excited_rad, rtol)
     walls, names, loads = [], [], []
     for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), nfev, strict=True):
-        options = dict((engines or {}).get(name) or {"python": 0.0})
-        keep = options.pop(KEEP, None)  # a one-shot run stays on scipy unless compiling saves `keep` s
+        options = (engines or {}).get(name) or {"python": 0.0}
         best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e]))
-        if keep is not None and best != "python" and "python" in options and \
-                predicted_wall_s("python", name, n) - predicted_wall_s(best, name, n, options[best]) < keep:
-            best = "python"
         walls.append(predicted_wall_s(best, name, n, options[best]))
         names.append(best)
         loads.append(options[best])

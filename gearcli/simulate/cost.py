@@ -115,7 +115,6 @@ MIN_LOAD_S = 0.15  # s: numba's import alone
 #: stays on scipy, the reference implementation, unless the compiled engine is predicted to save at least this
 #: (the conveyor's Radau: ~9 s; the example scenes' Radau runs: 0.03-0.2 s, whose recorded numbers then stay)
 REFERENCE_KEEP_S = 0.5
-KEEP = "keep_reference_s"  # the key of an engine-options entry that carries REFERENCE_KEEP_S (gearcli.engine.options)
 
 # -------------------------------------------------------------------------------------- the run's pace
 #: a run whose measured wall time exceeds its prediction this many times (and PACE_MIN_S) says so

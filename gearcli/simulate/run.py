@@ -147,10 +147,13 @@ def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> flo
     """The wall time past which an ``auto`` run on scipy goes on on the compiled engine instead (its pace
     projected over ``PACE_SWITCH_FACTOR`` times its prediction and over the compiled engine's, load included),
     or None when no switch is possible (another engine requested, numba missing or not compiled yet, an
-    unsupported scene)."""
+    unsupported scene) or sound: only DOP853 and RK45 switch, whose compiled runs take scipy's steps, so that
+    the switch changes no number."""
     from gearcli import engine
 
     if eng.requested != "auto" or eng.engine != "python" or eng.unsupported or not engine.available():
+        return None
+    if choice.method not in engine.BIT_IDENTICAL:  # a switch must not change a number: DOP853 and RK45 only
         return None
     if not getattr(model, "generated", True) or engine.unsupported(model.arrays, choice.method):
         return None
