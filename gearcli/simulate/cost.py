@@ -117,11 +117,12 @@ MIN_LOAD_S = 0.15  # s: numba's import alone
 REFERENCE_KEEP_S = 0.5
 
 # -------------------------------------------------------------------------------------- the run's pace
-#: a run whose measured wall time exceeds its prediction this many times (and PACE_MIN_S) says so
+#: a run whose evaluations exceed the prediction this many times (and whose priced time exceeds PACE_MIN_S) says
+#: so (counters, not the wall clock, so that the warning does not depend on the machine's load)
 PACE_WARN_FACTOR = 5.0
 PACE_MIN_S = 1.0
-#: auto's method is given up for the other one when, after PACE_SWITCH_AFTER_S of priced work, its pace
-#: projects the run to over PACE_SWITCH_FACTOR times the other method's prediction
+#: an auto DOP853/RK45 run on scipy goes on on the compiled engine (the same steps) when, after
+#: PACE_SWITCH_AFTER_S of priced work, its pace projects the run to over PACE_SWITCH_FACTOR times its prediction
 PACE_SWITCH_FACTOR = 4.0
 PACE_SWITCH_AFTER_S = 2.0
 

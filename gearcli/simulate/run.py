@@ -144,8 +144,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
 
 def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> float | None:
-    """The wall time past which an ``auto`` run on scipy goes on on the compiled engine instead (its pace
-    projected over ``PACE_SWITCH_FACTOR`` times its prediction and over the compiled engine's, load included),
+    """The priced work past which an ``auto`` run on scipy goes on on the compiled engine instead (its pace, in
+    the priced work of its counters, projected over ``PACE_SWITCH_FACTOR`` times its prediction: deterministic),
     or None when no switch is possible (another engine requested, numba missing or not compiled yet, an
     unsupported scene) or sound: only DOP853 and RK45 switch, whose compiled runs take scipy's steps, so that
     the switch changes no number."""
@@ -157,27 +157,25 @@ def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> flo
         return None
     if not getattr(model, "generated", True) or engine.unsupported(model.arrays, choice.method):
         return None
-    load = engine.load_share_s()
-    if load >= cost.COMPILE_S:  # never into a compilation
+    if engine.load_share_s() >= cost.COMPILE_S:  # never into a compilation
         return None
-    n = predicted_nfev(choice)
-    return max(cost.PACE_SWITCH_FACTOR * cost.predicted_wall_s("python", choice.method, n),
-               cost.predicted_wall_s("compiled", choice.method, n, load))
+    return cost.PACE_SWITCH_FACTOR * cost.predicted_wall_s("python", choice.method, predicted_nfev(choice))
 
 
 def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
-    """A run far slower than the cost model predicted for its method on its engine says so, with both figures."""
+    """A run whose evaluations far exceed what the cost model predicted for its method says so, with both figures
+    (counters, not the wall clock: the same warning on a busy machine and a quiet one)."""
     if run.method not in (EXPLICIT_METHOD, IMPLICIT_METHOD):
         return []
     n = predicted_nfev(choice)
-    predicted = cost.predicted_wall_s(run.engine, run.method, n)
-    if run.wall_s < cost.PACE_MIN_S or run.wall_s < cost.PACE_WARN_FACTOR * predicted:
+    took = cost.predicted_wall_s(run.engine, run.method, run.nfev)
+    if took < cost.PACE_MIN_S or run.nfev < cost.PACE_WARN_FACTOR * n:
         return []
-    return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.wall_s:.3g} s, "
-                       f"{run.wall_s / predicted:.2g}x the ~{predicted:.2g} s the cost model predicted "
-                       f"({run.nfev} evaluations against {n:.2g} predicted); method = \"auto\" may have chosen "
+    return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
+                       f"{run.nfev / n:.2g}x the {n:.2g} the cost model predicted (~{took:.2g} s against "
+                       f"~{cost.predicted_wall_s(run.engine, run.method, n):.2g} s); method = \"auto\" may have chosen "
                        "the slower method here (README, \"Choosing the method: auto\")",
-                       wall_s=run.wall_s, predicted_s=predicted, nfev=run.nfev, predicted_nfev=n)]
+                       nfev=run.nfev, predicted_nfev=n)]
 
 
 def predicted_nfev(choice: Choice) -> float:

@@ -123,8 +123,9 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     "compiled" runs :mod:`gearcli.engine` (DOP853, RK45, Radau; from ``t0`` too; the caller checks
     :func:`gearcli.engine.unsupported` first), "python" scipy's solvers.
 
-    ``pace_limit_s`` (Python engine): once the run has taken ``cost.PACE_SWITCH_AFTER_S`` of wall time, a pace
-    that projects the whole run over this many seconds stops it with ``STATUS_SWITCH`` (the caller goes on on
+    ``pace_limit_s`` (Python engine): once the run has used ``cost.PACE_SWITCH_AFTER_S`` of priced work
+    (:func:`gearcli.simulate.cost.priced_work_s`), a pace that projects the whole run over this many priced
+    seconds stops it with ``STATUS_SWITCH`` (the caller goes on on
     the compiled engine). ``progress``: called with the fraction of the run done, every few hundred steps (a
     terminal's progress bar; never printed here).
     """
@@ -146,7 +147,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
                                          (0.0, float(t_eval[-1])), METHODS[method].implicit,
-                                         _Pace(start, float(t0), float(t_eval[-1]), pace_limit_s, progress))
+                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress))
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
@@ -158,23 +159,23 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
 
 @dataclass(frozen=True)
 class _Pace:
-    """The run's wall clock against its pace limit, and its progress callback."""
-    start: float  # perf_counter at the run's start
+    """The run's pace limit (priced work) and its progress callback."""
     t0: float
     t_end: float
     limit_s: float | None
     progress: Callable[[float], None] | None
 
-    def check(self, t: float) -> tuple[int, str] | None:
+    def check(self, t: float, work_s: float) -> tuple[int, str] | None:
+        """Report progress; stop for the switch when the priced work ``work_s`` (deterministic, unlike the wall
+        clock) projects the run over the limit."""
         done = (t - self.t0) / (self.t_end - self.t0) if self.t_end > self.t0 else 1.0
         if self.progress is not None:
             self.progress(done)
         if self.limit_s is None:
             return None
-        wall = time.perf_counter() - self.start
-        if wall > cost.PACE_SWITCH_AFTER_S and done > 0 and wall / done > self.limit_s:
-            return STATUS_SWITCH, (f"at its pace on scipy ({100 * done:.2g} % after {wall:.2g} s) the run would take "
-                                   f"~{wall / done:.2g} s, over {self.limit_s:.2g} s")
+        if work_s > cost.PACE_SWITCH_AFTER_S and done > 0 and work_s / done > self.limit_s:
+            return STATUS_SWITCH, (f"at its pace on scipy ({100 * done:.2g} % after ~{work_s:.2g} s of priced work) "
+                                   f"the run would take ~{work_s / done:.2g} s, over {self.limit_s:.2g} s")
         return None
 
 
@@ -207,7 +208,7 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
             stop = _budget_stop(nfev, njev, nlu, count.steps, implicit, float(solver.t), span)
             if stop is None and pace is not None:
-                stop = pace.check(float(solver.t))
+                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit))
             if stop is not None:
                 return (*stop, done)
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
