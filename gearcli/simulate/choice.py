@@ -184,15 +184,17 @@ def excited_radians(spec: ModelSpec, lay: Layout, duration_s: float) -> float:
 
 
 def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float = 0.0, rtol: float = 1e-6,
-                    engines: dict[str, dict[str, float]] | None = None) -> tuple[tuple[float, float],
+                    engines: dict[str, dict[str, float]] | None = None,
+                    work_factor: float = 1.0) -> tuple[tuple[float, float],
                                                                              tuple[float, float], tuple[str, str],
                                                                              tuple[float, float]]:
     """((DOP853, Radau) evaluations, (DOP853, Radau) predicted wall seconds, the engine each is priced on, and
     the part of each wall time that is loading the engine). ``engines``: per method, the engines that may run
-    it and what loading each still costs this process (default: Python only)."""
+    it and what loading each still costs this process (default: Python only); ``work_factor``: the integrations
+    of the whole run over the run's own (its check pass, ``cost.CHECK_PASS_WORK``), weighed against the load."""
     nfev = predicted_evaluations(indicator, vibration_rad, excited_rad, rtol)
     walls, names, loads = [], [], []
-    for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), nfev, strict=True):
+    for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), (x * work_factor for x in nfev), strict=True):
         options = (engines or {}).get(name) or {"python": 0.0}
         best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e]))
         walls.append(predicted_wall_s(best, name, n, options[best]))
@@ -202,7 +204,7 @@ def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float =
 
 
 def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6,
-                  engines: dict[str, dict[str, float]] | None = None) -> Choice:
+                  engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0) -> Choice:
     """The method to run and why (``requested`` other than "auto" is kept, with the indicator). ``engines``:
     per method, the engines that may run it and their remaining load cost (:func:`predicted_costs`;
     :func:`gearcli.engine.options`)."""
@@ -218,7 +220,7 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     lin = op if bool(np.any(full.stiffness == 0.0)) else full
     vib = vibration_radians(spec, lay, lin, duration_s, rtol)
     exc = excited_radians(spec, lay, duration_s)
-    nfev, walls, on, loads = predicted_costs(indicator, vib, exc, rtol, engines)
+    nfev, walls, on, loads = predicted_costs(indicator, vib, exc, rtol, engines, work_factor)
     summary = f"max|λ|·T = {indicator:.3g}"
     costs = (f"predicted DOP853 {nfev[0]:.2g} evaluations ~{walls[0]:.2g} s ({on[0]}), Radau {nfev[1]:.2g} "
              f"~{walls[1]:.2g} s ({on[1]})")

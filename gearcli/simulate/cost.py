@@ -111,10 +111,13 @@ def predicted_evaluations(indicator: float, vibration_rad: float, excited_rad: f
 COMPILE_S = 60.0  # s: compiling the kernel when nothing is cached (measured 45-70 s on the 2-core machine)
 DEFAULT_LOAD_S = 0.6  # s: numba import + cache load on the 2-core reference machine, before any measurement
 MIN_LOAD_S = 0.15  # s: numba's import alone
+#: a run with its error estimate integrates the scene again (the check pass of gearcli.simulate.estimate): the
+#: whole run's work over the run's own (the seed: 1.82x the evaluations), what the engine's load is weighed against
+CHECK_PASS_WORK = 1.8
 #: a one-shot run of a method the compiled engine reproduces to the tolerance but not step for step (Radau)
 #: stays on scipy, the reference implementation, unless the compiled engine is predicted to save at least this
 #: (the conveyor's Radau: ~9 s; the example scenes' Radau runs: 0.03-0.2 s, whose recorded numbers then stay)
-REFERENCE_KEEP_S = 0.5
+REFERENCE_KEEP_S = 1.0
 
 # -------------------------------------------------------------------------------------- the run's pace
 #: a run whose evaluations exceed the prediction this many times (and whose priced time exceeds PACE_MIN_S) says

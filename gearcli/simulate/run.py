@@ -91,11 +91,12 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     prior = list(prior_diagnostics or [])
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
     candidates = engine_options(engine, model.arrays, (EXPLICIT_METHOD, IMPLICIT_METHOD), replaced)
-    choice = choose_method(spec, duration_s, method, rtol, candidates)
+    work = cost.CHECK_PASS_WORK if error_estimate and steady == "window" else 1.0  # the check pass integrates again
+    choice = choose_method(spec, duration_s, method, rtol, candidates, work)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
-    eng = choose_engine(engine, model.arrays, choice.method, predicted_nfev(choice), replaced)
+    eng = choose_engine(engine, model.arrays, choice.method, work * predicted_nfev(choice), replaced)
     eng = _loadable(eng)
     fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
