@@ -1,35 +1,49 @@
-"""``method = "auto"`` against both of its methods on every scene (README "Accuracy", "auto").
+"""``method = "auto"`` against the faster of DOP853 and Radau on every scene, as a user runs it (README "Choosing
+the method: auto").
 
-    PYTHONPATH=$PWD python benchmarks/bench_auto.py [--only NAME ...] [--json FILE]
+    PYTHONPATH=$PWD python benchmarks/bench_auto.py [--only NAME ...] [--repeat 3] [--json FILE] [--markdown]
 
-For every scene of configs/ and configs/extreme/ (and the seed at duration 10 s, the case of issue 10),
-DOP853 and Radau run at the file's rtol (no error estimate, same samples; an evaluation budget of 3e6, a
-run beyond it counts as "budget"), integration wall time (median of 3) and nfev/njev/nlu. "auto" runs
-exactly the method it chooses (:func:`gearcli.simulate.choice.choose_method`), so its cost is that
-method's; the ratio is auto's wall over the better method's (target: <= 1.3). Also the cost model's
-inputs: microseconds per right-hand side, per Jacobian and per LU pair of the scene, measured here.
+For every scene (configs/, the seed at 10 s, configs/extreme/, the excitation scenes of
+benchmarks/bench_excitation.py; the conveyor is configs/conveyor.toml) three whole processes,
+``gearcli simulate FILE --format json -q`` with ``simulation.method`` = auto, DOP853 and Radau (engine auto each,
+so the compiled engine where it is installed), run in turn ``--repeat`` times (interleaved: the load of a shared
+machine hits the three alike), the fastest wall time of each (on a machine shared with other jobs the minimum is
+the figure least disturbed by them; a median of few runs moves with every burst of load). Reported: the method and engine auto took, the three
+times, auto's ratio to the faster of the other two and the acceptance limit ``1.3 x best + 0.3 s``, and the
+largest difference of auto's window-mean tangential force from the faster method's, relative to the stage's
+static tangential force (acceptance: 1e-4). A method that fails or is refused on a scene is marked so and left
+out of "best".
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import statistics
+import os
+import subprocess
 import sys
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
-from gearcli.config import load_design  # noqa: E402
-from gearcli.design import compute_design  # noqa: E402
-from gearcli.errors import SimulationError  # noqa: E402
-from gearcli.scene import spec_from_design  # noqa: E402
-from gearcli.simulate import run_simulation  # noqa: E402
-from gearcli.simulate.choice import choose_method, unit_costs  # noqa: E402
+METHODS = ("auto", "DOP853", "Radau")
+LIMIT_FACTOR, LIMIT_PLUS_S, MEAN_TOL = 1.3, 0.3, 1e-4
 
-BUDGET = 3_000_000
-REPEAT = 3
+
+def excitation_scenes():
+    """benchmarks/bench_excitation.py's scenes: the spur oscillator with a transmission error, 300 mesh periods
+    below, at and above its mesh resonance."""
+    from bench_excitation import PERIODS, SCENE, SPEEDS_RPM
+
+    out = []
+    for rpm in SPEEDS_RPM:
+        duration = PERIODS * 60.0 / (25 * rpm)
+        out.append((f"excitation/spur_te @ {rpm:g} rpm", SCENE,
+                    [f"input.speed_rpm={rpm}", f"simulation.duration_s={duration!r}", f"simulation.steps={PERIODS * 20}"]))
+    return out
 
 
 def scenes():
@@ -37,64 +51,97 @@ def scenes():
     out = [(f"{p.parent.name}/{p.stem}", p, []) for p in sorted((ROOT / "configs").glob("*.toml"))]
     out.append(("configs/concrete_mixer @ 10 s", seed, ["simulation.duration_s=10", "simulation.steps=40000"]))
     out += [(f"{p.parent.name}/{p.stem}", p, []) for p in sorted((ROOT / "configs" / "extreme").glob("*.toml"))]
+    return out + excitation_scenes()
+
+
+def gearcli() -> list[str]:
+    script = Path(sys.executable).with_name("gearcli")
+    return [str(script)] if script.exists() else [sys.executable, "-m", "gearcli"]
+
+
+def run(cmd: list[str]) -> tuple[float, dict | None]:
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    if proc.returncode != 0:
+        return wall, None
+    return wall, json.loads(proc.stdout)
+
+
+def static_forces(path: Path, sets: list[str]) -> list[float]:
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+
+    cfg = load_design(str(path), sets).design
+    return [abs(st.static_force_N.tangential) for st in compute_design(cfg).stages]
+
+
+def row(name: str, path: Path, sets: list[str], repeat: int) -> dict:
+    base = [*gearcli(), "simulate", str(path), "--format", "json", "-q"] + [a for s in sets for a in ("--set", s)]
+    walls: dict[str, list[float]] = {m: [] for m in METHODS}
+    docs: dict[str, dict | None] = {}
+    for _ in range(repeat):
+        for m in METHODS:
+            wall, doc = run([*base, "--set", f"simulation.method={m}"])
+            walls[m].append(wall)
+            docs[m] = doc
+    med = {m: min(w) for m, w in walls.items()}  # the least disturbed of the interleaved runs
+    ok = {m: docs[m] is not None for m in METHODS}
+    others = [m for m in ("DOP853", "Radau") if ok[m]]
+    best = min(others, key=lambda m: med[m]) if others else None
+    out = {"scene": name, "wall_s": med, "ok": ok, "best": best}
+    auto = docs["auto"]
+    if auto is not None:
+        out["auto_method"] = f"{auto['solver']['method']} ({auto['solver'].get('engine', 'python')})"
+    if auto is not None and best is not None:
+        ref = docs[best]
+        assert ref is not None
+        static = static_forces(path, sets)
+        diffs = [abs(a["tangential_N"]["mean"] - b["tangential_N"]["mean"]) / max(s, 1e-30)
+                 for a, b, s in zip(auto["summary"]["stages"], ref["summary"]["stages"], static, strict=True)]
+        out["mean_diff"] = max(diffs)
+        out["ratio"] = med["auto"] / med[best]
+        out["limit_s"] = LIMIT_FACTOR * med[best] + LIMIT_PLUS_S
+        out["pass"] = med["auto"] <= out["limit_s"] and out["mean_diff"] <= MEAN_TOL
     return out
 
 
-def timed(cfg, design, method: str) -> dict:
-    walls = []
-    for _ in range(REPEAT):
-        try:
-            sim = run_simulation(cfg, design, method=method, want_series=False, max_nfev=BUDGET, error_estimate=False)
-        except SimulationError as exc:
-            return {"failed": str(exc)[:80]}
-        walls.append(sim.solver.wall_s)
-        if sim.solver.wall_s > 5.0:  # one run of a slow case is enough
-            break
-    s = sim.solver
-    return {"wall_s": statistics.median(walls), "nfev": s.nfev, "njev": s.njev, "nlu": s.nlu, "steps": s.steps}
+def cell(r: dict, m: str) -> str:
+    return f"{r['wall_s'][m]:.2f}" if r["ok"][m] else "refused/failed"
 
 
-def row(name: str, path: Path, overrides: list[str]) -> dict:
-    cfg = load_design(str(path), overrides).design
-    design = compute_design(cfg)
-    spec = spec_from_design(cfg, design)
-    choice = choose_method(spec, cfg.simulation.duration_s, "auto", cfg.simulation.rtol)
-    d, r = timed(cfg, design, "DOP853"), timed(cfg, design, "Radau")
-    walls = {m: x["wall_s"] for m, x in (("DOP853", d), ("Radau", r)) if "wall_s" in x}
-    best = min(walls.values()) if walls else float("nan")
-    auto = walls.get(choice.method, float("inf"))
-    return {"scene": name, "indicator": choice.indicator, "vibration_rad": choice.vibration_rad,
-            "predicted": list(choice.predicted_evals), "auto": choice.method, "reason": choice.reason,
-            "DOP853": d, "Radau": r, "ratio": auto / best, "unit_costs_us": unit_costs(spec)}
-
-
-def us_per_eval(x: dict) -> str:
-    return f"{1e6 * x['wall_s'] / x['nfev']:.0f}" if "wall_s" in x else "–"
-
-
-def cell(x: dict) -> str:
-    return "budget/failed" if "wall_s" not in x else f"{x['wall_s']:.3f} s, {x['nfev']} fev"
+def line(r: dict) -> str:
+    if "ratio" not in r:
+        return f"| {r['scene']} | {r.get('auto_method', 'failed')} | {cell(r, 'auto')} | {cell(r, 'DOP853')} | " \
+               f"{cell(r, 'Radau')} | – | – | – |"
+    return (f"| {r['scene']} | {r['auto_method']} | {cell(r, 'auto')} | {cell(r, 'DOP853')} | {cell(r, 'Radau')} | "
+            f"{r['ratio']:.2f} | {r['mean_diff']:.1e} | {'yes' if r['pass'] else '**no**'} |")
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--only", nargs="*", default=None)
+    ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--json", default=None)
     args = ap.parse_args()
+    print(f"fastest of {args.repeat} interleaved whole-process runs of `gearcli simulate FILE --format json -q` "
+          "(engine auto), wall s")
+    print("| scene | auto took | auto | DOP853 | Radau | auto / best | Δ mean F_t / static | within 1.3x + 0.3 s, "
+          "1e-4 |")
+    print("|---|---|---|---|---|---|---|---|")
     rows = []
-    print("| scene | max\\|λ\\|·T | P [rad] | predicted DOP853 / Radau | DOP853 | Radau | µs/eval D / R "
-          "| auto | auto / better |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for name, path, ov in scenes():
+    for name, path, sets in scenes():
         if args.only and not any(o in name for o in args.only):
             continue
-        r = row(name, path, ov)
+        r = row(name, path, sets, args.repeat)
         rows.append(r)
-        print(f"| {name} | {r['indicator']:.3g} | {r['vibration_rad']:.3g} | {r['predicted'][0]:.3g} / "
-              f"{r['predicted'][1]:.3g} | {cell(r['DOP853'])} | {cell(r['Radau'])} | {us_per_eval(r['DOP853'])} / "
-              f"{us_per_eval(r['Radau'])} | {r['auto']} | {r['ratio']:.2f} |", flush=True)
-    if args.json:
-        Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+        print(line(r), flush=True)
+        if args.json:
+            Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+    judged = [r for r in rows if "pass" in r]
+    print(f"\n{sum(r['pass'] for r in judged)} of {len(judged)} scenes within the acceptance "
+          f"(auto <= 1.3 x best + 0.3 s, window means within 1e-4 of the static force)")
 
 
 if __name__ == "__main__":

@@ -210,17 +210,6 @@ def emit_as(fmt: str, dest: Destination, result, *, sha256: str, json_doc: Calla
         emit_tables(getattr(tables, table_builder)(result), dest)
 
 
-def collector_on() -> None:
-    """The console script starts with the cyclic garbage collector off (:mod:`gearcli.__main__`): freeze what the
-    start-up imports built (never walked again) and turn the collector on for the command's work. A no-op when
-    the collector is on (gearcli used as a library, tests)."""
-    import gc
-
-    if not gc.isenabled():
-        gc.freeze()
-        gc.enable()
-
-
 def warn(lines) -> None:
     """Warnings on stderr, one line each, control characters escaped; nothing with ``-q``."""
     if is_quiet():
@@ -309,12 +298,13 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
     warn(design_result.warnings)
     from gearcli.io import serialize
-    from gearcli.simulate import background, run_simulation
+    from gearcli.io.progress import TerminalProgress
+    from gearcli.simulate import run_simulation
 
-    background.allow()  # the console script's one-shot run: its check pass may take a second core
-    collector_on()
     try:
-        result = run_simulation(loaded.design, design_result, want_series=True)  # the window statistics need them
+        with TerminalProgress("simulate", enabled=not is_quiet()) as progress:  # a long run on a terminal
+            result = run_simulation(loaded.design, design_result, want_series=True,  # the statistics need them
+                                    progress=progress.fraction)
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
     except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
@@ -451,34 +441,6 @@ def _finite_accuracy(ctx, param, value: float) -> float:
     return value
 
 
-class _StderrProgress:
-    """A rich progress bar on stderr when it is a terminal; a silent no-op otherwise."""
-
-    def __init__(self) -> None:
-        from typing import Any
-
-        self.bar: Any = None
-
-    def __enter__(self):
-        if sys.stderr.isatty() and not is_quiet():
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-            self.bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
-                                TimeElapsedColumn(), console=Console(stderr=True), transient=True)
-            self.bar.__enter__()
-            self.task = self.bar.add_task("report", total=None)
-        return self
-
-    def __call__(self, label: str, done: int, total: int) -> None:
-        if self.bar is not None:
-            self.bar.update(self.task, description=label, completed=done, total=total)
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.__exit__(*exc)
-
-
 @cli.command(epilog="""\b
 Examples:
   gearcli report mixer.toml -o report.md
@@ -518,8 +480,9 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     check_report_budget(loaded.design, design_result, source=loaded.source)
     warn(design_result.warnings)
     fmt = target.fmt
-    collector_on()
-    with _StderrProgress() as progress:
+    from gearcli.io.progress import TerminalProgress
+
+    with TerminalProgress("report", enabled=not is_quiet()) as progress:
         try:
             rep = api.report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
                              progress=progress)
@@ -611,7 +574,6 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
     from gearcli.api import run_sweep as run
     from gearcli.io.sweep_progress import SweepProgress
 
-    collector_on()
     target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work
     if plots_dir:
         _check_sweep_plots_dir(plots_dir, file, target, vary)
@@ -693,8 +655,9 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
                                       [file, target.path], "--plots")
     session = prepare(file, overrides, series=series, classes=classes)
     warn(session.design.warnings)
-    collector_on()
-    with _StderrProgress() as progress:
+    from gearcli.io.progress import TerminalProgress
+
+    with TerminalProgress("life", enabled=not is_quiet()) as progress:
         result = compute_life(session.scene, session.points, route="static" if static else "dynamic",
                               variant=miner, progress=progress)
     emit_as(target.fmt, target, result, sha256=session.loaded.sha256, json_doc=lambda: life_dict(result),

@@ -28,6 +28,7 @@ STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"
 ENGINE_FALLBACK = "engine_fallback"
+SLOW_PACE = "slow_pace"  # a run far slower than auto's cost model predicted (or switched engine for it)
 STATISTICS_UNRESOLVED = "statistics_unresolved"
 DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap

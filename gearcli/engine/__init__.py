@@ -2,8 +2,8 @@
 
 ``[simulation] engine``: ``python`` is scipy's integrators around the generated right-hand side
 (:mod:`gearcli.simulate.solver`); ``compiled`` runs :mod:`gearcli.engine.kernel`, which reads the model as
-arrays (:class:`gearcli.model.ModelArrays`) and takes exactly scipy's DOP853 steps; ``auto`` picks per run
-(:func:`gearcli.engine.choose`).
+arrays (:class:`gearcli.model.ModelArrays`): DOP853 and RK45 take exactly scipy's steps, Radau scipy's
+algorithm (its results agree with scipy's to the tolerance); ``auto`` picks per run (:func:`gearcli.engine.choose`).
 
 What the kernel supports is listed in :data:`SUPPORTED`; :func:`unsupported` names every feature of a scene
 outside it, and such a scene runs on the Python engine with that reason in ``solver.engine_reason``
@@ -39,7 +39,8 @@ from gearcli.model import elements
 ENGINES = ("auto", "python", "compiled")
 COMPILED_METHODS = tuple(n for n, m in METHODS.items() if "compiled" in m.engines)  # the registry's word
 # take scipy's steps bit for bit (RK45's samples agree to the last bits: its interpolant is summed in a loop);
-# Radau's LU differs from LAPACK's in the last bit, and its steps part after a while
+# Radau's LU differs from LAPACK's in the last bit, and its steps part after a while (tests of the port; what a
+# user is promised is agreement to the tolerance)
 BIT_IDENTICAL = ("DOP853", "RK45")
 INSTALL_HINT = "pip install 'gearcli[fast]'"
 SUPPORTED = (
@@ -64,7 +65,7 @@ _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_levers", "con
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
                  "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol",
                  "motor_row", "load_law"}
-_SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "model/elements/__init__.py",
+_SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "engine/status.py", "model/elements/__init__.py",
             "model/elements/torque.py", "model/elements/machine.py", "model/contact_lines.py")  # + every compiled element's module (_source_key)
 
 _state: dict = {}
@@ -252,15 +253,14 @@ def expected_load_s() -> float:
     cached, a compilation's when not."""
     if "loaded" in _state:
         return 0.0
+    from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S
+
     if not (cache_dir() / "ready.json").exists():
-        return 60.0
+        return COMPILE_S
     try:
         return float(json.loads((cache_root() / "load_time.json").read_text())["load_s"])
     except (OSError, ValueError, KeyError, TypeError):
         return DEFAULT_LOAD_S
-
-
-DEFAULT_LOAD_S = 0.6  # s: numba import + cache load on the 2-core reference machine, before any measurement
 
 
 def _tiny_model():
@@ -338,16 +338,7 @@ def _acting_on(bodies: np.ndarray, n_bodies: int) -> tuple[np.ndarray, np.ndarra
 
 
 # ------------------------------------------------------------------------------------------- auto
-# What a run costs on either engine, measured on the 2-core reference machine (benchmarks/bench_engine.py):
-# scipy's DOP853 around the generated right-hand side spends ~10 µs per evaluation (the seed: 5407
-# evaluations in 55 ms), the compiled loop ~0.3 µs. DOP853's evaluations follow the stiffness indicator
-# max|λ|·T: 4.2 to 31 per unit on the example scenes (the seed: 6.0); auto takes the low end, so that an
-# underestimate can only keep a run on the Python engine, never make it slower.
-PYTHON_S_PER_EVAL = 10e-6
-MIN_LOAD_S = 0.15  # s: numba's import alone, on the reference machine
-COMPILED_S_PER_EVAL = 0.3e-6
-EVALS_PER_UNIT_LOW = 4.0
-
+# What a run costs on either engine: gearcli.core.cost (one price per evaluation and engine, measured).
 _runs = {"expected": 1, "active": 0}
 
 
@@ -360,9 +351,7 @@ def expect_runs(n: int) -> None:
 
 @contextmanager
 def batch(n: int) -> Iterator[None]:
-    """A batch of about ``n`` runs (a report's ladder, a sweep task): announced to ``auto`` (:func:`expect_runs`),
-    and inside it ``auto`` may also take the compiled methods that agree with scipy to the tolerance rather than
-    to the bit (Radau). Outside any batch a run gives scipy's numbers whatever is installed."""
+    """A batch of about ``n`` runs (a report's ladder, a sweep task), announced to ``auto`` (:func:`expect_runs`)."""
     expect_runs(n)
     _runs["active"] += 1
     try:
@@ -371,9 +360,25 @@ def batch(n: int) -> Iterator[None]:
         _runs["active"] -= 1
 
 
-def estimate_nfev(indicator: float, rtol: float) -> float:
-    """A low estimate of DOP853's evaluations for a scene of stiffness indicator max|λ|·T."""
-    return EVALS_PER_UNIT_LOW * max(indicator, 1.0) * max(1.0, (1e-6 / rtol) ** 0.2)
+def load_share_s() -> float:
+    """What loading the compiled engine still costs each announced run of this process (0 once loaded)."""
+    return expected_load_s() / _runs["expected"]
+
+
+def options(requested: str, arrays, methods: tuple[str, ...], also: tuple[str, ...] = ()) -> dict[str, dict[str, float]]:
+    """Per method, the engines that may run it under ``requested`` and what loading each still costs this
+    process: what ``auto``'s method choice prices (:func:`gearcli.simulate.choice.predicted_costs`). The method is
+    chosen at the compiled engine's prices wherever it may run; :func:`choose` may still keep a short one-shot
+    Radau run on scipy (``REFERENCE_KEEP_S``), so that the choice of the method does not depend on whether this
+    process happens to have loaded the kernel."""
+    out: dict[str, dict[str, float]] = {}
+    compiled_ok = requested != "python" and available()
+    for m in methods:
+        opts = {"python": 0.0} if requested != "compiled" else {}
+        if compiled_ok and not unsupported(arrays, m) and not also:
+            opts["compiled"] = load_share_s()
+        out[m] = opts or {"python": 0.0}
+    return out
 
 
 @dataclass(frozen=True)
@@ -389,14 +394,15 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
     (a usage error naming the extra); a scene the kernel does not support (or with the caller's reasons
     ``also``) runs on Python with the reason.
 
-    ``auto`` takes the compiled engine when it is installed, supports the scene, and is expected to be
-    faster including what loading it still costs this process (numba import and cache load, measured on
-    the last load; nothing once loaded; a full compilation when nothing is cached, so that a one-shot run
-    never waits for the compiler), that load cost shared by the runs announced with :func:`expect_runs`:
-    compiled when ``load / runs + nfev x 0.3 µs < nfev x 10 µs``. A method the kernel does not reproduce
-    bit for bit (Radau) is taken by ``auto`` only inside a :func:`batch` (a report's ladder, a sweep task), so
-    a one-shot ``simulate`` gives scipy's numbers whatever is installed.
+    ``auto`` takes the compiled engine for every method it has (Radau included, one-shot runs too: its results
+    agree with scipy's to the tolerance; a one-shot run of such a method only when it saves at least
+    ``REFERENCE_KEEP_S``, else scipy's reference numbers) when it is installed, supports the scene, and is predicted faster
+    including what loading it still costs this process (numba import and cache load, measured on the last
+    load; nothing once loaded; a full compilation when nothing is cached, so that a one-shot run never waits
+    for the compiler), that load shared by the runs announced with :func:`expect_runs`. The prices:
+    :mod:`gearcli.core.cost`.
     """
+    from gearcli.core.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
     from gearcli.errors import ConfigError
 
     if requested == "python":
@@ -412,15 +418,16 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
         return EngineChoice("compiled", requested, "as requested")
     if not have:
         return EngineChoice("python", requested, f"numba is not installed ({INSTALL_HINT} for the compiled engine)")
-    python_s = nfev_estimate * PYTHON_S_PER_EVAL
+    python_s = predicted_wall_s("python", method, nfev_estimate)
     if "loaded" not in _state and python_s < MIN_LOAD_S / _runs["expected"]:  # not worth even a look at the cache
         return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations take ~{python_s:.2g} s in Python, "
                             f"less than importing numba alone (~{MIN_LOAD_S:g} s)")
-    if method not in BIT_IDENTICAL and _runs["active"] == 0:
-        return EngineChoice("python", requested, f"a one-shot {method} run stays on scipy: the compiled {method} agrees "
-                            "with it to the tolerance, not to the bit (auto uses it for reports and sweeps)")
-    load_s = expected_load_s() / _runs["expected"]
-    compiled_s = load_s + nfev_estimate * COMPILED_S_PER_EVAL
+    load_s = load_share_s()
+    compiled_s = predicted_wall_s("compiled", method, nfev_estimate, load_s)
+    if method not in BIT_IDENTICAL and _runs["active"] == 0 and python_s - compiled_s < REFERENCE_KEEP_S:
+        return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations: the compiled {method} (which "
+                            f"agrees with scipy to the tolerance, not step for step) would save less than "
+                            f"{REFERENCE_KEEP_S:g} s of ~{python_s:.2g} s: scipy's, the reference")
     if compiled_s < python_s:
         return EngineChoice("compiled", requested, f"~{nfev_estimate:.2g} evaluations: ~{compiled_s:.2g} s compiled "
                             f"(load included) against ~{python_s:.2g} s in Python")

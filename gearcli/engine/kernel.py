@@ -12,13 +12,16 @@ mesh needs, each connector's force from its element law, the net torque on each 
 work quadratures. The element laws are those of :mod:`gearcli.model.elements`, compiled from their own
 code (:func:`_jit_module`), never rewritten here.
 
-Integrator. ``scipy.integrate.DOP853`` (scipy/integrate/_ivp/rk.py and common.py) transcribed: the initial
-step of ``select_initial_step``, the stage sums, the combined 5th/3rd-order error norm, SAFETY 0.9,
+Integrators. One explicit Runge-Kutta driver (:func:`rk_run`) reads its method as data, the tableau of
+:mod:`gearcli.engine.tableau` (DOP853, RK45): ``scipy.integrate``'s ``RungeKutta`` loop transcribed: the initial
+step of ``select_initial_step``, the stage sums, the error norm (DOP853's combined 5th/3rd-order one), SAFETY 0.9,
 MIN_FACTOR 0.2, MAX_FACTOR 10, the rejected-step rule (no growth right after a rejection), the minimum step
-``10 ulp(t)``, the clamp at ``t_bound``, and the 7th-order dense output (three extra stages, counted in nfev
-as scipy counts them) at the requested samples. The run is integrated in segments between the ramp ends,
-with a fresh solver (and initial step) at each, as :mod:`gearcli.simulate.solver` does. Guards as there:
-non-finite state once per accepted step, the evaluation budget, the energy watch every ``every`` steps.
+``10 ulp(t)``, the clamp at ``t_bound``, and the dense output (DOP853's three extra stages, counted in nfev as
+scipy counts them) at the requested samples. :func:`radau` is scipy's Radau IIA. The run is integrated in segments
+between the ramp ends, with a fresh solver (and initial step) at each, as :mod:`gearcli.simulate.solver` does.
+After every accepted step both drivers call the same helpers (:func:`step_accepted`, :func:`guards`): trace, non-finite
+state, the samples due, the evaluation budget, the priced work budget with its projection (``RunTooLong``), the
+energy watch. Status codes: :mod:`gearcli.engine.status`.
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ import numpy as np
 from gearcli import engine as _engine
 from gearcli.engine import blas as _blas
 from gearcli.engine import dispatch as _dispatch
+from gearcli.engine import status as st
 from gearcli.engine import tableau as tb
 from gearcli.model.elements import KIND_MESH
 from gearcli.model.elements import machine as _machine_mod
@@ -39,7 +43,8 @@ from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import torque as _torque_mod
 
 jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
-STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
+STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
+STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED
 
 # the element laws, dispatched by kind: generated from the registry (gearcli.engine.dispatch)
 _D = _dispatch.build(_engine.cache_dir())
@@ -55,21 +60,15 @@ motor_torque, load_factor = _MACHINE["motor_torque"], _MACHINE["load_factor"]
 mesh_loss_factors = _D._mesh_loss_factors  # a lossy mesh's two side forces (the registry compiled the mesh law)
 I_ETA = _mesh_mod.I_ETA
 
-# DOP853 (scipy's class attributes)
-N_STAGES = tb.N_STAGES
-A = np.ascontiguousarray(tb.A[:N_STAGES, :N_STAGES])
-B = np.ascontiguousarray(tb.B)
-C = np.ascontiguousarray(tb.C[:N_STAGES])
-E3 = np.ascontiguousarray(tb.E3)
-E5 = np.ascontiguousarray(tb.E5)
-D = np.ascontiguousarray(tb.D)
-A_EXTRA = np.ascontiguousarray(tb.A[N_STAGES + 1:])
-C_EXTRA = np.ascontiguousarray(tb.C[N_STAGES + 1:])
-N_EXT = tb.N_STAGES_EXTENDED
-N_INTERP = tb.INTERPOLATOR_POWER
+# scipy's step-size control (rk.py, common.py); the tableaux are data (gearcli.engine.tableau, the driver's argument)
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
-ERROR_EXPONENT = -1.0 / (7 + 1)  # error_estimator_order 7
-INITIAL_EXPONENT = 1.0 / (7 + 1)
+DOP853_TABLEAU, RK45_TABLEAU = tb.DOP853_TABLEAU, tb.RK45_TABLEAU
+# wpar layout: the energy watch (e0, w0, scale, margin), the run's start t0, then (optional: a run without them has
+# no priced work budget) the budget (cap, project after, projection limit, check every) and the prices
+# (eval, jac, lu, step) of gearcli.core.cost, and the span (t_start, t_end) the pace is projected over
+WP_E0, WP_W0, WP_SCALE, WP_MARGIN, WP_T0 = 0, 1, 2, 3, 4
+WP_CAP, WP_AFTER, WP_LIMIT, WP_EVERY, WP_P_EVAL, WP_P_JAC, WP_P_LU, WP_P_STEP, WP_SPAN0, WP_SPAN1 = range(5, 15)
+N_WPAR = 15
 
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
@@ -442,29 +441,113 @@ def _stage_sum(K, a, s, h, y, dst, dv):
         dst[i] = y[i] + dv[i] * h
 
 
+# ------------------------------------------------------------------------------- after a step
+# What every driver does after an accepted step (the explicit Runge-Kutta one and Radau), in the Python solver
+# loop's order (gearcli.simulate.solver._segment): count and trace the step, stop on a non-finite state, sample
+# (the driver's own interpolant, at the samples :func:`samples_due` names), then :func:`guards`.
 @jit
-def rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
-    """scipy's ``rk_step`` for DOP853: 11 stages, then ``f(t + h, y_new)``."""
+def step_accepted(t, y, steps, trace, t_eval, done):
+    """The step count is ``steps`` (this step included): trace it, check the state; (status, samples due up to)."""
+    if steps <= trace.size:
+        trace[steps - 1] = t
+    total = 0.0
+    for i in range(y.size):
+        total += y[i]
+    if not np.isfinite(total):
+        return STATUS_NONFINITE, done
+    return STATUS_FINISHED, samples_due(t_eval, done, t)
+
+
+@jit
+def samples_due(t_eval, done, t):
+    """The index past the last sample at or before ``t``, from ``done`` on."""
+    upto = done
+    while upto < t_eval.size and t_eval[upto] <= t:
+        upto += 1
+    return upto
+
+
+@jit
+def priced_work(nfev, njev, nlu, steps, wpar):
+    """:func:`gearcli.core.cost.priced_work_s` with the prices in ``wpar``."""
+    return nfev * wpar[WP_P_EVAL] + njev * wpar[WP_P_JAC] + nlu * wpar[WP_P_LU] + steps * wpar[WP_P_STEP]
+
+
+@jit
+def guards(t, y, nfev, njev, nlu, steps, finished, max_nfev, watch_every, wpar, model, watched):
+    """The evaluation budget, the priced work budget (spent, or a pace projected over its limit: as
+    :func:`gearcli.simulate.guards.over_budget`, checked every ``wpar[WP_EVERY]`` steps) and the energy watch
+    every ``watch_every`` steps; ``watched`` receives (energy created, energy scale). Returns a status."""
+    if nfev > max_nfev:
+        return STATUS_BUDGET
+    if wpar.size >= N_WPAR and steps % np.int64(wpar[WP_EVERY]) == 0:
+        work = priced_work(nfev, njev, nlu, steps, wpar)
+        if work > wpar[WP_CAP]:
+            return STATUS_BUDGET
+        if work > wpar[WP_AFTER]:
+            span = wpar[WP_SPAN1] - wpar[WP_SPAN0]
+            frac = (t - wpar[WP_SPAN0]) / span if span > 0 else 1.0
+            if frac <= 0 or work / frac > wpar[WP_LIMIT] * wpar[WP_CAP]:
+                return STATUS_PROJECTED
+    if watch_every > 0 and (steps % watch_every == 0 or finished):
+        q = ipar_quad(model)
+        work = y[q] - y[q + 1]
+        watched[0] = (stored_energy(t, y, model) - wpar[WP_E0]) - (work - wpar[WP_W0])
+        watched[1] = max(wpar[WP_SCALE], abs(work - wpar[WP_W0]))
+        if watched[0] > wpar[WP_MARGIN] * watched[1]:
+            return STATUS_ENERGY
+    return STATUS_FINISHED
+
+
+@jit
+def _start(y0, t_eval, wpar):
+    """The output array with the samples at or before the run's start filled; (out, samples done)."""
+    n = y0.size
+    m = t_eval.size
+    out = np.full((n, m), np.nan)
+    done = 0
+    while done < m and t_eval[done] <= wpar[WP_T0]:
+        out[:, done] = y0
+        done += 1
+    for j in range(done, m):
+        if t_eval[j] <= wpar[WP_T0]:
+            out[:, j] = y0
+    return out, done
+
+
+# ---------------------------------------------------------------------------- explicit Runge-Kutta
+@jit
+def rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc, tab):
+    """scipy's ``rk_step``: the stages of the tableau ``tab``, then ``f(t + h, y_new)``."""
+    C, A, B = tab[1], tab[2], tab[3]
+    s_n = B.size
     n = y.size
     for i in range(n):
         K[0, i] = f[i]
-    for s in range(1, N_STAGES):
+    for s in range(1, s_n):
         _stage_sum(K, A[s], s, h, y, ytmp, dv)
         rhs(t + C[s] * h, ytmp, K[s], model, th, fc)
-    gemv_t(K, N_STAGES, B, dv)
+    gemv_t(K, s_n, B, dv)
     for i in range(n):
         y_new[i] = y[i] + h * dv[i]
     rhs(t + h, y_new, f_new, model, th, fc)
     for i in range(n):
-        K[N_STAGES, i] = f_new[i]
+        K[s_n, i] = f_new[i]
 
 
 @jit
-def error_norm(K, h, scale, e5, e3):
-    """DOP853's combined 5th/3rd-order error estimate, as ``DOP853._estimate_error_norm``."""
+def error_norm(K, h, scale, e5, e3, tab):
+    """The step's error estimate: DOP853's combined 5th/3rd-order one (``DOP853._estimate_error_norm``), or
+    RK45's ``norm(np.dot(K.T, E) * h / scale)``."""
     n = scale.size
-    gemv_t(K, N_STAGES + 1, E5, e5)
-    gemv_t(K, N_STAGES + 1, E3, e3)
+    s_n = tab[3].size
+    if tab[0][0] == tb.KIND_RK45:
+        gemv_t(K, s_n + 1, tab[4], e5)
+        for i in range(n):
+            e5[i] = e5[i] * h / scale[i]
+        return math.sqrt(dot_self(e5)) / n ** 0.5
+    gemv_t(K, s_n + 1, tab[4], e5)
+    gemv_t(K, s_n + 1, tab[5], e3)
     for i in range(n):
         e5[i] = e5[i] / scale[i]
         e3[i] = e3[i] / scale[i]
@@ -479,32 +562,53 @@ def error_norm(K, h, scale, e5, e3):
 
 
 @jit
-def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, dv, DK, model, th, fc):
-    """The three extra stages and the interpolant's coefficients F (INTERPOLATOR_POWER x n)."""
+def dense_coefficients(t_old, h, y_old, y, f, K, F, ytmp, dv, DK, model, th, fc, tab):
+    """The interpolant of the step just taken, into F: DOP853's three extra stages and its 7th-order
+    coefficients (INTERPOLATOR_POWER x n), or RK45's Q = K.T P (stored as F[c, i]); the extra evaluations."""
     n = y.size
-    for k in range(A_EXTRA.shape[0]):
-        s = N_STAGES + 1 + k
-        _stage_sum(K, A_EXTRA[k], s, h, y_old, ytmp, dv)
-        rhs(t_old + C_EXTRA[k] * h, ytmp, K[s], model, th, fc)
-    gemm(D, K, DK)
+    s_n = tab[3].size
+    Dm = tab[8]
+    if tab[0][0] == tb.KIND_RK45:
+        for i in range(n):
+            for c in range(Dm.shape[1]):
+                acc = 0.0
+                for j in range(s_n + 1):
+                    acc += K[j, i] * Dm[j, c]
+                F[c, i] = acc
+        return 0
+    a_extra, c_extra = tab[6], tab[7]
+    for k in range(a_extra.shape[0]):
+        s = s_n + 1 + k
+        _stage_sum(K, a_extra[k], s, h, y_old, ytmp, dv)
+        rhs(t_old + c_extra[k] * h, ytmp, K[s], model, th, fc)
+    gemm(Dm, K, DK)
     for i in range(n):
         dy = y[i] - y_old[i]
         f_old = K[0, i]
         F[0, i] = dy
         F[1, i] = h * f_old - dy
         F[2, i] = 2 * dy - h * (f[i] + f_old)
-        for r in range(D.shape[0]):
+        for r in range(Dm.shape[0]):
             F[3 + r, i] = h * DK[r, i]
+    return a_extra.shape[0]
 
 
 @jit
-def dense_eval(t, t_old, h, y_old, F, out, col):
-    """``Dop853DenseOutput`` at one time, into ``out[:, col]``."""
+def dense_eval(t, t_old, h, y_old, F, out, col, tab):
+    """The interpolant at one time, into ``out[:, col]`` (``Dop853DenseOutput`` / ``RkDenseOutput``)."""
     x = (t - t_old) / h
+    if tab[0][0] == tb.KIND_RK45:
+        x2 = x * x
+        x3 = x2 * x
+        x4 = x3 * x
+        for i in range(y_old.size):
+            out[i, col] = h * (F[0, i] * x + F[1, i] * x2 + F[2, i] * x3 + F[3, i] * x4) + y_old[i]
+        return
+    n_interp = F.shape[0]
     for i in range(y_old.size):
         v = 0.0
-        for k in range(N_INTERP):
-            v += F[N_INTERP - 1 - k, i]
+        for k in range(n_interp):
+            v += F[n_interp - 1 - k, i]
             if k % 2 == 0:
                 v *= x
             else:
@@ -513,21 +617,26 @@ def dense_eval(t, t_old, h, y_old, F, out, col):
 
 
 @jit
-def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
-    """Integrate from t0 = ``wpar[4]`` through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
+def rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace, tab):
+    """The explicit Runge-Kutta driver: scipy's ``RungeKutta`` loop for the tableau ``tab`` (DOP853 or RK45,
+    :data:`gearcli.engine.tableau.DOP853_TABLEAU`), step for step.
+
+    Integrate from t0 = ``wpar[4]`` through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
     sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
-    energy watch off; ``wpar`` = (e0, w0, scale, margin, t0). The times of the first ``trace.size`` accepted
-    steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
-    created, energy scale])."""
+    energy watch off; ``wpar``: see ``WP_*`` (5 entries: no priced work budget). The times of the first
+    ``trace.size`` accepted steps are written to ``trace`` (tests; pass an empty array). Returns (samples,
+    counters [nfev, steps, status, samples done], floats [t reached, energy created, energy scale], y)."""
     n = y0.size
-    m = t_eval.size
-    out = np.full((n, m), np.nan)
+    s_n = tab[3].size
+    n_extra = tab[6].shape[0]
+    error_exponent = -1.0 / (tab[0][1] + 1)
     nb = model[4].shape[0]
     nc = model[0].shape[0]
     th = np.zeros(nb)
     fc = np.zeros(2 * nc)
-    K = np.zeros((N_EXT, n))
-    F = np.zeros((N_INTERP, n))
+    K = np.zeros((s_n + 1 + n_extra, n))
+    n_dense = tab[8].shape[0] + 3 if tab[0][0] == tb.KIND_DOP853 else tab[8].shape[1]
+    F = np.zeros((n_dense, n))
     y = y0.copy()
     f = np.empty(n)
     y_new = np.empty(n)
@@ -538,37 +647,30 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
     w2 = np.empty(n)
     dv = np.empty(n)
     e3 = np.empty(n)
-    DK = np.empty((D.shape[0], n))
-    done = 0
-    while done < m and t_eval[done] <= wpar[4]:
-        out[:, done] = y
-        done += 1
-    for j in range(done, m):
-        if t_eval[j] <= wpar[4]:
-            out[:, j] = y
-    t = wpar[4]  # the run's start (a continuation starts later)
+    DK = np.empty((tab[8].shape[0], n))
+    watched = np.array([0.0, wpar[WP_SCALE]])
+    out, done = _start(y0, t_eval, wpar)
+    t = wpar[WP_T0]  # the run's start (a continuation starts later)
     nfev = 0
     steps = 0
     status = STATUS_FINISHED
-    created = 0.0
-    escale = wpar[2]
     for seg in range(breaks.size):
         t_bound = breaks[seg]
         seg_nfev = 0
         rhs(t, y, f, model, th, fc)
         seg_nfev += 1
         h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp, dv,
-                                    INITIAL_EXPONENT)
+                                    -error_exponent)
         seg_nfev += 1
         while True:
             min_step = 10 * abs(np.nextafter(t, np.inf) - t)
             if h_abs < min_step:
                 h_abs = min_step
-            accepted = False
+            accepted_step = False
             rejected = False
             h = 0.0
             t_new = t
-            while not accepted:
+            while not accepted_step:
                 if h_abs < min_step:
                     break
                 h = h_abs
@@ -577,29 +679,29 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
                     t_new = t_bound
                 h = t_new - t
                 h_abs = abs(h)
-                rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc)
-                seg_nfev += N_STAGES
+                rk_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc, tab)
+                seg_nfev += s_n
                 for i in range(n):
                     a = abs(y[i])
                     b = abs(y_new[i])
                     scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]  # np.maximum: NaN wins
-                err = error_norm(K, h, scale, dv, e3)
+                err = error_norm(K, h, scale, dv, e3, tab)
                 if err < 1:
                     if err == 0:
                         factor = MAX_FACTOR
                     else:
-                        factor = SAFETY * err ** ERROR_EXPONENT
+                        factor = SAFETY * err ** error_exponent
                         if not factor < MAX_FACTOR:
                             factor = MAX_FACTOR
                     if rejected and not factor < 1.0:
                         factor = 1.0
                     h_abs *= factor
-                    accepted = True
+                    accepted_step = True
                 else:
-                    factor = SAFETY * err ** ERROR_EXPONENT
+                    factor = SAFETY * err ** error_exponent
                     h_abs *= factor if factor > MIN_FACTOR else MIN_FACTOR
                     rejected = True
-            if not accepted:
+            if not accepted_step:
                 status = STATUS_FAILED
                 break
             t_old = t
@@ -610,240 +712,38 @@ def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
             t = t_new
             finished = t - t_bound >= 0
             steps += 1
-            if steps <= trace.size:
-                trace[steps - 1] = t
-            total = 0.0
-            for i in range(n):
-                total += y[i]
-            if not np.isfinite(total):
-                status = STATUS_NONFINITE
+            status, upto = step_accepted(t, y, steps, trace, t_eval, done)
+            if status != STATUS_FINISHED:
                 break
-            upto = done
-            while upto < m and t_eval[upto] <= t:
-                upto += 1
             if upto > done:
                 # y_old is kept in w1 for the interpolant: ytmp is the stage scratch
                 for i in range(n):
                     w1[i] = ytmp[i]
-                dense_coefficients(t_old, h, w1, y, f, K, F, ytmp, dv, DK, model, th, fc)
-                seg_nfev += A_EXTRA.shape[0]
+                seg_nfev += dense_coefficients(t_old, h, w1, y, f, K, F, ytmp, dv, DK, model, th, fc, tab)
                 hd = t - t_old
                 for j in range(done, upto):
-                    dense_eval(t_eval[j], t_old, hd, w1, F, out, j)
+                    dense_eval(t_eval[j], t_old, hd, w1, F, out, j, tab)
                 done = upto
-            if nfev + seg_nfev > max_nfev:
-                status = STATUS_BUDGET
-                break
-            if watch_every > 0 and (steps % watch_every == 0 or finished):
-                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
-                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
-                escale = max(wpar[2], abs(work - wpar[1]))
-                if created > wpar[3] * escale:
-                    status = STATUS_ENERGY
-                    break
-            if finished:
+            status = guards(t, y, nfev + seg_nfev, 0, 0, steps, finished, max_nfev, watch_every, wpar, model, watched)
+            if status != STATUS_FINISHED or finished:
                 break
         nfev += seg_nfev
         if status != STATUS_FINISHED:
             break
     counters = np.array([nfev, steps, status, done], dtype=np.int64)
-    floats = np.array([t, created, escale])
+    floats = np.array([t, watched[0], watched[1]])
     return out, counters, floats, y
 
 
-# RK45 (scipy's class attributes)
-RK45_STAGES = 6
-RK45_C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
-RK45_A = np.array([[0, 0, 0, 0, 0], [1 / 5, 0, 0, 0, 0], [3 / 40, 9 / 40, 0, 0, 0], [44 / 45, -56 / 15, 32 / 9, 0, 0],
-                   [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0],
-                   [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]])
-RK45_B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
-RK45_E = np.array([-71 / 57600, 0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
-RK45_P = np.array([
-    [1, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
-    [0, 0, 0, 0],
-    [0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
-    [0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
-    [0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
-    [0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
-    [0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423]])
-RK45_ERROR_EXPONENT = -1.0 / (4 + 1)
-RK45_INITIAL_EXPONENT = 1.0 / (4 + 1)
+def dop853(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
+    """scipy's DOP853, step for step: :func:`rk_run` with DOP853's tableau."""
+    return rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace, DOP853_TABLEAU)
 
 
-@jit
-def rk45_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc):
-    """scipy's ``rk_step`` for RK45: 5 stages, then ``f(t + h, y_new)``."""
-    n = y.size
-    for i in range(n):
-        K[0, i] = f[i]
-    for s in range(1, RK45_STAGES):
-        _stage_sum(K, RK45_A[s], s, h, y, ytmp, dv)
-        rhs(t + RK45_C[s] * h, ytmp, K[s], model, th, fc)
-    gemv_t(K, RK45_STAGES, RK45_B, dv)
-    for i in range(n):
-        y_new[i] = y[i] + h * dv[i]
-    rhs(t + h, y_new, f_new, model, th, fc)
-    for i in range(n):
-        K[RK45_STAGES, i] = f_new[i]
-
-
-@jit
-def rk45_error_norm(K, h, scale, e):
-    """``norm(np.dot(K.T, E) * h / scale)``."""
-    gemv_t(K, RK45_STAGES + 1, RK45_E, e)
-    for i in range(scale.size):
-        e[i] = e[i] * h / scale[i]
-    return math.sqrt(dot_self(e)) / scale.size ** 0.5
-
-
-@jit
 def rk45(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
-    """:func:`dop853` with scipy's RK45 (Dormand-Prince 5(4), quartic dense output): the same steps; the samples
-    agree to the last bits (the interpolant is summed in a loop, not by BLAS).
-
-    Integrate from t0 = ``wpar[4]`` through the segments ending at ``breaks`` (the last is ``t_eval[-1]``),
-    sampling at ``t_eval``; ``rtol`` and ``atol`` are per-state vectors. ``watch_every`` 0 switches the
-    energy watch off; ``wpar`` = (e0, w0, scale, margin, t0). The times of the first ``trace.size`` accepted
-    steps are written to ``trace`` (tests; pass an empty array). Returns (samples, counters [nfev, steps, status, samples done], floats [t reached, energy
-    created, energy scale])."""
-    n = y0.size
-    m = t_eval.size
-    out = np.full((n, m), np.nan)
-    nb = model[4].shape[0]
-    nc = model[0].shape[0]
-    th = np.zeros(nb)
-    fc = np.zeros(2 * nc)
-    K = np.zeros((RK45_STAGES + 1, n))
-    Q = np.zeros((n, 4))
-    y = y0.copy()
-    f = np.empty(n)
-    y_new = np.empty(n)
-    f_new = np.empty(n)
-    ytmp = np.empty(n)
-    scale = np.empty(n)
-    w1 = np.empty(n)
-    w2 = np.empty(n)
-    dv = np.empty(n)
-    done = 0
-    while done < m and t_eval[done] <= wpar[4]:
-        out[:, done] = y
-        done += 1
-    for j in range(done, m):
-        if t_eval[j] <= wpar[4]:
-            out[:, j] = y
-    t = wpar[4]  # the run's start (a continuation starts later)
-    nfev = 0
-    steps = 0
-    status = STATUS_FINISHED
-    created = 0.0
-    escale = wpar[2]
-    for seg in range(breaks.size):
-        t_bound = breaks[seg]
-        seg_nfev = 0
-        rhs(t, y, f, model, th, fc)
-        seg_nfev += 1
-        h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp, dv,
-                                    RK45_INITIAL_EXPONENT)
-        seg_nfev += 1
-        while True:
-            min_step = 10 * abs(np.nextafter(t, np.inf) - t)
-            if h_abs < min_step:
-                h_abs = min_step
-            accepted = False
-            rejected = False
-            h = 0.0
-            t_new = t
-            while not accepted:
-                if h_abs < min_step:
-                    break
-                h = h_abs
-                t_new = t + h
-                if t_new - t_bound > 0:
-                    t_new = t_bound
-                h = t_new - t
-                h_abs = abs(h)
-                rk45_step(t, y, f, h, K, y_new, f_new, ytmp, dv, model, th, fc)
-                seg_nfev += RK45_STAGES
-                for i in range(n):
-                    a = abs(y[i])
-                    b = abs(y_new[i])
-                    scale[i] = atol[i] + (a if a > b or a != a else b) * rtol[i]  # np.maximum: NaN wins
-                err = rk45_error_norm(K, h, scale, dv)
-                if err < 1:
-                    if err == 0:
-                        factor = MAX_FACTOR
-                    else:
-                        factor = SAFETY * err ** RK45_ERROR_EXPONENT
-                        if not factor < MAX_FACTOR:
-                            factor = MAX_FACTOR
-                    if rejected and not factor < 1.0:
-                        factor = 1.0
-                    h_abs *= factor
-                    accepted = True
-                else:
-                    factor = SAFETY * err ** RK45_ERROR_EXPONENT
-                    h_abs *= factor if factor > MIN_FACTOR else MIN_FACTOR
-                    rejected = True
-            if not accepted:
-                status = STATUS_FAILED
-                break
-            t_old = t
-            for i in range(n):
-                ytmp[i] = y[i]  # y_old
-                y[i] = y_new[i]
-                f[i] = f_new[i]
-            t = t_new
-            finished = t - t_bound >= 0
-            steps += 1
-            if steps <= trace.size:
-                trace[steps - 1] = t
-            total = 0.0
-            for i in range(n):
-                total += y[i]
-            if not np.isfinite(total):
-                status = STATUS_NONFINITE
-                break
-            upto = done
-            while upto < m and t_eval[upto] <= t:
-                upto += 1
-            if upto > done:
-                # y_old is kept in w1 for the interpolant: ytmp is the stage scratch
-                for i in range(n):
-                    w1[i] = ytmp[i]
-                hd = t - t_old
-                for i in range(n):
-                    for c in range(4):
-                        acc = 0.0
-                        for j in range(RK45_STAGES + 1):
-                            acc += K[j, i] * RK45_P[j, c]
-                        Q[i, c] = acc
-                for j in range(done, upto):
-                    x = (t_eval[j] - t_old) / hd
-                    x2 = x * x
-                    x3 = x2 * x
-                    x4 = x3 * x
-                    for i in range(n):
-                        out[i, j] = hd * (Q[i, 0] * x + Q[i, 1] * x2 + Q[i, 2] * x3 + Q[i, 3] * x4) + w1[i]
-                done = upto
-            if nfev + seg_nfev > max_nfev:
-                status = STATUS_BUDGET
-                break
-            if watch_every > 0 and (steps % watch_every == 0 or finished):
-                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
-                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
-                escale = max(wpar[2], abs(work - wpar[1]))
-                if created > wpar[3] * escale:
-                    status = STATUS_ENERGY
-                    break
-            if finished:
-                break
-        nfev += seg_nfev
-        if status != STATUS_FINISHED:
-            break
-    counters = np.array([nfev, steps, status, done], dtype=np.int64)
-    floats = np.array([t, created, escale])
-    return out, counters, floats, y
+    """scipy's RK45 (Dormand-Prince 5(4), quartic dense output), step for step: :func:`rk_run` with its tableau;
+    the samples agree to the last bits (the interpolant is summed in a loop, not by BLAS)."""
+    return rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace, RK45_TABLEAU)
 
 
 @jit
@@ -1264,11 +1164,9 @@ def predict_factor(h_abs, h_abs_old, err, err_old):
 def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
     """Radau IIA (order 5) as scipy's ``Radau`` with the analytic Jacobian: the same Newton iteration, LU
     reuse, error estimate (refined after a rejection), step-size prediction and dense output; segments,
-    sampling, guards and returns as :func:`dop853` (counters add njev and nlu). rtol enters the Newton
-    tolerance through its smallest component."""
+    sampling, guards and returns as :func:`rk_run` (the same after-step helpers; counters add njev and nlu).
+    rtol enters the Newton tolerance through its smallest component."""
     n = y0.size
-    m = t_eval.size
-    out = np.full((n, m), np.nan)
     nb = model[4].shape[0]
     nc = model[0].shape[0]
     th = np.zeros(nb)
@@ -1306,18 +1204,14 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
         if rtol[i] < rmin:
             rmin = rtol[i]
     newton_tol = max(10 * EPS / rmin, min(0.03, rmin ** 0.5))
-    done = 0
-    while done < m and t_eval[done] <= wpar[4]:
-        out[:, done] = y
-        done += 1
-    t = wpar[4]  # the run's start (a continuation starts later)
+    watched = np.array([0.0, wpar[WP_SCALE]])
+    out, done = _start(y0, t_eval, wpar)
+    t = wpar[WP_T0]  # the run's start (a continuation starts later)
     nfev = 0
     njev = 0
     nlu = 0
     steps = 0
     status = STATUS_FINISHED
-    created = 0.0
-    escale = wpar[2]
     for seg in range(breaks.size):
         t_bound = breaks[seg]
         seg_nfev = 0
@@ -1456,34 +1350,21 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
             have_sol = True
             finished = t - t_bound >= 0
             steps += 1
-            if steps <= trace.size:
-                trace[steps - 1] = t
-            total = 0.0
-            for i in range(n):
-                total += y[i]
-            if not np.isfinite(total):
-                status = STATUS_NONFINITE
+            status, upto = step_accepted(t, y, steps, trace, t_eval, done)
+            if status != STATUS_FINISHED:
                 break
-            while done < m and t_eval[done] <= t:
-                x = (t_eval[done] - sol_t_old) / sol_h
+            for j in range(done, upto):
+                x = (t_eval[j] - sol_t_old) / sol_h
                 for i in range(n):
-                    out[i, done] = Q[i, 0] * x + Q[i, 1] * x * x + Q[i, 2] * x * x * x + y_old[i]
-                done += 1
-            if nfev + seg_nfev > max_nfev:
-                status = STATUS_BUDGET
-                break
-            if watch_every > 0 and (steps % watch_every == 0 or finished):
-                work = y[ipar_quad(model)] - y[ipar_quad(model) + 1]
-                created = (stored_energy(t, y, model) - wpar[0]) - (work - wpar[1])
-                escale = max(wpar[2], abs(work - wpar[1]))
-                if created > wpar[3] * escale:
-                    status = STATUS_ENERGY
-                    break
-            if finished:
+                    out[i, j] = Q[i, 0] * x + Q[i, 1] * x * x + Q[i, 2] * x * x * x + y_old[i]
+            done = upto
+            status = guards(t, y, nfev + seg_nfev, njev, nlu, steps, finished, max_nfev, watch_every, wpar, model,
+                            watched)
+            if status != STATUS_FINISHED or finished:
                 break
         nfev += seg_nfev
         if status != STATUS_FINISHED:
             break
     counters = np.array([nfev, steps, status, done, njev, nlu], dtype=np.int64)
-    floats = np.array([t, created, escale])
+    floats = np.array([t, watched[0], watched[1]])
     return out, counters, floats, y

@@ -198,3 +198,45 @@ D[3, 12] = -0.43533456590011143754432175058e+2
 D[3, 13] = 0.96324553959188282948394950600e+2
 D[3, 14] = -0.39177261675615439165231486172e+2
 D[3, 15] = -0.14972683625798562581422125276e+3
+
+
+# ------------------------------------------------------------------------------------------------ RK45
+# Dormand-Prince 5(4) with its quartic dense output: the values of scipy's ``RK45`` class attributes
+# (scipy/integrate/_ivp/rk.py; J. R. Dormand, P. J. Prince, "A family of embedded Runge-Kutta formulae",
+# J. Comp. Appl. Math. 6 (1980); L. W. Shampine, "Some Practical Runge-Kutta Formulas", Math. Comp. 46 (1986)).
+RK45_STAGES = 6
+RK45_ERROR_ORDER = 4
+RK45_C = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
+RK45_A = np.array([[0, 0, 0, 0, 0], [1 / 5, 0, 0, 0, 0], [3 / 40, 9 / 40, 0, 0, 0], [44 / 45, -56 / 15, 32 / 9, 0, 0],
+                   [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0],
+                   [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]])
+RK45_B = np.array([35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
+RK45_E = np.array([-71 / 57600, 0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
+RK45_P = np.array([
+    [1, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+    [0, 0, 0, 0],
+    [0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
+    [0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+    [0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
+    [0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+    [0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423]])
+
+DOP853_ERROR_ORDER = 7
+
+# ---------------------------------------------------------------------------- the driver's tableaux
+# One explicit Runge-Kutta driver (gearcli.engine.kernel.rk_run) reads a method as this tuple of arrays
+# (a numba argument, so one compilation serves both and the on-disk cache keeps working):
+#   (kind [DOP853 = 0 | RK45 = 1, error order], C, A, B, E, E3, A_EXTRA, C_EXTRA, DENSE)
+# E is the error weights (DOP853: its 5th-order ones), E3 DOP853's 3rd-order ones (empty for RK45), A_EXTRA and
+# C_EXTRA the dense output's extra stages (DOP853 only), DENSE DOP853's D or RK45's P matrix.
+KIND_DOP853, KIND_RK45 = 0, 1
+
+
+def _f(a) -> np.ndarray:
+    return np.ascontiguousarray(a, dtype=np.float64)
+
+
+DOP853_TABLEAU = (np.array([KIND_DOP853, DOP853_ERROR_ORDER], dtype=np.int64), _f(C[:N_STAGES]),
+                  _f(A[:N_STAGES, :N_STAGES]), _f(B), _f(E5), _f(E3), _f(A[N_STAGES + 1:]), _f(C[N_STAGES + 1:]), _f(D))
+RK45_TABLEAU = (np.array([KIND_RK45, RK45_ERROR_ORDER], dtype=np.int64), _f(RK45_C), _f(RK45_A), _f(RK45_B),
+                _f(RK45_E), _f(np.zeros(0)), _f(np.zeros((0, RK45_STAGES + 1))), _f(np.zeros(0)), _f(RK45_P))

@@ -20,8 +20,8 @@ from gearcli.simulate.run import run_simulation
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
+from gearcli.core.cost import WORK_CAP_S, accuracy_factor, duration_text, priced_work_s
 from gearcli.core.methods import METHODS
-from gearcli.simulate.guards import WORK_CAP_S, _duration, accuracy_factor, priced_work_s
 
 SimulateFn = Callable[..., SimulationResult]  # gearcli.simulate.run_simulation's signature
 
@@ -141,7 +141,7 @@ class ReportBudget:
         rungs = sum(accuracy_factor(r) for r in spec.rtols) * len(spec.methods)
         projected = self.first * (rungs + accuracy_factor(ref_rtol) + accuracy_factor(check_rtol)) / base
         if self.spent + projected > REPORT_WORK_CAP_S:
-            raise RunTooLong(f"the accuracy study would need about {_duration(self.spent + projected)} of computing "
+            raise RunTooLong(f"the accuracy study would need about {duration_text(self.spent + projected)} of computing "
                              f"({len(spec.rtols) * len(spec.methods) + 2} runs at the pace of the file's own run), over "
                              f"the report's budget of ~{REPORT_WORK_CAP_S:g} s; {self._fit(self.spent + projected)}")
 

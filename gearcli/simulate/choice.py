@@ -1,35 +1,28 @@
-"""``method = "auto"``: explicit or implicit, from a cost model of both on the linearised scene.
+"""``method = "auto"``: explicit or implicit, and which engine, from a cost model of both on the linearised scene.
 
 The model is linearised (:func:`gearcli.model.linearise`) twice: at full static load (the reported
 natural frequencies) and at the larger of the static and the rigid-body run-up force of each mesh,
 with a time-varying stiffness at its stiffest phase (a Hertz mesh stiffens with its load, so the run-up
 sets the largest eigenvalue). The stiffness indicator is ``max|lambda| T`` over both, T the run length.
 
-Cost model (benchmarks/bench_auto.py, every scene of configs/ and configs/extreme/ and the seed at 10 s,
-both methods at the file's rtol; README "auto"):
+What each method needs (the constants and their measurements: :mod:`gearcli.core.cost`):
 
-- DOP853 needs ``EXPLICIT_PER_UNIT`` = 2.6 evaluations per unit of ``max|lambda| T`` for stability alone
-  (12 evaluations per step, stability radius 6 along the imaginary axis, 1.3x for rejected steps,
-  measured 1.2-1.7 on stability-limited scenes), and ``EXPLICIT_PER_RAD`` = 6 per radian of the vibration it
-  must resolve (the seed: 5407 evaluations for 897 radians).
-- Radau needs ``IMPLICIT_FIXED`` = 1000 evaluations (run-up, restarts at the ramp ends; 983-1502 measured on
-  scenes with nothing to resolve) plus ``IMPLICIT_PER_RAD`` = 9.8 per radian of resolved vibration (the seed:
-  9781 for 897), and each of its evaluations costs ``IMPLICIT_COST_RATIO`` = 3 times a DOP853 one in wall
-  time (Newton iterations, LU pairs and Jacobians included: measured 2.6-3.6, per scene).
-- The vibration to resolve, P radians: the largest omega_j min(T, 5/sigma_j) over the modes of the
+- the vibration to resolve, P radians: the largest omega_j min(T, 5/sigma_j) over the modes of the
   linearised chain that something excites, omega_j the mode's frequency and sigma_j its decay rate (from the
   modal damping of the connectors). A mode is excited when a self-exciting mesh (Hertzian exponent,
   time-varying stiffness or backlash) holds at least 1 % of its strain energy, or when the drive and load
   ramps leave a residual vibration of at least rtol: 6/(omega T_r)^2 for a STEP ramp of T_r (1 for a ramp
   of 0). A very stiff linear mesh ramped smoothly (configs/stiff_linear_mesh.toml) stays unexcited: Radau
-  steps over it, DOP853 must stay stable on it.
+  steps over it, DOP853 must stay stable on it;
+- the excitation to follow, E radians: the largest phase the highest harmonic of any excitation sweeps over
+  the run (a mesh's transmission error, stiffness harmonics or contact-line stiffness: harmonic x pinion teeth
+  x pinion angle; torque ripple: order x input angle; load fluctuation: 2 pi f T), the angles from the drive's
+  STEP profile. The forced response must be resolved over the whole run by either method;
+- DOP853: max(2.6 max|lambda| T, 6 P + 35 E) evaluations; Radau: 1000 + 17 P + 30 E.
 
-``auto`` takes DOP853 unless Radau's predicted wall time is ``IMPLICIT_MARGIN`` = 1.6 times lower: DOP853
-costs max(2.6 max|lambda| T, 6 P), Radau 3 (1000 + 9.8 P) (the margin covers the spread of Radau's cost per
-evaluation, whose Jacobians and LU pairs vary by scene: configs/concrete_mixer_drivetrain.toml, predicted
-1.55x cheaper with Radau, measured 1.0-3.6x dearer under varying load). It replaces a threshold on ``max|lambda| T`` alone (1e4), which chose Radau for
-the seed run for 10 s (3.6x slower than DOP853) and DOP853 for configs/industrial_two_stage.toml (2x
-slower than Radau, whose damped mesh modes need no resolving).
+Each is priced on the engine that would run it (the compiled engine's ~0.4 µs per evaluation, or scipy's
+~10 µs, plus what loading the compiled engine still costs this process), and ``auto`` takes DOP853 unless
+Radau's predicted wall time (loading the engine aside) is ``IMPLICIT_MARGIN`` times lower.
 """
 
 from __future__ import annotations
@@ -39,18 +32,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearcli.core.cost import EXPLICIT_CAP
+from gearcli.core.cost import (
+    EXPLICIT_CAP,
+    IMPLICIT_MARGIN,
+    STIFFNESS_LIMIT,
+    predicted_evaluations,
+    predicted_wall_s,
+)
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 from gearcli.model import Layout, Linearisation, ModelSpec, TorsionalModel, linearise
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces
 
-STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which a scene counts as stiff for an explicit method (warnings)
-EXPLICIT_PER_UNIT = 2.6  # DOP853 evaluations per unit of max|lambda| T (stability)
-EXPLICIT_PER_RAD = 6.0  # DOP853 evaluations per radian of resolved vibration
-IMPLICIT_FIXED = 1000.0  # Radau evaluations with nothing to resolve
-IMPLICIT_PER_RAD = 9.8  # Radau evaluations per radian of resolved vibration
-IMPLICIT_COST_RATIO = 3.0  # wall time of a Radau evaluation over a DOP853 one
-IMPLICIT_MARGIN = 1.6  # Radau only when predicted this much cheaper (its per-evaluation cost varies 2.6-3.6x)
 DECAY_TIMES = 5.0  # a mode's vibration lasts 5 / sigma after it is excited
 SELF_EXCITING_SHARE = 0.01  # strain-energy share of a nonlinear/time-varying/backlash mesh that excites a mode
 __all__ = ["EXPLICIT", "EXPLICIT_METHOD", "IMPLICIT_METHOD", "STIFFNESS_LIMIT", "Choice", "choose_method"]
@@ -69,7 +61,10 @@ class Choice:
     spec: ModelSpec
     layout: Layout
     vibration_rad: float = 0.0  # P: radians of excited, persisting vibration (cost model)
-    predicted_evals: tuple[float, float] = (0.0, 0.0)  # (DOP853 evaluations, Radau DOP853-equivalent ones)
+    predicted_evals: tuple[float, float] = (0.0, 0.0)  # (DOP853, Radau) predicted evaluations
+    excited_rad: float = 0.0  # E: radians of the highest excitation harmonic over the run (cost model)
+    predicted_s: tuple[float, float] = (0.0, 0.0)  # (DOP853, Radau) predicted wall time on their engines
+    engines: tuple[str, str] = ("python", "python")  # the engine each prediction is priced on
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:
@@ -157,15 +152,62 @@ def _explicit_refused(indicator: float) -> bool:
     return m.evals_per_step * indicator / m.stability_radius > EXPLICIT_CAP
 
 
-def predicted_costs(indicator: float, vibration_rad: float) -> tuple[float, float]:
-    """(DOP853, Radau) predicted wall time in DOP853 evaluations (module doc)."""
-    explicit = max(EXPLICIT_PER_UNIT * indicator, EXPLICIT_PER_RAD * vibration_rad)
-    implicit = IMPLICIT_COST_RATIO * (IMPLICIT_FIXED + IMPLICIT_PER_RAD * vibration_rad)
-    return explicit, implicit
+def _input_angle(spec: ModelSpec, t: float) -> float:
+    """The input's angle at t from its STEP speed profile (a torque drive at its nominal speed likewise)."""
+    v, T = abs(spec.drive.speed_rad_s), spec.drive.ramp_s
+    if T <= 0:
+        return v * t
+    if t < T:
+        s = t / T
+        return v * T * s**3 * (1 - 0.5 * s)
+    return v * (t - 0.5 * T)
 
 
-def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6) -> Choice:
-    """The method to run and why (``requested`` other than "auto" is kept, with the indicator)."""
+def excited_radians(spec: ModelSpec, lay: Layout, duration_s: float) -> float:
+    """E: the largest phase the highest harmonic of any excitation sweeps over the run (module text)."""
+    theta = _input_angle(spec, duration_s)
+    best = 0.0
+    for k, c in enumerate(lay.stage_conn):
+        m = spec.meshes[k]
+        harmonics = max(len([e for e in m.transmission_error_m if e]), len([s for s in m.stiffness_harmonics if s]),
+                        int(m.time_varying))
+        if harmonics:
+            best = max(best, harmonics * m.pinion_teeth * abs(lay.bodies[lay.connectors[c].a].ratio) * theta)
+    for amplitude, order in spec.drive.ripple:
+        if amplitude:
+            best = max(best, abs(order) * theta)
+    if spec.load.torque_Nm:
+        for amplitude, frequency in spec.load.fluctuation:
+            if amplitude:
+                best = max(best, 2 * math.pi * abs(frequency) * duration_s)
+    return best
+
+
+def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float = 0.0, rtol: float = 1e-6,
+                    engines: dict[str, dict[str, float]] | None = None,
+                    work_factor: float = 1.0) -> tuple[tuple[float, float],
+                                                                             tuple[float, float], tuple[str, str],
+                                                                             tuple[float, float]]:
+    """((DOP853, Radau) evaluations, (DOP853, Radau) predicted wall seconds, the engine each is priced on, and
+    the part of each wall time that is loading the engine). ``engines``: per method, the engines that may run
+    it and what loading each still costs this process (default: Python only); ``work_factor``: the integrations
+    of the whole run over the run's own (its check pass, ``cost.CHECK_PASS_WORK``), weighed against the load."""
+    nfev = predicted_evaluations(indicator, vibration_rad, excited_rad, rtol)
+    walls, names, loads = [], [], []
+    for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), (x * work_factor for x in nfev), strict=True):
+        options = (engines or {}).get(name) or {"python": 0.0}
+        best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e]))
+        walls.append(predicted_wall_s(best, name, n, options[best]))
+        names.append(best)
+        loads.append(options[best])
+    return nfev, (walls[0], walls[1]), (names[0], names[1]), (loads[0], loads[1])
+
+
+def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6,
+                  engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0) -> Choice:
+    """The method to run and why (``requested`` other than "auto" is kept, with the indicator). ``engines``:
+    per method, the engines that may run it and their remaining load cost (:func:`predicted_costs`;
+    :func:`gearcli.engine.options`)."""
     lay = Layout.of(spec)
     static = static_forces(lay)
     full = linearise(lay, static)
@@ -177,19 +219,22 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     ratio = lam / low if low > 0 else math.inf
     lin = op if bool(np.any(full.stiffness == 0.0)) else full
     vib = vibration_radians(spec, lay, lin, duration_s, rtol)
-    explicit, implicit = predicted_costs(indicator, vib)
+    exc = excited_radians(spec, lay, duration_s)
+    nfev, walls, on, loads = predicted_costs(indicator, vib, exc, rtol, engines, work_factor)
     summary = f"max|λ|·T = {indicator:.3g}"
-    costs = f"predicted cost DOP853 {explicit:.3g}, Radau {implicit:.3g} evaluation-equivalents"
+    costs = (f"predicted DOP853 {nfev[0]:.2g} evaluations ~{walls[0]:.2g} s ({on[0]}), Radau {nfev[1]:.2g} "
+             f"~{walls[1]:.2g} s ({on[1]})")
+    why = f"{summary}, {vib:.3g} rad of excited vibration, {exc:.3g} rad of excitation: {costs}"
     if requested != AUTO:
         chosen, reason = requested, f"as requested ({summary})"
-    elif explicit <= IMPLICIT_MARGIN * implicit and not _explicit_refused(indicator):
+    elif walls[0] <= loads[1] + IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator):
         chosen = EXPLICIT_METHOD
-        reason = f"{summary}, {vib:.3g} rad of excited vibration: {costs}: explicit {chosen}"
+        reason = f"{why}: explicit {chosen}"
     else:
         chosen = IMPLICIT_METHOD
-        reason = f"{summary}, {vib:.3g} rad of excited vibration: {costs}: implicit {chosen} with the analytic Jacobian"
+        reason = f"{why}: implicit {chosen} with the analytic Jacobian"
     return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay,
-                  vib, (explicit, implicit))
+                  vib, nfev, exc, walls, on)
 
 
 def unit_costs(spec: ModelSpec, repeat: int = 200) -> dict[str, float]:

@@ -184,34 +184,11 @@ def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, i_s
     return fine, forces, time.perf_counter() - t0
 
 
-def start_early(model: TorsionalModel, t_eval: np.ndarray, y0: np.ndarray, method: str, rtol: float,
-                choice: Choice, window: tuple[float, float], max_nfev: int, engine: str):
-    """The first check pass started on a second core before the run, where it does not need the run: it starts
-    at the run's own start (a lightly damped scene such as the seed); None elsewhere or when
-    :mod:`gearcli.simulate.background` cannot fork. :func:`check_pass` takes its result (``early``)."""
-    from gearcli.simulate import background
-
-    if engine != "python" or not background.available():
-        return None
-    p = plan(t_eval, rtol, choice, window)
-    if p.i_s != 0:
-        return None
-    key = (p, method, max_nfev, engine)
-    return background.start(_light_pass, model, t_eval, y0, 0, p.i_w, method, p.rtol, max_nfev, engine, key=key)
-
-
-def _light_pass(*args):
-    """:func:`one_pass` without the integration's samples (the check compares the forces): less to send back."""
-    fine, forces, wall = one_pass(*args)
-    return replace(fine, t=fine.t[:0], y=fine.y[:, :0]), forces, wall
-
-
 def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float], *,
-               max_nfev: int, sampled: Sampled | None = None, early=None) -> CheckPass:
+               max_nfev: int, sampled: Sampled | None = None) -> CheckPass:
     """The check pass and its per-stage error estimates (module doc). ``sampled``: the run's own samples at
     ``run.t`` when the caller has them (their window part is the run's side of the comparison; the channels
-    are sample by sample, so the slice equals sampling the window again). ``early``: the first pass started
-    by :func:`start_early` (its value is taken when it was computed for this run's plan, else computed here)."""
+    are sample by sample, so the slice equals sampling the window again)."""
     lay = model.layout
     t_eval = run.t
     p = plan(t_eval, run.rtol, choice, window)
@@ -222,17 +199,12 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         run_forces = [m.line_force_N for m in sample(lay, tw, run.y[:, i_w:]).meshes]
     else:
         run_forces = [m.line_force_N[i_w:] for m in sampled.meshes]
-    done = early.result() if early is not None and early.key == (p, run.method, max_nfev, run.engine) else None
-    background_s = 0.0
     nfev = njev = steps = 0
     passes = 0
     while True:
         passes += 1
-        if passes == 1 and done is not None:
-            fine, fine_forces, background_s = done
-        else:
-            fine, fine_forces, _ = one_pass(model, t_eval, run.y[:, i_s], i_s, i_w, run.method, rtol, max_nfev,
-                                            run.engine)
+        fine, fine_forces, _ = one_pass(model, t_eval, run.y[:, i_s], i_s, i_w, run.method, rtol, max_nfev,
+                                        run.engine)
         nfev, njev, steps = nfev + fine.nfev, njev + fine.njev, steps + fine.steps
         status, message = fine.status, fine.message
         errors: tuple[StatisticsError, ...] = ()
@@ -247,7 +219,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         # is the run's error to first order (a loose pass that rattles differently overstates it 1e5-fold:
         # configs/concrete_mixer_drivetrain.toml, stage 1 max estimated 4.3 of the mean, true 3e-5)
         rtol, scale = max(run.rtol / TIGHT_FACTOR, MIN_RTOL), 1.0
-    wall = time.perf_counter() - t0 + background_s  # the work of the pass, wherever it ran
+    wall = time.perf_counter() - t0
     return CheckPass(rtol, float(t_eval[i_s]), scale, nfev, njev, steps, wall, status, message, errors, passes)
 
 

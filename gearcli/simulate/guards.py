@@ -1,7 +1,7 @@
 """Guard rails of the integration: a cost budget from the scene, a feasibility check for explicit
 methods, and an energy watch that stops a diverging run before it reaches NaN.
 
-Budget. An adaptive method's cost follows the number of oscillation periods it must resolve or stay
+Budget (the constants: :mod:`gearcli.core.cost`). An adaptive method's cost follows the number of oscillation periods it must resolve or stay
 stable over, i.e. the stiffness indicator ``max|lambda| T`` of the linearised scene
 (:mod:`gearcli.simulate.choice`). Measured on the example scenes and the extreme catalogue
 (``benchmarks/robustness.py``, ``benchmarks/bench_simulate.py``) every method needs at most ~30
@@ -32,7 +32,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli import diagnostics as dg
-from gearcli.core.cost import CAP, COST_PER_UNIT, EXPLICIT_CAP, FLOOR, HEADROOM
+from gearcli.core import cost
+from gearcli.core.cost import (
+    CAP,
+    EXPLICIT_CAP,
+    FLOOR,
+    PROJECTION_AFTER_S,
+    PROJECTION_LIMIT,
+    WORK_CAP_S,
+    accuracy_factor,
+    duration_text,
+    nfev_budget,
+    priced_work_s,
+)
 from gearcli.core.methods import IMPLICIT_METHOD, method
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
@@ -41,39 +53,13 @@ from gearcli.model.linear import static_forces
 from gearcli.model.outputs import kinetic_energy, potential_energy, sample
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
 
-#: What a run costs, priced per counter in seconds (measured on the 2-core benchmark machine with the
-#: generated model of 9-11 states; tests/extreme/test_guards.py checks the ratios): one right-hand side 5 µs,
-#: one Jacobian 10 µs, one LU decomposition 8 µs, and the work of an accepted step beyond its evaluations
-#: (dense output and the per-step checks; for an implicit method also its Newton back-substitutions, ~11 µs
-#: each, and its error estimate): 200 µs for an explicit method (DOP853 on configs/extreme/stiff_linear_100x:
-#: 287 µs per step of 16.6 evaluations), 380 µs for an implicit one (Radau there: 421 µs per step of 7.6
-#: evaluations and 0.6 LU). Per evaluation Radau costs ~55 µs against ~17 for DOP853, so a cap on evaluations
-#: alone let an implicit run grind for many minutes (a 1e-9 kg m² load on a 1e9 N m/rad coupling with
-#: instant ramps reaches t = 1e-4 s of 0.5 s after 5e6 evaluations).
-PRICE_S = {"eval": 5e-6, "jac": 10e-6, "lu": 8e-6, "step_explicit": 200e-6, "step_implicit": 380e-6}
-WORK_CAP_S = 60.0  # priced seconds one run may use; then it is called off
-PROJECTION_AFTER_S = 5.0  # priced seconds after which the pace is projected to the end of the run
-PROJECTION_LIMIT = 4.0  # a projected total over this many times WORK_CAP_S stops the run at once
-
+# the prices and budgets live in gearcli.core.cost (one module for every cost constant)
+__all__ = ["CAP", "EXPLICIT_CAP", "FLOOR", "PRICE_S", "PROJECTION_AFTER_S", "PROJECTION_LIMIT", "WORK_CAP_S",
+           "EnergyWatch", "accuracy_factor", "energy_watch", "force_noise", "force_noise_warnings", "nfev_budget",
+           "over_budget", "priced_work_s", "require_feasible"]
+PRICE_S = cost.PRICE_S["python"]  # the work budget's prices, on either engine
 ENERGY_MARGIN = 0.1  # of the scene's energy scale
 ENERGY_CHECK_EVERY = 16  # accepted steps between energy checks (divergence grows geometrically)
-
-
-def accuracy_factor(rtol: float) -> float:
-    """How much more a run at ``rtol`` costs than at 1e-6 (order-5 error control; >= 1)."""
-    return max(1.0, (1e-6 / rtol) ** 0.2)
-
-
-def nfev_budget(indicator: float, rtol: float) -> int:
-    """Right-hand-side evaluations a run of stiffness indicator ``max|lambda| T`` may use."""
-    estimate = COST_PER_UNIT * max(indicator, 1.0) * accuracy_factor(rtol)
-    return int(min(CAP, max(FLOOR, HEADROOM * estimate)))
-
-
-def priced_work_s(nfev: int, njev: int, nlu: int, steps: int, implicit: bool) -> float:
-    """The run's cost in seconds from its counters (:data:`PRICE_S`): deterministic, unlike a wall clock."""
-    step = PRICE_S["step_implicit" if implicit else "step_explicit"]
-    return nfev * PRICE_S["eval"] + njev * PRICE_S["jac"] + nlu * PRICE_S["lu"] + steps * step
 
 
 def over_budget(work_s: float, t: float, t_start: float, t_end: float) -> tuple[str, str] | None:
@@ -88,18 +74,9 @@ def over_budget(work_s: float, t: float, t_start: float, t_end: float) -> tuple[
         if projected > PROJECTION_LIMIT * WORK_CAP_S:
             fit = t_start + (t - t_start) * WORK_CAP_S / work_s
             return "projected", (f"at its pace ({100 * done:.2g} % of the run after ~{work_s:.2g} s of computing) it "
-                                 f"would need about {_duration(projected)}, over {PROJECTION_LIMIT:g}x the budget of "
-                                 f"~{WORK_CAP_S:g} s; simulation.duration_s ≤ {fit:.3g} s would fit")
+                                 f"would need about {duration_text(projected)}, over {PROJECTION_LIMIT:g}x the budget "
+                                 f"of ~{WORK_CAP_S:g} s; simulation.duration_s ≤ {fit:.3g} s would fit")
     return None
-
-
-def _duration(seconds: float) -> str:
-    if not math.isfinite(seconds):
-        return "forever"
-    for unit, size in (("days", 86400.0), ("hours", 3600.0), ("minutes", 60.0)):
-        if seconds >= 2 * size:
-            return f"{seconds / size:.3g} {unit}"
-    return f"{seconds:.3g} s"
 
 
 def require_feasible(choice: Choice, budget: int) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -10,10 +11,13 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli import engine
-from gearcli.core.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
+from gearcli.core import cost
+from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
+from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
-from gearcli.engine import EngineChoice, estimate_nfev
+from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
+from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import resonances
@@ -44,6 +48,7 @@ from gearcli.simulate.solver import (
     STATUS_FINISHED,
     STATUS_NONFINITE,
     STATUS_PROJECTED,
+    STATUS_SWITCH,
     Integration,
     integrate,
 )
@@ -58,7 +63,8 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] 
 def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
-                   error_estimate: bool | None = None) -> SimulationResult:
+                   error_estimate: bool | None = None,
+                   progress: Callable[[float], None] | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
@@ -79,7 +85,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                             steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
                             window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
                             steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
-                            engine=sim.engine)
+                            engine=sim.engine, progress=progress)
     from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
 
     stages, rating_diags = simulated_ratings(cfg, design, result.stages)
@@ -98,13 +104,15 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    rtol: float = 1e-6, window_start_s: float | None = None, want_series: bool = True,
                    y0: np.ndarray | None = None, max_nfev: int | None = None,
                    steady: str = "window", error_estimate: bool = True,
-                   prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto") -> SimulationResult:
+                   prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto",
+                   progress: Callable[[float], None] | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
     ``steady = "periodic"``, whose statistics come from a converged period); ``prior_diagnostics`` (the
     design's warnings) lead the result's warnings; ``engine`` "auto", "python" or "compiled"
-    (:func:`gearcli.engine.choose`).
+    (:func:`gearcli.engine.choose`); ``progress`` is called with the fraction of the run done (a terminal's
+    progress bar, :mod:`gearcli.io.progress`; Python engine runs, which are the long ones).
 
     ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
     the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most
@@ -112,12 +120,14 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
-    choice = choose_method(spec, duration_s, method, rtol)
+    replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
+    candidates = engine_options(engine, model.arrays, (EXPLICIT_METHOD, IMPLICIT_METHOD), replaced)
+    work = cost.CHECK_PASS_WORK if error_estimate and steady == "window" else 1.0  # the check pass integrates again
+    choice = choose_method(spec, duration_s, method, rtol, candidates, work)
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
-    replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
-    nfev_estimate = estimate_nfev(choice.indicator, rtol)
+    nfev_estimate = work * predicted_nfev(choice)
     if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
         nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s)
     eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced)
@@ -126,43 +136,41 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
         if eng.unsupported and engine == "compiled" else []
     mask_window, steady_state, energy_from = window, None, 0
-    early = None  # the check pass started on a second core (gearcli.simulate.background), ended whatever happens
-    try:
-        if steady == "periodic":
-            diags = []  # the fixed window's warning does not apply: the window is found, not set
-            found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
-                                       window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
-                                       fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
-                                       continued=y0 is not None)
-            if isinstance(found, Integration):
-                check(found, choice, duration_s)
-                raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
-            run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
-            energy_from = found.energy_from
-            diags += steady_warnings(steady_state, found.period)
-        else:
-            t_eval = np.linspace(0.0, duration_s, steps + 1)
-            y_start = model.initial_state() if y0 is None else np.asarray(y0, dtype=float)
-            # the check pass on a second core, alongside the run, where it does not need the run (module
-            # gearcli.simulate.background: the console script only; the same numbers as after the run)
-            early = estimate.start_early(model, t_eval, y_start, choice.method, rtol, choice, window, max_nfev,
-                                         eng.engine) if error_estimate else None
-            run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine)
-            steady_state = window_steady(model)
-        check(run, choice, duration_s)
-        error_estimate = error_estimate and steady != "periodic"
-        s = sample(model.layout, run.t, run.y)
-        energy = model.energy(s, run.y) if not energy_from else \
-            model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
-        diags = prior + diags + fallback + stats.model_warnings(spec) + _choice_warnings(choice)
-        if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
-            diags += force_noise_warnings(choice, rtol)
-        diags += resonance_warnings(model, choice)
-        ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s, early=early) \
-            if error_estimate else None
-    finally:
-        if early is not None:
-            early.close()
+    if steady == "periodic":
+        diags = []  # the fixed window's warning does not apply: the window is found, not set
+        found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
+                                   window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
+                                   fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
+                                   continued=y0 is not None)
+        if isinstance(found, Integration):
+            check(found, choice, duration_s)
+            raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
+        run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
+        energy_from = found.energy_from
+        diags += steady_warnings(steady_state, found.period)
+    else:
+        t_eval = np.linspace(0.0, duration_s, steps + 1)
+        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
+                        pace_limit_s=_pace_limit(eng, choice, model), progress=progress)
+        if run.status == STATUS_SWITCH:  # scipy far slower than predicted: the compiled engine runs it instead
+            fallback.append(dg.warning(dg.SLOW_PACE, f"{run.method} on scipy was far slower than the cost model "
+                                       f"predicted ({run.message}): the run went on on the compiled engine"))
+            eng = _loadable(EngineChoice("compiled", eng.requested, f"switched from scipy at t = {run.t_fail:.3g} s: "
+                                         f"{run.message}"))
+            run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
+                            progress=progress)
+        steady_state = window_steady(model)
+    check(run, choice, duration_s)
+    error_estimate = error_estimate and steady != "periodic"
+    s = sample(model.layout, run.t, run.y)
+    energy = model.energy(s, run.y) if not energy_from else \
+        model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
+    diags = prior + diags + fallback + _pace_warnings(run, choice) + stats.model_warnings(spec) \
+        + _choice_warnings(choice)
+    if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
+        diags += force_noise_warnings(choice, rtol)
+    diags += resonance_warnings(model, choice)
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
@@ -171,6 +179,46 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                         ref, stat_diags, eng.reason)
     _require_finite(result)
     return result
+
+
+def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> float | None:
+    """The priced work past which an ``auto`` run on scipy goes on on the compiled engine instead (its pace, in
+    the priced work of its counters, projected over ``PACE_SWITCH_FACTOR`` times its prediction: deterministic),
+    or None when no switch is possible (another engine requested, numba missing or not compiled yet, an
+    unsupported scene) or sound: only DOP853 and RK45 switch, whose compiled runs take scipy's steps, so that
+    the switch changes no number."""
+    from gearcli import engine
+
+    if eng.requested != "auto" or eng.engine != "python" or eng.unsupported or not engine.available():
+        return None
+    if choice.method not in engine.BIT_IDENTICAL:  # a switch must not change a number: DOP853 and RK45 only
+        return None
+    if not getattr(model, "generated", True) or engine.unsupported(model.arrays, choice.method):
+        return None
+    if engine.load_share_s() >= cost.COMPILE_S:  # never into a compilation
+        return None
+    return cost.PACE_SWITCH_FACTOR * cost.predicted_wall_s("python", choice.method, predicted_nfev(choice))
+
+
+def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
+    """A run whose evaluations far exceed what the cost model predicted for its method says so, with both figures
+    (counters, not the wall clock: the same warning on a busy machine and a quiet one)."""
+    if run.method not in (EXPLICIT_METHOD, IMPLICIT_METHOD):
+        return []
+    n = predicted_nfev(choice)
+    took = cost.predicted_wall_s(run.engine, run.method, run.nfev)
+    if took < cost.PACE_MIN_S or run.nfev < cost.PACE_WARN_FACTOR * n:
+        return []
+    return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
+                       f"{run.nfev / n:.2g}x the {n:.2g} the cost model predicted (~{took:.2g} s against "
+                       f"~{cost.predicted_wall_s(run.engine, run.method, n):.2g} s); method = \"auto\" may have chosen "
+                       "the slower method here (README, \"Choosing the method: auto\")",
+                       nfev=run.nfev, predicted_nfev=n)]
+
+
+def predicted_nfev(choice: Choice) -> float:
+    """The cost model's evaluations for the chosen method (an explicit one: DOP853's; an implicit one: Radau's)."""
+    return choice.predicted_evals[1 if method_info(choice.method).implicit else 0]
 
 
 def _loadable(eng: EngineChoice) -> EngineChoice:
@@ -428,7 +476,7 @@ def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
 
 def _choice_warnings(choice: Choice) -> list[Diagnostic]:
     """A requested explicit method on a stiff scene where auto's cost model predicts Radau cheaper."""
-    explicit, implicit = choice.predicted_evals
+    explicit, implicit = choice.predicted_s
     if choice.requested != AUTO and choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT \
             and implicit < explicit:
         return [dg.warning(dg.STIFF_FOR_EXPLICIT, f"the scene is stiff for an explicit method (max|λ|·T = "

@@ -22,22 +22,26 @@ back to the resolution of the tolerance (tests/extreme/test_guards.py).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import OdeSolver
 
 from gearcli import engine
+from gearcli.core import cost
+from gearcli.core.cost import BUDGET_CHECK_EVERY
+from gearcli.core.cost import CAP as MAX_NFEV
 from gearcli.core.methods import METHODS, scipy_solver
+from gearcli.engine import status as st
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.simulate.guards import CAP as MAX_NFEV
 from gearcli.simulate.guards import ENERGY_MARGIN, EnergyReport, EnergyWatch, energy_watch, over_budget, priced_work_s
 
-BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
-
-STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET, STATUS_NONFINITE, STATUS_ENERGY = 0, -1, -2, -3, -4
-STATUS_PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
+# how a run ended (gearcli.engine.status: one set of codes for both engines)
+STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
+STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED
+STATUS_SWITCH = st.SWITCH
 
 
 @dataclass(frozen=True)
@@ -107,7 +111,8 @@ class _Counters:
 
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
-              t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python") -> Integration:
+              t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python",
+              pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None) -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
     drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
@@ -118,6 +123,12 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
     "compiled" runs :mod:`gearcli.engine` (DOP853, RK45, Radau; from ``t0`` too; the caller checks
     :func:`gearcli.engine.unsupported` first), "python" scipy's solvers.
+
+    ``pace_limit_s`` (Python engine): once the run has used ``cost.PACE_SWITCH_AFTER_S`` of priced work
+    (:func:`gearcli.core.cost.priced_work_s`), a pace that projects the whole run over this many priced
+    seconds stops it with ``STATUS_SWITCH`` (the caller goes on on
+    the compiled engine). ``progress``: called with the fraction of the run done, every few hundred steps (a
+    terminal's progress bar; never printed here).
     """
     if t0 != 0.0 and y0 is None:
         raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
@@ -136,7 +147,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
-                                         (0.0, float(t_eval[-1])), METHODS[method].implicit)
+                                         (0.0, float(t_eval[-1])), METHODS[method].implicit,
+                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress))
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
@@ -146,8 +158,31 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
                        message, t)
 
 
+@dataclass(frozen=True)
+class _Pace:
+    """The run's pace limit (priced work) and its progress callback."""
+    t0: float
+    t_end: float
+    limit_s: float | None
+    progress: Callable[[float], None] | None
+
+    def check(self, t: float, work_s: float) -> tuple[int, str] | None:
+        """Report progress; stop for the switch when the priced work ``work_s`` (deterministic, unlike the wall
+        clock) projects the run over the limit."""
+        done = (t - self.t0) / (self.t_end - self.t0) if self.t_end > self.t0 else 1.0
+        if self.progress is not None:
+            self.progress(done)
+        if self.limit_s is None:
+            return None
+        if work_s > cost.PACE_SWITCH_AFTER_S and done > 0 and work_s / done > self.limit_s:
+            return STATUS_SWITCH, (f"at its pace on scipy ({100 * done:.2g} % after ~{work_s:.2g} s of priced work) "
+                                   f"the run would take ~{work_s / done:.2g} s, over {self.limit_s:.2g} s")
+        return None
+
+
 def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, count: _Counters, max_nfev: int,
-             watch, span: tuple[float, float] = (0.0, 0.0), implicit: bool = False) -> tuple[int, str, int]:
+             watch, span: tuple[float, float] = (0.0, 0.0), implicit: bool = False,
+             pace: _Pace | None = None) -> tuple[int, str, int]:
     """Step ``solver`` to its end, filling ``out`` at the samples passed; (status, message, samples done)."""
     n = out.shape[0]
     while solver.status == "running":
@@ -172,17 +207,29 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             return STATUS_BUDGET, f"more than {max_nfev} right-hand-side evaluations", done
         if count.steps % BUDGET_CHECK_EVERY == 0:
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
-            work = priced_work_s(nfev, njev, nlu, count.steps, implicit)
-            if (verdict := over_budget(work, float(solver.t), *span)) is not None:
-                kind, why = verdict
-                return (STATUS_PROJECTED if kind == "projected" else STATUS_BUDGET), (
-                    f"{why} ({nfev} right-hand sides, {count.steps} steps, {nlu} LU decompositions, "
-                    f"{njev} Jacobians)"), done
+            stop = _budget_stop(nfev, njev, nlu, count.steps, implicit, float(solver.t), span)
+            if stop is None and pace is not None:
+                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit))
+            if stop is not None:
+                return (*stop, done)
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
             report = watch.check(solver.t, solver.y)
             if report.diverging:
                 return STATUS_ENERGY, watch.message(report), done
     return STATUS_FINISHED, "reached the end of the run", done
+
+
+def _budget_stop(nfev: int, njev: int, nlu: int, steps: int, implicit: bool, t: float,
+                 span: tuple[float, float]) -> tuple[int, str] | None:
+    """(status, message) when the priced work budget stops the run here (:func:`gearcli.simulate.guards.over_budget`),
+    else None: the same verdict on either engine (the kernel checks the same prices at the same steps)."""
+    work = priced_work_s(nfev, njev, nlu, steps, implicit)
+    verdict = over_budget(work, t, *span)
+    if verdict is None:
+        return None
+    kind, why = verdict
+    return (STATUS_PROJECTED if kind == "projected" else STATUS_BUDGET), (
+        f"{why} ({nfev} right-hand sides, {steps} steps, {nlu} LU decompositions, {njev} Jacobians)")
 
 
 def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
@@ -200,8 +247,12 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=float), (n,)))
     breaks = np.array(breakpoints(model, float(t_eval[-1]), t0), dtype=float)
 
-    wpar = np.array([watch.e0, watch.w0, watch.scale, ENERGY_MARGIN, t0]) if watch is not None \
-        else np.array([0.0, 0.0, 0.0, 0.0, t0])
+    implicit = METHODS[method].implicit
+    watch_par = [watch.e0, watch.w0, watch.scale, ENERGY_MARGIN] if watch is not None else [0.0, 0.0, 0.0, 0.0]
+    p = cost.PRICE_S["python"]  # the work budget's prices, as on the Python engine (gearcli.core.cost)
+    wpar = np.array([*watch_par, t0, cost.WORK_CAP_S, cost.PROJECTION_AFTER_S, cost.PROJECTION_LIMIT,
+                     float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
+                     p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])])
     every = np.int64(watch.every if watch is not None else 0)
     t0 = time.perf_counter()
     kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]
@@ -214,11 +265,15 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     t_end, created, scale = (float(v) for v in floats)
     messages = {STATUS_FINISHED: "reached the end of the run",
                 STATUS_FAILED: "Required step size is less than spacing between numbers.",
-                STATUS_BUDGET: f"more than {max_nfev} right-hand-side evaluations",
                 STATUS_NONFINITE: f"the state became non-finite at t = {t_end:.6g} s"}
     if status == STATUS_ENERGY and watch is not None:
 
         message = watch.message(EnergyReport(created, scale))
+    elif status == STATUS_BUDGET and nfev > max_nfev:
+        message = f"more than {max_nfev} right-hand-side evaluations"
+    elif status in (STATUS_BUDGET, STATUS_PROJECTED):
+        stop = _budget_stop(nfev, njev, nlu, steps, implicit, t_end, (0.0, float(t_eval[-1])))
+        message = stop[1] if stop is not None else f"more than {max_nfev} right-hand-side evaluations"
     else:
         message = messages.get(status, f"status {status}")
     return Integration(t_eval, out, method, float(np.max(rtol_v)) if np.ndim(rtol) else float(rtol), atol, nfev, njev,

@@ -1,14 +1,12 @@
 """The faster paths of a one-shot run give what the plain ones give: the check pass on the run's own samples,
-the channels' scalar laws on Python floats, and the console script's collector switch."""
+and the channels' scalar laws on Python floats."""
 
 from __future__ import annotations
 
-import gc
 from pathlib import Path
 
 import numpy as np
 
-from gearcli.cli import collector_on
 from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.model.elements import KIND_MESH
@@ -60,18 +58,3 @@ def test_channels_are_the_scalar_law_at_each_sample():
             assert cs.penetration_m[j] == penetration(x.params, d, 0.0)
             assert cs.dte_m[j] == dynamic_transmission_error(x.params, d, 0.0)
         assert np.any(cs.force != 0.0)  # the meshes carry load
-
-
-def test_collector_on_turns_a_disabled_collector_on_and_leaves_an_enabled_one_alone():
-    was = gc.isenabled()
-    try:
-        gc.enable()
-        frozen = gc.get_freeze_count()
-        collector_on()
-        assert gc.isenabled() and gc.get_freeze_count() == frozen  # library use: nothing happens
-        gc.disable()
-        collector_on()
-        assert gc.isenabled() and gc.get_freeze_count() > 0  # the console script's start-up heap is frozen
-    finally:
-        gc.unfreeze()
-        (gc.enable if was else gc.disable)()

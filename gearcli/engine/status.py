@@ -1,0 +1,9 @@
+"""How a run ended: the status codes of both engines (the compiled kernel and the Python solver loop), in one place."""
+
+FINISHED = 0  # reached the end of the run
+FAILED = -1  # the step size collapsed
+BUDGET = -2  # the evaluation budget or the priced work budget is spent
+NONFINITE = -3  # the state became non-finite
+ENERGY = -4  # the energy watch saw energy created (a numerical instability)
+PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
+SWITCH = -6  # stopped to go on on the compiled engine: its pace on scipy projected far over the prediction
