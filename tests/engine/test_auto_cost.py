@@ -74,16 +74,16 @@ def test_prices_by_hand():
     assert cost.seconds_per_eval("compiled", "Radau") == pytest.approx(
         p["compiled"]["eval"] + r["steps"] * p["compiled"]["step_implicit"] + r["lu"] * p["compiled"]["lu"]
         + r["jac"] * p["compiled"]["jac"])
-    # the work budget: each engine's counters at its own prices
-    assert cost.priced_work_s(100, 0, 0, 10, False, "compiled") == pytest.approx(
-        100 * p["compiled"]["eval"] + 10 * p["compiled"]["step_explicit"])
+    # the work budget: scipy's prices; a compiled run may spend its speed-up times as much
+    assert cost.compiled_speedup("DOP853") == pytest.approx(
+        (p["python"]["eval"] + p["python"]["step_explicit"] / 12) / (p["compiled"]["eval"] + p["compiled"]["step_explicit"] / 12))
     assert cost.priced_work_s(1000, 2, 20, 100, True) == pytest.approx(
         1000 * p["python"]["eval"] + 2 * p["python"]["jac"] + 20 * p["python"]["lu"] + 100 * p["python"]["step_implicit"])
 
 
 def test_compiled_radau_stops_a_hopeless_run_as_scipy_does():
     """A 1e-9 kg m² load on a 1e9 N m/rad coupling with instant ramps: the compiled Radau projects its pace like
-    scipy's loop (at the compiled engine's prices) and stops a few priced seconds in with the same kind of message
+    scipy's loop (its pace judged at scipy's prices) and stops a few priced seconds in with the same kind of message
     (tests/cli/test_cli_cost_budget)."""
     from gearcli.simulate.guards import PROJECTION_AFTER_S, priced_work_s
 
@@ -94,7 +94,7 @@ def test_compiled_radau_stops_a_hopeless_run_as_scipy_does():
     run = integrate(model, t_eval, "Radau", 1e-6, max_nfev=10**8, engine="compiled")
     assert run.engine == "compiled" and run.status == STATUS_PROJECTED
     assert "would need about" in run.message and "simulation.duration_s ≤" in run.message
-    assert priced_work_s(run.nfev, run.njev, run.nlu, run.steps, True, "compiled") < 2 * PROJECTION_AFTER_S
+    assert priced_work_s(run.nfev, run.njev, run.nlu, run.steps, True) < 2 * PROJECTION_AFTER_S
     assert run.t_fail < 1e-3
 
 
