@@ -1,4 +1,4 @@
-"""Calibrate the cost model (gearcli/simulate/cost.py): counters and wall time of both methods on both engines.
+"""Calibrate the cost model (gearcli/core/cost.py): counters and wall time of both methods on both engines.
 
     PYTHONPATH=$PWD python benchmarks/bench_cost.py [--only NAME ...] [--python-budget 300000] [--json FILE]
 

@@ -12,8 +12,11 @@ samples, the per-step checks; for an implicit method also its Newton back-substi
 Two uses of the prices:
 
 - the run's **work budget** (:func:`priced_work_s`, :mod:`gearcli.simulate.guards`): a run's counters priced at
-  the Python engine's rates on either engine, so that whether a run is within its budget (and where a hopeless
-  one is stopped) is deterministic and does not depend on the engine or the machine's load;
+  scipy's rates, so that whether a run is within its budget (and where a hopeless one is stopped) is
+  deterministic and does not depend on the machine's load. A hopeless pace is judged alike on both engines (its
+  projection at scipy's rates); the budget a compiled run may spend is the same ~60 s of its own, i.e.
+  :func:`compiled_speedup` times as much priced work (the report's Radau reference at rtol 1e-10 on the conveyor,
+  1.7e6 evaluations, ~2 s compiled, would be called off at scipy's rates);
 - ``auto``'s **wall-time prediction** (:func:`predicted_wall_s`): predicted evaluations times the engine's price
   per evaluation of that method (:func:`seconds_per_eval`: the evaluation's price plus its share of the typical
   steps, LU decompositions and Jacobians per evaluation, :data:`COUNTERS_PER_EVAL`), plus what loading the
@@ -67,14 +70,19 @@ def seconds_per_eval(engine: str, method: str) -> float:
     return p["eval"] + per["steps"] * step + per.get("lu", 0.0) * p["lu"] + per.get("jac", 0.0) * p["jac"]
 
 
+def compiled_speedup(method: str) -> float:
+    """How much less a compiled run of ``method`` costs than scipy's for the same counters (~13x DOP853)."""
+    return seconds_per_eval("python", method) / seconds_per_eval("compiled", method)
+
+
 def predicted_wall_s(engine: str, method: str, nfev: float, fixed_s: float = 0.0) -> float:
     """Predicted wall time of a run of ``nfev`` evaluations (``fixed_s``: what loading the engine still costs)."""
     return fixed_s + nfev * seconds_per_eval(engine, method)
 
 
 def priced_work_s(nfev: int, njev: int, nlu: int, steps: int, implicit: bool) -> float:
-    """The run's work in seconds from its counters at the Python engine's prices, on either engine
-    (deterministic, unlike a wall clock; module text)."""
+    """The run's work in seconds from its counters at scipy's prices (deterministic, unlike a wall clock;
+    module text)."""
     p = PRICE_S["python"]
     step = p["step_implicit" if implicit else "step_explicit"]
     return nfev * p["eval"] + njev * p["jac"] + nlu * p["lu"] + steps * step

@@ -62,20 +62,25 @@ ENERGY_MARGIN = 0.1  # of the scene's energy scale
 ENERGY_CHECK_EVERY = 16  # accepted steps between energy checks (divergence grows geometrically)
 
 
-def over_budget(work_s: float, t: float, t_start: float, t_end: float) -> tuple[str, str] | None:
+def over_budget(work_s: float, t: float, t_start: float, t_end: float,
+                speedup: float = 1.0) -> tuple[str, str] | None:
     """Why a run that has used ``work_s`` priced seconds and reached ``t`` of [t_start, t_end] must stop now:
     ``("spent", why)`` when its budget is used up, ``("projected", why)`` when its pace projects to over
-    :data:`PROJECTION_LIMIT` times the budget (the text names the duration that would fit); else None."""
-    if work_s > WORK_CAP_S:
+    :data:`PROJECTION_LIMIT` times the budget (the text names the duration that would fit); else None.
+    ``speedup``: a compiled run's (:func:`gearcli.core.cost.compiled_speedup`): its budget is that many times
+    the priced work, its projection judged as on scipy, and the text in its own seconds."""
+    cap = WORK_CAP_S * speedup
+    if work_s > cap:
         return "spent", f"it used its computing budget of ~{WORK_CAP_S:g} s"
     if work_s > PROJECTION_AFTER_S:
         done = (t - t_start) / (t_end - t_start) if t_end > t_start else 1.0
         projected = work_s / done if done > 0 else math.inf
         if projected > PROJECTION_LIMIT * WORK_CAP_S:
-            fit = t_start + (t - t_start) * WORK_CAP_S / work_s
-            return "projected", (f"at its pace ({100 * done:.2g} % of the run after ~{work_s:.2g} s of computing) it "
-                                 f"would need about {duration_text(projected)}, over {PROJECTION_LIMIT:g}x the budget "
-                                 f"of ~{WORK_CAP_S:g} s; simulation.duration_s ≤ {fit:.3g} s would fit")
+            fit = t_start + (t - t_start) * cap / work_s
+            return "projected", (f"at its pace ({100 * done:.2g} % of the run after ~{work_s / speedup:.2g} s of "
+                                 f"computing) it would need about {duration_text(projected / speedup)}, over "
+                                 f"{PROJECTION_LIMIT:g}x the budget of ~{WORK_CAP_S:g} s; simulation.duration_s ≤ "
+                                 f"{fit:.3g} s would fit")
     return None
 
 

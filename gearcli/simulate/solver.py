@@ -220,11 +220,11 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
 
 
 def _budget_stop(nfev: int, njev: int, nlu: int, steps: int, implicit: bool, t: float,
-                 span: tuple[float, float]) -> tuple[int, str] | None:
-    """(status, message) when the priced work budget stops the run here (:func:`gearcli.simulate.guards.over_budget`),
-    else None: the same verdict on either engine (the kernel checks the same prices at the same steps)."""
+                 span: tuple[float, float], speedup: float = 1.0) -> tuple[int, str] | None:
+    """(status, message) when the priced work budget stops the run here (:func:`gearcli.simulate.guards.over_budget`;
+    ``speedup``: a compiled run's), else None (the kernel checks the same limits at the same steps)."""
     work = priced_work_s(nfev, njev, nlu, steps, implicit)
-    verdict = over_budget(work, t, *span)
+    verdict = over_budget(work, t, *span, speedup=speedup)
     if verdict is None:
         return None
     kind, why = verdict
@@ -249,8 +249,10 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
 
     implicit = METHODS[method].implicit
     watch_par = [watch.e0, watch.w0, watch.scale, ENERGY_MARGIN] if watch is not None else [0.0, 0.0, 0.0, 0.0]
-    p = cost.PRICE_S["python"]  # the work budget's prices, as on the Python engine (gearcli.core.cost)
-    wpar = np.array([*watch_par, t0, cost.WORK_CAP_S, cost.PROJECTION_AFTER_S, cost.PROJECTION_LIMIT,
+    p = cost.PRICE_S["python"]  # the work budget (gearcli.simulate.guards.over_budget with the compiled speed-up)
+    speedup = cost.compiled_speedup(method)
+    wpar = np.array([*watch_par, t0, cost.WORK_CAP_S * speedup, cost.PROJECTION_AFTER_S,
+                     cost.PROJECTION_LIMIT / speedup,
                      float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
                      p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])])
     every = np.int64(watch.every if watch is not None else 0)
@@ -272,7 +274,7 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     elif status == STATUS_BUDGET and nfev > max_nfev:
         message = f"more than {max_nfev} right-hand-side evaluations"
     elif status in (STATUS_BUDGET, STATUS_PROJECTED):
-        stop = _budget_stop(nfev, njev, nlu, steps, implicit, t_end, (0.0, float(t_eval[-1])))
+        stop = _budget_stop(nfev, njev, nlu, steps, implicit, t_end, (0.0, float(t_eval[-1])), speedup)
         message = stop[1] if stop is not None else f"more than {max_nfev} right-hand-side evaluations"
     else:
         message = messages.get(status, f"status {status}")

@@ -1,4 +1,4 @@
-"""auto's cost model and its pace rules (gearcli/simulate/cost.py): the excitation a run must follow, by hand; the
+"""auto's cost model and its pace rules (gearcli/core/cost.py): the excitation a run must follow, by hand; the
 work budget on the compiled engine; the pace warning and the engine switch, which changes no number."""
 
 from __future__ import annotations
@@ -74,14 +74,17 @@ def test_prices_by_hand():
     assert cost.seconds_per_eval("compiled", "Radau") == pytest.approx(
         p["compiled"]["eval"] + r["steps"] * p["compiled"]["step_implicit"] + r["lu"] * p["compiled"]["lu"]
         + r["jac"] * p["compiled"]["jac"])
-    # the work budget is priced at the Python engine's rates whatever the engine
+    # the work budget: scipy's prices; a compiled run may spend its speed-up times as much
+    assert cost.compiled_speedup("DOP853") == pytest.approx(
+        (p["python"]["eval"] + p["python"]["step_explicit"] / 12) / (p["compiled"]["eval"] + p["compiled"]["step_explicit"] / 12))
     assert cost.priced_work_s(1000, 2, 20, 100, True) == pytest.approx(
         1000 * p["python"]["eval"] + 2 * p["python"]["jac"] + 20 * p["python"]["lu"] + 100 * p["python"]["step_implicit"])
 
 
 def test_compiled_radau_stops_a_hopeless_run_as_scipy_does():
     """A 1e-9 kg m² load on a 1e9 N m/rad coupling with instant ramps: the compiled Radau projects its pace like
-    scipy's loop and stops a few priced seconds in with the same kind of message (tests/cli/test_cli_cost_budget)."""
+    scipy's loop (its pace judged at scipy's prices) and stops a few priced seconds in with the same kind of message
+    (tests/cli/test_cli_cost_budget)."""
     from gearcli.simulate.guards import PROJECTION_AFTER_S, priced_work_s
 
     cfg = load_design(str(ROOT / "configs" / "extreme" / "instant_ramps.toml"),
