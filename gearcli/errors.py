@@ -66,6 +66,11 @@ class RunTooLong(SimulationError):
     exit_code = EXIT_USAGE
 
 
+class StudyTooLong(RunTooLong):
+    """A whole study (the report's accuracy ladder) out of its computing budget: it ends the study, where one
+    rung's own failure would only be a row of it."""
+
+
 class OutputError(GearcliError):
     """An output path that must not be written (a directory, a device, the input ...): nothing is written."""
 

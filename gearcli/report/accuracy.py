@@ -21,7 +21,7 @@ import statistics
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
-from gearcli.errors import GearcliError, SimulationError
+from gearcli.errors import GearcliError, SimulationError, StudyTooLong
 from gearcli.report.result import QUANTITIES, AccuracyRun, AccuracyStudy, ReferenceRun, RunMetrics
 from gearcli.results import SimulationResult
 
@@ -149,6 +149,8 @@ class _Runner:
         self.done += 1
         try:
             return self.run(method, rtol)
+        except StudyTooLong:  # the study's own budget: it ends the study (exit 2), not just this run
+            raise
         except GearcliError as exc:
             return str(exc)
 

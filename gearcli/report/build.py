@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 from gearcli import diagnostics as dg
 from gearcli import engine
-from gearcli.errors import RunTooLong
+from gearcli.errors import StudyTooLong
 from gearcli.model import TorsionalModel
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
@@ -141,14 +141,14 @@ class ReportBudget:
         rungs = sum(accuracy_factor(r) for r in spec.rtols) * len(spec.methods)
         projected = self.first * (rungs + accuracy_factor(ref_rtol) + accuracy_factor(check_rtol)) / base
         if self.spent + projected > REPORT_WORK_CAP_S:
-            raise RunTooLong(f"the accuracy study would need about {duration_text(self.spent + projected)} of computing "
+            raise StudyTooLong(f"the accuracy study would need about {duration_text(self.spent + projected)} of computing "
                              f"({len(spec.rtols) * len(spec.methods) + 2} runs at the pace of the file's own run), over "
                              f"the report's budget of ~{REPORT_WORK_CAP_S:g} s; {self._fit(self.spent + projected)}")
 
     def spend(self, work_s: float) -> None:
         self.spent += work_s
         if self.spent > REPORT_WORK_CAP_S:
-            raise RunTooLong(f"the accuracy study used its computing budget of ~{REPORT_WORK_CAP_S:g} s before it "
+            raise StudyTooLong(f"the accuracy study used its computing budget of ~{REPORT_WORK_CAP_S:g} s before it "
                              f"finished; {self._fit(self.spent)}")
 
 

@@ -227,7 +227,8 @@ def test_a_signalled_sweep_leaves_no_process_and_no_leaked_semaphore(tmp_path, s
     nothing to warn about. stderr goes to a file: a left-over worker holding a pipe would hang the test."""
     err_path = tmp_path / "stderr.txt"
     cmd = [sys.executable, "-m", "gearcli", "sweep", str(SEED), "--vary", "input.speed_deg_s=3000:4000:4",
-           "--set", "simulation.duration_s=30", "--jobs", "2", "-o", str(tmp_path / "s.csv")]
+           "--set", "simulation.duration_s=30", "--set", "simulation.engine=python",  # scipy: points of seconds
+           "--jobs", "2", "-o", str(tmp_path / "s.csv")]
     with err_path.open("w") as err:
         proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, cwd=tmp_path)
     seen: set[int] = set()
