@@ -59,6 +59,11 @@ SLOW = (
     "tests/reference/test_excitation_oscillator.py::test_single_and_double_sided_impacts_as_published",
     "tests/reference/test_excitation_oscillator.py::test_coexisting_responses_inside_the_hysteresis_band",
     "tests/cli/test_cli_hostile.py::test_report_in_a_latin_1_terminal_does_not_crash",
+    "tests/cli/test_cli_hostile_retest.py::test_report_has_a_run_time_bound",  # runs a report until its budget
+    "tests/engine/test_auto_cost.py::test_compiled_radau_stops_a_hopeless_run_as_scipy_does",
+    "tests/engine/test_step_for_step.py::test_same_steps_as_scipy[conveyor",  # the conveyor scenes on scipy
+    "tests/engine/test_choice.py::test_unsupported_method_requested_compiled_runs_on_python_with_the_reason",
+    "tests/cli/test_cli_hostile_retest.py::test_scheduler_address_of_a_web_server_is_a_quick_clear_error[http_server]",
 )
 
 
