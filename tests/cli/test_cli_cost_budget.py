@@ -48,9 +48,10 @@ def test_a_tiny_load_inertia_on_a_stiff_coupling_is_stopped_early_with_the_fix()
     res = subprocess.run([sys.executable, "-m", "gearcli", "simulate", str(SCENE), *TINY_LOAD, "--format", "json"],
                          capture_output=True, text=True, timeout=120, env={"PYTHONPATH": str(ROOT), "PATH": ""})
     assert res.returncode == 2, res.stderr  # refused like a resource estimate, the file named
-    assert res.stderr.startswith(f"gearcli: {SCENE}: Radau stopped at t = "), res.stderr
+    # (on a machine without the compiled engine's cache a line announcing its compilation may come first)
+    msg = next((line for line in res.stderr.splitlines() if line.startswith(f"gearcli: {SCENE}: ")), "")
+    assert msg.startswith(f"gearcli: {SCENE}: Radau stopped at t = "), res.stderr
     assert "Traceback" not in res.stderr and "internal error" not in res.stderr
-    msg = res.stderr
     assert "would need about" in msg and "simulation.duration_s ≤" in msg and "tiny inertia" in msg, msg
     # stopped by the projection, i.e. a few priced seconds in: the counters in the message say so
     steps = int(re.search(r"(\d+) steps", msg).group(1))
