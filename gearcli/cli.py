@@ -355,21 +355,31 @@ def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
         _write_campbell(loaded, api.campbell(loaded.design, design_result), plots_dir)
 
 
-def _write_campbell(loaded, data, plots_dir: str) -> None:
-    """``modes --plots``: the Campbell diagram at the drive's boundary; no matplotlib: a warning, exit 0."""
-    from gearcli.io import units
-    from gearcli.io.campbell import write_campbell
+def _write_figures(write, plots_dir: str, what: str) -> bool:
+    """``--plots DIR`` of any command: ``write()`` returns the written paths; without matplotlib a warning and
+    exit 0 (``what`` is the command's output, complete without them); an unwritable directory exit 1. Whether
+    the figures were written."""
     from gearcli.io.plots import PlotsUnavailable
 
     try:
-        path = write_campbell(data, units.of_design_file(loaded.design), plots_dir, loaded.design.title)
+        paths = write()
     except PlotsUnavailable as exc:
-        warn([f"{exc}; the modes output itself is complete"])
-        return
+        warn([f"{exc}; {what} itself is complete"])
+        return False
     except OSError as exc:
         _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
     if not is_quiet():
-        click.echo(f"wrote {path.name} to {visible(plots_dir)}", err=True)
+        click.echo(f"wrote {', '.join(visible(p.name) for p in paths)} to {visible(plots_dir)}", err=True)
+    return True
+
+
+def _write_campbell(loaded, data, plots_dir: str) -> None:
+    """``modes --plots``: the Campbell diagram at the drive's boundary."""
+    from gearcli.io import units
+    from gearcli.io.campbell import write_campbell
+
+    _write_figures(lambda: [write_campbell(data, units.of_design_file(loaded.design), plots_dir, loaded.design.title)],
+                   plots_dir, "the modes output")
 
 
 @cli.command(epilog="""\b
@@ -517,20 +527,10 @@ def _check_plots_dir(plots_dir: str, file: str, target) -> None:
 
 
 def _write_report_plots(rep, plots_dir: str) -> None:
-    """A missing optional dependency for an optional output: warn how to install it, exit 0."""
-    from gearcli.io.plots import PlotsUnavailable, write_plots
+    from gearcli.io.plots import write_plots
 
-    try:
-        paths = write_plots(rep, plots_dir)
-    except PlotsUnavailable as exc:
-        warn([f"{exc}; the report itself is complete"])
-        return
-    except OSError as exc:
-        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
-    if is_quiet():
-        return
-    click.echo(f"wrote {', '.join(p.name for p in paths)} to {visible(plots_dir)}", err=True)
-    if rep.accuracy is None:
+    if _write_figures(lambda: write_plots(rep, plots_dir), plots_dir, "the report") and not is_quiet() \
+            and rep.accuracy is None:
         click.echo("work_precision.png needs the accuracy study: run without --quick", err=True)
 
 
@@ -605,17 +605,9 @@ def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
 
 
 def _write_sweep_plots(session, rows, plots_dir: str) -> None:
-    from gearcli.io.plots import PlotsUnavailable
     from gearcli.io.sweep_plots import write_sweep_plots
 
-    try:
-        paths = write_sweep_plots(session, rows, plots_dir)
-    except PlotsUnavailable as exc:
-        warn([f"{exc}; the sweep itself is complete"])
-        return
-    except OSError as exc:
-        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
-    click.echo(f"wrote {', '.join(visible(p.name) for p in paths)} to {visible(plots_dir)}", err=True)
+    _write_figures(lambda: write_sweep_plots(session, rows, plots_dir), plots_dir, "the sweep")
 
 
 # -------------------------------------------------------------------------------------------- life
@@ -669,17 +661,8 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
 
 def _write_life_plots(result, plots_dir: str) -> None:
     from gearcli.io.life_plots import write_life_plots
-    from gearcli.io.plots import PlotsUnavailable
 
-    try:
-        paths = write_life_plots(result, plots_dir)
-    except PlotsUnavailable as exc:
-        warn([f"{exc}; the life calculation itself is complete"])
-        return
-    except OSError as exc:
-        _fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
-    if not is_quiet():
-        click.echo(f"wrote {', '.join(p.name for p in paths)} to {visible(plots_dir)}", err=True)
+    _write_figures(lambda: write_life_plots(result, plots_dir), plots_dir, "the life calculation")
 
 
 def main() -> None:
