@@ -112,6 +112,66 @@ class RatingResult:
 
 
 @dataclass(frozen=True)
+class RingMemberRating:
+    """ISO 6336-2 figures of the ring (internal gear); its tooth-root bending is not rated (the internal gear's
+    Y_F, Y_S need ISO 6336-3's pinion-type cutter, which gearcli does not model): those keys are null and
+    ``bending_not_rated`` says why."""
+
+    load_cycles: float
+    Z_BD: float  # Z_D = 1 for an internal gear (ISO 6336-2)
+    sigma_H_MPa: float
+    Z_NT: float
+    Z_X: float
+    sigma_HG_MPa: float
+    sigma_HP_MPa: float
+    S_H: float
+    Y_F: float | None = None
+    Y_S: float | None = None
+    Y_B: float | None = None
+    Y_DT: float | None = None
+    sigma_F0_MPa: float | None = None
+    sigma_F_MPa: float | None = None
+    Y_delta_rel_T: float | None = None
+    Y_R_rel_T: float | None = None
+    Y_X: float | None = None
+    Y_NT: float | None = None
+    sigma_FG_MPa: float | None = None
+    sigma_FP_MPa: float | None = None
+    S_F: float | None = None
+    bending_not_rated: str = ("ISO 6336-3 Y_F, Y_S of an internal gear (pinion-type cutter) are not implemented; "
+                              "the ring's tooth-root bending is not rated")
+
+
+@dataclass(frozen=True)
+class InternalRatingResult:
+    """The planet–ring mesh's strength rating (ISO 6336:2006 method B); JSON ``meshes[1].rating``, the keys of a
+    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring."""
+
+    standard: str
+    K_A: float
+    K_v: float
+    K_v_source: str  # "given" | "sun_planet" (the sun–planet mesh's K_v) | "simulated"
+    K_Hbeta: float
+    K_Hbeta_source: str
+    K_Fbeta: float
+    K_Halpha: float
+    K_Falpha: float
+    Z_H: float
+    Z_E: float
+    Z_eps: float
+    Z_beta: float
+    Z_L: float
+    Z_V: float
+    Z_R: float
+    Z_W: float
+    Y_beta: float
+    sigma_H0_MPa: float
+    sigma_H_MPa: float
+    pinion: MemberRating
+    gear: RingMemberRating
+
+
+@dataclass(frozen=True)
 class StageResult:
     index: int  # 1-based
     ratio: float
@@ -413,7 +473,7 @@ class InternalMeshResult:
     iso6336_mesh_stiffness_beta_N_mm_um: float
     iso6336_factors: Iso6336Factors
     mesh_frequency_Hz: float
-    rating: None = None  # ISO 6336-2/-3 factors of an internal gear are not covered (docs/iso6336.md)
+    rating: InternalRatingResult | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
 
 
 @dataclass(frozen=True)

@@ -50,6 +50,10 @@ def compute_design(cfg: DesignFile) -> DesignResult:
 
         rated, rating_diagnostics = rate_design(pairs, tuple(_with_k_gamma(s) for s in stages))
         stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
+        stages = tuple(_rate_planet_ring(cfg, k, s) for k, s in enumerate(stages))
+        from gearcli.design.rating_internal import planet_ring_safety_diagnostics
+
+        rating_diagnostics += tuple(d for s in stages for d in planet_ring_safety_diagnostics(cfg, s))
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
@@ -83,6 +87,17 @@ def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) ->
     if not isinstance(stage, PlanetaryStage):
         return _stage_result(pairs, k, kin)
     return pl.planetary_result(cfg, k, kin, _stage_result(pairs, k, pl.mesh_train(k, stage, kin)))
+
+
+def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
+    """A rated planetary stage with its planet–ring mesh rated too (ISO 6336-2/-3, docs/iso6336.md)."""
+    if stage.planetary is None or stage.rating is None:
+        return stage
+    from gearcli.design.rating_internal import rate_planet_ring
+
+    ring_rating = rate_planet_ring(cfg, k, _with_k_gamma(stage), stage.rating.K_v)
+    mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
+    return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
 
 
 def _with_k_gamma(stage: StageResult) -> StageResult:

@@ -145,7 +145,7 @@ def test_load_sharing_factor_scales_the_rated_force_only():
         st = compute_design(DesignFile.model_validate(doc)).stages[0]
         assert st.planetary is not None and st.planetary.load_sharing_factor == k_gamma
         assert_allclose(st.static_force_N.tangential, 779454.877, rtol=1e-6)  # nominal, per planet
-        assert st.rating is not None and st.planetary.planet_ring.rating is None  # internal: not covered
+        assert st.rating is not None and st.planetary.planet_ring.rating is not None  # rated (test_planet_ring_rating_kisssoft.py)
         rated.append(st.rating)
     # σ_H0 ∝ √F_t: K_gamma = 1.1 raises it by √1.1 (the report's sigH0 759.92 is at K_gamma's F_t... not printed)
     assert_allclose(rated[1].sigma_H0_MPa / rated[0].sigma_H0_MPa, math.sqrt(1.1), rtol=1e-12)

@@ -1,0 +1,177 @@
+"""Strength rating of a planetary stage's planet–ring (internal) mesh: ISO 6336-2 (pitting) and ISO 6336-3
+(tooth root, planet only), 2006 editions, method B (docs/iso6336.md, "The planet–ring mesh").
+
+Reuses the external-gear factors of ``rating_factors`` and ``rating_root`` wherever the standard's formula is the
+same; what differs for the internal pair:
+
+- σ_H0 with u = z_r/z_p taken negative: (u + 1)/u becomes (|u| − 1)/|u|; Z_H at the internal mesh's α_wt;
+  Z_ε and the load factors from the internal mesh's ε_α, c′, c_γα, c_γβ.
+- Z_D = 1 for the internal gear (ISO 6336-2); Z_B of the planet from the relative curvature at its inner point of
+  single contact B against the concave ring flank, M_1 = √((1/ρ_1B − 1/ρ_2B)/(1/ρ_1C − 1/ρ_2C)), ρ_2 = ρ_1 + a_w sin α_wt.
+- ρ_red = ρ_1 ρ_2/(ρ_2 − ρ_1) for Z_R.
+- K_v: ``dynamic_factor`` when given as a number, else the sun–planet mesh's K_v (``K_v_source = "sun_planet"``):
+  gearcli computes no resonance speed of the internal mesh.
+- Load cycles: the planet 60 n_p,rel H (one mesh per relative turn), the ring 60 N |n_r − n_c| H (N planets).
+- The ring's tooth-root bending is not rated (null, with ``bending_not_rated``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+from gearcli.design import rating_factors as rf
+from gearcli.design import rating_root as rr
+from gearcli.design.rating import BENDING_LOW, HB_PER_HV, PITTING_LOW, STANDARD, STRESS_CORRECTION_TEST_GEAR
+from gearcli.design.stiffness import reference_tangential_force_N
+from gearcli.diagnostics import Diagnostic, warning
+from gearcli.results import InternalRatingResult, MemberRating, RingMemberRating
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile, Material
+    from gearcli.results import StageResult
+
+
+def _complete(mat: Material, ring_rz: float | None) -> bool:
+    return (mat.treatment is not None and mat.contact_fatigue_limit_MPa is not None
+            and mat.bending_fatigue_limit_MPa is not None and ring_rz is not None)
+
+
+def planet_single_contact_factor(tip_p: float, base_p: float, working_rad: float, a_w: float, p_bt: float,
+                                 eps_beta: float) -> float:
+    """Z_B of the planet against the concave ring flank (ISO 6336-2, 6.2, with the internal pair's curvatures)."""
+    rho1_c = 0.5 * base_p * math.tan(working_rad)
+    shift = a_w * math.sin(working_rad)  # T1T2: the ring's tangency lies beyond the planet's by a_w sin α_wt
+    rho1_b = math.sqrt(max(0.25 * (tip_p ** 2 - base_p ** 2), 0.0)) - p_bt
+    if eps_beta >= 1.0 or rho1_b <= 0.0:
+        return 1.0
+    curv_c = 1.0 / rho1_c - 1.0 / (rho1_c + shift)
+    curv_b = 1.0 / rho1_b - 1.0 / (rho1_b + shift)
+    m = math.sqrt(curv_b / curv_c)
+    return max(1.0, m - eps_beta * (m - 1.0))
+
+
+def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult, sun_planet_k_v: float) -> InternalRatingResult | None:
+    """The planet–ring rating of planetary stage ``k`` (``st`` with K_γ applied to its force); ``None`` when the
+    ring's material or flank roughness lacks what the rating needs."""
+    from gearcli.config.schema import PlanetaryStage
+
+    stage, rating, lub, p = cfg.stage[k], cfg.rating, cfg.lubricant, st.planetary
+    assert isinstance(stage, PlanetaryStage) and p is not None
+    if rating is None or lub is None or lub.viscosity_40C_mm2_s is None or stage.accuracy_grade is None:
+        return None
+    mats = (cfg.materials[stage.planet.material], cfg.materials[stage.ring.material])
+    if not _complete(mats[1], stage.ring.flank_roughness_Rz_um) or not _complete(mats[0], 0.0):
+        return None
+    mesh, planet, ring = p.planet_ring, p.planet, p.ring
+    treat = (str(mats[0].treatment), str(mats[1].treatment))
+    hlim = (float(mats[0].contact_fatigue_limit_MPa or 0.0), float(mats[1].contact_fatigue_limit_MPa or 0.0))
+    grade, m_n, b = stage.accuracy_grade, st.normal_module_mm, mesh.face_width_mm
+    alpha_t, alpha_wt = math.radians(st.transverse_pressure_angle_deg), math.radians(mesh.working_pressure_angle_deg)
+    beta, beta_b = math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg)
+    eps_a, eps_b, eps_g = mesh.contact_ratio_transverse, mesh.overlap_ratio, mesh.contact_ratio_total
+    f_t = reference_tangential_force_N(st.static_force_N.tangential, b)
+    k_a = cfg.load.application_factor
+    speed = max(math.pi * planet.pitch_diameter_mm * abs(st.gear.speed_rpm) / 60000.0, 1e-9)  # carrier frame
+    # ISO 6336-1: deviations, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα
+    diameters = (planet.pitch_diameter_mm, ring.pitch_diameter_mm)
+    f_pb = max(rf.single_pitch_tolerance_um(d, m_n, grade) for d in diameters) * math.cos(alpha_t)
+    f_fa = max(rf.profile_form_tolerance_um(d, m_n, grade) for d in diameters)
+    y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, speed) for t, h in zip(treat, hlim, strict=True))
+    line_load = f_t * k_a / b
+    if isinstance(rating.dynamic_factor, float):
+        k_v, k_v_source = rating.dynamic_factor, "given"
+    else:
+        k_v, k_v_source = sun_planet_k_v, "sun_planet"
+    if rating.face_load_factor is not None:
+        k_hb, k_hb_source = rating.face_load_factor, "given"
+    else:
+        f_hb = rf.helix_slope_tolerance_um(planet.pitch_diameter_mm, b, grade)
+        k_hb = rf.face_load_factor_estimate(mesh.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb,
+                                            b / planet.pitch_diameter_mm, (treat[0], hlim[0], speed))
+        k_hb_source = "estimated"
+    depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n
+    k_fb = rf.face_load_factor_root(k_hb, b, depth)
+    z_eps = rf.contact_ratio_factor(eps_a, eps_b)
+    k_ha, k_fa = rf.transverse_load_factors(eps_a, eps_g, z_eps, mesh.iso6336_mesh_stiffness_N_mm_um,
+                                            max(f_pb, f_fa) - y_a, line_load * k_v * k_hb)
+    # ISO 6336-2: pitting
+    z_h = rf.zone_factor(beta_b, alpha_t, alpha_wt)
+    z_e = rf.elasticity_factor(mats[0].youngs_modulus_MPa, mats[0].poisson_ratio, mats[1].youngs_modulus_MPa,
+                               mats[1].poisson_ratio)
+    z_beta = rf.helix_factor_pitting(beta)
+    u = ring.teeth / planet.teeth  # |u|; the internal pair's u is negative
+    sigma_h0 = z_h * z_e * z_eps * z_beta * math.sqrt(f_t / (planet.pitch_diameter_mm * b) * (u - 1.0) / u)
+    sigma_h = sigma_h0 * math.sqrt(k_a * k_v * k_hb * k_ha)
+    z_b = planet_single_contact_factor(planet.tip_diameter_mm, planet.base_diameter_mm, alpha_wt,
+                                       mesh.center_distance_mm, mesh.transverse_base_pitch_mm, eps_b)
+    low = min(hlim)
+    rho1 = 0.5 * planet.base_diameter_mm * math.tan(alpha_wt)
+    rho2 = 0.5 * ring.base_diameter_mm * math.tan(alpha_wt)
+    rz = 0.5 * (float(stage.planet.flank_roughness_Rz_um or 0.0) + float(stage.ring.flank_roughness_Rz_um or 0.0))
+    z_l = rf.lubricant_factor(low, lub.viscosity_40C_mm2_s)
+    z_v = rf.velocity_factor(low, speed)
+    z_r = rf.roughness_factor(low, rz, rho1 * rho2 / (rho2 - rho1))
+    hard = [t in rf.SURFACE_HARDENED for t in treat]
+    soft, z_w = -1, 1.0
+    if hard[0] != hard[1]:
+        soft = 1 if hard[0] else 0
+        hv = mats[soft].surface_hardness_HV
+        z_w = rf.work_hardening_factor(None if hv is None else HB_PER_HV * hv)
+    cycles = (60.0 * abs(st.gear.speed_rpm) * rating.required_life_h,
+              60.0 * p.planet_count * abs(ring.speed_rpm - p.carrier.speed_rpm) * rating.required_life_h)
+    z_nt = tuple(rf.life_factor_pitting(treat[i], cycles[i], rating.material_quality) for i in (0, 1))
+    sig_hg = tuple(hlim[i] * z_nt[i] * z_l * z_v * z_r * (z_w if i == soft else 1.0) for i in (0, 1))
+    sig_hb = (z_b * sigma_h, sigma_h)  # Z_D = 1 for the internal gear
+    # ISO 6336-3: the planet's root on its ring side (an external gear cut by the rack)
+    form = rr.tooth_form(planet.teeth, m_n, math.radians(st.normal_pressure_angle_deg), beta, beta_b,
+                         planet.profile_shift, planet.tip_diameter_mm, planet.pitch_diameter_mm, eps_a,
+                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+    y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
+    y_b = rr.rim_factor(stage.planet.rim_thickness_mm, 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm))
+    y_dt = rr.deep_tooth_factor(eps_a, beta_b, grade)
+    b_f = min(planet.face_width_mm, b + 2.0 * m_n)
+    sig_f0 = f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_b * y_dt
+    sig_f = sig_f0 * k_a * k_v * k_fb * k_fa
+    y_d = rr.relative_notch_sensitivity(treat[0], form["q_s"])
+    y_r = rr.relative_surface_factor(treat[0], float(stage.planet.root_roughness_Rz_um or 0.0))
+    y_x = rr.size_factor_bending(treat[0], m_n)
+    y_nt = rf.life_factor_bending(treat[0], cycles[0], rating.material_quality)
+    sig_fg = float(mats[0].bending_fatigue_limit_MPa or 0.0) * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
+    planet_rating = MemberRating(
+        load_cycles=cycles[0], Z_BD=z_b, sigma_H_MPa=sig_hb[0], Z_NT=z_nt[0], Z_X=1.0, sigma_HG_MPa=sig_hg[0],
+        sigma_HP_MPa=sig_hg[0] / rating.min_safety_pitting, S_H=sig_hg[0] / sig_hb[0], Y_F=form["Y_F"],
+        Y_S=form["Y_S"], Y_B=y_b, Y_DT=y_dt, sigma_F0_MPa=sig_f0, sigma_F_MPa=sig_f, Y_delta_rel_T=y_d,
+        Y_R_rel_T=y_r, Y_X=y_x, Y_NT=y_nt, sigma_FG_MPa=sig_fg, sigma_FP_MPa=sig_fg / rating.min_safety_bending,
+        S_F=sig_fg / sig_f)
+    ring_rating = RingMemberRating(
+        load_cycles=cycles[1], Z_BD=1.0, sigma_H_MPa=sig_hb[1], Z_NT=z_nt[1], Z_X=1.0, sigma_HG_MPa=sig_hg[1],
+        sigma_HP_MPa=sig_hg[1] / rating.min_safety_pitting, S_H=sig_hg[1] / sig_hb[1])
+    return InternalRatingResult(
+        standard=STANDARD, K_A=k_a, K_v=k_v, K_v_source=k_v_source, K_Hbeta=k_hb, K_Hbeta_source=k_hb_source,
+        K_Fbeta=k_fb, K_Halpha=k_ha, K_Falpha=k_fa, Z_H=z_h, Z_E=z_e, Z_eps=z_eps, Z_beta=z_beta, Z_L=z_l, Z_V=z_v,
+        Z_R=z_r, Z_W=z_w, Y_beta=y_beta, sigma_H0_MPa=sigma_h0, sigma_H_MPa=sigma_h, pinion=planet_rating,
+        gear=ring_rating)
+
+
+def planet_ring_safety_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
+    """A warning for every safety of the planet–ring mesh below its minimum (the codes of the external pairs',
+    ``member`` "planet" or "ring", ``mesh`` "planet_ring")."""
+    p = st.planetary
+    r = None if p is None else p.planet_ring.rating
+    if r is None or p is None or cfg.rating is None:
+        return []
+    minima = {"pitting": cfg.rating.min_safety_pitting, "bending": cfg.rating.min_safety_bending}
+    out = []
+    for member, m, teeth in (("planet", r.pinion, p.planet.teeth), ("ring", r.gear, p.ring.teeth)):
+        for mode, value, symbol in (("pitting", m.S_H, "S_H"), ("bending", m.S_F, "S_F")):
+            if value is None or value >= minima[mode]:
+                continue
+            what = "pitting (flank)" if mode == "pitting" else "tooth-root bending"
+            out.append(warning(PITTING_LOW if mode == "pitting" else BENDING_LOW,
+                               f"stage {st.index} planet–ring mesh, {member} (z = {teeth}): {what} safety {symbol} = "
+                               f"{value:.3g} is below the minimum {minima[mode]:.3g} (ISO 6336, K_v = {r.K_v:.3g} "
+                               f"{r.K_v_source}); widen the face, raise the module or choose a stronger material",
+                               stage=st.index, member=member, mode=mode, S=value, S_min=minima[mode],
+                               mesh="planet_ring"))
+    return out
