@@ -209,11 +209,6 @@ def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
     return TorsionalModel(spec_from_design(cfg, design))
 
 
-def resonance_warnings(cfg: DesignFile, design: DesignResult) -> tuple[str, ...]:
-    """The messages of :func:`resonance_diagnostics`."""
-    return tuple(d.message for d in resonance_diagnostics(cfg, design))
-
-
 def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple:
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
@@ -225,8 +220,5 @@ def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple:
 
     lay = Layout.of(spec_from_design(cfg, design))
     boundary = "clamped_input" if lay.speed_drive else "free"
-    return tuple(dg.warning(dg.RESONANCE, r.message, stage=r.stage, mode=r.mode, frequency_Hz=r.frequency_Hz,
-                            excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element,
-                            participation=r.participation, amplification=r.amplification,
-                            damping_ratio=r.damping_ratio, strength=r.strength, boundary=boundary)
+    return tuple(dg.warning(dg.RESONANCE, r.message, **r.data, boundary=boundary)
                  for r in resonances(lay, boundary, duration_s=cfg.simulation.duration_s))

@@ -85,14 +85,9 @@ def check_hands(stage: Stage, k: int) -> None:
 
 
 # ---------------------------------------------------------------------------------------- warnings
-def design_warnings(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[str, ...]:
-    """Every warning of the design, train-level first, then stage by stage."""
-    return tuple(d.message for d in design_diagnostics(cfg, stages, output_speed_rpm))
-
-
 def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple:
     """The design's warnings as diagnostics (code ``design``; ``check`` names the check, with its stage,
-    member and numbers), in the order of :func:`design_warnings`."""
+    member and numbers): train-level first, then stage by stage."""
     from gearcli.diagnostics import DESIGN, warning
 
     found = []

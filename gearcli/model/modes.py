@@ -197,6 +197,14 @@ class Resonance:
     strength: str = ""  # "strongly" | "moderately"
     stage: int | None = None  # the exciting mesh's stage (None for a shaft order)
 
+    @property
+    def data(self) -> dict:
+        """The diagnostic's data of this resonance (``gearcli.diagnostics.warning(RESONANCE, message, **data)``)."""
+        return {"stage": self.stage, "mode": self.mode, "frequency_Hz": self.frequency_Hz,
+                "excitation": self.excitation, "excitation_Hz": self.excitation_Hz, "element": self.element,
+                "participation": self.participation, "amplification": self.amplification,
+                "damping_ratio": self.damping_ratio, "strength": self.strength}
+
 
 def _percent(x: float) -> str:
     return f"{100 * x:.2g} %" if x < 0.1 else f"{100 * x:.0f} %"

@@ -8,8 +8,11 @@ from typing import TYPE_CHECKING
 
 from gearcli import diagnostics as dg
 from gearcli import engine
+from gearcli.core.cost import WORK_CAP_S, accuracy_factor, duration_text, priced_work_s
+from gearcli.core.methods import METHODS
 from gearcli.errors import StudyTooLong
 from gearcli.model import TorsionalModel
+from gearcli.model.modes import campbell_data, modal_analysis
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
@@ -20,8 +23,6 @@ from gearcli.simulate.run import run_simulation
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
-from gearcli.core.cost import WORK_CAP_S, accuracy_factor, duration_text, priced_work_s
-from gearcli.core.methods import METHODS
 
 SimulateFn = Callable[..., SimulationResult]  # gearcli.simulate.run_simulation's signature
 
@@ -83,17 +84,11 @@ def build_report(
                 stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
                 progress=lambda label, done, total: tick(label, done + 1, total + 1),
             )
-    warnings = _merge(
-        design.warnings,
-        sim.warnings,
-        energy_check(sim),
-        sampling_checks(stages, sim.natural_frequencies_Hz),
-        accuracy_checks(study, sim_cfg.method, sim_cfg.rtol),
-    )
-    diagnostics = (*getattr(design, "diagnostics", ()), *sim.diagnostics,
-                   *(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
-                   *(dg.warning(dg.SAMPLING, w) for w in sampling_checks(stages, sim.natural_frequencies_Hz)),
-                   *(dg.warning(dg.ACCURACY, w) for w in accuracy_checks(study, sim_cfg.method, sim_cfg.rtol)))
+    checks = (*(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
+              *(dg.warning(dg.SAMPLING, w) for w in sampling_checks(stages, sim.natural_frequencies_Hz)),
+              *(dg.warning(dg.ACCURACY, w) for w in accuracy_checks(study, sim_cfg.method, sim_cfg.rtol)))
+    warnings = _merge(design.warnings, sim.warnings, dg.messages(checks))
+    diagnostics = (*getattr(design, "diagnostics", ()), *sim.diagnostics, *checks)
     return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim),
                   stages=stages, accuracy=study, warnings=warnings, diagnostics=diagnostics,
                   rating=rating_comparison(design, sim),
@@ -102,8 +97,6 @@ def build_report(
 
 def _modes(lay, duration_s: float):
     """The modal analysis at the drive's boundary and the Campbell data, for the report's engineering part."""
-    from gearcli.model.modes import campbell_data, modal_analysis
-
     boundary = "clamped_input" if lay.speed_drive else "free"
     return (modal_analysis(lay, boundary, duration_s=duration_s),
             campbell_data(lay, boundary, duration_s=duration_s))

@@ -10,6 +10,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from gearcli.design.rating import stage_simulated_k_v  # one formula, shared with simulate's rating
 from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult, SimulationResult
@@ -95,8 +96,6 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
 
 def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[RatingComparison, ...]:
     """Per rated stage, ISO 6336-1's K_v beside the simulated one and the smallest safeties at each."""
-    from gearcli.design.rating import stage_simulated_k_v  # one formula, shared with simulate's rating
-
     out = []
     for st, sd in zip(design.stages, sim.stages, strict=False):
         if st.rating is None:

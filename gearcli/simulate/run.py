@@ -490,13 +490,7 @@ def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic
     """A mesh order (1x-3x mesh frequency) or shaft order (1x) at the nominal speed within 10 % of a natural
     frequency that it excites (its meshes' share of the mode's strain energy over twice the modal damping
     ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`)."""
-    out = []
-    for r in resonances(model.layout, boundary=choice.boundary):
-        out.append(dg.warning(dg.RESONANCE, r.message, stage=r.stage, mode=r.mode, frequency_Hz=r.frequency_Hz,
-                              excitation=r.excitation, excitation_Hz=r.excitation_Hz, element=r.element,
-                              participation=r.participation, amplification=r.amplification,
-                              damping_ratio=r.damping_ratio, strength=r.strength))
-    return out
+    return [dg.warning(dg.RESONANCE, r.message, **r.data) for r in resonances(model.layout, boundary=choice.boundary)]
 
 
 def check(run: Integration, choice: Choice, duration_s: float) -> None:
