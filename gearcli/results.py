@@ -84,8 +84,9 @@ class MemberRating:
 
 
 @dataclass(frozen=True)
-class RatingResult:
-    """The strength rating of one stage, ISO 6336:2006 method B; JSON ``stages[k].rating``."""
+class MeshRatingFactors:
+    """The mesh-level figures of an ISO 6336:2006 method B rating (load factors, pitting factors, σ_H0, σ_H),
+    shared by a gear pair's rating and the planet–ring mesh's."""
 
     standard: str
     K_A: float
@@ -107,6 +108,12 @@ class RatingResult:
     Y_beta: float
     sigma_H0_MPa: float
     sigma_H_MPa: float  # at the operating pitch point (Z_B = Z_D = 1)
+
+
+@dataclass(frozen=True)
+class RatingResult(MeshRatingFactors):
+    """The strength rating of one stage, ISO 6336:2006 method B; JSON ``stages[k].rating``."""
+
     pinion: MemberRating
     gear: MemberRating
 
@@ -143,30 +150,11 @@ class RingMemberRating:
 
 
 @dataclass(frozen=True)
-class InternalRatingResult:
+class InternalRatingResult(MeshRatingFactors):
     """The planet–ring mesh's strength rating (ISO 6336:2006 method B); JSON ``meshes[1].rating``, the keys of a
-    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring."""
+    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (``K_v_source`` may also be
+    "sun_planet": the sun–planet mesh's K_v)."""
 
-    standard: str
-    K_A: float
-    K_v: float
-    K_v_source: str  # "given" | "sun_planet" (the sun–planet mesh's K_v) | "simulated"
-    K_Hbeta: float
-    K_Hbeta_source: str
-    K_Fbeta: float
-    K_Halpha: float
-    K_Falpha: float
-    Z_H: float
-    Z_E: float
-    Z_eps: float
-    Z_beta: float
-    Z_L: float
-    Z_V: float
-    Z_R: float
-    Z_W: float
-    Y_beta: float
-    sigma_H0_MPa: float
-    sigma_H_MPa: float
     pinion: MemberRating
     gear: RingMemberRating
 

@@ -37,7 +37,7 @@ _YNT_NODES = {
 }
 
 
-def _znt_curve(treatment: str) -> tuple:
+def znt_curve(treatment: str) -> tuple:
     if treatment in ("nitrided", "grey_iron"):
         return _ZNT_NODES["nitrided"]
     if treatment == "nitrocarburized":
@@ -45,7 +45,7 @@ def _znt_curve(treatment: str) -> tuple:
     return _ZNT_NODES["steel"]
 
 
-def _ynt_curve(treatment: str) -> tuple:
+def ynt_curve(treatment: str) -> tuple:
     if treatment in ("case_carburized", "induction_hardened", "flame_hardened"):
         return _YNT_NODES["surface"]
     if treatment in ("nitrided", "grey_iron"):
@@ -70,12 +70,12 @@ def _life_factor(nodes: Sequence[tuple[float, float]], cycles: float, optimum: b
 
 def life_factor_pitting(treatment: str, cycles: float, quality: str) -> float:
     """Z_NT (ISO 6336-2:2006, Table 2; no pitting permitted): 5e7 < N_L ≤ 1e10 gives (5e7/N_L)^0.0307."""
-    return _life_factor(_znt_curve(treatment), cycles, quality == "optimum")
+    return _life_factor(znt_curve(treatment), cycles, quality == "optimum")
 
 
 def life_factor_bending(treatment: str, cycles: float, quality: str) -> float:
     """Y_NT (ISO 6336-3:2006, Table 3): 3e6 < N_L ≤ 1e10 gives (3e6/N_L)^0.02."""
-    return _life_factor(_ynt_curve(treatment), cycles, quality == "optimum")
+    return _life_factor(ynt_curve(treatment), cycles, quality == "optimum")
 
 
 # ------------------------------------------------------------ ISO 1328-1:1995 tolerances of a grade

@@ -134,8 +134,8 @@ def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve
     m = getattr(design.stages[k].rating, member)
     optimum = cfg.rating.material_quality == "optimum"
     if mode == "pitting":
-        return SNCurve(rf._znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
-    return SNCurve(rf._ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)
+        return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
+    return SNCurve(rf.ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)
 
 
 def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
