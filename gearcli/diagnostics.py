@@ -30,6 +30,7 @@ RESONANCE = "resonance"
 ENGINE_FALLBACK = "engine_fallback"
 SLOW_PACE = "slow_pace"  # a run far slower than auto's cost model predicted (or switched engine for it)
 STATISTICS_UNRESOLVED = "statistics_unresolved"
+RTOL_TIGHTENED = "rtol_tightened"  # auto repeated a run at a tighter rtol to resolve its window means
 DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap
 SUBHARMONIC = "subharmonic"  # steady = "periodic": the response repeats after k > 1 periods

@@ -278,6 +278,7 @@ class StatisticsError:
     unresolved: tuple[str, ...]  # statistics beyond the target
     suggested_rtol: float | None  # simulation.rtol that would resolve them (None when resolved)
     resolved: bool = True  # no statistic beyond the target
+    mean_target_relative: float = 1e-4  # the mean's target (target_relative is that of min, max, std, spectrum)
 
 
 @dataclass(frozen=True)

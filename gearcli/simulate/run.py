@@ -105,7 +105,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    y0: np.ndarray | None = None, max_nfev: int | None = None,
                    steady: str = "window", error_estimate: bool = True,
                    prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto",
-                   progress: Callable[[float], None] | None = None) -> SimulationResult:
+                   progress: Callable[[float], None] | None = None,
+                   tightened: Diagnostic | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -116,7 +117,11 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
     ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
     the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most
-    until ``duration_s`` (:mod:`gearcli.simulate.periodic`), and the statistics are taken over whole periods."""
+    until ``duration_s`` (:mod:`gearcli.simulate.periodic`), and the statistics are taken over whole periods.
+
+    ``method = "auto"`` with the error estimate: when the check pass finds only window means unresolved, the
+    run is repeated once at the rtol that resolves them (:func:`gearcli.simulate.estimate.means_rtol`);
+    ``tightened`` is the repeat's ``rtol_tightened`` warning."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -124,6 +129,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     candidates = engine_options(engine, model.arrays, (EXPLICIT_METHOD, IMPLICIT_METHOD), replaced)
     work = cost.CHECK_PASS_WORK if error_estimate and steady == "window" else 1.0  # the check pass integrates again
     choice = choose_method(spec, duration_s, method, rtol, candidates, work)
+    given_nfev = max_nfev
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
@@ -175,6 +181,16 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
+    finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \
+        and choice.requested == AUTO else None
+    if ref is not None and finer is not None:  # auto resolves the means at a tighter rtol (README "... auto")
+        return simulate_model(model, duration_s=duration_s, steps=steps, method=method, rtol=finer,
+                              window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
+                              steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
+                              engine=engine, progress=progress,
+                              tightened=estimate.tightened_warning(run, ref, finer))
+    if tightened is not None:
+        diags.append(tightened)
     result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
                         ref, stat_diags, eng.reason)
     _require_finite(result)

@@ -19,7 +19,7 @@ from gearcli.design import compute_design
 from gearcli.io.serialize import simulation_dict
 from gearcli.model import DriveSpec, LoadSpec, ModelSpec, TorsionalModel
 from gearcli.simulate import run_simulation, simulate_model
-from gearcli.simulate.estimate import TARGET, spectrum, stage_error, suggested_rtol
+from gearcli.simulate.estimate import MEAN_TARGET, TARGET, spectrum, stage_error, suggested_rtol
 
 ROOT = Path(__file__).resolve().parents[2]
 SEED = ROOT / "configs" / "concrete_mixer.toml"
@@ -118,8 +118,9 @@ def test_json_carries_the_error_estimate_and_the_check_pass():
     est = doc["summary"]["stages"][0]["error_estimate"]
     assert set(est) == {"stage", "reference_N", "target_relative", "tangential_N", "spectrum_N", "relative",
                         "dominant_frequency_Hz", "check_dominant_frequency_Hz", "unresolved", "suggested_rtol",
-                        "resolved"}
+                        "resolved", "mean_target_relative"}
     assert est["resolved"] is True and est["suggested_rtol"] is None and est["target_relative"] == TARGET
+    assert est["mean_target_relative"] == MEAN_TARGET
     # the estimate refers to the stage's own mean force
     assert_allclose(est["reference_N"], abs(doc["summary"]["stages"][0]["tangential_N"]["mean"]), rtol=1e-12)
     cp = doc["solver"]["check_pass"]
