@@ -69,6 +69,7 @@ DOP853_TABLEAU, RK45_TABLEAU = tb.DOP853_TABLEAU, tb.RK45_TABLEAU
 WP_E0, WP_W0, WP_SCALE, WP_MARGIN, WP_T0 = 0, 1, 2, 3, 4
 WP_CAP, WP_AFTER, WP_LIMIT, WP_EVERY, WP_P_EVAL, WP_P_JAC, WP_P_LU, WP_P_STEP, WP_SPAN0, WP_SPAN1 = range(5, 15)
 N_WPAR = 15
+WP_PROGRESS = st.WP_PROGRESS  # optional: the time reached, written at every budget check (a progress bar reads it)
 
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
@@ -477,10 +478,13 @@ def priced_work(nfev, njev, nlu, steps, wpar):
 def guards(t, y, nfev, njev, nlu, steps, finished, max_nfev, watch_every, wpar, model, watched):
     """The evaluation budget, the priced work budget (spent, or a pace projected over its limit: as
     :func:`gearcli.simulate.guards.over_budget`, checked every ``wpar[WP_EVERY]`` steps) and the energy watch
-    every ``watch_every`` steps; ``watched`` receives (energy created, energy scale). Returns a status."""
+    every ``watch_every`` steps; ``watched`` receives (energy created, energy scale). At each budget check the
+    time reached goes to ``wpar[WP_PROGRESS]`` when ``wpar`` has that entry (a progress bar). Returns a status."""
     if nfev > max_nfev:
         return STATUS_BUDGET
     if wpar.size >= N_WPAR and steps % np.int64(wpar[WP_EVERY]) == 0:
+        if wpar.size > WP_PROGRESS:
+            wpar[WP_PROGRESS] = t
         work = priced_work(nfev, njev, nlu, steps, wpar)
         if work > wpar[WP_CAP]:
             return STATUS_BUDGET

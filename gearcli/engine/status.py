@@ -7,3 +7,8 @@ NONFINITE = -3  # the state became non-finite
 ENERGY = -4  # the energy watch saw energy created (a numerical instability)
 PROJECTED = -5  # stopped early: its pace projects far over the computing budget (exit 2, like a refusal)
 SWITCH = -6  # stopped to go on on the compiled engine: its pace on scipy projected far over the prediction
+
+#: the kernel's parameter vector ``wpar`` (gearcli.engine.kernel.WP_*) may carry one more entry at this index: the
+#: kernel writes the time it has reached there at every priced-budget check (every cost.BUDGET_CHECK_EVERY
+#: accepted steps), for a progress bar polled from another thread; the numbers of the run do not depend on it
+WP_PROGRESS = 15

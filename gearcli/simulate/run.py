@@ -113,7 +113,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     ``steady = "periodic"``, whose statistics come from a converged period); ``prior_diagnostics`` (the
     design's warnings) lead the result's warnings; ``engine`` "auto", "python" or "compiled"
     (:func:`gearcli.engine.choose`); ``progress`` is called with the fraction of the run done (a terminal's
-    progress bar, :mod:`gearcli.io.progress`; Python engine runs, which are the long ones).
+    progress bar, :mod:`gearcli.io.progress`; both engines).
 
     ``steady = "window"``: one run to ``duration_s``, statistics over the fixed window. ``"periodic"``: past
     the ramps (or ``window_start_s``) the run goes on period by period until the response repeats, at most

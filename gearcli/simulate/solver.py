@@ -21,9 +21,11 @@ back to the resolution of the tolerance (tests/extreme/test_guards.py).
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.integrate import OdeSolver
@@ -128,7 +130,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     (:func:`gearcli.core.cost.priced_work_s`), a pace that projects the whole run over this many priced
     seconds stops it with ``STATUS_SWITCH`` (the caller goes on on
     the compiled engine). ``progress``: called with the fraction of the run done, every few hundred steps (a
-    terminal's progress bar; never printed here).
+    terminal's progress bar; never printed here); a compiled run reports it every :data:`PROGRESS_EVERY_S`
+    (:func:`_kernel_with_progress`).
     """
     if t0 != 0.0 and y0 is None:
         raise ValueError("a run that starts at t0 > 0 needs the state y0 there")
@@ -138,7 +141,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
         atol = tolerances(model, rtol, watch)
     atol = np.broadcast_to(np.asarray(atol, dtype=float), y.shape).copy()
     if engine == "compiled" and t_eval[-1] > t0:  # (an empty run is scipy's: nothing to integrate)
-        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0))
+        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0), progress)
     out = np.full((y.size, t_eval.size), np.nan)
     out[:, t_eval <= t0] = y[:, None]
     done = int(np.searchsorted(t_eval, t0, side="right"))
@@ -232,9 +235,48 @@ def _budget_stop(nfev: int, njev: int, nlu: int, steps: int, implicit: bool, t: 
         f"{why} ({nfev} right-hand sides, {steps} steps, {nlu} LU decompositions, {njev} Jacobians)")
 
 
+PROGRESS_EVERY_S = 0.1  # how often a compiled run's progress is reported
+
+
+def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.ndarray, span: tuple[float, float],
+                          progress: Callable[[float], None] | None) -> tuple:
+    """``kernel(*args)``; with ``progress``, the kernel runs in a worker thread (it releases the GIL) and this
+    thread reports the time it has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) as the
+    fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are those of a run
+    without progress; the thread costs ~0.1 ms. The worker is a daemon: an interrupted command does not wait for
+    the kernel to finish."""
+    if progress is None:
+        return kernel(*args)
+    box: dict[str, Any] = {}
+
+    def work() -> None:
+        try:
+            box["out"] = kernel(*args)
+        except BaseException as exc:  # handed to the calling thread below
+            box["exc"] = exc
+
+    worker = threading.Thread(target=work, name="gearcli-kernel", daemon=True)
+    worker.start()
+    length = span[1] - span[0]
+
+    def report() -> None:
+        if length > 0:
+            progress(min(1.0, max(0.0, (float(wpar[st.WP_PROGRESS]) - span[0]) / length)))
+
+    while worker.is_alive():
+        worker.join(PROGRESS_EVERY_S)
+        report()
+    report()  # where the kernel stopped (its last budget check), also when it finished before the first poll
+    if "exc" in box:
+        raise box["exc"]
+    return box["out"]
+
+
 def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
-                        atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None, t0: float = 0.0) -> Integration:
-    """The same run on the compiled kernel: same start, segments, tolerances (vectors), guards and statuses."""
+                        atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None, t0: float = 0.0,
+                        progress: Callable[[float], None] | None = None) -> Integration:
+    """The same run on the compiled kernel: same start, segments, tolerances (vectors), guards and statuses;
+    ``progress`` as in :func:`integrate`."""
 
     if method not in engine.COMPILED_METHODS:
         raise SimulationError(f"the compiled engine integrates {', '.join(engine.COMPILED_METHODS)} only, "
@@ -254,14 +296,15 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     wpar = np.array([*watch_par, t0, cost.WORK_CAP_S * speedup, cost.PROJECTION_AFTER_S,
                      cost.PROJECTION_LIMIT / speedup,
                      float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
-                     p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])])
+                     p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])]
+                    + ([t0] if progress is not None else []))  # the kernel writes the time reached there
     every = np.int64(watch.every if watch is not None else 0)
-    t0 = time.perf_counter()
+    start = time.perf_counter()
     kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]
-    out, counters, floats, _ = kernel(engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float),
-                                      np.ascontiguousarray(t_eval, dtype=float), breaks, rtol_v, atol_v,
-                                      np.int64(max_nfev), every, wpar, np.empty(0))
-    wall = time.perf_counter() - t0
+    args = (engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float), np.ascontiguousarray(t_eval, dtype=float),
+            breaks, rtol_v, atol_v, np.int64(max_nfev), every, wpar, np.empty(0))
+    out, counters, floats, _ = _kernel_with_progress(kernel, args, wpar, (t0, float(t_eval[-1])), progress)
+    wall = time.perf_counter() - start
     nfev, steps, status = (int(v) for v in counters[:3])
     njev, nlu = (int(v) for v in counters[4:6]) if counters.size > 4 else (0, 0)
     t_end, created, scale = (float(v) for v in floats)
