@@ -8,11 +8,15 @@ benchmarks/bench_excitation.py; the conveyor is configs/conveyor.toml) three who
 ``gearcli simulate FILE --format json -q`` with ``simulation.method`` = auto, DOP853 and Radau (engine auto each,
 so the compiled engine where it is installed), run in turn ``--repeat`` times (interleaved: the load of a shared
 machine hits the three alike), the fastest wall time of each (on a machine shared with other jobs the minimum is
-the figure least disturbed by them; a median of few runs moves with every burst of load). Reported: the method and engine auto took, the three
-times, auto's ratio to the faster of the other two and the acceptance limit ``1.3 x best + 0.3 s``, and the
-largest difference of auto's window-mean tangential force from the faster method's, relative to the stage's
-static tangential force (acceptance: 1e-4). A method that fails or is refused on a scene is marked so and left
-out of "best".
+the figure least disturbed by them; a median of few runs moves with every burst of load). Reported: the method and engine auto took
+(and its rtol where it tightened it), the three times, auto's ratio to the faster of the other two and the
+acceptance limit ``1.3 x best + 0.3 s``, and the largest difference of auto's window-mean tangential force,
+relative to the stage's static tangential force (its mean force where the static force is 0; acceptance:
+1e-4), from two others: the faster method's (what a user saves nothing by choosing) and an independent
+reference, the scene once more at rtol 1e-10 (DOP853, Radau where DOP853 is refused; no error estimate; not
+timed), which the faster method at the same rtol may itself miss. "warned" marks a scene whose auto run says
+its mean is unresolved (``statistics_unresolved`` naming the mean): honest, but not within the acceptance.
+A method that fails or is refused on a scene is marked so and left out of "best".
 """
 
 from __future__ import annotations
@@ -31,6 +35,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 METHODS = ("auto", "DOP853", "Radau")
 LIMIT_FACTOR, LIMIT_PLUS_S, MEAN_TOL = 1.3, 0.3, 1e-4
+REFERENCE_RTOL = 1e-10
 
 
 def excitation_scenes():
@@ -77,6 +82,32 @@ def static_forces(path: Path, sets: list[str]) -> list[float]:
     return [abs(st.static_force_N.tangential) for st in compute_design(cfg).stages]
 
 
+def reference(base: list[str]) -> dict | None:
+    """The scene at rtol 1e-10 without the error estimate: DOP853, or Radau where DOP853 is refused or fails."""
+    for method in ("DOP853", "Radau"):
+        _, doc = run([*base, "--set", f"simulation.method={method}", "--set", f"simulation.rtol={REFERENCE_RTOL}",
+                      "--set", "simulation.error_estimate=false"])
+        if doc is not None:
+            doc["reference_method"] = method
+            return doc
+    return None
+
+
+def mean_diff(auto: dict, other: dict, static: list[float]) -> float:
+    """The largest difference of the stages' window-mean F_t over the static force (the mean force where it is 0)."""
+    out = 0.0
+    for a, b, s in zip(auto["summary"]["stages"], other["summary"]["stages"], static, strict=True):
+        scale = s if s > 0 else abs(b["tangential_N"]["mean"]) or 1.0
+        out = max(out, abs(a["tangential_N"]["mean"] - b["tangential_N"]["mean"]) / scale)
+    return out
+
+
+def mean_warned(doc: dict) -> bool:
+    """The run says a stage's window mean is unresolved (or that the estimate could not be made)."""
+    return any(w.get("code") == "statistics_unresolved" and "mean" in (w.get("statistics") or ["mean"])
+               for w in doc.get("warnings", []))
+
+
 def row(name: str, path: Path, sets: list[str], repeat: int) -> dict:
     base = [*gearcli(), "simulate", str(path), "--format", "json", "-q"] + [a for s in sets for a in ("--set", s)]
     walls: dict[str, list[float]] = {m: [] for m in METHODS}
@@ -93,17 +124,23 @@ def row(name: str, path: Path, sets: list[str], repeat: int) -> dict:
     out = {"scene": name, "wall_s": med, "ok": ok, "best": best}
     auto = docs["auto"]
     if auto is not None:
-        out["auto_method"] = f"{auto['solver']['method']} ({auto['solver'].get('engine', 'python')})"
+        sv = auto["solver"]
+        tightened = f", rtol {sv['rtol']:g}" if any(w.get("code") == "rtol_tightened" for w in auto["warnings"]) else ""
+        out["auto_method"] = f"{sv['method']} ({sv.get('engine', 'python')}{tightened})"
     if auto is not None and best is not None:
-        ref = docs[best]
-        assert ref is not None
+        faster = docs[best]
+        assert faster is not None
         static = static_forces(path, sets)
-        diffs = [abs(a["tangential_N"]["mean"] - b["tangential_N"]["mean"]) / max(s, 1e-30)
-                 for a, b, s in zip(auto["summary"]["stages"], ref["summary"]["stages"], static, strict=True)]
-        out["mean_diff"] = max(diffs)
+        out["mean_diff"] = mean_diff(auto, faster, static)
+        ref = reference(base)
+        out["reference_method"] = ref["reference_method"] if ref is not None else None
+        out["mean_diff_reference"] = mean_diff(auto, ref, static) if ref is not None else None
+        out["mean_warned"] = mean_warned(auto)
         out["ratio"] = med["auto"] / med[best]
         out["limit_s"] = LIMIT_FACTOR * med[best] + LIMIT_PLUS_S
-        out["pass"] = med["auto"] <= out["limit_s"] and out["mean_diff"] <= MEAN_TOL
+        out["time_pass"] = med["auto"] <= out["limit_s"]
+        ref_ok = out["mean_diff_reference"] is not None and out["mean_diff_reference"] <= MEAN_TOL
+        out["pass"] = out["time_pass"] and out["mean_diff"] <= MEAN_TOL and ref_ok
     return out
 
 
@@ -111,12 +148,22 @@ def cell(r: dict, m: str) -> str:
     return f"{r['wall_s'][m]:.2f}" if r["ok"][m] else "refused/failed"
 
 
+def verdict(r: dict) -> str:
+    if r["pass"]:
+        return "yes"
+    why = [] if r["time_pass"] else ["time"]
+    if r["mean_diff"] > MEAN_TOL or r["mean_diff_reference"] is None or r["mean_diff_reference"] > MEAN_TOL:
+        why.append("mean, warned" if r["mean_warned"] else "mean")
+    return f"**no** ({'; '.join(why)})"
+
+
 def line(r: dict) -> str:
     if "ratio" not in r:
         return f"| {r['scene']} | {r.get('auto_method', 'failed')} | {cell(r, 'auto')} | {cell(r, 'DOP853')} | " \
-               f"{cell(r, 'Radau')} | – | – | – |"
+               f"{cell(r, 'Radau')} | – | – | – | – |"
+    ref = "failed" if r["mean_diff_reference"] is None else f"{r['mean_diff_reference']:.1e}"
     return (f"| {r['scene']} | {r['auto_method']} | {cell(r, 'auto')} | {cell(r, 'DOP853')} | {cell(r, 'Radau')} | "
-            f"{r['ratio']:.2f} | {r['mean_diff']:.1e} | {'yes' if r['pass'] else '**no**'} |")
+            f"{r['ratio']:.2f} | {r['mean_diff']:.1e} | {ref} | {verdict(r)} |")
 
 
 def main() -> None:
@@ -127,9 +174,9 @@ def main() -> None:
     args = ap.parse_args()
     print(f"fastest of {args.repeat} interleaved whole-process runs of `gearcli simulate FILE --format json -q` "
           "(engine auto), wall s")
-    print("| scene | auto took | auto | DOP853 | Radau | auto / best | Δ mean F_t / static | within 1.3x + 0.3 s, "
-          "1e-4 |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| scene | auto took | auto | DOP853 | Radau | auto / best | Δ mean vs best | Δ mean vs rtol 1e-10 | "
+          "within 1.3x + 0.3 s, 1e-4 |")
+    print("|---|---|---|---|---|---|---|---|---|")
     rows = []
     for name, path, sets in scenes():
         if args.only and not any(o in name for o in args.only):
@@ -141,7 +188,14 @@ def main() -> None:
             Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
     judged = [r for r in rows if "pass" in r]
     print(f"\n{sum(r['pass'] for r in judged)} of {len(judged)} scenes within the acceptance "
-          f"(auto <= 1.3 x best + 0.3 s, window means within 1e-4 of the static force)")
+          f"(auto <= 1.3 x best + 0.3 s, window means within 1e-4 of the static force of the faster method's and of "
+          f"the rtol 1e-10 reference's); time within on {sum(r['time_pass'] for r in judged)}; a mean beyond 1e-4 of "
+          f"the reference unwarned on {sum(_unwarned(r) for r in judged)}")
+
+
+def _unwarned(r: dict) -> bool:
+    ref = r["mean_diff_reference"]
+    return (ref is None or ref > MEAN_TOL) and not r["mean_warned"]
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 from gearcli import diagnostics as dg
 from gearcli import engine
-from gearcli.core.cost import WORK_CAP_S, accuracy_factor, duration_text, priced_work_s
+from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import METHODS
 from gearcli.errors import StudyTooLong
 from gearcli.model import TorsionalModel
@@ -68,7 +68,7 @@ def build_report(
     study = None
     if not quick:
         budget = ReportBudget(_work(sim), sim_cfg.duration_s)
-        budget.check_projection(sim_cfg.rtol, spec)
+        budget.check_projection(sim.solver.rtol, spec)  # the run's own rtol (auto may have tightened it)
 
         def run(method: str, rtol: float) -> SimulationResult:
             # a rung's error is measured against the study's reference, so its own check pass (issue 10's
@@ -108,9 +108,11 @@ REPORT_WORK_CAP_S = 2 * WORK_CAP_S
 
 
 def _work(result: SimulationResult) -> float:
-    """A run's priced work from its counters (deterministic, unlike its wall clock)."""
+    """A run's priced work from its counters (deterministic, unlike its wall clock), a compiled run's at the compiled
+    engine's prices (as the run budget allows it: gearcli.simulate.guards.over_budget's speed-up)."""
     sv = result.solver
-    return priced_work_s(sv.nfev, sv.njev, sv.nlu, sv.steps, bool(getattr(METHODS.get(sv.method), "implicit", False)))
+    work = priced_work_s(sv.nfev, sv.njev, sv.nlu, sv.steps, bool(getattr(METHODS.get(sv.method), "implicit", False)))
+    return work / compiled_speedup(sv.method) if sv.engine == "compiled" else work
 
 
 class ReportBudget:

@@ -134,3 +134,21 @@ def test_the_pace_warning_counts_evaluations_not_the_clock(monkeypatch):
     loud = run_simulation(cfg, design, want_series=False, error_estimate=False)
     warned = [d for d in loud.diagnostics if d.code == "slow_pace"]
     assert len(warned) == 1 and "5407 evaluations" in warned[0].message
+
+
+@pytest.mark.parametrize("engine_name", ["python", "compiled"])
+def test_a_run_far_over_its_predicted_evaluations_says_so_on_either_engine(engine_name, monkeypatch):
+    # the seed's DOP853 run: 5407 evaluations (both engines take scipy's steps) against a prediction the test
+    # shrinks 100-fold, so the run is 100x over it: the warning names the engine and both figures
+    cfg, design = _cfg("concrete_mixer.toml", [f"simulation.engine={engine_name}", "simulation.method=DOP853"])
+    from gearcli.simulate import run_simulation
+    from gearcli.simulate import run as run_module
+
+    real = run_module.predicted_nfev
+    monkeypatch.setattr(run_module, "predicted_nfev", lambda choice: real(choice) / 100.0)
+    monkeypatch.setattr(cost, "PACE_MIN_S", 0.0)  # the seed's run is short: judge it anyway
+    got = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    assert got.solver.engine == engine_name and got.solver.nfev == 5407
+    warned = [d for d in got.diagnostics if d.code == "slow_pace"]
+    assert len(warned) == 1 and f"({engine_name} engine) took 5407 evaluations" in warned[0].message
+    assert warned[0].data["nfev"] == 5407 and warned[0].data["predicted_nfev"] * cost.PACE_WARN_FACTOR < 5407
