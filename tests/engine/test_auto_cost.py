@@ -141,8 +141,8 @@ def test_a_run_far_over_its_predicted_evaluations_says_so_on_either_engine(engin
     # the seed's DOP853 run: 5407 evaluations (both engines take scipy's steps) against a prediction the test
     # shrinks 100-fold, so the run is 100x over it: the warning names the engine and both figures
     cfg, design = _cfg("concrete_mixer.toml", [f"simulation.engine={engine_name}", "simulation.method=DOP853"])
-    from gearcli.simulate import run_simulation
     from gearcli.simulate import run as run_module
+    from gearcli.simulate import run_simulation
 
     real = run_module.predicted_nfev
     monkeypatch.setattr(run_module, "predicted_nfev", lambda choice: real(choice) / 100.0)
