@@ -10,6 +10,7 @@ target.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +21,7 @@ from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.simulate import run_simulation
 from gearcli.simulate.estimate import MEAN_TARGET, TARGET, stage_error
+from gearcli.simulate.solver import STATUS_FINISHED
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM, PERIODS, TEETH = 2800.0, 300, 25
@@ -75,3 +77,22 @@ def test_auto_repeats_the_run_at_the_rtol_that_resolves_its_means(reference):
     said = [d for d in run.diagnostics if d.code == dg.RTOL_TIGHTENED]
     assert len(said) == 1 and said[0].data["rtol"] == 1e-6 and said[0].data["tightened_rtol"] == 1e-7
     assert said[0].data["relative_error"] > MEAN_TARGET
+
+
+def test_only_a_run_whose_means_alone_are_unresolved_is_repeated():
+    from gearcli.simulate.estimate import CheckPass, means_rtol
+
+    t = np.linspace(0.0, 0.1, 2001)
+    run = 1000.0 + 300.0 * np.sin(2 * np.pi * 250.0 * t)
+    mean_only = stage_error(0, t, run, run + 0.2, 1000.0, 1e-6)  # mean 2e-4: unresolved alone (first test)
+    resolved = stage_error(1, t, run, run + 0.01, 1000.0, 1e-6)  # 1e-5 everywhere: resolved
+    shaken = stage_error(2, t, run, run + 0.2 + 3.0 * np.sin(2 * np.pi * 2000.0 * t), 1000.0, 1e-6)  # max 3e-3 too
+
+    def passed(*errors):
+        return CheckPass(1e-7, 0.0, 1.0, 0, 0, 0, 0.0, STATUS_FINISHED, "", tuple(errors))
+
+    assert resolved.resolved and set(shaken.unresolved) >= {"mean", "max"}
+    assert means_rtol(passed(mean_only, resolved)) == 1e-7
+    assert means_rtol(passed(resolved)) is None  # nothing to resolve
+    assert means_rtol(passed(mean_only, shaken)) is None  # the warning stands: its rtol resolves the means too
+    assert means_rtol(replace(passed(mean_only), status=-1)) is None  # no estimate, no repeat
