@@ -239,7 +239,8 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
             else:
                 idx.insert(0, n_in)
                 lev.insert(0, 0.0)
-            row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p)))
+            contact = p.ring_contact_phase_cycles if gear == "ring" else 0.0
+            row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p, contact)))
             if len(idx) == 3:
                 kind, radii = kind_of("planet_mesh"), tuple(lev)
             else:
@@ -252,15 +253,17 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
                                    role, n_out, per_output, j, gear, n_in, offset))
 
 
-def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec):
+def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec, contact_cycles: float = 0.0):
     """A planet mesh's law: the mesh phase counted on the input member's angle, z_eff theta_in / 2 pi with
     z_eff = z_s |w_s - w_c| / |w_in| (mesh cycles per input radian under rigid kinematics: the mesh frequency
-    is z_s |w_s - w_c| / 2 pi), its harmonics shifted by the planet's phase offset."""
+    is z_s |w_s - w_c| / 2 pi), its harmonics and its contact-line stiffness shifted by the planet's phase
+    offset; the contact lines of a ring mesh also by ``contact_cycles``, the ring mesh's phase against the
+    same planet's sun mesh (:mod:`gearcli.model.planet_phasing`)."""
     z_eff = p.sun_teeth * abs(p.unit_speed("sun") - p.unit_speed("carrier")) / abs(p.unit_speed(p.input))
     shift = 2.0 * math.pi * offset_cycles
     te_phase = tuple(list(mesh.transmission_error_phase_rad) + [0.0] * len(mesh.transmission_error_m))
     ks_phase = tuple(list(mesh.stiffness_harmonics_phase_rad) + [0.0] * len(mesh.stiffness_harmonics))
-    return replace(mesh, pinion_teeth=z_eff,
+    return replace(mesh, pinion_teeth=z_eff, contact_phase_cycles=(offset_cycles + contact_cycles) % 1.0,
                    transmission_error_phase_rad=tuple(te_phase[i] + (i + 1) * shift
                                                       for i in range(len(mesh.transmission_error_m))),
                    stiffness_harmonics_phase_rad=tuple(ks_phase[i] + (i + 1) * shift
