@@ -233,6 +233,7 @@ class BearingResult:
     locating: bool = False
     dynamic_load_rating_kN: float = 0.0
     speed_rpm: float = 0.0
+    planet_stage: int | None = None  # a planet pin's bearing (shaft 0): its planetary stage, 1-based
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
     """One column per bearing: its place, reaction on the shaft (y, z, radial, axial), P, C, L10, L10h."""
     b = bearings
     return StageColumns(title, [f"bearing {j + 1}" for j in range(len(b))], [
-        ("shaft", [str(x.shaft) for x in b]),
+        ("shaft", [f"planets of stage {x.planet_stage}" if x.planet_stage else str(x.shaft) for x in b]),
         ("position x [mm]", [_g(x.position_mm) for x in b]),
         ("kind / locating", [f"{x.kind}{' / loc.' if x.locating else ''}" for x in b]),
         ("speed [rpm]", [_g(x.speed_rpm) for x in b]),
