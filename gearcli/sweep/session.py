@@ -104,8 +104,9 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
-    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages)), ident, previous,
-                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+    planetary = [st.index for st in design.stages if st.planetary is not None]
+    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), planetary), ident,
+                   previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 
 def capped_jobs(jobs: int | None, cfg, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:
