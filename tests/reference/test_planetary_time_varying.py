@@ -123,3 +123,65 @@ def test_sun_ring_phase_parity_of_the_planet():
     # a profile shift x moves the planet's flanks by 2 x tan(alpha_n) / pi cycles apart
     assert_allclose(math.remainder(_phase(30, 0.1) - _phase(30) - 0.2 * math.tan(math.radians(20)) / math.pi, 1.0),
                     0.0, atol=1e-12)
+
+
+def _involute(a: float) -> float:
+    return math.tan(a) - a
+
+
+def _phase_by_construction(st, sun_drives: bool) -> float:
+    """x_ring - x_sun (mod 1) of planet 1 from the involute flanks themselves, in the carrier's frame: the planet
+    at its centre turned by phi = 0.3 rad; a flank of tooth k stands at the polar angle phi + 2 pi k / z_p +- psi(r),
+    psi(r) = psi_b - inv(alpha(r)). The '+' flanks (towards the sun at polar angle pi) unwind clockwise from
+    beta_k = phi + 2 pi k/z_p + psi_b: each meets the sun's line of action (tangent to the planet's base circle at
+    tau_s, the line through the sun-side pitch point) at r_b (beta_k - tau_s) from the tangent point; the '-'
+    flanks meet the ring's line (tangent at tau_r) at r_b (tau_r - beta'_k), beta'_k = phi + 2 pi k/z_p - psi_b.
+    Each contact's phase is its distance from the start of its path (the driven member's tip) in base pitches."""
+    p = st.planetary
+    z_p = p.planet.teeth
+    a_n, a_t = math.radians(st.normal_pressure_angle_deg), math.radians(st.transverse_pressure_angle_deg)
+    a_ws, a_wr = math.radians(st.working_pressure_angle_deg), math.radians(p.planet_ring.working_pressure_angle_deg)
+    rb_s, rb_p, rb_r = (0.5 * g.base_diameter_mm for g in (p.sun, p.planet, p.ring))
+    ra_s, ra_p, ra_r = (0.5 * g.tip_diameter_mm for g in (p.sun, p.planet, p.ring))
+    p_b = 2 * math.pi * rb_p / z_p
+    psi_b = (0.5 * math.pi + 2 * p.planet.profile_shift * math.tan(a_n)) / z_p + _involute(a_t)
+    # the '+' flank through the sun pitch point (polar angle pi): beta - inv(a_ws) = pi, tangent at beta - tan(a_ws)
+    tau_s = math.pi + _involute(a_ws) - math.tan(a_ws)
+    # the '-' flank through the ring pitch point (polar angle 0): beta' + inv(a_wr) = 0, tangent at beta' + tan(a_wr)
+    tau_r = -_involute(a_wr) + math.tan(a_wr)
+    phi = 0.3
+    s_sun = rb_p * (((phi + psi_b - tau_s) % (2 * math.pi / z_p)))  # one contact's distance from T_s (mod p_b)
+    s_ring = rb_p * (((tau_r - phi + psi_b) % (2 * math.pi / z_p)))
+    planet_tip = math.sqrt(ra_p**2 - rb_p**2)  # from the planet's tangent point, on both lines
+    sun_tip = (rb_s + rb_p) * math.tan(a_ws) - math.sqrt(ra_s**2 - rb_s**2)
+    ring_tip = math.sqrt(ra_r**2 - rb_r**2) - (rb_r - rb_p) * math.tan(a_wr)
+    if sun_drives:  # the planet turns clockwise (phi falling): sun contacts run towards T_s, ring contacts away
+        x_sun, x_ring = (planet_tip - s_sun) / p_b, (s_ring - ring_tip) / p_b
+    else:
+        x_sun, x_ring = (s_sun - sun_tip) / p_b, (planet_tip - s_ring) / p_b
+    return (x_ring - x_sun) % 1.0
+
+
+def test_sun_ring_phase_against_the_involute_construction():
+    """The closed form (gearcli.model.planet_phasing) against the flanks built point by point, on the NREL
+    stage (x_p = 0.8021: working pressure angles 24.9 deg on the sun mesh, 20.4 deg on the ring mesh), both
+    senses of power flow."""
+    from gearcli.config.load import load_design
+    from gearcli.model.planet_phasing import sun_ring_contact_phase_cycles as closed
+
+    cfg = load_design("configs/planetary_stage.toml", []).design
+    st = compute_design(cfg).stages[0]
+    p = st.planetary
+    assert abs(st.working_pressure_angle_deg - p.planet_ring.working_pressure_angle_deg) > 1.0
+    for drives in (True, False):
+        value = closed(
+            planet_teeth=p.planet.teeth, planet_profile_shift=p.planet.profile_shift,
+            normal_pressure_angle_rad=math.radians(st.normal_pressure_angle_deg),
+            transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
+            alpha_w_sun_rad=math.radians(st.working_pressure_angle_deg),
+            alpha_w_ring_rad=math.radians(p.planet_ring.working_pressure_angle_deg),
+            r_b_sun=0.5 * p.sun.base_diameter_mm, r_b_planet=0.5 * p.planet.base_diameter_mm,
+            r_b_ring=0.5 * p.ring.base_diameter_mm, r_a_sun=0.5 * p.sun.tip_diameter_mm,
+            r_a_planet=0.5 * p.planet.tip_diameter_mm, r_a_ring=0.5 * p.ring.tip_diameter_mm,
+            base_pitch=st.transverse_base_pitch_mm, sun_drives=drives)
+        assert_allclose(math.remainder(value - _phase_by_construction(st, drives), 1.0), 0.0, atol=1e-9)
