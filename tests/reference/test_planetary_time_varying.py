@@ -150,8 +150,8 @@ def _phase_by_construction(st, sun_drives: bool) -> float:
     # the '-' flank through the ring pitch point (polar angle 0): beta' + inv(a_wr) = 0, tangent at beta' + tan(a_wr)
     tau_r = -_involute(a_wr) + math.tan(a_wr)
     phi = 0.3
-    s_sun = rb_p * (((phi + psi_b - tau_s) % (2 * math.pi / z_p)))  # one contact's distance from T_s (mod p_b)
-    s_ring = rb_p * (((tau_r - phi + psi_b) % (2 * math.pi / z_p)))
+    s_sun = rb_p * ((phi + psi_b - tau_s) % (2 * math.pi / z_p))  # one contact's distance from T_s (mod p_b)
+    s_ring = rb_p * ((tau_r - phi + psi_b) % (2 * math.pi / z_p))
     planet_tip = math.sqrt(ra_p**2 - rb_p**2)  # from the planet's tangent point, on both lines
     sun_tip = (rb_s + rb_p) * math.tan(a_ws) - math.sqrt(ra_s**2 - rb_s**2)
     ring_tip = math.sqrt(ra_r**2 - rb_r**2) - (rb_r - rb_p) * math.tan(a_wr)
