@@ -41,7 +41,8 @@ def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[dict])
         for label, key in (("radial [N]", "radial_N"), ("axial [N]", "axial_N")):
             st = b[key]
             first = label.startswith("radial")
-            table.add_row(str(j + 1) if first else "", str(b["shaft"]) if first else "",
+            place = f"planets {b['planet_stage']}" if b.get("planet_stage") else str(b["shaft"])
+            table.add_row(str(j + 1) if first else "", place if first else "",
                           _g(b["position_mm"]) if first else "", text(label), _g(st.mean), _g(st.std, 3),
                           _g(st.min), _g(st.max), end_section=not first)
     return table
