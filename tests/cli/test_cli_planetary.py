@@ -39,8 +39,9 @@ def test_design_json_of_a_mixed_train(runner):
         assert [m["name"] for m in st["meshes"]] == ["sun_planet", "planet_ring"]
         sun_rating, ring_rating = st["meshes"][0]["rating"], st["meshes"][1]["rating"]
         assert set(ring_rating) == set(sun_rating) and set(ring_rating["pinion"]) == set(sun_rating["pinion"])
-        assert set(ring_rating["gear"]) == set(sun_rating["gear"]) | {"bending_not_rated"}
-        assert ring_rating["gear"]["S_F"] is None and ring_rating["pinion"]["S_F"] > 0.0  # the ring's root: not rated
+        assert set(ring_rating["gear"]) == set(sun_rating["gear"])
+        assert ring_rating["gear"]["S_F"] > 0.0 and ring_rating["pinion"]["S_F"] > 0.0  # both roots rated
+        assert ring_rating["pinion"]["Y_M"] == sun_rating["gear"]["Y_M"] == 0.7  # the planet, an idler
         assert_allclose(st["ratio"], 1 / (1 + zr / zs), rtol=1e-12)  # carrier in, sun out, ring held
         assert st["ring"]["speed_rpm"] == 0.0 and st["planet"]["count"] == 3
         assert_allclose(st["carrier"]["torque_Nm"], st["sun"]["torque_Nm"] * (1 + zr / zs), rtol=1e-12)
