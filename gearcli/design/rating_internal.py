@@ -24,7 +24,15 @@ from typing import TYPE_CHECKING
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design import resonance as res
-from gearcli.design.rating import BENDING_LOW, HB_PER_HV, PITTING_LOW, STANDARD, STRESS_CORRECTION_TEST_GEAR
+from gearcli.design.rating import (
+    BENDING_LOW,
+    HB_PER_HV,
+    OUT_OF_RANGE,
+    PITTING_LOW,
+    Q_S_RANGE,
+    STANDARD,
+    STRESS_CORRECTION_TEST_GEAR,
+)
 from gearcli.design.stiffness import reference_tangential_force_N
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.results import InternalRatingResult, MemberRating
@@ -167,15 +175,45 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult) -> InternalRating
         gear=rated[1])
 
 
+def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
+    """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
+    outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value)."""
+    from gearcli.config.schema import PlanetaryStage
+
+    stage, p = cfg.stage[st.index - 1], st.planetary
+    assert isinstance(stage, PlanetaryStage) and p is not None
+    ring, mesh = p.ring, p.planet_ring
+    form = rr.internal_tooth_form(ring.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
+                                  math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),
+                                  ring.profile_shift, ring.tip_diameter_mm, ring.pitch_diameter_mm,
+                                  mesh.contact_ratio_transverse,
+                                  (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+    out = []
+    if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: the root's notch parameter q_s = {form['q_s']:.3g} "
+                           "lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds", stage=st.index,
+                           member="ring", quantity="q_s", value=form["q_s"], mesh="planet_ring"))
+    depth = 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)
+    rim = stage.ring.rim_thickness_mm
+    if rim is not None and rim / depth < rr.INTERNAL_RIM_RANGE[0]:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: rim s_R/h_t = {rim / depth:.3g} below 1.75, where "
+                           "ISO 6336-3's rim factor of an internal gear ends; Y_B is taken at 1.75 "
+                           f"({rr.internal_rim_factor(rim, depth):.3g}), a thinner rim needs a finite element check",
+                           stage=st.index, member="ring", quantity="rim_ratio", value=rim / depth,
+                           mesh="planet_ring"))
+    return out
+
+
 def planet_ring_safety_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """A warning for every safety of the planet–ring mesh below its minimum (the codes of the external pairs',
-    ``member`` "planet" or "ring", ``mesh`` "planet_ring")."""
+    ``member`` "planet" or "ring", ``mesh`` "planet_ring"), and where the ring's root lies outside the method's
+    range (``rating_out_of_range``)."""
     p = st.planetary
     r = None if p is None else p.planet_ring.rating
     if r is None or p is None or cfg.rating is None:
         return []
     minima = {"pitting": cfg.rating.min_safety_pitting, "bending": cfg.rating.min_safety_bending}
-    out = []
+    out = _ring_range_diagnostics(cfg, st)
     for member, m, teeth in (("planet", r.pinion, p.planet.teeth), ("ring", r.gear, p.ring.teeth)):
         for mode, value, symbol in (("pitting", m.S_H, "S_H"), ("bending", m.S_F, "S_F")):
             if value is None or value >= minima[mode]:

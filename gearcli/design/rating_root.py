@@ -179,11 +179,14 @@ def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: f
             "q_s": q_s, "d_en": d_en, "d_sFn": d_sfn}
 
 
+INTERNAL_RIM_RANGE = (1.75, 3.5)  # s_R/h_t where the internal gear's Y_B formula holds, and from where Y_B = 1
+
+
 def internal_rim_factor(rim_thickness_mm: float | None, tooth_depth_mm: float) -> float:
     """Y_B of an internal gear (ISO 6336-3:2006, 10): 1 for s_R/h_t ≥ 3.5 (or no rim given),
     1.15 ln(8.324 h_t/s_R) for 1.75 < s_R/h_t < 3.5 (below 1.75 the standard does not apply and the 1.75 value
     is used)."""
     if rim_thickness_mm is None:
         return 1.0
-    ratio = max(rim_thickness_mm / tooth_depth_mm, 1.75)
-    return 1.0 if ratio >= 3.5 else 1.15 * math.log(8.324 / ratio)
+    ratio = max(rim_thickness_mm / tooth_depth_mm, INTERNAL_RIM_RANGE[0])
+    return 1.0 if ratio >= INTERNAL_RIM_RANGE[1] else 1.15 * math.log(8.324 / ratio)

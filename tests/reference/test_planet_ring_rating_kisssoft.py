@@ -233,3 +233,18 @@ def test_internal_mesh_dynamic_factor_by_hand():
     hand = 1.0 + 39.9 / 1435.0 * (0.32 * b_p + 0.34 * b_f + 0.23 * 1.0)
     assert_allclose(r.K_v, hand, atol=2e-5)  # N printed to 3 digits: ±1e-3 relative of K_v − 1 ≈ 0.01
     assert r.K_v != st.rating.K_v  # no longer the sun–planet mesh's
+
+
+def test_ring_rim_below_the_standards_range_is_a_warning():
+    """s_R/h_t = 157.5/101.25 = 1.556 < 1.75: outside ISO 6336-3's internal-gear Y_B, said as rating_out_of_range;
+    a rim of 3.5 tooth depths or more is inside (Y_B = 1) and quiet."""
+    def hits(doc):
+        result = compute_design(DesignFile.model_validate(doc))
+        return [d for d in result.diagnostics if d.code == "rating_out_of_range" and d.data.get("member") == "ring"]
+
+    found = hits(_doc())
+    assert [d.data["quantity"] for d in found] == ["rim_ratio"]
+    assert_allclose(found[0].data["value"], 157.5 / 101.25, rtol=1e-3)
+    doc = _doc()
+    doc["stage"][0]["ring"]["rim_thickness_mm"] = 3.5 * 101.25
+    assert hits(doc) == []
