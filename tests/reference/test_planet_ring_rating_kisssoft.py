@@ -104,6 +104,7 @@ def test_load_sharing_factor_scales_the_ring_mesh_like_the_sun_mesh():
     base, shared = _rating(_doc()), _rating(_doc(1.1))
     assert_allclose(shared.sigma_H0_MPa / base.sigma_H0_MPa, 1.1 ** 0.5, rtol=1e-12)
     assert_allclose(shared.pinion.sigma_F0_MPa / base.pinion.sigma_F0_MPa, 1.1, rtol=1e-12)
+    assert_allclose(shared.gear.sigma_F0_MPa / base.gear.sigma_F0_MPa, 1.1, rtol=1e-12)  # the ring's root too
 
 
 def test_ring_pitting_below_minimum_is_a_warning():
