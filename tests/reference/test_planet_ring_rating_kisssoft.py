@@ -150,7 +150,8 @@ def test_ring_root_geometry_against_the_report():
     assert_allclose(math.degrees(f["alpha_Fen"]), 19.59, atol=5e-3)
     assert_allclose(f["d_en"], 2497.731, atol=0.2)  # ε_α printed to 3 decimals: ±0.0005 p_bt = ±0.07 mm roll
     # the fillet: gearcli takes the standard's rack-generated trochoid at the 60° tangent (z_n < 0) with the
-    # cutter's z0 in ρ_F; the report generates the fillet with the cutter itself. s_Fn 0.6 %, ρ_F 0.7 %,
+    # cutter's z0 in ρ_F; the report computes Y_F, Y_S "with pinion type cutter" from its own tooth form.
+    # s_Fn 0.6 %, ρ_F 0.7 %,
     # h_Fe 0.9 % and the section's diameter 0.07 % apart, so 1e-2 (1e-3 for d_sFn)
     assert_allclose([f["s_Fn"] / m, f["rho_F"] / m, f["h_Fe"] / m], [2.875, 0.494, 1.742], rtol=1e-2)
     assert_allclose(f["d_sFn"], 2673.522, rtol=1e-3)
