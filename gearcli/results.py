@@ -81,6 +81,7 @@ class MemberRating:
     sigma_FG_MPa: float
     sigma_FP_MPa: float
     S_F: float
+    Y_M: float = 1.0  # mean stress factor in sigma_FG: 0.7 on a planet's root (an idler: alternating bending)
 
 
 @dataclass(frozen=True)
@@ -119,44 +120,13 @@ class RatingResult(MeshRatingFactors):
 
 
 @dataclass(frozen=True)
-class RingMemberRating:
-    """ISO 6336-2 figures of the ring (internal gear); its tooth-root bending is not rated (the internal gear's
-    Y_F, Y_S need ISO 6336-3's pinion-type cutter, which gearcli does not model): those keys are null and
-    ``bending_not_rated`` says why."""
-
-    load_cycles: float
-    Z_BD: float  # Z_D = 1 for an internal gear (ISO 6336-2)
-    sigma_H_MPa: float
-    Z_NT: float
-    Z_X: float
-    sigma_HG_MPa: float
-    sigma_HP_MPa: float
-    S_H: float
-    Y_F: float | None = None
-    Y_S: float | None = None
-    Y_B: float | None = None
-    Y_DT: float | None = None
-    sigma_F0_MPa: float | None = None
-    sigma_F_MPa: float | None = None
-    Y_delta_rel_T: float | None = None
-    Y_R_rel_T: float | None = None
-    Y_X: float | None = None
-    Y_NT: float | None = None
-    sigma_FG_MPa: float | None = None
-    sigma_FP_MPa: float | None = None
-    S_F: float | None = None
-    bending_not_rated: str = ("ISO 6336-3 Y_F, Y_S of an internal gear (pinion-type cutter) are not implemented; "
-                              "the ring's tooth-root bending is not rated")
-
-
-@dataclass(frozen=True)
 class InternalRatingResult(MeshRatingFactors):
     """The planet–ring mesh's strength rating (ISO 6336:2006 method B); JSON ``meshes[1].rating``, the keys of a
-    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (``K_v_source`` may also be
-    "sun_planet": the sun–planet mesh's K_v)."""
+    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (its root by ISO 6336-3's internal
+    gear method; K_v from the internal mesh's own resonance)."""
 
     pinion: MemberRating
-    gear: RingMemberRating
+    gear: MemberRating
 
 
 @dataclass(frozen=True)
@@ -462,6 +432,12 @@ class InternalMeshResult:
     iso6336_factors: Iso6336Factors
     mesh_frequency_Hz: float
     rating: InternalRatingResult | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
+    # ISO 6336-1 resonance of this mesh: m_red = the planet's m* (the ring taken infinitely heavy), n_E1 in
+    # planet rpm relative to the carrier, N = n_p/n_E1, N_S (0 where not computed)
+    reduced_mass_kg_mm: float = 0.0
+    resonance_speed_rpm: float = 0.0
+    resonance_ratio: float = 0.0
+    resonance_lower_limit: float = 0.0
 
 
 @dataclass(frozen=True)

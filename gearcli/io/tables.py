@@ -22,7 +22,7 @@ from rich.text import Text
 
 from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult, InternalRatingResult, SimulationResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
 MIN_WIDTH = 20
@@ -242,9 +242,27 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
         from gearcli.io.life_tables import bearing_table
 
-        return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, train,
-                bearing_table(r.bearings), *summary]
-    return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, train, *summary]
+        return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r),
+                train, bearing_table(r.bearings), *summary]
+    return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r), train,
+            *summary]
+
+
+@dataclass(frozen=True)
+class _RatedMesh:
+    """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
+
+    index: int
+    rating: InternalRatingResult
+
+
+def _planet_ring_rating(r: DesignResult) -> list[RenderableType]:
+    """The planet–ring meshes' rating (``meshes[1].rating``), below the planetary stages' table."""
+    meshes = [_RatedMesh(st.index, st.planetary.planet_ring.rating) for st in r.stages
+              if st.planetary is not None and st.planetary.planet_ring.rating is not None]
+    if not meshes:
+        return []
+    return [rating_table(meshes, "planet–ring mesh strength rating, ISO 6336:2006 method B (p planet, g ring)")]
 
 
 def _planetary_design(r: DesignResult) -> list[RenderableType]:
@@ -308,6 +326,7 @@ def rating_table(stages, title: str = "strength rating, ISO 6336:2006 method B")
         two("surface Y_RrelT p / g", "Y_R_rel_T"),
         two("size Y_X p / g", "Y_X"),
         two("life Y_NT p / g", "Y_NT"),
+        two("mean stress Y_M p / g", "Y_M"),
         two("root limit σ_FG [MPa] p / g", "sigma_FG_MPa"),
         two("permissible σ_FP [MPa] p / g", "sigma_FP_MPa"),
         two("root safety S_F p / g", "S_F", 3),
