@@ -256,7 +256,10 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFact
     rating, stage = cfg.rating, cfg.pair(k)
     assert rating is not None
     g, part, m_n = mesh.members[i], mesh.parts[i], st.normal_module_mm
-    cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h
+    # a planetary stage's sun (member 0 of its sun–planet mesh) meets every planet once per turn relative to the
+    # carrier; a planet meets the sun once (its ring mesh is the other flank, rated in rating_internal)
+    meetings = st.planetary.planet_count if st.planetary is not None and i == 0 else 1
+    cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h * meetings
     z_nt = rf.life_factor_pitting(mesh.treatments[i], cycles, rating.material_quality)
     sig_h = flank.z_bd[i] * flank.sigma_h
     sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1

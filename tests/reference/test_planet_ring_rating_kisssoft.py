@@ -250,3 +250,16 @@ def test_ring_rim_below_the_standards_range_is_a_warning():
     doc = _doc()
     doc["stage"][0]["ring"]["rim_thickness_mm"] = 3.5 * 101.25
     assert hits(doc) == []
+
+
+def test_sun_counts_one_load_cycle_per_planet():
+    """The sun meets all three planets per turn relative to the carrier: N_L = N · 60 |n_s − n_c| H, and the
+    report's sun life factors follow from it (ZNT 0.909, YNT 0.888, against 0.940 and 0.908 for one meeting);
+    σ_HG 1368.61 and σ_FG 586.11 printed for gear 1 (the sun)."""
+    st = compute_design(DesignFile.model_validate(_doc())).stages[0]
+    assert st.planetary is not None and st.rating is not None
+    sun = st.rating.pinion
+    n_rel = abs(st.pinion.speed_rpm)  # the sun's speed in the carrier's frame, rpm
+    assert_allclose(sun.load_cycles, 3 * 60.0 * n_rel * 175200.0, rtol=1e-12)
+    assert_allclose([sun.Z_NT, sun.Y_NT], [0.909, 0.888], atol=5e-4)
+    assert_allclose([sun.sigma_HG_MPa, sun.sigma_FG_MPa], [1368.61, 586.11], atol=1.5e-2)
