@@ -2,8 +2,15 @@
 
 from __future__ import annotations
 
+from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import csv_text
 from gearcli.model.modes import ModalAnalysis
+from gearcli.results import DesignResult
+
+
+def modes_document(analyses: list[ModalAnalysis], design: DesignResult) -> dict:
+    """``gearcli modes --format json``: :func:`modes_dict` with the design's warnings as objects."""
+    return modes_dict(analyses, warning_objects(design.warnings, design.diagnostics))
 
 
 def modes_dict(analyses: list[ModalAnalysis], warnings: list | None = None) -> dict:
