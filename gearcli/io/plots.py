@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from gearcli.io.atomic import write_atomic
+from gearcli.io.channels import named
 from gearcli.report.result import Report
 
 INSTALL_HINT = "pip install 'gearcli[plot]'  (or: pip install matplotlib)"
@@ -68,7 +69,7 @@ def speeds_figure(r: Report):
 
     u = of_result(sim)
     for (ax, zoom), shaft in zip(axes, shafts, strict=True):
-        series = sim.channels.get(f"shaft{shaft.index}_speed_deg_s")
+        series = named(sim).get(f"shaft{shaft.index}_speed_deg_s")
         _shade_window(ax, sim.window_s)
         if series is not None:
             series = u.speed_from_deg_s(series)
@@ -93,7 +94,7 @@ def mesh_forces_figure(r: Report):
     sim = r.simulation
     fig, axes = _figure(len(r.stages), 2, sharex="col", height=2.1, width=12.0, width_ratios=(3, 2))
     for (ax, zoom), s in zip(axes, r.stages, strict=True):
-        series = sim.channels.get(f"stage{s.stage}_tangential_N")
+        series = named(sim).get(f"stage{s.stage}_tangential_N")
         color = f"C{(s.stage - 1) % 10}"
         _shade_window(ax, sim.window_s)
         if series is not None:

@@ -13,6 +13,7 @@ from typing import Any
 import gearcli
 from gearcli.core.text import csv_text_cell
 from gearcli.diagnostics import warning_objects
+from gearcli.io.channels import named
 from gearcli.results import DesignResult, SimulationResult
 
 
@@ -107,7 +108,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
     if result.extra and "bearings" in result.extra:  # only scenes with [[bearing]] tables (docs/life.md)
         out["summary"]["bearings"] = plain(result.extra["bearings"])
     if series:
-        shown = output_units.channels(result.channels, u)
+        shown = output_units.channels(named(result), u)
         out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in shown.items()}}
     return out
 
@@ -181,7 +182,7 @@ def simulation_csv(result: SimulationResult) -> str:
 
     from gearcli.io.units import channels, of_result
 
-    shown = channels(result.channels, of_result(result))
+    shown = channels(named(result), of_result(result))
     header = ["time_s", *shown]
     data = np.column_stack([result.time_s, *shown.values()])
     if not np.all(np.isfinite(data)):

@@ -381,11 +381,12 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         lines.append(f"input torque {u.torque_from_Nm(means[0]):.5g} {u.torque_label}{both}, power {means[1]:.5g} kW "
                      f"(means over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s)")
     motor = (r.extra or {}).get("motor")
-    if motor and "operating_slip" in motor:
+    slip = motor.get("operating_slip") if motor else None
+    if motor and slip is not None:
         start = "not reached" if motor["start_time_s"] is None else f"{motor['start_time_s']:.4g} s"
         point = "none" if motor["operating_point_rpm"] is None else f"{motor['operating_point_rpm']:.5g} rpm"
         lines.append(f"motor: start to 98 % {start}   window mean {motor['operating_speed_rpm']:.5g} rpm, slip "
-                     f"{100 * motor['operating_slip']:.3g} %   operating point of the curves {point}")
+                     f"{100 * slip:.3g} %   operating point of the curves {point}")
     lines.append(f"solver {sv.method}  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  njev {sv.njev}  "
                  f"wall {sv.wall_s:.3g} s")
     lines.append(f"energy residual {sv.energy_residual:.2e}")

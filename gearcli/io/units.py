@@ -1,9 +1,9 @@
 """Output units that follow the design file: speeds in the unit of the input's speed key, torques in the unit of
 the load's torque key (docs/output.md, "Units").
 
-The simulation keeps its channels in one internal naming (``shaft{i}_speed_deg_s``, ``input_torque_Nmm``,
-``*_coupling_torque_Nm``); the writers rename and convert them here, so a script reads the unit from the
-column name. A file with ``speed_deg_s`` and ``torque_Nmm`` (the seed) gets its channels unchanged, the same
+The simulation's SI series get the contract's base names (``shaft{i}_speed_deg_s``, ``input_torque_Nmm``,
+``*_coupling_torque_Nm``) in :mod:`gearcli.io.channels`; the writers rename and convert them to the design
+file's units here, so a script reads the unit from the column name. A file with ``speed_deg_s`` and ``torque_Nmm`` (the seed) gets its channels unchanged, the same
 arrays under the same names.
 """
 
@@ -79,8 +79,11 @@ def input_torque_window_means(result) -> tuple[float, float] | None:
     None without series."""
     import numpy as np
 
-    torque = result.channels.get("input_torque_Nmm")
-    speed = result.channels.get("motor_speed_deg_s", result.channels.get("shaft1_speed_deg_s"))
+    from gearcli.io.channels import named
+
+    ch = named(result)
+    torque = ch.get("input_torque_Nmm")
+    speed = ch.get("motor_speed_deg_s", ch.get("shaft1_speed_deg_s"))
     if torque is None or speed is None or not len(torque):
         return None
     t = np.asarray(result.time_s)

@@ -136,7 +136,7 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
         return ()
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
-    r = reaction_series(lay, design, {k: v[mask] for k, v in result.channels.items()})
+    r = reaction_series(lay, design, {k: v[mask] for k, v in result.series.items()})
     specs = sorted((s for pair in lay.shafts.values() for s in pair), key=lambda s: s.index)
     out = []
     for j, spec in enumerate(specs):
