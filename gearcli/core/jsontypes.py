@@ -1,15 +1,17 @@
 """The JSON value types, defined once: what a JSON document, a sweep row or a result's ``extra`` holds.
 
-``JsonValue`` is recursive (lists and objects of JSON values); ``JsonScalar`` is one cell of a CSV row or a
+``JsonValue`` is recursive (sequences and mappings of JSON values, read-only so that a ``list[float]`` is one); ``JsonScalar`` is one cell of a CSV row or a
 JSON leaf. Layers type their boundaries with these instead of ``Any``.
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import TypeAlias
 
 JsonScalar: TypeAlias = str | int | float | bool | None
-JsonValue: TypeAlias = JsonScalar | list["JsonValue"] | tuple["JsonValue", ...] | dict[str, "JsonValue"]
+#: read-only containers (covariant: a ``list[dict[str, float]]`` is a JSON value)
+JsonValue: TypeAlias = JsonScalar | Sequence["JsonValue"] | Mapping[str, "JsonValue"]
 JsonObject: TypeAlias = dict[str, JsonValue]
 
 __all__ = ["JsonObject", "JsonScalar", "JsonValue"]

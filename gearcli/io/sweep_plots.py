@@ -16,7 +16,9 @@ from typing import Any
 import numpy as np
 
 from gearcli.io.plots import _figure, _save
+from gearcli.sweep.columns import Row
 from gearcli.sweep.modes import SweepCampbell
+from gearcli.sweep.session import Session
 
 COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
 #: (title with unit, columns of one stage as {suffix: line style})
@@ -44,7 +46,7 @@ def _has(rows: Sequence[dict], col: str) -> bool:
     return any(np.isfinite(_num(r.get(col))) for r in rows)
 
 
-def write_sweep_plots(session, rows: Sequence[dict], plots_dir: str,
+def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
                       campbell: SweepCampbell | None = None) -> list[Path]:
     """The sweep's figures into ``plots_dir``; ``campbell`` (:func:`gearcli.api.sweep_campbell`, computed by the
     caller when an input speed is swept) gives ``campbell.png``."""

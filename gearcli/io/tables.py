@@ -13,7 +13,7 @@ import io
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 from rich.cells import cell_len
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
@@ -22,7 +22,10 @@ from rich.text import Text
 
 from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult, RatingResult, SimulationResult, StageDynamics, StageResult
+
+if TYPE_CHECKING:
+    from gearcli.life.result import LifeResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
 MIN_WIDTH = 20
@@ -277,22 +280,28 @@ def _planetary_design(r: DesignResult) -> list[RenderableType]:
                             [f"stage {st.index}" for st in s], rows)]
 
 
-def rating_table(stages, title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
+def _rating(st: StageResult | StageDynamics) -> RatingResult:
+    if st.rating is None:
+        raise ValueError(f"stage {st.index} has no rating")
+    return st.rating
+
+
+def rating_table(stages: Sequence[StageResult] | Sequence[StageDynamics], title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
     """Factors, stresses, permissible stresses and safeties per member, in the order of a KISSsoft report
     (general factors, tooth root, flank); per-member cells read "pinion / gear"."""
     cols = [f"stage {st.index}" for st in stages]
 
     def one(label, fn, digits=4):
-        return label, [_g(fn(st.rating), digits) for st in stages]
+        return label, [_g(fn(_rating(st)), digits) for st in stages]
 
     def two(label, name, digits=4):
-        return label, [f"{_g(getattr(st.rating.pinion, name), digits)} / {_g(getattr(st.rating.gear, name), digits)}"
-                       for st in stages]
+        return label, [f"{_g(getattr(_rating(st).pinion, name), digits)} / "
+                       f"{_g(getattr(_rating(st).gear, name), digits)}" for st in stages]
 
     return _quantity_table(title, cols, [
         one("application factor K_A", lambda r: r.K_A),
-        ("dynamic factor K_v", [f"{st.rating.K_v:.4g} ({st.rating.K_v_source})" for st in stages]),
-        ("face load factor K_Hβ", [f"{st.rating.K_Hbeta:.4g} ({st.rating.K_Hbeta_source})" for st in stages]),
+        ("dynamic factor K_v", [f"{_rating(st).K_v:.4g} ({_rating(st).K_v_source})" for st in stages]),
+        ("face load factor K_Hβ", [f"{_rating(st).K_Hbeta:.4g} ({_rating(st).K_Hbeta_source})" for st in stages]),
         one("face load factor K_Fβ", lambda r: r.K_Fbeta),
         one("transverse load factor K_Hα", lambda r: r.K_Halpha),
         one("transverse load factor K_Fα", lambda r: r.K_Falpha),
@@ -487,7 +496,7 @@ def render(renderables: Sequence[RenderableType], *, console: Console | None = N
     return buf.getvalue()
 
 
-def life_tables(r):
+def life_tables(r: LifeResult) -> list[RenderableType]:
     """``gearcli life`` tables (gearcli.io.life_out)."""
     from gearcli.io.life_out import life_tables as build
 

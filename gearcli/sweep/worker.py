@@ -16,7 +16,7 @@ from __future__ import annotations
 import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import NamedTuple, Protocol
+from typing import NamedTuple, Protocol, cast
 
 from gearcli import engine
 from gearcli.config import DesignFile, check_override_keys
@@ -140,7 +140,7 @@ def _jump(task: Task, before: _Before | None, point: Point, result: SimulationRe
         carried[id(got)] = c
         return got
 
-    return jump_note(key, float(v0), float(v1), r0, result, refine)
+    return jump_note(key, float(cast(float, v0)), float(cast(float, v1)), r0, result, refine)  # numbers (above)
 
 
 def run_task(task: Task) -> list[Row]:
