@@ -29,10 +29,11 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, BinaryIO
 
 import gearcli.design as design_layer
-from gearcli.config import DesignFile, LoadedDesign, load_design, load_variant
+from gearcli.config import DesignFile, LoadedDesign, json_schema, load_design, load_variant, starter_toml
 from gearcli.config.bounds import check_run_budget
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
+from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import DesignError, RunTooLong
 from gearcli.io.sweep_file import open_sink, read_identity
 from gearcli.model.spec import ElementSpec, ModelSpec
@@ -55,7 +56,12 @@ if TYPE_CHECKING:
 __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "design", "design_case",
            "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
-           "sweep_campbell", "with_resonances"]
+           "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
+
+
+def design_file_schema() -> JsonObject:
+    """The JSON Schema of the design file (``gearcli schema``)."""
+    return json_schema()
 
 
 def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:

@@ -373,12 +373,12 @@ Examples:
 @guarded
 def init(file: str | None, force: bool) -> None:
     """Write a commented starter design file (the seed reducer) to FILE, or to stdout ('-' or none)."""
-    from gearcli.config import starter_toml
+    from gearcli import api
 
     target = outfiles.check_output(file, formats=("toml",))
     if target.path is not None and target.path.exists() and not force:
         _fail(f"{visible(file or '')}: exists; use --force to overwrite", EXIT_USAGE)
-    emit(starter_toml(), target)
+    emit(api.starter_toml(), target)
     if target.path is not None and not is_quiet():
         click.echo(f"wrote {visible(target.shown)}; try: gearcli design {visible(target.shown)}", err=True)
 
@@ -395,10 +395,10 @@ def schema(output: str | None) -> None:
     """Print the JSON Schema of the design file."""
     import json
 
-    from gearcli.config import json_schema
+    from gearcli import api
 
     target = outfiles.check_output(output, formats=("json",))
-    emit(json.dumps(json_schema(), indent=2) + "\n", target)
+    emit(json.dumps(api.design_file_schema(), indent=2) + "\n", target)
 
 
 # ------------------------------------------------------------------------------------------ report

@@ -30,13 +30,15 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.core.text import csv_text_cell
 from gearcli.errors import ConfigError
 from gearcli.io.atomic import write_atomic
-from gearcli.sweep.columns import Row
+
+if TYPE_CHECKING:  # `gearcli design` imports the facade, which imports this module: not the sweep (numpy)
+    from gearcli.sweep.columns import Row
 
 MARK = "# gearcli sweep: "
 JSON_EVERY_S = 1.0

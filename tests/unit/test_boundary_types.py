@@ -38,7 +38,9 @@ BOUNDARIES: dict[str, tuple[str, ...] | None] = {
     "gearcli.simulate.run": ("run_simulation", "simulate_model"),
     "gearcli.sweep.session": ("prepare", "run", "Session"),
     "gearcli.sweep.execute": ("execute", "plan"),
-    "gearcli.sweep.worker": ("Scene", "Task", "Case", "Evaluation", "iter_task", "run_task"),
+    "gearcli.sweep.worker": ("Scene", "Task", "Case", "Evaluation", "PointEvaluator", "CaseDesigner", "iter_task",
+                             "run_task"),
+    "gearcli.sweep.continuation": ("Carried", "carry_phases", "continue_state"),
     "gearcli.sweep.columns": ("ok_row", "failed_row", "columns"),
     "gearcli.sweep.spec": ("Axis", "Point", "SweepSpec", "spec_from_options"),
     "gearcli.sweep.modes": ("SweepCampbell", "sweep_campbell"),
@@ -114,7 +116,7 @@ def _findings(name: str, only: tuple[str, ...] | None) -> list[str]:
         else:  # a NamedTuple, a Protocol, a class: its annotated attributes
             found += [f"{where}.{k}: {why}" for k, v in hints.items() if (why := _untyped(v))]
         for method, fn in vars(obj).items():  # and its public methods
-            if inspect.isfunction(fn) and not method.startswith("_"):
+            if inspect.isfunction(fn) and (not method.startswith("_") or method == "__call__"):
                 found += _function_findings(f"{where}.{method}", fn, ns)
     return found
 
