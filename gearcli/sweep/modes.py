@@ -13,9 +13,10 @@ from typing import cast
 
 from gearcli.config import DesignFile
 from gearcli.core.jsontypes import JsonScalar
+from gearcli.model.assembly import Layout
 from gearcli.model.modes import SPEED_RANGE, CampbellData, campbell_data, modal_analysis
 from gearcli.results import DesignResult
-from gearcli.scene import build_model, output_units
+from gearcli.scene import output_units, spec_from_design
 from gearcli.sweep.spec import Axis, SweepSpec
 from gearcli.sweep.worker import CaseDesigner, Scene
 
@@ -26,7 +27,7 @@ def natural_frequencies_Hz(cfg: DesignFile, design: DesignResult) -> tuple[float
     """The modes capability's frequencies (``gearcli modes``) at the boundary the drive imposes: a speed
     drive holds the input body (``clamped_input``), a torque drive leaves the chain ``free``; the rigid
     mode (0 Hz) left out."""
-    lay = build_model(cfg, design).layout
+    lay = Layout.of(spec_from_design(cfg, design))
     boundary = "clamped_input" if lay.speed_drive else "free"
     analysis = modal_analysis(lay, boundary, duration_s=cfg.simulation.duration_s)
     return tuple(float(m.frequency_Hz) for m in analysis.modes if not m.rigid)
@@ -75,7 +76,7 @@ def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], desig
     --plots``, with the swept speeds."""
     swept = [p.input_rpm for p in campbell(scene, key, values, design_case, fixed)]
     cfg, design = design_case(scene, tuple(fixed))
-    lay = build_model(cfg, design).layout
+    lay = Layout.of(spec_from_design(cfg, design))
     nominal = design.stages[0].pinion.speed_rpm
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
                          max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
