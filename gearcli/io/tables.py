@@ -13,7 +13,7 @@ import io
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, Protocol
 
 from rich.cells import cell_len
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
@@ -22,10 +22,11 @@ from rich.text import Text
 
 from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
-from gearcli.results import DesignResult, RatingResult, SimulationResult, StageDynamics, StageResult
+from gearcli.results import DesignResult, SimulationResult
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
+    from gearcli.results import InternalRatingResult, RatingResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
 MIN_WIDTH = 20
@@ -280,13 +281,23 @@ def _planetary_design(r: DesignResult) -> list[RenderableType]:
                             [f"stage {st.index}" for st in s], rows)]
 
 
-def _rating(st: StageResult | StageDynamics) -> RatingResult:
+class _HasRating(Protocol):
+    """What ``rating_table`` reads of a stage (a design's, a simulation's) or a mesh: its index and rating."""
+
+    @property
+    def index(self) -> int: ...
+
+    @property
+    def rating(self) -> RatingResult | InternalRatingResult | None: ...
+
+
+def _rating(st: _HasRating) -> RatingResult | InternalRatingResult:
     if st.rating is None:
         raise ValueError(f"stage {st.index} has no rating")
     return st.rating
 
 
-def rating_table(stages: Sequence[StageResult] | Sequence[StageDynamics], title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
+def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
     """Factors, stresses, permissible stresses and safeties per member, in the order of a KISSsoft report
     (general factors, tooth root, flank); per-member cells read "pinion / gear"."""
     cols = [f"stage {st.index}" for st in stages]
