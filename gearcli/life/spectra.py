@@ -2,7 +2,7 @@
 
 Static route: the point's design with its ISO 6336 rating (K_A = 1, the rating's K_v): one bin per point,
 its force the static tangential force, its stress the rating's.
-Dynamic route: the point simulated (the sweep's point machinery, the compiled engine where it pays off) with
+Dynamic route: the point simulated (the sweep's point evaluation, the compiled engine where it pays off) with
 K_v = 1 in the rating; every mesh cycle of the steady window is one tooth engagement, counted at the largest
 |F_t| it meets; the cycles are put into classes, and a class's stress is the rating's at K_v = 1 scaled to
 its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors).
