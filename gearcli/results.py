@@ -7,10 +7,15 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypedDict
+
+from gearcli.core.channels import Channel
+from gearcli.core.jsontypes import JsonObject
 
 if TYPE_CHECKING:  # the design path never imports numpy: `gearcli design` starts fast
     import numpy as np
+
+    from gearcli.diagnostics import Diagnostic
 
 
 # ----------------------------------------------------------------------------------------- design
@@ -220,7 +225,7 @@ class DesignResult:
     input_power_kW: float = 0.0
     output_power_kW: float = 0.0
     bearings: tuple[BearingResult, ...] = ()  # with [[bearing]] tables only (docs/life.md)
-    diagnostics: tuple = ()  # gearcli.diagnostics.Diagnostic of the warnings (code, data); JSON writes these
+    diagnostics: tuple[Diagnostic, ...] = ()  # the warnings' diagnostics (code, data); JSON writes these
 
 
 # ------------------------------------------------------------------------------------- simulation
@@ -320,7 +325,7 @@ class SolverStats:
     energy_residual: float  # (W_in - W_load - E_damp - dKE - dPE) / max(|W_in|, |W_load|, KE_end)
     status: int  # solve_ivp status (0: reached the end)
     message: str
-    check_pass: dict | None = None  # the error-estimate pass: rtol, from_s, nfev, njev, steps, wall_s, finished
+    check_pass: JsonObject | None = None  # the error-estimate pass: rtol, from_s, nfev, njev, steps, wall_s, finished
     engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
     engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
     compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s
@@ -374,10 +379,31 @@ class SteadyState:
     note: str = ""
 
 
+class BearingStats(TypedDict):
+    """One bearing's reactions over the steady window (``[[bearing]]`` tables, docs/life.md)."""
+
+    shaft: int
+    position_mm: float
+    radial_N: ChannelStats
+    axial_N: ChannelStats
+
+
+class SimulationExtra(TypedDict, total=False):
+    """What a simulation reports besides its fields: the parametric work of time-varying meshes, auto's
+    stiffness indicator, the natural frequencies at the operating point of the run-up, a motor's summary
+    (docs/output.md ``summary.motor``), the bearings' window statistics."""
+
+    parametric_work_J: float
+    stiffness_indicator: float
+    natural_frequencies_runup_Hz: list[float]
+    motor: dict[str, float | None]
+    bearings: list[BearingStats]
+
+
 @dataclass(frozen=True)
 class SimulationResult:
     time_s: np.ndarray
-    channels: dict[str, np.ndarray]  # CSV column name -> series (docs/output.md order)
+    series: dict[Channel, np.ndarray]  # what it measures -> samples in SI, in output order (io.channels names them)
     window_s: tuple[float, float]
     ratio: float  # dynamic ratio mean(omega_in) / mean(omega_out) over the window
     output_speed_deg_s: float  # mean over the window
@@ -387,8 +413,8 @@ class SimulationResult:
     energy: EnergyBalance
     warnings: tuple[str, ...] = field(default_factory=tuple)
     natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
-    extra: dict | None = None
-    diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic; warnings are their messages
+    extra: SimulationExtra | None = None
+    diagnostics: tuple[Diagnostic, ...] = field(default_factory=tuple)  # warnings are their messages
     natural_frequencies_boundary: str = "clamped_input"  # "clamped_input" (speed drive) or "free" (torque drive)
     final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation
     final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
