@@ -32,6 +32,7 @@ from gearcli.results import DesignResult, StageResult
 
 if TYPE_CHECKING:  # the config layer is below this one; its pydantic models only name the types here
     from gearcli.config.schema import DesignFile, Input, Load
+    from gearcli.diagnostics import Diagnostic
     from gearcli.model import TorsionalModel
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
@@ -228,7 +229,7 @@ def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
     return TorsionalModel(spec_from_design(cfg, design))
 
 
-def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple:
+def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple[Diagnostic, ...]:
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and

@@ -4,9 +4,13 @@ to failure, damage), the damage sums, lives and safeties, then the bearings over
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import cast
+
 from rich.console import RenderableType
 from rich.table import Table
 
+from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.io.serialize import csv_text, plain
 from gearcli.io.tables import StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife
@@ -15,8 +19,8 @@ MEMBERS = ("pinion", "gear")
 MODES = ("pitting", "bending")
 
 
-def life_dict(r: LifeResult) -> dict:
-    stages = [{"index": st.index, **{m: {mode: _mode_dict(getattr(getattr(st, m), mode)) for mode in MODES}
+def life_dict(r: LifeResult) -> JsonObject:
+    stages: list[JsonObject] = [{"index": st.index, **{m: {mode: _mode_dict(getattr(getattr(st, m), mode)) for mode in MODES}
                                       for m in MEMBERS}} for st in r.stages]
     return {
         "life": {"route": r.route, "miner": r.miner, "standard": r.standard, "hours": r.hours,
@@ -25,7 +29,7 @@ def life_dict(r: LifeResult) -> dict:
     }
 
 
-def _mode_dict(ml: ModeLife) -> dict:
+def _mode_dict(ml: ModeLife) -> JsonObject:
     return {"damage": ml.damage, "life_h": ml.life_h, "safety": ml.safety, "curve": ml.curve,
             "static_cycles": ml.static_cycles, "knee_cycles": ml.knee_cycles,
             "bins": [{"force_N": b.force_N, "stress_MPa": b.stress_MPa, "cycles": b.cycles,
@@ -36,7 +40,7 @@ def _mode_dict(ml: ModeLife) -> dict:
 def life_csv(r: LifeResult) -> str:
     header = ["stage", "member", "mode", "point", "force_N", "stress_MPa", "cycles", "cycles_to_failure", "damage",
               "damage_sum", "life_h", "safety"]
-    rows = []
+    rows: list[list[JsonScalar]] = []
     for st in r.stages:
         for m in MEMBERS:
             for mode in MODES:
@@ -119,8 +123,9 @@ def life_tables(r: LifeResult) -> list[RenderableType]:
     for p in r.points:
         if p.solver:
             s = p.solver
+            window = cast("Sequence[float]", s["window_s"])
             out.append(text(f"point {p.name}: {s['method']} ({s['engine']}) rtol {s['rtol']:g}, nfev {s['nfev']}, "
-                            f"wall {s['wall_s']:.3g} s, window {s['window_s'][0]:.4g}–{s['window_s'][1]:.4g} s, "
+                            f"wall {s['wall_s']:.3g} s, window {window[0]:.4g}–{window[1]:.4g} s, "
                             f"mesh cycles {', '.join(str(c) for c in p.mesh_cycles)}, peak error "
                             f"{', '.join(f'{e:.1e}' for e in p.peak_error)}, statistics "
                             f"{'resolved' if s['statistics_resolved'] else 'NOT resolved'}"))

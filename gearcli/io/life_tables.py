@@ -8,7 +8,7 @@ from rich.console import RenderableType
 from rich.table import Table
 
 from gearcli.io.tables import StageColumns, _g, text
-from gearcli.results import BearingResult
+from gearcli.results import BearingResult, BearingStats
 
 
 def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: static reactions and ISO 281 life"
@@ -31,15 +31,14 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
     ])
 
 
-def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[dict]) -> RenderableType:
+def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[BearingStats]) -> RenderableType:
     """Window statistics of the bearing reaction channels of a simulation."""
     table = Table(title=text(f"bearing reactions over the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s"),
                   title_justify="left", header_style="bold")
     for name in ("bearing", "shaft", "x [mm]", "channel", "mean", "std", "min", "max"):
         table.add_column(name, justify="left" if name in ("bearing", "channel") else "right", overflow="fold")
     for j, b in enumerate(bearings):
-        for label, key in (("radial [N]", "radial_N"), ("axial [N]", "axial_N")):
-            st = b[key]
+        for label, st in (("radial [N]", b["radial_N"]), ("axial [N]", b["axial_N"])):
             first = label.startswith("radial")
             place = f"planets {b['planet_stage']}" if b.get("planet_stage") else str(b["shaft"])
             table.add_row(str(j + 1) if first else "", place if first else "",

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from gearcli.core.jsontypes import JsonObject
+
 
 @dataclass(frozen=True)
 class Bin:
@@ -72,7 +74,7 @@ class PointRun:
     K_v: tuple[float, ...]  # per stage: the rating's (static route) or the simulated max/static (dynamic)
     mesh_cycles: tuple[int, ...] = ()  # whole mesh cycles counted per stage (dynamic)
     peak_error: tuple[float, ...] = ()  # estimated relative error of the mesh-cycle peaks per stage (dynamic)
-    solver: dict | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
+    solver: JsonObject | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
 
 
 @dataclass(frozen=True)

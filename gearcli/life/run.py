@@ -1,9 +1,11 @@
 """``gearcli life``: duty points -> load spectra -> Miner damage, life and spectrum safety per member and
 failure mode (ISO 6336-6), and ISO 281 bearing lives over the duty (docs/life.md).
 
-Every duty point is a variant of the base design file made by ``--set`` overrides, loaded and validated
-by the sweep's point machinery (:func:`gearcli.sweep.worker.load_point`); the dynamic route simulates the
-points inside one ``engine.batch`` so that ``engine = "auto"`` takes the compiled engine for them.
+Every duty point is a variant of the base design file made by ``--set`` overrides. This module neither
+loads, designs nor simulates a point itself: the caller (:func:`gearcli.api.life`) injects how a point is
+designed (``design_case``) and simulated (``evaluate``), the sweep's point evaluation. The dynamic route
+simulates the points inside one ``engine.batch`` so that ``engine = "auto"`` takes the compiled engine for
+them.
 """
 
 from __future__ import annotations
@@ -11,13 +13,17 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
 
+from gearcli.config import DesignFile
+from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
 from gearcli.life import spectra
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
+from gearcli.life.spectra import StageLoads
+from gearcli.results import DesignResult, RatingResult, SimulationResult, StageResult
+from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
@@ -30,49 +36,63 @@ class _PointData:
     """What the damage sums need of one evaluated point."""
 
     point: DutyPoint
-    design: Any  # DesignResult with ratings (K_A = 1)
-    cfg: Any  # its DesignFile
-    loads: list  # StageLoads per stage
+    design: DesignResult  # with ratings (K_A = 1)
+    cfg: DesignFile
+    loads: list[StageLoads]  # per stage
     bearing_loads_N: tuple[float, ...]  # ISO 281 equivalent load of each bearing at this point
     run: PointRun
 
 
-def _point_design(scene, point: DutyPoint, extra: tuple[str, ...] = ()):
-    """The validated DesignFile and design of a point; errors name the duty point."""
-    from gearcli.design import compute_design
-    from gearcli.sweep.worker import load_point
-
-    try:
-        cfg = load_point(scene, (*point.overrides(), *extra))
-        design = compute_design(cfg)
-    except ConfigError as exc:
+def _named(scene: Scene, point: DutyPoint, exc: ConfigError | DesignError) -> ConfigError | DesignError:
+    """A point's bad value or infeasible design, naming the duty point (a key of its own ``set`` table by its
+    path there)."""
+    if isinstance(exc, ConfigError):
         own = [t.partition("=")[0].strip() for t in point.sets]
         if exc.key in own:  # a key of the point's own set table
-            raise ConfigError(exc.message, source=scene.source, key=f"{point.key}.set.{exc.key}") from None
-        raise ConfigError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
-    except DesignError as exc:
-        raise DesignError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
+            return ConfigError(exc.message, source=scene.source, key=f"{point.key}.set.{exc.key}")
+        return ConfigError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key)
+    return DesignError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key)
+
+
+def _point_design(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
+                  extra: tuple[str, ...] = ()) -> Case:
+    """The validated DesignFile and design of a point; errors name the duty point."""
+    try:
+        case = design_case(scene, (*point.overrides(), *extra))
+    except (ConfigError, DesignError) as exc:
+        raise _named(scene, point, exc) from None
+    _require_rating(case.cfg, scene)
+    return case
+
+
+def _require_rating(cfg: DesignFile, scene: Scene) -> None:
     if cfg.rating is None:
         raise ConfigError("gearcli life rates every member by ISO 6336-2/-3: add a [rating] table (with the "
                           "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])",
                           source=scene.source, key="rating")
-    return cfg, design
 
 
-def _static_point(scene, point: DutyPoint) -> _PointData:
-    cfg, design = _point_design(scene, point)
+def _rating(stage: StageResult) -> RatingResult:
+    """A stage's rating (every life point has one: :func:`_require_rating`)."""
+    if stage.rating is None:
+        raise DesignError(f"stage {stage.index}: no ISO 6336 rating; gearcli life needs a [rating] table")
+    return stage.rating
+
+
+def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> _PointData:
+    cfg, design = _point_design(scene, point, design_case)
     loads = [spectra.static_loads(st.static_force_N.tangential) for st in design.stages]
-    k_v = tuple(st.rating.K_v for st in design.stages)
+    k_v = tuple(_rating(st).K_v for st in design.stages)
     return _PointData(point, design, cfg, loads, tuple(b.equivalent_load_N for b in design.bearings),
                       PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
 
 
-def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]]:
+def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
+                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...]]:
     from gearcli import engine
-    from gearcli.simulate import run_simulation
 
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
-    cfg, design = _point_design(scene, point, extra)
+    cfg, design = _point_design(scene, point, design_case, extra)
     planetary = [st.index for st in design.stages if st.planetary is not None]
     if planetary:
         raise DesignError(f"stage {planetary[0]} is planetary: the dynamic life route does not count the planet "
@@ -84,13 +104,16 @@ def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]
     duration = spectra.duration_for(cfg, design)
     steps = spectra.steps_for(design, duration, cfg.simulation.steps)
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
-    cfg, design = _point_design(scene, point, extra)
-    result = run_simulation(cfg, design, want_series=True)
+    try:
+        (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None)
+    except (ConfigError, DesignError) as exc:
+        raise _named(scene, point, exc) from None
+    _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(result, design)
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     sv = result.solver
     unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
-    solver = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
+    solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
               "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": duration, "output_samples": steps + 1, "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "energy_residual": sv.energy_residual}
@@ -107,7 +130,7 @@ def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]
     return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings)
 
 
-def _dynamic_bearing_loads(cfg, design, result) -> tuple[float, ...]:
+def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> tuple[float, ...]:
     """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
     window (at a steady speed, revolutions are proportional to time)."""
     import numpy as np
@@ -120,7 +143,7 @@ def _dynamic_bearing_loads(cfg, design, result) -> tuple[float, ...]:
         return ()
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
-    r = reaction_series(lay, design, {k: v[mask] for k, v in result.channels.items()})
+    r = reaction_series(lay, design, {k: v[mask] for k, v in result.series.items()})
     specs = lay.specs
     out = []
     for j, spec in enumerate(specs):
@@ -204,9 +227,16 @@ def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
     return tuple(out)
 
 
-def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", variant: str = "iso",
-                 progress: Callable[[str, int, int], None] = lambda label, done, total: None) -> LifeResult:
-    """The life of every member and bearing over the duty ``points`` of the design file ``scene``."""
+def _no_progress(label: str, done: int, total: int) -> None:
+    pass
+
+
+def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: CaseDesigner, evaluate: PointEvaluator,
+                 route: str = "dynamic", variant: str = "iso",
+                 progress: Callable[[str, int, int], None] | None = None) -> LifeResult:
+    """The life of every member and bearing over the duty ``points`` of the design file ``scene``; each point
+    designed by ``design_case`` (the static route) or simulated by ``evaluate`` (the dynamic route)."""
+    progress = progress or _no_progress
     if not points:
         raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
                           "--series FILE.csv", source=scene.source, key="duty")
@@ -215,7 +245,7 @@ def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", 
     if route == "static":
         for i, p in enumerate(points):
             progress(p.name, i, len(points))
-            evaluated.append(_static_point(scene, p))
+            evaluated.append(_static_point(scene, p, design_case))
     else:
         from gearcli import engine
 
@@ -223,7 +253,7 @@ def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", 
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))
                 try:
-                    pd, run_warnings = _dynamic_point(scene, p)
+                    pd, run_warnings = _dynamic_point(scene, p, design_case, evaluate)
                 except GearcliError as exc:
                     if isinstance(exc, (ConfigError, DesignError)):
                         raise
@@ -237,7 +267,7 @@ def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", 
                            for member in MEMBERS))
         for k in range(len(first.stages)))
     warnings += _static_warnings(stages)
-    return LifeResult(route, VARIANT_NAMES[variant], first.stages[0].rating.standard, hours,
+    return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
                       tuple(pd.run for pd in evaluated), stages, _bearing_lives(evaluated), tuple(warnings))
 
 

@@ -16,27 +16,34 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TypeAlias, cast
+
+from gearcli.core.jsontypes import JsonScalar
+from gearcli.results import SimulationResult, StageDynamics
 
 FIXED = ("direction", "status", "message")
 TRAILING = ("output_speed_rpm", "nfev", "wall_s")
 OK, FAILED = "ok", "failed"
 
+#: one row of a sweep: column -> cell (a varied key's value, a statistic, the status, a message)
+Row: TypeAlias = dict[str, JsonScalar]
 
-def _attr(*path: str) -> Callable[[Any], float | None]:
-    def get(obj: Any) -> float | None:
+
+def _attr(*path: str) -> Callable[[StageDynamics], float | None]:
+    def get(stage: StageDynamics) -> float | None:
+        obj: object = stage
         for name in path:
             obj = getattr(obj, name, None)
             if obj is None:
                 return None
-        value = float(obj)
+        value = float(cast(float, obj))
         return value if math.isfinite(value) else None
 
     return get
 
 
 #: per-stage column suffix -> how to read it from one ``StageDynamics`` (the ONLY mapping)
-STAGE_STATISTICS: dict[str, Callable[[Any], float | None]] = {
+STAGE_STATISTICS: dict[str, Callable[[StageDynamics], float | None]] = {
     "tangential_N_mean": _attr("tangential_N", "mean"),
     "tangential_N_std": _attr("tangential_N", "std"),
     "tangential_N_min": _attr("tangential_N", "min"),
@@ -52,7 +59,7 @@ STAGE_STATISTICS: dict[str, Callable[[Any], float | None]] = {
 
 
 #: per-stage column suffixes of a planetary stage only -> how to read them from its ``StageDynamics``
-PLANETARY_STATISTICS: dict[str, Callable[[Any], float | None]] = {
+PLANETARY_STATISTICS: dict[str, Callable[[StageDynamics], float | None]] = {
     "load_sharing_factor": _attr("load_sharing_factor"),
 }
 
@@ -72,9 +79,9 @@ def statistic_columns(n_stages: int, planetary: Sequence[int] = ()) -> list[str]
     return [*stage_columns(n_stages, planetary), "output_speed_rpm"]
 
 
-def ok_row(values: Sequence[tuple[str, Any]], direction: str, result, wall_s: float, n_stages: int,
-           message: str = "") -> dict[str, Any]:
-    row: dict[str, Any] = {**dict(values), "direction": direction, "status": OK, "message": message}
+def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: SimulationResult, wall_s: float,
+           n_stages: int, message: str = "") -> Row:
+    row: Row = {**dict(values), "direction": direction, "status": OK, "message": message}
     for k, st in enumerate(result.stages[:n_stages], start=1):
         for name, get in STAGE_STATISTICS.items():
             row[f"stage{k}_{name}"] = get(st)
@@ -87,7 +94,7 @@ def ok_row(values: Sequence[tuple[str, Any]], direction: str, result, wall_s: fl
     return row
 
 
-def failed_row(values: Sequence[tuple[str, Any]], direction: str, message: str, wall_s: float) -> dict[str, Any]:
+def failed_row(values: Sequence[tuple[str, JsonScalar]], direction: str, message: str, wall_s: float) -> Row:
     return {**dict(values), "direction": direction, "status": FAILED, "message": one_line(message),
             "wall_s": wall_s}
 

@@ -24,6 +24,7 @@ from numpy.testing import assert_allclose
 
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
+from gearcli.io.channels import named
 from gearcli.model.planet_phasing import sun_ring_contact_phase_cycles
 from gearcli.simulate import run_simulation
 
@@ -49,7 +50,7 @@ def _lines(sim, z_s: int, z_r: int) -> tuple[list[float], dict[int, tuple[float,
     f_mesh = z_s * (SUN_HZ - SUN_HZ / (1 + z_r / z_s))
     t = sim.time_s
     w = t >= t[-1] - 20 / f_mesh
-    F = [sim.channels[f"stage1_planet{j + 1}_sun_tangential_N"][w] for j in range(N)]
+    F = [named(sim)[f"stage1_planet{j + 1}_sun_tangential_N"][w] for j in range(N)]
     total = sum(F)
     out = {}
     for h in (1, 2, 3):
@@ -99,8 +100,8 @@ def test_compiled_engine_matches_python_with_planet_contact_lines():
     cc = _run(25, 29, 83, engine="compiled", duration_s=0.25)
     assert cc.solver.engine == "compiled" and cc.solver.method == py.solver.method
     for j in range(N):
-        a = py.channels[f"stage1_planet{j + 1}_sun_tangential_N"]
-        b = cc.channels[f"stage1_planet{j + 1}_sun_tangential_N"]
+        a = named(py)[f"stage1_planet{j + 1}_sun_tangential_N"]
+        b = named(cc)[f"stage1_planet{j + 1}_sun_tangential_N"]
         assert_allclose(b, a, rtol=0, atol=1e-6 * np.abs(a).max())
 
 

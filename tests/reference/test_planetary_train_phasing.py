@@ -19,6 +19,7 @@ from numpy.testing import assert_allclose
 
 from gearcli.config.load import load_design
 from gearcli.design import compute_design
+from gearcli.io.channels import named
 from gearcli.model.equations import TorsionalModel
 from gearcli.scene import spec_from_design
 from gearcli.simulate import run_simulation
@@ -44,7 +45,7 @@ def _peak_hz(sim, channel: str, band=(0.0, math.inf)) -> float:
     """The frequency of the largest spectral line of a channel over the window within ``band`` (Hz) (Hann
     window, the DFT zero-padded to ~2 mHz bins, so a clean line is located far inside its 3 Hz resolution)."""
     t = sim.time_s
-    x = sim.channels[channel][t >= WINDOW_S]
+    x = named(sim)[channel][t >= WINDOW_S]
     x = (x - x.mean()) * np.hanning(x.size)
     n = 1 << 21
     spec = np.abs(np.fft.rfft(x, n))
@@ -88,7 +89,7 @@ def test_compiled_and_python_agree_after_the_planetary_stages():
     pytest.importorskip("numba")
     py = _run("stage.2.mesh.transmission_error_um=[2.0]", "simulation.engine=python", "simulation.method=DOP853")
     cc = _run("stage.2.mesh.transmission_error_um=[2.0]", "simulation.engine=compiled", "simulation.method=DOP853")
-    a, b = py.channels["stage3_tangential_N"], cc.channels["stage3_tangential_N"]
+    a, b = named(py)["stage3_tangential_N"], named(cc)["stage3_tangential_N"]
     assert_allclose(b, a, rtol=0, atol=1e-6 * np.abs(a).max())
 
 
