@@ -7,7 +7,7 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, TypedDict
+from typing import TYPE_CHECKING, NotRequired, TypedDict
 
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
@@ -208,6 +208,7 @@ class BearingResult:
     locating: bool = False
     dynamic_load_rating_kN: float = 0.0
     speed_rpm: float = 0.0
+    planet_stage: int | None = None  # a planet pin's bearing (shaft 0): its planetary stage, 1-based
 
 
 @dataclass(frozen=True)
@@ -382,7 +383,8 @@ class SteadyState:
 class BearingStats(TypedDict):
     """One bearing's reactions over the steady window (``[[bearing]]`` tables, docs/life.md)."""
 
-    shaft: int
+    shaft: int  # 1-based; 0 for a planet pin's bearing
+    planet_stage: NotRequired[int]  # a planet pin's bearing: its planetary stage, 1-based
     position_mm: float
     radial_N: ChannelStats
     axial_N: ChannelStats

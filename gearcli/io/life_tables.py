@@ -16,7 +16,7 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
     """One column per bearing: its place, reaction on the shaft (y, z, radial, axial), P, C, L10, L10h."""
     b = bearings
     return StageColumns(title, [f"bearing {j + 1}" for j in range(len(b))], [
-        ("shaft", [str(x.shaft) for x in b]),
+        ("shaft", [f"planets of stage {x.planet_stage}" if x.planet_stage else str(x.shaft) for x in b]),
         ("position x [mm]", [_g(x.position_mm) for x in b]),
         ("kind / locating", [f"{x.kind}{' / loc.' if x.locating else ''}" for x in b]),
         ("speed [rpm]", [_g(x.speed_rpm) for x in b]),
@@ -40,7 +40,8 @@ def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[Bearin
     for j, b in enumerate(bearings):
         for label, st in (("radial [N]", b["radial_N"]), ("axial [N]", b["axial_N"])):
             first = label.startswith("radial")
-            table.add_row(str(j + 1) if first else "", str(b["shaft"]) if first else "",
+            place = f"planets {b['planet_stage']}" if b.get("planet_stage") else str(b["shaft"])
+            table.add_row(str(j + 1) if first else "", place if first else "",
                           _g(b["position_mm"]) if first else "", text(label), _g(st.mean), _g(st.std, 3),
                           _g(st.min), _g(st.max), end_section=not first)
     return table

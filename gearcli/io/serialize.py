@@ -60,6 +60,9 @@ def _design_doc(result: DesignResult) -> _Doc:
     doc.pop("diagnostics", None)
     if not result.bearings:  # a design file without [[bearing]] tables means what it meant before them
         doc.pop("bearings", None)
+    for b in doc.get("bearings", []):  # planet_stage: a planet pin's bearings only
+        if b.get("planet_stage") is None:
+            b.pop("planet_stage", None)
     doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
     return doc

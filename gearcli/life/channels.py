@@ -25,22 +25,28 @@ from gearcli.simulate.stats import channel_stats, window_mask
 def influence(lay: ShaftLayout, n_stages: int) -> tuple[np.ndarray, np.ndarray]:
     """Coefficients (bearings x 3 components y, z, axial x stages): reaction = A @ F_bt + B @ |F_bt|.
     The statics is evaluated at F_bt = +1 and -1 per stage: A = (R(+1) - R(-1))/2, B = (R(+1) + R(-1))/2."""
-    n_bearings = 2 * len(lay.shafts)
+    n_bearings = len(lay.specs)
     a = np.zeros((n_bearings, 3, n_stages))
     b = np.zeros((n_bearings, 3, n_stages))
     for k in range(n_stages):
         plus, minus = ([float(sign) if i == k else 0.0 for i in range(n_stages)] for sign in (1, -1))
-        rp = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(plus)]
-        rm = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(minus)]
+        rp = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(plus, sharing=False)]
+        rm = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(minus, sharing=False)]
         a[:, :, k] = 0.5 * (np.array(rp) - np.array(rm))
         b[:, :, k] = 0.5 * (np.array(rp) + np.array(rm))
     return a, b
 
 
 def line_force_series(design: DesignResult, series: Mapping[Channel, np.ndarray]) -> np.ndarray:
-    """F_bt per stage (stages x samples) from the simulated F_t = F_bt cos(alpha_t)."""
-    return np.array([series[Channel("tangential_force", f"stage{s.index}")]
-                     / math.cos(math.radians(s.transverse_pressure_angle_deg)) for s in design.stages])
+    """F_bt per stage (stages x samples) from the simulated F_t = F_bt cos(alpha_t); a planetary stage's is planet
+    1's sun mesh's, as a magnitude in the design's load direction (the pins carry the simulated planet 1's load, the
+    central members the balanced sum of N such planets)."""
+    rows = []
+    for s in design.stages:
+        f = series[Channel("tangential_force", f"stage{s.index}")] / math.cos(
+            math.radians(s.transverse_pressure_angle_deg))
+        rows.append(np.abs(f) if s.planetary is not None else f)
+    return np.array(rows)
 
 
 def reaction_series(lay: ShaftLayout, design: DesignResult, series: Mapping[Channel, np.ndarray]) -> np.ndarray:
@@ -61,13 +67,16 @@ def with_bearings(cfg: DesignFile, design: DesignResult, result: SimulationResul
     series = dict(result.series)
     mask = window_mask(result.time_s, result.window_s)
     summary: list[BearingStats] = []
-    specs = sorted((s for pair in lay.shafts.values() for s in pair), key=lambda s: s.index)
+    specs = lay.specs
     for j, spec in enumerate(specs):
         radial, axial = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
         series[Channel("radial_force", f"bearing{j + 1}")] = radial
         series[Channel("axial_force", f"bearing{j + 1}")] = axial
-        summary.append(BearingStats(shaft=spec.shaft, position_mm=spec.position_mm,
-                                    radial_N=channel_stats(radial, mask), axial_N=channel_stats(axial, mask)))
+        stats = BearingStats(shaft=spec.shaft, position_mm=spec.position_mm, radial_N=channel_stats(radial, mask),
+                             axial_N=channel_stats(axial, mask))
+        if spec.planet_stage:
+            stats["planet_stage"] = spec.planet_stage
+        summary.append(stats)
     extra = result.extra.copy() if result.extra else SimulationExtra()
     extra["bearings"] = summary
     return dataclasses.replace(result, series=series, extra=extra)

@@ -28,6 +28,7 @@ from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
 MEMBERS = ("pinion", "gear")
+PLANETARY_MEMBERS = {"pinion": "sun", "gear": "planet"}  # a planetary stage's sun–planet mesh
 
 
 @dataclass(frozen=True)
@@ -92,6 +93,11 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
 
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
+    planetary = [st.index for st in design.stages if st.planetary is not None]
+    if planetary:
+        raise DesignError(f"stage {planetary[0]} is planetary: the dynamic life route does not count the planet "
+                          "meshes' engagements yet; use --static", source=scene.source,
+                          key=f"stage[{planetary[0] - 1}].type")
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
@@ -138,7 +144,7 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
     r = reaction_series(lay, design, {k: v[mask] for k, v in result.series.items()})
-    specs = sorted((s for pair in lay.shafts.values() for s in pair), key=lambda s: s.index)
+    specs = lay.specs
     out = []
     for j, spec in enumerate(specs):
         fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
@@ -153,12 +159,19 @@ def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve
     from gearcli.design import rating_factors as rf
 
     stage = cfg.stage[k]
-    treatment = str(cfg.materials[getattr(stage, member).material].treatment)
+    own = PLANETARY_MEMBERS[member] if getattr(stage, "type", "parallel") == "planetary" else member
+    treatment = str(cfg.materials[getattr(stage, own).material].treatment)
     m = getattr(design.stages[k].rating, member)
     optimum = cfg.rating.material_quality == "optimum"
     if mode == "pitting":
         return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
     return SNCurve(rf.ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)
+
+
+def _contacts_per_turn(st, member: str) -> int:
+    """Load cycles of one tooth per revolution: a planetary stage's sun meets its N planets, everything else one
+    mate (the planet's tooth meets the sun once; its ring contact is on the other flank, not counted)."""
+    return st.planetary.planet_count if (st.planetary is not None and member == "pinion") else 1
 
 
 def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
@@ -173,8 +186,8 @@ def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, var
     raw = []  # (point, force, stress, cycles, curve)
     for pd in points:
         st = pd.design.stages[k]
-        speed = abs(getattr(st, member).speed_rpm)
-        total = pd.point.hours * 60.0 * speed
+        speed = abs(getattr(st, member).speed_rpm)  # a planetary stage's: relative to the carrier
+        total = pd.point.hours * 60.0 * speed * _contacts_per_turn(st, member)
         curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
         ld = pd.loads[k]
         for force, share in zip(ld.forces_N, ld.shares, strict=True):

@@ -101,8 +101,9 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
-    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages)), ident, previous,
-                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+    planetary = [st.index for st in design.stages if st.planetary is not None]
+    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), planetary), ident,
+                   previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 
 def capped_jobs(jobs: int | None, cfg: DesignFile, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:

@@ -79,16 +79,24 @@ def test_simulate_reports_every_planet(runner, tmp_path):
     assert_allclose(st["load_sharing_factor"], 1.0, atol=1e-9)
 
 
-def test_what_the_time_domain_refuses_names_file_and_key(runner, tmp_path):
-    """Time-varying contact-line stiffness on planet meshes (not phased between planets), and a phased mesh
-    after a planetary stage (its phase would need the planetary output's angle): exit 2, no output file."""
-    for path, setting, key in ((STAGE, "stage.0.mesh.time_varying=true", "stage[0].mesh.time_varying"),
-                               (GEARBOX, "stage.2.mesh.transmission_error_um=[2.0]", "stage[2].mesh")):
-        out = tmp_path / "sim.csv"
-        res = runner.invoke(cli, ["simulate", path, "-o", str(out), "--set", setting])
-        assert res.exit_code == 2, res.output
-        assert f"{path}: {key}:" in res.stderr and "Traceback" not in res.stderr
-        assert not out.exists()
+def test_time_varying_stiffness_on_planet_meshes_runs(runner, tmp_path):
+    """Time-varying contact-line stiffness on planet meshes (refused before: now phased per planet and between
+    each planet's sun and ring mesh from the geometry)."""
+    out = tmp_path / "sim.json"
+    res = run(runner, "simulate", STAGE, "--format", "json", "-o", str(out), "--set", "simulation.duration_s=0.3",
+              "--set", "stage.0.mesh.time_varying=true")
+    assert res.exit_code == 0, res.stderr
+    assert len(json.loads(out.read_text())["summary"]["stages"][0]["planets"]) == 3
+
+
+def test_a_phased_mesh_after_planetary_stages_runs(runner, tmp_path):
+    """A transmission error on the parallel stage after two planetary stages (refused before: its phase comes
+    from the planetary output's angle now)."""
+    out = tmp_path / "sim.json"
+    res = run(runner, "simulate", GEARBOX, "--format", "json", "-o", str(out), "--set", "simulation.duration_s=0.3",
+              "--set", "stage.2.mesh.transmission_error_um=[2.0]")
+    assert res.exit_code == 0, res.stderr
+    assert len(json.loads(out.read_text())["summary"]["stages"]) == 3
 
 
 def test_transmission_error_on_planet_meshes_runs(runner, tmp_path):
