@@ -142,3 +142,28 @@ def test_a_ring_without_flank_roughness_is_refused_naming_the_key(tmp_path):
     res = CliRunner().invoke(cli, ["life", str(path), "--static", "-q"])
     assert res.exit_code == 2, res.output
     assert f"{path}: stage[0].ring.flank_roughness_Rz_um:" in res.stderr and "Traceback" not in res.stderr
+
+
+def test_a_turning_ring_counts_its_speed_relative_to_the_carrier(tmp_path):
+    """Carrier held, the sun driving (a star stage): the ring turns at n_s z_s / z_r, the planet at n_s z_s / z_p
+    (both relative to the carrier, which is still); a ring tooth meets N planets per turn."""
+    text = CONFIG.read_text().replace('fixed = "ring"', 'fixed = "carrier"').replace('input = "carrier"', 'input = "sun"')
+    path = tmp_path / "star.toml"
+    path.write_text(text)
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    stage = json.loads(res.stdout)["life"]["stages"][0]
+    for (_, hours, _, speed), ring, side in zip(POINTS, stage["ring"]["bending"]["bins"],
+                                                stage["planet_ring_side"]["pitting"]["bins"], strict=True):
+        assert_allclose(ring["cycles"], hours * 60.0 * speed * Z_S / Z_R * N, rtol=1e-12)
+        assert_allclose(side["cycles"], hours * 60.0 * speed * Z_S / Z_P, rtol=1e-12)
+
+
+def test_the_ring_spectrum_safety_makes_the_damage_one():
+    """Scaling every force by the safety s (sigma_H by sqrt(s)) gives D = 1 on the hand-inverted curve."""
+    ml = _doc()["stages"][0]["ring"]["pitting"]
+    s = ml["safety"]
+    assert s < 1.0  # D > 1 at s = 1
+    d = sum(b["cycles"] / _cycles_to_failure(b["stress_MPa"] * math.sqrt(s) / b["endurance_MPa"], ZNT)
+            for b in ml["bins"])
+    assert_allclose(d, 1.0, rtol=1e-8)
