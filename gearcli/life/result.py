@@ -43,9 +43,16 @@ class MemberLife:
 
 @dataclass(frozen=True)
 class StageLife:
+    """A stage's members. A planetary stage: ``pinion`` the sun and ``gear`` the planet in the sun–planet mesh;
+    its planet–ring mesh adds ``ring``, ``planet_ring_side`` (the planet's flank and root in the ring mesh) and
+    ``planet_root`` (the planet's root bending over both meshes, summed: docs/life.md)."""
+
     index: int  # 1-based
     pinion: MemberLife
     gear: MemberLife
+    ring: MemberLife | None = None
+    planet_ring_side: MemberLife | None = None
+    planet_root: ModeLife | None = None  # bending only
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import cast
 
 from gearcli.config import DesignFile
 from gearcli.core.jsontypes import JsonObject
@@ -22,7 +23,7 @@ from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
-from gearcli.results import DesignResult, RatingResult, SimulationResult, StageResult
+from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")
@@ -79,8 +80,25 @@ def _rating(stage: StageResult) -> RatingResult:
     return stage.rating
 
 
+def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) -> None:
+    """A planetary stage's planet–ring mesh must be rated: its ring and the planet's ring side are members."""
+    for st in design.stages:
+        if st.planetary is not None and st.planetary.planet_ring.rating is None:
+            from gearcli.config.schema import PlanetaryStage
+
+            stage = cfg.stage[st.index - 1]
+            assert isinstance(stage, PlanetaryStage)
+            ring = stage.ring
+            key = (f"stage[{st.index - 1}].ring.flank_roughness_Rz_um" if ring.flank_roughness_Rz_um is None
+                   else f"materials.{ring.material}")
+            raise ConfigError(f"stage {st.index}: gearcli life rates the planet–ring mesh too (the ring is often the "
+                              "weakest member): the ring needs flank_roughness_Rz_um and its material a treatment "
+                              "and fatigue limits", source=scene.source, key=key)
+
+
 def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> _PointData:
     cfg, design = _point_design(scene, point, design_case)
+    _require_ring_rating(cfg, design, scene)
     loads = [spectra.static_loads(st.static_force_N.tangential) for st in design.stages]
     k_v = tuple(_rating(st).K_v for st in design.stages)
     return _PointData(point, design, cfg, loads, tuple(b.equivalent_load_N for b in design.bearings),
@@ -155,13 +173,30 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
 
 
 # ------------------------------------------------------------------------------------- damage
+# A planetary stage's planet–ring mesh (static route): output key -> the member of its rating (InternalRatingResult:
+# pinion = planet, gear = ring) and the stage's member that gives the material
+RING_MEMBERS = {"ring": ("gear", "ring"), "planet_ring_side": ("pinion", "planet")}
+
+
+def _member_rating(st: StageResult, member: str) -> MemberRating:
+    """The rating of ``member``: the stage's own (sun–planet mesh of a planetary stage) or, for a ring-mesh
+    member, the planet–ring mesh's."""
+    if member in RING_MEMBERS:
+        assert st.planetary is not None and st.planetary.planet_ring.rating is not None
+        return cast("MemberRating", getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
+    return cast("MemberRating", getattr(_rating(st), member))
+
+
 def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
     from gearcli.design import rating_factors as rf
 
     stage = cfg.stage[k]
-    own = PLANETARY_MEMBERS[member] if getattr(stage, "type", "parallel") == "planetary" else member
+    if member in RING_MEMBERS:
+        own = RING_MEMBERS[member][1]
+    else:
+        own = PLANETARY_MEMBERS[member] if getattr(stage, "type", "parallel") == "planetary" else member
     treatment = str(cfg.materials[getattr(stage, own).material].treatment)
-    m = getattr(design.stages[k].rating, member)
+    m = _member_rating(design.stages[k], member)
     optimum = cfg.rating.material_quality == "optimum"
     if mode == "pitting":
         return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
@@ -169,30 +204,62 @@ def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve
 
 
 def _contacts_per_turn(st, member: str) -> int:
-    """Load cycles of one tooth per revolution: a planetary stage's sun meets its N planets, everything else one
-    mate (the planet's tooth meets the sun once; its ring contact is on the other flank, not counted)."""
-    return st.planetary.planet_count if (st.planetary is not None and member == "pinion") else 1
+    """Load cycles of one tooth per revolution: a planetary stage's sun (and ring) meets its N planets,
+    everything else one mate (a planet's tooth meets the sun once on one flank, the ring once on the other)."""
+    if st.planetary is not None and member in ("pinion", "ring"):
+        return int(st.planetary.planet_count)
+    return 1
+
+
+def _member_speed_rpm(st: StageResult, member: str) -> float:
+    """The member's speed in rpm that loads its teeth: a planetary stage's relative to the carrier."""
+    if member == "ring":
+        assert st.planetary is not None
+        return abs(st.planetary.ring.speed_rpm - st.planetary.carrier.speed_rpm)
+    if member == "planet_ring_side":
+        return abs(st.gear.speed_rpm)  # the planet's speed relative to the carrier
+    return abs(getattr(st, member).speed_rpm)
+
+
+def _member_loads(pd: _PointData, k: int, member: str) -> StageLoads:
+    """The tooth-force classes the member meets: a ring-mesh member's are the planet–ring mesh's static force
+    (static route only: the dynamic route refuses planetary stages)."""
+    if member in RING_MEMBERS:
+        p = pd.design.stages[k].planetary
+        assert p is not None
+        return spectra.static_loads(p.planet_ring.static_force_N.tangential)
+    return pd.loads[k]
 
 
 def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
     """The rating's stress of the point, scaled from its static force to ``force_N``."""
-    m = getattr(design.stages[k].rating, member)
+    m = _member_rating(design.stages[k], member)
     ratio = force_N / abs(static_N) if static_N else 0.0
     return m.sigma_H_MPa * math.sqrt(ratio) if mode == "pitting" else m.sigma_F_MPa * ratio
 
 
-def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
-               hours: float) -> ModeLife:
-    raw = []  # (point, force, stress, cycles, curve)
+_Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
+
+
+def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str) -> list[_Raw]:
+    raw: list[_Raw] = []
     for pd in points:
         st = pd.design.stages[k]
-        speed = abs(getattr(st, member).speed_rpm)  # a planetary stage's: relative to the carrier
-        total = pd.point.hours * 60.0 * speed * _contacts_per_turn(st, member)
+        total = pd.point.hours * 60.0 * _member_speed_rpm(st, member) * _contacts_per_turn(st, member)
         curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
-        ld = pd.loads[k]
+        ld = _member_loads(pd, k, member)
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
             raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
                         total * share, curve))
+    return raw
+
+
+def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
+               hours: float) -> ModeLife:
+    return _from_raw(_raw_bins(points, k, member, mode, variant), mode, hours)
+
+
+def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
     exponent = 0.5 if mode == "pitting" else 1.0
 
     def damage_at(scale: float) -> float:
@@ -208,6 +275,21 @@ def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, var
     return ModeLife(d, hours / d if d > 0 else None, spectrum_safety(damage_at), tuple(bins),
                     f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
                     first.static_cycles, first.knee[0], first)
+
+
+def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float) -> StageLife:
+    """A stage's members; a planetary stage adds its planet–ring mesh: the ring, the planet's ring side, and the
+    planet's root over both meshes (docs/life.md, "Planetary stages")."""
+    def member_life(member: str) -> MemberLife:
+        return MemberLife(*(_mode_life(points, k, member, mode, variant, hours) for mode in MODES))
+
+    pinion, gear = member_life("pinion"), member_life("gear")
+    if points[0].design.stages[k].planetary is None:
+        return StageLife(k + 1, pinion, gear)
+    root = _from_raw([*_raw_bins(points, k, "gear", "bending", variant),
+                      *_raw_bins(points, k, "planet_ring_side", "bending", variant)], "bending", hours)
+    return StageLife(k + 1, pinion, gear, ring=member_life("ring"), planet_ring_side=member_life("planet_ring_side"),
+                     planet_root=root)
 
 
 def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
@@ -262,10 +344,7 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                 warnings += [f"duty point {p.name}: {w}" for w in run_warnings]
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
-    stages = tuple(
-        StageLife(k + 1, *(MemberLife(*(_mode_life(evaluated, k, member, mode, variant, hours) for mode in MODES))
-                           for member in MEMBERS))
-        for k in range(len(first.stages)))
+    stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
     warnings += _static_warnings(stages)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
                       tuple(pd.run for pd in evaluated), stages, _bearing_lives(evaluated), tuple(warnings))
@@ -274,7 +353,9 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
 def _static_warnings(stages: Sequence[StageLife]) -> list[str]:
     out = []
     for st in stages:
-        for member in MEMBERS:
+        for member in (*MEMBERS, *RING_MEMBERS):
+            if getattr(st, member, None) is None:
+                continue
             for mode in MODES:
                 ml: ModeLife = getattr(getattr(st, member), mode)
                 over = [b for b in ml.bins if b.cycles_to_failure is not None and b.cycles_to_failure < ml.static_cycles]
