@@ -11,34 +11,57 @@ gets exactly the numbers ``gearcli`` prints::
     result = api.simulate(loaded.design, design)
     print(result.stages[0].tangential_N.mean)
 
-The imports of the simulation, modes, sweep and report layers are local to the functions that need them, on
-purpose: ``gearcli design`` (which imports this module) never loads scipy, so it starts fast. They hide
-no cycle: every one points down the layers (``lint-imports`` checks it).
+The sweep and the life calculation evaluate their points with the functions of this module, injected
+(the layers below cannot import the facade): :func:`evaluate_point` loads, designs and simulates one
+variant of a file, :func:`design_case` loads and designs one. Both are top-level functions, so a process
+pool or a Dask worker receives them by reference.
+
+The imports of the simulation, modes, sweep, life and report layers are local to the functions that need
+them, on purpose: ``gearcli design`` (which imports this module) never loads scipy, so it starts fast. They
+hide no cycle: every one points down the layers (``lint-imports`` checks it).
 """
 
 from __future__ import annotations
 
+import dataclasses
+import io
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, BinaryIO
 
 import gearcli.design as design_layer
-from gearcli.config import DesignFile, LoadedDesign, load_design
+from gearcli.config import DesignFile, LoadedDesign, json_schema, load_design, load_variant, starter_toml
+from gearcli.config.bounds import check_run_budget
+from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
-from gearcli.errors import DesignError
+from gearcli.core.jsontypes import JsonObject
+from gearcli.errors import DesignError, RunTooLong
 from gearcli.io.sweep_file import open_sink, read_identity
 from gearcli.model.spec import ElementSpec, ModelSpec
 from gearcli.results import DesignResult
-from gearcli.scene import spec_from_design
+from gearcli.scene import build_model, resonance_diagnostics, spec_from_design
 
 if TYPE_CHECKING:
+    from gearcli.life.result import LifeResult
+    from gearcli.life.session import Session as LifeSession
     from gearcli.model.modes import CampbellData, ModalAnalysis
     from gearcli.report import LadderSpec, Report
     from gearcli.report.accuracy import ProgressFn
     from gearcli.results import SimulationResult
+    from gearcli.sweep.columns import Row
+    from gearcli.sweep.continuation import Carried
+    from gearcli.sweep.modes import SweepCampbell
     from gearcli.sweep.session import Session, SinkFactory
+    from gearcli.sweep.worker import Case, Evaluation, Scene
 
-__all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "design", "load", "load_and_design", "model_spec",
-           "modes", "prepare_sweep", "report", "run_sweep", "simulate", "simulate_spec"]
+__all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "design", "design_case",
+           "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
+           "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
+           "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
+
+
+def design_file_schema() -> JsonObject:
+    """The JSON Schema of the design file (``gearcli schema``)."""
+    return json_schema()
 
 
 def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:
@@ -64,17 +87,57 @@ def load_and_design(path: str, overrides: Sequence[str] = (), *,
     return loaded, design(loaded, overrides)
 
 
+def with_resonances(cfg: DesignFile, design_result: DesignResult) -> DesignResult:
+    """The design with the drivetrain's resonance warnings added (``gearcli design``: a mesh order near a natural
+    frequency of the linearised chain, the same messages ``simulate`` gives)."""
+    found = resonance_diagnostics(cfg, design_result)
+    return dataclasses.replace(design_result, warnings=design_result.warnings + tuple(d.message for d in found),
+                               diagnostics=design_result.diagnostics + found)
+
+
 def model_spec(cfg: DesignFile, design_result: DesignResult) -> ModelSpec:
     """The torsional model's SI parameters of a design (the design -> model adapter, :mod:`gearcli.scene`)."""
     return spec_from_design(cfg, design_result)
 
 
-def simulate(cfg: DesignFile, design_result: DesignResult, *, method: str | None = None, rtol: float | None = None,
-             want_series: bool = True) -> SimulationResult:
-    """One run of the scene with its ``[simulation]`` settings (``method``/``rtol`` override them)."""
-    from gearcli.simulate import run_simulation
+def model_source(cfg: DesignFile, design_result: DesignResult) -> str:
+    """The scene's generated equations (Python source), as ``gearcli simulate --dump-model`` prints them."""
+    return build_model(cfg, design_result).source
 
-    return run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series)
+
+def simulate(cfg: DesignFile, design_result: DesignResult, *, method: str | None = None, rtol: float | None = None,
+             want_series: bool = True, progress: Callable[[float], None] | None = None) -> SimulationResult:
+    """One run of the scene with its ``[simulation]`` settings (``method``/``rtol`` override them); ``progress``
+    is called with the fraction of the run done (a terminal's progress bar)."""
+    from gearcli.simulate import run_simulation  # lazy for start-up: scipy
+
+    return run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series, progress=progress)
+
+
+def check_budget(loaded: LoadedDesign, design_result: DesignResult, *, output_format: str = "json",
+                 series: bool = False) -> None:
+    """The file's run checked for memory (its output in ``output_format``, with the ``series`` in JSON) and
+    cost before anything is integrated (before scipy is even imported): a
+    :class:`~gearcli.errors.ResourceError` naming the file and the key to change. ``gearcli simulate`` and
+    ``gearcli report`` call it before :func:`simulate_file` and :func:`report_file`."""
+    check_run_budget(loaded.design, design_result, fmt=output_format, series=series, source=loaded.source)
+
+
+def simulate_file(loaded: LoadedDesign, design_result: DesignResult, *,
+                  progress: Callable[[float], None] | None = None) -> SimulationResult:
+    """``gearcli simulate``: one run with the series (:func:`check_budget` first for a guarded run); errors name
+    the file; with ``[[bearing]]`` tables, the bearing reactions as channels and window statistics."""
+    try:
+        result = simulate(loaded.design, design_result, want_series=True, progress=progress)  # statistics need them
+    except RunTooLong as exc:
+        raise RunTooLong(f"{loaded.source}: {exc}") from None
+    except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
+        raise DesignError(exc.message, key=exc.key, source=loaded.source) from None
+    if loaded.design.bearing:  # bearing reactions: channels and window statistics (docs/life.md)
+        from gearcli.life.channels import with_bearings
+
+        result = with_bearings(loaded.design, design_result, result)
+    return result
 
 
 def simulate_spec(spec: ModelSpec, *, duration_s: float, steps: int, method: str = "auto", rtol: float = 1e-6,
@@ -114,6 +177,19 @@ def report(cfg: DesignFile, design_result: DesignResult, *, accuracy: float = 1e
     return build_report(cfg, design_result, accuracy=accuracy, quick=quick, spec=spec, progress=progress)
 
 
+def report_file(loaded: LoadedDesign, design_result: DesignResult, *, accuracy: float = 1e-4, quick: bool = False,
+                rtols: Sequence[float] | None = None, progress: ProgressFn | None = None) -> Report:
+    """``gearcli report`` (:func:`check_budget` first for a guarded run): :func:`report` with the accuracy
+    ladder's tolerances ``rtols`` (default: the ladder's own); a run too long names the file."""
+    from gearcli.report import LadderSpec
+
+    spec = LadderSpec(rtols=tuple(rtols)) if rtols else LadderSpec()
+    try:
+        return report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec, progress=progress)
+    except RunTooLong as exc:
+        raise RunTooLong(f"{loaded.source}: {exc}") from None
+
+
 def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), randoms: Sequence[str] = (),
                   samples: int | None = None, sampling: str = "lhs", seed: int | None = None,
                   direction: str | None = None, jobs: int | None = None, scheduler: str | None = None,
@@ -122,15 +198,87 @@ def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), r
     read for a resume."""
     from gearcli.sweep.session import prepare
 
-    return prepare(file, sets, vary=vary, randoms=randoms, samples=samples, sampling=sampling, seed=seed,
-                   direction=direction, jobs=jobs, scheduler=scheduler, output=output, fmt=fmt,
-                   read_previous=read_identity)
+    raw = read_bytes(file)
+    loaded = load(file, sets, stdin=io.BytesIO(raw))
+    return prepare(raw, loaded, design(loaded), sets, vary=vary, randoms=randoms, samples=samples,
+                   sampling=sampling, seed=seed, direction=direction, jobs=jobs, scheduler=scheduler, output=output,
+                   fmt=fmt, evaluate=evaluate_point, read_previous=read_identity)
 
 
 def run_sweep(session: Session, on_row: Callable[[bool], None] = lambda failed: None, *,
-              sink: SinkFactory | None = None) -> list[dict]:
+              sink: SinkFactory | None = None) -> list[Row]:
     """Run a prepared sweep; rows go to ``sink`` (default: the session's ``-o`` file or stdout) as they
     finish. Returns every row in point order."""
     from gearcli.sweep.session import run
 
     return run(session, sink or open_sink, on_row)
+
+
+def sweep_campbell(session: Session) -> SweepCampbell | None:
+    """The Campbell diagram of a sweep over the input speed (``gearcli sweep --plots``): the modes and order
+    lines at the file's own speed over the swept range, the swept speeds marked; None when no input speed is
+    swept."""
+    from gearcli.sweep.modes import sweep_campbell as diagram
+
+    return diagram(session.spec, session.scene, design_case)
+
+
+def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None = None,
+                 classes: int | None = None) -> LifeSession:
+    """A checked ``gearcli life`` run: the base file read, validated and designed (bad input raises before any
+    point runs), and its duty points (the file's ``[[duty]]`` tables, or the history ``series`` classed into
+    ``classes`` torque classes)."""
+    from gearcli.life.session import prepare
+
+    raw = read_bytes(file)
+    loaded = load(file, overrides, stdin=io.BytesIO(raw))
+    return prepare(raw, loaded, design(loaded), overrides, series=series, classes=classes)
+
+
+def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
+         progress: Callable[[str, int, int], None] | None = None) -> LifeResult:
+    """The life of every member and bearing over the session's duty points: each point simulated (its
+    mesh-cycle load spectrum) or, ``static``, rated at its static forces with the rating's K_v; Miner damage by
+    ``variant`` (``iso``, ``elementary``, ``modified``)."""
+    from gearcli.life.run import compute_life
+
+    return compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
+                        progress=progress, design_case=design_case, evaluate=evaluate_point)
+
+
+# ----------------------------------------------------------------- points (injected into sweep and life)
+def design_case(scene: Scene, overrides: Sequence[str], /) -> Case:
+    """One variant of the scene's file (``overrides`` after the scene's ``--set``), validated and designed."""
+    from gearcli.sweep.worker import Case
+
+    cfg = load_variant(scene.raw, scene.source, (*scene.sets, *overrides))
+    return Case(cfg, design_layer.compute_design(cfg))
+
+
+def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
+                   series: bool = False, check: bool | None = False) -> Evaluation:
+    """One variant of the scene's file loaded, designed and simulated (the sweep's and the life calculation's
+    point, :class:`~gearcli.sweep.worker.PointEvaluator`). Continued from ``start`` (the previous point's final
+    state, :mod:`gearcli.sweep.continuation`) when given: without the start-up ramps, from that state, the
+    phases carried on; a point whose chain differs starts cold with the file's ramps. ``series`` keeps the time
+    series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``)."""
+    from gearcli.model import TorsionalModel  # lazy for start-up: the model and the solver layers
+    from gearcli.simulate import run_simulation
+    from gearcli.sweep.continuation import NO_RAMPS, Carried, carry_phases, continue_state
+    from gearcli.sweep.worker import Evaluation
+
+    case = design_case(scene, (*overrides, *(NO_RAMPS if start else ())))
+    spec = spec_from_design(*case)
+    y0 = None
+    if start is not None:
+        model = TorsionalModel(carry_phases(spec, start))
+        y0 = continue_state(start.state, start.model, model, start.time_s)
+    if y0 is None:  # a cold start (the first point, or the chain changed), with the file's ramps
+        if start is not None:
+            case = design_case(scene, overrides)
+            spec = spec_from_design(*case)
+        model = TorsionalModel(spec)
+    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check)
+    if result.final_state is None or result.final_time_s is None:
+        return Evaluation(case, result, None)
+    return Evaluation(case, result, Carried(model, result.final_state, result.final_time_s))

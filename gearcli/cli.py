@@ -26,10 +26,8 @@ from gearcli.errors import (
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
-    DesignError,
     GearcliError,
     OutputError,
-    RunTooLong,
     Terminated,
 )
 from gearcli.io import output as outfiles
@@ -256,16 +254,12 @@ Examples:
 @guarded
 def design(file: str, overrides, fmt, output) -> None:
     """Ratios, speeds, torques, helical geometry, contact ratios, stiffness and static forces."""
-    import dataclasses
-
+    from gearcli import api
     from gearcli.io import serialize
-    from gearcli.scene import resonance_diagnostics
 
     target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
-    found = resonance_diagnostics(loaded.design, result)
-    result = dataclasses.replace(result, warnings=result.warnings + tuple(d.message for d in found),
-                                 diagnostics=result.diagnostics + found)
+    result = api.with_resonances(loaded.design, result)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.design_dict(result),
             csv_text=lambda: serialize.design_csv(result), table_builder="design_tables")
@@ -286,33 +280,20 @@ Examples:
 @guarded
 def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool = False) -> None:
     """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
-    from gearcli.config.bounds import check_run_budget
+    from gearcli import api
 
     target = check_target(fmt, output)
     loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
     if dump_model:
-        from gearcli.scene import build_model
-
-        emit(build_model(loaded.design, design_result).source, target)  # -o FILE honoured (atomically)
+        emit(api.model_source(loaded.design, design_result), target)  # -o FILE honoured (atomically)
         return
-    check_run_budget(loaded.design, design_result, fmt=target.fmt, series=series, source=loaded.source)
+    api.check_budget(loaded, design_result, output_format=target.fmt, series=series)
     warn(design_result.warnings)
     from gearcli.io import serialize
     from gearcli.io.progress import TerminalProgress
-    from gearcli.simulate import run_simulation
 
-    try:
-        with TerminalProgress("simulate", enabled=not is_quiet()) as progress:  # a long run on a terminal
-            result = run_simulation(loaded.design, design_result, want_series=True,  # the statistics need them
-                                    progress=progress.fraction)
-    except RunTooLong as exc:
-        raise RunTooLong(f"{loaded.source}: {exc}") from None
-    except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
-        raise DesignError(exc.message, key=exc.key, source=loaded.source) from None
-    if loaded.design.bearing:  # bearing reactions: channels and window statistics (docs/life.md)
-        from gearcli.life.channels import with_bearings
-
-        result = with_bearings(loaded.design, design_result, result)
+    with TerminalProgress("simulate", enabled=not is_quiet()) as progress:  # a long run on a terminal
+        result = api.simulate_file(loaded, design_result, progress=progress.fraction)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
@@ -343,10 +324,8 @@ def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     warn(design_result.warnings)
     analyses = api.modes(loaded.design, design_result)
     if target.fmt == "json":
-        from gearcli.diagnostics import warning_objects
-
-        found = warning_objects(design_result.warnings, design_result.diagnostics)
-        emit(serialize.to_json(serialize.with_meta(modes_out.modes_dict(analyses, found), loaded.sha256)), target)
+        emit(serialize.to_json(serialize.with_meta(modes_out.modes_document(analyses, design_result), loaded.sha256)),
+             target)
     elif target.fmt == "csv":
         emit(modes_out.modes_csv(analyses), target)
     else:
@@ -394,12 +373,12 @@ Examples:
 @guarded
 def init(file: str | None, force: bool) -> None:
     """Write a commented starter design file (the seed reducer) to FILE, or to stdout ('-' or none)."""
-    from gearcli.config import starter_toml
+    from gearcli import api
 
     target = outfiles.check_output(file, formats=("toml",))
     if target.path is not None and target.path.exists() and not force:
         _fail(f"{visible(file or '')}: exists; use --force to overwrite", EXIT_USAGE)
-    emit(starter_toml(), target)
+    emit(api.starter_toml(), target)
     if target.path is not None and not is_quiet():
         click.echo(f"wrote {visible(target.shown)}; try: gearcli design {visible(target.shown)}", err=True)
 
@@ -416,10 +395,10 @@ def schema(output: str | None) -> None:
     """Print the JSON Schema of the design file."""
     import json
 
-    from gearcli.config import json_schema
+    from gearcli import api
 
     target = outfiles.check_output(output, formats=("json",))
-    emit(json.dumps(json_schema(), indent=2) + "\n", target)
+    emit(json.dumps(api.design_file_schema(), indent=2) + "\n", target)
 
 
 # ------------------------------------------------------------------------------------------ report
@@ -478,26 +457,19 @@ Examples:
 def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtols, plots_dir) -> None:
     """Theory against simulation, the numerical error against run time, and plots."""
     from gearcli import api
-    from gearcli.config.bounds import check_report_budget
     from gearcli.io import serialize
-    from gearcli.report import LadderSpec
 
     target = check_target(fmt, output, REPORT_FORMATS, pipe_format="markdown")
     if plots_dir:
         _check_plots_dir(plots_dir, file, target)
     loaded, design_result = load_and_design(file, overrides)
-    spec = LadderSpec(rtols=rtols) if rtols else LadderSpec()
-    check_report_budget(loaded.design, design_result, source=loaded.source)
+    api.check_budget(loaded, design_result)  # the file's own run; the ladder's runs bound themselves
     warn(design_result.warnings)
     fmt = target.fmt
     from gearcli.io.progress import TerminalProgress
 
     with TerminalProgress("report", enabled=not is_quiet()) as progress:
-        try:
-            rep = api.report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec,
-                             progress=progress)
-        except RunTooLong as exc:
-            raise RunTooLong(f"{loaded.source}: {exc}") from None
+        rep = api.report_file(loaded, design_result, accuracy=accuracy, quick=quick, rtols=rtols, progress=progress)
     if fmt == "json":
         from gearcli.io.report_json import report_dict
 
@@ -570,21 +542,20 @@ Examples:
 def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, scheduler, overrides, fmt, output,
           plots_dir) -> None:
     """Simulate many operating points: grids, tolerance samples, continuation up and down in speed."""
-    from gearcli.api import prepare_sweep as prepare
-    from gearcli.api import run_sweep as run
+    from gearcli import api
     from gearcli.io.sweep_progress import SweepProgress
 
     target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work
     if plots_dir:
         _check_sweep_plots_dir(plots_dir, file, target, vary)
     output = target.shown if target.path is not None else None
-    session = prepare(file, overrides, vary=vary, randoms=randoms, samples=samples, sampling=sampling, seed=seed,
+    session = api.prepare_sweep(file, overrides, vary=vary, randoms=randoms, samples=samples, sampling=sampling, seed=seed,
                       direction=direction, jobs=jobs, scheduler=scheduler,
                       output=str(target.path) if target.path is not None else None, fmt=target.fmt)
     warn(session.design_warnings)
     warn(session.notes)  # --jobs capped by the machine
     with SweepProgress(session.todo + session.done, session.done) as progress:
-        rows = run(session, progress.advance)
+        rows = api.run_sweep(session, progress.advance)
     failed = sum(r.get("status") != "ok" for r in rows)
     click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
                err=True)
@@ -605,9 +576,11 @@ def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
 
 
 def _write_sweep_plots(session, rows, plots_dir: str) -> None:
+    from gearcli import api
     from gearcli.io.sweep_plots import write_sweep_plots
 
-    _write_figures(lambda: write_sweep_plots(session, rows, plots_dir), plots_dir, "the sweep")
+    _write_figures(lambda: write_sweep_plots(session, rows, plots_dir, api.sweep_campbell(session)), plots_dir,
+                   "the sweep")
 
 
 # -------------------------------------------------------------------------------------------- life
@@ -635,9 +608,8 @@ Examples:
 @guarded
 def life(file: str, overrides, fmt, output, static: bool, series, classes: int, miner: str, plots_dir) -> None:
     """Duty cycle to life: load spectra, ISO 6336-6 Miner damage per member, ISO 281 bearing lives."""
+    from gearcli import api
     from gearcli.io.life_out import life_csv, life_dict
-    from gearcli.life import prepare
-    from gearcli.life.run import compute_life
 
     target = check_target(fmt, output)
     if plots_dir:
@@ -645,13 +617,12 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
             raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
         outfiles.check_not_clobbering([Path(plots_dir) / n for n in ("pitting.png", "bending.png")],
                                       [file, target.path], "--plots")
-    session = prepare(file, overrides, series=series, classes=classes)
+    session = api.prepare_life(file, overrides, series=series, classes=classes)
     warn(session.design.warnings)
     from gearcli.io.progress import TerminalProgress
 
     with TerminalProgress("life", enabled=not is_quiet()) as progress:
-        result = compute_life(session.scene, session.points, route="static" if static else "dynamic",
-                              variant=miner, progress=progress)
+        result = api.life(session, static=static, variant=miner, progress=progress)
     emit_as(target.fmt, target, result, sha256=session.loaded.sha256, json_doc=lambda: life_dict(result),
             csv_text=lambda: life_csv(result), table_builder="life_tables")
     warn(w for w in result.warnings if w not in session.design.warnings)

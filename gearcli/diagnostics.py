@@ -9,7 +9,9 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal, cast
+
+from gearcli.core.jsontypes import JsonObject, JsonValue
 
 Severity = Literal["info", "warning"]
 
@@ -48,10 +50,10 @@ class Diagnostic:
     code: str
     severity: Severity
     message: str
-    data: dict[str, Any] = field(default_factory=dict)
+    data: JsonObject = field(default_factory=dict)
 
 
-def warning(code: str, message: str, **data: Any) -> Diagnostic:
+def warning(code: str, message: str, **data: JsonValue) -> Diagnostic:
     return Diagnostic(code, "warning", message, data)
 
 
@@ -65,7 +67,7 @@ def has(diags: Iterable[Diagnostic], code: str) -> bool:
 
 
 #: JSON Schema of one entry of a JSON ``warnings`` list (docs/output.md, "Warnings")
-WARNING_SCHEMA: dict[str, Any] = {
+WARNING_SCHEMA: JsonObject = {
     "type": "object",
     "required": ["code", "message"],
     "properties": {
@@ -77,7 +79,7 @@ WARNING_SCHEMA: dict[str, Any] = {
 }
 
 
-def _json_value(v: Any) -> Any:
+def _json_value(v: object) -> JsonValue:
     """A data value as plain JSON: non-finite floats become null, numpy scalars and tuples plain."""
     import math
 
@@ -89,16 +91,16 @@ def _json_value(v: Any) -> Any:
         return [_json_value(x) for x in v]
     if isinstance(v, dict):
         return {str(k): _json_value(x) for k, x in v.items()}
-    return v
+    return cast(JsonValue, v)  # str, int, bool or None
 
 
-def as_dict(d: Diagnostic) -> dict[str, Any]:
+def as_dict(d: Diagnostic) -> JsonObject:
     """One JSON ``warnings`` entry: ``code``, ``message``, then the diagnostic's data."""
     data = {k: _json_value(v) for k, v in d.data.items() if k not in ("code", "message")}
     return {"code": d.code, "message": d.message, **data}
 
 
-def warning_objects(messages_: Iterable[str], diags: Iterable[Diagnostic] = ()) -> list[dict[str, Any]]:
+def warning_objects(messages_: Iterable[str], diags: Iterable[Diagnostic] = ()) -> list[JsonObject]:
     """The JSON ``warnings`` list: one object per message, in the messages' order, from the diagnostic
     that carries it (code ``other`` for a message no diagnostic carries)."""
     by_message: dict[str, Diagnostic] = {}

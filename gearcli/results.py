@@ -7,10 +7,15 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NotRequired, TypedDict
+
+from gearcli.core.channels import Channel
+from gearcli.core.jsontypes import JsonObject
 
 if TYPE_CHECKING:  # the design path never imports numpy: `gearcli design` starts fast
     import numpy as np
+
+    from gearcli.diagnostics import Diagnostic
 
 
 # ----------------------------------------------------------------------------------------- design
@@ -81,6 +86,7 @@ class MemberRating:
     sigma_FG_MPa: float
     sigma_FP_MPa: float
     S_F: float
+    Y_M: float = 1.0  # mean stress factor in sigma_FG: 0.7 on a planet's root (an idler: alternating bending)
 
 
 @dataclass(frozen=True)
@@ -119,44 +125,13 @@ class RatingResult(MeshRatingFactors):
 
 
 @dataclass(frozen=True)
-class RingMemberRating:
-    """ISO 6336-2 figures of the ring (internal gear); its tooth-root bending is not rated (the internal gear's
-    Y_F, Y_S need ISO 6336-3's pinion-type cutter, which gearcli does not model): those keys are null and
-    ``bending_not_rated`` says why."""
-
-    load_cycles: float
-    Z_BD: float  # Z_D = 1 for an internal gear (ISO 6336-2)
-    sigma_H_MPa: float
-    Z_NT: float
-    Z_X: float
-    sigma_HG_MPa: float
-    sigma_HP_MPa: float
-    S_H: float
-    Y_F: float | None = None
-    Y_S: float | None = None
-    Y_B: float | None = None
-    Y_DT: float | None = None
-    sigma_F0_MPa: float | None = None
-    sigma_F_MPa: float | None = None
-    Y_delta_rel_T: float | None = None
-    Y_R_rel_T: float | None = None
-    Y_X: float | None = None
-    Y_NT: float | None = None
-    sigma_FG_MPa: float | None = None
-    sigma_FP_MPa: float | None = None
-    S_F: float | None = None
-    bending_not_rated: str = ("ISO 6336-3 Y_F, Y_S of an internal gear (pinion-type cutter) are not implemented; "
-                              "the ring's tooth-root bending is not rated")
-
-
-@dataclass(frozen=True)
 class InternalRatingResult(MeshRatingFactors):
     """The planet–ring mesh's strength rating (ISO 6336:2006 method B); JSON ``meshes[1].rating``, the keys of a
-    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (``K_v_source`` may also be
-    "sun_planet": the sun–planet mesh's K_v)."""
+    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (its root by ISO 6336-3's internal
+    gear method; K_v from the internal mesh's own resonance)."""
 
     pinion: MemberRating
-    gear: RingMemberRating
+    gear: MemberRating
 
 
 @dataclass(frozen=True)
@@ -233,6 +208,7 @@ class BearingResult:
     locating: bool = False
     dynamic_load_rating_kN: float = 0.0
     speed_rpm: float = 0.0
+    planet_stage: int | None = None  # a planet pin's bearing (shaft 0): its planetary stage, 1-based
 
 
 @dataclass(frozen=True)
@@ -250,7 +226,7 @@ class DesignResult:
     input_power_kW: float = 0.0
     output_power_kW: float = 0.0
     bearings: tuple[BearingResult, ...] = ()  # with [[bearing]] tables only (docs/life.md)
-    diagnostics: tuple = ()  # gearcli.diagnostics.Diagnostic of the warnings (code, data); JSON writes these
+    diagnostics: tuple[Diagnostic, ...] = ()  # the warnings' diagnostics (code, data); JSON writes these
 
 
 # ------------------------------------------------------------------------------------- simulation
@@ -351,7 +327,7 @@ class SolverStats:
     energy_residual: float  # (W_in - W_load - E_damp - dKE - dPE) / max(|W_in|, |W_load|, KE_end)
     status: int  # solve_ivp status (0: reached the end)
     message: str
-    check_pass: dict | None = None  # the error-estimate pass: rtol, from_s, nfev, njev, steps, wall_s, finished
+    check_pass: JsonObject | None = None  # the error-estimate pass: rtol, from_s, nfev, njev, steps, wall_s, finished
     engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
     engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
     compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s
@@ -405,10 +381,32 @@ class SteadyState:
     note: str = ""
 
 
+class BearingStats(TypedDict):
+    """One bearing's reactions over the steady window (``[[bearing]]`` tables, docs/life.md)."""
+
+    shaft: int  # 1-based; 0 for a planet pin's bearing
+    planet_stage: NotRequired[int]  # a planet pin's bearing: its planetary stage, 1-based
+    position_mm: float
+    radial_N: ChannelStats
+    axial_N: ChannelStats
+
+
+class SimulationExtra(TypedDict, total=False):
+    """What a simulation reports besides its fields: the parametric work of time-varying meshes, auto's
+    stiffness indicator, the natural frequencies at the operating point of the run-up, a motor's summary
+    (docs/output.md ``summary.motor``), the bearings' window statistics."""
+
+    parametric_work_J: float
+    stiffness_indicator: float
+    natural_frequencies_runup_Hz: list[float]
+    motor: dict[str, float | None]
+    bearings: list[BearingStats]
+
+
 @dataclass(frozen=True)
 class SimulationResult:
     time_s: np.ndarray
-    channels: dict[str, np.ndarray]  # CSV column name -> series (docs/output.md order)
+    series: dict[Channel, np.ndarray]  # what it measures -> samples in SI, in output order (io.channels names them)
     window_s: tuple[float, float]
     ratio: float  # dynamic ratio mean(omega_in) / mean(omega_out) over the window
     output_speed_deg_s: float  # mean over the window
@@ -418,8 +416,8 @@ class SimulationResult:
     energy: EnergyBalance
     warnings: tuple[str, ...] = field(default_factory=tuple)
     natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
-    extra: dict | None = None
-    diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic; warnings are their messages
+    extra: SimulationExtra | None = None
+    diagnostics: tuple[Diagnostic, ...] = field(default_factory=tuple)  # warnings are their messages
     natural_frequencies_boundary: str = "clamped_input"  # "clamped_input" (speed drive) or "free" (torque drive)
     final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation
     final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
@@ -463,6 +461,12 @@ class InternalMeshResult:
     iso6336_factors: Iso6336Factors
     mesh_frequency_Hz: float
     rating: InternalRatingResult | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
+    # ISO 6336-1 resonance of this mesh: m_red = the planet's m* (the ring taken infinitely heavy), n_E1 in
+    # planet rpm relative to the carrier, N = n_p/n_E1, N_S (0 where not computed)
+    reduced_mass_kg_mm: float = 0.0
+    resonance_speed_rpm: float = 0.0
+    resonance_ratio: float = 0.0
+    resonance_lower_limit: float = 0.0
 
 
 @dataclass(frozen=True)

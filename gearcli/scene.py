@@ -32,6 +32,7 @@ from gearcli.results import DesignResult, StageResult
 
 if TYPE_CHECKING:  # the config layer is below this one; its pydantic models only name the types here
     from gearcli.config.schema import DesignFile, Input, Load
+    from gearcli.diagnostics import Diagnostic
     from gearcli.model import TorsionalModel
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
@@ -184,7 +185,26 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
         base_radius_ring_m=r_br, lever_sun_carrier_m=r_bs + r_bp, lever_ring_carrier_m=r_br - r_bp,
         third_inertia_kg_m2=inertia[third], planet_inertia_kg_m2=p.planet.inertia_kg_m2, sun_mesh=sun_mesh,
         ring_mesh=ring_mesh, unit_speeds=(unit["sun"], unit["carrier"], unit["ring"]),
-        planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)))
+        planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)),
+        ring_contact_phase_cycles=_ring_contact_phase(st, unit))
+
+
+def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:
+    """Planet 1's ring-mesh contact-line phase against its sun mesh's (:mod:`gearcli.model.planet_phasing`)."""
+    from gearcli.model.planet_phasing import sun_drives, sun_ring_contact_phase_cycles
+
+    p = st.planetary
+    assert p is not None
+    return sun_ring_contact_phase_cycles(
+        planet_teeth=p.planet.teeth, planet_profile_shift=p.planet.profile_shift,
+        normal_pressure_angle_rad=math.radians(st.normal_pressure_angle_deg),
+        transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
+        alpha_w_sun_rad=math.radians(st.working_pressure_angle_deg),
+        alpha_w_ring_rad=math.radians(p.planet_ring.working_pressure_angle_deg),
+        r_b_sun=0.5 * p.sun.base_diameter_mm, r_b_planet=0.5 * p.planet.base_diameter_mm,
+        r_b_ring=0.5 * p.ring.base_diameter_mm, r_a_sun=0.5 * p.sun.tip_diameter_mm,
+        r_a_planet=0.5 * p.planet.tip_diameter_mm, r_a_ring=0.5 * p.ring.tip_diameter_mm,
+        base_pitch=st.transverse_base_pitch_mm, sun_drives=sun_drives(unit, p.input, p.sun.teeth, p.ring.teeth))
 
 
 def _planet_errors_um(cfg: DesignFile, k: int) -> list[float]:
@@ -209,7 +229,7 @@ def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
     return TorsionalModel(spec_from_design(cfg, design))
 
 
-def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple:
+def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple[Diagnostic, ...]:
     """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and

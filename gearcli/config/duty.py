@@ -35,14 +35,25 @@ class BearingFactors(_Table):
 
 class Bearing(_Table):
     """A rolling bearing under one shaft: two per supported shaft, exactly one of them locating (it takes
-    the shaft's axial force). Shaft 1 carries pinion 1, shaft k+1 gear k and pinion k+1."""
+    the shaft's axial force). Shaft 1 carries pinion 1, shaft k+1 gear k and pinion k+1 (a planetary stage
+    k: its input member is on shaft k, its output member on shaft k+1). ``planet_stage = k`` instead of
+    ``shaft`` puts the bearing on the pin of every planet of planetary stage k (two per pin; ``position_mm``
+    along the pin, from the same housing plane as ``planet.axial_position_mm``)."""
 
-    shaft: Annotated[int, Field(ge=1, le=51)]
+    shaft: Annotated[int, Field(ge=1, le=51)] | None = None
+    planet_stage: Annotated[int, Field(ge=1, le=50)] | None = None
     position_mm: AxialPositionMm
     dynamic_load_rating_kN: Annotated[float, Field(ge=1e-3, le=1e5)]  # C
     kind: Literal["ball", "roller"]
     locating: bool = False
     factors: BearingFactors = BearingFactors()
+    model_config = ConfigDict(json_schema_extra={"oneOf": [{"required": ["shaft"]}, {"required": ["planet_stage"]}]})
+
+    @model_validator(mode="after")
+    def _one_place(self) -> Bearing:
+        if (self.shaft is None) == (self.planet_stage is None):
+            raise ValueError("give exactly one of shaft (a shaft's bearing) and planet_stage (a planet pin's bearing)")
+        return self
 
 
 class Duty(_Table):

@@ -7,6 +7,7 @@ validation errors raise :class:`ConfigErrors`, whose text has one such line per 
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import os
 import re
@@ -15,6 +16,7 @@ import sys
 import tomllib
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 from typing import BinaryIO
 
@@ -77,6 +79,26 @@ def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | N
     paths = _overrides.apply_all(data, overrides)
     design = _validate(data, source, paths)
     return LoadedDesign(design=design, source=source, sha256=_digest(raw, overrides), raw=data)
+
+
+@lru_cache(maxsize=8)
+def _parsed(raw: bytes, source: str) -> dict:
+    """The parsed TOML of a design file's bytes, once per process (variants deep-copy it)."""
+    return _parse(raw, source)
+
+
+def load_variant(raw: bytes, source: str, overrides: Sequence[str]) -> DesignFile:
+    """The validated ``DesignFile`` of a variant of the design file ``raw`` (named ``source`` in messages): its
+    data with the ``--set`` ``overrides`` applied in order. The file is parsed once per process (a sweep's or a
+    duty's points differ only in their overrides)."""
+    data = copy.deepcopy(_parsed(raw, source))
+    paths = _overrides.apply_all(data, overrides)
+    return _validate(data, source, paths)
+
+
+def check_override_keys(raw: bytes, source: str, overrides: Sequence[str]) -> None:
+    """Raise ConfigError when an override names a key ``--set`` does not accept (values are not validated)."""
+    _overrides.apply_all(copy.deepcopy(_parsed(raw, source)), overrides)
 
 
 def _digest(raw: bytes, overrides: Sequence[str]) -> str:

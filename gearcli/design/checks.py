@@ -24,12 +24,14 @@ import math
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
+from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.errors import DesignError
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material, Stage
+    from gearcli.diagnostics import Diagnostic
     from gearcli.results import GearResult, StageResult
 
 HANDS = ("left", "right")
@@ -85,12 +87,12 @@ def check_hands(stage: Stage, k: int) -> None:
 
 
 # ---------------------------------------------------------------------------------------- warnings
-def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple:
+def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[Diagnostic, ...]:
     """The design's warnings as diagnostics (code ``design``; ``check`` names the check, with its stage,
     member and numbers): train-level first, then stage by stage."""
     from gearcli.diagnostics import DESIGN, warning
 
-    found = []
+    found: list[tuple[str | None, JsonObject]] = []
     if cfg.target is not None:
         found.append((target_speed_warning(cfg, output_speed_rpm),
                       {"check": "target_speed", "output_speed_rpm": output_speed_rpm,
@@ -98,7 +100,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                        "tolerance_percent": cfg.target.tolerance_percent}))
     for k, stage in enumerate(stages):
         stage_cfg = cfg.pair(k)
-        at = {"stage": stage.index}
+        at: JsonObject = {"stage": stage.index}
         found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):
             found.append((undercut_warning(stage, gear), {"check": "undercut", **at, "member": _part(stage, gear),

@@ -95,7 +95,7 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
         return stage
     from gearcli.design.rating_internal import rate_planet_ring
 
-    ring_rating = rate_planet_ring(cfg, k, _with_k_gamma(stage), stage.rating.K_v)
+    ring_rating = rate_planet_ring(cfg, k, _with_k_gamma(stage))
     mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
     return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
 

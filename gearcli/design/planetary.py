@@ -28,6 +28,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
+from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.geometry import (
     base_diameter_mm,
@@ -273,6 +274,12 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
                                                  dedendum_factor=stage.basic_rack.dedendum)
     c_mesh = stf.mesh_stiffness_N_mm_um(c_single, geo.contact_ratio_transverse)
     w_rel = abs(mesh.gear.speed_deg_s) * math.pi / 180.0
+    # ISO 6336-1 resonance of the internal mesh: the ring taken infinitely heavy (held, or a rim far heavier
+    # than a planet), so m_red is the planet's own m* = J*_p / r_bp²; n_E1 in the planet's rpm relative to the
+    # carrier, the speed its mesh frequency is counted in
+    planet = mesh.gear
+    m_red = res.body_mass_per_width_kg_mm(planet.body_inertia_kg_m2, planet.face_width_mm, planet.base_diameter_mm)
+    n_e1 = res.resonance_speed_rpm(stage.planet.teeth, c_mesh, m_red)
     return InternalMeshResult(
         working_pressure_angle_deg=math.degrees(geo.working_pressure_rad), center_distance_mm=geo.center_distance_mm,
         transverse_base_pitch_mm=geo.transverse_base_pitch_mm, face_width_mm=geo.face_width_mm,
@@ -283,7 +290,9 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         equivalent_radius_mm=radius, hertz_stiffness_N_mm1_5=stf.hertz_stiffness_N_mm1_5(radius, modulus),
         iso6336_single_pair_stiffness_N_mm_um=c_single, iso6336_mesh_stiffness_N_mm_um=c_mesh,
         iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(c_mesh), iso6336_factors=factors,
-        mesh_frequency_Hz=stage.planet.teeth * w_rel / (2.0 * math.pi))
+        mesh_frequency_Hz=stage.planet.teeth * w_rel / (2.0 * math.pi), reduced_mass_kg_mm=m_red,
+        resonance_speed_rpm=n_e1, resonance_ratio=abs(planet.speed_rpm) / n_e1,
+        resonance_lower_limit=res.lower_main_resonance_limit(line_load))
 
 
 # ---------------------------------------------------------------------------------- warnings

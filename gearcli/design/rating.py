@@ -256,7 +256,10 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFact
     rating, stage = cfg.rating, cfg.pair(k)
     assert rating is not None
     g, part, m_n = mesh.members[i], mesh.parts[i], st.normal_module_mm
-    cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h
+    # a planetary stage's sun (member 0 of its sun–planet mesh) meets every planet once per turn relative to the
+    # carrier; a planet meets the sun once (its ring mesh is the other flank, rated in rating_internal)
+    meetings = st.planetary.planet_count if st.planetary is not None and i == 0 else 1
+    cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h * meetings
     z_nt = rf.life_factor_pitting(mesh.treatments[i], cycles, rating.material_quality)
     sig_h = flank.z_bd[i] * flank.sigma_h
     sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1
@@ -278,12 +281,15 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFact
     y_r = rr.relative_surface_factor(mesh.treatments[i], float(part.root_roughness_Rz_um or 0.0))
     y_x = rr.size_factor_bending(mesh.treatments[i], m_n)
     y_nt = rf.life_factor_bending(mesh.treatments[i], cycles, rating.material_quality)
-    sig_fg = mesh.flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
+    # a planetary stage's planet (the sun–planet pair's gear) is an idler: its root bends both ways (Y_M)
+    y_m = rr.IDLER_MEAN_STRESS_FACTOR if st.planetary is not None and i == 1 else 1.0
+    sig_fg = mesh.flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x * y_m
     return MemberRating(
         load_cycles=cycles, Z_BD=flank.z_bd[i], sigma_H_MPa=sig_h, Z_NT=z_nt, Z_X=1.0, sigma_HG_MPa=sig_hg,
         sigma_HP_MPa=sig_hg / rating.min_safety_pitting, S_H=sig_hg / sig_h, Y_F=form["Y_F"], Y_S=form["Y_S"],
         Y_B=y_b, Y_DT=y_dt, sigma_F0_MPa=sig_f0, sigma_F_MPa=sig_f, Y_delta_rel_T=y_d, Y_R_rel_T=y_r, Y_X=y_x,
-        Y_NT=y_nt, sigma_FG_MPa=sig_fg, sigma_FP_MPa=sig_fg / rating.min_safety_bending, S_F=sig_fg / sig_f)
+        Y_NT=y_nt, sigma_FG_MPa=sig_fg, sigma_FP_MPa=sig_fg / rating.min_safety_bending, S_F=sig_fg / sig_f,
+        Y_M=y_m)
 
 
 def _work_hardening(mats: tuple[Material, ...], treatments: tuple[str, ...]) -> tuple[int, float]:

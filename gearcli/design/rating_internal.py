@@ -1,5 +1,5 @@
 """Strength rating of a planetary stage's planet–ring (internal) mesh: ISO 6336-2 (pitting) and ISO 6336-3
-(tooth root, planet only), 2006 editions, method B (docs/iso6336.md, "The planet–ring mesh").
+(tooth root of planet and ring), 2006 editions, method B (docs/iso6336.md, "The planet–ring mesh").
 
 Reuses the external-gear factors of ``rating_factors`` and ``rating_root`` wherever the standard's formula is the
 same; what differs for the internal pair:
@@ -9,10 +9,11 @@ same; what differs for the internal pair:
 - Z_D = 1 for the internal gear (ISO 6336-2); Z_B of the planet from the relative curvature at its inner point of
   single contact B against the concave ring flank, M_1 = √((1/ρ_1B − 1/ρ_2B)/(1/ρ_1C − 1/ρ_2C)), ρ_2 = ρ_1 + a_w sin α_wt.
 - ρ_red = ρ_1 ρ_2/(ρ_2 − ρ_1) for Z_R.
-- K_v: ``dynamic_factor`` when given as a number, else the sun–planet mesh's K_v (``K_v_source = "sun_planet"``):
-  gearcli computes no resonance speed of the internal mesh.
+- K_v: ``dynamic_factor`` when given as a number, else ISO 6336-1 method B from the internal mesh's own resonance
+  ratio (m_red = the planet's m*, the ring taken infinitely heavy; c′, c_γα, ε_γ of the internal mesh).
 - Load cycles: the planet 60 n_p,rel H (one mesh per relative turn), the ring 60 N |n_r − n_c| H (N planets).
-- The ring's tooth-root bending is not rated (null, with ``bending_not_rated``).
+- The ring's root: ``rating_root.internal_tooth_form`` (60° tangent, the substitute rack's fillet ρ_F = ρ_fP),
+  Y_B of an internal gear from ``ring.rim_thickness_mm``; the planet's root carries Y_M = 0.7 (an idler).
 """
 
 from __future__ import annotations
@@ -22,10 +23,19 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
-from gearcli.design.rating import BENDING_LOW, HB_PER_HV, PITTING_LOW, STANDARD, STRESS_CORRECTION_TEST_GEAR
+from gearcli.design import resonance as res
+from gearcli.design.rating import (
+    BENDING_LOW,
+    HB_PER_HV,
+    OUT_OF_RANGE,
+    PITTING_LOW,
+    Q_S_RANGE,
+    STANDARD,
+    STRESS_CORRECTION_TEST_GEAR,
+)
 from gearcli.design.stiffness import reference_tangential_force_N
 from gearcli.diagnostics import Diagnostic, warning
-from gearcli.results import InternalRatingResult, MemberRating, RingMemberRating
+from gearcli.results import InternalRatingResult, MemberRating
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material
@@ -51,7 +61,7 @@ def planet_single_contact_factor(tip_p: float, base_p: float, working_rad: float
     return max(1.0, m - eps_beta * (m - 1.0))
 
 
-def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult, sun_planet_k_v: float) -> InternalRatingResult | None:
+def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult) -> InternalRatingResult | None:
     """The planet–ring rating of planetary stage ``k`` (``st`` with K_γ applied to its force); ``None`` when the
     ring's material or flank roughness lacks what the rating needs."""
     from gearcli.config.schema import PlanetaryStage
@@ -78,11 +88,15 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult, sun_planet_k_v: f
     f_pb = max(rf.single_pitch_tolerance_um(d, m_n, grade) for d in diameters) * math.cos(alpha_t)
     f_fa = max(rf.profile_form_tolerance_um(d, m_n, grade) for d in diameters)
     y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, speed) for t, h in zip(treat, hlim, strict=True))
+    y_f = 0.5 * sum(rf.running_in_um(t, h, f_fa, speed) for t, h in zip(treat, hlim, strict=True))
     line_load = f_t * k_a / b
     if isinstance(rating.dynamic_factor, float):
         k_v, k_v_source = rating.dynamic_factor, "given"
-    else:
-        k_v, k_v_source = sun_planet_k_v, "sun_planet"
+    else:  # the internal mesh's own N = n_p/n_E1 (design.planetary); N_S from this rating's line load
+        k_v = rf.dynamic_factor(mesh.resonance_ratio, res.lower_main_resonance_limit(line_load), eps_g,
+                                mesh.iso6336_single_pair_stiffness_N_mm_um, line_load, f_pb - y_a, f_fa - y_f,
+                                stage.tip_relief_um or 0.0)
+        k_v_source = "iso"
     if rating.face_load_factor is not None:
         k_hb, k_hb_source = rating.face_load_factor, "given"
     else:
@@ -123,46 +137,83 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult, sun_planet_k_v: f
     z_nt = tuple(rf.life_factor_pitting(treat[i], cycles[i], rating.material_quality) for i in (0, 1))
     sig_hg = tuple(hlim[i] * z_nt[i] * z_l * z_v * z_r * (z_w if i == soft else 1.0) for i in (0, 1))
     sig_hb = (z_b * sigma_h, sigma_h)  # Z_D = 1 for the internal gear
-    # ISO 6336-3: the planet's root on its ring side (an external gear cut by the rack)
-    form = rr.tooth_form(planet.teeth, m_n, math.radians(st.normal_pressure_angle_deg), beta, beta_b,
-                         planet.profile_shift, planet.tip_diameter_mm, planet.pitch_diameter_mm, eps_a,
-                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+    # ISO 6336-3: the planet's root on its ring side (an external gear cut by the rack; an idler: Y_M = 0.7)
+    rack = (stage.basic_rack.dedendum, stage.basic_rack.root_radius)
+    an = math.radians(st.normal_pressure_angle_deg)
+    forms = (rr.tooth_form(planet.teeth, m_n, an, beta, beta_b, planet.profile_shift, planet.tip_diameter_mm,
+                           planet.pitch_diameter_mm, eps_a, rack),
+             rr.internal_tooth_form(ring.teeth, m_n, an, beta, beta_b, ring.profile_shift, ring.tip_diameter_mm,
+                                    ring.pitch_diameter_mm, eps_a, rack))
     y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
-    y_b = rr.rim_factor(stage.planet.rim_thickness_mm, 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm))
+    y_bs = (rr.rim_factor(stage.planet.rim_thickness_mm, 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm)),
+            rr.internal_rim_factor(stage.ring.rim_thickness_mm, 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)))
     y_dt = rr.deep_tooth_factor(eps_a, beta_b, grade)
-    b_f = min(planet.face_width_mm, b + 2.0 * m_n)
-    sig_f0 = f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_b * y_dt
-    sig_f = sig_f0 * k_a * k_v * k_fb * k_fa
-    y_d = rr.relative_notch_sensitivity(treat[0], form["q_s"])
-    y_r = rr.relative_surface_factor(treat[0], float(stage.planet.root_roughness_Rz_um or 0.0))
-    y_x = rr.size_factor_bending(treat[0], m_n)
-    y_nt = rf.life_factor_bending(treat[0], cycles[0], rating.material_quality)
-    sig_fg = float(mats[0].bending_fatigue_limit_MPa or 0.0) * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x
-    planet_rating = MemberRating(
-        load_cycles=cycles[0], Z_BD=z_b, sigma_H_MPa=sig_hb[0], Z_NT=z_nt[0], Z_X=1.0, sigma_HG_MPa=sig_hg[0],
-        sigma_HP_MPa=sig_hg[0] / rating.min_safety_pitting, S_H=sig_hg[0] / sig_hb[0], Y_F=form["Y_F"],
-        Y_S=form["Y_S"], Y_B=y_b, Y_DT=y_dt, sigma_F0_MPa=sig_f0, sigma_F_MPa=sig_f, Y_delta_rel_T=y_d,
-        Y_R_rel_T=y_r, Y_X=y_x, Y_NT=y_nt, sigma_FG_MPa=sig_fg, sigma_FP_MPa=sig_fg / rating.min_safety_bending,
-        S_F=sig_fg / sig_f)
-    ring_rating = RingMemberRating(
-        load_cycles=cycles[1], Z_BD=1.0, sigma_H_MPa=sig_hb[1], Z_NT=z_nt[1], Z_X=1.0, sigma_HG_MPa=sig_hg[1],
-        sigma_HP_MPa=sig_hg[1] / rating.min_safety_pitting, S_H=sig_hg[1] / sig_hb[1])
+    parts, members = (stage.planet, stage.ring), (planet, ring)
+    y_m = (rr.IDLER_MEAN_STRESS_FACTOR, 1.0)
+    rated = []
+    for i in (0, 1):
+        form = forms[i]
+        b_f = min(members[i].face_width_mm, b + 2.0 * m_n)
+        sig_f0 = f_t / (b_f * m_n) * form["Y_F"] * form["Y_S"] * y_beta * y_bs[i] * y_dt
+        sig_f = sig_f0 * k_a * k_v * k_fb * k_fa
+        y_d = rr.relative_notch_sensitivity(treat[i], form["q_s"])
+        y_r = rr.relative_surface_factor(treat[i], float(parts[i].root_roughness_Rz_um or 0.0))
+        y_x = rr.size_factor_bending(treat[i], m_n)
+        y_nt = rf.life_factor_bending(treat[i], cycles[i], rating.material_quality)
+        sig_fg = (float(mats[i].bending_fatigue_limit_MPa or 0.0) * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r
+                  * y_x * y_m[i])
+        rated.append(MemberRating(
+            load_cycles=cycles[i], Z_BD=(z_b, 1.0)[i], sigma_H_MPa=sig_hb[i], Z_NT=z_nt[i], Z_X=1.0,
+            sigma_HG_MPa=sig_hg[i], sigma_HP_MPa=sig_hg[i] / rating.min_safety_pitting, S_H=sig_hg[i] / sig_hb[i],
+            Y_F=form["Y_F"], Y_S=form["Y_S"], Y_B=y_bs[i], Y_DT=y_dt, sigma_F0_MPa=sig_f0, sigma_F_MPa=sig_f,
+            Y_delta_rel_T=y_d, Y_R_rel_T=y_r, Y_X=y_x, Y_NT=y_nt, sigma_FG_MPa=sig_fg,
+            sigma_FP_MPa=sig_fg / rating.min_safety_bending, S_F=sig_fg / sig_f, Y_M=y_m[i]))
     return InternalRatingResult(
         standard=STANDARD, K_A=k_a, K_v=k_v, K_v_source=k_v_source, K_Hbeta=k_hb, K_Hbeta_source=k_hb_source,
         K_Fbeta=k_fb, K_Halpha=k_ha, K_Falpha=k_fa, Z_H=z_h, Z_E=z_e, Z_eps=z_eps, Z_beta=z_beta, Z_L=z_l, Z_V=z_v,
-        Z_R=z_r, Z_W=z_w, Y_beta=y_beta, sigma_H0_MPa=sigma_h0, sigma_H_MPa=sigma_h, pinion=planet_rating,
-        gear=ring_rating)
+        Z_R=z_r, Z_W=z_w, Y_beta=y_beta, sigma_H0_MPa=sigma_h0, sigma_H_MPa=sigma_h, pinion=rated[0],
+        gear=rated[1])
+
+
+def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
+    """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
+    outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value)."""
+    from gearcli.config.schema import PlanetaryStage
+
+    stage, p = cfg.stage[st.index - 1], st.planetary
+    assert isinstance(stage, PlanetaryStage) and p is not None
+    ring, mesh = p.ring, p.planet_ring
+    form = rr.internal_tooth_form(ring.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
+                                  math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),
+                                  ring.profile_shift, ring.tip_diameter_mm, ring.pitch_diameter_mm,
+                                  mesh.contact_ratio_transverse,
+                                  (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+    out = []
+    if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: the root's notch parameter q_s = {form['q_s']:.3g} "
+                           "lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds", stage=st.index,
+                           member="ring", quantity="q_s", value=form["q_s"], mesh="planet_ring"))
+    depth = 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)
+    rim = stage.ring.rim_thickness_mm
+    if rim is not None and rim / depth < rr.INTERNAL_RIM_RANGE[0]:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: rim s_R/h_t = {rim / depth:.3g} below 1.75, where "
+                           "ISO 6336-3's rim factor of an internal gear ends; Y_B is taken at 1.75 "
+                           f"({rr.internal_rim_factor(rim, depth):.3g}), a thinner rim needs a finite element check",
+                           stage=st.index, member="ring", quantity="rim_ratio", value=rim / depth,
+                           mesh="planet_ring"))
+    return out
 
 
 def planet_ring_safety_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """A warning for every safety of the planet–ring mesh below its minimum (the codes of the external pairs',
-    ``member`` "planet" or "ring", ``mesh`` "planet_ring")."""
+    ``member`` "planet" or "ring", ``mesh`` "planet_ring"), and where the ring's root lies outside the method's
+    range (``rating_out_of_range``)."""
     p = st.planetary
     r = None if p is None else p.planet_ring.rating
     if r is None or p is None or cfg.rating is None:
         return []
     minima = {"pitting": cfg.rating.min_safety_pitting, "bending": cfg.rating.min_safety_bending}
-    out = []
+    out = _ring_range_diagnostics(cfg, st)
     for member, m, teeth in (("planet", r.pinion, p.planet.teeth), ("ring", r.gear, p.ring.teeth)):
         for mode, value, symbol in (("pitting", m.S_H, "S_H"), ("bending", m.S_F, "S_F")):
             if value is None or value >= minima[mode]:

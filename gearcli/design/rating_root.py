@@ -116,3 +116,77 @@ def size_factor_bending(treatment: str, normal_module_mm: float) -> float:
     if treatment == "grey_iron":
         return max(1.075 - 0.015 * m, 0.7)
     return max(1.03 - 0.006 * m, 0.85)
+
+
+IDLER_MEAN_STRESS_FACTOR = 0.7  # Y_M of an idler's root (alternating bending), ISO 6336-3:2006, 5.3 / ISO 6336-5
+
+
+def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, helix_rad: float,
+                        base_helix_rad: float, profile_shift: float, tip_diameter: float, reference_diameter: float,
+                        eps_alpha: float, rack: tuple[float, float],
+                        cutter_teeth: float | None = None) -> dict[str, float]:
+    """Y_F, Y_S and the root geometry of an internal gear by method B (ISO 6336-3:2006, 6.2 and 7.2).
+
+    ``teeth``, ``tip_diameter`` and ``reference_diameter`` are given positive, ``profile_shift`` with the sign of
+    ISO 21771 (a negative x moves the ring's tip outwards). The external gear's equations hold with the signed
+    virtual number of teeth z_n < 0 and the critical section at the 60° tangent to the root fillet
+    (H = 2/z_n (π/2 − E/m_n) − π/6; s_Fn = m_n [z_n sin(π/6 − θ) + (G/cos θ − ρ_fP/m_n)]); the load acts at the
+    outer point of single tooth contact of the ring, whose roll length exceeds the tip's by p_bn (ε_αn − 1).
+    The fillet radius is the one a pinion-type cutter of ``cutter_teeth`` z_0 generates, z_0 in place of z_n in
+    ρ_F = ρ_fP + 2 G² m_n/(cos θ (z_0 cos² θ − 2 G)); without a cutter the substitute rack's (z_0 → ∞): ρ_F = ρ_fP.
+
+    Returns ``Y_F``, ``Y_S``, ``s_Fn``, ``h_Fe``, ``rho_F``, ``alpha_Fen`` (rad), ``q_s``, ``d_en`` and ``d_sFn``
+    (positive, mm).
+    """
+    m, an = normal_module, normal_pressure_rad
+    h_fp, rho_fp = rack[0] * m, rack[1] * m
+    virtual = math.cos(base_helix_rad) ** 2 * math.cos(helix_rad)
+    z_n = -teeth / virtual
+    e = math.pi / 4.0 * m - h_fp * math.tan(an) - (1.0 - math.sin(an)) * rho_fp / math.cos(an)
+    g = rho_fp / m - h_fp / m + profile_shift
+    h = 2.0 / z_n * (math.pi / 2.0 - e / m) - math.pi / 6.0
+    theta = math.pi / 6.0
+    for _ in range(200):
+        new = 2.0 * g / z_n * math.tan(theta) - h
+        if abs(new - theta) < 1e-13:
+            theta = new
+            break
+        theta = new
+    lever = g / math.cos(theta) - rho_fp / m
+    s_fn = m * (z_n * math.sin(math.pi / 6.0 - theta) + lever)
+    d_sfn = -m * (z_n * math.cos(math.pi / 6.0 - theta) + math.sqrt(3.0) * lever)
+    rho_f = rho_fp
+    if cutter_teeth is not None:
+        z_0 = cutter_teeth / virtual
+        rho_f = m * (rho_fp / m + 2.0 * g * g / (math.cos(theta) * (z_0 * math.cos(theta) ** 2 - 2.0 * g)))
+    d_n = m * teeth / virtual  # magnitudes from here on
+    d_bn = d_n * math.cos(an)
+    d_an = d_n - (reference_diameter - tip_diameter)
+    eps_an = eps_alpha / math.cos(base_helix_rad) ** 2
+    p = math.pi * reference_diameter * math.cos(helix_rad) * math.cos(an) / teeth
+    d_en = 2.0 * math.hypot(math.sqrt(max((d_an / 2.0) ** 2 - (d_bn / 2.0) ** 2, 0.0)) + p * (eps_an - 1.0),
+                            d_bn / 2.0)
+    alpha_en = math.acos(d_bn / d_en)
+    gamma_e = (0.5 * math.pi + 2.0 * profile_shift * math.tan(an)) / z_n + (math.tan(an) - an) \
+        - (math.tan(alpha_en) - alpha_en)  # negative: the ring's tooth thickens towards its root
+    alpha_fen = alpha_en - gamma_e
+    h_fe = 0.5 * (d_sfn - (math.cos(gamma_e) - math.sin(gamma_e) * math.tan(alpha_fen)) * d_en)
+    y_f = 6.0 * (h_fe / m) * math.cos(alpha_fen) / ((s_fn / m) ** 2 * math.cos(an))
+    ell = s_fn / h_fe
+    q_s = s_fn / (2.0 * rho_f)
+    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell))
+    return {"Y_F": y_f, "Y_S": y_s, "s_Fn": s_fn, "h_Fe": h_fe, "rho_F": rho_f, "alpha_Fen": alpha_fen,
+            "q_s": q_s, "d_en": d_en, "d_sFn": d_sfn}
+
+
+INTERNAL_RIM_RANGE = (1.75, 3.5)  # s_R/h_t where the internal gear's Y_B formula holds, and from where Y_B = 1
+
+
+def internal_rim_factor(rim_thickness_mm: float | None, tooth_depth_mm: float) -> float:
+    """Y_B of an internal gear (ISO 6336-3:2006, 10): 1 for s_R/h_t ≥ 3.5 (or no rim given),
+    1.15 ln(8.324 h_t/s_R) for 1.75 < s_R/h_t < 3.5 (below 1.75 the standard does not apply and the 1.75 value
+    is used)."""
+    if rim_thickness_mm is None:
+        return 1.0
+    ratio = max(rim_thickness_mm / tooth_depth_mm, INTERNAL_RIM_RANGE[0])
+    return 1.0 if ratio >= INTERNAL_RIM_RANGE[1] else 1.15 * math.log(8.324 / ratio)

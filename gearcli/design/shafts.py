@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 from gearcli.errors import DesignError
@@ -153,7 +153,7 @@ def mesh_loads(m: MeshLayout, line_force_N: float) -> tuple[PointLoad, PointLoad
 @dataclass(frozen=True)
 class BearingSpec:
     index: int  # 0-based position in [[bearing]]
-    shaft: int  # 1-based
+    shaft: int  # 1-based; 0 for a planet pin's bearing
     position_mm: float
     rating_N: float
     kind: str
@@ -161,6 +161,97 @@ class BearingSpec:
     e: float
     X: float
     Y: float
+    planet_stage: int = 0  # a planet pin's bearing: its planetary stage, 1-based; 0 for a shaft's
+
+
+@dataclass(frozen=True)
+class PlanetaryLayout:
+    """What the statics needs of one planetary stage (docs/life.md, "Planetary stages").
+
+    The global frame of the module; planet j sits at psi_j about the central axis, r_j = (0, cos psi_j,
+    sin psi_j) from the axis to its centre, t_j = x X r_j. The sun-mesh pitch point is at r_w,s r_j from the
+    axis (r_w,p,s from the planet's centre towards the sun), the ring-mesh pitch point at r_w,r r_j (r_w,p,r
+    beyond the planet's centre). Per planet and unit transverse line force F_bt of its sun mesh (F_t =
+    F_bt cos a_w,sp, the ring mesh carrying the same F_t by the planet's moment balance), the forces on the
+    planet are
+
+        from the sun:   s F_t t_j + F_t tan(a_w,sp) r_j + h_p s F_t tan(b_b)/cos(a_w,sp) x      at the sun pitch point
+        from the ring:  s F_t t_j - F_t tan(a_w,rp) r_j - h_p s F_t tan(b_b)/cos(a_w,rp) x      at the ring pitch point
+
+    (s = +1/-1 the sense of the sun's external torque, which the planets' tangential forces on the sun
+    oppose; h_p the planet's hand: an axial force on a gear is -h (F_tang . t_P) tan(b_w) x, t_P = x X (axis to
+    contact point)). The sun takes the reverse of the first, the ring the reverse of the second, the carrier
+    (through the pins) the sum; a planet's pin bearings hold the planet against both."""
+
+    stage: int  # 0-based
+    planets: int
+    psi_rad: tuple[float, ...]
+    r_w_sun_mm: float  # sun's working pitch radius in the sun mesh
+    r_w_planet_sun_mm: float  # planet's, sun mesh
+    r_w_planet_ring_mm: float  # planet's, ring mesh
+    r_w_ring_mm: float  # ring's, ring mesh
+    alpha_w_sun_rad: float
+    alpha_w_ring_rad: float
+    base_helix_rad: float
+    planet_hand: int  # +1 right, -1 left, 0 spur
+    torque_sense: int  # s: the sign of the sun's external torque about +x at the design's load
+    shafts: dict[str, int]  # member -> 1-based shaft (the held member: none)
+    axial_mm: dict[str, float | None]  # member -> the gear centre's x (the carrier's: the planets')
+    load_sharing_factor: float  # K_gamma: the most loaded planet's share over the mean (planet pins only)
+    output_sense: int = 1  # the output member's sense of rotation against the input member's (Willis)
+    input_share_sign: int = 1  # the sign of the input member's torque share (sun 1 : ring u : carrier -(1 + u))
+
+    @property
+    def centre_distance_mm(self) -> float:
+        return self.r_w_sun_mm + self.r_w_planet_sun_mm
+
+    def planet_loads(self, j: int, line_force_N: float, about_planet: bool = False) -> tuple[PointLoad, PointLoad]:
+        """The sun's and the ring's force on planet j for the sun mesh's line force F_bt (positive: the design's
+        load direction), at the pitch points in the global frame (``about_planet``: relative to the planet's
+        axis, x along the pin)."""
+        psi = self.psi_rad[j]
+        r = (0.0, math.cos(psi), math.sin(psi))
+        t = (0.0, -math.sin(psi), math.cos(psi))
+        f_t = line_force_N * math.cos(self.alpha_w_sun_rad)
+        s, h = self.torque_sense, self.planet_hand
+        tan_b = math.tan(self.base_helix_rad)
+        radial_s = abs(f_t) * math.tan(self.alpha_w_sun_rad)
+        radial_r = abs(f_t) * math.tan(self.alpha_w_ring_rad)
+        axial_s = h * s * f_t * tan_b / math.cos(self.alpha_w_sun_rad)
+        axial_r = -h * s * f_t * tan_b / math.cos(self.alpha_w_ring_rad)
+        from_sun = (axial_s, s * f_t * t[1] + radial_s * r[1], s * f_t * t[2] + radial_s * r[2])
+        from_ring = (axial_r, s * f_t * t[1] - radial_r * r[1], s * f_t * t[2] - radial_r * r[2])
+        x = self.axial_mm["planet"] or 0.0
+        centre = 0.0 if about_planet else self.centre_distance_mm
+        at_sun = centre - self.r_w_planet_sun_mm
+        at_ring = centre + self.r_w_planet_ring_mm
+        return (PointLoad((x, at_sun * r[1], at_sun * r[2]), from_sun),
+                PointLoad((x, at_ring * r[1], at_ring * r[2]), from_ring))
+
+    def member_loads(self, member: str, line_force_N: float) -> list[PointLoad]:
+        """The planets' forces on a central member (sun, ring, carrier) at their points, its own axial place."""
+        out: list[PointLoad] = []
+        x = self.axial_mm[member]
+        for j in range(self.planets):
+            sun, ring = self.planet_loads(j, line_force_N)
+            if member == "sun":
+                out.append(PointLoad((x or 0.0, *sun.point_mm[1:]), _neg(sun.force_N)))
+            elif member == "ring":
+                out.append(PointLoad((x or 0.0, *ring.point_mm[1:]), _neg(ring.force_N)))
+            else:  # the carrier through the pins: what the planet passes on
+                out += [sun, ring]
+        return out
+
+
+ROUND_OFF = 1e-12  # a central member's reaction component below this share of its loads' sum is round-off
+
+
+def _snapped(r: Reaction, scale: float) -> Reaction:
+    return Reaction(*(0.0 if abs(c) <= scale else c for c in (r.y_N, r.z_N, r.axial_N)))
+
+
+def _neg(f: Vec) -> Vec:
+    return (-f[0], -f[1], -f[2])
 
 
 @dataclass(frozen=True)
@@ -169,48 +260,109 @@ class ShaftLayout:
 
     meshes: tuple[MeshLayout, ...]
     shafts: dict[int, tuple[BearingSpec, BearingSpec]]  # 1-based shaft -> (A, B)
+    planetaries: tuple[PlanetaryLayout, ...] = ()
+    pins: dict[int, tuple[BearingSpec, BearingSpec]] = field(default_factory=dict)  # 1-based planetary stage -> (A, B)
+
+    @property
+    def specs(self) -> list[BearingSpec]:
+        """Every bearing (shafts' and planet pins'), in [[bearing]] order."""
+        pairs = list(self.shafts.values()) + list(self.pins.values())
+        return sorted((s for pair in pairs for s in pair), key=lambda s: s.index)
 
     def loads_on(self, shaft: int, line_forces_N: Sequence[float]) -> list[PointLoad]:
-        """Shaft j (1-based) carries pinion j (stage j-1, 0-based) and gear j-1 (stage j-2)."""
+        """Shaft j (1-based) carries pinion j (stage j-1, 0-based) and gear j-1 (stage j-2), or a planetary
+        stage's member (its input member on shaft k+1, its output member on shaft k+2 for stage k, 0-based)."""
         out: list[PointLoad] = []
         for m in self.meshes:
             if m.stage + 1 == shaft or m.stage + 2 == shaft:
                 pl, gl = mesh_loads(m, line_forces_N[m.stage])
                 out.append(pl if m.stage + 1 == shaft else gl)
+        for p in self.planetaries:
+            for member, on in p.shafts.items():
+                if on == shaft:
+                    out += p.member_loads(member, line_forces_N[p.stage])
         return out
 
-    def reactions(self, line_forces_N: Sequence[float]) -> list[tuple[BearingSpec, Reaction]]:
-        """Every bearing's reaction, in [[bearing]] order, for the stages' line-of-action forces F_bt."""
+    def pin_loads(self, stage: int, line_forces_N: Sequence[float], sharing: bool = True) -> list[PointLoad]:
+        """The mesh forces on planet 1 of planetary stage ``stage`` (1-based) about its own axis (x along the pin,
+        y towards its centre's radial direction, z tangential), times the load-sharing factor (``sharing``)."""
+        p = next(q for q in self.planetaries if q.stage + 1 == stage)
+        factor = p.load_sharing_factor if sharing else 1.0
+        return list(p.planet_loads(0, factor * line_forces_N[p.stage], about_planet=True))
+
+    def reactions(self, line_forces_N: Sequence[float], sharing: bool = True) -> list[tuple[BearingSpec, Reaction]]:
+        """Every bearing's reaction, in [[bearing]] order, for the stages' line-of-action forces F_bt (a planetary
+        stage: per planet, its sun mesh's, positive in the design's load direction; ``sharing``: a planet pin
+        carries the load-sharing factor times the mean planet's)."""
         found: list[tuple[BearingSpec, Reaction]] = []
+        central = {on for p in self.planetaries for on in p.shafts.values()}
         for shaft, (a, b) in self.shafts.items():
-            ra, rb = shaft_reactions(self.loads_on(shaft, line_forces_N), a.position_mm, b.position_mm, a.locating)
+            loads = self.loads_on(shaft, line_forces_N)
+            ra, rb = shaft_reactions(loads, a.position_mm, b.position_mm, a.locating)
+            if shaft in central:  # the planets' balanced radial forces cancel to round-off: that is zero
+                scale = ROUND_OFF * sum(abs(c) for ld in loads for c in ld.force_N)
+                ra, rb = _snapped(ra, scale), _snapped(rb, scale)
+            found += [(a, ra), (b, rb)]
+        for stage, (a, b) in self.pins.items():
+            ra, rb = shaft_reactions(self.pin_loads(stage, line_forces_N, sharing), a.position_mm, b.position_mm,
+                                     a.locating)
             found += [(a, ra), (b, rb)]
         return sorted(found, key=lambda pair: pair[0].index)
 
 
 def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
-           working_pressure_rad: Sequence[float], base_helix_rad: Sequence[float]) -> ShaftLayout | None:
+           working_pressure_rad: Sequence[float], base_helix_rad: Sequence[float],
+           planetaries: Sequence[PlanetaryLayout | None] = ()) -> ShaftLayout | None:
     """The shaft layout of a design file with ``[[bearing]]`` tables (None without). Raises DesignError
     naming the key for a bearing on a shaft that does not exist, a shaft without exactly two bearings or
     one locating bearing, two bearings at one position, or a gear on a supported shaft without
-    ``axial_position_mm``."""
+    ``axial_position_mm``. ``planetaries``: per stage, a planetary stage's layout (:func:`stage_layout`) or
+    None; a planetary stage without one is refused."""
     if not cfg.bearing:
         return None
     n_shafts = len(cfg.stage) + 1
     by_shaft: dict[int, list[BearingSpec]] = {}
+    by_pin: dict[int, list[BearingSpec]] = {}
     for j, b in enumerate(cfg.bearing):
+        if b.planet_stage is not None:
+            k = b.planet_stage
+            if k > len(cfg.stage) or getattr(cfg.stage[k - 1], "type", "parallel") != "planetary":
+                raise DesignError(f"stage {k} is not a planetary stage: planet_stage names the planetary stage whose "
+                                  "planet pins carry the bearing (1-based)", key=f"bearing[{j}].planet_stage")
+            by_pin.setdefault(k, []).append(BearingSpec(j, 0, b.position_mm, b.dynamic_load_rating_kN * 1e3, b.kind,
+                                                        b.locating, b.factors.e, b.factors.X, b.factors.Y, k))
+            continue
+        assert b.shaft is not None  # the schema asks for exactly one of shaft and planet_stage
         if b.shaft > n_shafts:
             raise DesignError(f"shaft {b.shaft} does not exist: this train has shafts 1 to {n_shafts} (1 = the input "
                               "shaft, k+1 = gear k with pinion k+1)", key=f"bearing[{j}].shaft")
         by_shaft.setdefault(b.shaft, []).append(BearingSpec(j, b.shaft, b.position_mm, b.dynamic_load_rating_kN * 1e3,
                                                             b.kind, b.locating, b.factors.e, b.factors.X, b.factors.Y))
-    shafts = {s: _pair(s, specs) for s, specs in sorted(by_shaft.items())}
-    sense = 1 if cfg.input.rotation == "cw" else -1
+    shafts = {s: _pair(f"shaft {s}", specs) for s, specs in sorted(by_shaft.items())}
+    pins = {k: _pair(f"the planet pins of stage {k}", specs) for k, specs in sorted(by_pin.items())}
+    sense = 1 if cfg.input.rotation == "cw" else -1  # the sense of rotation of the stage's input shaft
     meshes = []
+    planetary_layouts: list[PlanetaryLayout] = []
     for k in range(len(cfg.stage)):
         if getattr(cfg.stage[k], "type", "parallel") == "planetary":
-            raise DesignError("the shaft statics of a planetary stage are not modelled: [[bearing]] tables need a "
-                              "train of parallel stages", key=f"stage[{k}].type")
+            pl = planetaries[k] if k < len(planetaries) else None
+            if pl is None:
+                raise DesignError("the shaft statics of this planetary stage need its design", key=f"stage[{k}].type")
+            p_stage = cfg.stage[k]
+            for member, shaft in pl.shafts.items():
+                needs = (shaft in shafts) or (member == "carrier" and k + 1 in pins)
+                where = "planet" if member == "carrier" else member
+                if needs and pl.axial_mm[member] is None:
+                    raise DesignError(f"shaft {shaft} has bearings, so the {member}'s gear plane needs its axial "
+                                      f"position", key=f"stage[{k}].{where}.axial_position_mm")
+            if k + 1 in pins and p_stage.planet.axial_position_mm is None:  # type: ignore[union-attr]
+                raise DesignError("the planet pins have bearings, so the planets need their axial position (the "
+                                  "gear centre along the pin)", key=f"stage[{k}].planet.axial_position_mm")
+            # the driven member's external torque has the sense of its rotation; the sun's follows by its share
+            pl = replace(pl, torque_sense=sense * pl.input_share_sign)
+            planetary_layouts.append(pl)
+            sense = sense * pl.output_sense
+            continue
         stage = cfg.pair(k)
         phi = math.radians(stage.center_angle_deg)
         u = (0.0, math.cos(phi), math.sin(phi))
@@ -220,22 +372,24 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
             if shaft in shafts and pos is None:
                 raise DesignError(f"shaft {shaft} has bearings, so its {member} needs its axial position (the gear "
                                   "centre along x from the housing plane)", key=f"stage[{k}].{member}.axial_position_mm")
-        meshes.append(MeshLayout(k, u, cross((1.0, 0.0, 0.0), u), sense * (-1) ** k, hand, working_pressure_rad[k],
+        meshes.append(MeshLayout(k, u, cross((1.0, 0.0, 0.0), u), sense, hand, working_pressure_rad[k],
                                  base_helix_rad[k], tuple(working_radii_mm[k]), positions))  # type: ignore[arg-type]
-    return ShaftLayout(tuple(meshes), shafts)
+        sense = -sense
+    return ShaftLayout(tuple(meshes), shafts, tuple(planetary_layouts), pins)
 
 
-def _pair(shaft: int, specs: list[BearingSpec]) -> tuple[BearingSpec, BearingSpec]:
+def _pair(shaft: str, specs: list[BearingSpec]) -> tuple[BearingSpec, BearingSpec]:
     first = f"bearing[{specs[0].index}]"
+    place = "planet_stage" if specs[0].planet_stage else "shaft"
     if len(specs) != 2:
-        raise DesignError(f"shaft {shaft} has {len(specs)} bearing(s): a shaft rests on exactly two (one locating, "
-                          "one floating)", key=f"{first}.shaft")
+        raise DesignError(f"{shaft} has {len(specs)} bearing(s): a shaft rests on exactly two (one locating, "
+                          "one floating)", key=f"{first}.{place}")
     locating = [s for s in specs if s.locating]
     if len(locating) != 1:
-        raise DesignError(f"shaft {shaft} has {len(locating)} locating bearings: exactly one of its two bearings "
+        raise DesignError(f"{shaft} has {len(locating)} locating bearings: exactly one of its two bearings "
                           "takes the axial force (locating = true)", key=f"{first}.locating")
     if specs[0].position_mm == specs[1].position_mm:
-        raise DesignError(f"the two bearings of shaft {shaft} sit at the same position_mm: the shaft needs a span",
+        raise DesignError(f"the two bearings of {shaft} sit at the same position_mm: the shaft needs a span",
                           key=f"bearing[{specs[1].index}].position_mm")
     a, b = sorted(specs, key=lambda s: s.position_mm)
     return a, b
@@ -247,22 +401,68 @@ def stage_layout(cfg: DesignFile, stages: Sequence[StageResult]) -> ShaftLayout 
     alphas = [math.radians(s.working_pressure_angle_deg) for s in stages]
     radii = [(0.5 * s.pinion.base_diameter_mm / math.cos(a), 0.5 * s.gear.base_diameter_mm / math.cos(a))
              for s, a in zip(stages, alphas, strict=True)]
-    return layout(cfg, radii, alphas, [math.radians(s.base_helix_angle_deg) for s in stages])
+    return layout(cfg, radii, alphas, [math.radians(s.base_helix_angle_deg) for s in stages],
+                  [planetary_layout(cfg, k, s) for k, s in enumerate(stages)])
+
+
+def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayout | None:
+    """A planetary stage's statics layout from its design (None for a parallel stage); the sense of its torque is
+    set by :func:`layout` from the train's senses of rotation."""
+    p = st.planetary
+    if p is None:
+        return None
+    from gearcli.config.schema import Stage, willis_speeds
+
+    stage = cfg.stage[k]
+    assert not isinstance(stage, Stage)  # a planetary stage's design has its planetary result
+    a_sp = math.radians(st.working_pressure_angle_deg)
+    a_rp = math.radians(p.planet_ring.working_pressure_angle_deg)
+    hand = {"right": 1, "left": -1}.get(stage.planet.hand or "spur", 0) if st.helix_angle_deg > 0 else 0
+    unit = willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)
+    u = p.ring.teeth / p.sun.teeth
+    share = {"sun": 1.0, "ring": u, "carrier": -(1.0 + u)}[p.input]
+    n = p.planet_count
+    return PlanetaryLayout(
+        stage=k, planets=n, psi_rad=tuple(2.0 * math.pi * j / n for j in range(n)),
+        r_w_sun_mm=0.5 * p.sun.base_diameter_mm / math.cos(a_sp),
+        r_w_planet_sun_mm=0.5 * p.planet.base_diameter_mm / math.cos(a_sp),
+        r_w_planet_ring_mm=0.5 * p.planet.base_diameter_mm / math.cos(a_rp),
+        r_w_ring_mm=0.5 * p.ring.base_diameter_mm / math.cos(a_rp), alpha_w_sun_rad=a_sp, alpha_w_ring_rad=a_rp,
+        base_helix_rad=math.radians(st.base_helix_angle_deg), planet_hand=hand, torque_sense=1,
+        shafts={p.input: k + 1, p.output: k + 2},
+        axial_mm={"sun": stage.sun.axial_position_mm, "ring": stage.ring.axial_position_mm,
+                  "carrier": stage.planet.axial_position_mm, "planet": stage.planet.axial_position_mm},
+        load_sharing_factor=p.load_sharing_factor, output_sense=1 if unit[p.output] > 0 else -1,
+        input_share_sign=1 if share > 0 else -1)
 
 
 def line_forces_N(stages: Sequence[StageResult]) -> list[float]:
-    """F_bt = T_1 / r_b1 per stage from the pinion torques (N·mm / mm)."""
-    return [s.pinion.torque_Nmm / (0.5 * s.pinion.base_diameter_mm) for s in stages]
+    """F_bt = T_1 / r_b1 per stage from the pinion torques (N·mm / mm); a planetary stage's per planet (its sun
+    mesh's), as a magnitude in the design's load direction."""
+    out = []
+    for s in stages:
+        f = s.pinion.torque_Nmm / (0.5 * s.pinion.base_diameter_mm)
+        out.append(abs(f) if s.planetary is not None else f)
+    return out
 
 
 def bearing_results(cfg: DesignFile, stages: Sequence[StageResult],
                     shaft_speeds_rpm: Sequence[float]) -> tuple[BearingResult, ...]:
-    """Static reactions and ISO 281 lives of every ``[[bearing]]`` at the design's load (empty without)."""
+    """Static reactions and ISO 281 lives of every ``[[bearing]]`` at the design's load (empty without); a
+    planet pin's bearing turns at the planet's speed relative to the carrier."""
     lay = stage_layout(cfg, stages)
     if lay is None:
         return ()
-    return tuple(bearing_result(spec, r, shaft_speeds_rpm[spec.shaft - 1])
-                 for spec, r in lay.reactions(line_forces_N(stages)))
+    out = []
+    for spec, r in lay.reactions(line_forces_N(stages)):
+        if spec.planet_stage:
+            planetary = stages[spec.planet_stage - 1].planetary
+            assert planetary is not None
+            speed = planetary.planet.speed_rpm
+        else:
+            speed = shaft_speeds_rpm[spec.shaft - 1]
+        out.append(bearing_result(spec, r, speed))
+    return tuple(out)
 
 
 def bearing_result(spec: BearingSpec, r: Reaction, speed_rpm: float) -> BearingResult:
@@ -271,4 +471,5 @@ def bearing_result(spec: BearingSpec, r: Reaction, speed_rpm: float) -> BearingR
     return BearingResult(shaft=spec.shaft, position_mm=spec.position_mm, radial_N=r.radial_N, radial_y_N=r.y_N,
                          radial_z_N=r.z_N, axial_N=r.axial_N, equivalent_load_N=p, L10_Mrev=l10,
                          L10_h=life_hours(l10, speed_rpm), kind=spec.kind, locating=spec.locating,
-                         dynamic_load_rating_kN=spec.rating_N / 1e3, speed_rpm=abs(speed_rpm))
+                         dynamic_load_rating_kN=spec.rating_N / 1e3, speed_rpm=abs(speed_rpm),
+                         planet_stage=spec.planet_stage or None)

@@ -64,7 +64,7 @@ SUPPORTED = (
 _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_levers", "conn_param", "body_tree",
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
                  "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol",
-                 "motor_row", "load_law"}
+                 "motor_row", "load_law", "body_angle_row"}
 _SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "engine/status.py", "model/elements/__init__.py",
             "model/elements/torque.py", "model/elements/machine.py", "model/contact_lines.py")  # + every compiled element's module (_source_key)
 
@@ -280,7 +280,7 @@ def _tiny_model():
             np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
             np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
             np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
-            np.zeros(machine.L_TAB))
+            np.zeros(machine.L_TAB), np.zeros((0, 0)))
 
 
 def _warm_up(kernel) -> None:
@@ -320,7 +320,8 @@ def pack(arrays) -> tuple:
             np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct,
             np.ascontiguousarray(arrays.body_tree, dtype=np.int64), ptr, pairs,
             np.ascontiguousarray(np.asarray(arrays.motor_row, dtype=np.float64).reshape(-1)),
-            np.ascontiguousarray(np.asarray(arrays.load_law, dtype=np.float64).reshape(-1)))
+            np.ascontiguousarray(np.asarray(arrays.load_law, dtype=np.float64).reshape(-1)),
+            np.ascontiguousarray(np.atleast_2d(np.asarray(arrays.body_angle_row, dtype=np.float64))))
 
 
 def _acting_on(bodies: np.ndarray, n_bodies: int) -> tuple[np.ndarray, np.ndarray]:

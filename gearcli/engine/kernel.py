@@ -79,7 +79,8 @@ FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3,
 # the flat (amplitude, order) / (amplitude, frequency) pairs of gearcli.model.elements.torque, tree the
 # connector that gives each body's angle, per body b its (connector, slot) pairs pairs[ptr[b]:ptr[b + 1]]
 # in connector order (gearcli.engine.pack), then the motor's row and the load's speed law
-# (gearcli.model.elements.machine; empty when there is none)
+# (gearcli.model.elements.machine; empty when there is none), and the angle rows of the bodies the tree does not
+# reach (gearcli.model.Layout.angle_rows; (0, 0) for none)
 
 # ----------------------------------------------------------------------------------- vector sums
 # scipy forms these with np.dot; the kernel calls the same BLAS with the same arguments (gearcli.engine.blas)
@@ -222,7 +223,28 @@ def prologue(t, y, model, th):
         c = tree[b]
         if c >= 0:
             th[b] = (lev[c, 0] * th[model[1][c, 0]] - y[c]) * (1.0 / -lev[c, 1])
+        elif c == -2:  # a body the kinematics fix through several connectors (Layout.angle_rows), as generated
+            th[b] = angle_row(b, model, th, y)
     return speed, w0, a0, tin, dtin, load, tl, dtl
+
+
+@jit
+def angle_row(b, model, th, y):
+    """theta_b from its row (Layout.angle_rows): body angles, then deflections, then the constant, summed in
+    the generated expression's order."""
+    M = model[14]
+    nb = M.shape[0]
+    x = 0.0
+    have = False
+    for j in range(b):
+        if M[b, j] != 0.0:
+            x = x + M[b, j] * th[j] if have else M[b, j] * th[j]
+            have = True
+    for c in range(M.shape[1] - nb - 1):
+        if M[b, nb + c] != 0.0:
+            x = x + M[b, nb + c] * y[c] if have else M[b, nb + c] * y[c]
+            have = True
+    return x + M[b, M.shape[1] - 1]
 
 
 @jit
@@ -796,17 +818,20 @@ def connector_series(kind, P, d, dd, phi, wphi):
 @jit
 def _angle_gradient(body, model, ag):
     """ag = d(theta_body)/dy: theta_b = (r_a theta_a - delta_c) / r_b along the tree from theta_0 (a state of
-    a torque drive; a function of t alone for a speed drive)."""
+    a torque drive; a function of t alone for a speed drive), through a row body's row (Layout.angle_rows)
+    where the path meets one."""
     bodies, lev, tree = model[1], model[2], model[9]
     i_th = model[5][IP_THETA]
     ag[:] = 0.0
-    if i_th >= 0:
-        ag[i_th] = 1.0
-    depth = 0  # the path from body 0, walked from its root end
+    depth = 0  # the path from its root (body 0 or a row body), walked from the root end
     b = body
-    while b > 0:
+    while b > 0 and tree[b] >= 0:
         depth += 1
         b = bodies[tree[b], 0]
+    if b > 0:  # a row body: its gradient from the earlier bodies' (a table, each row built as the path's steps)
+        _row_gradient(b, model, ag)
+    elif i_th >= 0:
+        ag[i_th] = 1.0
     for k in range(depth, 0, -1):
         b = body
         for _ in range(k - 1):
@@ -815,6 +840,34 @@ def _angle_gradient(body, model, ag):
         for j in range(ag.size):
             ag[j] *= lev[c, 0] / -lev[c, 1]
         ag[c] -= 1.0 / -lev[c, 1]
+
+
+@jit
+def _row_gradient(body, model, ag):
+    """ag = d(theta_body)/dy of a row body: the gradients of all bodies up to it, in index order (tree bodies as
+    :func:`_angle_gradient` forms them, row bodies from their rows), in a table."""
+    bodies, lev, tree, M = model[1], model[2], model[9], model[14]
+    i_th = model[5][IP_THETA]
+    nb = M.shape[0]
+    G = np.zeros((body + 1, ag.size))
+    if i_th >= 0:
+        G[0, i_th] = 1.0
+    for b in range(1, body + 1):
+        c = tree[b]
+        if c >= 0:
+            a = bodies[c, 0]
+            for j in range(ag.size):
+                G[b, j] = G[a, j] * (lev[c, 0] / -lev[c, 1])
+            G[b, c] -= 1.0 / -lev[c, 1]
+        elif c == -2:
+            for i in range(b):
+                if M[b, i] != 0.0:
+                    for j in range(ag.size):
+                        G[b, j] += M[b, i] * G[i, j]
+            for k in range(M.shape[1] - nb - 1):
+                G[b, k] += M[b, nb + k]
+    for j in range(ag.size):
+        ag[j] = G[body, j]
 
 
 @jit

@@ -12,11 +12,15 @@ inside the margin at the nominal speed are labelled.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from gearcli.io.plots import _figure
 from gearcli.io.units import OutputUnits
 from gearcli.model.modes import RESONANCE_BAND, CampbellData
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 STYLES = {"strongly": dict(marker="o", ms=8, mfc="tab:red", mec="darkred", zorder=6),
           "moderately": dict(marker="o", ms=6.5, mfc="orange", mec="darkorange", zorder=5),
@@ -29,7 +33,7 @@ def _speed(units: OutputUnits, rpm: Any) -> Any:
 
 
 def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
-                    swept: Sequence[float] | None = None):
+                    swept: Sequence[float] | None = None) -> Figure:
     """The figure; ``swept``: input speeds (rpm) of a sweep's points, marked on the speed axis."""
     import numpy as np
 
@@ -103,7 +107,7 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
 
 
 
-def write_campbell(data: CampbellData, units: OutputUnits, directory, title: str = ""):
+def write_campbell(data: CampbellData, units: OutputUnits, directory: str | Path, title: str = "") -> Path:
     """Write ``campbell.png`` into ``directory`` (created if needed); returns its path."""
     from pathlib import Path
 

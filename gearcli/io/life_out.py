@@ -4,20 +4,39 @@ to failure, damage), the damage sums, lives and safeties, then the bearings over
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import cast
+
 from rich.console import RenderableType
 from rich.table import Table
 
+from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.io.serialize import csv_text, plain
 from gearcli.io.tables import StageColumns, _g, text
-from gearcli.life.result import LifeResult, ModeLife
+from gearcli.life.result import LifeResult, ModeLife, StageLife
 
 MEMBERS = ("pinion", "gear")
 MODES = ("pitting", "bending")
+RING_MEMBERS = ("ring", "planet_ring_side")  # a planetary stage's planet–ring mesh (after pinion, gear)
+LABELS = {"pinion": "pinion", "gear": "gear", "ring": "ring", "planet_ring_side": "planet (ring mesh)"}
+ROOT_LABEL = "planet root (both meshes)"
 
 
-def life_dict(r: LifeResult) -> dict:
-    stages = [{"index": st.index, **{m: {mode: _mode_dict(getattr(getattr(st, m), mode)) for mode in MODES}
-                                      for m in MEMBERS}} for st in r.stages]
+def _members(st: StageLife) -> tuple[str, ...]:
+    """The stage's members in output order: pinion, gear, and a planetary stage's ring and planet ring side."""
+    return (*MEMBERS, *(m for m in RING_MEMBERS if getattr(st, m) is not None))
+
+
+def _stage_dict(st: StageLife) -> JsonObject:
+    out: JsonObject = {"index": st.index, **{m: {mode: _mode_dict(getattr(getattr(st, m), mode)) for mode in MODES}
+                                             for m in _members(st)}}
+    if st.planet_root is not None:
+        out["planet_root"] = {"bending": _mode_dict(st.planet_root)}
+    return out
+
+
+def life_dict(r: LifeResult) -> JsonObject:
+    stages: list[JsonObject] = [_stage_dict(st) for st in r.stages]
     return {
         "life": {"route": r.route, "miner": r.miner, "standard": r.standard, "hours": r.hours,
                  "stages": stages, "bearings": plain(r.bearings), "points": plain(r.points)},
@@ -25,7 +44,7 @@ def life_dict(r: LifeResult) -> dict:
     }
 
 
-def _mode_dict(ml: ModeLife) -> dict:
+def _mode_dict(ml: ModeLife) -> JsonObject:
     return {"damage": ml.damage, "life_h": ml.life_h, "safety": ml.safety, "curve": ml.curve,
             "static_cycles": ml.static_cycles, "knee_cycles": ml.knee_cycles,
             "bins": [{"force_N": b.force_N, "stress_MPa": b.stress_MPa, "cycles": b.cycles,
@@ -36,15 +55,17 @@ def _mode_dict(ml: ModeLife) -> dict:
 def life_csv(r: LifeResult) -> str:
     header = ["stage", "member", "mode", "point", "force_N", "stress_MPa", "cycles", "cycles_to_failure", "damage",
               "damage_sum", "life_h", "safety"]
-    rows = []
+    rows: list[list[JsonScalar]] = []
     for st in r.stages:
-        for m in MEMBERS:
-            for mode in MODES:
-                ml: ModeLife = getattr(getattr(st, m), mode)
-                for b in ml.bins:
-                    rows.append([st.index, m, mode, b.point, b.force_N, b.stress_MPa, b.cycles,
-                                 "" if b.cycles_to_failure is None else b.cycles_to_failure, b.damage, ml.damage,
-                                 "" if ml.life_h is None else ml.life_h, "" if ml.safety is None else ml.safety])
+        modes: list[tuple[str, str, ModeLife]] = [(m, mode, getattr(getattr(st, m), mode)) for m in _members(st)
+                                                  for mode in MODES]
+        if st.planet_root is not None:
+            modes.append(("planet_root", "bending", st.planet_root))
+        for m, mode, ml in modes:
+            for b in ml.bins:
+                rows.append([st.index, m, mode, b.point, b.force_N, b.stress_MPa, b.cycles,
+                             "" if b.cycles_to_failure is None else b.cycles_to_failure, b.damage, ml.damage,
+                             "" if ml.life_h is None else ml.life_h, "" if ml.safety is None else ml.safety])
     return csv_text(header, rows)
 
 
@@ -64,7 +85,7 @@ def _duty_table(r: LifeResult) -> Table:
 def _spectrum_table(r: LifeResult, stage, member: str) -> Table:
     """ISO 6336-6 style: one row per load class with its cycles, stresses, cycles to failure and damage."""
     pit, ben = getattr(stage, member).pitting, getattr(stage, member).bending
-    table = Table(title=text(f"stage {stage.index} {member}: load spectrum and Miner damage"), title_justify="left",
+    table = Table(title=text(f"stage {stage.index} {LABELS[member]}: load spectrum and Miner damage"), title_justify="left",
                   header_style="bold")
     for c in ("point", "F_t [N]", "cycles n_i", "σ_H [MPa]", "N_i pitting", "n_i/N_i", "σ_F [MPa]", "N_i bending",
               "n_i/N_i "):
@@ -83,13 +104,20 @@ def _summary(r: LifeResult) -> StageColumns:
     rows: dict[str, list[str]] = {k: [] for k in ("D pitting", "life pitting [h]", "safety pitting (load)", "D bending",
                                       "life bending [h]", "safety bending (load)")}
     for st in r.stages:
-        for m in MEMBERS:
-            cols.append(f"stage {st.index} {m}")
+        for m in _members(st):
+            cols.append(f"stage {st.index} {LABELS[m]}")
             for mode in MODES:
                 ml: ModeLife = getattr(getattr(st, m), mode)
                 rows[f"D {mode}"].append(_g(ml.damage, 4))
                 rows[f"life {mode} [h]"].append(_g(ml.life_h, 4))
                 rows[f"safety {mode} (load)"].append(_g(ml.safety, 4))
+        if st.planet_root is not None:
+            cols.append(f"stage {st.index} {ROOT_LABEL}")
+            for mode in MODES:
+                ml_root = st.planet_root if mode == "bending" else None
+                rows[f"D {mode}"].append("—" if ml_root is None else _g(ml_root.damage, 4))
+                rows[f"life {mode} [h]"].append("—" if ml_root is None else _g(ml_root.life_h, 4))
+                rows[f"safety {mode} (load)"].append("—" if ml_root is None else _g(ml_root.safety, 4))
     return StageColumns("Miner damage over the duty, life and spectrum safety", cols, list(rows.items()))
 
 
@@ -110,7 +138,7 @@ def _bearings(r: LifeResult) -> StageColumns:
 
 def life_tables(r: LifeResult) -> list[RenderableType]:
     out: list[RenderableType] = [_duty_table(r)]
-    out += [_spectrum_table(r, st, m) for st in r.stages for m in MEMBERS]
+    out += [_spectrum_table(r, st, m) for st in r.stages for m in _members(st)]
     out.append(_summary(r))
     if r.bearings:
         out.append(_bearings(r))
@@ -119,8 +147,9 @@ def life_tables(r: LifeResult) -> list[RenderableType]:
     for p in r.points:
         if p.solver:
             s = p.solver
+            window = cast("Sequence[float]", s["window_s"])
             out.append(text(f"point {p.name}: {s['method']} ({s['engine']}) rtol {s['rtol']:g}, nfev {s['nfev']}, "
-                            f"wall {s['wall_s']:.3g} s, window {s['window_s'][0]:.4g}–{s['window_s'][1]:.4g} s, "
+                            f"wall {s['wall_s']:.3g} s, window {window[0]:.4g}–{window[1]:.4g} s, "
                             f"mesh cycles {', '.join(str(c) for c in p.mesh_cycles)}, peak error "
                             f"{', '.join(f'{e:.1e}' for e in p.peak_error)}, statistics "
                             f"{'resolved' if s['statistics_resolved'] else 'NOT resolved'}"))

@@ -16,7 +16,8 @@ from gearcli.life.miner import SNCurve
 from gearcli.life.result import LifeResult
 
 FIGURE_NAMES = ("pitting.png", "bending.png")
-COLORS = {"pinion": "tab:blue", "gear": "tab:orange"}
+COLORS = {"pinion": "tab:blue", "gear": "tab:orange", "ring": "tab:red", "planet_ring_side": "tab:green"}
+LABELS = {"pinion": "pinion", "gear": "gear", "ring": "ring", "planet_ring_side": "planet (ring mesh)"}
 
 
 def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
@@ -27,17 +28,19 @@ def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
     for mode, name in zip(("pitting", "bending"), FIGURE_NAMES, strict=True):
         fig, axes = _figure(len(r.stages), 1, height=2.8)
         for ax, st in zip(axes[:, 0], r.stages, strict=True):
-            for member in ("pinion", "gear"):
+            members = [m for m in COLORS if getattr(st, m) is not None]  # a planetary stage's ring mesh too
+            for member in members:
+                label = LABELS[member]
                 ml = getattr(getattr(st, member), mode)
                 curve: SNCurve = ml.sn
                 n = np.logspace(3, 12, 200)
                 ax.loglog(n, [curve.stress_at(x) for x in n], color=COLORS[member],
                           lw=3.0 if member == "pinion" else 1.2, alpha=0.5 if member == "pinion" else 1.0,
-                          label=f"{member} S–N")
+                          label=f"{label} S–N")
                 bins = sorted(ml.bins, key=lambda b: -b.stress_MPa)
                 cum = np.cumsum([b.cycles for b in bins])  # cycles at or above each class's stress
                 ax.step([n[0], *cum], [bins[0].stress_MPa, *(b.stress_MPa for b in bins)], where="pre",
-                        color=COLORS[member], ls="--", lw=1.2, label=f"{member} spectrum (D = {ml.damage:.3g})")
+                        color=COLORS[member], ls="--", lw=1.2, label=f"{label} spectrum (D = {ml.damage:.3g})")
             ax.set_title(f"stage {st.index}: {mode}", fontsize=9)
             ax.set_ylabel("σ_H [MPa]" if mode == "pitting" else "σ_F [MPa]")
             ax.grid(True, which="both", alpha=0.3)

@@ -8,7 +8,7 @@ from rich.console import RenderableType
 from rich.table import Table
 
 from gearcli.io.tables import StageColumns, _g, text
-from gearcli.results import BearingResult
+from gearcli.results import BearingResult, BearingStats
 
 
 def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: static reactions and ISO 281 life"
@@ -16,7 +16,7 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
     """One column per bearing: its place, reaction on the shaft (y, z, radial, axial), P, C, L10, L10h."""
     b = bearings
     return StageColumns(title, [f"bearing {j + 1}" for j in range(len(b))], [
-        ("shaft", [str(x.shaft) for x in b]),
+        ("shaft", [f"planets of stage {x.planet_stage}" if x.planet_stage else str(x.shaft) for x in b]),
         ("position x [mm]", [_g(x.position_mm) for x in b]),
         ("kind / locating", [f"{x.kind}{' / loc.' if x.locating else ''}" for x in b]),
         ("speed [rpm]", [_g(x.speed_rpm) for x in b]),
@@ -31,17 +31,17 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
     ])
 
 
-def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[dict]) -> RenderableType:
+def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[BearingStats]) -> RenderableType:
     """Window statistics of the bearing reaction channels of a simulation."""
     table = Table(title=text(f"bearing reactions over the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s"),
                   title_justify="left", header_style="bold")
     for name in ("bearing", "shaft", "x [mm]", "channel", "mean", "std", "min", "max"):
         table.add_column(name, justify="left" if name in ("bearing", "channel") else "right", overflow="fold")
     for j, b in enumerate(bearings):
-        for label, key in (("radial [N]", "radial_N"), ("axial [N]", "axial_N")):
-            st = b[key]
+        for label, st in (("radial [N]", b["radial_N"]), ("axial [N]", b["axial_N"])):
             first = label.startswith("radial")
-            table.add_row(str(j + 1) if first else "", str(b["shaft"]) if first else "",
+            place = f"planets {b['planet_stage']}" if b.get("planet_stage") else str(b["shaft"])
+            table.add_row(str(j + 1) if first else "", place if first else "",
                           _g(b["position_mm"]) if first else "", text(label), _g(st.mean), _g(st.std, 3),
                           _g(st.min), _g(st.max), end_section=not first)
     return table

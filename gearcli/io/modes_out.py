@@ -2,11 +2,21 @@
 
 from __future__ import annotations
 
+from rich.console import RenderableType
+
+from gearcli.core.jsontypes import JsonObject, JsonScalar
+from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import csv_text
 from gearcli.model.modes import ModalAnalysis
+from gearcli.results import DesignResult
 
 
-def modes_dict(analyses: list[ModalAnalysis], warnings: list | None = None) -> dict:
+def modes_document(analyses: list[ModalAnalysis], design: DesignResult) -> JsonObject:
+    """``gearcli modes --format json``: :func:`modes_dict` with the design's warnings as objects."""
+    return modes_dict(analyses, warning_objects(design.warnings, design.diagnostics))
+
+
+def modes_dict(analyses: list[ModalAnalysis], warnings: list[JsonObject] | None = None) -> JsonObject:
     """Both boundaries; per mode its frequency, shape per body, strain-energy share per element and the
     mesh orders that cross it in the operating range."""
     first = analyses[0]
@@ -35,7 +45,7 @@ def modes_csv(analyses: list[ModalAnalysis]) -> str:
     header = (["boundary", "mode", "frequency_Hz", "dominant_element"]
               + [f"shape_{b.replace(' ', '_')}" for b in first.bodies]
               + [f"energy_share_{c.replace(' ', '_')}" for c in first.connectors] + ["crossings_rpm"])
-    rows = []
+    rows: list[list[JsonScalar]] = []
     for a in analyses:
         for m in a.modes:
             cross = "; ".join(f"{c.excitation} @ {c.input_speed_rpm:.5g}" for c in m.crossings)
@@ -48,7 +58,7 @@ def _strength(c) -> str:
     return f"{100 * c.participation:.2g} %, {gain}"
 
 
-def modes_tables(analyses: list[ModalAnalysis]) -> list:
+def modes_tables(analyses: list[ModalAnalysis]) -> list[RenderableType]:
     from rich.table import Table
     from rich.text import Text
 

@@ -24,10 +24,13 @@ import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TypeVar
 
 from gearcli.core.text import shorten
 from gearcli.errors import OutputError
 from gearcli.io.atomic import write_atomic
+
+F = TypeVar("F", bound=Callable[..., object])  # a click command function
 
 STDOUT = "-"
 
@@ -51,7 +54,7 @@ class OutputTarget:
 
 
 def output_option(help_text: str = "Write to FILE atomically ('-' is stdout; the format follows the suffix).") \
-        -> Callable:
+        -> Callable[[F], F]:
     """The ``-o/--output`` click option every data command shares (a plain string: the checks are ours)."""
     import click
 

@@ -10,11 +10,16 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from gearcli.io.atomic import write_atomic
+from gearcli.io.channels import named
 from gearcli.report.result import Report
+
+if TYPE_CHECKING:  # matplotlib is imported when a figure is drawn (the plot extra)
+    from matplotlib.figure import Figure
 
 INSTALL_HINT = "pip install 'gearcli[plot]'  (or: pip install matplotlib)"
 FILES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
@@ -61,14 +66,14 @@ def _zoom(ax, t: np.ndarray, y: np.ndarray, window, color: str) -> None:
     ax.grid(alpha=0.3)
 
 
-def speeds_figure(r: Report):
+def speeds_figure(r: Report) -> Figure:
     sim, shafts = r.simulation, r.design.shafts
     fig, axes = _figure(len(shafts), 2, sharex="col", height=1.8, width=12.0, width_ratios=(3, 2))
     from gearcli.io.units import of_result
 
     u = of_result(sim)
     for (ax, zoom), shaft in zip(axes, shafts, strict=True):
-        series = sim.channels.get(f"shaft{shaft.index}_speed_deg_s")
+        series = named(sim).get(f"shaft{shaft.index}_speed_deg_s")
         _shade_window(ax, sim.window_s)
         if series is not None:
             series = u.speed_from_deg_s(series)
@@ -89,11 +94,11 @@ def speeds_figure(r: Report):
     return fig
 
 
-def mesh_forces_figure(r: Report):
+def mesh_forces_figure(r: Report) -> Figure:
     sim = r.simulation
     fig, axes = _figure(len(r.stages), 2, sharex="col", height=2.1, width=12.0, width_ratios=(3, 2))
     for (ax, zoom), s in zip(axes, r.stages, strict=True):
-        series = sim.channels.get(f"stage{s.stage}_tangential_N")
+        series = named(sim).get(f"stage{s.stage}_tangential_N")
         color = f"C{(s.stage - 1) % 10}"
         _shade_window(ax, sim.window_s)
         if series is not None:
@@ -117,7 +122,7 @@ def mesh_forces_figure(r: Report):
     return fig
 
 
-def spectrum_figure(r: Report):
+def spectrum_figure(r: Report) -> Figure:
     fig, axes = _figure(len(r.stages), sharex=True, height=2.0)
     natural = [f for f in r.natural_frequencies_Hz if f > 0]
     for ax, s in zip(axes[:, 0], r.stages, strict=True):
@@ -157,7 +162,7 @@ ERROR_PANELS = (("speed", "mean output speed"), ("mean_force", "mean F_t (worst 
                 ("peak_force", "run-up peak F_t (worst stage)"))
 
 
-def work_precision_figure(r: Report):
+def work_precision_figure(r: Report) -> Figure:
     study = r.accuracy
     assert study is not None, "work_precision.png needs the accuracy study"
     fig, axes = _figure(1, 3, sharey=True, height=3.9, width=12.5)

@@ -13,8 +13,9 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from gearcli.core.jsontypes import JsonObject, JsonValue
 from gearcli.diagnostics import warning_objects
-from gearcli.io.serialize import plain, simulation_dict
+from gearcli.io.serialize import as_object, plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
 
@@ -23,7 +24,7 @@ DESIGN_STAGE_KEYS = ("index", "ratio", "mesh_frequency_Hz", "contact_ratio_trans
                      "static_approach_mm", "static_force_N")
 
 
-def design_summary(d: DesignResult) -> dict:
+def design_summary(d: DesignResult) -> JsonObject:
     return {
         "title": d.title,
         "total_ratio": d.total_ratio,
@@ -38,7 +39,7 @@ def design_summary(d: DesignResult) -> dict:
     }
 
 
-def stage_dict(s: StageReport) -> dict:
+def stage_dict(s: StageReport) -> JsonObject:
     sp = s.spectrum
     return {
         "stage": s.stage,
@@ -64,11 +65,11 @@ def stage_dict(s: StageReport) -> dict:
     }
 
 
-def run_dict(r: AccuracyRun | None) -> dict | None:
-    return None if r is None else plain(dataclasses.asdict(r))
+def run_dict(r: AccuracyRun | None) -> JsonObject | None:
+    return None if r is None else as_object(plain(dataclasses.asdict(r)))
 
 
-def accuracy_dict(study: AccuracyStudy | None) -> dict | None:
+def accuracy_dict(study: AccuracyStudy | None) -> JsonObject | None:
     if study is None:
         return None
     ref = dataclasses.asdict(study.reference)
@@ -84,7 +85,7 @@ def accuracy_dict(study: AccuracyStudy | None) -> dict | None:
     }
 
 
-def _finite(doc):
+def _finite(doc: JsonValue) -> JsonValue:
     """``doc`` with every non-finite float as None (JSON null): JSON has no infinity or NaN, and a degenerate
     window (a handful of samples) may leave a derived figure undefined."""
     if isinstance(doc, dict):
@@ -96,11 +97,13 @@ def _finite(doc):
     return doc
 
 
-def report_dict(r: Report) -> dict:
-    return _finite(_report_dict(r))
+def report_dict(r: Report) -> JsonObject:
+    doc = _finite(_report_dict(r))
+    assert isinstance(doc, dict)
+    return doc
 
 
-def _report_dict(r: Report) -> dict:
+def _report_dict(r: Report) -> JsonObject:
     sim = simulation_dict(r.simulation, series=False)
     sim.pop("warnings", None)  # merged into the report's own list
     return {  # the engineering first, the numerical study after it
@@ -118,7 +121,7 @@ def _report_dict(r: Report) -> dict:
     }
 
 
-def modes_summary(r: Report) -> dict | None:
+def modes_summary(r: Report) -> JsonObject | None:
     """The modes at the drive's boundary (as ``gearcli modes``), null where the report did not compute them."""
     if r.modes is None:
         return None
@@ -127,4 +130,4 @@ def modes_summary(r: Report) -> dict | None:
     doc = modes_dict([r.modes])
     doc.pop("warnings", None)
     return {"boundary": r.modes.boundary, **{k: v for k, v in doc.items() if k != "boundaries"},
-            "modes": doc["boundaries"][r.modes.boundary]}
+            "modes": as_object(doc["boundaries"])[r.modes.boundary]}

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 from rich.console import Group, RenderableType
 from rich.text import Text
 
@@ -36,6 +38,6 @@ def report_tables(r: Report) -> list[RenderableType]:
     return out
 
 
-def text_lines(lines, style: str = "") -> Text:
+def text_lines(lines: Iterable[str], style: str = "") -> Text:
     """Lines of literal text (each line's controls escaped, the line breaks kept)."""
     return Text("\n").join(text(line, style) for line in lines)

@@ -8,37 +8,61 @@ import io
 import json
 import math
 from collections.abc import Iterable, Sequence
-from typing import Any
+from typing import Any, TypeAlias
 
 import gearcli
+from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.core.text import csv_text_cell
 from gearcli.diagnostics import warning_objects
+from gearcli.io.channels import named
 from gearcli.results import DesignResult, SimulationResult
 
+#: a JSON object while this module rearranges it (nested keys moved, popped); the public functions return
+#: :data:`~gearcli.core.jsontypes.JsonObject`
+_Doc: TypeAlias = dict[str, Any]
 
-def plain(obj: Any) -> Any:
+
+def plain(obj: object) -> JsonValue:
     """Dataclasses, tuples and numpy scalars/arrays to JSON-ready Python values."""
+    return _plain(obj)
+
+
+def _plain(obj: object) -> Any:
     if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        return {f.name: plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+        return {f.name: _plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
     if isinstance(obj, dict):
-        return {str(k): plain(v) for k, v in obj.items()}
+        return {str(k): _plain(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [plain(v) for v in obj]
+        return [_plain(v) for v in obj]
     if hasattr(obj, "tolist"):  # numpy array or scalar
         return obj.tolist()
-    return obj
+    return obj  # a JSON scalar: str, int, float, bool or None
 
 
-def with_meta(payload: dict, sha256: str) -> dict:
+def as_object(value: JsonValue) -> JsonObject:
+    """``value`` as a JSON object (a TypeError when it is not one)."""
+    if not isinstance(value, dict):
+        raise TypeError(f"expected a JSON object, got {type(value).__name__}")
+    return value
+
+
+def with_meta(payload: JsonObject, sha256: str) -> JsonObject:
     """Every JSON document carries the tool version and the hash of its input."""
     return {"gearcli_version": gearcli.__version__, "input_sha256": sha256, **payload}
 
 
-def design_dict(result: DesignResult) -> dict:
-    doc = plain(dataclasses.replace(result, diagnostics=()))
+def design_dict(result: DesignResult) -> JsonObject:
+    return _design_doc(result)
+
+
+def _design_doc(result: DesignResult) -> _Doc:
+    doc: _Doc = _plain(dataclasses.replace(result, diagnostics=()))
     doc.pop("diagnostics", None)
     if not result.bearings:  # a design file without [[bearing]] tables means what it meant before them
         doc.pop("bearings", None)
+    for b in doc.get("bearings", []):  # planet_stage: a planet pin's bearings only
+        if b.get("planet_stage") is None:
+            b.pop("planet_stage", None)
     doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
     return doc
@@ -48,12 +72,12 @@ _STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_m
                "transverse_pressure_angle_deg", "helix_angle_deg", "base_helix_angle_deg")
 
 
-def _parallel_stage(stage: dict) -> dict:
+def _parallel_stage(stage: _Doc) -> _Doc:
     stage.pop("planetary", None)
     return stage
 
 
-def _planetary_stage(stage: dict) -> dict:
+def _planetary_stage(stage: _Doc) -> _Doc:
     """A planetary stage's JSON: type, members (sun, planet, ring, carrier), ratio and the two meshes per planet."""
     p = stage.pop("planetary")
     head = {k: stage.pop(k) for k in _STAGE_KEYS}
@@ -66,7 +90,7 @@ def _planetary_stage(stage: dict) -> dict:
             "meshes": [{"name": "sun_planet", **stage}, {"name": "planet_ring", **ring_mesh}]}
 
 
-def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
+def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonObject:
     stages = [
         {k: plain(getattr(s, k)) for k in ("index", "tangential_N", "radial_N", "axial_N", "penetration_mm",
                                               "static_tangential_N", "peak_tangential_N", "peak_time_s",
@@ -85,49 +109,50 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> dict:
     means = output_units.input_torque_window_means(result)
     torque = {} if means is None else {f"input_torque_{u.torque}": u.torque_from_Nm(means[0]),
                                        "input_power_kW": means[1]}
-    out = {
-        "summary": {
-            "ratio": result.ratio,
-            "input_speed_deg_s": result.input_speed_deg_s,
-            "output_speed_deg_s": result.output_speed_deg_s,
-            **speeds,
-            **torque,
-            "units": {"speed": u.speed, "torque": u.torque},
-            "window_s": list(result.window_s),
-            "stages": stages,
-            "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
-            "natural_frequencies_boundary": result.natural_frequencies_boundary,
-            "steady": plain(result.steady),
-            **_motor_keys((result.extra or {}).get("motor")),
-        },
+    summary: JsonObject = {
+        "ratio": result.ratio,
+        "input_speed_deg_s": result.input_speed_deg_s,
+        "output_speed_deg_s": result.output_speed_deg_s,
+        **speeds,
+        **torque,
+        "units": {"speed": u.speed, "torque": u.torque},
+        "window_s": list(result.window_s),
+        "stages": stages,
+        "natural_frequencies_Hz": list(result.natural_frequencies_Hz),
+        "natural_frequencies_boundary": result.natural_frequencies_boundary,
+        "steady": plain(result.steady),
+        **_motor_keys((result.extra or {}).get("motor")),
+    }
+    out: JsonObject = {
+        "summary": summary,
         "solver": plain(result.solver),
         "energy": plain(result.energy),
         "warnings": warning_objects(result.warnings, result.diagnostics),
     }
     if result.extra and "bearings" in result.extra:  # only scenes with [[bearing]] tables (docs/life.md)
-        out["summary"]["bearings"] = plain(result.extra["bearings"])
+        summary["bearings"] = plain(result.extra["bearings"])
     if series:
-        shown = output_units.channels(result.channels, u)
+        shown = output_units.channels(named(result), u)
         out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in shown.items()}}
     return out
 
 
-def _motor_keys(motor: dict | None) -> dict:
+def _motor_keys(motor: dict[str, float | None] | None) -> JsonObject:
     """A motor run's summary keys: ``start_time_s`` and ``operating_slip`` beside the other keys, the rest in
     ``motor`` (docs/output.md)."""
     if motor is None:
         return {}
     rest = {k: v for k, v in motor.items() if k not in ("start_time_s", "operating_slip")}
     top = {k: motor[k] for k in ("start_time_s", "operating_slip") if k in motor}
-    return {**plain(top), "motor": plain(rest)}
+    return {**as_object(plain(top)), "motor": plain(rest)}
 
 
-def to_json(doc: dict) -> str:
+def to_json(doc: JsonObject) -> str:
     """Strict JSON: a NaN or infinity in a result is a bug, not an output (``allow_nan=False``)."""
     return json.dumps(doc, indent=2, allow_nan=False) + "\n"
 
 
-def csv_text(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> str:
+def csv_text(header: Sequence[str], rows: Iterable[Sequence[JsonScalar]]) -> str:
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
     writer.writerow(header)
@@ -136,7 +161,7 @@ def csv_text(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> str:
     return buf.getvalue()
 
 
-def _cell(v: Any) -> Any:
+def _cell(v: JsonScalar) -> JsonScalar:
     if isinstance(v, float):
         if not math.isfinite(v):
             raise ValueError("non-finite value in CSV output")
@@ -146,7 +171,7 @@ def _cell(v: Any) -> Any:
     return v
 
 
-def flatten(d: dict, prefix: str = "") -> dict:
+def flatten(d: JsonObject, prefix: str = "") -> dict[str, JsonScalar]:
     """{"pinion": {"teeth": 21}} -> {"pinion_teeth": 21}; lists are left out."""
     flat: dict = {}
     for k, v in d.items():
@@ -161,13 +186,13 @@ def flatten(d: dict, prefix: str = "") -> dict:
 def design_csv(result: DesignResult) -> str:
     """One row per stage, nested objects flattened (``pinion_pitch_diameter_mm``)."""
     rows = [flatten({k: v for k, v in _named_meshes(s).items() if not (k == "rating" and v is None)})
-            for s in design_dict(result)["stages"]]
+            for s in _design_doc(result)["stages"]]
     header = list(rows[0])
     header += [h for r in rows[1:] for h in r if h not in header]  # a planetary stage's columns after
     return csv_text(header, ([r.get(h, "") for h in header] for r in rows))
 
 
-def _named_meshes(stage: dict) -> dict:
+def _named_meshes(stage: _Doc) -> _Doc:
     """A planetary stage's ``meshes`` list as ``{name: mesh}`` (CSV columns ``sun_planet_...``)."""
     if "meshes" not in stage:
         return stage
@@ -181,7 +206,7 @@ def simulation_csv(result: SimulationResult) -> str:
 
     from gearcli.io.units import channels, of_result
 
-    shown = channels(result.channels, of_result(result))
+    shown = channels(named(result), of_result(result))
     header = ["time_s", *shown]
     data = np.column_stack([result.time_s, *shown.values()])
     if not np.all(np.isfinite(data)):

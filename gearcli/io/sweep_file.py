@@ -30,11 +30,15 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, TextIO
 
+from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.core.text import csv_text_cell
 from gearcli.errors import ConfigError
 from gearcli.io.atomic import write_atomic
+
+if TYPE_CHECKING:  # `gearcli design` imports the facade, which imports this module: not the sweep (numpy)
+    from gearcli.sweep.columns import Row
 
 MARK = "# gearcli sweep: "
 JSON_EVERY_S = 1.0
@@ -45,7 +49,7 @@ def _replace(path: Path, text: str) -> None:
     write_atomic(path, text)
 
 
-def _cell(v: Any) -> str:
+def _cell(v: JsonScalar) -> str:
     if v is None:
         return ""
     if isinstance(v, float):
@@ -55,11 +59,11 @@ def _cell(v: Any) -> str:
     return str(v)
 
 
-def _json_value(v: Any) -> Any:
+def _json_value(v: JsonScalar) -> JsonScalar:
     return None if isinstance(v, float) and not math.isfinite(v) else v
 
 
-def _csv_line(values: Sequence[Any]) -> str:
+def _csv_line(values: Sequence[JsonScalar]) -> str:
     buf = io.StringIO()
     csv.writer(buf, lineterminator="\n").writerow([_cell(v) for v in values])
     return buf.getvalue()
@@ -72,22 +76,22 @@ class SweepFileError(ConfigError):
 class RowSink:
     """Where rows go: ``add`` each as it arrives, ``finish`` with all rows in point order."""
 
-    def __init__(self, columns: Sequence[str], identity: dict):
+    def __init__(self, columns: Sequence[str], identity: JsonObject):
         self.columns = list(columns)
         self.identity = identity
-        self.rows: list[dict] = []
+        self.rows: list[Row] = []
 
-    def add(self, row: dict) -> None:
+    def add(self, row: Row) -> None:
         self.rows.append(row)
 
-    def finish(self, ordered: Sequence[dict]) -> None:
+    def finish(self, ordered: Sequence[Row]) -> None:
         self.rows = list(ordered)
 
     def close(self) -> None:
         """On interruption: leave what is done."""
 
 
-def read_identity(path: str) -> tuple[dict | None, list[dict]]:
+def read_identity(path: str) -> tuple[JsonObject | None, list[Row]]:
     """The identity and the rows of an existing sweep file; (None, []) when there is none (or it is empty)."""
     p = Path(path)
     if not p.exists() or p.stat().st_size == 0:
@@ -104,7 +108,7 @@ def _not_ours(path: str) -> SweepFileError:
     return SweepFileError("exists and is not a gearcli sweep file; choose another -o FILE or remove it", source=path)
 
 
-def _read_csv(text: str, path: str) -> tuple[dict, list[dict]]:
+def _read_csv(text: str, path: str) -> tuple[JsonObject, list[Row]]:
     first, _, rest = text.partition("\n")
     if not first.startswith(MARK):
         raise _not_ours(path)
@@ -118,11 +122,11 @@ def _read_csv(text: str, path: str) -> tuple[dict, list[dict]]:
     header, body = lines[0], lines[1:]
     if not text.endswith("\n") and body:  # a row cut short by a hard kill
         body = body[:-1]
-    rows = [dict(zip(header, r, strict=True)) for r in body if len(r) == len(header)]
+    rows: list[Row] = [dict(zip(header, r, strict=True)) for r in body if len(r) == len(header)]
     return identity, rows
 
 
-def _read_json(text: str, path: str) -> tuple[dict, list[dict]]:
+def _read_json(text: str, path: str) -> tuple[JsonObject, list[Row]]:
     try:
         doc = json.loads(text)
     except ValueError:
@@ -134,18 +138,18 @@ def _read_json(text: str, path: str) -> tuple[dict, list[dict]]:
 
 
 class CsvFile(RowSink):
-    def __init__(self, path: str, columns: Sequence[str], identity: dict, previous: Sequence[dict]):
+    def __init__(self, path: str, columns: Sequence[str], identity: JsonObject, previous: Sequence[Row]):
         super().__init__(columns, identity)
         self.path = Path(path)
         self.rows = list(previous)
         _replace(self.path, self._text(self.rows))  # also drops a row a hard kill cut short
         self.fh: TextIO | None = self.path.open("a", encoding="utf-8", newline="")
 
-    def _text(self, rows: Sequence[dict]) -> str:
+    def _text(self, rows: Sequence[Row]) -> str:
         return (MARK + json.dumps(self.identity, separators=(", ", ": ")) + "\n" + _csv_line(self.columns)
                 + "".join(_csv_line([r.get(c) for c in self.columns]) for r in rows))
 
-    def add(self, row: dict) -> None:
+    def add(self, row: Row) -> None:
         super().add(row)
         assert self.fh is not None
         self.fh.write(_csv_line([row.get(c) for c in self.columns]))  # one write per row: whole lines only
@@ -156,14 +160,14 @@ class CsvFile(RowSink):
             self.fh.close()
             self.fh = None
 
-    def finish(self, ordered: Sequence[dict]) -> None:
+    def finish(self, ordered: Sequence[Row]) -> None:
         self.close()
         super().finish(ordered)
         _replace(self.path, self._text(self.rows))
 
 
 class JsonFile(RowSink):
-    def __init__(self, path: str, columns: Sequence[str], identity: dict, previous: Sequence[dict]):
+    def __init__(self, path: str, columns: Sequence[str], identity: JsonObject, previous: Sequence[Row]):
         super().__init__(columns, identity)
         self.path = Path(path)
         self.rows = list(previous)
@@ -176,7 +180,7 @@ class JsonFile(RowSink):
         _replace(self.path, json.dumps(doc, indent=1, allow_nan=False) + "\n")
         self.written = time.monotonic()
 
-    def add(self, row: dict) -> None:
+    def add(self, row: Row) -> None:
         super().add(row)
         if time.monotonic() - self.written >= JSON_EVERY_S:
             self._write()
@@ -184,7 +188,7 @@ class JsonFile(RowSink):
     def close(self) -> None:
         self._write()
 
-    def finish(self, ordered: Sequence[dict]) -> None:
+    def finish(self, ordered: Sequence[Row]) -> None:
         super().finish(ordered)
         self._write()
 
@@ -192,13 +196,13 @@ class JsonFile(RowSink):
 class CsvStdout(RowSink):
     """CSV to stdout: the header, then each row as it arrives (no identity line: nothing to resume)."""
 
-    def __init__(self, columns: Sequence[str], identity: dict, stream: TextIO | None = None):
+    def __init__(self, columns: Sequence[str], identity: JsonObject, stream: TextIO | None = None):
         super().__init__(columns, identity)
         self.stream = stream or sys.stdout
         self.stream.write(_csv_line(self.columns))
         self.stream.flush()
 
-    def add(self, row: dict) -> None:
+    def add(self, row: Row) -> None:
         super().add(row)
         self.stream.write(_csv_line([row.get(c) for c in self.columns]))
         self.stream.flush()
@@ -207,7 +211,7 @@ class CsvStdout(RowSink):
 class JsonStdout(RowSink):
     """JSON to stdout, once, at the end (or at an interruption, with the rows done)."""
 
-    def __init__(self, columns: Sequence[str], identity: dict, stream: TextIO | None = None):
+    def __init__(self, columns: Sequence[str], identity: JsonObject, stream: TextIO | None = None):
         super().__init__(columns, identity)
         self.stream = stream or sys.stdout
 
@@ -219,13 +223,13 @@ class JsonStdout(RowSink):
     def close(self) -> None:
         self._write()
 
-    def finish(self, ordered: Sequence[dict]) -> None:
+    def finish(self, ordered: Sequence[Row]) -> None:
         super().finish(ordered)
         self._write()
 
 
-def open_sink(output: str | None, fmt: str, columns: Sequence[str], identity: dict,
-              previous: Sequence[dict]) -> RowSink:
+def open_sink(output: str | None, fmt: str, columns: Sequence[str], identity: JsonObject,
+              previous: Sequence[Row]) -> RowSink:
     if output:
         return (JsonFile if fmt == "json" else CsvFile)(output, columns, identity, previous)
     return JsonStdout(columns, identity) if fmt == "json" else CsvStdout(columns, identity)

@@ -16,7 +16,9 @@ from typing import Any
 import numpy as np
 
 from gearcli.io.plots import _figure, _save
-from gearcli.sweep.modes import SPEED_KEYS
+from gearcli.sweep.columns import Row
+from gearcli.sweep.modes import SweepCampbell
+from gearcli.sweep.session import Session
 
 COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
 #: (title with unit, columns of one stage as {suffix: line style})
@@ -44,7 +46,10 @@ def _has(rows: Sequence[dict], col: str) -> bool:
     return any(np.isfinite(_num(r.get(col))) for r in rows)
 
 
-def write_sweep_plots(session, rows: Sequence[dict], plots_dir: str) -> list[Path]:
+def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
+                      campbell: SweepCampbell | None = None) -> list[Path]:
+    """The sweep's figures into ``plots_dir``; ``campbell`` (:func:`gearcli.api.sweep_campbell`, computed by the
+    caller when an input speed is swept) gives ``campbell.png``."""
     out = Path(plots_dir)
     ok = [r for r in rows if r.get("status") == "ok"]
     n_stages = session.scene.n_stages
@@ -52,9 +57,8 @@ def write_sweep_plots(session, rows: Sequence[dict], plots_dir: str) -> list[Pat
     figs = []
     for axis in session.spec.axes:
         figs.append((f"response_{axis.key.replace('.', '_')}.png", _response(ok, axis.key, session.spec, n_stages)))
-    speed = next((a for a in session.spec.axes if a.key in _speed_keys()), None)
-    if speed is not None:
-        figs.append(("campbell.png", _campbell(session, speed)))
+    if campbell is not None:
+        figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
         figs.append(("distributions.png", _distributions(ok, n_stages)))
     out.mkdir(parents=True, exist_ok=True)
@@ -62,10 +66,6 @@ def write_sweep_plots(session, rows: Sequence[dict], plots_dir: str) -> list[Pat
         if fig is not None:
             paths.append(_save(fig, out / name))
     return paths
-
-
-def _speed_keys() -> tuple[str, ...]:
-    return SPEED_KEYS
 
 
 def _groups(rows: Sequence[dict], key: str, keys: Sequence[str]) -> dict[tuple, list[dict]]:
@@ -118,17 +118,13 @@ def _label(group: tuple, others: Sequence[str]) -> str:
     return str(group[0]) + (f" ({extra})" if extra else "")
 
 
-def _campbell(session, axis):
+def _campbell(campbell: SweepCampbell):
     """The Campbell diagram of ``gearcli modes --plots`` (:mod:`gearcli.io.campbell`), over the swept range,
     with the swept speeds marked."""
     from gearcli.io.campbell import campbell_figure
-    from gearcli.sweep.modes import campbell_diagram
-
-    fixed = [f"{a.key}={a.values[0]!r}" for a in session.spec.axes[1:] if a.key != axis.key]
     from gearcli.io.units import OutputUnits
 
-    data, swept, units = campbell_diagram(session.scene, axis.key, sorted(axis.values, key=float), fixed)
-    return campbell_figure(data, OutputUnits(*units), swept=swept)
+    return campbell_figure(campbell.data, OutputUnits(*campbell.units), swept=list(campbell.swept_rpm))
 
 
 def _distributions(rows: Sequence[dict], n_stages: int):

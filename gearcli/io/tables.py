@@ -13,7 +13,7 @@ import io
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import TYPE_CHECKING, Literal, Protocol
 
 from rich.cells import cell_len
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
@@ -22,7 +22,11 @@ from rich.text import Text
 
 from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult, InternalRatingResult, SimulationResult
+
+if TYPE_CHECKING:
+    from gearcli.life.result import LifeResult
+    from gearcli.results import InternalRatingResult, RatingResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
 MIN_WIDTH = 20
@@ -242,9 +246,27 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
         from gearcli.io.life_tables import bearing_table
 
-        return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, train,
-                bearing_table(r.bearings), *summary]
-    return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, train, *summary]
+        return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r),
+                train, bearing_table(r.bearings), *summary]
+    return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r), train,
+            *summary]
+
+
+@dataclass(frozen=True)
+class _RatedMesh:
+    """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
+
+    index: int
+    rating: InternalRatingResult
+
+
+def _planet_ring_rating(r: DesignResult) -> list[RenderableType]:
+    """The planet–ring meshes' rating (``meshes[1].rating``), below the planetary stages' table."""
+    meshes = [_RatedMesh(st.index, st.planetary.planet_ring.rating) for st in r.stages
+              if st.planetary is not None and st.planetary.planet_ring.rating is not None]
+    if not meshes:
+        return []
+    return [rating_table(meshes, "planet–ring mesh strength rating, ISO 6336:2006 method B (p planet, g ring)")]
 
 
 def _planetary_design(r: DesignResult) -> list[RenderableType]:
@@ -277,22 +299,38 @@ def _planetary_design(r: DesignResult) -> list[RenderableType]:
                             [f"stage {st.index}" for st in s], rows)]
 
 
-def rating_table(stages, title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
+class _HasRating(Protocol):
+    """What ``rating_table`` reads of a stage (a design's, a simulation's) or a mesh: its index and rating."""
+
+    @property
+    def index(self) -> int: ...
+
+    @property
+    def rating(self) -> RatingResult | InternalRatingResult | None: ...
+
+
+def _rating(st: _HasRating) -> RatingResult | InternalRatingResult:
+    if st.rating is None:
+        raise ValueError(f"stage {st.index} has no rating")
+    return st.rating
+
+
+def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
     """Factors, stresses, permissible stresses and safeties per member, in the order of a KISSsoft report
     (general factors, tooth root, flank); per-member cells read "pinion / gear"."""
     cols = [f"stage {st.index}" for st in stages]
 
     def one(label, fn, digits=4):
-        return label, [_g(fn(st.rating), digits) for st in stages]
+        return label, [_g(fn(_rating(st)), digits) for st in stages]
 
     def two(label, name, digits=4):
-        return label, [f"{_g(getattr(st.rating.pinion, name), digits)} / {_g(getattr(st.rating.gear, name), digits)}"
-                       for st in stages]
+        return label, [f"{_g(getattr(_rating(st).pinion, name), digits)} / "
+                       f"{_g(getattr(_rating(st).gear, name), digits)}" for st in stages]
 
     return _quantity_table(title, cols, [
         one("application factor K_A", lambda r: r.K_A),
-        ("dynamic factor K_v", [f"{st.rating.K_v:.4g} ({st.rating.K_v_source})" for st in stages]),
-        ("face load factor K_Hβ", [f"{st.rating.K_Hbeta:.4g} ({st.rating.K_Hbeta_source})" for st in stages]),
+        ("dynamic factor K_v", [f"{_rating(st).K_v:.4g} ({_rating(st).K_v_source})" for st in stages]),
+        ("face load factor K_Hβ", [f"{_rating(st).K_Hbeta:.4g} ({_rating(st).K_Hbeta_source})" for st in stages]),
         one("face load factor K_Fβ", lambda r: r.K_Fbeta),
         one("transverse load factor K_Hα", lambda r: r.K_Halpha),
         one("transverse load factor K_Fα", lambda r: r.K_Falpha),
@@ -308,6 +346,7 @@ def rating_table(stages, title: str = "strength rating, ISO 6336:2006 method B")
         two("surface Y_RrelT p / g", "Y_R_rel_T"),
         two("size Y_X p / g", "Y_X"),
         two("life Y_NT p / g", "Y_NT"),
+        two("mean stress Y_M p / g", "Y_M"),
         two("root limit σ_FG [MPa] p / g", "sigma_FG_MPa"),
         two("permissible σ_FP [MPa] p / g", "sigma_FP_MPa"),
         two("root safety S_F p / g", "S_F", 3),
@@ -381,11 +420,12 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         lines.append(f"input torque {u.torque_from_Nm(means[0]):.5g} {u.torque_label}{both}, power {means[1]:.5g} kW "
                      f"(means over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s)")
     motor = (r.extra or {}).get("motor")
-    if motor and "operating_slip" in motor:
+    slip = motor.get("operating_slip") if motor else None
+    if motor and slip is not None:
         start = "not reached" if motor["start_time_s"] is None else f"{motor['start_time_s']:.4g} s"
         point = "none" if motor["operating_point_rpm"] is None else f"{motor['operating_point_rpm']:.5g} rpm"
         lines.append(f"motor: start to 98 % {start}   window mean {motor['operating_speed_rpm']:.5g} rpm, slip "
-                     f"{100 * motor['operating_slip']:.3g} %   operating point of the curves {point}")
+                     f"{100 * slip:.3g} %   operating point of the curves {point}")
     lines.append(f"solver {sv.method}  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  njev {sv.njev}  "
                  f"wall {sv.wall_s:.3g} s")
     lines.append(f"energy residual {sv.energy_residual:.2e}")
@@ -486,7 +526,7 @@ def render(renderables: Sequence[RenderableType], *, console: Console | None = N
     return buf.getvalue()
 
 
-def life_tables(r):
+def life_tables(r: LifeResult) -> list[RenderableType]:
     """``gearcli life`` tables (gearcli.io.life_out)."""
     from gearcli.io.life_out import life_tables as build
 

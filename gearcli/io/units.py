@@ -1,18 +1,29 @@
 """Output units that follow the design file: speeds in the unit of the input's speed key, torques in the unit of
 the load's torque key (docs/output.md, "Units").
 
-The simulation keeps its channels in one internal naming (``shaft{i}_speed_deg_s``, ``input_torque_Nmm``,
-``*_coupling_torque_Nm``); the writers rename and convert them here, so a script reads the unit from the
-column name. A file with ``speed_deg_s`` and ``torque_Nmm`` (the seed) gets its channels unchanged, the same
+The simulation's SI series get the contract's base names (``shaft{i}_speed_deg_s``, ``input_torque_Nmm``,
+``*_coupling_torque_Nm``) in :mod:`gearcli.io.channels`; the writers rename and convert them to the design
+file's units here, so a script reads the unit from the column name. A file with ``speed_deg_s`` and ``torque_Nmm`` (the seed) gets its channels unchanged, the same
 arrays under the same names.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, TypeVar
+
+if TYPE_CHECKING:  # `gearcli design` imports this module: no numpy at start-up
+    import numpy as np
+
+    from gearcli.config import DesignFile
+    from gearcli.results import SimulationResult
 
 SPEED_UNITS = {"deg_s": ("°/s", 1.0), "rpm": ("rpm", 1.0 / 6.0), "rad_s": ("rad/s", math.pi / 180.0)}  # from °/s
+#: a value or the samples of a channel (the conversions keep the type: float in, float out; array in, array out)
+Number = TypeVar("Number", float, "np.ndarray")
+
 TORQUE_UNITS = {"Nmm": ("N·mm", 1000.0), "Nm": ("N·m", 1.0)}  # from N·m
 
 
@@ -29,35 +40,35 @@ class OutputUnits:
     def torque_label(self) -> str:
         return TORQUE_UNITS[self.torque][0]
 
-    def speed_from_deg_s(self, v):
+    def speed_from_deg_s(self, v: Number) -> Number:
         factor = SPEED_UNITS[self.speed][1]
         return v if factor == 1.0 else v * factor
 
-    def torque_from_Nm(self, v):
+    def torque_from_Nm(self, v: Number) -> Number:
         factor = TORQUE_UNITS[self.torque][1]
         return v if factor == 1.0 else v * factor
 
-    def torque_from_Nmm(self, v):
+    def torque_from_Nmm(self, v: Number) -> Number:
         return v if self.torque == "Nmm" else self.torque_from_Nm(v / 1000.0)
 
 
 DEFAULT = OutputUnits()
 
 
-def of_design_file(cfg) -> OutputUnits:
+def of_design_file(cfg: DesignFile) -> OutputUnits:
     """The units a validated design file writes in."""
     from gearcli.scene import output_units
 
     return OutputUnits(*output_units(cfg))
 
 
-def of_result(result) -> OutputUnits:
+def of_result(result: SimulationResult) -> OutputUnits:
     """The units a simulation result is written in (its ``units``: speed and torque key suffixes)."""
     units = getattr(result, "units", None)
     return OutputUnits(*units) if units else DEFAULT
 
 
-def channels(ch: dict, units: OutputUnits | None) -> dict:
+def channels(ch: Mapping[str, np.ndarray], units: OutputUnits | None) -> dict[str, np.ndarray]:
     """The simulation's channels renamed and converted to ``units`` (same order)."""
     u = units or DEFAULT
     out = {}
@@ -73,14 +84,17 @@ def channels(ch: dict, units: OutputUnits | None) -> dict:
     return out
 
 
-def input_torque_window_means(result) -> tuple[float, float] | None:
+def input_torque_window_means(result: SimulationResult) -> tuple[float, float] | None:
     """(mean input torque N·m, mean input power kW) over the statistics window, from the series: the power as
     the mean of torque x speed of the driven body (the motor when there is one), not a product of means.
     None without series."""
     import numpy as np
 
-    torque = result.channels.get("input_torque_Nmm")
-    speed = result.channels.get("motor_speed_deg_s", result.channels.get("shaft1_speed_deg_s"))
+    from gearcli.io.channels import named
+
+    ch = named(result)
+    torque = ch.get("input_torque_Nmm")
+    speed = ch.get("motor_speed_deg_s", ch.get("shaft1_speed_deg_s"))
     if torque is None or speed is None or not len(torque):
         return None
     t = np.asarray(result.time_s)

@@ -5,9 +5,8 @@ damage on the ISO 6336-2/-3 S–N curves, and ISO 281 bearing lives over the dut
 - ``spectra``   static (the rating's stress) and dynamic (mesh-cycle peaks of a simulation) load classes
 - ``miner``     S–N curves from the life factors Z_NT / Y_NT, the Miner variants, the spectrum safety
 - ``channels``  bearing reactions as simulation channels
-- ``run``       ``compute_life``: the points through the sweep's point machinery to a ``LifeResult``
+- ``run``       ``compute_life``: the points (evaluated by the injected facade functions) to a ``LifeResult``
+- ``session``   the base file as a sweep scene, and its duty points
+
+The facade (:func:`gearcli.api.prepare_life`, :func:`gearcli.api.life`) loads the file and evaluates the points.
 """
-
-from gearcli.life.session import prepare
-
-__all__ = ["prepare"]

@@ -11,59 +11,72 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
+from gearcli.config import DesignFile
+from gearcli.core.channels import Channel
 from gearcli.design.shafts import ShaftLayout, stage_layout
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import BearingStats, DesignResult, SimulationExtra, SimulationResult
 from gearcli.simulate.stats import channel_stats, window_mask
 
 
 def influence(lay: ShaftLayout, n_stages: int) -> tuple[np.ndarray, np.ndarray]:
     """Coefficients (bearings x 3 components y, z, axial x stages): reaction = A @ F_bt + B @ |F_bt|.
     The statics is evaluated at F_bt = +1 and -1 per stage: A = (R(+1) - R(-1))/2, B = (R(+1) + R(-1))/2."""
-    n_bearings = 2 * len(lay.shafts)
+    n_bearings = len(lay.specs)
     a = np.zeros((n_bearings, 3, n_stages))
     b = np.zeros((n_bearings, 3, n_stages))
     for k in range(n_stages):
         plus, minus = ([float(sign) if i == k else 0.0 for i in range(n_stages)] for sign in (1, -1))
-        rp = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(plus)]
-        rm = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(minus)]
+        rp = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(plus, sharing=False)]
+        rm = [(r.y_N, r.z_N, r.axial_N) for _, r in lay.reactions(minus, sharing=False)]
         a[:, :, k] = 0.5 * (np.array(rp) - np.array(rm))
         b[:, :, k] = 0.5 * (np.array(rp) + np.array(rm))
     return a, b
 
 
-def line_force_series(design: DesignResult, channels: dict[str, np.ndarray]) -> np.ndarray:
-    """F_bt per stage (stages x samples) from the reported F_t = F_bt cos(alpha_t)."""
-    return np.array([channels[f"stage{s.index}_tangential_N"] / math.cos(math.radians(s.transverse_pressure_angle_deg))
-                     for s in design.stages])
+def line_force_series(design: DesignResult, series: Mapping[Channel, np.ndarray]) -> np.ndarray:
+    """F_bt per stage (stages x samples) from the simulated F_t = F_bt cos(alpha_t); a planetary stage's is planet
+    1's sun mesh's, as a magnitude in the design's load direction (the pins carry the simulated planet 1's load, the
+    central members the balanced sum of N such planets)."""
+    rows = []
+    for s in design.stages:
+        f = series[Channel("tangential_force", f"stage{s.index}")] / math.cos(
+            math.radians(s.transverse_pressure_angle_deg))
+        rows.append(np.abs(f) if s.planetary is not None else f)
+    return np.array(rows)
 
 
-def reaction_series(lay: ShaftLayout, design: DesignResult, channels: dict[str, np.ndarray]) -> np.ndarray:
+def reaction_series(lay: ShaftLayout, design: DesignResult, series: Mapping[Channel, np.ndarray]) -> np.ndarray:
     """(bearings x 3 x samples): y, z and axial reaction of each bearing, in [[bearing]] order."""
     a, b = influence(lay, len(design.stages))
-    f = line_force_series(design, channels)
+    f = line_force_series(design, series)
     return np.einsum("bck,ks->bcs", a, f) + np.einsum("bck,ks->bcs", b, np.abs(f))
 
 
-def with_bearings(cfg, design: DesignResult, result: SimulationResult) -> SimulationResult:
-    """The result with ``bearing{j}_radial_N`` and ``bearing{j}_axial_N`` channels (j 1-based, [[bearing]] order)
-    and their window statistics in ``extra["bearings"]``; unchanged without ``[[bearing]]`` tables."""
+def with_bearings(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> SimulationResult:
+    """The result with each bearing's radial and axial reaction series (``bearing{j}``, j 1-based, [[bearing]]
+    order; the output's ``bearing{j}_radial_N``, ``bearing{j}_axial_N``) and their window statistics in
+    ``extra["bearings"]``; unchanged without ``[[bearing]]`` tables."""
     lay = stage_layout(cfg, design.stages)
     if lay is None:
         return result
-    r = reaction_series(lay, design, result.channels)
-    channels = dict(result.channels)
+    r = reaction_series(lay, design, result.series)
+    series = dict(result.series)
     mask = window_mask(result.time_s, result.window_s)
-    summary = []
-    specs = sorted((s for pair in lay.shafts.values() for s in pair), key=lambda s: s.index)
+    summary: list[BearingStats] = []
+    specs = lay.specs
     for j, spec in enumerate(specs):
         radial, axial = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
-        channels[f"bearing{j + 1}_radial_N"] = radial
-        channels[f"bearing{j + 1}_axial_N"] = axial
-        summary.append({"shaft": spec.shaft, "position_mm": spec.position_mm,
-                        "radial_N": channel_stats(radial, mask), "axial_N": channel_stats(axial, mask)})
-    extra = dict(result.extra or {})
+        series[Channel("radial_force", f"bearing{j + 1}")] = radial
+        series[Channel("axial_force", f"bearing{j + 1}")] = axial
+        stats = BearingStats(shaft=spec.shaft, position_mm=spec.position_mm, radial_N=channel_stats(radial, mask),
+                             axial_N=channel_stats(axial, mask))
+        if spec.planet_stage:
+            stats["planet_stage"] = spec.planet_stage
+        summary.append(stats)
+    extra = result.extra.copy() if result.extra else SimulationExtra()
     extra["bearings"] = summary
-    return dataclasses.replace(result, channels=channels, extra=extra)
+    return dataclasses.replace(result, series=series, extra=extra)

@@ -51,7 +51,7 @@ def with_drive(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
     for p in points:
         torque = p.torque_Nm * 1000.0
         for stage in reversed(cfg.stage):
-            torque = pinion_torque_Nmm(torque, stage.gear.teeth / stage.pinion.teeth, stage.efficiency)
+            torque = pinion_torque_Nmm(torque, stage_ratio(stage), stage.efficiency)
         out.append(replace(p, sets=(f"input.torque_Nm={torque / 1000.0!r}", *p.sets)))
     return out
 
@@ -71,9 +71,16 @@ def toml_value(value: Any) -> str:
     raise ConfigError(f"cannot use a {type(value).__name__} value in a duty point's set table")
 
 
+def stage_ratio(stage) -> float:
+    """|input speed / output speed| of a stage: z_gear / z_pinion, or a planetary stage's Willis ratio."""
+    if getattr(stage, "type", "parallel") == "planetary":
+        return float(stage.speed_ratio)
+    return stage.gear.teeth / stage.pinion.teeth
+
+
 def points_from_config(cfg) -> list[DutyPoint]:
     """The ``[[duty]]`` tables as points (power_kW at the output speed of the point's input speed)."""
-    ratio = math.prod(s.gear.teeth / s.pinion.teeth for s in cfg.stage)
+    ratio = math.prod(stage_ratio(s) for s in cfg.stage)
     return [DutyPoint(d.name, d.hours, d.output_torque_Nm(ratio), d.speed_rpm,
                       tuple(f"{k}={toml_value(v)}" for k, v in d.set.items()), f"duty[{i}]")
             for i, d in enumerate(cfg.duty)]

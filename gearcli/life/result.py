@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from gearcli.core.jsontypes import JsonObject
+
 
 @dataclass(frozen=True)
 class Bin:
@@ -41,9 +43,16 @@ class MemberLife:
 
 @dataclass(frozen=True)
 class StageLife:
+    """A stage's members. A planetary stage: ``pinion`` the sun and ``gear`` the planet in the sun–planet mesh;
+    its planet–ring mesh adds ``ring``, ``planet_ring_side`` (the planet's flank and root in the ring mesh) and
+    ``planet_root`` (the planet's root bending over both meshes, summed: docs/life.md)."""
+
     index: int  # 1-based
     pinion: MemberLife
     gear: MemberLife
+    ring: MemberLife | None = None
+    planet_ring_side: MemberLife | None = None
+    planet_root: ModeLife | None = None  # bending only
 
 
 @dataclass(frozen=True)
@@ -72,7 +81,7 @@ class PointRun:
     K_v: tuple[float, ...]  # per stage: the rating's (static route) or the simulated max/static (dynamic)
     mesh_cycles: tuple[int, ...] = ()  # whole mesh cycles counted per stage (dynamic)
     peak_error: tuple[float, ...] = ()  # estimated relative error of the mesh-cycle peaks per stage (dynamic)
-    solver: dict | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
+    solver: JsonObject | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
 
 
 @dataclass(frozen=True)

@@ -1,9 +1,11 @@
 """``gearcli life``: duty points -> load spectra -> Miner damage, life and spectrum safety per member and
 failure mode (ISO 6336-6), and ISO 281 bearing lives over the duty (docs/life.md).
 
-Every duty point is a variant of the base design file made by ``--set`` overrides, loaded and validated
-by the sweep's point machinery (:func:`gearcli.sweep.worker.load_point`); the dynamic route simulates the
-points inside one ``engine.batch`` so that ``engine = "auto"`` takes the compiled engine for them.
+Every duty point is a variant of the base design file made by ``--set`` overrides. This module neither
+loads, designs nor simulates a point itself: the caller (:func:`gearcli.api.life`) injects how a point is
+designed (``design_case``) and simulated (``evaluate``), the sweep's point evaluation. The dynamic route
+simulates the points inside one ``engine.batch`` so that ``engine = "auto"`` takes the compiled engine for
+them.
 """
 
 from __future__ import annotations
@@ -11,17 +13,23 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import cast
 
+from gearcli.config import DesignFile
+from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
 from gearcli.life import spectra
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
+from gearcli.life.spectra import StageLoads
+from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
+from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
 MEMBERS = ("pinion", "gear")
+PLANETARY_MEMBERS = {"pinion": "sun", "gear": "planet"}  # a planetary stage's sun–planet mesh
 
 
 @dataclass(frozen=True)
@@ -29,62 +37,101 @@ class _PointData:
     """What the damage sums need of one evaluated point."""
 
     point: DutyPoint
-    design: Any  # DesignResult with ratings (K_A = 1)
-    cfg: Any  # its DesignFile
-    loads: list  # StageLoads per stage
+    design: DesignResult  # with ratings (K_A = 1)
+    cfg: DesignFile
+    loads: list[StageLoads]  # per stage
     bearing_loads_N: tuple[float, ...]  # ISO 281 equivalent load of each bearing at this point
     run: PointRun
 
 
-def _point_design(scene, point: DutyPoint, extra: tuple[str, ...] = ()):
-    """The validated DesignFile and design of a point; errors name the duty point."""
-    from gearcli.design import compute_design
-    from gearcli.sweep.worker import load_point
-
-    try:
-        cfg = load_point(scene, (*point.overrides(), *extra))
-        design = compute_design(cfg)
-    except ConfigError as exc:
+def _named(scene: Scene, point: DutyPoint, exc: ConfigError | DesignError) -> ConfigError | DesignError:
+    """A point's bad value or infeasible design, naming the duty point (a key of its own ``set`` table by its
+    path there)."""
+    if isinstance(exc, ConfigError):
         own = [t.partition("=")[0].strip() for t in point.sets]
         if exc.key in own:  # a key of the point's own set table
-            raise ConfigError(exc.message, source=scene.source, key=f"{point.key}.set.{exc.key}") from None
-        raise ConfigError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
-    except DesignError as exc:
-        raise DesignError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key) from None
+            return ConfigError(exc.message, source=scene.source, key=f"{point.key}.set.{exc.key}")
+        return ConfigError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key)
+    return DesignError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key)
+
+
+def _point_design(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
+                  extra: tuple[str, ...] = ()) -> Case:
+    """The validated DesignFile and design of a point; errors name the duty point."""
+    try:
+        case = design_case(scene, (*point.overrides(), *extra))
+    except (ConfigError, DesignError) as exc:
+        raise _named(scene, point, exc) from None
+    _require_rating(case.cfg, scene)
+    return case
+
+
+def _require_rating(cfg: DesignFile, scene: Scene) -> None:
     if cfg.rating is None:
         raise ConfigError("gearcli life rates every member by ISO 6336-2/-3: add a [rating] table (with the "
                           "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])",
                           source=scene.source, key="rating")
-    return cfg, design
 
 
-def _static_point(scene, point: DutyPoint) -> _PointData:
-    cfg, design = _point_design(scene, point)
+def _rating(stage: StageResult) -> RatingResult:
+    """A stage's rating (every life point has one: :func:`_require_rating`)."""
+    if stage.rating is None:
+        raise DesignError(f"stage {stage.index}: no ISO 6336 rating; gearcli life needs a [rating] table")
+    return stage.rating
+
+
+def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) -> None:
+    """A planetary stage's planet–ring mesh must be rated: its ring and the planet's ring side are members."""
+    for st in design.stages:
+        if st.planetary is not None and st.planetary.planet_ring.rating is None:
+            from gearcli.config.schema import PlanetaryStage
+
+            stage = cfg.stage[st.index - 1]
+            assert isinstance(stage, PlanetaryStage)
+            ring = stage.ring
+            key = (f"stage[{st.index - 1}].ring.flank_roughness_Rz_um" if ring.flank_roughness_Rz_um is None
+                   else f"materials.{ring.material}")
+            raise ConfigError(f"stage {st.index}: gearcli life rates the planet–ring mesh too (the ring is often the "
+                              "weakest member): the ring needs flank_roughness_Rz_um and its material a treatment "
+                              "and fatigue limits", source=scene.source, key=key)
+
+
+def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> _PointData:
+    cfg, design = _point_design(scene, point, design_case)
+    _require_ring_rating(cfg, design, scene)
     loads = [spectra.static_loads(st.static_force_N.tangential) for st in design.stages]
-    k_v = tuple(st.rating.K_v for st in design.stages)
+    k_v = tuple(_rating(st).K_v for st in design.stages)
     return _PointData(point, design, cfg, loads, tuple(b.equivalent_load_N for b in design.bearings),
                       PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
 
 
-def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]]:
+def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
+                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...]]:
     from gearcli import engine
-    from gearcli.simulate import run_simulation
 
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
-    cfg, design = _point_design(scene, point, extra)
+    cfg, design = _point_design(scene, point, design_case, extra)
+    planetary = [st.index for st in design.stages if st.planetary is not None]
+    if planetary:
+        raise DesignError(f"stage {planetary[0]} is planetary: the dynamic life route does not count the planet "
+                          "meshes' engagements yet; use --static", source=scene.source,
+                          key=f"stage[{planetary[0] - 1}].type")
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
     duration = spectra.duration_for(cfg, design)
     steps = spectra.steps_for(design, duration, cfg.simulation.steps)
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
-    cfg, design = _point_design(scene, point, extra)
-    result = run_simulation(cfg, design, want_series=True)
+    try:
+        (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None)
+    except (ConfigError, DesignError) as exc:
+        raise _named(scene, point, exc) from None
+    _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(result, design)
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     sv = result.solver
     unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
-    solver = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
+    solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
               "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": duration, "output_samples": steps + 1, "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "energy_residual": sv.energy_residual}
@@ -101,7 +148,7 @@ def _dynamic_point(scene, point: DutyPoint) -> tuple[_PointData, tuple[str, ...]
     return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings)
 
 
-def _dynamic_bearing_loads(cfg, design, result) -> tuple[float, ...]:
+def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> tuple[float, ...]:
     """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
     window (at a steady speed, revolutions are proportional to time)."""
     import numpy as np
@@ -114,8 +161,8 @@ def _dynamic_bearing_loads(cfg, design, result) -> tuple[float, ...]:
         return ()
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
-    r = reaction_series(lay, design, {k: v[mask] for k, v in result.channels.items()})
-    specs = sorted((s for pair in lay.shafts.values() for s in pair), key=lambda s: s.index)
+    r = reaction_series(lay, design, {k: v[mask] for k, v in result.series.items()})
+    specs = lay.specs
     out = []
     for j, spec in enumerate(specs):
         fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
@@ -126,37 +173,93 @@ def _dynamic_bearing_loads(cfg, design, result) -> tuple[float, ...]:
 
 
 # ------------------------------------------------------------------------------------- damage
+# A planetary stage's planet–ring mesh (static route): output key -> the member of its rating (InternalRatingResult:
+# pinion = planet, gear = ring) and the stage's member that gives the material
+RING_MEMBERS = {"ring": ("gear", "ring"), "planet_ring_side": ("pinion", "planet")}
+
+
+def _member_rating(st: StageResult, member: str) -> MemberRating:
+    """The rating of ``member``: the stage's own (sun–planet mesh of a planetary stage) or, for a ring-mesh
+    member, the planet–ring mesh's."""
+    if member in RING_MEMBERS:
+        assert st.planetary is not None and st.planetary.planet_ring.rating is not None
+        return cast("MemberRating", getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
+    return cast("MemberRating", getattr(_rating(st), member))
+
+
 def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
     from gearcli.design import rating_factors as rf
 
     stage = cfg.stage[k]
-    treatment = str(cfg.materials[getattr(stage, member).material].treatment)
-    m = getattr(design.stages[k].rating, member)
+    if member in RING_MEMBERS:
+        own = RING_MEMBERS[member][1]
+    else:
+        own = PLANETARY_MEMBERS[member] if getattr(stage, "type", "parallel") == "planetary" else member
+    treatment = str(cfg.materials[getattr(stage, own).material].treatment)
+    m = _member_rating(design.stages[k], member)
     optimum = cfg.rating.material_quality == "optimum"
     if mode == "pitting":
         return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
     return SNCurve(rf.ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)
 
 
+def _contacts_per_turn(st, member: str) -> int:
+    """Load cycles of one tooth per revolution: a planetary stage's sun (and ring) meets its N planets,
+    everything else one mate (a planet's tooth meets the sun once on one flank, the ring once on the other)."""
+    if st.planetary is not None and member in ("pinion", "ring"):
+        return int(st.planetary.planet_count)
+    return 1
+
+
+def _member_speed_rpm(st: StageResult, member: str) -> float:
+    """The member's speed in rpm that loads its teeth: a planetary stage's relative to the carrier."""
+    if member == "ring":
+        assert st.planetary is not None
+        return abs(st.planetary.ring.speed_rpm - st.planetary.carrier.speed_rpm)
+    if member == "planet_ring_side":
+        return abs(st.gear.speed_rpm)  # the planet's speed relative to the carrier
+    return abs(getattr(st, member).speed_rpm)
+
+
+def _member_loads(pd: _PointData, k: int, member: str) -> StageLoads:
+    """The tooth-force classes the member meets: a ring-mesh member's are the planet–ring mesh's static force
+    (static route only: the dynamic route refuses planetary stages)."""
+    if member in RING_MEMBERS:
+        p = pd.design.stages[k].planetary
+        assert p is not None
+        return spectra.static_loads(p.planet_ring.static_force_N.tangential)
+    return pd.loads[k]
+
+
 def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
     """The rating's stress of the point, scaled from its static force to ``force_N``."""
-    m = getattr(design.stages[k].rating, member)
+    m = _member_rating(design.stages[k], member)
     ratio = force_N / abs(static_N) if static_N else 0.0
     return m.sigma_H_MPa * math.sqrt(ratio) if mode == "pitting" else m.sigma_F_MPa * ratio
 
 
-def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
-               hours: float) -> ModeLife:
-    raw = []  # (point, force, stress, cycles, curve)
+_Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
+
+
+def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str) -> list[_Raw]:
+    raw: list[_Raw] = []
     for pd in points:
         st = pd.design.stages[k]
-        speed = abs(getattr(st, member).speed_rpm)
-        total = pd.point.hours * 60.0 * speed
+        total = pd.point.hours * 60.0 * _member_speed_rpm(st, member) * _contacts_per_turn(st, member)
         curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
-        ld = pd.loads[k]
+        ld = _member_loads(pd, k, member)
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
             raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
                         total * share, curve))
+    return raw
+
+
+def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
+               hours: float) -> ModeLife:
+    return _from_raw(_raw_bins(points, k, member, mode, variant), mode, hours)
+
+
+def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
     exponent = 0.5 if mode == "pitting" else 1.0
 
     def damage_at(scale: float) -> float:
@@ -172,6 +275,21 @@ def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, var
     return ModeLife(d, hours / d if d > 0 else None, spectrum_safety(damage_at), tuple(bins),
                     f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
                     first.static_cycles, first.knee[0], first)
+
+
+def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float) -> StageLife:
+    """A stage's members; a planetary stage adds its planet–ring mesh: the ring, the planet's ring side, and the
+    planet's root over both meshes (docs/life.md, "Planetary stages")."""
+    def member_life(member: str) -> MemberLife:
+        return MemberLife(*(_mode_life(points, k, member, mode, variant, hours) for mode in MODES))
+
+    pinion, gear = member_life("pinion"), member_life("gear")
+    if points[0].design.stages[k].planetary is None:
+        return StageLife(k + 1, pinion, gear)
+    root = _from_raw([*_raw_bins(points, k, "gear", "bending", variant),
+                      *_raw_bins(points, k, "planet_ring_side", "bending", variant)], "bending", hours)
+    return StageLife(k + 1, pinion, gear, ring=member_life("ring"), planet_ring_side=member_life("planet_ring_side"),
+                     planet_root=root)
 
 
 def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
@@ -191,9 +309,16 @@ def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
     return tuple(out)
 
 
-def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", variant: str = "iso",
-                 progress: Callable[[str, int, int], None] = lambda label, done, total: None) -> LifeResult:
-    """The life of every member and bearing over the duty ``points`` of the design file ``scene``."""
+def _no_progress(label: str, done: int, total: int) -> None:
+    pass
+
+
+def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: CaseDesigner, evaluate: PointEvaluator,
+                 route: str = "dynamic", variant: str = "iso",
+                 progress: Callable[[str, int, int], None] | None = None) -> LifeResult:
+    """The life of every member and bearing over the duty ``points`` of the design file ``scene``; each point
+    designed by ``design_case`` (the static route) or simulated by ``evaluate`` (the dynamic route)."""
+    progress = progress or _no_progress
     if not points:
         raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
                           "--series FILE.csv", source=scene.source, key="duty")
@@ -202,7 +327,7 @@ def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", 
     if route == "static":
         for i, p in enumerate(points):
             progress(p.name, i, len(points))
-            evaluated.append(_static_point(scene, p))
+            evaluated.append(_static_point(scene, p, design_case))
     else:
         from gearcli import engine
 
@@ -210,7 +335,7 @@ def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", 
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))
                 try:
-                    pd, run_warnings = _dynamic_point(scene, p)
+                    pd, run_warnings = _dynamic_point(scene, p, design_case, evaluate)
                 except GearcliError as exc:
                     if isinstance(exc, (ConfigError, DesignError)):
                         raise
@@ -219,19 +344,18 @@ def compute_life(scene, points: Sequence[DutyPoint], *, route: str = "dynamic", 
                 warnings += [f"duty point {p.name}: {w}" for w in run_warnings]
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
-    stages = tuple(
-        StageLife(k + 1, *(MemberLife(*(_mode_life(evaluated, k, member, mode, variant, hours) for mode in MODES))
-                           for member in MEMBERS))
-        for k in range(len(first.stages)))
+    stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
     warnings += _static_warnings(stages)
-    return LifeResult(route, VARIANT_NAMES[variant], first.stages[0].rating.standard, hours,
+    return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
                       tuple(pd.run for pd in evaluated), stages, _bearing_lives(evaluated), tuple(warnings))
 
 
 def _static_warnings(stages: Sequence[StageLife]) -> list[str]:
     out = []
     for st in stages:
-        for member in MEMBERS:
+        for member in (*MEMBERS, *RING_MEMBERS):
+            if getattr(st, member, None) is None:
+                continue
             for mode in MODES:
                 ml: ModeLife = getattr(getattr(st, member), mode)
                 over = [b for b in ml.bins if b.cycles_to_failure is not None and b.cycles_to_failure < ml.static_cycles]

@@ -1,13 +1,15 @@
-"""One ``gearcli life`` run: the base file as a sweep scene, and its duty points (from the file or a series)."""
+"""One ``gearcli life`` run: the base file as a sweep scene, and its duty points (from the file or a series).
+
+The facade (:func:`gearcli.api.prepare_life`) loads and designs the base file; this module makes the points.
+"""
 
 from __future__ import annotations
 
-import io
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
-from gearcli.errors import ConfigError, DesignError
+from gearcli.config import LoadedDesign
+from gearcli.errors import ConfigError
 from gearcli.life.duty import (
     DEFAULT_CLASSES,
     DutyPoint,
@@ -16,15 +18,17 @@ from gearcli.life.duty import (
     read_series,
     with_drive,
 )
+from gearcli.results import DesignResult
+from gearcli.sweep.worker import Scene
 
 MAX_SERIES_BYTES = 64 * 1024 * 1024
 
 
 @dataclass(frozen=True)
 class Session:
-    scene: Any  # gearcli.sweep.worker.Scene
-    loaded: Any  # LoadedDesign of the base file
-    design: Any  # its DesignResult
+    scene: Scene
+    loaded: LoadedDesign  # the base file
+    design: DesignResult  # its design
     points: tuple[DutyPoint, ...]
 
 
@@ -42,20 +46,12 @@ def _series_text(path: str) -> str:
         raise ConfigError("not UTF-8 text", source=path) from None
 
 
-def prepare(file: str, sets: Sequence[str], *, series: str | None = None,
-            classes: int = DEFAULT_CLASSES) -> Session:
-    """Read and validate the base file (exit 2 on bad input, before any point runs) and make the points."""
-    from gearcli.config import load_design
-    from gearcli.config.load import read_bytes
-    from gearcli.design import compute_design
-    from gearcli.sweep.worker import Scene
-
-    raw = read_bytes(file, None)
-    loaded = load_design(file, sets, stdin=io.BytesIO(raw))
-    try:
-        design = compute_design(loaded.design)
-    except DesignError as exc:
-        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
+def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequence[str], *,
+            series: str | None = None, classes: int | None = None) -> Session:
+    """The duty points of the base file ``raw`` (``loaded`` and ``design`` with the ``sets`` applied): its
+    ``[[duty]]`` tables, or the history ``series`` classed into ``classes`` torque classes (exit 2 on bad
+    input, before any point runs)."""
+    classes = DEFAULT_CLASSES if classes is None else classes
     if series is not None:
         cols = read_series(_series_text(series), series)
         points = points_from_series(*cols, source=series, classes=classes)

@@ -2,7 +2,7 @@
 
 Static route: the point's design with its ISO 6336 rating (K_A = 1, the rating's K_v): one bin per point,
 its force the static tangential force, its stress the rating's.
-Dynamic route: the point simulated (the sweep's point machinery, the compiled engine where it pays off) with
+Dynamic route: the point simulated (the sweep's point evaluation, the compiled engine where it pays off) with
 K_v = 1 in the rating; every mesh cycle of the steady window is one tooth engagement, counted at the largest
 |F_t| it meets; the cycles are put into classes, and a class's stress is the rating's at K_v = 1 scaled to
 its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors).
@@ -11,10 +11,12 @@ its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 import numpy as np
 
+from gearcli.core.channels import Channel
 from gearcli.errors import SimulationError
 
 MESH_CLASSES = 20  # load classes of the dynamic spectrum per stage and point
@@ -41,16 +43,13 @@ def static_loads(static_N: float) -> StageLoads:
     return StageLoads((abs(static_N),), (1.0,), static_N, 0)
 
 
-def pinion_angle_rad(t: np.ndarray, channels: dict[str, np.ndarray], shaft: int) -> np.ndarray:
-    """The angle of shaft ``shaft`` (1-based) from its speed channel (trapezoid), whatever its unit."""
-    for name, series in channels.items():
-        if name.startswith(f"shaft{shaft}_speed_"):
-            unit = name.removeprefix(f"shaft{shaft}_speed_")
-            scale = {"deg_s": math.pi / 180.0, "rpm": math.pi / 30.0, "rad_s": 1.0}.get(unit)
-            if scale is not None:
-                w = np.abs(series) * scale
-                return np.concatenate(([0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))))
-    raise SimulationError(f"no speed channel of shaft {shaft} to count the mesh cycles")
+def pinion_angle_rad(t: np.ndarray, series: Mapping[Channel, np.ndarray], shaft: int) -> np.ndarray:
+    """The angle of shaft ``shaft`` (1-based) from its speed series (rad/s; trapezoid)."""
+    speed = series.get(Channel("speed", f"shaft{shaft}"))
+    if speed is None:
+        raise SimulationError(f"no speed channel of shaft {shaft} to count the mesh cycles")
+    w = np.abs(speed)
+    return np.concatenate(([0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))))
 
 
 def mesh_cycle_peaks(t: np.ndarray, ft: np.ndarray, angle_rad: np.ndarray, teeth: int) -> np.ndarray:
@@ -85,13 +84,12 @@ def dynamic_loads(result, design) -> list[StageLoads]:
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
     out = []
     for k, st in enumerate(design.stages):
-        angle = pinion_angle_rad(t[mask], {n: c[mask] for n, c in result.channels.items()}, k + 1)
-        peaks = mesh_cycle_peaks(t[mask], result.channels[f"stage{k + 1}_tangential_N"][mask], angle,
-                                 st.pinion.teeth)
+        angle = pinion_angle_rad(t[mask], {n: c[mask] for n, c in result.series.items()}, k + 1)
+        ft = result.series[Channel("tangential_force", f"stage{k + 1}")][mask]
+        peaks = mesh_cycle_peaks(t[mask], ft, angle, st.pinion.teeth)
         if len(peaks) == 0:
             raise SimulationError(f"stage {k + 1}: the steady window holds no whole mesh cycle; lengthen "
                                   "simulation.duration_s (--set simulation.duration_s=...)")
-        ft = result.channels[f"stage{k + 1}_tangential_N"][mask]
         # every second sample, both ways (a response locked to the sampling puts its peaks on one parity)
         error = max(peak_error(peaks, mesh_cycle_peaks(t[mask][i::2], ft[i::2], angle[i::2], st.pinion.teeth))
                     for i in (0, 1))

@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -119,6 +120,16 @@ class Connector:
     @property
     def excited(self) -> bool:
         return self.element.excited(self.params)
+
+
+@dataclass(frozen=True)
+class AngleRow:
+    """A body's angle where no tree connector gives it (:attr:`Layout.angle_rows`):
+    ``theta_b = sum coef theta_j (bodies) + sum coef delta_c (deflections) + constant``."""
+
+    bodies: tuple[tuple[int, float], ...]  # (earlier body, coefficient)
+    deflections: tuple[tuple[int, float], ...]  # (connector, coefficient)
+    constant: float
 
 
 def _row(values) -> tuple[float, ...]:
@@ -228,7 +239,8 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
             else:
                 idx.insert(0, n_in)
                 lev.insert(0, 0.0)
-            row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p)))
+            contact = p.ring_contact_phase_cycles if gear == "ring" else 0.0
+            row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p, contact)))
             if len(idx) == 3:
                 kind, radii = kind_of("planet_mesh"), tuple(lev)
             else:
@@ -241,15 +253,17 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
                                    role, n_out, per_output, j, gear, n_in, offset))
 
 
-def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec):
+def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec, contact_cycles: float = 0.0):
     """A planet mesh's law: the mesh phase counted on the input member's angle, z_eff theta_in / 2 pi with
     z_eff = z_s |w_s - w_c| / |w_in| (mesh cycles per input radian under rigid kinematics: the mesh frequency
-    is z_s |w_s - w_c| / 2 pi), its harmonics shifted by the planet's phase offset."""
+    is z_s |w_s - w_c| / 2 pi), its harmonics and its contact-line stiffness shifted by the planet's phase
+    offset; the contact lines of a ring mesh also by ``contact_cycles``, the ring mesh's phase against the
+    same planet's sun mesh (:mod:`gearcli.model.planet_phasing`)."""
     z_eff = p.sun_teeth * abs(p.unit_speed("sun") - p.unit_speed("carrier")) / abs(p.unit_speed(p.input))
     shift = 2.0 * math.pi * offset_cycles
     te_phase = tuple(list(mesh.transmission_error_phase_rad) + [0.0] * len(mesh.transmission_error_m))
     ks_phase = tuple(list(mesh.stiffness_harmonics_phase_rad) + [0.0] * len(mesh.stiffness_harmonics))
-    return replace(mesh, pinion_teeth=z_eff,
+    return replace(mesh, pinion_teeth=z_eff, contact_phase_cycles=(offset_cycles + contact_cycles) % 1.0,
                    transmission_error_phase_rad=tuple(te_phase[i] + (i + 1) * shift
                                                       for i in range(len(mesh.transmission_error_m))),
                    stiffness_harmonics_phase_rad=tuple(ks_phase[i] + (i + 1) * shift
@@ -293,6 +307,7 @@ class ModelArrays:
     conn_levers: np.ndarray  # float64[nc, MAX_BODIES]: signed levers s_j r_j (delta = sum lever theta), 0 padded
     conn_param: np.ndarray  # float64[nc, N_PARAM]
     body_tree: np.ndarray  # int64[N]: the two-body connector whose deflection gives a body's angle, -1 for body 0
+    # (and a body nothing reaches), -2 for a body whose angle is its row of body_angle_row
     drive_kind: int  # 0 speed, 1 torque, 2 motor
     drive_value: float  # rad/s or N m
     drive_ramp_s: float
@@ -310,6 +325,8 @@ class ModelArrays:
     i_theta: int  # -1 when there is no angle state
     i_quad: int
     atol: np.ndarray  # float64[n_states] at the scene's rtol (quadratures excluded: 1e20)
+    # float64[N, N + nc + 1]: Layout.angle_rows (body angles, deflections, constant); empty (0, 0) for none
+    body_angle_row: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
 
 @dataclass(frozen=True)
@@ -475,7 +492,8 @@ class Layout:
     def tree(self) -> tuple[int, ...]:
         """Per body, the two-body connector that gives its angle from an earlier body's,
         ``theta_b = (r_a theta_a - delta_c) / r_b`` (the first connector with ``b`` as its second body and
-        an earlier first body); -1 for body 0 and for a body no such connector reaches."""
+        an earlier first body); -1 for body 0 and for a body no such connector reaches (a body with an
+        :attr:`angle_rows` row gets its angle there)."""
         out = [-1] * self.n_bodies
         for c, x in enumerate(self.connectors):
             if x.load_body >= 0:  # a planet mesh: the planet's and the members' angles are coupled in pairs
@@ -484,26 +502,89 @@ class Layout:
                 out[x.b] = c
         return tuple(out)
 
-    def angle_path(self, body: int) -> list[int]:
-        """The tree connectors from body 0 to ``body``, in order (ValueError when the tree does not reach it)."""
+    @cached_property
+    def angle_rows(self) -> dict[int, AngleRow]:
+        """The angle of every body the tree does not reach but the kinematics fix (a planetary's output member,
+        its planets), as a linear combination of earlier bodies' angles and connector deflections.
+
+        Every connector's deflection is ``delta_c = sum_j lever_j theta_{bodies[j]} + e_c`` exactly (it is
+        integrated from the speeds; ``e_c`` its initial deflection), so for a body ``b`` outside the tree the
+        connectors that join only bodies whose angle is known (K, below ``b``) or not (U, at most ``b``) give
+        ``A_U theta_U = delta - e - A_K theta_K``; where that fixes ``theta_b`` (the least-squares solution's
+        row of ``b`` is exact: ``b`` in the row space of ``A_U``), ``theta_b = pinv(A_U)[b] (delta - e - A_K
+        theta_K)``. A planetary's output angle so follows its input member's angle and all its planet meshes'
+        deflections, whatever the stage's arrangement; a mesh after it is phased on its own input body's
+        angle. Bodies are taken in index order, so a row reads only bodies computed before it."""
         tree = self.tree
-        path: list[int] = []
-        while body > 0:
-            c = tree[body]
-            if c < 0:
-                raise ValueError(f"no two-body connector gives the angle of body {body} ({self.bodies[body].label})")
-            path.append(c)
-            body = self.connectors[c].a
-        return path[::-1]
+        known: set[int] = {0}
+        rows: dict[int, AngleRow] = {}
+        for b in range(1, self.n_bodies):
+            c = tree[b]
+            if c >= 0:
+                if self.connectors[c].a in known:
+                    known.add(b)
+                continue
+            unknown = [u for u in range(1, b + 1) if u not in known]
+            conns = [c for c, x in enumerate(self.connectors)
+                     if any(u in x.bodies for u in unknown)
+                     and all(j in known or j in unknown or lever == 0.0 for j, lever in zip(x.bodies, x.levers, strict=True))]
+            if not conns:
+                continue
+            col = {u: i for i, u in enumerate(unknown)}
+            A = np.zeros((len(conns), len(unknown)))
+            for r, c in enumerate(conns):
+                for j, lever in zip(self.connectors[c].bodies, self.connectors[c].levers, strict=True):
+                    if j in col:
+                        A[r, col[j]] += lever
+            P = np.linalg.pinv(A)
+            if not np.allclose(P[col[b]] @ A, np.eye(len(unknown))[col[b]], rtol=0.0, atol=1e-9):
+                continue  # the kinematics leave this body's angle free
+            g = P[col[b]]
+            bodies_coef: dict[int, float] = {}
+            for r, c in enumerate(conns):
+                for j, lever in zip(self.connectors[c].bodies, self.connectors[c].levers, strict=True):
+                    if j in known and lever != 0.0:
+                        bodies_coef[j] = bodies_coef.get(j, 0.0) - g[r] * lever
+            rows[b] = AngleRow(tuple(sorted(bodies_coef.items())),
+                               tuple((c, float(g[r])) for r, c in enumerate(conns) if g[r] != 0.0),
+                               -float(sum(g[r] * self.connectors[c].initial_deflection for r, c in enumerate(conns))))
+            known.add(b)
+        return rows
 
     def angle_gradient(self, body: int) -> dict[int, float]:
-        """d(theta_body)/dy as {column: coefficient}: theta_b = (r_a theta_a - delta_c) / r_b along the tree."""
-        grad: dict[int, float] = {self.i_theta: 1.0} if self.i_theta is not None else {}
-        for c in self.angle_path(body):
+        """d(theta_body)/dy as {column: coefficient}: theta_b = (r_a theta_a - delta_c) / r_b along the tree, or a
+        body's :attr:`angle_rows` row (ValueError for a body whose angle nothing gives)."""
+        if body == 0:
+            return {self.i_theta: 1.0} if self.i_theta is not None else {}
+        c = self.tree[body]
+        if c >= 0:
             x = self.connectors[c]
-            grad = {col: x.ra / x.rb * v for col, v in grad.items()}
+            grad = {col: x.ra / x.rb * v for col, v in self.angle_gradient(x.a).items()}
             grad[self.i_delta(c)] = grad.get(self.i_delta(c), 0.0) - 1.0 / x.rb
-        return grad
+            return grad
+        row = self.angle_rows.get(body)
+        if row is None:
+            raise ValueError(f"nothing gives the angle of body {body} ({self.bodies[body].label})")
+        out: dict[int, float] = {}
+        for j, coef in row.bodies:
+            for col, v in self.angle_gradient(j).items():
+                out[col] = out.get(col, 0.0) + coef * v
+        for c, coef in row.deflections:
+            out[self.i_delta(c)] = out.get(self.i_delta(c), 0.0) + coef
+        return out
+
+    def angle_row_matrix(self) -> np.ndarray:
+        """:attr:`angle_rows` as one dense array (the compiled kernel's), (n_bodies, n_bodies + n_conn + 1): per
+        row body the coefficients of the body angles, then of the deflections, then the constant; zero
+        elsewhere."""
+        M = np.zeros((self.n_bodies, self.n_bodies + self.n_conn + 1))
+        for b, row in self.angle_rows.items():
+            for j, coef in row.bodies:
+                M[b, j] = coef
+            for c, coef in row.deflections:
+                M[b, self.n_bodies + c] = coef
+            M[b, -1] = row.constant
+        return M
 
     def acting_on(self, body: int) -> list[tuple[int, int]]:
         """(connector, slot) of every connector that acts on ``body``, in connector order."""
@@ -528,7 +609,8 @@ class Layout:
         return ModelArrays(
             body_inertia=np.array(self.inertias), conn_kind=np.array([x.kind for x in conns], dtype=np.int64),
             conn_bodies=bodies, conn_levers=levers, conn_param=param,
-            body_tree=np.array(self.tree, dtype=np.int64),
+            body_tree=np.array([-2 if b in self.angle_rows else c for b, c in enumerate(self.tree)], dtype=np.int64),
+            body_angle_row=self.angle_row_matrix() if self.angle_rows else np.zeros((0, 0)),
             drive_kind=0 if self.speed_drive else 2 if self.motor_drive else 1,
             drive_value=drive.speed_rad_s if self.speed_drive else drive.torque_Nm, drive_ramp_s=drive.ramp_s,
             drive_ripple=np.array(self.ripple, float).reshape(-1, 2), drive_angle_rad=float(drive.angle_rad),

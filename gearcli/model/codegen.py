@@ -92,12 +92,16 @@ def _prologue(lay: Layout) -> list[str]:
             lines.append(f"    TL = TL * _fluct(_FLU, {clock})")
         if lay.load_law:  # T_L g(w_N): dTL = dT_L/dw_N
             lines += [f"    gL, dgL = _load(_LOD, w{lay.n_bodies - 1})", "    dTL = TL * dgL", "    TL = TL * gL"]
-    tree = lay.tree
+    tree, rows = lay.tree, lay.angle_rows
     for b in range(1, lay.last_angle_body + 1):  # theta_b = (r_a theta_a - delta_c) / r_b along the tree
         c = tree[b]
         if c >= 0:
             x = lay.connectors[c]
             lines.append(f"    th{b} = ({lit(x.ra)} * th{x.a} - d{c}) * {lit(1.0 / x.rb)}")
+        elif b in rows:  # a body the kinematics fix through several connectors (Layout.angle_rows)
+            row = rows[b]
+            terms = [f"{lit(k)} * th{j}" for j, k in row.bodies] + [f"{lit(k)} * d{c}" for c, k in row.deflections]
+            lines.append(f"    th{b} = {' + '.join(terms)} + {lit(row.constant)}")
     return lines
 
 

@@ -30,7 +30,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearcli.errors import DesignError
 from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.codegen import compile_functions
 from gearcli.model.linear import static_forces
@@ -71,19 +70,6 @@ class TorsionalModel:
     def __init__(self, spec: ModelSpec):
         self.spec = spec
         self.layout = Layout.of(spec)
-        first_planetary = min((x.index for x in self.layout.connectors if x.load_body >= 0), default=None)
-        for x in self.layout.connectors:
-            if first_planetary is None or not x.phased:
-                continue
-            if x.load_body >= 0 and x.time_varying:
-                raise DesignError(f"stage {x.index + 1} is planetary: time-varying contact-line stiffness is not "
-                                  "phased between planets yet; use stiffness_harmonics (phased from the geometry)",
-                                  key=f"stage[{x.index}].mesh.time_varying")
-            if x.load_body < 0 and x.index > first_planetary:
-                raise DesignError(f"stage {x.index + 1}: a mesh's transmission error, stiffness harmonics or "
-                                  f"time-varying stiffness after the planetary stage {first_planetary + 1} is not "
-                                  "integrated yet (its phase needs the planetary output's angle); `gearcli modes` "
-                                  "and `gearcli design` take them", key=f"stage[{x.index}].mesh")
         self.rhs: Callable[[float, np.ndarray], np.ndarray]
         self.jac: Callable[[float, np.ndarray], np.ndarray]
         self.rhs, self.jac, self.source = compile_functions(self.layout)

@@ -71,10 +71,18 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
     if lay.needs_angles:
         theta = np.empty((lay.n_bodies, t.size))
         theta[0] = th0
+        rows = lay.angle_rows
         for b, c in enumerate(lay.tree):  # theta_b = (r_a theta_a - delta_c) / r_b, a < b
             if c >= 0:
                 x = lay.connectors[c]
                 theta[b] = (x.ra * theta[x.a] - Y[c]) / x.rb
+            elif b in rows:  # the kinematics fix it through several connectors (Layout.angle_rows)
+                row = rows[b]
+                theta[b] = row.constant
+                for j, k in row.bodies:
+                    theta[b] = theta[b] + k * theta[j]
+                for cc, k in row.deflections:
+                    theta[b] = theta[b] + k * Y[cc]
             elif b > 0:
                 theta[b] = np.nan  # no two-body connector reaches it: no element reads its angle
     return omega, theta, np.asarray(a0)

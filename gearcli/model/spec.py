@@ -48,6 +48,7 @@ class MeshSpec:
     stiffness_harmonics: tuple[float, ...] = ()  # s_j: K (1 - sum s_j cos(j phi + chi_j))
     stiffness_harmonics_phase_rad: tuple[float, ...] = ()  # chi_j (missing: 0)
     damping_ratio: float | None = None  # viscous c = 2 zeta sqrt(k_lin m_e) instead of the IMPACT ramp
+    contact_phase_cycles: float = 0.0  # time-varying stiffness: L(phi + this) (a planet mesh's phase offset)
 
     def __post_init__(self) -> None:
         if len(self.transmission_error_phase_rad) > len(self.transmission_error_m) or \
@@ -249,6 +250,8 @@ class PlanetarySpec:
     unit_speeds: tuple[float, float, float]  # sun, carrier, ring
     planet_angles_rad: tuple[float, ...] = ()  # per planet, its position psi_j on the carrier; empty: 2 pi j / N
     planet_offsets_m: tuple[float, ...] = ()  # per planet, a position error along its sun mesh (a constant TE)
+    ring_contact_phase_cycles: float = 0.0  # planet 1's ring mesh contact-line phase against its sun mesh's
+    # (time-varying stiffness; gearcli.model.planet_phasing)
 
     def mesh_phase_cycles(self, j: int, gear: str) -> float:
         """Planet j's mesh phase against planet 1's, in mesh cycles (Parker & Lin 2004): z_s psi_j / 2 pi for

@@ -6,14 +6,18 @@ F_t = T / r, F_r = F_t tan α_t, F_a = F_t tan β); simulation is the mean over 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
 
+from gearcli.core.channels import Channel
 from gearcli.design.rating import stage_simulated_k_v  # one formula, shared with simulate's rating
 from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult, SimulationResult
+
+RAD_TO_DEG = 180.0 / math.pi
 
 
 def relative_error_percent(simulated: float, theory: float) -> float | None:
@@ -29,7 +33,7 @@ def _row(stage: int | None, quantity: str, theory: float, simulated: float) -> C
 
 
 def shaft_mean_speeds_deg_s(sim: SimulationResult, n_shafts: int) -> list[float]:
-    """Mean speed of every shaft over the steady window, from the ``shaft{i}_speed_deg_s`` series.
+    """Mean speed of every shaft over the steady window, from the shafts' speed series.
 
     The input and output means are taken from the simulation's own summary, so the report and
     ``gearcli simulate`` agree to the last digit.
@@ -37,8 +41,9 @@ def shaft_mean_speeds_deg_s(sim: SimulationResult, n_shafts: int) -> list[float]
     mask = window_mask(sim.time_s, sim.window_s)
     means = []
     for i in range(1, n_shafts + 1):
-        series = sim.channels.get(f"shaft{i}_speed_deg_s")
-        means.append(float(np.mean(series[mask])) if series is not None and mask.any() else float("nan"))
+        series = sim.series.get(Channel("speed", f"shaft{i}"))
+        means.append(float(np.mean((series * RAD_TO_DEG)[mask])) if series is not None and mask.any()
+                     else float("nan"))
     means[0] = float(sim.input_speed_deg_s)
     means[-1] = float(sim.output_speed_deg_s)
     return means
@@ -78,12 +83,13 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
     out = []
     natural: Sequence[float] = tuple(sim.natural_frequencies_Hz)
     for st, dyn in zip(design.stages, sim.stages, strict=True):
-        series = sim.channels.get(f"stage{st.index}_tangential_N")
+        series = sim.series.get(Channel("tangential_force", f"stage{st.index}"))
+        dte_m = sim.series.get(Channel("dte", f"stage{st.index}"))
         if series is None:
             series = np.zeros_like(sim.time_s)
         spectrum = force_spectrum(sim.time_s, series, sim.window_s, stage=st.index,
                                   mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural,
-                                  dte_um=sim.channels.get(f"stage{st.index}_dte_um"),
+                                  dte_um=dte_m * 1e6 if dte_m is not None else None,
                                   whole_periods=sim.steady is not None and sim.steady.mode == "periodic")
         out.append(StageReport(
             stage=st.index, tangential_N=dyn.tangential_N, radial_N=dyn.radial_N, axial_N=dyn.axial_N,

@@ -15,12 +15,15 @@ lives in the leaf core (:mod:`gearcli.core.methods`).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the precise signatures for the type checker; at run time they load on first use
+    from gearcli.simulate.run import run_simulation, simulate_model
 
 __all__ = ["run_simulation", "simulate_model"]
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:
     if name in __all__:
         from gearcli.simulate import run
 

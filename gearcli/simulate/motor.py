@@ -84,7 +84,7 @@ def start_time(t: np.ndarray, w: np.ndarray, operating_rad_s: float | None) -> f
 
 
 def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray, mask: np.ndarray,
-            window: tuple[float, float]) -> tuple[dict, list[Diagnostic]]:
+            window: tuple[float, float]) -> tuple[dict[str, float | None], list[Diagnostic]]:
     """The JSON ``summary.motor`` object and the motor's warnings of one run."""
     motor = lay.drive.motor
     assert motor is not None
@@ -118,7 +118,7 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
     w_mean = float(w_motor[mask].mean())
-    out = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
+    out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
            "operating_point_rpm": None if op.speed_rad_s is None else op.speed_rad_s * RAD_S_TO_RPM,
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,

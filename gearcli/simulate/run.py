@@ -12,6 +12,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core import cost
+from gearcli.core.channels import Channel
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
 from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
@@ -66,7 +67,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                    error_estimate: bool | None = None,
                    progress: Callable[[float], None] | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
-    ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``channels`` empty (the statistics
+    ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``series`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
     (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
     :meth:`gearcli.model.TorsionalModel.continue_state`); ``model``: the scene's model when the caller has
@@ -311,48 +312,50 @@ def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnosti
     return out
 
 
-def _channels(model: TorsionalModel, s: Sampled) -> tuple[dict[str, np.ndarray], list[StageSeries]]:
-    """The CSV columns, in order (README "Output"); and per stage (F_t, F_r, F_a, penetration mm).
-    Reducer shafts first (a flexible shaft reports its gear end), then the drivetrain's own channels."""
+def _series(model: TorsionalModel, s: Sampled) -> tuple[dict[Channel, np.ndarray], list[StageSeries]]:
+    """The time series in SI, keyed by what they are, in the output's column order (docs/output.md; the names
+    and units are :mod:`gearcli.io.channels`'); and per stage (F_t, F_r, F_a in N, penetration in mm, DTE in
+    um) for its statistics. Reducer shafts first (a flexible shaft reports its gear end), then the
+    drivetrain's own channels."""
     lay = model.layout
-    ch: dict[str, np.ndarray] = {f"shaft{i + 1}_speed_deg_s": s.omega_rad_s[b] * RAD_TO_DEG
-                                 for i, b in enumerate(lay.shaft_body)}
-    ch["input_torque_Nmm"] = s.input_torque_Nm * 1e3
+    ch: dict[Channel, np.ndarray] = {Channel("speed", f"shaft{i + 1}"): s.omega_rad_s[b]
+                                     for i, b in enumerate(lay.shaft_body)}
+    ch[Channel("torque", "input")] = s.input_torque_Nm
     per_stage: list[StageSeries] = []
     for k, ms in enumerate(s.meshes):
         ft, fr, fa = tooth_forces(lay, k, ms.line_force_N)
-        pen = ms.penetration_m * 1e3
-        dte = ms.dte_m * 1e6
-        ch.update({f"stage{k + 1}_tangential_N": ft, f"stage{k + 1}_radial_N": fr,
-                   f"stage{k + 1}_axial_N": fa, f"stage{k + 1}_penetration_mm": pen, f"stage{k + 1}_dte_um": dte})
-        per_stage.append((ft, fr, fa, pen, dte))
-    for (k, j, gear), (ft, dte) in planet_series(model, s).items():  # a planetary stage: every planet mesh
-        ch[f"stage{k + 1}_planet{j + 1}_{gear}_tangential_N"] = ft
-        ch[f"stage{k + 1}_planet{j + 1}_{gear}_dte_um"] = dte
+        stage = f"stage{k + 1}"
+        ch.update({Channel("tangential_force", stage): ft, Channel("radial_force", stage): fr,
+                   Channel("axial_force", stage): fa, Channel("penetration", stage): ms.penetration_m,
+                   Channel("dte", stage): ms.dte_m})
+        per_stage.append((ft, fr, fa, ms.penetration_m * 1e3, ms.dte_m * 1e6))
+    for (k, j, gear), (ft, dte_m) in planet_series(model, s).items():  # a planetary stage: every planet mesh
+        ch[Channel("tangential_force", f"stage{k + 1}_planet{j + 1}_{gear}")] = ft
+        ch[Channel("dte", f"stage{k + 1}_planet{j + 1}_{gear}")] = dte_m
     for shaft, c in sorted(lay.shaft_conn.items()):
-        ch[f"shaft{shaft + 1}_twist_deg"] = s.connectors[c].deflection * RAD_TO_DEG
+        ch[Channel("twist", f"shaft{shaft + 1}")] = s.connectors[c].deflection
     if lay.motor_body is not None:
-        ch["motor_speed_deg_s"] = s.omega_rad_s[lay.motor_body] * RAD_TO_DEG
+        ch[Channel("speed", "motor")] = s.omega_rad_s[lay.motor_body]
     if lay.drum_body is not None:
-        ch["drum_speed_deg_s"] = s.omega_rad_s[lay.drum_body] * RAD_TO_DEG
+        ch[Channel("speed", "drum")] = s.omega_rad_s[lay.drum_body]
     if lay.drive.motor is not None:  # the motor (drive = "motor", or the one a speed ramp is checked against)
-        ch["motor_torque_Nm"] = s.input_torque_Nm.copy()
-        ch["motor_speed_rpm"] = s.omega_rad_s[0] * (60.0 / (2.0 * math.pi))
-    for name, label in (("input_coupling_torque_Nm", "input coupling"), ("load_coupling_torque_Nm", "load coupling")):
+        ch[Channel("torque", "drive")] = s.input_torque_Nm
+        ch[Channel("speed", "drive")] = s.omega_rad_s[0]
+    for owner, label in (("input_coupling", "input coupling"), ("load_coupling", "load coupling")):
         named = lay.conn_named(label)
         if named is not None:
-            ch[name] = s.connectors[named].force.copy()
+            ch[Channel("torque", owner)] = s.connectors[named].force
     return ch, per_stage
 
 
 def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]]:
-    """(stage, planet, "sun" | "ring") -> (F_t in N, DTE in um) of every planet mesh, in connector order."""
+    """(stage, planet, "sun" | "ring") -> (F_t in N, DTE in m) of every planet mesh, in connector order."""
     lay = model.layout
     out: dict = {}
     for c, x in enumerate(lay.connectors):
         if x.load_body >= 0:
             ft = tooth_forces(lay, x.index, s.connectors[c].line_force_N)[0]
-            out[(x.index, x.planet, x.gear)] = (ft, s.connectors[c].dte_m * 1e6)
+            out[(x.index, x.planet, x.gear)] = (ft, s.connectors[c].dte_m)
     return out
 
 
@@ -365,7 +368,7 @@ def _planets(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> tup
         return (), None
 
     def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
-        q = dte[mask]
+        q = dte[mask] * 1e6  # um
         return PlanetMeshDynamics(stats.channel_stats(ft, mask), DteStats(float(q.mean()), float(q.std()),
                                                                          float(q.min()), float(q.max())))
 
@@ -389,7 +392,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
     periodic = steady.mode == "periodic"
-    channels, per_stage = _channels(model, s)
+    series, per_stage = _series(model, s)
     errors = ref.errors if ref is not None else ()
     stiffness = mesh_stiffness(model, choice)
     simulated_static = simulated_static_tangential_N(model)
@@ -430,7 +433,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(
-        time_s=s.time_s if want_series else np.empty(0), channels=channels if want_series else {},
+        time_s=s.time_s if want_series else np.empty(0), series=series if want_series else {},
         window_s=(float(window[0]), float(window[1])), ratio=ratio, output_speed_deg_s=w_out * RAD_TO_DEG,
         input_speed_deg_s=w_in * RAD_TO_DEG, stages=stages, solver=solver, energy=balance,
         warnings=dg.messages(diags), diagnostics=tuple(diags),
@@ -561,7 +564,7 @@ def _stiffness_hint(choice: Choice) -> str:
 
 
 def _require_finite(result: SimulationResult) -> None:
-    bad = [name for name, x in result.channels.items() if not np.all(np.isfinite(x))]
+    bad = [str(name) for name, x in result.series.items() if not np.all(np.isfinite(x))]
     scalars = [result.ratio, result.output_speed_deg_s, result.energy.residual_relative]
     if bad or not all(math.isfinite(v) for v in scalars):
         raise SimulationError("the simulation produced non-finite values"

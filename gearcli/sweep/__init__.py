@@ -3,7 +3,8 @@
 - ``spec``          ``--vary`` grids, ``--random`` samples (Latin hypercube / Monte Carlo), points, branches
 - ``columns``       the output columns and the one mapping from a simulation result to a row
 - ``continuation``  a continued point's initial state from the previous point's final state
-- ``worker``        evaluating the points of one task (any process: local, pool, Dask worker)
+- ``worker``        the points of one task (any process: local, pool, Dask worker), evaluated by the
+                    injected ``PointEvaluator`` (:func:`gearcli.api.evaluate_point`)
 - ``execute``       planning tasks (batches, branches, resume) and running them in this process, a local
                     process pool, or a Dask distributed cluster; rows in order of completion
 - ``modes``         natural frequencies against the swept speed (Campbell diagram)

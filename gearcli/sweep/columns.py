@@ -4,8 +4,9 @@ One row per point (docs: README "Sweeps"): the varied keys (named by their dotte
 ``direction``, ``status`` (``ok``/``failed``), ``message``, then per stage k
 ``stage{k}_tangential_N_{mean,std,min,max}``, ``stage{k}_dte_um_{mean,rms,min,max}``,
 ``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor`` (steady-window max |F_t| / static),
-``stage{k}_runup_factor`` (whole-run peak / static), then ``output_speed_rpm``, ``nfev``,
-``wall_s``. A cell the result does not provide is empty (``None``): the dynamic transmission error and
+``stage{k}_runup_factor`` (whole-run peak / static), a planetary stage's ``stage{k}_load_sharing_factor``
+(the largest planet's window-mean sun-mesh |F_t| over the planets' mean; parallel stages have no such
+column), then ``output_speed_rpm``, ``nfev``, ``wall_s``. A cell the result does not provide is empty (``None``): the dynamic transmission error and
 the contact-loss fraction come from the excitation outputs; :data:`STAGE_STATISTICS` reads them from
 ``StageDynamics.dte_um`` (an object with ``mean``/``rms``/``min``/``max``) and
 ``StageDynamics.contact_loss_fraction`` when those exist, so they fill in without touching the sweep.
@@ -15,27 +16,34 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TypeAlias, cast
+
+from gearcli.core.jsontypes import JsonScalar
+from gearcli.results import SimulationResult, StageDynamics
 
 FIXED = ("direction", "status", "message")
 TRAILING = ("output_speed_rpm", "nfev", "wall_s")
 OK, FAILED = "ok", "failed"
 
+#: one row of a sweep: column -> cell (a varied key's value, a statistic, the status, a message)
+Row: TypeAlias = dict[str, JsonScalar]
 
-def _attr(*path: str) -> Callable[[Any], float | None]:
-    def get(obj: Any) -> float | None:
+
+def _attr(*path: str) -> Callable[[StageDynamics], float | None]:
+    def get(stage: StageDynamics) -> float | None:
+        obj: object = stage
         for name in path:
             obj = getattr(obj, name, None)
             if obj is None:
                 return None
-        value = float(obj)
+        value = float(cast(float, obj))
         return value if math.isfinite(value) else None
 
     return get
 
 
 #: per-stage column suffix -> how to read it from one ``StageDynamics`` (the ONLY mapping)
-STAGE_STATISTICS: dict[str, Callable[[Any], float | None]] = {
+STAGE_STATISTICS: dict[str, Callable[[StageDynamics], float | None]] = {
     "tangential_N_mean": _attr("tangential_N", "mean"),
     "tangential_N_std": _attr("tangential_N", "std"),
     "tangential_N_min": _attr("tangential_N", "min"),
@@ -50,32 +58,43 @@ STAGE_STATISTICS: dict[str, Callable[[Any], float | None]] = {
 }
 
 
-def stage_columns(n_stages: int) -> list[str]:
-    return [f"stage{k}_{name}" for k in range(1, n_stages + 1) for name in STAGE_STATISTICS]
+#: per-stage column suffixes of a planetary stage only -> how to read them from its ``StageDynamics``
+PLANETARY_STATISTICS: dict[str, Callable[[StageDynamics], float | None]] = {
+    "load_sharing_factor": _attr("load_sharing_factor"),
+}
 
 
-def columns(keys: Sequence[str], n_stages: int) -> list[str]:
-    return [*keys, *FIXED, *stage_columns(n_stages), *TRAILING]
+def stage_columns(n_stages: int, planetary: Sequence[int] = ()) -> list[str]:
+    """Per stage k (1-based) its statistics; ``planetary``: the planetary stages' k, which add theirs."""
+    return [f"stage{k}_{name}" for k in range(1, n_stages + 1)
+            for name in (*STAGE_STATISTICS, *(PLANETARY_STATISTICS if k in planetary else ()))]
 
 
-def statistic_columns(n_stages: int) -> list[str]:
+def columns(keys: Sequence[str], n_stages: int, planetary: Sequence[int] = ()) -> list[str]:
+    return [*keys, *FIXED, *stage_columns(n_stages, planetary), *TRAILING]
+
+
+def statistic_columns(n_stages: int, planetary: Sequence[int] = ()) -> list[str]:
     """The numeric result columns a response curve can show."""
-    return [*stage_columns(n_stages), "output_speed_rpm"]
+    return [*stage_columns(n_stages, planetary), "output_speed_rpm"]
 
 
-def ok_row(values: Sequence[tuple[str, Any]], direction: str, result, wall_s: float, n_stages: int,
-           message: str = "") -> dict[str, Any]:
-    row: dict[str, Any] = {**dict(values), "direction": direction, "status": OK, "message": message}
+def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: SimulationResult, wall_s: float,
+           n_stages: int, message: str = "") -> Row:
+    row: Row = {**dict(values), "direction": direction, "status": OK, "message": message}
     for k, st in enumerate(result.stages[:n_stages], start=1):
         for name, get in STAGE_STATISTICS.items():
             row[f"stage{k}_{name}"] = get(st)
+        if getattr(st, "planets", ()):  # a planetary stage
+            for name, get in PLANETARY_STATISTICS.items():
+                row[f"stage{k}_{name}"] = get(st)
     row["output_speed_rpm"] = result.output_speed_deg_s / 6.0
     row["nfev"] = int(result.solver.nfev)
     row["wall_s"] = wall_s
     return row
 
 
-def failed_row(values: Sequence[tuple[str, Any]], direction: str, message: str, wall_s: float) -> dict[str, Any]:
+def failed_row(values: Sequence[tuple[str, JsonScalar]], direction: str, message: str, wall_s: float) -> Row:
     return {**dict(values), "direction": direction, "status": FAILED, "message": one_line(message),
             "wall_s": wall_s}
 

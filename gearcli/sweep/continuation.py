@@ -21,6 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.model import TorsionalModel
+from gearcli.model.spec import ModelSpec
+
 #: ``--set`` overrides of a continued point: no start-up ramps
 NO_RAMPS = ("input.ramp_s=0.0", "load.ramp_s=0.0")
 
@@ -29,25 +32,26 @@ NO_RAMPS = ("input.ramp_s=0.0", "load.ramp_s=0.0")
 class Carried:
     """What a point hands on to the next point of its branch: its model, final state and its time."""
 
-    model: object  # gearcli.model.TorsionalModel
+    model: TorsionalModel
     state: np.ndarray
     time_s: float
 
 
-def carry_phases(spec, prev: Carried):
+def carry_phases(spec: ModelSpec, prev: Carried) -> ModelSpec:
     """``spec`` (a ModelSpec) going on from the previous run's end: a speed drive's start angle at the
     previous run's end angle (a torque drive's angle is a state, kept by ``continue_state``), the load
     fluctuation's clock at the previous run's end time."""
-    prev_spec = prev.model.spec  # type: ignore[attr-defined]
+    prev_spec = prev.model.spec
     if spec.load.fluctuation:
         spec = dataclasses.replace(spec, load=dataclasses.replace(spec.load, clock_s=prev_spec.load.clock_s + prev.time_s))
     if spec.drive.kind != "speed" or prev_spec.drive.kind != "speed":
         return spec
-    angle = prev.model.input_angle(prev.time_s)  # type: ignore[attr-defined]
+    angle = prev.model.input_angle(prev.time_s)
     return dataclasses.replace(spec, drive=dataclasses.replace(spec.drive, angle_rad=angle))
 
 
-def continue_state(y_prev: np.ndarray, model_prev, model_new, t_prev: float | None = None) -> np.ndarray | None:
+def continue_state(y_prev: np.ndarray, model_prev: TorsionalModel, model_new: TorsionalModel,
+                   t_prev: float | None = None) -> np.ndarray | None:
     """``y0`` for ``model_new`` from the final state ``y_prev`` of ``model_prev`` at its time ``t_prev``
     (None: past its ramps); None: start cold."""
     if y_prev.shape != (model_prev.n_states,) or model_new.n_states != model_prev.n_states:

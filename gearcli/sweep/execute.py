@@ -16,9 +16,9 @@ from collections.abc import Iterable, Iterator, Sequence
 
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
-from gearcli.sweep.columns import failed_row
+from gearcli.sweep.columns import Row, failed_row
 from gearcli.sweep.spec import Point, SweepSpec
-from gearcli.sweep.worker import Scene, Task, iter_task, run_task
+from gearcli.sweep.worker import PointEvaluator, Scene, Task, iter_task, run_task
 
 DISTRIBUTED_HINT = "pip install 'gearcli[distributed]'"
 MAX_BATCH = 32  # points per task: a few seconds of work, while a Ctrl-C or a lost worker costs little
@@ -68,8 +68,10 @@ def jobs_cap(point_bytes: float) -> tuple[int, str]:
     return cap, f"{cores} usable core{'s' if cores != 1 else ''}{memory}"
 
 
-def plan(spec: SweepSpec, scene: Scene, done: set[tuple], workers: int) -> tuple[list[Task], int]:
-    """The tasks that produce every point not in ``done`` (idents), and how many points they return.
+def plan(spec: SweepSpec, scene: Scene, done: set[tuple[str, ...]], workers: int,
+         evaluate: PointEvaluator) -> tuple[list[Task], int]:
+    """The tasks that produce every point not in ``done`` (idents), and how many points they return; each
+    evaluates its points with ``evaluate``.
 
     A continuation branch is one task; its points up to the last missing one are computed (a point's
     start state needs its predecessors), the ones already written are not returned again."""
@@ -86,9 +88,9 @@ def plan(spec: SweepSpec, scene: Scene, done: set[tuple], workers: int) -> tuple
             continue
         head = branch[:missing[-1] + 1]
         skip = frozenset(p.index for p in head if p.ident in done)
-        tasks.append(Task(scene, tuple(head), True, skip))
+        tasks.append(Task(scene, tuple(head), True, evaluate, skip))
     size = batch_size(len(single), workers)
-    tasks += [Task(scene, tuple(single[i:i + size]), False) for i in range(0, len(single), size)]
+    tasks += [Task(scene, tuple(single[i:i + size]), False, evaluate) for i in range(0, len(single), size)]
     share = math.ceil(todo / max(1, workers))  # each worker's part of the sweep (engine = "auto" amortises over it)
     return [dataclasses.replace(t, runs_hint=share) for t in tasks], todo
 
@@ -97,7 +99,7 @@ def batch_size(n_points: int, workers: int) -> int:
     return max(1, min(MAX_BATCH, math.ceil(n_points / (max(1, workers) * TASKS_PER_WORKER))))
 
 
-def execute(tasks: Sequence[Task], *, jobs: int = 1, scheduler: str | None = None) -> Iterator[dict]:
+def execute(tasks: Sequence[Task], *, jobs: int = 1, scheduler: str | None = None) -> Iterator[Row]:
     """Every row of every task, in order of completion."""
     if scheduler:
         return _dask(tasks, scheduler)
@@ -106,7 +108,7 @@ def execute(tasks: Sequence[Task], *, jobs: int = 1, scheduler: str | None = Non
     return _pool(tasks, jobs)
 
 
-def _inline(tasks: Iterable[Task]) -> Iterator[dict]:
+def _inline(tasks: Iterable[Task]) -> Iterator[Row]:
     for task in tasks:
         yield from iter_task(task)
 
@@ -119,19 +121,19 @@ def _ignore_sigint() -> None:
     engine.quiet_compilation()
 
 
-def _lost(task: Task, exc: BaseException) -> list[dict]:
+def _lost(task: Task, exc: BaseException) -> list[Row]:
     """Rows for a task whose worker failed outright (not a point failure: a crash or a lost worker)."""
     msg = f"worker failed: {type(exc).__name__}: {exc}"
     return [{"_index": p.index, **failed_row(p.values, p.direction, msg, 0.0)}
             for p in task.points if p.index not in task.skip]
 
 
-def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[dict]:
+def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     ctx = multiprocessing.get_context("forkserver")
-    ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate"])
+    ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate", "gearcli.api"])
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_ignore_sigint)
     try:
         futures = {pool.submit(run_task, t): t for t in tasks}
@@ -236,7 +238,7 @@ def check_scheduler(address: str, timeout_s: float = SCHEDULER_TIMEOUT_S) -> Non
         raise ConfigError(f"{shown} is not a Dask scheduler: it speaks another protocol", source="--scheduler")
 
 
-def _dask(tasks: Sequence[Task], address: str) -> Iterator[dict]:
+def _dask(tasks: Sequence[Task], address: str) -> Iterator[Row]:
     require_distributed()
     from distributed import Client, as_completed
 

@@ -2,27 +2,32 @@
 
 :func:`natural_frequencies_Hz` is the one call to the modes capability (the undamped
 frequencies of ``gearcli modes``). Mesh-order lines: stage s meshes at ``z_p,s n_s / 60`` Hz with ``n_s`` its pinion's rpm.
+The points are loaded and designed by the injected ``design_case`` (the facade's :func:`gearcli.api.design_case`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import cast
 
-from gearcli.design import compute_design
-from gearcli.model.modes import modal_analysis
-from gearcli.scene import build_model
-from gearcli.sweep.worker import Scene, load_point
+from gearcli.config import DesignFile
+from gearcli.core.jsontypes import JsonScalar
+from gearcli.model.assembly import Layout
+from gearcli.model.modes import SPEED_RANGE, CampbellData, campbell_data, modal_analysis
+from gearcli.results import DesignResult
+from gearcli.scene import output_units, spec_from_design
+from gearcli.sweep.spec import Axis, SweepSpec
+from gearcli.sweep.worker import CaseDesigner, Scene
 
 SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
 
 
-def natural_frequencies_Hz(cfg, design) -> tuple[float, ...]:
+def natural_frequencies_Hz(cfg: DesignFile, design: DesignResult) -> tuple[float, ...]:
     """The modes capability's frequencies (``gearcli modes``) at the boundary the drive imposes: a speed
     drive holds the input body (``clamped_input``), a torque drive leaves the chain ``free``; the rigid
     mode (0 Hz) left out."""
-    lay = build_model(cfg, design).layout
+    lay = Layout.of(spec_from_design(cfg, design))
     boundary = "clamped_input" if lay.speed_drive else "free"
     analysis = modal_analysis(lay, boundary, duration_s=cfg.simulation.duration_s)
     return tuple(float(m.frequency_Hz) for m in analysis.modes if not m.rigid)
@@ -35,31 +40,60 @@ class CampbellPoint:
     mesh_Hz: tuple[float, ...]  # first-order mesh frequency of each stage
 
 
-def campbell(scene: Scene, key: str, values: Sequence[Any], fixed: Sequence[str] = ()) -> list[CampbellPoint]:
+@dataclass(frozen=True)
+class SweepCampbell:
+    """The Campbell diagram of a speed sweep: the data, the swept input speeds (rpm), and the output units
+    (speed and torque key suffixes) of the swept key."""
+
+    data: CampbellData
+    swept_rpm: tuple[float, ...]
+    units: tuple[str, str]
+
+
+def _number(value: JsonScalar) -> float:
+    return float(cast(float, value))  # a speed axis holds numbers
+
+
+def _speed_point(key: str, value: JsonScalar) -> str:
+    return f"{key}={_number(value)!r}"
+
+
+def campbell(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: CaseDesigner,
+             fixed: Sequence[str] = ()) -> list[CampbellPoint]:
     """Natural and mesh frequencies at each swept input speed (the other keys at ``fixed`` overrides)."""
     out = []
     for v in values:
-        cfg = load_point(scene, (*fixed, f"{key}={float(v)!r}"))
-        design = compute_design(cfg)
+        cfg, design = design_case(scene, (*fixed, _speed_point(key, v)))
         mesh = tuple(st.pinion.teeth * st.pinion.speed_rpm / 60.0 for st in design.stages)
         out.append(CampbellPoint(design.stages[0].pinion.speed_rpm, natural_frequencies_Hz(cfg, design), mesh))
     return out
 
 
-def campbell_diagram(scene: Scene, key: str, values: Sequence[Any], fixed: Sequence[str] = ()):
-    """(CampbellData, swept input speeds in rpm, (speed, torque) unit suffixes) for ``gearcli sweep --plots``: the modes and
-    order lines of the scene at the file's own speed (the other keys at ``fixed``), over 0 .. the larger of
-    1.2 x that speed and the fastest swept point: the same drawing as ``gearcli modes --plots``."""
-    from gearcli.design import compute_design
-    from gearcli.model.modes import SPEED_RANGE, campbell_data
-    from gearcli.scene import build_model, output_units
-
-    swept = [p.input_rpm for p in campbell(scene, key, values, fixed)]
-    cfg = load_point(scene, tuple(fixed))
-    design = compute_design(cfg)
-    lay = build_model(cfg, design).layout
+def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: CaseDesigner,
+                     fixed: Sequence[str] = ()) -> SweepCampbell:
+    """The modes and order lines of the scene at the file's own speed (the other keys at ``fixed``), over
+    0 .. the larger of 1.2 x that speed and the fastest swept point: the same drawing as ``gearcli modes
+    --plots``, with the swept speeds."""
+    swept = [p.input_rpm for p in campbell(scene, key, values, design_case, fixed)]
+    cfg, design = design_case(scene, tuple(fixed))
+    lay = Layout.of(spec_from_design(cfg, design))
     nominal = design.stages[0].pinion.speed_rpm
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
                          max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
-    units = output_units(load_point(scene, (*fixed, f"{key}={float(values[0])!r}")))  # the swept key's unit
-    return data, swept, units
+    units = output_units(design_case(scene, (*fixed, _speed_point(key, values[0]))).cfg)  # the swept key's unit
+    return SweepCampbell(data, tuple(swept), units)
+
+
+def speed_axis(spec: SweepSpec) -> Axis | None:
+    """The swept input speed, if any."""
+    return next((a for a in spec.axes if a.key in SPEED_KEYS), None)
+
+
+def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner) -> SweepCampbell | None:
+    """``gearcli sweep --plots``: the Campbell diagram over the swept input speed (the other axes at their first
+    values); None when no input speed is swept."""
+    axis = speed_axis(spec)
+    if axis is None:
+        return None
+    fixed = [f"{a.key}={a.values[0]!r}" for a in spec.axes[1:] if a.key != axis.key]
+    return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, fixed)

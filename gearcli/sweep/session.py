@@ -4,51 +4,51 @@
 :func:`run` streams the rows to the output as they finish and, at the end, leaves them in point order.
 On Ctrl-C the output keeps every finished row and the interrupt propagates (exit 130 from the CLI).
 
-The controller writes nothing itself: the caller (:mod:`gearcli.api`, the command layer) injects how an
-existing ``-o`` file is read (``read_previous``) and where the rows go (``open_sink``, a :class:`RowSink`
-factory; :mod:`gearcli.io.sweep_file` gives both).
+The controller loads, designs, simulates and writes nothing itself: the caller (:mod:`gearcli.api`) hands it
+the base file loaded and designed, and injects how a point is evaluated (``evaluate``,
+:class:`~gearcli.sweep.worker.PointEvaluator`: :func:`gearcli.api.evaluate_point`), how an existing ``-o``
+file is read (``read_previous``) and where the rows go (``open_sink``, a :class:`RowSink` factory;
+:mod:`gearcli.io.sweep_file` gives both).
 """
 
 from __future__ import annotations
 
-import io
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
 from gearcli import __version__
-from gearcli.config import DesignFile, load_design
-from gearcli.config.load import read_bytes
-from gearcli.design import compute_design
-from gearcli.errors import DesignError
+from gearcli.config import DesignFile, LoadedDesign
+from gearcli.config.bounds import memory_estimate_bytes, output_samples
+from gearcli.core.jsontypes import JsonObject
 from gearcli.results import DesignResult
-from gearcli.sweep.columns import FAILED, OK, columns
+from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
 from gearcli.sweep.spec import SweepSpec, spec_from_options
-from gearcli.sweep.worker import Scene, Task, check_keys
+from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
 
 class RowSink(Protocol):
     """Where rows go: ``add`` each as it arrives, ``finish`` with all rows in point order, ``close`` on an
     interruption (leaving what is done); ``rows`` what it holds."""
 
-    rows: list[dict]
+    rows: list[Row]
 
-    def add(self, row: dict) -> None: ...
+    def add(self, row: Row) -> None: ...
 
-    def finish(self, ordered: Sequence[dict]) -> None: ...
+    def finish(self, ordered: Sequence[Row]) -> None: ...
 
     def close(self) -> None: ...
 
 
 #: (output, format, columns, identity, previous rows) -> the sink
-SinkFactory = Callable[[str | None, str, Sequence[str], dict, Sequence[dict]], RowSink]
+SinkFactory = Callable[[str | None, str, Sequence[str], JsonObject, Sequence[Row]], RowSink]
 #: the identity and rows of an existing output file; (None, []) when there is none
-PreviousReader = Callable[[str], tuple[dict | None, list[dict]]]
+PreviousReader = Callable[[str], tuple[JsonObject | None, list[Row]]]
 
 
-def _none_previous(output: str) -> tuple[dict | None, list[dict]]:
+def _none_previous(output: str) -> tuple[JsonObject | None, list[Row]]:
     return None, []
 
 
@@ -59,8 +59,8 @@ class Session:
     cfg: DesignFile  # the validated base design file
     design: DesignResult
     columns: list[str]
-    identity: dict
-    previous: list[dict]
+    identity: JsonObject
+    previous: list[Row]
     tasks: list[Task]
     todo: int
     done: int
@@ -72,21 +72,18 @@ class Session:
     notes: tuple[str, ...] = ()  # about the run itself (--jobs capped), printed as warnings
 
 
-def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Sequence[str], samples: int | None,
-            sampling: str, seed: int | None, direction: str | None, jobs: int | None,
-            scheduler: str | None, output: str | None, fmt: str,
+def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequence[str], *, vary: Sequence[str],
+            randoms: Sequence[str], samples: int | None, sampling: str, seed: int | None, direction: str | None,
+            jobs: int | None, scheduler: str | None, output: str | None, fmt: str, evaluate: PointEvaluator,
             read_previous: PreviousReader = _none_previous) -> Session:
-    raw = read_bytes(file)
-    loaded = load_design(file, sets, stdin=io.BytesIO(raw))
-    try:
-        design = compute_design(loaded.design)
-    except DesignError as exc:
-        raise DesignError(exc.message, key=exc.key, source=loaded.source) from exc
+    """The checked sweep of the base file ``raw`` (``loaded`` and ``design`` with the ``sets`` applied): every
+    usage error raised before any point runs; ``output``, when given, read for a resume by ``read_previous``;
+    the points evaluated by ``evaluate`` when :func:`run` runs them."""
     if scheduler is not None:  # '' too: an empty address is a mistake, never a silent local run
         require_distributed()
         check_scheduler(scheduler)
-    stored: dict | None = None
-    previous: list[dict] = []
+    stored: JsonObject | None = None
+    previous: list[Row] = []
     if output:
         stored, previous = read_previous(output)
         previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
@@ -98,22 +95,22 @@ def prepare(file: str, sets: Sequence[str], *, vary: Sequence[str], randoms: Seq
         check_same(stored, ident, output)
     done = {row_ident(r, spec.keys) for r in previous}
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
-    tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers)
+    tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers, evaluate)
     if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once
         from gearcli import engine
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
-    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages)), ident, previous,
-                   tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+    planetary = [st.index for st in design.stages if st.planetary is not None]
+    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), planetary), ident,
+                   previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 
-def capped_jobs(jobs: int | None, cfg, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:
+def capped_jobs(jobs: int | None, cfg: DesignFile, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:
     """Local worker processes: ``--jobs`` (default: every usable core), at most what the machine's cores and
     memory carry (:func:`gearcli.sweep.execute.jobs_cap`); a note when ``--jobs`` asked for more."""
     if scheduler:
         return jobs or default_jobs(), ()
-    from gearcli.config.bounds import memory_estimate_bytes, output_samples
 
     cap, why = jobs_cap(memory_estimate_bytes(output_samples(cfg.simulation), n_stages, "json", False))
     wanted = jobs or default_jobs()
@@ -123,7 +120,7 @@ def capped_jobs(jobs: int | None, cfg, n_stages: int, scheduler: str | None) -> 
     return cap, (note,) if jobs else ()
 
 
-def run(session: Session, open_sink: SinkFactory, on_row: Callable[[bool], None] = lambda failed: None) -> list[dict]:
+def run(session: Session, open_sink: SinkFactory, on_row: Callable[[bool], None] = lambda failed: None) -> list[Row]:
     """Run the session's tasks; every row goes to the sink as it arrives. Returns all rows in point order."""
     sink = open_sink(session.output, session.fmt, session.columns, session.identity, session.previous)
     rows_in = execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler)

@@ -24,9 +24,10 @@ import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import cast
 
 from gearcli.config.overrides import parse, parse_value
+from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.errors import ConfigError
 
 DIRECTIONS = ("up", "down", "both")
@@ -49,7 +50,7 @@ def canonical_key(key: str) -> str:
 @dataclass(frozen=True)
 class Axis:
     key: str  # canonical dotted key path
-    values: tuple[Any, ...]
+    values: tuple[JsonScalar, ...]
 
 
 @dataclass(frozen=True)
@@ -101,7 +102,7 @@ def parse_vary(text: str) -> Axis:
         if n > MAX_POINTS:  # before the values are built: 1:2:1000000000 would take minutes and gigabytes
             raise SweepUsageError(f"{key}: {n} values is more than the {MAX_POINTS} points a sweep may have",
                                   source=option)
-        values: tuple[Any, ...] = (start,) if n == 1 else tuple(start + (stop - start) * i / (n - 1) for i in range(n))
+        values: tuple[float, ...] = (start,) if n == 1 else tuple(start + (stop - start) * i / (n - 1) for i in range(n))
         if all(re.fullmatch(r"\s*[+-]?\d+\s*", t) for t in (m[1], m[2])) and all(float(v).is_integer() for v in values):
             values = tuple(int(v) for v in values)  # 17:25:9 is teeth 17, 18, ..., 25 (integers)
         return Axis(key, values)
@@ -145,11 +146,11 @@ class Point:
     """One operating point: its position in the sweep's canonical order, and the values to set."""
 
     index: int
-    values: tuple[tuple[str, Any], ...]  # (key, value) in column order
+    values: tuple[tuple[str, JsonScalar], ...]  # (key, value) in column order
     direction: str  # "up" | "down" | "none"
 
     @property
-    def ident(self) -> tuple:
+    def ident(self) -> tuple[str, ...]:
         """What identifies a point in an output file (resume): direction and values."""
         return (self.direction, *(_ident_value(v) for _, v in self.values))
 
@@ -157,11 +158,11 @@ class Point:
         return [f"{k}={_toml(v)}" for k, v in self.values]
 
 
-def _ident_value(v: Any) -> str:
+def _ident_value(v: JsonScalar) -> str:
     return repr(float(v)) if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)
 
 
-def _toml(v: Any) -> str:
+def _toml(v: JsonScalar) -> str:
     import tomli_w
 
     return tomli_w.dumps({"v": v})[4:].strip()
@@ -238,7 +239,7 @@ class SweepSpec:
         cols = [d.ppf(u[:, j]) for j, d in enumerate(self.randoms)]
         return [tuple(float(c[i]) for c in cols) for i in range(self.samples)]
 
-    def arguments(self) -> dict:
+    def arguments(self) -> JsonObject:
         """The sweep's definition as plain data, stored in the output file (resume compares it)."""
         return {"vary": [{"key": a.key, "values": [_plain(v) for v in a.values]} for a in self.axes],
                 "random": [{"key": d.key, "distribution": d.kind, "parameters": [d.a, d.b]} for d in self.randoms],
@@ -246,16 +247,16 @@ class SweepSpec:
                 "seed": self.seed if self.randoms else None, "direction": self.direction}
 
 
-def _ascending(values: tuple[Any, ...]) -> tuple[Any, ...]:
+def _ascending(values: tuple[JsonScalar, ...]) -> tuple[JsonScalar, ...]:
     """The values of a continuation key in ascending order (``1500:300:3`` runs up as 300, 900, 1500);
     values that do not compare (strings and numbers mixed) keep the order given."""
     try:
-        return tuple(sorted(values))
+        return tuple(sorted(values, key=lambda v: cast(float, v)))
     except TypeError:
         return tuple(values)
 
 
-def _plain(v: Any) -> Any:
+def _plain(v: object) -> JsonScalar:
     return v if isinstance(v, (bool, int, float, str)) else str(v)
 
 

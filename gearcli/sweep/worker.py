@@ -1,32 +1,29 @@
 """Evaluating points: one branch (a task) at a time, in any process (local pool or a Dask worker).
 
 A :class:`Task` is plain picklable data: the design file's bytes (so a remote worker needs no access
-to the file), the base ``--set`` overrides, and the points. Each process parses a design file once
-(:func:`_base`, cached per process by its hash); points only apply their overrides, validate, compute the
-design, build one model (its generated code compiled once per model structure and process,
-:func:`gearcli.model.codegen.compile_functions`) and simulate. A point that fails (a value the schema rejects, an infeasible design, a solver
-failure) becomes a ``failed`` row with its message and the branch goes on, starting cold again.
+to the file), the base ``--set`` overrides, the points, and the function that evaluates one point. The
+sweep never loads, designs or simulates a point itself: the evaluator is injected (the library facade's
+:func:`gearcli.api.evaluate_point`, a top-level function, so that it pickles by reference to a pool or a
+Dask worker). It validates a point's overrides on the file parsed once per process, computes the design,
+builds one model (its generated code compiled once per model structure and process,
+:func:`gearcli.model.codegen.compile_functions`) and simulates. A point that fails (a value the schema
+rejects, an infeasible design, a solver failure) becomes a ``failed`` row with its message and the branch
+goes on, starting cold again.
 """
 
 from __future__ import annotations
 
-import copy
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
-from functools import lru_cache
-from typing import Any
+from typing import NamedTuple, Protocol, cast
 
 from gearcli import engine
-from gearcli.config.load import _parse, _validate
-from gearcli.config.overrides import apply_all
-from gearcli.design import compute_design
+from gearcli.config import DesignFile, check_override_keys
 from gearcli.errors import GearcliError
-from gearcli.model import TorsionalModel
-from gearcli.scene import spec_from_design
-from gearcli.simulate.run import run_simulation
-from gearcli.sweep.columns import failed_row, ok_row, one_line
-from gearcli.sweep.continuation import NO_RAMPS, Carried, carry_phases, continue_state
+from gearcli.results import DesignResult, SimulationResult
+from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
+from gearcli.sweep.continuation import Carried
 from gearcli.sweep.spec import Point
 
 
@@ -40,67 +37,64 @@ class Scene:
     n_stages: int = 1
 
 
+class Case(NamedTuple):
+    """One operating point, loaded and designed: its validated design file and its design."""
+
+    cfg: DesignFile
+    design: DesignResult
+
+
+class Evaluation(NamedTuple):
+    """One simulated point: its case, its result, and what it hands on to the next point of its branch
+    (None: the next point starts cold)."""
+
+    case: Case
+    result: SimulationResult
+    carried: Carried | None
+
+
+class CaseDesigner(Protocol):
+    """Loads and designs one variant of a scene (``overrides`` after the scene's ``--set``)."""
+
+    def __call__(self, scene: Scene, overrides: Sequence[str], /) -> Case: ...
+
+
+class PointEvaluator(Protocol):
+    """Loads, designs and simulates one variant of a scene, continued from ``start`` (a previous point's final
+    state) when given. ``series``: keep the time series; ``check``: run the check pass (None: the file's
+    ``simulation.error_estimate``). A sweep point keeps neither (it would double a sweep's cost; README
+    "Honest statistics")."""
+
+    def __call__(self, scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
+                 series: bool = False, check: bool | None = False) -> Evaluation: ...
+
+
 @dataclass(frozen=True)
 class Task:
     scene: Scene
     points: tuple[Point, ...]
     continuation: bool
+    evaluate: PointEvaluator
     skip: frozenset[int] = field(default_factory=frozenset)  # indices already written: computed, not returned
     runs_hint: int = 0  # about how many points the worker running this task will do (engine = "auto")
 
 
-@lru_cache(maxsize=8)
-def _base(raw: bytes, source: str) -> dict:
-    """The parsed TOML of a design file, once per process (points deep-copy it)."""
-    return _parse(raw, source)
+def _evaluate(evaluate: PointEvaluator, scene: Scene, point: Point, prev: Carried | None) -> Evaluation:
+    """Simulate one point (continued from the previous point's ``prev`` when given) with the injected
+    evaluator."""
+    return evaluate(scene, point.overrides(), prev)
 
 
-def load_point(scene: Scene, overrides: tuple[str, ...]):
-    """The validated ``DesignFile`` of a point: the base data, the base ``--set``s, then the point's."""
-    data = copy.deepcopy(_base(scene.raw, scene.source))
-    paths = apply_all(data, (*scene.sets, *overrides))
-    return _validate(data, scene.source, paths)
-
-
-def _evaluate(scene: Scene, point: Point, prev: Carried | None) -> tuple[Any, Carried | None]:
-    """Simulate one point (continued from the previous point's ``prev`` when given); the result and
-    what it hands on to the next point."""
-    cfg = load_point(scene, tuple(point.overrides()) + (NO_RAMPS if prev else ()))
-    design = compute_design(cfg)
-    spec = spec_from_design(cfg, design)
-    y0 = None
-    if prev is not None:
-        model = model_of(carry_phases(spec, prev))
-        y0 = continue_state(prev.state, prev.model, model, prev.time_s)
-    if y0 is None:  # a cold start (the first point, or the chain changed), with the file's ramps
-        if prev is not None:
-            cfg = load_point(scene, tuple(point.overrides()))
-            design = compute_design(cfg)
-            spec = spec_from_design(cfg, design)
-        model = model_of(spec)
-    # no check pass per point (it would double a sweep's cost; README "Honest statistics"): a point's statistics
-    # are checked by `gearcli simulate` on that point
-    result = run_simulation(cfg, design, want_series=False, y0=y0, model=model, error_estimate=False)
-    if result.final_state is None or result.final_time_s is None:
-        return result, None
-    return result, Carried(model, result.final_state, result.final_time_s)
-
-
-def model_of(spec):
-    """The compiled model of a ModelSpec."""
-    return TorsionalModel(spec)
-
-
-def iter_task(task: Task) -> Iterator[dict]:
+def iter_task(task: Task) -> Iterator[Row]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
     with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
         prev = None
-        before: tuple | None = None  # (point, result, carried) of the previous ok point of the branch
+        before: _Before | None = None  # the previous ok point of the branch
         for point in task.points:
             t0 = time.perf_counter()
             try:
-                result, carried = _evaluate(task.scene, point, prev if task.continuation else None)
-                jump = _jump(task.scene, before, point, result) if task.continuation else ""
+                _, result, carried = _evaluate(task.evaluate, task.scene, point, prev if task.continuation else None)
+                jump = _jump(task, before, point, result) if task.continuation else ""
             except GearcliError as exc:
                 prev = before = None
                 row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
@@ -108,14 +102,20 @@ def iter_task(task: Task) -> Iterator[dict]:
                 prev = before = None
                 row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
             else:
-                prev, before = carried, (point, result, carried)
+                prev, before = carried, _Before(point, result, carried)
                 row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
                              message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings))))
             if point.index not in task.skip:
                 yield {"_index": point.index, **row}
 
 
-def _jump(scene: Scene, before: tuple | None, point: Point, result) -> str:
+class _Before(NamedTuple):
+    point: Point
+    result: SimulationResult
+    carried: Carried | None
+
+
+def _jump(task: Task, before: _Before | None, point: Point, result: SimulationResult) -> str:
     """A periodic point continued from ``before`` that left its branch: the row's jump mark, with the branch's
     end closed in on by bisection of the one varied value (:func:`gearcli.sweep.continuation.jump_note`)."""
     from gearcli.sweep.continuation import jump_note, on_branch
@@ -131,19 +131,19 @@ def _jump(scene: Scene, before: tuple | None, point: Point, result) -> str:
     key, v0, v1 = changed[0]
     carried = {id(r0): c0}
 
-    def refine(value: float, last):
+    def refine(value: float, last: SimulationResult) -> SimulationResult | None:
         mid = Point(-1, tuple((k, value if k == key else v) for k, v in point.values), point.direction)
         try:
-            got, c = _evaluate(scene, mid, carried[id(last)])
+            _, got, c = _evaluate(task.evaluate, task.scene, mid, carried[id(last)])
         except GearcliError:
             return None
         carried[id(got)] = c
         return got
 
-    return jump_note(key, float(v0), float(v1), r0, result, refine)
+    return jump_note(key, float(cast(float, v0)), float(cast(float, v1)), r0, result, refine)  # numbers (above)
 
 
-def run_task(task: Task) -> list[dict]:
+def run_task(task: Task) -> list[Row]:
     """A whole task in one call (what a pool or Dask worker runs)."""
     return list(iter_task(task))
 
@@ -153,7 +153,6 @@ def _message(exc: GearcliError, scene: Scene) -> str:
     return text.replace("<stdin>", scene.source) if scene.source != "<stdin>" else text
 
 
-
 def check_keys(scene: Scene, point: Point) -> None:
     """Raise ConfigError (exit 2) when a varied key is not a key ``--set`` accepts; values are checked per point."""
-    apply_all(copy.deepcopy(_base(scene.raw, scene.source)), (*scene.sets, *point.overrides()))
+    check_override_keys(scene.raw, scene.source, (*scene.sets, *point.overrides()))

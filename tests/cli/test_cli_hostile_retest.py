@@ -271,7 +271,7 @@ def test_jobs_are_capped_by_the_machine():
 
 
 def test_jobs_cap_in_the_session():
-    from gearcli.sweep.session import prepare
+    from gearcli.api import prepare_sweep as prepare
 
     session = prepare(str(SEED), [], vary=["input.speed_deg_s=3000,3600"], randoms=[], samples=None,
                       sampling="lhs", seed=None, direction=None, jobs=4096, scheduler=None, output=None, fmt="csv")
@@ -521,7 +521,7 @@ def test_sweep_workers_leave_the_compilation_notice_to_the_parent(tmp_path, monk
         assert engine._state["quiet"] is True
     finally:
         signal.signal(signal.SIGINT, previous)
-    from gearcli.sweep.session import prepare
+    from gearcli.api import prepare_sweep as prepare
 
     session = prepare(str(SEED), [], vary=["input.speed_deg_s=3000:3600:4"], randoms=[], samples=None,
                       sampling="lhs", seed=None, direction=None, jobs=2, scheduler=None, output=None, fmt="csv")

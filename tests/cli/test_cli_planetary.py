@@ -39,8 +39,9 @@ def test_design_json_of_a_mixed_train(runner):
         assert [m["name"] for m in st["meshes"]] == ["sun_planet", "planet_ring"]
         sun_rating, ring_rating = st["meshes"][0]["rating"], st["meshes"][1]["rating"]
         assert set(ring_rating) == set(sun_rating) and set(ring_rating["pinion"]) == set(sun_rating["pinion"])
-        assert set(ring_rating["gear"]) == set(sun_rating["gear"]) | {"bending_not_rated"}
-        assert ring_rating["gear"]["S_F"] is None and ring_rating["pinion"]["S_F"] > 0.0  # the ring's root: not rated
+        assert set(ring_rating["gear"]) == set(sun_rating["gear"])
+        assert ring_rating["gear"]["S_F"] > 0.0 and ring_rating["pinion"]["S_F"] > 0.0  # both roots rated
+        assert ring_rating["pinion"]["Y_M"] == sun_rating["gear"]["Y_M"] == 0.7  # the planet, an idler
         assert_allclose(st["ratio"], 1 / (1 + zr / zs), rtol=1e-12)  # carrier in, sun out, ring held
         assert st["ring"]["speed_rpm"] == 0.0 and st["planet"]["count"] == 3
         assert_allclose(st["carrier"]["torque_Nm"], st["sun"]["torque_Nm"] * (1 + zr / zs), rtol=1e-12)
@@ -78,16 +79,24 @@ def test_simulate_reports_every_planet(runner, tmp_path):
     assert_allclose(st["load_sharing_factor"], 1.0, atol=1e-9)
 
 
-def test_what_the_time_domain_refuses_names_file_and_key(runner, tmp_path):
-    """Time-varying contact-line stiffness on planet meshes (not phased between planets), and a phased mesh
-    after a planetary stage (its phase would need the planetary output's angle): exit 2, no output file."""
-    for path, setting, key in ((STAGE, "stage.0.mesh.time_varying=true", "stage[0].mesh.time_varying"),
-                               (GEARBOX, "stage.2.mesh.transmission_error_um=[2.0]", "stage[2].mesh")):
-        out = tmp_path / "sim.csv"
-        res = runner.invoke(cli, ["simulate", path, "-o", str(out), "--set", setting])
-        assert res.exit_code == 2, res.output
-        assert f"{path}: {key}:" in res.stderr and "Traceback" not in res.stderr
-        assert not out.exists()
+def test_time_varying_stiffness_on_planet_meshes_runs(runner, tmp_path):
+    """Time-varying contact-line stiffness on planet meshes (refused before: now phased per planet and between
+    each planet's sun and ring mesh from the geometry)."""
+    out = tmp_path / "sim.json"
+    res = run(runner, "simulate", STAGE, "--format", "json", "-o", str(out), "--set", "simulation.duration_s=0.3",
+              "--set", "stage.0.mesh.time_varying=true")
+    assert res.exit_code == 0, res.stderr
+    assert len(json.loads(out.read_text())["summary"]["stages"][0]["planets"]) == 3
+
+
+def test_a_phased_mesh_after_planetary_stages_runs(runner, tmp_path):
+    """A transmission error on the parallel stage after two planetary stages (refused before: its phase comes
+    from the planetary output's angle now)."""
+    out = tmp_path / "sim.json"
+    res = run(runner, "simulate", GEARBOX, "--format", "json", "-o", str(out), "--set", "simulation.duration_s=0.3",
+              "--set", "stage.2.mesh.transmission_error_um=[2.0]")
+    assert res.exit_code == 0, res.stderr
+    assert len(json.loads(out.read_text())["summary"]["stages"]) == 3
 
 
 def test_transmission_error_on_planet_meshes_runs(runner, tmp_path):
@@ -107,3 +116,32 @@ def test_report_compares_the_output_member_and_the_flank_sign(runner, tmp_path):
     # the sun (output) at 12.127 rpm x (1 + 56/19); F_t theory with the model's flank sign
     assert_allclose(stage_rows["output_speed_deg_s"]["theory"], 12.127 * 6 * (1 + 56 / 19), rtol=1e-12)
     assert abs(stage_rows["tangential_N"]["error_percent"]) < 0.01
+
+
+def test_design_table_shows_the_planet_ring_rating(runner):
+    """The planet–ring mesh's rating sits below the planetary stages' table, planet / ring per cell: both roots
+    rated, the idler planet's Y_M 0.7, the internal mesh's own K_v; the same figures as JSON's meshes[1].rating."""
+    res = runner.invoke(cli, ["design", STAGE, "--format", "table"], env={"COLUMNS": "160"}, catch_exceptions=False)
+    assert res.exit_code == 0, res.stderr
+    out = res.stdout
+    head = "planet–ring mesh strength rating, ISO 6336:2006 method B"
+    assert head in out and out.index("planetary stages") < out.index(head)
+    section = out[out.index(head):out.index("shafts")]
+    doc = json.loads(run(runner, "design", STAGE, "--format", "json").stdout)
+    rating = doc["stages"][0]["meshes"][1]["rating"]
+    planet, ring = rating["pinion"], rating["gear"]
+    row = next(line for line in section.splitlines() if "root safety S_F" in line)
+    assert f"{planet['S_F']:.3g} / {ring['S_F']:.3g}" in row
+    row = next(line for line in section.splitlines() if "mean stress Y_M" in line)
+    assert "0.7 / 1" in row
+    row = next(line for line in section.splitlines() if "dynamic factor K_v" in line)
+    assert f"{rating['K_v']:.4g} ({rating['K_v_source']})" in row
+
+
+def test_design_csv_carries_the_ring_root(runner):
+    res = run(runner, "design", STAGE, "--format", "csv")
+    assert res.exit_code == 0, res.stderr
+    rows = list(csv.DictReader(io.StringIO(res.stdout)))
+    assert float(rows[0]["planet_ring_rating_gear_S_F"]) > 0.0
+    assert float(rows[0]["planet_ring_rating_pinion_Y_M"]) == 0.7
+    assert float(rows[0]["planet_ring_resonance_ratio"]) > 0.0

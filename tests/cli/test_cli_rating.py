@@ -20,7 +20,7 @@ STAGE_KEYS = {"standard", "K_A", "K_v", "K_v_source", "K_Hbeta", "K_Hbeta_source
               "pinion", "gear"}
 MEMBER_KEYS = {"load_cycles", "Z_BD", "sigma_H_MPa", "Z_NT", "Z_X", "sigma_HG_MPa", "sigma_HP_MPa", "S_H", "Y_F",
                "Y_S", "Y_B", "Y_DT", "sigma_F0_MPa", "sigma_F_MPa", "Y_delta_rel_T", "Y_R_rel_T", "Y_X", "Y_NT",
-               "sigma_FG_MPa", "sigma_FP_MPa", "S_F"}
+               "sigma_FG_MPa", "sigma_FP_MPa", "S_F", "Y_M"}
 
 
 def _message(w) -> str:

@@ -13,6 +13,7 @@ import pytest
 
 from gearcli.config import load_design
 from gearcli.design import compute_design
+from gearcli.io.channels import named
 from gearcli.model import TorsionalModel
 from gearcli.scene import spec_from_design
 
@@ -98,6 +99,6 @@ def test_compiled_run_equals_scipy_on_the_fan_drive():
                            error_estimate=False) for e in ("python", "compiled")]
     assert runs[1].solver.engine == "compiled"
     assert runs[0].solver.nfev == runs[1].solver.nfev
-    for k in runs[0].channels:
-        np.testing.assert_allclose(runs[1].channels[k], runs[0].channels[k], rtol=1e-12,
-                                   atol=1e-12 * np.abs(runs[0].channels[k]).max(), err_msg=k)
+    for k in named(runs[0]):
+        np.testing.assert_allclose(named(runs[1])[k], named(runs[0])[k], rtol=1e-12,
+                                   atol=1e-12 * np.abs(named(runs[0])[k]).max(), err_msg=k)

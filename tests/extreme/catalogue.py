@@ -24,6 +24,8 @@ from pathlib import Path
 import numpy as np
 from handcalc import Train, read
 
+from gearcli.io.channels import named
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENES_DIR = ROOT / "configs" / "extreme"
 DEG = math.pi / 180.0
@@ -79,7 +81,7 @@ class Series:
 
     def __init__(self, result, train: Train):
         self.t = result.time_s
-        self.ch = result.channels
+        self.ch = named(result)
         self.n_stages = len(train.stages)
         lo, hi = result.window_s
         self.win = (self.t >= lo - 1e-12) & (self.t <= hi + 1e-12)
@@ -282,12 +284,12 @@ NEEDS_RESULT = {"energy_residual", "warning", "damping_loss"}
 def common_outcomes(scene: Scene, result) -> list[Outcome]:
     """The checks every scene gets: finished, the expected auto method, finite channels, cost."""
     sv = result.solver
-    bad = [k for k, v in result.channels.items() if not np.all(np.isfinite(v))]
+    bad = [k for k, v in named(result).items() if not np.all(np.isfinite(v))]
     return [
         Outcome("finished", float(sv.status), 0, sv.status == 0, f"status {sv.status}"),
         Outcome("method", 0.0, 0, sv.requested_method == "auto" and sv.method == scene.method,
                 f"auto picked {sv.method} (expected {scene.method}): {sv.choice_reason}"),
-        Outcome("finite", float(len(bad)), 0, not bad and len(result.channels) > 0,
+        Outcome("finite", float(len(bad)), 0, not bad and len(named(result)) > 0,
                 "all channels finite" if not bad else f"non-finite: {', '.join(bad)}"),
         Outcome("nfev", float(sv.nfev), scene.nfev_ceiling, sv.nfev <= scene.nfev_ceiling,
                 f"nfev {sv.nfev} <= {scene.nfev_ceiling}"),

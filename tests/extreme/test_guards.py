@@ -22,6 +22,7 @@ from gearcli.cli import cli
 from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.errors import SimulationError
+from gearcli.io.channels import named
 from gearcli.model import DriveSpec, LoadSpec, MeshSpec, ModelSpec, TorsionalModel
 from gearcli.scene import spec_from_design
 from gearcli.simulate import run_simulation, simulate_model
@@ -74,7 +75,7 @@ def test_radau_across_the_ramp_end_follows_the_rigid_body_force(rtol):
     sim = run_simulation(cfg, design, method="Radau", rtol=rtol)
     train = Train(read(SCENES_DIR / "stiff_linear_10000x.toml"))
     for k in range(3):
-        dev = np.abs(sim.channels[f"stage{k + 1}_tangential_N"] - train.rigid_tangential_N(k, sim.time_s))
+        dev = np.abs(named(sim)[f"stage{k + 1}_tangential_N"] - train.rigid_tangential_N(k, sim.time_s))
         assert dev.max() < 0.02 * train.static_tangential_N(k), (k, dev.max())
     assert sim.energy.residual_relative < 1e-6  # quadratures under error control: no false energy warning
     # no other warning; at rtol 1e-6 Radau's 51 steps cannot show the ~1 % ringing, and the run says so per

@@ -10,6 +10,7 @@ from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
 from gearcli.cli import cli
+from gearcli.core.channels import Channel
 from gearcli.design.shafts import stage_layout
 from gearcli.life.channels import reaction_series
 from tests.life.scenes import COUNTERSHAFT, design_of
@@ -20,7 +21,8 @@ def test_channels_at_the_static_force_equal_the_design_reactions():
     reactions (they are linear in the mesh forces)."""
     cfg, d = design_of(COUNTERSHAFT)
     lay = stage_layout(cfg, d.stages)
-    ft = {f"stage{s.index}_tangential_N": np.array([1.0, 2.0]) * s.static_force_N.tangential for s in d.stages}
+    ft = {Channel("tangential_force", f"stage{s.index}"): np.array([1.0, 2.0]) * s.static_force_N.tangential
+          for s in d.stages}
     r = reaction_series(lay, d, ft)
     for j, b in enumerate(d.bearings):
         assert_allclose(r[j, :, 0], [b.radial_y_N, b.radial_z_N, b.axial_N], rtol=1e-9, atol=1e-9)

@@ -20,6 +20,7 @@ from scipy.optimize import brentq
 
 from gearcli.config import load_design
 from gearcli.design import compute_design
+from gearcli.io.channels import named
 from gearcli.model.elements import machine
 from gearcli.model.spec import MotorSpec
 from gearcli.scene import spec_from_design
@@ -142,7 +143,7 @@ def test_fan_drive_operating_speed_and_start_time():
     summary = simulation_dict(res)["summary"]  # the JSON contract's keys
     assert summary["start_time_s"] == motor["start_time_s"] and summary["operating_slip"] == motor["operating_slip"]
     assert summary["operating_slip"] == pytest.approx(1.0 - w_op / (1500 * RPM), abs=0.1 / 1500)
-    assert {"motor_torque_Nm", "motor_speed_rpm"} <= set(res.channels)
+    assert {"motor_torque_Nm", "motor_speed_rpm"} <= set(named(res))
 
 
 def test_fan_drive_four_times_the_load_warns_about_the_motor():
@@ -207,7 +208,7 @@ def test_a_speed_ramp_beyond_the_breakdown_torque_warns(tmp_path):
     assert j_eq * 1.5 * 1450 * RPM / 0.005 > 2.8 * 15e3 / (1460 * RPM)  # the closed form says it must warn
     warned = [d for d in res.diagnostics if d.code == "ramp_over_breakdown"]
     assert warned and warned[0].data["torque_Nm"] > warned[0].data["breakdown_torque_Nm"]
-    assert "motor_torque_Nm" in res.channels and "motor_speed_rpm" in res.channels
+    assert "motor_torque_Nm" in named(res) and "motor_speed_rpm" in named(res)
     calm = run_simulation(*(lambda c: (c, compute_design(c)))(load_design_file(path, (motor,))))
     assert not [d for d in calm.diagnostics if d.code == "ramp_over_breakdown"]  # 0.2 s is within the motor
 

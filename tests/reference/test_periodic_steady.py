@@ -20,6 +20,7 @@ from numpy.testing import assert_allclose
 from gearcli import diagnostics as dg
 from gearcli.config import load_design
 from gearcli.design import compute_design
+from gearcli.io.channels import named
 from gearcli.results import REGIME_DOUBLE_SIDED, REGIME_NO_IMPACT, REGIME_SINGLE_SIDED
 from gearcli.simulate import run_simulation
 
@@ -71,7 +72,7 @@ def test_periodic_statistics_agree_with_a_long_window_over_whole_periods(periodi
     t = ref.time_s
     mask = (t >= start - 1e-9) & (t < duration - 0.5 * MESH_PERIOD_S / per)
     assert mask.sum() == n_periods * per
-    ft, q = ref.channels["stage1_tangential_N"][mask], ref.channels["stage1_dte_um"][mask]
+    ft, q = named(ref)["stage1_tangential_N"][mask], named(ref)["stage1_dte_um"][mask]
     a = periodic.stages[0]
     assert_allclose(a.tangential_N.mean, ft.mean(), rtol=PROMISE)
     assert_allclose(a.dte_um.mean, q.mean(), rtol=PROMISE)
@@ -80,7 +81,7 @@ def test_periodic_statistics_agree_with_a_long_window_over_whole_periods(periodi
     assert_allclose(a.dte_um.rms, q.std(), atol=PROMISE * q.mean())
     # extremes: the stiffness has kinks (the contact-line length is piecewise linear), so a sampled extreme can
     # miss the true one by half the largest change between neighbouring samples, on either grid
-    pw = periodic.channels["stage1_tangential_N"][(periodic.time_s >= periodic.window_s[0] - 1e-9)]
+    pw = named(periodic)["stage1_tangential_N"][(periodic.time_s >= periodic.window_s[0] - 1e-9)]
     grids = 0.5 * (np.max(np.abs(np.diff(ft))) + np.max(np.abs(np.diff(pw))))
     assert grids < 0.02 * (ft.max() - ft.min())  # the bound stays tight: under 2 % of the swing
     assert_allclose([a.tangential_N.min, a.tangential_N.max], [ft.min(), ft.max()], atol=grids + PROMISE * ft.mean())
@@ -125,8 +126,8 @@ def test_dte_channel_is_the_deflection_in_um(periodic):
     # until transmission error is modelled q = delta: the DTE exceeds the penetration along the line of
     # action by nothing when there is no gap (penetration is cos(beta_b) delta, in mm)
     cb = math.cos(math.asin(math.sin(math.radians(9)) * math.cos(math.radians(20))))
-    q = periodic.channels["stage1_dte_um"]
-    pen = periodic.channels["stage1_penetration_mm"]
+    q = named(periodic)["stage1_dte_um"]
+    pen = named(periodic)["stage1_penetration_mm"]
     assert_allclose(q * 1e-6 * cb, pen * 1e-3, rtol=1e-12, atol=1e-15)
 
 
@@ -203,7 +204,7 @@ def test_principal_parametric_resonance_gives_the_period_2_response():
 
     t = sim.time_s
     w = (t >= sim.window_s[0] - 1e-12) & (t < sim.window_s[1] - 1e-9)
-    half = order_amplitude(t[w], sim.channels["stage1_dte_um"][w], 17 * 815 / 120, whole_periods=True)
+    half = order_amplitude(t[w], named(sim)["stage1_dte_um"][w], 17 * 815 / 120, whole_periods=True)
     assert half > 0.1 * sim.stages[0].dte_um.rms
     # the teeth separate each cycle but never reach the back flank
     assert sim.stages[0].regime == REGIME_SINGLE_SIDED

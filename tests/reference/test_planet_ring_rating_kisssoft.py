@@ -10,17 +10,24 @@ grade 6, 175 200 h, K_A 1.25 and K_γ 1.10 (given as K_A 1.375, as the sister su
 σ_F0 are the report's nominal stresses), K_v user 1.05 (the report's for this mesh), K_Hβ user 1.15, S_Hmin 1.25,
 S_Fmin 1.56.
 
-Tolerances: half a unit of the printed last digit, widened where stated beside the assertion. Not compared: the
-planet's σ_FG, σ_FP and S_F (the report applies Y_M = 0.7 to the idler planet; gearcli uses 1), and the ring's
-root (Y_F 1.27, Y_S 2.13, σ_F0 95.32 printed): gearcli does not rate the internal gear's tooth root.
+Tolerances: half a unit of the printed last digit, widened where stated beside the assertion. The planet's
+σ_FG carries Y_M = 0.7 (an idler), as the report's "Alternating bending factor YM 0.700" does. The ring's root:
+the report computes the internal gear's root geometry with its pinion-type cutter ("z0 = 36, x0 = 0,
+rofP* = 0.300") and the ring's own reference profile (ρ_fP* 0.30, profile B), and treats the ring's rim as absent
+(Y_B 1.00: "Outer diameter of gear rim 0.00"); a gearcli stage has one basic rack (here the sun's and planet's
+ρ_fP* 0.38) and no cutter key, so the ring's Y_F, Y_S are compared at the level of ``internal_tooth_form`` with the
+report's ring inputs, and end to end only the factors that do not depend on them.
 """
 
 from __future__ import annotations
+
+import math
 
 from numpy.testing import assert_allclose
 
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
+from gearcli.design import rating_root as rr
 from tests.reference.test_planetary_kisssoft import nrel_stage_1
 
 ROUGH = {"flank_roughness_Rz_um": 4.8, "root_roughness_Rz_um": 20.0}
@@ -92,26 +99,12 @@ def test_planet_root_on_the_ring_side():
                     [1.005, 0.957, 0.800, 0.906], atol=5e-4)  # YdrelT, YRrelT, YX, YNT
 
 
-def test_ring_root_is_not_rated_and_says_so():
-    ring = _rating(_doc()).gear
-    assert ring.Y_F is None and ring.S_F is None and ring.sigma_F_MPa is None
-    assert "not rated" in ring.bending_not_rated
-
-
 def test_load_sharing_factor_scales_the_ring_mesh_like_the_sun_mesh():
     """K_γ multiplies the most loaded planet's force on both meshes: σ_H0 ∝ √K_γ, σ_F0 ∝ K_γ."""
     base, shared = _rating(_doc()), _rating(_doc(1.1))
     assert_allclose(shared.sigma_H0_MPa / base.sigma_H0_MPa, 1.1 ** 0.5, rtol=1e-12)
     assert_allclose(shared.pinion.sigma_F0_MPa / base.pinion.sigma_F0_MPa, 1.1, rtol=1e-12)
-
-
-def test_iso_dynamic_factor_takes_the_sun_planet_meshs():
-    doc = _doc()
-    doc["rating"]["dynamic_factor"] = "iso"
-    st = compute_design(DesignFile.model_validate(doc)).stages[0]
-    assert st.planetary is not None and st.rating is not None
-    r = st.planetary.planet_ring.rating
-    assert r is not None and r.K_v_source == "sun_planet" and r.K_v == st.rating.K_v
+    assert_allclose(shared.gear.sigma_F0_MPa / base.gear.sigma_F0_MPa, 1.1, rtol=1e-12)  # the ring's root too
 
 
 def test_ring_pitting_below_minimum_is_a_warning():
@@ -120,3 +113,153 @@ def test_ring_pitting_below_minimum_is_a_warning():
     hits = [d for d in result.diagnostics if d.code == "pitting_safety_low" and d.data.get("mesh") == "planet_ring"]
     assert [d.data["member"] for d in hits] == ["ring"]
     assert "planet–ring" in hits[0].message
+
+
+def _stage(doc: dict):
+    st = compute_design(DesignFile.model_validate(doc)).stages[0]
+    assert st.planetary is not None and st.rating is not None
+    return st
+
+
+def test_planet_is_an_idler_in_both_meshes():
+    """Y_M = 0.7 on the planet's σ_FG, sun side and ring side alike (report: YM 1.000 / 0.700 / 1.000;
+    sigFG 586.11 / 419.35 / 429.14; sigFP 375.71 / 268.82 / 275.09; SF 3.33 / 2.48 / 2.71 / 2.79)."""
+    st = _stage(_doc())
+    sun, planet_sun_side = st.rating.pinion, st.rating.gear
+    planet = st.planetary.planet_ring.rating.pinion
+    assert (sun.Y_M, planet_sun_side.Y_M, planet.Y_M) == (1.0, 0.7, 0.7)
+    # by hand: σ_FG = σ_Flim Y_ST Y_NT Y_δrelT Y_RrelT Y_X Y_M = 430 · 2 · 0.906 · 1.005 · 0.957 · 0.800 · 0.7
+    hand = 430.0 * 2.0 * planet.Y_NT * planet.Y_delta_rel_T * planet.Y_R_rel_T * planet.Y_X * 0.7
+    assert_allclose(planet.sigma_FG_MPa, hand, rtol=1e-12)
+    assert_allclose([planet.sigma_FG_MPa, planet_sun_side.sigma_FG_MPa], [419.35, 419.35], atol=5e-3)  # sigFG
+    # sigFP 268.82 is the unrounded σ_FG/1.56: 419.35/1.56 = 268.814, so 1e-2
+    assert_allclose(planet.sigma_FP_MPa, 268.82, atol=1e-2)
+    assert_allclose(planet.S_F, 2.71, atol=5e-3)  # SF on the ring side, σ_F 154.50 as printed
+    assert_allclose(planet.S_F, planet.sigma_FG_MPa / planet.sigma_F_MPa, rtol=1e-12)
+    assert_allclose(planet_sun_side.S_F, planet_sun_side.sigma_FG_MPa / planet_sun_side.sigma_F_MPa, rtol=1e-12)
+
+
+def test_ring_root_geometry_against_the_report():
+    """The ring's root by ISO 6336-3's internal gear method with the report's ring inputs (z 56, m_n 45,
+    x −0.5013, d_a 2475.118, ε_α 1.278, ρ_fP* 0.30, cutter z0 36). Printed: hF* 1.742, alfFen 19.59°,
+    sFn* 2.875, roF* 0.494, dsFn −2673.522, alfsFn 60°, YF 1.27, YS 2.13."""
+    m = 45.0
+    f = rr.internal_tooth_form(56, m, math.radians(20.0), 0.0, 0.0, -0.5013, 2475.118, 2520.0, 1.278, (1.25, 0.30),
+                               cutter_teeth=36)
+    # the load point is pure involute geometry (outer point of single contact of the ring, d-B.e 2497.731)
+    assert_allclose(math.degrees(f["alpha_Fen"]), 19.59, atol=5e-3)
+    assert_allclose(f["d_en"], 2497.731, atol=0.2)  # ε_α printed to 3 decimals: ±0.0005 p_bt = ±0.07 mm roll
+    # the fillet: gearcli takes the standard's rack-generated trochoid at the 60° tangent (z_n < 0) with the
+    # cutter's z0 in ρ_F; the report computes Y_F, Y_S "with pinion type cutter" from its own tooth form.
+    # s_Fn 0.6 %, ρ_F 0.7 %,
+    # h_Fe 0.9 % and the section's diameter 0.07 % apart, so 1e-2 (1e-3 for d_sFn)
+    assert_allclose([f["s_Fn"] / m, f["rho_F"] / m, f["h_Fe"] / m], [2.875, 0.494, 1.742], rtol=1e-2)
+    assert_allclose(f["d_sFn"], 2673.522, rtol=1e-3)
+    # hence Y_F 2 % above the printed 1.27 (Y_F ∝ h_Fe/s_Fn²), Y_S within 0.5 %
+    assert_allclose(f["Y_F"], 1.27, rtol=2.5e-2)
+    assert_allclose(f["Y_S"], 2.13, rtol=5e-3)
+    # the method-B expressions themselves, fed the report's printed root geometry, give its Y_F and Y_S
+    s, h, rho, alpha = 2.875, 1.742, 0.494, math.radians(19.59)
+    ell, q = s / h, s / (2.0 * rho)
+    assert_allclose(6.0 * h * math.cos(alpha) / (s * s * math.cos(math.radians(20.0))), 1.27, atol=5e-3)
+    assert_allclose((1.2 + 0.13 * ell) * q ** (1.0 / (1.21 + 2.3 / ell)), 2.13, atol=5e-3)
+
+
+def test_ring_root_without_cutter_takes_the_substitute_racks_fillet():
+    """Without a cutter the fillet is the substitute rack's: ρ_F = ρ_fP exactly; a finite cutter rounds it more
+    (ρ_F > ρ_fP, the internal gear's fillet is generated by a convex tool tip rolling inside it), so Y_S is
+    larger (conservative) with the rack."""
+    args = (56, 45.0, math.radians(20.0), 0.0, 0.0, -0.5013, 2475.118, 2520.0, 1.278, (1.25, 0.30))
+    rack, cutter = rr.internal_tooth_form(*args), rr.internal_tooth_form(*args, cutter_teeth=36)
+    assert rack["rho_F"] == 0.30 * 45.0
+    assert cutter["rho_F"] > rack["rho_F"] and rack["Y_S"] > cutter["Y_S"]
+    assert rack["s_Fn"] == cutter["s_Fn"] and rack["Y_F"] == cutter["Y_F"]  # ρ_F enters Y_S only
+
+
+def test_internal_rim_factor_by_hand():
+    """Y_B of an internal gear: 1.15 ln(8.324 h_t/s_R) for 1.75 < s_R/h_t < 3.5, 1 from 3.5 (continuous there to
+    3 decimals), held at its 1.75 value below; no rim given: 1 (the report's ring, Y_B 1.00)."""
+    assert rr.internal_rim_factor(None, 101.25) == 1.0
+    assert_allclose(rr.internal_rim_factor(2.5 * 100.0, 100.0), 1.15 * math.log(8.324 / 2.5), rtol=1e-12)
+    assert_allclose(1.15 * math.log(8.324 / 3.5), 1.0, atol=5e-3)
+    assert rr.internal_rim_factor(4.0 * 100.0, 100.0) == 1.0
+    assert rr.internal_rim_factor(100.0, 100.0) == rr.internal_rim_factor(175.0, 100.0)
+
+
+def test_ring_root_end_to_end():
+    """The ring's root in the design: the factors independent of the cutter and of the ring's own rack match the
+    report (YRrelT 0.957, YX 0.850, YNT 0.907, YM 1.000, σ_F/σ_F0 = 153.89/95.32); the ring's rim (157.5 mm under
+    a 101.25 mm tooth, s_R/h_t 1.56) gives Y_B = 1.15 ln(8.324/1.75) where the report has no rim."""
+    st = _stage(_doc())
+    r = st.planetary.planet_ring.rating
+    planet, ring = r.pinion, r.gear
+    assert ring.S_F is not None and ring.Y_M == 1.0
+    assert_allclose([ring.Y_R_rel_T, ring.Y_X, ring.Y_NT], [0.957, 0.850, 0.907], atol=5e-4)
+    assert_allclose(ring.Y_B, 1.15 * math.log(8.324 / 1.75), rtol=1e-12)
+    # the mesh's load factors act on both roots alike: K_A K_v K_Fβ K_Fα = 153.89/95.32 = 1.61446 (±1e-4 from
+    # the printed digits), the planet's 154.50/95.70
+    assert_allclose(ring.sigma_F_MPa / ring.sigma_F0_MPa, 153.89 / 95.32, rtol=2e-4)
+    assert_allclose(ring.sigma_F_MPa / ring.sigma_F0_MPa, planet.sigma_F_MPa / planet.sigma_F0_MPa, rtol=1e-12)
+    # σ_F0 = F_t/(b m_n) Y_F Y_S Y_β Y_B Y_DT with the planet's F_t/(b m_n) (the same force on both flanks)
+    nominal = planet.sigma_F0_MPa / (planet.Y_F * planet.Y_S)
+    assert_allclose(ring.sigma_F0_MPa, nominal * ring.Y_F * ring.Y_S * ring.Y_B, rtol=1e-12)
+    # σ_FG/Y_δrelT = 580 · 0.907 · 0.957 · 0.850 = 429.14/1.003 (the report interpolates Y_δrelT by N_L and takes
+    # the slip layer from the ring's yield point; gearcli's Y_δrelT is the fatigue value of a typical grade)
+    assert_allclose(ring.sigma_FG_MPa / ring.Y_delta_rel_T, 429.14 / 1.003, rtol=1e-3)
+    assert_allclose(ring.S_F, ring.sigma_FG_MPa / ring.sigma_F_MPa, rtol=1e-12)
+
+
+def test_internal_mesh_resonance_against_the_report():
+    """The planet–ring mesh's own ISO 6336-1 resonance: m_red = the planet's m* (ring infinitely heavy),
+    printed mRed 2.4597 kg/mm, nE1 1435 rpm, N 0.028 (c_γα 16.063, z_p 17, planet 39.9 rpm relative)."""
+    mesh = _stage(_doc()).planetary.planet_ring
+    assert_allclose(mesh.reduced_mass_kg_mm, 2.4597, atol=5e-5)
+    assert_allclose(mesh.resonance_speed_rpm, 1435.0, atol=0.5)
+    assert_allclose(mesh.resonance_ratio, 0.028, atol=5e-4)
+    # by hand from the printed c_γα and m_red: n_E1 = 30000/(π z_p) √(c_γα/m_red)
+    assert_allclose(30000.0 / (math.pi * 17) * math.sqrt(16.063 / 2.4597), 1435.0, atol=0.5)
+
+
+def test_internal_mesh_dynamic_factor_by_hand():
+    """K_v of the planet–ring mesh from its own N (subcritical, ISO 6336-1 method B), by hand from the report's
+    printed figures: c′ 13.289, f_pb 35.70 (the ring's fpbT), f_fα 40.00 (the ring's ffaT), y_α 5.419, y_f 6.071,
+    F_t 779 454.877 N × K_A K_γ 1.375 over b 491, ε_γ 1.278 (C_v1 0.32, C_v2 0.34, C_v3 0.23), no tip relief
+    (B_k = 1), N = 39.9/1435. The report itself uses a given K_v 1.05 for this mesh."""
+    doc = _doc()
+    doc["rating"]["dynamic_factor"] = "iso"
+    st = _stage(doc)
+    r = st.planetary.planet_ring.rating
+    assert r is not None and r.K_v_source == "iso"
+    line_load = 779454.877 * 1.375 / 491.0
+    b_p, b_f = 13.289 * (35.70 - 5.419) / line_load, 13.289 * (40.00 - 6.071) / line_load
+    hand = 1.0 + 39.9 / 1435.0 * (0.32 * b_p + 0.34 * b_f + 0.23 * 1.0)
+    assert_allclose(r.K_v, hand, atol=2e-5)  # N printed to 3 digits: ±1e-3 relative of K_v − 1 ≈ 0.01
+    assert r.K_v != st.rating.K_v  # no longer the sun–planet mesh's
+
+
+def test_ring_rim_below_the_standards_range_is_a_warning():
+    """s_R/h_t = 157.5/101.25 = 1.556 < 1.75: outside ISO 6336-3's internal-gear Y_B, said as rating_out_of_range;
+    a rim of 3.5 tooth depths or more is inside (Y_B = 1) and quiet."""
+    def hits(doc):
+        result = compute_design(DesignFile.model_validate(doc))
+        return [d for d in result.diagnostics if d.code == "rating_out_of_range" and d.data.get("member") == "ring"]
+
+    found = hits(_doc())
+    assert [d.data["quantity"] for d in found] == ["rim_ratio"]
+    assert_allclose(found[0].data["value"], 157.5 / 101.25, rtol=1e-3)
+    doc = _doc()
+    doc["stage"][0]["ring"]["rim_thickness_mm"] = 3.5 * 101.25
+    assert hits(doc) == []
+
+
+def test_sun_counts_one_load_cycle_per_planet():
+    """The sun meets all three planets per turn relative to the carrier: N_L = N · 60 |n_s − n_c| H, and the
+    report's sun life factors follow from it (ZNT 0.909, YNT 0.888, against 0.940 and 0.908 for one meeting);
+    σ_HG 1368.61 and σ_FG 586.11 printed for gear 1 (the sun)."""
+    st = compute_design(DesignFile.model_validate(_doc())).stages[0]
+    assert st.planetary is not None and st.rating is not None
+    sun = st.rating.pinion
+    n_rel = abs(st.pinion.speed_rpm)  # the sun's speed in the carrier's frame, rpm
+    assert_allclose(sun.load_cycles, 3 * 60.0 * n_rel * 175200.0, rtol=1e-12)
+    assert_allclose([sun.Z_NT, sun.Y_NT], [0.909, 0.888], atol=5e-4)
+    assert_allclose([sun.sigma_HG_MPa, sun.sigma_FG_MPa], [1368.61, 586.11], atol=1.5e-2)

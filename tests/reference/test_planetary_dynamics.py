@@ -22,6 +22,7 @@ from numpy.testing import assert_allclose
 
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
+from gearcli.io.channels import named
 from gearcli.simulate import run_simulation
 
 Z_S, Z_P, Z_R, N, M_N = 24, 30, 84, 3, 4.0
@@ -66,7 +67,7 @@ def test_identical_planets_share_the_sun_torque_equally(equal):
     assert_allclose(st.load_sharing_factor, 1.0, atol=1e-6)
     # the stage's own channels are planet 1's sun mesh
     assert_allclose(st.tangential_N.mean, st.planets[0].sun.tangential_N.mean, rtol=1e-12)
-    assert "stage1_planet3_ring_tangential_N" in sim.channels and "stage1_planet2_sun_dte_um" in sim.channels
+    assert "stage1_planet3_ring_tangential_N" in named(sim) and "stage1_planet2_sun_dte_um" in named(sim)
 
 
 @pytest.mark.parametrize("error_um", [2.0, 5.0])
@@ -115,7 +116,7 @@ def _phased_run(z_s: int, z_p: int, z_r: int):
     cfg = DesignFile.model_validate(doc)
     sim = run_simulation(cfg, compute_design(cfg))
     window = sim.time_s >= 0.2
-    return sim, sim.channels["shaft2_speed_deg_s"][window]
+    return sim, named(sim)["shaft2_speed_deg_s"][window]
 
 
 def test_mesh_phasing_between_planets_follows_the_geometry():

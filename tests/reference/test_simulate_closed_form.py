@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
+from gearcli.io.channels import named
 from gearcli.model import DriveSpec, LoadSpec, MeshSpec, ModelSpec, TorsionalModel
 from gearcli.simulate import simulate_model
 
@@ -32,7 +33,7 @@ def mesh(**kw) -> MeshSpec:
 
 
 def speeds_rad_s(sim, n):
-    return np.array([sim.channels[f"shaft{i + 1}_speed_deg_s"] for i in range(n)]) * DEG
+    return np.array([named(sim)[f"shaft{i + 1}_speed_deg_s"] for i in range(n)]) * DEG
 
 
 # ----------------------------------------------------------------------- linear free vibration
@@ -52,7 +53,7 @@ def test_linear_mesh_oscillates_at_the_analytic_natural_frequency():
     duration = periods * 2 * math.pi / w_n
     sim = simulate_model(model, duration_s=duration, steps=periods * 100, method="DOP853", rtol=1e-10, y0=y0)
     t = sim.time_s
-    delta = sim.channels["stage1_penetration_mm"] * 1e-3 / CB
+    delta = named(sim)["stage1_penetration_mm"] * 1e-3 / CB
     exact = delta_s - 0.5 * delta_s * np.cos(w_n * t)
     # DOP853 at rtol 1e-10: global error over 20 periods ~1e-8 of the amplitude; 1e-6 is a margin of 100
     assert_allclose(delta, exact, rtol=0, atol=1e-6 * 0.5 * delta_s)
@@ -91,10 +92,10 @@ def test_very_stiff_meshes_give_the_rigid_body_input_torque():
     rigid = J_eff * alpha1 + rho[2] * T_load
     # quasi-static lag of the compliant meshes: relative size ~ 2 zeta / (w_n T) + 1/(w_n T)^2 ~ 1e-3 of the
     # peak torque; tolerance 3e-3 of the peak
-    assert_allclose(sim.channels["input_torque_Nmm"] * 1e-3, rigid, rtol=0, atol=3e-3 * rigid.max())
+    assert_allclose(named(sim)["input_torque_Nmm"] * 1e-3, rigid, rtol=0, atol=3e-3 * rigid.max())
     # stage 2 carries the output shaft's inertia and the load: F_bt2 r_g2 = J_3 alpha_3 + T_L
     f_bt2 = (J[2] * rho[2] * alpha1 + T_load) / r2g
-    ft2 = sim.channels["stage2_tangential_N"]
+    ft2 = named(sim)["stage2_tangential_N"]
     assert_allclose(ft2, f_bt2 * math.cos(20.3 * DEG), rtol=0, atol=3e-3 * f_bt2.max())
 
 
@@ -118,7 +119,7 @@ def test_free_vibration_never_gains_energy(c, k_mm, e, jp, jg, p0):
     w = math.sqrt(kn * CB**2 * (R_P**2 / jp + R_G**2 / jg))
     sim = simulate_model(model, duration_s=8 * 2 * math.pi / w, steps=800, method="DOP853", rtol=1e-10, y0=y0)
     wp, wg = speeds_rad_s(sim, 2)
-    p = np.abs(sim.channels["stage1_penetration_mm"]) * 1e-3
+    p = np.abs(named(sim)["stage1_penetration_mm"]) * 1e-3
     energy = 0.5 * (jp * wp**2 + jg * wg**2) + K * p ** (e + 1) / (e + 1)
     # E is ~0.5 J w^2 ~ 1e3-1e4 J of rigid rotation plus the vibration; the global error of an rtol-controlled
     # run grows with its step count (hypothesis found 1.4e-8 E at rtol 1e-9), so rtol 1e-10 keeps drift < 1e-8 E
@@ -143,8 +144,8 @@ def test_backlash_rattle_touches_both_flanks():
     y0 = model.initial_state()
     y0[2] = (R_P * 60.0 - v) / R_G  # the gear lags: delta' = r_bp w_p - r_bg w_g = v
     sim = simulate_model(model, duration_s=0.02, steps=4000, method="DOP853", rtol=1e-9, y0=y0)
-    t, pen = sim.time_s, sim.channels["stage1_penetration_mm"]
-    ft = sim.channels["stage1_tangential_N"]
+    t, pen = sim.time_s, named(sim)["stage1_penetration_mm"]
+    ft = named(sim)["stage1_tangential_N"]
     t1 = (j / 2) / (v * CB)
     first = t[np.nonzero(pen)[0][0]]
     assert t1 <= first <= t1 + (t[1] - t[0]) + 1e-12  # first contact in the sample after t1
@@ -184,7 +185,7 @@ def test_time_varying_stiffness_excites_the_mesh_frequency(overlap):
     lo, hi = sim.window_s
     assert_allclose([lo, hi], [0.2, 1.0], rtol=1e-12)  # no ramps: 20 % of the run settles
     mask = sim.time_s >= lo - 1e-12
-    f = sim.channels["stage1_tangential_N"][mask]
+    f = named(sim)["stage1_tangential_N"][mask]
     dt = sim.time_s[1] - sim.time_s[0]
     spectrum = np.abs(np.fft.rfft((f - f.mean()) * np.hanning(f.size)))
     freqs = np.fft.rfftfreq(f.size, dt)

@@ -20,6 +20,7 @@ from numpy.testing import assert_allclose
 
 from gearcli.config import load_design
 from gearcli.design import compute_design
+from gearcli.io.channels import named
 from gearcli.simulate import run_simulation
 
 CONFIGS = Path(__file__).resolve().parents[2] / "configs"
@@ -126,13 +127,13 @@ def test_energy_balance_closes(seed):
 
 
 def test_output_contract(seed):
-    names = list(seed.channels)
+    names = list(named(seed))
     assert names[:5] == ["shaft1_speed_deg_s", "shaft2_speed_deg_s", "shaft3_speed_deg_s", "shaft4_speed_deg_s",
                          "input_torque_Nmm"]
     assert names[5:10] == ["stage1_tangential_N", "stage1_radial_N", "stage1_axial_N", "stage1_penetration_mm",
                            "stage1_dte_um"]
     assert len(names) == 5 + 5 * 3 and seed.time_s.size == 2001
-    assert all(np.all(np.isfinite(v)) and v.size == 2001 for v in seed.channels.values())
+    assert all(np.all(np.isfinite(v)) and v.size == 2001 for v in named(seed).values())
     assert_allclose(seed.window_s, (0.18 + 0.2 * 0.32, 0.5), rtol=1e-12)
     assert set(seed.solver.atol) == {"deflection_m", "speed_rad_s"}
     assert seed.solver.steps > 0 and seed.solver.nfev > seed.solver.steps
@@ -145,7 +146,7 @@ def test_default_tolerance_is_accurate(seed):
         assert_allclose(a.tangential_N.mean, b.tangential_N.mean, rtol=1e-4)
         assert_allclose(a.peak_tangential_N, b.peak_tangential_N, rtol=1e-3)
     assert_allclose(seed.output_speed_deg_s, tight.output_speed_deg_s, rtol=1e-6)
-    assert tight.time_s.size == 0 and tight.channels == {}  # want_series=False
+    assert tight.time_s.size == 0 and named(tight) == {}  # want_series=False
 
 
 def test_stiff_scene_is_integrated_implicitly_and_accurately():
@@ -175,4 +176,4 @@ def test_time_varying_backlash_scene_runs_as_its_header_says():
         assert_allclose(stage.tangential_N.mean, ft, rtol=2.5e-2)
     assert any(w.startswith("stage 1: the loaded (drive) flank loses contact") for w in sim.warnings)
     assert sim.solver.energy_residual < 1e-5 and sim.extra["parametric_work_J"] != 0.0
-    assert np.any(sim.channels["stage1_penetration_mm"] == 0.0)  # inside the gap at the start
+    assert np.any(named(sim)["stage1_penetration_mm"] == 0.0)  # inside the gap at the start

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from gearcli.api import evaluate_point
 from gearcli.model import codegen
 from gearcli.sweep.spec import Point
 from gearcli.sweep.worker import Scene, Task, run_task
@@ -20,11 +21,11 @@ def _points(direction: str, speeds) -> tuple[Point, ...]:
 def test_a_sweep_compiles_each_model_structure_once():
     scene = Scene(TE_SCENE.read_bytes(), TE_SCENE.name, SHORT)
     codegen._compiled.cache_clear()
-    rows = run_task(Task(scene, _points("none", (1500, 1600, 1700, 1800)), continuation=False))
+    rows = run_task(Task(scene, _points("none", (1500, 1600, 1700, 1800)), continuation=False, evaluate=evaluate_point))
     assert [r["status"] for r in rows] == ["ok"] * 4
     assert codegen._compiled.cache_info().misses == 1  # four cold starts: one structure
     codegen._compiled.cache_clear()
-    rows = run_task(Task(scene, _points("up", (1500, 1600, 1700, 1800)), continuation=True))
+    rows = run_task(Task(scene, _points("up", (1500, 1600, 1700, 1800)), continuation=True, evaluate=evaluate_point))
     assert [r["status"] for r in rows] == ["ok"] * 4
     # the first point starts cold on its ramps, the continued ones without ramps from a start angle: two
     assert codegen._compiled.cache_info().misses == 2

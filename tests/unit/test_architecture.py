@@ -43,3 +43,20 @@ def test_the_code_keeps_the_layers():
     script = Path(sys.executable).with_name("lint-imports")
     res = subprocess.run([str(script), "--no-cache"], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stdout[-3000:]
+
+
+def test_commands_reach_the_layers_only_through_the_facade():
+    """cli.py imports gearcli's api (the facade), io (the formatters), errors and core.text (its own messages),
+    nothing below: loading, designing, simulating, budgets and models are the facade's."""
+    import ast
+
+    allowed = ("gearcli.api", "gearcli.io", "gearcli.errors", "gearcli.core.text")
+    tree = ast.parse((ROOT / "gearcli" / "cli.py").read_text(encoding="utf-8"))
+    used = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("gearcli"):
+            used |= {f"{node.module}.{a.name}" if node.module == "gearcli" else node.module for a in node.names}
+        elif isinstance(node, ast.Import):
+            used |= {a.name for a in node.names if a.name.startswith("gearcli")}
+    below = sorted(m for m in used if m != "gearcli.__version__" and not m.startswith(allowed))
+    assert below == []

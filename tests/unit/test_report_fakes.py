@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from gearcli.core.channels import Channel
 from gearcli.results import (
     ChannelStats,
     DesignResult,
@@ -65,16 +66,16 @@ def fake_simulation(design: DesignResult, *, speed_err=0.0, force_err=0.0, peak_
     channels, dyn = {}, []
     for sh in design.shafts:
         factor = 1 + speed_err if sh.index == len(design.shafts) else 1.0
-        channels[f"shaft{sh.index}_speed_deg_s"] = np.full_like(t, sh.speed_deg_s * factor)
+        channels[Channel("speed", f"shaft{sh.index}")] = np.full_like(t, math.radians(sh.speed_deg_s * factor))
     for st in design.stages:
         f0 = st.static_force_N.tangential * (1 + force_err)
         ft = f0 * (1 + 0.05 * np.sin(2 * np.pi * ripple_Hz * t))
-        channels[f"stage{st.index}_tangential_N"] = ft
-        channels[f"stage{st.index}_radial_N"] = ft * math.tan(math.radians(20))
-        channels[f"stage{st.index}_axial_N"] = 0 * ft
-        channels[f"stage{st.index}_penetration_mm"] = np.full_like(t, 0.01)
+        channels[Channel("tangential_force", f"stage{st.index}")] = ft
+        channels[Channel("radial_force", f"stage{st.index}")] = ft * math.tan(math.radians(20))
+        channels[Channel("axial_force", f"stage{st.index}")] = 0 * ft
+        channels[Channel("penetration", f"stage{st.index}")] = np.full_like(t, 0.01e-3)
         peak = 1.5 * st.static_force_N.tangential * (1 + peak_err)
-        dyn.append(StageDynamics(st.index, _stats(ft[mask]), _stats(channels[f"stage{st.index}_radial_N"][mask]),
+        dyn.append(StageDynamics(st.index, _stats(ft[mask]), _stats(channels[Channel("radial_force", f"stage{st.index}")][mask]),
                                  _stats(0 * ft[mask]), _stats(np.full(mask.sum(), 0.01)),
                                  st.static_force_N.tangential, peak, 0.1, 1.5))
     out_speed = design.output_speed_deg_s * (1 + speed_err)

@@ -13,6 +13,7 @@ from numpy.testing import assert_allclose
 from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.errors import ConfigError, SimulationError
+from gearcli.io.channels import named
 from gearcli.model import DriveSpec, LoadSpec, MeshSpec, ModelSpec, TorsionalModel
 from gearcli.simulate import run_simulation, simulate_model
 from gearcli.simulate.choice import STIFFNESS_LIMIT, choose_method
@@ -126,7 +127,7 @@ def test_a_lightly_loaded_mesh_that_rattles_is_reported():
     y0[0] = 50 * 1.0 / (0.15 * 2e8 * math.cos(0.17) ** 2)
     sim = simulate_model(model, duration_s=0.2, steps=400, method="DOP853", y0=y0)
     assert any("loaded (drive) flank loses contact" in w for w in sim.warnings)
-    assert np.any(sim.channels["stage1_penetration_mm"] < 0)  # the back flank carries the rebound
+    assert np.any(named(sim)["stage1_penetration_mm"] < 0)  # the back flank carries the rebound
 
 
 def test_efficiency_and_deep_penetration_are_reported():
@@ -154,10 +155,10 @@ def test_torque_drive_starts_at_nominal_speed_and_holds_it_when_balanced():
     t_in = 5310.0 / (135150 / 6069)
     cfg, design = seed(['input.drive="torque"', f"input.torque_Nm={t_in!r}"])
     sim = run_simulation(cfg, design)
-    w1 = sim.channels["shaft1_speed_deg_s"]
+    w1 = named(sim)["shaft1_speed_deg_s"]
     assert_allclose(w1[0], 3600.0, rtol=1e-14)
     assert_allclose(sim.input_speed_deg_s, 3600.0, rtol=1e-3)  # mesh vibration only
-    assert_allclose(sim.channels["input_torque_Nmm"][-1], t_in * 1e3, rtol=1e-14)  # the prescribed torque
+    assert_allclose(named(sim)["input_torque_Nmm"][-1], t_in * 1e3, rtol=1e-14)  # the prescribed torque
     assert_allclose(sim.ratio, 135150 / 6069, rtol=1e-4)
     assert sim.solver.energy_residual < 1e-6
 

@@ -18,8 +18,9 @@ between. On the penetration ``p`` beyond the gap
               the gap; c = 2 zeta sqrt(k_lin m_e), k_lin the linearised dF/d delta at the static load, m_e
               the equivalent mass; both computed by :mod:`gearcli.model.assembly`),
 
-``g(phi) = L(phi) / L_mean`` (total contact-line length over its mean;
-:mod:`gearcli.model.contact_lines`) for a time-varying mesh, else 1, times the stiffness harmonics
+``g(phi) = L(phi + phi_c) / L_mean`` (total contact-line length over its mean;
+:mod:`gearcli.model.contact_lines`; ``phi_c`` a planet mesh's contact-line phase, 0 otherwise) for a
+time-varying mesh, else 1, times the stiffness harmonics
 ``1 - sum_j s_j cos(2 pi j phi + chi_j)``. The damping dissipates ``(F_n - K g p^e) p'`` (IMPACT,
 including the part the clamp removes) or ``c q'^2``; the work into a time-varying spring is
 ``K g p^e p'``; the transmission error does ``-F e'(phi) phi'`` on the bodies.
@@ -45,9 +46,9 @@ ROW_WIDTH = N_PARAM  # the law reads the whole row: PARAMS, then the harmonics
 PARAMS = ("cos_beta_b", "cos2_beta_b", "stiffness_N_m_e", "exponent", "damping_Ns_m", "inv_full_damping_1_m",
           "damping_slope", "half_gap_m", "time_varying", "contact_ratio", "overlap_ratio", "pinion_teeth",
           "full_damping_m", "viscous", "viscous_damping_Ns_m", "damping_ratio", "k_lin_N_m", "m_e_kg",
-          "n_te", "n_ks", "efficiency", "loss_width_W")
+          "n_te", "n_ks", "efficiency", "loss_width_W", "contact_phase_cycles")
 (I_CB, I_CB2, I_K, I_E, I_C, I_INVD, I_DC, I_HALF, I_TV, I_EA, I_EB, I_Z, I_D,
- I_VIS, I_CV, I_ZETA, I_KLIN, I_ME, I_NTE, I_NKS, I_ETA, I_LW) = range(len(PARAMS))
+ I_VIS, I_CV, I_ZETA, I_KLIN, I_ME, I_NTE, I_NKS, I_ETA, I_LW, I_CPH) = range(len(PARAMS))
 LOSS_WIDTH = 1e-3  # the power-flow sign's tanh width: 1e-3 of the static force times the nominal pitch-line speed
 I_TE = len(PARAMS)  # TE amplitudes, m
 I_TEP = I_TE + N_HARM  # TE phases, rad
@@ -76,6 +77,7 @@ def pack(spec) -> np.ndarray:
         raise ValueError(f"at most {N_HARM} transmission-error and stiffness harmonics")
     row[I_NTE], row[I_NKS] = len(te), len(ks)
     row[I_ETA] = spec.efficiency  # the loss's width is filled by the assembly (with_loss_width)
+    row[I_CPH] = spec.contact_phase_cycles  # a planet mesh's contact-line phase against the stage's phase
     row[I_TE:I_TE + len(te)] = te
     row[I_TEP:I_TEP + len(spec.transmission_error_phase_rad)] = spec.transmission_error_phase_rad
     row[I_KS:I_KS + len(ks)] = ks
@@ -215,8 +217,9 @@ def _elastic(P, p, phi):
     kph = 0.0
     e = P[I_E]
     if P[I_TV] != 0.0:
-        kph = P[I_K] * contact_slope(phi, P[I_EA], P[I_EB])
-        kk = P[I_K] * contact_factor(phi, P[I_EA], P[I_EB])
+        x = phi + P[I_CPH] if P[I_CPH] != 0.0 else phi
+        kph = P[I_K] * contact_slope(x, P[I_EA], P[I_EB])
+        kk = P[I_K] * contact_factor(x, P[I_EA], P[I_EB])
     if P[I_NKS] != 0.0:
         h, dh = harmonic_factor(P, phi)
         kph = kph * h + kk * dh
@@ -334,7 +337,8 @@ def potential(P, d, phi):
     touching, p, _, _ = _contact(P, dynamic_transmission_error(P, d, phi), 0.0)
     if not touching:
         return 0.0
-    kk = P[I_K] * contact_factor(phi, P[I_EA], P[I_EB]) if P[I_TV] != 0.0 else P[I_K]
+    x = phi + P[I_CPH] if P[I_CPH] != 0.0 else phi
+    kk = P[I_K] * contact_factor(x, P[I_EA], P[I_EB]) if P[I_TV] != 0.0 else P[I_K]
     if P[I_NKS] != 0.0:
         kk *= harmonic_factor(P, phi)[0]
     e = P[I_E]
