@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import cast
 
 from gearcli.config import DesignFile
+from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
 from gearcli.life import spectra
@@ -111,11 +112,14 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
 
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
-    planetary = [st.index for st in design.stages if st.planetary is not None]
-    if planetary:
-        raise DesignError(f"stage {planetary[0]} is planetary: the dynamic life route does not count the planet "
-                          "meshes' engagements yet; use --static", source=scene.source,
-                          key=f"stage[{planetary[0] - 1}].type")
+    notes: list[str] = []
+    if any(st.planetary is not None for st in design.stages):
+        # the simulated planets share the load themselves (their position errors): K_gamma = 1 in the rating
+        extra += ("rating.load_sharing_factor=1.0",)
+        notes += [f"stage {st.index}: the planets' load sharing is the simulation's (from planet.position_error_um); "
+                  f"[rating] load_sharing_factor = {st.planetary.load_sharing_factor:g} is not applied on the "
+                  "dynamic route" for st in design.stages
+                  if st.planetary is not None and st.planetary.load_sharing_factor != 1.0]
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
@@ -139,7 +143,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
                    peak_error=tuple(ld.peak_error for ld in loads))
-    warnings = [w for w in result.warnings if w not in design.warnings]  # the point's rating at K_v = 1: superseded
+    warnings = notes + [w for w in result.warnings if w not in design.warnings]  # the rating at K_v = 1: superseded
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
@@ -161,14 +165,34 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
         return ()
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
-    r = reaction_series(lay, design, {k: v[mask] for k, v in result.series.items()})
+    series = {k: v[mask] for k, v in result.series.items()}
     specs = lay.specs
-    out = []
-    for j, spec in enumerate(specs):
+
+    def equivalent(r: np.ndarray, j: int) -> float:
+        spec = specs[j]
         fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
         p = np.array([equivalent_load_N(a, b, spec.e, spec.X, spec.Y) for a, b in zip(fr, fa, strict=True)])
         e = life_exponent(spec.kind)
-        out.append(float(np.mean(p**e) ** (1.0 / e)))
+        return float(np.mean(p**e) ** (1.0 / e))
+
+    # a planetary stage: the central members carry the mean planet's force N times (their torque), each pin its
+    # own planet's; a pin bearing reports the worst planet's
+    per_planet: dict[int, list[dict[Channel, np.ndarray]]] = {}
+    for st in design.stages:
+        if st.planetary is None:
+            continue
+        own = Channel("tangential_force", f"stage{st.index}")
+        forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
+                  for j in range(1, st.planetary.planet_count + 1)]
+        per_planet[st.index] = [{**series, own: f} for f in forces]
+        series[own] = np.mean(forces, axis=0)
+    r = reaction_series(lay, design, series)
+    out = []
+    for j, spec in enumerate(specs):
+        if spec.planet_stage and spec.planet_stage in per_planet:
+            out.append(max(equivalent(reaction_series(lay, design, s), j) for s in per_planet[spec.planet_stage]))
+        else:
+            out.append(equivalent(r, j))
     return tuple(out)
 
 
@@ -221,9 +245,16 @@ def _member_speed_rpm(st: StageResult, member: str) -> float:
     return abs(getattr(st, member).speed_rpm)
 
 
-def _member_loads(pd: _PointData, k: int, member: str) -> StageLoads:
-    """The tooth-force classes the member meets: a ring-mesh member's are the planet–ring mesh's static force
-    (static route only: the dynamic route refuses planetary stages)."""
+def _member_loads(pd: _PointData, k: int, member: str, planet: int | None = None) -> StageLoads:
+    """The tooth-force classes the member meets. A planetary stage on the dynamic route: the sun's and the ring's
+    of all N meshes, a planet's (``gear``, ``planet_ring_side``) of planet ``planet``'s (1-based) own mesh; on the
+    static route a ring-mesh member's are the planet–ring mesh's static force."""
+    dyn = pd.loads[k].planetary
+    if dyn is not None:
+        if member in ("gear", "planet_ring_side"):
+            assert planet is not None
+            return (dyn.planet_sun if member == "gear" else dyn.planet_ring)[planet - 1]
+        return dyn.ring if member == "ring" else dyn.sun
     if member in RING_MEMBERS:
         p = pd.design.stages[k].planetary
         assert p is not None
@@ -241,13 +272,14 @@ def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: fl
 _Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
 
 
-def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str) -> list[_Raw]:
+def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
+              planet: int | None = None) -> list[_Raw]:
     raw: list[_Raw] = []
     for pd in points:
         st = pd.design.stages[k]
         total = pd.point.hours * 60.0 * _member_speed_rpm(st, member) * _contacts_per_turn(st, member)
         curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
-        ld = _member_loads(pd, k, member)
+        ld = _member_loads(pd, k, member, planet)
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
             raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
                         total * share, curve))
@@ -255,8 +287,9 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
 
 
 def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
-               hours: float) -> ModeLife:
-    return _from_raw(_raw_bins(points, k, member, mode, variant), mode, hours)
+               hours: float, planet: int | None = None) -> ModeLife:
+    ml = _from_raw(_raw_bins(points, k, member, mode, variant, planet), mode, hours)
+    return ml if planet is None else replace(ml, planet=planet)
 
 
 def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
@@ -280,16 +313,43 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
 def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float) -> StageLife:
     """A stage's members; a planetary stage adds its planet–ring mesh: the ring, the planet's ring side, and the
     planet's root over both meshes (docs/life.md, "Planetary stages")."""
-    def member_life(member: str) -> MemberLife:
-        return MemberLife(*(_mode_life(points, k, member, mode, variant, hours) for mode in MODES))
+    def member_life(member: str, planet: int | None = None) -> MemberLife:
+        return MemberLife(*(_mode_life(points, k, member, mode, variant, hours, planet) for mode in MODES))
 
-    pinion, gear = member_life("pinion"), member_life("gear")
-    if points[0].design.stages[k].planetary is None:
-        return StageLife(k + 1, pinion, gear)
-    root = _from_raw([*_raw_bins(points, k, "gear", "bending", variant),
-                      *_raw_bins(points, k, "planet_ring_side", "bending", variant)], "bending", hours)
-    return StageLife(k + 1, pinion, gear, ring=member_life("ring"), planet_ring_side=member_life("planet_ring_side"),
-                     planet_root=root)
+    def root_life(planet: int | None = None) -> ModeLife:
+        ml = _from_raw([*_raw_bins(points, k, "gear", "bending", variant, planet),
+                        *_raw_bins(points, k, "planet_ring_side", "bending", variant, planet)], "bending", hours)
+        return ml if planet is None else replace(ml, planet=planet)
+
+    st = points[0].design.stages[k]
+    if st.planetary is None:
+        return StageLife(k + 1, member_life("pinion"), member_life("gear"))
+    if points[0].loads[k].planetary is None:  # static route: the most loaded planet is the rating's (K_gamma)
+        return StageLife(k + 1, member_life("pinion"), member_life("gear"), ring=member_life("ring"),
+                         planet_ring_side=member_life("planet_ring_side"), planet_root=root_life())
+    # dynamic route: every planet's own spectra; each planet member reports its worst planet
+    planets = range(1, st.planetary.planet_count + 1)
+    return StageLife(k + 1, member_life("pinion"), _worst([member_life("gear", j) for j in planets]),
+                     ring=member_life("ring"),
+                     planet_ring_side=_worst([member_life("planet_ring_side", j) for j in planets]),
+                     planet_root=_worst_mode([root_life(j) for j in planets]))
+
+
+def _severity(ml: ModeLife) -> tuple[float, float]:
+    """Order of severity: the smaller spectrum safety (load multiplier to D = 1; none found: infinite), then the
+    larger damage."""
+    return (math.inf if ml.safety is None else ml.safety, -ml.damage)
+
+
+def _worst_mode(lives: Sequence[ModeLife]) -> ModeLife:
+    """The most severe of the planets' lives (the first planet of equals)."""
+    return min(lives, key=_severity)
+
+
+def _worst(lives: Sequence[MemberLife]) -> MemberLife:
+    """The planet whose member is most severely loaded: the smaller safety of its two modes decides (pitting and
+    bending of one planet reported together)."""
+    return min(lives, key=lambda m: min(_severity(m.pitting), _severity(m.bending)))
 
 
 def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
