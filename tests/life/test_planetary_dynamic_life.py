@@ -228,3 +228,94 @@ def test_a_planet_position_error_loads_that_planet_as_the_hand_model_says(tmp_pa
     forces = np.array([b.force_N for b in sun.bins if b.point == "full"])
     assert_allclose(forces.max(), designs["full"].static_force_N.tangential + extra("full"), rtol=2e-3)
     assert sun.damage > _mode(equal, "pinion", "pitting").damage
+
+
+MIXED = """
+[materials.steel]
+density_kg_m3 = 7830
+youngs_modulus_MPa = 206000
+poisson_ratio = 0.3
+treatment = "case_carburized"
+contact_fatigue_limit_MPa = 1500
+bending_fatigue_limit_MPa = 430
+
+[[stage]]
+normal_module_mm = 3
+helix_angle_deg = 12
+accuracy_grade = 6
+pinion = { teeth = 20, face_width_mm = 40, hand = "left", flank_roughness_Rz_um = 4, root_roughness_Rz_um = 20 }
+gear = { teeth = 60, face_width_mm = 40, hand = "right", flank_roughness_Rz_um = 4, root_roughness_Rz_um = 20 }
+
+[[stage]]
+type = "planetary"
+normal_module_mm = 4
+accuracy_grade = 6
+sun = { teeth = 24, face_width_mm = 40, flank_roughness_Rz_um = 4, root_roughness_Rz_um = 20 }
+planet = { teeth = 30, face_width_mm = 40, count = 3, flank_roughness_Rz_um = 4, root_roughness_Rz_um = 20 }
+ring = { teeth = 84, face_width_mm = 40, flank_roughness_Rz_um = 4, root_roughness_Rz_um = 20 }
+carrier = { inertia_kg_m2 = 0.8 }
+fixed = "FIXED"
+input = "INPUT"
+
+[contact]
+stiffness = "iso6336"
+exponent = 1.0
+damping_ratio = 0.2
+
+[lubricant]
+viscosity_40C_mm2_s = 220
+viscosity_100C_mm2_s = 19
+temperature_C = 70
+
+[input]
+speed_rpm = 1500
+ramp_s = 0.05
+
+[load]
+torque_Nm = 2000
+ramp_s = 0.05
+
+[rating]
+required_life_h = 20000
+
+[simulation]
+duration_s = 0.3
+rtol = 1e-9
+
+[[duty]]
+name = "only"
+hours = 1000
+torque_Nm = 2000
+speed_rpm = 1500
+"""
+
+
+@pytest.mark.parametrize(("fixed", "driven"), [("carrier", "sun"), ("sun", "ring")])
+def test_a_planetary_stage_after_a_parallel_one_counts_relative_to_its_carrier(tmp_path, fixed, driven):
+    """Stage 2 planetary, driven by the parallel stage (1500 rpm × 20/60 = 500 rpm on its input member), with the
+    carrier held (the ring turns at −n_s z_s/z_r: the sun's relative speed is n_s) or the sun held (the ring drives,
+    n_c = n_r z_r / (z_s + z_r): the sun's relative speed is n_c). Willis by hand; the stage's counted engagements
+    and load cycles follow, and its damage is not below the static spectrum's with K_v = 1."""
+    path = tmp_path / "mixed.toml"
+    path.write_text(MIXED.replace("FIXED", fixed).replace("INPUT", driven))
+    dyn = api.life(api.prepare_life(str(path)))
+    sta = api.life(api.prepare_life(str(path), ("rating.dynamic_factor=1.0",)), static=True)
+    n_in = 1500.0 * 20 / 60
+    if fixed == "carrier":
+        sun_rel, ring_rel = n_in, n_in * Z_S / Z_R
+    else:
+        sun_rel = n_in * Z_R / (Z_S + Z_R)  # the carrier's speed n_c, the sun still
+        ring_rel = n_in - sun_rel  # the ring turns at n_in
+    p = dyn.points[0]
+    t0, t1 = p.solver["window_s"]
+    assert abs(p.mesh_cycles[1] - N * Z_S * sun_rel * (t1 - t0) / 60) <= 2 * N
+    st = dyn.stages[1]
+    assert_allclose(sum(b.cycles for b in st.pinion.pitting.bins), 1000 * 60 * sun_rel * N, rtol=1e-12)
+    assert_allclose(sum(b.cycles for b in st.ring.pitting.bins), 1000 * 60 * ring_rel * N, rtol=1e-12)
+    assert_allclose(sum(b.cycles for b in st.gear.bending.bins), 1000 * 60 * sun_rel * Z_S / Z_P, rtol=1e-12)
+    for k in (0, 1):
+        for member in ("pinion", "gear", *(("ring", "planet_ring_side") if k == 1 else ())):
+            for mode in ("pitting", "bending"):
+                d_dyn = getattr(getattr(dyn.stages[k], member), mode).damage
+                d_sta = getattr(getattr(sta.stages[k], member), mode).damage
+                assert d_dyn >= d_sta * (1 - 1e-9), (k, member, mode)
