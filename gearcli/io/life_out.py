@@ -88,7 +88,7 @@ def _duty_table(r: LifeResult) -> Table:
 def _spectrum_table(r: LifeResult, stage, member: str) -> Table:
     """ISO 6336-6 style: one row per load class with its cycles, stresses, cycles to failure and damage."""
     pit, ben = getattr(stage, member).pitting, getattr(stage, member).bending
-    which = f" (planet {pit.planet}, the worst)" if pit.planet is not None else ""
+    which = f", planet {pit.planet} (the most severely loaded)" if pit.planet is not None else ""
     table = Table(title=text(f"stage {stage.index} {LABELS[member]}{which}: load spectrum and Miner damage"),
                   title_justify="left",
                   header_style="bold")

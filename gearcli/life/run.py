@@ -107,7 +107,8 @@ def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> 
 
 
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
-                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...]]:
+                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...], tuple[str, ...]]:
+    """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
     from gearcli import engine
 
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
@@ -116,9 +117,9 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     if any(st.planetary is not None for st in design.stages):
         # the simulated planets share the load themselves (their position errors): K_gamma = 1 in the rating
         extra += ("rating.load_sharing_factor=1.0",)
-        notes += [f"stage {st.index}: the planets' load sharing is the simulation's (from planet.position_error_um); "
-                  f"[rating] load_sharing_factor = {st.planetary.load_sharing_factor:g} is not applied on the "
-                  "dynamic route" for st in design.stages
+        notes += [f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
+                  f"(unequal only through stage[{st.index - 1}].planet.position_error_um); [rating] "
+                  f"load_sharing_factor = {st.planetary.load_sharing_factor:g} is not applied" for st in design.stages
                   if st.planetary is not None and st.planetary.load_sharing_factor != 1.0]
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
@@ -143,13 +144,13 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
                    peak_error=tuple(ld.peak_error for ld in loads))
-    warnings = notes + [w for w in result.warnings if w not in design.warnings]  # the rating at K_v = 1: superseded
+    warnings = [w for w in result.warnings if w not in design.warnings]  # the point's rating at K_v = 1: superseded
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
                             f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
                             f"sample finer: --set simulation.steps={4 * steps}")
-    return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings)
+    return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings), tuple(notes)
 
 
 def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> tuple[float, ...]:
@@ -341,15 +342,26 @@ def _severity(ml: ModeLife) -> tuple[float, float]:
     return (math.inf if ml.safety is None else ml.safety, -ml.damage)
 
 
+def _first_of_worst(severity: Sequence[tuple[float, float]]) -> int:
+    """Index of the most severe entry; of entries equal to it within 1e-9 (identical planets, whose simulated
+    forces differ by round-off), the first."""
+    worst = min(severity)
+
+    def close(a: float, b: float) -> bool:
+        return a == b or abs(a - b) <= 1e-9 * max(abs(a), abs(b))
+
+    return next(i for i, s in enumerate(severity) if close(s[0], worst[0]) and close(s[1], worst[1]))
+
+
 def _worst_mode(lives: Sequence[ModeLife]) -> ModeLife:
-    """The most severe of the planets' lives (the first planet of equals)."""
-    return min(lives, key=_severity)
+    """The most severe of the planets' lives."""
+    return lives[_first_of_worst([_severity(ml) for ml in lives])]
 
 
 def _worst(lives: Sequence[MemberLife]) -> MemberLife:
-    """The planet whose member is most severely loaded: the smaller safety of its two modes decides (pitting and
+    """The planet whose member is most severely loaded: the more severe of its two modes decides (pitting and
     bending of one planet reported together)."""
-    return min(lives, key=lambda m: min(_severity(m.pitting), _severity(m.bending)))
+    return lives[_first_of_worst([min(_severity(m.pitting), _severity(m.bending)) for m in lives])]
 
 
 def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
@@ -395,12 +407,13 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))
                 try:
-                    pd, run_warnings = _dynamic_point(scene, p, design_case, evaluate)
+                    pd, run_warnings, notes = _dynamic_point(scene, p, design_case, evaluate)
                 except GearcliError as exc:
                     if isinstance(exc, (ConfigError, DesignError)):
                         raise
                     raise type(exc)(f"duty point {p.name}: {exc}") from None
                 evaluated.append(pd)
+                warnings += [n for n in notes if n not in warnings]
                 warnings += [f"duty point {p.name}: {w}" for w in run_warnings]
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
