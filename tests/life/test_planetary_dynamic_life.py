@@ -180,6 +180,8 @@ def test_identical_planets_without_excitation_match_the_static_spectrum_with_kv_
             assert_allclose(dyn.damage, sta.damage, rtol=1e-6)
             assert_allclose(max(b.force_N for b in dyn.bins), max(b.force_N for b in sta.bins), rtol=1e-8)
     assert equal.points[0].K_v[0] == pytest.approx(1.0, abs=1e-8)
+    sharing = [w for w in equal.warnings if "load_sharing_factor = 1.15 is not applied" in w]
+    assert len(sharing) == 1  # said once per run, not per point
 
 
 def test_an_excited_stage_never_reports_less_damage_than_the_static_spectrum(tmp_path, static_kv1):
@@ -219,14 +221,16 @@ def test_a_planet_position_error_loads_that_planet_as_the_hand_model_says(tmp_pa
             b = next(x for x in base.bins if x.point == name)  # identical planets: the rating's stress at F_mean
             f_1 = b.force_N + extra(name)
             stress = b.stress_MPa * (math.sqrt(f_1 / b.force_N) if mode == "pitting" else f_1 / b.force_N)
-            assert_allclose(max(x.force_N for x in dyn.bins if x.point == name), f_1, rtol=2e-3)
+            assert_allclose(max(x.force_N for x in dyn.bins if x.point == name), f_1, rtol=1e-6)
             hand += hours * 60 * _speeds(rpm)[member] / _cycles_to_failure(stress / b.endurance_MPa, nodes)
-        assert dyn.damage > 1.5 * base.damage  # direction, and a sizeable effect (about +40 % force)
-        assert_allclose(dyn.damage, hand, rtol=0.03)
+        assert dyn.damage > 1.5 * base.damage  # direction, and a sizeable effect (+29 % and +50 % force)
+        assert_allclose(dyn.damage, hand, rtol=1e-4)  # a linear, steady scene: the hand model is its statics
+    assert res.stages[0].planet_root.planet == 1 and _mode(res, "ring", "pitting").planet is None
     # the sun and the ring meet every planet: the extra on planet 1 is taken from planets 2 and 3
     sun = _mode(res, "pinion", "pitting")
     forces = np.array([b.force_N for b in sun.bins if b.point == "full"])
-    assert_allclose(forces.max(), designs["full"].static_force_N.tangential + extra("full"), rtol=2e-3)
+    assert_allclose(forces.max(), designs["full"].static_force_N.tangential + extra("full"), rtol=1e-6)
+    assert_allclose(forces.min(), designs["full"].static_force_N.tangential - extra("full") / 2, rtol=1e-6)
     assert sun.damage > _mode(equal, "pinion", "pitting").damage
 
 
