@@ -5,7 +5,8 @@ its force the static tangential force, its stress the rating's.
 Dynamic route: the point simulated (the sweep's point evaluation, the compiled engine where it pays off) with
 K_v = 1 in the rating; every mesh cycle of the steady window is one tooth engagement, counted at the largest
 |F_t| it meets; the cycles are put into classes, and a class's stress is the rating's at K_v = 1 scaled to
-its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors).
+its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors). A planetary stage counts every planet
+mesh in the carrier's frame (:func:`planetary_loads`).
 """
 
 from __future__ import annotations
