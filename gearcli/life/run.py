@@ -106,6 +106,11 @@ def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> 
                       PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
 
 
+def k_gamma(st: StageResult) -> float:
+    """A planetary stage's load-sharing factor K_gamma in its design (1 for a parallel stage)."""
+    return st.planetary.load_sharing_factor if st.planetary is not None else 1.0
+
+
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...], tuple[str, ...]]:
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
@@ -114,13 +119,22 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
     notes: list[str] = []
-    if any(st.planetary is not None for st in design.stages):
-        # the simulated planets share the load themselves (their position errors): K_gamma = 1 in the rating
-        extra += ("rating.load_sharing_factor=1.0",)
-        notes += [f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
-                  f"(unequal only through stage[{st.index - 1}].planet.position_error_um); [rating] "
-                  f"load_sharing_factor = {st.planetary.load_sharing_factor:g} is not applied" for st in design.stages
-                  if st.planetary is not None and st.planetary.load_sharing_factor != 1.0]
+    planetary = [st for st in design.stages if st.planetary is not None]
+    given = cfg.rating is not None and cfg.rating.load_sharing_factor not in (None, 1.0)
+    if planetary and given:
+        errors = [getattr(cfg.stage[st.index - 1], "planet").position_error_um for st in planetary]  # noqa: B009
+        if all(e is not None for e in errors):
+            # the simulated planets share the load themselves (their position errors): K_gamma = 1 in the rating
+            extra += ("rating.load_sharing_factor=1.0",)
+            notes += [f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
+                      f"(stage[{st.index - 1}].planet.position_error_um); [rating] load_sharing_factor = "
+                      f"{k_gamma(st):g} is not applied" for st in planetary]
+        else:
+            # identical planets share equally in the model: the ISO allowance for unequal sharing stays
+            notes += [f"stage {st.index}: the simulated planets are identical (no planet.position_error_um), so "
+                      f"[rating] load_sharing_factor = {k_gamma(st):g} stays on the planet meshes' stresses and the "
+                      "planet pins' loads; give the planets' position errors to simulate the sharing instead"
+                      for st in planetary]
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
@@ -177,7 +191,8 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
         return float(np.mean(p**e) ** (1.0 / e))
 
     # a planetary stage: the central members carry the mean planet's force N times (their torque), each pin its
-    # own planet's; a pin bearing reports the worst planet's
+    # own planet's times the design's K_gamma (1 where the simulated position errors share the load); a pin bearing
+    # reports the worst planet's
     per_planet: dict[int, list[dict[Channel, np.ndarray]]] = {}
     for st in design.stages:
         if st.planetary is None:
@@ -185,8 +200,9 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
         own = Channel("tangential_force", f"stage{st.index}")
         forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
                   for j in range(1, st.planetary.planet_count + 1)]
-        per_planet[st.index] = [{**series, own: f} for f in forces]
         series[own] = np.mean(forces, axis=0)
+        forces = [f * st.planetary.load_sharing_factor for f in forces]
+        per_planet[st.index] = [{**series, own: f} for f in forces]
     r = reaction_series(lay, design, series)
     out = []
     for j, spec in enumerate(specs):
