@@ -45,11 +45,14 @@ def life_dict(r: LifeResult) -> JsonObject:
 
 
 def _mode_dict(ml: ModeLife) -> JsonObject:
-    return {"damage": ml.damage, "life_h": ml.life_h, "safety": ml.safety, "curve": ml.curve,
-            "static_cycles": ml.static_cycles, "knee_cycles": ml.knee_cycles,
-            "bins": [{"force_N": b.force_N, "stress_MPa": b.stress_MPa, "cycles": b.cycles,
-                      "cycles_to_failure": b.cycles_to_failure, "damage": b.damage, "point": b.point,
-                      "endurance_MPa": b.endurance_MPa} for b in ml.bins]}
+    out: JsonObject = {"damage": ml.damage, "life_h": ml.life_h, "safety": ml.safety, "curve": ml.curve,
+                       "static_cycles": ml.static_cycles, "knee_cycles": ml.knee_cycles,
+                       "bins": [{"force_N": b.force_N, "stress_MPa": b.stress_MPa, "cycles": b.cycles,
+                                 "cycles_to_failure": b.cycles_to_failure, "damage": b.damage, "point": b.point,
+                                 "endurance_MPa": b.endurance_MPa} for b in ml.bins]}
+    if ml.planet is not None:  # the dynamic route's planet members: which planet is reported (the worst)
+        out["planet"] = ml.planet
+    return out
 
 
 def life_csv(r: LifeResult) -> str:
@@ -85,7 +88,9 @@ def _duty_table(r: LifeResult) -> Table:
 def _spectrum_table(r: LifeResult, stage, member: str) -> Table:
     """ISO 6336-6 style: one row per load class with its cycles, stresses, cycles to failure and damage."""
     pit, ben = getattr(stage, member).pitting, getattr(stage, member).bending
-    table = Table(title=text(f"stage {stage.index} {LABELS[member]}: load spectrum and Miner damage"), title_justify="left",
+    which = f", planet {pit.planet} (the most severely loaded)" if pit.planet is not None else ""
+    table = Table(title=text(f"stage {stage.index} {LABELS[member]}{which}: load spectrum and Miner damage"),
+                  title_justify="left",
                   header_style="bold")
     for c in ("point", "F_t [N]", "cycles n_i", "σ_H [MPa]", "N_i pitting", "n_i/N_i", "σ_F [MPa]", "N_i bending",
               "n_i/N_i "):

@@ -33,6 +33,7 @@ class ModeLife:
     static_cycles: float  # the S–N curve's static node (a bin above it is beyond the static strength)
     knee_cycles: float
     sn: object = None  # the SNCurve of the duty's first point (for plots; not in JSON)
+    planet: int | None = None  # dynamic route, a planet member: the planet (1-based) reported, the worst
 
 
 @dataclass(frozen=True)

@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import cast
 
 from gearcli.config import DesignFile
+from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
 from gearcli.life import spectra
@@ -105,17 +106,35 @@ def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> 
                       PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
 
 
+def k_gamma(st: StageResult) -> float:
+    """A planetary stage's load-sharing factor K_gamma in its design (1 for a parallel stage)."""
+    return st.planetary.load_sharing_factor if st.planetary is not None else 1.0
+
+
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
-                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...]]:
+                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...], tuple[str, ...]]:
+    """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
     from gearcli import engine
 
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
-    planetary = [st.index for st in design.stages if st.planetary is not None]
-    if planetary:
-        raise DesignError(f"stage {planetary[0]} is planetary: the dynamic life route does not count the planet "
-                          "meshes' engagements yet; use --static", source=scene.source,
-                          key=f"stage[{planetary[0] - 1}].type")
+    notes: list[str] = []
+    planetary = [st for st in design.stages if st.planetary is not None]
+    given = cfg.rating is not None and cfg.rating.load_sharing_factor not in (None, 1.0)
+    if planetary and given:
+        errors = [getattr(cfg.stage[st.index - 1], "planet").position_error_um for st in planetary]  # noqa: B009
+        if all(e is not None for e in errors):
+            # the simulated planets share the load themselves (their position errors): K_gamma = 1 in the rating
+            extra += ("rating.load_sharing_factor=1.0",)
+            notes += [f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
+                      f"(stage[{st.index - 1}].planet.position_error_um); [rating] load_sharing_factor = "
+                      f"{k_gamma(st):g} is not applied" for st in planetary]
+        else:
+            # identical planets share equally in the model: the ISO allowance for unequal sharing stays
+            notes += [f"stage {st.index}: the simulated planets are identical (no planet.position_error_um), so "
+                      f"[rating] load_sharing_factor = {k_gamma(st):g} stays on the planet meshes' stresses and the "
+                      "planet pins' loads; give the planets' position errors to simulate the sharing instead"
+                      for st in planetary]
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
@@ -145,7 +164,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
             warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
                             f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
                             f"sample finer: --set simulation.steps={4 * steps}")
-    return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings)
+    return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings), tuple(notes)
 
 
 def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> tuple[float, ...]:
@@ -161,14 +180,36 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
         return ()
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
-    r = reaction_series(lay, design, {k: v[mask] for k, v in result.series.items()})
+    series = {k: v[mask] for k, v in result.series.items()}
     specs = lay.specs
-    out = []
-    for j, spec in enumerate(specs):
+
+    def equivalent(r: np.ndarray, j: int) -> float:
+        spec = specs[j]
         fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
         p = np.array([equivalent_load_N(a, b, spec.e, spec.X, spec.Y) for a, b in zip(fr, fa, strict=True)])
         e = life_exponent(spec.kind)
-        out.append(float(np.mean(p**e) ** (1.0 / e)))
+        return float(np.mean(p**e) ** (1.0 / e))
+
+    # a planetary stage: the central members carry the mean planet's force N times (their torque), each pin its
+    # own planet's times the design's K_gamma (1 where the simulated position errors share the load); a pin bearing
+    # reports the worst planet's
+    per_planet: dict[int, list[dict[Channel, np.ndarray]]] = {}
+    for st in design.stages:
+        if st.planetary is None:
+            continue
+        own = Channel("tangential_force", f"stage{st.index}")
+        forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
+                  for j in range(1, st.planetary.planet_count + 1)]
+        series[own] = np.mean(forces, axis=0)
+        forces = [f * st.planetary.load_sharing_factor for f in forces]
+        per_planet[st.index] = [{**series, own: f} for f in forces]
+    r = reaction_series(lay, design, series)
+    out = []
+    for j, spec in enumerate(specs):
+        if spec.planet_stage and spec.planet_stage in per_planet:
+            out.append(max(equivalent(reaction_series(lay, design, s), j) for s in per_planet[spec.planet_stage]))
+        else:
+            out.append(equivalent(r, j))
     return tuple(out)
 
 
@@ -221,9 +262,16 @@ def _member_speed_rpm(st: StageResult, member: str) -> float:
     return abs(getattr(st, member).speed_rpm)
 
 
-def _member_loads(pd: _PointData, k: int, member: str) -> StageLoads:
-    """The tooth-force classes the member meets: a ring-mesh member's are the planet–ring mesh's static force
-    (static route only: the dynamic route refuses planetary stages)."""
+def _member_loads(pd: _PointData, k: int, member: str, planet: int | None = None) -> StageLoads:
+    """The tooth-force classes the member meets. A planetary stage on the dynamic route: the sun's and the ring's
+    of all N meshes, a planet's (``gear``, ``planet_ring_side``) of planet ``planet``'s (1-based) own mesh; on the
+    static route a ring-mesh member's are the planet–ring mesh's static force."""
+    dyn = pd.loads[k].planetary
+    if dyn is not None:
+        if member in ("gear", "planet_ring_side"):
+            assert planet is not None
+            return (dyn.planet_sun if member == "gear" else dyn.planet_ring)[planet - 1]
+        return dyn.ring if member == "ring" else dyn.sun
     if member in RING_MEMBERS:
         p = pd.design.stages[k].planetary
         assert p is not None
@@ -241,13 +289,14 @@ def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: fl
 _Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
 
 
-def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str) -> list[_Raw]:
+def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
+              planet: int | None = None) -> list[_Raw]:
     raw: list[_Raw] = []
     for pd in points:
         st = pd.design.stages[k]
         total = pd.point.hours * 60.0 * _member_speed_rpm(st, member) * _contacts_per_turn(st, member)
         curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
-        ld = _member_loads(pd, k, member)
+        ld = _member_loads(pd, k, member, planet)
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
             raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
                         total * share, curve))
@@ -255,8 +304,9 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
 
 
 def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
-               hours: float) -> ModeLife:
-    return _from_raw(_raw_bins(points, k, member, mode, variant), mode, hours)
+               hours: float, planet: int | None = None) -> ModeLife:
+    ml = _from_raw(_raw_bins(points, k, member, mode, variant, planet), mode, hours)
+    return ml if planet is None else replace(ml, planet=planet)
 
 
 def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
@@ -280,16 +330,54 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
 def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float) -> StageLife:
     """A stage's members; a planetary stage adds its planet–ring mesh: the ring, the planet's ring side, and the
     planet's root over both meshes (docs/life.md, "Planetary stages")."""
-    def member_life(member: str) -> MemberLife:
-        return MemberLife(*(_mode_life(points, k, member, mode, variant, hours) for mode in MODES))
+    def member_life(member: str, planet: int | None = None) -> MemberLife:
+        return MemberLife(*(_mode_life(points, k, member, mode, variant, hours, planet) for mode in MODES))
 
-    pinion, gear = member_life("pinion"), member_life("gear")
-    if points[0].design.stages[k].planetary is None:
-        return StageLife(k + 1, pinion, gear)
-    root = _from_raw([*_raw_bins(points, k, "gear", "bending", variant),
-                      *_raw_bins(points, k, "planet_ring_side", "bending", variant)], "bending", hours)
-    return StageLife(k + 1, pinion, gear, ring=member_life("ring"), planet_ring_side=member_life("planet_ring_side"),
-                     planet_root=root)
+    def root_life(planet: int | None = None) -> ModeLife:
+        ml = _from_raw([*_raw_bins(points, k, "gear", "bending", variant, planet),
+                        *_raw_bins(points, k, "planet_ring_side", "bending", variant, planet)], "bending", hours)
+        return ml if planet is None else replace(ml, planet=planet)
+
+    st = points[0].design.stages[k]
+    if st.planetary is None:
+        return StageLife(k + 1, member_life("pinion"), member_life("gear"))
+    if points[0].loads[k].planetary is None:  # static route: the most loaded planet is the rating's (K_gamma)
+        return StageLife(k + 1, member_life("pinion"), member_life("gear"), ring=member_life("ring"),
+                         planet_ring_side=member_life("planet_ring_side"), planet_root=root_life())
+    # dynamic route: every planet's own spectra; each planet member reports its worst planet
+    planets = range(1, st.planetary.planet_count + 1)
+    return StageLife(k + 1, member_life("pinion"), _worst([member_life("gear", j) for j in planets]),
+                     ring=member_life("ring"),
+                     planet_ring_side=_worst([member_life("planet_ring_side", j) for j in planets]),
+                     planet_root=_worst_mode([root_life(j) for j in planets]))
+
+
+def _severity(ml: ModeLife) -> tuple[float, float]:
+    """Order of severity: the smaller spectrum safety (load multiplier to D = 1; none found: infinite), then the
+    larger damage."""
+    return (math.inf if ml.safety is None else ml.safety, -ml.damage)
+
+
+def _first_of_worst(severity: Sequence[tuple[float, float]]) -> int:
+    """Index of the most severe entry; of entries equal to it within 1e-9 (identical planets, whose simulated
+    forces differ by round-off), the first."""
+    worst = min(severity)
+
+    def close(a: float, b: float) -> bool:
+        return a == b or abs(a - b) <= 1e-9 * max(abs(a), abs(b))
+
+    return next(i for i, s in enumerate(severity) if close(s[0], worst[0]) and close(s[1], worst[1]))
+
+
+def _worst_mode(lives: Sequence[ModeLife]) -> ModeLife:
+    """The most severe of the planets' lives."""
+    return lives[_first_of_worst([_severity(ml) for ml in lives])]
+
+
+def _worst(lives: Sequence[MemberLife]) -> MemberLife:
+    """The planet whose member is most severely loaded: the more severe of its two modes decides (pitting and
+    bending of one planet reported together)."""
+    return lives[_first_of_worst([min(_severity(m.pitting), _severity(m.bending)) for m in lives])]
 
 
 def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
@@ -335,12 +423,13 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))
                 try:
-                    pd, run_warnings = _dynamic_point(scene, p, design_case, evaluate)
+                    pd, run_warnings, notes = _dynamic_point(scene, p, design_case, evaluate)
                 except GearcliError as exc:
                     if isinstance(exc, (ConfigError, DesignError)):
                         raise
                     raise type(exc)(f"duty point {p.name}: {exc}") from None
                 evaluated.append(pd)
+                warnings += [n for n in notes if n not in warnings]
                 warnings += [f"duty point {p.name}: {w}" for w in run_warnings]
     hours = sum(p.hours for p in points)
     first = evaluated[0].design

@@ -5,7 +5,8 @@ its force the static tangential force, its stress the rating's.
 Dynamic route: the point simulated (the sweep's point evaluation, the compiled engine where it pays off) with
 K_v = 1 in the rating; every mesh cycle of the steady window is one tooth engagement, counted at the largest
 |F_t| it meets; the cycles are put into classes, and a class's stress is the rating's at K_v = 1 scaled to
-its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors).
+its force (sigma_H ∝ sqrt(F_t), sigma_F ∝ F_t at the point's other factors). A planetary stage counts every planet
+mesh in the carrier's frame (:func:`planetary_loads`).
 """
 
 from __future__ import annotations
@@ -37,6 +38,19 @@ class StageLoads:
     static_N: float
     mesh_cycles: int
     peak_error: float = 0.0  # estimated relative error of the mean mesh-cycle peak from the output sampling
+    planetary: PlanetaryLoads | None = None  # a planetary stage's dynamic spectra per member (the stage's own: the sun's)
+
+
+@dataclass(frozen=True)
+class PlanetaryLoads:
+    """A planetary stage's dynamic spectra (docs/life.md, "Planetary stages, dynamic route"): the sun's and the
+    ring's are the union of their N meshes' engagements (each mesh cycle of planet j's mesh is one tooth of the
+    central member meeting planet j); a planet's are its own meshes' (index j - 1: planet j)."""
+
+    sun: StageLoads
+    ring: StageLoads
+    planet_sun: tuple[StageLoads, ...]
+    planet_ring: tuple[StageLoads, ...]
 
 
 def static_loads(static_N: float) -> StageLoads:
@@ -79,11 +93,15 @@ def classes(peaks: np.ndarray, static_N: float, n: int = MESH_CLASSES) -> StageL
 
 
 def dynamic_loads(result, design) -> list[StageLoads]:
-    """Per stage, the classes of the mesh-cycle peaks of |F_t| over the run's steady window."""
+    """Per stage, the classes of the mesh-cycle peaks of |F_t| over the run's steady window (a planetary stage:
+    the sun's, with every member's in ``planetary``)."""
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
     out = []
     for k, st in enumerate(design.stages):
+        if st.planetary is not None:
+            out.append(planetary_loads(t[mask], {n: c[mask] for n, c in result.series.items()}, st))
+            continue
         angle = pinion_angle_rad(t[mask], {n: c[mask] for n, c in result.series.items()}, k + 1)
         ft = result.series[Channel("tangential_force", f"stage{k + 1}")][mask]
         peaks = mesh_cycle_peaks(t[mask], ft, angle, st.pinion.teeth)
@@ -95,6 +113,65 @@ def dynamic_loads(result, design) -> list[StageLoads]:
                     for i in (0, 1))
         out.append(replace(classes(peaks, st.static_force_N.tangential), peak_error=error))
     return out
+
+
+def relative_angle_rad(t: np.ndarray, series: Mapping[Channel, np.ndarray], st, member: str) -> np.ndarray:
+    """The angle of a planetary stage's central ``member`` ("sun" or "ring") relative to its carrier (rad,
+    trapezoid of |omega_member - omega_carrier|): the stage's input member turns with shaft k, its output member
+    with shaft k + 1, the held member not at all."""
+    p = st.planetary
+
+    def speed(m: str) -> np.ndarray:
+        if m == p.fixed:
+            return np.zeros_like(t)
+        shaft = st.index if m == p.input else st.index + 1
+        w = series.get(Channel("speed", f"shaft{shaft}"))
+        if w is None:
+            raise SimulationError(f"no speed channel of shaft {shaft} to count the mesh cycles")
+        return w
+
+    w = np.abs(speed(member) - speed("carrier"))
+    return np.concatenate(([0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))))
+
+
+def _mesh_peaks(t: np.ndarray, ft: np.ndarray, angle: np.ndarray, teeth: int, what: str) -> tuple[np.ndarray, float]:
+    """A mesh's cycle peaks over the window and their estimated relative error (every second sample)."""
+    peaks = mesh_cycle_peaks(t, ft, angle, teeth)
+    if len(peaks) == 0:
+        raise SimulationError(f"{what}: the steady window holds no whole mesh cycle; lengthen "
+                              "simulation.duration_s (--set simulation.duration_s=...)")
+    error = max(peak_error(peaks, mesh_cycle_peaks(t[i::2], ft[i::2], angle[i::2], teeth)) for i in (0, 1))
+    return peaks, error
+
+
+def planetary_loads(t: np.ndarray, series: Mapping[Channel, np.ndarray], st) -> StageLoads:
+    """A planetary stage's spectra over the window samples ``t``: every planet's sun mesh counted on the sun's
+    angle relative to the carrier (z_s cycles per relative turn), its ring mesh on the ring's (z_r). The sun's
+    and the ring's classes are of all N meshes' peaks together, a planet's of its own mesh's; the stage's own
+    loads are the sun's (its ``mesh_cycles`` the N meshes' together), ``peak_error`` the largest of the 2N meshes'."""
+    p = st.planetary
+    sun_angle = relative_angle_rad(t, series, st, "sun")
+    ring_angle = relative_angle_rad(t, series, st, "ring")
+    sun_static, ring_static = st.static_force_N.tangential, p.planet_ring.static_force_N.tangential
+    sun_peaks: list[np.ndarray] = []
+    ring_peaks: list[np.ndarray] = []
+    errors: list[float] = []
+    for j in range(1, p.planet_count + 1):
+        for gear, angle, teeth, out in (("sun", sun_angle, abs(p.sun.teeth), sun_peaks),
+                                        ("ring", ring_angle, abs(p.ring.teeth), ring_peaks)):
+            name = f"stage{st.index}_planet{j}_{gear}"
+            ft = series.get(Channel("tangential_force", name))
+            if ft is None:
+                raise SimulationError(f"stage {st.index}: no {gear} mesh force series of planet {j}")
+            peaks, error = _mesh_peaks(t, ft, angle, teeth, f"stage {st.index} planet {j} {gear} mesh")
+            out.append(peaks)
+            errors.append(error)
+    error = max(errors)
+    sun = replace(classes(np.concatenate(sun_peaks), sun_static), peak_error=error)
+    ring = replace(classes(np.concatenate(ring_peaks), ring_static), peak_error=error)
+    loads = PlanetaryLoads(sun, ring, tuple(classes(pk, sun_static) for pk in sun_peaks),
+                           tuple(classes(pk, ring_static) for pk in ring_peaks))
+    return replace(sun, planetary=loads)
 
 
 def peak_error(fine: np.ndarray, coarse: np.ndarray) -> float:

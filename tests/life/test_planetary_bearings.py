@@ -210,10 +210,33 @@ def test_the_sun_tooth_meets_every_planet(tmp_path):
         assert_allclose(stage["gear"]["pitting"]["bins"][point]["cycles"], hours * 60 * rpm * rel_planet, rtol=1e-12)
 
 
-def test_the_dynamic_life_route_refuses_planetary_stages_naming_the_key(tmp_path):
-    path, res, _ = _life(tmp_path)
-    assert res.exit_code == 2, res.output
-    assert f"{path}: stage[0].type:" in res.stderr and "--static" in res.stderr and "Traceback" not in res.stderr
+STEADY = ("--set", "contact.exponent=1.0", "--set", "contact.damping_ratio=0.3", "--set", 'contact.stiffness="iso6336"',
+          "--set", "input.ramp_s=0.05", "--set", "load.ramp_s=0.05")
+
+
+def test_the_dynamic_life_route_loads_the_pins_with_the_simulated_planets(tmp_path):
+    """The dynamic route at a linear, well-damped steady state: identical planets share equally, so each pin
+    carries the mean planet's load times the file's K_gamma (the design's pin load: the model does not see the
+    unequal sharing K_gamma allows for) and the sun's locating bearing N F_a (as the statics); with a position
+    error on planet 2 the simulation shares the load (K_gamma 1) and the pins report the most loaded planet: its
+    sun-mesh force over the mean planet's times the equal-planet load without K_gamma (the pin load is linear in
+    the planet's force)."""
+    _, res, doc = _life(tmp_path, *STEADY)
+    assert res.exit_code == 0, res.output
+    _, design = design_of(PLANETARY)
+    for j, b in enumerate(design.bearings):
+        assert_allclose(doc["life"]["bearings"][j]["loads_N"][0], b.equivalent_load_N, rtol=1e-3)
+    _, res2, doc2 = _life(tmp_path, *STEADY, "--set", "stage[0].planet.position_error_um=[0.0, 3.0, 0.0]")
+    assert res2.exit_code == 0, res2.output
+    gear = doc2["life"]["stages"][0]["gear"]["pitting"]
+    assert gear["planet"] == 2
+    f_2 = max(b["force_N"] for b in gear["bins"] if b["point"] == "full")
+    f_mean = max(b["force_N"] for b in doc["life"]["stages"][0]["gear"]["pitting"]["bins"] if b["point"] == "full")
+    assert f_2 > 1.05 * f_mean
+    pin, pin_equal = doc2["life"]["bearings"][4], doc["life"]["bearings"][4]
+    assert_allclose(pin["loads_N"][0], pin_equal["loads_N"][0] / K_GAMMA * f_2 / f_mean, rtol=1e-3)
+    sun = doc2["life"]["bearings"][0]  # the sun's locating bearing: N F_a of the mean planet, whatever the sharing
+    assert_allclose(sun["loads_N"][0], doc["life"]["bearings"][0]["loads_N"][0], rtol=1e-3)
 
 
 def test_simulate_reports_the_planetary_bearing_channels():
