@@ -13,10 +13,11 @@ Two uses of the prices:
 
 - the run's **work budget** (:func:`priced_work_s`, :mod:`gearcli.simulate.guards`): a run's counters priced at
   scipy's rates, so that whether a run is within its budget (and where a hopeless one is stopped) is
-  deterministic and does not depend on the machine's load. A hopeless pace is judged alike on both engines (its
-  projection at scipy's rates); the budget a compiled run may spend is the same ~60 s of its own, i.e.
-  :func:`compiled_speedup` times as much priced work (the report's Radau reference at rtol 1e-10 on the conveyor,
-  1.7e6 evaluations, ~2 s compiled, would be called off at scipy's rates);
+  deterministic and does not depend on the machine's load. The budget a compiled run may spend is the same ~60 s
+  of its own, i.e. :func:`compiled_speedup` times as much priced work (the report's Radau reference at rtol 1e-10
+  on the conveyor, 1.7e6 evaluations, ~2 s compiled, would be called off at scipy's rates), and a hopeless pace is
+  judged against that budget on either engine (a projection over PROJECTION_LIMIT times it: a run the compiled
+  engine finishes in seconds is not refused for what it would cost on scipy);
 - ``auto``'s **wall-time prediction** (:func:`predicted_wall_s`): predicted evaluations times the engine's price
   per evaluation of that method (:func:`seconds_per_eval`: the evaluation's price plus its share of the typical
   steps, LU decompositions and Jacobians per evaluation, :data:`COUNTERS_PER_EVAL`), plus what loading the
@@ -145,7 +146,7 @@ CAP = 5_000_000  # evaluations; then the run is called off
 EXPLICIT_CAP = 1_000_000  # stability-only evaluations beyond which an explicit method is refused
 WORK_CAP_S = 60.0  # priced seconds one run may use; then it is called off
 PROJECTION_AFTER_S = 5.0  # priced seconds after which the pace is projected to the end of the run
-PROJECTION_LIMIT = 4.0  # a projected total over this many times WORK_CAP_S stops the run at once
+PROJECTION_LIMIT = 4.0  # a projected total over this many times the run's budget stops it at once
 BUDGET_CHECK_EVERY = 64  # accepted steps between checks of the priced budget
 #: design-time refusal (gearcli.config.bounds): estimates beyond this are a unit mistake, not a scene. The
 #: estimate is an upper bound for explicit methods; implicit ones step over fast modes that are not excited

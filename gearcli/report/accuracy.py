@@ -21,7 +21,7 @@ import statistics
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
-from gearcli.errors import GearcliError, SimulationError, StudyTooLong
+from gearcli.errors import GearcliError, RunTooLong, SimulationError, StudyTooLong
 from gearcli.report.result import QUANTITIES, AccuracyRun, AccuracyStudy, ReferenceRun, RunMetrics
 from gearcli.results import SimulationResult
 
@@ -151,6 +151,11 @@ class _Runner:
             return self.run(method, rtol)
         except StudyTooLong:  # the study's own budget: it ends the study (exit 2), not just this run
             raise
+        except RunTooLong as exc:
+            if role:  # the reference or its check out of its run budget: no study without it (exit 2)
+                raise StudyTooLong(f"the accuracy study's {role} run ({method}, rtol {rtol:g}) is out of its "
+                                   f"computing budget: {exc}; use --quick (one run)") from None
+            return str(exc)
         except GearcliError as exc:
             return str(exc)
 
@@ -173,11 +178,13 @@ def accuracy_study(
     rtols = sorted(spec.rtols, reverse=True)
     in_ladder = file_method in spec.methods and any(_same_rtol(r, file_rtol) for r in rtols)
     runner = _Runner(run, progress, len(spec.methods) * len(rtols) + 2 + (0 if in_ladder else 1))
+    # the reference pair first: the tightest, costliest runs, so a study that cannot afford them ends at once
+    # (their run budget refuses them within seconds) instead of after the whole ladder
+    ref = _reference(runner, spec.reference_pair(stiffness_indicator))
     outcomes, slow = _ladder(runner, spec, rtols, auto_choice, (file_method, file_rtol))
     if not any(_is_file(m, r, file_method, file_rtol) for m, r, _ in outcomes):  # e.g. swapped for a sibling
         runner.total += 1 if in_ladder else 0
         outcomes.append((file_method, file_rtol, runner(file_method, file_rtol)))
-    ref = _reference(runner, spec.reference_pair(stiffness_indicator))
     runner.tick("done", runner.total, runner.total)
     runs = []
     for m, r, o in outcomes:

@@ -68,14 +68,15 @@ def over_budget(work_s: float, t: float, t_start: float, t_end: float,
     ``("spent", why)`` when its budget is used up, ``("projected", why)`` when its pace projects to over
     :data:`PROJECTION_LIMIT` times the budget (the text names the duration that would fit); else None.
     ``speedup``: a compiled run's (:func:`gearcli.core.cost.compiled_speedup`): its budget is that many times
-    the priced work, its projection judged as on scipy, and the text in its own seconds."""
+    the priced work, its projection judged against that budget (a run the compiled engine finishes within its
+    budget is not refused for what it would cost on scipy), and the text in its own seconds."""
     cap = WORK_CAP_S * speedup
     if work_s > cap:
         return "spent", f"it used its computing budget of ~{WORK_CAP_S:g} s"
     if work_s > PROJECTION_AFTER_S:
         done = (t - t_start) / (t_end - t_start) if t_end > t_start else 1.0
         projected = work_s / done if done > 0 else math.inf
-        if projected > PROJECTION_LIMIT * WORK_CAP_S:
+        if projected > PROJECTION_LIMIT * cap:
             fit = t_start + (t - t_start) * cap / work_s
             return "projected", (f"at its pace ({100 * done:.2g} % of the run after ~{work_s / speedup:.2g} s of "
                                  f"computing) it would need about {duration_text(projected / speedup)}, over "

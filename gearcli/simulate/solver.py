@@ -294,7 +294,7 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     p = cost.PRICE_S["python"]  # the work budget (gearcli.simulate.guards.over_budget with the compiled speed-up)
     speedup = cost.compiled_speedup(method)
     wpar = np.array([*watch_par, t0, cost.WORK_CAP_S * speedup, cost.PROJECTION_AFTER_S,
-                     cost.PROJECTION_LIMIT / speedup,
+                     cost.PROJECTION_LIMIT,
                      float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
                      p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])]
                     + ([t0] if progress is not None else []))  # the kernel writes the time reached there
