@@ -10,7 +10,7 @@ from typing import cast
 from rich.console import RenderableType
 from rich.table import Table
 
-from gearcli.core.jsontypes import JsonObject, JsonScalar
+from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.io.serialize import csv_text, plain
 from gearcli.io.tables import StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife, StageLife
@@ -39,7 +39,7 @@ def life_dict(r: LifeResult) -> JsonObject:
     stages: list[JsonObject] = [_stage_dict(st) for st in r.stages]
     return {
         "life": {"route": r.route, "miner": r.miner, "standard": r.standard, "hours": r.hours,
-                 "stages": stages, "bearings": plain(r.bearings), "points": plain(r.points)},
+                 "stages": stages, "bearings": _bearing_docs(r), "points": plain(r.points)},
         "warnings": list(r.warnings),
     }
 
@@ -126,10 +126,22 @@ def _summary(r: LifeResult) -> StageColumns:
     return StageColumns("Miner damage over the duty, life and spectrum safety", cols, list(rows.items()))
 
 
+def _bearing_docs(r: LifeResult) -> JsonValue:
+    """The bearings' JSON: ``planet_stage`` only on a planet pin's bearings (a shaft's keep their keys)."""
+    docs = []
+    for b in r.bearings:
+        doc = plain(b)
+        assert isinstance(doc, dict)
+        if not b.planet_stage:
+            doc.pop("planet_stage")
+        docs.append(doc)
+    return docs
+
+
 def _bearings(r: LifeResult) -> StageColumns:
     b = r.bearings
     return StageColumns("bearings over the duty, ISO 281", [f"bearing {j + 1}" for j in range(len(b))], [
-        ("shaft", [str(x.shaft) for x in b]),
+        ("shaft", [f"planets of stage {x.planet_stage}" if x.planet_stage else str(x.shaft) for x in b]),
         ("position x [mm]", [_g(x.position_mm) for x in b]),
         ("kind", [x.kind for x in b]),
         *[(f"P at {p.name} [N]", [_g(x.loads_N[i]) for x in b]) for i, p in enumerate(r.points)],

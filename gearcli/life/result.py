@@ -69,6 +69,7 @@ class BearingLife:
     L10_Mrev: float | None
     L10_h: float | None
     loads_N: tuple[float, ...]  # the equivalent load P of each duty point
+    planet_stage: int = 0  # a planet pin's bearing: its planetary stage, 1-based (shaft 0); 0 for a shaft's
 
 
 @dataclass(frozen=True)

@@ -393,7 +393,7 @@ def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
         hours = sum(pd.point.hours for pd in points)
         mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
         out.append(BearingLife(b.shaft, b.position_mm, b.kind, b.dynamic_load_rating_kN, p_eq, sum(revs), l10,
-                               life_hours(l10, mean_rpm), tuple(loads)))
+                               life_hours(l10, mean_rpm), tuple(loads), b.planet_stage or 0))
     return tuple(out)
 
 

@@ -354,3 +354,17 @@ def test_bad_planet_bearings_name_the_key(tmp_path):
         res = CliRunner().invoke(cli, ["design", str(path), "--set", setting])
         assert res.exit_code == 2, (setting, res.output)
         assert f": {key}" in res.stderr and "Traceback" not in res.stderr, res.stderr  # the --set names the place
+
+
+def test_life_names_a_planet_pins_bearing_by_its_stage(tmp_path):
+    """`life` JSON: a planet pin's bearing says which planetary stage it belongs to (`planet_stage`, as in
+    `design`); a shaft's bearing has no such key; the table names it "planets of stage k"."""
+    _, res, doc = _life(tmp_path, "--static")
+    assert res.exit_code == 0, res.output
+    _, design = design_of(PLANETARY)
+    for b, d in zip(doc["life"]["bearings"], design.bearings, strict=True):
+        if d.planet_stage:
+            assert (b["shaft"], b["planet_stage"]) == (0, d.planet_stage)
+        else:
+            assert "planet_stage" not in b and b["shaft"] == d.shaft
+    assert any(d.planet_stage for d in design.bearings)
