@@ -86,7 +86,7 @@ def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) ->
     stage = cfg.stage[k]
     if not isinstance(stage, PlanetaryStage):
         return _stage_result(pairs, k, kin)
-    return pl.planetary_result(cfg, k, kin, _stage_result(pairs, k, pl.mesh_train(k, stage, kin)))
+    return pl.planetary_result(cfg, k, kin, _stage_result(pairs, k, pl.mesh_train(k, stage, kin), stage.planet.count))
 
 
 def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
@@ -245,20 +245,26 @@ class _Resonance:
     range: str
 
 
-def _resonance(pinion: GearResult, gear: GearResult, mesh_N_mm_um: float, line_load_N_mm: float) -> _Resonance:
-    """m_red, n_E1 and N of ISO 6336-1 with index 1 the smaller wheel (m_red is symmetric anyway)."""
+def _resonance(pinion: GearResult, gear: GearResult, mesh_N_mm_um: float, line_load_N_mm: float,
+               planets: int = 1) -> _Resonance:
+    """m_red, n_E1 and N of ISO 6336-1 with index 1 the smaller wheel (m_red is symmetric anyway). ``planets``: a
+    planetary stage's sun (the pinion) meets that many planets (the gear), so each mesh moves 1/N of the sun:
+    m_red = m*_s m*_p / (m*_s + N m*_p) (ISO 6336-1's planetary form; N = 1 is the pair's)."""
     masses = [res.body_mass_per_width_kg_mm(g.body_inertia_kg_m2, g.face_width_mm, g.base_diameter_mm)
               for g in (pinion, gear)]
-    m_red = res.reduced_mass_kg_mm(masses[0], masses[1])
-    small = stf.smaller_wheel_first((pinion.teeth, gear.teeth), (pinion, gear),
-                                    (pinion.profile_shift, gear.profile_shift))[0]
+    m_red = res.reduced_mass_kg_mm(masses[0] / planets, masses[1])
+    # n_E1 in the smaller wheel's speed; a planetary sun–planet mesh's in the sun's (relative to the carrier), as
+    # ISO 6336-1's planetary clause and the reference report state it (N, the ratio, is the same either way)
+    small = pinion if planets > 1 else stf.smaller_wheel_first((pinion.teeth, gear.teeth), (pinion, gear),
+                                                                (pinion.profile_shift, gear.profile_shift))[0]
     n_e1 = res.resonance_speed_rpm(small.teeth, mesh_N_mm_um, m_red)
     ratio = abs(small.speed_rpm) / n_e1
     lower = res.lower_main_resonance_limit(line_load_N_mm)
     return _Resonance(m_red, n_e1, ratio, lower, res.resonance_range(ratio, lower))
 
 
-def _stage_result(cfg: DesignFile, k: int, kin: Train) -> StageResult:
+def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> StageResult:
+    """A parallel stage, or a planetary stage's sun–planet mesh (``planets``: its planet count, for m_red)."""
     stage = cfg.pair(k)
     geo = _geometry(stage, k)
     materials = (cfg.materials[stage.pinion.material], cfg.materials[stage.gear.material])
@@ -271,7 +277,7 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train) -> StageResult:
         _check_bore(getattr(stage, part), geo.root_diameter_mm[i], f"stage[{k}].{part}.bore_diameter_mm")
     pinion = _gear_result(stage.pinion, 0, geo, helical, materials[0].density_kg_m3, w_p, t_pinion)
     gear = _gear_result(stage.gear, 1, geo, helical, materials[1].density_kg_m3, w_g, t_gear)
-    r = _resonance(pinion, gear, s.mesh_N_mm_um, s.line_load_N_mm)
+    r = _resonance(pinion, gear, s.mesh_N_mm_um, s.line_load_N_mm, planets)
     return StageResult(
         index=k + 1, ratio=kin.ratios[k], efficiency=stage.efficiency,
         normal_module_mm=stage.normal_module_mm, transverse_module_mm=geo.transverse_module_mm,

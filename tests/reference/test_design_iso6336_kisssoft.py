@@ -145,7 +145,8 @@ def test_kisssoft_nrel_sun_planet_stiffness_without_reduction_below_1_2():
 def test_kisssoft_nrel_sun_planet_reduced_mass_and_resonance_speed():
     """The report's mRed = 0.6606 kg/mm and nE1 = 2266 rpm are ISO 6336-1's planetary forms (sun with p = 3
     planets, index 1 the sun): m_red = m_P* m_S* / (p m_P* + m_S*), n_E1 = 30000/(π z_sun) √(c_γα/m_red).
-    gearcli rates two-wheel stages, so its m_red is m_P* m_S*/(m_P* + m_S*); the per-member masses
+    this pair is rated as a two-wheel stage, so its m_red is m_P* m_S*/(m_P* + m_S*) (a planetary stage's sun–planet
+    mesh takes the planetary form: test_planet_ring_rating_kisssoft.py); the per-member masses
     m* = J/b / r_b² (ISO's body: a disc of d_m = (d_a + d_f)/2 with the bore) are what is compared here."""
     s = _nrel_sun_planet(sun_drives=True)
     sun, planet = s.pinion, s.gear

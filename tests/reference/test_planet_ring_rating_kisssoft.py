@@ -263,3 +263,13 @@ def test_sun_counts_one_load_cycle_per_planet():
     assert_allclose(sun.load_cycles, 3 * 60.0 * n_rel * 175200.0, rtol=1e-12)
     assert_allclose([sun.Z_NT, sun.Y_NT], [0.909, 0.888], atol=5e-4)
     assert_allclose([sun.sigma_HG_MPa, sun.sigma_FG_MPa], [1368.61, 586.11], atol=1.5e-2)
+
+
+def test_sun_planet_mesh_reduced_mass_is_the_planetary_form():
+    """ISO 6336-1's planetary form for the sun–planet mesh of a planetary stage: the sun meets N = 3 planets, so
+    m_red = m*_s m*_p / (m*_s + N m*_p) and n_E1 = 30000/(π z_sun) √(c_γα/m_red): the report's mRed 0.6606 kg/mm,
+    nE1 2266 rpm and N 0.016 (the two-wheel form gave 1.289 kg/mm)."""
+    st = compute_design(DesignFile.model_validate(_doc())).stages[0]
+    assert_allclose(st.reduced_mass_kg_mm, 0.6606, atol=5e-5)
+    assert_allclose(st.resonance_speed_rpm, 2266, atol=0.5)
+    assert_allclose(st.resonance_ratio, 0.016, atol=5e-4)
