@@ -48,7 +48,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
         from gearcli.design.rating import rate_design
 
-        rated, rating_diagnostics = rate_design(pairs, tuple(_with_k_gamma(s) for s in stages))
+        rated, rating_diagnostics = rate_design(pairs, tuple(pl.with_load_sharing(s) for s in stages))
         stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
         stages = tuple(_rate_planet_ring(cfg, k, s) for k, s in enumerate(stages))
         from gearcli.design.rating_internal import planet_ring_safety_diagnostics
@@ -95,21 +95,9 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
         return stage
     from gearcli.design.rating_internal import rate_planet_ring
 
-    ring_rating = rate_planet_ring(cfg, k, _with_k_gamma(stage))
+    ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
     mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
     return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
-
-
-def _with_k_gamma(stage: StageResult) -> StageResult:
-    """A planetary stage's sun–planet mesh as rated: the most loaded planet's, K_gamma times the mean."""
-    if stage.planetary is None or stage.planetary.load_sharing_factor == 1.0:
-        return stage
-    k = stage.planetary.load_sharing_factor
-    f = stage.static_force_N
-    return replace(stage, static_force_N=StaticForces(k * f.tangential, k * f.radial, k * f.axial, k * f.normal),
-                   pinion=replace(stage.pinion, torque_Nmm=k * stage.pinion.torque_Nmm,
-                                  torque_Nm=k * stage.pinion.torque_Nm),
-                   gear=replace(stage.gear, torque_Nmm=k * stage.gear.torque_Nmm, torque_Nm=k * stage.gear.torque_Nm))
 
 
 def _require_finite(obj, key: str) -> None:

@@ -340,3 +340,15 @@ def planetary_key(cfg: DesignFile, key: str | None) -> str | None:
         head = f"stage[{k}]."
         return key.replace(head + "pinion.", head + "sun.").replace(head + "gear.", head + "planet.")
     return key
+
+
+def with_load_sharing(stage: StageResult) -> StageResult:
+    """A planetary stage's sun–planet mesh as rated: the most loaded planet's, K_gamma times the mean."""
+    if stage.planetary is None or stage.planetary.load_sharing_factor == 1.0:
+        return stage
+    k = stage.planetary.load_sharing_factor
+    f = stage.static_force_N
+    return replace(stage, static_force_N=StaticForces(k * f.tangential, k * f.radial, k * f.axial, k * f.normal),
+                   pinion=replace(stage.pinion, torque_Nmm=k * stage.pinion.torque_Nmm,
+                                  torque_Nm=k * stage.pinion.torque_Nm),
+                   gear=replace(stage.gear, torque_Nmm=k * stage.gear.torque_Nmm, torque_Nm=k * stage.gear.torque_Nm))

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
+from gearcli.design.planetary import pair_equivalent, with_load_sharing
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
@@ -349,10 +350,12 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
     its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise."""
     if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
         return tuple(stages), []
+    pairs = pair_equivalent(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
     out, diags = [], []
     for k, sd in enumerate(stages):
         k_v = stage_simulated_k_v(sd)
-        rated = replace(design.stages[k], rating=rate_stage(cfg, k, design.stages[k], simulated_k_v=k_v))
-        diags += safety_diagnostics(cfg, rated)
+        rated = replace(design.stages[k], rating=rate_stage(pairs, k, with_load_sharing(design.stages[k]),
+                                                            simulated_k_v=k_v))
+        diags += safety_diagnostics(pairs, rated)
         out.append(replace(sd, rating=rated.rating))
     return tuple(out), diags

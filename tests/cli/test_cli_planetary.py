@@ -145,3 +145,24 @@ def test_design_csv_carries_the_ring_root(runner):
     assert float(rows[0]["planet_ring_rating_gear_S_F"]) > 0.0
     assert float(rows[0]["planet_ring_rating_pinion_Y_M"]) == 0.7
     assert float(rows[0]["planet_ring_resonance_ratio"]) > 0.0
+
+
+def test_simulate_rates_planetary_stages_at_the_simulated_dynamic_factor(runner):
+    """`rating.dynamic_factor = "simulated"` on a train with planetary stages (an internal error before): each
+    stage's rating is the design's at K_v = max(1, its simulated dynamic factor), the planetary ones as their
+    sun–planet mesh with the design's K_gamma (σ_F / (K_v K_Fβ K_Fα) and σ_H0 as the design's)."""
+    res = run(runner, "simulate", GEARBOX, "--set", "rating.dynamic_factor=simulated", "--set",
+              "simulation.duration_s=0.3", "--format", "json", "-q")
+    assert res.exit_code == 0, res.stderr
+    design = json.loads(run(runner, "design", GEARBOX, "--format", "json").stdout)
+    stages = json.loads(res.stdout)["summary"]["stages"]
+    assert len(stages) == 3
+    for st, ds in zip(stages, design["stages"], strict=True):
+        rating = st["rating"]
+        iso = ds["meshes"][0]["rating"] if ds.get("type") == "planetary" else ds["rating"]
+        assert rating["K_v_source"] == "simulated"
+        assert_allclose(rating["K_v"], max(1.0, st["dynamic_factor"]), rtol=1e-12)
+        assert_allclose(rating["sigma_H0_MPa"], iso["sigma_H0_MPa"], rtol=1e-12)
+        for part in ("pinion", "gear"):
+            assert_allclose(rating[part]["sigma_F_MPa"] / (rating["K_v"] * rating["K_Fbeta"] * rating["K_Falpha"]),
+                            iso[part]["sigma_F_MPa"] / (iso["K_v"] * iso["K_Fbeta"] * iso["K_Falpha"]), rtol=1e-9)
