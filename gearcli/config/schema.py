@@ -268,6 +268,14 @@ class Planet(Gear):
     position_error_um: Annotated[list[Annotated[float, Field(ge=-1000, le=1000)]], Field(max_length=20)] | None = None
 
 
+class Ring(Gear):
+    """The internal ring gear of a planetary stage."""
+
+    # the pinion-type cutter that generates the ring: its teeth z_0 set the root fillet the ring's tooth-root rating
+    # uses (ISO 6336-3 for internal gears); absent: the basic rack's fillet (z_0 -> infinity: smaller, conservative)
+    cutter_teeth: Annotated[int, Field(ge=8, le=200)] | None = None
+
+
 class Carrier(_Table):
     """The planet carrier's own body (the planets' translational inertia N m_p r_c² is added to it)."""
 
@@ -298,7 +306,7 @@ class PlanetaryStage(_Table):
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
     sun: Gear
     planet: Planet
-    ring: Gear
+    ring: Ring
     carrier: Carrier = Carrier()
     fixed: PlanetaryMember = "ring"
     input: PlanetaryMember = "sun"

@@ -143,7 +143,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult) -> InternalRating
     forms = (rr.tooth_form(planet.teeth, m_n, an, beta, beta_b, planet.profile_shift, planet.tip_diameter_mm,
                            planet.pitch_diameter_mm, eps_a, rack),
              rr.internal_tooth_form(ring.teeth, m_n, an, beta, beta_b, ring.profile_shift, ring.tip_diameter_mm,
-                                    ring.pitch_diameter_mm, eps_a, rack))
+                                    ring.pitch_diameter_mm, eps_a, rack, cutter_teeth=stage.ring.cutter_teeth))
     y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
     y_bs = (rr.rim_factor(stage.planet.rim_thickness_mm, 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm)),
             rr.internal_rim_factor(stage.ring.rim_thickness_mm, 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)))
@@ -187,7 +187,8 @@ def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic
                                   math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),
                                   ring.profile_shift, ring.tip_diameter_mm, ring.pitch_diameter_mm,
                                   mesh.contact_ratio_transverse,
-                                  (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+                                  (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
+                                  cutter_teeth=stage.ring.cutter_teeth)
     out = []
     if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
         out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: the root's notch parameter q_s = {form['q_s']:.3g} "

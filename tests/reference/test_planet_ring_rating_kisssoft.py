@@ -273,3 +273,21 @@ def test_sun_planet_mesh_reduced_mass_is_the_planetary_form():
     assert_allclose(st.reduced_mass_kg_mm, 0.6606, atol=5e-5)
     assert_allclose(st.resonance_speed_rpm, 2266, atol=0.5)
     assert_allclose(st.resonance_ratio, 0.016, atol=5e-4)
+
+
+def test_the_rings_cutter_sets_its_root_fillet():
+    """`ring.cutter_teeth` (the pinion-type cutter's z_0, 36 in the report) reaches the ring's root rating: its
+    Y_F, Y_S are internal_tooth_form's with that cutter (the function checked against the report's printed ring
+    root above), the fillet is larger than the substitute rack's, so Y_S and σ_F fall."""
+    doc = _doc()
+    rack = _rating(doc).gear
+    doc["stage"][0]["ring"]["cutter_teeth"] = 36
+    st = compute_design(DesignFile.model_validate(doc)).stages[0]
+    cut = st.planetary.planet_ring.rating.gear
+    ring, mesh = st.planetary.ring, st.planetary.planet_ring
+    form = rr.internal_tooth_form(ring.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
+                                  math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),
+                                  ring.profile_shift, ring.tip_diameter_mm, ring.pitch_diameter_mm,
+                                  mesh.contact_ratio_transverse, (1.25, 0.38), cutter_teeth=36)
+    assert_allclose([cut.Y_F, cut.Y_S], [form["Y_F"], form["Y_S"]], rtol=1e-12)
+    assert cut.Y_S < rack.Y_S and cut.sigma_F_MPa < rack.sigma_F_MPa and cut.S_F > rack.S_F
