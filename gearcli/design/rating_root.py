@@ -10,6 +10,17 @@ import math
 from gearcli.design.rating_factors import SURFACE_HARDENED
 
 
+def _fillet_angle(g: float, z_n: float, h: float, iterations: int) -> float:
+    """θ of ISO 6336-3 method B: the fixed point of θ = 2G/z_n tan θ − H, from π/6 (to 1e-13)."""
+    theta = math.pi / 6.0
+    for _ in range(iterations):
+        new = 2.0 * g / z_n * math.tan(theta) - h
+        if abs(new - theta) < 1e-13:
+            return new
+        theta = new
+    return theta
+
+
 def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, helix_rad: float,
                base_helix_rad: float, profile_shift: float, tip_diameter: float, reference_diameter: float,
                eps_alpha: float, rack: tuple[float, float]) -> dict[str, float]:
@@ -24,13 +35,7 @@ def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, hel
     e = math.pi / 4.0 * m - h_fp * math.tan(an) - (1.0 - math.sin(an)) * rho_fp / math.cos(an)
     g = rho_fp / m - h_fp / m + profile_shift
     h = 2.0 / z_n * (math.pi / 2.0 - e / m) - math.pi / 3.0
-    theta = math.pi / 6.0
-    for _ in range(100):
-        new = 2.0 * g / z_n * math.tan(theta) - h
-        if abs(new - theta) < 1e-13:
-            theta = new
-            break
-        theta = new
+    theta = _fillet_angle(g, z_n, h, 100)
     s_fn = m * (z_n * math.sin(math.pi / 3.0 - theta) + math.sqrt(3.0) * (g / math.cos(theta) - rho_fp / m))
     rho_f = m * (rho_fp / m + 2.0 * g * g / (math.cos(theta) * (z_n * math.cos(theta) ** 2 - 2.0 * g)))
     d_n = m * z_n
@@ -145,13 +150,7 @@ def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: f
     e = math.pi / 4.0 * m - h_fp * math.tan(an) - (1.0 - math.sin(an)) * rho_fp / math.cos(an)
     g = rho_fp / m - h_fp / m + profile_shift
     h = 2.0 / z_n * (math.pi / 2.0 - e / m) - math.pi / 6.0
-    theta = math.pi / 6.0
-    for _ in range(200):
-        new = 2.0 * g / z_n * math.tan(theta) - h
-        if abs(new - theta) < 1e-13:
-            theta = new
-            break
-        theta = new
+    theta = _fillet_angle(g, z_n, h, 200)
     lever = g / math.cos(theta) - rho_fp / m
     s_fn = m * (z_n * math.sin(math.pi / 6.0 - theta) + lever)
     d_sfn = -m * (z_n * math.cos(math.pi / 6.0 - theta) + math.sqrt(3.0) * lever)
