@@ -191,20 +191,11 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
 
 def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:
     """Planet 1's ring-mesh contact-line phase against its sun mesh's (:mod:`gearcli.model.planet_phasing`)."""
-    from gearcli.model.planet_phasing import sun_drives, sun_ring_contact_phase_cycles
+    from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
 
     p = st.planetary
     assert p is not None
-    return sun_ring_contact_phase_cycles(
-        planet_teeth=p.planet.teeth, planet_profile_shift=p.planet.profile_shift,
-        normal_pressure_angle_rad=math.radians(st.normal_pressure_angle_deg),
-        transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
-        alpha_w_sun_rad=math.radians(st.working_pressure_angle_deg),
-        alpha_w_ring_rad=math.radians(p.planet_ring.working_pressure_angle_deg),
-        r_b_sun=0.5 * p.sun.base_diameter_mm, r_b_planet=0.5 * p.planet.base_diameter_mm,
-        r_b_ring=0.5 * p.ring.base_diameter_mm, r_a_sun=0.5 * p.sun.tip_diameter_mm,
-        r_a_planet=0.5 * p.planet.tip_diameter_mm, r_a_ring=0.5 * p.ring.tip_diameter_mm,
-        base_pitch=st.transverse_base_pitch_mm, sun_drives=sun_drives(unit, p.input, p.sun.teeth, p.ring.teeth))
+    return stage_contact_phase_cycles(st, sun_drives(unit, p.input, p.sun.teeth, p.ring.teeth))
 
 
 def _planet_errors_um(cfg: DesignFile, k: int) -> list[float]:

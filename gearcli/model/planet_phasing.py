@@ -33,6 +33,10 @@ taken (the helical contact lines cross the face alike on both meshes).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from gearcli.results import StageResult
 
 
 def involute(alpha: float) -> float:
@@ -73,3 +77,20 @@ def sun_drives(unit_speeds: dict[str, float], driven: str, z_sun: int, z_ring: i
     u = z_ring / z_sun
     share = {"sun": 1.0, "ring": u, "carrier": -(1.0 + u)}[driven]
     return share * (unit_speeds["sun"] - unit_speeds["carrier"]) > 0.0
+
+
+def stage_contact_phase_cycles(st: StageResult, sun_drives: bool) -> float:
+    """:func:`sun_ring_contact_phase_cycles` of a designed planetary stage (planet 1's ring mesh against its sun
+    mesh), from its design result."""
+    p = st.planetary
+    assert p is not None
+    return sun_ring_contact_phase_cycles(
+        planet_teeth=p.planet.teeth, planet_profile_shift=p.planet.profile_shift,
+        normal_pressure_angle_rad=math.radians(st.normal_pressure_angle_deg),
+        transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
+        alpha_w_sun_rad=math.radians(st.working_pressure_angle_deg),
+        alpha_w_ring_rad=math.radians(p.planet_ring.working_pressure_angle_deg),
+        r_b_sun=0.5 * p.sun.base_diameter_mm, r_b_planet=0.5 * p.planet.base_diameter_mm,
+        r_b_ring=0.5 * p.ring.base_diameter_mm, r_a_sun=0.5 * p.sun.tip_diameter_mm,
+        r_a_planet=0.5 * p.planet.tip_diameter_mm, r_a_ring=0.5 * p.ring.tip_diameter_mm,
+        base_pitch=st.transverse_base_pitch_mm, sun_drives=sun_drives)

@@ -168,21 +168,12 @@ def test_sun_ring_phase_against_the_involute_construction():
     stage (x_p = 0.8021: working pressure angles 24.9 deg on the sun mesh, 20.4 deg on the ring mesh), both
     senses of power flow."""
     from gearcli.config.load import load_design
-    from gearcli.model.planet_phasing import sun_ring_contact_phase_cycles as closed
+    from gearcli.model.planet_phasing import stage_contact_phase_cycles
 
     cfg = load_design("configs/planetary_stage.toml", []).design
     st = compute_design(cfg).stages[0]
     p = st.planetary
     assert abs(st.working_pressure_angle_deg - p.planet_ring.working_pressure_angle_deg) > 1.0
     for drives in (True, False):
-        value = closed(
-            planet_teeth=p.planet.teeth, planet_profile_shift=p.planet.profile_shift,
-            normal_pressure_angle_rad=math.radians(st.normal_pressure_angle_deg),
-            transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
-            alpha_w_sun_rad=math.radians(st.working_pressure_angle_deg),
-            alpha_w_ring_rad=math.radians(p.planet_ring.working_pressure_angle_deg),
-            r_b_sun=0.5 * p.sun.base_diameter_mm, r_b_planet=0.5 * p.planet.base_diameter_mm,
-            r_b_ring=0.5 * p.ring.base_diameter_mm, r_a_sun=0.5 * p.sun.tip_diameter_mm,
-            r_a_planet=0.5 * p.planet.tip_diameter_mm, r_a_ring=0.5 * p.ring.tip_diameter_mm,
-            base_pitch=st.transverse_base_pitch_mm, sun_drives=drives)
+        value = stage_contact_phase_cycles(st, drives)
         assert_allclose(math.remainder(value - _phase_by_construction(st, drives), 1.0), 0.0, atol=1e-9)
