@@ -580,7 +580,7 @@ class Target(_Table):
 
 
 # Output samples are held in memory (state, channels, then the text written): at this cap the seed scene
-# peaked at ~0.9 GB RSS for JSON and ~1.6 GB for CSV (README, "Numerical robustness"); more is refused.
+# peaked at ~0.9 GB RSS for JSON and ~1.6 GB for CSV (docs/numerics.md, "Numerical robustness"); more is refused.
 MAX_STEPS = 2_000_000
 
 

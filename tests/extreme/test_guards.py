@@ -79,7 +79,7 @@ def test_radau_across_the_ramp_end_follows_the_rigid_body_force(rtol):
         assert dev.max() < 0.02 * train.static_tangential_N(k), (k, dev.max())
     assert sim.energy.residual_relative < 1e-6  # quadratures under error control: no false energy warning
     # no other warning; at rtol 1e-6 Radau's 51 steps cannot show the ~1 % ringing, and the run says so per
-    # stage (README "Honest statistics"); at 1e-7 its steps are fine enough not to be flagged
+    # stage (docs/numerics.md "Honest statistics"); at 1e-7 its steps are fine enough not to be flagged
     assert {d.code for d in sim.diagnostics} <= {dg.STATISTICS_UNRESOLVED}, sim.warnings
     assert len(sim.diagnostics) == (3 if rtol == 1e-6 else 0), sim.warnings
 
