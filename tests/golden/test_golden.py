@@ -49,7 +49,8 @@ def _cases(bitwise: bool):
         if not gold.exists():
             continue
         slow = json.loads(gold.read_text()).get("slow", False)
-        marks = [pytest.mark.slow] if (slow or bitwise) else []
+        # both tiers of a scene on one xdist worker (--dist loadgroup, pyproject): the scene runs once per session
+        marks = [pytest.mark.xdist_group(golden_name(path))] + ([pytest.mark.slow] if (slow or bitwise) else [])
         if bitwise:
             marks.append(pytest.mark.bitwise)
         yield pytest.param(path, gold, id=golden_name(path), marks=marks)
