@@ -142,10 +142,3 @@ def check_run_budget(cfg, design, *, fmt: str, series: bool, source: str) -> Non
     """``gearcli simulate``: memory and cost, before scipy is even imported."""
     check_memory(cfg, fmt=fmt, series=series, source=source)
     check_cost(cfg, design, source=source)
-
-
-def check_report_budget(cfg, design, *, source: str) -> None:
-    """``gearcli report``: the file's run (memory, cost); the ladder's runs are each bounded in time by the
-    study itself (``LadderSpec.max_run_s``) and by the run budget."""
-    check_memory(cfg, fmt="json", series=False, source=source)
-    check_cost(cfg, design, source=source)

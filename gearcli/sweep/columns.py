@@ -74,11 +74,6 @@ def columns(keys: Sequence[str], n_stages: int, planetary: Sequence[int] = ()) -
     return [*keys, *FIXED, *stage_columns(n_stages, planetary), *TRAILING]
 
 
-def statistic_columns(n_stages: int, planetary: Sequence[int] = ()) -> list[str]:
-    """The numeric result columns a response curve can show."""
-    return [*stage_columns(n_stages, planetary), "output_speed_rpm"]
-
-
 def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: SimulationResult, wall_s: float,
            n_stages: int, message: str = "") -> Row:
     row: Row = {**dict(values), "direction": direction, "status": OK, "message": message}
