@@ -125,6 +125,18 @@ class Material(_Table):
     surface_hardness_HV: Annotated[float, Field(ge=50, le=1500)] | None = None  # Z_W of a softer wheel
 
 
+# manufacturing allowances [upper, lower] in mm (ISO 21771 / ISO 1328 terms): tooth thickness A_sne, A_sni in the
+# normal section (negative: thinner than nominal, for backlash), tip diameter A_dae, A_dai, centre distance A_ae, A_ai
+AllowanceMm = Annotated[float, Field(ge=-50, le=50), NotTiny(1e-6)]
+AllowancePair = Annotated[list[AllowanceMm], Field(min_length=2, max_length=2)]
+
+
+def _upper_not_below_lower(name: str, pair: list[float] | None) -> None:
+    if pair is not None and pair[0] < pair[1]:
+        raise ValueError(f"{name} = [upper, lower]: the upper allowance ({pair[0]:g}) is below the lower "
+                         f"({pair[1]:g}); give [upper, lower]")
+
+
 class Gear(_Table):
     """One gear of a stage: pinion (driving) or gear (driven)."""
 
@@ -142,12 +154,19 @@ class Gear(_Table):
     # strength rating (ISO 6336-2/-3): mean peak-to-valley roughness of the flank and of the root fillet
     flank_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
     root_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
+    # tooth thickness allowances [A_sne, A_sni] (normal section, mm) and tip diameter allowances [A_dae, A_dai]:
+    # generating profile shifts, manufactured root diameters, backlash and contact ratio with allowances
+    # (docs/iso6336.md, "Tooth-thickness allowances"); parallel stages
+    tooth_thickness_allowance_mm: AllowancePair | None = None
+    tip_diameter_allowance_mm: AllowancePair | None = None
 
     @model_validator(mode="after")
     def _web_needs_rim(self) -> Gear:
         if (self.web_thickness_mm is None) != (self.rim_thickness_mm is None):
             raise ValueError("a webbed gear body needs both web_thickness_mm and rim_thickness_mm "
                              "(give both, or neither for a solid disc)")
+        _upper_not_below_lower("tooth_thickness_allowance_mm", self.tooth_thickness_allowance_mm)
+        _upper_not_below_lower("tip_diameter_allowance_mm", self.tip_diameter_allowance_mm)
         return self
 
     @property
@@ -250,7 +269,20 @@ class Stage(_Table):
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: running-in C_ay)
     type: Literal["parallel"] = "parallel"  # a planetary stage says type = "planetary"
+    center_distance_allowance_mm: AllowancePair | None = None  # [A_ae, A_ai] on the working centre distance
     model_config = ConfigDict(json_schema_extra=_hands_rule())
+
+    @model_validator(mode="after")
+    def _allowance_order(self) -> Stage:
+        _upper_not_below_lower("center_distance_allowance_mm", self.center_distance_allowance_mm)
+        return self
+
+    @property
+    def has_allowances(self) -> bool:
+        """True when any manufacturing allowance of the pair is given."""
+        return self.center_distance_allowance_mm is not None or any(
+            g.tooth_thickness_allowance_mm is not None or g.tip_diameter_allowance_mm is not None
+            for g in (self.pinion, self.gear))
 
     @property
     def speed_ratio(self) -> float:
@@ -328,6 +360,12 @@ class PlanetaryStage(_Table):
         if errors is not None and len(errors) != self.planet.count:
             raise ValueError(f"planet.position_error_um needs one value per planet ({self.planet.count}), "
                              f"got {len(errors)}")
+        for name in ("sun", "planet", "ring"):
+            g = getattr(self, name)
+            for key in ("tooth_thickness_allowance_mm", "tip_diameter_allowance_mm"):
+                if getattr(g, key) is not None:
+                    raise ValueError(f"{name}.{key}: allowances are rated on parallel stages only (a planetary "
+                                     "stage's backlash and generating profile shifts are not computed yet)")
         if self.ring.teeth <= self.sun.teeth + 2 * self.planet.teeth - 3:
             raise ValueError(f"ring.teeth ({self.ring.teeth}) must be about sun.teeth + 2 planet.teeth "
                              f"({self.sun.teeth + 2 * self.planet.teeth}): the planets must fit between sun and ring")
