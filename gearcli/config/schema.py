@@ -154,6 +154,23 @@ class Gear(_Table):
     # strength rating (ISO 6336-2/-3): mean peak-to-valley roughness of the flank and of the root fillet
     flank_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
     root_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
+
+    @model_validator(mode="after")
+    def _web_needs_rim(self) -> Gear:
+        if (self.web_thickness_mm is None) != (self.rim_thickness_mm is None):
+            raise ValueError("a webbed gear body needs both web_thickness_mm and rim_thickness_mm "
+                             "(give both, or neither for a solid disc)")
+        return self
+
+    @property
+    def body_given(self) -> bool:
+        """True when any of bore_diameter_mm, rim_thickness_mm, web_thickness_mm is given."""
+        return any(v is not None for v in (self.bore_diameter_mm, self.rim_thickness_mm, self.web_thickness_mm))
+
+
+class PairGear(Gear):
+    """One gear of a parallel stage: pinion (driving) or gear (driven)."""
+
     # tooth thickness allowances [A_sne, A_sni] (normal section, mm) and tip diameter allowances [A_dae, A_dai]:
     # generating profile shifts, manufactured root diameters, backlash and contact ratio with allowances
     # (docs/iso6336.md, "Tooth-thickness allowances"); parallel stages
@@ -161,18 +178,10 @@ class Gear(_Table):
     tip_diameter_allowance_mm: AllowancePair | None = None
 
     @model_validator(mode="after")
-    def _web_needs_rim(self) -> Gear:
-        if (self.web_thickness_mm is None) != (self.rim_thickness_mm is None):
-            raise ValueError("a webbed gear body needs both web_thickness_mm and rim_thickness_mm "
-                             "(give both, or neither for a solid disc)")
+    def _allowance_order(self) -> PairGear:
         _upper_not_below_lower("tooth_thickness_allowance_mm", self.tooth_thickness_allowance_mm)
         _upper_not_below_lower("tip_diameter_allowance_mm", self.tip_diameter_allowance_mm)
         return self
-
-    @property
-    def body_given(self) -> bool:
-        """True when any of bore_diameter_mm, rim_thickness_mm, web_thickness_mm is given."""
-        return any(v is not None for v in (self.bore_diameter_mm, self.rim_thickness_mm, self.web_thickness_mm))
 
 
 class BasicRack(_Table):
@@ -258,8 +267,8 @@ class Stage(_Table):
     normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]  # watch gears ~0.05; the largest girth gears ~50
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45), NotTiny(1e-6)] = 0.0
-    pinion: Gear
-    gear: Gear
+    pinion: PairGear
+    gear: PairGear
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
     mesh: ContactOverride | None = None
@@ -360,12 +369,6 @@ class PlanetaryStage(_Table):
         if errors is not None and len(errors) != self.planet.count:
             raise ValueError(f"planet.position_error_um needs one value per planet ({self.planet.count}), "
                              f"got {len(errors)}")
-        for name in ("sun", "planet", "ring"):
-            g = getattr(self, name)
-            for key in ("tooth_thickness_allowance_mm", "tip_diameter_allowance_mm"):
-                if getattr(g, key) is not None:
-                    raise ValueError(f"{name}.{key}: allowances are rated on parallel stages only (a planetary "
-                                     "stage's backlash and generating profile shifts are not computed yet)")
         if self.ring.teeth <= self.sun.teeth + 2 * self.planet.teeth - 3:
             raise ValueError(f"ring.teeth ({self.ring.teeth}) must be about sun.teeth + 2 planet.teeth "
                              f"({self.sun.teeth + 2 * self.planet.teeth}): the planets must fit between sun and ring")

@@ -31,6 +31,11 @@ def manufactured_root_diameter_mm(pitch_diameter: float, normal_module_mm: float
     return pitch_diameter + 2.0 * normal_module_mm * (generating_shift - dedendum_factor)
 
 
+def manufactured_tooth_depth_mm(tip_diameter: float, tip_allowance: list[float] | None, roots: Pair) -> float:
+    """The deepest tooth cut: (d_a + A_dae − d_f,i)/2, the upper tip over the root of the lower thickness limit."""
+    return 0.5 * (tip_diameter + (tip_allowance[0] if tip_allowance else 0.0) - roots[1])
+
+
 def backlash_free_pressure_angle_rad(geo: PairGeometry, teeth: tuple[int, int], generating_shifts: Pair) -> float:
     """α_wt of the backlash-free mesh of the teeth cut at x_E1, x_E2: inv α = inv α_t + 2 tan α_n Σx_E / Σz."""
     return working_pressure_angle_rad(geo.transverse_pressure_rad, geo.normal_pressure_rad,
