@@ -59,7 +59,15 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     out = kin.shaft_speeds_rad_s[-1]
     planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
                       for st in stages for w in pl.planetary_warnings(st))
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *rating_diagnostics)
+    jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
+                           f"{st.backlash_circumferential_mm[1]:.4g} mm (< 0): at the upper tooth-thickness "
+                           "allowances and the smallest centre distance the teeth jam; thin the teeth "
+                           "(tooth_thickness_allowance_mm) or widen the centre distance", check="backlash_negative",
+                           stage=st.index,
+                           backlash_min_mm=st.backlash_circumferential_mm[1])
+                   for st in stages if st.backlash_circumferential_mm is not None
+                   and st.backlash_circumferential_mm[1] < 0.0)
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *jammed, *rating_diagnostics)
     return DesignResult(
         title=cfg.title,
         stages=stages,
