@@ -102,7 +102,7 @@ def test_without_the_keys_the_output_is_todays():
     st = json.loads(res.stdout)["stages"][0]
     assert [k for k in st if "allowances" in k or k.startswith("backlash_")] == ["backlash_mm"]
     assert "generating_profile_shift" not in st["pinion"] and "manufactured_root_diameter_mm" not in st["gear"]
-    assert "allowances" not in _run("--format", "table", text=text).stdout
+    assert "allowances (ISO 21771)" not in _run("--format", "table", text=text).stdout
 
 
 def test_jammed_teeth_warn():
