@@ -201,6 +201,15 @@ def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulat
                         z_eps)
 
 
+def _root_shift(g, choice: str) -> float:
+    """The profile shift method B rates the root at: x, or x_E of the chosen allowance (docs/iso6336.md,
+    "Allowances in the strength rating")."""
+    x_e = g.generating_profile_shift
+    if choice == "nominal" or x_e is None:
+        return float(g.profile_shift)
+    return {"upper": x_e[0], "lower": x_e[1], "mean": 0.5 * (x_e[0] + x_e[1])}[choice]
+
+
 def _tooth_depth_mm(stage, st: StageResult) -> float:
     """h of K_Fβ's b/h (ISO 6336-1:2006, 7.7, the smaller b/h of the pair): the basic rack's h_aP + h_fP; with
     tooth-thickness allowances the deepest tooth cut, (d_a + A_dae − d_f,i)/2 of the deeper member (docs/iso6336.md,
@@ -278,7 +287,8 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFact
     sig_h = flank.z_bd[i] * flank.sigma_h
     sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1
     form = rr.tooth_form(g.teeth, m_n, math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg),
-                         math.radians(st.base_helix_angle_deg), g.profile_shift, g.tip_diameter_mm,
+                         math.radians(st.base_helix_angle_deg), _root_shift(g, rating.root_profile_shift),
+                         g.tip_diameter_mm,
                          g.pitch_diameter_mm, st.contact_ratio_transverse,
                          (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
     if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):

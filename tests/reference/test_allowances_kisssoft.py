@@ -39,7 +39,7 @@ THICKNESS = {"pinion": [-0.130, -0.190], "gear": [-0.240, -0.340]}
 TIPS = [0.0, -0.1]
 
 
-def _design(allowances: bool = True):
+def _design(allowances: bool = True, root: str = "nominal"):
     pinion, gear = dict(PINION), {**WHEEL, "profile_shift": round(X2, 6)}
     stage = {"normal_module_mm": M_N, "helix_angle_deg": 10.0, "accuracy_grade": 6, "pinion": pinion, "gear": gear}
     if allowances:
@@ -51,7 +51,7 @@ def _design(allowances: bool = True):
     doc = {"materials": {"steel": STEEL}, "stage": [stage], "input": {"speed_rpm": n1},
            "load": {"torque_Nm": 162105.5, "application_factor": 1.25},
            "lubricant": {"viscosity_40C_mm2_s": 220.0, "viscosity_100C_mm2_s": 19.0, "temperature_C": 80.0},
-           "rating": RATING}
+           "rating": {**RATING, "root_profile_shift": root}}
     return compute_design(DesignFile.model_validate(doc)).stages[0]
 
 
@@ -202,6 +202,21 @@ def test_every_printed_root_figure():
         assert_allclose(m.S_F, p["SF"], atol=5e-3)
         assert_allclose(m.Y_S, p["Y_S"], rtol=3e-3)
         assert_allclose([m.sigma_F0_MPa, m.sigma_F_MPa], [p["F0"], p["F"]], rtol=9e-4)
+
+
+@pytest.mark.parametrize("root, limit", [("upper", 0), ("lower", 1), ("mean", None)])
+def test_root_rated_at_a_generating_shift_on_request(root, limit):
+    """``[rating] root_profile_shift``: method B at x_E of the chosen allowance (the written-out method B above at
+    that x), the thinner tooth's stress higher; without allowances the option changes nothing."""
+    st, nominal = _design(root=root), _design()
+    for name, gear in (("pinion", st.pinion), ("gear", st.gear)):
+        x_e = gear.generating_profile_shift
+        x = x_e[limit] if limit is not None else 0.5 * (x_e[0] + x_e[1])
+        f = _form(gear, st.contact_ratio_transverse, x)
+        m = getattr(st.rating, name)
+        assert_allclose([m.Y_F, m.Y_S], [f["Y_F"], f["Y_S"]], rtol=1e-9)
+        assert m.sigma_F0_MPa > getattr(nominal.rating, name).sigma_F0_MPa
+    assert _design(False, root).rating == _design(False).rating
 
 
 @pytest.mark.parametrize("allowances", [False, True])
