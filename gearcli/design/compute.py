@@ -306,11 +306,16 @@ def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: in
         return NO_ALLOWANCE if value is None else (value[0], value[1])
 
     members = (stage.pinion, stage.gear)
-    a = pair_allowances(geo, (stage.pinion.teeth, stage.gear.teeth),
-                        (stage.pinion.profile_shift, stage.gear.profile_shift),
-                        (pair(members[0].tooth_thickness_allowance_mm), pair(members[1].tooth_thickness_allowance_mm)),
-                        (pair(members[0].tip_diameter_allowance_mm), pair(members[1].tip_diameter_allowance_mm)),
-                        pair(stage.center_distance_allowance_mm), stage.basic_rack.dedendum)
+    try:
+        a = pair_allowances(geo, (stage.pinion.teeth, stage.gear.teeth),
+                            (stage.pinion.profile_shift, stage.gear.profile_shift),
+                            (pair(members[0].tooth_thickness_allowance_mm),
+                             pair(members[1].tooth_thickness_allowance_mm)),
+                            (pair(members[0].tip_diameter_allowance_mm), pair(members[1].tip_diameter_allowance_mm)),
+                            pair(stage.center_distance_allowance_mm), stage.basic_rack.dedendum)
+    except ValueError:  # InfeasibleGeometry too: no involute mesh at these limits
+        raise DesignError("the allowances leave no involute mesh (the teeth at their limits cannot mesh at the "
+                          "centre distance's limits): check their magnitudes against the module", key=f"stage[{k}]") from None
     for i, part in enumerate(("pinion", "gear")):
         if min(a.manufactured_root_diameter_mm[i]) <= 0.0:
             raise DesignError(f"the tooth thickness allowance leaves no root: manufactured d_f = "

@@ -119,6 +119,7 @@ def test_jammed_teeth_warn():
     ("[-0.130, -0.190]", "[-0.190, -0.130]", "stage[0].pinion"),
     ("center_distance_allowance_mm = [0.028, -0.028]", "center_distance_allowance_mm = [-0.028, 0.028]", "stage[0]"),
     ("[-0.240, -0.340]", "[-0.240]", "stage[0].gear.tooth_thickness_allowance_mm"),
+    ("[-0.240, -0.340]", "[-45, -48]", "stage[0]"),  # Σx_E so negative that no involute mesh is left
 ])
 def test_bad_allowances_exit_2_naming_the_key(old, new, key):
     text = CONFIG.read_text()
