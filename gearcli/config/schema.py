@@ -654,8 +654,9 @@ class Rating(_Table):
     min_safety_bending: Annotated[float, Field(ge=0.5, le=10)] = 1.4  # S_Fmin
     material_quality: Literal["normal", "optimum"] = "normal"  # Z_NT, Y_NT at 1e10 cycles: 0.85 or 1.0
     # the profile shift of the tooth-root rating (ISO 6336-3 method B) on members with tooth-thickness allowances:
-    # "nominal" x (as the reference report rates), or the generating x_E of the "upper", "lower" or "mean" allowance
-    root_profile_shift: Literal["nominal", "upper", "lower", "mean"] = "nominal"
+    # the generating x_E of the "lower" (default: the thinnest tooth, as K_Fbeta's depth), "upper" or "mean"
+    # allowance, or the "nominal" x (as some commercial reports rate)
+    root_profile_shift: Literal["nominal", "upper", "lower", "mean"] = "lower"
     dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
     load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
 
