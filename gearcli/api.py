@@ -34,7 +34,7 @@ from gearcli.config.bounds import check_run_budget
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
-from gearcli.errors import DesignError, RunTooLong
+from gearcli.errors import ConfigError, DesignError, RunTooLong
 from gearcli.io.sweep_file import open_sink, read_identity
 from gearcli.model.spec import ElementSpec, ModelSpec
 from gearcli.results import DesignResult
@@ -230,6 +230,9 @@ def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None
     ``classes`` torque classes)."""
     from gearcli.life.session import prepare
 
+    if file == "-" and series == "-":
+        raise ConfigError("'-' (standard input) already carries the design file; give the history as a "
+                          "file", source="--series")
     raw = read_bytes(file)
     loaded = load(file, overrides, stdin=io.BytesIO(raw))
     return prepare(raw, loaded, design(loaded), overrides, series=series, classes=classes)
@@ -243,7 +246,8 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
     from gearcli.life.run import compute_life
 
     return compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
-                        progress=progress, design_case=design_case, evaluate=evaluate_point)
+                        progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
+                        base_warnings=session.design.warnings)
 
 
 # ----------------------------------------------------------------- points (injected into sweep and life)

@@ -148,9 +148,17 @@ def _tty_default(pipe_format: str) -> Callable[[], str]:
     return lambda: "table" if sys.stdout.isatty() else pipe_format
 
 
+#: the parameters of any command that name a file it reads: the design file, ``life --series``. The one rule
+#: that protects inputs: neither ``-o`` nor ``--plots`` may write over any of them (a sweep's resume file is
+#: its ``-o``, which ``--plots`` may not write over either).
+INPUT_PARAMS = ("file", "series")
+
+
 def _context_inputs() -> tuple[str | None, ...]:
     ctx = click.get_current_context(silent=True)
-    return (ctx.params.get("file"),) if ctx is not None else ()
+    if ctx is None:
+        return ()
+    return tuple(ctx.params[p] for p in INPUT_PARAMS if isinstance(ctx.params.get(p), str))
 
 
 def check_target(fmt: str | None, out: str | None, formats: tuple[str, ...] = FORMATS, *,
@@ -487,15 +495,20 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
         _write_report_plots(rep, plots_dir)
 
 
-def _check_plots_dir(plots_dir: str, file: str, target) -> None:
-    """No plot may replace the input or the -o file, nor be written onto a directory or a device."""
-    from gearcli.io.plots import FIGURE_NAMES
-
+def check_plots_dir(plots_dir: str, names, target: outfiles.OutputTarget) -> None:
+    """``--plots DIR`` of every command, before any work: a directory that can be written (or created), and
+    no figure ``names`` may replace an input of the command or its -o file, nor land on a directory or device."""
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
     outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
-    outfiles.check_not_clobbering([Path(plots_dir) / name for name in FIGURE_NAMES],
-                                  [file, target.path], "--plots")
+    outfiles.check_not_clobbering([Path(plots_dir) / name for name in names], [*_context_inputs(), target.path],
+                                  "--plots")
+
+
+def _check_plots_dir(plots_dir: str, file: str, target) -> None:
+    from gearcli.io.plots import FIGURE_NAMES
+
+    check_plots_dir(plots_dir, FIGURE_NAMES, target)
 
 
 def _write_report_plots(rep, plots_dir: str) -> None:
@@ -545,7 +558,7 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
     from gearcli import api
     from gearcli.io.sweep_progress import SweepProgress
 
-    target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work
+    target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=_context_inputs())  # before work
     if plots_dir:
         _check_sweep_plots_dir(plots_dir, file, target, vary)
     output = target.shown if target.path is not None else None
@@ -567,12 +580,9 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
 
 def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
     """As for report: no sweep figure may replace the input or the -o file."""
-    if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
-        raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
-    outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     names = ["campbell.png", "distributions.png"]
     names += [f"response_{v.split('=', 1)[0].strip().replace('.', '_')}.png" for v in vary]
-    outfiles.check_not_clobbering([Path(plots_dir) / n for n in names], [file, target.path], "--plots")
+    check_plots_dir(plots_dir, names, target)
 
 
 def _write_sweep_plots(session, rows, plots_dir: str) -> None:
@@ -613,10 +623,7 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
 
     target = check_target(fmt, output)
     if plots_dir:
-        if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
-            raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
-        outfiles.check_not_clobbering([Path(plots_dir) / n for n in ("pitting.png", "bending.png")],
-                                      [file, target.path], "--plots")
+        check_plots_dir(plots_dir, ("pitting.png", "bending.png"), target)
     session = api.prepare_life(file, overrides, series=series, classes=classes)
     warn(session.design.warnings)
     from gearcli.io.progress import TerminalProgress

@@ -30,7 +30,8 @@ from gearcli.config.schema import DesignFile
 from gearcli.config.starter import json_schema, starter_toml
 from gearcli.errors import ConfigError
 
-__all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN"]
+__all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN",
+           "read_input_file"]
 
 MAX_LINES_REPORTED = 20
 STDIN = "<stdin>"
@@ -124,8 +125,8 @@ def read_bytes(path: str, stdin: BinaryIO | None = None) -> bytes:
     return raw
 
 
-def _read_bounded(path: str) -> bytes:
-    """At most MAX_BYTES + 1 bytes. A FIFO is opened without blocking (no writer: empty, never a hang);
+def _read_bounded(path: str, limit: int = MAX_BYTES) -> bytes:
+    """At most ``limit`` + 1 bytes. A FIFO is opened without blocking (no writer: empty, never a hang);
     /dev/zero and the like stop at the size limit."""
     fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     try:
@@ -134,8 +135,8 @@ def _read_bounded(path: str) -> bytes:
 
             fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~os.O_NONBLOCK)
         chunks, size = [], 0
-        while size <= MAX_BYTES:
-            chunk = os.read(fd, MAX_BYTES + 1 - size)
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
             if not chunk:
                 break
             chunks.append(chunk)
@@ -150,19 +151,25 @@ def _read_bounded(path: str) -> bytes:
 
 
 def _read_file(path: str) -> bytes:
-    p = Path(path)
     if not path:
         raise ConfigError("no design file given (" + _INIT_HINT + ")")
+    return read_input_file(path, MAX_BYTES, what="a design file", hint=_INIT_HINT)
+
+
+def read_input_file(path: str, limit: int, *, what: str, hint: str = "") -> bytes:
+    """At most ``limit`` + 1 bytes of an input file a command reads (the design file, ``life --series``), the
+    same way for every one: a directory, a missing or unreadable file, a FIFO without a writer (never a hang)
+    are :class:`ConfigError` naming the path."""
     try:
-        if p.is_dir():
-            raise ConfigError("is a directory, not a design file", source=path)
-        return _read_bounded(path)
+        if Path(path).is_dir():
+            raise ConfigError(f"is a directory, not {what}", source=path)
+        return _read_bounded(path, limit)
     except FileNotFoundError:
-        raise ConfigError(f"no such file ({_INIT_HINT})", source=path) from None
+        raise ConfigError("no such file" + (f" ({hint})" if hint else ""), source=path) from None
     except PermissionError:
         raise ConfigError("permission denied", source=path) from None
     except IsADirectoryError:
-        raise ConfigError("is a directory, not a design file", source=path) from None
+        raise ConfigError(f"is a directory, not {what}", source=path) from None
     except OSError as exc:
         raise ConfigError(f"cannot read: {exc.strerror or exc}", source=path) from None
     except ValueError:  # e.g. an embedded NUL byte

@@ -5,7 +5,9 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, model_validator
+
+from gearcli.config.bounds_types import StrictTable
 
 MAX_TABLE = 32
 NAMEPLATE = ("rated_power_kW", "rated_speed_rpm", "synchronous_speed_rpm", "breakdown_torque_ratio",
@@ -23,11 +25,11 @@ def increasing_speeds(points: list[list[float]], what: str, *, non_negative: boo
         raise ValueError(f"{what}: speeds must be 0 or more (the law is mirrored for reverse rotation)")
 
 
-class Motor(BaseModel):
+class Motor(StrictTable):
     """An induction motor: the five nameplate values (an extended Kloss curve through the rated, breakdown and
     locked-rotor points) or a torque-speed table ``[[rpm, N·m], ...]``, linear between its points."""
 
-    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True, json_schema_extra={"anyOf": [
+    model_config = ConfigDict(json_schema_extra={"anyOf": [
         {"required": list(NAMEPLATE), "not": {"required": ["torque_speed"]}},
         {"required": ["torque_speed"], "not": {"anyOf": [{"required": [k]} for k in NAMEPLATE]}}]})
 

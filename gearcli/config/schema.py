@@ -12,7 +12,6 @@ import math
 from typing import Annotated, Any, Literal
 
 from pydantic import (
-    BaseModel,
     ConfigDict,
     Discriminator,
     Field,
@@ -23,11 +22,10 @@ from pydantic import (
     model_validator,
 )
 
-from gearcli.config.bounds_types import NotTiny
+from gearcli.config.bounds_types import NotTiny, StrictTable
 from gearcli.config.duty import AxialPositionMm, Bearing, CenterAngleDeg, Duty
 from gearcli.config.excitation import (
     MAX_HARMONICS,
-    STRICT,
     DampingRatio,
     Fluctuation,
     PhaseDeg,
@@ -109,8 +107,8 @@ def _hands_rule() -> Any:
                       pair("right", "left")]}
 
 
-class _Table(BaseModel):
-    model_config = STRICT
+class _Table(StrictTable):
+    pass
 
 
 class Material(_Table):
