@@ -664,6 +664,9 @@ def main() -> None:
         raise
     except BrokenPipeError:
         _broken_pipe()
+    except OSError as exc:  # click's own output (--help, --version) on a device that refuses it (> /dev/full)
+        outfiles.drop_buffered(sys.stdout)
+        _fail(f"{outfiles.STDOUT_NAME}: cannot write: {exc.strerror or exc}", EXIT_USAGE)
 
 
 if __name__ == "__main__":  # pragma: no cover

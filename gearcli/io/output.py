@@ -209,5 +209,33 @@ def _write_stdout(text: str) -> None:
         text.encode(encoding)
     except (UnicodeEncodeError, LookupError):
         text = text.encode(encoding, "backslashreplace").decode(encoding, "replace")
-    stream.write(text)
-    stream.flush()
+    write_stream(stream, text)
+
+
+STDOUT_NAME = "standard output"
+
+
+def write_stream(stream, text: str) -> None:
+    """``text`` written and flushed to ``stream`` (stdout, or a sweep's row stream on it). A device that
+    refuses it (``> /dev/full``: no space, an I/O error) is :class:`OutputError` naming standard output (exit
+    2), and what is still buffered is dropped so that the interpreter's last flush cannot fail again. A
+    reader gone away stays :class:`BrokenPipeError` (exit 141)."""
+    try:
+        stream.write(text)
+        stream.flush()
+    except BrokenPipeError:
+        raise
+    except OSError as exc:
+        drop_buffered(stream)
+        raise _refuse(STDOUT_NAME, f"cannot write: {exc.strerror or exc}") from None
+
+
+def drop_buffered(stream) -> None:
+    import io
+
+    try:
+        fd = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(fd, stream.fileno())
+        os.close(fd)
+    except (OSError, ValueError, AttributeError, io.UnsupportedOperation):
+        pass
