@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 from typing import cast
 
 from gearcli.config import DesignFile
+from gearcli.config.bounds import check_memory
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
@@ -140,6 +141,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
         extra += ("simulation.engine=compiled",)
     duration = spectra.duration_for(cfg, design)
     steps = spectra.steps_for(design, duration, cfg.simulation.steps)
+    check_memory(cfg, fmt="json", series=False, source=scene.source, steps=steps)  # the point's run, in memory
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
     try:
         (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None)

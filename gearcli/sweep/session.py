@@ -19,7 +19,7 @@ from typing import Protocol
 
 from gearcli import __version__
 from gearcli.config import DesignFile, LoadedDesign
-from gearcli.config.bounds import memory_estimate_bytes, output_samples
+from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
 from gearcli.core.jsontypes import JsonObject
 from gearcli.results import DesignResult
 from gearcli.sweep.columns import FAILED, OK, Row, columns
@@ -89,6 +89,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
+    check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
     check_keys(scene, spec.branches()[0][0])
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
