@@ -386,7 +386,7 @@ def init(file: str | None, force: bool) -> None:
     """Write a commented starter design file (the seed reducer) to FILE, or to stdout ('-' or none)."""
     from gearcli import api
 
-    target = outfiles.check_output(file, formats=("toml",))
+    target = outfiles.check_output(file, formats=("toml",), stdout_as="'-'")
     if target.path is not None and target.path.exists() and not force:
         _fail(f"{visible(file or '')}: exists; use --force to overwrite", EXIT_USAGE)
     emit(api.starter_toml(), target)
@@ -400,6 +400,7 @@ Examples:
   gearcli schema | python -m json.tool
 """)
 @outfiles.output_option("Write to FILE atomically ('-' is stdout).")
+@quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
 @guarded
 def schema(output: str | None) -> None:
@@ -553,6 +554,7 @@ Examples:
                         "points done.")
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
               help="Response curves, Campbell diagram, histograms into DIR (pip install 'gearcli[plot]').")
+@quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
 @guarded
 def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, scheduler, overrides, fmt, output,
@@ -570,11 +572,12 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
                       output=str(target.path) if target.path is not None else None, fmt=target.fmt)
     warn(session.design_warnings)
     warn(session.notes)  # --jobs capped by the machine
-    with SweepProgress(session.todo + session.done, session.done) as progress:
+    with SweepProgress(session.todo + session.done, session.done, enabled=not is_quiet()) as progress:
         rows = api.run_sweep(session, progress.advance)
     failed = sum(r.get("status") != "ok" for r in rows)
-    click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
-               err=True)
+    if failed or not is_quiet():  # -q: silent unless points failed (an error is still said)
+        click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
+                   err=True)
     if plots_dir:
         _write_sweep_plots(session, rows, plots_dir)
     if failed:

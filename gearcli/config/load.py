@@ -102,6 +102,14 @@ def check_override_keys(raw: bytes, source: str, overrides: Sequence[str]) -> No
     _overrides.apply_all(copy.deepcopy(_parsed(raw, source)), overrides)
 
 
+def integer_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[str]:
+    """Those of ``keys`` (``--set`` key paths) whose values are whole numbers (a tooth or planet count), in the
+    file ``raw`` with ``sets`` applied."""
+    data = copy.deepcopy(_parsed(raw, source))
+    _overrides.apply_all(data, sets)
+    return [k for k in keys if _overrides.leaf_type(data, k) is int]
+
+
 def _digest(raw: bytes, overrides: Sequence[str]) -> str:
     h = hashlib.sha256(raw)
     for text in overrides:

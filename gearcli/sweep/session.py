@@ -25,7 +25,7 @@ from gearcli.results import DesignResult
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
-from gearcli.sweep.spec import SweepSpec, spec_from_options
+from gearcli.sweep.spec import SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
 
@@ -91,6 +91,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
     check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
     check_keys(scene, spec.branches()[0][0])
+    _no_continuous_integers(spec, scene)
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
@@ -105,6 +106,19 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     planetary = [st.index for st in design.stages if st.planetary is not None]
     return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), planetary), ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+
+
+def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
+    """A whole-number key (a tooth or planet count) drawn from a continuous distribution would fail at every
+    point: refused before any runs."""
+    from gearcli.config.load import integer_keys
+
+    whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
+    if whole:
+        d = next(d for d in spec.randoms if d.key == whole[0])
+        raise SweepUsageError(f"{d.key} is a whole number, {d.kind}(...) draws real numbers: every point would fail; "
+                              "vary it over whole numbers with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
+                              source="--random")
 
 
 def capped_jobs(jobs: int | None, cfg: DesignFile, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:
