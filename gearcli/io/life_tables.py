@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from rich.console import RenderableType
+
 from gearcli.io.tables import FittedTable, StageColumns, _g
 from gearcli.results import BearingResult, BearingStats
 
