@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, BinaryIO
 
 import gearcli.design as design_layer
 from gearcli.config import DesignFile, LoadedDesign, json_schema, load_design, load_variant, starter_toml
-from gearcli.config.bounds import check_run_budget
+from gearcli.config.bounds import check_run_budget, memory_limit_bytes
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
@@ -57,6 +57,12 @@ __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell",
            "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
            "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
+
+
+def check_environment() -> None:
+    """The environment every command reads, checked the same way for each: a set ``GEARCLI_MEMORY_LIMIT_MB``
+    must be a number of MiB (:class:`~gearcli.errors.ConfigError`, exit 2, otherwise)."""
+    memory_limit_bytes()
 
 
 def design_file_schema() -> JsonObject:

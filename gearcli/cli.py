@@ -74,9 +74,9 @@ def guarded(fn: Callable) -> Callable:
         if quiet:
             click.get_current_context().meta["gearcli.quiet"] = True
         try:
-            from gearcli.config.bounds import memory_limit_bytes
+            from gearcli import api
 
-            memory_limit_bytes()  # one rule for every command: a set GEARCLI_MEMORY_LIMIT_MB must be valid
+            api.check_environment()  # one rule for every command: a set GEARCLI_MEMORY_LIMIT_MB must be valid
             with warnings_module.catch_warnings(record=True) as caught:
                 warnings_module.simplefilter("always", RuntimeWarning)
                 try:

@@ -24,7 +24,7 @@ import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TypeVar
+from typing import TextIO, TypeVar
 
 from gearcli.core.text import shorten
 from gearcli.errors import OutputError
@@ -216,7 +216,7 @@ def _write_stdout(text: str) -> None:
 STDOUT_NAME = "standard output"
 
 
-def write_stream(stream, text: str) -> None:
+def write_stream(stream: TextIO, text: str) -> None:
     """``text`` written and flushed to ``stream`` (stdout, or a sweep's row stream on it). A device that
     refuses it (``> /dev/full``: no space, an I/O error) is :class:`OutputError` naming standard output (exit
     2), and what is still buffered is dropped so that the interpreter's last flush cannot fail again. A
@@ -231,7 +231,7 @@ def write_stream(stream, text: str) -> None:
         raise _refuse(STDOUT_NAME, f"cannot write: {exc.strerror or exc}") from None
 
 
-def drop_buffered(stream) -> None:
+def drop_buffered(stream: TextIO) -> None:
     import io
 
     try:
