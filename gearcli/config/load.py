@@ -103,11 +103,22 @@ def check_override_keys(raw: bytes, source: str, overrides: Sequence[str]) -> No
 
 
 def integer_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[str]:
-    """Those of ``keys`` (``--set`` key paths) whose values are whole numbers (a tooth or planet count), in the
-    file ``raw`` with ``sets`` applied."""
+    """Those of ``keys`` (``--set`` key paths) that take no real number (a tooth or planet count, a choice among
+    whole numbers such as ``speed_exponent``, a flag), in the file ``raw`` with ``sets`` applied."""
     data = copy.deepcopy(_parsed(raw, source))
     _overrides.apply_all(data, sets)
-    return [k for k in keys if _overrides.leaf_type(data, k) is int]
+    return [k for k in keys if not _takes_real(_overrides.leaf_type(data, k))]
+
+
+def _takes_real(tp: object) -> bool:
+    import types
+    from typing import Union, get_args, get_origin
+
+    if tp is float:
+        return True
+    if get_origin(tp) in (Union, types.UnionType):
+        return any(_takes_real(a) for a in get_args(tp))
+    return tp is object or str(tp) == "typing.Any"
 
 
 def _digest(raw: bytes, overrides: Sequence[str]) -> str:

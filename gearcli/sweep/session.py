@@ -109,15 +109,15 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
 
 
 def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
-    """A whole-number key (a tooth or planet count) drawn from a continuous distribution would fail at every
-    point: refused before any runs."""
+    """A key that takes no real number (a tooth or planet count, a whole-number choice) drawn from a continuous
+    distribution would fail at every point: refused before any runs."""
     from gearcli.config.load import integer_keys
 
     whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
     if whole:
         d = next(d for d in spec.randoms if d.key == whole[0])
-        raise SweepUsageError(f"{d.key} is a whole number, {d.kind}(...) draws real numbers: every point would fail; "
-                              "vary it over whole numbers with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
+        raise SweepUsageError(f"{d.key} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
+                              "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")
 
 
