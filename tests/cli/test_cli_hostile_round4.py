@@ -320,11 +320,11 @@ def test_life_design_file_and_series_both_on_stdin_is_refused():
     assert_usage_error(res, "(standard input) already carries the design file")
 
 
-def test_sweep_refuses_a_whole_number_key_drawn_from_a_continuous_distribution(tmp_path):
+@pytest.mark.parametrize("key", ["stage.0.planet.count", "load.speed_exponent"])
+def test_sweep_refuses_a_whole_number_key_drawn_from_a_continuous_distribution(tmp_path, key):
     # was: every point failed at run time (exit 1)
-    res = run("sweep", PLANETARY, "--random", "stage.0.planet.count=uniform(1,5)", "--samples", "2",
-              "-o", tmp_path / "x.csv")
-    assert_usage_error(res, "--random", "stage.0.planet.count", "whole number")
+    res = run("sweep", PLANETARY, "--random", f"{key}=uniform(1,5)", "--samples", "2", "-o", tmp_path / "x.csv")
+    assert_usage_error(res, "--random", key, "whole number")
     assert not (tmp_path / "x.csv").exists()
 
 
