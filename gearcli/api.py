@@ -30,11 +30,11 @@ from typing import TYPE_CHECKING, BinaryIO
 
 import gearcli.design as design_layer
 from gearcli.config import DesignFile, LoadedDesign, json_schema, load_design, load_variant, starter_toml
-from gearcli.config.bounds import check_run_budget
+from gearcli.config.bounds import check_memory, check_run_budget, memory_limit_bytes
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
-from gearcli.errors import DesignError, RunTooLong
+from gearcli.errors import ConfigError, DesignError, RunTooLong
 from gearcli.io.sweep_file import open_sink, read_identity
 from gearcli.model.spec import ElementSpec, ModelSpec
 from gearcli.results import DesignResult
@@ -57,6 +57,12 @@ __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell",
            "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
            "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
+
+
+def check_environment() -> None:
+    """The environment every command reads, checked the same way for each: a set ``GEARCLI_MEMORY_LIMIT_MB``
+    must be a number of MiB (:class:`~gearcli.errors.ConfigError`, exit 2, otherwise)."""
+    memory_limit_bytes()
 
 
 def design_file_schema() -> JsonObject:
@@ -230,6 +236,9 @@ def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None
     ``classes`` torque classes)."""
     from gearcli.life.session import prepare
 
+    if file == "-" and series == "-":
+        raise ConfigError("'-' (standard input) already carries the design file; give the history as a "
+                          "file", source="--series")
     raw = read_bytes(file)
     loaded = load(file, overrides, stdin=io.BytesIO(raw))
     return prepare(raw, loaded, design(loaded), overrides, series=series, classes=classes)
@@ -243,7 +252,8 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
     from gearcli.life.run import compute_life
 
     return compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
-                        progress=progress, design_case=design_case, evaluate=evaluate_point)
+                        progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
+                        base_warnings=session.design.warnings)
 
 
 # ----------------------------------------------------------------- points (injected into sweep and life)
@@ -268,6 +278,7 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     from gearcli.sweep.worker import Evaluation
 
     case = design_case(scene, (*overrides, *(NO_RAMPS if start else ())))
+    check_memory(case.cfg, fmt="json", series=False, source=scene.source)  # the point's run, held in memory
     spec = spec_from_design(*case)
     y0 = None
     if start is not None:

@@ -74,6 +74,9 @@ def guarded(fn: Callable) -> Callable:
         if quiet:
             click.get_current_context().meta["gearcli.quiet"] = True
         try:
+            from gearcli import api
+
+            api.check_environment()  # one rule for every command: a set GEARCLI_MEMORY_LIMIT_MB must be valid
             with warnings_module.catch_warnings(record=True) as caught:
                 warnings_module.simplefilter("always", RuntimeWarning)
                 try:
@@ -148,9 +151,17 @@ def _tty_default(pipe_format: str) -> Callable[[], str]:
     return lambda: "table" if sys.stdout.isatty() else pipe_format
 
 
+#: the parameters of any command that name a file it reads: the design file, ``life --series``. The one rule
+#: that protects inputs: neither ``-o`` nor ``--plots`` may write over any of them (a sweep's resume file is
+#: its ``-o``, which ``--plots`` may not write over either).
+INPUT_PARAMS = ("file", "series")
+
+
 def _context_inputs() -> tuple[str | None, ...]:
     ctx = click.get_current_context(silent=True)
-    return (ctx.params.get("file"),) if ctx is not None else ()
+    if ctx is None:
+        return ()
+    return tuple(ctx.params[p] for p in INPUT_PARAMS if isinstance(ctx.params.get(p), str))
 
 
 def check_target(fmt: str | None, out: str | None, formats: tuple[str, ...] = FORMATS, *,
@@ -370,7 +381,7 @@ def init(file: str | None, force: bool) -> None:
     """Write a commented starter design file (the seed reducer) to FILE, or to stdout ('-' or none)."""
     from gearcli import api
 
-    target = outfiles.check_output(file, formats=("toml",))
+    target = outfiles.check_output(file, formats=("toml",), stdout_as="'-'")
     if target.path is not None and target.path.exists() and not force:
         _fail(f"{visible(file or '')}: exists; use --force to overwrite", EXIT_USAGE)
     emit(api.starter_toml(), target)
@@ -384,6 +395,7 @@ Examples:
   gearcli schema | python -m json.tool
 """)
 @outfiles.output_option("Write to FILE atomically ('-' is stdout).")
+@quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
 @guarded
 def schema(output: str | None) -> None:
@@ -482,15 +494,20 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
         _write_report_plots(rep, plots_dir)
 
 
-def _check_plots_dir(plots_dir: str, file: str, target) -> None:
-    """No plot may replace the input or the -o file, nor be written onto a directory or a device."""
-    from gearcli.io.plots import FIGURE_NAMES
-
+def check_plots_dir(plots_dir: str, names, target: outfiles.OutputTarget) -> None:
+    """``--plots DIR`` of every command, before any work: a directory that can be written (or created), and
+    no figure ``names`` may replace an input of the command or its -o file, nor land on a directory or device."""
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
     outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
-    outfiles.check_not_clobbering([Path(plots_dir) / name for name in FIGURE_NAMES],
-                                  [file, target.path], "--plots")
+    outfiles.check_not_clobbering([Path(plots_dir) / name for name in names], [*_context_inputs(), target.path],
+                                  "--plots")
+
+
+def _check_plots_dir(plots_dir: str, file: str, target) -> None:
+    from gearcli.io.plots import FIGURE_NAMES
+
+    check_plots_dir(plots_dir, FIGURE_NAMES, target)
 
 
 def _write_report_plots(rep, plots_dir: str) -> None:
@@ -532,6 +549,7 @@ Examples:
                         "points done.")
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
               help="Response curves, Campbell diagram, histograms into DIR (pip install 'gearcli[plot]').")
+@quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
 @guarded
 def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, scheduler, overrides, fmt, output,
@@ -540,7 +558,7 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
     from gearcli import api
     from gearcli.io.sweep_progress import SweepProgress
 
-    target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=(file,))  # before any work
+    target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=_context_inputs())  # before work
     if plots_dir:
         _check_sweep_plots_dir(plots_dir, file, target, vary)
     output = target.shown if target.path is not None else None
@@ -549,11 +567,12 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
                       output=str(target.path) if target.path is not None else None, fmt=target.fmt)
     warn(session.design_warnings)
     warn(session.notes)  # --jobs capped by the machine
-    with SweepProgress(session.todo + session.done, session.done) as progress:
+    with SweepProgress(session.todo + session.done, session.done, enabled=not is_quiet()) as progress:
         rows = api.run_sweep(session, progress.advance)
     failed = sum(r.get("status") != "ok" for r in rows)
-    click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
-               err=True)
+    if failed or not is_quiet():  # -q: silent unless points failed (an error is still said)
+        click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
+                   err=True)
     if plots_dir:
         _write_sweep_plots(session, rows, plots_dir)
     if failed:
@@ -562,12 +581,9 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
 
 def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
     """As for report: no sweep figure may replace the input or the -o file."""
-    if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
-        raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
-    outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     names = ["campbell.png", "distributions.png"]
     names += [f"response_{v.split('=', 1)[0].strip().replace('.', '_')}.png" for v in vary]
-    outfiles.check_not_clobbering([Path(plots_dir) / n for n in names], [file, target.path], "--plots")
+    check_plots_dir(plots_dir, names, target)
 
 
 def _write_sweep_plots(session, rows, plots_dir: str) -> None:
@@ -608,10 +624,7 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
 
     target = check_target(fmt, output)
     if plots_dir:
-        if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
-            raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
-        outfiles.check_not_clobbering([Path(plots_dir) / n for n in ("pitting.png", "bending.png")],
-                                      [file, target.path], "--plots")
+        check_plots_dir(plots_dir, ("pitting.png", "bending.png"), target)
     session = api.prepare_life(file, overrides, series=series, classes=classes)
     warn(session.design.warnings)
     from gearcli.io.progress import TerminalProgress
@@ -652,6 +665,9 @@ def main() -> None:
         raise
     except BrokenPipeError:
         _broken_pipe()
+    except OSError as exc:  # click's own output (--help, --version) on a device that refuses it (> /dev/full)
+        outfiles.drop_buffered(sys.stdout)
+        _fail(f"{outfiles.STDOUT_NAME}: cannot write: {exc.strerror or exc}", EXIT_USAGE)
 
 
 if __name__ == "__main__":  # pragma: no cover

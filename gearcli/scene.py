@@ -94,7 +94,7 @@ def motor_spec(inp: Input) -> MotorSpec | None:
               "vfd": (inp.ramp_s, inp.torque_limit_Nm or 0.0)}.get(inp.starting, (0.0, 0.0))
     if m.torque_speed is not None:
         table = tuple((float(n) * RPM, float(t)) for n, t in m.torque_speed)
-        return MotorSpec(max(w for w, _ in table), inp.starting, params, table=table)
+        return MotorSpec(m.synchronous_rpm * RPM, inp.starting, params, table=table)
     assert m.rated_power_kW is not None and m.rated_speed_rpm is not None and m.synchronous_speed_rpm is not None
     assert m.breakdown_torque_ratio is not None and m.locked_rotor_torque_ratio is not None  # the schema's rule
     try:

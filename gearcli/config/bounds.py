@@ -84,9 +84,11 @@ def _gib(n: float) -> str:
     return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
 
 
-def check_memory(cfg, *, fmt: str, series: bool, source: str) -> None:
+def check_memory(cfg, *, fmt: str, series: bool, source: str, steps: int | None = None) -> None:
+    """The one memory rule of every run a command makes (simulate, report, each sweep point, each life
+    point): its output samples (``steps``, default the file's) against :func:`memory_limit_bytes`."""
     limit = memory_limit_bytes()
-    steps, n = output_samples(cfg.simulation), len(cfg.stage)
+    steps, n = steps if steps is not None else output_samples(cfg.simulation), len(cfg.stage)
     need = memory_estimate_bytes(steps, n, fmt, series)
     if need <= limit:
         return

@@ -1,4 +1,6 @@
-"""The "0 or not nearly 0" bound of design-file numbers (docs/design-file.md, "0 or magnitude ≥ …").
+"""The "0 or not nearly 0" bound of design-file numbers (docs/design-file.md, "0 or magnitude ≥ …"), and the
+one base class of every design-file table (:class:`StrictTable`), which refuses a subnormal number in any
+float key, list or table entry whatever the key's own bounds.
 
 Quantities that may be 0 (a ramp, damping, backlash, a torque, a profile shift, an excitation amplitude) may
 not be *nearly* 0: a nonzero magnitude below ``tiny`` (a subnormal like 1e-320 is the usual case: a unit
@@ -8,10 +10,11 @@ mistake or garbage) is refused with the bound named. Used by :mod:`gearcli.confi
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 from typing import Any
 
-from pydantic import GetCoreSchemaHandler, GetJsonSchemaHandler
+from pydantic import BaseModel, ConfigDict, GetCoreSchemaHandler, GetJsonSchemaHandler, field_validator
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
@@ -37,3 +40,43 @@ class NotTiny:
                   {"exclusiveMinimum": -self.tiny, "exclusiveMaximum": 0}]
         out["not"] = {"anyOf": ranges if out.get("minimum", 0) < 0 else ranges[:1]}
         return out
+
+
+#: every table of the design file: unknown keys, NaN, infinity and type coercion refused
+STRICT = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+SMALLEST_NORMAL = sys.float_info.min  # 2.2e-308: below it a float is subnormal (a mistake or garbage)
+
+
+def _subnormal_in(value: Any, where: str = "") -> tuple[float, str] | None:
+    """The first subnormal float in ``value`` (a number, or nested lists and dicts of them; tables are
+    checked by their own model) and where it sits (``[1][0]``), or None."""
+    if isinstance(value, float):
+        return (value, where) if value != 0.0 and abs(value) < SMALLEST_NORMAL else None
+    items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, (list, tuple)) else ()
+    for k, v in items:
+        found = _subnormal_in(v, f"{where}[{k!r}]" if isinstance(k, str) else f"{where}[{k}]")
+        if found is not None:
+            return found
+    return None
+
+
+def refuse_subnormal(value: Any) -> Any:
+    """The design file's one rule for every float key: a subnormal value (5e-324, 1e-320) is refused."""
+    found = _subnormal_in(value)
+    if found is not None:
+        v, where = found
+        raise ValueError(f"must be 0 or at least {SMALLEST_NORMAL:g} in magnitude, got {v!r}"
+                         + (f" (entry {where})" if where else "") + " (a subnormal number is a mistake)")
+    return value
+
+
+class StrictTable(BaseModel):
+    """Base of every design-file table: :data:`STRICT`, and :func:`refuse_subnormal` on every field (the rule
+    lives here once, so a key added later is covered without a word)."""
+
+    model_config = STRICT
+
+    @field_validator("*", mode="after")
+    @classmethod
+    def _no_subnormal(cls, value: Any) -> Any:
+        return refuse_subnormal(value)

@@ -10,19 +10,23 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, model_validator
 
-from gearcli.config.excitation import STRICT
+from gearcli.config.bounds_types import StrictTable
 
 AxialPositionMm = Annotated[float, Field(ge=-1e5, le=1e5)]  # along x from the housing plane, mm
 CenterAngleDeg = Annotated[float, Field(ge=-360.0, le=360.0)]
 DUTY_TORQUE_KEYS = ("torque_Nm", "torque_Nmm", "power_kW")
 MAX_DUTY_POINTS = 200
+#: the keys a duty point sets itself from its speed_rpm and torque (and K_A = 1): its ``set`` may not give them
+POINT_OWN_KEYS = frozenset({"input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s", "input.torque_Nm",
+                            "input.torque_Nmm", "input.power_kW", "load.torque_Nm", "load.torque_Nmm",
+                            "load.power_kW", "load.torque_speed", "load.application_factor"})
 MAX_BEARINGS = 200
 
 
-class _Table(BaseModel):
-    model_config = STRICT
+class _Table(StrictTable):
+    pass
 
 
 class BearingFactors(_Table):
@@ -79,6 +83,10 @@ class Duty(_Table):
         if len(given) != 1:
             raise ValueError(f"give exactly one of {', '.join(DUTY_TORQUE_KEYS)}"
                              + (f" (got {', '.join(given)})" if given else ""))
+        own = [k for k in self.set if k.strip().replace(" ", "") in POINT_OWN_KEYS]
+        if own:
+            raise ValueError(f"set: {own[0]} is the point's own: its torque is {given[0]}, its speed speed_rpm, "
+                             "K_A = 1 (the spectrum is the load); a set of it would contradict the point reported")
         return self
 
     def output_torque_Nm(self, total_ratio: float) -> float:

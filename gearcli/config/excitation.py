@@ -8,12 +8,11 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationInfo
+from pydantic import Field, ValidationInfo
 
-from gearcli.config.bounds_types import NotTiny
+from gearcli.config.bounds_types import STRICT, NotTiny, StrictTable
 
-#: every table of the design file: unknown keys, NaN, infinity and type coercion refused
-STRICT = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+__all__ = ["STRICT"]  # re-exported: the tables' config, defined with their base class
 
 # Mesh excitation (harmonics j = 1, 2, ... of the mesh phase z_p theta_p): at most MAX_HARMONICS of each
 # kind (gearcli.model.elements.N_HARM; a test keeps the two equal).
@@ -53,8 +52,8 @@ def keeps_k_positive(v: list[float] | None) -> list[float] | None:
 
 
 
-class _Table(BaseModel):
-    model_config = STRICT
+class _Table(StrictTable):
+    pass
 
 
 class Ripple(_Table):

@@ -30,7 +30,8 @@ from gearcli.config.schema import DesignFile
 from gearcli.config.starter import json_schema, starter_toml
 from gearcli.errors import ConfigError
 
-__all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN"]
+__all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN",
+           "read_input_file"]
 
 MAX_LINES_REPORTED = 20
 STDIN = "<stdin>"
@@ -101,6 +102,25 @@ def check_override_keys(raw: bytes, source: str, overrides: Sequence[str]) -> No
     _overrides.apply_all(copy.deepcopy(_parsed(raw, source)), overrides)
 
 
+def integer_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[str]:
+    """Those of ``keys`` (``--set`` key paths) that take no real number (a tooth or planet count, a choice among
+    whole numbers such as ``speed_exponent``, a flag), in the file ``raw`` with ``sets`` applied."""
+    data = copy.deepcopy(_parsed(raw, source))
+    _overrides.apply_all(data, sets)
+    return [k for k in keys if not _takes_real(_overrides.leaf_type(data, k))]
+
+
+def _takes_real(tp: object) -> bool:
+    import types
+    from typing import Union, get_args, get_origin
+
+    if tp is float:
+        return True
+    if get_origin(tp) in (Union, types.UnionType):
+        return any(_takes_real(a) for a in get_args(tp))
+    return tp is object or str(tp) == "typing.Any"
+
+
 def _digest(raw: bytes, overrides: Sequence[str]) -> str:
     h = hashlib.sha256(raw)
     for text in overrides:
@@ -124,8 +144,8 @@ def read_bytes(path: str, stdin: BinaryIO | None = None) -> bytes:
     return raw
 
 
-def _read_bounded(path: str) -> bytes:
-    """At most MAX_BYTES + 1 bytes. A FIFO is opened without blocking (no writer: empty, never a hang);
+def _read_bounded(path: str, limit: int = MAX_BYTES) -> bytes:
+    """At most ``limit`` + 1 bytes. A FIFO is opened without blocking (no writer: empty, never a hang);
     /dev/zero and the like stop at the size limit."""
     fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     try:
@@ -134,8 +154,8 @@ def _read_bounded(path: str) -> bytes:
 
             fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~os.O_NONBLOCK)
         chunks, size = [], 0
-        while size <= MAX_BYTES:
-            chunk = os.read(fd, MAX_BYTES + 1 - size)
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
             if not chunk:
                 break
             chunks.append(chunk)
@@ -150,19 +170,25 @@ def _read_bounded(path: str) -> bytes:
 
 
 def _read_file(path: str) -> bytes:
-    p = Path(path)
     if not path:
         raise ConfigError("no design file given (" + _INIT_HINT + ")")
+    return read_input_file(path, MAX_BYTES, what="a design file", hint=_INIT_HINT)
+
+
+def read_input_file(path: str, limit: int, *, what: str, hint: str = "") -> bytes:
+    """At most ``limit`` + 1 bytes of an input file a command reads (the design file, ``life --series``), the
+    same way for every one: a directory, a missing or unreadable file, a FIFO without a writer (never a hang)
+    are :class:`ConfigError` naming the path."""
     try:
-        if p.is_dir():
-            raise ConfigError("is a directory, not a design file", source=path)
-        return _read_bounded(path)
+        if Path(path).is_dir():
+            raise ConfigError(f"is a directory, not {what}", source=path)
+        return _read_bounded(path, limit)
     except FileNotFoundError:
-        raise ConfigError(f"no such file ({_INIT_HINT})", source=path) from None
+        raise ConfigError("no such file" + (f" ({hint})" if hint else ""), source=path) from None
     except PermissionError:
         raise ConfigError("permission denied", source=path) from None
     except IsADirectoryError:
-        raise ConfigError("is a directory, not a design file", source=path) from None
+        raise ConfigError(f"is a directory, not {what}", source=path) from None
     except OSError as exc:
         raise ConfigError(f"cannot read: {exc.strerror or exc}", source=path) from None
     except ValueError:  # e.g. an embedded NUL byte

@@ -5,9 +5,12 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, model_validator
+
+from gearcli.config.bounds_types import StrictTable
 
 MAX_TABLE = 32
+MAX_RATED_SLIP = 0.25  # high-slip (NEMA D) motors reach ~13 %; 25 % is past any induction motor's nameplate
 NAMEPLATE = ("rated_power_kW", "rated_speed_rpm", "synchronous_speed_rpm", "breakdown_torque_ratio",
              "locked_rotor_torque_ratio")
 
@@ -23,11 +26,11 @@ def increasing_speeds(points: list[list[float]], what: str, *, non_negative: boo
         raise ValueError(f"{what}: speeds must be 0 or more (the law is mirrored for reverse rotation)")
 
 
-class Motor(BaseModel):
+class Motor(StrictTable):
     """An induction motor: the five nameplate values (an extended Kloss curve through the rated, breakdown and
     locked-rotor points) or a torque-speed table ``[[rpm, N·m], ...]``, linear between its points."""
 
-    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True, json_schema_extra={"anyOf": [
+    model_config = ConfigDict(json_schema_extra={"anyOf": [
         {"required": list(NAMEPLATE), "not": {"required": ["torque_speed"]}},
         {"required": ["torque_speed"], "not": {"anyOf": [{"required": [k]} for k in NAMEPLATE]}}]})
 
@@ -45,6 +48,14 @@ class Motor(BaseModel):
             if given:
                 raise ValueError(f"give the nameplate ({', '.join(NAMEPLATE)}) or torque_speed, not both")
             increasing_speeds(self.torque_speed, "torque_speed")
+            if self.torque_speed[0][0] < 0.0:
+                raise ValueError("torque_speed: speeds must be 0 or more (from standstill to the synchronous speed)")
+            speed, torque = self.torque_speed[-1]
+            if torque > 0.0 or self.torque_speed[0][1] <= 0.0:
+                raise ValueError(f"torque_speed: an induction motor's torque is positive from standstill and falls to 0 at "
+                                 f"its synchronous speed; this table {'ends at' if torque > 0.0 else 'starts at'} "
+                                 f"{self.torque_speed[-1 if torque > 0.0 else 0]!r} (held past its last point the "
+                                 "motor would run away): end it at (or past) the synchronous speed with torque 0")
             return self
         if len(given) != len(NAMEPLATE):
             missing = [k for k in NAMEPLATE if getattr(self, k) is None]
@@ -53,7 +64,24 @@ class Motor(BaseModel):
         assert self.breakdown_torque_ratio is not None and self.locked_rotor_torque_ratio is not None
         if not self.rated_speed_rpm < self.synchronous_speed_rpm:
             raise ValueError("rated_speed_rpm must be below synchronous_speed_rpm (an induction motor runs with slip)")
+        slip = 1.0 - self.rated_speed_rpm / self.synchronous_speed_rpm
+        if slip > MAX_RATED_SLIP:
+            raise ValueError(f"rated_speed_rpm {self.rated_speed_rpm:g} with synchronous_speed_rpm "
+                             f"{self.synchronous_speed_rpm:g} is a rated slip of {slip:.3g}: an induction motor's "
+                             f"rated slip is a few per cent (at most {MAX_RATED_SLIP:g} here); check the nameplate")
         if not self.locked_rotor_torque_ratio < self.breakdown_torque_ratio:
             raise ValueError("locked_rotor_torque_ratio must be below breakdown_torque_ratio (the breakdown torque is "
                              "the curve's maximum)")
         return self
+
+    @property
+    def synchronous_rpm(self) -> float:
+        """The synchronous speed: the nameplate's, or where the table's torque first falls to 0."""
+        if self.torque_speed is None:
+            assert self.synchronous_speed_rpm is not None
+            return self.synchronous_speed_rpm
+        pts = self.torque_speed
+        for (n0, t0), (n1, t1) in zip(pts, pts[1:], strict=False):
+            if t1 <= 0.0 < t0:
+                return n0 + (n1 - n0) * t0 / (t0 - t1)
+        return pts[-1][0]

@@ -174,6 +174,19 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
     return written
 
 
+def leaf_type(data: dict, key: str) -> Any:
+    """The schema type of ``key`` (a ``--set`` key path) in the TOML data, unwrapped (``int``, ``float``, a
+    model ...); the key is checked as :func:`apply` checks it, the data left as it was."""
+    import copy
+
+    ov = parse(f"{key}=0")
+    tp: Any = DesignFile
+    node: Any = copy.deepcopy(data)
+    for depth, seg in enumerate(ov.path[:-1]):
+        tp, node = _step(ov, node, tp, seg, depth)
+    return _step(ov, node, tp, ov.path[-1], len(ov.path) - 1)[0]
+
+
 def apply_all(data: dict, texts: Sequence[str]) -> list[tuple[Segment, ...]]:
     """Apply every ``--set`` in order (a later one wins); the paths written, see :func:`blamed`."""
     return [apply(data, parse(text)) for text in texts]

@@ -111,7 +111,8 @@ def design_file_reference() -> str:
            "Unknown keys are errors. Every number has bounds: far outside any real reducer, yet tight enough "
            "that a unit mistake (1e15, or a subnormal such as 1e-320) is an error naming the key and the bound. "
            "Keys that may be 0 (ramps, damping, backlash, torques) refuse a nonzero magnitude below a small "
-           "threshold, shown as \"0 or magnitude ≥ …\".", "",
+           "threshold, shown as \"0 or magnitude ≥ …\". No float key, list or table entry accepts a subnormal "
+           "number (nonzero, below 2.2e-308 in magnitude): one rule for every float of the file.", "",
            "Rules between keys (the schema states them too, in `allOf`/`anyOf`/`not`): exactly one of "
            "`speed_deg_s`, `speed_rpm`, `speed_rad_s` in `[input]`; at most one of `torque_Nm`, `torque_Nmm`, "
            "`power_kW` there, required with `drive = \"torque\"` and refused with `drive = \"speed\"`; exactly one "

@@ -12,7 +12,6 @@ import math
 from typing import Annotated, Any, Literal
 
 from pydantic import (
-    BaseModel,
     ConfigDict,
     Discriminator,
     Field,
@@ -23,11 +22,10 @@ from pydantic import (
     model_validator,
 )
 
-from gearcli.config.bounds_types import NotTiny
+from gearcli.config.bounds_types import NotTiny, StrictTable
 from gearcli.config.duty import AxialPositionMm, Bearing, CenterAngleDeg, Duty
 from gearcli.config.excitation import (
     MAX_HARMONICS,
-    STRICT,
     DampingRatio,
     Fluctuation,
     PhaseDeg,
@@ -109,8 +107,8 @@ def _hands_rule() -> Any:
                       pair("right", "left")]}
 
 
-class _Table(BaseModel):
-    model_config = STRICT
+class _Table(StrictTable):
+    pass
 
 
 class Material(_Table):
@@ -524,6 +522,10 @@ class Input(_Coupled):
         need = {"star_delta": "switch_speed_rpm", "soft_start": "voltage_ramp_s"}.get(self.starting)
         if need is not None and getattr(self, need) is None:
             raise ValueError(f'starting = "{self.starting}" needs {need}')
+        if self.switch_speed_rpm is not None and self.motor is not None \
+                and self.switch_speed_rpm >= self.motor.synchronous_rpm:
+            raise ValueError(f"switch_speed_rpm {self.switch_speed_rpm:g} is not below the motor's synchronous speed "
+                             f"{self.motor.synchronous_rpm:.6g} rpm: the star-delta start would never switch to delta")
         own = {"star_delta": {"switch_speed_rpm"}, "soft_start": {"voltage_ramp_s", "initial_voltage_fraction"},
                "vfd": {"torque_limit_Nm"}}.get(self.starting, set())
         stray = [k for k in ("switch_speed_rpm", "voltage_ramp_s", "initial_voltage_fraction", "torque_limit_Nm")

@@ -5,14 +5,14 @@ to failure, damage), the damage sums, lives and safeties, then the bearings over
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import cast
 
-from rich.console import RenderableType
-from rich.table import Table
+from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.io.serialize import csv_text, plain
-from gearcli.io.tables import StageColumns, _g, text
+from gearcli.io.tables import FittedTable, StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife, StageLife
 
 MEMBERS = ("pinion", "gear")
@@ -72,36 +72,55 @@ def life_csv(r: LifeResult) -> str:
     return csv_text(header, rows)
 
 
-def _duty_table(r: LifeResult) -> Table:
+def _duty_table(r: LifeResult) -> FittedTable:
     n = len(r.points[0].K_v) if r.points else 0
-    table = Table(title=text(f"duty ({r.route} route): {r.hours:.6g} h in {len(r.points)} point(s)"),
-                  title_justify="left", header_style="bold")
     cols = ["point", "hours", "output torque [N·m]", "input speed [rpm]",
             *(f"K_v stage {k + 1}" if r.route == "static" else f"max/static F_t st. {k + 1}" for k in range(n))]
-    for c in cols:
-        table.add_column(text(c), justify="left" if c == "point" else "right", overflow="fold")
-    for p in r.points:
-        table.add_row(text(p.name), _g(p.hours), _g(p.torque_Nm), _g(p.speed_rpm), *(_g(k, 4) for k in p.K_v))
-    return table
+    rows = [[p.name, _g(p.hours), _g(p.torque_Nm), _g(p.speed_rpm), *(_g(k, 4) for k in p.K_v)] for p in r.points]
+    return FittedTable(f"duty ({r.route} route): {r.hours:.6g} h in {len(r.points)} point(s)", cols, rows,
+                       [c != "point" for c in cols])
 
 
-def _spectrum_table(r: LifeResult, stage, member: str) -> Table:
-    """ISO 6336-6 style: one row per load class with its cycles, stresses, cycles to failure and damage."""
+@dataclass
+class _Fitting:
+    """A table printed in the first of its ``forms`` (each a list of tables) whose every table keeps all its
+    numbers at the width; else the last form. A number is never folded over lines (:class:`FittedTable`)."""
+
+    forms: Sequence[Sequence[FittedTable]]
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
+        def fits(t: FittedTable) -> bool:
+            return len(t.columns_for(options.max_width)[0]) == len(t.headers)
+
+        yield from next((f for f in self.forms if all(fits(t) for t in f)), self.forms[-1])
+
+
+def _spectrum_table(r: LifeResult, stage, member: str) -> _Fitting:
+    """ISO 6336-6 style: one row per load class with its cycles, stresses, cycles to failure and damage; on a
+    narrower terminal a pitting and a bending table, narrower still the classes, pitting, bending apart."""
     pit, ben = getattr(stage, member).pitting, getattr(stage, member).bending
     which = f", planet {pit.planet} (the most severely loaded)" if pit.planet is not None else ""
-    table = Table(title=text(f"stage {stage.index} {LABELS[member]}{which}: load spectrum and Miner damage"),
-                  title_justify="left",
-                  header_style="bold")
-    for c in ("point", "F_t [N]", "cycles n_i", "σ_H [MPa]", "N_i pitting", "n_i/N_i", "σ_F [MPa]", "N_i bending",
-              "n_i/N_i "):
-        table.add_column(text(c), justify="left" if c == "point" else "right", overflow="fold")
-    for bp, bb in zip(pit.bins, ben.bins, strict=True):
-        table.add_row(text(bp.point), _g(bp.force_N, 4), _g(bp.cycles, 4), _g(bp.stress_MPa, 4),
-                      _g(bp.cycles_to_failure, 4), _g(bp.damage, 3), _g(bb.stress_MPa, 4),
-                      _g(bb.cycles_to_failure, 4), _g(bb.damage, 3))
-    table.add_row(text("sum"), "", _g(sum(b.cycles for b in pit.bins), 4), "", "", _g(pit.damage, 4), "", "",
-                  _g(ben.damage, 4), end_section=True)
-    return table
+    title = f"stage {stage.index} {LABELS[member]}{which}: load spectrum and Miner damage"
+    point = [[b.point] for b in pit.bins] + [["sum"]]
+    load = [[_g(b.force_N, 4), _g(b.cycles, 4)] for b in pit.bins] + [["", _g(sum(b.cycles for b in pit.bins), 4)]]
+
+    def damage(ml: ModeLife) -> list[list[str]]:
+        return [[_g(b.stress_MPa, 4), _g(b.cycles_to_failure, 4), _g(b.damage, 3)] for b in ml.bins] + \
+            [["", "", _g(ml.damage, 4)]]
+
+    blocks = {"load": (["F_t [N]", "cycles n_i"], load),
+              "pitting": (["σ_H [MPa]", "N_i pitting", "n_i/N_i"], damage(pit)),
+              "bending": (["σ_F [MPa]", "N_i bending", "n_i/N_i "], damage(ben))}
+
+    def table(name: str, *keys: str) -> FittedTable:
+        cols = ["point", *(c for k in keys for c in blocks[k][0])]
+        rows = [sum((blocks[k][1][i] for k in keys), point[i]) for i in range(len(point))]
+        return FittedTable(name, cols, rows, [c != "point" for c in cols], ends=[False] * (len(rows) - 1) + [True])
+
+    return _Fitting([[table(title, "load", "pitting", "bending")],
+                     [table(f"{title} (pitting)", "load", "pitting"), table(f"{title} (bending)", "load", "bending")],
+                     [table(title, "load"), table(f"{title} (pitting)", "pitting"),
+                      table(f"{title} (bending)", "bending")]])
 
 
 def _summary(r: LifeResult) -> StageColumns:

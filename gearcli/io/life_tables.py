@@ -5,9 +5,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from rich.console import RenderableType
-from rich.table import Table
 
-from gearcli.io.tables import StageColumns, _g, text
+from gearcli.io.tables import FittedTable, StageColumns, _g
 from gearcli.results import BearingResult, BearingStats
 
 
@@ -32,16 +31,16 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
 
 
 def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[BearingStats]) -> RenderableType:
-    """Window statistics of the bearing reaction channels of a simulation."""
-    table = Table(title=text(f"bearing reactions over the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s"),
-                  title_justify="left", header_style="bold")
-    for name in ("bearing", "shaft", "x [mm]", "channel", "mean", "std", "min", "max"):
-        table.add_column(name, justify="left" if name in ("bearing", "channel") else "right", overflow="fold")
+    """Window statistics of the bearing reaction channels of a simulation (numbers never folded)."""
+    names = ("bearing", "shaft", "x [mm]", "channel", "mean", "std", "min", "max")
+    rows, ends = [], []
     for j, b in enumerate(bearings):
         for label, st in (("radial [N]", b["radial_N"]), ("axial [N]", b["axial_N"])):
             first = label.startswith("radial")
             place = f"planets {b['planet_stage']}" if b.get("planet_stage") else str(b["shaft"])
-            table.add_row(str(j + 1) if first else "", place if first else "",
-                          _g(b["position_mm"]) if first else "", text(label), _g(st.mean), _g(st.std, 3),
-                          _g(st.min), _g(st.max), end_section=not first)
-    return table
+            rows.append([str(j + 1) if first else "", place if first else "", _g(b["position_mm"]) if first else "",
+                         label, _g(st.mean), _g(st.std, 3), _g(st.min), _g(st.max)])
+            ends.append(not first)
+    return FittedTable(f"bearing reactions over the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s", names,
+                       rows, [n not in ("bearing", "shaft", "channel") for n in names],
+                       justify=["left" if n in ("bearing", "channel") else "right" for n in names], ends=ends)

@@ -24,7 +24,7 @@ import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TypeVar
+from typing import TextIO, TypeVar
 
 from gearcli.core.text import shorten
 from gearcli.errors import OutputError
@@ -61,15 +61,15 @@ def output_option(help_text: str = "Write to FILE atomically ('-' is stdout; the
     return click.option("-o", "--output", type=str, metavar="FILE", help=help_text)
 
 
-def _kind(mode: int) -> str | None:
+def _kind(mode: int, stdout_as: str = "-o -") -> str | None:
     if stat.S_ISREG(mode):
         return None
     if stat.S_ISDIR(mode):
         return "is a directory; give a file name"
     if stat.S_ISFIFO(mode):
-        return "is a FIFO, not a regular file (use -o - and a shell redirection)"
+        return f"is a FIFO, not a regular file (use {stdout_as} and a shell redirection)"
     if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
-        return "is a device, not a regular file (use -o - and a shell redirection)"
+        return f"is a device, not a regular file (use {stdout_as} and a shell redirection)"
     return "is not a regular file"
 
 
@@ -102,7 +102,7 @@ def _same_file(target: Path, inputs: Iterable[str | None]) -> bool:
     return False
 
 
-def resolve_path(given: str, inputs: Iterable[str | None] = ()) -> Path:
+def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str = "-o -") -> Path:
     """The regular file ``given`` names after symlinks, checked writable; :class:`OutputError` otherwise."""
     if not given:
         raise _refuse("''", "an empty file name; give a file name, or '-' for stdout")
@@ -118,7 +118,7 @@ def resolve_path(given: str, inputs: Iterable[str | None] = ()) -> Path:
     except OSError as exc:
         raise _refuse(given, f"cannot write: {exc.strerror or exc}") from None
     if st is not None:
-        if (why := _kind(st.st_mode)) is not None:
+        if (why := _kind(st.st_mode, stdout_as)) is not None:
             raise _refuse(given, why)
         if _same_file(target, inputs):
             raise _refuse(given, "is the input file; writing it would destroy the input")
@@ -134,12 +134,13 @@ def resolve_path(given: str, inputs: Iterable[str | None] = ()) -> Path:
 
 def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | None = None,
                  inputs: Iterable[str | None] = (), file_default: str | None = None,
-                 stdout_default: Callable[[], str] | None = None) -> OutputTarget:
+                 stdout_default: Callable[[], str] | None = None, stdout_as: str = "-o -") -> OutputTarget:
     """Check ``-o`` and choose the format, before any computation.
 
     ``formats``: what the command can write. ``fmt``: ``--format`` if given. ``file_default``: the format
     of a file whose suffix says nothing (default: the first of ``formats``). ``stdout_default``: the
-    format for stdout without ``--format`` (default: ``file_default``)."""
+    format for stdout without ``--format`` (default: ``file_default``). ``stdout_as``: how the command spells
+    stdout, for the hint on a FIFO or device (``init`` takes FILE, not ``-o``: ``'-'``)."""
     file_default = file_default or formats[0]
     if output is None or output == STDOUT:
         if getattr(sys.stdout, "closed_stdout", False):  # `>&-`: say so now, not after the computing
@@ -148,7 +149,7 @@ def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | Non
             raise StdoutClosed()
         chosen = fmt or (stdout_default() if stdout_default else file_default)
         return OutputTarget(fmt=chosen)
-    path = resolve_path(output, inputs)
+    path = resolve_path(output, inputs, stdout_as)
     suffix = Path(output).suffix.lower()
     said = SUFFIX_FORMAT.get(suffix)
     if said is not None and said not in formats:
@@ -209,5 +210,33 @@ def _write_stdout(text: str) -> None:
         text.encode(encoding)
     except (UnicodeEncodeError, LookupError):
         text = text.encode(encoding, "backslashreplace").decode(encoding, "replace")
-    stream.write(text)
-    stream.flush()
+    write_stream(stream, text)
+
+
+STDOUT_NAME = "standard output"
+
+
+def write_stream(stream: TextIO, text: str) -> None:
+    """``text`` written and flushed to ``stream`` (stdout, or a sweep's row stream on it). A device that
+    refuses it (``> /dev/full``: no space, an I/O error) is :class:`OutputError` naming standard output (exit
+    2), and what is still buffered is dropped so that the interpreter's last flush cannot fail again. A
+    reader gone away stays :class:`BrokenPipeError` (exit 141)."""
+    try:
+        stream.write(text)
+        stream.flush()
+    except BrokenPipeError:
+        raise
+    except OSError as exc:
+        drop_buffered(stream)
+        raise _refuse(STDOUT_NAME, f"cannot write: {exc.strerror or exc}") from None
+
+
+def drop_buffered(stream: TextIO) -> None:
+    import io
+
+    try:
+        fd = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(fd, stream.fileno())
+        os.close(fd)
+    except (OSError, ValueError, AttributeError, io.UnsupportedOperation):
+        pass

@@ -26,6 +26,7 @@ import csv
 import io
 import json
 import math
+import re
 import sys
 import time
 from collections.abc import Sequence
@@ -36,11 +37,13 @@ from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.core.text import csv_text_cell
 from gearcli.errors import ConfigError
 from gearcli.io.atomic import write_atomic
+from gearcli.io.output import write_stream
 
 if TYPE_CHECKING:  # `gearcli design` imports the facade, which imports this module: not the sweep (numpy)
     from gearcli.sweep.columns import Row
 
 MARK = "# gearcli sweep: "
+_INT = re.compile(r"-?[0-9]+")
 JSON_EVERY_S = 1.0
 
 
@@ -122,8 +125,24 @@ def _read_csv(text: str, path: str) -> tuple[JsonObject, list[Row]]:
     header, body = lines[0], lines[1:]
     if not text.endswith("\n") and body:  # a row cut short by a hard kill
         body = body[:-1]
-    rows: list[Row] = [dict(zip(header, r, strict=True)) for r in body if len(r) == len(header)]
+    rows: list[Row] = [dict(zip(header, map(_typed, r), strict=True)) for r in body if len(r) == len(header)]
     return identity, rows
+
+
+def _typed(cell: str) -> JsonScalar:
+    """A cell read back as the value :func:`_cell` wrote: an empty cell None, a number the number it was
+    written from (floats by ``repr``, which round-trips exactly; integers by ``str``), else the text as
+    written. So a resumed row is the fresh row again, and writing it again gives the same bytes (a text cell
+    never gets the formula escape twice, a negative number never gets it at all)."""
+    if cell == "":
+        return None
+    if _INT.fullmatch(cell):
+        return int(cell)
+    try:
+        value = float(cell)
+    except ValueError:
+        return cell
+    return value if math.isfinite(value) and repr(value) == cell else cell
 
 
 def _read_json(text: str, path: str) -> tuple[JsonObject, list[Row]]:
@@ -199,13 +218,11 @@ class CsvStdout(RowSink):
     def __init__(self, columns: Sequence[str], identity: JsonObject, stream: TextIO | None = None):
         super().__init__(columns, identity)
         self.stream = stream or sys.stdout
-        self.stream.write(_csv_line(self.columns))
-        self.stream.flush()
+        write_stream(self.stream, _csv_line(self.columns))
 
     def add(self, row: Row) -> None:
         super().add(row)
-        self.stream.write(_csv_line([row.get(c) for c in self.columns]))
-        self.stream.flush()
+        write_stream(self.stream, _csv_line([row.get(c) for c in self.columns]))
 
 
 class JsonStdout(RowSink):
@@ -217,8 +234,7 @@ class JsonStdout(RowSink):
 
     def _write(self) -> None:
         rows = [{c: _json_value(r.get(c)) for c in self.columns} for r in self.rows]
-        self.stream.write(json.dumps({**self.identity, "columns": self.columns, "rows": rows}, indent=1) + "\n")
-        self.stream.flush()
+        write_stream(self.stream, json.dumps({**self.identity, "columns": self.columns, "rows": rows}, indent=1) + "\n")
 
     def close(self) -> None:
         self._write()

@@ -7,12 +7,13 @@ from typing import Any
 
 
 class SweepProgress:
-    def __init__(self, total: int, done: int = 0) -> None:
+    def __init__(self, total: int, done: int = 0, *, enabled: bool = True) -> None:
         self.total, self.done, self.failed = total, done, 0
+        self.enabled = enabled  # False with -q
         self.bar: Any = None
 
     def __enter__(self) -> SweepProgress:
-        if sys.stderr.isatty():
+        if self.enabled and sys.stderr.isatty():
             from rich.console import Console
             from rich.progress import (
                 BarColumn,

@@ -124,9 +124,10 @@ def points_from_series(time_s: Sequence[float], torque_Nm: Sequence[float], spee
     spectrum is not made milder by classing), its total time, and the speed that keeps its revolutions
     (time-weighted mean), so each revolution at a level is a load cycle for the teeth."""
     dt = [b - a for a, b in zip(time_s, time_s[1:], strict=False)]
-    levels = [(torque_Nm[i], speed_rpm[i], dt[i]) for i in range(len(dt)) if speed_rpm[i] > 0.0]
+    # a reverse row's revolutions are load cycles too (|speed|); the torque's sign says which flank they load
+    levels = [(torque_Nm[i], abs(speed_rpm[i]), dt[i]) for i in range(len(dt)) if speed_rpm[i] != 0.0]
     if not levels:
-        raise ConfigError("no row with a positive speed: nothing turns, nothing wears", source=source)
+        raise ConfigError("no row with a nonzero speed: nothing turns, nothing wears", source=source)
     lo, hi = min(q for q, _, _ in levels), max(q for q, _, _ in levels)
     width = (hi - lo) / classes if hi > lo else 1.0
     groups: dict[int, list[tuple[float, float, float]]] = {}
@@ -140,3 +141,25 @@ def points_from_series(time_s: Sequence[float], torque_Nm: Sequence[float], spee
         torque = max(g, key=lambda x: abs(x[0]))[0]
         points.append(DutyPoint(f"class {c + 1}", seconds / 3600.0, torque, speed, (), source))
     return points
+
+
+def reversal_notes(points: Sequence[DutyPoint]) -> list[str]:
+    """The warning docs/life.md promises for a load reversal: a point with a negative torque loads the back
+    flanks, and is counted by magnitude on the S-N curves of the drive flanks."""
+    return [f"duty point {p.name} ({p.key}): negative torque {p.torque_Nm:.6g} N·m, a load reversal: the back "
+            "flanks carry it; it is counted by magnitude on the drive flanks' S-N curves (mean stress and the back "
+            "flanks' own damage are not modelled, docs/life.md \"Limits\")" for p in points if p.torque_Nm < 0.0]
+
+
+def series_notes(time_s: Sequence[float], torque_Nm: Sequence[float], speed_rpm: Sequence[float],
+                 source: str) -> list[str]:
+    """What a history's rows with a negative speed became: counted by |speed|, each on the flank its torque's
+    sign loads (the sense of rotation does not choose the flank: the torque does)."""
+    rows = [i for i in range(len(time_s) - 1) if speed_rpm[i] < 0.0]
+    if not rows:
+        return []
+    hours = sum(time_s[i + 1] - time_s[i] for i in rows) / 3600.0
+    back = sum(torque_Nm[i] < 0.0 for i in rows)
+    return [f"{source}: {len(rows)} row(s) turn in reverse (negative speed_rpm, {hours:.4g} h, the first in data row "
+            f"{rows[0] + 1}): their revolutions are counted by |speed|; {len(rows) - back} of them with a positive "
+            f"torque load the drive flanks, {back} with a negative torque the back flanks (counted by magnitude)"]

@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 from typing import cast
 
 from gearcli.config import DesignFile
+from gearcli.config.bounds import check_memory
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
@@ -140,6 +141,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
         extra += ("simulation.engine=compiled",)
     duration = spectra.duration_for(cfg, design)
     steps = spectra.steps_for(design, duration, cfg.simulation.steps)
+    check_memory(cfg, fmt="json", series=False, source=scene.source, steps=steps)  # the point's run, in memory
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
     try:
         (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None)
@@ -401,21 +403,34 @@ def _no_progress(label: str, done: int, total: int) -> None:
     pass
 
 
+def _point_design_warnings(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
+                           base_warnings: Sequence[str], design: DesignResult | None = None) -> list[str]:
+    """What ``gearcli design`` says of the point (its torque, speed and ``set``: undercut, S_H below the
+    minimum ...) beyond what it says of the base file, each naming the point."""
+    if design is None:
+        design = _point_design(scene, point, design_case).design
+    return [f"duty point {point.name}: {w}" for w in design.warnings if w not in base_warnings]
+
+
 def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: CaseDesigner, evaluate: PointEvaluator,
                  route: str = "dynamic", variant: str = "iso",
-                 progress: Callable[[str, int, int], None] | None = None) -> LifeResult:
+                 progress: Callable[[str, int, int], None] | None = None, notes: Sequence[str] = (),
+                 base_warnings: Sequence[str] = ()) -> LifeResult:
     """The life of every member and bearing over the duty ``points`` of the design file ``scene``; each point
-    designed by ``design_case`` (the static route) or simulated by ``evaluate`` (the dynamic route)."""
+    designed by ``design_case`` (the static route) or simulated by ``evaluate`` (the dynamic route). ``notes``
+    (about the duty) lead the warnings; a point's design warnings beyond ``base_warnings`` (the base file's)
+    follow, naming the point."""
     progress = progress or _no_progress
     if not points:
         raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
                           "--series FILE.csv", source=scene.source, key="duty")
     evaluated: list[_PointData] = []
-    warnings: list[str] = []
+    warnings: list[str] = list(notes)
     if route == "static":
         for i, p in enumerate(points):
             progress(p.name, i, len(points))
             evaluated.append(_static_point(scene, p, design_case))
+            warnings += _point_design_warnings(scene, p, design_case, base_warnings, evaluated[-1].design)
     else:
         from gearcli import engine
 
@@ -423,13 +438,14 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))
                 try:
-                    pd, run_warnings, notes = _dynamic_point(scene, p, design_case, evaluate)
+                    pd, run_warnings, point_notes = _dynamic_point(scene, p, design_case, evaluate)
                 except GearcliError as exc:
                     if isinstance(exc, (ConfigError, DesignError)):
                         raise
                     raise type(exc)(f"duty point {p.name}: {exc}") from None
                 evaluated.append(pd)
-                warnings += [n for n in notes if n not in warnings]
+                warnings += _point_design_warnings(scene, p, design_case, base_warnings)
+                warnings += [n for n in point_notes if n not in warnings]
                 warnings += [f"duty point {p.name}: {w}" for w in run_warnings]
     hours = sum(p.hours for p in points)
     first = evaluated[0].design

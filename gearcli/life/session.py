@@ -5,10 +5,13 @@ The facade (:func:`gearcli.api.prepare_life`) loads and designs the base file; t
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import BinaryIO
 
 from gearcli.config import LoadedDesign
+from gearcli.config.load import STDIN, read_input_file
 from gearcli.errors import ConfigError
 from gearcli.life.duty import (
     DEFAULT_CLASSES,
@@ -16,12 +19,15 @@ from gearcli.life.duty import (
     points_from_config,
     points_from_series,
     read_series,
+    reversal_notes,
+    series_notes,
     with_drive,
 )
 from gearcli.results import DesignResult
 from gearcli.sweep.worker import Scene
 
 MAX_SERIES_BYTES = 64 * 1024 * 1024
+STDOUT_OR_STDIN = "-"
 
 
 @dataclass(frozen=True)
@@ -30,14 +36,21 @@ class Session:
     loaded: LoadedDesign  # the base file
     design: DesignResult  # its design
     points: tuple[DutyPoint, ...]
+    warnings: tuple[str, ...] = ()  # about the duty itself: reverse rows of a series, load reversals
 
 
-def _series_text(path: str) -> str:
-    try:
-        with open(path, "rb") as fh:
-            raw = fh.read(MAX_SERIES_BYTES + 1)
-    except OSError as exc:
-        raise ConfigError(f"cannot read: {exc.strerror or exc}", source=path) from None
+def _series_text(path: str, stdin: BinaryIO | None = None) -> str:
+    """The history's text: a file read like the design file (a FIFO without a writer refused, never a hang),
+    or ``-``: standard input."""
+    if path == STDOUT_OR_STDIN:
+        stream = stdin if stdin is not None else sys.stdin.buffer
+        try:
+            raw = stream.read(MAX_SERIES_BYTES + 1)
+        except OSError as exc:
+            raise ConfigError(f"cannot read standard input: {exc.strerror or exc}", source=STDIN) from None
+        path = STDIN
+    else:
+        raw = read_input_file(path, MAX_SERIES_BYTES, what="a CSV file")
     if len(raw) > MAX_SERIES_BYTES:
         raise ConfigError(f"larger than {MAX_SERIES_BYTES // (1024 * 1024)} MiB", source=path)
     try:
@@ -53,13 +66,18 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     input, before any point runs)."""
     classes = DEFAULT_CLASSES if classes is None else classes
     if series is not None:
-        cols = read_series(_series_text(series), series)
-        points = points_from_series(*cols, source=series, classes=classes)
+        source = STDIN if series == STDOUT_OR_STDIN else series
+        cols = read_series(_series_text(series), source)
+        points = points_from_series(*cols, source=source, classes=classes)
+        notes = series_notes(*cols, source=source)
     else:
         points = points_from_config(loaded.design)
+        notes = []
+    notes += reversal_notes(points)
     points = with_drive(loaded.design, points)
     if loaded.design.rating is None:
         raise ConfigError("gearcli life rates every member by ISO 6336-2/-3: add a [rating] table (with the "
                           "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])",
                           source=loaded.source, key="rating")
-    return Session(Scene(raw, loaded.source, tuple(sets), len(design.stages)), loaded, design, tuple(points))
+    return Session(Scene(raw, loaded.source, tuple(sets), len(design.stages)), loaded, design, tuple(points),
+                   tuple(notes))

@@ -25,6 +25,7 @@ from gearcli.model.elements import machine, mesh
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 STEADY_T = 1e12  # s: a time past every start ramp
+RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
 
 
 @dataclass(frozen=True)
@@ -69,6 +70,11 @@ def operating_point(lay: Layout, samples: int = 4000) -> OperatingPoint:
     return OperatingPoint(first, stable[-1] if stable else None, w_b, ws)
 
 
+def _net_at(lay: Layout, w: float) -> float:
+    row = lay.motor_row if lay.motor_drive else machine.motor_row(lay.drive.motor)
+    return machine.motor_torque(row, STEADY_T, w)[0] - reflected_load(lay, w)
+
+
 def start_time(t: np.ndarray, w: np.ndarray, operating_rad_s: float | None) -> float | None:
     """The first time the motor reaches 98 % of its operating speed (None: never in the run)."""
     if operating_rad_s is None or operating_rad_s <= 0:
@@ -102,7 +108,12 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                     breakdown_torque_Nm=motor.peak_torque_Nm))
         return {"synchronous_speed_rpm": ws * RAD_S_TO_RPM, "peak_required_torque_Nm": need}, diags
     rpm = RAD_S_TO_RPM
-    if not op.reaches:
+    driven = op.speed_rad_s is None and op.stable_rad_s is None and _net_at(lay, 0.0) > 0.0
+    if driven:  # the net torque never falls to 0 up to synchronous speed: the load drives the motor on
+        diags += _runaway(t, w_motor, ws) or [dg.warning(
+            dg.MOTOR_RUNS_AWAY, f"the motor's net torque stays positive up to its synchronous speed {ws * rpm:.5g} rpm "
+            "(the load drives it): it would run away past it; the run ended before", synchronous_speed_rpm=ws * rpm)]
+    elif not op.reaches:
         where = ("at standstill: it cannot start" if op.speed_rad_s is None else
                  f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm")
         aim = ("" if op.stable_rad_s is None else
@@ -111,6 +122,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 f"reducer, losses included): it stalls {where}{aim}; a larger motor or a smaller load",
                                 stall_speed_rpm=None if op.speed_rad_s is None else op.speed_rad_s * rpm,
                                 operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm))
+    if not driven:
+        diags += _runaway(t, w_motor, ws)
     t_start = start_time(t, w_motor, op.speed_rad_s)
     if op.reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
@@ -124,3 +137,18 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
            "mean_torque_Nm": float(t_motor[mask].mean())}
     return out, diags
+
+
+def _runaway(t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:
+    """The motor far past its synchronous speed: a load that drives it beyond the curve's generating
+    breakdown, or a curve that never brakes it. Named, with where it got to."""
+    i = int(np.argmax(w_motor))
+    top = float(w_motor[i])
+    if not top > RUNAWAY * ws:
+        return []
+    at = float(t[int(np.argmax(w_motor > RUNAWAY * ws))])
+    return [dg.warning(dg.MOTOR_RUNS_AWAY, f"the motor runs away: it passes {RUNAWAY:g} x its synchronous speed "
+                       f"{ws * RAD_S_TO_RPM:.5g} rpm at {at:.4g} s and reaches {top * RAD_S_TO_RPM:.5g} rpm at "
+                       f"{float(t[i]):.4g} s; nothing brakes it there (the load drives the motor past its curve): "
+                       "the run's numbers are not an operating point", max_speed_rpm=top * RAD_S_TO_RPM,
+                       synchronous_speed_rpm=ws * RAD_S_TO_RPM)]

@@ -19,13 +19,13 @@ from typing import Protocol
 
 from gearcli import __version__
 from gearcli.config import DesignFile, LoadedDesign
-from gearcli.config.bounds import memory_estimate_bytes, output_samples
+from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
 from gearcli.core.jsontypes import JsonObject
 from gearcli.results import DesignResult
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
-from gearcli.sweep.spec import SweepSpec, spec_from_options
+from gearcli.sweep.spec import SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
 
@@ -89,7 +89,9 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
+    check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
     check_keys(scene, spec.branches()[0][0])
+    _no_continuous_integers(spec, scene)
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
@@ -104,6 +106,19 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     planetary = [st.index for st in design.stages if st.planetary is not None]
     return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), planetary), ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+
+
+def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
+    """A key that takes no real number (a tooth or planet count, a whole-number choice) drawn from a continuous
+    distribution would fail at every point: refused before any runs."""
+    from gearcli.config.load import integer_keys
+
+    whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
+    if whole:
+        d = next(d for d in spec.randoms if d.key == whole[0])
+        raise SweepUsageError(f"{d.key} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
+                              "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
+                              source="--random")
 
 
 def capped_jobs(jobs: int | None, cfg: DesignFile, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:

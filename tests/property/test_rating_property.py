@@ -33,7 +33,7 @@ def rated_designs(draw):
                         "surface_hardness_HV": draw(st.floats(150.0, 750.0))} for name in ("a", "b")}
     stage = {"normal_module_mm": draw(st.floats(0.5, 40.0)), "helix_angle_deg": beta,
              "normal_pressure_angle_deg": draw(st.floats(15.0, 25.0)), "accuracy_grade": draw(st.integers(1, 12)),
-             "tip_relief_um": draw(st.floats(0.0, 100.0)),
+             "tip_relief_um": draw(st.floats(0.0, 100.0, allow_subnormal=False)),  # a subnormal is refused
              "pinion": {"teeth": draw(st.integers(8, 120)), "face_width_mm": widths[0], "material": "a",
                         "profile_shift": draw(SHIFTS), **hands[0], **ROUGH},
              "gear": {"teeth": draw(st.integers(8, 300)), "face_width_mm": widths[1], "material": "b",
