@@ -172,8 +172,9 @@ class BasicRack(_Table):
 
 
 class ContactOverride(_Table):
-    """The mesh force law (Adams IMPACT) and its excitation. In ``[contact]`` every key has the seed's
-    default; in a stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh.
+    """The mesh force law and its excitation. In ``[contact]`` every key has its default (the ISO-calibrated law:
+    ``stiffness = "iso6336"``, ``exponent = 1.5``, ``damping_ratio = 0.05``); in a stage's ``[stage.mesh]`` every
+    key is optional and overrides ``[contact]`` for that mesh.
     Excitation (harmonics j = 1, 2, ... of the mesh phase phi = z_p theta_p): the static transmission error
     e(phi) = sum e_j cos(j phi + psi_j) (um, along the transverse line of action; the mesh acts on
     q = delta - e), stiffness harmonics K (1 - sum s_j cos(j phi + psi_j)), phases in degrees (default 0);
@@ -195,10 +196,20 @@ class ContactOverride(_Table):
     _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
 
 
-class Contact(_Table):
-    """The mesh force law (Adams IMPACT) and its excitation; see ``[stage.mesh]``."""
+#: the IMPACT damping's keys: a law that gives one of them (and no ``damping_ratio``) is damped by the IMPACT ramp
+IMPACT_KEYS = ("damping_Ns_mm", "full_damping_penetration_mm")
+DEFAULT_DAMPING_RATIO = 0.05  # viscous, on the dynamic transmission error (gear meshes: 0.03 .. 0.17)
 
-    stiffness: Literal["hertz", "iso6336"] | Stiffness = "hertz"
+
+class Contact(_Table):
+    """The mesh force law and its excitation; see ``[stage.mesh]``. Omitted, or for omitted keys: the law
+    calibrated to ISO 6336-1 at the operating point (``stiffness = "iso6336"``: the tangent of F = K h^e at the
+    static load is ISO's mesh stiffness), ``exponent = 1.5`` (a Hertzian spring along the line of action) and viscous
+    ``damping_ratio = 0.05`` on the dynamic transmission error. The seed's MSC Adams IMPACT damping (a STEP ramp
+    of ``damping_Ns_mm`` over ``full_damping_penetration_mm``; defaults 50 N s/mm and 0.1 mm) applies where a file
+    gives one of its keys and no ``damping_ratio``; the seed's whole law is ``stiffness = "hertz"`` with them."""
+
+    stiffness: Literal["hertz", "iso6336"] | Stiffness = "iso6336"
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
     damping_Ns_mm: DampingNsmm = 50.0
     full_damping_penetration_mm: DampingDepthMm = 0.1
@@ -207,16 +218,33 @@ class Contact(_Table):
     transmission_error_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
     stiffness_harmonics: Annotated[list[StiffnessHarmonic], Field(max_length=MAX_HARMONICS)] = []
     stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
-    damping_ratio: DampingRatio | None = None
+    damping_ratio: DampingRatio | None = DEFAULT_DAMPING_RATIO  # None: the IMPACT ramp (module text above)
 
     _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(phases_fit)
     _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
 
+    @model_validator(mode="after")
+    def _damping_law(self) -> Contact:
+        """An IMPACT key given without a ``damping_ratio`` asks for the IMPACT damping: no default ratio then."""
+        given = self.model_fields_set
+        if "damping_ratio" not in given and any(k in given for k in IMPACT_KEYS):
+            object.__setattr__(self, "damping_ratio", None)
+        return self
+
+    @property
+    def impact_damping(self) -> bool:
+        """The mesh is damped by the IMPACT ramp (else viscously, by ``damping_ratio``)."""
+        return self.damping_ratio is None
+
     def merged(self, override: ContactOverride | None) -> Contact:
-        """This law with a stage's overrides applied."""
+        """This law with a stage's overrides applied (an override's IMPACT key turns the default viscous damping
+        into the IMPACT ramp, as in ``[contact]``)."""
         if override is None:
             return self
         changes = {k: v for k, v in override.model_dump().items() if v is not None}
+        given = self.model_fields_set | set(changes)
+        if "damping_ratio" not in given and any(k in given for k in IMPACT_KEYS):
+            changes["damping_ratio"] = None
         return self.model_copy(update=changes)
 
 

@@ -254,13 +254,14 @@ def _loadable(eng: EngineChoice) -> EngineChoice:
 def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness, ...]:
     """The contact law each mesh used, in the design file's units: K (N/mm^e), and its slope along the normal
     at the static approach h0 of the linearisation at full load, e K h0^(e-1) (N/mm; the design's
-    ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm)."""
+    ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm), the law's name and ISO 6336-1's k_n (N/mm)."""
     out = []
     for k, m in enumerate(model.spec.meshes):
         K = m.stiffness_N_m_e / 1000.0**m.exponent
         h0 = float(choice.at_full_load.penetration_m[k]) * 1000.0
         slope = m.exponent * K * h0 ** (m.exponent - 1.0) if h0 > 0 or m.exponent == 1.0 else 0.0
-        out.append(MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0))
+        out.append(MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0,
+                                 law=m.law, K=K, iso_N_mm=m.iso_normal_stiffness_N_m / 1000.0))
     return tuple(out)
 
 
