@@ -451,10 +451,12 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
                      forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
     """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
     that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
+    from gearcli.model.linear import damped_eigenvalues
     from gearcli.model.modes import modal_analysis
     from gearcli.simulate import ringing
 
-    found = ringing.ringing(t, mask, forces_N, static_N, choice.at_full_load.eigenvalues, window)
+    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
+    found = ringing.ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
     if not found:
         return []
     modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
@@ -465,7 +467,8 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
         out.append(dg.warning(dg.WINDOW_RINGING, ringing.message(r, window, element), stage=r.stage,
                               statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
                               decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
-                              damping_ratio=r.damping_ratio, amplitude_start_N=r.amplitude_start_N,
+                              damping_ratio=r.damping_ratio, damping_ratio_uncertainty=ringing.SIGMA_UNCERTAINTY,
+                              amplitude_start_N=r.amplitude_start_N,
                               amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
                               settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
                               element=element))
