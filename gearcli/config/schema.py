@@ -172,9 +172,10 @@ class BasicRack(_Table):
 
 
 class ContactOverride(_Table):
-    """The mesh force law and its excitation. In ``[contact]`` every key has its default (the ISO-calibrated law:
-    ``stiffness = "iso6336"``, ``exponent = 1.5``, ``damping_ratio = 0.05``); in a stage's ``[stage.mesh]`` every
-    key is optional and overrides ``[contact]`` for that mesh.
+    """The mesh force law and its excitation. In ``[contact]`` every key has its default (the law calibrated to
+    ISO 6336-1: ``stiffness = "iso6336"``, ``exponent = 1.5``, ``damping_ratio = 0.05``); in a stage's
+    ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh (an IMPACT damping key there
+    makes that mesh IMPACT-damped unless a ``damping_ratio`` applies).
     Excitation (harmonics j = 1, 2, ... of the mesh phase phi = z_p theta_p): the static transmission error
     e(phi) = sum e_j cos(j phi + psi_j) (um, along the transverse line of action; the mesh acts on
     q = delta - e), stiffness harmonics K (1 - sum s_j cos(j phi + psi_j)), phases in degrees (default 0);
@@ -202,12 +203,16 @@ DEFAULT_DAMPING_RATIO = 0.05  # viscous, on the dynamic transmission error (gear
 
 
 class Contact(_Table):
-    """The mesh force law and its excitation; see ``[stage.mesh]``. Omitted, or for omitted keys: the law
-    calibrated to ISO 6336-1 at the operating point (``stiffness = "iso6336"``: the tangent of F = K h^e at the
-    static load is ISO's mesh stiffness), ``exponent = 1.5`` (a Hertzian spring along the line of action) and viscous
-    ``damping_ratio = 0.05`` on the dynamic transmission error. The seed's MSC Adams IMPACT damping (a STEP ramp
-    of ``damping_Ns_mm`` over ``full_damping_penetration_mm``; defaults 50 N s/mm and 0.1 mm) applies where a file
-    gives one of its keys and no ``damping_ratio``; the seed's whole law is ``stiffness = "hertz"`` with them."""
+    """The mesh force law F = K h^exponent along the line of action, its damping and its excitation; see
+    ``[stage.mesh]``. Omitted, or for omitted keys: the law calibrated to ISO 6336-1 at the operating point:
+    ``stiffness = "iso6336"`` chooses K so that the law's tangent e K h0^(e-1) at the run's static normal load
+    equals ISO's mesh stiffness k_n = c_gamma_alpha b / cos^2 beta_b (ISO 6336-1, method B; every duty and sweep
+    point at its own load), ``exponent = 1.5`` (a Hertzian spring; the static deflection is then e times ISO's
+    F/k_n, the linearised stiffness ISO's), and viscous ``damping_ratio = 0.05`` on the dynamic transmission error.
+    ``stiffness = "hertz"`` is the seed's point-contact K = 4/3 sqrt(R) E*, or give K in N/mm^exponent. The seed's
+    MSC Adams IMPACT damping (a STEP ramp of ``damping_Ns_mm`` reached at ``full_damping_penetration_mm``; 50 N s/mm
+    and 0.1 mm when only the other is given) applies where a file gives one of its keys and no ``damping_ratio``:
+    the seed reducer's law is ``stiffness = "hertz"``, ``exponent = 1.5`` with both."""
 
     stiffness: Literal["hertz", "iso6336"] | Stiffness = "iso6336"
     exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5

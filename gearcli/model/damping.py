@@ -96,7 +96,7 @@ def loss_factors(lay: Layout) -> np.ndarray:
     return g
 
 
-def body_matrices(lay: Layout, k: np.ndarray, c: np.ndarray, first: int) -> tuple[np.ndarray, ...]:
+def body_matrices(lay: Layout, k: np.ndarray, c: np.ndarray, first: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(J, K, C) over the bodies ``first`` .. last (module text): ``k``, ``c`` the connectors' tangents."""
     n = lay.n_bodies
     R = np.zeros((lay.n_conn, n))

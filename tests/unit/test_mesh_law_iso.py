@@ -15,8 +15,8 @@ import tomllib
 from pathlib import Path
 
 import pytest
-from numpy.testing import assert_allclose
 from click.testing import CliRunner
+from numpy.testing import assert_allclose
 
 from gearcli import api
 from gearcli.cli import cli
