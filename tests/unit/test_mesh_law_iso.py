@@ -173,3 +173,21 @@ def test_design_modes_and_simulate_json_report_the_law_and_warn_off_iso(tmp_path
                                 rtol=1e-6)
                 assert abs(w["linearised_N_mm"] / w["iso_N_mm"] - 1) > 0.25
                 assert f"{w['iso_N_mm']:.4g}" in w["message"] and f"{w['linearised_N_mm']:.4g}" in w["message"]
+
+
+def test_planet_meshes_linearise_to_their_own_iso_stiffness():
+    """planetary_stage has no [contact]: every planet's sun mesh and ring mesh is linearised at k_n cos² β_b of its
+    own ISO stiffness (sun–planet and planet–ring c_γα, face width, static force), transverse, N/m."""
+    cfg = DesignFile.model_validate(tomllib.loads((ROOT / "configs" / "planetary_stage.toml").read_text()))
+    design = compute_design(cfg)
+    st = design.stages[0]
+    cos2_bb = math.cos(math.radians(st.base_helix_angle_deg)) ** 2
+    for mesh, law in (("sun", st.mesh_stiffness), ("ring", st.planetary.planet_ring.mesh_stiffness)):
+        face = st.face_width_mm if mesh == "sun" else st.planetary.planet_ring.face_width_mm
+        c_ga = st.iso6336_mesh_stiffness_N_mm_um if mesh == "sun" else \
+            st.planetary.planet_ring.iso6336_mesh_stiffness_N_mm_um
+        assert_allclose(law.iso_N_mm, c_ga * face * 1000.0 / cos2_bb, rtol=1e-12)
+        for a in api.modes(cfg, design):
+            k = [s for c, s in zip(a.connectors, a.stiffness, strict=True) if c.endswith(f"{mesh} mesh")]
+            assert len(k) == st.planetary.planet_count
+            assert_allclose(k, law.iso_N_mm * 1000.0 * cos2_bb, rtol=1e-9)
