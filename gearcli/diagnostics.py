@@ -30,6 +30,7 @@ MOTOR_RUNS_AWAY = "motor_runs_away"  # the motor turns well past its synchronous
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"
+STIFFNESS_NOT_ISO = "stiffness_not_iso"  # a mesh law's linearised stiffness departs from ISO 6336-1's by > 25 %
 ENGINE_FALLBACK = "engine_fallback"
 SLOW_PACE = "slow_pace"  # a run far slower than auto's cost model predicted (or switched engine for it)
 STATISTICS_UNRESOLVED = "statistics_unresolved"

@@ -182,6 +182,7 @@ class StageResult:
     backlash_circumferential_mm: tuple[float, float] | None = None  # [max, min] on the working pitch circle
     backlash_normal_mm: tuple[float, float] | None = None  # [max, min] between the idle flanks
     contact_ratio_transverse_with_allowances: tuple[float, float, float] | None = None  # [e, m, i]
+    mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
 
 
 @dataclass(frozen=True)
@@ -266,12 +267,21 @@ class StatisticsError:
 
 @dataclass(frozen=True)
 class MeshStiffness:
-    """The contact law the simulation used for one mesh: K in N/mm^e and its slope at the static load."""
+    """The contact law of one mesh: K in N/mm^e, its slope along the normal at the static load, and ISO 6336-1's
+    normal mesh stiffness k_n = c_gamma_alpha b / cos^2 beta_b beside it (DESIGN section 13)."""
 
-    law_N_mm_e: float  # K of F = K h^e, h in mm
+    law_N_mm_e: float  # K of F = K h^e, h in mm (the round-3 key; = K)
     exponent: float
     linearised_N_mm: float  # e K h0^(e-1) at the static approach h0 (K itself for e = 1)
     static_approach_mm: float
+    law: str = ""  # "iso6336" | "hertz" | "given" (a number in the file); "" where not known
+    K: float = 0.0  # = law_N_mm_e
+    iso_N_mm: float = 0.0  # k_n = c_gamma_alpha b / cos^2 beta_b, N/mm (0 where not known)
+
+    @property
+    def departure(self) -> float | None:
+        """linearised / ISO - 1 (None without an ISO value)."""
+        return self.linearised_N_mm / self.iso_N_mm - 1.0 if self.iso_N_mm > 0.0 else None
 
 
 @dataclass(frozen=True)
@@ -474,6 +484,7 @@ class InternalMeshResult:
     resonance_speed_rpm: float = 0.0
     resonance_ratio: float = 0.0
     resonance_lower_limit: float = 0.0
+    mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from gearcli.design import contact_stiffness_N_mm_e
+from gearcli.design.stiffness import iso6336_normal_stiffness_N_mm, law_name
 from gearcli.errors import ConfigError
 from gearcli.model.spec import (
     MM,
@@ -41,6 +42,8 @@ RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 def _mesh(cfg: DesignFile, st: StageResult, k: int) -> MeshSpec:
     law = cfg.contact_for(k)
     e = float(law.exponent)
+    k_n = iso6336_normal_stiffness_N_mm(st.iso6336_mesh_stiffness_N_mm_um, st.face_width_mm,
+                                        math.radians(st.base_helix_angle_deg))
     return MeshSpec(
         base_radius_pinion_m=st.pinion.base_diameter_mm * MM / 2,
         base_radius_gear_m=st.gear.base_diameter_mm * MM / 2,
@@ -64,6 +67,8 @@ def _mesh(cfg: DesignFile, st: StageResult, k: int) -> MeshSpec:
         stiffness_harmonics=tuple(law.stiffness_harmonics),
         stiffness_harmonics_phase_rad=tuple(math.radians(v) for v in law.stiffness_harmonics_phase_deg),
         damping_ratio=law.damping_ratio,
+        law=law_name(law.stiffness),
+        iso_normal_stiffness_N_m=k_n * 1000.0,
     )
 
 
@@ -158,11 +163,7 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
     if p is None:
         return None
     from gearcli.config.schema import willis_speeds
-    from gearcli.design.stiffness import (
-        iso6336_normal_stiffness_N_mm,
-        iso_reference_normal_force_N,
-        law_coefficient_N_mm_e,
-    )
+    from gearcli.design.stiffness import iso_reference_normal_force_N, law_coefficient_N_mm_e
 
     law = cfg.contact_for(k)
     e = float(law.exponent)
@@ -174,7 +175,8 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
     coefficient = law_coefficient_N_mm_e(law.stiffness, law.exponent, hertz=ring.hertz_stiffness_N_mm1_5,
                                          iso_normal_stiffness_N_mm=k_n, iso_reference_normal_force_N=f_n0)
     ring_mesh = replace(sun_mesh, stiffness_N_m_e=float(coefficient) * 1000.0**e,
-                        contact_ratio=ring.contact_ratio_transverse, overlap_ratio=ring.overlap_ratio)
+                        contact_ratio=ring.contact_ratio_transverse, overlap_ratio=ring.overlap_ratio,
+                        iso_normal_stiffness_N_m=k_n * 1000.0)
     r_bs, r_bp, r_br = (0.5 * MM * g.base_diameter_mm for g in (p.sun, p.planet, p.ring))
     unit = willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)
     third = next(m for m in ("sun", "carrier", "ring") if m not in (p.input, p.output))

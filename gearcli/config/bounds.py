@@ -110,7 +110,9 @@ def fastest_rad_s(cfg, design) -> float:
         e = law.exponent
         K = st.hertz_stiffness_N_mm1_5 * 1e3 ** e  # N/m^e (K was N/mm^e)
         h = max(st.static_approach_mm * 1e-3, _MIN_APPROACH_M)
-        k_lin = e * K * h ** (e - 1.0) if not isinstance(law.stiffness, float) else st.linearised_stiffness_N_mm * 1e3
+        k_lin = e * K * h ** (e - 1.0) if law.stiffness == "hertz" else st.linearised_stiffness_N_mm * 1e3
+        if law.stiffness == "iso6336":  # its tangent is ISO's k_n at the (floored) static load, loaded or not
+            k_lin = max(k_lin, st.mesh_stiffness.iso_N_mm * 1e3 if st.mesh_stiffness is not None else 0.0)
         rb1, rb2 = st.pinion.base_diameter_mm / 2e3, st.gear.base_diameter_mm / 2e3
         mobility = rb1**2 / inertia[k] + rb2**2 / inertia[k + 1]
         fastest = max(fastest, math.sqrt(max(k_lin, 0.0) * mobility))

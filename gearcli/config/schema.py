@@ -23,18 +23,21 @@ from pydantic import (
 )
 
 from gearcli.config.bounds_types import NotTiny, StrictTable
+from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file's tables, one namespace)
+    DEFAULT_DAMPING_RATIO,
+    IMPACT_KEYS,
+    Contact,
+    ContactOverride,
+    DampingDepthMm,
+    DampingNsmm,
+    Stiffness,
+)
 from gearcli.config.duty import AxialPositionMm, Bearing, CenterAngleDeg, Duty
 from gearcli.config.excitation import (
     MAX_HARMONICS,
-    DampingRatio,
     Fluctuation,
-    PhaseDeg,
     Ripple,
-    StiffnessHarmonic,
-    TransmissionErrorUm,
     check_harmonics,
-    keeps_k_positive,
-    phases_fit,
 )
 from gearcli.config.machine import Motor, Table, increasing_speeds
 from gearcli.core.methods import NAMES as METHODS  # the one registry of integration methods
@@ -57,9 +60,6 @@ SpeedRadS = Annotated[float, Field(ge=MIN_SPEED_RPM * RPM_TO_RAD_S, le=MAX_SPEED
 TorqueNmm = Annotated[float, Field(ge=-MAX_TORQUE_NMM, le=MAX_TORQUE_NMM), NotTiny(1e-3)]
 TorqueNm = Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=MAX_TORQUE_NMM / 1e3), NotTiny(1e-6)]
 Seconds = Annotated[float, Field(ge=0, le=MAX_TIME_S), NotTiny(1e-6)]
-Stiffness = Annotated[float, Field(ge=1.0, le=1e14)]  # N/mm^e: linear meshes ~1e6 N/mm, Hertz K ~1e5 N/mm^1.5
-DampingNsmm = Annotated[float, Field(ge=0, le=1e6), NotTiny(1e-9)]
-DampingDepthMm = Annotated[float, Field(ge=1e-6, le=10.0)]
 # kept for code that imports them; every key now has its own bounds
 PositiveFloat = Annotated[float, Field(gt=0, le=1e15)]
 NonNegFloat = Annotated[float, Field(ge=0, le=1e15)]
@@ -195,55 +195,6 @@ class BasicRack(_Table):
             raise ValueError(f"dedendum ({self.dedendum:g}) must be at least the addendum ({self.addendum:g}): "
                              "the bottom clearance h_fP* - h_aP* cannot be negative")
         return self
-
-
-class ContactOverride(_Table):
-    """The mesh force law (Adams IMPACT) and its excitation. In ``[contact]`` every key has the seed's
-    default; in a stage's ``[stage.mesh]`` every key is optional and overrides ``[contact]`` for that mesh.
-    Excitation (harmonics j = 1, 2, ... of the mesh phase phi = z_p theta_p): the static transmission error
-    e(phi) = sum e_j cos(j phi + psi_j) (um, along the transverse line of action; the mesh acts on
-    q = delta - e), stiffness harmonics K (1 - sum s_j cos(j phi + psi_j)), phases in degrees (default 0);
-    ``damping_ratio`` zeta replaces the IMPACT damping by viscous damping c = 2 zeta sqrt(k_lin m_e) on
-    q' at all times, also inside the backlash."""
-
-    stiffness: Literal["hertz", "iso6336"] | Stiffness | None = None
-    exponent: Annotated[float, Field(ge=1.0, le=3.0)] | None = None
-    damping_Ns_mm: DampingNsmm | None = None
-    full_damping_penetration_mm: DampingDepthMm | None = None
-    time_varying: bool | None = None
-    transmission_error_um: Annotated[list[TransmissionErrorUm], Field(max_length=MAX_HARMONICS)] | None = None
-    transmission_error_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
-    stiffness_harmonics: Annotated[list[StiffnessHarmonic], Field(max_length=MAX_HARMONICS)] | None = None
-    stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] | None = None
-    damping_ratio: DampingRatio | None = None
-
-    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(phases_fit)
-    _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
-
-
-class Contact(_Table):
-    """The mesh force law (Adams IMPACT) and its excitation; see ``[stage.mesh]``."""
-
-    stiffness: Literal["hertz", "iso6336"] | Stiffness = "hertz"
-    exponent: Annotated[float, Field(ge=1.0, le=3.0)] = 1.5
-    damping_Ns_mm: DampingNsmm = 50.0
-    full_damping_penetration_mm: DampingDepthMm = 0.1
-    time_varying: bool = False
-    transmission_error_um: Annotated[list[TransmissionErrorUm], Field(max_length=MAX_HARMONICS)] = []
-    transmission_error_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
-    stiffness_harmonics: Annotated[list[StiffnessHarmonic], Field(max_length=MAX_HARMONICS)] = []
-    stiffness_harmonics_phase_deg: Annotated[list[PhaseDeg], Field(max_length=MAX_HARMONICS)] = []
-    damping_ratio: DampingRatio | None = None
-
-    _phases = field_validator("transmission_error_phase_deg", "stiffness_harmonics_phase_deg")(phases_fit)
-    _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
-
-    def merged(self, override: ContactOverride | None) -> Contact:
-        """This law with a stage's overrides applied."""
-        if override is None:
-            return self
-        changes = {k: v for k, v in override.model_dump().items() if v is not None}
-        return self.model_copy(update=changes)
 
 
 TorsionStiffness = Annotated[float, Field(ge=1.0, le=1e11)]  # N·m/rad: a soft elastomer coupling ~10, a 1 m shaft ~1e9

@@ -57,9 +57,11 @@ _COMMENTS = {
 #   when helix_angle_deg = 0), material; optional profile_shift, inertia_kg_m2 (default: solid disc)
 #   optional: backlash_mm (normal, default 0), efficiency (0, 1], [stage.mesh] overriding [contact]""",
     "contact": """\
-# [contact]: the mesh force law F = K h^exponent + damping (MSC Adams IMPACT), for every mesh.
-#   stiffness = "hertz" (K = 4/3 sqrt(R) E*) | "iso6336" (ISO 6336-1 mesh stiffness) | K in N/mm^exponent
-#   exponent in [1, 3]; damping_Ns_mm >= 0, reached at full_damping_penetration_mm > 0;
+# [contact]: the mesh force law F = K h^exponent + damping, for every mesh. This is the seed paper's law (MSC
+#   Adams IMPACT); without the table a mesh is calibrated to ISO 6336-1 at the operating point: stiffness =
+#   "iso6336" (the law's tangent at the static load is ISO's mesh stiffness), exponent = 1.5, damping_ratio = 0.05.
+#   stiffness = "hertz" (K = 4/3 sqrt(R) E*) | "iso6336" | K in N/mm^exponent; exponent in [1, 3];
+#   damping_ratio (viscous) or damping_Ns_mm >= 0 reached at full_damping_penetration_mm > 0 (IMPACT);
 #   time_varying = true scales K with the length of the contact lines over the mesh cycle""",
     "input": """\
 # [input]: the drive. Exactly one of speed_deg_s, speed_rpm, speed_rad_s; ramp_s >= 0 (0 = full speed at t = 0).

@@ -213,3 +213,35 @@ def _ordinal(n: int) -> str:
 
 def _part(stage: StageResult, gear: GearResult) -> str:
     return "pinion" if gear is stage.pinion else "gear"
+
+
+#: |linearised / ISO - 1| beyond which a mesh law is warned about (DESIGN section 13)
+STIFFNESS_NOT_ISO_TOLERANCE = 0.25
+
+
+def stiffness_not_iso(stage: int, mesh: str, law) -> Diagnostic | None:
+    """``stiffness_not_iso`` for a mesh whose law's linearised stiffness (``law``: a
+    :class:`~gearcli.results.MeshStiffness`) departs from ISO 6336-1's k_n by more than 25 %; None otherwise."""
+    from gearcli.diagnostics import STIFFNESS_NOT_ISO, warning
+
+    if law is None or law.departure is None or abs(law.departure) <= STIFFNESS_NOT_ISO_TOLERANCE:
+        return None
+    where = f"stage {stage}" + ("" if mesh == "mesh" else f" {mesh.replace('_', '–')} mesh")
+    message = (f"{where}: the mesh law ({law.law}, e = {law.exponent:g}) has a linearised stiffness of "
+               f"{law.linearised_N_mm:.4g} N/mm at the static load, {100 * law.departure:+.0f} % from ISO 6336-1's "
+               f"k_n = c_γα b / cos² β_b = {law.iso_N_mm:.4g} N/mm: natural frequencies and dynamic loads follow "
+               "the law, not ISO's mesh stiffness (stiffness = \"iso6336\" calibrates the law's tangent to k_n)")
+    return warning(STIFFNESS_NOT_ISO, message, stage=stage, mesh=mesh, law=law.law, exponent=law.exponent,
+                   linearised_N_mm=law.linearised_N_mm, iso_N_mm=law.iso_N_mm, departure=law.departure)
+
+
+def stiffness_diagnostics(stages: Iterable[StageResult]) -> tuple[Diagnostic, ...]:
+    """``stiffness_not_iso`` of every mesh: a parallel stage's, a planetary stage's sun–planet and planet–ring."""
+    found = []
+    for st in stages:
+        if st.planetary is None:
+            found.append(stiffness_not_iso(st.index, "mesh", st.mesh_stiffness))
+        else:
+            found.append(stiffness_not_iso(st.index, "sun_planet", st.mesh_stiffness))
+            found.append(stiffness_not_iso(st.index, "planet_ring", st.planetary.planet_ring.mesh_stiffness))
+    return tuple(d for d in found if d is not None)

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from gearcli.design import planetary as pl
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_inputs, design_diagnostics
+from gearcli.design.checks import check_inputs, design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
 from gearcli.design.inertia import (
@@ -27,7 +27,15 @@ from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_
 from gearcli.design.shafts import bearing_results
 from gearcli.diagnostics import DESIGN, warning
 from gearcli.errors import DesignError
-from gearcli.results import DesignResult, GearResult, Iso6336Factors, ShaftResult, StageResult, StaticForces
+from gearcli.results import (
+    DesignResult,
+    GearResult,
+    Iso6336Factors,
+    MeshStiffness,
+    ShaftResult,
+    StageResult,
+    StaticForces,
+)
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -67,7 +75,8 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            backlash_min_mm=st.backlash_circumferential_mm[1])
                    for st in stages if st.backlash_circumferential_mm is not None
                    and st.backlash_circumferential_mm[1] < 0.0)
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *jammed, *rating_diagnostics)
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *jammed, *stiffness_diagnostics(stages),
+                   *rating_diagnostics)
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -144,6 +153,7 @@ class _Stiffness:
     linearised_N_mm: float
     factors: Iso6336Factors
     line_load_N_mm: float  # F_t K_A / b at which c' was evaluated
+    law: MeshStiffness  # the contact law at the static load beside ISO's k_n
 
 
 def _blank_factor(gear: Gear, normal_module_mm: float) -> float:
@@ -179,14 +189,15 @@ def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
                                                  stage.normal_pressure_angle_deg, line_load,
                                                  blank_factor=factors.C_R, dedendum_factor=stage.basic_rack.dedendum)
     c_mesh = stf.mesh_stiffness_N_mm_um(c_single, geo.contact_ratio_transverse)
-    coefficient = stf.law_coefficient_N_mm_e(
+    at_load = stf.mesh_law_stiffness(
         law.stiffness, law.exponent, hertz=hertz,
         iso_normal_stiffness_N_mm=stf.iso6336_normal_stiffness_N_mm(c_mesh, geo.face_width_mm, geo.base_helix_rad),
-        iso_reference_normal_force_N=stf.iso_reference_normal_force_N(
-            forces.tangential, geo.face_width_mm, geo.normal_pressure_rad, geo.helix_rad))
+        tangential_force_N=forces.tangential, face_width_mm=geo.face_width_mm,
+        normal_pressure_rad=geo.normal_pressure_rad, helix_rad=geo.helix_rad)
+    coefficient = at_load.K
     h0 = stf.static_approach_mm(forces.normal, coefficient, law.exponent)
     return _Stiffness(radius, modulus, hertz, c_single, c_mesh, h0,
-                      stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0), factors, line_load)
+                      stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0), factors, line_load, at_load)
 
 
 def _check_bore(gear: Gear, root_diameter_mm: float, key: str) -> None:
@@ -294,6 +305,7 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> Stag
         iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(s.mesh_N_mm_um),
         iso6336_factors=s.factors, reduced_mass_kg_mm=r.reduced_mass_kg_mm, resonance_speed_rpm=r.speed_rpm,
         resonance_ratio=r.ratio, resonance_lower_limit=r.lower_limit, resonance_range=r.range,
+        mesh_stiffness=s.law,
     )
     return _with_allowances(result, stage, geo, k) if stage.has_allowances else result
 

@@ -280,6 +280,12 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
     planet = mesh.gear
     m_red = res.body_mass_per_width_kg_mm(planet.body_inertia_kg_m2, planet.face_width_mm, planet.base_diameter_mm)
     n_e1 = res.resonance_speed_rpm(stage.planet.teeth, c_mesh, m_red)
+    law = cfg.contact_for(k)
+    at_load = stf.mesh_law_stiffness(
+        law.stiffness, law.exponent, hertz=stf.hertz_stiffness_N_mm1_5(radius, modulus),
+        iso_normal_stiffness_N_mm=stf.iso6336_normal_stiffness_N_mm(c_mesh, geo.face_width_mm, beta_b),
+        tangential_force_N=forces.tangential, face_width_mm=geo.face_width_mm,
+        normal_pressure_rad=math.radians(stage.normal_pressure_angle_deg), helix_rad=beta)
     return InternalMeshResult(
         working_pressure_angle_deg=math.degrees(geo.working_pressure_rad), center_distance_mm=geo.center_distance_mm,
         transverse_base_pitch_mm=geo.transverse_base_pitch_mm, face_width_mm=geo.face_width_mm,
@@ -292,7 +298,7 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(c_mesh), iso6336_factors=factors,
         mesh_frequency_Hz=stage.planet.teeth * w_rel / (2.0 * math.pi), reduced_mass_kg_mm=m_red,
         resonance_speed_rpm=n_e1, resonance_ratio=abs(planet.speed_rpm) / n_e1,
-        resonance_lower_limit=res.lower_main_resonance_limit(line_load))
+        resonance_lower_limit=res.lower_main_resonance_limit(line_load), mesh_stiffness=at_load)
 
 
 # ---------------------------------------------------------------------------------- warnings

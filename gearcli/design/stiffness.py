@@ -3,8 +3,13 @@
 Units: lengths mm, moduli MPa (= N/mm²), forces N; ISO stiffnesses in N/(mm·µm) as the standard
 writes them; K of the force law F = K h^e in N/mm^e.
 
+Calibration. ``stiffness = "iso6336"`` chooses K so that the law's tangent at the static load is ISO's normal
+mesh stiffness k_n = c_γα b / cos² β_b: e K h_0^(e−1) = k_n with F_n0 = K h_0^e, for any exponent e. Linearised
+models then equal the linear ISO model at the operating point; the static approach is h_0 = e F_n0 / k_n, e
+times ISO's F_n0 / k_n (the secant F/h of a law with e > 1 is k_n / e).
+
 Zero load. ISO 6336-1's low-load factor (F_t K_A / b / 100)^0.25 vanishes with the load, and the
-secant K = F_n0 / h_0^e of an ``iso6336`` law is undefined at F_n0 = 0. Both are evaluated at the
+calibration of an ``iso6336`` law is undefined at F_n0 = 0. Both are evaluated at the
 static tangential force floored at ``MIN_LINE_LOAD_N_mm`` = 1 N per mm of face width: the single-pair
 stiffness then never drops below (K_A/100)^0.25 ≈ 0.32 of its full-load value, stays continuous in the
 load, and the iso6336 coefficient is calibrated at the same (small) load the stiffness was evaluated at.
@@ -20,7 +25,7 @@ from gearcli.design.forces import normal_force_N
 
 if TYPE_CHECKING:  # the design layer never imports the config package at run time
     from gearcli.config.schema import Contact
-    from gearcli.results import StageResult
+    from gearcli.results import MeshStiffness, StageResult
 
 MIN_LINE_LOAD_N_mm = 1.0  # floor of |F_t| / b for the ISO 6336 evaluation (see the module docstring)
 UM_PER_MM = 1000.0
@@ -137,8 +142,10 @@ def iso6336_normal_stiffness_N_mm(mesh_stiffness: float, face_width_mm: float, b
 
 
 def iso6336_coefficient_N_mm_e(normal_stiffness_N_mm: float, normal_force_N: float, exponent: float) -> float:
-    """K with K h_0^e = F_n0 at the ISO deflection h_0 = F_n0 / k_n, i.e. K = F_n0^(1−e) k_n^e (= k_n for e = 1)."""
-    return normal_force_N ** (1.0 - exponent) * normal_stiffness_N_mm ** exponent
+    """K whose tangent at the static load equals ISO's mesh stiffness: e K h_0^(e−1) = k_n with K h_0^e = F_n0,
+    i.e. h_0 = e F_n0 / k_n (e times ISO's deflection) and K = k_n^e / (e^e F_n0^(e−1)) (= k_n for e = 1)."""
+    e = exponent
+    return normal_stiffness_N_mm ** e / (e ** e * normal_force_N ** (e - 1.0))
 
 
 # ---------------------------------------------------------------------------- the contact law's K
@@ -162,9 +169,9 @@ def iso_reference_normal_force_N(tangential_force_N: float, face_width_mm: float
 def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
 
-    "hertz": the stage's 4/3 √R E*; a number: that number; "iso6336": K such that at the static load
-    F_n0 the mesh deflects h_0 = F_n0 / k_n, k_n = c_γα b / cos² β_b (docs/physics.md, "Torsional model"); F_n0 is
-    floored at 1 N/mm of face width when the load is (near) zero (see the module docstring).
+    "hertz": the stage's 4/3 √R E*; a number: that number; "iso6336": K whose tangent e K h_0^(e−1) at the static
+    load F_n0 is k_n = c_γα b / cos² β_b (docs/physics.md, "Torsional model"); F_n0 is floored at 1 N/mm of face
+    width when the load is (near) zero (see the module docstring).
     """
     beta_b = math.radians(stage.base_helix_angle_deg)
     k_n = iso6336_normal_stiffness_N_mm(stage.iso6336_mesh_stiffness_N_mm_um, stage.face_width_mm, beta_b)
@@ -185,3 +192,26 @@ def linearised_stiffness_N_mm(coefficient: float, exponent: float, approach_mm: 
     if exponent == 1.0:
         return coefficient
     return exponent * coefficient * approach_mm ** (exponent - 1.0)
+
+
+def law_name(stiffness: str | float) -> str:
+    """The ``mesh_stiffness.law`` of a ``stiffness`` key: "iso6336", "hertz", or "given" (a number)."""
+    return stiffness if isinstance(stiffness, str) else "given"
+
+
+def mesh_law_stiffness(stiffness: str | float, exponent: float, *, hertz: float, iso_normal_stiffness_N_mm: float,
+                       tangential_force_N: float, face_width_mm: float, normal_pressure_rad: float,
+                       helix_rad: float) -> MeshStiffness:
+    """The law's K, its tangent at the static load and ISO's k_n beside it (``mesh_stiffness`` of design JSON).
+
+    The tangent is taken at the static normal force floored as ISO's stiffness is (1 N/mm of face width): the
+    load the ``iso6336`` law is calibrated at, so that law's ``linearised_N_mm`` is ``iso_N_mm`` at any load; the
+    static approach is at the same force."""
+    from gearcli.results import MeshStiffness
+
+    f_n0 = iso_reference_normal_force_N(tangential_force_N, face_width_mm, normal_pressure_rad, helix_rad)
+    K = law_coefficient_N_mm_e(stiffness, exponent, hertz=hertz, iso_normal_stiffness_N_mm=iso_normal_stiffness_N_mm,
+                               iso_reference_normal_force_N=f_n0)
+    h0 = static_approach_mm(f_n0, K, exponent)
+    return MeshStiffness(law_N_mm_e=K, exponent=exponent, linearised_N_mm=linearised_stiffness_N_mm(K, exponent, h0),
+                         static_approach_mm=h0, law=law_name(stiffness), K=K, iso_N_mm=iso_normal_stiffness_N_mm)

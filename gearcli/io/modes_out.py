@@ -6,14 +6,29 @@ from rich.console import RenderableType
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.diagnostics import warning_objects
-from gearcli.io.serialize import csv_text
+from gearcli.io.serialize import as_object, csv_text, plain
 from gearcli.model.modes import ModalAnalysis
 from gearcli.results import DesignResult
 
 
 def modes_document(analyses: list[ModalAnalysis], design: DesignResult) -> JsonObject:
-    """``gearcli modes --format json``: :func:`modes_dict` with the design's warnings as objects."""
-    return modes_dict(analyses, warning_objects(design.warnings, design.diagnostics))
+    """``gearcli modes --format json``: :func:`modes_dict` with the design's warnings as objects and, per mesh, the
+    contact law the modes are linearised from beside ISO's stiffness (``meshes[i].mesh_stiffness``)."""
+    doc = modes_dict(analyses, warning_objects(design.warnings, design.diagnostics))
+    warnings = doc.pop("warnings")
+    return {**doc, "meshes": mesh_stiffness_rows(design), "warnings": warnings}
+
+
+def mesh_stiffness_rows(design: DesignResult) -> list[JsonObject]:
+    """Per mesh: its stage (1-based), which mesh (``mesh``; a planetary stage's ``sun_planet``, ``planet_ring``)
+    and its ``mesh_stiffness`` {law, K, exponent, linearised_N_mm, iso_N_mm, ...}."""
+    rows: list[JsonObject] = []
+    for st in design.stages:
+        meshes = [("mesh", st.mesh_stiffness)] if st.planetary is None else \
+            [("sun_planet", st.mesh_stiffness), ("planet_ring", st.planetary.planet_ring.mesh_stiffness)]
+        rows += [{"stage": st.index, "mesh": name, "mesh_stiffness": as_object(plain(law))}
+                 for name, law in meshes if law is not None]
+    return rows
 
 
 def modes_dict(analyses: list[ModalAnalysis], warnings: list[JsonObject] | None = None) -> JsonObject:

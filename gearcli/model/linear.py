@@ -188,3 +188,16 @@ def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False)
     omega2 = np.linalg.eigvalsh(sq[:, None] * M * sq[None, :])
     freqs = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)
     return Linearisation(F, defl, kd, cd, np.linalg.eigvals(A), np.sort(freqs), lay.stage_conn)
+
+
+def damped_eigenvalues(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False) -> np.ndarray:
+    """Eigenvalues of the chain linearised about the given connector forces with every damping the simulation
+    integrates (:mod:`gearcli.model.damping`: the elements' laws, a motor's slip damping and the load law's
+    dT/dw at the operating point, the meshes' losses), over the free bodies; lambda = -zeta omega +- i omega_d.
+    A free chain adds its rigid-body eigenvalues (0, or real with a speed-dependent drive or load)."""
+    from gearcli.model.damping import body_matrices, state_matrix
+
+    lay = _lay(spec)
+    F = np.abs(np.asarray(forces, dtype=float))
+    kc = np.array([tangent(lay, c, F[c], stiffest_phase=stiffest_phase)[:2] for c in range(F.size)])
+    return np.linalg.eigvals(state_matrix(*body_matrices(lay, kc[:, 0], kc[:, 1], lay.free_bodies.start)))

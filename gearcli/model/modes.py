@@ -20,8 +20,12 @@ k_c (R phi)_c e; at resonance the mode's force in that mesh is k_c e s_cj / (2 z
 the mode's strain energy (k_c (R phi)_c^2 / omega_j^2). So a crossing is excited as strongly as
 ``s / (2 zeta)`` (:attr:`Crossing.amplification`, the resonant force over the mesh's blocked error force k_c e;
 the quasi-static response of the whole chain is at most 1): a mode whose strain energy sits in another
-element is hardly excited by this mesh, however close the frequencies. zeta_j comes from the linearised
-damping of every element (c_c (R phi)_c^2 / (2 omega_j), mass-normalised).
+element is hardly excited by this mesh, however close the frequencies.
+
+Damping. zeta_j linearises what the simulation integrates (:mod:`gearcli.model.damping`): every element's
+damping law at its static force, a motor's slip damping dT/dw and the load law's dT/dw at the operating point,
+and the meshes' losses; it is ``-Re lambda / |lambda|`` of the damped eigenvalue whose shape matches mode j
+(frequencies and shapes are the undamped ones).
 """
 
 from __future__ import annotations
@@ -32,6 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
+from gearcli.model.damping import body_matrices, modal_damping_ratios
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
 
@@ -158,8 +163,12 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
     phi = inv_sqrt[:, None] * u  # body-angle shapes
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
     n_rigid = rigid_mode_count(lay, k, clamped=first)
+    order = np.argsort(w2)
+    omega = np.zeros(w2.size)
+    omega[order[n_rigid:]] = np.sqrt(np.clip(w2[order[n_rigid:]], 0.0, None))
+    zetas = modal_damping_ratios(*body_matrices(lay, k, cd, first), phi, omega)
     modes: list[Mode] = []
-    for rank, j in enumerate(np.argsort(w2)):
+    for rank, j in enumerate(order):
         rigid = rank < n_rigid  # from the structure, never from a threshold on the eigenvalues
         f = 0.0 if rigid else math.sqrt(max(float(w2[j]), 0.0)) / (2.0 * math.pi)
         shape = np.concatenate([np.zeros(first), _shape(phi[:, j])])
@@ -167,7 +176,7 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
         strain = k * rate**2
         share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
         dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
-        zeta = 0.0 if rigid else float(cd @ rate**2) / (2.0 * math.sqrt(w2[j]))
+        zeta = 0.0 if rigid else float(zetas[j])
         crossings = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
                           if not rigid and f / r <= SPEED_RANGE * f_in)
         modes.append(Mode(len(modes) + 1, f, rigid, tuple(float(v) for v in shape),

@@ -49,6 +49,10 @@ class MeshSpec:
     stiffness_harmonics_phase_rad: tuple[float, ...] = ()  # chi_j (missing: 0)
     damping_ratio: float | None = None  # viscous c = 2 zeta sqrt(k_lin m_e) instead of the IMPACT ramp
     contact_phase_cycles: float = 0.0  # time-varying stiffness: L(phi + this) (a planet mesh's phase offset)
+    # what the law was calibrated to (reported, never integrated): the design file's law, and ISO 6336-1's normal
+    # mesh stiffness k_n = c_gamma_alpha b / cos^2 beta_b (N/m; 0: unknown)
+    law: str = ""
+    iso_normal_stiffness_N_m: float = 0.0
 
     def __post_init__(self) -> None:
         if len(self.transmission_error_phase_rad) > len(self.transmission_error_m) or \

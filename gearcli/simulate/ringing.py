@@ -11,7 +11,10 @@ squares with the free decay itself,
 
 and the transient's amplitude at the window's start is ``hypot(a_j, b_j)`` (at its end times
 ``e^(-sigma_j L)``); each sigma_j is then refined to the one the record's envelope fits best (within 0.25 .. 4
-times the linearised one: the nonlinear meshes and the couplings damp at their own amplitude). A transient whose amplitude at the window's end is at least :data:`MIN_FRACTION` of the
+times the linearised one: the nonlinear meshes and the couplings damp at their own amplitude), to the
+trials' resolution (:data:`SIGMA_UNCERTAINTY`, the warning's ``damping_ratio_uncertainty``). The linearisation is
+the one ``modes`` makes (:func:`gearcli.model.linear.damped_eigenvalues`: the motor's slip damping and the load
+law's dT/dw included), so a mode's damping ratio there and the fitted one agree within that resolution. A transient whose amplitude at the window's end is at least :data:`MIN_FRACTION` of the
 stage's static force is warned about, with what would settle it: a later window (the time at which the
 vibration has decayed to that fraction), more damping on the element that dominates the mode, or the
 periodic steady state.
@@ -29,6 +32,10 @@ from dataclasses import dataclass
 import numpy as np
 
 DECAY_WINDOWS = 1.0  # a mode whose decay time exceeds the window length rings through it
+SIGMA_TRIALS = np.geomspace(0.25, 4.0, 25)  # the refinement's trial decay rates, in units of the linearised one
+# the fit's resolution: the refined decay rate (and the damping ratio with it) lies within this relative distance of
+# the record's best one, half a trial step (16^(1/48) - 1 = 5.9 %)
+SIGMA_UNCERTAINTY = math.sqrt(float(SIGMA_TRIALS[1] / SIGMA_TRIALS[0])) - 1.0
 MIN_FRACTION = 0.01  # of the stage's static force, at the window's end
 MAX_MODES = 6  # the slowest candidates fitted at once (the fit needs far fewer columns than samples)
 FIT_SAMPLES = 4000  # a longer window is thinned to about this many samples for the fit ...
@@ -90,7 +97,7 @@ def fit_transient(t: np.ndarray, x: np.ndarray, modes: list[tuple[float, float]]
         for j, (sigma, omega) in enumerate(modes):
             if sigma <= 0.0:
                 continue
-            trials = [(sigma * f, omega) for f in np.geomspace(0.25, 4.0, 25)]
+            trials = [(sigma * f, omega) for f in SIGMA_TRIALS]
             errs = [_lstsq(tau, x, modes[:j] + [m] + modes[j + 1:])[1] for m in trials]
             modes[j] = trials[int(np.argmin(errs))]
     coef, _ = _lstsq(tau, x, modes)

@@ -254,13 +254,14 @@ def _loadable(eng: EngineChoice) -> EngineChoice:
 def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness, ...]:
     """The contact law each mesh used, in the design file's units: K (N/mm^e), and its slope along the normal
     at the static approach h0 of the linearisation at full load, e K h0^(e-1) (N/mm; the design's
-    ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm)."""
+    ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm), the law's name and ISO 6336-1's k_n (N/mm)."""
     out = []
     for k, m in enumerate(model.spec.meshes):
         K = m.stiffness_N_m_e / 1000.0**m.exponent
         h0 = float(choice.at_full_load.penetration_m[k]) * 1000.0
         slope = m.exponent * K * h0 ** (m.exponent - 1.0) if h0 > 0 or m.exponent == 1.0 else 0.0
-        out.append(MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0))
+        out.append(MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0,
+                                 law=m.law, K=K, iso_N_mm=m.iso_normal_stiffness_N_m / 1000.0))
     return tuple(out)
 
 
@@ -450,10 +451,12 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
                      forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
     """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
     that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
+    from gearcli.model.linear import damped_eigenvalues
     from gearcli.model.modes import modal_analysis
     from gearcli.simulate import ringing
 
-    found = ringing.ringing(t, mask, forces_N, static_N, choice.at_full_load.eigenvalues, window)
+    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
+    found = ringing.ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
     if not found:
         return []
     modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
@@ -464,7 +467,8 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
         out.append(dg.warning(dg.WINDOW_RINGING, ringing.message(r, window, element), stage=r.stage,
                               statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
                               decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
-                              damping_ratio=r.damping_ratio, amplitude_start_N=r.amplitude_start_N,
+                              damping_ratio=r.damping_ratio, damping_ratio_uncertainty=ringing.SIGMA_UNCERTAINTY,
+                              amplitude_start_N=r.amplitude_start_N,
                               amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
                               settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
                               element=element))

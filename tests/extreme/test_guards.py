@@ -77,10 +77,13 @@ def test_radau_across_the_ramp_end_follows_the_rigid_body_force(rtol):
         dev = np.abs(named(sim)[f"stage{k + 1}_tangential_N"] - train.rigid_tangential_N(k, sim.time_s))
         assert dev.max() < 0.02 * train.static_tangential_N(k), (k, dev.max())
     assert sim.energy.residual_relative < 1e-6  # quadratures under error control: no false energy warning
-    # no other warning; at rtol 1e-6 Radau's 51 steps cannot show the ~1 % ringing, and the run says so per
-    # stage (docs/numerics.md "Honest statistics"); at 1e-7 its steps are fine enough not to be flagged
-    assert {d.code for d in sim.diagnostics} <= {dg.STATISTICS_UNRESOLVED}, sim.warnings
-    assert len(sim.diagnostics) == (3 if rtol == 1e-6 else 0), sim.warnings
+    # no other warning than the law's (a given linear K 10,000x the seed's is ~1,000x ISO's mesh stiffness: the
+    # design's stiffness_not_iso on every stage); at rtol 1e-6 Radau's 51 steps cannot show
+    # the ~1 % ringing, and the run says so per stage (docs/numerics.md "Honest statistics"); at 1e-7 its steps are fine
+    # enough not to be flagged
+    run = [d for d in sim.diagnostics if d.code != dg.STIFFNESS_NOT_ISO]
+    assert {d.code for d in run} <= {dg.STATISTICS_UNRESOLVED}, sim.warnings
+    assert len(run) == (3 if rtol == 1e-6 else 0), sim.warnings
 
 
 # ------------------------------------------------------------------------------------------ budget
@@ -136,7 +139,9 @@ def test_refusal_through_the_cli_is_exit_1_one_line_and_no_file(tmp_path):
                                    "--set", 'simulation.method="DOP853"'])
     assert res.exit_code == 1
     assert "Traceback" not in res.output
-    assert res.stderr.startswith('gearcli: method = "DOP853" cannot integrate')
+    # the design's warnings first (its point-contact law is far from ISO's stiffness), then the one error line
+    (error,) = [line for line in res.stderr.splitlines() if not line.startswith("warning: ")]
+    assert error.startswith('gearcli: method = "DOP853" cannot integrate')
     assert 'use method = "Radau"' in res.stderr
     assert out.read_text() == "previous\n" and sorted(p.name for p in tmp_path.iterdir()) == ["out.csv"]
 

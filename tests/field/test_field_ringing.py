@@ -99,7 +99,9 @@ def test_conveyor_warns_about_its_drum_mode(tmp_path):
     shutil.copy(CONFIGS / "conveyor.toml", path)
     (w,) = _ringing(_codes(str(path)))
     text = w["message"] if isinstance(w, dict) else w
-    assert "4.94 Hz" in text and "load coupling" in text
+    # 4.93 Hz: the damped linearisation with the stages' losses (gear side eta f); a free fit of the simulated load
+    # coupling torque over the window, c + e^(-s t)(a cos w t + b sin w t), gives 4.9312 Hz (4.94 lossless)
+    assert "4.93 Hz" in text and "load coupling" in text
 
 
 def test_a_drum_mode_decaying_over_a_window_and_a_half_still_warns():

@@ -81,7 +81,10 @@ def test_a_transmission_error_after_two_planetary_stages_excites_at_its_own_mesh
         pytest.importorskip("numba")
     sim = _run("stage.2.mesh.transmission_error_um=[2.0]", f"simulation.engine={engine}")
     assert sim.solver.engine == engine
-    assert_allclose(_peak_hz(sim, "stage3_tangential_N"), 95 * N3_HZ, rtol=2e-5)
+    # the largest line within -20 % / +25 % of the mesh frequency (under the default ISO law the ramp also rings
+    # the train's 45.5 Hz mode, 0.55 % damped, far below the TE's line)
+    f_mesh = 95 * N3_HZ
+    assert_allclose(_peak_hz(sim, "stage3_tangential_N", (0.8 * f_mesh, 1.25 * f_mesh)), f_mesh, rtol=2e-5)
     assert sim.energy.residual_relative < 1e-6
 
 
@@ -119,8 +122,10 @@ def test_jacobians_with_angles_from_the_planet_kinematics():
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit"))
     from test_model_equations import fd_jacobian
 
+    # the seed's Hertz stiffness (the scene's law before the default became ISO's): with ISO's stiffer planet
+    # meshes the central differences themselves carry ~2e-6 of noise at these states
     cfg = _load("stage.1.mesh.transmission_error_um=[2.0]", "stage.2.mesh.transmission_error_um=[3.0]",
-                "stage.2.mesh.time_varying=true", "contact.damping_ratio=0.1")
+                "stage.2.mesh.time_varying=true", "contact.damping_ratio=0.1", "contact.stiffness=hertz")
     model = TorsionalModel(spec_from_design(cfg, compute_design(cfg)))
     lay = model.layout
     assert {c for row in lay.angle_rows.values() for c, _ in row.deflections}  # the rows read deflections

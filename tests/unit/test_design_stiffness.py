@@ -64,15 +64,20 @@ def test_iso6336_linear_law_is_the_iso_normal_stiffness():
     assert_allclose(s.linearised_stiffness_N_mm, K_N_STAGE1, rtol=1e-6)  # e = 1: k_lin = K
 
 
-def test_iso6336_nonlinear_law_deflects_as_iso_says_at_the_static_load():
+def test_iso6336_nonlinear_law_has_the_iso_tangent_at_the_static_load():
     cfg, r = design(contact={"stiffness": "iso6336", "exponent": 1.5})
     s = r.stages[0]
     k = contact_stiffness_N_mm_e(s, cfg.contact_for(0))
-    # h0 = 1.005444e-3 mm; K = F_n / h0^1.5 = 2013.906 / 3.188128e-5 = 6.316875e7 N/mm^1.5
-    assert_allclose(k, 6.316875e7, rtol=1e-6)
-    assert_allclose(s.static_approach_mm, 1.005444e-3, rtol=1e-6)  # same deflection as the linear law
-    # k_lin = 1.5 K √h0 = 1.5 · 6.316875e7 · 0.03170875 = 3.004503e6 = 1.5 k_n (secant vs tangent)
-    assert_allclose(s.linearised_stiffness_N_mm, 1.5 * K_N_STAGE1, rtol=1e-6)
+    # the tangent is calibrated (DESIGN section 13): e K h0^(e-1) = k_n with K h0^e = F_n, so h0 = e F_n / k_n
+    # = 1.5 · 2013.906 / 2.003002e6 = 1.508166e-3 mm (1.5x ISO's F_n/k_n) and
+    # K = F_n / h0^1.5 = 2013.906 / 5.856978e-5 = 3.438473e7 N/mm^1.5
+    assert_allclose(k, 3.438473e7, rtol=1e-6)
+    assert_allclose(s.static_approach_mm, 1.508166e-3, rtol=1e-6)
+    # k_lin = 1.5 K √h0 = 1.5 · 3.438473e7 · 0.03883511 = 2.003002e6 = k_n
+    assert_allclose(s.linearised_stiffness_N_mm, K_N_STAGE1, rtol=1e-6)
+    ms = s.mesh_stiffness
+    assert ms.law == "iso6336" and ms.exponent == 1.5
+    assert_allclose([ms.K, ms.linearised_N_mm, ms.iso_N_mm], [3.438473e7, K_N_STAGE1, K_N_STAGE1], rtol=1e-6)
 
 
 def test_stage_mesh_override_applies_to_that_stage_only():
@@ -136,10 +141,13 @@ def test_zero_load_iso6336_is_evaluated_at_one_newton_per_mm():
     assert_allclose(s.iso6336_single_pair_stiffness_N_mm_um, 4.092426, rtol=1e-6)
     assert_allclose(s.iso6336_mesh_stiffness_N_mm_um, 5.976785, rtol=1e-6)
     # F_n0 = 180 / (cos 20° cos 12°) = 195.8314 N; k_n = 5.976785 · 180000 / 0.961829 = 1.118516e6 N/mm
-    # K = F_n0^(1 − 1.5) k_n^1.5 = 1.118516e6^1.5 / √195.8314 = 1.182942e9 / 13.99398 = 8.45322e7
+    # tangent calibration: h0 = 1.5 F_n0 / k_n = 2.626221e-4 mm, K = F_n0 / h0^1.5 = 195.8314 / 4.255954e-6
+    # = 4.601351e7 N/mm^1.5
     k = contact_stiffness_N_mm_e(s, cfg.contact_for(0))
     assert math.isfinite(k) and k > 0
-    assert_allclose(k, 8.45322e7, rtol=5e-6)  # 6-7 digit intermediates above
+    assert_allclose(k, 4.601351e7, rtol=5e-6)  # 6-7 digit intermediates above
+    # mesh_stiffness reports the law at the load it is calibrated at (floored): its tangent is ISO's there
+    assert_allclose(s.mesh_stiffness.linearised_N_mm, 1.118516e6, rtol=5e-6)
     assert s.static_approach_mm == 0.0 and s.linearised_stiffness_N_mm == 0.0  # e > 1 and no load
 
 

@@ -62,9 +62,13 @@ def test_mesh_stiffness_used_matches_the_contact_law():
         h0 = (abs(st.static_force_N.normal) / K) ** (2.0 / 3.0)  # mm
         assert_allclose(ms.static_approach_mm, h0, rtol=1e-6)
         assert_allclose(ms.linearised_N_mm, 1.5 * K * math.sqrt(h0), rtol=1e-6)
+        # beside ISO 6336-1's k_n (DESIGN section 13): the seed's point-contact law is the "hertz" law
+        assert ms.law == "hertz" and ms.K == ms.law_N_mm_e
+        assert_allclose(ms.iso_N_mm, st.iso6336_mesh_stiffness_N_mm_um * st.face_width_mm * 1000.0
+                        / math.cos(math.radians(st.base_helix_angle_deg)) ** 2, rtol=1e-12)
     doc = simulation_dict(sim)
     assert set(doc["summary"]["stages"][0]["mesh_stiffness"]) == {"law_N_mm_e", "exponent", "linearised_N_mm",
-                                                                  "static_approach_mm"}
+                                                                  "static_approach_mm", "law", "K", "iso_N_mm"}
 
 
 def test_dynamic_factor_is_null_without_static_force():

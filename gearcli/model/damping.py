@@ -1,0 +1,152 @@
+"""The damping of the linearised chain at its operating point: what ``simulate`` integrates, as ``modes`` sees it.
+
+Body coordinates over the free bodies (the angles ``theta``, the speeds ``w``). Every connector c is linearised
+about its static force (:func:`gearcli.model.linear.tangent`: its own law, so a viscous mesh's ``c = 2 zeta
+sqrt(k_lin m_e)``, an IMPACT mesh's STEP ramp at its static penetration, a coupling's damper), and the torques at
+the two ends about the operating speed:
+
+- the drive on body 0: a motor's ``dT_m/dw`` at its operating speed (the stable crossing of its curve with the
+  load reflected to it, after its start: :func:`operating_speed_rad_s`) — the slip damping
+  ``d_0 = -dT_m/dw``; a speed drive holds body 0 (no state), a torque drive's torque does not depend on speed;
+- the load on the last body, resisting: ``T_L = T_ref g(w_N)`` (``[load] speed_exponent`` or a table), so
+  ``d_N = T_ref dg/dw`` at the load body's operating speed.
+
+A lossy mesh passes on ``eta`` of its force in the power-flow direction (:func:`.elements.mesh.loss_factors`):
+the force on its pinion is ``f``, on its gear ``eta f`` (forward power; reversed, the other way round), so the
+matrices scatter the connector forces with those factors (their dependence on speed, through the regularised
+power-flow sign, vanishes at the operating point: ``1 - tanh^2`` of ~1000). Then
+
+    J theta'' + C theta' + K theta = 0,   K = L^T diag(k) R,   C = L^T diag(c) R + diag(d),
+
+``R`` the levers (``delta = R theta``), ``L`` the levers times the loss factors. Its eigenvalues
+``lambda = -zeta omega +- i omega sqrt(1 - zeta^2)`` give each mode's damping ratio ``zeta = -Re lambda / |lambda|``
+(:func:`modal_damping_ratios` matches them to the undamped modes by their shapes).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearcli.model.assembly import Layout
+from gearcli.model.elements import machine, mesh
+
+STEADY_T = 1e12  # s: a time past every start ramp (the motor's steady curve)
+SPEED_SAMPLES = 4000  # grid over 0 .. the synchronous speed on which the motor's crossings are bracketed
+MIN_MAC = 0.5  # a damped eigenvector matches an undamped mode when their modal assurance criterion exceeds this
+
+
+def _reflected_load_Nm(lay: Layout, w: float) -> float:
+    """The load torque at the input body (N m) when it turns at w in steady state (losses forward)."""
+    rho = lay.bodies[-1].ratio
+    g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
+    eta = math.prod(x.params[mesh.I_ETA] for x in lay.connectors if x.lossy)
+    t = lay.load.torque_Nm * g * rho
+    return t / eta if t >= 0 else t * eta
+
+
+def operating_speed_rad_s(lay: Layout) -> float:
+    """The input body's speed at the operating point: a motor's stable crossing of its curve with the reflected
+    load (the crossing above the curve's largest torque, the highest one; the nominal speed when there is none);
+    a speed or torque drive's nominal speed."""
+    if not lay.motor_drive or not lay.motor_row:
+        return lay.drive.speed_rad_s
+    row = lay.motor_row
+    ws = row[machine.M_WS]
+
+    def net(w: float) -> float:
+        return machine.motor_torque(row, STEADY_T, w)[0] - _reflected_load_Nm(lay, w)
+
+    grid = np.linspace(0.0, ws, SPEED_SAMPLES + 1)
+    curve = np.array([machine.motor_torque(row, STEADY_T, w)[0] for w in grid])
+    f = curve - np.array([_reflected_load_Nm(lay, w) for w in grid])
+    w_b = float(grid[int(np.argmax(curve))])
+    down = [i for i in range(SPEED_SAMPLES) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b]
+    if not down:
+        return lay.drive.speed_rad_s
+    lo, hi = float(grid[down[-1]]), float(grid[down[-1] + 1])
+    for _ in range(200):  # bisection to the last bit (net falls through 0 on [lo, hi])
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        lo, hi = (mid, hi) if net(mid) > 0.0 else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def body_damping(lay: Layout) -> np.ndarray:
+    """Per body, ``d = -dT/dw`` of the torques the drive and the load put on it at the operating point (N m s)."""
+    d = np.zeros(lay.n_bodies)
+    w0 = operating_speed_rad_s(lay)
+    if lay.motor_drive and lay.motor_row:
+        d[0] -= machine.motor_torque(lay.motor_row, STEADY_T, w0)[1]
+    if lay.load_law:
+        d[-1] += lay.load.torque_Nm * machine.load_factor(lay.load_law, w0 * lay.bodies[-1].ratio)[1]
+    return d
+
+
+def loss_factors(lay: Layout) -> np.ndarray:
+    """Per connector and body slot, the fraction of the connector's force that reaches that body: a lossy mesh's
+    ``eta`` on the side that receives the power (its gear for a forward load), 1 elsewhere."""
+    g = np.ones((lay.n_conn, max(len(x.bodies) for x in lay.connectors)))
+    forward = lay.load.torque_Nm >= 0.0
+    for c, x in enumerate(lay.connectors):
+        if x.lossy:
+            g[c, 1 if forward else 0] = x.params[mesh.I_ETA]
+    return g
+
+
+def body_matrices(lay: Layout, k: np.ndarray, c: np.ndarray, first: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(J, K, C) over the bodies ``first`` .. last (module text): ``k``, ``c`` the connectors' tangents."""
+    n = lay.n_bodies
+    R = np.zeros((lay.n_conn, n))
+    L = np.zeros((lay.n_conn, n))
+    g = loss_factors(lay)
+    for i, x in enumerate(lay.connectors):
+        for j, (b, lever) in enumerate(zip(x.bodies, x.levers, strict=True)):
+            R[i, b] += lever
+            L[i, b] += lever * g[i, j]
+    R, L = R[:, first:], L[:, first:]
+    K = L.T @ (np.asarray(k)[:, None] * R)
+    C = L.T @ (np.asarray(c)[:, None] * R) + np.diag(body_damping(lay)[first:])
+    return np.asarray(lay.inertias[first:], dtype=float), K, C
+
+
+def state_matrix(J: np.ndarray, K: np.ndarray, C: np.ndarray) -> np.ndarray:
+    """The first-order matrix of ``J theta'' + C theta' + K theta = 0`` in (theta, w)."""
+    n = J.size
+    return np.block([[np.zeros((n, n)), np.eye(n)], [-K / J[:, None], -C / J[:, None]]])
+
+
+def modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np.ndarray,
+                         omega: np.ndarray) -> np.ndarray:
+    """The damping ratio of each undamped mode (``shapes`` its columns, body angles; ``omega`` rad/s, 0 for a
+    rigid one: ratio 0): ``-Re lambda / |lambda|`` of the damped eigenvalue whose shape matches it best (modal
+    assurance criterion, mass-weighted, above :data:`MIN_MAC`); a mode no oscillating eigenvalue matches (an
+    overdamped one) takes the modal projection ``phi^T C phi / (2 omega phi^T J phi)``."""
+    lam, vec = np.linalg.eig(state_matrix(J, K, C))
+    n = J.size
+    osc = [i for i in range(lam.size) if lam[i].imag > 0.0]
+    out = np.zeros(shapes.shape[1])
+    pairs = []
+    for j in range(shapes.shape[1]):
+        if omega[j] <= 0.0:
+            continue
+        phi = shapes[:, j]
+        for i in osc:
+            v = vec[:n, i]
+            mac = abs(np.vdot(phi * J, v)) ** 2 / (float(phi @ (J * phi)) * float(np.real(np.vdot(v * J, v))))
+            pairs.append((mac, j, i))
+    used_modes: set[int] = set()
+    used_eigs: set[int] = set()
+    for mac, j, i in sorted(pairs, reverse=True):
+        if mac < MIN_MAC or j in used_modes or i in used_eigs:
+            continue
+        used_modes.add(j)
+        used_eigs.add(i)
+        out[j] = -lam[i].real / abs(lam[i])
+    for j in range(shapes.shape[1]):
+        if omega[j] > 0.0 and j not in used_modes:
+            phi = shapes[:, j]
+            out[j] = float(phi @ C @ phi) / (2.0 * omega[j] * float(phi @ (J * phi)))
+    return out
