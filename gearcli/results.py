@@ -489,6 +489,11 @@ class PlanetaryResult:
     equal_spacing: bool  # (z_s + z_r) / N integer
     tip_clearance_between_planets_mm: float  # 2 a sin(π/N) − d_a,planet (adjacency)
     concentricity_mm: float  # a_w(planet–ring) − a_w(sun–planet)
+    mesh_efficiency: float = 1.0  # η_m of every planet mesh (carrier frame), from the stage's efficiency
+    basic_efficiency: float = 1.0  # η_0 = η_m², the stage's efficiency with the carrier held
+    # signed external torques on sun, carrier, ring (positive in the input member's running sense), N·m: sum 0
+    moment_balance_Nm: dict[str, float] = field(default_factory=dict)
+    planet_angles_deg: tuple[float, ...] = ()  # each planet's position on the carrier
 
 
 @dataclass(frozen=True)

@@ -42,7 +42,9 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
     check_inputs(cfg)
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
-                            cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
+                            cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
+                            tuple(pl.reverse_efficiency(s, k) if pl.is_planetary(s) else None
+                                  for k, s in enumerate(cfg.stage)))
     stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
     if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design

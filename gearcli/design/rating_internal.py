@@ -80,7 +80,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult) -> InternalRating
     alpha_t, alpha_wt = math.radians(st.transverse_pressure_angle_deg), math.radians(mesh.working_pressure_angle_deg)
     beta, beta_b = math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg)
     eps_a, eps_b, eps_g = mesh.contact_ratio_transverse, mesh.overlap_ratio, mesh.contact_ratio_total
-    f_t = reference_tangential_force_N(st.static_force_N.tangential, b)
+    # the planet–ring mesh's own force (η_m off the sun–planet mesh's with losses) times K_γ
+    f_t = reference_tangential_force_N(mesh.static_force_N.tangential * p.load_sharing_factor, b)
     k_a = cfg.load.application_factor
     speed = max(math.pi * planet.pitch_diameter_mm * abs(st.gear.speed_rpm) / 60000.0, 1e-9)  # carrier frame
     # ISO 6336-1: deviations, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα
