@@ -310,6 +310,9 @@ class StageDynamics:
     # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
     planets: tuple[PlanetDynamics, ...] = ()
     load_sharing_factor: float | None = None
+    # [rating] dynamic_factor = "simulated" on a planetary stage: its planet–ring mesh rated at the ring meshes'
+    # own simulated K_v (``rating`` is the sun–planet mesh's, at the sun meshes' K_v)
+    planet_ring_rating: InternalRatingResult | None = None
 
 
 @dataclass(frozen=True)

@@ -260,7 +260,9 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
     ring_mesh = _ring_mesh(cfg, k, stage, geo, mesh, planet_mat, ring_mat, m_t, books.ring_mesh / books.sun_mesh)
     k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
     angles = bal.planet_angles_deg(n, stage.planet.angles_deg)
-    gap = min(((b - a) % 360.0 or 360.0) for a, b in zip(sorted(angles), sorted(angles)[1:] + sorted(angles)[:1]))
+    order = sorted(a % 360.0 for a in angles)
+    order = sorted(a % 360.0 for a in angles)
+    gap = min(((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True))
     adjacency = 2.0 * r_c * math.sin(math.radians(gap) / 2.0) - planet.tip_diameter_mm if n > 1 else math.inf
     result = PlanetaryResult(
         fixed=stage.fixed, input=stage.input, output=stage.output, planet_count=n, ratio=kin.ratios[k],

@@ -98,6 +98,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
                                               "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
         | ({"rating": plain(s.rating)} if s.rating is not None else {})
+        | ({"planet_ring_rating": plain(s.planet_ring_rating)} if s.planet_ring_rating is not None else {})
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]

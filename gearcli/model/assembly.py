@@ -40,7 +40,17 @@ from functools import cached_property
 
 import numpy as np
 
-from gearcli.model.elements import KIND_MESH, MAX_BODIES, N_PARAM, kind_of, law_of, machine, mesh, torque
+from gearcli.model.elements import (
+    KIND_MESH,
+    KIND_PLANET_MESH,
+    MAX_BODIES,
+    N_PARAM,
+    kind_of,
+    law_of,
+    machine,
+    mesh,
+    torque,
+)
 from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec, PlanetarySpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
@@ -107,7 +117,12 @@ class Connector:
     @property
     def lossy(self) -> bool:
         """A mesh that loses (1 - eta) of the power it transmits (:func:`.mesh.loss_factors`)."""
-        return self.kind == KIND_MESH and mesh.lossy(self.params)
+        return self.kind in (KIND_MESH, KIND_PLANET_MESH) and mesh.lossy(self.params)
+
+    @property
+    def planet_loss(self) -> bool:
+        """A lossy planet mesh, losing in the carrier's frame (:func:`.mesh.planet_loss_slots`)."""
+        return self.lossy and mesh.planet_loss(self.params)
 
     @property
     def time_varying(self) -> bool:
@@ -188,7 +203,15 @@ def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) ->
     static line force (at least 1 N) x the nominal pitch-line speed."""
     out = []
     for x in conns:
-        if x.kind == KIND_MESH and mesh.lossy(x.params):
+        if x.planet_loss:  # the static force of its share of the output torque, the relative pitch-line speed
+            F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
+            sa, _, sc, ka = mesh.planet_loss_slots(x.params)
+            lev = x.levers
+            va = (lev[sa] * bodies[x.bodies[sa]].ratio if sa >= 0 else 0.0) + \
+                (ka * lev[sc] * bodies[x.bodies[sc]].ratio if sc >= 0 else 0.0)
+            v = abs(va * spec.drive.speed_rad_s)
+            x = replace(x, params=_row(mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * max(v, 1e-9))))
+        elif x.kind == KIND_MESH and mesh.lossy(x.params):
             F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
             v = abs(x.ra * bodies[x.a].ratio * spec.drive.speed_rad_s)
             row = mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * v)
@@ -240,7 +263,8 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
                 idx.insert(0, n_in)
                 lev.insert(0, 0.0)
             contact = p.ring_contact_phase_cycles if gear == "ring" else 0.0
-            row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p, contact)))
+            row = _row(_planet_loss_row(law_of(kind_of("mesh")).pack(
+                _phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p, contact)), p, gear, idx, planet, where))
             if len(idx) == 3:
                 kind, radii = kind_of("planet_mesh"), tuple(lev)
             else:
@@ -249,8 +273,22 @@ def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connect
             # stiffness and error estimate); every planet mesh has its own channels besides
             role = "mesh" if (j == 0 and gear == "sun") else "planet"
             offset = p.planet_offsets_m[j] if (gear == "sun" and p.planet_offsets_m) else 0.0
+            factor = p.sun_force_factor if gear == "sun" else p.ring_force_factor
             conns.append(Connector(kind, tuple(idx), radii, row, f"stage {k + 1} planet {j + 1} {gear} mesh", k,
-                                   role, n_out, per_output, j, gear, n_in, offset))
+                                   role, n_out, per_output * factor, j, gear, n_in, offset))
+
+
+def _planet_loss_row(row, p: PlanetarySpec, gear: str, idx: list[int], planet: int, where: dict[str, tuple[int, float]]):
+    """A lossy planet mesh's row with its loss geometry (:func:`gearcli.model.elements.mesh.planet_loss_slots`):
+    the slots of its sun or ring, planet and carrier, and the carrier's share of the sun's (ring's) side force,
+    kappa_a = l_a / (l_a + l_b) with l_a = r_bs, l_b = r_bp (sun mesh) or l_a = r_br, l_b = -r_bp (ring mesh)."""
+    if not mesh.lossy(row):
+        return row
+    l_a = p.base_radius_sun_m if gear == "sun" else p.base_radius_ring_m
+    l_b = p.base_radius_planet_m if gear == "sun" else -p.base_radius_planet_m
+    slot_a = idx.index(where[gear][0]) if gear in where else -1
+    slot_c = idx.index(where["carrier"][0]) if "carrier" in where else -1
+    return mesh.with_planet_loss(row, slot_a, idx.index(planet), slot_c, l_a / (l_a + l_b))
 
 
 def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec, contact_cycles: float = 0.0):
@@ -415,6 +453,16 @@ class Layout:
         """The load's speed law row (empty: a constant torque), on the last body's nominal speed."""
         w_n = self.bodies[-1].ratio * self.drive.speed_rad_s
         return machine.load_row(self.load.speed_exponent, w_n, self.load.table, abs(self.load.torque_Nm) or 1.0)
+
+    def train_efficiency(self, forward: bool = True) -> float:
+        """The power efficiency from the input to the output: every lossy pair mesh's eta, every planetary
+        stage's (its planet meshes lose eta_m each, the stage eta as a whole); the load reversed: the stages'
+        efficiencies with the power flowing back."""
+        out = math.prod(x.params[mesh.I_ETA] for x in self.connectors if x.lossy and not x.planet_loss)
+        for p in self.spec.planetary:
+            if p is not None:
+                out *= p.efficiency if forward else p.reverse_efficiency
+        return out
 
     @property
     def n_lossy(self) -> int:
