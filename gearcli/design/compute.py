@@ -24,7 +24,7 @@ from gearcli.design.inertia import (
     shaft_inertias_kg_m2,
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
-from gearcli.design.shafts import bearing_results
+from gearcli.design.shafts import bearing_results, pin_bearing_warnings
 from gearcli.diagnostics import DESIGN, warning
 from gearcli.errors import DesignError
 from gearcli.results import DesignResult, GearResult, Iso6336Factors, ShaftResult, StageResult, StaticForces
@@ -61,7 +61,8 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     out = kin.shaft_speeds_rad_s[-1]
     planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
                       for st in stages for w in pl.planetary_warnings(st))
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *rating_diagnostics)
+    pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *rating_diagnostics)
     return DesignResult(
         title=cfg.title,
         stages=stages,

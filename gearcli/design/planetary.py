@@ -341,6 +341,10 @@ def check_planetary_inputs(cfg: DesignFile) -> None:
     from gearcli.config.schema import PlanetaryStage
     from gearcli.design.checks import check_material
 
+    given = cfg.rating.load_sharing_factor if cfg.rating is not None else None
+    if given is not None and not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
+        raise DesignError(f"load_sharing_factor = {given:g} is K_gamma of a planetary stage's planets, and this train "
+                          "has no planetary stage: remove it", key="rating.load_sharing_factor")
     for k, stage in enumerate(cfg.stage):
         if not isinstance(stage, PlanetaryStage):
             continue

@@ -35,7 +35,9 @@ def _plain(obj: object) -> Any:
     if isinstance(obj, (list, tuple)):
         return [_plain(v) for v in obj]
     if hasattr(obj, "tolist"):  # numpy array or scalar
-        return obj.tolist()
+        return _plain(obj.tolist())
+    if isinstance(obj, float) and obj == 0.0:
+        return 0.0  # no negative zero in the output (a held member's speed, a carrier-held stage's)
     return obj  # a JSON scalar: str, int, float, bool or None
 
 

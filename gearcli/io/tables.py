@@ -164,7 +164,7 @@ class FittedTable:
 
 def _g(v: float | None, digits: int = 5) -> str:
     """A number to ``digits`` significant digits; "—" where it is undefined (None)."""
-    return "—" if v is None else f"{v:.{digits}g}"
+    return "—" if v is None else f"{v + 0.0:.{digits}g}"  # + 0.0: no negative zero
 
 
 def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> FittedTable:
@@ -440,6 +440,10 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     # one Text per line: text() writes a control character (a newline too) as an escape
     rated = [st for st in r.stages if st.rating is not None]
     simulated = [rating_table(rated, "strength rating at the simulated K_v, ISO 6336:2006 method B")] if rated else []
+    rings = [_RingRating(st.index, st.planet_ring_rating) for st in r.stages if st.planet_ring_rating is not None]
+    if rings:
+        simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, ISO 6336:2006 "
+                                             "method B (p planet, g ring)"))
     if r.extra and r.extra.get("bearings"):  # [[bearing]] tables (docs/life.md)
         from gearcli.io.life_tables import bearing_stats_table
 
@@ -448,22 +452,32 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     return [forces, peaks, mesh, *_planet_tables(r), *simulated, *(text(line) for line in lines)]
 
 
+@dataclass(frozen=True)
+class _RingRating:
+    """A planetary stage's planet–ring rating as a stage with a rating (rating_table's rows)."""
+
+    index: int
+    rating: InternalRatingResult
+
+
 def _planet_tables(r: SimulationResult) -> list[RenderableType]:
     """A planetary stage: every planet's sun- and ring-mesh F_t and DTE over the window, the sharing factor."""
     out: list[RenderableType] = []
     for s in r.stages:
         if not s.planets:
             continue
-        t = Table(title=text(f"stage {s.index}: planets over the steady window (load-sharing factor "
-                             f"{_g(s.load_sharing_factor, 5)})"), title_justify="left", header_style="bold")
-        for name in ("planet", "mesh", "F_t mean [N]", "F_t std [N]", "DTE mean [µm]", "DTE rms [µm]"):
-            t.add_column(name, justify="left" if name in ("planet", "mesh") else "right", overflow="fold")
+        rows: list[tuple[str, ...]] = []
+        ends: list[bool] = []
         for p in s.planets:
             for label, m in (("sun", p.sun), ("ring", p.ring)):
-                t.add_row(str(p.index) if label == "sun" else "", label, _g(m.tangential_N.mean),
-                          _g(m.tangential_N.std, 3), _g(m.dte_um.mean), _g(m.dte_um.rms, 3),
-                          end_section=label == "ring")
-        out.append(t)
+                rows.append((str(p.index) if label == "sun" else "", label, _g(m.tangential_N.mean),
+                             _g(m.tangential_N.std, 3), _g(m.dte_um.mean), _g(m.dte_um.rms, 3)))
+                ends.append(label == "ring")
+        # a fitted table: a narrow terminal leaves columns out rather than splitting a number
+        out.append(FittedTable(f"stage {s.index}: planets over the steady window (load-sharing factor "
+                               f"{_g(s.load_sharing_factor, 5)})",
+                               ("planet", "mesh", "F_t mean [N]", "F_t std [N]", "DTE mean [µm]", "DTE rms [µm]"),
+                               rows, (False, False, True, True, True, True), ends=ends))
     return out
 
 
