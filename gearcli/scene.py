@@ -190,7 +190,8 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
         planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)),
         planet_angles_rad=tuple(math.radians(a - p.planet_angles_deg[0]) for a in p.planet_angles_deg)
         if _unequal(cfg, k) else (),
-        ring_contact_phase_cycles=_ring_contact_phase(st, unit), **_loss_factors(p, eta_m))
+        ring_contact_phase_cycles=_ring_contact_phase(st, unit),
+        **_loss_factors(p, eta_m, -1.0 if (cfg.load.torque_Nm_value or 0.0) < 0.0 else 1.0))
 
 
 def _unequal(cfg: DesignFile, k: int) -> bool:
@@ -199,13 +200,13 @@ def _unequal(cfg: DesignFile, k: int) -> bool:
     return planet is not None and planet.angles_deg is not None
 
 
-def _loss_factors(p, eta_m: float) -> dict[str, float]:
-    """The planet meshes' static (driving-side) forces over the lossless ones and the stage's efficiencies
-    (:mod:`gearcli.design.planetary_balance`)."""
+def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
+    """The planet meshes' static (driving-side) forces over the lossless ones, in the power flow of the load's
+    sign, and the stage's efficiencies (:mod:`gearcli.design.planetary_balance`)."""
     from gearcli.design.planetary_balance import balance
 
-    lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0)
-    lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m)
+    lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, load_sign)
+    lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, load_sign)
     scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
     back = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, -1.0)
     return {"sun_force_factor": lossy.sun_mesh * scale, "ring_force_factor": lossy.ring_mesh * scale,

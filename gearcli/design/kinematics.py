@@ -33,11 +33,12 @@ def pinion_torque_Nmm(gear_torque_Nmm: float, ratio: float, efficiency: float,
 
     The mesh loses power in the direction the power flows. Under load reversal (T_g < 0) power flows
     from the gear back to the pinion, so the loss is taken from the gear side: T_p = T_g η / i. Either
-    way |P_pinion| and |P_gear| differ by the factor η and no power is created.
+    way |P_pinion| and |P_gear| differ by the factor η and no power is created. ``reverse_efficiency``: the
+    stage's efficiency when the power flows back, where it differs from η (a planetary stage's).
     """
     if gear_torque_Nmm >= 0.0:
         return gear_torque_Nmm / (ratio * efficiency)
-    return gear_torque_Nmm * efficiency / ratio
+    return gear_torque_Nmm * (efficiency if reverse_efficiency is None else reverse_efficiency) / ratio
 
 
 def stage_torques_Nmm(load_torque_Nmm: float, ratios: tuple[float, ...], efficiencies: tuple[float, ...],
