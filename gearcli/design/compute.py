@@ -39,11 +39,13 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
+    from gearcli.config.schema import PlanetaryStage
+
     pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
     check_inputs(cfg)
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                             cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
-                            tuple(pl.reverse_efficiency(s, k) if pl.is_planetary(s) else None
+                            tuple(pl.reverse_efficiency(s, k) if isinstance(s, PlanetaryStage) else None
                                   for k, s in enumerate(cfg.stage)))
     stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()

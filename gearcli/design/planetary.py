@@ -68,12 +68,6 @@ def member_speeds(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str,
     return bal.willis(z_sun, z_ring, fixed, driven)
 
 
-def is_planetary(stage: object) -> bool:
-    from gearcli.config.schema import PlanetaryStage
-
-    return isinstance(stage, PlanetaryStage)
-
-
 def stage_mesh_efficiency(stage: PlanetaryStage, k: int) -> float:
     """η_m of every planet mesh of the stage (:mod:`gearcli.design.planetary_balance`)."""
     return bal.mesh_efficiency(stage.sun.teeth, stage.ring.teeth, stage.fixed, stage.input, stage.efficiency,
