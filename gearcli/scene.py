@@ -134,7 +134,7 @@ def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
 def _signed(mesh: MeshSpec, st: StageResult) -> MeshSpec:
     """A planet mesh's static F_t with the sign its deflection has in the model: the moment balance of the output
     member, N c_out F = T_out sign(w_out), c_out = -r_bs (sun), r_bs + r_br (carrier), -r_br (ring)
-    (:func:`gearcli.model.assembly._planetary`); a parallel stage's as the design gives it."""
+    (:func:`gearcli.model.planet_assembly.place_planetary`); a parallel stage's as the design gives it."""
     p = st.planetary
     if p is None:
         return mesh
