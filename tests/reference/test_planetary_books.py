@@ -1,4 +1,4 @@
-"""A planetary stage keeps its books (issue 30, item 3; DESIGN.md section 13): its efficiency is lost in the planet
+"""A planetary stage keeps its books (issue 30, item 3): its efficiency is lost in the planet
 meshes, in the design and in the dynamics alike, and its moment balance T_sun + T_carrier + T_ring = 0 holds with
 losses. Every expected number is a hand calculation written out here:
 
