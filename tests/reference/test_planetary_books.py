@@ -33,7 +33,8 @@ MIXER = str(ROOT / "configs" / "mixer_planetary_motor.toml")
 Z_S, Z_P, Z_R = 18, 45, 108
 U = Z_R / Z_S
 ETA, ETA_2 = 0.98, 0.985
-T_LOAD = 23172.0
+T_LOAD = 23172.0  # the tests' constant load (set below)
+T_LOAD_FILE = 23195.46  # the file's: the motor's rated torque 482.29 N m x 49.82 x 0.98 x 0.985
 RATIO = (1 + U) * 121 / 17
 
 
@@ -65,7 +66,7 @@ def test_basic_efficiency_of_every_arrangement_by_the_textbook_formula(fixed, dr
 
 
 def test_design_moment_balance_and_member_torques_by_hand():
-    doc = design_json()
+    doc = design_json(f"load.torque_Nm={T_LOAD}")
     st = doc["stages"][0]
     eta_0 = ((1 + U) * ETA - 1) / U  # sun in, ring held
     t_sun = T_LOAD / (RATIO * ETA * ETA_2)  # N m, the motor's torque at the sun
@@ -111,7 +112,7 @@ def test_a_reversed_load_flows_back_through_the_same_meshes():
 
 
 # ------------------------------------------------------------------------------------------ the dynamics
-SETTLED = ("load.speed_exponent=0", "load.ramp_s=0.3", "load.coupling_damping_Nms_rad=7e4",
+SETTLED = (f"load.torque_Nm={T_LOAD}", "load.speed_exponent=0", "load.ramp_s=0.3", "load.coupling_damping_Nms_rad=7e4",
            "simulation.duration_s=4", "simulation.engine=python", "contact.stiffness=iso6336",
            "contact.exponent=1", "contact.damping_ratio=0.05")
 
@@ -147,3 +148,22 @@ def test_the_mesh_loss_dissipates_what_the_stage_loses(tmp_path):
     p_in = s["input_power_kW"]
     p_out = T_LOAD * s["output_speed_rpm"] * math.pi / 30 / 1000  # constant load torque at the output speed
     assert_allclose(p_out / p_in, ETA * ETA_2, rtol=1e-4)
+
+
+def test_the_mixer_file_as_written_keeps_its_books(tmp_path):
+    """configs/mixer_planetary_motor.toml unchanged (its load proportional to speed, its own [contact]-free law:
+    means do not depend on the law): the load torque is set where the motor's rated point carries it, so the
+    motor settles at the design's 1485 rpm and every mean equals the design's static value within 1e-4."""
+    assert_allclose(T_LOAD_FILE / (RATIO * ETA * ETA_2), 75000 / (1485 * math.pi / 30), rtol=1e-6)
+    out = tmp_path / "sim.json"
+    res = run("simulate", MIXER, "--format", "json", "-o", str(out), "--set", "simulation.engine=python")
+    assert res.exit_code == 0, res.stderr
+    sim = json.loads(out.read_text())["summary"]
+    des = design_json()
+    f_sun, f_ring = (m["static_force_N"]["tangential"] for m in des["stages"][0]["meshes"])
+    for p in sim["stages"][0]["planets"]:
+        assert_allclose(abs(p["sun"]["tangential_N"]["mean"]), f_sun, rtol=1e-4)
+        assert_allclose(abs(p["ring"]["tangential_N"]["mean"]), f_ring, rtol=1e-4)
+    assert_allclose(abs(sim["stages"][1]["tangential_N"]["mean"]), des["stages"][1]["static_force_N"]["tangential"],
+                    rtol=1e-4)
+    assert_allclose(sim["input_torque_Nm"], des["input_torque_Nmm"] / 1000, rtol=1e-4)
