@@ -85,7 +85,7 @@ def mesh_efficiency(z_sun: int, z_ring: int, fixed: str, driven: str, efficiency
     lowest = eff(1e-9)
     if efficiency <= lowest:
         raise DesignError(f"a planetary stage with this arrangement (held {fixed}, driven {driven}) has a power "
-                          f"efficiency of at least {lowest:.4g} even with lossless-free meshes of efficiency 0: "
+                          f"efficiency above {lowest:.4g} whatever its meshes lose: "
                           f"efficiency = {efficiency:g} cannot be reached", key=key)
     lo, hi = 1e-9, 1.0
     for _ in range(200):

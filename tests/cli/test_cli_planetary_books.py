@@ -214,3 +214,10 @@ def test_design_table_shows_the_members_and_labels_per_planet_values():
     assert "—" in pinion_torque
     only_planetary = run("design", STAGE, "--format", "table", env={"COLUMNS": "200"}).stdout
     assert "pinion torque" not in only_planetary
+
+
+def test_a_stage_efficiency_no_mesh_efficiency_gives_is_exit_2():
+    """Sun in, ring held: eta = (1 + eta_0 u)/(1 + u) >= 1/(1 + u) = 1/7 = 0.1429 whatever the meshes lose."""
+    res = run("design", MIXER, *sets("stage.0.efficiency=0.12"))
+    assert res.exit_code == 2
+    assert "stage[0].efficiency" in res.stderr and "0.1429" in res.stderr
