@@ -327,6 +327,9 @@ class StageDynamics:
     # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
     planets: tuple[PlanetDynamics, ...] = ()
     load_sharing_factor: float | None = None
+    # [rating] dynamic_factor = "simulated" on a planetary stage: its planet–ring mesh rated at the ring meshes'
+    # own simulated K_v (``rating`` is the sun–planet mesh's, at the sun meshes' K_v)
+    planet_ring_rating: InternalRatingResult | None = None
 
 
 @dataclass(frozen=True)
@@ -507,6 +510,11 @@ class PlanetaryResult:
     equal_spacing: bool  # (z_s + z_r) / N integer
     tip_clearance_between_planets_mm: float  # 2 a sin(π/N) − d_a,planet (adjacency)
     concentricity_mm: float  # a_w(planet–ring) − a_w(sun–planet)
+    mesh_efficiency: float = 1.0  # η_m of every planet mesh (carrier frame), from the stage's efficiency
+    basic_efficiency: float = 1.0  # η_0 = η_m², the stage's efficiency with the carrier held
+    # signed external torques on sun, carrier, ring (positive in the input member's running sense), N·m: sum 0
+    moment_balance_Nm: dict[str, float] = field(default_factory=dict)
+    planet_angles_deg: tuple[float, ...] = ()  # each planet's position on the carrier
 
 
 @dataclass(frozen=True)

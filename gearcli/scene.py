@@ -139,7 +139,7 @@ def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
 def _signed(mesh: MeshSpec, st: StageResult) -> MeshSpec:
     """A planet mesh's static F_t with the sign its deflection has in the model: the moment balance of the output
     member, N c_out F = T_out sign(w_out), c_out = -r_bs (sun), r_bs + r_br (carrier), -r_br (ring)
-    (:func:`gearcli.model.assembly._planetary`); a parallel stage's as the design gives it."""
+    (:func:`gearcli.model.planet_assembly.place_planetary`); a parallel stage's as the design gives it."""
     p = st.planetary
     if p is None:
         return mesh
@@ -174,6 +174,8 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
                                         math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg))
     coefficient = law_coefficient_N_mm_e(law.stiffness, law.exponent, hertz=ring.hertz_stiffness_N_mm1_5,
                                          iso_normal_stiffness_N_mm=k_n, iso_reference_normal_force_N=f_n0)
+    eta_m = p.mesh_efficiency  # each planet mesh loses in the carrier's frame (docs/planetary.md)
+    sun_mesh = replace(sun_mesh, efficiency=eta_m)
     ring_mesh = replace(sun_mesh, stiffness_N_m_e=float(coefficient) * 1000.0**e,
                         contact_ratio=ring.contact_ratio_transverse, overlap_ratio=ring.overlap_ratio,
                         iso_normal_stiffness_N_m=k_n * 1000.0)
@@ -188,7 +190,29 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
         third_inertia_kg_m2=inertia[third], planet_inertia_kg_m2=p.planet.inertia_kg_m2, sun_mesh=sun_mesh,
         ring_mesh=ring_mesh, unit_speeds=(unit["sun"], unit["carrier"], unit["ring"]),
         planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)),
-        ring_contact_phase_cycles=_ring_contact_phase(st, unit))
+        planet_angles_rad=tuple(math.radians(a - p.planet_angles_deg[0]) for a in p.planet_angles_deg)
+        if _unequal(cfg, k) else (),
+        ring_contact_phase_cycles=_ring_contact_phase(st, unit),
+        **_loss_factors(p, eta_m, -1.0 if (cfg.load.torque_Nm_value or 0.0) < 0.0 else 1.0))
+
+
+def _unequal(cfg: DesignFile, k: int) -> bool:
+    """The stage declares its planets' positions (``planet.angles_deg``)."""
+    planet = getattr(cfg.stage[k], "planet", None)
+    return planet is not None and planet.angles_deg is not None
+
+
+def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
+    """The planet meshes' static (driving-side) forces over the lossless ones, in the power flow of the load's
+    sign, and the stage's efficiencies (:mod:`gearcli.design.planetary_balance`)."""
+    from gearcli.design.planetary_balance import balance
+
+    lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, load_sign)
+    lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, load_sign)
+    scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
+    back = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, -1.0)
+    return {"sun_force_factor": lossy.sun_mesh * scale, "ring_force_factor": lossy.ring_mesh * scale,
+            "efficiency": lossy.efficiency, "reverse_efficiency": back.efficiency}
 
 
 def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:

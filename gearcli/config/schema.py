@@ -256,6 +256,9 @@ class Planet(Gear):
     # per planet, its position error along its sun mesh's line of action (a constant transmission error, um;
     # positive: that planet meets the sun early and carries more); the simulation's load sharing sees it
     position_error_um: Annotated[list[Annotated[float, Field(ge=-1000, le=1000)]], Field(max_length=20)] | None = None
+    # unequal spacing: each planet's position on the carrier, degrees (planet 1 first); absent: 360 j / count.
+    # Each must be a whole multiple of 360/(z_s + z_r) from planet 1 (the design checks it)
+    angles_deg: Annotated[list[Annotated[float, Field(ge=-360, le=720)]], Field(min_length=1, max_length=20)] | None = None
 
 
 class Ring(Gear):

@@ -24,7 +24,7 @@ from gearcli.design.inertia import (
     shaft_inertias_kg_m2,
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
-from gearcli.design.shafts import bearing_results
+from gearcli.design.shafts import bearing_results, pin_bearing_warnings
 from gearcli.diagnostics import DESIGN, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
@@ -47,10 +47,14 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
+    from gearcli.config.schema import PlanetaryStage
+
     pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
     check_inputs(cfg)
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
-                            cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0)
+                            cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
+                            tuple(pl.reverse_efficiency(s, k) if isinstance(s, PlanetaryStage) else None
+                                  for k, s in enumerate(cfg.stage)))
     stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
     if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
@@ -75,7 +79,8 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            backlash_min_mm=st.backlash_circumferential_mm[1])
                    for st in stages if st.backlash_circumferential_mm is not None
                    and st.backlash_circumferential_mm[1] < 0.0)
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *jammed, *stiffness_diagnostics(stages),
+    pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *jammed, *stiffness_diagnostics(stages),
                    *rating_diagnostics)
     return DesignResult(
         title=cfg.title,

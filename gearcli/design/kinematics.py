@@ -27,28 +27,32 @@ def shaft_speeds_rad_s(input_speed_rad_s: float, ratios: tuple[float, ...]) -> t
     return tuple(speeds)
 
 
-def pinion_torque_Nmm(gear_torque_Nmm: float, ratio: float, efficiency: float) -> float:
+def pinion_torque_Nmm(gear_torque_Nmm: float, ratio: float, efficiency: float,
+                      reverse_efficiency: float | None = None) -> float:
     """Torque the pinion must deliver for a gear torque T_g: T_p = T_g / (i η).
 
     The mesh loses power in the direction the power flows. Under load reversal (T_g < 0) power flows
     from the gear back to the pinion, so the loss is taken from the gear side: T_p = T_g η / i. Either
-    way |P_pinion| and |P_gear| differ by the factor η and no power is created.
+    way |P_pinion| and |P_gear| differ by the factor η and no power is created. ``reverse_efficiency``: the
+    stage's efficiency when the power flows back, where it differs from η (a planetary stage's).
     """
     if gear_torque_Nmm >= 0.0:
         return gear_torque_Nmm / (ratio * efficiency)
-    return gear_torque_Nmm * efficiency / ratio
+    return gear_torque_Nmm * (efficiency if reverse_efficiency is None else reverse_efficiency) / ratio
 
 
-def stage_torques_Nmm(load_torque_Nmm: float, ratios: tuple[float, ...],
-                      efficiencies: tuple[float, ...]) -> tuple[tuple[float, float], ...]:
+def stage_torques_Nmm(load_torque_Nmm: float, ratios: tuple[float, ...], efficiencies: tuple[float, ...],
+                      reverse: tuple[float | None, ...] | None = None) -> tuple[tuple[float, float], ...]:
     """(T_pinion_k, T_gear_k) per stage, from the output load back to the input.
 
-    The last gear carries the load; gear k carries what pinion k+1 on the same shaft needs.
+    The last gear carries the load; gear k carries what pinion k+1 on the same shaft needs. ``reverse``: per
+    stage its efficiency under a reversed load where it differs from η (None: η).
     """
     torques: list[tuple[float, float]] = []
     gear_torque = load_torque_Nmm
-    for ratio, eta in zip(reversed(ratios), reversed(efficiencies), strict=True):
-        pinion = pinion_torque_Nmm(gear_torque, ratio, eta)
+    back = reverse if reverse is not None else (None,) * len(ratios)
+    for ratio, eta, eta_back in zip(reversed(ratios), reversed(efficiencies), reversed(back), strict=True):
+        pinion = pinion_torque_Nmm(gear_torque, ratio, eta, eta_back)
         torques.append((pinion, gear_torque))
         gear_torque = pinion
     return tuple(reversed(torques))
@@ -100,7 +104,8 @@ def train(teeth: tuple[tuple[int, int], ...], efficiencies: tuple[float, ...],
 
 
 def train_from_ratios(ratios: tuple[float, ...], efficiencies: tuple[float, ...], input_speed_rad_s: float,
-                      load_torque_Nmm: float) -> Train:
-    """The kinematics of a train of stages given by their speed ratios |ω_in / ω_out| (any stage type)."""
+                      load_torque_Nmm: float, reverse: tuple[float | None, ...] | None = None) -> Train:
+    """The kinematics of a train of stages given by their speed ratios |ω_in / ω_out| (any stage type);
+    ``reverse``: per stage its efficiency under a reversed load where it differs (a planetary stage's)."""
     return Train(ratios, shaft_speeds_rad_s(input_speed_rad_s, ratios),
-                 stage_torques_Nmm(load_torque_Nmm, ratios, efficiencies), load_torque_Nmm)
+                 stage_torques_Nmm(load_torque_Nmm, ratios, efficiencies, reverse), load_torque_Nmm)

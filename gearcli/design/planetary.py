@@ -28,6 +28,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
+from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.geometry import (
@@ -63,25 +64,29 @@ DEFAULT_RING_RIM_MODULES = 3.0  # ring body below the root, in modules, when no 
 
 # ------------------------------------------------------------------------------ kinematics
 def member_speeds(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]:
-    """Signed member speeds for a unit speed of ``driven`` with ``fixed`` at rest (Willis)."""
-    from gearcli.config.schema import willis_speeds
-
-    return willis_speeds(z_sun, z_ring, fixed, driven)
+    """Signed member speeds for a unit speed of ``driven`` with ``fixed`` at rest (Willis; no negative zero)."""
+    return bal.willis(z_sun, z_ring, fixed, driven)
 
 
-def torque_factors(z_sun: int, z_ring: int) -> dict[str, float]:
-    """|T_member| / |T_sun| from the moment balance of a planet: sun 1, ring z_r/z_s, carrier 1 + z_r/z_s."""
-    u = z_ring / z_sun
-    return {"sun": 1.0, "ring": u, "carrier": 1.0 + u}
+def stage_mesh_efficiency(stage: PlanetaryStage, k: int) -> float:
+    """η_m of every planet mesh of the stage (:mod:`gearcli.design.planetary_balance`)."""
+    return bal.mesh_efficiency(stage.sun.teeth, stage.ring.teeth, stage.fixed, stage.input, stage.efficiency,
+                               key=f"stage[{k}].efficiency")
 
 
-def sun_torque_Nmm(stage: PlanetaryStage, input_torque_Nmm: float, output_torque_Nmm: float) -> float:
-    """The sun's torque: the input's or the output's when the sun is one, else from the output member."""
-    if stage.input == "sun":
-        return input_torque_Nmm
-    if stage.output == "sun":
-        return output_torque_Nmm
-    return output_torque_Nmm / torque_factors(stage.sun.teeth, stage.ring.teeth)[stage.output]
+def reverse_efficiency(stage: PlanetaryStage, k: int) -> float:
+    """The stage's power efficiency when the load reverses (power from the output member): its meshes' η_m in
+    the other power flow."""
+    eta_m = stage_mesh_efficiency(stage, k)
+    return bal.balance(stage.sun.teeth, stage.ring.teeth, stage.fixed, stage.input, eta_m, -1.0).efficiency
+
+
+def stage_balance(stage: PlanetaryStage, k: int, output_torque_Nmm: float) -> tuple[bal.Balance, float]:
+    """The stage's moment balance with losses and |T_sun| (N·mm) for the output member's torque."""
+    eta_m = stage_mesh_efficiency(stage, k)
+    b = bal.balance(stage.sun.teeth, stage.ring.teeth, stage.fixed, stage.input, eta_m,
+                    1.0 if output_torque_Nmm >= 0.0 else -1.0)
+    return b, abs(output_torque_Nmm) / abs(b.torques[stage.output])
 
 
 # --------------------------------------------------------------------------- equivalent pair
@@ -89,7 +94,7 @@ def sun_planet_stage(stage: PlanetaryStage) -> Stage:
     """The sun–planet mesh as a parallel stage (pinion = sun, gear = planet), for the external-pair code."""
     from gearcli.config.schema import Gear, Stage
 
-    planet = Gear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg", "position_error_um"}))
+    planet = Gear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg", "position_error_um", "angles_deg"}))
     return Stage.model_validate({
         "normal_module_mm": stage.normal_module_mm, "normal_pressure_angle_deg": stage.normal_pressure_angle_deg,
         "helix_angle_deg": stage.helix_angle_deg, "pinion": stage.sun.model_dump(), "gear": planet.model_dump(),
@@ -110,12 +115,16 @@ def pair_equivalent(cfg: DesignFile) -> DesignFile:
 
 
 def mesh_train(k: int, stage: PlanetaryStage, kin: Train) -> Train:
-    """A train whose stage k is the sun–planet mesh in the carrier's frame: sun at |ω_s − ω_c|, a 1/N of
-    the sun torque, the planet at |ω_s − ω_c| z_s/z_p."""
+    """A train whose stage k is the sun–planet mesh in the carrier's frame: sun at |ω_s − ω_c|, the mesh's
+    (driving-side) force on the sun's lever (a 1/N of the sun torque, over η_m where the planet drives the sun),
+    the planet at |ω_s − ω_c| z_s/z_p."""
     w_in = kin.shaft_speeds_rad_s[k]
     w = member_speeds(stage.sun.teeth, stage.ring.teeth, stage.fixed, stage.input)
     relative = abs(w["sun"] - w["carrier"]) * w_in
-    t_sun = sun_torque_Nmm(stage, *kin.stage_torques_Nmm[k]) / stage.planet.count
+    t_out = kin.stage_torques_Nmm[k][1]
+    b, t_sun_abs = stage_balance(stage, k, t_out)
+    # the sun–planet mesh's (driving-side) force on the sun's lever, per planet, with the load's sign
+    t_sun = math.copysign(t_sun_abs * b.sun_mesh, t_out) / stage.planet.count
     ratio = stage.planet.teeth / stage.sun.teeth
     pad = k * (1.0,)
     return Train(ratios=(*pad, ratio), shaft_speeds_rad_s=(*(k * (0.0,)), relative, relative / ratio),
@@ -211,17 +220,17 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
     w_in = kin.shaft_speeds_rad_s[k]
     unit = member_speeds(z_s, z_r, stage.fixed, stage.input)
     speeds = {m: unit[m] * w_in for m in MEMBERS}
-    t_in, t_out = kin.stage_torques_Nmm[k]
-    t_sun = sun_torque_Nmm(stage, t_in, t_out)
-    factors = torque_factors(z_s, z_r)
-    torques = {m: t_sun * factors[m] for m in MEMBERS}
-    torques[stage.input], torques[stage.output] = t_in, t_out
+    t_out = kin.stage_torques_Nmm[k][1]
+    books, t_sun = stage_balance(stage, k, t_out)
+    eta_m = stage_mesh_efficiency(stage, k)
+    moments = {m: books.torques[m] * t_sun + 0.0 for m in MEMBERS}  # signed, N·mm: they sum to zero
+    torques = {m: abs(v) for m, v in moments.items()}
     # the members
     sun = _member(mesh.pinion, speeds["sun"], torques["sun"])
     m_t = transverse_module_mm(stage.normal_module_mm, math.radians(stage.helix_angle_deg))
     ring_body = _ring_inertia_kg_m2(stage.ring, stage.normal_module_mm, geo, ring_mat.density_kg_m3)
     ring = GearResult(
-        teeth=z_r, hand=(stage.ring.hand or "spur") if stage.helix_angle_deg > 0 else "spur",
+        teeth=z_r, hand=(stage.ring.hand or stage.planet.hand or "spur") if stage.helix_angle_deg > 0 else "spur",
         profile_shift=stage.ring.profile_shift, face_width_mm=stage.ring.face_width_mm,
         pitch_diameter_mm=geo.pitch_diameter_mm, base_diameter_mm=geo.base_diameter_mm,
         tip_diameter_mm=geo.tip_diameter_mm, root_diameter_mm=geo.root_diameter_mm,
@@ -239,26 +248,37 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
         torque_Nmm=torques["carrier"], torque_Nm=torques["carrier"] / 1000.0,
         power_kW=power_kW(torques["carrier"], speeds["carrier"]), own_inertia_kg_m2=own,
         planets_translational_inertia_kg_m2=translational, inertia_kg_m2=own + translational)
-    # the planet–ring mesh
-    ring_mesh = _ring_mesh(cfg, k, stage, geo, mesh, planet_mat, ring_mat, m_t)
+    bal.check_assembly(k, z_s, z_r, n, stage.planet.angles_deg, r_c, geo.center_distance_mm,
+                       planet.tip_diameter_mm, stage.normal_module_mm)
+    # the planet–ring mesh: its (driving-side) force against the sun–planet mesh's
+    ring_mesh = _ring_mesh(cfg, k, stage, geo, mesh, planet_mat, ring_mat, m_t, books.ring_mesh / books.sun_mesh)
     k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
-    adjacency = 2.0 * r_c * math.sin(math.pi / n) - planet.tip_diameter_mm if n > 1 else math.inf
+    angles = bal.planet_angles_deg(n, stage.planet.angles_deg)
+    order = sorted(a % 360.0 for a in angles)
+    order = sorted(a % 360.0 for a in angles)
+    gap = min(((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True))
+    adjacency = 2.0 * r_c * math.sin(math.radians(gap) / 2.0) - planet.tip_diameter_mm if n > 1 else math.inf
     result = PlanetaryResult(
         fixed=stage.fixed, input=stage.input, output=stage.output, planet_count=n, ratio=kin.ratios[k],
         willis_ratio=-z_r / z_s, sun=sun, planet=planet, ring=ring, carrier=carrier, planet_mass_kg=m_p,
         planet_ring=ring_mesh, load_sharing_factor=k_gamma, equal_spacing=(z_s + z_r) % n == 0,
         tip_clearance_between_planets_mm=adjacency if math.isfinite(adjacency) else 0.0,
-        concentricity_mm=geo.center_distance_mm - r_c)
+        concentricity_mm=geo.center_distance_mm - r_c, mesh_efficiency=eta_m,
+        basic_efficiency=eta_m ** 2, moment_balance_Nm={m: v / 1000.0 for m, v in moments.items()},
+        planet_angles_deg=tuple(angles))
     return replace(mesh, ratio=kin.ratios[k], planetary=result)
 
 
 def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult,
-               planet_mat: Material, ring_mat: Material, m_t: float) -> InternalMeshResult:
-    """Forces, Hertz and ISO 6336-1 stiffness of one planet–ring mesh."""
+               planet_mat: Material, ring_mat: Material, m_t: float, force_ratio: float) -> InternalMeshResult:
+    """Forces, Hertz and ISO 6336-1 stiffness of one planet–ring mesh (its force ``force_ratio`` times the
+    sun–planet mesh's: η_m or 1/η_m with losses, 1 without)."""
     beta = math.radians(stage.helix_angle_deg)
     alpha_t = transverse_pressure_angle_rad(math.radians(stage.normal_pressure_angle_deg), beta)
     beta_b = base_helix_angle_rad(beta, alpha_t)
-    forces = mesh.static_force_N  # F_t = T_s/(N r_s) = T_r/(N r_r): the same on the planet's both flanks
+    f = mesh.static_force_N  # lossless: F_t = T_s/(N r_s) = T_r/(N r_r), the same on the planet's both flanks
+    forces = StaticForces(f.tangential * force_ratio, f.radial * force_ratio, f.axial * force_ratio,
+                          f.normal * force_ratio)
     r_p, r_r = 0.5 * mesh.gear.pitch_diameter_mm, 0.5 * geo.pitch_diameter_mm
     radius = r_p * r_r / (r_r - r_p)
     modulus = stf.effective_modulus_MPa(planet_mat.youngs_modulus_MPa, planet_mat.poisson_ratio,
@@ -303,22 +323,12 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
 
 # ---------------------------------------------------------------------------------- warnings
 def planetary_warnings(stage_result: StageResult) -> list[str]:
-    """Assembly (equal spacing), adjacency, concentricity and the ring mesh's contact ratio."""
+    """The ring mesh's contact ratio (spacing, concentricity and adjacency are errors:
+    :func:`gearcli.design.planetary_balance.check_assembly`)."""
     p = stage_result.planetary
     if p is None:
         return []
     i, out = stage_result.index, []
-    n, z_s, z_r = p.planet_count, p.sun.teeth, p.ring.teeth
-    if not p.equal_spacing:
-        out.append(f"stage {i}: (z_s + z_r)/N = ({z_s} + {z_r})/{n} is not an integer: {n} planets cannot be "
-                   "equally spaced (assembly condition)")
-    if n > 1 and p.tip_clearance_between_planets_mm <= 0.0:
-        out.append(f"stage {i}: neighbouring planets collide: their tip circles (d_a = {p.planet.tip_diameter_mm:.4g} "
-                   f"mm) overlap by {-p.tip_clearance_between_planets_mm:.4g} mm at 2 a sin(π/N) (adjacency)")
-    tol = 0.01 * stage_result.normal_module_mm
-    if abs(p.concentricity_mm) > tol:
-        out.append(f"stage {i}: the planet–ring working centre distance differs from the sun–planet one by "
-                   f"{p.concentricity_mm:+.4g} mm (more than 0.01 m_n): adjust the profile shifts (concentricity)")
     if p.planet_ring.contact_ratio_transverse < 1.2:
         out.append(f"stage {i}: planet–ring transverse contact ratio {p.planet_ring.contact_ratio_transverse:.3f} "
                    "< 1.2")
@@ -326,13 +336,28 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
 
 
 def check_planetary_inputs(cfg: DesignFile) -> None:
-    """The ring's material must be defined (the sun and planet are checked as the sun–planet pair)."""
+    """The ring's material must be defined, a helical ring has the planet's hand, ``planet.angles_deg`` one
+    angle per planet (the sun and planet are checked as the sun–planet pair)."""
     from gearcli.config.schema import PlanetaryStage
     from gearcli.design.checks import check_material
 
+    given = cfg.rating.load_sharing_factor if cfg.rating is not None else None
+    if given is not None and not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
+        raise DesignError(f"load_sharing_factor = {given:g} is K_gamma of a planetary stage's planets, and this train "
+                          "has no planetary stage: remove it", key="rating.load_sharing_factor")
     for k, stage in enumerate(cfg.stage):
-        if isinstance(stage, PlanetaryStage):
-            check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
+        if not isinstance(stage, PlanetaryStage):
+            continue
+        check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
+        ring_hand, planet_hand = stage.ring.hand, stage.planet.hand
+        if stage.helix_angle_deg > 0 and ring_hand is not None and ring_hand != planet_hand:
+            raise DesignError(f'ring.hand = "{ring_hand}": an internal helical pair has the same hand on both gears, '
+                              f'so the ring needs the planet\'s hand "{planet_hand}" (the sun\'s opposite)',
+                              key=f"stage[{k}].ring.hand")
+        angles = stage.planet.angles_deg
+        if angles is not None and len(angles) != stage.planet.count:
+            raise DesignError(f"planet.angles_deg needs one angle per planet ({stage.planet.count}), got "
+                              f"{len(angles)}", key=f"stage[{k}].planet.angles_deg")
 
 
 def planetary_key(cfg: DesignFile, key: str | None) -> str | None:

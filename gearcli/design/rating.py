@@ -363,16 +363,35 @@ def simulated_dynamic_factor(tangential_N, static_tangential_N: float) -> float:
 
 def stage_simulated_k_v(sd) -> float:
     """K_v of one simulated stage (``StageDynamics``): max(1, its window max |F_t| over the static F_t of the
-    losses the run models, i.e. its ``dynamic_factor``; the design's static F_t where the run has none)."""
+    losses the run models, i.e. its ``dynamic_factor``; the design's static F_t where the run has none). A
+    planetary stage's: the largest over its planets' sun meshes."""
     static = sd.simulated_static_tangential_N
-    return simulated_dynamic_factor(sd.tangential_N, sd.static_tangential_N if static is None else static)
+    static = sd.static_tangential_N if static is None else static
+    k_v = simulated_dynamic_factor(sd.tangential_N, static)
+    for p in getattr(sd, "planets", ()):
+        k_v = max(k_v, simulated_dynamic_factor(p.sun.tangential_N, static))
+    return k_v
+
+
+def ring_simulated_k_v(sd, stage) -> float:
+    """K_v of a planetary stage's planet–ring meshes: the largest over its planets of the window max |F_t| over
+    the ring mesh's static F_t (the sun mesh's static of the run, times the design's ring/sun force ratio)."""
+    p = stage.planetary
+    static = sd.simulated_static_tangential_N
+    static = sd.static_tangential_N if static is None else static
+    if stage.static_force_N.tangential != 0.0:
+        static = static * p.planet_ring.static_force_N.tangential / stage.static_force_N.tangential
+    return max((simulated_dynamic_factor(q.ring.tangential_N, static) for q in sd.planets), default=1.0)
 
 
 def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
     """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
-    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise."""
+    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise. A
+    planetary stage's planet–ring mesh is rated too, at its own meshes' simulated K_v (``planet_ring_rating``)."""
     if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
         return tuple(stages), []
+    from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
+
     pairs = pair_equivalent(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
     out, diags = [], []
     for k, sd in enumerate(stages):
@@ -380,5 +399,13 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
         rated = replace(design.stages[k], rating=rate_stage(pairs, k, with_load_sharing(design.stages[k]),
                                                             simulated_k_v=k_v))
         diags += safety_diagnostics(pairs, rated)
-        out.append(replace(sd, rating=rated.rating))
+        ring = None
+        if rated.planetary is not None and sd.planets:
+            ring = rate_planet_ring(cfg, k, with_load_sharing(design.stages[k]),
+                                    simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
+            if ring is not None:
+                mesh = replace(rated.planetary.planet_ring, rating=ring)
+                diags += planet_ring_safety_diagnostics(cfg, replace(rated, planetary=replace(rated.planetary,
+                                                                                               planet_ring=mesh)))
+        out.append(replace(sd, rating=rated.rating, planet_ring_rating=ring))
     return tuple(out), diags

@@ -61,9 +61,11 @@ def planet_single_contact_factor(tip_p: float, base_p: float, working_rad: float
     return max(1.0, m - eps_beta * (m - 1.0))
 
 
-def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult) -> InternalRatingResult | None:
+def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
+                     simulated_k_v: float | None = None) -> InternalRatingResult | None:
     """The planet–ring rating of planetary stage ``k`` (``st`` with K_γ applied to its force); ``None`` when the
-    ring's material or flank roughness lacks what the rating needs."""
+    ring's material or flank roughness lacks what the rating needs. ``simulated_k_v`` replaces K_v
+    (``K_v_source = "simulated"``)."""
     from gearcli.config.schema import PlanetaryStage
 
     stage, rating, lub, p = cfg.stage[k], cfg.rating, cfg.lubricant, st.planetary
@@ -80,7 +82,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult) -> InternalRating
     alpha_t, alpha_wt = math.radians(st.transverse_pressure_angle_deg), math.radians(mesh.working_pressure_angle_deg)
     beta, beta_b = math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg)
     eps_a, eps_b, eps_g = mesh.contact_ratio_transverse, mesh.overlap_ratio, mesh.contact_ratio_total
-    f_t = reference_tangential_force_N(st.static_force_N.tangential, b)
+    # the planet–ring mesh's own force (η_m off the sun–planet mesh's with losses) times K_γ
+    f_t = reference_tangential_force_N(mesh.static_force_N.tangential * p.load_sharing_factor, b)
     k_a = cfg.load.application_factor
     speed = max(math.pi * planet.pitch_diameter_mm * abs(st.gear.speed_rpm) / 60000.0, 1e-9)  # carrier frame
     # ISO 6336-1: deviations, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα
@@ -90,7 +93,9 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult) -> InternalRating
     y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, speed) for t, h in zip(treat, hlim, strict=True))
     y_f = 0.5 * sum(rf.running_in_um(t, h, f_fa, speed) for t, h in zip(treat, hlim, strict=True))
     line_load = f_t * k_a / b
-    if isinstance(rating.dynamic_factor, float):
+    if simulated_k_v is not None:
+        k_v, k_v_source = max(1.0, simulated_k_v), "simulated"
+    elif isinstance(rating.dynamic_factor, float):
         k_v, k_v_source = rating.dynamic_factor, "given"
     else:  # the internal mesh's own N = n_p/n_E1 (design.planetary); N_S from this rating's line load
         k_v = rf.dynamic_factor(mesh.resonance_ratio, res.lower_main_resonance_limit(line_load), eps_g,

@@ -349,15 +349,16 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
             if pl is None:
                 raise DesignError("the shaft statics of this planetary stage need its design", key=f"stage[{k}].type")
             p_stage = cfg.stage[k]
+            if k + 1 in pins and p_stage.planet.axial_position_mm is None:  # type: ignore[union-attr]
+                raise DesignError(f"the planet pins of stage {k + 1} have bearings (planet_stage = {k + 1}), so the "
+                                  "planets need their axial position (the gear centre along the pin, from the housing "
+                                  "plane the bearings' position_mm is measured from)",
+                                  key=f"stage[{k}].planet.axial_position_mm")
             for member, shaft in pl.shafts.items():
-                needs = (shaft in shafts) or (member == "carrier" and k + 1 in pins)
                 where = "planet" if member == "carrier" else member
-                if needs and pl.axial_mm[member] is None:
+                if shaft in shafts and pl.axial_mm[member] is None:
                     raise DesignError(f"shaft {shaft} has bearings, so the {member}'s gear plane needs its axial "
                                       f"position", key=f"stage[{k}].{where}.axial_position_mm")
-            if k + 1 in pins and p_stage.planet.axial_position_mm is None:  # type: ignore[union-attr]
-                raise DesignError("the planet pins have bearings, so the planets need their axial position (the "
-                                  "gear centre along the pin)", key=f"stage[{k}].planet.axial_position_mm")
             # the driven member's external torque has the sense of its rotation; the sun's follows by its share
             pl = replace(pl, torque_sense=sense * pl.input_share_sign)
             planetary_layouts.append(pl)
@@ -376,6 +377,32 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
                                  base_helix_rad[k], tuple(working_radii_mm[k]), positions))  # type: ignore[arg-type]
         sense = -sense
     return ShaftLayout(tuple(meshes), shafts, tuple(planetary_layouts), pins)
+
+
+PIN_REACH = 2.0  # a pin bearing farther from the planet's mid-face than this x max(face width, pitch diameter)
+
+
+def pin_bearing_warnings(cfg: DesignFile, stages: Sequence[StageResult]) -> list[tuple[str, dict]]:
+    """A planet pin's bearing implausibly far from its planet (more than ``PIN_REACH`` x the larger of the planet's
+    face width and pitch diameter from its mid-face): (message, data) per bearing."""
+    out = []
+    for j, b in enumerate(cfg.bearing):
+        k = b.planet_stage
+        if k is None or k > len(stages) or stages[k - 1].planetary is None:
+            continue
+        planet_cfg = cfg.stage[k - 1].planet  # type: ignore[union-attr]
+        if planet_cfg.axial_position_mm is None:
+            continue
+        planet = stages[k - 1].planetary.planet  # type: ignore[union-attr]
+        reach = PIN_REACH * max(planet.face_width_mm, planet.pitch_diameter_mm)
+        distance = abs(b.position_mm - planet_cfg.axial_position_mm)
+        if distance > reach:
+            out.append((f"bearing[{j}]: a planet pin bearing of stage {k} sits {distance:.4g} mm from its planet's "
+                        f"mid-face (planet.axial_position_mm = {planet_cfg.axial_position_mm:g} mm), more than "
+                        f"{reach:.4g} mm ({PIN_REACH:g} x the planet's larger of face width and pitch diameter): a pin "
+                        "that long is implausible; check position_mm (measured from the same housing plane)",
+                        {"bearing": j, "stage": k, "distance_mm": distance, "limit_mm": reach}))
+    return out
 
 
 def _pair(shaft: str, specs: list[BearingSpec]) -> tuple[BearingSpec, BearingSpec]:

@@ -37,7 +37,7 @@ from gearcli.engine import blas as _blas
 from gearcli.engine import dispatch as _dispatch
 from gearcli.engine import status as st
 from gearcli.engine import tableau as tb
-from gearcli.model.elements import KIND_MESH
+from gearcli.model.elements import KIND_MESH, KIND_PLANET_MESH
 from gearcli.model.elements import machine as _machine_mod
 from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import torque as _torque_mod
@@ -59,6 +59,7 @@ _MACHINE = _dispatch.jit_module(_machine_mod)  # the motor's curve and start, th
 motor_torque, load_factor = _MACHINE["motor_torque"], _MACHINE["load_factor"]
 mesh_loss_factors = _D._mesh_loss_factors  # a lossy mesh's two side forces (the registry compiled the mesh law)
 I_ETA = _mesh_mod.I_ETA
+I_LSA, I_LSB, I_LSC, I_LKA = _mesh_mod.I_LSA, _mesh_mod.I_LSB, _mesh_mod.I_LSC, _mesh_mod.I_LKA
 
 # scipy's step-size control (rk.py, common.py); the tableaux are data (gearcli.engine.tableau, the driver's argument)
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
@@ -267,34 +268,72 @@ def deflection_rate(c, y, model, first, i_w0, w0):
 
 @jit
 def lossy(kind, P):
-    """A mesh that loses (1 - eta) of the power it transmits."""
-    return kind == KIND_MESH and 0.0 < P[I_ETA] < 1.0
+    """A mesh that loses (1 - eta) of the power it transmits (a pair's, or a planet's sun or ring mesh)."""
+    return (kind == KIND_MESH or kind == KIND_PLANET_MESH) and 0.0 < P[I_ETA] < 1.0
 
 
 @jit
 def side_losses(c, f, y, model, first, i_w0, w0):
     """A lossy mesh's forces on its pinion and gear side and their partials (mesh.loss_factors), from
-    v_a = r_a w_a and v_b = r_b w_b (levers (r_a, -r_b))."""
+    v_a = r_a w_a and v_b = r_b w_b (levers (r_a, -r_b)); a planet mesh's from its relative pitch-line speeds
+    v_a = l_a w_a + kappa_a l_c w_c, v_b = -(l_b w_b + kappa_b l_c w_c) (mesh.planet_loss_slots)."""
     bodies, lev = model[1], model[2]
-    va = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
-    vb = -lev[c, 1] * body_speed(y, bodies[c, 1], first, i_w0, w0)
-    fa, fb, aa, ba, ab, bb = mesh_loss_factors(model[3][c], f, va, vb)
+    P = model[3][c]
+    if P[I_LSB] > 0.0:
+        sa, sb, sc, ka = int(P[I_LSA]), int(P[I_LSB]), int(P[I_LSC]), P[I_LKA]
+        vb = (-lev[c, sb]) * body_speed(y, bodies[c, sb], first, i_w0, w0)
+        va = 0.0
+        if sa >= 0:
+            va = lev[c, sa] * body_speed(y, bodies[c, sa], first, i_w0, w0)
+        if sc >= 0:
+            wc = body_speed(y, bodies[c, sc], first, i_w0, w0)
+            va = va + (ka * lev[c, sc]) * wc if sa >= 0 else (ka * lev[c, sc]) * wc
+            vb = vb + (-(1.0 - ka) * lev[c, sc]) * wc
+    else:
+        va = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
+        vb = -lev[c, 1] * body_speed(y, bodies[c, 1], first, i_w0, w0)
+    fa, fb, aa, ba, ab, bb = mesh_loss_factors(P, f, va, vb)
     return va, vb, fa, fb, aa, ba, ab, bb
+
+
+@jit
+def side_of(c, s, model):
+    """Which side force a lossy mesh puts on its slot s: 0 (f_a), 1 (f_b), 2 (a planet mesh's carrier:
+    kappa_a f_a + kappa_b f_b), -1 (the law's f)."""
+    P = model[3][c]
+    if P[I_LSB] > 0.0:
+        if s == int(P[I_LSA]):
+            return 0
+        if s == int(P[I_LSB]):
+            return 1
+        if s == int(P[I_LSC]):
+            return 2
+        return -1
+    return s if s < 2 else -1
 
 
 @jit
 def body_torque(i, model, fc, y, first, i_w0, w0):
     """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
-    the body's list of (connector, slot) pairs); a lossy mesh puts f_a on its pinion and f_b on its gear."""
+    the body's list of (connector, slot) pairs); a lossy mesh puts f_a on its pinion and f_b on its gear (a
+    planet mesh: by its slots, the carrier's share of both on the carrier)."""
     lev, ptr, pairs = model[2], model[10], model[11]
     x = 0.0
     for k in range(ptr[i], ptr[i + 1]):
         c = pairs[k, 0]
         s = pairs[k, 1]
         f = fc[c]
-        if s < 2 and lossy(model[0][c], model[3][c]):
-            _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
-            f = fa if s == 0 else fb
+        if lossy(model[0][c], model[3][c]):
+            side = side_of(c, s, model)
+            if side >= 0:
+                _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
+                if side == 0:
+                    f = fa
+                elif side == 1:
+                    f = fb
+                else:
+                    ka = model[3][c][I_LKA]
+                    f = ka * fa + (1.0 - ka) * fb
         term = -lev[c, s] * f
         x = x + term if k > ptr[i] else term
     return x
@@ -925,17 +964,17 @@ def jacobian(t, y, Jm, model, th, g, ag):
             va, vb, fa, fb, aa, ba, ab, bb = side_losses(c, f, y, model, first, i_w0, w0)
         for s in range(bodies.shape[1]):  # body j takes -s_j r_j F: scattered by index
             b = bodies[c, s]
-            side_a, side_b = (aa, ba) if s == 0 else (ab, bb)  # a lossy mesh's side: A dF/dy + B dv/dy
+            side = side_of(c, s, model) if loses else -1  # a lossy mesh's side: A dF/dy + B dv/dy
             if b >= first:
                 k = -lev[c, s] / inertia[b]
                 for j in range(n):
-                    Jm[i_w0 + b - first, j] += k * (_side_row(c, s, j, g[j], side_a, side_b, model, first, i_w0)
-                                                    if loses and s < 2 else g[j])
+                    Jm[i_w0 + b - first, j] += k * (_slot_row(c, side, j, g[j], aa, ba, ab, bb, model, first, i_w0)
+                                                    if side >= 0 else g[j])
             elif b == 0 and speed:  # the drive's power: its reaction on body 0, times w0
                 k = lev[c, s] * w0
                 for j in range(n):
-                    Jm[iq, j] += k * (_side_row(c, s, j, g[j], side_a, side_b, model, first, i_w0)
-                                      if loses and s < 2 else g[j])
+                    Jm[iq, j] += k * (_slot_row(c, side, j, g[j], aa, ba, ab, bb, model, first, i_w0)
+                                      if side >= 0 else g[j])
         if loses:  # the loss power va (fa - f) - vb (fb - f): lf dF/dy + lv dv/dy + (fa - f) r_a, -(fb - f) r_b
             f = conn_force(kind[c], P, y[c], dd, phi, wphi)[0]
             lf = va * (aa - 1.0) - vb * (ab - 1.0)
@@ -985,10 +1024,20 @@ def jacobian(t, y, Jm, model, th, g, ag):
 
 @jit
 def _speed_column(c, j, model, first, i_w0):
-    """d v/dy_j of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (0: y_j is no speed of its bodies)."""
+    """d v/dy_j of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (a planet mesh's (v_a + v_b) / 2)
+    (0: y_j is no speed of its bodies)."""
     bodies, lev = model[1], model[2]
+    P = model[3][c]
     out = 0.0
     hit = False
+    if P[I_LSB] > 0.0:
+        for s in range(bodies.shape[1]):
+            b = bodies[c, s]
+            if b >= first and j == i_w0 + b - first:
+                r = _planet_va(c, s, model) + _planet_vb(c, s, model)
+                out = out + 0.5 * r if hit else 0.5 * r
+                hit = True
+        return out, hit
     for s in range(2):
         b = bodies[c, s]
         if b >= first and j == i_w0 + b - first:
@@ -996,6 +1045,28 @@ def _speed_column(c, j, model, first, i_w0):
             out = out + 0.5 * r if hit else 0.5 * r
             hit = True
     return out, hit
+
+
+@jit
+def _planet_va(c, s, model):
+    """d v_a / d w of a planet mesh's slot s (module text of side_losses)."""
+    P, lev = model[3][c], model[2]
+    if s == int(P[I_LSA]):
+        return lev[c, s]
+    if s == int(P[I_LSC]):
+        return P[I_LKA] * lev[c, s]
+    return 0.0
+
+
+@jit
+def _planet_vb(c, s, model):
+    """d v_b / d w of a planet mesh's slot s."""
+    P, lev = model[3][c], model[2]
+    if s == int(P[I_LSB]):
+        return -lev[c, s]
+    if s == int(P[I_LSC]):
+        return -(1.0 - P[I_LKA]) * lev[c, s]
+    return 0.0
 
 
 @jit
@@ -1007,13 +1078,32 @@ def _side_row(c, s, j, gj, a_coef, b_coef, model, first, i_w0):
 
 
 @jit
+def _slot_row(c, side, j, gj, aa, ba, ab, bb, model, first, i_w0):
+    """d/dy_j of the side force ``side`` (side_of) of a lossy mesh: f_a's, f_b's, or the carrier's share of both."""
+    if side == 0:
+        return _side_row(c, 0, j, gj, aa, ba, model, first, i_w0)
+    if side == 1:
+        return _side_row(c, 1, j, gj, ab, bb, model, first, i_w0)
+    ka = model[3][c][I_LKA]
+    return ka * _side_row(c, 0, j, gj, aa, ba, model, first, i_w0) + (1.0 - ka) * _side_row(
+        c, 1, j, gj, ab, bb, model, first, i_w0)
+
+
+@jit
 def _loss_row(c, j, gj, lf, lv, da, db, model, first, i_w0):
-    """d(loss power)/dy_j: lf dF/dy_j + lv dv/dy_j + (f_a - f) r_a [y_j = w_a] - (f_b - f) r_b [y_j = w_b]."""
+    """d(loss power)/dy_j: lf dF/dy_j + lv dv/dy_j + (f_a - f) dv_a/dy_j - (f_b - f) dv_b/dy_j (a pair:
+    (f_a - f) r_a [y_j = w_a] - (f_b - f) r_b [y_j = w_b])."""
     bodies, lev = model[1], model[2]
     dv, hit = _speed_column(c, j, model, first, i_w0)
     x = lf * gj
     if hit:
         x = x + dv * lv
+    if model[3][c][I_LSB] > 0.0:
+        for s in range(bodies.shape[1]):
+            b = bodies[c, s]
+            if b >= first and j == i_w0 + b - first:
+                x = x + _planet_va(c, s, model) * da - _planet_vb(c, s, model) * db
+        return x
     if bodies[c, 0] >= first and j == i_w0 + bodies[c, 0] - first:
         x = x + lev[c, 0] * da
     if bodies[c, 1] >= first and j == i_w0 + bodies[c, 1] - first:

@@ -35,7 +35,9 @@ def _plain(obj: object) -> Any:
     if isinstance(obj, (list, tuple)):
         return [_plain(v) for v in obj]
     if hasattr(obj, "tolist"):  # numpy array or scalar
-        return obj.tolist()
+        return _plain(obj.tolist())
+    if isinstance(obj, float) and obj == 0.0:
+        return 0.0  # no negative zero in the output (a held member's speed, a carrier-held stage's)
     return obj  # a JSON scalar: str, int, float, bool or None
 
 
@@ -127,6 +129,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
                                               "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
         | ({"rating": plain(s.rating)} if s.rating is not None else {})
+        | ({"planet_ring_rating": plain(s.planet_ring_rating)} if s.planet_ring_rating is not None else {})
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]

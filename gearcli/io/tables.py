@@ -164,7 +164,7 @@ class FittedTable:
 
 def _g(v: float | None, digits: int = 5) -> str:
     """A number to ``digits`` significant digits; "—" where it is undefined (None)."""
-    return "—" if v is None else f"{v:.{digits}g}"
+    return "—" if v is None else f"{v + 0.0:.{digits}g}"  # + 0.0: no negative zero
 
 
 def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> FittedTable:
@@ -205,11 +205,15 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         row("overlap ratio ε_β", lambda st: st.overlap_ratio, 4),
         row("total ε_γ", lambda st: st.contact_ratio_total, 4),
     ])
+    def pinion(label, fn):  # a planetary stage's members are in its own table (sun, planets, ring, carrier)
+        return label, [_g(fn(st)) if st.planetary is None else "—" for st in s]
+
+    parallel = any(st.planetary is None for st in s)
     loads = _quantity_table("loads and stiffness", cols, [
-        row("pinion speed [rpm]", lambda st: st.pinion.speed_rpm),
-        row("pinion torque [N·mm]", lambda st: st.pinion.torque_Nmm),
-        row("pinion torque [N·m]", lambda st: st.pinion.torque_Nm),
-        row("pinion power [kW]", lambda st: st.pinion.power_kW),
+        *([pinion("pinion speed [rpm]", lambda st: st.pinion.speed_rpm),
+           pinion("pinion torque [N·mm]", lambda st: st.pinion.torque_Nmm),
+           pinion("pinion torque [N·m]", lambda st: st.pinion.torque_Nm),
+           pinion("pinion power [kW]", lambda st: st.pinion.power_kW)] if parallel else []),
         row("mesh frequency [Hz]", lambda st: st.mesh_frequency_Hz),
         row("F_t tangential [N]", lambda st: st.static_force_N.tangential),
         row("F_r radial [N]", lambda st: st.static_force_N.radial),
@@ -300,23 +304,59 @@ def _planetary_design(r: DesignResult) -> list[RenderableType]:
         ("teeth sun / planet / ring, planets", [f"{p.sun.teeth} / {p.planet.teeth} / {p.ring.teeth}, "
                                                 f"{p.planet_count}" for p in ps]),
         ("ratio |ω_in/ω_out|", [_g(p.ratio, 6) for p in ps]),
-        ("speeds sun / carrier / ring [rpm]", [f"{_g(p.sun.speed_rpm)} / {_g(p.carrier.speed_rpm)} / "
-                                               f"{_g(p.ring.speed_rpm)}" for p in ps]),
-        ("torques sun / carrier / ring [N·m]", [f"{_g(p.sun.torque_Nm)} / {_g(p.carrier.torque_Nm)} / "
-                                                f"{_g(p.ring.torque_Nm)}" for p in ps]),
+        *(_member_row(m, ps) for m in ("sun", "carrier", "ring")),
+        ("moment balance T_sun + T_carrier + T_ring [N·m]", [_balance(p) for p in ps]),
+        ("efficiency stage η / carrier-held η_0 / per mesh η_m",
+         [f"{_g(p.stage_efficiency, 4)} / {_g(p.basic_efficiency, 5)} / {_g(p.mesh_efficiency, 5)}"
+          for p in _efficiencies(s)]),
+        ("planet speed relative to the carrier [rpm]", [_g(p.planet.speed_rpm) for p in ps]),
+        ("per planet, carrier frame: sun-side / planet torque [N·m]",
+         [f"{_g(st.pinion.torque_Nm)} / {_g(st.gear.torque_Nm)}" for st in s]),
+        ("per planet, carrier frame: rolling power [kW]", [_g(abs(st.pinion.power_kW)) for st in s]),
         ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
                                      f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
         ("planet–ring α_wt [°]", [_g(p.planet_ring.working_pressure_angle_deg) for p in ps]),
         ("planet–ring ε_α", [_g(p.planet_ring.contact_ratio_transverse, 4) for p in ps]),
         ("planet–ring c′ / c_γα [N/(mm·µm)]", [f"{_g(p.planet_ring.iso6336_single_pair_stiffness_N_mm_um)} / "
                                               f"{_g(p.planet_ring.iso6336_mesh_stiffness_N_mm_um)}" for p in ps]),
-        ("F_t per planet mesh [N]", [_g(p.planet_ring.static_force_N.tangential) for p in ps]),
+        ("F_t per planet: sun–planet / planet–ring [N]", [f"{_g(st.static_force_N.tangential)} / "
+                                                        f"{_g(p.planet_ring.static_force_N.tangential)}"
+                                                        for st, p in zip(s, ps, strict=True)]),
         ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
-        ("equal spacing, load-sharing K_γ", [f"{'yes' if p.equal_spacing else 'NO'}, {_g(p.load_sharing_factor, 4)}"
-                                            for p in ps]),
+        ("planets at [°], load-sharing K_γ", [f"{', '.join(_g(a, 5) for a in p.planet_angles_deg)}, "
+                                             f"{_g(p.load_sharing_factor, 4)}" for p in ps]),
     ]
     return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
                             [f"stage {st.index}" for st in s], rows)]
+
+
+def _member_row(member: str, ps) -> tuple[str, list[str]]:
+    """A member's own speed, torque (its magnitude) and power, in the housing's frame."""
+    def cell(g) -> str:
+        return f"{_g(g.speed_rpm)} / {_g(g.torque_Nm)} / {_g(abs(g.power_kW))}"
+
+    return f"{member}: speed [rpm] / torque [N·m] / power [kW]", [cell(getattr(p, member)) for p in ps]
+
+
+def _balance(p) -> str:
+    """The signed external torques (positive in the input member's sense) and their sum."""
+    m = p.moment_balance_Nm
+    if not m:
+        return "—"
+    terms = [m["sun"], m["carrier"], m["ring"]]
+    text_ = _g(terms[0]) + "".join(f" {'-' if v < 0 else '+'} {_g(abs(v))}" for v in terms[1:])
+    return f"{text_} = {_g(sum(terms), 2)}"
+
+
+@dataclass(frozen=True)
+class _Efficiencies:
+    stage_efficiency: float
+    basic_efficiency: float
+    mesh_efficiency: float
+
+
+def _efficiencies(stages) -> list[_Efficiencies]:
+    return [_Efficiencies(st.efficiency, st.planetary.basic_efficiency, st.planetary.mesh_efficiency) for st in stages]
 
 
 class _HasRating(Protocol):
@@ -460,6 +500,10 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     # one Text per line: text() writes a control character (a newline too) as an escape
     rated = [st for st in r.stages if st.rating is not None]
     simulated = [rating_table(rated, "strength rating at the simulated K_v, ISO 6336:2006 method B")] if rated else []
+    rings = [_RingRating(st.index, st.planet_ring_rating) for st in r.stages if st.planet_ring_rating is not None]
+    if rings:
+        simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, ISO 6336:2006 "
+                                             "method B (p planet, g ring)"))
     if r.extra and r.extra.get("bearings"):  # [[bearing]] tables (docs/life.md)
         from gearcli.io.life_tables import bearing_stats_table
 
@@ -468,22 +512,32 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     return [forces, peaks, mesh, *_planet_tables(r), *simulated, *(text(line) for line in lines)]
 
 
+@dataclass(frozen=True)
+class _RingRating:
+    """A planetary stage's planet–ring rating as a stage with a rating (rating_table's rows)."""
+
+    index: int
+    rating: InternalRatingResult
+
+
 def _planet_tables(r: SimulationResult) -> list[RenderableType]:
     """A planetary stage: every planet's sun- and ring-mesh F_t and DTE over the window, the sharing factor."""
     out: list[RenderableType] = []
     for s in r.stages:
         if not s.planets:
             continue
-        t = Table(title=text(f"stage {s.index}: planets over the steady window (load-sharing factor "
-                             f"{_g(s.load_sharing_factor, 5)})"), title_justify="left", header_style="bold")
-        for name in ("planet", "mesh", "F_t mean [N]", "F_t std [N]", "DTE mean [µm]", "DTE rms [µm]"):
-            t.add_column(name, justify="left" if name in ("planet", "mesh") else "right", overflow="fold")
+        rows: list[tuple[str, ...]] = []
+        ends: list[bool] = []
         for p in s.planets:
             for label, m in (("sun", p.sun), ("ring", p.ring)):
-                t.add_row(str(p.index) if label == "sun" else "", label, _g(m.tangential_N.mean),
-                          _g(m.tangential_N.std, 3), _g(m.dte_um.mean), _g(m.dte_um.rms, 3),
-                          end_section=label == "ring")
-        out.append(t)
+                rows.append((str(p.index) if label == "sun" else "", label, _g(m.tangential_N.mean),
+                             _g(m.tangential_N.std, 3), _g(m.dte_um.mean), _g(m.dte_um.rms, 3)))
+                ends.append(label == "ring")
+        # a fitted table: a narrow terminal leaves columns out rather than splitting a number
+        out.append(FittedTable(f"stage {s.index}: planets over the steady window (load-sharing factor "
+                               f"{_g(s.load_sharing_factor, 5)})",
+                               ("planet", "mesh", "F_t mean [N]", "F_t std [N]", "DTE mean [µm]", "DTE rms [µm]"),
+                               rows, (False, False, True, True, True, True), ends=ends))
     return out
 
 

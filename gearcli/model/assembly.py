@@ -40,8 +40,18 @@ from functools import cached_property
 
 import numpy as np
 
-from gearcli.model.elements import KIND_MESH, MAX_BODIES, N_PARAM, kind_of, law_of, machine, mesh, torque
-from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec, PlanetarySpec
+from gearcli.model.elements import (
+    KIND_MESH,
+    KIND_PLANET_MESH,
+    MAX_BODIES,
+    N_PARAM,
+    kind_of,
+    law_of,
+    machine,
+    mesh,
+    torque,
+)
+from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
 
@@ -107,7 +117,12 @@ class Connector:
     @property
     def lossy(self) -> bool:
         """A mesh that loses (1 - eta) of the power it transmits (:func:`.mesh.loss_factors`)."""
-        return self.kind == KIND_MESH and mesh.lossy(self.params)
+        return self.kind in (KIND_MESH, KIND_PLANET_MESH) and mesh.lossy(self.params)
+
+    @property
+    def planet_loss(self) -> bool:
+        """A lossy planet mesh, losing in the carrier's frame (:func:`.mesh.planet_loss_slots`)."""
+        return self.lossy and mesh.planet_loss(self.params)
 
     @property
     def time_varying(self) -> bool:
@@ -138,6 +153,8 @@ def _row(values) -> tuple[float, ...]:
 
 def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
     """The parallel-stage drivetrain: a chain of bodies, each connector joining the last body to a new one."""
+    from gearcli.model.planet_assembly import place_planetary  # it builds this module's connectors
+
     bodies: list[Body] = []
     conns: list[Connector] = []
 
@@ -160,7 +177,7 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
         planetary = spec.planetary[k] if k < len(spec.planetary) else None
         if planetary is not None:
             out_inertia = spec.inertias_kg_m2[k + 1] if flex is None else flex.gear_end_kg_m2
-            _planetary(planetary, k, bodies, conns, body, out_inertia)
+            place_planetary(planetary, k, bodies, conns, body, out_inertia)
             if flex is None:
                 continue
         else:
@@ -188,86 +205,21 @@ def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) ->
     static line force (at least 1 N) x the nominal pitch-line speed."""
     out = []
     for x in conns:
-        if x.kind == KIND_MESH and mesh.lossy(x.params):
+        if x.planet_loss:  # the static force of its share of the output torque, the relative pitch-line speed
+            F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
+            sa, _, sc, ka = mesh.planet_loss_slots(x.params)
+            lev = x.levers
+            va = (lev[sa] * bodies[x.bodies[sa]].ratio if sa >= 0 else 0.0) + \
+                (ka * lev[sc] * bodies[x.bodies[sc]].ratio if sc >= 0 else 0.0)
+            v = abs(va * spec.drive.speed_rad_s)
+            x = replace(x, params=_row(mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * max(v, 1e-9))))
+        elif x.kind == KIND_MESH and mesh.lossy(x.params):
             F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
             v = abs(x.ra * bodies[x.a].ratio * spec.drive.speed_rad_s)
             row = mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * v)
             x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role)
         out.append(x)
     return out
-
-
-def _planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connector], body, out_inertia: float) -> None:
-    """A planetary stage after its input member's body (the last one): the third member (unless held), the
-    planets, then the output member's body; each planet's sun and ring meshes (:class:`PlanetarySpec`).
-    The output body turns in its own running direction (its levers carry the sign of its Willis speed); the
-    other members and the planets in the input member's sense."""
-    n_in, rho_in = len(bodies) - 1, bodies[-1].ratio
-    sign_out = 1.0 if p.unit_speed(p.output) >= 0.0 else -1.0
-    where: dict[str, tuple[int, float]] = {p.input: (n_in, 1.0)}
-    if p.third != p.fixed:
-        body(p.third_inertia_kg_m2, f"stage {k + 1} {p.third}", rho_in * p.unit_speed(p.third))
-        where[p.third] = (len(bodies) - 1, 1.0)
-    first_planet = len(bodies)
-    for j in range(p.planets):
-        body(p.planet_inertia_kg_m2, f"stage {k + 1} planet {j + 1}", rho_in * p.planet_unit_speed)
-    body(out_inertia, f"shaft {k + 2}", rho_in * abs(p.unit_speed(p.output)))
-    n_out = len(bodies) - 1
-    where[p.output] = (n_out, sign_out)
-    # static force of every planet mesh per unit output torque: N c_out F = T_out sign_out (lossless)
-    c_out = {"sun": -p.base_radius_sun_m, "ring": -p.base_radius_ring_m,
-             "carrier": p.base_radius_sun_m + p.base_radius_ring_m}[p.output]
-    per_output = sign_out / (p.planets * c_out)
-    for j in range(p.planets):
-        planet = first_planet + j
-        for gear, mesh_law, levers in (
-                ("sun", p.sun_mesh, {"sun": p.base_radius_sun_m, "carrier": -p.lever_sun_carrier_m}),
-                ("ring", p.ring_mesh, {"ring": p.base_radius_ring_m, "carrier": -p.lever_ring_carrier_m})):
-            idx = [planet]
-            lev = [p.base_radius_planet_m if gear == "sun" else -p.base_radius_planet_m]
-            for member, lever in levers.items():
-                if member in where:
-                    b, sgn = where[member]
-                    idx.append(b)
-                    lev.append(sgn * lever)
-            # the mesh phase is counted on the input member's angle (the chain's body, on the angle tree):
-            # first in the connector, with a zero lever where it is not part of this mesh
-            if n_in in idx:
-                i = idx.index(n_in)
-                idx.insert(0, idx.pop(i))
-                lev.insert(0, lev.pop(i))
-            else:
-                idx.insert(0, n_in)
-                lev.insert(0, 0.0)
-            contact = p.ring_contact_phase_cycles if gear == "ring" else 0.0
-            row = _row(law_of(kind_of("mesh")).pack(_phased_mesh(mesh_law, p.mesh_phase_cycles(j, gear), p, contact)))
-            if len(idx) == 3:
-                kind, radii = kind_of("planet_mesh"), tuple(lev)
-            else:
-                kind, radii = kind_of("mesh"), (lev[0], -lev[1])
-            # planet 1's sun mesh stands for the stage where a stage has one mesh (role "mesh": its F_t, DTE,
-            # stiffness and error estimate); every planet mesh has its own channels besides
-            role = "mesh" if (j == 0 and gear == "sun") else "planet"
-            offset = p.planet_offsets_m[j] if (gear == "sun" and p.planet_offsets_m) else 0.0
-            conns.append(Connector(kind, tuple(idx), radii, row, f"stage {k + 1} planet {j + 1} {gear} mesh", k,
-                                   role, n_out, per_output, j, gear, n_in, offset))
-
-
-def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec, contact_cycles: float = 0.0):
-    """A planet mesh's law: the mesh phase counted on the input member's angle, z_eff theta_in / 2 pi with
-    z_eff = z_s |w_s - w_c| / |w_in| (mesh cycles per input radian under rigid kinematics: the mesh frequency
-    is z_s |w_s - w_c| / 2 pi), its harmonics and its contact-line stiffness shifted by the planet's phase
-    offset; the contact lines of a ring mesh also by ``contact_cycles``, the ring mesh's phase against the
-    same planet's sun mesh (:mod:`gearcli.model.planet_phasing`)."""
-    z_eff = p.sun_teeth * abs(p.unit_speed("sun") - p.unit_speed("carrier")) / abs(p.unit_speed(p.input))
-    shift = 2.0 * math.pi * offset_cycles
-    te_phase = tuple(list(mesh.transmission_error_phase_rad) + [0.0] * len(mesh.transmission_error_m))
-    ks_phase = tuple(list(mesh.stiffness_harmonics_phase_rad) + [0.0] * len(mesh.stiffness_harmonics))
-    return replace(mesh, pinion_teeth=z_eff, contact_phase_cycles=(offset_cycles + contact_cycles) % 1.0,
-                   transmission_error_phase_rad=tuple(te_phase[i] + (i + 1) * shift
-                                                      for i in range(len(mesh.transmission_error_m))),
-                   stiffness_harmonics_phase_rad=tuple(ks_phase[i] + (i + 1) * shift
-                                                       for i in range(len(mesh.stiffness_harmonics))))
 
 
 def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
@@ -415,6 +367,16 @@ class Layout:
         """The load's speed law row (empty: a constant torque), on the last body's nominal speed."""
         w_n = self.bodies[-1].ratio * self.drive.speed_rad_s
         return machine.load_row(self.load.speed_exponent, w_n, self.load.table, abs(self.load.torque_Nm) or 1.0)
+
+    def train_efficiency(self, forward: bool = True) -> float:
+        """The power efficiency from the input to the output: every lossy pair mesh's eta, every planetary
+        stage's (its planet meshes lose eta_m each, the stage eta as a whole); the load reversed: the stages'
+        efficiencies with the power flowing back."""
+        out = math.prod(x.params[mesh.I_ETA] for x in self.connectors if x.lossy and not x.planet_loss)
+        for p in self.spec.planetary:
+            if p is not None:
+                out *= p.efficiency if forward else p.reverse_efficiency
+        return out
 
     @property
     def n_lossy(self) -> int:

@@ -144,28 +144,70 @@ def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
 def _loss_lines(lay: Layout, c: int, jacobian: bool = False) -> list[str]:
     """A lossy mesh: the forces on its pinion (fa) and gear (fb) side and the loss power ql
     (:func:`gearcli.model.elements.mesh.loss_factors`); with the Jacobian, their partials by f and v, and
-    the loss power's (lf by f, lv by v)."""
+    the loss power's (lf by f, lv by v). A planet mesh also the carrier's side force fc (its share of both)."""
     x = lay.connectors[c]
     if not x.lossy:
         return []
-    out = [f"    va{c} = {_scaled(x.ra, f'w{x.a}')}", f"    vb{c} = {_scaled(x.rb, f'w{x.b}')}"]
+    if x.planet_loss:
+        va, vb = (" + ".join(f"{lit(k)} * w{b}" for b, k in terms) or "0.0" for terms in _planet_speeds(x))
+        out = [f"    va{c} = {va}", f"    vb{c} = {vb}"]
+    else:
+        out = [f"    va{c} = {_scaled(x.ra, f'w{x.a}')}", f"    vb{c} = {_scaled(x.rb, f'w{x.b}')}"]
     parts = f"Aa{c}, Ba{c}, Ab{c}, Bb{c}" if jacobian else "_, _, _, _"
     out.append(f"    fa{c}, fb{c}, {parts} = _loss(_P{c}, f{c}, va{c}, vb{c})")
     out.append(f"    ql{c} = va{c} * (fa{c} - f{c}) - vb{c} * (fb{c} - f{c})")
+    if x.planet_loss and _planet_slots(x)[2] >= 0:
+        ka = _planet_slots(x)[3]
+        out.append(f"    fc{c} = {lit(ka)} * fa{c} + {lit(1.0 - ka)} * fb{c}")
     if jacobian:
         out += [f"    lf{c} = va{c} * (Aa{c} - 1.0) - vb{c} * (Ab{c} - 1.0)",
                 f"    lv{c} = va{c} * Ba{c} - vb{c} * Bb{c}"]
     return out
 
 
+def _planet_slots(x: Connector) -> tuple[int, int, int, float]:
+    from gearcli.model.elements.mesh import planet_loss_slots
+
+    return planet_loss_slots(x.params)
+
+
+def _planet_speeds(x: Connector) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
+    """A lossy planet mesh's relative pitch-line speeds as (body, coefficient) terms: v_a = l_a w_a + kappa_a l_c
+    w_c, v_b = -(l_b w_b + kappa_b l_c w_c) (:func:`gearcli.model.elements.mesh.planet_loss_slots`)."""
+    sa, sb, sc, ka = _planet_slots(x)
+    lev = x.levers
+    va = ([(x.bodies[sa], lev[sa])] if sa >= 0 else []) + ([(x.bodies[sc], ka * lev[sc])] if sc >= 0 else [])
+    vb = [(x.bodies[sb], -lev[sb])] + ([(x.bodies[sc], -(1.0 - ka) * lev[sc])] if sc >= 0 else [])
+    return va, vb
+
+
+def _planet_side(x: Connector, j: int) -> str:
+    """The side force a lossy planet mesh puts on its slot j: "a", "b", "c" (the carrier) or "" (the law's)."""
+    sa, sb, sc, _ = _planet_slots(x)
+    return "a" if j == sa else "b" if j == sb else "c" if j == sc else ""
+
+
 def _side(lay: Layout, c: int, j: int) -> str:
     """The force connector c puts on its body j (0: a mesh's pinion, 1: its gear): f, or f_a / f_b of a lossy
-    mesh."""
-    return f"f{'ab'[j]}{c}" if lay.connectors[c].lossy else f"f{c}"
+    mesh; a lossy planet mesh's by its slots (f_a, f_b, the carrier's f_c)."""
+    x = lay.connectors[c]
+    if x.planet_loss:
+        return f"f{_planet_side(x, j)}{c}"
+    return f"f{'ab'[j]}{c}" if x.lossy and j < 2 else f"f{c}"
 
 
-def _side_grad(grads, grads_side, c: int, j: int) -> dict[int, str]:
+def _side_grad(lay: Layout, grads, grads_side, c: int, j: int) -> dict[int, str]:
     """d/dy of the force connector c puts on its body j (:func:`_side`)."""
+    x = lay.connectors[c]
+    if x.planet_loss:
+        side = _planet_side(x, j)
+        if side == "c":
+            ka = _planet_slots(x)[3]
+            out: dict[int, list[str]] = {}
+            _add(out, grads_side[c][0], lit(ka))
+            _add(out, grads_side[c][1], lit(1.0 - ka))
+            return {col: " + ".join(v) for col, v in out.items()}
+        return grads_side[c]["ab".index(side)] if side else grads[c]
     return grads_side[c][j] if j < 2 else grads[c]
 
 
@@ -248,10 +290,11 @@ def _omega(lay: Layout, body: int) -> int:
 
 
 def _speed_gradient(lay: Layout, c: int) -> dict[int, float]:
-    """d v/dy of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2."""
+    """d v/dy of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (a planet mesh's: (v_a + v_b) / 2)."""
     x = lay.connectors[c]
+    terms = [t for ts in _planet_speeds(x) for t in ts] if x.planet_loss else [(x.a, x.ra), (x.b, x.rb)]
     g: dict[int, float] = {}
-    for body, r in ((x.a, x.ra), (x.b, x.rb)):
+    for body, r in terms:
         col = lay.i_omega(body)
         if col is not None:
             g[col] = g.get(col, 0.0) + 0.5 * r
@@ -273,7 +316,12 @@ def _loss_gradient(lay: Layout, c: int, grad: dict[int, str]) -> dict[int, str]:
     x = lay.connectors[c]
     out = {col: f"lf{c} * ({expr})" for col, expr in grad.items()}
     terms = {col: [f"{lit(coef)} * lv{c}"] for col, coef in _speed_gradient(lay, c).items()}
-    for body, r, side, sign in ((x.a, x.ra, "a", ""), (x.b, x.rb, "b", "-")):
+    if x.planet_loss:  # (fa - f) dva/dy - (fb - f) dvb/dy
+        va, vb = _planet_speeds(x)
+        sides = [(body, k, "a", "") for body, k in va] + [(body, k, "b", "-") for body, k in vb]
+    else:
+        sides = [(x.a, x.ra, "a", ""), (x.b, x.rb, "b", "-")]
+    for body, r, side, sign in sides:
         col = lay.i_omega(body)
         if col is not None:
             terms.setdefault(col, []).append(f"{sign}{lit(r)} * (f{side}{c} - f{c})")
@@ -295,13 +343,14 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
     for i in lay.free_bodies:  # J_i w_i' = sum over its connectors of -s_j r_j f_c (+ Tin - TL)
         row = rows.setdefault(_omega(lay, i), {})
         for c, j in lay.acting_on(i):
-            _add(row, _side_grad(grads, grads_side, c, j), lit(-lay.connectors[c].levers[j] / lay.inertias[i]))
+            _add(row, _side_grad(lay, grads, grads_side, c, j), lit(-lay.connectors[c].levers[j] / lay.inertias[i]))
     if lay.i_theta is not None:
         rows[lay.i_theta] = {_omega(lay, 0): ["1.0"]}
     q0 = lay.i_quad
     if lay.speed_drive:  # P_in = (sum s_j r_j f_c over body 0's connectors + J0 a0) w0, w0 prescribed
         for c, j in lay.acting_on(0):
-            _add(rows.setdefault(q0, {}), _side_grad(grads, grads_side, c, j), f"{lit(lay.connectors[c].levers[j])} * w0")
+            _add(rows.setdefault(q0, {}), _side_grad(lay, grads, grads_side, c, j),
+                 f"{lit(lay.connectors[c].levers[j])} * w0")
     elif lay.motor_drive:  # P_in = T_m(w0) w0
         rows.setdefault(q0, {})[_omega(lay, 0)] = ["Tin + dTw * w0"]
         rows[_omega(lay, 0)].setdefault(_omega(lay, 0), []).append(f"{lit(1.0 / lay.inertias[0])} * dTw")

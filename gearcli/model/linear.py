@@ -54,14 +54,29 @@ def static_forces(lay: Layout) -> np.ndarray:
         if x.load_body >= 0:  # a planet mesh: its share of the planetary's output torque
             out[c] = lay.load.torque_Nm * rho[-1] / rho[x.load_body] * x.load_lever
     if lay.n_lossy:
-        factor = 1.0
+        forward = lay.load.torque_Nm >= 0
+        factor, pending = 1.0, None
         for c in range(lay.n_conn - 1, -1, -1):
             x = lay.connectors[c]
+            if x.load_body >= 0:  # a planet mesh: its own loss is in its share; the stage's before the stage
+                out[c] *= factor
+                pending = x.index
+                continue
+            if pending is not None:
+                factor *= _stage_factor(lay, pending, forward)
+                pending = None
             if x.lossy:
                 eta = x.params[mesh.I_ETA]
-                factor *= 1.0 / eta if lay.load.torque_Nm >= 0 else eta
+                factor *= 1.0 / eta if forward else eta
             out[c] *= factor
     return out
+
+
+def _stage_factor(lay: Layout, k: int, forward: bool) -> float:
+    """What a planetary stage's losses multiply the torques before it by: 1/eta, or eta reversed."""
+    p = lay.spec.planetary[k]
+    assert p is not None
+    return 1.0 / p.efficiency if forward else p.reverse_efficiency
 
 
 def static_line_forces_N(spec: ModelSpec | Layout) -> np.ndarray:

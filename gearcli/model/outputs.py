@@ -158,14 +158,30 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
 
 def _side_force(lay: Layout, c: int, j: int, force: np.ndarray, omega: np.ndarray) -> np.ndarray:
     """The force connector c puts on its body j: the law's, or a lossy mesh's pinion (j = 0) or gear (j = 1)
-    side (:func:`gearcli.model.elements.mesh.loss_factors`)."""
+    side (:func:`gearcli.model.elements.mesh.loss_factors`); a lossy planet mesh's by its slots (the carrier's
+    share of both sides on the carrier, :func:`gearcli.model.elements.mesh.planet_loss_slots`)."""
     x = lay.connectors[c]
-    if not x.lossy or j > 1:
+    if not x.lossy or (j > 1 and not x.planet_loss):
         return force
-    from gearcli.model.elements.mesh import loss_factors
+    from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
 
-    return np.array([loss_factors(x.params, f, x.ra * wa, x.rb * wb)[j] for f, wa, wb in
-                     zip(force.tolist(), omega[x.a].tolist(), omega[x.b].tolist(), strict=True)])
+    if not x.planet_loss:
+        return np.array([loss_factors(x.params, f, x.ra * wa, x.rb * wb)[j] for f, wa, wb in
+                         zip(force.tolist(), omega[x.a].tolist(), omega[x.b].tolist(), strict=True)])
+    sa, sb, sc, ka = planet_loss_slots(x.params)
+    if j not in (sa, sb, sc):
+        return force
+    lev = x.levers
+    va = (lev[sa] * omega[x.bodies[sa]] if sa >= 0 else 0.0) + (ka * lev[sc] * omega[x.bodies[sc]] if sc >= 0 else 0.0)
+    vb = -lev[sb] * omega[x.bodies[sb]] - ((1.0 - ka) * lev[sc] * omega[x.bodies[sc]] if sc >= 0 else 0.0)
+    va, vb = np.broadcast_to(va, force.shape), np.broadcast_to(vb, force.shape)
+    sides = np.array([loss_factors(x.params, f, a, b)[:2] for f, a, b in
+                      zip(force.tolist(), va.tolist(), vb.tolist(), strict=True)]).reshape(-1, 2)
+    if j == sa:
+        return sides[:, 0]
+    if j == sb:
+        return sides[:, 1]
+    return ka * sides[:, 0] + (1.0 - ka) * sides[:, 1]
 
 
 def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

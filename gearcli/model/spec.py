@@ -256,6 +256,13 @@ class PlanetarySpec:
     planet_offsets_m: tuple[float, ...] = ()  # per planet, a position error along its sun mesh (a constant TE)
     ring_contact_phase_cycles: float = 0.0  # planet 1's ring mesh contact-line phase against its sun mesh's
     # (time-varying stiffness; gearcli.model.planet_phasing)
+    # losses (docs/planetary.md): each planet mesh loses in the carrier's frame with its law's efficiency eta_m;
+    # the static (driving-side) force of a sun and of a ring mesh over the lossless one, and the stage's power
+    # efficiency forward and with the load reversed
+    sun_force_factor: float = 1.0
+    ring_force_factor: float = 1.0
+    efficiency: float = 1.0
+    reverse_efficiency: float = 1.0
 
     def mesh_phase_cycles(self, j: int, gear: str) -> float:
         """Planet j's mesh phase against planet 1's, in mesh cycles (Parker & Lin 2004): z_s psi_j / 2 pi for

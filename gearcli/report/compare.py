@@ -100,6 +100,11 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
     return tuple(out)
 
 
+def _least(ratings, name: str) -> float:
+    """The smallest safety ``name`` over the members of every rated mesh."""
+    return min(getattr(m, name) for r in ratings for m in (r.pinion, r.gear))
+
+
 def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[RatingComparison, ...]:
     """Per rated stage, ISO 6336-1's K_v beside the simulated one and the smallest safeties at each."""
     out = []
@@ -107,10 +112,14 @@ def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[Rati
         if st.rating is None:
             continue
         iso, at_sim = st.rating, sd.rating
+        # every mesh of the stage counts: a planetary stage's planet–ring mesh beside its sun–planet mesh
+        ring_iso = st.planetary.planet_ring.rating if st.planetary is not None else None
+        isos = [r for r in (iso, ring_iso) if r is not None]
+        sims = [r for r in (at_sim, getattr(sd, "planet_ring_rating", None)) if r is not None]
         out.append(RatingComparison(
             stage=st.index, K_v_iso=iso.K_v, K_v_iso_source=iso.K_v_source,
             K_v_simulated=stage_simulated_k_v(sd),
-            min_S_H_iso=min(iso.pinion.S_H, iso.gear.S_H), min_S_F_iso=min(iso.pinion.S_F, iso.gear.S_F),
-            min_S_H_simulated=None if at_sim is None else min(at_sim.pinion.S_H, at_sim.gear.S_H),
-            min_S_F_simulated=None if at_sim is None else min(at_sim.pinion.S_F, at_sim.gear.S_F)))
+            min_S_H_iso=_least(isos, "S_H"), min_S_F_iso=_least(isos, "S_F"),
+            min_S_H_simulated=None if at_sim is None else _least(sims, "S_H"),
+            min_S_F_simulated=None if at_sim is None else _least(sims, "S_F")))
     return tuple(out)

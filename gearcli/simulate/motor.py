@@ -20,7 +20,7 @@ from scipy.optimize import brentq
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import machine, mesh
+from gearcli.model.elements import machine
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
@@ -45,9 +45,8 @@ def reflected_load(lay: Layout, w: float) -> float:
     """The load torque at the motor (N m) when the motor turns at w in steady state."""
     rho = lay.bodies[-1].ratio
     g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
-    eta = math.prod(x.params[mesh.I_ETA] for x in lay.connectors if x.lossy)
     t = lay.load.torque_Nm * g * rho
-    return t / eta if t >= 0 else t * eta
+    return t / lay.train_efficiency() if t >= 0 else t * lay.train_efficiency(forward=False)
 
 
 def operating_point(lay: Layout, samples: int = 4000) -> OperatingPoint:

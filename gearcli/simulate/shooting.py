@@ -74,9 +74,13 @@ class Floquet:
     critical: tuple[float, float] | None  # the multiplier that decides it (largest modulus when "none")
 
 
-def floquet(M: np.ndarray, near: float = NEAR) -> Floquet:
-    """The multipliers of the monodromy matrix ``M`` (see the module text)."""
+def floquet(M: np.ndarray, near: float = NEAR, structural: int = 0) -> Floquet:
+    """The multipliers of the monodromy matrix ``M`` (see the module text). ``structural``: how many multipliers
+    are exactly 1 by the state's construction (:func:`structural_unit_multipliers`): the ones nearest +1 are
+    left out before the orbit is judged."""
     mu = np.linalg.eigvals(np.asarray(M, dtype=float)) if M.size else np.zeros(0, complex)
+    if structural > 0:
+        mu = np.delete(mu, np.argsort(np.abs(mu - 1.0), kind="stable")[:structural])
     mu = mu[np.argsort(-np.abs(mu), kind="stable")]
     pairs = tuple((float(m.real), float(m.imag)) for m in mu)
     rho = float(np.max(np.abs(mu))) if mu.size else 0.0
@@ -89,6 +93,25 @@ def floquet(M: np.ndarray, near: float = NEAR) -> Floquet:
             if real and d < near and d < best:
                 kind, critical, best = name, (float(m.real), float(m.imag)), d
     return Floquet(pairs, rho, rho <= 1.0 + STABLE_SLACK, kind, critical)
+
+
+def structural_unit_multipliers(layout) -> int:
+    """How many Floquet multipliers are 1 by construction: the state holds every connector's deflection, and
+    where connectors close loops (a planetary stage: each planet's sun and ring mesh, more deflections than the
+    free bodies' speeds can move independently) the combinations of deflections no free body's speed changes
+    are constants of the motion, each an eigenvalue 1 of the monodromy whatever the orbit. Their number is
+    n_conn - rank(R), ``R`` the map from the free bodies' speeds to the deflection rates."""
+    free = list(layout.free_bodies)
+    R = np.zeros((layout.n_conn, len(free)))
+    col = {b: i for i, b in enumerate(free)}
+    for c, x in enumerate(layout.connectors):
+        for b, lever in zip(x.bodies, x.levers, strict=True):
+            if b in col:
+                R[c, col[b]] += lever
+    if R.size == 0:
+        return layout.n_conn
+    scale = np.max(np.abs(R)) or 1.0
+    return int(layout.n_conn - np.linalg.matrix_rank(R / scale, tol=1e-9))
 
 
 # ------------------------------------------------------------------------------ variational equations
@@ -195,6 +218,10 @@ class _Shooter:
         self.period_s = span_s if period_s is None else period_s  # the excitation period (the span is k of them)
         self.used = 0
         self.variational = bool(getattr(model, "generated", True))
+        self.structural = structural_unit_multipliers(lay)  # closed planet loops: constants of the motion
+        if self.structural:
+            ledger.notes.append(f"{self.structural} multiplier(s) exactly 1 by construction left out (closed loops: "
+                                f"{lay.n_conn} deflections over {len(lay.free_bodies)} free bodies)")
         if not self.variational:
             ledger.monodromy = "finite differences"
 
@@ -345,7 +372,7 @@ def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet]
     for _ in range(MAX_NEWTON):
         assert shot.M is not None
         if shot.residual <= CONVERGED:
-            return (shot, floquet(shot.M)), ""
+            return (shot, floquet(shot.M, structural=sh.structural)), ""
         if sh.ledger.periods >= cap:
             return None, f"the periods allowed by simulation.duration_s ({cap}) are used up"
         F = shot.run.y[:sh.d, -1] - shot.x
@@ -368,7 +395,7 @@ def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet]
         base[:sh.d] = shot.x
     if shot.residual <= CONVERGED:
         assert shot.M is not None
-        return (shot, floquet(shot.M)), ""
+        return (shot, floquet(shot.M, structural=sh.structural)), ""
     return None, f"no convergence in {MAX_NEWTON} Newton steps (residual {shot.residual:.3g} x the tolerance)"
 
 

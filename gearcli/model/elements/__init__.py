@@ -43,7 +43,7 @@ from types import ModuleType
 from typing import Protocol
 
 N_HARM = 8  # transmission-error / stiffness harmonics per mesh
-N_PARAM = 23 + 4 * N_HARM  # width of every parameter row (the mesh's: gearcli.model.elements.mesh.PARAMS)
+N_PARAM = 27 + 4 * N_HARM  # width of every parameter row (the mesh's: gearcli.model.elements.mesh.PARAMS)
 MAX_BODIES = 3  # bodies one element may join (a planet's mesh: sun or ring, planet, carrier)
 
 

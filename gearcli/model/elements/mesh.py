@@ -46,9 +46,11 @@ ROW_WIDTH = N_PARAM  # the law reads the whole row: PARAMS, then the harmonics
 PARAMS = ("cos_beta_b", "cos2_beta_b", "stiffness_N_m_e", "exponent", "damping_Ns_m", "inv_full_damping_1_m",
           "damping_slope", "half_gap_m", "time_varying", "contact_ratio", "overlap_ratio", "pinion_teeth",
           "full_damping_m", "viscous", "viscous_damping_Ns_m", "damping_ratio", "k_lin_N_m", "m_e_kg",
-          "n_te", "n_ks", "efficiency", "loss_width_W", "contact_phase_cycles")
+          "n_te", "n_ks", "efficiency", "loss_width_W", "contact_phase_cycles",
+          "loss_slot_a", "loss_slot_b", "loss_slot_c", "loss_carrier_share_a")
 (I_CB, I_CB2, I_K, I_E, I_C, I_INVD, I_DC, I_HALF, I_TV, I_EA, I_EB, I_Z, I_D,
- I_VIS, I_CV, I_ZETA, I_KLIN, I_ME, I_NTE, I_NKS, I_ETA, I_LW, I_CPH) = range(len(PARAMS))
+ I_VIS, I_CV, I_ZETA, I_KLIN, I_ME, I_NTE, I_NKS, I_ETA, I_LW, I_CPH,
+ I_LSA, I_LSB, I_LSC, I_LKA) = range(len(PARAMS))
 LOSS_WIDTH = 1e-3  # the power-flow sign's tanh width: 1e-3 of the static force times the nominal pitch-line speed
 I_TE = len(PARAMS)  # TE amplitudes, m
 I_TEP = I_TE + N_HARM  # TE phases, rad
@@ -103,6 +105,30 @@ def with_loss_width(P, width_W):
 def lossy(P) -> bool:
     """The mesh loses (1 - eta) of the power it transmits (0 < eta < 1)."""
     return bool(0.0 < P[I_ETA] < 1.0)
+
+
+def with_planet_loss(P, slot_a, slot_b, slot_c, share_a):
+    """The row of a planet mesh that loses in the carrier's frame (:func:`planet_loss_slots`): the connector's
+    slots of its sun or ring (``slot_a``), its planet (``slot_b``, > 0) and its carrier (-1 where that member
+    is held), and the carrier's share ``kappa_a = l_a / (l_a + l_b)`` of the sun's (ring's) side force."""
+    Q = np.array(P, dtype=float)
+    Q[I_LSA], Q[I_LSB], Q[I_LSC], Q[I_LKA] = slot_a, slot_b, slot_c, share_a
+    return Q
+
+
+def planet_loss(P) -> bool:
+    """A planet mesh's loss geometry (slots in the row) rather than a pair's (pinion slot 0, gear slot 1)."""
+    return bool(P[I_LSB] > 0.0)
+
+
+def planet_loss_slots(P):
+    """(slot a, slot b, slot c, kappa_a) of a planet mesh's loss: a planet mesh's deflection is
+    ``delta = l_a (theta_a - theta_c) + l_b (theta_b - theta_c)`` (a: the sun or the ring, b: the planet, c: the
+    carrier); it loses in the carrier's frame, on the relative pitch-line speeds ``v_a = l_a (w_a - w_c)``,
+    ``v_b = -l_b (w_b - w_c)``: body a takes ``-l_a f_a``, body b ``-l_b f_b`` and the carrier, whose lever is
+    ``l_c = -(l_a + l_b)``, ``-l_c (kappa_a f_a + kappa_b f_b)`` (= l_a f_a + l_b f_b: the friction forces are
+    internal, the moments about the central axis balance). A held member has slot -1 (no speed, no body)."""
+    return int(P[I_LSA]), int(P[I_LSB]), int(P[I_LSC]), P[I_LKA]
 
 
 def loss_factors(P, f, va, vb):

@@ -9,7 +9,7 @@ kinematics (absolute body angles, the planet's included):
 
 (r_c cos alpha_wt,sp = r_bs + r_bp and r_c cos alpha_wt,rp = r_br - r_bp: the carrier term is what makes
 the relative rotations theta_s - theta_c, theta_p - theta_c appear). The levers carry the signs (``SIGNS``
-are all +1; :func:`gearcli.model.assembly._planetary` gives the signed levers). The first body is the stage's
+are all +1; :func:`gearcli.model.planet_assembly.place_planetary` gives the signed levers). The first body is the stage's
 input member, whose angle is on the angle tree and sets the mesh phase ``z_eff theta_in / 2 pi``
 (``pinion_teeth`` = z_eff = z_s |w_s - w_c| / |w_in|); where the input member is not part of the mesh it joins
 with a zero lever. A mesh with fewer moving bodies is a plain :mod:`~gearcli.model.elements.mesh`.
