@@ -209,6 +209,37 @@ class BearingResult:
     dynamic_load_rating_kN: float = 0.0
     speed_rpm: float = 0.0
     planet_stage: int | None = None  # a planet pin's bearing (shaft 0): its planetary stage, 1-based
+    # ISO 76 static safety (with static_load_rating_kN) and ISO 281 modified life (with fatigue_load_limit_kN):
+    # absent from JSON without their keys (docs/bearings.md)
+    static_load_rating_kN: float | None = None
+    static_equivalent_load_N: float | None = None  # P_0
+    static_safety: float | None = None  # s_0 = C_0 / P_0
+    fatigue_load_limit_kN: float | None = None
+    pitch_diameter_mm: float | None = None
+    reliability_percent: float | None = None
+    kappa: float | None = None
+    a_ISO: float | None = None
+    a_1: float | None = None
+    L_nm_Mrev: float | None = None
+    L_nm_h: float | None = None
+
+
+# the bearing keys that appear only with their inputs (docs/bearings.md): ISO 76 with C_0, ISO 281 with C_u
+BEARING_STATIC_KEYS = ("static_load_rating_kN", "static_equivalent_load_N", "static_safety")
+BEARING_MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent", "kappa", "a_ISO", "a_1",
+                         "L_nm_Mrev", "L_nm_h")
+
+
+def drop_absent_bearing_keys(doc: dict) -> dict:
+    """A bearing's JSON without the ISO 76 keys when it has no C_0 and without ISO 281's modified life when it has
+    no C_u (today's output for a file without them)."""
+    if doc.get("static_load_rating_kN") is None:
+        for k in BEARING_STATIC_KEYS:
+            doc.pop(k, None)
+    if doc.get("fatigue_load_limit_kN") is None:
+        for k in BEARING_MODIFIED_KEYS:
+            doc.pop(k, None)
+    return doc
 
 
 @dataclass(frozen=True)

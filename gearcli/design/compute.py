@@ -59,7 +59,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     out = kin.shaft_speeds_rad_s[-1]
     planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
                       for st in stages for w in pl.planetary_warnings(st))
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *rating_diagnostics)
+    bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
+    from gearcli.design.bearing_life import bearing_diagnostics
+
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *rating_diagnostics,
+                   *bearing_diagnostics(cfg, bearings))
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -73,7 +77,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         warnings=tuple(d.message for d in diagnostics),
         input_power_kW=power_kW(kin.shaft_torque_Nmm(0), kin.shaft_speeds_rad_s[0]),
         output_power_kW=power_kW(kin.load_torque_Nmm, out),
-        bearings=bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s]),
+        bearings=bearings,
         diagnostics=diagnostics,
     )
 

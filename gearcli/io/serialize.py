@@ -15,7 +15,7 @@ from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.core.text import csv_text_cell
 from gearcli.diagnostics import warning_objects
 from gearcli.io.channels import named
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult, SimulationResult, drop_absent_bearing_keys
 
 #: a JSON object while this module rearranges it (nested keys moved, popped); the public functions return
 #: :data:`~gearcli.core.jsontypes.JsonObject`
@@ -63,6 +63,7 @@ def _design_doc(result: DesignResult) -> _Doc:
     for b in doc.get("bearings", []):  # planet_stage: a planet pin's bearings only
         if b.get("planet_stage") is None:
             b.pop("planet_stage", None)
+        drop_absent_bearing_keys(b)
     doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
     return doc
