@@ -420,6 +420,7 @@ class BearingStats(TypedDict):
     position_mm: float
     radial_N: ChannelStats
     axial_N: ChannelStats
+    static_safety_min: NotRequired[float | None]  # ISO 76 s_0 at the window's peak P_0 (with static_load_rating_kN)
 
 
 class SimulationExtra(TypedDict, total=False):
