@@ -11,9 +11,11 @@ from rich.console import RenderableType
 from rich.table import Table
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
+from gearcli.io.life_tables import modified_rows
 from gearcli.io.serialize import csv_text, plain
 from gearcli.io.tables import StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife, StageLife
+from gearcli.results import drop_absent_bearing_keys
 
 MEMBERS = ("pinion", "gear")
 MODES = ("pitting", "bending")
@@ -134,7 +136,7 @@ def _bearing_docs(r: LifeResult) -> JsonValue:
         assert isinstance(doc, dict)
         if not b.planet_stage:
             doc.pop("planet_stage")
-        docs.append(doc)
+        docs.append(drop_absent_bearing_keys(doc))
     return docs
 
 
@@ -150,6 +152,7 @@ def _bearings(r: LifeResult) -> StageColumns:
         ("revolutions over the duty", [_g(x.revolutions, 4) for x in b]),
         ("L10 [10^6 rev]", [_g(x.L10_Mrev, 4) for x in b]),
         ("L10h [h]", [_g(x.L10_h, 4) for x in b]),
+        *modified_rows(b),
     ])
 
 
