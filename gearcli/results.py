@@ -122,6 +122,7 @@ class RatingResult(MeshRatingFactors):
 
     pinion: MemberRating
     gear: MemberRating
+    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
 
 
 @dataclass(frozen=True)
@@ -132,6 +133,7 @@ class InternalRatingResult(MeshRatingFactors):
 
     pinion: MemberRating
     gear: MemberRating
+    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
 
 
 @dataclass(frozen=True)

@@ -103,7 +103,7 @@ def kappa_warning(j: int, kappa: float) -> Diagnostic | None:
                    "ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
 
 
-def duty_modified_life(levels: Sequence[tuple[float, float, iso281.ModifiedLife]]
+def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.ModifiedLife]]
                        ) -> tuple[float | None, float | None]:
     """Palmgren–Miner over load levels (revolutions n_i, L10_i, its modified life): L_nm = sum n_i / sum (n_i /
     L_nm,i), and the duty's effective a_ISO = L_nm / (a_1 L10) with L10 over the same levels (None, 0 when no

@@ -34,6 +34,9 @@ class ModeLife:
     knee_cycles: float
     sn: object = None  # the SNCurve of the duty's first point (for plots; not in JSON)
     planet: int | None = None  # dynamic route, a planet member: the planet (1-based) reported, the worst
+    below_endurance: bool = False  # every class at or below the endurance limit (the knee): life_h None, infinite
+    stress_safety: float | None = None  # the factor on stress to D = 1: √safety for pitting (σ_H ∝ √F), safety for
+    # bending (σ_F ∝ F); ``safety`` is the load multiplier (JSON also ``load_multiplier``)
 
 
 @dataclass(frozen=True)

@@ -325,9 +325,12 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
                         c.endurance_MPa))
     d = sum(b.damage for b in bins)
     first = raw[0][4]
-    return ModeLife(d, hours / d if d > 0 else None, spectrum_safety(damage_at), tuple(bins),
+    below = all(b.stress_MPa < b.endurance_MPa for b in bins)  # no class above the knee: an infinite life
+    load = spectrum_safety(damage_at)
+    return ModeLife(d, hours / d if d > 0 and not below else None, load, tuple(bins),
                     f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
-                    first.static_cycles, first.knee[0], first)
+                    first.static_cycles, first.knee[0], first, below_endurance=below,
+                    stress_safety=None if load is None else load**exponent)
 
 
 def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float) -> StageLife:
