@@ -325,7 +325,7 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
                         c.endurance_MPa))
     d = sum(b.damage for b in bins)
     first = raw[0][4]
-    below = all(b.stress_MPa < b.endurance_MPa for b in bins)  # no class above the knee: an infinite life
+    below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's last node: infinite life
     load = spectrum_safety(damage_at)
     return ModeLife(d, hours / d if d > 0 and not below else None, load, tuple(bins),
                     f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
