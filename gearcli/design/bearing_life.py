@@ -17,6 +17,7 @@ from gearcli.errors import DesignError
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
+    from gearcli.results import BearingResult
 
 STATIC_SAFETY_LOW = "bearing_static_safety_low"
 KAPPA_OUT_OF_RANGE = "bearing_kappa_below_range"
@@ -118,7 +119,7 @@ def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.Modifi
     return l_nm, l_nm / (a1 * revs / basic) if basic > 0.0 else None
 
 
-def bearing_diagnostics(cfg: DesignFile, bearings: Sequence) -> list[Diagnostic]:
+def bearing_diagnostics(cfg: DesignFile, bearings: Sequence[BearingResult]) -> list[Diagnostic]:
     """The design's bearing warnings: s_0 below its minimum at the static load, kappa below ISO 281's range."""
     out: list[Diagnostic] = []
     for j, b in enumerate(bearings):

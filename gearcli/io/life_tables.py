@@ -8,6 +8,7 @@ from rich.console import RenderableType
 from rich.table import Table
 
 from gearcli.io.tables import StageColumns, _g, text
+from gearcli.life.result import BearingLife
 from gearcli.results import BearingResult, BearingStats
 
 
@@ -37,7 +38,7 @@ def _given(value: float | None, shown: str) -> str:
     return "—" if value is None else shown
 
 
-def modified_rows(b: Sequence) -> list[tuple[str, list[str]]]:
+def modified_rows(b: Sequence[BearingResult] | Sequence[BearingLife]) -> list[tuple[str, list[str]]]:
     """ISO 281 modified life and ISO 76 static safety rows, only when some bearing has their keys (a bearing
     without them shows —); ``b``: BearingResult or BearingLife."""
     rows: list[tuple[str, list[str]]] = []

@@ -11,11 +11,15 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from gearcli.design import iso281
 from gearcli.design.bearing_life import duty_modified_life, lubrication, min_static_safety, static_warning
 from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivalent_load_N
 from gearcli.life.result import BearingLife
+
+if TYPE_CHECKING:
+    from gearcli.life.run import _PointData
 
 
 @dataclass(frozen=True)
@@ -27,10 +31,11 @@ class PointBearings:
     peak_static_N: tuple[float, ...]
 
 
-def _modified(points: Sequence, j: int, revs: Sequence[float]) -> dict:
+def _modified(points: Sequence[_PointData], j: int, revs: Sequence[float]) -> dict:
     """The modified-life figures of bearing j over the duty (empty without C_u)."""
     b = points[0].design.bearings[j]
-    if b.fatigue_load_limit_kN is None or b.pitch_diameter_mm is None:
+    cu_kN, d_m = b.fatigue_load_limit_kN, b.pitch_diameter_mm
+    if cu_kN is None or d_m is None:
         return {}
     levels = []
     for pd, n in zip(points, revs, strict=True):
@@ -39,8 +44,8 @@ def _modified(points: Sequence, j: int, revs: Sequence[float]) -> dict:
         own = pd.design.bearings[j]
         p = pd.bearings.equivalent_N[j]
         l10 = basic_life_Mrev(own.dynamic_load_rating_kN * 1e3, p, own.kind)
-        m = iso281.modified_life(l10, p, own.speed_rpm, own.kind, own.fatigue_load_limit_kN * 1e3,
-                                 own.pitch_diameter_mm, own.reliability_percent or 90.0, lub)
+        m = iso281.modified_life(l10, p, own.speed_rpm, own.kind, (own.fatigue_load_limit_kN or cu_kN) * 1e3,
+                                 own.pitch_diameter_mm or d_m, own.reliability_percent or 90.0, lub)
         levels.append((n / 1e6, l10, m))
     l_nm, a_iso = duty_modified_life(levels)
     hours = sum(pd.point.hours for pd in points)
@@ -51,7 +56,7 @@ def _modified(points: Sequence, j: int, revs: Sequence[float]) -> dict:
             "kappa_points": tuple(m.kappa for _, _, m in levels), "a_ISO_points": tuple(m.a_ISO for _, _, m in levels)}
 
 
-def _static(points: Sequence, j: int, start_peaks: Sequence[Sequence[float]]) -> dict:
+def _static(points: Sequence[_PointData], j: int, start_peaks: Sequence[Sequence[float]]) -> dict:
     """P_0 and s_0 of bearing j at the largest peak of the duty points and their starts (empty without C_0)."""
     b = points[0].design.bearings[j]
     if b.static_load_rating_kN is None:
@@ -61,7 +66,7 @@ def _static(points: Sequence, j: int, start_peaks: Sequence[Sequence[float]]) ->
     return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0}
 
 
-def bearing_lives(points: Sequence, start_peaks: Sequence[Sequence[float]] = ()) -> tuple[BearingLife, ...]:
+def bearing_lives(points: Sequence[_PointData], start_peaks: Sequence[Sequence[float]] = ()) -> tuple[BearingLife, ...]:
     """Every bearing over the duty ``points`` (the life run's evaluated points); ``start_peaks``: per start
     record, each bearing's peak static equivalent load P_0 (N) in that start."""
     base = points[0].design.bearings
@@ -79,7 +84,7 @@ def bearing_lives(points: Sequence, start_peaks: Sequence[Sequence[float]] = ())
     return tuple(out)
 
 
-def bearing_warnings(points: Sequence, lives: Sequence[BearingLife]) -> list[str]:
+def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife]) -> list[str]:
     """s_0 below the minimum over the duty (and its starts)."""
     cfg = points[0].cfg
     found = [static_warning(cfg, j, b.kind, b.static_safety, "at the largest peak load over the duty")
