@@ -232,7 +232,7 @@ BEARING_MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliabil
                          "L_nm_Mrev", "L_nm_h", "kappa_points", "a_ISO_points")
 
 
-def drop_absent_bearing_keys(doc: dict) -> dict:
+def drop_absent_bearing_keys(doc: JsonObject) -> JsonObject:
     """A bearing's JSON without the ISO 76 keys when it has no C_0 and without ISO 281's modified life when it has
     no C_u (today's output for a file without them)."""
     if doc.get("static_load_rating_kN") is None:
