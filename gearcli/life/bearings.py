@@ -1,10 +1,12 @@
 """ISO 281 over the duty (docs/life.md, docs/bearings.md): per bearing the spectrum's equivalent load and basic
-life L10; with its keys the modified life L_nm (per duty point a_ISO at the point's own load and speed,
+life L10; with its keys the modified life L_nm (per load level a_ISO at the level's own load and speed,
 combined by Palmgren–Miner as ISO 281 does for variable conditions) and the ISO 76 static safety at the
 largest peak load of the duty points and their starts.
 
-Starts: :func:`bearing_lives` takes, per duty point, the peak static equivalent loads of that point's start
-(``start_peaks``; the ``starts`` work adds them from its start record) and counts them in the static safety.
+Starts: :func:`bearing_lives` takes the duty points' start records as :class:`StartBearings` (per bearing the
+revolutions of all the point's starts, their ISO 281 equivalent load, the bearing's mean speed during a start
+and the start's peak static equivalent load P_0): their revolutions count in L10 and L_nm as load levels of
+their own, their peaks in s_0. ``gearcli.life.run.START_PEAKS_HOOK`` makes them from the evaluated points.
 """
 
 from __future__ import annotations
@@ -31,56 +33,85 @@ class PointBearings:
     peak_static_N: tuple[float, ...]
 
 
-def _modified(points: Sequence[_PointData], j: int, revs: Sequence[float]) -> dict:
+@dataclass(frozen=True)
+class StartBearings:
+    """What the starts of one duty point give each bearing (from the point's start record)."""
+
+    point: int  # index of the duty point in the evaluated points
+    revolutions: tuple[float, ...]  # over all the point's starts
+    equivalent_N: tuple[float, ...]  # ISO 281 equivalent load over a start's revolutions
+    speed_rpm: tuple[float, ...]  # the bearing's mean speed during a start (kappa of the level)
+    peak_static_N: tuple[float, ...]  # the start's peak ISO 76 P_0
+
+
+@dataclass(frozen=True)
+class _Level:
+    """One load level of a bearing: its revolutions, equivalent load and speed, and the point it belongs to."""
+
+    revolutions: float
+    load_N: float
+    speed_rpm: float
+    point: int
+
+
+def _levels(points: Sequence[_PointData], starts: Sequence[StartBearings], j: int) -> list[_Level]:
+    """Bearing j's load levels: the duty points', then their starts'."""
+    out = [_Level(pd.point.hours * 60.0 * abs(pd.design.bearings[j].speed_rpm), pd.bearings.equivalent_N[j],
+                  pd.design.bearings[j].speed_rpm, i) for i, pd in enumerate(points)]
+    return out + [_Level(s.revolutions[j], s.equivalent_N[j], s.speed_rpm[j], s.point) for s in starts]
+
+
+def _modified(points: Sequence[_PointData], j: int, levels: Sequence[_Level]) -> dict:
     """The modified-life figures of bearing j over the duty (empty without C_u)."""
     b = points[0].design.bearings[j]
     cu_kN, d_m = b.fatigue_load_limit_kN, b.pitch_diameter_mm
     if cu_kN is None or d_m is None:
         return {}
-    levels = []
-    for pd, n in zip(points, revs, strict=True):
+    rated = []
+    for lv in levels:
+        pd = points[lv.point]
         lub = lubrication(pd.cfg)
         assert lub is not None  # design's check_inputs asked for it
         own = pd.design.bearings[j]
-        p = pd.bearings.equivalent_N[j]
-        l10 = basic_life_Mrev(own.dynamic_load_rating_kN * 1e3, p, own.kind)
-        m = iso281.modified_life(l10, p, own.speed_rpm, own.kind, (own.fatigue_load_limit_kN or cu_kN) * 1e3,
+        l10 = basic_life_Mrev(own.dynamic_load_rating_kN * 1e3, lv.load_N, own.kind)
+        m = iso281.modified_life(l10, lv.load_N, lv.speed_rpm, own.kind, (own.fatigue_load_limit_kN or cu_kN) * 1e3,
                                  own.pitch_diameter_mm or d_m, own.reliability_percent or 90.0, lub)
-        levels.append((n / 1e6, l10, m))
-    l_nm, a_iso = duty_modified_life(levels)
+        rated.append((lv.revolutions / 1e6, l10, m))
+    l_nm, a_iso = duty_modified_life(rated)
     hours = sum(pd.point.hours for pd in points)
-    mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
+    mean_rpm = sum(lv.revolutions for lv in levels) / (60.0 * hours) if hours else 0.0
+    own_points = rated[:len(points)]
     return {"fatigue_load_limit_kN": b.fatigue_load_limit_kN, "pitch_diameter_mm": b.pitch_diameter_mm,
-            "reliability_percent": b.reliability_percent, "kappa": min(m.kappa for _, _, m in levels),
-            "a_ISO": a_iso, "a_1": levels[0][2].a_1, "L_nm_Mrev": l_nm, "L_nm_h": life_hours(l_nm, mean_rpm),
-            "kappa_points": tuple(m.kappa for _, _, m in levels), "a_ISO_points": tuple(m.a_ISO for _, _, m in levels)}
+            "reliability_percent": b.reliability_percent, "kappa": min(m.kappa for _, _, m in rated),
+            "a_ISO": a_iso, "a_1": rated[0][2].a_1, "L_nm_Mrev": l_nm, "L_nm_h": life_hours(l_nm, mean_rpm),
+            "kappa_points": tuple(m.kappa for _, _, m in own_points),
+            "a_ISO_points": tuple(m.a_ISO for _, _, m in own_points)}
 
 
-def _static(points: Sequence[_PointData], j: int, start_peaks: Sequence[Sequence[float]]) -> dict:
+def _static(points: Sequence[_PointData], j: int, starts: Sequence[StartBearings]) -> dict:
     """P_0 and s_0 of bearing j at the largest peak of the duty points and their starts (empty without C_0)."""
     b = points[0].design.bearings[j]
     if b.static_load_rating_kN is None:
         return {}
-    peaks = [pd.bearings.peak_static_N[j] for pd in points] + [s[j] for s in start_peaks]
+    peaks = [pd.bearings.peak_static_N[j] for pd in points] + [s.peak_static_N[j] for s in starts]
     p0, s0 = min_static_safety(b.static_load_rating_kN * 1e3, peaks)
     return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0}
 
 
-def bearing_lives(points: Sequence[_PointData], start_peaks: Sequence[Sequence[float]] = ()) -> tuple[BearingLife, ...]:
-    """Every bearing over the duty ``points`` (the life run's evaluated points); ``start_peaks``: per start
-    record, each bearing's peak static equivalent load P_0 (N) in that start."""
+def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] = ()) -> tuple[BearingLife, ...]:
+    """Every bearing over the duty ``points`` (the life run's evaluated points) and the points' ``starts``."""
     base = points[0].design.bearings
     out = []
     for j, b in enumerate(base):
-        revs = [pd.point.hours * 60.0 * abs(pd.design.bearings[j].speed_rpm) for pd in points]
-        loads = [pd.bearings.equivalent_N[j] for pd in points]
-        p_eq = spectrum_equivalent_load_N(loads, revs, b.kind)
+        levels = _levels(points, starts, j)
+        revs = [lv.revolutions for lv in levels]
+        p_eq = spectrum_equivalent_load_N([lv.load_N for lv in levels], revs, b.kind)
         l10 = basic_life_Mrev(b.dynamic_load_rating_kN * 1e3, p_eq, b.kind)
         hours = sum(pd.point.hours for pd in points)
         mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
         out.append(BearingLife(b.shaft, b.position_mm, b.kind, b.dynamic_load_rating_kN, p_eq, sum(revs), l10,
-                               life_hours(l10, mean_rpm), tuple(loads), b.planet_stage or 0,
-                               **_static(points, j, start_peaks), **_modified(points, j, revs)))
+                               life_hours(l10, mean_rpm), tuple(pd.bearings.equivalent_N[j] for pd in points),
+                               b.planet_stage or 0, **_static(points, j, starts), **_modified(points, j, levels)))
     return tuple(out)
 
 

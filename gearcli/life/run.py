@@ -20,7 +20,7 @@ from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
 from gearcli.life import spectra
-from gearcli.life.bearings import PointBearings, bearing_lives, bearing_warnings
+from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
@@ -430,13 +430,14 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                       tuple(pd.run for pd in evaluated), stages, bearings, tuple(warnings))
 
 
-def no_start_peaks(points: Sequence[_PointData]) -> list[list[float]]:
-    """Per start record, each bearing's peak ISO 76 P_0 in that start: none until the ``starts`` work simulates the
-    duty points' starts (``[[duty]] starts = N``); it replaces START_PEAKS_HOOK with the start records' peaks."""
+def no_start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:
+    """The bearings' share of the duty points' starts (``[[duty]] starts = N``: revolutions, equivalent load,
+    speed and peak P_0 per bearing, one :class:`StartBearings` per point with starts): none until the start
+    records exist; the ``starts`` work makes them from each point's start record (START_PEAKS_HOOK)."""
     return []
 
 
-START_PEAKS_HOOK: Callable[[Sequence[_PointData]], list[list[float]]] = no_start_peaks
+START_PEAKS_HOOK: Callable[[Sequence[_PointData]], list[StartBearings]] = no_start_bearings
 
 
 def _static_warnings(stages: Sequence[StageLife]) -> list[str]:

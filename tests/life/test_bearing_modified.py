@@ -191,16 +191,33 @@ def test_life_over_the_duty_by_hand(tmp_path):
                           "revolutions", "L10_Mrev", "L10_h", "loads_N"} for x in life[1:])
 
 
-def test_life_starts_hook_counts_a_start_peak(tmp_path, monkeypatch):
-    """The hook the ``starts`` work fills: a start whose peak P_0 is twice the points' lowers s_0 by half."""
+def test_life_counts_the_starts_given_to_it(tmp_path, monkeypatch):
+    """The starts' entry (``START_PEAKS_HOOK``, which the ``starts`` work fills from its start records): one
+    point's starts with a peak P_0 twice the duty's halve s_0, and their revolutions at their own load and speed
+    are one more Palmgren–Miner level of L10 and L_nm (checked by hand from the points' own levels)."""
     from gearcli.life import run
+    from gearcli.life.bearings import StartBearings
 
     text = _with_keys()
     base = _json(tmp_path, "life", text, "--static", "-q")["life"]["bearings"][0]
-    monkeypatch.setattr(run, "START_PEAKS_HOOK",
-                        lambda points: [[2 * base["static_equivalent_load_N"]] * len(points[0].design.bearings)])
+    n_b = 4  # RATED has four bearings
+    p_start, n_start, rpm_start = 1.5 * max(base["loads_N"]), 2e6, 750.0
+    start = StartBearings(1, (n_start,) * n_b, (p_start,) * n_b, (rpm_start,) * n_b,
+                          (2 * base["static_equivalent_load_N"],) * n_b)
+    monkeypatch.setattr(run, "START_PEAKS_HOOK", lambda points: [start])
     started = _json(tmp_path, "life", text, "--static", "-q")["life"]["bearings"][0]
     assert_allclose(started["static_safety"], base["static_safety"] / 2, rtol=1e-12)
+    assert_allclose(started["revolutions"], base["revolutions"] + n_start, rtol=1e-12)
+    # L10: the starts' level joins the p-mean (ball: p = 3)
+    p_eq = ((base["equivalent_load_N"] ** 3 * base["revolutions"] + p_start**3 * n_start)
+            / (base["revolutions"] + n_start)) ** (1 / 3)
+    assert_allclose(started["equivalent_load_N"], p_eq, rtol=1e-12)
+    # L_nm: the points' damage (their revolutions over their L_nm) plus the starts' level by hand
+    kappa = _nu_at(TEMP) / (4500 * rpm_start**-0.5 * DM**-0.5) if rpm_start >= 1000 else \
+        _nu_at(TEMP) / (45000 * rpm_start**-0.83 * DM**-0.5)
+    l_nm_start = 0.64 * _ball_a_iso(kappa, 0.5 * CU_KN * 1e3 / p_start) * (60.0 / (p_start / 1e3)) ** 3
+    damage = base["revolutions"] / 1e6 / base["L_nm_Mrev"] + n_start / 1e6 / l_nm_start
+    assert_allclose(started["L_nm_Mrev"], (base["revolutions"] + n_start) / 1e6 / damage, rtol=1e-12)
 
 
 def test_life_dynamic_route_of_a_quiet_scene_agrees_with_the_static(tmp_path):
