@@ -32,6 +32,10 @@ def wants_modified_life(cfg: DesignFile, j: int) -> bool:
 def check_inputs(cfg: DesignFile) -> None:
     """Every bearing that asks for its modified life (any of C_u, d_m, reliability) has C_u and d_m, and the
     [lubricant] table has the oil and its cleanliness; DesignError naming the missing key otherwise."""
+    for j, b in enumerate(cfg.bearing):
+        if "static_factors" in b.model_fields_set and b.static_load_rating_kN is None:
+            raise DesignError("static_factors set the ISO 76 static equivalent load, whose safety needs the static "
+                              "load rating C_0", key=f"bearing[{j}].static_load_rating_kN")
     asking = [j for j in range(len(cfg.bearing)) if wants_modified_life(cfg, j)]
     for j in asking:
         for key in ("fatigue_load_limit_kN", "pitch_diameter_mm"):

@@ -102,6 +102,7 @@ def test_the_table_prints_every_new_figure(tmp_path):
     (lambda t: t.replace('contamination = "normal"\n', ""), "lubricant.contamination"),
     (lambda t: t.replace('contamination = "normal"', 'contamination = "clean"'), "contamination"),
     (lambda t: t.replace('contamination = "normal"', 'contamination = "normal"\ne_C = 0.4'), "lubricant"),
+    (lambda t: t.replace(f"static_load_rating_kN = {C0_KN}\n", ""), "bearing[0].static_load_rating_kN"),
 ])
 def test_missing_or_bad_input_is_exit_2_naming_the_key(tmp_path, edit, key):
     res = _run(tmp_path, "design", edit(_with_keys()), "--format", "json")
