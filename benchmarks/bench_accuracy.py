@@ -1,4 +1,4 @@
-"""Honesty of the default statistics on every scene of configs/ and configs/extreme/ (README "Accuracy").
+"""Honesty of the default statistics on every scene of configs/ and configs/extreme/ (docs/performance.md).
 
     PYTHONPATH=$PWD python benchmarks/bench_accuracy.py [--only NAME ...] [--markdown]
 

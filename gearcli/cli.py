@@ -160,11 +160,6 @@ def check_target(fmt: str | None, out: str | None, formats: tuple[str, ...] = FO
                                file_default=file_default or pipe_format, stdout_default=_tty_default(pipe_format))
 
 
-def choose_format(fmt: str | None, out: str | None, allowed: tuple[str, ...]) -> str:
-    """The format for ``--format``/``-o`` (kept for commands written before :func:`check_target`)."""
-    return check_target(fmt, out, allowed).fmt
-
-
 Destination = None | str | outfiles.OutputTarget
 
 

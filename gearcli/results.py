@@ -50,6 +50,9 @@ class GearResult:
     gear_blank_factor: float = 1.0  # C_R of this member (1 for a solid disc)
     torque_Nm: float = 0.0
     power_kW: float = 0.0  # torque x speed: positive when the power flows from pinion to gear
+    # tooth-thickness allowances (ISO 21771; None without allowance keys): [upper, lower] limits
+    generating_profile_shift: tuple[float, float] | None = None  # [x_E,e, x_E,i]
+    manufactured_root_diameter_mm: tuple[float, float] | None = None  # [d_f,e, d_f,i], cut at x_E
 
 
 @dataclass(frozen=True)
@@ -177,6 +180,10 @@ class StageResult:
     resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
     rating: RatingResult | None = None  # ISO 6336-2/-3 (issue 22); None without [rating]
     planetary: PlanetaryResult | None = None  # a planetary stage: this result is its sun–planet mesh
+    # manufacturing allowances (ISO 21771; None without allowance keys)
+    backlash_circumferential_mm: tuple[float, float] | None = None  # [max, min] on the working pitch circle
+    backlash_normal_mm: tuple[float, float] | None = None  # [max, min] between the idle flanks
+    contact_ratio_transverse_with_allowances: tuple[float, float, float] | None = None  # [e, m, i]
 
 
 @dataclass(frozen=True)

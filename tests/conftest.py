@@ -69,6 +69,7 @@ SLOW = (
 
 def pytest_configure(config):
     config.addinivalue_line("markers", "slow: more than ~8 s on 2 cores; deselected by default, run by CI")
+    config.addinivalue_line("markers", "bitwise: exact step counts on the pinned OpenBLAS kernel (slow tier)")
 
 
 def pytest_collection_modifyitems(config, items):

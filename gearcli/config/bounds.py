@@ -2,7 +2,7 @@
 
 Memory. A simulation holds its output samples in memory (the state, the channels, then the text
 written). The peak is about ``samples x values per sample x bytes per value``; the bytes per value were
-measured at the steps cap on the seed reducer (README, "Numerical robustness": CSV 1.6 GB, JSON 0.9 GB,
+measured at the steps cap on the seed reducer (docs/numerics.md, "Numerical robustness": CSV 1.6 GB, JSON 0.9 GB,
 JSON with ``--series`` 5.6 GB for 2e6 x 19 values) and are rounded up here. A run whose estimate exceeds
 :func:`memory_limit_bytes` is refused with the estimate and the ``simulation.steps`` that would fit.
 
@@ -141,11 +141,4 @@ def check_cost(cfg, design, *, source: str) -> None:
 def check_run_budget(cfg, design, *, fmt: str, series: bool, source: str) -> None:
     """``gearcli simulate``: memory and cost, before scipy is even imported."""
     check_memory(cfg, fmt=fmt, series=series, source=source)
-    check_cost(cfg, design, source=source)
-
-
-def check_report_budget(cfg, design, *, source: str) -> None:
-    """``gearcli report``: the file's run (memory, cost); the ladder's runs are each bounded in time by the
-    study itself (``LadderSpec.max_run_s``) and by the run budget."""
-    check_memory(cfg, fmt="json", series=False, source=source)
     check_cost(cfg, design, source=source)

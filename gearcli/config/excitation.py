@@ -1,4 +1,4 @@
-"""Design-file tables and rules of the mesh excitation (README "Excitation"): harmonic lists of the
+"""Design-file tables and rules of the mesh excitation (docs/elements.md "Excitation"): harmonic lists of the
 transmission error and the stiffness, the viscous damping ratio, the input torque ripple and the load
 fluctuation. :mod:`gearcli.config.schema` puts them into ``[contact]``, ``[stage.mesh]``, ``[input]`` and
 ``[load]``.

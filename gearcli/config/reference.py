@@ -16,7 +16,7 @@ from gearcli.config.starter import json_schema
 
 _TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material", "A material, referenced by name"),
            ("[[stage]]", "Stage", "One gear pair per [[stage]], in the order power flows"),
-           ("stage pinion / gear", "Gear", "`pinion = { ... }` and `gear = { ... }` of a stage"),
+           ("stage pinion / gear", "PairGear", "`pinion = { ... }` and `gear = { ... }` of a stage"),
            ("stage basic_rack = { ... }", "BasicRack", "The basic rack profile of a stage (ISO 53)"),
            ("stage shaft = { ... }", "ShaftSpring", "The torsional spring of the shaft after a stage"),
            ('[[stage]] type = "planetary"', "PlanetaryStage", "A planetary stage (docs/physics.md)"),

@@ -125,6 +125,18 @@ class Material(_Table):
     surface_hardness_HV: Annotated[float, Field(ge=50, le=1500)] | None = None  # Z_W of a softer wheel
 
 
+# manufacturing allowances [upper, lower] in mm (ISO 21771 / ISO 1328 terms): tooth thickness A_sne, A_sni in the
+# normal section (negative: thinner than nominal, for backlash), tip diameter A_dae, A_dai, centre distance A_ae, A_ai
+AllowanceMm = Annotated[float, Field(ge=-50, le=50), NotTiny(1e-6)]
+AllowancePair = Annotated[list[AllowanceMm], Field(min_length=2, max_length=2)]
+
+
+def _upper_not_below_lower(name: str, pair: list[float] | None) -> None:
+    if pair is not None and pair[0] < pair[1]:
+        raise ValueError(f"{name} = [upper, lower]: the upper allowance ({pair[0]:g}) is below the lower "
+                         f"({pair[1]:g}); give [upper, lower]")
+
+
 class Gear(_Table):
     """One gear of a stage: pinion (driving) or gear (driven)."""
 
@@ -154,6 +166,22 @@ class Gear(_Table):
     def body_given(self) -> bool:
         """True when any of bore_diameter_mm, rim_thickness_mm, web_thickness_mm is given."""
         return any(v is not None for v in (self.bore_diameter_mm, self.rim_thickness_mm, self.web_thickness_mm))
+
+
+class PairGear(Gear):
+    """One gear of a parallel stage: pinion (driving) or gear (driven)."""
+
+    # tooth thickness allowances [A_sne, A_sni] (normal section, mm) and tip diameter allowances [A_dae, A_dai]:
+    # generating profile shifts, manufactured root diameters, backlash and contact ratio with allowances
+    # (docs/iso6336.md, "Tooth-thickness allowances"); parallel stages
+    tooth_thickness_allowance_mm: AllowancePair | None = None
+    tip_diameter_allowance_mm: AllowancePair | None = None
+
+    @model_validator(mode="after")
+    def _allowance_order(self) -> PairGear:
+        _upper_not_below_lower("tooth_thickness_allowance_mm", self.tooth_thickness_allowance_mm)
+        _upper_not_below_lower("tip_diameter_allowance_mm", self.tip_diameter_allowance_mm)
+        return self
 
 
 class BasicRack(_Table):
@@ -239,8 +267,8 @@ class Stage(_Table):
     normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]  # watch gears ~0.05; the largest girth gears ~50
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45), NotTiny(1e-6)] = 0.0
-    pinion: Gear
-    gear: Gear
+    pinion: PairGear
+    gear: PairGear
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
     mesh: ContactOverride | None = None
@@ -250,7 +278,20 @@ class Stage(_Table):
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: running-in C_ay)
     type: Literal["parallel"] = "parallel"  # a planetary stage says type = "planetary"
+    center_distance_allowance_mm: AllowancePair | None = None  # [A_ae, A_ai] on the working centre distance
     model_config = ConfigDict(json_schema_extra=_hands_rule())
+
+    @model_validator(mode="after")
+    def _allowance_order(self) -> Stage:
+        _upper_not_below_lower("center_distance_allowance_mm", self.center_distance_allowance_mm)
+        return self
+
+    @property
+    def has_allowances(self) -> bool:
+        """True when any manufacturing allowance of the pair is given."""
+        return self.center_distance_allowance_mm is not None or any(
+            g.tooth_thickness_allowance_mm is not None or g.tip_diameter_allowance_mm is not None
+            for g in (self.pinion, self.gear))
 
     @property
     def speed_ratio(self) -> float:
@@ -580,7 +621,7 @@ class Target(_Table):
 
 
 # Output samples are held in memory (state, channels, then the text written): at this cap the seed scene
-# peaked at ~0.9 GB RSS for JSON and ~1.6 GB for CSV (README, "Numerical robustness"); more is refused.
+# peaked at ~0.9 GB RSS for JSON and ~1.6 GB for CSV (docs/numerics.md, "Numerical robustness"); more is refused.
 MAX_STEPS = 2_000_000
 
 
@@ -621,6 +662,10 @@ class Rating(_Table):
     min_safety_pitting: Annotated[float, Field(ge=0.5, le=10)] = 1.0  # S_Hmin
     min_safety_bending: Annotated[float, Field(ge=0.5, le=10)] = 1.4  # S_Fmin
     material_quality: Literal["normal", "optimum"] = "normal"  # Z_NT, Y_NT at 1e10 cycles: 0.85 or 1.0
+    # the profile shift of the tooth-root rating (ISO 6336-3 method B) on members with tooth-thickness allowances:
+    # the generating x_E of the "lower" (default: the thinnest tooth, as K_Fbeta's depth), "upper" or "mean"
+    # allowance, or the "nominal" x (as some commercial reports rate)
+    root_profile_shift: Literal["nominal", "upper", "lower", "mean"] = "lower"
     dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
     load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
     # a bearing's ISO 76 s_0 below it warns; absent: ball 1.0, roller 1.5 (docs/bearings.md)

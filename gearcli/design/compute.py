@@ -62,10 +62,18 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     out = kin.shaft_speeds_rad_s[-1]
     planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
                       for st in stages for w in pl.planetary_warnings(st))
+    jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
+                           f"{st.backlash_circumferential_mm[1]:.4g} mm (< 0): at the upper tooth-thickness "
+                           "allowances and the smallest centre distance the teeth jam; thin the teeth "
+                           "(tooth_thickness_allowance_mm) or widen the centre distance", check="backlash_negative",
+                           stage=st.index,
+                           backlash_min_mm=st.backlash_circumferential_mm[1])
+                   for st in stages if st.backlash_circumferential_mm is not None
+                   and st.backlash_circumferential_mm[1] < 0.0)
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
     from gearcli.design.bearing_life import bearing_diagnostics
 
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *rating_diagnostics,
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *jammed, *rating_diagnostics,
                    *bearing_diagnostics(cfg, bearings))
     return DesignResult(
         title=cfg.title,
@@ -309,7 +317,7 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> Stag
     pinion = _gear_result(stage.pinion, 0, geo, helical, materials[0].density_kg_m3, w_p, t_pinion)
     gear = _gear_result(stage.gear, 1, geo, helical, materials[1].density_kg_m3, w_g, t_gear)
     r = _resonance(pinion, gear, s.mesh_N_mm_um, s.line_load_N_mm, planets)
-    return StageResult(
+    result = StageResult(
         index=k + 1, ratio=kin.ratios[k], efficiency=stage.efficiency,
         normal_module_mm=stage.normal_module_mm, transverse_module_mm=geo.transverse_module_mm,
         normal_pressure_angle_deg=stage.normal_pressure_angle_deg,
@@ -330,6 +338,38 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> Stag
         iso6336_factors=s.factors, reduced_mass_kg_mm=r.reduced_mass_kg_mm, resonance_speed_rpm=r.speed_rpm,
         resonance_ratio=r.ratio, resonance_lower_limit=r.lower_limit, resonance_range=r.range,
     )
+    return _with_allowances(result, stage, geo, k) if stage.has_allowances else result
+
+
+def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: int) -> StageResult:
+    """The stage with its allowances' figures (ISO 21771, docs/iso6336.md "Tooth-thickness allowances")."""
+    from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
+
+    def pair(value: list[float] | None) -> tuple[float, float]:
+        return NO_ALLOWANCE if value is None else (value[0], value[1])
+
+    members = (stage.pinion, stage.gear)
+    try:
+        a = pair_allowances(geo, (stage.pinion.teeth, stage.gear.teeth),
+                            (stage.pinion.profile_shift, stage.gear.profile_shift),
+                            (pair(members[0].tooth_thickness_allowance_mm),
+                             pair(members[1].tooth_thickness_allowance_mm)),
+                            (pair(members[0].tip_diameter_allowance_mm), pair(members[1].tip_diameter_allowance_mm)),
+                            pair(stage.center_distance_allowance_mm), stage.basic_rack.dedendum)
+    except ValueError:  # InfeasibleGeometry too: no involute mesh at these limits
+        raise DesignError("the allowances leave no involute mesh (the teeth at their limits cannot mesh at the "
+                          "centre distance's limits): check their magnitudes against the module", key=f"stage[{k}]") from None
+    for i, part in enumerate(("pinion", "gear")):
+        if min(a.manufactured_root_diameter_mm[i]) <= 0.0:
+            raise DesignError(f"the tooth thickness allowance leaves no root: manufactured d_f = "
+                              f"{min(a.manufactured_root_diameter_mm[i]):.4g} mm ≤ 0",
+                              key=f"stage[{k}].{part}.tooth_thickness_allowance_mm")
+    gears = tuple(replace(g, generating_profile_shift=a.generating_profile_shift[i],
+                          manufactured_root_diameter_mm=a.manufactured_root_diameter_mm[i])
+                  for i, g in enumerate((result.pinion, result.gear)))
+    return replace(result, pinion=gears[0], gear=gears[1], backlash_circumferential_mm=a.backlash_circumferential_mm,
+                   backlash_normal_mm=a.backlash_normal_mm,
+                   contact_ratio_transverse_with_allowances=a.contact_ratio_transverse_with_allowances)
 
 
 def _chain_inertia(stage: StageResult, side: str) -> float:

@@ -192,13 +192,35 @@ def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulat
             st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb, b / mesh.g1.pitch_diameter_mm,
             (mesh.treatments[mesh.small], mesh.hlim[mesh.small], mesh.speed_m_s))
         k_hb_source = "estimated"
-    depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * st.normal_module_mm  # h of b/h: the rack's
+    depth = _tooth_depth_mm(stage, st)
     z_eps = rf.contact_ratio_factor(st.contact_ratio_transverse, st.overlap_ratio)
     k_ha, k_fa = rf.transverse_load_factors(st.contact_ratio_transverse, st.contact_ratio_total, z_eps,
                                             st.iso6336_mesh_stiffness_N_mm_um, max(f_pb, f_fa) - y_a,
                                             line_load * k_v * k_hb)
     return _LoadFactors(k_v, k_v_source, k_hb, k_hb_source, rf.face_load_factor_root(k_hb, b, depth), k_ha, k_fa,
                         z_eps)
+
+
+def _root_shift(g, choice: str) -> float:
+    """The profile shift method B rates the root at: x, or x_E of the chosen allowance (docs/iso6336.md,
+    "Allowances in the strength rating")."""
+    x_e = g.generating_profile_shift
+    if choice == "nominal" or x_e is None:
+        return float(g.profile_shift)
+    return {"upper": x_e[0], "lower": x_e[1], "mean": 0.5 * (x_e[0] + x_e[1])}[choice]
+
+
+def _tooth_depth_mm(stage, st: StageResult) -> float:
+    """h of K_Fβ's b/h (ISO 6336-1:2006, 7.7, the smaller b/h of the pair): the basic rack's h_aP + h_fP; with
+    tooth-thickness allowances the deepest tooth cut, (d_a + A_dae − d_f,i)/2 of the deeper member (docs/iso6336.md,
+    "Tooth-thickness allowances")."""
+    rack = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * st.normal_module_mm
+    from gearcli.design.allowances import manufactured_tooth_depth_mm
+
+    depths = [manufactured_tooth_depth_mm(g.tip_diameter_mm, part.tip_diameter_allowance_mm, roots)
+              for g, part in ((st.pinion, stage.pinion), (st.gear, stage.gear))
+              if (roots := g.manufactured_root_diameter_mm) is not None]
+    return max(depths) if depths else rack
 
 
 def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:
@@ -265,7 +287,8 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFact
     sig_h = flank.z_bd[i] * flank.sigma_h
     sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1
     form = rr.tooth_form(g.teeth, m_n, math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg),
-                         math.radians(st.base_helix_angle_deg), g.profile_shift, g.tip_diameter_mm,
+                         math.radians(st.base_helix_angle_deg), _root_shift(g, rating.root_profile_shift),
+                         g.tip_diameter_mm,
                          g.pitch_diameter_mm, st.contact_ratio_transverse,
                          (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
     if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):

@@ -64,9 +64,38 @@ def _design_doc(result: DesignResult) -> _Doc:
         if b.get("planet_stage") is None:
             b.pop("planet_stage", None)
         drop_absent_bearing_keys(b)
+    for s in doc["stages"]:
+        _drop_absent_allowances(s)
     doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
     return doc
+
+
+# the allowances' figures and the CSV column suffixes of their limits (docs/output.md); absent without the keys
+ALLOWANCE_LIMITS = {"generating_profile_shift": ("e", "i"), "manufactured_root_diameter_mm": ("e", "i"),
+                    "backlash_circumferential_mm": ("max", "min"), "backlash_normal_mm": ("max", "min"),
+                    "contact_ratio_transverse_with_allowances": ("e", "m", "i")}
+
+
+def _drop_absent_allowances(d: _Doc) -> None:
+    """A design without allowance keys keeps today's JSON: its (None) allowance figures are left out."""
+    for key in ALLOWANCE_LIMITS:
+        if key in d and d[key] is None:
+            del d[key]
+    for v in d.values():
+        if isinstance(v, dict):
+            _drop_absent_allowances(v)
+
+
+def _allowance_columns(d: _Doc) -> _Doc:
+    """The allowances' [upper, lower] lists as named CSV columns (``pinion_generating_profile_shift_e``)."""
+    out: _Doc = {}
+    for k, v in d.items():
+        if k in ALLOWANCE_LIMITS and isinstance(v, list):
+            out[k] = dict(zip(ALLOWANCE_LIMITS[k], v, strict=True))
+        else:
+            out[k] = _allowance_columns(v) if isinstance(v, dict) else v
+    return out
 
 
 _STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_module_mm", "normal_pressure_angle_deg",
@@ -196,7 +225,7 @@ def flatten(d: JsonObject, prefix: str = "") -> dict[str, JsonScalar]:
 
 def design_csv(result: DesignResult) -> str:
     """One row per stage, nested objects flattened (``pinion_pitch_diameter_mm``)."""
-    rows = [flatten({k: v for k, v in _named_meshes(s).items() if not (k == "rating" and v is None)})
+    rows = [flatten(_allowance_columns({k: v for k, v in _named_meshes(s).items() if not (k == "rating" and v is None)}))
             for s in _design_doc(result)["stages"]]
     header = list(rows[0])
     header += [h for r in rows[1:] for h in r if h not in header]  # a planetary stage's columns after

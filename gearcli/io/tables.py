@@ -242,7 +242,7 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
-    planetary = _planetary_design(r)
+    planetary = [*_allowance_table(r), *_planetary_design(r)]
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
         from gearcli.io.life_tables import bearing_table
 
@@ -250,6 +250,26 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
                 train, bearing_table(r.bearings), *summary]
     return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r), train,
             *summary]
+
+
+def _limits(values: Sequence[float] | None, digits: int) -> str:
+    return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
+
+
+def _allowance_table(r: DesignResult) -> list[RenderableType]:
+    """Tooth-thickness allowances (ISO 21771): only stages that give allowance keys have figures."""
+    s = [st for st in r.stages if st.backlash_circumferential_mm is not None]
+    if not s:
+        return []
+    return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", [f"stage {st.index}" for st in s], [
+        ("pinion x_E e / i", [_limits(st.pinion.generating_profile_shift, 4) for st in s]),
+        ("  gear x_E e / i", [_limits(st.gear.generating_profile_shift, 4) for st in s]),
+        ("pinion d_f e / i [mm]", [_limits(st.pinion.manufactured_root_diameter_mm, 3) for st in s]),
+        ("  gear d_f e / i [mm]", [_limits(st.gear.manufactured_root_diameter_mm, 3) for st in s]),
+        ("backlash j_t max / min [mm]", [_limits(st.backlash_circumferential_mm, 3) for st in s]),
+        ("backlash j_n max / min [mm]", [_limits(st.backlash_normal_mm, 3) for st in s]),
+        ("ε_α e / m / i", [_limits(st.contact_ratio_transverse_with_allowances, 3) for st in s]),
+    ])]
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """The torsional model of a drivetrain: equations of motion, Jacobian, scales, energies.
 
-Equations (SI; README "Model"). Body i has inertia J_i and speed w_i; connector c joins bodies c and
+Equations (SI; docs/tour.md "The model, in one paragraph"). Body i has inertia J_i and speed w_i; connector c joins bodies c and
 c+1 with radii r_a, r_b (:mod:`gearcli.model.assembly`) and carries the force F_c of its element
 (:mod:`gearcli.model.elements`):
 

@@ -2,7 +2,7 @@
 
 Every connector quantity is the element's :func:`force` (and :func:`potential`) evaluated at each
 sample — the same function the right-hand side calls, so the channels cannot drift from the dynamics.
-Reported tooth forces (DESIGN contract, README "Model"): ``F_t = F_bt cos(alpha_t)``,
+Reported tooth forces (DESIGN contract, docs/tour.md "The model, in one paragraph"): ``F_t = F_bt cos(alpha_t)``,
 ``F_r = F_t tan(alpha_t)``, ``F_a = F_t tan(beta)`` — signed like the design's static forces (negative
 on the back flank). An element's own channels are its ``CHANNELS`` (:mod:`gearcli.model.elements`): a
 mesh's ``penetration_m`` is the signed penetration beyond the gap, its ``dte_m`` the dynamic transmission

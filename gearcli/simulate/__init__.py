@@ -1,4 +1,4 @@
-"""``gearcli simulate``: solver wrapper, method choice, steady-state statistics (README "Model").
+"""``gearcli simulate``: solver wrapper, method choice, steady-state statistics (docs/tour.md "The model, in one paragraph").
 
 - ``solver``  one loop around scipy's ODE solvers: tolerances, samples, counters, failures, restarts at
               the ramp ends

@@ -1,4 +1,4 @@
-"""The error estimate of the window statistics: a check pass over the window (README "Honest statistics").
+"""The error estimate of the window statistics: a check pass over the window (docs/numerics.md "Honest statistics").
 
 ``mean`` is the integral of a channel and converges with the solution; ``min``, ``max``, ``std`` and the
 spectrum depend on how finely the solver resolves the oscillation. The run estimates their error from a
@@ -244,7 +244,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
 
 
 def means_rtol(ref: CheckPass) -> float | None:
-    """The tighter rtol at which an ``auto`` run is repeated, or None (README "Choosing the method: auto").
+    """The tighter rtol at which an ``auto`` run is repeated, or None (docs/numerics.md "Choosing the method: auto").
 
     When the check pass finds every amplitude statistic of every stage resolved and only means beyond
     :data:`MEAN_TARGET`, ``auto`` repeats the run at the rtol that resolves them (:func:`suggested_rtol`, one

@@ -184,7 +184,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
     finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \
         and choice.requested == AUTO else None
-    if ref is not None and finer is not None:  # auto resolves the means at a tighter rtol (README "... auto")
+    if ref is not None and finer is not None:  # auto resolves the means at a tighter rtol (docs/numerics.md "... auto")
         return simulate_model(model, duration_s=duration_s, steps=steps, method=method, rtol=finer,
                               window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
@@ -229,7 +229,7 @@ def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
     return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
                        f"{run.nfev / n:.2g}x the {n:.2g} the cost model predicted (~{took:.2g} s against "
                        f"~{cost.predicted_wall_s(run.engine, run.method, n):.2g} s); method = \"auto\" may have chosen "
-                       "the slower method here (README, \"Choosing the method: auto\")",
+                       "the slower method here (docs/numerics.md, \"Choosing the method: auto\")",
                        nfev=run.nfev, predicted_nfev=n)]
 
 

@@ -1,4 +1,4 @@
-"""``gearcli sweep``: operating-range and tolerance studies (README "Sweeps").
+"""``gearcli sweep``: operating-range and tolerance studies (docs/sweeps.md).
 
 - ``spec``          ``--vary`` grids, ``--random`` samples (Latin hypercube / Monte Carlo), points, branches
 - ``columns``       the output columns and the one mapping from a simulation result to a row

@@ -1,6 +1,6 @@
 """The columns of a sweep's output, and one row from one simulation result: the mapping lives here only.
 
-One row per point (docs: README "Sweeps"): the varied keys (named by their dotted key path),
+One row per point (docs: docs/sweeps.md): the varied keys (named by their dotted key path),
 ``direction``, ``status`` (``ok``/``failed``), ``message``, then per stage k
 ``stage{k}_tangential_N_{mean,std,min,max}``, ``stage{k}_dte_um_{mean,rms,min,max}``,
 ``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor`` (steady-window max |F_t| / static),
@@ -72,11 +72,6 @@ def stage_columns(n_stages: int, planetary: Sequence[int] = ()) -> list[str]:
 
 def columns(keys: Sequence[str], n_stages: int, planetary: Sequence[int] = ()) -> list[str]:
     return [*keys, *FIXED, *stage_columns(n_stages, planetary), *TRAILING]
-
-
-def statistic_columns(n_stages: int, planetary: Sequence[int] = ()) -> list[str]:
-    """The numeric result columns a response curve can show."""
-    return [*stage_columns(n_stages, planetary), "output_speed_rpm"]
 
 
 def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: SimulationResult, wall_s: float,

@@ -1,6 +1,6 @@
 """Continuation: the initial state of a point from the final state of the previous point of its branch.
 
-The rule (README "Sweeps"). A continued point runs without the start-up ramps (input and load
+The rule (docs/sweeps.md). A continued point runs without the start-up ramps (input and load
 ``ramp_s = 0``: the drive and the load act in full from t = 0) and starts from the previous point's
 final state by :meth:`gearcli.model.TorsionalModel.continue_state`: every connector deflection and
 deflection rate kept (the vibration carries over, so a branch stays on it), every free body's speed moved

@@ -58,7 +58,7 @@ def short_ladder(tmp_path_factory):
 def test_quick_json_reproduces_the_seed_comparison_with_corrected_theory(quick_json):
     doc, stderr = quick_json
     rows = rows_by_key(doc)
-    # corrected theory (README, "The seed paper's errata"): i = 135150/6069 = 22.2689, F_t = 1851.1 N, F_r = 688.8 N, F_a = 393.5 N
+    # corrected theory (docs/errata.md): i = 135150/6069 = 22.2689, F_t = 1851.1 N, F_r = 688.8 N, F_a = 393.5 N
     assert_allclose(rows[(None, "ratio")]["theory"], 135150 / 6069, rtol=1e-12)
     assert_allclose(rows[(1, "tangential_N")]["theory"], 1851.1, rtol=1e-4)
     assert_allclose(rows[(1, "radial_N")]["theory"], 688.8, rtol=2e-4)

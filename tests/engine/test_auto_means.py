@@ -1,5 +1,5 @@
 """The window means are resolved to 1e-4 of the mean force, or the run says so (gearcli/simulate/estimate.py,
-"Targets"; README "Choosing the method: auto").
+"Targets"; docs/numerics.md "Choosing the method: auto").
 
 The scene: benchmarks/bench_excitation.py's spur oscillator at 2800 rpm (resonant, the teeth lose contact
 every mesh period), 300 mesh periods. DOP853 at rtol 1e-6 meets every step's tolerance but settles on a

@@ -8,7 +8,6 @@ from __future__ import annotations
 import math
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -79,7 +78,7 @@ def test_radau_across_the_ramp_end_follows_the_rigid_body_force(rtol):
         assert dev.max() < 0.02 * train.static_tangential_N(k), (k, dev.max())
     assert sim.energy.residual_relative < 1e-6  # quadratures under error control: no false energy warning
     # no other warning; at rtol 1e-6 Radau's 51 steps cannot show the ~1 % ringing, and the run says so per
-    # stage (README "Honest statistics"); at 1e-7 its steps are fine enough not to be flagged
+    # stage (docs/numerics.md "Honest statistics"); at 1e-7 its steps are fine enough not to be flagged
     assert {d.code for d in sim.diagnostics} <= {dg.STATISTICS_UNRESOLVED}, sim.warnings
     assert len(sim.diagnostics) == (3 if rtol == 1e-6 else 0), sim.warnings
 
@@ -122,10 +121,8 @@ def test_a_run_over_budget_stops_with_the_cause():
 def test_explicit_method_on_an_extremely_stiff_scene_is_refused_before_it_starts(method):
     # 1e-6 vs 1e4 kg m^2: max|lambda| T = 7.5e9; stability alone would take 1e10 evaluations (hours)
     cfg, design = scene("unequal_inertias")
-    t0 = time.perf_counter()
-    with pytest.raises(SimulationError) as err:
+    with pytest.raises(SimulationError) as err:  # refused up front (the message below), not ground through
         run_simulation(cfg, design, method=method)
-    assert time.perf_counter() - t0 < 2.0  # refused, not ground through
     msg = str(err.value)
     assert f'method = "{method}" cannot integrate this scene: mesh stage 1' in msg
     assert "stiffer than an explicit method affords" in msg and 'use method = "Radau"' in msg

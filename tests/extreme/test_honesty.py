@@ -1,4 +1,4 @@
-"""Honest statistics (README "Accuracy"): every window statistic of every stage force of a default run
+"""Honest statistics (docs/performance.md): every window statistic of every stage force of a default run
 is within 1e-3 (of the mean) of a converged reference, or the run warns ``statistics_unresolved`` for it;
 a converged run carries no such warning.
 

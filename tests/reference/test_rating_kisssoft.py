@@ -93,9 +93,9 @@ def test_tooth_root_strength(drive_large):
     assert_allclose([small.Y_F, large.Y_F], [1.18, 1.24], atol=5e-3)  # YF
     # YS printed 2.28/2.35; gearcli 2.2864/2.3542. KISSsoft prints hF = 14.06/16.11 mm and alfFen 23.89/22.20°
     # where gearcli has 14.03/16.09 and 23.875/22.191° from the same sFn 31.18/32.75, roF 5.95/5.39, qs 2.620/3.036
-    # and den 369.487/1415.619 (all matched, below): the report evaluates the load angle on the tooth thinned by its
-    # tooth thickness allowance (DIN 3967 cd25, As −0.13/−0.24 mm), which gearcli does not model. The effect on
-    # Y_F·Y_S is 0.08 %; tolerance 1 % of Y_S.
+    # and den 369.487/1415.619 (all matched, below): the report's γ_e (the tooth's half-angle at the load point)
+    # divides by z/cos³ β where ISO 6336-3 has z_n = z/(cos² β_b cos β); written out, that reproduces every printed
+    # root figure (test_allowances_kisssoft.py). The effect on Y_F·Y_S is 0.08 %; tolerance 1 % of Y_S.
     assert_allclose([small.Y_S, large.Y_S], [2.28, 2.35], rtol=1e-2)
     assert_allclose(r.Y_beta, 0.917, atol=5e-4)  # Ybet
     assert [small.Y_DT, large.Y_DT, small.Y_B, large.Y_B] == [1.0, 1.0, 1.0, 1.0]  # YDT 1.000, YB 1.00 / 1.00
@@ -122,7 +122,7 @@ def test_tooth_form_geometry_of_method_b():
     assert_allclose([f["rho_F"] for f in forms], [5.95, 5.39], atol=5e-3)  # roF
     assert_allclose([f["q_s"] for f in forms], [2.620, 3.036], atol=5e-4)  # qs
     assert_allclose([f["d_en"] for f in forms], [369.487, 1415.619], atol=2e-3)  # den (x printed to 4 decimals)
-    # hF and alfFen: see test_tooth_root_strength (tooth thickness allowance), within 0.05 mm and 0.02°
+    # hF and alfFen: see test_tooth_root_strength (the report's z/cos³ β in γ_e), within 0.05 mm and 0.02°
     assert_allclose([f["h_Fe"] for f in forms], [14.06, 16.11], atol=0.05)
     assert_allclose([math.degrees(f["alpha_Fen"]) for f in forms], [23.89, 22.20], atol=0.02)
 

@@ -1,4 +1,4 @@
-"""Continuation: the start state of a continued point (README "Sweeps", the continuation rule)."""
+"""Continuation: the start state of a continued point (docs/sweeps.md, the continuation rule)."""
 
 from __future__ import annotations
 

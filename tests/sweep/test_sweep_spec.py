@@ -1,4 +1,4 @@
-"""Sweep definitions: the --vary grid, the --random samples and the output columns (README "Sweeps")."""
+"""Sweep definitions: the --vary grid, the --random samples and the output columns (docs/sweeps.md)."""
 
 from __future__ import annotations
 

@@ -120,11 +120,6 @@ def register(law: ModuleType, *, compiled: bool = False) -> ElementType:
     return et
 
 
-def element_type(kind: int) -> ElementType:
-    """The registered element of a kind (KeyError for an unknown one)."""
-    return _REGISTRY[int(kind)]
-
-
 def law_of(kind: int) -> ModuleType:
     """The law module of a kind."""
     return _REGISTRY[int(kind)].law

@@ -1,5 +1,5 @@
 """Gear mesh along its transverse line of action: the MSC Adams IMPACT law, or viscous damping, with
-mesh excitation (docs: README "Model", "Excitation").
+mesh excitation (docs: docs/tour.md "The model", docs/elements.md "Excitation").
 
 Deflection ``delta = r_bp theta_p - r_bg theta_g`` (m). The mesh acts on the dynamic transmission error
 ``q = delta - e(phi)`` (Kahraman & Singh, J. Sound Vib. 142(1), 1990): ``e`` is the static transmission

@@ -1,4 +1,4 @@
-"""Harmonic torques on the end bodies: the input torque ripple and the load fluctuation (README "Excitation").
+"""Harmonic torques on the end bodies: the input torque ripple and the load fluctuation (docs/elements.md "Excitation").
 
 Input ripple, orders per revolution of the input body (the motor, or shaft 1 without one), on a torque
 drive only (a speed drive prescribes the motion, so a torque ripple there would do nothing):
