@@ -125,6 +125,7 @@ class RatingResult(MeshRatingFactors):
 
     pinion: MemberRating
     gear: MemberRating
+    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
 
 
 @dataclass(frozen=True)
@@ -135,6 +136,7 @@ class InternalRatingResult(MeshRatingFactors):
 
     pinion: MemberRating
     gear: MemberRating
+    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
 
 
 @dataclass(frozen=True)
@@ -217,6 +219,37 @@ class BearingResult:
     dynamic_load_rating_kN: float = 0.0
     speed_rpm: float = 0.0
     planet_stage: int | None = None  # a planet pin's bearing (shaft 0): its planetary stage, 1-based
+    # ISO 76 static safety (with static_load_rating_kN) and ISO 281 modified life (with fatigue_load_limit_kN):
+    # absent from JSON without their keys (docs/bearings.md)
+    static_load_rating_kN: float | None = None
+    static_equivalent_load_N: float | None = None  # P_0
+    static_safety: float | None = None  # s_0 = C_0 / P_0
+    fatigue_load_limit_kN: float | None = None
+    pitch_diameter_mm: float | None = None
+    reliability_percent: float | None = None
+    kappa: float | None = None
+    a_ISO: float | None = None
+    a_1: float | None = None
+    L_nm_Mrev: float | None = None
+    L_nm_h: float | None = None
+
+
+# the bearing keys that appear only with their inputs (docs/bearings.md): ISO 76 with C_0, ISO 281 with C_u
+BEARING_STATIC_KEYS = ("static_load_rating_kN", "static_equivalent_load_N", "static_safety")
+BEARING_MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent", "kappa", "a_ISO", "a_1",
+                         "L_nm_Mrev", "L_nm_h", "kappa_points", "a_ISO_points")
+
+
+def drop_absent_bearing_keys(doc: JsonObject) -> JsonObject:
+    """A bearing's JSON without the ISO 76 keys when it has no C_0 and without ISO 281's modified life when it has
+    no C_u (today's output for a file without them)."""
+    if doc.get("static_load_rating_kN") is None:
+        for k in BEARING_STATIC_KEYS:
+            doc.pop(k, None)
+    if doc.get("fatigue_load_limit_kN") is None:
+        for k in BEARING_MODIFIED_KEYS:
+            doc.pop(k, None)
+    return doc
 
 
 @dataclass(frozen=True)
@@ -409,6 +442,7 @@ class BearingStats(TypedDict):
     position_mm: float
     radial_N: ChannelStats
     axial_N: ChannelStats
+    static_safety_min: NotRequired[float | None]  # ISO 76 s_0 at the window's peak P_0 (with static_load_rating_kN)
 
 
 class SimulationExtra(TypedDict, total=False):

@@ -37,6 +37,13 @@ class BearingFactors(_Table):
     Y: Annotated[float, Field(ge=0.0, le=100.0)] = 0.0
 
 
+class StaticFactors(_Table):
+    """ISO 76 static equivalent load of a radial bearing: P_0 = max(F_r, X0 F_r + Y0 F_a) (catalogue values)."""
+
+    X0: Annotated[float, Field(ge=0.0, le=10.0)] = 1.0
+    Y0: Annotated[float, Field(ge=0.0, le=100.0)] = 0.0
+
+
 class Bearing(_Table):
     """A rolling bearing under one shaft: two per supported shaft, exactly one of them locating (it takes
     the shaft's axial force). Shaft 1 carries pinion 1, shaft k+1 gear k and pinion k+1 (a planetary stage
@@ -51,6 +58,12 @@ class Bearing(_Table):
     kind: Literal["ball", "roller"]
     locating: bool = False
     factors: BearingFactors = BearingFactors()
+    # ISO 76 static safety and ISO 281 modified life (docs/bearings.md); all optional
+    static_load_rating_kN: Annotated[float, Field(ge=1e-3, le=1e5)] | None = None  # C_0
+    static_factors: StaticFactors = StaticFactors()
+    fatigue_load_limit_kN: Annotated[float, Field(ge=1e-4, le=1e4)] | None = None  # C_u
+    pitch_diameter_mm: Annotated[float, Field(ge=1.0, le=1e4)] | None = None  # d_m = (d + D) / 2
+    reliability_percent: Annotated[float, Field(ge=90.0, le=99.95)] | None = None  # a_1; absent: 90
     model_config = ConfigDict(json_schema_extra={"oneOf": [{"required": ["shaft"]}, {"required": ["planet_stage"]}]})
 
     @model_validator(mode="after")

@@ -37,6 +37,8 @@ _TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material",
            ("[rating]", "Rating", "Optional: ISO 6336-2/-3 strength rating of every stage (docs/iso6336.md)"),
            ("[[bearing]]", "Bearing", "Optional: a rolling bearing under a shaft (docs/life.md)"),
            ("bearing factors = { ... }", "BearingFactors", "ISO 281 equivalent-load factors of a bearing"),
+           ("bearing static_factors = { ... }", "StaticFactors", "ISO 76 static equivalent-load factors of a bearing "
+            "(docs/bearings.md)"),
            ("[[duty]]", "Duty", "Optional: one operating point of the duty cycle of `gearcli life` (docs/life.md)")]
 
 

@@ -598,6 +598,15 @@ class Lubricant(_Table):
     viscosity_40C_mm2_s: Annotated[float, Field(ge=2, le=10000)] | None = None
     viscosity_100C_mm2_s: Annotated[float, Field(ge=1, le=1000)] | None = None
     temperature_C: Annotated[float, Field(ge=-60, le=300)] | None = None
+    # the bearings' ISO 281 modified life (docs/bearings.md): cleanliness level (e_C by d_m) or e_C itself
+    contamination: Literal["extreme", "high", "normal", "slight", "typical", "severe", "very_severe"] | None = None
+    e_C: Annotated[float, Field(ge=0.0, le=1.0)] | None = None
+
+    @model_validator(mode="after")
+    def _one_cleanliness(self) -> Lubricant:
+        if self.contamination is not None and self.e_C is not None:
+            raise ValueError("give one of contamination (an ISO 281 cleanliness level) and e_C (its factor)")
+        return self
 
 
 class Rating(_Table):
@@ -615,6 +624,8 @@ class Rating(_Table):
     root_profile_shift: Literal["nominal", "upper", "lower", "mean"] = "lower"
     dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
     load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
+    # a bearing's ISO 76 s_0 below it warns; absent: ball 1.0, roller 1.5 (docs/bearings.md)
+    min_static_safety_bearing: Annotated[float, Field(ge=0.1, le=20)] | None = None
 
 
 class DesignFile(_Table):

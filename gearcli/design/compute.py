@@ -25,7 +25,7 @@ from gearcli.design.inertia import (
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
-from gearcli.diagnostics import DESIGN, warning
+from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
     DesignResult,
@@ -62,10 +62,13 @@ def compute_design(cfg: DesignFile) -> DesignResult:
 
         rated, rating_diagnostics = rate_design(pairs, tuple(pl.with_load_sharing(s) for s in stages))
         stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
-        stages = tuple(_rate_planet_ring(cfg, k, s) for k, s in enumerate(stages))
+        stages = tuple(_nominal(_rate_planet_ring(cfg, k, s)) for k, s in enumerate(stages))
         from gearcli.design.rating_internal import planet_ring_safety_diagnostics
 
         rating_diagnostics += tuple(d for s in stages for d in planet_ring_safety_diagnostics(cfg, s))
+        rating_diagnostics += tuple(_unrated_ring_mesh(cfg, s) for s in stages
+                                    if s.planetary is not None and s.rating is not None
+                                    and s.planetary.planet_ring.rating is None)
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
@@ -80,8 +83,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                    for st in stages if st.backlash_circumferential_mm is not None
                    and st.backlash_circumferential_mm[1] < 0.0)
     pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *jammed, *stiffness_diagnostics(stages),
-                   *rating_diagnostics)
+    bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
+    from gearcli.design.bearing_life import bearing_diagnostics
+
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *jammed,
+                   *stiffness_diagnostics(stages), *rating_diagnostics, *bearing_diagnostics(cfg, bearings))
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -95,9 +101,12 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         warnings=tuple(d.message for d in diagnostics),
         input_power_kW=power_kW(kin.shaft_torque_Nmm(0), kin.shaft_speeds_rad_s[0]),
         output_power_kW=power_kW(kin.load_torque_Nmm, out),
-        bearings=bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s]),
+        bearings=bearings,
         diagnostics=diagnostics,
     )
+
+
+UNRATED_MESH = "mesh_not_rated"
 
 
 def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
@@ -120,6 +129,39 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
     ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
     mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
     return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
+
+
+def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
+    """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
+    from gearcli.config.schema import PlanetaryStage
+
+    k = stage.index - 1
+    st = cfg.stage[k]
+    assert isinstance(st, PlanetaryStage)
+    ring_mat, planet_mat = cfg.materials[st.ring.material], cfg.materials[st.planet.material]
+    if st.ring.flank_roughness_Rz_um is None:
+        key = f"stage[{k}].ring.flank_roughness_Rz_um"
+    else:
+        missing = [(name, m) for name, m in ((st.ring.material, ring_mat), (st.planet.material, planet_mat))
+                   if m.treatment is None or m.contact_fatigue_limit_MPa is None or m.bending_fatigue_limit_MPa is None]
+        key = f"materials.{missing[0][0]}" if missing else "rating"
+    return warning(UNRATED_MESH, f"stage {stage.index}: the planet–ring mesh is not rated (ISO 6336): it needs {key} "
+                   "(the ring's flank roughness, and the ring's and planet's material treatment and fatigue limits); "
+                   "the ring and the planet's ring side have no safeties", stage=stage.index, mesh="planet_ring",
+                   key=key)
+
+
+def _nominal(stage: StageResult) -> StageResult:
+    """A planetary stage's ratings with ISO's nominal σ_H0, σ_F0 and K_gamma among the load factors (rated at
+    K_gamma times the mean planet's force: ``pl.with_load_sharing``)."""
+    p = stage.planetary
+    if p is None or stage.rating is None:
+        return stage
+    k = p.load_sharing_factor
+    ring = p.planet_ring
+    if ring.rating is not None:
+        p = replace(p, planet_ring=replace(ring, rating=pl.nominal_with_sharing(ring.rating, k)))
+    return replace(stage, rating=pl.nominal_with_sharing(stage.rating, k), planetary=p)
 
 
 def _require_finite(obj, key: str) -> None:

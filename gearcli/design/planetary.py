@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
@@ -49,8 +49,10 @@ from gearcli.results import (
     CarrierResult,
     GearResult,
     InternalMeshResult,
+    InternalRatingResult,
     Iso6336Factors,
     PlanetaryResult,
+    RatingResult,
     StageResult,
     StaticForces,
 )
@@ -59,6 +61,7 @@ if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, PlanetaryStage, Stage
 
 MEMBERS = ("sun", "carrier", "ring")
+R = TypeVar("R", RatingResult, InternalRatingResult)
 DEFAULT_RING_RIM_MODULES = 3.0  # ring body below the root, in modules, when no rim thickness is given
 
 
@@ -383,3 +386,14 @@ def with_load_sharing(stage: StageResult) -> StageResult:
                    pinion=replace(stage.pinion, torque_Nmm=k * stage.pinion.torque_Nmm,
                                   torque_Nm=k * stage.pinion.torque_Nm),
                    gear=replace(stage.gear, torque_Nmm=k * stage.gear.torque_Nmm, torque_Nm=k * stage.gear.torque_Nm))
+
+
+def nominal_with_sharing(rating: R, k_gamma: float) -> R:
+    """A rating made at K_gamma times the mean planet's force, with ISO's nominal stresses: σ_H0 and σ_F0 of the
+    nominal (mean planet's) force, K_gamma listed as a load factor (σ_H = σ_H0 √(K_A K_gamma K_v K_Hβ K_Hα) and
+    σ_F = σ_F0 K_A K_gamma K_v K_Fβ K_Fα are unchanged)."""
+    if k_gamma == 1.0:
+        return rating
+    return replace(rating, K_gamma=k_gamma, sigma_H0_MPa=rating.sigma_H0_MPa / math.sqrt(k_gamma),
+                   pinion=replace(rating.pinion, sigma_F0_MPa=rating.pinion.sigma_F0_MPa / k_gamma),
+                   gear=replace(rating.gear, sigma_F0_MPa=rating.gear.sigma_F0_MPa / k_gamma))

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
-from gearcli.design.planetary import pair_equivalent, with_load_sharing
+from gearcli.design.planetary import nominal_with_sharing, pair_equivalent, with_load_sharing
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
@@ -396,8 +396,11 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
     out, diags = [], []
     for k, sd in enumerate(stages):
         k_v = stage_simulated_k_v(sd)
-        rated = replace(design.stages[k], rating=rate_stage(pairs, k, with_load_sharing(design.stages[k]),
-                                                            simulated_k_v=k_v))
+        shared = with_load_sharing(design.stages[k])
+        rating = rate_stage(pairs, k, shared, simulated_k_v=k_v)
+        if shared.planetary is not None:  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
+            rating = nominal_with_sharing(rating, shared.planetary.load_sharing_factor)
+        rated = replace(design.stages[k], rating=rating)
         diags += safety_diagnostics(pairs, rated)
         ring = None
         if rated.planetary is not None and sd.planets:

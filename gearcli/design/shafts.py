@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
+from gearcli.design.iso281 import Lubrication, modified_life
 from gearcli.errors import DesignError
 from gearcli.results import BearingResult
 
@@ -162,6 +163,22 @@ class BearingSpec:
     X: float
     Y: float
     planet_stage: int = 0  # a planet pin's bearing: its planetary stage, 1-based; 0 for a shaft's
+    static_rating_N: float | None = None  # C_0 (ISO 76 static safety; docs/bearings.md)
+    X0: float = 1.0
+    Y0: float = 0.0
+    fatigue_limit_N: float | None = None  # C_u (ISO 281 modified life)
+    pitch_diameter_mm: float | None = None  # d_m
+    reliability_percent: float = 90.0
+
+
+def _spec(j: int, b, shaft: int, planet_stage: int = 0) -> BearingSpec:
+    """Bearing j of the design file (``[[bearing]]`` table ``b``) on shaft ``shaft`` or a planet pin."""
+    return BearingSpec(j, shaft, b.position_mm, b.dynamic_load_rating_kN * 1e3, b.kind, b.locating, b.factors.e,
+                       b.factors.X, b.factors.Y, planet_stage,
+                       None if b.static_load_rating_kN is None else b.static_load_rating_kN * 1e3,
+                       b.static_factors.X0, b.static_factors.Y0,
+                       None if b.fatigue_load_limit_kN is None else b.fatigue_load_limit_kN * 1e3,
+                       b.pitch_diameter_mm, 90.0 if b.reliability_percent is None else b.reliability_percent)
 
 
 @dataclass(frozen=True)
@@ -329,15 +346,13 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
             if k > len(cfg.stage) or getattr(cfg.stage[k - 1], "type", "parallel") != "planetary":
                 raise DesignError(f"stage {k} is not a planetary stage: planet_stage names the planetary stage whose "
                                   "planet pins carry the bearing (1-based)", key=f"bearing[{j}].planet_stage")
-            by_pin.setdefault(k, []).append(BearingSpec(j, 0, b.position_mm, b.dynamic_load_rating_kN * 1e3, b.kind,
-                                                        b.locating, b.factors.e, b.factors.X, b.factors.Y, k))
+            by_pin.setdefault(k, []).append(_spec(j, b, 0, k))
             continue
         assert b.shaft is not None  # the schema asks for exactly one of shaft and planet_stage
         if b.shaft > n_shafts:
             raise DesignError(f"shaft {b.shaft} does not exist: this train has shafts 1 to {n_shafts} (1 = the input "
                               "shaft, k+1 = gear k with pinion k+1)", key=f"bearing[{j}].shaft")
-        by_shaft.setdefault(b.shaft, []).append(BearingSpec(j, b.shaft, b.position_mm, b.dynamic_load_rating_kN * 1e3,
-                                                            b.kind, b.locating, b.factors.e, b.factors.X, b.factors.Y))
+        by_shaft.setdefault(b.shaft, []).append(_spec(j, b, b.shaft))
     shafts = {s: _pair(f"shaft {s}", specs) for s, specs in sorted(by_shaft.items())}
     pins = {k: _pair(f"the planet pins of stage {k}", specs) for k, specs in sorted(by_pin.items())}
     sense = 1 if cfg.input.rotation == "cw" else -1  # the sense of rotation of the stage's input shaft
@@ -480,6 +495,10 @@ def bearing_results(cfg: DesignFile, stages: Sequence[StageResult],
     lay = stage_layout(cfg, stages)
     if lay is None:
         return ()
+    from gearcli.design.bearing_life import check_inputs, lubrication
+
+    check_inputs(cfg)
+    lub = lubrication(cfg)
     out = []
     for spec, r in lay.reactions(line_forces_N(stages)):
         if spec.planet_stage:
@@ -488,15 +507,29 @@ def bearing_results(cfg: DesignFile, stages: Sequence[StageResult],
             speed = planetary.planet.speed_rpm
         else:
             speed = shaft_speeds_rpm[spec.shaft - 1]
-        out.append(bearing_result(spec, r, speed))
+        out.append(bearing_result(spec, r, speed, lub))
     return tuple(out)
 
 
-def bearing_result(spec: BearingSpec, r: Reaction, speed_rpm: float) -> BearingResult:
+def bearing_result(spec: BearingSpec, r: Reaction, speed_rpm: float, lub: Lubrication | None = None) -> BearingResult:
+    """One bearing's figures at the reaction ``r``: P, L10 and, with their keys, ISO 76's P_0 and s_0 and ISO 281's
+    kappa, a_ISO, a_1 and L_nm (``lub``: the oil, needed for those)."""
+    from gearcli.design.bearing_life import static_figures
+
     p = equivalent_load_N(r.radial_N, r.axial_N, spec.e, spec.X, spec.Y)
     l10 = basic_life_Mrev(spec.rating_N, p, spec.kind)
+    p0, s0 = static_figures(spec.static_rating_N, spec.X0, spec.Y0, r.radial_N, r.axial_N)
+    extra: dict = {}
+    if spec.static_rating_N is not None:
+        extra.update(static_load_rating_kN=spec.static_rating_N / 1e3, static_equivalent_load_N=p0, static_safety=s0)
+    if spec.fatigue_limit_N is not None and spec.pitch_diameter_mm is not None and lub is not None:
+        m = modified_life(l10, p, speed_rpm, spec.kind, spec.fatigue_limit_N, spec.pitch_diameter_mm,
+                          spec.reliability_percent, lub)
+        extra.update(fatigue_load_limit_kN=spec.fatigue_limit_N / 1e3, pitch_diameter_mm=spec.pitch_diameter_mm,
+                     reliability_percent=spec.reliability_percent, kappa=m.kappa, a_ISO=m.a_ISO, a_1=m.a_1,
+                     L_nm_Mrev=m.L_nm_Mrev, L_nm_h=life_hours(m.L_nm_Mrev, speed_rpm))
     return BearingResult(shaft=spec.shaft, position_mm=spec.position_mm, radial_N=r.radial_N, radial_y_N=r.y_N,
                          radial_z_N=r.z_N, axial_N=r.axial_N, equivalent_load_N=p, L10_Mrev=l10,
                          L10_h=life_hours(l10, speed_rpm), kind=spec.kind, locating=spec.locating,
                          dynamic_load_rating_kN=spec.rating_N / 1e3, speed_rpm=abs(speed_rpm),
-                         planet_stage=spec.planet_stage or None)
+                         planet_stage=spec.planet_stage or None, **extra)

@@ -11,9 +11,11 @@ from typing import cast
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
+from gearcli.io.life_tables import modified_rows
 from gearcli.io.serialize import csv_text, plain
 from gearcli.io.tables import FittedTable, StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife, StageLife
+from gearcli.results import drop_absent_bearing_keys
 
 MEMBERS = ("pinion", "gear")
 MODES = ("pitting", "bending")
@@ -45,7 +47,9 @@ def life_dict(r: LifeResult) -> JsonObject:
 
 
 def _mode_dict(ml: ModeLife) -> JsonObject:
-    out: JsonObject = {"damage": ml.damage, "life_h": ml.life_h, "safety": ml.safety, "curve": ml.curve,
+    out: JsonObject = {"damage": ml.damage, "life_h": ml.life_h, "below_endurance": ml.below_endurance,
+                       "safety": ml.safety, "load_multiplier": ml.safety, "stress_safety": ml.stress_safety,
+                       "curve": ml.curve,
                        "static_cycles": ml.static_cycles, "knee_cycles": ml.knee_cycles,
                        "bins": [{"force_N": b.force_N, "stress_MPa": b.stress_MPa, "cycles": b.cycles,
                                  "cycles_to_failure": b.cycles_to_failure, "damage": b.damage, "point": b.point,
@@ -57,7 +61,7 @@ def _mode_dict(ml: ModeLife) -> JsonObject:
 
 def life_csv(r: LifeResult) -> str:
     header = ["stage", "member", "mode", "point", "force_N", "stress_MPa", "cycles", "cycles_to_failure", "damage",
-              "damage_sum", "life_h", "safety"]
+              "damage_sum", "life_h", "safety", "load_multiplier", "stress_safety", "below_endurance"]
     rows: list[list[JsonScalar]] = []
     for st in r.stages:
         modes: list[tuple[str, str, ModeLife]] = [(m, mode, getattr(getattr(st, m), mode)) for m in _members(st)
@@ -68,7 +72,9 @@ def life_csv(r: LifeResult) -> str:
             for b in ml.bins:
                 rows.append([st.index, m, mode, b.point, b.force_N, b.stress_MPa, b.cycles,
                              "" if b.cycles_to_failure is None else b.cycles_to_failure, b.damage, ml.damage,
-                             "" if ml.life_h is None else ml.life_h, "" if ml.safety is None else ml.safety])
+                             "" if ml.life_h is None else ml.life_h, "" if ml.safety is None else ml.safety,
+                             "" if ml.safety is None else ml.safety,
+                             "" if ml.stress_safety is None else ml.stress_safety, ml.below_endurance])
     return csv_text(header, rows)
 
 
@@ -123,25 +129,42 @@ def _spectrum_table(r: LifeResult, stage, member: str) -> _Fitting:
                       table(f"{title} (bending)", "bending")]])
 
 
+SYMBOL = {"pitting": "S_H", "bending": "S_F"}
+
+
+def _life_cell(ml: ModeLife | None) -> str:
+    """The life in hours; ∞ where no class exceeds the endurance limit (or nothing damages)."""
+    if ml is None:
+        return "—"
+    return "∞" if ml.life_h is None and (ml.below_endurance or ml.damage == 0.0) else _g(ml.life_h, 4)
+
+
 def _summary(r: LifeResult) -> StageColumns:
+    """Per member: damage, life and, labelled apart, the load multiplier to D = 1 (on the tooth force) and the
+    stress safety it means (on σ_H: its square root; on σ_F: itself), the one to compare with S_H, S_F."""
     cols: list[str] = []
-    rows: dict[str, list[str]] = {k: [] for k in ("D pitting", "life pitting [h]", "safety pitting (load)", "D bending",
-                                      "life bending [h]", "safety bending (load)")}
+    labels = {}
+    for mode in MODES:
+        labels[mode] = (f"D {mode}", f"life {mode} [h]", f"load multiplier {mode} (on F)",
+                        f"stress safety {SYMBOL[mode]} {mode} (on σ)")
+    rows: dict[str, list[str]] = {label: [] for mode in MODES for label in labels[mode]}
+
+    def add(mode: str, ml: ModeLife | None) -> None:
+        d, life, load, stress = labels[mode]
+        rows[d].append("—" if ml is None else _g(ml.damage, 4))
+        rows[life].append(_life_cell(ml))
+        rows[load].append("—" if ml is None else _g(ml.safety, 4))
+        rows[stress].append("—" if ml is None else _g(ml.stress_safety, 4))
+
     for st in r.stages:
         for m in _members(st):
             cols.append(f"stage {st.index} {LABELS[m]}")
             for mode in MODES:
-                ml: ModeLife = getattr(getattr(st, m), mode)
-                rows[f"D {mode}"].append(_g(ml.damage, 4))
-                rows[f"life {mode} [h]"].append(_g(ml.life_h, 4))
-                rows[f"safety {mode} (load)"].append(_g(ml.safety, 4))
+                add(mode, getattr(getattr(st, m), mode))
         if st.planet_root is not None:
             cols.append(f"stage {st.index} {ROOT_LABEL}")
             for mode in MODES:
-                ml_root = st.planet_root if mode == "bending" else None
-                rows[f"D {mode}"].append("—" if ml_root is None else _g(ml_root.damage, 4))
-                rows[f"life {mode} [h]"].append("—" if ml_root is None else _g(ml_root.life_h, 4))
-                rows[f"safety {mode} (load)"].append("—" if ml_root is None else _g(ml_root.safety, 4))
+                add(mode, st.planet_root if mode == "bending" else None)
     return StageColumns("Miner damage over the duty, life and spectrum safety", cols, list(rows.items()))
 
 
@@ -153,7 +176,7 @@ def _bearing_docs(r: LifeResult) -> JsonValue:
         assert isinstance(doc, dict)
         if not b.planet_stage:
             doc.pop("planet_stage")
-        docs.append(doc)
+        docs.append(drop_absent_bearing_keys(doc))
     return docs
 
 
@@ -169,6 +192,7 @@ def _bearings(r: LifeResult) -> StageColumns:
         ("revolutions over the duty", [_g(x.revolutions, 4) for x in b]),
         ("L10 [10^6 rev]", [_g(x.L10_Mrev, 4) for x in b]),
         ("L10h [h]", [_g(x.L10_h, 4) for x in b]),
+        *modified_rows(b),
     ])
 
 

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from rich.console import RenderableType
 
 from gearcli.io.tables import FittedTable, StageColumns, _g
+from gearcli.life.result import BearingLife
 from gearcli.results import BearingResult, BearingStats
 
 
@@ -27,7 +28,34 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
         ("rating C [kN]", [_g(x.dynamic_load_rating_kN) for x in b]),
         ("L10 [10^6 rev]", [_g(x.L10_Mrev, 4) for x in b]),
         ("L10h [h]", [_g(x.L10_h, 4) for x in b]),
+        *modified_rows(b),
     ])
+
+
+def _given(value: float | None, shown: str) -> str:
+    """A cell of a bearing that has the figure's inputs ("—" for one that has not)."""
+    return "—" if value is None else shown
+
+
+def modified_rows(b: Sequence[BearingResult] | Sequence[BearingLife]) -> list[tuple[str, list[str]]]:
+    """ISO 281 modified life and ISO 76 static safety rows, only when some bearing has their keys (a bearing
+    without them shows —); ``b``: BearingResult or BearingLife."""
+    rows: list[tuple[str, list[str]]] = []
+    if any(x.fatigue_load_limit_kN is not None for x in b):
+        rows += [
+            ("viscosity ratio κ", [_given(x.fatigue_load_limit_kN, _g(x.kappa, 4)) for x in b]),
+            ("a_ISO (ISO 281)", [_given(x.fatigue_load_limit_kN, _g(x.a_ISO, 4)) for x in b]),
+            ("a_1 (reliability)", [_given(x.fatigue_load_limit_kN, _g(x.a_1, 4)) for x in b]),
+            ("L_nm [10^6 rev]", [_given(x.fatigue_load_limit_kN, _g(x.L_nm_Mrev, 4)) for x in b]),
+            ("L_nmh [h]", [_given(x.fatigue_load_limit_kN, _g(x.L_nm_h, 4)) for x in b]),
+        ]
+    if any(x.static_load_rating_kN is not None for x in b):
+        rows += [
+            ("static rating C_0 [kN]", [_given(x.static_load_rating_kN, _g(x.static_load_rating_kN)) for x in b]),
+            ("static equivalent P_0 [N]", [_given(x.static_load_rating_kN, _g(x.static_equivalent_load_N)) for x in b]),
+            ("static safety s_0 = C_0/P_0", [_given(x.static_load_rating_kN, _g(x.static_safety, 4)) for x in b]),
+        ]
+    return rows
 
 
 def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[BearingStats]) -> RenderableType:
@@ -40,7 +68,10 @@ def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[Bearin
             place = f"planets {b['planet_stage']}" if b.get("planet_stage") else str(b["shaft"])
             rows.append([str(j + 1) if first else "", place if first else "", _g(b["position_mm"]) if first else "",
                          label, _g(st.mean), _g(st.std, 3), _g(st.min), _g(st.max)])
-            ends.append(not first)
+            ends.append(not first and "static_safety_min" not in b)
+        if "static_safety_min" in b:  # ISO 76 at the window's peak P_0 (docs/bearings.md)
+            rows.append(["", "", "", "static safety s_0 (min)", "", "", _g(b.get("static_safety_min"), 4), ""])
+            ends.append(True)
     return FittedTable(f"bearing reactions over the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s", names,
                        rows, [n not in ("bearing", "shaft", "channel") for n in names],
                        justify=["left" if n in ("bearing", "channel") else "right" for n in names], ends=ends)

@@ -15,7 +15,7 @@ from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.core.text import csv_text_cell
 from gearcli.diagnostics import warning_objects
 from gearcli.io.channels import named
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult, SimulationResult, drop_absent_bearing_keys
 
 #: a JSON object while this module rearranges it (nested keys moved, popped); the public functions return
 #: :data:`~gearcli.core.jsontypes.JsonObject`
@@ -65,6 +65,7 @@ def _design_doc(result: DesignResult) -> _Doc:
     for b in doc.get("bearings", []):  # planet_stage: a planet pin's bearings only
         if b.get("planet_stage") is None:
             b.pop("planet_stage", None)
+        drop_absent_bearing_keys(b)
     for s in doc["stages"]:
         _drop_absent_allowances(s)
     doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
@@ -105,6 +106,8 @@ _STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_m
 
 def _parallel_stage(stage: _Doc) -> _Doc:
     stage.pop("planetary", None)
+    if isinstance(stage.get("rating"), dict):  # K_gamma belongs to planetary stages (a parallel rating: today's keys)
+        stage["rating"].pop("K_gamma", None)
     return stage
 
 
@@ -128,7 +131,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
                                               "dynamic_factor", "runup_factor", "simulated_static_tangential_N",
                                               "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
-        | ({"rating": plain(s.rating)} if s.rating is not None else {})
+        | ({"rating": _stage_rating(s.rating, planetary=bool(s.planets))} if s.rating is not None else {})
         | ({"planet_ring_rating": plain(s.planet_ring_rating)} if s.planet_ring_rating is not None else {})
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
@@ -167,6 +170,14 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
         shown = output_units.channels(named(result), u)
         out["series"] = {"time_s": result.time_s.tolist(), **{k: v.tolist() for k, v in shown.items()}}
     return out
+
+
+def _stage_rating(rating: object, *, planetary: bool) -> JsonValue:
+    """A simulated stage's rating; K_gamma only on a planetary stage's (a parallel stage keeps today's keys)."""
+    doc = plain(rating)
+    if not planetary and isinstance(doc, dict):
+        doc.pop("K_gamma", None)
+    return doc
 
 
 def _motor_keys(motor: dict[str, float | None] | None) -> JsonObject:

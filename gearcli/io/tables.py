@@ -387,8 +387,10 @@ def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, IS
         return label, [f"{_g(getattr(_rating(st).pinion, name), digits)} / "
                        f"{_g(getattr(_rating(st).gear, name), digits)}" for st in stages]
 
+    planetary = any(_rating(st).K_gamma != 1.0 or getattr(st, "planetary", None) is not None for st in stages)
     return _quantity_table(title, cols, [
         one("application factor K_A", lambda r: r.K_A),
+        *([one("load-sharing factor K_γ", lambda r: r.K_gamma)] if planetary else []),
         ("dynamic factor K_v", [f"{_rating(st).K_v:.4g} ({_rating(st).K_v_source})" for st in stages]),
         ("face load factor K_Hβ", [f"{_rating(st).K_Hbeta:.4g} ({_rating(st).K_Hbeta_source})" for st in stages]),
         one("face load factor K_Fβ", lambda r: r.K_Fbeta),

@@ -17,7 +17,10 @@ import numpy as np
 
 from gearcli.config import DesignFile
 from gearcli.core.channels import Channel
-from gearcli.design.shafts import ShaftLayout, stage_layout
+from gearcli.design.bearing_life import static_warning
+from gearcli.design.iso281 import static_safety
+from gearcli.design.shafts import BearingSpec, ShaftLayout, stage_layout
+from gearcli.diagnostics import Diagnostic, messages
 from gearcli.results import BearingStats, DesignResult, SimulationExtra, SimulationResult
 from gearcli.simulate.stats import channel_stats, window_mask
 
@@ -67,6 +70,7 @@ def with_bearings(cfg: DesignFile, design: DesignResult, result: SimulationResul
     series = dict(result.series)
     mask = window_mask(result.time_s, result.window_s)
     summary: list[BearingStats] = []
+    diags: list[Diagnostic] = []
     specs = lay.specs
     for j, spec in enumerate(specs):
         radial, axial = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
@@ -76,7 +80,23 @@ def with_bearings(cfg: DesignFile, design: DesignResult, result: SimulationResul
                              axial_N=channel_stats(axial, mask))
         if spec.planet_stage:
             stats["planet_stage"] = spec.planet_stage
+        if spec.static_rating_N is not None:  # ISO 76 at the window's peak P_0 (docs/bearings.md)
+            peak = peak_static_load_N(spec, radial[mask], axial[mask])
+            s0 = static_safety(spec.static_rating_N, peak)
+            stats["static_safety_min"] = s0
+            found = static_warning(cfg, j, spec.kind, s0, "at the peak of the simulated window")
+            if found is not None:
+                diags.append(found)
         summary.append(stats)
     extra = result.extra.copy() if result.extra else SimulationExtra()
     extra["bearings"] = summary
-    return dataclasses.replace(result, series=series, extra=extra)
+    return dataclasses.replace(result, series=series, extra=extra, warnings=(*result.warnings, *messages(diags)),
+                               diagnostics=(*result.diagnostics, *diags))
+
+
+def peak_static_load_N(spec: BearingSpec, radial_N: np.ndarray, axial_N: np.ndarray) -> float:
+    """The largest ISO 76 static equivalent load P_0(t) = max(F_r, X0 F_r + Y0 |F_a|) over the samples given."""
+    if radial_N.size == 0:
+        return 0.0
+    p0 = np.maximum(np.abs(radial_N), spec.X0 * np.abs(radial_N) + spec.Y0 * np.abs(axial_N))
+    return float(np.max(p0))

@@ -90,6 +90,13 @@ class SNCurve:
         return math.nan  # pragma: no cover
 
     @property
+    def endurance_limit_MPa(self) -> float:
+        """The stress below which ISO 6336-2/-3 print no further point of the curve: its last node's (normal
+        quality: 0.85 of the knee at 1e10 cycles), the knee's where the curve stays flat (optimum quality). A
+        spectrum entirely below it has an infinite life (``below_endurance``), whatever a variant extrapolates."""
+        return self.endurance_MPa * (self.knee[1] if self.optimum else self.nodes[-1][1])
+
+    @property
     def static_cycles(self) -> float:
         return self.nodes[0][0]
 

@@ -34,6 +34,9 @@ class ModeLife:
     knee_cycles: float
     sn: object = None  # the SNCurve of the duty's first point (for plots; not in JSON)
     planet: int | None = None  # dynamic route, a planet member: the planet (1-based) reported, the worst
+    below_endurance: bool = False  # every class at or below the endurance limit (the knee): life_h None, infinite
+    stress_safety: float | None = None  # the factor on stress to D = 1: √safety for pitting (σ_H ∝ √F), safety for
+    # bending (σ_F ∝ F); ``safety`` is the load multiplier (JSON also ``load_multiplier``)
 
 
 @dataclass(frozen=True)
@@ -70,6 +73,21 @@ class BearingLife:
     L10_h: float | None
     loads_N: tuple[float, ...]  # the equivalent load P of each duty point
     planet_stage: int = 0  # a planet pin's bearing: its planetary stage, 1-based (shaft 0); 0 for a shaft's
+    # ISO 76 over the duty and its starts (with C_0), ISO 281 modified life over the duty (with C_u):
+    # docs/bearings.md; absent from JSON without their keys
+    static_load_rating_kN: float | None = None
+    static_equivalent_load_N: float | None = None  # the largest peak P_0
+    static_safety: float | None = None  # its s_0
+    fatigue_load_limit_kN: float | None = None
+    pitch_diameter_mm: float | None = None
+    reliability_percent: float | None = None
+    kappa: float | None = None  # the lowest of the points'
+    a_ISO: float | None = None  # the duty's: L_nm / (a_1 L10)
+    a_1: float | None = None
+    L_nm_Mrev: float | None = None  # Palmgren–Miner over the points' L_nm
+    L_nm_h: float | None = None
+    kappa_points: tuple[float, ...] | None = None  # per duty point
+    a_ISO_points: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True)

@@ -21,9 +21,10 @@ from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError, DesignError, GearcliError
 from gearcli.life import spectra
+from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
-from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
+from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
 from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
@@ -42,7 +43,7 @@ class _PointData:
     design: DesignResult  # with ratings (K_A = 1)
     cfg: DesignFile
     loads: list[StageLoads]  # per stage
-    bearing_loads_N: tuple[float, ...]  # ISO 281 equivalent load of each bearing at this point
+    bearings: PointBearings  # each bearing's ISO 281 equivalent load and peak ISO 76 P_0 at this point
     run: PointRun
 
 
@@ -103,8 +104,9 @@ def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> 
     _require_ring_rating(cfg, design, scene)
     loads = [spectra.static_loads(st.static_force_N.tangential) for st in design.stages]
     k_v = tuple(_rating(st).K_v for st in design.stages)
-    return _PointData(point, design, cfg, loads, tuple(b.equivalent_load_N for b in design.bearings),
-                      PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
+    bearings = PointBearings(tuple(b.equivalent_load_N for b in design.bearings),
+                             tuple(b.static_equivalent_load_N or 0.0 for b in design.bearings))
+    return _PointData(point, design, cfg, loads, bearings, PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
 
 
 def k_gamma(st: StageResult) -> float:
@@ -169,28 +171,28 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings), tuple(notes)
 
 
-def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> tuple[float, ...]:
+def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> PointBearings:
     """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
-    window (at a steady speed, revolutions are proportional to time)."""
+    window (at a steady speed, revolutions are proportional to time), and the window's peak ISO 76 P_0."""
     import numpy as np
 
     from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
-    from gearcli.life.channels import reaction_series
+    from gearcli.life.channels import peak_static_load_N, reaction_series
 
     lay = stage_layout(cfg, design.stages)
     if lay is None:
-        return ()
+        return PointBearings((), ())
     t = result.time_s
     mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
     series = {k: v[mask] for k, v in result.series.items()}
     specs = lay.specs
 
-    def equivalent(r: np.ndarray, j: int) -> float:
+    def equivalent(r: np.ndarray, j: int) -> tuple[float, float]:
         spec = specs[j]
         fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
         p = np.array([equivalent_load_N(a, b, spec.e, spec.X, spec.Y) for a, b in zip(fr, fa, strict=True)])
         e = life_exponent(spec.kind)
-        return float(np.mean(p**e) ** (1.0 / e))
+        return float(np.mean(p**e) ** (1.0 / e)), peak_static_load_N(spec, fr, fa)
 
     # a planetary stage: the central members carry the mean planet's force N times (their torque), each pin its
     # own planet's times the design's K_gamma (1 where the simulated position errors share the load); a pin bearing
@@ -209,10 +211,11 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
     out = []
     for j, spec in enumerate(specs):
         if spec.planet_stage and spec.planet_stage in per_planet:
-            out.append(max(equivalent(reaction_series(lay, design, s), j) for s in per_planet[spec.planet_stage]))
+            each = [equivalent(reaction_series(lay, design, s), j) for s in per_planet[spec.planet_stage]]
+            out.append((max(e for e, _ in each), max(p for _, p in each)))  # the worst planet's
         else:
             out.append(equivalent(r, j))
-    return tuple(out)
+    return PointBearings(tuple(e for e, _ in out), tuple(p for _, p in out))
 
 
 # ------------------------------------------------------------------------------------- damage
@@ -324,9 +327,12 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
                         c.endurance_MPa))
     d = sum(b.damage for b in bins)
     first = raw[0][4]
-    return ModeLife(d, hours / d if d > 0 else None, spectrum_safety(damage_at), tuple(bins),
+    below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's last node: infinite life
+    load = spectrum_safety(damage_at)
+    return ModeLife(d, hours / d if d > 0 and not below else None, load, tuple(bins),
                     f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
-                    first.static_cycles, first.knee[0], first)
+                    first.static_cycles, first.knee[0], first, below_endurance=below,
+                    stress_safety=None if load is None else load**exponent)
 
 
 def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float) -> StageLife:
@@ -382,23 +388,6 @@ def _worst(lives: Sequence[MemberLife]) -> MemberLife:
     return lives[_first_of_worst([min(_severity(m.pitting), _severity(m.bending)) for m in lives])]
 
 
-def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
-    from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivalent_load_N
-
-    base = points[0].design.bearings
-    out = []
-    for j, b in enumerate(base):
-        revs = [pd.point.hours * 60.0 * abs(pd.design.bearings[j].speed_rpm) for pd in points]
-        loads = [pd.bearing_loads_N[j] for pd in points]
-        p_eq = spectrum_equivalent_load_N(loads, revs, b.kind)
-        l10 = basic_life_Mrev(b.dynamic_load_rating_kN * 1e3, p_eq, b.kind)
-        hours = sum(pd.point.hours for pd in points)
-        mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
-        out.append(BearingLife(b.shaft, b.position_mm, b.kind, b.dynamic_load_rating_kN, p_eq, sum(revs), l10,
-                               life_hours(l10, mean_rpm), tuple(loads), b.planet_stage or 0))
-    return tuple(out)
-
-
 def _no_progress(label: str, done: int, total: int) -> None:
     pass
 
@@ -451,8 +440,20 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
     warnings += _static_warnings(stages)
+    bearings = bearing_lives(evaluated, START_PEAKS_HOOK(evaluated))
+    warnings += bearing_warnings(evaluated, bearings)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
-                      tuple(pd.run for pd in evaluated), stages, _bearing_lives(evaluated), tuple(warnings))
+                      tuple(pd.run for pd in evaluated), stages, bearings, tuple(warnings))
+
+
+def no_start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:
+    """The bearings' share of the duty points' starts (``[[duty]] starts = N``: revolutions, equivalent load,
+    speed and peak P_0 per bearing, one :class:`StartBearings` per point with starts): none until the start
+    records exist; the ``starts`` work makes them from each point's start record (START_PEAKS_HOOK)."""
+    return []
+
+
+START_PEAKS_HOOK: Callable[[Sequence[_PointData]], list[StartBearings]] = no_start_bearings
 
 
 def _static_warnings(stages: Sequence[StageLife]) -> list[str]:

@@ -48,7 +48,7 @@ def test_static_three_point_duty(tmp_path):
         for mode, nodes in (("pitting", ZNT), ("bending", YNT)):
             ml = stage[member][mode]
             assert len(ml["bins"]) == 3  # one bin per duty point
-            damage = 0.0
+            damage, below = 0.0, True
             for b, (name, hours, torque, speed) in zip(ml["bins"], POINTS, strict=True):
                 assert b["point"] == name
                 assert_allclose(b["cycles"], hours * 60.0 * speed_of(speed), rtol=1e-12)
@@ -63,8 +63,13 @@ def test_static_three_point_duty(tmp_path):
                 n_f = _cycles_to_failure(stress / endurance, nodes)
                 assert_allclose(b["cycles_to_failure"], n_f, rtol=1e-9)
                 damage += b["cycles"] / n_f
+                below = below and stress / endurance < nodes[-1][1]  # under the curve's last node (0.85 at 1e10)
             assert_allclose(ml["damage"], damage, rtol=1e-9)
-            assert_allclose(ml["life_h"], total_h / damage, rtol=1e-9)
+            assert ml["below_endurance"] == below
+            if below:  # every class under the endurance limit: an infinite life, never hours / 1e-40
+                assert ml["life_h"] is None
+            else:
+                assert_allclose(ml["life_h"], total_h / damage, rtol=1e-9)
 
 
 def test_static_safety_makes_the_damage_one(tmp_path):

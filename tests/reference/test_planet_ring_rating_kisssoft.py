@@ -100,11 +100,16 @@ def test_planet_root_on_the_ring_side():
 
 
 def test_load_sharing_factor_scales_the_ring_mesh_like_the_sun_mesh():
-    """K_γ multiplies the most loaded planet's force on both meshes: σ_H0 ∝ √K_γ, σ_F0 ∝ K_γ."""
+    """K_γ multiplies the most loaded planet's force on both meshes: σ_H ∝ √K_γ, σ_F ∝ K_γ; ISO's nominal σ_H0 and
+    σ_F0 (the nominal force's) stay, K_γ is listed with the load factors."""
     base, shared = _rating(_doc()), _rating(_doc(1.1))
-    assert_allclose(shared.sigma_H0_MPa / base.sigma_H0_MPa, 1.1 ** 0.5, rtol=1e-12)
-    assert_allclose(shared.pinion.sigma_F0_MPa / base.pinion.sigma_F0_MPa, 1.1, rtol=1e-12)
-    assert_allclose(shared.gear.sigma_F0_MPa / base.gear.sigma_F0_MPa, 1.1, rtol=1e-12)  # the ring's root too
+    assert shared.K_gamma == 1.1 and base.K_gamma == 1.0
+    assert_allclose(shared.sigma_H0_MPa, base.sigma_H0_MPa, rtol=1e-12)
+    assert_allclose(shared.sigma_H_MPa / base.sigma_H_MPa, 1.1 ** 0.5, rtol=1e-12)
+    for member in ("pinion", "gear"):  # the planet's and the ring's root
+        a, b = getattr(base, member), getattr(shared, member)
+        assert_allclose(b.sigma_F0_MPa, a.sigma_F0_MPa, rtol=1e-12)
+        assert_allclose(b.sigma_F_MPa / a.sigma_F_MPa, 1.1, rtol=1e-12)
 
 
 def test_ring_pitting_below_minimum_is_a_warning():

@@ -147,5 +147,11 @@ def test_load_sharing_factor_scales_the_rated_force_only():
         assert_allclose(st.static_force_N.tangential, 779454.877, rtol=1e-6)  # nominal, per planet
         assert st.rating is not None and st.planetary.planet_ring.rating is not None  # rated (test_planet_ring_rating_kisssoft.py)
         rated.append(st.rating)
-    # σ_H0 ∝ √F_t: K_gamma = 1.1 raises it by √1.1 (the report's sigH0 759.92 is at K_gamma's F_t... not printed)
-    assert_allclose(rated[1].sigma_H0_MPa / rated[0].sigma_H0_MPa, math.sqrt(1.1), rtol=1e-12)
+    # ISO's nominal σ_H0 is the nominal force's (K_gamma is a load factor beside K_A, K_v, K_Hβ, K_Hα):
+    # unchanged by K_gamma; σ_H = σ_H0 √(K_A K_gamma K_v K_Hβ K_Hα) rises by √1.1
+    assert_allclose(rated[1].sigma_H0_MPa, rated[0].sigma_H0_MPa, rtol=1e-12)
+    assert (rated[0].K_gamma, rated[1].K_gamma) == (1.0, 1.1)
+    assert_allclose(rated[1].sigma_H_MPa / rated[0].sigma_H_MPa, math.sqrt(1.1), rtol=1e-12)
+    r = rated[1]
+    assert_allclose(r.sigma_H_MPa, r.sigma_H0_MPa * math.sqrt(r.K_A * r.K_gamma * r.K_v * r.K_Hbeta * r.K_Halpha),
+                    rtol=1e-12)

@@ -1,0 +1,133 @@
+"""A bearing's ISO 281 modified life and ISO 76 static safety from its design-file keys (docs/bearings.md).
+
+:func:`check_inputs` refuses an incomplete set (exit 2 naming the key); :func:`lubrication` reads the oil at its
+operating temperature; :func:`static_figures` and :func:`modified_figures` give the new figures of one bearing
+at one load; :func:`static_warning` warns below the minimum s_0. The life side (``gearcli.life``) combines the
+figures of the duty points and starts through :func:`duty_modified_life` and :func:`min_static_safety`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+from gearcli.design import iso281
+from gearcli.diagnostics import Diagnostic, warning
+from gearcli.errors import DesignError
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile
+    from gearcli.results import BearingResult
+
+STATIC_SAFETY_LOW = "bearing_static_safety_low"
+KAPPA_OUT_OF_RANGE = "bearing_kappa_below_range"
+MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent")
+
+
+def wants_modified_life(cfg: DesignFile, j: int) -> bool:
+    b = cfg.bearing[j]
+    return any(getattr(b, k) is not None for k in MODIFIED_KEYS)
+
+
+def check_inputs(cfg: DesignFile) -> None:
+    """Every bearing that asks for its modified life (any of C_u, d_m, reliability) has C_u and d_m, and the
+    [lubricant] table has the oil and its cleanliness; DesignError naming the missing key otherwise."""
+    for j, b in enumerate(cfg.bearing):
+        if "static_factors" in b.model_fields_set and b.static_load_rating_kN is None:
+            raise DesignError("static_factors set the ISO 76 static equivalent load, whose safety needs the static "
+                              "load rating C_0", key=f"bearing[{j}].static_load_rating_kN")
+    asking = [j for j in range(len(cfg.bearing)) if wants_modified_life(cfg, j)]
+    for j in asking:
+        for key in ("fatigue_load_limit_kN", "pitch_diameter_mm"):
+            if getattr(cfg.bearing[j], key) is None:
+                raise DesignError("the ISO 281 modified life needs the fatigue load limit C_u and the pitch diameter "
+                                  "d_m = (d + D)/2 of the bearing (catalogue values)", key=f"bearing[{j}].{key}")
+    if not asking:
+        return
+    why = f"bearing[{asking[0]}] asks for its ISO 281 modified life, which needs "
+    lub = cfg.lubricant
+    if lub is None or lub.viscosity_40C_mm2_s is None:
+        raise DesignError(why + "the oil's viscosity (and its operating temperature)",
+                          key="lubricant.viscosity_40C_mm2_s")
+    if lub.temperature_C is None:
+        raise DesignError(why + "the oil's operating temperature (kappa = nu / nu_1 at it)", key="lubricant.temperature_C")
+    if lub.temperature_C != 40.0 and lub.viscosity_100C_mm2_s is None:
+        raise DesignError(why + f"the oil's viscosity at {lub.temperature_C:g} °C: give its 100 °C value too "
+                          "(ASTM D341 through the 40 °C and 100 °C values)", key="lubricant.viscosity_100C_mm2_s")
+    if lub.contamination is None and lub.e_C is None:
+        raise DesignError(why + "the lubricant's cleanliness: an ISO 281 level (extreme, high, normal, slight, "
+                          "typical, severe, very_severe) or e_C", key="lubricant.contamination")
+
+
+def lubrication(cfg: DesignFile) -> iso281.Lubrication | None:
+    """The oil at its operating temperature and its cleanliness (None without what a_ISO needs)."""
+    lub = cfg.lubricant
+    if (lub is None or lub.viscosity_40C_mm2_s is None or lub.temperature_C is None
+            or (lub.contamination is None and lub.e_C is None)):
+        return None
+    nu = iso281.viscosity_at_mm2_s(lub.temperature_C, lub.viscosity_40C_mm2_s, lub.viscosity_100C_mm2_s)
+    return iso281.Lubrication(nu, lub.contamination, lub.e_C)
+
+
+def min_static_safety_required(cfg: DesignFile, kind: str) -> float:
+    """``[rating] min_static_safety_bearing`` or the guideline for the bearing kind (iso281.MIN_STATIC_SAFETY)."""
+    given = cfg.rating.min_static_safety_bearing if cfg.rating is not None else None
+    return given if given is not None else iso281.MIN_STATIC_SAFETY[kind]
+
+
+def static_figures(static_rating_N: float | None, X0: float, Y0: float, radial_N: float, axial_N: float
+                   ) -> tuple[float | None, float | None]:
+    """(P_0, s_0) at one load; (None, None) without C_0."""
+    if static_rating_N is None:
+        return None, None
+    p0 = iso281.static_equivalent_load_N(radial_N, axial_N, X0, Y0)
+    return p0, iso281.static_safety(static_rating_N, p0)
+
+
+def min_static_safety(static_rating_N: float, peak_loads_N: Sequence[float]) -> tuple[float, float | None]:
+    """(largest P_0, smallest s_0) over a list of peak static equivalent loads: the duty points' and, once the
+    ``starts`` branch adds them, every start's peaks (``gearcli.life.run.START_PEAKS_HOOK``)."""
+    p0 = max(peak_loads_N, default=0.0)
+    return p0, iso281.static_safety(static_rating_N, p0)
+
+
+def static_warning(cfg: DesignFile, j: int, kind: str, s0: float | None, where: str) -> Diagnostic | None:
+    """A warning when bearing j's s_0 is below the minimum (``where``: "at the static load", ...)."""
+    needed = min_static_safety_required(cfg, kind)
+    if s0 is None or s0 >= needed:
+        return None
+    return warning(STATIC_SAFETY_LOW, f"bearing {j + 1}: static safety s_0 = C_0/P_0 = {s0:.3g} {where} is below the "
+                   f"minimum {needed:.3g} (ISO 76; [rating] min_static_safety_bearing); choose a bearing with a "
+                   "larger C_0", bearing=j + 1, s0=s0, s0_min=needed)
+
+
+def kappa_warning(j: int, kappa: float) -> Diagnostic | None:
+    if kappa >= iso281.KAPPA_MIN:
+        return None
+    return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {kappa:.3g} is below 0.1, where "
+                   "ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
+
+
+def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.ModifiedLife]]
+                       ) -> tuple[float | None, float | None]:
+    """Palmgren–Miner over load levels (revolutions n_i, L10_i, its modified life): L_nm = sum n_i / sum (n_i /
+    L_nm,i), and the duty's effective a_ISO = L_nm / (a_1 L10) with L10 over the same levels (None, 0 when no
+    level damages the bearing)."""
+    revs = sum(n for n, _, _ in levels)
+    damage = sum(n / m.L_nm_Mrev for n, _, m in levels if m.L_nm_Mrev)
+    basic = sum(n / l10 for n, l10, _ in levels if l10)
+    if damage <= 0.0 or revs <= 0.0:
+        return None, None
+    l_nm = revs / damage
+    a1 = levels[0][2].a_1
+    return l_nm, l_nm / (a1 * revs / basic) if basic > 0.0 else None
+
+
+def bearing_diagnostics(cfg: DesignFile, bearings: Sequence[BearingResult]) -> list[Diagnostic]:
+    """The design's bearing warnings: s_0 below its minimum at the static load, kappa below ISO 281's range."""
+    out: list[Diagnostic] = []
+    for j, b in enumerate(bearings):
+        found = [static_warning(cfg, j, b.kind, b.static_safety, "at the static load"),
+                 None if b.kappa is None else kappa_warning(j, b.kappa)]
+        out += [d for d in found if d is not None]
+    return out

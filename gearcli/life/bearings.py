@@ -1,0 +1,123 @@
+"""ISO 281 over the duty (docs/life.md, docs/bearings.md): per bearing the spectrum's equivalent load and basic
+life L10; with its keys the modified life L_nm (per load level a_ISO at the level's own load and speed,
+combined by Palmgren–Miner as ISO 281 does for variable conditions) and the ISO 76 static safety at the
+largest peak load of the duty points and their starts.
+
+Starts: :func:`bearing_lives` takes the duty points' start records as :class:`StartBearings` (per bearing the
+revolutions of all the point's starts, their ISO 281 equivalent load, the bearing's mean speed during a start
+and the start's peak static equivalent load P_0): their revolutions count in L10 and L_nm as load levels of
+their own, their peaks in s_0. ``gearcli.life.run.START_PEAKS_HOOK`` makes them from the evaluated points.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from gearcli.design import iso281
+from gearcli.design.bearing_life import duty_modified_life, lubrication, min_static_safety, static_warning
+from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivalent_load_N
+from gearcli.life.result import BearingLife
+
+if TYPE_CHECKING:
+    from gearcli.life.run import _PointData
+
+
+@dataclass(frozen=True)
+class PointBearings:
+    """What one duty point gives each bearing: the ISO 281 equivalent load of its (simulated) load and its
+    peak ISO 76 static equivalent load P_0."""
+
+    equivalent_N: tuple[float, ...]
+    peak_static_N: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class StartBearings:
+    """What the starts of one duty point give each bearing (from the point's start record)."""
+
+    point: int  # index of the duty point in the evaluated points
+    revolutions: tuple[float, ...]  # over all the point's starts
+    equivalent_N: tuple[float, ...]  # ISO 281 equivalent load over a start's revolutions
+    speed_rpm: tuple[float, ...]  # the bearing's mean speed during a start (kappa of the level)
+    peak_static_N: tuple[float, ...]  # the start's peak ISO 76 P_0
+
+
+@dataclass(frozen=True)
+class _Level:
+    """One load level of a bearing: its revolutions, equivalent load and speed, and the point it belongs to."""
+
+    revolutions: float
+    load_N: float
+    speed_rpm: float
+    point: int
+
+
+def _levels(points: Sequence[_PointData], starts: Sequence[StartBearings], j: int) -> list[_Level]:
+    """Bearing j's load levels: the duty points', then their starts'."""
+    out = [_Level(pd.point.hours * 60.0 * abs(pd.design.bearings[j].speed_rpm), pd.bearings.equivalent_N[j],
+                  pd.design.bearings[j].speed_rpm, i) for i, pd in enumerate(points)]
+    return out + [_Level(s.revolutions[j], s.equivalent_N[j], s.speed_rpm[j], s.point) for s in starts]
+
+
+def _modified(points: Sequence[_PointData], j: int, levels: Sequence[_Level]) -> dict:
+    """The modified-life figures of bearing j over the duty (empty without C_u)."""
+    b = points[0].design.bearings[j]
+    cu_kN, d_m = b.fatigue_load_limit_kN, b.pitch_diameter_mm
+    if cu_kN is None or d_m is None:
+        return {}
+    rated = []
+    for lv in levels:
+        pd = points[lv.point]
+        lub = lubrication(pd.cfg)
+        assert lub is not None  # design's check_inputs asked for it
+        own = pd.design.bearings[j]
+        l10 = basic_life_Mrev(own.dynamic_load_rating_kN * 1e3, lv.load_N, own.kind)
+        m = iso281.modified_life(l10, lv.load_N, lv.speed_rpm, own.kind, (own.fatigue_load_limit_kN or cu_kN) * 1e3,
+                                 own.pitch_diameter_mm or d_m, own.reliability_percent or 90.0, lub)
+        rated.append((lv.revolutions / 1e6, l10, m))
+    l_nm, a_iso = duty_modified_life(rated)
+    hours = sum(pd.point.hours for pd in points)
+    mean_rpm = sum(lv.revolutions for lv in levels) / (60.0 * hours) if hours else 0.0
+    own_points = rated[:len(points)]
+    return {"fatigue_load_limit_kN": b.fatigue_load_limit_kN, "pitch_diameter_mm": b.pitch_diameter_mm,
+            "reliability_percent": b.reliability_percent, "kappa": min(m.kappa for _, _, m in rated),
+            "a_ISO": a_iso, "a_1": rated[0][2].a_1, "L_nm_Mrev": l_nm, "L_nm_h": life_hours(l_nm, mean_rpm),
+            "kappa_points": tuple(m.kappa for _, _, m in own_points),
+            "a_ISO_points": tuple(m.a_ISO for _, _, m in own_points)}
+
+
+def _static(points: Sequence[_PointData], j: int, starts: Sequence[StartBearings]) -> dict:
+    """P_0 and s_0 of bearing j at the largest peak of the duty points and their starts (empty without C_0)."""
+    b = points[0].design.bearings[j]
+    if b.static_load_rating_kN is None:
+        return {}
+    peaks = [pd.bearings.peak_static_N[j] for pd in points] + [s.peak_static_N[j] for s in starts]
+    p0, s0 = min_static_safety(b.static_load_rating_kN * 1e3, peaks)
+    return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0}
+
+
+def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] = ()) -> tuple[BearingLife, ...]:
+    """Every bearing over the duty ``points`` (the life run's evaluated points) and the points' ``starts``."""
+    base = points[0].design.bearings
+    out = []
+    for j, b in enumerate(base):
+        levels = _levels(points, starts, j)
+        revs = [lv.revolutions for lv in levels]
+        p_eq = spectrum_equivalent_load_N([lv.load_N for lv in levels], revs, b.kind)
+        l10 = basic_life_Mrev(b.dynamic_load_rating_kN * 1e3, p_eq, b.kind)
+        hours = sum(pd.point.hours for pd in points)
+        mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
+        out.append(BearingLife(b.shaft, b.position_mm, b.kind, b.dynamic_load_rating_kN, p_eq, sum(revs), l10,
+                               life_hours(l10, mean_rpm), tuple(pd.bearings.equivalent_N[j] for pd in points),
+                               b.planet_stage or 0, **_static(points, j, starts), **_modified(points, j, levels)))
+    return tuple(out)
+
+
+def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife]) -> list[str]:
+    """s_0 below the minimum over the duty (and its starts)."""
+    cfg = points[0].cfg
+    found = [static_warning(cfg, j, b.kind, b.static_safety, "at the largest peak load over the duty")
+             for j, b in enumerate(lives)]
+    return [d.message for d in found if d is not None]
