@@ -10,7 +10,6 @@ import math
 from dataclasses import dataclass, fields, is_dataclass, replace
 from typing import TYPE_CHECKING
 
-from gearcli.design import planetary as pl
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.checks import check_inputs, design_diagnostics, stiffness_diagnostics
@@ -25,7 +24,7 @@ from gearcli.design.inertia import (
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
-from gearcli.diagnostics import DESIGN, Diagnostic, warning
+from gearcli.diagnostics import DESIGN, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
     DesignResult,
@@ -36,6 +35,7 @@ from gearcli.results import (
     StageResult,
     StaticForces,
 )
+from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -47,33 +47,25 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
-    from gearcli.config.schema import PlanetaryStage
-
-    pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
+    kind = tuple(design_kind(s) for s in cfg.stage)
+    pairs = _pair_equivalent(cfg)
     check_inputs(cfg)
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                             cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
-                            tuple(pl.reverse_efficiency(s, k) if isinstance(s, PlanetaryStage) else None
-                                  for k, s in enumerate(cfg.stage)))
-    stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
+                            tuple(kind[k].reverse_efficiency(s, k) for k, s in enumerate(cfg.stage)))
+    stages = tuple(kind[k].result(cfg, pairs, k, kin, _stage_result) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
     if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
         from gearcli.design.rating import rate_design
 
-        rated, rating_diagnostics = rate_design(pairs, tuple(pl.with_load_sharing(s) for s in stages))
+        rated, rating_diagnostics = rate_design(pairs, tuple(kind[k].as_rated(s) for k, s in enumerate(stages)))
         stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
-        stages = tuple(_nominal(_rate_planet_ring(cfg, k, s)) for k, s in enumerate(stages))
-        from gearcli.design.rating_internal import planet_ring_safety_diagnostics
-
-        rating_diagnostics += tuple(d for s in stages for d in planet_ring_safety_diagnostics(cfg, s))
-        rating_diagnostics += tuple(_unrated_ring_mesh(cfg, s) for s in stages
-                                    if s.planetary is not None and s.rating is not None
-                                    and s.planetary.planet_ring.rating is None)
+        stages = tuple(kind[k].rate_more(cfg, k, s) for k, s in enumerate(stages))
+        rating_diagnostics += tuple(d for k, s in enumerate(stages) for d in kind[k].rating_diagnostics(cfg, s))
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
-    planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
-                      for st in stages for w in pl.planetary_warnings(st))
+    own = tuple(d for k, st in enumerate(stages) for d in kind[k].diagnostics(st))
     jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
                            f"{st.backlash_circumferential_mm[1]:.4g} mm (< 0): at the upper tooth-thickness "
                            "allowances and the smallest centre distance the teeth jam; thin the teeth "
@@ -86,7 +78,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
     from gearcli.design.bearing_life import bearing_diagnostics
 
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *jammed,
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *own, *pins, *jammed,
                    *stiffness_diagnostics(stages), *rating_diagnostics, *bearing_diagnostics(cfg, bearings))
     return DesignResult(
         title=cfg.title,
@@ -106,62 +98,12 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     )
 
 
-UNRATED_MESH = "mesh_not_rated"
-
-
-def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
-    """A parallel stage as before; a planetary stage as its sun–planet mesh (in the carrier's frame, per
-    planet) with its members and planet–ring mesh attached (``design.planetary``)."""
-    from gearcli.config.schema import PlanetaryStage
-
-    stage = cfg.stage[k]
-    if not isinstance(stage, PlanetaryStage):
-        return _stage_result(pairs, k, kin)
-    return pl.planetary_result(cfg, k, kin, _stage_result(pairs, k, pl.mesh_train(k, stage, kin), stage.planet.count))
-
-
-def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
-    """A rated planetary stage with its planet–ring mesh rated too (ISO 6336-2/-3, docs/iso6336.md)."""
-    if stage.planetary is None or stage.rating is None:
-        return stage
-    from gearcli.design.rating_internal import rate_planet_ring
-
-    ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
-    mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
-    return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
-
-
-def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
-    """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
-    from gearcli.config.schema import PlanetaryStage
-
-    k = stage.index - 1
-    st = cfg.stage[k]
-    assert isinstance(st, PlanetaryStage)
-    ring_mat, planet_mat = cfg.materials[st.ring.material], cfg.materials[st.planet.material]
-    if st.ring.flank_roughness_Rz_um is None:
-        key = f"stage[{k}].ring.flank_roughness_Rz_um"
-    else:
-        missing = [(name, m) for name, m in ((st.ring.material, ring_mat), (st.planet.material, planet_mat))
-                   if m.treatment is None or m.contact_fatigue_limit_MPa is None or m.bending_fatigue_limit_MPa is None]
-        key = f"materials.{missing[0][0]}" if missing else "rating"
-    return warning(UNRATED_MESH, f"stage {stage.index}: the planet–ring mesh is not rated (ISO 6336): it needs {key} "
-                   "(the ring's flank roughness, and the ring's and planet's material treatment and fatigue limits); "
-                   "the ring and the planet's ring side have no safeties", stage=stage.index, mesh="planet_ring",
-                   key=key)
-
-
-def _nominal(stage: StageResult) -> StageResult:
-    """A planetary stage's ratings with ISO's nominal σ_H0, σ_F0 and K_gamma among the load factors (rated at
-    K_gamma times the mean planet's force: ``pl.with_load_sharing``)."""
-    p = stage.planetary
-    if p is None or stage.rating is None:
-        return stage
-    k = p.load_sharing_factor
-    ring = p.planet_ring
-    if ring.rating is not None:
-        p = replace(p, planet_ring=replace(ring, rating=pl.nominal_with_sharing(ring.rating, k)))
-    return replace(stage, rating=pl.nominal_with_sharing(stage.rating, k), planetary=p)
+def _pair_equivalent(cfg: DesignFile) -> DesignFile:
+    """``cfg`` with every stage seen as the pair its kind designs (the pair's code and the rating read it)."""
+    stages = [design_kind(s).pair(s) for s in cfg.stage]
+    if all(a is b for a, b in zip(stages, cfg.stage, strict=True)):
+        return cfg
+    return cfg.model_copy(update={"stage": stages})
 
 
 def _require_finite(obj, key: str) -> None:
@@ -388,18 +330,9 @@ def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: in
                    contact_ratio_transverse_with_allowances=a.contact_ratio_transverse_with_allowances)
 
 
-def _chain_inertia(stage: StageResult, side: str) -> float:
-    """The inertia a stage puts on its input (pinion) or output (gear) shaft: a planetary's member there."""
-    p = stage.planetary
-    if p is None:
-        return (stage.pinion if side == "input" else stage.gear).inertia_kg_m2
-    member = p.input if side == "input" else p.output
-    return {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}[member]
-
-
 def _shaft_results(stages: tuple[StageResult, ...], kin: Train) -> tuple[ShaftResult, ...]:
-    inertias = shaft_inertias_kg_m2(tuple(_chain_inertia(s, "input") for s in stages),
-                                    tuple(_chain_inertia(s, "output") for s in stages))
+    inertias = shaft_inertias_kg_m2(tuple(design_kind(s).inertia(s, "input") for s in stages),
+                                    tuple(design_kind(s).inertia(s, "output") for s in stages))
     return tuple(
         ShaftResult(index=j + 1, speed_deg_s=speed_deg_s(w), speed_rpm=speed_rpm(w),
                     torque_Nmm=kin.shaft_torque_Nmm(j), inertia_kg_m2=inertias[j],

@@ -105,6 +105,7 @@ _STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_m
 
 
 def _parallel_stage(stage: _Doc) -> _Doc:
+    stage.pop("type", None)  # a parallel stage's JSON has no type (today's keys)
     stage.pop("planetary", None)
     if isinstance(stage.get("rating"), dict):  # K_gamma belongs to planetary stages (a parallel rating: today's keys)
         stage["rating"].pop("K_gamma", None)
@@ -114,6 +115,7 @@ def _parallel_stage(stage: _Doc) -> _Doc:
 def _planetary_stage(stage: _Doc) -> _Doc:
     """A planetary stage's JSON: type, members (sun, planet, ring, carrier), ratio and the two meshes per planet."""
     p = stage.pop("planetary")
+    stage.pop("type")
     head = {k: stage.pop(k) for k in _STAGE_KEYS}
     stage.pop("pinion")
     stage.pop("gear")
