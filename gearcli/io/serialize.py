@@ -8,7 +8,7 @@ import io
 import json
 import math
 from collections.abc import Iterable, Sequence
-from typing import Any, TypeAlias
+from typing import Any, Protocol, TypeAlias, cast
 
 import gearcli
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
@@ -16,6 +16,7 @@ from gearcli.core.text import csv_text_cell
 from gearcli.diagnostics import warning_objects
 from gearcli.io.channels import named
 from gearcli.results import DesignResult, SimulationResult, drop_absent_bearing_keys
+from gearcli.stages import kinds
 
 #: a JSON object while this module rearranges it (nested keys moved, popped); the public functions return
 #: :data:`~gearcli.core.jsontypes.JsonObject`
@@ -68,7 +69,7 @@ def _design_doc(result: DesignResult) -> _Doc:
         drop_absent_bearing_keys(b)
     for s in doc["stages"]:
         _drop_absent_allowances(s)
-    doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
+    doc["stages"] = [_stage_json(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
     return doc
 
@@ -100,30 +101,15 @@ def _allowance_columns(d: _Doc) -> _Doc:
     return out
 
 
-_STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_module_mm", "normal_pressure_angle_deg",
-               "transverse_pressure_angle_deg", "helix_angle_deg", "base_helix_angle_deg")
+class _StageJson(Protocol):
+    """What the JSON asks of a stage's kind (:mod:`gearcli.stages.io`)."""
+
+    def json_stage(self, stage: _Doc) -> _Doc:
+        """The stage's JSON object from its result's plain dict (which has the kind's ``type``)."""
 
 
-def _parallel_stage(stage: _Doc) -> _Doc:
-    stage.pop("type", None)  # a parallel stage's JSON has no type (today's keys)
-    stage.pop("planetary", None)
-    if isinstance(stage.get("rating"), dict):  # K_gamma belongs to planetary stages (a parallel rating: today's keys)
-        stage["rating"].pop("K_gamma", None)
-    return stage
-
-
-def _planetary_stage(stage: _Doc) -> _Doc:
-    """A planetary stage's JSON: type, members (sun, planet, ring, carrier), ratio and the two meshes per planet."""
-    p = stage.pop("planetary")
-    stage.pop("type")
-    head = {k: stage.pop(k) for k in _STAGE_KEYS}
-    stage.pop("pinion")
-    stage.pop("gear")
-    ring_mesh = p.pop("planet_ring")
-    planet = {**p.pop("planet"), "count": p["planet_count"], "mass_kg": p.pop("planet_mass_kg")}
-    return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
-            "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,
-            "meshes": [{"name": "sun_planet", **stage}, {"name": "planet_ring", **ring_mesh}]}
+def _stage_json(stage: _Doc) -> _Doc:
+    return cast(_StageJson, kinds.facet(str(stage.get("type") or kinds.PARALLEL), "io")).json_stage(stage)
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonObject:

@@ -13,7 +13,7 @@ import io
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal, Protocol
+from typing import TYPE_CHECKING, Literal, Protocol, cast
 
 from rich.cells import cell_len
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
@@ -23,6 +23,7 @@ from rich.text import Text
 from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
 from gearcli.results import DesignResult, InternalRatingResult, SimulationResult
+from gearcli.stages import kinds
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
@@ -205,10 +206,10 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         row("overlap ratio ε_β", lambda st: st.overlap_ratio, 4),
         row("total ε_γ", lambda st: st.contact_ratio_total, 4),
     ])
-    def pinion(label, fn):  # a planetary stage's members are in its own table (sun, planets, ring, carrier)
-        return label, [_g(fn(st)) if st.planetary is None else "—" for st in s]
+    def pinion(label, fn):  # a kind whose members are not a pinion's has its own table (a planetary's sun, …)
+        return label, [_g(fn(st)) if _kind(st).pair_members else "—" for st in s]
 
-    parallel = any(st.planetary is None for st in s)
+    parallel = any(_kind(st).pair_members for st in s)
     loads = _quantity_table("loads and stiffness", cols, [
         *([pinion("pinion speed [rpm]", lambda st: st.pinion.speed_rpm),
            pinion("pinion torque [N·mm]", lambda st: st.pinion.torque_Nmm),
@@ -246,14 +247,42 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
-    planetary = [*_allowance_table(r), *_planetary_design(r)]
+    own = [*_allowance_table(r), *_kind_tables(r)]
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
         from gearcli.io.life_tables import bearing_table
 
-        return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r),
-                train, bearing_table(r.bearings), *summary]
-    return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r), train,
-            *summary]
+        return [geometry, loads, *([rating_table(rated)] if rated else []), *own, train, bearing_table(r.bearings),
+                *summary]
+    return [geometry, loads, *([rating_table(rated)] if rated else []), *own, train, *summary]
+
+
+class StageOutput(Protocol):
+    """What the tables ask of a stage's kind (its output facet, :mod:`gearcli.stages.io`, registered when
+    ``gearcli.io`` is imported)."""
+
+    @property
+    def pair_members(self) -> bool:
+        """The stage's members are a pinion and a gear (their rows in the loads table)."""
+
+    @property
+    def load_sharing(self) -> bool:
+        """The stage's rating has a load-sharing factor K_γ (a row of the rating table)."""
+
+    def design_tables(self, r: DesignResult, stages: list) -> list[RenderableType]:
+        """The kind's own tables of ``stages`` (the design's stages of this kind), after the allowances."""
+
+
+def _kind(st: object) -> StageOutput:
+    """The output facet of a stage's kind."""
+    return cast(StageOutput, kinds.facet(kinds.kind_of(st), "io"))
+
+
+def _kind_tables(r: DesignResult) -> list[RenderableType]:
+    """Each stage kind's own tables (a planetary's members and planet–ring mesh), kinds in stage order."""
+    order = list(dict.fromkeys(kinds.kind_of(st) for st in r.stages))
+    return [t for name in order
+            for t in _kind(r.stages[[kinds.kind_of(st) for st in r.stages].index(name)]).design_tables(
+                r, [st for st in r.stages if kinds.kind_of(st) == name])]
 
 
 def _limits(values: Sequence[float] | None, digits: int) -> str:
@@ -274,89 +303,6 @@ def _allowance_table(r: DesignResult) -> list[RenderableType]:
         ("backlash j_n max / min [mm]", [_limits(st.backlash_normal_mm, 3) for st in s]),
         ("ε_α e / m / i", [_limits(st.contact_ratio_transverse_with_allowances, 3) for st in s]),
     ])]
-
-
-@dataclass(frozen=True)
-class _RatedMesh:
-    """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
-
-    index: int
-    rating: InternalRatingResult
-
-
-def _planet_ring_rating(r: DesignResult) -> list[RenderableType]:
-    """The planet–ring meshes' rating (``meshes[1].rating``), below the planetary stages' table."""
-    meshes = [_RatedMesh(st.index, st.planetary.planet_ring.rating) for st in r.stages
-              if st.planetary is not None and st.planetary.planet_ring.rating is not None]
-    if not meshes:
-        return []
-    return [rating_table(meshes, "planet–ring mesh strength rating, ISO 6336:2006 method B (p planet, g ring)")]
-
-
-def _planetary_design(r: DesignResult) -> list[RenderableType]:
-    """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh."""
-    s = [st for st in r.stages if st.planetary is not None]
-    ps = [st.planetary for st in r.stages if st.planetary is not None]
-    if not ps:
-        return []
-    rows = [
-        ("held / driven / output", [f"{p.fixed} / {p.input} / {p.output}" for p in ps]),
-        ("teeth sun / planet / ring, planets", [f"{p.sun.teeth} / {p.planet.teeth} / {p.ring.teeth}, "
-                                                f"{p.planet_count}" for p in ps]),
-        ("ratio |ω_in/ω_out|", [_g(p.ratio, 6) for p in ps]),
-        *(_member_row(m, ps) for m in ("sun", "carrier", "ring")),
-        ("moment balance T_sun + T_carrier + T_ring [N·m]", [_balance(p) for p in ps]),
-        ("efficiency stage η / carrier-held η_0 / per mesh η_m",
-         [f"{_g(p.stage_efficiency, 4)} / {_g(p.basic_efficiency, 5)} / {_g(p.mesh_efficiency, 5)}"
-          for p in _efficiencies(s)]),
-        ("planet speed relative to the carrier [rpm]", [_g(p.planet.speed_rpm) for p in ps]),
-        ("per planet, carrier frame: sun-side / planet torque [N·m]",
-         [f"{_g(st.pinion.torque_Nm)} / {_g(st.gear.torque_Nm)}" for st in s]),
-        ("per planet, carrier frame: rolling power [kW]", [_g(abs(st.pinion.power_kW)) for st in s]),
-        ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
-                                     f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
-        ("planet–ring α_wt [°]", [_g(p.planet_ring.working_pressure_angle_deg) for p in ps]),
-        ("planet–ring ε_α", [_g(p.planet_ring.contact_ratio_transverse, 4) for p in ps]),
-        ("planet–ring c′ / c_γα [N/(mm·µm)]", [f"{_g(p.planet_ring.iso6336_single_pair_stiffness_N_mm_um)} / "
-                                              f"{_g(p.planet_ring.iso6336_mesh_stiffness_N_mm_um)}" for p in ps]),
-        ("F_t per planet: sun–planet / planet–ring [N]", [f"{_g(st.static_force_N.tangential)} / "
-                                                        f"{_g(p.planet_ring.static_force_N.tangential)}"
-                                                        for st, p in zip(s, ps, strict=True)]),
-        ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
-        ("planets at [°], load-sharing K_γ", [f"{', '.join(_g(a, 5) for a in p.planet_angles_deg)}, "
-                                             f"{_g(p.load_sharing_factor, 4)}" for p in ps]),
-    ]
-    return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
-                            [f"stage {st.index}" for st in s], rows)]
-
-
-def _member_row(member: str, ps) -> tuple[str, list[str]]:
-    """A member's own speed, torque (its magnitude) and power, in the housing's frame."""
-    def cell(g) -> str:
-        return f"{_g(g.speed_rpm)} / {_g(g.torque_Nm)} / {_g(abs(g.power_kW))}"
-
-    return f"{member}: speed [rpm] / torque [N·m] / power [kW]", [cell(getattr(p, member)) for p in ps]
-
-
-def _balance(p) -> str:
-    """The signed external torques (positive in the input member's sense) and their sum."""
-    m = p.moment_balance_Nm
-    if not m:
-        return "—"
-    terms = [m["sun"], m["carrier"], m["ring"]]
-    text_ = _g(terms[0]) + "".join(f" {'-' if v < 0 else '+'} {_g(abs(v))}" for v in terms[1:])
-    return f"{text_} = {_g(sum(terms), 2)}"
-
-
-@dataclass(frozen=True)
-class _Efficiencies:
-    stage_efficiency: float
-    basic_efficiency: float
-    mesh_efficiency: float
-
-
-def _efficiencies(stages) -> list[_Efficiencies]:
-    return [_Efficiencies(st.efficiency, st.planetary.basic_efficiency, st.planetary.mesh_efficiency) for st in stages]
 
 
 class _HasRating(Protocol):
@@ -387,10 +333,10 @@ def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, IS
         return label, [f"{_g(getattr(_rating(st).pinion, name), digits)} / "
                        f"{_g(getattr(_rating(st).gear, name), digits)}" for st in stages]
 
-    planetary = any(_rating(st).K_gamma != 1.0 or getattr(st, "planetary", None) is not None for st in stages)
+    sharing = any(_rating(st).K_gamma != 1.0 or _kind(st).load_sharing for st in stages)
     return _quantity_table(title, cols, [
         one("application factor K_A", lambda r: r.K_A),
-        *([one("load-sharing factor K_γ", lambda r: r.K_gamma)] if planetary else []),
+        *([one("load-sharing factor K_γ", lambda r: r.K_gamma)] if sharing else []),
         ("dynamic factor K_v", [f"{_rating(st).K_v:.4g} ({_rating(st).K_v_source})" for st in stages]),
         ("face load factor K_Hβ", [f"{_rating(st).K_Hbeta:.4g} ({_rating(st).K_Hbeta_source})" for st in stages]),
         one("face load factor K_Fβ", lambda r: r.K_Fbeta),
