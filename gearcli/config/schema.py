@@ -708,11 +708,11 @@ class DesignFile(_Table):
         return self
 
     def pair(self, k: int) -> Stage:
-        """Stage k as a gear pair: a parallel stage (a planetary one is seen as its sun–planet pair through
-        ``design.planetary.pair_equivalent``)."""
+        """Stage k as a gear pair: a parallel stage (another kind is seen as the pair it designs through
+        ``gearcli.stages.design.pair_view``)."""
         stage = self.stage[k]
         if not isinstance(stage, Stage):
-            raise TypeError(f"stage[{k}] is a planetary stage, not a gear pair")
+            raise TypeError(f"stage[{k}] is of type {getattr(stage, 'type', '?')!r}, not a gear pair")
         return stage
 
     def contact_for(self, k: int) -> Contact:

@@ -28,6 +28,7 @@ from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.errors import DesignError
+from gearcli.stages.design import design_kind, file_key, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material, Stage
@@ -45,9 +46,7 @@ MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 def check_inputs(cfg: DesignFile) -> None:
     """Refuse unknown materials and impossible helix hands, before any arithmetic. A planetary stage is
     checked as its sun–planet pair (keys named ``sun``/``planet``) and its ring."""
-    from gearcli.design.planetary import check_planetary_inputs, pair_equivalent, planetary_key
-
-    pairs = pair_equivalent(cfg)
+    pairs = pair_view(cfg)
     try:
         for k in range(len(pairs.stage)):
             stage = pairs.pair(k)
@@ -59,8 +58,13 @@ def check_inputs(cfg: DesignFile) -> None:
 
             check_rating_inputs(pairs)
     except DesignError as exc:
-        raise DesignError(exc.message, key=planetary_key(cfg, exc.key), source=exc.source) from None
-    check_planetary_inputs(cfg)
+        raise DesignError(exc.message, key=file_key(cfg, exc.key), source=exc.source) from None
+    given = cfg.rating.load_sharing_factor if cfg.rating is not None else None
+    if given is not None and not any(design_kind(s).shares_load for s in cfg.stage):
+        raise DesignError(f"load_sharing_factor = {given:g} is K_gamma of a planetary stage's planets, and this train "
+                          "has no planetary stage: remove it", key="rating.load_sharing_factor")
+    for k, s in enumerate(cfg.stage):
+        design_kind(s).check_inputs(cfg, k)
 
 
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:
@@ -239,9 +243,5 @@ def stiffness_diagnostics(stages: Iterable[StageResult]) -> tuple[Diagnostic, ..
     """``stiffness_not_iso`` of every mesh: a parallel stage's, a planetary stage's sun–planet and planet–ring."""
     found = []
     for st in stages:
-        if st.planetary is None:
-            found.append(stiffness_not_iso(st.index, "mesh", st.mesh_stiffness))
-        else:
-            found.append(stiffness_not_iso(st.index, "sun_planet", st.mesh_stiffness))
-            found.append(stiffness_not_iso(st.index, "planet_ring", st.planetary.planet_ring.mesh_stiffness))
+        found += [stiffness_not_iso(st.index, name, law) for name, law in design_kind(st).meshes(st)]
     return tuple(d for d in found if d is not None)

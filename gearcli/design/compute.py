@@ -35,7 +35,7 @@ from gearcli.results import (
     StageResult,
     StaticForces,
 )
-from gearcli.stages.design import design_kind
+from gearcli.stages.design import design_kind, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -48,7 +48,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
     kind = tuple(design_kind(s) for s in cfg.stage)
-    pairs = _pair_equivalent(cfg)
+    pairs = pair_view(cfg)
     check_inputs(cfg)
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                             cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
@@ -96,14 +96,6 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         bearings=bearings,
         diagnostics=diagnostics,
     )
-
-
-def _pair_equivalent(cfg: DesignFile) -> DesignFile:
-    """``cfg`` with every stage seen as the pair its kind designs (the pair's code and the rating read it)."""
-    stages = [design_kind(s).pair(s) for s in cfg.stage]
-    if all(a is b for a, b in zip(stages, cfg.stage, strict=True)):
-        return cfg
-    return cfg.model_copy(update={"stage": stages})
 
 
 def _require_finite(obj, key: str) -> None:

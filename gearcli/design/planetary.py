@@ -338,42 +338,24 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
     return out
 
 
-def check_planetary_inputs(cfg: DesignFile) -> None:
+def check_stage_inputs(cfg: DesignFile, k: int) -> None:
     """The ring's material must be defined, a helical ring has the planet's hand, ``planet.angles_deg`` one
     angle per planet (the sun and planet are checked as the sun–planet pair)."""
     from gearcli.config.schema import PlanetaryStage
     from gearcli.design.checks import check_material
 
-    given = cfg.rating.load_sharing_factor if cfg.rating is not None else None
-    if given is not None and not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
-        raise DesignError(f"load_sharing_factor = {given:g} is K_gamma of a planetary stage's planets, and this train "
-                          "has no planetary stage: remove it", key="rating.load_sharing_factor")
-    for k, stage in enumerate(cfg.stage):
-        if not isinstance(stage, PlanetaryStage):
-            continue
-        check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
-        ring_hand, planet_hand = stage.ring.hand, stage.planet.hand
-        if stage.helix_angle_deg > 0 and ring_hand is not None and ring_hand != planet_hand:
-            raise DesignError(f'ring.hand = "{ring_hand}": an internal helical pair has the same hand on both gears, '
-                              f'so the ring needs the planet\'s hand "{planet_hand}" (the sun\'s opposite)',
-                              key=f"stage[{k}].ring.hand")
-        angles = stage.planet.angles_deg
-        if angles is not None and len(angles) != stage.planet.count:
-            raise DesignError(f"planet.angles_deg needs one angle per planet ({stage.planet.count}), got "
-                              f"{len(angles)}", key=f"stage[{k}].planet.angles_deg")
-
-
-def planetary_key(cfg: DesignFile, key: str | None) -> str | None:
-    """A key of the sun–planet pair (``stage[k].pinion.x``) as the design file names it (``stage[k].sun.x``)."""
-    from gearcli.config.schema import PlanetaryStage
-
-    if key is None or not key.startswith("stage["):
-        return key
-    k = int(key[len("stage["):key.index("]")])
-    if k < len(cfg.stage) and isinstance(cfg.stage[k], PlanetaryStage):
-        head = f"stage[{k}]."
-        return key.replace(head + "pinion.", head + "sun.").replace(head + "gear.", head + "planet.")
-    return key
+    stage = cfg.stage[k]
+    assert isinstance(stage, PlanetaryStage)
+    check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
+    ring_hand, planet_hand = stage.ring.hand, stage.planet.hand
+    if stage.helix_angle_deg > 0 and ring_hand is not None and ring_hand != planet_hand:
+        raise DesignError(f'ring.hand = "{ring_hand}": an internal helical pair has the same hand on both gears, '
+                          f'so the ring needs the planet\'s hand "{planet_hand}" (the sun\'s opposite)',
+                          key=f"stage[{k}].ring.hand")
+    angles = stage.planet.angles_deg
+    if angles is not None and len(angles) != stage.planet.count:
+        raise DesignError(f"planet.angles_deg needs one angle per planet ({stage.planet.count}), got "
+                          f"{len(angles)}", key=f"stage[{k}].planet.angles_deg")
 
 
 def with_load_sharing(stage: StageResult) -> StageResult:

@@ -2,16 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Protocol, cast
-
 from rich.console import RenderableType
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import as_object, csv_text, plain
 from gearcli.model.modes import ModalAnalysis
-from gearcli.results import DesignResult, MeshStiffness, StageResult
-from gearcli.stages import kinds
+from gearcli.results import DesignResult
+from gearcli.stages.design import design_kind
 
 
 def modes_document(analyses: list[ModalAnalysis], design: DesignResult) -> JsonObject:
@@ -22,19 +20,12 @@ def modes_document(analyses: list[ModalAnalysis], design: DesignResult) -> JsonO
     return {**doc, "meshes": mesh_stiffness_rows(design), "warnings": warnings}
 
 
-class _StageMeshes(Protocol):
-    """What the modes' output asks of a stage's kind (:mod:`gearcli.stages.io`)."""
-
-    def meshes(self, st: StageResult) -> list[tuple[str, MeshStiffness | None]]:
-        """Its meshes by name (a parallel stage's ``mesh``) with their contact law."""
-
-
 def mesh_stiffness_rows(design: DesignResult) -> list[JsonObject]:
     """Per mesh: its stage (1-based), which mesh (``mesh``; a planetary stage's ``sun_planet``, ``planet_ring``)
     and its ``mesh_stiffness`` {law, K, exponent, linearised_N_mm, iso_N_mm, ...}."""
     rows: list[JsonObject] = []
     for st in design.stages:
-        meshes = cast(_StageMeshes, kinds.facet(kinds.kind_of(st), "io")).meshes(st)
+        meshes = design_kind(st).meshes(st)
         rows += [{"stage": st.index, "mesh": name, "mesh_stiffness": as_object(plain(law))}
                  for name, law in meshes if law is not None]
     return rows

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Protocol, cast
 
 from gearcli.design import planetary as pl
 from gearcli.diagnostics import DESIGN, Diagnostic, warning
-from gearcli.results import StageResult
+from gearcli.results import InternalRatingResult, MeshStiffness, StageResult
 from gearcli.stages import kinds
 
 if TYPE_CHECKING:
@@ -54,10 +54,49 @@ class DesignKind(Protocol):
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
         """The stage's own design warnings."""
 
+    def check_inputs(self, cfg: DesignFile, k: int) -> None:
+        """Refuse what the pair checks do not see (``DesignError`` naming the key)."""
+
+    def file_key(self, k: int, key: str) -> str:
+        """A key of the stage's pair (``stage[k].pinion.x``) as the design file names it."""
+
+    @property
+    def shares_load(self) -> bool:
+        """The stage's meshes share its load among planets (its rating has K_γ; load-sharing columns)."""
+
+    def meshes(self, result: StageResult) -> list[tuple[str, MeshStiffness | None]]:
+        """The stage's meshes by name (a pair's ``mesh``) with the contact law at the static load."""
+
+    def further_ratings(self, result: StageResult) -> list[InternalRatingResult]:
+        """The ratings of the stage's meshes beyond its first (a planetary's planet–ring mesh)."""
+
+    def output_speed_deg_s(self, result: StageResult) -> float:
+        """The speed of the stage's output member, °/s (magnitude where the model counts it so)."""
+
+    @property
+    def model_signs_forces(self) -> bool:
+        """The model's static force of the stage's mesh may differ in sign from the design's (its flank)."""
+
 
 def design_kind(stage: object) -> DesignKind:
     """The design facet of a stage table or stage result (by its ``type``)."""
     return cast(DesignKind, kinds.facet(kinds.kind_of(stage), "design"))
+
+
+def pair_view(cfg: DesignFile) -> DesignFile:
+    """``cfg`` with every stage seen as the pair its kind designs (the pair's code and the rating read it)."""
+    stages = [design_kind(s).pair(s) for s in cfg.stage]
+    if all(a is b for a, b in zip(stages, cfg.stage, strict=True)):
+        return cfg
+    return cfg.model_copy(update={"stage": stages})
+
+
+def file_key(cfg: DesignFile, key: str | None) -> str | None:
+    """A key of the pair view (``stage[k].pinion.x``) as the design file names it (a planetary's ``sun.x``)."""
+    if key is None or not key.startswith("stage["):
+        return key
+    k = int(key[len("stage["):key.index("]")])
+    return design_kind(cfg.stage[k]).file_key(k, key) if k < len(cfg.stage) else key
 
 
 class ParallelDesign:
@@ -86,6 +125,25 @@ class ParallelDesign:
 
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
         return ()
+
+    def check_inputs(self, cfg: DesignFile, k: int) -> None:
+        return None
+
+    def file_key(self, k: int, key: str) -> str:
+        return key
+
+    shares_load = False
+
+    def meshes(self, result: StageResult) -> list[tuple[str, MeshStiffness | None]]:
+        return [("mesh", result.mesh_stiffness)]
+
+    def further_ratings(self, result: StageResult) -> list[InternalRatingResult]:
+        return []
+
+    def output_speed_deg_s(self, result: StageResult) -> float:
+        return result.gear.speed_deg_s
+
+    model_signs_forces = False
 
 
 class PlanetaryDesign:
@@ -127,6 +185,30 @@ class PlanetaryDesign:
 
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
         return tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
+
+    def check_inputs(self, cfg: DesignFile, k: int) -> None:
+        pl.check_stage_inputs(cfg, k)
+
+    def file_key(self, k: int, key: str) -> str:
+        head = f"stage[{k}]."
+        return key.replace(head + "pinion.", head + "sun.").replace(head + "gear.", head + "planet.")
+
+    shares_load = True
+
+    def meshes(self, result: StageResult) -> list[tuple[str, MeshStiffness | None]]:
+        assert result.planetary is not None
+        return [("sun_planet", result.mesh_stiffness), ("planet_ring", result.planetary.planet_ring.mesh_stiffness)]
+
+    def further_ratings(self, result: StageResult) -> list[InternalRatingResult]:
+        ring = None if result.planetary is None else result.planetary.planet_ring.rating
+        return [] if ring is None else [ring]
+
+    def output_speed_deg_s(self, result: StageResult) -> float:
+        p = result.planetary
+        assert p is not None
+        return abs({"sun": p.sun.speed_deg_s, "ring": p.ring.speed_deg_s, "carrier": p.carrier.speed_deg_s}[p.output])
+
+    model_signs_forces = True
 
 
 def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:

@@ -1,7 +1,7 @@
 """The output facet of a stage kind (the io layer): its rows in the design tables, its own tables, its JSON
-stage and its meshes' rows; registered when ``gearcli.io`` is imported (``gearcli/io/__init__.py``).
+stage; registered when ``gearcli.io`` is imported (``gearcli/io/__init__.py``).
 
-``gearcli.io.tables``, ``serialize`` and ``modes_out`` ask the kind (their own protocols of what they read,
+``gearcli.io.tables``, and ``serialize`` ask the kind (their own protocols of what they read,
 looked up in :mod:`gearcli.stages.kinds`) and never which kind a stage is.
 """
 
@@ -13,7 +13,7 @@ from typing import Any
 from rich.console import RenderableType
 
 from gearcli.io.tables import _g, _quantity_table, rating_table
-from gearcli.results import DesignResult, InternalRatingResult, MeshStiffness, StageResult
+from gearcli.results import DesignResult, InternalRatingResult, StageResult
 from gearcli.stages import kinds
 
 _Doc = dict[str, Any]
@@ -39,9 +39,6 @@ class ParallelOutput:
             stage["rating"].pop("K_gamma", None)
         return stage
 
-    def meshes(self, st: StageResult) -> list[tuple[str, MeshStiffness | None]]:
-        return [("mesh", st.mesh_stiffness)]
-
 
 class PlanetaryOutput:
     """A planetary stage: its members and planet–ring mesh in a table of their own, its JSON with ``type``,
@@ -65,10 +62,6 @@ class PlanetaryOutput:
         return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
                 "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,
                 "meshes": [{"name": "sun_planet", **stage}, {"name": "planet_ring", **ring_mesh}]}
-
-    def meshes(self, st: StageResult) -> list[tuple[str, MeshStiffness | None]]:
-        assert st.planetary is not None
-        return [("sun_planet", st.mesh_stiffness), ("planet_ring", st.planetary.planet_ring.mesh_stiffness)]
 
 
 @dataclass(frozen=True)
