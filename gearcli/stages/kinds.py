@@ -18,6 +18,11 @@ def provide(kind: str, facet: str, implementation: object) -> None:
     _FACETS[(kind, facet)] = implementation
 
 
+def withdraw(kind: str, facet: str) -> None:
+    """Remove the ``facet`` of stage kind ``kind`` (a plug-in unloaded, a test's kind after the test)."""
+    _FACETS.pop((kind, facet), None)
+
+
 def facet(kind: str, facet: str) -> object:
     """The ``facet`` of stage kind ``kind``; a ``KeyError`` naming the kinds that have it when none is registered."""
     try:
