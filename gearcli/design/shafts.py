@@ -333,8 +333,8 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     """The shaft layout of a design file with ``[[bearing]]`` tables (None without). Raises DesignError
     naming the key for a bearing on a shaft that does not exist, a shaft without exactly two bearings or
     one locating bearing, two bearings at one position, or a gear on a supported shaft without
-    ``axial_position_mm``. ``planetaries``: per stage, a planetary stage's layout (:func:`stage_layout`) or
-    None; a planetary stage without one is refused."""
+    ``axial_position_mm``. ``planetaries``: per stage, the layout of a stage with planets (:func:`stage_layout`
+    gives every stage's: :func:`planetary_layout`) or None."""
     if not cfg.bearing:
         return None
     n_shafts = len(cfg.stage) + 1
@@ -343,7 +343,7 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     for j, b in enumerate(cfg.bearing):
         if b.planet_stage is not None:
             k = b.planet_stage
-            if k > len(cfg.stage) or getattr(cfg.stage[k - 1], "type", "parallel") != "planetary":
+            if k > len(cfg.stage) or k > len(planetaries) or planetaries[k - 1] is None:  # no planets there
                 raise DesignError(f"stage {k} is not a planetary stage: planet_stage names the planetary stage whose "
                                   "planet pins carry the bearing (1-based)", key=f"bearing[{j}].planet_stage")
             by_pin.setdefault(k, []).append(_spec(j, b, 0, k))
@@ -359,10 +359,8 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     meshes = []
     planetary_layouts: list[PlanetaryLayout] = []
     for k in range(len(cfg.stage)):
-        if getattr(cfg.stage[k], "type", "parallel") == "planetary":
-            pl = planetaries[k] if k < len(planetaries) else None
-            if pl is None:
-                raise DesignError("the shaft statics of this planetary stage need its design", key=f"stage[{k}].type")
+        pl = planetaries[k] if k < len(planetaries) else None
+        if pl is not None:  # a stage with planets (its layout from its design)
             p_stage = cfg.stage[k]
             if k + 1 in pins and p_stage.planet.axial_position_mm is None:  # type: ignore[union-attr]
                 raise DesignError(f"the planet pins of stage {k + 1} have bearings (planet_stage = {k + 1}), so the "

@@ -119,7 +119,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
                                               "dynamic_factor", "runup_factor", "simulated_static_tangential_N",
                                               "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
-        | ({"rating": _stage_rating(s.rating, planetary=bool(s.planets))} if s.rating is not None else {})
+        | ({"rating": _stage_rating(s.rating, sharing=bool(s.planets))} if s.rating is not None else {})
         | ({"planet_ring_rating": plain(s.planet_ring_rating)} if s.planet_ring_rating is not None else {})
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
@@ -160,10 +160,10 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
     return out
 
 
-def _stage_rating(rating: object, *, planetary: bool) -> JsonValue:
-    """A simulated stage's rating; K_gamma only on a planetary stage's (a parallel stage keeps today's keys)."""
+def _stage_rating(rating: object, *, sharing: bool) -> JsonValue:
+    """A simulated stage's rating; K_gamma only where planets share the load (a parallel stage keeps today's keys)."""
     doc = plain(rating)
-    if not planetary and isinstance(doc, dict):
+    if not sharing and isinstance(doc, dict):
         doc.pop("K_gamma", None)
     return doc
 
