@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 from gearcli.design.iso281 import Lubrication, modified_life
 from gearcli.errors import DesignError
 from gearcli.results import BearingResult
+from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -482,7 +483,7 @@ def line_forces_N(stages: Sequence[StageResult]) -> list[float]:
     out = []
     for s in stages:
         f = s.pinion.torque_Nmm / (0.5 * s.pinion.base_diameter_mm)
-        out.append(abs(f) if s.planetary is not None else f)
+        out.append(abs(f) if design_kind(s).model_signs_forces else f)
     return out
 
 

@@ -104,8 +104,8 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
-    planetary = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
-    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), planetary), ident,
+    sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
+    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), sharing), ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 
