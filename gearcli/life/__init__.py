@@ -10,3 +10,5 @@ damage on the ISO 6336-2/-3 S–N curves, and ISO 281 bearing lives over the dut
 
 The facade (:func:`gearcli.api.prepare_life`, :func:`gearcli.api.life`) loads the file and evaluates the points.
 """
+
+from gearcli.stages import life as _stage_life  # noqa: E402, F401  # registers the built-in kinds' life facets

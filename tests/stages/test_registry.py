@@ -16,10 +16,11 @@ ROOT = Path(__file__).resolve().parents[2]
 def test_the_built_in_kinds_provide_every_facet():
     import gearcli.config.schema  # noqa: F401  # the tables
     import gearcli.io  # noqa: F401  # the output facets
+    import gearcli.life  # noqa: F401  # the life facets
     import gearcli.stages.design  # noqa: F401
     import gearcli.stages.model  # noqa: F401
 
-    for facet in ("table", "design", "model", "io"):
+    for facet in ("table", "design", "model", "life", "io"):
         assert {"parallel", "planetary"} <= set(kinds.kinds(facet)), facet
 
 
