@@ -42,9 +42,10 @@ from gearcli.model.elements import machine as _machine_mod
 from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import torque as _torque_mod
 
-jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
+jit = _dispatch.jit  # cached in the checked directory (gearcli.engine.numba_cache); inf/NaN as IEEE, judged once per step
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
 STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED
+STATUS_INTERRUPTED = st.INTERRUPTED
 
 # the element laws, dispatched by kind: generated from the registry (gearcli.engine.dispatch)
 _D = _dispatch.build(_engine.cache_dir())
@@ -70,6 +71,7 @@ WP_E0, WP_W0, WP_SCALE, WP_MARGIN, WP_T0 = 0, 1, 2, 3, 4
 WP_CAP, WP_AFTER, WP_LIMIT, WP_EVERY, WP_P_EVAL, WP_P_JAC, WP_P_LU, WP_P_STEP, WP_SPAN0, WP_SPAN1 = range(5, 15)
 N_WPAR = 15
 WP_PROGRESS = st.WP_PROGRESS  # optional: the time reached, written at every budget check (a progress bar reads it)
+WP_STOP = st.WP_STOP  # optional: the stop flag a signal handler sets (gearcli.core.signals), read after every step
 
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
@@ -501,7 +503,10 @@ def guards(t, y, nfev, njev, nlu, steps, finished, max_nfev, watch_every, wpar, 
     """The evaluation budget, the priced work budget (spent, or a pace projected over its limit: as
     :func:`gearcli.simulate.guards.over_budget`, checked every ``wpar[WP_EVERY]`` steps) and the energy watch
     every ``watch_every`` steps; ``watched`` receives (energy created, energy scale). At each budget check the
-    time reached goes to ``wpar[WP_PROGRESS]`` when ``wpar`` has that entry (a progress bar). Returns a status."""
+    time reached goes to ``wpar[WP_PROGRESS]`` when ``wpar`` has that entry (a progress bar). A raised stop flag
+    (``wpar[WP_STOP]``, when present) ends the run at once. Returns a status."""
+    if wpar.size > WP_STOP and wpar[WP_STOP] != 0.0:
+        return STATUS_INTERRUPTED
     if nfev > max_nfev:
         return STATUS_BUDGET
     if wpar.size >= N_WPAR and steps % np.int64(wpar[WP_EVERY]) == 0:
