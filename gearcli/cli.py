@@ -73,6 +73,7 @@ def guarded(fn: Callable) -> Callable:
         debug = debug or bool(root.params.get("debug"))
         if quiet:
             click.get_current_context().meta["gearcli.quiet"] = True
+        _show_engine_builds()
         try:
             with warnings_module.catch_warnings(record=True) as caught:
                 warnings_module.simplefilter("always", RuntimeWarning)
@@ -101,6 +102,14 @@ def guarded(fn: Callable) -> Callable:
                   "(run with --debug for the traceback)", EXIT_FAILED)
 
     return wrapper
+
+
+def _show_engine_builds() -> None:
+    """A first compilation of the engine inside this command shows as a step (silent with -q)."""
+    from gearcli.core import announce
+    from gearcli.io.progress import BuildProgress
+
+    announce.set_build_reporter(BuildProgress(quiet=is_quiet()))
 
 
 def _report_numeric_warnings(caught) -> None:
@@ -634,6 +643,38 @@ def _write_life_plots(result, plots_dir: str) -> None:
     from gearcli.io.life_plots import write_life_plots
 
     _write_figures(lambda: write_life_plots(result, plots_dir), plots_dir, "the life calculation")
+
+
+@cli.group(epilog="""\b
+Examples:
+  gearcli engine build
+  gearcli engine build --force
+""")
+def engine() -> None:
+    """The compiled integration engine (the fast extra, numba): its cache."""
+
+
+@engine.command("build", epilog="""\b
+Examples:
+  gearcli engine build          # once after installing (CI and the install instructions run it)
+  gearcli engine build --force  # discard the cache and compile again
+""")
+@click.option("--force", is_flag=True, help="Discard the cached kernel and compile it again.")
+@quiet_option
+@click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
+@guarded
+def engine_build(force: bool) -> None:
+    """Compile the integration kernel into the cache now (with progress), so that no run pays for it."""
+    from gearcli import api
+
+    built = api.engine_build(force=force, quiet=is_quiet())
+    if built.refused:
+        click.echo(f"engine: compiled for this process only: the cache was refused ({built.refused})")
+    elif built.build_s:
+        click.echo(f"engine: compiled in {built.build_s:.1f} s; cached in {built.directory}")
+    else:
+        click.echo(f"engine: already compiled; cached in {built.directory}")
+    click.echo(f"engine: a process loads it in {built.load_s:.2f} s (numba import, kernel module, one entry; measured now)")
 
 
 def main() -> None:

@@ -19,8 +19,6 @@ first build's progress: :mod:`gearcli.engine.loader`.
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
-import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -29,9 +27,12 @@ import numpy as np
 
 from gearcli.core.methods import METHODS
 from gearcli.engine.loader import (  # noqa: F401 - the package's interface
+    Built,
     LineReporter,
     Loaded,
     _state,
+    available,
+    build,
     cache_choice,
     cache_dir,
     cache_problem,
@@ -45,7 +46,6 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     mark_ready,
     quiet_compilation,
     ready,
-    set_reporter,
     warm_up,
 )
 from gearcli.model import elements
@@ -79,13 +79,6 @@ _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_levers", "con
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
                  "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol",
                  "motor_row", "load_law", "body_angle_row"}
-
-
-def available() -> bool:
-    """Whether numba (the ``fast`` extra) is installed."""
-    if "numba" in sys.modules:
-        return sys.modules["numba"] is not None
-    return importlib.util.find_spec("numba") is not None
 
 
 def _known_params() -> dict[int, int]:

@@ -61,6 +61,10 @@ def check(base: Path, parts: tuple[str, ...]) -> str | None:
     """Create (0700) and check each directory ``base/parts[0]``, ``base/parts[0]/parts[1]``, ...: why the last one
     cannot hold the cache (the first failing directory and its fault), or None. ``base`` itself (``~/.cache``,
     ``$XDG_CACHE_HOME``, the temporary directory) is the user's or the system's and is not judged."""
+    try:
+        base.mkdir(mode=0o700, parents=True, exist_ok=True)  # a missing ~/.cache is created (the user's, private)
+    except OSError as exc:
+        return f"{base} cannot be created ({exc.strerror})"
     path = base
     for part in parts:
         path = path / part

@@ -72,9 +72,12 @@ def source(elements: tuple[ElementType, ...]) -> str:
     return "\n".join(lines)
 
 
-def build(directory: Path) -> types.ModuleType:
-    """The dispatch module of the registered compiled element types, written to ``directory`` (once per
-    registry: the directory is keyed by it) and imported."""
+def build() -> types.ModuleType:
+    """The dispatch module of the registered compiled element types, written to the cache directory this process
+    loads from (:data:`gearcli.engine.numba_cache.DIR`, keyed by the registry; once per registry) and imported."""
+    from gearcli.engine import numba_cache
+
+    directory = Path(numba_cache.DIR[0])
     elements = compiled_types()
     text = source(elements)
     path = directory / "gearcli_dispatch.py"

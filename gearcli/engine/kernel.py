@@ -32,7 +32,6 @@ from typing import Any
 import numba
 import numpy as np
 
-from gearcli import engine as _engine
 from gearcli.engine import blas as _blas
 from gearcli.engine import dispatch as _dispatch
 from gearcli.engine import status as st
@@ -48,7 +47,7 @@ STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.
 STATUS_INTERRUPTED = st.INTERRUPTED
 
 # the element laws, dispatched by kind: generated from the registry (gearcli.engine.dispatch)
-_D = _dispatch.build(_engine.cache_dir())
+_D = _dispatch.build()  # into the checked cache directory this process loads from
 KINDS = _D.KINDS
 conn_force, conn_power_gradient, conn_potential = _D.conn_force, _D.conn_power_gradient, _D.conn_potential
 conn_channel, conn_n_channels, conn_damped = _D.conn_channel, _D.conn_n_channels, _D.conn_damped
@@ -115,7 +114,7 @@ def _gemm_loop(Dm, K, out):
             out[r, i] = acc
 
 
-HAVE_BLAS = _blas.register()
+HAVE_BLAS = not numba.config.DISABLE_JIT and _blas.register()  # NUMBA_DISABLE_JIT: the loops (Python cannot call BLAS by address)
 if HAVE_BLAS:
     assert _blas.FOUND is not None
     _PATTERN, _WIDTH = _blas.FOUND[1], _blas.FOUND[2]

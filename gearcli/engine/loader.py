@@ -9,7 +9,7 @@ into a private temporary directory instead, removed once the kernel is loaded (n
 A process loads the kernel once (:func:`load`): numba's import and the kernel module's (its ~100 dispatchers,
 each bound to the checked directory), then each integration entry the first time a run needs it (:func:`entry`),
 the cached machine code only (no type inference, no numba target refresh). Nothing cached yet: the kernel is
-compiled first in a child process (:mod:`gearcli.engine.build`), shown as a step with its measured time. A
+compiled first in a child process (:mod:`gearcli.engine.builder`), shown as a step with its measured time. A
 damaged cache (an entry that cannot be read back) is named in one line, discarded and rebuilt.
 
 Loading runs with signals held back (:func:`gearcli.core.signals.deferred`): a Ctrl-C arriving inside numba's
@@ -160,14 +160,12 @@ class LineReporter:
     def note(self, line: str) -> None:
         self._say(f"the engine cache had a damaged entry, compiled again: {line}")
 
-    def finish(self, seconds: float, directory: Path) -> None:
+    def finish(self, seconds: float, directory: Path, waited: bool = False) -> None:
+        if waited:
+            self._say(f"another process compiled the integration engine; waited {seconds:.1f} s for it")
+            return
         self._say(f"compiled the integration engine in {seconds:.1f} s (measured now; later runs load it from "
                   f"{directory})")
-
-
-def set_reporter(reporter: Any) -> None:
-    """How a build shows itself in this process (the command line's bar; default: :class:`LineReporter`)."""
-    _state["reporter"] = reporter
 
 
 def quiet_compilation() -> None:
@@ -176,14 +174,21 @@ def quiet_compilation() -> None:
 
 
 def _reporter(quiet: bool) -> Any:
+    from gearcli.core import announce
+
     if quiet or _state.get("quiet"):
         return LineReporter(quiet=True)
-    return _state.get("reporter") or LineReporter()
+    return announce.build_reporter() or LineReporter()
 
 
 def _say(text: str, quiet: bool) -> None:
-    if not (quiet or _state.get("quiet")):
-        print(f"gearcli: {text}", file=sys.stderr, flush=True)
+    """One line on stderr (the build's reporter's way: a quiet one says nothing)."""
+    from gearcli.core import announce
+
+    reporter = announce.build_reporter()
+    if quiet or _state.get("quiet") or getattr(reporter, "quiet", False):
+        return
+    print(f"gearcli: {text}", file=sys.stderr, flush=True)
 
 
 # ------------------------------------------------------------------------------------------- loading
@@ -192,6 +197,7 @@ class Loaded:
     kernel: Any  # the gearcli.engine.kernel module
     load_s: float  # numba import + the kernel module's (and a build's, when this process built it)
     compiled: bool  # compiled now (no cache)
+    build_s: float = 0.0  # the build's share of load_s
 
 
 @contextmanager
@@ -241,27 +247,28 @@ def load(quiet: bool = False) -> Loaded:
     cdir = private or cache_dir()
     try:
         kernel, built = _load_from(cdir, quiet)
+        build_s = _state.pop("build_s", 0.0)
         if private is not None:
             with signals.deferred(), _strict():
                 warm_up(kernel)  # everything, before the private directory goes
     finally:
         if private is not None:
             cachedir.discard(private)
-    _state["loaded"] = Loaded(kernel, time.perf_counter() - t0, built)
+    _state["loaded"] = Loaded(kernel, time.perf_counter() - t0, built, build_s)
     _state["dir"] = None if private else cdir
     return _state["loaded"]
 
 
 def _load_from(cdir: Path, quiet: bool) -> tuple[Any, bool]:
     """The kernel module loaded from ``cdir`` (built first when not ready; rebuilt once when damaged)."""
-    from gearcli.engine import build
+    from gearcli.engine import builder
 
     built = False
     for attempt in range(2):
         if not ready(cdir):
             try:
-                build.run(cdir, _reporter(quiet))
-            except build.BuildFailed as exc:
+                _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, _reporter(quiet))
+            except builder.BuildFailed as exc:
                 from gearcli.errors import SimulationError
 
                 raise SimulationError(str(exc)) from None
@@ -328,6 +335,41 @@ def _warm_entry(kernel: Any, name: str) -> None:
                           np.empty(0))
     for c in range(2):
         kernel.connector_series(model[0][c], model[3][c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
+
+
+@dataclass(frozen=True)
+class Built:
+    """What ``gearcli engine build`` did: where the cache is, the build's time (0: it was there) and what loading the
+    kernel then cost this process (numba import, the kernel module, the DOP853 entry)."""
+
+    directory: Path | None  # None: the cache was refused (the reason in ``refused``)
+    build_s: float
+    load_s: float
+    refused: str | None
+
+
+def build(force: bool = False, quiet: bool = False) -> Built:
+    """Compile the kernel into the cache (``force``: discard what is there first) and load it as a run would."""
+    from gearcli.errors import ConfigError
+
+    if not available():
+        raise ConfigError("the compiled engine needs numba, the fast extra: pip install 'gearcli[fast]'")
+    if "loaded" in _state:
+        raise RuntimeError("build() runs in a process that has not loaded the kernel")
+    problem = cache_problem()
+    if force and problem is None:
+        cachedir.discard(cache_dir())
+        cachedir.make_private(cache_dir())
+    loaded = load(quiet=quiet)
+    _, entry_s = entry("DOP853")
+    return Built(None if problem else cache_dir(), loaded.build_s, loaded.load_s - loaded.build_s + entry_s, problem)
+
+
+def available() -> bool:
+    """Whether numba (the ``fast`` extra) is installed."""
+    if "numba" in sys.modules:
+        return sys.modules["numba"] is not None
+    return importlib.util.find_spec("numba") is not None
 
 
 def loaded_kernel() -> Any:

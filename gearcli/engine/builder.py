@@ -1,7 +1,7 @@
 """Compiling the kernel into the cache: a separate process, a visible step.
 
 The first use of the compiled engine compiles ~100 numba functions (30-120 s). That happens in a child process
-(``python -m gearcli.engine.build DIR``) so that the command that needs it stays in Python while it waits: it
+(``python -m gearcli.engine.builder DIR``) so that the command that needs it stays in Python while it waits: it
 reports each compiled function (:class:`Reporter`), and a Ctrl-C, SIGTERM or SIGHUP ends it at once (the child
 is killed, its temporary files removed, the cache left without a ``ready`` mark: the next build starts over).
 Compiling inside the command itself left a signal in numba's compiler (a ctypes-callback traceback, then exit 0).
@@ -32,7 +32,7 @@ class Reporter(Protocol):
 
     def note(self, line: str) -> None: ...
 
-    def finish(self, seconds: float, directory: Path) -> None: ...
+    def finish(self, seconds: float, directory: Path, waited: bool = False) -> None: ...
 
 
 class BuildFailed(Exception):
@@ -45,11 +45,12 @@ def run(directory: Path, reporter: Reporter, expected: int = EXPECTED_FUNCTIONS)
     pkg_root = str(Path(__file__).resolve().parents[2])
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (pkg_root, os.environ.get("PYTHONPATH", "")) if p))
     reporter.start(directory)
-    proc = subprocess.Popen([sys.executable, "-m", "gearcli.engine.build", str(directory)], env=env,
+    proc = subprocess.Popen([sys.executable, "-m", "gearcli.engine.builder", str(directory)], env=env,
                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             start_new_session=True)  # a terminal's Ctrl-C is the parent's to act on
     other: list[str] = []
     done = 0
+    waited = False
     try:
         assert proc.stdout is not None
         for raw in proc.stdout:
@@ -57,6 +58,8 @@ def run(directory: Path, reporter: Reporter, expected: int = EXPECTED_FUNCTIONS)
             if line.startswith(PREFIX + "compiled"):
                 done += 1
                 reporter.step(done, max(expected, done), time.perf_counter() - t0)
+            elif line == PREFIX + "ready":  # another process's build held the lock and finished it
+                waited = True
             elif line.startswith(PREFIX + "damaged "):
                 reporter.note(line[len(PREFIX + "damaged "):])
             elif not line.startswith(PREFIX):
@@ -70,7 +73,7 @@ def run(directory: Path, reporter: Reporter, expected: int = EXPECTED_FUNCTIONS)
         tail = "; ".join(x.strip() for x in other[-3:] if x.strip())
         raise BuildFailed(f"compiling the integration engine failed (exit {code}){': ' + tail if tail else ''}")
     seconds = time.perf_counter() - t0
-    reporter.finish(seconds, directory)
+    reporter.finish(seconds, directory, waited)
     return seconds
 
 
