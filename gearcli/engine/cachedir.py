@@ -19,7 +19,20 @@ from typing import Any
 
 
 class CacheDamaged(Exception):
-    """An entry of the engine cache cannot be read back (the message names the file and what was wrong)."""
+    """An entry of the engine cache cannot be read back (the message names the file and what was wrong);
+    ``entry``: the paths to discard (a function's index and data files, or what stands where a directory belongs)."""
+
+    def __init__(self, message: str, entry: tuple[str, ...] = ()) -> None:
+        super().__init__(message)
+        self.entry = entry
+
+
+def discard_entry(paths: tuple[str, ...]) -> None:
+    """Remove a damaged entry's files and directories (links removed, never followed)."""
+    for path in paths:
+        clear_entry(path)
+        with contextlib.suppress(FileNotFoundError, IsADirectoryError):
+            os.unlink(path)
 
 
 def _uid() -> int | None:

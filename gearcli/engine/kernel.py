@@ -114,7 +114,7 @@ def _gemm_loop(Dm, K, out):
             out[r, i] = acc
 
 
-HAVE_BLAS = not numba.config.DISABLE_JIT and _blas.register()  # NUMBA_DISABLE_JIT: the loops (Python cannot call BLAS by address)
+HAVE_BLAS = not getattr(numba.config, "DISABLE_JIT", 0) and _blas.register()  # NUMBA_DISABLE_JIT: the loops (Python cannot call BLAS by address)
 if HAVE_BLAS:
     assert _blas.FOUND is not None
     _PATTERN, _WIDTH = _blas.FOUND[1], _blas.FOUND[2]

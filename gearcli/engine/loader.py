@@ -260,44 +260,58 @@ def load(quiet: bool = False) -> Loaded:
 
 
 def _load_from(cdir: Path, quiet: bool) -> tuple[Any, bool]:
-    """The kernel module loaded from ``cdir`` (built first when not ready; rebuilt once when damaged)."""
-    from gearcli.engine import builder
-
+    """The kernel module loaded from ``cdir`` (built first when not ready; a damaged entry met while importing is
+    named, discarded and rebuilt)."""
     built = False
-    for attempt in range(2):
+    for attempt in range(3):
         if not ready(cdir):
-            try:
-                _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, _reporter(quiet))
-            except builder.BuildFailed as exc:
-                from gearcli.errors import SimulationError
-
-                raise SimulationError(str(exc)) from None
+            if os.path.lexists(cdir / "ready.json"):
+                _say(f"the engine cache {cdir} is damaged (ready.json is not a file); building it again", quiet)
+            _build(cdir, quiet)
             built = True
         try:
             with signals.deferred(), _strict():
                 kernel, _ = import_kernel(cdir, strict=True)
             return kernel, built
         except CacheDamaged as exc:
-            if attempt:
+            if attempt == 2:
                 raise
-            _say(f"the engine cache {cdir} is damaged ({_short(str(exc), cdir)}); discarded, building it again",
-                 quiet)
-            cachedir.discard(cdir)
-            cachedir.make_private(cdir)
+            _discard(exc, cdir, quiet)
     raise AssertionError("unreachable")
 
 
-def _repair(exc: Exception) -> None:
-    """A damaged entry met after the kernel module was imported: the cache goes and is built again."""
+def _build(cdir: Path, quiet: bool) -> None:
+    from gearcli.engine import builder
+
+    try:
+        _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, _reporter(quiet))
+    except builder.BuildFailed as exc:
+        from gearcli.errors import SimulationError
+
+        raise SimulationError(str(exc)) from None
+
+
+def _discard(exc: CacheDamaged, cdir: Path, quiet: bool) -> None:
+    """Name a damaged entry in one line and remove it (the next build compiles it again)."""
+    _say(f"the engine cache {cdir} is damaged ({_short(str(exc), cdir)}); discarded, building it again", quiet)
+    if exc.entry:
+        cachedir.discard_entry(exc.entry)
+    else:
+        cachedir.discard(cdir)
+        cachedir.make_private(cdir)
+    cachedir.discard_entry((str(cdir / "ready.json"),))
+
+
+def _repair(exc: CacheDamaged) -> None:
+    """A damaged entry met after the kernel module was imported: named, discarded, rebuilt; the kernel module is
+    imported anew (the old dispatchers remember the failure)."""
     loaded = _state.pop("loaded")
     cdir = _state.get("dir")
     if cdir is None:  # the private directory of a refused cache is gone: nothing to repair there
         raise exc
-    _say(f"the engine cache {cdir} is damaged ({_short(str(exc), cdir)}); discarded, building it again", False)
-    cachedir.discard(cdir)
-    cachedir.make_private(cdir)
+    _discard(exc, cdir, False)
     kernel, _ = _load_from(cdir, False)
-    _state["loaded"] = Loaded(kernel, loaded.load_s, True)
+    _state["loaded"] = Loaded(kernel, loaded.load_s, True, _state.pop("build_s", 0.0))
 
 
 def _short(text: str, cdir: Path) -> str:
@@ -314,12 +328,12 @@ def entry(method: str) -> tuple[Any, float]:
     if name in warm:
         return getattr(loaded.kernel, name), 0.0
     t0 = time.perf_counter()
-    with signals.deferred():
-        try:
-            with _strict():
-                _warm_entry(loaded.kernel, name)
-        except CacheDamaged as exc:  # the entry's files: named, discarded, rebuilt, loaded anew
-            _repair(exc)
+    try:
+        with signals.deferred(), _strict():
+            _warm_entry(loaded.kernel, name)
+    except CacheDamaged as exc:  # the entry's files: named, discarded, rebuilt (an interruptible build), loaded anew
+        _repair(exc)
+        with signals.deferred(), _strict():
             _warm_entry(load().kernel, name)
     spent = time.perf_counter() - t0
     warm[name] = spent

@@ -53,7 +53,7 @@ class _Locator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
             cachedir.clear_entry(self._cache_path)
             problem = cachedir.make_private(self._cache_path)
         if problem:
-            raise CacheDamaged(problem)
+            raise CacheDamaged(problem, (self._cache_path,))
 
     def get_cache_path(self) -> str:
         return self._cache_path
@@ -150,7 +150,8 @@ class Cache(caching.FunctionCache):
             except CacheDamaged:
                 raise
             except Exception as exc:  # unpickling garbage raises anything
-                raise CacheDamaged(f"{self._cache_file._index_path}: {type(exc).__name__}: {exc}") from exc
+                raise CacheDamaged(f"{self._cache_file._index_path}: {type(exc).__name__}: {exc}",
+                                   self._entry_files()) from exc
         except CacheDamaged as exc:
             if STRICT[0]:
                 raise
@@ -158,16 +159,21 @@ class Cache(caching.FunctionCache):
             self._discard()
             return None
         if data is None and STRICT[0]:
-            raise CacheDamaged(f"{self._cache_file._index_path}: no entry for {self._py_func.__qualname__}{sig}")
+            raise CacheDamaged(f"{self._cache_file._index_path}: no entry for {self._py_func.__qualname__}{sig}",
+                               self._entry_files())
         return data
 
+    def _entry_files(self) -> tuple[str, ...]:
+        """This function's index and data files."""
+        base = self._impl.filename_base + "."
+        try:
+            names = os.listdir(self._cache_path)
+        except OSError:
+            return ()
+        return tuple(os.path.join(self._cache_path, n) for n in names if n.startswith(base))
+
     def _discard(self) -> None:
-        base = self._impl.filename_base
-        for name in os.listdir(self._cache_path):
-            if name.startswith(base + "."):
-                cachedir.clear_entry(os.path.join(self._cache_path, name))
-                with contextlib.suppress(FileNotFoundError):
-                    os.unlink(os.path.join(self._cache_path, name))
+        cachedir.discard_entry(self._entry_files())
 
 
 def jit(fn: Any) -> Any:
