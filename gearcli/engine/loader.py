@@ -397,8 +397,8 @@ def compilation_pending() -> str | None:
     None when nothing will be compiled."""
     if importlib.util.find_spec("numba") is None or _ready_here():
         return None
-    return (f"the integration engine is not compiled yet: a sweep worker that needs it compiles it first (once, "
-            f"{_cache_words()}; `gearcli engine build` does it ahead, with progress)")
+    return (f"the integration engine is not compiled yet: a sweep worker that needs it will compile the integration "
+            f"engine first (once, {_cache_words()}; `gearcli engine build` does it ahead, with progress)")
 
 
 def _cache_words() -> str:

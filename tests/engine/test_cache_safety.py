@@ -85,6 +85,7 @@ def test_json_files_are_never_opened_through_a_link(tmp_path):
     assert stat.S_IMODE(link.stat().st_mode) == 0o600
 
 
+@pytest.mark.slow  # ~10 s: three processes load the engine
 @pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="acting as a second user needs root")
 def test_a_cache_directory_another_user_prepared_is_refused(tmp_path):
     """The attacker (another uid) creates the victim's fallback cache ``$TMPDIR/gearcli-<uid>/numba`` mode 0777
