@@ -106,10 +106,9 @@ def guarded(fn: Callable) -> Callable:
 
 def _show_engine_builds() -> None:
     """A first compilation of the engine inside this command shows as a step (silent with -q)."""
-    from gearcli.core import announce
-    from gearcli.io.progress import BuildProgress
+    from gearcli.io.progress import show_engine_builds
 
-    announce.set_build_reporter(BuildProgress(quiet=is_quiet()))
+    show_engine_builds(quiet=is_quiet())
 
 
 def _report_numeric_warnings(caught) -> None:

@@ -43,7 +43,8 @@ def run(directory: Path, reporter: Reporter, expected: int = EXPECTED_FUNCTIONS)
     """Compile the kernel into ``directory`` in a child process, reporting progress; the seconds it took."""
     t0 = time.perf_counter()
     pkg_root = str(Path(__file__).resolve().parents[2])
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (pkg_root, os.environ.get("PYTHONPATH", "")) if p))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (pkg_root, os.environ.get("PYTHONPATH", "")) if p),
+               PYTHONDONTWRITEBYTECODE="1")  # a killed build leaves no half-written .pyc in the cache
     reporter.start(directory)
     proc = subprocess.Popen([sys.executable, "-m", "gearcli.engine.builder", str(directory)], env=env,
                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,

@@ -97,20 +97,31 @@ def clear_entry(path: str | os.PathLike) -> None:
             os.unlink(path)
 
 
-def read_json(path: Path) -> Any:
-    """The JSON document in the regular file ``path`` (not through a link), or None when there is none or it is not
-    readable JSON."""
+def read_text(path: str | os.PathLike) -> str | None:
+    """The UTF-8 text of the regular file ``path`` (not through a link), or None."""
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
     except OSError:
         return None
-    with os.fdopen(fd, "rb") as fh:
-        try:
-            if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
-                return None
-            return json.loads(fh.read(1 << 20))
-        except (OSError, ValueError):
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
             return None
+        with os.fdopen(os.dup(fd), "rb") as fh:
+            return fh.read().decode("utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    finally:
+        os.close(fd)
+
+
+def read_json(path: Path) -> Any:
+    """The JSON document in the regular file ``path`` (not through a link), or None when there is none or it is not
+    readable JSON."""
+    text = read_text(path)
+    try:
+        return json.loads(text) if text is not None else None
+    except ValueError:
+        return None
 
 
 def write_json(path: Path, doc: Any) -> bool:

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import importlib.util
 import os
-import stat
 import sys
 import types
 from pathlib import Path
@@ -81,7 +80,7 @@ def build() -> types.ModuleType:
     elements = compiled_types()
     text = source(elements)
     path = directory / "gearcli_dispatch.py"
-    if _read_text(path) != text:  # in the checked cache directory: written privately, never through a link
+    if cachedir.read_text(path) != text:  # in the checked cache directory: written privately, never through a link
         tmp = f"{path}.tmp.{os.getpid()}.w"  # parallel processes never share a half-written file
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
@@ -98,14 +97,3 @@ def build() -> types.ModuleType:
     spec.loader.exec_module(module)
     return module
 
-
-def _read_text(path: Path) -> str | None:
-    try:
-        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
-    except OSError:
-        return None
-    with os.fdopen(fd, "rb") as fh:
-        try:
-            return fh.read().decode("utf-8") if stat.S_ISREG(os.fstat(fh.fileno()).st_mode) else None
-        except (OSError, UnicodeDecodeError):
-            return None

@@ -76,10 +76,13 @@ class _Impl(caching.CompileResultCacheImpl):
 def _read(path: str) -> bytes:
     """The bytes of the regular file ``path``, not through a symbolic link (FileNotFoundError when absent)."""
     fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
-    with os.fdopen(fd, "rb") as fh:
-        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
             raise IsADirectoryError(f"{path} is not a regular file")
-        return fh.read()
+        with os.fdopen(os.dup(fd), "rb") as fh:
+            return fh.read()
+    finally:
+        os.close(fd)
 
 
 class _Files(caching.IndexDataCacheFile):

@@ -102,3 +102,10 @@ class BuildProgress:
             return
         self._say(f"compiled the integration engine in {seconds:.1f} s (measured now; later runs load it from "
                   f"{directory})")
+
+
+def show_engine_builds(*, quiet: bool) -> None:
+    """Install :class:`BuildProgress` as this process's reporter of engine builds (:mod:`gearcli.core.announce`)."""
+    from gearcli.core import announce
+
+    announce.set_build_reporter(BuildProgress(quiet=quiet))

@@ -141,3 +141,47 @@ def test_signals_during_compiled_life_runs(tmp_path):
     spread, lines = _probe(args, env, tmp_path)
     count, bad = _run_trials(args, lines, spread, tmp_path, TRIALS, env)
     assert not bad, f"{len(bad)} of {count} signalled runs ended badly:\n" + "\n".join(bad)
+
+
+def _builders_of(directory: Path) -> list[int]:
+    """Processes still compiling into ``directory`` (a build child left behind)."""
+    out = []
+    for proc in Path("/proc").glob("[0-9]*"):
+        try:
+            cmd = (proc / "cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        if "gearcli.engine.builder" in cmd and str(directory) in cmd:
+            out.append(int(proc.name))
+    return out
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc to find a build left behind")
+def test_signals_during_the_first_compilation(tmp_path):
+    """A command that compiles the engine first (an empty cache), signalled while the build runs: the signal's exit
+    code and one line, no traceback (the old code printed a ctypes-callback traceback and went on to exit 0), the
+    build process gone, no temporary file in the cache, the cache not marked ready, the output untouched."""
+    pytest.importorskip("numba")
+    rng = np.random.default_rng(7)
+    args = ["simulate", str(SEED), "--set", "simulation.engine=compiled", "--set", "simulation.duration_s=0.05",
+            "--set", "simulation.steps=50", "--format", "csv"]
+    bad = []
+    for sig in CODES:
+        xdg = tmp_path / f"xdg-{int(sig)}"
+        xdg.mkdir()
+        delay = float(rng.uniform(1.5, 6.0))
+        res = trial(args, sig, delay, tmp_path / "out.csv", _env(XDG_CACHE_HOME=str(xdg)))
+        numba_dir = xdg / "gearcli" / "numba"
+        leftovers = [str(p) for p in numba_dir.rglob("*.tmp.*")]
+        why = verdict(res, sig, lambda text: False)
+        if res["code"] == 0:
+            why = why or "the run was not interrupted during its build (the build finished first)"
+        if _builders_of(numba_dir):
+            why = why or "the build process survived"
+        if leftovers:
+            why = why or f"temporary files left in the cache: {leftovers}"
+        if list(numba_dir.glob("*/ready.json")):
+            why = why or "an interrupted build marked the cache ready"
+        if why:
+            bad.append(f"{signal.Signals(sig).name} after {delay:.2f} s: {why}: {res['stderr'][-300:]!r}")
+    assert not bad, "\n".join(bad)
