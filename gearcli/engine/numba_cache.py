@@ -185,3 +185,16 @@ def jit(fn: Any) -> Any:
     if DIR and hasattr(dispatcher, "_cache"):  # NUMBA_DISABLE_JIT gives the Python function back
         dispatcher._cache = Cache(dispatcher.py_func)
     return dispatcher
+
+
+def _default() -> None:
+    """A direct ``import gearcli.engine.kernel`` (tests do it) binds the kernel to the user's cache when it is trusted
+    (numba then compiles what is missing in that process, as it always did); :func:`gearcli.engine.load` sets
+    :data:`DIR` itself before it imports the kernel."""
+    from gearcli.engine import loader
+
+    if not DIR and loader.cache_problem() is None:
+        DIR.append(str(loader.cache_dir()))
+
+
+_default()
