@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 from typing import Any
 
 SHOW_AFTER_S = 1.0
@@ -77,7 +78,7 @@ class BuildProgress:
         if not self.quiet:
             print(f"gearcli: {text}", file=sys.stderr, flush=True)
 
-    def start(self, directory) -> None:
+    def start(self, directory: Path) -> None:
         self._say(f"compiling the integration engine (its first use here; cached in {directory}) ...")
         if not self.quiet and sys.stderr.isatty():
             self.bar = TerminalProgress("compiling the engine").__enter__()
@@ -93,7 +94,7 @@ class BuildProgress:
     def note(self, line: str) -> None:
         self._say(f"the engine cache had a damaged entry, compiled again: {line}")
 
-    def finish(self, seconds: float, directory, waited: bool = False) -> None:
+    def finish(self, seconds: float, directory: Path, waited: bool = False) -> None:
         if self.bar is not None:
             self.bar.__exit__(None, None, None)
             self.bar = None
