@@ -61,7 +61,7 @@ def trial(args: list[str], sig: int, delay: float, out: Path, env: dict[str, str
         alive = True
     except ProcessLookupError:
         alive = False
-    left = [p.name for p in out.parent.iterdir() if p.name.startswith(f".{out.name}.")]
+    left = [p.name for p in out.parent.iterdir() if p.name.startswith(f".{out.name}.") or p.name.startswith("core")]
     return {"code": proc.returncode, "stderr": err.decode(errors="replace"), "out": out.read_text(errors="replace"),
             "left": left, "alive": alive}
 
@@ -78,7 +78,7 @@ def verdict(res: dict, sig: int, complete) -> str | None:
     if res["alive"]:
         return "a process of the run survived it"
     if res["left"]:
-        return f"temporary files left: {res['left']}"
+        return f"temporary or core files left: {res['left']}"
     if code == 0 and not complete(res["out"]):
         return "finished with an incomplete output"
     if code != 0 and res["out"] != OLD and not complete(res["out"]):
