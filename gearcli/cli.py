@@ -667,9 +667,9 @@ def engine_build(force: bool) -> None:
     from gearcli import api
 
     built = api.engine_build(force=force, quiet=is_quiet())
-    if built.refused:
-        click.echo(f"engine: compiled for this process only: the cache was refused ({built.refused})")
-    elif built.build_s:
+    if built.refused:  # compiled, but nothing cached: the command's purpose failed
+        _fail(f"the kernel compiled, but nothing was cached: {built.refused}", EXIT_FAILED)
+    if built.build_s:
         click.echo(f"engine: compiled in {built.build_s:.1f} s; cached in {built.directory}")
     else:
         click.echo(f"engine: already compiled; cached in {built.directory}")
