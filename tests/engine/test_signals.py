@@ -7,8 +7,11 @@ had finished), never a negative one (a crash) or 1 (an internal error); stderr h
 "internal error"; the output file, pre-filled, is untouched or complete (never partial: a run interrupted before
 it wrote its output leaves the old file; one signalled while it shuts down has written it); no
 temporary file is left beside it and no process of the group survives. The delays are spread so that every phase
-is hit; enough trials run to see a failure that occurs in a few percent of them (the old code failed 2-3 of 6
-``life`` runs and 2 of 10 ``simulate`` runs: see the commit message for the rates measured on it).
+is hit; enough trials run to see a failure that occurs in a few percent of them. On the code before this test
+(commit 7c75a79) two runs of this file (6 and 10 trials per signal) failed 4 of 48 ``simulate`` trials (three
+``SystemError: CPUDispatcher(rk_run) returned a result with an exception set``, one llvmlite traceback) and 3 of
+48 ``life`` trials (two such ``SystemError`` on ``rk_run`` and ``connector_series``, one ``ImportError:
+initialization failed``): ~7 %.
 
 Slow tier: ~2 minutes. ``GEARCLI_SIGNAL_TRIALS`` sets the trials per command and signal.
 """
