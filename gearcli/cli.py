@@ -55,11 +55,22 @@ def _broken_pipe() -> None:
     sys.exit(EXIT_BROKEN_PIPE)
 
 
+_SIGNALLED: list[int] = []  # the exit codes of the signals this process received (SIGINT, SIGTERM, SIGHUP)
+_SIGNAL_WORDS = {EXIT_INTERRUPTED: "interrupted", EXIT_TERMINATED: "terminated", EXIT_HANGUP: "hangup"}
+
+
+def _on_sigint(signum, frame) -> None:
+    _SIGNALLED.append(EXIT_INTERRUPTED)
+    raise KeyboardInterrupt
+
+
 def _on_sigterm(signum, frame) -> None:
+    _SIGNALLED.append(EXIT_TERMINATED)
     raise Terminated()
 
 
 def _on_sighup(signum, frame) -> None:
+    _SIGNALLED.append(EXIT_HANGUP)
     raise Terminated(EXIT_HANGUP)
 
 
@@ -96,6 +107,8 @@ def guarded(fn: Callable) -> Callable:
         except (click.exceptions.Exit, click.ClickException, SystemExit):
             raise
         except Exception as exc:  # a bug: say so plainly, never a traceback without --debug
+            if _SIGNALLED and not debug:  # a signal's exception turned into another inside a C extension (an
+                _fail(_SIGNAL_WORDS[_SIGNALLED[0]], _SIGNALLED[0])  # import's "initialization failed"): the signal
             if debug:
                 raise
             _fail(f"internal error: {type(exc).__name__}: {shorten(str(exc), 200)} "
@@ -683,6 +696,7 @@ def main() -> None:
     from gearcli.io import streams
 
     streams.guard()  # a closed stdout/stderr (>&-): a clean message, never a traceback
+    signal.signal(signal.SIGINT, _on_sigint)  # KeyboardInterrupt, remembered (guarded)
     signal.signal(signal.SIGTERM, _on_sigterm)
     if hasattr(signal, "SIGHUP"):  # the terminal went away: unwind like SIGTERM (temporary files removed)
         signal.signal(signal.SIGHUP, _on_sighup)
