@@ -41,6 +41,7 @@ from gearcli.results import DesignResult
 from gearcli.scene import build_model, resonance_diagnostics, spec_from_design
 
 if TYPE_CHECKING:
+    from gearcli.engine import Built
     from gearcli.life.result import LifeResult
     from gearcli.life.session import Session as LifeSession
     from gearcli.model.modes import CampbellData, ModalAnalysis
@@ -54,7 +55,7 @@ if TYPE_CHECKING:
     from gearcli.sweep.worker import Case, Evaluation, Scene
 
 __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "design", "design_case",
-           "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
+           "engine_build", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
            "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
 
@@ -63,6 +64,15 @@ def check_environment() -> None:
     """The environment every command reads, checked the same way for each: a set ``GEARCLI_MEMORY_LIMIT_MB``
     must be a number of MiB (:class:`~gearcli.errors.ConfigError`, exit 2, otherwise)."""
     memory_limit_bytes()
+
+
+def engine_build(*, force: bool = False, quiet: bool = False) -> Built:
+    """Compile the compiled engine's kernel into its cache (``force``: discard it first) and load it as a run would
+    (:func:`gearcli.engine.build`); a first build is reported through the installed reporter
+    (:mod:`gearcli.core.announce`)."""
+    from gearcli import engine
+
+    return engine.build(force=force, quiet=quiet)
 
 
 def design_file_schema() -> JsonObject:

@@ -240,13 +240,15 @@ PROGRESS_EVERY_S = 0.1  # how often a compiled run's progress is reported
 
 def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.ndarray, span: tuple[float, float],
                           progress: Callable[[float], None] | None) -> tuple:
-    """``kernel(*args)``; with ``progress``, the kernel runs in a worker thread (it releases the GIL) and this
-    thread reports the time it has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) as the
-    fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are those of a run
-    without progress; the thread costs ~0.1 ms. The worker is a daemon: an interrupted command does not wait for
-    the kernel to finish."""
-    if progress is None:
-        return kernel(*args)
+    """``kernel(*args)`` in a worker thread (the kernel releases the GIL) while this thread waits with SIGINT,
+    SIGTERM and SIGHUP held back (:func:`gearcli.core.signals.deferred`): a signal raises the kernel's stop flag
+    (``wpar[status.WP_STOP]``), the kernel returns at its next step, and the signal is acted on here once it has
+    (KeyboardInterrupt or ``Terminated``), never while machine code runs under an unwinding interpreter. With
+    ``progress``, the time the kernel has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) is
+    reported as the fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are
+    those of a run without progress; the thread costs ~0.1 ms. ``wpar`` must have both entries."""
+    from gearcli.core import signals
+
     box: dict[str, Any] = {}
 
     def work() -> None:
@@ -255,18 +257,19 @@ def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.nd
         except BaseException as exc:  # handed to the calling thread below
             box["exc"] = exc
 
-    worker = threading.Thread(target=work, name="gearcli-kernel", daemon=True)
-    worker.start()
     length = span[1] - span[0]
 
     def report() -> None:
-        if length > 0:
+        if progress is not None and length > 0:
             progress(min(1.0, max(0.0, (float(wpar[st.WP_PROGRESS]) - span[0]) / length)))
 
-    while worker.is_alive():
-        worker.join(PROGRESS_EVERY_S)
-        report()
-    report()  # where the kernel stopped (its last budget check), also when it finished before the first poll
+    with signals.deferred(wpar, st.WP_STOP):
+        worker = threading.Thread(target=work, name="gearcli-kernel", daemon=True)
+        worker.start()
+        while worker.is_alive():
+            worker.join(PROGRESS_EVERY_S)
+            report()
+        report()  # where the kernel stopped (its last budget check), also when it finished before the first poll
     if "exc" in box:
         raise box["exc"]
     return box["out"]
@@ -282,7 +285,8 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
         raise SimulationError(f"the compiled engine integrates {', '.join(engine.COMPILED_METHODS)} only, "
                               f"not {method}")
     loaded = engine.load()
-    compile_s = loaded.load_s if not _COMPILED_USED else 0.0
+    kernel, entry_s = engine.entry(method)
+    compile_s = (loaded.load_s if not _COMPILED_USED else 0.0) + entry_s
     _COMPILED_USED.append(True)
     n = y.size
     rtol_v = np.array(np.broadcast_to(np.asarray(rtol, dtype=float), (n,)))  # writable: one kernel signature
@@ -297,10 +301,9 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
                      cost.PROJECTION_LIMIT,
                      float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
                      p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])]
-                    + ([t0] if progress is not None else []))  # the kernel writes the time reached there
+                    + [t0, 0.0])  # the kernel writes the time reached there; a signal raises the stop flag
     every = np.int64(watch.every if watch is not None else 0)
     start = time.perf_counter()
-    kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]
     args = (engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float), np.ascontiguousarray(t_eval, dtype=float),
             breaks, rtol_v, atol_v, np.int64(max_nfev), every, wpar, np.empty(0))
     out, counters, floats, _ = _kernel_with_progress(kernel, args, wpar, (t0, float(t_eval[-1])), progress)
