@@ -278,7 +278,9 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
             case = design_case(scene, overrides)
             spec = spec_from_design(*case)
         model = TorsionalModel(spec)
-    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check)
+    # a sweep row and a duty point are dynamic verdicts: from a window shown settled (gearcli.simulate.settle)
+    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check,
+                            settle=True)
     if result.final_state is None or result.final_time_s is None:
         return Evaluation(case, result, None)
     return Evaluation(case, result, Carried(model, result.final_state, result.final_time_s))

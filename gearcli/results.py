@@ -379,6 +379,13 @@ class SteadyState:
     stable: bool | None = None
     bifurcation: str | None = None
     note: str = ""
+    # issue 30: the window shown settled (gearcli.simulate.settle): no start-up transient left at its start
+    # (a fixed window), or a converged periodic state; the largest fitted transient there (of the static force),
+    # the time from which it would be settled, and the runs the window was moved later for it
+    settled: bool | None = None
+    transient_fraction: float | None = None
+    settle_time_s: float | None = None
+    settle_runs: int = 0
 
 
 class BearingStats(TypedDict):
