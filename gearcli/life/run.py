@@ -13,19 +13,23 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import cast
+from typing import TYPE_CHECKING, cast
 
 from gearcli.config import DesignFile
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
-from gearcli.errors import ConfigError, DesignError, GearcliError
+from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
 from gearcli.life import spectra
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
+from gearcli.life.starts import StartData, label, member_start_cycles, start_data
 from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
+
+if TYPE_CHECKING:
+    import numpy as np
 
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
@@ -43,6 +47,7 @@ class _PointData:
     loads: list[StageLoads]  # per stage
     bearing_loads_N: tuple[float, ...]  # ISO 281 equivalent load of each bearing at this point
     run: PointRun
+    start: StartData | None = None  # the point's start from rest, counted ``starts`` times (dynamic route)
 
 
 def _named(scene: Scene, point: DutyPoint, exc: ConfigError | DesignError) -> ConfigError | DesignError:
@@ -148,6 +153,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(result, design)
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
+    start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
     unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
@@ -155,16 +161,45 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "energy_residual": sv.energy_residual}
     k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)
+    settled = result.steady.settled if result.steady is not None else None
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
-                   peak_error=tuple(ld.peak_error for ld in loads))
+                   peak_error=tuple(ld.peak_error for ld in loads), settled=settled)
     warnings = [w for w in result.warnings if w not in design.warnings]  # the point's rating at K_v = 1: superseded
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
                             f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
                             f"sample finer: --set simulation.steps={4 * steps}")
-    return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings), tuple(notes)
+    return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
+
+
+def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
+    """The point's start from rest (its run before the settled window), with the bearings' loads."""
+    from gearcli.design.shafts import stage_layout
+    from gearcli.life.channels import reaction_series
+
+    if result.window_s[0] <= result.time_s[0]:
+        raise SimulationError(f"duty point {point.name}: starts = {point.starts} needs the run from rest before its "
+                              "window; simulation.window_start_s = 0 leaves no start to count")
+    lay = stage_layout(cfg, design.stages)
+    if lay is None:
+        return start_data(point.starts, result, design)
+    series = _with_planet_mean(design, dict(result.series))
+    return start_data(point.starts, result, design, reaction_series(lay, design, series), lay.specs)
+
+
+def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
+    """The series with each planetary stage's own F_t channel: its planets' sun-mesh mean (the central members'
+    load; the statics' input)."""
+    import numpy as np
+
+    for st in design.stages:
+        if st.planetary is not None:
+            forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
+                      for j in range(1, st.planetary.planet_count + 1)]
+            series[Channel("tangential_force", f"stage{st.index}")] = np.mean(forces, axis=0)
+    return series
 
 
 def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> tuple[float, ...]:
@@ -300,6 +335,13 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
             raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
                         total * share, curve))
+        if pd.start is not None and pd.start.count:  # the point's starts: classes of their own
+            n = member_start_cycles(pd.start, pd.point.speed_rpm, _member_speed_rpm(st, member),
+                                    _contacts_per_turn(st, member))
+            sl = _member_loads(replace(pd, loads=pd.start.loads), k, member, planet)
+            for force, share in zip(sl.forces_N, sl.shares, strict=True):
+                raw.append((label(pd.point.name), force, _stress(pd.design, k, member, mode, force, sl.static_N),
+                            n * share, curve))
     return raw
 
 
@@ -388,7 +430,13 @@ def _bearing_lives(points: Sequence[_PointData]) -> tuple[BearingLife, ...]:
     for j, b in enumerate(base):
         revs = [pd.point.hours * 60.0 * abs(pd.design.bearings[j].speed_rpm) for pd in points]
         loads = [pd.bearing_loads_N[j] for pd in points]
-        p_eq = spectrum_equivalent_load_N(loads, revs, b.kind)
+        # the starts: each point's start load for its starts' revolutions (docs/life.md, "Starts")
+        started = [pd for pd in points if pd.start is not None and pd.start.count and pd.start.bearing_loads_N]
+        start_revs = [member_start_cycles(pd.start, pd.point.speed_rpm, pd.design.bearings[j].speed_rpm, 1)
+                      for pd in started if pd.start is not None]
+        start_loads = [pd.start.bearing_loads_N[j] for pd in started if pd.start is not None]
+        p_eq = spectrum_equivalent_load_N([*loads, *start_loads], [*revs, *start_revs], b.kind)
+        revs += start_revs
         l10 = basic_life_Mrev(b.dynamic_load_rating_kN * 1e3, p_eq, b.kind)
         hours = sum(pd.point.hours for pd in points)
         mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
@@ -435,8 +483,38 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
     warnings += _static_warnings(stages)
+    if route == "static" and any(p.starts for p in points):
+        warnings.append("the duty's starts ([[duty]] starts) are counted on the dynamic route only (each point's "
+                        "start simulated from rest); --static rates the steady points alone")
+    runs = tuple(replace(pd.run, start=start_record(pd, stages)) if pd.start is not None else pd.run
+                 for pd in evaluated)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
-                      tuple(pd.run for pd in evaluated), stages, _bearing_lives(evaluated), tuple(warnings))
+                      runs, stages, _bearing_lives(evaluated), tuple(warnings))
+
+
+def start_record(pd: _PointData, stages: Sequence[StageLife]) -> JsonObject:
+    """``points[i].start``: the count, the start's peak |F_t| per stage, its damage per member and mode (the sum
+    of its own classes' n/N), and per bearing its peak reactions and ISO 281 equivalent load."""
+    assert pd.start is not None
+    name = label(pd.point.name)
+    damage: list[JsonObject] = []
+    for st in stages:
+        doc: JsonObject = {}
+        members = [m for m in (*MEMBERS, *RING_MEMBERS) if getattr(st, m, None) is not None]
+        for member in (*members, *(("planet_root",) if st.planet_root is not None else ())):
+            ml = getattr(st, member) if member != "planet_root" else None
+            modes = {"bending": st.planet_root} if ml is None else {m: getattr(ml, m) for m in MODES}
+            doc[member] = {m: sum(b.damage for b in x.bins if b.point == name) for m, x in modes.items()
+                           if x is not None}
+        damage.append(doc)
+    bearings: list[JsonObject] = []
+    for j, b in enumerate(pd.design.bearings):
+        if j < len(pd.start.bearing_peaks):
+            bearings.append({"shaft": b.shaft, "position_mm": b.position_mm, **pd.start.bearing_peaks[j],
+                             "equivalent_load_N": pd.start.bearing_loads_N[j]})
+    return {"count": pd.start.count, "span_s": list(pd.start.span_s),
+            "input_revolutions": pd.start.input_revolutions,
+            "peak_tangential_N": list(pd.start.peak_tangential_N), "damage": damage, "bearings": bearings}
 
 
 def _static_warnings(stages: Sequence[StageLife]) -> list[str]:
