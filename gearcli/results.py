@@ -408,6 +408,7 @@ class SimulationExtra(TypedDict, total=False):
     natural_frequencies_runup_Hz: list[float]
     motor: dict[str, float | None]
     bearings: list[BearingStats]
+    start: dict  # {peak_over_rigid, rigid_peak_N} per stage: the run's peak over the rigid-body start's
 
 
 @dataclass(frozen=True)

@@ -157,7 +157,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     sv = result.solver
     unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
-              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": duration, "output_samples": steps + 1, "window_s": list(result.window_s),
+              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": steps + 1, "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "energy_residual": sv.energy_residual}
     k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)

@@ -36,7 +36,7 @@ from gearcli.results import (
     SteadyState,
 )
 from gearcli.scene import output_units, spec_from_design
-from gearcli.simulate import estimate, stats
+from gearcli.simulate import estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
@@ -446,8 +446,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     diags += ratio_warnings + stats.contact_warnings(spec, mask, [ms.penetration_m for ms in s.meshes],
                                                      choice.at_full_load.penetration_m)
-    diags += stats.peak_warnings(spec, [float(np.max(np.abs(ms.line_force_N))) for ms in s.meshes],
-                                 choice.at_operating_point.line_forces_N)
+    start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
+                                                       [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID)
+    diags += start_diags
     motor_summary = None
     if model.layout.drive.motor is not None:
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
@@ -481,7 +482,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
-               **({"motor": motor_summary} if motor_summary is not None else {})},
+               **({"motor": motor_summary} if motor_summary is not None else {}),
+               **({"start": start_doc} if start_doc else {})},
     )
 
 
