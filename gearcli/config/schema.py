@@ -391,12 +391,14 @@ def _starting_rules() -> list[dict]:
     """A starting method and its parameters need drive = "motor"; each parameter belongs to its method; star-delta
     needs its switch-over speed, the soft start its ramp; ramp_s > 0 on a motor only for the VFD."""
     motor = {**_required("drive"), "properties": {"drive": {"const": "motor"}}}
-    rules: list[dict] = [{"not": {"anyOf": [_required(k) for k in ("starting", *_START_PARAMS)], "not": motor}}]
+    # another drive ignores them (with a note in the design), so that --set input.drive="speed" works on a motor file
+    rules: list[dict] = []
     for key, method in _START_PARAMS.items():
-        rules.append({"not": {**_required(key), "not": {**_required("starting"),
-                                                       "properties": {"starting": {"const": method}}}}})
+        rules.append({"not": {**_required("drive", key), "properties": {"drive": {"const": "motor"}},
+                              "not": {**_required("starting"), "properties": {"starting": {"const": method}}}}})
     for method, key in (("star_delta", "switch_speed_rpm"), ("soft_start", "voltage_ramp_s")):
-        rules.append({"not": {**_required("starting"), "properties": {"starting": {"const": method}},
+        rules.append({"not": {**_required("starting", "drive"),
+                              "properties": {"drive": {"const": "motor"}, "starting": {"const": method}},
                               "not": _required(key)}})
     rules.append({"not": {**motor, **_required("drive", "ramp_s"),
                           "properties": {"drive": {"const": "motor"}, "ramp_s": {"exclusiveMinimum": 0}},
@@ -426,6 +428,7 @@ class Input(_Coupled):
     initial_voltage_fraction: Annotated[float, Field(ge=0.05, le=1.0)] = 0.3  # soft_start
     torque_limit_Nm: Annotated[float, Field(gt=0.0, le=MAX_TORQUE_NMM / 1e3)] | None = None  # vfd
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
+    _ignored_keys: tuple[str, ...] = PrivateAttr(default=())  # starting keys another drive than "motor" ignores
     model_config = ConfigDict(json_schema_extra=_all_of(
         *_exactly_one(("speed_deg_s", "speed_rpm", "speed_rad_s")), *_at_most_one(INPUT_TORQUE_KEYS),
         {"not": {**_required("drive"), "properties": {"drive": {"const": "torque"}},
@@ -474,11 +477,10 @@ class Input(_Coupled):
         if self.drive == "motor" and self.motor is None:
             raise ValueError('drive = "motor" needs motor = { rated_power_kW, rated_speed_rpm, synchronous_speed_rpm, '
                              "breakdown_torque_ratio, locked_rotor_torque_ratio } or motor = { torque_speed = [...] }")
-        if self.drive != "motor":
-            extra = [k for k in ("switch_speed_rpm", "voltage_ramp_s", "torque_limit_Nm", "starting",
-                                 "initial_voltage_fraction") if k in self.model_fields_set]
-            if extra:
-                raise ValueError(f'{", ".join(extra)}: a starting method needs drive = "motor"')
+        if self.drive != "motor":  # a starting method belongs to drive = "motor": ignored here, with a note
+            self._ignored_keys = tuple(k for k in ("starting", "switch_speed_rpm", "voltage_ramp_s",
+                                                   "initial_voltage_fraction", "torque_limit_Nm")
+                                       if k in self.model_fields_set)
             return
         need = {"star_delta": "switch_speed_rpm", "soft_start": "voltage_ramp_s"}.get(self.starting)
         if need is not None and getattr(self, need) is None:
@@ -492,6 +494,11 @@ class Input(_Coupled):
         if self.ramp_s > 0 and self.starting != "vfd":
             raise ValueError('ramp_s: with drive = "motor" only the VFD ramps its speed (starting = "vfd"); the other '
                              "starts follow the motor's curve")
+
+    @property
+    def ignored_keys(self) -> tuple[str, ...]:
+        """The starting method's keys given with a drive other than "motor" (ignored; the design notes them)."""
+        return self._ignored_keys
 
     @property
     def speed_rad_s_value(self) -> float:
