@@ -16,8 +16,8 @@ downstream of the mesh's driven body, its inertia reaction plus the load,
 (f_c the losses of the meshes from c on, as the statics; a planet mesh: the stage's output torque times its lever).
 The estimate's peak is the largest |F_t| of each stage over the run; ``peak_over_rigid`` is the simulated peak over
 it. The cause of a large ratio is named from the run: a step of the drive or the load at t = 0, the motor's torque
-at breakdown, a resonance passage (a mesh or shaft order crossing a natural frequency during the run-up) or the
-swing of the drivetrain's mode that the start excites.
+at breakdown, a resonance passage (an excited mesh's order crossing the swinging mode during the run-up) and the
+swing of the drivetrain's mode that the start excites (the deviation from the rigid force projected on each mode).
 """
 
 from __future__ import annotations
@@ -33,6 +33,7 @@ from gearcli.model.outputs import tooth_forces
 from gearcli.model.step import ramp, ramp_motion
 
 SAMPLES = 2001
+SWING_FRACTION = 0.02  # a mode swinging with less than this of the rigid peak is not named
 
 
 @dataclass(frozen=True)
@@ -115,9 +116,9 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
     return RigidStart(t, w, a, load, forces, ft)
 
 
-def cause(lay: Layout, rigid: RigidStart, peak_time_s: float, swing_Hz: float | None,
-          mode_Hz: float | None, element: str) -> str:
-    """What makes the start's peak (module text), in words for the ``peak_over_rigid`` warning."""
+def cause(lay: Layout, rigid: RigidStart, peak_time_s: float, swinging: tuple[float, str, float] | None) -> str:
+    """What makes the start's peak (module text), in words for the ``peak_over_rigid`` warning; ``swinging`` the
+    mode that swings in the start (:func:`swing`)."""
     parts = []
     steps = []
     if lay.drive.kind == "speed" and lay.drive.ramp_s == 0 and lay.drive.speed_rad_s != 0:
@@ -131,37 +132,38 @@ def cause(lay: Layout, rigid: RigidStart, peak_time_s: float, swing_Hz: float | 
                      "(several periods of the lowest natural frequency) for a smooth run-up; a tighter rtol does not "
                      "change a physical shock")
     if lay.motor_drive and lay.drive.motor is not None:
-        row = lay.motor_row
-        t_lr = machine.motor_torque(row, 0.0, 0.0)[0]
+        t_lr = machine.motor_torque(lay.motor_row, 0.0, 0.0)[0]
         parts.append(f"the motor applies its locked-rotor torque ({t_lr:.4g} N·m) at once when switched on and "
                      f"its breakdown torque ({lay.drive.motor.peak_torque_Nm:.4g} N·m) on the way up: a torque "
                      "step that an elastic drivetrain answers with up to twice the rigid-body force")
-    passage = resonance_passage(lay, rigid, peak_time_s, mode_Hz)
-    if passage:
-        parts.append(passage)
-    if swing_Hz is not None:
-        near = f" (the {mode_Hz:.3g} Hz mode{', dominated by the ' + element if element else ''})" \
-            if mode_Hz is not None else ""
-        parts.append(f"the drivetrain swings at {swing_Hz:.3g} Hz{near} after the start: add damping there or "
-                     "start more gently (a soft start, a VFD ramp, a longer ramp_s) to lower it")
-    return "; ".join(parts) if parts else "no step, motor or resonance explains it: check with a tighter rtol"
+    if swinging is not None:
+        f, element, amplitude = swinging
+        passage = resonance_passage(lay, rigid, peak_time_s, f)
+        dominated = f" (dominated by the {element})" if element else ""
+        parts.append((passage + ", and " if passage else "") +
+                     f"the {f:.3g} Hz mode{dominated} swings with ±{amplitude:.4g} N about the rigid-body force "
+                     "during the start: more damping there or a gentler start (soft start, VFD, longer ramps) "
+                     "lowers it")
+    return "; ".join(parts) if parts else ("no step, motor torque or swinging mode explains it: a violent impact or "
+                                           "a numerical artefact — check with a tighter rtol")
 
 
 def resonance_passage(lay: Layout, rigid: RigidStart, peak_time_s: float, mode_Hz: float | None) -> str:
-    """A mesh order (1x mesh frequency) or the input shaft order crossing ``mode_Hz`` during the run-up before
-    the peak, named with its time; empty when none does."""
+    """An excited mesh's order (1x its mesh frequency: a transmission error or a varying stiffness) crossing
+    ``mode_Hz`` during the run-up before the peak, named with its time; empty when none does."""
     if mode_Hz is None or mode_Hz <= 0:
         return ""
     orders: list[tuple[str, float]] = []  # Hz per (rad/s of the input body)
     for c in lay.stage_conn:
         x = lay.connectors[c]
+        if not x.element.makes_excitation(x.params):  # a mesh without excitation makes no order to pass through
+            continue
         try:
             period = x.element.cycle_period_s(x.params, lay.bodies[x.a].ratio)
         except (AttributeError, ZeroDivisionError, ValueError):
             continue
         if period and math.isfinite(period):
             orders.append((f"stage {x.index + 1}'s mesh frequency", 1.0 / period))
-    orders.append(("the input shaft's speed", 1.0 / (2 * math.pi)))
     w = np.abs(rigid.speed_rad_s)
     for name, order in orders:
         f = order * w
@@ -172,23 +174,24 @@ def resonance_passage(lay: Layout, rigid: RigidStart, peak_time_s: float, mode_H
     return ""
 
 
-def swing_frequency_Hz(t: np.ndarray, deviation: np.ndarray) -> float | None:
-    """The dominant frequency of the simulated force's deviation from the rigid one over the start (the FFT's
-    largest non-zero bin, refined by a parabola through its neighbours); None when too short or flat."""
-    if t.size < 16 or not np.any(deviation):
+def swing(t: np.ndarray, deviation: np.ndarray, modes: list[tuple[float, str]],
+          min_amplitude_N: float) -> tuple[float, str, float] | None:
+    """The mode that swings in the start: the deviation of the simulated force from the rigid one (a line
+    fitted and removed) projected on each mode's frequency (the DFT amplitude 2 |sum x e^(-i w t)| / n; modes with
+    at least two periods in the span and four samples per period); the largest, as (frequency, dominant element,
+    amplitude), when it reaches ``min_amplitude_N``; else None."""
+    if t.size < 16 or t[-1] <= t[0]:
         return None
-    dt = (t[-1] - t[0]) / (t.size - 1)
-    x = deviation - np.mean(deviation)
-    spec = np.abs(np.fft.rfft(x * np.hanning(x.size)))
-    if spec.size < 3:
-        return None
-    i = int(np.argmax(spec[1:])) + 1
-    shift = 0.0
-    if 1 <= i < spec.size - 1:
-        a, b, c = spec[i - 1], spec[i], spec[i + 1]
-        den = a - 2 * b + c
-        shift = 0.5 * (a - c) / den if den else 0.0
-    return float((i + shift) / (x.size * dt))
+    x = deviation - np.polyval(np.polyfit(t, deviation, 1), t)
+    span, dt = t[-1] - t[0], (t[-1] - t[0]) / (t.size - 1)
+    best: tuple[float, str, float] | None = None
+    for f, element in modes:
+        if f * span < 2.0 or f * dt > 0.25:
+            continue
+        amplitude = 2.0 * abs(np.sum(x * np.exp(-2j * math.pi * f * t))) / t.size
+        if best is None or amplitude > best[2]:
+            best = (f, element, float(amplitude))
+    return best if best is not None and best[2] >= min_amplitude_N else None
 
 
 def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.ndarray], window_s: tuple[float, float],
@@ -207,20 +210,19 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
     out = {"peak_over_rigid": ratios, "rigid_peak_N": rigid_peaks}
     diags = []
     start = t <= max(window_s[0], t[0])
-    modes = None
+    modes: list[tuple[float, str]] | None = None
     for k, ratio in enumerate(ratios):
         if ratio is None or ratio <= warn_ratio:
             continue
         if modes is None:
-            modes = [m for m in modal_analysis(lay, boundary).modes if not m.rigid]
+            modes = [(m.frequency_Hz, m.dominant) for m in modal_analysis(lay, boundary).modes if not m.rigid]
         i = int(np.argmax(np.abs(forces_N[k])))
         dev = np.abs(forces_N[k][start]) - np.interp(t[start], rigid.time_s, np.abs(rigid.tangential_N[k]))
-        swing = swing_frequency_Hz(t[start], dev)
-        near = min(modes, key=lambda m: abs(m.frequency_Hz - swing), default=None) if swing else None
-        why = cause(lay, rigid, float(t[i]), swing, near.frequency_Hz if near else None,
-                    near.dominant if near else "")
+        found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k])
+        why = cause(lay, rigid, float(t[i]), found)
         diags.append(dg.warning(dg.PEAK_OVER_RIGID, f"stage {k + 1}: the start's peak mesh force {peaks[k]:.5g} N "
                                 f"(at {t[i]:.3g} s) is {ratio:.3g}x the rigid-body start's {rigid_peaks[k]:.5g} N (the "
                                 f"same drive and load law without compliance): {why}", stage=k + 1, ratio=ratio,
-                                rigid_peak_N=rigid_peaks[k], swing_Hz=swing))
+                                rigid_peak_N=rigid_peaks[k], swing_Hz=found[0] if found else None,
+                                swing_amplitude_N=found[2] if found else None))
     return out, diags
