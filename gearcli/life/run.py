@@ -166,6 +166,12 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
                    peak_error=tuple(ld.peak_error for ld in loads), settled=settled)
     warnings = [w for w in result.warnings if w not in design.warnings]  # the point's rating at K_v = 1: superseded
+    if cfg.input.drive == "motor" and cfg.input.starting != "vfd" and result.extra and "motor" in result.extra:
+        running = result.extra["motor"].get("operating_speed_rpm")
+        if running and abs(running - point.speed_rpm) > 0.02 * point.speed_rpm:
+            warnings.append(f"the motor (starting = \"{cfg.input.starting}\") runs at {running:.5g} rpm, not the point's "
+                            f"speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: give the speed the "
+                            "motor runs at, or starting = \"vfd\" (the supply follows the point's speed)")
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "

@@ -38,6 +38,7 @@ from gearcli.results import (
 from gearcli.scene import output_units, spec_from_design
 from gearcli.simulate import estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
+from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
@@ -74,7 +75,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     already built it (a sweep point), else built here; ``error_estimate`` (default
     ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`; ``settle`` (default: when
     ``[rating] dynamic_factor = "simulated"``) repeats a run whose fixed window is not settled with a later window
-    (:func:`settled_run`: the dynamic verdicts of life, sweep and report ask for it). The design's own
+    (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it). The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -95,42 +96,13 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     if settle is None:
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
     if settle:
-        result = settled_run(result, run, sim.duration_s, sim.steps)
+        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps)
     from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
 
     stages, rating_diags = simulated_ratings(cfg, design, result.stages)
     new = [d for d in rating_diags if d.message not in result.warnings]
     return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
                    diagnostics=result.diagnostics + tuple(new), units=output_units(cfg))
-
-
-def settled_run(result: SimulationResult, run: Callable[[float, int, float | None], SimulationResult],
-                duration_s: float, steps: int) -> SimulationResult:
-    """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
-    start)`` with the window from the settle time on (:func:`gearcli.simulate.settle.next_window`: its length
-    kept, the output samples scaled with the duration, within the budget); the last run's window still unsettled
-    says so in its warning."""
-    from gearcli.simulate import settle
-
-    runs = 0
-    while result.steady is not None and result.steady.mode == "window" and result.steady.settled is False \
-            and runs < settle.MAX_RUNS:
-        st = result.steady
-        found = settle.Settling(False, st.transient_fraction or math.inf, settle_time_s=st.settle_time_s)
-        nxt = settle.next_window(found, result.window_s, duration_s)
-        if nxt is None:
-            break
-        start, duration = nxt
-        runs += 1
-        result = run(duration, max(steps, math.ceil(steps * duration / duration_s)), start)
-    if runs and result.steady is not None:
-        result = replace(result, steady=replace(result.steady, settle_runs=runs))
-        if result.steady.settled is False:
-            note = f" (after {runs} longer run{'s' if runs > 1 else ''} within the budget)"
-            diags = tuple(replace(d, message=d.message + note) if d.code == dg.WINDOW_NOT_SETTLED else d
-                          for d in result.diagnostics)
-            result = replace(result, diagnostics=diags, warnings=dg.messages(list(diags)))
-    return result
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
@@ -462,7 +434,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     if not periodic:
         diags += ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
                                   [st.simulated_static_tangential_N or 0.0 for st in stages], window)
-    steady = settled_steady(model, choice, s, mask, window, per_stage, stages, steady, motor_summary, diags)
+    steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
+                                       motor_summary, diags)
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -485,31 +458,6 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
-
-
-def settled_steady(model: TorsionalModel, choice: Choice, s: Sampled, mask: np.ndarray, window, per_stage,
-                   stages, steady: SteadyState, motor_summary, diags: list[Diagnostic]) -> SteadyState:
-    """``steady`` with the settle test of the window (:mod:`gearcli.simulate.settle`; a periodic state: settled
-    when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
-    ringing or the motor's start warning already says so."""
-    from gearcli.simulate import settle
-
-    if steady.mode == "periodic":
-        return replace(steady, settled=bool(steady.converged))
-    motor_start, reaches = None, False
-    if motor_summary is not None and model.layout.motor_drive:
-        motor_start = motor_summary.get("start_time_s")
-        reaches = not any(d.code == dg.MOTOR_STALLS for d in diags)
-    found = settle.check(s.time_s, mask, [p[0] for p in per_stage],
-                         [st.simulated_static_tangential_N or 0.0 for st in stages],
-                         choice.at_full_load.eigenvalues, window, motor_start, reaches)
-    if not found.settled and not any(d.code in (dg.WINDOW_RINGING, dg.START_NOT_SETTLED) for d in diags):
-        diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, settle.message(found, window, steady.settle_runs),
-                                transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
-                                else None, stage=found.stage, mode_frequency_Hz=found.frequency_Hz,
-                                settle_time_s=found.settle_time_s))
-    fraction = found.transient_fraction if math.isfinite(found.transient_fraction) else None
-    return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
 
 
 def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,

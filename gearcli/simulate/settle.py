@@ -21,11 +21,20 @@ A periodic steady state (``steady = "periodic"``) is settled when it converged.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
+from gearcli.results import SimulationResult, SteadyState
 from gearcli.simulate import ringing
+
+if TYPE_CHECKING:
+    from gearcli.model import TorsionalModel
+    from gearcli.simulate.choice import Choice
 
 SETTLED_FRACTION = 0.01  # transient amplitude at the window's start, of the stage's static force (1 % of K_v)
 DECAYED = 12.0  # decay exponent since t = 0 past which a mode is taken as settled (e^-12 = 6e-6)
@@ -116,3 +125,54 @@ def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str
     return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}"
             f"{when}; its max |F_t|, dynamic factor and load peaks include the start-up transient "
             "(or [simulation] steady = \"periodic\")")
+
+
+def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray, window, per_stage,
+                   stages, steady: SteadyState, motor_summary, diags: list[Diagnostic]) -> SteadyState:
+    """``steady`` with the settle test of the window (:mod:`gearcli.simulate.settle`; a periodic state: settled
+    when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
+    ringing or the motor's start warning already says so."""
+    if steady.mode == "periodic":
+        return replace(steady, settled=bool(steady.converged))
+    motor_start, reaches = None, False
+    if motor_summary is not None and model.layout.motor_drive:
+        motor_start = motor_summary.get("start_time_s")
+        reaches = not any(d.code == dg.MOTOR_STALLS for d in diags)
+    found = check(t, mask, [p[0] for p in per_stage],
+                         [st.simulated_static_tangential_N or 0.0 for st in stages],
+                         choice.at_full_load.eigenvalues, window, motor_start, reaches)
+    if not found.settled and not any(d.code in (dg.WINDOW_RINGING, dg.START_NOT_SETTLED) for d in diags):
+        diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
+                                transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
+                                else None, stage=found.stage, mode_frequency_Hz=found.frequency_Hz,
+                                settle_time_s=found.settle_time_s))
+    fraction = found.transient_fraction if math.isfinite(found.transient_fraction) else None
+    return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
+
+
+def settled_run(result: SimulationResult, run: Callable[[float, int, float | None], SimulationResult],
+                duration_s: float, steps: int) -> SimulationResult:
+    """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
+    start)`` with the window from the settle time on (:func:`gearcli.simulate.next_window`: its length
+    kept, the output samples scaled with the duration, within the budget); the last run's window still unsettled
+    says so in its warning."""
+    runs = 0
+    while result.steady is not None and result.steady.mode == "window" and result.steady.settled is False \
+            and runs < MAX_RUNS:
+        st = result.steady
+        found = Settling(False, st.transient_fraction or math.inf, settle_time_s=st.settle_time_s)
+        nxt = next_window(found, result.window_s, duration_s)
+        if nxt is None:
+            break
+        start, duration = nxt
+        runs += 1
+        result = run(duration, max(steps, math.ceil(steps * duration / duration_s)), start)
+    if runs and result.steady is not None:
+        steady = replace(result.steady, settle_runs=runs)
+        result = replace(result, steady=steady)
+        if steady.settled is False:
+            note = f" (after {runs} longer run{'s' if runs > 1 else ''} within the budget)"
+            diags = tuple(replace(d, message=d.message + note) if d.code == dg.WINDOW_NOT_SETTLED else d
+                          for d in result.diagnostics)
+            result = replace(result, diagnostics=diags, warnings=dg.messages(list(diags)))
+    return result

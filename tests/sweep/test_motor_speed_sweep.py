@@ -37,7 +37,7 @@ def test_a_vfd_speed_sweep_runs_each_row_at_its_design_speed():
     # constant V/f: at the same load torque the motor slips by the same speed at either supply, so each row runs
     # at its own speed plus the same small slip offset (the load is a little below the rated torque)
     offsets = [r["output_speed_rpm"] * ratio - r["input.speed_rpm"] for r in rows]
-    assert_allclose(offsets[0], offsets[1], atol=2e-3 * 1460)
+    assert_allclose(offsets[0], offsets[1], atol=1e-3)  # rpm (they agree to ~1e-7 rpm)
     assert abs(offsets[1]) < 0.01 * 1460  # the row runs at its design speed within 1 %
 
 
