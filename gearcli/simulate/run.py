@@ -86,10 +86,10 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = _design_diagnostics(design)
 
-    def run(duration_s: float, steps: int, window_start_s: float | None) -> SimulationResult:
+    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
         return simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
                               rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
-                              max_nfev=max_nfev, y0=y0, steady=sim.steady, error_estimate=check,
+                              max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
                               prior_diagnostics=design_diags, engine=sim.engine, progress=progress)
 
     result = run(sim.duration_s, sim.steps, sim.window_start_s)

@@ -3,17 +3,20 @@
 Every dynamic verdict (the life route's spectra, the simulated K_v, a sweep row, the report's comparison) takes
 the window's max |F_t| or its cycle peaks, which a run-up transient inflates long after the ramps: a DOL start
 leaves the drivetrain's slow modes ringing, and the window's first periods carry them. The window is shown to
-be settled when no decaying oscillation is left in it: the window's F_t of every stage is fitted by least
-squares with a constant plus the free decay of the oscillating modes of the linearised chain (the slowest
+be settled when no decaying oscillation is left in it. Two tests, both must pass: (model-free) the max |F_t|
+of the window's first quarter must not exceed its last half's by more than :data:`SETTLED_FRACTION` of the
+static force; (modal) the window's F_t of every stage is fitted by least squares with a constant plus the free decay of the oscillating modes of the linearised chain (the slowest
 decaying first, their decay rates refined to the record's envelope: :func:`gearcli.simulate.ringing.fit_transient`)
 and the fitted amplitude at the window's start must stay below :data:`SETTLED_FRACTION` of the stage's static
 force. A motor whose start reaches 98 % of its operating speed only after the window starts is unsettled too.
 
 An unsettled window names the time from which it would be settled (the largest transient decayed to the
-fraction: ``t0 + ln(a0 / (f F)) / sigma``). :func:`settle_runs` repeats the run with its window from there
+fraction: ``t0 + ln(a0 / (f F)) / sigma``). :func:`settled_run` repeats the run with its window from there
 (the window's length kept, the samples scaled with it), at most :data:`MAX_RUNS` times and within
-:data:`MAX_DURATION_FACTOR` times the first run's duration; a window still unsettled then is reported
-(``steady.settled = false`` and the ``window_not_settled`` warning), never silently taken for steady.
+:data:`MAX_DURATION_FACTOR` times the first run's duration; where that budget cannot settle it, the periodic
+steady state is sought (shooting where it applies, within the same duration) and taken when it converges; a
+window still unsettled then is reported (``steady.settled = false`` and the ``window_not_settled`` warning),
+never silently taken for steady.
 
 A periodic steady state (``steady = "periodic"``) is settled when it converged.
 """
@@ -29,6 +32,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
+from gearcli.errors import GearcliError
 from gearcli.results import SimulationResult, SteadyState
 from gearcli.simulate import ringing
 
@@ -95,11 +99,38 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
                              "" if fraction < SETTLED_FRACTION else
                              f"the {omega / (2 * math.pi):.3g} Hz mode rings from the start with ±{a0:.4g} N in stage "
                              f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of the static {ref:.5g} N)")
+    worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst)
     if motor_start_s is not None and motor_start_s > window_s[0]:
         settle = max(motor_start_s, worst.settle_time_s or 0.0)
         return Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
                         f"the motor reaches 98 % of its operating speed at {motor_start_s:.4g} s, after the window "
                         f"starts ({window_s[0]:.4g} s)")
+    return worst
+
+
+def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], worst: Settling) -> Settling:
+    """The model-free half of the test: a transient that decays through the window raises its first quarter's
+    max |F_t| above its last half's (the steady part, which holds every steady peak the first quarter holds); by
+    more than SETTLED_FRACTION of the static force, the window is unsettled from the last sample above that
+    level on (the fit's settle time where it gives a later one)."""
+    if t.size < 8:
+        return worst
+    quarter, half = t <= t[0] + 0.25 * (t[-1] - t[0]), t >= t[0] + 0.5 * (t[-1] - t[0])
+    for k, (f, ref) in enumerate(zip(forces, static_N, strict=True)):
+        ref = abs(float(ref)) or float(np.mean(f))
+        if ref <= 0.0:
+            continue
+        steady_max = float(np.max(f[half]))
+        excess = (float(np.max(f[quarter])) - steady_max) / ref
+        if excess <= SETTLED_FRACTION or excess <= worst.transient_fraction and not worst.settled:
+            continue
+        above = np.nonzero(f > steady_max + SETTLED_FRACTION * ref)[0]
+        settle = float(t[above[-1]]) if above.size else None
+        if worst.settle_time_s is not None and (settle is None or worst.settle_time_s > settle):
+            settle = worst.settle_time_s
+        worst = Settling(False, max(excess, worst.transient_fraction), k + 1, worst.frequency_Hz, settle,
+                         f"stage {k + 1}'s max |F_t| in the window's first quarter exceeds its last half's by "
+                         f"{100 * excess:.2g} % of the static {ref:.5g} N: a start-up transient decays through it")
     return worst
 
 
@@ -150,12 +181,30 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
 
 
-def settled_run(result: SimulationResult, run: Callable[[float, int, float | None], SimulationResult],
+def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
                 duration_s: float, steps: int) -> SimulationResult:
     """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
-    start)`` with the window from the settle time on (:func:`gearcli.simulate.next_window`: its length
-    kept, the output samples scaled with the duration, within the budget); the last run's window still unsettled
-    says so in its warning."""
+    start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
+    scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
+    (``run(..., steady="periodic")``: shooting, or period by period, within the budget's duration) when it
+    converges; else the last window, whose warning says so."""
+    result = _moved_window(result, run, duration_s, steps)
+    if result.steady is None or result.steady.mode != "window" or result.steady.settled is not False:
+        return result
+    longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
+    try:
+        periodic = run(longest, steps, None, steady="periodic")
+    except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
+        return result
+    if periodic.steady is not None and periodic.steady.converged:
+        return replace(periodic, steady=replace(periodic.steady, settled=True,
+                                                settle_runs=result.steady.settle_runs + 1))
+    return result
+
+
+def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult], duration_s: float,
+                  steps: int) -> SimulationResult:
+    """The window moved later while it is not settled (:func:`settled_run`)."""
     runs = 0
     while result.steady is not None and result.steady.mode == "window" and result.steady.settled is False \
             and runs < MAX_RUNS:
