@@ -84,3 +84,39 @@ def test_run_simulation_moves_an_unsettled_window_of_a_dol_start():
     for st in moved.stages:
         assert st.dynamic_factor < 1.01
     assert not any(d.code == "window_not_settled" for d in moved.diagnostics)
+
+
+def test_the_envelope_test_catches_a_transient_the_modes_do_not_describe():
+    # a decaying beat at a frequency no linearised mode has (no eigenvalues given): the first quarter's max
+    # exceeds the last half's by the transient's amplitude there
+    static = 1000.0
+    t = np.linspace(0.0, 4.0, 8001)
+    x = static + 0.2 * static * np.exp(-3.0 * t) * np.sin(2 * math.pi * 7.0 * t)
+    window = (0.5, 4.0)
+    mask = t >= window[0]
+    found = settle.check(t, mask, [x], [static], np.array([]), window, None, False)
+    assert not found.settled
+    # by hand: the first quarter's max over the static force is about 0.2 e^(-3 t) at its largest crest
+    crest = np.max(x[mask & (t <= window[0] + 0.25 * 3.5)]) / static - 1.0
+    assert_allclose(found.transient_fraction, crest - (np.max(x[t >= 2.25]) / static - 1.0), rtol=1e-12)
+    # and it is settled from the last sample above the steady max + 1 %: 0.2 e^(-3 t) = 0.01 near t = ln(20)/3
+    assert found.settle_time_s < math.log(20) / 3 + 0.1
+
+
+def test_a_window_the_budget_cannot_settle_takes_the_periodic_steady_state():
+    """configs/conveyor_rated.toml: its drum mode (0.46 % damping) needs ~26 s to settle, beyond 8x the 2 s
+    run; [rating] dynamic_factor = "simulated" then takes the periodic steady state (shooting), whose K_v is the
+    transmission errors' (close to 1) instead of the ringing window's 1.37."""
+    from pathlib import Path
+
+    from gearcli import api
+    from gearcli.simulate import run_simulation
+
+    root = Path(__file__).resolve().parents[2]
+    loaded = api.load(str(root / "configs" / "conveyor_rated.toml"), [])
+    design = api.design(loaded)
+    result = run_simulation(loaded.design, design, want_series=False)  # dynamic_factor = "simulated": settles
+    assert result.steady.mode == "periodic" and result.steady.converged and result.steady.settled
+    for st in result.stages:
+        assert st.dynamic_factor < 1.1
+        assert_allclose(st.rating.K_v, max(1.0, st.dynamic_factor), rtol=1e-12)
