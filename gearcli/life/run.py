@@ -147,7 +147,10 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     steps = spectra.steps_for(design, duration, cfg.simulation.steps)
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
     try:
-        (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None)
+        # a settled window of the run from rest (its start is counted); the periodic state would skip the start
+        settle = "window" if cfg.simulation.steady == "window" else True
+        (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None,
+                                            settle=settle)
     except (ConfigError, DesignError) as exc:
         raise _named(scene, point, exc) from None
     _require_rating(cfg, scene)

@@ -65,7 +65,7 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] 
 def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
-                   error_estimate: bool | None = None, settle: bool | None = None,
+                   error_estimate: bool | None = None, settle: bool | str | None = None,
                    progress: Callable[[float], None] | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``series`` empty (the statistics
@@ -74,7 +74,8 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     :meth:`gearcli.model.TorsionalModel.continue_state`); ``model``: the scene's model when the caller has
     already built it (a sweep point), else built here; ``error_estimate`` (default
     ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`; ``settle`` (default: when
-    ``[rating] dynamic_factor = "simulated"``) repeats a run whose fixed window is not settled with a later window
+    ``[rating] dynamic_factor = "simulated"``; ``"window"``: without the periodic fallback) repeats a run whose fixed
+    window is not settled with a later window
     (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it). The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
@@ -96,7 +97,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     if settle is None:
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
     if settle:
-        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps)
+        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window")
     from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
 
     stages, rating_diags = simulated_ratings(cfg, design, result.stages)

@@ -182,23 +182,23 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
 
 
 def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
-                duration_s: float, steps: int) -> SimulationResult:
+                duration_s: float, steps: int, periodic: bool = True) -> SimulationResult:
     """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
     start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
     scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
     (``run(..., steady="periodic")``: shooting, or period by period, within the budget's duration) when it
-    converges; else the last window, whose warning says so."""
+    converges (not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
+    starts); else the last window, whose warning says so."""
     result = _moved_window(result, run, duration_s, steps)
-    if result.steady is None or result.steady.mode != "window" or result.steady.settled is not False:
+    if not periodic or result.steady is None or result.steady.mode != "window" or result.steady.settled is not False:
         return result
     longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
     try:
-        periodic = run(longest, steps, None, steady="periodic")
+        orbit = run(longest, steps, None, steady="periodic")
     except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
         return result
-    if periodic.steady is not None and periodic.steady.converged:
-        return replace(periodic, steady=replace(periodic.steady, settled=True,
-                                                settle_runs=result.steady.settle_runs + 1))
+    if orbit.steady is not None and orbit.steady.converged:
+        return replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=result.steady.settle_runs + 1))
     return result
 
 
