@@ -121,3 +121,20 @@ def test_the_swinging_mode_of_a_ramped_start_is_named():
         assert "swings with" in d.message and "load coupling" in d.message
         # the gears' own inertia on the drum side is left out of the hand figure: within 5 %
         assert_allclose(d.data["swing_Hz"], f_hand, rtol=0.05)
+
+
+def test_simulate_json_has_summary_start():
+    import json
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    res = CliRunner().invoke(cli, ["simulate", DOL, "--format", "json"])
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.stdout)["summary"]
+    start = summary["start"]
+    assert set(start) == {"peak_over_rigid", "rigid_peak_N"}
+    for k, st in enumerate(summary["stages"]):
+        assert_allclose(start["peak_over_rigid"][k] * start["rigid_peak_N"][k], st["peak_tangential_N"], rtol=1e-12)
+    assert summary["steady"]["settled"] is True  # the 15 kW motor's start is over long before the window
