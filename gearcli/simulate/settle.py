@@ -214,8 +214,12 @@ def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult]
         if nxt is None:
             break
         start, duration = nxt
+        try:
+            longer = run(duration, max(steps, math.ceil(steps * duration / duration_s)), start)
+        except GearcliError:  # the longer run exceeds its own budget (or fails): the window's warning stands
+            break
         runs += 1
-        result = run(duration, max(steps, math.ceil(steps * duration / duration_s)), start)
+        result = longer
     if runs and result.steady is not None:
         steady = replace(result.steady, settle_runs=runs)
         result = replace(result, steady=steady)
