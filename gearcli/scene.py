@@ -87,7 +87,7 @@ def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None
 def motor_spec(inp: Input) -> MotorSpec | None:
     """The induction motor of an ``[input]`` table (None without ``motor``): rpm -> rad/s, kW -> W."""
     m = inp.motor
-    if m is None:
+    if m is None or inp.drive == "torque":  # a torque drive prescribes the input torque: its motor is ignored
         return None
     params = {"star_delta": ((inp.switch_speed_rpm or 0.0) * RPM, 0.0),
               "soft_start": (inp.voltage_ramp_s or 0.0, inp.initial_voltage_fraction),

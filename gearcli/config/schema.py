@@ -437,7 +437,6 @@ class Input(_Coupled):
         {"not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS], "properties": {"drive": {"const": "motor"}},
                  **_required("drive")}},
         {"not": {**_required("drive"), "properties": {"drive": {"const": "motor"}}, "not": _required("motor")}},
-        {"not": {**_required("drive", "motor"), "properties": {"drive": {"const": "torque"}}}},
         *_starting_rules(),
         *_coupling_rules()))
 
@@ -464,10 +463,9 @@ class Input(_Coupled):
             raise ValueError('drive = "torque" needs torque_Nm, torque_Nmm or power_kW')
         if self.drive != "torque" and torques:
             raise ValueError('torque_Nm/torque_Nmm/power_kW are only used with drive = "torque"')
-        if self.drive == "torque" and self.motor is not None:
-            raise ValueError('motor: a torque drive prescribes the input torque; use drive = "motor" (or "speed", '
-                             "to check a speed ramp against the motor)")
         self._check_motor()
+        if self.drive == "torque" and self.motor is not None:  # a torque drive prescribes the torque: noted, ignored
+            self._ignored_keys = ("motor", *self._ignored_keys)
         if self.power_kW is not None:  # the input speed is known here: P = T ω
             self._torque_from_power_Nm = self.power_kW * 1000.0 / self.speed_rad_s_value
         self._check_coupling("input")
@@ -497,7 +495,8 @@ class Input(_Coupled):
 
     @property
     def ignored_keys(self) -> tuple[str, ...]:
-        """The starting method's keys given with a drive other than "motor" (ignored; the design notes them)."""
+        """Keys of another drive, ignored (the design notes them): the starting method's with a drive other than
+        "motor", and ``motor`` with a torque drive."""
         return self._ignored_keys
 
     @property

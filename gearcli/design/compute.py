@@ -60,9 +60,10 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
                       for st in stages for w in pl.planetary_warnings(st))
     ignored = cfg.input.ignored_keys
-    drive_notes = (warning(DESIGN, f"[input] {', '.join(ignored)}: a starting method belongs to drive = \"motor\"; "
-                           f"drive = \"{cfg.input.drive}\" ignores {'it' if len(ignored) == 1 else 'them'}",
-                           check="drive", keys=list(ignored)),) if ignored else ()
+    drive_notes = (warning(DESIGN, f"[input] {', '.join(ignored)}: {'keys' if len(ignored) > 1 else 'a key'} of "
+                           f"drive = \"motor\"; drive = \"{cfg.input.drive}\" ignores "
+                           f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
+        if ignored else ()
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *rating_diagnostics, *drive_notes)
     return DesignResult(
         title=cfg.title,

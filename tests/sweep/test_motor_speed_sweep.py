@@ -46,3 +46,11 @@ def test_drive_speed_override_on_a_motor_file_works_with_a_note():
     assert res.exit_code == 0, res.output
     warnings = [w["message"] if isinstance(w, dict) else w for w in json.loads(res.stdout)["warnings"]]
     assert any("starting" in w and "ignores" in w for w in warnings)
+
+
+def test_drive_torque_override_on_a_motor_file_ignores_the_motor_with_a_note():
+    res = CliRunner().invoke(cli, ["design", DOL, "--set", 'input.drive="torque"', "--set", "input.torque_Nm=95",
+                                   "--format", "json"])
+    assert res.exit_code == 0, res.output
+    warnings = [w["message"] if isinstance(w, dict) else w for w in json.loads(res.stdout)["warnings"]]
+    assert any("motor, starting" in w and 'drive = "torque" ignores them' in w for w in warnings)
