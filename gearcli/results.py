@@ -398,6 +398,13 @@ class BearingStats(TypedDict):
     axial_N: ChannelStats
 
 
+class StartSummary(TypedDict):
+    """``summary.start``: per stage, the run's peak |F_t| over the rigid-body start's, and that rigid peak (N)."""
+
+    peak_over_rigid: list[float | None]
+    rigid_peak_N: list[float]
+
+
 class SimulationExtra(TypedDict, total=False):
     """What a simulation reports besides its fields: the parametric work of time-varying meshes, auto's
     stiffness indicator, the natural frequencies at the operating point of the run-up, a motor's summary
@@ -408,7 +415,7 @@ class SimulationExtra(TypedDict, total=False):
     natural_frequencies_runup_Hz: list[float]
     motor: dict[str, float | None]
     bearings: list[BearingStats]
-    start: dict  # {peak_over_rigid, rigid_peak_N} per stage: the run's peak over the rigid-body start's
+    start: StartSummary  # the run's peak over the rigid-body start's (issue 30)
 
 
 @dataclass(frozen=True)

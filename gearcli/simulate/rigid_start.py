@@ -27,10 +27,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, mesh
 from gearcli.model.outputs import tooth_forces
 from gearcli.model.step import ramp, ramp_motion
+from gearcli.results import StartSummary
 
 SAMPLES = 2001
 SWING_FRACTION = 0.02  # a mode swinging with less than this of the rigid peak is not named
@@ -195,20 +197,20 @@ def swing(t: np.ndarray, deviation: np.ndarray, modes: list[tuple[float, str]],
 
 
 def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.ndarray], window_s: tuple[float, float],
-                  warn_ratio: float) -> tuple[dict, list]:
+                  warn_ratio: float) -> tuple[StartSummary | None, list[Diagnostic]]:
     """``summary.start`` = {``peak_over_rigid``, ``rigid_peak_N``} per stage (the run's peak |F_t| over the rigid
     start's) and the ``peak_over_rigid`` warnings where the ratio exceeds ``warn_ratio``, naming the cause."""
     from gearcli import diagnostics as dg
     from gearcli.model.modes import modal_analysis
 
     if t.size < 2 or t[-1] <= 0:
-        return {}, []
+        return None, []
     rigid = integrate(lay, float(t[-1]))
     peaks = [float(np.max(np.abs(f))) for f in forces_N]
     rigid_peaks = [float(np.max(np.abs(f))) for f in rigid.tangential_N]
     ratios = [p / r if r > 0 else None for p, r in zip(peaks, rigid_peaks, strict=True)]
-    out = {"peak_over_rigid": ratios, "rigid_peak_N": rigid_peaks}
-    diags = []
+    out = StartSummary(peak_over_rigid=ratios, rigid_peak_N=rigid_peaks)
+    diags: list[Diagnostic] = []
     start = t <= max(window_s[0], t[0])
     modes: list[tuple[float, str]] | None = None
     for k, ratio in enumerate(ratios):
