@@ -276,12 +276,13 @@ def design_case(scene: Scene, overrides: Sequence[str], /) -> Case:
 
 
 def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
-                   series: bool = False, check: bool | None = False) -> Evaluation:
+                   series: bool = False, check: bool | None = False, settle: bool | str = True) -> Evaluation:
     """One variant of the scene's file loaded, designed and simulated (the sweep's and the life calculation's
     point, :class:`~gearcli.sweep.worker.PointEvaluator`). Continued from ``start`` (the previous point's final
     state, :mod:`gearcli.sweep.continuation`) when given: without the start-up ramps, from that state, the
     phases carried on; a point whose chain differs starts cold with the file's ramps. ``series`` keeps the time
-    series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``)."""
+    series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``); ``settle`` the window
+    shown settled (:func:`gearcli.simulate.settle.settled_run`; ``"window"``: never the periodic state)."""
     from gearcli.model import TorsionalModel  # lazy for start-up: the model and the solver layers
     from gearcli.simulate import run_simulation
     from gearcli.sweep.continuation import NO_RAMPS, Carried, carry_phases, continue_state
@@ -299,7 +300,9 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
             case = design_case(scene, overrides)
             spec = spec_from_design(*case)
         model = TorsionalModel(spec)
-    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check)
+    # a sweep row and a duty point are dynamic verdicts: from a window shown settled (gearcli.simulate.settle)
+    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check,
+                            settle=settle)
     if result.final_state is None or result.final_time_s is None:
         return Evaluation(case, result, None)
     return Evaluation(case, result, Carried(model, result.final_state, result.final_time_s))

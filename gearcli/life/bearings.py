@@ -6,7 +6,7 @@ largest peak load of the duty points and their starts.
 Starts: :func:`bearing_lives` takes the duty points' start records as :class:`StartBearings` (per bearing the
 revolutions of all the point's starts, their ISO 281 equivalent load, the bearing's mean speed during a start
 and the start's peak static equivalent load P_0): their revolutions count in L10 and L_nm as load levels of
-their own, their peaks in s_0. ``gearcli.life.run.START_PEAKS_HOOK`` makes them from the evaluated points.
+their own, their peaks in s_0. ``gearcli.life.run.start_bearings`` makes them from the evaluated points' start records.
 """
 
 from __future__ import annotations

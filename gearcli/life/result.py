@@ -102,6 +102,8 @@ class PointRun:
     mesh_cycles: tuple[int, ...] = ()  # whole mesh cycles counted per stage (dynamic)
     peak_error: tuple[float, ...] = ()  # estimated relative error of the mesh-cycle peaks per stage (dynamic)
     solver: JsonObject | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
+    settled: bool | None = None  # dynamic route: the window shown settled (gearcli.simulate.settle)
+    start: JsonObject | None = None  # the point's starts (docs/life.md, "Starts"); None without
 
 
 @dataclass(frozen=True)

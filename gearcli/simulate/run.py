@@ -36,8 +36,9 @@ from gearcli.results import (
     SteadyState,
 )
 from gearcli.scene import output_units, spec_from_design
-from gearcli.simulate import estimate, stats
+from gearcli.simulate import estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
+from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
@@ -64,7 +65,7 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] 
 def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
-                   error_estimate: bool | None = None,
+                   error_estimate: bool | None = None, settle: bool | str | None = None,
                    progress: Callable[[float], None] | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``series`` empty (the statistics
@@ -72,7 +73,10 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
     :meth:`gearcli.model.TorsionalModel.continue_state`); ``model``: the scene's model when the caller has
     already built it (a sweep point), else built here; ``error_estimate`` (default
-    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The design's own
+    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`; ``settle`` (default: when
+    ``[rating] dynamic_factor = "simulated"``; ``"window"``: without the periodic fallback) repeats a run whose fixed
+    window is not settled with a later window
+    (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it). The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -82,15 +86,28 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = _design_diagnostics(design)
-    result = simulate_model(model, duration_s=sim.duration_s,
-                            steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                            window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
-                            steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
-                            engine=sim.engine, progress=progress)
+
+    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
+        return simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
+                              rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
+                              max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
+                              prior_diagnostics=design_diags, engine=sim.engine, progress=progress)
+
+    result = run(sim.duration_s, sim.steps, sim.window_start_s)
+    if settle is None:
+        settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
+    if settle:
+        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window")
     from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
 
     stages, rating_diags = simulated_ratings(cfg, design, result.stages)
     new = [d for d in rating_diags if d.message not in result.warnings]
+    if cfg.rating is not None and cfg.rating.dynamic_factor == "simulated" and result.steady is not None \
+            and result.steady.settled is False:  # never silently: the K_v rated at carries the start's transient
+        new.append(dg.warning(dg.WINDOW_NOT_SETTLED, '[rating] dynamic_factor = "simulated": the K_v the stages are '
+                              "rated at comes from a window that is not settled (it includes the start-up "
+                              "transient, see the window's warning): give a longer simulation.duration_s or "
+                              '[simulation] steady = "periodic"', statistic="K_v"))
     return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
                    diagnostics=result.diagnostics + tuple(new), units=output_units(cfg))
 
@@ -409,8 +426,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     diags += ratio_warnings + stats.contact_warnings(spec, mask, [ms.penetration_m for ms in s.meshes],
                                                      choice.at_full_load.penetration_m)
-    diags += stats.peak_warnings(spec, [float(np.max(np.abs(ms.line_force_N))) for ms in s.meshes],
-                                 choice.at_operating_point.line_forces_N)
+    start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
+                                                       [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID)
+    diags += start_diags
     motor_summary = None
     if model.layout.drive.motor is not None:
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
@@ -424,6 +442,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     if not periodic:
         diags += ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
                                   [st.simulated_static_tangential_N or 0.0 for st in stages], window)
+    steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
+                                       motor_summary, diags)
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -443,7 +463,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
-               **({"motor": motor_summary} if motor_summary is not None else {})},
+               **({"motor": motor_summary} if motor_summary is not None else {}),
+               **({"start": start_doc} if start_doc else {})},
     )
 
 

@@ -66,7 +66,7 @@ class PointEvaluator(Protocol):
     "Honest statistics")."""
 
     def __call__(self, scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
-                 series: bool = False, check: bool | None = False) -> Evaluation: ...
+                 series: bool = False, check: bool | None = False, settle: bool | str = True) -> Evaluation: ...
 
 
 @dataclass(frozen=True)
