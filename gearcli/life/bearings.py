@@ -95,7 +95,8 @@ def _static(points: Sequence[_PointData], j: int, starts: Sequence[StartBearings
         return {}
     peaks = [pd.bearings.peak_static_N[j] for pd in points] + [s.peak_static_N[j] for s in starts]
     p0, s0 = min_static_safety(b.static_load_rating_kN * 1e3, peaks)
-    return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0}
+    return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0,
+            "static_safety_min": s0}
 
 
 def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] = ()) -> tuple[BearingLife, ...]:

@@ -78,6 +78,7 @@ class BearingLife:
     static_load_rating_kN: float | None = None
     static_equivalent_load_N: float | None = None  # the largest peak P_0
     static_safety: float | None = None  # its s_0
+    static_safety_min: float | None = None  # the same s_0, under simulate's name for the smallest over a run
     fatigue_load_limit_kN: float | None = None
     pitch_diameter_mm: float | None = None
     reliability_percent: float | None = None
