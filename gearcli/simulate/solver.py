@@ -98,6 +98,14 @@ def tolerances(model: TorsionalModel, rtol: float, watch: EnergyWatch | None) ->
     return atol
 
 
+@dataclass(frozen=True)
+class CourseLimit:
+    """An ``auto`` run's limit (:mod:`gearcli.simulate.course`): past these evaluations or this wall time the run
+    stops (``STATUS_SWITCH``) for ``auto`` to re-decide from the state reached."""
+    nfev: float
+    wall_s: float
+
+
 @dataclass
 class _Counters:
     nfev: int = 0
@@ -114,7 +122,8 @@ class _Counters:
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
               t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python",
-              pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None) -> Integration:
+              pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None,
+              course: CourseLimit | None = None) -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
     drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
@@ -129,7 +138,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     ``pace_limit_s`` (Python engine): once the run has used ``cost.PACE_SWITCH_AFTER_S`` of priced work
     (:func:`gearcli.core.cost.priced_work_s`), a pace that projects the whole run over this many priced
     seconds stops it with ``STATUS_SWITCH`` (the caller goes on on
-    the compiled engine). ``progress``: called with the fraction of the run done, every few hundred steps (a
+    the compiled engine). ``course`` (Python engine): the evaluations and wall time past which an ``auto`` run
+    stops with ``STATUS_SWITCH`` to re-decide (:mod:`gearcli.simulate.course`). ``progress``: called with the fraction of the run done, every few hundred steps (a
     terminal's progress bar; never printed here); a compiled run reports it every :data:`PROGRESS_EVERY_S`
     (:func:`_kernel_with_progress`).
     """
@@ -151,7 +161,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
                                          (0.0, float(t_eval[-1])), METHODS[method].implicit,
-                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress))
+                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress, course, start))
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
@@ -168,13 +178,20 @@ class _Pace:
     t_end: float
     limit_s: float | None
     progress: Callable[[float], None] | None
+    course: CourseLimit | None = None
+    started: float = 0.0  # perf_counter() at the run's start
 
-    def check(self, t: float, work_s: float) -> tuple[int, str] | None:
-        """Report progress; stop for the switch when the priced work ``work_s`` (deterministic, unlike the wall
-        clock) projects the run over the limit."""
+    def check(self, t: float, work_s: float, nfev: int = 0) -> tuple[int, str] | None:
+        """Report progress; stop for ``auto`` to re-decide when the run has spent its course limit (evaluations
+        or wall time), or for the switch when the priced work ``work_s`` projects the run over the limit."""
         done = (t - self.t0) / (self.t_end - self.t0) if self.t_end > self.t0 else 1.0
         if self.progress is not None:
             self.progress(done)
+        if self.course is not None:
+            wall = time.perf_counter() - self.started
+            if nfev > self.course.nfev or wall > self.course.wall_s:
+                return STATUS_SWITCH, (f"{nfev} evaluations and {wall:.3g} s at t = {t:.4g} s, over the course limit "
+                                       f"of {self.course.nfev:.3g} evaluations or {self.course.wall_s:.3g} s")
         if self.limit_s is None:
             return None
         if work_s > cost.PACE_SWITCH_AFTER_S and done > 0 and work_s / done > self.limit_s:
@@ -212,7 +229,7 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
             stop = _budget_stop(nfev, njev, nlu, count.steps, implicit, float(solver.t), span)
             if stop is None and pace is not None:
-                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit))
+                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit), nfev)
             if stop is not None:
                 return (*stop, done)
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
