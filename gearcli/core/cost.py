@@ -93,6 +93,10 @@ PRICE_US: dict[str, dict[str, tuple[float, ...]]] = {
     "compiled": {"DOP853": (0.35, 0.01, 0.1, 0.05, 0.6, 0.05, 0.05), "Radau": (1.0, 0.05, 0.2, 0.1, 1.0, 0.1, 0.1)},
 }
 
+#: seconds every integration costs whatever its length (setting up the solver or the kernel's call, the segments'
+#: restarts), per engine: the constant of the same fit
+RUN_FIXED_S: dict[str, float] = {"python": 0.0, "compiled": 0.0}
+
 
 def price_us_per_eval(engine: str, method: str, size: ModelSize | None = None) -> float:
     """Predicted microseconds per evaluation of ``method`` on ``engine`` for a model of ``size`` (without a size:

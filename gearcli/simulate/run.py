@@ -203,9 +203,11 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 def prediction(choice: Choice, engine: str, nfev: float) -> JsonObject:
     """``solver.prediction``: what ``auto``'s cost model predicted for the run's own integration (the chosen
     method on the engine first chosen; the check pass aside): evaluations, the price per evaluation of this
-    model's size on that engine (:func:`gearcli.core.cost.price_us_per_eval`) and their product."""
+    model's size on that engine (:func:`gearcli.core.cost.price_us_per_eval`) and their product plus the engine's
+    fixed cost per run."""
     price = cost.price_us_per_eval(engine, choice.method, choice.size)
-    return {"nfev": float(nfev), "price_us_per_eval": price, "wall_s": nfev * price * 1e-6}
+    return {"nfev": float(nfev), "price_us_per_eval": price,
+            "wall_s": cost.RUN_FIXED_S.get(engine, 0.0) + nfev * price * 1e-6}
 
 
 def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
