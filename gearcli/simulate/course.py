@@ -4,21 +4,23 @@ it has reached (DESIGN.md §13 "Solver record"; docs/performance.md).
 An ``auto`` run (a fixed-window run whose method and engine ``auto`` chose) is held to a limit: ``COURSE_FACTOR``
 times its predicted evaluations or its predicted wall time (:data:`gearcli.core.cost.COURSE_FACTOR`; the wall
 time from the price per evaluation of the model's size, :func:`gearcli.core.cost.price_us_per_eval`, at least
-``COURSE_MIN_S``). The Python engine checks both every ``BUDGET_CHECK_EVERY`` accepted steps; the compiled kernel
-checks the evaluations (its ``max_nfev``), the wall time being its evaluations' price.
+``COURSE_MIN_S``). The Python engine checks both every ``BUDGET_CHECK_EVERY`` accepted steps, the time as the CPU
+time of the thread that integrates (the run's own time: the wall clock of a machine shared with other jobs would
+let their load decide the course, and a sweep in a process pool and on a Dask cluster would then differ); the
+compiled kernel checks the evaluations (its ``max_nfev``), its time being its evaluations' price.
 
 Past the limit the run stops at its last output sample and ``auto`` decides again for the rest of the run, from
 what it has measured, not from the prediction that failed:
 
-- the current method and engine: the evaluations per simulated second measured so far, over the remaining span,
-  at the wall time per evaluation measured so far;
+- the current method and engine: the evaluations per simulated second measured so far, over the remaining span;
 - the same method on the other engine (the compiled one where it is installed and supports the scene): the same
   evaluations at that engine's price, plus what loading it still costs;
 - the other method (DOP853 or Radau) on its best engine: its prediction for the remaining share of the run;
   for DOP853 at least its stability need at the state reached, ``EXPLICIT_PER_UNIT`` x max|lambda| of the
   Jacobian there x the remaining span (the stiffness the run has met, even where the linearised scene hid it).
 
-The cheapest of them is taken when it saves at least ``COURSE_MARGIN`` against going on; the run then continues
+Each is priced at the cost model's price per evaluation for the model's size, not at this run's clock, so that the
+same state reached takes the same decision on a busy machine and a quiet one. The cheapest is taken when it saves at least ``COURSE_MARGIN`` against going on; the run then continues
 from the state at that sample (``t0``, ``y0``: the drive and load profiles are functions of the absolute time, the
 energy quadratures are states and carry on), at the same tolerance, so its numbers are those of a run at the
 requested tolerance. A method once left is not taken up again, and a run changes course at most
@@ -101,9 +103,10 @@ def decide(model: TorsionalModel, choice: Choice, run: Integration, t_from: floa
     span, rest = max(t_at - t_from, 1e-300), max(t_end - t_at, 0.0)
     nfev = max(run.nfev, 1)
     pace = nfev / max(run.t_fail - t_from, span)  # evaluations per simulated second so far
-    per_eval = run.wall_s / nfev
     here = _label(run.method, run.engine)
-    going_on = pace * rest * per_eval
+    # every option at the cost model's prices for this model's size (not the clock of this run: the same state
+    # reached takes the same decision on a busy machine and a quiet one, in a pool worker and a Dask thread)
+    going_on = pace * rest * cost.seconds_per_eval(run.engine, run.method, choice.size)
     options: list[tuple[float, str, str, str]] = []
     for e in _engines_for(model, run.method, requested_engine):
         if e != run.engine:

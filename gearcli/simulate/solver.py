@@ -157,11 +157,12 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     done = int(np.searchsorted(t_eval, t0, side="right"))
     count = _Counters()
     start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
+    cpu_start = time.thread_time()
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
                                          (0.0, float(t_eval[-1])), METHODS[method].implicit,
-                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress, course, start))
+                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress, course, cpu_start))
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
@@ -179,7 +180,7 @@ class _Pace:
     limit_s: float | None
     progress: Callable[[float], None] | None
     course: CourseLimit | None = None
-    started: float = 0.0  # perf_counter() at the run's start
+    started: float = 0.0  # time.thread_time() at the run's start
 
     def check(self, t: float, work_s: float, nfev: int = 0) -> tuple[int, str] | None:
         """Report progress; stop for ``auto`` to re-decide when the run has spent its course limit (evaluations
@@ -188,9 +189,11 @@ class _Pace:
         if self.progress is not None:
             self.progress(done)
         if self.course is not None:
-            wall = time.perf_counter() - self.started
-            if nfev > self.course.nfev or wall > self.course.wall_s:
-                return STATUS_SWITCH, (f"{nfev} evaluations and {wall:.3g} s at t = {t:.4g} s, over the course limit "
+            # the run's own time: the CPU time of this thread, which other jobs on a shared machine do not inflate
+            # (the wall clock would let the machine's load decide the course)
+            spent = time.thread_time() - self.started
+            if nfev > self.course.nfev or spent > self.course.wall_s:
+                return STATUS_SWITCH, (f"{nfev} evaluations and {spent:.3g} s at t = {t:.4g} s, over the course limit "
                                        f"of {self.course.nfev:.3g} evaluations or {self.course.wall_s:.3g} s")
         if self.limit_s is None:
             return None

@@ -11,8 +11,7 @@ import pytest
 from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.simulate import choice as choice_mod
-from gearcli.simulate import course
-from gearcli.simulate import run_simulation
+from gearcli.simulate import course, run_simulation
 
 ROOT = Path(__file__).resolve().parents[2]
 STIFF = ROOT / "configs" / "stiff_linear_mesh.toml"  # a very stiff linear mesh: DOP853 needs ~1.1e5 evaluations
