@@ -138,7 +138,7 @@ def measure(scenes, budget: int) -> list[dict]:
 def judge(rows: list[dict], title: str) -> None:
     """Per scene: measured over predicted evaluations and price per evaluation, each method and engine."""
     print(f"\n{title}: measured / predicted (evaluations; price per evaluation on compiled and on scipy)")
-    print(f"| scene | DOP853 nfev | Radau nfev | DOP853 price c | Radau price c | DOP853 price py | Radau price py |")
+    print("| scene | DOP853 nfev | Radau nfev | DOP853 price c | Radau price c | DOP853 price py | Radau price py |")
     print("|---|---|---|---|---|---|---|")
     nf: list[float] = []
     pr: list[float] = []

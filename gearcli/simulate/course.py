@@ -1,5 +1,5 @@
 """``method = "auto"`` changes course: a run that has spent far more than its prediction re-decides from the state
-it has reached (DESIGN.md §13 "Solver record"; docs/performance.md).
+it has reached (docs/performance.md, "Runs that change course").
 
 An ``auto`` run (a fixed-window run whose method and engine ``auto`` chose) is held to a limit: ``COURSE_FACTOR``
 times its predicted evaluations or its predicted wall time (:data:`gearcli.core.cost.COURSE_FACTOR`; the wall
