@@ -31,8 +31,8 @@ import numpy as np
 DECAY_WINDOWS = 1.0  # a mode whose decay time exceeds the window length rings through it
 MIN_FRACTION = 0.01  # of the stage's static force, at the window's end
 MAX_MODES = 6  # the slowest candidates fitted at once (the fit needs far fewer columns than samples)
-SAMPLES_PER_PERIOD = 16  # the window is thinned for the fit to this many samples per period of the fastest mode ...
-MIN_FIT_SAMPLES = 200  # ... keeping at least this many
+FIT_SAMPLES = 4000  # a longer window is thinned to about this many samples for the fit ...
+SAMPLES_PER_PERIOD = 16  # ... unless that leaves fewer per period of the fastest mode fitted
 TRIALS = 25  # decay rates tried per mode between 0.25 and 4 x the linearised one
 
 
@@ -95,12 +95,12 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
     base = np.array(modes, dtype=float).reshape(M, 2)
     if not modes or t.size < 2 * M + 4:
         return np.zeros((S, M)), np.broadcast_to(base[:, 0], (S, M)).copy()
-    # the record is thinned for the fit (its cost is samples x columns x trials) to SAMPLES_PER_PERIOD samples per
-    # period of the fastest mode fitted, never below MIN_FIT_SAMPLES
+    # a long record is thinned for the fit (its cost is samples x columns x trials), keeping at least
+    # SAMPLES_PER_PERIOD samples per period of the fastest mode fitted (not further: a faster forced response in
+    # the record would alias onto the modes)
     dt = (t[-1] - t[0]) / max(t.size - 1, 1)
     fastest = float(base[:, 1].max())
-    per_period = int(2 * math.pi / (fastest * dt * SAMPLES_PER_PERIOD)) if dt > 0 else 1
-    stride = max(1, min(per_period, t.size // MIN_FIT_SAMPLES))
+    stride = max(1, min(t.size // FIT_SAMPLES, int(2 * math.pi / (fastest * dt * SAMPLES_PER_PERIOD)) if dt > 0 else 1))
     tau = t[::stride] - t[0]
     Y = X[::stride].T - X[::stride].mean(axis=0)[:, None]  # (S, n), centred: the constant column takes the rest
     cos, sin = np.cos(base[:, 1:2] * tau), np.sin(base[:, 1:2] * tau)  # (M, n)
