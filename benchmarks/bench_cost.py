@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import random
 import sys
 import time
 from pathlib import Path
@@ -37,6 +36,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
+from scenes import scene_sets  # noqa: E402
+
 from gearcli import engine  # noqa: E402
 from gearcli.config import load_design  # noqa: E402
 from gearcli.core import cost  # noqa: E402
@@ -46,53 +47,7 @@ from gearcli.scene import spec_from_design  # noqa: E402
 from gearcli.simulate import course, run_simulation  # noqa: E402
 from gearcli.simulate.choice import choose_method  # noqa: E402
 
-#: files the fit never sees (configs/): a drivetrain, a planetary gearbox, motor starts, excited, stiff, rattling
-HELD_OUT_FILES = ("concrete_mixer_drivetrain", "wind_turbine_gearbox", "motor_soft_start", "conveyor_motor",
-                  "concrete_mixer_te", "mixer_time_varying_backlash", "extreme/stiff_hertz_100x",
-                  "extreme/rattle_zero_load")
-#: what the generator may change in a held-out file (one draw per variant)
-VARIATIONS = (
-    ("iso law", ["contact.stiffness=iso6336", "contact.exponent=1.5", "contact.damping_ratio=0.05"]),
-    ("rtol 1e-7", ["simulation.rtol=1e-7"]),
-    ("rtol 1e-5", ["simulation.rtol=1e-5"]),
-    ("duration x1.5", ["@duration=1.5"]),
-    ("duration x0.5", ["@duration=0.5"]),
-)
-VARIANTS_PER_FILE = 2
-SEED = 33
 METHODS = ("DOP853", "Radau")
-
-
-def _name(p: Path) -> str:
-    return p.stem if p.parent.name == "configs" else f"{p.parent.name}/{p.stem}"
-
-
-def _expand(path: Path, sets: list[str]) -> list[str]:
-    """``@duration=F``: the file's simulation.duration_s (and steps) times F."""
-    out = []
-    for s in sets:
-        if s.startswith("@duration="):
-            f = float(s.split("=", 1)[1])
-            sim = load_design(str(path), []).design.simulation
-            out += [f"simulation.duration_s={sim.duration_s * f!r}", f"simulation.steps={max(10, int(sim.steps * f))}"]
-        else:
-            out.append(s)
-    return out
-
-
-def scene_sets() -> dict[str, list[tuple[str, Path, list[str]]]]:
-    """{"fit": [...], "held-out": [...]}: (name, file, --set overrides) each (module text)."""
-    files = sorted((ROOT / "configs").glob("*.toml")) + sorted((ROOT / "configs" / "extreme").glob("*.toml"))
-    fit = [(_name(p), p, []) for p in files if _name(p) not in HELD_OUT_FILES]
-    rng = random.Random(SEED)
-    held = []
-    for p in files:
-        if _name(p) not in HELD_OUT_FILES:
-            continue
-        held.append((_name(p), p, []))
-        for label, sets in rng.sample(VARIATIONS, VARIANTS_PER_FILE):
-            held.append((f"{_name(p)} ({label})", p, _expand(p, sets)))
-    return {"fit": fit, "held-out": held}
 
 
 _CPU = {"s": 0.0}
