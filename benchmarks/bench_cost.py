@@ -84,7 +84,7 @@ def one(cfg, design, method: str, eng: str, budget: int) -> dict | None:
 
 def fit_prices(rows: list[dict], key: str) -> tuple[float, tuple[float, ...]]:
     """(run fixed seconds, price coefficients in us) of wall = fixed + nfev x coefficients . features."""
-    runs = [(r["features"], r[key]) for r in rows if r.get(key)]
+    runs = [(r["features"], r[key]) for r in rows if r.get(key) and r[key]["wall_s"] > 0]  # a periodic run: untimed
     A = np.array([[1.0] + [run["nfev"] * f * 1e-6 for f in feats] for feats, run in runs])
     b = np.array([run["wall_s"] for _, run in runs])
     w = 1.0 / np.maximum(b, 1e-3)
@@ -131,7 +131,7 @@ def judge(rows: list[dict], title: str) -> None:
         for eng in ("compiled", "python"):
             for m in METHODS:
                 run = r.get(f"{m}/{eng}")
-                if not run or run["nfev"] < 2000:
+                if not run or run["nfev"] < 2000 or run["wall_s"] <= 0:
                     cells.append("-")
                     continue
                 size = cost.ModelSize(*[int(v) for v in r["features"][1:6]], bool(r["features"][6]))
