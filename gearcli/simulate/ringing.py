@@ -78,7 +78,8 @@ def _orthonormal(A: np.ndarray) -> np.ndarray:
 
 
 def _project_out(q: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """The rows of x (S, k, n) minus their projections on the columns of q (S, n, r) (matrix products: BLAS)."""
+    """The rows of x ((S, k, n), or (k, n) shared by every stage) minus their projections on the columns of
+    q (S, n, r) (matrix products: BLAS; a shared x is not copied per stage)."""
     return x - (x @ q) @ q.transpose(0, 2, 1)
 
 
@@ -114,7 +115,7 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
             q = _orthonormal(_columns(tau, sigma, cos, sin)[:, :, keep])  # the other columns, per stage
             env = np.exp(-(base[j, 0] * factors)[:, None] * tau)  # (TRIALS, n)
             trial = np.stack([env * cos[j], env * sin[j]], axis=1)  # (TRIALS, 2, n)
-            tp = _project_out(q, np.broadcast_to(trial.reshape(-1, tau.size), (S, 2 * TRIALS, tau.size)))
+            tp = _project_out(q, trial.reshape(-1, tau.size))
             tp = tp.reshape(S, TRIALS, 2, tau.size)
             yp = _project_out(q, Y[:, None, :])  # (S, 1, n)
             g = tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2)  # (S, TRIALS, 2, 2)
