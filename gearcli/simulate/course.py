@@ -96,13 +96,25 @@ def _engines_for(model: TorsionalModel, method: str, requested_engine: str) -> l
     return out or ["python"]
 
 
-def decide(model: TorsionalModel, choice: Choice, run: Integration, t_from: float, t_at: float, t_end: float,
-           y_at: np.ndarray, left: set[str], requested_engine: str) -> tuple[str, str, str] | None:
-    """(method, engine, why) to go on with from ``t_at`` (state ``y_at``), or None to go on as before (module text).
-    ``run``: the piece that stopped, started at ``t_from``; ``left``: the methods already abandoned."""
-    span, rest = max(t_at - t_from, 1e-300), max(t_end - t_at, 0.0)
+@dataclass(frozen=True)
+class Spent:
+    """What a run of ``method`` on ``engine`` from ``t_from`` had spent when it reached ``t_at`` (state ``y_at``)."""
+
+    method: str
+    engine: str
+    nfev: int
+    t_from: float
+    t_at: float
+    y_at: np.ndarray
+
+
+def decide(model: TorsionalModel, choice: Choice, run: Spent, t_end: float, left: set[str],
+           requested_engine: str) -> tuple[str, str, str] | None:
+    """(method, engine, why) to go on with from ``run.t_at`` (state ``run.y_at``), or None to go on as before
+    (module text). ``left``: the methods already abandoned."""
+    rest = max(t_end - run.t_at, 0.0)
     nfev = max(run.nfev, 1)
-    pace = nfev / max(run.t_fail - t_from, span)  # evaluations per simulated second so far
+    pace = nfev / max(run.t_at - run.t_from, 1e-300)  # evaluations per simulated second so far
     here = _label(run.method, run.engine)
     # every option at the cost model's prices for this model's size (not the clock of this run: the same state
     # reached takes the same decision on a busy machine and a quiet one, in a pool worker and a Dask thread)
@@ -118,7 +130,7 @@ def decide(model: TorsionalModel, choice: Choice, run: Integration, t_from: floa
         n = predicted_nfev(choice, other) * share
         lam = 0.0
         if other == EXPLICIT_METHOD:
-            lam = _stiffness_now(model, t_at, y_at)
+            lam = _stiffness_now(model, run.t_at, run.y_at)
             n = max(n, cost.EXPLICIT_PER_UNIT * lam * rest)
         for e in _engines_for(model, other, requested_engine):
             s = n * cost.seconds_per_eval(e, other, choice.size) + eng_mod.load_share_s() * (e == "compiled")
@@ -129,9 +141,9 @@ def decide(model: TorsionalModel, choice: Choice, run: Integration, t_from: floa
     s, m, e, what = min(options)
     if cost.COURSE_MARGIN * s >= going_on:
         return None
-    why = (f"{here} had spent {run.nfev} evaluations and {run.wall_s:.3g} s over {t_at - t_from:.4g} s of the run, "
-           f"over {cost.COURSE_FACTOR:g}x its prediction; going on: ~{going_on:.2g} s for the remaining "
-           f"{rest:.4g} s; {_label(m, e)}: ~{s:.2g} s ({what})")
+    why = (f"{here} had spent {run.nfev} evaluations over {run.t_at - run.t_from:.4g} s of the run, over "
+           f"{cost.COURSE_FACTOR:g}x its prediction; going on: ~{going_on:.2g} s for the remaining {rest:.4g} s; "
+           f"{_label(m, e)}: ~{s:.2g} s ({what})")
     return m, e, why
 
 
@@ -148,44 +160,70 @@ def integrate_auto(model: TorsionalModel, t_eval: np.ndarray, choice: Choice, rt
                    progress: Callable[[float], None] | None = None,
                    enabled: bool = True) -> tuple[Integration, list[CourseChange]]:
     """The run of ``choice.method`` on ``engine`` over ``t_eval``, changing course where it overruns (module text).
-    ``enabled`` False: one plain run (a requested method, an explicit engine)."""
+    ``enabled`` False: one plain run (a requested method, an explicit engine).
+
+    On the Python engine the decision is taken inside the run at the step that spends the limit (the solver's
+    own state): a run that goes on as it was is not disturbed (its steps are those of a run without the limit),
+    one that changes course goes on from exactly that state. The compiled kernel stops at its evaluation limit;
+    it goes on from its last output sample, also when it keeps its course."""
     method = choice.method
     changes: list[CourseChange] = []
     left: set[str] = set()
     pieces: list[tuple[int, Integration]] = []
-    k, y, used = 0, y0, 0
+    k, y, used, t0 = 0, y0, 0, 0.0
     t_end = float(t_eval[-1])
     while True:
-        t0 = float(t_eval[k])
         free = not enabled or len(changes) >= MAX_COURSE_CHANGES
         lim = None if free else limit(choice, method, engine, (t_end - t0) / t_end if t_end > 0 else 1.0)
+        verdict: list[tuple[str, str, str] | None] = []
+        if lim is not None and engine != "compiled":
+            def ask(t: float, y_now: np.ndarray, nfev: int, m=method, e=engine, start=t0,
+                    box=verdict) -> str | None:
+                box.append(decide(model, choice, Spent(m, e, nfev, start, t, y_now), t_end, left, requested_engine))
+                return None if box[-1] is None else box[-1][2]
+            lim.decide = ask
         budget = max_nfev - used
         nfev_cap = budget if lim is None or engine != "compiled" else min(budget, int(math.ceil(lim.nfev)))
-        piece_progress = None if progress is None else _shifted(progress, t0, t_end)
-        run = integrate(model, t_eval[k:], method, rtol, y0=y, t0=t0, max_nfev=nfev_cap, engine=engine,
-                        course=lim if engine != "compiled" else None, progress=piece_progress)
+        t_piece = t_eval[k:] if t0 == float(t_eval[k]) else np.concatenate(([t0], t_eval[k:]))
+        run = integrate(model, t_piece, method, rtol, y0=y, t0=t0, max_nfev=nfev_cap, engine=engine,
+                        course=lim if engine != "compiled" else None,
+                        progress=None if progress is None else _shifted(progress, t0, t_end))
         used += run.nfev
-        pieces.append((k, run))
-        over = run.status == STATUS_SWITCH or (run.status == STATUS_BUDGET and nfev_cap < budget
-                                                 and run.nfev > nfev_cap)
-        if lim is None or not over:
-            break
-        j = k + _last_sample(run, 0)
-        if j <= k:  # not a sample passed: go on from where it started
-            j = k
-        y_at = pieces[-1][1].y[:, j - k]
-        verdict = decide(model, choice, run, t0, float(t_eval[j]), t_end, y_at, left, requested_engine)
-        if verdict is None:  # going on is still the cheapest: no limit from here
-            enabled = False
+        offset = t_piece.size - (t_eval.size - k)  # 1 where the piece starts between two samples
+        pieces.append((k, _samples(run, offset)))
+        if run.status == STATUS_SWITCH and run.y_end is not None and verdict and verdict[-1] is not None:
+            m, e, why = verdict[-1]
+            t_at, y_at = float(run.t_fail), run.y_end
+        elif lim is not None and engine == "compiled" and run.status == STATUS_BUDGET and nfev_cap < budget \
+                and run.nfev > nfev_cap:
+            j = k + _last_sample(pieces[-1][1], 0)
+            y_at = pieces[-1][1].y[:, j - k]
+            got = decide(model, choice, Spent(method, engine, run.nfev, t0, float(t_eval[j]), y_at), t_end, left,
+                         requested_engine)
+            m, e, why = got if got is not None else (method, engine, "")
+            t_at = float(t_eval[j])
+            if got is None:
+                enabled = False  # keeps its course: on from the last sample, unlimited
         else:
-            m, e, why = verdict
-            changes.append(CourseChange(float(t_eval[j]), _label(run.method, run.engine), _label(m, e), why))
+            break
+        if why:
+            changes.append(CourseChange(t_at, _label(method, engine), _label(m, e), why))
             if m != method:
                 left.add(method)
-            method, engine = m, e
-        pieces[-1] = (k, _cut(run, j - k))
-        k, y = j, y_at
+        method, engine = m, e
+        j = int(np.searchsorted(t_eval, t_at, side="right"))  # the first sample after the state reached
+        pieces[-1] = (pieces[-1][0], _cut(pieces[-1][1], j - pieces[-1][0] - 1))
+        if j >= t_eval.size:
+            break
+        k, y, t0 = j, np.array(y_at, dtype=float), t_at
+        if float(t_eval[j - 1]) == t_at:  # stopped on a sample: the next piece starts there
+            k, t0 = j - 1, t_at
     return _merge(t_eval, pieces), changes
+
+
+def _samples(run: Integration, offset: int) -> Integration:
+    """The piece's output samples only (``offset`` 1: its first column is its start between two samples)."""
+    return run if offset == 0 else replace(run, t=run.t[offset:], y=run.y[:, offset:])
 
 
 def _shifted(progress: Callable[[float], None], t0: float, t_end: float) -> Callable[[float], None]:

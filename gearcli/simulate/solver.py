@@ -63,6 +63,7 @@ class Integration:
     t_fail: float  # where it stopped
     engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
     compile_s: float = 0.0  # compiled engine: numba import and kernel load/compilation, not in wall_s
+    y_end: np.ndarray | None = None  # the state at t_fail where a course change stopped a Python run
 
 
 def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end: float, rtol: float,
@@ -98,12 +99,16 @@ def tolerances(model: TorsionalModel, rtol: float, watch: EnergyWatch | None) ->
     return atol
 
 
-@dataclass(frozen=True)
+@dataclass
 class CourseLimit:
-    """An ``auto`` run's limit (:mod:`gearcli.simulate.course`): past these evaluations or this wall time the run
-    stops (``STATUS_SWITCH``) for ``auto`` to re-decide from the state reached."""
+    """An ``auto`` run's limit (:mod:`gearcli.simulate.course`): past these evaluations or this time the Python
+    engine asks ``decide(t, y, nfev)`` at the state reached; a reason stops the run there (``STATUS_SWITCH``,
+    ``Integration.y_end`` the state) for ``auto`` to go on otherwise, None lets it run on undisturbed (no more
+    checks)."""
     nfev: float
     wall_s: float
+    decide: Callable[[float, np.ndarray, int], str | None] | None = None
+    spent: bool = False
 
 
 @dataclass
@@ -169,7 +174,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
             break
     wall = time.perf_counter() - start
     return Integration(t_eval, out, method, rtol, atol, count.nfev, count.njev, count.nlu, count.steps, wall, status,
-                       message, t)
+                       message, t, y_end=np.array(y, dtype=float) if status == STATUS_SWITCH else None)
 
 
 @dataclass(frozen=True)
@@ -182,19 +187,21 @@ class _Pace:
     course: CourseLimit | None = None
     started: float = 0.0  # time.thread_time() at the run's start
 
-    def check(self, t: float, work_s: float, nfev: int = 0) -> tuple[int, str] | None:
+    def check(self, t: float, work_s: float, nfev: int = 0, y: np.ndarray | None = None) -> tuple[int, str] | None:
         """Report progress; stop for ``auto`` to re-decide when the run has spent its course limit (evaluations
         or wall time), or for the switch when the priced work ``work_s`` projects the run over the limit."""
         done = (t - self.t0) / (self.t_end - self.t0) if self.t_end > self.t0 else 1.0
         if self.progress is not None:
             self.progress(done)
-        if self.course is not None:
+        if self.course is not None and not self.course.spent:
             # the run's own time: the CPU time of this thread, which other jobs on a shared machine do not inflate
             # (the wall clock would let the machine's load decide the course)
             spent = time.thread_time() - self.started
             if nfev > self.course.nfev or spent > self.course.wall_s:
-                return STATUS_SWITCH, (f"{nfev} evaluations and {spent:.3g} s at t = {t:.4g} s, over the course limit "
-                                       f"of {self.course.nfev:.3g} evaluations or {self.course.wall_s:.3g} s")
+                self.course.spent = True
+                why = self.course.decide(t, y, nfev) if self.course.decide is not None and y is not None else "limit"
+                if why is not None:
+                    return STATUS_SWITCH, why
         if self.limit_s is None:
             return None
         if work_s > cost.PACE_SWITCH_AFTER_S and done > 0 and work_s / done > self.limit_s:
@@ -232,7 +239,8 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
             stop = _budget_stop(nfev, njev, nlu, count.steps, implicit, float(solver.t), span)
             if stop is None and pace is not None:
-                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit), nfev)
+                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit), nfev,
+                                  solver.y)
             if stop is not None:
                 return (*stop, done)
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
