@@ -9,8 +9,9 @@ time of the thread that integrates (the run's own time: the wall clock of a mach
 let their load decide the course, and a sweep in a process pool and on a Dask cluster would then differ); the
 compiled kernel checks the evaluations (its ``max_nfev``), its time being its evaluations' price.
 
-Past the limit the run stops at its last output sample and ``auto`` decides again for the rest of the run, from
-what it has measured, not from the prediction that failed:
+Past the limit ``auto`` decides again for the rest of the run, from what it has measured, not from the prediction
+that failed (on the Python engine at the very step that spent the limit, from the solver's own state; the
+compiled kernel stops at its evaluation limit and decides from its last output sample):
 
 - the current method and engine: the evaluations per simulated second measured so far, over the remaining span;
 - the same method on the other engine (the compiled one where it is installed and supports the scene): the same
@@ -20,10 +21,11 @@ what it has measured, not from the prediction that failed:
   Jacobian there x the remaining span (the stiffness the run has met, even where the linearised scene hid it).
 
 Each is priced at the cost model's price per evaluation for the model's size, not at this run's clock, so that the
-same state reached takes the same decision on a busy machine and a quiet one. The cheapest is taken when it saves at least ``COURSE_MARGIN`` against going on; the run then continues
-from the state at that sample (``t0``, ``y0``: the drive and load profiles are functions of the absolute time, the
-energy quadratures are states and carry on), at the same tolerance, so its numbers are those of a run at the
-requested tolerance. A method once left is not taken up again, and a run changes course at most
+same state reached takes the same decision on a busy machine and a quiet one. The cheapest is taken when it saves
+at least ``COURSE_MARGIN`` against going on; the run then continues from the state reached (``t0``, ``y0``: the
+drive and load profiles are functions of the absolute time, the energy quadratures are states and carry on), at
+the same tolerance, so its numbers are those of a run at the requested tolerance. A Python run that keeps its
+course is not disturbed: it runs on with no further limit. A method once left is not taken up again, and a run changes course at most
 ``MAX_COURSE_CHANGES`` times; after its last change it runs to the end unlimited. Each change is recorded in
 ``solver.course_changes`` = [{``at_s``, ``from``, ``to``, ``why``}] (``from``/``to``: "DOP853 (python)").
 """
