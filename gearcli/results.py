@@ -384,6 +384,10 @@ class SolverStats:
     engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
     engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
     compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s
+    #: what auto's cost model predicted for the run's integration: nfev, price_us_per_eval, wall_s (docs/output.md)
+    prediction: JsonObject | None = None
+    #: where an auto run re-decided mid-run: [{at_s, from, to, why}] (gearcli.simulate.course)
+    course_changes: tuple[JsonObject, ...] = ()
 
 
 @dataclass(frozen=True)

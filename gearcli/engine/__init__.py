@@ -207,7 +207,8 @@ class EngineChoice:
     unsupported: tuple[str, ...] = ()
 
 
-def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tuple[str, ...] = ()) -> EngineChoice:
+def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tuple[str, ...] = (),
+           size=None) -> EngineChoice:
     """The engine of one run. ``compiled`` without numba raises :class:`~gearcli.errors.ConfigError`
     (a usage error naming the extra); a scene the kernel does not support (or with the caller's reasons
     ``also``) runs on Python with the reason.
@@ -218,7 +219,8 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
     including what loading it still costs this process (numba import and cache load, measured on the last
     load; nothing once loaded; a full compilation when nothing is cached, so that a one-shot run never waits
     for the compiler), that load shared by the runs announced with :func:`expect_runs`. The prices:
-    :mod:`gearcli.core.cost`.
+    :mod:`gearcli.core.cost` (``size``: the model's :class:`~gearcli.core.cost.ModelSize`, for its price per
+    evaluation on each engine).
     """
     from gearcli.core.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
     from gearcli.errors import ConfigError
@@ -236,12 +238,12 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
         return EngineChoice("compiled", requested, "as requested")
     if not have:
         return EngineChoice("python", requested, f"numba is not installed ({INSTALL_HINT} for the compiled engine)")
-    python_s = predicted_wall_s("python", method, nfev_estimate)
+    python_s = predicted_wall_s("python", method, nfev_estimate, size=size)
     if "loaded" not in _state and python_s < MIN_LOAD_S / _runs["expected"]:  # not worth even a look at the cache
         return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations take ~{python_s:.2g} s in Python, "
                             f"less than importing numba alone (~{MIN_LOAD_S:g} s)")
     load_s = load_share_s()
-    compiled_s = predicted_wall_s("compiled", method, nfev_estimate, load_s)
+    compiled_s = predicted_wall_s("compiled", method, nfev_estimate, load_s, size)
     if method not in BIT_IDENTICAL and _runs["active"] == 0 and python_s - compiled_s < REFERENCE_KEEP_S:
         return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations: the compiled {method} (which "
                             f"agrees with scipy to the tolerance, not step for step) would save less than "

@@ -13,6 +13,7 @@ from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core import cost
 from gearcli.core.channels import Channel
+from gearcli.core.jsontypes import JsonObject
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
 from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
@@ -40,6 +41,7 @@ from gearcli.simulate import estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
+from gearcli.simulate.course import CourseChange, integrate_auto
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
 from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
@@ -50,9 +52,7 @@ from gearcli.simulate.solver import (
     STATUS_FINISHED,
     STATUS_NONFINITE,
     STATUS_PROJECTED,
-    STATUS_SWITCH,
     Integration,
-    integrate,
 )
 
 if TYPE_CHECKING:
@@ -154,12 +154,14 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     nfev_estimate = work * predicted_nfev(choice)
     if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
         nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s)
-    eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced)
+    eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced, choice.size)
     eng = _loadable(eng)
+    first_engine = eng.engine  # what the prediction is priced on (a course change may move the run)
     fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
         if eng.unsupported and engine == "compiled" else []
     mask_window, steady_state, energy_from = window, None, 0
+    changes: list[CourseChange] = []
     if steady == "periodic":
         diags = []  # the fixed window's warning does not apply: the window is found, not set
         found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
@@ -174,22 +176,20 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags += steady_warnings(steady_state, found.period)
     else:
         t_eval = np.linspace(0.0, duration_s, steps + 1)
-        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
-                        pace_limit_s=_pace_limit(eng, choice, model), progress=progress)
-        if run.status == STATUS_SWITCH:  # scipy far slower than predicted: the compiled engine runs it instead
-            fallback.append(dg.warning(dg.SLOW_PACE, f"{run.method} on scipy was far slower than the cost model "
-                                       f"predicted ({run.message}): the run went on on the compiled engine"))
-            eng = _loadable(EngineChoice("compiled", eng.requested, f"switched from scipy at t = {run.t_fail:.3g} s: "
-                                         f"{run.message}"))
-            run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
-                            progress=progress)
+        run, changes = integrate_auto(model, t_eval, choice, rtol, eng.engine, requested_engine=eng.requested,
+                                      y0=y0, max_nfev=max_nfev, progress=progress,
+                                      enabled=choice.requested == AUTO and getattr(model, "generated", True))
+        if changes:
+            eng = replace(eng, engine=run.engine, reason=f"{eng.reason}; then {changes[-1].to} from "
+                          f"t = {changes[-1].at_s:.4g} s (solver.course_changes)")
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y) if not energy_from else \
         model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
-    diags = prior + diags + fallback + _pace_warnings(run, choice) + stats.model_warnings(spec) \
+    diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
+        + stats.model_warnings(spec) \
         + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
@@ -211,27 +211,20 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags.append(tightened)
     result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
                         ref, stat_diags, eng.reason)
+    result = replace(result, solver=replace(result.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
+                                            course_changes=tuple(c.as_json() for c in changes)))
     _require_finite(result)
     return result
 
 
-def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> float | None:
-    """The priced work past which an ``auto`` run on scipy goes on on the compiled engine instead (its pace, in
-    the priced work of its counters, projected over ``PACE_SWITCH_FACTOR`` times its prediction: deterministic),
-    or None when no switch is possible (another engine requested, numba missing or not compiled yet, an
-    unsupported scene) or sound: only DOP853 and RK45 switch, whose compiled runs take scipy's steps, so that
-    the switch changes no number."""
-    from gearcli import engine
-
-    if eng.requested != "auto" or eng.engine != "python" or eng.unsupported or not engine.available():
-        return None
-    if choice.method not in engine.BIT_IDENTICAL:  # a switch must not change a number: DOP853 and RK45 only
-        return None
-    if not getattr(model, "generated", True) or engine.unsupported(model.arrays, choice.method):
-        return None
-    if engine.load_share_s() >= cost.COMPILE_S:  # never into a compilation
-        return None
-    return cost.PACE_SWITCH_FACTOR * cost.predicted_wall_s("python", choice.method, predicted_nfev(choice))
+def prediction(choice: Choice, engine: str, nfev: float) -> JsonObject:
+    """``solver.prediction``: what ``auto``'s cost model predicted for the run's own integration (the chosen
+    method on the engine first chosen; the check pass aside): evaluations, the price per evaluation of this
+    model's size on that engine (:func:`gearcli.core.cost.price_us_per_eval`) and their product plus the engine's
+    fixed cost per run."""
+    price = cost.price_us_per_eval(engine, choice.method, choice.size)
+    return {"nfev": float(nfev), "price_us_per_eval": price,
+            "wall_s": cost.RUN_FIXED_S.get(engine, 0.0) + nfev * price * 1e-6}
 
 
 def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
@@ -240,12 +233,12 @@ def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
     if run.method not in (EXPLICIT_METHOD, IMPLICIT_METHOD):
         return []
     n = predicted_nfev(choice)
-    took = cost.predicted_wall_s(run.engine, run.method, run.nfev)
+    took = cost.predicted_wall_s(run.engine, run.method, run.nfev, size=choice.size)
     if took < cost.PACE_MIN_S or run.nfev < cost.PACE_WARN_FACTOR * n:
         return []
     return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
                        f"{run.nfev / n:.2g}x the {n:.2g} the cost model predicted (~{took:.2g} s against "
-                       f"~{cost.predicted_wall_s(run.engine, run.method, n):.2g} s); method = \"auto\" may have chosen "
+                       f"~{cost.predicted_wall_s(run.engine, run.method, n, size=choice.size):.2g} s); method = \"auto\" may have chosen "
                        "the slower method here (docs/numerics.md, \"Choosing the method: auto\")",
                        nfev=run.nfev, predicted_nfev=n)]
 
