@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -46,7 +47,9 @@ def test_a_loose_sweep_carries_the_checked_points_warning_into_its_neighbours_ro
     from gearcli.sweep.spec import Point
 
     points = tuple(Point(i, (("input.speed_rpm", 600.0 + 5 * i),), "none") for i in range(3))
-    rows = list(iter_task(Task(scene, points, False, evaluate_point)))
+    # the window from rest (settle=False): its run-up ringing is what rtol 1e-3 cannot resolve; a settled window of
+    # this scene is resolved even at 1e-3, and would leave the family nothing to carry
+    rows = list(iter_task(Task(scene, points, False, functools.partial(evaluate_point, settle=False))))
     assert "not resolved" in rows[0]["message"] and "family's checked point" not in rows[0]["message"]
     for r in rows[1:]:
         assert "family's checked point" in r["message"] and "input.speed_rpm" in r["message"]
