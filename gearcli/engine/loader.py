@@ -328,13 +328,15 @@ def entry(method: str) -> tuple[Any, float]:
     if name in warm:
         return getattr(loaded.kernel, name), 0.0
     t0 = time.perf_counter()
-    try:
-        with signals.deferred(), _strict():
-            _warm_entry(loaded.kernel, name)
-    except CacheDamaged as exc:  # the entry's files: named, discarded, rebuilt (an interruptible build), loaded anew
-        _repair(exc)
-        with signals.deferred(), _strict():
-            _warm_entry(load().kernel, name)
+    for attempt in range(3):  # another process sharing the cache may be repairing it too: a few rounds settle it
+        try:
+            with signals.deferred(), _strict():
+                _warm_entry(load().kernel, name)
+            break
+        except CacheDamaged as exc:  # the entry's files: named, discarded, rebuilt (an interruptible build), anew
+            if attempt == 2:
+                raise
+            _repair(exc)
     spent = time.perf_counter() - t0
     warm[name] = spent
     if len(warm) == 1 and _state.get("dir") is not None and not loaded.compiled:
