@@ -6,7 +6,7 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, NotRequired, TypedDict
 
 from gearcli.core.channels import Channel
@@ -91,6 +91,14 @@ class MemberRating:
     S_F: float
     Y_M: float = 1.0  # mean stress factor in sigma_FG: 0.7 on a planet's root (an idler: alternating bending)
 
+    def safety(self, mode: str) -> float:
+        """S_H ("pitting") or S_F ("bending"): the generic rated member (:class:`gearcli.rating.RatedMember`)."""
+        return self.S_H if mode == "pitting" else self.S_F
+
+    def stress_MPa(self, mode: str) -> float:
+        """σ_HB/σ_HD ("pitting") or σ_F ("bending") at the rating's operating point."""
+        return self.sigma_H_MPa if mode == "pitting" else self.sigma_F_MPa
+
 
 @dataclass(frozen=True)
 class MeshRatingFactors:
@@ -117,6 +125,10 @@ class MeshRatingFactors:
     Y_beta: float
     sigma_H0_MPa: float
     sigma_H_MPa: float  # at the operating pitch point (Z_B = Z_D = 1)
+
+    def factor_table(self) -> dict[str, float | str]:
+        """The mesh-level factors by their ISO names (:class:`gearcli.rating.RatedMesh`), the JSON's keys."""
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name not in ("pinion", "gear")}
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import METHODS
+from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import StudyTooLong
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import campbell_data, modal_analysis
@@ -63,7 +64,7 @@ def build_report(
             except Exception:  # numba cannot compile or cache here: every run stays on scipy  # noqa: BLE001
                 pass
     tick(f"simulation ({sim_cfg.method}, rtol {sim_cfg.rtol:g})", 0, planned)
-    sim = simulate(cfg, design, want_series=True)
+    sim = with_simulated_rating(cfg, design, simulate(cfg, design, want_series=True))  # the rating at its K_v
     stages = stage_reports(design, sim)
     study = None
     if not quick:

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from gearcli.core.channels import Channel
-from gearcli.design.rating import stage_simulated_k_v  # one formula, shared with simulate's rating
+from gearcli.rating.dynamic import stage_simulated_k_v  # one formula, shared with the simulated rating
 from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult, SimulationResult

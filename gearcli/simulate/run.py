@@ -87,12 +87,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                             window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
                             steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
                             engine=sim.engine, progress=progress)
-    from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
-
-    stages, rating_diags = simulated_ratings(cfg, design, result.stages)
-    new = [d for d in rating_diags if d.message not in result.warnings]
-    return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
-                   diagnostics=result.diagnostics + tuple(new), units=output_units(cfg))
+    return replace(result, units=output_units(cfg))
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
