@@ -20,7 +20,8 @@ def register(std: RatingStandard) -> RatingStandard:
 
 
 def names() -> tuple[str, ...]:
-    """The registered standards' names, sorted."""
+    """The registered standards' names, sorted (ISO 6336 registers when a rated design first asks for its
+    standard, ``gearcli.design.standards.standard_of``, or on importing ``gearcli.design.iso6336``)."""
     return tuple(sorted(_STANDARDS))
 
 
