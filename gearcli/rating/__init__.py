@@ -1,4 +1,4 @@
-"""Rating standards as plug-ins (DESIGN.md §13, "Plug-in seams"; docs/iso6336.md, "Rating standards").
+"""Rating standards as plug-ins (issue 34, plug-in seams; docs/iso6336.md, "Rating standards").
 
 A strength-rating standard is a module and one :func:`register` call; the design file picks it by
 ``[rating] standard`` (default ``"iso6336"``). Nothing outside a standard's module asks which standard rated a mesh:

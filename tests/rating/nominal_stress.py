@@ -1,6 +1,6 @@
 """A test-only rating standard, complete in this one module: nominal stresses against the material's fatigue limits.
 
-The proof of the rating seam (DESIGN.md §13, "Plug-in seams"): registered here and selected by
+The proof of the rating seam (issue 34, plug-in seams): registered here and selected by
 ``[rating] standard = "nominal_stress"``, it flows through the design, the facade's simulated-K_v rating, life
 (its own S–N curves) and the output with no other file changed. Deliberately simple, and closed form:
 

@@ -1,4 +1,4 @@
-"""The rating seam (DESIGN.md §13): a standard registered in one module (``nominal_stress.py``, tests only) and
+"""The rating seam (issue 34): a standard registered in one module (``nominal_stress.py``, tests only) and
 selected by ``[rating] standard`` flows through design, the simulated-K_v rating, life and the output; an unknown
 name is exit 2 naming the key and the registered names. Every figure is the test standard's closed form, written
 out here from the design's forces and geometry."""
