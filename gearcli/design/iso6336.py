@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from gearcli.design import planetary as pl
 from gearcli.design import rating as iso
@@ -21,6 +21,7 @@ from gearcli.rating.sn import SNCurve
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
+    from gearcli.design.rating_results import InternalRatingResult, RatingResult
     from gearcli.rating.standard import RatedMember, RatedMesh
     from gearcli.results import DesignResult, StageDynamics, StageResult
 
@@ -169,8 +170,9 @@ def _nominal(stage: StageResult) -> StageResult:
     k = p.load_sharing_factor
     ring = p.planet_ring
     if ring.rating is not None:
-        p = replace(p, planet_ring=replace(ring, rating=pl.nominal_with_sharing(ring.rating, k)))
-    return replace(stage, rating=pl.nominal_with_sharing(stage.rating, k), planetary=p)
+        ring_rating = cast("InternalRatingResult", ring.rating)  # ISO's own (rate_planet_ring)
+        p = replace(p, planet_ring=replace(ring, rating=pl.nominal_with_sharing(ring_rating, k)))
+    return replace(stage, rating=pl.nominal_with_sharing(cast("RatingResult", stage.rating), k), planetary=p)
 
 
 ISO6336 = register(Iso6336())

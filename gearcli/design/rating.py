@@ -27,11 +27,11 @@ from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design.planetary import nominal_with_sharing, pair_equivalent, with_load_sharing
 from gearcli.design.rating_load import LoadFactors, MeshLoad, resolve_load_factors
+from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
 from gearcli.rating.dynamic import ring_simulated_k_v, stage_simulated_k_v
-from gearcli.results import MemberRating, RatingResult
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material

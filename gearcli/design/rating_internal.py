@@ -34,9 +34,9 @@ from gearcli.design.rating import (
     STRESS_CORRECTION_TEST_GEAR,
 )
 from gearcli.design.rating_load import MeshLoad, resolve_load_factors
+from gearcli.design.rating_results import InternalRatingResult, MemberRating
 from gearcli.design.stiffness import reference_tangential_force_N
 from gearcli.diagnostics import Diagnostic, warning
-from gearcli.results import InternalRatingResult, MemberRating
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material
@@ -207,7 +207,7 @@ def planet_ring_safety_diagnostics(cfg: DesignFile, st: StageResult) -> list[Dia
     minima = {"pitting": cfg.rating.min_safety_pitting, "bending": cfg.rating.min_safety_bending}
     out = _ring_range_diagnostics(cfg, st)
     for member, m, teeth in (("planet", r.pinion, p.planet.teeth), ("ring", r.gear, p.ring.teeth)):
-        for mode, value, symbol in (("pitting", m.S_H, "S_H"), ("bending", m.S_F, "S_F")):
+        for mode, value, symbol in (("pitting", m.safety("pitting"), "S_H"), ("bending", m.safety("bending"), "S_F")):
             if value is None or value >= minima[mode]:
                 continue
             what = "pitting (flank)" if mode == "pitting" else "tooth-root bending"

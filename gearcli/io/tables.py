@@ -23,11 +23,10 @@ from rich.text import Text
 from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
 from gearcli.rating import for_rating
-from gearcli.results import DesignResult, InternalRatingResult, SimulationResult
+from gearcli.results import DesignResult, RatedMesh, SimulationResult
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
-    from gearcli.results import InternalRatingResult, RatingResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
 MIN_WIDTH = 20
@@ -282,7 +281,7 @@ class _RatedMesh:
     """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
 
     index: int
-    rating: InternalRatingResult
+    rating: RatedMesh
 
 
 def _planet_ring_rating(r: DesignResult) -> list[RenderableType]:
@@ -367,10 +366,10 @@ class _HasRating(Protocol):
     def index(self) -> int: ...
 
     @property
-    def rating(self) -> RatingResult | InternalRatingResult | None: ...
+    def rating(self) -> RatedMesh | None: ...
 
 
-def _rating(st: _HasRating) -> RatingResult | InternalRatingResult:
+def _rating(st: _HasRating) -> RatedMesh:
     if st.rating is None:
         raise ValueError(f"stage {st.index} has no rating")
     return st.rating
@@ -474,7 +473,7 @@ class _RingRating:
     """A planetary stage's planet–ring rating as a stage with a rating (rating_table's rows)."""
 
     index: int
-    rating: InternalRatingResult
+    rating: RatedMesh
 
 
 def _planet_tables(r: SimulationResult) -> list[RenderableType]:

@@ -27,7 +27,7 @@ from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
-from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
+from gearcli.results import DesignResult, RatedMember, RatedMesh, SimulationResult, StageResult
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")
@@ -77,7 +77,7 @@ def _require_rating(cfg: DesignFile, scene: Scene) -> None:
                           source=scene.source, key="rating")
 
 
-def _rating(stage: StageResult) -> RatingResult:
+def _rating(stage: StageResult) -> RatedMesh:
     """A stage's rating (every life point has one: :func:`_require_rating`)."""
     if stage.rating is None:
         raise DesignError(f"stage {stage.index}: no ISO 6336 rating; gearcli life needs a [rating] table")
@@ -225,13 +225,13 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
 RING_MEMBERS = {"ring": ("gear", "ring"), "planet_ring_side": ("pinion", "planet")}
 
 
-def _member_rating(st: StageResult, member: str) -> MemberRating:
+def _member_rating(st: StageResult, member: str) -> RatedMember:
     """The rating of ``member``: the stage's own (sun–planet mesh of a planetary stage) or, for a ring-mesh
     member, the planet–ring mesh's."""
     if member in RING_MEMBERS:
         assert st.planetary is not None and st.planetary.planet_ring.rating is not None
-        return cast("MemberRating", getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
-    return cast("MemberRating", getattr(_rating(st), member))
+        return cast("RatedMember", getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
+    return cast("RatedMember", getattr(_rating(st), member))
 
 
 def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
@@ -314,7 +314,8 @@ def _curve_name(points: Sequence[_PointData], mode: str) -> str:
     return standard_of(points[0].cfg).curve_name(mode)
 
 
-def _from_raw(raw: Sequence[_Raw], mode: str, hours: float, curve_name: str) -> ModeLife:
+def _from_raw(raw: Sequence[_Raw], mode: str, hours: float, curve_name: str = "") -> ModeLife:
+    """Miner damage and life of the bins ``raw`` in ``mode``; ``curve_name``: the standard's name of the curve."""
     exponent = 0.5 if mode == "pitting" else 1.0
 
     def damage_at(scale: float) -> float:

@@ -1,9 +1,12 @@
-"""What a rating standard provides and what its rated meshes show the layers above (``gearcli.rating``)."""
+"""What a rating standard provides (``gearcli.rating``); what its rated meshes show the layers above is
+``gearcli.results``' ``RatedMesh`` and ``RatedMember``, re-exported here."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
+
+from gearcli.results import RatedMember, RatedMesh
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -11,46 +14,9 @@ if TYPE_CHECKING:
     from gearcli.rating.sn import SNCurve
     from gearcli.results import DesignResult, StageDynamics, StageResult
 
+__all__ = ["MODES", "RatedMember", "RatedMesh", "RatingStandard"]
+
 MODES = ("pitting", "bending")  # the failure modes every standard rates: flank and tooth root
-
-
-class RatedMember(Protocol):
-    """One member of a rated mesh: its load cycles, and per failure mode its safety and its stress."""
-
-    @property
-    def load_cycles(self) -> float: ...
-
-    def safety(self, mode: str) -> float:
-        """The safety factor against ``mode`` ("pitting" or "bending")."""
-        ...
-
-    def stress_MPa(self, mode: str) -> float:
-        """The rated stress of ``mode`` at the rating's operating point (contact or root stress)."""
-        ...
-
-
-class RatedMesh(Protocol):
-    """A mesh rated by a standard: its title (JSON ``standard``), its dynamic factor and where it came from, its two
-    members (``pinion`` driving, ``gear`` driven), and its factor table by name."""
-
-    @property
-    def standard(self) -> str: ...
-
-    @property
-    def K_v(self) -> float: ...
-
-    @property
-    def K_v_source(self) -> str: ...
-
-    @property
-    def pinion(self) -> RatedMember: ...
-
-    @property
-    def gear(self) -> RatedMember: ...
-
-    def factor_table(self) -> Mapping[str, float | str]:
-        """The mesh-level factors by their standard's names."""
-        ...
 
 
 class RatingStandard(Protocol):
