@@ -35,5 +35,10 @@ def with_simulated_rating(cfg: DesignFile, design: DesignResult, result: Simulat
         return result
     stages, diags = standard_of(cfg).rate_simulation(cfg, design, result.stages)
     new = [d for d in diags if d.message not in result.warnings]
+    if result.steady is not None and result.steady.settled is False:  # never silently: K_v carries the transient
+        new.append(dg.warning(dg.WINDOW_NOT_SETTLED, '[rating] dynamic_factor = "simulated": the K_v the stages are '
+                              "rated at comes from a window that is not settled (it includes the start-up "
+                              "transient, see the window's warning): give a longer simulation.duration_s or "
+                              '[simulation] steady = "periodic"', statistic="K_v"))
     return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
                    diagnostics=result.diagnostics + tuple(new))

@@ -102,10 +102,14 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     n = d.size
     kernel = _loaded_kernel()
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-        F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
-                                           np.ascontiguousarray(dd, dtype=float),
-                                           np.ascontiguousarray(phi, dtype=float),
-                                           np.ascontiguousarray(wphi, dtype=float))
+        from gearcli.core import signals
+
+        with signals.deferred():  # a signal acted on in plain Python after the call, never inside numba's dispatcher
+            F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float),
+                                               np.ascontiguousarray(d, dtype=float),
+                                               np.ascontiguousarray(dd, dtype=float),
+                                               np.ascontiguousarray(phi, dtype=float),
+                                               np.ascontiguousarray(wphi, dtype=float))
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
     else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
         force, potential, channel = el.force, el.potential, el.channel
