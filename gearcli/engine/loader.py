@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from gearcli.core import signals
+from gearcli.core.announce import LineReporter
 from gearcli.engine import blas, cachedir
 from gearcli.engine.cachedir import CacheDamaged
 from gearcli.model import elements
@@ -136,38 +137,6 @@ def _ready_here() -> bool:
 
 
 # ------------------------------------------------------------------------------------------- reporting
-class LineReporter:
-    """The build as lines on stderr: what is compiled where, every ~15 s how far, and the time it took."""
-
-    EVERY_S = 15.0
-
-    def __init__(self, quiet: bool = False) -> None:
-        self.quiet = quiet
-        self.last = 0.0
-
-    def _say(self, text: str) -> None:
-        if not self.quiet:
-            print(f"gearcli: {text}", file=sys.stderr, flush=True)
-
-    def start(self, directory: Path) -> None:
-        self._say(f"compiling the integration engine (its first use here; cached in {directory}) ...")
-
-    def step(self, done: int, total: int, elapsed_s: float) -> None:
-        if elapsed_s - self.last >= self.EVERY_S:
-            self.last = elapsed_s
-            self._say(f"compiling the integration engine: {done} of ~{total} functions, {elapsed_s:.0f} s")
-
-    def note(self, line: str) -> None:
-        self._say(f"the engine cache had a damaged entry, compiled again: {line}")
-
-    def finish(self, seconds: float, directory: Path, waited: bool = False) -> None:
-        if waited:
-            self._say(f"another process compiled the integration engine; waited {seconds:.1f} s for it")
-            return
-        self._say(f"compiled the integration engine in {seconds:.1f} s (measured now; later runs load it from "
-                  f"{directory})")
-
-
 def quiet_compilation() -> None:
     """This process does not announce a compilation (a sweep's pool worker: its parent announced it once)."""
     _state["quiet"] = True
