@@ -34,6 +34,7 @@ from gearcli.config.bounds import check_memory, check_run_budget, memory_limit_b
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
+from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, DesignError, RunTooLong
 from gearcli.io.sweep_file import open_sink, read_identity
 from gearcli.model.spec import ElementSpec, ModelSpec
@@ -124,10 +125,13 @@ def model_source(cfg: DesignFile, design_result: DesignResult) -> str:
 def simulate(cfg: DesignFile, design_result: DesignResult, *, method: str | None = None, rtol: float | None = None,
              want_series: bool = True, progress: Callable[[float], None] | None = None) -> SimulationResult:
     """One run of the scene with its ``[simulation]`` settings (``method``/``rtol`` override them); ``progress``
-    is called with the fraction of the run done (a terminal's progress bar)."""
+    is called with the fraction of the run done (a terminal's progress bar). With ``[rating] dynamic_factor =
+    "simulated"`` the facade rates the run's stages by the file's standard at their simulated K_v (simulate itself
+    knows no standard)."""
     from gearcli.simulate import run_simulation  # lazy for start-up: scipy
 
-    return run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series, progress=progress)
+    result = run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series, progress=progress)
+    return with_simulated_rating(cfg, design_result, result)
 
 
 def check_budget(loaded: LoadedDesign, design_result: DesignResult, *, output_format: str = "json",
@@ -303,6 +307,7 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     # a sweep row and a duty point are dynamic verdicts: from a window shown settled (gearcli.simulate.settle)
     result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check,
                             settle=settle)
+    result = with_simulated_rating(case.cfg, case.design, result)
     if result.final_state is None or result.final_time_s is None:
         return Evaluation(case, result, None)
     return Evaluation(case, result, Carried(model, result.final_state, result.final_time_s))

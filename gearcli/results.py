@@ -6,8 +6,9 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, NotRequired, TypedDict
+from typing import TYPE_CHECKING, NotRequired, Protocol, TypedDict
 
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
@@ -64,79 +65,39 @@ class Iso6336Factors:
     C_B: float = 0.975
 
 
-@dataclass(frozen=True)
-class MemberRating:
-    """ISO 6336-2/-3 figures of one member (docs/iso6336.md, "Strength rating"); JSON ``rating.pinion|gear``."""
+class RatedMember(Protocol):
+    """One member of a rated mesh, whatever the standard (``gearcli.rating``): its load cycles, and per failure mode
+    ("pitting", "bending") its safety and its stress at the rating's operating point."""
 
-    load_cycles: float
-    Z_BD: float  # Z_B of the smaller wheel, Z_D of the larger (ISO's pinion and wheel)
-    sigma_H_MPa: float  # sigma_HB / sigma_HD
-    Z_NT: float
-    Z_X: float
-    sigma_HG_MPa: float
-    sigma_HP_MPa: float
-    S_H: float
-    Y_F: float
-    Y_S: float
-    Y_B: float
-    Y_DT: float
-    sigma_F0_MPa: float
-    sigma_F_MPa: float
-    Y_delta_rel_T: float
-    Y_R_rel_T: float
-    Y_X: float
-    Y_NT: float
-    sigma_FG_MPa: float
-    sigma_FP_MPa: float
-    S_F: float
-    Y_M: float = 1.0  # mean stress factor in sigma_FG: 0.7 on a planet's root (an idler: alternating bending)
+    @property
+    def load_cycles(self) -> float: ...
+
+    def safety(self, mode: str) -> float: ...
+
+    def stress_MPa(self, mode: str) -> float: ...
 
 
-@dataclass(frozen=True)
-class MeshRatingFactors:
-    """The mesh-level figures of an ISO 6336:2006 method B rating (load factors, pitting factors, σ_H0, σ_H),
-    shared by a gear pair's rating and the planet–ring mesh's."""
+class RatedMesh(Protocol):
+    """A mesh rated by a standard (``gearcli.rating``; ISO 6336's: ``gearcli.design.rating_results``): its title
+    (JSON ``standard``), its dynamic factor and where it came from, its members (``pinion`` driving, ``gear``
+    driven), and its factor table by the standard's names. Its JSON is its dataclass fields."""
 
-    standard: str
-    K_A: float
-    K_v: float
-    K_v_source: str  # "iso" | "simulated" | "given"
-    K_Hbeta: float
-    K_Hbeta_source: str  # "given" | "estimated"
-    K_Fbeta: float
-    K_Halpha: float
-    K_Falpha: float
-    Z_H: float
-    Z_E: float
-    Z_eps: float
-    Z_beta: float
-    Z_L: float
-    Z_V: float
-    Z_R: float
-    Z_W: float
-    Y_beta: float
-    sigma_H0_MPa: float
-    sigma_H_MPa: float  # at the operating pitch point (Z_B = Z_D = 1)
+    @property
+    def standard(self) -> str: ...
 
+    @property
+    def K_v(self) -> float: ...
 
-@dataclass(frozen=True)
-class RatingResult(MeshRatingFactors):
-    """The strength rating of one stage, ISO 6336:2006 method B; JSON ``stages[k].rating``."""
+    @property
+    def K_v_source(self) -> str: ...
 
-    pinion: MemberRating
-    gear: MemberRating
-    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
+    @property
+    def pinion(self) -> RatedMember: ...
 
+    @property
+    def gear(self) -> RatedMember: ...
 
-@dataclass(frozen=True)
-class InternalRatingResult(MeshRatingFactors):
-    """The planet–ring mesh's strength rating (ISO 6336:2006 method B); JSON ``meshes[1].rating``, the keys of a
-    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (its root by ISO 6336-3's internal
-    gear method; K_v from the internal mesh's own resonance)."""
-
-    pinion: MemberRating
-    gear: MemberRating
-    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
+    def factor_table(self) -> Mapping[str, float | str]: ...
 
 
 @dataclass(frozen=True)
@@ -178,7 +139,7 @@ class StageResult:
     resonance_ratio: float = 0.0  # N = n_smaller_wheel / n_E1
     resonance_lower_limit: float = 0.85  # N_S
     resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
-    rating: RatingResult | None = None  # ISO 6336-2/-3 (issue 22); None without [rating]
+    rating: RatedMesh | None = None  # by the [rating] standard (ISO 6336-2/-3 by default); None without [rating]
     planetary: PlanetaryResult | None = None  # a planetary stage: this result is its sun–planet mesh
     # manufacturing allowances (ISO 21771; None without allowance keys)
     backlash_circumferential_mm: tuple[float, float] | None = None  # [max, min] on the working pitch circle
@@ -351,7 +312,7 @@ class StageDynamics:
     contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
     back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
     regime: str = ""  # REGIME_*
-    rating: RatingResult | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
+    rating: RatedMesh | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
     # issue 21: the run-up overshoot apart from the steady dynamic factor; defaults for hand-made results
     runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
     simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
@@ -362,7 +323,7 @@ class StageDynamics:
     load_sharing_factor: float | None = None
     # [rating] dynamic_factor = "simulated" on a planetary stage: its planet–ring mesh rated at the ring meshes'
     # own simulated K_v (``rating`` is the sun–planet mesh's, at the sun meshes' K_v)
-    planet_ring_rating: InternalRatingResult | None = None
+    planet_ring_rating: RatedMesh | None = None
 
 
 @dataclass(frozen=True)
@@ -533,7 +494,7 @@ class InternalMeshResult:
     iso6336_mesh_stiffness_beta_N_mm_um: float
     iso6336_factors: Iso6336Factors
     mesh_frequency_Hz: float
-    rating: InternalRatingResult | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
+    rating: RatedMesh | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
     # ISO 6336-1 resonance of this mesh: m_red = the planet's m* (the ring taken infinitely heavy), n_E1 in
     # planet rpm relative to the carrier, N = n_p/n_E1, N_S (0 where not computed)
     reduced_mass_kg_mm: float = 0.0

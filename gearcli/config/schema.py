@@ -616,9 +616,12 @@ class Lubricant(_Table):
 
 
 class Rating(_Table):
-    """Strength rating of every stage, ISO 6336-2 (pitting) and -3 (tooth root), 2006 editions, method B.
-    With this table present, every key the rating needs is required (materials, accuracy, roughness, oil)."""
+    """Strength rating of every stage by the standard ``standard`` names: ISO 6336-2 (pitting) and -3 (tooth root),
+    2006 editions, method B, by default. With this table present, every key the rating needs is required
+    (materials, accuracy, roughness, oil)."""
 
+    # the rating standard, a name registered in gearcli.rating (docs/iso6336.md, "Rating standards")
+    standard: Annotated[str, Field(min_length=1, max_length=64)] = "iso6336"
     required_life_h: Annotated[float, Field(ge=1e-3, le=1e7)]  # load cycles N_L = 60 n t per member
     face_load_factor: Annotated[float, Field(ge=1, le=10)] | None = None  # K_Hbeta; absent: an ISO estimate
     min_safety_pitting: Annotated[float, Field(ge=0.5, le=10)] = 1.0  # S_Hmin

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
+from gearcli.design.standards import standard_of
 from gearcli.errors import DesignError
 
 if TYPE_CHECKING:
@@ -54,10 +55,8 @@ def check_inputs(cfg: DesignFile) -> None:
             for part in ("pinion", "gear"):
                 check_material(getattr(stage, part).material, pairs.materials, f"stage[{k}].{part}.material")
             check_hands(stage, k)
-        if cfg.rating is not None:  # imported only for a rated design: an unrated one starts as fast as before
-            from gearcli.design.rating import check_rating_inputs
-
-            check_rating_inputs(pairs)
+        if cfg.rating is not None:  # the [rating] standard's required keys (gearcli.rating)
+            standard_of(cfg).check_inputs(cfg)
     except DesignError as exc:
         raise DesignError(exc.message, key=planetary_key(cfg, exc.key), source=exc.source) from None
     check_planetary_inputs(cfg)

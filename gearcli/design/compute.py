@@ -25,7 +25,8 @@ from gearcli.design.inertia import (
 )
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
-from gearcli.diagnostics import DESIGN, Diagnostic, warning
+from gearcli.design.standards import standard_of
+from gearcli.diagnostics import DESIGN, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
     DesignResult,
@@ -57,18 +58,8 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                                   for k, s in enumerate(cfg.stage)))
     stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
-    if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
-        from gearcli.design.rating import rate_design
-
-        rated, rating_diagnostics = rate_design(pairs, tuple(pl.with_load_sharing(s) for s in stages))
-        stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
-        stages = tuple(_nominal(_rate_planet_ring(cfg, k, s)) for k, s in enumerate(stages))
-        from gearcli.design.rating_internal import planet_ring_safety_diagnostics
-
-        rating_diagnostics += tuple(d for s in stages for d in planet_ring_safety_diagnostics(cfg, s))
-        rating_diagnostics += tuple(_unrated_ring_mesh(cfg, s) for s in stages
-                                    if s.planetary is not None and s.rating is not None
-                                    and s.planetary.planet_ring.rating is None)
+    if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
+        stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
@@ -112,9 +103,6 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     )
 
 
-UNRATED_MESH = "mesh_not_rated"
-
-
 def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
     """A parallel stage as before; a planetary stage as its sun–planet mesh (in the carrier's frame, per
     planet) with its members and planet–ring mesh attached (``design.planetary``)."""
@@ -124,50 +112,6 @@ def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) ->
     if not isinstance(stage, PlanetaryStage):
         return _stage_result(pairs, k, kin)
     return pl.planetary_result(cfg, k, kin, _stage_result(pairs, k, pl.mesh_train(k, stage, kin), stage.planet.count))
-
-
-def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
-    """A rated planetary stage with its planet–ring mesh rated too (ISO 6336-2/-3, docs/iso6336.md)."""
-    if stage.planetary is None or stage.rating is None:
-        return stage
-    from gearcli.design.rating_internal import rate_planet_ring
-
-    ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
-    mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
-    return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
-
-
-def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
-    """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
-    from gearcli.config.schema import PlanetaryStage
-
-    k = stage.index - 1
-    st = cfg.stage[k]
-    assert isinstance(st, PlanetaryStage)
-    ring_mat, planet_mat = cfg.materials[st.ring.material], cfg.materials[st.planet.material]
-    if st.ring.flank_roughness_Rz_um is None:
-        key = f"stage[{k}].ring.flank_roughness_Rz_um"
-    else:
-        missing = [(name, m) for name, m in ((st.ring.material, ring_mat), (st.planet.material, planet_mat))
-                   if m.treatment is None or m.contact_fatigue_limit_MPa is None or m.bending_fatigue_limit_MPa is None]
-        key = f"materials.{missing[0][0]}" if missing else "rating"
-    return warning(UNRATED_MESH, f"stage {stage.index}: the planet–ring mesh is not rated (ISO 6336): it needs {key} "
-                   "(the ring's flank roughness, and the ring's and planet's material treatment and fatigue limits); "
-                   "the ring and the planet's ring side have no safeties", stage=stage.index, mesh="planet_ring",
-                   key=key)
-
-
-def _nominal(stage: StageResult) -> StageResult:
-    """A planetary stage's ratings with ISO's nominal σ_H0, σ_F0 and K_gamma among the load factors (rated at
-    K_gamma times the mean planet's force: ``pl.with_load_sharing``)."""
-    p = stage.planetary
-    if p is None or stage.rating is None:
-        return stage
-    k = p.load_sharing_factor
-    ring = p.planet_ring
-    if ring.rating is not None:
-        p = replace(p, planet_ring=replace(ring, rating=pl.nominal_with_sharing(ring.rating, k)))
-    return replace(stage, rating=pl.nominal_with_sharing(stage.rating, k), planetary=p)
 
 
 def _require_finite(obj, key: str) -> None:

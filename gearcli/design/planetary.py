@@ -44,15 +44,14 @@ from gearcli.design.geometry import (
 )
 from gearcli.design.inertia import annulus_inertia_kg_m2
 from gearcli.design.kinematics import Train, power_kW, speed_deg_s, speed_rpm
+from gearcli.design.rating_results import InternalRatingResult, RatingResult
 from gearcli.errors import DesignError
 from gearcli.results import (
     CarrierResult,
     GearResult,
     InternalMeshResult,
-    InternalRatingResult,
     Iso6336Factors,
     PlanetaryResult,
-    RatingResult,
     StageResult,
     StaticForces,
 )

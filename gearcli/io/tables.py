@@ -22,11 +22,11 @@ from rich.text import Text
 
 from gearcli.core.text import visible
 from gearcli.io.units import input_torque_window_means, of_result
-from gearcli.results import DesignResult, InternalRatingResult, SimulationResult
+from gearcli.rating import for_rating
+from gearcli.results import DesignResult, RatedMesh, SimulationResult
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
-    from gearcli.results import InternalRatingResult, RatingResult
 
 FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
 MIN_WIDTH = 20
@@ -281,7 +281,7 @@ class _RatedMesh:
     """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
 
     index: int
-    rating: InternalRatingResult
+    rating: RatedMesh
 
 
 def _planet_ring_rating(r: DesignResult) -> list[RenderableType]:
@@ -290,7 +290,7 @@ def _planet_ring_rating(r: DesignResult) -> list[RenderableType]:
               if st.planetary is not None and st.planetary.planet_ring.rating is not None]
     if not meshes:
         return []
-    return [rating_table(meshes, "planet–ring mesh strength rating, ISO 6336:2006 method B (p planet, g ring)")]
+    return [rating_table(meshes, "planet–ring mesh strength rating, {standard} (p planet, g ring)")]
 
 
 def _planetary_design(r: DesignResult) -> list[RenderableType]:
@@ -366,70 +366,24 @@ class _HasRating(Protocol):
     def index(self) -> int: ...
 
     @property
-    def rating(self) -> RatingResult | InternalRatingResult | None: ...
+    def rating(self) -> RatedMesh | None: ...
 
 
-def _rating(st: _HasRating) -> RatingResult | InternalRatingResult:
+def _rating(st: _HasRating) -> RatedMesh:
     if st.rating is None:
         raise ValueError(f"stage {st.index} has no rating")
     return st.rating
 
 
-def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
-    """Factors, stresses, permissible stresses and safeties per member, in the order of a KISSsoft report
-    (general factors, tooth root, flank); per-member cells read "pinion / gear"."""
+def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, {standard}") -> StageColumns:
+    """The rated meshes' rows as their standard gives them (:meth:`gearcli.rating.RatingStandard.table_rows`), one
+    column per stage (every mesh rated by one standard: the design file's); ``{standard}`` in ``title`` is its
+    title."""
     cols = [f"stage {st.index}" for st in stages]
-
-    def one(label, fn, digits=4):
-        return label, [_g(fn(_rating(st)), digits) for st in stages]
-
-    def two(label, name, digits=4):
-        return label, [f"{_g(getattr(_rating(st).pinion, name), digits)} / "
-                       f"{_g(getattr(_rating(st).gear, name), digits)}" for st in stages]
-
-    planetary = any(_rating(st).K_gamma != 1.0 or getattr(st, "planetary", None) is not None for st in stages)
-    return _quantity_table(title, cols, [
-        one("application factor K_A", lambda r: r.K_A),
-        *([one("load-sharing factor K_γ", lambda r: r.K_gamma)] if planetary else []),
-        ("dynamic factor K_v", [f"{_rating(st).K_v:.4g} ({_rating(st).K_v_source})" for st in stages]),
-        ("face load factor K_Hβ", [f"{_rating(st).K_Hbeta:.4g} ({_rating(st).K_Hbeta_source})" for st in stages]),
-        one("face load factor K_Fβ", lambda r: r.K_Fbeta),
-        one("transverse load factor K_Hα", lambda r: r.K_Halpha),
-        one("transverse load factor K_Fα", lambda r: r.K_Falpha),
-        two("load cycles N_L p / g", "load_cycles"),
-        two("tooth form Y_F p / g", "Y_F"),
-        two("stress correction Y_S p / g", "Y_S"),
-        one("helix factor Y_β", lambda r: r.Y_beta),
-        two("rim factor Y_B p / g", "Y_B"),
-        two("deep tooth Y_DT p / g", "Y_DT"),
-        two("nominal root σ_F0 [MPa] p / g", "sigma_F0_MPa"),
-        two("root stress σ_F [MPa] p / g", "sigma_F_MPa"),
-        two("notch Y_δrelT p / g", "Y_delta_rel_T"),
-        two("surface Y_RrelT p / g", "Y_R_rel_T"),
-        two("size Y_X p / g", "Y_X"),
-        two("life Y_NT p / g", "Y_NT"),
-        two("mean stress Y_M p / g", "Y_M"),
-        two("root limit σ_FG [MPa] p / g", "sigma_FG_MPa"),
-        two("permissible σ_FP [MPa] p / g", "sigma_FP_MPa"),
-        two("root safety S_F p / g", "S_F", 3),
-        one("zone factor Z_H", lambda r: r.Z_H),
-        one("elasticity Z_E [√MPa]", lambda r: r.Z_E),
-        one("contact ratio Z_ε", lambda r: r.Z_eps),
-        one("helix factor Z_β", lambda r: r.Z_beta),
-        one("nominal contact σ_H0 [MPa]", lambda r: r.sigma_H0_MPa),
-        one("contact σ_H (pitch) [MPa]", lambda r: r.sigma_H_MPa),
-        two("single pair Z_B / Z_D", "Z_BD"),
-        two("contact σ_HB / σ_HD [MPa]", "sigma_H_MPa"),
-        one("lubricant Z_L", lambda r: r.Z_L),
-        one("velocity Z_V", lambda r: r.Z_V),
-        one("roughness Z_R", lambda r: r.Z_R),
-        one("work hardening Z_W", lambda r: r.Z_W),
-        two("life Z_NT p / g", "Z_NT"),
-        two("size Z_X p / g", "Z_X"),
-        two("pitting limit σ_HG [MPa] p / g", "sigma_HG_MPa"),
-        two("permissible σ_HP [MPa] p / g", "sigma_HP_MPa"),
-        two("flank safety S_H p / g", "S_H", 3),
-    ])
+    ratings = [_rating(st) for st in stages]
+    shared = any(getattr(r, "K_gamma", 1.0) != 1.0 or getattr(st, "planetary", None) is not None
+                 for r, st in zip(ratings, stages, strict=True))
+    return _quantity_table(title.format(standard=ratings[0].standard), cols, for_rating(ratings[0]).table_rows(ratings, shared=shared))
 
 
 def _stats_cells(st) -> list[str]:
@@ -501,11 +455,11 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
                      f"wall {cp['wall_s']:.3g} s")
     # one Text per line: text() writes a control character (a newline too) as an escape
     rated = [st for st in r.stages if st.rating is not None]
-    simulated = [rating_table(rated, "strength rating at the simulated K_v, ISO 6336:2006 method B")] if rated else []
+    simulated = [rating_table(rated, "strength rating at the simulated K_v, {standard}")] if rated else []
     rings = [_RingRating(st.index, st.planet_ring_rating) for st in r.stages if st.planet_ring_rating is not None]
     if rings:
-        simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, ISO 6336:2006 "
-                                             "method B (p planet, g ring)"))
+        simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, {standard} "
+                                             "(p planet, g ring)"))
     if r.extra and r.extra.get("bearings"):  # [[bearing]] tables (docs/life.md)
         from gearcli.io.life_tables import bearing_stats_table
 
@@ -519,7 +473,7 @@ class _RingRating:
     """A planetary stage's planet–ring rating as a stage with a rating (rating_table's rows)."""
 
     index: int
-    rating: InternalRatingResult
+    rating: RatedMesh
 
 
 def _planet_tables(r: SimulationResult) -> list[RenderableType]:

@@ -19,6 +19,7 @@ from gearcli.config import DesignFile
 from gearcli.config.bounds import check_memory
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
+from gearcli.design.standards import standard_of
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
 from gearcli.life import spectra
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
@@ -27,7 +28,7 @@ from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles, start_data
-from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
+from gearcli.results import DesignResult, RatedMember, RatedMesh, SimulationResult, StageResult
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 if TYPE_CHECKING:
@@ -81,7 +82,7 @@ def _require_rating(cfg: DesignFile, scene: Scene) -> None:
                           source=scene.source, key="rating")
 
 
-def _rating(stage: StageResult) -> RatingResult:
+def _rating(stage: StageResult) -> RatedMesh:
     """A stage's rating (every life point has one: :func:`_require_rating`)."""
     if stage.rating is None:
         raise DesignError(f"stage {stage.index}: no ISO 6336 rating; gearcli life needs a [rating] table")
@@ -268,29 +269,24 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
 RING_MEMBERS = {"ring": ("gear", "ring"), "planet_ring_side": ("pinion", "planet")}
 
 
-def _member_rating(st: StageResult, member: str) -> MemberRating:
+def _member_rating(st: StageResult, member: str) -> RatedMember:
     """The rating of ``member``: the stage's own (sun–planet mesh of a planetary stage) or, for a ring-mesh
     member, the planet–ring mesh's."""
     if member in RING_MEMBERS:
         assert st.planetary is not None and st.planetary.planet_ring.rating is not None
-        return cast("MemberRating", getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
-    return cast("MemberRating", getattr(_rating(st), member))
+        return cast("RatedMember", getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
+    return cast("RatedMember", getattr(_rating(st), member))
 
 
 def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
-    from gearcli.design import rating_factors as rf
-
+    """The S–N curve of ``member`` in ``mode`` as the file's rating standard gives it (``gearcli.rating``)."""
     stage = cfg.stage[k]
     if member in RING_MEMBERS:
         own = RING_MEMBERS[member][1]
     else:
         own = PLANETARY_MEMBERS[member] if getattr(stage, "type", "parallel") == "planetary" else member
     treatment = str(cfg.materials[getattr(stage, own).material].treatment)
-    m = _member_rating(design.stages[k], member)
-    optimum = cfg.rating.material_quality == "optimum"
-    if mode == "pitting":
-        return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
-    return SNCurve(rf.ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)
+    return standard_of(cfg).sn_curve(cfg, _member_rating(design.stages[k], member), treatment, mode, variant)
 
 
 def _contacts_per_turn(st, member: str) -> int:
@@ -332,7 +328,7 @@ def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: fl
     """The rating's stress of the point, scaled from its static force to ``force_N``."""
     m = _member_rating(design.stages[k], member)
     ratio = force_N / abs(static_N) if static_N else 0.0
-    return m.sigma_H_MPa * math.sqrt(ratio) if mode == "pitting" else m.sigma_F_MPa * ratio
+    return m.stress_MPa(mode) * (math.sqrt(ratio) if mode == "pitting" else ratio)
 
 
 _Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
@@ -361,11 +357,16 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
 
 def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
                hours: float, planet: int | None = None) -> ModeLife:
-    ml = _from_raw(_raw_bins(points, k, member, mode, variant, planet), mode, hours)
+    ml = _from_raw(_raw_bins(points, k, member, mode, variant, planet), mode, hours, _curve_name(points, mode))
     return ml if planet is None else replace(ml, planet=planet)
 
 
-def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
+def _curve_name(points: Sequence[_PointData], mode: str) -> str:
+    return standard_of(points[0].cfg).curve_name(mode)
+
+
+def _from_raw(raw: Sequence[_Raw], mode: str, hours: float, curve_name: str = "") -> ModeLife:
+    """Miner damage and life of the bins ``raw`` in ``mode``; ``curve_name``: the standard's name of the curve."""
     exponent = 0.5 if mode == "pitting" else 1.0
 
     def damage_at(scale: float) -> float:
@@ -381,7 +382,7 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
     below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's last node: infinite life
     load = spectrum_safety(damage_at)
     return ModeLife(d, hours / d if d > 0 and not below else None, load, tuple(bins),
-                    f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
+                    curve_name,
                     first.static_cycles, first.knee[0], first, below_endurance=below,
                     stress_safety=None if load is None else load**exponent)
 
@@ -394,7 +395,8 @@ def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float
 
     def root_life(planet: int | None = None) -> ModeLife:
         ml = _from_raw([*_raw_bins(points, k, "gear", "bending", variant, planet),
-                        *_raw_bins(points, k, "planet_ring_side", "bending", variant, planet)], "bending", hours)
+                        *_raw_bins(points, k, "planet_ring_side", "bending", variant, planet)], "bending", hours,
+                      _curve_name(points, "bending"))
         return ml if planet is None else replace(ml, planet=planet)
 
     st = points[0].design.stages[k]

@@ -10,6 +10,7 @@ from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import METHODS
+from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import StudyTooLong
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import campbell_data, modal_analysis
@@ -67,6 +68,7 @@ def build_report(
     # the budget; the window stays a window (its spectrum and statistics sections), an unsettled one says so
     sim = simulate(cfg, design, want_series=True, settle="window") if model is not None else simulate(
         cfg, design, want_series=True)
+    sim = with_simulated_rating(cfg, design, sim)  # the rating at the run's K_v (simulate knows no standard)
     stages = stage_reports(design, sim)
     study = None
     if not quick:

@@ -98,18 +98,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
     if settle:
         result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window")
-    from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
-
-    stages, rating_diags = simulated_ratings(cfg, design, result.stages)
-    new = [d for d in rating_diags if d.message not in result.warnings]
-    if cfg.rating is not None and cfg.rating.dynamic_factor == "simulated" and result.steady is not None \
-            and result.steady.settled is False:  # never silently: the K_v rated at carries the start's transient
-        new.append(dg.warning(dg.WINDOW_NOT_SETTLED, '[rating] dynamic_factor = "simulated": the K_v the stages are '
-                              "rated at comes from a window that is not settled (it includes the start-up "
-                              "transient, see the window's warning): give a longer simulation.duration_s or "
-                              '[simulation] steady = "periodic"', statistic="K_v"))
-    return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
-                   diagnostics=result.diagnostics + tuple(new), units=output_units(cfg))
+    return replace(result, units=output_units(cfg))
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
