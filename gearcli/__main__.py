@@ -21,11 +21,13 @@ def _forget_handled_interrupt() -> None:
 
 
 def main() -> None:
-    from gearcli.io import streams
+    from gearcli.io import streams  # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
 
     streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
     try:
-        from gearcli.cli import main as run
+        from gearcli.cli import (
+            main as run,  # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
+        )
     except KeyboardInterrupt:
         sys.stderr.write("gearcli: interrupted\n")
         _forget_handled_interrupt()

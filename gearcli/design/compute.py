@@ -13,7 +13,9 @@ from typing import TYPE_CHECKING
 from gearcli.design import planetary as pl
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_inputs, design_diagnostics, stiffness_diagnostics
+from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
+from gearcli.design.bearing_life import bearing_diagnostics
+from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
 from gearcli.design.inertia import (
@@ -23,7 +25,10 @@ from gearcli.design.inertia import (
     mean_body_diameter_mm,
     shaft_inertias_kg_m2,
 )
+from gearcli.design.inputs import check_inputs
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
+from gearcli.design.rating import rate_design
+from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
 from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.errors import DesignError
@@ -47,7 +52,9 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import (
+        PlanetaryStage,  # lazy: the design layer keeps pydantic's config out of its import (types only)
+    )
 
     pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
     check_inputs(cfg)
@@ -58,12 +65,10 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
     if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
-        from gearcli.design.rating import rate_design
 
         rated, rating_diagnostics = rate_design(pairs, tuple(pl.with_load_sharing(s) for s in stages))
         stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
         stages = tuple(_nominal(_rate_planet_ring(cfg, k, s)) for k, s in enumerate(stages))
-        from gearcli.design.rating_internal import planet_ring_safety_diagnostics
 
         rating_diagnostics += tuple(d for s in stages for d in planet_ring_safety_diagnostics(cfg, s))
         rating_diagnostics += tuple(_unrated_ring_mesh(cfg, s) for s in stages
@@ -84,7 +89,6 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                    and st.backlash_circumferential_mm[1] < 0.0)
     pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
-    from gearcli.design.bearing_life import bearing_diagnostics
 
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *jammed,
                    *stiffness_diagnostics(stages), *rating_diagnostics, *bearing_diagnostics(cfg, bearings))
@@ -112,7 +116,9 @@ UNRATED_MESH = "mesh_not_rated"
 def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
     """A parallel stage as before; a planetary stage as its sun–planet mesh (in the carrier's frame, per
     planet) with its members and planet–ring mesh attached (``design.planetary``)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import (
+        PlanetaryStage,  # lazy: the design layer keeps pydantic's config out of its import (types only)
+    )
 
     stage = cfg.stage[k]
     if not isinstance(stage, PlanetaryStage):
@@ -124,7 +130,6 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
     """A rated planetary stage with its planet–ring mesh rated too (ISO 6336-2/-3, docs/iso6336.md)."""
     if stage.planetary is None or stage.rating is None:
         return stage
-    from gearcli.design.rating_internal import rate_planet_ring
 
     ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
     mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
@@ -133,7 +138,9 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
 
 def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
     """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import (
+        PlanetaryStage,  # lazy: the design layer keeps pydantic's config out of its import (types only)
+    )
 
     k = stage.index - 1
     st = cfg.stage[k]
@@ -359,8 +366,6 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> Stag
 
 def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: int) -> StageResult:
     """The stage with its allowances' figures (ISO 21771, docs/iso6336.md "Tooth-thickness allowances")."""
-    from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
-
     def pair(value: list[float] | None) -> tuple[float, float]:
         return NO_ALLOWANCE if value is None else (value[0], value[1])
 

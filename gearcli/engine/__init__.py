@@ -23,6 +23,7 @@ import importlib.util
 import json
 import os
 import sys
+import tempfile
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -32,9 +33,12 @@ from typing import Any
 
 import numpy as np
 
+from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S, MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
 from gearcli.core.methods import METHODS
 from gearcli.engine import blas
-from gearcli.model import elements
+from gearcli.errors import ConfigError
+from gearcli.model import elements, outputs
+from gearcli.model.elements import machine
 
 ENGINES = ("auto", "python", "compiled")
 COMPILED_METHODS = tuple(n for n, m in METHODS.items() if "compiled" in m.engines)  # the registry's word
@@ -132,8 +136,6 @@ def _usable_dir(path: Path) -> str | None:
 def cache_choice() -> tuple[Path, str]:
     """The cache root and, when ``$XDG_CACHE_HOME`` (or the home directory) cannot hold it, why another one is
     used ('' when the first choice is used): $XDG_CACHE_HOME, else ~/.cache, else the temporary directory."""
-    import tempfile
-
     why = ""
     xdg = os.environ.get("XDG_CACHE_HOME")
     candidates = [("XDG_CACHE_HOME", Path(xdg))] if xdg else []
@@ -193,13 +195,13 @@ def load(quiet: bool = False) -> Loaded:
         cdir.mkdir(parents=True, exist_ok=True)
     except OSError:
         pass
-    import numba  # noqa: F401 - the fast extra
-    import numba.core.config as ncfg
+    import numba  # noqa: F401 - the fast extra  # lazy: numba, the optional fast extra, start-up time
+    import numba.core.config as ncfg  # lazy: numba, the optional fast extra, start-up time
 
     ncfg.CACHE_DIR = str(cdir)  # type: ignore[attr-defined]
     if fresh and not quiet and not _state.get("quiet"):
         print(f"gearcli: compiling the integration engine once (about a minute); {_cache_words(cdir)}", file=sys.stderr)
-    from gearcli.engine import kernel
+    from gearcli.engine import kernel  # lazy: numba, the kernel compiles or loads its cache on import
 
     _warm_up(kernel)
     load_s = time.perf_counter() - t0
@@ -211,6 +213,7 @@ def load(quiet: bool = False) -> Loaded:
     else:
         _remember_load_time(load_s)
     _state["loaded"] = Loaded(kernel, load_s, fresh)
+    outputs.use_compiled(kernel)  # the model's sampled outputs run the compiled laws from now on
     return _state["loaded"]
 
 
@@ -253,7 +256,6 @@ def expected_load_s() -> float:
     cached, a compilation's when not."""
     if "loaded" in _state:
         return 0.0
-    from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S
 
     if not (cache_dir() / "ready.json").exists():
         return COMPILE_S
@@ -265,8 +267,6 @@ def expected_load_s() -> float:
 
 def _tiny_model():
     """Two bodies, one mesh and one spring: a model of every argument type, to compile or load once."""
-    from gearcli.model.elements import machine
-
     mesh = elements.mesh
     param = np.zeros((2, elements.N_PARAM))
     param[0, :13] = (1.0, 1.0, 1e9, 1.5, 1e3, 1e4, 6e7, 0.0, 0.0, 1.5, 1.0, 20.0, 1e-4)
@@ -403,9 +403,6 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
     for the compiler), that load shared by the runs announced with :func:`expect_runs`. The prices:
     :mod:`gearcli.core.cost`.
     """
-    from gearcli.core.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
-    from gearcli.errors import ConfigError
-
     if requested == "python":
         return EngineChoice("python", requested, "as requested")
     have = available()

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 
 from rich.console import RenderableType
 
-from gearcli.io.tables import FittedTable, StageColumns, _g
+from gearcli.io.table_kit import FittedTable, StageColumns, _g
 from gearcli.life.result import BearingLife
 from gearcli.results import BearingResult, BearingStats
 

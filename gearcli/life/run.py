@@ -15,10 +15,16 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import cast
 
+import numpy as np
+
+from gearcli import engine
 from gearcli.config import DesignFile
 from gearcli.config.bounds import check_memory
+from gearcli.config.schema import PlanetaryStage
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
+from gearcli.design import rating_factors as rf
+from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.errors import ConfigError, DesignError, GearcliError
 from gearcli.life import spectra
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
@@ -27,6 +33,7 @@ from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
 from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
+from gearcli.simulate.bearings import peak_static_load_N, reaction_series
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")
@@ -87,8 +94,6 @@ def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) ->
     """A planetary stage's planet–ring mesh must be rated: its ring and the planet's ring side are members."""
     for st in design.stages:
         if st.planetary is not None and st.planetary.planet_ring.rating is None:
-            from gearcli.config.schema import PlanetaryStage
-
             stage = cfg.stage[st.index - 1]
             assert isinstance(stage, PlanetaryStage)
             ring = stage.ring
@@ -117,8 +122,6 @@ def k_gamma(st: StageResult) -> float:
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...], tuple[str, ...]]:
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
-    from gearcli import engine
-
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
     notes: list[str] = []
@@ -174,11 +177,6 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
 def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> PointBearings:
     """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
     window (at a steady speed, revolutions are proportional to time), and the window's peak ISO 76 P_0."""
-    import numpy as np
-
-    from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
-    from gearcli.life.channels import peak_static_load_N, reaction_series
-
     lay = stage_layout(cfg, design.stages)
     if lay is None:
         return PointBearings((), ())
@@ -234,8 +232,6 @@ def _member_rating(st: StageResult, member: str) -> MemberRating:
 
 
 def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
-    from gearcli.design import rating_factors as rf
-
     stage = cfg.stage[k]
     if member in RING_MEMBERS:
         own = RING_MEMBERS[member][1]
@@ -421,8 +417,6 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
             evaluated.append(_static_point(scene, p, design_case))
             warnings += _point_design_warnings(scene, p, design_case, base_warnings, evaluated[-1].design)
     else:
-        from gearcli import engine
-
         with engine.batch(len(points)):
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))

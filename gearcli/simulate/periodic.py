@@ -28,7 +28,7 @@ integrated again from the boundary state with fine samples.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from functools import reduce
 
@@ -382,8 +382,6 @@ def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exha
 
 def _joined(parts, t: np.ndarray, y: np.ndarray, status_from=None):
     """One Integration with the samples ``(t, y)`` and the counters of all ``parts``."""
-    from dataclasses import replace
-
     last = status_from or parts[-1]
     return replace(parts[0], t=t, y=y, nfev=sum(p.nfev for p in parts), njev=sum(p.njev for p in parts),
                    nlu=sum(p.nlu for p in parts), steps=sum(p.steps for p in parts),

@@ -15,13 +15,15 @@ from gearcli.core import cost
 from gearcli.core.channels import Channel
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
 from gearcli.core.methods import method as method_info
+from gearcli.design.simulated import simulated_ratings
 from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.modes import resonances
+from gearcli.model.linear import damped_eigenvalues, static_line_forces_N
+from gearcli.model.modes import modal_analysis, resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import (
     DesignResult,
@@ -35,8 +37,8 @@ from gearcli.results import (
     StageDynamics,
     SteadyState,
 )
-from gearcli.scene import output_units, spec_from_design
-from gearcli.simulate import estimate, stats
+from gearcli.scene import spec_from_design
+from gearcli.simulate import estimate, ringing, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
@@ -87,12 +89,11 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                             window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
                             steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
                             engine=sim.engine, progress=progress)
-    from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
 
     stages, rating_diags = simulated_ratings(cfg, design, result.stages)
     new = [d for d in rating_diags if d.message not in result.warnings]
     return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
-                   diagnostics=result.diagnostics + tuple(new), units=output_units(cfg))
+                   diagnostics=result.diagnostics + tuple(new))
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
@@ -204,8 +205,6 @@ def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> flo
     or None when no switch is possible (another engine requested, numba missing or not compiled yet, an
     unsupported scene) or sound: only DOP853 and RK45 switch, whose compiled runs take scipy's steps, so that
     the switch changes no number."""
-    from gearcli import engine
-
     if eng.requested != "auto" or eng.engine != "python" or eng.unsupported or not engine.available():
         return None
     if choice.method not in engine.BIT_IDENTICAL:  # a switch must not change a number: DOP853 and RK45 only
@@ -451,10 +450,6 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
                      forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
     """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
     that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
-    from gearcli.model.linear import damped_eigenvalues
-    from gearcli.model.modes import modal_analysis
-    from gearcli.simulate import ringing
-
     lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
     found = ringing.ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
     if not found:
@@ -479,8 +474,6 @@ def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     """Per stage, the static F_t of the load the simulation applies, with the losses its dynamics model (the
     model's own steady-state connector forces: lossless meshes today, so a stage with efficiency < 1 differs
     from the design's static F_t, which includes the losses): the reference of the dynamic and run-up factors."""
-    from gearcli.model.linear import static_line_forces_N
-
     lay = model.layout
     return [float(tooth_forces(lay, k, np.array([f]))[0][0]) for k, f in enumerate(static_line_forces_N(lay))]
 

@@ -23,7 +23,7 @@ from gearcli.config import DesignFile, check_override_keys
 from gearcli.errors import GearcliError
 from gearcli.results import DesignResult, SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
-from gearcli.sweep.continuation import Carried
+from gearcli.sweep.continuation import Carried, jump_note, on_branch
 from gearcli.sweep.spec import Point
 
 
@@ -118,8 +118,6 @@ class _Before(NamedTuple):
 def _jump(task: Task, before: _Before | None, point: Point, result: SimulationResult) -> str:
     """A periodic point continued from ``before`` that left its branch: the row's jump mark, with the branch's
     end closed in on by bisection of the one varied value (:func:`gearcli.sweep.continuation.jump_note`)."""
-    from gearcli.sweep.continuation import jump_note, on_branch
-
     if before is None or result.steady is None or result.steady.mode != "periodic":
         return ""
     p0, r0, c0 = before
