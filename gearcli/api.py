@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from gearcli.model.modes import CampbellData, ModalAnalysis
     from gearcli.report import LadderSpec, Report
     from gearcli.report.accuracy import ProgressFn
-    from gearcli.results import SimulationResult
+    from gearcli.simulate.results import SimulationResult
     from gearcli.sweep.columns import Row
     from gearcli.sweep.continuation import Carried
     from gearcli.sweep.modes import SweepCampbell
@@ -118,7 +118,9 @@ def model_source(cfg: DesignFile, design_result: DesignResult) -> str:
 def simulate(cfg: DesignFile, design_result: DesignResult, *, method: str | None = None, rtol: float | None = None,
              want_series: bool = True, progress: Callable[[float], None] | None = None) -> SimulationResult:
     """One run of the scene with its ``[simulation]`` settings (``method``/``rtol`` override them); ``progress``
-    is called with the fraction of the run done (a terminal's progress bar)."""
+    is called with the fraction of the run done (a terminal's progress bar). With ``[[bearing]]`` tables (and
+    the series kept) the result carries the bearing reactions as channels and their window statistics; its
+    ``units`` are those of the file's keys: what ``gearcli simulate`` prints."""
     from gearcli.simulate import run_simulation  # lazy: scipy, start-up time of gearcli design
     from gearcli.simulate.bearings import with_bearings  # lazy: scipy, start-up time of gearcli design
 
@@ -140,7 +142,7 @@ def check_budget(loaded: LoadedDesign, design_result: DesignResult, *, output_fo
 def simulate_file(loaded: LoadedDesign, design_result: DesignResult, *,
                   progress: Callable[[float], None] | None = None) -> SimulationResult:
     """``gearcli simulate``: one run with the series (:func:`check_budget` first for a guarded run); errors name
-    the file; with ``[[bearing]]`` tables, the bearing reactions as channels and window statistics."""
+    the file; with ``[[bearing]]`` tables, the bearing reactions as channels and window statistics (:func:`simulate`)."""
     try:
         result = simulate(loaded.design, design_result, want_series=True, progress=progress)  # statistics need them
     except RunTooLong as exc:

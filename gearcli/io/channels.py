@@ -19,7 +19,7 @@ from gearcli.core.channels import Channel
 if TYPE_CHECKING:  # `gearcli design` imports the writers: no numpy at start-up
     import numpy as np
 
-    from gearcli.results import SimulationResult
+    from gearcli.simulate.results import SimulationResult
 
 RAD_TO_DEG = 180.0 / math.pi
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)

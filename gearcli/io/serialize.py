@@ -19,7 +19,8 @@ from gearcli.diagnostics import warning_objects
 from gearcli.io import units as output_units
 from gearcli.io.channels import named
 from gearcli.io.units import channels, of_result
-from gearcli.results import DesignResult, SimulationResult, drop_absent_bearing_keys
+from gearcli.results import DesignResult, drop_absent_bearing_keys
+from gearcli.simulate.results import SimulationResult
 
 #: a JSON object while this module rearranges it (nested keys moved, popped); the public functions return
 #: :data:`~gearcli.core.jsontypes.JsonObject`

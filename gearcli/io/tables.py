@@ -27,7 +27,8 @@ from gearcli.io.table_kit import (
     text,
 )
 from gearcli.io.units import input_torque_window_means, of_result
-from gearcli.results import DesignResult, InternalRatingResult, SimulationResult
+from gearcli.results import DesignResult, InternalRatingResult
+from gearcli.simulate.results import SimulationResult
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult

@@ -20,7 +20,7 @@ if TYPE_CHECKING:  # `gearcli design` imports this module: no numpy at start-up
     import numpy as np  # lazy: numpy, kept out of io.units' import (a design file's units need none)
 
     from gearcli.config import DesignFile
-    from gearcli.results import SimulationResult
+    from gearcli.simulate.results import SimulationResult
 
 SPEED_UNITS = {"deg_s": ("°/s", 1.0), "rpm": ("rpm", 1.0 / 6.0), "rad_s": ("rad/s", math.pi / 180.0)}  # from °/s
 #: a value or the samples of a channel (the conversions keep the type: float in, float out; array in, array out)

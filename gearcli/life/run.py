@@ -32,8 +32,9 @@ from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
-from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
+from gearcli.results import DesignResult, MemberRating, RatingResult, StageResult
 from gearcli.simulate.bearings import peak_static_load_N, reaction_series
+from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")

@@ -36,7 +36,7 @@ import numpy as np
 
 from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
 from gearcli.errors import ConfigError
-from gearcli.results import SteadyState
+from gearcli.simulate.results import SteadyState
 from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
 MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
@@ -242,7 +242,7 @@ class PeriodicRun:
     run: object  # gearcli.simulate.solver.Integration (the two sampled parts; counters of all parts)
     window_s: tuple[float, float]  # the statistics periods, whole
     mask_window_s: tuple[float, float]  # the same without its last sample (the first one of the next period)
-    steady: object  # gearcli.results.SteadyState
+    steady: object  # gearcli.simulate.results.SteadyState
     period: CommonPeriod
     energy_from: int = 0  # first sample of the energy balance (a Newton correction is no motion: after it)
 

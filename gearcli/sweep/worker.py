@@ -21,7 +21,8 @@ from typing import NamedTuple, Protocol, cast
 from gearcli import engine
 from gearcli.config import DesignFile, check_override_keys
 from gearcli.errors import GearcliError
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult
+from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
 from gearcli.sweep.continuation import Carried, jump_note, on_branch
 from gearcli.sweep.spec import Point

@@ -14,15 +14,13 @@ from gearcli.core.channels import Channel
 from gearcli.results import (
     ChannelStats,
     DesignResult,
-    EnergyBalance,
     GearResult,
     ShaftResult,
-    SimulationResult,
-    SolverStats,
     StageDynamics,
     StageResult,
     StaticForces,
 )
+from gearcli.simulate.results import EnergyBalance, SimulationResult, SolverStats
 
 
 def _gear(teeth: int, speed: float) -> GearResult:
