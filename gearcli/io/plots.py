@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gearcli.io.campbell import campbell_figure
+from gearcli.io import campbell as campbell_io
 from gearcli.io.channels import named
 from gearcli.io.figures import check as _figure_check
 from gearcli.io.figures import figure as _figure
@@ -198,5 +198,5 @@ def write_plots(r: Report, directory: str | Path) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     written = []
     if r.campbell is not None:  # the engineering figure first
-        written.append(_save(campbell_figure(r.campbell, of_result(r.simulation), r.title), out / "campbell.png"))
+        written.append(_save(campbell_io.campbell_figure(r.campbell, of_result(r.simulation), r.title), out / "campbell.png"))
     return written + [_save(make(r), out / name) for name, make in figures]
