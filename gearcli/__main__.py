@@ -25,9 +25,8 @@ def main() -> None:
 
     streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
     try:
-        from gearcli.cli import (
-            main as run,  # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
-        )
+        # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
+        from gearcli.cli import main as run
     except KeyboardInterrupt:
         sys.stderr.write("gearcli: interrupted\n")
         _forget_handled_interrupt()

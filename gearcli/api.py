@@ -202,7 +202,7 @@ def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), r
                   output: str | None = None, fmt: str = "csv") -> Session:
     """A checked sweep (every usage error raised before any point runs); ``output``, when it exists, is
     read for a resume."""
-    from gearcli.sweep.session import prepare  # lazy: the solver layers (scipy), start-up time of gearcli design
+    from gearcli.sweep.session import prepare  # lazy: the sweep and life layers, start-up time of gearcli design
 
     raw = read_bytes(file)
     loaded = load(file, sets, stdin=io.BytesIO(raw))
@@ -215,7 +215,7 @@ def run_sweep(session: Session, on_row: Callable[[bool], None] = lambda failed: 
               sink: SinkFactory | None = None) -> list[Row]:
     """Run a prepared sweep; rows go to ``sink`` (default: the session's ``-o`` file or stdout) as they
     finish. Returns every row in point order."""
-    from gearcli.sweep.session import run  # lazy: the solver layers (scipy), start-up time of gearcli design
+    from gearcli.sweep.session import run  # lazy: the sweep and life layers, start-up time of gearcli design
 
     return run(session, sink or open_sink, on_row)
 
@@ -224,9 +224,8 @@ def sweep_campbell(session: Session) -> SweepCampbell | None:
     """The Campbell diagram of a sweep over the input speed (``gearcli sweep --plots``): the modes and order
     lines at the file's own speed over the swept range, the swept speeds marked; None when no input speed is
     swept."""
-    from gearcli.sweep.modes import (
-        sweep_campbell as diagram,  # lazy: the solver layers (scipy), start-up time of gearcli design
-    )
+    # lazy: the sweep and life layers, start-up time of gearcli design
+    from gearcli.sweep.modes import sweep_campbell as diagram
 
     return diagram(session.spec, session.scene, design_case, key_units)
 
@@ -236,7 +235,7 @@ def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None
     """A checked ``gearcli life`` run: the base file read, validated and designed (bad input raises before any
     point runs), and its duty points (the file's ``[[duty]]`` tables, or the history ``series`` classed into
     ``classes`` torque classes)."""
-    from gearcli.life.session import prepare  # lazy: the solver layers (scipy), start-up time of gearcli design
+    from gearcli.life.session import prepare  # lazy: the sweep and life layers, start-up time of gearcli design
 
     if file == "-" and series == "-":
         raise ConfigError("'-' (standard input) already carries the design file; give the history as a "
@@ -251,7 +250,7 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
     """The life of every member and bearing over the session's duty points: each point simulated (its
     mesh-cycle load spectrum) or, ``static``, rated at its static forces with the rating's K_v; Miner damage by
     ``variant`` (``iso``, ``elementary``, ``modified``)."""
-    from gearcli.life.run import compute_life  # lazy: the solver layers (scipy), start-up time of gearcli design
+    from gearcli.life.run import compute_life  # lazy: the sweep and life layers, start-up time of gearcli design
 
     return compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
                         progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
@@ -261,7 +260,7 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
 # ----------------------------------------------------------------- points (injected into sweep and life)
 def design_case(scene: Scene, overrides: Sequence[str], /) -> Case:
     """One variant of the scene's file (``overrides`` after the scene's ``--set``), validated and designed."""
-    from gearcli.sweep.worker import Case  # lazy: the solver layers (scipy), start-up time of gearcli design
+    from gearcli.sweep.worker import Case  # lazy: the sweep and life layers, start-up time of gearcli design
 
     cfg = load_variant(scene.raw, scene.source, (*scene.sets, *overrides))
     return Case(cfg, design_layer.compute_design(cfg))
@@ -275,13 +274,10 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     phases carried on; a point whose chain differs starts cold with the file's ramps. ``series`` keeps the time
     series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``)."""
     from gearcli.simulate import run_simulation  # lazy: the solver layers (scipy), start-up time of gearcli design
-    from gearcli.sweep.continuation import (  # lazy: the solver layers (scipy), start-up time of gearcli design
-        NO_RAMPS,
-        Carried,
-        carry_phases,
-        continue_state,
-    )
-    from gearcli.sweep.worker import Evaluation  # lazy: the solver layers (scipy), start-up time of gearcli design
+
+    # lazy: the sweep and life layers, start-up time of gearcli design
+    from gearcli.sweep.continuation import NO_RAMPS, Carried, carry_phases, continue_state
+    from gearcli.sweep.worker import Evaluation  # lazy: the sweep and life layers, start-up time of gearcli design
 
     case = design_case(scene, (*overrides, *(NO_RAMPS if start else ())))
     check_memory(case.cfg, fmt="json", series=False, source=scene.source)  # the point's run, held in memory

@@ -52,9 +52,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
-    from gearcli.config.schema import (
-        PlanetaryStage,  # lazy: the design layer keeps pydantic's config out of its import (types only)
-    )
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
     check_inputs(cfg)
@@ -116,9 +114,7 @@ UNRATED_MESH = "mesh_not_rated"
 def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
     """A parallel stage as before; a planetary stage as its sun–planet mesh (in the carrier's frame, per
     planet) with its members and planet–ring mesh attached (``design.planetary``)."""
-    from gearcli.config.schema import (
-        PlanetaryStage,  # lazy: the design layer keeps pydantic's config out of its import (types only)
-    )
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]
     if not isinstance(stage, PlanetaryStage):
@@ -138,9 +134,7 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
 
 def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
     """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
-    from gearcli.config.schema import (
-        PlanetaryStage,  # lazy: the design layer keeps pydantic's config out of its import (types only)
-    )
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     k = stage.index - 1
     st = cfg.stage[k]

@@ -455,9 +455,7 @@ def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayou
     p = st.planetary
     if p is None:
         return None
-    from gearcli.config.schema import (
-        Stage,  # lazy: the design layer keeps pydantic's config out of its import (types only)
-    )
+    from gearcli.config.schema import Stage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]
     assert not isinstance(stage, Stage)  # a planetary stage's design has its planetary result

@@ -195,7 +195,7 @@ def load(quiet: bool = False) -> Loaded:
         cdir.mkdir(parents=True, exist_ok=True)
     except OSError:
         pass
-    import numba  # noqa: F401 - the fast extra  # lazy: numba, the optional fast extra, start-up time
+    import numba  # noqa: F401  # lazy: numba, the optional fast extra, start-up time
     import numba.core.config as ncfg  # lazy: numba, the optional fast extra, start-up time
 
     ncfg.CACHE_DIR = str(cdir)  # type: ignore[attr-defined]

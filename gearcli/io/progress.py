@@ -37,13 +37,9 @@ class TerminalProgress:
             if time.perf_counter() - self.start < SHOW_AFTER_S:
                 return False
             from rich.console import Console  # lazy: rich, only when a terminal shows the bar
-            from rich.progress import (  # lazy: rich, only when a terminal shows the bar
-                BarColumn,
-                MofNCompleteColumn,
-                Progress,
-                TextColumn,
-                TimeElapsedColumn,
-            )
+
+            # lazy: rich, only when a terminal shows the bar
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
             self.bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
                                 TimeElapsedColumn(), console=Console(stderr=True), transient=True)

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, TypeVar
 from gearcli.io.channels import named
 
 if TYPE_CHECKING:  # `gearcli design` imports this module: no numpy at start-up
-    import numpy as np  # lazy: numpy, kept out of io.units' import (a design file's units need none)
+    import numpy as np
 
     from gearcli.config import DesignFile
     from gearcli.simulate.results import SimulationResult
