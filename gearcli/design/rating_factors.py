@@ -143,7 +143,9 @@ def dynamic_coefficients(eps_gamma: float) -> tuple[float, ...]:
     else:
         cv2 = 0.57 / (eps_gamma - 0.3)
         cv3 = 0.096 / (eps_gamma - 1.56)
-        cv4 = (0.57 - 0.05 * eps_gamma) / (eps_gamma - 1.44)
+        # Table 8's C_v4 turns negative beyond eps_gamma = 11.4 (outside any real mesh; the table was fitted far
+        # below it) and would take K_v in the main resonance range below 0: held at 0 there
+        cv4 = max((0.57 - 0.05 * eps_gamma) / (eps_gamma - 1.44), 0.0)
         cv6 = 0.12 / (eps_gamma - 1.74)
     if eps_gamma <= 1.5:
         cv7 = 0.75

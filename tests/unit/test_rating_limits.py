@@ -142,3 +142,18 @@ def test_no_rating_table_no_rating():
     for key in ("rating", "lubricant"):
         doc.pop(key)
     assert compute_design(DesignFile.model_validate(doc)).stages[0].rating is None
+
+
+def test_dynamic_factor_never_below_one_in_the_main_resonance_range_of_a_very_wide_helical_mesh():
+    """ISO 6336-1:2006 Table 8's C_v4 = (0.57 - 0.05 eps_gamma)/(eps_gamma - 1.44) is negative beyond eps_gamma 11.4;
+    found by the rating property test (helix 36 deg, b/m_n 77, no load: eps_gamma 15.5, B_k 168), K_v came out
+    -0.0017 and the design crashed. Held at 0, the main-resonance K_v = C_v1 B_p + C_v2 B_f + 1 (hand: 2.4495)."""
+    from gearcli.design import rating_factors as rf
+
+    cv = rf.dynamic_coefficients(15.508378055431265)
+    assert cv[3] == 0.0
+    b_p, b_f = 3.5930182285879413 * 1.1415189694406114, 3.5930182285879413 * 1.0175
+    hand = 0.32 * b_p + 0.57 / (15.508378055431265 - 0.3) * b_f + 1.0
+    k_v = rf.dynamic_factor(0.5350856929060019, 0.535, 15.508378055431265, 3.5930182285879413, 1.0,
+                            1.1415189694406114, 1.0175, 47.0)
+    assert abs(k_v - hand) < 1e-12 * hand and k_v >= 1.0
