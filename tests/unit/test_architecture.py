@@ -76,6 +76,26 @@ def test_the_code_keeps_the_layers():
     assert res.returncode == 0, res.stdout[-3000:]
 
 
+@pytest.mark.parametrize(("module", "back"), [("io/table_kit.py", "gearcli.io.tables"),
+                                             ("design/checks.py", "gearcli.design.planetary")])
+def test_a_circle_inside_a_package_fails_the_contract(tmp_path, module, back):
+    """The circles issue 34 removed (io: tables / table kit; design: checks / planetary) put back, even as a
+    function-local import: ``lint-imports`` fails, naming the import."""
+    pytest.importorskip("importlinter")
+    import os
+    import shutil
+
+    shutil.copytree(ROOT / "gearcli", tmp_path / "gearcli", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    with open(tmp_path / "gearcli" / module, "a", encoding="utf-8") as f:
+        f.write(f"\n\ndef _circle():\n    import {back}  # lazy: the circle under test\n")
+    script = Path(sys.executable).with_name("lint-imports")
+    env = {**os.environ, "PYTHONPATH": str(tmp_path)}
+    res = subprocess.run([str(script), "--no-cache"], cwd=tmp_path, capture_output=True, text=True, timeout=120, env=env)
+    assert res.returncode != 0, res.stdout[-3000:]
+    assert f"gearcli.{module[:-3].replace('/', '.')} -> {back}" in res.stdout
+
+
 def test_commands_reach_the_layers_only_through_the_facade():
     """cli.py imports gearcli's api (the facade), io (the formatters), errors and core.text (its own messages),
     nothing below: loading, designing, simulating, budgets and models are the facade's."""
