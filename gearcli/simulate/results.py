@@ -1,9 +1,9 @@
 """What ``simulate`` returns: the result of a run (its time series, statistics per stage, the solver's and the
 energy balance's figures, the steady state's, the bearings' window statistics).
 
-Produced by the simulate layer, read by the layers above (report, sweep, life, io, api). The per-stage
-statistics (``StageDynamics`` and its ``ChannelStats``) stay in :mod:`gearcli.results`: the design's
-simulated-K_v re-rating (``design.simulated``) reads them.
+Produced by the simulate layer, read by the layers above (report, sweep, life, io, api); the design's
+simulated-K_v re-rating (``design.simulated``) reads the per-stage statistics by their fields, without
+importing them. The design's own results are :mod:`gearcli.results`.
 """
 
 from __future__ import annotations
@@ -13,12 +13,102 @@ from typing import TYPE_CHECKING, NotRequired, TypedDict
 
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
-from gearcli.results import ChannelStats, StageDynamics
+from gearcli.results import InternalRatingResult, MeshStiffness, RatingResult
 
 if TYPE_CHECKING:
     import numpy as np
 
     from gearcli.diagnostics import Diagnostic
+
+
+@dataclass(frozen=True)
+class ChannelStats:
+    mean: float
+    min: float
+    max: float
+    std: float
+
+
+@dataclass(frozen=True)
+class StatisticsError:
+    """Estimated error of one stage's window statistics of F_t (absolute, N), from the check pass
+    (gearcli.simulate.estimate); radial and axial forces share the relative error."""
+
+    stage: int  # 1-based
+    reference_N: float  # the force the target refers to: |mean F_t| (static |F_t| when the mean is 0)
+    target_relative: float
+    tangential_N: ChannelStats  # estimated error of mean, min, max, std: |check - run| / (CHECK_FACTOR - 1)
+    spectrum_N: float  # largest amplitude difference over the F_t spectrum (Hann, detrended)
+    relative: dict[str, float]  # mean, min, max, std, spectrum: error / reference_N
+    dominant_frequency_Hz: float  # of the run
+    check_dominant_frequency_Hz: float  # of the check pass
+    unresolved: tuple[str, ...]  # statistics beyond the target
+    suggested_rtol: float | None  # simulation.rtol that would resolve them (None when resolved)
+    resolved: bool = True  # no statistic beyond the target
+    mean_target_relative: float = 1e-4  # the mean's target (target_relative is that of min, max, std, spectrum)
+
+
+@dataclass(frozen=True)
+class DteStats:
+    """Dynamic transmission error q = delta - e over the statistics window, um (``rms`` about the mean)."""
+
+    mean: float
+    rms: float
+    min: float
+    max: float
+
+
+#: Impact regimes of a mesh over the statistics window (the loaded flank: the one the static load presses)
+REGIME_NO_IMPACT = "no impact"  # the mesh force never drops to zero
+REGIME_SINGLE_SIDED = "single-sided impact"  # it loses contact but never touches the other flank
+REGIME_DOUBLE_SIDED = "double-sided impact"  # it also strikes the other (back) flank
+
+
+@dataclass(frozen=True)
+class StageDynamics:
+    index: int  # 1-based
+    tangential_N: ChannelStats  # over the steady window
+    radial_N: ChannelStats
+    axial_N: ChannelStats
+    penetration_mm: ChannelStats
+    static_tangential_N: float  # the design's static F_t at full load
+    peak_tangential_N: float  # largest |F_t| over the whole run (run-up included)
+    peak_time_s: float
+    dynamic_factor: float | None  # steady-window max |F_t| / |simulated static F_t|; None when that static is 0
+    error_estimate: StatisticsError | None = None  # None when no refinement pass ran
+    mesh_stiffness: MeshStiffness | None = None
+    # mesh response over the statistics window (issue 13); defaults for hand-made results
+    dte_um: DteStats | None = None
+    contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
+    back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
+    regime: str = ""  # REGIME_*
+    rating: RatingResult | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
+    # issue 21: the run-up overshoot apart from the steady dynamic factor; defaults for hand-made results
+    runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
+    simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
+    # the losses its dynamics model (lossless meshes today): the reference of both factors
+    # a planetary stage (issue 25): every planet's sun and ring mesh; the largest planet's window-mean sun-mesh
+    # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
+    planets: tuple[PlanetDynamics, ...] = ()
+    load_sharing_factor: float | None = None
+    # [rating] dynamic_factor = "simulated" on a planetary stage: its planet–ring mesh rated at the ring meshes'
+    # own simulated K_v (``rating`` is the sun–planet mesh's, at the sun meshes' K_v)
+    planet_ring_rating: InternalRatingResult | None = None
+
+
+@dataclass(frozen=True)
+class PlanetMeshDynamics:
+    """One planet mesh over the statistics window: F_t (N) and the dynamic transmission error (um)."""
+
+    tangential_N: ChannelStats
+    dte_um: DteStats
+
+
+@dataclass(frozen=True)
+class PlanetDynamics:
+    index: int  # 1-based
+    sun: PlanetMeshDynamics
+    ring: PlanetMeshDynamics
 
 
 @dataclass(frozen=True)

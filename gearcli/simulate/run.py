@@ -25,14 +25,23 @@ from gearcli.model import TorsionalModel
 from gearcli.model.linear import damped_eigenvalues, static_line_forces_N
 from gearcli.model.modes import modal_analysis, resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import DesignResult, DteStats, MeshStiffness, PlanetDynamics, PlanetMeshDynamics, StageDynamics
+from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
 from gearcli.simulate import estimate, ringing, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
-from gearcli.simulate.results import EnergyBalance, SimulationResult, SolverStats, SteadyState
+from gearcli.simulate.results import (
+    DteStats,
+    EnergyBalance,
+    PlanetDynamics,
+    PlanetMeshDynamics,
+    SimulationResult,
+    SolverStats,
+    StageDynamics,
+    SteadyState,
+)
 from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
