@@ -1,10 +1,14 @@
 """``method = "auto"`` against the faster of DOP853 and Radau on every scene, as a user runs it (README "Choosing
 the method: auto").
 
-    PYTHONPATH=$PWD python benchmarks/bench_auto.py [--only NAME ...] [--repeat 3] [--json FILE] [--markdown]
+    PYTHONPATH=$PWD python benchmarks/bench_auto.py [--only NAME ...] [--repeat 3] [--json FILE]
+                                                    [--set fit|held-out|all]
 
-For every scene (configs/, the seed at 10 s, configs/extreme/, the excitation scenes of
-benchmarks/bench_excitation.py; the conveyor is configs/conveyor.toml) three whole processes,
+Two tables: the cost model's fitting set (configs/ and configs/extreme/ less the held-out files, the seed at 10 s,
+the excitation scenes of benchmarks/bench_excitation.py) and, separately, the held-out set the cost model never
+saw (benchmarks/scenes.py: held-out files and generated variants), each with auto's prediction error per scene
+(its solver.prediction against the measured evaluations and integration wall time). For every scene three whole
+processes,
 ``gearcli simulate FILE --format json -q`` with ``simulation.method`` = auto, DOP853 and Radau (engine auto each,
 so the compiled engine where it is installed), run in turn ``--repeat`` times (interleaved: the load of a shared
 machine hits the three alike), the fastest wall time of each (on a machine shared with other jobs the minimum is
@@ -52,11 +56,20 @@ def excitation_scenes():
 
 
 def scenes():
+    """The cost model's fitting set (benchmarks/scenes.py), the seed at 10 s and the excitation scenes."""
+    from scenes import scene_sets
+
     seed = ROOT / "configs" / "concrete_mixer.toml"
-    out = [(f"{p.parent.name}/{p.stem}", p, []) for p in sorted((ROOT / "configs").glob("*.toml"))]
-    out.append(("configs/concrete_mixer @ 10 s", seed, ["simulation.duration_s=10", "simulation.steps=40000"]))
-    out += [(f"{p.parent.name}/{p.stem}", p, []) for p in sorted((ROOT / "configs" / "extreme").glob("*.toml"))]
+    out = scene_sets()["fit"]
+    out.append(("concrete_mixer @ 10 s", seed, ["simulation.duration_s=10", "simulation.steps=40000"]))
     return out + excitation_scenes()
+
+
+def held_out_scenes():
+    """The held-out set (benchmarks/scenes.py): scenes the cost model was never fitted to."""
+    from scenes import scene_sets
+
+    return scene_sets()["held-out"]
 
 
 def gearcli() -> list[str]:
@@ -127,6 +140,11 @@ def row(name: str, path: Path, sets: list[str], repeat: int) -> dict:
     best = min(others, key=lambda m: med[m]) if others else None
     out = {"scene": name, "wall_s": med, "ok": ok, "best": best}
     auto = docs["auto"]
+    if auto is not None and auto["solver"].get("prediction"):
+        sv, pred = auto["solver"], auto["solver"]["prediction"]
+        out["nfev_error"] = sv["nfev"] / pred["nfev"] if pred["nfev"] > 0 else None
+        out["wall_error"] = sv["wall_s"] / pred["wall_s"] if pred["wall_s"] > 0 else None
+        out["course_changes"] = len(sv.get("course_changes") or [])
     if auto is not None:
         sv = auto["solver"]
         tightened = f", rtol {sv['rtol']:g}" if any(w.get("code") == "rtol_tightened" for w in auto["warnings"]) else ""
@@ -162,15 +180,62 @@ def verdict(r: dict) -> str:
     return f"**no** ({'; '.join(why)})"
 
 
+def _err(r: dict) -> str:
+    """auto's prediction against what its run measured: evaluations and integration wall time (measured /
+    predicted), and how often it changed course."""
+    if r.get("nfev_error") is None:
+        return "– | – |"
+    wall = f"{r['wall_error']:.2f}" if r.get("wall_error") is not None else "–"
+    changed = f" ({r['course_changes']} course change{'s' if r['course_changes'] != 1 else ''})" \
+        if r.get("course_changes") else ""
+    return f"{r['nfev_error']:.2f}{changed} | {wall} |"
+
+
 def line(r: dict) -> str:
     if "ratio" not in r:
         return f"| {r['scene']} | {r.get('auto_method', 'failed')} | {cell(r, 'auto')} | {cell(r, 'DOP853')} | " \
-               f"{cell(r, 'Radau')} | – | – | – | – |"
+               f"{cell(r, 'Radau')} | – | – | – | – | {_err(r)}"
     ref = "failed" if r["mean_diff_reference"] is None else f"{r['mean_diff_reference']:.1e}"
     if r["mean_diff_reference"] is not None and r["reference_rtol"] != REFERENCE_RTOL:
         ref += f" ({r['reference_method']} at rtol {r['reference_rtol']:g})"
     return (f"| {r['scene']} | {r['auto_method']} | {cell(r, 'auto')} | {cell(r, 'DOP853')} | {cell(r, 'Radau')} | "
-            f"{r['ratio']:.2f} | {r['mean_diff']:.1e} | {ref} | {verdict(r)} |")
+            f"{r['ratio']:.2f} | {r['mean_diff']:.1e} | {ref} | {verdict(r)} | {_err(r)}")
+
+
+HEADER = ("| scene | auto took | auto | DOP853 | Radau | auto / best | Δ mean vs best | Δ mean vs rtol 1e-10 | "
+          "within 1.3x + 0.3 s, 1e-4 | nfev meas/pred | wall meas/pred |")
+
+
+def table(title: str, chosen, args, rows: list[dict]) -> list[dict]:
+    print(f"\n{title}")
+    print(HEADER)
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    out = []
+    for name, path, sets in chosen:
+        if args.only and not any(o in name for o in args.only):
+            continue
+        r = row(name, path, sets, args.repeat)
+        out.append(r)
+        rows.append(r)
+        print(line(r), flush=True)
+        if args.json:
+            Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+    summary(out)
+    return out
+
+
+def summary(rows: list[dict]) -> None:
+    judged = [r for r in rows if "pass" in r]
+    print(f"\n{sum(r['pass'] for r in judged)} of {len(judged)} scenes within the acceptance "
+          f"(auto <= 1.3 x best + 0.3 s, window means within 1e-4 of the static force of the faster method's and of "
+          f"the rtol 1e-10 reference's); time within on {sum(r['time_pass'] for r in judged)}; a mean beyond 1e-4 of "
+          f"the reference unwarned on {sum(_unwarned(r) for r in judged)}")
+    errs = [r["nfev_error"] for r in rows if r.get("nfev_error")]
+    if errs:
+        import math
+
+        q = sorted(abs(math.log(e)) for e in errs)
+        print(f"auto's predicted evaluations: median error x{math.exp(q[len(q) // 2]):.2f}, worst x{math.exp(q[-1]):.2f}")
 
 
 def main() -> None:
@@ -178,26 +243,17 @@ def main() -> None:
     ap.add_argument("--only", nargs="*", default=None)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--set", dest="which", default="all", choices=("fit", "held-out", "all"))
     args = ap.parse_args()
     print(f"fastest of {args.repeat} interleaved whole-process runs of `gearcli simulate FILE --format json -q` "
           "(engine auto), wall s")
-    print("| scene | auto took | auto | DOP853 | Radau | auto / best | Δ mean vs best | Δ mean vs rtol 1e-10 | "
-          "within 1.3x + 0.3 s, 1e-4 |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    rows = []
-    for name, path, sets in scenes():
-        if args.only and not any(o in name for o in args.only):
-            continue
-        r = row(name, path, sets, args.repeat)
-        rows.append(r)
-        print(line(r), flush=True)
-        if args.json:
-            Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
-    judged = [r for r in rows if "pass" in r]
-    print(f"\n{sum(r['pass'] for r in judged)} of {len(judged)} scenes within the acceptance "
-          f"(auto <= 1.3 x best + 0.3 s, window means within 1e-4 of the static force of the faster method's and of "
-          f"the rtol 1e-10 reference's); time within on {sum(r['time_pass'] for r in judged)}; a mean beyond 1e-4 of "
-          f"the reference unwarned on {sum(_unwarned(r) for r in judged)}")
+    rows: list[dict] = []
+    if args.which in ("fit", "all"):
+        table("the cost model's fitting set (benchmarks/scenes.py), the seed at 10 s, the excitation scenes",
+              scenes(), args, rows)
+    if args.which in ("held-out", "all"):
+        table("the held-out set: scenes the cost model never saw (benchmarks/scenes.py)", held_out_scenes(), args,
+              rows)
 
 
 def _unwarned(r: dict) -> bool:

@@ -1,6 +1,6 @@
 """The compiled engine against scipy, every ratio measured side by side in one run.
 
-    python benchmarks/bench_engine.py [--repeat 5] [--sweep-points 1000] [--no-report] [--json]
+    python benchmarks/bench_engine.py [--repeat 5] [--sweep-points 1000] [--no-report] [--json] [--engine-only]
 
 (a) Seed integration (configs/concrete_mixer.toml, DOP853 at the file's rtol 1e-6): compiled kernel vs scipy's
     DOP853 around the generated right-hand side, median wall of --repeat, nfev of each; the compiled run's
@@ -14,6 +14,10 @@
 (e) A seed speed sweep of --sweep-points points (engine = auto, all cores) against the floor (target <= 15x).
 (f) The physical limit: the seed run's evaluations x the cost of one compiled evaluation (10^6 evaluations in a
     compiled loop), beside the measured compiled integration.
+(g) The kernel's load per process: a fresh interpreter (numpy and scipy imported first, as a run has them) loads
+    the cached kernel as a run does (numba import + the kernel module, then the DOP853 entry), median of --repeat;
+    the compiled kernel must be built (`gearcli engine build`).
+--engine-only: (a), (f) and (g) only.
 """
 
 from __future__ import annotations
@@ -78,6 +82,7 @@ def integration(repeat: int) -> dict:
     t_eval = np.linspace(0.0, cfg.simulation.duration_s, cfg.simulation.steps + 1)
     rtol = cfg.simulation.rtol
     loaded = engine.load()
+    engine.entry("DOP853")
     py = [integrate(model, t_eval, "DOP853", rtol) for _ in range(repeat)]
     cc = [integrate(model, t_eval, "DOP853", rtol, engine="compiled") for _ in range(repeat)]
     py_s = statistics.median(r.wall_s for r in py)
@@ -98,7 +103,34 @@ def integration(repeat: int) -> dict:
     return {"python_s": py_s, "compiled_s": cc_s, "ratio": cc_s / py_s, "nfev_python": py[0].nfev,
             "nfev_compiled": cc[0].nfev, "steps": cc[0].steps, "mean_force_error": err,
             "compiled_eval_s": per_eval, "physical_limit_s": cc[0].nfev * per_eval,
-            "python_eval_s": py_s / py[0].nfev, "load_s": loaded.load_s}
+            "python_eval_s": py_s / py[0].nfev}
+
+
+LOAD_PROBE = """
+import time
+import numpy, scipy.integrate
+t0 = time.perf_counter()
+import numba
+t1 = time.perf_counter()
+from gearcli import engine
+engine.load(quiet=True)
+t2 = time.perf_counter()
+engine.entry("DOP853")
+t3 = time.perf_counter()
+print(t1 - t0, t2 - t1, t3 - t2)
+"""
+
+
+def load_per_process(repeat: int) -> dict:
+    """Median over fresh interpreters of (numba import, kernel module, DOP853 entry) and their sum."""
+    runs = []
+    for _ in range(repeat):
+        got = subprocess.run([sys.executable, "-c", LOAD_PROBE], cwd=ROOT, env=dict(os.environ, PYTHONPATH=str(ROOT)),
+                             check=True, capture_output=True, text=True).stdout.split()
+        runs.append([float(x) for x in got])
+    cols = list(zip(*runs, strict=True))
+    return {"numba_import_s": statistics.median(cols[0]), "kernel_module_s": statistics.median(cols[1]),
+            "entry_s": statistics.median(cols[2]), "load_s": statistics.median(sum(r) for r in runs)}
 
 
 def main() -> None:
@@ -107,9 +139,13 @@ def main() -> None:
     ap.add_argument("--sweep-points", type=int, default=1000)
     ap.add_argument("--no-report", action="store_true")
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--engine-only", action="store_true", help="the integration ratio and the load per process only")
     args = ap.parse_args()
     py = sys.executable
-    out: dict = {"integration": integration(args.repeat)}
+    out: dict = {"load": load_per_process(args.repeat), "integration": integration(args.repeat)}
+    if args.engine_only:
+        _print_engine(out, args.json)
+        return
     g = gearcli_command()
     one_shot = [*g, "simulate", str(SEED), "--format", "json"]
     shots = interleaved({"floor_s": [py, "-c", FLOOR], "simulate_s": one_shot,
@@ -140,7 +176,7 @@ def main() -> None:
         ("  mean F_t error vs rtol 1e-12", f"{i['mean_force_error']:.1e}", "", "<= 1e-5"),
         ("  physical limit: nfev x one compiled evaluation", f"{i['physical_limit_s'] * 1e3:.2f} ms "
          f"({i['compiled_eval_s'] * 1e9:.0f} ns/eval; scipy {i['python_eval_s'] * 1e6:.1f} us/eval)", "", ""),
-        ("  kernel load (numba import + cache)", f"{i['load_s']:.2f} s", "", ""),
+        ("  kernel load per process (fresh interpreter)", f"{out['load']['load_s']:.2f} s", "", ""),
         ("floor: import click+pydantic+rich+numpy+scipy.integrate", f"{floor:.2f} s", "1x", ""),
         ("one-shot gearcli simulate (auto)", f"{out['simulate_s']:.2f} s", f"{out['simulate_s'] / floor:.2f}x", ""),
         ("one-shot gearcli simulate (python)", f"{out['simulate_python_s']:.2f} s",
@@ -162,6 +198,20 @@ def main() -> None:
     print(f"{'measure':{width}}  {'figure':>44}  {'ratio':>8}  target")
     for name, fig, ratio, target in rows:
         print(f"{name:{width}}  {fig:>44}  {ratio:>8}  {target}")
+
+
+def _print_engine(out: dict, as_json: bool) -> None:
+    if as_json:
+        print(json.dumps(out, indent=2))
+        return
+    i, ld = out["integration"], out["load"]
+    print(f"seed integration, compiled vs scipy DOP853 (same rtol): {i['compiled_s'] * 1e3:.2f} ms vs "
+          f"{i['python_s'] * 1e3:.1f} ms = {i['ratio']:.3f}x (target <= 0.05x)")
+    print(f"  nfev compiled / scipy: {i['nfev_compiled']} / {i['nfev_python']}; mean F_t error vs rtol 1e-12: "
+          f"{i['mean_force_error']:.1e} (target <= 1e-5)")
+    print(f"  physical limit: {i['physical_limit_s'] * 1e3:.2f} ms ({i['compiled_eval_s'] * 1e9:.0f} ns per evaluation)")
+    print(f"kernel load per process: {ld['load_s']:.2f} s (numba import {ld['numba_import_s']:.2f} s, kernel module "
+          f"{ld['kernel_module_s']:.2f} s, DOP853 entry {ld['entry_s']:.2f} s)")
 
 
 if __name__ == "__main__":

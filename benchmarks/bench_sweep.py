@@ -8,7 +8,17 @@ points, cold starts, the file's ramps). Measured in one run:
   --loop of them timed and extrapolated to --points (the way a sweep is done without this command);
 - `gearcli sweep` with --jobs 1, with --jobs N (default: all cores), and on a Dask LocalCluster of N
   single-threaded worker processes (started here; its start-up is not counted, a cluster outlives a sweep).
-Every sweep runs as `python -m gearcli sweep ... -o out.csv` in a subprocess, start-up included.
+Every sweep runs as `python -m gearcli sweep ... -o out.csv` in a subprocess, start-up included, and is set
+against the import floor (`python -c "import click, pydantic, rich, numpy, scipy.integrate"`, the fastest of
+three; target: the 1000-point sweep <= 15x the floor, aim 5x).
+
+Then the per-point breakdown, in this process (--breakdown points, the compiled engine where installed, the
+kernel loaded first): the integration (solver.wall_s), the check pass (solver.check_pass.wall_s, on the points a
+sweep checks: every gearcli.sweep.family.CHECK_EVERY-th), the design and model set-up, and the post-processing
+(the rest: statistics, ringing fit, error estimate's comparison, diagnostics), each per point and the
+post-processing as a share of the integration (target <= 20 %).
+
+    python benchmarks/bench_sweep.py --points 1000 --loop 0 --no-dask     # the sweep against the floor only
 """
 
 from __future__ import annotations
@@ -52,33 +62,96 @@ def sweep(n: int, tmp: Path, *extra: str) -> float:
     return wall
 
 
+def floor_s(repeat: int = 3) -> float:
+    cmd = [sys.executable, "-c", "import click, pydantic, rich, numpy, scipy.integrate"]
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        subprocess.run(cmd, check=True, env=ENV)
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def breakdown(n: int) -> dict[str, float]:
+    """Seconds per point of a seed speed sweep in this process, by part (module text)."""
+    from gearcli import api, engine
+    from gearcli.sweep.family import CHECK_EVERY
+    from gearcli.sweep.worker import Scene
+
+    if engine.available():
+        engine.load(quiet=True)
+    scene = Scene(SEED.read_bytes(), str(SEED), (), 3)
+    parts = {"point": 0.0, "integration": 0.0, "check pass": 0.0, "design and model": 0.0}
+    real = api.design_case
+
+    def timed(*a, **k):
+        t0 = time.perf_counter()
+        try:
+            return real(*a, **k)
+        finally:
+            parts["design and model"] += time.perf_counter() - t0
+
+    api.design_case = timed
+    engines = set()
+    try:
+        api.evaluate_point(scene, ("input.speed_rpm=600",))  # warm: generated code, caches
+        parts.update({k: 0.0 for k in parts})
+        for i, v in enumerate(_speeds(n)):
+            t0 = time.perf_counter()
+            ev = api.evaluate_point(scene, (f"input.speed_rpm={v!r}",), check=i % CHECK_EVERY == 0)
+            parts["point"] += time.perf_counter() - t0
+            sv = ev.result.solver
+            parts["integration"] += sv.wall_s
+            parts["check pass"] += float((sv.check_pass or {}).get("wall_s", 0.0))
+            engines.add(f"{sv.method} ({sv.engine})")
+    finally:
+        api.design_case = real
+    out = {k: v / n for k, v in parts.items()}
+    out["post-processing"] = out["point"] - out["integration"] - out["check pass"] - out["design and model"]
+    out["engines"] = ", ".join(sorted(engines))  # type: ignore[assignment]
+    return out
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--points", type=int, default=1000)
     ap.add_argument("--loop", type=int, default=20, help="shell-loop points actually run (then extrapolated)")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--no-dask", action="store_true")
+    ap.add_argument("--breakdown", type=int, default=100, help="points of the in-process breakdown (0: none)")
     args = ap.parse_args()
     n, jobs = args.points, args.jobs
     rows = []
+    floor = floor_s()
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d)
-        per = shell_loop(min(args.loop, n), tmp)
-        rows.append((f"shell loop (gearcli simulate x {min(args.loop, n)}, extrapolated)", per * n))
+        if args.loop > 0:
+            per = shell_loop(min(args.loop, n), tmp)
+            rows.append((f"shell loop (gearcli simulate x {min(args.loop, n)}, extrapolated)", per * n))
         rows.append(("gearcli sweep --jobs 1", sweep(n, tmp, "--jobs", "1")))
         rows.append((f"gearcli sweep --jobs {jobs}", sweep(n, tmp, "--jobs", str(jobs))))
         try:
+            if args.no_dask:
+                raise ImportError
             from distributed import LocalCluster
         except ImportError:
-            rows.append(("gearcli sweep --scheduler (dask not installed)", float("nan")))
+            rows.append(("gearcli sweep --scheduler (not run)", float("nan")))
         else:
             with LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None) as c:
                 rows.append((f"gearcli sweep --scheduler (Dask LocalCluster, {jobs} workers)",
                              sweep(n, tmp, "--scheduler", c.scheduler_address)))
     base = rows[0][1]
-    print(f"seed speed sweep, {n} points, {os.cpu_count()} cores (shared machine: absolute figures vary)")
-    print(f"{'runner':<62} {'wall s':>9} {'points/s':>9} {'vs loop':>8}")
+    print(f"seed speed sweep, {n} points, {os.cpu_count()} cores (shared machine: absolute figures vary); "
+          f"import floor {floor:.2f} s")
+    print(f"{'runner':<62} {'wall s':>9} {'points/s':>9} {'vs first':>8} {'/ floor':>8}")
     for name, wall in rows:
-        print(f"{name:<62} {wall:9.1f} {n / wall:9.2f} {base / wall:7.1f}x")
+        print(f"{name:<62} {wall:9.1f} {n / wall:9.2f} {base / wall:7.1f}x {wall / floor:7.1f}x")
+    if args.breakdown:
+        b = breakdown(args.breakdown)
+        print(f"\nper point, in process ({args.breakdown} points; {b.pop('engines')}), ms:")
+        for k in ("point", "integration", "check pass", "design and model", "post-processing"):
+            print(f"  {k:<18} {1e3 * b[k]:8.2f}")
+        print(f"  post-processing / integration: {b['post-processing'] / b['integration']:.2f} (target <= 0.20)")
 
 
 if __name__ == "__main__":

@@ -45,6 +45,7 @@ from gearcli.results import DesignResult
 from gearcli.scene import build_model, resonance_diagnostics, spec_from_design
 
 if TYPE_CHECKING:
+    from gearcli.engine import Built
     from gearcli.life.result import LifeResult
     from gearcli.life.session import Session as LifeSession
     from gearcli.model.modes import CampbellData, ModalAnalysis
@@ -58,7 +59,7 @@ if TYPE_CHECKING:
     from gearcli.sweep.worker import Case, Evaluation, Scene
 
 __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "design", "design_case",
-           "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
+           "engine_build", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
            "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
 
@@ -67,6 +68,15 @@ def check_environment() -> None:
     """The environment every command reads, checked the same way for each: a set ``GEARCLI_MEMORY_LIMIT_MB``
     must be a number of MiB (:class:`~gearcli.errors.ConfigError`, exit 2, otherwise)."""
     memory_limit_bytes()
+
+
+def engine_build(*, force: bool = False, quiet: bool = False) -> Built:
+    """Compile the compiled engine's kernel into its cache (``force``: discard it first) and load it as a run would
+    (:func:`gearcli.engine.build`); a first build is reported through the installed reporter
+    (:mod:`gearcli.core.announce`)."""
+    from gearcli import engine  # lazy: numpy and the engine, start-up time of gearcli design
+
+    return engine.build(force=force, quiet=quiet)
 
 
 def design_file_schema() -> JsonObject:
@@ -267,12 +277,13 @@ def design_case(scene: Scene, overrides: Sequence[str], /) -> Case:
 
 
 def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
-                   series: bool = False, check: bool | None = False) -> Evaluation:
+                   series: bool = False, check: bool | None = False, settle: bool | str = True) -> Evaluation:
     """One variant of the scene's file loaded, designed and simulated (the sweep's and the life calculation's
     point, :class:`~gearcli.sweep.worker.PointEvaluator`). Continued from ``start`` (the previous point's final
     state, :mod:`gearcli.sweep.continuation`) when given: without the start-up ramps, from that state, the
     phases carried on; a point whose chain differs starts cold with the file's ramps. ``series`` keeps the time
-    series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``)."""
+    series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``); ``settle`` the window
+    shown settled (:func:`gearcli.simulate.settle.settled_run`; ``"window"``: never the periodic state)."""
     from gearcli.simulate import run_simulation  # lazy: the solver layers (scipy), start-up time of gearcli design
 
     # lazy: the sweep and life layers, start-up time of gearcli design
@@ -291,7 +302,9 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
             case = design_case(scene, overrides)
             spec = spec_from_design(*case)
         model = TorsionalModel(spec)
-    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check)
+    # a sweep row and a duty point are dynamic verdicts: from a window shown settled (gearcli.simulate.settle)
+    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check,
+                            settle=settle)
     if result.final_state is None or result.final_time_s is None:
         return Evaluation(case, result, None)
     return Evaluation(case, result, Carried(model, result.final_state, result.final_time_s))

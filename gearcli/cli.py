@@ -58,11 +58,22 @@ def _broken_pipe() -> None:
     sys.exit(EXIT_BROKEN_PIPE)
 
 
+_SIGNALLED: list[int] = []  # the exit codes of the signals this process received (SIGINT, SIGTERM, SIGHUP)
+_SIGNAL_WORDS = {EXIT_INTERRUPTED: "interrupted", EXIT_TERMINATED: "terminated", EXIT_HANGUP: "hangup"}
+
+
+def _on_sigint(signum, frame) -> None:
+    _SIGNALLED.append(EXIT_INTERRUPTED)
+    raise KeyboardInterrupt
+
+
 def _on_sigterm(signum, frame) -> None:
+    _SIGNALLED.append(EXIT_TERMINATED)
     raise Terminated()
 
 
 def _on_sighup(signum, frame) -> None:
+    _SIGNALLED.append(EXIT_HANGUP)
     raise Terminated(EXIT_HANGUP)
 
 
@@ -76,6 +87,7 @@ def guarded(fn: Callable) -> Callable:
         debug = debug or bool(root.params.get("debug"))
         if quiet:
             click.get_current_context().meta["gearcli.quiet"] = True
+        _show_engine_builds()
         try:
             from gearcli import api  # lazy: start-up time of --help
 
@@ -101,12 +113,21 @@ def guarded(fn: Callable) -> Callable:
         except (click.exceptions.Exit, click.ClickException, SystemExit):
             raise
         except Exception as exc:  # a bug: say so plainly, never a traceback without --debug
+            if _SIGNALLED and not debug:  # a signal's exception turned into another inside a C extension (an
+                _fail(_SIGNAL_WORDS[_SIGNALLED[0]], _SIGNALLED[0])  # import's "initialization failed"): the signal
             if debug:
                 raise
             _fail(f"internal error: {type(exc).__name__}: {shorten(str(exc), 200)} "
                   "(run with --debug for the traceback)", EXIT_FAILED)
 
     return wrapper
+
+
+def _show_engine_builds() -> None:
+    """A first compilation of the engine inside this command shows as a step (silent with -q)."""
+    from gearcli.io.progress import show_engine_builds  # lazy: start-up time of --help
+
+    show_engine_builds(quiet=is_quiet())
 
 
 def _report_numeric_warnings(caught) -> None:
@@ -646,9 +667,42 @@ def _write_life_plots(result, plots_dir: str) -> None:
     _write_figures(lambda: write_life_plots(result, plots_dir), plots_dir, "the life calculation")
 
 
+@cli.group(epilog="""\b
+Examples:
+  gearcli engine build
+  gearcli engine build --force
+""")
+def engine() -> None:
+    """The compiled integration engine (the fast extra, numba): its cache."""
+
+
+@engine.command("build", epilog="""\b
+Examples:
+  gearcli engine build          # once after installing (CI and the install instructions run it)
+  gearcli engine build --force  # discard the cache and compile again
+""")
+@click.option("--force", is_flag=True, help="Discard the cached kernel and compile it again.")
+@quiet_option
+@click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
+@guarded
+def engine_build(force: bool) -> None:
+    """Compile the integration kernel into the cache now (with progress), so that no run pays for it."""
+    from gearcli import api  # lazy: start-up time of --help
+
+    built = api.engine_build(force=force, quiet=is_quiet())
+    if built.refused:  # compiled, but nothing cached: the command's purpose failed
+        _fail(f"the kernel compiled, but nothing was cached: {built.refused}", EXIT_FAILED)
+    if built.build_s:
+        click.echo(f"engine: compiled in {built.build_s:.1f} s; cached in {built.directory}")
+    else:
+        click.echo(f"engine: already compiled; cached in {built.directory}")
+    click.echo(f"engine: a process loads it in {built.load_s:.2f} s (numba import, kernel module, one entry; measured now)")
+
+
 def main() -> None:
     """The console script: SIGTERM unwinds like Ctrl-C (temporary files removed), then exit 143."""
     streams.guard()  # a closed stdout/stderr (>&-): a clean message, never a traceback
+    signal.signal(signal.SIGINT, _on_sigint)  # KeyboardInterrupt, remembered (guarded)
     signal.signal(signal.SIGTERM, _on_sigterm)
     if hasattr(signal, "SIGHUP"):  # the terminal went away: unwind like SIGTERM (temporary files removed)
         signal.signal(signal.SIGHUP, _on_sighup)

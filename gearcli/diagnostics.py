@@ -41,6 +41,7 @@ NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the 
 SUBHARMONIC = "subharmonic"  # steady = "periodic": the response repeats after k > 1 periods
 PERIOD_NOT_COMMON = "period_not_common"  # the excitations have no usable common period
 WINDOW_RINGING = "window_ringing"  # a lightly damped mode still rings from the run-up through the window
+WINDOW_NOT_SETTLED = "window_not_settled"  # a start-up transient left at the window's start (gearcli.simulate.settle)
 SAMPLING = "sampling"  # report: a line above the Nyquist frequency of the output samples
 ACCURACY = "accuracy"  # report: the accuracy study's verdict on the file's solver settings
 NEAR_BIFURCATION = "near_bifurcation"  # steady = "periodic": a Floquet multiplier near +1 (fold, jump) or -1

@@ -235,7 +235,7 @@ class BearingResult:
 
 
 # the bearing keys that appear only with their inputs (docs/bearings.md): ISO 76 with C_0, ISO 281 with C_u
-BEARING_STATIC_KEYS = ("static_load_rating_kN", "static_equivalent_load_N", "static_safety")
+BEARING_STATIC_KEYS = ("static_load_rating_kN", "static_equivalent_load_N", "static_safety", "static_safety_min")
 BEARING_MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent", "kappa", "a_ISO", "a_1",
                          "L_nm_Mrev", "L_nm_h", "kappa_points", "a_ISO_points")
 

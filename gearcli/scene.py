@@ -10,6 +10,7 @@ pinion end (the design gives each gear's inertia).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import replace
 from typing import TYPE_CHECKING
@@ -103,7 +104,7 @@ def _shafts(cfg: DesignFile, design: DesignResult) -> tuple[FlexibleShaft | None
 def motor_spec(inp: Input) -> MotorSpec | None:
     """The induction motor of an ``[input]`` table (None without ``motor``): rpm -> rad/s, kW -> W."""
     m = inp.motor
-    if m is None:
+    if m is None or inp.drive == "torque":  # a torque drive prescribes the input torque: its motor is ignored
         return None
     params = {"star_delta": ((inp.switch_speed_rpm or 0.0) * RPM, 0.0),
               "soft_start": (inp.voltage_ramp_s or 0.0, inp.initial_voltage_fraction),
@@ -114,11 +115,33 @@ def motor_spec(inp: Input) -> MotorSpec | None:
     assert m.rated_power_kW is not None and m.rated_speed_rpm is not None and m.synchronous_speed_rpm is not None
     assert m.breakdown_torque_ratio is not None and m.locked_rotor_torque_ratio is not None  # the schema's rule
     try:
-        return MotorSpec.nameplate(m.rated_power_kW * 1000.0, m.rated_speed_rpm * RPM, m.synchronous_speed_rpm * RPM,
+        spec = MotorSpec.nameplate(m.rated_power_kW * 1000.0, m.rated_speed_rpm * RPM, m.synchronous_speed_rpm * RPM,
                                    m.breakdown_torque_ratio, m.locked_rotor_torque_ratio, starting=inp.starting,
                                    start_parameters=params)
     except ValueError as exc:  # the schema keeps the nameplate consistent; a curve that still cannot be fitted
         raise ConfigError(str(exc), key="input.motor") from exc
+    if inp.drive == "motor" and inp.starting == "vfd":
+        return vfd_supply(spec, inp.speed_rad_s_value - m.rated_speed_rpm * RPM)
+    return spec
+
+
+def vfd_supply(spec: MotorSpec, shift_rad_s: float) -> MotorSpec:
+    """A frequency converter's motor at a supply whose synchronous speed is ``shift_rad_s`` above the nameplate's:
+    constant V/f keeps the curve's shape in slip speed (w_s - w), so the motor carries its rated torque at
+    ``[input] speed_rpm`` (a speed sweep's row runs at the speed it is designed at). Extended Kloss in slip speed
+    Delta: T = 2 T_b (1 + a s_b) Delta Delta_b / (Delta^2 + Delta_b^2 + 2 a s_b Delta_b |Delta|), Delta_b = s_b w_s:
+    unchanged with w_s' when s_b' = s_b w_s / w_s' and a' s_b' = a s_b."""
+    if shift_rad_s == 0.0 or spec.table:
+        return spec
+    ws = spec.synchronous_speed_rad_s
+    ws_new = ws + shift_rad_s
+    if ws_new <= 0.0:
+        raise ConfigError(f"a frequency converter cannot run the motor at this speed (its supply would be "
+                          f"{ws_new / RPM:.4g} rpm synchronous)", key="input.speed_rpm")
+    sb = spec.breakdown_slip * ws / ws_new
+    return dataclasses.replace(spec, synchronous_speed_rad_s=ws_new, breakdown_slip=sb,
+                               kloss_a=spec.kloss_a * spec.breakdown_slip / sb,
+                               rated_speed_rad_s=spec.rated_speed_rad_s + shift_rad_s)
 
 
 def load_spec(load_cfg: Load) -> LoadSpec:

@@ -86,6 +86,7 @@ class Duty(_Table):
     torque_Nmm: Annotated[float, Field(ge=-1e10, le=1e10)] | None = None
     power_kW: Annotated[float, Field(ge=-1e6, le=1e6)] | None = None
     set: Annotated[dict[str, Any], Field(max_length=50)] = {}
+    starts: Annotated[int, Field(ge=0, le=100_000_000)] = 0  # start-ups over the point's hours (issue 30)
     model_config = ConfigDict(json_schema_extra={"allOf": [
         {"anyOf": [{"required": [k]} for k in DUTY_TORQUE_KEYS]},
         {"not": {"anyOf": [{"required": [a, b]} for i, a in enumerate(DUTY_TORQUE_KEYS)

@@ -377,12 +377,14 @@ def _starting_rules() -> list[dict]:
     """A starting method and its parameters need drive = "motor"; each parameter belongs to its method; star-delta
     needs its switch-over speed, the soft start its ramp; ramp_s > 0 on a motor only for the VFD."""
     motor = {**_required("drive"), "properties": {"drive": {"const": "motor"}}}
-    rules: list[dict] = [{"not": {"anyOf": [_required(k) for k in ("starting", *_START_PARAMS)], "not": motor}}]
+    # another drive ignores them (with a note in the design), so that --set input.drive="speed" works on a motor file
+    rules: list[dict] = []
     for key, method in _START_PARAMS.items():
-        rules.append({"not": {**_required(key), "not": {**_required("starting"),
-                                                       "properties": {"starting": {"const": method}}}}})
+        rules.append({"not": {**_required("drive", key), "properties": {"drive": {"const": "motor"}},
+                              "not": {**_required("starting"), "properties": {"starting": {"const": method}}}}})
     for method, key in (("star_delta", "switch_speed_rpm"), ("soft_start", "voltage_ramp_s")):
-        rules.append({"not": {**_required("starting"), "properties": {"starting": {"const": method}},
+        rules.append({"not": {**_required("starting", "drive"),
+                              "properties": {"drive": {"const": "motor"}, "starting": {"const": method}},
                               "not": _required(key)}})
     rules.append({"not": {**motor, **_required("drive", "ramp_s"),
                           "properties": {"drive": {"const": "motor"}, "ramp_s": {"exclusiveMinimum": 0}},
@@ -412,6 +414,7 @@ class Input(_Coupled):
     initial_voltage_fraction: Annotated[float, Field(ge=0.05, le=1.0)] = 0.3  # soft_start
     torque_limit_Nm: Annotated[float, Field(gt=0.0, le=MAX_TORQUE_NMM / 1e3)] | None = None  # vfd
     _torque_from_power_Nm: float | None = PrivateAttr(default=None)
+    _ignored_keys: tuple[str, ...] = PrivateAttr(default=())  # starting keys another drive than "motor" ignores
     model_config = ConfigDict(json_schema_extra=_all_of(
         *_exactly_one(("speed_deg_s", "speed_rpm", "speed_rad_s")), *_at_most_one(INPUT_TORQUE_KEYS),
         {"not": {**_required("drive"), "properties": {"drive": {"const": "torque"}},
@@ -420,7 +423,6 @@ class Input(_Coupled):
         {"not": {"anyOf": [_required(k) for k in INPUT_TORQUE_KEYS], "properties": {"drive": {"const": "motor"}},
                  **_required("drive")}},
         {"not": {**_required("drive"), "properties": {"drive": {"const": "motor"}}, "not": _required("motor")}},
-        {"not": {**_required("drive", "motor"), "properties": {"drive": {"const": "torque"}}}},
         *_starting_rules(),
         *_coupling_rules()))
 
@@ -447,10 +449,9 @@ class Input(_Coupled):
             raise ValueError('drive = "torque" needs torque_Nm, torque_Nmm or power_kW')
         if self.drive != "torque" and torques:
             raise ValueError('torque_Nm/torque_Nmm/power_kW are only used with drive = "torque"')
-        if self.drive == "torque" and self.motor is not None:
-            raise ValueError('motor: a torque drive prescribes the input torque; use drive = "motor" (or "speed", '
-                             "to check a speed ramp against the motor)")
         self._check_motor()
+        if self.drive == "torque" and self.motor is not None:  # a torque drive prescribes the torque: noted, ignored
+            self._ignored_keys = ("motor", *self._ignored_keys)
         if self.power_kW is not None:  # the input speed is known here: P = T ω
             self._torque_from_power_Nm = self.power_kW * 1000.0 / self.speed_rad_s_value
         self._check_coupling("input")
@@ -460,11 +461,10 @@ class Input(_Coupled):
         if self.drive == "motor" and self.motor is None:
             raise ValueError('drive = "motor" needs motor = { rated_power_kW, rated_speed_rpm, synchronous_speed_rpm, '
                              "breakdown_torque_ratio, locked_rotor_torque_ratio } or motor = { torque_speed = [...] }")
-        if self.drive != "motor":
-            extra = [k for k in ("switch_speed_rpm", "voltage_ramp_s", "torque_limit_Nm", "starting",
-                                 "initial_voltage_fraction") if k in self.model_fields_set]
-            if extra:
-                raise ValueError(f'{", ".join(extra)}: a starting method needs drive = "motor"')
+        if self.drive != "motor":  # a starting method belongs to drive = "motor": ignored here, with a note
+            self._ignored_keys = tuple(k for k in ("starting", "switch_speed_rpm", "voltage_ramp_s",
+                                                   "initial_voltage_fraction", "torque_limit_Nm")
+                                       if k in self.model_fields_set)
             return
         need = {"star_delta": "switch_speed_rpm", "soft_start": "voltage_ramp_s"}.get(self.starting)
         if need is not None and getattr(self, need) is None:
@@ -482,6 +482,12 @@ class Input(_Coupled):
         if self.ramp_s > 0 and self.starting != "vfd":
             raise ValueError('ramp_s: with drive = "motor" only the VFD ramps its speed (starting = "vfd"); the other '
                              "starts follow the motor's curve")
+
+    @property
+    def ignored_keys(self) -> tuple[str, ...]:
+        """Keys of another drive, ignored (the design notes them): the starting method's with a drive other than
+        "motor", and ``motor`` with a torque drive."""
+        return self._ignored_keys
 
     @property
     def speed_rad_s_value(self) -> float:

@@ -44,6 +44,7 @@ is what a choice between them needs.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 # ----------------------------------------------------------------------------------------------- prices
 #: seconds per counter, per engine (benchmarks/bench_cost.py)
@@ -62,9 +63,58 @@ COUNTERS_PER_EVAL: dict[str, dict[str, float]] = {
 IMPLICIT = ("Radau", "BDF", "LSODA")
 
 
-def seconds_per_eval(engine: str, method: str) -> float:
-    """Predicted wall seconds per right-hand-side evaluation of ``method`` on ``engine``, all work included.
-    A method the compiled engine lacks is priced as on Python."""
+@dataclass(frozen=True)
+class ModelSize:
+    """What a right-hand side's price depends on (:data:`PRICE_US`): the state's size, the mesh connectors
+    (a planetary stage's planet meshes each count, and count again as planet meshes: their load sharing and
+    phases), the meshes whose stiffness varies with the mesh phase (contact lines: the dearest element), the
+    meshes with transmission-error or stiffness harmonics, and a motor's torque curve."""
+
+    states: int = 0
+    meshes: int = 0
+    planet_meshes: int = 0
+    time_varying: int = 0
+    harmonics: int = 0
+    motor: bool = False
+
+    def features(self) -> tuple[float, ...]:
+        return (1.0, float(self.states), float(self.meshes), float(self.planet_meshes), float(self.time_varying),
+                float(self.harmonics), float(self.motor))
+
+
+FEATURES = ("fixed", "per_state", "per_mesh", "per_planet_mesh", "per_time_varying_mesh", "per_harmonic_mesh",
+            "motor")
+#: microseconds per right-hand-side evaluation, all the run's work included (steps, error norms, dense output,
+#: LU decompositions and Jacobians), per engine and method: the coefficients of ModelSize.features(), a
+#: non-negative least-squares fit of the integration's CPU time over the fitting set of benchmarks/bench_cost.py
+#: (2026-11-28, 2-core machine): within 1.03x (median) and 1.31x (worst) of the measured time at the measured
+#: evaluations on the fitting set, 1.11x and 1.36x on the held-out set it never saw (docs/performance.md)
+PRICE_US: dict[str, dict[str, tuple[float, ...]]] = {
+    "python": {"DOP853": (5.0, 0.682, 0.0, 1.26, 2.11, 1.3, 0.468), "Radau": (25.1, 0.0, 2.1, 1.61, 5.73, 5.76, 9.3)},
+    "compiled": {"DOP853": (0.521, 0.0978, 0.31, 0.0, 0.0, 0.214, 0.297),
+                 "Radau": (0.378, 0.14, 0.208, 0.0, 0.0, 0.144, 0.315)},
+}
+
+#: seconds every integration costs whatever its length (setting up the solver or the kernel's call, the segments'
+#: restarts), per engine: the constant of the same fit
+RUN_FIXED_S: dict[str, float] = {"python": 4.4e-3, "compiled": 0.67e-3}
+
+
+def price_us_per_eval(engine: str, method: str, size: ModelSize | None = None) -> float:
+    """Predicted microseconds per evaluation of ``method`` on ``engine`` for a model of ``size`` (without a size:
+    the scene-independent price of :func:`seconds_per_eval`). RK45 is priced as DOP853, BDF and LSODA as Radau."""
+    if size is None:
+        return 1e6 * seconds_per_eval(engine, method)
+    table = PRICE_US.get(engine, PRICE_US["python"])
+    coef = table.get(method, table["Radau" if method in IMPLICIT else "DOP853"])
+    return float(sum(c * f for c, f in zip(coef, size.features(), strict=True)))
+
+
+def seconds_per_eval(engine: str, method: str, size: ModelSize | None = None) -> float:
+    """Predicted wall seconds per right-hand-side evaluation of ``method`` on ``engine``, all work included
+    (``size``: the model's, :func:`price_us_per_eval`). A method the compiled engine lacks is priced as on Python."""
+    if size is not None:
+        return 1e-6 * price_us_per_eval(engine, method, size)
     p = PRICE_S.get(engine, PRICE_S["python"])
     per = COUNTERS_PER_EVAL.get(method, COUNTERS_PER_EVAL["Radau" if method in IMPLICIT else "DOP853"])
     step = p["step_implicit" if method in IMPLICIT else "step_explicit"]
@@ -76,9 +126,11 @@ def compiled_speedup(method: str) -> float:
     return seconds_per_eval("python", method) / seconds_per_eval("compiled", method)
 
 
-def predicted_wall_s(engine: str, method: str, nfev: float, fixed_s: float = 0.0) -> float:
-    """Predicted wall time of a run of ``nfev`` evaluations (``fixed_s``: what loading the engine still costs)."""
-    return fixed_s + nfev * seconds_per_eval(engine, method)
+def predicted_wall_s(engine: str, method: str, nfev: float, fixed_s: float = 0.0,
+                     size: ModelSize | None = None) -> float:
+    """Predicted wall time of a run of ``nfev`` evaluations (``fixed_s``: what loading the engine still costs;
+    ``size``: the model's, for its price per evaluation)."""
+    return fixed_s + nfev * seconds_per_eval(engine, method, size)
 
 
 def priced_work_s(nfev: int, njev: int, nlu: int, steps: int, implicit: bool) -> float:
@@ -137,6 +189,14 @@ PACE_MIN_S = 1.0
 #: PACE_SWITCH_AFTER_S of priced work, its pace projects the run to over PACE_SWITCH_FACTOR times its prediction
 PACE_SWITCH_FACTOR = 4.0
 PACE_SWITCH_AFTER_S = 2.0
+
+# ------------------------------------------------------------------------------------- changing course
+#: an auto run that has spent this many times its predicted evaluations or wall time re-decides from the state
+#: it has reached (gearcli.simulate.course) ...
+COURSE_FACTOR = 3.0
+COURSE_MIN_NFEV = 2000.0  # ... its prediction taken as at least this many evaluations (a tiny run: noise) ...
+COURSE_MIN_S = 0.3  # ... and this much wall time (the clock of a shared machine)
+COURSE_MARGIN = 1.5  # another method or engine is taken when it is predicted to cost this much less than going on
 
 # -------------------------------------------------------------------------------------------- budgets
 COST_PER_UNIT = 30.0  # evaluations per unit of max|lambda| T at rtol 1e-6, any method (worst measured: 26)

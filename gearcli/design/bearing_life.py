@@ -86,7 +86,7 @@ def static_figures(static_rating_N: float | None, X0: float, Y0: float, radial_N
 
 def min_static_safety(static_rating_N: float, peak_loads_N: Sequence[float]) -> tuple[float, float | None]:
     """(largest P_0, smallest s_0) over a list of peak static equivalent loads: the duty points' and, once the
-    ``starts`` branch adds them, every start's peaks (``gearcli.life.run.START_PEAKS_HOOK``)."""
+    duty has starts, every start's peaks (``gearcli.life.run.start_bearings``)."""
     p0 = max(peak_loads_N, default=0.0)
     return p0, iso281.static_safety(static_rating_N, p0)
 

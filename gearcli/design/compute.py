@@ -88,8 +88,14 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
 
+    ignored = cfg.input.ignored_keys
+    drive_notes = (warning(DESIGN, f"[input] {', '.join(ignored)}: {'keys' if len(ignored) > 1 else 'a key'} of "
+                           f"drive = \"motor\"; drive = \"{cfg.input.drive}\" ignores "
+                           f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
+        if ignored else ()
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *jammed,
-                   *stiffness_diagnostics(stages), *rating_diagnostics, *bearing_diagnostics(cfg, bearings))
+                   *stiffness_diagnostics(stages), *rating_diagnostics, *bearing_diagnostics(cfg, bearings),
+                   *drive_notes)
     return DesignResult(
         title=cfg.title,
         stages=stages,

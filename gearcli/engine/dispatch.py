@@ -20,11 +20,9 @@ import sys
 import types
 from pathlib import Path
 
-import numba
-
+from gearcli.engine import cachedir
+from gearcli.engine.numba_cache import jit
 from gearcli.model.elements import ElementType, compiled_types
-
-jit = numba.njit(cache=True, error_model="numpy", nogil=True)
 
 #: (kernel name, element function, arguments after ``kind``): what the kernel dispatches
 FUNCTIONS = (
@@ -73,17 +71,22 @@ def source(elements: tuple[ElementType, ...]) -> str:
     return "\n".join(lines)
 
 
-def build(directory: Path) -> types.ModuleType:
-    """The dispatch module of the registered compiled element types, written to ``directory`` (once per
-    registry: the directory is keyed by it) and imported."""
+def build() -> types.ModuleType:
+    """The dispatch module of the registered compiled element types, written to the cache directory this process
+    loads from (:data:`gearcli.engine.numba_cache.DIR`, keyed by the registry; once per registry) and imported."""
+    from gearcli.engine import numba_cache  # lazy: numba (numba_cache imports it), the optional fast extra
+
+    directory = Path(numba_cache.DIR[0])
     elements = compiled_types()
     text = source(elements)
     path = directory / "gearcli_dispatch.py"
-    if not path.exists() or path.read_text(encoding="utf-8") != text:
-        directory.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")  # parallel processes never share a half-written file
-        tmp.write_text(text, encoding="utf-8")
-        tmp.replace(path)
+    if cachedir.read_text(path) != text:  # in the checked cache directory: written privately, never through a link
+        tmp = f"{path}.tmp.{os.getpid()}.w"  # parallel processes never share a half-written file
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        cachedir.clear_entry(path)  # a directory where the file belongs (a damaged cache)
+        os.replace(tmp, path)
     spec = importlib.util.spec_from_file_location("gearcli_dispatch", path)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
@@ -93,3 +96,4 @@ def build(directory: Path) -> types.ModuleType:
     sys.modules[spec.name] = module
     spec.loader.exec_module(module)
     return module
+

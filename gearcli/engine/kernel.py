@@ -32,7 +32,6 @@ from typing import Any
 import numba
 import numpy as np
 
-from gearcli import engine as _engine
 from gearcli.engine import blas as _blas
 from gearcli.engine import dispatch as _dispatch
 from gearcli.engine import status as st
@@ -42,12 +41,13 @@ from gearcli.model.elements import machine as _machine_mod
 from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import torque as _torque_mod
 
-jit = numba.njit(cache=True, error_model="numpy", nogil=True)  # inf/NaN as IEEE, judged once per step
+jit = _dispatch.jit  # cached in the checked directory (gearcli.engine.numba_cache); inf/NaN as IEEE, judged once per step
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
 STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED
+STATUS_INTERRUPTED = st.INTERRUPTED
 
 # the element laws, dispatched by kind: generated from the registry (gearcli.engine.dispatch)
-_D = _dispatch.build(_engine.cache_dir())
+_D = _dispatch.build()  # into the checked cache directory this process loads from
 KINDS = _D.KINDS
 conn_force, conn_power_gradient, conn_potential = _D.conn_force, _D.conn_power_gradient, _D.conn_potential
 conn_channel, conn_n_channels, conn_damped = _D.conn_channel, _D.conn_n_channels, _D.conn_damped
@@ -71,6 +71,7 @@ WP_E0, WP_W0, WP_SCALE, WP_MARGIN, WP_T0 = 0, 1, 2, 3, 4
 WP_CAP, WP_AFTER, WP_LIMIT, WP_EVERY, WP_P_EVAL, WP_P_JAC, WP_P_LU, WP_P_STEP, WP_SPAN0, WP_SPAN1 = range(5, 15)
 N_WPAR = 15
 WP_PROGRESS = st.WP_PROGRESS  # optional: the time reached, written at every budget check (a progress bar reads it)
+WP_STOP = st.WP_STOP  # optional: the stop flag a signal handler sets (gearcli.core.signals), read after every step
 
 # ipar / fpar layout (gearcli.engine.pack)
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
@@ -114,7 +115,7 @@ def _gemm_loop(Dm, K, out):
             out[r, i] = acc
 
 
-HAVE_BLAS = _blas.register()
+HAVE_BLAS = not getattr(numba.config, "DISABLE_JIT", 0) and _blas.register()  # NUMBA_DISABLE_JIT: the loops (Python cannot call BLAS by address)
 if HAVE_BLAS:
     assert _blas.FOUND is not None
     _PATTERN, _WIDTH = _blas.FOUND[1], _blas.FOUND[2]
@@ -540,7 +541,10 @@ def guards(t, y, nfev, njev, nlu, steps, finished, max_nfev, watch_every, wpar, 
     """The evaluation budget, the priced work budget (spent, or a pace projected over its limit: as
     :func:`gearcli.simulate.guards.over_budget`, checked every ``wpar[WP_EVERY]`` steps) and the energy watch
     every ``watch_every`` steps; ``watched`` receives (energy created, energy scale). At each budget check the
-    time reached goes to ``wpar[WP_PROGRESS]`` when ``wpar`` has that entry (a progress bar). Returns a status."""
+    time reached goes to ``wpar[WP_PROGRESS]`` when ``wpar`` has that entry (a progress bar). A raised stop flag
+    (``wpar[WP_STOP]``, when present) ends the run at once. Returns a status."""
+    if wpar.size > WP_STOP and wpar[WP_STOP] != 0.0:
+        return STATUS_INTERRUPTED
     if nfev > max_nfev:
         return STATUS_BUDGET
     if wpar.size >= N_WPAR and steps % np.int64(wpar[WP_EVERY]) == 0:

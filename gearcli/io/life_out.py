@@ -80,11 +80,26 @@ def life_csv(r: LifeResult) -> str:
 
 def _duty_table(r: LifeResult) -> FittedTable:
     n = len(r.points[0].K_v) if r.points else 0
-    cols = ["point", "hours", "output torque [N·m]", "input speed [rpm]",
+    cols = ["point", "hours", "output torque [N·m]", "input speed [rpm]", "starts",
             *(f"K_v stage {k + 1}" if r.route == "static" else f"max/static F_t st. {k + 1}" for k in range(n))]
-    rows = [[p.name, _g(p.hours), _g(p.torque_Nm), _g(p.speed_rpm), *(_g(k, 4) for k in p.K_v)] for p in r.points]
+    rows = [[p.name, _g(p.hours), _g(p.torque_Nm), _g(p.speed_rpm), str(p.start["count"]) if p.start else "0",
+             *(_g(k, 4) for k in p.K_v)] for p in r.points]
     return FittedTable(f"duty ({r.route} route): {r.hours:.6g} h in {len(r.points)} point(s)", cols, rows,
                        [c != "point" for c in cols])
+
+
+def _start_line(name: str, start: JsonObject) -> RenderableType:
+    """One point's starts: count, the start's span, its peak F_t per stage and its largest damage share."""
+    peaks = cast("Sequence[float]", start["peak_tangential_N"])
+    span = cast("Sequence[float]", start["span_s"])
+    worst: tuple[float, str] = (0.0, "")
+    for k, doc in enumerate(cast("Sequence[dict]", start["damage"])):
+        for member, modes in doc.items():
+            for mode, d in modes.items():
+                worst = max(worst, (float(d), f"stage {k + 1} {LABELS.get(member, member)} {mode}"))
+    most = f", largest start damage {_g(worst[0], 3)} ({worst[1]})" if worst[1] else ""
+    return text(f"point {name}: {start['count']} starts from rest (0–{span[1]:.4g} s each, classes \"{name} "
+                f"(start)\" in the spectra), peak F_t {', '.join(_g(x, 5) + ' N' for x in peaks)}{most}")
 
 
 @dataclass
@@ -204,6 +219,9 @@ def life_tables(r: LifeResult) -> list[RenderableType]:
         out.append(_bearings(r))
     out.append(text(f"S–N curves: {r.miner}; stresses: {r.standard}, K_A = 1 (the spectrum is the load)"
                     + ("" if r.route == "static" else ", K_v = 1 (the simulated mesh-cycle peaks replace it)")))
+    for p in r.points:
+        if p.start:
+            out.append(_start_line(p.name, p.start))
     for p in r.points:
         if p.solver:
             s = p.solver

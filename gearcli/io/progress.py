@@ -10,7 +10,10 @@ from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 from typing import Any
+
+from gearcli.core import announce
 
 SHOW_AFTER_S = 1.0
 
@@ -61,3 +64,51 @@ class TerminalProgress:
         if self.bar is not None:
             self.bar.__exit__(*exc)
             self.bar = None
+
+
+class BuildProgress:
+    """The compiled engine's first build as a step (:mod:`gearcli.engine.builder`'s reporter): a line when it starts,
+    a bar of the functions compiled on a terminal (a line every ~15 s elsewhere), the measured time when it ends;
+    nothing with ``-q``."""
+
+    EVERY_S = 15.0
+
+    def __init__(self, *, quiet: bool = False) -> None:
+        self.quiet = quiet
+        self.bar: TerminalProgress | None = None
+        self.last = 0.0
+
+    def _say(self, text: str) -> None:
+        if not self.quiet:
+            print(f"gearcli: {text}", file=sys.stderr, flush=True)
+
+    def start(self, directory: Path) -> None:
+        self._say(f"compiling the integration engine (its first use here; cached in {directory}) ...")
+        if not self.quiet and sys.stderr.isatty():
+            self.bar = TerminalProgress("compiling the engine").__enter__()
+            self.bar.start -= SHOW_AFTER_S  # at once: the step was announced
+
+    def step(self, done: int, total: int, elapsed_s: float) -> None:
+        if self.bar is not None:
+            self.bar("compiling the engine", done, total)
+        elif elapsed_s - self.last >= self.EVERY_S:
+            self.last = elapsed_s
+            self._say(f"compiling the integration engine: {done} of ~{total} functions, {elapsed_s:.0f} s")
+
+    def note(self, line: str) -> None:
+        self._say(f"the engine cache had a damaged entry, compiled again: {line}")
+
+    def finish(self, seconds: float, directory: Path, waited: bool = False) -> None:
+        if self.bar is not None:
+            self.bar.__exit__(None, None, None)
+            self.bar = None
+        if waited:
+            self._say(f"another process compiled the integration engine; waited {seconds:.1f} s for it")
+            return
+        self._say(f"compiled the integration engine in {seconds:.1f} s (measured now; later runs load it from "
+                  f"{directory})")
+
+
+def show_engine_builds(*, quiet: bool) -> None:
+    """Install :class:`BuildProgress` as this process's reporter of engine builds (:mod:`gearcli.core.announce`)."""
+    announce.set_build_reporter(BuildProgress(quiet=quiet))

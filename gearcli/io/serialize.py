@@ -161,6 +161,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
         "natural_frequencies_boundary": result.natural_frequencies_boundary,
         "steady": plain(result.steady),
         **_motor_keys((result.extra or {}).get("motor")),
+        **({"start": plain((result.extra or {})["start"])} if "start" in (result.extra or {}) else {}),
     }
     out: JsonObject = {
         "summary": summary,

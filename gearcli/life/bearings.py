@@ -6,7 +6,7 @@ largest peak load of the duty points and their starts.
 Starts: :func:`bearing_lives` takes the duty points' start records as :class:`StartBearings` (per bearing the
 revolutions of all the point's starts, their ISO 281 equivalent load, the bearing's mean speed during a start
 and the start's peak static equivalent load P_0): their revolutions count in L10 and L_nm as load levels of
-their own, their peaks in s_0. ``gearcli.life.run.START_PEAKS_HOOK`` makes them from the evaluated points.
+their own, their peaks in s_0. ``gearcli.life.run.start_bearings`` makes them from the evaluated points' start records.
 """
 
 from __future__ import annotations
@@ -95,7 +95,8 @@ def _static(points: Sequence[_PointData], j: int, starts: Sequence[StartBearings
         return {}
     peaks = [pd.bearings.peak_static_N[j] for pd in points] + [s.peak_static_N[j] for s in starts]
     p0, s0 = min_static_safety(b.static_load_rating_kN * 1e3, peaks)
-    return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0}
+    return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0,
+            "static_safety_min": s0}
 
 
 def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] = ()) -> tuple[BearingLife, ...]:

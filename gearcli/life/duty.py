@@ -31,6 +31,7 @@ class DutyPoint:
     speed_rpm: float  # input speed
     sets: tuple[str, ...] = ()  # further --set texts (the [[duty]] table's ``set``)
     key: str = ""  # where it came from, for messages: "duty[1]" or the series file
+    starts: int = 0  # start-ups from rest over the point's hours (the [[duty]] table's ``starts``)
 
     def overrides(self) -> tuple[str, ...]:
         """The ``--set`` texts that turn the base design file into this point."""
@@ -80,7 +81,7 @@ def points_from_config(cfg) -> list[DutyPoint]:
     """The ``[[duty]]`` tables as points (power_kW at the output speed of the point's input speed)."""
     ratio = math.prod(stage_ratio(s) for s in cfg.stage)
     return [DutyPoint(d.name, d.hours, d.output_torque_Nm(ratio), d.speed_rpm,
-                      tuple(f"{k}={toml_value(v)}" for k, v in d.set.items()), f"duty[{i}]")
+                      tuple(f"{k}={toml_value(v)}" for k, v in d.set.items()), f"duty[{i}]", d.starts)
             for i, d in enumerate(cfg.duty)]
 
 

@@ -78,6 +78,7 @@ class BearingLife:
     static_load_rating_kN: float | None = None
     static_equivalent_load_N: float | None = None  # the largest peak P_0
     static_safety: float | None = None  # its s_0
+    static_safety_min: float | None = None  # the same s_0, under simulate's name for the smallest over a run
     fatigue_load_limit_kN: float | None = None
     pitch_diameter_mm: float | None = None
     reliability_percent: float | None = None
@@ -102,6 +103,8 @@ class PointRun:
     mesh_cycles: tuple[int, ...] = ()  # whole mesh cycles counted per stage (dynamic)
     peak_error: tuple[float, ...] = ()  # estimated relative error of the mesh-cycle peaks per stage (dynamic)
     solver: JsonObject | None = None  # method, engine, rtol, nfev, wall_s, steps, statistics_resolved
+    settled: bool | None = None  # dynamic route: the window shown settled (gearcli.simulate.settle)
+    start: JsonObject | None = None  # the point's starts (docs/life.md, "Starts"); None without
 
 
 @dataclass(frozen=True)

@@ -25,13 +25,14 @@ from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design import rating_factors as rf
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
-from gearcli.errors import ConfigError, DesignError, GearcliError
+from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
 from gearcli.life import spectra
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
+from gearcli.life.starts import StartData, label, member_start_cycles, start_data
 from gearcli.results import DesignResult, MemberRating, RatingResult, StageResult
 from gearcli.simulate.bearings import peak_static_load_N, reaction_series
 from gearcli.simulate.results import SimulationResult
@@ -53,6 +54,7 @@ class _PointData:
     loads: list[StageLoads]  # per stage
     bearings: PointBearings  # each bearing's ISO 281 equivalent load and peak ISO 76 P_0 at this point
     run: PointRun
+    start: StartData | None = None  # the point's start from rest, counted ``starts`` times (dynamic route)
 
 
 def _named(scene: Scene, point: DutyPoint, exc: ConfigError | DesignError) -> ConfigError | DesignError:
@@ -150,29 +152,63 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     check_memory(cfg, fmt="json", series=False, source=scene.source, steps=steps)  # the point's run, in memory
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
     try:
-        (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None)
+        # a settled window of the run from rest (its start is counted); the periodic state would skip the start
+        settle = "window" if cfg.simulation.steady == "window" else True
+        (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None,
+                                            settle=settle)
     except (ConfigError, DesignError) as exc:
         raise _named(scene, point, exc) from None
     _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(result, design)
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
+    start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
     unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
-              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": duration, "output_samples": steps + 1, "window_s": list(result.window_s),
+              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": steps + 1, "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "energy_residual": sv.energy_residual}
     k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)
+    settled = result.steady.settled if result.steady is not None else None
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
-                   peak_error=tuple(ld.peak_error for ld in loads))
+                   peak_error=tuple(ld.peak_error for ld in loads), settled=settled)
     warnings = [w for w in result.warnings if w not in design.warnings]  # the point's rating at K_v = 1: superseded
+    if cfg.input.drive == "motor" and cfg.input.starting != "vfd" and result.extra and "motor" in result.extra:
+        running = result.extra["motor"].get("operating_speed_rpm")
+        if running and abs(running - point.speed_rpm) > 0.02 * point.speed_rpm:
+            warnings.append(f"the motor (starting = \"{cfg.input.starting}\") runs at {running:.5g} rpm, not the point's "
+                            f"speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: give the speed the "
+                            "motor runs at, or starting = \"vfd\" (the supply follows the point's speed)")
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
                             f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
                             f"sample finer: --set simulation.steps={4 * steps}")
-    return _PointData(point, design, cfg, loads, bearing_loads, run), tuple(warnings), tuple(notes)
+    return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
+
+
+def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
+    """The point's start from rest (its run before the settled window), with the bearings' loads."""
+    if result.window_s[0] <= result.time_s[0]:
+        raise SimulationError(f"duty point {point.name}: starts = {point.starts} needs the run from rest before its "
+                              "window; simulation.window_start_s = 0 leaves no start to count")
+    lay = stage_layout(cfg, design.stages)
+    if lay is None:
+        return start_data(point.starts, result, design)
+    series = _with_planet_mean(design, dict(result.series))
+    return start_data(point.starts, result, design, reaction_series(lay, design, series), lay.specs)
+
+
+def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
+    """The series with each planetary stage's own F_t channel: its planets' sun-mesh mean (the central members'
+    load; the statics' input)."""
+    for st in design.stages:
+        if st.planetary is not None:
+            forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
+                      for j in range(1, st.planetary.planet_count + 1)]
+            series[Channel("tangential_force", f"stage{st.index}")] = np.mean(forces, axis=0)
+    return series
 
 
 def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> PointBearings:
@@ -302,6 +338,13 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
             raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
                         total * share, curve))
+        if pd.start is not None and pd.start.count:  # the point's starts: classes of their own
+            n = member_start_cycles(pd.start, pd.point.speed_rpm, _member_speed_rpm(st, member),
+                                    _contacts_per_turn(st, member))
+            sl = _member_loads(replace(pd, loads=pd.start.loads), k, member, planet)
+            for force, share in zip(sl.forces_N, sl.shares, strict=True):
+                raw.append((label(pd.point.name), force, _stress(pd.design, k, member, mode, force, sl.static_N),
+                            n * share, curve))
     return raw
 
 
@@ -435,20 +478,56 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
     warnings += _static_warnings(stages)
-    bearings = bearing_lives(evaluated, START_PEAKS_HOOK(evaluated))
+    if route == "static" and any(p.starts for p in points):
+        warnings.append("the duty's starts ([[duty]] starts) are counted on the dynamic route only (each point's "
+                        "start simulated from rest); --static rates the steady points alone")
+    bearings = bearing_lives(evaluated, start_bearings(evaluated))
     warnings += bearing_warnings(evaluated, bearings)
+    runs = tuple(replace(pd.run, start=start_record(pd, stages)) if pd.start is not None else pd.run
+                 for pd in evaluated)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
-                      tuple(pd.run for pd in evaluated), stages, bearings, tuple(warnings))
+                      runs, stages, bearings, tuple(warnings))
 
 
-def no_start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:
-    """The bearings' share of the duty points' starts (``[[duty]] starts = N``: revolutions, equivalent load,
-    speed and peak P_0 per bearing, one :class:`StartBearings` per point with starts): none until the start
-    records exist; the ``starts`` work makes them from each point's start record (START_PEAKS_HOOK)."""
-    return []
+def start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:
+    """The bearings' share of the duty points' starts (``[[duty]] starts = N``), one :class:`StartBearings` per
+    point with starts: per bearing its revolutions over all the starts, the ISO 281 equivalent load of a start,
+    its mean speed during a start and the start's peak ISO 76 P_0 (docs/life.md, "Starts"; docs/bearings.md)."""
+    out = []
+    for i, pd in enumerate(points):
+        st = pd.start
+        if st is None or not st.count or not st.bearing_loads_N:
+            continue
+        minutes = max(st.span_s[1] - st.span_s[0], 1e-12) / 60.0
+        revs = tuple(member_start_cycles(st, pd.point.speed_rpm, b.speed_rpm, 1) for b in pd.design.bearings)
+        out.append(StartBearings(i, revs, tuple(st.bearing_loads_N), tuple(r / st.count / minutes for r in revs),
+                                 tuple(st.bearing_peak_static_N) or tuple(0.0 for _ in revs)))
+    return out
 
 
-START_PEAKS_HOOK: Callable[[Sequence[_PointData]], list[StartBearings]] = no_start_bearings
+def start_record(pd: _PointData, stages: Sequence[StageLife]) -> JsonObject:
+    """``points[i].start``: the count, the start's peak |F_t| per stage, its damage per member and mode (the sum
+    of its own classes' n/N), and per bearing its peak reactions and ISO 281 equivalent load."""
+    assert pd.start is not None
+    name = label(pd.point.name)
+    damage: list[JsonObject] = []
+    for st in stages:
+        doc: JsonObject = {}
+        members = [m for m in (*MEMBERS, *RING_MEMBERS) if getattr(st, m, None) is not None]
+        for member in (*members, *(("planet_root",) if st.planet_root is not None else ())):
+            ml = getattr(st, member) if member != "planet_root" else None
+            modes = {"bending": st.planet_root} if ml is None else {m: getattr(ml, m) for m in MODES}
+            doc[member] = {m: sum(b.damage for b in x.bins if b.point == name) for m, x in modes.items()
+                           if x is not None}
+        damage.append(doc)
+    bearings: list[JsonObject] = []
+    for j, b in enumerate(pd.design.bearings):
+        if j < len(pd.start.bearing_peaks):
+            bearings.append({"shaft": b.shaft, "position_mm": b.position_mm, **pd.start.bearing_peaks[j],
+                             "equivalent_load_N": pd.start.bearing_loads_N[j]})
+    return {"count": pd.start.count, "span_s": list(pd.start.span_s),
+            "input_revolutions": pd.start.input_revolutions,
+            "peak_tangential_N": list(pd.start.peak_tangential_N), "damage": damage, "bearings": bearings}
 
 
 def _static_warnings(stages: Sequence[StageLife]) -> list[str]:

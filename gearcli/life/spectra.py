@@ -92,11 +92,12 @@ def classes(peaks: np.ndarray, static_N: float, n: int = MESH_CLASSES) -> StageL
     return StageLoads(tuple(forces), tuple(shares), static_N, len(peaks))
 
 
-def dynamic_loads(result, design) -> list[StageLoads]:
-    """Per stage, the classes of the mesh-cycle peaks of |F_t| over the run's steady window (a planetary stage:
-    the sun's, with every member's in ``planetary``)."""
+def dynamic_loads(result, design, span: tuple[float, float] | None = None) -> list[StageLoads]:
+    """Per stage, the classes of the mesh-cycle peaks of |F_t| over the run's steady window, or over ``span``
+    (a start: from rest to the window; a planetary stage: the sun's, with every member's in ``planetary``)."""
     t = result.time_s
-    mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
+    lo, hi = span if span is not None else result.window_s
+    mask = (t >= lo - 1e-12) & (t <= hi + 1e-12)
     out = []
     for k, st in enumerate(design.stages):
         if st.planetary is not None:

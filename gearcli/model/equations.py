@@ -70,16 +70,44 @@ class TorsionalModel:
     def __init__(self, spec: ModelSpec):
         self.spec = spec
         self.layout = Layout.of(spec)
-        self.rhs: Callable[[float, np.ndarray], np.ndarray]
-        self.jac: Callable[[float, np.ndarray], np.ndarray]
-        self.rhs, self.jac, self.source = compile_functions(self.layout)
-        self._generated = (self.rhs, self.jac)
+        self._functions: tuple[Callable, Callable, str] | None = None  # generated on first use
+        self._replaced: dict[str, Callable] = {}
+
+    def _generated(self) -> tuple[Callable, Callable, str]:
+        """The generated ``rhs``, ``jac`` and their source, made on first use: a run on the compiled engine
+        (a sweep point) integrates the model's arrays and never needs them."""
+        if self._functions is None:
+            self._functions = compile_functions(self.layout)
+        return self._functions
+
+    @property
+    def rhs(self) -> Callable[[float, np.ndarray], np.ndarray]:
+        return self._replaced.get("rhs") or self._generated()[0]
+
+    @rhs.setter
+    def rhs(self, fn: Callable[[float, np.ndarray], np.ndarray]) -> None:
+        self._replaced["rhs"] = fn
+
+    @property
+    def jac(self) -> Callable[[float, np.ndarray], np.ndarray]:
+        return self._replaced.get("jac") or self._generated()[1]
+
+    @jac.setter
+    def jac(self, fn: Callable[[float, np.ndarray], np.ndarray]) -> None:
+        self._replaced["jac"] = fn
+
+    @property
+    def source(self) -> str:
+        return self._generated()[2]
 
     @property
     def generated(self) -> bool:
         """Whether ``rhs`` and ``jac`` are still the generated ones (the arrays describe them); False when a
         caller replaced them (tests that sabotage a run), which only the Python engine can integrate."""
-        return self.rhs is self._generated[0] and self.jac is self._generated[1]
+        if not self._replaced:
+            return True
+        fns = self._generated()
+        return all(f is fns[i] for i, f in ((0, self._replaced.get("rhs", fns[0])), (1, self._replaced.get("jac", fns[1]))))
 
     @property
     def n_states(self) -> int:
@@ -87,8 +115,11 @@ class TorsionalModel:
 
     @property
     def arrays(self) -> ModelArrays:
-        """The model as plain arrays (atol at rtol 1e-6; an engine rescales it by its own rtol)."""
-        return self.layout.arrays(self.atol(1e-6))
+        """The model as plain arrays (atol at rtol 1e-6; an engine rescales it by its own rtol); built once per
+        model (the engine's choice, its options and the kernel read it)."""
+        if getattr(self, "_arrays", None) is None:
+            self._arrays = self.layout.arrays(self.atol(1e-6))
+        return self._arrays
 
     # ------------------------------------------------------------------------------- start, scales
     def _input_speed(self, t: float = 0.0) -> float:

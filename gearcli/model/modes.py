@@ -150,9 +150,18 @@ def _shape(v: np.ndarray) -> np.ndarray:
 
 
 def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0) -> ModalAnalysis:
-    """Modes of the chain linearised at full load (``duration_s``: the run-up for an unloaded mesh)."""
+    """Modes of the chain linearised at full load (``duration_s``: the run-up for an unloaded mesh); computed once
+    per layout and arguments (a run asks for them for its resonance check and again for its ringing check)."""
     if boundary not in BOUNDARIES:
         raise ValueError(f"boundary must be one of {BOUNDARIES}")
+    cache = lay.__dict__.setdefault("_modal_analyses", {})
+    key = (boundary, float(duration_s))
+    if key not in cache:
+        cache[key] = _modal_analysis(lay, boundary, duration_s)
+    return cache[key]
+
+
+def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
     k, cd = _tangents(lay, duration_s)
     first = 1 if boundary == "clamped_input" else 0
     R = speed_map(lay, range(first, lay.n_bodies))

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core import signals
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
 from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
@@ -103,10 +104,13 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     n = d.size
     kernel = _loaded_kernel()
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-        F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
-                                           np.ascontiguousarray(dd, dtype=float),
-                                           np.ascontiguousarray(phi, dtype=float),
-                                           np.ascontiguousarray(wphi, dtype=float))
+
+        with signals.deferred():  # a signal acted on in plain Python after the call, never inside numba's dispatcher
+            F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float),
+                                               np.ascontiguousarray(d, dtype=float),
+                                               np.ascontiguousarray(dd, dtype=float),
+                                               np.ascontiguousarray(phi, dtype=float),
+                                               np.ascontiguousarray(wphi, dtype=float))
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
     else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
         force, potential, channel = el.force, el.potential, el.channel

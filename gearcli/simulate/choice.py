@@ -37,6 +37,7 @@ from gearcli.core.cost import (
     EXPLICIT_CAP,
     IMPLICIT_MARGIN,
     STIFFNESS_LIMIT,
+    ModelSize,
     predicted_evaluations,
     predicted_wall_s,
 )
@@ -66,6 +67,7 @@ class Choice:
     excited_rad: float = 0.0  # E: radians of the highest excitation harmonic over the run (cost model)
     predicted_s: tuple[float, float] = (0.0, 0.0)  # (DOP853, Radau) predicted wall time on their engines
     engines: tuple[str, str] = ("python", "python")  # the engine each prediction is priced on
+    size: ModelSize = ModelSize()  # what the price per evaluation depends on (gearcli.core.cost.PRICE_US)
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:
@@ -147,6 +149,22 @@ def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration
     return best
 
 
+def model_size(lay: Layout, spec: ModelSpec) -> ModelSize:
+    """The model's size as the price per evaluation sees it (:class:`gearcli.core.cost.ModelSize`)."""
+    meshes = [x for x in lay.connectors if x.role in ("mesh", "planet")]
+
+    def mesh(x) -> object:
+        return spec.meshes[x.index] if 0 <= x.index < len(spec.meshes) else None
+
+    def harmonic(m) -> bool:
+        return m is not None and (any(m.transmission_error_m) or any(m.stiffness_harmonics))
+
+    return ModelSize(states=lay.n_states, meshes=len(meshes), planet_meshes=sum(x.role == "planet" for x in meshes),
+                     time_varying=sum(bool(getattr(mesh(x), "time_varying", False)) for x in meshes),
+                     harmonics=sum(harmonic(mesh(x)) for x in meshes),
+                     motor=lay.drive.motor is not None)
+
+
 def _explicit_refused(indicator: float) -> bool:
     """An explicit run whose stability alone exceeds the explicit budget would be refused (guards)."""
     m = method(EXPLICIT_METHOD)
@@ -186,19 +204,20 @@ def excited_radians(spec: ModelSpec, lay: Layout, duration_s: float) -> float:
 
 def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float = 0.0, rtol: float = 1e-6,
                     engines: dict[str, dict[str, float]] | None = None,
-                    work_factor: float = 1.0) -> tuple[tuple[float, float],
+                    work_factor: float = 1.0, size: ModelSize | None = None) -> tuple[tuple[float, float],
                                                                              tuple[float, float], tuple[str, str],
                                                                              tuple[float, float]]:
     """((DOP853, Radau) evaluations, (DOP853, Radau) predicted wall seconds, the engine each is priced on, and
     the part of each wall time that is loading the engine). ``engines``: per method, the engines that may run
     it and what loading each still costs this process (default: Python only); ``work_factor``: the integrations
-    of the whole run over the run's own (its check pass, ``cost.CHECK_PASS_WORK``), weighed against the load."""
+    of the whole run over the run's own (its check pass, ``cost.CHECK_PASS_WORK``), weighed against the load;
+    ``size``: the model's, for the price per evaluation (:func:`gearcli.core.cost.price_us_per_eval`)."""
     nfev = predicted_evaluations(indicator, vibration_rad, excited_rad, rtol)
     walls, names, loads = [], [], []
     for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), (x * work_factor for x in nfev), strict=True):
         options = (engines or {}).get(name) or {"python": 0.0}
-        best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e]))
-        walls.append(predicted_wall_s(best, name, n, options[best]))
+        best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e], size))
+        walls.append(predicted_wall_s(best, name, n, options[best], size))
         names.append(best)
         loads.append(options[best])
     return nfev, (walls[0], walls[1]), (names[0], names[1]), (loads[0], loads[1])
@@ -221,7 +240,8 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     lin = op if bool(np.any(full.stiffness == 0.0)) else full
     vib = vibration_radians(spec, lay, lin, duration_s, rtol)
     exc = excited_radians(spec, lay, duration_s)
-    nfev, walls, on, loads = predicted_costs(indicator, vib, exc, rtol, engines, work_factor)
+    size = model_size(lay, spec)
+    nfev, walls, on, loads = predicted_costs(indicator, vib, exc, rtol, engines, work_factor, size)
     summary = f"max|λ|·T = {indicator:.3g}"
     costs = (f"predicted DOP853 {nfev[0]:.2g} evaluations ~{walls[0]:.2g} s ({on[0]}), Radau {nfev[1]:.2g} "
              f"~{walls[1]:.2g} s ({on[1]})")
@@ -235,7 +255,7 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
         chosen = IMPLICIT_METHOD
         reason = f"{why}: implicit {chosen} with the analytic Jacobian"
     return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay,
-                  vib, nfev, exc, walls, on)
+                  vib, nfev, exc, walls, on, size)
 
 
 def unit_costs(spec: ModelSpec, repeat: int = 200) -> dict[str, float]:

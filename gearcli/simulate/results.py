@@ -130,6 +130,10 @@ class SolverStats:
     engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
     engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
     compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s
+    #: what auto's cost model predicted for the run's integration: nfev, price_us_per_eval, wall_s (docs/output.md)
+    prediction: JsonObject | None = None
+    #: where an auto run re-decided mid-run: [{at_s, from, to, why}] (gearcli.simulate.course)
+    course_changes: tuple[JsonObject, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -178,6 +182,13 @@ class SteadyState:
     stable: bool | None = None
     bifurcation: str | None = None
     note: str = ""
+    # issue 30: the window shown settled (gearcli.simulate.settle): no start-up transient left at its start
+    # (a fixed window), or a converged periodic state; the largest fitted transient there (of the static force),
+    # the time from which it would be settled, and the runs the window was moved later for it
+    settled: bool | None = None
+    transient_fraction: float | None = None
+    settle_time_s: float | None = None
+    settle_runs: int = 0
 
 
 class BearingStats(TypedDict):
@@ -191,6 +202,13 @@ class BearingStats(TypedDict):
     static_safety_min: NotRequired[float | None]  # ISO 76 s_0 at the window's peak P_0 (with static_load_rating_kN)
 
 
+class StartSummary(TypedDict):
+    """``summary.start``: per stage, the run's peak |F_t| over the rigid-body start's, and that rigid peak (N)."""
+
+    peak_over_rigid: list[float | None]
+    rigid_peak_N: list[float]
+
+
 class SimulationExtra(TypedDict, total=False):
     """What a simulation reports besides its fields: the parametric work of time-varying meshes, auto's
     stiffness indicator, the natural frequencies at the operating point of the run-up, a motor's summary
@@ -201,6 +219,7 @@ class SimulationExtra(TypedDict, total=False):
     natural_frequencies_runup_Hz: list[float]
     motor: dict[str, float | None]
     bearings: list[BearingStats]
+    start: StartSummary  # the run's peak over the rigid-body start's (issue 30)
 
 
 @dataclass(frozen=True)

@@ -40,6 +40,7 @@ MIN_FRACTION = 0.01  # of the stage's static force, at the window's end
 MAX_MODES = 6  # the slowest candidates fitted at once (the fit needs far fewer columns than samples)
 FIT_SAMPLES = 4000  # a longer window is thinned to about this many samples for the fit ...
 SAMPLES_PER_PERIOD = 16  # ... unless that leaves fewer per period of the fastest mode fitted
+TRIALS = 25  # decay rates tried per mode between 0.25 and 4 x the linearised one
 
 
 @dataclass(frozen=True)
@@ -68,14 +69,72 @@ def slow_modes(eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[t
     return sorted(out)[:MAX_MODES]
 
 
-def _lstsq(tau: np.ndarray, x: np.ndarray, modes: list[tuple[float, float]]) -> tuple[np.ndarray, float]:
-    cols = [np.ones_like(tau)]
-    for sigma, omega in modes:
-        env = np.exp(-sigma * tau)
-        cols += [env * np.cos(omega * tau), env * np.sin(omega * tau)]
-    A = np.column_stack(cols)
-    coef, *_ = np.linalg.lstsq(A, x, rcond=None)
-    return coef, float(np.sum((A @ coef - x) ** 2))
+def _columns(tau: np.ndarray, sigma: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> np.ndarray:
+    """Design matrices of the free-decay fit per stage: sigma (S, M) the decay rates, cos and sin (M, n) the
+    modes' oscillations; (S, n, 1 + 2M) with a constant column, then e^(-sigma tau) cos and sin per mode."""
+    env = np.exp(-sigma[:, :, None] * tau)  # (S, M, n)
+    cols = np.stack([env * cos, env * sin], axis=2).reshape(sigma.shape[0], -1, tau.size)  # (S, 2M, n)
+    return np.concatenate([np.ones((sigma.shape[0], 1, tau.size)), cols], axis=1).transpose(0, 2, 1)
+
+
+def _orthonormal(A: np.ndarray) -> np.ndarray:
+    """An orthonormal basis (..., n, r) of the columns of A (..., n, p), dropping the dependent ones' weight."""
+    q, r = np.linalg.qr(A)
+    d = np.abs(np.diagonal(r, axis1=-2, axis2=-1))
+    return q * (d > 1e-12 * np.maximum(d.max(axis=-1, keepdims=True), np.finfo(float).tiny))[..., None, :]
+
+
+def _project_out(q: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """The rows of x ((S, k, n), or (k, n) shared by every stage) minus their projections on the columns of
+    q (S, n, r) (matrix products: BLAS; a shared x is not copied per stage)."""
+    return x - (x @ q) @ q.transpose(0, 2, 1)
+
+
+def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]], *,
+                   refine: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`fit_transient` of every column of ``X`` (shape (n, S): one stage's F_t per column) at once:
+    amplitudes (S, M) at ``t[0]`` and the decay rates used (S, M).
+
+    Vectorised: the modes' oscillations are computed once; refining mode j projects the record and every
+    trial's two columns off the other columns (a variable projection: one small QR per stage), so that the
+    25 trials of all stages are one batched 2 x 2 solve, and the final fit is one batched QR."""
+    X = np.asarray(X, dtype=float).reshape(t.size, -1)
+    S, M = X.shape[1], len(modes)
+    base = np.array(modes, dtype=float).reshape(M, 2)
+    if not modes or t.size < 2 * M + 4:
+        return np.zeros((S, M)), np.broadcast_to(base[:, 0], (S, M)).copy()
+    # a long record is thinned for the fit (its cost is samples x columns x trials), keeping at least
+    # SAMPLES_PER_PERIOD samples per period of the fastest mode fitted (not further: a faster forced response in
+    # the record would alias onto the modes)
+    dt = (t[-1] - t[0]) / max(t.size - 1, 1)
+    fastest = float(base[:, 1].max())
+    stride = max(1, min(t.size // FIT_SAMPLES, int(2 * math.pi / (fastest * dt * SAMPLES_PER_PERIOD)) if dt > 0 else 1))
+    tau = t[::stride] - t[0]
+    Y = X[::stride].T - X[::stride].mean(axis=0)[:, None]  # (S, n), centred: the constant column takes the rest
+    cos, sin = np.cos(base[:, 1:2] * tau), np.sin(base[:, 1:2] * tau)  # (M, n)
+    sigma = np.broadcast_to(base[:, 0], (S, M)).copy()
+    factors = np.geomspace(0.25, 4.0, TRIALS)
+    if refine:
+        for j in range(M):
+            if base[j, 0] <= 0.0:
+                continue
+            keep = [c for c in range(1 + 2 * M) if c not in (1 + 2 * j, 2 + 2 * j)]
+            q = _orthonormal(_columns(tau, sigma, cos, sin)[:, :, keep])  # the other columns, per stage
+            env = np.exp(-(base[j, 0] * factors)[:, None] * tau)  # (TRIALS, n)
+            trial = np.stack([env * cos[j], env * sin[j]], axis=1)  # (TRIALS, 2, n)
+            tp = _project_out(q, trial.reshape(-1, tau.size))
+            tp = tp.reshape(S, TRIALS, 2, tau.size)
+            yp = _project_out(q, Y[:, None, :])  # (S, 1, n)
+            g = tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2)  # (S, TRIALS, 2, 2)
+            b = tp @ yp[:, None, :, :].transpose(0, 1, 3, 2)  # (S, TRIALS, 2, 1)
+            gain = (b * np.linalg.solve(g, b)).sum(axis=(2, 3))
+            sigma[:, j] = base[j, 0] * factors[np.argmax(gain, axis=1)]  # the least residual: the most explained
+    A = _columns(tau, sigma, cos, sin)
+    q, r = np.linalg.qr(A)
+    coef = np.linalg.lstsq(r[0], (q[0].T @ Y[0]), rcond=None)[0][None] if S == 1 else None
+    if coef is None:
+        coef = np.stack([np.linalg.lstsq(r[i], q[i].T @ Y[i], rcond=None)[0] for i in range(S)])
+    return np.hypot(coef[:, 1::2], coef[:, 2::2]), sigma
 
 
 def fit_transient(t: np.ndarray, x: np.ndarray, modes: list[tuple[float, float]], *,
@@ -83,25 +142,16 @@ def fit_transient(t: np.ndarray, x: np.ndarray, modes: list[tuple[float, float]]
     """Amplitude at ``t[0]`` of each mode's free decay in ``x`` (least squares with a constant), and the decay
     rates used: the linearised ones, each refined (``refine``) to the one that fits the record best among
     0.25 .. 4 x it (the nonlinear meshes and couplings damp at their own amplitude: the envelope decides)."""
-    if not modes or t.size < 2 * len(modes) + 4:
-        return [0.0] * len(modes), [s for s, _ in modes]
-    # a long record is thinned for the fit (its cost is samples x columns x trials), keeping at least
-    # SAMPLES_PER_PERIOD samples per period of the fastest mode fitted
-    dt = (t[-1] - t[0]) / max(t.size - 1, 1)
-    fastest = max(w for _, w in modes)
-    stride = max(1, min(t.size // FIT_SAMPLES, int(2 * math.pi / (fastest * dt * SAMPLES_PER_PERIOD)) if dt > 0 else 1))
-    t, x = t[::stride], x[::stride]
-    tau = t - t[0]
-    modes = list(modes)
-    if refine:
-        for j, (sigma, omega) in enumerate(modes):
-            if sigma <= 0.0:
-                continue
-            trials = [(sigma * f, omega) for f in SIGMA_TRIALS]
-            errs = [_lstsq(tau, x, modes[:j] + [m] + modes[j + 1:])[1] for m in trials]
-            modes[j] = trials[int(np.argmin(errs))]
-    coef, _ = _lstsq(tau, x, modes)
-    return [float(math.hypot(coef[1 + 2 * j], coef[2 + 2 * j])) for j in range(len(modes))], [s for s, _ in modes]
+    amplitudes, sigmas = fit_transients(t, np.asarray(x, dtype=float)[:, None], modes, refine=refine)
+    return [float(a) for a in amplitudes[0]], [float(s) for s in sigmas[0]]
+
+
+def can_ring(x: np.ndarray, reference_N: float) -> bool:
+    """Whether a window's record can hold a transient worth a warning: a mode whose amplitude stays at least
+    MIN_FRACTION of the reference through the window spans over half a period of it (:func:`slow_modes`), so it
+    moves the record by at least that much peak to peak; a record that moves by less than half of it is
+    not fitted (a steady, unexcited window: nothing rings)."""
+    return x.size > 0 and float(np.ptp(x)) >= 0.5 * MIN_FRACTION * abs(reference_N)
 
 
 def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
@@ -113,14 +163,17 @@ def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_
         return []
     length = window_s[1] - window_s[0]
     tw = t[mask]
+    refs = [abs(float(ref)) or float(np.mean(np.abs(ft[mask]))) for ft, ref in zip(forces_N, static_N, strict=True)]
+    stages = [k for k, (ft, ref) in enumerate(zip(forces_N, refs, strict=True)) if ref > 0.0 and can_ring(ft[mask], ref)]
     best: dict[int, Ringing] = {}
-    for k, (ft, ref) in enumerate(zip(forces_N, static_N, strict=True)):
-        ref = abs(float(ref)) or float(np.mean(np.abs(ft[mask])))
-        if ref <= 0.0:
-            continue
-        amplitudes, sigmas = fit_transient(tw, ft[mask], modes)
-        for j, a0 in enumerate(amplitudes):
-            sigma, omega = sigmas[j], modes[j][1]
+    if not stages:
+        return []
+    amplitudes, sigmas = fit_transients(tw, np.column_stack([forces_N[k][mask] for k in stages]), modes)
+    for i, k in enumerate(stages):
+        ref = refs[k]
+        for j, a0 in enumerate(amplitudes[i]):
+            sigma, omega = float(sigmas[i, j]), modes[j][1]
+            a0 = float(a0)
             a1 = a0 * math.exp(-sigma * length)
             if a1 < MIN_FRACTION * ref:
                 continue

@@ -13,6 +13,7 @@ from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core import cost
 from gearcli.core.channels import Channel
+from gearcli.core.jsontypes import JsonObject
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
 from gearcli.core.methods import method as method_info
 from gearcli.design.simulated import simulated_ratings
@@ -27,9 +28,11 @@ from gearcli.model.modes import modal_analysis, resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import estimate, ringing, stats
+from gearcli.simulate import estimate, rigid_start, ringing, stats
 from gearcli.simulate import motor as motor_side
+from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
+from gearcli.simulate.course import CourseChange, integrate_auto
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
 from gearcli.simulate.results import (
@@ -50,9 +53,7 @@ from gearcli.simulate.solver import (
     STATUS_FINISHED,
     STATUS_NONFINITE,
     STATUS_PROJECTED,
-    STATUS_SWITCH,
     Integration,
-    integrate,
 )
 
 if TYPE_CHECKING:
@@ -65,7 +66,7 @@ StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] 
 def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None = None, rtol: float | None = None,
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
-                   error_estimate: bool | None = None,
+                   error_estimate: bool | None = None, settle: bool | str | None = None,
                    progress: Callable[[float], None] | None = None) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``series`` empty (the statistics
@@ -73,7 +74,10 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     (:func:`gearcli.simulate.guards.nfev_budget`); ``y0`` overrides the initial state (continuation:
     :meth:`gearcli.model.TorsionalModel.continue_state`); ``model``: the scene's model when the caller has
     already built it (a sweep point), else built here; ``error_estimate`` (default
-    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`. The design's own
+    ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`; ``settle`` (default: when
+    ``[rating] dynamic_factor = "simulated"``; ``"window"``: without the periodic fallback) repeats a run whose fixed
+    window is not settled with a later window
+    (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it). The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -83,14 +87,26 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = _design_diagnostics(design)
-    result = simulate_model(model, duration_s=sim.duration_s,
-                            steps=sim.steps, method=method or sim.method, rtol=rtol or sim.rtol,
-                            window_start_s=sim.window_start_s, want_series=want_series, max_nfev=max_nfev, y0=y0,
-                            steady=sim.steady, error_estimate=check, prior_diagnostics=design_diags,
-                            engine=sim.engine, progress=progress)
+    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
+        return simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
+                              rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
+                              max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
+                              prior_diagnostics=design_diags, engine=sim.engine, progress=progress)
+
+    result = run(sim.duration_s, sim.steps, sim.window_start_s)
+    if settle is None:
+        settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
+    if settle:
+        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window")
 
     stages, rating_diags = simulated_ratings(cfg, design, result.stages)
     new = [d for d in rating_diags if d.message not in result.warnings]
+    if cfg.rating is not None and cfg.rating.dynamic_factor == "simulated" and result.steady is not None \
+            and result.steady.settled is False:  # never silently: the K_v rated at carries the start's transient
+        new.append(dg.warning(dg.WINDOW_NOT_SETTLED, '[rating] dynamic_factor = "simulated": the K_v the stages are '
+                              "rated at comes from a window that is not settled (it includes the start-up "
+                              "transient, see the window's warning): give a longer simulation.duration_s or "
+                              '[simulation] steady = "periodic"', statistic="K_v"))
     return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
                    diagnostics=result.diagnostics + tuple(new))
 
@@ -137,12 +153,14 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     nfev_estimate = work * predicted_nfev(choice)
     if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
         nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s)
-    eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced)
+    eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced, choice.size)
     eng = _loadable(eng)
+    first_engine = eng.engine  # what the prediction is priced on (a course change may move the run)
     fallback = [dg.warning(dg.ENGINE_FALLBACK, f'engine = "compiled": this scene runs on the Python engine: '
                            f"{eng.reason}", unsupported=list(eng.unsupported))] \
         if eng.unsupported and engine == "compiled" else []
     mask_window, steady_state, energy_from = window, None, 0
+    changes: list[CourseChange] = []
     if steady == "periodic":
         diags = []  # the fixed window's warning does not apply: the window is found, not set
         found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
@@ -157,22 +175,20 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags += steady_warnings(steady_state, found.period)
     else:
         t_eval = np.linspace(0.0, duration_s, steps + 1)
-        run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
-                        pace_limit_s=_pace_limit(eng, choice, model), progress=progress)
-        if run.status == STATUS_SWITCH:  # scipy far slower than predicted: the compiled engine runs it instead
-            fallback.append(dg.warning(dg.SLOW_PACE, f"{run.method} on scipy was far slower than the cost model "
-                                       f"predicted ({run.message}): the run went on on the compiled engine"))
-            eng = _loadable(EngineChoice("compiled", eng.requested, f"switched from scipy at t = {run.t_fail:.3g} s: "
-                                         f"{run.message}"))
-            run = integrate(model, t_eval, choice.method, rtol, y0=y0, max_nfev=max_nfev, engine=eng.engine,
-                            progress=progress)
+        run, changes = integrate_auto(model, t_eval, choice, rtol, eng.engine, requested_engine=eng.requested,
+                                      y0=y0, max_nfev=max_nfev, progress=progress,
+                                      enabled=choice.requested == AUTO and getattr(model, "generated", True))
+        if changes:
+            eng = replace(eng, engine=run.engine, reason=f"{eng.reason}; then {changes[-1].to} from "
+                          f"t = {changes[-1].at_s:.4g} s (solver.course_changes)")
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y) if not energy_from else \
         model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
-    diags = prior + diags + fallback + _pace_warnings(run, choice) + stats.model_warnings(spec) \
+    diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
+        + stats.model_warnings(spec) \
         + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
@@ -194,25 +210,20 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags.append(tightened)
     result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
                         ref, stat_diags, eng.reason)
+    result = replace(result, solver=replace(result.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
+                                            course_changes=tuple(c.as_json() for c in changes)))
     _require_finite(result)
     return result
 
 
-def _pace_limit(eng: EngineChoice, choice: Choice, model: TorsionalModel) -> float | None:
-    """The priced work past which an ``auto`` run on scipy goes on on the compiled engine instead (its pace, in
-    the priced work of its counters, projected over ``PACE_SWITCH_FACTOR`` times its prediction: deterministic),
-    or None when no switch is possible (another engine requested, numba missing or not compiled yet, an
-    unsupported scene) or sound: only DOP853 and RK45 switch, whose compiled runs take scipy's steps, so that
-    the switch changes no number."""
-    if eng.requested != "auto" or eng.engine != "python" or eng.unsupported or not engine.available():
-        return None
-    if choice.method not in engine.BIT_IDENTICAL:  # a switch must not change a number: DOP853 and RK45 only
-        return None
-    if not getattr(model, "generated", True) or engine.unsupported(model.arrays, choice.method):
-        return None
-    if engine.load_share_s() >= cost.COMPILE_S:  # never into a compilation
-        return None
-    return cost.PACE_SWITCH_FACTOR * cost.predicted_wall_s("python", choice.method, predicted_nfev(choice))
+def prediction(choice: Choice, engine: str, nfev: float) -> JsonObject:
+    """``solver.prediction``: what ``auto``'s cost model predicted for the run's own integration (the chosen
+    method on the engine first chosen; the check pass aside): evaluations, the price per evaluation of this
+    model's size on that engine (:func:`gearcli.core.cost.price_us_per_eval`) and their product plus the engine's
+    fixed cost per run."""
+    price = cost.price_us_per_eval(engine, choice.method, choice.size)
+    return {"nfev": float(nfev), "price_us_per_eval": price,
+            "wall_s": cost.RUN_FIXED_S.get(engine, 0.0) + nfev * price * 1e-6}
 
 
 def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
@@ -221,12 +232,12 @@ def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
     if run.method not in (EXPLICIT_METHOD, IMPLICIT_METHOD):
         return []
     n = predicted_nfev(choice)
-    took = cost.predicted_wall_s(run.engine, run.method, run.nfev)
+    took = cost.predicted_wall_s(run.engine, run.method, run.nfev, size=choice.size)
     if took < cost.PACE_MIN_S or run.nfev < cost.PACE_WARN_FACTOR * n:
         return []
     return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
                        f"{run.nfev / n:.2g}x the {n:.2g} the cost model predicted (~{took:.2g} s against "
-                       f"~{cost.predicted_wall_s(run.engine, run.method, n):.2g} s); method = \"auto\" may have chosen "
+                       f"~{cost.predicted_wall_s(run.engine, run.method, n, size=choice.size):.2g} s); method = \"auto\" may have chosen "
                        "the slower method here (docs/numerics.md, \"Choosing the method: auto\")",
                        nfev=run.nfev, predicted_nfev=n)]
 
@@ -407,8 +418,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     diags += ratio_warnings + stats.contact_warnings(spec, mask, [ms.penetration_m for ms in s.meshes],
                                                      choice.at_full_load.penetration_m)
-    diags += stats.peak_warnings(spec, [float(np.max(np.abs(ms.line_force_N))) for ms in s.meshes],
-                                 choice.at_operating_point.line_forces_N)
+    start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
+                                                       [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID)
+    diags += start_diags
     motor_summary = None
     if model.layout.drive.motor is not None:
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
@@ -422,6 +434,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     if not periodic:
         diags += ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
                                   [st.simulated_static_tangential_N or 0.0 for st in stages], window)
+    steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
+                                       motor_summary, diags)
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -441,7 +455,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
-               **({"motor": motor_summary} if motor_summary is not None else {})},
+               **({"motor": motor_summary} if motor_summary is not None else {}),
+               **({"start": start_doc} if start_doc else {})},
     )
 
 

@@ -31,7 +31,7 @@ import numpy as np
 from scipy.integrate import OdeSolver
 
 from gearcli import engine
-from gearcli.core import cost
+from gearcli.core import cost, signals
 from gearcli.core.cost import BUDGET_CHECK_EVERY
 from gearcli.core.cost import CAP as MAX_NFEV
 from gearcli.core.methods import METHODS, scipy_solver
@@ -63,6 +63,7 @@ class Integration:
     t_fail: float  # where it stopped
     engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
     compile_s: float = 0.0  # compiled engine: numba import and kernel load/compilation, not in wall_s
+    y_end: np.ndarray | None = None  # the state at t_fail where a course change stopped a Python run
 
 
 def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end: float, rtol: float,
@@ -99,6 +100,18 @@ def tolerances(model: TorsionalModel, rtol: float, watch: EnergyWatch | None) ->
 
 
 @dataclass
+class CourseLimit:
+    """An ``auto`` run's limit (:mod:`gearcli.simulate.course`): past these evaluations or this time the Python
+    engine asks ``decide(t, y, nfev)`` at the state reached; a reason stops the run there (``STATUS_SWITCH``,
+    ``Integration.y_end`` the state) for ``auto`` to go on otherwise, None lets it run on undisturbed (no more
+    checks)."""
+    nfev: float
+    wall_s: float
+    decide: Callable[[float, np.ndarray, int], str | None] | None = None
+    spent: bool = False
+
+
+@dataclass
 class _Counters:
     nfev: int = 0
     njev: int = 0
@@ -114,7 +127,8 @@ class _Counters:
 def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: float, *,
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
               t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python",
-              pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None) -> Integration:
+              pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None,
+              course: CourseLimit | None = None) -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
     drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
@@ -129,7 +143,8 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     ``pace_limit_s`` (Python engine): once the run has used ``cost.PACE_SWITCH_AFTER_S`` of priced work
     (:func:`gearcli.core.cost.priced_work_s`), a pace that projects the whole run over this many priced
     seconds stops it with ``STATUS_SWITCH`` (the caller goes on on
-    the compiled engine). ``progress``: called with the fraction of the run done, every few hundred steps (a
+    the compiled engine). ``course`` (Python engine): the evaluations and wall time past which an ``auto`` run
+    stops with ``STATUS_SWITCH`` to re-decide (:mod:`gearcli.simulate.course`). ``progress``: called with the fraction of the run done, every few hundred steps (a
     terminal's progress bar; never printed here); a compiled run reports it every :data:`PROGRESS_EVERY_S`
     (:func:`_kernel_with_progress`).
     """
@@ -147,18 +162,19 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     done = int(np.searchsorted(t_eval, t0, side="right"))
     count = _Counters()
     start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
+    cpu_start = time.thread_time()
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
                                          (0.0, float(t_eval[-1])), METHODS[method].implicit,
-                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress))
+                                         _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress, course, cpu_start))
         count.add(solver)
         t, y = float(solver.t), solver.y
         if status != STATUS_FINISHED:
             break
     wall = time.perf_counter() - start
     return Integration(t_eval, out, method, rtol, atol, count.nfev, count.njev, count.nlu, count.steps, wall, status,
-                       message, t)
+                       message, t, y_end=np.array(y, dtype=float) if status == STATUS_SWITCH else None)
 
 
 @dataclass(frozen=True)
@@ -168,13 +184,24 @@ class _Pace:
     t_end: float
     limit_s: float | None
     progress: Callable[[float], None] | None
+    course: CourseLimit | None = None
+    started: float = 0.0  # time.thread_time() at the run's start
 
-    def check(self, t: float, work_s: float) -> tuple[int, str] | None:
-        """Report progress; stop for the switch when the priced work ``work_s`` (deterministic, unlike the wall
-        clock) projects the run over the limit."""
+    def check(self, t: float, work_s: float, nfev: int = 0, y: np.ndarray | None = None) -> tuple[int, str] | None:
+        """Report progress; stop for ``auto`` to re-decide when the run has spent its course limit (evaluations
+        or wall time), or for the switch when the priced work ``work_s`` projects the run over the limit."""
         done = (t - self.t0) / (self.t_end - self.t0) if self.t_end > self.t0 else 1.0
         if self.progress is not None:
             self.progress(done)
+        if self.course is not None and not self.course.spent:
+            # the run's own time: the CPU time of this thread, which other jobs on a shared machine do not inflate
+            # (the wall clock would let the machine's load decide the course)
+            spent = time.thread_time() - self.started
+            if nfev > self.course.nfev or spent > self.course.wall_s:
+                self.course.spent = True
+                why = self.course.decide(t, y, nfev) if self.course.decide is not None and y is not None else "limit"
+                if why is not None:
+                    return STATUS_SWITCH, why
         if self.limit_s is None:
             return None
         if work_s > cost.PACE_SWITCH_AFTER_S and done > 0 and work_s / done > self.limit_s:
@@ -212,7 +239,8 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             njev, nlu = count.njev + getattr(solver, "njev", 0), count.nlu + getattr(solver, "nlu", 0)
             stop = _budget_stop(nfev, njev, nlu, count.steps, implicit, float(solver.t), span)
             if stop is None and pace is not None:
-                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit))
+                stop = pace.check(float(solver.t), priced_work_s(nfev, njev, nlu, count.steps, implicit), nfev,
+                                  solver.y)
             if stop is not None:
                 return (*stop, done)
         if watch is not None and (count.steps % watch.every == 0 or solver.status != "running"):
@@ -240,13 +268,13 @@ PROGRESS_EVERY_S = 0.1  # how often a compiled run's progress is reported
 
 def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.ndarray, span: tuple[float, float],
                           progress: Callable[[float], None] | None) -> tuple:
-    """``kernel(*args)``; with ``progress``, the kernel runs in a worker thread (it releases the GIL) and this
-    thread reports the time it has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) as the
-    fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are those of a run
-    without progress; the thread costs ~0.1 ms. The worker is a daemon: an interrupted command does not wait for
-    the kernel to finish."""
-    if progress is None:
-        return kernel(*args)
+    """``kernel(*args)`` in a worker thread (the kernel releases the GIL) while this thread waits with SIGINT,
+    SIGTERM and SIGHUP held back (:func:`gearcli.core.signals.deferred`): a signal raises the kernel's stop flag
+    (``wpar[status.WP_STOP]``), the kernel returns at its next step, and the signal is acted on here once it has
+    (KeyboardInterrupt or ``Terminated``), never while machine code runs under an unwinding interpreter. With
+    ``progress``, the time the kernel has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) is
+    reported as the fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are
+    those of a run without progress; the thread costs ~0.1 ms. ``wpar`` must have both entries."""
     box: dict[str, Any] = {}
 
     def work() -> None:
@@ -255,18 +283,19 @@ def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.nd
         except BaseException as exc:  # handed to the calling thread below
             box["exc"] = exc
 
-    worker = threading.Thread(target=work, name="gearcli-kernel", daemon=True)
-    worker.start()
     length = span[1] - span[0]
 
     def report() -> None:
-        if length > 0:
+        if progress is not None and length > 0:
             progress(min(1.0, max(0.0, (float(wpar[st.WP_PROGRESS]) - span[0]) / length)))
 
-    while worker.is_alive():
-        worker.join(PROGRESS_EVERY_S)
-        report()
-    report()  # where the kernel stopped (its last budget check), also when it finished before the first poll
+    with signals.deferred(wpar, st.WP_STOP):
+        worker = threading.Thread(target=work, name="gearcli-kernel", daemon=True)
+        worker.start()
+        while worker.is_alive():
+            worker.join(PROGRESS_EVERY_S)
+            report()
+        report()  # where the kernel stopped (its last budget check), also when it finished before the first poll
     if "exc" in box:
         raise box["exc"]
     return box["out"]
@@ -282,7 +311,8 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
         raise SimulationError(f"the compiled engine integrates {', '.join(engine.COMPILED_METHODS)} only, "
                               f"not {method}")
     loaded = engine.load()
-    compile_s = loaded.load_s if not _COMPILED_USED else 0.0
+    kernel, entry_s = engine.entry(method)
+    compile_s = (loaded.load_s if not _COMPILED_USED else 0.0) + entry_s
     _COMPILED_USED.append(True)
     n = y.size
     rtol_v = np.array(np.broadcast_to(np.asarray(rtol, dtype=float), (n,)))  # writable: one kernel signature
@@ -297,10 +327,9 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
                      cost.PROJECTION_LIMIT,
                      float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
                      p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])]
-                    + ([t0] if progress is not None else []))  # the kernel writes the time reached there
+                    + [t0, 0.0])  # the kernel writes the time reached there; a signal raises the stop flag
     every = np.int64(watch.every if watch is not None else 0)
     start = time.perf_counter()
-    kernel = {"DOP853": loaded.kernel.dop853, "RK45": loaded.kernel.rk45, "Radau": loaded.kernel.radau}[method]
     args = (engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float), np.ascontiguousarray(t_eval, dtype=float),
             breaks, rtol_v, atol_v, np.int64(max_nfev), every, wpar, np.empty(0))
     out, counters, floats, _ = _kernel_with_progress(kernel, args, wpar, (t0, float(t_eval[-1])), progress)

@@ -22,6 +22,7 @@ from gearcli.config import DesignFile, LoadedDesign
 from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
 from gearcli.config.load import integer_keys
 from gearcli.core.jsontypes import JsonObject
+from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
@@ -93,6 +94,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
     check_keys(scene, spec.branches()[0][0])
     _no_continuous_integers(spec, scene)
+    check_motor_speed(spec.keys, loaded.design, loaded.source)
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
@@ -117,6 +119,26 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
         raise SweepUsageError(f"{d.key} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
                               "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")
+
+
+SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
+
+
+def check_motor_speed(keys: Sequence[str], cfg: DesignFile, source: str) -> None:
+    """A speed sweep on a motor drive: with ``starting = "vfd"`` the drive's supply follows each row's speed
+    (:func:`gearcli.scene.motor_spec`); any other start runs at its own curve's speed, so varying the input speed
+    would design each row at a speed the motor does not run: refused (exit 2) naming what to vary instead."""
+    if cfg.input.drive != "motor" or cfg.input.starting == "vfd" or "input.drive" in keys:
+        return
+    varied = [k for k in keys if k in SPEED_KEYS]
+    if varied:
+        raise ConfigError(f'drive = "motor" with starting = "{cfg.input.starting}": the motor runs at the speed its '
+                          "curve and the load give, so varying the input speed would design each row at a speed the "
+                          "motor does not run. Vary it with a frequency converter (--set 'input.starting=\"vfd\"': "
+                          "the supply follows each row's speed), sweep a prescribed speed "
+                          "(--set 'input.drive=\"speed\"'), "
+                          "or vary the load (load.torque_Nm) or the motor (input.motor) instead",
+                          source=source, key=varied[0])
 
 
 def capped_jobs(jobs: int | None, cfg: DesignFile, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:

@@ -25,6 +25,7 @@ from gearcli.results import DesignResult
 from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
 from gearcli.sweep.continuation import Carried, jump_note, on_branch
+from gearcli.sweep.family import Family
 from gearcli.sweep.spec import Point
 
 
@@ -63,11 +64,11 @@ class CaseDesigner(Protocol):
 class PointEvaluator(Protocol):
     """Loads, designs and simulates one variant of a scene, continued from ``start`` (a previous point's final
     state) when given. ``series``: keep the time series; ``check``: run the check pass (None: the file's
-    ``simulation.error_estimate``). A sweep point keeps neither (it would double a sweep's cost; README
-    "Honest statistics")."""
+    ``simulation.error_estimate``). A sweep point keeps no series; its check pass is shared by its task's
+    points (:mod:`gearcli.sweep.family`: paid at every point it would double a sweep's cost)."""
 
     def __call__(self, scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
-                 series: bool = False, check: bool | None = False) -> Evaluation: ...
+                 series: bool = False, check: bool | None = False, settle: bool | str = True) -> Evaluation: ...
 
 
 @dataclass(frozen=True)
@@ -80,21 +81,27 @@ class Task:
     runs_hint: int = 0  # about how many points the worker running this task will do (engine = "auto")
 
 
-def _evaluate(evaluate: PointEvaluator, scene: Scene, point: Point, prev: Carried | None) -> Evaluation:
+def _evaluate(evaluate: PointEvaluator, scene: Scene, point: Point, prev: Carried | None,
+              check: bool = False) -> Evaluation:
     """Simulate one point (continued from the previous point's ``prev`` when given) with the injected
-    evaluator."""
-    return evaluate(scene, point.overrides(), prev)
+    evaluator; ``check``: with its check pass (:mod:`gearcli.sweep.family`)."""
+    return evaluate(scene, point.overrides(), prev, check=check) if check else evaluate(scene, point.overrides(), prev)
 
 
 def iter_task(task: Task) -> Iterator[Row]:
-    """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded)."""
+    """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded). The task's
+    points are one family whose error estimate is shared (:mod:`gearcli.sweep.family`)."""
+    family = Family()
     with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
         prev = None
         before: _Before | None = None  # the previous ok point of the branch
         for point in task.points:
             t0 = time.perf_counter()
             try:
-                _, result, carried = _evaluate(task.evaluate, task.scene, point, prev if task.continuation else None)
+                check = family.needs_check(point.index)
+                _, result, carried = _evaluate(task.evaluate, task.scene, point, prev if task.continuation else None,
+                                               check)
+                shared = family.checked(one_line(str(point.values)), result) if check else family.carried(result)
                 jump = _jump(task, before, point, result) if task.continuation else ""
             except GearcliError as exc:
                 prev = before = None
@@ -105,7 +112,8 @@ def iter_task(task: Task) -> Iterator[Row]:
             else:
                 prev, before = carried, _Before(point, result, carried)
                 row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
-                             message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings))))
+                             message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings)
+                                                        + tuple(shared or ()))))
             if point.index not in task.skip:
                 yield {"_index": point.index, **row}
 

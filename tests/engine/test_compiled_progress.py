@@ -50,7 +50,7 @@ def test_an_error_in_the_worker_reaches_the_caller():
         raise ValueError("from the kernel")
 
     with pytest.raises(ValueError, match="from the kernel"):
-        solver._kernel_with_progress(kernel, (), np.zeros(16), (0.0, 1.0), lambda f: None)
+        solver._kernel_with_progress(kernel, (), np.zeros(17), (0.0, 1.0), lambda f: None)
 
 
 def _run_on_a_terminal(args: list[str]) -> tuple[int, bytes]:

@@ -105,11 +105,13 @@ def test_a_run_from_t0_is_scipys_on_both_engines(name):
 
 def _numbers(x, path=""):
     """Every number of a JSON document by its path, run-dependent timings and the engine's own keys left out (the
-    method choice's reason too: it quotes the wall times predicted on the run's engine)."""
+    method choice's reason too: it quotes the wall times predicted on the run's engine; the prediction: its price is
+    the engine's)."""
     if isinstance(x, dict):
         out = {}
         for k, v in x.items():
-            if k not in ("wall_s", "compile_s", "engine", "engine_reason", "choice_reason", "input_sha256"):
+            if k not in ("wall_s", "compile_s", "engine", "engine_reason", "choice_reason", "input_sha256",
+                         "prediction"):
                 out.update(_numbers(v, f"{path}.{k}"))
         return out
     if isinstance(x, list):

@@ -193,7 +193,7 @@ def test_life_over_the_duty_by_hand(tmp_path):
 
 
 def test_life_counts_the_starts_given_to_it(tmp_path, monkeypatch):
-    """The starts' entry (``START_PEAKS_HOOK``, which the ``starts`` work fills from its start records): one
+    """The starts' entry (``start_bearings``, made from each point's start record): one
     point's starts with a peak P_0 twice the duty's halve s_0, and their revolutions at their own load and speed
     are one more Palmgren–Miner level of L10 and L_nm (checked by hand from the points' own levels)."""
     from gearcli.life import run
@@ -205,7 +205,7 @@ def test_life_counts_the_starts_given_to_it(tmp_path, monkeypatch):
     p_start, n_start, rpm_start = 1.5 * max(base["loads_N"]), 2e6, 750.0
     start = StartBearings(1, (n_start,) * n_b, (p_start,) * n_b, (rpm_start,) * n_b,
                           (2 * base["static_equivalent_load_N"],) * n_b)
-    monkeypatch.setattr(run, "START_PEAKS_HOOK", lambda points: [start])
+    monkeypatch.setattr(run, "start_bearings", lambda points: [start])
     started = _json(tmp_path, "life", text, "--static", "-q")["life"]["bearings"][0]
     assert_allclose(started["static_safety"], base["static_safety"] / 2, rtol=1e-12)
     assert_allclose(started["revolutions"], base["revolutions"] + n_start, rtol=1e-12)

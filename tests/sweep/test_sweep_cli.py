@@ -99,11 +99,11 @@ def _counting(monkeypatch, fail_after=None):
     calls = []
     real = REAL_EVALUATE
 
-    def evaluate(evaluator, scene, point, prev):
+    def evaluate(evaluator, scene, point, prev, check=False):
         if fail_after is not None and len(calls) == fail_after:
             raise KeyboardInterrupt
         calls.append(point.index)
-        return real(evaluator, scene, point, prev)
+        return real(evaluator, scene, point, prev, check)
 
     monkeypatch.setattr(worker, "_evaluate", evaluate)
     return calls

@@ -11,7 +11,8 @@ from gearcli.sweep.spec import Point
 from gearcli.sweep.worker import Scene, Task, run_task
 
 TE_SCENE = Path(__file__).resolve().parents[2] / "configs" / "spur_oscillator_te.toml"
-SHORT = ("simulation.duration_s=0.03", "simulation.steps=600")
+# on scipy: the generated code is what integrates (a run on the compiled engine never builds it)
+SHORT = ("simulation.duration_s=0.03", "simulation.steps=600", "simulation.engine=python")
 
 
 def _points(direction: str, speeds) -> tuple[Point, ...]:

@@ -1,0 +1,229 @@
+"""The rigid-body start: the drivetrain without compliance, run up with the same drive and load law as the
+simulation (docs/physics.md, "Rigid-body start"), the reference of ``summary.start.peak_over_rigid``.
+
+Rigid kinematics: body i turns at ``rho_i w`` (w the input body's speed). A motor drive integrates
+
+    (J_0 + f sum_{i>0} J_i rho_i^2) dw/dt = T_m(t, w) - f rho_N T_L(t, rho_N w),
+
+(T_m the motor's curve with its starting method, :func:`gearcli.model.elements.machine.motor_torque`; T_L the
+load torque with its ramp and speed law; f = 1 / prod eta the losses of the meshes, forward power flow, applied to
+the whole torque downstream of the input body), a torque drive the same with its input torque ramp, a speed drive
+takes its prescribed ramp. The mesh force follows from the torque transmitted through the stage: everything
+downstream of the mesh's driven body, its inertia reaction plus the load,
+
+    F_c = f_c (sum_{i >= b} J_i rho_i^2 / rho_b dw/dt + rho_N / rho_b T_L) / r_b,
+
+(f_c the losses of the meshes from c on, as the statics; a planet mesh: the stage's output torque times its lever).
+The estimate's peak is the largest |F_t| of each stage over the run; ``peak_over_rigid`` is the simulated peak over
+it. The cause of a large ratio is named from the run: a step of the drive or the load at t = 0, the motor's torque
+at breakdown, a resonance passage (an excited mesh's order crossing the swinging mode during the run-up) and the
+swing of the drivetrain's mode that the start excites (the deviation from the rigid force projected on each mode).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
+from gearcli.model.assembly import Layout
+from gearcli.model.elements import machine, mesh
+from gearcli.model.modes import modal_analysis
+from gearcli.model.outputs import tooth_forces
+from gearcli.model.step import ramp, ramp_motion
+from gearcli.simulate.results import StartSummary
+
+SAMPLES = 2001
+SWING_FRACTION = 0.02  # a mode swinging with less than this of the rigid peak is not named
+
+
+@dataclass(frozen=True)
+class RigidStart:
+    time_s: np.ndarray
+    speed_rad_s: np.ndarray  # the input body's speed
+    accel_rad_s2: np.ndarray
+    load_Nm: np.ndarray  # the load torque at the load body
+    line_forces_N: np.ndarray  # (connectors, samples)
+    tangential_N: np.ndarray  # (stages, samples): F_t of each stage's (first) mesh
+
+
+def _load_torque(lay: Layout, t: float | np.ndarray, w_load: float | np.ndarray) -> np.ndarray:
+    """The load torque at time t and load speed w_load (its ramp times its speed law)."""
+    base = np.asarray(ramp(np.asarray(t, float), lay.load.ramp_s, lay.load.torque_Nm), float)
+    if not lay.load_law:
+        return base * np.ones_like(np.asarray(w_load, float))
+    g = np.vectorize(lambda w: machine.load_factor(lay.load_law, float(w))[0])(w_load)
+    return base * g
+
+
+def loss_factors(lay: Layout) -> np.ndarray:
+    """Per connector, 1 / prod eta of the lossy meshes from it on (forward power flow), as the statics."""
+    out = np.ones(lay.n_conn)
+    factor = 1.0
+    for c in range(lay.n_conn - 1, -1, -1):
+        x = lay.connectors[c]
+        if x.lossy:
+            eta = x.params[mesh.I_ETA]
+            factor *= 1.0 / eta if lay.load.torque_Nm >= 0 else eta
+        out[c] = factor
+    return out
+
+
+def _first_power_connector(lay: Layout) -> int | None:
+    return next((c for c, x in enumerate(lay.connectors) if x.role and x.load_body < 0), None)
+
+
+def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidStart:
+    """The rigid start over [0, duration_s] (module text)."""
+    from scipy.integrate import solve_ivp  # lazy: scipy, start-up time
+
+    rho = np.array([b.ratio for b in lay.bodies])
+    J = np.asarray(lay.inertias, float)
+    f = loss_factors(lay)
+    c0 = _first_power_connector(lay)
+    f0 = f[c0] if c0 is not None else 1.0
+    j_eff = float(J[0] + f0 * (J[1:] @ rho[1:] ** 2))
+    t = np.linspace(0.0, duration_s, samples)
+    if lay.speed_drive:
+        _, w, a = (np.asarray(x, float) * np.ones_like(t) for x in ramp_motion(t, lay.drive.ramp_s,
+                                                                                 lay.drive.speed_rad_s))
+    else:
+        row = lay.motor_row if lay.motor_drive else ()
+
+        def drive(tt: float, w: float) -> float:
+            if lay.motor_drive:
+                return machine.motor_torque(row, tt, w)[0]
+            return float(ramp(tt, lay.drive.ramp_s, lay.drive.torque_Nm))
+
+        def rhs(tt: float, y: np.ndarray) -> list[float]:
+            load = float(_load_torque(lay, tt, y[0] * rho[-1]))
+            return [(drive(tt, y[0]) - f0 * rho[-1] * load) / j_eff]
+
+        w0 = 0.0
+        sol = solve_ivp(rhs, (0.0, duration_s), [w0], t_eval=t, method="LSODA", rtol=1e-9, atol=1e-9,
+                        max_step=duration_s / 200)
+        w = sol.y[0] if sol.success and sol.y.shape[1] == t.size else np.interp(t, sol.t, sol.y[0])
+        a = np.array([rhs(tt, np.array([ww]))[0] for tt, ww in zip(t, w, strict=True)])
+    load = _load_torque(lay, t, w * rho[-1])
+    forces = np.zeros((lay.n_conn, t.size))
+    for c, x in enumerate(lay.connectors):
+        if not x.role:
+            continue
+        b = x.load_body if x.load_body >= 0 else x.b
+        downstream = float(J[b:] @ rho[b:] ** 2) / rho[b]
+        torque = downstream * a + load * rho[-1] / rho[b]
+        forces[c] = f[c] * torque * (x.load_lever if x.load_body >= 0 else 1.0 / x.rb)
+    ft = np.array([tooth_forces(lay, k, forces[c])[0] for k, c in enumerate(lay.stage_conn)])
+    return RigidStart(t, w, a, load, forces, ft)
+
+
+def cause(lay: Layout, rigid: RigidStart, peak_time_s: float, swinging: tuple[float, str, float] | None) -> str:
+    """What makes the start's peak (module text), in words for the ``peak_over_rigid`` warning; ``swinging`` the
+    mode that swings in the start (:func:`swing`)."""
+    parts = []
+    steps = []
+    if lay.drive.kind == "speed" and lay.drive.ramp_s == 0 and lay.drive.speed_rad_s != 0:
+        steps.append("[input] speed")
+    if lay.drive.kind == "torque" and lay.drive.ramp_s == 0 and lay.drive.torque_Nm != 0:
+        steps.append("[input] torque")
+    if lay.load.ramp_s == 0 and abs(float(_load_torque(lay, 0.0, 0.0))) > 0:
+        steps.append("[load]")
+    if steps:
+        parts.append(f"the {' and '.join(steps)} step at t = 0 (ramp_s = 0) shocks the mesh: give ramp_s > 0 "
+                     "(several periods of the lowest natural frequency) for a smooth run-up; a tighter rtol does not "
+                     "change a physical shock")
+    if lay.motor_drive and lay.drive.motor is not None:
+        t_lr = machine.motor_torque(lay.motor_row, 0.0, 0.0)[0]
+        parts.append(f"the motor applies its locked-rotor torque ({t_lr:.4g} N·m) at once when switched on and "
+                     f"its breakdown torque ({lay.drive.motor.peak_torque_Nm:.4g} N·m) on the way up: a torque "
+                     "step that an elastic drivetrain answers with up to twice the rigid-body force")
+    if swinging is not None:
+        f, element, amplitude = swinging
+        passage = resonance_passage(lay, rigid, peak_time_s, f)
+        dominated = f" (dominated by the {element})" if element else ""
+        parts.append((passage + ", and " if passage else "") +
+                     f"the {f:.3g} Hz mode{dominated} swings with ±{amplitude:.4g} N about the rigid-body force "
+                     "during the start: more damping there or a gentler start (soft start, VFD, longer ramps) "
+                     "lowers it")
+    return "; ".join(parts) if parts else ("no step, motor torque or swinging mode explains it: a violent impact or "
+                                           "a numerical artefact — check with a tighter rtol")
+
+
+def resonance_passage(lay: Layout, rigid: RigidStart, peak_time_s: float, mode_Hz: float | None) -> str:
+    """An excited mesh's order (1x its mesh frequency: a transmission error or a varying stiffness) crossing
+    ``mode_Hz`` during the run-up before the peak, named with its time; empty when none does."""
+    if mode_Hz is None or mode_Hz <= 0:
+        return ""
+    orders: list[tuple[str, float]] = []  # Hz per (rad/s of the input body)
+    for c in lay.stage_conn:
+        x = lay.connectors[c]
+        if not x.element.makes_excitation(x.params):  # a mesh without excitation makes no order to pass through
+            continue
+        try:
+            period = x.element.cycle_period_s(x.params, lay.bodies[x.a].ratio)
+        except (AttributeError, ZeroDivisionError, ValueError):
+            continue
+        if period and math.isfinite(period):
+            orders.append((f"stage {x.index + 1}'s mesh frequency", 1.0 / period))
+    w = np.abs(rigid.speed_rad_s)
+    for name, order in orders:
+        f = order * w
+        hit = np.nonzero((f[:-1] < mode_Hz) & (f[1:] >= mode_Hz))[0]
+        if hit.size and rigid.time_s[hit[0]] <= peak_time_s:
+            return (f"{name} passes through the {mode_Hz:.3g} Hz mode at {rigid.time_s[hit[0]]:.3g} s of the run-up "
+                    "(a resonance passage)")
+    return ""
+
+
+def swing(t: np.ndarray, deviation: np.ndarray, modes: list[tuple[float, str]],
+          min_amplitude_N: float) -> tuple[float, str, float] | None:
+    """The mode that swings in the start: the deviation of the simulated force from the rigid one (a line
+    fitted and removed) projected on each mode's frequency (the DFT amplitude 2 |sum x e^(-i w t)| / n; modes with
+    at least two periods in the span and four samples per period); the largest, as (frequency, dominant element,
+    amplitude), when it reaches ``min_amplitude_N``; else None."""
+    if t.size < 16 or t[-1] <= t[0]:
+        return None
+    x = deviation - np.polyval(np.polyfit(t, deviation, 1), t)
+    span, dt = t[-1] - t[0], (t[-1] - t[0]) / (t.size - 1)
+    best: tuple[float, str, float] | None = None
+    for f, element in modes:
+        if f * span < 2.0 or f * dt > 0.25:
+            continue
+        amplitude = 2.0 * abs(np.sum(x * np.exp(-2j * math.pi * f * t))) / t.size
+        if best is None or amplitude > best[2]:
+            best = (f, element, float(amplitude))
+    return best if best is not None and best[2] >= min_amplitude_N else None
+
+
+def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.ndarray], window_s: tuple[float, float],
+                  warn_ratio: float) -> tuple[StartSummary | None, list[Diagnostic]]:
+    """``summary.start`` = {``peak_over_rigid``, ``rigid_peak_N``} per stage (the run's peak |F_t| over the rigid
+    start's) and the ``peak_over_rigid`` warnings where the ratio exceeds ``warn_ratio``, naming the cause."""
+    if t.size < 2 or t[-1] <= 0:
+        return None, []
+    rigid = integrate(lay, float(t[-1]))
+    peaks = [float(np.max(np.abs(f))) for f in forces_N]
+    rigid_peaks = [float(np.max(np.abs(f))) for f in rigid.tangential_N]
+    ratios = [p / r if r > 0 else None for p, r in zip(peaks, rigid_peaks, strict=True)]
+    out = StartSummary(peak_over_rigid=ratios, rigid_peak_N=rigid_peaks)
+    diags: list[Diagnostic] = []
+    start = t <= max(window_s[0], t[0])
+    modes: list[tuple[float, str]] | None = None
+    for k, ratio in enumerate(ratios):
+        if ratio is None or ratio <= warn_ratio:
+            continue
+        if modes is None:
+            modes = [(m.frequency_Hz, m.dominant) for m in modal_analysis(lay, boundary).modes if not m.rigid]
+        i = int(np.argmax(np.abs(forces_N[k])))
+        dev = np.abs(forces_N[k][start]) - np.interp(t[start], rigid.time_s, np.abs(rigid.tangential_N[k]))
+        found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k])
+        why = cause(lay, rigid, float(t[i]), found)
+        diags.append(dg.warning(dg.PEAK_OVER_RIGID, f"stage {k + 1}: the start's peak mesh force {peaks[k]:.5g} N "
+                                f"(at {t[i]:.3g} s) is {ratio:.3g}x the rigid-body start's {rigid_peaks[k]:.5g} N (the "
+                                f"same drive and load law without compliance): {why}", stage=k + 1, ratio=ratio,
+                                rigid_peak_N=rigid_peaks[k], swing_Hz=found[0] if found else None,
+                                swing_amplitude_N=found[2] if found else None))
+    return out, diags

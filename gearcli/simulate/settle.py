@@ -1,0 +1,231 @@
+"""Is the statistics window settled? A test on the window's own mesh forces, and the run extended until it is.
+
+Every dynamic verdict (the life route's spectra, the simulated K_v, a sweep row, the report's comparison) takes
+the window's max |F_t| or its cycle peaks, which a run-up transient inflates long after the ramps: a DOL start
+leaves the drivetrain's slow modes ringing, and the window's first periods carry them. The window is shown to
+be settled when no decaying oscillation is left in it. Two tests, both must pass: (model-free) the max |F_t|
+of the window's first quarter must not exceed its last half's by more than :data:`SETTLED_FRACTION` of the
+static force; (modal) the window's F_t of every stage is fitted by least squares with a constant plus the free decay of the oscillating modes of the linearised chain (the slowest
+decaying first, their decay rates refined to the record's envelope: :func:`gearcli.simulate.ringing.fit_transient`)
+and the fitted amplitude at the window's start must stay below :data:`SETTLED_FRACTION` of the stage's static
+force. A motor whose start reaches 98 % of its operating speed only after the window starts is unsettled too.
+
+An unsettled window names the time from which it would be settled (the largest transient decayed to the
+fraction: ``t0 + ln(a0 / (f F)) / sigma``). :func:`settled_run` repeats the run with its window from there
+(the window's length kept, the samples scaled with it), at most :data:`MAX_RUNS` times and within
+:data:`MAX_DURATION_FACTOR` times the first run's duration; where that budget cannot settle it, the periodic
+steady state is sought (shooting where it applies, within the same duration) and taken when it converges; a
+window still unsettled then is reported (``steady.settled = false`` and the ``window_not_settled`` warning),
+never silently taken for steady.
+
+A periodic steady state (``steady = "periodic"``) is settled when it converged.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
+from gearcli.errors import GearcliError
+from gearcli.simulate import ringing
+from gearcli.simulate.results import SimulationResult, SteadyState
+
+if TYPE_CHECKING:
+    from gearcli.model import TorsionalModel
+    from gearcli.simulate.choice import Choice
+
+SETTLED_FRACTION = 0.01  # transient amplitude at the window's start, of the stage's static force (1 % of K_v)
+DECAYED = 12.0  # decay exponent since t = 0 past which a mode is taken as settled (e^-12 = 6e-6)
+MAX_MODES = 6  # the slowest-decaying oscillating modes fitted at once
+MAX_RUNS = 3  # runs after the first one, each with a later window
+MAX_DURATION_FACTOR = 8.0  # the longest run, in units of the first run's duration
+MAX_DURATION_S = 600.0
+
+
+@dataclass(frozen=True)
+class Settling:
+    """The settle test of one window: ``settled``, the largest transient at the window's start (fraction of the
+    static force, its stage and mode frequency), and the time from which the window would be settled (None:
+    settled, or no estimate)."""
+
+    settled: bool
+    transient_fraction: float
+    stage: int | None = None
+    frequency_Hz: float | None = None
+    settle_time_s: float | None = None
+    cause: str = ""
+
+
+def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[tuple[float, float]]:
+    """(sigma, omega_d) of the oscillating modes the window can see (more than half a period in it) and that
+    can still carry the start (not decayed by e^-DECAYED since t = 0), slowest decay first, at most MAX_MODES."""
+    length = window_s[1] - window_s[0]
+    lam = np.asarray(eigenvalues, dtype=complex)
+    out = [(max(-float(z.real), 0.0), float(z.imag)) for z in lam if z.imag > 0.0 and z.imag * length > math.pi]
+    # a mode that has decayed by e^-DECAYED since the run began cannot carry its start-up into the window
+    out = [(s, w) for s, w in out if s * window_s[0] < DECAYED]
+    return sorted(out)[:MAX_MODES]
+
+
+def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
+          eigenvalues: np.ndarray, window_s: tuple[float, float],
+          motor_start_s: float | None = None, motor_reaches: bool = True) -> Settling:
+    """The settle test of the window ``mask`` of the samples ``t`` (module text). ``motor_start_s``: when the
+    motor reached 98 % of its operating speed (None with ``motor_reaches``: never within the run)."""
+    if motor_reaches and motor_start_s is None:
+        return Settling(False, math.inf, cause="the motor start does not reach its operating speed within the run")
+    modes = candidate_modes(eigenvalues, window_s)
+    tw = t[mask]
+    worst = Settling(True, 0.0)
+    for k, (ft, ref) in enumerate(zip(forces_N, static_N, strict=True)):
+        ref = abs(float(ref)) or float(np.mean(np.abs(ft[mask])))
+        if ref <= 0.0 or not modes:
+            continue
+        amplitudes, sigmas = ringing.fit_transient(tw, ft[mask], modes)
+        for j, a0 in enumerate(amplitudes):
+            fraction = a0 / ref
+            if fraction <= worst.transient_fraction:
+                continue
+            sigma, omega = sigmas[j], modes[j][1]
+            settle = window_s[0] + math.log(fraction / SETTLED_FRACTION) / sigma \
+                if sigma > 0 and fraction > SETTLED_FRACTION else None
+            worst = Settling(fraction < SETTLED_FRACTION, fraction, k + 1, omega / (2 * math.pi), settle,
+                             "" if fraction < SETTLED_FRACTION else
+                             f"the {omega / (2 * math.pi):.3g} Hz mode rings from the start with ±{a0:.4g} N in stage "
+                             f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of the static {ref:.5g} N)")
+    worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst)
+    if motor_start_s is not None and motor_start_s > window_s[0]:
+        settle = max(motor_start_s, worst.settle_time_s or 0.0)
+        return Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
+                        f"the motor reaches 98 % of its operating speed at {motor_start_s:.4g} s, after the window "
+                        f"starts ({window_s[0]:.4g} s)")
+    return worst
+
+
+def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], worst: Settling) -> Settling:
+    """The model-free half of the test: a transient that decays through the window raises its first quarter's
+    max |F_t| above its last half's (the steady part, which holds every steady peak the first quarter holds); by
+    more than SETTLED_FRACTION of the static force, the window is unsettled from the last sample above that
+    level on (the fit's settle time where it gives a later one)."""
+    if t.size < 8:
+        return worst
+    quarter, half = t <= t[0] + 0.25 * (t[-1] - t[0]), t >= t[0] + 0.5 * (t[-1] - t[0])
+    for k, (f, ref) in enumerate(zip(forces, static_N, strict=True)):
+        ref = abs(float(ref)) or float(np.mean(f))
+        if ref <= 0.0:
+            continue
+        steady_max = float(np.max(f[half]))
+        excess = (float(np.max(f[quarter])) - steady_max) / ref
+        if excess <= SETTLED_FRACTION or excess <= worst.transient_fraction and not worst.settled:
+            continue
+        above = np.nonzero(f > steady_max + SETTLED_FRACTION * ref)[0]
+        settle = float(t[above[-1]]) if above.size else None
+        if worst.settle_time_s is not None and (settle is None or worst.settle_time_s > settle):
+            settle = worst.settle_time_s
+        worst = Settling(False, max(excess, worst.transient_fraction), k + 1, worst.frequency_Hz, settle,
+                         f"stage {k + 1}'s max |F_t| in the window's first quarter exceeds its last half's by "
+                         f"{100 * excess:.2g} % of the static {ref:.5g} N: a start-up transient decays through it")
+    return worst
+
+
+def next_window(settling: Settling, window_s: tuple[float, float], first_duration_s: float) -> tuple[float, float] | None:
+    """(window start, duration) of the next run: the window from the settle time on, its length kept; None when
+    there is no estimate or the run would exceed the budget."""
+    if settling.settled or settling.settle_time_s is None or not math.isfinite(settling.settle_time_s):
+        return None
+    length = window_s[1] - window_s[0]
+    start = max(settling.settle_time_s, window_s[0] + 0.25 * length)  # progress, however small the estimate
+    duration = start + length
+    if duration > min(MAX_DURATION_S, MAX_DURATION_FACTOR * first_duration_s):
+        return None
+    return start, duration
+
+
+def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str:
+    """The ``window_not_settled`` warning."""
+    tried = f" after {runs} longer run{'s' if runs > 1 else ''}" if runs else ""
+    when = (f"; it would be settled from about {settling.settle_time_s:.4g} s (simulation.window_start_s, "
+            "simulation.duration_s beyond it)" if settling.settle_time_s is not None
+            and math.isfinite(settling.settle_time_s) else "")
+    return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}"
+            f"{when}; its max |F_t|, dynamic factor and load peaks include the start-up transient "
+            "(or [simulation] steady = \"periodic\")")
+
+
+def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray, window, per_stage,
+                   stages, steady: SteadyState, motor_summary, diags: list[Diagnostic]) -> SteadyState:
+    """``steady`` with the settle test of the window (:mod:`gearcli.simulate.settle`; a periodic state: settled
+    when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
+    ringing or the motor's start warning already says so."""
+    if steady.mode == "periodic":
+        return replace(steady, settled=bool(steady.converged))
+    motor_start, reaches = None, False
+    if motor_summary is not None and model.layout.motor_drive:
+        motor_start = motor_summary.get("start_time_s")
+        reaches = not any(d.code == dg.MOTOR_STALLS for d in diags)
+    found = check(t, mask, [p[0] for p in per_stage],
+                         [st.simulated_static_tangential_N or 0.0 for st in stages],
+                         choice.at_full_load.eigenvalues, window, motor_start, reaches)
+    if not found.settled and not any(d.code in (dg.WINDOW_RINGING, dg.START_NOT_SETTLED) for d in diags):
+        diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
+                                transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
+                                else None, stage=found.stage, mode_frequency_Hz=found.frequency_Hz,
+                                settle_time_s=found.settle_time_s))
+    fraction = found.transient_fraction if math.isfinite(found.transient_fraction) else None
+    return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
+
+
+def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
+                duration_s: float, steps: int, periodic: bool = True) -> SimulationResult:
+    """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
+    start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
+    scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
+    (``run(..., steady="periodic")``: shooting, or period by period, within the budget's duration) when it
+    converges (not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
+    starts); else the last window, whose warning says so."""
+    result = _moved_window(result, run, duration_s, steps)
+    if not periodic or result.steady is None or result.steady.mode != "window" or result.steady.settled is not False:
+        return result
+    longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
+    try:
+        orbit = run(longest, steps, None, steady="periodic")
+    except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
+        return result
+    if orbit.steady is not None and orbit.steady.converged:
+        return replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=result.steady.settle_runs + 1))
+    return result
+
+
+def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult], duration_s: float,
+                  steps: int) -> SimulationResult:
+    """The window moved later while it is not settled (:func:`settled_run`)."""
+    runs = 0
+    while result.steady is not None and result.steady.mode == "window" and result.steady.settled is False \
+            and runs < MAX_RUNS:
+        st = result.steady
+        found = Settling(False, st.transient_fraction or math.inf, settle_time_s=st.settle_time_s)
+        nxt = next_window(found, result.window_s, duration_s)
+        if nxt is None:
+            break
+        start, duration = nxt
+        try:
+            longer = run(duration, max(steps, math.ceil(steps * duration / duration_s)), start)
+        except GearcliError:  # the longer run exceeds its own budget (or fails): the window's warning stands
+            break
+        runs += 1
+        result = longer
+    if runs and result.steady is not None:
+        steady = replace(result.steady, settle_runs=runs)
+        result = replace(result, steady=steady)
+        if steady.settled is False:
+            note = f" (after {runs} longer run{'s' if runs > 1 else ''} within the budget)"
+            diags = tuple(replace(d, message=d.message + note) if d.code == dg.WINDOW_NOT_SETTLED else d
+                          for d in result.diagnostics)
+            result = replace(result, diagnostics=diags, warnings=dg.messages(list(diags)))
+    return result

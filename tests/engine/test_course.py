@@ -1,0 +1,95 @@
+"""Issue 33 item 2: an ``auto`` run whose prediction fails changes course from the state it has reached, and its
+numbers stay those of a run at the requested tolerance (gearcli.simulate.course)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearcli.config import load_design
+from gearcli.design import compute_design
+from gearcli.simulate import choice as choice_mod
+from gearcli.simulate import course, run_simulation
+
+ROOT = Path(__file__).resolve().parents[2]
+STIFF = ROOT / "configs" / "stiff_linear_mesh.toml"  # a very stiff linear mesh: DOP853 needs ~1.1e5 evaluations
+
+
+def _case(*sets: str):
+    cfg = load_design(str(STIFF), ["simulation.engine=python", *sets]).design
+    return cfg, compute_design(cfg)
+
+
+def _hide_stiffness(monkeypatch) -> None:
+    """The cost model no longer sees the scene's stiffness: DOP853's stability need (max|lambda| T) is predicted
+    10^4 times too small, so auto takes DOP853 on a scene that needs Radau."""
+    real = choice_mod.predicted_costs
+
+    def hidden(indicator, *args, **kwargs):
+        return real(indicator * 1e-4, *args, **kwargs)
+
+    monkeypatch.setattr(choice_mod, "predicted_costs", hidden)
+    monkeypatch.setattr(choice_mod, "_explicit_refused", lambda indicator: False)
+
+
+def test_a_hidden_stiffness_makes_auto_change_course_from_the_state_reached(monkeypatch):
+    _hide_stiffness(monkeypatch)
+    calls: list[tuple[float, str, np.ndarray | None, np.ndarray | None]] = []
+    real_integrate = course.integrate
+
+    def spy(model, t_eval, method, rtol, **kw):
+        run = real_integrate(model, t_eval, method, rtol, **kw)
+        calls.append((float(kw.get("t0", 0.0)), method, kw.get("y0"), run.y_end))
+        return run
+
+    monkeypatch.setattr(course, "integrate", spy)
+    cfg, design = _case()
+    got = run_simulation(cfg, design, want_series=False)
+    sv = got.solver
+    assert sv.requested_method == "auto"
+    (change,) = sv.course_changes
+    assert change["from"] == "DOP853 (python)" and change["to"] == "Radau (python)"
+    at = float(change["at_s"])
+    assert 0.0 < at < cfg.simulation.duration_s
+    # continued from the state reached, not from t = 0: the second piece starts where the first stopped, from
+    # the very state the first one's solver held there
+    first, second = calls[0], calls[1]
+    assert first[0] == 0.0 and first[1] == "DOP853" and second[1] == "Radau"
+    assert second[0] == at and first[3] is not None
+    np.testing.assert_array_equal(second[2], first[3])  # bit for bit
+    assert sv.method == "Radau" and sv.prediction is not None
+    # what the whole run spent is far below DOP853's whole run (~1.1e5 evaluations, measured: 114,592)
+    assert sv.nfev < 50_000
+    # the numbers: window means within the run's own target (1e-4 of the mean force, gearcli.simulate.estimate)
+    # of an independent reference, Radau at rtol 1e-10 from t = 0 without course changes
+    ref = run_simulation(*_case("simulation.method=Radau", "simulation.rtol=1e-10"), want_series=False,
+                         error_estimate=False)
+    for a, b in zip(got.stages, ref.stages, strict=True):
+        scale = abs(b.tangential_N.mean)
+        np.testing.assert_allclose(a.tangential_N.mean, b.tangential_N.mean, rtol=1e-4,
+                                   err_msg="window mean beyond the run's target (1e-4 of the mean)")
+        # the amplitude statistics within the run's 1e-3 target of the mean force
+        assert abs(a.tangential_N.max - b.tangential_N.max) <= 1e-3 * scale
+        assert abs(a.tangential_N.min - b.tangential_N.min) <= 1e-3 * scale
+    assert not [d for d in got.diagnostics if d.code == "statistics_unresolved"]
+
+
+def test_a_requested_method_never_changes_course(monkeypatch):
+    _hide_stiffness(monkeypatch)
+    cfg, design = _case("simulation.method=DOP853", "simulation.duration_s=0.05", "simulation.steps=200")
+    got = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    assert got.solver.course_changes == () and got.solver.method == "DOP853"
+
+
+def test_a_run_within_its_prediction_keeps_its_course():
+    cfg, design = _case()
+    got = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    assert got.solver.course_changes == ()
+    p = got.solver.prediction
+    assert p is not None and set(p) == {"nfev", "price_us_per_eval", "wall_s"}
+    from gearcli.core.cost import RUN_FIXED_S
+
+    fixed = RUN_FIXED_S[got.solver.engine]
+    assert p["wall_s"] == pytest.approx(fixed + p["nfev"] * p["price_us_per_eval"] * 1e-6, rel=1e-12)

@@ -1,0 +1,122 @@
+"""The settle test of a statistics window (issue 30 item 4, gearcli.simulate.settle) on records whose transient is
+known in closed form, and the window moved later by run_simulation(settle=True)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.testing import assert_allclose
+
+from gearcli.simulate import settle
+
+
+def _record(a0: float, sigma: float, f_Hz: float, static: float, window=(1.0, 4.0), n: int = 6001):
+    t = np.linspace(0.0, window[1], n)
+    x = static + a0 * np.exp(-sigma * (t - window[0])) * np.cos(2 * math.pi * f_Hz * (t - window[0]) + 0.4)
+    return t, x
+
+
+def test_a_decaying_mode_at_the_window_start_is_unsettled_with_its_settle_time():
+    static, sigma, f = 10_000.0, 2.0, 11.6
+    a0 = 0.14 * static  # 14 % of the static force at the window's start (the DOL conveyor's)
+    t, x = _record(a0, sigma, f, static)
+    window = (1.0, 4.0)
+    mask = (t >= window[0]) & (t <= window[1])
+    lam = np.array([complex(-sigma, 2 * math.pi * f), complex(-sigma, -2 * math.pi * f)])
+    found = settle.check(t, mask, [x], [static], lam, window, None, False)
+    assert not found.settled
+    assert_allclose(found.transient_fraction, 0.14, rtol=1e-3)  # the fit recovers the amplitude
+    assert_allclose(found.frequency_Hz, f, rtol=1e-12)
+    # by hand: a0 e^(-sigma (t - t0)) = 1 % of the static force at t = t0 + ln(14) / sigma
+    assert_allclose(found.settle_time_s, window[0] + math.log(0.14 / 0.01) / sigma, rtol=1e-3)
+    # the next run's window starts there, its length kept
+    start, duration = settle.next_window(found, window, 4.0)
+    assert_allclose(start, found.settle_time_s, rtol=1e-12)
+    assert_allclose(duration - start, window[1] - window[0], rtol=1e-12)
+
+
+def test_a_transient_below_one_percent_is_settled():
+    static = 10_000.0
+    t, x = _record(0.004 * static, 2.0, 11.6, static)
+    window = (1.0, 4.0)
+    mask = (t >= window[0]) & (t <= window[1])
+    lam = np.array([complex(-2.0, 2 * math.pi * 11.6)])
+    found = settle.check(t, mask, [x], [static], lam, window, None, False)
+    assert found.settled and found.transient_fraction < settle.SETTLED_FRACTION
+
+
+def test_a_motor_start_after_the_window_start_is_unsettled():
+    t = np.linspace(0.0, 4.0, 4001)
+    window = (0.8, 4.0)
+    mask = t >= window[0]
+    found = settle.check(t, mask, [np.full_like(t, 5.0)], [5.0], np.array([]), window, 1.2, True)
+    assert not found.settled and found.settle_time_s == 1.2 and "motor" in found.cause
+    never = settle.check(t, mask, [np.full_like(t, 5.0)], [5.0], np.array([]), window, None, True)
+    assert not never.settled
+
+
+def test_the_window_move_keeps_within_its_budget():
+    found = settle.Settling(False, 0.5, 1, 1.0, settle_time_s=100.0)
+    assert settle.next_window(found, (0.8, 4.0), 4.0) is None  # 100 s > 8 x the first run's 4 s
+    assert settle.next_window(settle.Settling(True, 0.0), (0.8, 4.0), 4.0) is None
+
+
+def test_run_simulation_moves_an_unsettled_window_of_a_dol_start():
+    """configs/motor_duty_starts.toml's full-load point: the 0.8-4 s window after the DOL start rings with
+    14 % of the static force; settle=True repeats the run with its window from the settle time, and its max |F_t|
+    is the static force (no excitation) within 1 %."""
+    from pathlib import Path
+
+    from gearcli import api
+    from gearcli.simulate import run_simulation
+
+    root = Path(__file__).resolve().parents[2]
+    loaded = api.load(str(root / "configs" / "motor_duty_starts.toml"), [])
+    design = api.design(loaded)
+    plain = run_simulation(loaded.design, design, settle=False)
+    assert plain.steady.settled is False and plain.steady.settle_runs == 0
+    assert any(d.code == "window_not_settled" for d in plain.diagnostics)
+    moved = run_simulation(loaded.design, design, settle=True)
+    assert moved.steady.settled is True and moved.steady.settle_runs >= 1
+    assert moved.window_s[0] >= plain.steady.settle_time_s * (1 - 1e-9)
+    assert_allclose(moved.window_s[1] - moved.window_s[0], plain.window_s[1] - plain.window_s[0], rtol=1e-9)
+    for st in moved.stages:
+        assert st.dynamic_factor < 1.01
+    assert not any(d.code == "window_not_settled" for d in moved.diagnostics)
+
+
+def test_the_envelope_test_catches_a_transient_the_modes_do_not_describe():
+    # a decaying beat at a frequency no linearised mode has (no eigenvalues given): the first quarter's max
+    # exceeds the last half's by the transient's amplitude there
+    static = 1000.0
+    t = np.linspace(0.0, 4.0, 8001)
+    x = static + 0.2 * static * np.exp(-3.0 * t) * np.sin(2 * math.pi * 7.0 * t)
+    window = (0.5, 4.0)
+    mask = t >= window[0]
+    found = settle.check(t, mask, [x], [static], np.array([]), window, None, False)
+    assert not found.settled
+    # by hand: the first quarter's max over the static force is about 0.2 e^(-3 t) at its largest crest
+    crest = np.max(x[mask & (t <= window[0] + 0.25 * 3.5)]) / static - 1.0
+    assert_allclose(found.transient_fraction, crest - (np.max(x[t >= 2.25]) / static - 1.0), rtol=1e-12)
+    # and it is settled from the last sample above the steady max + 1 %: 0.2 e^(-3 t) = 0.01 near t = ln(20)/3
+    assert found.settle_time_s < math.log(20) / 3 + 0.1
+
+
+def test_a_window_the_budget_cannot_settle_takes_the_periodic_steady_state():
+    """configs/conveyor_rated.toml: its drum mode (0.46 % damping) needs ~26 s to settle, beyond 8x the 2 s
+    run; [rating] dynamic_factor = "simulated" then takes the periodic steady state (shooting), whose K_v is the
+    transmission errors' (close to 1) instead of the ringing window's 1.37."""
+    from pathlib import Path
+
+    from gearcli import api
+    from gearcli.simulate import run_simulation
+
+    root = Path(__file__).resolve().parents[2]
+    loaded = api.load(str(root / "configs" / "conveyor_rated.toml"), [])
+    design = api.design(loaded)
+    result = run_simulation(loaded.design, design, want_series=False)  # dynamic_factor = "simulated": settles
+    assert result.steady.mode == "periodic" and result.steady.converged and result.steady.settled
+    for st in result.stages:
+        assert st.dynamic_factor < 1.1
+        assert_allclose(st.rating.K_v, max(1.0, st.dynamic_factor), rtol=1e-12)

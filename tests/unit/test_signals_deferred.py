@@ -1,0 +1,98 @@
+"""gearcli.core.signals.deferred: a signal inside the block raises nothing there, raises the kernel's stop flag, and
+is acted on by the previous handler when the block ends (issue 31: signals during compiled runs)."""
+
+from __future__ import annotations
+
+import os
+import signal
+
+import numpy as np
+import pytest
+
+from gearcli.core import signals
+
+
+class Stopped(BaseException):
+    pass
+
+
+def _raise_stopped(signum, frame):
+    raise Stopped(signum)
+
+
+@pytest.fixture
+def term_handler():
+    previous = signal.getsignal(signal.SIGTERM)
+    signal.signal(signal.SIGTERM, _raise_stopped)
+    yield
+    signal.signal(signal.SIGTERM, previous)
+
+
+def test_a_signal_is_held_until_the_block_ends_and_sets_the_flag():
+    flag = np.zeros(17)
+    reached = []
+    with pytest.raises(KeyboardInterrupt):
+        with signals.deferred(flag, 16) as pending:
+            os.kill(os.getpid(), signal.SIGINT)
+            for _ in range(1000):  # bytecodes: the handler has run by now
+                pass
+            reached.append(pending())
+    assert reached == [signal.SIGINT]  # the block ran to its end
+    assert flag[16] == 1.0
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # restored
+    assert signals.pending() is None
+
+
+def test_the_previous_handler_acts_and_only_the_first_signal_counts(term_handler):
+    with pytest.raises(Stopped) as got:
+        with signals.deferred():
+            os.kill(os.getpid(), signal.SIGTERM)
+            os.kill(os.getpid(), signal.SIGINT)
+            for _ in range(1000):
+                pass
+    assert got.value.args == (signal.SIGTERM,)
+
+
+def test_nested_blocks_deliver_once_at_the_outermost(term_handler):
+    outer_flag, inner_flag = np.zeros(1), np.zeros(1)
+    after_inner = []
+    with pytest.raises(Stopped):
+        with signals.deferred(outer_flag):
+            with signals.deferred(inner_flag):
+                os.kill(os.getpid(), signal.SIGTERM)
+                for _ in range(1000):
+                    pass
+            after_inner.append(True)  # the inner block's end did not raise
+            with signals.deferred(np.zeros(1)) as _:
+                pass
+    assert after_inner == [True] and outer_flag[0] == inner_flag[0] == 1.0
+
+
+def test_an_ignored_signal_stays_ignored():
+    previous = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        flag = np.zeros(1)
+        with signals.deferred(flag):
+            assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+            os.kill(os.getpid(), signal.SIGINT)
+            for _ in range(1000):
+                pass
+        assert flag[0] == 0.0 and signals.pending() is None
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def test_a_worker_thread_runs_the_block_as_is():
+    import threading
+
+    seen = []
+
+    def work():
+        with signals.deferred(np.zeros(1)) as pending:
+            seen.append(pending())
+
+    t = threading.Thread(target=work)
+    t.start()
+    t.join()
+    assert seen == [None]
