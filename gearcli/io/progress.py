@@ -13,6 +13,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from gearcli.core import announce
+
 SHOW_AFTER_S = 1.0
 
 
@@ -37,7 +39,9 @@ class TerminalProgress:
         if self.bar is None:
             if time.perf_counter() - self.start < SHOW_AFTER_S:
                 return False
-            from rich.console import Console
+            from rich.console import Console  # lazy: rich, only when a terminal shows the bar
+
+            # lazy: rich, only when a terminal shows the bar
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
             self.bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
@@ -107,6 +111,4 @@ class BuildProgress:
 
 def show_engine_builds(*, quiet: bool) -> None:
     """Install :class:`BuildProgress` as this process's reporter of engine builds (:mod:`gearcli.core.announce`)."""
-    from gearcli.core import announce
-
     announce.set_build_reporter(BuildProgress(quiet=quiet))

@@ -28,6 +28,7 @@ Radau's predicted wall time (loading the engine aside) is ``IMPLICIT_MARGIN`` ti
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -260,9 +261,7 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
 def unit_costs(spec: ModelSpec, repeat: int = 200) -> dict[str, float]:
     """Microseconds per right-hand side, per Jacobian and per LU pair (Radau factors one real and one
     complex matrix of the state's size) of the scene, measured (benchmarks/bench_auto.py)."""
-    import time
-
-    import scipy.linalg
+    import scipy.linalg  # lazy: scipy, start-up time
 
     model = TorsionalModel(spec)
     y = model.initial_state()
