@@ -10,13 +10,25 @@ pinion end (the design gives each gear's inertia).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from gearcli import diagnostics as dg
 from gearcli.design import contact_stiffness_N_mm_e
-from gearcli.design.stiffness import iso6336_normal_stiffness_N_mm, law_name
+from gearcli.design.planetary_balance import balance, willis_speeds
+from gearcli.design.stiffness import (
+    iso6336_normal_stiffness_N_mm,
+    iso_reference_normal_force_N,
+    law_coefficient_N_mm_e,
+    law_name,
+)
 from gearcli.errors import ConfigError
+from gearcli.model import TorsionalModel
+from gearcli.model.assembly import Layout
+from gearcli.model.modes import resonances
+from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
 from gearcli.model.spec import (
     MM,
     CoupledInertia,
@@ -119,8 +131,6 @@ def vfd_supply(spec: MotorSpec, shift_rad_s: float) -> MotorSpec:
     ``[input] speed_rpm`` (a speed sweep's row runs at the speed it is designed at). Extended Kloss in slip speed
     Delta: T = 2 T_b (1 + a s_b) Delta Delta_b / (Delta^2 + Delta_b^2 + 2 a s_b Delta_b |Delta|), Delta_b = s_b w_s:
     unchanged with w_s' when s_b' = s_b w_s / w_s' and a' s_b' = a s_b."""
-    import dataclasses
-
     if shift_rad_s == 0.0 or spec.table:
         return spec
     ws = spec.synchronous_speed_rad_s
@@ -167,7 +177,6 @@ def _signed(mesh: MeshSpec, st: StageResult) -> MeshSpec:
     p = st.planetary
     if p is None:
         return mesh
-    from gearcli.config.schema import willis_speeds
 
     sign_out = 1.0 if willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)[p.output] >= 0 else -1.0
     sign = sign_out * (1.0 if p.output == "carrier" else -1.0)
@@ -186,8 +195,6 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
     p = st.planetary
     if p is None:
         return None
-    from gearcli.config.schema import willis_speeds
-    from gearcli.design.stiffness import iso_reference_normal_force_N, law_coefficient_N_mm_e
 
     law = cfg.contact_for(k)
     e = float(law.exponent)
@@ -229,8 +236,6 @@ def _unequal(cfg: DesignFile, k: int) -> bool:
 def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
     """The planet meshes' static (driving-side) forces over the lossless ones, in the power flow of the load's
     sign, and the stage's efficiencies (:mod:`gearcli.design.planetary_balance`)."""
-    from gearcli.design.planetary_balance import balance
-
     lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, load_sign)
     lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, load_sign)
     scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
@@ -241,8 +246,6 @@ def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
 
 def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:
     """Planet 1's ring-mesh contact-line phase against its sun mesh's (:mod:`gearcli.model.planet_phasing`)."""
-    from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
-
     p = st.planetary
     assert p is not None
     return stage_contact_phase_cycles(st, sun_drives(unit, p.input, p.sun.teeth, p.ring.teeth))
@@ -254,19 +257,8 @@ def _planet_errors_um(cfg: DesignFile, k: int) -> list[float]:
     return list(planet.position_error_um or []) if planet is not None else []
 
 
-def output_units(cfg: DesignFile) -> tuple[str, str]:
-    """(speed, torque) key suffixes the outputs use: the input's speed key (``deg_s``, ``rpm``, ``rad_s``) and
-    the load's torque key (``Nmm``, ``Nm``; ``power_kW`` gives N·m)."""
-    inp = cfg.input
-    speed = "rpm" if inp.speed_rpm is not None else "rad_s" if inp.speed_rad_s is not None else "deg_s"
-    torque = "Nmm" if getattr(cfg.load, "torque_Nmm", None) is not None else "Nm"
-    return speed, torque
-
-
 def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
     """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
-    from gearcli.model import TorsionalModel  # lazy for start-up: ``gearcli design`` imports this module
-
     return TorsionalModel(spec_from_design(cfg, design))
 
 
@@ -275,10 +267,6 @@ def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple[Diagno
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
     its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
-    from gearcli import diagnostics as dg
-    from gearcli.model.assembly import Layout  # lazy for start-up (numpy), as above
-    from gearcli.model.modes import resonances
-
     lay = Layout.of(spec_from_design(cfg, design))
     boundary = "clamped_input" if lay.speed_drive else "free"
     return tuple(dg.warning(dg.RESONANCE, r.message, **r.data, boundary=boundary)

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
-from gearcli.design.standards import standard_of
+from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
 
 if TYPE_CHECKING:
@@ -43,25 +43,6 @@ MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 
 
 # ------------------------------------------------------------------------------------------ errors
-def check_inputs(cfg: DesignFile) -> None:
-    """Refuse unknown materials and impossible helix hands, before any arithmetic. A planetary stage is
-    checked as its sun–planet pair (keys named ``sun``/``planet``) and its ring."""
-    from gearcli.design.planetary import check_planetary_inputs, pair_equivalent, planetary_key
-
-    pairs = pair_equivalent(cfg)
-    try:
-        for k in range(len(pairs.stage)):
-            stage = pairs.pair(k)
-            for part in ("pinion", "gear"):
-                check_material(getattr(stage, part).material, pairs.materials, f"stage[{k}].{part}.material")
-            check_hands(stage, k)
-        if cfg.rating is not None:  # the [rating] standard's required keys (gearcli.rating)
-            standard_of(cfg).check_inputs(cfg)
-    except DesignError as exc:
-        raise DesignError(exc.message, key=planetary_key(cfg, exc.key), source=exc.source) from None
-    check_planetary_inputs(cfg)
-
-
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:
     if name not in materials:
         known = ", ".join(sorted(materials)) or "none"
@@ -89,8 +70,6 @@ def check_hands(stage: Stage, k: int) -> None:
 def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[Diagnostic, ...]:
     """The design's warnings as diagnostics (code ``design``; ``check`` names the check, with its stage,
     member and numbers): train-level first, then stage by stage."""
-    from gearcli.diagnostics import DESIGN, warning
-
     found: list[tuple[str | None, JsonObject]] = []
     if cfg.target is not None:
         found.append((target_speed_warning(cfg, output_speed_rpm),
@@ -221,8 +200,6 @@ STIFFNESS_NOT_ISO_TOLERANCE = 0.25
 def stiffness_not_iso(stage: int, mesh: str, law) -> Diagnostic | None:
     """``stiffness_not_iso`` for a mesh whose law's linearised stiffness (``law``: a
     :class:`~gearcli.results.MeshStiffness`) departs from ISO 6336-1's k_n by more than 25 %; None otherwise."""
-    from gearcli.diagnostics import STIFFNESS_NOT_ISO, warning
-
     if law is None or law.departure is None or abs(law.departure) <= STIFFNESS_NOT_ISO_TOLERANCE:
         return None
     where = f"stage {stage}" + ("" if mesh == "mesh" else f" {mesh.replace('_', '–')} mesh")

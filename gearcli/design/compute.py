@@ -13,7 +13,9 @@ from typing import TYPE_CHECKING
 from gearcli.design import planetary as pl
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_inputs, design_diagnostics, stiffness_diagnostics
+from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
+from gearcli.design.bearing_life import bearing_diagnostics
+from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
 from gearcli.design.inertia import (
@@ -23,6 +25,7 @@ from gearcli.design.inertia import (
     mean_body_diameter_mm,
     shaft_inertias_kg_m2,
 )
+from gearcli.design.inputs import check_inputs
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
 from gearcli.design.standards import standard_of
@@ -48,7 +51,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
     check_inputs(cfg)
@@ -75,7 +78,6 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                    and st.backlash_circumferential_mm[1] < 0.0)
     pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
-    from gearcli.design.bearing_life import bearing_diagnostics
 
     ignored = cfg.input.ignored_keys
     drive_notes = (warning(DESIGN, f"[input] {', '.join(ignored)}: {'keys' if len(ignored) > 1 else 'a key'} of "
@@ -106,7 +108,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
 def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
     """A parallel stage as before; a planetary stage as its sun–planet mesh (in the carrier's frame, per
     planet) with its members and planet–ring mesh attached (``design.planetary``)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]
     if not isinstance(stage, PlanetaryStage):
@@ -309,8 +311,6 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> Stag
 
 def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: int) -> StageResult:
     """The stage with its allowances' figures (ISO 21771, docs/iso6336.md "Tooth-thickness allowances")."""
-    from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
-
     def pair(value: list[float] | None) -> tuple[float, float]:
         return NO_ALLOWANCE if value is None else (value[0], value[1])
 

@@ -3,27 +3,33 @@
 The formulas stay where they were (``rating``: a gear pair, ``rating_internal``: a planetary stage's planet–ring
 mesh, ``rating_factors`` and ``rating_root``: the factors); this module is the standard's face to the layers above:
 what it rates in a design (every mesh of every stage, a planetary stage's at K_γ with ISO's nominal σ_H0, σ_F0),
-its re-rating at a run's simulated K_v, its S–N curves (the life factors Z_NT, Y_NT) and its table rows.
+its re-rating at a run's simulated K_v, its S–N curves (the life factors Z_NT, Y_NT) and its table rows. Above
+``rating`` and ``rating_internal`` (the design layer's inner contract, ARCHITECTURE.md), so neither imports the
+other; a run's stage summaries (``gearcli.simulate.results``, a layer above) are read by their fields.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import replace
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, TypeVar, cast
 
 from gearcli.design import planetary as pl
 from gearcli.design import rating as iso
 from gearcli.design import rating_factors as rf
+from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.rating import register
+from gearcli.rating.dynamic import ring_simulated_k_v, stage_simulated_k_v
 from gearcli.rating.sn import SNCurve
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
     from gearcli.design.rating_results import InternalRatingResult, RatingResult
     from gearcli.rating.standard import RatedMember, RatedMesh
-    from gearcli.results import DesignResult, StageDynamics, StageResult
+    from gearcli.results import DesignResult, StageResult
+
+S = TypeVar("S")  # a run's stage summary (``gearcli.simulate.results.StageDynamics``), read by its fields
 
 UNRATED_MESH = "mesh_not_rated"
 
@@ -39,8 +45,6 @@ class Iso6336:
 
     def rate_design(self, cfg: DesignFile, stages: tuple[StageResult, ...]
                     ) -> tuple[tuple[StageResult, ...], tuple[Diagnostic, ...]]:
-        from gearcli.design.rating_internal import planet_ring_safety_diagnostics
-
         rated, diags = iso.rate_design(pl.pair_equivalent(cfg), tuple(pl.with_load_sharing(s) for s in stages))
         out = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
         out = tuple(_nominal(_rate_planet_ring(cfg, k, s)) for k, s in enumerate(out))
@@ -49,9 +53,9 @@ class Iso6336:
                        if s.planetary is not None and s.rating is not None and s.planetary.planet_ring.rating is None)
         return out, diags
 
-    def rate_simulation(self, cfg: DesignFile, design: DesignResult, stages: Sequence[StageDynamics]
-                        ) -> tuple[tuple[StageDynamics, ...], list[Diagnostic]]:
-        return iso.simulated_ratings(cfg, design, stages)
+    def rate_simulation(self, cfg: DesignFile, design: DesignResult, stages: Sequence[S]
+                        ) -> tuple[tuple[S, ...], list[Diagnostic]]:
+        return simulated_ratings(cfg, design, stages)
 
     def sn_curve(self, cfg: DesignFile, member: RatedMember, treatment: str, mode: str, variant: str) -> SNCurve:
         """σ(N) = σ_∞ Z_NT(N): the life factor's curve of the material group times the rating's limit stress
@@ -129,13 +133,40 @@ def table_rows(ratings: Sequence, *, shared: bool) -> list[tuple[str, list[str]]
     ]
 
 
+# ------------------------------------------------------------------------- the simulated K_v
+def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
+    """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
+    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise. A
+    planetary stage's planet–ring mesh is rated too, at its own meshes' simulated K_v (``planet_ring_rating``)."""
+    if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
+        return tuple(stages), []
+    pairs = pl.pair_equivalent(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
+    out, diags = [], []
+    for k, sd in enumerate(stages):
+        k_v = stage_simulated_k_v(sd)
+        shared = pl.with_load_sharing(design.stages[k])
+        rating = iso.rate_stage(pairs, k, shared, simulated_k_v=k_v)
+        if shared.planetary is not None:  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
+            rating = pl.nominal_with_sharing(rating, shared.planetary.load_sharing_factor)
+        rated = replace(design.stages[k], rating=rating)
+        diags += iso.safety_diagnostics(pairs, rated)
+        ring = None
+        if rated.planetary is not None and sd.planets:
+            ring = rate_planet_ring(cfg, k, pl.with_load_sharing(design.stages[k]),
+                                    simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
+            if ring is not None:
+                mesh = replace(rated.planetary.planet_ring, rating=ring)
+                diags += planet_ring_safety_diagnostics(cfg, replace(rated, planetary=replace(rated.planetary,
+                                                                                               planet_ring=mesh)))
+        out.append(replace(sd, rating=rated.rating, planet_ring_rating=ring))
+    return tuple(out), diags
+
+
 # ------------------------------------------------------------------ a planetary stage's planet–ring mesh
 def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
     """A rated planetary stage with its planet–ring mesh rated too (ISO 6336-2/-3, docs/iso6336.md)."""
     if stage.planetary is None or stage.rating is None:
         return stage
-    from gearcli.design.rating_internal import rate_planet_ring
-
     ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
     mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
     return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
@@ -143,7 +174,7 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
 
 def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
     """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     k = stage.index - 1
     st = cfg.stage[k]

@@ -25,13 +25,12 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
-from gearcli.design.planetary import nominal_with_sharing, pair_equivalent, with_load_sharing
+from gearcli.design.allowances import manufactured_tooth_depth_mm
 from gearcli.design.rating_load import LoadFactors, MeshLoad, resolve_load_factors
 from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
-from gearcli.rating.dynamic import ring_simulated_k_v, stage_simulated_k_v
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
@@ -184,7 +183,6 @@ def _tooth_depth_mm(stage, st: StageResult) -> float:
     tooth-thickness allowances the deepest tooth cut, (d_a + A_dae − d_f,i)/2 of the deeper member (docs/iso6336.md,
     "Tooth-thickness allowances")."""
     rack = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * st.normal_module_mm
-    from gearcli.design.allowances import manufactured_tooth_depth_mm
 
     depths = [manufactured_tooth_depth_mm(g.tip_diameter_mm, part.tip_diameter_allowance_mm, roots)
               for g, part in ((st.pinion, stage.pinion), (st.gear, stage.gear))
@@ -318,34 +316,3 @@ def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") ->
                 out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,
                                    S_min=minima[mode]))
     return out
-
-
-# ------------------------------------------------------------------------- the simulated K_v
-def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
-    """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
-    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise. A
-    planetary stage's planet–ring mesh is rated too, at its own meshes' simulated K_v (``planet_ring_rating``)."""
-    if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
-        return tuple(stages), []
-    from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
-
-    pairs = pair_equivalent(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
-    out, diags = [], []
-    for k, sd in enumerate(stages):
-        k_v = stage_simulated_k_v(sd)
-        shared = with_load_sharing(design.stages[k])
-        rating = rate_stage(pairs, k, shared, simulated_k_v=k_v)
-        if shared.planetary is not None:  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
-            rating = nominal_with_sharing(rating, shared.planetary.load_sharing_factor)
-        rated = replace(design.stages[k], rating=rating)
-        diags += safety_diagnostics(pairs, rated)
-        ring = None
-        if rated.planetary is not None and sd.planets:
-            ring = rate_planet_ring(cfg, k, with_load_sharing(design.stages[k]),
-                                    simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
-            if ring is not None:
-                mesh = replace(rated.planetary.planet_ring, rating=ring)
-                diags += planet_ring_safety_diagnostics(cfg, replace(rated, planetary=replace(rated.planetary,
-                                                                                               planet_ring=mesh)))
-        out.append(replace(sd, rating=rated.rating, planet_ring_rating=ring))
-    return tuple(out), diags

@@ -67,7 +67,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     """The planet–ring rating of planetary stage ``k`` (``st`` with K_γ applied to its force); ``None`` when the
     ring's material or flank roughness lacks what the rating needs. ``simulated_k_v`` replaces K_v
     (``K_v_source = "simulated"``)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage, rating, lub, p = cfg.stage[k], cfg.rating, cfg.lubricant, st.planetary
     assert isinstance(stage, PlanetaryStage) and p is not None
@@ -169,7 +169,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
 def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
     outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage, p = cfg.stage[st.index - 1], st.planetary
     assert isinstance(stage, PlanetaryStage) and p is not None

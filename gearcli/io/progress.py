@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from gearcli.core import announce
 from gearcli.core.announce import LineReporter
 
 SHOW_AFTER_S = 1.0
@@ -39,7 +40,9 @@ class TerminalProgress:
         if self.bar is None:
             if time.perf_counter() - self.start < SHOW_AFTER_S:
                 return False
-            from rich.console import Console
+            from rich.console import Console  # lazy: rich, only when a terminal shows the bar
+
+            # lazy: rich, only when a terminal shows the bar
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
             self.bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
@@ -94,6 +97,4 @@ class BuildProgress(LineReporter):
 
 def show_engine_builds(*, quiet: bool) -> None:
     """Install :class:`BuildProgress` as this process's reporter of engine builds (:mod:`gearcli.core.announce`)."""
-    from gearcli.core import announce
-
     announce.set_build_reporter(BuildProgress(quiet=quiet))

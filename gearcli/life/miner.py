@@ -22,7 +22,7 @@ def miner_damage(stresses_MPa: Sequence[float], cycles: Sequence[float], curves:
 def spectrum_safety(damage_at: Callable[[float], float], *, lo: float = 1e-3, hi: float = 1e3) -> float | None:
     """The load multiplier s with D(s) = 1, by a bracketed root find on ln s (scipy's brentq, xtol 1e-12).
     None when no multiplier in [lo, hi] reaches D = 1 (a spectrum entirely below a flat endurance limit)."""
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # lazy: scipy, start-up time
 
     def g(log_s: float) -> float:
         d = damage_at(math.exp(log_s))

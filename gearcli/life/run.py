@@ -13,12 +13,17 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, cast
+from typing import cast
 
+import numpy as np
+
+from gearcli import engine
 from gearcli.config import DesignFile
 from gearcli.config.bounds import check_memory
+from gearcli.config.schema import PlanetaryStage
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
+from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.design.standards import standard_of
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
 from gearcli.life import spectra
@@ -28,11 +33,10 @@ from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles, start_data
-from gearcli.results import DesignResult, RatedMember, RatedMesh, SimulationResult, StageResult
+from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
+from gearcli.simulate.bearings import peak_static_load_N, reaction_series
+from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
-
-if TYPE_CHECKING:
-    import numpy as np
 
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
@@ -93,8 +97,6 @@ def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) ->
     """A planetary stage's planet–ring mesh must be rated: its ring and the planet's ring side are members."""
     for st in design.stages:
         if st.planetary is not None and st.planetary.planet_ring.rating is None:
-            from gearcli.config.schema import PlanetaryStage
-
             stage = cfg.stage[st.index - 1]
             assert isinstance(stage, PlanetaryStage)
             ring = stage.ring
@@ -123,8 +125,6 @@ def k_gamma(st: StageResult) -> float:
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...], tuple[str, ...]]:
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
-    from gearcli import engine
-
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
     notes: list[str] = []
@@ -190,9 +190,6 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
 
 def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
     """The point's start from rest (its run before the settled window), with the bearings' loads."""
-    from gearcli.design.shafts import stage_layout
-    from gearcli.life.channels import reaction_series
-
     if result.window_s[0] <= result.time_s[0]:
         raise SimulationError(f"duty point {point.name}: starts = {point.starts} needs the run from rest before its "
                               "window; simulation.window_start_s = 0 leaves no start to count")
@@ -206,8 +203,6 @@ def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: Simu
 def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
     """The series with each planetary stage's own F_t channel: its planets' sun-mesh mean (the central members'
     load; the statics' input)."""
-    import numpy as np
-
     for st in design.stages:
         if st.planetary is not None:
             forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
@@ -219,11 +214,6 @@ def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -
 def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> PointBearings:
     """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
     window (at a steady speed, revolutions are proportional to time), and the window's peak ISO 76 P_0."""
-    import numpy as np
-
-    from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
-    from gearcli.life.channels import peak_static_load_N, reaction_series
-
     lay = stage_layout(cfg, design.stages)
     if lay is None:
         return PointBearings((), ())
@@ -474,8 +464,6 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
             evaluated.append(_static_point(scene, p, design_case))
             warnings += _point_design_warnings(scene, p, design_case, base_warnings, evaluated[-1].design)
     else:
-        from gearcli import engine
-
         with engine.batch(len(points)):
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
+from gearcli.model.damping import body_matrices, state_matrix
 from gearcli.model.elements import mesh
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
@@ -196,8 +197,6 @@ def damped_eigenvalues(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool
     integrates (:mod:`gearcli.model.damping`: the elements' laws, a motor's slip damping and the load law's
     dT/dw at the operating point, the meshes' losses), over the free bodies; lambda = -zeta omega +- i omega_d.
     A free chain adds its rigid-body eigenvalues (0, or real with a speed-dependent drive or load)."""
-    from gearcli.model.damping import body_matrices, state_matrix
-
     lay = _lay(spec)
     F = np.abs(np.asarray(forces, dtype=float))
     kc = np.array([tangent(lay, c, F[c], stiffest_phase=stiffest_phase)[:2] for c in range(F.size)])

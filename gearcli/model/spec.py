@@ -18,6 +18,8 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
+from gearcli.model.elements.machine import kloss_fit, motor_curve, motor_row, motor_torque
+
 MM = 1e-3  # m per mm
 
 
@@ -95,8 +97,6 @@ class MotorSpec:
     def nameplate(cls, rated_power_W: float, rated_speed_rad_s: float, synchronous_speed_rad_s: float,
                   breakdown_ratio: float, locked_ratio: float, **start) -> MotorSpec:
         """The extended Kloss curve through the nameplate's rated, breakdown and locked-rotor points."""
-        from gearcli.model.elements.machine import kloss_fit
-
         if not 0 < rated_speed_rad_s < synchronous_speed_rad_s:
             raise ValueError("the rated speed must lie between 0 and the synchronous speed")
         t_r = rated_power_W / rated_speed_rad_s
@@ -106,14 +106,10 @@ class MotorSpec:
 
     def torque(self, t: float, w: float) -> float:
         """The motor's torque (N m) at time t and speed w (rad/s), starting method included."""
-        from gearcli.model.elements.machine import motor_row, motor_torque
-
         return motor_torque(motor_row(self), t, w)[0]
 
     def curve(self, w: float) -> float:
         """The bare curve's torque (N m) at speed w (the running motor, after any start)."""
-        from gearcli.model.elements.machine import motor_curve, motor_row
-
         return motor_curve(motor_row(self), w, self.synchronous_speed_rad_s)[0]
 
     @property

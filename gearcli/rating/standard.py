@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Protocol, TypeVar
 
 from gearcli.results import RatedMember, RatedMesh
 
@@ -12,11 +12,12 @@ if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
     from gearcli.diagnostics import Diagnostic
     from gearcli.rating.sn import SNCurve
-    from gearcli.results import DesignResult, StageDynamics, StageResult
+    from gearcli.results import DesignResult, StageResult
 
 __all__ = ["MODES", "RatedMember", "RatedMesh", "RatingStandard"]
 
 MODES = ("pitting", "bending")  # the failure modes every standard rates: flank and tooth root
+S = TypeVar("S")  # a run's stage summary (``gearcli.simulate.results.StageDynamics``, a layer above: read by its fields)
 
 
 class RatingStandard(Protocol):
@@ -34,8 +35,8 @@ class RatingStandard(Protocol):
         """The design's stages with their ratings (every mesh the stage has), and the rating's warnings."""
         ...
 
-    def rate_simulation(self, cfg: DesignFile, design: DesignResult, stages: Sequence[StageDynamics]
-                        ) -> tuple[tuple[StageDynamics, ...], list[Diagnostic]]:
+    def rate_simulation(self, cfg: DesignFile, design: DesignResult, stages: Sequence[S]
+                        ) -> tuple[tuple[S, ...], list[Diagnostic]]:
         """With ``[rating] dynamic_factor = "simulated"``: the run's stage summaries rated at their simulated K_v
         (:mod:`gearcli.rating.dynamic`), and that rating's warnings; unchanged otherwise."""
         ...

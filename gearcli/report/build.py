@@ -18,8 +18,9 @@ from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
 from gearcli.report.result import Report
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
+from gearcli.simulate.results import SimulationResult
 from gearcli.simulate.run import run_simulation
 
 if TYPE_CHECKING:

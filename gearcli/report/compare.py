@@ -15,7 +15,8 @@ from gearcli.core.channels import Channel
 from gearcli.rating.dynamic import stage_simulated_k_v  # one formula, shared with the simulated rating
 from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult
+from gearcli.simulate.results import SimulationResult
 
 RAD_TO_DEG = 180.0 / math.pi
 

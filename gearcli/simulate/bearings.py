@@ -21,7 +21,8 @@ from gearcli.design.bearing_life import static_warning
 from gearcli.design.iso281 import static_safety
 from gearcli.design.shafts import BearingSpec, ShaftLayout, stage_layout
 from gearcli.diagnostics import Diagnostic, messages
-from gearcli.results import BearingStats, DesignResult, SimulationExtra, SimulationResult
+from gearcli.results import DesignResult
+from gearcli.simulate.results import BearingStats, SimulationExtra, SimulationResult
 from gearcli.simulate.stats import channel_stats, window_mask
 
 
