@@ -17,12 +17,11 @@ from gearcli.model.assembly import Layout
 from gearcli.model.modes import SPEED_RANGE, CampbellData, campbell_data, modal_analysis
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
-from gearcli.sweep.spec import Axis, SweepSpec
+from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec
 from gearcli.sweep.worker import CaseDesigner, Scene
 
 UnitsOf = Callable[[DesignFile], tuple[str, str]]  # a file's output units (io.units.key_units, injected by the facade)
 
-SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
 
 
 def natural_frequencies_Hz(cfg: DesignFile, design: DesignResult) -> tuple[float, ...]:

@@ -27,7 +27,7 @@ from gearcli.results import DesignResult
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
-from gearcli.sweep.spec import SweepSpec, SweepUsageError, spec_from_options
+from gearcli.sweep.spec import SPEED_KEYS, SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
 
@@ -121,7 +121,6 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
                               source="--random")
 
 
-SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
 
 
 def check_motor_speed(keys: Sequence[str], cfg: DesignFile, source: str) -> None:

@@ -33,6 +33,10 @@ from gearcli.config.overrides import parse, parse_value
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.errors import ConfigError
 
+# the input-speed keys of the design file (a speed axis: the Campbell diagram; a motor drive's refusal)
+SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
+
+
 DIRECTIONS = ("up", "down", "both")
 NO_DIRECTION = "none"
 SAMPLINGS = ("lhs", "mc")
