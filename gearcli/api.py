@@ -34,8 +34,13 @@ from gearcli.config.bounds import check_memory, check_run_budget, memory_limit_b
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
+from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, DesignError, RunTooLong
 from gearcli.io.sweep_file import open_sink, read_identity
+from gearcli.io.units import key_units
+from gearcli.model import TorsionalModel
+from gearcli.model.assembly import Layout
+from gearcli.model.modes import BOUNDARIES, campbell_data, modal_analysis
 from gearcli.model.spec import ElementSpec, ModelSpec
 from gearcli.results import DesignResult
 from gearcli.scene import build_model, resonance_diagnostics, spec_from_design
@@ -47,7 +52,7 @@ if TYPE_CHECKING:
     from gearcli.model.modes import CampbellData, ModalAnalysis
     from gearcli.report import LadderSpec, Report
     from gearcli.report.accuracy import ProgressFn
-    from gearcli.results import SimulationResult
+    from gearcli.simulate.results import SimulationResult
     from gearcli.sweep.columns import Row
     from gearcli.sweep.continuation import Carried
     from gearcli.sweep.modes import SweepCampbell
@@ -70,7 +75,7 @@ def engine_build(*, force: bool = False, quiet: bool = False) -> Built:
     """Compile the compiled engine's kernel into its cache (``force``: discard it first) and load it as a run would
     (:func:`gearcli.engine.build`); a first build is reported through the installed reporter
     (:mod:`gearcli.core.announce`)."""
-    from gearcli import engine
+    from gearcli import engine  # lazy: numpy and the engine, start-up time of gearcli design
 
     return engine.build(force=force, quiet=quiet)
 
@@ -124,10 +129,19 @@ def model_source(cfg: DesignFile, design_result: DesignResult) -> str:
 def simulate(cfg: DesignFile, design_result: DesignResult, *, method: str | None = None, rtol: float | None = None,
              want_series: bool = True, progress: Callable[[float], None] | None = None) -> SimulationResult:
     """One run of the scene with its ``[simulation]`` settings (``method``/``rtol`` override them); ``progress``
-    is called with the fraction of the run done (a terminal's progress bar)."""
-    from gearcli.simulate import run_simulation  # lazy for start-up: scipy
+    is called with the fraction of the run done (a terminal's progress bar). With ``[rating] dynamic_factor =
+    "simulated"`` the facade rates the run's stages by the file's standard at their simulated K_v (simulate itself
+    knows no standard). With ``[[bearing]]`` tables (and the series kept) the result carries the bearing reactions
+    as channels and their window statistics; its ``units`` are those of the file's keys: what ``gearcli simulate``
+    prints."""
+    from gearcli.simulate import run_simulation  # lazy: scipy, start-up time of gearcli design
+    from gearcli.simulate.bearings import with_bearings  # lazy: scipy, start-up time of gearcli design
 
-    return run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series, progress=progress)
+    result = run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series, progress=progress)
+    result = with_simulated_rating(cfg, design_result, result)
+    if cfg.bearing and want_series:  # bearing reactions: channels and window statistics (docs/life.md)
+        result = with_bearings(cfg, design_result, result)
+    return dataclasses.replace(result, units=key_units(cfg))  # written in the units of the file's keys
 
 
 def check_budget(loaded: LoadedDesign, design_result: DesignResult, *, output_format: str = "json",
@@ -142,17 +156,13 @@ def check_budget(loaded: LoadedDesign, design_result: DesignResult, *, output_fo
 def simulate_file(loaded: LoadedDesign, design_result: DesignResult, *,
                   progress: Callable[[float], None] | None = None) -> SimulationResult:
     """``gearcli simulate``: one run with the series (:func:`check_budget` first for a guarded run); errors name
-    the file; with ``[[bearing]]`` tables, the bearing reactions as channels and window statistics."""
+    the file; with ``[[bearing]]`` tables, the bearing reactions as channels and window statistics (:func:`simulate`)."""
     try:
         result = simulate(loaded.design, design_result, want_series=True, progress=progress)  # statistics need them
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
     except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
         raise DesignError(exc.message, key=exc.key, source=loaded.source) from None
-    if loaded.design.bearing:  # bearing reactions: channels and window statistics (docs/life.md)
-        from gearcli.life.channels import with_bearings
-
-        result = with_bearings(loaded.design, design_result, result)
     return result
 
 
@@ -160,8 +170,7 @@ def simulate_spec(spec: ModelSpec, *, duration_s: float, steps: int, method: str
                   engine: str = "auto", error_estimate: bool = False) -> SimulationResult:
     """One run of a model given by its SI parameters (a scene changed or extended in code: further elements
     in ``spec.elements``, :class:`ElementSpec`)."""
-    from gearcli.model import TorsionalModel
-    from gearcli.simulate import simulate_model
+    from gearcli.simulate import simulate_model  # lazy: the solver layers (scipy), start-up time of gearcli design
 
     return simulate_model(TorsionalModel(spec), duration_s=duration_s, steps=steps, method=method, rtol=rtol,
                           engine=engine, error_estimate=error_estimate)
@@ -169,18 +178,12 @@ def simulate_spec(spec: ModelSpec, *, duration_s: float, steps: int, method: str
 
 def modes(cfg: DesignFile, design_result: DesignResult) -> list[ModalAnalysis]:
     """The linearised drivetrain's modes at each boundary condition (clamped input, free)."""
-    from gearcli.model.assembly import Layout
-    from gearcli.model.modes import BOUNDARIES, modal_analysis
-
     lay = Layout.of(spec_from_design(cfg, design_result))
     return [modal_analysis(lay, b, duration_s=cfg.simulation.duration_s) for b in BOUNDARIES]
 
 
 def campbell(cfg: DesignFile, design_result: DesignResult) -> CampbellData:
     """The Campbell data (natural frequencies and excitation orders over speed) at the drive's boundary."""
-    from gearcli.model.assembly import Layout
-    from gearcli.model.modes import campbell_data
-
     lay = Layout.of(spec_from_design(cfg, design_result))
     return campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s)
 
@@ -188,16 +191,17 @@ def campbell(cfg: DesignFile, design_result: DesignResult) -> CampbellData:
 def report(cfg: DesignFile, design_result: DesignResult, *, accuracy: float = 1e-4, quick: bool = False,
            spec: LadderSpec | None = None, progress: ProgressFn | None = None) -> Report:
     """The report: theory against simulation and, unless ``quick``, the work-precision study."""
-    from gearcli.report import build_report
+    from gearcli.report import build_report  # lazy: the solver layers (scipy), start-up time of gearcli design
 
-    return build_report(cfg, design_result, accuracy=accuracy, quick=quick, spec=spec, progress=progress)
+    rep = build_report(cfg, design_result, accuracy=accuracy, quick=quick, spec=spec, progress=progress)
+    return dataclasses.replace(rep, simulation=dataclasses.replace(rep.simulation, units=key_units(cfg)))
 
 
 def report_file(loaded: LoadedDesign, design_result: DesignResult, *, accuracy: float = 1e-4, quick: bool = False,
                 rtols: Sequence[float] | None = None, progress: ProgressFn | None = None) -> Report:
     """``gearcli report`` (:func:`check_budget` first for a guarded run): :func:`report` with the accuracy
     ladder's tolerances ``rtols`` (default: the ladder's own); a run too long names the file."""
-    from gearcli.report import LadderSpec
+    from gearcli.report import LadderSpec  # lazy: the solver layers (scipy), start-up time of gearcli design
 
     spec = LadderSpec(rtols=tuple(rtols)) if rtols else LadderSpec()
     try:
@@ -212,7 +216,7 @@ def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), r
                   output: str | None = None, fmt: str = "csv") -> Session:
     """A checked sweep (every usage error raised before any point runs); ``output``, when it exists, is
     read for a resume."""
-    from gearcli.sweep.session import prepare
+    from gearcli.sweep.session import prepare  # lazy: the sweep and life layers, start-up time of gearcli design
 
     raw = read_bytes(file)
     loaded = load(file, sets, stdin=io.BytesIO(raw))
@@ -225,7 +229,7 @@ def run_sweep(session: Session, on_row: Callable[[bool], None] = lambda failed: 
               sink: SinkFactory | None = None) -> list[Row]:
     """Run a prepared sweep; rows go to ``sink`` (default: the session's ``-o`` file or stdout) as they
     finish. Returns every row in point order."""
-    from gearcli.sweep.session import run
+    from gearcli.sweep.session import run  # lazy: the sweep and life layers, start-up time of gearcli design
 
     return run(session, sink or open_sink, on_row)
 
@@ -234,9 +238,10 @@ def sweep_campbell(session: Session) -> SweepCampbell | None:
     """The Campbell diagram of a sweep over the input speed (``gearcli sweep --plots``): the modes and order
     lines at the file's own speed over the swept range, the swept speeds marked; None when no input speed is
     swept."""
+    # lazy: the sweep and life layers, start-up time of gearcli design
     from gearcli.sweep.modes import sweep_campbell as diagram
 
-    return diagram(session.spec, session.scene, design_case)
+    return diagram(session.spec, session.scene, design_case, key_units)
 
 
 def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None = None,
@@ -244,7 +249,7 @@ def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None
     """A checked ``gearcli life`` run: the base file read, validated and designed (bad input raises before any
     point runs), and its duty points (the file's ``[[duty]]`` tables, or the history ``series`` classed into
     ``classes`` torque classes)."""
-    from gearcli.life.session import prepare
+    from gearcli.life.session import prepare  # lazy: the sweep and life layers, start-up time of gearcli design
 
     if file == "-" and series == "-":
         raise ConfigError("'-' (standard input) already carries the design file; give the history as a "
@@ -259,7 +264,7 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
     """The life of every member and bearing over the session's duty points: each point simulated (its
     mesh-cycle load spectrum) or, ``static``, rated at its static forces with the rating's K_v; Miner damage by
     ``variant`` (``iso``, ``elementary``, ``modified``)."""
-    from gearcli.life.run import compute_life
+    from gearcli.life.run import compute_life  # lazy: the sweep and life layers, start-up time of gearcli design
 
     return compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
                         progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
@@ -269,7 +274,7 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
 # ----------------------------------------------------------------- points (injected into sweep and life)
 def design_case(scene: Scene, overrides: Sequence[str], /) -> Case:
     """One variant of the scene's file (``overrides`` after the scene's ``--set``), validated and designed."""
-    from gearcli.sweep.worker import Case
+    from gearcli.sweep.worker import Case  # lazy: the sweep and life layers, start-up time of gearcli design
 
     cfg = load_variant(scene.raw, scene.source, (*scene.sets, *overrides))
     return Case(cfg, design_layer.compute_design(cfg))
@@ -283,10 +288,11 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     phases carried on; a point whose chain differs starts cold with the file's ramps. ``series`` keeps the time
     series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``); ``settle`` the window
     shown settled (:func:`gearcli.simulate.settle.settled_run`; ``"window"``: never the periodic state)."""
-    from gearcli.model import TorsionalModel  # lazy for start-up: the model and the solver layers
-    from gearcli.simulate import run_simulation
+    from gearcli.simulate import run_simulation  # lazy: the solver layers (scipy), start-up time of gearcli design
+
+    # lazy: the sweep and life layers, start-up time of gearcli design
     from gearcli.sweep.continuation import NO_RAMPS, Carried, carry_phases, continue_state
-    from gearcli.sweep.worker import Evaluation
+    from gearcli.sweep.worker import Evaluation  # lazy: the sweep and life layers, start-up time of gearcli design
 
     case = design_case(scene, (*overrides, *(NO_RAMPS if start else ())))
     check_memory(case.cfg, fmt="json", series=False, source=scene.source)  # the point's run, held in memory
@@ -303,6 +309,7 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     # a sweep row and a duty point are dynamic verdicts: from a window shown settled (gearcli.simulate.settle)
     result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check,
                             settle=settle)
+    result = with_simulated_rating(case.cfg, case.design, result)
     if result.final_state is None or result.final_time_s is None:
         return Evaluation(case, result, None)
     return Evaluation(case, result, Carried(model, result.final_state, result.final_time_s))

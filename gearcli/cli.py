@@ -8,8 +8,10 @@ Library errors become one-line messages on stderr with fixed exit codes (0 ok, 1
 from __future__ import annotations
 
 import functools
+import json
 import math
 import os
+import signal
 import sys
 import warnings as warnings_module
 from collections.abc import Callable
@@ -31,6 +33,7 @@ from gearcli.errors import (
     Terminated,
 )
 from gearcli.io import output as outfiles
+from gearcli.io import streams
 
 FORMATS = ("table", "csv", "json")
 SUFFIX_FORMAT = outfiles.SUFFIX_FORMAT
@@ -86,7 +89,7 @@ def guarded(fn: Callable) -> Callable:
             click.get_current_context().meta["gearcli.quiet"] = True
         _show_engine_builds()
         try:
-            from gearcli import api
+            from gearcli import api  # lazy: start-up time of --help
 
             api.check_environment()  # one rule for every command: a set GEARCLI_MEMORY_LIMIT_MB must be valid
             with warnings_module.catch_warnings(record=True) as caught:
@@ -122,7 +125,7 @@ def guarded(fn: Callable) -> Callable:
 
 def _show_engine_builds() -> None:
     """A first compilation of the engine inside this command shows as a step (silent with -q)."""
-    from gearcli.io.progress import show_engine_builds
+    from gearcli.io.progress import show_engine_builds  # lazy: start-up time of --help
 
     show_engine_builds(quiet=is_quiet())
 
@@ -209,7 +212,8 @@ def emit(text: str, dest: Destination) -> None:
 
 
 def emit_tables(renderables, dest: Destination) -> None:
-    from gearcli.io.tables import render, terminal_console
+    from gearcli.io.table_kit import terminal_console  # lazy: rich, start-up time of --help
+    from gearcli.io.tables import render  # lazy: rich, start-up time of --help
 
     target = _target(dest)
     if not target.is_stdout or not sys.stdout.isatty():
@@ -224,13 +228,13 @@ def emit_as(fmt: str, dest: Destination, result, *, sha256: str, json_doc: Calla
     """Write ``result`` in ``fmt``; only the chosen builder runs, and rich is imported only for tables
     (``table_builder`` names a function of :mod:`gearcli.io.tables`). JSON gets the meta keys."""
     if fmt == "json":
-        from gearcli.io.serialize import to_json, with_meta
+        from gearcli.io.serialize import to_json, with_meta  # lazy: start-up time of --help
 
         emit(to_json(with_meta(json_doc(), sha256)), dest)
     elif fmt == "csv":
         emit(csv_text(), dest)
     else:
-        from gearcli.io import tables
+        from gearcli.io import tables  # lazy: start-up time of --help
 
         emit_tables(getattr(tables, table_builder)(result), dest)
 
@@ -246,7 +250,7 @@ def warn(lines) -> None:
 
 def load_and_design(path: str, overrides):
     """Load and validate the design file, then run the design calculations (:mod:`gearcli.api`)."""
-    from gearcli import api
+    from gearcli import api  # lazy: start-up time of --help
 
     return api.load_and_design(path, overrides)  # "-" reads sys.stdin.buffer (CliRunner swaps it too)
 
@@ -281,8 +285,8 @@ Examples:
 @guarded
 def design(file: str, overrides, fmt, output) -> None:
     """Ratios, speeds, torques, helical geometry, contact ratios, stiffness and static forces."""
-    from gearcli import api
-    from gearcli.io import serialize
+    from gearcli import api  # lazy: start-up time of --help
+    from gearcli.io import serialize  # lazy: start-up time of --help
 
     target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
@@ -307,7 +311,7 @@ Examples:
 @guarded
 def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool = False) -> None:
     """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
-    from gearcli import api
+    from gearcli import api  # lazy: start-up time of --help
 
     target = check_target(fmt, output)
     loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
@@ -316,8 +320,8 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
         return
     api.check_budget(loaded, design_result, output_format=target.fmt, series=series)
     warn(design_result.warnings)
-    from gearcli.io import serialize
-    from gearcli.io.progress import TerminalProgress
+    from gearcli.io import serialize  # lazy: start-up time of --help
+    from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
 
     with TerminalProgress("simulate", enabled=not is_quiet()) as progress:  # a long run on a terminal
         result = api.simulate_file(loaded, design_result, progress=progress.fraction)
@@ -341,8 +345,8 @@ Examples:
 @guarded
 def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, mesh orders."""
-    from gearcli import api
-    from gearcli.io import modes_out, serialize
+    from gearcli import api  # lazy: start-up time of --help
+    from gearcli.io import modes_out, serialize  # lazy: start-up time of --help
 
     target = check_target(fmt, output)
     if plots_dir:
@@ -365,7 +369,7 @@ def _write_figures(write, plots_dir: str, what: str) -> bool:
     """``--plots DIR`` of any command: ``write()`` returns the written paths; without matplotlib a warning and
     exit 0 (``what`` is the command's output, complete without them); an unwritable directory exit 1. Whether
     the figures were written."""
-    from gearcli.io.plots import PlotsUnavailable
+    from gearcli.io.figures import PlotsUnavailable  # lazy: start-up time of --help
 
     try:
         paths = write()
@@ -381,8 +385,8 @@ def _write_figures(write, plots_dir: str, what: str) -> bool:
 
 def _write_campbell(loaded, data, plots_dir: str) -> None:
     """``modes --plots``: the Campbell diagram at the drive's boundary."""
-    from gearcli.io import units
-    from gearcli.io.campbell import write_campbell
+    from gearcli.io import units  # lazy: start-up time of --help
+    from gearcli.io.campbell import write_campbell  # lazy: start-up time of --help
 
     _write_figures(lambda: [write_campbell(data, units.of_design_file(loaded.design), plots_dir, loaded.design.title)],
                    plots_dir, "the modes output")
@@ -400,7 +404,7 @@ Examples:
 @guarded
 def init(file: str | None, force: bool) -> None:
     """Write a commented starter design file (the seed reducer) to FILE, or to stdout ('-' or none)."""
-    from gearcli import api
+    from gearcli import api  # lazy: start-up time of --help
 
     target = outfiles.check_output(file, formats=("toml",), stdout_as="'-'")
     if target.path is not None and target.path.exists() and not force:
@@ -421,9 +425,7 @@ Examples:
 @guarded
 def schema(output: str | None) -> None:
     """Print the JSON Schema of the design file."""
-    import json
-
-    from gearcli import api
+    from gearcli import api  # lazy: start-up time of --help
 
     target = outfiles.check_output(output, formats=("json",))
     emit(json.dumps(api.design_file_schema(), indent=2) + "\n", target)
@@ -484,8 +486,8 @@ Examples:
 @guarded
 def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtols, plots_dir) -> None:
     """Theory against simulation, the numerical error against run time, and plots."""
-    from gearcli import api
-    from gearcli.io import serialize
+    from gearcli import api  # lazy: start-up time of --help
+    from gearcli.io import serialize  # lazy: start-up time of --help
 
     target = check_target(fmt, output, REPORT_FORMATS, pipe_format="markdown")
     if plots_dir:
@@ -494,20 +496,20 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     api.check_budget(loaded, design_result)  # the file's own run; the ladder's runs bound themselves
     warn(design_result.warnings)
     fmt = target.fmt
-    from gearcli.io.progress import TerminalProgress
+    from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
 
     with TerminalProgress("report", enabled=not is_quiet()) as progress:
         rep = api.report_file(loaded, design_result, accuracy=accuracy, quick=quick, rtols=rtols, progress=progress)
     if fmt == "json":
-        from gearcli.io.report_json import report_dict
+        from gearcli.io.report_json import report_dict  # lazy: start-up time of --help
 
         emit(serialize.to_json(serialize.with_meta(report_dict(rep), loaded.sha256)), target)
     elif fmt == "markdown":
-        from gearcli.io.markdown import report_markdown
+        from gearcli.io.markdown import report_markdown  # lazy: start-up time of --help
 
         emit(report_markdown(rep, loaded.sha256), target)
     else:
-        from gearcli.io.report_tables import report_tables
+        from gearcli.io.report_tables import report_tables  # lazy: start-up time of --help
 
         emit_tables(report_tables(rep), target)
     warn(w for w in rep.warnings if w not in design_result.warnings)  # design ones went out first
@@ -526,13 +528,13 @@ def check_plots_dir(plots_dir: str, names, target: outfiles.OutputTarget) -> Non
 
 
 def _check_plots_dir(plots_dir: str, file: str, target) -> None:
-    from gearcli.io.plots import FIGURE_NAMES
+    from gearcli.io.plots import FIGURE_NAMES  # lazy: start-up time of --help
 
     check_plots_dir(plots_dir, FIGURE_NAMES, target)
 
 
 def _write_report_plots(rep, plots_dir: str) -> None:
-    from gearcli.io.plots import write_plots
+    from gearcli.io.plots import write_plots  # lazy: start-up time of --help
 
     if _write_figures(lambda: write_plots(rep, plots_dir), plots_dir, "the report") and not is_quiet() \
             and rep.accuracy is None:
@@ -576,8 +578,8 @@ Examples:
 def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, scheduler, overrides, fmt, output,
           plots_dir) -> None:
     """Simulate many operating points: grids, tolerance samples, continuation up and down in speed."""
-    from gearcli import api
-    from gearcli.io.sweep_progress import SweepProgress
+    from gearcli import api  # lazy: start-up time of --help
+    from gearcli.io.sweep_progress import SweepProgress  # lazy: start-up time of --help
 
     target = outfiles.check_output(output, formats=SWEEP_FORMATS, fmt=fmt, inputs=_context_inputs())  # before work
     if plots_dir:
@@ -608,8 +610,8 @@ def _check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
 
 
 def _write_sweep_plots(session, rows, plots_dir: str) -> None:
-    from gearcli import api
-    from gearcli.io.sweep_plots import write_sweep_plots
+    from gearcli import api  # lazy: start-up time of --help
+    from gearcli.io.sweep_plots import write_sweep_plots  # lazy: start-up time of --help
 
     _write_figures(lambda: write_sweep_plots(session, rows, plots_dir, api.sweep_campbell(session)), plots_dir,
                    "the sweep")
@@ -640,15 +642,15 @@ Examples:
 @guarded
 def life(file: str, overrides, fmt, output, static: bool, series, classes: int, miner: str, plots_dir) -> None:
     """Duty cycle to life: load spectra, ISO 6336-6 Miner damage per member, ISO 281 bearing lives."""
-    from gearcli import api
-    from gearcli.io.life_out import life_csv, life_dict
+    from gearcli import api  # lazy: start-up time of --help
+    from gearcli.io.life_out import life_csv, life_dict  # lazy: start-up time of --help
 
     target = check_target(fmt, output)
     if plots_dir:
         check_plots_dir(plots_dir, ("pitting.png", "bending.png"), target)
     session = api.prepare_life(file, overrides, series=series, classes=classes)
     warn(session.design.warnings)
-    from gearcli.io.progress import TerminalProgress
+    from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
 
     with TerminalProgress("life", enabled=not is_quiet()) as progress:
         result = api.life(session, static=static, variant=miner, progress=progress)
@@ -660,7 +662,7 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
 
 
 def _write_life_plots(result, plots_dir: str) -> None:
-    from gearcli.io.life_plots import write_life_plots
+    from gearcli.io.life_plots import write_life_plots  # lazy: start-up time of --help
 
     _write_figures(lambda: write_life_plots(result, plots_dir), plots_dir, "the life calculation")
 
@@ -685,7 +687,7 @@ Examples:
 @guarded
 def engine_build(force: bool) -> None:
     """Compile the integration kernel into the cache now (with progress), so that no run pays for it."""
-    from gearcli import api
+    from gearcli import api  # lazy: start-up time of --help
 
     built = api.engine_build(force=force, quiet=is_quiet())
     if built.refused:  # compiled, but nothing cached: the command's purpose failed
@@ -699,10 +701,6 @@ def engine_build(force: bool) -> None:
 
 def main() -> None:
     """The console script: SIGTERM unwinds like Ctrl-C (temporary files removed), then exit 143."""
-    import signal
-
-    from gearcli.io import streams
-
     streams.guard()  # a closed stdout/stderr (>&-): a clean message, never a traceback
     signal.signal(signal.SIGINT, _on_sigint)  # KeyboardInterrupt, remembered (guarded)
     signal.signal(signal.SIGTERM, _on_sigterm)

@@ -7,6 +7,7 @@ matching message text). The JSON ``warnings`` list holds one object per warning 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Literal, cast
@@ -84,8 +85,6 @@ WARNING_SCHEMA: JsonObject = {
 
 def _json_value(v: object) -> JsonValue:
     """A data value as plain JSON: non-finite floats become null, numpy scalars and tuples plain."""
-    import math
-
     if hasattr(v, "tolist"):
         v = v.tolist()
     if isinstance(v, float):

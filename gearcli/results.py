@@ -1,4 +1,7 @@
-"""Frozen result objects shared by the core layers and the writers.
+"""Frozen result objects of the design: ``DesignResult`` and its stages, gears, static forces, mesh stiffness,
+ratings, shafts, bearings, a planetary stage's members and meshes. What ``simulate`` produces
+(``SimulationResult``, ``StageDynamics``, ``ChannelStats``, ``SolverStats`` ...) is in
+:mod:`gearcli.simulate.results`.
 
 Field names carry their units, as the JSON output does (docs/output.md). Stage and shaft
 indices in these objects are 1-based, as an engineer numbers them (stage 1 is the input stage).
@@ -6,15 +9,13 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, NotRequired, TypedDict
+from typing import TYPE_CHECKING, Protocol
 
-from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 
-if TYPE_CHECKING:  # the design path never imports numpy: `gearcli design` starts fast
-    import numpy as np
-
+if TYPE_CHECKING:
     from gearcli.diagnostics import Diagnostic
 
 
@@ -64,79 +65,39 @@ class Iso6336Factors:
     C_B: float = 0.975
 
 
-@dataclass(frozen=True)
-class MemberRating:
-    """ISO 6336-2/-3 figures of one member (docs/iso6336.md, "Strength rating"); JSON ``rating.pinion|gear``."""
+class RatedMember(Protocol):
+    """One member of a rated mesh, whatever the standard (``gearcli.rating``): its load cycles, and per failure mode
+    ("pitting", "bending") its safety and its stress at the rating's operating point."""
 
-    load_cycles: float
-    Z_BD: float  # Z_B of the smaller wheel, Z_D of the larger (ISO's pinion and wheel)
-    sigma_H_MPa: float  # sigma_HB / sigma_HD
-    Z_NT: float
-    Z_X: float
-    sigma_HG_MPa: float
-    sigma_HP_MPa: float
-    S_H: float
-    Y_F: float
-    Y_S: float
-    Y_B: float
-    Y_DT: float
-    sigma_F0_MPa: float
-    sigma_F_MPa: float
-    Y_delta_rel_T: float
-    Y_R_rel_T: float
-    Y_X: float
-    Y_NT: float
-    sigma_FG_MPa: float
-    sigma_FP_MPa: float
-    S_F: float
-    Y_M: float = 1.0  # mean stress factor in sigma_FG: 0.7 on a planet's root (an idler: alternating bending)
+    @property
+    def load_cycles(self) -> float: ...
+
+    def safety(self, mode: str) -> float: ...
+
+    def stress_MPa(self, mode: str) -> float: ...
 
 
-@dataclass(frozen=True)
-class MeshRatingFactors:
-    """The mesh-level figures of an ISO 6336:2006 method B rating (load factors, pitting factors, σ_H0, σ_H),
-    shared by a gear pair's rating and the planet–ring mesh's."""
+class RatedMesh(Protocol):
+    """A mesh rated by a standard (``gearcli.rating``; ISO 6336's: ``gearcli.design.rating_results``): its title
+    (JSON ``standard``), its dynamic factor and where it came from, its members (``pinion`` driving, ``gear``
+    driven), and its factor table by the standard's names. Its JSON is its dataclass fields."""
 
-    standard: str
-    K_A: float
-    K_v: float
-    K_v_source: str  # "iso" | "simulated" | "given"
-    K_Hbeta: float
-    K_Hbeta_source: str  # "given" | "estimated"
-    K_Fbeta: float
-    K_Halpha: float
-    K_Falpha: float
-    Z_H: float
-    Z_E: float
-    Z_eps: float
-    Z_beta: float
-    Z_L: float
-    Z_V: float
-    Z_R: float
-    Z_W: float
-    Y_beta: float
-    sigma_H0_MPa: float
-    sigma_H_MPa: float  # at the operating pitch point (Z_B = Z_D = 1)
+    @property
+    def standard(self) -> str: ...
 
+    @property
+    def K_v(self) -> float: ...
 
-@dataclass(frozen=True)
-class RatingResult(MeshRatingFactors):
-    """The strength rating of one stage, ISO 6336:2006 method B; JSON ``stages[k].rating``."""
+    @property
+    def K_v_source(self) -> str: ...
 
-    pinion: MemberRating
-    gear: MemberRating
-    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
+    @property
+    def pinion(self) -> RatedMember: ...
 
+    @property
+    def gear(self) -> RatedMember: ...
 
-@dataclass(frozen=True)
-class InternalRatingResult(MeshRatingFactors):
-    """The planet–ring mesh's strength rating (ISO 6336:2006 method B); JSON ``meshes[1].rating``, the keys of a
-    parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (its root by ISO 6336-3's internal
-    gear method; K_v from the internal mesh's own resonance)."""
-
-    pinion: MemberRating
-    gear: MemberRating
-    K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
+    def factor_table(self) -> Mapping[str, float | str]: ...
 
 
 @dataclass(frozen=True)
@@ -178,7 +139,7 @@ class StageResult:
     resonance_ratio: float = 0.0  # N = n_smaller_wheel / n_E1
     resonance_lower_limit: float = 0.85  # N_S
     resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
-    rating: RatingResult | None = None  # ISO 6336-2/-3 (issue 22); None without [rating]
+    rating: RatedMesh | None = None  # by the [rating] standard (ISO 6336-2/-3 by default); None without [rating]
     planetary: PlanetaryResult | None = None  # a planetary stage: this result is its sun–planet mesh
     # manufacturing allowances (ISO 21771; None without allowance keys)
     backlash_circumferential_mm: tuple[float, float] | None = None  # [max, min] on the working pitch circle
@@ -271,34 +232,6 @@ class DesignResult:
     diagnostics: tuple[Diagnostic, ...] = ()  # the warnings' diagnostics (code, data); JSON writes these
 
 
-# ------------------------------------------------------------------------------------- simulation
-@dataclass(frozen=True)
-class ChannelStats:
-    mean: float
-    min: float
-    max: float
-    std: float
-
-
-@dataclass(frozen=True)
-class StatisticsError:
-    """Estimated error of one stage's window statistics of F_t (absolute, N), from the check pass
-    (gearcli.simulate.estimate); radial and axial forces share the relative error."""
-
-    stage: int  # 1-based
-    reference_N: float  # the force the target refers to: |mean F_t| (static |F_t| when the mean is 0)
-    target_relative: float
-    tangential_N: ChannelStats  # estimated error of mean, min, max, std: |check - run| / (CHECK_FACTOR - 1)
-    spectrum_N: float  # largest amplitude difference over the F_t spectrum (Hann, detrended)
-    relative: dict[str, float]  # mean, min, max, std, spectrum: error / reference_N
-    dominant_frequency_Hz: float  # of the run
-    check_dominant_frequency_Hz: float  # of the check pass
-    unresolved: tuple[str, ...]  # statistics beyond the target
-    suggested_rtol: float | None  # simulation.rtol that would resolve them (None when resolved)
-    resolved: bool = True  # no statistic beyond the target
-    mean_target_relative: float = 1e-4  # the mean's target (target_relative is that of min, max, std, spectrum)
-
-
 @dataclass(frozen=True)
 class MeshStiffness:
     """The contact law of one mesh: K in N/mm^e, its slope along the normal at the static load, and ISO 6336-1's
@@ -316,187 +249,6 @@ class MeshStiffness:
     def departure(self) -> float | None:
         """linearised / ISO - 1 (None without an ISO value)."""
         return self.linearised_N_mm / self.iso_N_mm - 1.0 if self.iso_N_mm > 0.0 else None
-
-
-@dataclass(frozen=True)
-class DteStats:
-    """Dynamic transmission error q = delta - e over the statistics window, um (``rms`` about the mean)."""
-
-    mean: float
-    rms: float
-    min: float
-    max: float
-
-
-#: Impact regimes of a mesh over the statistics window (the loaded flank: the one the static load presses)
-REGIME_NO_IMPACT = "no impact"  # the mesh force never drops to zero
-REGIME_SINGLE_SIDED = "single-sided impact"  # it loses contact but never touches the other flank
-REGIME_DOUBLE_SIDED = "double-sided impact"  # it also strikes the other (back) flank
-
-
-@dataclass(frozen=True)
-class StageDynamics:
-    index: int  # 1-based
-    tangential_N: ChannelStats  # over the steady window
-    radial_N: ChannelStats
-    axial_N: ChannelStats
-    penetration_mm: ChannelStats
-    static_tangential_N: float  # the design's static F_t at full load
-    peak_tangential_N: float  # largest |F_t| over the whole run (run-up included)
-    peak_time_s: float
-    dynamic_factor: float | None  # steady-window max |F_t| / |simulated static F_t|; None when that static is 0
-    error_estimate: StatisticsError | None = None  # None when no refinement pass ran
-    mesh_stiffness: MeshStiffness | None = None
-    # mesh response over the statistics window (issue 13); defaults for hand-made results
-    dte_um: DteStats | None = None
-    contact_loss_fraction: float = 0.0  # time fraction with zero mesh force
-    back_flank_fraction: float = 0.0  # time fraction in contact on the flank opposite the loaded one
-    regime: str = ""  # REGIME_*
-    rating: RatingResult | None = None  # [rating] dynamic_factor = "simulated": the rating at the simulated K_v
-    # issue 21: the run-up overshoot apart from the steady dynamic factor; defaults for hand-made results
-    runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
-    simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
-    # the losses its dynamics model (lossless meshes today): the reference of both factors
-    # a planetary stage (issue 25): every planet's sun and ring mesh; the largest planet's window-mean sun-mesh
-    # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
-    planets: tuple[PlanetDynamics, ...] = ()
-    load_sharing_factor: float | None = None
-    # [rating] dynamic_factor = "simulated" on a planetary stage: its planet–ring mesh rated at the ring meshes'
-    # own simulated K_v (``rating`` is the sun–planet mesh's, at the sun meshes' K_v)
-    planet_ring_rating: InternalRatingResult | None = None
-
-
-@dataclass(frozen=True)
-class SolverStats:
-    method: str  # the scipy method that ran
-    requested_method: str  # as in the design file ("auto" ...)
-    choice_reason: str  # why auto chose it, or "as requested"
-    rtol: float
-    atol: dict[str, float]  # per state group: {"deflection_m": ..., "speed_rad_s": ...}
-    nfev: int
-    njev: int
-    nlu: int
-    steps: int  # accepted integrator steps
-    wall_s: float  # integration only, excluding imports and model assembly
-    energy_residual: float  # (W_in - W_load - E_damp - dKE - dPE) / max(|W_in|, |W_load|, KE_end)
-    status: int  # solve_ivp status (0: reached the end)
-    message: str
-    check_pass: JsonObject | None = None  # the error-estimate pass: rtol, from_s, nfev, njev, steps, wall_s, finished
-    engine: str = "python"  # "python" (scipy) or "compiled" (gearcli.engine)
-    engine_reason: str = "as requested"  # why this engine ran (auto's rule, or what sends a scene to Python)
-    compile_s: float = 0.0  # loading (or compiling) the compiled engine in this process; not in wall_s
-    #: what auto's cost model predicted for the run's integration: nfev, price_us_per_eval, wall_s (docs/output.md)
-    prediction: JsonObject | None = None
-    #: where an auto run re-decided mid-run: [{at_s, from, to, why}] (gearcli.simulate.course)
-    course_changes: tuple[JsonObject, ...] = ()
-
-
-@dataclass(frozen=True)
-class EnergyBalance:
-    """Energies in J over the run; residual = input - load - damping - kinetic - potential."""
-
-    input_work_J: float
-    load_work_J: float
-    damping_loss_J: float
-    kinetic_change_J: float
-    potential_change_J: float
-    residual_relative: float
-
-
-@dataclass(frozen=True)
-class SteadyState:
-    """How the statistics window was found (``[simulation] steady``).
-
-    ``mode = "window"``: the fixed window (``period_s`` the excitation period for information, the rest
-    None). ``mode = "periodic"``: the run went period by period past the ramps until the state at the
-    period boundaries repeated (Poincare map) within the run's tolerance; ``periodicity`` is "period-1",
-    "period-k" (a subharmonic: the state repeats after k periods) or "none" (no repeat up to the cap);
-    ``residual`` the last boundary mismatch in units of the tolerance (converged when <= 1).
-    """
-
-    mode: str  # "window" | "periodic"
-    period_s: float | None  # the common period of the excitations at the steady operating speed
-    periods_to_converge: int | None  # excitation periods integrated past the ramps until the repeat
-    periodicity: str | None  # "period-1" | "period-k" | "none"
-    converged: bool | None
-    residual: float | None
-    period_source: str = ""  # how period_s was formed (the excitations, or why the slowest one was taken)
-    window_periods: int | None = None  # whole excitation periods in the statistics window
-    samples_per_period: int | None = None
-    cap_periods: int | None = None
-    # how the periodic orbit was found (gearcli.simulate.shooting): "shooting" (Newton on the period map) or
-    # "brute force" (period by period until it repeats); Newton steps; the monodromy matrix's source; the
-    # Floquet multipliers ((re, im), largest modulus first), stability and the bifurcation nearby ("none",
-    # "fold", "period doubling"); why shooting fell back to brute force, where it did
-    method: str | None = None
-    iterations: int | None = None
-    attempts: int | None = None  # Newton starts (a restart follows more brute-force periods)
-    monodromy: str | None = None
-    multipliers: tuple[tuple[float, float], ...] | None = None
-    spectral_radius: float | None = None
-    stable: bool | None = None
-    bifurcation: str | None = None
-    note: str = ""
-    # issue 30: the window shown settled (gearcli.simulate.settle): no start-up transient left at its start
-    # (a fixed window), or a converged periodic state; the largest fitted transient there (of the static force),
-    # the time from which it would be settled, and the runs the window was moved later for it
-    settled: bool | None = None
-    transient_fraction: float | None = None
-    settle_time_s: float | None = None
-    settle_runs: int = 0
-
-
-class BearingStats(TypedDict):
-    """One bearing's reactions over the steady window (``[[bearing]]`` tables, docs/life.md)."""
-
-    shaft: int  # 1-based; 0 for a planet pin's bearing
-    planet_stage: NotRequired[int]  # a planet pin's bearing: its planetary stage, 1-based
-    position_mm: float
-    radial_N: ChannelStats
-    axial_N: ChannelStats
-    static_safety_min: NotRequired[float | None]  # ISO 76 s_0 at the window's peak P_0 (with static_load_rating_kN)
-
-
-class StartSummary(TypedDict):
-    """``summary.start``: per stage, the run's peak |F_t| over the rigid-body start's, and that rigid peak (N)."""
-
-    peak_over_rigid: list[float | None]
-    rigid_peak_N: list[float]
-
-
-class SimulationExtra(TypedDict, total=False):
-    """What a simulation reports besides its fields: the parametric work of time-varying meshes, auto's
-    stiffness indicator, the natural frequencies at the operating point of the run-up, a motor's summary
-    (docs/output.md ``summary.motor``), the bearings' window statistics."""
-
-    parametric_work_J: float
-    stiffness_indicator: float
-    natural_frequencies_runup_Hz: list[float]
-    motor: dict[str, float | None]
-    bearings: list[BearingStats]
-    start: StartSummary  # the run's peak over the rigid-body start's (issue 30)
-
-
-@dataclass(frozen=True)
-class SimulationResult:
-    time_s: np.ndarray
-    series: dict[Channel, np.ndarray]  # what it measures -> samples in SI, in output order (io.channels names them)
-    window_s: tuple[float, float]
-    ratio: float  # dynamic ratio mean(omega_in) / mean(omega_out) over the window
-    output_speed_deg_s: float  # mean over the window
-    input_speed_deg_s: float  # mean over the window
-    stages: tuple[StageDynamics, ...]
-    solver: SolverStats
-    energy: EnergyBalance
-    warnings: tuple[str, ...] = field(default_factory=tuple)
-    natural_frequencies_Hz: tuple[float, ...] = field(default_factory=tuple)  # linearised, at full load
-    extra: SimulationExtra | None = None
-    diagnostics: tuple[Diagnostic, ...] = field(default_factory=tuple)  # warnings are their messages
-    natural_frequencies_boundary: str = "clamped_input"  # "clamped_input" (speed drive) or "free" (torque drive)
-    final_state: np.ndarray | None = None  # state vector at the end of the run (model layout), for continuation
-    final_time_s: float | None = None  # time of final_state (a periodic steady state may end before duration_s)
-    steady: SteadyState | None = None  # how the window was found ([simulation] steady)
-    units: tuple[str, str] = ("deg_s", "Nmm")  # output speed and torque units: the design file's key suffixes
 
 
 # ------------------------------------------------------------------------------ planetary stages (issue 25)
@@ -534,7 +286,7 @@ class InternalMeshResult:
     iso6336_mesh_stiffness_beta_N_mm_um: float
     iso6336_factors: Iso6336Factors
     mesh_frequency_Hz: float
-    rating: InternalRatingResult | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
+    rating: RatedMesh | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
     # ISO 6336-1 resonance of this mesh: m_red = the planet's m* (the ring taken infinitely heavy), n_E1 in
     # planet rpm relative to the carrier, N = n_p/n_E1, N_S (0 where not computed)
     reduced_mass_kg_mm: float = 0.0
@@ -569,18 +321,3 @@ class PlanetaryResult:
     # signed external torques on sun, carrier, ring (positive in the input member's running sense), N·m: sum 0
     moment_balance_Nm: dict[str, float] = field(default_factory=dict)
     planet_angles_deg: tuple[float, ...] = ()  # each planet's position on the carrier
-
-
-@dataclass(frozen=True)
-class PlanetMeshDynamics:
-    """One planet mesh over the statistics window: F_t (N) and the dynamic transmission error (um)."""
-
-    tangential_N: ChannelStats
-    dte_um: DteStats
-
-
-@dataclass(frozen=True)
-class PlanetDynamics:
-    index: int  # 1-based
-    sun: PlanetMeshDynamics
-    ring: PlanetMeshDynamics

@@ -10,12 +10,20 @@ pinion end (the design gives each gear's inertia).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import TYPE_CHECKING
 
+from gearcli import diagnostics as dg
 from gearcli.design import contact_stiffness_N_mm_e
-from gearcli.design.stiffness import iso6336_normal_stiffness_N_mm, law_name
+from gearcli.design.stiffness import (
+    iso6336_normal_stiffness_N_mm,
+    law_name,
+)
 from gearcli.errors import ConfigError
+from gearcli.model import TorsionalModel
+from gearcli.model.assembly import Layout
+from gearcli.model.modes import resonances
 from gearcli.model.spec import (
     MM,
     CoupledInertia,
@@ -119,8 +127,6 @@ def vfd_supply(spec: MotorSpec, shift_rad_s: float) -> MotorSpec:
     ``[input] speed_rpm`` (a speed sweep's row runs at the speed it is designed at). Extended Kloss in slip speed
     Delta: T = 2 T_b (1 + a s_b) Delta Delta_b / (Delta^2 + Delta_b^2 + 2 a s_b Delta_b |Delta|), Delta_b = s_b w_s:
     unchanged with w_s' when s_b' = s_b w_s / w_s' and a' s_b' = a s_b."""
-    import dataclasses
-
     if shift_rad_s == 0.0 or spec.table:
         return spec
     ws = spec.synchronous_speed_rad_s
@@ -164,19 +170,8 @@ def _output_inertia(st: StageResult) -> float:
     return design_kind(st).inertia(st, "output")
 
 
-def output_units(cfg: DesignFile) -> tuple[str, str]:
-    """(speed, torque) key suffixes the outputs use: the input's speed key (``deg_s``, ``rpm``, ``rad_s``) and
-    the load's torque key (``Nmm``, ``Nm``; ``power_kW`` gives N·m)."""
-    inp = cfg.input
-    speed = "rpm" if inp.speed_rpm is not None else "rad_s" if inp.speed_rad_s is not None else "deg_s"
-    torque = "Nmm" if getattr(cfg.load, "torque_Nmm", None) is not None else "Nm"
-    return speed, torque
-
-
 def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
     """The compiled torsional model of a validated ``DesignFile`` and its ``DesignResult``."""
-    from gearcli.model import TorsionalModel  # lazy for start-up: ``gearcli design`` imports this module
-
     return TorsionalModel(spec_from_design(cfg, design))
 
 
@@ -185,10 +180,6 @@ def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple[Diagno
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
     its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""
-    from gearcli import diagnostics as dg
-    from gearcli.model.assembly import Layout  # lazy for start-up (numpy), as above
-    from gearcli.model.modes import resonances
-
     lay = Layout.of(spec_from_design(cfg, design))
     boundary = "clamped_input" if lay.speed_drive else "free"
     return tuple(dg.warning(dg.RESONANCE, r.message, **r.data, boundary=boundary)

@@ -8,6 +8,7 @@ them and names the key.
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
@@ -105,8 +106,6 @@ class Duty(_Table):
 
     def output_torque_Nm(self, total_ratio: float) -> float:
         """The output torque of this point; power_kW at the output speed speed_rpm / total_ratio."""
-        import math
-
         if self.torque_Nm is not None:
             return self.torque_Nm
         if self.torque_Nmm is not None:

@@ -14,11 +14,12 @@ import re
 import stat
 import sys
 import tomllib
+import types
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import BinaryIO
+from typing import BinaryIO, Union, get_args, get_origin
 
 from pydantic import ValidationError
 
@@ -111,9 +112,6 @@ def integer_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[st
 
 
 def _takes_real(tp: object) -> bool:
-    import types
-    from typing import Union, get_args, get_origin
-
     if tp is float:
         return True
     if get_origin(tp) in (Union, types.UnionType):
@@ -150,7 +148,7 @@ def _read_bounded(path: str, limit: int = MAX_BYTES) -> bytes:
     fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     try:
         if hasattr(os, "O_NONBLOCK"):
-            import fcntl
+            import fcntl  # lazy: POSIX only (no fcntl on Windows)
 
             fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~os.O_NONBLOCK)
         chunks, size = [], 0

@@ -13,6 +13,7 @@ give it twice.
 
 from __future__ import annotations
 
+import copy
 import re
 import tomllib
 from collections.abc import Sequence
@@ -177,8 +178,6 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
 def leaf_type(data: dict, key: str) -> Any:
     """The schema type of ``key`` (a ``--set`` key path) in the TOML data, unwrapped (``int``, ``float``, a
     model ...); the key is checked as :func:`apply` checks it, the data left as it was."""
-    import copy
-
     ov = parse(f"{key}=0")
     tp: Any = DesignFile
     node: Any = copy.deepcopy(data)

@@ -336,19 +336,12 @@ class PlanetaryStage(_Table):
 
     @property
     def speed_ratio(self) -> float:
-        """|ω_in / ω_out| from Willis' equation ω_s − ω_c = −(z_r/z_s)(ω_r − ω_c) with the held member at rest."""
-        return 1.0 / abs(willis_speeds(self.sun.teeth, self.ring.teeth, self.fixed, self.input)[self.output])
-
-
-def willis_speeds(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]:
-    """Signed member speeds for a unit speed of ``driven`` with ``fixed`` at rest, from Willis' equation
-    ω_s = (1 + u) ω_c − u ω_r, u = z_r/z_s (a planetary's three members keep one degree of freedom)."""
-    u = z_ring / z_sun
-    motions = ({"sun": -u, "carrier": 0.0, "ring": 1.0},  # carrier held
-               {"sun": 1.0 + u, "carrier": 1.0, "ring": 0.0},  # ring held
-               {"sun": 0.0, "carrier": u, "ring": 1.0 + u})  # sun held
-    motion = next(m for m in motions if m[fixed] == 0.0)
-    return {m: v / motion[driven] for m, v in motion.items()}
+        """|ω_in / ω_out| from Willis' equation ω_s − ω_c = −(z_r/z_s)(ω_r − ω_c) with the held member at rest
+        (u = z_r/z_s): 1 + u sun↔carrier (ring held), u sun↔ring (carrier held), (1 + u)/u ring↔carrier (sun
+        held), the faster member named first; the signed member speeds are ``design.planetary_balance``'s."""
+        u = self.ring.teeth / self.sun.teeth
+        ratio, faster = {"ring": (1.0 + u, "sun"), "carrier": (u, "sun"), "sun": ((1.0 + u) / u, "ring")}[self.fixed]
+        return ratio if self.input == faster else 1.0 / ratio
 
 
 def _stage_tag(value: Any) -> str:
@@ -521,8 +514,6 @@ class Input(_Coupled):
 
     @property
     def speed_rad_s_value(self) -> float:
-        import math
-
         if self.speed_rad_s is not None:
             return self.speed_rad_s
         if self.speed_rpm is not None:
@@ -639,9 +630,12 @@ class Lubricant(_Table):
 
 
 class Rating(_Table):
-    """Strength rating of every stage, ISO 6336-2 (pitting) and -3 (tooth root), 2006 editions, method B.
-    With this table present, every key the rating needs is required (materials, accuracy, roughness, oil)."""
+    """Strength rating of every stage by the standard ``standard`` names: ISO 6336-2 (pitting) and -3 (tooth root),
+    2006 editions, method B, by default. With this table present, every key the rating needs is required
+    (materials, accuracy, roughness, oil)."""
 
+    # the rating standard, a name registered in gearcli.rating (docs/iso6336.md, "Rating standards")
+    standard: Annotated[str, Field(min_length=1, max_length=64)] = "iso6336"
     required_life_h: Annotated[float, Field(ge=1e-3, le=1e7)]  # load cycles N_L = 60 n t per member
     face_load_factor: Annotated[float, Field(ge=1, le=10)] | None = None  # K_Hbeta; absent: an ISO estimate
     min_safety_pitting: Annotated[float, Field(ge=0.5, le=10)] = 1.0  # S_Hmin
@@ -685,7 +679,7 @@ class DesignFile(_Table):
             load._torque_from_power_Nm = self.load.power_kW * 1000.0 * ratio / self.input.speed_rad_s_value
             object.__setattr__(self, "load", load)
         elif self.load.torque_speed is not None:
-            import numpy as np
+            import numpy as np  # lazy: numpy, start-up time of --help and init (config is numpy-free)
 
             table = np.array(self.load.torque_speed, dtype=float)
             n_out = self.input.speed_rad_s_value / ratio * 60.0 / (2.0 * math.pi)

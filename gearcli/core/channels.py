@@ -1,7 +1,7 @@
 """What a simulation's time series are, keyed by what they measure: :class:`Channel` (a quantity of an owner),
 always in SI.
 
-The simulation returns ``{Channel: samples}`` (:attr:`gearcli.results.SimulationResult.series`); the output
+The simulation returns ``{Channel: samples}`` (:attr:`gearcli.simulate.results.SimulationResult.series`); the output
 contract's column names and units (``stage1_dte_um``, ``input_torque_Nmm``, speeds in the design file's unit)
 are made from them in one place, :mod:`gearcli.io.channels`.
 """

@@ -49,6 +49,6 @@ def method(name: str) -> Method:
 
 def scipy_solver(name: str):
     """scipy's OdeSolver class of a method (imports scipy)."""
-    import scipy.integrate
+    import scipy.integrate  # lazy: scipy, start-up time of gearcli design
 
     return getattr(scipy.integrate, name)

@@ -27,8 +27,9 @@ from typing import TYPE_CHECKING
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
+from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
-from gearcli.stages.design import design_kind, file_key, pair_view
+from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material, Stage
@@ -43,30 +44,6 @@ MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 
 
 # ------------------------------------------------------------------------------------------ errors
-def check_inputs(cfg: DesignFile) -> None:
-    """Refuse unknown materials and impossible helix hands, before any arithmetic. A planetary stage is
-    checked as its sun–planet pair (keys named ``sun``/``planet``) and its ring."""
-    pairs = pair_view(cfg)
-    try:
-        for k in range(len(pairs.stage)):
-            stage = pairs.pair(k)
-            for part in ("pinion", "gear"):
-                check_material(getattr(stage, part).material, pairs.materials, f"stage[{k}].{part}.material")
-            check_hands(stage, k)
-        if cfg.rating is not None:  # imported only for a rated design: an unrated one starts as fast as before
-            from gearcli.design.rating import check_rating_inputs
-
-            check_rating_inputs(pairs)
-    except DesignError as exc:
-        raise DesignError(exc.message, key=file_key(cfg, exc.key), source=exc.source) from None
-    given = cfg.rating.load_sharing_factor if cfg.rating is not None else None
-    if given is not None and not any(design_kind(s).shares_load for s in cfg.stage):
-        raise DesignError(f"load_sharing_factor = {given:g} is K_gamma of a planetary stage's planets, and this train "
-                          "has no planetary stage: remove it", key="rating.load_sharing_factor")
-    for k, s in enumerate(cfg.stage):
-        design_kind(s).check_inputs(cfg, k)
-
-
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:
     if name not in materials:
         known = ", ".join(sorted(materials)) or "none"
@@ -94,8 +71,6 @@ def check_hands(stage: Stage, k: int) -> None:
 def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[Diagnostic, ...]:
     """The design's warnings as diagnostics (code ``design``; ``check`` names the check, with its stage,
     member and numbers): train-level first, then stage by stage."""
-    from gearcli.diagnostics import DESIGN, warning
-
     found: list[tuple[str | None, JsonObject]] = []
     if cfg.target is not None:
         found.append((target_speed_warning(cfg, output_speed_rpm),
@@ -226,8 +201,6 @@ STIFFNESS_NOT_ISO_TOLERANCE = 0.25
 def stiffness_not_iso(stage: int, mesh: str, law) -> Diagnostic | None:
     """``stiffness_not_iso`` for a mesh whose law's linearised stiffness (``law``: a
     :class:`~gearcli.results.MeshStiffness`) departs from ISO 6336-1's k_n by more than 25 %; None otherwise."""
-    from gearcli.diagnostics import STIFFNESS_NOT_ISO, warning
-
     if law is None or law.departure is None or abs(law.departure) <= STIFFNESS_NOT_ISO_TOLERANCE:
         return None
     where = f"stage {stage}" + ("" if mesh == "mesh" else f" {mesh.replace('_', '–')} mesh")

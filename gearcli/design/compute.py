@@ -12,7 +12,9 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_inputs, design_diagnostics, stiffness_diagnostics
+from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
+from gearcli.design.bearing_life import bearing_diagnostics
+from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
 from gearcli.design.inertia import (
@@ -22,8 +24,10 @@ from gearcli.design.inertia import (
     mean_body_diameter_mm,
     shaft_inertias_kg_m2,
 )
+from gearcli.design.inputs import check_inputs
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
+from gearcli.design.standards import standard_of
 from gearcli.diagnostics import DESIGN, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
@@ -35,6 +39,7 @@ from gearcli.results import (
     StageResult,
     StaticForces,
 )
+from gearcli.stages import gear_design as _gear_design  # noqa: F401  # registers the built-in kinds' design facets
 from gearcli.stages.design import design_kind, pair_view
 
 if TYPE_CHECKING:
@@ -55,13 +60,8 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                             tuple(kind[k].reverse_efficiency(s, k) for k, s in enumerate(cfg.stage)))
     stages = tuple(kind[k].result(cfg, pairs, k, kin, _stage_result) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
-    if cfg.rating is not None:  # ISO 6336-2/-3 (docs/iso6336.md); imported only for a rated design
-        from gearcli.design.rating import rate_design
-
-        rated, rating_diagnostics = rate_design(pairs, tuple(kind[k].as_rated(s) for k, s in enumerate(stages)))
-        stages = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
-        stages = tuple(kind[k].rate_more(cfg, k, s) for k, s in enumerate(stages))
-        rating_diagnostics += tuple(d for k, s in enumerate(stages) for d in kind[k].rating_diagnostics(cfg, s))
+    if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
+        stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
@@ -76,7 +76,6 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                    and st.backlash_circumferential_mm[1] < 0.0)
     pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
-    from gearcli.design.bearing_life import bearing_diagnostics
 
     ignored = cfg.input.ignored_keys
     drive_notes = (warning(DESIGN, f"[input] {', '.join(ignored)}: {'keys' if len(ignored) > 1 else 'a key'} of "
@@ -299,8 +298,6 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> Stag
 
 def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: int) -> StageResult:
     """The stage with its allowances' figures (ISO 21771, docs/iso6336.md "Tooth-thickness allowances")."""
-    from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
-
     def pair(value: list[float] | None) -> tuple[float, float]:
         return NO_ALLOWANCE if value is None else (value[0], value[1])
 

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, TypeVar
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
+from gearcli.design.checks import check_material
 from gearcli.design.geometry import (
     base_diameter_mm,
     base_helix_angle_rad,
@@ -44,15 +45,14 @@ from gearcli.design.geometry import (
 )
 from gearcli.design.inertia import annulus_inertia_kg_m2
 from gearcli.design.kinematics import Train, power_kW, speed_deg_s, speed_rpm
+from gearcli.design.rating_results import InternalRatingResult, RatingResult
 from gearcli.errors import DesignError
 from gearcli.results import (
     CarrierResult,
     GearResult,
     InternalMeshResult,
-    InternalRatingResult,
     Iso6336Factors,
     PlanetaryResult,
-    RatingResult,
     StageResult,
     StaticForces,
 )
@@ -95,7 +95,7 @@ def stage_balance(stage: PlanetaryStage, k: int, output_torque_Nmm: float) -> tu
 # --------------------------------------------------------------------------- equivalent pair
 def sun_planet_stage(stage: PlanetaryStage) -> Stage:
     """The sun–planet mesh as a parallel stage (pinion = sun, gear = planet), for the external-pair code."""
-    from gearcli.config.schema import Gear, Stage
+    from gearcli.config.schema import Gear, Stage  # lazy: config (pydantic) stays out of design's import
 
     planet = Gear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg", "position_error_um", "angles_deg"}))
     return Stage.model_validate({
@@ -109,7 +109,7 @@ def sun_planet_stage(stage: PlanetaryStage) -> Stage:
 
 def pair_equivalent(cfg: DesignFile) -> DesignFile:
     """``cfg`` with every planetary stage replaced by its sun–planet pair (the parallel-stage code's view)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     if not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
         return cfg
@@ -206,7 +206,7 @@ def _member(g: GearResult, speed_rad_s: float, torque_Nmm: float) -> GearResult:
 def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> StageResult:
     """The planetary stage k: its sun–planet ``mesh`` (computed in the carrier's frame) with the members,
     the carrier and the planet–ring mesh attached."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]
     assert isinstance(stage, PlanetaryStage)
@@ -341,8 +341,7 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
 def check_stage_inputs(cfg: DesignFile, k: int) -> None:
     """The ring's material must be defined, a helical ring has the planet's hand, ``planet.angles_deg`` one
     angle per planet (the sun and planet are checked as the sun–planet pair)."""
-    from gearcli.config.schema import PlanetaryStage
-    from gearcli.design.checks import check_material
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]
     assert isinstance(stage, PlanetaryStage)

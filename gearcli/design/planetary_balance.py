@@ -32,10 +32,19 @@ CONCENTRICITY_TOLERANCE_MODULES = 0.01  # |a_w,pr - a_w,sp| allowed, in normal m
 ANGLE_TOLERANCE_DEG = 1e-6  # an assemblable planet angle: a whole multiple of 360/(z_s + z_r) within this
 
 
+def willis_speeds(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]:
+    """Signed member speeds for a unit speed of ``driven`` with ``fixed`` at rest, from Willis' equation
+    ω_s = (1 + u) ω_c − u ω_r, u = z_r/z_s (a planetary's three members keep one degree of freedom)."""
+    u = z_ring / z_sun
+    motions = ({"sun": -u, "carrier": 0.0, "ring": 1.0},  # carrier held
+               {"sun": 1.0 + u, "carrier": 1.0, "ring": 0.0},  # ring held
+               {"sun": 0.0, "carrier": u, "ring": 1.0 + u})  # sun held
+    motion = next(m for m in motions if m[fixed] == 0.0)
+    return {m: v / motion[driven] for m, v in motion.items()}
+
+
 def willis(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]:
     """Signed member speeds for a unit speed of ``driven`` (no negative zero)."""
-    from gearcli.config.schema import willis_speeds
-
     return {m: v + 0.0 for m, v in willis_speeds(z_sun, z_ring, fixed, driven).items()}
 
 

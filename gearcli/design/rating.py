@@ -25,11 +25,12 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
-from gearcli.design.planetary import nominal_with_sharing, pair_equivalent, with_load_sharing
+from gearcli.design.allowances import manufactured_tooth_depth_mm
+from gearcli.design.rating_load import LoadFactors, MeshLoad, resolve_load_factors
+from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
-from gearcli.results import MemberRating, RatingResult
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
@@ -132,18 +133,6 @@ class _Mesh:
         return self.members[self.large]
 
 
-@dataclass(frozen=True)
-class _LoadFactors:
-    k_v: float
-    k_v_source: str
-    k_hb: float
-    k_hb_source: str
-    k_fb: float
-    k_ha: float
-    k_fa: float
-    z_eps: float
-
-
 def _mesh(cfg: DesignFile, k: int, st: StageResult) -> _Mesh:
     stage = cfg.pair(k)
     assert stage.accuracy_grade is not None  # check_rating_inputs requires it
@@ -163,42 +152,21 @@ def _mesh(cfg: DesignFile, k: int, st: StageResult) -> _Mesh:
                  grade=stage.accuracy_grade)
 
 
-def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulated_k_v: float | None) -> _LoadFactors:
-    """ISO 6336-1: deviations of the grade, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα, and Z_ε (K_Hα's limit)."""
-    rating, stage = cfg.rating, cfg.pair(k)
-    assert rating is not None
-    alpha_t, b = math.radians(st.transverse_pressure_angle_deg), st.face_width_mm
-    f_pb = max(rf.single_pitch_tolerance_um(g.pitch_diameter_mm, st.normal_module_mm, mesh.grade)
-               for g in mesh.members) * math.cos(alpha_t)
-    f_fa = max(rf.profile_form_tolerance_um(g.pitch_diameter_mm, st.normal_module_mm, mesh.grade) for g in mesh.members)
-    pairs = tuple(zip(mesh.treatments, mesh.hlim, strict=True))
-    y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, mesh.speed_m_s) for t, h in pairs)
-    y_f = 0.5 * sum(rf.running_in_um(t, h, f_fa, mesh.speed_m_s) for t, h in pairs)
-    line_load = mesh.f_t * mesh.k_a / b
-    if simulated_k_v is not None:
-        k_v, k_v_source = max(1.0, simulated_k_v), "simulated"
-    elif isinstance(rating.dynamic_factor, float):
-        k_v, k_v_source = rating.dynamic_factor, "given"
-    else:  # C_a = tip_relief_um; running-in is in f_pb,eff and f_fα,eff, not in B_k
-        k_v = rf.dynamic_factor(st.resonance_ratio, st.resonance_lower_limit, st.contact_ratio_total,
-                                st.iso6336_single_pair_stiffness_N_mm_um, line_load, f_pb - y_a, f_fa - y_f,
-                                stage.tip_relief_um or 0.0)
-        k_v_source = "iso"
-    if rating.face_load_factor is not None:
-        k_hb, k_hb_source = rating.face_load_factor, "given"
-    else:
-        f_hb = rf.helix_slope_tolerance_um(mesh.g1.pitch_diameter_mm, b, mesh.grade)
-        k_hb = rf.face_load_factor_estimate(
-            st.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb, b / mesh.g1.pitch_diameter_mm,
-            (mesh.treatments[mesh.small], mesh.hlim[mesh.small], mesh.speed_m_s))
-        k_hb_source = "estimated"
-    depth = _tooth_depth_mm(stage, st)
-    z_eps = rf.contact_ratio_factor(st.contact_ratio_transverse, st.overlap_ratio)
-    k_ha, k_fa = rf.transverse_load_factors(st.contact_ratio_transverse, st.contact_ratio_total, z_eps,
-                                            st.iso6336_mesh_stiffness_N_mm_um, max(f_pb, f_fa) - y_a,
-                                            line_load * k_v * k_hb)
-    return _LoadFactors(k_v, k_v_source, k_hb, k_hb_source, rf.face_load_factor_root(k_hb, b, depth), k_ha, k_fa,
-                        z_eps)
+def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulated_k_v: float | None) -> LoadFactors:
+    """ISO 6336-1's load factors of the pair (``rating_load``, the one K_v / K_Hβ resolution)."""
+    stage = cfg.pair(k)
+    assert cfg.rating is not None
+    return resolve_load_factors(cfg.rating, MeshLoad(
+        grade=mesh.grade, normal_module_mm=st.normal_module_mm,
+        transverse_pressure_angle_rad=math.radians(st.transverse_pressure_angle_deg),
+        pitch_diameters_mm=(mesh.members[0].pitch_diameter_mm, mesh.members[1].pitch_diameter_mm),
+        treatments=mesh.treatments, hlim_MPa=mesh.hlim, small=mesh.small, speed_m_s=mesh.speed_m_s,
+        line_load_N_mm=mesh.f_t * mesh.k_a / st.face_width_mm, face_width_mm=st.face_width_mm,
+        resonance_ratio=st.resonance_ratio, resonance_lower_limit=st.resonance_lower_limit,
+        contact_ratios=(st.contact_ratio_transverse, st.overlap_ratio, st.contact_ratio_total),
+        single_pair_stiffness=st.iso6336_single_pair_stiffness_N_mm_um, mesh_stiffness=st.iso6336_mesh_stiffness_N_mm_um,
+        mesh_stiffness_beta=st.iso6336_mesh_stiffness_beta_N_mm_um, tip_relief_um=stage.tip_relief_um or 0.0,
+        tooth_depth_mm=_tooth_depth_mm(stage, st)), simulated_k_v)
 
 
 def _root_shift(g, choice: str) -> float:
@@ -215,7 +183,6 @@ def _tooth_depth_mm(stage, st: StageResult) -> float:
     tooth-thickness allowances the deepest tooth cut, (d_a + A_dae − d_f,i)/2 of the deeper member (docs/iso6336.md,
     "Tooth-thickness allowances")."""
     rack = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * st.normal_module_mm
-    from gearcli.design.allowances import manufactured_tooth_depth_mm
 
     depths = [manufactured_tooth_depth_mm(g.tip_diameter_mm, part.tip_diameter_allowance_mm, roots)
               for g, part in ((st.pinion, stage.pinion), (st.gear, stage.gear))
@@ -273,7 +240,7 @@ class _Flank:
     z_w: dict[int, float]
 
 
-def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: _LoadFactors, flank: _Flank, y_beta: float,
+def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFactors, flank: _Flank, y_beta: float,
             i: int) -> MemberRating:
     """ISO 6336-2 and -3 figures of member ``i`` (0 pinion, 1 gear)."""
     rating, stage = cfg.rating, cfg.pair(k)
@@ -349,66 +316,3 @@ def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") ->
                 out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,
                                    S_min=minima[mode]))
     return out
-
-
-# ------------------------------------------------------------------------- the simulated K_v
-def simulated_dynamic_factor(tangential_N, static_tangential_N: float) -> float:
-    """K_v from a run: max(1, steady-window max |F_t| / |static F_t|), ``tangential_N`` the window's statistics
-    (min, max) of F_t; 1 when the static force is 0 (no load to amplify)."""
-    if static_tangential_N == 0.0:
-        return 1.0
-    peak = max(abs(tangential_N.max), abs(tangential_N.min))
-    return max(1.0, peak / abs(static_tangential_N))
-
-
-def stage_simulated_k_v(sd) -> float:
-    """K_v of one simulated stage (``StageDynamics``): max(1, its window max |F_t| over the static F_t of the
-    losses the run models, i.e. its ``dynamic_factor``; the design's static F_t where the run has none). A
-    planetary stage's: the largest over its planets' sun meshes."""
-    static = sd.simulated_static_tangential_N
-    static = sd.static_tangential_N if static is None else static
-    k_v = simulated_dynamic_factor(sd.tangential_N, static)
-    for p in getattr(sd, "planets", ()):
-        k_v = max(k_v, simulated_dynamic_factor(p.sun.tangential_N, static))
-    return k_v
-
-
-def ring_simulated_k_v(sd, stage) -> float:
-    """K_v of a planetary stage's planet–ring meshes: the largest over its planets of the window max |F_t| over
-    the ring mesh's static F_t (the sun mesh's static of the run, times the design's ring/sun force ratio)."""
-    p = stage.planetary
-    static = sd.simulated_static_tangential_N
-    static = sd.static_tangential_N if static is None else static
-    if stage.static_force_N.tangential != 0.0:
-        static = static * p.planet_ring.static_force_N.tangential / stage.static_force_N.tangential
-    return max((simulated_dynamic_factor(q.ring.tangential_N, static) for q in sd.planets), default=1.0)
-
-
-def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
-    """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
-    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise. A
-    planetary stage's planet–ring mesh is rated too, at its own meshes' simulated K_v (``planet_ring_rating``)."""
-    if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
-        return tuple(stages), []
-    from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
-
-    pairs = pair_equivalent(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
-    out, diags = [], []
-    for k, sd in enumerate(stages):
-        k_v = stage_simulated_k_v(sd)
-        shared = with_load_sharing(design.stages[k])
-        rating = rate_stage(pairs, k, shared, simulated_k_v=k_v)
-        if shared.planetary is not None:  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
-            rating = nominal_with_sharing(rating, shared.planetary.load_sharing_factor)
-        rated = replace(design.stages[k], rating=rating)
-        diags += safety_diagnostics(pairs, rated)
-        ring = None
-        if rated.planetary is not None and sd.planets:
-            ring = rate_planet_ring(cfg, k, with_load_sharing(design.stages[k]),
-                                    simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
-            if ring is not None:
-                mesh = replace(rated.planetary.planet_ring, rating=ring)
-                diags += planet_ring_safety_diagnostics(cfg, replace(rated, planetary=replace(rated.planetary,
-                                                                                               planet_ring=mesh)))
-        out.append(replace(sd, rating=rated.rating, planet_ring_rating=ring))
-    return tuple(out), diags

@@ -33,9 +33,10 @@ from gearcli.design.rating import (
     STANDARD,
     STRESS_CORRECTION_TEST_GEAR,
 )
+from gearcli.design.rating_load import MeshLoad, resolve_load_factors
+from gearcli.design.rating_results import InternalRatingResult, MemberRating
 from gearcli.design.stiffness import reference_tangential_force_N
 from gearcli.diagnostics import Diagnostic, warning
-from gearcli.results import InternalRatingResult, MemberRating
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material
@@ -66,7 +67,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     """The planet–ring rating of planetary stage ``k`` (``st`` with K_γ applied to its force); ``None`` when the
     ring's material or flank roughness lacks what the rating needs. ``simulated_k_v`` replaces K_v
     (``K_v_source = "simulated"``)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage, rating, lub, p = cfg.stage[k], cfg.rating, cfg.lubricant, st.planetary
     assert isinstance(stage, PlanetaryStage) and p is not None
@@ -86,34 +87,19 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     f_t = reference_tangential_force_N(mesh.static_force_N.tangential * p.load_sharing_factor, b)
     k_a = cfg.load.application_factor
     speed = max(math.pi * planet.pitch_diameter_mm * abs(st.gear.speed_rpm) / 60000.0, 1e-9)  # carrier frame
-    # ISO 6336-1: deviations, running-in, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα
-    diameters = (planet.pitch_diameter_mm, ring.pitch_diameter_mm)
-    f_pb = max(rf.single_pitch_tolerance_um(d, m_n, grade) for d in diameters) * math.cos(alpha_t)
-    f_fa = max(rf.profile_form_tolerance_um(d, m_n, grade) for d in diameters)
-    y_a = 0.5 * sum(rf.running_in_um(t, h, f_pb, speed) for t, h in zip(treat, hlim, strict=True))
-    y_f = 0.5 * sum(rf.running_in_um(t, h, f_fa, speed) for t, h in zip(treat, hlim, strict=True))
+    # ISO 6336-1: K_v (the internal mesh's own N = n_p/n_E1, design.planetary; N_S from this rating's line load),
+    # K_Hβ, K_Fβ, K_Hα, K_Fα: the one resolution of every mesh (rating_load)
     line_load = f_t * k_a / b
-    if simulated_k_v is not None:
-        k_v, k_v_source = max(1.0, simulated_k_v), "simulated"
-    elif isinstance(rating.dynamic_factor, float):
-        k_v, k_v_source = rating.dynamic_factor, "given"
-    else:  # the internal mesh's own N = n_p/n_E1 (design.planetary); N_S from this rating's line load
-        k_v = rf.dynamic_factor(mesh.resonance_ratio, res.lower_main_resonance_limit(line_load), eps_g,
-                                mesh.iso6336_single_pair_stiffness_N_mm_um, line_load, f_pb - y_a, f_fa - y_f,
-                                stage.tip_relief_um or 0.0)
-        k_v_source = "iso"
-    if rating.face_load_factor is not None:
-        k_hb, k_hb_source = rating.face_load_factor, "given"
-    else:
-        f_hb = rf.helix_slope_tolerance_um(planet.pitch_diameter_mm, b, grade)
-        k_hb = rf.face_load_factor_estimate(mesh.iso6336_mesh_stiffness_beta_N_mm_um, line_load * k_v, f_hb,
-                                            b / planet.pitch_diameter_mm, (treat[0], hlim[0], speed))
-        k_hb_source = "estimated"
-    depth = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n
-    k_fb = rf.face_load_factor_root(k_hb, b, depth)
-    z_eps = rf.contact_ratio_factor(eps_a, eps_b)
-    k_ha, k_fa = rf.transverse_load_factors(eps_a, eps_g, z_eps, mesh.iso6336_mesh_stiffness_N_mm_um,
-                                            max(f_pb, f_fa) - y_a, line_load * k_v * k_hb)
+    lf = resolve_load_factors(rating, MeshLoad(
+        grade=grade, normal_module_mm=m_n, transverse_pressure_angle_rad=alpha_t,
+        pitch_diameters_mm=(planet.pitch_diameter_mm, ring.pitch_diameter_mm), treatments=treat, hlim_MPa=hlim,
+        small=0, speed_m_s=speed, line_load_N_mm=line_load, face_width_mm=b, resonance_ratio=mesh.resonance_ratio,
+        resonance_lower_limit=res.lower_main_resonance_limit(line_load), contact_ratios=(eps_a, eps_b, eps_g),
+        single_pair_stiffness=mesh.iso6336_single_pair_stiffness_N_mm_um,
+        mesh_stiffness=mesh.iso6336_mesh_stiffness_N_mm_um, mesh_stiffness_beta=mesh.iso6336_mesh_stiffness_beta_N_mm_um,
+        tip_relief_um=stage.tip_relief_um or 0.0,
+        tooth_depth_mm=(stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n), simulated_k_v)
+    k_v, k_hb, k_fb, k_ha, k_fa, z_eps = lf.k_v, lf.k_hb, lf.k_fb, lf.k_ha, lf.k_fa, lf.z_eps
     # ISO 6336-2: pitting
     z_h = rf.zone_factor(beta_b, alpha_t, alpha_wt)
     z_e = rf.elasticity_factor(mats[0].youngs_modulus_MPa, mats[0].poisson_ratio, mats[1].youngs_modulus_MPa,
@@ -174,7 +160,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
             Y_delta_rel_T=y_d, Y_R_rel_T=y_r, Y_X=y_x, Y_NT=y_nt, sigma_FG_MPa=sig_fg,
             sigma_FP_MPa=sig_fg / rating.min_safety_bending, S_F=sig_fg / sig_f, Y_M=y_m[i]))
     return InternalRatingResult(
-        standard=STANDARD, K_A=k_a, K_v=k_v, K_v_source=k_v_source, K_Hbeta=k_hb, K_Hbeta_source=k_hb_source,
+        standard=STANDARD, K_A=k_a, K_v=k_v, K_v_source=lf.k_v_source, K_Hbeta=k_hb, K_Hbeta_source=lf.k_hb_source,
         K_Fbeta=k_fb, K_Halpha=k_ha, K_Falpha=k_fa, Z_H=z_h, Z_E=z_e, Z_eps=z_eps, Z_beta=z_beta, Z_L=z_l, Z_V=z_v,
         Z_R=z_r, Z_W=z_w, Y_beta=y_beta, sigma_H0_MPa=sigma_h0, sigma_H_MPa=sigma_h, pinion=rated[0],
         gear=rated[1])
@@ -183,7 +169,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
 def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
     outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value)."""
-    from gearcli.config.schema import PlanetaryStage
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
     stage, p = cfg.stage[st.index - 1], st.planetary
     assert isinstance(stage, PlanetaryStage) and p is not None
@@ -221,7 +207,7 @@ def planet_ring_safety_diagnostics(cfg: DesignFile, st: StageResult) -> list[Dia
     minima = {"pitting": cfg.rating.min_safety_pitting, "bending": cfg.rating.min_safety_bending}
     out = _ring_range_diagnostics(cfg, st)
     for member, m, teeth in (("planet", r.pinion, p.planet.teeth), ("ring", r.gear, p.ring.teeth)):
-        for mode, value, symbol in (("pitting", m.S_H, "S_H"), ("bending", m.S_F, "S_F")):
+        for mode, value, symbol in (("pitting", m.safety("pitting"), "S_H"), ("bending", m.safety("bending"), "S_F")):
             if value is None or value >= minima[mode]:
                 continue
             what = "pitting (flank)" if mode == "pitting" else "tooth-root bending"

@@ -24,7 +24,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
+from gearcli.design.bearing_life import check_inputs, lubrication, static_figures
 from gearcli.design.iso281 import Lubrication, modified_life
+from gearcli.design.planetary_balance import willis_speeds
 from gearcli.errors import DesignError
 from gearcli.results import BearingResult
 from gearcli.stages.design import design_kind
@@ -452,7 +454,7 @@ def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayou
     p = st.planetary
     if p is None:
         return None
-    from gearcli.config.schema import Stage, willis_speeds
+    from gearcli.config.schema import Stage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]
     assert not isinstance(stage, Stage)  # a planetary stage's design has its planetary result
@@ -494,7 +496,6 @@ def bearing_results(cfg: DesignFile, stages: Sequence[StageResult],
     lay = stage_layout(cfg, stages)
     if lay is None:
         return ()
-    from gearcli.design.bearing_life import check_inputs, lubrication
 
     check_inputs(cfg)
     lub = lubrication(cfg)
@@ -513,8 +514,6 @@ def bearing_results(cfg: DesignFile, stages: Sequence[StageResult],
 def bearing_result(spec: BearingSpec, r: Reaction, speed_rpm: float, lub: Lubrication | None = None) -> BearingResult:
     """One bearing's figures at the reaction ``r``: P, L10 and, with their keys, ISO 76's P_0 and s_0 and ISO 281's
     kappa, a_ISO, a_1 and L_nm (``lub``: the oil, needed for those)."""
-    from gearcli.design.bearing_life import static_figures
-
     p = equivalent_load_N(r.radial_N, r.axial_N, spec.e, spec.X, spec.Y)
     l10 = basic_life_Mrev(spec.rating_N, p, spec.kind)
     p0, s0 = static_figures(spec.static_rating_N, spec.X0, spec.Y0, r.radial_N, r.axial_N)

@@ -22,6 +22,7 @@ import math
 from typing import TYPE_CHECKING
 
 from gearcli.design.forces import normal_force_N
+from gearcli.results import MeshStiffness
 
 if TYPE_CHECKING:  # the design layer never imports the config package at run time
     from gearcli.config.schema import Contact
@@ -207,8 +208,6 @@ def mesh_law_stiffness(stiffness: str | float, exponent: float, *, hertz: float,
     The tangent is taken at the static normal force floored as ISO's stiffness is (1 N/mm of face width): the
     load the ``iso6336`` law is calibrated at, so that law's ``linearised_N_mm`` is ``iso_N_mm`` at any load; the
     static approach is at the same force."""
-    from gearcli.results import MeshStiffness
-
     f_n0 = iso_reference_normal_force_N(tangential_force_N, face_width_mm, normal_pressure_rad, helix_rad)
     K = law_coefficient_N_mm_e(stiffness, exponent, hertz=hertz, iso_normal_stiffness_N_mm=iso_normal_stiffness_N_mm,
                                iso_reference_normal_force_N=f_n0)

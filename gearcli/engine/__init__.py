@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
 from gearcli.core.methods import METHODS
 from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     Built,
@@ -48,6 +49,7 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     ready,
     warm_up,
 )
+from gearcli.errors import ConfigError
 from gearcli.model import elements
 
 ENGINES = ("auto", "python", "compiled")
@@ -222,9 +224,6 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
     :mod:`gearcli.core.cost` (``size``: the model's :class:`~gearcli.core.cost.ModelSize`, for its price per
     evaluation on each engine).
     """
-    from gearcli.core.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
-    from gearcli.errors import ConfigError
-
     if requested == "python":
         return EngineChoice("python", requested, "as requested")
     have = available()

@@ -16,14 +16,14 @@ import ctypes
 import glob
 import os
 
+import numpy as np
+
 # (symbol pattern, integer width): scipy-openblas wheels (ILP64 and LP64), then plain OpenBLAS/reference
 _PATTERNS = (("scipy_cblas_{}64_", 64), ("cblas_{}64_", 64), ("scipy_cblas_{}", 32), ("cblas_{}", 32))
 _FUNCS = ("dgemv", "dgemm", "ddot")
 
 
 def _candidates() -> list[str]:
-    import numpy as np
-
     root = os.path.dirname(np.__file__)
     found = []
     for pattern in (root + ".libs/*blas*", root + "/.dylibs/*blas*", root + "/../numpy.libs/*blas*"):
@@ -52,7 +52,7 @@ def register() -> bool:
     """Make the library's symbols visible to numba's linker; False when there is none."""
     if FOUND is None:
         return False
-    import llvmlite.binding as llvm
+    import llvmlite.binding as llvm  # lazy: llvmlite, numba's (the optional fast extra)
 
     llvm.load_library_permanently(FOUND[0])
     return True

@@ -14,12 +14,16 @@ compiled again (:data:`gearcli.engine.numba_cache.DAMAGED`, reported to the pare
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import os
+import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
 from typing import Protocol
+
+from gearcli.engine import cachedir
 
 PREFIX = "gearcli-build:"
 EXPECTED_FUNCTIONS = 170  # numba functions a full build compiles (167 counted on 2026-11-28); a bar's total
@@ -79,8 +83,6 @@ def run(directory: Path, reporter: Reporter, expected: int = EXPECTED_FUNCTIONS)
 
 
 def _kill(proc: subprocess.Popen, directory: Path) -> None:
-    from gearcli.engine import cachedir
-
     with contextlib.suppress(OSError):
         proc.kill()
     with contextlib.suppress(Exception):
@@ -94,18 +96,14 @@ def _kill(proc: subprocess.Popen, directory: Path) -> None:
 def _die_with_parent() -> None:
     """Linux: this process is killed when its parent dies (a killed command leaves no compiler running)."""
     with contextlib.suppress(Exception):
-        import ctypes
-        import signal
-
         ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
 
 
 def child(directory: Path) -> int:
     """The build process: compile (or load and repair) every kernel entry into ``directory``; exit status."""
-    import fcntl
+    import fcntl  # lazy: POSIX only (no fcntl on Windows)
 
-    from gearcli import engine
-    from gearcli.engine import cachedir
+    from gearcli import engine  # lazy: circle: the engine package imports loader, which starts this builder
 
     _die_with_parent()
     lock_path = directory / "build.lock"
@@ -115,7 +113,7 @@ def child(directory: Path) -> int:
     if engine.ready(directory):
         print(PREFIX + "ready", flush=True)
         return 0
-    from numba.core import event
+    from numba.core import event  # lazy: numba, the optional fast extra
 
     class Listener(event.Listener):
         def on_start(self, ev: event.Event) -> None:

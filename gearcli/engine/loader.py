@@ -32,10 +32,14 @@ from typing import Any
 
 import numpy as np
 
-from gearcli.core import signals
-from gearcli.engine import blas, cachedir
+from gearcli.core import announce, signals
+from gearcli.core.announce import LineReporter
+from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S
+from gearcli.engine import blas, builder, cachedir
 from gearcli.engine.cachedir import CacheDamaged
-from gearcli.model import elements
+from gearcli.errors import ConfigError, SimulationError
+from gearcli.model import elements, outputs
+from gearcli.model.elements import machine
 
 _SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "engine/status.py",
             "model/elements/__init__.py", "model/elements/torque.py",
@@ -136,46 +140,12 @@ def _ready_here() -> bool:
 
 
 # ------------------------------------------------------------------------------------------- reporting
-class LineReporter:
-    """The build as lines on stderr: what is compiled where, every ~15 s how far, and the time it took."""
-
-    EVERY_S = 15.0
-
-    def __init__(self, quiet: bool = False) -> None:
-        self.quiet = quiet
-        self.last = 0.0
-
-    def _say(self, text: str) -> None:
-        if not self.quiet:
-            print(f"gearcli: {text}", file=sys.stderr, flush=True)
-
-    def start(self, directory: Path) -> None:
-        self._say(f"compiling the integration engine (its first use here; cached in {directory}) ...")
-
-    def step(self, done: int, total: int, elapsed_s: float) -> None:
-        if elapsed_s - self.last >= self.EVERY_S:
-            self.last = elapsed_s
-            self._say(f"compiling the integration engine: {done} of ~{total} functions, {elapsed_s:.0f} s")
-
-    def note(self, line: str) -> None:
-        self._say(f"the engine cache had a damaged entry, compiled again: {line}")
-
-    def finish(self, seconds: float, directory: Path, waited: bool = False) -> None:
-        if waited:
-            self._say(f"another process compiled the integration engine; waited {seconds:.1f} s for it")
-            return
-        self._say(f"compiled the integration engine in {seconds:.1f} s (measured now; later runs load it from "
-                  f"{directory})")
-
-
 def quiet_compilation() -> None:
     """This process does not announce a compilation (a sweep's pool worker: its parent announced it once)."""
     _state["quiet"] = True
 
 
 def _reporter(quiet: bool) -> Any:
-    from gearcli.core import announce
-
     if quiet or _state.get("quiet"):
         return LineReporter(quiet=True)
     return announce.build_reporter() or LineReporter()
@@ -183,8 +153,6 @@ def _reporter(quiet: bool) -> Any:
 
 def _say(text: str, quiet: bool) -> None:
     """One line on stderr (the build's reporter's way: a quiet one says nothing)."""
-    from gearcli.core import announce
-
     reporter = announce.build_reporter()
     if quiet or _state.get("quiet") or getattr(reporter, "quiet", False):
         return
@@ -204,7 +172,7 @@ class Loaded:
 def _strict() -> Iterator[None]:
     """Inside, an entry missing from the cache is damage (this process loads what a build cached, it never
     compiles by surprise); outside, a call with an unforeseen signature compiles as numba does."""
-    from gearcli.engine import numba_cache
+    from gearcli.engine import numba_cache  # lazy: numba (numba_cache imports it), the optional fast extra
 
     numba_cache.STRICT[0] = True
     try:
@@ -216,18 +184,18 @@ def _strict() -> Iterator[None]:
 def import_kernel(directory: Path, strict: bool) -> tuple[Any, Any]:
     """Import numba and the kernel module bound to ``directory`` (a fresh import: a repaired cache gets new
     dispatchers); (the module, a function giving the damaged entries a build discarded)."""
-    from gearcli.engine import numba_cache
+    from gearcli.engine import numba_cache  # lazy: numba (numba_cache imports it), the optional fast extra
 
     numba_cache.DIR[:] = [str(directory)]
     numba_cache.STRICT[0] = strict
     numba_cache.DAMAGED.clear()
     for name in ("gearcli.engine.kernel", "gearcli_dispatch"):
         sys.modules.pop(name, None)
-    import gearcli.engine
+    import gearcli.engine  # lazy: circle: the engine package imports this module
 
     if hasattr(gearcli.engine, "kernel"):
         delattr(gearcli.engine, "kernel")
-    import gearcli.engine.kernel as kernel
+    import gearcli.engine.kernel as kernel  # lazy: numba: the kernel compiles or loads its cache on import
 
     return kernel, lambda: list(numba_cache.DAMAGED)
 
@@ -255,6 +223,7 @@ def load(quiet: bool = False) -> Loaded:
         if private is not None:
             cachedir.discard(private)
     _state["loaded"] = Loaded(kernel, time.perf_counter() - t0, built, build_s)
+    outputs.use_compiled(kernel)  # the model's sampled outputs run the compiled laws from now on
     _state["dir"] = None if private else cdir
     return _state["loaded"]
 
@@ -281,13 +250,9 @@ def _load_from(cdir: Path, quiet: bool) -> tuple[Any, bool]:
 
 
 def _build(cdir: Path, quiet: bool) -> None:
-    from gearcli.engine import builder
-
     try:
         _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, _reporter(quiet))
     except builder.BuildFailed as exc:
-        from gearcli.errors import SimulationError
-
         raise SimulationError(str(exc)) from None
 
 
@@ -312,6 +277,7 @@ def _repair(exc: CacheDamaged) -> None:
     _discard(exc, cdir, False)
     kernel, _ = _load_from(cdir, False)
     _state["loaded"] = Loaded(kernel, loaded.load_s, True, _state.pop("build_s", 0.0))
+    outputs.use_compiled(kernel)  # the kernel module imported anew: its dispatchers for the outputs too
 
 
 def _short(text: str, cdir: Path) -> str:
@@ -328,13 +294,15 @@ def entry(method: str) -> tuple[Any, float]:
     if name in warm:
         return getattr(loaded.kernel, name), 0.0
     t0 = time.perf_counter()
-    try:
-        with signals.deferred(), _strict():
-            _warm_entry(loaded.kernel, name)
-    except CacheDamaged as exc:  # the entry's files: named, discarded, rebuilt (an interruptible build), loaded anew
-        _repair(exc)
-        with signals.deferred(), _strict():
-            _warm_entry(load().kernel, name)
+    for attempt in range(3):  # another process sharing the cache may be repairing it too: a few rounds settle it
+        try:
+            with signals.deferred(), _strict():
+                _warm_entry(load().kernel, name)
+            break
+        except CacheDamaged as exc:  # the entry's files: named, discarded, rebuilt (an interruptible build), anew
+            if attempt == 2:
+                raise
+            _repair(exc)
     spent = time.perf_counter() - t0
     warm[name] = spent
     if len(warm) == 1 and _state.get("dir") is not None and not loaded.compiled:
@@ -364,8 +332,6 @@ class Built:
 
 def build(force: bool = False, quiet: bool = False) -> Built:
     """Compile the kernel into the cache (``force``: discard what is there first) and load it as a run would."""
-    from gearcli.errors import ConfigError
-
     if not available():
         raise ConfigError("the compiled engine needs numba, the fast extra: pip install 'gearcli[fast]'")
     if "loaded" in _state:
@@ -412,7 +378,6 @@ def expected_load_s() -> float:
     cached, a compilation's when not."""
     if "loaded" in _state:
         return 0.0
-    from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S
 
     if not _ready_here():
         return COMPILE_S
@@ -426,8 +391,6 @@ def expected_load_s() -> float:
 # ------------------------------------------------------------------------------------------- warm-up
 def _tiny_model():
     """Two bodies, one mesh and one spring: a model of every argument type, to compile or load once."""
-    from gearcli.model.elements import machine
-
     mesh = elements.mesh
     param = np.zeros((2, elements.N_PARAM))
     param[0, :13] = (1.0, 1.0, 1e9, 1.5, 1e3, 1e4, 6e7, 0.0, 0.0, 1.5, 1.0, 20.0, 1e-4)
@@ -437,7 +400,7 @@ def _tiny_model():
     bodies[:, :2] = ((0, 1), (1, 2))
     levers = np.zeros((2, elements.MAX_BODIES))
     levers[:, :2] = ((0.1, -0.2), (1.0, -1.0))
-    from gearcli.engine import _acting_on
+    from gearcli.engine import _acting_on  # lazy: circle: the engine package imports this module
 
     return (np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
             np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),

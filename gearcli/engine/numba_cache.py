@@ -19,7 +19,9 @@ from __future__ import annotations
 
 import contextlib
 import inspect
+import io
 import os
+import pickle
 import stat
 import sys
 import uuid
@@ -93,8 +95,6 @@ class _Files(caching.IndexDataCacheFile):
             raw = _read(self._index_path)
         except FileNotFoundError:
             return {}
-        import io
-        import pickle
 
         buf = io.BytesIO(raw)
         version = pickle.load(buf)
@@ -112,8 +112,6 @@ class _Files(caching.IndexDataCacheFile):
         return self._load_data(name)  # a missing or unreadable data file the index names is damage
 
     def _load_data(self, name: str) -> Any:
-        import pickle
-
         return pickle.loads(_read(self._data_path(name)))
 
     @contextlib.contextmanager
@@ -191,7 +189,7 @@ def _default() -> None:
     """A direct ``import gearcli.engine.kernel`` (tests do it) binds the kernel to the user's cache when it is trusted
     (numba then compiles what is missing in that process, as it always did); :func:`gearcli.engine.load` sets
     :data:`DIR` itself before it imports the kernel."""
-    from gearcli.engine import loader
+    from gearcli.engine import loader  # lazy: circle: loader imports this module (lazily, for numba)
 
     if not DIR and loader.cache_problem() is None:
         DIR.append(str(loader.cache_dir()))

@@ -15,7 +15,11 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from gearcli.io.plots import _figure
+import numpy as np
+
+from gearcli.io.figures import check as _figure_check
+from gearcli.io.figures import figure as _figure
+from gearcli.io.figures import save as _save
 from gearcli.io.units import OutputUnits
 from gearcli.model.modes import RESONANCE_BAND, CampbellData
 
@@ -35,8 +39,6 @@ def _speed(units: OutputUnits, rpm: Any) -> Any:
 def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
                     swept: Sequence[float] | None = None) -> Figure:
     """The figure; ``swept``: input speeds (rpm) of a sweep's points, marked on the speed axis."""
-    import numpy as np
-
     fig, axes = _figure(1, 1, height=5.6, width=11.0)
     ax = axes[0][0]
     top_speed = _speed(units, data.max_input_rpm)
@@ -106,13 +108,8 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     return fig
 
 
-
 def write_campbell(data: CampbellData, units: OutputUnits, directory: str | Path, title: str = "") -> Path:
     """Write ``campbell.png`` into ``directory`` (created if needed); returns its path."""
-    from pathlib import Path
-
-    from gearcli.io.plots import _figure_check, _save
-
     _figure_check()
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)

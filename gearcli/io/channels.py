@@ -5,7 +5,7 @@ SI series (:class:`gearcli.core.channels.Channel`).
 motor's and the couplings' torques in N·m, penetrations in mm, transmission errors in µm, twists in degrees);
 :func:`named` gives every series of a result under those names, in the simulation's order;
 :func:`gearcli.io.units.channels` then renames speeds and torques to the design file's units. A new output
-channel: its :class:`Channel` in the simulation (or in :mod:`gearcli.life.channels`), its name and factor here.
+channel: its :class:`Channel` in the simulation (or in :mod:`gearcli.simulate.bearings`), its name and factor here.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from gearcli.core.channels import Channel
 if TYPE_CHECKING:  # `gearcli design` imports the writers: no numpy at start-up
     import numpy as np
 
-    from gearcli.results import SimulationResult
+    from gearcli.simulate.results import SimulationResult
 
 RAD_TO_DEG = 180.0 / math.pi
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)

@@ -13,7 +13,7 @@ from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.io.life_tables import modified_rows
 from gearcli.io.serialize import csv_text, plain
-from gearcli.io.tables import FittedTable, StageColumns, _g, text
+from gearcli.io.table_kit import FittedTable, StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife, StageLife
 from gearcli.results import drop_absent_bearing_keys
 

@@ -11,7 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from gearcli.io.plots import _figure, _save
+from gearcli.io.figures import figure as _figure
+from gearcli.io.figures import save as _save
 from gearcli.life.miner import SNCurve
 from gearcli.life.result import LifeResult
 

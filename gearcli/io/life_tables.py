@@ -6,9 +6,10 @@ from collections.abc import Sequence
 
 from rich.console import RenderableType
 
-from gearcli.io.tables import FittedTable, StageColumns, _g
+from gearcli.io.table_kit import FittedTable, StageColumns, _g
 from gearcli.life.result import BearingLife
-from gearcli.results import BearingResult, BearingStats
+from gearcli.results import BearingResult
+from gearcli.simulate.results import BearingStats
 
 
 def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: static reactions and ISO 281 life"

@@ -74,8 +74,8 @@ def _strength(c) -> str:
 
 
 def modes_tables(analyses: list[ModalAnalysis]) -> list[RenderableType]:
-    from rich.table import Table
-    from rich.text import Text
+    from rich.table import Table  # lazy: rich, imported only for a table
+    from rich.text import Text  # lazy: rich, imported only for a table
 
     out: list = []
     for a in analyses:

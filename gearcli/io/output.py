@@ -18,6 +18,7 @@ New commands reuse :func:`output_option` (the click option) and these two functi
 
 from __future__ import annotations
 
+import io
 import os
 import stat
 import sys
@@ -26,8 +27,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO, TypeVar
 
+import click
+
 from gearcli.core.text import shorten
-from gearcli.errors import OutputError
+from gearcli.errors import OutputError, StdoutClosed
 from gearcli.io.atomic import write_atomic
 
 F = TypeVar("F", bound=Callable[..., object])  # a click command function
@@ -56,8 +59,6 @@ class OutputTarget:
 def output_option(help_text: str = "Write to FILE atomically ('-' is stdout; the format follows the suffix).") \
         -> Callable[[F], F]:
     """The ``-o/--output`` click option every data command shares (a plain string: the checks are ours)."""
-    import click
-
     return click.option("-o", "--output", type=str, metavar="FILE", help=help_text)
 
 
@@ -144,7 +145,6 @@ def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | Non
     file_default = file_default or formats[0]
     if output is None or output == STDOUT:
         if getattr(sys.stdout, "closed_stdout", False):  # `>&-`: say so now, not after the computing
-            from gearcli.errors import StdoutClosed
 
             raise StdoutClosed()
         chosen = fmt or (stdout_default() if stdout_default else file_default)
@@ -232,8 +232,6 @@ def write_stream(stream: TextIO, text: str) -> None:
 
 
 def drop_buffered(stream: TextIO) -> None:
-    import io
-
     try:
         fd = os.open(os.devnull, os.O_WRONLY)
         os.dup2(fd, stream.fileno())

@@ -1,6 +1,6 @@
 """``gearcli report --plots DIR``: the Campbell diagram and four PNG figures, drawn with matplotlib's Agg canvas.
 
-matplotlib is an optional extra (``pip install 'gearcli[plot]'``) and is imported only here, inside
+matplotlib is an optional extra (``pip install 'gearcli[plot]'``), imported by :mod:`gearcli.io.figures` inside
 :func:`write_plots`; without it :class:`PlotsUnavailable` says how to install it. The figures use the
 object-oriented API (``Figure`` + ``FigureCanvasAgg``), never pyplot, so no global backend state is
 touched. Files are written atomically.
@@ -8,45 +8,23 @@ touched. Files are written atomically.
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gearcli.io.atomic import write_atomic
+from gearcli.io import campbell as campbell_io
 from gearcli.io.channels import named
+from gearcli.io.figures import check as _figure_check
+from gearcli.io.figures import figure as _figure
+from gearcli.io.figures import save as _save
+from gearcli.io.units import of_result
 from gearcli.report.result import Report
 
 if TYPE_CHECKING:  # matplotlib is imported when a figure is drawn (the plot extra)
     from matplotlib.figure import Figure
 
-INSTALL_HINT = "pip install 'gearcli[plot]'  (or: pip install matplotlib)"
 FILES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
-DPI = 110
-
-
-class PlotsUnavailable(ImportError):
-    """matplotlib is not installed."""
-
-
-def _figure(rows: int, cols: int = 1, *, height: float = 2.3, width: float = 9.0, width_ratios=None, **kw):
-    try:
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
-    except ImportError as exc:
-        raise PlotsUnavailable(f"--plots needs matplotlib: {INSTALL_HINT}") from exc
-    fig = Figure(figsize=(width, max(3.2, height * rows + 0.8)), dpi=DPI, layout="constrained")
-    FigureCanvasAgg(fig)
-    axes = fig.subplots(rows, cols, squeeze=False, width_ratios=width_ratios, **kw)
-    return fig, axes
-
-
-def _save(fig, path: Path) -> Path:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=DPI)
-    write_atomic(path, buf.getvalue())
-    return path
 
 
 def _shade_window(ax, window) -> None:
@@ -69,7 +47,6 @@ def _zoom(ax, t: np.ndarray, y: np.ndarray, window, color: str) -> None:
 def speeds_figure(r: Report) -> Figure:
     sim, shafts = r.simulation, r.design.shafts
     fig, axes = _figure(len(shafts), 2, sharex="col", height=1.8, width=12.0, width_ratios=(3, 2))
-    from gearcli.io.units import of_result
 
     u = of_result(sim)
     for (ax, zoom), shaft in zip(axes, shafts, strict=True):
@@ -221,17 +198,5 @@ def write_plots(r: Report, directory: str | Path) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     written = []
     if r.campbell is not None:  # the engineering figure first
-        from gearcli.io.campbell import campbell_figure
-        from gearcli.io.units import of_result
-
-        written.append(_save(campbell_figure(r.campbell, of_result(r.simulation), r.title), out / "campbell.png"))
+        written.append(_save(campbell_io.campbell_figure(r.campbell, of_result(r.simulation), r.title), out / "campbell.png"))
     return written + [_save(make(r), out / name) for name, make in figures]
-
-
-def _figure_check() -> None:
-    """Fail early (before any directory is made) when matplotlib is missing."""
-    try:
-        import matplotlib  # noqa: F401
-    except ImportError as exc:
-        raise PlotsUnavailable(f"--plots needs matplotlib: {INSTALL_HINT}") from exc
-    return None

@@ -13,6 +13,9 @@ import time
 from pathlib import Path
 from typing import Any
 
+from gearcli.core import announce
+from gearcli.core.announce import LineReporter
+
 SHOW_AFTER_S = 1.0
 
 
@@ -37,7 +40,9 @@ class TerminalProgress:
         if self.bar is None:
             if time.perf_counter() - self.start < SHOW_AFTER_S:
                 return False
-            from rich.console import Console
+            from rich.console import Console  # lazy: rich, only when a terminal shows the bar
+
+            # lazy: rich, only when a terminal shows the bar
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
             self.bar = Progress(TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
@@ -62,24 +67,17 @@ class TerminalProgress:
             self.bar = None
 
 
-class BuildProgress:
-    """The compiled engine's first build as a step (:mod:`gearcli.engine.builder`'s reporter): a line when it starts,
-    a bar of the functions compiled on a terminal (a line every ~15 s elsewhere), the measured time when it ends;
-    nothing with ``-q``."""
-
-    EVERY_S = 15.0
+class BuildProgress(LineReporter):
+    """The compiled engine's first build as a step (:mod:`gearcli.engine.builder`'s reporter): the engine's plain
+    lines (:class:`gearcli.core.announce.LineReporter`: when it starts, every ~15 s, the measured time when it ends),
+    and on a terminal a bar of the functions compiled instead of the periodic lines; nothing with ``-q``."""
 
     def __init__(self, *, quiet: bool = False) -> None:
-        self.quiet = quiet
+        super().__init__(quiet)
         self.bar: TerminalProgress | None = None
-        self.last = 0.0
-
-    def _say(self, text: str) -> None:
-        if not self.quiet:
-            print(f"gearcli: {text}", file=sys.stderr, flush=True)
 
     def start(self, directory: Path) -> None:
-        self._say(f"compiling the integration engine (its first use here; cached in {directory}) ...")
+        super().start(directory)
         if not self.quiet and sys.stderr.isatty():
             self.bar = TerminalProgress("compiling the engine").__enter__()
             self.bar.start -= SHOW_AFTER_S  # at once: the step was announced
@@ -87,26 +85,16 @@ class BuildProgress:
     def step(self, done: int, total: int, elapsed_s: float) -> None:
         if self.bar is not None:
             self.bar("compiling the engine", done, total)
-        elif elapsed_s - self.last >= self.EVERY_S:
-            self.last = elapsed_s
-            self._say(f"compiling the integration engine: {done} of ~{total} functions, {elapsed_s:.0f} s")
-
-    def note(self, line: str) -> None:
-        self._say(f"the engine cache had a damaged entry, compiled again: {line}")
+        else:
+            super().step(done, total, elapsed_s)
 
     def finish(self, seconds: float, directory: Path, waited: bool = False) -> None:
         if self.bar is not None:
             self.bar.__exit__(None, None, None)
             self.bar = None
-        if waited:
-            self._say(f"another process compiled the integration engine; waited {seconds:.1f} s for it")
-            return
-        self._say(f"compiled the integration engine in {seconds:.1f} s (measured now; later runs load it from "
-                  f"{directory})")
+        super().finish(seconds, directory, waited)
 
 
 def show_engine_builds(*, quiet: bool) -> None:
     """Install :class:`BuildProgress` as this process's reporter of engine builds (:mod:`gearcli.core.announce`)."""
-    from gearcli.core import announce
-
     announce.set_build_reporter(BuildProgress(quiet=quiet))

@@ -15,6 +15,7 @@ import math
 
 from gearcli.core.jsontypes import JsonObject, JsonValue
 from gearcli.diagnostics import warning_objects
+from gearcli.io.modes_out import modes_dict
 from gearcli.io.serialize import as_object, plain, simulation_dict
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
@@ -125,7 +126,6 @@ def modes_summary(r: Report) -> JsonObject | None:
     """The modes at the drive's boundary (as ``gearcli modes``), null where the report did not compute them."""
     if r.modes is None:
         return None
-    from gearcli.io.modes_out import modes_dict
 
     doc = modes_dict([r.modes])
     doc.pop("warnings", None)

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from gearcli.io.units import of_result
+from gearcli.model.modes import RESONANCE_BAND
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
 
 LABELS = {
@@ -48,8 +50,6 @@ def quantity_label(stage: int | None, quantity: str) -> str:
 
 def _in_units(r: Report, quantity: str, label: str, value: float | None) -> tuple[str, float | None]:
     """A speed row in the design file's speed unit (the comparison is kept in °/s)."""
-    from gearcli.io.units import of_result
-
     u = of_result(r.simulation)
     if not quantity.endswith("_deg_s") or u.speed == "deg_s":
         return label, value
@@ -196,8 +196,6 @@ def rating_section(r: Report) -> Section | None:
 
 def design_section(r: Report) -> Section:
     """The geometry and loads of each stage: what the engineer checks first."""
-    from gearcli.io.units import of_result
-
     u = of_result(r.simulation)
     st = r.design.stages
     rows = [
@@ -224,8 +222,6 @@ def design_section(r: Report) -> Section:
 
 def modes_section(r: Report) -> Section | None:
     """Natural frequencies, modal damping, dominant element and the orders near the nominal speed."""
-    from gearcli.model.modes import RESONANCE_BAND
-
     ana = r.modes
     if ana is None:
         return None

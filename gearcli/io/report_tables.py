@@ -8,7 +8,7 @@ from rich.console import Group, RenderableType
 from rich.text import Text
 
 from gearcli.io.report_sections import Section, sections, solver_lines
-from gearcli.io.tables import FittedTable, text
+from gearcli.io.table_kit import FittedTable, text
 from gearcli.report.result import Report
 
 

@@ -10,12 +10,17 @@ import math
 from collections.abc import Iterable, Sequence
 from typing import Any, Protocol, TypeAlias, cast
 
+import numpy as np
+
 import gearcli
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.core.text import csv_text_cell
 from gearcli.diagnostics import warning_objects
+from gearcli.io import units as output_units
 from gearcli.io.channels import named
-from gearcli.results import DesignResult, SimulationResult, drop_absent_bearing_keys
+from gearcli.io.units import channels, of_result
+from gearcli.results import DesignResult, drop_absent_bearing_keys
+from gearcli.simulate.results import SimulationResult
 from gearcli.stages import kinds
 
 #: a JSON object while this module rearranges it (nested keys moved, popped); the public functions return
@@ -124,7 +129,6 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]
-    from gearcli.io import units as output_units
 
     u = output_units.of_result(result)
     speeds = {} if u.speed == "deg_s" else {f"input_speed_{u.speed}": u.speed_from_deg_s(result.input_speed_deg_s),
@@ -234,10 +238,6 @@ def _named_meshes(stage: _Doc) -> _Doc:
 
 def simulation_csv(result: SimulationResult) -> str:
     """One row per output sample: ``time_s`` then the channels in contract order."""
-    import numpy as np
-
-    from gearcli.io.units import channels, of_result
-
     shown = channels(named(result), of_result(result))
     header = ["time_s", *shown]
     data = np.column_stack([result.time_s, *shown.values()])

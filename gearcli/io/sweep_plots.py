@@ -15,7 +15,10 @@ from typing import Any
 
 import numpy as np
 
-from gearcli.io.plots import _figure, _save
+from gearcli.io import campbell as campbell_io
+from gearcli.io.figures import figure as _figure
+from gearcli.io.figures import save as _save
+from gearcli.io.units import OutputUnits
 from gearcli.sweep.columns import Row
 from gearcli.sweep.modes import SweepCampbell
 from gearcli.sweep.session import Session
@@ -121,10 +124,7 @@ def _label(group: tuple, others: Sequence[str]) -> str:
 def _campbell(campbell: SweepCampbell):
     """The Campbell diagram of ``gearcli modes --plots`` (:mod:`gearcli.io.campbell`), over the swept range,
     with the swept speeds marked."""
-    from gearcli.io.campbell import campbell_figure
-    from gearcli.io.units import OutputUnits
-
-    return campbell_figure(campbell.data, OutputUnits(*campbell.units), swept=list(campbell.swept_rpm))
+    return campbell_io.campbell_figure(campbell.data, OutputUnits(*campbell.units), swept=list(campbell.swept_rpm))
 
 
 def _distributions(rows: Sequence[dict], n_stages: int):

@@ -14,8 +14,8 @@ class SweepProgress:
 
     def __enter__(self) -> SweepProgress:
         if self.enabled and sys.stderr.isatty():
-            from rich.console import Console
-            from rich.progress import (
+            from rich.console import Console  # lazy: rich, only when a terminal shows the bar
+            from rich.progress import (  # lazy: rich, only when a terminal shows the bar
                 BarColumn,
                 MofNCompleteColumn,
                 Progress,

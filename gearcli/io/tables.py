@@ -10,173 +10,30 @@ never rich markup, control characters escaped.
 from __future__ import annotations
 
 import io
-import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal, Protocol, cast
+from typing import TYPE_CHECKING, Protocol, cast
 
-from rich.cells import cell_len
-from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
-from rich.table import Table
-from rich.text import Text
+from rich.console import Console, RenderableType
 
-from gearcli.core.text import visible
+from gearcli.io.life_out import life_tables as _life_tables
+from gearcli.io.life_tables import bearing_stats_table, bearing_table
+from gearcli.io.table_kit import (
+    FittedTable,
+    StageColumns,
+    _g,
+    _quantity_table,
+    output_width,
+    text,
+)
 from gearcli.io.units import input_torque_window_means, of_result
-from gearcli.results import DesignResult, InternalRatingResult, SimulationResult
+from gearcli.rating import for_rating
+from gearcli.results import DesignResult, RatedMesh, StageResult
+from gearcli.simulate.results import SimulationResult
 from gearcli.stages import kinds
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
-    from gearcli.results import InternalRatingResult, RatingResult
-
-FILE_WIDTH = 110  # text written to -o FILE or a pipe, unless COLUMNS says otherwise
-MIN_WIDTH = 20
-LABEL_WIDTH = 30  # the quantity column
-CELL_WIDTH = 13  # a number like -1.2346e+05 and its padding
-
-
-def text(value: str, style: str = "") -> Text:
-    """A literal Text (no markup) with control characters escaped."""
-    return Text(visible(value), style=style)
-
-
-def output_width(terminal: bool = False) -> int:
-    """COLUMNS when it is a usable number, else the terminal's width (on a terminal) or :data:`FILE_WIDTH`;
-    never less than :data:`MIN_WIDTH` (``COLUMNS=0`` or garbage means "not told")."""
-    try:
-        cols = int(os.environ.get("COLUMNS", ""))
-    except ValueError:
-        cols = 0
-    if cols >= MIN_WIDTH:
-        return cols
-    if terminal:
-        try:
-            size = os.get_terminal_size().columns
-        except OSError:
-            size = 0
-        return size if size >= MIN_WIDTH else FILE_WIDTH
-    return FILE_WIDTH
-
-
-def terminal_console() -> Console:
-    """The terminal's console: its width (see :func:`output_width`), no markup, no emoji codes."""
-    return Console(width=output_width(terminal=True), markup=False, emoji=False, highlight=False)
-
-
-@dataclass
-class StageColumns:
-    """A quantity table with one column per stage (or shaft), split into as many tables as the width needs."""
-
-    title: str
-    columns: Sequence[str]
-    rows: Sequence[tuple[str, Sequence[str]]]
-
-    def tables(self, width: int) -> list[FittedTable]:
-        per = max(1, (width - LABEL_WIDTH) // CELL_WIDTH)
-        n = len(self.columns)
-        out = []
-        for lo in range(0, n, per):
-            hi = min(n, lo + per)
-            span = self.columns[lo] if hi - lo == 1 else f"{self.columns[lo]}–{self.columns[hi - 1]}"
-            title = self.title if hi - lo == n else f"{self.title} ({span})"
-            out.append(_table(title, self.columns[lo:hi], [(lab, cells[lo:hi]) for lab, cells in self.rows]))
-        return out
-
-    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
-        yield from self.tables(options.max_width)
-
-
-@dataclass
-class FittedTable:
-    """A table whose numbers are printed whole at any width (docs/output.md, "Tables"): a numeric column is
-    exactly as wide as its longest cell, text columns (labels, headers) share the rest and fold; when even that
-    does not fit, numeric columns are dropped from the right and a note under the table names them. Never a
-    cut number (0.012387 shown as 0.01238) nor one folded over lines."""
-
-    title: str
-    headers: Sequence[str]
-    rows: Sequence[Sequence[str]]
-    numeric: Sequence[bool]  # per column: its cells are numbers (never folded)
-    justify: Sequence[str] = ()  # per column "left"/"right" (default: right for numeric columns)
-    styles: Sequence[str | None] = ()
-    ends: Sequence[bool] = ()  # per row: a section ends after it
-    MIN_TEXT = 5  # a text column folds, but not narrower than this
-    MAX_WORD = 12  # ... and keeps its words whole up to this length
-
-    def _cells(self, c: int) -> list[str]:
-        return [visible(r[c]) for r in self.rows]
-
-    def _natural(self, c: int) -> int:
-        return max([cell_len(x) for x in self._cells(c)] + [cell_len(visible(self.headers[c])), 1])
-
-    def _least(self, c: int) -> int:
-        if self.numeric[c]:
-            return max([cell_len(x) for x in self._cells(c)] + [1])
-        words = [cell_len(w) for x in [*self._cells(c), visible(self.headers[c])] for w in x.split()] or [1]
-        return min(self._natural(c), max(self.MIN_TEXT, min(max(words), self.MAX_WORD)))  # words whole if it can
-
-    def compact(self, width: int) -> bool:
-        """Whether the table needs its narrow form (no padding at the outer edges) to fit ``width``."""
-        n = len(self.headers)
-        return sum(self._natural(c) for c in range(n)) + 3 * n + 1 > width
-
-    def columns_for(self, width: int) -> tuple[list[int], dict[int, int]]:
-        """The columns kept at ``width`` and each one's width."""
-        keep = list(range(len(self.headers)))
-        edge = 0 if self.compact(width) else 2
-
-        def frame(cols: list[int]) -> int:  # borders and padding: "│ a │ b │" (narrow form: "│a │ b│")
-            return 3 * len(cols) - 1 + edge
-
-        while sum(self._least(c) for c in keep) + frame(keep) > width and sum(self.numeric[c] for c in keep) > 1:
-            keep.remove(max(c for c in keep if self.numeric[c]))
-        widths = {c: self._least(c) for c in keep}
-        room = max(0, width - frame(keep) - sum(widths.values()))
-        # the width left over unfolds as many columns as it can, the cheapest first (a header of a few more
-        # characters before a long label); what remains is shared evenly among the rest
-        wanting = sorted((c for c in keep if self._natural(c) > widths[c]), key=lambda c: self._natural(c) - widths[c])
-        for i, c in enumerate(wanting):
-            need = self._natural(c) - widths[c]
-            share = need if need <= room else room // (len(wanting) - i)
-            widths[c] += share
-            room -= share
-        return keep, widths
-
-    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
-        keep, widths = self.columns_for(options.max_width)
-        table = Table(title=text(self.title), title_justify="left", header_style="bold",
-                      pad_edge=not self.compact(options.max_width))
-        for c in keep:
-            justify: Literal["left", "right"] = "right" if self.numeric[c] else "left"
-            if self.justify:
-                justify = "left" if self.justify[c] == "left" else "right"
-            style = self.styles[c] if self.styles else None
-            table.add_column(text(self.headers[c]), justify=justify, overflow="fold", width=widths[c],
-                             style=style or "")
-        for i, row in enumerate(self.rows):
-            table.add_row(*(text(row[c]) for c in keep), end_section=bool(self.ends and self.ends[i]))
-        yield table
-        dropped = [visible(self.headers[c]) for c in range(len(self.headers)) if c not in keep]
-        if dropped:
-            yield text(f"(column{'s' if len(dropped) > 1 else ''} {', '.join(dropped)} left out: "
-                       f"{options.max_width} characters are too narrow to print every number whole; widen the "
-                       "terminal (COLUMNS) or use --format csv/json)", "dim")
-
-
-def _g(v: float | None, digits: int = 5) -> str:
-    """A number to ``digits`` significant digits; "—" where it is undefined (None)."""
-    return "—" if v is None else f"{v + 0.0:.{digits}g}"  # + 0.0: no negative zero
-
-
-def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> FittedTable:
-    body = [(label, *cells) for label, cells in rows]  # text(): '[mm]' is a unit, not rich markup
-    return FittedTable(title, ["quantity", *columns], body, [False] + [True] * len(columns),
-                       styles=["cyan"] + [None] * len(columns))
-
-
-def _quantity_table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> StageColumns:
-    return StageColumns(title, list(columns), [(label, list(cells)) for label, cells in rows])
-
 
 def design_tables(r: DesignResult) -> list[RenderableType]:
     s = r.stages
@@ -249,7 +106,6 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     rated = [st for st in s if st.rating is not None]
     own = [*_allowance_table(r), *_kind_tables(r)]
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
-        from gearcli.io.life_tables import bearing_table
 
         return [geometry, loads, *([rating_table(rated)] if rated else []), *own, train, bearing_table(r.bearings),
                 *summary]
@@ -268,7 +124,7 @@ class StageOutput(Protocol):
     def load_sharing(self) -> bool:
         """The stage's rating has a load-sharing factor K_γ (a row of the rating table)."""
 
-    def design_tables(self, r: DesignResult, stages: list) -> list[RenderableType]:
+    def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
         """The kind's own tables of ``stages`` (the design's stages of this kind), after the allowances."""
 
 
@@ -312,70 +168,24 @@ class _HasRating(Protocol):
     def index(self) -> int: ...
 
     @property
-    def rating(self) -> RatingResult | InternalRatingResult | None: ...
+    def rating(self) -> RatedMesh | None: ...
 
 
-def _rating(st: _HasRating) -> RatingResult | InternalRatingResult:
+def _rating(st: _HasRating) -> RatedMesh:
     if st.rating is None:
         raise ValueError(f"stage {st.index} has no rating")
     return st.rating
 
 
-def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, ISO 6336:2006 method B") -> StageColumns:
-    """Factors, stresses, permissible stresses and safeties per member, in the order of a KISSsoft report
-    (general factors, tooth root, flank); per-member cells read "pinion / gear"."""
+def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, {standard}") -> StageColumns:
+    """The rated meshes' rows as their standard gives them (:meth:`gearcli.rating.RatingStandard.table_rows`), one
+    column per stage (every mesh rated by one standard: the design file's); ``{standard}`` in ``title`` is its
+    title."""
     cols = [f"stage {st.index}" for st in stages]
-
-    def one(label, fn, digits=4):
-        return label, [_g(fn(_rating(st)), digits) for st in stages]
-
-    def two(label, name, digits=4):
-        return label, [f"{_g(getattr(_rating(st).pinion, name), digits)} / "
-                       f"{_g(getattr(_rating(st).gear, name), digits)}" for st in stages]
-
-    sharing = any(_rating(st).K_gamma != 1.0 or _kind(st).load_sharing for st in stages)
-    return _quantity_table(title, cols, [
-        one("application factor K_A", lambda r: r.K_A),
-        *([one("load-sharing factor K_γ", lambda r: r.K_gamma)] if sharing else []),
-        ("dynamic factor K_v", [f"{_rating(st).K_v:.4g} ({_rating(st).K_v_source})" for st in stages]),
-        ("face load factor K_Hβ", [f"{_rating(st).K_Hbeta:.4g} ({_rating(st).K_Hbeta_source})" for st in stages]),
-        one("face load factor K_Fβ", lambda r: r.K_Fbeta),
-        one("transverse load factor K_Hα", lambda r: r.K_Halpha),
-        one("transverse load factor K_Fα", lambda r: r.K_Falpha),
-        two("load cycles N_L p / g", "load_cycles"),
-        two("tooth form Y_F p / g", "Y_F"),
-        two("stress correction Y_S p / g", "Y_S"),
-        one("helix factor Y_β", lambda r: r.Y_beta),
-        two("rim factor Y_B p / g", "Y_B"),
-        two("deep tooth Y_DT p / g", "Y_DT"),
-        two("nominal root σ_F0 [MPa] p / g", "sigma_F0_MPa"),
-        two("root stress σ_F [MPa] p / g", "sigma_F_MPa"),
-        two("notch Y_δrelT p / g", "Y_delta_rel_T"),
-        two("surface Y_RrelT p / g", "Y_R_rel_T"),
-        two("size Y_X p / g", "Y_X"),
-        two("life Y_NT p / g", "Y_NT"),
-        two("mean stress Y_M p / g", "Y_M"),
-        two("root limit σ_FG [MPa] p / g", "sigma_FG_MPa"),
-        two("permissible σ_FP [MPa] p / g", "sigma_FP_MPa"),
-        two("root safety S_F p / g", "S_F", 3),
-        one("zone factor Z_H", lambda r: r.Z_H),
-        one("elasticity Z_E [√MPa]", lambda r: r.Z_E),
-        one("contact ratio Z_ε", lambda r: r.Z_eps),
-        one("helix factor Z_β", lambda r: r.Z_beta),
-        one("nominal contact σ_H0 [MPa]", lambda r: r.sigma_H0_MPa),
-        one("contact σ_H (pitch) [MPa]", lambda r: r.sigma_H_MPa),
-        two("single pair Z_B / Z_D", "Z_BD"),
-        two("contact σ_HB / σ_HD [MPa]", "sigma_H_MPa"),
-        one("lubricant Z_L", lambda r: r.Z_L),
-        one("velocity Z_V", lambda r: r.Z_V),
-        one("roughness Z_R", lambda r: r.Z_R),
-        one("work hardening Z_W", lambda r: r.Z_W),
-        two("life Z_NT p / g", "Z_NT"),
-        two("size Z_X p / g", "Z_X"),
-        two("pitting limit σ_HG [MPa] p / g", "sigma_HG_MPa"),
-        two("permissible σ_HP [MPa] p / g", "sigma_HP_MPa"),
-        two("flank safety S_H p / g", "S_H", 3),
-    ])
+    ratings = [_rating(st) for st in stages]
+    shared = any(getattr(r, "K_gamma", 1.0) != 1.0 or _kind(st).load_sharing
+                 for r, st in zip(ratings, stages, strict=True))
+    return _quantity_table(title.format(standard=ratings[0].standard), cols, for_rating(ratings[0]).table_rows(ratings, shared=shared))
 
 
 def _stats_cells(st) -> list[str]:
@@ -447,13 +257,12 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
                      f"wall {cp['wall_s']:.3g} s")
     # one Text per line: text() writes a control character (a newline too) as an escape
     rated = [st for st in r.stages if st.rating is not None]
-    simulated = [rating_table(rated, "strength rating at the simulated K_v, ISO 6336:2006 method B")] if rated else []
+    simulated = [rating_table(rated, "strength rating at the simulated K_v, {standard}")] if rated else []
     rings = [_RingRating(st.index, st.planet_ring_rating) for st in r.stages if st.planet_ring_rating is not None]
     if rings:
-        simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, ISO 6336:2006 "
-                                             "method B (p planet, g ring)"))
+        simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, {standard} "
+                                             "(p planet, g ring)"))
     if r.extra and r.extra.get("bearings"):  # [[bearing]] tables (docs/life.md)
-        from gearcli.io.life_tables import bearing_stats_table
 
         return [forces, bearing_stats_table(r.window_s, r.extra["bearings"]), peaks, mesh, *_planet_tables(r),
                 *simulated, *(text(line) for line in lines)]
@@ -465,7 +274,7 @@ class _RingRating:
     """A planetary stage's planet–ring rating as a stage with a rating (rating_table's rows)."""
 
     index: int
-    rating: InternalRatingResult
+    rating: RatedMesh
 
 
 def _planet_tables(r: SimulationResult) -> list[RenderableType]:
@@ -550,6 +359,4 @@ def render(renderables: Sequence[RenderableType], *, console: Console | None = N
 
 def life_tables(r: LifeResult) -> list[RenderableType]:
     """``gearcli life`` tables (gearcli.io.life_out)."""
-    from gearcli.io.life_out import life_tables as build
-
-    return build(r)
+    return _life_tables(r)

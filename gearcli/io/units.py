@@ -14,11 +14,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeVar
 
+from gearcli.io.channels import named
+
 if TYPE_CHECKING:  # `gearcli design` imports this module: no numpy at start-up
     import numpy as np
 
     from gearcli.config import DesignFile
-    from gearcli.results import SimulationResult
+    from gearcli.simulate.results import SimulationResult
 
 SPEED_UNITS = {"deg_s": ("°/s", 1.0), "rpm": ("rpm", 1.0 / 6.0), "rad_s": ("rad/s", math.pi / 180.0)}  # from °/s
 #: a value or the samples of a channel (the conversions keep the type: float in, float out; array in, array out)
@@ -55,11 +57,18 @@ class OutputUnits:
 DEFAULT = OutputUnits()
 
 
+def key_units(cfg: DesignFile) -> tuple[str, str]:
+    """(speed, torque) key suffixes the outputs use: the input's speed key (``deg_s``, ``rpm``, ``rad_s``) and
+    the load's torque key (``Nmm``, ``Nm``; ``power_kW`` gives N·m)."""
+    inp = cfg.input
+    speed = "rpm" if inp.speed_rpm is not None else "rad_s" if inp.speed_rad_s is not None else "deg_s"
+    torque = "Nmm" if getattr(cfg.load, "torque_Nmm", None) is not None else "Nm"
+    return speed, torque
+
+
 def of_design_file(cfg: DesignFile) -> OutputUnits:
     """The units a validated design file writes in."""
-    from gearcli.scene import output_units
-
-    return OutputUnits(*output_units(cfg))
+    return OutputUnits(*key_units(cfg))
 
 
 def of_result(result: SimulationResult) -> OutputUnits:
@@ -88,9 +97,7 @@ def input_torque_window_means(result: SimulationResult) -> tuple[float, float] |
     """(mean input torque N·m, mean input power kW) over the statistics window, from the series: the power as
     the mean of torque x speed of the driven body (the motor when there is one), not a product of means.
     None without series."""
-    import numpy as np
-
-    from gearcli.io.channels import named
+    import numpy as np  # lazy: numpy, kept out of io.units' import (a design file's units need none)
 
     ch = named(result)
     torque = ch.get("input_torque_Nmm")

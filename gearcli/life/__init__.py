@@ -1,9 +1,10 @@
 """Loads to life (docs/life.md): duty cycles and measured histories, tooth-load spectra, ISO 6336-6 Miner
-damage on the ISO 6336-2/-3 S–N curves, and ISO 281 bearing lives over the duty.
+damage on the S–N curves of the file's rating standard (``gearcli.rating``; ISO 6336-2/-3 by default), and ISO 281
+bearing lives over the duty.
 
 - ``duty``      the ``[[duty]]`` points, or a torque–speed history classed into points
 - ``spectra``   static (the rating's stress) and dynamic (mesh-cycle peaks of a simulation) load classes
-- ``miner``     S–N curves from the life factors Z_NT / Y_NT, the Miner variants, the spectrum safety
+- ``miner``     the Miner sum and the spectrum safety on the standard's S–N curves (``gearcli.rating.sn``)
 - ``channels``  bearing reactions as simulation channels
 - ``run``       ``compute_life``: the points (evaluated by the injected facade functions) to a ``LifeResult``
 - ``session``   the base file as a sweep scene, and its duty points

@@ -11,9 +11,10 @@ import csv
 import io
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
+from gearcli.design.kinematics import pinion_torque_Nmm
 from gearcli.errors import ConfigError
 
 MAX_SERIES_ROWS = 2_000_000
@@ -44,9 +45,6 @@ def with_drive(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
     point runs at its speed instead of drifting from the file's input torque. A speed drive needs nothing."""
     if cfg.input.drive != "torque":
         return list(points)
-    from dataclasses import replace
-
-    from gearcli.design.kinematics import pinion_torque_Nmm
 
     out = []
     for p in points:

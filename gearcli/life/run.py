@@ -13,12 +13,16 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
+import numpy as np
+
+from gearcli import engine
 from gearcli.config import DesignFile
 from gearcli.config.bounds import check_memory
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
+from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
+from gearcli.design.standards import standard_of
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
 from gearcli.life import spectra
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
@@ -27,13 +31,12 @@ from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
 from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles, start_data
-from gearcli.results import DesignResult, MemberRating, RatingResult, SimulationResult, StageResult
+from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
+from gearcli.simulate.bearings import peak_static_load_N, reaction_series
+from gearcli.simulate.results import SimulationResult
 from gearcli.stages.design import design_kind
 from gearcli.stages.life import life_kind
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
-
-if TYPE_CHECKING:
-    import numpy as np
 
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
@@ -82,7 +85,7 @@ def _require_rating(cfg: DesignFile, scene: Scene) -> None:
                           source=scene.source, key="rating")
 
 
-def _rating(stage: StageResult) -> RatingResult:
+def _rating(stage: StageResult) -> RatedMesh:
     """A stage's rating (every life point has one: :func:`_require_rating`)."""
     if stage.rating is None:
         raise DesignError(f"stage {stage.index}: no ISO 6336 rating; gearcli life needs a [rating] table")
@@ -113,8 +116,6 @@ def k_gamma(st: StageResult) -> float:
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...], tuple[str, ...]]:
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
-    from gearcli import engine
-
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
     notes: list[str] = []
@@ -180,9 +181,6 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
 
 def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
     """The point's start from rest (its run before the settled window), with the bearings' loads."""
-    from gearcli.design.shafts import stage_layout
-    from gearcli.life.channels import reaction_series
-
     if result.window_s[0] <= result.time_s[0]:
         raise SimulationError(f"duty point {point.name}: starts = {point.starts} needs the run from rest before its "
                               "window; simulation.window_start_s = 0 leaves no start to count")
@@ -196,8 +194,6 @@ def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: Simu
 def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
     """The series with each stage with planets its own F_t channel: its planets' sun-mesh mean (the central
     members' load; the statics' input)."""
-    import numpy as np
-
     for st in design.stages:
         forces = life_kind(st).planet_forces(st, series)
         if forces:
@@ -208,11 +204,6 @@ def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -
 def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> PointBearings:
     """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
     window (at a steady speed, revolutions are proportional to time), and the window's peak ISO 76 P_0."""
-    import numpy as np
-
-    from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
-    from gearcli.life.channels import peak_static_load_N, reaction_series
-
     lay = stage_layout(cfg, design.stages)
     if lay is None:
         return PointBearings((), ())
@@ -257,23 +248,18 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
 RING_MEMBERS = {"ring": ("gear", "ring"), "planet_ring_side": ("pinion", "planet")}
 
 
-def _member_rating(st: StageResult, member: str) -> MemberRating:
+def _member_rating(st: StageResult, member: str) -> RatedMember:
     """The rating of ``member`` (its stage kind's: a planetary's ring-mesh members the planet–ring mesh's)."""
     _rating(st)
     return life_kind(st).member_rating(st, member)
 
 
 def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
-    from gearcli.design import rating_factors as rf
-
+    """The S–N curve of ``member`` in ``mode`` as the file's rating standard gives it (``gearcli.rating``)."""
     stage = cfg.stage[k]
     own = life_kind(stage).material_member(member)
     treatment = str(cfg.materials[getattr(stage, own).material].treatment)
-    m = _member_rating(design.stages[k], member)
-    optimum = cfg.rating.material_quality == "optimum"
-    if mode == "pitting":
-        return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)
-    return SNCurve(rf.ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)
+    return standard_of(cfg).sn_curve(cfg, _member_rating(design.stages[k], member), treatment, mode, variant)
 
 
 def _contacts_per_turn(st, member: str) -> int:
@@ -296,7 +282,7 @@ def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: fl
     """The rating's stress of the point, scaled from its static force to ``force_N``."""
     m = _member_rating(design.stages[k], member)
     ratio = force_N / abs(static_N) if static_N else 0.0
-    return m.sigma_H_MPa * math.sqrt(ratio) if mode == "pitting" else m.sigma_F_MPa * ratio
+    return m.stress_MPa(mode) * (math.sqrt(ratio) if mode == "pitting" else ratio)
 
 
 _Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
@@ -325,11 +311,16 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
 
 def _mode_life(points: Sequence[_PointData], k: int, member: str, mode: str, variant: str,
                hours: float, planet: int | None = None) -> ModeLife:
-    ml = _from_raw(_raw_bins(points, k, member, mode, variant, planet), mode, hours)
+    ml = _from_raw(_raw_bins(points, k, member, mode, variant, planet), mode, hours, _curve_name(points, mode))
     return ml if planet is None else replace(ml, planet=planet)
 
 
-def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
+def _curve_name(points: Sequence[_PointData], mode: str) -> str:
+    return standard_of(points[0].cfg).curve_name(mode)
+
+
+def _from_raw(raw: Sequence[_Raw], mode: str, hours: float, curve_name: str = "") -> ModeLife:
+    """Miner damage and life of the bins ``raw`` in ``mode``; ``curve_name``: the standard's name of the curve."""
     exponent = 0.5 if mode == "pitting" else 1.0
 
     def damage_at(scale: float) -> float:
@@ -345,7 +336,7 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float) -> ModeLife:
     below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's last node: infinite life
     load = spectrum_safety(damage_at)
     return ModeLife(d, hours / d if d > 0 and not below else None, load, tuple(bins),
-                    f"{'Z_NT (ISO 6336-2:2006)' if mode == 'pitting' else 'Y_NT (ISO 6336-3:2006)'}",
+                    curve_name,
                     first.static_cycles, first.knee[0], first, below_endurance=below,
                     stress_safety=None if load is None else load**exponent)
 
@@ -358,7 +349,8 @@ def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float
 
     def root_life(planet: int | None = None) -> ModeLife:
         ml = _from_raw([*_raw_bins(points, k, "gear", "bending", variant, planet),
-                        *_raw_bins(points, k, "planet_ring_side", "bending", variant, planet)], "bending", hours)
+                        *_raw_bins(points, k, "planet_ring_side", "bending", variant, planet)], "bending", hours,
+                      _curve_name(points, "bending"))
         return ml if planet is None else replace(ml, planet=planet)
 
     st = points[0].design.stages[k]
@@ -399,8 +391,6 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
             evaluated.append(_static_point(scene, p, design_case))
             warnings += _point_design_warnings(scene, p, design_case, base_warnings, evaluated[-1].design)
     else:
-        from gearcli import engine
-
         with engine.batch(len(points)):
             for i, p in enumerate(points):
                 progress(p.name, i, len(points))

@@ -19,9 +19,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.core.channels import Channel
+from gearcli.design.shafts import equivalent_load_N, life_exponent
 from gearcli.life import spectra
 from gearcli.life.spectra import StageLoads
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult
+from gearcli.simulate.bearings import peak_static_load_N
+from gearcli.simulate.results import SimulationResult
 from gearcli.stages.life import life_kind
 
 START_LABEL = "{name} (start)"
@@ -75,8 +78,6 @@ def start_data(count: int, result: SimulationResult, design: DesignResult,
         return StartData(count, span, loads, revs, peaks)
     w = np.abs(result.series[Channel("speed", "shaft1")][mask])
     b_loads, b_peaks, b_static = [], [], []
-    from gearcli.design.shafts import equivalent_load_N, life_exponent
-    from gearcli.life.channels import peak_static_load_N
 
     for j, spec in enumerate(bearing_specs):
         r = bearing_series[j][:, mask]

@@ -43,7 +43,6 @@ import numpy as np
 
 from gearcli.model.elements import (
     KIND_MESH,
-    KIND_PLANET_MESH,
     MAX_BODIES,
     N_PARAM,
     kind_of,
@@ -52,90 +51,10 @@ from gearcli.model.elements import (
     mesh,
     torque,
 )
+from gearcli.model.parts import Body, Connector, _row
 from gearcli.model.spec import DriveSpec, LoadSpec, MeshSpec, ModelSpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
-
-
-@dataclass(frozen=True)
-class Body:
-    inertia: float  # kg m^2
-    label: str  # "motor", "shaft 1", "shaft 2 gear end", "shaft 2 pinion end", "drum"
-    ratio: float  # nominal speed over the input body's speed (rigid kinematics)
-
-
-@dataclass(frozen=True)
-class Connector:
-    """One element placed in the scene: its kind (:mod:`gearcli.model.elements`), the bodies it joins by
-    index and its lever on each (a mesh: base radii; a spring: 1), its parameter row, and its role."""
-
-    kind: int
-    bodies: tuple[int, ...]
-    radii: tuple[float, ...]
-    params: tuple[float, ...]  # the element's parameter row, as Python floats
-    label: str  # "input coupling", "stage 1 mesh", "shaft 2", "load coupling"
-    index: int = -1  # 0-based stage of a mesh or reducer shaft of a flexible shaft; -1 for couplings
-    role: str = ""  # "mesh" (a stage's mesh), "shaft" (a flexible reducer shaft), "coupling", "planet" (a
-    # planet's sun or ring mesh), or "" (other)
-    load_body: int = -1  # a planet mesh: its static force is T_L rho_N / rho[load_body] * load_lever
-    load_lever: float = 0.0
-    planet: int = -1  # a planet mesh: its planet (0-based) and which mesh ("sun" or "ring")
-    gear: str = ""
-    chain_in: int = -1  # a planet mesh: the body of its stage's input member (the reducer shaft before it)
-    initial_deflection: float = 0.0  # a planet's position error along its sun mesh (m): delta - R theta
-
-    @property
-    def element(self):
-        """The element's law module (the registry's)."""
-        return law_of(self.kind)
-
-    @property
-    def a(self) -> int:
-        """The first body (a mesh's pinion: its phase is the element's)."""
-        return self.bodies[0]
-
-    @property
-    def b(self) -> int:
-        return self.bodies[1]
-
-    @property
-    def ra(self) -> float:
-        return self.radii[0]
-
-    @property
-    def rb(self) -> float:
-        return self.radii[1]
-
-    @property
-    def levers(self) -> tuple[float, ...]:
-        """Signed levers s_j r_j: delta = sum_j levers[j] theta_{bodies[j]}; body j takes -levers[j] F."""
-        return tuple(s * r for s, r in zip(self.element.SIGNS, self.radii, strict=True))
-
-    @property
-    def damped(self) -> bool:
-        return self.element.damped(self.params)
-
-    @property
-    def lossy(self) -> bool:
-        """A mesh that loses (1 - eta) of the power it transmits (:func:`.mesh.loss_factors`)."""
-        return self.kind in (KIND_MESH, KIND_PLANET_MESH) and mesh.lossy(self.params)
-
-    @property
-    def planet_loss(self) -> bool:
-        """A lossy planet mesh, losing in the carrier's frame (:func:`.mesh.planet_loss_slots`)."""
-        return self.lossy and mesh.planet_loss(self.params)
-
-    @property
-    def time_varying(self) -> bool:
-        return self.element.time_varying(self.params)
-
-    @property
-    def phased(self) -> bool:
-        return self.element.phased(self.params)
-
-    @property
-    def excited(self) -> bool:
-        return self.element.excited(self.params)
 
 
 @dataclass(frozen=True)
@@ -146,10 +65,6 @@ class AngleRow:
     bodies: tuple[tuple[int, float], ...]  # (earlier body, coefficient)
     deflections: tuple[tuple[int, float], ...]  # (connector, coefficient)
     constant: float
-
-
-def _row(values) -> tuple[float, ...]:
-    return tuple(float(v) for v in values)
 
 
 def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
@@ -202,7 +117,8 @@ class _Pair:
     efficiency: float = 1.0  # the mesh's losses are its connector's
     reverse_efficiency: float = 1.0
 
-    def place(self, k: int, bodies: list, conns: list, body: Callable[..., None], out_inertia: float) -> None:
+    def place(self, k: int, bodies: list[Body], conns: list[Connector], body: Callable[..., None],
+              out_inertia: float) -> None:
         m = self.mesh
         self.join("mesh", m, m.base_radius_pinion_m, m.base_radius_gear_m, f"stage {k + 1} mesh", "mesh", k)
         body(out_inertia, f"shaft {k + 2} gear end" if self.flexible_output else f"shaft {k + 2}")

@@ -31,9 +31,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearcli.model.assembly import Connector, Layout
+from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
-from gearcli.model.elements.mesh import loss_factors
+from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
+from gearcli.model.parts import Connector
 
 
 def lit(x: float) -> str:
@@ -166,8 +167,6 @@ def _loss_lines(lay: Layout, c: int, jacobian: bool = False) -> list[str]:
 
 
 def _planet_slots(x: Connector) -> tuple[int, int, int, float]:
-    from gearcli.model.elements.mesh import planet_loss_slots
-
     return planet_loss_slots(x.params)
 
 

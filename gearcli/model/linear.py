@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.model.assembly import Layout
+from gearcli.model.damping import body_matrices, state_matrix
 from gearcli.model.elements import mesh
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
@@ -114,25 +115,11 @@ def rigid_line_forces_N(spec: ModelSpec | Layout, t: np.ndarray) -> np.ndarray:
     return rigid_forces(lay, t)[list(lay.stage_conn)]
 
 
-def rigid_input_torque_Nm(spec: ModelSpec | Layout, t: np.ndarray) -> np.ndarray:
-    """Torque on the input body of the rigid chain under a speed drive: J_eff alpha_0 + rho_N T_L."""
-    lay = _lay(spec)
-    rho = np.array([b.ratio for b in lay.bodies])
-    alpha0 = ramp_motion(np.asarray(t, float), lay.drive.ramp_s, lay.drive.speed_rad_s)[2]
-    t_load = ramp(np.asarray(t, float), lay.load.ramp_s, lay.load.torque_Nm)
-    return float(np.asarray(lay.inertias) @ rho**2) * alpha0 + rho[-1] * t_load
-
-
 def peak_rigid_forces(lay: Layout, duration_s: float, samples: int = 801) -> np.ndarray:
     """Largest |F_c| of the rigid chain over [0, duration] (run-up inertia plus load), per connector."""
     end = min(duration_s, max(lay.drive.ramp_s, lay.load.ramp_s, 0.0)) or duration_s
     t = np.linspace(0.0, end, samples)
     return np.max(np.abs(rigid_forces(lay, t)), axis=1)
-
-
-def peak_rigid_line_forces_N(spec: ModelSpec | Layout, duration_s: float, samples: int = 801) -> np.ndarray:
-    lay = _lay(spec)
-    return peak_rigid_forces(lay, duration_s, samples)[list(lay.stage_conn)]
 
 
 @dataclass(frozen=True)
@@ -210,8 +197,6 @@ def damped_eigenvalues(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool
     integrates (:mod:`gearcli.model.damping`: the elements' laws, a motor's slip damping and the load law's
     dT/dw at the operating point, the meshes' losses), over the free bodies; lambda = -zeta omega +- i omega_d.
     A free chain adds its rigid-body eigenvalues (0, or real with a speed-dependent drive or load)."""
-    from gearcli.model.damping import body_matrices, state_matrix
-
     lay = _lay(spec)
     F = np.abs(np.asarray(forces, dtype=float))
     kc = np.array([tangent(lay, c, F[c], stiffest_phase=stiffest_phase)[:2] for c in range(F.size)])

@@ -18,8 +18,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core import signals
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
+from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
 from gearcli.model.step import ramp, ramp_motion
 
 
@@ -102,7 +104,6 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     n = d.size
     kernel = _loaded_kernel()
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-        from gearcli.core import signals
 
         with signals.deferred():  # a signal acted on in plain Python after the call, never inside numba's dispatcher
             F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float),
@@ -124,12 +125,18 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     return ConnectorSeries(F, d.copy(), pen, U, q)
 
 
+_compiled: list = []  # the compiled engine's kernel once gearcli.engine has loaded it (use_compiled)
+
+
+def use_compiled(kernel) -> None:
+    """The compiled engine (the layer above, ``gearcli.engine.load``) hands its kernel down when it has loaded
+    it: ``connector_series`` then runs the same element laws compiled. The model never imports the engine."""
+    _compiled[:] = [kernel]
+
+
 def _loaded_kernel():
     """The compiled engine's kernel if this process loaded it (never imports numba itself)."""
-    import sys
-
-    engine = sys.modules.get("gearcli.engine")
-    return engine.loaded_kernel() if engine is not None else None
+    return _compiled[0] if _compiled else None
 
 
 def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
@@ -167,7 +174,6 @@ def _side_force(lay: Layout, c: int, j: int, force: np.ndarray, omega: np.ndarra
     x = lay.connectors[c]
     if not x.lossy or (j > 1 and not x.planet_loss):
         return force
-    from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
 
     if not x.planet_loss:
         return np.array([loss_factors(x.params, f, x.ra * wa, x.rb * wb)[j] for f, wa, wb in

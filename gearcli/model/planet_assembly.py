@@ -8,8 +8,8 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from gearcli.model.assembly import Body, Connector, _row
 from gearcli.model.elements import kind_of, law_of, mesh
+from gearcli.model.parts import Body, Connector, _row
 from gearcli.model.spec import PlanetarySpec
 
 

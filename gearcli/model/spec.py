@@ -17,7 +17,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Literal, Protocol
+from typing import TYPE_CHECKING, Literal, Protocol
+
+from gearcli.model.elements.machine import kloss_fit, motor_curve, motor_row, motor_torque
+
+if TYPE_CHECKING:  # the parts a stage model places (model.parts builds on this module's specs)
+    from gearcli.model.parts import Body, Connector
 
 MM = 1e-3  # m per mm
 
@@ -96,8 +101,6 @@ class MotorSpec:
     def nameplate(cls, rated_power_W: float, rated_speed_rad_s: float, synchronous_speed_rad_s: float,
                   breakdown_ratio: float, locked_ratio: float, **start) -> MotorSpec:
         """The extended Kloss curve through the nameplate's rated, breakdown and locked-rotor points."""
-        from gearcli.model.elements.machine import kloss_fit
-
         if not 0 < rated_speed_rad_s < synchronous_speed_rad_s:
             raise ValueError("the rated speed must lie between 0 and the synchronous speed")
         t_r = rated_power_W / rated_speed_rad_s
@@ -107,14 +110,10 @@ class MotorSpec:
 
     def torque(self, t: float, w: float) -> float:
         """The motor's torque (N m) at time t and speed w (rad/s), starting method included."""
-        from gearcli.model.elements.machine import motor_row, motor_torque
-
         return motor_torque(motor_row(self), t, w)[0]
 
     def curve(self, w: float) -> float:
         """The bare curve's torque (N m) at speed w (the running motor, after any start)."""
-        from gearcli.model.elements.machine import motor_curve, motor_row
-
         return motor_curve(motor_row(self), w, self.synchronous_speed_rad_s)[0]
 
     @property
@@ -297,7 +296,8 @@ class StageModel(Protocol):
     def reverse_efficiency(self) -> float:
         """The same with the load reversed."""
 
-    def place(self, k: int, bodies: list, conns: list, body: Callable[..., None], out_inertia: float) -> None:
+    def place(self, k: int, bodies: list[Body], conns: list[Connector], body: Callable[..., None],
+              out_inertia: float) -> None:
         """Add the stage's bodies and connectors after its input body (the last one in ``bodies``), ending with
         its output shaft's body of inertia ``out_inertia``; ``body(inertia, label, ratio)`` adds a body."""
 

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 from gearcli.errors import GearcliError, RunTooLong, SimulationError, StudyTooLong
 from gearcli.report.result import QUANTITIES, AccuracyRun, AccuracyStudy, ReferenceRun, RunMetrics
-from gearcli.results import SimulationResult
+from gearcli.simulate.results import SimulationResult
 
 DEFAULT_RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 #: when a method picked by "auto" is also on the ladder, the other method of its family runs instead

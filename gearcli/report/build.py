@@ -10,6 +10,7 @@ from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import METHODS
+from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import StudyTooLong
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import campbell_data, modal_analysis
@@ -17,8 +18,9 @@ from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
 from gearcli.report.result import Report
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
+from gearcli.simulate.results import SimulationResult
 from gearcli.simulate.run import run_simulation
 
 if TYPE_CHECKING:
@@ -67,6 +69,7 @@ def build_report(
     # the budget; the window stays a window (its spectrum and statistics sections), an unsettled one says so
     sim = simulate(cfg, design, want_series=True, settle="window") if model is not None else simulate(
         cfg, design, want_series=True)
+    sim = with_simulated_rating(cfg, design, sim)  # the rating at the run's K_v (simulate knows no standard)
     stages = stage_reports(design, sim)
     study = None
     if not quick:

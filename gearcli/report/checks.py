@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from gearcli.diagnostics import ENERGY_RESIDUAL, has
 from gearcli.report.accuracy import struggling_runs
 from gearcli.report.result import AccuracyStudy, StageReport
-from gearcli.results import SimulationResult
+from gearcli.simulate.results import SimulationResult
 
 #: |energy residual| above this (relative to the largest energy) is worth a warning
 ENERGY_RESIDUAL_LIMIT = 1e-3

@@ -12,10 +12,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from gearcli.core.channels import Channel
-from gearcli.design.rating import stage_simulated_k_v  # one formula, shared with simulate's rating
+from gearcli.rating.dynamic import stage_simulated_k_v  # one formula, shared with the simulated rating
 from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult
+from gearcli.simulate.results import SimulationResult
 from gearcli.stages.design import design_kind
 
 RAD_TO_DEG = 180.0 / math.pi
@@ -99,9 +100,9 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
     return tuple(out)
 
 
-def _least(ratings, name: str) -> float:
-    """The smallest safety ``name`` over the members of every rated mesh."""
-    return min(getattr(m, name) for r in ratings for m in (r.pinion, r.gear))
+def _least(ratings, mode: str) -> float:
+    """The smallest safety against ``mode`` over the members of every rated mesh (any standard's)."""
+    return min(m.safety(mode) for r in ratings for m in (r.pinion, r.gear))
 
 
 def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[RatingComparison, ...]:
@@ -117,7 +118,7 @@ def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[Rati
         out.append(RatingComparison(
             stage=st.index, K_v_iso=iso.K_v, K_v_iso_source=iso.K_v_source,
             K_v_simulated=stage_simulated_k_v(sd),
-            min_S_H_iso=_least(isos, "S_H"), min_S_F_iso=_least(isos, "S_F"),
-            min_S_H_simulated=None if at_sim is None else _least(sims, "S_H"),
-            min_S_F_simulated=None if at_sim is None else _least(sims, "S_F")))
+            min_S_H_iso=_least(isos, "pitting"), min_S_F_iso=_least(isos, "bending"),
+            min_S_H_simulated=None if at_sim is None else _least(sims, "pitting"),
+            min_S_F_simulated=None if at_sim is None else _least(sims, "bending")))
     return tuple(out)

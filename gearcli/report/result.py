@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gearcli.results import ChannelStats, DesignResult, SimulationResult
+from gearcli.results import DesignResult
+from gearcli.simulate.results import ChannelStats, SimulationResult
 
 if TYPE_CHECKING:
     from gearcli.model.modes import CampbellData, ModalAnalysis

@@ -25,7 +25,7 @@ __all__ = ["run_simulation", "simulate_model"]
 
 def __getattr__(name: str) -> object:
     if name in __all__:
-        from gearcli.simulate import run
+        from gearcli.simulate import run  # lazy: scipy, the package's names load on first use (PEP 562)
 
         return getattr(run, name)
     raise AttributeError(name)

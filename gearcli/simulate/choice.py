@@ -41,7 +41,7 @@ from gearcli.core.cost import (
     predicted_wall_s,
 )
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
-from gearcli.model import Layout, Linearisation, ModelSpec, TorsionalModel, linearise
+from gearcli.model import Layout, Linearisation, ModelSpec, linearise
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces
 
 DECAY_TIMES = 5.0  # a mode's vibration lasts 5 / sigma after it is excited
@@ -255,29 +255,3 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
         reason = f"{why}: implicit {chosen} with the analytic Jacobian"
     return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay,
                   vib, nfev, exc, walls, on, size)
-
-
-def unit_costs(spec: ModelSpec, repeat: int = 200) -> dict[str, float]:
-    """Microseconds per right-hand side, per Jacobian and per LU pair (Radau factors one real and one
-    complex matrix of the state's size) of the scene, measured (benchmarks/bench_auto.py)."""
-    import time
-
-    import scipy.linalg
-
-    model = TorsionalModel(spec)
-    y = model.initial_state()
-    y = y + 1e-9 * np.arange(y.size)
-    jac = np.asarray(model.jac(0.1, y), dtype=float)
-
-    def per_call(fn) -> float:
-        fn()
-        t0 = time.perf_counter()
-        for _ in range(repeat):
-            fn()
-        return (time.perf_counter() - t0) / repeat * 1e6
-
-    eye = np.eye(y.size)
-    return {"rhs": per_call(lambda: model.rhs(0.1, y)), "jac": per_call(lambda: model.jac(0.1, y)),
-            "lu_pair": per_call(lambda: (scipy.linalg.lu_factor(eye - 0.1 * jac, check_finite=False),
-                                         scipy.linalg.lu_factor((1 + 1j) * eye - 0.1 * jac, check_finite=False))),
-            "n_states": float(y.size)}

@@ -54,8 +54,8 @@ from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import ChannelStats, StatisticsError
 from gearcli.simulate.choice import Choice
+from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
 
 TARGET = 1e-3  # of the stage's mean force: min, max, std, the spectrum

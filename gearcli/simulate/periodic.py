@@ -28,7 +28,7 @@ integrated again from the boundary state with fine samples.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from functools import reduce
 
@@ -36,7 +36,7 @@ import numpy as np
 
 from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
 from gearcli.errors import ConfigError
-from gearcli.results import SteadyState
+from gearcli.simulate.results import SteadyState
 from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
 MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
@@ -242,7 +242,7 @@ class PeriodicRun:
     run: object  # gearcli.simulate.solver.Integration (the two sampled parts; counters of all parts)
     window_s: tuple[float, float]  # the statistics periods, whole
     mask_window_s: tuple[float, float]  # the same without its last sample (the first one of the next period)
-    steady: object  # gearcli.results.SteadyState
+    steady: object  # gearcli.simulate.results.SteadyState
     period: CommonPeriod
     energy_from: int = 0  # first sample of the energy balance (a Newton correction is no motion: after it)
 
@@ -382,8 +382,6 @@ def _steady(period: CommonPeriod, repeat: Repeat, n: int, k: int, per: int, exha
 
 def _joined(parts, t: np.ndarray, y: np.ndarray, status_from=None):
     """One Integration with the samples ``(t, y)`` and the counters of all ``parts``."""
-    from dataclasses import replace
-
     last = status_from or parts[-1]
     return replace(parts[0], t=t, y=y, nfev=sum(p.nfev for p in parts), njev=sum(p.njev for p in parts),
                    nlu=sum(p.nlu for p in parts), steps=sum(p.steps for p in parts),

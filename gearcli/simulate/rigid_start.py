@@ -27,12 +27,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, mesh
+from gearcli.model.modes import modal_analysis
 from gearcli.model.outputs import tooth_forces
 from gearcli.model.step import ramp, ramp_motion
-from gearcli.results import StartSummary
+from gearcli.simulate.results import StartSummary
 
 SAMPLES = 2001
 SWING_FRACTION = 0.02  # a mode swinging with less than this of the rigid peak is not named
@@ -76,7 +78,7 @@ def _first_power_connector(lay: Layout) -> int | None:
 
 def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidStart:
     """The rigid start over [0, duration_s] (module text)."""
-    from scipy.integrate import solve_ivp
+    from scipy.integrate import solve_ivp  # lazy: scipy, start-up time
 
     rho = np.array([b.ratio for b in lay.bodies])
     J = np.asarray(lay.inertias, float)
@@ -200,9 +202,6 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
                   warn_ratio: float) -> tuple[StartSummary | None, list[Diagnostic]]:
     """``summary.start`` = {``peak_over_rigid``, ``rigid_peak_N``} per stage (the run's peak |F_t| over the rigid
     start's) and the ``peak_over_rigid`` warnings where the ratio exceeds ``warn_ratio``, naming the cause."""
-    from gearcli import diagnostics as dg
-    from gearcli.model.modes import modal_analysis
-
     if t.size < 2 or t[-1] <= 0:
         return None, []
     rigid = integrate(lay, float(t[-1]))

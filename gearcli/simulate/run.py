@@ -22,13 +22,21 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.modes import resonances
+from gearcli.model.linear import damped_eigenvalues, static_line_forces_N
+from gearcli.model.modes import modal_analysis, resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
-from gearcli.results import (
-    DesignResult,
+from gearcli.results import DesignResult, MeshStiffness
+from gearcli.scene import spec_from_design
+from gearcli.simulate import estimate, rigid_start, ringing, stats
+from gearcli.simulate import motor as motor_side
+from gearcli.simulate import settle as settle_mod
+from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
+from gearcli.simulate.course import CourseChange, integrate_auto
+from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
+from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
+from gearcli.simulate.results import (
     DteStats,
     EnergyBalance,
-    MeshStiffness,
     PlanetDynamics,
     PlanetMeshDynamics,
     SimulationResult,
@@ -36,14 +44,6 @@ from gearcli.results import (
     StageDynamics,
     SteadyState,
 )
-from gearcli.scene import output_units, spec_from_design
-from gearcli.simulate import estimate, rigid_start, stats
-from gearcli.simulate import motor as motor_side
-from gearcli.simulate import settle as settle_mod
-from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
-from gearcli.simulate.course import CourseChange, integrate_auto
-from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
 from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -98,18 +98,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
     if settle:
         result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window")
-    from gearcli.design.rating import simulated_ratings  # [rating] dynamic_factor = "simulated" (issue 22)
-
-    stages, rating_diags = simulated_ratings(cfg, design, result.stages)
-    new = [d for d in rating_diags if d.message not in result.warnings]
-    if cfg.rating is not None and cfg.rating.dynamic_factor == "simulated" and result.steady is not None \
-            and result.steady.settled is False:  # never silently: the K_v rated at carries the start's transient
-        new.append(dg.warning(dg.WINDOW_NOT_SETTLED, '[rating] dynamic_factor = "simulated": the K_v the stages are '
-                              "rated at comes from a window that is not settled (it includes the start-up "
-                              "transient, see the window's warning): give a longer simulation.duration_s or "
-                              '[simulation] steady = "periodic"', statistic="K_v"))
-    return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
-                   diagnostics=result.diagnostics + tuple(new), units=output_units(cfg))
+    return result
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
@@ -465,10 +454,6 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
                      forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
     """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
     that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
-    from gearcli.model.linear import damped_eigenvalues
-    from gearcli.model.modes import modal_analysis
-    from gearcli.simulate import ringing
-
     lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
     found = ringing.ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
     if not found:
@@ -493,8 +478,6 @@ def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     """Per stage, the static F_t of the load the simulation applies, with the losses its dynamics model (the
     model's own steady-state connector forces: lossless meshes today, so a stage with efficiency < 1 differs
     from the design's static F_t, which includes the losses): the reference of the dynamic and run-up factors."""
-    from gearcli.model.linear import static_line_forces_N
-
     lay = model.layout
     return [float(tooth_forces(lay, k, np.array([f]))[0][0]) for k, f in enumerate(static_line_forces_N(lay))]
 

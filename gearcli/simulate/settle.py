@@ -33,8 +33,8 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
-from gearcli.results import SimulationResult, SteadyState
 from gearcli.simulate import ringing
+from gearcli.simulate.results import SimulationResult, SteadyState
 
 if TYPE_CHECKING:
     from gearcli.model import TorsionalModel

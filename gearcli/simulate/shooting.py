@@ -45,9 +45,9 @@ from typing import Any
 
 import numpy as np
 
-from gearcli.results import SteadyState
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.periodic import CONVERGED, PeriodicRun, _joined, boundary_residual, scene_period
+from gearcli.simulate.results import SteadyState
 from gearcli.simulate.solver import integrate
 
 MAX_NEWTON = 8  # Newton iterations per attempt

@@ -31,7 +31,7 @@ import numpy as np
 from scipy.integrate import OdeSolver
 
 from gearcli import engine
-from gearcli.core import cost
+from gearcli.core import cost, signals
 from gearcli.core.cost import BUDGET_CHECK_EVERY
 from gearcli.core.cost import CAP as MAX_NFEV
 from gearcli.core.methods import METHODS, scipy_solver
@@ -275,8 +275,6 @@ def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.nd
     ``progress``, the time the kernel has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) is
     reported as the fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are
     those of a run without progress; the thread costs ~0.1 ms. ``wpar`` must have both entries."""
-    from gearcli.core import signals
-
     box: dict[str, Any] = {}
 
     def work() -> None:

@@ -9,7 +9,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.spec import ModelSpec
-from gearcli.results import (
+from gearcli.simulate.results import (
     REGIME_DOUBLE_SIDED,
     REGIME_NO_IMPACT,
     REGIME_SINGLE_SIDED,

@@ -12,8 +12,9 @@ from typing import Any
 
 from rich.console import RenderableType
 
-from gearcli.io.tables import _g, _quantity_table, rating_table
-from gearcli.results import DesignResult, InternalRatingResult, StageResult
+from gearcli.io.table_kit import _g, _quantity_table
+from gearcli.io.tables import rating_table
+from gearcli.results import DesignResult, RatedMesh, StageResult
 from gearcli.stages import kinds
 
 _Doc = dict[str, Any]
@@ -69,7 +70,7 @@ class _RatedMesh:
     """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
 
     index: int
-    rating: InternalRatingResult
+    rating: RatedMesh
 
 
 def _planet_ring_rating(stages: list[StageResult]) -> list[RenderableType]:
@@ -78,7 +79,7 @@ def _planet_ring_rating(stages: list[StageResult]) -> list[RenderableType]:
               if st.planetary is not None and st.planetary.planet_ring.rating is not None]
     if not meshes:
         return []
-    return [rating_table(meshes, "planet–ring mesh strength rating, ISO 6336:2006 method B (p planet, g ring)")]
+    return [rating_table(meshes, "planet–ring mesh strength rating, {standard} (p planet, g ring)")]
 
 
 def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:

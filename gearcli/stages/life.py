@@ -20,7 +20,7 @@ from gearcli.errors import ConfigError, DesignError
 from gearcli.life import spectra
 from gearcli.life.result import MemberLife, ModeLife, StageLife
 from gearcli.life.spectra import StageLoads
-from gearcli.results import MemberRating, StageResult
+from gearcli.results import RatedMember, StageResult
 from gearcli.stages import kinds
 
 if TYPE_CHECKING:
@@ -44,7 +44,7 @@ class LifeKind(Protocol):
     def planet_forces(self, st: StageResult, series: Mapping[Channel, np.ndarray]) -> list[np.ndarray]:
         """The tangential force series of each planet's sun mesh (empty for a kind without planets)."""
 
-    def member_rating(self, st: StageResult, member: str) -> MemberRating:
+    def member_rating(self, st: StageResult, member: str) -> RatedMember:
         """The rating ``member`` is rated by."""
 
     def material_member(self, member: str) -> str:
@@ -62,9 +62,6 @@ class LifeKind(Protocol):
     def dynamic_loads(self, t: np.ndarray, series: Mapping[Channel, np.ndarray], st: StageResult,
                       k: int) -> StageLoads:
         """The stage's tooth-force classes over the window samples ``t`` of a simulation."""
-
-    def line_force_magnitude(self) -> bool:
-        """The simulated stage F_t is taken as a magnitude in the design's load direction (bearing statics)."""
 
     def stage_life(self, k: int, st: StageResult, dynamic: bool, member_life: MemberLives,
                    root_life: RootLives) -> StageLife:
@@ -94,8 +91,8 @@ class ParallelLife:
     def planet_forces(self, st: StageResult, series: Mapping[Channel, np.ndarray]) -> list[np.ndarray]:
         return []
 
-    def member_rating(self, st: StageResult, member: str) -> MemberRating:
-        return cast(MemberRating, getattr(_rating_of(st), member))
+    def member_rating(self, st: StageResult, member: str) -> RatedMember:
+        return cast(RatedMember, getattr(_rating_of(st), member))
 
     def material_member(self, member: str) -> str:
         return member
@@ -112,9 +109,6 @@ class ParallelLife:
     def dynamic_loads(self, t: np.ndarray, series: Mapping[Channel, np.ndarray], st: StageResult,
                       k: int) -> StageLoads:
         return spectra.pair_loads(t, series, st, k)
-
-    def line_force_magnitude(self) -> bool:
-        return False
 
     def stage_life(self, k: int, st: StageResult, dynamic: bool, member_life: MemberLives,
                    root_life: RootLives) -> StageLife:
@@ -152,11 +146,11 @@ class PlanetaryLife:
         return [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
                 for j in range(1, st.planetary.planet_count + 1)]
 
-    def member_rating(self, st: StageResult, member: str) -> MemberRating:
+    def member_rating(self, st: StageResult, member: str) -> RatedMember:
         if member in RING_MEMBERS:
             assert st.planetary is not None and st.planetary.planet_ring.rating is not None
-            return cast(MemberRating, getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
-        return cast(MemberRating, getattr(_rating_of(st), member))
+            return cast(RatedMember, getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
+        return cast(RatedMember, getattr(_rating_of(st), member))
 
     def material_member(self, member: str) -> str:
         return RING_MEMBERS[member][1] if member in RING_MEMBERS else SUN_PLANET_MEMBERS[member]
@@ -194,9 +188,6 @@ class PlanetaryLife:
     def dynamic_loads(self, t: np.ndarray, series: Mapping[Channel, np.ndarray], st: StageResult,
                       k: int) -> StageLoads:
         return spectra.planetary_loads(t, series, st)
-
-    def line_force_magnitude(self) -> bool:
-        return True  # planet 1's sun mesh, as a magnitude in the design's load direction
 
     def stage_life(self, k: int, st: StageResult, dynamic: bool, member_life: MemberLives,
                    root_life: RootLives) -> StageLife:

@@ -12,7 +12,15 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, cast
 
-from gearcli.design.stiffness import iso6336_normal_stiffness_N_mm
+from gearcli.design.planetary_balance import balance, willis_speeds
+from gearcli.design.stiffness import (
+    iso6336_normal_stiffness_N_mm,
+    iso_reference_normal_force_N,
+    law_coefficient_N_mm_e,
+)
+from gearcli.model.parts import Body, Connector
+from gearcli.model.planet_assembly import place_planetary
+from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
 from gearcli.model.spec import MM, MeshSpec, PlanetarySpec, StageModel
 from gearcli.results import StageResult
 from gearcli.stages import kinds
@@ -50,9 +58,8 @@ class ParallelModel:
 class PlanetaryModel(PlanetarySpec):
     """A planetary stage's model: its spec, placed by :func:`gearcli.model.planet_assembly.place_planetary`."""
 
-    def place(self, k: int, bodies: list, conns: list, body: Callable[..., None], out_inertia: float) -> None:
-        from gearcli.model.planet_assembly import place_planetary  # numpy's assembly; the scene imports this module
-
+    def place(self, k: int, bodies: list[Body], conns: list[Connector], body: Callable[..., None],
+              out_inertia: float) -> None:
         place_planetary(self, k, bodies, conns, body, out_inertia)
 
 
@@ -66,8 +73,6 @@ class PlanetaryModelKind:
         (:func:`gearcli.model.planet_assembly.place_planetary`)."""
         p = st.planetary
         assert p is not None
-        from gearcli.config.schema import willis_speeds  # the config layer's kinematics (pydantic: lazy)
-
         sign_out = 1.0 if willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)[p.output] >= 0 else -1.0
         sign = sign_out * (1.0 if p.output == "carrier" else -1.0)
         return replace(mesh, static_tangential_N=sign * mesh.static_tangential_N)
@@ -80,9 +85,6 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
     """A planetary stage's model (SI): levers from the base radii, the members' inertias, both mesh laws."""
     p = st.planetary
     assert p is not None
-    from gearcli.config.schema import willis_speeds
-    from gearcli.design.stiffness import iso_reference_normal_force_N, law_coefficient_N_mm_e
-
     law = cfg.contact_for(k)
     e = float(law.exponent)
     ring = p.planet_ring
@@ -123,8 +125,6 @@ def _unequal(cfg: DesignFile, k: int) -> bool:
 def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
     """The planet meshes' static (driving-side) forces over the lossless ones, in the power flow of the load's
     sign, and the stage's efficiencies (:mod:`gearcli.design.planetary_balance`)."""
-    from gearcli.design.planetary_balance import balance
-
     lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, load_sign)
     lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, load_sign)
     scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
@@ -135,8 +135,6 @@ def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
 
 def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:
     """Planet 1's ring-mesh contact-line phase against its sun mesh's (:mod:`gearcli.model.planet_phasing`)."""
-    from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
-
     p = st.planetary
     assert p is not None
     return stage_contact_phase_cycles(st, sun_drives(unit, p.input, p.sun.teeth, p.ring.teeth))

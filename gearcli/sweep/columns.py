@@ -19,7 +19,7 @@ from collections.abc import Callable, Sequence
 from typing import TypeAlias, cast
 
 from gearcli.core.jsontypes import JsonScalar
-from gearcli.results import SimulationResult, StageDynamics
+from gearcli.simulate.results import SimulationResult, StageDynamics
 
 FIXED = ("direction", "status", "message")
 TRAILING = ("output_speed_rpm", "nfev", "wall_s")

@@ -10,10 +10,15 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import multiprocessing
 import os
 import signal
+import socket
 from collections.abc import Iterable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from urllib.parse import urlsplit
 
+from gearcli import engine
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
 from gearcli.sweep.columns import Row, failed_row
@@ -116,7 +121,6 @@ def _inline(tasks: Iterable[Task]) -> Iterator[Row]:
 def _ignore_sigint() -> None:
     """A pool worker's start: Ctrl-C is the parent's to handle; the compilation notice is the parent's too."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    from gearcli import engine
 
     engine.quiet_compilation()
 
@@ -129,9 +133,6 @@ def _lost(task: Task, exc: BaseException) -> list[Row]:
 
 
 def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-
     ctx = multiprocessing.get_context("forkserver")
     ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate", "gearcli.api"])
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_ignore_sigint)
@@ -166,7 +167,7 @@ def _stop_workers(pool) -> None:
 
 def require_distributed() -> None:
     try:
-        import distributed  # noqa: F401
+        import distributed  # noqa: F401  # lazy: distributed, the optional dask extra
     except ImportError:
         raise ConfigError(f"--scheduler needs dask.distributed: {DISTRIBUTED_HINT}", source="--scheduler") from None
 
@@ -178,8 +179,6 @@ MAX_GREETING_BYTES = 2**30  # the first frame a Dask scheduler sends is its hand
 
 def scheduler_endpoint(address: str) -> tuple[str, str, int]:
     """``tcp://HOST:PORT`` (or another Dask protocol), ``HOST:PORT`` as (scheme, host, port); ConfigError otherwise."""
-    from urllib.parse import urlsplit
-
     text = address.strip()
     if not text:
         raise ConfigError("an empty address: give the scheduler's tcp://HOST:PORT, or leave out --scheduler to run "
@@ -207,8 +206,6 @@ def check_scheduler(address: str, timeout_s: float = SCHEDULER_TIMEOUT_S) -> Non
     the port open within ``timeout_s``, and for tcp:// the scheduler's greeting (a Dask scheduler speaks first,
     a length-prefixed frame) received within ``timeout_s``. A web server or any silent service is refused
     here, before a client could read an HTTP status line as a frame length or wait on it for ever."""
-    import socket
-
     scheme, host, port = scheduler_endpoint(address)
     shown = shorten(address.strip())
     if scheme == "inproc":
@@ -240,7 +237,7 @@ def check_scheduler(address: str, timeout_s: float = SCHEDULER_TIMEOUT_S) -> Non
 
 def _dask(tasks: Sequence[Task], address: str) -> Iterator[Row]:
     require_distributed()
-    from distributed import Client, as_completed
+    from distributed import Client, as_completed  # lazy: distributed, the optional dask extra
 
     check_scheduler(address)
     try:

@@ -7,7 +7,7 @@ The points are loaded and designed by the injected ``design_case`` (the facade's
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import cast
 
@@ -16,11 +16,12 @@ from gearcli.core.jsontypes import JsonScalar
 from gearcli.model.assembly import Layout
 from gearcli.model.modes import SPEED_RANGE, CampbellData, campbell_data, modal_analysis
 from gearcli.results import DesignResult
-from gearcli.scene import output_units, spec_from_design
-from gearcli.sweep.spec import Axis, SweepSpec
+from gearcli.scene import spec_from_design
+from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec
 from gearcli.sweep.worker import CaseDesigner, Scene
 
-SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
+UnitsOf = Callable[[DesignFile], tuple[str, str]]  # a file's output units (io.units.key_units, injected by the facade)
+
 
 
 def natural_frequencies_Hz(cfg: DesignFile, design: DesignResult) -> tuple[float, ...]:
@@ -70,7 +71,7 @@ def campbell(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: 
 
 
 def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: CaseDesigner,
-                     fixed: Sequence[str] = ()) -> SweepCampbell:
+                     units_of: UnitsOf, fixed: Sequence[str] = ()) -> SweepCampbell:
     """The modes and order lines of the scene at the file's own speed (the other keys at ``fixed``), over
     0 .. the larger of 1.2 x that speed and the fastest swept point: the same drawing as ``gearcli modes
     --plots``, with the swept speeds."""
@@ -80,7 +81,7 @@ def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], desig
     nominal = design.stages[0].pinion.speed_rpm
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
                          max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
-    units = output_units(design_case(scene, (*fixed, _speed_point(key, values[0]))).cfg)  # the swept key's unit
+    units = units_of(design_case(scene, (*fixed, _speed_point(key, values[0]))).cfg)  # the swept key's unit
     return SweepCampbell(data, tuple(swept), units)
 
 
@@ -89,11 +90,11 @@ def speed_axis(spec: SweepSpec) -> Axis | None:
     return next((a for a in spec.axes if a.key in SPEED_KEYS), None)
 
 
-def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner) -> SweepCampbell | None:
+def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner, units_of: UnitsOf) -> SweepCampbell | None:
     """``gearcli sweep --plots``: the Campbell diagram over the swept input speed (the other axes at their first
     values); None when no input speed is swept."""
     axis = speed_axis(spec)
     if axis is None:
         return None
     fixed = [f"{a.key}={a.values[0]!r}" for a in spec.axes[1:] if a.key != axis.key]
-    return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, fixed)
+    return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, units_of, fixed)

@@ -17,9 +17,10 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
-from gearcli import __version__
+from gearcli import __version__, engine
 from gearcli.config import DesignFile, LoadedDesign
 from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
+from gearcli.config.load import integer_keys
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
@@ -27,7 +28,7 @@ from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
-from gearcli.sweep.spec import SweepSpec, SweepUsageError, spec_from_options
+from gearcli.sweep.spec import SPEED_KEYS, SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
 
@@ -102,7 +103,6 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
     tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers, evaluate)
     if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once
-        from gearcli import engine
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
@@ -114,8 +114,6 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
 def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
     """A key that takes no real number (a tooth or planet count, a whole-number choice) drawn from a continuous
     distribution would fail at every point: refused before any runs."""
-    from gearcli.config.load import integer_keys
-
     whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
     if whole:
         d = next(d for d in spec.randoms if d.key == whole[0])
@@ -124,7 +122,6 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
                               source="--random")
 
 
-SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
 
 
 def check_motor_speed(keys: Sequence[str], cfg: DesignFile, source: str) -> None:

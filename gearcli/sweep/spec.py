@@ -26,9 +26,16 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import cast
 
+import numpy as np
+import tomli_w
+
 from gearcli.config.overrides import parse, parse_value
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.errors import ConfigError
+
+# the input-speed keys of the design file (a speed axis: the Campbell diagram; a motor drive's refusal)
+SPEED_KEYS = ("input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s")
+
 
 DIRECTIONS = ("up", "down", "both")
 NO_DIRECTION = "none"
@@ -64,7 +71,7 @@ class Distribution:
         """Inverse CDF on uniform draws in [0, 1)."""
         if self.kind == "uniform":
             return self.a + (self.b - self.a) * u
-        from scipy.stats import norm
+        from scipy.stats import norm  # lazy: scipy.stats, start-up time
 
         return norm.ppf(u, loc=self.a, scale=self.b)
 
@@ -132,10 +139,8 @@ def parse_random(text: str) -> Distribution:
 
 def unit_samples(n: int, dims: int, sampling: str, seed: int):
     """``n x dims`` uniform draws in [0, 1): Latin hypercube (scipy) or plain Monte Carlo (numpy)."""
-    import numpy as np
-
     if sampling == "lhs":
-        from scipy.stats import qmc
+        from scipy.stats import qmc  # lazy: scipy.stats, start-up time
 
         return qmc.LatinHypercube(d=dims, seed=np.random.default_rng(seed)).random(n)
     return np.random.default_rng(seed).random((n, dims))
@@ -163,8 +168,6 @@ def _ident_value(v: JsonScalar) -> str:
 
 
 def _toml(v: JsonScalar) -> str:
-    import tomli_w
-
     return tomli_w.dumps({"v": v})[4:].strip()
 
 

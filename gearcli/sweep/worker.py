@@ -21,9 +21,11 @@ from typing import NamedTuple, Protocol, cast
 from gearcli import engine
 from gearcli.config import DesignFile, check_override_keys
 from gearcli.errors import GearcliError
-from gearcli.results import DesignResult, SimulationResult
+from gearcli.results import DesignResult
+from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
-from gearcli.sweep.continuation import Carried
+from gearcli.sweep.continuation import Carried, jump_note, on_branch
+from gearcli.sweep.family import Family
 from gearcli.sweep.spec import Point
 
 
@@ -89,8 +91,6 @@ def _evaluate(evaluate: PointEvaluator, scene: Scene, point: Point, prev: Carrie
 def iter_task(task: Task) -> Iterator[Row]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded). The task's
     points are one family whose error estimate is shared (:mod:`gearcli.sweep.family`)."""
-    from gearcli.sweep.family import Family
-
     family = Family()
     with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
         prev = None
@@ -127,8 +127,6 @@ class _Before(NamedTuple):
 def _jump(task: Task, before: _Before | None, point: Point, result: SimulationResult) -> str:
     """A periodic point continued from ``before`` that left its branch: the row's jump mark, with the branch's
     end closed in on by bisection of the one varied value (:func:`gearcli.sweep.continuation.jump_note`)."""
-    from gearcli.sweep.continuation import jump_note, on_branch
-
     if before is None or result.steady is None or result.steady.mode != "periodic":
         return ""
     p0, r0, c0 = before

@@ -141,10 +141,10 @@ def test_report_prints_iso_beside_simulated_dynamic_factor():
 
 def test_safety_warnings_carry_codes_and_data_in_design_and_simulate():
     """The diagnostics mechanism: codes pitting_safety_low / bending_safety_low with stage, member, mode, S, S_min;
-    simulate keeps the design's codes and adds the simulated rating's own."""
+    simulate keeps the design's codes and the facade adds the simulated rating's own (composed after the run)."""
+    from gearcli import api
     from gearcli.config import load_design
     from gearcli.design import compute_design
-    from gearcli.simulate import run_simulation
 
     loaded = load_design(WIND, ["rating.dynamic_factor=simulated", "simulation.duration_s=0.3",
                                 "simulation.steps=300"])
@@ -155,7 +155,7 @@ def test_safety_warnings_carry_codes_and_data_in_design_and_simulate():
         {("bending_safety_low", p, "bending") for p in ("pinion", "gear")}
     for d in rated:
         assert d.data["stage"] == 1 and d.data["S"] < d.data["S_min"] and d.message in design.warnings
-    sim = run_simulation(loaded.design, design, want_series=False)
+    sim = api.simulate(loaded.design, design, want_series=False)
     sim_codes = [d.code for d in sim.diagnostics if d.code.endswith("_safety_low")]
     assert len(sim_codes) == 8  # the design's four (ISO K_v) and the simulated rating's four
     assert sum("simulated" in d.message for d in sim.diagnostics if d.code.endswith("_safety_low")) == 4

@@ -36,7 +36,7 @@ def test_scene_through_the_cli_exits_0_without_traceback(scene):
     numbers += [v for st in doc["summary"]["stages"] for ch in ("tangential_N", "radial_N", "axial_N")
                 for v in st[ch].values()]
     assert all(isinstance(x, (int, float)) and math.isfinite(x) for x in numbers)
-    assert doc["solver"]["method"] == scene.method
+    assert doc["solver"]["method"] in scene.method.split("|")  # "A|B": a scene near auto's line (catalogue.py)
 
 
 def test_every_scene_file_has_a_spec_and_a_header_that_states_the_right_answer():

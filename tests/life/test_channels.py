@@ -12,7 +12,7 @@ from numpy.testing import assert_allclose
 from gearcli.cli import cli
 from gearcli.core.channels import Channel
 from gearcli.design.shafts import stage_layout
-from gearcli.life.channels import reaction_series
+from gearcli.simulate.bearings import reaction_series
 from tests.life.scenes import COUNTERSHAFT, design_of
 
 

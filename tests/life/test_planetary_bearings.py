@@ -244,8 +244,8 @@ def test_simulate_reports_the_planetary_bearing_channels():
     well-damped scene the window means equal the design's static reactions (the pins without K_gamma: the
     simulation shares the load itself, equally here)."""
     from gearcli.config.load import load_design  # noqa: F401 - the TOML text goes through design_of
-    from gearcli.life.channels import with_bearings
     from gearcli.simulate import run_simulation
+    from gearcli.simulate.bearings import with_bearings
 
     cfg, design = design_of(PLANETARY, ("rating.load_sharing_factor=1.0", "contact.exponent=1.0",
                                         "contact.damping_ratio=0.3", "contact.stiffness=\"iso6336\"",

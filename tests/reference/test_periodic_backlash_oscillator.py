@@ -20,8 +20,8 @@ from numpy.testing import assert_allclose
 
 from gearcli.config import load_design
 from gearcli.design import compute_design
-from gearcli.results import REGIME_NO_IMPACT, REGIME_SINGLE_SIDED
 from gearcli.simulate import run_simulation
+from gearcli.simulate.results import REGIME_NO_IMPACT, REGIME_SINGLE_SIDED
 
 SCENE = Path(__file__).resolve().parents[2] / "configs" / "spur_oscillator_te.toml"
 COMMON = ("simulation.rtol=1e-8", "simulation.duration_s=0.5")

@@ -21,8 +21,8 @@ from gearcli import diagnostics as dg
 from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.io.channels import named
-from gearcli.results import REGIME_DOUBLE_SIDED, REGIME_NO_IMPACT, REGIME_SINGLE_SIDED
 from gearcli.simulate import run_simulation
+from gearcli.simulate.results import REGIME_DOUBLE_SIDED, REGIME_NO_IMPACT, REGIME_SINGLE_SIDED
 
 CONFIGS = Path(__file__).resolve().parents[2] / "configs"
 OSCILLATOR = CONFIGS / "backlash_oscillator.toml"

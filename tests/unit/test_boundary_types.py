@@ -31,6 +31,8 @@ BARE = {dict, list, tuple, set, frozenset, type, collections.abc.Callable, colle
 BOUNDARIES: dict[str, tuple[str, ...] | None] = {
     "gearcli.api": None,
     "gearcli.results": None,
+    "gearcli.simulate.results": None,
+    "gearcli.simulate.bearings": ("with_bearings", "reaction_series"),
     "gearcli.core.channels": None,
     "gearcli.diagnostics": ("Diagnostic", "warning", "warning_objects"),
     "gearcli.scene": None,

@@ -13,7 +13,7 @@ from jsonschema_subset import valid
 
 from gearcli.config import json_schema, load_design
 from gearcli.config.reference import design_file_reference
-from gearcli.design.checks import check_inputs
+from gearcli.design.inputs import check_inputs
 from gearcli.errors import ConfigError, DesignError
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -15,7 +15,6 @@ import pytest
 from numpy.testing import assert_allclose
 
 from gearcli.report.spectrum import mesh_orders, order_amplitude
-from gearcli.results import REGIME_DOUBLE_SIDED, REGIME_NO_IMPACT, REGIME_SINGLE_SIDED
 from gearcli.simulate.periodic import (
     Excitation,
     boundary_residual,
@@ -26,6 +25,7 @@ from gearcli.simulate.periodic import (
     periods_cap,
     ripple_period_s,
 )
+from gearcli.simulate.results import REGIME_DOUBLE_SIDED, REGIME_NO_IMPACT, REGIME_SINGLE_SIDED
 from gearcli.simulate.stats import mesh_response, time_fraction
 
 RTOL = 1e-9

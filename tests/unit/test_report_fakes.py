@@ -11,18 +11,8 @@ import math
 import numpy as np
 
 from gearcli.core.channels import Channel
-from gearcli.results import (
-    ChannelStats,
-    DesignResult,
-    EnergyBalance,
-    GearResult,
-    ShaftResult,
-    SimulationResult,
-    SolverStats,
-    StageDynamics,
-    StageResult,
-    StaticForces,
-)
+from gearcli.results import DesignResult, GearResult, ShaftResult, StageResult, StaticForces
+from gearcli.simulate.results import ChannelStats, EnergyBalance, SimulationResult, SolverStats, StageDynamics
 
 
 def _gear(teeth: int, speed: float) -> GearResult:

@@ -88,7 +88,8 @@ def test_plots_are_pngs_of_reasonable_size(report, tmp_path):
 
 
 def test_plots_without_matplotlib_raise_plots_unavailable(report, tmp_path, monkeypatch):
-    from gearcli.io.plots import PlotsUnavailable, write_plots
+    from gearcli.io.figures import PlotsUnavailable
+    from gearcli.io.plots import write_plots
 
     for name in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
         monkeypatch.delitem(sys.modules, name)

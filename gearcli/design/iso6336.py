@@ -1,0 +1,209 @@
+"""ISO 6336:2006 method B as a rating standard (``[rating] standard = "iso6336"``, the default; ``gearcli.rating``).
+
+The formulas stay where they were (``rating``: a gear pair, ``rating_internal``: a planetary stage's planet–ring
+mesh, ``rating_factors`` and ``rating_root``: the factors); this module is the standard's face to the layers above:
+what it rates in a design (every mesh of every stage, a planetary stage's at K_γ with ISO's nominal σ_H0, σ_F0),
+its re-rating at a run's simulated K_v, its S–N curves (the life factors Z_NT, Y_NT) and its table rows. Above
+``rating`` and ``rating_internal`` (the design layer's inner contract, ARCHITECTURE.md), so neither imports the
+other; a run's stage summaries (``gearcli.simulate.results``, a layer above) are read by their fields.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from typing import TYPE_CHECKING, TypeVar, cast
+
+from gearcli.design import planetary as pl
+from gearcli.design import rating as iso
+from gearcli.design import rating_factors as rf
+from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
+from gearcli.diagnostics import Diagnostic, warning
+from gearcli.rating import register
+from gearcli.rating.dynamic import ring_simulated_k_v, stage_simulated_k_v
+from gearcli.rating.sn import SNCurve
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile
+    from gearcli.design.rating_results import InternalRatingResult, RatingResult
+    from gearcli.rating.standard import RatedMember, RatedMesh
+    from gearcli.results import DesignResult, StageResult
+
+S = TypeVar("S")  # a run's stage summary (``gearcli.simulate.results.StageDynamics``), read by its fields
+
+UNRATED_MESH = "mesh_not_rated"
+
+
+class Iso6336:
+    """ISO 6336-1, -2, -3 (2006, method B) and the life factors of ISO 6336-2/-3 for ISO 6336-6's Miner sum."""
+
+    name = "iso6336"
+    title = iso.STANDARD
+
+    def check_inputs(self, cfg: DesignFile) -> None:
+        iso.check_rating_inputs(pl.pair_equivalent(cfg))
+
+    def rate_design(self, cfg: DesignFile, stages: tuple[StageResult, ...]
+                    ) -> tuple[tuple[StageResult, ...], tuple[Diagnostic, ...]]:
+        rated, diags = iso.rate_design(pl.pair_equivalent(cfg), tuple(pl.with_load_sharing(s) for s in stages))
+        out = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
+        out = tuple(_nominal(_rate_planet_ring(cfg, k, s)) for k, s in enumerate(out))
+        diags += tuple(d for s in out for d in planet_ring_safety_diagnostics(cfg, s))
+        diags += tuple(_unrated_ring_mesh(cfg, s) for s in out
+                       if s.planetary is not None and s.rating is not None and s.planetary.planet_ring.rating is None)
+        return out, diags
+
+    def rate_simulation(self, cfg: DesignFile, design: DesignResult, stages: Sequence[S]
+                        ) -> tuple[tuple[S, ...], list[Diagnostic]]:
+        return simulated_ratings(cfg, design, stages)
+
+    def sn_curve(self, cfg: DesignFile, member: RatedMember, treatment: str, mode: str, variant: str) -> SNCurve:
+        """σ(N) = σ_∞ Z_NT(N): the life factor's curve of the material group times the rating's limit stress
+        divided by its own life factor (every other factor as the rating computed it)."""
+        assert cfg.rating is not None
+        m = member  # an ISO MemberRating: its limit stresses and life factors
+        optimum = cfg.rating.material_quality == "optimum"
+        if mode == "pitting":
+            return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)  # type: ignore[attr-defined]
+        return SNCurve(rf.ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)  # type: ignore[attr-defined]
+
+    def curve_name(self, mode: str) -> str:
+        return "Z_NT (ISO 6336-2:2006)" if mode == "pitting" else "Y_NT (ISO 6336-3:2006)"
+
+    def table_rows(self, ratings: Sequence[RatedMesh], *, shared: bool) -> list[tuple[str, list[str]]]:
+        return table_rows(ratings, shared=shared)
+
+
+def _g(v: float | None, digits: int = 5) -> str:
+    """A number to ``digits`` significant digits (as io's tables print them)."""
+    return "—" if v is None else f"{v + 0.0:.{digits}g}"
+
+
+def table_rows(ratings: Sequence, *, shared: bool) -> list[tuple[str, list[str]]]:
+    """ISO's factors, stresses, permissible stresses and safeties per member, in the order of a KISSsoft report
+    (general factors, tooth root, flank); per-member cells read "pinion / gear"."""
+    def one(label: str, fn: Callable, digits: int = 4) -> tuple[str, list[str]]:
+        return label, [_g(fn(r), digits) for r in ratings]
+
+    def two(label: str, name: str, digits: int = 4) -> tuple[str, list[str]]:
+        return label, [f"{_g(getattr(r.pinion, name), digits)} / {_g(getattr(r.gear, name), digits)}"
+                       for r in ratings]
+
+    return [
+        one("application factor K_A", lambda r: r.K_A),
+        *([one("load-sharing factor K_γ", lambda r: r.K_gamma)] if shared else []),
+        ("dynamic factor K_v", [f"{r.K_v:.4g} ({r.K_v_source})" for r in ratings]),
+        ("face load factor K_Hβ", [f"{r.K_Hbeta:.4g} ({r.K_Hbeta_source})" for r in ratings]),
+        one("face load factor K_Fβ", lambda r: r.K_Fbeta),
+        one("transverse load factor K_Hα", lambda r: r.K_Halpha),
+        one("transverse load factor K_Fα", lambda r: r.K_Falpha),
+        two("load cycles N_L p / g", "load_cycles"),
+        two("tooth form Y_F p / g", "Y_F"),
+        two("stress correction Y_S p / g", "Y_S"),
+        one("helix factor Y_β", lambda r: r.Y_beta),
+        two("rim factor Y_B p / g", "Y_B"),
+        two("deep tooth Y_DT p / g", "Y_DT"),
+        two("nominal root σ_F0 [MPa] p / g", "sigma_F0_MPa"),
+        two("root stress σ_F [MPa] p / g", "sigma_F_MPa"),
+        two("notch Y_δrelT p / g", "Y_delta_rel_T"),
+        two("surface Y_RrelT p / g", "Y_R_rel_T"),
+        two("size Y_X p / g", "Y_X"),
+        two("life Y_NT p / g", "Y_NT"),
+        two("mean stress Y_M p / g", "Y_M"),
+        two("root limit σ_FG [MPa] p / g", "sigma_FG_MPa"),
+        two("permissible σ_FP [MPa] p / g", "sigma_FP_MPa"),
+        two("root safety S_F p / g", "S_F", 3),
+        one("zone factor Z_H", lambda r: r.Z_H),
+        one("elasticity Z_E [√MPa]", lambda r: r.Z_E),
+        one("contact ratio Z_ε", lambda r: r.Z_eps),
+        one("helix factor Z_β", lambda r: r.Z_beta),
+        one("nominal contact σ_H0 [MPa]", lambda r: r.sigma_H0_MPa),
+        one("contact σ_H (pitch) [MPa]", lambda r: r.sigma_H_MPa),
+        two("single pair Z_B / Z_D", "Z_BD"),
+        two("contact σ_HB / σ_HD [MPa]", "sigma_H_MPa"),
+        one("lubricant Z_L", lambda r: r.Z_L),
+        one("velocity Z_V", lambda r: r.Z_V),
+        one("roughness Z_R", lambda r: r.Z_R),
+        one("work hardening Z_W", lambda r: r.Z_W),
+        two("life Z_NT p / g", "Z_NT"),
+        two("size Z_X p / g", "Z_X"),
+        two("pitting limit σ_HG [MPa] p / g", "sigma_HG_MPa"),
+        two("permissible σ_HP [MPa] p / g", "sigma_HP_MPa"),
+        two("flank safety S_H p / g", "S_H", 3),
+    ]
+
+
+# ------------------------------------------------------------------------- the simulated K_v
+def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diagnostic]]:
+    """With ``[rating] dynamic_factor = "simulated"``: simulate's stage summaries (``StageDynamics``) each with
+    its ``rating`` at the simulated K_v, and the safety warnings of that rating; unchanged otherwise. A
+    planetary stage's planet–ring mesh is rated too, at its own meshes' simulated K_v (``planet_ring_rating``)."""
+    if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
+        return tuple(stages), []
+    pairs = pl.pair_equivalent(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
+    out, diags = [], []
+    for k, sd in enumerate(stages):
+        k_v = stage_simulated_k_v(sd)
+        shared = pl.with_load_sharing(design.stages[k])
+        rating = iso.rate_stage(pairs, k, shared, simulated_k_v=k_v)
+        if shared.planetary is not None:  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
+            rating = pl.nominal_with_sharing(rating, shared.planetary.load_sharing_factor)
+        rated = replace(design.stages[k], rating=rating)
+        diags += iso.safety_diagnostics(pairs, rated)
+        ring = None
+        if rated.planetary is not None and sd.planets:
+            ring = rate_planet_ring(cfg, k, pl.with_load_sharing(design.stages[k]),
+                                    simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
+            if ring is not None:
+                mesh = replace(rated.planetary.planet_ring, rating=ring)
+                diags += planet_ring_safety_diagnostics(cfg, replace(rated, planetary=replace(rated.planetary,
+                                                                                               planet_ring=mesh)))
+        out.append(replace(sd, rating=rated.rating, planet_ring_rating=ring))
+    return tuple(out), diags
+
+
+# ------------------------------------------------------------------ a planetary stage's planet–ring mesh
+def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
+    """A rated planetary stage with its planet–ring mesh rated too (ISO 6336-2/-3, docs/iso6336.md)."""
+    if stage.planetary is None or stage.rating is None:
+        return stage
+    ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
+    mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
+    return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
+
+
+def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
+    """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
+    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
+
+    k = stage.index - 1
+    st = cfg.stage[k]
+    assert isinstance(st, PlanetaryStage)
+    ring_mat, planet_mat = cfg.materials[st.ring.material], cfg.materials[st.planet.material]
+    if st.ring.flank_roughness_Rz_um is None:
+        key = f"stage[{k}].ring.flank_roughness_Rz_um"
+    else:
+        missing = [(name, m) for name, m in ((st.ring.material, ring_mat), (st.planet.material, planet_mat))
+                   if m.treatment is None or m.contact_fatigue_limit_MPa is None or m.bending_fatigue_limit_MPa is None]
+        key = f"materials.{missing[0][0]}" if missing else "rating"
+    return warning(UNRATED_MESH, f"stage {stage.index}: the planet–ring mesh is not rated (ISO 6336): it needs {key} "
+                   "(the ring's flank roughness, and the ring's and planet's material treatment and fatigue limits); "
+                   "the ring and the planet's ring side have no safeties", stage=stage.index, mesh="planet_ring",
+                   key=key)
+
+
+def _nominal(stage: StageResult) -> StageResult:
+    """A planetary stage's ratings with ISO's nominal σ_H0, σ_F0 and K_gamma among the load factors (rated at
+    K_gamma times the mean planet's force: ``pl.with_load_sharing``)."""
+    p = stage.planetary
+    if p is None or stage.rating is None:
+        return stage
+    k = p.load_sharing_factor
+    ring = p.planet_ring
+    if ring.rating is not None:
+        ring_rating = cast("InternalRatingResult", ring.rating)  # ISO's own (rate_planet_ring)
+        p = replace(p, planet_ring=replace(ring, rating=pl.nominal_with_sharing(ring_rating, k)))
+    return replace(stage, rating=pl.nominal_with_sharing(cast("RatingResult", stage.rating), k), planetary=p)
+
+
+ISO6336 = register(Iso6336())

@@ -1,0 +1,101 @@
+"""A scene's parts: a body and a connector (an element placed between bodies by index, with its levers).
+
+Below ``assembly`` (the parallel-stage chain, the state vector) and ``planet_assembly`` (a planetary stage's
+bodies and connectors), which both build them; neither imports the other's builder back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from gearcli.model.elements import (
+    KIND_MESH,
+    KIND_PLANET_MESH,
+    law_of,
+    mesh,
+)
+
+
+@dataclass(frozen=True)
+class Body:
+    inertia: float  # kg m^2
+    label: str  # "motor", "shaft 1", "shaft 2 gear end", "shaft 2 pinion end", "drum"
+    ratio: float  # nominal speed over the input body's speed (rigid kinematics)
+
+
+@dataclass(frozen=True)
+class Connector:
+    """One element placed in the scene: its kind (:mod:`gearcli.model.elements`), the bodies it joins by
+    index and its lever on each (a mesh: base radii; a spring: 1), its parameter row, and its role."""
+
+    kind: int
+    bodies: tuple[int, ...]
+    radii: tuple[float, ...]
+    params: tuple[float, ...]  # the element's parameter row, as Python floats
+    label: str  # "input coupling", "stage 1 mesh", "shaft 2", "load coupling"
+    index: int = -1  # 0-based stage of a mesh or reducer shaft of a flexible shaft; -1 for couplings
+    role: str = ""  # "mesh" (a stage's mesh), "shaft" (a flexible reducer shaft), "coupling", "planet" (a
+    # planet's sun or ring mesh), or "" (other)
+    load_body: int = -1  # a planet mesh: its static force is T_L rho_N / rho[load_body] * load_lever
+    load_lever: float = 0.0
+    planet: int = -1  # a planet mesh: its planet (0-based) and which mesh ("sun" or "ring")
+    gear: str = ""
+    chain_in: int = -1  # a planet mesh: the body of its stage's input member (the reducer shaft before it)
+    initial_deflection: float = 0.0  # a planet's position error along its sun mesh (m): delta - R theta
+
+    @property
+    def element(self):
+        """The element's law module (the registry's)."""
+        return law_of(self.kind)
+
+    @property
+    def a(self) -> int:
+        """The first body (a mesh's pinion: its phase is the element's)."""
+        return self.bodies[0]
+
+    @property
+    def b(self) -> int:
+        return self.bodies[1]
+
+    @property
+    def ra(self) -> float:
+        return self.radii[0]
+
+    @property
+    def rb(self) -> float:
+        return self.radii[1]
+
+    @property
+    def levers(self) -> tuple[float, ...]:
+        """Signed levers s_j r_j: delta = sum_j levers[j] theta_{bodies[j]}; body j takes -levers[j] F."""
+        return tuple(s * r for s, r in zip(self.element.SIGNS, self.radii, strict=True))
+
+    @property
+    def damped(self) -> bool:
+        return self.element.damped(self.params)
+
+    @property
+    def lossy(self) -> bool:
+        """A mesh that loses (1 - eta) of the power it transmits (:func:`.mesh.loss_factors`)."""
+        return self.kind in (KIND_MESH, KIND_PLANET_MESH) and mesh.lossy(self.params)
+
+    @property
+    def planet_loss(self) -> bool:
+        """A lossy planet mesh, losing in the carrier's frame (:func:`.mesh.planet_loss_slots`)."""
+        return self.lossy and mesh.planet_loss(self.params)
+
+    @property
+    def time_varying(self) -> bool:
+        return self.element.time_varying(self.params)
+
+    @property
+    def phased(self) -> bool:
+        return self.element.phased(self.params)
+
+    @property
+    def excited(self) -> bool:
+        return self.element.excited(self.params)
+
+
+def _row(values) -> tuple[float, ...]:
+    return tuple(float(v) for v in values)
