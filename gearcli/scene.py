@@ -36,6 +36,7 @@ from gearcli.model.spec import (
     SpringSpec,
 )
 from gearcli.results import DesignResult, StageResult
+from gearcli.stages import kinds
 from gearcli.stages.design import design_kind
 from gearcli.stages.model import model_kind
 
@@ -153,7 +154,7 @@ def load_spec(load_cfg: Load) -> LoadSpec:
 
 def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
-    meshes = tuple(model_kind(st).signed(_mesh(cfg, st, k), st) for k, st in enumerate(design.stages))
+    meshes = tuple(model_kind(st).line(cfg, st, k, _mesh) for k, st in enumerate(design.stages))
     own = tuple(model_kind(st).stage_model(cfg, st, k, meshes[k]) for k, st in enumerate(design.stages))
     inp = cfg.input
     drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
@@ -163,7 +164,8 @@ def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     load = load_spec(cfg.load)
     return ModelSpec(meshes, tuple(s.inertia_kg_m2 for s in design.shafts), drive, load,
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design),
-                     stage_models=own if any(p is not None for p in own) else ())
+                     stage_models=own if any(p is not None for p in own) else (),
+                     stage_types=tuple(kinds.kind_of(st) for st in design.stages))
 
 
 def _output_inertia(st: StageResult) -> float:

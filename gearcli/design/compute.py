@@ -28,7 +28,7 @@ from gearcli.design.inputs import check_inputs
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
 from gearcli.design.standards import standard_of
-from gearcli.diagnostics import DESIGN, warning
+from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
     DesignResult,
@@ -40,7 +40,8 @@ from gearcli.results import (
     StaticForces,
 )
 from gearcli.stages import gear_design as _gear_design  # noqa: F401  # registers the built-in kinds' design facets
-from gearcli.stages.design import design_kind, pair_view
+from gearcli.stages import kinds
+from gearcli.stages.design import design_kind, gear_pairs, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -62,6 +63,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     rating_diagnostics: tuple = ()
     if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
         stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
+        rating_diagnostics += tuple(_not_rated(st) for st in stages if not design_kind(st).gear_pair)
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
@@ -72,7 +74,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            "(tooth_thickness_allowance_mm) or widen the centre distance", check="backlash_negative",
                            stage=st.index,
                            backlash_min_mm=st.backlash_circumferential_mm[1])
-                   for st in stages if st.backlash_circumferential_mm is not None
+                   for _, st in gear_pairs(stages) if st.backlash_circumferential_mm is not None
                    and st.backlash_circumferential_mm[1] < 0.0)
     pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
@@ -101,6 +103,13 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         bearings=bearings,
         diagnostics=diagnostics,
     )
+
+
+def _not_rated(st: StageResult) -> Diagnostic:
+    """A stage whose kind has no gear mesh (a belt) is not rated: said, never dropped without a word."""
+    kind = kinds.kind_of(st)
+    return warning(DESIGN, f"stage {st.index}: a {kind} stage has no gear mesh to rate: [rating] leaves it unrated",
+                   check="not_rated", stage=st.index, type=kind)
 
 
 def _require_finite(obj, key: str) -> None:

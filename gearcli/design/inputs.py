@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from gearcli.design.checks import check_hands, check_material
 from gearcli.design.standards import standard_of
 from gearcli.errors import DesignError
-from gearcli.stages.design import design_kind, file_key, pair_view
+from gearcli.stages.design import design_kind, file_key, gear_pairs, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -24,7 +24,7 @@ def check_inputs(cfg: DesignFile) -> None:
     checked as its sun–planet pair (keys named ``sun``/``planet``) and its ring."""
     pairs = pair_view(cfg)
     try:
-        for k in range(len(pairs.stage)):
+        for k, _ in gear_pairs(cfg.stage):
             stage = pairs.pair(k)
             for part in ("pinion", "gear"):
                 check_material(getattr(stage, part).material, pairs.materials, f"stage[{k}].{part}.material")

@@ -107,16 +107,6 @@ def sun_planet_stage(stage: PlanetaryStage) -> Stage:
         "tip_relief_um": stage.tip_relief_um})
 
 
-def pair_equivalent(cfg: DesignFile) -> DesignFile:
-    """``cfg`` with every planetary stage replaced by its sun–planet pair (the parallel-stage code's view)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    if not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
-        return cfg
-    stages = [sun_planet_stage(s) if isinstance(s, PlanetaryStage) else s for s in cfg.stage]
-    return cfg.model_copy(update={"stage": stages})
-
-
 def mesh_train(k: int, stage: PlanetaryStage, kin: Train) -> Train:
     """A train whose stage k is the sun–planet mesh in the carrier's frame: sun at |ω_s − ω_c|, the mesh's
     (driving-side) force on the sun's lever (a 1/N of the sun torque, over η_m where the planet drives the sun),
@@ -269,7 +259,7 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
         concentricity_mm=geo.center_distance_mm - r_c, mesh_efficiency=eta_m,
         basic_efficiency=eta_m ** 2, moment_balance_Nm={m: v / 1000.0 for m, v in moments.items()},
         planet_angles_deg=tuple(angles))
-    return replace(mesh, ratio=kin.ratios[k], planetary=result)
+    return replace(mesh, ratio=kin.ratios[k], planetary=result, type="planetary")
 
 
 def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult,
@@ -357,11 +347,17 @@ def check_stage_inputs(cfg: DesignFile, k: int) -> None:
                           f"{len(angles)}", key=f"stage[{k}].planet.angles_deg")
 
 
+def load_sharing_of(stage: StageResult) -> float:
+    """K_γ of a planetary stage's design (its planets' load-sharing factor)."""
+    assert stage.planetary is not None  # a planetary stage's result
+    return stage.planetary.load_sharing_factor
+
+
 def with_load_sharing(stage: StageResult) -> StageResult:
     """A planetary stage's sun–planet mesh as rated: the most loaded planet's, K_gamma times the mean."""
-    if stage.planetary is None or stage.planetary.load_sharing_factor == 1.0:
+    k = load_sharing_of(stage)
+    if k == 1.0:
         return stage
-    k = stage.planetary.load_sharing_factor
     f = stage.static_force_N
     return replace(stage, static_force_N=StaticForces(k * f.tangential, k * f.radial, k * f.axial, k * f.normal),
                    pinion=replace(stage.pinion, torque_Nmm=k * stage.pinion.torque_Nmm,

@@ -404,7 +404,7 @@ def pin_bearing_warnings(cfg: DesignFile, stages: Sequence[StageResult]) -> list
     out = []
     for j, b in enumerate(cfg.bearing):
         k = b.planet_stage
-        if k is None or k > len(stages) or stages[k - 1].planetary is None:
+        if k is None or k > len(stages) or not design_kind(stages[k - 1]).shares_load:  # a stage with planets
             continue
         planet_cfg = cfg.stage[k - 1].planet  # type: ignore[union-attr]
         if planet_cfg.axial_position_mm is None:
@@ -440,20 +440,28 @@ def _pair(shaft: str, specs: list[BearingSpec]) -> tuple[BearingSpec, BearingSpe
 
 # ------------------------------------------------------------------------------------ design results
 def stage_layout(cfg: DesignFile, stages: Sequence[StageResult]) -> ShaftLayout | None:
-    """The shaft layout from the design's stage geometry (working pitch radii r_w = r_b / cos a_wt)."""
+    """The shaft layout from the design's stage geometry (working pitch radii r_w = r_b / cos a_wt); None without
+    ``[[bearing]]`` tables. The statics know gear stages: a stage of a kind without a gear pair (a belt) and
+    bearings are exit 2 naming the stage."""
+    if not cfg.bearing:
+        return None
+    other = [k for k, s in enumerate(stages) if not design_kind(s).gear_pair]
+    if other:
+        raise DesignError(f"[[bearing]]: the shaft statics know gear stages only, and stage {other[0] + 1} is of type "
+                          f"{getattr(stages[other[0]], 'type', '?')!r}: remove the bearing tables",
+                          key=f"stage[{other[0]}].type")
     alphas = [math.radians(s.working_pressure_angle_deg) for s in stages]
     radii = [(0.5 * s.pinion.base_diameter_mm / math.cos(a), 0.5 * s.gear.base_diameter_mm / math.cos(a))
              for s, a in zip(stages, alphas, strict=True)]
     return layout(cfg, radii, alphas, [math.radians(s.base_helix_angle_deg) for s in stages],
-                  [planetary_layout(cfg, k, s) for k, s in enumerate(stages)])
+                  [planetary_layout(cfg, k, s) if design_kind(s).shares_load else None for k, s in enumerate(stages)])
 
 
-def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayout | None:
-    """A planetary stage's statics layout from its design (None for a parallel stage); the sense of its torque is
-    set by :func:`layout` from the train's senses of rotation."""
+def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayout:
+    """A planetary stage's statics layout from its design; the sense of its torque is set by :func:`layout` from
+    the train's senses of rotation."""
     p = st.planetary
-    if p is None:
-        return None
+    assert p is not None  # a stage whose planets share its load (stage_layout asks its kind)
     from gearcli.config.schema import Stage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]

@@ -112,6 +112,13 @@ class _StageJson(Protocol):
     def json_stage(self, stage: _Doc) -> _Doc:
         """The stage's JSON object from its result's plain dict (which has the kind's ``type``)."""
 
+    def json_simulated_stage(self, stage: JsonObject) -> JsonObject:
+        """A simulated stage's JSON object from today's statistics keys (a gear stage's as they are)."""
+
+
+def _stage_output(stage: object) -> _StageJson:
+    return cast(_StageJson, kinds.facet(kinds.kind_of(stage), "io"))
+
 
 def _stage_json(stage: _Doc) -> _Doc:
     return cast(_StageJson, kinds.facet(str(stage.get("type") or kinds.PARALLEL), "io")).json_stage(stage)
@@ -129,6 +136,7 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]
+    stages = [_stage_output(s).json_simulated_stage(doc) for s, doc in zip(result.stages, stages, strict=True)]
 
     u = output_units.of_result(result)
     speeds = {} if u.speed == "deg_s" else {f"input_speed_{u.speed}": u.speed_from_deg_s(result.input_speed_deg_s),

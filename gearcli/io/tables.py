@@ -29,14 +29,17 @@ from gearcli.io.table_kit import (
 from gearcli.io.units import input_torque_window_means, of_result
 from gearcli.rating import for_rating
 from gearcli.results import DesignResult, RatedMesh, StageResult
-from gearcli.simulate.results import SimulationResult
+from gearcli.simulate.results import SimulationResult, StageDynamics
 from gearcli.stages import kinds
+from gearcli.stages.design import gear_pairs
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
 
 def design_tables(r: DesignResult) -> list[RenderableType]:
-    s = r.stages
+    """The design's tables: the gear stages' geometry, loads and rating (a column per stage whose kind is a gear
+    pair), each kind's own tables, the shafts, the bearings and the summary lines."""
+    s = [st for _, st in gear_pairs(r.stages)]
     cols = [f"stage {st.index}" for st in s]
 
     def row(label, fn, digits=5):
@@ -104,12 +107,11 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
-    own = [*_allowance_table(r), *_kind_tables(r)]
+    gears = [geometry, loads] if s else []  # a train without gear stages (all belts) has no gear columns
+    own = [*_allowance_table(s), *_kind_tables(r)]
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
-
-        return [geometry, loads, *([rating_table(rated)] if rated else []), *own, train, bearing_table(r.bearings),
-                *summary]
-    return [geometry, loads, *([rating_table(rated)] if rated else []), *own, train, *summary]
+        return [*gears, *([rating_table(rated)] if rated else []), *own, train, bearing_table(r.bearings), *summary]
+    return [*gears, *([rating_table(rated)] if rated else []), *own, train, *summary]
 
 
 class StageOutput(Protocol):
@@ -127,10 +129,21 @@ class StageOutput(Protocol):
     def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
         """The kind's own tables of ``stages`` (the design's stages of this kind), after the allowances."""
 
+    def simulation_tables(self, r: SimulationResult, stages: list[StageDynamics]) -> list[RenderableType]:
+        """The kind's own tables of a run's ``stages`` (its stages' statistics), after the planets' tables."""
+
 
 def _kind(st: object) -> StageOutput:
     """The output facet of a stage's kind."""
     return cast(StageOutput, kinds.facet(kinds.kind_of(st), "io"))
+
+
+def _kind_simulation_tables(r: SimulationResult) -> list[RenderableType]:
+    """Each stage kind's own tables of the run (a belt's span force and stretch), kinds in stage order."""
+    order = list(dict.fromkeys(kinds.kind_of(st) for st in r.stages))
+    return [t for name in order
+            for t in _kind(r.stages[[kinds.kind_of(st) for st in r.stages].index(name)]).simulation_tables(
+                r, [st for st in r.stages if kinds.kind_of(st) == name])]
 
 
 def _kind_tables(r: DesignResult) -> list[RenderableType]:
@@ -145,9 +158,9 @@ def _limits(values: Sequence[float] | None, digits: int) -> str:
     return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
 
 
-def _allowance_table(r: DesignResult) -> list[RenderableType]:
-    """Tooth-thickness allowances (ISO 21771): only stages that give allowance keys have figures."""
-    s = [st for st in r.stages if st.backlash_circumferential_mm is not None]
+def _allowance_table(stages: list) -> list[RenderableType]:
+    """Tooth-thickness allowances (ISO 21771): only gear stages that give allowance keys have figures."""
+    s = [st for st in stages if st.backlash_circumferential_mm is not None]
     if not s:
         return []
     return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", [f"stage {st.index}" for st in s], [
@@ -193,9 +206,13 @@ def _stats_cells(st) -> list[str]:
 
 
 def simulation_tables(r: SimulationResult) -> list[RenderableType]:
+    """The run's tables: the gear stages' mesh forces, peaks and mesh response, stiffness and error estimate (a
+    column per stage whose kind is a gear pair), the bearings, the planets, each kind's own tables, the
+    simulated rating and the footer lines."""
+    gear = [s for _, s in gear_pairs(r.stages)]
     force_rows: list[tuple[str, ...]] = []
     ends: list[bool] = []
-    for s in r.stages:
+    for s in gear:
         force_rows += [(str(s.index), "F_t [N]", *_stats_cells(s.tangential_N)), ("", "F_r [N]", *_stats_cells(s.radial_N)),
                  ("", "F_a [N]", *_stats_cells(s.axial_N)),
                  ("", "penetration [mm]", *_stats_cells(s.penetration_mm))]
@@ -203,32 +220,32 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     forces = FittedTable(f"mesh forces over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s",
                          ("stage", "channel", "mean", "std", "min", "max"), force_rows,
                          (False, False, True, True, True, True), ends=ends)
-    peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in r.stages], [
-        ("static F_t [N]", [_g(s.static_tangential_N) for s in r.stages]),
-        *([("static F_t as simulated [N]", [_g(s.simulated_static_tangential_N) for s in r.stages])]
+    peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in gear], [
+        ("static F_t [N]", [_g(s.static_tangential_N) for s in gear]),
+        *([("static F_t as simulated [N]", [_g(s.simulated_static_tangential_N) for s in gear])]
           if any(s.simulated_static_tangential_N is not None
                  and abs(s.simulated_static_tangential_N - s.static_tangential_N)
-                 > 1e-9 * abs(s.static_tangential_N) for s in r.stages) else []),
-        ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in r.stages]),
-        ("at t [s]", [_g(s.peak_time_s, 3) for s in r.stages]),
-        ("dynamic factor (window max / static)", [_g(s.dynamic_factor, 4) for s in r.stages]),
-        ("run-up factor (run peak / static)", [_g(s.runup_factor, 4) for s in r.stages]),
-        ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in r.stages]),
-        ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in r.stages]),
-        ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in r.stages]),
-        ("contact loss fraction", [_g(s.contact_loss_fraction, 3) for s in r.stages]),
-        ("back flank fraction", [_g(s.back_flank_fraction, 3) for s in r.stages]),
-        ("regime", [s.regime or "—" for s in r.stages]),
+                 > 1e-9 * abs(s.static_tangential_N) for s in gear) else []),
+        ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in gear]),
+        ("at t [s]", [_g(s.peak_time_s, 3) for s in gear]),
+        ("dynamic factor (window max / static)", [_g(s.dynamic_factor, 4) for s in gear]),
+        ("run-up factor (run peak / static)", [_g(s.runup_factor, 4) for s in gear]),
+        ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in gear]),
+        ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in gear]),
+        ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in gear]),
+        ("contact loss fraction", [_g(s.contact_loss_fraction, 3) for s in gear]),
+        ("back flank fraction", [_g(s.back_flank_fraction, 3) for s in gear]),
+        ("regime", [s.regime or "—" for s in gear]),
     ])
-    rows = [("mesh stiffness K [N/mm^e]", [_g(m.law_N_mm_e) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
-            ("exponent e", [_g(m.exponent, 3) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
+    rows = [("mesh stiffness K [N/mm^e]", [_g(m.law_N_mm_e) if (m := s.mesh_stiffness) else "—" for s in gear]),
+            ("exponent e", [_g(m.exponent, 3) if (m := s.mesh_stiffness) else "—" for s in gear]),
             ("linearised at static load [N/mm]",
-             [_g(m.linearised_N_mm) if (m := s.mesh_stiffness) else "—" for s in r.stages])]
-    rows += [(f"est. error {q} F_t [N]", [_g(_est(s.error_estimate, q), 2) for s in r.stages])
+             [_g(m.linearised_N_mm) if (m := s.mesh_stiffness) else "—" for s in gear])]
+    rows += [(f"est. error {q} F_t [N]", [_g(_est(s.error_estimate, q), 2) for s in gear])
              for q in ("min", "max", "std")]
     rows.append(("statistics resolved (mean 1e-4, else 1e-3)", [("—" if s.error_estimate is None else
-                                                  "yes" if s.error_estimate.resolved else "NO") for s in r.stages]))
-    mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in r.stages], rows)
+                                                  "yes" if s.error_estimate.resolved else "NO") for s in gear]))
+    mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in gear], rows)
     sv = r.solver
     lines = [footer_speeds(r)]
     means = input_torque_window_means(r)
@@ -262,11 +279,13 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     if rings:
         simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, {standard} "
                                              "(p planet, g ring)"))
+    own = [*_planet_tables(r), *_kind_simulation_tables(r)]
+    head: list[RenderableType] = [forces] if gear else []  # a run without gear stages (all belts): no mesh tables
+    tail: list[RenderableType] = [peaks, mesh] if gear else []
     if r.extra and r.extra.get("bearings"):  # [[bearing]] tables (docs/life.md)
-
-        return [forces, bearing_stats_table(r.window_s, r.extra["bearings"]), peaks, mesh, *_planet_tables(r),
-                *simulated, *(text(line) for line in lines)]
-    return [forces, peaks, mesh, *_planet_tables(r), *simulated, *(text(line) for line in lines)]
+        return [*head, bearing_stats_table(r.window_s, r.extra["bearings"]), *tail, *own, *simulated,
+                *(text(line) for line in lines)]
+    return [*head, *tail, *own, *simulated, *(text(line) for line in lines)]
 
 
 @dataclass(frozen=True)

@@ -93,9 +93,14 @@ def _rating(stage: StageResult) -> RatedMesh:
 
 
 def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) -> None:
-    """Every member life rates has its rating (a planetary stage's planet–ring mesh too: its kind says)."""
+    """Every stage has a life model (its kind's) and every member life rates has its rating (a planetary stage's
+    planet–ring mesh too: its kind says)."""
     for st in design.stages:
-        life_kind(st).require_rated(cfg, st, scene.source)
+        try:
+            kind = life_kind(st)
+        except ConfigError as exc:
+            raise ConfigError(exc.message, source=scene.source, key=exc.key) from None
+        kind.require_rated(cfg, st, scene.source)
 
 
 def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> _PointData:
@@ -354,8 +359,7 @@ def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float
         return ml if planet is None else replace(ml, planet=planet)
 
     st = points[0].design.stages[k]
-    dynamic = points[0].loads[k].planetary is not None  # the kind's own dynamic spectra (per planet)
-    return life_kind(st).stage_life(k, st, dynamic, member_life, root_life)
+    return life_kind(st).stage_life(k, st, points[0].loads[k], member_life, root_life)
 
 
 def _no_progress(label: str, done: int, total: int) -> None:

@@ -51,7 +51,7 @@ from gearcli.model.elements import (
     mesh,
     torque,
 )
-from gearcli.model.parts import Body, Connector, _row
+from gearcli.model.parts import STAGE_ROLES, Body, Connector, _row
 from gearcli.model.spec import DriveSpec, LoadSpec, MeshSpec, ModelSpec
 
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
@@ -245,8 +245,8 @@ class Layout:
     # ------------------------------------------------------------------------------- element roles
     @property
     def stage_conn(self) -> tuple[int, ...]:
-        """Connector index of each mesh, in stage order."""
-        return tuple(c for c, x in enumerate(self.connectors) if x.role == "mesh")
+        """Connector index of each stage's connector (its mesh; a belt's span), in stage order."""
+        return tuple(c for c, x in enumerate(self.connectors) if x.role in STAGE_ROLES)
 
     @property
     def shaft_body(self) -> tuple[int, ...]:

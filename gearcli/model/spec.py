@@ -313,6 +313,7 @@ class ModelSpec:
     shafts: tuple[FlexibleShaft | None, ...] = ()  # per intermediate shaft k = 1 .. n-1 (or empty)
     elements: tuple[ElementSpec, ...] = ()  # further elements between the chain's bodies, by body index
     stage_models: tuple[StageModel | None, ...] = ()  # per stage: its own model (meshes[k] then unused), or None
+    stage_types: tuple[str, ...] = ()  # per stage: its kind (the design file's ``type``); empty: every stage parallel
 
     def __post_init__(self) -> None:
         if len(self.inertias_kg_m2) != len(self.meshes) + 1:

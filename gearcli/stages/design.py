@@ -9,8 +9,8 @@ may ask a stage's kind (the design layer's inner contract, ARCHITECTURE.md). The
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import TYPE_CHECKING, Protocol, cast
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Protocol, TypeVar, cast
 
 from gearcli.diagnostics import Diagnostic
 from gearcli.results import MeshStiffness, RatedMesh, StageResult
@@ -19,6 +19,8 @@ from gearcli.stages import kinds
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
     from gearcli.design.kinematics import Train
+
+S = TypeVar("S")
 
 #: the pair's stage result: (the design file as pairs, stage index, train, meshes in parallel) -> StageResult
 MeshResult = Callable[["DesignFile", int, "Train", int], StageResult]
@@ -30,8 +32,14 @@ class DesignKind(Protocol):
     def reverse_efficiency(self, table: object, k: int) -> float | None:
         """The stage's efficiency with the power flowing back (None: its forward efficiency)."""
 
-    def pair(self, table: object) -> object:
-        """The stage as the pair the rating and the pair's code read (``cfg.pair(k)``): itself if it is one."""
+    def pair(self, table: object) -> object | None:
+        """The stage as the pair the rating and the pair's code read (``cfg.pair(k)``): itself if it is one; None
+        for a kind without a gear pair (a belt)."""
+
+    @property
+    def gear_pair(self) -> bool:
+        """The stage is (or is designed as) a gear pair: the pair's checks and the rating read it, its columns
+        are in the gear tables. A kind without one (a belt) gives its own figures and is not rated."""
 
     def result(self, cfg: DesignFile, pairs: DesignFile, k: int, kin: Train, mesh: MeshResult) -> StageResult:
         """The designed stage k (``mesh`` designs a pair)."""
@@ -55,11 +63,22 @@ class DesignKind(Protocol):
     def meshes(self, result: StageResult) -> list[tuple[str, MeshStiffness | None]]:
         """The stage's meshes by name (a pair's ``mesh``) with the contact law at the static load."""
 
+    def meetings(self, result: StageResult, member: int) -> int:
+        """Contacts per turn of the pair's member (0 pinion, 1 gear) in its own frame (a planetary's sun: N)."""
+
+    def idler(self, result: StageResult, member: int) -> bool:
+        """The pair's member is an idler: its teeth bend both ways (ISO 6336-3's Y_M; a planetary's planet)."""
+
     def further_ratings(self, result: StageResult) -> list[RatedMesh]:
         """The ratings of the stage's meshes beyond its first (a planetary's planet–ring mesh)."""
 
     def output_speed_deg_s(self, result: StageResult) -> float:
         """The speed of the stage's output member, °/s (magnitude where the model counts it so)."""
+
+    def fastest_rad_s(self, cfg: DesignFile, result: StageResult, k: int, inertia_in: float,
+                      inertia_out: float) -> float:
+        """The fastest angular frequency the stage puts in the model (the run budget's indicator,
+        ``config.bounds``): its connector's stiffness on the two shafts' inertias, its excitation."""
 
     @property
     def model_signs_forces(self) -> bool:
@@ -73,10 +92,15 @@ def design_kind(stage: object) -> DesignKind:
 
 def pair_view(cfg: DesignFile) -> DesignFile:
     """``cfg`` with every stage seen as the pair its kind designs (the pair's code and the rating read it)."""
-    stages = [design_kind(s).pair(s) for s in cfg.stage]
+    stages = [design_kind(s).pair(s) or s for s in cfg.stage]
     if all(a is b for a, b in zip(stages, cfg.stage, strict=True)):
         return cfg
     return cfg.model_copy(update={"stage": stages})
+
+
+def gear_pairs(stages: Iterable[S]) -> list[tuple[int, S]]:
+    """(k, stage) of the stages (tables or results) whose kind is a gear pair, k 0-based in ``stages``."""
+    return [(k, s) for k, s in enumerate(stages) if design_kind(s).gear_pair]
 
 
 def file_key(cfg: DesignFile, key: str | None) -> str | None:

@@ -12,9 +12,11 @@ from typing import Any
 
 from rich.console import RenderableType
 
+from gearcli.core.jsontypes import JsonObject
 from gearcli.io.table_kit import _g, _quantity_table
 from gearcli.io.tables import rating_table
 from gearcli.results import DesignResult, RatedMesh, StageResult
+from gearcli.simulate.results import SimulationResult, StageDynamics
 from gearcli.stages import kinds
 
 _Doc = dict[str, Any]
@@ -33,11 +35,17 @@ class ParallelOutput:
     def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
         return []
 
+    def simulation_tables(self, r: SimulationResult, stages: list[StageDynamics]) -> list[RenderableType]:
+        return []
+
     def json_stage(self, stage: _Doc) -> _Doc:
         stage.pop("type", None)  # a parallel stage's JSON has no type (today's keys)
         stage.pop("planetary", None)
         if isinstance(stage.get("rating"), dict):  # K_gamma belongs to planetary stages (a parallel rating: today's keys)
             stage["rating"].pop("K_gamma", None)
+        return stage
+
+    def json_simulated_stage(self, stage: JsonObject) -> JsonObject:
         return stage
 
 
@@ -51,6 +59,9 @@ class PlanetaryOutput:
     def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
         return [*_planetary_design(stages), *_planet_ring_rating(stages)]
 
+    def simulation_tables(self, r: SimulationResult, stages: list[StageDynamics]) -> list[RenderableType]:
+        return []  # its planets' tables are the run's (``io.tables``), in today's place
+
     def json_stage(self, stage: _Doc) -> _Doc:
         """A planetary stage's JSON: type, members (sun, planet, ring, carrier), ratio and the two meshes per planet."""
         p = stage.pop("planetary")
@@ -63,6 +74,9 @@ class PlanetaryOutput:
         return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
                 "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,
                 "meshes": [{"name": "sun_planet", **stage}, {"name": "planet_ring", **ring_mesh}]}
+
+    def json_simulated_stage(self, stage: JsonObject) -> JsonObject:
+        return stage
 
 
 @dataclass(frozen=True)

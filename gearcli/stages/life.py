@@ -63,14 +63,22 @@ class LifeKind(Protocol):
                       k: int) -> StageLoads:
         """The stage's tooth-force classes over the window samples ``t`` of a simulation."""
 
-    def stage_life(self, k: int, st: StageResult, dynamic: bool, member_life: MemberLives,
+    def stage_life(self, k: int, st: StageResult, loads: StageLoads, member_life: MemberLives,
                    root_life: RootLives) -> StageLife:
-        """The stage's life record from its members' lives."""
+        """The stage's life record from its members' lives (``loads``: its tooth-force classes, the first
+        point's: a planetary's are per planet on the dynamic route)."""
 
 
 def life_kind(stage: object) -> LifeKind:
-    """The life facet of a stage table or stage result (by its ``type``)."""
-    return cast(LifeKind, kinds.facet(kinds.kind_of(stage), "life"))
+    """The life facet of a stage table or stage result (by its ``type``); a kind without one (a belt: no teeth to
+    count) is refused by name (exit 2)."""
+    kind = kinds.kind_of(stage)
+    if kind not in kinds.kinds("life"):
+        index = getattr(stage, "index", None)
+        raise ConfigError(f"gearcli life rates gear teeth, and a {kind} stage has none to rate (no life model of "
+                          "its kind): run gearcli design or simulate on this file",
+                          key=None if index is None else f"stage[{index - 1}].type")
+    return cast(LifeKind, kinds.facet(kind, "life"))
 
 
 def _rating_of(st: StageResult):
@@ -110,7 +118,7 @@ class ParallelLife:
                       k: int) -> StageLoads:
         return spectra.pair_loads(t, series, st, k)
 
-    def stage_life(self, k: int, st: StageResult, dynamic: bool, member_life: MemberLives,
+    def stage_life(self, k: int, st: StageResult, loads: StageLoads, member_life: MemberLives,
                    root_life: RootLives) -> StageLife:
         return StageLife(k + 1, member_life("pinion"), member_life("gear"))
 
@@ -189,9 +197,9 @@ class PlanetaryLife:
                       k: int) -> StageLoads:
         return spectra.planetary_loads(t, series, st)
 
-    def stage_life(self, k: int, st: StageResult, dynamic: bool, member_life: MemberLives,
+    def stage_life(self, k: int, st: StageResult, loads: StageLoads, member_life: MemberLives,
                    root_life: RootLives) -> StageLife:
-        if not dynamic:  # static route: the most loaded planet is the rating's (K_gamma)
+        if loads.planetary is None:  # static route: the most loaded planet is the rating's (K_gamma)
             return StageLife(k + 1, member_life("pinion"), member_life("gear"), ring=member_life("ring"),
                              planet_ring_side=member_life("planet_ring_side"), planet_root=root_life())
         # dynamic route: every planet's own spectra; each planet member reports its worst planet

@@ -29,11 +29,16 @@ if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
 
 
+#: the design -> model adapter's mesh law of a gear pair: (design file, stage result, k) -> MeshSpec
+PairMesh = Callable[["DesignFile", StageResult, int], MeshSpec]
+
+
 class ModelKind(Protocol):
     """What the design -> model adapter (``gearcli.scene``) asks of a stage kind."""
 
-    def signed(self, mesh: MeshSpec, st: StageResult) -> MeshSpec:
-        """The stage's mesh law (``ModelSpec.meshes[k]``) with its static force signed as the model's."""
+    def line(self, cfg: DesignFile, st: StageResult, k: int, pair_mesh: PairMesh) -> MeshSpec:
+        """The stage's line of action as the model reads it (``ModelSpec.meshes[k]``: its levers, its angles, its
+        static force signed as the model's): a gear pair's mesh law (``pair_mesh``), a belt's span."""
 
     def stage_model(self, cfg: DesignFile, st: StageResult, k: int, mesh: MeshSpec) -> StageModel | None:
         """The stage's own model (SI), or None: the chain's pair of ``mesh``."""
@@ -47,8 +52,8 @@ def model_kind(stage: object) -> ModelKind:
 class ParallelModel:
     """A parallel stage is the chain's pair: its mesh between its input and output shafts' bodies."""
 
-    def signed(self, mesh: MeshSpec, st: StageResult) -> MeshSpec:
-        return mesh
+    def line(self, cfg: DesignFile, st: StageResult, k: int, pair_mesh: PairMesh) -> MeshSpec:
+        return pair_mesh(cfg, st, k)
 
     def stage_model(self, cfg: DesignFile, st: StageResult, k: int, mesh: MeshSpec) -> StageModel | None:
         return None
@@ -67,10 +72,11 @@ class PlanetaryModelKind:
     """A planetary stage: the sun–planet mesh law signed by the output member's moment balance, and its
     :class:`PlanetaryModel` (levers from the base radii, the members' inertias, both mesh laws)."""
 
-    def signed(self, mesh: MeshSpec, st: StageResult) -> MeshSpec:
-        """A planet mesh's static F_t with the sign its deflection has in the model: the moment balance of the
-        output member, N c_out F = T_out sign(w_out), c_out = -r_bs (sun), r_bs + r_br (carrier), -r_br (ring)
-        (:func:`gearcli.model.planet_assembly.place_planetary`)."""
+    def line(self, cfg: DesignFile, st: StageResult, k: int, pair_mesh: PairMesh) -> MeshSpec:
+        """The sun–planet mesh law with a planet mesh's static F_t signed as its deflection is in the model: the
+        moment balance of the output member, N c_out F = T_out sign(w_out), c_out = -r_bs (sun), r_bs + r_br
+        (carrier), -r_br (ring) (:func:`gearcli.model.planet_assembly.place_planetary`)."""
+        mesh = pair_mesh(cfg, st, k)
         p = st.planetary
         assert p is not None
         sign_out = 1.0 if willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)[p.output] >= 0 else -1.0
