@@ -622,6 +622,9 @@ class Rating(_Table):
     # the generating x_E of the "lower" (default: the thinnest tooth, as K_Fbeta's depth), "upper" or "mean"
     # allowance, or the "nominal" x (as some commercial reports rate)
     root_profile_shift: Literal["nominal", "upper", "lower", "mean"] = "lower"
+    # the virtual tooth count in method B's load angle γ_e: ISO 6336-3's z_n = z/(cos² β_b cos β) ("iso"), or the
+    # classical approximation z/cos³ β ("cos3", not ISO: reproduces reports of tools that use it; docs/iso6336.md)
+    virtual_tooth_count: Literal["iso", "cos3"] = "iso"
     dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
     load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
     # a bearing's ISO 76 s_0 below it warns; absent: ball 1.0, roller 1.5 (docs/bearings.md)

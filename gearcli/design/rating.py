@@ -257,7 +257,8 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
                          math.radians(st.base_helix_angle_deg), _root_shift(g, rating.root_profile_shift),
                          g.tip_diameter_mm,
                          g.pitch_diameter_mm, st.contact_ratio_transverse,
-                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
+                         virtual_tooth_count=rating.virtual_tooth_count)
     if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
         raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
                           f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
