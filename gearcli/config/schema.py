@@ -167,11 +167,12 @@ class Gear(_Table):
 
 
 class PairGear(Gear):
-    """One gear of a parallel stage: pinion (driving) or gear (driven)."""
+    """One gear of an external pair: a parallel stage's pinion (driving) or gear (driven), a planetary stage's
+    sun or planet."""
 
     # tooth thickness allowances [A_sne, A_sni] (normal section, mm) and tip diameter allowances [A_dae, A_dai]:
     # generating profile shifts, manufactured root diameters, backlash and contact ratio with allowances
-    # (docs/iso6336.md, "Tooth-thickness allowances"); parallel stages
+    # (docs/iso6336.md, "Tooth-thickness allowances"); a planetary stage's sun–planet mesh (docs/planetary.md)
     tooth_thickness_allowance_mm: AllowancePair | None = None
     tip_diameter_allowance_mm: AllowancePair | None = None
 
@@ -248,7 +249,7 @@ class Stage(_Table):
         return self.gear.teeth / self.pinion.teeth
 
 
-class Planet(Gear):
+class Planet(PairGear):
     """The planets of a planetary stage: one gear description and how many there are."""
 
     count: Annotated[int, Field(ge=1, le=20)]
@@ -267,6 +268,19 @@ class Ring(Gear):
     # the pinion-type cutter that generates the ring: its teeth z_0 set the root fillet the ring's tooth-root rating
     # uses (ISO 6336-3 for internal gears); absent: the basic rack's fillet (z_0 -> infinity: smaller, conservative)
     cutter_teeth: Annotated[int, Field(ge=8, le=200)] | None = None
+    # the allowances of an internal gear are not modelled: named here to refuse them with the reason
+    tooth_thickness_allowance_mm: AllowancePair | None = None
+    tip_diameter_allowance_mm: AllowancePair | None = None
+
+    @field_validator("tooth_thickness_allowance_mm", "tip_diameter_allowance_mm")
+    @classmethod
+    def _no_internal_allowances(cls, value: list[float] | None) -> None:
+        if value is not None:
+            raise ValueError("the ring (an internal gear) takes no manufacturing allowance yet: its generating "
+                             "profile shift, root and the planet–ring backlash are not modelled; give the "
+                             "allowances on the sun and the planets (docs/planetary.md, \"Tooth-thickness "
+                             "allowances\")")
+        return None
 
 
 class Carrier(_Table):
@@ -297,7 +311,7 @@ class PlanetaryStage(_Table):
     normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
-    sun: Gear
+    sun: PairGear
     planet: Planet
     ring: Ring
     carrier: Carrier = Carrier()

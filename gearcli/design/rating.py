@@ -169,7 +169,7 @@ def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulat
         tooth_depth_mm=_tooth_depth_mm(stage, st)), simulated_k_v)
 
 
-def _root_shift(g, choice: str) -> float:
+def root_shift(g, choice: str) -> float:
     """The profile shift method B rates the root at: x, or x_E of the chosen allowance (docs/iso6336.md,
     "Allowances in the strength rating")."""
     x_e = g.generating_profile_shift
@@ -254,7 +254,7 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
     sig_h = flank.z_bd[i] * flank.sigma_h
     sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1
     form = rr.tooth_form(g.teeth, m_n, math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg),
-                         math.radians(st.base_helix_angle_deg), _root_shift(g, rating.root_profile_shift),
+                         math.radians(st.base_helix_angle_deg), root_shift(g, rating.root_profile_shift),
                          g.tip_diameter_mm,
                          g.pitch_diameter_mm, st.contact_ratio_transverse,
                          (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
