@@ -21,6 +21,7 @@ from pydantic import (
     field_validator,
     model_validator,
 )
+from pydantic.json_schema import SkipJsonSchema
 
 from gearcli.config.bounds_types import NotTiny, StrictTable
 from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file's tables, one namespace)
@@ -249,6 +250,10 @@ class Stage(_Table):
         return self.gear.teeth / self.pinion.teeth
 
 
+class Sun(PairGear):
+    """The sun of a planetary stage (its allowances act on the sun–planet mesh)."""
+
+
 class Planet(PairGear):
     """The planets of a planetary stage: one gear description and how many there are."""
 
@@ -268,9 +273,10 @@ class Ring(Gear):
     # the pinion-type cutter that generates the ring: its teeth z_0 set the root fillet the ring's tooth-root rating
     # uses (ISO 6336-3 for internal gears); absent: the basic rack's fillet (z_0 -> infinity: smaller, conservative)
     cutter_teeth: Annotated[int, Field(ge=8, le=200)] | None = None
-    # the allowances of an internal gear are not modelled: named here to refuse them with the reason
-    tooth_thickness_allowance_mm: AllowancePair | None = None
-    tip_diameter_allowance_mm: AllowancePair | None = None
+    # the allowances of an internal gear are not modelled: named here (not in the schema) to refuse them with the
+    # reason
+    tooth_thickness_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
+    tip_diameter_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
 
     @field_validator("tooth_thickness_allowance_mm", "tip_diameter_allowance_mm")
     @classmethod
@@ -311,7 +317,7 @@ class PlanetaryStage(_Table):
     normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
-    sun: PairGear
+    sun: Sun
     planet: Planet
     ring: Ring
     carrier: Carrier = Carrier()
