@@ -42,6 +42,7 @@ HB_PER_HV = 0.95  # Brinell from Vickers for steels below ~450 HV (ISO 18265, ap
 PITTING_LOW = "pitting_safety_low"
 BENDING_LOW = "bending_safety_low"
 OUT_OF_RANGE = "rating_out_of_range"
+NOT_ISO = "rating_not_iso"  # a rating option that departs from the standard ([rating] virtual_tooth_count)
 Q_S_RANGE = (1.0, 8.0)  # the notch parameter range of Y_S, method B (ISO 6336-3:2006, 7.2)
 
 
@@ -81,8 +82,19 @@ def rate_design(cfg: DesignFile, stages: tuple[StageResult, ...]) -> tuple[tuple
     if cfg.rating is None:
         return stages, ()
     rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) for k, st in enumerate(stages))
-    return rated, tuple(d for k, st in enumerate(rated) for d in range_diagnostics(cfg, k, st)
-                        + safety_diagnostics(cfg, st))
+    return rated, (*not_iso_diagnostics(cfg), *(d for k, st in enumerate(rated) for d in range_diagnostics(cfg, k, st)
+                                                 + safety_diagnostics(cfg, st)))
+
+
+def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:
+    """A warning where a ``[rating]`` option departs from ISO 6336: the tooth root's load angle γ_e with z/cos³ β
+    (``virtual_tooth_count = "cos3"``, docs/iso6336.md), so no one signs the figures as ISO's."""
+    if cfg.rating is None or cfg.rating.virtual_tooth_count == "iso":
+        return []
+    return [warning(NOT_ISO, "[rating] virtual_tooth_count = \"cos3\": the tooth root's load angle γ_e divides by "
+                    "z/cos³ β, not by ISO 6336-3's z_n = z/(cos² β_b cos β); Y_F, Y_S, σ_F0, σ_F and S_F reproduce "
+                    "reports of tools that use it and are not ISO 6336-3's", quantity="virtual_tooth_count",
+                    value="cos3")]
 
 
 def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:

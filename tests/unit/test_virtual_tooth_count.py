@@ -80,6 +80,11 @@ def test_absent_is_iso_and_a_bad_value_exits_2_naming_the_key():
     # everything but the provenance block (the input file's hash) is equal
     a, b = json.loads(absent.stdout), json.loads(iso.stdout)
     assert {k: v for k, v in a.items() if k != "input_sha256"} == {k: v for k, v in b.items() if k != "input_sha256"}
+    assert not any(w["code"] == "rating_not_iso" for w in a["warnings"])
+    cos3 = _design('virtual_tooth_count = "cos3"')
+    assert cos3.exit_code == 0
+    (w,) = [w for w in json.loads(cos3.stdout)["warnings"] if w["code"] == "rating_not_iso"]
+    assert "cos³" in w["message"] and w["value"] == "cos3"
     bad = _design('virtual_tooth_count = "z3"')
     assert bad.exit_code == 2
     assert "rating.virtual_tooth_count" in bad.output and "Traceback" not in bad.output
