@@ -347,7 +347,8 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     if dump_model:
         emit(api.model_source(loaded.design, design_result), target)  # -o FILE honoured (atomically)
         return
-    api.check_budget(loaded, design_result, output_format=target.fmt, series=series)
+    # the bearings' CSV holds no series: budgeted as the JSON summary
+    api.check_budget(loaded, design_result, output_format="json" if bearings else target.fmt, series=series)
     warn(design_result.warnings)
     from gearcli.io import serialize  # lazy: start-up time of --help
     from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
