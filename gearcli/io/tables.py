@@ -121,11 +121,14 @@ def _allowance_table(r: DesignResult) -> list[RenderableType]:
     s = [st for st in r.stages if st.backlash_circumferential_mm is not None]
     if not s:
         return []
-    return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", [f"stage {st.index}" for st in s], [
-        ("pinion x_E e / i", [_limits(st.pinion.generating_profile_shift, 4) for st in s]),
-        ("  gear x_E e / i", [_limits(st.gear.generating_profile_shift, 4) for st in s]),
-        ("pinion d_f e / i [mm]", [_limits(st.pinion.manufactured_root_diameter_mm, 3) for st in s]),
-        ("  gear d_f e / i [mm]", [_limits(st.gear.manufactured_root_diameter_mm, 3) for st in s]),
+    # a planetary stage's pair is its sun–planet mesh: its pinion is the sun, its gear a planet
+    one, two = ("pinion/sun", "gear/planet") if any(st.planetary for st in s) else ("pinion", "  gear")
+    heads = [f"stage {st.index}" + (" sun–planet" if st.planetary else "") for st in s]
+    return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", heads, [
+        (f"{one} x_E e / i", [_limits(st.pinion.generating_profile_shift, 4) for st in s]),
+        (f"{two} x_E e / i", [_limits(st.gear.generating_profile_shift, 4) for st in s]),
+        (f"{one} d_f e / i [mm]", [_limits(st.pinion.manufactured_root_diameter_mm, 3) for st in s]),
+        (f"{two} d_f e / i [mm]", [_limits(st.gear.manufactured_root_diameter_mm, 3) for st in s]),
         ("backlash j_t max / min [mm]", [_limits(st.backlash_circumferential_mm, 3) for st in s]),
         ("backlash j_n max / min [mm]", [_limits(st.backlash_normal_mm, 3) for st in s]),
         ("ε_α e / m / i", [_limits(st.contact_ratio_transverse_with_allowances, 3) for st in s]),
