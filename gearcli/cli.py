@@ -28,6 +28,7 @@ from gearcli.errors import (
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
     EXIT_USAGE,
+    ConfigError,
     GearcliError,
     OutputError,
     Terminated,
@@ -175,6 +176,28 @@ def _tty_default(pipe_format: str) -> Callable[[], str]:
     return lambda: "table" if sys.stdout.isatty() else pipe_format
 
 
+def csv_table_option(default: str, what: str) -> Callable:
+    """``--table``: which table ``--format csv`` writes, the command's own (``default``) or the bearings'."""
+    return click.option("--table", "csv_table", type=click.Choice((default, "bearings")), default=default,
+                        show_default=True,
+                        help=f"The CSV's table: {what}, or bearings (a row per [[bearing]], its JSON figures: "
+                             "L10, ISO 281 modified life, ISO 76 static safety; docs/bearings.md).")
+
+
+def wants_bearing_csv(csv_table: str, default: str, fmt: str, loaded) -> bool:
+    """True for ``--table bearings``; exit 2 (before any long computation) with another format than CSV or a
+    design file without ``[[bearing]]`` tables."""
+    if csv_table == default:
+        return False
+    if fmt != "csv":
+        raise click.UsageError(f"--table {csv_table} chooses the table of --format csv; the {fmt} output shows "
+                               "every table")
+    if not loaded.design.bearing:
+        raise ConfigError("--table bearings: the design file has no [[bearing]] table", key="bearing",
+                          source=loaded.source)
+    return True
+
+
 #: the parameters of any command that name a file it reads: the design file, ``life --series``. The one rule
 #: that protects inputs: neither ``-o`` nor ``--plots`` may write over any of them (a sweep's resume file is
 #: its ``-o``, which ``--plots`` may not write over either).
@@ -282,18 +305,21 @@ Examples:
 """)
 @click.argument("file", type=str)
 @io_options()
+@csv_table_option("stages", "stages (a row per stage)")
 @guarded
-def design(file: str, overrides, fmt, output) -> None:
+def design(file: str, overrides, fmt, output, csv_table: str = "stages") -> None:
     """Ratios, speeds, torques, helical geometry, contact ratios, stiffness and static forces."""
     from gearcli import api  # lazy: start-up time of --help
     from gearcli.io import serialize  # lazy: start-up time of --help
 
     target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
+    bearings = wants_bearing_csv(csv_table, "stages", target.fmt, loaded)
     result = api.with_resonances(loaded.design, result)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.design_dict(result),
-            csv_text=lambda: serialize.design_csv(result), table_builder="design_tables")
+            csv_text=lambda: serialize.design_bearings_csv(result) if bearings else serialize.design_csv(result),
+            table_builder="design_tables")
     warn(result.warnings)
 
 
@@ -308,17 +334,21 @@ Examples:
 @io_options()
 @click.option("--series", is_flag=True, help="Include the time series in JSON output (CSV always has them).")
 @click.option("--dump-model", is_flag=True, help="Print the scene's generated equations (Python source) and exit.")
+@csv_table_option("series", "series (a row per output sample)")
 @guarded
-def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool = False) -> None:
+def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool = False,
+             csv_table: str = "series") -> None:
     """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
     from gearcli import api  # lazy: start-up time of --help
 
     target = check_target(fmt, output)
     loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
+    bearings = wants_bearing_csv(csv_table, "series", target.fmt, loaded)
     if dump_model:
         emit(api.model_source(loaded.design, design_result), target)  # -o FILE honoured (atomically)
         return
-    api.check_budget(loaded, design_result, output_format=target.fmt, series=series)
+    # the bearings' CSV holds no series: budgeted as the JSON summary
+    api.check_budget(loaded, design_result, output_format="json" if bearings else target.fmt, series=series)
     warn(design_result.warnings)
     from gearcli.io import serialize  # lazy: start-up time of --help
     from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
@@ -327,7 +357,8 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
         result = api.simulate_file(loaded, design_result, progress=progress.fraction)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
-            csv_text=lambda: serialize.simulation_csv(result), table_builder="simulation_tables")
+            csv_text=lambda: (serialize.simulation_bearings_csv(result) if bearings
+                              else serialize.simulation_csv(result)), table_builder="simulation_tables")
     warn(w for w in result.warnings if w not in design_result.warnings)  # the design's went out first
 
 
@@ -639,23 +670,27 @@ Examples:
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
               help="Also write pitting.png and bending.png (spectra against the S-N curves) to DIR "
                    "(pip install 'gearcli[plot]').")
+@csv_table_option("classes", "classes (a row per load class)")
 @guarded
-def life(file: str, overrides, fmt, output, static: bool, series, classes: int, miner: str, plots_dir) -> None:
+def life(file: str, overrides, fmt, output, static: bool, series, classes: int, miner: str, plots_dir,
+         csv_table: str = "classes") -> None:
     """Duty cycle to life: load spectra, ISO 6336-6 Miner damage per member, ISO 281 bearing lives."""
     from gearcli import api  # lazy: start-up time of --help
-    from gearcli.io.life_out import life_csv, life_dict  # lazy: start-up time of --help
+    from gearcli.io.life_out import life_bearings_csv, life_csv, life_dict  # lazy: start-up time of --help
 
     target = check_target(fmt, output)
     if plots_dir:
         check_plots_dir(plots_dir, ("pitting.png", "bending.png"), target)
     session = api.prepare_life(file, overrides, series=series, classes=classes)
+    bearings = wants_bearing_csv(csv_table, "classes", target.fmt, session.loaded)
     warn(session.design.warnings)
     from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
 
     with TerminalProgress("life", enabled=not is_quiet()) as progress:
         result = api.life(session, static=static, variant=miner, progress=progress)
     emit_as(target.fmt, target, result, sha256=session.loaded.sha256, json_doc=lambda: life_dict(result),
-            csv_text=lambda: life_csv(result), table_builder="life_tables")
+            csv_text=lambda: life_bearings_csv(result) if bearings else life_csv(result),
+            table_builder="life_tables")
     warn(w for w in result.warnings if w not in session.design.warnings)
     if plots_dir:
         _write_life_plots(result, plots_dir)

@@ -22,6 +22,7 @@ from pydantic import (
     field_validator,
     model_validator,
 )
+from pydantic.json_schema import SkipJsonSchema
 from pydantic_core import core_schema
 
 from gearcli.config.bounds_types import NotTiny, StrictTable
@@ -170,11 +171,12 @@ class Gear(_Table):
 
 
 class PairGear(Gear):
-    """One gear of a parallel stage: pinion (driving) or gear (driven)."""
+    """One gear of an external pair: a parallel stage's pinion (driving) or gear (driven), a planetary stage's
+    sun or planet."""
 
     # tooth thickness allowances [A_sne, A_sni] (normal section, mm) and tip diameter allowances [A_dae, A_dai]:
     # generating profile shifts, manufactured root diameters, backlash and contact ratio with allowances
-    # (docs/iso6336.md, "Tooth-thickness allowances"); parallel stages
+    # (docs/iso6336.md, "Tooth-thickness allowances"); a planetary stage's sun–planet mesh (docs/planetary.md)
     tooth_thickness_allowance_mm: AllowancePair | None = None
     tip_diameter_allowance_mm: AllowancePair | None = None
 
@@ -251,7 +253,11 @@ class Stage(_Table):
         return self.gear.teeth / self.pinion.teeth
 
 
-class Planet(Gear):
+class Sun(PairGear):
+    """The sun of a planetary stage (its allowances act on the sun–planet mesh)."""
+
+
+class Planet(PairGear):
     """The planets of a planetary stage: one gear description and how many there are."""
 
     count: Annotated[int, Field(ge=1, le=20)]
@@ -270,6 +276,20 @@ class Ring(Gear):
     # the pinion-type cutter that generates the ring: its teeth z_0 set the root fillet the ring's tooth-root rating
     # uses (ISO 6336-3 for internal gears); absent: the basic rack's fillet (z_0 -> infinity: smaller, conservative)
     cutter_teeth: Annotated[int, Field(ge=8, le=200)] | None = None
+    # the allowances of an internal gear are not modelled: named here (not in the schema) to refuse them with the
+    # reason
+    tooth_thickness_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
+    tip_diameter_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
+
+    @field_validator("tooth_thickness_allowance_mm", "tip_diameter_allowance_mm")
+    @classmethod
+    def _no_internal_allowances(cls, value: list[float] | None) -> None:
+        if value is not None:
+            raise ValueError("the ring (an internal gear) takes no manufacturing allowance yet: its generating "
+                             "profile shift, root and the planet–ring backlash are not modelled; give the "
+                             "allowances on the sun and the planets (docs/planetary.md, \"Tooth-thickness "
+                             "allowances\")")
+        return None
 
 
 class Carrier(_Table):
@@ -300,7 +320,7 @@ class PlanetaryStage(_Table):
     normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]
     normal_pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     helix_angle_deg: Annotated[float, Field(ge=0, lt=45)] = 0.0
-    sun: Gear
+    sun: Sun
     planet: Planet
     ring: Ring
     carrier: Carrier = Carrier()
@@ -645,6 +665,9 @@ class Rating(_Table):
     # the generating x_E of the "lower" (default: the thinnest tooth, as K_Fbeta's depth), "upper" or "mean"
     # allowance, or the "nominal" x (as some commercial reports rate)
     root_profile_shift: Literal["nominal", "upper", "lower", "mean"] = "lower"
+    # the virtual tooth count in method B's load angle γ_e: ISO 6336-3's z_n = z/(cos² β_b cos β) ("iso"), or the
+    # classical approximation z/cos³ β ("cos3", not ISO: reproduces reports of tools that use it; docs/iso6336.md)
+    virtual_tooth_count: Literal["iso", "cos3"] = "iso"
     dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
     load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
     # a bearing's ISO 76 s_0 below it warns; absent: ball 1.0, roller 1.5 (docs/bearings.md)

@@ -95,9 +95,9 @@ def stage_balance(stage: PlanetaryStage, k: int, output_torque_Nmm: float) -> tu
 # --------------------------------------------------------------------------- equivalent pair
 def sun_planet_stage(stage: PlanetaryStage) -> Stage:
     """The sun–planet mesh as a parallel stage (pinion = sun, gear = planet), for the external-pair code."""
-    from gearcli.config.schema import Gear, Stage  # lazy: config (pydantic) stays out of design's import
+    from gearcli.config.schema import PairGear, Stage  # lazy: config (pydantic) stays out of design's import
 
-    planet = Gear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg", "position_error_um", "angles_deg"}))
+    planet = PairGear.model_validate(stage.planet.model_dump(exclude={"count", "mass_kg", "position_error_um", "angles_deg"}))
     return Stage.model_validate({
         "normal_module_mm": stage.normal_module_mm, "normal_pressure_angle_deg": stage.normal_pressure_angle_deg,
         "helix_angle_deg": stage.helix_angle_deg, "pinion": stage.sun.model_dump(), "gear": planet.model_dump(),

@@ -43,6 +43,7 @@ HB_PER_HV = 0.95  # Brinell from Vickers for steels below ~450 HV (ISO 18265, ap
 PITTING_LOW = "pitting_safety_low"
 BENDING_LOW = "bending_safety_low"
 OUT_OF_RANGE = "rating_out_of_range"
+NOT_ISO = "rating_not_iso"  # a rating option that departs from the standard ([rating] virtual_tooth_count)
 Q_S_RANGE = (1.0, 8.0)  # the notch parameter range of Y_S, method B (ISO 6336-3:2006, 7.2)
 
 
@@ -84,8 +85,19 @@ def rate_design(cfg: DesignFile, stages: tuple[StageResult, ...]) -> tuple[tuple
         return stages, ()
     pairs = dict(gear_pairs(stages))
     rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) if k in pairs else st for k, st in enumerate(stages))
-    return rated, tuple(d for k, st in enumerate(rated) if k in pairs for d in range_diagnostics(cfg, k, st)
-                        + safety_diagnostics(cfg, st))
+    return rated, (*not_iso_diagnostics(cfg), *(d for k, st in enumerate(rated) if k in pairs
+                                                 for d in range_diagnostics(cfg, k, st) + safety_diagnostics(cfg, st)))
+
+
+def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:
+    """A warning where a ``[rating]`` option departs from ISO 6336: the tooth root's load angle γ_e with z/cos³ β
+    (``virtual_tooth_count = "cos3"``, docs/iso6336.md), so no one signs the figures as ISO's."""
+    if cfg.rating is None or cfg.rating.virtual_tooth_count == "iso":
+        return []
+    return [warning(NOT_ISO, "[rating] virtual_tooth_count = \"cos3\": the tooth root's load angle γ_e divides by "
+                    "z/cos³ β, not by ISO 6336-3's z_n = z/(cos² β_b cos β); Y_F, Y_S, σ_F0, σ_F and S_F reproduce "
+                    "reports of tools that use it and are not ISO 6336-3's", quantity="virtual_tooth_count",
+                    value="cos3")]
 
 
 def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
@@ -172,7 +184,7 @@ def _load_factors(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, simulat
         tooth_depth_mm=_tooth_depth_mm(stage, st)), simulated_k_v)
 
 
-def _root_shift(g, choice: str) -> float:
+def root_shift(g, choice: str) -> float:
     """The profile shift method B rates the root at: x, or x_E of the chosen allowance (docs/iso6336.md,
     "Allowances in the strength rating")."""
     x_e = g.generating_profile_shift
@@ -259,10 +271,11 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
     sig_h = flank.z_bd[i] * flank.sigma_h
     sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1
     form = rr.tooth_form(g.teeth, m_n, math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg),
-                         math.radians(st.base_helix_angle_deg), _root_shift(g, rating.root_profile_shift),
+                         math.radians(st.base_helix_angle_deg), root_shift(g, rating.root_profile_shift),
                          g.tip_diameter_mm,
                          g.pitch_diameter_mm, st.contact_ratio_transverse,
-                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+                         (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
+                         virtual_tooth_count=rating.virtual_tooth_count)
     if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
         raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
                           f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "

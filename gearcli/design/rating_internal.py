@@ -32,6 +32,7 @@ from gearcli.design.rating import (
     Q_S_RANGE,
     STANDARD,
     STRESS_CORRECTION_TEST_GEAR,
+    root_shift,
 )
 from gearcli.design.rating_load import MeshLoad, resolve_load_factors
 from gearcli.design.rating_results import InternalRatingResult, MemberRating
@@ -129,10 +130,15 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     # ISO 6336-3: the planet's root on its ring side (an external gear cut by the rack; an idler: Y_M = 0.7)
     rack = (stage.basic_rack.dedendum, stage.basic_rack.root_radius)
     an = math.radians(st.normal_pressure_angle_deg)
-    forms = (rr.tooth_form(planet.teeth, m_n, an, beta, beta_b, planet.profile_shift, planet.tip_diameter_mm,
-                           planet.pitch_diameter_mm, eps_a, rack),
+    z_gamma = rating.virtual_tooth_count
+    # the planet's root at x, or at x_E of its tooth-thickness allowance (``[rating] root_profile_shift``), as in
+    # its sun mesh; the ring takes no allowance (schema)
+    forms = (rr.tooth_form(planet.teeth, m_n, an, beta, beta_b, root_shift(planet, rating.root_profile_shift),
+                           planet.tip_diameter_mm, planet.pitch_diameter_mm, eps_a, rack,
+                           virtual_tooth_count=z_gamma),
              rr.internal_tooth_form(ring.teeth, m_n, an, beta, beta_b, ring.profile_shift, ring.tip_diameter_mm,
-                                    ring.pitch_diameter_mm, eps_a, rack, cutter_teeth=stage.ring.cutter_teeth))
+                                    ring.pitch_diameter_mm, eps_a, rack, cutter_teeth=stage.ring.cutter_teeth,
+                                    virtual_tooth_count=z_gamma))
     y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
     y_bs = (rr.rim_factor(stage.planet.rim_thickness_mm, 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm)),
             rr.internal_rim_factor(stage.ring.rim_thickness_mm, 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)))

@@ -21,11 +21,26 @@ def _fillet_angle(g: float, z_n: float, h: float, iterations: int) -> float:
     return theta
 
 
+VIRTUAL_TOOTH_COUNTS = ("iso", "cos3")  # [rating] virtual_tooth_count: z_n in the load angle γ_e
+
+
+def load_angle_teeth(teeth: float, helix_rad: float, base_helix_rad: float, choice: str = "iso") -> float:
+    """The virtual tooth count γ_e divides by: ISO 6336-3's z_n = z/(cos² β_b cos β) (``"iso"``), or the classical
+    approximation z/cos³ β (``"cos3"``, which some commercial tools use there; docs/iso6336.md, "The virtual tooth
+    count in the load angle"). Signed as ``teeth`` (an internal gear's z_n < 0)."""
+    if choice == "cos3":
+        return teeth / math.cos(helix_rad) ** 3
+    if choice != "iso":
+        raise ValueError(f"virtual_tooth_count {choice!r}: one of {VIRTUAL_TOOTH_COUNTS}")
+    return teeth / (math.cos(base_helix_rad) ** 2 * math.cos(helix_rad))
+
+
 def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, helix_rad: float,
                base_helix_rad: float, profile_shift: float, tip_diameter: float, reference_diameter: float,
-               eps_alpha: float, rack: tuple[float, float]) -> dict[str, float]:
+               eps_alpha: float, rack: tuple[float, float], *, virtual_tooth_count: str = "iso") -> dict[str, float]:
     """Y_F, Y_S and the root geometry by method B (ISO 6336-3:2006, 6.2 and 7.2) for an external gear cut by
     the basic rack (h_fP*, ρ_fP*) without protuberance: the 30° tangent to the root fillet, θ by iteration.
+    ``virtual_tooth_count``: the z_n of the load angle γ_e (:func:`load_angle_teeth`; every other z_n is ISO's).
 
     Returns ``Y_F``, ``Y_S``, ``s_Fn``, ``h_Fe``, ``rho_F``, ``alpha_Fen`` (rad), ``q_s``, ``d_en``.
     """
@@ -46,7 +61,8 @@ def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, hel
     d_en = 2.0 * math.sqrt((math.sqrt((d_an / 2.0) ** 2 - (d_bn / 2.0) ** 2) - p * (eps_an - 1.0)) ** 2
                            + (d_bn / 2.0) ** 2)
     alpha_en = math.acos(d_bn / d_en)
-    gamma_e = (0.5 * math.pi + 2.0 * profile_shift * math.tan(an)) / z_n + (math.tan(an) - an) \
+    z_gamma = load_angle_teeth(teeth, helix_rad, base_helix_rad, virtual_tooth_count)
+    gamma_e = (0.5 * math.pi + 2.0 * profile_shift * math.tan(an)) / z_gamma + (math.tan(an) - an) \
         - (math.tan(alpha_en) - alpha_en)
     alpha_fen = alpha_en - gamma_e
     h_fe = 0.5 * m * ((math.cos(gamma_e) - math.sin(gamma_e) * math.tan(alpha_fen)) * d_en / m
@@ -129,7 +145,7 @@ IDLER_MEAN_STRESS_FACTOR = 0.7  # Y_M of an idler's root (alternating bending), 
 def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, helix_rad: float,
                         base_helix_rad: float, profile_shift: float, tip_diameter: float, reference_diameter: float,
                         eps_alpha: float, rack: tuple[float, float],
-                        cutter_teeth: float | None = None) -> dict[str, float]:
+                        cutter_teeth: float | None = None, *, virtual_tooth_count: str = "iso") -> dict[str, float]:
     """Y_F, Y_S and the root geometry of an internal gear by method B (ISO 6336-3:2006, 6.2 and 7.2).
 
     ``teeth``, ``tip_diameter`` and ``reference_diameter`` are given positive, ``profile_shift`` with the sign of
@@ -139,6 +155,7 @@ def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: f
     outer point of single tooth contact of the ring, whose roll length exceeds the tip's by p_bn (ε_αn − 1).
     The fillet radius is the one a pinion-type cutter of ``cutter_teeth`` z_0 generates, z_0 in place of z_n in
     ρ_F = ρ_fP + 2 G² m_n/(cos θ (z_0 cos² θ − 2 G)); without a cutter the substitute rack's (z_0 → ∞): ρ_F = ρ_fP.
+    ``virtual_tooth_count``: the z_n of the load angle γ_e, as :func:`tooth_form`'s.
 
     Returns ``Y_F``, ``Y_S``, ``s_Fn``, ``h_Fe``, ``rho_F``, ``alpha_Fen`` (rad), ``q_s``, ``d_en`` and ``d_sFn``
     (positive, mm).
@@ -166,7 +183,8 @@ def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: f
     d_en = 2.0 * math.hypot(math.sqrt(max((d_an / 2.0) ** 2 - (d_bn / 2.0) ** 2, 0.0)) + p * (eps_an - 1.0),
                             d_bn / 2.0)
     alpha_en = math.acos(d_bn / d_en)
-    gamma_e = (0.5 * math.pi + 2.0 * profile_shift * math.tan(an)) / z_n + (math.tan(an) - an) \
+    z_gamma = load_angle_teeth(-teeth, helix_rad, base_helix_rad, virtual_tooth_count)
+    gamma_e = (0.5 * math.pi + 2.0 * profile_shift * math.tan(an)) / z_gamma + (math.tan(an) - an) \
         - (math.tan(alpha_en) - alpha_en)  # negative: the ring's tooth thickens towards its root
     alpha_fen = alpha_en - gamma_e
     h_fe = 0.5 * (d_sfn - (math.cos(gamma_e) - math.sin(gamma_e) * math.tan(alpha_fen)) * d_en)

@@ -12,7 +12,7 @@ from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.io.life_tables import modified_rows
-from gearcli.io.serialize import csv_text, plain
+from gearcli.io.serialize import bearings_csv, csv_text, plain
 from gearcli.io.table_kit import FittedTable, StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife, StageLife
 from gearcli.results import drop_absent_bearing_keys
@@ -44,6 +44,12 @@ def life_dict(r: LifeResult) -> JsonObject:
                  "stages": stages, "bearings": _bearing_docs(r), "points": plain(r.points)},
         "warnings": list(r.warnings),
     }
+
+
+def life_bearings_csv(r: LifeResult) -> str:
+    """``gearcli life --table bearings``: the life JSON's ``bearings``, a row each (per-point lists a column per
+    point)."""
+    return bearings_csv(_bearing_docs(r))
 
 
 def _mode_dict(ml: ModeLife) -> JsonObject:

@@ -236,6 +236,48 @@ def design_csv(result: DesignResult) -> str:
     return csv_text(header, ([r.get(h, "") for h in header] for r in rows))
 
 
+def design_bearings_csv(result: DesignResult) -> str:
+    """``gearcli design --table bearings``: the design JSON's ``bearings``, a row each."""
+    return bearings_csv(_design_doc(result).get("bearings", []))
+
+
+def simulation_bearings_csv(result: SimulationResult) -> str:
+    """``gearcli simulate --table bearings``: the run's ``summary.bearings``, a row each."""
+    return bearings_csv(plain(result.extra.get("bearings", [])) if result.extra else [])
+
+
+def bearings_csv(docs: JsonValue) -> str:
+    """One row per ``[[bearing]]`` (``--table bearings``): ``bearing`` (j of ``bearing[j]``), then the bearing's
+    JSON keys by their JSON names, objects flattened (``radial_N_max``), a list of per-duty-point values as one
+    column per point, 1-based in the order of ``life.points`` (``kappa_points_2``); a key a bearing lacks (no C_0,
+    no C_u) is an empty cell."""
+    rows: list[dict[str, JsonScalar]] = []
+    for j, doc in enumerate(docs if isinstance(docs, list) else []):
+        assert isinstance(doc, dict)
+        row: dict[str, JsonScalar] = {"bearing": j}
+        for key, value in doc.items():
+            if isinstance(value, dict):
+                row.update(flatten(value, key + "_"))
+            elif isinstance(value, (list, tuple)):
+                row.update({f"{key}_{i}": _scalar(v) for i, v in enumerate(value, start=1)})
+            else:
+                row[key] = _scalar(value)
+        rows.append(row)
+    header: list[str] = []
+    for row in rows:
+        header += [h for h in row if h not in header]
+    return csv_text(header, ([_blank(r.get(h)) for h in header] for r in rows))
+
+
+def _blank(v: JsonScalar | None) -> JsonScalar:
+    return "" if v is None else v
+
+
+def _scalar(v: JsonValue) -> JsonScalar:
+    assert not isinstance(v, (list, tuple, dict)), "a bearing's JSON nests no deeper than one list or object"
+    return v  # type: ignore[return-value]
+
+
 def _named_meshes(stage: _Doc) -> _Doc:
     """A planetary stage's ``meshes`` list as ``{name: mesh}`` (CSV columns ``sun_planet_...``)."""
     if "meshes" not in stage:

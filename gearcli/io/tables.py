@@ -123,6 +123,10 @@ class StageOutput(Protocol):
         """The stage's members are a pinion and a gear (their rows in the loads table)."""
 
     @property
+    def pair_names(self) -> tuple[str, str] | None:
+        """The names of its pair's members where they are not a pinion and a gear (a planetary's sun, planet)."""
+
+    @property
     def load_sharing(self) -> bool:
         """The stage's rating has a load-sharing factor K_γ (a row of the rating table)."""
 
@@ -163,11 +167,16 @@ def _allowance_table(stages: list) -> list[RenderableType]:
     s = [st for st in stages if st.backlash_circumferential_mm is not None]
     if not s:
         return []
-    return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", [f"stage {st.index}" for st in s], [
-        ("pinion x_E e / i", [_limits(st.pinion.generating_profile_shift, 4) for st in s]),
-        ("  gear x_E e / i", [_limits(st.gear.generating_profile_shift, 4) for st in s]),
-        ("pinion d_f e / i [mm]", [_limits(st.pinion.manufactured_root_diameter_mm, 3) for st in s]),
-        ("  gear d_f e / i [mm]", [_limits(st.gear.manufactured_root_diameter_mm, 3) for st in s]),
+    # a kind whose pair members have names of their own (a planetary's sun–planet mesh: its pinion is the sun, its
+    # gear a planet) names them
+    named = [n for st in s if (n := _kind(st).pair_names)]
+    one, two = (f"pinion/{named[0][0]}", f"gear/{named[0][1]}") if named else ("pinion", "  gear")
+    heads = [f"stage {st.index}" + (f" {n[0]}–{n[1]}" if (n := _kind(st).pair_names) else "") for st in s]
+    return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", heads, [
+        (f"{one} x_E e / i", [_limits(st.pinion.generating_profile_shift, 4) for st in s]),
+        (f"{two} x_E e / i", [_limits(st.gear.generating_profile_shift, 4) for st in s]),
+        (f"{one} d_f e / i [mm]", [_limits(st.pinion.manufactured_root_diameter_mm, 3) for st in s]),
+        (f"{two} d_f e / i [mm]", [_limits(st.gear.manufactured_root_diameter_mm, 3) for st in s]),
         ("backlash j_t max / min [mm]", [_limits(st.backlash_circumferential_mm, 3) for st in s]),
         ("backlash j_n max / min [mm]", [_limits(st.backlash_normal_mm, 3) for st in s]),
         ("ε_α e / m / i", [_limits(st.contact_ratio_transverse_with_allowances, 3) for st in s]),

@@ -30,6 +30,7 @@ class ParallelOutput:
     """A parallel stage: pinion and gear in the common tables, today's JSON keys (no ``type``)."""
 
     pair_members = True
+    pair_names: tuple[str, str] | None = None
     load_sharing = False
 
     def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
@@ -54,6 +55,7 @@ class PlanetaryOutput:
     the members and the two meshes per planet."""
 
     pair_members = False
+    pair_names = ("sun", "planet")
     load_sharing = True
 
     def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:

@@ -95,7 +95,8 @@ def test_tooth_root_strength(drive_large):
     # where gearcli has 14.03/16.09 and 23.875/22.191° from the same sFn 31.18/32.75, roF 5.95/5.39, qs 2.620/3.036
     # and den 369.487/1415.619 (all matched, below): the report's γ_e (the tooth's half-angle at the load point)
     # divides by z/cos³ β where ISO 6336-3 has z_n = z/(cos² β_b cos β); written out, that reproduces every printed
-    # root figure (test_allowances_kisssoft.py). The effect on Y_F·Y_S is 0.08 %; tolerance 1 % of Y_S.
+    # root figure (test_allowances_kisssoft.py, where [rating] virtual_tooth_count = "cos3" makes gearcli print
+    # them). The effect on Y_F·Y_S is 0.08 %; tolerance 1 % of Y_S.
     assert_allclose([small.Y_S, large.Y_S], [2.28, 2.35], rtol=1e-2)
     assert_allclose(r.Y_beta, 0.917, atol=5e-4)  # Ybet
     assert [small.Y_DT, large.Y_DT, small.Y_B, large.Y_B] == [1.0, 1.0, 1.0, 1.0]  # YDT 1.000, YB 1.00 / 1.00

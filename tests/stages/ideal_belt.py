@@ -196,8 +196,8 @@ SIMULATED = {"tangential_N": "span_force_N", "static_tangential_N": "static_span
 class BeltOutput:
     """The ``"io"`` facet: no gear columns, its own table, its JSON objects."""
 
-    gear_columns = False
     pair_members = False
+    pair_names = None
     load_sharing = False
 
     def design_tables(self, r, stages: list[BeltResult]) -> list:

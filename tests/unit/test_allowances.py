@@ -129,10 +129,11 @@ def test_bad_allowances_exit_2_naming_the_key(old, new, key):
     assert key in res.output and "Traceback" not in res.output
 
 
-def test_planetary_members_have_no_allowance_keys():
+def test_a_planetary_ring_has_no_allowance_keys():
+    """The sun and planets take them (tests/unit/test_planetary_allowances.py); the ring, an internal gear, not."""
     text = (ROOT / "configs" / "planetary_stage.toml").read_text()
     doc = tomllib.loads(text)
     assert doc["stage"][0]["type"] == "planetary"
-    res = _run(text=text.replace("profile_shift = 0.617", "profile_shift = 0.617, tooth_thickness_allowance_mm = "
+    res = _run(text=text.replace("profile_shift = -0.5013", "profile_shift = -0.5013, tooth_thickness_allowance_mm = "
                                  "[-0.1, -0.2]", 1))
-    assert res.exit_code == 2 and "tooth_thickness_allowance_mm" in res.output
+    assert res.exit_code == 2 and "ring.tooth_thickness_allowance_mm" in res.output
