@@ -34,6 +34,7 @@ import numpy as np
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
 from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
+from gearcli.model.layout import QUADRATURES
 from gearcli.model.parts import Connector
 
 
@@ -77,7 +78,7 @@ def _input_motion_lines(lay: Layout) -> list[str]:
 
 
 def _prologue(lay: Layout) -> list[str]:
-    lines = [f"    {', '.join(lay.state_names)}, = y.tolist()"]
+    lines = [f"    {', '.join(lay.state.names)}, = y.tolist()"]
     if lay.speed_drive:
         lines += _input_motion_lines(lay)
     elif lay.motor_drive:  # the motor's torque at its speed (gearcli.model.elements.machine), dTw = dTin/dw0
@@ -245,11 +246,16 @@ def rhs_source(lay: Layout) -> str:
     lines = ["def rhs(t, y):"] + _prologue(lay)
     for c in range(lay.n_conn):
         lines += _connector_lines(lay, c, jacobian=False)
-    out = [f"dd{c}" for c in range(lay.n_conn)]
-    out += [f"({_body_torque(lay, i)}) * {lit(1.0 / lay.inertias[i])}" for i in lay.free_bodies]
-    if lay.has_theta_state:
-        out.append("w0")
-    out += _quadrature_exprs(lay)
+    st = lay.state
+    out = [""] * st.n_states
+    for c in range(lay.n_conn):
+        out[st.delta(c)] = f"dd{c}"
+    for i in lay.free_bodies:
+        out[_omega(lay, i)] = f"({_body_torque(lay, i)}) * {lit(1.0 / lay.inertias[i])}"
+    if st.i_theta is not None:
+        out[st.i_theta] = "w0"
+    for name, expr in zip(QUADRATURES, _quadrature_exprs(lay), strict=False):
+        out[_quad(lay, name)] = expr
     lines.append("    return _array([" + ", ".join(out) + "])")
     return "\n".join(lines) + "\n"
 
@@ -262,16 +268,16 @@ def _gradient(lay: Layout, c: int, name: str) -> dict[int, str]:
     e: transmission error). Speeds enter through the deflection rate and the phase rate z_p w_p of a
     mesh with a transmission error, body angles through the mesh phase z_p theta_p."""
     x = lay.connectors[c]
-    g = {lay.i_delta(c): f"{name}d{c}"}
+    g = {lay.state.delta(c): f"{name}d{c}"}
     for body, r in zip(x.bodies, x.levers, strict=True):
-        col = lay.i_omega(body)
+        col = lay.state.omega(body)
         if col is not None:
             g[col] = f"{lit(r)} * {name}v{c}"
     per_rad = x.element.phase_per_rad(x.params)
     if x.phased:
         for col, coef in lay.angle_gradient(x.a).items():
             g[col] = (g[col] + " + " if col in g else "") + f"{lit(coef * per_rad)} * {name}t{c}"
-    col = lay.i_omega(x.a)
+    col = lay.state.omega(x.a)
     if x.excited and col is not None:
         g[col] = g[col] + f" + {lit(per_rad)} * {name}w{c}"
     return g
@@ -283,9 +289,15 @@ def _add(row: dict[int, list[str]], grad: dict[int, str], coef: str) -> None:
 
 
 def _omega(lay: Layout, body: int) -> int:
-    col = lay.i_omega(body)
+    col = lay.state.omega(body)
     assert col is not None, "a prescribed body has no speed state"
     return col
+
+
+def _quad(lay: Layout, name: str) -> int:
+    i = lay.state.quadrature(name)
+    assert i is not None, f"this scene has no {name} quadrature"
+    return i
 
 
 def _speed_gradient(lay: Layout, c: int) -> dict[int, float]:
@@ -294,7 +306,7 @@ def _speed_gradient(lay: Layout, c: int) -> dict[int, float]:
     terms = [t for ts in _planet_speeds(x) for t in ts] if x.planet_loss else [(x.a, x.ra), (x.b, x.rb)]
     g: dict[int, float] = {}
     for body, r in terms:
-        col = lay.i_omega(body)
+        col = lay.state.omega(body)
         if col is not None:
             g[col] = g.get(col, 0.0) + 0.5 * r
     return g
@@ -321,7 +333,7 @@ def _loss_gradient(lay: Layout, c: int, grad: dict[int, str]) -> dict[int, str]:
     else:
         sides = [(x.a, x.ra, "a", ""), (x.b, x.rb, "b", "-")]
     for body, r, side, sign in sides:
-        col = lay.i_omega(body)
+        col = lay.state.omega(body)
         if col is not None:
             terms.setdefault(col, []).append(f"{sign}{lit(r)} * (f{side}{c} - f{c})")
     for col, ts in terms.items():
@@ -334,18 +346,18 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
     grads = [_gradient(lay, c, "k") for c in range(lay.n_conn)]
     grads_side = [[_side_gradient(lay, c, g, side) for side in ("a", "b")] for c, g in enumerate(grads)]
     for c, x in enumerate(lay.connectors):  # d(delta_c)/dt = sum_j s_j r_j w_j
-        row = rows.setdefault(lay.i_delta(c), {})
+        row = rows.setdefault(lay.state.delta(c), {})
         for body, r in zip(x.bodies, x.levers, strict=True):
-            col = lay.i_omega(body)
+            col = lay.state.omega(body)
             if col is not None:
                 row[col] = [lit(r)]
     for i in lay.free_bodies:  # J_i w_i' = sum over its connectors of -s_j r_j f_c (+ Tin - TL)
         row = rows.setdefault(_omega(lay, i), {})
         for c, j in lay.acting_on(i):
             _add(row, _side_grad(lay, grads, grads_side, c, j), lit(-lay.connectors[c].levers[j] / lay.inertias[i]))
-    if lay.i_theta is not None:
-        rows[lay.i_theta] = {_omega(lay, 0): ["1.0"]}
-    q0 = lay.i_quad
+    if lay.state.i_theta is not None:
+        rows[lay.state.i_theta] = {_omega(lay, 0): ["1.0"]}
+    q0, q_load, q_damp = (_quad(lay, n) for n in ("input_work_J", "load_work_J", "damping_loss_J"))
     if lay.speed_drive:  # P_in = (sum s_j r_j f_c over body 0's connectors + J0 a0) w0, w0 prescribed
         for c, j in lay.acting_on(0):
             _add(rows.setdefault(q0, {}), _side_grad(lay, grads, grads_side, c, j),
@@ -355,24 +367,24 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
         rows[_omega(lay, 0)].setdefault(_omega(lay, 0), []).append(f"{lit(1.0 / lay.inertias[0])} * dTw")
     else:
         rows.setdefault(q0, {})[_omega(lay, 0)] = ["Tin"]
-    if lay.ripple and lay.i_theta is not None:  # T_in depends on th0
-        rows[_omega(lay, 0)].setdefault(lay.i_theta, []).append(f"{lit(1.0 / lay.inertias[0])} * dTin")
-        rows[q0].setdefault(lay.i_theta, []).append("dTin * w0")
+    if lay.ripple and lay.state.i_theta is not None:  # T_in depends on th0
+        rows[_omega(lay, 0)].setdefault(lay.state.i_theta, []).append(f"{lit(1.0 / lay.inertias[0])} * dTin")
+        rows[q0].setdefault(lay.state.i_theta, []).append("dTin * w0")
     for c, x in enumerate(lay.connectors):
         if x.excited:  # + the transmission error's power
             _add(rows.setdefault(q0, {}), _gradient(lay, c, "e"), "1.0")
     if lay.load.torque_Nm != 0.0:
         last = _omega(lay, lay.n_bodies - 1)
-        rows.setdefault(q0 + 1, {})[last] = ["TL + dTL * w" + str(lay.n_bodies - 1)] if lay.load_law else ["TL"]
+        rows.setdefault(q_load, {})[last] = ["TL + dTL * w" + str(lay.n_bodies - 1)] if lay.load_law else ["TL"]
         if lay.load_law:
             rows[last].setdefault(last, []).append(f"{lit(-1.0 / lay.inertias[-1])} * dTL")
     for c, x in enumerate(lay.connectors):
         if x.damped:
-            _add(rows.setdefault(q0 + 2, {}), _gradient(lay, c, "q"), "1.0")
+            _add(rows.setdefault(q_damp, {}), _gradient(lay, c, "q"), "1.0")
         if x.lossy:
-            _add(rows.setdefault(q0 + 2, {}), _loss_gradient(lay, c, grads[c]), "1.0")
+            _add(rows.setdefault(q_damp, {}), _loss_gradient(lay, c, grads[c]), "1.0")
         if x.time_varying:
-            _add(rows.setdefault(q0 + 3, {}), _gradient(lay, c, "u"), "1.0")
+            _add(rows.setdefault(_quad(lay, "elastic_work_tv_J"), {}), _gradient(lay, c, "u"), "1.0")
     return rows
 
 
@@ -380,7 +392,7 @@ def jac_source(lay: Layout) -> str:
     lines = ["def jac(t, y):"] + _prologue(lay)
     for c in range(lay.n_conn):
         lines += _connector_lines(lay, c, jacobian=True)
-    lines.append(f"    J = _zeros(({lay.n_states}, {lay.n_states}))")
+    lines.append(f"    J = _zeros(({lay.state.n_states}, {lay.state.n_states}))")
     rows = _jac_rows(lay)
     for r in sorted(rows):
         for col in sorted(rows[r]):
@@ -393,7 +405,7 @@ def _header(lay: Layout) -> str:
     bodies = ", ".join(f"{i}: {b.label} (J = {b.inertia:.6g} kg m^2)" for i, b in enumerate(lay.bodies))
     conns = ", ".join(f"{c}: {x.label} ({'-'.join(map(str, x.bodies))})" for c, x in enumerate(lay.connectors))
     return (f"# generated by gearcli.model.codegen\n# bodies: {bodies}\n# connectors: {conns}\n"
-            f"# state: {', '.join(lay.state_names)}\n\n")
+            f"# state: {', '.join(lay.state.names)}\n\n")
 
 
 def source_of(lay: Layout) -> str:

@@ -66,7 +66,7 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
         if lay.drive.angle_rad != 0.0:  # a continued sweep point's start angle
             th0 = th0 + lay.drive.angle_rad
     else:
-        th0 = Y[lay.i_theta] if lay.i_theta is not None else None
+        th0 = Y[lay.state.i_theta] if lay.state.i_theta is not None else None
         w0, a0 = None, np.zeros_like(t)  # a torque drive's input torque is prescribed
     omega = lay.body_speeds(Y, w0)
     theta = None
@@ -77,14 +77,14 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
         for b, c in enumerate(lay.tree):  # theta_b = (r_a theta_a - delta_c) / r_b, a < b
             if c >= 0:
                 x = lay.connectors[c]
-                theta[b] = (x.ra * theta[x.a] - Y[c]) / x.rb
+                theta[b] = (x.ra * theta[x.a] - Y[lay.state.delta(c)]) / x.rb
             elif b in rows:  # the kinematics fix it through several connectors (Layout.angle_rows)
                 row = rows[b]
                 theta[b] = row.constant
                 for j, k in row.bodies:
                     theta[b] = theta[b] + k * theta[j]
                 for cc, k in row.deflections:
-                    theta[b] = theta[b] + k * Y[cc]
+                    theta[b] = theta[b] + k * Y[lay.state.delta(cc)]
             elif b > 0:
                 theta[b] = np.nan  # no two-body connector reaches it: no element reads its angle
     return omega, theta, np.asarray(a0)
@@ -94,7 +94,7 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     """Force, penetration and stored energy of connector c at every sample (the element's own law)."""
     x = lay.connectors[c]
     el, P = x.element, x.params
-    d = Y[c]
+    d = Y[lay.state.delta(c)]
     dd = None
     for lever, b in zip(x.levers, x.bodies, strict=True):  # delta' = sum_j s_j r_j w_j, in slot order
         dd = lever * omega[b] if dd is None else dd + lever * omega[b]

@@ -126,7 +126,7 @@ class Variational:
     """
 
     def __init__(self, model, d: int) -> None:
-        self.model, self.spec, self.d, self.n = model, model.spec, d, model.n_states
+        self.model, self.spec, self.d, self.n = model, model.spec, d, model.layout.state.n_states
         self.layout = model.layout
 
     def rhs(self, t: float, ya: np.ndarray) -> np.ndarray:
@@ -212,7 +212,7 @@ class _Shooter:
                  period_s: float | None = None) -> None:
         lay = model.layout
         self.model, self.method, self.rtol, self.engine, self.ledger = model, method, rtol, engine, ledger
-        self.n, self.d = model.n_states, lay.n_conn + len(lay.free_bodies)
+        self.n, self.d = lay.state.n_states, lay.state.n_mechanical
         self.atol, self.patol, self.t0, self.max_nfev = atol_run, patol, t0, max_nfev
         self.grid = t0 + span_s * np.arange(samples + 1) / samples
         self.period_s = span_s if period_s is None else period_s  # the excitation period (the span is k of them)
@@ -254,7 +254,7 @@ class _Shooter:
         """The period map from the full state ``y`` (its quadratures zeroed: the period's own work);
         None when the run failed (the failed part is the last of ``parts``)."""
         y = np.array(y, dtype=float)
-        y[self.model.layout.i_quad:] = 0.0
+        y[self.model.layout.state.quadratures] = 0.0
         n, d = self.n, self.d
         r = self._run(y, with_m and self.variational)
         if r.status != 0 or not np.all(np.isfinite(r.y[:, -1])):
@@ -426,7 +426,7 @@ def priced_nfev(nfev_run: float, layout, duration_s: float, window_start_s: floa
     variational period weighted by ``1 + d``: every evaluation also forms the Jacobian's ``d x d`` block times the
     ``d`` columns of the monodromy."""
     T = scene_period(layout).period_s
-    d = layout.n_conn + len(layout.free_bodies)
+    d = layout.state.n_mechanical
     t_start = max(layout.drive.ramp_s, layout.load.ramp_s, window_start_s or 0.0)
     span = t_start + T * (PREAMBLE_COLD + PRICED_VARIATIONAL_PERIODS * (1 + d))
     return nfev_run * span / max(duration_s, 1e-300)
