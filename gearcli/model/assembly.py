@@ -41,13 +41,11 @@ from functools import cached_property
 import numpy as np
 
 from gearcli.model.elements import (
-    KIND_MESH,
     MAX_BODIES,
     N_PARAM,
     kind_of,
     law_of,
     machine,
-    mesh,
     torque,
 )
 from gearcli.model.layout import StateLayout
@@ -114,23 +112,21 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
 
 
 def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
-    """Connectors with the power scale of every lossy mesh's power-flow sign filled in: ``LOSS_WIDTH`` x the
-    static line force (at least 1 N) x the nominal pitch-line speed."""
+    """Connectors with the power scale of every lossy element's power-flow sign filled in (its loss hook's
+    ``with_loss_width``): ``LOSS_WIDTH`` x the static line force (at least 1 N) x the nominal pitch-line speed
+    of its driving side (``loss_sides``; floored at 1e-9 m/s)."""
     out = []
     for x in conns:
-        if x.planet_loss:  # the static force of its share of the output torque, the relative pitch-line speed
-            F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
-            sa, _, sc, ka = mesh.planet_loss_slots(x.params)
-            lev = x.levers
-            va = (lev[sa] * bodies[x.bodies[sa]].ratio if sa >= 0 else 0.0) + \
-                (ka * lev[sc] * bodies[x.bodies[sc]].ratio if sc >= 0 else 0.0)
-            v = abs(va * spec.drive.speed_rad_s)
-            x = replace(x, params=_row(mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * max(v, 1e-9))))
-        elif x.kind == KIND_MESH and mesh.lossy(x.params):
-            F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
-            v = abs(x.ra * bodies[x.a].ratio * spec.drive.speed_rad_s)
-            row = mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * v)
-            x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role)
+        if x.lossy:
+            if x.load_body >= 0:  # a planet mesh: the static force of its share of the output torque
+                F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
+            else:
+                F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
+            va = None
+            for body, k in x.loss_speeds[0]:
+                va = k * bodies[body].ratio if va is None else va + k * bodies[body].ratio
+            v = abs((va or 0.0) * spec.drive.speed_rad_s)
+            x = replace(x, params=_row(x.element.with_loss_width(x.params, x.element.LOSS_WIDTH * F * max(v, 1e-9))))
         out.append(x)
     return out
 
@@ -285,7 +281,7 @@ class Layout:
         """The power efficiency from the input to the output: every lossy pair mesh's eta, every planetary
         stage's (its planet meshes lose eta_m each, the stage eta as a whole); the load reversed: the stages'
         efficiencies with the power flowing back."""
-        out = math.prod(x.params[mesh.I_ETA] for x in self.connectors if x.lossy and not x.planet_loss)
+        out = math.prod(x.efficiency for x in self.connectors if x.lossy and x.load_body < 0)
         for p in self.spec.planetary:
             if p is not None:
                 out *= p.efficiency if forward else p.reverse_efficiency

@@ -33,7 +33,6 @@ import numpy as np
 
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
-from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
 from gearcli.model.layout import QUADRATURES
 from gearcli.model.parts import Connector
 
@@ -144,71 +143,61 @@ def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
 
 
 def _loss_lines(lay: Layout, c: int, jacobian: bool = False) -> list[str]:
-    """A lossy mesh: the forces on its pinion (fa) and gear (fb) side and the loss power ql
-    (:func:`gearcli.model.elements.mesh.loss_factors`); with the Jacobian, their partials by f and v, and
-    the loss power's (lf by f, lv by v). A planet mesh also the carrier's side force fc (its share of both)."""
+    """A lossy element (its loss hook, :data:`gearcli.model.elements.LOSS_HOOK`): the forces on its two sides
+    (fa, fb) and the loss power ql (the hook's ``loss_factors``, called as ``_loss{c}``); with the Jacobian,
+    their partials by f and v, and the loss power's (lf by f, lv by v). A slot that takes a share of both sides
+    (a planet mesh's carrier) its side force fc."""
     x = lay.connectors[c]
     if not x.lossy:
         return []
-    if x.planet_loss:
-        va, vb = (" + ".join(f"{lit(k)} * w{b}" for b, k in terms) or "0.0" for terms in _planet_speeds(x))
-        out = [f"    va{c} = {va}", f"    vb{c} = {vb}"]
-    else:
-        out = [f"    va{c} = {_scaled(x.ra, f'w{x.a}')}", f"    vb{c} = {_scaled(x.rb, f'w{x.b}')}"]
+    va, vb = (" + ".join(_scaled(k, f"w{b}") for b, k in terms) or "0.0" for terms in x.loss_speeds)
+    out = [f"    va{c} = {va}", f"    vb{c} = {vb}"]
     parts = f"Aa{c}, Ba{c}, Ab{c}, Bb{c}" if jacobian else "_, _, _, _"
-    out.append(f"    fa{c}, fb{c}, {parts} = _loss(_P{c}, f{c}, va{c}, vb{c})")
+    out.append(f"    fa{c}, fb{c}, {parts} = _loss{c}(_P{c}, f{c}, va{c}, vb{c})")
     out.append(f"    ql{c} = va{c} * (fa{c} - f{c}) - vb{c} * (fb{c} - f{c})")
-    if x.planet_loss and _planet_slots(x)[2] >= 0:
-        ka = _planet_slots(x)[3]
-        out.append(f"    fc{c} = {lit(ka)} * fa{c} + {lit(1.0 - ka)} * fb{c}")
+    mixed = _mixed_share(x)
+    if mixed is not None:
+        out.append(f"    fc{c} = {lit(mixed[0])} * fa{c} + {lit(mixed[1])} * fb{c}")
     if jacobian:
         out += [f"    lf{c} = va{c} * (Aa{c} - 1.0) - vb{c} * (Ab{c} - 1.0)",
                 f"    lv{c} = va{c} * Ba{c} - vb{c} * Bb{c}"]
     return out
 
 
-def _planet_slots(x: Connector) -> tuple[int, int, int, float]:
-    return planet_loss_slots(x.params)
+def _mixed_share(x: Connector) -> tuple[float, float] | None:
+    """The shares (of f_a, of f_b) of the one slot of a lossy element that takes a share of both sides (a planet
+    mesh's carrier: its side force fc); None where no slot does."""
+    shares = [x.loss_share(j) for j in range(len(x.bodies))]
+    mixed = [s for s in shares if s[0] != 0.0 and s[1] != 0.0]
+    assert len(mixed) <= 1, "a loss hook gives at most one slot a share of both sides"
+    return mixed[0] if mixed else None
 
 
-def _planet_speeds(x: Connector) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
-    """A lossy planet mesh's relative pitch-line speeds as (body, coefficient) terms: v_a = l_a w_a + kappa_a l_c
-    w_c, v_b = -(l_b w_b + kappa_b l_c w_c) (:func:`gearcli.model.elements.mesh.planet_loss_slots`)."""
-    sa, sb, sc, ka = _planet_slots(x)
-    lev = x.levers
-    va = ([(x.bodies[sa], lev[sa])] if sa >= 0 else []) + ([(x.bodies[sc], ka * lev[sc])] if sc >= 0 else [])
-    vb = [(x.bodies[sb], -lev[sb])] + ([(x.bodies[sc], -(1.0 - ka) * lev[sc])] if sc >= 0 else [])
-    return va, vb
-
-
-def _planet_side(x: Connector, j: int) -> str:
-    """The side force a lossy planet mesh puts on its slot j: "a", "b", "c" (the carrier) or "" (the law's)."""
-    sa, sb, sc, _ = _planet_slots(x)
-    return "a" if j == sa else "b" if j == sb else "c" if j == sc else ""
+def _side_name(x: Connector, j: int) -> str:
+    """Which force connector x puts on its slot j: "a" (f_a), "b" (f_b), "c" (a share of both) or "" (the law's f)."""
+    share_a, share_b = x.loss_share(j)
+    if share_a == 0.0 and share_b == 0.0:
+        return ""
+    return "c" if share_a != 0.0 and share_b != 0.0 else "a" if share_b == 0.0 else "b"
 
 
 def _side(lay: Layout, c: int, j: int) -> str:
-    """The force connector c puts on its body j (0: a mesh's pinion, 1: its gear): f, or f_a / f_b of a lossy
-    mesh; a lossy planet mesh's by its slots (f_a, f_b, the carrier's f_c)."""
-    x = lay.connectors[c]
-    if x.planet_loss:
-        return f"f{_planet_side(x, j)}{c}"
-    return f"f{'ab'[j]}{c}" if x.lossy and j < 2 else f"f{c}"
+    """The force connector c puts on its body j: f, or a lossy element's side force by its slot (f_a, f_b, or
+    the share of both f_c, :func:`_side_name`)."""
+    return f"f{_side_name(lay.connectors[c], j)}{c}"
 
 
 def _side_grad(lay: Layout, grads, grads_side, c: int, j: int) -> dict[int, str]:
     """d/dy of the force connector c puts on its body j (:func:`_side`)."""
     x = lay.connectors[c]
-    if x.planet_loss:
-        side = _planet_side(x, j)
-        if side == "c":
-            ka = _planet_slots(x)[3]
-            out: dict[int, list[str]] = {}
-            _add(out, grads_side[c][0], lit(ka))
-            _add(out, grads_side[c][1], lit(1.0 - ka))
-            return {col: " + ".join(v) for col, v in out.items()}
-        return grads_side[c]["ab".index(side)] if side else grads[c]
-    return grads_side[c][j] if j < 2 else grads[c]
+    side = _side_name(x, j)
+    if side == "c":
+        share_a, share_b = x.loss_share(j)
+        out: dict[int, list[str]] = {}
+        _add(out, grads_side[c][0], lit(share_a))
+        _add(out, grads_side[c][1], lit(share_b))
+        return {col: " + ".join(v) for col, v in out.items()}
+    return grads_side[c]["ab".index(side)] if side else grads[c]
 
 
 def _body_torque(lay: Layout, i: int) -> str:
@@ -302,8 +291,7 @@ def _quad(lay: Layout, name: str) -> int:
 
 def _speed_gradient(lay: Layout, c: int) -> dict[int, float]:
     """d v/dy of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (a planet mesh's: (v_a + v_b) / 2)."""
-    x = lay.connectors[c]
-    terms = [t for ts in _planet_speeds(x) for t in ts] if x.planet_loss else [(x.a, x.ra), (x.b, x.rb)]
+    terms = [t for ts in lay.connectors[c].loss_speeds for t in ts]
     g: dict[int, float] = {}
     for body, r in terms:
         col = lay.state.omega(body)
@@ -327,11 +315,8 @@ def _loss_gradient(lay: Layout, c: int, grad: dict[int, str]) -> dict[int, str]:
     x = lay.connectors[c]
     out = {col: f"lf{c} * ({expr})" for col, expr in grad.items()}
     terms = {col: [f"{lit(coef)} * lv{c}"] for col, coef in _speed_gradient(lay, c).items()}
-    if x.planet_loss:  # (fa - f) dva/dy - (fb - f) dvb/dy
-        va, vb = _planet_speeds(x)
-        sides = [(body, k, "a", "") for body, k in va] + [(body, k, "b", "-") for body, k in vb]
-    else:
-        sides = [(x.a, x.ra, "a", ""), (x.b, x.rb, "b", "-")]
+    va, vb = x.loss_speeds  # (fa - f) dva/dy - (fb - f) dvb/dy
+    sides = [(body, k, "a", "") for body, k in va] + [(body, k, "b", "-") for body, k in vb]
     for body, r, side, sign in sides:
         col = lay.state.omega(body)
         if col is not None:
@@ -453,9 +438,11 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
     namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
                        "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation,
                        "_motor": machine.motor_torque, "_MOT": lay.motor_row, "_load": machine.load_factor,
-                       "_LOD": lay.load_law, "_loss": loss_factors}
+                       "_LOD": lay.load_law}
     for c, x in enumerate(lay.connectors):
         namespace[f"_P{c}"] = x.params
+        if x.lossy:  # the element's loss hook
+            namespace[f"_loss{c}"] = x.element.loss_factors
         namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
         namespace[f"_power{c}"] = x.element.power_gradient
     source = source_of(lay)

@@ -29,7 +29,6 @@ import numpy as np
 
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_matrices, state_matrix
-from gearcli.model.elements import mesh
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
 
@@ -67,7 +66,7 @@ def static_forces(lay: Layout) -> np.ndarray:
                 factor *= _stage_factor(lay, pending, forward)
                 pending = None
             if x.lossy:
-                eta = x.params[mesh.I_ETA]
+                eta = x.efficiency
                 factor *= 1.0 / eta if forward else eta
             out[c] *= factor
     return out
