@@ -125,8 +125,9 @@ class Variational:
     state's equations in the columns' equations left out: it only steers the method's Newton iteration).
     """
 
-    def __init__(self, model, d: int) -> None:
-        self.model, self.spec, self.d, self.n = model, model.spec, d, model.layout.state.n_states
+    def __init__(self, model) -> None:
+        st = model.layout.state  # [y | Phi]: StateLayout.variational, over its mechanical states
+        self.model, self.spec, self.d, self.n, self.phi = model, model.spec, st.n_mechanical, st.n_states, st.variational
         self.layout = model.layout
 
     def rhs(self, t: float, ya: np.ndarray) -> np.ndarray:
@@ -135,11 +136,11 @@ class Variational:
         out = np.empty_like(ya)
         out[:n] = self.model.rhs(t, y)
         J = np.asarray(self.model.jac(t, y))[:d, :d]
-        phi = ya[n:].reshape(d, d, order="F")
+        phi = ya[self.phi].reshape(d, d, order="F")
         acc = np.zeros((d, d))
         for j in range(d):  # J @ Phi summed in the compiled kernel's order (both engines: the same numbers)
             acc += np.outer(J[:, j], phi[j, :])
-        out[n:] = acc.reshape(-1, order="F")
+        out[self.phi] = acc.reshape(-1, order="F")
         return out
 
     def jac(self, t: float, ya: np.ndarray) -> np.ndarray:
@@ -167,8 +168,10 @@ def augmented_atol(atol: np.ndarray, d: int, rtol: float, factor: float = VAR_AT
     return np.concatenate([atol, phi.reshape(-1, order="F")])
 
 
-def monodromy(run_y_end: np.ndarray, n: int, d: int) -> np.ndarray:
-    return np.asarray(run_y_end[n:n + d * d]).reshape(d, d, order="F")
+def monodromy(run_y_end: np.ndarray, state) -> np.ndarray:
+    """``Phi`` at the period's end from the augmented state ``[y | Phi]`` (:attr:`StateLayout.variational`)."""
+    d = state.n_mechanical
+    return np.asarray(run_y_end[state.variational]).reshape(d, d, order="F")
 
 
 # ------------------------------------------------------------------------------------- the solve
@@ -232,7 +235,7 @@ class _Shooter:
         grid = self.grid if grid is None else grid
         budget = max(1, self.max_nfev - self.used)
         if aug:
-            var = Variational(self.model, self.d)
+            var = Variational(self.model)
             ya, atol = augmented_start(y, self.d), augmented_atol(self.atol, self.d, self.rtol)
             if self.engine == "compiled":
                 r = integrate(self.model, grid, self.method, self.rtol, y0=ya, t0=self.t0, atol=atol,
@@ -261,7 +264,7 @@ class _Shooter:
             return None
         M = None
         if with_m:
-            M = monodromy(r.y[:, -1], n, d) if self.variational else self._fd(y, r.y[:d, -1])
+            M = monodromy(r.y[:, -1], self.model.layout.state) if self.variational else self._fd(y, r.y[:d, -1])
             if M is None:
                 return None
             r = replace(r, y=r.y[:n], atol=r.atol[:n])
