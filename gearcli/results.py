@@ -146,6 +146,7 @@ class StageResult:
     backlash_normal_mm: tuple[float, float] | None = None  # [max, min] between the idle flanks
     contact_ratio_transverse_with_allowances: tuple[float, float, float] | None = None  # [e, m, i]
     mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
+    type: str = "parallel"  # the stage kind (the design file's stage ``type``; gearcli.stages); JSON: its own
 
 
 @dataclass(frozen=True)

@@ -12,23 +12,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from gearcli import diagnostics as dg
 from gearcli.design import contact_stiffness_N_mm_e
-from gearcli.design.planetary_balance import balance, willis_speeds
 from gearcli.design.stiffness import (
     iso6336_normal_stiffness_N_mm,
-    iso_reference_normal_force_N,
-    law_coefficient_N_mm_e,
     law_name,
 )
 from gearcli.errors import ConfigError
 from gearcli.model import TorsionalModel
 from gearcli.model.assembly import Layout
 from gearcli.model.modes import resonances
-from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
 from gearcli.model.spec import (
     MM,
     CoupledInertia,
@@ -38,10 +33,12 @@ from gearcli.model.spec import (
     MeshSpec,
     ModelSpec,
     MotorSpec,
-    PlanetarySpec,
     SpringSpec,
 )
 from gearcli.results import DesignResult, StageResult
+from gearcli.stages import kinds
+from gearcli.stages.design import design_kind
+from gearcli.stages.model import model_kind
 
 if TYPE_CHECKING:  # the config layer is below this one; its pydantic models only name the types here
     from gearcli.config.schema import DesignFile, Input, Load
@@ -157,8 +154,8 @@ def load_spec(load_cfg: Load) -> LoadSpec:
 
 def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
-    meshes = tuple(_signed(_mesh(cfg, st, k), st) for k, st in enumerate(design.stages))
-    planetary = tuple(_planetary(cfg, st, k, meshes[k]) for k, st in enumerate(design.stages))
+    meshes = tuple(model_kind(st).line(cfg, st, k, _mesh) for k, st in enumerate(design.stages))
+    own = tuple(model_kind(st).stage_model(cfg, st, k, meshes[k]) for k, st in enumerate(design.stages))
     inp = cfg.input
     drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
                       torque_Nm=inp.torque_Nm_value or 0.0,
@@ -167,94 +164,12 @@ def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     load = load_spec(cfg.load)
     return ModelSpec(meshes, tuple(s.inertia_kg_m2 for s in design.shafts), drive, load,
                      motor=_coupled(inp), drum=_coupled(cfg.load), shafts=_shafts(cfg, design),
-                     planetary=planetary if any(p is not None for p in planetary) else ())
-
-
-def _signed(mesh: MeshSpec, st: StageResult) -> MeshSpec:
-    """A planet mesh's static F_t with the sign its deflection has in the model: the moment balance of the output
-    member, N c_out F = T_out sign(w_out), c_out = -r_bs (sun), r_bs + r_br (carrier), -r_br (ring)
-    (:func:`gearcli.model.planet_assembly.place_planetary`); a parallel stage's as the design gives it."""
-    p = st.planetary
-    if p is None:
-        return mesh
-
-    sign_out = 1.0 if willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)[p.output] >= 0 else -1.0
-    sign = sign_out * (1.0 if p.output == "carrier" else -1.0)
-    return replace(mesh, static_tangential_N=sign * mesh.static_tangential_N)
+                     stage_models=own if any(p is not None for p in own) else (),
+                     stage_types=tuple(kinds.kind_of(st) for st in design.stages))
 
 
 def _output_inertia(st: StageResult) -> float:
-    p = st.planetary
-    if p is None:
-        return st.gear.inertia_kg_m2
-    return {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}[p.output]
-
-
-def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> PlanetarySpec | None:
-    """A planetary stage's model (SI): levers from the base radii, the members' inertias, both mesh laws."""
-    p = st.planetary
-    if p is None:
-        return None
-
-    law = cfg.contact_for(k)
-    e = float(law.exponent)
-    ring = p.planet_ring
-    k_n = iso6336_normal_stiffness_N_mm(ring.iso6336_mesh_stiffness_N_mm_um, ring.face_width_mm,
-                                        math.radians(st.base_helix_angle_deg))
-    f_n0 = iso_reference_normal_force_N(ring.static_force_N.tangential, ring.face_width_mm,
-                                        math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg))
-    coefficient = law_coefficient_N_mm_e(law.stiffness, law.exponent, hertz=ring.hertz_stiffness_N_mm1_5,
-                                         iso_normal_stiffness_N_mm=k_n, iso_reference_normal_force_N=f_n0)
-    eta_m = p.mesh_efficiency  # each planet mesh loses in the carrier's frame (docs/planetary.md)
-    sun_mesh = replace(sun_mesh, efficiency=eta_m)
-    ring_mesh = replace(sun_mesh, stiffness_N_m_e=float(coefficient) * 1000.0**e,
-                        contact_ratio=ring.contact_ratio_transverse, overlap_ratio=ring.overlap_ratio,
-                        iso_normal_stiffness_N_m=k_n * 1000.0)
-    r_bs, r_bp, r_br = (0.5 * MM * g.base_diameter_mm for g in (p.sun, p.planet, p.ring))
-    unit = willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)
-    third = next(m for m in ("sun", "carrier", "ring") if m not in (p.input, p.output))
-    inertia = {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}
-    return PlanetarySpec(
-        fixed=p.fixed, input=p.input, output=p.output, planets=p.planet_count, sun_teeth=p.sun.teeth,
-        planet_teeth=p.planet.teeth, ring_teeth=p.ring.teeth, base_radius_sun_m=r_bs, base_radius_planet_m=r_bp,
-        base_radius_ring_m=r_br, lever_sun_carrier_m=r_bs + r_bp, lever_ring_carrier_m=r_br - r_bp,
-        third_inertia_kg_m2=inertia[third], planet_inertia_kg_m2=p.planet.inertia_kg_m2, sun_mesh=sun_mesh,
-        ring_mesh=ring_mesh, unit_speeds=(unit["sun"], unit["carrier"], unit["ring"]),
-        planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)),
-        planet_angles_rad=tuple(math.radians(a - p.planet_angles_deg[0]) for a in p.planet_angles_deg)
-        if _unequal(cfg, k) else (),
-        ring_contact_phase_cycles=_ring_contact_phase(st, unit),
-        **_loss_factors(p, eta_m, -1.0 if (cfg.load.torque_Nm_value or 0.0) < 0.0 else 1.0))
-
-
-def _unequal(cfg: DesignFile, k: int) -> bool:
-    """The stage declares its planets' positions (``planet.angles_deg``)."""
-    planet = getattr(cfg.stage[k], "planet", None)
-    return planet is not None and planet.angles_deg is not None
-
-
-def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
-    """The planet meshes' static (driving-side) forces over the lossless ones, in the power flow of the load's
-    sign, and the stage's efficiencies (:mod:`gearcli.design.planetary_balance`)."""
-    lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, load_sign)
-    lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, load_sign)
-    scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
-    back = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, -1.0)
-    return {"sun_force_factor": lossy.sun_mesh * scale, "ring_force_factor": lossy.ring_mesh * scale,
-            "efficiency": lossy.efficiency, "reverse_efficiency": back.efficiency}
-
-
-def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:
-    """Planet 1's ring-mesh contact-line phase against its sun mesh's (:mod:`gearcli.model.planet_phasing`)."""
-    p = st.planetary
-    assert p is not None
-    return stage_contact_phase_cycles(st, sun_drives(unit, p.input, p.sun.teeth, p.ring.teeth))
-
-
-def _planet_errors_um(cfg: DesignFile, k: int) -> list[float]:
-    stage = cfg.stage[k]
-    planet = getattr(stage, "planet", None)
-    return list(planet.position_error_um or []) if planet is not None else []
+    return design_kind(st).inertia(st, "output")
 
 
 def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:

@@ -24,6 +24,7 @@ import os
 
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError, ResourceError
+from gearcli.stages import kinds
 
 MEMORY_LIMIT_VARIABLE = "GEARCLI_MEMORY_LIMIT_MB"
 DEFAULT_MEMORY_LIMIT_MB = 2048.0
@@ -53,7 +54,6 @@ MAX_EVALUATIONS = 5e6  # one run: ~30 s of right-hand sides on a 2-core machine 
 #: unequal_inertias.toml: estimate 2.8e8, run within the 5e6 budget), so the margin is 100x the budget, and
 #: between the two the run's own budget stops it.
 ABSURD_EVALUATIONS = 100 * MAX_EVALUATIONS
-_MIN_APPROACH_M = 1e-6
 
 
 def values_per_sample(n_stages: int) -> int:
@@ -105,19 +105,9 @@ def fastest_rad_s(cfg, design) -> float:
     """The fastest angular frequency the integrator must follow, from the design (see the module text)."""
     inertia = [sh.inertia_kg_m2 for sh in design.shafts]
     fastest = 0.0
-    for k, st in enumerate(design.stages):
-        law = cfg.contact_for(k)
-        e = law.exponent
-        K = st.hertz_stiffness_N_mm1_5 * 1e3 ** e  # N/m^e (K was N/mm^e)
-        h = max(st.static_approach_mm * 1e-3, _MIN_APPROACH_M)
-        k_lin = e * K * h ** (e - 1.0) if law.stiffness == "hertz" else st.linearised_stiffness_N_mm * 1e3
-        if law.stiffness == "iso6336":  # its tangent is ISO's k_n at the (floored) static load, loaded or not
-            k_lin = max(k_lin, st.mesh_stiffness.iso_N_mm * 1e3 if st.mesh_stiffness is not None else 0.0)
-        rb1, rb2 = st.pinion.base_diameter_mm / 2e3, st.gear.base_diameter_mm / 2e3
-        mobility = rb1**2 / inertia[k] + rb2**2 / inertia[k + 1]
-        fastest = max(fastest, math.sqrt(max(k_lin, 0.0) * mobility))
-        harmonics = max(len(law.transmission_error_um), len(law.stiffness_harmonics), int(law.time_varying))
-        fastest = max(fastest, 2 * math.pi * st.mesh_frequency_Hz * harmonics)
+    for k, st in enumerate(design.stages):  # each stage as its kind puts it in the model (gearcli.stages)
+        kind = kinds.facet(kinds.kind_of(st), "design")
+        fastest = max(fastest, kind.fastest_rad_s(cfg, st, k, inertia[k], inertia[k + 1]))  # type: ignore[attr-defined]
     fastest = max([fastest] + [r.order * cfg.input.speed_rad_s_value for r in cfg.input.torque_ripple]
                   + [2 * math.pi * f.frequency_Hz for f in cfg.load.fluctuation])
     return fastest

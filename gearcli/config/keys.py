@@ -18,6 +18,7 @@ from typing import Annotated, Any, Union, get_args, get_origin
 from pydantic import BaseModel
 
 from gearcli.config.schema import DesignFile
+from gearcli.stages import kinds
 
 Segment = str | int
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
@@ -118,9 +119,13 @@ class Resolved:
 
 
 def tagged(tp: Any, tag: str) -> Any:
-    """The member of a tagged union of models whose ``type`` is ``tag`` (the stage union), or None."""
+    """The member of a tagged union of models whose ``type`` is ``tag`` (the stage union: any registered stage
+    kind's table, :mod:`gearcli.stages.kinds`), or None."""
     if get_origin(tp) not in (Union, types.UnionType):
         return None
+    if tag in kinds.kinds("table") and any(is_model(unwrap(a)) and "type" in unwrap(a).model_fields
+                                           for a in get_args(tp)):
+        return kinds.facet(tag, "table")
     for arg in get_args(tp):
         model = unwrap(arg)
         if is_model(model) and "type" in model.model_fields and tag in get_args(model.model_fields["type"].annotation):

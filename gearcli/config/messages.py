@@ -16,6 +16,7 @@ from pydantic import ValidationError
 
 from gearcli.config.keys import Resolved, Segment, resolve, suggest, unknown_key_hint
 from gearcli.core.text import shorten
+from gearcli.stages import kinds
 
 _BOUNDS = {"greater_than": ("gt", ">"), "greater_than_equal": ("ge", "≥"),
            "less_than": ("lt", "<"), "less_than_equal": ("le", "≤")}
@@ -131,7 +132,8 @@ def message(err: dict, where: Resolved) -> str:
     if t == "value_error":
         return str(err["msg"]).removeprefix("Value error, ")
     if t == "union_tag_invalid":  # a stage's type
-        return f"type must be \"parallel\" or \"planetary\", got {shorten(str(ctx.get('tag')))!r}"
+        known = " or ".join(f'"{k}"' for k in kinds.kinds("table"))
+        return f"type must be {known}, got {shorten(str(ctx.get('tag')))!r}"
     text = str(err.get("msg", t))
     return text.replace("Input should be", "must be")
 

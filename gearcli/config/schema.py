@@ -9,18 +9,20 @@ accepted where a float is expected, as TOML users write ``module = 12``.
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, cast
 
 from pydantic import (
+    BaseModel,
     ConfigDict,
-    Discriminator,
     Field,
+    GetCoreSchemaHandler,
     PrivateAttr,
     Tag,
     ValidationInfo,
     field_validator,
     model_validator,
 )
+from pydantic_core import core_schema
 
 from gearcli.config.bounds_types import NotTiny, StrictTable
 from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file's tables, one namespace)
@@ -41,6 +43,7 @@ from gearcli.config.excitation import (
 )
 from gearcli.config.machine import Motor, Table, increasing_speeds
 from gearcli.core.methods import NAMES as METHODS  # the one registry of integration methods
+from gearcli.stages import kinds
 
 # Every number has physical bounds (docs/design-file.md lists them): far outside any real reducer, yet
 # tight enough that a unit mistake (1e15, a subnormal like 1e-320) is an error naming the key and the
@@ -348,8 +351,28 @@ def _stage_tag(value: Any) -> str:
     return str(getattr(value, "type", "parallel"))
 
 
-AnyStage = Annotated[Annotated[Stage, Tag("parallel")] | Annotated[PlanetaryStage, Tag("planetary")],
-                     Discriminator(_stage_tag)]
+class _RegisteredStages:
+    """A stage table validates as the table of its kind: one union of every registered kind's table, tagged by
+    ``type`` (:mod:`gearcli.stages.kinds`; a kind registered later, :func:`register_stage_table`, rebuilds it)."""
+
+    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+        choices = {k: handler.generate_schema(Annotated[cast(type, kinds.facet(k, "table")), Tag(k)])
+                   for k in kinds.kinds("table")}
+        return core_schema.tagged_union_schema(choices, discriminator=_stage_tag)
+
+
+kinds.provide(kinds.PARALLEL, "table", Stage)
+kinds.provide("planetary", "table", PlanetaryStage)
+
+#: a stage table; statically the built-in kinds' (a plug-in kind's table validates at run time)
+AnyStage = Annotated[Stage | PlanetaryStage, _RegisteredStages()]
+
+
+def register_stage_table(kind: str, table: type[BaseModel]) -> None:
+    """Register the schema table of stage ``type = kind`` (a plug-in kind) and rebuild the design file's
+    schema with it."""
+    kinds.provide(kind, "table", table)
+    DesignFile.model_rebuild(force=True)
 
 
 class _Coupled(_Table):
@@ -685,11 +708,11 @@ class DesignFile(_Table):
         return self
 
     def pair(self, k: int) -> Stage:
-        """Stage k as a gear pair: a parallel stage (a planetary one is seen as its sun–planet pair through
-        ``design.planetary.pair_equivalent``)."""
+        """Stage k as a gear pair: a parallel stage (another kind is seen as the pair it designs through
+        ``gearcli.stages.design.pair_view``)."""
         stage = self.stage[k]
         if not isinstance(stage, Stage):
-            raise TypeError(f"stage[{k}] is a planetary stage, not a gear pair")
+            raise TypeError(f"stage[{k}] is of type {getattr(stage, 'type', '?')!r}, not a gear pair")
         return stage
 
     def contact_for(self, k: int) -> Contact:

@@ -29,6 +29,7 @@ from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teet
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
+from gearcli.stages.design import design_kind, gear_pairs
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material, Stage
@@ -76,7 +77,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                       {"check": "target_speed", "output_speed_rpm": output_speed_rpm,
                        "target_rpm": cfg.target.output_speed_rpm_value,
                        "tolerance_percent": cfg.target.tolerance_percent}))
-    for k, stage in enumerate(stages):
+    for k, stage in gear_pairs(stages):
         stage_cfg = cfg.pair(k)
         at: JsonObject = {"stage": stage.index}
         found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
@@ -215,9 +216,5 @@ def stiffness_diagnostics(stages: Iterable[StageResult]) -> tuple[Diagnostic, ..
     """``stiffness_not_iso`` of every mesh: a parallel stage's, a planetary stage's sun–planet and planet–ring."""
     found = []
     for st in stages:
-        if st.planetary is None:
-            found.append(stiffness_not_iso(st.index, "mesh", st.mesh_stiffness))
-        else:
-            found.append(stiffness_not_iso(st.index, "sun_planet", st.mesh_stiffness))
-            found.append(stiffness_not_iso(st.index, "planet_ring", st.planetary.planet_ring.mesh_stiffness))
+        found += [stiffness_not_iso(st.index, name, law) for name, law in design_kind(st).meshes(st)]
     return tuple(d for d in found if d is not None)

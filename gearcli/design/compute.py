@@ -10,7 +10,6 @@ import math
 from dataclasses import dataclass, fields, is_dataclass, replace
 from typing import TYPE_CHECKING
 
-from gearcli.design import planetary as pl
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
@@ -29,7 +28,7 @@ from gearcli.design.inputs import check_inputs
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.shafts import bearing_results, pin_bearing_warnings
 from gearcli.design.standards import standard_of
-from gearcli.diagnostics import DESIGN, warning
+from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
     DesignResult,
@@ -40,6 +39,9 @@ from gearcli.results import (
     StageResult,
     StaticForces,
 )
+from gearcli.stages import gear_design as _gear_design  # noqa: F401  # registers the built-in kinds' design facets
+from gearcli.stages import kinds
+from gearcli.stages.design import design_kind, gear_pairs, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -51,30 +53,28 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     Raises ``DesignError`` (with a 0-based key path) for an infeasible design: an unknown material,
     a helical pair without opposite hands, or a pair whose teeth cannot mesh.
     """
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    pairs = pl.pair_equivalent(cfg)  # a planetary stage's sun–planet mesh as a pair; parallel stages as given
+    kind = tuple(design_kind(s) for s in cfg.stage)
+    pairs = pair_view(cfg)
     check_inputs(cfg)
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                             cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
-                            tuple(pl.reverse_efficiency(s, k) if isinstance(s, PlanetaryStage) else None
-                                  for k, s in enumerate(cfg.stage)))
-    stages = tuple(_any_stage_result(cfg, pairs, k, kin) for k in range(len(cfg.stage)))
+                            tuple(kind[k].reverse_efficiency(s, k) for k, s in enumerate(cfg.stage)))
+    stages = tuple(kind[k].result(cfg, pairs, k, kin, _stage_result) for k in range(len(cfg.stage)))
     rating_diagnostics: tuple = ()
     if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
         stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
+        rating_diagnostics += tuple(_not_rated(st) for st in stages if not design_kind(st).gear_pair)
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
-    planetary = tuple(warning(DESIGN, w, check="planetary", stage=st.index)
-                      for st in stages for w in pl.planetary_warnings(st))
+    own = tuple(d for k, st in enumerate(stages) for d in kind[k].diagnostics(st))
     jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
                            f"{st.backlash_circumferential_mm[1]:.4g} mm (< 0): at the upper tooth-thickness "
                            "allowances and the smallest centre distance the teeth jam; thin the teeth "
                            "(tooth_thickness_allowance_mm) or widen the centre distance", check="backlash_negative",
                            stage=st.index,
                            backlash_min_mm=st.backlash_circumferential_mm[1])
-                   for st in stages if st.backlash_circumferential_mm is not None
+                   for _, st in gear_pairs(stages) if st.backlash_circumferential_mm is not None
                    and st.backlash_circumferential_mm[1] < 0.0)
     pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
     bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
@@ -84,7 +84,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            f"drive = \"motor\"; drive = \"{cfg.input.drive}\" ignores "
                            f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
         if ignored else ()
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *planetary, *pins, *jammed,
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *own, *pins, *jammed,
                    *stiffness_diagnostics(stages), *rating_diagnostics, *bearing_diagnostics(cfg, bearings),
                    *drive_notes)
     return DesignResult(
@@ -105,15 +105,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     )
 
 
-def _any_stage_result(cfg: DesignFile, pairs: DesignFile, k: int, kin: Train) -> StageResult:
-    """A parallel stage as before; a planetary stage as its sun–planet mesh (in the carrier's frame, per
-    planet) with its members and planet–ring mesh attached (``design.planetary``)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    stage = cfg.stage[k]
-    if not isinstance(stage, PlanetaryStage):
-        return _stage_result(pairs, k, kin)
-    return pl.planetary_result(cfg, k, kin, _stage_result(pairs, k, pl.mesh_train(k, stage, kin), stage.planet.count))
+def _not_rated(st: StageResult) -> Diagnostic:
+    """A stage whose kind has no gear mesh (a belt) is not rated: said, never dropped without a word."""
+    kind = kinds.kind_of(st)
+    return warning(DESIGN, f"stage {st.index}: a {kind} stage has no gear mesh to rate: [rating] leaves it unrated",
+                   check="not_rated", stage=st.index, type=kind)
 
 
 def _require_finite(obj, key: str) -> None:
@@ -338,18 +334,9 @@ def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: in
                    contact_ratio_transverse_with_allowances=a.contact_ratio_transverse_with_allowances)
 
 
-def _chain_inertia(stage: StageResult, side: str) -> float:
-    """The inertia a stage puts on its input (pinion) or output (gear) shaft: a planetary's member there."""
-    p = stage.planetary
-    if p is None:
-        return (stage.pinion if side == "input" else stage.gear).inertia_kg_m2
-    member = p.input if side == "input" else p.output
-    return {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}[member]
-
-
 def _shaft_results(stages: tuple[StageResult, ...], kin: Train) -> tuple[ShaftResult, ...]:
-    inertias = shaft_inertias_kg_m2(tuple(_chain_inertia(s, "input") for s in stages),
-                                    tuple(_chain_inertia(s, "output") for s in stages))
+    inertias = shaft_inertias_kg_m2(tuple(design_kind(s).inertia(s, "input") for s in stages),
+                                    tuple(design_kind(s).inertia(s, "output") for s in stages))
     return tuple(
         ShaftResult(index=j + 1, speed_deg_s=speed_deg_s(w), speed_rpm=speed_rpm(w),
                     torque_Nmm=kin.shaft_torque_Nmm(j), inertia_kg_m2=inertias[j],

@@ -22,6 +22,7 @@ from gearcli.diagnostics import Diagnostic, warning
 from gearcli.rating import register
 from gearcli.rating.dynamic import ring_simulated_k_v, stage_simulated_k_v
 from gearcli.rating.sn import SNCurve
+from gearcli.stages.design import design_kind, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -41,16 +42,18 @@ class Iso6336:
     title = iso.STANDARD
 
     def check_inputs(self, cfg: DesignFile) -> None:
-        iso.check_rating_inputs(pl.pair_equivalent(cfg))
+        iso.check_rating_inputs(pair_view(cfg))
 
     def rate_design(self, cfg: DesignFile, stages: tuple[StageResult, ...]
                     ) -> tuple[tuple[StageResult, ...], tuple[Diagnostic, ...]]:
-        rated, diags = iso.rate_design(pl.pair_equivalent(cfg), tuple(pl.with_load_sharing(s) for s in stages))
-        out = tuple(replace(s, rating=r.rating) for s, r in zip(stages, rated, strict=True))
-        out = tuple(_nominal(_rate_planet_ring(cfg, k, s)) for k, s in enumerate(out))
-        diags += tuple(d for s in out for d in planet_ring_safety_diagnostics(cfg, s))
-        diags += tuple(_unrated_ring_mesh(cfg, s) for s in out
-                       if s.planetary is not None and s.rating is not None and s.planetary.planet_ring.rating is None)
+        """Every gear pair (a stage that shares its load among planets: at K_γ times the mean planet's force, its
+        planet–ring mesh too, with ISO's nominal σ_H0, σ_F0); a stage without a gear pair (a belt) as it is."""
+        rated, diags = iso.rate_design(pair_view(cfg), tuple(_shared(s) for s in stages))
+        out = tuple(replace(s, rating=r.rating) if design_kind(s).gear_pair else s
+                    for s, r in zip(stages, rated, strict=True))
+        out = tuple(_nominal(_rate_planet_ring(cfg, k, s)) if _planets(s) else s for k, s in enumerate(out))
+        diags += tuple(d for s in out if _planets(s) for d in planet_ring_safety_diagnostics(cfg, s))
+        diags += tuple(_unrated_ring_mesh(cfg, s) for s in out if _planets(s) and _ring_unrated(s))
         return out, diags
 
     def rate_simulation(self, cfg: DesignFile, design: DesignResult, stages: Sequence[S]
@@ -140,18 +143,21 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
     planetary stage's planet–ring mesh is rated too, at its own meshes' simulated K_v (``planet_ring_rating``)."""
     if cfg.rating is None or cfg.rating.dynamic_factor != "simulated":
         return tuple(stages), []
-    pairs = pl.pair_equivalent(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
+    pairs = pair_view(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
     out, diags = [], []
     for k, sd in enumerate(stages):
+        if not design_kind(design.stages[k]).gear_pair:  # no gear mesh to rate (a belt)
+            out.append(sd)
+            continue
         k_v = stage_simulated_k_v(sd)
-        shared = pl.with_load_sharing(design.stages[k])
+        shared = _shared(design.stages[k])
         rating = iso.rate_stage(pairs, k, shared, simulated_k_v=k_v)
-        if shared.planetary is not None:  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
-            rating = pl.nominal_with_sharing(rating, shared.planetary.load_sharing_factor)
+        if _planets(shared):  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
+            rating = pl.nominal_with_sharing(rating, pl.load_sharing_of(shared))
         rated = replace(design.stages[k], rating=rating)
         diags += iso.safety_diagnostics(pairs, rated)
         ring = None
-        if rated.planetary is not None and sd.planets:
+        if _planets(rated) and sd.planets:
             ring = rate_planet_ring(cfg, k, pl.with_load_sharing(design.stages[k]),
                                     simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
             if ring is not None:
@@ -163,10 +169,29 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
 
 
 # ------------------------------------------------------------------ a planetary stage's planet–ring mesh
+def _planets(stage: StageResult) -> bool:
+    """The stage's kind shares its load among planets (``gearcli.stages``): rated at K_γ, with its planet–ring
+    mesh (``rating_internal``)."""
+    return design_kind(stage).shares_load
+
+
+def _ring_unrated(stage: StageResult) -> bool:
+    """A rated stage with planets whose planet–ring mesh is not rated (a key it needs is missing)."""
+    p = stage.planetary
+    assert p is not None  # a stage with planets (``_planets``)
+    return stage.rating is not None and p.planet_ring.rating is None
+
+
+def _shared(stage: StageResult) -> StageResult:
+    """The stage as ISO rates it: a planetary stage's most loaded planet (K_γ times the mean planet's force)."""
+    return pl.with_load_sharing(stage) if _planets(stage) else stage
+
+
 def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
     """A rated planetary stage with its planet–ring mesh rated too (ISO 6336-2/-3, docs/iso6336.md)."""
-    if stage.planetary is None or stage.rating is None:
+    if stage.rating is None:
         return stage
+    assert stage.planetary is not None  # a stage with planets (``_planets``)
     ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
     mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
     return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
@@ -196,8 +221,9 @@ def _nominal(stage: StageResult) -> StageResult:
     """A planetary stage's ratings with ISO's nominal σ_H0, σ_F0 and K_gamma among the load factors (rated at
     K_gamma times the mean planet's force: ``pl.with_load_sharing``)."""
     p = stage.planetary
-    if p is None or stage.rating is None:
+    if stage.rating is None:
         return stage
+    assert p is not None  # a stage with planets (``_planets``)
     k = p.load_sharing_factor
     ring = p.planet_ring
     if ring.rating is not None:

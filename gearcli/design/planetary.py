@@ -107,16 +107,6 @@ def sun_planet_stage(stage: PlanetaryStage) -> Stage:
         "tip_relief_um": stage.tip_relief_um})
 
 
-def pair_equivalent(cfg: DesignFile) -> DesignFile:
-    """``cfg`` with every planetary stage replaced by its sun–planet pair (the parallel-stage code's view)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    if not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
-        return cfg
-    stages = [sun_planet_stage(s) if isinstance(s, PlanetaryStage) else s for s in cfg.stage]
-    return cfg.model_copy(update={"stage": stages})
-
-
 def mesh_train(k: int, stage: PlanetaryStage, kin: Train) -> Train:
     """A train whose stage k is the sun–planet mesh in the carrier's frame: sun at |ω_s − ω_c|, the mesh's
     (driving-side) force on the sun's lever (a 1/N of the sun torque, over η_m where the planet drives the sun),
@@ -269,7 +259,7 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
         concentricity_mm=geo.center_distance_mm - r_c, mesh_efficiency=eta_m,
         basic_efficiency=eta_m ** 2, moment_balance_Nm={m: v / 1000.0 for m, v in moments.items()},
         planet_angles_deg=tuple(angles))
-    return replace(mesh, ratio=kin.ratios[k], planetary=result)
+    return replace(mesh, ratio=kin.ratios[k], planetary=result, type="planetary")
 
 
 def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult,
@@ -338,48 +328,36 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
     return out
 
 
-def check_planetary_inputs(cfg: DesignFile) -> None:
+def check_stage_inputs(cfg: DesignFile, k: int) -> None:
     """The ring's material must be defined, a helical ring has the planet's hand, ``planet.angles_deg`` one
     angle per planet (the sun and planet are checked as the sun–planet pair)."""
     from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
 
-    given = cfg.rating.load_sharing_factor if cfg.rating is not None else None
-    if given is not None and not any(isinstance(s, PlanetaryStage) for s in cfg.stage):
-        raise DesignError(f"load_sharing_factor = {given:g} is K_gamma of a planetary stage's planets, and this train "
-                          "has no planetary stage: remove it", key="rating.load_sharing_factor")
-    for k, stage in enumerate(cfg.stage):
-        if not isinstance(stage, PlanetaryStage):
-            continue
-        check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
-        ring_hand, planet_hand = stage.ring.hand, stage.planet.hand
-        if stage.helix_angle_deg > 0 and ring_hand is not None and ring_hand != planet_hand:
-            raise DesignError(f'ring.hand = "{ring_hand}": an internal helical pair has the same hand on both gears, '
-                              f'so the ring needs the planet\'s hand "{planet_hand}" (the sun\'s opposite)',
-                              key=f"stage[{k}].ring.hand")
-        angles = stage.planet.angles_deg
-        if angles is not None and len(angles) != stage.planet.count:
-            raise DesignError(f"planet.angles_deg needs one angle per planet ({stage.planet.count}), got "
-                              f"{len(angles)}", key=f"stage[{k}].planet.angles_deg")
+    stage = cfg.stage[k]
+    assert isinstance(stage, PlanetaryStage)
+    check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
+    ring_hand, planet_hand = stage.ring.hand, stage.planet.hand
+    if stage.helix_angle_deg > 0 and ring_hand is not None and ring_hand != planet_hand:
+        raise DesignError(f'ring.hand = "{ring_hand}": an internal helical pair has the same hand on both gears, '
+                          f'so the ring needs the planet\'s hand "{planet_hand}" (the sun\'s opposite)',
+                          key=f"stage[{k}].ring.hand")
+    angles = stage.planet.angles_deg
+    if angles is not None and len(angles) != stage.planet.count:
+        raise DesignError(f"planet.angles_deg needs one angle per planet ({stage.planet.count}), got "
+                          f"{len(angles)}", key=f"stage[{k}].planet.angles_deg")
 
 
-def planetary_key(cfg: DesignFile, key: str | None) -> str | None:
-    """A key of the sun–planet pair (``stage[k].pinion.x``) as the design file names it (``stage[k].sun.x``)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    if key is None or not key.startswith("stage["):
-        return key
-    k = int(key[len("stage["):key.index("]")])
-    if k < len(cfg.stage) and isinstance(cfg.stage[k], PlanetaryStage):
-        head = f"stage[{k}]."
-        return key.replace(head + "pinion.", head + "sun.").replace(head + "gear.", head + "planet.")
-    return key
+def load_sharing_of(stage: StageResult) -> float:
+    """K_γ of a planetary stage's design (its planets' load-sharing factor)."""
+    assert stage.planetary is not None  # a planetary stage's result
+    return stage.planetary.load_sharing_factor
 
 
 def with_load_sharing(stage: StageResult) -> StageResult:
     """A planetary stage's sun–planet mesh as rated: the most loaded planet's, K_gamma times the mean."""
-    if stage.planetary is None or stage.planetary.load_sharing_factor == 1.0:
+    k = load_sharing_of(stage)
+    if k == 1.0:
         return stage
-    k = stage.planetary.load_sharing_factor
     f = stage.static_force_N
     return replace(stage, static_force_N=StaticForces(k * f.tangential, k * f.radial, k * f.axial, k * f.normal),
                    pinion=replace(stage.pinion, torque_Nmm=k * stage.pinion.torque_Nmm,

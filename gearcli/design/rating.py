@@ -31,6 +31,7 @@ from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
+from gearcli.stages.design import design_kind, gear_pairs
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
@@ -54,7 +55,7 @@ def check_rating_inputs(cfg: DesignFile) -> None:
         raise DesignError("the strength rating ([rating]) needs the oil's viscosity at 40 °C (Z_L): add "
                           "[lubricant] viscosity_40C_mm2_s", key="lubricant.viscosity_40C_mm2_s")
     used: set[str] = set()
-    for k, stage in enumerate(cfg.stage):
+    for k, stage in gear_pairs(cfg.stage):  # a kind without a gear pair (a belt) is not rated
         if stage.accuracy_grade is None:
             raise DesignError("the strength rating ([rating]) needs the ISO 1328-1 accuracy grade of every stage "
                               "(K_v, K_Hα)", key=f"stage[{k}].accuracy_grade")
@@ -77,11 +78,13 @@ def check_rating_inputs(cfg: DesignFile) -> None:
 
 # ---------------------------------------------------------------------------------- the rating
 def rate_design(cfg: DesignFile, stages: tuple[StageResult, ...]) -> tuple[tuple[StageResult, ...], tuple]:
-    """Every stage with its ``rating`` (unchanged without ``[rating]``) and the safety warnings."""
+    """Every gear-pair stage with its ``rating`` (unchanged without ``[rating]``) and the safety warnings; a stage
+    whose kind has no gear pair (a belt) as it is."""
     if cfg.rating is None:
         return stages, ()
-    rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) for k, st in enumerate(stages))
-    return rated, tuple(d for k, st in enumerate(rated) for d in range_diagnostics(cfg, k, st)
+    pairs = dict(gear_pairs(stages))
+    rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) if k in pairs else st for k, st in enumerate(stages))
+    return rated, tuple(d for k, st in enumerate(rated) if k in pairs for d in range_diagnostics(cfg, k, st)
                         + safety_diagnostics(cfg, st))
 
 
@@ -246,9 +249,11 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
     rating, stage = cfg.rating, cfg.pair(k)
     assert rating is not None
     g, part, m_n = mesh.members[i], mesh.parts[i], st.normal_module_mm
-    # a planetary stage's sun (member 0 of its sun–planet mesh) meets every planet once per turn relative to the
-    # carrier; a planet meets the sun once (its ring mesh is the other flank, rated in rating_internal)
-    meetings = st.planetary.planet_count if st.planetary is not None and i == 0 else 1
+    # contacts per turn as the stage's kind counts them (a planetary's sun, member 0 of its sun–planet mesh, meets
+    # every planet once per turn relative to the carrier; a planet meets the sun once: its ring mesh is the other
+    # flank, rated in rating_internal)
+    kind = design_kind(st)
+    meetings = kind.meetings(st, i)
     cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h * meetings
     z_nt = rf.life_factor_pitting(mesh.treatments[i], cycles, rating.material_quality)
     sig_h = flank.z_bd[i] * flank.sigma_h
@@ -272,8 +277,8 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
     y_r = rr.relative_surface_factor(mesh.treatments[i], float(part.root_roughness_Rz_um or 0.0))
     y_x = rr.size_factor_bending(mesh.treatments[i], m_n)
     y_nt = rf.life_factor_bending(mesh.treatments[i], cycles, rating.material_quality)
-    # a planetary stage's planet (the sun–planet pair's gear) is an idler: its root bends both ways (Y_M)
-    y_m = rr.IDLER_MEAN_STRESS_FACTOR if st.planetary is not None and i == 1 else 1.0
+    # an idler's root bends both ways (Y_M): a planetary stage's planet, the sun–planet pair's gear
+    y_m = rr.IDLER_MEAN_STRESS_FACTOR if kind.idler(st, i) else 1.0
     sig_fg = mesh.flim[i] * STRESS_CORRECTION_TEST_GEAR * y_nt * y_d * y_r * y_x * y_m
     return MemberRating(
         load_cycles=cycles, Z_BD=flank.z_bd[i], sigma_H_MPa=sig_h, Z_NT=z_nt, Z_X=1.0, sigma_HG_MPa=sig_hg,

@@ -29,6 +29,7 @@ from gearcli.design.iso281 import Lubrication, modified_life
 from gearcli.design.planetary_balance import willis_speeds
 from gearcli.errors import DesignError
 from gearcli.results import BearingResult
+from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -335,8 +336,8 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     """The shaft layout of a design file with ``[[bearing]]`` tables (None without). Raises DesignError
     naming the key for a bearing on a shaft that does not exist, a shaft without exactly two bearings or
     one locating bearing, two bearings at one position, or a gear on a supported shaft without
-    ``axial_position_mm``. ``planetaries``: per stage, a planetary stage's layout (:func:`stage_layout`) or
-    None; a planetary stage without one is refused."""
+    ``axial_position_mm``. ``planetaries``: per stage, the layout of a stage with planets (:func:`stage_layout`
+    gives every stage's: :func:`planetary_layout`) or None."""
     if not cfg.bearing:
         return None
     n_shafts = len(cfg.stage) + 1
@@ -345,7 +346,7 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     for j, b in enumerate(cfg.bearing):
         if b.planet_stage is not None:
             k = b.planet_stage
-            if k > len(cfg.stage) or getattr(cfg.stage[k - 1], "type", "parallel") != "planetary":
+            if k > len(cfg.stage) or k > len(planetaries) or planetaries[k - 1] is None:  # no planets there
                 raise DesignError(f"stage {k} is not a planetary stage: planet_stage names the planetary stage whose "
                                   "planet pins carry the bearing (1-based)", key=f"bearing[{j}].planet_stage")
             by_pin.setdefault(k, []).append(_spec(j, b, 0, k))
@@ -361,10 +362,8 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     meshes = []
     planetary_layouts: list[PlanetaryLayout] = []
     for k in range(len(cfg.stage)):
-        if getattr(cfg.stage[k], "type", "parallel") == "planetary":
-            pl = planetaries[k] if k < len(planetaries) else None
-            if pl is None:
-                raise DesignError("the shaft statics of this planetary stage need its design", key=f"stage[{k}].type")
+        pl = planetaries[k] if k < len(planetaries) else None
+        if pl is not None:  # a stage with planets (its layout from its design)
             p_stage = cfg.stage[k]
             if k + 1 in pins and p_stage.planet.axial_position_mm is None:  # type: ignore[union-attr]
                 raise DesignError(f"the planet pins of stage {k + 1} have bearings (planet_stage = {k + 1}), so the "
@@ -405,7 +404,7 @@ def pin_bearing_warnings(cfg: DesignFile, stages: Sequence[StageResult]) -> list
     out = []
     for j, b in enumerate(cfg.bearing):
         k = b.planet_stage
-        if k is None or k > len(stages) or stages[k - 1].planetary is None:
+        if k is None or k > len(stages) or not design_kind(stages[k - 1]).shares_load:  # a stage with planets
             continue
         planet_cfg = cfg.stage[k - 1].planet  # type: ignore[union-attr]
         if planet_cfg.axial_position_mm is None:
@@ -441,20 +440,28 @@ def _pair(shaft: str, specs: list[BearingSpec]) -> tuple[BearingSpec, BearingSpe
 
 # ------------------------------------------------------------------------------------ design results
 def stage_layout(cfg: DesignFile, stages: Sequence[StageResult]) -> ShaftLayout | None:
-    """The shaft layout from the design's stage geometry (working pitch radii r_w = r_b / cos a_wt)."""
+    """The shaft layout from the design's stage geometry (working pitch radii r_w = r_b / cos a_wt); None without
+    ``[[bearing]]`` tables. The statics know gear stages: a stage of a kind without a gear pair (a belt) and
+    bearings are exit 2 naming the stage."""
+    if not cfg.bearing:
+        return None
+    other = [k for k, s in enumerate(stages) if not design_kind(s).gear_pair]
+    if other:
+        raise DesignError(f"[[bearing]]: the shaft statics know gear stages only, and stage {other[0] + 1} is of type "
+                          f"{getattr(stages[other[0]], 'type', '?')!r}: remove the bearing tables",
+                          key=f"stage[{other[0]}].type")
     alphas = [math.radians(s.working_pressure_angle_deg) for s in stages]
     radii = [(0.5 * s.pinion.base_diameter_mm / math.cos(a), 0.5 * s.gear.base_diameter_mm / math.cos(a))
              for s, a in zip(stages, alphas, strict=True)]
     return layout(cfg, radii, alphas, [math.radians(s.base_helix_angle_deg) for s in stages],
-                  [planetary_layout(cfg, k, s) for k, s in enumerate(stages)])
+                  [planetary_layout(cfg, k, s) if design_kind(s).shares_load else None for k, s in enumerate(stages)])
 
 
-def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayout | None:
-    """A planetary stage's statics layout from its design (None for a parallel stage); the sense of its torque is
-    set by :func:`layout` from the train's senses of rotation."""
+def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayout:
+    """A planetary stage's statics layout from its design; the sense of its torque is set by :func:`layout` from
+    the train's senses of rotation."""
     p = st.planetary
-    if p is None:
-        return None
+    assert p is not None  # a stage whose planets share its load (stage_layout asks its kind)
     from gearcli.config.schema import Stage  # lazy: config (pydantic) stays out of design's import
 
     stage = cfg.stage[k]
@@ -486,7 +493,7 @@ def line_forces_N(stages: Sequence[StageResult]) -> list[float]:
     out = []
     for s in stages:
         f = s.pinion.torque_Nmm / (0.5 * s.pinion.base_diameter_mm)
-        out.append(abs(f) if s.planetary is not None else f)
+        out.append(abs(f) if design_kind(s).model_signs_forces else f)
     return out
 
 

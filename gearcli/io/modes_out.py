@@ -9,6 +9,7 @@ from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import as_object, csv_text, plain
 from gearcli.model.modes import ModalAnalysis
 from gearcli.results import DesignResult
+from gearcli.stages.design import design_kind
 
 
 def modes_document(analyses: list[ModalAnalysis], design: DesignResult) -> JsonObject:
@@ -24,8 +25,7 @@ def mesh_stiffness_rows(design: DesignResult) -> list[JsonObject]:
     and its ``mesh_stiffness`` {law, K, exponent, linearised_N_mm, iso_N_mm, ...}."""
     rows: list[JsonObject] = []
     for st in design.stages:
-        meshes = [("mesh", st.mesh_stiffness)] if st.planetary is None else \
-            [("sun_planet", st.mesh_stiffness), ("planet_ring", st.planetary.planet_ring.mesh_stiffness)]
+        meshes = design_kind(st).meshes(st)
         rows += [{"stage": st.index, "mesh": name, "mesh_stiffness": as_object(plain(law))}
                  for name, law in meshes if law is not None]
     return rows

@@ -8,7 +8,7 @@ import io
 import json
 import math
 from collections.abc import Iterable, Sequence
-from typing import Any, TypeAlias
+from typing import Any, Protocol, TypeAlias, cast
 
 import numpy as np
 
@@ -21,6 +21,7 @@ from gearcli.io.channels import named
 from gearcli.io.units import channels, of_result
 from gearcli.results import DesignResult, drop_absent_bearing_keys
 from gearcli.simulate.results import SimulationResult
+from gearcli.stages import kinds
 
 #: a JSON object while this module rearranges it (nested keys moved, popped); the public functions return
 #: :data:`~gearcli.core.jsontypes.JsonObject`
@@ -73,7 +74,7 @@ def _design_doc(result: DesignResult) -> _Doc:
         drop_absent_bearing_keys(b)
     for s in doc["stages"]:
         _drop_absent_allowances(s)
-    doc["stages"] = [_planetary_stage(s) if s.get("planetary") else _parallel_stage(s) for s in doc["stages"]]
+    doc["stages"] = [_stage_json(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
     return doc
 
@@ -105,28 +106,22 @@ def _allowance_columns(d: _Doc) -> _Doc:
     return out
 
 
-_STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_module_mm", "normal_pressure_angle_deg",
-               "transverse_pressure_angle_deg", "helix_angle_deg", "base_helix_angle_deg")
+class _StageJson(Protocol):
+    """What the JSON asks of a stage's kind (:mod:`gearcli.stages.io`)."""
+
+    def json_stage(self, stage: _Doc) -> _Doc:
+        """The stage's JSON object from its result's plain dict (which has the kind's ``type``)."""
+
+    def json_simulated_stage(self, stage: JsonObject) -> JsonObject:
+        """A simulated stage's JSON object from today's statistics keys (a gear stage's as they are)."""
 
 
-def _parallel_stage(stage: _Doc) -> _Doc:
-    stage.pop("planetary", None)
-    if isinstance(stage.get("rating"), dict):  # K_gamma belongs to planetary stages (a parallel rating: today's keys)
-        stage["rating"].pop("K_gamma", None)
-    return stage
+def _stage_output(stage: object) -> _StageJson:
+    return cast(_StageJson, kinds.facet(kinds.kind_of(stage), "io"))
 
 
-def _planetary_stage(stage: _Doc) -> _Doc:
-    """A planetary stage's JSON: type, members (sun, planet, ring, carrier), ratio and the two meshes per planet."""
-    p = stage.pop("planetary")
-    head = {k: stage.pop(k) for k in _STAGE_KEYS}
-    stage.pop("pinion")
-    stage.pop("gear")
-    ring_mesh = p.pop("planet_ring")
-    planet = {**p.pop("planet"), "count": p["planet_count"], "mass_kg": p.pop("planet_mass_kg")}
-    return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
-            "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,
-            "meshes": [{"name": "sun_planet", **stage}, {"name": "planet_ring", **ring_mesh}]}
+def _stage_json(stage: _Doc) -> _Doc:
+    return cast(_StageJson, kinds.facet(str(stage.get("type") or kinds.PARALLEL), "io")).json_stage(stage)
 
 
 def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonObject:
@@ -136,11 +131,12 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
                                               "dynamic_factor", "runup_factor", "simulated_static_tangential_N",
                                               "dte_um", "contact_loss_fraction",
                                               "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
-        | ({"rating": _stage_rating(s.rating, planetary=bool(s.planets))} if s.rating is not None else {})
+        | ({"rating": _stage_rating(s.rating, sharing=bool(s.planets))} if s.rating is not None else {})
         | ({"planet_ring_rating": plain(s.planet_ring_rating)} if s.planet_ring_rating is not None else {})
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]
+    stages = [_stage_output(s).json_simulated_stage(doc) for s, doc in zip(result.stages, stages, strict=True)]
 
     u = output_units.of_result(result)
     speeds = {} if u.speed == "deg_s" else {f"input_speed_{u.speed}": u.speed_from_deg_s(result.input_speed_deg_s),
@@ -177,10 +173,10 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
     return out
 
 
-def _stage_rating(rating: object, *, planetary: bool) -> JsonValue:
-    """A simulated stage's rating; K_gamma only on a planetary stage's (a parallel stage keeps today's keys)."""
+def _stage_rating(rating: object, *, sharing: bool) -> JsonValue:
+    """A simulated stage's rating; K_gamma only where planets share the load (a parallel stage keeps today's keys)."""
     doc = plain(rating)
-    if not planetary and isinstance(doc, dict):
+    if not sharing and isinstance(doc, dict):
         doc.pop("K_gamma", None)
     return doc
 

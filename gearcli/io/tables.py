@@ -12,7 +12,7 @@ from __future__ import annotations
 import io
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Protocol, cast
 
 from rich.console import Console, RenderableType
 
@@ -28,14 +28,18 @@ from gearcli.io.table_kit import (
 )
 from gearcli.io.units import input_torque_window_means, of_result
 from gearcli.rating import for_rating
-from gearcli.results import DesignResult, RatedMesh
-from gearcli.simulate.results import SimulationResult
+from gearcli.results import DesignResult, RatedMesh, StageResult
+from gearcli.simulate.results import SimulationResult, StageDynamics
+from gearcli.stages import kinds
+from gearcli.stages.design import gear_pairs
 
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
 
 def design_tables(r: DesignResult) -> list[RenderableType]:
-    s = r.stages
+    """The design's tables: the gear stages' geometry, loads and rating (a column per stage whose kind is a gear
+    pair), each kind's own tables, the shafts, the bearings and the summary lines."""
+    s = [st for _, st in gear_pairs(r.stages)]
     cols = [f"stage {st.index}" for st in s]
 
     def row(label, fn, digits=5):
@@ -62,10 +66,10 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         row("overlap ratio ε_β", lambda st: st.overlap_ratio, 4),
         row("total ε_γ", lambda st: st.contact_ratio_total, 4),
     ])
-    def pinion(label, fn):  # a planetary stage's members are in its own table (sun, planets, ring, carrier)
-        return label, [_g(fn(st)) if st.planetary is None else "—" for st in s]
+    def pinion(label, fn):  # a kind whose members are not a pinion's has its own table (a planetary's sun, …)
+        return label, [_g(fn(st)) if _kind(st).pair_members else "—" for st in s]
 
-    parallel = any(st.planetary is None for st in s)
+    parallel = any(_kind(st).pair_members for st in s)
     loads = _quantity_table("loads and stiffness", cols, [
         *([pinion("pinion speed [rpm]", lambda st: st.pinion.speed_rpm),
            pinion("pinion torque [N·mm]", lambda st: st.pinion.torque_Nmm),
@@ -103,22 +107,60 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
                     f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
-    planetary = [*_allowance_table(r), *_planetary_design(r)]
+    gears = [geometry, loads] if s else []  # a train without gear stages (all belts) has no gear columns
+    own = [*_allowance_table(s), *_kind_tables(r)]
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
+        return [*gears, *([rating_table(rated)] if rated else []), *own, train, bearing_table(r.bearings), *summary]
+    return [*gears, *([rating_table(rated)] if rated else []), *own, train, *summary]
 
-        return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r),
-                train, bearing_table(r.bearings), *summary]
-    return [geometry, loads, *([rating_table(rated)] if rated else []), *planetary, *_planet_ring_rating(r), train,
-            *summary]
+
+class StageOutput(Protocol):
+    """What the tables ask of a stage's kind (its output facet, :mod:`gearcli.stages.io`, registered when
+    ``gearcli.io`` is imported)."""
+
+    @property
+    def pair_members(self) -> bool:
+        """The stage's members are a pinion and a gear (their rows in the loads table)."""
+
+    @property
+    def load_sharing(self) -> bool:
+        """The stage's rating has a load-sharing factor K_γ (a row of the rating table)."""
+
+    def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
+        """The kind's own tables of ``stages`` (the design's stages of this kind), after the allowances."""
+
+    def simulation_tables(self, r: SimulationResult, stages: list[StageDynamics]) -> list[RenderableType]:
+        """The kind's own tables of a run's ``stages`` (its stages' statistics), after the planets' tables."""
+
+
+def _kind(st: object) -> StageOutput:
+    """The output facet of a stage's kind."""
+    return cast(StageOutput, kinds.facet(kinds.kind_of(st), "io"))
+
+
+def _kind_simulation_tables(r: SimulationResult) -> list[RenderableType]:
+    """Each stage kind's own tables of the run (a belt's span force and stretch), kinds in stage order."""
+    order = list(dict.fromkeys(kinds.kind_of(st) for st in r.stages))
+    return [t for name in order
+            for t in _kind(r.stages[[kinds.kind_of(st) for st in r.stages].index(name)]).simulation_tables(
+                r, [st for st in r.stages if kinds.kind_of(st) == name])]
+
+
+def _kind_tables(r: DesignResult) -> list[RenderableType]:
+    """Each stage kind's own tables (a planetary's members and planet–ring mesh), kinds in stage order."""
+    order = list(dict.fromkeys(kinds.kind_of(st) for st in r.stages))
+    return [t for name in order
+            for t in _kind(r.stages[[kinds.kind_of(st) for st in r.stages].index(name)]).design_tables(
+                r, [st for st in r.stages if kinds.kind_of(st) == name])]
 
 
 def _limits(values: Sequence[float] | None, digits: int) -> str:
     return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
 
 
-def _allowance_table(r: DesignResult) -> list[RenderableType]:
-    """Tooth-thickness allowances (ISO 21771): only stages that give allowance keys have figures."""
-    s = [st for st in r.stages if st.backlash_circumferential_mm is not None]
+def _allowance_table(stages: list) -> list[RenderableType]:
+    """Tooth-thickness allowances (ISO 21771): only gear stages that give allowance keys have figures."""
+    s = [st for st in stages if st.backlash_circumferential_mm is not None]
     if not s:
         return []
     return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", [f"stage {st.index}" for st in s], [
@@ -130,89 +172,6 @@ def _allowance_table(r: DesignResult) -> list[RenderableType]:
         ("backlash j_n max / min [mm]", [_limits(st.backlash_normal_mm, 3) for st in s]),
         ("ε_α e / m / i", [_limits(st.contact_ratio_transverse_with_allowances, 3) for st in s]),
     ])]
-
-
-@dataclass(frozen=True)
-class _RatedMesh:
-    """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
-
-    index: int
-    rating: RatedMesh
-
-
-def _planet_ring_rating(r: DesignResult) -> list[RenderableType]:
-    """The planet–ring meshes' rating (``meshes[1].rating``), below the planetary stages' table."""
-    meshes = [_RatedMesh(st.index, st.planetary.planet_ring.rating) for st in r.stages
-              if st.planetary is not None and st.planetary.planet_ring.rating is not None]
-    if not meshes:
-        return []
-    return [rating_table(meshes, "planet–ring mesh strength rating, {standard} (p planet, g ring)")]
-
-
-def _planetary_design(r: DesignResult) -> list[RenderableType]:
-    """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh."""
-    s = [st for st in r.stages if st.planetary is not None]
-    ps = [st.planetary for st in r.stages if st.planetary is not None]
-    if not ps:
-        return []
-    rows = [
-        ("held / driven / output", [f"{p.fixed} / {p.input} / {p.output}" for p in ps]),
-        ("teeth sun / planet / ring, planets", [f"{p.sun.teeth} / {p.planet.teeth} / {p.ring.teeth}, "
-                                                f"{p.planet_count}" for p in ps]),
-        ("ratio |ω_in/ω_out|", [_g(p.ratio, 6) for p in ps]),
-        *(_member_row(m, ps) for m in ("sun", "carrier", "ring")),
-        ("moment balance T_sun + T_carrier + T_ring [N·m]", [_balance(p) for p in ps]),
-        ("efficiency stage η / carrier-held η_0 / per mesh η_m",
-         [f"{_g(p.stage_efficiency, 4)} / {_g(p.basic_efficiency, 5)} / {_g(p.mesh_efficiency, 5)}"
-          for p in _efficiencies(s)]),
-        ("planet speed relative to the carrier [rpm]", [_g(p.planet.speed_rpm) for p in ps]),
-        ("per planet, carrier frame: sun-side / planet torque [N·m]",
-         [f"{_g(st.pinion.torque_Nm)} / {_g(st.gear.torque_Nm)}" for st in s]),
-        ("per planet, carrier frame: rolling power [kW]", [_g(abs(st.pinion.power_kW)) for st in s]),
-        ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
-                                     f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
-        ("planet–ring α_wt [°]", [_g(p.planet_ring.working_pressure_angle_deg) for p in ps]),
-        ("planet–ring ε_α", [_g(p.planet_ring.contact_ratio_transverse, 4) for p in ps]),
-        ("planet–ring c′ / c_γα [N/(mm·µm)]", [f"{_g(p.planet_ring.iso6336_single_pair_stiffness_N_mm_um)} / "
-                                              f"{_g(p.planet_ring.iso6336_mesh_stiffness_N_mm_um)}" for p in ps]),
-        ("F_t per planet: sun–planet / planet–ring [N]", [f"{_g(st.static_force_N.tangential)} / "
-                                                        f"{_g(p.planet_ring.static_force_N.tangential)}"
-                                                        for st, p in zip(s, ps, strict=True)]),
-        ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
-        ("planets at [°], load-sharing K_γ", [f"{', '.join(_g(a, 5) for a in p.planet_angles_deg)}, "
-                                             f"{_g(p.load_sharing_factor, 4)}" for p in ps]),
-    ]
-    return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
-                            [f"stage {st.index}" for st in s], rows)]
-
-
-def _member_row(member: str, ps) -> tuple[str, list[str]]:
-    """A member's own speed, torque (its magnitude) and power, in the housing's frame."""
-    def cell(g) -> str:
-        return f"{_g(g.speed_rpm)} / {_g(g.torque_Nm)} / {_g(abs(g.power_kW))}"
-
-    return f"{member}: speed [rpm] / torque [N·m] / power [kW]", [cell(getattr(p, member)) for p in ps]
-
-
-def _balance(p) -> str:
-    """The signed external torques (positive in the input member's sense) and their sum."""
-    m = p.moment_balance_Nm
-    if not m:
-        return "—"
-    terms = [m["sun"], m["carrier"], m["ring"]]
-    text_ = _g(terms[0]) + "".join(f" {'-' if v < 0 else '+'} {_g(abs(v))}" for v in terms[1:])
-    return f"{text_} = {_g(sum(terms), 2)}"
-
-
-@dataclass(frozen=True)
-class _Efficiencies:
-    stage_efficiency: float
-    basic_efficiency: float
-    mesh_efficiency: float
-
-
-def _efficiencies(stages) -> list[_Efficiencies]:
-    return [_Efficiencies(st.efficiency, st.planetary.basic_efficiency, st.planetary.mesh_efficiency) for st in stages]
 
 
 class _HasRating(Protocol):
@@ -237,7 +196,7 @@ def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, {s
     title."""
     cols = [f"stage {st.index}" for st in stages]
     ratings = [_rating(st) for st in stages]
-    shared = any(getattr(r, "K_gamma", 1.0) != 1.0 or getattr(st, "planetary", None) is not None
+    shared = any(getattr(r, "K_gamma", 1.0) != 1.0 or _kind(st).load_sharing
                  for r, st in zip(ratings, stages, strict=True))
     return _quantity_table(title.format(standard=ratings[0].standard), cols, for_rating(ratings[0]).table_rows(ratings, shared=shared))
 
@@ -247,9 +206,13 @@ def _stats_cells(st) -> list[str]:
 
 
 def simulation_tables(r: SimulationResult) -> list[RenderableType]:
+    """The run's tables: the gear stages' mesh forces, peaks and mesh response, stiffness and error estimate (a
+    column per stage whose kind is a gear pair), the bearings, the planets, each kind's own tables, the
+    simulated rating and the footer lines."""
+    gear = [s for _, s in gear_pairs(r.stages)]
     force_rows: list[tuple[str, ...]] = []
     ends: list[bool] = []
-    for s in r.stages:
+    for s in gear:
         force_rows += [(str(s.index), "F_t [N]", *_stats_cells(s.tangential_N)), ("", "F_r [N]", *_stats_cells(s.radial_N)),
                  ("", "F_a [N]", *_stats_cells(s.axial_N)),
                  ("", "penetration [mm]", *_stats_cells(s.penetration_mm))]
@@ -257,32 +220,32 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     forces = FittedTable(f"mesh forces over the steady window {r.window_s[0]:.4g}–{r.window_s[1]:.4g} s",
                          ("stage", "channel", "mean", "std", "min", "max"), force_rows,
                          (False, False, True, True, True, True), ends=ends)
-    peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in r.stages], [
-        ("static F_t [N]", [_g(s.static_tangential_N) for s in r.stages]),
-        *([("static F_t as simulated [N]", [_g(s.simulated_static_tangential_N) for s in r.stages])]
+    peaks = _quantity_table("static theory, peaks and mesh response", [f"stage {s.index}" for s in gear], [
+        ("static F_t [N]", [_g(s.static_tangential_N) for s in gear]),
+        *([("static F_t as simulated [N]", [_g(s.simulated_static_tangential_N) for s in gear])]
           if any(s.simulated_static_tangential_N is not None
                  and abs(s.simulated_static_tangential_N - s.static_tangential_N)
-                 > 1e-9 * abs(s.static_tangential_N) for s in r.stages) else []),
-        ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in r.stages]),
-        ("at t [s]", [_g(s.peak_time_s, 3) for s in r.stages]),
-        ("dynamic factor (window max / static)", [_g(s.dynamic_factor, 4) for s in r.stages]),
-        ("run-up factor (run peak / static)", [_g(s.runup_factor, 4) for s in r.stages]),
-        ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in r.stages]),
-        ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in r.stages]),
-        ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in r.stages]),
-        ("contact loss fraction", [_g(s.contact_loss_fraction, 3) for s in r.stages]),
-        ("back flank fraction", [_g(s.back_flank_fraction, 3) for s in r.stages]),
-        ("regime", [s.regime or "—" for s in r.stages]),
+                 > 1e-9 * abs(s.static_tangential_N) for s in gear) else []),
+        ("peak |F_t| [N]", [_g(s.peak_tangential_N) for s in gear]),
+        ("at t [s]", [_g(s.peak_time_s, 3) for s in gear]),
+        ("dynamic factor (window max / static)", [_g(s.dynamic_factor, 4) for s in gear]),
+        ("run-up factor (run peak / static)", [_g(s.runup_factor, 4) for s in gear]),
+        ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in gear]),
+        ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in gear]),
+        ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in gear]),
+        ("contact loss fraction", [_g(s.contact_loss_fraction, 3) for s in gear]),
+        ("back flank fraction", [_g(s.back_flank_fraction, 3) for s in gear]),
+        ("regime", [s.regime or "—" for s in gear]),
     ])
-    rows = [("mesh stiffness K [N/mm^e]", [_g(m.law_N_mm_e) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
-            ("exponent e", [_g(m.exponent, 3) if (m := s.mesh_stiffness) else "—" for s in r.stages]),
+    rows = [("mesh stiffness K [N/mm^e]", [_g(m.law_N_mm_e) if (m := s.mesh_stiffness) else "—" for s in gear]),
+            ("exponent e", [_g(m.exponent, 3) if (m := s.mesh_stiffness) else "—" for s in gear]),
             ("linearised at static load [N/mm]",
-             [_g(m.linearised_N_mm) if (m := s.mesh_stiffness) else "—" for s in r.stages])]
-    rows += [(f"est. error {q} F_t [N]", [_g(_est(s.error_estimate, q), 2) for s in r.stages])
+             [_g(m.linearised_N_mm) if (m := s.mesh_stiffness) else "—" for s in gear])]
+    rows += [(f"est. error {q} F_t [N]", [_g(_est(s.error_estimate, q), 2) for s in gear])
              for q in ("min", "max", "std")]
     rows.append(("statistics resolved (mean 1e-4, else 1e-3)", [("—" if s.error_estimate is None else
-                                                  "yes" if s.error_estimate.resolved else "NO") for s in r.stages]))
-    mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in r.stages], rows)
+                                                  "yes" if s.error_estimate.resolved else "NO") for s in gear]))
+    mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in gear], rows)
     sv = r.solver
     lines = [footer_speeds(r)]
     means = input_torque_window_means(r)
@@ -316,11 +279,13 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     if rings:
         simulated.append(rating_table(rings, "planet–ring mesh strength rating at the simulated K_v, {standard} "
                                              "(p planet, g ring)"))
+    own = [*_planet_tables(r), *_kind_simulation_tables(r)]
+    head: list[RenderableType] = [forces] if gear else []  # a run without gear stages (all belts): no mesh tables
+    tail: list[RenderableType] = [peaks, mesh] if gear else []
     if r.extra and r.extra.get("bearings"):  # [[bearing]] tables (docs/life.md)
-
-        return [forces, bearing_stats_table(r.window_s, r.extra["bearings"]), peaks, mesh, *_planet_tables(r),
-                *simulated, *(text(line) for line in lines)]
-    return [forces, peaks, mesh, *_planet_tables(r), *simulated, *(text(line) for line in lines)]
+        return [*head, bearing_stats_table(r.window_s, r.extra["bearings"]), *tail, *own, *simulated,
+                *(text(line) for line in lines)]
+    return [*head, *tail, *own, *simulated, *(text(line) for line in lines)]
 
 
 @dataclass(frozen=True)

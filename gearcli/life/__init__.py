@@ -11,3 +11,5 @@ bearing lives over the duty.
 
 The facade (:func:`gearcli.api.prepare_life`, :func:`gearcli.api.life`) loads the file and evaluates the points.
 """
+
+from gearcli.stages import life as _stage_life  # noqa: E402, F401  # registers the built-in kinds' life facets

@@ -71,10 +71,8 @@ def toml_value(value: Any) -> str:
 
 
 def stage_ratio(stage) -> float:
-    """|input speed / output speed| of a stage: z_gear / z_pinion, or a planetary stage's Willis ratio."""
-    if getattr(stage, "type", "parallel") == "planetary":
-        return float(stage.speed_ratio)
-    return stage.gear.teeth / stage.pinion.teeth
+    """|input speed / output speed| of a stage (its table's: z_gear / z_pinion, a planetary stage's Willis ratio)."""
+    return float(stage.speed_ratio)
 
 
 def points_from_config(cfg) -> list[DutyPoint]:

@@ -13,14 +13,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import cast
 
 import numpy as np
 
 from gearcli import engine
 from gearcli.config import DesignFile
 from gearcli.config.bounds import check_memory
-from gearcli.config.schema import PlanetaryStage
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
@@ -36,12 +34,13 @@ from gearcli.life.starts import StartData, label, member_start_cycles, start_dat
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
 from gearcli.simulate.bearings import peak_static_load_N, reaction_series
 from gearcli.simulate.results import SimulationResult
+from gearcli.stages.design import design_kind
+from gearcli.stages.life import life_kind
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
 MEMBERS = ("pinion", "gear")
-PLANETARY_MEMBERS = {"pinion": "sun", "gear": "planet"}  # a planetary stage's sun–planet mesh
 
 
 @dataclass(frozen=True)
@@ -94,17 +93,14 @@ def _rating(stage: StageResult) -> RatedMesh:
 
 
 def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) -> None:
-    """A planetary stage's planet–ring mesh must be rated: its ring and the planet's ring side are members."""
+    """Every stage has a life model (its kind's) and every member life rates has its rating (a planetary stage's
+    planet–ring mesh too: its kind says)."""
     for st in design.stages:
-        if st.planetary is not None and st.planetary.planet_ring.rating is None:
-            stage = cfg.stage[st.index - 1]
-            assert isinstance(stage, PlanetaryStage)
-            ring = stage.ring
-            key = (f"stage[{st.index - 1}].ring.flank_roughness_Rz_um" if ring.flank_roughness_Rz_um is None
-                   else f"materials.{ring.material}")
-            raise ConfigError(f"stage {st.index}: gearcli life rates the planet–ring mesh too (the ring is often the "
-                              "weakest member): the ring needs flank_roughness_Rz_um and its material a treatment "
-                              "and fatigue limits", source=scene.source, key=key)
+        try:
+            kind = life_kind(st)
+        except ConfigError as exc:
+            raise ConfigError(exc.message, source=scene.source, key=exc.key) from None
+        kind.require_rated(cfg, st, scene.source)
 
 
 def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> _PointData:
@@ -118,8 +114,8 @@ def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> 
 
 
 def k_gamma(st: StageResult) -> float:
-    """A planetary stage's load-sharing factor K_gamma in its design (1 for a parallel stage)."""
-    return st.planetary.load_sharing_factor if st.planetary is not None else 1.0
+    """A stage's load-sharing factor K_gamma in its design (1 where nothing shares the load)."""
+    return life_kind(st).k_gamma(st)
 
 
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
@@ -128,22 +124,22 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
     notes: list[str] = []
-    planetary = [st for st in design.stages if st.planetary is not None]
+    sharing = [st for st in design.stages if design_kind(st).shares_load]  # planets sharing the load
     given = cfg.rating is not None and cfg.rating.load_sharing_factor not in (None, 1.0)
-    if planetary and given:
-        errors = [getattr(cfg.stage[st.index - 1], "planet").position_error_um for st in planetary]  # noqa: B009
+    if sharing and given:
+        errors = [getattr(cfg.stage[st.index - 1], "planet").position_error_um for st in sharing]  # noqa: B009
         if all(e is not None for e in errors):
             # the simulated planets share the load themselves (their position errors): K_gamma = 1 in the rating
             extra += ("rating.load_sharing_factor=1.0",)
             notes += [f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
                       f"(stage[{st.index - 1}].planet.position_error_um); [rating] load_sharing_factor = "
-                      f"{k_gamma(st):g} is not applied" for st in planetary]
+                      f"{k_gamma(st):g} is not applied" for st in sharing]
         else:
             # identical planets share equally in the model: the ISO allowance for unequal sharing stays
             notes += [f"stage {st.index}: the simulated planets are identical (no planet.position_error_um), so "
                       f"[rating] load_sharing_factor = {k_gamma(st):g} stays on the planet meshes' stresses and the "
                       "planet pins' loads; give the planets' position errors to simulate the sharing instead"
-                      for st in planetary]
+                      for st in sharing]
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
@@ -201,12 +197,11 @@ def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: Simu
 
 
 def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
-    """The series with each planetary stage's own F_t channel: its planets' sun-mesh mean (the central members'
-    load; the statics' input)."""
+    """The series with each stage with planets its own F_t channel: its planets' sun-mesh mean (the central
+    members' load; the statics' input)."""
     for st in design.stages:
-        if st.planetary is not None:
-            forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
-                      for j in range(1, st.planetary.planet_count + 1)]
+        forces = life_kind(st).planet_forces(st, series)
+        if forces:
             series[Channel("tangential_force", f"stage{st.index}")] = np.mean(forces, axis=0)
     return series
 
@@ -234,13 +229,12 @@ def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simula
     # reports the worst planet's
     per_planet: dict[int, list[dict[Channel, np.ndarray]]] = {}
     for st in design.stages:
-        if st.planetary is None:
+        forces = life_kind(st).planet_forces(st, series)
+        if not forces:
             continue
         own = Channel("tangential_force", f"stage{st.index}")
-        forces = [series[Channel("tangential_force", f"stage{st.index}_planet{j}_sun")]
-                  for j in range(1, st.planetary.planet_count + 1)]
         series[own] = np.mean(forces, axis=0)
-        forces = [f * st.planetary.load_sharing_factor for f in forces]
+        forces = [f * k_gamma(st) for f in forces]
         per_planet[st.index] = [{**series, own: f} for f in forces]
     r = reaction_series(lay, design, series)
     out = []
@@ -260,58 +254,33 @@ RING_MEMBERS = {"ring": ("gear", "ring"), "planet_ring_side": ("pinion", "planet
 
 
 def _member_rating(st: StageResult, member: str) -> RatedMember:
-    """The rating of ``member``: the stage's own (sun–planet mesh of a planetary stage) or, for a ring-mesh
-    member, the planet–ring mesh's."""
-    if member in RING_MEMBERS:
-        assert st.planetary is not None and st.planetary.planet_ring.rating is not None
-        return cast("RatedMember", getattr(st.planetary.planet_ring.rating, RING_MEMBERS[member][0]))
-    return cast("RatedMember", getattr(_rating(st), member))
+    """The rating of ``member`` (its stage kind's: a planetary's ring-mesh members the planet–ring mesh's)."""
+    _rating(st)
+    return life_kind(st).member_rating(st, member)
 
 
 def _curve(cfg, design, k: int, member: str, mode: str, variant: str) -> SNCurve:
     """The S–N curve of ``member`` in ``mode`` as the file's rating standard gives it (``gearcli.rating``)."""
     stage = cfg.stage[k]
-    if member in RING_MEMBERS:
-        own = RING_MEMBERS[member][1]
-    else:
-        own = PLANETARY_MEMBERS[member] if getattr(stage, "type", "parallel") == "planetary" else member
+    own = life_kind(stage).material_member(member)
     treatment = str(cfg.materials[getattr(stage, own).material].treatment)
     return standard_of(cfg).sn_curve(cfg, _member_rating(design.stages[k], member), treatment, mode, variant)
 
 
 def _contacts_per_turn(st, member: str) -> int:
-    """Load cycles of one tooth per revolution: a planetary stage's sun (and ring) meets its N planets,
-    everything else one mate (a planet's tooth meets the sun once on one flank, the ring once on the other)."""
-    if st.planetary is not None and member in ("pinion", "ring"):
-        return int(st.planetary.planet_count)
-    return 1
+    """Load cycles of one tooth per revolution (its stage kind's: a planetary's sun and ring meet N planets)."""
+    return life_kind(st).contacts_per_turn(st, member)
 
 
 def _member_speed_rpm(st: StageResult, member: str) -> float:
-    """The member's speed in rpm that loads its teeth: a planetary stage's relative to the carrier."""
-    if member == "ring":
-        assert st.planetary is not None
-        return abs(st.planetary.ring.speed_rpm - st.planetary.carrier.speed_rpm)
-    if member == "planet_ring_side":
-        return abs(st.gear.speed_rpm)  # the planet's speed relative to the carrier
-    return abs(getattr(st, member).speed_rpm)
+    """The member's speed in rpm that loads its teeth (a planetary stage's relative to the carrier)."""
+    return life_kind(st).member_speed_rpm(st, member)
 
 
 def _member_loads(pd: _PointData, k: int, member: str, planet: int | None = None) -> StageLoads:
-    """The tooth-force classes the member meets. A planetary stage on the dynamic route: the sun's and the ring's
-    of all N meshes, a planet's (``gear``, ``planet_ring_side``) of planet ``planet``'s (1-based) own mesh; on the
-    static route a ring-mesh member's are the planet–ring mesh's static force."""
-    dyn = pd.loads[k].planetary
-    if dyn is not None:
-        if member in ("gear", "planet_ring_side"):
-            assert planet is not None
-            return (dyn.planet_sun if member == "gear" else dyn.planet_ring)[planet - 1]
-        return dyn.ring if member == "ring" else dyn.sun
-    if member in RING_MEMBERS:
-        p = pd.design.stages[k].planetary
-        assert p is not None
-        return spectra.static_loads(p.planet_ring.static_force_N.tangential)
-    return pd.loads[k]
+    """The tooth-force classes the member meets (its stage kind's: a planetary's per planet on the dynamic route)."""
+    st = pd.design.stages[k]
+    return life_kind(st).member_loads(pd.loads[k], st, member, planet)
 
 
 def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
@@ -378,8 +347,8 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float, curve_name: str = ""
 
 
 def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float) -> StageLife:
-    """A stage's members; a planetary stage adds its planet–ring mesh: the ring, the planet's ring side, and the
-    planet's root over both meshes (docs/life.md, "Planetary stages")."""
+    """A stage's members, as its kind names them (a planetary stage adds its planet–ring mesh: the ring, the
+    planet's ring side, and the planet's root over both meshes; docs/life.md, "Planetary stages")."""
     def member_life(member: str, planet: int | None = None) -> MemberLife:
         return MemberLife(*(_mode_life(points, k, member, mode, variant, hours, planet) for mode in MODES))
 
@@ -390,45 +359,7 @@ def _stage_life(points: Sequence[_PointData], k: int, variant: str, hours: float
         return ml if planet is None else replace(ml, planet=planet)
 
     st = points[0].design.stages[k]
-    if st.planetary is None:
-        return StageLife(k + 1, member_life("pinion"), member_life("gear"))
-    if points[0].loads[k].planetary is None:  # static route: the most loaded planet is the rating's (K_gamma)
-        return StageLife(k + 1, member_life("pinion"), member_life("gear"), ring=member_life("ring"),
-                         planet_ring_side=member_life("planet_ring_side"), planet_root=root_life())
-    # dynamic route: every planet's own spectra; each planet member reports its worst planet
-    planets = range(1, st.planetary.planet_count + 1)
-    return StageLife(k + 1, member_life("pinion"), _worst([member_life("gear", j) for j in planets]),
-                     ring=member_life("ring"),
-                     planet_ring_side=_worst([member_life("planet_ring_side", j) for j in planets]),
-                     planet_root=_worst_mode([root_life(j) for j in planets]))
-
-
-def _severity(ml: ModeLife) -> tuple[float, float]:
-    """Order of severity: the smaller spectrum safety (load multiplier to D = 1; none found: infinite), then the
-    larger damage."""
-    return (math.inf if ml.safety is None else ml.safety, -ml.damage)
-
-
-def _first_of_worst(severity: Sequence[tuple[float, float]]) -> int:
-    """Index of the most severe entry; of entries equal to it within 1e-9 (identical planets, whose simulated
-    forces differ by round-off), the first."""
-    worst = min(severity)
-
-    def close(a: float, b: float) -> bool:
-        return a == b or abs(a - b) <= 1e-9 * max(abs(a), abs(b))
-
-    return next(i for i, s in enumerate(severity) if close(s[0], worst[0]) and close(s[1], worst[1]))
-
-
-def _worst_mode(lives: Sequence[ModeLife]) -> ModeLife:
-    """The most severe of the planets' lives."""
-    return lives[_first_of_worst([_severity(ml) for ml in lives])]
-
-
-def _worst(lives: Sequence[MemberLife]) -> MemberLife:
-    """The planet whose member is most severely loaded: the more severe of its two modes decides (pitting and
-    bending of one planet reported together)."""
-    return lives[_first_of_worst([min(_severity(m.pitting), _severity(m.bending)) for m in lives])]
+    return life_kind(st).stage_life(k, st, points[0].loads[k], member_life, root_life)
 
 
 def _no_progress(label: str, done: int, total: int) -> None:

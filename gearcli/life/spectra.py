@@ -14,11 +14,13 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
+from typing import Protocol, cast
 
 import numpy as np
 
 from gearcli.core.channels import Channel
 from gearcli.errors import SimulationError
+from gearcli.stages import kinds
 
 MESH_CLASSES = 20  # load classes of the dynamic spectrum per stage and point
 SAMPLES_PER_MESH_CYCLE = 128  # output samples per mesh cycle of the fastest mesh (peaks: see peak_error)
@@ -98,22 +100,30 @@ def dynamic_loads(result, design, span: tuple[float, float] | None = None) -> li
     t = result.time_s
     lo, hi = span if span is not None else result.window_s
     mask = (t >= lo - 1e-12) & (t <= hi + 1e-12)
-    out = []
-    for k, st in enumerate(design.stages):
-        if st.planetary is not None:
-            out.append(planetary_loads(t[mask], {n: c[mask] for n, c in result.series.items()}, st))
-            continue
-        angle = pinion_angle_rad(t[mask], {n: c[mask] for n, c in result.series.items()}, k + 1)
-        ft = result.series[Channel("tangential_force", f"stage{k + 1}")][mask]
-        peaks = mesh_cycle_peaks(t[mask], ft, angle, st.pinion.teeth)
-        if len(peaks) == 0:
-            raise SimulationError(f"stage {k + 1}: the steady window holds no whole mesh cycle; lengthen "
-                                  "simulation.duration_s (--set simulation.duration_s=...)")
-        # every second sample, both ways (a response locked to the sampling puts its peaks on one parity)
-        error = max(peak_error(peaks, mesh_cycle_peaks(t[mask][i::2], ft[i::2], angle[i::2], st.pinion.teeth))
-                    for i in (0, 1))
-        out.append(replace(classes(peaks, st.static_force_N.tangential), peak_error=error))
-    return out
+    series = {n: c[mask] for n, c in result.series.items()}
+    return [cast(_KindLoads, kinds.facet(kinds.kind_of(st), "life")).dynamic_loads(t[mask], series, st, k)
+            for k, st in enumerate(design.stages)]
+
+
+class _KindLoads(Protocol):
+    """What the spectra ask of a stage's kind (its life facet, :mod:`gearcli.stages.life`)."""
+
+    def dynamic_loads(self, t: np.ndarray, series: Mapping[Channel, np.ndarray], st, k: int) -> StageLoads:
+        """The stage's tooth-force classes over the window samples ``t``."""
+
+
+def pair_loads(t: np.ndarray, series: Mapping[Channel, np.ndarray], st, k: int) -> StageLoads:
+    """A gear pair's classes: the mesh-cycle peaks of its |F_t| over the window samples ``t`` (stage k, 0-based)."""
+    angle = pinion_angle_rad(t, series, k + 1)
+    ft = series[Channel("tangential_force", f"stage{k + 1}")]
+    peaks = mesh_cycle_peaks(t, ft, angle, st.pinion.teeth)
+    if len(peaks) == 0:
+        raise SimulationError(f"stage {k + 1}: the steady window holds no whole mesh cycle; lengthen "
+                              "simulation.duration_s (--set simulation.duration_s=...)")
+    # every second sample, both ways (a response locked to the sampling puts its peaks on one parity)
+    error = max(peak_error(peaks, mesh_cycle_peaks(t[i::2], ft[i::2], angle[i::2], st.pinion.teeth))
+                for i in (0, 1))
+    return replace(classes(peaks, st.static_force_N.tangential), peak_error=error)
 
 
 def relative_angle_rad(t: np.ndarray, series: Mapping[Channel, np.ndarray], st, member: str) -> np.ndarray:

@@ -25,6 +25,7 @@ from gearcli.life.spectra import StageLoads
 from gearcli.results import DesignResult
 from gearcli.simulate.bearings import peak_static_load_N
 from gearcli.simulate.results import SimulationResult
+from gearcli.stages.life import life_kind
 
 START_LABEL = "{name} (start)"
 
@@ -54,12 +55,12 @@ def _mask(t: np.ndarray, span: tuple[float, float]) -> np.ndarray:
 
 
 def stage_force_series(result: SimulationResult, design: DesignResult, k: int) -> np.ndarray:
-    """|F_t| of stage ``k`` (0-based); a planetary stage: the largest of its sun meshes' at each sample."""
+    """|F_t| of stage ``k`` (0-based); a stage with planets: the largest of its sun meshes' at each sample."""
     st = design.stages[k]
-    if st.planetary is None:
+    planets = life_kind(st).planet_forces(st, result.series)
+    if not planets:
         return np.abs(result.series[Channel("tangential_force", f"stage{k + 1}")])
-    return np.max([np.abs(result.series[Channel("tangential_force", f"stage{k + 1}_planet{j}_sun")])
-                   for j in range(1, st.planetary.planet_count + 1)], axis=0)
+    return np.max([np.abs(f) for f in planets], axis=0)
 
 
 def start_data(count: int, result: SimulationResult, design: DesignResult,

@@ -35,6 +35,7 @@ The static forces are still those of the chain (:mod:`gearcli.model.linear`).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
@@ -49,9 +50,8 @@ from gearcli.model.elements import (
     torque,
 )
 from gearcli.model.layout import StateLayout
-from gearcli.model.parts import Body, Connector, _row
-from gearcli.model.planet_assembly import place_planetary
-from gearcli.model.spec import DriveSpec, LoadSpec, ModelSpec
+from gearcli.model.parts import STAGE_ROLES, Body, Connector, _row
+from gearcli.model.spec import DriveSpec, LoadSpec, MeshSpec, ModelSpec
 
 
 @dataclass(frozen=True)
@@ -85,19 +85,11 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
     body(spec.inertias_kg_m2[0], "shaft 1")
     for k, m in enumerate(spec.meshes):
         flex = spec.shafts[k] if k < len(spec.shafts) else None
-        planetary = spec.planetary[k] if k < len(spec.planetary) else None
-        if planetary is not None:
-            out_inertia = spec.inertias_kg_m2[k + 1] if flex is None else flex.gear_end_kg_m2
-            place_planetary(planetary, k, bodies, conns, body, out_inertia)
-            if flex is None:
-                continue
-        else:
-            join("mesh", m, m.base_radius_pinion_m, m.base_radius_gear_m, f"stage {k + 1} mesh", "mesh", k)
+        own = spec.stage_models[k] if k < len(spec.stage_models) else None
+        stage = _Pair(m, join, flex is not None) if own is None else own
+        stage.place(k, bodies, conns, body, spec.inertias_kg_m2[k + 1] if flex is None else flex.gear_end_kg_m2)
         if flex is None:
-            body(spec.inertias_kg_m2[k + 1], f"shaft {k + 2}")
             continue
-        if planetary is None:
-            body(flex.gear_end_kg_m2, f"shaft {k + 2} gear end")
         join("spring", flex.spring, 1.0, 1.0, f"shaft {k + 2}", "shaft", k + 1)
         body(spec.inertias_kg_m2[k + 1] - flex.gear_end_kg_m2, f"shaft {k + 2} pinion end")
     if spec.drum is not None:
@@ -109,6 +101,24 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
         if not all(0 <= b < len(bodies) for b in e.bodies):
             raise ValueError(f"element {e.label!r} joins bodies {e.bodies}; the scene has bodies 0 to {len(bodies) - 1}")
     return bodies, _loss_widths(spec, bodies, _assembled(spec, bodies, conns))
+
+
+@dataclass(frozen=True)
+class _Pair:
+    """A stage that is one pair mesh between its input shaft's body and a new body (the chain's own stage; a
+    kind with a model of its own gives ``ModelSpec.stage_models``)."""
+
+    mesh: MeshSpec
+    join: Callable[..., None]
+    flexible_output: bool  # the output shaft is flexible: this body is its gear end
+    efficiency: float = 1.0  # the mesh's losses are its connector's
+    reverse_efficiency: float = 1.0
+
+    def place(self, k: int, bodies: list[Body], conns: list[Connector], body: Callable[..., None],
+              out_inertia: float) -> None:
+        m = self.mesh
+        self.join("mesh", m, m.base_radius_pinion_m, m.base_radius_gear_m, f"stage {k + 1} mesh", "mesh", k)
+        body(out_inertia, f"shaft {k + 2} gear end" if self.flexible_output else f"shaft {k + 2}")
 
 
 def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
@@ -230,8 +240,8 @@ class Layout:
     # ------------------------------------------------------------------------------- element roles
     @property
     def stage_conn(self) -> tuple[int, ...]:
-        """Connector index of each mesh, in stage order."""
-        return tuple(c for c, x in enumerate(self.connectors) if x.role == "mesh")
+        """Connector index of each stage's connector (its mesh; a belt's span), in stage order."""
+        return tuple(c for c, x in enumerate(self.connectors) if x.role in STAGE_ROLES)
 
     @property
     def shaft_body(self) -> tuple[int, ...]:
@@ -278,11 +288,11 @@ class Layout:
         return machine.load_row(self.load.speed_exponent, w_n, self.load.table, abs(self.load.torque_Nm) or 1.0)
 
     def train_efficiency(self, forward: bool = True) -> float:
-        """The power efficiency from the input to the output: every lossy pair mesh's eta, every planetary
-        stage's (its planet meshes lose eta_m each, the stage eta as a whole); the load reversed: the stages'
+        """The power efficiency from the input to the output: every lossy pair mesh's eta, every stage model's
+        (a planetary's planet meshes lose eta_m each, the stage eta as a whole); the load reversed: the stages'
         efficiencies with the power flowing back."""
         out = math.prod(x.efficiency for x in self.connectors if x.lossy and x.load_body < 0)
-        for p in self.spec.planetary:
+        for p in self.spec.stage_models:
             if p is not None:
                 out *= p.efficiency if forward else p.reverse_efficiency
         return out

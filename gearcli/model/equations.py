@@ -34,6 +34,7 @@ from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.codegen import compile_functions
 from gearcli.model.linear import static_forces
 from gearcli.model.outputs import kinetic_energy, potential_energy
+from gearcli.model.parts import STAGE_ROLES
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp_motion
 
@@ -177,7 +178,7 @@ class TorsionalModel:
         F = np.abs(static_forces(self.layout))
         out = np.empty(F.size)
         for c, x in enumerate(self.layout.connectors):
-            floor = MIN_DEFLECTION_SCALE_M if x.role == "mesh" else MIN_TWIST_SCALE_RAD
+            floor = MIN_DEFLECTION_SCALE_M if x.role in STAGE_ROLES else MIN_TWIST_SCALE_RAD  # m on levers
             out[c] = x.element.deflection_scale(x.params, F[c], floor)
         return out
 

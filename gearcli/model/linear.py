@@ -73,8 +73,8 @@ def static_forces(lay: Layout) -> np.ndarray:
 
 
 def _stage_factor(lay: Layout, k: int, forward: bool) -> float:
-    """What a planetary stage's losses multiply the torques before it by: 1/eta, or eta reversed."""
-    p = lay.spec.planetary[k]
+    """What a stage model's losses (a planetary's) multiply the torques before it by: 1/eta, or eta reversed."""
+    p = lay.spec.stage_models[k]
     assert p is not None
     return 1.0 / p.efficiency if forward else p.reverse_efficiency
 

@@ -103,13 +103,14 @@ def _stiffness(lay: Layout, duration_s: float) -> np.ndarray:
 
 def excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
     """(name, frequency over the input body's rotation frequency, connectors it acts through) of every order:
-    each stage's mesh orders act through that mesh; a shaft's rotation order through the meshes of the gears
+    each stage's mesh orders act through that mesh (a stage whose connector is no mesh, a belt's span, has
+    none); a shaft's rotation order through the meshes of the gears
     it carries (shaft 1: stage 1's pinion; shaft k + 1: stage k's gear and stage k + 1's pinion)."""
     out: list[tuple[str, float, tuple[int, ...]]] = []
     stages = lay.stage_conn
     for k, c in enumerate(stages):
         x = lay.connectors[c]
-        for h in MESH_ORDERS:
+        for h in MESH_ORDERS if x.role == "mesh" else ():
             out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * abs(lay.bodies[x.a].ratio), (c,)))
     for i, b in enumerate(lay.shaft_body):
         via = tuple(stages[j] for j in (i - 1, i) if 0 <= j < len(stages))

@@ -10,6 +10,9 @@ from dataclasses import dataclass
 
 from gearcli.model.elements import law_of, loses
 
+#: the roles of the connector that stands for a stage (its forces, deflection and statistics), one per stage
+STAGE_ROLES = ("mesh", "stage")
+
 
 @dataclass(frozen=True)
 class Body:
@@ -29,8 +32,9 @@ class Connector:
     params: tuple[float, ...]  # the element's parameter row, as Python floats
     label: str  # "input coupling", "stage 1 mesh", "shaft 2", "load coupling"
     index: int = -1  # 0-based stage of a mesh or reducer shaft of a flexible shaft; -1 for couplings
-    role: str = ""  # "mesh" (a stage's mesh), "shaft" (a flexible reducer shaft), "coupling", "planet" (a
-    # planet's sun or ring mesh), or "" (other)
+    role: str = ""  # "mesh" (a stage's mesh), "stage" (a stage's connector that is no gear mesh: a belt's span,
+    # its stage's forces and deflection as a mesh's are; STAGE_ROLES), "shaft" (a flexible reducer shaft),
+    # "coupling", "planet" (a planet's sun or ring mesh), or "" (other)
     load_body: int = -1  # a planet mesh: its static force is T_L rho_N / rho[load_body] * load_lever
     load_lever: float = 0.0
     planet: int = -1  # a planet mesh: its planet (0-based) and which mesh ("sun" or "ring")

@@ -15,10 +15,14 @@ motor (:class:`MotorSpec`), a load may depend on speed (:class:`LoadSpec`).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Literal
+from typing import TYPE_CHECKING, Literal, Protocol
 
 from gearcli.model.elements.machine import kloss_fit, motor_curve, motor_row, motor_torque
+
+if TYPE_CHECKING:  # the parts a stage model places (model.parts builds on this module's specs)
+    from gearcli.model.parts import Body, Connector
 
 MM = 1e-3  # m per mm
 
@@ -280,6 +284,24 @@ class PlanetarySpec:
         return (self.lever_sun_carrier_m * w_c - self.base_radius_sun_m * w_s) / self.base_radius_planet_m
 
 
+class StageModel(Protocol):
+    """A stage's own model (a kind's, :mod:`gearcli.stages.model`): where the chain has no stage model
+    (``ModelSpec.stage_models[k]`` None or absent) stage k is the pair ``meshes[k]``."""
+
+    @property
+    def efficiency(self) -> float:
+        """The stage's power efficiency beyond its connectors' own losses (1: none)."""
+
+    @property
+    def reverse_efficiency(self) -> float:
+        """The same with the load reversed."""
+
+    def place(self, k: int, bodies: list[Body], conns: list[Connector], body: Callable[..., None],
+              out_inertia: float) -> None:
+        """Add the stage's bodies and connectors after its input body (the last one in ``bodies``), ending with
+        its output shaft's body of inertia ``out_inertia``; ``body(inertia, label, ratio)`` adds a body."""
+
+
 @dataclass(frozen=True)
 class ModelSpec:
     meshes: tuple[MeshSpec, ...]
@@ -290,7 +312,8 @@ class ModelSpec:
     drum: CoupledInertia | None = None  # load acts on it; joined to the last shaft
     shafts: tuple[FlexibleShaft | None, ...] = ()  # per intermediate shaft k = 1 .. n-1 (or empty)
     elements: tuple[ElementSpec, ...] = ()  # further elements between the chain's bodies, by body index
-    planetary: tuple[PlanetarySpec | None, ...] = ()  # per stage: its planetary (meshes[k] then unused), or None
+    stage_models: tuple[StageModel | None, ...] = ()  # per stage: its own model (meshes[k] then unused), or None
+    stage_types: tuple[str, ...] = ()  # per stage: its kind (the design file's ``type``); empty: every stage parallel
 
     def __post_init__(self) -> None:
         if len(self.inertias_kg_m2) != len(self.meshes) + 1:

@@ -17,6 +17,7 @@ from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult
 from gearcli.simulate.results import SimulationResult
+from gearcli.stages.design import design_kind
 
 RAD_TO_DEG = 180.0 / math.pi
 
@@ -63,11 +64,9 @@ def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[Compar
         pinion_speed, gear_speed = speeds[k - 1], speeds[k]
         ratio_sim = pinion_speed / gear_speed if gear_speed != 0 else float("nan")
         static = st.static_force_N
-        out_speed, sign = st.gear.speed_deg_s, 1.0
-        if st.planetary is not None:  # the output member's speed; F_t with the flank sign the model gives it
-            p = st.planetary
-            out_speed = abs({"sun": p.sun, "ring": p.ring}[p.output].speed_deg_s if p.output != "carrier"
-                            else p.carrier.speed_deg_s)
+        kind = design_kind(st)
+        out_speed, sign = kind.output_speed_deg_s(st), 1.0  # the output member's speed
+        if kind.model_signs_forces:  # F_t with the flank sign the model gives it
             sign = -1.0 if (dyn.static_tangential_N < 0) != (static.tangential < 0) else 1.0
         rows += [
             _row(k, "ratio", st.ratio, ratio_sim),
@@ -114,8 +113,7 @@ def rating_comparison(design: DesignResult, sim: SimulationResult) -> tuple[Rati
             continue
         iso, at_sim = st.rating, sd.rating
         # every mesh of the stage counts: a planetary stage's planet–ring mesh beside its sun–planet mesh
-        ring_iso = st.planetary.planet_ring.rating if st.planetary is not None else None
-        isos = [r for r in (iso, ring_iso) if r is not None]
+        isos = [iso, *design_kind(st).further_ratings(st)]
         sims = [r for r in (at_sim, getattr(sd, "planet_ring_rating", None)) if r is not None]
         out.append(RatingComparison(
             stage=st.index, K_v_iso=iso.K_v, K_v_iso_source=iso.K_v_source,

@@ -24,6 +24,7 @@ from gearcli.diagnostics import Diagnostic, messages
 from gearcli.results import DesignResult
 from gearcli.simulate.results import BearingStats, SimulationExtra, SimulationResult
 from gearcli.simulate.stats import channel_stats, window_mask
+from gearcli.stages.design import design_kind
 
 
 def influence(lay: ShaftLayout, n_stages: int) -> tuple[np.ndarray, np.ndarray]:
@@ -49,7 +50,7 @@ def line_force_series(design: DesignResult, series: Mapping[Channel, np.ndarray]
     for s in design.stages:
         f = series[Channel("tangential_force", f"stage{s.index}")] / math.cos(
             math.radians(s.transverse_pressure_angle_deg))
-        rows.append(np.abs(f) if s.planetary is not None else f)
+        rows.append(np.abs(f) if design_kind(s).model_signs_forces else f)
     return np.array(rows)
 
 

@@ -400,14 +400,16 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                                 per_stage[k][4], periodic=periodic,
                                                 simulated_static_N=simulated_static[k]),
                            error_estimate=errors[k] if k < len(errors) else None,
-                           mesh_stiffness=stiffness[k] if k < len(stiffness) else None)
+                           mesh_stiffness=stiffness[k] if k < len(stiffness) else None,
+                           type=spec.stage_types[k] if k < len(spec.stage_types) else "parallel")
                    for k, m in enumerate(spec.meshes))
     stages = tuple(_with_planets(st, *_planets(model, s, mask, k)) for k, st in enumerate(stages))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
-    diags += ratio_warnings + stats.contact_warnings(spec, mask, [ms.penetration_m for ms in s.meshes],
-                                                     choice.at_full_load.penetration_m)
+    contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
+                for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
+    diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m)
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
                                                        [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID)
     diags += start_diags

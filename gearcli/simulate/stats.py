@@ -111,7 +111,7 @@ def mesh_response(t: np.ndarray, mask: np.ndarray, dte_um: np.ndarray, ft: np.nd
             "regime": regime}
 
 
-def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray],
+def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray | None],
                      static_penetration_m: np.ndarray) -> list[Diagnostic]:
     """Penetration beyond the full-damping depth or 10 % of the module; loss of contact on the loaded
     flank in the steady window (a loaded mesh that separates or crosses to its other flank rattles).
@@ -123,6 +123,8 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
     """
     out = []
     for k, (m, pen) in enumerate(zip(spec.meshes, penetration_m, strict=True)):
+        if pen is None:  # a stage whose connector is no mesh (a belt's span): no contact to lose
+            continue
         deepest = float(np.max(np.abs(pen)))
         if m.damping_Ns_m > 0 and static_penetration_m[k] < m.full_damping_m < deepest:
             out.append(dg.warning(dg.PENETRATION_BEYOND_DAMPING, f"stage {k + 1}: penetration reached "

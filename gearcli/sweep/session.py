@@ -24,6 +24,7 @@ from gearcli.config.load import integer_keys
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
+from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
@@ -105,8 +106,8 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
-    planetary = [st.index for st in design.stages if st.planetary is not None]
-    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), planetary), ident,
+    sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
+    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), sharing), ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 

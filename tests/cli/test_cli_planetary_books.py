@@ -75,7 +75,7 @@ def test_declared_unequal_spacing_assembles_and_phases_the_model():
 
     loaded = api.load(MIXER, [spec])
     design = api.design(loaded)
-    p = api.model_spec(loaded.design, design).planetary[0]
+    p = api.model_spec(loaded.design, design).stage_models[0]
     # planet 2's sun mesh leads planet 1's by z_s psi/360 = 18 x 114.2857/360 = 5.714 cycles; its ring mesh by
     # -z_r psi/360 = -34.286 cycles (Parker & Lin's phasing, from the declared angle)
     assert_allclose(p.mesh_phase_cycles(1, "sun"), 18 * angles[1] / 360, rtol=1e-12)

@@ -1,0 +1,111 @@
+"""The design facet of a stage kind (the design layer): what ``compute_design``, the checks, the shaft statics and
+the layers above ask of a stage (its kinematics, its stage result, the inertias it puts on the chain's shafts, its
+meshes, its own checks and warnings), and the lookup by the stage's ``type``.
+
+The protocol and the lookup only: this module imports nothing of ``gearcli.design``, so every module inside it
+may ask a stage's kind (the design layer's inner contract, ARCHITECTURE.md). The built-in kinds' facets are
+``gearcli.stages.gear_design`` (imported, and so registered, by ``gearcli.design.compute``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Protocol, TypeVar, cast
+
+from gearcli.diagnostics import Diagnostic
+from gearcli.results import MeshStiffness, RatedMesh, StageResult
+from gearcli.stages import kinds
+
+if TYPE_CHECKING:
+    from gearcli.config.schema import DesignFile
+    from gearcli.design.kinematics import Train
+
+S = TypeVar("S")
+
+#: the pair's stage result: (the design file as pairs, stage index, train, meshes in parallel) -> StageResult
+MeshResult = Callable[["DesignFile", int, "Train", int], StageResult]
+
+
+class DesignKind(Protocol):
+    """What ``compute_design`` asks of a stage kind."""
+
+    def reverse_efficiency(self, table: object, k: int) -> float | None:
+        """The stage's efficiency with the power flowing back (None: its forward efficiency)."""
+
+    def pair(self, table: object) -> object | None:
+        """The stage as the pair the rating and the pair's code read (``cfg.pair(k)``): itself if it is one; None
+        for a kind without a gear pair (a belt)."""
+
+    @property
+    def gear_pair(self) -> bool:
+        """The stage is (or is designed as) a gear pair: the pair's checks and the rating read it, its columns
+        are in the gear tables. A kind without one (a belt) gives its own figures and is not rated."""
+
+    def result(self, cfg: DesignFile, pairs: DesignFile, k: int, kin: Train, mesh: MeshResult) -> StageResult:
+        """The designed stage k (``mesh`` designs a pair)."""
+
+    def inertia(self, result: StageResult, side: str) -> float:
+        """The inertia the stage puts on its input (``side = "input"``) or output shaft, kg·m²."""
+
+    def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
+        """The stage's own design warnings."""
+
+    def check_inputs(self, cfg: DesignFile, k: int) -> None:
+        """Refuse what the pair checks do not see (``DesignError`` naming the key)."""
+
+    def file_key(self, k: int, key: str) -> str:
+        """A key of the stage's pair (``stage[k].pinion.x``) as the design file names it."""
+
+    @property
+    def shares_load(self) -> bool:
+        """The stage's meshes share its load among planets (its rating has K_γ; load-sharing columns)."""
+
+    def meshes(self, result: StageResult) -> list[tuple[str, MeshStiffness | None]]:
+        """The stage's meshes by name (a pair's ``mesh``) with the contact law at the static load."""
+
+    def meetings(self, result: StageResult, member: int) -> int:
+        """Contacts per turn of the pair's member (0 pinion, 1 gear) in its own frame (a planetary's sun: N)."""
+
+    def idler(self, result: StageResult, member: int) -> bool:
+        """The pair's member is an idler: its teeth bend both ways (ISO 6336-3's Y_M; a planetary's planet)."""
+
+    def further_ratings(self, result: StageResult) -> list[RatedMesh]:
+        """The ratings of the stage's meshes beyond its first (a planetary's planet–ring mesh)."""
+
+    def output_speed_deg_s(self, result: StageResult) -> float:
+        """The speed of the stage's output member, °/s (magnitude where the model counts it so)."""
+
+    def fastest_rad_s(self, cfg: DesignFile, result: StageResult, k: int, inertia_in: float,
+                      inertia_out: float) -> float:
+        """The fastest angular frequency the stage puts in the model (the run budget's indicator,
+        ``config.bounds``): its connector's stiffness on the two shafts' inertias, its excitation."""
+
+    @property
+    def model_signs_forces(self) -> bool:
+        """The model's static force of the stage's mesh may differ in sign from the design's (its flank)."""
+
+
+def design_kind(stage: object) -> DesignKind:
+    """The design facet of a stage table or stage result (by its ``type``)."""
+    return cast(DesignKind, kinds.facet(kinds.kind_of(stage), "design"))
+
+
+def pair_view(cfg: DesignFile) -> DesignFile:
+    """``cfg`` with every stage seen as the pair its kind designs (the pair's code and the rating read it)."""
+    stages = [design_kind(s).pair(s) or s for s in cfg.stage]
+    if all(a is b for a, b in zip(stages, cfg.stage, strict=True)):
+        return cfg
+    return cfg.model_copy(update={"stage": stages})
+
+
+def gear_pairs(stages: Iterable[S]) -> list[tuple[int, S]]:
+    """(k, stage) of the stages (tables or results) whose kind is a gear pair, k 0-based in ``stages``."""
+    return [(k, s) for k, s in enumerate(stages) if design_kind(s).gear_pair]
+
+
+def file_key(cfg: DesignFile, key: str | None) -> str | None:
+    """A key of the pair view (``stage[k].pinion.x``) as the design file names it (a planetary's ``sun.x``)."""
+    if key is None or not key.startswith("stage["):
+        return key
+    k = int(key[len("stage["):key.index("]")])
+    return design_kind(cfg.stage[k]).file_key(k, key) if k < len(cfg.stage) else key

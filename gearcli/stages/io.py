@@ -1,0 +1,166 @@
+"""The output facet of a stage kind (the io layer): its rows in the design tables, its own tables, its JSON
+stage; registered when ``gearcli.io`` is imported (``gearcli/io/__init__.py``).
+
+``gearcli.io.tables``, and ``serialize`` ask the kind (their own protocols of what they read,
+looked up in :mod:`gearcli.stages.kinds`) and never which kind a stage is.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from rich.console import RenderableType
+
+from gearcli.core.jsontypes import JsonObject
+from gearcli.io.table_kit import _g, _quantity_table
+from gearcli.io.tables import rating_table
+from gearcli.results import DesignResult, RatedMesh, StageResult
+from gearcli.simulate.results import SimulationResult, StageDynamics
+from gearcli.stages import kinds
+
+_Doc = dict[str, Any]
+
+#: the stage keys a planetary stage's JSON keeps before its members (the rest is its sun–planet mesh's)
+_STAGE_KEYS = ("index", "ratio", "efficiency", "normal_module_mm", "transverse_module_mm", "normal_pressure_angle_deg",
+               "transverse_pressure_angle_deg", "helix_angle_deg", "base_helix_angle_deg")
+
+
+class ParallelOutput:
+    """A parallel stage: pinion and gear in the common tables, today's JSON keys (no ``type``)."""
+
+    pair_members = True
+    load_sharing = False
+
+    def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
+        return []
+
+    def simulation_tables(self, r: SimulationResult, stages: list[StageDynamics]) -> list[RenderableType]:
+        return []
+
+    def json_stage(self, stage: _Doc) -> _Doc:
+        stage.pop("type", None)  # a parallel stage's JSON has no type (today's keys)
+        stage.pop("planetary", None)
+        if isinstance(stage.get("rating"), dict):  # K_gamma belongs to planetary stages (a parallel rating: today's keys)
+            stage["rating"].pop("K_gamma", None)
+        return stage
+
+    def json_simulated_stage(self, stage: JsonObject) -> JsonObject:
+        return stage
+
+
+class PlanetaryOutput:
+    """A planetary stage: its members and planet–ring mesh in a table of their own, its JSON with ``type``,
+    the members and the two meshes per planet."""
+
+    pair_members = False
+    load_sharing = True
+
+    def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
+        return [*_planetary_design(stages), *_planet_ring_rating(stages)]
+
+    def simulation_tables(self, r: SimulationResult, stages: list[StageDynamics]) -> list[RenderableType]:
+        return []  # its planets' tables are the run's (``io.tables``), in today's place
+
+    def json_stage(self, stage: _Doc) -> _Doc:
+        """A planetary stage's JSON: type, members (sun, planet, ring, carrier), ratio and the two meshes per planet."""
+        p = stage.pop("planetary")
+        stage.pop("type")
+        head = {k: stage.pop(k) for k in _STAGE_KEYS}
+        stage.pop("pinion")
+        stage.pop("gear")
+        ring_mesh = p.pop("planet_ring")
+        planet = {**p.pop("planet"), "count": p["planet_count"], "mass_kg": p.pop("planet_mass_kg")}
+        return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
+                "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,
+                "meshes": [{"name": "sun_planet", **stage}, {"name": "planet_ring", **ring_mesh}]}
+
+    def json_simulated_stage(self, stage: JsonObject) -> JsonObject:
+        return stage
+
+
+@dataclass(frozen=True)
+class _RatedMesh:
+    """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
+
+    index: int
+    rating: RatedMesh
+
+
+def _planet_ring_rating(stages: list[StageResult]) -> list[RenderableType]:
+    """The planet–ring meshes' rating (``meshes[1].rating``), below the planetary stages' table."""
+    meshes = [_RatedMesh(st.index, st.planetary.planet_ring.rating) for st in stages
+              if st.planetary is not None and st.planetary.planet_ring.rating is not None]
+    if not meshes:
+        return []
+    return [rating_table(meshes, "planet–ring mesh strength rating, {standard} (p planet, g ring)")]
+
+
+def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
+    """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh."""
+    s = [st for st in stages if st.planetary is not None]
+    ps = [st.planetary for st in stages if st.planetary is not None]
+    if not ps:
+        return []
+    rows = [
+        ("held / driven / output", [f"{p.fixed} / {p.input} / {p.output}" for p in ps]),
+        ("teeth sun / planet / ring, planets", [f"{p.sun.teeth} / {p.planet.teeth} / {p.ring.teeth}, "
+                                                f"{p.planet_count}" for p in ps]),
+        ("ratio |ω_in/ω_out|", [_g(p.ratio, 6) for p in ps]),
+        *(_member_row(m, ps) for m in ("sun", "carrier", "ring")),
+        ("moment balance T_sun + T_carrier + T_ring [N·m]", [_balance(p) for p in ps]),
+        ("efficiency stage η / carrier-held η_0 / per mesh η_m",
+         [f"{_g(p.stage_efficiency, 4)} / {_g(p.basic_efficiency, 5)} / {_g(p.mesh_efficiency, 5)}"
+          for p in _efficiencies(s)]),
+        ("planet speed relative to the carrier [rpm]", [_g(p.planet.speed_rpm) for p in ps]),
+        ("per planet, carrier frame: sun-side / planet torque [N·m]",
+         [f"{_g(st.pinion.torque_Nm)} / {_g(st.gear.torque_Nm)}" for st in s]),
+        ("per planet, carrier frame: rolling power [kW]", [_g(abs(st.pinion.power_kW)) for st in s]),
+        ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
+                                     f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
+        ("planet–ring α_wt [°]", [_g(p.planet_ring.working_pressure_angle_deg) for p in ps]),
+        ("planet–ring ε_α", [_g(p.planet_ring.contact_ratio_transverse, 4) for p in ps]),
+        ("planet–ring c′ / c_γα [N/(mm·µm)]", [f"{_g(p.planet_ring.iso6336_single_pair_stiffness_N_mm_um)} / "
+                                              f"{_g(p.planet_ring.iso6336_mesh_stiffness_N_mm_um)}" for p in ps]),
+        ("F_t per planet: sun–planet / planet–ring [N]", [f"{_g(st.static_force_N.tangential)} / "
+                                                        f"{_g(p.planet_ring.static_force_N.tangential)}"
+                                                        for st, p in zip(s, ps, strict=True)]),
+        ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
+        ("planets at [°], load-sharing K_γ", [f"{', '.join(_g(a, 5) for a in p.planet_angles_deg)}, "
+                                             f"{_g(p.load_sharing_factor, 4)}" for p in ps]),
+    ]
+    return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
+                            [f"stage {st.index}" for st in s], rows)]
+
+
+def _member_row(member: str, ps) -> tuple[str, list[str]]:
+    """A member's own speed, torque (its magnitude) and power, in the housing's frame."""
+    def cell(g) -> str:
+        return f"{_g(g.speed_rpm)} / {_g(g.torque_Nm)} / {_g(abs(g.power_kW))}"
+
+    return f"{member}: speed [rpm] / torque [N·m] / power [kW]", [cell(getattr(p, member)) for p in ps]
+
+
+def _balance(p) -> str:
+    """The signed external torques (positive in the input member's sense) and their sum."""
+    m = p.moment_balance_Nm
+    if not m:
+        return "—"
+    terms = [m["sun"], m["carrier"], m["ring"]]
+    text_ = _g(terms[0]) + "".join(f" {'-' if v < 0 else '+'} {_g(abs(v))}" for v in terms[1:])
+    return f"{text_} = {_g(sum(terms), 2)}"
+
+
+@dataclass(frozen=True)
+class _Efficiencies:
+    stage_efficiency: float
+    basic_efficiency: float
+    mesh_efficiency: float
+
+
+def _efficiencies(stages) -> list[_Efficiencies]:
+    return [_Efficiencies(st.efficiency, st.planetary.basic_efficiency, st.planetary.mesh_efficiency) for st in stages]
+
+
+kinds.provide(kinds.PARALLEL, "io", ParallelOutput())
+kinds.provide("planetary", "io", PlanetaryOutput())
