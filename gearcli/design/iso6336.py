@@ -25,7 +25,7 @@ from gearcli.rating.sn import SNCurve
 from gearcli.stages.design import design_kind, pair_view
 
 if TYPE_CHECKING:
-    from gearcli.config.schema import DesignFile
+    from gearcli.config.schema import DesignFile, PlanetaryStage
     from gearcli.design.rating_results import InternalRatingResult, RatingResult
     from gearcli.rating.standard import RatedMember, RatedMesh
     from gearcli.results import DesignResult, StageResult
@@ -199,11 +199,8 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
 
 def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
     """Which planet–ring mesh was not rated and the key it needs (never dropped without a word)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
     k = stage.index - 1
-    st = cfg.stage[k]
-    assert isinstance(st, PlanetaryStage)
+    st = cast("PlanetaryStage", cfg.stage[k])  # a stage with planets (``_planets``): the planetary kind's table
     ring_mat, planet_mat = cfg.materials[st.ring.material], cfg.materials[st.planet.material]
     if st.ring.flank_roughness_Rz_um is None:
         key = f"stage[{k}].ring.flank_roughness_Rz_um"

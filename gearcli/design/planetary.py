@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, TypeVar
+from typing import TYPE_CHECKING, TypeVar, cast
 
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
@@ -196,10 +196,7 @@ def _member(g: GearResult, speed_rad_s: float, torque_Nmm: float) -> GearResult:
 def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> StageResult:
     """The planetary stage k: its sun–planet ``mesh`` (computed in the carrier's frame) with the members,
     the carrier and the planet–ring mesh attached."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    stage = cfg.stage[k]
-    assert isinstance(stage, PlanetaryStage)
+    stage = cast("PlanetaryStage", cfg.stage[k])  # this kind's table (its design facet calls this)
     n, z_s, z_p, z_r = stage.planet.count, stage.sun.teeth, stage.planet.teeth, stage.ring.teeth
     ring_mat: Material = cfg.materials[stage.ring.material]
     planet_mat: Material = cfg.materials[stage.planet.material]
@@ -331,10 +328,7 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
 def check_stage_inputs(cfg: DesignFile, k: int) -> None:
     """The ring's material must be defined, a helical ring has the planet's hand, ``planet.angles_deg`` one
     angle per planet (the sun and planet are checked as the sun–planet pair)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    stage = cfg.stage[k]
-    assert isinstance(stage, PlanetaryStage)
+    stage = cast("PlanetaryStage", cfg.stage[k])  # this kind's table (its design facet calls this)
     check_material(stage.ring.material, cfg.materials, f"stage[{k}].ring.material")
     ring_hand, planet_hand = stage.ring.hand, stage.planet.hand
     if stage.helix_angle_deg > 0 and ring_hand is not None and ring_hand != planet_hand:

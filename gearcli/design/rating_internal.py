@@ -19,7 +19,7 @@ same; what differs for the internal pair:
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
@@ -39,7 +39,7 @@ from gearcli.design.stiffness import reference_tangential_force_N
 from gearcli.diagnostics import Diagnostic, warning
 
 if TYPE_CHECKING:
-    from gearcli.config.schema import DesignFile, Material
+    from gearcli.config.schema import DesignFile, Material, PlanetaryStage
     from gearcli.results import StageResult
 
 
@@ -67,10 +67,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     """The planet–ring rating of planetary stage ``k`` (``st`` with K_γ applied to its force); ``None`` when the
     ring's material or flank roughness lacks what the rating needs. ``simulated_k_v`` replaces K_v
     (``K_v_source = "simulated"``)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    stage, rating, lub, p = cfg.stage[k], cfg.rating, cfg.lubricant, st.planetary
-    assert isinstance(stage, PlanetaryStage) and p is not None
+    stage, rating, lub, p = cast("PlanetaryStage", cfg.stage[k]), cfg.rating, cfg.lubricant, st.planetary
+    assert p is not None  # a planetary stage's result (ISO rates its planet–ring mesh: design/iso6336.py)
     if rating is None or lub is None or lub.viscosity_40C_mm2_s is None or stage.accuracy_grade is None:
         return None
     mats = (cfg.materials[stage.planet.material], cfg.materials[stage.ring.material])
@@ -169,10 +167,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
 def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
     outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value)."""
-    from gearcli.config.schema import PlanetaryStage  # lazy: config (pydantic) stays out of design's import
-
-    stage, p = cfg.stage[st.index - 1], st.planetary
-    assert isinstance(stage, PlanetaryStage) and p is not None
+    stage, p = cast("PlanetaryStage", cfg.stage[st.index - 1]), st.planetary
+    assert p is not None  # a planetary stage's result
     ring, mesh = p.ring, p.planet_ring
     form = rr.internal_tooth_form(ring.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
                                   math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),

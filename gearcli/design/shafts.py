@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from gearcli.design.bearing_life import check_inputs, lubrication, static_figures
 from gearcli.design.iso281 import Lubrication, modified_life
@@ -32,7 +32,7 @@ from gearcli.results import BearingResult
 from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:
-    from gearcli.config.schema import DesignFile
+    from gearcli.config.schema import DesignFile, PlanetaryStage
     from gearcli.results import StageResult
 
 Vec = tuple[float, float, float]
@@ -462,10 +462,7 @@ def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayou
     the train's senses of rotation."""
     p = st.planetary
     assert p is not None  # a stage whose planets share its load (stage_layout asks its kind)
-    from gearcli.config.schema import Stage  # lazy: config (pydantic) stays out of design's import
-
-    stage = cfg.stage[k]
-    assert not isinstance(stage, Stage)  # a planetary stage's design has its planetary result
+    stage = cast("PlanetaryStage", cfg.stage[k])  # the table of the stage whose design has planets
     a_sp = math.radians(st.working_pressure_angle_deg)
     a_rp = math.radians(p.planet_ring.working_pressure_angle_deg)
     hand = {"right": 1, "left": -1}.get(stage.planet.hand or "spur", 0) if st.helix_angle_deg > 0 else 0

@@ -35,7 +35,7 @@ from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
 from gearcli.simulate.bearings import peak_static_load_N, reaction_series
 from gearcli.simulate.results import SimulationResult
 from gearcli.stages.design import design_kind
-from gearcli.stages.life import life_kind
+from gearcli.stages.life import LifeKind, life_kind
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 
 MODES = ("pitting", "bending")
@@ -93,14 +93,17 @@ def _rating(stage: StageResult) -> RatedMesh:
 
 
 def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) -> None:
-    """Every stage has a life model (its kind's) and every member life rates has its rating (a planetary stage's
-    planet–ring mesh too: its kind says)."""
-    for st in design.stages:
-        try:
-            kind = life_kind(st)
-        except ConfigError as exc:
-            raise ConfigError(exc.message, source=scene.source, key=exc.key) from None
+    """Every member life rates has its rating (a planetary stage's planet–ring mesh too: its kind says)."""
+    for st, kind in zip(design.stages, _life_kinds(design, scene), strict=True):
         kind.require_rated(cfg, st, scene.source)
+
+
+def _life_kinds(design: DesignResult, scene: Scene) -> list[LifeKind]:
+    """Each stage's life facet; a stage of a kind without one (no teeth to count: a belt) is exit 2 naming it."""
+    try:
+        return [life_kind(st) for st in design.stages]
+    except ConfigError as exc:
+        raise ConfigError(exc.message, source=scene.source, key=exc.key) from None
 
 
 def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> _PointData:
@@ -123,6 +126,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
+    _life_kinds(design, scene)
     notes: list[str] = []
     sharing = [st for st in design.stages if design_kind(st).shares_load]  # planets sharing the load
     given = cfg.rating is not None and cfg.rating.load_sharing_factor not in (None, 1.0)

@@ -80,7 +80,7 @@ def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: Sim
     for k, st in enumerate(result.stages[:n_stages], start=1):
         for name, get in STAGE_STATISTICS.items():
             row[f"stage{k}_{name}"] = get(st)
-        if getattr(st, "planets", ()):  # a planetary stage
+        if st.planets:  # a stage with planets: their load sharing
             for name, get in PLANETARY_STATISTICS.items():
                 row[f"stage{k}_{name}"] = get(st)
     row["output_speed_rpm"] = result.output_speed_deg_s / 6.0

@@ -223,3 +223,15 @@ def test_the_simulated_span_force_settles_on_the_static_one(belt, tmp_path):
     assert not [w for w in doc["warnings"] if w["code"] == "contact_loss"]  # a belt has no flank to lose
     table = _run("simulate", path, "--format", "table")
     assert "belt stages over the steady window" in table and "mesh forces" not in table
+
+
+@pytest.mark.parametrize("route", [("--static",), ()])
+def test_life_refuses_a_kind_without_a_life_model_by_name(belt, tmp_path, route):
+    """gearcli life counts gear teeth: a kind with no life facet (the belt has none) is exit 2 naming its stage's
+    type, on both routes, before any run."""
+    doc = _doc_with_belt(RATED)
+    doc["duty"] = [{"name": "rated", "hours": 1000.0, "torque_Nm": 1000.0, "speed_rpm": 1450.0}]
+    res = CliRunner().invoke(cli, ["life", str(_write(tmp_path, doc)), *route])
+    assert res.exit_code == 2, res.output
+    assert "stage[1].type" in res.stderr and "test_belt stage has none to rate" in res.stderr
+    assert "Traceback" not in res.output
