@@ -13,7 +13,7 @@ A parallel-stage reducer (:func:`_chain`) numbers its bodies in power-flow order
 and its connector c joins bodies (c, c+1): the input coupling, the meshes, the flexible shafts, the load
 coupling. ``ModelSpec.elements`` adds further elements between any of these bodies.
 
-State vector (deflection coordinates, not absolute angles: a mesh deflection of ~1e-5 m formed as the
+State vector (its slices and indices: :class:`gearcli.model.layout.StateLayout`, :attr:`Layout.state`; deflection coordinates, not absolute angles: a mesh deflection of ~1e-5 m formed as the
 difference of two ~1-10 m products of radius and angle would lose 5-6 of its 16 digits, so it is
 integrated directly, ``delta_c' = sum_j s_j r_j w_{bodies[j]}``):
 
@@ -42,19 +42,16 @@ from functools import cached_property
 import numpy as np
 
 from gearcli.model.elements import (
-    KIND_MESH,
     MAX_BODIES,
     N_PARAM,
     kind_of,
     law_of,
     machine,
-    mesh,
     torque,
 )
+from gearcli.model.layout import StateLayout
 from gearcli.model.parts import STAGE_ROLES, Body, Connector, _row
 from gearcli.model.spec import DriveSpec, LoadSpec, MeshSpec, ModelSpec
-
-QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
 
 
 @dataclass(frozen=True)
@@ -125,23 +122,21 @@ class _Pair:
 
 
 def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
-    """Connectors with the power scale of every lossy mesh's power-flow sign filled in: ``LOSS_WIDTH`` x the
-    static line force (at least 1 N) x the nominal pitch-line speed."""
+    """Connectors with the power scale of every lossy element's power-flow sign filled in (its loss hook's
+    ``with_loss_width``): ``LOSS_WIDTH`` x the static line force (at least 1 N) x the nominal pitch-line speed
+    of its driving side (``loss_sides``; floored at 1e-9 m/s)."""
     out = []
     for x in conns:
-        if x.planet_loss:  # the static force of its share of the output torque, the relative pitch-line speed
-            F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
-            sa, _, sc, ka = mesh.planet_loss_slots(x.params)
-            lev = x.levers
-            va = (lev[sa] * bodies[x.bodies[sa]].ratio if sa >= 0 else 0.0) + \
-                (ka * lev[sc] * bodies[x.bodies[sc]].ratio if sc >= 0 else 0.0)
-            v = abs(va * spec.drive.speed_rad_s)
-            x = replace(x, params=_row(mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * max(v, 1e-9))))
-        elif x.kind == KIND_MESH and mesh.lossy(x.params):
-            F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
-            v = abs(x.ra * bodies[x.a].ratio * spec.drive.speed_rad_s)
-            row = mesh.with_loss_width(x.params, mesh.LOSS_WIDTH * F * v)
-            x = Connector(x.kind, x.bodies, x.radii, _row(row), x.label, x.index, x.role)
+        if x.lossy:
+            if x.load_body >= 0:  # a planet mesh: the static force of its share of the output torque
+                F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
+            else:
+                F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
+            va = None
+            for body, k in x.loss_speeds[0]:
+                va = k * bodies[body].ratio if va is None else va + k * bodies[body].ratio
+            v = abs((va or 0.0) * spec.drive.speed_rad_s)
+            x = replace(x, params=_row(x.element.with_loss_width(x.params, x.element.LOSS_WIDTH * F * max(v, 1e-9))))
         out.append(x)
     return out
 
@@ -296,7 +291,7 @@ class Layout:
         """The power efficiency from the input to the output: every lossy pair mesh's eta, every stage model's
         (a planetary's planet meshes lose eta_m each, the stage eta as a whole); the load reversed: the stages'
         efficiencies with the power flowing back."""
-        out = math.prod(x.params[mesh.I_ETA] for x in self.connectors if x.lossy and not x.planet_loss)
+        out = math.prod(x.efficiency for x in self.connectors if x.lossy and x.load_body < 0)
         for p in self.spec.stage_models:
             if p is not None:
                 out *= p.efficiency if forward else p.reverse_efficiency
@@ -334,45 +329,39 @@ class Layout:
         return self.needs_angles and not self.speed_drive
 
     # ------------------------------------------------------------------------------------- indices
+    @cached_property
+    def state(self) -> StateLayout:
+        """Where every unknown lives in the state vector: ask it, never count (:mod:`gearcli.model.layout`)."""
+        return StateLayout(n_conn=self.n_conn, n_bodies=self.n_bodies, first_free=1 if self.speed_drive else 0,
+                           theta=self.has_theta_state, n_quad=3 + int(self.n_tv > 0))
+
     @property
     def free_bodies(self) -> range:
-        return range(1 if self.speed_drive else 0, self.n_bodies)
+        return range(self.state.first_free, self.n_bodies)
 
+    # the state's indices, for short: each is the StateLayout's
     def i_delta(self, c: int) -> int:
-        return c
+        return self.state.delta(c)
 
     def i_omega(self, body: int) -> int | None:
         """State index of a body's speed; None for the speed-driven input body."""
-        first = self.free_bodies.start
-        return None if body < first else self.n_conn + body - first
+        return self.state.omega(body)
 
     @property
     def i_theta(self) -> int | None:
-        return self.n_conn + len(self.free_bodies) if self.has_theta_state else None
+        return self.state.i_theta
 
     @property
     def i_quad(self) -> int:
-        return self.n_conn + len(self.free_bodies) + int(self.has_theta_state)
+        return self.state.i_quad
 
     @property
     def n_quad(self) -> int:
-        return 3 + int(self.n_tv > 0)
+        return self.state.n_quad
 
     @property
     def n_states(self) -> int:
-        return self.i_quad + self.n_quad
-
-    @property
-    def n_dynamic(self) -> int:
-        """States that carry the dynamics (step control); the quadratures follow them."""
-        return self.i_quad
-
-    @property
-    def state_names(self) -> list[str]:
-        names = [f"d{c}" for c in range(self.n_conn)] + [f"w{i}" for i in self.free_bodies]
-        if self.has_theta_state:
-            names.append("th0")
-        return names + [f"_q{j}" for j in range(self.n_quad)]
+        return self.state.n_states
 
     @property
     def tree(self) -> tuple[int, ...]:
@@ -441,12 +430,12 @@ class Layout:
         """d(theta_body)/dy as {column: coefficient}: theta_b = (r_a theta_a - delta_c) / r_b along the tree, or a
         body's :attr:`angle_rows` row (ValueError for a body whose angle nothing gives)."""
         if body == 0:
-            return {self.i_theta: 1.0} if self.i_theta is not None else {}
+            return {self.state.i_theta: 1.0} if self.state.i_theta is not None else {}
         c = self.tree[body]
         if c >= 0:
             x = self.connectors[c]
             grad = {col: x.ra / x.rb * v for col, v in self.angle_gradient(x.a).items()}
-            grad[self.i_delta(c)] = grad.get(self.i_delta(c), 0.0) - 1.0 / x.rb
+            grad[self.state.delta(c)] = grad.get(self.state.delta(c), 0.0) - 1.0 / x.rb
             return grad
         row = self.angle_rows.get(body)
         if row is None:
@@ -456,7 +445,7 @@ class Layout:
             for col, v in self.angle_gradient(j).items():
                 out[col] = out.get(col, 0.0) + coef * v
         for c, coef in row.deflections:
-            out[self.i_delta(c)] = out.get(self.i_delta(c), 0.0) + coef
+            out[self.state.delta(c)] = out.get(self.state.delta(c), 0.0) + coef
         return out
 
     def angle_row_matrix(self) -> np.ndarray:
@@ -478,7 +467,7 @@ class Layout:
 
     def body_speeds(self, y: np.ndarray, w0) -> np.ndarray:
         """Speeds of all bodies from states ``y`` (n_states, ...) and the input body's ``w0``."""
-        free = y[self.n_conn:self.n_conn + len(self.free_bodies)]
+        free = y[self.state.speeds]
         return np.vstack([np.asarray(w0)[None, ...], free]) if self.speed_drive else free
 
     def arrays(self, atol: np.ndarray) -> ModelArrays:
@@ -492,6 +481,7 @@ class Layout:
             bodies[c, :len(x.bodies)] = x.bodies
             levers[c, :len(x.bodies)] = x.levers
         drive = self.drive
+        i_omega0, i_theta, i_quad = self.state.kernel_offsets  # the compiled kernel's ipar (gearcli.engine.pack)
         return ModelArrays(
             body_inertia=np.array(self.inertias), conn_kind=np.array([x.kind for x in conns], dtype=np.int64),
             conn_bodies=bodies, conn_levers=levers, conn_param=param,
@@ -503,5 +493,5 @@ class Layout:
             load_value_Nm=self.load.torque_Nm, load_ramp_s=self.load.ramp_s,
             load_fluct=np.array(self.fluctuation, float).reshape(-1, 2), load_clock_s=float(self.load.clock_s),
             motor_row=np.array(self.motor_row, float), load_law=np.array(self.load_law, float),
-            n_states=self.n_states, i_delta0=0, i_omega0=self.n_conn,
-            i_theta=-1 if self.i_theta is None else self.i_theta, i_quad=self.i_quad, atol=np.asarray(atol, float))
+            n_states=self.state.n_states, i_delta0=self.state.deflections.start, i_omega0=i_omega0, i_theta=i_theta,
+            i_quad=i_quad, atol=np.asarray(atol, float))

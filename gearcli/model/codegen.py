@@ -33,7 +33,7 @@ import numpy as np
 
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
-from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
+from gearcli.model.layout import QUADRATURES
 from gearcli.model.parts import Connector
 
 
@@ -77,7 +77,7 @@ def _input_motion_lines(lay: Layout) -> list[str]:
 
 
 def _prologue(lay: Layout) -> list[str]:
-    lines = [f"    {', '.join(lay.state_names)}, = y.tolist()"]
+    lines = [f"    {', '.join(lay.state.names)}, = y.tolist()"]
     if lay.speed_drive:
         lines += _input_motion_lines(lay)
     elif lay.motor_drive:  # the motor's torque at its speed (gearcli.model.elements.machine), dTw = dTin/dw0
@@ -143,71 +143,61 @@ def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
 
 
 def _loss_lines(lay: Layout, c: int, jacobian: bool = False) -> list[str]:
-    """A lossy mesh: the forces on its pinion (fa) and gear (fb) side and the loss power ql
-    (:func:`gearcli.model.elements.mesh.loss_factors`); with the Jacobian, their partials by f and v, and
-    the loss power's (lf by f, lv by v). A planet mesh also the carrier's side force fc (its share of both)."""
+    """A lossy element (its loss hook, :data:`gearcli.model.elements.LOSS_HOOK`): the forces on its two sides
+    (fa, fb) and the loss power ql (the hook's ``loss_factors``, called as ``_loss{c}``); with the Jacobian,
+    their partials by f and v, and the loss power's (lf by f, lv by v). A slot that takes a share of both sides
+    (a planet mesh's carrier) its side force fc."""
     x = lay.connectors[c]
     if not x.lossy:
         return []
-    if x.planet_loss:
-        va, vb = (" + ".join(f"{lit(k)} * w{b}" for b, k in terms) or "0.0" for terms in _planet_speeds(x))
-        out = [f"    va{c} = {va}", f"    vb{c} = {vb}"]
-    else:
-        out = [f"    va{c} = {_scaled(x.ra, f'w{x.a}')}", f"    vb{c} = {_scaled(x.rb, f'w{x.b}')}"]
+    va, vb = (" + ".join(_scaled(k, f"w{b}") for b, k in terms) or "0.0" for terms in x.loss_speeds)
+    out = [f"    va{c} = {va}", f"    vb{c} = {vb}"]
     parts = f"Aa{c}, Ba{c}, Ab{c}, Bb{c}" if jacobian else "_, _, _, _"
-    out.append(f"    fa{c}, fb{c}, {parts} = _loss(_P{c}, f{c}, va{c}, vb{c})")
+    out.append(f"    fa{c}, fb{c}, {parts} = _loss{c}(_P{c}, f{c}, va{c}, vb{c})")
     out.append(f"    ql{c} = va{c} * (fa{c} - f{c}) - vb{c} * (fb{c} - f{c})")
-    if x.planet_loss and _planet_slots(x)[2] >= 0:
-        ka = _planet_slots(x)[3]
-        out.append(f"    fc{c} = {lit(ka)} * fa{c} + {lit(1.0 - ka)} * fb{c}")
+    mixed = _mixed_share(x)
+    if mixed is not None:
+        out.append(f"    fc{c} = {lit(mixed[0])} * fa{c} + {lit(mixed[1])} * fb{c}")
     if jacobian:
         out += [f"    lf{c} = va{c} * (Aa{c} - 1.0) - vb{c} * (Ab{c} - 1.0)",
                 f"    lv{c} = va{c} * Ba{c} - vb{c} * Bb{c}"]
     return out
 
 
-def _planet_slots(x: Connector) -> tuple[int, int, int, float]:
-    return planet_loss_slots(x.params)
+def _mixed_share(x: Connector) -> tuple[float, float] | None:
+    """The shares (of f_a, of f_b) of the one slot of a lossy element that takes a share of both sides (a planet
+    mesh's carrier: its side force fc); None where no slot does."""
+    shares = [x.loss_share(j) for j in range(len(x.bodies))]
+    mixed = [s for s in shares if s[0] != 0.0 and s[1] != 0.0]
+    assert len(mixed) <= 1, "a loss hook gives at most one slot a share of both sides"
+    return mixed[0] if mixed else None
 
 
-def _planet_speeds(x: Connector) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
-    """A lossy planet mesh's relative pitch-line speeds as (body, coefficient) terms: v_a = l_a w_a + kappa_a l_c
-    w_c, v_b = -(l_b w_b + kappa_b l_c w_c) (:func:`gearcli.model.elements.mesh.planet_loss_slots`)."""
-    sa, sb, sc, ka = _planet_slots(x)
-    lev = x.levers
-    va = ([(x.bodies[sa], lev[sa])] if sa >= 0 else []) + ([(x.bodies[sc], ka * lev[sc])] if sc >= 0 else [])
-    vb = [(x.bodies[sb], -lev[sb])] + ([(x.bodies[sc], -(1.0 - ka) * lev[sc])] if sc >= 0 else [])
-    return va, vb
-
-
-def _planet_side(x: Connector, j: int) -> str:
-    """The side force a lossy planet mesh puts on its slot j: "a", "b", "c" (the carrier) or "" (the law's)."""
-    sa, sb, sc, _ = _planet_slots(x)
-    return "a" if j == sa else "b" if j == sb else "c" if j == sc else ""
+def _side_name(x: Connector, j: int) -> str:
+    """Which force connector x puts on its slot j: "a" (f_a), "b" (f_b), "c" (a share of both) or "" (the law's f)."""
+    share_a, share_b = x.loss_share(j)
+    if share_a == 0.0 and share_b == 0.0:
+        return ""
+    return "c" if share_a != 0.0 and share_b != 0.0 else "a" if share_b == 0.0 else "b"
 
 
 def _side(lay: Layout, c: int, j: int) -> str:
-    """The force connector c puts on its body j (0: a mesh's pinion, 1: its gear): f, or f_a / f_b of a lossy
-    mesh; a lossy planet mesh's by its slots (f_a, f_b, the carrier's f_c)."""
-    x = lay.connectors[c]
-    if x.planet_loss:
-        return f"f{_planet_side(x, j)}{c}"
-    return f"f{'ab'[j]}{c}" if x.lossy and j < 2 else f"f{c}"
+    """The force connector c puts on its body j: f, or a lossy element's side force by its slot (f_a, f_b, or
+    the share of both f_c, :func:`_side_name`)."""
+    return f"f{_side_name(lay.connectors[c], j)}{c}"
 
 
 def _side_grad(lay: Layout, grads, grads_side, c: int, j: int) -> dict[int, str]:
     """d/dy of the force connector c puts on its body j (:func:`_side`)."""
     x = lay.connectors[c]
-    if x.planet_loss:
-        side = _planet_side(x, j)
-        if side == "c":
-            ka = _planet_slots(x)[3]
-            out: dict[int, list[str]] = {}
-            _add(out, grads_side[c][0], lit(ka))
-            _add(out, grads_side[c][1], lit(1.0 - ka))
-            return {col: " + ".join(v) for col, v in out.items()}
-        return grads_side[c]["ab".index(side)] if side else grads[c]
-    return grads_side[c][j] if j < 2 else grads[c]
+    side = _side_name(x, j)
+    if side == "c":
+        share_a, share_b = x.loss_share(j)
+        out: dict[int, list[str]] = {}
+        _add(out, grads_side[c][0], lit(share_a))
+        _add(out, grads_side[c][1], lit(share_b))
+        return {col: " + ".join(v) for col, v in out.items()}
+    return grads_side[c]["ab".index(side)] if side else grads[c]
 
 
 def _body_torque(lay: Layout, i: int) -> str:
@@ -245,11 +235,16 @@ def rhs_source(lay: Layout) -> str:
     lines = ["def rhs(t, y):"] + _prologue(lay)
     for c in range(lay.n_conn):
         lines += _connector_lines(lay, c, jacobian=False)
-    out = [f"dd{c}" for c in range(lay.n_conn)]
-    out += [f"({_body_torque(lay, i)}) * {lit(1.0 / lay.inertias[i])}" for i in lay.free_bodies]
-    if lay.has_theta_state:
-        out.append("w0")
-    out += _quadrature_exprs(lay)
+    st = lay.state
+    out = [""] * st.n_states
+    for c in range(lay.n_conn):
+        out[st.delta(c)] = f"dd{c}"
+    for i in lay.free_bodies:
+        out[_omega(lay, i)] = f"({_body_torque(lay, i)}) * {lit(1.0 / lay.inertias[i])}"
+    if st.i_theta is not None:
+        out[st.i_theta] = "w0"
+    for name, expr in zip(QUADRATURES, _quadrature_exprs(lay), strict=False):
+        out[_quad(lay, name)] = expr
     lines.append("    return _array([" + ", ".join(out) + "])")
     return "\n".join(lines) + "\n"
 
@@ -262,16 +257,16 @@ def _gradient(lay: Layout, c: int, name: str) -> dict[int, str]:
     e: transmission error). Speeds enter through the deflection rate and the phase rate z_p w_p of a
     mesh with a transmission error, body angles through the mesh phase z_p theta_p."""
     x = lay.connectors[c]
-    g = {lay.i_delta(c): f"{name}d{c}"}
+    g = {lay.state.delta(c): f"{name}d{c}"}
     for body, r in zip(x.bodies, x.levers, strict=True):
-        col = lay.i_omega(body)
+        col = lay.state.omega(body)
         if col is not None:
             g[col] = f"{lit(r)} * {name}v{c}"
     per_rad = x.element.phase_per_rad(x.params)
     if x.phased:
         for col, coef in lay.angle_gradient(x.a).items():
             g[col] = (g[col] + " + " if col in g else "") + f"{lit(coef * per_rad)} * {name}t{c}"
-    col = lay.i_omega(x.a)
+    col = lay.state.omega(x.a)
     if x.excited and col is not None:
         g[col] = g[col] + f" + {lit(per_rad)} * {name}w{c}"
     return g
@@ -283,18 +278,23 @@ def _add(row: dict[int, list[str]], grad: dict[int, str], coef: str) -> None:
 
 
 def _omega(lay: Layout, body: int) -> int:
-    col = lay.i_omega(body)
+    col = lay.state.omega(body)
     assert col is not None, "a prescribed body has no speed state"
     return col
 
 
+def _quad(lay: Layout, name: str) -> int:
+    i = lay.state.quadrature(name)
+    assert i is not None, f"this scene has no {name} quadrature"
+    return i
+
+
 def _speed_gradient(lay: Layout, c: int) -> dict[int, float]:
     """d v/dy of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (a planet mesh's: (v_a + v_b) / 2)."""
-    x = lay.connectors[c]
-    terms = [t for ts in _planet_speeds(x) for t in ts] if x.planet_loss else [(x.a, x.ra), (x.b, x.rb)]
+    terms = [t for ts in lay.connectors[c].loss_speeds for t in ts]
     g: dict[int, float] = {}
     for body, r in terms:
-        col = lay.i_omega(body)
+        col = lay.state.omega(body)
         if col is not None:
             g[col] = g.get(col, 0.0) + 0.5 * r
     return g
@@ -315,13 +315,10 @@ def _loss_gradient(lay: Layout, c: int, grad: dict[int, str]) -> dict[int, str]:
     x = lay.connectors[c]
     out = {col: f"lf{c} * ({expr})" for col, expr in grad.items()}
     terms = {col: [f"{lit(coef)} * lv{c}"] for col, coef in _speed_gradient(lay, c).items()}
-    if x.planet_loss:  # (fa - f) dva/dy - (fb - f) dvb/dy
-        va, vb = _planet_speeds(x)
-        sides = [(body, k, "a", "") for body, k in va] + [(body, k, "b", "-") for body, k in vb]
-    else:
-        sides = [(x.a, x.ra, "a", ""), (x.b, x.rb, "b", "-")]
+    va, vb = x.loss_speeds  # (fa - f) dva/dy - (fb - f) dvb/dy
+    sides = [(body, k, "a", "") for body, k in va] + [(body, k, "b", "-") for body, k in vb]
     for body, r, side, sign in sides:
-        col = lay.i_omega(body)
+        col = lay.state.omega(body)
         if col is not None:
             terms.setdefault(col, []).append(f"{sign}{lit(r)} * (f{side}{c} - f{c})")
     for col, ts in terms.items():
@@ -334,18 +331,18 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
     grads = [_gradient(lay, c, "k") for c in range(lay.n_conn)]
     grads_side = [[_side_gradient(lay, c, g, side) for side in ("a", "b")] for c, g in enumerate(grads)]
     for c, x in enumerate(lay.connectors):  # d(delta_c)/dt = sum_j s_j r_j w_j
-        row = rows.setdefault(lay.i_delta(c), {})
+        row = rows.setdefault(lay.state.delta(c), {})
         for body, r in zip(x.bodies, x.levers, strict=True):
-            col = lay.i_omega(body)
+            col = lay.state.omega(body)
             if col is not None:
                 row[col] = [lit(r)]
     for i in lay.free_bodies:  # J_i w_i' = sum over its connectors of -s_j r_j f_c (+ Tin - TL)
         row = rows.setdefault(_omega(lay, i), {})
         for c, j in lay.acting_on(i):
             _add(row, _side_grad(lay, grads, grads_side, c, j), lit(-lay.connectors[c].levers[j] / lay.inertias[i]))
-    if lay.i_theta is not None:
-        rows[lay.i_theta] = {_omega(lay, 0): ["1.0"]}
-    q0 = lay.i_quad
+    if lay.state.i_theta is not None:
+        rows[lay.state.i_theta] = {_omega(lay, 0): ["1.0"]}
+    q0, q_load, q_damp = (_quad(lay, n) for n in ("input_work_J", "load_work_J", "damping_loss_J"))
     if lay.speed_drive:  # P_in = (sum s_j r_j f_c over body 0's connectors + J0 a0) w0, w0 prescribed
         for c, j in lay.acting_on(0):
             _add(rows.setdefault(q0, {}), _side_grad(lay, grads, grads_side, c, j),
@@ -355,24 +352,24 @@ def _jac_rows(lay: Layout) -> dict[int, dict[int, list[str]]]:
         rows[_omega(lay, 0)].setdefault(_omega(lay, 0), []).append(f"{lit(1.0 / lay.inertias[0])} * dTw")
     else:
         rows.setdefault(q0, {})[_omega(lay, 0)] = ["Tin"]
-    if lay.ripple and lay.i_theta is not None:  # T_in depends on th0
-        rows[_omega(lay, 0)].setdefault(lay.i_theta, []).append(f"{lit(1.0 / lay.inertias[0])} * dTin")
-        rows[q0].setdefault(lay.i_theta, []).append("dTin * w0")
+    if lay.ripple and lay.state.i_theta is not None:  # T_in depends on th0
+        rows[_omega(lay, 0)].setdefault(lay.state.i_theta, []).append(f"{lit(1.0 / lay.inertias[0])} * dTin")
+        rows[q0].setdefault(lay.state.i_theta, []).append("dTin * w0")
     for c, x in enumerate(lay.connectors):
         if x.excited:  # + the transmission error's power
             _add(rows.setdefault(q0, {}), _gradient(lay, c, "e"), "1.0")
     if lay.load.torque_Nm != 0.0:
         last = _omega(lay, lay.n_bodies - 1)
-        rows.setdefault(q0 + 1, {})[last] = ["TL + dTL * w" + str(lay.n_bodies - 1)] if lay.load_law else ["TL"]
+        rows.setdefault(q_load, {})[last] = ["TL + dTL * w" + str(lay.n_bodies - 1)] if lay.load_law else ["TL"]
         if lay.load_law:
             rows[last].setdefault(last, []).append(f"{lit(-1.0 / lay.inertias[-1])} * dTL")
     for c, x in enumerate(lay.connectors):
         if x.damped:
-            _add(rows.setdefault(q0 + 2, {}), _gradient(lay, c, "q"), "1.0")
+            _add(rows.setdefault(q_damp, {}), _gradient(lay, c, "q"), "1.0")
         if x.lossy:
-            _add(rows.setdefault(q0 + 2, {}), _loss_gradient(lay, c, grads[c]), "1.0")
+            _add(rows.setdefault(q_damp, {}), _loss_gradient(lay, c, grads[c]), "1.0")
         if x.time_varying:
-            _add(rows.setdefault(q0 + 3, {}), _gradient(lay, c, "u"), "1.0")
+            _add(rows.setdefault(_quad(lay, "elastic_work_tv_J"), {}), _gradient(lay, c, "u"), "1.0")
     return rows
 
 
@@ -380,7 +377,7 @@ def jac_source(lay: Layout) -> str:
     lines = ["def jac(t, y):"] + _prologue(lay)
     for c in range(lay.n_conn):
         lines += _connector_lines(lay, c, jacobian=True)
-    lines.append(f"    J = _zeros(({lay.n_states}, {lay.n_states}))")
+    lines.append(f"    J = _zeros(({lay.state.n_states}, {lay.state.n_states}))")
     rows = _jac_rows(lay)
     for r in sorted(rows):
         for col in sorted(rows[r]):
@@ -393,7 +390,7 @@ def _header(lay: Layout) -> str:
     bodies = ", ".join(f"{i}: {b.label} (J = {b.inertia:.6g} kg m^2)" for i, b in enumerate(lay.bodies))
     conns = ", ".join(f"{c}: {x.label} ({'-'.join(map(str, x.bodies))})" for c, x in enumerate(lay.connectors))
     return (f"# generated by gearcli.model.codegen\n# bodies: {bodies}\n# connectors: {conns}\n"
-            f"# state: {', '.join(lay.state_names)}\n\n")
+            f"# state: {', '.join(lay.state.names)}\n\n")
 
 
 def source_of(lay: Layout) -> str:
@@ -441,9 +438,11 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
     namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
                        "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation,
                        "_motor": machine.motor_torque, "_MOT": lay.motor_row, "_load": machine.load_factor,
-                       "_LOD": lay.load_law, "_loss": loss_factors}
+                       "_LOD": lay.load_law}
     for c, x in enumerate(lay.connectors):
         namespace[f"_P{c}"] = x.params
+        if x.lossy:  # the element's loss hook
+            namespace[f"_loss{c}"] = x.element.loss_factors
         namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
         namespace[f"_power{c}"] = x.element.power_gradient
     source = source_of(lay)

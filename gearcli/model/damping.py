@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import machine, mesh
+from gearcli.model.elements import machine
 
 STEADY_T = 1e12  # s: a time past every start ramp (the motor's steady curve)
 SPEED_SAMPLES = 4000  # grid over 0 .. the synchronous speed on which the motor's crossings are bracketed
@@ -41,7 +41,7 @@ def _reflected_load_Nm(lay: Layout, w: float) -> float:
     """The load torque at the input body (N m) when it turns at w in steady state (losses forward)."""
     rho = lay.bodies[-1].ratio
     g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
-    eta = math.prod(x.params[mesh.I_ETA] for x in lay.connectors if x.lossy)
+    eta = math.prod(x.efficiency for x in lay.connectors if x.lossy)
     t = lay.load.torque_Nm * g * rho
     return t / eta if t >= 0 else t * eta
 
@@ -92,7 +92,7 @@ def loss_factors(lay: Layout) -> np.ndarray:
     forward = lay.load.torque_Nm >= 0.0
     for c, x in enumerate(lay.connectors):
         if x.lossy:
-            g[c, 1 if forward else 0] = x.params[mesh.I_ETA]
+            g[c, 1 if forward else 0] = x.efficiency
     return g
 
 

@@ -112,7 +112,7 @@ class TorsionalModel:
 
     @property
     def n_states(self) -> int:
-        return self.layout.n_states
+        return self.layout.state.n_states
 
     @property
     def arrays(self) -> ModelArrays:
@@ -142,12 +142,12 @@ class TorsionalModel:
 
     def initial_state(self) -> np.ndarray:
         lay = self.layout
-        y0 = np.zeros(lay.n_states)
+        y0 = np.zeros(lay.state.n_states)
         w_in = self._input_speed()
         for i in lay.free_bodies:
-            y0[lay.i_omega(i)] = lay.bodies[i].ratio * w_in
+            y0[lay.state.omega(i)] = lay.bodies[i].ratio * w_in
         for c, x in enumerate(lay.connectors):  # a planet's position error: delta = R theta + e
-            y0[lay.i_delta(c)] = x.initial_deflection
+            y0[lay.state.delta(c)] = x.initial_deflection
         return y0
 
     def continue_state(self, y_prev: np.ndarray, model_prev: TorsionalModel, t_prev: float | None = None) -> np.ndarray:
@@ -162,14 +162,14 @@ class TorsionalModel:
         if (lay.n_conn, lay.n_bodies, lay.speed_drive) != (prev.n_conn, prev.n_bodies, prev.speed_drive):
             raise ValueError("continuation needs the same chain of bodies and connectors")
         y = self.initial_state()
-        y[:lay.n_conn] = y_prev[:lay.n_conn]
+        y[lay.state.deflections] = y_prev[prev.state.deflections]
         t_end = max(prev.drive.ramp_s, prev.load.ramp_s) if t_prev is None else t_prev
         w_prev_in = model_prev._input_speed(t_end)
         for i in lay.free_bodies:  # same vibration about the new rigid speed
             rigid_prev = prev.bodies[i].ratio * w_prev_in
-            y[lay.i_omega(i)] += y_prev[prev.i_omega(i)] - rigid_prev
-        if lay.i_theta is not None and prev.i_theta is not None:
-            y[lay.i_theta] = y_prev[prev.i_theta]
+            y[lay.state.omega(i)] += y_prev[prev.state.omega(i)] - rigid_prev
+        if lay.state.i_theta is not None and prev.state.i_theta is not None:
+            y[lay.state.i_theta] = y_prev[prev.state.i_theta]
         return y
 
     def deflection_scales(self) -> np.ndarray:
@@ -193,27 +193,34 @@ class TorsionalModel:
 
     def atol(self, rtol: float) -> np.ndarray:
         """Per-state absolute tolerance: rtol x the state's natural scale."""
-        lay = self.layout
-        parts = [rtol * self.deflection_scales(), rtol * self.speed_scales_rad_s()]
-        if lay.has_theta_state:
-            parts.append(np.array([rtol * 2.0 * math.pi / max(m.pinion_teeth for m in self.spec.meshes)]))
-        parts.append(np.full(lay.n_quad, QUADRATURE_ATOL))
-        return np.concatenate(parts)
+        st = self.layout.state
+        out = np.empty(st.n_states)
+        out[st.deflections] = rtol * self.deflection_scales()
+        out[st.speeds] = rtol * self.speed_scales_rad_s()
+        if st.i_theta is not None:
+            out[st.i_theta] = rtol * 2.0 * math.pi / max(m.pinion_teeth for m in self.spec.meshes)
+        out[st.quadratures] = QUADRATURE_ATOL
+        return out
 
     # ------------------------------------------------------------------------------------ energy
     def energy(self, s, Y: np.ndarray) -> Energy:
         """Energy balance over the run from its samples ``s`` (``outputs.Sampled``) and states ``Y``."""
         lay = self.layout
-        q = lay.i_quad
+        st = lay.state
         ke = kinetic_energy(lay, s.omega_rad_s[:, [0, -1]])
         u_const = potential_energy(lay, s, time_varying=False)
         u_tv = potential_energy(lay, s, time_varying=True)
         d_u_tv = float(u_tv[-1] - u_tv[0])
-        w_el_tv = float(Y[q + 3, -1] - Y[q + 3, 0]) if lay.n_tv else 0.0
+
+        def change(name: str) -> float:  # a quadrature's change over the run; 0 where the scene has none
+            i = st.quadrature(name)
+            return 0.0 if i is None else float(Y[i, -1] - Y[i, 0])
+
+        w_el_tv = change("elastic_work_tv_J")
         return Energy(
-            input_work_J=float(Y[q, -1] - Y[q, 0]),
-            load_work_J=float(Y[q + 1, -1] - Y[q + 1, 0]),
-            damping_loss_J=float(Y[q + 2, -1] - Y[q + 2, 0]),
+            input_work_J=change("input_work_J"),
+            load_work_J=change("load_work_J"),
+            damping_loss_J=change("damping_loss_J"),
             kinetic_change_J=float(ke[1] - ke[0]),
             potential_change_J=float(u_const[-1] - u_const[0]) + d_u_tv,
             parametric_work_J=d_u_tv - w_el_tv,

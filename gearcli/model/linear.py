@@ -29,7 +29,6 @@ import numpy as np
 
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_matrices, state_matrix
-from gearcli.model.elements import mesh
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
 
@@ -67,7 +66,7 @@ def static_forces(lay: Layout) -> np.ndarray:
                 factor *= _stage_factor(lay, pending, forward)
                 pending = None
             if x.lossy:
-                eta = x.params[mesh.I_ETA]
+                eta = x.efficiency
                 factor *= 1.0 / eta if forward else eta
             out[c] *= factor
     return out
@@ -183,7 +182,7 @@ def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False)
     for c in range(F.size):
         kd[c], cd[c], defl[c] = tangent(lay, c, F[c], stiffest_phase=stiffest_phase)
     R = speed_map(lay)
-    M = R @ np.diag(1.0 / np.asarray(lay.inertias[lay.free_bodies.start:])) @ R.T
+    M = R @ np.diag(1.0 / np.asarray(lay.inertias[lay.state.first_free:])) @ R.T
     n = F.size
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-M * kd[None, :], -M * cd[None, :]]])
     sq = np.sqrt(kd)
@@ -200,4 +199,4 @@ def damped_eigenvalues(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool
     lay = _lay(spec)
     F = np.abs(np.asarray(forces, dtype=float))
     kc = np.array([tangent(lay, c, F[c], stiffest_phase=stiffest_phase)[:2] for c in range(F.size)])
-    return np.linalg.eigvals(state_matrix(*body_matrices(lay, kc[:, 0], kc[:, 1], lay.free_bodies.start)))
+    return np.linalg.eigvals(state_matrix(*body_matrices(lay, kc[:, 0], kc[:, 1], lay.state.first_free)))

@@ -21,7 +21,6 @@ import numpy as np
 from gearcli.core import signals
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
-from gearcli.model.elements.mesh import loss_factors, planet_loss_slots
 from gearcli.model.step import ramp, ramp_motion
 
 
@@ -66,7 +65,7 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
         if lay.drive.angle_rad != 0.0:  # a continued sweep point's start angle
             th0 = th0 + lay.drive.angle_rad
     else:
-        th0 = Y[lay.i_theta] if lay.i_theta is not None else None
+        th0 = Y[lay.state.i_theta] if lay.state.i_theta is not None else None
         w0, a0 = None, np.zeros_like(t)  # a torque drive's input torque is prescribed
     omega = lay.body_speeds(Y, w0)
     theta = None
@@ -77,14 +76,14 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
         for b, c in enumerate(lay.tree):  # theta_b = (r_a theta_a - delta_c) / r_b, a < b
             if c >= 0:
                 x = lay.connectors[c]
-                theta[b] = (x.ra * theta[x.a] - Y[c]) / x.rb
+                theta[b] = (x.ra * theta[x.a] - Y[lay.state.delta(c)]) / x.rb
             elif b in rows:  # the kinematics fix it through several connectors (Layout.angle_rows)
                 row = rows[b]
                 theta[b] = row.constant
                 for j, k in row.bodies:
                     theta[b] = theta[b] + k * theta[j]
                 for cc, k in row.deflections:
-                    theta[b] = theta[b] + k * Y[cc]
+                    theta[b] = theta[b] + k * Y[lay.state.delta(cc)]
             elif b > 0:
                 theta[b] = np.nan  # no two-body connector reaches it: no element reads its angle
     return omega, theta, np.asarray(a0)
@@ -94,7 +93,7 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     """Force, penetration and stored energy of connector c at every sample (the element's own law)."""
     x = lay.connectors[c]
     el, P = x.element, x.params
-    d = Y[c]
+    d = Y[lay.state.delta(c)]
     dd = None
     for lever, b in zip(x.levers, x.bodies, strict=True):  # delta' = sum_j s_j r_j w_j, in slot order
         dd = lever * omega[b] if dd is None else dd + lever * omega[b]
@@ -168,30 +167,30 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
 
 
 def _side_force(lay: Layout, c: int, j: int, force: np.ndarray, omega: np.ndarray) -> np.ndarray:
-    """The force connector c puts on its body j: the law's, or a lossy mesh's pinion (j = 0) or gear (j = 1)
-    side (:func:`gearcli.model.elements.mesh.loss_factors`); a lossy planet mesh's by its slots (the carrier's
-    share of both sides on the carrier, :func:`gearcli.model.elements.mesh.planet_loss_slots`)."""
+    """The force connector c puts on its body j: the law's, or a lossy element's side force on that slot (its
+    loss hook: ``loss_factors`` on the pitch-line speeds of ``loss_sides``; a slot with a share of both sides,
+    a planet mesh's carrier, takes that share of each)."""
     x = lay.connectors[c]
-    if not x.lossy or (j > 1 and not x.planet_loss):
+    share_a, share_b = x.loss_share(j)
+    if share_a == 0.0 and share_b == 0.0:
         return force
-
-    if not x.planet_loss:
-        return np.array([loss_factors(x.params, f, x.ra * wa, x.rb * wb)[j] for f, wa, wb in
-                         zip(force.tolist(), omega[x.a].tolist(), omega[x.b].tolist(), strict=True)])
-    sa, sb, sc, ka = planet_loss_slots(x.params)
-    if j not in (sa, sb, sc):
-        return force
-    lev = x.levers
-    va = (lev[sa] * omega[x.bodies[sa]] if sa >= 0 else 0.0) + (ka * lev[sc] * omega[x.bodies[sc]] if sc >= 0 else 0.0)
-    vb = -lev[sb] * omega[x.bodies[sb]] - ((1.0 - ka) * lev[sc] * omega[x.bodies[sc]] if sc >= 0 else 0.0)
-    va, vb = np.broadcast_to(va, force.shape), np.broadcast_to(vb, force.shape)
-    sides = np.array([loss_factors(x.params, f, a, b)[:2] for f, a, b in
+    va, vb = (_pitch_line_speed(terms, omega, force.shape) for terms in x.loss_speeds)
+    law = x.element.loss_factors
+    sides = np.array([law(x.params, f, a, b)[:2] for f, a, b in
                       zip(force.tolist(), va.tolist(), vb.tolist(), strict=True)]).reshape(-1, 2)
-    if j == sa:
+    if share_b == 0.0 and share_a == 1.0:
         return sides[:, 0]
-    if j == sb:
+    if share_a == 0.0 and share_b == 1.0:
         return sides[:, 1]
-    return ka * sides[:, 0] + (1.0 - ka) * sides[:, 1]
+    return share_a * sides[:, 0] + share_b * sides[:, 1]
+
+
+def _pitch_line_speed(terms: list[tuple[int, float]], omega: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """sum k w_body over a loss side's (body, k) terms, at every sample (0 for no term: a held member)."""
+    v = None
+    for body, k in terms:
+        v = k * omega[body] if v is None else v + k * omega[body]
+    return np.broadcast_to(0.0 if v is None else v, shape)
 
 
 def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -8,12 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from gearcli.model.elements import (
-    KIND_MESH,
-    KIND_PLANET_MESH,
-    law_of,
-    mesh,
-)
+from gearcli.model.elements import law_of, loses
 
 #: the roles of the connector that stands for a stage (its forces, deflection and statistics), one per stage
 STAGE_ROLES = ("mesh", "stage")
@@ -80,13 +75,31 @@ class Connector:
 
     @property
     def lossy(self) -> bool:
-        """A mesh that loses (1 - eta) of the power it transmits (:func:`.mesh.loss_factors`)."""
-        return self.kind in (KIND_MESH, KIND_PLANET_MESH) and mesh.lossy(self.params)
+        """An element that loses (1 - eta) of the power it transmits (its loss hook, :data:`.elements.LOSS_HOOK`)."""
+        return loses(self.element, self.params)
 
     @property
-    def planet_loss(self) -> bool:
-        """A lossy planet mesh, losing in the carrier's frame (:func:`.mesh.planet_loss_slots`)."""
-        return self.lossy and mesh.planet_loss(self.params)
+    def efficiency(self) -> float:
+        """eta of a lossy element; 1 otherwise."""
+        return self.element.efficiency(self.params) if self.lossy else 1.0
+
+    @property
+    def loss_speeds(self) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
+        """A lossy element's pitch-line speeds as (body, coefficient) terms, ``v_a = sum k w_body`` and ``v_b``
+        likewise, from its loss hook's sides (``loss_sides``): ``k = share lever`` on side a, ``-share lever``
+        on side b."""
+        side_a, side_b = self.element.loss_sides(self.params)
+        lev = self.levers
+        return ([(self.bodies[j], share * lev[j]) for j, share in side_a],
+                [(self.bodies[j], -(share * lev[j])) for j, share in side_b])
+
+    def loss_share(self, slot: int) -> tuple[float, float]:
+        """(share of f_a, share of f_b) of the side force a lossy element puts on its body ``slot``; (0, 0):
+        the law's own force (a lossless element's every slot)."""
+        if not self.lossy:
+            return 0.0, 0.0
+        side_a, side_b = self.element.loss_sides(self.params)
+        return (sum(s for j, s in side_a if j == slot), sum(s for j, s in side_b if j == slot))
 
     @property
     def time_varying(self) -> bool:

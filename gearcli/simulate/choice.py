@@ -92,7 +92,7 @@ def _stiffest_mesh(lin: Linearisation, lay: Layout) -> int:
     own = []
     for c in lay.stage_conn:
         x = lay.connectors[c]
-        mobility = (x.ra**2 / lay.inertias[x.a] if lay.i_omega(x.a) is not None else 0.0) \
+        mobility = (x.ra**2 / lay.inertias[x.a] if lay.state.omega(x.a) is not None else 0.0) \
             + x.rb**2 / lay.inertias[x.b]
         own.append(lin.stiffness[c] * mobility)
     return int(np.argmax(own))
@@ -158,7 +158,7 @@ def model_size(lay: Layout, spec: ModelSpec) -> ModelSize:
     def harmonic(m) -> bool:
         return m is not None and (any(m.transmission_error_m) or any(m.stiffness_harmonics))
 
-    return ModelSize(states=lay.n_states, meshes=len(meshes), planet_meshes=sum(x.role == "planet" for x in meshes),
+    return ModelSize(states=lay.state.n_states, meshes=len(meshes), planet_meshes=sum(x.role == "planet" for x in meshes),
                      time_varying=sum(bool(getattr(mesh(x), "time_varying", False)) for x in meshes),
                      harmonics=sum(harmonic(mesh(x)) for x in meshes),
                      motor=lay.drive.motor is not None)

@@ -82,8 +82,8 @@ def _stiffness_now(model: TorsionalModel, t: float, y: np.ndarray) -> float:
     """max|lambda| of the model's Jacobian at the state reached (the dynamic states; 0 where it fails)."""
     try:
         jac = np.asarray(model.jac(t, y), dtype=float)
-        n = model.layout.i_quad
-        lam = np.linalg.eigvals(jac[:n, :n])
+        dyn = model.layout.state.dynamic
+        lam = np.linalg.eigvals(jac[dyn, dyn])
     except (ValueError, np.linalg.LinAlgError, ArithmeticError):
         return 0.0
     return float(np.max(np.abs(lam))) if lam.size and np.all(np.isfinite(lam)) else 0.0

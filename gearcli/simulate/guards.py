@@ -138,16 +138,17 @@ class EnergyWatch:
 
     def _work(self, y: np.ndarray) -> float:
         """W_in - W_load (J) from the quadrature states."""
-        q = self.model.layout.i_quad
-        return float(y[q] - y[q + 1])
+        st = self.model.layout.state
+        return float(y[st.quadrature("input_work_J")] - y[st.quadrature("load_work_J")])
 
     def _stored(self, t: float, y: np.ndarray) -> float:
         """Kinetic energy + elastic energy of constant-stiffness meshes + work done on time-varying springs."""
         lay = self.model.layout
         s = sample(lay, np.array([t]), y[:, None])  # the elements' own laws, one sample
         stored = float(kinetic_energy(lay, s.omega_rad_s)[0]) + float(potential_energy(lay, s, time_varying=False)[0])
-        if lay.n_tv:
-            stored += float(y[lay.i_quad + 3])
+        i_tv = lay.state.quadrature("elastic_work_tv_J")
+        if i_tv is not None:
+            stored += float(y[i_tv])
         return stored
 
     def check(self, t: float, y: np.ndarray) -> EnergyReport:
@@ -189,7 +190,7 @@ def force_noise(choice: Choice, rtol: float) -> np.ndarray:
     for k, c in enumerate(lay.stage_conn):
         x = lay.connectors[c]
         rp, rg = x.ra, x.rb
-        mobility = (rp**2 / J[x.a] if lay.i_omega(x.a) is not None else 0.0) + rg**2 / J[x.b]
+        mobility = (rp**2 / J[x.a] if lay.state.omega(x.a) is not None else 0.0) + rg**2 / J[x.b]
         force = abs(float(full.forces[c])) or abs(float(lin.forces[c]))  # static, else run-up
         if force > 0 and lin.stiffness[c] > 0:
             v_tol = rtol * (rp * abs(w[x.a]) + rg * abs(w[x.b]))

@@ -79,7 +79,7 @@ def excitation_periods(layout) -> list[Excitation]:
     load's fluctuation rows (amplitude, frequency_Hz) with a non-zero amplitude each add theirs. The input
     body's nominal speed is the drive's speed.
     """
-    arr = layout.arrays(np.zeros(layout.n_states))
+    arr = layout.arrays(np.zeros(layout.state.n_states))
     w_in = layout.drive.speed_rad_s
     out: list[Excitation] = []
     if w_in == 0.0:
@@ -267,7 +267,7 @@ def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -
     by integration noise, not by the dynamics: on a linear, damped, time-varying mesh the deflection
     residual stays at 10-300 x the solver's deflection atol while the speeds repeat to 0.01-1 x theirs.
     """
-    out = np.array(atol[:layout.n_conn + len(layout.free_bodies)], dtype=float)
+    out = np.array(atol[layout.state.mechanical], dtype=float)
     if fastest_rad_s <= 0:
         return out
     w = [b.ratio * layout.drive.speed_rad_s for b in layout.bodies]
@@ -311,7 +311,7 @@ def search(model, method: str, rtol: float, parts: list, t_start: float, y_start
     result's steady state carries on; ``cap_total`` the cap reported, that of the whole run)."""
     lay = model.layout
     T = period.period_s
-    dyn = lay.n_conn + len(lay.free_bodies)
+    dyn = lay.state.n_mechanical
     states = [y_start]
     repeat, chunk, exhausted = Repeat(0, math.inf), FIRST_CHUNK, False
     while len(states) - 1 < cap and repeat.k == 0 and not exhausted:

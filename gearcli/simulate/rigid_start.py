@@ -30,7 +30,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import machine, mesh
+from gearcli.model.elements import machine
 from gearcli.model.modes import modal_analysis
 from gearcli.model.outputs import tooth_forces
 from gearcli.model.step import ramp, ramp_motion
@@ -66,7 +66,7 @@ def loss_factors(lay: Layout) -> np.ndarray:
     for c in range(lay.n_conn - 1, -1, -1):
         x = lay.connectors[c]
         if x.lossy:
-            eta = x.params[mesh.I_ETA]
+            eta = x.efficiency
             factor *= 1.0 / eta if lay.load.torque_Nm >= 0 else eta
         out[c] = factor
     return out

@@ -489,7 +489,7 @@ def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
     lay = model.layout
     meshes = list(lay.stage_conn)
     out = {"deflection_m": float(atol[meshes].min()),
-           "speed_rad_s": float(atol[lay.n_conn:lay.n_conn + len(lay.free_bodies)].min())}
+           "speed_rad_s": float(atol[lay.state.speeds].min())}
     springs = [c for c in range(lay.n_conn) if c not in meshes]
     if springs:
         out["twist_rad"] = float(atol[springs].min())

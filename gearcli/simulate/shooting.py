@@ -125,8 +125,9 @@ class Variational:
     state's equations in the columns' equations left out: it only steers the method's Newton iteration).
     """
 
-    def __init__(self, model, d: int) -> None:
-        self.model, self.spec, self.d, self.n = model, model.spec, d, model.n_states
+    def __init__(self, model) -> None:
+        st = model.layout.state  # [y | Phi]: StateLayout.variational, over its mechanical states
+        self.model, self.spec, self.d, self.n, self.phi = model, model.spec, st.n_mechanical, st.n_states, st.variational
         self.layout = model.layout
 
     def rhs(self, t: float, ya: np.ndarray) -> np.ndarray:
@@ -135,11 +136,11 @@ class Variational:
         out = np.empty_like(ya)
         out[:n] = self.model.rhs(t, y)
         J = np.asarray(self.model.jac(t, y))[:d, :d]
-        phi = ya[n:].reshape(d, d, order="F")
+        phi = ya[self.phi].reshape(d, d, order="F")
         acc = np.zeros((d, d))
         for j in range(d):  # J @ Phi summed in the compiled kernel's order (both engines: the same numbers)
             acc += np.outer(J[:, j], phi[j, :])
-        out[n:] = acc.reshape(-1, order="F")
+        out[self.phi] = acc.reshape(-1, order="F")
         return out
 
     def jac(self, t: float, ya: np.ndarray) -> np.ndarray:
@@ -167,8 +168,10 @@ def augmented_atol(atol: np.ndarray, d: int, rtol: float, factor: float = VAR_AT
     return np.concatenate([atol, phi.reshape(-1, order="F")])
 
 
-def monodromy(run_y_end: np.ndarray, n: int, d: int) -> np.ndarray:
-    return np.asarray(run_y_end[n:n + d * d]).reshape(d, d, order="F")
+def monodromy(run_y_end: np.ndarray, state) -> np.ndarray:
+    """``Phi`` at the period's end from the augmented state ``[y | Phi]`` (:attr:`StateLayout.variational`)."""
+    d = state.n_mechanical
+    return np.asarray(run_y_end[state.variational]).reshape(d, d, order="F")
 
 
 # ------------------------------------------------------------------------------------- the solve
@@ -212,7 +215,7 @@ class _Shooter:
                  period_s: float | None = None) -> None:
         lay = model.layout
         self.model, self.method, self.rtol, self.engine, self.ledger = model, method, rtol, engine, ledger
-        self.n, self.d = model.n_states, lay.n_conn + len(lay.free_bodies)
+        self.n, self.d = lay.state.n_states, lay.state.n_mechanical
         self.atol, self.patol, self.t0, self.max_nfev = atol_run, patol, t0, max_nfev
         self.grid = t0 + span_s * np.arange(samples + 1) / samples
         self.period_s = span_s if period_s is None else period_s  # the excitation period (the span is k of them)
@@ -232,7 +235,7 @@ class _Shooter:
         grid = self.grid if grid is None else grid
         budget = max(1, self.max_nfev - self.used)
         if aug:
-            var = Variational(self.model, self.d)
+            var = Variational(self.model)
             ya, atol = augmented_start(y, self.d), augmented_atol(self.atol, self.d, self.rtol)
             if self.engine == "compiled":
                 r = integrate(self.model, grid, self.method, self.rtol, y0=ya, t0=self.t0, atol=atol,
@@ -254,14 +257,14 @@ class _Shooter:
         """The period map from the full state ``y`` (its quadratures zeroed: the period's own work);
         None when the run failed (the failed part is the last of ``parts``)."""
         y = np.array(y, dtype=float)
-        y[self.model.layout.i_quad:] = 0.0
+        y[self.model.layout.state.quadratures] = 0.0
         n, d = self.n, self.d
         r = self._run(y, with_m and self.variational)
         if r.status != 0 or not np.all(np.isfinite(r.y[:, -1])):
             return None
         M = None
         if with_m:
-            M = monodromy(r.y[:, -1], n, d) if self.variational else self._fd(y, r.y[:d, -1])
+            M = monodromy(r.y[:, -1], self.model.layout.state) if self.variational else self._fd(y, r.y[:d, -1])
             if M is None:
                 return None
             r = replace(r, y=r.y[:n], atol=r.atol[:n])
@@ -426,7 +429,7 @@ def priced_nfev(nfev_run: float, layout, duration_s: float, window_start_s: floa
     variational period weighted by ``1 + d``: every evaluation also forms the Jacobian's ``d x d`` block times the
     ``d`` columns of the monodromy."""
     T = scene_period(layout).period_s
-    d = layout.n_conn + len(layout.free_bodies)
+    d = layout.state.n_mechanical
     t_start = max(layout.drive.ramp_s, layout.load.ramp_s, window_start_s or 0.0)
     span = t_start + T * (PREAMBLE_COLD + PRICED_VARIATIONAL_PERIODS * (1 + d))
     return nfev_run * span / max(duration_s, 1e-300)

@@ -95,7 +95,7 @@ def tolerances(model: TorsionalModel, rtol: float, watch: EnergyWatch | None) ->
     """
     atol = model.atol(rtol)
     if watch is not None:
-        atol[model.layout.i_quad:] = rtol * watch.scale
+        atol[model.layout.state.quadratures] = rtol * watch.scale
     return atol
 
 

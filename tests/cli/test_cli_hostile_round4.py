@@ -81,10 +81,11 @@ def test_the_inputs_protected_from_o_are_named_in_one_place():
     import inspect
 
     from gearcli import cli as cli_module
+    from gearcli.cli import common, design_cmds, engine_cmds, study_cmds
 
     assert cli_module.INPUT_PARAMS == ("file", "series")
-    src = inspect.getsource(cli_module)
-    assert src.count("inputs=_context_inputs()") + src.count("inputs=_context_inputs(),") >= 2  # check_target, sweep
+    src = "".join(inspect.getsource(m) for m in (cli_module, common, design_cmds, engine_cmds, study_cmds))
+    assert src.count("inputs=context_inputs()") + src.count("inputs=context_inputs(),") >= 2  # check_target, sweep
     assert "[file, target.path]" not in src  # no command keeps a list of its own
 
 

@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearcli.model.elements import N_PARAM
+from gearcli.model.elements import N_PARAM, adopt, plain
+
+adopt(plain, globals())  # linear, unphased, never excited: the protocol's defaults
 
 NAME = "test_torsional_damper"
 SIGNS = (1.0, -1.0)  # twist = theta_a - theta_b
@@ -53,41 +55,5 @@ def tangent(P, F, stiffest_phase=False):
     return 0.0, P[I_C], 0.0
 
 
-def linear_row(P, factor):
-    return P
-
-
-def assembled(P, F, m_e):
-    return P
-
-
-def phase_per_rad(P):
-    return 0.0
-
-
-def cycle_period_s(P, w):
-    return 0.0
-
-
-def makes_excitation(P) -> bool:
-    return False
-
-
-def self_exciting(P) -> bool:
-    return False
-
-
 def damped(P) -> bool:
     return P[I_C] > 0.0
-
-
-def time_varying(P) -> bool:
-    return False
-
-
-def phased(P) -> bool:
-    return False
-
-
-def excited(P) -> bool:
-    return False

@@ -33,11 +33,20 @@ cycle: time-varying stiffness, transmission error, stiffness harmonics), ``self_
 makes its own harmonics: Hertzian, time-varying, backlash) and the flags ``damped``, ``time_varying``,
 ``phased``, ``excited``.
 
+An element that loses power in the direction the power flows (a gear mesh's efficiency) provides the loss
+hook :data:`LOSS_HOOK` besides: ``lossy(P)`` (this row loses), ``efficiency(P)``, ``loss_sides(P)`` (which
+body slots make the two pitch-line speeds and take the two side forces, with their shares),
+``loss_factors(P, f, va, vb)`` (the two side forces and their partials), ``with_loss_width(P, W)`` (the
+row with the power scale ``W`` of the power-flow sign) and ``LOSS_WIDTH`` (that scale over the static force
+times the nominal pitch-line speed). The assembly, the generated Python and the outputs call
+it by name (:func:`loses`); no element without it loses power.
+
 Torques on the end bodies (input torque ripple, load fluctuation) are laws of :mod:`.torque`.
 """
 
 from __future__ import annotations
 
+import types as _types
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Protocol
@@ -100,12 +109,25 @@ PROTOCOL = ("NAME", "SIGNS", "PARAMS", "CHANNELS", "pack", "force", "power_gradi
             "cycle_period_s", "makes_excitation", "self_exciting", "damped", "time_varying", "phased", "excited")
 
 
+#: the optional loss hook (module text): an element provides all of it or none
+LOSS_HOOK = ("lossy", "efficiency", "loss_sides", "loss_factors", "with_loss_width", "LOSS_WIDTH")
+
+
+def loses(law: ModuleType, P) -> bool:
+    """The element loses power with the row ``P`` (its loss hook says so; an element without the hook never)."""
+    lossy = getattr(law, "lossy", None)
+    return lossy is not None and bool(lossy(P))
+
+
 def register(law: ModuleType, *, compiled: bool = False) -> ElementType:
     """Register an element module; its kind is the next free index (idempotent for the same module).
     ``compiled``: also compile it into the kernel (a new cache, compiled once)."""
     missing = [name for name in PROTOCOL if not hasattr(law, name)]
     if missing:
         raise TypeError(f"{law.__name__} is not an element module: it lacks {', '.join(missing)}")
+    partial = [name for name in LOSS_HOOK if not hasattr(law, name)]
+    if 0 < len(partial) < len(LOSS_HOOK):
+        raise TypeError(f"{law.__name__} has part of the loss hook: it lacks {', '.join(partial)}")
     for et in _REGISTRY.values():
         if et.law is law:
             return et
@@ -138,12 +160,29 @@ def registered() -> tuple[ElementType, ...]:
     return tuple(_REGISTRY[k] for k in sorted(_REGISTRY))
 
 
+def adopt(module: ModuleType, scope: dict) -> None:
+    """Another module's functions and constants as the calling module's own (``adopt(plain, globals())``):
+    each function re-created on the caller's globals, so the compiled engine, which compiles a module's own
+    functions, compiles them there. Its ``NAME`` and ``SIGNS`` are not taken; a constant the caller has
+    already is kept, a function the caller defines after the call replaces the adopted one."""
+    for name, obj in vars(module).items():
+        if name.startswith("__") or name in ("NAME", "SIGNS"):
+            continue
+        if isinstance(obj, _types.FunctionType) and obj.__module__ == module.__name__:
+            fn = _types.FunctionType(obj.__code__, scope, name, obj.__defaults__, obj.__closure__)
+            fn.__qualname__, fn.__doc__ = obj.__qualname__, obj.__doc__
+            scope[name] = fn
+        elif name not in scope:
+            scope[name] = obj
+
+
 def compiled_types() -> tuple[ElementType, ...]:
     """The element types the compiled kernel dispatches to, in kind order."""
     return tuple(et for et in registered() if et.compiled)
 
 
 from gearcli.model.elements import mesh, planet_mesh, spring  # noqa: E402 - the built-in laws read N_PARAM above
+from gearcli.model.elements import plain as plain  # noqa: E402 - the protocol's defaults, for element modules (adopt)
 
 KIND_SPRING = register(spring, compiled=True).kind  # torsional spring-damper: couplings, flexible shafts
 KIND_MESH = register(mesh, compiled=True).kind  # gear mesh along its transverse line of action (Adams IMPACT)

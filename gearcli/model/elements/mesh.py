@@ -121,6 +121,30 @@ def planet_loss(P) -> bool:
     return bool(P[I_LSB] > 0.0)
 
 
+def efficiency(P):
+    """The loss hook: the power efficiency of the mesh in its power-flow direction (1: no loss)."""
+    return P[I_ETA]
+
+
+def loss_sides(P):
+    """The loss hook's geometry: for the side that drives forward (a) and the driven side (b), the slots whose
+    speeds make that side's pitch-line speed and that take its side force, with their shares: ``((slot, share),
+    ...)`` each. ``v_a = sum_a share_j lever_j w_j``, ``v_b = -sum_b share_j lever_j w_j``; slot j takes
+    ``share_a,j f_a + share_b,j f_b`` (:func:`loss_factors`), a slot on neither side the law's ``f``. A pair
+    mesh: its pinion (slot 0) and its gear (slot 1); a planet mesh in the carrier's frame
+    (:func:`planet_loss_slots`): its sun or ring and the carrier's share kappa_a, its planet and the carrier's
+    share kappa_b = 1 - kappa_a."""
+    if not planet_loss(P):
+        return ((0, 1.0),), ((1, 1.0),)
+    sa, sb, sc, ka = planet_loss_slots(P)
+    side_a = [(sa, 1.0)] if sa >= 0 else []
+    side_b = [(sb, 1.0)]
+    if sc >= 0:
+        side_a.append((sc, ka))
+        side_b.append((sc, 1.0 - ka))
+    return tuple(side_a), tuple(side_b)
+
+
 def planet_loss_slots(P):
     """(slot a, slot b, slot c, kappa_a) of a planet mesh's loss: a planet mesh's deflection is
     ``delta = l_a (theta_a - theta_c) + l_b (theta_b - theta_c)`` (a: the sun or the ring, b: the planet, c: the

@@ -17,26 +17,11 @@ with a zero lever. A mesh with fewer moving bodies is a plain :mod:`~gearcli.mod
 
 from __future__ import annotations
 
-import types as _types
-
+from gearcli.model.elements import adopt as _adopt
 from gearcli.model.elements import mesh as _mesh
 
 NAME = "planet_mesh"
 SIGNS = (1.0, 1.0, 1.0)  # delta = sum_j r_j theta_j with signed levers r_j
-
-
-def _adopt(module: _types.ModuleType, scope: dict) -> None:
-    """The mesh law's functions and constants as this module's own: each function re-created on this
-    module's globals (so the compiled engine, which compiles a module's own functions, compiles them here)."""
-    for name, obj in vars(module).items():
-        if name.startswith("__") or name in ("NAME", "SIGNS"):
-            continue
-        if isinstance(obj, _types.FunctionType) and obj.__module__ == module.__name__:
-            fn = _types.FunctionType(obj.__code__, scope, name, obj.__defaults__, obj.__closure__)
-            fn.__qualname__, fn.__doc__ = obj.__qualname__, obj.__doc__
-            scope[name] = fn
-        elif name not in scope:
-            scope[name] = obj
 
 
 _adopt(_mesh, globals())
