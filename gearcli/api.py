@@ -208,6 +208,10 @@ def report_file(loaded: LoadedDesign, design_result: DesignResult, *, accuracy: 
         return report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec, progress=progress)
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
+    except ConfigError as exc:  # a file the report cannot compare (a stage kind without a gear mesh): named
+        if exc.source is not None:
+            raise
+        raise ConfigError(exc.message, source=loaded.source, key=exc.key) from None
 
 
 def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), randoms: Sequence[str] = (),

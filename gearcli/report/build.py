@@ -11,7 +11,7 @@ from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import METHODS
 from gearcli.design.standards import with_simulated_rating
-from gearcli.errors import StudyTooLong
+from gearcli.errors import ConfigError, StudyTooLong
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import campbell_data, modal_analysis
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
@@ -22,11 +22,23 @@ from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
 from gearcli.simulate.results import SimulationResult
 from gearcli.simulate.run import run_simulation
+from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
 
 SimulateFn = Callable[..., SimulationResult]  # gearcli.simulate.run_simulation's signature
+
+
+def _require_gear_meshes(design: DesignResult) -> None:
+    """The report compares each stage's gear mesh (its mesh frequency, spectrum, K_v) with its theory: a stage of
+    a kind without one (a belt) is exit 2 naming it, before any run."""
+    other = [st for st in design.stages if not design_kind(st).gear_pair]
+    if other:
+        st = other[0]
+        raise ConfigError(f"gearcli report compares every stage's gear mesh with its theory, and stage {st.index} is "
+                          f"a {getattr(st, 'type', '?')} stage without one: run gearcli simulate on this file",
+                          key=f"stage[{st.index - 1}].type")
 
 
 def build_report(
@@ -45,6 +57,7 @@ def build_report(
     ``cfg`` is the validated ``DesignFile``; ``simulate`` defaults to ``gearcli.simulate.run_simulation``
     (tests pass a stand-in); ``progress(label, done, total)`` is called before each run.
     """
+    _require_gear_meshes(design)
     spec = spec or LadderSpec()
     modes, model = None, None
     if simulate is None:

@@ -235,3 +235,12 @@ def test_life_refuses_a_kind_without_a_life_model_by_name(belt, tmp_path, route)
     assert res.exit_code == 2, res.output
     assert "stage[1].type" in res.stderr and "test_belt stage has none to rate" in res.stderr
     assert "Traceback" not in res.output
+
+
+def test_report_refuses_a_kind_without_a_gear_mesh_by_name(belt, tmp_path):
+    """gearcli report compares each gear mesh with its theory (mesh frequency, spectrum, K_v): a belt stage is exit
+    2 naming the file and the stage's type, before any run."""
+    path = _write(tmp_path, BELT_ONLY)
+    res = CliRunner().invoke(cli, ["report", str(path), "--quick"])
+    assert res.exit_code == 2, res.output
+    assert f"{path}: stage[0].type:" in res.stderr and "test_belt stage without one" in res.stderr
