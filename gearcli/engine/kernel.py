@@ -36,6 +36,7 @@ from gearcli.engine import blas as _blas
 from gearcli.engine import dispatch as _dispatch
 from gearcli.engine import status as st
 from gearcli.engine import tableau as tb
+from gearcli.engine.numba_cache import jit_alloc
 from gearcli.model.elements import KIND_MESH, KIND_PLANET_MESH
 from gearcli.model.elements import machine as _machine_mod
 from gearcli.model.elements import mesh as _mesh_mod
@@ -418,7 +419,7 @@ def n_dynamic(model):
     return ipar[IP_THETA] if ipar[IP_THETA] >= 0 else ipar[IP_QUAD]
 
 
-@jit
+@jit_alloc
 def variational_rhs(t, y, dy, model, th):
     """The variational equations of an augmented state ``[y | Phi[:, 0] | ... | Phi[:, d-1]]``:
     ``Phi' = J Phi`` with the dynamic block of the analytic Jacobian at ``(t, y)`` (gearcli.simulate.shooting)."""
@@ -437,7 +438,7 @@ def variational_rhs(t, y, dy, model, th):
             dy[s + i] = acc
 
 
-@jit
+@jit_alloc
 def stored_energy(t, y, model):
     """Kinetic energy + elastic energy of the constant-stiffness connectors + work on time-varying
     springs (the energy watch's ``_stored``)."""
@@ -568,7 +569,7 @@ def guards(t, y, nfev, njev, nlu, steps, finished, max_nfev, watch_every, wpar, 
     return STATUS_FINISHED
 
 
-@jit
+@jit_alloc
 def _start(y0, t_eval, wpar):
     """The output array with the samples at or before the run's start filled; (out, samples done)."""
     n = y0.size
@@ -685,7 +686,7 @@ def dense_eval(t, t_old, h, y_old, F, out, col, tab):
         out[i, col] = v + y_old[i]
 
 
-@jit
+@jit_alloc
 def rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace, tab):
     """The explicit Runge-Kutta driver: scipy's ``RungeKutta`` loop for the tableau ``tab`` (DOP853 or RK45,
     :data:`gearcli.engine.tableau.DOP853_TABLEAU`), step for step.
@@ -820,7 +821,7 @@ def ipar_quad(model):
     return model[5][IP_QUAD]
 
 
-@jit
+@jit_alloc
 def evaluate(model, t, y):
     """One right-hand side evaluation (tests, benchmarks)."""
     dy = np.empty(y.size)
@@ -828,7 +829,7 @@ def evaluate(model, t, y):
     return dy
 
 
-@jit
+@jit_alloc
 def evaluate_many(model, t, y, times):
     """``times`` evaluations at one point (the benchmark's cost of one compiled evaluation)."""
     dy = np.empty(y.size)
@@ -841,7 +842,7 @@ def evaluate_many(model, t, y, times):
     return acc
 
 
-@jit
+@jit_alloc
 def connector_series(kind, P, d, dd, phi, wphi):
     """Force, stored energy and the element's own output channels (its ``CHANNELS``, rows of ``ch``) of one
     connector at every sample (:func:`gearcli.model.outputs.connector_series`, through the same element laws)."""
@@ -885,7 +886,7 @@ def _angle_gradient(body, model, ag):
         ag[c] -= 1.0 / -lev[c, 1]
 
 
-@jit
+@jit_alloc
 def _row_gradient(body, model, ag):
     """ag = d(theta_body)/dy of a row body: the gradients of all bodies up to it, in index order (tree bodies as
     :func:`_angle_gradient` forms them, row bodies from their rows), in a table."""
@@ -1115,7 +1116,7 @@ def _loss_row(c, j, gj, lf, lv, da, db, model, first, i_w0):
     return x
 
 
-@jit
+@jit_alloc
 def evaluate_jacobian(model, t, y):
     """One Jacobian evaluation (tests)."""
     n = y.size
@@ -1311,7 +1312,7 @@ def predict_factor(h_abs, h_abs_old, err, err_old):
     return m * err ** -0.25
 
 
-@jit
+@jit_alloc
 def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, trace):
     """Radau IIA (order 5) as scipy's ``Radau`` with the analytic Jacobian: the same Newton iteration, LU
     reuse, error estimate (refined after a rejection), step-size prediction and dense output; segments,

@@ -42,6 +42,7 @@ from gearcli.model import elements, outputs
 from gearcli.model.elements import machine
 
 _SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "engine/status.py",
+            "engine/numba_cache.py",  # its jit options (reference counting or not) are in the machine code
             "model/elements/__init__.py", "model/elements/torque.py",
             "model/elements/machine.py", "model/contact_lines.py")  # + every compiled element's module (_source_key)
 ENTRIES = {"DOP853": "dop853", "RK45": "rk45", "Radau": "radau"}
