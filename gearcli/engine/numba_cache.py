@@ -32,7 +32,7 @@ import numba
 from numba.core import caching
 from numba.core.runtime import rtsys
 
-from gearcli.engine import cachedir
+from gearcli.engine import cachedir, location
 from gearcli.engine.cachedir import CacheDamaged
 
 DIR: list[str] = []  # the checked cache directory of this process ([]: nothing cached)
@@ -206,10 +206,8 @@ def _default() -> None:
     """A direct ``import gearcli.engine.kernel`` (tests do it) binds the kernel to the user's cache when it is trusted
     (numba then compiles what is missing in that process, as it always did); :func:`gearcli.engine.load` sets
     :data:`DIR` itself before it imports the kernel."""
-    from gearcli.engine import loader  # lazy: circle: loader imports this module (lazily, for numba)
-
-    if not DIR and loader.cache_problem() is None:
-        DIR.append(str(loader.cache_dir()))
+    if not DIR and location.cache_problem() is None:
+        DIR.append(str(location.cache_dir()))
 
 
 _default()
