@@ -36,10 +36,9 @@ from gearcli.core.announce import LineReporter
 from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S
 from gearcli.engine import builder, cachedir
 from gearcli.engine.cachedir import CacheDamaged
-from gearcli.engine.location import (  # noqa: F401
+from gearcli.engine.location import (  # noqa: F401 - the package's interface (gearcli.engine re-exports them)
     FRESH,
-    _memo,
-    _source_key,  # noqa: F401 - the cache tests name the key directory
+    _source_key,  # the cache tests name the key directory
     cache_choice,
     cache_dir,
     cache_problem,

@@ -114,7 +114,7 @@ def test_a_cache_directory_another_user_prepared_is_refused(tmp_path):
         os.symlink(victim_file, key_dir / "load_time.json")
         with open(key_dir / "ready.json", "w") as fh:
             fh.write("{}")
-        for name in ("kernel.rk_run-1.py311.nbi", "gearcli_dispatch.conn_force-1.py311.nbi"):
+        for name in ("rk.rk_run-1.py311.nbi", "gearcli_dispatch.conn_force-1.py311.nbi"):
             with open(key_dir / "engine_planted" / name, "wb") as fh:
                 pickle.dump(_Plant(str(marker)), fh)
 
