@@ -1,4 +1,4 @@
-"""The scene's right-hand side read from the model tuple (:mod:`gearcli.engine.packing`).
+"""The scene's right-hand side read from the model (:class:`gearcli.engine.packing.Model`).
 
 The same assembly as the generated Python source (:mod:`gearcli.model.codegen`), term for term and in the same
 floating-point order, so both engines compute bit-identical derivatives: the speed drive's exact STEP motion (or
@@ -80,8 +80,8 @@ def prologue(t, y, model, th):
     """(speed drive, w0, a0, Tin, dTin, load, TL, dTL/dw_N) at (t, y) and the body angles ``th`` the phased
     meshes need, as the generated prologue forms them; dTin is d/dth0 of a rippled drive torque, d/dw0 of a
     motor's."""
-    lev, ipar, fpar, rip, flu, tree = model[2], model[5], model[6], model[7], model[8], model[9]
-    mrow, lrow = model[12], model[13]
+    lev, ipar, fpar, rip, flu, tree = model.levers, model.ipar, model.fpar, model.ripple, model.fluct, model.tree
+    mrow, lrow = model.motor, model.load_law
     speed = ipar[IP_DRIVE] == 0
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
@@ -110,7 +110,7 @@ def prologue(t, y, model, th):
             tl = tl * torque_fluctuation(flu, t + fpar[FP_CLOCK] if fpar[FP_CLOCK] != 0.0 else t)
     dtl = 0.0
     if load and lrow.size > 0:  # T_L g(w_N)
-        nb = model[4].shape[0]
+        nb = model.inertia.shape[0]
         g, dg = load_factor(lrow, body_speed(y, nb - 1, 1 if speed else 0, i_w0, w0))
         dtl = tl * dg
         tl = tl * g
@@ -118,7 +118,7 @@ def prologue(t, y, model, th):
     for b in range(1, ipar[IP_LAST_ANGLE] + 1):  # theta_b = (r_a theta_a - delta_c) / r_b along the tree
         c = tree[b]
         if c >= 0:
-            th[b] = (lev[c, 0] * th[model[1][c, 0]] - y[c]) * (1.0 / -lev[c, 1])
+            th[b] = (lev[c, 0] * th[model.bodies[c, 0]] - y[c]) * (1.0 / -lev[c, 1])
         elif c == -2:  # a body the kinematics fix through several connectors (Layout.angle_rows), as generated
             th[b] = angle_row(b, model, th, y)
     return speed, w0, a0, tin, dtin, load, tl, dtl
@@ -127,7 +127,7 @@ def prologue(t, y, model, th):
 def angle_row(b, model, th, y):
     """theta_b from its row (Layout.angle_rows): body angles, then deflections, then the constant, summed in
     the generated expression's order."""
-    M = model[14]
+    M = model.angle_rows
     nb = M.shape[0]
     x = 0.0
     have = False
@@ -150,7 +150,7 @@ def body_speed(y, b, first, i_w0, w0):
 @jit
 def deflection_rate(c, y, model, first, i_w0, w0):
     """delta_c' = sum_j s_j r_j w_{bodies[j]}, in slot order."""
-    bodies, lev = model[1], model[2]
+    bodies, lev = model.bodies, model.levers
     dd = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
     for s in range(1, bodies.shape[1]):
         if bodies[c, s] >= 0:
@@ -167,8 +167,8 @@ def side_losses(c, f, y, model, first, i_w0, w0):
     """A lossy mesh's forces on its pinion and gear side and their partials (mesh.loss_factors), from
     v_a = r_a w_a and v_b = r_b w_b (levers (r_a, -r_b)); a planet mesh's from its relative pitch-line speeds
     v_a = l_a w_a + kappa_a l_c w_c, v_b = -(l_b w_b + kappa_b l_c w_c) (mesh.planet_loss_slots)."""
-    bodies, lev = model[1], model[2]
-    P = model[3][c]
+    bodies, lev = model.bodies, model.levers
+    P = model.param[c]
     if P[I_LSB] > 0.0:
         sa, sb, sc, ka = int(P[I_LSA]), int(P[I_LSB]), int(P[I_LSC]), P[I_LKA]
         vb = (-lev[c, sb]) * body_speed(y, bodies[c, sb], first, i_w0, w0)
@@ -189,7 +189,7 @@ def side_losses(c, f, y, model, first, i_w0, w0):
 def side_of(c, s, model):
     """Which side force a lossy mesh puts on its slot s: 0 (f_a), 1 (f_b), 2 (a planet mesh's carrier:
     kappa_a f_a + kappa_b f_b), -1 (the law's f)."""
-    P = model[3][c]
+    P = model.param[c]
     if P[I_LSB] > 0.0:
         if s == int(P[I_LSA]):
             return 0
@@ -205,13 +205,13 @@ def body_torque(i, model, fc, y, first, i_w0, w0):
     """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
     the body's list of (connector, slot) pairs); a lossy mesh puts f_a on its pinion and f_b on its gear (a
     planet mesh: by its slots, the carrier's share of both on the carrier)."""
-    lev, ptr, pairs = model[2], model[10], model[11]
+    lev, ptr, pairs = model.levers, model.ptr, model.pairs
     x = 0.0
     for k in range(ptr[i], ptr[i + 1]):
         c = pairs[k, 0]
         s = pairs[k, 1]
         f = fc[c]
-        if lossy(model[0][c], model[3][c]):
+        if lossy(model.kind[c], model.param[c]):
             side = side_of(c, s, model)
             if side >= 0:
                 _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
@@ -220,7 +220,7 @@ def body_torque(i, model, fc, y, first, i_w0, w0):
                 elif side == 1:
                     f = fb
                 else:
-                    ka = model[3][c][I_LKA]
+                    ka = model.param[c][I_LKA]
                     f = ka * fa + (1.0 - ka) * fb
         term = -lev[c, s] * f
         x = x + term if k > ptr[i] else term
@@ -231,7 +231,7 @@ def scene_rhs(t, y, dy, model, th, fc):
     """dy = f(t, y) of the scene ``model`` (its own states: :func:`gearcli.engine.rhs.rhs` adds the variational
     equations of an augmented state); ``th`` (n_bodies) and ``fc`` (2 n_conn: forces, then the transmission errors'
     powers) are scratch."""
-    kind, bodies, param, inertia, ipar = model[0], model[1], model[3], model[4], model[5]
+    kind, bodies, param, inertia, ipar = model.kind, model.bodies, model.param, model.inertia, model.ipar
     nc = kind.shape[0]
     nb = inertia.shape[0]
     i_w0 = ipar[IP_W0]
@@ -291,24 +291,24 @@ def scene_rhs(t, y, dy, model, th, fc):
 @jit
 def n_model_states(model):
     """The scene's own state count (an augmented state carries the variational equations after it)."""
-    ipar = model[5]
+    ipar = model.ipar
     return ipar[IP_QUAD] + 3 + (1 if ipar[IP_NTV] > 0 else 0)
 
 @jit
 def n_dynamic(model):
     """The dynamic states (deflections, free speeds) whose variational equations an augmented state carries."""
-    ipar = model[5]
+    ipar = model.ipar
     return ipar[IP_THETA] if ipar[IP_THETA] >= 0 else ipar[IP_QUAD]
 
 @jit
 def ipar_quad(model):
-    return model[5][IP_QUAD]
+    return model.ipar[IP_QUAD]
 
 @jit_alloc
 def stored_energy(t, y, model):
     """Kinetic energy + elastic energy of the constant-stiffness connectors + work on time-varying
     springs (the energy watch's ``_stored``)."""
-    kind, bodies, param, inertia, ipar = model[0], model[1], model[3], model[4], model[5]
+    kind, bodies, param, inertia, ipar = model.kind, model.bodies, model.param, model.inertia, model.ipar
     th = np.zeros(inertia.shape[0])
     speed, w0, _, _, _, _, _, _ = prologue(t, y, model, th)
     first = 1 if speed else 0

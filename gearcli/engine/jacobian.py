@@ -38,8 +38,8 @@ def _angle_gradient(body, model, ag):
     """ag = d(theta_body)/dy: theta_b = (r_a theta_a - delta_c) / r_b along the tree from theta_0 (a state of
     a torque drive; a function of t alone for a speed drive), through a row body's row (Layout.angle_rows)
     where the path meets one."""
-    bodies, lev, tree = model[1], model[2], model[9]
-    i_th = model[5][IP_THETA]
+    bodies, lev, tree = model.bodies, model.levers, model.tree
+    i_th = model.ipar[IP_THETA]
     ag[:] = 0.0
     depth = 0  # the path from its root (body 0 or a row body), walked from the root end
     b = body
@@ -63,8 +63,8 @@ def _angle_gradient(body, model, ag):
 def _row_gradient(body, model, ag):
     """ag = d(theta_body)/dy of a row body: the gradients of all bodies up to it, in index order (tree bodies as
     :func:`_angle_gradient` forms them, row bodies from their rows), in a table."""
-    bodies, lev, tree, M = model[1], model[2], model[9], model[14]
-    i_th = model[5][IP_THETA]
+    bodies, lev, tree, M = model.bodies, model.levers, model.tree, model.angle_rows
+    i_th = model.ipar[IP_THETA]
     nb = M.shape[0]
     G = np.zeros((body + 1, ag.size))
     if i_th >= 0:
@@ -90,8 +90,8 @@ def _row_gradient(body, model, ag):
 def _gradient(c, xd, xv, xt, xw, model, first, g, ag):
     """g = d(x_c)/dy of a connector quantity with partials xd (deflection), xv (rate), xt (mesh phase),
     xw (phase rate)."""
-    kind, bodies, lev, param = model[0], model[1], model[2], model[3]
-    i_w0 = model[5][IP_W0]
+    kind, bodies, lev, param = model.kind, model.bodies, model.levers, model.param
+    i_w0 = model.ipar[IP_W0]
     a = bodies[c, 0]
     g[:] = 0.0
     g[c] = xd
@@ -110,7 +110,7 @@ def _gradient(c, xd, xv, xt, xw, model, first, g, ag):
 @jit
 def jacobian(t, y, Jm, model, th, g, ag):
     """Jm = df/dy of :func:`rhs`, from the elements' own partials (as the generated ``jac``)."""
-    kind, bodies, lev, param, inertia, ipar = model[0], model[1], model[2], model[3], model[4], model[5]
+    kind, bodies, lev, param, inertia, ipar = model.kind, model.bodies, model.levers, model.param, model.inertia, model.ipar
     nc = kind.shape[0]
     nb = inertia.shape[0]
     n = y.size
@@ -183,7 +183,7 @@ def jacobian(t, y, Jm, model, th, g, ag):
             Jm[iq, i_th] += dtin * w0
     if load:
         last = i_w0 + nb - 1 - first
-        if model[13].size > 0:  # a speed-dependent load
+        if model.load_law.size > 0:  # a speed-dependent load
             Jm[iq + 1, last] = tl + dtl * body_speed(y, nb - 1, first, i_w0, w0)
             Jm[last, last] += (-1.0 / inertia[nb - 1]) * dtl
         else:
@@ -201,8 +201,8 @@ def jacobian(t, y, Jm, model, th, g, ag):
 def _speed_column(c, j, model, first, i_w0):
     """d v/dy_j of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (a planet mesh's (v_a + v_b) / 2)
     (0: y_j is no speed of its bodies)."""
-    bodies, lev = model[1], model[2]
-    P = model[3][c]
+    bodies, lev = model.bodies, model.levers
+    P = model.param[c]
     out = 0.0
     hit = False
     if P[I_LSB] > 0.0:
@@ -224,7 +224,7 @@ def _speed_column(c, j, model, first, i_w0):
 @jit
 def _planet_va(c, s, model):
     """d v_a / d w of a planet mesh's slot s (module text of side_losses)."""
-    P, lev = model[3][c], model[2]
+    P, lev = model.param[c], model.levers
     if s == int(P[I_LSA]):
         return lev[c, s]
     if s == int(P[I_LSC]):
@@ -234,7 +234,7 @@ def _planet_va(c, s, model):
 @jit
 def _planet_vb(c, s, model):
     """d v_b / d w of a planet mesh's slot s."""
-    P, lev = model[3][c], model[2]
+    P, lev = model.param[c], model.levers
     if s == int(P[I_LSB]):
         return -lev[c, s]
     if s == int(P[I_LSC]):
@@ -255,7 +255,7 @@ def _slot_row(c, side, j, gj, aa, ba, ab, bb, model, first, i_w0):
         return _side_row(c, 0, j, gj, aa, ba, model, first, i_w0)
     if side == 1:
         return _side_row(c, 1, j, gj, ab, bb, model, first, i_w0)
-    ka = model[3][c][I_LKA]
+    ka = model.param[c][I_LKA]
     return ka * _side_row(c, 0, j, gj, aa, ba, model, first, i_w0) + (1.0 - ka) * _side_row(
         c, 1, j, gj, ab, bb, model, first, i_w0)
 
@@ -263,12 +263,12 @@ def _slot_row(c, side, j, gj, aa, ba, ab, bb, model, first, i_w0):
 def _loss_row(c, j, gj, lf, lv, da, db, model, first, i_w0):
     """d(loss power)/dy_j: lf dF/dy_j + lv dv/dy_j + (f_a - f) dv_a/dy_j - (f_b - f) dv_b/dy_j (a pair:
     (f_a - f) r_a [y_j = w_a] - (f_b - f) r_b [y_j = w_b])."""
-    bodies, lev = model[1], model[2]
+    bodies, lev = model.bodies, model.levers
     dv, hit = _speed_column(c, j, model, first, i_w0)
     x = lf * gj
     if hit:
         x = x + dv * lv
-    if model[3][c][I_LSB] > 0.0:
+    if model.param[c][I_LSB] > 0.0:
         for s in range(bodies.shape[1]):
             b = bodies[c, s]
             if b >= first and j == i_w0 + b - first:

@@ -44,7 +44,7 @@ from gearcli.engine.location import (  # noqa: F401 - the package's interface (g
     cache_problem,
     cache_root,
 )
-from gearcli.engine.packing import _acting_on
+from gearcli.engine.packing import Model, _acting_on
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import elements, outputs
 from gearcli.model.elements import machine
@@ -244,7 +244,7 @@ def _warm_entry(kernel: Any, name: str) -> None:
     getattr(kernel, name)(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16), wpar,
                           np.empty(0))
     for c in range(2):
-        kernel.connector_series(model[0][c], model[3][c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
+        kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
 
 
 @dataclass(frozen=True)
@@ -328,11 +328,11 @@ def _tiny_model():
     bodies[:, :2] = ((0, 1), (1, 2))
     levers = np.zeros((2, elements.MAX_BODIES))
     levers[:, :2] = ((0.1, -0.2), (1.0, -1.0))
-    return (np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
-            np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
-            np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
-            np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
-            np.zeros(machine.L_TAB), np.zeros((0, 0)))
+    return Model(np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
+                 np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
+                 np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
+                 np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
+                 np.zeros(machine.L_TAB), np.zeros((0, 0)))
 
 
 def _tiny_args() -> tuple:

@@ -1,7 +1,7 @@
-"""The model as the kernel reads it: :func:`pack` turns :class:`~gearcli.model.ModelArrays` into the model tuple
+"""The model as the kernel reads it: :func:`pack` turns :class:`~gearcli.model.ModelArrays` into a :class:`Model`
 (plain Python and numpy; no numba).
 
-The model tuple: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree, ptr, pairs,
+The model: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree, ptr, pairs,
 motor row, load law, angle rows): bodies and signed levers by connector and slot (-1 / 0 padded;
 gearcli.model.ModelArrays), the rows the flat (amplitude, order) / (amplitude, frequency) pairs of
 gearcli.model.elements.torque, tree the connector that gives each body's angle, per body b its (connector, slot)
@@ -13,6 +13,8 @@ load's numbers and the state layout's offsets (``IP_*``, ``FP_*``).
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from gearcli.model import elements
@@ -20,13 +22,31 @@ from gearcli.model import elements
 # ipar / fpar layout
 IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
 FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3, 4, 5
-# the model tuple's entries
-M_KIND, M_BODIES, M_LEVERS, M_PARAM, M_INERTIA, M_IPAR, M_FPAR, M_RIPPLE, M_FLUCT, M_TREE, M_PTR, M_PAIRS = range(12)
-M_MOTOR, M_LOAD_LAW, M_ANGLE_ROWS = 12, 13, 14
 
 
-def pack(arrays) -> tuple:
-    """The kernel's model tuple from :class:`~gearcli.model.ModelArrays`."""
+class Model(NamedTuple):
+    """The scene as the kernel reads it (a numba argument: a named tuple of arrays, one compilation for every
+    scene)."""
+
+    kind: np.ndarray  # per connector: its element kind (gearcli.model.elements registry), int64
+    bodies: np.ndarray  # per connector and slot: the body (-1 padded), int64
+    levers: np.ndarray  # per connector and slot: the signed lever (0 padded)
+    param: np.ndarray  # per connector: its element's parameter row
+    inertia: np.ndarray  # per body
+    ipar: np.ndarray  # IP_*: the drive's kind and the state layout's offsets, int64
+    fpar: np.ndarray  # FP_*: the drive's and the load's numbers
+    ripple: np.ndarray  # the drive torque's (amplitude, order) pairs, flat (gearcli.model.elements.torque)
+    fluct: np.ndarray  # the load's (amplitude, frequency) pairs, flat
+    tree: np.ndarray  # per body: the connector that gives its angle (-1 none, -2 its angle row), int64
+    ptr: np.ndarray  # per body b: its (connector, slot) pairs are pairs[ptr[b]:ptr[b + 1]], int64
+    pairs: np.ndarray  # (connector, slot) pairs in connector order, int64
+    motor: np.ndarray  # the motor's row (gearcli.model.elements.machine; empty: none)
+    load_law: np.ndarray  # the load's speed law (empty: none)
+    angle_rows: np.ndarray  # the angle rows of the bodies the tree does not reach ((0, 0): none)
+
+
+def pack(arrays) -> Model:
+    """The kernel's model from :class:`~gearcli.model.ModelArrays`."""
     kind = np.ascontiguousarray(arrays.conn_kind, dtype=np.int64)
     bodies = np.ascontiguousarray(arrays.conn_bodies, dtype=np.int64)
     param = np.ascontiguousarray(arrays.conn_param, dtype=np.float64)
@@ -41,7 +61,7 @@ def pack(arrays) -> tuple:
     ripple = np.ascontiguousarray(np.asarray(arrays.drive_ripple, dtype=np.float64).reshape(-1))
     fluct = np.ascontiguousarray(np.asarray(arrays.load_fluct, dtype=np.float64).reshape(-1))
     ptr, pairs = _acting_on(bodies, len(arrays.body_inertia))
-    return (kind, bodies, np.ascontiguousarray(arrays.conn_levers, dtype=np.float64), param,
+    return Model(kind, bodies, np.ascontiguousarray(arrays.conn_levers, dtype=np.float64), param,
             np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct,
             np.ascontiguousarray(arrays.body_tree, dtype=np.int64), ptr, pairs,
             np.ascontiguousarray(np.asarray(arrays.motor_row, dtype=np.float64).reshape(-1)),

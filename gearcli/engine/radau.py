@@ -124,8 +124,8 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
     sampling, guards and returns as :func:`rk_run` (the same after-step helpers; counters add njev and nlu).
     rtol enters the Newton tolerance through its smallest component."""
     n = y0.size
-    nb = model[4].shape[0]
-    nc = model[0].shape[0]
+    nb = model.inertia.shape[0]
+    nc = model.kind.shape[0]
     th = np.zeros(nb)
     fc = np.zeros(2 * nc)
     y = y0.copy()

@@ -143,8 +143,8 @@ def rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
     s_n = tab.b.size
     n_extra = tab.a_extra.shape[0]
     error_exponent = -1.0 / (tab.error_order + 1)
-    nb = model[4].shape[0]
-    nc = model[0].shape[0]
+    nb = model.inertia.shape[0]
+    nc = model.kind.shape[0]
     th = np.zeros(nb)
     fc = np.zeros(2 * nc)
     K = np.zeros((s_n + 1 + n_extra, n))
