@@ -49,6 +49,7 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     ready,
     warm_up,
 )
+from gearcli.engine.packing import _acting_on, pack  # noqa: F401 - the package's interface
 from gearcli.errors import ConfigError
 from gearcli.model import elements
 
@@ -117,44 +118,6 @@ def _has_content(v) -> bool:
     if a.dtype == object:
         return True
     return bool(a.size) and bool(np.any(a != 0))
-
-
-def pack(arrays) -> tuple:
-    """The kernel's model tuple from :class:`~gearcli.model.ModelArrays`."""
-    kind = np.ascontiguousarray(arrays.conn_kind, dtype=np.int64)
-    bodies = np.ascontiguousarray(arrays.conn_bodies, dtype=np.int64)
-    param = np.ascontiguousarray(arrays.conn_param, dtype=np.float64)
-    laws = [elements.law_of(k) for k in kind]
-    tv = [c for c in range(kind.size) if laws[c].time_varying(param[c])]
-    phased = [c for c in range(kind.size) if laws[c].phased(param[c])]
-    last_angle = max((int(bodies[c, 0]) for c in phased), default=0)
-    ipar = np.array([arrays.drive_kind, arrays.i_omega0, arrays.i_theta, arrays.i_quad, last_angle, len(tv)],
-                    dtype=np.int64)
-    fpar = np.array([arrays.drive_value, arrays.drive_ramp_s, arrays.load_value_Nm, arrays.load_ramp_s,
-                     arrays.drive_angle_rad, arrays.load_clock_s], dtype=np.float64)
-    ripple = np.ascontiguousarray(np.asarray(arrays.drive_ripple, dtype=np.float64).reshape(-1))
-    fluct = np.ascontiguousarray(np.asarray(arrays.load_fluct, dtype=np.float64).reshape(-1))
-    ptr, pairs = _acting_on(bodies, len(arrays.body_inertia))
-    return (kind, bodies, np.ascontiguousarray(arrays.conn_levers, dtype=np.float64), param,
-            np.ascontiguousarray(arrays.body_inertia, dtype=np.float64), ipar, fpar, ripple, fluct,
-            np.ascontiguousarray(arrays.body_tree, dtype=np.int64), ptr, pairs,
-            np.ascontiguousarray(np.asarray(arrays.motor_row, dtype=np.float64).reshape(-1)),
-            np.ascontiguousarray(np.asarray(arrays.load_law, dtype=np.float64).reshape(-1)),
-            np.ascontiguousarray(np.atleast_2d(np.asarray(arrays.body_angle_row, dtype=np.float64))))
-
-
-def _acting_on(bodies: np.ndarray, n_bodies: int) -> tuple[np.ndarray, np.ndarray]:
-    """Per body, the (connector, slot) pairs that act on it in connector order, as ``pairs[ptr[b]:ptr[b + 1]]``
-    (the kernel's scatter of forces to bodies)."""
-    lists: list[list[tuple[int, int]]] = [[] for _ in range(n_bodies)]
-    for c in range(bodies.shape[0]):
-        for s in range(bodies.shape[1]):
-            if bodies[c, s] >= 0:
-                lists[int(bodies[c, s])].append((c, s))
-    ptr = np.zeros(n_bodies + 1, dtype=np.int64)
-    ptr[1:] = np.cumsum([len(x) for x in lists])
-    pairs = np.array([p for x in lists for p in x], dtype=np.int64).reshape(-1, 2)
-    return ptr, pairs
 
 
 # ------------------------------------------------------------------------------------------- auto

@@ -1,7 +1,7 @@
 """Compiling the kernel into the cache: a separate process, a visible step.
 
 The first use of the compiled engine compiles ~100 numba functions (30-120 s). That happens in a child process
-(``python -m gearcli.engine.builder DIR``) so that the command that needs it stays in Python while it waits: it
+(``python -m gearcli.engine.builder_child DIR``, :mod:`gearcli.engine.builder_child`) so that the command that needs it stays in Python while it waits: it
 reports each compiled function (:class:`Reporter`), and a Ctrl-C, SIGTERM or SIGHUP ends it at once (the child
 is killed, its temporary files removed, the cache left without a ``ready`` mark: the next build starts over).
 Compiling inside the command itself left a signal in numba's compiler (a ctypes-callback traceback, then exit 0).
@@ -14,9 +14,7 @@ compiled again (:data:`gearcli.engine.numba_cache.DAMAGED`, reported to the pare
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -50,7 +48,7 @@ def run(directory: Path, reporter: Reporter, expected: int = EXPECTED_FUNCTIONS)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (pkg_root, os.environ.get("PYTHONPATH", "")) if p),
                PYTHONDONTWRITEBYTECODE="1")  # a killed build leaves no half-written .pyc in the cache
     reporter.start(directory)
-    proc = subprocess.Popen([sys.executable, "-m", "gearcli.engine.builder", str(directory)], env=env,
+    proc = subprocess.Popen([sys.executable, "-m", "gearcli.engine.builder_child", str(directory)], env=env,
                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             start_new_session=True)  # a terminal's Ctrl-C is the parent's to act on
     other: list[str] = []
@@ -91,46 +89,3 @@ def _kill(proc: subprocess.Popen, directory: Path) -> None:
         with contextlib.suppress(OSError):
             proc.stdout.close()
     cachedir.remove_leftovers(directory, proc.pid)
-
-
-def _die_with_parent() -> None:
-    """Linux: this process is killed when its parent dies (a killed command leaves no compiler running)."""
-    with contextlib.suppress(Exception):
-        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
-
-
-def child(directory: Path) -> int:
-    """The build process: compile (or load and repair) every kernel entry into ``directory``; exit status."""
-    import fcntl  # lazy: POSIX only (no fcntl on Windows)
-
-    from gearcli import engine  # lazy: circle: the engine package imports loader, which starts this builder
-
-    _die_with_parent()
-    lock_path = directory / "build.lock"
-    cachedir.clear_entry(lock_path)
-    fd = os.open(lock_path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o600)
-    fcntl.flock(fd, fcntl.LOCK_EX)  # parallel builds of the same cache: one compiles, the others wait for it
-    if engine.ready(directory):
-        print(PREFIX + "ready", flush=True)
-        return 0
-    from numba.core import event  # lazy: numba, the optional fast extra
-
-    class Listener(event.Listener):
-        def on_start(self, ev: event.Event) -> None:
-            pass
-
-        def on_end(self, ev: event.Event) -> None:
-            print(f"{PREFIX}compiled {getattr(ev.data.get('dispatcher'), '__name__', '')}", flush=True)
-
-    t0 = time.perf_counter()
-    event.register("numba:compile", Listener())
-    kernel, damaged = engine.import_kernel(directory, strict=False)
-    engine.warm_up(kernel)
-    for line in damaged():
-        print(f"{PREFIX}damaged {line}", flush=True)
-    engine.mark_ready(directory, time.perf_counter() - t0)
-    return 0
-
-
-if __name__ == "__main__":  # pragma: no cover - run by run() in a child process
-    sys.exit(child(Path(sys.argv[1])))

@@ -20,7 +20,7 @@ import sys
 import types
 from pathlib import Path
 
-from gearcli.engine import cachedir
+from gearcli.engine import cachedir, numba_cache
 from gearcli.engine.numba_cache import jit
 from gearcli.model.elements import ElementType, compiled_types
 
@@ -74,8 +74,6 @@ def source(elements: tuple[ElementType, ...]) -> str:
 def build() -> types.ModuleType:
     """The dispatch module of the registered compiled element types, written to the cache directory this process
     loads from (:data:`gearcli.engine.numba_cache.DIR`, keyed by the registry; once per registry) and imported."""
-    from gearcli.engine import numba_cache  # lazy: numba (numba_cache imports it), the optional fast extra
-
     directory = Path(numba_cache.DIR[0])
     elements = compiled_types()
     text = source(elements)

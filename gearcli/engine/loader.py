@@ -18,7 +18,6 @@ loader is acted on when it returns (a fraction of a second), never inside it.
 
 from __future__ import annotations
 
-import hashlib
 import importlib.util
 import os
 import sys
@@ -35,93 +34,24 @@ import numpy as np
 from gearcli.core import announce, signals
 from gearcli.core.announce import LineReporter
 from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S
-from gearcli.engine import blas, builder, cachedir
+from gearcli.engine import builder, cachedir
 from gearcli.engine.cachedir import CacheDamaged
+from gearcli.engine.location import (  # noqa: F401 - the package's interface (gearcli.engine re-exports them)
+    FRESH,
+    _source_key,  # the cache tests name the key directory
+    cache_choice,
+    cache_dir,
+    cache_problem,
+    cache_root,
+)
+from gearcli.engine.packing import Model, _acting_on
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import elements, outputs
 from gearcli.model.elements import machine
 
-_SOURCES = ("engine/kernel.py", "engine/dispatch.py", "engine/tableau.py", "engine/blas.py", "engine/status.py",
-            "model/elements/__init__.py", "model/elements/torque.py",
-            "model/elements/machine.py", "model/contact_lines.py")  # + every compiled element's module (_source_key)
 ENTRIES = {"DOP853": "dop853", "RK45": "rk45", "Radau": "radau"}
 
 _state: dict = {}
-
-
-# ------------------------------------------------------------------------------------------- where
-def _usable_dir(path: Path) -> str | None:
-    """Why ``path`` cannot hold the cache (None: it can): it must be absolute and be, or become, a writable
-    directory."""
-    if not path.is_absolute():
-        return "not an absolute path"
-    probe = path
-    while not probe.exists() and probe != probe.parent:
-        probe = probe.parent
-    if not probe.is_dir():
-        return f"{probe} is not a directory"
-    if not os.access(probe, os.W_OK | os.X_OK):
-        return f"{probe} is not writable"
-    return None
-
-
-def _candidates() -> list[tuple[str, Path, tuple[str, ...]]]:
-    """(name, base, the directories gearcli owns below it) of each place the cache may go, in order."""
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    own = f"gearcli-{os.getuid()}" if hasattr(os, "getuid") else "gearcli"
-    out: list[tuple[str, Path, tuple[str, ...]]] = [("XDG_CACHE_HOME", Path(xdg), ("gearcli", "numba"))] if xdg else []
-    return out + [("~/.cache", Path(os.path.expanduser("~")) / ".cache", ("gearcli", "numba")),
-                  ("the temporary directory", Path(tempfile.gettempdir()), (own, "numba"))]
-
-
-def _choice() -> tuple[Path, tuple[str, ...], str]:
-    why = ""
-    cands = _candidates()
-    for name, base, parts in cands:
-        problem = _usable_dir(base.joinpath(*parts))
-        if problem is None:
-            return base, parts, why
-        why = why or f"{name} cannot hold the cache ({problem})"
-    return cands[-1][1], cands[-1][2], why
-
-
-def cache_choice() -> tuple[Path, str]:
-    """The cache root and, when ``$XDG_CACHE_HOME`` (or the home directory) cannot hold it, why another one is
-    used ('' when the first choice is used): $XDG_CACHE_HOME, else ~/.cache, else the temporary directory."""
-    base, parts, why = _choice()
-    return base.joinpath(*parts), why
-
-
-def cache_root() -> Path:
-    return cache_choice()[0]
-
-
-def _source_key() -> str:
-    h = hashlib.sha1()
-    pkg = Path(__file__).resolve().parent.parent
-    for rel in _SOURCES:
-        h.update((pkg / rel).read_bytes())
-    for et in elements.compiled_types():  # the registry: what the generated dispatch calls, and the laws' code
-        h.update(f"{et.kind}:{et.name}:{et.law.__name__}".encode())
-        h.update(Path(et.law.__file__ or "").read_bytes())
-    h.update(blas.KEY.encode())
-    spec = importlib.util.find_spec("numba")  # the installed numba (its path and version stamp), without importing it
-    if spec is not None and spec.origin:
-        h.update(f"{spec.origin}:{os.stat(spec.origin).st_mtime_ns}".encode())
-    return h.hexdigest()[:16]
-
-
-def cache_dir() -> Path:
-    """Where the compiled kernel is cached (one subdirectory per kernel source and numba version)."""
-    return cache_root() / _source_key()
-
-
-def cache_problem() -> str | None:
-    """Why the cache directory is refused (created 0700 where missing), or None: it is the user's own."""
-    if "problem" not in _state:
-        base, parts, _ = _choice()
-        _state["problem"] = cachedir.check(base, (*parts, _source_key()))
-    return _state["problem"]
 
 
 def ready(directory: Path) -> bool:
@@ -189,14 +119,12 @@ def import_kernel(directory: Path, strict: bool) -> tuple[Any, Any]:
     numba_cache.DIR[:] = [str(directory)]
     numba_cache.STRICT[0] = strict
     numba_cache.DAMAGED.clear()
-    for name in ("gearcli.engine.kernel", "gearcli_dispatch"):
+    package = sys.modules[__name__.rpartition(".")[0]]  # gearcli.engine, whose import runs this module's
+    for name in FRESH:  # the modules holding dispatchers: imported anew, bound to ``directory``
         sys.modules.pop(name, None)
-    import gearcli.engine  # lazy: circle: the engine package imports this module
-
-    if hasattr(gearcli.engine, "kernel"):
-        delattr(gearcli.engine, "kernel")
-    import gearcli.engine.kernel as kernel  # lazy: numba: the kernel compiles or loads its cache on import
-
+        if name.startswith(package.__name__ + ".") and hasattr(package, name.rpartition(".")[2]):
+            delattr(package, name.rpartition(".")[2])
+    kernel = importlib.import_module("gearcli.engine.kernel")  # numba: the kernel compiles or loads its cache
     return kernel, lambda: list(numba_cache.DAMAGED)
 
 
@@ -316,7 +244,7 @@ def _warm_entry(kernel: Any, name: str) -> None:
     getattr(kernel, name)(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16), wpar,
                           np.empty(0))
     for c in range(2):
-        kernel.connector_series(model[0][c], model[3][c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
+        kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
 
 
 @dataclass(frozen=True)
@@ -400,13 +328,11 @@ def _tiny_model():
     bodies[:, :2] = ((0, 1), (1, 2))
     levers = np.zeros((2, elements.MAX_BODIES))
     levers[:, :2] = ((0.1, -0.2), (1.0, -1.0))
-    from gearcli.engine import _acting_on  # lazy: circle: the engine package imports this module
-
-    return (np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
-            np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
-            np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
-            np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
-            np.zeros(machine.L_TAB), np.zeros((0, 0)))
+    return Model(np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
+                 np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
+                 np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
+                 np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
+                 np.zeros(machine.L_TAB), np.zeros((0, 0)))
 
 
 def _tiny_args() -> tuple:

@@ -9,7 +9,7 @@ PROJECTED = -5  # stopped early: its pace projects far over the computing budget
 SWITCH = -6  # stopped to go on on the compiled engine: its pace on scipy projected far over the prediction
 INTERRUPTED = -7  # the compiled kernel saw its stop flag (a signal arrived: gearcli.core.signals.deferred)
 
-#: the kernel's parameter vector ``wpar`` (gearcli.engine.kernel.WP_*) may carry one more entry at this index: the
+#: the kernel's parameter vector ``wpar`` (gearcli.engine.guards.WP_*) may carry one more entry at this index: the
 #: kernel writes the time it has reached there at every priced-budget check (every cost.BUDGET_CHECK_EVERY
 #: accepted steps), for a progress bar polled from another thread; the numbers of the run do not depend on it
 WP_PROGRESS = 15

@@ -5,6 +5,8 @@ DOP853 Fortran code (E. Hairer, S. P. Norsett, G. Wanner, "Solving Ordinary Diff
 without importing scipy's private modules.
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
 N_STAGES = 12
@@ -224,19 +226,31 @@ RK45_P = np.array([
 DOP853_ERROR_ORDER = 7
 
 # ---------------------------------------------------------------------------- the driver's tableaux
-# One explicit Runge-Kutta driver (gearcli.engine.kernel.rk_run) reads a method as this tuple of arrays
-# (a numba argument, so one compilation serves both and the on-disk cache keeps working):
-#   (kind [DOP853 = 0 | RK45 = 1, error order], C, A, B, E, E3, A_EXTRA, C_EXTRA, DENSE)
-# E is the error weights (DOP853: its 5th-order ones), E3 DOP853's 3rd-order ones (empty for RK45), A_EXTRA and
-# C_EXTRA the dense output's extra stages (DOP853 only), DENSE DOP853's D or RK45's P matrix.
 KIND_DOP853, KIND_RK45 = 0, 1
+
+
+class Tableau(NamedTuple):
+    """An explicit Runge-Kutta method as the one driver (:func:`gearcli.engine.rk.rk_run`) reads it: a numba
+    argument (a named tuple of numbers and arrays), so one compilation serves both methods and the on-disk cache
+    keeps working."""
+
+    kind: int  # KIND_DOP853 or KIND_RK45: which error estimate and dense output
+    error_order: int  # the step-size control's exponent is -1 / (error_order + 1)
+    c: np.ndarray  # the stages' nodes
+    a: np.ndarray  # the stages' coefficients (row s: stage s)
+    b: np.ndarray  # the step's weights
+    e: np.ndarray  # the error weights (DOP853: its 5th-order ones)
+    e3: np.ndarray  # DOP853's 3rd-order error weights (empty for RK45)
+    a_extra: np.ndarray  # the dense output's extra stages (DOP853 only)
+    c_extra: np.ndarray  # their nodes
+    dense: np.ndarray  # DOP853's D or RK45's P matrix
 
 
 def _f(a) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
-DOP853_TABLEAU = (np.array([KIND_DOP853, DOP853_ERROR_ORDER], dtype=np.int64), _f(C[:N_STAGES]),
-                  _f(A[:N_STAGES, :N_STAGES]), _f(B), _f(E5), _f(E3), _f(A[N_STAGES + 1:]), _f(C[N_STAGES + 1:]), _f(D))
-RK45_TABLEAU = (np.array([KIND_RK45, RK45_ERROR_ORDER], dtype=np.int64), _f(RK45_C), _f(RK45_A), _f(RK45_B),
-                _f(RK45_E), _f(np.zeros(0)), _f(np.zeros((0, RK45_STAGES + 1))), _f(np.zeros(0)), _f(RK45_P))
+DOP853_TABLEAU = Tableau(KIND_DOP853, DOP853_ERROR_ORDER, _f(C[:N_STAGES]), _f(A[:N_STAGES, :N_STAGES]), _f(B), _f(E5),
+                         _f(E3), _f(A[N_STAGES + 1:]), _f(C[N_STAGES + 1:]), _f(D))
+RK45_TABLEAU = Tableau(KIND_RK45, RK45_ERROR_ORDER, _f(RK45_C), _f(RK45_A), _f(RK45_B), _f(RK45_E), _f(np.zeros(0)),
+                       _f(np.zeros((0, RK45_STAGES + 1))), _f(np.zeros(0)), _f(RK45_P))

@@ -114,7 +114,7 @@ def test_a_cache_directory_another_user_prepared_is_refused(tmp_path):
         os.symlink(victim_file, key_dir / "load_time.json")
         with open(key_dir / "ready.json", "w") as fh:
             fh.write("{}")
-        for name in ("kernel.rk_run-1.py311.nbi", "gearcli_dispatch.conn_force-1.py311.nbi"):
+        for name in ("rk.rk_run-1.py311.nbi", "gearcli_dispatch.conn_force-1.py311.nbi"):
             with open(key_dir / "engine_planted" / name, "wb") as fh:
                 pickle.dump(_Plant(str(marker)), fh)
 
@@ -160,7 +160,7 @@ def _victim_runs(tmp_path: Path, tmpdir: Path, own: Path, victim_file: Path, mar
 
 def test_a_group_writable_cache_of_ones_own_is_refused(tmp_path, monkeypatch):
     from gearcli import engine
-    from gearcli.engine import loader
+    from gearcli.engine import loader, location
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
     (tmp_path / "gearcli").mkdir(mode=0o700)
@@ -168,6 +168,7 @@ def test_a_group_writable_cache_of_ones_own_is_refused(tmp_path, monkeypatch):
     (tmp_path / "gearcli" / "numba").chmod(0o775)
     monkeypatch.setattr(loader, "_state", {})
     monkeypatch.setattr(engine, "_state", loader._state)
+    monkeypatch.setattr(location, "_memo", {})  # the cache's verdict, asked anew
     problem = engine.cache_problem()
     assert problem and "writable by its group" in problem and str(tmp_path / "gearcli" / "numba") in problem
     assert engine.expected_load_s() >= 30  # never trusted: auto prices a compilation

@@ -1,0 +1,326 @@
+"""The scene's right-hand side read from the model (:class:`gearcli.engine.packing.Model`).
+
+The same assembly as the generated Python source (:mod:`gearcli.model.codegen`), term for term and in the same
+floating-point order, so both engines compute bit-identical derivatives: the speed drive's exact STEP motion (or
+the ramped drive torque), the ramped load, the body angles a time-varying mesh needs, each connector's force from
+its element law (:mod:`gearcli.engine.laws`), the net torque on each free body, and the four work quadratures; and
+the stored energy the energy watch compares with the work done.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from gearcli.engine.laws import (
+    I_ETA,
+    I_LKA,
+    I_LSA,
+    I_LSB,
+    I_LSC,
+    conn_damped,
+    conn_excited,
+    conn_force,
+    conn_phase_per_rad,
+    conn_phased,
+    conn_potential,
+    conn_tv,
+    load_factor,
+    mesh_loss_factors,
+    motor_torque,
+    torque_fluctuation,
+    torque_ripple,
+)
+from gearcli.engine.numba_cache import jit, jit_alloc
+from gearcli.engine.packing import (
+    FP_ANGLE,
+    FP_CLOCK,
+    FP_DRIVE,
+    FP_DRIVE_RAMP,
+    FP_LOAD,
+    FP_LOAD_RAMP,
+    IP_DRIVE,
+    IP_LAST_ANGLE,
+    IP_NTV,
+    IP_QUAD,
+    IP_THETA,
+    IP_W0,
+)
+from gearcli.model.elements import KIND_MESH, KIND_PLANET_MESH
+
+
+@jit
+def ramp(t, value, ramp_s):
+    """``STEP(t, 0, 0, ramp_s, value)`` as the generated code writes it."""
+    if ramp_s <= 0.0 or value == 0.0:
+        return value
+    if t < ramp_s:
+        s = t * (1.0 / ramp_s)
+        return value * s * s * (3.0 - 2.0 * s)
+    return value
+
+@jit
+def input_motion(t, v, T, start):
+    """(th0, w0, a0) of the speed drive's exact STEP profile from the start angle ``start``."""
+    if T <= 0.0:
+        th = v * t
+    elif t < T:
+        s = t * (1.0 / T)
+        th = (v * T) * s * s * s * (1.0 - 0.5 * s)
+        if start != 0.0:
+            th = th + start
+        return th, v * s * s * (3.0 - 2.0 * s), (6.0 * v / T) * s * (1.0 - s)
+    else:
+        th = v * (t - 0.5 * T)
+    if start != 0.0:
+        th = th + start
+    return th, v, 0.0
+
+@jit
+def prologue(t, y, model, th):
+    """(speed drive, w0, a0, Tin, dTin, load, TL, dTL/dw_N) at (t, y) and the body angles ``th`` the phased
+    meshes need, as the generated prologue forms them; dTin is d/dth0 of a rippled drive torque, d/dw0 of a
+    motor's."""
+    lev, ipar, fpar, rip, flu, tree = model.levers, model.ipar, model.fpar, model.ripple, model.fluct, model.tree
+    mrow, lrow = model.motor, model.load_law
+    speed = ipar[IP_DRIVE] == 0
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    a0 = 0.0
+    tin = 0.0
+    dtin = 0.0
+    if speed:
+        th0, w0, a0 = input_motion(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP], fpar[FP_ANGLE])
+    elif ipar[IP_DRIVE] == 2:  # an induction motor at its speed
+        w0 = y[i_w0]
+        th0 = y[i_th] if i_th >= 0 else 0.0
+        tin, dtin = motor_torque(mrow, t, w0)
+    else:
+        tin = ramp(t, fpar[FP_DRIVE], fpar[FP_DRIVE_RAMP])
+        w0 = y[i_w0]
+        th0 = y[i_th] if i_th >= 0 else 0.0
+        if rip.size > 0:
+            r, dr = torque_ripple(rip, th0)
+            dtin = tin * dr
+            tin = tin * r
+    load = fpar[FP_LOAD] != 0.0
+    tl = 0.0
+    if load:
+        tl = ramp(t, fpar[FP_LOAD], fpar[FP_LOAD_RAMP])
+        if flu.size > 0:
+            tl = tl * torque_fluctuation(flu, t + fpar[FP_CLOCK] if fpar[FP_CLOCK] != 0.0 else t)
+    dtl = 0.0
+    if load and lrow.size > 0:  # T_L g(w_N)
+        nb = model.inertia.shape[0]
+        g, dg = load_factor(lrow, body_speed(y, nb - 1, 1 if speed else 0, i_w0, w0))
+        dtl = tl * dg
+        tl = tl * g
+    th[0] = th0
+    for b in range(1, ipar[IP_LAST_ANGLE] + 1):  # theta_b = (r_a theta_a - delta_c) / r_b along the tree
+        c = tree[b]
+        if c >= 0:
+            th[b] = (lev[c, 0] * th[model.bodies[c, 0]] - y[c]) * (1.0 / -lev[c, 1])
+        elif c == -2:  # a body the kinematics fix through several connectors (Layout.angle_rows), as generated
+            th[b] = angle_row(b, model, th, y)
+    return speed, w0, a0, tin, dtin, load, tl, dtl
+
+@jit
+def angle_row(b, model, th, y):
+    """theta_b from its row (Layout.angle_rows): body angles, then deflections, then the constant, summed in
+    the generated expression's order."""
+    M = model.angle_rows
+    nb = M.shape[0]
+    x = 0.0
+    have = False
+    for j in range(b):
+        if M[b, j] != 0.0:
+            x = x + M[b, j] * th[j] if have else M[b, j] * th[j]
+            have = True
+    for c in range(M.shape[1] - nb - 1):
+        if M[b, nb + c] != 0.0:
+            x = x + M[b, nb + c] * y[c] if have else M[b, nb + c] * y[c]
+            have = True
+    return x + M[b, M.shape[1] - 1]
+
+@jit
+def body_speed(y, b, first, i_w0, w0):
+    if b < first:
+        return w0
+    return y[i_w0 + b - first]
+
+@jit
+def deflection_rate(c, y, model, first, i_w0, w0):
+    """delta_c' = sum_j s_j r_j w_{bodies[j]}, in slot order."""
+    bodies, lev = model.bodies, model.levers
+    dd = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
+    for s in range(1, bodies.shape[1]):
+        if bodies[c, s] >= 0:
+            dd = dd + lev[c, s] * body_speed(y, bodies[c, s], first, i_w0, w0)
+    return dd
+
+@jit
+def lossy(kind, P):
+    """A mesh that loses (1 - eta) of the power it transmits (a pair's, or a planet's sun or ring mesh)."""
+    return (kind == KIND_MESH or kind == KIND_PLANET_MESH) and 0.0 < P[I_ETA] < 1.0
+
+@jit
+def side_losses(c, f, y, model, first, i_w0, w0):
+    """A lossy mesh's forces on its pinion and gear side and their partials (mesh.loss_factors), from
+    v_a = r_a w_a and v_b = r_b w_b (levers (r_a, -r_b)); a planet mesh's from its relative pitch-line speeds
+    v_a = l_a w_a + kappa_a l_c w_c, v_b = -(l_b w_b + kappa_b l_c w_c) (mesh.planet_loss_slots)."""
+    bodies, lev = model.bodies, model.levers
+    P = model.param[c]
+    if P[I_LSB] > 0.0:
+        sa, sb, sc, ka = int(P[I_LSA]), int(P[I_LSB]), int(P[I_LSC]), P[I_LKA]
+        vb = (-lev[c, sb]) * body_speed(y, bodies[c, sb], first, i_w0, w0)
+        va = 0.0
+        if sa >= 0:
+            va = lev[c, sa] * body_speed(y, bodies[c, sa], first, i_w0, w0)
+        if sc >= 0:
+            wc = body_speed(y, bodies[c, sc], first, i_w0, w0)
+            va = va + (ka * lev[c, sc]) * wc if sa >= 0 else (ka * lev[c, sc]) * wc
+            vb = vb + (-(1.0 - ka) * lev[c, sc]) * wc
+    else:
+        va = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
+        vb = -lev[c, 1] * body_speed(y, bodies[c, 1], first, i_w0, w0)
+    fa, fb, aa, ba, ab, bb = mesh_loss_factors(P, f, va, vb)
+    return va, vb, fa, fb, aa, ba, ab, bb
+
+@jit
+def side_of(c, s, model):
+    """Which side force a lossy mesh puts on its slot s: 0 (f_a), 1 (f_b), 2 (a planet mesh's carrier:
+    kappa_a f_a + kappa_b f_b), -1 (the law's f)."""
+    P = model.param[c]
+    if P[I_LSB] > 0.0:
+        if s == int(P[I_LSA]):
+            return 0
+        if s == int(P[I_LSB]):
+            return 1
+        if s == int(P[I_LSC]):
+            return 2
+        return -1
+    return s if s < 2 else -1
+
+@jit
+def body_torque(i, model, fc, y, first, i_w0, w0):
+    """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
+    the body's list of (connector, slot) pairs); a lossy mesh puts f_a on its pinion and f_b on its gear (a
+    planet mesh: by its slots, the carrier's share of both on the carrier)."""
+    lev, ptr, pairs = model.levers, model.ptr, model.pairs
+    x = 0.0
+    for k in range(ptr[i], ptr[i + 1]):
+        c = pairs[k, 0]
+        s = pairs[k, 1]
+        f = fc[c]
+        if lossy(model.kind[c], model.param[c]):
+            side = side_of(c, s, model)
+            if side >= 0:
+                _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
+                if side == 0:
+                    f = fa
+                elif side == 1:
+                    f = fb
+                else:
+                    ka = model.param[c][I_LKA]
+                    f = ka * fa + (1.0 - ka) * fb
+        term = -lev[c, s] * f
+        x = x + term if k > ptr[i] else term
+    return x
+
+@jit
+def scene_rhs(t, y, dy, model, th, fc):
+    """dy = f(t, y) of the scene ``model`` (its own states: :func:`gearcli.engine.rhs.rhs` adds the variational
+    equations of an augmented state); ``th`` (n_bodies) and ``fc`` (2 n_conn: forces, then the transmission errors'
+    powers) are scratch."""
+    kind, bodies, param, inertia, ipar = model.kind, model.bodies, model.param, model.inertia, model.ipar
+    nc = kind.shape[0]
+    nb = inertia.shape[0]
+    i_w0 = ipar[IP_W0]
+    i_th = ipar[IP_THETA]
+    iq = ipar[IP_QUAD]
+    speed, w0, a0, tin, _, load, tl, _ = prologue(t, y, model, th)
+    first = 1 if speed else 0
+    damp = 0.0
+    tvp = 0.0
+    have_damp = False
+    have_tv = False
+    for c in range(nc):
+        a = bodies[c, 0]
+        P = param[c]
+        dd = deflection_rate(c, y, model, first, i_w0, w0)
+        tv = conn_tv(kind[c], P)
+        phi = conn_phase_per_rad(kind[c], P) * th[a] if conn_phased(kind[c], P) else 0.0
+        wphi = conn_phase_per_rad(kind[c], P) * body_speed(y, a, first, i_w0, w0) if conn_excited(kind[c], P) else 0.0
+        f, _, _, _, _, q, u, te = conn_force(kind[c], P, y[c], dd, phi, wphi)
+        fc[c] = f
+        fc[nc + c] = te
+        dy[c] = dd
+        if conn_damped(kind[c], P):
+            damp = damp + q if have_damp else q
+            have_damp = True
+        if tv:
+            tvp = tvp + u if have_tv else u
+            have_tv = True
+    for c in range(nc):  # the meshes' losses, after the damping (the generated sum's order)
+        if lossy(kind[c], param[c]):
+            va, vb, fa, fb, _, _, _, _ = side_losses(c, fc[c], y, model, first, i_w0, w0)
+            ql = va * (fa - fc[c]) - vb * (fb - fc[c])
+            damp = damp + ql if have_damp else ql
+            have_damp = True
+    for i in range(first, nb):
+        x = body_torque(i, model, fc, y, first, i_w0, w0)
+        if i == 0 and not speed:
+            x = x + tin
+        if i == nb - 1 and load:
+            x = x - tl
+        dy[i_w0 + i - first] = x * (1.0 / inertia[i])
+    if i_th >= 0:
+        dy[i_th] = w0
+    if speed:
+        p_in = (-body_torque(0, model, fc, y, first, i_w0, w0) + inertia[0] * a0) * w0
+    else:
+        p_in = tin * w0
+    for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)
+        if conn_excited(kind[c], param[c]):
+            p_in = p_in + fc[nc + c]
+    dy[iq] = p_in
+    dy[iq + 1] = tl * body_speed(y, nb - 1, first, i_w0, w0) if load else 0.0
+    dy[iq + 2] = damp
+    if ipar[IP_NTV] > 0:
+        dy[iq + 3] = tvp
+
+@jit
+def n_model_states(model):
+    """The scene's own state count (an augmented state carries the variational equations after it)."""
+    ipar = model.ipar
+    return ipar[IP_QUAD] + 3 + (1 if ipar[IP_NTV] > 0 else 0)
+
+@jit
+def n_dynamic(model):
+    """The dynamic states (deflections, free speeds) whose variational equations an augmented state carries."""
+    ipar = model.ipar
+    return ipar[IP_THETA] if ipar[IP_THETA] >= 0 else ipar[IP_QUAD]
+
+@jit
+def ipar_quad(model):
+    return model.ipar[IP_QUAD]
+
+@jit_alloc
+def stored_energy(t, y, model):
+    """Kinetic energy + elastic energy of the constant-stiffness connectors + work on time-varying
+    springs (the energy watch's ``_stored``)."""
+    kind, bodies, param, inertia, ipar = model.kind, model.bodies, model.param, model.inertia, model.ipar
+    th = np.zeros(inertia.shape[0])
+    speed, w0, _, _, _, _, _, _ = prologue(t, y, model, th)
+    first = 1 if speed else 0
+    ke = 0.0
+    for i in range(inertia.shape[0]):
+        w = body_speed(y, i, first, ipar[IP_W0], w0)
+        ke += inertia[i] * (w * w)
+    total = 0.5 * ke
+    for c in range(kind.shape[0]):
+        if not conn_tv(kind[c], param[c]):  # a transmission error's mesh at its phase
+            phi = conn_phase_per_rad(kind[c], param[c]) * th[bodies[c, 0]] if conn_phased(kind[c], param[c]) else 0.0
+            total += conn_potential(kind[c], param[c], y[c], phi)
+    if ipar[IP_NTV] > 0:
+        total += y[ipar[IP_QUAD] + 3]
+    return total
