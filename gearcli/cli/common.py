@@ -19,6 +19,7 @@ from gearcli.errors import (
     EXIT_HANGUP,
     EXIT_INTERRUPTED,
     EXIT_TERMINATED,
+    ConfigError,
     GearcliError,
     OutputError,
     Terminated,

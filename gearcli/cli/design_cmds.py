@@ -7,9 +7,9 @@ import json
 import click
 
 from gearcli.cli.common import (
-    csv_table_option,
     check_sweep_plots_dir,
     check_target,
+    csv_table_option,
     emit,
     emit_as,
     emit_tables,
@@ -19,8 +19,8 @@ from gearcli.cli.common import (
     is_quiet,
     load_and_design,
     quiet_option,
-    warn,
     wants_bearing_csv,
+    warn,
     write_figures,
 )
 from gearcli.core.text import visible

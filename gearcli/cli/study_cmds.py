@@ -9,11 +9,11 @@ import sys
 import click
 
 from gearcli.cli.common import (
-    csv_table_option,
     check_plots_dir,
     check_sweep_plots_dir,
     check_target,
     context_inputs,
+    csv_table_option,
     emit,
     emit_as,
     emit_tables,

@@ -11,7 +11,7 @@ from pydantic_core import core_schema
 from gearcli.config.bounds_types import NotTiny
 from gearcli.config.contact import ContactOverride
 from gearcli.config.duty import CenterAngleDeg
-from gearcli.config.members import BasicRack, Carrier, Gear, PairGear, Planet, Ring, Sun
+from gearcli.config.members import BasicRack, Carrier, PairGear, Planet, Ring, Sun
 from gearcli.config.schema_rules import (
     AllowancePair,
     TorsionDamping,
