@@ -101,9 +101,8 @@ def test_report_json_with_a_degenerate_window_is_strict_json():
 
 @pytest.mark.parametrize("value", ["", "abc", "nan", "1e400", "0", "-1", "inf"])
 def test_memory_limit_variable_is_validated(value, tmp_path):
-    env = {**os.environ, "GEARCLI_MEMORY_LIMIT_MB": value}
-    res = gearcli("simulate", SEED, "-o", tmp_path / "x.csv", env=env)
-    assert res.returncode == 2, res.stderr
+    res = run("simulate", SEED, "-o", tmp_path / "x.csv", env={"GEARCLI_MEMORY_LIMIT_MB": value})  # read per command
+    assert res.exit_code == 2, res.stderr
     assert_clean(res.stderr)
     assert "environment variable GEARCLI_MEMORY_LIMIT_MB: must be" in res.stderr
     assert not os.listdir(tmp_path)
