@@ -112,6 +112,15 @@ SLOW = (
     "tests/field/test_field_campbell.py::test_sweep_campbell_is_the_same_drawing",
     "tests/field/test_field_ringing.py::test_a_drum_mode_decaying_over_a_window_and_a_half_still_warns",
     "tests/property/test_bounds_fuzz.py::test_simulate_short_runs_exit_0_or_2_and_never_print_nan",
+    # a 500,000-entry array parses for seconds; the loader refuses it the same way for every command ([array-design]
+    # stays, and every other hostile file still goes through every command)
+    "tests/cli/test_cli_hostile_inputs.py::test_hostile_files_through_every_command[array-simulate]",
+    "tests/cli/test_cli_hostile_inputs.py::test_hostile_files_through_every_command[array-report]",
+    "tests/cli/test_cli_hostile_inputs.py::test_hostile_files_through_every_command[array-modes]",
+    "tests/cli/test_cli_hostile_inputs.py::test_hostile_files_through_every_command[array-sweep]",
+    "tests/cli/test_cli_hostile_retest.py::test_jobs_are_capped_by_the_machine",  # test_jobs_cap_in_the_session stays
+    "tests/cli/test_cli_hostile_retest.py::test_sweep_plots_path_is_escaped_on_stderr",
+    "tests/cli/test_cli_hostile_round4.py::test_sweep_resume_with_nothing_to_do_leaves_the_file_byte_identical",
 )
 
 
@@ -120,9 +129,25 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "bitwise: exact step counts on the pinned OpenBLAS kernel (slow tier)")
 
 
+def _module_fixture_module(item) -> str | None:
+    """The test module of ``item`` when it uses a module- or session-scoped fixture defined in that module (a
+    designed or simulated scene shared by its tests), else None."""
+    module = item.nodeid.split("::")[0]
+    info = getattr(item, "_fixtureinfo", None)
+    for defs in (info.name2fixturedefs.values() if info is not None else ()):
+        if defs and defs[-1].scope in ("module", "session") and getattr(defs[-1], "baseid", None) == module:
+            return module
+    return None
+
+
 def pytest_collection_modifyitems(config, items):
     import pytest
 
     for item in items:
         if item.nodeid.startswith(SLOW):
             item.add_marker(pytest.mark.slow)
+        # a module's shared fixture is computed once per worker: its tests on one xdist worker (--dist loadgroup,
+        # pyproject), so that the shared scene is designed or simulated once per run, not once per worker
+        module = _module_fixture_module(item)
+        if module is not None and item.get_closest_marker("xdist_group") is None:
+            item.add_marker(pytest.mark.xdist_group(module))
