@@ -36,10 +36,11 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
     os.environ.pop("LINES", None)
 
 
-# The slow tier: tests of more than ~8 s each on the 2-core reference machine (measured with --durations).
+# The slow tier: tests of more than a few seconds each on the 2-core reference machine (measured with
+# --durations), expensive comparisons, the dearer values of parametrisations whose cheaper values stay.
 # They run in CI (`.ci/run`: -m "slow or not slow"); the default run (pyproject addopts: -m "not slow")
-# leaves them out so that the README's command stays near two minutes. The extreme catalogue marks its
-# slow scenes itself (tests/extreme/catalogue.py). CONTRIBUTING.md, "Test tiers".
+# leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
+# golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
     # round 4 (measured with --durations on the merged suite, 2 workers): > ~12 s each
     "tests/engine/test_course.py::test_a_hidden_stiffness_makes_auto_change_course_from_the_state_reached",
@@ -121,6 +122,17 @@ SLOW = (
     "tests/cli/test_cli_hostile_retest.py::test_jobs_are_capped_by_the_machine",  # test_jobs_cap_in_the_session stays
     "tests/cli/test_cli_hostile_retest.py::test_sweep_plots_path_is_escaped_on_stderr",
     "tests/cli/test_cli_hostile_round4.py::test_sweep_resume_with_nothing_to_do_leaves_the_file_byte_identical",
+    # a closed stdout or a closed pipe, a fresh interpreter each: the ones that write through the same emit as
+    # design (the table and JSON writers) or click's help as --help; design, --help, --version and sweep (rows
+    # streamed) stay in the default tier, and simulate for the closed pipe
+    "tests/cli/test_cli_hostile_retest.py::test_closed_stdout_is_one_clean_message[design --help]",
+    "tests/cli/test_cli_hostile_retest.py::test_closed_stdout_is_one_clean_message[modes ",
+    "tests/cli/test_cli_hostile_retest.py::test_closed_stdout_is_one_clean_message[schema]",
+    "tests/cli/test_cli_hostile_retest.py::test_closed_stdout_is_one_clean_message[init]",
+    "tests/cli/test_cli_hostile_retest.py::test_closed_stdout_is_one_clean_message[simulate ",
+    "tests/cli/test_cli_hostile_retest.py::test_closed_stdout_is_one_clean_message[report ",
+    "tests/cli/test_cli_broken_pipe.py::test_a_closed_pipe_exits_141_quietly[report]",
+    "tests/cli/test_cli_broken_pipe.py::test_a_closed_pipe_exits_141_quietly[design-help]",
 )
 
 
