@@ -137,19 +137,8 @@ SLOW = (
 
 
 def pytest_configure(config):
-    config.addinivalue_line("markers", "slow: more than ~8 s on 2 cores; deselected by default, run by CI")
+    config.addinivalue_line("markers", "slow: costly (tests/conftest.py SLOW); deselected by default, run by CI")
     config.addinivalue_line("markers", "bitwise: exact step counts on the pinned OpenBLAS kernel (slow tier)")
-
-
-def _module_fixture_module(item) -> str | None:
-    """The test module of ``item`` when it uses a module- or session-scoped fixture defined in that module (a
-    designed or simulated scene shared by its tests), else None."""
-    module = item.nodeid.split("::")[0]
-    info = getattr(item, "_fixtureinfo", None)
-    for defs in (info.name2fixturedefs.values() if info is not None else ()):
-        if defs and defs[-1].scope in ("module", "session") and getattr(defs[-1], "baseid", None) == module:
-            return module
-    return None
 
 
 def pytest_collection_modifyitems(config, items):
@@ -158,8 +147,3 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.nodeid.startswith(SLOW):
             item.add_marker(pytest.mark.slow)
-        # a module's shared fixture is computed once per worker: its tests on one xdist worker (--dist loadgroup,
-        # pyproject), so that the shared scene is designed or simulated once per run, not once per worker
-        module = _module_fixture_module(item)
-        if module is not None and item.get_closest_marker("xdist_group") is None:
-            item.add_marker(pytest.mark.xdist_group(module))
