@@ -133,6 +133,11 @@ SLOW = (
     "tests/cli/test_cli_hostile_retest.py::test_closed_stdout_is_one_clean_message[report ",
     "tests/cli/test_cli_broken_pipe.py::test_a_closed_pipe_exits_141_quietly[report]",
     "tests/cli/test_cli_broken_pipe.py::test_a_closed_pipe_exits_141_quietly[design-help]",
+    "tests/cli/test_cli_hostile_round4.py::test_a_run_away_motor_is_detected_and_named",
+    "tests/field/test_field_ringing.py::test_drum_on_a_soft_coupling_warns_with_what_settles_it",  # conveyor's stays
+    "tests/engine/test_radau.py::test_compiled_radau_error_same_order_as_scipy[stiff_linear_mesh]",
+    # two `gearcli engine build` processes; a whole compilation (minutes) wherever the cache is not built yet
+    "tests/engine/test_engine_build.py::test_a_built_cache_is_reported_with_its_load_time",
 )
 
 
