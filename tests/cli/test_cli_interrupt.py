@@ -11,8 +11,8 @@ that one). Deterministic: stderr is a terminal
 (a pseudo-terminal, as for a user pressing Ctrl-C), so the run shows its progress bar, which appears only
 once the run has reported progress for a second (gearcli.io.progress.SHOW_AFTER_S); the signal is sent
 when the bar is on the screen, i.e. with the integration under way, never on a fixed sleep that a loaded
-machine can outlast (a signal sent 0.2 s after the design warning once landed in the start-up imports and
-was lost under heavy load: exit 0). What the terminal shows is read as a terminal shows it (escape
+machine can outlast (a signal sent 0.2 s after the design warning, to a run `auto` had put on the warm
+compiled kernel, could arrive once the run was over: exit 0). What the terminal shows is read as a terminal shows it (escape
 sequences and carriage returns applied): its last line must be gearcli's one line.
 """
 
