@@ -5,15 +5,15 @@ traceback, no output file and no temporary file left behind; an existing FILE is
 A real process and a real signal: the integration loop is Python code (scipy's solvers calling the
 generated right-hand side), so the signal surfaces as an exception between two evaluations, and the CLI
 maps it; `-o` is written atomically only after the run, so nothing is on disk yet. The run is the 10 s
-scene stretched to 600 s on the Python engine (~10 s of integration on an idle machine; `auto` would take the
-compiled kernel for so long a run, which finishes it in under a second: tests/engine/test_signals.py signals
-that one). Deterministic: stderr is a terminal
-(a pseudo-terminal, as for a user pressing Ctrl-C), so the run shows its progress bar, which appears only
-once the run has reported progress for a second (gearcli.io.progress.SHOW_AFTER_S); the signal is sent
-when the bar is on the screen, i.e. with the integration under way, never on a fixed sleep that a loaded
-machine can outlast (a signal sent 0.2 s after the design warning, to a run `auto` had put on the warm
-compiled kernel, could arrive once the run was over: exit 0). What the terminal shows is read as a terminal shows it (escape
-sequences and carriage returns applied): its last line must be gearcli's one line.
+scene stretched to 600 s on the Python engine (~10 s of integration on an idle machine; `auto` would take
+the compiled kernel for so long a run and finish it in under a second: tests/engine/test_signals.py
+signals that one). Deterministic: stderr is a terminal (a pseudo-terminal, as for a user pressing Ctrl-C),
+so the run shows its progress bar, which appears only once the run has reported progress for a second
+(gearcli.io.progress.SHOW_AFTER_S); the signal is sent when the bar is on the screen, i.e. with the
+integration under way, never on a fixed sleep that a loaded machine can outlast (a signal sent 0.2 s after
+the design warning, to a run `auto` had put on the warm compiled kernel, could arrive once the run was
+over: exit 0). What the terminal shows is read as a terminal shows it (escape sequences and carriage
+returns applied): its last line must be gearcli's one line.
 """
 
 from __future__ import annotations
