@@ -101,9 +101,8 @@ def test_report_json_with_a_degenerate_window_is_strict_json():
 
 @pytest.mark.parametrize("value", ["", "abc", "nan", "1e400", "0", "-1", "inf"])
 def test_memory_limit_variable_is_validated(value, tmp_path):
-    env = {**os.environ, "GEARCLI_MEMORY_LIMIT_MB": value}
-    res = gearcli("simulate", SEED, "-o", tmp_path / "x.csv", env=env)
-    assert res.returncode == 2, res.stderr
+    res = run("simulate", SEED, "-o", tmp_path / "x.csv", env={"GEARCLI_MEMORY_LIMIT_MB": value})  # read per command
+    assert res.exit_code == 2, res.stderr
     assert_clean(res.stderr)
     assert "environment variable GEARCLI_MEMORY_LIMIT_MB: must be" in res.stderr
     assert not os.listdir(tmp_path)
@@ -312,23 +311,11 @@ def test_report_has_a_run_time_bound():
 
 @POSIX
 def test_sighup_is_handled_like_sigterm(tmp_path):
-    long_run = ROOT / "configs" / "extreme" / "long_run.toml"
-    cmd = [sys.executable, "-m", "gearcli", "simulate", str(long_run), "-o", "OUT.csv",
-           "--set", "simulation.duration_s=200", "--set", "target.output_speed_rpm=1"]
-    proc = subprocess.Popen(cmd, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        assert proc.stderr is not None
-        ready = proc.stderr.readline()  # the design warning: gearcli's handlers are in place
-        assert ready.startswith("warning: output speed"), ready
-        time.sleep(0.2)
-        proc.send_signal(signal.SIGHUP)
-        _, err = proc.communicate(timeout=60)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.communicate(timeout=10)
-    assert proc.returncode == 129, err
-    assert err.strip().splitlines()[-1] == "gearcli: hangup"
+    from test_cli_interrupt import interrupt_simulate  # the signal sent once the run's progress bar shows
+
+    res = interrupt_simulate(tmp_path, signal.SIGHUP)
+    assert res.returncode == 129, res.stderr
+    assert res.stderr.strip().splitlines()[-1] == "gearcli: hangup"
     assert os.listdir(tmp_path) == []  # neither OUT.csv nor its temporary file
 
 

@@ -5,14 +5,22 @@ traceback, no output file and no temporary file left behind; an existing FILE is
 A real process and a real signal: the integration loop is Python code (scipy's solvers calling the
 generated right-hand side), so the signal surfaces as an exception between two evaluations, and the CLI
 maps it; `-o` is written atomically only after the run, so nothing is on disk yet. The run is the 10 s
-scene stretched to 200 s (~25 s of integration). Deterministic: the signal is sent only once the process
-has printed its design warning (a `[target]` it misses), i.e. once gearcli's handlers are in place and
-the run is under way, never on a fixed sleep that a loaded machine can outlast.
+scene stretched to 600 s on the Python engine (~10 s of integration on an idle machine; `auto` would take
+the compiled kernel for so long a run and finish it in under a second: tests/engine/test_signals.py
+signals that one). Deterministic: stderr is a terminal (a pseudo-terminal, as for a user pressing Ctrl-C),
+so the run shows its progress bar, which appears only once the run has reported progress for a second
+(gearcli.io.progress.SHOW_AFTER_S); the signal is sent when the bar is on the screen, i.e. with the
+integration under way, never on a fixed sleep that a loaded machine can outlast (a signal sent 0.2 s after
+the design warning, to a run `auto` had put on the warm compiled kernel, could arrive once the run was
+over: exit 0). What the terminal shows is read as a terminal shows it (escape sequences and carriage
+returns applied): its last line must be gearcli's one line.
 """
 
 from __future__ import annotations
 
 import os
+import re
+import select
 import signal
 import subprocess
 import sys
@@ -23,24 +31,60 @@ import pytest
 
 LONG_RUN = Path(__file__).resolve().parents[2] / "configs" / "extreme" / "long_run.toml"
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+CSI = re.compile(r"\x1b\[[0-9;?]*[A-Za-z]")  # the terminal's control sequences (cursor, colour, erase line)
+BAR = re.compile(rb"\x1b\[2Ksimulate ")  # the progress bar's line drawn (erase the line, then its label)
+
+
+def screen(raw: bytes) -> str:
+    """The lines a terminal shows for ``raw``: control sequences applied (dropped), a carriage return starts the
+    line again (the progress bar redraws itself so), empty lines left out."""
+    text = CSI.sub("", raw.decode("utf-8", "replace")).replace("\r\n", "\n")
+    lines = (line.split("\r")[-1] for line in text.split("\n"))
+    return "\n".join(line for line in lines if line.strip())
+
+
+def _read(fd: int, timeout: float) -> bytes:
+    """What the pseudo-terminal has within ``timeout`` s (b"" at its end: the child closed it)."""
+    if not select.select([fd], [], [], timeout)[0]:
+        return b""
+    try:
+        return os.read(fd, 65536)
+    except OSError:  # EIO: every writer has gone
+        return b""
+
+
+def interrupt_run(cmd: list[str], cwd: Path, sig: int) -> subprocess.CompletedProcess:
+    """``cmd`` with stdout a pipe and stderr a terminal, ``sig`` sent once its progress bar shows; stderr as shown."""
+    import pty
+
+    leader, follower = pty.openpty()
+    proc = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=follower)
+    os.close(follower)
+    raw, out = b"", b""
+    try:
+        deadline = time.monotonic() + 120
+        while not BAR.search(raw):  # the progress bar: the run is under way
+            assert proc.poll() is None, f"the run ended before it could be interrupted: {screen(raw)}"
+            assert time.monotonic() < deadline, f"no progress bar within 120 s: {screen(raw)}"
+            raw += _read(leader, 1.0)
+        assert screen(raw).startswith("warning: output speed"), screen(raw)  # the design's warning came first
+        proc.send_signal(sig)
+        out, _ = proc.communicate(timeout=60)
+        while chunk := _read(leader, 1.0):  # the rest the child wrote before it went
+            raw += chunk
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate(timeout=10)
+        os.close(leader)
+    return subprocess.CompletedProcess(cmd, proc.returncode, out.decode(), screen(raw))
 
 
 def interrupt_simulate(cwd: Path, sig: int = signal.SIGINT) -> subprocess.CompletedProcess:
     cmd = [sys.executable, "-m", "gearcli", "simulate", str(LONG_RUN), "-o", "OUT.csv",
-           "--set", "simulation.duration_s=200", "--set", "target.output_speed_rpm=1"]
-    proc = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        assert proc.stderr is not None
-        ready = proc.stderr.readline()  # blocks until the design warning: the run is under way
-        assert ready.startswith("warning: output speed"), ready
-        time.sleep(0.2)  # into the scipy import or the integration; both map the signal the same way
-        assert proc.poll() is None, "the run ended before it could be interrupted"
-        proc.send_signal(sig)
-        out, err = proc.communicate(timeout=60)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-    return subprocess.CompletedProcess(cmd, proc.returncode, out, ready + err)
+           "--set", "simulation.duration_s=600", "--set", "target.output_speed_rpm=1",
+           "--set", "simulation.engine=python"]  # scipy's loop: auto may take the compiled kernel, done in < 1 s
+    return interrupt_run(cmd, cwd, sig)
 
 
 def test_ctrl_c_exits_130_and_leaves_no_file(tmp_path):

@@ -65,15 +65,23 @@ def _run(spec: api.ModelSpec, duration_s: float):
     return api.simulate_spec(spec, duration_s=duration_s, steps=3000, method="DOP853", rtol=1e-8, engine="python")
 
 
-def test_a_damper_beside_the_input_coupling_adds_its_damping(damper):
+@pytest.fixture(scope="module")
+def drivetrain() -> tuple[api.ModelSpec, float, object]:
+    """The drivetrain's spec, duration and its run without elements: the base every element test compares with
+    (run once for the module; specs are frozen, each test replaces what it changes)."""
     spec, duration = _drivetrain()
+    return spec, duration, _run(spec, duration)
+
+
+def test_a_damper_beside_the_input_coupling_adds_its_damping(damper, drivetrain):
+    spec, duration, a = drivetrain
     motor = spec.motor
     assert motor is not None and motor.coupling.damping_Nms_rad > 0
     c = motor.coupling.damping_Nms_rad
     undamped = dataclasses.replace(motor, coupling=dataclasses.replace(motor.coupling, damping_Nms_rad=0.0))
     split = dataclasses.replace(spec, motor=undamped,
                                 elements=(api.ElementSpec(damper.name, (0, 1), (1.0, 1.0), c, "parallel damper"),))
-    a, b = _run(spec, duration), _run(split, duration)
+    b = _run(split, duration)
     for sa, sb in zip(a.stages, b.stages, strict=True):
         scale = abs(sa.static_tangential_N)
         for stat in ("mean", "min", "max"):
@@ -81,12 +89,11 @@ def test_a_damper_beside_the_input_coupling_adds_its_damping(damper):
     assert_allclose(b.energy.damping_loss_J, a.energy.damping_loss_J, rtol=1e-5)
 
 
-def test_a_damper_across_the_whole_train_conserves_energy(damper):
+def test_a_damper_across_the_whole_train_conserves_energy(damper, drivetrain):
     """Shaft 1 to the drum, past every mesh: no chain joins these bodies. A force scattered to the wrong body or
     with the wrong lever would do work the damper's own dissipation does not account for: the balance (input =
     load + damping + kinetic + potential, each its own quadrature or state) would not close."""
-    spec, duration = _drivetrain()
-    base = _run(spec, duration)
+    spec, duration, base = drivetrain
     ratio = spec.speed_ratios[-1]  # the last shaft's (and the drum's) nominal speed over shaft 1's
     # bodies: the motor 0, shaft 1 is body 1, a flexible shaft two bodies, the drum last
     drum = 1 + len(spec.meshes) + sum(s is not None for s in spec.shafts) + 1
@@ -99,7 +106,7 @@ def test_a_damper_across_the_whole_train_conserves_energy(damper):
                     rtol=1e-3)  # and leaves the kinematics alone
 
 
-def test_a_three_body_element_scatters_to_its_three_bodies():
+def test_a_three_body_element_scatters_to_its_three_bodies(drivetrain):
     """Motor, shaft 1 and the drum with levers that cancel on the rigid motion (r_a w_0 - r_b w_1 + r_c w_N = 0):
     it damps the train's vibration through three bodies at once, and the energy balance closes only if its
     force reaches each of them with its own lever."""
@@ -107,13 +114,13 @@ def test_a_three_body_element_scatters_to_its_three_bodies():
 
     et = elements.register(three_body_damper)
     assert et.n_bodies == 3
-    spec, duration = _drivetrain()
+    spec, duration, base = drivetrain
     ratio = spec.speed_ratios[-1]
     drum = 1 + len(spec.meshes) + sum(s is not None for s in spec.shafts) + 1
     # rigid: w_0 = w_1 = w, w_N = ratio w  ->  1.0 w - 2.0 w + (1 / ratio) ratio w = 0
     three = dataclasses.replace(spec, elements=(
         api.ElementSpec(et.name, (0, 1, drum), (1.0, 2.0, 1.0 / ratio), 500.0, "three-body damper"),))
-    base, run = _run(spec, duration), _run(three, duration)
+    run = _run(three, duration)
     assert abs(run.energy.residual_relative) < 1e-9
     assert run.energy.damping_loss_J > base.energy.damping_loss_J
     assert_allclose(run.output_speed_deg_s / run.input_speed_deg_s, base.output_speed_deg_s / base.input_speed_deg_s,

@@ -47,7 +47,12 @@ def _copy(built: Path, tmp_path: Path) -> tuple[Path, Path]:
 
 
 def _entry_files(dest: Path) -> tuple[Path, Path]:
-    (index,) = dest.glob("engine_*/kernel.connector_series-*.nbi")
+    # numba keeps one index set per source directory (engine_<sha1 of its path>): two checkouts of the same
+    # source share the key directory, so take this checkout's, the one the child process (PYTHONPATH=ROOT) loads
+    from numba.core.caching import _CacheLocator
+
+    engine_dir = _CacheLocator.get_suitable_cache_subpath(str(ROOT / "gearcli" / "engine" / "kernel.py"))
+    (index,) = (dest / engine_dir).glob("kernel.connector_series-*.nbi")
     (data,) = index.parent.glob(index.name[: -len("nbi")] + "*.nbc")
     return index, data
 

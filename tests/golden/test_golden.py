@@ -12,7 +12,9 @@ Two tiers:
   exactly and every statistic to 1e-9 relative. Exact step counts hold only for the OpenBLAS kernel
   tests/conftest.py pins (x86-64 with AVX2); elsewhere the tier skips and says why.
 
-Scenes recorded as slow (> ``SLOW_S`` s) run in the slow tier only.
+Scenes recorded as slow (> ``SLOW_S`` s) run in the slow tier only; so do the statistics of scenes recorded above
+``DEFAULT_TIER_S`` (the default tier keeps the quicker ones, one of each kind of scene: speed and motor drives,
+DOP853 and Radau, parallel and planetary stages, TE, backlash, duty, excited and extreme ones).
 """
 
 from __future__ import annotations
@@ -37,6 +39,8 @@ BITWISE_RTOL = 1e-9
 ESTIMATE_FACTOR = 4.0  # an error estimate is an estimate: a factor of four covers its own scatter
 RTOL_FACTOR = 20.0  # the global error of an adaptive run is a small multiple of its local tolerance
 STATS = ("mean", "min", "max", "std")
+DEFAULT_TIER_S = 0.5  # a scene recorded above this (wall_s_when_recorded) runs its statistics in the slow tier
+DEFAULT_TIER_ALSO = ("configs__concrete_mixer_te", "configs__backlash_oscillator")  # TE and backlash, kept
 
 
 def _skipped() -> dict[str, str]:
@@ -48,7 +52,9 @@ def _cases(bitwise: bool):
         gold = HERE / f"{golden_name(path)}.json"
         if not gold.exists():
             continue
-        slow = json.loads(gold.read_text()).get("slow", False)
+        recorded = json.loads(gold.read_text())
+        slow = recorded.get("slow", False) or (recorded.get("wall_s_when_recorded", 0.0) > DEFAULT_TIER_S
+                                               and golden_name(path) not in DEFAULT_TIER_ALSO)
         # both tiers of a scene on one xdist worker (--dist loadgroup, pyproject): the scene runs once per session
         marks = [pytest.mark.xdist_group(golden_name(path))] + ([pytest.mark.slow] if (slow or bitwise) else [])
         if bitwise:

@@ -7,6 +7,8 @@ import csv
 import io
 import json
 import math
+import os
+import tempfile
 import tomllib
 from pathlib import Path
 
@@ -64,8 +66,10 @@ def test_generating_shift_and_root_by_hand():
 
 def _run(*args, text: str | None = None):
     path = None
-    if text is not None:
-        path = ROOT / "tests" / "unit" / "_allowances_tmp.toml"
+    if text is not None:  # a file of its own: xdist's workers run these tests at the same time
+        fd, name = tempfile.mkstemp(prefix="allowances_", suffix=".toml")
+        os.close(fd)
+        path = Path(name)
     try:
         if path is not None:
             path.write_text(text)

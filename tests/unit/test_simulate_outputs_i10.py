@@ -4,6 +4,7 @@ static force, the ramp_s = 0 advice, rpm/N·m/kW beside the existing units, the 
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import subprocess
@@ -11,9 +12,11 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
 from gearcli import diagnostics as dg
+from gearcli.cli import cli
 from gearcli.config import load_design
 from gearcli.design import compute_design
 from gearcli.io.serialize import simulation_dict
@@ -27,9 +30,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_simulate_run import mesh  # noqa: E402
 
 
+@functools.cache
 def _cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "gearcli", *args], capture_output=True, text=True, cwd=ROOT,
-                          env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin", "COLUMNS": "160"}, timeout=120)
+    """The command line in process (click's runner: stdout and stderr apart), each command run once for the module
+    (the same seed run read by several tests)."""
+    res = CliRunner(env={"COLUMNS": "160"}).invoke(cli, list(args))
+    return subprocess.CompletedProcess(args, res.exit_code, res.stdout, res.stderr)
 
 
 def test_design_warnings_are_in_simulate_json_table_and_result():
