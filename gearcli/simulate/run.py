@@ -86,18 +86,29 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = _design_diagnostics(design)
-
-    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
-        return simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
-                              rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
-                              max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
-                              prior_diagnostics=design_diags, engine=sim.engine, progress=progress)
-
-    result = run(sim.duration_s, sim.steps, sim.window_start_s)
     if settle is None:
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
+    pending: list[tuple[SimulationResult, Callable[[], SimulationResult]]] = []  # this call's unfinished runs
+
+    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
+        # a run the settle test may replace leaves its ringing fit for later (finish) where its window is unsettled
+        unfinished: list[Callable[[], SimulationResult]] | None = [] if settle else None
+        result = simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
+                                rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
+                                max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
+                                prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
+                                unfinished=unfinished)
+        if unfinished:
+            pending.append((result, unfinished[0]))
+        return result
+
+    def finish(result: SimulationResult) -> SimulationResult:
+        return next((whole() for r, whole in pending if r is result), result)
+
+    result = run(sim.duration_s, sim.steps, sim.window_start_s)
     if settle:
-        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window")
+        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window",
+                                        finish=finish)
     return result
 
 
@@ -113,7 +124,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    steady: str = "window", error_estimate: bool = True,
                    prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto",
                    progress: Callable[[float], None] | None = None,
-                   tightened: Diagnostic | None = None) -> SimulationResult:
+                   tightened: Diagnostic | None = None,
+                   unfinished: list[Callable[[], SimulationResult]] | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -128,7 +140,11 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
     ``method = "auto"`` with the error estimate: when the check pass finds only window means unresolved, the
     run is repeated once at the rtol that resolves them (:func:`gearcli.simulate.estimate.means_rtol`);
-    ``tightened`` is the repeat's ``rtol_tightened`` warning."""
+    ``tightened`` is the repeat's ``rtol_tightened`` warning.
+
+    ``unfinished`` (a list; a run the settle test may replace, :func:`gearcli.simulate.settle.settled_run`): a
+    fixed window that the settle test finds unsettled skips its ringing fit, and the function that returns the
+    whole result (ringing warnings included, the result without ``unfinished``) is appended to the list."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -195,14 +211,22 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
-                              tightened=estimate.tightened_warning(run, ref, finer))
+                              tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished)
     if tightened is not None:
         diags.append(tightened)
-    result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
-                        ref, stat_diags, eng.reason)
-    result = replace(result, solver=replace(result.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
-                                            course_changes=tuple(c.as_json() for c in changes)))
-    _require_finite(result)
+
+    def summary(deferred: list[bool] | None) -> SimulationResult:
+        out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
+                         ref, stat_diags, eng.reason, deferred)
+        out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
+                                          course_changes=tuple(c.as_json() for c in changes)))
+        _require_finite(out)
+        return out
+
+    deferred: list[bool] | None = [] if unfinished is not None else None
+    result = summary(deferred)
+    if deferred and unfinished is not None:
+        unfinished.append(lambda: summary(None))
     return result
 
 
@@ -385,9 +409,11 @@ def _with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharin
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
-               engine_reason: str = "as requested") -> SimulationResult:
+               engine_reason: str = "as requested", deferred: list[bool] | None = None) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
-    the window without its closing sample, which starts the next period)."""
+    the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
+    that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
+    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order)."""
     spec = model.spec
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
@@ -421,11 +447,20 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
     diags += stat_diags or []
-    if not periodic:
-        diags += ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
-                                  [st.simulated_static_tangential_N or 0.0 for st in stages], window)
+
+    def ringing_diags() -> list[Diagnostic]:
+        return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
+                                [st.simulated_static_tangential_N or 0.0 for st in stages], window)
+
+    if not periodic and deferred is None:
+        diags += ringing_diags()
     steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
                                        motor_summary, diags)
+    if not periodic and deferred is not None:
+        if steady.settled is False:
+            deferred.append(True)
+        else:
+            diags += ringing_diags()
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
