@@ -67,8 +67,8 @@ def pairs(name: str, n: int, tmp: Path) -> dict[str, float]:
     for _ in range(n):
         a.append(timed(a_cmd(tmp), tmp))
         b.append(timed(b_cmd(tmp), tmp))
-    return {"wall": statistics.median(x[0] / y[0] for x, y in zip(a, b)),
-            "cpu": statistics.median(x[1] / y[1] for x, y in zip(a, b)),
+    return {"wall": statistics.median(x[0] / y[0] for x, y in zip(a, b, strict=True)),
+            "cpu": statistics.median(x[1] / y[1] for x, y in zip(a, b, strict=True)),
             "a_min": min(x[0] for x in a), "b_min": min(y[0] for y in b),
             "a_cpu_min": min(x[1] for x in a), "b_cpu_min": min(y[1] for y in b), "target": target}
 

@@ -6,7 +6,6 @@ infinity; numbers are strict (a string ``"21"`` is not a tooth count), except th
 accepted where a float is expected, as TOML users write ``module = 12``.
 """
 
-from __future__ import annotations
 
 import math
 from typing import Annotated, Any, Literal
@@ -154,7 +153,7 @@ class Gear(_Table):
     root_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
 
     @model_validator(mode="after")
-    def _web_needs_rim(self) -> Gear:
+    def _web_needs_rim(self) -> "Gear":
         if (self.web_thickness_mm is None) != (self.rim_thickness_mm is None):
             raise ValueError("a webbed gear body needs both web_thickness_mm and rim_thickness_mm "
                              "(give both, or neither for a solid disc)")
@@ -176,7 +175,7 @@ class PairGear(Gear):
     tip_diameter_allowance_mm: AllowancePair | None = None
 
     @model_validator(mode="after")
-    def _allowance_order(self) -> PairGear:
+    def _allowance_order(self) -> "PairGear":
         _upper_not_below_lower("tooth_thickness_allowance_mm", self.tooth_thickness_allowance_mm)
         _upper_not_below_lower("tip_diameter_allowance_mm", self.tip_diameter_allowance_mm)
         return self
@@ -190,7 +189,7 @@ class BasicRack(_Table):
     root_radius: Annotated[float, Field(ge=0.0, le=1.0), NotTiny(1e-6)] = 0.38  # rho_fP*
 
     @model_validator(mode="after")
-    def _clearance(self) -> BasicRack:
+    def _clearance(self) -> "BasicRack":
         if self.dedendum < self.addendum:
             raise ValueError(f"dedendum ({self.dedendum:g}) must be at least the addendum ({self.addendum:g}): "
                              "the bottom clearance h_fP* - h_aP* cannot be negative")
@@ -231,7 +230,7 @@ class Stage(_Table):
     model_config = ConfigDict(json_schema_extra=_hands_rule())
 
     @model_validator(mode="after")
-    def _allowance_order(self) -> Stage:
+    def _allowance_order(self) -> "Stage":
         _upper_not_below_lower("center_distance_allowance_mm", self.center_distance_allowance_mm)
         return self
 
@@ -313,7 +312,7 @@ class PlanetaryStage(_Table):
     model_config = ConfigDict(json_schema_extra=_members_rule())
 
     @model_validator(mode="after")
-    def _members(self) -> PlanetaryStage:
+    def _members(self) -> "PlanetaryStage":
         if self.input == self.fixed:
             raise ValueError(f"input and fixed name the same member ({self.input!r}): the held member "
                              "cannot be driven; name two different members of sun, carrier, ring")
@@ -435,7 +434,7 @@ class Input(_Coupled):
         return v
 
     @model_validator(mode="after")
-    def _one_speed_one_torque(self) -> Input:
+    def _one_speed_one_torque(self) -> "Input":
         given = [k for k in ("speed_deg_s", "speed_rpm", "speed_rad_s") if getattr(self, k) is not None]
         if len(given) != 1:
             raise ValueError(
@@ -529,7 +528,7 @@ class Load(_Coupled):
         *_coupling_rules()))
 
     @model_validator(mode="after")
-    def _one_torque(self) -> Load:
+    def _one_torque(self) -> "Load":
         given = [k for k in LOAD_TORQUE_KEYS if getattr(self, k) is not None]
         if self.torque_speed is not None:
             if given or "speed_exponent" in self.model_fields_set:
@@ -560,7 +559,7 @@ class Target(_Table):
     model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(("output_speed_rpm", "output_speed_deg_s"))))
 
     @model_validator(mode="after")
-    def _one_speed(self) -> Target:
+    def _one_speed(self) -> "Target":
         if (self.output_speed_rpm is None) == (self.output_speed_deg_s is None):
             raise ValueError("give exactly one of output_speed_rpm, output_speed_deg_s")
         return self
@@ -600,7 +599,7 @@ class Lubricant(_Table):
     e_C: Annotated[float, Field(ge=0.0, le=1.0)] | None = None
 
     @model_validator(mode="after")
-    def _one_cleanliness(self) -> Lubricant:
+    def _one_cleanliness(self) -> "Lubricant":
         if self.contamination is not None and self.e_C is not None:
             raise ValueError("give one of contamination (an ISO 281 cleanliness level) and e_C (its factor)")
         return self
@@ -647,7 +646,7 @@ class DesignFile(_Table):
     rating: Rating | None = None
 
     @model_validator(mode="after")
-    def _load_power_to_torque(self) -> DesignFile:
+    def _load_power_to_torque(self) -> "DesignFile":
         """[load] power_kW becomes the output torque at the nominal output speed, ω_in / Π z_gear/z_pinion;
         a [load] torque_speed table gives its torque at that speed."""
         ratio = math.prod(s.speed_ratio for s in self.stage)
@@ -669,7 +668,7 @@ class DesignFile(_Table):
         return self
 
     @model_validator(mode="after")
-    def _no_shaft_after_last_stage(self) -> DesignFile:
+    def _no_shaft_after_last_stage(self) -> "DesignFile":
         if self.stage[-1].shaft is not None:
             raise ValueError(f"stage[{len(self.stage) - 1}].shaft: the last stage's gear sits on the output shaft, "
                              "which has no next pinion; a flexible output is [load] inertia_kg_m2 with "
@@ -677,14 +676,14 @@ class DesignFile(_Table):
         return self
 
     @model_validator(mode="after")
-    def _merged_harmonics(self) -> DesignFile:
+    def _merged_harmonics(self) -> "DesignFile":
         """A stage's phases against the amplitudes it inherits from [contact]."""
         for k, stage in enumerate(self.stage):
             if stage.mesh is not None:
                 check_harmonics(self.contact_for(k), f"stage[{k}].mesh.")
         return self
 
-    def pair(self, k: int) -> Stage:
+    def pair(self, k: int) -> "Stage":
         """Stage k as a gear pair: a parallel stage (a planetary one is seen as its sun–planet pair through
         ``design.planetary.pair_equivalent``)."""
         stage = self.stage[k]

@@ -84,10 +84,15 @@ def _orthonormal(A: np.ndarray) -> np.ndarray:
     return q * (d > 1e-12 * np.maximum(d.max(axis=-1, keepdims=True), np.finfo(float).tiny))[..., None, :]
 
 
-def _project_out(q: np.ndarray, x: np.ndarray) -> np.ndarray:
+def _project_out(q: np.ndarray, x: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
     """The rows of x ((S, k, n), or (k, n) shared by every stage) minus their projections on the columns of
-    q (S, n, r) (matrix products: BLAS; a shared x is not copied per stage)."""
-    return x - (x @ q) @ q.transpose(0, 2, 1)
+    q (S, n, r) (matrix products: BLAS; a shared x is not copied per stage). ``out``: an (S, k, n) array to
+    write them in (the same numbers; a large result allocated afresh for every mode costs more than the
+    products)."""
+    if out is None:
+        return x - (x @ q) @ q.transpose(0, 2, 1)
+    np.matmul(x @ q, q.transpose(0, 2, 1), out=out)
+    return np.subtract(x, out, out=out)
 
 
 def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]], *,
@@ -115,6 +120,7 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
     sigma = np.broadcast_to(base[:, 0], (S, M)).copy()
     factors = np.geomspace(0.25, 4.0, TRIALS)
     if refine:
+        buffer = np.empty((S, 2 * TRIALS, tau.size))  # every mode's projected trials, in turn
         for j in range(M):
             if base[j, 0] <= 0.0:
                 continue
@@ -122,7 +128,7 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
             q = _orthonormal(_columns(tau, sigma, cos, sin)[:, :, keep])  # the other columns, per stage
             env = np.exp(-(base[j, 0] * factors)[:, None] * tau)  # (TRIALS, n)
             trial = np.stack([env * cos[j], env * sin[j]], axis=1)  # (TRIALS, 2, n)
-            tp = _project_out(q, trial.reshape(-1, tau.size))
+            tp = _project_out(q, trial.reshape(-1, tau.size), out=buffer)
             tp = tp.reshape(S, TRIALS, 2, tau.size)
             yp = _project_out(q, Y[:, None, :])  # (S, 1, n)
             g = tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2)  # (S, TRIALS, 2, 2)
