@@ -66,7 +66,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
                    error_estimate: bool | None = None, settle: bool | str | None = None,
-                   progress: Callable[[float], None] | None = None) -> SimulationResult:
+                   progress: Callable[[float], None] | None = None, diagnose: bool = True) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``series`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
@@ -76,7 +76,9 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`; ``settle`` (default: when
     ``[rating] dynamic_factor = "simulated"``; ``"window"``: without the periodic fallback) repeats a run whose fixed
     window is not settled with a later window
-    (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it). The design's own
+    (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it).
+    ``diagnose=False``: the statistics without the window's ringing fit, settle test and resonance check (a run
+    only its statistics and counters are read from: the report's accuracy ladder). The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -97,7 +99,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                                 rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
                                 max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
                                 prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
-                                unfinished=unfinished)
+                                unfinished=unfinished, diagnose=diagnose)
         if unfinished:
             pending.append((result, unfinished[0]))
         return result
@@ -125,7 +127,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto",
                    progress: Callable[[float], None] | None = None,
                    tightened: Diagnostic | None = None,
-                   unfinished: list[Callable[[], SimulationResult]] | None = None) -> SimulationResult:
+                   unfinished: list[Callable[[], SimulationResult]] | None = None,
+                   diagnose: bool = True) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -144,7 +147,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
     ``unfinished`` (a list; a run the settle test may replace, :func:`gearcli.simulate.settle.settled_run`): a
     fixed window that the settle test finds unsettled skips its ringing fit, and the function that returns the
-    whole result (ringing warnings included, the result without ``unfinished``) is appended to the list."""
+    whole result (ringing warnings included, the result without ``unfinished``) is appended to the list.
+    ``diagnose=False``: no ringing fit, settle test nor resonance check (:func:`run_simulation`)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -198,7 +202,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
-    diags += resonance_warnings(model, choice)
+    diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
@@ -211,13 +215,14 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
-                              tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished)
+                              tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
+                              diagnose=diagnose)
     if tightened is not None:
         diags.append(tightened)
 
     def summary(deferred: list[bool] | None) -> SimulationResult:
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
-                         ref, stat_diags, eng.reason, deferred)
+                         ref, stat_diags, eng.reason, deferred, diagnose)
         out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
                                           course_changes=tuple(c.as_json() for c in changes)))
         _require_finite(out)
@@ -409,7 +414,8 @@ def _with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharin
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
-               engine_reason: str = "as requested", deferred: list[bool] | None = None) -> SimulationResult:
+               engine_reason: str = "as requested", deferred: list[bool] | None = None,
+               diagnose: bool = True) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
@@ -452,10 +458,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
                                 [st.simulated_static_tangential_N or 0.0 for st in stages], window)
 
-    if not periodic and deferred is None:
+    if not periodic and deferred is None and diagnose:
         diags += ringing_diags()
-    steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
-                                       motor_summary, diags)
+    if diagnose:
+        steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
+                                           motor_summary, diags)
     if not periodic and deferred is not None:
         if steady.settled is False:
             deferred.append(True)
