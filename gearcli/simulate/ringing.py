@@ -28,8 +28,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
+from gearcli.model.linear import damped_eigenvalues
+from gearcli.model.modes import modal_analysis
+
+if TYPE_CHECKING:
+    from gearcli.model import TorsionalModel
+    from gearcli.simulate.choice import Choice
 
 DECAY_WINDOWS = 1.0  # a mode whose decay time exceeds the window length rings through it
 SIGMA_TRIALS = np.geomspace(0.25, 4.0, 25)  # the refinement's trial decay rates, in units of the linearised one
@@ -203,3 +213,27 @@ def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
             f"at its end ({100 * r.fraction_end:.2g} % of the static {r.reference_N:.5g} N), so the window's std, "
             "min, max and dynamic factor include an undecayed transient. To settle it: "
             f"{later}; more damping{dominated}; or [simulation] steady = \"periodic\"")
+
+
+def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,
+                     forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
+    """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
+    that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
+    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
+    found = ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
+    if not found:
+        return []
+    modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
+    out = []
+    for r in found:
+        near = min(modes, key=lambda m: abs(m.frequency_Hz - r.frequency_Hz), default=None)
+        element = near.dominant if near is not None else ""
+        out.append(dg.warning(dg.WINDOW_RINGING, message(r, window, element), stage=r.stage,
+                              statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
+                              decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
+                              damping_ratio=r.damping_ratio, damping_ratio_uncertainty=SIGMA_UNCERTAINTY,
+                              amplitude_start_N=r.amplitude_start_N,
+                              amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
+                              settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
+                              element=element))
+    return out

@@ -22,12 +22,12 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.linear import damped_eigenvalues, static_line_forces_N
-from gearcli.model.modes import modal_analysis, resonances
+from gearcli.model.linear import static_line_forces_N
+from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import estimate, rigid_start, ringing, stats
+from gearcli.simulate import estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
@@ -44,6 +44,7 @@ from gearcli.simulate.results import (
     StageDynamics,
     SteadyState,
 )
+from gearcli.simulate.ringing import ringing_warnings
 from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -490,30 +491,6 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
-
-
-def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,
-                     forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
-    """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
-    that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
-    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
-    found = ringing.ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
-    if not found:
-        return []
-    modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
-    out = []
-    for r in found:
-        near = min(modes, key=lambda m: abs(m.frequency_Hz - r.frequency_Hz), default=None)
-        element = near.dominant if near is not None else ""
-        out.append(dg.warning(dg.WINDOW_RINGING, ringing.message(r, window, element), stage=r.stage,
-                              statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
-                              decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
-                              damping_ratio=r.damping_ratio, damping_ratio_uncertainty=ringing.SIGMA_UNCERTAINTY,
-                              amplitude_start_N=r.amplitude_start_N,
-                              amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
-                              settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
-                              element=element))
-    return out
 
 
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
