@@ -147,10 +147,7 @@ EXPLICIT_PER_RAD = 6.0  # DOP853 evaluations per radian of resolved free vibrati
 EXPLICIT_PER_EXCITED_RAD = 35.0  # DOP853 evaluations per radian of the highest excitation harmonic
 IMPLICIT_FIXED = 1000.0  # Radau evaluations with nothing to resolve (run-up, restarts at the ramp ends)
 IMPLICIT_PER_RAD = 17.0  # Radau evaluations per radian of resolved free vibration (measured 15-50, median 26)
-#: Radau evaluations per radian of the highest excitation harmonic: refitted on the fitting set's excited window
-#: scenes (backlash_oscillator, conveyor, spur_oscillator_te: 14.6, 24.2, 29.4 implied, median 24; it was 30,
-#: which over-predicted the conveyor's Radau 1.25x); DOP853's implied 33.6, 40.4, 16.5 (median 33.6) keep 35
-IMPLICIT_PER_EXCITED_RAD = 24.0
+IMPLICIT_PER_EXCITED_RAD = 30.0  # Radau evaluations per radian of the highest excitation harmonic
 #: Radau only when its predicted wall time is this much lower (its cost per evaluation varies by scene)
 IMPLICIT_MARGIN = 1.3
 STIFFNESS_LIMIT = 1.0e4  # max|lambda| T above which a scene counts as stiff for an explicit method (warnings)
