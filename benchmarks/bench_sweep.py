@@ -12,10 +12,12 @@ Every sweep runs as `python -m gearcli sweep ... -o out.csv` in a subprocess, st
 against the import floor (`python -c "import click, pydantic, rich, numpy, scipy.integrate"`, the fastest of
 three; target: the 1000-point sweep <= 15x the floor, aim 5x).
 
-Then the per-point breakdown, in this process (--breakdown points, the compiled engine where installed, the
-kernel loaded first): the integration (solver.wall_s), the check pass (solver.check_pass.wall_s, on the points a
-sweep checks: every gearcli.sweep.family.CHECK_EVERY-th), the design and model set-up, and the post-processing
-(the rest: statistics, ringing fit, error estimate's comparison, diagnostics), each per point and the
+Then the per-point breakdown in CPU time (the process's: the compiled kernel's worker thread counted, other jobs
+on the machine not), in this process (--breakdown points, the compiled engine where installed, the kernel loaded
+first): the integration (every integration of the point: its run, the settle test's longer runs and the
+periodic search's shots, gearcli.simulate.settle), the check pass (on the points a sweep checks: every
+gearcli.sweep.family.CHECK_EVERY-th), the design and model set-up, and the post-processing (the rest:
+statistics, ringing fit and settle test, error estimate's comparison, diagnostics), each per point and the
 post-processing as a share of the integration (target <= 20 %).
 
     python benchmarks/bench_sweep.py --points 1000 --loop 0 --no-dask     # the sweep against the floor only
@@ -73,42 +75,57 @@ def floor_s(repeat: int = 3) -> float:
 
 
 def breakdown(n: int) -> dict[str, float]:
-    """Seconds per point of a seed speed sweep in this process, by part (module text)."""
+    """CPU seconds per point of a seed speed sweep in this process, by part (module text): the process's CPU
+    time (the compiled kernel runs in a worker thread: counted), which other jobs on the machine do not inflate.
+    "integration" is every integration of the point (the run, a settle test's longer runs, the periodic
+    search's shots: :func:`gearcli.simulate.solver.integrate`'s engine part), "check pass" the check pass's
+    whole cost (its integration included), "design and model" loading, designing and the model's set-up."""
     from gearcli import api, engine
+    from gearcli.simulate import estimate, solver
     from gearcli.sweep.family import CHECK_EVERY
     from gearcli.sweep.worker import Scene
 
     if engine.available():
         engine.load(quiet=True)
     scene = Scene(SEED.read_bytes(), str(SEED), (), 3)
-    parts = {"point": 0.0, "integration": 0.0, "check pass": 0.0, "design and model": 0.0}
-    real = api.design_case
+    parts = {"point": 0.0, "integration": 0.0, "check pass": 0.0, "design and model": 0.0, "runs": 0.0}
+    inside = [False]
 
-    def timed(*a, **k):
-        t0 = time.perf_counter()
-        try:
-            return real(*a, **k)
-        finally:
-            parts["design and model"] += time.perf_counter() - t0
+    def timed(real, part: str, runs: bool = False):
+        def wrapper(*a, **k):
+            if inside[0]:
+                return real(*a, **k)
+            inside[0] = True
+            t0 = time.process_time()
+            try:
+                return real(*a, **k)
+            finally:
+                inside[0] = False
+                parts[part] += time.process_time() - t0
+                parts["runs"] += runs
+        return wrapper
 
-    api.design_case = timed
+    patches = [(api, "design_case", "design and model", False), (estimate, "check_pass", "check pass", False),
+               (solver, "_integrate_compiled", "integration", True), (solver, "_segment", "integration", True)]
+    saved = [(mod, name, getattr(mod, name)) for mod, name, _, _ in patches]
+    for mod, name, part, runs in patches:
+        setattr(mod, name, timed(getattr(mod, name), part, runs))
     engines = set()
     try:
         api.evaluate_point(scene, ("input.speed_rpm=600",))  # warm: generated code, caches
         parts.update({k: 0.0 for k in parts})
         for i, v in enumerate(_speeds(n)):
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             ev = api.evaluate_point(scene, (f"input.speed_rpm={v!r}",), check=i % CHECK_EVERY == 0)
-            parts["point"] += time.perf_counter() - t0
+            parts["point"] += time.process_time() - t0
             sv = ev.result.solver
-            parts["integration"] += sv.wall_s
-            parts["check pass"] += float((sv.check_pass or {}).get("wall_s", 0.0))
-            engines.add(f"{sv.method} ({sv.engine})")
+            engines.add(f"{sv.method} ({sv.engine}), steady {ev.result.steady.mode if ev.result.steady else '-'}")
     finally:
-        api.design_case = real
+        for mod, name, real in saved:
+            setattr(mod, name, real)
     out = {k: v / n for k, v in parts.items()}
     out["post-processing"] = out["point"] - out["integration"] - out["check pass"] - out["design and model"]
-    out["engines"] = ", ".join(sorted(engines))  # type: ignore[assignment]
+    out["engines"] = "; ".join(sorted(engines))  # type: ignore[assignment]
     return out
 
 
@@ -148,7 +165,8 @@ def main() -> None:
         print(f"{name:<62} {wall:9.1f} {n / wall:9.2f} {base / wall:7.1f}x {wall / floor:7.1f}x")
     if args.breakdown:
         b = breakdown(args.breakdown)
-        print(f"\nper point, in process ({args.breakdown} points; {b.pop('engines')}), ms:")
+        print(f"\nper point, in process, CPU ms ({args.breakdown} points; {b.pop('engines')}; "
+              f"{b['runs']:.1f} integrations a point):")
         for k in ("point", "integration", "check pass", "design and model", "post-processing"):
             print(f"  {k:<18} {1e3 * b[k]:8.2f}")
         print(f"  post-processing / integration: {b['post-processing'] / b['integration']:.2f} (target <= 0.20)")

@@ -21,10 +21,10 @@ def _forget_handled_interrupt() -> None:
 
 
 def main() -> None:
-    from gearcli.io import streams  # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
-
-    streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
     try:
+        from gearcli.io import streams  # lazy: inside main, so a Ctrl-C during the start-up imports exits 130
+
+        streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
         # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
         from gearcli.cli import main as run
     except KeyboardInterrupt:

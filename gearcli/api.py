@@ -36,7 +36,6 @@ from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, DesignError, RunTooLong
-from gearcli.io.sweep_file import open_sink, read_identity
 from gearcli.io.units import key_units
 from gearcli.model import TorsionalModel
 from gearcli.model.assembly import Layout
@@ -220,6 +219,7 @@ def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), r
                   output: str | None = None, fmt: str = "csv") -> Session:
     """A checked sweep (every usage error raised before any point runs); ``output``, when it exists, is
     read for a resume."""
+    from gearcli.io.sweep_file import read_identity  # lazy: the sweep's file, start-up time of simulate
     from gearcli.sweep.session import prepare  # lazy: the sweep and life layers, start-up time of gearcli design
 
     raw = read_bytes(file)
@@ -233,6 +233,7 @@ def run_sweep(session: Session, on_row: Callable[[bool], None] = lambda failed: 
               sink: SinkFactory | None = None) -> list[Row]:
     """Run a prepared sweep; rows go to ``sink`` (default: the session's ``-o`` file or stdout) as they
     finish. Returns every row in point order."""
+    from gearcli.io.sweep_file import open_sink  # lazy: the sweep's file, start-up time of simulate
     from gearcli.sweep.session import run  # lazy: the sweep and life layers, start-up time of gearcli design
 
     return run(session, sink or open_sink, on_row)

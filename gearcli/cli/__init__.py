@@ -36,9 +36,10 @@ from gearcli.cli.common import (
     on_sigint,
     on_sigterm,
     quiet_option,
+    signalled,
     warn,
 )
-from gearcli.errors import EXIT_USAGE, GearcliError
+from gearcli.errors import EXIT_USAGE, GearcliError, Terminated
 from gearcli.io import output as outfiles
 from gearcli.io import streams
 
@@ -80,6 +81,8 @@ def main() -> None:
         cli(prog_name="gearcli")
     except GearcliError as exc:  # click's own output (--help, --version) on a closed stdout
         fail(str(exc), exc.exit_code)
+    except (KeyboardInterrupt, Terminated) as exc:  # a signal outside a command's body (click's parsing, a lazy
+        signalled(exc)  # import before the body's guard): the same one line and exit code, never a traceback
     except SystemExit as exc:
         # click's own output (--help, --version) meets a closed pipe: click pacifies stdout and exits 1
         if exc.code == 1 and type(sys.stdout).__name__.endswith("PacifyFlushWrapper"):

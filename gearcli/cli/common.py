@@ -68,6 +68,15 @@ def on_sighup(signum, frame) -> None:
     raise Terminated(EXIT_HANGUP)
 
 
+def signalled(exc: BaseException) -> None:
+    """The one line and exit code of an interrupt (130), a SIGTERM (143) or a hangup (129)."""
+    if isinstance(exc, KeyboardInterrupt):
+        fail("interrupted", EXIT_INTERRUPTED)
+    if exc.args == (EXIT_HANGUP,):
+        fail("hangup", EXIT_HANGUP)
+    fail("terminated", EXIT_TERMINATED)
+
+
 def guarded(fn: Callable) -> Callable:
     """Run a command body; map errors to messages and exit codes (traceback only with --debug).
     Numeric RuntimeWarnings are collected and reported as one plain warning each, never raw."""
@@ -95,12 +104,8 @@ def guarded(fn: Callable) -> Callable:
             fail(str(exc), exc.exit_code)
         except BrokenPipeError:
             broken_pipe()
-        except KeyboardInterrupt:
-            fail("interrupted", EXIT_INTERRUPTED)
-        except Terminated as exc:
-            if exc.args == (EXIT_HANGUP,):
-                fail("hangup", EXIT_HANGUP)
-            fail("terminated", EXIT_TERMINATED)
+        except (KeyboardInterrupt, Terminated) as exc:
+            signalled(exc)
         except (click.exceptions.Exit, click.ClickException, SystemExit):
             raise
         except Exception as exc:  # a bug: say so plainly, never a traceback without --debug

@@ -8,7 +8,6 @@ mistake or garbage) is refused with the bound named. Used by :mod:`gearcli.confi
 :mod:`gearcli.config.excitation`.
 """
 
-from __future__ import annotations
 
 import sys
 from dataclasses import dataclass

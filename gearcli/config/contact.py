@@ -2,7 +2,6 @@
 docs/physics.md, "The default mesh law"). :mod:`gearcli.config.schema` puts them into the design file.
 """
 
-from __future__ import annotations
 
 from typing import Annotated, Literal
 
@@ -86,7 +85,7 @@ class Contact(_Table):
     _k_positive = field_validator("stiffness_harmonics")(keeps_k_positive)
 
     @model_validator(mode="after")
-    def _damping_law(self) -> Contact:
+    def _damping_law(self) -> "Contact":
         """An IMPACT key given without a ``damping_ratio`` asks for the IMPACT damping: no default ratio then."""
         given = self.model_fields_set
         if "damping_ratio" not in given and any(k in given for k in IMPACT_KEYS):
@@ -98,7 +97,7 @@ class Contact(_Table):
         """The mesh is damped by the IMPACT ramp (else viscously, by ``damping_ratio``)."""
         return self.damping_ratio is None
 
-    def merged(self, override: ContactOverride | None) -> Contact:
+    def merged(self, override: ContactOverride | None) -> "Contact":
         """This law with a stage's overrides applied (an override's IMPACT key turns the default viscous damping
         into the IMPACT ramp, as in ``[contact]``)."""
         if override is None:

@@ -1,8 +1,6 @@
 """The design file's drive tables: the input (speed, torque or induction-motor drive, its starting method) and
 the load (torque, power or a torque-speed law), each with the body and coupling outside the reducer."""
 
-from __future__ import annotations
-
 import math
 from typing import Annotated, Literal
 
@@ -118,7 +116,7 @@ class Input(_Coupled):
         return v
 
     @model_validator(mode="after")
-    def _one_speed_one_torque(self) -> Input:
+    def _one_speed_one_torque(self) -> "Input":
         given = [k for k in ("speed_deg_s", "speed_rpm", "speed_rad_s") if getattr(self, k) is not None]
         if len(given) != 1:
             raise ValueError(
@@ -212,7 +210,7 @@ class Load(_Coupled):
         *_coupling_rules()))
 
     @model_validator(mode="after")
-    def _one_torque(self) -> Load:
+    def _one_torque(self) -> "Load":
         given = [k for k in LOAD_TORQUE_KEYS if getattr(self, k) is not None]
         if self.torque_speed is not None:
             if given or "speed_exponent" in self.model_fields_set:

@@ -6,7 +6,6 @@ gears of a supported shaft have axial positions) need the whole train; ``gearcli
 them and names the key.
 """
 
-from __future__ import annotations
 
 import math
 from typing import Annotated, Any, Literal
@@ -68,7 +67,7 @@ class Bearing(_Table):
     model_config = ConfigDict(json_schema_extra={"oneOf": [{"required": ["shaft"]}, {"required": ["planet_stage"]}]})
 
     @model_validator(mode="after")
-    def _one_place(self) -> Bearing:
+    def _one_place(self) -> "Bearing":
         if (self.shaft is None) == (self.planet_stage is None):
             raise ValueError("give exactly one of shaft (a shaft's bearing) and planet_stage (a planet pin's bearing)")
         return self
@@ -93,7 +92,7 @@ class Duty(_Table):
                            for b in DUTY_TORQUE_KEYS[i + 1:]]}}]})
 
     @model_validator(mode="after")
-    def _one_torque(self) -> Duty:
+    def _one_torque(self) -> "Duty":
         given = [k for k in DUTY_TORQUE_KEYS if getattr(self, k) is not None]
         if len(given) != 1:
             raise ValueError(f"give exactly one of {', '.join(DUTY_TORQUE_KEYS)}"

@@ -4,7 +4,6 @@ fluctuation. :mod:`gearcli.config.schema` puts them into ``[contact]``, ``[stage
 ``[load]``.
 """
 
-from __future__ import annotations
 
 from typing import Annotated
 

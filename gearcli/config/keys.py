@@ -7,7 +7,6 @@ path is written ``stage.0.pinion.teeth`` on the command line (``--set``).
 
 from __future__ import annotations
 
-import difflib
 import json
 import re
 import types
@@ -77,6 +76,8 @@ def suggestions(word: str, options: Sequence[str]) -> list[str]:
     containing = [o for o in options if len(w) >= 3 and w in o.lower()]
     if containing:
         return containing[:3]
+    import difflib  # lazy: only a misspelt key needs it, start-up time of every command
+
     close = difflib.get_close_matches(w, list(lower), n=1, cutoff=0.6)
     return [lower[close[0]]] if close else []
 

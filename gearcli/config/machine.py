@@ -1,7 +1,6 @@
 """Design-file tables of the machines at the ends of the train: the induction motor's nameplate or
 torque-speed table (``[input] motor``) and a load's torque-speed table (``[load] torque_speed``)."""
 
-from __future__ import annotations
 
 from typing import Annotated
 
@@ -42,7 +41,7 @@ class Motor(StrictTable):
     torque_speed: Table | None = None
 
     @model_validator(mode="after")
-    def _one_description(self) -> Motor:
+    def _one_description(self) -> "Motor":
         given = [k for k in NAMEPLATE if getattr(self, k) is not None]
         if self.torque_speed is not None:
             if given:

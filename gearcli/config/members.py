@@ -1,8 +1,6 @@
 """The design file's member tables: a material, a gear (of a pair, of a planetary stage: sun, planet, ring), the
 basic rack, the planet carrier."""
 
-from __future__ import annotations
-
 from typing import Annotated, Literal
 
 from pydantic import Field, field_validator, model_validator
@@ -44,7 +42,7 @@ class Gear(_Table):
     root_roughness_Rz_um: Annotated[float, Field(ge=0.01, le=200)] | None = None
 
     @model_validator(mode="after")
-    def _web_needs_rim(self) -> Gear:
+    def _web_needs_rim(self) -> "Gear":
         if (self.web_thickness_mm is None) != (self.rim_thickness_mm is None):
             raise ValueError("a webbed gear body needs both web_thickness_mm and rim_thickness_mm "
                              "(give both, or neither for a solid disc)")
@@ -67,7 +65,7 @@ class PairGear(Gear):
     tip_diameter_allowance_mm: AllowancePair | None = None
 
     @model_validator(mode="after")
-    def _allowance_order(self) -> PairGear:
+    def _allowance_order(self) -> "PairGear":
         _upper_not_below_lower("tooth_thickness_allowance_mm", self.tooth_thickness_allowance_mm)
         _upper_not_below_lower("tip_diameter_allowance_mm", self.tip_diameter_allowance_mm)
         return self
@@ -81,7 +79,7 @@ class BasicRack(_Table):
     root_radius: Annotated[float, Field(ge=0.0, le=1.0), NotTiny(1e-6)] = 0.38  # rho_fP*
 
     @model_validator(mode="after")
-    def _clearance(self) -> BasicRack:
+    def _clearance(self) -> "BasicRack":
         if self.dedendum < self.addendum:
             raise ValueError(f"dedendum ({self.dedendum:g}) must be at least the addendum ({self.addendum:g}): "
                              "the bottom clearance h_fP* - h_aP* cannot be negative")

@@ -11,8 +11,6 @@ The tables by concern: the bounds and rules between keys (:mod:`~gearcli.config.
 whole file (:class:`DesignFile`) and the small tables, with every table's name re-exported (one namespace).
 """
 
-from __future__ import annotations
-
 import math
 from typing import Annotated, Literal
 
@@ -84,7 +82,7 @@ class Target(_Table):
     model_config = ConfigDict(json_schema_extra=_all_of(*_exactly_one(("output_speed_rpm", "output_speed_deg_s"))))
 
     @model_validator(mode="after")
-    def _one_speed(self) -> Target:
+    def _one_speed(self) -> "Target":
         if (self.output_speed_rpm is None) == (self.output_speed_deg_s is None):
             raise ValueError("give exactly one of output_speed_rpm, output_speed_deg_s")
         return self
@@ -124,7 +122,7 @@ class Lubricant(_Table):
     e_C: Annotated[float, Field(ge=0.0, le=1.0)] | None = None
 
     @model_validator(mode="after")
-    def _one_cleanliness(self) -> Lubricant:
+    def _one_cleanliness(self) -> "Lubricant":
         if self.contamination is not None and self.e_C is not None:
             raise ValueError("give one of contamination (an ISO 281 cleanliness level) and e_C (its factor)")
         return self
@@ -174,7 +172,7 @@ class DesignFile(_Table):
     rating: Rating | None = None
 
     @model_validator(mode="after")
-    def _load_power_to_torque(self) -> DesignFile:
+    def _load_power_to_torque(self) -> "DesignFile":
         """[load] power_kW becomes the output torque at the nominal output speed, ω_in / Π z_gear/z_pinion;
         a [load] torque_speed table gives its torque at that speed."""
         ratio = math.prod(s.speed_ratio for s in self.stage)
@@ -196,7 +194,7 @@ class DesignFile(_Table):
         return self
 
     @model_validator(mode="after")
-    def _no_shaft_after_last_stage(self) -> DesignFile:
+    def _no_shaft_after_last_stage(self) -> "DesignFile":
         if self.stage[-1].shaft is not None:
             raise ValueError(f"stage[{len(self.stage) - 1}].shaft: the last stage's gear sits on the output shaft, "
                              "which has no next pinion; a flexible output is [load] inertia_kg_m2 with "
@@ -204,7 +202,7 @@ class DesignFile(_Table):
         return self
 
     @model_validator(mode="after")
-    def _merged_harmonics(self) -> DesignFile:
+    def _merged_harmonics(self) -> "DesignFile":
         """A stage's phases against the amplitudes it inherits from [contact]."""
         for k, stage in enumerate(self.stage):
             if stage.mesh is not None:

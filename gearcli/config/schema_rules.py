@@ -1,8 +1,6 @@
 """The design file's bounds and rules: the physical bounds of every number, the rules between keys (stated in
 the JSON Schema as well as checked by the validators, :mod:`gearcli.config.schema`), and the base of every table."""
 
-from __future__ import annotations
-
 from typing import Annotated, Any
 
 from pydantic import Field

@@ -1,8 +1,6 @@
 """The design file's stage tables: a parallel stage (a gear pair) and a planetary stage, the flexible shaft after a
 stage, and the union of every registered stage kind's table (``type``, :mod:`gearcli.stages.kinds`)."""
 
-from __future__ import annotations
-
 from typing import Annotated, Any, Literal, cast
 
 from pydantic import ConfigDict, Field, GetCoreSchemaHandler, Tag, model_validator
@@ -53,7 +51,7 @@ class Stage(_Table):
     model_config = ConfigDict(json_schema_extra=_hands_rule())
 
     @model_validator(mode="after")
-    def _allowance_order(self) -> Stage:
+    def _allowance_order(self) -> "Stage":
         _upper_not_below_lower("center_distance_allowance_mm", self.center_distance_allowance_mm)
         return self
 
@@ -108,7 +106,7 @@ class PlanetaryStage(_Table):
     model_config = ConfigDict(json_schema_extra=_members_rule())
 
     @model_validator(mode="after")
-    def _members(self) -> PlanetaryStage:
+    def _members(self) -> "PlanetaryStage":
         if self.input == self.fixed:
             raise ValueError(f"input and fixed name the same member ({self.input!r}): the held member "
                              "cannot be driven; name two different members of sun, carrier, ring")

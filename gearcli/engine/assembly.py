@@ -24,9 +24,11 @@ from gearcli.engine.laws import (
     conn_phased,
     conn_potential,
     conn_tv,
+    input_motion,
     load_factor,
     mesh_loss_factors,
     motor_torque,
+    ramp,
     torque_fluctuation,
     torque_ripple,
 )
@@ -47,33 +49,6 @@ from gearcli.engine.packing import (
 )
 from gearcli.model.elements import KIND_MESH, KIND_PLANET_MESH
 
-
-@jit
-def ramp(t, value, ramp_s):
-    """``STEP(t, 0, 0, ramp_s, value)`` as the generated code writes it."""
-    if ramp_s <= 0.0 or value == 0.0:
-        return value
-    if t < ramp_s:
-        s = t * (1.0 / ramp_s)
-        return value * s * s * (3.0 - 2.0 * s)
-    return value
-
-@jit
-def input_motion(t, v, T, start):
-    """(th0, w0, a0) of the speed drive's exact STEP profile from the start angle ``start``."""
-    if T <= 0.0:
-        th = v * t
-    elif t < T:
-        s = t * (1.0 / T)
-        th = (v * T) * s * s * s * (1.0 - 0.5 * s)
-        if start != 0.0:
-            th = th + start
-        return th, v * s * s * (3.0 - 2.0 * s), (6.0 * v / T) * s * (1.0 - s)
-    else:
-        th = v * (t - 0.5 * T)
-    if start != 0.0:
-        th = th + start
-    return th, v, 0.0
 
 @jit
 def prologue(t, y, model, th):

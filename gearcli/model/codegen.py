@@ -32,7 +32,7 @@ from functools import lru_cache
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import machine, torque
+from gearcli.model.elements import machine, profile, torque
 from gearcli.model.layout import QUADRATURES
 from gearcli.model.parts import Connector
 
@@ -43,37 +43,19 @@ def lit(x: float) -> str:
 
 
 def _ramp_lines(name: str, value: float, ramp_s: float, indent: str = "    ") -> list[str]:
-    """``name = STEP(t, 0, 0, ramp_s, value)``, or the constant when there is no ramp."""
+    """``name = STEP(t, 0, 0, ramp_s, value)`` (:func:`gearcli.model.elements.profile.ramp`, the kernel's too), or
+    the constant when there is no ramp."""
     if ramp_s <= 0.0 or value == 0.0:
         return [f"{indent}{name} = {lit(value)}"]
-    return [f"{indent}if t < {lit(ramp_s)}:",
-            f"{indent}    s = t * {lit(1.0 / ramp_s)}",
-            f"{indent}    {name} = {lit(value)} * s * s * (3.0 - 2.0 * s)",
-            f"{indent}else:",
-            f"{indent}    {name} = {lit(value)}"]
+    return [f"{indent}{name} = _ramp(t, {lit(value)}, {lit(ramp_s)})"]
 
 
 def _input_motion_lines(lay: Layout) -> list[str]:
-    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0 (th0 from the
-    drive's start angle, written only when it is not 0)."""
+    """Speed drive: th0 (if needed), w0, a0 of the exact STEP speed profile of body 0 from the drive's start angle
+    (:func:`gearcli.model.elements.profile.input_motion`, the kernel's too)."""
     v, T = lay.drive.speed_rad_s, lay.drive.ramp_s
-    start = f" + {lit(lay.drive.angle_rad)}" if lay.drive.angle_rad != 0.0 else ""
-    out = []
-    if T <= 0.0:
-        out += [f"    w0 = {lit(v)}", "    a0 = 0.0"]
-        if lay.needs_angles:
-            out.append(f"    th0 = {lit(v)} * t{start}")
-        return out
-    out += [f"    if t < {lit(T)}:",
-            f"        s = t * {lit(1.0 / T)}",
-            f"        w0 = {lit(v)} * s * s * (3.0 - 2.0 * s)",
-            f"        a0 = {lit(6.0 * v / T)} * s * (1.0 - s)"]
-    if lay.needs_angles:
-        out.append(f"        th0 = {lit(v * T)} * s * s * s * (1.0 - 0.5 * s){start}")
-    out += ["    else:", f"        w0 = {lit(v)}", "        a0 = 0.0"]
-    if lay.needs_angles:
-        out.append(f"        th0 = {lit(v)} * (t - {lit(0.5 * T)}){start}")
-    return out
+    angle = "th0" if lay.needs_angles else "_"
+    return [f"    {angle}, w0, a0 = _motion(t, {lit(v)}, {lit(T)}, {lit(lay.drive.angle_rad)})"]
 
 
 def _prologue(lay: Layout) -> list[str]:
@@ -435,7 +417,7 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
     structure (:func:`_template`), compiled once per process (:func:`_compiled`) and bound to this scene's
     constants and element parameters; the compiled module is registered with linecache, so a traceback
     through the generated code shows its lines."""
-    namespace: dict = {"_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
+    namespace: dict = {"_ramp": profile.ramp, "_motion": profile.input_motion, "_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
                        "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation,
                        "_motor": machine.motor_torque, "_MOT": lay.motor_row, "_load": machine.load_factor,
                        "_LOD": lay.load_law}

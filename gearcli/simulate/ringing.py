@@ -28,8 +28,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+from gearcli import diagnostics as dg
+from gearcli.diagnostics import Diagnostic
+from gearcli.model.linear import damped_eigenvalues
+from gearcli.model.modes import modal_analysis
+
+if TYPE_CHECKING:
+    from gearcli.model import TorsionalModel
+    from gearcli.simulate.choice import Choice
 
 DECAY_WINDOWS = 1.0  # a mode whose decay time exceeds the window length rings through it
 SIGMA_TRIALS = np.geomspace(0.25, 4.0, 25)  # the refinement's trial decay rates, in units of the linearised one
@@ -84,10 +94,15 @@ def _orthonormal(A: np.ndarray) -> np.ndarray:
     return q * (d > 1e-12 * np.maximum(d.max(axis=-1, keepdims=True), np.finfo(float).tiny))[..., None, :]
 
 
-def _project_out(q: np.ndarray, x: np.ndarray) -> np.ndarray:
+def _project_out(q: np.ndarray, x: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
     """The rows of x ((S, k, n), or (k, n) shared by every stage) minus their projections on the columns of
-    q (S, n, r) (matrix products: BLAS; a shared x is not copied per stage)."""
-    return x - (x @ q) @ q.transpose(0, 2, 1)
+    q (S, n, r) (matrix products: BLAS; a shared x is not copied per stage). ``out``: an (S, k, n) array to
+    write them in (the same numbers; a large result allocated afresh for every mode costs more than the
+    products)."""
+    if out is None:
+        return x - (x @ q) @ q.transpose(0, 2, 1)
+    np.matmul(x @ q, q.transpose(0, 2, 1), out=out)
+    return np.subtract(x, out, out=out)
 
 
 def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]], *,
@@ -115,6 +130,7 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
     sigma = np.broadcast_to(base[:, 0], (S, M)).copy()
     factors = np.geomspace(0.25, 4.0, TRIALS)
     if refine:
+        buffer = np.empty((S, 2 * TRIALS, tau.size))  # every mode's projected trials, in turn
         for j in range(M):
             if base[j, 0] <= 0.0:
                 continue
@@ -122,7 +138,7 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
             q = _orthonormal(_columns(tau, sigma, cos, sin)[:, :, keep])  # the other columns, per stage
             env = np.exp(-(base[j, 0] * factors)[:, None] * tau)  # (TRIALS, n)
             trial = np.stack([env * cos[j], env * sin[j]], axis=1)  # (TRIALS, 2, n)
-            tp = _project_out(q, trial.reshape(-1, tau.size))
+            tp = _project_out(q, trial.reshape(-1, tau.size), out=buffer)
             tp = tp.reshape(S, TRIALS, 2, tau.size)
             yp = _project_out(q, Y[:, None, :])  # (S, 1, n)
             g = tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2)  # (S, TRIALS, 2, 2)
@@ -197,3 +213,27 @@ def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
             f"at its end ({100 * r.fraction_end:.2g} % of the static {r.reference_N:.5g} N), so the window's std, "
             "min, max and dynamic factor include an undecayed transient. To settle it: "
             f"{later}; more damping{dominated}; or [simulation] steady = \"periodic\"")
+
+
+def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,
+                     forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
+    """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
+    that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
+    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
+    found = ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
+    if not found:
+        return []
+    modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
+    out = []
+    for r in found:
+        near = min(modes, key=lambda m: abs(m.frequency_Hz - r.frequency_Hz), default=None)
+        element = near.dominant if near is not None else ""
+        out.append(dg.warning(dg.WINDOW_RINGING, message(r, window, element), stage=r.stage,
+                              statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
+                              decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
+                              damping_ratio=r.damping_ratio, damping_ratio_uncertainty=SIGMA_UNCERTAINTY,
+                              amplitude_start_N=r.amplitude_start_N,
+                              amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
+                              settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
+                              element=element))
+    return out

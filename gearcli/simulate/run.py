@@ -22,12 +22,12 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.linear import damped_eigenvalues, static_line_forces_N
-from gearcli.model.modes import modal_analysis, resonances
+from gearcli.model.linear import static_line_forces_N
+from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import estimate, rigid_start, ringing, stats
+from gearcli.simulate import estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
@@ -44,6 +44,7 @@ from gearcli.simulate.results import (
     StageDynamics,
     SteadyState,
 )
+from gearcli.simulate.ringing import ringing_warnings
 from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -66,7 +67,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
                    error_estimate: bool | None = None, settle: bool | str | None = None,
-                   progress: Callable[[float], None] | None = None) -> SimulationResult:
+                   progress: Callable[[float], None] | None = None, diagnose: bool = True) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``series`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
@@ -76,7 +77,9 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     ``simulation.error_estimate``) runs the check pass of :mod:`gearcli.simulate.estimate`; ``settle`` (default: when
     ``[rating] dynamic_factor = "simulated"``; ``"window"``: without the periodic fallback) repeats a run whose fixed
     window is not settled with a later window
-    (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it). The design's own
+    (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it).
+    ``diagnose=False``: the statistics without the window's ringing fit, settle test and resonance check (a run
+    only its statistics and counters are read from: the report's accuracy ladder). The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -86,18 +89,29 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         model = TorsionalModel(spec_from_design(cfg, design))
     check = sim.error_estimate if error_estimate is None else error_estimate
     design_diags = _design_diagnostics(design)
-
-    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
-        return simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
-                              rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
-                              max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
-                              prior_diagnostics=design_diags, engine=sim.engine, progress=progress)
-
-    result = run(sim.duration_s, sim.steps, sim.window_start_s)
     if settle is None:
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
+    pending: list[tuple[SimulationResult, Callable[[], SimulationResult]]] = []  # this call's unfinished runs
+
+    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
+        # a run the settle test may replace leaves its ringing fit for later (finish) where its window is unsettled
+        unfinished: list[Callable[[], SimulationResult]] | None = [] if settle else None
+        result = simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
+                                rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
+                                max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
+                                prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
+                                unfinished=unfinished, diagnose=diagnose)
+        if unfinished:
+            pending.append((result, unfinished[0]))
+        return result
+
+    def finish(result: SimulationResult) -> SimulationResult:
+        return next((whole() for r, whole in pending if r is result), result)
+
+    result = run(sim.duration_s, sim.steps, sim.window_start_s)
     if settle:
-        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window")
+        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window",
+                                        finish=finish)
     return result
 
 
@@ -113,7 +127,9 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    steady: str = "window", error_estimate: bool = True,
                    prior_diagnostics: list[Diagnostic] | None = None, engine: str = "auto",
                    progress: Callable[[float], None] | None = None,
-                   tightened: Diagnostic | None = None) -> SimulationResult:
+                   tightened: Diagnostic | None = None,
+                   unfinished: list[Callable[[], SimulationResult]] | None = None,
+                   diagnose: bool = True) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -128,7 +144,12 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
     ``method = "auto"`` with the error estimate: when the check pass finds only window means unresolved, the
     run is repeated once at the rtol that resolves them (:func:`gearcli.simulate.estimate.means_rtol`);
-    ``tightened`` is the repeat's ``rtol_tightened`` warning."""
+    ``tightened`` is the repeat's ``rtol_tightened`` warning.
+
+    ``unfinished`` (a list; a run the settle test may replace, :func:`gearcli.simulate.settle.settled_run`): a
+    fixed window that the settle test finds unsettled skips its ringing fit, and the function that returns the
+    whole result (ringing warnings included, the result without ``unfinished``) is appended to the list.
+    ``diagnose=False``: no ringing fit, settle test nor resonance check (:func:`run_simulation`)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -182,7 +203,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
-    diags += resonance_warnings(model, choice)
+    diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
@@ -195,14 +216,23 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
-                              tightened=estimate.tightened_warning(run, ref, finer))
+                              tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
+                              diagnose=diagnose)
     if tightened is not None:
         diags.append(tightened)
-    result = _summarise(model, s, run, choice, (window, mask_window), energy, diags, want_series, steady_state,
-                        ref, stat_diags, eng.reason)
-    result = replace(result, solver=replace(result.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
-                                            course_changes=tuple(c.as_json() for c in changes)))
-    _require_finite(result)
+
+    def summary(deferred: list[bool] | None) -> SimulationResult:
+        out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
+                         ref, stat_diags, eng.reason, deferred, diagnose)
+        out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
+                                          course_changes=tuple(c.as_json() for c in changes)))
+        _require_finite(out)
+        return out
+
+    deferred: list[bool] | None = [] if unfinished is not None else None
+    result = summary(deferred)
+    if deferred and unfinished is not None:
+        unfinished.append(lambda: summary(None))
     return result
 
 
@@ -385,9 +415,12 @@ def _with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharin
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
-               engine_reason: str = "as requested") -> SimulationResult:
+               engine_reason: str = "as requested", deferred: list[bool] | None = None,
+               diagnose: bool = True) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
-    the window without its closing sample, which starts the next period)."""
+    the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
+    that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
+    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order)."""
     spec = model.spec
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
@@ -423,11 +456,21 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
     diags += stat_diags or []
-    if not periodic:
-        diags += ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
-                                  [st.simulated_static_tangential_N or 0.0 for st in stages], window)
-    steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
-                                       motor_summary, diags)
+
+    def ringing_diags() -> list[Diagnostic]:
+        return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
+                                [st.simulated_static_tangential_N or 0.0 for st in stages], window)
+
+    if not periodic and deferred is None and diagnose:
+        diags += ringing_diags()
+    if diagnose:
+        steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
+                                           motor_summary, diags)
+    if not periodic and deferred is not None:
+        if steady.settled is False:
+            deferred.append(True)
+        else:
+            diags += ringing_diags()
     solver = SolverStats(
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
@@ -450,30 +493,6 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
-
-
-def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,
-                     forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
-    """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
-    that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
-    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
-    found = ringing.ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
-    if not found:
-        return []
-    modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]
-    out = []
-    for r in found:
-        near = min(modes, key=lambda m: abs(m.frequency_Hz - r.frequency_Hz), default=None)
-        element = near.dominant if near is not None else ""
-        out.append(dg.warning(dg.WINDOW_RINGING, ringing.message(r, window, element), stage=r.stage,
-                              statistic="std, min, max, dynamic_factor", mode_frequency_Hz=r.frequency_Hz,
-                              decay_time_s=r.decay_time_s if math.isfinite(r.decay_time_s) else None,
-                              damping_ratio=r.damping_ratio, damping_ratio_uncertainty=ringing.SIGMA_UNCERTAINTY,
-                              amplitude_start_N=r.amplitude_start_N,
-                              amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
-                              settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
-                              element=element))
-    return out
 
 
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:

@@ -83,11 +83,14 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
     modes = candidate_modes(eigenvalues, window_s)
     tw = t[mask]
     worst = Settling(True, 0.0)
-    for k, (ft, ref) in enumerate(zip(forces_N, static_N, strict=True)):
-        ref = abs(float(ref)) or float(np.mean(np.abs(ft[mask])))
-        if ref <= 0.0 or not modes:
-            continue
-        amplitudes, sigmas = ringing.fit_transient(tw, ft[mask], modes)
+    refs = [abs(float(ref)) or float(np.mean(np.abs(ft[mask]))) for ft, ref in zip(forces_N, static_N, strict=True)]
+    fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []
+    # every stage's fit at once (independent per stage: the same numbers as one fit per stage, one batched solve)
+    amps, sigs = ringing.fit_transients(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes) \
+        if fitted else (np.empty((0, 0)), np.empty((0, 0)))
+    for i, k in enumerate(fitted):
+        ref = refs[k]
+        amplitudes, sigmas = [float(a) for a in amps[i]], [float(x) for x in sigs[i]]
         for j, a0 in enumerate(amplitudes):
             fraction = a0 / ref
             if fraction <= worst.transient_fraction:
@@ -182,29 +185,31 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
 
 
 def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
-                duration_s: float, steps: int, periodic: bool = True) -> SimulationResult:
+                duration_s: float, steps: int, periodic: bool = True,
+                finish: Callable[[SimulationResult], SimulationResult] = lambda r: r) -> SimulationResult:
     """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
     start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
     scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
     (``run(..., steady="periodic")``: shooting, or period by period, within the budget's duration) when it
     converges (not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
-    starts); else the last window, whose warning says so."""
-    result = _moved_window(result, run, duration_s, steps)
-    if not periodic or result.steady is None or result.steady.mode != "window" or result.steady.settled is not False:
-        return result
-    longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
-    try:
-        orbit = run(longest, steps, None, steady="periodic")
-    except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
-        return result
-    if orbit.steady is not None and orbit.steady.converged:
-        return replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=result.steady.settle_runs + 1))
-    return result
+    starts); else the last window, whose warning says so. ``finish``: the whole result of a run whose unsettled
+    window left its ringing fit for later (``run_simulation``'s ``unfinished``: only the window kept pays it)."""
+    result, runs = _moved_window(result, run, duration_s, steps)
+    if periodic and result.steady is not None and result.steady.mode == "window" and result.steady.settled is False:
+        longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
+        try:
+            orbit = run(longest, steps, None, steady="periodic")
+        except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
+            orbit = None
+        if orbit is not None and orbit.steady is not None and orbit.steady.converged:
+            before = runs if runs else result.steady.settle_runs
+            return replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=before + 1))
+    return _after_runs(finish(result), runs)
 
 
 def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult], duration_s: float,
-                  steps: int) -> SimulationResult:
-    """The window moved later while it is not settled (:func:`settled_run`)."""
+                  steps: int) -> tuple[SimulationResult, int]:
+    """The window moved later while it is not settled (:func:`settled_run`), and the longer runs made."""
     runs = 0
     while result.steady is not None and result.steady.mode == "window" and result.steady.settled is False \
             and runs < MAX_RUNS:
@@ -220,6 +225,11 @@ def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult]
             break
         runs += 1
         result = longer
+    return result, runs
+
+
+def _after_runs(result: SimulationResult, runs: int) -> SimulationResult:
+    """The kept window's ``settle_runs``, and its warning's note of the longer runs."""
     if runs and result.steady is not None:
         steady = replace(result.steady, settle_runs=runs)
         result = replace(result, steady=steady)

@@ -120,3 +120,51 @@ def test_a_window_the_budget_cannot_settle_takes_the_periodic_steady_state():
     for st in result.stages:
         assert st.dynamic_factor < 1.1
         assert_allclose(st.rating.K_v, max(1.0, st.dynamic_factor), rtol=1e-12)
+
+
+def _stub(window, settled, settle_time=None, mode="window", converged=None, tag=""):
+    """A stand-in result: what settled_run reads (steady, window_s, diagnostics, warnings) and a tag."""
+    from dataclasses import dataclass
+
+    from gearcli.simulate.results import SteadyState
+
+    @dataclass(frozen=True)
+    class Stub:
+        steady: SteadyState
+        window_s: tuple
+        diagnostics: tuple = ()
+        warnings: tuple = ()
+        tag: str = ""
+
+    steady = SteadyState(mode=mode, period_s=None, periods_to_converge=None, periodicity=None, converged=converged,
+                         residual=None, settled=settled, transient_fraction=0.5 if settled is False else 0.0,
+                         settle_time_s=settle_time)
+    return Stub(steady, window, tag=tag)
+
+
+def test_only_the_window_kept_is_finished():
+    """settled_run(finish=...): a run the settle loop replaces is never completed (its ringing fit is skipped,
+    run_simulation's ``unfinished``); the unsettled window kept at the end is, once, before its note is added;
+    a converged periodic state is returned as it is."""
+    first = _stub((0.25, 0.5), False, settle_time=0.6, tag="first")
+    longer = _stub((0.6, 0.85), False, settle_time=50.0, tag="longer")  # its next window exceeds the budget
+    finished = []
+
+    def finish(r):
+        finished.append(r.tag)
+        return type(r)(r.steady, r.window_s, r.diagnostics, r.warnings, r.tag + " finished")
+
+    def run(duration, steps, start, steady="window"):
+        if steady == "periodic":
+            return _stub((3.0, 4.0), None, mode="periodic", converged=periodic_converges[0], tag="orbit")
+        return longer
+
+    periodic_converges = [False]
+    kept = settle.settled_run(first, run, 0.5, 2000, periodic=True, finish=finish)
+    assert finished == ["longer"] and kept.tag == "longer finished" and kept.steady.settle_runs == 1
+    finished.clear()
+    periodic_converges[0] = True
+    orbit = settle.settled_run(first, run, 0.5, 2000, periodic=True, finish=finish)
+    assert finished == [] and orbit.tag == "orbit" and orbit.steady.settled and orbit.steady.settle_runs == 2
+    settled = _stub((0.25, 0.5), True, tag="settled")
+    assert settle.settled_run(settled, run, 0.5, 2000, finish=finish).tag == "settled finished"

@@ -223,3 +223,21 @@ def test_auto_keeps_dop853_for_a_long_lightly_damped_run_and_takes_radau_for_dam
     loaded = load_design(str(SEED.parent / "industrial_two_stage.toml"), [])
     spec = spec_from_design(loaded.design, compute_design(loaded.design))
     assert choose_method(spec, 0.5, "auto").method == "Radau"
+
+
+def test_a_run_without_diagnostics_has_the_same_statistics_and_no_window_checks():
+    """simulate_model(diagnose=False), the report's accuracy ladder: the same run and statistics, without the
+    ringing fit, the settle test and the resonance check (the seed rings through its window: with diagnostics it
+    says so and its settle test finds the window unsettled)."""
+    cfg = load_design(str(SEED), []).design
+    design = compute_design(cfg)
+    full = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    bare = run_simulation(cfg, design, want_series=False, error_estimate=False, diagnose=False)
+    assert full.solver.nfev == bare.solver.nfev  # the same integration
+    for a, b in zip(full.stages, bare.stages, strict=True):
+        for q in ("mean", "min", "max", "std"):
+            assert getattr(a.tangential_N, q) == getattr(b.tangential_N, q)  # the same samples, the same sums
+    codes = {d.code for d in full.diagnostics}
+    assert "window_ringing" in codes and full.steady.settled is False
+    bare_codes = {d.code for d in bare.diagnostics}
+    assert not bare_codes & {"window_ringing", "window_not_settled", "resonance"} and bare.steady.settled is None
