@@ -87,17 +87,21 @@ FEATURES = ("fixed", "per_state", "per_mesh", "per_planet_mesh", "per_time_varyi
 #: microseconds per right-hand-side evaluation, all the run's work included (steps, error norms, dense output,
 #: LU decompositions and Jacobians), per engine and method: the coefficients of ModelSize.features(), a
 #: non-negative least-squares fit of the integration's CPU time over the fitting set of benchmarks/bench_cost.py
-#: (2026-11-28, 2-core machine): within 1.03x (median) and 1.31x (worst) of the measured time at the measured
-#: evaluations on the fitting set, 1.11x and 1.36x on the held-out set it never saw (docs/performance.md)
+#: (python: 2026-11-28, 2-core machine: within 1.03x (median) and 1.31x (worst) of the measured time at the
+#: measured evaluations on the fitting set, 1.11x and 1.36x on the held-out set it never saw; compiled: refitted
+#: 2026-11-28 after the kernel lost numba's reference counting, on the median CPU time of three runs: 1.07x and
+#: 2.43x on the fitting set, 1.15x and 3.67x on the held-out set, the worst a run of a few ms; the old compiled
+#: prices were 5.6x (median) too high; docs/performance.md)
 PRICE_US: dict[str, dict[str, tuple[float, ...]]] = {
     "python": {"DOP853": (5.0, 0.682, 0.0, 1.26, 2.11, 1.3, 0.468), "Radau": (25.1, 0.0, 2.1, 1.61, 5.73, 5.76, 9.3)},
-    "compiled": {"DOP853": (0.521, 0.0978, 0.31, 0.0, 0.0, 0.214, 0.297),
-                 "Radau": (0.378, 0.14, 0.208, 0.0, 0.0, 0.144, 0.315)},
+    "compiled": {"DOP853": (0.0924, 0.0173, 0.00529, 0.0146, 0.0, 0.0623, 0.0),
+                 "Radau": (0.0, 0.0376, 0.0121, 0.06, 0.0, 0.0658, 0.0994)},
 }
 
 #: seconds every integration costs whatever its length (setting up the solver or the kernel's call, the segments'
-#: restarts), per engine: the constant of the same fit
-RUN_FIXED_S: dict[str, float] = {"python": 4.4e-3, "compiled": 0.67e-3}
+#: restarts, the compiled kernel's worker thread), per engine: the constant of the same fit (compiled: the mean
+#: of DOP853's 0.885 ms and Radau's 0.797 ms, 2026-11-28)
+RUN_FIXED_S: dict[str, float] = {"python": 4.4e-3, "compiled": 0.84e-3}
 
 
 def price_us_per_eval(engine: str, method: str, size: ModelSize | None = None) -> float:
