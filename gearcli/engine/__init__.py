@@ -81,7 +81,8 @@ SUPPORTED = (
 _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_levers", "conn_param", "body_tree",
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
                  "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol",
-                 "motor_row", "load_law", "body_angle_row"}
+                 "motor_row", "load_law", "body_angle_row", "i_quadratures", "conn_loss_bodies", "conn_loss_speeds",
+                 "conn_loss_shares"}
 
 
 def _known_params() -> dict[int, int]:

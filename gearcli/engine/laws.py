@@ -1,5 +1,5 @@
 """The element laws as the kernel calls them: the dispatch by kind generated from the registry
-(:mod:`gearcli.engine.dispatch`), the drive's and the load's laws (:mod:`gearcli.model.elements.torque`,
+(:mod:`gearcli.engine.dispatch`; the loss hook's too), the drive's and the load's laws (:mod:`gearcli.model.elements.torque`,
 :mod:`gearcli.model.elements.machine`), compiled from their own modules, never rewritten here.
 
 Importing this module builds the dispatch into the checked cache directory this process loads from.
@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from gearcli.engine import dispatch as _dispatch
 from gearcli.model.elements import machine as _machine_mod
-from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import torque as _torque_mod
 
 _D = _dispatch.build()  # into the checked cache directory this process loads from
@@ -22,6 +21,4 @@ _TORQUE = _dispatch.jit_module(_torque_mod)
 torque_ripple, torque_fluctuation = _TORQUE["ripple"], _TORQUE["fluctuation"]
 _MACHINE = _dispatch.jit_module(_machine_mod)  # the motor's curve and start, the load's speed law
 motor_torque, load_factor = _MACHINE["motor_torque"], _MACHINE["load_factor"]
-mesh_loss_factors = _D._mesh_loss_factors  # a lossy mesh's two side forces (the registry compiled the mesh law)
-I_ETA = _mesh_mod.I_ETA
-I_LSA, I_LSB, I_LSC, I_LKA = _mesh_mod.I_LSA, _mesh_mod.I_LSB, _mesh_mod.I_LSC, _mesh_mod.I_LKA
+conn_lossy, conn_loss_factors = _D.conn_lossy, _D.conn_loss_factors  # the loss hook (an element's two side forces)

@@ -2,12 +2,13 @@
 (plain Python and numpy; no numba).
 
 The model: (kind, bodies, levers, param, inertia, ipar, fpar, ripple row, fluctuation row, tree, ptr, pairs,
-motor row, load law, angle rows): bodies and signed levers by connector and slot (-1 / 0 padded;
+motor row, load law, angle rows, loss geometry): bodies and signed levers by connector and slot (-1 / 0 padded;
 gearcli.model.ModelArrays), the rows the flat (amplitude, order) / (amplitude, frequency) pairs of
 gearcli.model.elements.torque, tree the connector that gives each body's angle, per body b its (connector, slot)
 pairs ``pairs[ptr[b]:ptr[b + 1]]`` in connector order (:func:`_acting_on`), then the motor's row and the load's
 speed law (gearcli.model.elements.machine; empty when there is none), and the angle rows of the bodies the tree
-does not reach (gearcli.model.Layout.angle_rows; (0, 0) for none). ``ipar`` and ``fpar`` hold the drive's and the
+does not reach (gearcli.model.Layout.angle_rows; (0, 0) for none), and each lossy element's pitch-line speeds and
+side-force shares from its loss hook (zero for a lossless one). ``ipar`` and ``fpar`` hold the drive's and the
 load's numbers and the state layout's offsets (``IP_*``, ``FP_*``).
 """
 
@@ -19,8 +20,11 @@ import numpy as np
 
 from gearcli.model import elements
 
-# ipar / fpar layout
-IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV = 0, 1, 2, 3, 4, 5
+# ipar / fpar layout; the state offsets are StateLayout's (gearcli.model.layout): the first speed (the speeds are
+# its one contiguous slice ``speeds``), the input angle (-1 none), the first quadrature, the scene's state count,
+# and each quadrature's own state (StateLayout.quadrature, in layout.QUADRATURES' order; -1 none)
+IP_DRIVE, IP_W0, IP_THETA, IP_QUAD, IP_LAST_ANGLE, IP_NTV, IP_N_STATES = 0, 1, 2, 3, 4, 5, 6
+IP_Q_INPUT, IP_Q_LOAD, IP_Q_DAMPING, IP_Q_TV = 7, 8, 9, 10
 FP_DRIVE, FP_DRIVE_RAMP, FP_LOAD, FP_LOAD_RAMP, FP_ANGLE, FP_CLOCK = 0, 1, 2, 3, 4, 5
 
 
@@ -43,6 +47,10 @@ class Model(NamedTuple):
     motor: np.ndarray  # the motor's row (gearcli.model.elements.machine; empty: none)
     load_law: np.ndarray  # the load's speed law (empty: none)
     angle_rows: np.ndarray  # the angle rows of the bodies the tree does not reach ((0, 0): none)
+    # a lossy element's loss geometry from its loss hook (gearcli.model.parts.Connector.loss_speeds, loss_share):
+    loss_body: np.ndarray  # per connector, side (a, b) and term: the body whose speed makes that side's v (-1 padded)
+    loss_speed: np.ndarray  # its coefficient: v_a = sum k w_body, v_b likewise (0 padded)
+    loss_share: np.ndarray  # per connector and slot: (share of f_a, share of f_b) of its force ((0, 0): the law's f)
 
 
 def pack(arrays) -> Model:
@@ -54,8 +62,8 @@ def pack(arrays) -> Model:
     tv = [c for c in range(kind.size) if laws[c].time_varying(param[c])]
     phased = [c for c in range(kind.size) if laws[c].phased(param[c])]
     last_angle = max((int(bodies[c, 0]) for c in phased), default=0)
-    ipar = np.array([arrays.drive_kind, arrays.i_omega0, arrays.i_theta, arrays.i_quad, last_angle, len(tv)],
-                    dtype=np.int64)
+    ipar = np.array([arrays.drive_kind, arrays.i_omega0, arrays.i_theta, arrays.i_quad, last_angle, len(tv),
+                     arrays.n_states, *arrays.i_quadratures], dtype=np.int64)
     fpar = np.array([arrays.drive_value, arrays.drive_ramp_s, arrays.load_value_Nm, arrays.load_ramp_s,
                      arrays.drive_angle_rad, arrays.load_clock_s], dtype=np.float64)
     ripple = np.ascontiguousarray(np.asarray(arrays.drive_ripple, dtype=np.float64).reshape(-1))
@@ -66,7 +74,10 @@ def pack(arrays) -> Model:
             np.ascontiguousarray(arrays.body_tree, dtype=np.int64), ptr, pairs,
             np.ascontiguousarray(np.asarray(arrays.motor_row, dtype=np.float64).reshape(-1)),
             np.ascontiguousarray(np.asarray(arrays.load_law, dtype=np.float64).reshape(-1)),
-            np.ascontiguousarray(np.atleast_2d(np.asarray(arrays.body_angle_row, dtype=np.float64))))
+            np.ascontiguousarray(np.atleast_2d(np.asarray(arrays.body_angle_row, dtype=np.float64))),
+            np.ascontiguousarray(arrays.conn_loss_bodies, dtype=np.int64),
+            np.ascontiguousarray(arrays.conn_loss_speeds, dtype=np.float64),
+            np.ascontiguousarray(arrays.conn_loss_shares, dtype=np.float64))
 
 
 def _acting_on(bodies: np.ndarray, n_bodies: int) -> tuple[np.ndarray, np.ndarray]:
