@@ -68,7 +68,8 @@ SUPPORTED = (
     "speed drive (exact STEP speed profile, start angle) or torque drive with torque ripple, STEP-ramped; "
     "STEP-ramped load torque with load fluctuation (clock offset)",
     "induction-motor drive (extended Kloss or table curve; direct, star-delta, soft start, VFD); speed-dependent "
-    "load (power law or table); mesh losses (stage efficiency in the power-flow direction)",
+    "load (power law or table); losses of any compiled element with the loss hook (a mesh's stage efficiency in the "
+    "power-flow direction)",
     "a run that starts at t0 > 0 (the periodic steady state's period-by-period runs, sweep continuation)",
     "energy quadratures (input work with the transmission error's work, load work, damping loss, work on "
     "time-varying springs)",
