@@ -163,16 +163,17 @@ def deflection_rate(c, y, model, first, i_w0, w0):
 def loss_speeds(c, y, model, first, i_w0, w0):
     """A lossy element's pitch-line speeds (v_a, v_b), each ``sum k w_body`` over its side's terms in their order
     (its loss hook's geometry, packed: gearcli.model.parts.Connector.loss_speeds; a side without terms: 0)."""
-    lb, lk = model.loss_body, model.loss_speed
+    lb, lk = model.loss_body, model.loss_coef
+    m = lb.shape[1] // 2
     va = 0.0
     vb = 0.0
     for side in range(2):
         v = 0.0
         have = False
-        for k in range(lb.shape[2]):
-            b = lb[c, side, k]
+        for k in range(side * m, side * m + m):
+            b = lb[c, k]
             if b >= 0:
-                term = lk[c, side, k] * body_speed(y, b, first, i_w0, w0)
+                term = lk[c, k] * body_speed(y, b, first, i_w0, w0)
                 v = v + term if have else term
                 have = True
         if side == 0:
@@ -193,33 +194,35 @@ def side_losses(c, f, y, model, first, i_w0, w0):
 def sided(c, s, model):
     """Whether a lossy element puts a side force on its slot s (a share of f_a or f_b; packed from
     gearcli.model.parts.Connector.loss_share, (0, 0) for every slot of a lossless element)."""
-    return model.loss_share[c, s, 0] != 0.0 or model.loss_share[c, s, 1] != 0.0
+    i = model.loss_body.shape[1] + 2 * s
+    return model.loss_coef[c, i] != 0.0 or model.loss_coef[c, i + 1] != 0.0
 
 @jit
 def side_force(c, s, fa, fb, model):
     """The side force a lossy element puts on its slot s, as the generated Python forms it: f_a (a share of side a
     alone), f_b (of side b alone), or ``share_a f_a + share_b f_b`` (a slot on both sides: a planet mesh's
     carrier)."""
-    sa = model.loss_share[c, s, 0]
-    sb = model.loss_share[c, s, 1]
+    i = model.loss_body.shape[1] + 2 * s
+    sa = model.loss_coef[c, i]
+    sb = model.loss_coef[c, i + 1]
     if sa != 0.0 and sb != 0.0:
         return sa * fa + sb * fb
     return fa if sa != 0.0 else fb
 
 @jit
-def body_torque(i, model, fc, y, first, i_w0, w0):
+def body_torque(i, model, fc):
     """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
     the body's list of (connector, slot) pairs); a lossy element puts its side force on the slots of its sides
     (a mesh: f_a on its pinion, f_b on its gear; a planet mesh the carrier's share of both on the carrier)."""
     lev, ptr, pairs = model.levers, model.ptr, model.pairs
+    nc = model.kind.shape[0]
     x = 0.0
     for k in range(ptr[i], ptr[i + 1]):
         c = pairs[k, 0]
         s = pairs[k, 1]
         f = fc[c]
-        if sided(c, s, model):  # a lossy element's side force (its loss hook)
-            _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
-            f = side_force(c, s, fa, fb, model)
+        if pairs[k, 2] != 0:  # a lossy element's side force (sided), from its f_a and f_b (scene_rhs's loss loop)
+            f = side_force(c, s, fc[2 * nc + c], fc[3 * nc + c], model)
         term = -lev[c, s] * f
         x = x + term if k > ptr[i] else term
     return x
@@ -227,8 +230,8 @@ def body_torque(i, model, fc, y, first, i_w0, w0):
 @jit
 def scene_rhs(t, y, dy, model, th, fc):
     """dy = f(t, y) of the scene ``model`` (its own states: :func:`gearcli.engine.rhs.rhs` adds the variational
-    equations of an augmented state); ``th`` (n_bodies) and ``fc`` (2 n_conn: forces, then the transmission errors'
-    powers) are scratch."""
+    equations of an augmented state); ``th`` (n_bodies) and ``fc`` (4 n_conn: forces, the transmission errors'
+    powers, a lossy element's f_a, its f_b) are scratch."""
     kind, bodies, param, inertia, ipar = model.kind, model.bodies, model.param, model.inertia, model.ipar
     nc = kind.shape[0]
     nb = inertia.shape[0]
@@ -260,11 +263,13 @@ def scene_rhs(t, y, dy, model, th, fc):
     for c in range(nc):  # the elements' losses, after the damping (the generated sum's order)
         if conn_lossy(kind[c], param[c]):
             va, vb, fa, fb, _, _, _, _ = side_losses(c, fc[c], y, model, first, i_w0, w0)
+            fc[2 * nc + c] = fa  # the side forces body_torque puts on its slots
+            fc[3 * nc + c] = fb
             ql = va * (fa - fc[c]) - vb * (fb - fc[c])
             damp = damp + ql if have_damp else ql
             have_damp = True
     for i in range(first, nb):
-        x = body_torque(i, model, fc, y, first, i_w0, w0)
+        x = body_torque(i, model, fc)
         if i == 0 and not speed:
             x = x + tin
         if i == nb - 1 and load:
@@ -273,7 +278,7 @@ def scene_rhs(t, y, dy, model, th, fc):
     if i_th >= 0:
         dy[i_th] = w0
     if speed:
-        p_in = (-body_torque(0, model, fc, y, first, i_w0, w0) + inertia[0] * a0) * w0
+        p_in = (-body_torque(0, model, fc) + inertia[0] * a0) * w0
     else:
         p_in = tin * w0
     for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)

@@ -197,15 +197,14 @@ def jacobian(t, y, Jm, model, th, g, ag):
 def _speed_column(c, j, model, first, i_w0):
     """d v/dy_j of a lossy element's mean pitch-line speed v = (v_a + v_b) / 2: 0.5 k summed over the terms of both
     sides whose body's speed is y_j (a first, then b, as the generated Python; ``hit`` False: none is)."""
-    lb, lk = model.loss_body, model.loss_speed
+    lb, lk = model.loss_body, model.loss_coef
     out = 0.0
     hit = False
-    for side in range(2):
-        for k in range(lb.shape[2]):
-            b = lb[c, side, k]
-            if b >= first and j == i_w0 + b - first:
-                out = out + 0.5 * lk[c, side, k] if hit else 0.5 * lk[c, side, k]
-                hit = True
+    for k in range(lb.shape[1]):  # side a's terms, then side b's
+        b = lb[c, k]
+        if b >= first and j == i_w0 + b - first:
+            out = out + 0.5 * lk[c, k] if hit else 0.5 * lk[c, k]
+            hit = True
     return out, hit
 
 @jit
@@ -219,8 +218,9 @@ def _side_row(c, j, gj, a_coef, b_coef, model, first, i_w0):
 def _slot_row(c, s, j, gj, aa, ba, ab, bb, model, first, i_w0):
     """d/dy_j of the side force a lossy element puts on its slot s (assembly.side_force): f_a's, f_b's, or the
     shares of both."""
-    sa = model.loss_share[c, s, 0]
-    sb = model.loss_share[c, s, 1]
+    i = model.loss_body.shape[1] + 2 * s
+    sa = model.loss_coef[c, i]
+    sb = model.loss_coef[c, i + 1]
     if sa != 0.0 and sb != 0.0:
         return sa * _side_row(c, j, gj, aa, ba, model, first, i_w0) + sb * _side_row(c, j, gj, ab, bb, model, first,
                                                                                    i_w0)
@@ -232,17 +232,18 @@ def _slot_row(c, s, j, gj, aa, ba, ab, bb, model, first, i_w0):
 def _loss_row(c, j, gj, lf, lv, da, db, model, first, i_w0):
     """d(loss power)/dy_j: lf dF/dy_j + lv dv/dy_j + (f_a - f) dv_a/dy_j - (f_b - f) dv_b/dy_j, the sides' terms
     in their order (a pair mesh: (f_a - f) r_a [y_j = w_a] - (f_b - f) r_b [y_j = w_b])."""
-    lb, lk = model.loss_body, model.loss_speed
+    lb, lk = model.loss_body, model.loss_coef
+    m = lb.shape[1] // 2
     dv, hit = _speed_column(c, j, model, first, i_w0)
     x = lf * gj
     if hit:
         x = x + dv * lv
-    for k in range(lb.shape[2]):
-        b = lb[c, 0, k]
+    for k in range(m):
+        b = lb[c, k]
         if b >= first and j == i_w0 + b - first:
-            x = x + lk[c, 0, k] * da
-    for k in range(lb.shape[2]):
-        b = lb[c, 1, k]
+            x = x + lk[c, k] * da
+    for k in range(m, 2 * m):
+        b = lb[c, k]
         if b >= first and j == i_w0 + b - first:
-            x = x - lk[c, 1, k] * db
+            x = x - lk[c, k] * db
     return x
