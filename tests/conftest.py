@@ -138,6 +138,8 @@ SLOW = (
     "tests/engine/test_radau.py::test_compiled_radau_error_same_order_as_scipy[stiff_linear_mesh]",
     # two `gearcli engine build` processes; a whole compilation (minutes) wherever the cache is not built yet
     "tests/engine/test_engine_build.py::test_a_built_cache_is_reported_with_its_load_time",
+    # a whole compilation of the kernel with a test-only element in its dispatch (about a minute)
+    "tests/elements/test_loss_hook_compiled.py::test_the_lossy_coupling_runs_compiled_as_it_runs_in_python",
 )
 
 

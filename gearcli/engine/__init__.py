@@ -68,7 +68,8 @@ SUPPORTED = (
     "speed drive (exact STEP speed profile, start angle) or torque drive with torque ripple, STEP-ramped; "
     "STEP-ramped load torque with load fluctuation (clock offset)",
     "induction-motor drive (extended Kloss or table curve; direct, star-delta, soft start, VFD); speed-dependent "
-    "load (power law or table); mesh losses (stage efficiency in the power-flow direction)",
+    "load (power law or table); losses of any compiled element with the loss hook (a mesh's stage efficiency in the "
+    "power-flow direction)",
     "a run that starts at t0 > 0 (the periodic steady state's period-by-period runs, sweep continuation)",
     "energy quadratures (input work with the transmission error's work, load work, damping loss, work on "
     "time-varying springs)",
@@ -81,7 +82,8 @@ SUPPORTED = (
 _KNOWN_FIELDS = {"body_inertia", "conn_kind", "conn_bodies", "conn_levers", "conn_param", "body_tree",
                  "drive_kind", "drive_value", "drive_ramp_s", "drive_ripple", "drive_angle_rad", "load_value_Nm",
                  "load_ramp_s", "load_fluct", "load_clock_s", "n_states", "i_delta0", "i_omega0", "i_theta", "i_quad", "atol",
-                 "motor_row", "load_law", "body_angle_row"}
+                 "motor_row", "load_law", "body_angle_row", "i_quadratures", "conn_loss_bodies", "conn_loss_speeds",
+                 "conn_loss_shares"}
 
 
 def _known_params() -> dict[int, int]:

@@ -12,21 +12,17 @@ from __future__ import annotations
 import numpy as np
 
 from gearcli.engine.laws import (
-    I_ETA,
-    I_LKA,
-    I_LSA,
-    I_LSB,
-    I_LSC,
     conn_damped,
     conn_excited,
     conn_force,
+    conn_loss_factors,
+    conn_lossy,
     conn_phase_per_rad,
     conn_phased,
     conn_potential,
     conn_tv,
     input_motion,
     load_factor,
-    mesh_loss_factors,
     motor_torque,
     ramp,
     torque_fluctuation,
@@ -42,12 +38,15 @@ from gearcli.engine.packing import (
     FP_LOAD_RAMP,
     IP_DRIVE,
     IP_LAST_ANGLE,
-    IP_NTV,
+    IP_N_STATES,
+    IP_Q_DAMPING,
+    IP_Q_INPUT,
+    IP_Q_LOAD,
+    IP_Q_TV,
     IP_QUAD,
     IP_THETA,
     IP_W0,
 )
-from gearcli.model.elements import KIND_MESH, KIND_PLANET_MESH
 
 
 @jit
@@ -118,6 +117,9 @@ def angle_row(b, model, th, y):
 
 @jit
 def body_speed(y, b, first, i_w0, w0):
+    """Body b's speed: the prescribed w0 below ``first``, else its state; the free bodies' speeds are one
+    contiguous slice from ``i_w0`` (gearcli.model.layout.StateLayout.speeds and .omega: ``n_conn + b -
+    first_free``)."""
     if b < first:
         return w0
     return y[i_w0 + b - first]
@@ -133,70 +135,69 @@ def deflection_rate(c, y, model, first, i_w0, w0):
     return dd
 
 @jit
-def lossy(kind, P):
-    """A mesh that loses (1 - eta) of the power it transmits (a pair's, or a planet's sun or ring mesh)."""
-    return (kind == KIND_MESH or kind == KIND_PLANET_MESH) and 0.0 < P[I_ETA] < 1.0
+def loss_speeds(c, y, model, first, i_w0, w0):
+    """A lossy element's pitch-line speeds (v_a, v_b), each ``sum k w_body`` over its side's terms in their order
+    (its loss hook's geometry, packed: gearcli.model.parts.Connector.loss_speeds; a side without terms: 0)."""
+    lb, lk = model.loss_body, model.loss_coef
+    m = lb.shape[1] // 2
+    va = 0.0
+    vb = 0.0
+    for side in range(2):
+        v = 0.0
+        have = False
+        for k in range(side * m, side * m + m):
+            b = lb[c, k]
+            if b >= 0:
+                term = lk[c, k] * body_speed(y, b, first, i_w0, w0)
+                v = v + term if have else term
+                have = True
+        if side == 0:
+            va = v
+        else:
+            vb = v
+    return va, vb
 
 @jit
 def side_losses(c, f, y, model, first, i_w0, w0):
-    """A lossy mesh's forces on its pinion and gear side and their partials (mesh.loss_factors), from
-    v_a = r_a w_a and v_b = r_b w_b (levers (r_a, -r_b)); a planet mesh's from its relative pitch-line speeds
-    v_a = l_a w_a + kappa_a l_c w_c, v_b = -(l_b w_b + kappa_b l_c w_c) (mesh.planet_loss_slots)."""
-    bodies, lev = model.bodies, model.levers
-    P = model.param[c]
-    if P[I_LSB] > 0.0:
-        sa, sb, sc, ka = int(P[I_LSA]), int(P[I_LSB]), int(P[I_LSC]), P[I_LKA]
-        vb = (-lev[c, sb]) * body_speed(y, bodies[c, sb], first, i_w0, w0)
-        va = 0.0
-        if sa >= 0:
-            va = lev[c, sa] * body_speed(y, bodies[c, sa], first, i_w0, w0)
-        if sc >= 0:
-            wc = body_speed(y, bodies[c, sc], first, i_w0, w0)
-            va = va + (ka * lev[c, sc]) * wc if sa >= 0 else (ka * lev[c, sc]) * wc
-            vb = vb + (-(1.0 - ka) * lev[c, sc]) * wc
-    else:
-        va = lev[c, 0] * body_speed(y, bodies[c, 0], first, i_w0, w0)
-        vb = -lev[c, 1] * body_speed(y, bodies[c, 1], first, i_w0, w0)
-    fa, fb, aa, ba, ab, bb = mesh_loss_factors(P, f, va, vb)
+    """A lossy element's pitch-line speeds, its forces on its two sides and their partials (its loss hook's
+    ``loss_factors``, dispatched by kind)."""
+    va, vb = loss_speeds(c, y, model, first, i_w0, w0)
+    fa, fb, aa, ba, ab, bb = conn_loss_factors(model.kind[c], model.param[c], f, va, vb)
     return va, vb, fa, fb, aa, ba, ab, bb
 
 @jit
-def side_of(c, s, model):
-    """Which side force a lossy mesh puts on its slot s: 0 (f_a), 1 (f_b), 2 (a planet mesh's carrier:
-    kappa_a f_a + kappa_b f_b), -1 (the law's f)."""
-    P = model.param[c]
-    if P[I_LSB] > 0.0:
-        if s == int(P[I_LSA]):
-            return 0
-        if s == int(P[I_LSB]):
-            return 1
-        if s == int(P[I_LSC]):
-            return 2
-        return -1
-    return s if s < 2 else -1
+def sided(c, s, model):
+    """Whether a lossy element puts a side force on its slot s (a share of f_a or f_b; packed from
+    gearcli.model.parts.Connector.loss_share, (0, 0) for every slot of a lossless element)."""
+    i = model.loss_body.shape[1] + 2 * s
+    return model.loss_coef[c, i] != 0.0 or model.loss_coef[c, i + 1] != 0.0
 
 @jit
-def body_torque(i, model, fc, y, first, i_w0, w0):
+def side_force(c, s, fa, fb, model):
+    """The side force a lossy element puts on its slot s, as the generated Python forms it: f_a (a share of side a
+    alone), f_b (of side b alone), or ``share_a f_a + share_b f_b`` (a slot on both sides: a planet mesh's
+    carrier)."""
+    i = model.loss_body.shape[1] + 2 * s
+    sa = model.loss_coef[c, i]
+    sb = model.loss_coef[c, i + 1]
+    if sa != 0.0 and sb != 0.0:
+        return sa * fa + sb * fb
+    return fa if sa != 0.0 else fb
+
+@jit
+def body_torque(i, model, fc):
     """The connectors' torque on body i, -s_j r_j F_c summed in connector order (scatter by index, through
-    the body's list of (connector, slot) pairs); a lossy mesh puts f_a on its pinion and f_b on its gear (a
-    planet mesh: by its slots, the carrier's share of both on the carrier)."""
+    the body's list of (connector, slot) pairs); a lossy element puts its side force on the slots of its sides
+    (a mesh: f_a on its pinion, f_b on its gear; a planet mesh the carrier's share of both on the carrier)."""
     lev, ptr, pairs = model.levers, model.ptr, model.pairs
+    nc = model.kind.shape[0]
     x = 0.0
     for k in range(ptr[i], ptr[i + 1]):
         c = pairs[k, 0]
         s = pairs[k, 1]
         f = fc[c]
-        if lossy(model.kind[c], model.param[c]):
-            side = side_of(c, s, model)
-            if side >= 0:
-                _, _, fa, fb, _, _, _, _ = side_losses(c, f, y, model, first, i_w0, w0)
-                if side == 0:
-                    f = fa
-                elif side == 1:
-                    f = fb
-                else:
-                    ka = model.param[c][I_LKA]
-                    f = ka * fa + (1.0 - ka) * fb
+        if pairs[k, 2] != 0:  # a lossy element's side force (sided), from its f_a and f_b (scene_rhs's loss loop)
+            f = side_force(c, s, fc[2 * nc + c], fc[3 * nc + c], model)
         term = -lev[c, s] * f
         x = x + term if k > ptr[i] else term
     return x
@@ -204,14 +205,13 @@ def body_torque(i, model, fc, y, first, i_w0, w0):
 @jit
 def scene_rhs(t, y, dy, model, th, fc):
     """dy = f(t, y) of the scene ``model`` (its own states: :func:`gearcli.engine.rhs.rhs` adds the variational
-    equations of an augmented state); ``th`` (n_bodies) and ``fc`` (2 n_conn: forces, then the transmission errors'
-    powers) are scratch."""
+    equations of an augmented state); ``th`` (n_bodies) and ``fc`` (4 n_conn: forces, the transmission errors'
+    powers, a lossy element's f_a, its f_b) are scratch."""
     kind, bodies, param, inertia, ipar = model.kind, model.bodies, model.param, model.inertia, model.ipar
     nc = kind.shape[0]
     nb = inertia.shape[0]
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
-    iq = ipar[IP_QUAD]
     speed, w0, a0, tin, _, load, tl, _ = prologue(t, y, model, th)
     first = 1 if speed else 0
     damp = 0.0
@@ -235,14 +235,16 @@ def scene_rhs(t, y, dy, model, th, fc):
         if tv:
             tvp = tvp + u if have_tv else u
             have_tv = True
-    for c in range(nc):  # the meshes' losses, after the damping (the generated sum's order)
-        if lossy(kind[c], param[c]):
+    for c in range(nc):  # the elements' losses, after the damping (the generated sum's order)
+        if conn_lossy(kind[c], param[c]):
             va, vb, fa, fb, _, _, _, _ = side_losses(c, fc[c], y, model, first, i_w0, w0)
+            fc[2 * nc + c] = fa  # the side forces body_torque puts on its slots
+            fc[3 * nc + c] = fb
             ql = va * (fa - fc[c]) - vb * (fb - fc[c])
             damp = damp + ql if have_damp else ql
             have_damp = True
     for i in range(first, nb):
-        x = body_torque(i, model, fc, y, first, i_w0, w0)
+        x = body_torque(i, model, fc)
         if i == 0 and not speed:
             x = x + tin
         if i == nb - 1 and load:
@@ -251,23 +253,22 @@ def scene_rhs(t, y, dy, model, th, fc):
     if i_th >= 0:
         dy[i_th] = w0
     if speed:
-        p_in = (-body_torque(0, model, fc, y, first, i_w0, w0) + inertia[0] * a0) * w0
+        p_in = (-body_torque(0, model, fc) + inertia[0] * a0) * w0
     else:
         p_in = tin * w0
     for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)
         if conn_excited(kind[c], param[c]):
             p_in = p_in + fc[nc + c]
-    dy[iq] = p_in
-    dy[iq + 1] = tl * body_speed(y, nb - 1, first, i_w0, w0) if load else 0.0
-    dy[iq + 2] = damp
-    if ipar[IP_NTV] > 0:
-        dy[iq + 3] = tvp
+    dy[ipar[IP_Q_INPUT]] = p_in
+    dy[ipar[IP_Q_LOAD]] = tl * body_speed(y, nb - 1, first, i_w0, w0) if load else 0.0
+    dy[ipar[IP_Q_DAMPING]] = damp
+    if ipar[IP_Q_TV] >= 0:
+        dy[ipar[IP_Q_TV]] = tvp
 
 @jit
 def n_model_states(model):
     """The scene's own state count (an augmented state carries the variational equations after it)."""
-    ipar = model.ipar
-    return ipar[IP_QUAD] + 3 + (1 if ipar[IP_NTV] > 0 else 0)
+    return model.ipar[IP_N_STATES]
 
 @jit
 def n_dynamic(model):
@@ -276,8 +277,9 @@ def n_dynamic(model):
     return ipar[IP_THETA] if ipar[IP_THETA] >= 0 else ipar[IP_QUAD]
 
 @jit
-def ipar_quad(model):
-    return model.ipar[IP_QUAD]
+def quadrature(model, ip):
+    """The state of the quadrature whose ``ipar`` entry is ``ip`` (``IP_Q_*``; -1: none)."""
+    return model.ipar[ip]
 
 @jit_alloc
 def stored_energy(t, y, model):
@@ -296,6 +298,6 @@ def stored_energy(t, y, model):
         if not conn_tv(kind[c], param[c]):  # a transmission error's mesh at its phase
             phi = conn_phase_per_rad(kind[c], param[c]) * th[bodies[c, 0]] if conn_phased(kind[c], param[c]) else 0.0
             total += conn_potential(kind[c], param[c], y[c], phi)
-    if ipar[IP_NTV] > 0:
-        total += y[ipar[IP_QUAD] + 3]
+    if ipar[IP_Q_TV] >= 0:
+        total += y[ipar[IP_Q_TV]]
     return total

@@ -1,7 +1,8 @@
 """The compiled kernel's element dispatch, generated from the element registry.
 
 numba cannot look a function up in a dict at run time, so the kernel calls ``conn_force(kind, ...)`` and
-friends, each an ``if kind == k`` chain over the element types registered with ``compiled=True``
+friends (and the loss hook's ``conn_lossy``, ``conn_loss_factors``: a kind without the hook falls through to
+"never loses"), each an ``if kind == k`` chain over the element types registered with ``compiled=True``
 (:func:`gearcli.model.elements.compiled_types`), calling that element's own law compiled from its module
 (:func:`jit_module`, never rewritten). The chain's source is generated here from the registry and written
 as a real file into the kernel's cache directory (:func:`gearcli.engine.cache_dir`, whose key hashes the
@@ -36,6 +37,12 @@ FUNCTIONS = (
     ("conn_excited", "excited", "P"),
     ("conn_phase_per_rad", "phase_per_rad", "P"),
 )
+#: (kernel name, hook function, arguments after ``kind``, what a kind without the hook returns): the optional loss
+#: hook (gearcli.model.elements.LOSS_HOOK) the kernel dispatches; an element without it never loses
+HOOK_FUNCTIONS = (
+    ("conn_lossy", "lossy", "P", "False"),
+    ("conn_loss_factors", "loss_factors", "P, f, va, vb", "f, f, 1.0, 0.0, 1.0, 0.0"),
+)
 
 
 def jit_module(mod: types.ModuleType) -> dict:
@@ -64,6 +71,12 @@ def source(elements: tuple[ElementType, ...]) -> str:
         for et in elements[:-1]:
             lines += [f"    if kind == {et.kind}:", f"        return _{et.name}_{fn}({args})"]
         lines += [f"    return _{elements[-1].name}_{fn}({args})", ""]
+    for name, fn, args, default in HOOK_FUNCTIONS:
+        lines += ["", "@jit", f"def {name}(kind, {args}):"]
+        for et in elements:
+            if hasattr(et.law, fn):
+                lines += [f"    if kind == {et.kind}:", f"        return _{et.name}_{fn}({args})"]
+        lines += [f"    return {default}", ""]
     lines += ["", "@jit", "def conn_n_channels(kind):"]
     for et in elements:
         lines += [f"    if kind == {et.kind}:", f"        return {len(et.law.CHANNELS)}"]

@@ -10,8 +10,9 @@ from __future__ import annotations
 import numpy as np
 
 from gearcli.engine import status as st
-from gearcli.engine.assembly import ipar_quad, stored_energy
+from gearcli.engine.assembly import quadrature, stored_energy
 from gearcli.engine.numba_cache import jit, jit_alloc
+from gearcli.engine.packing import IP_Q_INPUT, IP_Q_LOAD
 
 STATUS_FINISHED, STATUS_BUDGET, STATUS_NONFINITE = st.FINISHED, st.BUDGET, st.NONFINITE
 STATUS_ENERGY, STATUS_PROJECTED, STATUS_INTERRUPTED = st.ENERGY, st.PROJECTED, st.INTERRUPTED
@@ -73,8 +74,7 @@ def guards(t, y, nfev, njev, nlu, steps, finished, max_nfev, watch_every, wpar, 
             if frac <= 0 or work / frac > wpar[WP_LIMIT] * wpar[WP_CAP]:
                 return STATUS_PROJECTED
     if watch_every > 0 and (steps % watch_every == 0 or finished):
-        q = ipar_quad(model)
-        work = y[q] - y[q + 1]
+        work = y[quadrature(model, IP_Q_INPUT)] - y[quadrature(model, IP_Q_LOAD)]
         watched[0] = (stored_energy(t, y, model) - wpar[WP_E0]) - (work - wpar[WP_W0])
         watched[1] = max(wpar[WP_SCALE], abs(work - wpar[WP_W0]))
         if watched[0] > wpar[WP_MARGIN] * watched[1]:

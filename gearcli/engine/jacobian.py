@@ -9,28 +9,24 @@ import numpy as np
 from gearcli.engine.assembly import (
     body_speed,
     deflection_rate,
-    lossy,
     n_dynamic,
     n_model_states,
     prologue,
     side_losses,
-    side_of,
+    sided,
 )
 from gearcli.engine.laws import (
-    I_LKA,
-    I_LSA,
-    I_LSB,
-    I_LSC,
     conn_damped,
     conn_excited,
     conn_force,
+    conn_lossy,
     conn_phase_per_rad,
     conn_phased,
     conn_power_gradient,
     conn_tv,
 )
 from gearcli.engine.numba_cache import jit, jit_alloc
-from gearcli.engine.packing import IP_DRIVE, IP_QUAD, IP_THETA, IP_W0
+from gearcli.engine.packing import IP_DRIVE, IP_Q_DAMPING, IP_Q_INPUT, IP_Q_LOAD, IP_Q_TV, IP_THETA, IP_W0
 
 
 @jit
@@ -116,7 +112,7 @@ def jacobian(t, y, Jm, model, th, g, ag):
     n = y.size
     i_w0 = ipar[IP_W0]
     i_th = ipar[IP_THETA]
-    iq = ipar[IP_QUAD]
+    q_in, q_load, q_damp, q_tv = ipar[IP_Q_INPUT], ipar[IP_Q_LOAD], ipar[IP_Q_DAMPING], ipar[IP_Q_TV]
     speed, w0, a0, tin, dtin, load, tl, dtl = prologue(t, y, model, th)
     first = 1 if speed else 0
     Jm[:, :] = 0.0
@@ -133,61 +129,61 @@ def jacobian(t, y, Jm, model, th, g, ag):
             if bodies[c, s] >= first:
                 Jm[c, i_w0 + bodies[c, s] - first] = lev[c, s]
         _gradient(c, kd, kv, kt, kw, model, first, g, ag)
-        loses = lossy(kind[c], P)
+        loses = conn_lossy(kind[c], P)
         va = vb = fa = fb = aa = ba = ab = bb = 0.0
         if loses:
             f = conn_force(kind[c], P, y[c], dd, phi, wphi)[0]
             va, vb, fa, fb, aa, ba, ab, bb = side_losses(c, f, y, model, first, i_w0, w0)
         for s in range(bodies.shape[1]):  # body j takes -s_j r_j F: scattered by index
             b = bodies[c, s]
-            side = side_of(c, s, model) if loses else -1  # a lossy mesh's side: A dF/dy + B dv/dy
+            side = loses and sided(c, s, model)  # a lossy element's side force: A dF/dy + B dv/dy
             if b >= first:
                 k = -lev[c, s] / inertia[b]
                 for j in range(n):
-                    Jm[i_w0 + b - first, j] += k * (_slot_row(c, side, j, g[j], aa, ba, ab, bb, model, first, i_w0)
-                                                    if side >= 0 else g[j])
+                    Jm[i_w0 + b - first, j] += k * (_slot_row(c, s, j, g[j], aa, ba, ab, bb, model, first, i_w0)
+                                                    if side else g[j])
             elif b == 0 and speed:  # the drive's power: its reaction on body 0, times w0
                 k = lev[c, s] * w0
                 for j in range(n):
-                    Jm[iq, j] += k * (_slot_row(c, side, j, g[j], aa, ba, ab, bb, model, first, i_w0)
-                                      if side >= 0 else g[j])
+                    Jm[q_in, j] += k * (_slot_row(c, s, j, g[j], aa, ba, ab, bb, model, first, i_w0)
+                                        if side else g[j])
         if loses:  # the loss power va (fa - f) - vb (fb - f): lf dF/dy + lv dv/dy + (fa - f) r_a, -(fb - f) r_b
             f = conn_force(kind[c], P, y[c], dd, phi, wphi)[0]
             lf = va * (aa - 1.0) - vb * (ab - 1.0)
             lv = va * ba - vb * bb
             for j in range(n):
-                Jm[iq + 2, j] += _loss_row(c, j, g[j], lf, lv, fa - f, fb - f, model, first, i_w0)
+                Jm[q_damp, j] += _loss_row(c, j, g[j], lf, lv, fa - f, fb - f, model, first, i_w0)
         if conn_damped(kind[c], P) or tv or ex:
             qd, qv, qt, qw, ud, uv, ut, uw, ed, ev, et, ew = conn_power_gradient(kind[c], P, y[c], dd, phi, wphi)
             if conn_damped(kind[c], P):
                 _gradient(c, qd, qv, qt, qw, model, first, g, ag)
                 for j in range(n):
-                    Jm[iq + 2, j] += g[j]
+                    Jm[q_damp, j] += g[j]
             if tv:
                 _gradient(c, ud, uv, ut, uw, model, first, g, ag)
                 for j in range(n):
-                    Jm[iq + 3, j] += g[j]
+                    Jm[q_tv, j] += g[j]
             if ex:  # the transmission error's power is part of the input work
                 _gradient(c, ed, ev, et, ew, model, first, g, ag)
                 for j in range(n):
-                    Jm[iq, j] += g[j]
+                    Jm[q_in, j] += g[j]
     if i_th >= 0:
         Jm[i_th, i_w0] = 1.0
     if ipar[IP_DRIVE] == 2:  # a motor: P_in = T_m(w0) w0, T_m'(w0) on body 0
-        Jm[iq, i_w0] += tin + dtin * w0
+        Jm[q_in, i_w0] += tin + dtin * w0
         Jm[i_w0, i_w0] += (1.0 / inertia[0]) * dtin
     elif not speed:
-        Jm[iq, i_w0] += tin
+        Jm[q_in, i_w0] += tin
         if dtin != 0.0 and i_th >= 0:  # a rippled drive torque depends on the input angle
             Jm[i_w0, i_th] += dtin * (1.0 / inertia[0])
-            Jm[iq, i_th] += dtin * w0
+            Jm[q_in, i_th] += dtin * w0
     if load:
-        last = i_w0 + nb - 1 - first
+        last = i_w0 + nb - 1 - first  # its speed (the speeds: StateLayout's one contiguous slice)
         if model.load_law.size > 0:  # a speed-dependent load
-            Jm[iq + 1, last] = tl + dtl * body_speed(y, nb - 1, first, i_w0, w0)
+            Jm[q_load, last] = tl + dtl * body_speed(y, nb - 1, first, i_w0, w0)
             Jm[last, last] += (-1.0 / inertia[nb - 1]) * dtl
         else:
-            Jm[iq + 1, last] = tl
+            Jm[q_load, last] = tl
     ns = n_model_states(model)
     if n > ns:  # an augmented state: the variational equations' blocks (block diagonal, see variational_rhs)
         d = n_dynamic(model)
@@ -199,83 +195,55 @@ def jacobian(t, y, Jm, model, th, g, ag):
 
 @jit
 def _speed_column(c, j, model, first, i_w0):
-    """d v/dy_j of a mesh's mean pitch-line speed v = (r_a w_a + r_b w_b) / 2 (a planet mesh's (v_a + v_b) / 2)
-    (0: y_j is no speed of its bodies)."""
-    bodies, lev = model.bodies, model.levers
-    P = model.param[c]
+    """d v/dy_j of a lossy element's mean pitch-line speed v = (v_a + v_b) / 2: 0.5 k summed over the terms of both
+    sides whose body's speed is y_j (a first, then b, as the generated Python; ``hit`` False: none is)."""
+    lb, lk = model.loss_body, model.loss_coef
     out = 0.0
     hit = False
-    if P[I_LSB] > 0.0:
-        for s in range(bodies.shape[1]):
-            b = bodies[c, s]
-            if b >= first and j == i_w0 + b - first:
-                r = _planet_va(c, s, model) + _planet_vb(c, s, model)
-                out = out + 0.5 * r if hit else 0.5 * r
-                hit = True
-        return out, hit
-    for s in range(2):
-        b = bodies[c, s]
+    for k in range(lb.shape[1]):  # side a's terms, then side b's
+        b = lb[c, k]
         if b >= first and j == i_w0 + b - first:
-            r = lev[c, s] if s == 0 else -lev[c, s]
-            out = out + 0.5 * r if hit else 0.5 * r
+            out = out + 0.5 * lk[c, k] if hit else 0.5 * lk[c, k]
             hit = True
     return out, hit
 
 @jit
-def _planet_va(c, s, model):
-    """d v_a / d w of a planet mesh's slot s (module text of side_losses)."""
-    P, lev = model.param[c], model.levers
-    if s == int(P[I_LSA]):
-        return lev[c, s]
-    if s == int(P[I_LSC]):
-        return P[I_LKA] * lev[c, s]
-    return 0.0
-
-@jit
-def _planet_vb(c, s, model):
-    """d v_b / d w of a planet mesh's slot s."""
-    P, lev = model.param[c], model.levers
-    if s == int(P[I_LSB]):
-        return -lev[c, s]
-    if s == int(P[I_LSC]):
-        return -(1.0 - P[I_LKA]) * lev[c, s]
-    return 0.0
-
-@jit
-def _side_row(c, s, j, gj, a_coef, b_coef, model, first, i_w0):
+def _side_row(c, j, gj, a_coef, b_coef, model, first, i_w0):
     """d(f_side)/dy_j = A dF/dy_j + B dv/dy_j, in the generated expression's order."""
     dv, hit = _speed_column(c, j, model, first, i_w0)
     x = a_coef * gj
     return x + dv * b_coef if hit else x
 
 @jit
-def _slot_row(c, side, j, gj, aa, ba, ab, bb, model, first, i_w0):
-    """d/dy_j of the side force ``side`` (side_of) of a lossy mesh: f_a's, f_b's, or the carrier's share of both."""
-    if side == 0:
-        return _side_row(c, 0, j, gj, aa, ba, model, first, i_w0)
-    if side == 1:
-        return _side_row(c, 1, j, gj, ab, bb, model, first, i_w0)
-    ka = model.param[c][I_LKA]
-    return ka * _side_row(c, 0, j, gj, aa, ba, model, first, i_w0) + (1.0 - ka) * _side_row(
-        c, 1, j, gj, ab, bb, model, first, i_w0)
+def _slot_row(c, s, j, gj, aa, ba, ab, bb, model, first, i_w0):
+    """d/dy_j of the side force a lossy element puts on its slot s (assembly.side_force): f_a's, f_b's, or the
+    shares of both."""
+    i = model.loss_body.shape[1] + 2 * s
+    sa = model.loss_coef[c, i]
+    sb = model.loss_coef[c, i + 1]
+    if sa != 0.0 and sb != 0.0:
+        return sa * _side_row(c, j, gj, aa, ba, model, first, i_w0) + sb * _side_row(c, j, gj, ab, bb, model, first,
+                                                                                   i_w0)
+    if sa != 0.0:
+        return _side_row(c, j, gj, aa, ba, model, first, i_w0)
+    return _side_row(c, j, gj, ab, bb, model, first, i_w0)
 
 @jit
 def _loss_row(c, j, gj, lf, lv, da, db, model, first, i_w0):
-    """d(loss power)/dy_j: lf dF/dy_j + lv dv/dy_j + (f_a - f) dv_a/dy_j - (f_b - f) dv_b/dy_j (a pair:
-    (f_a - f) r_a [y_j = w_a] - (f_b - f) r_b [y_j = w_b])."""
-    bodies, lev = model.bodies, model.levers
+    """d(loss power)/dy_j: lf dF/dy_j + lv dv/dy_j + (f_a - f) dv_a/dy_j - (f_b - f) dv_b/dy_j, the sides' terms
+    in their order (a pair mesh: (f_a - f) r_a [y_j = w_a] - (f_b - f) r_b [y_j = w_b])."""
+    lb, lk = model.loss_body, model.loss_coef
+    m = lb.shape[1] // 2
     dv, hit = _speed_column(c, j, model, first, i_w0)
     x = lf * gj
     if hit:
         x = x + dv * lv
-    if model.param[c][I_LSB] > 0.0:
-        for s in range(bodies.shape[1]):
-            b = bodies[c, s]
-            if b >= first and j == i_w0 + b - first:
-                x = x + _planet_va(c, s, model) * da - _planet_vb(c, s, model) * db
-        return x
-    if bodies[c, 0] >= first and j == i_w0 + bodies[c, 0] - first:
-        x = x + lev[c, 0] * da
-    if bodies[c, 1] >= first and j == i_w0 + bodies[c, 1] - first:
-        x = x + lev[c, 1] * db  # -(f_b - f) r_b, lever -r_b
+    for k in range(m):
+        b = lb[c, k]
+        if b >= first and j == i_w0 + b - first:
+            x = x + lk[c, k] * da
+    for k in range(m, 2 * m):
+        b = lb[c, k]
+        if b >= first and j == i_w0 + b - first:
+            x = x - lk[c, k] * db
     return x

@@ -56,7 +56,7 @@ def rk45(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tra
 def evaluate(model, t, y):
     """One right-hand side evaluation (tests, benchmarks)."""
     dy = np.empty(y.size)
-    rhs(t, y, dy, model, np.zeros(model.inertia.shape[0]), np.zeros(2 * model.kind.shape[0]))
+    rhs(t, y, dy, model, np.zeros(model.inertia.shape[0]), np.zeros(4 * model.kind.shape[0]))
     return dy
 
 @jit_alloc
@@ -64,7 +64,7 @@ def evaluate_many(model, t, y, times):
     """``times`` evaluations at one point (the benchmark's cost of one compiled evaluation)."""
     dy = np.empty(y.size)
     th = np.zeros(model.inertia.shape[0])
-    fc = np.zeros(2 * model.kind.shape[0])
+    fc = np.zeros(4 * model.kind.shape[0])
     acc = 0.0
     for _ in range(times):
         rhs(t, y, dy, model, th, fc)

@@ -1,7 +1,7 @@
 """The element laws as the kernel calls them: the dispatch by kind generated from the registry
-(:mod:`gearcli.engine.dispatch`), the drive's and the load's laws (:mod:`gearcli.model.elements.torque`,
-:mod:`gearcli.model.elements.machine`, the STEP profiles of :mod:`gearcli.model.elements.profile`), compiled
-from their own modules, never rewritten here.
+(:mod:`gearcli.engine.dispatch`; the loss hook's too), the drive's and the load's laws
+(:mod:`gearcli.model.elements.torque`, :mod:`gearcli.model.elements.machine`, the STEP profiles of
+:mod:`gearcli.model.elements.profile`), compiled from their own modules, never rewritten here.
 
 Importing this module builds the dispatch into the checked cache directory this process loads from.
 """
@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from gearcli.engine import dispatch as _dispatch
 from gearcli.model.elements import machine as _machine_mod
-from gearcli.model.elements import mesh as _mesh_mod
 from gearcli.model.elements import profile as _profile_mod
 from gearcli.model.elements import torque as _torque_mod
 
@@ -26,6 +25,4 @@ _MACHINE = _dispatch.jit_module(_machine_mod)  # the motor's curve and start, th
 motor_torque, load_factor = _MACHINE["motor_torque"], _MACHINE["load_factor"]
 _PROFILE = _dispatch.jit_module(_profile_mod)  # the drive's and the load's STEP profiles
 ramp, input_motion = _PROFILE["ramp"], _PROFILE["input_motion"]
-mesh_loss_factors = _D._mesh_loss_factors  # a lossy mesh's two side forces (the registry compiled the mesh law)
-I_ETA = _mesh_mod.I_ETA
-I_LSA, I_LSB, I_LSC, I_LKA = _mesh_mod.I_LSA, _mesh_mod.I_LSB, _mesh_mod.I_LSC, _mesh_mod.I_LKA
+conn_lossy, conn_loss_factors = _D.conn_lossy, _D.conn_loss_factors  # the loss hook (an element's two side forces)

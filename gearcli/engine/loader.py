@@ -329,10 +329,11 @@ def _tiny_model():
     levers = np.zeros((2, elements.MAX_BODIES))
     levers[:, :2] = ((0.1, -0.2), (1.0, -1.0))
     return Model(np.array([elements.KIND_MESH, elements.KIND_SPRING], dtype=np.int64), bodies, levers, param,
-                 np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0], dtype=np.int64),
+                 np.array([1.0, 2.0, 3.0]), np.array([0, 2, -1, 4, 0, 0, 7, 4, 5, 6, -1], dtype=np.int64),
                  np.array([10.0, 0.01, 5.0, 0.01, 0.0, 0.0]), np.array([0.01, 2.0]), np.array([0.01, 5.0]),
                  np.array([-1, 0, 1], dtype=np.int64), *_acting_on(bodies, 3), np.zeros(machine.M_TAB),
-                 np.zeros(machine.L_TAB), np.zeros((0, 0)))
+                 np.zeros(machine.L_TAB), np.zeros((0, 0)), np.full((2, 2 * elements.MAX_BODIES), -1, dtype=np.int64),
+                 np.zeros((2, 4 * elements.MAX_BODIES)))
 
 
 def _tiny_args() -> tuple:

@@ -127,7 +127,7 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
     nb = model.inertia.shape[0]
     nc = model.kind.shape[0]
     th = np.zeros(nb)
-    fc = np.zeros(2 * nc)
+    fc = np.zeros(4 * nc)
     y = y0.copy()
     f = np.empty(n)
     f_new = np.empty(n)

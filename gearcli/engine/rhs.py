@@ -15,7 +15,7 @@ from gearcli.engine.numba_cache import jit, jit_alloc
 @jit
 def rhs(t, y, dy, model, th, fc):
     """dy = f(t, y) of the scene ``model``, the variational equations included when ``y`` carries them; ``th``
-    (n_bodies) and ``fc`` (2 n_conn: forces, then the transmission errors' powers) are scratch."""
+    (n_bodies) and ``fc`` (4 n_conn: assembly.scene_rhs) are scratch."""
     scene_rhs(t, y, dy, model, th, fc)
     if y.size > n_model_states(model):
         variational_rhs(t, y, dy, model, th)

@@ -146,7 +146,7 @@ def rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
     nb = model.inertia.shape[0]
     nc = model.kind.shape[0]
     th = np.zeros(nb)
-    fc = np.zeros(2 * nc)
+    fc = np.zeros(4 * nc)
     K = np.zeros((s_n + 1 + n_extra, n))
     n_dense = tab.dense.shape[0] + 3 if tab.kind != KIND_RK45 else tab.dense.shape[1]
     F = np.zeros((n_dense, n))

@@ -196,6 +196,11 @@ class ModelArrays:
     i_theta: int  # -1 when there is no angle state
     i_quad: int
     atol: np.ndarray  # float64[n_states] at the scene's rtol (quadratures excluded: 1e20)
+    i_quadratures: np.ndarray  # int64[4]: the state of each of layout.QUADRATURES (StateLayout.kernel_quadratures), -1 none
+    # a lossy element's loss geometry (its loss hook, Connector.loss_speeds / loss_share; a lossless one: -1 / 0):
+    conn_loss_bodies: np.ndarray  # int64[nc, 2, MAX_BODIES]: the bodies whose speeds make v_a (row 0) and v_b (row 1)
+    conn_loss_speeds: np.ndarray  # float64[nc, 2, MAX_BODIES]: their coefficients, v = sum k w_body
+    conn_loss_shares: np.ndarray  # float64[nc, MAX_BODIES, 2]: per slot, its shares of f_a and of f_b
     # float64[N, N + nc + 1]: Layout.angle_rows (body angles, deflections, constant); empty (0, 0) for none
     body_angle_row: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
@@ -476,10 +481,19 @@ class Layout:
         param = np.zeros((nc, N_PARAM))
         bodies = np.full((nc, MAX_BODIES), -1, dtype=np.int64)
         levers = np.zeros((nc, MAX_BODIES))
+        loss_bodies = np.full((nc, 2, MAX_BODIES), -1, dtype=np.int64)
+        loss_speeds = np.zeros((nc, 2, MAX_BODIES))
+        loss_shares = np.zeros((nc, MAX_BODIES, 2))
         for c, x in enumerate(conns):
             param[c] = x.params + (0.0,) * (N_PARAM - len(x.params))
             bodies[c, :len(x.bodies)] = x.bodies
             levers[c, :len(x.bodies)] = x.levers
+            if x.lossy:  # its loss hook's geometry, as the generated Python reads it
+                for side, terms in enumerate(x.loss_speeds):
+                    for k, (body, coef) in enumerate(terms):
+                        loss_bodies[c, side, k], loss_speeds[c, side, k] = body, coef
+                for j in range(len(x.bodies)):
+                    loss_shares[c, j] = x.loss_share(j)
         drive = self.drive
         i_omega0, i_theta, i_quad = self.state.kernel_offsets  # the compiled kernel's ipar (gearcli.engine.pack)
         return ModelArrays(
@@ -494,4 +508,6 @@ class Layout:
             load_fluct=np.array(self.fluctuation, float).reshape(-1, 2), load_clock_s=float(self.load.clock_s),
             motor_row=np.array(self.motor_row, float), load_law=np.array(self.load_law, float),
             n_states=self.state.n_states, i_delta0=self.state.deflections.start, i_omega0=i_omega0, i_theta=i_theta,
-            i_quad=i_quad, atol=np.asarray(atol, float))
+            i_quad=i_quad, atol=np.asarray(atol, float),
+            i_quadratures=np.array(self.state.kernel_quadratures, dtype=np.int64), conn_loss_bodies=loss_bodies,
+            conn_loss_speeds=loss_speeds, conn_loss_shares=loss_shares)

@@ -2,7 +2,7 @@
 
 ``y = [deflections (one per connector) | speeds (one per free body) | input angle (a torque drive that needs
 angles) | quadratures (the energy integrals, :data:`QUADRATURES`)]``. The generated Python, the compiled
-kernel (through ``ipar``: the first speed, the angle, the first quadrature), the outputs, the energy guard,
+kernel (through ``ipar``: the first speed, the angle, each quadrature), the outputs, the energy guard,
 the solvers' tolerances, the periodic steady state and the shooting's variational block ask a
 :class:`StateLayout` for their slices and indices; none counts them again.
 """
@@ -104,6 +104,12 @@ class StateLayout:
     def kernel_offsets(self) -> tuple[int, int, int]:
         """``ipar``'s offsets for the compiled kernel: (first speed, input angle or -1, first quadrature)."""
         return self.n_conn, -1 if self.i_theta is None else self.i_theta, self.i_quad
+
+    @property
+    def kernel_quadratures(self) -> tuple[int, ...]:
+        """``ipar``'s quadrature offsets for the compiled kernel: each of :data:`QUADRATURES`' state
+        (:meth:`quadrature`), -1 where this scene has none."""
+        return tuple(-1 if (i := self.quadrature(name)) is None else i for name in QUADRATURES)
 
     # ------------------------------------------------------------------------ the variational block
     @property

@@ -22,6 +22,7 @@ def test_a_speed_driven_chain_by_hand():
     assert [st.quadrature(n) for n in QUADRATURES] == [10, 11, 12, None]  # no work on time-varying springs
     assert st.names == ["d0", "d1", "d2", "d3", "d4", "w1", "w2", "w3", "w4", "w5", "_q0", "_q1", "_q2"]
     assert st.kernel_offsets == (5, -1, 10)
+    assert st.kernel_quadratures == (10, 11, 12, -1)  # the compiled kernel's: -1 for the absent one
     assert (st.n_augmented, st.variational) == (13 + 100, slice(13, 113))  # [y | Phi], Phi 10 x 10
 
 
@@ -32,6 +33,7 @@ def test_a_torque_driven_chain_with_an_angle_state_by_hand():
     assert st.dynamic == slice(0, 8) and st.quadratures == slice(8, 12) and st.n_mechanical == 7
     assert [st.quadrature(n) for n in QUADRATURES] == [8, 9, 10, 11]
     assert st.kernel_offsets == (3, 7, 8)
+    assert st.kernel_quadratures == (8, 9, 10, 11)
     with pytest.raises(ValueError):
         st.quadrature("kinetic_energy_J")
 
@@ -49,5 +51,6 @@ def test_the_scene_layout_matches_the_generated_states_and_the_kernel_offsets(na
     assert (st.i_theta is not None) == ("th0" in names)
     arrays = lay.arrays(np.zeros(st.n_states))
     assert (arrays.i_omega0, arrays.i_theta, arrays.i_quad, arrays.n_states) == (*st.kernel_offsets, st.n_states)
+    assert tuple(arrays.i_quadratures) == tuple(-1 if st.quadrature(n) is None else st.quadrature(n) for n in QUADRATURES)
     Y = np.arange(st.n_states, dtype=float)[:, None]  # one sample
     assert np.array_equal(lay.body_speeds(Y, np.array([-1.0]))[st.first_free:], Y[st.speeds])
