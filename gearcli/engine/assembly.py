@@ -25,7 +25,9 @@ from gearcli.engine.laws import (
     load_factor,
     motor_torque,
     ramp,
+    speed_drive_power,
     torque_fluctuation,
+    torque_power,
     torque_ripple,
 )
 from gearcli.engine.numba_cache import jit, jit_alloc
@@ -253,14 +255,14 @@ def scene_rhs(t, y, dy, model, th, fc):
     if i_th >= 0:
         dy[i_th] = w0
     if speed:
-        p_in = (-body_torque(0, model, fc) + inertia[0] * a0) * w0
+        p_in = speed_drive_power(-body_torque(0, model, fc), inertia[0], a0, w0)
     else:
-        p_in = tin * w0
+        p_in = torque_power(tin, w0)
     for c in range(nc):  # + the transmission errors' work, connector by connector (the generated sum's order)
         if conn_excited(kind[c], param[c]):
             p_in = p_in + fc[nc + c]
     dy[ipar[IP_Q_INPUT]] = p_in
-    dy[ipar[IP_Q_LOAD]] = tl * body_speed(y, nb - 1, first, i_w0, w0) if load else 0.0
+    dy[ipar[IP_Q_LOAD]] = torque_power(tl, body_speed(y, nb - 1, first, i_w0, w0)) if load else 0.0
     dy[ipar[IP_Q_DAMPING]] = damp
     if ipar[IP_Q_TV] >= 0:
         dy[ipar[IP_Q_TV]] = tvp

@@ -1,7 +1,8 @@
 """The element laws as the kernel calls them: the dispatch by kind generated from the registry
 (:mod:`gearcli.engine.dispatch`; the loss hook's too), the drive's and the load's laws
 (:mod:`gearcli.model.elements.torque`, :mod:`gearcli.model.elements.machine`, the STEP profiles of
-:mod:`gearcli.model.elements.profile`), compiled from their own modules, never rewritten here.
+:mod:`gearcli.model.elements.profile`, the energy integrands of
+:mod:`gearcli.model.elements.energy`), compiled from their own modules, never rewritten here.
 
 Importing this module builds the dispatch into the checked cache directory this process loads from.
 """
@@ -9,6 +10,7 @@ Importing this module builds the dispatch into the checked cache directory this 
 from __future__ import annotations
 
 from gearcli.engine import dispatch as _dispatch
+from gearcli.model.elements import energy as _energy_mod
 from gearcli.model.elements import machine as _machine_mod
 from gearcli.model.elements import profile as _profile_mod
 from gearcli.model.elements import torque as _torque_mod
@@ -25,4 +27,6 @@ _MACHINE = _dispatch.jit_module(_machine_mod)  # the motor's curve and start, th
 motor_torque, load_factor = _MACHINE["motor_torque"], _MACHINE["load_factor"]
 _PROFILE = _dispatch.jit_module(_profile_mod)  # the drive's and the load's STEP profiles
 ramp, input_motion = _PROFILE["ramp"], _PROFILE["input_motion"]
+_ENERGY = _dispatch.jit_module(_energy_mod)  # the energy quadratures' integrands
+speed_drive_power, torque_power = _ENERGY["speed_drive_power"], _ENERGY["torque_power"]
 conn_lossy, conn_loss_factors = _D.conn_lossy, _D.conn_loss_factors  # the loss hook (an element's two side forces)

@@ -25,7 +25,7 @@ KERNEL_SOURCES = ("engine/kernel.py", "engine/rk.py", "engine/radau.py", "engine
                   "engine/dispatch.py", "engine/tableau.py", "engine/packing.py", "engine/blas.py", "engine/status.py",
                   "engine/numba_cache.py",  # its jit options (reference counting or not) are in the machine code
                   "model/elements/__init__.py", "model/elements/torque.py", "model/elements/machine.py",
-                  "model/elements/profile.py",
+                  "model/elements/profile.py", "model/elements/energy.py",
                   "model/contact_lines.py")  # + every compiled element's module (_source_key)
 #: the modules holding numba dispatchers (bound to the cache directory at import): a fresh load imports them anew
 FRESH = ("gearcli.engine.kernel", "gearcli.engine.rk", "gearcli.engine.radau", "gearcli.engine.common",

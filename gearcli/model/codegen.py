@@ -32,7 +32,7 @@ from functools import lru_cache
 import numpy as np
 
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import machine, profile, torque
+from gearcli.model.elements import energy, machine, profile, torque
 from gearcli.model.layout import QUADRATURES
 from gearcli.model.parts import Connector
 
@@ -197,14 +197,15 @@ def _body_torque(lay: Layout, i: int) -> str:
 
 
 def _quadrature_exprs(lay: Layout) -> list[str]:
-    """Input power, load power, damping power, power into time-varying springs."""
+    """Input power, load power, damping power, power into time-varying springs (the drive's and the load's through
+    :mod:`gearcli.model.elements.energy`, the kernel's too)."""
     if lay.speed_drive:
         reaction = " + ".join(f"{lit(lay.connectors[c].levers[j])} * {_side(lay, c, j)}" for c, j in lay.acting_on(0))
-        p_in = f"({reaction} + {lit(lay.inertias[0])} * a0) * w0"
+        p_in = f"_drive_power({reaction}, {lit(lay.inertias[0])}, a0, w0)"
     else:
-        p_in = "Tin * w0"
+        p_in = "_torque_power(Tin, w0)"
     p_in += "".join(f" + te{c}" for c, x in enumerate(lay.connectors) if x.excited)  # the TE's work
-    p_load = f"TL * w{lay.n_bodies - 1}" if lay.load.torque_Nm != 0.0 else "0.0"
+    p_load = f"_torque_power(TL, w{lay.n_bodies - 1})" if lay.load.torque_Nm != 0.0 else "0.0"
     damped = [f"q{c}" for c, x in enumerate(lay.connectors) if x.damped]
     damped += [f"ql{c}" for c, x in enumerate(lay.connectors) if x.lossy]  # mesh losses count as dissipation
     out = [p_in, p_load, " + ".join(damped) if damped else "0.0"]
@@ -417,7 +418,8 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
     structure (:func:`_template`), compiled once per process (:func:`_compiled`) and bound to this scene's
     constants and element parameters; the compiled module is registered with linecache, so a traceback
     through the generated code shows its lines."""
-    namespace: dict = {"_ramp": profile.ramp, "_motion": profile.input_motion, "_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
+    namespace: dict = {"_drive_power": energy.speed_drive_power, "_torque_power": energy.torque_power,
+                       "_ramp": profile.ramp, "_motion": profile.input_motion, "_array": np.array, "_zeros": np.zeros, "_sqrt": math.sqrt, "_ripple": torque.ripple,
                        "_fluct": torque.fluctuation, "_RIP": lay.ripple, "_FLU": lay.fluctuation,
                        "_motor": machine.motor_torque, "_MOT": lay.motor_row, "_load": machine.load_factor,
                        "_LOD": lay.load_law}
