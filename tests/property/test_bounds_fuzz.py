@@ -42,7 +42,7 @@ EXCLUSIVE = [("input", ("speed_deg_s", "speed_rpm", "speed_rad_s")),
 #: Where each table of the schema sits in a design file (stage tables at the first and the last stage).
 PLACES = {"Material": [("materials", "steel")], "Contact": [("contact",)], "Input": [("input",)],
           "Load": [("load",)], "Target": [("target",)], "Simulation": [("simulation",)],
-          "Stage": [("stage", 0), ("stage", 2)], "Gear": [("stage", 0, "pinion"), ("stage", 2, "gear")],
+          "Stage": [("stage", 0), ("stage", 2)], "PairGear": [("stage", 0, "pinion"), ("stage", 2, "gear")],
           "ContactOverride": [("stage", 1, "mesh")], "ShaftSpring": [("stage", 1, "shaft")],
           "BasicRack": [("stage", 0, "basic_rack")], "Ripple": [("input", "torque_ripple", 0)],
           "Fluctuation": [("load", "fluctuation", 0)]}

@@ -107,7 +107,7 @@ def _scipy_run(m, y0, t_end):
     """The end state of ``m`` from ``y0`` over [0, t_end], integrated by scipy's Radau directly."""
     from scipy.integrate import solve_ivp
 
-    n = m.layout.n_dynamic
+    n = m.layout.state.i_quad  # the dynamic states (StateLayout.dynamic), the quadratures after them
     sol = solve_ivp(m.rhs, (0.0, t_end), y0, method="Radau", jac=m.jac, rtol=1e-9,
                     atol=np.r_[m.atol(1e-9)[:n], np.full(m.n_states - n, 1e20)])
     assert sol.success, sol.message
@@ -136,6 +136,6 @@ def test_continuing_keeps_the_ripple_and_the_load_fluctuation_in_phase(name):
     y0 = continue_state(first, model, nxt, t1)
     assert y0 is not None
     second = _scipy_run(nxt, y0, t2)
-    n = lay.n_dynamic
+    n = lay.state.i_quad  # the dynamic states (StateLayout.dynamic)
     scale = np.r_[model.deflection_scales(), model.speed_scales_rad_s(), [1.0] * (n - lay.n_conn - len(lay.free_bodies))]
     assert_allclose(second[:n] / scale, whole[:n] / scale, rtol=0, atol=1e-5)
