@@ -78,9 +78,10 @@ def _run_on_a_terminal(args: list[str]) -> tuple[int, bytes]:
     return proc.wait(), got
 
 
-# the conveyor for 6 s: ~1e6 evaluations on the compiled engine, a run of a few seconds (the bar shows after 1 s)
-LONG = ["simulate", "configs/conveyor.toml", "--format", "json", "--set", "simulation.duration_s=6",
-        "--set", "simulation.steps=12000", "--set", "simulation.engine=compiled"]
+# the conveyor for 30 s: ~5e6 evaluations on the compiled engine, a run of several seconds (the bar shows after
+# 1 s; 6 s of it took ~1.5 s once the kernel lost numba's reference counting: too close to the bar's second)
+LONG = ["simulate", "configs/conveyor.toml", "--format", "json", "--set", "simulation.duration_s=30",
+        "--set", "simulation.steps=60000", "--set", "simulation.engine=compiled"]
 
 
 @pytest.mark.slow
@@ -100,8 +101,11 @@ def test_a_long_simulate_in_a_pipe_shows_no_progress():
 
 
 @pytest.mark.slow
+@pytest.mark.slow
 def test_report_shows_its_runs_on_a_terminal_and_nothing_with_q():
-    args = ["report", "configs/concrete_mixer.toml", "--format", "json", "--set", "simulation.duration_s=3"]
+    # 10 s of the seed: the ladder's work lasts several seconds (3 s took ~1.3 s with the faster kernel, close to the
+    # bar's first second)
+    args = ["report", "configs/concrete_mixer.toml", "--format", "json", "--set", "simulation.duration_s=10"]
     code, shown = _run_on_a_terminal(args)
     assert code == 0 and b"rtol" in shown and b"\x1b[" in shown  # a live bar: the run it is at, cursor control
     code, quiet = _run_on_a_terminal([*args, "-q"])
