@@ -45,6 +45,7 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     load,
     loaded_kernel,
     mark_ready,
+    point_functions,
     quiet_compilation,
     ready,
     warm_up,

@@ -238,6 +238,29 @@ def entry(method: str) -> tuple[Any, float]:
     return getattr(loaded.kernel, name), spent
 
 
+def point_functions() -> tuple[Any, Any]:
+    """The kernel's ``evaluate(model, t, y)`` and ``evaluate_jacobian(model, t, y)`` (one right-hand side, one
+    Jacobian at a state: the equilibrium's Newton), loaded from the cache the first time as :func:`entry` loads an
+    integration entry."""
+    loaded = load()
+    warm = _state.setdefault("warm", {})
+    if "evaluate" not in warm:
+        t0 = time.perf_counter()
+        for attempt in range(3):
+            try:
+                with signals.deferred(), _strict():
+                    model, y0, _, _, _ = _tiny_args()
+                    loaded.kernel.evaluate(model, 0.0, y0)
+                    loaded.kernel.evaluate_jacobian(model, 0.0, y0)
+                break
+            except CacheDamaged as exc:
+                if attempt == 2:
+                    raise
+                _repair(exc)
+        warm["evaluate"] = time.perf_counter() - t0
+    return loaded.kernel.evaluate, loaded.kernel.evaluate_jacobian
+
+
 def _warm_entry(kernel: Any, name: str) -> None:
     """Load one integration entry (and the output channels' function, which every run's results call)."""
     model, y0, t_eval, tol, wpar = _tiny_args()

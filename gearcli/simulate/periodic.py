@@ -58,6 +58,7 @@ class CommonPeriod:
     period_s: float
     source: str  # how it was formed
     exact: bool  # True when it is a common period of every excitation
+    excited: bool = True  # False: nothing excites the scene (its steady state is an equilibrium)
 
 
 def mesh_period_s(pinion_teeth: float, pinion_speed_rad_s: float) -> float:
@@ -253,7 +254,7 @@ def scene_period(layout) -> CommonPeriod:
     if found is not None:
         return found
     return CommonPeriod(unexcited_period(layout), "no excitation: the steady state is an equilibrium, checked over "
-                        "the slowest mesh period", True)
+                        "the slowest mesh period", True, excited=False)
 
 
 def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -> np.ndarray:

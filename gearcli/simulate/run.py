@@ -27,7 +27,7 @@ from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import estimate, rigid_start, stats
+from gearcli.simulate import equilibrium, estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
@@ -93,14 +93,19 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
     pending: list[tuple[SimulationResult, Callable[[], SimulationResult]]] = []  # this call's unfinished runs
 
-    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady) -> SimulationResult:
+    # an unexcited scene's steady state is its equilibrium, found directly: its first run's window is replaced
+    # whatever it holds (gearcli.simulate.settle.settled_run), so it skips the settle test until it is kept
+    direct = bool(settle) and settle != "window" and sim.steady == "window" and equilibrium.applies(model)
+
+    def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady,
+            settle_test: bool = True) -> SimulationResult:
         # a run the settle test may replace leaves its ringing fit for later (finish) where its window is unsettled
         unfinished: list[Callable[[], SimulationResult]] | None = [] if settle else None
         result = simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
                                 rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
                                 max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
                                 prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
-                                unfinished=unfinished, diagnose=diagnose)
+                                unfinished=unfinished, diagnose=diagnose, settle_test=settle_test)
         if unfinished:
             pending.append((result, unfinished[0]))
         return result
@@ -108,10 +113,10 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     def finish(result: SimulationResult) -> SimulationResult:
         return next((whole() for r, whole in pending if r is result), result)
 
-    result = run(sim.duration_s, sim.steps, sim.window_start_s)
+    result = run(sim.duration_s, sim.steps, sim.window_start_s, settle_test=not direct)
     if settle:
         result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window",
-                                        finish=finish)
+                                        finish=finish, equilibrium=direct)
     return result
 
 
@@ -129,7 +134,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    progress: Callable[[float], None] | None = None,
                    tightened: Diagnostic | None = None,
                    unfinished: list[Callable[[], SimulationResult]] | None = None,
-                   diagnose: bool = True) -> SimulationResult:
+                   diagnose: bool = True, settle_test: bool = True) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -149,7 +154,10 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     ``unfinished`` (a list; a run the settle test may replace, :func:`gearcli.simulate.settle.settled_run`): a
     fixed window that the settle test finds unsettled skips its ringing fit, and the function that returns the
     whole result (ringing warnings included, the result without ``unfinished``) is appended to the list.
-    ``diagnose=False``: no ringing fit, settle test nor resonance check (:func:`run_simulation`)."""
+    ``diagnose=False``: no ringing fit, settle test nor resonance check (:func:`run_simulation`).
+    ``settle_test=False`` (with ``unfinished``): the window's settle test and ringing fit are left to the whole
+    result too (a run whose window is replaced whatever it holds: an unexcited scene's, whose steady state is its
+    equilibrium; ``steady.settled`` is None until then)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -217,13 +225,13 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
                               tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
-                              diagnose=diagnose)
+                              diagnose=diagnose, settle_test=settle_test)
     if tightened is not None:
         diags.append(tightened)
 
     def summary(deferred: list[bool] | None) -> SimulationResult:
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
-                         ref, stat_diags, eng.reason, deferred, diagnose)
+                         ref, stat_diags, eng.reason, deferred, diagnose, settle_test or deferred is None)
         out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
                                           course_changes=tuple(c.as_json() for c in changes)))
         _require_finite(out)
@@ -416,7 +424,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
-               diagnose: bool = True) -> SimulationResult:
+               diagnose: bool = True, settle_test: bool = True) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
@@ -463,11 +471,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
     if not periodic and deferred is None and diagnose:
         diags += ringing_diags()
-    if diagnose:
+    if diagnose and settle_test:
         steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
                                            motor_summary, diags)
     if not periodic and deferred is not None:
-        if steady.settled is False:
+        if steady.settled is False or not settle_test:
             deferred.append(True)
         else:
             diags += ringing_diags()

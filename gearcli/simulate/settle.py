@@ -186,25 +186,69 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
 
 def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
                 duration_s: float, steps: int, periodic: bool = True,
-                finish: Callable[[SimulationResult], SimulationResult] = lambda r: r) -> SimulationResult:
+                finish: Callable[[SimulationResult], SimulationResult] = lambda r: r,
+                equilibrium: bool = False) -> SimulationResult:
     """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
     start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
     scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
     (``run(..., steady="periodic")``: shooting, or period by period, within the budget's duration) when it
     converges (not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
     starts); else the last window, whose warning says so. ``finish``: the whole result of a run whose unsettled
-    window left its ringing fit for later (``run_simulation``'s ``unfinished``: only the window kept pays it)."""
+    window left its ringing fit for later (``run_simulation``'s ``unfinished``: only the window kept pays it).
+    ``equilibrium``: the scene's steady state is an equilibrium found directly
+    (:mod:`gearcli.simulate.equilibrium`): the periodic search at once, the later windows only where it does not
+    converge. A periodic result keeps the first run's start-up peaks (:func:`with_start`), which the search's
+    run-up alone may not reach."""
+    if equilibrium and periodic:  # the first run's window was not tested (run_simulation): its start-up is kept
+        orbit = _orbit(result, run, duration_s, steps, 0, result)
+        if orbit is not None:
+            return orbit
+        result = finish(result)  # the settle test the window skipped
+    first = result
     result, runs = _moved_window(result, run, duration_s, steps)
-    if periodic and result.steady is not None and result.steady.mode == "window" and result.steady.settled is False:
-        longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
-        try:
-            orbit = run(longest, steps, None, steady="periodic")
-        except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
-            orbit = None
-        if orbit is not None and orbit.steady is not None and orbit.steady.converged:
-            before = runs if runs else result.steady.settle_runs
-            return replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=before + 1))
+    if periodic and not equilibrium and _unsettled(result):
+        orbit = _orbit(result, run, duration_s, steps, runs, first)
+        if orbit is not None:
+            return orbit
     return _after_runs(finish(result), runs)
+
+
+def _unsettled(result: SimulationResult) -> bool:
+    return result.steady is not None and result.steady.mode == "window" and result.steady.settled is False
+
+
+def _orbit(result: SimulationResult, run: Callable[..., SimulationResult], duration_s: float, steps: int, runs: int,
+           first: SimulationResult) -> SimulationResult | None:
+    """The periodic steady state within the budget's duration, settled, or None where it did not converge."""
+    longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
+    try:
+        orbit = run(longest, steps, None, steady="periodic")
+    except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
+        return None
+    if orbit.steady is None or not orbit.steady.converged:
+        return None
+    before = runs if runs else (result.steady.settle_runs if result.steady is not None else 0)
+    return with_start(replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=before + 1)), first)
+
+
+def with_start(orbit: SimulationResult, first: SimulationResult) -> SimulationResult:
+    """``orbit`` (a periodic steady state) with the start-up figures of ``first``, the run from rest whose window
+    it replaces, where that run saw the larger peak: each stage's whole-run peak |F_t|, its time and the run-up
+    factor, and ``summary.start`` with its ``peak_over_rigid`` warnings (the periodic search's own run-up ends
+    with the ramps; the start's overshoot may come after them)."""
+    if len(first.stages) != len(orbit.stages):
+        return orbit
+    stages = tuple(replace(o, peak_tangential_N=f.peak_tangential_N, peak_time_s=f.peak_time_s,
+                           runup_factor=f.runup_factor) if f.peak_tangential_N > o.peak_tangential_N else o
+                   for o, f in zip(orbit.stages, first.stages, strict=True))
+    if all(a is b for a, b in zip(stages, orbit.stages, strict=True)):
+        return orbit
+    extra = dict(orbit.extra)
+    if "start" in first.extra:
+        extra["start"] = first.extra["start"]
+    diags = tuple(d for d in orbit.diagnostics if d.code != dg.PEAK_OVER_RIGID) \
+        + tuple(d for d in first.diagnostics if d.code == dg.PEAK_OVER_RIGID)
+    return replace(orbit, stages=stages, extra=extra, diagnostics=diags, warnings=dg.messages(list(diags)))
 
 
 def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult], duration_s: float,

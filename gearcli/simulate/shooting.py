@@ -45,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from gearcli.simulate import equilibrium as eq
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.periodic import CONVERGED, PeriodicRun, _joined, boundary_residual, scene_period
 from gearcli.simulate.results import SteadyState
@@ -78,7 +79,11 @@ def floquet(M: np.ndarray, near: float = NEAR, structural: int = 0) -> Floquet:
     """The multipliers of the monodromy matrix ``M`` (see the module text). ``structural``: how many multipliers
     are exactly 1 by the state's construction (:func:`structural_unit_multipliers`): the ones nearest +1 are
     left out before the orbit is judged."""
-    mu = np.linalg.eigvals(np.asarray(M, dtype=float)) if M.size else np.zeros(0, complex)
+    return judged(np.linalg.eigvals(np.asarray(M, dtype=float)) if M.size else np.zeros(0, complex), near, structural)
+
+
+def judged(mu: np.ndarray, near: float = NEAR, structural: int = 0) -> Floquet:
+    """:func:`floquet` from the multipliers ``mu`` themselves."""
     if structural > 0:
         mu = np.delete(mu, np.argsort(np.abs(mu - 1.0), kind="stable")[:structural])
     mu = mu[np.argsort(-np.abs(mu), kind="stable")]
@@ -322,6 +327,10 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
     if cap < 1:
         return brute(t_start, first.y[:, -1], "no whole period fits before simulation.duration_s")
     y_motion, t_motion = first.y[:, -1], t_start  # the motion's own state (no Newton correction in it)
+    if eq.applies(model):  # nothing excites it: the equilibrium, found directly (gearcli.simulate.equilibrium)
+        direct = _at_equilibrium(model, rtol, first, parts, period, patol, ledger, steps, cap, engine)
+        if direct is not None:
+            return direct
     preamble = PREAMBLE_CONTINUED if continued else PREAMBLE_COLD
     why, k, attempt = "", 1, 0
     while attempt <= RETRIES:
@@ -359,6 +368,36 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
             continue
         return _result(model, parts, first, shot, fl, period, ledger, samples, cap, k)
     return brute(t_motion, y_motion, f"{FALLBACK_NOTE} ({why}); brute force from the motion's state")
+
+
+def _at_equilibrium(model, rtol: float, first, parts: list, period, patol: np.ndarray, ledger: Ledger, steps: int,
+                    cap: int, engine: str):
+    """The unexcited scene's steady state as its equilibrium (:mod:`gearcli.simulate.equilibrium`), checked over
+    one statistics period; None (with the reason in the ledger's notes) where the shooting must take over."""
+    lay = model.layout
+    T, t0 = period.period_s, float(first.t[-1])
+    structural = structural_unit_multipliers(lay)
+    found = eq.root(model, t0, first.y[:, -1], rtol, patol, T, structural, engine)
+    if found is None:
+        ledger.notes.append("no excitation, but Newton on the equations of motion found no equilibrium from the "
+                            "state at the end of the ramps; shooting")
+        return None
+    fl = judged(eq.multipliers(found.J, T), structural=structural)
+    if not fl.stable:
+        ledger.notes.append(f"no excitation, but the equilibrium is unstable (multiplier of modulus "
+                            f"{fl.spectral_radius:.4g} over a period): the motion leaves it; shooting")
+        return None
+    if found.drift > CONVERGED:  # (Newton's last step is below the tolerance; a drift above it would be a bug)
+        ledger.notes.append(f"no excitation, but the state Newton found drifts by {found.drift:.3g} x the tolerance "
+                            "over a period; shooting")
+        return None
+    samples = pr.statistics_grid(lay, T, 1, steps)
+    run = eq.steady_period(first, found.rates, found.y, t0, T, samples, lay)
+    ledger.iterations, ledger.monodromy = found.steps, "exp(lambda T), lambda the eigenvalues of J at the equilibrium"
+    ledger.notes.append(f"no excitation: the equilibrium, found by Newton on the equations of motion ({found.steps} "
+                        "steps), its period exact")
+    shot = Shot(run, found.y[:lay.state.n_mechanical].copy(), float(found.drift), None)
+    return _result(model, parts, first, shot, fl, period, ledger, samples, cap, method="equilibrium")
 
 
 def _flips(fl: Floquet) -> bool:
@@ -403,20 +442,21 @@ def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet]
 
 
 def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: Ledger, samples: int, cap: int,
-            k: int = 1):
+            k: int = 1, method: str = "shooting"):
     fine = shot.run
-    joined = _joined(parts, np.concatenate([first.t, fine.t]), np.hstack([first.y, fine.y]))
+    keep = first.t < fine.t[0]  # the run-up's last state is no sample of the orbit where the orbit starts there
+    joined = _joined(parts, np.concatenate([first.t[keep], fine.t]), np.hstack([first.y[:, keep], fine.y]))
     steady = SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=ledger.periods,
                          periodicity=f"period-{k}", converged=True, residual=float(shot.residual),
                          period_source=period.source, window_periods=k, samples_per_period=samples // k,
                          cap_periods=cap,
-                         method="shooting", iterations=ledger.iterations, attempts=ledger.attempts,
+                         method=method, iterations=ledger.iterations, attempts=ledger.attempts,
                          monodromy=ledger.monodromy,
                          multipliers=fl.multipliers, spectral_radius=fl.spectral_radius, stable=fl.stable,
                          bifurcation=fl.bifurcation, note="; ".join(ledger.notes))
     t = fine.t
     return PeriodicRun(joined, (float(t[0]), float(t[-1])), (float(t[0]), float(t[-2])), steady, period,
-                       energy_from=first.t.size)
+                       energy_from=int(np.count_nonzero(keep)))
 
 
 PRICED_VARIATIONAL_PERIODS = 3  # variational periods a typical solve integrates (two Newton steps and the check)
