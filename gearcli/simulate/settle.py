@@ -34,7 +34,7 @@ from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.simulate import ringing
-from gearcli.simulate.results import SimulationResult, SteadyState
+from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
 
 if TYPE_CHECKING:
     from gearcli.model import TorsionalModel
@@ -243,8 +243,8 @@ def with_start(orbit: SimulationResult, first: SimulationResult) -> SimulationRe
                    for o, f in zip(orbit.stages, first.stages, strict=True))
     if all(a is b for a, b in zip(stages, orbit.stages, strict=True)):
         return orbit
-    extra = dict(orbit.extra)
-    if "start" in first.extra:
+    extra = SimulationExtra(**(orbit.extra or {}))
+    if first.extra and "start" in first.extra:
         extra["start"] = first.extra["start"]
     diags = tuple(d for d in orbit.diagnostics if d.code != dg.PEAK_OVER_RIGID) \
         + tuple(d for d in first.diagnostics if d.code == dg.PEAK_OVER_RIGID)
