@@ -249,12 +249,17 @@ class PeriodicRun:
 
 
 def scene_period(layout) -> CommonPeriod:
-    """:func:`common_period` of the scene's excitations, or the unexcited scene's period."""
+    """:func:`common_period` of the scene's excitations, or the unexcited scene's period (worked out once per
+    layout: a run asks for it at every step of its way)."""
+    cached = layout.__dict__.get("_scene_period")
+    if cached is not None:
+        return cached
     found = common_period(excitation_periods(layout))
-    if found is not None:
-        return found
-    return CommonPeriod(unexcited_period(layout), "no excitation: the steady state is an equilibrium, checked over "
-                        "the slowest mesh period", True, excited=False)
+    if found is None:
+        found = CommonPeriod(unexcited_period(layout), "no excitation: the steady state is an equilibrium, checked "
+                             "over the slowest mesh period", True, excited=False)
+    object.__setattr__(layout, "_scene_period", found)  # the layout is frozen; its period is a function of it
+    return found
 
 
 def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -> np.ndarray:
@@ -279,10 +284,10 @@ def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -
 
 
 def run_up(model, method: str, rtol: float, *, steps: int, duration_s: float, window_start_s: float | None,
-           y0: np.ndarray | None, max_nfev: int, engine: str):
+           y0: np.ndarray | None, max_nfev: int, engine: str, samples: int | None = None):
     """The run from 0 to the end of the ramps (or ``window_start_s``), sampled as a window run would be (at
-    most ``steps`` samples); refused when not one excitation period fits between it and ``duration_s`` (the
-    search may not run past the run's duration)."""
+    most ``steps`` samples; ``samples``: that many); refused when not one excitation period fits between it and
+    ``duration_s`` (the search may not run past the run's duration)."""
     lay = model.layout
     t_start = max(lay.drive.ramp_s, lay.load.ramp_s, window_start_s or 0.0)
     T = scene_period(lay).period_s
@@ -292,6 +297,7 @@ def run_up(model, method: str, rtol: float, *, steps: int, duration_s: float, wi
                           f"({duration_s:.4g} s); set simulation.duration_s ≥ {t_start + T:.4g} (a few periods "
                           "more let the search find the repeat), or shorten the ramps", key="simulation.duration_s")
     n_a = min(steps, max(1, round(steps * t_start / duration_s))) if t_start > 0 else 0  # at most `steps` samples
+    n_a = n_a if samples is None or t_start <= 0 else max(1, samples)
     return integrate(model, np.linspace(0.0, t_start, n_a + 1), method, rtol, y0=y0, max_nfev=max_nfev,
                      engine=engine)
 

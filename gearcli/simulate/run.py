@@ -20,7 +20,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
-from gearcli.errors import ConfigError, RunTooLong, SimulationError
+from gearcli.errors import ConfigError, GearcliError, RunTooLong, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.linear import static_line_forces_N
 from gearcli.model.modes import resonances
@@ -93,19 +93,15 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
     pending: list[tuple[SimulationResult, Callable[[], SimulationResult]]] = []  # this call's unfinished runs
 
-    # an unexcited scene's steady state is its equilibrium, found directly: its first run's window is replaced
-    # whatever it holds (gearcli.simulate.settle.settled_run), so it skips the settle test until it is kept
-    direct = bool(settle) and settle != "window" and sim.steady == "window" and equilibrium.applies(model)
-
     def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady,
-            settle_test: bool = True) -> SimulationResult:
+            run_up_samples: int | None = None) -> SimulationResult:
         # a run the settle test may replace leaves its ringing fit for later (finish) where its window is unsettled
         unfinished: list[Callable[[], SimulationResult]] | None = [] if settle else None
         result = simulate_model(model, duration_s=duration_s, steps=steps, method=method or sim.method,
                                 rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
                                 max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
                                 prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
-                                unfinished=unfinished, diagnose=diagnose, settle_test=settle_test)
+                                unfinished=unfinished, diagnose=diagnose, run_up_samples=run_up_samples)
         if unfinished:
             pending.append((result, unfinished[0]))
         return result
@@ -113,11 +109,31 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     def finish(result: SimulationResult) -> SimulationResult:
         return next((whole() for r, whole in pending if r is result), result)
 
-    result = run(sim.duration_s, sim.steps, sim.window_start_s, settle_test=not direct)
+    periodic = settle != "window"
+    if settle and periodic and sim.steady == "window" and equilibrium.applies(model):
+        found = _at_rest(run, sim.duration_s, sim.steps)
+        if found is not None:
+            return found
+        periodic = False  # the periodic search was tried: the later windows are what is left
+    result = run(sim.duration_s, sim.steps, sim.window_start_s)
     if settle:
-        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=settle != "window",
-                                        finish=finish, equilibrium=direct)
+        result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=periodic, finish=finish)
     return result
+
+
+def _at_rest(run: Callable[..., SimulationResult], duration_s: float, steps: int) -> SimulationResult | None:
+    """A settled window of an unexcited scene, whose steady state is its equilibrium: the run from rest to
+    ``simulation.duration_s`` sampled as the window run would be (its start-up peaks the same), then the periodic
+    search from its end (:mod:`gearcli.simulate.equilibrium` first, the shooting where Newton fails), within the
+    settle test's budget of duration (:func:`gearcli.simulate.settle.settled_run`); None where it does not
+    converge (the window run and its later windows then)."""
+    try:
+        found = run(settle_mod.longest_run_s(duration_s), steps, duration_s, steady="periodic", run_up_samples=steps)
+    except GearcliError:
+        return None
+    if found.steady is None or not found.steady.converged:
+        return None
+    return replace(found, steady=replace(found.steady, settled=True))
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
@@ -134,7 +150,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    progress: Callable[[float], None] | None = None,
                    tightened: Diagnostic | None = None,
                    unfinished: list[Callable[[], SimulationResult]] | None = None,
-                   diagnose: bool = True, settle_test: bool = True) -> SimulationResult:
+                   diagnose: bool = True, run_up_samples: int | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -155,9 +171,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     fixed window that the settle test finds unsettled skips its ringing fit, and the function that returns the
     whole result (ringing warnings included, the result without ``unfinished``) is appended to the list.
     ``diagnose=False``: no ringing fit, settle test nor resonance check (:func:`run_simulation`).
-    ``settle_test=False`` (with ``unfinished``): the window's settle test and ringing fit are left to the whole
-    result too (a run whose window is replaced whatever it holds: an unexcited scene's, whose steady state is its
-    equilibrium; ``steady.settled`` is None until then)."""
+    ``run_up_samples``: ``steady = "periodic"``'s run-up sampled with this many samples (default: as a window run
+    over ``duration_s`` would sample it)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -185,7 +200,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
                                    window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
                                    fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
-                                   continued=y0 is not None)
+                                   continued=y0 is not None, run_up_samples=run_up_samples)
         if isinstance(found, Integration):
             check(found, choice, duration_s)
             raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
@@ -225,13 +240,13 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
                               tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
-                              diagnose=diagnose, settle_test=settle_test)
+                              diagnose=diagnose, run_up_samples=run_up_samples)
     if tightened is not None:
         diags.append(tightened)
 
     def summary(deferred: list[bool] | None) -> SimulationResult:
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
-                         ref, stat_diags, eng.reason, deferred, diagnose, settle_test or deferred is None)
+                         ref, stat_diags, eng.reason, deferred, diagnose)
         out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
                                           course_changes=tuple(c.as_json() for c in changes)))
         _require_finite(out)
@@ -424,7 +439,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
-               diagnose: bool = True, settle_test: bool = True) -> SimulationResult:
+               diagnose: bool = True) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
@@ -471,11 +486,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
     if not periodic and deferred is None and diagnose:
         diags += ringing_diags()
-    if diagnose and settle_test:
+    if diagnose:
         steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
                                            motor_summary, diags)
     if not periodic and deferred is not None:
-        if steady.settled is False or not settle_test:
+        if steady.settled is False:
             deferred.append(True)
         else:
             diags += ringing_diags()

@@ -184,10 +184,14 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
 
 
+def longest_run_s(duration_s: float) -> float:
+    """The settle test's budget: the longest run, in simulated seconds, for a first run of ``duration_s``."""
+    return min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
+
+
 def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
                 duration_s: float, steps: int, periodic: bool = True,
-                finish: Callable[[SimulationResult], SimulationResult] = lambda r: r,
-                equilibrium: bool = False) -> SimulationResult:
+                finish: Callable[[SimulationResult], SimulationResult] = lambda r: r) -> SimulationResult:
     """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
     start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
     scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
@@ -195,40 +199,20 @@ def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
     converges (not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
     starts); else the last window, whose warning says so. ``finish``: the whole result of a run whose unsettled
     window left its ringing fit for later (``run_simulation``'s ``unfinished``: only the window kept pays it).
-    ``equilibrium``: the scene's steady state is an equilibrium found directly
-    (:mod:`gearcli.simulate.equilibrium`): the periodic search at once, the later windows only where it does not
-    converge. A periodic result keeps the first run's start-up peaks (:func:`with_start`), which the search's
-    run-up alone may not reach."""
-    if equilibrium and periodic:  # the first run's window was not tested (run_simulation): its start-up is kept
-        orbit = _orbit(result, run, duration_s, steps, 0, result)
-        if orbit is not None:
-            return orbit
-        result = finish(result)  # the settle test the window skipped
+    A periodic result keeps the first run's start-up peaks (:func:`with_start`), which the search's run-up, to the
+    end of the ramps only, may not reach."""
     first = result
     result, runs = _moved_window(result, run, duration_s, steps)
-    if periodic and not equilibrium and _unsettled(result):
-        orbit = _orbit(result, run, duration_s, steps, runs, first)
-        if orbit is not None:
-            return orbit
+    if periodic and result.steady is not None and result.steady.mode == "window" and result.steady.settled is False:
+        try:
+            orbit = run(longest_run_s(duration_s), steps, None, steady="periodic")
+        except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
+            orbit = None
+        if orbit is not None and orbit.steady is not None and orbit.steady.converged:
+            before = runs if runs else result.steady.settle_runs
+            return with_start(replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=before + 1)),
+                              first)
     return _after_runs(finish(result), runs)
-
-
-def _unsettled(result: SimulationResult) -> bool:
-    return result.steady is not None and result.steady.mode == "window" and result.steady.settled is False
-
-
-def _orbit(result: SimulationResult, run: Callable[..., SimulationResult], duration_s: float, steps: int, runs: int,
-           first: SimulationResult) -> SimulationResult | None:
-    """The periodic steady state within the budget's duration, settled, or None where it did not converge."""
-    longest = min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
-    try:
-        orbit = run(longest, steps, None, steady="periodic")
-    except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
-        return None
-    if orbit.steady is None or not orbit.steady.converged:
-        return None
-    before = runs if runs else (result.steady.settle_runs if result.steady is not None else 0)
-    return with_start(replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=before + 1)), first)
 
 
 def with_start(orbit: SimulationResult, first: SimulationResult) -> SimulationResult:

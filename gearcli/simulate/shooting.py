@@ -294,17 +294,19 @@ class _Shooter:
 
 def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_s: float,
                        window_start_s: float | None, y0: np.ndarray | None, max_nfev: int,
-                       fastest_rad_s: float = 0.0, engine: str = "python", continued: bool = False):
+                       fastest_rad_s: float = 0.0, engine: str = "python", continued: bool = False,
+                       run_up_samples: int | None = None):
     """``steady = "periodic"`` by shooting (see the module text): the run-up, a few brute-force periods,
     damped Newton on the period map, the statistics from the converged period; back to the brute-force
     search (:func:`gearcli.simulate.periodic.search`) where Newton fails. ``continued``: ``y0`` is the
-    previous sweep point's orbit (fewer brute-force periods first). Returns a
+    previous sweep point's orbit (fewer brute-force periods first); ``run_up_samples``: the run-up's samples
+    (:func:`gearcli.simulate.periodic.run_up`). Returns a
     :class:`~gearcli.simulate.periodic.PeriodicRun` or the failed part's ``Integration``."""
     lay = model.layout
     period = pr.scene_period(lay)
     T = period.period_s
     first = pr.run_up(model, method, rtol, steps=steps, duration_s=duration_s, window_start_s=window_start_s,
-                      y0=y0, max_nfev=max_nfev, engine=engine)
+                      y0=y0, max_nfev=max_nfev, engine=engine, samples=run_up_samples)
     if first.status != 0:
         return first
     t_start = float(first.t[-1])

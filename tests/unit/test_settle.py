@@ -123,7 +123,7 @@ def test_a_window_the_budget_cannot_settle_takes_the_periodic_steady_state():
 
 
 def _stub(window, settled, settle_time=None, mode="window", converged=None, tag=""):
-    """A stand-in result: what settled_run reads (steady, window_s, diagnostics, warnings) and a tag."""
+    """A stand-in result: what settled_run reads (steady, window_s, diagnostics, warnings, stages) and a tag."""
     from dataclasses import dataclass
 
     from gearcli.simulate.results import SteadyState
@@ -135,6 +135,7 @@ def _stub(window, settled, settle_time=None, mode="window", converged=None, tag=
         diagnostics: tuple = ()
         warnings: tuple = ()
         tag: str = ""
+        stages: tuple = ()
 
     steady = SteadyState(mode=mode, period_s=None, periods_to_converge=None, periodicity=None, converged=converged,
                          residual=None, settled=settled, transient_fraction=0.5 if settled is False else 0.0,

@@ -1,0 +1,117 @@
+"""An unexcited scene's steady state found directly as its equilibrium (gearcli.simulate.equilibrium): the seed's
+static tooth forces by hand, the start-up of the window run kept, the multipliers of a finite-difference
+linearisation, and the state the motion itself reaches when it is integrated long enough (scipy, independently)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.integrate import solve_ivp
+
+from gearcli import api
+from gearcli.model import TorsionalModel
+from gearcli.scene import spec_from_design
+from gearcli.simulate import equilibrium, run_simulation
+
+ROOT = Path(__file__).resolve().parents[2]
+SEED = str(ROOT / "configs" / "concrete_mixer.toml")
+
+
+def _seed(*sets: str):
+    loaded = api.load(SEED, list(sets))
+    return loaded.design, api.design(loaded)
+
+
+def _pitch_radius_m(z: int, m_n_mm: float, beta_deg: float) -> float:
+    return z * m_n_mm / math.cos(math.radians(beta_deg)) / 2.0 / 1000.0
+
+
+@pytest.fixture(scope="module")
+def seed_settled():
+    cfg, design = _seed("simulation.engine=python")
+    return cfg, design, run_simulation(cfg, design, settle=True, want_series=True)
+
+
+def test_the_seed_settles_at_its_equilibrium_with_the_static_tooth_forces_by_hand(seed_settled):
+    """The seed reducer (no excitation, 600 rpm prescribed): the settled steady state is the equilibrium, whose
+    window holds each stage's static tangential force, constant. By hand, from the drum's 5.31e6 N mm through
+    the pitch radii d = z m_n / cos(beta) (lossless meshes): stage 3 F_t = T / r_6, stage 2 F_t = F_t3 r_5 / r_4,
+    stage 1 F_t = F_t2 r_3 / r_2; the output speed 600 rpm x (21/51)(17/50)(17/53)."""
+    _, _, r = seed_settled
+    st = r.steady
+    assert st.mode == "periodic" and st.method == "equilibrium" and st.converged and st.settled and st.stable
+    assert st.residual is not None and st.residual <= 1.0
+    f3 = 5.31e3 / _pitch_radius_m(53, 25, 9)
+    f2 = f3 * _pitch_radius_m(17, 25, 9) / _pitch_radius_m(50, 18, 11)
+    f1 = f2 * _pitch_radius_m(17, 18, 11) / _pitch_radius_m(51, 12, 12)
+    for stage, by_hand in zip(r.stages, (f1, f2, f3), strict=True):
+        # the state solves the equations to 1e-3 of the tolerance (rtol 1e-6): the force to well within 1e-6
+        assert_allclose(stage.tangential_N.mean, by_hand, rtol=1e-6)
+        assert_allclose([stage.tangential_N.min, stage.tangential_N.max], by_hand, rtol=1e-6)
+        assert stage.dynamic_factor == pytest.approx(1.0, abs=1e-6)
+    assert_allclose(r.output_speed_deg_s / 6.0, 600 * (21 / 51) * (17 / 50) * (17 / 53), rtol=1e-9)
+    # the energy balance of the exact period: the input's work is the drum's (lossless, nothing stored)
+    assert r.energy.residual_relative < 1e-9
+
+
+def test_the_start_up_is_the_window_runs_own(seed_settled):
+    """The run from rest to simulation.duration_s is sampled as the window run samples it: the start-up peaks,
+    their times and the run-up factors are that run's, sample for sample."""
+    cfg, design, settled = seed_settled
+    plain = run_simulation(cfg, design, settle=False)
+    for a, b in zip(settled.stages, plain.stages, strict=True):
+        assert a.peak_tangential_N == b.peak_tangential_N and a.peak_time_s == b.peak_time_s
+        assert a.runup_factor == b.runup_factor
+    # summary.start: the rigid-body start is integrated to each result's last sample (the window run's end, the
+    # equilibrium's period after it) at its own tolerance: the same peaks to its accuracy
+    for key in ("peak_over_rigid", "rigid_peak_N"):
+        assert_allclose(settled.extra["start"][key], plain.extra["start"][key], rtol=1e-5)
+
+
+def test_the_multipliers_are_those_of_a_finite_difference_linearisation(seed_settled):
+    """exp(lambda T) of the eigenvalues of a central-difference Jacobian of the equations at the window's state
+    (not the analytic Jacobian Newton used)."""
+    cfg, design, r = seed_settled
+    model = TorsionalModel(spec_from_design(cfg, design))
+    d = model.layout.state.n_mechanical
+    y = np.array(r.final_state, dtype=float)
+    t = r.final_time_s
+    J = np.empty((d, d))
+    for k in range(d):
+        h = 1e-6 * max(abs(y[k]), 1e-6)
+        yp, ym = y.copy(), y.copy()
+        yp[k] += h
+        ym[k] -= h
+        J[:, k] = (model.rhs(t, yp)[:d] - model.rhs(t, ym)[:d]) / (2 * h)
+    mu = np.exp(np.linalg.eigvals(J) * r.steady.period_s)
+    mu = mu[np.argsort(-np.abs(mu))]
+    got = np.array([complex(a, b) for a, b in r.steady.multipliers])
+    assert_allclose(np.abs(got), np.abs(mu), rtol=1e-4)
+    assert r.steady.spectral_radius < 1.0
+
+
+def test_the_motion_goes_there():
+    """The seed with its mesh damping raised (its slowest mode then decays within the run): scipy's Radau from
+    rest, independently, at a tight tolerance, to 3 s; its final deflections and speeds are the equilibrium's."""
+    cfg, design = _seed("contact.damping_Ns_mm=20000", "simulation.engine=python")
+    r = run_simulation(cfg, design, settle=True)
+    assert r.steady.method == "equilibrium"
+    model = TorsionalModel(spec_from_design(cfg, design))
+    d = model.layout.state.n_mechanical
+    sol = solve_ivp(model.rhs, (0.0, 3.0), model.initial_state(), method="Radau", jac=model.jac, rtol=1e-10,
+                    atol=1e-14)
+    assert sol.success
+    # the slowest decay rate is above 10/s here: e^-28 of the start is left at 3 s
+    assert_allclose(sol.y[:d, -1], r.final_state[:d], rtol=1e-6, atol=1e-12)
+
+
+def test_an_excited_scene_is_not_taken_for_an_equilibrium():
+    loaded = api.load(str(ROOT / "configs" / "concrete_mixer_te.toml"), [])
+    model = TorsionalModel(spec_from_design(loaded.design, api.design(loaded)))
+    assert not equilibrium.applies(model)
+    cfg, design = _seed()
+    assert equilibrium.applies(TorsionalModel(spec_from_design(cfg, design)))
