@@ -36,6 +36,11 @@ class ConnectorSeries:
     def line_force_N(self) -> np.ndarray:
         return self.force
 
+    def tail(self, start: int) -> ConnectorSeries:
+        """The samples from ``start`` on."""
+        return ConnectorSeries(self.force[start:], self.deflection[start:], self.penetration_m[start:],
+                               self.potential_J[start:], self.dte_m[start:])
+
 
 @dataclass(frozen=True)
 class Sampled:
@@ -51,6 +56,15 @@ class Sampled:
     def meshes(self) -> tuple[ConnectorSeries, ...]:
         """The mesh connectors, in stage order."""
         return tuple(self.connectors[c] for c in self.layout.stage_conn)
+
+    def tail(self, start: int) -> Sampled:
+        """The samples from ``start`` on: every channel is a function of its own sample, so these are the numbers
+        :func:`sample` gives for those samples alone."""
+        return Sampled(self.time_s[start:], self.omega_rad_s[:, start:],
+                       None if self.theta_rad is None else self.theta_rad[:, start:],
+                       np.broadcast_to(self.input_torque_Nm, self.time_s.shape)[start:],
+                       np.broadcast_to(self.load_torque_Nm, self.time_s.shape)[start:],
+                       tuple(c.tail(start) for c in self.connectors), self.layout)
 
     @property
     def shaft_omega_rad_s(self) -> np.ndarray:

@@ -220,7 +220,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     error_estimate = error_estimate and steady != "periodic"
     s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y) if not energy_from else \
-        model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
+        model.energy(s.tail(energy_from), run.y[:, energy_from:])
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
         + _choice_warnings(choice)
