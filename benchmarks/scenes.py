@@ -15,11 +15,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _duration(path: Path) -> tuple[float, int]:
+def _duration(path: Path) -> tuple[float, int, float | None]:
     import tomllib
 
     sim = tomllib.loads(path.read_text(encoding="utf-8")).get("simulation", {})
-    return float(sim.get("duration_s", 0.5)), int(sim.get("steps", 2000))
+    start = sim.get("window_start_s")
+    return float(sim.get("duration_s", 0.5)), int(sim.get("steps", 2000)), None if start is None else float(start)
 
 
 #: files the fit never sees (configs/): a drivetrain, a planetary gearbox, motor starts, excited, stiff, rattling
@@ -43,13 +44,14 @@ def _name(p: Path) -> str:
 
 
 def _expand(path: Path, sets: list[str]) -> list[str]:
-    """``@duration=F``: the file's simulation.duration_s (and steps) times F."""
+    """``@duration=F``: the file's simulation.duration_s (and steps, and a window start it sets) times F."""
     out = []
     for s in sets:
         if s.startswith("@duration="):
             f = float(s.split("=", 1)[1])
-            duration, steps = _duration(path)
+            duration, steps, start = _duration(path)
             out += [f"simulation.duration_s={duration * f!r}", f"simulation.steps={max(10, int(steps * f))}"]
+            out += [] if start is None else [f"simulation.window_start_s={start * f!r}"]
         else:
             out.append(s)
     return out
