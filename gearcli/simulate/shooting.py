@@ -119,6 +119,11 @@ def structural_unit_multipliers(layout) -> int:
     return int(layout.n_conn - np.linalg.matrix_rank(R / scale, tol=1e-9))
 
 
+def structural_note(layout, structural: int) -> str:
+    return (f"{structural} multiplier(s) exactly 1 by construction left out (closed loops: {layout.n_conn} "
+            f"deflections over {len(layout.free_bodies)} free bodies)")
+
+
 # ------------------------------------------------------------------------------ variational equations
 class Variational:
     """The scene's equations with the variational equations of its ``d`` dynamic states beside them.
@@ -228,8 +233,7 @@ class _Shooter:
         self.variational = bool(getattr(model, "generated", True))
         self.structural = structural_unit_multipliers(lay)  # closed planet loops: constants of the motion
         if self.structural:
-            ledger.notes.append(f"{self.structural} multiplier(s) exactly 1 by construction left out (closed loops: "
-                                f"{lay.n_conn} deflections over {len(lay.free_bodies)} free bodies)")
+            ledger.notes.append(structural_note(lay, self.structural))
         if not self.variational:
             ledger.monodromy = "finite differences"
 
@@ -396,6 +400,8 @@ def _at_equilibrium(model, rtol: float, first, parts: list, period, patol: np.nd
     samples = pr.statistics_grid(lay, T, 1, steps)
     run = eq.steady_period(first, found.rates, found.y, t0, T, samples, lay)
     ledger.iterations, ledger.monodromy = found.steps, "exp(lambda T), lambda the eigenvalues of J at the equilibrium"
+    if structural:
+        ledger.notes.append(structural_note(lay, structural))
     ledger.notes.append(f"no excitation: the equilibrium, found by Newton on the equations of motion ({found.steps} "
                         "steps), its period exact")
     shot = Shot(run, found.y[:lay.state.n_mechanical].copy(), float(found.drift), None)
