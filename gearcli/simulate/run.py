@@ -186,7 +186,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         require_feasible(choice, max_nfev)
     nfev_estimate = work * predicted_nfev(choice)
     if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
-        nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s)
+        nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s,
+                                    at_rest=equilibrium.applies(model))
     eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced, choice.size)
     eng = _loadable(eng)
     first_engine = eng.engine  # what the prediction is priced on (a course change may move the run)

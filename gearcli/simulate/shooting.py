@@ -470,14 +470,16 @@ def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: 
 PRICED_VARIATIONAL_PERIODS = 3  # variational periods a typical solve integrates (two Newton steps and the check)
 
 
-def priced_nfev(nfev_run: float, layout, duration_s: float, window_start_s: float | None) -> float:
+def priced_nfev(nfev_run: float, layout, duration_s: float, window_start_s: float | None,
+                at_rest: bool = False) -> float:
     """``engine = "auto"``'s price of a shooting run, in right-hand-side evaluations of the scene: ``nfev_run``
     (the estimate for a run to ``duration_s``) scaled to the time actually integrated (the run-up, the
     brute-force periods, :data:`PRICED_VARIATIONAL_PERIODS` periods with the variational equations), each
     variational period weighted by ``1 + d``: every evaluation also forms the Jacobian's ``d x d`` block times the
-    ``d`` columns of the monodromy."""
+    ``d`` columns of the monodromy. ``at_rest``: the steady state is an equilibrium found directly
+    (:mod:`gearcli.simulate.equilibrium`): the run-up alone."""
     T = scene_period(layout).period_s
     d = layout.state.n_mechanical
     t_start = max(layout.drive.ramp_s, layout.load.ramp_s, window_start_s or 0.0)
-    span = t_start + T * (PREAMBLE_COLD + PRICED_VARIATIONAL_PERIODS * (1 + d))
+    span = t_start if at_rest else t_start + T * (PREAMBLE_COLD + PRICED_VARIATIONAL_PERIODS * (1 + d))
     return nfev_run * span / max(duration_s, 1e-300)
