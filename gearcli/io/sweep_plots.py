@@ -127,6 +127,17 @@ def _campbell(campbell: SweepCampbell):
     return campbell_io.campbell_figure(campbell.data, OutputUnits(*campbell.units), swept=list(campbell.swept_rpm))
 
 
+def _bins(x: np.ndarray) -> dict:
+    """The histogram's bins: up to 30, at least 5; one bar around a value every sample shares to rounding (an
+    equilibrium's dynamic factor: 1 to the last bits, which no finite bins can split)."""
+    width = float(x[-1] - x[0])
+    scale = max(abs(float(x[0])), abs(float(x[-1])), 1e-300)
+    if width <= 1e-9 * scale:
+        half = 1e-6 * scale
+        return {"bins": 1, "range": (float(x[0]) - half, float(x[-1]) + half)}
+    return {"bins": min(30, max(5, x.size // 5))}
+
+
 def _distributions(rows: Sequence[dict], n_stages: int):
     stats = [(c, t) for c, t in DISTRIBUTION_STATS if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1))]
     if not rows or not stats:
@@ -138,7 +149,7 @@ def _distributions(rows: Sequence[dict], n_stages: int):
             x = np.sort(x[np.isfinite(x)])
             if not x.size:
                 continue
-            axes[i][0].hist(x, bins=min(30, max(5, x.size // 5)), alpha=0.5, color=f"C{k - 1}", label=f"stage {k}")
+            axes[i][0].hist(x, **_bins(x), alpha=0.5, color=f"C{k - 1}", label=f"stage {k}")
             axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=f"C{k - 1}", label=f"stage {k}")
         axes[i][0].set_xlabel(title)
         axes[i][0].set_ylabel("count")

@@ -67,17 +67,23 @@ JUMP_CHANGE = 0.3  # a relative change of a stage's DTE rms (or force std) this 
 FOLD_BISECTIONS = 5  # parameter halvings that close in on the end of a branch
 
 
+RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is rounding (an equilibrium's: none)
+
+
 def on_branch(prev, result) -> bool:
     """Whether ``result`` (a periodic point continued from ``prev``'s orbit) stayed on ``prev``'s branch: its
-    shooting converged from the continued orbit at the first start, and no stage's DTE rms (force std when
-    no DTE) changed by :data:`JUMP_CHANGE` or more."""
+    shooting converged from the continued orbit at the first start (or it is an equilibrium found directly), and
+    no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the larger one, or of
+    :data:`RESOLVED` of the channel's mean where both are below it (an equilibrium's rms is rounding)."""
     st = result.steady
-    if st is None or st.method != "shooting" or (st.attempts or 1) > 1:
+    if st is None or st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1:
         return False
     for a, b in zip(prev.stages, result.stages, strict=False):
-        x = (a.dte_um.rms, b.dte_um.rms) if a.dte_um is not None and b.dte_um is not None \
-            else (a.tangential_N.std, b.tangential_N.std)
-        if abs(x[1] - x[0]) > JUMP_CHANGE * max(abs(x[0]), abs(x[1]), 1e-300):
+        dte = a.dte_um is not None and b.dte_um is not None
+        x = (a.dte_um.rms, b.dte_um.rms) if dte else (a.tangential_N.std, b.tangential_N.std)
+        mean = max(abs(a.dte_um.mean), abs(b.dte_um.mean)) if dte \
+            else max(abs(a.tangential_N.mean), abs(b.tangential_N.mean))
+        if abs(x[1] - x[0]) > JUMP_CHANGE * max(abs(x[0]), abs(x[1]), RESOLVED * mean, 1e-300):
             return False
     return True
 

@@ -161,7 +161,9 @@ def test_simulate_rates_planetary_stages_at_the_simulated_dynamic_factor(runner)
         rating = st["rating"]
         iso = ds["meshes"][0]["rating"] if ds.get("type") == "planetary" else ds["rating"]
         assert rating["K_v_source"] == "simulated"
-        assert_allclose(rating["K_v"], max(1.0, st["dynamic_factor"]), rtol=1e-12)
+        # a planetary stage's K_v is its most loaded planet's sun mesh: at the equilibrium (no excitation) the
+        # planets share the load equally to rounding, so K_v and the stage's factor agree to rounding
+        assert_allclose(rating["K_v"], max(1.0, st["dynamic_factor"]), rtol=1e-9)
         assert_allclose(rating["sigma_H0_MPa"], iso["sigma_H0_MPa"], rtol=1e-12)
         for part in ("pinion", "gear"):
             assert_allclose(rating[part]["sigma_F_MPa"] / (rating["K_v"] * rating["K_Fbeta"] * rating["K_Falpha"]),
