@@ -88,19 +88,28 @@ def meets(errors: Mapping[str, float | None], uncertainty: float, accuracy: floa
 
 
 # ------------------------------------------------------------------------------------------- plan
-def ladder_method(method: str, auto_choice: str | None, methods: Iterable[str]) -> str:
+def ladder_method(method: str, auto_choice: str | None, methods: Iterable[str],
+                  engine_methods: Iterable[str] | None = None) -> str:
     """A method that "auto" resolves to, when "auto" is also on the ladder, is swapped for its family
-    sibling (DOP853 <-> RK45, Radau <-> BDF), so that no setting runs twice."""
+    sibling (DOP853 <-> RK45, Radau <-> BDF), so that no setting runs twice; not for a sibling the engine that
+    runs the ladder cannot run (``engine_methods``: the compiled engine's DOP853, RK45 and Radau; None: every
+    method), which would run on scipy at ~10-40x the price of every other rung (BDF: 37 s of CPU on
+    configs/stiff_linear_mesh.toml's three tightest rungs, where the compiled Radau takes 0.1 s for all seven).
+    The column then keeps its method and repeats auto's rungs where auto resolved to it."""
     if method != "auto" and method == auto_choice and "auto" in methods:
-        return SAME_FAMILY.get(method, method)
+        sibling = SAME_FAMILY.get(method, method)
+        runs_on = None if engine_methods is None else tuple(engine_methods)
+        if runs_on is None or sibling in runs_on or method not in runs_on:
+            return sibling
     return method
 
 
-def ladder_methods(methods: Iterable[str], auto_choice: str | None) -> tuple[str, ...]:
+def ladder_methods(methods: Iterable[str], auto_choice: str | None,
+                   engine_methods: Iterable[str] | None = None) -> tuple[str, ...]:
     methods = tuple(methods)
     out: list[str] = []
     for m in methods:
-        m = ladder_method(m, auto_choice, methods)
+        m = ladder_method(m, auto_choice, methods, engine_methods)
         if m not in out:
             out.append(m)
     return tuple(out)
@@ -176,6 +185,7 @@ def accuracy_study(
     auto_choice: str | None = None,
     stiffness_indicator: float | None = None,
     explicit_speedup: float = 1.0,
+    engine_methods: tuple[str, ...] | None = None,
     progress: ProgressFn | None = None,
 ) -> AccuracyStudy:
     """Run the ladder (auto first, to learn what it resolves to), the file's own settings when they
@@ -183,14 +193,15 @@ def accuracy_study(
     ``auto_choice`` (what "auto" resolved to in the file's own run: the sibling swap's fallback when none of
     auto's rungs ran) and ``stiffness_indicator`` (max|λ|·T) come from the file's own run when known;
     ``explicit_speedup``: what the engine that runs the explicit reference saves over
-    scipy (:meth:`LadderSpec.reference_pair`). Raises SimulationError when the reference or its check fails."""
+    scipy (:meth:`LadderSpec.reference_pair`); ``engine_methods``: the methods the engine that runs the ladder
+    integrates (:func:`ladder_method`; None: every method). Raises SimulationError when the reference or its check fails."""
     rtols = sorted(spec.rtols, reverse=True)
     in_ladder = file_method in spec.methods and any(same_rtol(r, file_rtol) for r in rtols)
     runner = _Runner(run, progress, len(spec.methods) * len(rtols) + 2 + (0 if in_ladder else 1))
     # the reference pair first: the tightest, costliest runs, so a study that cannot afford them ends at once
     # (their run budget refuses them within seconds) instead of after the whole ladder
     ref = _reference(runner, spec.reference_pair(stiffness_indicator, explicit_speedup))
-    outcomes, slow = _ladder(runner, spec, rtols, auto_choice, (file_method, file_rtol))
+    outcomes, slow = _ladder(runner, spec, rtols, auto_choice, (file_method, file_rtol), engine_methods)
     if not any(_is_file(m, r, file_method, file_rtol) for m, r, _ in outcomes):  # e.g. swapped for a sibling
         runner.total += 1 if in_ladder else 0
         outcomes.append((file_method, file_rtol, runner(file_method, file_rtol)))
@@ -219,7 +230,8 @@ def _cost(runs: Iterable[AccuracyRun]) -> Callable[[AccuracyRun], float]:
 
 
 def _ladder(runner: _Runner, spec: LadderSpec, rtols: list[float], auto_choice: str | None,
-            file_setting: tuple[str, float]) -> tuple[list[tuple[str, float, Outcome]], dict[str, float]]:
+            file_setting: tuple[str, float], engine_methods: tuple[str, ...] | None = None
+            ) -> tuple[list[tuple[str, float, Outcome]], dict[str, float]]:
     """Every method over the rtols, loose to tight; "auto" first so its choice is known before the
     siblings are picked: the method auto resolved to on most of its own rungs (the loosest first on a tie), which
     is what a column of that method would repeat; ``auto_choice`` only where none of them ran. (The file's own
@@ -230,7 +242,7 @@ def _ladder(runner: _Runner, spec: LadderSpec, rtols: list[float], auto_choice: 
     slow: dict[str, float] = {}
     resolved: list[str] = []  # what auto resolved to, rung by rung
     for m in sorted(spec.methods, key=lambda m: m != "auto"):
-        m = ladder_method(m, _most_common(resolved) or auto_choice, spec.methods)
+        m = ladder_method(m, _most_common(resolved) or auto_choice, spec.methods, engine_methods)
         if any(m == done for done, _, _ in outcomes):
             runner.total -= len(rtols)
             continue

@@ -89,6 +89,7 @@ def build_report(
         budget = ReportBudget(_work(sim), sim_cfg.duration_s)
         budget.check_projection(sim.solver.rtol, spec)  # the run's own rtol (auto may have tightened it)
         shared = own if same_as_rung(own, sim_cfg) else None
+        compiled = _ladder_compiled(model, sim_cfg.engine)
 
         def run(method: str, rtol: float) -> SimulationResult:
             if shared is not None and method == sim_cfg.method and same_rtol(rtol, sim_cfg.rtol):
@@ -106,7 +107,8 @@ def build_report(
                 run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
                 auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
                 stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
-                explicit_speedup=_explicit_speedup(model, sim_cfg.engine),
+                explicit_speedup=compiled_speedup(EXPLICIT_METHOD) if compiled else 1.0,
+                engine_methods=engine.COMPILED_METHODS if compiled else None,
                 progress=lambda label, done, total: tick(label, done + 1, total + 1),
             )
     checks = (*(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
@@ -134,14 +136,13 @@ def same_as_rung(sim: SimulationResult, sim_cfg) -> bool:
             and (steady is None or not steady.settle_runs))
 
 
-def _explicit_speedup(model: TorsionalModel | None, requested: str) -> float:
-    """What the ladder's explicit reference saves over scipy (:meth:`LadderSpec.reference_pair`): the compiled
-    engine's speed-up for DOP853 where the ladder runs it compiled (loaded, the scene supported), else 1."""
+def _ladder_compiled(model: TorsionalModel | None, requested: str) -> bool:
+    """Whether the ladder runs on the compiled engine (loaded, the scene supported): its explicit reference is
+    then priced at the compiled engine's speed-up and no rung swaps to a sibling it cannot run (report.accuracy)."""
     if model is None or requested == "python" or engine.loaded_kernel() is None:
-        return 1.0
+        return False
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
-    options = engine.options(requested, model.arrays, (EXPLICIT_METHOD,), replaced)[EXPLICIT_METHOD]
-    return compiled_speedup(EXPLICIT_METHOD) if "compiled" in options else 1.0
+    return "compiled" in engine.options(requested, model.arrays, (EXPLICIT_METHOD,), replaced)[EXPLICIT_METHOD]
 
 
 def _modes(lay, duration_s: float):
