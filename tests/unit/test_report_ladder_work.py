@@ -147,3 +147,18 @@ def test_a_lengthened_files_run_leaves_its_rung_to_run(monkeypatch):
     assert report.simulation.steady.settle_runs >= 1
     assert ("auto", 1e-6) in calls
     assert report.accuracy.file_run.nfev != report.simulation.solver.nfev
+
+
+def test_a_ladder_rung_skips_the_start_and_motor_summaries():
+    """The rungs are read for their statistics and counters only: a motor scene's rung leaves out the motor's and
+    the start-up's summaries (~50 ms a rung on configs/motor_soft_start.toml), with the same statistics."""
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+    from gearcli.simulate import run_simulation
+
+    cfg = load_design(str(ROOT / "configs" / "motor_soft_start.toml")).design
+    design = compute_design(cfg)
+    full = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    bare = run_simulation(cfg, design, want_series=False, error_estimate=False, diagnose=False)
+    assert "motor" in (full.extra or {}) and not {"motor", "start"} & set(bare.extra or {})
+    assert full.solver.nfev == bare.solver.nfev and RunMetrics.of(full) == RunMetrics.of(bare)
