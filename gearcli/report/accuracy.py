@@ -192,9 +192,9 @@ def accuracy_study(
     are not a rung, then the reference and its check; measure every run against the reference.
     ``auto_choice`` (what "auto" resolved to in the file's own run: the sibling swap's fallback when none of
     auto's rungs ran) and ``stiffness_indicator`` (max|λ|·T) come from the file's own run when known;
-    ``explicit_speedup``: what the engine that runs the explicit reference saves over
-    scipy (:meth:`LadderSpec.reference_pair`); ``engine_methods``: the methods the engine that runs the ladder
-    integrates (:func:`ladder_method`; None: every method). Raises SimulationError when the reference or its check fails."""
+    ``explicit_speedup``: what the engine that runs the explicit reference saves over scipy
+    (:meth:`LadderSpec.reference_pair`); ``engine_methods``: the methods the engine that runs the ladder integrates
+    (:func:`ladder_method`; None: every method). Raises SimulationError when the reference or its check fails."""
     rtols = sorted(spec.rtols, reverse=True)
     in_ladder = file_method in spec.methods and any(same_rtol(r, file_rtol) for r in rtols)
     runner = _Runner(run, progress, len(spec.methods) * len(rtols) + 2 + (0 if in_ladder else 1))
