@@ -42,9 +42,14 @@ class LadderSpec:
     tolerance is the cheapest accurate reference on these scenes, stiff ones included (on
     configs/stiff_linear_mesh.toml it takes 2.5 s against 12 s for Radau at 1e-11, and the two agree to
     6e-11). Only when the scene's stiffness indicator max|λ|·T exceeds ``explicit_reference_limit``
-    (stability alone would then cost DOP853 more than ~2 max|λ|·T = 4e5 evaluations) does the pair
-    become Radau at 1e-11 checked by BDF at 1e-10. ``max_run_s``: once a run of a method takes longer,
-    its tighter rungs are skipped (a note says so), so a stiff scene cannot run for hours.
+    (stability alone would then cost DOP853 on scipy more than ~2 max|λ|·T = 4e5 evaluations, ~4 s) times
+    the explicit reference's speed-up on the engine that runs it (``explicit_speedup``: the compiled
+    engine's, :func:`gearcli.core.cost.compiled_speedup`, where the ladder runs DOP853 compiled; the same
+    seconds then buy that many times the evaluations) does the pair become Radau at 1e-11 checked by BDF at
+    1e-10 (BDF runs on scipy only: on configs/stiff_linear_mesh.toml, max|λ|·T = 2.45e5, that check alone
+    took 15 s of CPU and agreed with its reference to 1e-7 only, where the compiled DOP853/Radau pair takes
+    ~0.3 s). ``max_run_s``: once a run of a method takes longer, its tighter rungs are skipped (a note says
+    so), so a stiff scene cannot run for hours.
     """
 
     rtols: tuple[float, ...] = DEFAULT_RTOLS
@@ -54,9 +59,10 @@ class LadderSpec:
     max_run_s: float = 15.0
     explicit_reference_limit: float = 2e5
 
-    def reference_pair(self, stiffness_indicator: float | None = None
+    def reference_pair(self, stiffness_indicator: float | None = None, explicit_speedup: float = 1.0
                        ) -> tuple[tuple[str, float], tuple[str, float]]:
-        stiff = stiffness_indicator is not None and stiffness_indicator > self.explicit_reference_limit
+        limit = self.explicit_reference_limit * max(explicit_speedup, 1.0)
+        stiff = stiffness_indicator is not None and stiffness_indicator > limit
         ref = self.reference or (("Radau", 1e-11) if stiff else ("DOP853", 1e-12))
         check = self.check or (("BDF", 1e-10) if stiff else ("Radau", 1e-10))
         return ref, check
@@ -82,25 +88,34 @@ def meets(errors: Mapping[str, float | None], uncertainty: float, accuracy: floa
 
 
 # ------------------------------------------------------------------------------------------- plan
-def ladder_method(method: str, auto_choice: str | None, methods: Iterable[str]) -> str:
+def ladder_method(method: str, auto_choice: str | None, methods: Iterable[str],
+                  engine_methods: Iterable[str] | None = None) -> str:
     """A method that "auto" resolves to, when "auto" is also on the ladder, is swapped for its family
-    sibling (DOP853 <-> RK45, Radau <-> BDF), so that no setting runs twice."""
+    sibling (DOP853 <-> RK45, Radau <-> BDF), so that no setting runs twice; not for a sibling the engine that
+    runs the ladder cannot run (``engine_methods``: the compiled engine's DOP853, RK45 and Radau; None: every
+    method), which would run on scipy at ~10-40x the price of every other rung (BDF: 37 s of CPU on
+    configs/stiff_linear_mesh.toml's three tightest rungs, where the compiled Radau takes 0.1 s for all seven).
+    The column then keeps its method and repeats auto's rungs where auto resolved to it."""
     if method != "auto" and method == auto_choice and "auto" in methods:
-        return SAME_FAMILY.get(method, method)
+        sibling = SAME_FAMILY.get(method, method)
+        runs_on = None if engine_methods is None else tuple(engine_methods)
+        if runs_on is None or sibling in runs_on or method not in runs_on:
+            return sibling
     return method
 
 
-def ladder_methods(methods: Iterable[str], auto_choice: str | None) -> tuple[str, ...]:
+def ladder_methods(methods: Iterable[str], auto_choice: str | None,
+                   engine_methods: Iterable[str] | None = None) -> tuple[str, ...]:
     methods = tuple(methods)
     out: list[str] = []
     for m in methods:
-        m = ladder_method(m, auto_choice, methods)
+        m = ladder_method(m, auto_choice, methods, engine_methods)
         if m not in out:
             out.append(m)
     return tuple(out)
 
 
-def _same_rtol(a: float, b: float) -> bool:
+def same_rtol(a: float, b: float) -> bool:
     return abs(a - b) <= 1e-9 * max(abs(a), abs(b))
 
 
@@ -169,19 +184,24 @@ def accuracy_study(
     spec: LadderSpec = LadderSpec(),
     auto_choice: str | None = None,
     stiffness_indicator: float | None = None,
+    explicit_speedup: float = 1.0,
+    engine_methods: tuple[str, ...] | None = None,
     progress: ProgressFn | None = None,
 ) -> AccuracyStudy:
     """Run the ladder (auto first, to learn what it resolves to), the file's own settings when they
     are not a rung, then the reference and its check; measure every run against the reference.
-    ``auto_choice`` (what "auto" resolves to) and ``stiffness_indicator`` (max|λ|·T) come from the
-    file's own run when known. Raises SimulationError when the reference or its check fails."""
+    ``auto_choice`` (what "auto" resolved to in the file's own run: the sibling swap's fallback when none of
+    auto's rungs ran) and ``stiffness_indicator`` (max|λ|·T) come from the file's own run when known;
+    ``explicit_speedup``: what the engine that runs the explicit reference saves over scipy
+    (:meth:`LadderSpec.reference_pair`); ``engine_methods``: the methods the engine that runs the ladder integrates
+    (:func:`ladder_method`; None: every method). Raises SimulationError when the reference or its check fails."""
     rtols = sorted(spec.rtols, reverse=True)
-    in_ladder = file_method in spec.methods and any(_same_rtol(r, file_rtol) for r in rtols)
+    in_ladder = file_method in spec.methods and any(same_rtol(r, file_rtol) for r in rtols)
     runner = _Runner(run, progress, len(spec.methods) * len(rtols) + 2 + (0 if in_ladder else 1))
     # the reference pair first: the tightest, costliest runs, so a study that cannot afford them ends at once
     # (their run budget refuses them within seconds) instead of after the whole ladder
-    ref = _reference(runner, spec.reference_pair(stiffness_indicator))
-    outcomes, slow = _ladder(runner, spec, rtols, auto_choice, (file_method, file_rtol))
+    ref = _reference(runner, spec.reference_pair(stiffness_indicator, explicit_speedup))
+    outcomes, slow = _ladder(runner, spec, rtols, auto_choice, (file_method, file_rtol), engine_methods)
     if not any(_is_file(m, r, file_method, file_rtol) for m, r, _ in outcomes):  # e.g. swapped for a sibling
         runner.total += 1 if in_ladder else 0
         outcomes.append((file_method, file_rtol, runner(file_method, file_rtol)))
@@ -210,13 +230,19 @@ def _cost(runs: Iterable[AccuracyRun]) -> Callable[[AccuracyRun], float]:
 
 
 def _ladder(runner: _Runner, spec: LadderSpec, rtols: list[float], auto_choice: str | None,
-            file_setting: tuple[str, float]) -> tuple[list[tuple[str, float, Outcome]], dict[str, float]]:
+            file_setting: tuple[str, float], engine_methods: tuple[str, ...] | None = None
+            ) -> tuple[list[tuple[str, float, Outcome]], dict[str, float]]:
     """Every method over the rtols, loose to tight; "auto" first so its choice is known before the
-    siblings are picked. Returns (method, rtol, outcome) triples and the methods that became slow."""
+    siblings are picked: the method auto resolved to on most of its own rungs (the loosest first on a tie), which
+    is what a column of that method would repeat; ``auto_choice`` only where none of them ran. (The file's own
+    run may resolve otherwise: its settle test may have lengthened it, and a longer run can tip auto to Radau,
+    whose sibling BDF runs on scipy only.) Returns (method, rtol, outcome) triples and the methods that became
+    slow."""
     outcomes: list[tuple[str, float, Outcome]] = []
     slow: dict[str, float] = {}
+    resolved: list[str] = []  # what auto resolved to, rung by rung
     for m in sorted(spec.methods, key=lambda m: m != "auto"):
-        m = ladder_method(m, auto_choice, spec.methods)
+        m = ladder_method(m, _most_common(resolved) or auto_choice, spec.methods, engine_methods)
         if any(m == done for done, _, _ in outcomes):
             runner.total -= len(rtols)
             continue
@@ -228,14 +254,18 @@ def _ladder(runner: _Runner, spec: LadderSpec, rtols: list[float], auto_choice: 
             outcome = runner(m, r)
             outcomes.append((m, r, outcome))
             if isinstance(outcome, SimulationResult):
-                auto_choice = auto_choice or (outcome.solver.method if m == "auto" else None)
+                resolved += [outcome.solver.method] if m == "auto" else []
                 if outcome.solver.wall_s > spec.max_run_s:
                     slow[m] = outcome.solver.wall_s
     return outcomes, slow
 
 
+def _most_common(names: list[str]) -> str | None:
+    return max(names, key=lambda n: (names.count(n), -names.index(n))) if names else None
+
+
 def _is_file(method: str, rtol: float, file_method: str, file_rtol: float) -> bool:
-    return method == file_method and _same_rtol(rtol, file_rtol)
+    return method == file_method and same_rtol(rtol, file_rtol)
 
 
 def _reference(runner: _Runner, pair) -> ReferenceRun:
@@ -269,7 +299,7 @@ def struggling_runs(runs: Iterable[AccuracyRun], ladder: Iterable[AccuracyRun], 
     ladder = [r for r in ladder if r.failure is None]
     out = []
     for r in (r for r in runs if r.failure is None):
-        peers = [p.nfev for p in ladder if _same_rtol(p.rtol, r.rtol)]
+        peers = [p.nfev for p in ladder if same_rtol(p.rtol, r.rtol)]
         if len(peers) >= 3 and r.nfev > factor * statistics.median(peers):
             out.append(f"{r.method} at rtol {r.rtol:g} needed {r.nfev} function evaluations, "
                        f"{r.nfev / statistics.median(peers):.0f}x the ladder's median at that rtol: "

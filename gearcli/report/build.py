@@ -9,12 +9,12 @@ from typing import TYPE_CHECKING
 from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
-from gearcli.core.methods import METHODS
+from gearcli.core.methods import EXPLICIT_METHOD, METHODS
 from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, StudyTooLong
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import campbell_data, modal_analysis
-from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study
+from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study, same_rtol
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
 from gearcli.report.result import Report
@@ -80,16 +80,20 @@ def build_report(
     tick(f"simulation ({sim_cfg.method}, rtol {sim_cfg.rtol:g})", 0, planned)
     # the comparison is a dynamic verdict: from a window shown settled (gearcli.simulate.settle), moved later within
     # the budget; the window stays a window (its spectrum and statistics sections), an unsettled one says so
-    sim = simulate(cfg, design, want_series=True, settle="window") if model is not None else simulate(
+    own = simulate(cfg, design, want_series=True, settle="window") if model is not None else simulate(
         cfg, design, want_series=True)
-    sim = with_simulated_rating(cfg, design, sim)  # the rating at the run's K_v (simulate knows no standard)
+    sim = with_simulated_rating(cfg, design, own)  # the rating at the run's K_v (simulate knows no standard)
     stages = stage_reports(design, sim)
     study = None
     if not quick:
         budget = ReportBudget(_work(sim), sim_cfg.duration_s)
         budget.check_projection(sim.solver.rtol, spec)  # the run's own rtol (auto may have tightened it)
+        shared = own if same_as_rung(own, sim_cfg) else None
+        compiled = _ladder_compiled(model, sim_cfg.engine)
 
         def run(method: str, rtol: float) -> SimulationResult:
+            if shared is not None and method == sim_cfg.method and same_rtol(rtol, sim_cfg.rtol):
+                return shared  # the file's settings' rung is the file's own run (its work is counted already)
             # a rung's error is measured against the study's reference, so its own check pass (issue 10's
             # estimate, which doubles a run) would be computed and never read
             # nor its ringing fit, settle test and resonance check: the study reads its statistics and counters only
@@ -103,6 +107,8 @@ def build_report(
                 run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
                 auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
                 stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
+                explicit_speedup=compiled_speedup(EXPLICIT_METHOD) if compiled else 1.0,
+                engine_methods=engine.COMPILED_METHODS if compiled else None,
                 progress=lambda label, done, total: tick(label, done + 1, total + 1),
             )
     checks = (*(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
@@ -114,6 +120,29 @@ def build_report(
                   stages=stages, accuracy=study, warnings=warnings, diagnostics=diagnostics,
                   rating=rating_comparison(design, sim),
                   modes=modes[0] if modes else None, campbell=modes[1] if modes else None)
+
+
+def same_as_rung(sim: SimulationResult, sim_cfg) -> bool:
+    """Whether the file's own run is the run its rung of the ladder would make, step for step, so that the rung
+    reuses it: the same method and rtol (auto did not tighten it), the fixed window kept (no settle re-run), no
+    course change, and the engine the rung takes (a rung runs in the ladder's batch, where ``auto`` takes the
+    loaded compiled engine for every method it has; the file's run, outside it, may keep a short Radau run on
+    scipy). What the file's run does beyond the rung (its check pass, series, ringing fit, settle test) reads the
+    run and leaves it as it is; the method choice weighs the check pass against the engine's load only, which is
+    paid before the file's run (gearcli.simulate.choice.predicted_costs)."""
+    sv, steady = sim.solver, sim.steady
+    return (sv.requested_method == sim_cfg.method and same_rtol(sv.rtol, sim_cfg.rtol) and not sv.course_changes
+            and (sv.engine == "compiled" or sim_cfg.engine != "auto") and sv.status == 0
+            and (steady is None or not steady.settle_runs))
+
+
+def _ladder_compiled(model: TorsionalModel | None, requested: str) -> bool:
+    """Whether the ladder runs on the compiled engine (loaded, the scene supported): its explicit reference is
+    then priced at the compiled engine's speed-up and no rung swaps to a sibling it cannot run (report.accuracy)."""
+    if model is None or requested == "python" or engine.loaded_kernel() is None:
+        return False
+    replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
+    return "compiled" in engine.options(requested, model.arrays, (EXPLICIT_METHOD,), replaced)[EXPLICIT_METHOD]
 
 
 def _modes(lay, duration_s: float):

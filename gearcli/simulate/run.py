@@ -78,8 +78,9 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     ``[rating] dynamic_factor = "simulated"``; ``"window"``: without the periodic fallback) repeats a run whose fixed
     window is not settled with a later window
     (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it).
-    ``diagnose=False``: the statistics without the window's ringing fit, settle test and resonance check (a run
-    only its statistics and counters are read from: the report's accuracy ladder). The design's own
+    ``diagnose=False``: the statistics without the window's ringing fit, settle test, resonance check, start-up
+    summary and motor summary (a run only its statistics and counters are read from: the report's accuracy
+    ladder). The design's own
     warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -170,9 +171,9 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     ``unfinished`` (a list; a run the settle test may replace, :func:`gearcli.simulate.settle.settled_run`): a
     fixed window that the settle test finds unsettled skips its ringing fit, and the function that returns the
     whole result (ringing warnings included, the result without ``unfinished``) is appended to the list.
-    ``diagnose=False``: no ringing fit, settle test nor resonance check (:func:`run_simulation`).
-    ``run_up_samples``: ``steady = "periodic"``'s run-up sampled with this many samples (default: as a window run
-    over ``duration_s`` would sample it)."""
+    ``diagnose=False``: no ringing fit, settle test, resonance check, start-up nor motor summary
+    (:func:`run_simulation`). ``run_up_samples``: ``steady = "periodic"``'s run-up sampled with this many samples
+    (default: as a window run over ``duration_s`` would sample it)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -468,10 +469,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
     diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m)
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
-                                                       [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID)
+                                                       [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID) \
+        if diagnose else (None, [])
     diags += start_diags
     motor_summary = None
-    if model.layout.drive.motor is not None:
+    if model.layout.drive.motor is not None and diagnose:
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
                                                         mask, window)
         diags += motor_diags

@@ -76,7 +76,8 @@ def fake_simulation(design: DesignResult, *, speed_err=0.0, force_err=0.0, peak_
                             EnergyBalance(1.0, 1.0, 0.0, 0.0, 0.0, 1e-7), (), (160.0, 900.0))
 
 
-LAW = {"DOP853": (3.0, 1.0, 0.2), "Radau": (30.0, 1.0, 0.8), "RK45": (10.0, 1.0, 0.5)}  # C, p, wall at 1e-6
+LAW = {"DOP853": (3.0, 1.0, 0.2), "Radau": (30.0, 1.0, 0.8), "RK45": (10.0, 1.0, 0.5),
+       "BDF": (60.0, 1.0, 8.0)}  # C, p, wall at 1e-6
 
 
 class FakeSolver:
