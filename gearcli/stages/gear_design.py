@@ -72,31 +72,29 @@ class ParallelDesign:
         return pair_fastest_rad_s(cfg, result, k, inertia_in, inertia_out)
 
 
-def _planetary():
-    """``gearcli.design.planetary``, imported by the first planetary stage (its module and the rating results it
-    builds cost a one-shot run of parallel stages ~5 ms of start-up)."""
-    from gearcli.design import planetary  # lazy: start-up time of a file without planetary stages
-
-    return planetary
-
-
 class PlanetaryDesign:
     """A simple planetary stage (docs/planetary.md): its sun–planet mesh in the carrier's frame, per planet, with
     the members, the planet–ring mesh and the assembly checks attached."""
 
     def reverse_efficiency(self, table: object, k: int) -> float | None:
-        return _planetary().reverse_efficiency(table, k)  # type: ignore[arg-type]  # the table of this kind
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
+        return pl.reverse_efficiency(table, k)  # type: ignore[arg-type]  # the table of this kind
 
     def pair(self, table: object) -> object | None:
-        return _planetary().sun_planet_stage(table)  # type: ignore[arg-type]
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
+        return pl.sun_planet_stage(table)  # type: ignore[arg-type]
 
     gear_pair = True
 
     def result(self, cfg: DesignFile, pairs: DesignFile, k: int, kin: Train, mesh: MeshResult) -> StageResult:
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
         stage = cfg.stage[k]
         count = stage.planet.count  # type: ignore[union-attr]
-        sun_planet = mesh(pairs, k, _planetary().mesh_train(k, stage, kin), count)  # type: ignore[arg-type]
-        return _planetary().planetary_result(cfg, k, kin, sun_planet)
+        sun_planet = mesh(pairs, k, pl.mesh_train(k, stage, kin), count)  # type: ignore[arg-type]
+        return pl.planetary_result(cfg, k, kin, sun_planet)
 
     def inertia(self, result: StageResult, side: str) -> float:
         p = result.planetary
@@ -105,10 +103,14 @@ class PlanetaryDesign:
         return {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}[member]
 
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
-        return tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in _planetary().planetary_warnings(result))
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
+        return tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
 
     def check_inputs(self, cfg: DesignFile, k: int) -> None:
-        _planetary().check_stage_inputs(cfg, k)
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
+        pl.check_stage_inputs(cfg, k)
 
     def file_key(self, k: int, key: str) -> str:
         head = f"stage[{k}]."
