@@ -134,11 +134,12 @@ def simulate(cfg: DesignFile, design_result: DesignResult, *, method: str | None
     as channels and their window statistics; its ``units`` are those of the file's keys: what ``gearcli simulate``
     prints."""
     from gearcli.simulate import run_simulation  # lazy: scipy, start-up time of gearcli design
-    from gearcli.simulate.bearings import with_bearings  # lazy: scipy, start-up time of gearcli design
 
     result = run_simulation(cfg, design_result, method=method, rtol=rtol, want_series=want_series, progress=progress)
     result = with_simulated_rating(cfg, design_result, result)
     if cfg.bearing and want_series:  # bearing reactions: channels and window statistics (docs/life.md)
+        from gearcli.simulate.bearings import with_bearings  # lazy: the shaft statics, start-up time without bearings
+
         result = with_bearings(cfg, design_result, result)
     return dataclasses.replace(result, units=key_units(cfg))  # written in the units of the file's keys
 

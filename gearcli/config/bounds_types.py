@@ -41,8 +41,10 @@ class NotTiny:
         return out
 
 
-#: every table of the design file: unknown keys, NaN, infinity and type coercion refused
-STRICT = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+#: every table of the design file: unknown keys, NaN, infinity and type coercion refused. ``defer_build``: a
+#: table's validator is built when it is first used (the design file's, once, with every table in it), not when
+#: its class is created: ~35 validators compiled at import were each compiled again inside the file's
+STRICT = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True, defer_build=True)
 SMALLEST_NORMAL = sys.float_info.min  # 2.2e-308: below it a float is subnormal (a mistake or garbage)
 
 

@@ -13,7 +13,6 @@ from typing import TYPE_CHECKING
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
-from gearcli.design.bearing_life import bearing_diagnostics
 from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
@@ -26,11 +25,11 @@ from gearcli.design.inertia import (
 )
 from gearcli.design.inputs import check_inputs
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
-from gearcli.design.shafts import bearing_results, pin_bearing_warnings
 from gearcli.design.standards import standard_of
 from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
+    BearingResult,
     DesignResult,
     GearResult,
     Iso6336Factors,
@@ -76,8 +75,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            backlash_min_mm=st.backlash_circumferential_mm[1])
                    for _, st in gear_pairs(stages) if st.backlash_circumferential_mm is not None
                    and st.backlash_circumferential_mm[1] < 0.0)
-    pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
-    bearings = bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
+    pins, bearings = _bearings(cfg, stages, kin)
 
     ignored = cfg.input.ignored_keys
     drive_notes = (warning(DESIGN, f"[input] {', '.join(ignored)}: {'keys' if len(ignored) > 1 else 'a key'} of "
@@ -85,7 +83,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
         if ignored else ()
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *own, *pins, *jammed,
-                   *stiffness_diagnostics(stages), *rating_diagnostics, *bearing_diagnostics(cfg, bearings),
+                   *stiffness_diagnostics(stages), *rating_diagnostics, *_bearing_diagnostics(cfg, bearings),
                    *drive_notes)
     return DesignResult(
         title=cfg.title,
@@ -263,6 +261,27 @@ def _resonance(pinion: GearResult, gear: GearResult, mesh_N_mm_um: float, line_l
     ratio = abs(small.speed_rpm) / n_e1
     lower = res.lower_main_resonance_limit(line_load_N_mm)
     return _Resonance(m_red, n_e1, ratio, lower, res.resonance_range(ratio, lower))
+
+
+def _bearings(cfg: DesignFile, stages: tuple[StageResult, ...],
+              kin: Train) -> tuple[tuple[Diagnostic, ...], tuple[BearingResult, ...]]:
+    """The ``[[bearing]]`` tables' position warnings and results at the design's load; none without tables (the
+    shaft statics and ISO 281 are imported only then: a one-shot run without bearings never loads them)."""
+    if not cfg.bearing:
+        return (), ()
+    from gearcli.design.shafts import bearing_results, pin_bearing_warnings  # lazy: start-up time without bearings
+
+    pins = tuple(warning(DESIGN, m, check="bearing_position", **data) for m, data in pin_bearing_warnings(cfg, stages))
+    return pins, bearing_results(cfg, stages, [speed_rpm(w) for w in kin.shaft_speeds_rad_s])
+
+
+def _bearing_diagnostics(cfg: DesignFile, bearings: tuple[BearingResult, ...]) -> list[Diagnostic]:
+    """The bearings' warnings (:func:`gearcli.design.bearing_life.bearing_diagnostics`); none without bearings."""
+    if not bearings:
+        return []
+    from gearcli.design.bearing_life import bearing_diagnostics  # lazy: start-up time of a file without bearings
+
+    return bearing_diagnostics(cfg, bearings)
 
 
 def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> StageResult:

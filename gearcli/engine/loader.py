@@ -63,9 +63,10 @@ def mark_ready(directory: Path, compile_s: float) -> None:
     cachedir.write_json(directory / "ready.json", {"compile_s": compile_s})
 
 
-def _ready_here() -> bool:
-    """The user's cache is ready and trusted (without creating anything when nothing is there yet)."""
-    cdir = cache_dir()
+def _ready_here(cdir: Path | None = None) -> bool:
+    """The user's cache (``cdir``: :func:`cache_dir`, when the caller has it) is ready and trusted (without
+    creating anything when nothing is there yet)."""
+    cdir = cache_dir() if cdir is None else cdir
     return cdir.is_dir() and ready(cdir) and cache_problem() is None
 
 
@@ -330,9 +331,10 @@ def expected_load_s() -> float:
     if "loaded" in _state:
         return 0.0
 
-    if not _ready_here():
+    cdir = cache_dir()  # its key hashes the kernel's sources: computed once here
+    if not _ready_here(cdir):
         return COMPILE_S
-    doc = cachedir.read_json(cache_dir() / "load_time.json")
+    doc = cachedir.read_json(cdir / "load_time.json")
     try:
         return float(doc["load_s"])
     except (TypeError, KeyError, ValueError):

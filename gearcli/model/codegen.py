@@ -22,10 +22,9 @@ the load torque, ``Tin`` the drive torque of a torque drive (``dTin`` its d/d th
 from __future__ import annotations
 
 import hashlib
-import io
 import linecache
 import math
-import tokenize
+import re
 from collections.abc import Callable
 from functools import lru_cache
 
@@ -381,20 +380,28 @@ def source_of(lay: Layout) -> str:
     return _header(lay) + rhs_source(lay) + "\n\n" + jac_source(lay)
 
 
+#: a number (the forms ``lit`` and the generator write: ``12``, ``0.5``, ``1e-06``, ``2.5e+20``), after what a number
+#: cannot begin inside: a name (``d0``, ``_k1``), a comment. One scan finds the literals Python's tokenizer finds in
+#: the generated source, without the tokenizer's token objects and its full pattern (compiled on first use, as ``re``
+#: caches this one).
+_LITERALS = r"[A-Za-z_]\w*|#[^\n]*|(?P<number>(?:[0-9]+\.[0-9]*|\.[0-9]+|[0-9]+)(?:[eE][-+]?[0-9]+)?)"
+
+
 def _template(source: str) -> tuple[str, tuple[float, ...]]:
     """The source with every float literal replaced by a name ``_k{i}`` (what stays is the model's
     structure), and the literals' values in order. Integers (array shapes and indices) stay: they are
     structure. A name is an atom like a literal, so every expression keeps its meaning and its value."""
-    lines = source.splitlines(True)
     values: list[float] = []
-    spans: list[tuple[int, int, int, str]] = []
-    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
-        if tok.type == tokenize.NUMBER and not tok.string.isdigit():
-            spans.append((tok.start[0] - 1, tok.start[1], tok.end[1], f"_k{len(values)}"))
-            values.append(float(tok.string))
-    for row, a, b, name in reversed(spans):
-        lines[row] = lines[row][:a] + name + lines[row][b:]
-    return "".join(lines), tuple(values)
+    parts: list[str] = []
+    end = 0
+    for m in re.finditer(_LITERALS, source):
+        text = m.group("number")
+        if text is None or text.isdigit():
+            continue
+        parts += [source[end:m.start()], f"_k{len(values)}"]
+        values.append(float(text))
+        end = m.end()
+    return "".join(parts) + source[end:], tuple(values)
 
 
 @lru_cache(maxsize=64)

@@ -103,8 +103,8 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
     return omega, theta, np.asarray(a0)
 
 
-def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta) -> ConnectorSeries:
-    """Force, penetration and stored energy of connector c at every sample (the element's own law)."""
+def _law_arguments(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta):
+    """Connector c's law arguments at every sample: deflection, its rate, mesh phase and phase rate."""
     x = lay.connectors[c]
     el, P = x.element, x.params
     d = Y[lay.state.delta(c)]
@@ -114,6 +114,14 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     assert dd is not None
     phi = el.phase_per_rad(P) * theta[x.a] if x.phased else np.zeros_like(d)
     wphi = el.phase_per_rad(P) * omega[x.a] if x.excited else np.zeros_like(d)
+    return d, dd, phi, wphi
+
+
+def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta) -> ConnectorSeries:
+    """Force, penetration and stored energy of connector c at every sample (the element's own law)."""
+    x = lay.connectors[c]
+    el, P = x.element, x.params
+    d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
     n = d.size
     kernel = _loaded_kernel()
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
@@ -136,6 +144,47 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     pen = channels.get("penetration_m", np.zeros(n))
     q = channels.get("dte_m", d.copy()) if x.excited else d.copy()  # without a transmission error q = delta
     return ConnectorSeries(F, d.copy(), pen, U, q)
+
+
+def _connector_force(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta) -> np.ndarray:
+    """``connector_series(...).force`` alone: the scalar law's force at every sample, without the energy and
+    channels the series also evaluates (the compiled laws give them all in one call: the series' force)."""
+    x = lay.connectors[c]
+    kernel = _loaded_kernel()
+    if kernel is not None and x.kind in kernel.KINDS:
+        return connector_series(lay, c, Y, omega, theta).force
+    d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
+    force, P = x.element.force, x.params
+    return np.array([force(P, dj, ddj, phj, wj)[0] for dj, ddj, phj, wj in
+                     zip(d.tolist(), dd.tolist(), phi.tolist(), wphi.tolist(), strict=True)], dtype=float).reshape(d.size)
+
+
+def mesh_line_forces(lay: Layout, t: np.ndarray, Y: np.ndarray) -> list[np.ndarray]:
+    """The meshes' line forces F_bt (N) at the sample times ``t``, in stage order: ``[m.line_force_N for m in
+    sample(lay, t, Y).meshes]`` (the same numbers), without the channels and energies a check pass never reads."""
+    omega, theta, _ = body_motion(lay, np.asarray(t, dtype=float), Y)
+    return [_connector_force(lay, c, Y, omega, theta) for c in lay.stage_conn]
+
+
+def stored_energy(lay: Layout, t: float, y: np.ndarray) -> float:
+    """Kinetic energy plus the elastic energy of the constant-stiffness connectors at one state ``y`` at time
+    ``t``: what ``kinetic_energy`` and ``potential_energy(time_varying=False)`` of ``sample`` at that one state
+    give (the same laws, the same sum), without the forces and channels (an energy watch asks every ~500 steps)."""
+    tt, Y = np.array([t]), y[:, None]
+    omega, theta, _ = body_motion(lay, tt, Y)
+    elastic = np.zeros_like(tt)
+    kernel = _loaded_kernel()
+    for c, x in enumerate(lay.connectors):
+        if x.time_varying:
+            continue
+        if kernel is not None and x.kind in kernel.KINDS:
+            elastic += connector_series(lay, c, Y, omega, theta).potential_J
+            continue
+        d, _, phi, _ = _law_arguments(lay, c, Y, omega, theta)
+        potential, P = x.element.potential, x.params
+        elastic += np.array([potential(P, dj, phj) for dj, phj in zip(d.tolist(), phi.tolist(), strict=True)],
+                            dtype=float).reshape(d.size)
+    return float(kinetic_energy(lay, omega)[0]) + float(elastic[0])
 
 
 _compiled: list = []  # the compiled engine's kernel once gearcli.engine has loaded it (use_compiled)

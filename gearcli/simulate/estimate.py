@@ -53,7 +53,7 @@ from gearcli import diagnostics as dg
 from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
-from gearcli.model.outputs import Sampled, sample, tooth_forces
+from gearcli.model.outputs import Sampled, mesh_line_forces, tooth_forces
 from gearcli.simulate.choice import Choice
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
@@ -200,7 +200,7 @@ def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, i_s
                      engine=engine)  # the run's engine: scipy's steps either way
     forces = None
     if fine.status == STATUS_FINISHED:
-        forces = [m.line_force_N for m in sample(model.layout, tw, fine.y[:, t_check.size - tw.size:]).meshes]
+        forces = mesh_line_forces(model.layout, tw, fine.y[:, t_check.size - tw.size:])
     return fine, forces, time.perf_counter() - t0
 
 
@@ -216,7 +216,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     t0 = time.perf_counter()
     tw = t_eval[i_w:]
     if sampled is None:
-        run_forces = [m.line_force_N for m in sample(lay, tw, run.y[:, i_w:]).meshes]
+        run_forces = mesh_line_forces(lay, tw, run.y[:, i_w:])
     else:
         run_forces = [m.line_force_N[i_w:] for m in sampled.meshes]
     nfev = njev = steps = 0

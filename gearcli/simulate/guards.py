@@ -50,7 +50,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.linear import static_forces
-from gearcli.model.outputs import kinetic_energy, potential_energy, sample
+from gearcli.model.outputs import stored_energy
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
 
 # the prices and budgets live in gearcli.core.cost (one module for every cost constant)
@@ -144,8 +144,7 @@ class EnergyWatch:
     def _stored(self, t: float, y: np.ndarray) -> float:
         """Kinetic energy + elastic energy of constant-stiffness meshes + work done on time-varying springs."""
         lay = self.model.layout
-        s = sample(lay, np.array([t]), y[:, None])  # the elements' own laws, one sample
-        stored = float(kinetic_energy(lay, s.omega_rad_s)[0]) + float(potential_energy(lay, s, time_varying=False)[0])
+        stored = stored_energy(lay, t, y)  # the elements' own laws, one sample
         i_tv = lay.state.quadrature("elastic_work_tv_J")
         if i_tv is not None:
             stored += float(y[i_tv])

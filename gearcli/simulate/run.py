@@ -45,7 +45,6 @@ from gearcli.simulate.results import (
     SteadyState,
 )
 from gearcli.simulate.ringing import ringing_warnings
-from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
     STATUS_ENERGY,
@@ -187,6 +186,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         require_feasible(choice, max_nfev)
     nfev_estimate = work * predicted_nfev(choice)
     if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
+        from gearcli.simulate.shooting import priced_nfev  # lazy: start-up time of a fixed window's one-shot run
+
         nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s,
                                     at_rest=equilibrium.applies(model))
     eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced, choice.size)
@@ -199,6 +200,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     changes: list[CourseChange] = []
     if steady == "periodic":
         diags = []  # the fixed window's warning does not apply: the window is found, not set
+        from gearcli.simulate.shooting import integrate_shooting  # lazy: start-up time of a fixed window's run
+
         found = integrate_shooting(model, choice.method, rtol, steps=steps, duration_s=duration_s,
                                    window_start_s=window_start_s, y0=y0, max_nfev=max_nfev,
                                    fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
@@ -338,6 +341,8 @@ def window_steady(model: TorsionalModel) -> SteadyState:
 
 def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnostic]:
     """A response that did not repeat, or repeats only after k periods; a period that is not common."""
+    from gearcli.simulate.shooting import FALLBACK_NOTE  # lazy: start-up time of a fixed window's one-shot run
+
     out = []
     if not period.exact:
         out.append(dg.warning(dg.PERIOD_NOT_COMMON, f"steady = \"periodic\": the excitations have no usable common "

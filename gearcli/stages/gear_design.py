@@ -3,7 +3,7 @@
 attached, ``gearcli.design.planetary``).
 
 Registered when ``gearcli.design.compute`` imports this module (every import of ``gearcli.design`` does). It
-imports ``design.planetary``, so only the modules above it in the design layer's inner contract (``inputs``,
+imports ``design.planetary`` (when a planetary stage is designed: a file of parallel stages never loads it), so only the modules above it in the design layer's inner contract (``inputs``,
 ``compute``) import it; the others ask :func:`gearcli.stages.design.design_kind`.
 """
 
@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from gearcli.design import planetary as pl
 from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.results import MeshStiffness, RatedMesh, StageResult
 from gearcli.stages import kinds
@@ -78,14 +77,20 @@ class PlanetaryDesign:
     the members, the planet–ring mesh and the assembly checks attached."""
 
     def reverse_efficiency(self, table: object, k: int) -> float | None:
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
         return pl.reverse_efficiency(table, k)  # type: ignore[arg-type]  # the table of this kind
 
     def pair(self, table: object) -> object | None:
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
         return pl.sun_planet_stage(table)  # type: ignore[arg-type]
 
     gear_pair = True
 
     def result(self, cfg: DesignFile, pairs: DesignFile, k: int, kin: Train, mesh: MeshResult) -> StageResult:
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
         stage = cfg.stage[k]
         count = stage.planet.count  # type: ignore[union-attr]
         sun_planet = mesh(pairs, k, pl.mesh_train(k, stage, kin), count)  # type: ignore[arg-type]
@@ -98,9 +103,13 @@ class PlanetaryDesign:
         return {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}[member]
 
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
         return tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
 
     def check_inputs(self, cfg: DesignFile, k: int) -> None:
+        from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
+
         pl.check_stage_inputs(cfg, k)
 
     def file_key(self, k: int, key: str) -> str:

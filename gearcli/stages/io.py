@@ -8,16 +8,16 @@ looked up in :mod:`gearcli.stages.kinds`) and never which kind a stage is.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
-
-from rich.console import RenderableType
+from typing import TYPE_CHECKING, Any
 
 from gearcli.core.jsontypes import JsonObject
-from gearcli.io.table_kit import _g, _quantity_table
-from gearcli.io.tables import rating_table
-from gearcli.results import DesignResult, RatedMesh, StageResult
-from gearcli.simulate.results import SimulationResult, StageDynamics
 from gearcli.stages import kinds
+
+if TYPE_CHECKING:  # the tables' modules (rich) are imported by the table builders below, only when tables are made
+    from rich.console import RenderableType
+
+    from gearcli.results import DesignResult, RatedMesh, StageResult
+    from gearcli.simulate.results import SimulationResult, StageDynamics
 
 _Doc = dict[str, Any]
 
@@ -91,6 +91,8 @@ class _RatedMesh:
 
 def _planet_ring_rating(stages: list[StageResult]) -> list[RenderableType]:
     """The planet–ring meshes' rating (``meshes[1].rating``), below the planetary stages' table."""
+    from gearcli.io.tables import rating_table  # lazy: rich, only when tables are made (JSON and CSV need none)
+
     meshes = [_RatedMesh(st.index, st.planetary.planet_ring.rating) for st in stages
               if st.planetary is not None and st.planetary.planet_ring.rating is not None]
     if not meshes:
@@ -100,6 +102,8 @@ def _planet_ring_rating(stages: list[StageResult]) -> list[RenderableType]:
 
 def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
     """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh."""
+    from gearcli.io.table_kit import _g, _quantity_table  # lazy: rich, only when tables are made
+
     s = [st for st in stages if st.planetary is not None]
     ps = [st.planetary for st in stages if st.planetary is not None]
     if not ps:
@@ -137,6 +141,8 @@ def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
 
 def _member_row(member: str, ps) -> tuple[str, list[str]]:
     """A member's own speed, torque (its magnitude) and power, in the housing's frame."""
+    from gearcli.io.table_kit import _g  # lazy: rich, only when tables are made
+
     def cell(g) -> str:
         return f"{_g(g.speed_rpm)} / {_g(g.torque_Nm)} / {_g(abs(g.power_kW))}"
 
@@ -145,6 +151,8 @@ def _member_row(member: str, ps) -> tuple[str, list[str]]:
 
 def _balance(p) -> str:
     """The signed external torques (positive in the input member's sense) and their sum."""
+    from gearcli.io.table_kit import _g  # lazy: rich, only when tables are made
+
     m = p.moment_balance_Nm
     if not m:
         return "—"

@@ -1,17 +1,28 @@
 """The faster paths of a one-shot run give what the plain ones give: the check pass on the run's own samples,
-and the channels' scalar laws on Python floats."""
+the channels' scalar laws on Python floats, the check pass's line forces and the energy watch's stored energy
+without the channels they never read, and the generated model's template found without Python's tokenizer."""
 
 from __future__ import annotations
 
+import io
+import tokenize
 from pathlib import Path
 
 import numpy as np
 
 from gearcli.config import load_design
 from gearcli.design import compute_design
+from gearcli.model import codegen
 from gearcli.model.elements import KIND_MESH
 from gearcli.model.elements.mesh import dynamic_transmission_error, penetration
-from gearcli.model.outputs import connector_series, sample
+from gearcli.model.outputs import (
+    connector_series,
+    kinetic_energy,
+    mesh_line_forces,
+    potential_energy,
+    sample,
+    stored_energy,
+)
 from gearcli.scene import build_model
 from gearcli.simulate import estimate
 from gearcli.simulate.choice import choose_method
@@ -58,3 +69,49 @@ def test_channels_are_the_scalar_law_at_each_sample():
             assert cs.penetration_m[j] == penetration(x.params, d, 0.0)
             assert cs.dte_m[j] == dynamic_transmission_error(x.params, d, 0.0)
         assert np.any(cs.force != 0.0)  # the meshes carry load
+
+
+def test_the_check_pass_line_forces_are_the_samples_mesh_forces_bit_for_bit():
+    model, _, run, _ = _seed_run()
+    lay = model.layout
+    tail = slice(run.t.size // 2, None)  # a window: the check pass samples the run's tail
+    full = [m.line_force_N for m in sample(lay, run.t[tail], run.y[:, tail]).meshes]
+    alone = mesh_line_forces(lay, run.t[tail], run.y[:, tail])
+    assert len(alone) == len(full) == 3
+    for a, f in zip(alone, full, strict=True):
+        assert a.shape == f.shape and np.array_equal(a, f)  # the same law on the same floats: equal, not close
+
+
+def test_the_energy_watch_stored_energy_is_the_samples_bit_for_bit():
+    model, _, run, _ = _seed_run()
+    lay = model.layout
+    for j in (0, 1, run.t.size // 3, run.t.size - 1):
+        s = sample(lay, np.array([run.t[j]]), run.y[:, j][:, None])
+        expected = float(kinetic_energy(lay, s.omega_rad_s)[0]) + float(potential_energy(lay, s, time_varying=False)[0])
+        assert stored_energy(lay, float(run.t[j]), run.y[:, j]) == expected
+    assert expected > 0.0  # the train moves and the meshes are loaded at the end of the run
+
+
+def _tokenizer_template(source: str) -> tuple[str, tuple[float, ...]]:
+    """The reference: every NUMBER token of Python's tokenizer that is not a plain integer, replaced in order."""
+    lines = source.splitlines(True)
+    values: list[float] = []
+    spans = []
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.NUMBER and not tok.string.isdigit():
+            spans.append((tok.start[0] - 1, tok.start[1], tok.end[1], f"_k{len(values)}"))
+            values.append(float(tok.string))
+    for row, a, b, name in reversed(spans):
+        lines[row] = lines[row][:a] + name + lines[row][b:]
+    return "".join(lines), tuple(values)
+
+
+def test_the_template_finds_the_literals_the_tokenizer_finds():
+    configs = SEED.parent
+    for name in ("concrete_mixer.toml", "mixer_planetary_motor.toml", "concrete_mixer_te.toml", "lossy_reducer.toml",
+                 "mixer_time_varying_backlash.toml", "conveyor_motor.toml"):
+        cfg = load_design(str(configs / name), []).design
+        source = codegen.source_of(build_model(cfg, compute_design(cfg)).layout)
+        template, constants = codegen._template(source)
+        assert (template, constants) == _tokenizer_template(source), name
+        assert len(constants) > 10  # every scene has its inertias, levers and ramps as literals
