@@ -91,6 +91,17 @@ def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, 
 
 def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta) -> ConnectorSeries:
     """Force, penetration and stored energy of connector c at every sample (the element's own law)."""
+    kernel = _loaded_kernel()
+    if kernel is None:
+        return _connector_series(lay, c, Y, omega, theta, None)
+    with signals.deferred():  # a signal acted on in plain Python after the call, never inside numba's dispatcher
+        return _connector_series(lay, c, Y, omega, theta, kernel)
+
+
+def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, kernel) -> ConnectorSeries:
+    """:func:`connector_series` with the compiled engine's ``kernel`` (None: the scalar laws), called with the
+    signals held back by the caller (:func:`gearcli.core.signals.deferred`, once for all of a sample's
+    connectors)."""
     x = lay.connectors[c]
     el, P = x.element, x.params
     d = Y[lay.state.delta(c)]
@@ -101,15 +112,11 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     phi = el.phase_per_rad(P) * theta[x.a] if x.phased else np.zeros_like(d)
     wphi = el.phase_per_rad(P) * omega[x.a] if x.excited else np.zeros_like(d)
     n = d.size
-    kernel = _loaded_kernel()
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-
-        with signals.deferred():  # a signal acted on in plain Python after the call, never inside numba's dispatcher
-            F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float),
-                                               np.ascontiguousarray(d, dtype=float),
-                                               np.ascontiguousarray(dd, dtype=float),
-                                               np.ascontiguousarray(phi, dtype=float),
-                                               np.ascontiguousarray(wphi, dtype=float))
+        F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
+                                           np.ascontiguousarray(dd, dtype=float),
+                                           np.ascontiguousarray(phi, dtype=float),
+                                           np.ascontiguousarray(wphi, dtype=float))
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
     else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
         force, potential, channel = el.force, el.potential, el.channel
@@ -142,7 +149,12 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     """Everything the channels and the energy balance need, at the sample times ``t``."""
     t = np.asarray(t, dtype=float)
     omega, theta, a0 = body_motion(lay, t, Y)
-    conns = tuple(connector_series(lay, c, Y, omega, theta) for c in range(lay.n_conn))
+    kernel = _loaded_kernel()
+    if kernel is None:
+        conns = tuple(_connector_series(lay, c, Y, omega, theta, None) for c in range(lay.n_conn))
+    else:
+        with signals.deferred():  # once for every connector (a signal acted on after the compiled calls)
+            conns = tuple(_connector_series(lay, c, Y, omega, theta, kernel) for c in range(lay.n_conn))
     if lay.speed_drive:  # what the drive puts into body 0: its connectors' reactions and its inertia
         t_in = None
         for c, j in lay.acting_on(0):

@@ -124,14 +124,11 @@ def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration
     first = 1 if lay.speed_drive else 0
     if lay.n_bodies - first < 1:
         return 0.0
-    R = speed_map(lay, range(first, lay.n_bodies))
-    J = np.asarray(lay.inertias[first:], dtype=float)
+    R, J, inv_sqrt, exciting = _chain(lay, spec)
     k, c = np.asarray(lin.stiffness, dtype=float), np.asarray(lin.damping, dtype=float)
-    inv_sqrt = 1.0 / np.sqrt(J)
     w2, u = np.linalg.eigh(inv_sqrt[:, None] * (R.T @ (k[:, None] * R)) * inv_sqrt[None, :])
     phi = inv_sqrt[:, None] * u
     top = max(float(np.max(np.abs(w2))), np.finfo(float).tiny)
-    exciting = _self_exciting(lay, spec)
     best = 0.0
     for j in range(w2.size):
         if w2[j] <= 1e-9 * top:
@@ -148,8 +145,27 @@ def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration
     return best
 
 
+def _chain(lay: Layout, spec: ModelSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The speed map R of the free bodies, their inertias J, 1/sqrt(J) and the self-exciting connectors of
+    :func:`vibration_radians`: the layout's own, kept with it (every run of a model chooses again)."""
+    cache = lay.__dict__.setdefault("_choice_chain", [])
+    if not cache:
+        first = 1 if lay.speed_drive else 0
+        J = np.asarray(lay.inertias[first:], dtype=float)
+        cache.append((speed_map(lay, range(first, lay.n_bodies)), J, 1.0 / np.sqrt(J), _self_exciting(lay, spec)))
+    return cache[0]
+
+
 def model_size(lay: Layout, spec: ModelSpec) -> ModelSize:
-    """The model's size as the price per evaluation sees it (:class:`gearcli.core.cost.ModelSize`)."""
+    """The model's size as the price per evaluation sees it (:class:`gearcli.core.cost.ModelSize`; kept with the
+    layout)."""
+    cache = lay.__dict__.setdefault("_model_size", [])
+    if not cache:
+        cache.append(_model_size(lay, spec))
+    return cache[0]
+
+
+def _model_size(lay: Layout, spec: ModelSpec) -> ModelSize:
     meshes = [x for x in lay.connectors if x.role in ("mesh", "planet")]
 
     def mesh(x) -> object:

@@ -530,8 +530,13 @@ def _choice_warnings(choice: Choice) -> list[Diagnostic]:
 def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic]:
     """A mesh order (1x-3x mesh frequency) or shaft order (1x) at the nominal speed within 10 % of a natural
     frequency that it excites (its meshes' share of the mode's strain energy over twice the modal damping
-    ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`)."""
-    return [dg.warning(dg.RESONANCE, r.message, **r.data) for r in resonances(model.layout, boundary=choice.boundary)]
+    ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`). The
+    model's own: found once per layout and boundary (a sweep point's settle runs ask again)."""
+    cache = model.layout.__dict__.setdefault("_resonance_warnings", {})
+    if choice.boundary not in cache:
+        cache[choice.boundary] = [dg.warning(dg.RESONANCE, r.message, **r.data)
+                                  for r in resonances(model.layout, boundary=choice.boundary)]
+    return list(cache[choice.boundary])
 
 
 def check(run: Integration, choice: Choice, duration_s: float) -> None:
