@@ -254,14 +254,26 @@ def _at_full_load(spec: ModelSpec) -> tuple[Layout, np.ndarray, Linearisation]:
     return entry[1:]
 
 
+def _at_operating_point(lay: Layout, operating: np.ndarray) -> Linearisation:
+    """The linearisation at the run-up forces ``operating`` (time-varying stiffness at its stiffest phase), kept
+    with the layout for the last few operating points: a model's runs past its ramps (a sweep point's settle runs)
+    share one."""
+    cache = lay.__dict__.setdefault("_operating_points", {})
+    key = operating.tobytes()
+    if key not in cache:
+        if len(cache) >= 8:
+            cache.pop(next(iter(cache)))
+        cache[key] = linearise(lay, operating, stiffest_phase=True)
+    return cache[key]
+
+
 def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6,
                   engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0) -> Choice:
     """The method to run and why (``requested`` other than "auto" is kept, with the indicator). ``engines``:
     per method, the engines that may run it and their remaining load cost (:func:`predicted_costs`;
     :func:`gearcli.engine.options`)."""
     lay, static, full = _at_full_load(spec)
-    operating = np.maximum(np.abs(static), peak_rigid_forces(lay, duration_s))
-    op = linearise(lay, operating, stiffest_phase=True)
+    op = _at_operating_point(lay, np.maximum(np.abs(static), peak_rigid_forces(lay, duration_s)))
     lam = max(full.max_abs_eigenvalue, op.max_abs_eigenvalue)
     low = min((x for x in (full.min_abs_eigenvalue, op.min_abs_eigenvalue) if x > 0), default=0.0)
     indicator = lam * duration_s
