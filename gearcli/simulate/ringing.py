@@ -147,24 +147,39 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
         for j in range(M):
             if base[j, 0] <= 0.0:
                 continue
-            q = _orthonormal(_design(envelopes, cos, sin, skip=j))  # the other columns, per stage
+            # the other columns, once per distinct set of decay rates: stages whose modes decay alike share the
+            # basis, the projected trials and their Gram matrices (the same numbers as one per stage)
+            reps, group = _distinct(np.delete(sigma, j, axis=1))
+            q = _orthonormal(_design(envelopes[reps], cos, sin, skip=j))  # (G, n, r)
             env = np.exp(-(base[j, 0] * factors)[:, None] * tau)  # (TRIALS, n)
             np.multiply(env, cos[j], out=trial[:, 0])
             np.multiply(env, sin[j], out=trial[:, 1])
-            tp = _project_out(q, trial.reshape(-1, tau.size), out=buffer)
-            tp = tp.reshape(S, TRIALS, 2, tau.size)
-            yp = _project_out(q, Y[:, None, :])  # (S, 1, n)
-            g = tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2)  # (S, TRIALS, 2, 2)
-            b = tp @ yp[:, None, :, :].transpose(0, 1, 3, 2)  # (S, TRIALS, 2, 1)
+            tp = _project_out(q, trial.reshape(-1, tau.size), out=buffer[:len(reps)])
+            tp = tp.reshape(len(reps), TRIALS, 2, tau.size)
+            yp = _project_out(q[group], Y[:, None, :])  # (S, 1, n)
+            g = (tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2))[group]  # (S, TRIALS, 2, 2)
+            b = np.stack([tp[group[i]] @ yp[i].T for i in range(S)])  # (S, TRIALS, 2, 1)
             gain = (b * np.linalg.solve(g, b)).sum(axis=(2, 3))
             sigma[:, j] = base[j, 0] * factors[np.argmax(gain, axis=1)]  # the least residual: the most explained
             envelopes[:, j] = np.exp(-sigma[:, j, None] * tau)
-    A = _design(envelopes, cos, sin)
-    q, r = np.linalg.qr(A)
-    coef = np.linalg.lstsq(r[0], (q[0].T @ Y[0]), rcond=None)[0][None] if S == 1 else None
-    if coef is None:
-        coef = np.stack([np.linalg.lstsq(r[i], q[i].T @ Y[i], rcond=None)[0] for i in range(S)])
+    reps, group = _distinct(sigma)
+    q, r = np.linalg.qr(_design(envelopes[reps], cos, sin))
+    coef = np.stack([np.linalg.lstsq(r[group[i]], q[group[i]].T @ Y[i], rcond=None)[0] for i in range(S)])
     return np.hypot(coef[:, 1::2], coef[:, 2::2]), sigma
+
+
+def _distinct(rows: np.ndarray) -> tuple[list[int], np.ndarray]:
+    """The first index of each distinct row of ``rows`` (S, k), and each row's group (index into them)."""
+    first: dict[bytes, int] = {}
+    group = np.empty(rows.shape[0], dtype=np.intp)
+    reps: list[int] = []
+    for s in range(rows.shape[0]):
+        key = np.ascontiguousarray(rows[s]).tobytes()
+        if key not in first:
+            first[key] = len(reps)
+            reps.append(s)
+        group[s] = first[key]
+    return reps, group
 
 
 def fit_transient(t: np.ndarray, x: np.ndarray, modes: list[tuple[float, float]], *,
