@@ -20,18 +20,20 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
-from gearcli.errors import ConfigError, RunTooLong, SimulationError
+from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
+from gearcli.model.equations import Energy
 from gearcli.model.linear import static_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import estimate, rigid_start, stats
+from gearcli.simulate import estimate, replaced_run, rigid_start, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.course import CourseChange, integrate_auto
+from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
 from gearcli.simulate.results import (
@@ -47,12 +49,6 @@ from gearcli.simulate.results import (
 from gearcli.simulate.ringing import ringing_warnings
 from gearcli.simulate.shooting import FALLBACK_NOTE, integrate_shooting, priced_nfev
 from gearcli.simulate.solver import (
-    STATUS_BUDGET,
-    STATUS_ENERGY,
-    STATUS_FAILED,
-    STATUS_FINISHED,
-    STATUS_NONFINITE,
-    STATUS_PROJECTED,
     Integration,
 )
 
@@ -195,16 +191,28 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
-    s = sample(model.layout, run.t, run.y)
-    energy = model.energy(s, run.y) if not energy_from else \
-        model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
+    # a window the settle loop may replace is tested first, on its own samples (gearcli.simulate.replaced_run)
+    early = replaced_run.window_settle(model, run, choice, window, mask_window, steady_state,
+                                   simulated_static_tangential_N(model)) \
+        if replaced_run.applies(model, replaceable=unfinished is not None, steady=steady, error_estimate=error_estimate,
+                            diagnose=diagnose) else None
+    done: list[tuple[Sampled, Energy]] = []
+
+    def samples() -> tuple[Sampled, Energy]:  # the whole run's samples and energy balance, once
+        if not done:
+            s = sample(model.layout, run.t, run.y)
+            done.append((s, model.energy(s, run.y) if not energy_from else model.energy(
+                sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])))
+        return done[0]
+
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
         + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
-    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=samples()[0]) \
+        if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
@@ -221,16 +229,23 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if tightened is not None:
         diags.append(tightened)
 
-    def summary(deferred: list[bool] | None) -> SimulationResult:
-        out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
-                         ref, stat_diags, eng.reason, deferred, diagnose)
-        out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
-                                          course_changes=tuple(c.as_json() for c in changes)))
+    def predicted(out: SimulationResult) -> SimulationResult:
+        return replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
+                                           course_changes=tuple(c.as_json() for c in changes)))
+
+    def summary(deferred: list[bool] | None, settled: SteadyState | None = None) -> SimulationResult:
+        s, energy = samples()
+        out = predicted(_summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series,
+                                   steady_state, ref, stat_diags, eng.reason, deferred, diagnose, settled))
         _require_finite(out)
         return out
 
+    if early is not None and early.settled is False and unfinished is not None:  # replaced: the whole one if kept
+        unfinished.append(lambda: summary(None))
+        return predicted(replaced_run.brief_result(model, run, choice, window, mask_window, early, list(diags),
+                                               _solver_stats(model, run, choice, 0.0, ref, eng.reason)))
     deferred: list[bool] | None = [] if unfinished is not None else None
-    result = summary(deferred)
+    result = summary(deferred, early)
     if deferred and unfinished is not None:
         unfinished.append(lambda: summary(None))
     return result
@@ -416,11 +431,13 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
-               diagnose: bool = True) -> SimulationResult:
+               diagnose: bool = True, settled: SteadyState | None = None) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
-    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order)."""
+    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order).
+    ``settled``: the settle test's ``steady`` of a settled window, already found (:mod:`gearcli.simulate.replaced_run`;
+    a settled window's test adds no warning)."""
     spec = model.spec
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
@@ -463,7 +480,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
     if not periodic and deferred is None and diagnose:
         diags += ringing_diags()
-    if diagnose:
+    if settled is not None:
+        steady = settled
+    elif diagnose:
         steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
                                            motor_summary, diags)
     if not periodic and deferred is not None:
@@ -471,13 +490,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
             deferred.append(True)
         else:
             diags += ringing_diags()
-    solver = SolverStats(
-        method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
-        atol=_atol_summary(model, run.atol),
-        nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
-        energy_residual=energy.residual_relative, status=run.status, message=run.message,
-        check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
-        compile_s=run.compile_s)
+    solver = _solver_stats(model, run, choice, energy.residual_relative, ref, engine_reason)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(
@@ -493,6 +506,17 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
+
+
+def _solver_stats(model: TorsionalModel, run: Integration, choice: Choice, energy_residual: float,
+                  ref: estimate.CheckPass | None, engine_reason: str) -> SolverStats:
+    return SolverStats(
+        method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
+        atol=_atol_summary(model, run.atol),
+        nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
+        energy_residual=energy_residual, status=run.status, message=run.message,
+        check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
+        compile_s=run.compile_s)
 
 
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
@@ -537,57 +561,6 @@ def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic
         cache[choice.boundary] = [dg.warning(dg.RESONANCE, r.message, **r.data)
                                   for r in resonances(model.layout, boundary=choice.boundary)]
     return list(cache[choice.boundary])
-
-
-def check(run: Integration, choice: Choice, duration_s: float) -> None:
-    """Raise SimulationError naming the likely cause and the fix when the run did not finish."""
-    if run.status == STATUS_FINISHED:
-        if not np.all(np.isfinite(run.y)):
-            raise SimulationError(f"{run.method} returned non-finite values; {_stiffness_hint(choice)}")
-        return
-    where = f"{run.method} stopped at t = {run.t_fail:.4g} s of {duration_s:g} s"
-    if run.status == STATUS_PROJECTED:
-        freqs = choice.at_operating_point.natural_frequencies_Hz
-        fastest = f"; its fastest mode is {float(freqs[-1]):.3g} Hz" if freqs.size else ""
-        raise RunTooLong(f"{where}: {run.message}{fastest}. Shorten simulation.duration_s, loosen simulation.rtol, "
-                         "or check for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
-    if run.status == STATUS_BUDGET:
-        if run.method in EXPLICIT:
-            raise SimulationError(f"{where}: {run.message}. {_stiffness_hint(choice)}")
-        freqs = choice.at_operating_point.natural_frequencies_Hz
-        fastest = f" (its fastest mode: {float(freqs[-1]):.3g} Hz)" if freqs.size else ""
-        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics{fastest} or the contacts "
-                              "impact violently — shorten simulation.duration_s, loosen simulation.rtol, or check "
-                              "for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
-    if run.status in (STATUS_NONFINITE, STATUS_ENERGY):
-        cause = "the solution diverged (non-finite state)" if run.status == STATUS_NONFINITE \
-            else "the solution is unstable"
-        raise SimulationError(f"{where}: {cause}: {run.message}. {_divergence_hint(choice, run)}")
-    if run.status == STATUS_FAILED:
-        raise SimulationError(f"{where}: the step size collapsed (solver: {run.message}); likely a violent contact "
-                              "impact or a discontinuous stiffness — try method = \"Radau\" or a looser rtol")
-    raise SimulationError(f"{where}: {run.message}")
-
-
-def _divergence_hint(choice: Choice, run: Integration) -> str:
-    """The fix for a diverging run: an implicit method for a stiff scene, else a tighter tolerance."""
-    if run.method in EXPLICIT:
-        return _stiffness_hint(choice)
-    return (f"tighten simulation.rtol (now {run.rtol:g}, try {run.rtol / 100:g}); if it persists, check the contact "
-            f"law of mesh stage {choice.stiffest_mesh + 1} (stiffness, exponent) and the inertias")
-
-
-def _stiffness_hint(choice: Choice) -> str:
-    k = choice.stiffest_mesh
-    freqs = choice.at_operating_point.natural_frequencies_Hz
-    f = float(freqs[-1]) if freqs.size else 0.0
-    if choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT:
-        return (f"mesh stage {k + 1} makes the scene stiff (highest mode {f:.3g} Hz, "
-                f"max|λ|·T = {choice.indicator:.3g}, {choice.indicator / STIFFNESS_LIMIT:.2g}x what an explicit "
-                "method affords here): "
-                f'use method = "{IMPLICIT_METHOD}" (or "auto")')
-    return (f"check the contact law of mesh stage {k + 1} (stiffness, exponent) and the inertias; "
-            f'try method = "{IMPLICIT_METHOD}" with a tighter rtol')
 
 
 def _require_finite(result: SimulationResult) -> None:
