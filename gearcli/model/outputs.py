@@ -145,8 +145,10 @@ def _loaded_kernel():
     return _compiled[0] if _compiled else None
 
 
-def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
-    """Everything the channels and the energy balance need, at the sample times ``t``."""
+def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True) -> Sampled:
+    """Everything the channels and the energy balance need, at the sample times ``t``. ``torques=False``: without
+    the input and load torques (empty arrays; a caller that reads only the speeds, connector forces and energies:
+    the energy watch, the settle test, the check pass)."""
     t = np.asarray(t, dtype=float)
     omega, theta, a0 = body_motion(lay, t, Y)
     kernel = _loaded_kernel()
@@ -155,6 +157,8 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
     else:
         with signals.deferred():  # once for every connector (a signal acted on after the compiled calls)
             conns = tuple(_connector_series(lay, c, Y, omega, theta, kernel) for c in range(lay.n_conn))
+    if not torques:
+        return Sampled(t, omega, theta, np.empty(0), np.empty(0), conns, lay)
     if lay.speed_drive:  # what the drive puts into body 0: its connectors' reactions and its inertia
         t_in = None
         for c, j in lay.acting_on(0):

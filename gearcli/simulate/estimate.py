@@ -200,7 +200,8 @@ def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, i_s
                      engine=engine)  # the run's engine: scipy's steps either way
     forces = None
     if fine.status == STATUS_FINISHED:
-        forces = [m.line_force_N for m in sample(model.layout, tw, fine.y[:, t_check.size - tw.size:]).meshes]
+        forces = [m.line_force_N for m in sample(model.layout, tw, fine.y[:, t_check.size - tw.size:],
+                                                     torques=False).meshes]
     return fine, forces, time.perf_counter() - t0
 
 
@@ -216,7 +217,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     t0 = time.perf_counter()
     tw = t_eval[i_w:]
     if sampled is None:
-        run_forces = [m.line_force_N for m in sample(lay, tw, run.y[:, i_w:]).meshes]
+        run_forces = [m.line_force_N for m in sample(lay, tw, run.y[:, i_w:], torques=False).meshes]
     else:
         run_forces = [m.line_force_N[i_w:] for m in sampled.meshes]
     nfev = njev = steps = 0

@@ -142,7 +142,7 @@ class EnergyWatch:
     def _stored(self, t: float, y: np.ndarray) -> float:
         """Kinetic energy + elastic energy of constant-stiffness meshes + work done on time-varying springs."""
         lay = self.model.layout
-        s = sample(lay, np.array([t]), y[:, None])  # the elements' own laws, one sample
+        s = sample(lay, np.array([t]), y[:, None], torques=False)  # the elements' own laws, one sample
         stored = float(kinetic_energy(lay, s.omega_rad_s)[0]) + float(potential_energy(lay, s, time_varying=False)[0])
         i_tv = lay.state.quadrature("elastic_work_tv_J")
         if i_tv is not None:

@@ -22,7 +22,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
-from gearcli.model.outputs import sample, tooth_forces
+from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate import stats
 from gearcli.simulate.choice import Choice
@@ -46,32 +46,31 @@ def applies(model: TorsionalModel, *, replaceable: bool, steady: str, error_esti
         and model.layout.drive.motor is None
 
 
-def window_settle(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float],
-                  mask_window: tuple[float, float], steady: SteadyState,
-                  simulated_static_N: list[float]) -> SteadyState:
+def window_settle(model: TorsionalModel, run: Integration, choice: Choice, mask_window: tuple[float, float],
+                  window: tuple[float, float], steady: SteadyState,
+                  simulated_static_N: list[float]) -> tuple[SteadyState, Sampled]:
     """``steady`` with the settle test of the window (:func:`gearcli.simulate.settle.settled_steady`), from the
-    window's samples; ``simulated_static_N``: per stage, the static F_t of the simulation's load."""
+    window's samples (``mask_window`` selects them, ``window`` is the reported one), and those samples (speeds and
+    connector forces); ``simulated_static_N``: per stage, the static F_t of the simulation's load."""
     lay = model.layout
     sel = stats.window_slice(stats.window_mask(np.asarray(run.t, dtype=float), mask_window))
-    w = sample(lay, run.t[sel], run.y[:, sel])
+    w = sample(lay, run.t[sel], run.y[:, sel], torques=False)
     forces = [(tooth_forces(lay, k, ms.line_force_N)[0],) for k, ms in enumerate(w.meshes)]
     scratch: list[Diagnostic] = []  # an unsettled window's warning is its whole result's (run_simulation's finish)
     return settle_mod.settled_steady(model, choice, w.time_s, np.ones(w.time_s.size, dtype=bool), window, forces,
-                                     [_Reference(float(f)) for f in simulated_static_N], steady, None, scratch)
+                                     [_Reference(float(f)) for f in simulated_static_N], steady, None, scratch), w
 
 
 def brief_result(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float],
-                 mask_window: tuple[float, float], steady: SteadyState, diags: list[Diagnostic],
+                 window_samples: Sampled, steady: SteadyState, diags: list[Diagnostic],
                  solver: SolverStats) -> SimulationResult:
     """The replaced run's result: ``steady`` (unsettled) and the window, the solver's counters with the energy
-    residual, the window's mean speeds and ratio, the final state; no stage statistics nor series (the settle loop
-    reads none; the run it keeps is summarised whole)."""
+    residual, the window's mean speeds and ratio (from ``window_samples``, :func:`window_settle`'s), the final state;
+    no stage statistics nor series (the settle loop reads none; the run it keeps is summarised whole)."""
     lay = model.layout
     ends = [0, run.t.size - 1]
-    energy = model.energy(sample(lay, run.t[ends], run.y[:, ends]), run.y)
-    sel = stats.window_slice(stats.window_mask(np.asarray(run.t, dtype=float), mask_window))
-    w = sample(lay, run.t[sel], run.y[:, sel])
-    shafts = w.shaft_omega_rad_s
+    energy = model.energy(sample(lay, run.t[ends], run.y[:, ends], torques=False), run.y)
+    shafts = window_samples.shaft_omega_rad_s
     w_in, w_out = float(shafts[0].mean()), float(shafts[-1].mean())
     ratio, _ = stats.ratio_of(w_in, w_out)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,

@@ -192,17 +192,18 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
     # a window the settle loop may replace is tested first, on its own samples (gearcli.simulate.replaced_run)
-    early = replaced_run.window_settle(model, run, choice, window, mask_window, steady_state,
-                                   simulated_static_tangential_N(model)) \
+    early, window_samples = replaced_run.window_settle(model, run, choice, mask_window, window, steady_state,
+                                                       simulated_static_tangential_N(model)) \
         if replaced_run.applies(model, replaceable=unfinished is not None, steady=steady, error_estimate=error_estimate,
-                            diagnose=diagnose) else None
+                                diagnose=diagnose) else (None, None)
     done: list[tuple[Sampled, Energy]] = []
 
     def samples() -> tuple[Sampled, Energy]:  # the whole run's samples and energy balance, once
         if not done:
             s = sample(model.layout, run.t, run.y)
             done.append((s, model.energy(s, run.y) if not energy_from else model.energy(
-                sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])))
+                sample(model.layout, run.t[energy_from:], run.y[:, energy_from:], torques=False),
+                run.y[:, energy_from:])))
         return done[0]
 
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
@@ -240,10 +241,11 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         _require_finite(out)
         return out
 
-    if early is not None and early.settled is False and unfinished is not None:  # replaced: the whole one if kept
+    if early is not None and early.settled is False and unfinished is not None and window_samples is not None:
+        # the settle loop replaces this run: its brief result now, the whole one only if it is kept
         unfinished.append(lambda: summary(None))
-        return predicted(replaced_run.brief_result(model, run, choice, window, mask_window, early, list(diags),
-                                               _solver_stats(model, run, choice, 0.0, ref, eng.reason)))
+        return predicted(replaced_run.brief_result(model, run, choice, window, window_samples, early, list(diags),
+                                                   _solver_stats(model, run, choice, 0.0, ref, eng.reason)))
     deferred: list[bool] | None = [] if unfinished is not None else None
     result = summary(deferred, early)
     if deferred and unfinished is not None:
