@@ -201,9 +201,9 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     def samples() -> tuple[Sampled, Energy]:  # the whole run's samples and energy balance, once
         if not done:
             s = sample(model.layout, run.t, run.y)
+            ends = [energy_from, run.t.size - 1]  # a periodic run's balance from the window's start: its two ends
             done.append((s, model.energy(s, run.y) if not energy_from else model.energy(
-                sample(model.layout, run.t[energy_from:], run.y[:, energy_from:], torques=False),
-                run.y[:, energy_from:])))
+                sample(model.layout, run.t[ends], run.y[:, ends], torques=False), run.y[:, energy_from:])))
         return done[0]
 
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
