@@ -244,8 +244,10 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if early is not None and early.settled is False and unfinished is not None and window_samples is not None:
         # the settle loop replaces this run: its brief result now, the whole one only if it is kept
         unfinished.append(lambda: summary(None))
-        return predicted(replaced_run.brief_result(model, run, choice, window, window_samples, early, list(diags),
-                                                   _solver_stats(model, run, choice, 0.0, ref, eng.reason)))
+        brief = predicted(replaced_run.brief_result(model, run, choice, window, window_samples, early, list(diags),
+                                                    _solver_stats(model, run, choice, 0.0, ref, eng.reason)))
+        _require_finite(brief)  # its ratio, speeds and energy residual: the whole summary's check, as early
+        return brief
     deferred: list[bool] | None = [] if unfinished is not None else None
     result = summary(deferred, early)
     if deferred and unfinished is not None:
