@@ -22,13 +22,12 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.equations import Energy
 from gearcli.model.linear import static_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import estimate, replaced_run, rigid_start, stats
+from gearcli.simulate import estimate, rigid_start, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
@@ -191,29 +190,16 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
-    # a window the settle loop may replace is tested first, on its own samples (gearcli.simulate.replaced_run)
-    early, window_samples = replaced_run.window_settle(model, run, choice, mask_window, window, steady_state,
-                                                       simulated_static_tangential_N(model)) \
-        if replaced_run.applies(model, replaceable=unfinished is not None, steady=steady, error_estimate=error_estimate,
-                                diagnose=diagnose) else (None, None)
-    done: list[tuple[Sampled, Energy]] = []
-
-    def samples() -> tuple[Sampled, Energy]:  # the whole run's samples and energy balance, once
-        if not done:
-            s = sample(model.layout, run.t, run.y)
-            ends = [energy_from, run.t.size - 1]  # a periodic run's balance from the window's start: its two ends
-            done.append((s, model.energy(s, run.y) if not energy_from else model.energy(
-                sample(model.layout, run.t[ends], run.y[:, ends], torques=False), run.y[:, energy_from:])))
-        return done[0]
-
+    s = sample(model.layout, run.t, run.y)
+    energy = model.energy(s, run.y) if not energy_from else \
+        model.energy(sample(model.layout, run.t[energy_from:], run.y[:, energy_from:]), run.y[:, energy_from:])
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
         + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
-    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=samples()[0]) \
-        if error_estimate else None
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
@@ -230,26 +216,16 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if tightened is not None:
         diags.append(tightened)
 
-    def predicted(out: SimulationResult) -> SimulationResult:
-        return replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
-                                           course_changes=tuple(c.as_json() for c in changes)))
-
-    def summary(deferred: list[bool] | None, settled: SteadyState | None = None) -> SimulationResult:
-        s, energy = samples()
-        out = predicted(_summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series,
-                                   steady_state, ref, stat_diags, eng.reason, deferred, diagnose, settled))
+    def summary(deferred: list[bool] | None) -> SimulationResult:
+        out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
+                         ref, stat_diags, eng.reason, deferred, diagnose)
+        out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
+                                          course_changes=tuple(c.as_json() for c in changes)))
         _require_finite(out)
         return out
 
-    if early is not None and early.settled is False and unfinished is not None and window_samples is not None:
-        # the settle loop replaces this run: its brief result now, the whole one only if it is kept
-        unfinished.append(lambda: summary(None))
-        brief = predicted(replaced_run.brief_result(model, run, choice, window, window_samples, early, list(diags),
-                                                    _solver_stats(model, run, choice, 0.0, ref, eng.reason)))
-        _require_finite(brief)  # its ratio, speeds and energy residual: the whole summary's check, as early
-        return brief
     deferred: list[bool] | None = [] if unfinished is not None else None
-    result = summary(deferred, early)
+    result = summary(deferred)
     if deferred and unfinished is not None:
         unfinished.append(lambda: summary(None))
     return result
@@ -435,13 +411,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
-               diagnose: bool = True, settled: SteadyState | None = None) -> SimulationResult:
+               diagnose: bool = True) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
-    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order).
-    ``settled``: the settle test's ``steady`` of a settled window, already found (:mod:`gearcli.simulate.replaced_run`;
-    a settled window's test adds no warning)."""
+    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order)."""
     spec = model.spec
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
@@ -484,9 +458,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
     if not periodic and deferred is None and diagnose:
         diags += ringing_diags()
-    if settled is not None:
-        steady = settled
-    elif diagnose:
+    if diagnose:
         steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
                                            motor_summary, diags)
     if not periodic and deferred is not None:
@@ -494,7 +466,13 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
             deferred.append(True)
         else:
             diags += ringing_diags()
-    solver = _solver_stats(model, run, choice, energy.residual_relative, ref, engine_reason)
+    solver = SolverStats(
+        method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
+        atol=_atol_summary(model, run.atol),
+        nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
+        energy_residual=energy.residual_relative, status=run.status, message=run.message,
+        check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
+        compile_s=run.compile_s)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(
@@ -510,17 +488,6 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
-
-
-def _solver_stats(model: TorsionalModel, run: Integration, choice: Choice, energy_residual: float,
-                  ref: estimate.CheckPass | None, engine_reason: str) -> SolverStats:
-    return SolverStats(
-        method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
-        atol=_atol_summary(model, run.atol),
-        nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
-        energy_residual=energy_residual, status=run.status, message=run.message,
-        check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
-        compile_s=run.compile_s)
 
 
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
