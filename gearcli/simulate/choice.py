@@ -241,13 +241,13 @@ def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float =
 _FULL_LOAD: list[tuple[ModelSpec, Layout, np.ndarray, Linearisation]] = []  # the last scene's (one entry)
 
 
-def _at_full_load(spec: ModelSpec) -> tuple[Layout, np.ndarray, Linearisation]:
+def _at_full_load(spec: ModelSpec, layout: Layout | None = None) -> tuple[Layout, np.ndarray, Linearisation]:
     """The scene's layout, static connector forces and linearisation at full load: the same for every run of one
     model (a sweep point's settle runs and periodic search choose again with other durations), kept for the last
-    scene asked."""
+    scene asked. ``layout``: the scene's, when the caller has it (the model's), else built from ``spec``."""
     if _FULL_LOAD and _FULL_LOAD[0][0] is spec:
         return _FULL_LOAD[0][1:]
-    lay = Layout.of(spec)
+    lay = layout if layout is not None and layout.spec is spec else Layout.of(spec)
     static = static_forces(lay)
     entry = (spec, lay, static, linearise(lay, static))
     _FULL_LOAD[:] = [entry]
@@ -268,11 +268,12 @@ def _at_operating_point(lay: Layout, operating: np.ndarray) -> Linearisation:
 
 
 def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6,
-                  engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0) -> Choice:
+                  engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0, *,
+                  layout: Layout | None = None) -> Choice:
     """The method to run and why (``requested`` other than "auto" is kept, with the indicator). ``engines``:
     per method, the engines that may run it and their remaining load cost (:func:`predicted_costs`;
-    :func:`gearcli.engine.options`)."""
-    lay, static, full = _at_full_load(spec)
+    :func:`gearcli.engine.options`); ``layout``: the scene's (the model's), not built again."""
+    lay, static, full = _at_full_load(spec, layout)
     op = _at_operating_point(lay, np.maximum(np.abs(static), peak_rigid_forces(lay, duration_s)))
     lam = max(full.max_abs_eigenvalue, op.max_abs_eigenvalue)
     low = min((x for x in (full.min_abs_eigenvalue, op.min_abs_eigenvalue) if x > 0), default=0.0)

@@ -151,7 +151,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
     candidates = engine_options(engine, model.arrays, (EXPLICIT_METHOD, IMPLICIT_METHOD), replaced)
     work = cost.CHECK_PASS_WORK if error_estimate and steady == "window" else 1.0  # the check pass integrates again
-    choice = choose_method(spec, duration_s, method, rtol, candidates, work)
+    choice = choose_method(spec, duration_s, method, rtol, candidates, work, layout=model.layout)
     given_nfev = max_nfev
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
