@@ -115,10 +115,16 @@ def rigid_line_forces_N(spec: ModelSpec | Layout, t: np.ndarray) -> np.ndarray:
 
 
 def peak_rigid_forces(lay: Layout, duration_s: float, samples: int = 801) -> np.ndarray:
-    """Largest |F_c| of the rigid chain over [0, duration] (run-up inertia plus load), per connector."""
+    """Largest |F_c| of the rigid chain over [0, duration] (run-up inertia plus load), per connector (read-only:
+    kept per layout and span, the same for every run past the ramps: a sweep point's settle runs)."""
     end = min(duration_s, max(lay.drive.ramp_s, lay.load.ramp_s, 0.0)) or duration_s
-    t = np.linspace(0.0, end, samples)
-    return np.max(np.abs(rigid_forces(lay, t)), axis=1)
+    cache = lay.__dict__.setdefault("_peak_rigid_forces", {})
+    key = (float(end), int(samples))
+    if key not in cache:
+        peak = np.max(np.abs(rigid_forces(lay, np.linspace(0.0, end, samples))), axis=1)
+        peak.flags.writeable = False
+        cache[key] = peak
+    return cache[key]
 
 
 @dataclass(frozen=True)

@@ -105,7 +105,15 @@ def excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
     """(name, frequency over the input body's rotation frequency, connectors it acts through) of every order:
     each stage's mesh orders act through that mesh (a stage whose connector is no mesh, a belt's span, has
     none); a shaft's rotation order through the meshes of the gears
-    it carries (shaft 1: stage 1's pinion; shaft k + 1: stage k's gear and stage k + 1's pinion)."""
+    it carries (shaft 1: stage 1's pinion; shaft k + 1: stage k's gear and stage k + 1's pinion). Found once per
+    layout (every mode's crossings and every resonance check read them)."""
+    cache = lay.__dict__.setdefault("_excitation_sources", [])
+    if not cache:
+        cache.append(_excitation_sources(lay))
+    return list(cache[0])
+
+
+def _excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
     out: list[tuple[str, float, tuple[int, ...]]] = []
     stages = lay.stage_conn
     for k, c in enumerate(stages):

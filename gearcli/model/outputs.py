@@ -119,19 +119,26 @@ def _law_arguments(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta)
 
 def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta) -> ConnectorSeries:
     """Force, penetration and stored energy of connector c at every sample (the element's own law)."""
+    kernel = _loaded_kernel()
+    if kernel is None:
+        return _connector_series(lay, c, Y, omega, theta, None)
+    with signals.deferred():  # a signal acted on in plain Python after the call, never inside numba's dispatcher
+        return _connector_series(lay, c, Y, omega, theta, kernel)
+
+
+def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, kernel) -> ConnectorSeries:
+    """:func:`connector_series` with the compiled engine's ``kernel`` (None: the scalar laws), called with the
+    signals held back by the caller (:func:`gearcli.core.signals.deferred`, once for all of a sample's
+    connectors)."""
     x = lay.connectors[c]
     el, P = x.element, x.params
     d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
     n = d.size
-    kernel = _loaded_kernel()
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-
-        with signals.deferred():  # a signal acted on in plain Python after the call, never inside numba's dispatcher
-            F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float),
-                                               np.ascontiguousarray(d, dtype=float),
-                                               np.ascontiguousarray(dd, dtype=float),
-                                               np.ascontiguousarray(phi, dtype=float),
-                                               np.ascontiguousarray(wphi, dtype=float))
+        F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
+                                           np.ascontiguousarray(dd, dtype=float),
+                                           np.ascontiguousarray(phi, dtype=float),
+                                           np.ascontiguousarray(wphi, dtype=float))
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
     else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
         force, potential, channel = el.force, el.potential, el.channel
@@ -201,11 +208,20 @@ def _loaded_kernel():
     return _compiled[0] if _compiled else None
 
 
-def sample(lay: Layout, t: np.ndarray, Y: np.ndarray) -> Sampled:
-    """Everything the channels and the energy balance need, at the sample times ``t``."""
+def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True) -> Sampled:
+    """Everything the channels and the energy balance need, at the sample times ``t``. ``torques=False``: without
+    the input and load torques (empty arrays; a caller that reads only the speeds, connector forces and energies:
+    the energy watch, the settle test, the check pass)."""
     t = np.asarray(t, dtype=float)
     omega, theta, a0 = body_motion(lay, t, Y)
-    conns = tuple(connector_series(lay, c, Y, omega, theta) for c in range(lay.n_conn))
+    kernel = _loaded_kernel()
+    if kernel is None:
+        conns = tuple(_connector_series(lay, c, Y, omega, theta, None) for c in range(lay.n_conn))
+    else:
+        with signals.deferred():  # once for every connector (a signal acted on after the compiled calls)
+            conns = tuple(_connector_series(lay, c, Y, omega, theta, kernel) for c in range(lay.n_conn))
+    if not torques:
+        return Sampled(t, omega, theta, np.empty(0), np.empty(0), conns, lay)
     if lay.speed_drive:  # what the drive puts into body 0: its connectors' reactions and its inertia
         t_in = None
         for c, j in lay.acting_on(0):

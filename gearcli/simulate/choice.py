@@ -124,14 +124,11 @@ def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration
     first = 1 if lay.speed_drive else 0
     if lay.n_bodies - first < 1:
         return 0.0
-    R = speed_map(lay, range(first, lay.n_bodies))
-    J = np.asarray(lay.inertias[first:], dtype=float)
+    R, J, inv_sqrt, exciting = _chain(lay, spec)
     k, c = np.asarray(lin.stiffness, dtype=float), np.asarray(lin.damping, dtype=float)
-    inv_sqrt = 1.0 / np.sqrt(J)
     w2, u = np.linalg.eigh(inv_sqrt[:, None] * (R.T @ (k[:, None] * R)) * inv_sqrt[None, :])
     phi = inv_sqrt[:, None] * u
     top = max(float(np.max(np.abs(w2))), np.finfo(float).tiny)
-    exciting = _self_exciting(lay, spec)
     best = 0.0
     for j in range(w2.size):
         if w2[j] <= 1e-9 * top:
@@ -148,8 +145,27 @@ def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration
     return best
 
 
+def _chain(lay: Layout, spec: ModelSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The speed map R of the free bodies, their inertias J, 1/sqrt(J) and the self-exciting connectors of
+    :func:`vibration_radians`: the layout's own, kept with it (every run of a model chooses again)."""
+    cache = lay.__dict__.setdefault("_choice_chain", [])
+    if not cache:
+        first = 1 if lay.speed_drive else 0
+        J = np.asarray(lay.inertias[first:], dtype=float)
+        cache.append((speed_map(lay, range(first, lay.n_bodies)), J, 1.0 / np.sqrt(J), _self_exciting(lay, spec)))
+    return cache[0]
+
+
 def model_size(lay: Layout, spec: ModelSpec) -> ModelSize:
-    """The model's size as the price per evaluation sees it (:class:`gearcli.core.cost.ModelSize`)."""
+    """The model's size as the price per evaluation sees it (:class:`gearcli.core.cost.ModelSize`; kept with the
+    layout)."""
+    cache = lay.__dict__.setdefault("_model_size", [])
+    if not cache:
+        cache.append(_model_size(lay, spec))
+    return cache[0]
+
+
+def _model_size(lay: Layout, spec: ModelSpec) -> ModelSize:
     meshes = [x for x in lay.connectors if x.role in ("mesh", "planet")]
 
     def mesh(x) -> object:
@@ -225,27 +241,40 @@ def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float =
 _FULL_LOAD: list[tuple[ModelSpec, Layout, np.ndarray, Linearisation]] = []  # the last scene's (one entry)
 
 
-def _at_full_load(spec: ModelSpec) -> tuple[Layout, np.ndarray, Linearisation]:
+def _at_full_load(spec: ModelSpec, layout: Layout | None = None) -> tuple[Layout, np.ndarray, Linearisation]:
     """The scene's layout, static connector forces and linearisation at full load: the same for every run of one
     model (a sweep point's settle runs and periodic search choose again with other durations), kept for the last
-    scene asked."""
+    scene asked. ``layout``: the scene's, when the caller has it (the model's), else built from ``spec``."""
     if _FULL_LOAD and _FULL_LOAD[0][0] is spec:
         return _FULL_LOAD[0][1:]
-    lay = Layout.of(spec)
+    lay = layout if layout is not None and layout.spec is spec else Layout.of(spec)
     static = static_forces(lay)
     entry = (spec, lay, static, linearise(lay, static))
     _FULL_LOAD[:] = [entry]
     return entry[1:]
 
 
+def _at_operating_point(lay: Layout, operating: np.ndarray) -> Linearisation:
+    """The linearisation at the run-up forces ``operating`` (time-varying stiffness at its stiffest phase), kept
+    with the layout for the last few operating points: a model's runs past its ramps (a sweep point's settle runs)
+    share one."""
+    cache = lay.__dict__.setdefault("_operating_points", {})
+    key = operating.tobytes()
+    if key not in cache:
+        if len(cache) >= 8:
+            cache.pop(next(iter(cache)))
+        cache[key] = linearise(lay, operating, stiffest_phase=True)
+    return cache[key]
+
+
 def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6,
-                  engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0) -> Choice:
+                  engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0, *,
+                  layout: Layout | None = None) -> Choice:
     """The method to run and why (``requested`` other than "auto" is kept, with the indicator). ``engines``:
     per method, the engines that may run it and their remaining load cost (:func:`predicted_costs`;
-    :func:`gearcli.engine.options`)."""
-    lay, static, full = _at_full_load(spec)
-    operating = np.maximum(np.abs(static), peak_rigid_forces(lay, duration_s))
-    op = linearise(lay, operating, stiffest_phase=True)
+    :func:`gearcli.engine.options`); ``layout``: the scene's (the model's), not built again."""
+    lay, static, full = _at_full_load(spec, layout)
+    op = _at_operating_point(lay, np.maximum(np.abs(static), peak_rigid_forces(lay, duration_s)))
     lam = max(full.max_abs_eigenvalue, op.max_abs_eigenvalue)
     low = min((x for x in (full.min_abs_eigenvalue, op.min_abs_eigenvalue) if x > 0), default=0.0)
     indicator = lam * duration_s

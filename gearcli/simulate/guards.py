@@ -48,7 +48,7 @@ from gearcli.core.cost import (
 from gearcli.core.methods import IMPLICIT_METHOD, method
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
-from gearcli.model import TorsionalModel
+from gearcli.model import Layout, TorsionalModel
 from gearcli.model.linear import static_forces
 from gearcli.model.outputs import stored_energy
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
@@ -126,15 +126,13 @@ class EnergyWatch:
 
     def _nominal_scale(self) -> float:
         """Kinetic energy of the rigid chain at nominal speed plus elastic energy at full static load
-        (each element's own stored energy at its static deflection; meshes at their mean stiffness)."""
+        (each element's own stored energy at its static deflection; meshes at their mean stiffness): the model's
+        own, computed once per layout (every integration of a run, its settle runs and shots, starts a watch)."""
         lay = self.model.layout
-        rho = np.array([b.ratio for b in lay.bodies])
-        ke = 0.5 * float(np.asarray(lay.inertias) @ (rho * lay.drive.speed_rad_s) ** 2)
-        u = 0.0
-        for x, f in zip(lay.connectors, np.abs(static_forces(lay)), strict=True):
-            P = x.element.linear_row(x.params, 1.0)
-            u += x.element.potential(P, x.element.static_deflection(P, f), 0.0)
-        return max(ke + u, np.finfo(float).tiny)
+        cache = lay.__dict__.setdefault("_energy_scale", [])
+        if not cache:
+            cache.append(_nominal_scale(lay))
+        return cache[0]
 
     def _work(self, y: np.ndarray) -> float:
         """W_in - W_load (J) from the quadrature states."""
@@ -157,6 +155,17 @@ class EnergyWatch:
     def message(self, report: EnergyReport) -> str:
         return (f"the energy in the gear train grew by {report.created_J:.3g} J more than the drive and the load put "
                 f"in ({report.created_J / report.scale_J:.2g}x the scene's energy scale of {report.scale_J:.3g} J)")
+
+
+def _nominal_scale(lay: Layout) -> float:
+    """:meth:`EnergyWatch._nominal_scale` of a layout."""
+    rho = np.array([b.ratio for b in lay.bodies])
+    ke = 0.5 * float(np.asarray(lay.inertias) @ (rho * lay.drive.speed_rad_s) ** 2)
+    u = 0.0
+    for x, f in zip(lay.connectors, np.abs(static_forces(lay)), strict=True):
+        P = x.element.linear_row(x.params, 1.0)
+        u += x.element.potential(P, x.element.static_deflection(P, f), 0.0)
+    return max(ke + u, np.finfo(float).tiny)
 
 
 def energy_watch(model: TorsionalModel, y0: np.ndarray, t0: float = 0.0) -> EnergyWatch | None:

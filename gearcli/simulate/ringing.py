@@ -82,9 +82,20 @@ def slow_modes(eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[t
 def _columns(tau: np.ndarray, sigma: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> np.ndarray:
     """Design matrices of the free-decay fit per stage: sigma (S, M) the decay rates, cos and sin (M, n) the
     modes' oscillations; (S, n, 1 + 2M) with a constant column, then e^(-sigma tau) cos and sin per mode."""
-    env = np.exp(-sigma[:, :, None] * tau)  # (S, M, n)
-    cols = np.stack([env * cos, env * sin], axis=2).reshape(sigma.shape[0], -1, tau.size)  # (S, 2M, n)
-    return np.concatenate([np.ones((sigma.shape[0], 1, tau.size)), cols], axis=1).transpose(0, 2, 1)
+    return _design(np.exp(-sigma[:, :, None] * tau), cos, sin)
+
+
+def _design(env: np.ndarray, cos: np.ndarray, sin: np.ndarray, skip: int = -1) -> np.ndarray:
+    """:func:`_columns` from the modes' envelopes ``env`` (S, M, n) = e^(-sigma tau), without mode ``skip``'s
+    two columns (-1: all modes), written in place (the same numbers as stacking them)."""
+    S, M, n = env.shape
+    modes = [i for i in range(M) if i != skip]
+    out = np.empty((S, 1 + 2 * len(modes), n))
+    out[:, 0] = 1.0
+    for col, i in enumerate(modes):
+        np.multiply(env[:, i], cos[i], out=out[:, 1 + 2 * col])
+        np.multiply(env[:, i], sin[i], out=out[:, 2 + 2 * col])
+    return out.transpose(0, 2, 1)
 
 
 def _orthonormal(A: np.ndarray) -> np.ndarray:
@@ -129,28 +140,46 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
     cos, sin = np.cos(base[:, 1:2] * tau), np.sin(base[:, 1:2] * tau)  # (M, n)
     sigma = np.broadcast_to(base[:, 0], (S, M)).copy()
     factors = np.geomspace(0.25, 4.0, TRIALS)
+    envelopes = np.exp(-sigma[:, :, None] * tau)  # (S, M, n), each mode's updated as it is refined
     if refine:
         buffer = np.empty((S, 2 * TRIALS, tau.size))  # every mode's projected trials, in turn
+        trial = np.empty((TRIALS, 2, tau.size))
         for j in range(M):
             if base[j, 0] <= 0.0:
                 continue
-            keep = [c for c in range(1 + 2 * M) if c not in (1 + 2 * j, 2 + 2 * j)]
-            q = _orthonormal(_columns(tau, sigma, cos, sin)[:, :, keep])  # the other columns, per stage
+            # the other columns, once per distinct set of decay rates: stages whose modes decay alike share the
+            # basis, the projected trials and their Gram matrices (the same numbers as one per stage)
+            reps, group = _distinct(np.delete(sigma, j, axis=1))
+            q = _orthonormal(_design(envelopes[reps], cos, sin, skip=j))  # (G, n, r)
             env = np.exp(-(base[j, 0] * factors)[:, None] * tau)  # (TRIALS, n)
-            trial = np.stack([env * cos[j], env * sin[j]], axis=1)  # (TRIALS, 2, n)
-            tp = _project_out(q, trial.reshape(-1, tau.size), out=buffer)
-            tp = tp.reshape(S, TRIALS, 2, tau.size)
-            yp = _project_out(q, Y[:, None, :])  # (S, 1, n)
-            g = tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2)  # (S, TRIALS, 2, 2)
-            b = tp @ yp[:, None, :, :].transpose(0, 1, 3, 2)  # (S, TRIALS, 2, 1)
+            np.multiply(env, cos[j], out=trial[:, 0])
+            np.multiply(env, sin[j], out=trial[:, 1])
+            tp = _project_out(q, trial.reshape(-1, tau.size), out=buffer[:len(reps)])
+            tp = tp.reshape(len(reps), TRIALS, 2, tau.size)
+            yp = _project_out(q[group], Y[:, None, :])  # (S, 1, n)
+            g = (tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2))[group]  # (S, TRIALS, 2, 2)
+            b = np.stack([tp[group[i]] @ yp[i].T for i in range(S)])  # (S, TRIALS, 2, 1)
             gain = (b * np.linalg.solve(g, b)).sum(axis=(2, 3))
             sigma[:, j] = base[j, 0] * factors[np.argmax(gain, axis=1)]  # the least residual: the most explained
-    A = _columns(tau, sigma, cos, sin)
-    q, r = np.linalg.qr(A)
-    coef = np.linalg.lstsq(r[0], (q[0].T @ Y[0]), rcond=None)[0][None] if S == 1 else None
-    if coef is None:
-        coef = np.stack([np.linalg.lstsq(r[i], q[i].T @ Y[i], rcond=None)[0] for i in range(S)])
+            envelopes[:, j] = np.exp(-sigma[:, j, None] * tau)
+    reps, group = _distinct(sigma)
+    q, r = np.linalg.qr(_design(envelopes[reps], cos, sin))
+    coef = np.stack([np.linalg.lstsq(r[group[i]], q[group[i]].T @ Y[i], rcond=None)[0] for i in range(S)])
     return np.hypot(coef[:, 1::2], coef[:, 2::2]), sigma
+
+
+def _distinct(rows: np.ndarray) -> tuple[list[int], np.ndarray]:
+    """The first index of each distinct row of ``rows`` (S, k), and each row's group (index into them)."""
+    first: dict[bytes, int] = {}
+    group = np.empty(rows.shape[0], dtype=np.intp)
+    reps: list[int] = []
+    for s in range(rows.shape[0]):
+        key = np.ascontiguousarray(rows[s]).tobytes()
+        if key not in first:
+            first[key] = len(reps)
+            reps.append(s)
+        group[s] = first[key]
+    return reps, group
 
 
 def fit_transient(t: np.ndarray, x: np.ndarray, modes: list[tuple[float, float]], *,

@@ -20,7 +20,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
-from gearcli.errors import ConfigError, GearcliError, RunTooLong, SimulationError
+from gearcli.errors import ConfigError, GearcliError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.linear import static_line_forces_N
 from gearcli.model.modes import resonances
@@ -32,6 +32,7 @@ from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.course import CourseChange, integrate_auto
+from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
 from gearcli.simulate.results import (
@@ -46,12 +47,6 @@ from gearcli.simulate.results import (
 )
 from gearcli.simulate.ringing import ringing_warnings
 from gearcli.simulate.solver import (
-    STATUS_BUDGET,
-    STATUS_ENERGY,
-    STATUS_FAILED,
-    STATUS_FINISHED,
-    STATUS_NONFINITE,
-    STATUS_PROJECTED,
     Integration,
 )
 
@@ -179,7 +174,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
     candidates = engine_options(engine, model.arrays, (EXPLICIT_METHOD, IMPLICIT_METHOD), replaced)
     work = cost.CHECK_PASS_WORK if error_estimate and steady == "window" else 1.0  # the check pass integrates again
-    choice = choose_method(spec, duration_s, method, rtol, candidates, work)
+    choice = choose_method(spec, duration_s, method, rtol, candidates, work, layout=model.layout)
     given_nfev = max_nfev
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
@@ -561,59 +556,13 @@ def _choice_warnings(choice: Choice) -> list[Diagnostic]:
 def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic]:
     """A mesh order (1x-3x mesh frequency) or shaft order (1x) at the nominal speed within 10 % of a natural
     frequency that it excites (its meshes' share of the mode's strain energy over twice the modal damping
-    ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`)."""
-    return [dg.warning(dg.RESONANCE, r.message, **r.data) for r in resonances(model.layout, boundary=choice.boundary)]
-
-
-def check(run: Integration, choice: Choice, duration_s: float) -> None:
-    """Raise SimulationError naming the likely cause and the fix when the run did not finish."""
-    if run.status == STATUS_FINISHED:
-        if not np.all(np.isfinite(run.y)):
-            raise SimulationError(f"{run.method} returned non-finite values; {_stiffness_hint(choice)}")
-        return
-    where = f"{run.method} stopped at t = {run.t_fail:.4g} s of {duration_s:g} s"
-    if run.status == STATUS_PROJECTED:
-        freqs = choice.at_operating_point.natural_frequencies_Hz
-        fastest = f"; its fastest mode is {float(freqs[-1]):.3g} Hz" if freqs.size else ""
-        raise RunTooLong(f"{where}: {run.message}{fastest}. Shorten simulation.duration_s, loosen simulation.rtol, "
-                         "or check for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
-    if run.status == STATUS_BUDGET:
-        if run.method in EXPLICIT:
-            raise SimulationError(f"{where}: {run.message}. {_stiffness_hint(choice)}")
-        freqs = choice.at_operating_point.natural_frequencies_Hz
-        fastest = f" (its fastest mode: {float(freqs[-1]):.3g} Hz)" if freqs.size else ""
-        raise SimulationError(f"{where}: {run.message}; the run is too long for its dynamics{fastest} or the contacts "
-                              "impact violently — shorten simulation.duration_s, loosen simulation.rtol, or check "
-                              "for a tiny inertia on a stiff coupling or mesh (a unit mistake?)")
-    if run.status in (STATUS_NONFINITE, STATUS_ENERGY):
-        cause = "the solution diverged (non-finite state)" if run.status == STATUS_NONFINITE \
-            else "the solution is unstable"
-        raise SimulationError(f"{where}: {cause}: {run.message}. {_divergence_hint(choice, run)}")
-    if run.status == STATUS_FAILED:
-        raise SimulationError(f"{where}: the step size collapsed (solver: {run.message}); likely a violent contact "
-                              "impact or a discontinuous stiffness — try method = \"Radau\" or a looser rtol")
-    raise SimulationError(f"{where}: {run.message}")
-
-
-def _divergence_hint(choice: Choice, run: Integration) -> str:
-    """The fix for a diverging run: an implicit method for a stiff scene, else a tighter tolerance."""
-    if run.method in EXPLICIT:
-        return _stiffness_hint(choice)
-    return (f"tighten simulation.rtol (now {run.rtol:g}, try {run.rtol / 100:g}); if it persists, check the contact "
-            f"law of mesh stage {choice.stiffest_mesh + 1} (stiffness, exponent) and the inertias")
-
-
-def _stiffness_hint(choice: Choice) -> str:
-    k = choice.stiffest_mesh
-    freqs = choice.at_operating_point.natural_frequencies_Hz
-    f = float(freqs[-1]) if freqs.size else 0.0
-    if choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT:
-        return (f"mesh stage {k + 1} makes the scene stiff (highest mode {f:.3g} Hz, "
-                f"max|λ|·T = {choice.indicator:.3g}, {choice.indicator / STIFFNESS_LIMIT:.2g}x what an explicit "
-                "method affords here): "
-                f'use method = "{IMPLICIT_METHOD}" (or "auto")')
-    return (f"check the contact law of mesh stage {k + 1} (stiffness, exponent) and the inertias; "
-            f'try method = "{IMPLICIT_METHOD}" with a tighter rtol')
+    ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`). The
+    model's own: found once per layout and boundary (a sweep point's settle runs ask again)."""
+    cache = model.layout.__dict__.setdefault("_resonance_warnings", {})
+    if choice.boundary not in cache:
+        cache[choice.boundary] = [dg.warning(dg.RESONANCE, r.message, **r.data)
+                                  for r in resonances(model.layout, boundary=choice.boundary)]
+    return list(cache[choice.boundary])
 
 
 def _require_finite(result: SimulationResult) -> None:

@@ -330,7 +330,7 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
                     + [t0, 0.0])  # the kernel writes the time reached there; a signal raises the stop flag
     every = np.int64(watch.every if watch is not None else 0)
     start = time.perf_counter()
-    args = (engine.pack(model.arrays), np.ascontiguousarray(y, dtype=float), np.ascontiguousarray(t_eval, dtype=float),
+    args = (_packed(model), np.ascontiguousarray(y, dtype=float), np.ascontiguousarray(t_eval, dtype=float),
             breaks, rtol_v, atol_v, np.int64(max_nfev), every, wpar, np.empty(0))
     out, counters, floats, _ = _kernel_with_progress(kernel, args, wpar, (t0, float(t_eval[-1])), progress)
     wall = time.perf_counter() - start
@@ -352,6 +352,18 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
         message = messages.get(status, f"status {status}")
     return Integration(t_eval, out, method, float(np.max(rtol_v)) if np.ndim(rtol) else float(rtol), atol, nfev, njev,
                        nlu, steps, wall, status, message, t_end, engine="compiled", compile_s=compile_s)
+
+
+def _packed(model: TorsionalModel):
+    """The kernel's model of ``model.arrays`` (:func:`gearcli.engine.pack`), packed once per model: every
+    integration of a run (its settle runs, the periodic search's shots, the check pass) hands the kernel the same
+    arrays, which it only reads."""
+    arrays = model.arrays
+    kept = model.__dict__.get("_packed")
+    if kept is None or kept[0] is not arrays:
+        kept = (arrays, engine.pack(arrays))
+        model.__dict__["_packed"] = kept
+    return kept[1]
 
 
 _COMPILED_USED: list[bool] = []  # the kernel's load time is reported by the first compiled run of a process

@@ -51,7 +51,16 @@ def window_mask(t: np.ndarray, window: tuple[float, float]) -> np.ndarray:
     return (t >= window[0] - eps) & (t <= window[1] + eps)
 
 
-def channel_stats(x: np.ndarray, mask: np.ndarray) -> ChannelStats:
+def window_slice(mask: np.ndarray) -> slice | np.ndarray:
+    """The window's samples as a slice (indexing gives a view, the same numbers as the mask's copy) when they are
+    contiguous, as a window of ascending times is; else the mask itself."""
+    idx = np.flatnonzero(mask)
+    if idx.size and int(idx[-1]) - int(idx[0]) + 1 == idx.size:
+        return slice(int(idx[0]), int(idx[-1]) + 1)
+    return mask
+
+
+def channel_stats(x: np.ndarray, mask: np.ndarray | slice) -> ChannelStats:
     w = x[mask]
     return ChannelStats(float(w.mean()), float(w.min()), float(w.max()), float(w.std()))
 
@@ -69,13 +78,14 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
     i = int(np.argmax(np.abs(ft)))
     peak = float(abs(ft[i]))
     ref = float(static_tangential_N if simulated_static_N is None else simulated_static_N)
-    window_max = float(np.max(np.abs(ft[mask]))) if np.any(mask) else math.nan
+    sel = window_slice(mask)  # every statistic over the window's samples, read in place
+    window_max = float(np.max(np.abs(ft[sel]))) if np.any(mask) else math.nan
     factor = window_max / abs(ref) if ref != 0 and math.isfinite(window_max) else None
     runup = peak / abs(ref) if ref != 0 else None
-    response = {} if dte_um is None else mesh_response(t, mask, dte_um, ft, pen_mm, static_tangential_N,
+    response = {} if dte_um is None else mesh_response(t, sel, dte_um, ft, pen_mm, static_tangential_N,
                                                        periodic=periodic)
-    return StageDynamics(k + 1, channel_stats(ft, mask), channel_stats(fr, mask), channel_stats(fa, mask),
-                         channel_stats(pen_mm, mask), float(static_tangential_N), peak, float(t[i]), factor,
+    return StageDynamics(k + 1, channel_stats(ft, sel), channel_stats(fr, sel), channel_stats(fa, sel),
+                         channel_stats(pen_mm, sel), float(static_tangential_N), peak, float(t[i]), factor,
                          **response, runup_factor=runup, simulated_static_tangential_N=ref)
 
 
@@ -89,7 +99,7 @@ def time_fraction(t: np.ndarray, flag: np.ndarray, *, periodic: bool) -> float:
     return float(np.sum(0.5 * (x[1:] + x[:-1]) * np.diff(t)) / (t[-1] - t[0]))
 
 
-def mesh_response(t: np.ndarray, mask: np.ndarray, dte_um: np.ndarray, ft: np.ndarray, pen_mm: np.ndarray,
+def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, ft: np.ndarray, pen_mm: np.ndarray,
                   static_tangential_N: float, *, periodic: bool = False) -> dict:
     """DTE statistics (rms about the mean), the time fractions without contact and in contact on the back
     flank, and the impact regime, over the window ``mask``.
