@@ -21,6 +21,8 @@ import statistics
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
+from gearcli.core.cost import EXPLICIT_CAP
+from gearcli.core.methods import method as method_info
 from gearcli.errors import GearcliError, RunTooLong, SimulationError, StudyTooLong
 from gearcli.report.result import QUANTITIES, AccuracyRun, AccuracyStudy, ReferenceRun, RunMetrics
 from gearcli.simulate.results import SimulationResult
@@ -46,7 +48,8 @@ class LadderSpec:
     the explicit reference's speed-up on the engine that runs it (``explicit_speedup``: the compiled
     engine's, :func:`gearcli.core.cost.compiled_speedup`, where the ladder runs DOP853 compiled; the same
     seconds then buy that many times the evaluations) does the pair become Radau at 1e-11 checked by BDF at
-    1e-10 (BDF runs on scipy only: on configs/stiff_linear_mesh.toml, max|λ|·T = 2.45e5, that check alone
+    1e-10 (so too where DOP853's stability alone would exceed the explicit budget, ``gearcli.core.cost.EXPLICIT_CAP``
+    evaluations, which refuses the run) (BDF runs on scipy only: on configs/stiff_linear_mesh.toml, max|λ|·T = 2.45e5, that check alone
     took 15 s of CPU and agreed with its reference to 1e-7 only, where the compiled DOP853/Radau pair takes
     ~0.3 s). ``max_run_s``: once a run of a method takes longer, its tighter rungs are skipped (a note says
     so), so a stiff scene cannot run for hours.
@@ -61,7 +64,9 @@ class LadderSpec:
 
     def reference_pair(self, stiffness_indicator: float | None = None, explicit_speedup: float = 1.0
                        ) -> tuple[tuple[str, float], tuple[str, float]]:
-        limit = self.explicit_reference_limit * max(explicit_speedup, 1.0)
+        dop = method_info("DOP853")  # beyond its stability budget an explicit run is refused (guards.require_feasible)
+        feasible = EXPLICIT_CAP * dop.stability_radius / dop.evals_per_step
+        limit = min(self.explicit_reference_limit * max(explicit_speedup, 1.0), feasible)
         stiff = stiffness_indicator is not None and stiffness_indicator > limit
         ref = self.reference or (("Radau", 1e-11) if stiff else ("DOP853", 1e-12))
         check = self.check or (("BDF", 1e-10) if stiff else ("Radau", 1e-10))
