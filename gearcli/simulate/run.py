@@ -121,12 +121,13 @@ def _at_rest(run: Callable[..., SimulationResult], duration_s: float, steps: int
     ``simulation.duration_s`` sampled as the window run would be (its start-up peaks the same), then the periodic
     search from its end (:mod:`gearcli.simulate.equilibrium` first, the shooting where Newton fails), within the
     settle test's budget of duration (:func:`gearcli.simulate.settle.settled_run`); None where it does not
-    converge (the window run and its later windows then)."""
+    converge or the motion does not settle into it (:func:`gearcli.simulate.settle.reached`: the window run and
+    its later windows then)."""
     try:
         found = run(settle_mod.longest_run_s(duration_s), steps, duration_s, steady="periodic", run_up_samples=steps)
     except GearcliError:
         return None
-    if found.steady is None or not found.steady.converged:
+    if not settle_mod.reached(found.steady):
         return None
     return replace(found, steady=replace(found.steady, settled=True))
 

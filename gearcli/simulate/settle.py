@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeGuard
 
 import numpy as np
 
@@ -46,6 +46,7 @@ MAX_MODES = 6  # the slowest-decaying oscillating modes fitted at once
 MAX_RUNS = 3  # runs after the first one, each with a later window
 MAX_DURATION_FACTOR = 8.0  # the longest run, in units of the first run's duration
 MAX_DURATION_S = 600.0
+NEUTRAL = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million periods)
 
 
 @dataclass(frozen=True)
@@ -184,6 +185,16 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
 
 
+def reached(steady: SteadyState | None) -> TypeGuard[SteadyState]:
+    """Whether a periodic steady state is one the motion settles into: converged, and (found by Newton: the
+    shooting, the equilibrium) contracting, its spectral radius below 1 - :data:`NEUTRAL` per period. An orbit or
+    equilibrium whose multipliers lie on the unit circle (an undamped mode: configs/extreme/zero_damping.toml) is
+    a fixed point of the map that the start-up's vibration circles for ever, not the motion's steady state."""
+    if steady is None or not steady.converged:
+        return False
+    return steady.spectral_radius is None or steady.spectral_radius <= 1.0 - NEUTRAL
+
+
 def longest_run_s(duration_s: float) -> float:
     """The settle test's budget: the longest run, in simulated seconds, for a first run of ``duration_s``."""
     return min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
@@ -196,7 +207,7 @@ def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
     start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
     scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
     (``run(..., steady="periodic")``: shooting, or period by period, within the budget's duration) when it
-    converges (not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
+    converges and the motion settles into it (:func:`reached`; not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
     starts); else the last window, whose warning says so. ``finish``: the whole result of a run whose unsettled
     window left its ringing fit for later (``run_simulation``'s ``unfinished``: only the window kept pays it).
     A periodic result keeps the first run's start-up peaks (:func:`with_start`), which the search's run-up, to the
@@ -208,7 +219,7 @@ def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
             orbit = run(longest_run_s(duration_s), steps, None, steady="periodic")
         except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
             orbit = None
-        if orbit is not None and orbit.steady is not None and orbit.steady.converged:
+        if orbit is not None and reached(orbit.steady):
             before = runs if runs else result.steady.settle_runs
             return with_start(replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=before + 1)),
                               first)

@@ -129,3 +129,27 @@ def test_a_periodic_result_keeps_the_start_of_the_run_it_replaces():
     for a, b in zip(settled.stages, plain.stages, strict=True):
         assert a.peak_tangential_N >= b.peak_tangential_N
         assert a.runup_factor == pytest.approx(a.peak_tangential_N / a.simulated_static_tangential_N, rel=1e-12)
+
+
+def test_an_undamped_scene_has_no_steady_state_to_settle_into():
+    """configs/extreme/zero_damping.toml (no mesh damping): its equilibrium has every multiplier on the unit circle,
+    a fixed point the start-up vibration circles for ever; the settled run keeps its window and says it is not
+    settled (its ringing warning gives the decay time), rather than reporting the equilibrium's K_v = 1."""
+    loaded = api.load(str(ROOT / "configs" / "extreme" / "zero_damping.toml"), [])
+    r = run_simulation(loaded.design, api.design(loaded), settle=True)
+    assert r.steady.mode == "window" and r.steady.settled is False
+    assert any(d.code in ("window_ringing", "window_not_settled") for d in r.diagnostics)
+    assert max(st.dynamic_factor for st in r.stages) > 1.1  # the start-up's vibration, undamped
+
+
+def test_a_periodic_state_is_reached_only_when_it_contracts():
+    from gearcli.simulate.results import SteadyState
+    from gearcli.simulate.settle import NEUTRAL, reached
+
+    def state(converged, radius):
+        return SteadyState("periodic", 0.1, 3, "period-1", converged, 0.5, spectral_radius=radius)
+
+    assert reached(state(True, 0.989))  # the conveyor's drum mode: 1.1 % per period
+    assert not reached(state(True, 1.0 - NEUTRAL / 10))  # an undamped mode (rounding below 1)
+    assert not reached(state(False, 0.5))
+    assert reached(state(True, None))  # brute force: the motion itself repeated
