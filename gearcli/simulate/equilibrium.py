@@ -26,7 +26,9 @@ of the linearised motion's monodromy ``expm(J T)``, without forming it). Its sta
 (:func:`steady_period`): the dynamic states constant, the work quadratures growing at their constant rates; an
 integration from it would add only the method's own noise. An unstable root (the motion leaves it: an orbit may
 be the steady state then), a Newton that does not converge (a contact lost at the root: ``J`` jumps across the
-backlash), or a right-hand side replaced in Python (no Jacobian) leaves the search to the shooting.
+backlash), or a right-hand side replaced in Python (no Jacobian) leaves the search to the shooting. A settled
+run takes the root only where the motion settles into it (:func:`gearcli.simulate.settle.reached`: contracting by
+more than 1e-6 per period; an undamped scene's root is not).
 """
 
 from __future__ import annotations
@@ -96,9 +98,8 @@ def _functions(model, engine_name: str):
 
 def root(model, t: float, y: np.ndarray, rtol: float, patol: np.ndarray, period_s: float,
          structural: int, engine_name: str = "python") -> Root | None:
-    """The equilibrium (:class:`Root`) from the state ``y``
-    at ``t`` past the ramps, with the equations of ``engine_name``; None when Newton does not converge (module
-    text)."""
+    """The equilibrium (:class:`Root`) from the state ``y`` at ``t`` past the ramps, with the equations of
+    ``engine_name``; None when Newton does not converge (module text)."""
     d = model.layout.state.n_mechanical
     y = np.array(y, dtype=float)
     rhs, jac = _functions(model, engine_name)
