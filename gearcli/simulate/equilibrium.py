@@ -105,34 +105,34 @@ def root(model, t: float, y: np.ndarray, rtol: float, patol: np.ndarray, period_
     rhs, jac = _functions(model, engine_name)
 
     def drift(state: np.ndarray) -> tuple[np.ndarray, float]:
-        f = np.asarray(rhs(t, state), dtype=float)[:d]
+        """The right-hand side at ``state`` and its dynamic states' drift over one period (tolerance units)."""
+        rates = np.asarray(rhs(t, state), dtype=float)
         scale = rtol * np.abs(state[:d]) + patol
-        return f, float(np.max(np.abs(f) * period_s / scale)) if d else 0.0
+        return rates, float(np.max(np.abs(rates[:d]) * period_s / scale)) if d else 0.0
 
-    f, merit = drift(y)
+    rates, merit = drift(y)
     for n in range(1, MAX_STEPS + 1):
         J = np.asarray(jac(t, y), dtype=float)[:d, :d]
-        dx = _step(J, f, _constraints(J, structural))
+        dx = _step(J, rates[:d], _constraints(J, structural))
         if dx is None:
             return None
         size = float(np.max(np.abs(dx) / (rtol * np.abs(y[:d]) + patol))) if d else 0.0
         if size <= STEP_CONVERGED:  # the full step is below the tolerance's resolution: the root
             y = y.copy()
             y[:d] += dx
-            rates = np.asarray(rhs(t, y), dtype=float)
-            _, merit = drift(y)
+            rates, merit = drift(y)
             return Root(y, np.asarray(jac(t, y), dtype=float)[:d, :d], rates, merit, n)
         lam = 1.0
         for _ in range(HALVINGS + 1):
             trial = y.copy()
             trial[:d] += lam * dx
-            f_t, m_t = drift(trial)
+            r_t, m_t = drift(trial)
             if np.isfinite(m_t) and m_t < merit:
                 break
             lam *= 0.5
         else:
             return None
-        y, f, merit = trial, f_t, m_t
+        y, rates, merit = trial, r_t, m_t
     return None
 
 

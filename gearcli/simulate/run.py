@@ -20,7 +20,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
-from gearcli.errors import ConfigError, GearcliError, SimulationError
+from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.linear import static_line_forces_N
 from gearcli.model.modes import resonances
@@ -106,7 +106,9 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
 
     periodic = settle != "window"
     if settle and periodic and sim.steady == "window" and equilibrium.applies(model):
-        found = _at_rest(run, sim.duration_s, sim.steps)
+        # an unexcited scene's steady state is its equilibrium: the run from rest to simulation.duration_s, sampled
+        # as the window run would be (its start-up peaks the same), then the periodic search from its end
+        found = settle_mod.periodic_state(run, sim.duration_s, sim.steps, 0, sim.duration_s, run_up_samples=sim.steps)
         if found is not None:
             return found
         periodic = False  # the periodic search was tried: the later windows are what is left
@@ -114,22 +116,6 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     if settle:
         result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=periodic, finish=finish)
     return result
-
-
-def _at_rest(run: Callable[..., SimulationResult], duration_s: float, steps: int) -> SimulationResult | None:
-    """A settled window of an unexcited scene, whose steady state is its equilibrium: the run from rest to
-    ``simulation.duration_s`` sampled as the window run would be (its start-up peaks the same), then the periodic
-    search from its end (:mod:`gearcli.simulate.equilibrium` first, the shooting where Newton fails), within the
-    settle test's budget of duration (:func:`gearcli.simulate.settle.settled_run`); None where it does not
-    converge or the motion does not settle into it (:func:`gearcli.simulate.settle.reached`: the window run and
-    its later windows then)."""
-    try:
-        found = run(settle_mod.longest_run_s(duration_s), steps, duration_s, steady="periodic", run_up_samples=steps)
-    except GearcliError:
-        return None
-    if not settle_mod.reached(found.steady):
-        return None
-    return replace(found, steady=replace(found.steady, settled=True))
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:

@@ -200,29 +200,38 @@ def longest_run_s(duration_s: float) -> float:
     return min(MAX_DURATION_S, MAX_DURATION_FACTOR * duration_s)
 
 
+def periodic_state(run: Callable[..., SimulationResult], duration_s: float, steps: int, settle_runs: int,
+                   window_start_s: float | None = None, **kwargs) -> SimulationResult | None:
+    """The periodic steady state (``run(..., steady="periodic")``: the equilibrium, shooting, or period by period)
+    within the budget's duration (:func:`longest_run_s`), marked settled after ``settle_runs`` runs; None where
+    the search cannot run the scene, does not converge, or the motion does not settle into it (:func:`reached`)."""
+    try:
+        found = run(longest_run_s(duration_s), steps, window_start_s, steady="periodic", **kwargs)
+    except GearcliError:  # the periodic search cannot run this scene
+        return None
+    if not reached(found.steady):
+        return None
+    return replace(found, steady=replace(found.steady, settled=True, settle_runs=settle_runs))
+
+
 def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
                 duration_s: float, steps: int, periodic: bool = True,
                 finish: Callable[[SimulationResult], SimulationResult] = lambda r: r) -> SimulationResult:
     """``result`` or, while its fixed window is not settled, the run repeated by ``run(duration, steps, window
     start)`` with the window from the settle time on (:func:`next_window`: its length kept, the output samples
     scaled with the duration, within the budget). Where the budget cannot settle it, the periodic steady state
-    (``run(..., steady="periodic")``: shooting, or period by period, within the budget's duration) when it
-    converges and the motion settles into it (:func:`reached`; not with ``periodic = False``: a caller that needs the run from rest sampled, the life route's
-    starts); else the last window, whose warning says so. ``finish``: the whole result of a run whose unsettled
-    window left its ringing fit for later (``run_simulation``'s ``unfinished``: only the window kept pays it).
-    A periodic result keeps the first run's start-up peaks (:func:`with_start`), which the search's run-up, to the
-    end of the ramps only, may not reach."""
+    (:func:`periodic_state`; not with ``periodic = False``: a caller that needs the run from rest sampled, the
+    life route's starts); else the last window, whose warning says so. ``finish``: the whole result of a run whose
+    unsettled window left its ringing fit for later (``run_simulation``'s ``unfinished``: only the window kept pays
+    it). A periodic result keeps the first run's start-up peaks (:func:`with_start`), which the search's run-up, to
+    the end of the ramps only, may not reach."""
     first = result
     result, runs = _moved_window(result, run, duration_s, steps)
     if periodic and result.steady is not None and result.steady.mode == "window" and result.steady.settled is False:
-        try:
-            orbit = run(longest_run_s(duration_s), steps, None, steady="periodic")
-        except GearcliError:  # the periodic search cannot run this scene: the window's warning stands
-            orbit = None
-        if orbit is not None and reached(orbit.steady):
-            before = runs if runs else result.steady.settle_runs
-            return with_start(replace(orbit, steady=replace(orbit.steady, settled=True, settle_runs=before + 1)),
-                              first)
+        before = runs if runs else result.steady.settle_runs
+        orbit = periodic_state(run, duration_s, steps, before + 1)
+        if orbit is not None:
+            return with_start(orbit, first)
     return _after_runs(finish(result), runs)
 
 
