@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.core import signals
+from gearcli.model import elements
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
 from gearcli.model.step import ramp, ramp_motion
@@ -140,6 +141,9 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
                                            np.ascontiguousarray(phi, dtype=float),
                                            np.ascontiguousarray(wphi, dtype=float))
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
+    elif (vectorised := elements.series_of(el, P, d, dd, phi, wphi)) is not None:  # the same values at once
+        F, U, ch = vectorised
+        channels = dict(zip(el.CHANNELS, ch, strict=True))
     else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
         force, potential, channel = el.force, el.potential, el.channel
         ds, dds, phs, wphs = d.tolist(), dd.tolist(), phi.tolist(), wphi.tolist()
@@ -162,6 +166,9 @@ def _connector_force(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
         return connector_series(lay, c, Y, omega, theta).force
     d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
     force, P = x.element.force, x.params
+    vectorised = elements.series_of(x.element, P, d, dd, phi, wphi)
+    if vectorised is not None:
+        return vectorised[0]
     return np.array([force(P, dj, ddj, phj, wj)[0] for dj, ddj, phj, wj in
                      zip(d.tolist(), dd.tolist(), phi.tolist(), wphi.tolist(), strict=True)], dtype=float).reshape(d.size)
 

@@ -41,6 +41,11 @@ row with the power scale ``W`` of the power-flow sign) and ``LOSS_WIDTH`` (that 
 times the nominal pitch-line speed). The assembly, the generated Python and the outputs call
 it by name (:func:`loses`); no element without it loses power.
 
+An element may also provide the vectorised hook :data:`SERIES_HOOK`, ``series(P, d, dd, phi, wphi)``: the force,
+the stored energy and the channels at many samples at once (numpy arrays), value for value what ``force``,
+``potential`` and ``channel`` give sample by sample, or None for a row it does not cover. The outputs of a
+run on the Python engine use it where it answers (:func:`series_of`); without it they call the scalar laws.
+
 Torques on the end bodies (input torque ripple, load fluctuation) are laws of :mod:`.torque`.
 """
 
@@ -111,6 +116,17 @@ PROTOCOL = ("NAME", "SIGNS", "PARAMS", "CHANNELS", "pack", "force", "power_gradi
 
 #: the optional loss hook (module text): an element provides all of it or none
 LOSS_HOOK = ("lossy", "efficiency", "loss_sides", "loss_factors", "with_loss_width", "LOSS_WIDTH")
+
+#: the optional vectorised hook (module text): ``series(P, d, dd, phi, wphi)``
+SERIES_HOOK = "series"
+
+
+def series_of(law: ModuleType, P, d, dd, phi, wphi) -> tuple | None:
+    """``(F, stored energy, channels)`` at every sample from the element's vectorised hook, or None where it has
+    none or its row is outside what the hook covers (the caller then evaluates the scalar laws sample by
+    sample)."""
+    hook = getattr(law, SERIES_HOOK, None)
+    return None if hook is None else hook(P, d, dd, phi, wphi)
 
 
 def loses(law: ModuleType, P) -> bool:

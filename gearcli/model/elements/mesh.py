@@ -480,3 +480,42 @@ def phased(P) -> bool:
 def excited(P) -> bool:
     """A transmission error: the force depends on the phase rate too, and the TE does work."""
     return bool(P[I_NTE] != 0.0)
+
+
+def series(P, d, dd, phi, wphi):
+    """The optional vectorised hook (:data:`gearcli.model.elements.SERIES_HOOK`): ``(F, stored energy, (penetration,
+    dte))`` at every sample of the float arrays ``d``, ``dd``, value for value what :func:`force`, :func:`potential`
+    and :func:`channel` give there: their operations in their order on IEEE doubles, so the force of the
+    exponents 1, 1.5 and 2 and the channels are the same doubles; where they call ``pow`` (the stored energy, other
+    exponents) numpy's power agrees with it to a few ulps. None for a phase-dependent row (time-varying stiffness, stiffness harmonics or a
+    transmission error), which the caller evaluates sample by sample."""
+    if phased(P):
+        return None
+    cb, half, kk, e = P[I_CB], P[I_HALF], P[I_K], P[I_E]
+    h = cb * d
+    drive, back = h > half, h < -half
+    touching = drive | back
+    p = np.where(drive, h - half, np.where(back, -h - half, 0.0))  # _contact
+    pd = np.where(drive, cb * dd, np.where(back, -cb * dd, 0.0))
+    sc = np.where(drive, cb, np.where(back, -cb, 0.0))
+    if e == 1.0:  # _elastic at mean stiffness
+        fe = kk * p
+    elif e == 1.5:
+        fe = kk * p * np.sqrt(p)
+    elif e == 2.0:
+        fe = kk * p * p
+    else:
+        fe = kk * np.power(p, e)
+    if P[I_VIS] != 0.0:
+        cv = P[I_CV]
+        F = np.where(touching, sc * fe + cv * dd, cv * dd)
+    elif P[I_C] > 0.0:
+        s = p * P[I_INVD]  # _damping
+        c = np.where(s < 1.0, P[I_C] * s * s * (3.0 - 2.0 * s), P[I_C])
+        fn = fe + c * pd
+        F = np.where(touching & (fn > 0.0), sc * fn, 0.0)
+    else:
+        F = np.where(touching, sc * fe, 0.0)
+    U = np.where(touching, kk * np.power(p, e + 1.0) / (e + 1.0), 0.0)
+    penetration_m = np.where(touching, np.where(sc > 0.0, p, -p), 0.0)
+    return F, U, (penetration_m, np.array(d, dtype=float))
