@@ -82,8 +82,13 @@ def cache_root() -> Path:
 
 
 def _source_key() -> str:
+    """The kernel's cache key: its sources, the registry, numpy's BLAS, the installed numba, and where this gearcli
+    is. numba's cache index records each source file's modification time and size and discards itself when they
+    differ: two checkouts at different paths (same sources, other times) sharing one key would each rewrite the
+    other's index and rebuild the kernel on every switch; one key per installed package keeps both."""
     h = hashlib.sha1()
     pkg = Path(__file__).resolve().parent.parent
+    h.update(str(pkg).encode())
     for rel in KERNEL_SOURCES:
         h.update((pkg / rel).read_bytes())
     for et in elements.compiled_types():  # the registry: what the generated dispatch calls, and the laws' code

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from gearcli.model import elements
 from gearcli.model.elements import N_PARAM, mesh
 
-EXACT_EXPONENTS = (1.0, 1.5, 2.0)  # products and sqrt only: the same double, bit for bit
+EXPONENTS = (1.0, 1.5, 2.0)  # the exponents the law takes apart (products, sqrt)
 
 
 def _row(exponent: float, half_gap_m: float, damping: float, viscous: float | None) -> np.ndarray:
@@ -41,7 +41,7 @@ states = st.lists(st.tuples(st.floats(-2e-4, 2e-4), st.floats(-0.5, 0.5)), min_s
 
 
 @settings(max_examples=60, deadline=None)
-@given(states, st.sampled_from(EXACT_EXPONENTS), st.sampled_from((0.0, 2e-5)), st.sampled_from((0.0, 5e4)),
+@given(states, st.sampled_from(EXPONENTS), st.sampled_from((0.0, 2e-5)), st.sampled_from((0.0, 5e4)),
        st.sampled_from((None, 0.0, 3e3)))
 def test_series_equals_the_scalar_laws(pairs, exponent, half_gap, damping, viscous):
     d = np.array([a for a, _ in pairs])
@@ -49,21 +49,20 @@ def test_series_equals_the_scalar_laws(pairs, exponent, half_gap, damping, visco
     P = _row(exponent, half_gap, damping, viscous)
     F, U, ch = mesh.series(P, d, dd, np.zeros_like(d), np.zeros_like(d))
     F0, U0, ch0 = _scalar(P, d, dd)
-    assert np.array_equal(F, F0)  # bit for bit: the same products and square roots in the same order
-    np.testing.assert_allclose(U, U0, rtol=1e-15, atol=0.0)  # pow: numpy's own, within a few ulps of libm's
+    assert np.array_equal(F, F0)  # bit for bit: the same operations in the same order, the same pow
+    assert np.array_equal(U, U0)
     for a, b in zip(ch, ch0, strict=True):
         assert np.array_equal(a, b)
 
 
 @pytest.mark.parametrize("exponent", [1.3, 2.5])
-def test_series_other_exponents_within_a_few_ulps(exponent):
+def test_series_other_exponents_to_the_bit(exponent):
     d = np.linspace(-1.5e-4, 1.5e-4, 301)
     dd = np.linspace(0.3, -0.3, 301)
     P = _row(exponent, 1e-5, 5e4, None)
     F, U, _ = mesh.series(P, d, dd, np.zeros_like(d), np.zeros_like(d))
     F0, U0, _ = _scalar(P, d, dd)
-    np.testing.assert_allclose(F, F0, rtol=1e-15, atol=0.0)  # numpy's pow against libm's: a few ulps
-    np.testing.assert_allclose(U, U0, rtol=1e-15, atol=0.0)
+    assert np.array_equal(F, F0) and np.array_equal(U, U0)
 
 
 def test_phase_dependent_rows_are_left_to_the_scalar_laws():

@@ -482,12 +482,17 @@ def excited(P) -> bool:
     return bool(P[I_NTE] != 0.0)
 
 
+def _pow(p, e):
+    """``p ** e`` element by element with the C library's ``pow``, as the scalar laws and the compiled kernel take it
+    (numpy's own power may round the last bit otherwise)."""
+    return np.array([x ** e for x in p.tolist()], dtype=float).reshape(p.shape)
+
+
 def series(P, d, dd, phi, wphi):
     """The optional vectorised hook (:data:`gearcli.model.elements.SERIES_HOOK`): ``(F, stored energy, (penetration,
     dte))`` at every sample of the float arrays ``d``, ``dd``, value for value what :func:`force`, :func:`potential`
-    and :func:`channel` give there: their operations in their order on IEEE doubles, so the force of the
-    exponents 1, 1.5 and 2 and the channels are the same doubles; where they call ``pow`` (the stored energy, other
-    exponents) numpy's power agrees with it to a few ulps. None for a phase-dependent row (time-varying stiffness, stiffness harmonics or a
+    and :func:`channel` give there: their operations in their order on IEEE doubles, ``pow`` the C library's as
+    theirs (:func:`_pow`), so the same doubles. None for a phase-dependent row (time-varying stiffness, stiffness harmonics or a
     transmission error), which the caller evaluates sample by sample."""
     if phased(P):
         return None
@@ -505,7 +510,7 @@ def series(P, d, dd, phi, wphi):
     elif e == 2.0:
         fe = kk * p * p
     else:
-        fe = kk * np.power(p, e)
+        fe = kk * _pow(p, e)
     if P[I_VIS] != 0.0:
         cv = P[I_CV]
         F = np.where(touching, sc * fe + cv * dd, cv * dd)
@@ -516,6 +521,6 @@ def series(P, d, dd, phi, wphi):
         F = np.where(touching & (fn > 0.0), sc * fn, 0.0)
     else:
         F = np.where(touching, sc * fe, 0.0)
-    U = np.where(touching, kk * np.power(p, e + 1.0) / (e + 1.0), 0.0)
+    U = np.where(touching, kk * _pow(p, e + 1.0) / (e + 1.0), 0.0)
     penetration_m = np.where(touching, np.where(sc > 0.0, p, -p), 0.0)
     return F, U, (penetration_m, np.array(d, dtype=float))
