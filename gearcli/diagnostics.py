@@ -46,6 +46,7 @@ SAMPLING = "sampling"  # report: a line above the Nyquist frequency of the outpu
 ACCURACY = "accuracy"  # report: the accuracy study's verdict on the file's solver settings
 NEAR_BIFURCATION = "near_bifurcation"  # steady = "periodic": a Floquet multiplier near +1 (fold, jump) or -1
 SHOOTING_FALLBACK = "shooting_fallback"  # steady = "periodic": Newton on the period map failed; brute force
+PERIODIC_NOT_ATTRACTING = "periodic_not_attracting"  # steady = "periodic": a state the motion never settles into
 OTHER = "other"
 
 

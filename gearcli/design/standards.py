@@ -40,9 +40,13 @@ def with_simulated_rating(cfg: DesignFile, design: DesignResult, run: Run) -> Ru
     stages, diags = standard_of(cfg).rate_simulation(cfg, design, result.stages)
     new = [d for d in diags if d.message not in result.warnings]
     if result.steady is not None and result.steady.settled is False:  # never silently: K_v carries the transient
+        if result.steady.mode == "periodic":  # a state the motion never settles into (its own warning)
+            why = ("comes from a periodic state the motion does not settle into (see its warning): the motion from "
+                   "rest keeps an undamped vibration; give the meshes damping")
+        else:
+            why = ("comes from a window that is not settled (it includes the start-up transient, see the window's "
+                   'warning): give a longer simulation.duration_s or [simulation] steady = "periodic"')
         new.append(dg.warning(dg.WINDOW_NOT_SETTLED, '[rating] dynamic_factor = "simulated": the K_v the stages are '
-                              "rated at comes from a window that is not settled (it includes the start-up "
-                              "transient, see the window's warning): give a longer simulation.duration_s or "
-                              '[simulation] steady = "periodic"', statistic="K_v"))
+                              f"rated at {why}", statistic="K_v"))
     return replace(result, stages=stages, warnings=result.warnings + dg.messages(new),
                    diagnostics=result.diagnostics + tuple(new))

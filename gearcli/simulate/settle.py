@@ -168,7 +168,9 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
     ringing or the motor's start warning already says so."""
     if steady.mode == "periodic":
-        return replace(steady, settled=bool(steady.converged))
+        if steady.converged and not reached(steady):
+            diags.append(not_attracting(steady))
+        return replace(steady, settled=reached(steady))
     motor_start, reaches = None, False
     if motor_summary is not None and model.layout.motor_drive:
         motor_start = motor_summary.get("start_time_s")
@@ -193,6 +195,20 @@ def reached(steady: SteadyState | None) -> TypeGuard[SteadyState]:
     if steady is None or not steady.converged:
         return False
     return steady.spectral_radius is None or steady.spectral_radius <= 1.0 - NEUTRAL
+
+
+def not_attracting(steady: SteadyState) -> Diagnostic:
+    """The warning of a converged periodic state (an orbit, an equilibrium) that does not contract (:func:`reached`):
+    its statistics are the state's, never those of the motion from rest."""
+    what = "equilibrium" if steady.method == "equilibrium" else "periodic orbit"
+    rho = steady.spectral_radius if steady.spectral_radius is not None else math.nan
+    return dg.warning(dg.PERIODIC_NOT_ATTRACTING,
+                      f'steady = "periodic": the {what} found is not one the motion settles into: a Floquet '
+                      f"multiplier of modulus {rho:.9g} per period (a mode without damping: its start-up vibration "
+                      f"never decays), so the statistics and K_v are the {what}'s, while the motion from rest keeps "
+                      'that vibration for ever ([simulation] steady = "window" shows it; mesh damping, '
+                      "contact.damping_Ns_mm or contact.damping_ratio, makes the state a steady one)",
+                      spectral_radius=steady.spectral_radius)
 
 
 def longest_run_s(duration_s: float) -> float:

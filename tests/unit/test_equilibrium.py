@@ -171,3 +171,21 @@ def test_newton_reaches_the_equilibrium_of_shafts_ten_decades_apart():
     for stage, by_hand in zip(r.stages, (f1, f2), strict=True):
         assert_allclose([stage.tangential_N.mean, stage.tangential_N.min, stage.tangential_N.max], by_hand,
                         rtol=1e-6)
+
+
+def test_an_undamped_periodic_state_is_found_but_not_called_settled():
+    """steady = "periodic" on configs/extreme/zero_damping.toml: without damping the linearised motion about the
+    equilibrium is a set of undamped oscillators, lambda = +-i omega, so every multiplier exp(lambda T) has modulus
+    1. The equilibrium is a periodic state (K_v 1), but not the one the motion from rest reaches: not settled, and
+    the warning says so; the damped seed's is settled without it."""
+    loaded = api.load(str(ROOT / "configs" / "extreme" / "zero_damping.toml"),
+                      ['simulation.steady="periodic"', "simulation.engine=python"])
+    r = run_simulation(loaded.design, api.design(loaded))
+    assert r.steady.method == "equilibrium" and r.steady.converged
+    assert r.steady.spectral_radius == pytest.approx(1.0, abs=1e-9)
+    assert r.steady.settled is False
+    assert [d.code for d in r.diagnostics].count("periodic_not_attracting") == 1
+    cfg, design = _seed('simulation.steady="periodic"', "simulation.engine=python")
+    damped = run_simulation(cfg, design)
+    assert damped.steady.settled is True and damped.steady.spectral_radius < 1.0 - 1e-6
+    assert "periodic_not_attracting" not in [d.code for d in damped.diagnostics]
