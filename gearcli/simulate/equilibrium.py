@@ -117,7 +117,7 @@ def root(model, t: float, y: np.ndarray, rtol: float, patol: np.ndarray, period_
         """A step's length in units of the tolerance at ``state``."""
         return float(np.max(np.abs(dx) / (rtol * np.abs(state[:d]) + patol))) if d else 0.0
 
-    rates, _ = drift(y)
+    rates = np.asarray(rhs(t, y), dtype=float)
     for n in range(1, MAX_STEPS + 1):
         J = np.asarray(jac(t, y), dtype=float)[:d, :d]
         C = _constraints(J, structural)

@@ -202,12 +202,13 @@ def not_attracting(steady: SteadyState) -> Diagnostic:
     its statistics are the state's, never those of the motion from rest."""
     what = "equilibrium" if steady.method == "equilibrium" else "periodic orbit"
     rho = steady.spectral_radius if steady.spectral_radius is not None else math.nan
+    why = ("a mode without damping: its start-up vibration never decays" if rho <= 1.0 + NEUTRAL
+           else "a growing mode: the motion leaves the state")
     return dg.warning(dg.PERIODIC_NOT_ATTRACTING,
                       f'steady = "periodic": the {what} found is not one the motion settles into: a Floquet '
-                      f"multiplier of modulus {rho:.9g} per period (a mode without damping: its start-up vibration "
-                      f"never decays), so the statistics and K_v are the {what}'s, while the motion from rest keeps "
-                      'that vibration for ever ([simulation] steady = "window" shows it; mesh damping, '
-                      "contact.damping_Ns_mm or contact.damping_ratio, makes the state a steady one)",
+                      f"multiplier of modulus {rho:.9g} per period ({why}), so the statistics and K_v are the "
+                      f"{what}'s, not those of the motion from rest ([simulation] steady = \"window\" shows that; "
+                      "mesh damping, contact.damping_Ns_mm or contact.damping_ratio, makes the state a steady one)",
                       spectral_radius=steady.spectral_radius)
 
 

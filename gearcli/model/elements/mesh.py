@@ -492,8 +492,8 @@ def series(P, d, dd, phi, wphi):
     """The optional vectorised hook (:data:`gearcli.model.elements.SERIES_HOOK`): ``(F, stored energy, (penetration,
     dte))`` at every sample of the float arrays ``d``, ``dd``, value for value what :func:`force`, :func:`potential`
     and :func:`channel` give there: their operations in their order on IEEE doubles, ``pow`` the C library's as
-    theirs (:func:`_pow`), so the same doubles. None for a phase-dependent row (time-varying stiffness, stiffness harmonics or a
-    transmission error), which the caller evaluates sample by sample."""
+    theirs (:func:`_pow`), so the same doubles. None for a phase-dependent row (time-varying stiffness, stiffness
+    harmonics or a transmission error), which the caller evaluates sample by sample."""
     if phased(P):
         return None
     cb, half, kk, e = P[I_CB], P[I_HALF], P[I_K], P[I_E]
