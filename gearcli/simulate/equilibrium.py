@@ -39,6 +39,7 @@ import numpy as np
 
 from gearcli import engine
 from gearcli.simulate import periodic as pr
+from gearcli.simulate.solver import _packed
 
 MAX_STEPS = 25  # Newton steps
 HALVINGS = 4  # step halvings of the damped step
@@ -91,7 +92,7 @@ def _functions(model, engine_name: str):
     if engine_name != "compiled":
         return model.rhs, model.jac
     evaluate, evaluate_jacobian = engine.point_functions()
-    arrays = engine.pack(model.arrays)
+    arrays = _packed(model)  # the kernel's packed model, the same the run-up's integration read (packed once)
     return (lambda t, y: evaluate(arrays, float(t), np.ascontiguousarray(y, dtype=float)),
             lambda t, y: evaluate_jacobian(arrays, float(t), np.ascontiguousarray(y, dtype=float)))
 
