@@ -170,18 +170,50 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
     return cache[key]
 
 
+@dataclass(frozen=True)
+class _Undamped:
+    """The undamped eigenproblem of :func:`modal_analysis`: tangent stiffness and damping per connector, the
+    first free body, the speed map and inertias of the free bodies, 1/sqrt(J), the eigenpairs of the
+    mass-normalised stiffness, the rigid-mode count and the modes in ascending order."""
+
+    k: np.ndarray
+    cd: np.ndarray
+    first: int
+    R: np.ndarray
+    inv_sqrt: np.ndarray
+    w2: np.ndarray
+    u: np.ndarray
+    n_rigid: int
+    order: np.ndarray
+
+    def frequencies_Hz(self) -> list[float]:
+        """The elastic modes' frequencies, ascending, as :func:`modal_analysis` reports them."""
+        return [math.sqrt(max(float(self.w2[j]), 0.0)) / (2.0 * math.pi) for j in self.order[self.n_rigid:]]
+
+
+def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
+    """:class:`_Undamped` of a layout, boundary and run-up (kept with the layout until the analysis is made)."""
+    cache = lay.__dict__.setdefault("_undamped_modes", {})
+    key = (boundary, float(duration_s))
+    if key not in cache:
+        k, cd = _tangents(lay, duration_s)
+        first = 1 if boundary == "clamped_input" else 0
+        R = speed_map(lay, range(first, lay.n_bodies))
+        J = np.asarray(lay.inertias[first:])
+        inv_sqrt = 1.0 / np.sqrt(J)
+        Kb = R.T @ (k[:, None] * R)
+        w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
+        cache[key] = _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first),
+                               np.argsort(w2))
+    return cache[key]
+
+
 def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
-    k, cd = _tangents(lay, duration_s)
-    first = 1 if boundary == "clamped_input" else 0
-    R = speed_map(lay, range(first, lay.n_bodies))
-    J = np.asarray(lay.inertias[first:])
-    inv_sqrt = 1.0 / np.sqrt(J)
-    Kb = R.T @ (k[:, None] * R)
-    w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: symmetric, J^-1/2 K J^-1/2
+    und = _undamped(lay, boundary, duration_s)
+    k, cd, first, R, inv_sqrt, w2, u = und.k, und.cd, und.first, und.R, und.inv_sqrt, und.w2, und.u
     phi = inv_sqrt[:, None] * u  # body-angle shapes
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
-    n_rigid = rigid_mode_count(lay, k, clamped=first)
-    order = np.argsort(w2)
+    n_rigid, order = und.n_rigid, und.order
     omega = np.zeros(w2.size)
     omega[order[n_rigid:]] = np.sqrt(np.clip(w2[order[n_rigid:]], 0.0, None))
     zetas = modal_damping_ratios(*body_matrices(lay, k, cd, first), phi, omega)
@@ -240,8 +272,12 @@ def _percent(x: float) -> str:
 def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0) -> list[Resonance]:
     """Orders at the nominal speed within ``RESONANCE_BAND`` of a natural frequency that excite the mode
     (:attr:`Crossing.amplification` at least ``WARN_AMPLIFICATION``): mesh orders 1x-3x, shaft orders 1x."""
-    ana = modal_analysis(lay, boundary, duration_s=duration_s)
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
+    if (boundary, float(duration_s)) not in lay.__dict__.get("_modal_analyses", {}) and not any(
+            not abs(r * f_in - f) > RESONANCE_BAND * f for f in _undamped(lay, boundary, duration_s).frequencies_Hz()
+            for _, r, _ in excitation_sources(lay)):
+        return []  # no order near a mode: the shapes, shares and damping the analysis adds decide nothing here
+    ana = modal_analysis(lay, boundary, duration_s=duration_s)
     out = []
     for m in ana.modes:
         if m.rigid:

@@ -33,11 +33,12 @@ more than 1e-6 per period; an undamped scene's root is not).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from gearcli import engine
+from gearcli.model.outputs import ConnectorSeries, Sampled, sample
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.solver import _packed
 
@@ -157,4 +158,28 @@ def steady_period(first, rates: np.ndarray, y_eq: np.ndarray, t0: float, period_
     return replace(first, t=grid, y=y, nfev=0, njev=0, nlu=0, steps=0, wall_s=0.0, t_fail=float(grid[-1]))
 
 
-__all__ = ["applies", "multipliers", "root", "steady_period"]
+def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
+    """:func:`gearcli.model.outputs.sample` of ``(t, Y)`` whose dynamic states are one constant state from sample
+    ``start`` on (the equilibrium's statistics period, :func:`steady_period`), the same numbers with the constant
+    part sampled once: every channel is a function of its own sample's state, speeds and the drive's and load's
+    ramps, which are constant past the ramps, so the sample at ``start`` repeated is what sampling each would give.
+    A scene whose mesh phases advance with the angles (or any other case) is sampled whole."""
+    d = layout.state.n_mechanical
+    n = t.size - start - 1
+    if (n < 1 or start < 0 or not layout.speed_drive or layout.needs_angles or layout.fluctuation
+            or t[start] < max(layout.drive.ramp_s, layout.load.ramp_s)
+            or not np.array_equal(Y[:d, start:], np.broadcast_to(Y[:d, start:start + 1], (d, n + 1)))):
+        return sample(layout, t, Y)
+    head = sample(layout, t[:start + 1], Y[:, :start + 1])
+
+    def whole(a: np.ndarray) -> np.ndarray:
+        a = np.asarray(a)
+        return np.concatenate([a, np.repeat(a[..., -1:], n, axis=-1)], axis=-1)
+
+    conns = tuple(ConnectorSeries(*(whole(getattr(c, f.name)) for f in fields(ConnectorSeries))) for c in head.connectors)
+    return Sampled(np.asarray(t, dtype=float), whole(head.omega_rad_s), None,
+                   whole(np.broadcast_to(head.input_torque_Nm, head.time_s.shape)),
+                   whole(np.broadcast_to(head.load_torque_Nm, head.time_s.shape)), conns, layout)
+
+
+__all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]

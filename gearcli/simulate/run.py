@@ -205,7 +205,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
-    s = sample(model.layout, run.t, run.y)
+    s = equilibrium.sampled(model.layout, run.t, run.y, energy_from) \
+        if getattr(steady_state, "method", None) == "equilibrium" else sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y) if not energy_from else \
         model.energy(s.tail(energy_from), run.y[:, energy_from:])
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
