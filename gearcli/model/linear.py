@@ -44,7 +44,16 @@ def static_forces(lay: Layout) -> np.ndarray:
     second body, ``T_L rho_N / rho_b / r_b``. A further element (``ModelSpec.elements``) is taken to carry
     no static load (a damper; general statics come with the general topology). A lossy mesh's force is its
     driving side's: the loads of the meshes after it divided by their efficiencies (times, for a reversed
-    load, whose power flows from the output)."""
+    load, whose power flows from the output). Worked out once per layout (a run asks for them in its choice, its
+    tolerances, its energy scale and its statistics); a copy each time."""
+    kept = lay.__dict__.get("_static_forces")
+    if kept is None:
+        kept = _static_forces(lay)
+        lay.__dict__["_static_forces"] = kept
+    return kept.copy()
+
+
+def _static_forces(lay: Layout) -> np.ndarray:
     rho = np.array([b.ratio for b in lay.bodies])
     rho_b = np.array([rho[x.b] for x in lay.connectors])
     rb = np.array([x.rb for x in lay.connectors])
@@ -190,7 +199,10 @@ def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False)
     R = speed_map(lay)
     M = R @ np.diag(1.0 / np.asarray(lay.inertias[lay.state.first_free:])) @ R.T
     n = F.size
-    A = np.block([[np.zeros((n, n)), np.eye(n)], [-M * kd[None, :], -M * cd[None, :]]])
+    A = np.zeros((2 * n, 2 * n))  # [[0, I], [-M K, -M C]] (np.block's matrix, without its Python)
+    A[:n, n:] = np.eye(n)
+    A[n:, :n] = -M * kd[None, :]
+    A[n:, n:] = -M * cd[None, :]
     sq = np.sqrt(kd)
     omega2 = np.linalg.eigvalsh(sq[:, None] * M * sq[None, :])
     freqs = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)

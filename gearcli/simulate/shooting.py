@@ -115,8 +115,17 @@ def structural_unit_multipliers(layout) -> int:
                 R[c, col[b]] += lever
     if R.size == 0:
         return layout.n_conn
-    scale = np.max(np.abs(R)) or 1.0
-    return int(layout.n_conn - np.linalg.matrix_rank(R / scale, tol=1e-9))
+    # the rank of this very matrix: a sweep's points that share their chain (its levers) share it, not recomputed
+    key = (R.shape, R.tobytes())
+    if key not in _RANKS:
+        scale = np.max(np.abs(R)) or 1.0
+        if len(_RANKS) >= 32:
+            _RANKS.pop(next(iter(_RANKS)))
+        _RANKS[key] = int(np.linalg.matrix_rank(R / scale, tol=1e-9))
+    return int(layout.n_conn - _RANKS[key])
+
+
+_RANKS: dict[tuple[tuple[int, ...], bytes], int] = {}  # rank of R by its exact entries (structural_unit_multipliers)
 
 
 def structural_note(layout, structural: int) -> str:

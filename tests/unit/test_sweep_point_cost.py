@@ -114,3 +114,39 @@ def test_the_resonance_check_still_warns_where_an_order_meets_a_mode():
     # the seed at 150 rpm: its mesh orders meet three modes (the comparison above is not of empty lists only)
     found = modes_mod.resonances(_model("concrete_mixer", "input.speed_rpm=150.0").layout, "clamped_input")
     assert len(found) == 3 and all("resonance: the stage" in r.message or "shaft" in r.message for r in found)
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+@pytest.mark.parametrize("holes", [False, True])
+def test_every_stage_at_once_has_the_statistics_of_one_stage_at_a_time(periodic, holes):
+    from dataclasses import replace
+
+    from gearcli.simulate import stats
+
+    rng = np.random.default_rng(11)
+    t = np.linspace(0.0, 0.5, 2001)
+    mask = stats.window_mask(t, (0.244, 0.5))
+    if holes:
+        mask[1700:1710] = False  # a window that is not one slice: read through the mask
+    statics = [4.2e4, -1.3e3, 0.0, 7.0e2]
+    per_stage = []
+    for k, static in enumerate(statics):
+        ft = static + 3e3 * rng.standard_normal(t.size) * (k + 1)
+        ft = np.abs(ft) if k == 3 else ft  # stage 4 never on its back flank
+        ft[rng.uniform(size=t.size) < 0.05 * k] = 0.0  # contact lost now and then (none in stage 1)
+        pen = ft * 1e-5
+        pen[rng.uniform(size=t.size) < 0.03 * (k in (1, 2))] = -1e-3  # the back flank struck (stages 2, 3)
+        per_stage.append((ft, 0.36 * ft, 0.2 * ft, pen, 1e2 * rng.standard_normal(t.size)))
+    simulated = [4.1e4, None, 0.0, 6.5e2]
+    extra = {"type": ["parallel", "parallel", "belt", "parallel"], "error_estimate": [None, None, None, None]}
+    together = stats.stages_dynamics(t, mask, per_stage, statics, periodic=periodic, simulated_static_N=simulated,
+                                     **extra)
+    alone = [replace(stats.stage_dynamics(k, t, mask, *p[:4], statics[k], p[4], periodic=periodic,
+                                          simulated_static_N=simulated[k]), type=extra["type"][k])
+             for k, p in enumerate(per_stage)]
+    assert together == alone  # dataclass equality: every float the same
+    assert [s.regime for s in together] == ["no impact", "double-sided impact", "double-sided impact",
+                                            "single-sided impact"]
+    for a, b in zip(together, alone, strict=True):  # and of the same types (JSON writes floats)
+        assert type(a.contact_loss_fraction) is type(b.contact_loss_fraction) is float
+        assert type(a.tangential_N.std) is float and type(a.dte_um.rms) is float
