@@ -186,10 +186,6 @@ class _Undamped:
     n_rigid: int
     order: np.ndarray
 
-    def frequencies_Hz(self) -> list[float]:
-        """The elastic modes' frequencies, ascending, as :func:`modal_analysis` reports them."""
-        return [math.sqrt(max(float(self.w2[j]), 0.0)) / (2.0 * math.pi) for j in self.order[self.n_rigid:]]
-
 
 def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
     """:class:`_Undamped` of a layout, boundary and run-up (kept with the layout until the analysis is made)."""
@@ -210,30 +206,38 @@ def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
 
 def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
     und = _undamped(lay, boundary, duration_s)
-    k, cd, first, R, inv_sqrt, w2, u = und.k, und.cd, und.first, und.R, und.inv_sqrt, und.w2, und.u
-    phi = inv_sqrt[:, None] * u  # body-angle shapes
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
-    n_rigid, order = und.n_rigid, und.order
-    omega = np.zeros(w2.size)
-    omega[order[n_rigid:]] = np.sqrt(np.clip(w2[order[n_rigid:]], 0.0, None))
-    zetas = modal_damping_ratios(*body_matrices(lay, k, cd, first), phi, omega)
-    modes: list[Mode] = []
-    for rank, j in enumerate(order):
-        rigid = rank < n_rigid  # from the structure, never from a threshold on the eigenvalues
-        f = 0.0 if rigid else math.sqrt(max(float(w2[j]), 0.0)) / (2.0 * math.pi)
-        shape = np.concatenate([np.zeros(first), _shape(phi[:, j])])
-        rate = R @ phi[:, j]  # phi is mass-normalised (eigh of the symmetric form)
-        strain = k * rate**2
-        share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
-        dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
-        zeta = 0.0 if rigid else float(zetas[j])
-        crossings = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
-                          if not rigid and f / r <= SPEED_RANGE * f_in)
-        modes.append(Mode(len(modes) + 1, f, rigid, tuple(float(v) for v in shape),
-                          tuple(float(s) for s in share), dominant, crossings, zeta))
+    phi, zetas = _damping(lay, und)
+    modes = [_mode(lay, und, phi, zetas, rank, j, f_in) for rank, j in enumerate(und.order)]
     rpm = 60.0 * f_in
     return ModalAnalysis(boundary, tuple(b.label for b in lay.bodies), tuple(x.label for x in lay.connectors),
-                         tuple(float(v) for v in k), tuple(modes), rpm, (0.0, SPEED_RANGE * rpm))
+                         tuple(float(v) for v in und.k), tuple(modes), rpm, (0.0, SPEED_RANGE * rpm))
+
+
+def _damping(lay: Layout, und: _Undamped) -> tuple[np.ndarray, np.ndarray]:
+    """The body-angle shapes (mass-normalised) and every mode's damping ratio."""
+    phi = und.inv_sqrt[:, None] * und.u  # body-angle shapes
+    order, n_rigid = und.order, und.n_rigid
+    omega = np.zeros(und.w2.size)
+    omega[order[n_rigid:]] = np.sqrt(np.clip(und.w2[order[n_rigid:]], 0.0, None))
+    return phi, modal_damping_ratios(*body_matrices(lay, und.k, und.cd, und.first), phi, omega)
+
+
+def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank: int, j: int, f_in: float,
+          crossings: bool = True) -> Mode:
+    """Mode ``rank`` (eigenpair ``j``) of the analysis; ``crossings=False``: without its order crossings."""
+    rigid = rank < und.n_rigid  # from the structure, never from a threshold on the eigenvalues
+    f = 0.0 if rigid else math.sqrt(max(float(und.w2[j]), 0.0)) / (2.0 * math.pi)
+    shape = np.concatenate([np.zeros(und.first), _shape(phi[:, j])])
+    rate = und.R @ phi[:, j]  # phi is mass-normalised (eigh of the symmetric form)
+    strain = und.k * rate**2
+    share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
+    dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
+    zeta = 0.0 if rigid else float(zetas[j])
+    found = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
+                  if not rigid and f / r <= SPEED_RANGE * f_in) if crossings else ()
+    return Mode(rank + 1, f, rigid, tuple(float(v) for v in shape), tuple(float(s) for s in share), dominant,
+                found, zeta)
 
 
 def _crossing(name: str, r: float, f: float, share: np.ndarray, via: tuple[int, ...], zeta: float) -> Crossing:
@@ -273,13 +277,8 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
     """Orders at the nominal speed within ``RESONANCE_BAND`` of a natural frequency that excite the mode
     (:attr:`Crossing.amplification` at least ``WARN_AMPLIFICATION``): mesh orders 1x-3x, shaft orders 1x."""
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
-    if (boundary, float(duration_s)) not in lay.__dict__.get("_modal_analyses", {}) and not any(
-            not abs(r * f_in - f) > RESONANCE_BAND * f for f in _undamped(lay, boundary, duration_s).frequencies_Hz()
-            for _, r, _ in excitation_sources(lay)):
-        return []  # no order near a mode: the shapes, shares and damping the analysis adds decide nothing here
-    ana = modal_analysis(lay, boundary, duration_s=duration_s)
     out = []
-    for m in ana.modes:
+    for m in _near_modes(lay, boundary, duration_s, f_in):
         if m.rigid:
             continue
         share = max(m.energy_share)
@@ -303,6 +302,27 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                                  c.amplification, m.damping_ratio, c.strength,
                                  int(name.split()[1]) if name.startswith("stage ") else None))
     return out
+
+
+def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float) -> list[Mode]:
+    """The modes an order at the nominal speed may lie near (:func:`resonances` passes over the others): the
+    analysis's where it is made; else only the elastic modes within ``RESONANCE_BAND`` of an order, without their
+    crossings (the same numbers: the analysis's own steps, :func:`_mode`)."""
+    ana = lay.__dict__.get("_modal_analyses", {}).get((boundary, float(duration_s)))
+    if ana is not None:
+        return list(ana.modes)
+    und = _undamped(lay, boundary, duration_s)
+    sources = excitation_sources(lay)
+    near = [(rank, j) for rank, j in enumerate(und.order) if rank >= und.n_rigid
+            and any(not abs(r * f_in - f) > RESONANCE_BAND * f for f in [_frequency_Hz(und, j)] for _, r, _ in sources)]
+    if not near:
+        return []  # no order near a mode: no shapes, shares nor damping to work out
+    phi, zetas = _damping(lay, und)
+    return [_mode(lay, und, phi, zetas, rank, j, f_in, crossings=False) for rank, j in near]
+
+
+def _frequency_Hz(und: _Undamped, j: int) -> float:
+    return math.sqrt(max(float(und.w2[j]), 0.0)) / (2.0 * math.pi)
 
 
 @dataclass(frozen=True)
