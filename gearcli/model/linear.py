@@ -190,9 +190,26 @@ def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
 
 def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False) -> Linearisation:
     """Linearise about the given connector forces (one per connector, or per mesh when the scene has
-    only meshes); ``stiffest_phase``: time-varying K at its largest factor."""
+    only meshes); ``stiffest_phase``: time-varying K at its largest factor. Kept for the last few exact inputs
+    (the elements' laws and parameters, bodies, levers, inertias and forces): the points of a sweep over the speed
+    linearise the same chain at the same full load, the same numbers."""
     lay = _lay(spec)
     F = np.abs(np.asarray(forces, dtype=float))
+    key = (stiffest_phase, F.shape, F.tobytes(), lay.n_bodies, lay.state.first_free, tuple(lay.inertias),
+           lay.stage_conn, tuple((x.kind, x.params, x.bodies, x.levers) for x in lay.connectors))
+    found = _LINEARISED.get(key)
+    if found is None:
+        found = _linearise(lay, F, stiffest_phase)
+        if len(_LINEARISED) >= 16:
+            _LINEARISED.pop(next(iter(_LINEARISED)))
+        _LINEARISED[key] = found
+    return found
+
+
+_LINEARISED: dict[tuple, Linearisation] = {}  # linearise by its exact inputs
+
+
+def _linearise(lay: Layout, F: np.ndarray, stiffest_phase: bool) -> Linearisation:
     kd, cd, defl = np.empty(F.size), np.empty(F.size), np.empty(F.size)
     for c in range(F.size):
         kd[c], cd[c], defl[c] = tangent(lay, c, F[c], stiffest_phase=stiffest_phase)
