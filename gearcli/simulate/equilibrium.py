@@ -171,15 +171,15 @@ def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
             or not np.array_equal(Y[:d, start:], np.broadcast_to(Y[:d, start:start + 1], (d, n + 1)))):
         return sample(layout, t, Y)
     head = sample(layout, t[:start + 1], Y[:, :start + 1])
-
-    def whole(a: np.ndarray) -> np.ndarray:
-        a = np.asarray(a)
-        return np.concatenate([a, np.repeat(a[..., -1:], n, axis=-1)], axis=-1)
-
-    conns = tuple(ConnectorSeries(*(whole(getattr(c, f.name)) for f in fields(ConnectorSeries))) for c in head.connectors)
-    return Sampled(np.asarray(t, dtype=float), whole(head.omega_rad_s), None,
-                   whole(np.broadcast_to(head.input_torque_Nm, head.time_s.shape)),
-                   whole(np.broadcast_to(head.load_torque_Nm, head.time_s.shape)), conns, layout)
+    names = [f.name for f in fields(ConnectorSeries)]
+    rows = [*head.omega_rad_s, np.broadcast_to(head.input_torque_Nm, head.time_s.shape),
+            np.broadcast_to(head.load_torque_Nm, head.time_s.shape),
+            *(getattr(c, name) for c in head.connectors for name in names)]
+    H = np.array(rows, dtype=float)
+    full = np.concatenate([H, np.repeat(H[:, -1:], n, axis=1)], axis=1)  # every row its last sample repeated
+    nb, w = head.omega_rad_s.shape[0], len(names)
+    conns = tuple(ConnectorSeries(*full[nb + 2 + w * i: nb + 2 + w * (i + 1)]) for i in range(len(head.connectors)))
+    return Sampled(np.asarray(t, dtype=float), full[:nb], None, full[nb], full[nb + 1], conns, layout)
 
 
 __all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]
