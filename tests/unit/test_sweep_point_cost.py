@@ -11,9 +11,8 @@ import numpy as np
 import pytest
 
 from gearcli import api
-from gearcli.model import TorsionalModel
+from gearcli.model import TorsionalModel, outputs
 from gearcli.model import modes as modes_mod
-from gearcli.model import outputs
 from gearcli.model.outputs import ConnectorSeries, sample
 from gearcli.simulate import equilibrium
 
