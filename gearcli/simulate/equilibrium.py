@@ -175,11 +175,13 @@ def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
     rows = [*head.omega_rad_s, np.broadcast_to(head.input_torque_Nm, head.time_s.shape),
             np.broadcast_to(head.load_torque_Nm, head.time_s.shape),
             *(getattr(c, name) for c in head.connectors for name in names)]
-    H = np.array(rows, dtype=float)
-    full = np.concatenate([H, np.repeat(H[:, -1:], n, axis=1)], axis=1)  # every row its last sample repeated
+    full = [np.empty(t.size) for _ in rows]
+    for r, row in zip(full, rows, strict=True):  # every row its last sample repeated
+        r[:start + 1] = row
+        r[start + 1:] = row[-1]
     nb, w = head.omega_rad_s.shape[0], len(names)
     conns = tuple(ConnectorSeries(*full[nb + 2 + w * i: nb + 2 + w * (i + 1)]) for i in range(len(head.connectors)))
-    return Sampled(np.asarray(t, dtype=float), full[:nb], None, full[nb], full[nb + 1], conns, layout)
+    return Sampled(np.asarray(t, dtype=float), np.array(full[:nb]), None, full[nb], full[nb + 1], conns, layout)
 
 
 __all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]
