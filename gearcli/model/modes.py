@@ -193,15 +193,28 @@ def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
     key = (boundary, float(duration_s))
     if key not in cache:
         k, cd = _tangents(lay, duration_s)
-        first = 1 if boundary == "clamped_input" else 0
-        R = speed_map(lay, range(first, lay.n_bodies))
-        J = np.asarray(lay.inertias[first:])
-        inv_sqrt = 1.0 / np.sqrt(J)
-        Kb = R.T @ (k[:, None] * R)
-        w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
-        cache[key] = _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first),
-                               np.argsort(w2))
+        # the eigenproblem of these very tangents on this very chain: a speed sweep's points share it
+        chain = (boundary, k.tobytes(), cd.tobytes(), lay.n_bodies, tuple(lay.inertias),
+                 tuple((x.bodies, x.levers, x.radii) for x in lay.connectors))
+        if chain not in _CHAINS:
+            if len(_CHAINS) >= 16:
+                _CHAINS.pop(next(iter(_CHAINS)))
+            _CHAINS[chain] = _eigenproblem(lay, boundary, k, cd)
+        cache[key] = _CHAINS[chain]
     return cache[key]
+
+
+_CHAINS: dict[tuple, _Undamped] = {}  # _undamped by its exact tangents and chain
+
+
+def _eigenproblem(lay: Layout, boundary: str, k: np.ndarray, cd: np.ndarray) -> _Undamped:
+    first = 1 if boundary == "clamped_input" else 0
+    R = speed_map(lay, range(first, lay.n_bodies))
+    J = np.asarray(lay.inertias[first:])
+    inv_sqrt = 1.0 / np.sqrt(J)
+    Kb = R.T @ (k[:, None] * R)
+    w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
+    return _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first), np.argsort(w2))
 
 
 def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
