@@ -29,6 +29,7 @@ import math
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine
 
@@ -127,11 +128,10 @@ def modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np
     exact arguments: the points of a sweep over the speed share their chain's matrices and modes, whose damping
     ratios are the same numbers (a copy each time)."""
     key = tuple((a.shape, a.tobytes()) for a in (np.asarray(x, dtype=float) for x in (J, K, C, shapes, omega)))
-    if key not in _RATIOS:
-        if len(_RATIOS) >= 16:
-            _RATIOS.pop(next(iter(_RATIOS)))
-        _RATIOS[key] = _modal_damping_ratios(J, K, C, shapes, omega)
-    return _RATIOS[key].copy()
+    found = _RATIOS.get(key)
+    if found is None:
+        found = remember(_RATIOS, key, _modal_damping_ratios(J, K, C, shapes, omega))
+    return found.copy()
 
 
 _RATIOS: dict[tuple, np.ndarray] = {}  # modal_damping_ratios by their exact arguments

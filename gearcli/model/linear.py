@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_matrices, state_matrix
 from gearcli.model.spec import ModelSpec
@@ -198,12 +199,14 @@ def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False)
     key = (stiffest_phase, F.shape, F.tobytes(), lay.n_bodies, lay.state.first_free, tuple(lay.inertias),
            lay.stage_conn, tuple((x.kind, x.params, x.bodies, x.levers) for x in lay.connectors))
     found = _LINEARISED.get(key)
-    if found is None:
-        found = _linearise(lay, F, stiffest_phase)
-        if len(_LINEARISED) >= 16:
-            _LINEARISED.pop(next(iter(_LINEARISED)))
-        _LINEARISED[key] = found
-    return found
+    return found if found is not None else remember(_LINEARISED, key, _read_only(_linearise(lay, F, stiffest_phase)))
+
+
+def _read_only(lin: Linearisation) -> Linearisation:
+    """``lin`` with its arrays read-only (shared by the points that linearise the same chain)."""
+    for a in (lin.forces, lin.deflection, lin.stiffness, lin.damping, lin.eigenvalues, lin.natural_frequencies_Hz):
+        a.flags.writeable = False
+    return lin
 
 
 _LINEARISED: dict[tuple, Linearisation] = {}  # linearise by its exact inputs

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_matrices, modal_damping_ratios
 from gearcli.model.elements.mesh import I_Z
@@ -196,11 +197,8 @@ def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
         # the eigenproblem of these very tangents on this very chain: a speed sweep's points share it
         chain = (boundary, k.tobytes(), cd.tobytes(), lay.n_bodies, tuple(lay.inertias),
                  tuple((x.bodies, x.levers, x.radii) for x in lay.connectors))
-        if chain not in _CHAINS:
-            if len(_CHAINS) >= 16:
-                _CHAINS.pop(next(iter(_CHAINS)))
-            _CHAINS[chain] = _eigenproblem(lay, boundary, k, cd)
-        cache[key] = _CHAINS[chain]
+        found = _CHAINS.get(chain)
+        cache[key] = found if found is not None else remember(_CHAINS, chain, _eigenproblem(lay, boundary, k, cd))
     return cache[key]
 
 
@@ -214,7 +212,10 @@ def _eigenproblem(lay: Layout, boundary: str, k: np.ndarray, cd: np.ndarray) -> 
     inv_sqrt = 1.0 / np.sqrt(J)
     Kb = R.T @ (k[:, None] * R)
     w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
-    return _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first), np.argsort(w2))
+    found = _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first), np.argsort(w2))
+    for a in (k, cd, R, inv_sqrt, w2, u, found.order):  # shared by the points of one chain: read only
+        a.flags.writeable = False
+    return found
 
 
 def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
