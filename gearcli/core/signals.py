@@ -49,9 +49,11 @@ def deferred(flag: Any = None, index: int = 0) -> Iterator[Callable[[], int | No
         return
     previous = {s: signal.getsignal(s) for s in SIGNALS}
     outermost = not any(h is _remember for h in previous.values())
-    for s, h in previous.items():
-        if h is not signal.SIG_IGN and h is not None:
-            signal.signal(s, _remember)
+    # a block inside another finds the handlers it would install already there: it leaves them (what it would
+    # restore on leaving is the same _remember), the stop flag and the delivery stay as they are
+    installed = [s for s, h in previous.items() if h is not signal.SIG_IGN and h is not None and h is not _remember]
+    for s in installed:
+        signal.signal(s, _remember)
     entry = (flag, index) if flag is not None else None
     if entry is not None:
         _flags.append(entry)
@@ -62,9 +64,8 @@ def deferred(flag: Any = None, index: int = 0) -> Iterator[Callable[[], int | No
     finally:
         if entry is not None:
             _flags.remove(entry)
-        for s, h in previous.items():
-            if h is not signal.SIG_IGN and h is not None:
-                signal.signal(s, h)
+        for s in installed:
+            signal.signal(s, previous[s])
         if outermost and _pending:
             _deliver(_pending[0], previous.get(_pending[0]))
 

@@ -99,6 +99,17 @@ def unsupported(arrays, method: str) -> list[str]:
     out = []
     if method not in COMPILED_METHODS:
         out.append(f"method {method} (the compiled engine integrates {', '.join(COMPILED_METHODS)} only)")
+    kept = getattr(arrays, "__dict__", {}).get("_unsupported")  # the scene's own part: once per model's arrays
+    if kept is None:
+        kept = _scene_unsupported(arrays)
+        if hasattr(arrays, "__dict__"):
+            arrays.__dict__["_unsupported"] = kept
+    return out + list(kept)
+
+
+def _scene_unsupported(arrays) -> tuple[str, ...]:
+    """:func:`unsupported`'s features of the scene itself (its arrays, whatever the method)."""
+    out = []
     known = _known_params()
     kinds = {int(k) for k in np.asarray(arrays.conn_kind)}
     if kinds - set(known):
@@ -111,7 +122,7 @@ def unsupported(arrays, method: str) -> list[str]:
     for f in dataclasses.fields(arrays):
         if f.name not in _KNOWN_FIELDS and _has_content(getattr(arrays, f.name)):
             out.append(f"model feature {f.name!r}")
-    return out
+    return tuple(out)
 
 
 def _has_content(v) -> bool:

@@ -29,6 +29,7 @@ import math
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine
 
@@ -123,7 +124,21 @@ def modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np
     """The damping ratio of each undamped mode (``shapes`` its columns, body angles; ``omega`` rad/s, 0 for a
     rigid one: ratio 0): ``-Re lambda / |lambda|`` of the damped eigenvalue whose shape matches it best (modal
     assurance criterion, mass-weighted, above :data:`MIN_MAC`); a mode no oscillating eigenvalue matches (an
-    overdamped one) takes the modal projection ``phi^T C phi / (2 omega phi^T J phi)``."""
+    overdamped one) takes the modal projection ``phi^T C phi / (2 omega phi^T J phi)``. Kept for the last few
+    exact arguments: the points of a sweep over the speed share their chain's matrices and modes, whose damping
+    ratios are the same numbers (a copy each time)."""
+    key = tuple((a.shape, a.tobytes()) for a in (np.asarray(x, dtype=float) for x in (J, K, C, shapes, omega)))
+    found = _RATIOS.get(key)
+    if found is None:
+        found = remember(_RATIOS, key, _modal_damping_ratios(J, K, C, shapes, omega))
+    return found.copy()
+
+
+_RATIOS: dict[tuple, np.ndarray] = {}  # modal_damping_ratios by their exact arguments
+
+
+def _modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np.ndarray,
+                          omega: np.ndarray) -> np.ndarray:
     lam, vec = np.linalg.eig(state_matrix(J, K, C))
     n = J.size
     osc = [i for i in range(lam.size) if lam[i].imag > 0.0]

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_matrices, state_matrix
 from gearcli.model.spec import ModelSpec
@@ -44,7 +45,16 @@ def static_forces(lay: Layout) -> np.ndarray:
     second body, ``T_L rho_N / rho_b / r_b``. A further element (``ModelSpec.elements``) is taken to carry
     no static load (a damper; general statics come with the general topology). A lossy mesh's force is its
     driving side's: the loads of the meshes after it divided by their efficiencies (times, for a reversed
-    load, whose power flows from the output)."""
+    load, whose power flows from the output). Worked out once per layout (a run asks for them in its choice, its
+    tolerances, its energy scale and its statistics); a copy each time."""
+    kept = lay.__dict__.get("_static_forces")
+    if kept is None:
+        kept = _static_forces(lay)
+        lay.__dict__["_static_forces"] = kept
+    return kept.copy()
+
+
+def _static_forces(lay: Layout) -> np.ndarray:
     rho = np.array([b.ratio for b in lay.bodies])
     rho_b = np.array([rho[x.b] for x in lay.connectors])
     rb = np.array([x.rb for x in lay.connectors])
@@ -181,16 +191,38 @@ def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
 
 def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False) -> Linearisation:
     """Linearise about the given connector forces (one per connector, or per mesh when the scene has
-    only meshes); ``stiffest_phase``: time-varying K at its largest factor."""
+    only meshes); ``stiffest_phase``: time-varying K at its largest factor. Kept for the last few exact inputs
+    (the elements' laws and parameters, bodies, levers, inertias and forces): the points of a sweep over the speed
+    linearise the same chain at the same full load, the same numbers."""
     lay = _lay(spec)
     F = np.abs(np.asarray(forces, dtype=float))
+    key = (stiffest_phase, F.shape, F.tobytes(), lay.n_bodies, lay.state.first_free, tuple(lay.inertias),
+           lay.stage_conn, tuple((x.kind, x.params, x.bodies, x.levers) for x in lay.connectors))
+    found = _LINEARISED.get(key)
+    return found if found is not None else remember(_LINEARISED, key, _read_only(_linearise(lay, F, stiffest_phase)))
+
+
+def _read_only(lin: Linearisation) -> Linearisation:
+    """``lin`` with its arrays read-only (shared by the points that linearise the same chain)."""
+    for a in (lin.forces, lin.deflection, lin.stiffness, lin.damping, lin.eigenvalues, lin.natural_frequencies_Hz):
+        a.flags.writeable = False
+    return lin
+
+
+_LINEARISED: dict[tuple, Linearisation] = {}  # linearise by its exact inputs
+
+
+def _linearise(lay: Layout, F: np.ndarray, stiffest_phase: bool) -> Linearisation:
     kd, cd, defl = np.empty(F.size), np.empty(F.size), np.empty(F.size)
     for c in range(F.size):
         kd[c], cd[c], defl[c] = tangent(lay, c, F[c], stiffest_phase=stiffest_phase)
     R = speed_map(lay)
     M = R @ np.diag(1.0 / np.asarray(lay.inertias[lay.state.first_free:])) @ R.T
     n = F.size
-    A = np.block([[np.zeros((n, n)), np.eye(n)], [-M * kd[None, :], -M * cd[None, :]]])
+    A = np.zeros((2 * n, 2 * n))  # [[0, I], [-M K, -M C]] (np.block's matrix, without its Python)
+    A[:n, n:] = np.eye(n)
+    A[n:, :n] = -M * kd[None, :]
+    A[n:, n:] = -M * cd[None, :]
     sq = np.sqrt(kd)
     omega2 = np.linalg.eigvalsh(sq[:, None] * M * sq[None, :])
     freqs = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_matrices, modal_damping_ratios
 from gearcli.model.elements.mesh import I_Z
@@ -170,38 +171,87 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
     return cache[key]
 
 
-def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
-    k, cd = _tangents(lay, duration_s)
+@dataclass(frozen=True)
+class _Undamped:
+    """The undamped eigenproblem of :func:`modal_analysis`: tangent stiffness and damping per connector, the
+    first free body, the speed map and inertias of the free bodies, 1/sqrt(J), the eigenpairs of the
+    mass-normalised stiffness, the rigid-mode count and the modes in ascending order."""
+
+    k: np.ndarray
+    cd: np.ndarray
+    first: int
+    R: np.ndarray
+    inv_sqrt: np.ndarray
+    w2: np.ndarray
+    u: np.ndarray
+    n_rigid: int
+    order: np.ndarray
+
+
+def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
+    """:class:`_Undamped` of a layout, boundary and run-up (kept with the layout until the analysis is made)."""
+    cache = lay.__dict__.setdefault("_undamped_modes", {})
+    key = (boundary, float(duration_s))
+    if key not in cache:
+        k, cd = _tangents(lay, duration_s)
+        # the eigenproblem of these very tangents on this very chain: a speed sweep's points share it
+        chain = (boundary, k.tobytes(), cd.tobytes(), lay.n_bodies, tuple(lay.inertias),
+                 tuple((x.bodies, x.levers, x.radii) for x in lay.connectors))
+        found = _CHAINS.get(chain)
+        cache[key] = found if found is not None else remember(_CHAINS, chain, _eigenproblem(lay, boundary, k, cd))
+    return cache[key]
+
+
+_CHAINS: dict[tuple, _Undamped] = {}  # _undamped by its exact tangents and chain
+
+
+def _eigenproblem(lay: Layout, boundary: str, k: np.ndarray, cd: np.ndarray) -> _Undamped:
     first = 1 if boundary == "clamped_input" else 0
     R = speed_map(lay, range(first, lay.n_bodies))
     J = np.asarray(lay.inertias[first:])
     inv_sqrt = 1.0 / np.sqrt(J)
     Kb = R.T @ (k[:, None] * R)
-    w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: symmetric, J^-1/2 K J^-1/2
-    phi = inv_sqrt[:, None] * u  # body-angle shapes
+    w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
+    found = _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first), np.argsort(w2))
+    for a in (k, cd, R, inv_sqrt, w2, u, found.order):  # shared by the points of one chain: read only
+        a.flags.writeable = False
+    return found
+
+
+def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
+    und = _undamped(lay, boundary, duration_s)
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
-    n_rigid = rigid_mode_count(lay, k, clamped=first)
-    order = np.argsort(w2)
-    omega = np.zeros(w2.size)
-    omega[order[n_rigid:]] = np.sqrt(np.clip(w2[order[n_rigid:]], 0.0, None))
-    zetas = modal_damping_ratios(*body_matrices(lay, k, cd, first), phi, omega)
-    modes: list[Mode] = []
-    for rank, j in enumerate(order):
-        rigid = rank < n_rigid  # from the structure, never from a threshold on the eigenvalues
-        f = 0.0 if rigid else math.sqrt(max(float(w2[j]), 0.0)) / (2.0 * math.pi)
-        shape = np.concatenate([np.zeros(first), _shape(phi[:, j])])
-        rate = R @ phi[:, j]  # phi is mass-normalised (eigh of the symmetric form)
-        strain = k * rate**2
-        share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
-        dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
-        zeta = 0.0 if rigid else float(zetas[j])
-        crossings = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
-                          if not rigid and f / r <= SPEED_RANGE * f_in)
-        modes.append(Mode(len(modes) + 1, f, rigid, tuple(float(v) for v in shape),
-                          tuple(float(s) for s in share), dominant, crossings, zeta))
+    phi, zetas = _damping(lay, und)
+    modes = [_mode(lay, und, phi, zetas, rank, j, f_in) for rank, j in enumerate(und.order)]
     rpm = 60.0 * f_in
     return ModalAnalysis(boundary, tuple(b.label for b in lay.bodies), tuple(x.label for x in lay.connectors),
-                         tuple(float(v) for v in k), tuple(modes), rpm, (0.0, SPEED_RANGE * rpm))
+                         tuple(float(v) for v in und.k), tuple(modes), rpm, (0.0, SPEED_RANGE * rpm))
+
+
+def _damping(lay: Layout, und: _Undamped) -> tuple[np.ndarray, np.ndarray]:
+    """The body-angle shapes (mass-normalised) and every mode's damping ratio."""
+    phi = und.inv_sqrt[:, None] * und.u  # body-angle shapes
+    order, n_rigid = und.order, und.n_rigid
+    omega = np.zeros(und.w2.size)
+    omega[order[n_rigid:]] = np.sqrt(np.clip(und.w2[order[n_rigid:]], 0.0, None))
+    return phi, modal_damping_ratios(*body_matrices(lay, und.k, und.cd, und.first), phi, omega)
+
+
+def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank: int, j: int, f_in: float,
+          crossings: bool = True) -> Mode:
+    """Mode ``rank`` (eigenpair ``j``) of the analysis; ``crossings=False``: without its order crossings."""
+    rigid = rank < und.n_rigid  # from the structure, never from a threshold on the eigenvalues
+    f = 0.0 if rigid else math.sqrt(max(float(und.w2[j]), 0.0)) / (2.0 * math.pi)
+    shape = np.concatenate([np.zeros(und.first), _shape(phi[:, j])])
+    rate = und.R @ phi[:, j]  # phi is mass-normalised (eigh of the symmetric form)
+    strain = und.k * rate**2
+    share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
+    dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
+    zeta = 0.0 if rigid else float(zetas[j])
+    found = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
+                  if not rigid and f / r <= SPEED_RANGE * f_in) if crossings else ()
+    return Mode(rank + 1, f, rigid, tuple(float(v) for v in shape), tuple(float(s) for s in share), dominant,
+                found, zeta)
 
 
 def _crossing(name: str, r: float, f: float, share: np.ndarray, via: tuple[int, ...], zeta: float) -> Crossing:
@@ -240,10 +290,9 @@ def _percent(x: float) -> str:
 def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0) -> list[Resonance]:
     """Orders at the nominal speed within ``RESONANCE_BAND`` of a natural frequency that excite the mode
     (:attr:`Crossing.amplification` at least ``WARN_AMPLIFICATION``): mesh orders 1x-3x, shaft orders 1x."""
-    ana = modal_analysis(lay, boundary, duration_s=duration_s)
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
     out = []
-    for m in ana.modes:
+    for m in _near_modes(lay, boundary, duration_s, f_in):
         if m.rigid:
             continue
         share = max(m.energy_share)
@@ -267,6 +316,27 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                                  c.amplification, m.damping_ratio, c.strength,
                                  int(name.split()[1]) if name.startswith("stage ") else None))
     return out
+
+
+def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float) -> list[Mode]:
+    """The modes an order at the nominal speed may lie near (:func:`resonances` passes over the others): the
+    analysis's where it is made; else only the elastic modes within ``RESONANCE_BAND`` of an order, without their
+    crossings (the same numbers: the analysis's own steps, :func:`_mode`)."""
+    ana = lay.__dict__.get("_modal_analyses", {}).get((boundary, float(duration_s)))
+    if ana is not None:
+        return list(ana.modes)
+    und = _undamped(lay, boundary, duration_s)
+    sources = excitation_sources(lay)
+    near = [(rank, j) for rank, j in enumerate(und.order) if rank >= und.n_rigid
+            and any(not abs(r * f_in - f) > RESONANCE_BAND * f for f in [_frequency_Hz(und, j)] for _, r, _ in sources)]
+    if not near:
+        return []  # no order near a mode: no shapes, shares nor damping to work out
+    phi, zetas = _damping(lay, und)
+    return [_mode(lay, und, phi, zetas, rank, j, f_in, crossings=False) for rank, j in near]
+
+
+def _frequency_Hz(und: _Undamped, j: int) -> float:
+    return math.sqrt(max(float(und.w2[j]), 0.0)) / (2.0 * math.pi)
 
 
 @dataclass(frozen=True)

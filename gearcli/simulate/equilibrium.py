@@ -36,12 +36,14 @@ more than 1e-6 per period; an undamped scene's root is not).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from gearcli import engine
+from gearcli.model.outputs import ConnectorSeries, Sampled, sample
 from gearcli.simulate import periodic as pr
+from gearcli.simulate.solver import _packed
 
 MAX_STEPS = 25  # Newton steps
 HALVINGS = 4  # step halvings of the damped step
@@ -94,7 +96,7 @@ def _functions(model, engine_name: str):
     if engine_name != "compiled":
         return model.rhs, model.jac
     evaluate, evaluate_jacobian = engine.point_functions()
-    arrays = engine.pack(model.arrays)
+    arrays = _packed(model)  # the kernel's packed model, the same the run-up's integration read (packed once)
     return (lambda t, y: evaluate(arrays, float(t), np.ascontiguousarray(y, dtype=float)),
             lambda t, y: evaluate_jacobian(arrays, float(t), np.ascontiguousarray(y, dtype=float)))
 
@@ -165,4 +167,30 @@ def steady_period(first, rates: np.ndarray, y_eq: np.ndarray, t0: float, period_
     return replace(first, t=grid, y=y, nfev=0, njev=0, nlu=0, steps=0, wall_s=0.0, t_fail=float(grid[-1]))
 
 
-__all__ = ["applies", "multipliers", "root", "steady_period"]
+def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
+    """:func:`gearcli.model.outputs.sample` of ``(t, Y)`` whose dynamic states are one constant state from sample
+    ``start`` on (the equilibrium's statistics period, :func:`steady_period`), the same numbers with the constant
+    part sampled once: every channel is a function of its own sample's state, speeds and the drive's and load's
+    ramps, which are constant past the ramps, so the sample at ``start`` repeated is what sampling each would give.
+    A scene whose mesh phases advance with the angles (or any other case) is sampled whole."""
+    d = layout.state.n_mechanical
+    n = t.size - start - 1
+    if (n < 1 or start < 0 or not layout.speed_drive or layout.needs_angles or layout.fluctuation
+            or t[start] < max(layout.drive.ramp_s, layout.load.ramp_s)
+            or not np.array_equal(Y[:d, start:], np.broadcast_to(Y[:d, start:start + 1], (d, n + 1)))):
+        return sample(layout, t, Y)
+    head = sample(layout, t[:start + 1], Y[:, :start + 1])
+    names = [f.name for f in fields(ConnectorSeries)]
+    rows = [*head.omega_rad_s, np.broadcast_to(head.input_torque_Nm, head.time_s.shape),
+            np.broadcast_to(head.load_torque_Nm, head.time_s.shape),
+            *(getattr(c, name) for c in head.connectors for name in names)]
+    full = [np.empty(t.size) for _ in rows]
+    for r, row in zip(full, rows, strict=True):  # every row its last sample repeated
+        r[:start + 1] = row
+        r[start + 1:] = row[-1]
+    nb, w = head.omega_rad_s.shape[0], len(names)
+    conns = tuple(ConnectorSeries(*full[nb + 2 + w * i: nb + 2 + w * (i + 1)]) for i in range(len(head.connectors)))
+    return Sampled(np.asarray(t, dtype=float), np.array(full[:nb]), None, full[nb], full[nb + 1], conns, layout)
+
+
+__all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]

@@ -80,21 +80,32 @@ def excitation_periods(layout) -> list[Excitation]:
     load's fluctuation rows (amplitude, frequency_Hz) with a non-zero amplitude each add theirs. The input
     body's nominal speed is the drive's speed.
     """
-    arr = layout.arrays(np.zeros(layout.state.n_states))
+    cached = layout.__dict__.get("_excitation_periods")
+    if cached is None:  # the layout's own (frozen): worked out once (the period, the statistics grid ask for them)
+        cached = _excitation_periods(layout)
+        object.__setattr__(layout, "_excitation_periods", cached)
+    return list(cached)
+
+
+def _excitation_periods(layout) -> tuple[Excitation, ...]:
+    """:func:`excitation_periods` of a layout, worked out (the drive's ripple and the load's fluctuation rows as
+    the model's arrays hold them, without building the arrays)."""
     w_in = layout.drive.speed_rad_s
     out: list[Excitation] = []
     if w_in == 0.0:
-        return out
+        return ()
+    ripple = np.array(layout.ripple, float).reshape(-1, 2)  # = layout.arrays(...).drive_ripple, .load_fluct
+    fluct = np.array(layout.fluctuation, float).reshape(-1, 2)
     for x in layout.connectors:
         if x.element.makes_excitation(x.params):
             out.append(Excitation(x.label, x.element.cycle_period_s(x.params, layout.bodies[x.a].ratio * w_in)))
-    for amplitude, order in arr.drive_ripple:
+    for amplitude, order in ripple:
         if amplitude != 0.0 and order != 0.0:
             out.append(Excitation(f"input torque ripple order {order:g}", ripple_period_s(order, w_in)))
-    for amplitude, frequency in arr.load_fluct:
+    for amplitude, frequency in fluct:
         if amplitude != 0.0 and frequency != 0.0:
             out.append(Excitation(f"load fluctuation {frequency:g} Hz", 1.0 / abs(frequency)))
-    return out
+    return tuple(out)
 
 
 def unexcited_period(layout) -> float:

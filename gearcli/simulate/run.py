@@ -205,7 +205,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
-    s = sample(model.layout, run.t, run.y)
+    s = equilibrium.sampled(model.layout, run.t, run.y, energy_from) \
+        if getattr(steady_state, "method", None) == "equilibrium" else sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y) if not energy_from else \
         model.energy(s.tail(energy_from), run.y[:, energy_from:])
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
@@ -354,11 +355,12 @@ def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnosti
     return out
 
 
-def _series(model: TorsionalModel, s: Sampled) -> tuple[dict[Channel, np.ndarray], list[StageSeries]]:
+def _series(model: TorsionalModel, s: Sampled, channels: bool = True) -> tuple[dict[Channel, np.ndarray],
+                                                                               list[StageSeries]]:
     """The time series in SI, keyed by what they are, in the output's column order (docs/output.md; the names
     and units are :mod:`gearcli.io.channels`'); and per stage (F_t, F_r, F_a in N, penetration in mm, DTE in
     um) for its statistics. Reducer shafts first (a flexible shaft reports its gear end), then the
-    drivetrain's own channels."""
+    drivetrain's own channels. ``channels=False``: the stages' series alone (a run that keeps no series)."""
     lay = model.layout
     ch: dict[Channel, np.ndarray] = {Channel("speed", f"shaft{i + 1}"): s.omega_rad_s[b]
                                      for i, b in enumerate(lay.shaft_body)}
@@ -371,6 +373,8 @@ def _series(model: TorsionalModel, s: Sampled) -> tuple[dict[Channel, np.ndarray
                    Channel("axial_force", stage): fa, Channel("penetration", stage): ms.penetration_m,
                    Channel("dte", stage): ms.dte_m})
         per_stage.append((ft, fr, fa, ms.penetration_m * 1e3, ms.dte_m * 1e6))
+    if not channels:
+        return {}, per_stage
     for (k, j, gear), (ft, dte_m) in planet_series(model, s).items():  # a planetary stage: every planet mesh
         ch[Channel("tangential_force", f"stage{k + 1}_planet{j + 1}_{gear}")] = ft
         ch[Channel("dte", f"stage{k + 1}_planet{j + 1}_{gear}")] = dte_m
@@ -437,17 +441,16 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
     periodic = steady.mode == "periodic"
-    series, per_stage = _series(model, s)
+    series, per_stage = _series(model, s, want_series)
     errors = ref.errors if ref is not None else ()
     stiffness = mesh_stiffness(model, choice)
     simulated_static = simulated_static_tangential_N(model)
-    stages = tuple(replace(stats.stage_dynamics(k, s.time_s, mask, *per_stage[k][:4], m.static_tangential_N,
-                                                per_stage[k][4], periodic=periodic,
-                                                simulated_static_N=simulated_static[k]),
-                           error_estimate=errors[k] if k < len(errors) else None,
-                           mesh_stiffness=stiffness[k] if k < len(stiffness) else None,
-                           type=spec.stage_types[k] if k < len(spec.stage_types) else "parallel")
-                   for k, m in enumerate(spec.meshes))
+    ks = range(len(spec.meshes))
+    stages = tuple(stats.stages_dynamics(
+        s.time_s, mask, per_stage[:len(ks)], [m.static_tangential_N for m in spec.meshes], periodic=periodic,
+        simulated_static_N=simulated_static, error_estimate=[errors[k] if k < len(errors) else None for k in ks],
+        mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
+        type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
     stages = tuple(_with_planets(st, *_planets(model, s, mask, k)) for k, st in enumerate(stages))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())

@@ -45,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.simulate import equilibrium as eq
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.periodic import CONVERGED, PeriodicRun, _joined, boundary_residual, scene_period
@@ -115,8 +116,16 @@ def structural_unit_multipliers(layout) -> int:
                 R[c, col[b]] += lever
     if R.size == 0:
         return layout.n_conn
-    scale = np.max(np.abs(R)) or 1.0
-    return int(layout.n_conn - np.linalg.matrix_rank(R / scale, tol=1e-9))
+    # the rank of this very matrix: a sweep's points that share their chain (its levers) share it, not recomputed
+    key = (R.shape, R.tobytes())
+    rank = _RANKS.get(key)
+    if rank is None:
+        scale = np.max(np.abs(R)) or 1.0
+        rank = remember(_RANKS, key, int(np.linalg.matrix_rank(R / scale, tol=1e-9)), cap=32)
+    return int(layout.n_conn - rank)
+
+
+_RANKS: dict[tuple[tuple[int, ...], bytes], int] = {}  # rank of R by its exact entries (structural_unit_multipliers)
 
 
 def structural_note(layout, structural: int) -> str:

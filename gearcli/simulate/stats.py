@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -87,6 +90,65 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
     return StageDynamics(k + 1, channel_stats(ft, sel), channel_stats(fr, sel), channel_stats(fa, sel),
                          channel_stats(pen_mm, sel), float(static_tangential_N), peak, float(t[i]), factor,
                          **response, runup_factor=runup, simulated_static_tangential_N=ref)
+
+
+def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequence[np.ndarray]],
+                    static_tangential_N: Sequence[float], *, periodic: bool = False,
+                    simulated_static_N: Sequence[float | None] | None = None,
+                    **fields: Sequence[Any]) -> list[StageDynamics]:
+    """:func:`stage_dynamics` of every stage at once (``per_stage``: each stage's (F_t, F_r, F_a, penetration in mm,
+    DTE in um)), ``fields`` (one entry per stage) set on each: the same numbers, each statistic a reduction along a
+    row of one array of every stage's window (numpy reduces a contiguous row as the row alone), in a few calls where
+    a stage at a time makes a few dozen."""
+    n = len(per_stage)
+    simulated = list(simulated_static_N) if simulated_static_N is not None else [None] * n
+    sel = window_slice(mask)
+    if n == 0 or not np.any(mask) or any(len(p) != 5 for p in per_stage):  # an empty window: one stage at a time
+        return [replace(stage_dynamics(k, t, mask, p[0], p[1], p[2], p[3], static_tangential_N[k],
+                                       p[4] if len(p) > 4 else None, periodic=periodic,
+                                       simulated_static_N=simulated[k]), **{f: v[k] for f, v in fields.items()})
+                for k, p in enumerate(per_stage)]
+    whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])  # F_t over the run: its peaks
+    W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])  # (5 n, window): rows per stage
+    means, mins, maxs, stds = W.mean(axis=1), W.min(axis=1), W.max(axis=1), W.std(axis=1)
+    peaks_at = np.argmax(np.abs(whole), axis=1)
+    window_max = np.max(np.abs(W[0::5]), axis=1)
+    ft, pen = W[0::5], W[3::5]
+    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+    lost = (ft == 0.0) | (pen == 0.0)
+    back = loaded[:, None] * pen < 0.0
+    tw = t[sel]
+    lost_fraction, back_fraction = _time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic)
+    any_lost, any_back = np.any(lost, axis=1), np.any(back, axis=1)
+
+    def channel(j: int) -> ChannelStats:
+        return ChannelStats(float(means[j]), float(mins[j]), float(maxs[j]), float(stds[j]))
+
+    out = []
+    for k in range(n):
+        i = int(peaks_at[k])
+        peak = float(abs(whole[k, i]))
+        given = simulated[k]
+        ref = float(static_tangential_N[k]) if given is None else float(given)
+        wmax = float(window_max[k])
+        r = 5 * k
+        regime = REGIME_DOUBLE_SIDED if any_back[k] else REGIME_SINGLE_SIDED if any_lost[k] else REGIME_NO_IMPACT
+        out.append(replace(StageDynamics(
+            k + 1, channel(r), channel(r + 1), channel(r + 2), channel(r + 3), float(static_tangential_N[k]), peak,
+            float(t[i]), wmax / abs(ref) if ref != 0 and math.isfinite(wmax) else None,
+            dte_um=DteStats(float(means[r + 4]), float(stds[r + 4]), float(mins[r + 4]), float(maxs[r + 4])),
+            contact_loss_fraction=lost_fraction[k], back_flank_fraction=back_fraction[k], regime=regime,
+            runup_factor=peak / abs(ref) if ref != 0 else None, simulated_static_tangential_N=ref),
+            **{f: v[k] for f, v in fields.items()}))
+    return out
+
+
+def _time_fractions(t: np.ndarray, flags: np.ndarray, periodic: bool) -> list[float]:
+    """:func:`time_fraction` of every row of ``flags`` (the same reductions, along the rows)."""
+    x = flags.astype(float)
+    if periodic or x.shape[1] < 2 or t[-1] <= t[0]:
+        return [float(v) for v in x.mean(axis=1)] if x.shape[1] else [0.0] * x.shape[0]
+    return [float(v / (t[-1] - t[0])) for v in np.sum(0.5 * (x[:, 1:] + x[:, :-1]) * np.diff(t)[None, :], axis=1)]
 
 
 def time_fraction(t: np.ndarray, flag: np.ndarray, *, periodic: bool) -> float:
