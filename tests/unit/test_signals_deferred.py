@@ -1,9 +1,8 @@
 """gearcli.core.signals.deferred: a signal inside the block raises nothing there, raises the kernel's stop flag, and
 is acted on by the previous handler when the block ends (issue 31: signals during compiled runs).
 
-The signals are raised in the test's own thread (``signal.raise_signal``), whose C handler then runs at once: sent
-to the process (``os.kill``), one could land on another thread of a loaded test worker and reach the interpreter
-only after the block had ended (seen once in CI: the block ran to its end without the signal)."""
+The signals are raised in the test's own thread (``signal.raise_signal``), whose C handler then runs at once (sent to
+the process, one may land on another thread of a test worker)."""
 
 from __future__ import annotations
 
@@ -31,7 +30,17 @@ def term_handler():
     signal.signal(signal.SIGTERM, previous)
 
 
-def test_a_signal_is_held_until_the_block_ends_and_sets_the_flag():
+@pytest.fixture
+def int_handler():
+    """Python's own SIGINT handler for the test: a process started in the background by a shell (CI's runner can
+    be one) inherits SIGINT ignored, and an ignored signal stays ignored in the block (the last test)."""
+    previous = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+def test_a_signal_is_held_until_the_block_ends_and_sets_the_flag(int_handler):
     flag = np.zeros(17)
     reached = []
     with pytest.raises(KeyboardInterrupt):
@@ -46,7 +55,7 @@ def test_a_signal_is_held_until_the_block_ends_and_sets_the_flag():
     assert signals.pending() is None
 
 
-def test_the_previous_handler_acts_and_only_the_first_signal_counts(term_handler):
+def test_the_previous_handler_acts_and_only_the_first_signal_counts(term_handler, int_handler):
     with pytest.raises(Stopped) as got:
         with signals.deferred():
             signal.raise_signal(signal.SIGTERM)
