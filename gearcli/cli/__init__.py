@@ -35,6 +35,7 @@ from gearcli.cli.common import (
     on_sighup,
     on_sigint,
     on_sigterm,
+    on_unraisable,
     quiet_option,
     signalled,
     warn,
@@ -77,6 +78,7 @@ def main() -> None:
     signal.signal(signal.SIGTERM, on_sigterm)
     if hasattr(signal, "SIGHUP"):  # the terminal went away: unwind like SIGTERM (temporary files removed)
         signal.signal(signal.SIGHUP, on_sighup)
+    sys.unraisablehook = on_unraisable  # a signal's exception dropped inside a callback: the signal again
     try:
         cli(prog_name="gearcli")
     except GearcliError as exc:  # click's own output (--help, --version) on a closed stdout

@@ -5,7 +5,10 @@ from __future__ import annotations
 
 import functools
 import os
+import signal
 import sys
+import threading
+import time
 import warnings as warnings_module
 from collections.abc import Callable
 from pathlib import Path
@@ -66,6 +69,39 @@ def on_sigterm(signum, frame) -> None:
 def on_sighup(signum, frame) -> None:
     _SIGNALLED.append(EXIT_HANGUP)
     raise Terminated(EXIT_HANGUP)
+
+
+_SIGNUMS = {EXIT_INTERRUPTED: signal.SIGINT, EXIT_TERMINATED: signal.SIGTERM,
+            EXIT_HANGUP: getattr(signal, "SIGHUP", signal.SIGTERM)}
+
+
+def on_unraisable(args) -> None:
+    """``sys.unraisablehook`` of the console script. A signal's exception (KeyboardInterrupt, ``Terminated``) raised
+    where Python cannot propagate it (a weakref callback of the import system's module locks while a command's lazy
+    import runs, a finalizer) is printed and dropped by Python's own hook, and the command would run on to its end
+    as if no signal had come (seen: SIGTERM 0.35 s into ``gearcli life``, the whole run done, exit 0). The signal is
+    sent again from another thread instead, once the main thread has left this hook (:func:`_resend`), so that its
+    handler runs in the code the callback interrupted and unwinds the command like any other signal."""
+    if isinstance(args.exc_value, KeyboardInterrupt | Terminated) and _SIGNALLED:
+        signum = _SIGNUMS[_SIGNALLED.pop()]  # its handler records it again
+        threading.Thread(target=_resend, args=(signum,), name="gearcli-resignal", daemon=True).start()
+        return
+    sys.__unraisablehook__(args)
+
+
+def _resend(signum: int, wait_s: float = 2.0) -> None:
+    """Send ``signum`` to this process once the main thread is out of :func:`on_unraisable` (raised while it is
+    still there, the handler's exception would be dropped again, by the hook's caller)."""
+    main = threading.main_thread().ident
+    deadline = time.monotonic() + wait_s
+    while time.monotonic() < deadline:
+        frame = sys._current_frames().get(main) if main is not None else None
+        while frame is not None and frame.f_code is not on_unraisable.__code__:
+            frame = frame.f_back
+        if frame is None:
+            break
+        time.sleep(0.001)
+    os.kill(os.getpid(), signum)
 
 
 def signalled(exc: BaseException) -> None:
