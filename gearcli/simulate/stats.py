@@ -113,13 +113,7 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
     means, mins, maxs, stds = W.mean(axis=1), W.min(axis=1), W.max(axis=1), W.std(axis=1)
     peaks_at = np.argmax(np.abs(whole), axis=1)
     window_max = np.max(np.abs(W[0::5]), axis=1)
-    ft, pen = W[0::5], W[3::5]
-    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
-    lost = (ft == 0.0) | (pen == 0.0)
-    back = loaded[:, None] * pen < 0.0
-    tw = t[sel]
-    lost_fraction, back_fraction = _time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic)
-    any_lost, any_back = np.any(lost, axis=1), np.any(back, axis=1)
+    responses = _responses(t[sel], W[4::5], W[0::5], W[3::5], static_tangential_N, periodic)
 
     def channel(j: int) -> ChannelStats:
         return ChannelStats(float(means[j]), float(mins[j]), float(maxs[j]), float(stds[j]))
@@ -132,12 +126,9 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
         ref = float(static_tangential_N[k]) if given is None else float(given)
         wmax = float(window_max[k])
         r = 5 * k
-        regime = REGIME_DOUBLE_SIDED if any_back[k] else REGIME_SINGLE_SIDED if any_lost[k] else REGIME_NO_IMPACT
         out.append(replace(StageDynamics(
             k + 1, channel(r), channel(r + 1), channel(r + 2), channel(r + 3), float(static_tangential_N[k]), peak,
-            float(t[i]), wmax / abs(ref) if ref != 0 and math.isfinite(wmax) else None,
-            dte_um=DteStats(float(means[r + 4]), float(stds[r + 4]), float(mins[r + 4]), float(maxs[r + 4])),
-            contact_loss_fraction=lost_fraction[k], back_flank_fraction=back_fraction[k], regime=regime,
+            float(t[i]), wmax / abs(ref) if ref != 0 and math.isfinite(wmax) else None, **responses[k],
             runup_factor=peak / abs(ref) if ref != 0 else None, simulated_static_tangential_N=ref),
             **{f: v[k] for f, v in fields.items()}))
     return out
@@ -155,10 +146,7 @@ def time_fraction(t: np.ndarray, flag: np.ndarray, *, periodic: bool) -> float:
     """Fraction of the window ``t[0] .. t[-1]`` where ``flag`` holds, from the samples: the trapezoid
     rule on the sample grid; for whole periods sampled uniformly without their closing sample
     (``periodic``), the plain mean, which is the trapezoid rule of the periodic signal."""
-    x = flag.astype(float)
-    if periodic or x.size < 2 or t[-1] <= t[0]:
-        return float(x.mean()) if x.size else 0.0
-    return float(np.sum(0.5 * (x[1:] + x[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+    return _time_fractions(t, np.asarray(flag)[None, :], periodic)[0]
 
 
 def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, ft: np.ndarray, pen_mm: np.ndarray,
@@ -172,15 +160,25 @@ def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, f
     one. Regime: "no impact" when no sample of the window is without contact, "single-sided impact" when
     some is but none touches the back flank, else "double-sided impact".
     """
-    q, f, p = dte_um[mask], ft[mask], pen_mm[mask]
-    loaded = -1.0 if static_tangential_N < 0 else 1.0
+    return _responses(t[mask], dte_um[mask][None, :], ft[mask][None, :], pen_mm[mask][None, :], [static_tangential_N],
+                      periodic)[0]
+
+
+def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
+               periodic: bool) -> list[dict]:
+    """:func:`mesh_response` of every row of the window's DTE ``q``, F_t ``f`` and penetration ``p`` (a stage a row,
+    ``tw`` the window's times): one reduction along the rows each (numpy reduces a contiguous row as the row
+    alone, so a single row gives the 1-D numbers)."""
+    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
     lost = (f == 0.0) | (p == 0.0)
-    back = loaded * p < 0.0
-    regime = REGIME_DOUBLE_SIDED if np.any(back) else REGIME_SINGLE_SIDED if np.any(lost) else REGIME_NO_IMPACT
-    return {"dte_um": DteStats(float(q.mean()), float(q.std()), float(q.min()), float(q.max())),
-            "contact_loss_fraction": time_fraction(t[mask], lost, periodic=periodic),
-            "back_flank_fraction": time_fraction(t[mask], back, periodic=periodic),
-            "regime": regime}
+    back = loaded[:, None] * p < 0.0
+    lost_fraction, back_fraction = _time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic)
+    any_lost, any_back = np.any(lost, axis=1), np.any(back, axis=1)
+    means, stds, mins, maxs = q.mean(axis=1), q.std(axis=1), q.min(axis=1), q.max(axis=1)
+    return [{"dte_um": DteStats(float(means[k]), float(stds[k]), float(mins[k]), float(maxs[k])),
+             "contact_loss_fraction": lost_fraction[k], "back_flank_fraction": back_fraction[k],
+             "regime": REGIME_DOUBLE_SIDED if any_back[k] else REGIME_SINGLE_SIDED if any_lost[k] else REGIME_NO_IMPACT}
+            for k in range(q.shape[0])]
 
 
 def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray | None],
