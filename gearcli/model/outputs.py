@@ -145,10 +145,9 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
         F, U, ch = vectorised
         channels = dict(zip(el.CHANNELS, ch, strict=True))
     else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
-        force, potential, channel = el.force, el.potential, el.channel
-        ds, dds, phs, wphs = d.tolist(), dd.tolist(), phi.tolist(), wphi.tolist()
-        F = np.array([force(P, dj, ddj, phj, wj)[0] for dj, ddj, phj, wj in zip(ds, dds, phs, wphs, strict=True)],
-                     dtype=float).reshape(n)
+        potential, channel = el.potential, el.channel
+        ds, phs = d.tolist(), phi.tolist()
+        F = _scalar_forces(el, P, d, dd, phi, wphi)
         U = np.array([potential(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
         channels = {name: np.array([channel(P, i, dj, phj) for dj, phj in zip(ds, phs, strict=True)],
                                    dtype=float).reshape(n) for i, name in enumerate(el.CHANNELS)}
@@ -165,10 +164,14 @@ def _connector_force(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
     if kernel is not None and x.kind in kernel.KINDS:
         return connector_series(lay, c, Y, omega, theta).force
     d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
-    force, P = x.element.force, x.params
-    vectorised = elements.series_of(x.element, P, d, dd, phi, wphi)
-    if vectorised is not None:
-        return vectorised[0]
+    vectorised = elements.series_of(x.element, x.params, d, dd, phi, wphi)
+    return vectorised[0] if vectorised is not None else _scalar_forces(x.element, x.params, d, dd, phi, wphi)
+
+
+def _scalar_forces(el, P, d: np.ndarray, dd: np.ndarray, phi: np.ndarray, wphi: np.ndarray) -> np.ndarray:
+    """The element's scalar force law at every sample, on Python floats (tolist: the values of float(d[j]), without
+    numpy's per-item cost)."""
+    force = el.force
     return np.array([force(P, dj, ddj, phj, wj)[0] for dj, ddj, phj, wj in
                      zip(d.tolist(), dd.tolist(), phi.tolist(), wphi.tolist(), strict=True)], dtype=float).reshape(d.size)
 
