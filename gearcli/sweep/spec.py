@@ -118,7 +118,22 @@ def parse_vary(text: str) -> Axis:
     items = [v.strip() for v in value.split(",")]
     if any(not v for v in items):
         raise SweepUsageError(f"{key}: empty value in {value!r}", source=option)
-    return Axis(key, tuple(parse_value(v) for v in items))
+    values = tuple(parse_value(v) for v in items)
+    bad = next((t for t, v in zip(items, values, strict=True) if not _finite(v)), None)
+    if bad is not None:  # nan/inf would make a point no output format can write (JSON has no NaN)
+        raise SweepUsageError(f"{key}: values must be finite, got {bad!r}", source=option)
+    return Axis(key, values)
+
+
+def _finite(value: object) -> bool:
+    """No nan or inf anywhere in a parsed value (a number, or an array or table of them)."""
+    if isinstance(value, float):
+        return math.isfinite(value)
+    if isinstance(value, list):
+        return all(_finite(v) for v in value)
+    if isinstance(value, dict):
+        return all(_finite(v) for v in value.values())
+    return True
 
 
 def parse_random(text: str) -> Distribution:

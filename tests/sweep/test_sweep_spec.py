@@ -29,7 +29,8 @@ def test_value_lists_read_as_toml_values():
 
 
 @pytest.mark.parametrize("text", ["input.speed_rpm", "input.speed_rpm=", "=1,2", "input.speed_rpm=1:2",
-                                  "input.speed_rpm=a:2:3", "input.speed_rpm=1,,2", "input.speed_rpm=1:2:0"])
+                                  "input.speed_rpm=a:2:3", "input.speed_rpm=1,,2", "input.speed_rpm=1:2:0",
+                                  "input.speed_rpm=nan,1", "input.speed_rpm=1,inf", "input.speed_rpm=-inf"])
 def test_bad_vary_is_a_usage_error(text):
     with pytest.raises(SweepUsageError) as err:
         parse_vary(text)
