@@ -154,16 +154,27 @@ def check_budget(loaded: LoadedDesign, design_result: DesignResult, *, output_fo
 
 
 def simulate_file(loaded: LoadedDesign, design_result: DesignResult, *,
-                  progress: Callable[[float], None] | None = None) -> SimulationResult:
+                  progress: Callable[[float], None] | None = None, overrides: Sequence[str] = ()) -> SimulationResult:
     """``gearcli simulate``: one run with the series (:func:`check_budget` first for a guarded run); errors name
-    the file; with ``[[bearing]]`` tables, the bearing reactions as channels and window statistics (:func:`simulate`)."""
+    the file (or the ``--set`` of ``overrides`` they are about); with ``[[bearing]]`` tables, the bearing reactions
+    as channels and window statistics (:func:`simulate`)."""
     try:
         result = simulate(loaded.design, design_result, want_series=True, progress=progress)  # statistics need them
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
     except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
         raise DesignError(exc.message, key=exc.key, source=loaded.source) from None
+    except ConfigError as exc:  # a cross-key rule only the model can check (a periodic run's duration)
+        raise _located(exc, loaded, overrides) from None
     return result
+
+
+def _located(exc: ConfigError, loaded: LoadedDesign, overrides: Sequence[str]) -> ConfigError:
+    """``exc`` naming where its key was written: the ``--set`` that gave it, else the design file."""
+    if exc.source is not None:
+        return exc
+    source = SOURCE if blames_key(exc.key, overrides) else loaded.source
+    return ConfigError(exc.message, source=source, key=exc.key)
 
 
 def simulate_spec(spec: ModelSpec, *, duration_s: float, steps: int, method: str = "auto", rtol: float = 1e-6,
@@ -198,7 +209,8 @@ def report(cfg: DesignFile, design_result: DesignResult, *, accuracy: float = 1e
 
 
 def report_file(loaded: LoadedDesign, design_result: DesignResult, *, accuracy: float = 1e-4, quick: bool = False,
-                rtols: Sequence[float] | None = None, progress: ProgressFn | None = None) -> Report:
+                rtols: Sequence[float] | None = None, progress: ProgressFn | None = None,
+                overrides: Sequence[str] = ()) -> Report:
     """``gearcli report`` (:func:`check_budget` first for a guarded run): :func:`report` with the accuracy
     ladder's tolerances ``rtols`` (default: the ladder's own); a run too long names the file."""
     from gearcli.report import LadderSpec  # lazy: the solver layers (scipy), start-up time of gearcli design
@@ -209,9 +221,7 @@ def report_file(loaded: LoadedDesign, design_result: DesignResult, *, accuracy: 
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
     except ConfigError as exc:  # a file the report cannot compare (a stage kind without a gear mesh): named
-        if exc.source is not None:
-            raise
-        raise ConfigError(exc.message, source=loaded.source, key=exc.key) from None
+        raise _located(exc, loaded, overrides) from None
 
 
 def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), randoms: Sequence[str] = (),

@@ -85,7 +85,7 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
 
     with TerminalProgress("simulate", enabled=not is_quiet()) as progress:  # a long run on a terminal
-        result = api.simulate_file(loaded, design_result, progress=progress.fraction)
+        result = api.simulate_file(loaded, design_result, progress=progress.fraction, overrides=overrides)
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.simulation_dict(result, series=series),
             csv_text=lambda: (serialize.simulation_bearings_csv(result) if bearings

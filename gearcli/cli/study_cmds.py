@@ -98,7 +98,8 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     from gearcli.io.progress import TerminalProgress  # lazy: start-up time of --help
 
     with TerminalProgress("report", enabled=not is_quiet()) as progress:
-        rep = api.report_file(loaded, design_result, accuracy=accuracy, quick=quick, rtols=rtols, progress=progress)
+        rep = api.report_file(loaded, design_result, accuracy=accuracy, quick=quick, rtols=rtols, progress=progress,
+                              overrides=overrides)
     if fmt == "json":
         from gearcli.io.report_json import report_dict  # lazy: start-up time of --help
 

@@ -34,3 +34,26 @@ def test_a_non_finite_vary_value_is_a_usage_error_and_writes_nothing(tmp_path, v
     res = run("sweep", CONVEYOR, *SHORT, "--vary", vary, "--jobs", "1", "-o", out)
     assert_clean_exit_2(res, "--vary", vary.split("=")[0], "finite")
     assert list(tmp_path.iterdir()) == []
+
+
+PERIODIC = ROOT / "configs" / "conveyor_periodic.toml"
+
+
+@pytest.mark.parametrize("command", [("simulate",), ("report", "--quick")])
+def test_a_periodic_run_too_short_for_one_period_names_the_set(tmp_path, command):
+    # conveyor_periodic has 1 s ramps: a 0.05 s run cannot hold one excitation period after them. Was
+    # "gearcli: simulation.duration_s: ..." naming neither the --set nor the file
+    out = tmp_path / "run.json"
+    res = run(*command, PERIODIC, "--set", "simulation.duration_s=0.05", "-o", out)
+    assert_clean_exit_2(res, "gearcli: --set: simulation.duration_s: steady = \"periodic\"")
+    assert not out.exists()
+
+
+def test_a_periodic_file_too_short_for_one_period_names_the_file(tmp_path):
+    f = tmp_path / "short_periodic.toml"
+    text = PERIODIC.read_text()
+    assert "\nduration_s =" in text
+    f.write_text("\n".join("duration_s = 0.5" if ln.startswith("duration_s =") else ln for ln in text.splitlines()))
+    res = run("simulate", f, "-o", tmp_path / "run.json")
+    assert_clean_exit_2(res, f"gearcli: {f}: simulation.duration_s: steady = \"periodic\"")
+    assert not (tmp_path / "run.json").exists()
