@@ -3,6 +3,7 @@ every command), one test per finding, through the real command line."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -57,3 +58,20 @@ def test_a_periodic_file_too_short_for_one_period_names_the_file(tmp_path):
     res = run("simulate", f, "-o", tmp_path / "run.json")
     assert_clean_exit_2(res, f"gearcli: {f}: simulation.duration_s: steady = \"periodic\"")
     assert not (tmp_path / "run.json").exists()
+
+
+def test_an_unloaded_rattling_run_with_one_sample_writes_finite_json(tmp_path):
+    # configs/extreme/rattle_zero_load.toml (no load, backlash) with simulation.steps = 1: the run's window F_t of
+    # stage 2 was 0 while the check pass saw contact, so its relative error was inf and `-o run.json` an
+    # internal error ("Out of range float values are not JSON compliant: inf")
+    out = tmp_path / "run.json"
+    res = run("simulate", ROOT / "configs" / "extreme" / "rattle_zero_load.toml", "--set", "simulation.steps=1", "-o", out)
+    assert res.exit_code == 0, res.output
+    assert "internal error" not in res.stderr and " inf " not in res.stderr, res.stderr
+
+    def finite_only(constant):
+        raise AssertionError(f"non-finite {constant} in the JSON")
+
+    doc = json.loads(out.read_text(), parse_constant=finite_only)
+    assert all(s["error_estimate"] is None or all(isinstance(v, float) for v in s["error_estimate"]["relative"].values())
+               for s in doc["summary"]["stages"])

@@ -96,3 +96,19 @@ def test_only_a_run_whose_means_alone_are_unresolved_is_repeated():
     assert means_rtol(passed(resolved)) is None  # nothing to resolve
     assert means_rtol(passed(mean_only, shaken)) is None  # the warning stands: its rtol resolves the means too
     assert means_rtol(replace(passed(mean_only), status=-1)) is None  # no estimate, no repeat
+
+
+def test_a_mesh_idle_in_the_run_is_measured_against_the_check_pass_never_inf():
+    # by hand: a rattling, unloaded mesh (static F_t 0) whose run sees no contact in the window (F_t = 0) while the
+    # tighter check pass sees a steady 5 N: the error of the mean is 5 N; the run gives no reference, the check
+    # pass does (its rms, 5 N), so the relative error is 5 / 5 = 1, not inf (JSON cannot hold inf: it was an
+    # internal error in `simulate -o run.json`); std moves by 0
+    t = np.linspace(0.0, 0.1, 201)
+    idle = np.zeros_like(t)
+    e = stage_error(0, t, idle, idle + 5.0, 0.0, 1e-6)
+    assert e.reference_N == pytest.approx(5.0, rel=1e-12)
+    assert e.relative["mean"] == pytest.approx(1.0, rel=1e-12) and e.relative["std"] == 0.0
+    assert all(np.isfinite(v) for v in e.relative.values())
+    assert not e.resolved and e.suggested_rtol is not None
+    both_idle = stage_error(0, t, idle, idle, 0.0, 1e-6)  # nothing anywhere: nothing to resolve
+    assert both_idle.resolved and all(v == 0.0 for v in both_idle.relative.values())
