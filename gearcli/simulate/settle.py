@@ -46,6 +46,7 @@ MAX_MODES = 6  # the slowest-decaying oscillating modes fitted at once
 MAX_RUNS = 3  # runs after the first one, each with a later window
 MAX_DURATION_FACTOR = 8.0  # the longest run, in units of the first run's duration
 MAX_DURATION_S = 600.0
+MIN_SAMPLES_PER_PERIOD = 4.0  # a mode fitted needs this many samples per period (2 is Nyquist's bare minimum)
 NEUTRAL = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million periods)
 
 
@@ -63,15 +64,29 @@ class Settling:
     cause: str = ""
 
 
-def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[tuple[float, float]]:
-    """(sigma, omega_d) of the oscillating modes the window can see (more than half a period in it) and that
-    can still carry the start (not decayed by e^-DECAYED since t = 0), slowest decay first, at most MAX_MODES."""
+def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
+                    dt_s: float = 0.0) -> list[tuple[float, float]]:
+    """(sigma, omega_d) of the oscillating modes the window can see (more than half a period in it, and at
+    least :data:`MIN_SAMPLES_PER_PERIOD` samples of spacing ``dt_s`` per period) and that can still carry the
+    start (not decayed by e^-DECAYED since t = 0), slowest decay first, repeated modes once, at most MAX_MODES."""
     length = window_s[1] - window_s[0]
     lam = np.asarray(eigenvalues, dtype=complex)
     out = [(max(-float(z.real), 0.0), float(z.imag)) for z in lam if z.imag > 0.0 and z.imag * length > math.pi]
     # a mode that has decayed by e^-DECAYED since the run began cannot carry its start-up into the window
     out = [(s, w) for s, w in out if s * window_s[0] < DECAYED]
-    return sorted(out)[:MAX_MODES]
+    # a mode near or past the samples' Nyquist frequency aliases onto the slower ones: their columns in the fit
+    # are nearly parallel and the least-squares amplitudes run to 1e10 N on a record of 1e6 N (a 0.05 s run of
+    # 50 steps: 494 and 550 Hz at 1 ms); such a window is judged by the model-free envelope test alone
+    out = [(s, w) for s, w in out if w * dt_s <= 2.0 * math.pi / MIN_SAMPLES_PER_PERIOD]
+    # two modes closer in frequency than the window resolves (Rayleigh: 2 pi / length; a repeated eigenvalue of
+    # equal planets is the extreme case) are one oscillation in it: fitting both gives two nearly parallel
+    # columns and large opposite amplitudes (2e6 N each on a record that moves 4e5 N); the slower-decaying one
+    # stands for both
+    distinct: list[tuple[float, float]] = []
+    for s, w in sorted(out):
+        if all(abs(w - w2) * length >= 2.0 * math.pi for _, w2 in distinct):
+            distinct.append((s, w))
+    return distinct[:MAX_MODES]
 
 
 def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
@@ -81,8 +96,8 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
     motor reached 98 % of its operating speed (None with ``motor_reaches``: never within the run)."""
     if motor_reaches and motor_start_s is None:
         return Settling(False, math.inf, cause="the motor start does not reach its operating speed within the run")
-    modes = candidate_modes(eigenvalues, window_s)
     tw = t[mask]
+    modes = candidate_modes(eigenvalues, window_s, (tw[-1] - tw[0]) / (tw.size - 1) if tw.size > 1 else 0.0)
     worst = Settling(True, 0.0)
     refs = [abs(float(ref)) or float(np.mean(np.abs(ft[mask]))) for ft, ref in zip(forces_N, static_N, strict=True)]
     fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []

@@ -169,3 +169,41 @@ def test_only_the_window_kept_is_finished():
     assert finished == [] and orbit.tag == "orbit" and orbit.steady.settled and orbit.steady.settle_runs == 2
     settled = _stub((0.25, 0.5), True, tag="settled")
     assert settle.settled_run(settled, run, 0.5, 2000, finish=finish).tag == "settled finished"
+
+
+def _pair(sigma: float, f_Hz: float) -> list[complex]:
+    return [complex(-sigma, 2 * math.pi * f_Hz), complex(-sigma, -2 * math.pi * f_Hz)]
+
+
+def test_modes_the_samples_cannot_resolve_are_not_fitted():
+    # by hand: samples 1 ms apart resolve a mode with at least 4 samples per period, i.e. up to 250 Hz; a 494 Hz
+    # mode has 2.02 samples per period (at Nyquist) and a 550 Hz one aliases to 450 Hz; both are left out
+    lam = np.array(_pair(177.0, 494.1) + _pair(198.3, 550.2) + _pair(50.0, 100.0))
+    window = (0.0, 1.0)
+    kept = settle.candidate_modes(lam, window, dt_s=1e-3)
+    assert [round(w / (2 * math.pi), 1) for _, w in kept] == [100.0]
+    assert len(settle.candidate_modes(lam, window, dt_s=1e-5)) == 3  # 10 us: all three resolved
+
+
+def test_modes_closer_than_the_window_resolves_are_one_oscillation():
+    # by hand: a 10 ms window resolves frequencies 1 / 0.01 s = 100 Hz apart (Rayleigh); 494 and 550 Hz are 56 Hz
+    # apart: one of them (the slower-decaying, 494 Hz at sigma 177/s) stands for both; 700 Hz is 206 Hz away: kept.
+    # Three equal planets give a repeated eigenvalue (550 Hz twice): one column
+    lam = np.array(_pair(177.0, 494.1) + _pair(198.3, 550.2) + _pair(198.3, 550.2) + _pair(190.0, 700.0))
+    kept = settle.candidate_modes(lam, (0.04, 0.05), dt_s=1e-5)
+    assert [round(w / (2 * math.pi), 1) for _, w in kept] == [494.1, 700.0]
+
+
+def test_a_short_coarse_window_reports_no_transient_beyond_what_the_record_moves():
+    # a 0.05 s run of 50 steps (the wind-turbine chain with its parallel stage first): 11 window samples of F_t
+    # still rising with the 0.2 s ramps (2.74e6 -> 3.63e6 N), modes at 494 and 550 Hz (twice). The fit of three
+    # nearly parallel columns reported +-1.2e10 N "ringing at the window's start" (2e5 % of the static force); no
+    # transient fitted to this record can be larger than the record's own excursion
+    static = 5.8307e6
+    t = np.linspace(0.0, 0.05, 51)
+    x = 2.74e6 + (3.63e6 - 2.74e6) * (t - 0.04) / 0.01
+    window = (0.04, 0.05)
+    mask = t >= window[0] - 1e-12
+    lam = np.array(_pair(177.0, 494.1) + _pair(198.3, 550.2) + _pair(198.3, 550.2))
+    found = settle.check(t, mask, [x], [static], lam, window, None, False)
+    assert found.transient_fraction <= (x[mask].max() - x[mask].min()) / static
