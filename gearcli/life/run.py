@@ -19,6 +19,7 @@ import numpy as np
 from gearcli import engine
 from gearcli.config import DesignFile
 from gearcli.config.bounds import check_memory
+from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
@@ -63,7 +64,8 @@ def _named(scene: Scene, point: DutyPoint, exc: ConfigError | DesignError) -> Co
         own = [t.partition("=")[0].strip() for t in point.sets]
         if exc.key in own:  # a key of the point's own set table
             return ConfigError(exc.message, source=scene.source, key=f"{point.key}.set.{exc.key}")
-        return ConfigError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key)
+        source = SOURCE if blames_key(exc.key, scene.sets) else scene.source
+        return ConfigError(f"{point.key} ({point.name}): {exc.message}", source=source, key=exc.key)
     return DesignError(f"{point.key} ({point.name}): {exc.message}", source=scene.source, key=exc.key)
 
 
@@ -406,6 +408,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                     pd, run_warnings, point_notes = _dynamic_point(scene, p, design_case, evaluate)
                 except GearcliError as exc:
                     if isinstance(exc, (ConfigError, DesignError)):
+                        if exc.source is None:  # a rule of the run's own (its window too short): the point named
+                            raise _named(scene, p, exc) from None
                         raise
                     raise type(exc)(f"duty point {p.name}: {exc}") from None
                 evaluated.append(pd)

@@ -19,7 +19,7 @@ from typing import Protocol, cast
 import numpy as np
 
 from gearcli.core.channels import Channel
-from gearcli.errors import SimulationError
+from gearcli.errors import ConfigError, SimulationError
 from gearcli.stages import kinds
 
 MESH_CLASSES = 20  # load classes of the dynamic spectrum per stage and point
@@ -118,8 +118,7 @@ def pair_loads(t: np.ndarray, series: Mapping[Channel, np.ndarray], st, k: int) 
     ft = series[Channel("tangential_force", f"stage{k + 1}")]
     peaks = mesh_cycle_peaks(t, ft, angle, st.pinion.teeth)
     if len(peaks) == 0:
-        raise SimulationError(f"stage {k + 1}: the steady window holds no whole mesh cycle; lengthen "
-                              "simulation.duration_s (--set simulation.duration_s=...)")
+        raise _no_mesh_cycle(f"stage {k + 1}")
     # every second sample, both ways (a response locked to the sampling puts its peaks on one parity)
     error = max(peak_error(peaks, mesh_cycle_peaks(t[i::2], ft[i::2], angle[i::2], st.pinion.teeth))
                 for i in (0, 1))
@@ -149,8 +148,7 @@ def _mesh_peaks(t: np.ndarray, ft: np.ndarray, angle: np.ndarray, teeth: int, wh
     """A mesh's cycle peaks over the window and their estimated relative error (every second sample)."""
     peaks = mesh_cycle_peaks(t, ft, angle, teeth)
     if len(peaks) == 0:
-        raise SimulationError(f"{what}: the steady window holds no whole mesh cycle; lengthen "
-                              "simulation.duration_s (--set simulation.duration_s=...)")
+        raise _no_mesh_cycle(what)
     error = max(peak_error(peaks, mesh_cycle_peaks(t[i::2], ft[i::2], angle[i::2], teeth)) for i in (0, 1))
     return peaks, error
 
@@ -183,6 +181,13 @@ def planetary_loads(t: np.ndarray, series: Mapping[Channel, np.ndarray], st) -> 
     loads = PlanetaryLoads(sun, ring, tuple(classes(pk, sun_static) for pk in sun_peaks),
                            tuple(classes(pk, ring_static) for pk in ring_peaks))
     return replace(sun, planetary=loads)
+
+
+def _no_mesh_cycle(what: str) -> ConfigError:
+    """A window too short (or too slow: a motor still starting) to hold one tooth engagement: the duration the
+    file or a --set gave is too short for a load spectrum (exit 2 naming the key, like any bad value)."""
+    return ConfigError(f"{what}: the steady window holds no whole mesh cycle, so there is no tooth load to count; "
+                       "lengthen simulation.duration_s", key="simulation.duration_s")
 
 
 def peak_error(fine: np.ndarray, coarse: np.ndarray) -> float:

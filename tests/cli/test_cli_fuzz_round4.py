@@ -75,3 +75,26 @@ def test_an_unloaded_rattling_run_with_one_sample_writes_finite_json(tmp_path):
     doc = json.loads(out.read_text(), parse_constant=finite_only)
     assert all(s["error_estimate"] is None or all(isinstance(v, float) for v in s["error_estimate"]["relative"].values())
                for s in doc["summary"]["stages"])
+
+
+MOTOR_DUTY = ROOT / "configs" / "motor_duty_starts.toml"
+
+
+def test_a_life_run_too_short_for_one_mesh_cycle_names_the_set_and_the_point(tmp_path):
+    # the conveyor's motor start (900 kg m^2 drum) in a 0.05 s run: the window sees no whole tooth engagement of
+    # stage 2. Was exit 1, "gearcli: duty point full: stage 2: ... lengthen simulation.duration_s", naming
+    # neither the --set nor the file: a duration too short is a bad value (exit 2, the key named)
+    out = tmp_path / "life.json"
+    res = run("life", MOTOR_DUTY, "--set", "simulation.duration_s=0.05", "-o", out)
+    assert_clean_exit_2(res, "gearcli: --set: simulation.duration_s: duty[0] (full): stage 2:", "no whole mesh cycle")
+    assert not out.exists()
+
+
+def test_a_life_file_too_short_for_one_mesh_cycle_names_the_file(tmp_path):
+    f = tmp_path / "short_duty.toml"
+    text = MOTOR_DUTY.read_text()
+    assert "\nduration_s = 4.0\n" in text
+    f.write_text(text.replace("\nduration_s = 4.0\n", "\nduration_s = 0.05\n"))
+    res = run("life", f, "-o", tmp_path / "life.json")
+    assert_clean_exit_2(res, f"gearcli: {f}: simulation.duration_s: duty[0] (full):", "no whole mesh cycle")
+    assert not (tmp_path / "life.json").exists()
