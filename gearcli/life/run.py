@@ -80,6 +80,15 @@ def _point_design(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     return case
 
 
+def _lengthened(exc: SimulationError, duration_s: float, design: DesignResult) -> SimulationError:
+    """A point's run that failed (over its budget) at the duration the life route chose, not the file's: the
+    run's own advice to shorten simulation.duration_s would not help, the route lengthens it again."""
+    f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)
+    return type(exc)(f"{exc}. The run's duration is the life route's: it runs each point until its steady window "
+                     f"holds {spectra.MIN_WINDOW_MESH_CYCLES} whole mesh cycles of the slowest mesh ({f_min:.3g} Hz "
+                     f"here), {duration_s:.4g} s, whatever simulation.duration_s says; rate this duty with --static")
+
+
 def _require_rating(cfg: DesignFile, scene: Scene) -> None:
     if cfg.rating is None:
         raise ConfigError("gearcli life rates every member by ISO 6336-2/-3: add a [rating] table (with the "
@@ -160,6 +169,10 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                                             settle=settle)
     except (ConfigError, DesignError) as exc:
         raise _named(scene, point, exc) from None
+    except SimulationError as exc:
+        if duration <= cfg.simulation.duration_s:
+            raise
+        raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(result, design)
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
@@ -411,7 +424,7 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                         if exc.source is None:  # a rule of the run's own (its window too short): the point named
                             raise _named(scene, p, exc) from None
                         raise
-                    raise type(exc)(f"duty point {p.name}: {exc}") from None
+                    raise type(exc)(f"{scene.source}: duty point {p.name}: {exc}") from None
                 evaluated.append(pd)
                 warnings += _point_design_warnings(scene, p, design_case, base_warnings)
                 warnings += [n for n in point_notes if n not in warnings]

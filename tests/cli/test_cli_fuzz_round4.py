@@ -98,3 +98,15 @@ def test_a_life_file_too_short_for_one_mesh_cycle_names_the_file(tmp_path):
     res = run("life", f, "-o", tmp_path / "life.json")
     assert_clean_exit_2(res, f"gearcli: {f}: simulation.duration_s: duty[0] (full):", "no whole mesh cycle")
     assert not (tmp_path / "life.json").exists()
+
+
+def test_a_life_point_too_slow_to_simulate_says_the_duration_is_the_routes_and_names_the_file(tmp_path):
+    # a duty point at 0.001 rpm: the dynamic route lengthens its run to hold 40 mesh cycles of the slowest mesh
+    # (capped at 600 s), which is over the computing budget. The message said only "Shorten simulation.duration_s"
+    # (the route would lengthen it again) and named no file
+    out = tmp_path / "life.json"
+    res = run("life", ROOT / "configs" / "mixer_planetary_motor.toml", "--set", "duty.0.speed_rpm=0.001",
+              "--set", "simulation.steps=50", "-o", out)
+    assert_clean_exit_2(res, "mixer_planetary_motor.toml: duty point mixing:", "600 s",
+                        "whatever simulation.duration_s says", "--static")
+    assert not out.exists()
