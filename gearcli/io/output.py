@@ -103,6 +103,15 @@ def _same_file(target: Path, inputs: Iterable[str | None]) -> bool:
     return False
 
 
+def _opened(given: str) -> os.stat_result | None:
+    """What a path whose real path names no file still opens: a link into /proc/self/fd (``/dev/stdout`` on a
+    pipe resolves to ``pipe:[…]``, which is no file name, but the link opens the pipe); None for a new file."""
+    try:
+        return os.stat(given)
+    except (OSError, ValueError):
+        return None
+
+
 def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str = "-o -") -> Path:
     """The regular file ``given`` names after symlinks, checked writable; :class:`OutputError` otherwise."""
     if not given:
@@ -115,7 +124,7 @@ def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str =
     try:
         st = target.stat()
     except FileNotFoundError:
-        st = None
+        st = _opened(given)
     except OSError as exc:
         raise _refuse(given, f"cannot write: {exc.strerror or exc}") from None
     if st is not None:
@@ -127,7 +136,9 @@ def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str =
             raise _refuse(given, "permission denied")
     parent = target.parent
     if not parent.is_dir():
-        raise _refuse(given, f"no such directory: {shorten(str(Path(given).parent))}")
+        shown = Path(given).parent  # as given; a symlink's missing directory is its target's
+        missing = f"{shorten(str(parent))} (the link's target)" if shown.is_dir() else shorten(str(shown))
+        raise _refuse(given, f"no such directory: {missing}")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise _refuse(given, f"directory not writable: {shorten(str(Path(given).parent))}")
     return target

@@ -4,6 +4,8 @@ every command), one test per finding, through the real command line."""
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -110,3 +112,24 @@ def test_a_life_point_too_slow_to_simulate_says_the_duration_is_the_routes_and_n
     assert_clean_exit_2(res, "mixer_planetary_motor.toml: duty point mixing:", "600 s",
                         "whatever simulation.duration_s says", "--static")
     assert not out.exists()
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="/dev/stdout is a link into /proc/self/fd")
+def test_o_dev_stdout_on_a_pipe_is_refused_as_a_fifo():
+    # /dev/stdout on a pipe resolves to /proc/<pid>/fd/pipe:[n], which names no file: the check let it through and
+    # the write failed with "cannot write: No such file or directory". The link opens the pipe: a FIFO, refused
+    # with the hint (exit 2) like any other FIFO
+    res = subprocess.run([sys.executable, "-m", "gearcli", "design", str(CONVEYOR), "--format", "json", "-o",
+                          "/dev/stdout"], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 2, res.stderr
+    assert "gearcli: /dev/stdout: is a FIFO" in res.stderr and "-o -" in res.stderr
+    assert res.stdout == ""
+
+
+def test_a_dangling_link_names_its_targets_missing_directory(tmp_path):
+    # was "no such directory: <the link's own directory>", which exists
+    link = tmp_path / "out.json"
+    link.symlink_to(tmp_path / "gone" / "out.json")
+    res = run("design", CONVEYOR, "-o", link)
+    assert_clean_exit_2(res, f"no such directory: {tmp_path / 'gone'} (the link's target)")
+    assert not (tmp_path / "gone").exists() and link.is_symlink()
