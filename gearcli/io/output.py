@@ -121,6 +121,7 @@ def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str =
     if given.endswith(("/", os.sep)) or given in (".", ".."):
         raise _refuse(given, "is a directory path; give a file name")
     target = Path(os.path.realpath(given))
+    st: os.stat_result | None
     try:
         st = target.stat()
     except FileNotFoundError:
