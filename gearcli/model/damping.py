@@ -35,6 +35,9 @@ from gearcli.model.elements import machine
 
 STEADY_T = 1e12  # s: a time past every start ramp (the motor's steady curve)
 SPEED_SAMPLES = 4000  # grid over 0 .. the synchronous speed on which the motor's crossings are bracketed
+UNDAMPED_PER_PERIOD = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million
+# periods, past any run's 3600 s for a mode above 0.3 Hz): what is left of a chain without damping is the eigen
+# solver's roundoff (zeta ~ 1e-17 .. 1e-30), which read as a decay time of 1e28 s and a resonance 1e16 x
 MIN_MAC = 0.5  # a damped eigenvector matches an undamped mode when their modal assurance criterion exceeds this
 
 
@@ -164,4 +167,12 @@ def _modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: n
         if omega[j] > 0.0 and j not in used_modes:
             phi = shapes[:, j]
             out[j] = float(phi @ C @ phi) / (2.0 * omega[j] * float(phi @ (J * phi)))
+    out[2.0 * math.pi * np.abs(out) < UNDAMPED_PER_PERIOD] = 0.0  # roundoff of an undamped chain: undamped
     return out
+
+
+def decay_rate(eigenvalue: complex) -> float:
+    """``sigma = -Re lambda`` of an oscillating eigenvalue, 0 for a growing one and for one that decays by less
+    than :data:`UNDAMPED_PER_PERIOD` per period (an undamped mode's roundoff)."""
+    sigma, omega = -float(eigenvalue.real), abs(float(eigenvalue.imag))
+    return sigma if sigma * 2.0 * math.pi >= UNDAMPED_PER_PERIOD * omega else 0.0

@@ -34,6 +34,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
+from gearcli.model.damping import decay_rate
 from gearcli.model.linear import damped_eigenvalues
 from gearcli.model.modes import modal_analysis
 
@@ -74,7 +75,7 @@ def slow_modes(eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[t
     slowest decay first, at most MAX_MODES."""
     length = window_s[1] - window_s[0]
     lam = np.asarray(eigenvalues, dtype=complex)
-    out = [(max(-float(z.real), 0.0), float(z.imag)) for z in lam if z.imag > 0.0]
+    out = [(decay_rate(z), float(z.imag)) for z in lam if z.imag > 0.0]
     out = [(s, w) for s, w in out if s * DECAY_WINDOWS * length < 1.0 and w * length > math.pi]  # > half a period
     return sorted(out)[:MAX_MODES]
 

@@ -33,6 +33,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
+from gearcli.model.damping import decay_rate
 from gearcli.simulate import ringing
 from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
 
@@ -71,7 +72,7 @@ def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
     start (not decayed by e^-DECAYED since t = 0), slowest decay first, repeated modes once, at most MAX_MODES."""
     length = window_s[1] - window_s[0]
     lam = np.asarray(eigenvalues, dtype=complex)
-    out = [(max(-float(z.real), 0.0), float(z.imag)) for z in lam if z.imag > 0.0 and z.imag * length > math.pi]
+    out = [(decay_rate(z), float(z.imag)) for z in lam if z.imag > 0.0 and z.imag * length > math.pi]
     # a mode that has decayed by e^-DECAYED since the run began cannot carry its start-up into the window
     out = [(s, w) for s, w in out if s * window_s[0] < DECAYED]
     # a mode near or past the samples' Nyquist frequency aliases onto the slower ones: their columns in the fit
