@@ -52,6 +52,7 @@ MAX_MODES = 6  # the slowest candidates fitted at once (the fit needs far fewer 
 FIT_SAMPLES = 4000  # a longer window is thinned to about this many samples for the fit ...
 SAMPLES_PER_PERIOD = 16  # ... unless that leaves fewer per period of the fastest mode fitted
 TRIALS = 25  # decay rates tried per mode between 0.25 and 4 x the linearised one
+MIN_SAMPLES_PER_PERIOD = 4.0  # a mode fitted needs this many samples per period (2 is Nyquist's bare minimum)
 
 
 @dataclass(frozen=True)
@@ -70,14 +71,31 @@ class Ringing:
         return self.amplitude_end_N / self.reference_N
 
 
-def slow_modes(eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[tuple[float, float]]:
-    """(sigma, omega_d) of the oscillating modes whose decay time exceeds DECAY_WINDOWS window lengths,
-    slowest decay first, at most MAX_MODES."""
+def slow_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
+               dt_s: float = 0.0) -> list[tuple[float, float]]:
+    """(sigma, omega_d) of the oscillating modes whose decay time exceeds DECAY_WINDOWS window lengths and that
+    a fit over samples ``dt_s`` apart can tell apart (:func:`fittable`), slowest decay first, at most MAX_MODES."""
     length = window_s[1] - window_s[0]
     lam = np.asarray(eigenvalues, dtype=complex)
     out = [(decay_rate(z), float(z.imag)) for z in lam if z.imag > 0.0]
     out = [(s, w) for s, w in out if s * DECAY_WINDOWS * length < 1.0 and w * length > math.pi]  # > half a period
-    return sorted(out)[:MAX_MODES]
+    return fittable(out, length, dt_s)[:MAX_MODES]
+
+
+def fittable(modes: list[tuple[float, float]], length_s: float, dt_s: float) -> list[tuple[float, float]]:
+    """The modes (sigma, omega_d) a free-decay fit over a window ``length_s`` long, sampled ``dt_s`` apart, can
+    tell apart, slowest decay first. A mode with fewer than :data:`MIN_SAMPLES_PER_PERIOD` samples per period
+    (near or past Nyquist) aliases onto the slower ones, and two modes closer in frequency than the window
+    resolves (Rayleigh: 2 pi / length; a repeated eigenvalue of equal planets is the extreme case) are one
+    oscillation in it: either way their columns in the fit are nearly parallel and the least-squares amplitudes
+    run off in opposite directions (1e10 N on a record that moves 4e5 N: a 0.05 s run of 50 steps). The
+    slower-decaying of two close modes stands for both; an unresolvable one is left to the model-free tests."""
+    out: list[tuple[float, float]] = []
+    for s, w in sorted(modes):
+        if w * dt_s <= 2.0 * math.pi / MIN_SAMPLES_PER_PERIOD and all(abs(w - w2) * length_s >= 2.0 * math.pi
+                                                                     for _, w2 in out):
+            out.append((s, w))
+    return out
 
 
 def _columns(tau: np.ndarray, sigma: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> np.ndarray:
@@ -204,11 +222,11 @@ def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_
             eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[Ringing]:
     """Per slow mode, the stage where its transient is largest relative to the static force, when that
     amplitude at the window's end reaches MIN_FRACTION of it."""
-    modes = slow_modes(eigenvalues, window_s)
+    tw = t[mask]
+    modes = slow_modes(eigenvalues, window_s, (tw[-1] - tw[0]) / (tw.size - 1) if tw.size > 1 else 0.0)
     if not modes:
         return []
     length = window_s[1] - window_s[0]
-    tw = t[mask]
     refs = [abs(float(ref)) or float(np.mean(np.abs(ft[mask]))) for ft, ref in zip(forces_N, static_N, strict=True)]
     stages = [k for k, (ft, ref) in enumerate(zip(forces_N, refs, strict=True)) if ref > 0.0 and can_ring(ft[mask], ref)]
     best: dict[int, Ringing] = {}

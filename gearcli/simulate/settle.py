@@ -47,7 +47,6 @@ MAX_MODES = 6  # the slowest-decaying oscillating modes fitted at once
 MAX_RUNS = 3  # runs after the first one, each with a later window
 MAX_DURATION_FACTOR = 8.0  # the longest run, in units of the first run's duration
 MAX_DURATION_S = 600.0
-MIN_SAMPLES_PER_PERIOD = 4.0  # a mode fitted needs this many samples per period (2 is Nyquist's bare minimum)
 NEUTRAL = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million periods)
 
 
@@ -67,27 +66,15 @@ class Settling:
 
 def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
                     dt_s: float = 0.0) -> list[tuple[float, float]]:
-    """(sigma, omega_d) of the oscillating modes the window can see (more than half a period in it, and at
-    least :data:`MIN_SAMPLES_PER_PERIOD` samples of spacing ``dt_s`` per period) and that can still carry the
-    start (not decayed by e^-DECAYED since t = 0), slowest decay first, repeated modes once, at most MAX_MODES."""
+    """(sigma, omega_d) of the oscillating modes the window can see (more than half a period in it, and told
+    apart by its samples ``dt_s`` apart: :func:`gearcli.simulate.ringing.fittable`) and that can still carry the
+    start (not decayed by e^-DECAYED since t = 0), slowest decay first, at most MAX_MODES."""
     length = window_s[1] - window_s[0]
     lam = np.asarray(eigenvalues, dtype=complex)
     out = [(decay_rate(z), float(z.imag)) for z in lam if z.imag > 0.0 and z.imag * length > math.pi]
     # a mode that has decayed by e^-DECAYED since the run began cannot carry its start-up into the window
     out = [(s, w) for s, w in out if s * window_s[0] < DECAYED]
-    # a mode near or past the samples' Nyquist frequency aliases onto the slower ones: their columns in the fit
-    # are nearly parallel and the least-squares amplitudes run to 1e10 N on a record of 1e6 N (a 0.05 s run of
-    # 50 steps: 494 and 550 Hz at 1 ms); such a window is judged by the model-free envelope test alone
-    out = [(s, w) for s, w in out if w * dt_s <= 2.0 * math.pi / MIN_SAMPLES_PER_PERIOD]
-    # two modes closer in frequency than the window resolves (Rayleigh: 2 pi / length; a repeated eigenvalue of
-    # equal planets is the extreme case) are one oscillation in it: fitting both gives two nearly parallel
-    # columns and large opposite amplitudes (2e6 N each on a record that moves 4e5 N); the slower-decaying one
-    # stands for both
-    distinct: list[tuple[float, float]] = []
-    for s, w in sorted(out):
-        if all(abs(w - w2) * length >= 2.0 * math.pi for _, w2 in distinct):
-            distinct.append((s, w))
-    return distinct[:MAX_MODES]
+    return ringing.fittable(out, length, dt_s)[:MAX_MODES]  # the modes the window's samples can tell apart
 
 
 def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],

@@ -207,3 +207,19 @@ def test_a_short_coarse_window_reports_no_transient_beyond_what_the_record_moves
     lam = np.array(_pair(177.0, 494.1) + _pair(198.3, 550.2) + _pair(198.3, 550.2))
     found = settle.check(t, mask, [x], [static], lam, window, None, False)
     assert found.transient_fraction <= (x[mask].max() - x[mask].min()) / static
+
+
+def test_the_ringing_fit_takes_the_same_modes_as_the_settle_test():
+    # the ringing warning's fit (gearcli.simulate.ringing) over the same 11 coarse samples: 494 and 550 Hz at 1 ms
+    # are past a quarter of the sampling rate, 100 Hz is kept; over a 10 ms window 494 and 550 Hz are one mode
+    from gearcli.simulate import ringing
+
+    lam = np.array(_pair(1.0, 494.1) + _pair(1.0, 550.2) + _pair(1.0, 100.0))
+    assert [round(w / (2 * math.pi), 1) for _, w in ringing.slow_modes(lam, (0.04, 0.05), dt_s=1e-3)] == [100.0]
+    assert [round(w / (2 * math.pi), 1) for _, w in ringing.slow_modes(lam, (0.04, 0.05), dt_s=1e-5)] == [100.0, 494.1]
+    t = np.linspace(0.0, 0.05, 51)
+    x = 2.74e6 + (3.63e6 - 2.74e6) * (t - 0.04) / 0.01
+    mask = t >= 0.04 - 1e-12
+    # no mode these samples resolve: no ringing is claimed (the fit of three near-parallel columns claimed one)
+    assert ringing.ringing(t, mask, [x], [5.8307e6], np.array(_pair(1.0, 494.1) + _pair(1.0, 550.2) * 2),
+                           (0.04, 0.05)) == []
