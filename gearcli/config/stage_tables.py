@@ -75,8 +75,11 @@ def _members_rule() -> Any:
     """``input`` and ``fixed`` (defaults "sun" and "ring") name different members."""
     same = [{**_required("input", "fixed"), "properties": {"input": {"const": m}, "fixed": {"const": m}}}
             for m in ("sun", "carrier", "ring")]
-    same += [{"properties": {"input": {"const": "ring"}}, "not": _required("fixed")},
-             {"properties": {"fixed": {"const": "sun"}}, "not": _required("input")}]
+    # an absent key takes its default: input = "ring" with fixed absent (the ring) clashes, and so does fixed = "sun"
+    # with input absent (the sun); "required" makes each apply only where its key is given (a "properties" clause
+    # alone holds vacuously, so a stage giving neither key was refused by the schema, accepted by validation)
+    same += [{**_required("input"), "properties": {"input": {"const": "ring"}}, "not": _required("fixed")},
+             {**_required("fixed"), "properties": {"fixed": {"const": "sun"}}, "not": _required("input")}]
     return {"not": {"anyOf": same}}
 
 
