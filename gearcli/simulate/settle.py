@@ -168,9 +168,10 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
     ringing or the motor's start warning already says so."""
     if steady.mode == "periodic":
-        if steady.converged and not reached(steady):
+        attracting = reached(steady)
+        if steady.converged and not attracting:
             diags.append(not_attracting(steady))
-        return replace(steady, settled=reached(steady))
+        return replace(steady, settled=attracting)
     motor_start, reaches = None, False
     if motor_summary is not None and model.layout.motor_drive:
         motor_start = motor_summary.get("start_time_s")
