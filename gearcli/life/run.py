@@ -287,10 +287,18 @@ def _member_loads(pd: _PointData, k: int, member: str, planet: int | None = None
     return life_kind(st).member_loads(pd.loads[k], st, member, planet)
 
 
-def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
-    """The rating's stress of the point, scaled from its static force to ``force_N``."""
-    m = _member_rating(design.stages[k], member)
+def _stress(pd: _PointData, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
+    """The stress of a load class of ``force_N``: the point's rating at that force, every load-dependent factor at
+    the class's own load where the standard re-rates the stage (ISO 6336-6: a start's peak many times an idle
+    point's load does not carry the idle load's K_Hβ, K_Hα); else the point's stress scaled from its static force
+    (σ_H ∝ √F_t, σ_F ∝ F_t)."""
+    st = pd.design.stages[k]
     ratio = force_N / abs(static_N) if static_N else 0.0
+    rerate = getattr(standard_of(pd.cfg), "rate_at_force", None)
+    rated = rerate(pd.cfg, st, ratio) if rerate is not None and ratio > 0.0 and ratio != 1.0 else None
+    if rated is not None:
+        return _member_rating(replace(st, rating=rated), member).stress_MPa(mode)
+    m = _member_rating(st, member)
     return m.stress_MPa(mode) * (math.sqrt(ratio) if mode == "pitting" else ratio)
 
 
@@ -306,14 +314,14 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
         curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
         ld = _member_loads(pd, k, member, planet)
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
-            raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
+            raw.append((pd.point.name, force, _stress(pd, k, member, mode, force, ld.static_N),
                         total * share, curve))
         if pd.start is not None and pd.start.count:  # the point's starts: classes of their own
             n = member_start_cycles(pd.start, pd.point.speed_rpm, _member_speed_rpm(st, member),
                                     _contacts_per_turn(st, member))
             sl = _member_loads(replace(pd, loads=pd.start.loads), k, member, planet)
             for force, share in zip(sl.forces_N, sl.shares, strict=True):
-                raw.append((label(pd.point.name), force, _stress(pd.design, k, member, mode, force, sl.static_N),
+                raw.append((label(pd.point.name), force, _stress(pd, k, member, mode, force, sl.static_N),
                             n * share, curve))
     return raw
 
