@@ -89,8 +89,8 @@ def peaks_section(r: Report) -> Section:
     return Section("Dynamic factor and run-up peak", ("stage", "static F_t as simulated [N]", "window max |F_t| [N]",
                                                       "dynamic factor", "run peak |F_t| [N]", "at t [s]",
                                                       "run-up factor"), rows, "lrrrrrr",
-                   ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (with "
-                    "the losses the dynamics model: none, the meshes are lossless); "
+                   ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (the "
+                    "stage efficiencies act in the dynamics, so it equals the design's static F_t); "
                     "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",))
 
 
