@@ -114,15 +114,26 @@ def spectrum_section(r: Report) -> Section:
 
 def mesh_orders_section(r: Report) -> Section:
     rows = []
+    errors = {e.stage: e.spectrum_N for st in r.simulation.stages if (e := st.error_estimate) is not None}
+    below = False
     for s in r.stages:
+        err = errors.get(s.stage)
         for o in s.spectrum.mesh_orders:
+            if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
+                below = True
+                dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 else "–"
+                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
+                continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
     periodic = r.simulation.steady is not None and r.simulation.steady.mode == "periodic"
     how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
            if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
+    notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
+    if below:
+        notes.append("'< e': the computed amplitude is below e, the run's estimated error of its F_t spectrum (the "
+                     "check pass's largest amplitude difference): not resolved, the amplitude is below about 2e")
     return Section("Mesh-order amplitudes", ("stage", "order", "frequency [Hz]", "F_t amplitude [N]",
-                                             "DTE amplitude [µm]"), tuple(rows), "lrrrr",
-                   (f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}",))
+                                             "DTE amplitude [µm]"), tuple(rows), "lrrrr", tuple(notes))
 
 
 def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
