@@ -121,7 +121,8 @@ def mesh_orders_section(r: Report) -> Section:
         for o in s.spectrum.mesh_orders:
             if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
                 below = True
-                dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 else "–"
+                dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 and o.dte_um is not None \
+                    else "–"
                 rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
                 continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
