@@ -294,12 +294,30 @@ def _stress(pd: _PointData, k: int, member: str, mode: str, force_N: float, stat
     (σ_H ∝ √F_t, σ_F ∝ F_t)."""
     st = pd.design.stages[k]
     ratio = force_N / abs(static_N) if static_N else 0.0
-    rerate = getattr(standard_of(pd.cfg), "rate_at_force", None)
-    rated = rerate(pd.cfg, st, ratio) if rerate is not None and ratio > 0.0 and ratio != 1.0 else None
+    rated = _rated_at(pd, k, ratio) if ratio > 0.0 and ratio != 1.0 else None
     if rated is not None:
         return _member_rating(replace(st, rating=rated), member).stress_MPa(mode)
     m = _member_rating(st, member)
     return m.stress_MPa(mode) * (math.sqrt(ratio) if mode == "pitting" else ratio)
+
+
+_RATED_AT: dict[tuple[int, int, float], tuple[DesignResult, RatedMesh | None]] = {}  # rated classes of the points lately rated
+_RATED_AT_SIZE = 4096
+
+
+def _rated_at(pd: _PointData, k: int, ratio: float) -> RatedMesh | None:
+    """Stage ``k`` of the point rated at ``ratio`` times its static force by the file's standard (None where it
+    does not re-rate), kept for the point's other members and modes (the same class forces)."""
+    key = (id(pd.design), k, ratio)
+    found = _RATED_AT.get(key)
+    if found is not None and found[0] is pd.design:
+        return found[1]
+    rerate = getattr(standard_of(pd.cfg), "rate_at_force", None)
+    rated = rerate(pd.cfg, pd.design.stages[k], ratio) if rerate is not None else None
+    if len(_RATED_AT) >= _RATED_AT_SIZE:
+        _RATED_AT.clear()
+    _RATED_AT[key] = (pd.design, rated)
+    return rated
 
 
 _Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
