@@ -77,7 +77,7 @@ class Iso6336:
         """A gear pair's rating with its tooth forces ``force_ratio`` times the design's (a load class of the life):
         every load-dependent factor of ISO 6336-1 at that load, as ``gearcli design`` at the scaled torque rates it
         (K_Hβ, K_Hα, K_Fβ, K_Fα from the line load; c′, c_γα, c_γβ with their low-load factor, N and N_S; ISO
-        6336-6, 5: the factors of each load class at its own load). None for a stage this does not cover (a
+        6336-6: each load class at its own load, as its Annex C gives K_Hβ per bin). None for a stage this does not cover (a
         stage that shares its load among planets: its classes keep the design's factors)."""
         if not design_kind(stage).gear_pair or _planets(stage) or stage.rating is None:
             return None

@@ -1,4 +1,4 @@
-"""A load class's stress carries ISO 6336-1's load-dependent factors at the class's own load (ISO 6336-6, 5: the
+"""A load class's stress carries ISO 6336-1's load-dependent factors at the class's own load (ISO 6336-6: the
 factors K_Hβ, K_Hα, K_Fβ, K_Fα of each load level), not the duty point's.
 
 The defect: life scaled a point's rated stress to a class force (σ_H ∝ √F_t, σ_F ∝ F_t) with the point's factors
