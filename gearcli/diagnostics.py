@@ -27,6 +27,7 @@ PEAK_OVER_RIGID = "peak_over_rigid"
 MOTOR_STALLS = "motor_stalls"  # the motor's curve cannot carry the load at some speed below the operating point
 RAMP_OVER_BREAKDOWN = "ramp_over_breakdown"  # a prescribed speed ramp needs more than the motor's breakdown torque
 START_NOT_SETTLED = "start_not_settled"  # the motor start has not settled before the statistics window
+MOTOR_ROLLS_BACK = "motor_rolls_back"  # the load turns the train backwards: the start's torque at standstill is short
 MOTOR_RUNS_AWAY = "motor_runs_away"  # the motor turns well past its synchronous speed: nothing holds it
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
+from gearcli.design.stiffness import smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
 from gearcli.stages.design import design_kind, gear_pairs
@@ -89,7 +90,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                                                      "contact_ratio_total": stage.contact_ratio_total}))
         found.append((face_width_warning(stage), {"check": "face_width", **at,
                                                   "face_width_ratio": stage.face_width_mm
-                                                  / stage.pinion.pitch_diameter_mm}))
+                                                  / smaller_pitch_diameter_mm(stage)}))
         for gear in (stage.pinion, stage.gear):
             found.append((tip_thickness_warning(stage, gear), {"check": "tip_thickness", **at,
                                                                "member": _part(stage, gear),
@@ -143,16 +144,25 @@ def contact_ratio_warning(stage: StageResult) -> str | None:
     return None
 
 
+def smaller_pitch_diameter_mm(stage: StageResult) -> float:
+    """d1 of b/d1: ISO 6336's pinion is the wheel with fewer teeth, whichever member drives (a speed increaser's
+    driving wheel is the larger one)."""
+    return smaller_wheel_first((stage.pinion.teeth, stage.gear.teeth), (stage.pinion, stage.gear),
+                               (stage.pinion.profile_shift, stage.gear.profile_shift))[0].pitch_diameter_mm
+
+
 def face_width_warning(stage: StageResult) -> str | None:
-    ratio = stage.face_width_mm / stage.pinion.pitch_diameter_mm
+    d1 = smaller_pitch_diameter_mm(stage)
+    ratio = stage.face_width_mm / d1
     low, high = FACE_RATIO_RANGE
+    which = "pinion" if d1 == stage.pinion.pitch_diameter_mm else "smaller wheel's (the driven gear's)"
     if ratio > high:
-        return (f"stage {stage.index}: face width / pinion pitch diameter b/d1 = {stage.face_width_mm:g}/"
-                f"{stage.pinion.pitch_diameter_mm:.4g} = {ratio:.2f} > {high}: the load concentrates along the "
+        return (f"stage {stage.index}: face width / {which} pitch diameter b/d1 = {stage.face_width_mm:g}/"
+                f"{d1:.4g} = {ratio:.3g} > {high}: the load concentrates along the "
                 "face (misalignment, shaft bending); usual b/d1 ≤ 1.1–1.6")
     if ratio < low:
-        return (f"stage {stage.index}: face width / pinion pitch diameter b/d1 = {stage.face_width_mm:g}/"
-                f"{stage.pinion.pitch_diameter_mm:.4g} = {ratio:.2f} < {low}: a very narrow face; a smaller "
+        return (f"stage {stage.index}: face width / {which} pitch diameter b/d1 = {stage.face_width_mm:g}/"
+                f"{d1:.4g} = {ratio:.3g} < {low}: a very narrow face; a smaller "
                 "pinion or a wider face would use the material better")
     return None
 

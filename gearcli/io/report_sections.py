@@ -89,8 +89,8 @@ def peaks_section(r: Report) -> Section:
     return Section("Dynamic factor and run-up peak", ("stage", "static F_t as simulated [N]", "window max |F_t| [N]",
                                                       "dynamic factor", "run peak |F_t| [N]", "at t [s]",
                                                       "run-up factor"), rows, "lrrrrrr",
-                   ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (with "
-                    "the losses the dynamics model: none, the meshes are lossless); "
+                   ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (the "
+                    "stage efficiencies act in the dynamics, so it equals the design's static F_t); "
                     "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",))
 
 
@@ -114,15 +114,27 @@ def spectrum_section(r: Report) -> Section:
 
 def mesh_orders_section(r: Report) -> Section:
     rows = []
+    errors = {e.stage: e.spectrum_N for st in r.simulation.stages if (e := st.error_estimate) is not None}
+    below = False
     for s in r.stages:
+        err = errors.get(s.stage)
         for o in s.spectrum.mesh_orders:
+            if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
+                below = True
+                dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 and o.dte_um is not None \
+                    else "–"
+                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
+                continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
     periodic = r.simulation.steady is not None and r.simulation.steady.mode == "periodic"
     how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
            if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
+    notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
+    if below:
+        notes.append("'< e': the computed amplitude is below e, the run's estimated error of its F_t spectrum (the "
+                     "check pass's largest amplitude difference): not resolved, the amplitude is below about 2e")
     return Section("Mesh-order amplitudes", ("stage", "order", "frequency [Hz]", "F_t amplitude [N]",
-                                             "DTE amplitude [µm]"), tuple(rows), "lrrrr",
-                   (f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}",))
+                                             "DTE amplitude [µm]"), tuple(rows), "lrrrr", tuple(notes))
 
 
 def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:

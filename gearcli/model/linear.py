@@ -90,7 +90,7 @@ def _stage_factor(lay: Layout, k: int, forward: bool) -> float:
 
 
 def static_line_forces_N(spec: ModelSpec | Layout) -> np.ndarray:
-    """F_bt of every mesh at full load in steady state (lossless), N (signed), in stage order."""
+    """F_bt of every mesh at full load in steady state (a lossy mesh: its driving side's), N (signed), in stage order."""
     lay = _lay(spec)
     return static_forces(lay)[list(lay.stage_conn)]
 

@@ -86,7 +86,7 @@ class StageDynamics:
     # issue 21: the run-up overshoot apart from the steady dynamic factor; defaults for hand-made results
     runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
     simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
-    # the losses its dynamics model (lossless meshes today): the reference of both factors
+    # the losses its dynamics model (the stage efficiencies): the reference of both factors
     # a planetary stage (issue 25): every planet's sun and ring mesh; the largest planet's window-mean sun-mesh
     # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
     planets: tuple[PlanetDynamics, ...] = ()

@@ -513,8 +513,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     """Per stage, the static F_t of the load the simulation applies, with the losses its dynamics model (the
-    model's own steady-state connector forces: lossless meshes today, so a stage with efficiency < 1 differs
-    from the design's static F_t, which includes the losses): the reference of the dynamic and run-up factors."""
+    model's own steady-state connector forces, the meshes' efficiencies included: on a settled unexcited run the
+    window means equal them and the design's static F_t): the reference of the dynamic and run-up factors."""
     lay = model.layout
     return [float(tooth_forces(lay, k, np.array([f]))[0][0]) for k, f in enumerate(static_line_forces_N(lay))]
 

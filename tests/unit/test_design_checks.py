@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import math
 import tomllib
 from pathlib import Path
 
@@ -182,7 +183,29 @@ def test_face_width_ratio_limits():
     wide = checks.face_width_warning(_stage(face_width_mm=400.0))  # 400 / 257.63 = 1.55 > 1.5
     narrow = checks.face_width_warning(_stage(face_width_mm=50.0))  # 50 / 257.63 = 0.19 < 0.2
     assert "b/d1" in wide and "1.55 > 1.5" in wide
-    assert "0.19 < 0.2" in narrow
+    assert "0.194 < 0.2" in narrow
+
+
+def test_face_width_ratio_of_a_speed_increaser_takes_the_smaller_wheel():
+    """ISO 6336's pinion (d1 of b/d1) is the wheel with fewer teeth: a speed increaser's driving 97-tooth wheel
+    (d = 8 · 97 / cos 10° = 788 mm) drives a 23-tooth one (186.8 mm), b = 155 mm: b/d1 = 155 / 186.8 = 0.83, a
+    usual face; the driver's diameter gave 0.197 and a false "very narrow face" warning."""
+    def edit(d):
+        st = d["stage"][0]
+        st.update(normal_module_mm=8, helix_angle_deg=10)
+        st["pinion"].update(teeth=97, face_width_mm=160, profile_shift=0.0)
+        st["gear"].update(teeth=23, face_width_mm=155, profile_shift=0.3)
+    result = design(edit)
+    d_small = 8 * 23 / math.cos(math.radians(10))
+    assert checks.smaller_pitch_diameter_mm(result.stages[0]) == pytest.approx(d_small, rel=1e-12)
+    assert not [w for w in stage_warnings(result, 1) if "b/d1" in w]
+    # the same pair narrowed to 30 mm is narrow on the smaller wheel's diameter: 30 / 186.8 = 0.161 < 0.2
+    def narrow(d):
+        edit(d)
+        d["stage"][0]["pinion"]["face_width_mm"] = 30
+        d["stage"][0]["gear"]["face_width_mm"] = 30
+    ws = [w for w in stage_warnings(design(narrow), 1) if "b/d1" in w]
+    assert len(ws) == 1 and f"= {30 / d_small:.3g} < 0.2" in ws[0] and "smaller wheel" in ws[0], ws
 
 
 def test_pointed_tooth_warning():
