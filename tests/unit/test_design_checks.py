@@ -249,3 +249,28 @@ def test_non_finite_stage_values_are_a_design_error_not_an_output():
     with pytest.raises(DesignError) as err:
         _require_finite(Outer(2.0, Inner(float("inf"))), "stage[1]")
     assert err.value.key == "stage[1]" and "inertia_kg_m2" in err.value.message
+
+
+# ------------------------------------------------------------------------------ the motor's rotor
+MOTOR = {"rated_power_kW": 15, "rated_speed_rpm": 1460, "synchronous_speed_rpm": 1500, "breakdown_torque_ratio": 2.8,
+         "locked_rotor_torque_ratio": 2.2}
+
+
+def _motor_drive(inertia: float | None):
+    def edit(d):
+        d["input"] = {"speed_rpm": 1480, "drive": "motor", "motor": dict(MOTOR)}
+        if inertia is not None:
+            d["input"].update(inertia_kg_m2=inertia, coupling_stiffness_Nm_rad=2.0e4)
+    return edit
+
+
+def test_motor_drive_without_rotor_inertia_is_warned_naming_the_keys():
+    result = design(_motor_drive(None))
+    found = [w for w in result.diagnostics if w.data.get("check") == "motor_rotor_inertia"]
+    assert len(found) == 1
+    assert "input.inertia_kg_m2" in found[0].message and "massless" in found[0].message
+
+
+@pytest.mark.parametrize("edit", [_motor_drive(0.12), None], ids=["rotor given", "speed drive"])
+def test_rotor_inertia_warning_only_where_the_rotor_is_missing(edit):
+    assert not [w for w in design(edit).diagnostics if w.data.get("check") == "motor_rotor_inertia"]
