@@ -168,3 +168,114 @@ def test_design_equals_the_textbook_formulas(doc):
         assert ms is not None
         assert_allclose([ms.iso_N_mm, ms.linearised_N_mm, ms.K], [h["k_n"], h["k_n"], h["K_iso"]], rtol=1e-9)
         assert_allclose([res.reduced_mass_kg_mm, res.resonance_speed_rpm], [h["m_red"], h["n_e1"]], rtol=1e-9)
+
+
+# ------------------------------------------------------------------ the design -> torsional model adapter
+def loaded_train():
+    """Trains loaded to at least 5 N/mm of face on every mesh (above the 1 N/mm floor of the ISO evaluation, so
+    the calibrated law's tangent at the static load is ISO's k_n exactly) and free of losses (modes' frequencies
+    are those of the lossless chain: see test_modes_equal_the_hand_assembled_chain)."""
+    def loaded(doc):
+        speeds, torques = hand_train(doc)
+        return all(abs(hand_stage(s, n, t, 1.0)["f_t"]) >= 5.0 * min(s["pinion"]["face_width_mm"],
+                                                                       s["gear"]["face_width_mm"])
+                   for s, (n, _), (t, _) in zip(doc["stage"], speeds, torques, strict=True))
+
+    def lossless(doc):
+        for s in doc["stage"]:
+            s["efficiency"] = 1.0
+        doc["load"]["application_factor"] = 1.0
+        return doc
+    return train().map(lossless).filter(loaded)
+
+
+@settings(max_examples=40, deadline=None)
+@given(loaded_train(), st.floats(0.01, 0.2))
+def test_modes_equal_the_hand_assembled_chain(doc, zeta):
+    # One rotational DOF per shaft (shaft k+1 = gear k + pinion k+1, disc inertias), each mesh a spring along its
+    # transverse line of action: delta = r_bp theta_p - r_bg theta_g, transverse stiffness k_t = k_n cos^2 beta_b
+    # (the normal spring k_n seen along the transverse line), K = sum k_t v v^T with v = (.., r_bp, -r_bg, ..).
+    # Damping: c = 2 zeta sqrt(k_n m_e) on q' along the transverse line (docs/physics.md), m_e = J_g / r_bg^2
+    # behind the speed-driven input, else J_p J_g / (J_p r_bg^2 + J_g r_bp^2).
+    import numpy as np
+    from scipy.linalg import eigh
+
+    from gearcli import api
+
+    doc = {**doc, "contact": {"damping_ratio": zeta}}
+    cfg = DesignFile.model_validate(doc)
+    analyses = {a.boundary: a for a in api.modes(cfg, compute_design(cfg))}
+    speeds, torques = hand_train(doc)
+    n = len(doc["stage"])
+    J = np.zeros(n + 1)
+    hand = [hand_stage(s, sp[0], tq[0], 1.0) for s, sp, tq in zip(doc["stage"], speeds, torques, strict=True)]
+    for k, h in enumerate(hand):
+        J[k] += h["J"][0]
+        J[k + 1] += h["J"][1]
+    K, C = np.zeros((n + 1, n + 1)), np.zeros((n + 1, n + 1))
+    for k, h in enumerate(hand):
+        rbp, rbg, cb = h["db"][0] / 2e3, h["db"][1] / 2e3, cos(radians(h["b_b"]))
+        v = np.zeros(n + 1)
+        v[k], v[k + 1] = rbp, -rbg
+        k_n = h["k_n"] * 1e3  # N/m
+        m_e = J[k + 1] / rbg ** 2 if k == 0 else J[k] * J[k + 1] / (J[k] * rbg ** 2 + J[k + 1] * rbp ** 2)
+        K += k_n * cb ** 2 * np.outer(v, v)
+        C += 2 * zeta * sqrt(k_n * m_e) * np.outer(v, v)
+    for boundary, first in (("clamped_input", 1), ("free", 0)):
+        Jb, Kb, Cb = np.diag(J[first:]), K[first:, first:], C[first:, first:]
+        w2 = np.clip(eigh(Kb, Jb, eigvals_only=True), 0.0, None)
+        modes = analyses[boundary].modes
+        got = np.array([m.frequency_Hz for m in modes])
+        # eigenvalues of the same symmetric matrices by two codes: round-off of a chain whose inertias span up to
+        # ~1e9 (a 12-tooth 1 mm pinion beside a 150-tooth 20 mm gear). gearcli's rigid mode is exactly 0 (counted
+        # on the graph), eigh's is sqrt(round-off) ~ 1e-8 of the largest frequency: compared apart
+        rigid = 1 - first
+        assert np.all(got[:rigid] == 0.0)
+        assert_allclose(got[rigid:], np.sqrt(np.sort(w2)[rigid:]) / (2 * pi), rtol=1e-7)
+        assert [m.rigid for m in modes] == [first == 0] + [False] * (len(modes) - 1)
+        if first == 0:  # the rigid mode turns every shaft at its speed: shape = speeds / the largest speed
+            rigid = np.array([sp[0] for sp in speeds] + [speeds[-1][1]])
+            assert_allclose(modes[0].shape, rigid / np.abs(rigid).max(), rtol=1e-9)
+        # damping: -Re(lambda)/|lambda| of the damped eigenvalue of (J, C, K) nearest each undamped frequency
+        m = Jb.shape[0]
+        A = np.block([[np.zeros((m, m)), np.eye(m)], [-np.linalg.solve(Jb, Kb), -np.linalg.solve(Jb, Cb)]])
+        lam = np.linalg.eigvals(A)
+        lam = lam[lam.imag > 0]
+        for mode in modes:
+            if mode.rigid:
+                continue
+            phi = np.array(mode.shape)[first:]
+            w = 2 * pi * mode.frequency_Hz
+            projected = phi @ Cb @ phi / (2 * w * (phi @ Jb @ phi))
+            if projected > 0.5 or lam.size == 0:  # heavily damped: no clean oscillating pair to compare with
+                continue
+            near = lam[np.argmin(np.abs(np.abs(lam) - w))]
+            assert_allclose(mode.damping_ratio, -near.real / abs(near), rtol=1e-6)
+
+
+@settings(max_examples=40, deadline=None)
+@given(train())
+def test_the_torsional_model_is_built_from_the_hand_numbers(doc):
+    # What `simulate` integrates (the design -> model adapter, gearcli.scene): per mesh the base radii, angles and
+    # the default law (iso6336 calibrated, e = 1.5, viscous zeta = 0.05, DESIGN section 13) in SI; per shaft the sum
+    # of its disc inertias; the drive's speed and the load torque in SI.
+    from gearcli import api
+
+    cfg = DesignFile.model_validate(doc)
+    spec = api.model_spec(cfg, compute_design(cfg))
+    speeds, torques = hand_train(doc)
+    J = [0.0] * (len(doc["stage"]) + 1)
+    for k, (s, sp, tq) in enumerate(zip(doc["stage"], speeds, torques, strict=True)):
+        h, m = hand_stage(s, sp[0], tq[0], doc["load"]["application_factor"]), spec.meshes[k]
+        J[k] += h["J"][0]
+        J[k + 1] += h["J"][1]
+        assert_allclose([m.base_radius_pinion_m, m.base_radius_gear_m, m.base_helix_angle_rad,
+                         m.transverse_pressure_angle_rad, m.helix_angle_rad],
+                        [h["db"][0] / 2e3, h["db"][1] / 2e3, radians(h["b_b"]), radians(h["a_t"]),
+                         radians(s["helix_angle_deg"])], rtol=1e-12, atol=1e-15)
+        assert_allclose([m.stiffness_N_m_e, m.exponent, m.damping_ratio, m.efficiency, m.static_tangential_N],
+                        [h["K_iso"] * 1e3 ** 1.5, 1.5, 0.05, s["efficiency"], h["f_t"]], rtol=1e-9)
+        assert m.pinion_teeth == s["pinion"]["teeth"]
+    assert_allclose(spec.inertias_kg_m2, J, rtol=1e-12)
+    assert_allclose([spec.drive.speed_rad_s, spec.load.torque_Nm],
+                    [doc["input"]["speed_rpm"] * pi / 30, doc["load"]["torque_Nm"]], rtol=1e-15)
