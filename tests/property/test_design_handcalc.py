@@ -279,3 +279,95 @@ def test_the_torsional_model_is_built_from_the_hand_numbers(doc):
     assert_allclose(spec.inertias_kg_m2, J, rtol=1e-12)
     assert_allclose([spec.drive.speed_rad_s, spec.load.torque_Nm],
                     [doc["input"]["speed_rpm"] * pi / 30, doc["load"]["torque_Nm"]], rtol=1e-15)
+
+
+# ------------------------------------------------------------------------ ISO 6336-2/-3:2006 rating
+RATED_MATERIAL = {"density_kg_m3": 7850.0, "youngs_modulus_MPa": 2.06e5, "poisson_ratio": 0.3,
+                  "treatment": "case_carburized", "contact_fatigue_limit_MPa": 1500.0,
+                  "bending_fatigue_limit_MPa": 500.0}
+
+
+def rated(doc: dict) -> dict:
+    """The train with a case-carburized steel, roughness Rz 3/10 um, grade 6, VG 220 oil and 20 000 h."""
+    stages = []
+    for s in doc["stage"]:
+        members = {m: {**s[m], "material": "cc", "flank_roughness_Rz_um": 3.0, "root_roughness_Rz_um": 10.0}
+                   for m in ("pinion", "gear")}
+        stages.append({**s, **members, "accuracy_grade": 6})
+    return {**doc, "stage": stages, "materials": {"cc": RATED_MATERIAL},
+            "lubricant": {"viscosity_40C_mm2_s": 220.0}, "rating": {"required_life_h": 20000.0}}
+
+
+def life_factor(n: float, nodes) -> float:
+    """ISO 6336-2 Table 2 / ISO 6336-3 Table 3 (normal quality): log-log between the nodes, flat outside."""
+    (n0, y0), (n1, y1), (n2, y2) = nodes
+    if n <= n0:
+        return y0
+    if n <= n1:
+        return y0 * (y1 / y0) ** (math.log(n / n0) / math.log(n1 / n0))
+    return y1 * (y2 / y1) ** (math.log(min(n, n2) / n1) / math.log(n2 / n1))
+
+
+def z_bd(h: dict, z: tuple[int, int], i: int, j: int) -> float:
+    """Z_B (i the smaller wheel) or Z_D (i the larger) of ISO 6336-2:2006, 5.2: M_1 or M_2, then the helical blend."""
+    ra = [sqrt(h["da"][q] ** 2 / h["db"][q] ** 2 - 1) for q in (i, j)]
+    m = tan(radians(h["a_wt"])) / sqrt((ra[0] - 2 * pi / z[i]) * (ra[1] - (h["eps_a"] - 1) * 2 * pi / z[j]))
+    return 1.0 if h["eps_b"] >= 1 else max(m - h["eps_b"] * (m - 1), 1.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(train().map(rated))
+def test_rating_factors_and_stresses_equal_the_standards_formulas(doc):
+    # ISO 6336-2:2006 (pitting) and -3:2006 (root), method B, written out: Z_H, Z_E, Z_eps, Z_beta = 1/sqrt(cos beta),
+    # Y_beta, Z_B / Z_D from M_1 / M_2, sigma_H0 = Z_H Z_E Z_eps Z_beta sqrt(F_t/(d1 b) (u+1)/u), sigma_H with the
+    # printed K factors, Z_L, Z_V, Z_R, N_L, Z_NT, Y_NT, Y_X, sigma_HG, sigma_F0 with the printed Y_F, Y_S, Y_B, Y_DT
+    # (their method-B geometry is checked against ISO/TR 6336-30 and KISSsoft in tests/reference), sigma_FG.
+    # gearcli's documented choices (docs/iso6336.md): F_t floored at 1 N/mm of face width; the root width of each
+    # member at most the smaller width + 2 m_n; index 1 = the smaller wheel. Every tolerance is round-off.
+    cfg = DesignFile.model_validate(doc)
+    r = compute_design(cfg)
+    speeds, torques = hand_train(doc)
+    k_a = doc["load"]["application_factor"]
+    e_mod, nu = RATED_MATERIAL["youngs_modulus_MPa"], RATED_MATERIAL["poisson_ratio"]
+    for s, res, (n_p, n_g), (t_p, _) in zip(doc["stage"], r.stages, speeds, torques, strict=True):
+        h, R = hand_stage(s, n_p, t_p, k_a), res.rating
+        assert R is not None
+        small, large = (0, 1) if (s["pinion"]["teeth"], s["pinion"]["profile_shift"]) <= \
+            (s["gear"]["teeth"], s["gear"]["profile_shift"]) else (1, 0)
+        z = (s["pinion"]["teeth"], s["gear"]["teeth"])
+        a_t, a_wt, b_b, beta = radians(h["a_t"]), radians(h["a_wt"]), radians(h["b_b"]), radians(s["helix_angle_deg"])
+        eps_a, eps_b, b = h["eps_a"], h["eps_b"], min(s["pinion"]["face_width_mm"], s["gear"]["face_width_mm"])
+        z_h = sqrt(2 * cos(b_b) * cos(a_wt) / (cos(a_t) ** 2 * sin(a_wt)))
+        z_e = sqrt(1 / (pi * 2 * (1 - nu ** 2) / e_mod))
+        z_eps = sqrt((4 - eps_a) / 3 * (1 - eps_b) + eps_b / eps_a) if eps_b < 1 else sqrt(1 / eps_a)
+        y_beta = max(1 - min(eps_b, 1.0) * min(s["helix_angle_deg"], 30.0) / 120, 1 - 0.25 * min(eps_b, 1.0), 0.75)
+        u = z[large] / z[small]
+        f_t = max(abs(h["f_t"]), b)
+        s_h0 = z_h * z_e * z_eps / sqrt(cos(beta)) * sqrt(f_t / (h["d"][small] * b) * (u + 1) / u)
+        s_h = s_h0 * sqrt(k_a * R.K_v * R.K_Hbeta * R.K_Halpha)
+        assert_allclose([R.Z_H, R.Z_E, R.Z_eps, R.Z_beta, R.Y_beta, R.K_A, R.sigma_H0_MPa, R.sigma_H_MPa],
+                        [z_h, z_e, z_eps, 1 / sqrt(cos(beta)), y_beta, k_a, s_h0, s_h], rtol=1e-12)
+        c_zl = 0.91  # sigma_Hlim > 1200 MPa
+        v = pi * h["d"][small] * (n_p, n_g)[small] / 60000
+        rho = [0.5 * db * tan(a_wt) for db in h["db"]]
+        rz10 = 3.0 * (10 / (rho[0] * rho[1] / (rho[0] + rho[1]))) ** (1 / 3)
+        z_l, z_v, z_r = (c_zl + 4 * (1 - c_zl) / (1.2 + 134 / 220) ** 2,
+                         c_zl + 0.02 + 2 * (1 - c_zl - 0.02) / sqrt(0.8 + 32 / v), (3 / rz10) ** 0.08)
+        assert_allclose([R.Z_L, R.Z_V, R.Z_R, R.Z_W], [z_l, z_v, z_r, 1.0], rtol=1e-12)  # Z_W: two hard flanks
+
+        zb = {small: z_bd(h, z, small, large), large: z_bd(h, z, large, small)}
+        for j, (mem, n) in enumerate(((R.pinion, n_p), (R.gear, n_g))):
+            n_l = 60 * n * 20000
+            z_nt = life_factor(n_l, ((1e5, 1.6), (5e7, 1.0), (1e10, 0.85)))
+            y_nt = life_factor(n_l, ((1e3, 2.5), (3e6, 1.0), (1e10, 0.85)))
+            m_n = s["normal_module_mm"]
+            y_x = 1.0 if m_n <= 5 else 1.05 - 0.01 * m_n  # case-carburized, m_n < 30
+            width = min((s["pinion"], s["gear"])[j]["face_width_mm"], b + 2 * m_n)
+            s_f0 = f_t / (width * m_n) * mem.Y_F * mem.Y_S * y_beta * mem.Y_B * mem.Y_DT
+            s_fg = 500.0 * 2.0 * y_nt * mem.Y_delta_rel_T * mem.Y_R_rel_T * y_x
+            s_hg = 1500.0 * z_nt * z_l * z_v * z_r
+            assert_allclose([mem.load_cycles, mem.Z_NT, mem.Y_NT, mem.Y_X, mem.Z_X, mem.Z_BD, mem.sigma_H_MPa],
+                            [n_l, z_nt, y_nt, y_x, 1.0, zb[j], zb[j] * s_h], rtol=1e-12)
+            assert_allclose([mem.sigma_HG_MPa, mem.S_H, mem.sigma_F0_MPa, mem.sigma_F_MPa, mem.sigma_FG_MPa, mem.S_F],
+                            [s_hg, s_hg / (zb[j] * s_h), s_f0, s_f0 * k_a * R.K_v * R.K_Fbeta * R.K_Falpha, s_fg,
+                             s_fg / (s_f0 * k_a * R.K_v * R.K_Fbeta * R.K_Falpha)], rtol=1e-12)
