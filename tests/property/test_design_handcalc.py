@@ -23,7 +23,7 @@ from numpy.testing import assert_allclose
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
 
-SETTINGS = settings(max_examples=80, deadline=None)
+SETTINGS = settings(max_examples=50, deadline=None)
 RHO, E, NU = 7800.0, 2.07e5, 0.29  # the predefined steel
 Q_C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
 
@@ -44,13 +44,18 @@ def stage(draw):
         return {**m, "hand": hand} if beta > 0 else m
     return {"normal_module_mm": m_n, "normal_pressure_angle_deg": draw(st.floats(14.5, 25.0)),
             "helix_angle_deg": beta, "efficiency": draw(st.one_of(st.just(1.0), st.floats(0.9, 1.0))),
-            "pinion": member(z1, draw(shift(-0.2, 0.6)), hands[0]),
+            "pinion": member(z1, draw(shift(0.0, 0.6)), hands[0]),
             "gear": member(z2, draw(shift(-0.2, 0.5)), hands[1])}
+
+
+def meshes(s: dict) -> bool:
+    """x1 + x2 >= 0: the pair always meshes (a negative sum on 12 + 12 teeth has no working pressure angle)."""
+    return s["pinion"]["profile_shift"] + s["gear"]["profile_shift"] >= 0.0
 
 
 @st.composite
 def train(draw):
-    return {"stage": draw(st.lists(stage(), min_size=1, max_size=5)),
+    return {"stage": draw(st.lists(stage().filter(meshes), min_size=1, max_size=5)),
             "input": {"speed_rpm": draw(st.floats(50.0, 3000.0))},
             "load": {"torque_Nm": draw(st.floats(-2e4, 2e4).filter(lambda t: abs(t) > 1e-2)),
                      "application_factor": draw(st.one_of(st.just(1.0), st.floats(1.0, 2.0)))}}
