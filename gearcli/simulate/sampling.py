@@ -19,7 +19,10 @@ its other neighbour (the slope at the sample is below that secant's), so an inte
 larger of the two differences to the neighbours is cut to it: the parabola overshoots only where three
 points straddle a jump or a kink (a stiffness step of a time-varying mesh, an impact), and there the
 cut keeps the estimate at the size of the step between samples, the most the samples can have missed of a
-peak that is itself piecewise smooth. A window edge has one neighbour: the edge sample is exact at the
+peak that is itself piecewise smooth. Zero is a floor: a mesh force is never tensile (the contact law clamps
+it), so a window whose sampled min is 0 (contact lost at a sample) has the true min 0, and no interpolated
+extreme crosses zero (configs/backlash_oscillator.toml: the parabola through a contact-loss sample put the min
+2.4e-3 of the mean below zero). A window edge has one neighbour: the edge sample is exact at the
 window's end, and a peak between it and its neighbour is interpolated by the parabola through the first three
 samples, counted only where its vertex lies between them. A constant window (an equilibrium) has none.
 
@@ -73,8 +76,9 @@ def _edge_excess(t: np.ndarray, x: np.ndarray, at_end: bool) -> float:
     return float(min(max(0.0, value - max(x[0], x[1])), abs(d1)))
 
 
-def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False) -> float:
-    """How far the interpolated max of ``x`` over the window ``t`` lies above its sampled max (>= 0; module doc)."""
+def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_floor: bool = False) -> float:
+    """How far the interpolated max of ``x`` over the window ``t`` lies above its sampled max (>= 0; module doc);
+    ``zero_floor``: not past zero from a sampled max at or below it (a force that the contact law clamps there)."""
     n = x.size
     if n < 3:
         return 0.0
@@ -102,12 +106,16 @@ def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False) -> float
             if x[j] >= x[j - 1 if at_end else 1]:
                 edge = _edge_excess(t[-3:] if at_end else t[:3], x[-3:] if at_end else x[:3], at_end)
                 best = max(best, float(x[j]) + edge)
+    if zero_floor and top <= 0.0:
+        best = min(best, 0.0)
     return max(0.0, best - top)
 
 
 def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False) -> tuple[float, float]:
-    """(min, max) sampling errors of ``x`` over the window ``t`` (N when ``x`` is in N; module doc)."""
-    return max_excess(t, -x, periodic=periodic), max_excess(t, x, periodic=periodic)
+    """(min, max) sampling errors of the force ``x`` over the window ``t`` (N when ``x`` is in N; module doc): neither
+    interpolated extreme crosses zero, where the contact law clamps the force (module doc, "Bound")."""
+    return (max_excess(t, -x, periodic=periodic, zero_floor=True),
+            max_excess(t, x, periodic=periodic, zero_floor=True))
 
 
 def suggested_steps(steps: int, relative_error: float, goal: float, cap: int) -> int | None:
