@@ -29,6 +29,16 @@ samples, counted only where its vertex lies between them. A constant window (an 
 Periodic windows (``steady = "periodic"``: whole periods, uniformly sampled without their closing sample) wrap
 around: the first sample's left neighbour is the last one, a period earlier.
 
+Safety. The estimate is :data:`SAFETY` x the interpolated excess. On a smooth peak the excess is the error
+(a sinusoid: 0.97-1.0x from 16 samples per period), so the estimate is twice it; peaks that are not smooth on the
+sample grid are underestimated by the parabola: the kinked top of a time-varying mesh's force (its contact length
+is piecewise linear in the mesh phase) 1.2-4.5x on configs/mixer_time_varying_backlash.toml and
+configs/concrete_mixer_te.toml (benchmarks/bench_sampling.py, against the same run sampled 16x finer).
+Not seen at all: vibration faster than the samples resolve (a few samples per period or fewer: it aliases to
+a slower, smooth-looking signal). configs/conveyor.toml's stage 2 carries a ~1.6 kHz vibration sampled at 2 kHz:
+its min is 5.2e-3 off, estimated 5e-5. ``gearcli report`` warns (``sampling``) where a natural frequency lies
+above the samples' Nyquist frequency.
+
 Convergence: the error of a smooth peak falls as h^2, so ``suggested_steps`` scales the samples by the square
 root of the error over half the target, with a 1.25 margin, rounded up to two significant figures and capped
 by the schema's ``simulation.steps`` maximum.
@@ -37,10 +47,19 @@ by the schema's ``simulation.steps`` maximum.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
+from gearcli import diagnostics as dg
+from gearcli.config.schema import MAX_STEPS
+from gearcli.diagnostics import Diagnostic
+from gearcli.simulate.results import SamplingError, StatisticsError
+
 MARGIN = 1.25  # suggested_steps: the h^2 extrapolation's samples x this
+SAFETY = 2.0  # the estimate is this x the interpolated excess (module doc, "Safety")
+TARGET = 1e-3  # of the stage's mean force, as the solver's estimate (gearcli.simulate.estimate.TARGET)
+EXTREMES = ("min", "max")
 
 
 def _vertex_excess(xl: np.ndarray, xc: np.ndarray, xr: np.ndarray, sl: np.ndarray, sr: np.ndarray) -> np.ndarray:
@@ -118,12 +137,81 @@ def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False) -> t
             max_excess(t, x, periodic=periodic, zero_floor=True))
 
 
-def suggested_steps(steps: int, relative_error: float, goal: float, cap: int) -> int | None:
-    """``simulation.steps`` that brings a sampling error of ``relative_error`` at ``steps`` below half the target
-    ``goal`` (error ∝ h^2, times :data:`MARGIN`), rounded up to two significant figures; None when ``cap`` cannot."""
-    if relative_error <= 0.5 * goal:
+def suggested_steps(steps: int, relative_error: float, goal: float, cap: int = MAX_STEPS) -> int | None:
+    """``simulation.steps`` that brings a sampling error of ``relative_error`` at ``steps`` below ``goal``
+    (error ∝ h^2, times :data:`MARGIN`), rounded up to two significant figures; None when ``cap`` cannot."""
+    if relative_error <= goal:
         return steps
-    wanted = steps * math.sqrt(relative_error / (0.5 * goal)) * MARGIN
+    wanted = steps * math.sqrt(relative_error / goal) * MARGIN
     digits = 10.0 ** max(0, math.floor(math.log10(wanted)) - 1)
     n = int(math.ceil(wanted / digits) * digits)
     return n if n <= cap else None
+
+
+def reference(mean: float, std: float, static_N: float) -> float:
+    """The force the target refers to: |mean F_t|, the static |F_t| when the mean is 0 (as the solver's estimate)."""
+    return abs(mean) or abs(static_N) or math.sqrt(mean**2 + std**2)
+
+
+def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
+                   solver: StatisticsError | None = None) -> SamplingError:
+    """The sampling error of a stage's window min and max of F_t (``t``, ``ft``: the window's samples), judged
+    with the solver's estimate ``solver`` where a check pass ran (their sum against :data:`TARGET`).
+    ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps)."""
+    lo, hi = extremes_error(t, ft, periodic=periodic)
+    ref = solver.reference_N if solver is not None else reference(float(ft.mean()), float(ft.std()), static_N)
+    err = {"min": SAFETY * lo, "max": SAFETY * hi}
+    rel = {q: (v / ref if ref > 0 else (0.0 if v == 0 else math.inf)) for q, v in err.items()}
+    bad = [q for q in EXTREMES if _undersampled(rel[q], solver.relative[q] if solver is not None else 0.0)]
+    suggestion = None
+    if bad and all(math.isfinite(rel[q]) for q in bad):
+        goals = [0.5 * (TARGET - solver.relative[q] if solver is not None and solver.relative[q] < TARGET
+                        else TARGET) for q in bad]
+        wanted = [suggested_steps(steps, rel[q], g) for q, g in zip(bad, goals, strict=True)]
+        suggestion = None if any(w is None for w in wanted) else max(w for w in wanted if w is not None)
+    return SamplingError(min_N=err["min"], max_N=err["max"], relative=rel, reference_N=ref, target_relative=TARGET,
+                         samples=int(t.size), resolved=not bad, suggested_steps=suggestion, steps_cap=MAX_STEPS)
+
+
+def _undersampled(sampling: float, solver: float) -> bool:
+    """The samples leave the statistic unresolved: the sum beyond the target, and the sampling a cause of it (the
+    solver's part within the target, or the sampling's own beyond it)."""
+    return sampling > 0 and sampling + solver > TARGET and (solver <= TARGET or sampling > TARGET)
+
+
+def merged(e: StatisticsError, s: SamplingError) -> StatisticsError:
+    """The solver's estimate with the sampling's share of min and max added (new keys; ``unresolved`` and
+    ``resolved`` then cover both; the solver's own keys keep their meaning)."""
+    total = {q: e.relative[q] + s.relative[q] for q in EXTREMES}
+    over = {q for q in EXTREMES if total[q] > TARGET}
+    unresolved = tuple(q for q in ("mean", "min", "max", "std", "spectrum") if q in e.unresolved or q in over)
+    return replace(e, sampling_N={"min": s.min_N, "max": s.max_N}, sampling_relative=dict(s.relative),
+                   total_relative=total, suggested_steps=s.suggested_steps if not s.resolved else None,
+                   unresolved=unresolved, resolved=not unresolved)
+
+
+def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, StatisticsError]) -> list[Diagnostic]:
+    """``statistics_undersampled``, one per stage (1-based index, its sampling error) whose window min or max
+    the output samples leave unresolved."""
+    out = []
+    for stage, s in stages:
+        if s.resolved:
+            continue
+        e = solver.get(stage)
+        bad = [q for q in EXTREMES if _undersampled(s.relative[q], e.relative[q] if e is not None else 0.0)]
+        worst = max(bad, key=lambda q: s.relative[q])
+        absolute = s.min_N if worst == "min" else s.max_N
+        with_solver = "" if e is None else f", the solver's estimate {e.relative[worst]:.2g} besides"
+        if s.suggested_steps is not None:
+            fix = f"--set simulation.steps={s.suggested_steps} would resolve it"
+        else:
+            fix = (f"the schema's maximum simulation.steps = {s.steps_cap} cannot resolve it: sample a shorter run "
+                   "(simulation.duration_s) or fewer periods")
+        out.append(dg.warning(
+            dg.STATISTICS_UNDERSAMPLED,
+            f"stage {stage}: F_t {' and '.join(bad)} not resolved by the output samples: the peaks between the "
+            f"{s.samples} window samples are estimated up to {absolute:.3g} N beyond them ({s.relative[worst]:.2g} "
+            f"of the mean {s.reference_N:.4g} N{with_solver}, target {TARGET:g}); {fix}",
+            stage=stage, statistics=bad, estimated_error_N=float(absolute), relative_error=float(s.relative[worst]),
+            steps=s.suggested_steps, steps_cap=s.steps_cap))
+    return out
