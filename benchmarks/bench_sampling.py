@@ -10,8 +10,6 @@ from __future__ import annotations
 import argparse
 import sys
 
-import numpy as np
-
 from gearcli import api
 from gearcli.core.channels import Channel
 from gearcli.simulate import run_simulation

@@ -97,7 +97,8 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                                 rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
                                 max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
                                 prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
-                                unfinished=unfinished, diagnose=diagnose, run_up_samples=run_up_samples)
+                                unfinished=unfinished, diagnose=diagnose, run_up_samples=run_up_samples,
+                                file_steps=max(1, round(steps * sim.duration_s / duration_s)))
         if unfinished:
             pending.append((result, unfinished[0]))
         return result
@@ -133,7 +134,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    progress: Callable[[float], None] | None = None,
                    tightened: Diagnostic | None = None,
                    unfinished: list[Callable[[], SimulationResult]] | None = None,
-                   diagnose: bool = True, run_up_samples: int | None = None) -> SimulationResult:
+                   diagnose: bool = True, run_up_samples: int | None = None,
+                   file_steps: int | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -155,7 +157,9 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     whole result (ringing warnings included, the result without ``unfinished``) is appended to the list.
     ``diagnose=False``: no ringing fit, settle test, resonance check, start-up nor motor summary
     (:func:`run_simulation`). ``run_up_samples``: ``steady = "periodic"``'s run-up sampled with this many samples
-    (default: as a window run over ``duration_s`` would sample it)."""
+    (default: as a window run over ``duration_s`` would sample it). ``file_steps``: the design file's
+    ``simulation.steps`` that samples as densely as this run (a settled run's longer one keeps the density), which
+    the sampling estimate's suggestion scales (default ``steps``)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -229,13 +233,13 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
                               tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
-                              diagnose=diagnose, run_up_samples=run_up_samples)
+                              diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps)
     if tightened is not None:
         diags.append(tightened)
 
     def summary(deferred: list[bool] | None) -> SimulationResult:
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
-                         ref, stat_diags, eng.reason, deferred, diagnose, steps=steps)
+                         ref, stat_diags, eng.reason, deferred, diagnose, steps=file_steps or steps)
         out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
                                           course_changes=tuple(c.as_json() for c in changes)))
         _require_finite(out)
