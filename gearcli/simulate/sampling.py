@@ -95,30 +95,33 @@ def _edge_excess(t: np.ndarray, x: np.ndarray, at_end: bool) -> float:
     return float(min(max(0.0, value - max(x[0], x[1])), abs(d1)))
 
 
-def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_floor: bool = False) -> float:
+def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_floor: bool = False,
+               dt: np.ndarray | None = None) -> float:
     """How far the interpolated max of ``x`` over the window ``t`` lies above its sampled max (>= 0; module doc);
-    ``zero_floor``: not past zero from a sampled max at or below it (a force that the contact law clamps there)."""
+    ``zero_floor``: not past zero from a sampled max at or below it (a force that the contact law clamps there);
+    ``dt``: ``np.diff(t)`` when the caller has it."""
     n = x.size
     if n < 3:
         return 0.0
     top = float(x.max())
     if top == float(x.min()):
         return 0.0
-    if periodic:
-        h_wrap = (t[-1] - t[0]) / (n - 1)  # uniform samples: the last sample is a step before the next period's first
-        xl, xr = np.roll(x, 1), np.roll(x, -1)
-        dt = np.diff(t)
-        sl = np.concatenate(([h_wrap], dt))
-        sr = np.concatenate((dt, [h_wrap]))
-        xc = x
+    dt = np.diff(t) if dt is None else dt
+    d = np.diff(x)
+    if periodic:  # uniform samples: the last sample is a step before the next period's first
+        h_wrap = (t[-1] - t[0]) / (n - 1)
+        wrap = x[0] - x[-1]
+        rise, fall = np.concatenate(([wrap], d)), np.concatenate((d, [wrap]))  # into and out of each sample
+        sl, sr, xc = np.concatenate(([h_wrap], dt)), np.concatenate((dt, [h_wrap])), x
     else:
-        xl, xc, xr = x[:-2], x[1:-1], x[2:]
-        dt = np.diff(t)
-        sl, sr = dt[:-1], dt[1:]
-    peak = (xc >= xl) & (xc >= xr)
+        rise, fall, sl, sr, xc = d[:-1], d[1:], dt[:-1], dt[1:], x[1:-1]
+    # a local max that could beat the sampled max: its excess is at most the larger step to a neighbour
+    peak = np.flatnonzero((rise >= 0) & (fall <= 0) & (xc + np.maximum(rise, -fall) > top))
     best = top
-    if np.any(peak):
-        best = max(best, float(np.max(xc[peak] + _vertex_excess(xl[peak], xc[peak], xr[peak], sl[peak], sr[peak]))))
+    if peak.size:
+        xp = xc[peak]
+        best = max(best, float(np.max(xp + _vertex_excess(xp - rise[peak], xp, xp + fall[peak], sl[peak],
+                                                          sr[peak]))))
     if not periodic:
         for at_end in (False, True):
             j = n - 1 if at_end else 0
@@ -133,8 +136,9 @@ def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_flo
 def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False) -> tuple[float, float]:
     """(min, max) sampling errors of the force ``x`` over the window ``t`` (N when ``x`` is in N; module doc): neither
     interpolated extreme crosses zero, where the contact law clamps the force (module doc, "Bound")."""
-    return (max_excess(t, -x, periodic=periodic, zero_floor=True),
-            max_excess(t, x, periodic=periodic, zero_floor=True))
+    dt = np.diff(t)
+    return (max_excess(t, -x, periodic=periodic, zero_floor=True, dt=dt),
+            max_excess(t, x, periodic=periodic, zero_floor=True, dt=dt))
 
 
 def suggested_steps(steps: int, relative_error: float, goal: float, cap: int = MAX_STEPS) -> int | None:
@@ -159,7 +163,11 @@ def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *
     with the solver's estimate ``solver`` where a check pass ran (their sum against :data:`TARGET`).
     ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps)."""
     lo, hi = extremes_error(t, ft, periodic=periodic)
-    ref = solver.reference_N if solver is not None else reference(float(ft.mean()), float(ft.std()), static_N)
+    if solver is not None:
+        ref = solver.reference_N
+    else:
+        mean = float(ft.mean())
+        ref = reference(mean, float(ft.std()) if mean == 0 and static_N == 0 else 0.0, static_N)
     err = {"min": SAFETY * lo, "max": SAFETY * hi}
     rel = {q: (v / ref if ref > 0 else (0.0 if v == 0 else math.inf)) for q, v in err.items()}
     bad = [q for q in EXTREMES if _undersampled(rel[q], solver.relative[q] if solver is not None else 0.0)]
