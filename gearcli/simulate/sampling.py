@@ -39,9 +39,13 @@ a slower, smooth-looking signal). configs/conveyor.toml's stage 2 carries a ~1.6
 its min is 5.2e-3 off, estimated 5e-5. ``gearcli report`` warns (``sampling``) where a natural frequency lies
 above the samples' Nyquist frequency.
 
-Convergence: the error of a smooth peak falls as h^2, so ``suggested_steps`` scales the samples by the square
-root of the error over half the target, with a 1.25 margin, rounded up to two significant figures and capped
-by the schema's ``simulation.steps`` maximum.
+Verdict and suggestion. Where a check pass ran, the estimate is added to the solver's for min and max
+(:func:`merged`); the samples leave a statistic unresolved when the sum exceeds :data:`TARGET` and the sampling is
+a cause of it (:func:`_undersampled`). The error of a smooth peak falls as h^2, so ``suggested_steps`` scales the
+samples by the square root of the error over half of what the solver leaves of the target, with a 1.25 margin,
+rounded up to two significant figures and capped by the schema's ``simulation.steps`` maximum (None beyond it).
+A kinked top converges more slowly (h^1.1 measured on configs/backlash_oscillator.toml): the run at the
+suggestion may suggest once more.
 """
 
 from __future__ import annotations
@@ -54,11 +58,11 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.config.schema import MAX_STEPS
 from gearcli.diagnostics import Diagnostic
+from gearcli.simulate.estimate import TARGET  # of the stage's mean force: the solver's and the samples' together
 from gearcli.simulate.results import SamplingError, StatisticsError
 
 MARGIN = 1.25  # suggested_steps: the h^2 extrapolation's samples x this
 SAFETY = 2.0  # the estimate is this x the interpolated excess (module doc, "Safety")
-TARGET = 1e-3  # of the stage's mean force, as the solver's estimate (gearcli.simulate.estimate.TARGET)
 EXTREMES = ("min", "max")
 
 
