@@ -91,7 +91,24 @@ def peaks_section(r: Report) -> Section:
                                                       "run-up factor"), rows, "lrrrrrr",
                    ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (the "
                     "stage efficiencies act in the dynamics, so it equals the design's static F_t); "
-                    "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",))
+                    "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",
+                    *sampling_notes(r)))
+
+
+def sampling_notes(r: Report) -> list[str]:
+    """The output sampling's error of each stage's window min and max of F_t (every run: the peaks between the
+    samples, docs/numerics.md "Honest statistics"), and the steps that resolve an unresolved one."""
+    out = []
+    for st in r.simulation.stages:
+        e = st.sampling_error
+        if e is None:
+            continue
+        fix = "" if e.resolved else (f" — NOT resolved: --set simulation.steps={e.suggested_steps}"
+                                     if e.suggested_steps else " — NOT resolved within the schema's maximum steps")
+        out.append(f"stage {st.index}: sampling error of the window min / max F_t {e.min_N:.2g} / {e.max_N:.2g} N "
+                   f"({e.relative['min']:.1e} / {e.relative['max']:.1e} of the mean, target {e.target_relative:g}; "
+                   f"{e.samples} window samples){fix}")
+    return out
 
 
 def spectrum_section(r: Report) -> Section:
@@ -177,6 +194,8 @@ def accuracy_notes(study: AccuracyStudy) -> list[str]:
         notes.append(f"the file's settings ({fr.method}, rtol {fr.rtol:g}) "
                      + ("meet" if study.file_settings_meet_accuracy else "do NOT meet")
                      + f" the target {study.requested_accuracy:g}")
+    notes.append("error peak F_t: the solver's, every run on the same output samples; the peaks the samples miss "
+                 "between them are the sampling error of section \"Dynamic factor and run-up peak\"")
     return notes + list(study.notes)
 
 

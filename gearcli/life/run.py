@@ -163,10 +163,17 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
-    unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
+    # the solver's and the output sampling's estimates (K_v is the window max over the static force: its sampling
+    # error is the max's, over the static force)
+    unresolved = [s.index for s in result.stages if (s.error_estimate is not None and not s.error_estimate.resolved)
+                  or (s.sampling_error is not None and not s.sampling_error.resolved)]
+    k_v_sampling = [None if s.sampling_error is None or not s.static_tangential_N else
+                    s.sampling_error.max_N / abs(s.simulated_static_tangential_N or s.static_tangential_N)
+                    for s in result.stages]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
               "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": steps + 1, "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
+              "k_v_sampling_error": k_v_sampling,
               "energy_residual": sv.energy_residual}
     k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)
     settled = result.steady.settled if result.steady is not None else None
