@@ -27,6 +27,7 @@ PEAK_OVER_RIGID = "peak_over_rigid"
 MOTOR_STALLS = "motor_stalls"  # the motor's curve cannot carry the load at some speed below the operating point
 RAMP_OVER_BREAKDOWN = "ramp_over_breakdown"  # a prescribed speed ramp needs more than the motor's breakdown torque
 START_NOT_SETTLED = "start_not_settled"  # the motor start has not settled before the statistics window
+MOTOR_ROLLS_BACK = "motor_rolls_back"  # the load turns the train backwards: the start's torque at standstill is short
 MOTOR_RUNS_AWAY = "motor_runs_away"  # the motor turns well past its synchronous speed: nothing holds it
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
@@ -35,6 +36,7 @@ STIFFNESS_NOT_ISO = "stiffness_not_iso"  # a mesh law's linearised stiffness dep
 ENGINE_FALLBACK = "engine_fallback"
 SLOW_PACE = "slow_pace"  # a run far slower than auto's cost model predicted (or switched engine for it)
 STATISTICS_UNRESOLVED = "statistics_unresolved"
+STATISTICS_UNDERSAMPLED = "statistics_undersampled"  # the output samples miss the window's min/max between them
 RTOL_TIGHTENED = "rtol_tightened"  # auto repeated a run at a tighter rtol to resolve its window means
 DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap

@@ -10,6 +10,7 @@ other; a run's stage summaries (``gearcli.simulate.results``, a layer above) are
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, TypeVar, cast
@@ -17,6 +18,8 @@ from typing import TYPE_CHECKING, TypeVar, cast
 from gearcli.design import planetary as pl
 from gearcli.design import rating as iso
 from gearcli.design import rating_factors as rf
+from gearcli.design import resonance as res
+from gearcli.design import stiffness as stf
 from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.rating import register
@@ -69,6 +72,16 @@ class Iso6336:
         if mode == "pitting":
             return SNCurve(rf.znt_curve(treatment), m.sigma_HG_MPa / m.Z_NT, variant, optimum)  # type: ignore[attr-defined]
         return SNCurve(rf.ynt_curve(treatment), m.sigma_FG_MPa / m.Y_NT, variant, optimum)  # type: ignore[attr-defined]
+
+    def rate_at_force(self, cfg: DesignFile, stage: StageResult, force_ratio: float) -> RatedMesh | None:
+        """A gear pair's rating with its tooth forces ``force_ratio`` times the design's (a load class of the life):
+        every load-dependent factor of ISO 6336-1 at that load, as ``gearcli design`` at the scaled torque rates it
+        (K_Hβ, K_Hα, K_Fβ, K_Fα from the line load; c′, c_γα, c_γβ with their low-load factor, N and N_S; ISO
+        6336-6: each load class at its own load, as its Annex C gives K_Hβ per bin). None for a stage this does not cover (a
+        stage that shares its load among planets: its classes keep the design's factors)."""
+        if not design_kind(stage).gear_pair or _planets(stage) or stage.rating is None:
+            return None
+        return iso.rate_stage(pair_view(cfg), stage.index - 1, at_force(cfg, stage, force_ratio))
 
     def curve_name(self, mode: str) -> str:
         return "Z_NT (ISO 6336-2:2006)" if mode == "pitting" else "Y_NT (ISO 6336-3:2006)"
@@ -166,6 +179,27 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
                                                                                                planet_ring=mesh)))
         out.append(replace(sd, rating=rated.rating, planet_ring_rating=ring))
     return tuple(out), diags
+
+
+def at_force(cfg: DesignFile, stage: StageResult, force_ratio: float) -> StageResult:
+    """A parallel stage as the design computes it at ``force_ratio`` times its static tooth forces: the forces
+    scaled, and ISO 6336-1's load-dependent stiffness (c′ × (F_t K_A / b / 100)^0.25 below 100 N/mm, so c_γα and
+    c_γβ with it, n_E1 ∝ √c_γα) and the lower resonance limit N_S at the new line load."""
+    f, b, k_a = stage.static_force_N, stage.face_width_mm, cfg.load.application_factor
+    forces = replace(f, tangential=f.tangential * force_ratio, radial=f.radial * force_ratio,
+                     axial=f.axial * force_ratio, normal=f.normal * force_ratio)
+    old, new = (stf.reference_tangential_force_N(ft, b) * k_a / b for ft in (f.tangential, forces.tangential))
+    c = stf.low_load_factor(new) / stf.low_load_factor(old)
+    mesh = stage.iso6336_mesh_stiffness_N_mm_um * c
+    n_e1 = stage.resonance_speed_rpm * math.sqrt(c)
+    ratio = stage.resonance_ratio / math.sqrt(c)
+    lower = res.lower_main_resonance_limit(new)
+    return replace(stage, static_force_N=forces,
+                   iso6336_single_pair_stiffness_N_mm_um=stage.iso6336_single_pair_stiffness_N_mm_um * c,
+                   iso6336_mesh_stiffness_N_mm_um=mesh,
+                   iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(mesh),
+                   resonance_speed_rpm=n_e1, resonance_ratio=ratio, resonance_lower_limit=lower,
+                   resonance_range=res.resonance_range(ratio, lower))
 
 
 # ------------------------------------------------------------------ a planetary stage's planet–ring mesh

@@ -89,9 +89,26 @@ def peaks_section(r: Report) -> Section:
     return Section("Dynamic factor and run-up peak", ("stage", "static F_t as simulated [N]", "window max |F_t| [N]",
                                                       "dynamic factor", "run peak |F_t| [N]", "at t [s]",
                                                       "run-up factor"), rows, "lrrrrrr",
-                   ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (with "
-                    "the losses the dynamics model: none, the meshes are lossless); "
-                    "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",))
+                   ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (the "
+                    "stage efficiencies act in the dynamics, so it equals the design's static F_t); "
+                    "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",
+                    *sampling_notes(r)))
+
+
+def sampling_notes(r: Report) -> list[str]:
+    """The output sampling's error of each stage's window min and max of F_t (every run: the peaks between the
+    samples, docs/numerics.md "Honest statistics"), and the steps that resolve an unresolved one."""
+    out = []
+    for st in r.simulation.stages:
+        e = st.sampling_error
+        if e is None:
+            continue
+        fix = "" if e.resolved else (f" — NOT resolved: --set simulation.steps={e.suggested_steps}"
+                                     if e.suggested_steps else " — NOT resolved within the schema's maximum steps")
+        out.append(f"stage {st.index}: sampling error of the window min / max F_t {e.min_N:.2g} / {e.max_N:.2g} N "
+                   f"({e.relative['min']:.1e} / {e.relative['max']:.1e} of the mean, target {e.target_relative:g}; "
+                   f"{e.samples} window samples){fix}")
+    return out
 
 
 def spectrum_section(r: Report) -> Section:
@@ -114,15 +131,27 @@ def spectrum_section(r: Report) -> Section:
 
 def mesh_orders_section(r: Report) -> Section:
     rows = []
+    errors = {e.stage: e.spectrum_N for st in r.simulation.stages if (e := st.error_estimate) is not None}
+    below = False
     for s in r.stages:
+        err = errors.get(s.stage)
         for o in s.spectrum.mesh_orders:
+            if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
+                below = True
+                dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 and o.dte_um is not None \
+                    else "–"
+                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
+                continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
     periodic = r.simulation.steady is not None and r.simulation.steady.mode == "periodic"
     how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
            if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
+    notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
+    if below:
+        notes.append("'< e': the computed amplitude is below e, the run's estimated error of its F_t spectrum (the "
+                     "check pass's largest amplitude difference): not resolved, the amplitude is below about 2e")
     return Section("Mesh-order amplitudes", ("stage", "order", "frequency [Hz]", "F_t amplitude [N]",
-                                             "DTE amplitude [µm]"), tuple(rows), "lrrrr",
-                   (f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}",))
+                                             "DTE amplitude [µm]"), tuple(rows), "lrrrr", tuple(notes))
 
 
 def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
@@ -165,6 +194,8 @@ def accuracy_notes(study: AccuracyStudy) -> list[str]:
         notes.append(f"the file's settings ({fr.method}, rtol {fr.rtol:g}) "
                      + ("meet" if study.file_settings_meet_accuracy else "do NOT meet")
                      + f" the target {study.requested_accuracy:g}")
+    notes.append("error peak F_t: the solver's, every run on the same output samples; the peaks the samples miss "
+                 "between them are the sampling error of section \"Dynamic factor and run-up peak\"")
     return notes + list(study.notes)
 
 

@@ -130,7 +130,8 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
                                               "static_tangential_N", "peak_tangential_N", "peak_time_s",
                                               "dynamic_factor", "runup_factor", "simulated_static_tangential_N",
                                               "dte_um", "contact_loss_fraction",
-                                              "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate")}
+                                              "back_flank_fraction", "regime", "mesh_stiffness", "error_estimate",
+                                              "sampling_error")}
         | ({"rating": _stage_rating(s.rating, sharing=bool(s.planets))} if s.rating is not None else {})
         | ({"planet_ring_rating": plain(s.planet_ring_rating)} if s.planet_ring_rating is not None else {})
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})

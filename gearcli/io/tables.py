@@ -252,8 +252,9 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
              [_g(m.linearised_N_mm) if (m := s.mesh_stiffness) else "—" for s in gear])]
     rows += [(f"est. error {q} F_t [N]", [_g(_est(s.error_estimate, q), 2) for s in gear])
              for q in ("min", "max", "std")]
-    rows.append(("statistics resolved (mean 1e-4, else 1e-3)", [("—" if s.error_estimate is None else
-                                                  "yes" if s.error_estimate.resolved else "NO") for s in gear]))
+    rows.append(("sampling error min / max F_t [N]", [f"{_g(e.min_N, 2)} / {_g(e.max_N, 2)}"
+                                                      if (e := s.sampling_error) else "—" for s in gear]))
+    rows.append(("statistics resolved (mean 1e-4, else 1e-3)", [_resolved(s) for s in gear]))
     mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in gear], rows)
     sv = r.solver
     lines = [footer_speeds(r)]
@@ -335,6 +336,16 @@ def footer_speeds(r: SimulationResult) -> str:
             return f"{v:.6g} °/s = {v / 6.0:.5g} rpm"
         return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}"
     return f"dynamic ratio {r.ratio:.6g}   output {speed(r.output_speed_deg_s)}   input {speed(r.input_speed_deg_s)}"
+
+
+def _resolved(s: StageDynamics) -> str:
+    """The stage's verdict: the solver's and the sampling's estimates together; the samples' alone without a
+    check pass ("—" when neither ran)."""
+    if s.error_estimate is not None:
+        return "yes" if s.error_estimate.resolved else "NO"
+    if s.sampling_error is not None and not s.sampling_error.resolved:
+        return "NO (samples)"
+    return "—" if s.sampling_error is None else "samples only: yes"
 
 
 def _est(e, q: str) -> float | None:

@@ -178,10 +178,17 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
-    unresolved = [s.index for s in result.stages if s.error_estimate is not None and not s.error_estimate.resolved]
+    # the solver's and the output sampling's estimates (K_v is the window max over the static force: its sampling
+    # error is the max's, over the static force)
+    unresolved = [s.index for s in result.stages if (s.error_estimate is not None and not s.error_estimate.resolved)
+                  or (s.sampling_error is not None and not s.sampling_error.resolved)]
+    k_v_sampling = [None if s.sampling_error is None or not s.static_tangential_N else
+                    s.sampling_error.max_N / abs(s.simulated_static_tangential_N or s.static_tangential_N)
+                    for s in result.stages]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
               "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": steps + 1, "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
+              "k_v_sampling_error": k_v_sampling,
               "energy_residual": sv.energy_residual}
     k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)
     settled = result.steady.settled if result.steady is not None else None
@@ -302,11 +309,37 @@ def _member_loads(pd: _PointData, k: int, member: str, planet: int | None = None
     return life_kind(st).member_loads(pd.loads[k], st, member, planet)
 
 
-def _stress(design, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
-    """The rating's stress of the point, scaled from its static force to ``force_N``."""
-    m = _member_rating(design.stages[k], member)
+def _stress(pd: _PointData, k: int, member: str, mode: str, force_N: float, static_N: float) -> float:
+    """The stress of a load class of ``force_N``: the point's rating at that force, every load-dependent factor at
+    the class's own load where the standard re-rates the stage (ISO 6336-6: a start's peak many times an idle
+    point's load does not carry the idle load's K_Hβ, K_Hα); else the point's stress scaled from its static force
+    (σ_H ∝ √F_t, σ_F ∝ F_t)."""
+    st = pd.design.stages[k]
     ratio = force_N / abs(static_N) if static_N else 0.0
+    rated = _rated_at(pd, k, ratio) if ratio > 0.0 and ratio != 1.0 else None
+    if rated is not None:
+        return _member_rating(replace(st, rating=rated), member).stress_MPa(mode)
+    m = _member_rating(st, member)
     return m.stress_MPa(mode) * (math.sqrt(ratio) if mode == "pitting" else ratio)
+
+
+_RATED_AT: dict[tuple[int, int, float], tuple[DesignResult, RatedMesh | None]] = {}  # rated classes of the points lately rated
+_RATED_AT_SIZE = 4096
+
+
+def _rated_at(pd: _PointData, k: int, ratio: float) -> RatedMesh | None:
+    """Stage ``k`` of the point rated at ``ratio`` times its static force by the file's standard (None where it
+    does not re-rate), kept for the point's other members and modes (the same class forces)."""
+    key = (id(pd.design), k, ratio)
+    found = _RATED_AT.get(key)
+    if found is not None and found[0] is pd.design:
+        return found[1]
+    rerate = getattr(standard_of(pd.cfg), "rate_at_force", None)
+    rated = rerate(pd.cfg, pd.design.stages[k], ratio) if rerate is not None else None
+    if len(_RATED_AT) >= _RATED_AT_SIZE:
+        _RATED_AT.clear()
+    _RATED_AT[key] = (pd.design, rated)
+    return rated
 
 
 _Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)
@@ -321,14 +354,14 @@ def _raw_bins(points: Sequence[_PointData], k: int, member: str, mode: str, vari
         curve = _curve(pd.cfg, pd.design, k, member, mode, variant)
         ld = _member_loads(pd, k, member, planet)
         for force, share in zip(ld.forces_N, ld.shares, strict=True):
-            raw.append((pd.point.name, force, _stress(pd.design, k, member, mode, force, ld.static_N),
+            raw.append((pd.point.name, force, _stress(pd, k, member, mode, force, ld.static_N),
                         total * share, curve))
         if pd.start is not None and pd.start.count:  # the point's starts: classes of their own
             n = member_start_cycles(pd.start, pd.point.speed_rpm, _member_speed_rpm(st, member),
                                     _contacts_per_turn(st, member))
             sl = _member_loads(replace(pd, loads=pd.start.loads), k, member, planet)
             for force, share in zip(sl.forces_N, sl.shares, strict=True):
-                raw.append((label(pd.point.name), force, _stress(pd.design, k, member, mode, force, sl.static_N),
+                raw.append((label(pd.point.name), force, _stress(pd, k, member, mode, force, sl.static_N),
                             n * share, curve))
     return raw
 

@@ -146,17 +146,47 @@ def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> l
     carries and the equivalent mass ``m_e = 1 / sum_j r_j^2 / J_j`` of the bodies it joins (a speed-driven
     body counts as infinitely heavy). A ``damping_ratio`` mesh gets its viscous damping here."""
     out = []
-    for x in conns:
-        # the static force on the power path (as gearcli.model.linear.static_forces; a further element: none)
-        F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb) if x.role else 0.0
+    losses = power_path_loss_factors(spec, conns)
+    for x, loss in zip(conns, losses, strict=True):
+        # the static force on the power path, with the losses after it (as gearcli.model.linear.static_forces;
+        # a further element: none): a damping_ratio mesh's k_lin is the tangent at the force it carries
+        F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb) * loss if x.role else 0.0
         if x.load_body >= 0:  # a planet mesh: its share of the planetary's output torque
-            F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever)
+            F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever) * loss
         mobility = [0.0 if (j == 0 and spec.drive.kind == "speed") else r**2 / bodies[j].inertia
                     for j, r in zip(x.bodies, x.radii, strict=True)]
         row = x.element.assembled(x.params, F, 1.0 / _ordered_sum(mobility))
         if row is not x.params:
             x = replace(x, params=_row(row))
         out.append(x)
+    return out
+
+
+def power_path_loss_factors(spec: ModelSpec, conns: list[Connector]) -> list[float]:
+    """Per connector, what the losses between it and the load multiply its static force by: the product of
+    1/eta of the lossy connectors (and lossy stage models) after it on the power path, and its own (the force of a
+    lossy mesh is its driving side's); eta instead of 1/eta for a reversed load, whose power flows from the
+    output. A planet mesh's own loss is in its share of the output torque; its stage's loss counts before the
+    stage. 1 everywhere when no connector loses (a stage model's own efficiency then counts nowhere either)."""
+    forward = spec.load.torque_Nm >= 0
+    out = [1.0] * len(conns)
+    if not any(x.lossy for x in conns):
+        return out
+    factor, pending = 1.0, None
+    for c in range(len(conns) - 1, -1, -1):
+        x = conns[c]
+        if x.load_body >= 0:
+            out[c] = factor
+            pending = x.index
+            continue
+        if pending is not None:
+            p = spec.stage_models[pending]
+            assert p is not None
+            factor *= 1.0 / p.efficiency if forward else p.reverse_efficiency
+            pending = None
+        if x.lossy:
+            factor *= 1.0 / x.efficiency if forward else x.efficiency
+        out[c] = factor
     return out
 
 

@@ -100,8 +100,9 @@ def loss_factors(lay: Layout) -> np.ndarray:
     return g
 
 
-def body_matrices(lay: Layout, k: np.ndarray, c: np.ndarray, first: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(J, K, C) over the bodies ``first`` .. last (module text): ``k``, ``c`` the connectors' tangents."""
+def lever_matrices(lay: Layout, first: int) -> tuple[np.ndarray, np.ndarray]:
+    """(R, L) over the bodies ``first`` .. last: the levers (``delta = R theta``) and the levers times the loss
+    factors (the torques a connector force ``f`` puts on the bodies are ``L^T f``)."""
     n = lay.n_bodies
     R = np.zeros((lay.n_conn, n))
     L = np.zeros((lay.n_conn, n))
@@ -110,7 +111,12 @@ def body_matrices(lay: Layout, k: np.ndarray, c: np.ndarray, first: int) -> tupl
         for j, (b, lever) in enumerate(zip(x.bodies, x.levers, strict=True)):
             R[i, b] += lever
             L[i, b] += lever * g[i, j]
-    R, L = R[:, first:], L[:, first:]
+    return R[:, first:], L[:, first:]
+
+
+def body_matrices(lay: Layout, k: np.ndarray, c: np.ndarray, first: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(J, K, C) over the bodies ``first`` .. last (module text): ``k``, ``c`` the connectors' tangents."""
+    R, L = lever_matrices(lay, first)
     K = L.T @ (np.asarray(k)[:, None] * R)
     C = L.T @ (np.asarray(c)[:, None] * R) + np.diag(body_damping(lay)[first:])
     return np.asarray(lay.inertias[first:], dtype=float), K, C

@@ -28,8 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli.core.memo import remember
-from gearcli.model.assembly import Layout
-from gearcli.model.damping import body_matrices, state_matrix
+from gearcli.model.assembly import Layout, power_path_loss_factors
+from gearcli.model.damping import body_matrices, lever_matrices, state_matrix
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp, ramp_motion
 
@@ -63,34 +63,11 @@ def _static_forces(lay: Layout) -> np.ndarray:
     for c, x in enumerate(lay.connectors):
         if x.load_body >= 0:  # a planet mesh: its share of the planetary's output torque
             out[c] = lay.load.torque_Nm * rho[-1] / rho[x.load_body] * x.load_lever
-    if lay.n_lossy:
-        forward = lay.load.torque_Nm >= 0
-        factor, pending = 1.0, None
-        for c in range(lay.n_conn - 1, -1, -1):
-            x = lay.connectors[c]
-            if x.load_body >= 0:  # a planet mesh: its own loss is in its share; the stage's before the stage
-                out[c] *= factor
-                pending = x.index
-                continue
-            if pending is not None:
-                factor *= _stage_factor(lay, pending, forward)
-                pending = None
-            if x.lossy:
-                eta = x.efficiency
-                factor *= 1.0 / eta if forward else eta
-            out[c] *= factor
-    return out
-
-
-def _stage_factor(lay: Layout, k: int, forward: bool) -> float:
-    """What a stage model's losses (a planetary's) multiply the torques before it by: 1/eta, or eta reversed."""
-    p = lay.spec.stage_models[k]
-    assert p is not None
-    return 1.0 / p.efficiency if forward else p.reverse_efficiency
+    return out * np.asarray(power_path_loss_factors(lay.spec, list(lay.connectors)))
 
 
 def static_line_forces_N(spec: ModelSpec | Layout) -> np.ndarray:
-    """F_bt of every mesh at full load in steady state (lossless), N (signed), in stage order."""
+    """F_bt of every mesh at full load in steady state (a lossy mesh: its driving side's), N (signed), in stage order."""
     lay = _lay(spec)
     return static_forces(lay)[list(lay.stage_conn)]
 
@@ -212,6 +189,9 @@ def _read_only(lin: Linearisation) -> Linearisation:
 _LINEARISED: dict[tuple, Linearisation] = {}  # linearise by its exact inputs
 
 
+ZERO_MODE = 1e-12  # omega^2 below this fraction of the largest is a zero mode (round-off), never a frequency
+
+
 def _linearise(lay: Layout, F: np.ndarray, stiffest_phase: bool) -> Linearisation:
     kd, cd, defl = np.empty(F.size), np.empty(F.size), np.empty(F.size)
     for c in range(F.size):
@@ -223,8 +203,16 @@ def _linearise(lay: Layout, F: np.ndarray, stiffest_phase: bool) -> Linearisatio
     A[:n, n:] = np.eye(n)
     A[n:, :n] = -M * kd[None, :]
     A[n:, n:] = -M * cd[None, :]
-    sq = np.sqrt(kd)
-    omega2 = np.linalg.eigvalsh(sq[:, None] * M * sq[None, :])
+    if lay.n_lossy:  # a lossy mesh passes eta of its force on (damping.py): delta'' = -R J^-1 L^T k delta
+        R_, L = lever_matrices(lay, lay.state.first_free)
+        omega2 = np.real(np.linalg.eigvals((R_ / np.asarray(lay.inertias[lay.state.first_free:])[None, :]) @ L.T
+                                           * kd[None, :]))
+    else:
+        sq = np.sqrt(kd)
+        omega2 = np.linalg.eigvalsh(sq[:, None] * M * sq[None, :])
+    # more connectors than free bodies (a planetary's meshes) leave zero eigenvalues in this connector space: their
+    # round-off (~1e-19 of the largest here) is no mode, and a rigid-body mode is none either
+    omega2[omega2 <= ZERO_MODE * np.max(omega2, initial=0.0)] = 0.0
     freqs = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)
     return Linearisation(F, defl, kd, cd, np.linalg.eigvals(A), np.sort(freqs), lay.stage_conn)
 

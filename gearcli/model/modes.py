@@ -37,7 +37,7 @@ import numpy as np
 
 from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import body_matrices, modal_damping_ratios
+from gearcli.model.damping import body_matrices, loss_factors, modal_damping_ratios
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
 
@@ -196,7 +196,7 @@ def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
         k, cd = _tangents(lay, duration_s)
         # the eigenproblem of these very tangents on this very chain: a speed sweep's points share it
         chain = (boundary, k.tobytes(), cd.tobytes(), lay.n_bodies, tuple(lay.inertias),
-                 tuple((x.bodies, x.levers, x.radii) for x in lay.connectors))
+                 tuple((x.bodies, x.levers, x.radii) for x in lay.connectors), loss_factors(lay).tobytes())
         found = _CHAINS.get(chain)
         cache[key] = found if found is not None else remember(_CHAINS, chain, _eigenproblem(lay, boundary, k, cd))
     return cache[key]
@@ -210,12 +210,29 @@ def _eigenproblem(lay: Layout, boundary: str, k: np.ndarray, cd: np.ndarray) -> 
     R = speed_map(lay, range(first, lay.n_bodies))
     J = np.asarray(lay.inertias[first:])
     inv_sqrt = 1.0 / np.sqrt(J)
-    Kb = R.T @ (k[:, None] * R)
-    w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
+    if any(x.lossy for x in lay.connectors):
+        # a lossy mesh passes eta of its force to the side that receives the power (what simulate integrates):
+        # K = L^T diag(k) R is not symmetric, and the chain rings at its eigenvalues (a single mesh behind a speed
+        # drive at w^2 = eta k_t r_bg^2 / J_g, not k_t r_bg^2 / J_g)
+        w2, u = _real_eigenpairs(inv_sqrt[:, None] * body_matrices(lay, k, cd, first)[1] * inv_sqrt[None, :])
+    else:
+        Kb = R.T @ (k[:, None] * R)
+        w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
     found = _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first), np.argsort(w2))
     for a in (k, cd, R, inv_sqrt, w2, u, found.order):  # shared by the points of one chain: read only
         a.flags.writeable = False
     return found
+
+
+def _real_eigenpairs(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues and unit eigenvectors of J^-1/2 K J^-1/2 for a lossy chain's non-symmetric K. Its eigenvalues are
+    real (the lossy chain is the lossless one with each body's inertia over the efficiencies between it and the
+    drive, up to a diagonal similarity): the real parts are kept, each vector turned real by the phase of its
+    largest entry."""
+    w2, u = np.linalg.eig(a)
+    big = np.argmax(np.abs(u), axis=0)
+    u = np.real(u * np.exp(-1j * np.angle(u[big, np.arange(u.shape[1])]))[None, :])
+    return np.real(w2), u / np.linalg.norm(u, axis=0)
 
 
 def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:
@@ -243,7 +260,7 @@ def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank:
     rigid = rank < und.n_rigid  # from the structure, never from a threshold on the eigenvalues
     f = 0.0 if rigid else math.sqrt(max(float(und.w2[j]), 0.0)) / (2.0 * math.pi)
     shape = np.concatenate([np.zeros(und.first), _shape(phi[:, j])])
-    rate = und.R @ phi[:, j]  # phi is mass-normalised (eigh of the symmetric form)
+    rate = und.R @ phi[:, j]  # phi's scale cancels in the shares (mass-normalised for a lossless chain)
     strain = und.k * rate**2
     share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
     dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label

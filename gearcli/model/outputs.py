@@ -190,17 +190,9 @@ def stored_energy(lay: Layout, t: float, y: np.ndarray) -> float:
     tt, Y = np.array([t]), y[:, None]
     omega, theta, _ = body_motion(lay, tt, Y)
     elastic = np.zeros_like(tt)
-    kernel = _loaded_kernel()
     for c, x in enumerate(lay.connectors):
-        if x.time_varying:
-            continue
-        if kernel is not None and x.kind in kernel.KINDS:
+        if not x.time_varying:  # the connector's own series at the one sample (compiled, vectorised or scalar)
             elastic += connector_series(lay, c, Y, omega, theta).potential_J
-            continue
-        d, _, phi, _ = _law_arguments(lay, c, Y, omega, theta)
-        potential, P = x.element.potential, x.params
-        elastic += np.array([potential(P, dj, phj) for dj, phj in zip(d.tolist(), phi.tolist(), strict=True)],
-                            dtype=float).reshape(d.size)
     return float(kinetic_energy(lay, omega)[0]) + float(elastic[0])
 
 

@@ -25,6 +25,7 @@ from gearcli.model.elements import machine
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 STEADY_T = 1e12  # s: a time past every start ramp
+ROLLBACK = 0.01  # a motor turning backwards faster than 1 % of its synchronous speed is driven back by the load
 RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
 
 
@@ -123,6 +124,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm))
     if not driven:
         diags += _runaway(t, w_motor, ws)
+    if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
+        diags += _rolls_back(lay, t, w_motor, ws)
     t_start = start_time(t, w_motor, op.speed_rad_s)
     if op.reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
@@ -136,6 +139,29 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
            "mean_torque_Nm": float(t_motor[mask].mean())}
     return out, diags
+
+
+def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:
+    """The load turns the train backwards during the start: the starting method's torque at standstill (a soft
+    start's u0² of the locked-rotor torque, a star start's third) is below the load reflected to the motor, though
+    the full curve carries it. Named with how far back it ran and the torques at standstill at t = 0."""
+    i = int(np.argmin(w_motor))
+    low = float(w_motor[i])
+    motor = lay.drive.motor
+    assert motor is not None
+    row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
+    t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load(lay, 0.0)
+    # a short swing back on a coupling while a strong start winds it up is no roll-back: the start must be short
+    if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= load:
+        return []
+    turns = float(np.nonzero(w_motor < 0.0)[0].size) / max(w_motor.size, 1)
+    return [dg.warning(dg.MOTOR_ROLLS_BACK, f"the load turns the train backwards during the start: the motor reaches "
+                       f"{low * RAD_S_TO_RPM:.4g} rpm at {float(t[i]):.4g} s ({100 * turns:.2g} % of the run backwards): "
+                       f"its {motor.starting} start gives {t0:.4g} N·m at standstill at t = 0, below the load reflected "
+                       f"to the motor, {load:.4g} N·m; the run's numbers are no forward operating point. A start whose "
+                       "torque at standstill exceeds the load (a higher initial_voltage_fraction, a direct start), "
+                       "or a backstop or brake holding the load until it does", reverse_speed_rpm=low * RAD_S_TO_RPM,
+                       start_torque_Nm=t0, load_torque_Nm=load)]
 
 
 def _runaway(t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:

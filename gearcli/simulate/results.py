@@ -44,8 +44,32 @@ class StatisticsError:
     check_dominant_frequency_Hz: float  # of the check pass
     unresolved: tuple[str, ...]  # statistics beyond the target
     suggested_rtol: float | None  # simulation.rtol that would resolve them (None when resolved)
-    resolved: bool = True  # no statistic beyond the target
+    resolved: bool = True  # no statistic beyond the target (the solver's and the sampling's errors together)
     mean_target_relative: float = 1e-4  # the mean's target (target_relative is that of min, max, std, spectrum)
+    # the output sampling's share of min and max (gearcli.simulate.sampling), added to the solver's above for
+    # ``unresolved`` and ``resolved``: the sampling estimate's {min, max} in N and over reference_N, their sum with
+    # the solver's, and the simulation.steps that would resolve it (None when the sampling is resolved or the
+    # schema's maximum cannot)
+    sampling_N: dict[str, float] = field(default_factory=dict)
+    sampling_relative: dict[str, float] = field(default_factory=dict)
+    total_relative: dict[str, float] = field(default_factory=dict)
+    suggested_steps: int | None = None
+
+
+@dataclass(frozen=True)
+class SamplingError:
+    """Estimated error of one stage's window min and max of F_t from the output sampling alone (the peaks
+    between samples: gearcli.simulate.sampling), computed for every run (no integration)."""
+
+    min_N: float
+    max_N: float
+    relative: dict[str, float]  # min, max over reference_N
+    reference_N: float  # as StatisticsError.reference_N: |mean F_t| (static |F_t| when the mean is 0)
+    target_relative: float  # 1e-3 (with the solver's estimate where a check pass ran)
+    samples: int  # window samples
+    resolved: bool  # the sampling's share, with the solver's where a check pass ran, within the target
+    suggested_steps: int | None  # simulation.steps that resolves it (None: resolved, or beyond the schema's maximum)
+    steps_cap: int  # the schema's maximum of simulation.steps
 
 
 @dataclass(frozen=True)
@@ -86,7 +110,7 @@ class StageDynamics:
     # issue 21: the run-up overshoot apart from the steady dynamic factor; defaults for hand-made results
     runup_factor: float | None = None  # whole-run peak |F_t| / |simulated static F_t|
     simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
-    # the losses its dynamics model (lossless meshes today): the reference of both factors
+    # the losses its dynamics model (the stage efficiencies): the reference of both factors
     # a planetary stage (issue 25): every planet's sun and ring mesh; the largest planet's window-mean sun-mesh
     # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
     planets: tuple[PlanetDynamics, ...] = ()
@@ -97,6 +121,8 @@ class StageDynamics:
     # the stage's kind (the design file's stage ``type``, ``ModelSpec.stage_types``): its output facet names
     # the statistics (a belt's span force and stretch); not a JSON key of a gear stage
     type: str = "parallel"
+    # the window min/max's error from the output sampling (every run; error_estimate adds it to the solver's)
+    sampling_error: SamplingError | None = None
 
 
 @dataclass(frozen=True)

@@ -27,7 +27,7 @@ from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import equilibrium, estimate, rigid_start, stats
+from gearcli.simulate import equilibrium, estimate, rigid_start, sampling, stats
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
@@ -40,6 +40,7 @@ from gearcli.simulate.results import (
     EnergyBalance,
     PlanetDynamics,
     PlanetMeshDynamics,
+    SamplingError,
     SimulationResult,
     SolverStats,
     StageDynamics,
@@ -96,7 +97,8 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                                 rtol=rtol or sim.rtol, window_start_s=window_start_s, want_series=want_series,
                                 max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
                                 prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
-                                unfinished=unfinished, diagnose=diagnose, run_up_samples=run_up_samples)
+                                unfinished=unfinished, diagnose=diagnose, run_up_samples=run_up_samples,
+                                file_steps=max(1, round(steps * sim.duration_s / duration_s)))
         if unfinished:
             pending.append((result, unfinished[0]))
         return result
@@ -132,7 +134,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    progress: Callable[[float], None] | None = None,
                    tightened: Diagnostic | None = None,
                    unfinished: list[Callable[[], SimulationResult]] | None = None,
-                   diagnose: bool = True, run_up_samples: int | None = None) -> SimulationResult:
+                   diagnose: bool = True, run_up_samples: int | None = None,
+                   file_steps: int | None = None) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -154,7 +157,9 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     whole result (ringing warnings included, the result without ``unfinished``) is appended to the list.
     ``diagnose=False``: no ringing fit, settle test, resonance check, start-up nor motor summary
     (:func:`run_simulation`). ``run_up_samples``: ``steady = "periodic"``'s run-up sampled with this many samples
-    (default: as a window run over ``duration_s`` would sample it)."""
+    (default: as a window run over ``duration_s`` would sample it). ``file_steps``: the design file's
+    ``simulation.steps`` that samples as densely as this run (a settled run's longer one keeps the density), which
+    the sampling estimate's suggestion scales (default ``steps``)."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -228,13 +233,13 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
                               tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
-                              diagnose=diagnose, run_up_samples=run_up_samples)
+                              diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps)
     if tightened is not None:
         diags.append(tightened)
 
     def summary(deferred: list[bool] | None) -> SimulationResult:
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
-                         ref, stat_diags, eng.reason, deferred, diagnose)
+                         ref, stat_diags, eng.reason, deferred, diagnose, steps=file_steps or steps)
         out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
                                           course_changes=tuple(c.as_json() for c in changes)))
         _require_finite(out)
@@ -432,9 +437,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
-               diagnose: bool = True) -> SimulationResult:
+               diagnose: bool = True, steps: int | None = None) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
-    the window without its closing sample, which starts the next period). ``deferred`` (a list): a fixed window
+    the window without its closing sample, which starts the next period). ``steps``: the run's
+    ``simulation.steps`` (the sampling estimate's suggestion scales it; whole periods: the window's samples). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
     its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order)."""
     spec = model.spec
@@ -446,9 +452,13 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     stiffness = mesh_stiffness(model, choice)
     simulated_static = simulated_static_tangential_N(model)
     ks = range(len(spec.meshes))
+    solver_errors = [errors[k] if k < len(errors) else None for k in ks]
+    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic)
+    merged = [sampling.merged(e, se) if e is not None and se is not None else e
+              for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
         s.time_s, mask, per_stage[:len(ks)], [m.static_tangential_N for m in spec.meshes], periodic=periodic,
-        simulated_static_N=simulated_static, error_estimate=[errors[k] if k < len(errors) else None for k in ks],
+        simulated_static_N=simulated_static, error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
     stages = tuple(_with_planets(st, *_planets(model, s, mask, k)) for k, st in enumerate(stages))
@@ -472,6 +482,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
                                 residual=energy.residual_relative))
     diags += stat_diags or []
+    diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
+                               {e.stage: e for e in solver_errors if e is not None})
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
@@ -511,10 +523,24 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     )
 
 
+def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSeries], spec, solver_errors: list,
+                     steps: int | None, periodic: bool) -> list[SamplingError | None]:
+    """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
+    judged with the solver's estimate where a check pass ran; None for an empty window."""
+    sel = stats.window_slice(mask)
+    tw = t[sel]
+    if tw.size == 0:
+        return [None] * len(spec.meshes)
+    basis = int(tw.size) if periodic or steps is None else int(steps)  # whole periods: steps per window
+    return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
+                                    periodic=periodic, solver=solver_errors[k])
+            for k, m in enumerate(spec.meshes)]
+
+
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     """Per stage, the static F_t of the load the simulation applies, with the losses its dynamics model (the
-    model's own steady-state connector forces: lossless meshes today, so a stage with efficiency < 1 differs
-    from the design's static F_t, which includes the losses): the reference of the dynamic and run-up factors."""
+    model's own steady-state connector forces, the meshes' efficiencies included: on a settled unexcited run the
+    window means equal them and the design's static F_t): the reference of the dynamic and run-up factors."""
     lay = model.layout
     return [float(tooth_forces(lay, k, np.array([f]))[0][0]) for k, f in enumerate(static_line_forces_N(lay))]
 

@@ -34,6 +34,7 @@ from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
+from gearcli.model.linear import damped_eigenvalues
 from gearcli.simulate import ringing
 from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
 
@@ -171,16 +172,20 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
     ringing or the motor's start warning already says so."""
     if steady.mode == "periodic":
-        if steady.converged and not reached(steady):
+        attracting = reached(steady)
+        if steady.converged and not attracting:
             diags.append(not_attracting(steady))
-        return replace(steady, settled=reached(steady))
+        return replace(steady, settled=attracting)
     motor_start, reaches = None, False
     if motor_summary is not None and model.layout.motor_drive:
         motor_start = motor_summary.get("start_time_s")
         reaches = not any(d.code == dg.MOTOR_STALLS for d in diags)
+    # the eigenvalues with every damping the run integrates (a motor's slip damping, the load law's dT/dw), as the
+    # ringing fit and `modes` take them: the connectors' damping alone leaves a motor-damped mode undamped
+    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
     found = check(t, mask, [p[0] for p in per_stage],
                          [st.simulated_static_tangential_N or 0.0 for st in stages],
-                         choice.at_full_load.eigenvalues, window, motor_start, reaches)
+                         damped_eigenvalues(model.layout, lin.forces), window, motor_start, reaches)
     if not found.settled and not any(d.code in (dg.WINDOW_RINGING, dg.START_NOT_SETTLED) for d in diags):
         diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
                                 transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)

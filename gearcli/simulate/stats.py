@@ -11,7 +11,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
-from gearcli.model.spec import ModelSpec
+from gearcli.model.spec import MeshSpec, ModelSpec
 from gearcli.simulate.results import (
     REGIME_DOUBLE_SIDED,
     REGIME_NO_IMPACT,
@@ -181,9 +181,15 @@ def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, stat
             for k in range(q.shape[0])]
 
 
+def impact_damped(mesh: MeshSpec) -> bool:
+    """Whether the mesh's damping is the IMPACT STEP ramp (a positive C and no ``damping_ratio``): only then has it
+    a full-damping depth; a viscous mesh (``damping_ratio``, the round-4 default) keeps C and d unused."""
+    return mesh.damping_ratio is None and mesh.damping_Ns_m > 0
+
+
 def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray | None],
                      static_penetration_m: np.ndarray) -> list[Diagnostic]:
-    """Penetration beyond the full-damping depth or 10 % of the module; loss of contact on the loaded
+    """Penetration beyond the full-damping depth (IMPACT-damped meshes) or 10 % of the module; loss of contact on the loaded
     flank in the steady window (a loaded mesh that separates or crosses to its other flank rattles).
 
     The full-damping depth d is read two ways: the seed paper calls it the "maximum allowable
@@ -196,7 +202,7 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
         if pen is None:  # a stage whose connector is no mesh (a belt's span): no contact to lose
             continue
         deepest = float(np.max(np.abs(pen)))
-        if m.damping_Ns_m > 0 and static_penetration_m[k] < m.full_damping_m < deepest:
+        if impact_damped(m) and static_penetration_m[k] < m.full_damping_m < deepest:
             out.append(dg.warning(dg.PENETRATION_BEYOND_DAMPING, f"stage {k + 1}: penetration reached "
                                   f"{deepest * 1e3:.3g} mm, beyond the full-damping depth {m.full_damping_m * 1e3:.3g} mm "
                                   "(the damping saturates there)", stage=k + 1, penetration_m=deepest))

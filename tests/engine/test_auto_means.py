@@ -72,7 +72,13 @@ def test_auto_repeats_the_run_at_the_rtol_that_resolves_its_means(reference):
     static = run.stages[0].static_tangential_N
     true_error = abs(run.stages[0].tangential_N.mean - reference.stages[0].tangential_N.mean) / static
     assert true_error < MEAN_TARGET / 10  # measured 1.4e-6
-    assert run.stages[0].error_estimate.resolved
+    e = run.stages[0].error_estimate
+    # the solver resolves every statistic; the impacts' sharp min and max fall between the output samples, which
+    # the samples' own estimate says apart (statistics_undersampled, docs/numerics.md "The output sampling")
+    assert e.relative["mean"] <= MEAN_TARGET and all(e.relative[q] <= e.target_relative
+                                                     for q in ("min", "max", "std", "spectrum"))
+    assert set(e.unresolved) <= {"min", "max"}
+    assert e.resolved or any(d.code == dg.STATISTICS_UNDERSAMPLED for d in run.diagnostics)
     assert not any(d.code == dg.STATISTICS_UNRESOLVED for d in run.diagnostics)
     said = [d for d in run.diagnostics if d.code == dg.RTOL_TIGHTENED]
     assert len(said) == 1 and said[0].data["rtol"] == 1e-6 and said[0].data["tightened_rtol"] == 1e-7

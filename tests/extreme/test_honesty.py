@@ -45,10 +45,10 @@ def _scene(rel: str):
     return cfg, compute_design(cfg)
 
 
-def _unresolved(sim) -> dict[int, set[str]]:
+def _unresolved(sim, codes=(dg.STATISTICS_UNRESOLVED,)) -> dict[int, set[str]]:
     out: dict[int, set[str]] = {}
     for d in sim.diagnostics:
-        if d.code == dg.STATISTICS_UNRESOLVED:
+        if d.code in codes:
             out.setdefault(d.data["stage"], set()).update(d.data["statistics"])
     return out
 
@@ -70,8 +70,10 @@ def test_every_statistic_resolved_or_warned(rel):
                 assert q in warned.get(s.index, set()), (rel, s.index, q, error)
                 assert s.error_estimate.suggested_rtol is not None
                 assert not s.error_estimate.resolved
-        # the warning names what the JSON says is unresolved, and only that
-        assert set(s.error_estimate.unresolved) == warned.get(s.index, set())
+        # the warnings name what the JSON says is unresolved, and only that: the solver's (statistics_unresolved)
+        # and the output sampling's share of min and max (statistics_undersampled, docs/numerics.md)
+        both = _unresolved(sim, (dg.STATISTICS_UNRESOLVED, dg.STATISTICS_UNDERSAMPLED))
+        assert set(s.error_estimate.unresolved) == both.get(s.index, set())
 
 
 @pytest.mark.parametrize("rel", ("configs/concrete_mixer.toml", "configs/industrial_two_stage.toml",
@@ -80,7 +82,14 @@ def test_converged_run_carries_no_warning(rel):
     cfg, design = _scene(rel)
     sim = run_simulation(cfg, design, rtol=1e-9, want_series=False)
     assert not dg.has(sim.diagnostics, dg.STATISTICS_UNRESOLVED), sim.warnings
-    assert all(s.error_estimate is not None and s.error_estimate.resolved for s in sim.stages)
+    # the solver's share resolved; what is left unresolved is the output sampling's, which a tighter rtol cannot
+    # change (the seed's stage 1 max: docs/numerics.md "The output sampling"), and it is warned
+    sampled = _unresolved(sim, (dg.STATISTICS_UNDERSAMPLED,))
+    for s in sim.stages:
+        e = s.error_estimate
+        assert e is not None and all(e.relative[q] <= e.target_relative for q in ("min", "max", "std", "spectrum"))
+        assert e.relative["mean"] <= e.mean_target_relative
+        assert set(e.unresolved) == sampled.get(s.index, set())
 
 
 def test_suggested_rtol_resolves_the_warning():

@@ -75,9 +75,11 @@ def test_dynamic_ratio_matches_the_design_ratio(seed):
     assert_allclose(seed.input_speed_deg_s, 3600, rtol=1e-12)  # prescribed
     # the design's own warning (26.94 rpm against the 23 rpm target), repeated by simulate, and the window's
     # ringing: the seed has no excitation, so its window std (476 N) is the run-up transient still decaying; and
-    # the design's stiffness_not_iso (its point-contact law is 12 % of ISO's mesh stiffness)
-    assert seed.solver.status == 0 and {d.code for d in seed.diagnostics} == {"design", "window_ringing",
-                                                                              "stiffness_not_iso"}, seed.warnings
+    # the design's stiffness_not_iso (its point-contact law is 12 % of ISO's mesh stiffness); and its 2000 steps
+    # miss stage 1's window max between the samples by 1.3e-3 of the mean (against the same run sampled 16x
+    # finer, docs/numerics.md "The output sampling"): statistics_undersampled
+    assert seed.solver.status == 0 and {d.code for d in seed.diagnostics} == {
+        "design", "window_ringing", "stiffness_not_iso", "statistics_undersampled"}, seed.warnings
 
 
 def test_mean_forces_match_static_theory(seed):

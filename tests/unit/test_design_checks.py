@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import math
 import tomllib
 from pathlib import Path
 
@@ -182,7 +183,29 @@ def test_face_width_ratio_limits():
     wide = checks.face_width_warning(_stage(face_width_mm=400.0))  # 400 / 257.63 = 1.55 > 1.5
     narrow = checks.face_width_warning(_stage(face_width_mm=50.0))  # 50 / 257.63 = 0.19 < 0.2
     assert "b/d1" in wide and "1.55 > 1.5" in wide
-    assert "0.19 < 0.2" in narrow
+    assert "0.194 < 0.2" in narrow
+
+
+def test_face_width_ratio_of_a_speed_increaser_takes_the_smaller_wheel():
+    """ISO 6336's pinion (d1 of b/d1) is the wheel with fewer teeth: a speed increaser's driving 97-tooth wheel
+    (d = 8 · 97 / cos 10° = 788 mm) drives a 23-tooth one (186.8 mm), b = 155 mm: b/d1 = 155 / 186.8 = 0.83, a
+    usual face; the driver's diameter gave 0.197 and a false "very narrow face" warning."""
+    def edit(d):
+        st = d["stage"][0]
+        st.update(normal_module_mm=8, helix_angle_deg=10)
+        st["pinion"].update(teeth=97, face_width_mm=160, profile_shift=0.0)
+        st["gear"].update(teeth=23, face_width_mm=155, profile_shift=0.3)
+    result = design(edit)
+    d_small = 8 * 23 / math.cos(math.radians(10))
+    assert checks.smaller_pitch_diameter_mm(result.stages[0]) == pytest.approx(d_small, rel=1e-12)
+    assert not [w for w in stage_warnings(result, 1) if "b/d1" in w]
+    # the same pair narrowed to 30 mm is narrow on the smaller wheel's diameter: 30 / 186.8 = 0.161 < 0.2
+    def narrow(d):
+        edit(d)
+        d["stage"][0]["pinion"]["face_width_mm"] = 30
+        d["stage"][0]["gear"]["face_width_mm"] = 30
+    ws = [w for w in stage_warnings(design(narrow), 1) if "b/d1" in w]
+    assert len(ws) == 1 and f"= {30 / d_small:.3g} < 0.2" in ws[0] and "smaller wheel" in ws[0], ws
 
 
 def test_pointed_tooth_warning():
@@ -226,3 +249,28 @@ def test_non_finite_stage_values_are_a_design_error_not_an_output():
     with pytest.raises(DesignError) as err:
         _require_finite(Outer(2.0, Inner(float("inf"))), "stage[1]")
     assert err.value.key == "stage[1]" and "inertia_kg_m2" in err.value.message
+
+
+# ------------------------------------------------------------------------------ the motor's rotor
+MOTOR = {"rated_power_kW": 15, "rated_speed_rpm": 1460, "synchronous_speed_rpm": 1500, "breakdown_torque_ratio": 2.8,
+         "locked_rotor_torque_ratio": 2.2}
+
+
+def _motor_drive(inertia: float | None):
+    def edit(d):
+        d["input"] = {"speed_rpm": 1480, "drive": "motor", "motor": dict(MOTOR)}
+        if inertia is not None:
+            d["input"].update(inertia_kg_m2=inertia, coupling_stiffness_Nm_rad=2.0e4)
+    return edit
+
+
+def test_motor_drive_without_rotor_inertia_is_warned_naming_the_keys():
+    result = design(_motor_drive(None))
+    found = [w for w in result.diagnostics if w.data.get("check") == "motor_rotor_inertia"]
+    assert len(found) == 1
+    assert "input.inertia_kg_m2" in found[0].message and "massless" in found[0].message
+
+
+@pytest.mark.parametrize("edit", [_motor_drive(0.12), None], ids=["rotor given", "speed drive"])
+def test_rotor_inertia_warning_only_where_the_rotor_is_missing(edit):
+    assert not [w for w in design(edit).diagnostics if w.data.get("check") == "motor_rotor_inertia"]

@@ -1,0 +1,229 @@
+"""The sampling error of the window's min and max: what the output samples miss of the extremes between them.
+
+The window statistics are taken over the output samples (``simulation.steps``). The solver's check pass
+(:mod:`gearcli.simulate.estimate`) compares two integrations on the same samples, so it sees the solver's
+error only; a peak that falls between two samples is missed by the sampled max whatever the tolerance.
+This module estimates that miss from the samples alone (no integration, a few vector operations per stage).
+
+Estimator. At every sample that is a local extreme (not below either neighbour, for the max), the parabola
+through it and its two neighbours (their own, possibly uneven, spacing) has its vertex at the interpolated
+extreme; the largest vertex over the window is the interpolated max, and its excess over the sampled max is
+the estimate. For a smooth peak the vertex misses the true peak by O(h^3) where the sample misses it by
+O(h^2), so the estimate is the sampling error itself to leading order (any phase of the samples against the
+peak; a pure sinusoid with N samples per period: within a few % from N = 16, tests/unit/test_sampling.py).
+Every peak of the window counts, not only the sampled max's: a neighbouring period's peak sampled at a worse
+phase may be the higher one.
+
+Bound. A concave peak between a sample and its neighbour exceeds the sample by at most the sample's rise over
+its other neighbour (the slope at the sample is below that secant's), so an interpolated excess beyond the
+larger of the two differences to the neighbours is cut to it: the parabola overshoots only where three
+points straddle a jump or a kink (a stiffness step of a time-varying mesh, an impact), and there the
+cut keeps the estimate at the size of the step between samples, the most the samples can have missed of a
+peak that is itself piecewise smooth. Zero is a floor: a mesh force is never tensile (the contact law clamps
+it), so a window whose sampled min is 0 (contact lost at a sample) has the true min 0, and no interpolated
+extreme crosses zero (configs/backlash_oscillator.toml: the parabola through a contact-loss sample put the min
+2.4e-3 of the mean below zero). A window edge has one neighbour: the edge sample is exact at the
+window's end, and a peak between it and its neighbour is interpolated by the parabola through the first three
+samples, counted only where its vertex lies between them. A constant window (an equilibrium) has none.
+
+Periodic windows (``steady = "periodic"``: whole periods, uniformly sampled without their closing sample) wrap
+around: the first sample's left neighbour is the last one, a period earlier.
+
+Safety. The estimate is :data:`SAFETY` x the interpolated excess. On a smooth peak the excess is the error
+(a sinusoid: 0.97-1.0x from 16 samples per period), so the estimate is twice it; peaks that are not smooth on the
+sample grid are underestimated by the parabola: the kinked top of a time-varying mesh's force (its contact length
+is piecewise linear in the mesh phase) 1.2-4.5x on configs/mixer_time_varying_backlash.toml and
+configs/concrete_mixer_te.toml (benchmarks/bench_sampling.py, against the same run sampled 16x finer).
+Not seen at all: vibration faster than the samples resolve (a few samples per period or fewer: it aliases to
+a slower, smooth-looking signal). configs/conveyor.toml's stage 2 carries a ~1.6 kHz vibration sampled at 2 kHz:
+its min is 5.2e-3 off, estimated 5e-5. ``gearcli report`` warns (``sampling``) where a natural frequency lies
+above the samples' Nyquist frequency.
+
+Verdict and suggestion. Where a check pass ran, the estimate is added to the solver's for min and max
+(:func:`merged`); the samples leave a statistic unresolved when the sum exceeds :data:`TARGET` and the sampling is
+a cause of it (:func:`_undersampled`). The error of a smooth peak falls as h^2, so ``suggested_steps`` scales the
+samples by the square root of the error over half of what the solver leaves of the target, with a 1.25 margin,
+rounded up to two significant figures and capped by the schema's ``simulation.steps`` maximum (None beyond it).
+A kinked top converges more slowly (h^1.1 measured on configs/backlash_oscillator.toml): the run at the
+suggestion may suggest once more.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from gearcli import diagnostics as dg
+from gearcli.config.schema import MAX_STEPS
+from gearcli.diagnostics import Diagnostic
+from gearcli.simulate.estimate import TARGET  # of the stage's mean force: the solver's and the samples' together
+from gearcli.simulate.results import SamplingError, StatisticsError
+
+MARGIN = 1.25  # suggested_steps: the h^2 extrapolation's samples x this
+SAFETY = 2.0  # the estimate is this x the interpolated excess (module doc, "Safety")
+EXTREMES = ("min", "max")
+
+
+def _vertex_excess(xl: np.ndarray, xc: np.ndarray, xr: np.ndarray, sl: np.ndarray, sr: np.ndarray) -> np.ndarray:
+    """Excess of the parabola's vertex over the centre sample, through (-sl, xl), (0, xc), (sr, xr) (sl, sr > 0,
+    xc not below xl nor xr), cut to the larger difference to a neighbour (module doc, "Bound")."""
+    u = xc - xl  # >= 0
+    v = xc - xr  # >= 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = -(u / sl + v / sr) / (sl + sr)  # curvature/2 (<= 0)
+        b = u / sl + a * sl  # slope at the centre
+        excess = np.where(a < 0, -b * b / (4.0 * a), 0.0)
+    excess = np.where(np.isfinite(excess), excess, 0.0)
+    return np.minimum(excess, np.maximum(u, v))
+
+
+def _edge_excess(t: np.ndarray, x: np.ndarray, at_end: bool) -> float:
+    """A peak between the edge sample and its neighbour: the parabola through the three edge samples, counted
+    where its vertex lies between the edge and its neighbour."""
+    if at_end:
+        t, x = -t[::-1], x[::-1]
+    s1, s2 = t[1] - t[0], t[2] - t[0]
+    if s1 <= 0 or s2 <= s1:
+        return 0.0
+    d1, d2 = x[1] - x[0], x[2] - x[0]
+    a = (d2 / s2 - d1 / s1) / (s2 - s1)
+    b = d1 / s1 - a * s1
+    if a >= 0:
+        return 0.0
+    s_star = -b / (2.0 * a)
+    if not 0.0 < s_star < s1:
+        return 0.0
+    value = x[0] + b * s_star + a * s_star**2
+    return float(min(max(0.0, value - max(x[0], x[1])), abs(d1)))
+
+
+def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_floor: bool = False,
+               dt: np.ndarray | None = None) -> float:
+    """How far the interpolated max of ``x`` over the window ``t`` lies above its sampled max (>= 0; module doc);
+    ``zero_floor``: not past zero from a sampled max at or below it (a force that the contact law clamps there);
+    ``dt``: ``np.diff(t)`` when the caller has it."""
+    n = x.size
+    if n < 3:
+        return 0.0
+    top = float(x.max())
+    if top == float(x.min()):
+        return 0.0
+    dt = np.diff(t) if dt is None else dt
+    d = np.diff(x)
+    if periodic:  # uniform samples: the last sample is a step before the next period's first
+        h_wrap = (t[-1] - t[0]) / (n - 1)
+        wrap = x[0] - x[-1]
+        rise, fall = np.concatenate(([wrap], d)), np.concatenate((d, [wrap]))  # into and out of each sample
+        sl, sr, xc = np.concatenate(([h_wrap], dt)), np.concatenate((dt, [h_wrap])), x
+    else:
+        rise, fall, sl, sr, xc = d[:-1], d[1:], dt[:-1], dt[1:], x[1:-1]
+    # a local max that could beat the sampled max: its excess is at most the larger step to a neighbour
+    peak = np.flatnonzero((rise >= 0) & (fall <= 0) & (xc + np.maximum(rise, -fall) > top))
+    best = top
+    if peak.size:
+        xp = xc[peak]
+        best = max(best, float(np.max(xp + _vertex_excess(xp - rise[peak], xp, xp + fall[peak], sl[peak],
+                                                          sr[peak]))))
+    if not periodic:
+        for at_end in (False, True):
+            j = n - 1 if at_end else 0
+            if x[j] >= x[j - 1 if at_end else 1]:
+                edge = _edge_excess(t[-3:] if at_end else t[:3], x[-3:] if at_end else x[:3], at_end)
+                best = max(best, float(x[j]) + edge)
+    if zero_floor and top <= 0.0:
+        best = min(best, 0.0)
+    return max(0.0, best - top)
+
+
+def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False) -> tuple[float, float]:
+    """(min, max) sampling errors of the force ``x`` over the window ``t`` (N when ``x`` is in N; module doc): neither
+    interpolated extreme crosses zero, where the contact law clamps the force (module doc, "Bound")."""
+    dt = np.diff(t)
+    return (max_excess(t, -x, periodic=periodic, zero_floor=True, dt=dt),
+            max_excess(t, x, periodic=periodic, zero_floor=True, dt=dt))
+
+
+def suggested_steps(steps: int, relative_error: float, goal: float, cap: int = MAX_STEPS) -> int | None:
+    """``simulation.steps`` that brings a sampling error of ``relative_error`` at ``steps`` below ``goal``
+    (error ∝ h^2, times :data:`MARGIN`), rounded up to two significant figures; None when ``cap`` cannot."""
+    if relative_error <= goal:
+        return steps
+    wanted = steps * math.sqrt(relative_error / goal) * MARGIN
+    digits = 10.0 ** max(0, math.floor(math.log10(wanted)) - 1)
+    n = int(math.ceil(wanted / digits) * digits)
+    return n if n <= cap else None
+
+
+def reference(mean: float, std: float, static_N: float) -> float:
+    """The force the target refers to: |mean F_t|, the static |F_t| when the mean is 0 (as the solver's estimate)."""
+    return abs(mean) or abs(static_N) or math.sqrt(mean**2 + std**2)
+
+
+def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
+                   solver: StatisticsError | None = None) -> SamplingError:
+    """The sampling error of a stage's window min and max of F_t (``t``, ``ft``: the window's samples), judged
+    with the solver's estimate ``solver`` where a check pass ran (their sum against :data:`TARGET`).
+    ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps)."""
+    lo, hi = extremes_error(t, ft, periodic=periodic)
+    if solver is not None:
+        ref = solver.reference_N
+    else:
+        mean = float(ft.mean())
+        ref = reference(mean, float(ft.std()) if mean == 0 and static_N == 0 else 0.0, static_N)
+    err = {"min": SAFETY * lo, "max": SAFETY * hi}
+    rel = {q: (v / ref if ref > 0 else (0.0 if v == 0 else math.inf)) for q, v in err.items()}
+    bad = [q for q in EXTREMES if _undersampled(rel[q], solver.relative[q] if solver is not None else 0.0)]
+    suggestion = None
+    if bad and all(math.isfinite(rel[q]) for q in bad):
+        goals = [0.5 * (TARGET - solver.relative[q] if solver is not None and solver.relative[q] < TARGET
+                        else TARGET) for q in bad]
+        wanted = [suggested_steps(steps, rel[q], g) for q, g in zip(bad, goals, strict=True)]
+        suggestion = None if any(w is None for w in wanted) else max(w for w in wanted if w is not None)
+    return SamplingError(min_N=err["min"], max_N=err["max"], relative=rel, reference_N=ref, target_relative=TARGET,
+                         samples=int(t.size), resolved=not bad, suggested_steps=suggestion, steps_cap=MAX_STEPS)
+
+
+def _undersampled(sampling: float, solver: float) -> bool:
+    """The samples leave the statistic unresolved: the sum beyond the target, and the sampling a cause of it (the
+    solver's part within the target, or the sampling's own beyond it)."""
+    return sampling > 0 and sampling + solver > TARGET and (solver <= TARGET or sampling > TARGET)
+
+
+def merged(e: StatisticsError, s: SamplingError) -> StatisticsError:
+    """The solver's estimate with the sampling's share of min and max added (new keys; ``unresolved`` and
+    ``resolved`` then cover both; the solver's own keys keep their meaning)."""
+    total = {q: e.relative[q] + s.relative[q] for q in EXTREMES}
+    over = {q for q in EXTREMES if total[q] > TARGET}
+    unresolved = tuple(q for q in ("mean", "min", "max", "std", "spectrum") if q in e.unresolved or q in over)
+    return replace(e, sampling_N={"min": s.min_N, "max": s.max_N}, sampling_relative=dict(s.relative),
+                   total_relative=total, suggested_steps=s.suggested_steps if not s.resolved else None,
+                   unresolved=unresolved, resolved=not unresolved)
+
+
+def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, StatisticsError]) -> list[Diagnostic]:
+    """``statistics_undersampled``, one per stage (1-based index, its sampling error) whose window min or max
+    the output samples leave unresolved."""
+    out = []
+    for stage, s in stages:
+        if s.resolved:
+            continue
+        e = solver.get(stage)
+        bad = [q for q in EXTREMES if _undersampled(s.relative[q], e.relative[q] if e is not None else 0.0)]
+        worst = max(bad, key=lambda q: s.relative[q])
+        absolute = s.min_N if worst == "min" else s.max_N
+        with_solver = "" if e is None else f", the solver's estimate {e.relative[worst]:.2g} besides"
+        if s.suggested_steps is not None:
+            fix = f"--set simulation.steps={s.suggested_steps} would resolve it"
+        else:
+            fix = (f"the schema's maximum simulation.steps = {s.steps_cap} cannot resolve it: sample a shorter run "
+                   "(simulation.duration_s) or fewer periods")
+        out.append(dg.warning(
+            dg.STATISTICS_UNDERSAMPLED,
+            f"stage {stage}: F_t {' and '.join(bad)} not resolved by the output samples: the peaks between the "
+            f"{s.samples} window samples are estimated up to {absolute:.3g} N beyond them ({s.relative[worst]:.2g} "
+            f"of the mean {s.reference_N:.4g} N{with_solver}, target {TARGET:g}); {fix}",
+            stage=stage, statistics=bad, estimated_error_N=float(absolute), relative_error=float(s.relative[worst]),
+            steps=s.suggested_steps, steps_cap=s.steps_cap))
+    return out

@@ -1,0 +1,47 @@
+"""A start whose torque at standstill is below the load turns the train backwards (`motor_rolls_back`).
+
+configs/motor_soft_start.toml starts a 15 kW motor at 50 % voltage against its full constant load: the soft
+start's torque at standstill is u0² of the locked-rotor torque, 56.4 N m, below the 95.8 N m the load puts on the
+motor, so the train runs backwards (to about -700 rpm) for a third of the run until the voltage ramp lifts the
+torque. The run said nothing of it. The warning's numbers by hand from the nameplate; a start strong enough to
+break away (u0 = 0.8) rolls back no more than a coupling's swing and is not warned."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+CONFIG = Path(__file__).resolve().parents[2] / "configs" / "motor_soft_start.toml"
+FAST = ["--set", "simulation.error_estimate=false", "--format", "json", "-q"]
+
+
+def _run(*sets: str) -> dict:
+    res = CliRunner().invoke(cli, ["simulate", str(CONFIG), *FAST, *[a for s in sets for a in ("--set", s)]])
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout)
+
+
+def test_a_soft_start_below_the_load_at_standstill_is_warned_with_its_torques():
+    doc = _run()
+    found = [w for w in doc["warnings"] if w["code"] == "motor_rolls_back"]
+    assert len(found) == 1, doc["warnings"]
+    w = found[0]
+    # by hand, the nameplate: T_N = P / w_N = 15 kW / (1460 rpm); locked rotor 2.3 T_N; torque ∝ voltage²
+    t_rated = 15e3 / (1460 * 2 * math.pi / 60)
+    assert_allclose(w["start_torque_Nm"], 0.5**2 * 2.3 * t_rated, rtol=1e-9)
+    # the 1300 N m load reflected to the motor: / (75/19 · 68/19) / 0.98² (power flows forward through both stages)
+    assert_allclose(w["load_torque_Nm"], 1300 / (75 / 19 * 68 / 19) / 0.98**2, rtol=1e-9)
+    # the net torque at standstill is negative, so the train must turn backwards: by more than 1 % of 1500 rpm
+    assert w["reverse_speed_rpm"] < -15.0
+
+
+def test_a_start_that_breaks_away_is_not_warned():
+    # u0 = 0.8: 0.64 · 2.3 T_N = 144 N m > 95.8 N m at standstill
+    doc = _run("input.initial_voltage_fraction=0.8")
+    assert not [w for w in doc["warnings"] if w["code"] == "motor_rolls_back"], doc["warnings"]
