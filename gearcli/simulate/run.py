@@ -484,6 +484,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     diags += stat_diags or []
     diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
                                {e.stage: e for e in solver_errors if e is not None})
+    if not periodic:  # a periodic window has its own grid: 64 samples a period of its fastest excitation
+        diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
+                                              steps or s.time_s.size - 1)
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],

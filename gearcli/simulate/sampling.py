@@ -39,6 +39,14 @@ a slower, smooth-looking signal). configs/conveyor.toml's stage 2 carries a ~1.6
 its min is 5.2e-3 off, estimated 5e-5. ``gearcli report`` warns (``sampling``) where a natural frequency lies
 above the samples' Nyquist frequency.
 
+Aliased excitation. The estimate needs the peaks to be sampled at all: an excitation (a mesh's transmission
+error or stiffness cycle, a torque ripple, a load fluctuation: :func:`gearcli.simulate.periodic.excitation_periods`,
+their fundamentals) with fewer than :data:`MIN_PER_PERIOD` window samples a period is aliased (below 2 a period) or
+nearly so, and its response looks smooth to the samples. Such a run is warned ``excitation_undersampled``, naming
+the excitation, its frequency, the samples a period and the ``simulation.steps`` that gives
+:data:`GOOD_PER_PERIOD` (configs/conveyor_motor.toml: the stage 1 mesh at 2.1 samples a period). A
+``steady = "periodic"`` window is sampled at 64 a period of its fastest excitation and needs no such check.
+
 Verdict and suggestion. Where a check pass ran, the estimate is added to the solver's for min and max
 (:func:`merged`); the samples leave a statistic unresolved when the sum exceeds :data:`TARGET` and the sampling is
 a cause of it (:func:`_undersampled`). The error of a smooth peak falls as h^2, so ``suggested_steps`` scales the
@@ -59,11 +67,14 @@ from gearcli import diagnostics as dg
 from gearcli.config.schema import MAX_STEPS
 from gearcli.diagnostics import Diagnostic
 from gearcli.simulate.estimate import TARGET  # of the stage's mean force: the solver's and the samples' together
+from gearcli.simulate.periodic import excitation_periods
 from gearcli.simulate.results import SamplingError, StatisticsError
 
 MARGIN = 1.25  # suggested_steps: the h^2 extrapolation's samples x this
 SAFETY = 2.0  # the estimate is this x the interpolated excess (module doc, "Safety")
 EXTREMES = ("min", "max")
+MIN_PER_PERIOD = 4.0  # output samples a period of an excitation, at least (module doc, "Aliased excitation")
+GOOD_PER_PERIOD = 16.0  # what the suggestion aims at (a sinusoid's sampled peak then misses by 2 %)
 
 
 def _vertex_excess(xl: np.ndarray, xc: np.ndarray, xr: np.ndarray, sl: np.ndarray, sr: np.ndarray) -> np.ndarray:
@@ -226,4 +237,36 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
             f"of the mean {s.reference_N:.4g} N{with_solver}, target {TARGET:g}); {fix}",
             stage=stage, statistics=bad, estimated_error_N=float(absolute), relative_error=float(s.relative[worst]),
             steps=s.suggested_steps, steps_cap=s.steps_cap))
+    return out
+
+
+def excitation_warnings(layout, t: np.ndarray, steps: int) -> list[Diagnostic]:
+    """``excitation_undersampled``, one per excitation of the scene whose period holds fewer than
+    :data:`MIN_PER_PERIOD` of the window's samples ``t`` (module doc, "Aliased excitation"); ``steps``: the file's
+    ``simulation.steps`` that sampled them (the suggestion scales it)."""
+    if t.size < 2:
+        return []
+    h = float(t[-1] - t[0]) / (t.size - 1)  # the window's samples are uniform
+    if not h > 0.0:
+        return []
+    out = []
+    for ex in excitation_periods(layout):
+        per = ex.period_s / h
+        if not (ex.period_s > 0.0 and per < MIN_PER_PERIOD):
+            continue
+        wanted = steps * GOOD_PER_PERIOD / per
+        digits = 10.0 ** max(0, math.floor(math.log10(wanted)) - 1)
+        n = int(math.ceil(wanted / digits * (1.0 - 1e-9)) * digits)  # up to two figures (not past round-off)
+        fix = (f"--set simulation.steps={n} samples it {GOOD_PER_PERIOD:g} times a period" if n <= MAX_STEPS else
+               f"the schema's maximum simulation.steps = {MAX_STEPS} cannot sample it: a shorter run "
+               "(simulation.duration_s)")
+        aliased = "; below 2 it is aliased" if per < 2.0 else ""
+        out.append(dg.warning(
+            dg.EXCITATION_UNDERSAMPLED,
+            f"the {ex.label} excitation ({1.0 / ex.period_s:.4g} Hz) has {per:.2g} output samples a period (fewer "
+            f"than {MIN_PER_PERIOD:g}{aliased}): the series show its response as a slower, smooth signal, and the "
+            "window's min, max, std and spectrum miss what lies between the samples, which the sampling estimate "
+            f"cannot see; {fix}",
+            excitation=ex.label, frequency_Hz=1.0 / ex.period_s, samples_per_period=per,
+            steps=n if n <= MAX_STEPS else None))
     return out

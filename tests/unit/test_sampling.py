@@ -183,3 +183,25 @@ def test_periodic_run_has_its_sampling_estimate_without_a_check_pass() -> None:
             # tiny errors (1e-6 of the mean): the estimate within a factor 4 of the truth, or both below 1e-6
             assert est <= 4 * abs(tr) + 1e-6 * e.reference_N and abs(tr) <= 4 * est + 1e-6 * e.reference_N
         assert coarse.series[ch].size > 0
+
+
+def _spur_te(steps: int):
+    from gearcli import api
+    from gearcli.simulate import run_simulation
+
+    loaded = api.load(str(ROOT / "configs" / "spur_oscillator_te.toml"), [f"simulation.steps={steps}"])
+    return run_simulation(loaded.design, api.design(loaded), error_estimate=False)
+
+
+def test_an_excitation_sampled_fewer_than_four_times_a_period_is_warned_with_the_steps_that_sample_it() -> None:
+    # configs/spur_oscillator_te.toml: a 25-tooth pinion at 1500 rpm, its TE at the mesh frequency 25 x 1500 / 60 =
+    # 625 Hz; 0.2 s sampled 200 times: h = 1 ms, 1.6 ms / 1 ms = 1.6 samples a mesh period (aliased)
+    f_mesh, h = 25 * 1500 / 60, 0.2 / 200
+    run = _spur_te(200)
+    (w,) = [d for d in run.diagnostics if d.code == "excitation_undersampled"]
+    assert_allclose(w.data["frequency_Hz"], f_mesh, rtol=1e-9)
+    assert_allclose(w.data["samples_per_period"], 1.0 / (f_mesh * h), rtol=1e-6)
+    # 16 samples a period: 200 x 16 / 1.6 = 2000 steps
+    assert w.data["steps"] == 2000 and "--set simulation.steps=2000" in w.message and "aliased" in w.message
+    # the file's own 8000 steps: 64 a period, no warning
+    assert not [d for d in _spur_te(8000).diagnostics if d.code == "excitation_undersampled"]
