@@ -20,7 +20,7 @@ from typing import Protocol
 from gearcli import __version__, engine
 from gearcli.config import DesignFile, LoadedDesign
 from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
-from gearcli.config.load import integer_keys
+from gearcli.config.load import integer_keys, list_keys
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
@@ -117,6 +117,10 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
     whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
     if whole:
         d = next(d for d in spec.randoms if d.key == whole[0])
+        if list_keys(scene.raw, scene.source, scene.sets, [d.key]):
+            raise SweepUsageError(f"{d.key} is a list, {d.kind}(...) draws one number: draw its entries by index, "
+                                  f"--random '{d.key}.0={d.kind}(...)' (the first; .1 the second ...; in a list of "
+                                  f"tables the entry's key: {d.key}.0.KEY)", source="--random")
         raise SweepUsageError(f"{d.key} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
                               "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")
