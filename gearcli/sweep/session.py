@@ -27,6 +27,7 @@ from gearcli.results import DesignResult
 from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
+from gearcli.sweep.load_law import load_law_of
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
 from gearcli.sweep.spec import SPEED_KEYS, SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
@@ -91,7 +92,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         stored, previous = read_previous(output)
         previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
-    scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
+    scene = Scene(raw, loaded.source, tuple(sets), len(design.stages), load_law_of(loaded.design))
     check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
     check_keys(scene, spec.branches()[0][0])
     _no_continuous_integers(spec, scene)
