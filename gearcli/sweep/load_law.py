@@ -7,7 +7,8 @@ load key is therefore set to T_0 (n / n_0)^p (a power key to P_0 (n / n_0)^(p + 
 fans and centrifugal pumps (torque ∝ n², power ∝ n³ at one density: the conversion of a fan's data to another
 speed, ISO 13348; of a pump's test results, ISO 9906), T_0 the file's value or the point's own when the sweep
 varies it too. The speed ratio is the input's, at the file's gear ratios. A table load (``torque_speed``) is in
-absolute speeds and needs nothing; a constant load (p = 0) neither.
+absolute speeds and needs nothing; a constant torque key (p = 0) neither, but a constant load given by its power
+(``power_kW``, converted to a torque at each point's own speed) is P_0 n / n_0: the same torque at every speed.
 """
 
 from __future__ import annotations
@@ -32,12 +33,11 @@ class LoadLaw(NamedTuple):
 
 
 def load_law_of(cfg: DesignFile) -> LoadLaw | None:
-    """The file's speed-dependent load, or None (a constant load, a table)."""
+    """The file's speed-dependent load (or a constant one given by its power), or None (a constant torque, a
+    table)."""
     load = cfg.load
-    if load.torque_speed is not None or load.speed_exponent == 0:
-        return None
     key = next((k for k in LOAD_KEYS if getattr(load, k) is not None), None)
-    if key is None:
+    if load.torque_speed is not None or key is None or (load.speed_exponent == 0 and key != "power_kW"):
         return None
     return LoadLaw(load.speed_exponent, cfg.input.speed_rad_s_value, key, float(getattr(load, key)))
 

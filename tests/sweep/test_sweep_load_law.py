@@ -68,7 +68,8 @@ def test_a_linear_load_a_power_key_and_a_varied_torque_scale_alike(tmp_path):
                         200.0 * (float(r["input.speed_rpm"]) / 1200.0) ** 2 / R_GEAR, rtol=1e-5)
 
 
-def test_a_constant_load_is_not_touched(tmp_path):
-    rows = _sweep(tmp_path, "torque_Nm = 200", 0, "--vary", "input.speed_rpm=600,1800")
-    for r in rows:
-        assert_allclose(float(r["stage1_tangential_N_mean"]), 200.0 / R_GEAR, rtol=1e-5)
+def test_a_constant_load_is_the_same_torque_at_every_speed_given_by_torque_or_by_power(tmp_path):
+    for load in ("torque_Nm = 200", "power_kW = 12.566370614359172"):  # 200 N·m at the file's 600 rpm output
+        rows = _sweep(tmp_path, load, 0, "--vary", "input.speed_rpm=600,1800")
+        for r in rows:
+            assert_allclose(float(r["stage1_tangential_N_mean"]), 200.0 / R_GEAR, rtol=1e-5)
