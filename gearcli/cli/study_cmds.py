@@ -185,7 +185,9 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
         rows = api.run_sweep(session, progress.advance)
     failed = sum(r.get("status") != "ok" for r in rows)
     if failed or not is_quiet():  # -q: silent unless points failed (an error is still said)
-        click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else ""),
+        drawn = session.spec.seed if randoms and seed is None else None  # a drawn seed: said, or lost on stdout
+        click.echo(f"sweep: {len(rows)} points, {failed} failed" + (f", written to {visible(output)}" if output else "")
+                   + (f"; samples drawn with --seed {drawn} (give it to draw them again)" if drawn is not None else ""),
                    err=True)
     if plots_dir:
         _write_sweep_plots(session, rows, plots_dir)

@@ -111,6 +111,20 @@ def integer_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[st
     return [k for k in keys if not _takes_real(_overrides.leaf_type(data, k))]
 
 
+def list_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[str]:
+    """Those of ``keys`` (``--set`` key paths) that name a whole list (``transmission_error_um``, a list of
+    harmonics), whose entries ``KEY.0``, ``KEY.1`` ... are the numbers."""
+    data = copy.deepcopy(_parsed(raw, source))
+    _overrides.apply_all(data, sets)
+    return [k for k in keys if _is_list(_overrides.leaf_type(data, k))]
+
+
+def _is_list(tp: object) -> bool:
+    if get_origin(tp) in (Union, types.UnionType):
+        return any(_is_list(a) for a in get_args(tp) if a is not type(None))
+    return get_origin(tp) in (list, tuple) or tp in (list, tuple)
+
+
 def _takes_real(tp: object) -> bool:
     if tp is float:
         return True

@@ -42,6 +42,7 @@ OPPOSITE = {"left": "right", "right": "left"}
 MIN_CONTACT_RATIO = 1.2
 FACE_RATIO_RANGE = (0.2, 1.5)  # b / d1
 MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
+TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a fan law: 0.5 % in speed)
 
 
 # ------------------------------------------------------------------------------------------ errors
@@ -69,9 +70,11 @@ def check_hands(stage: Stage, k: int) -> None:
 
 
 # ---------------------------------------------------------------------------------------- warnings
-def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float) -> tuple[Diagnostic, ...]:
+def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float,
+                       required_input_Nm: float, input_speed_rpm: float) -> tuple[Diagnostic, ...]:
     """The design's warnings as diagnostics (code ``design``; ``check`` names the check, with its stage,
-    member and numbers): train-level first, then stage by stage."""
+    member and numbers): train-level first, then stage by stage. ``required_input_Nm`` is the input torque the
+    load needs at the nominal ``input_speed_rpm`` (for a torque drive's balance)."""
     found: list[tuple[str | None, JsonObject]] = []
     if cfg.target is not None:
         found.append((target_speed_warning(cfg, output_speed_rpm),
@@ -79,6 +82,9 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                        "target_rpm": cfg.target.output_speed_rpm_value,
                        "tolerance_percent": cfg.target.tolerance_percent}))
     found.append((massless_rotor_warning(cfg), {"check": "motor_rotor_inertia"}))
+    found.append((torque_drive_warning(cfg, required_input_Nm, input_speed_rpm),
+                  {"check": "torque_drive_balance", "input_torque_Nm": cfg.input.torque_Nm_value,
+                   "required_input_torque_Nm": required_input_Nm}))
     for k, stage in gear_pairs(stages):
         stage_cfg = cfg.pair(k)
         at: JsonObject = {"stage": stage.index}
@@ -122,6 +128,36 @@ def massless_rotor_warning(cfg: DesignFile) -> str | None:
     return ('input: drive = "motor" without input.inertia_kg_m2: the motor\'s rotor is taken as massless, so a '
             "start's acceleration, its time and its peak tooth loads follow the input pinion's inertia alone; give "
             "the rotor's inertia (the motor's catalogue) as input.inertia_kg_m2 with input.coupling_stiffness_Nm_rad")
+
+
+def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_rpm: float) -> str | None:
+    """A torque drive whose torque differs from the one the load needs at the nominal speed (the design's input
+    torque: load / ratio, with the stage efficiencies) by more than :data:`TORQUE_BALANCE_TOLERANCE`: the train does
+    not run at the nominal speed. A load torque T_L (n / n_0)^p (``speed_exponent`` p = 1, 2) balances the drive at
+    n* = n_0 (T_in / T_req)^(1/p) (the steady speed the run settles to); a constant load (p = 0) or a table never
+    does: the train accelerates (decelerates, reverses) for the whole run and every window statistic drifts."""
+    t_in = cfg.input.torque_Nm_value
+    if cfg.input.drive != "torque" or t_in is None:
+        return None
+    if required_input_Nm != 0.0 and abs(t_in / required_input_Nm - 1.0) <= TORQUE_BALANCE_TOLERANCE:
+        return None
+    if t_in == required_input_Nm:
+        return None
+    excess = t_in - required_input_Nm
+    lead = (f'input: drive = "torque" gives {t_in:.5g} N·m, the load needs {required_input_Nm:.5g} N·m at the input '
+            f"at its nominal {input_speed_rpm:.5g} rpm (the load torque over the ratio, with the stage efficiencies)")
+    p = cfg.load.speed_exponent if cfg.load.torque_speed is None else 0
+    ratio = t_in / required_input_Nm if required_input_Nm != 0.0 else 0.0
+    if p > 0 and ratio > 0.0:
+        settle = input_speed_rpm * ratio ** (1.0 / p)
+        fate = (f"; the load's torque grows with speed^{p}, so the train settles at {settle:.5g} rpm "
+                f"(n_0 (T_in / T_req)^(1/{p})), not at {input_speed_rpm:.5g} rpm")
+    else:
+        way = "accelerates" if excess * (required_input_Nm or 1.0) > 0.0 else "decelerates (and reverses)"
+        fate = (f"; nothing balances the difference ({excess:+.4g} N·m), so the train {way} for the whole run and "
+                "its speeds and window statistics drift")
+    return (lead + fate + f": set the drive's torque to {required_input_Nm:.5g} N·m for the nominal speed"
+            + ("" if p > 0 else " (or give the load a speed law, load.speed_exponent)"))
 
 
 def spur_hand_warning(index: int, stage_cfg: Stage) -> str | None:

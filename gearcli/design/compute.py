@@ -82,7 +82,8 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            f"drive = \"motor\"; drive = \"{cfg.input.drive}\" ignores "
                            f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
         if ignored else ()
-    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out)), *own, *pins, *jammed,
+    diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out), kin.shaft_torque_Nmm(0) / 1000.0,
+                                       speed_rpm(kin.shaft_speeds_rad_s[0])), *own, *pins, *jammed,
                    *stiffness_diagnostics(stages), *rating_diagnostics, *_bearing_diagnostics(cfg, bearings),
                    *drive_notes)
     return DesignResult(

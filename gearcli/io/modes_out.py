@@ -56,15 +56,18 @@ def modes_dict(analyses: list[ModalAnalysis], warnings: list[JsonObject] | None 
 
 
 def modes_csv(analyses: list[ModalAnalysis]) -> str:
+    """One row per mode and boundary: the JSON's scalars (frequency, modal damping ratio, dominant element), the
+    shape per body, the strain-energy share per element and the crossings as text."""
     first = analyses[0]
-    header = (["boundary", "mode", "frequency_Hz", "dominant_element"]
+    header = (["boundary", "mode", "frequency_Hz", "damping_ratio", "dominant_element"]
               + [f"shape_{b.replace(' ', '_')}" for b in first.bodies]
               + [f"energy_share_{c.replace(' ', '_')}" for c in first.connectors] + ["crossings_rpm"])
     rows: list[list[JsonScalar]] = []
     for a in analyses:
         for m in a.modes:
             cross = "; ".join(f"{c.excitation} @ {c.input_speed_rpm:.5g}" for c in m.crossings)
-            rows.append([a.boundary, m.number, m.frequency_Hz, m.dominant, *m.shape, *m.energy_share, cross])
+            rows.append([a.boundary, m.number, m.frequency_Hz, m.damping_ratio, m.dominant, *m.shape, *m.energy_share,
+                         cross])
     return csv_text(header, rows)
 
 

@@ -67,7 +67,12 @@ def comparison_section(r: Report) -> Section:
     return Section("Theory against simulation", ("stage", "quantity", "theory (static)", "simulated (mean)",
                                                  "error [%]"), tuple(rows), "llrrr",
                    (f"simulated: mean over the steady window {w0:.4g}–{w1:.4g} s; error = (simulated − theory)"
-                    " / |theory|",))
+                    " / |theory|" + ("; a planetary stage's forces: the mean over its planets' sun meshes (each planet's"
+                                     " own: gearcli simulate, JSON planets)" if _has_planets(r) else ""),))
+
+
+def _has_planets(r: Report) -> bool:
+    return any(getattr(s, "planets", ()) for s in r.simulation.stages)
 
 
 def fluctuation_section(r: Report) -> Section:

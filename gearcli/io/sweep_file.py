@@ -213,16 +213,42 @@ class JsonFile(RowSink):
 
 
 class CsvStdout(RowSink):
-    """CSV to stdout: the header, then each row as it arrives (no identity line: nothing to resume)."""
+    """CSV to stdout: the header, then the rows in point order as they arrive (no identity line: nothing to
+    resume). Workers finish points out of order; a row waits for the points before it (``_index``, 0, 1, ...: a
+    sweep to stdout runs every point), so a pipe reads the same rows in the same order as ``-o FILE`` holds them.
+    An interruption writes the rows done, in point order."""
 
     def __init__(self, columns: Sequence[str], identity: JsonObject, stream: TextIO | None = None):
         super().__init__(columns, identity)
         self.stream = stream or sys.stdout
+        self._next = 0
+        self._held: dict[int, Row] = {}
         write_stream(self.stream, _csv_line(self.columns))
+
+    def _write_row(self, row: Row) -> None:
+        write_stream(self.stream, _csv_line([row.get(c) for c in self.columns]))
 
     def add(self, row: Row) -> None:
         super().add(row)
-        write_stream(self.stream, _csv_line([row.get(c) for c in self.columns]))
+        index = row.get("_index")
+        if not isinstance(index, int):
+            self._write_row(row)
+            return
+        self._held[index] = row
+        while self._next in self._held:
+            self._write_row(self._held.pop(self._next))
+            self._next += 1
+
+    def _flush(self) -> None:
+        for index in sorted(self._held):
+            self._write_row(self._held.pop(index))
+
+    def close(self) -> None:
+        self._flush()
+
+    def finish(self, ordered: Sequence[Row]) -> None:
+        super().finish(ordered)
+        self._flush()
 
 
 class JsonStdout(RowSink):

@@ -68,14 +68,25 @@ def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[Compar
         out_speed, sign = kind.output_speed_deg_s(st), 1.0  # the output member's speed
         if kind.model_signs_forces:  # F_t with the flank sign the model gives it
             sign = -1.0 if (dyn.static_tangential_N < 0) != (static.tangential < 0) else 1.0
+        share = _planets_mean_over_planet_1(dyn)
         rows += [
             _row(k, "ratio", st.ratio, ratio_sim),
             _row(k, "output_speed_deg_s", out_speed, gear_speed),
-            _row(k, "tangential_N", sign * static.tangential, dyn.tangential_N.mean),
-            _row(k, "radial_N", sign * static.radial, dyn.radial_N.mean),
-            _row(k, "axial_N", sign * static.axial, dyn.axial_N.mean),
+            _row(k, "tangential_N", sign * static.tangential, share * dyn.tangential_N.mean),
+            _row(k, "radial_N", sign * static.radial, share * dyn.radial_N.mean),
+            _row(k, "axial_N", sign * static.axial, share * dyn.axial_N.mean),
         ]
     return tuple(r for r in rows if np.isfinite(r.simulated))
+
+
+def _planets_mean_over_planet_1(dyn) -> float:
+    """1 for a parallel stage; a planetary stage's mean window-mean F_t over its planets' sun meshes over planet 1's
+    (the stage's channels): theory's static force is each planet's at equal sharing, which the planets' mean meets
+    whatever their sharing (the moment balance), and F_r, F_a are F_t's multiples on every planet's sun mesh."""
+    planets = getattr(dyn, "planets", ())
+    if not planets or dyn.tangential_N.mean == 0.0:
+        return 1.0
+    return float(np.mean([p.sun.tangential_N.mean for p in planets])) / dyn.tangential_N.mean
 
 
 def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageReport, ...]:

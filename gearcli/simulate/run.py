@@ -35,15 +35,12 @@ from gearcli.simulate.course import CourseChange, integrate_auto
 from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
+from gearcli.simulate.planet_stats import planet_series, planets_of, with_planets
 from gearcli.simulate.results import (
-    DteStats,
     EnergyBalance,
-    PlanetDynamics,
-    PlanetMeshDynamics,
     SamplingError,
     SimulationResult,
     SolverStats,
-    StageDynamics,
     SteadyState,
 )
 from gearcli.simulate.ringing import ringing_warnings
@@ -399,40 +396,6 @@ def _series(model: TorsionalModel, s: Sampled, channels: bool = True) -> tuple[d
     return ch, per_stage
 
 
-def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]]:
-    """(stage, planet, "sun" | "ring") -> (F_t in N, DTE in m) of every planet mesh, in connector order."""
-    lay = model.layout
-    out: dict = {}
-    for c, x in enumerate(lay.connectors):
-        if x.load_body >= 0:
-            ft = tooth_forces(lay, x.index, s.connectors[c].line_force_N)[0]
-            out[(x.index, x.planet, x.gear)] = (ft, s.connectors[c].dte_m)
-    return out
-
-
-def _planets(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> tuple[tuple[PlanetDynamics, ...],
-                                                                                     float | None]:
-    """Stage k's planets over the window, and the load-sharing factor (largest window-mean |F_t| of the sun
-    meshes over their mean); empty and None for a parallel stage."""
-    series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
-    if not series:
-        return (), None
-
-    def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
-        q = dte[mask] * 1e6  # um
-        return PlanetMeshDynamics(stats.channel_stats(ft, mask), DteStats(float(q.mean()), float(q.std()),
-                                                                         float(q.min()), float(q.max())))
-
-    n = 1 + max(j for j, _ in series)
-    planets = tuple(PlanetDynamics(j + 1, mesh(*series[(j, "sun")]), mesh(*series[(j, "ring")])) for j in range(n))
-    means = np.array([abs(p.sun.tangential_N.mean) for p in planets])
-    return planets, (float(means.max() / means.mean()) if means.mean() > 0 else None)
-
-
-def _with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharing: float | None) -> StageDynamics:
-    return replace(st, planets=planets, load_sharing_factor=sharing) if planets else st
-
-
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
@@ -461,7 +424,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         simulated_static_N=simulated_static, error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
-    stages = tuple(_with_planets(st, *_planets(model, s, mask, k)) for k, st in enumerate(stages))
+    stages = tuple(with_planets(st, *planets_of(model, s, mask, k)) for k, st in enumerate(stages))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)

@@ -20,13 +20,14 @@ from typing import Protocol
 from gearcli import __version__, engine
 from gearcli.config import DesignFile, LoadedDesign
 from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
-from gearcli.config.load import integer_keys
+from gearcli.config.load import integer_keys, list_keys
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
 from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
+from gearcli.sweep.load_law import load_law_of
 from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
 from gearcli.sweep.spec import SPEED_KEYS, SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
@@ -91,7 +92,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         stored, previous = read_previous(output)
         previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
-    scene = Scene(raw, loaded.source, tuple(sets), len(design.stages))
+    scene = Scene(raw, loaded.source, tuple(sets), len(design.stages), load_law_of(loaded.design))
     check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
     check_keys(scene, spec.branches()[0][0])
     _no_continuous_integers(spec, scene)
@@ -117,6 +118,10 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
     whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
     if whole:
         d = next(d for d in spec.randoms if d.key == whole[0])
+        if list_keys(scene.raw, scene.source, scene.sets, [d.key]):
+            raise SweepUsageError(f"{d.key} is a list, {d.kind}(...) draws one number: draw its entries by index, "
+                                  f"--random '{d.key}.0={d.kind}(...)' (the first; .1 the second ...; in a list of "
+                                  f"tables the entry's key: {d.key}.0.KEY)", source="--random")
         raise SweepUsageError(f"{d.key} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
                               "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")

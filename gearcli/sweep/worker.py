@@ -26,6 +26,7 @@ from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
 from gearcli.sweep.continuation import Carried, jump_note, on_branch
 from gearcli.sweep.family import Family
+from gearcli.sweep.load_law import LoadLaw, law_overrides
 from gearcli.sweep.spec import Point
 
 
@@ -37,6 +38,7 @@ class Scene:
     source: str
     sets: tuple[str, ...] = ()
     n_stages: int = 1
+    load_law: LoadLaw | None = None  # a speed-dependent load: each point's torque on it (gearcli.sweep.load_law)
 
 
 class Case(NamedTuple):
@@ -85,7 +87,8 @@ def _evaluate(evaluate: PointEvaluator, scene: Scene, point: Point, prev: Carrie
               check: bool = False) -> Evaluation:
     """Simulate one point (continued from the previous point's ``prev`` when given) with the injected
     evaluator; ``check``: with its check pass (:mod:`gearcli.sweep.family`)."""
-    return evaluate(scene, point.overrides(), prev, check=check) if check else evaluate(scene, point.overrides(), prev)
+    overrides = [*point.overrides(), *law_overrides(scene.load_law, point.values)]
+    return evaluate(scene, overrides, prev, check=check) if check else evaluate(scene, overrides, prev)
 
 
 def iter_task(task: Task) -> Iterator[Row]:

@@ -1,0 +1,72 @@
+"""A planetary stage's planets over the statistics window: every planet mesh's F_t and DTE statistics, the
+load-sharing factor, and the stage's dynamic and run-up factors taken at its most loaded planet."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from gearcli.model.outputs import tooth_forces
+from gearcli.simulate import stats
+from gearcli.simulate.results import DteStats, PlanetDynamics, PlanetMeshDynamics
+
+if TYPE_CHECKING:
+    from gearcli.model import TorsionalModel
+    from gearcli.model.outputs import Sampled
+    from gearcli.simulate.results import StageDynamics
+
+
+def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]]:
+    """(stage, planet, "sun" | "ring") -> (F_t in N, DTE in m) of every planet mesh, in connector order."""
+    lay = model.layout
+    out: dict = {}
+    for c, x in enumerate(lay.connectors):
+        if x.load_body >= 0:
+            ft = tooth_forces(lay, x.index, s.connectors[c].line_force_N)[0]
+            out[(x.index, x.planet, x.gear)] = (ft, s.connectors[c].dte_m)
+    return out
+
+
+def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> tuple[tuple[PlanetDynamics, ...],
+                                                                                     float | None, tuple[float, float]]:
+    """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
+    their mean; None for a parallel stage) and the whole run's peak |F_t| over every planet's sun mesh with its time
+    (0, 0 for a parallel stage)."""
+    series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
+    if not series:
+        return (), None, (0.0, 0.0)
+
+    def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
+        q = dte[mask] * 1e6  # um
+        return PlanetMeshDynamics(stats.channel_stats(ft, mask), DteStats(float(q.mean()), float(q.std()),
+                                                                         float(q.min()), float(q.max())))
+
+    n = 1 + max(j for j, _ in series)
+    planets = tuple(PlanetDynamics(j + 1, mesh(*series[(j, "sun")]), mesh(*series[(j, "ring")])) for j in range(n))
+    means = np.array([abs(p.sun.tangential_N.mean) for p in planets])
+    peaks = [(float(np.max(np.abs(series[(j, "sun")][0]))), int(np.argmax(np.abs(series[(j, "sun")][0]))))
+             for j in range(n)]
+    peak, at = max(peaks)
+    return planets, (float(means.max() / means.mean()) if means.mean() > 0 else None), (peak, float(s.time_s[at]))
+
+
+def with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharing: float | None,
+                  worst: tuple[float, float]) -> StageDynamics:
+    """A planetary stage's planets, and its dynamic and run-up factors (and run peak) those of its most loaded
+    planet's sun mesh, as its simulated K_v (:func:`gearcli.rating.dynamic.stage_simulated_k_v`): planet 1's
+    channels (the stage's ``tangential_N``) alone miss a planet that unequal spacing, position errors or
+    phasing load more."""
+    if not planets:
+        return st
+    ref = st.simulated_static_tangential_N
+    changes: dict = {"planets": planets, "load_sharing_factor": sharing}
+    window_max = max(max(abs(p.sun.tangential_N.max), abs(p.sun.tangential_N.min)) for p in planets)
+    if st.dynamic_factor is not None and ref:
+        changes["dynamic_factor"] = max(st.dynamic_factor, window_max / abs(ref))
+    peak, at = worst
+    if peak > st.peak_tangential_N:
+        changes.update(peak_tangential_N=peak, peak_time_s=at,
+                       runup_factor=peak / abs(ref) if ref else st.runup_factor)
+    return replace(st, **changes)

@@ -1,0 +1,75 @@
+"""A speed sweep keeps a speed-dependent load on its law: the load's torque key is its torque at the file's speed
+n_0, so a point at n carries T_0 (n / n_0)^p (fan and pump affinity laws, ISO 13348 / ISO 9906), not T_0 at every
+speed (the field test: a fan drive swept 500-1450 rpm gave stage 1 F_t = 3035 N at every row).
+
+Reference by hand: one lossless spur stage 20/40 (m = 3 mm, x = 0: r_gear = 60 mm), a prescribed input speed, no
+excitation, so each settled row's window-mean F_t is the static force T_L(n) / r_gear exactly (the equilibrium).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+SCENE = """
+[[stage]]
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+pinion = {{ teeth = 20, face_width_mm = 30, hand = "spur" }}
+gear   = {{ teeth = 40, face_width_mm = 30, hand = "spur" }}
+[contact]
+damping_ratio = 0.1
+[input]
+speed_rpm = 1200
+ramp_s = 0.02
+[load]
+{load}
+speed_exponent = {p}
+ramp_s = 0.02
+[simulation]
+duration_s = 0.2
+steps = 400
+"""
+R_GEAR = 0.5 * 3e-3 * 40  # m
+
+
+def _sweep(tmp_path, load, p, *vary):
+    path = tmp_path / "fan.toml"
+    path.write_text(SCENE.format(load=load, p=p))
+    res = CliRunner().invoke(cli, ["sweep", str(path), *vary, "--jobs", "1", "-q", "-o", "-"])
+    assert res.exit_code == 0, res.output
+    return list(csv.DictReader(io.StringIO(res.stdout)))
+
+
+def test_a_fan_load_follows_the_square_of_the_speed(tmp_path):
+    rows = _sweep(tmp_path, "torque_Nm = 200", 2, "--vary", "input.speed_rpm=600,1200,1800")
+    for r in rows:
+        n = float(r["input.speed_rpm"])
+        t_load = 200.0 * (n / 1200.0) ** 2  # N·m: 50, 200, 450
+        # the settled equilibrium reproduces the static force to the solver's tolerance (rtol 1e-6)
+        assert_allclose(float(r["stage1_tangential_N_mean"]), t_load / R_GEAR, rtol=1e-5)
+
+
+def test_a_linear_load_a_power_key_and_a_varied_torque_scale_alike(tmp_path):
+    rows = _sweep(tmp_path, "torque_Nm = 200", 1, "--vary", "load.torque_Nm=100,300", "--vary",
+                  "input.speed_rpm=600,1800")
+    for r in rows:  # the varied torque is the load's torque at the file's 1200 rpm
+        t_load = float(r["load.torque_Nm"]) * float(r["input.speed_rpm"]) / 1200.0
+        assert_allclose(float(r["stage1_tangential_N_mean"]), t_load / R_GEAR, rtol=1e-5)
+    # power at the nominal output speed (600 rpm at the gear): 12.566 kW is 200 N·m there; P ∝ n³ on a fan
+    rows = _sweep(tmp_path, "power_kW = 12.566370614359172", 2, "--vary", "input.speed_rpm=600,1800")
+    for r in rows:
+        assert_allclose(float(r["stage1_tangential_N_mean"]),
+                        200.0 * (float(r["input.speed_rpm"]) / 1200.0) ** 2 / R_GEAR, rtol=1e-5)
+
+
+def test_a_constant_load_is_the_same_torque_at_every_speed_given_by_torque_or_by_power(tmp_path):
+    for load in ("torque_Nm = 200", "power_kW = 12.566370614359172"):  # 200 N·m at the file's 600 rpm output
+        rows = _sweep(tmp_path, load, 0, "--vary", "input.speed_rpm=600,1800")
+        for r in rows:
+            assert_allclose(float(r["stage1_tangential_N_mean"]), 200.0 / R_GEAR, rtol=1e-5)
