@@ -3,7 +3,8 @@
 Input speed from 0 to the top of the range (1.2 x nominal, or the sweep's range), frequency up to the highest
 order's frequency there, on a logarithmic axis when the modes and orders span more than two decades (a drum
 mode at 5 Hz and a mesh order at 5 kHz both stay readable). Each natural frequency is a horizontal line with its
-+-10 % resonance margin band; every order line (mesh 1x-3x, shaft 1x) is drawn; every crossing is marked by how
++-10 % resonance margin band; every order line (mesh 1x-3x, shaft 1x, input torque ripple orders) and every load
+fluctuation frequency (a horizontal line) is drawn; every crossing is marked by how
 strongly the order excites the mode (its meshes' strain-energy share over twice the modal damping ratio: filled
 red strongly, orange moderately, small grey weakly); the nominal speed is a vertical line, and the crossings
 inside the margin at the nominal speed are labelled.
@@ -58,9 +59,11 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     n = np.linspace(0.0, data.max_input_rpm, 200)
     stages = sorted({name.split(" mesh")[0] for name, _ in data.orders if name.startswith("stage ")})
     for name, r in data.orders:
-        order = int(name.split()[-1].rstrip("x"))
         style: Any
-        if name.startswith("stage "):
+        if name.startswith("input torque ripple"):  # an engine order: per input revolution
+            colour, style = "tab:brown", (0, (3, 1, 1, 1, 1, 1))
+        elif name.startswith("stage "):
+            order = int(name.split()[-1].rstrip("x"))
             colour = f"C{stages.index(name.split(' mesh')[0]) % 10}"
             style = ORDER_STYLES.get(order, "-.")
         else:
@@ -68,22 +71,29 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
         line = r * n / 60.0
         keep = line <= top_f * 1.05
         ax.plot(_speed(units, n[keep]), line[keep], ls=style, lw=1.0, color=colour, label=name, zorder=3)
+    for name, f in data.fixed:  # a load fluctuation: the same frequency at every speed
+        ax.axhline(f, color="tab:olive", lw=1.2, ls=(0, (8, 3)), label=name, zorder=3)
     nominal = _speed(units, data.nominal_input_rpm)
     ax.axvline(nominal, color="tab:purple", lw=1.5, ls="--", zorder=4,
                label=f"nominal speed {nominal:.5g} {units.speed_label}")
     seen: set[str] = set()
     near = []
     for c in data.crossings:
-        x, f, s = _speed(units, c.crossing.input_speed_rpm), c.frequency_Hz, c.crossing.strength
+        rpm, f, s = c.crossing.input_speed_rpm, c.frequency_Hz, c.crossing.strength
         if f > top_f:
             continue
+        if rpm is None:  # a fixed frequency within the margin of the mode: at every speed, labelled at the left
+            ax.annotate(f"{c.crossing.excitation} × mode {c.mode} ({s} excited, any speed)", (0.0, f),
+                        xytext=(4, -12), textcoords="offset points", fontsize=7.5, color="darkred", zorder=8)
+            continue
+        x = _speed(units, rpm)
         label = f"crossing, {s} excited" if s not in seen else None
         seen.add(s)
         ax.plot([x], [f], ls="none", label=label, **STYLES[s])
-        if abs(c.crossing.input_speed_rpm / data.nominal_input_rpm - 1.0) <= RESONANCE_BAND and s != "weakly":
+        if abs(rpm / data.nominal_input_rpm - 1.0) <= RESONANCE_BAND and s != "weakly":
             near.append(c)
     for c in near:
-        ax.annotate(f"{c.crossing.excitation} × mode {c.mode}", (_speed(units, c.crossing.input_speed_rpm),
+        ax.annotate(f"{c.crossing.excitation} × mode {c.mode}", (_speed(units, c.crossing.input_speed_rpm or 0.0),
                                                                c.frequency_Hz),
                     xytext=(6, -12), textcoords="offset points", fontsize=7.5, color="darkred", zorder=8)
     if swept:

@@ -49,7 +49,9 @@ def modes_dict(analyses: list[ModalAnalysis], warnings: list[JsonObject] | None 
             "damping_ratio": m.damping_ratio,
             "crossings": [{"excitation": c.excitation, "input_speed_rpm": c.input_speed_rpm,
                            "participation": c.participation, "amplification": c.amplification,
-                           "strength": c.strength} for c in m.crossings],
+                           "strength": c.strength, "source": c.source, "order": c.order,
+                           "speed_independent": c.speed_independent, "excitation_Hz": c.excitation_Hz}
+                          for c in m.crossings],
         } for m in a.modes] for a in analyses},
         "warnings": list(warnings or []),
     }
@@ -65,10 +67,15 @@ def modes_csv(analyses: list[ModalAnalysis]) -> str:
     rows: list[list[JsonScalar]] = []
     for a in analyses:
         for m in a.modes:
-            cross = "; ".join(f"{c.excitation} @ {c.input_speed_rpm:.5g}" for c in m.crossings)
+            cross = "; ".join(f"{c.excitation} @ {_at(c, '.5g')}" for c in m.crossings)
             rows.append([a.boundary, m.number, m.frequency_Hz, m.damping_ratio, m.dominant, *m.shape, *m.energy_share,
                          cross])
     return csv_text(header, rows)
+
+
+def _at(c, fmt: str) -> str:
+    """The crossing's input speed, ``any`` for a fixed frequency near the mode at every speed."""
+    return "any" if c.input_speed_rpm is None else format(c.input_speed_rpm, fmt)
 
 
 def _strength(c) -> str:
@@ -89,7 +96,7 @@ def modes_tables(analyses: list[ModalAnalysis]) -> list[RenderableType]:
             t.add_column(col)
         for m in a.modes:
             share = "rigid-body rotation" if m.rigid else f"{m.dominant} ({100 * max(m.energy_share):.0f} %)"
-            cross = ", ".join(f"{c.excitation} @ {c.input_speed_rpm:.4g} ({_strength(c)})" for c in m.crossings) or "-"
+            cross = ", ".join(f"{c.excitation} @ {_at(c, '.4g')} ({_strength(c)})" for c in m.crossings) or "-"
             t.add_row(str(m.number), f"{m.frequency_Hz:.4g}", "-" if m.rigid else f"{100 * m.damping_ratio:.2g}",
                       Text(share), Text(cross))
         out.append(t)

@@ -11,8 +11,10 @@ angles, ``delta = R theta``). Two boundaries:
 
 Each mode: frequency, shape (body angles, normalised to the largest |entry| = 1, that entry
 positive), each connector's share of the modal strain energy ``k_c (R phi)_c^2 / sum`` (sums to 1),
-and the orders (1x, 2x, 3x each stage's mesh frequency, 1x each reducer shaft's rotation) that cross it
-while the input body runs from 0 to ``SPEED_RANGE`` x its nominal speed.
+and the excitations that cross it while the input body runs from 0 to ``SPEED_RANGE`` x its nominal speed: the
+orders (1x, 2x, 3x each stage's mesh frequency, 1x each reducer shaft's rotation, each order of an input torque
+ripple: lines through the origin of the Campbell diagram) and each load fluctuation frequency (a horizontal line,
+independent of speed: it "crosses" a mode within ``RESONANCE_BAND`` of it at every speed, ``input_speed_rpm`` None).
 
 Participation. A transmission error e at mesh c (or a shaft's runout, a 1x error at the meshes its gears
 take part in) drives mode j (mass-normalised shape phi, modal damping ratio zeta_j) with the modal force
@@ -21,6 +23,14 @@ the mode's strain energy (k_c (R phi)_c^2 / omega_j^2). So a crossing is excited
 ``s / (2 zeta)`` (:attr:`Crossing.amplification`, the resonant force over the mesh's blocked error force k_c e;
 the quasi-static response of the whole chain is at most 1): a mode whose strain energy sits in another
 element is hardly excited by this mesh, however close the frequencies.
+
+A harmonic torque T at body b (the input ripple at the input body, the load fluctuation at the load body) drives
+mode j with the modal force phi_bj T (phi mass-normalised, sum_b J_b phi_b^2 = 1): at resonance the modal
+coordinate is phi_bj T / (2 zeta_j omega_j^2) and the body's inertia torque in the mode J_b omega_j^2 phi_bj q_j =
+J_b phi_bj^2 T / (2 zeta_j). So the participation of a torque is the excited body's share of the mode's kinetic
+energy J_b phi_bj^2 (0 at a node of the mode, 1 for a single body on a spring) and its amplification
+J_b phi_bj^2 / (2 zeta_j), the resonant inertia torque of the body over the applied harmonic torque (a clamped
+input body takes the ripple into the ground: participation 0).
 
 Damping. zeta_j linearises what the simulation integrates (:mod:`gearcli.model.damping`): every element's
 damping law at its static force, a motor's slip damping dT/dw and the load law's dT/dw at the operating point,
@@ -50,13 +60,25 @@ RESONANCE_BAND = 0.10  # |f_excitation - f_mode| / f_mode that the simulation wa
 BOUNDARIES = ("clamped_input", "free")
 
 
+SOURCES = ("mesh", "shaft", "input_torque_ripple", "load_fluctuation")  # Crossing.source
+
+
 @dataclass(frozen=True)
 class Crossing:
-    excitation: str  # "stage 1 mesh 1x", "shaft 2 1x"
-    hz_per_input_hz: float  # excitation frequency over the input body's rotation frequency
-    input_speed_rpm: float  # input body speed at which it meets the mode
-    participation: float = 0.0  # the exciting meshes' (largest) share of the mode's strain energy
+    excitation: str  # "stage 1 mesh 1x", "shaft 2 1x", "input torque ripple order 2", "load fluctuation 14.5 Hz"
+    hz_per_input_hz: float  # excitation frequency over the input body's rotation frequency (0: a fixed frequency)
+    input_speed_rpm: float | None  # input body speed at which it meets the mode; None: at every speed (fixed Hz)
+    participation: float = 0.0  # the exciting meshes' (largest) share of the mode's strain energy; a torque: the
+    # excited body's share of the mode's kinetic energy
     amplification: float | None = None  # participation / (2 zeta): None when the mode is undamped (unbounded)
+    source: str = "mesh"  # one of SOURCES
+    order: float = 1.0  # the harmonic: of the mesh frequency, of the shaft's rotation, per input revolution (ripple)
+    excitation_Hz: float | None = None  # a fixed frequency (load fluctuation); None for an order
+
+    @property
+    def speed_independent(self) -> bool:
+        """A fixed frequency (a horizontal line on the Campbell diagram): near the mode at every speed."""
+        return self.input_speed_rpm is None
 
     @property
     def strength(self) -> str:
@@ -125,6 +147,30 @@ def _excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]
         via = tuple(stages[j] for j in (i - 1, i) if 0 <= j < len(stages))
         for h in SHAFT_ORDERS:
             out.append((f"shaft {i + 1} {h}x", h * abs(lay.bodies[b].ratio), via))
+    return out
+
+
+@dataclass(frozen=True)
+class TorqueSource:
+    """A harmonic torque on an end body: an input ripple order (``hz_per_input_hz`` = order x the input body's
+    rotation over itself, ``fixed_Hz`` None) or a load fluctuation (``fixed_Hz``, ``hz_per_input_hz`` 0)."""
+
+    name: str
+    source: str  # "input_torque_ripple" | "load_fluctuation"
+    order: float  # per input revolution (ripple); 1 for a fluctuation
+    hz_per_input_hz: float
+    fixed_Hz: float | None
+    body: int  # the body the torque acts on
+
+
+def torque_sources(lay: Layout) -> list[TorqueSource]:
+    """The input torque ripple's orders (at the input body, body 0) and the load fluctuation's frequencies (at
+    the load body, the last one), each distinct value once."""
+    out = [TorqueSource(f"input torque ripple order {n:g}", "input_torque_ripple", float(n),
+                        abs(n * lay.bodies[0].ratio), None, 0)
+           for n in dict.fromkeys(abs(n) for a, n in lay.drive.ripple if a != 0.0 and n != 0.0)]
+    out += [TorqueSource(f"load fluctuation {f:g} Hz", "load_fluctuation", 1.0, 0.0, float(f), lay.n_bodies - 1)
+            for f in dict.fromkeys(abs(f) for b, f in lay.load.fluctuation if b != 0.0 and f != 0.0)]
     return out
 
 
@@ -265,15 +311,44 @@ def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank:
     share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
     dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
     zeta = 0.0 if rigid else float(zetas[j])
-    found = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
-                  if not rigid and f / r <= SPEED_RANGE * f_in) if crossings else ()
+    found: tuple[Crossing, ...] = ()
+    if crossings and not rigid:
+        found = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
+                      if f / r <= SPEED_RANGE * f_in)
+        found += tuple(_torque_crossing(lay, t, f, shape, zeta) for t in torque_sources(lay)
+                       if _meets(t, f, 60.0 * SPEED_RANGE * f_in))
     return Mode(rank + 1, f, rigid, tuple(float(v) for v in shape), tuple(float(s) for s in share), dominant,
                 found, zeta)
 
 
 def _crossing(name: str, r: float, f: float, share: np.ndarray, via: tuple[int, ...], zeta: float) -> Crossing:
     s = float(max((share[c] for c in via), default=0.0))
-    return Crossing(name, r, 60.0 * f / r, s, s / (2.0 * zeta) if zeta > 0 else None)
+    return Crossing(name, r, 60.0 * f / r, s, s / (2.0 * zeta) if zeta > 0 else None,
+                    "mesh" if name.startswith("stage ") else "shaft", float(name.split()[-1].rstrip("x")))
+
+
+def _meets(t: TorqueSource, f: float, top_rpm: float) -> bool:
+    """Whether torque source ``t`` crosses a mode of ``f`` Hz for input speeds 0 .. ``top_rpm``: an order below the
+    top speed, a fixed frequency within ``RESONANCE_BAND`` of the mode (then at every speed)."""
+    if t.fixed_Hz is not None:
+        return abs(t.fixed_Hz - f) <= RESONANCE_BAND * f
+    return 60.0 * f / t.hz_per_input_hz <= top_rpm
+
+
+def kinetic_share(lay: Layout, shape: tuple[float, ...] | np.ndarray, body: int) -> float:
+    """Body ``body``'s share J_b phi_b^2 / sum J phi^2 of the mode's kinetic energy (any scale of the shape)."""
+    J = np.asarray(lay.inertias, float)
+    v = np.asarray(shape, float)
+    total = float(J @ v**2)
+    return float(J[body] * v[body] ** 2 / total) if total > 0 else 0.0
+
+
+def _torque_crossing(lay: Layout, t: TorqueSource, f: float, shape: tuple[float, ...] | np.ndarray,
+                     zeta: float) -> Crossing:
+    p = kinetic_share(lay, shape, t.body)
+    rpm = None if t.fixed_Hz is not None else 60.0 * f / t.hz_per_input_hz
+    return Crossing(t.name, t.hz_per_input_hz, rpm, p, p / (2.0 * zeta) if zeta > 0 else None, t.source, t.order,
+                    t.fixed_Hz)
 
 
 @dataclass(frozen=True)
@@ -289,7 +364,8 @@ class Resonance:
     amplification: float | None = None  # participation / (2 zeta); None: undamped
     damping_ratio: float = 0.0
     strength: str = ""  # "strongly" | "moderately"
-    stage: int | None = None  # the exciting mesh's stage (None for a shaft order)
+    stage: int | None = None  # the exciting mesh's stage (None for a shaft order or a torque)
+    source: str = "mesh"  # one of SOURCES
 
     @property
     def data(self) -> dict:
@@ -297,7 +373,7 @@ class Resonance:
         return {"stage": self.stage, "mode": self.mode, "frequency_Hz": self.frequency_Hz,
                 "excitation": self.excitation, "excitation_Hz": self.excitation_Hz, "element": self.element,
                 "participation": self.participation, "amplification": self.amplification,
-                "damping_ratio": self.damping_ratio, "strength": self.strength}
+                "damping_ratio": self.damping_ratio, "strength": self.strength, "source": self.source}
 
 
 def _percent(x: float) -> str:
@@ -305,8 +381,9 @@ def _percent(x: float) -> str:
 
 
 def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0) -> list[Resonance]:
-    """Orders at the nominal speed within ``RESONANCE_BAND`` of a natural frequency that excite the mode
-    (:attr:`Crossing.amplification` at least ``WARN_AMPLIFICATION``): mesh orders 1x-3x, shaft orders 1x."""
+    """Excitations at the nominal speed within ``RESONANCE_BAND`` of a natural frequency that excite the mode
+    (:attr:`Crossing.amplification` at least ``WARN_AMPLIFICATION``): mesh orders 1x-3x, shaft orders 1x, the input
+    torque ripple's orders and the load fluctuation's frequencies."""
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
     out = []
     for m in _near_modes(lay, boundary, duration_s, f_in):
@@ -331,7 +408,34 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                    f"holds {_percent(c.participation)} of the mode's strain energy ({gain})")
             out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, name, fe, msg, c.participation,
                                  c.amplification, m.damping_ratio, c.strength,
-                                 int(name.split()[1]) if name.startswith("stage ") else None))
+                                 int(name.split()[1]) if name.startswith("stage ") else None, c.source))
+        out += _torque_resonances(lay, m, boundary, f_in)
+    return out
+
+
+def _torque_resonances(lay: Layout, m: Mode, boundary: str, f_in: float) -> list[Resonance]:
+    """:func:`resonances` of the input torque ripple's orders and the load fluctuation's frequencies."""
+    out = []
+    share = max(m.energy_share)
+    for t in torque_sources(lay):
+        fe = t.fixed_Hz if t.fixed_Hz is not None else t.hz_per_input_hz * f_in
+        if abs(fe - m.frequency_Hz) > RESONANCE_BAND * m.frequency_Hz:
+            continue
+        c = _torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio)
+        if c.amplification is not None and c.amplification < WARN_AMPLIFICATION:
+            continue  # the excited body barely moves in the mode (near a node of it)
+        body = lay.bodies[t.body].label
+        gain = (f"resonant response ≈ {c.amplification:.2g}x the harmonic torque at "
+                f"{100 * m.damping_ratio:.2g} % modal damping" if c.amplification is not None
+                else "undamped: the response grows without bound")
+        where = "at every speed" if t.fixed_Hz is not None else "at the nominal input speed"
+        msg = (f"resonance: the {t.name} ({fe:.4g} Hz {where}) lies within "
+               f"{100 * abs(fe - m.frequency_Hz) / m.frequency_Hz:.2g} % of mode {m.number} "
+               f"({m.frequency_Hz:.4g} Hz, {boundary}), dominated by the {m.dominant} "
+               f"({100 * share:.0f} % of its strain energy); {c.strength} excited: the {body}, where the torque "
+               f"acts, holds {_percent(c.participation)} of the mode's kinetic energy ({gain})")
+        out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, t.name, fe, msg, c.participation,
+                             c.amplification, m.damping_ratio, c.strength, None, t.source))
     return out
 
 
@@ -343,9 +447,10 @@ def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float) -> l
     if ana is not None:
         return list(ana.modes)
     und = _undamped(lay, boundary, duration_s)
-    sources = excitation_sources(lay)
+    fe = [r * f_in for _, r, _ in excitation_sources(lay)]
+    fe += [t.fixed_Hz if t.fixed_Hz is not None else t.hz_per_input_hz * f_in for t in torque_sources(lay)]
     near = [(rank, j) for rank, j in enumerate(und.order) if rank >= und.n_rigid
-            and any(not abs(r * f_in - f) > RESONANCE_BAND * f for f in [_frequency_Hz(und, j)] for _, r, _ in sources)]
+            and any(not abs(x - f) > RESONANCE_BAND * f for f in [_frequency_Hz(und, j)] for x in fe)]
     if not near:
         return []  # no order near a mode: no shapes, shares nor damping to work out
     phi, zetas = _damping(lay, und)
@@ -366,20 +471,23 @@ class CampbellCrossing:
 @dataclass(frozen=True)
 class CampbellData:
     """What a Campbell diagram shows: the modes (linearised at full load, so flat in speed), every order line
-    (mesh 1x-3x, shaft 1x) as frequency per input revolution, and each crossing with how strongly it is
-    excited, for input speeds 0 .. ``max_input_rpm``."""
+    (mesh 1x-3x, shaft 1x, input torque ripple orders) as frequency per input revolution, every fixed frequency
+    (load fluctuation: a horizontal line), and each crossing with how strongly it is excited, for input speeds
+    0 .. ``max_input_rpm`` (a fixed frequency's: within ``RESONANCE_BAND`` of the mode, ``input_speed_rpm`` None)."""
 
     boundary: str
     nominal_input_rpm: float
     max_input_rpm: float
     modes: tuple[Mode, ...]  # the non-rigid ones
-    orders: tuple[tuple[str, float], ...]  # (name, Hz per input Hz)
+    orders: tuple[tuple[str, float], ...]  # (name, Hz per input Hz): lines through the origin
     crossings: tuple[CampbellCrossing, ...]
+    fixed: tuple[tuple[str, float], ...] = ()  # (name, Hz): speed-independent excitations (load fluctuation)
 
     @property
     def top_Hz(self) -> float:
-        """The highest order's frequency at the top speed: the frequency range worth drawing."""
-        return max((r for _, r in self.orders), default=1.0) * self.max_input_rpm / 60.0
+        """The highest excitation's frequency at the top speed: the frequency range worth drawing."""
+        top = max((r for _, r in self.orders), default=1.0) * self.max_input_rpm / 60.0
+        return max([top] + [f for _, f in self.fixed])
 
 
 def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0,
@@ -388,13 +496,19 @@ def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: f
     ana = modal_analysis(lay, boundary, duration_s=duration_s)
     top = max_input_rpm if max_input_rpm is not None else SPEED_RANGE * ana.nominal_input_rpm
     sources = excitation_sources(lay)
+    torques = torque_sources(lay)
     crossings = []
     for m in ana.modes:
         if m.rigid:
             continue
         for name, r, via in sources:
             c = _crossing(name, r, m.frequency_Hz, np.asarray(m.energy_share), via, m.damping_ratio)
-            if c.input_speed_rpm <= top:
+            if c.input_speed_rpm is not None and c.input_speed_rpm <= top:
                 crossings.append(CampbellCrossing(m.number, m.frequency_Hz, c))
+        crossings += [CampbellCrossing(m.number, m.frequency_Hz,
+                                       _torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio))
+                      for t in torques if _meets(t, m.frequency_Hz, top)]
+    orders = [(name, r) for name, r, _ in sources] + [(t.name, t.hz_per_input_hz) for t in torques if t.fixed_Hz is None]
     return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
-                        tuple((name, r) for name, r, _ in sources), tuple(crossings))
+                        tuple(orders), tuple(crossings),
+                        tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None))
