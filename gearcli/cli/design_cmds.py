@@ -114,6 +114,7 @@ def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     if plots_dir:
         check_sweep_plots_dir(plots_dir, file, target, ())
     loaded, design_result = load_and_design(file, overrides)
+    design_result = api.with_resonances(loaded.design, design_result)  # as design and simulate warn
     warn(design_result.warnings)
     analyses = api.modes(loaded.design, design_result)
     if target.fmt == "json":
