@@ -178,7 +178,8 @@ def build_model(cfg: DesignFile, design: DesignResult) -> TorsionalModel:
 
 
 def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple[Diagnostic, ...]:
-    """The drivetrain's resonance warnings for ``gearcli design``: a mesh order at the nominal speed within
+    """The drivetrain's resonance warnings for ``gearcli design`` and ``gearcli modes``: an excitation (a mesh or
+    shaft order, an input torque ripple order, a load fluctuation) at the nominal speed within
     the band of a natural frequency of the linearised chain (the modes capability, at the boundary the drive
     imposes: a speed drive holds the input body, a torque drive leaves the chain free), naming the mode and
     its dominant element — the same messages ``simulate`` gives. Imports numpy, never scipy."""

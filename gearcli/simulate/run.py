@@ -536,9 +536,9 @@ def _choice_warnings(choice: Choice) -> list[Diagnostic]:
 
 
 def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic]:
-    """A mesh order (1x-3x mesh frequency) or shaft order (1x) at the nominal speed within 10 % of a natural
-    frequency that it excites (its meshes' share of the mode's strain energy over twice the modal damping
-    ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`). The
+    """A mesh order (1x-3x mesh frequency), shaft order (1x), input torque ripple order or load fluctuation at the
+    nominal speed within 10 % of a natural frequency that it excites (its meshes' share of the mode's strain energy,
+    a torque's body's share of its kinetic energy, over twice the modal damping ratio at least 0.1), naming the mode, its dominant element and how strongly (:mod:`gearcli.model.modes`). The
     model's own: found once per layout and boundary (a sweep point's settle runs ask again)."""
     cache = model.layout.__dict__.setdefault("_resonance_warnings", {})
     if choice.boundary not in cache:
