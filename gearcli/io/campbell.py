@@ -112,7 +112,8 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     fig.suptitle(f"Campbell diagram{' — ' + title if title else ''}", fontsize=11)
     ax.set_title(f"modes {data.boundary.replace('_', ' ')}, linearised at full load; grey bands: ±"
                  f"{100 * RESONANCE_BAND:.0f} % resonance margin{note}\nmarkers: crossings, by how strongly the "
-                 "order excites the mode (exciting meshes' strain-energy share / 2ζ)", fontsize=8.5, loc="left")
+                 "order excites the mode (exciting meshes' strain-energy share / 2ζ; a torque: its body's kinetic-energy "
+                 "share / 2ζ)", fontsize=8.5, loc="left")
     handles, labels = ax.get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside right upper", fontsize=7.5)
     return fig
