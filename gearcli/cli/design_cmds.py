@@ -106,7 +106,7 @@ Examples:
               help="Also write the Campbell diagram campbell.png to DIR (pip install 'gearcli[plot]').")
 @guarded
 def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
-    """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, mesh orders."""
+    """Natural frequencies (clamped input and free), mode shapes, modal strain-energy shares, crossings of the mesh, shaft, torque-ripple and load-fluctuation orders."""
     from gearcli import api  # lazy: start-up time of --help
     from gearcli.io import modes_out, serialize  # lazy: start-up time of --help
 
