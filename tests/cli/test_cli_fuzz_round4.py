@@ -9,24 +9,12 @@ import sys
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
 
-from gearcli.cli import cli
+from tests.cli.test_cli_fuzz_findings import assert_clean_exit_2, run  # the same one-line-error check
 
 ROOT = Path(__file__).resolve().parents[2]
 CONVEYOR = ROOT / "configs" / "conveyor.toml"
 SHORT = ("--set", "simulation.duration_s=0.05", "--set", "simulation.steps=50")
-
-
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
-
-
-def assert_clean_exit_2(res, *fragments: str) -> None:
-    assert res.exit_code == 2, (res.exit_code, res.output)
-    assert "Traceback" not in res.stderr and "internal error" not in res.stderr, res.stderr
-    for f in fragments:
-        assert f in res.stderr, (f, res.stderr)
 
 
 @pytest.mark.parametrize("vary", ["load.torque_Nm=nan,1", "input.speed_rpm=inf", "load.torque_Nm=1,-inf"])
