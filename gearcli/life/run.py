@@ -22,6 +22,7 @@ from gearcli.config.bounds import check_memory
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
+from gearcli.core.memo import remember
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.design.standards import standard_of
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
@@ -336,10 +337,7 @@ def _rated_at(pd: _PointData, k: int, ratio: float) -> RatedMesh | None:
         return found[1]
     rerate = getattr(standard_of(pd.cfg), "rate_at_force", None)
     rated = rerate(pd.cfg, pd.design.stages[k], ratio) if rerate is not None else None
-    if len(_RATED_AT) >= _RATED_AT_SIZE:
-        _RATED_AT.clear()
-    _RATED_AT[key] = (pd.design, rated)
-    return rated
+    return remember(_RATED_AT, key, (pd.design, rated), cap=_RATED_AT_SIZE)[1]
 
 
 _Raw = tuple[str, float, float, float, SNCurve]  # (point, force, stress, cycles, curve)

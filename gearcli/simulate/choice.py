@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -42,7 +43,7 @@ from gearcli.core.cost import (
 )
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 from gearcli.model import Layout, Linearisation, ModelSpec, linearise
-from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces
+from gearcli.model.linear import damped_eigenvalues, peak_rigid_forces, speed_map, static_forces
 
 DECAY_TIMES = 5.0  # a mode's vibration lasts 5 / sigma after it is excited
 SELF_EXCITING_SHARE = 0.01  # strain-energy share of a nonlinear/time-varying/backlash mesh that excites a mode
@@ -69,12 +70,22 @@ class Choice:
     size: ModelSize = ModelSize()  # what the price per evaluation depends on (gearcli.core.cost.PRICE_US)
 
     @property
+    def reported(self) -> Linearisation:
+        """The linearisation a run's modes refer to: at full load, or at the run-up load when a connector has no
+        stiffness at full load (an unloaded Hertzian mesh)."""
+        return self.at_operating_point if bool(np.any(self.at_full_load.stiffness == 0.0)) else self.at_full_load
+
+    @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:
-        """Undamped natural frequencies to report: at full load, or at the run-up load when a connector
-        has no stiffness at full load (an unloaded Hertzian mesh); zero modes left out."""
-        unloaded = bool(np.any(self.at_full_load.stiffness == 0.0))
-        lin = self.at_operating_point if unloaded else self.at_full_load
-        return tuple(float(f) for f in lin.natural_frequencies_Hz if f > 0)
+        """Undamped natural frequencies to report (:attr:`reported`), zero modes left out."""
+        return tuple(float(f) for f in self.reported.natural_frequencies_Hz if f > 0)
+
+    @cached_property
+    def run_eigenvalues(self) -> np.ndarray:
+        """The eigenvalues of :attr:`reported` with every damping the run integrates (a motor's slip damping, the
+        load law's dT/dw: :func:`gearcli.model.linear.damped_eigenvalues`), as ``modes`` takes them: the window's
+        settle test and its ringing fit read the same ones, worked out once per run."""
+        return damped_eigenvalues(self.layout, self.reported.forces)
 
     @property
     def boundary(self) -> str:

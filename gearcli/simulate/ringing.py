@@ -35,7 +35,6 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.damping import decay_rate
-from gearcli.model.linear import damped_eigenvalues
 from gearcli.model.modes import modal_analysis
 
 if TYPE_CHECKING:
@@ -267,8 +266,7 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
                      forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
     """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
     that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
-    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
-    found = ringing(t, mask, forces_N, static_N, damped_eigenvalues(model.layout, lin.forces), window)
+    found = ringing(t, mask, forces_N, static_N, choice.run_eigenvalues, window)
     if not found:
         return []
     modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]

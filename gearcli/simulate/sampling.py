@@ -161,10 +161,14 @@ def suggested_steps(steps: int, relative_error: float, goal: float, cap: int = M
     (error ∝ h^2, times :data:`MARGIN`), rounded up to two significant figures; None when ``cap`` cannot."""
     if relative_error <= goal:
         return steps
-    wanted = steps * math.sqrt(relative_error / goal) * MARGIN
-    digits = 10.0 ** max(0, math.floor(math.log10(wanted)) - 1)
-    n = int(math.ceil(wanted / digits) * digits)
+    n = _up_to_two_figures(steps * math.sqrt(relative_error / goal) * MARGIN)
     return n if n <= cap else None
+
+
+def _up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
+    """``wanted`` samples rounded up to two significant figures (``slack``: a relative round-off not rounded up)."""
+    digits = 10.0 ** max(0, math.floor(math.log10(wanted)) - 1)
+    return int(math.ceil(wanted / digits * (1.0 - slack)) * digits)
 
 
 def reference(mean: float, std: float, static_N: float) -> float:
@@ -254,9 +258,7 @@ def excitation_warnings(layout, t: np.ndarray, steps: int) -> list[Diagnostic]:
         per = ex.period_s / h
         if not (ex.period_s > 0.0 and per < MIN_PER_PERIOD):
             continue
-        wanted = steps * GOOD_PER_PERIOD / per
-        digits = 10.0 ** max(0, math.floor(math.log10(wanted)) - 1)
-        n = int(math.ceil(wanted / digits * (1.0 - 1e-9)) * digits)  # up to two figures (not past round-off)
+        n = _up_to_two_figures(steps * GOOD_PER_PERIOD / per, slack=1e-9)  # not rounded up past round-off
         fix = (f"--set simulation.steps={n} samples it {GOOD_PER_PERIOD:g} times a period" if n <= MAX_STEPS else
                f"the schema's maximum simulation.steps = {MAX_STEPS} cannot sample it: a shorter run "
                "(simulation.duration_s)")

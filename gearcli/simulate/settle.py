@@ -34,7 +34,6 @@ from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
-from gearcli.model.linear import damped_eigenvalues
 from gearcli.simulate import ringing
 from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
 
@@ -182,10 +181,9 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
         reaches = not any(d.code == dg.MOTOR_STALLS for d in diags)
     # the eigenvalues with every damping the run integrates (a motor's slip damping, the load law's dT/dw), as the
     # ringing fit and `modes` take them: the connectors' damping alone leaves a motor-damped mode undamped
-    lin = choice.at_operating_point if np.any(choice.at_full_load.stiffness == 0.0) else choice.at_full_load
     found = check(t, mask, [p[0] for p in per_stage],
                          [st.simulated_static_tangential_N or 0.0 for st in stages],
-                         damped_eigenvalues(model.layout, lin.forces), window, motor_start, reaches)
+                         choice.run_eigenvalues, window, motor_start, reaches)
     if not found.settled and not any(d.code in (dg.WINDOW_RINGING, dg.START_NOT_SETTLED) for d in diags):
         diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
                                 transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
