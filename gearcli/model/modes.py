@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -124,8 +125,20 @@ def _stiffness(lay: Layout, duration_s: float) -> np.ndarray:
     return _tangents(lay, duration_s)[0]
 
 
-def excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
-    """(name, frequency over the input body's rotation frequency, connectors it acts through) of every order:
+class OrderSource(NamedTuple):
+    """A mesh or shaft order: its name, its frequency over the input body's rotation frequency, the connectors it
+    acts through, its kind (``"mesh"`` or ``"shaft"``), its harmonic and its stage (1-based; None for a shaft)."""
+
+    name: str
+    hz_per_input_hz: float
+    via: tuple[int, ...]
+    source: str
+    order: float
+    stage: int | None
+
+
+def excitation_sources(lay: Layout) -> list[OrderSource]:
+    """(name, frequency over the input body's rotation frequency, connectors it acts through, ...) of every order:
     each stage's mesh orders act through that mesh (a stage whose connector is no mesh, a belt's span, has
     none); a shaft's rotation order through the meshes of the gears
     it carries (shaft 1: stage 1's pinion; shaft k + 1: stage k's gear and stage k + 1's pinion). Found once per
@@ -136,17 +149,18 @@ def excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
     return list(cache[0])
 
 
-def _excitation_sources(lay: Layout) -> list[tuple[str, float, tuple[int, ...]]]:
-    out: list[tuple[str, float, tuple[int, ...]]] = []
+def _excitation_sources(lay: Layout) -> list[OrderSource]:
+    out: list[OrderSource] = []
     stages = lay.stage_conn
     for k, c in enumerate(stages):
         x = lay.connectors[c]
         for h in MESH_ORDERS if x.role == "mesh" else ():
-            out.append((f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * abs(lay.bodies[x.a].ratio), (c,)))
+            out.append(OrderSource(f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * abs(lay.bodies[x.a].ratio), (c,),
+                                   "mesh", float(h), k + 1))
     for i, b in enumerate(lay.shaft_body):
         via = tuple(stages[j] for j in (i - 1, i) if 0 <= j < len(stages))
         for h in SHAFT_ORDERS:
-            out.append((f"shaft {i + 1} {h}x", h * abs(lay.bodies[b].ratio), via))
+            out.append(OrderSource(f"shaft {i + 1} {h}x", h * abs(lay.bodies[b].ratio), via, "shaft", float(h), None))
     return out
 
 
@@ -176,7 +190,7 @@ def torque_sources(lay: Layout) -> list[TorqueSource]:
 
 def excitations(lay: Layout) -> list[tuple[str, float]]:
     """(name, frequency over the input body's rotation frequency) of the mesh and shaft orders."""
-    return [(name, r) for name, r, _ in excitation_sources(lay)]
+    return [(o.name, o.hz_per_input_hz) for o in excitation_sources(lay)]
 
 
 def rigid_mode_count(lay: Layout, k: np.ndarray, clamped: int = 0) -> int:
@@ -313,18 +327,18 @@ def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank:
     zeta = 0.0 if rigid else float(zetas[j])
     found: tuple[Crossing, ...] = ()
     if crossings and not rigid:
-        found = tuple(_crossing(name, r, f, share, via, zeta) for name, r, via in excitation_sources(lay)
-                      if f / r <= SPEED_RANGE * f_in)
+        found = tuple(_crossing(o, f, share, zeta) for o in excitation_sources(lay)
+                      if f / o.hz_per_input_hz <= SPEED_RANGE * f_in)
         found += tuple(_torque_crossing(lay, t, f, shape, zeta) for t in torque_sources(lay)
                        if _meets(t, f, 60.0 * SPEED_RANGE * f_in))
     return Mode(rank + 1, f, rigid, tuple(float(v) for v in shape), tuple(float(s) for s in share), dominant,
                 found, zeta)
 
 
-def _crossing(name: str, r: float, f: float, share: np.ndarray, via: tuple[int, ...], zeta: float) -> Crossing:
-    s = float(max((share[c] for c in via), default=0.0))
-    return Crossing(name, r, 60.0 * f / r, s, s / (2.0 * zeta) if zeta > 0 else None,
-                    "mesh" if name.startswith("stage ") else "shaft", float(name.split()[-1].rstrip("x")))
+def _crossing(o: OrderSource, f: float, share: np.ndarray, zeta: float) -> Crossing:
+    s = float(max((share[c] for c in o.via), default=0.0))
+    return Crossing(o.name, o.hz_per_input_hz, 60.0 * f / o.hz_per_input_hz, s, s / (2.0 * zeta) if zeta > 0 else None,
+                    o.source, o.order)
 
 
 def _meets(t: TorqueSource, f: float, top_rpm: float) -> bool:
@@ -390,11 +404,11 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
         if m.rigid:
             continue
         share = max(m.energy_share)
-        for name, r, via in excitation_sources(lay):
-            fe = r * f_in
+        for o in excitation_sources(lay):
+            name, via, fe = o.name, o.via, o.hz_per_input_hz * f_in
             if abs(fe - m.frequency_Hz) > RESONANCE_BAND * m.frequency_Hz:
                 continue
-            c = _crossing(name, r, m.frequency_Hz, np.asarray(m.energy_share), via, m.damping_ratio)
+            c = _crossing(o, m.frequency_Hz, np.asarray(m.energy_share), m.damping_ratio)
             if c.amplification is not None and c.amplification < WARN_AMPLIFICATION:
                 continue  # the exciting mesh holds too little of the mode's strain energy to drive it
             source = lay.connectors[via[0]].label if len(via) == 1 else "meshes of shaft " + name.split()[1]
@@ -408,7 +422,7 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                    f"holds {_percent(c.participation)} of the mode's strain energy ({gain})")
             out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, name, fe, msg, c.participation,
                                  c.amplification, m.damping_ratio, c.strength,
-                                 int(name.split()[1]) if name.startswith("stage ") else None, c.source))
+                                 o.stage, c.source))
         out += _torque_resonances(lay, m, boundary, f_in)
     return out
 
@@ -447,7 +461,7 @@ def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float) -> l
     if ana is not None:
         return list(ana.modes)
     und = _undamped(lay, boundary, duration_s)
-    fe = [r * f_in for _, r, _ in excitation_sources(lay)]
+    fe = [o.hz_per_input_hz * f_in for o in excitation_sources(lay)]
     fe += [t.fixed_Hz if t.fixed_Hz is not None else t.hz_per_input_hz * f_in for t in torque_sources(lay)]
     near = [(rank, j) for rank, j in enumerate(und.order) if rank >= und.n_rigid
             and any(not abs(x - f) > RESONANCE_BAND * f for f in [_frequency_Hz(und, j)] for x in fe)]
@@ -501,14 +515,14 @@ def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: f
     for m in ana.modes:
         if m.rigid:
             continue
-        for name, r, via in sources:
-            c = _crossing(name, r, m.frequency_Hz, np.asarray(m.energy_share), via, m.damping_ratio)
+        for o in sources:
+            c = _crossing(o, m.frequency_Hz, np.asarray(m.energy_share), m.damping_ratio)
             if c.input_speed_rpm is not None and c.input_speed_rpm <= top:
                 crossings.append(CampbellCrossing(m.number, m.frequency_Hz, c))
         crossings += [CampbellCrossing(m.number, m.frequency_Hz,
                                        _torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio))
                       for t in torques if _meets(t, m.frequency_Hz, top)]
-    orders = [(name, r) for name, r, _ in sources] + [(t.name, t.hz_per_input_hz) for t in torques if t.fixed_Hz is None]
+    orders = [(o.name, o.hz_per_input_hz) for o in sources] + [(t.name, t.hz_per_input_hz) for t in torques if t.fixed_Hz is None]
     return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
                         tuple(orders), tuple(crossings),
                         tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None))
