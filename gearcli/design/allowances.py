@@ -88,13 +88,84 @@ class PairAllowances:
     contact_ratio_transverse_with_allowances: tuple[float, float, float]  # [e, m, i]
 
 
+class AllowanceInfeasible(ValueError):
+    """Allowances that leave no mesh. ``part`` ("pinion", "gear", or None for the stage) and ``field`` name the
+    design-file key to blame."""
+
+    def __init__(self, message: str, part: str | None, field: str):
+        super().__init__(message)
+        self.message, self.part, self.field = message, part, field
+
+
+PARTS = ("pinion", "gear")
+
+
+def _require_involute_limits(geo: PairGeometry, teeth: tuple[int, int], shifts: Pair,
+                             thickness: tuple[Pair, Pair], tips: tuple[Pair, Pair], center: Pair) -> None:
+    """Each limit must leave an involute mesh: the smallest centre distance above r_b1 + r_b2 (else no line of
+    action), every lower tip above its base circle, and the thinnest teeth a backlash-free mesh (inv α_wE > 0)."""
+    base_sum = reference_center_distance_mm(geo) * math.cos(geo.transverse_pressure_rad)  # (d_b1 + d_b2)/2
+    tight = geo.center_distance_mm + center[1]
+    if tight <= base_sum:
+        raise AllowanceInfeasible(f"the smallest centre distance a_w + A_ai = {tight:.4g} mm is not above (d_b1 + "
+                                  f"d_b2)/2 = {base_sum:.4g} mm: no line of action is left", None,
+                                  "center_distance_allowance_mm")
+    for i, part in enumerate(PARTS):
+        tip, base = geo.tip_diameter_mm[i] + tips[i][1], geo.base_diameter_mm[i]
+        if tip <= base:
+            raise AllowanceInfeasible(f"the lower tip diameter d_a + A_dai = {tip:.4g} mm is not above the base "
+                                      f"circle d_b = {base:.4g} mm: no involute flank is left", part,
+                                      "tip_diameter_allowance_mm")
+    m_n, a_n = geo.normal_module_mm, geo.normal_pressure_rad
+    thin = sum(generating_profile_shift(shifts[i], thickness[i][1], m_n, a_n) for i in (0, 1))
+    try:
+        working_pressure_angle_rad(geo.transverse_pressure_rad, a_n, thin, teeth[0] + teeth[1])
+    except ValueError:
+        part = PARTS[0] if thickness[0][1] <= thickness[1][1] else PARTS[1]
+        raise AllowanceInfeasible(f"the lower tooth-thickness allowances leave x_E1 + x_E2 = {thin:.3f}, too "
+                                  f"negative for z1 + z2 = {teeth[0] + teeth[1]}: the thinned teeth have no "
+                                  "backlash-free mesh (inv α_wE ≤ 0); check their magnitudes against the module",
+                                  part, "tooth_thickness_allowance_mm") from None
+
+
+def _require_roots(geo: PairGeometry, tips: tuple[Pair, Pair], roots: tuple[Pair, Pair]) -> None:
+    """Every manufactured root above 0 and below the lower tip: the thickest tooth must keep some depth."""
+    for i, part in enumerate(PARTS):
+        lowest, highest, tip = min(roots[i]), max(roots[i]), geo.tip_diameter_mm[i] + tips[i][1]
+        if lowest <= 0.0:
+            raise AllowanceInfeasible(f"the tooth thickness allowance leaves no root: manufactured d_f = "
+                                      f"{lowest:.4g} mm ≤ 0", part, "tooth_thickness_allowance_mm")
+        if highest >= tip:
+            raise AllowanceInfeasible(f"the upper tooth-thickness allowance cuts the root at d_f = {highest:.4g} mm, "
+                                      f"not below the lower tip d_a + A_dai = {tip:.4g} mm: no tooth depth is left",
+                                      part, "tooth_thickness_allowance_mm")
+
+
+def _require_contact(geo: PairGeometry, tips: tuple[Pair, Pair], center: Pair, eps: tuple[float, ...]) -> None:
+    """ε_α ≤ 0 at a limit: the tips do not reach the line of action there, the teeth lose contact. Blamed on the
+    centre distance when the nominal tips lose contact at its largest value, else on the lower tip allowance."""
+    if min(eps) > 0.0:
+        return
+    loose = geo.center_distance_mm + center[0]
+    if center != NO_ALLOWANCE and contact_ratio_at(geo, geo.tip_diameter_mm, loose) <= 0.0:
+        part, field = None, "center_distance_allowance_mm"
+    else:
+        part, field = PARTS[0] if tips[0][1] <= tips[1][1] else PARTS[1], "tip_diameter_allowance_mm"
+    raise AllowanceInfeasible(f"the contact ratio with allowances ε_α = {min(eps):.3f} ≤ 0: at the lower tips and "
+                              f"the largest centre distance a_w + A_ae = {loose:.4g} mm the tips do not reach the "
+                              "line of action, the teeth lose contact", part, field)
+
+
 def pair_allowances(geo: PairGeometry, teeth: tuple[int, int], shifts: Pair, thickness: tuple[Pair, Pair],
                     tips: tuple[Pair, Pair], center: Pair, dedendum_factor: float) -> PairAllowances:
-    """Generating shifts, manufactured roots, backlash [max, min] and ε_α [e, m, i] of one external pair."""
+    """Generating shifts, manufactured roots, backlash [max, min] and ε_α [e, m, i] of one external pair. Limits
+    that leave no mesh raise ``AllowanceInfeasible`` naming the key."""
+    _require_involute_limits(geo, teeth, shifts, thickness, tips, center)
     m_n, a_n = geo.normal_module_mm, geo.normal_pressure_rad
     x_e = tuple(tuple(generating_profile_shift(shifts[i], a, m_n, a_n) for a in thickness[i]) for i in (0, 1))
     d_f = tuple(tuple(manufactured_root_diameter_mm(geo.pitch_diameter_mm[i], m_n, x, dedendum_factor)
                       for x in x_e[i]) for i in (0, 1))
+    _require_roots(geo, tips, d_f)  # type: ignore[arg-type]
     thick, thin = (x_e[0][0], x_e[1][0]), (x_e[0][1], x_e[1][1])
     a_w = geo.center_distance_mm
     a_free = tuple(reference_center_distance_mm(geo) * math.cos(geo.transverse_pressure_rad)
@@ -107,6 +178,7 @@ def pair_allowances(geo: PairGeometry, teeth: tuple[int, int], shifts: Pair, thi
     eps = (contact_ratio_at(geo, (d_a[0] + tips[0][0], d_a[1] + tips[1][0]), tight),
            contact_ratio_at(geo, (d_a[0] + mean[0], d_a[1] + mean[1]), a_w + 0.5 * (center[0] + center[1])),
            contact_ratio_at(geo, (d_a[0] + tips[0][1], d_a[1] + tips[1][1]), loose))
+    _require_contact(geo, tips, center, eps)
     return PairAllowances(
         generating_profile_shift=(x_e[0], x_e[1]),  # type: ignore[arg-type]
         manufactured_root_diameter_mm=(d_f[0], d_f[1]),  # type: ignore[arg-type]

@@ -91,17 +91,22 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
         found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):
             found.append((undercut_warning(stage, gear), {"check": "undercut", **at, "member": _part(stage, gear),
-                                                          "teeth": gear.teeth, "profile_shift": gear.profile_shift}))
+                                                          "teeth": gear.teeth, "profile_shift": gear.profile_shift,
+                                                          **_cut_shift_data(gear)}))
         found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at,
                                                      "contact_ratio_transverse": stage.contact_ratio_transverse,
                                                      "contact_ratio_total": stage.contact_ratio_total}))
+        found.append((contact_ratio_allowances_warning(stage),
+                      {"check": "contact_ratio_allowances", **at,
+                       "contact_ratio_transverse_with_allowances": stage.contact_ratio_transverse_with_allowances}))
         found.append((face_width_warning(stage), {"check": "face_width", **at,
                                                   "face_width_ratio": stage.face_width_mm
                                                   / smaller_pitch_diameter_mm(stage)}))
         for gear in (stage.pinion, stage.gear):
-            found.append((tip_thickness_warning(stage, gear), {"check": "tip_thickness", **at,
-                                                               "member": _part(stage, gear),
-                                                               "profile_shift": gear.profile_shift}))
+            tip_allowance = getattr(stage_cfg, _part(stage, gear)).tip_diameter_allowance_mm
+            found.append((tip_thickness_warning(stage, gear, tip_allowance[0] if tip_allowance else 0.0),
+                          {"check": "tip_thickness", **at, "member": _part(stage, gear),
+                           "profile_shift": gear.profile_shift, **_cut_shift_data(gear)}))
         found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at,
                                                  "resonance_ratio": stage.resonance_ratio,
                                                  "resonance_speed_rpm": stage.resonance_speed_rpm}))
@@ -169,15 +174,44 @@ def spur_hand_warning(index: int, stage_cfg: Stage) -> str | None:
             "the hands are ignored (forgot helix_angle_deg?)")
 
 
+def _cut_shift(gear: GearResult) -> float:
+    """The profile shift the thinnest tooth is cut at: x_E,i of the lower tooth-thickness allowance (ISO 21771),
+    else x. Undercut and the tip thickness are properties of the cut tooth, so they are checked there."""
+    return gear.profile_shift if gear.generating_profile_shift is None else gear.generating_profile_shift[1]
+
+
+def _cut_shift_data(gear: GearResult) -> JsonObject:
+    return {} if gear.generating_profile_shift is None else {"generating_profile_shift": _cut_shift(gear)}
+
+
+def _shift_text(gear: GearResult) -> str:
+    text = f"x = {gear.profile_shift:+.2f}"
+    if gear.generating_profile_shift is not None and _cut_shift(gear) != gear.profile_shift:
+        text += f", cut at x_E,i = {_cut_shift(gear):+.3f} by the lower tooth-thickness allowance"
+    return text
+
+
 def undercut_warning(stage: StageResult, gear: GearResult) -> str | None:
     beta, alpha_t = math.radians(stage.helix_angle_deg), math.radians(stage.transverse_pressure_angle_deg)
-    z_min = undercut_limit_teeth(gear.profile_shift, beta, alpha_t)
+    z_min = undercut_limit_teeth(_cut_shift(gear), beta, alpha_t)
     if gear.teeth >= z_min:
         return None
     x_needed = undercut_min_profile_shift(gear.teeth, beta, alpha_t)
+    what = "a profile shift" if gear.generating_profile_shift is None else "a generating profile shift x_E,i"
     return (f"stage {stage.index}: {_part(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
-            f"(x = {gear.profile_shift:+.2f}, β = {stage.helix_angle_deg:g}°): undercut risk; "
-            f"use a profile shift x ≥ {x_needed:+.2f} or more teeth")
+            f"({_shift_text(gear)}, β = {stage.helix_angle_deg:g}°): undercut risk; "
+            f"use {what} ≥ {x_needed:+.2f} or more teeth")
+
+
+def contact_ratio_allowances_warning(stage: StageResult) -> str | None:
+    """ε_α < 1 at a limit of the allowances (lower tips, largest centre distance) where the nominal ε_α ≥ 1 (the
+    nominal case has its own warning)."""
+    eps = stage.contact_ratio_transverse_with_allowances
+    if eps is None or min(eps) >= 1.0 or stage.contact_ratio_transverse < 1.0:
+        return None
+    return (f"stage {stage.index}: transverse contact ratio with allowances ε_α,i = {min(eps):.3f} < 1 (nominal "
+            f"{stage.contact_ratio_transverse:.3f}): at the lower tip diameters and the largest centre distance "
+            "contact is interrupted in every transverse section; narrow the tip or centre-distance allowances")
 
 
 def contact_ratio_warning(stage: StageResult) -> str | None:
@@ -215,17 +249,21 @@ def face_width_warning(stage: StageResult) -> str | None:
     return None
 
 
-def tip_thickness_warning(stage: StageResult, gear: GearResult) -> str | None:
+def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0) -> str | None:
+    """s_an of the thinnest cut tooth (x_E,i, ``_cut_shift``) on the largest tip, d_a + A_dae."""
     m_n = stage.normal_module_mm
-    s_an = normal_tip_thickness_mm(gear.teeth, m_n, gear.profile_shift, math.radians(stage.helix_angle_deg),
-                                   math.radians(stage.normal_pressure_angle_deg), gear.tip_diameter_mm)
+    tip = gear.tip_diameter_mm + tip_allowance_mm
+    s_an = normal_tip_thickness_mm(gear.teeth, m_n, _cut_shift(gear), math.radians(stage.helix_angle_deg),
+                                   math.radians(stage.normal_pressure_angle_deg), tip)
     limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
     if s_an >= limit:
         return None
     what = "pointed tooth: the flanks meet below the tip circle" if s_an <= 0 else "thin tooth tip"
+    at_tip = f", d_a + A_dae = {tip:.4g} mm" if tip_allowance_mm else ""
+    fix = "reduce the profile shift" if gear.generating_profile_shift is None else \
+        "reduce the profile shift or the tooth-thickness / tip allowances"
     return (f"stage {stage.index}: {_part(stage, gear)} {what}, normal tip thickness s_an = {s_an:.3g} mm "
-            f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm (x = {gear.profile_shift:+.2f}); "
-            "reduce the profile shift")
+            f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({_shift_text(gear)}{at_tip}); {fix}")
 
 
 def resonance_warning(stage: StageResult) -> str | None:

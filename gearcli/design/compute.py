@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.allowances import NO_ALLOWANCE, pair_allowances
+from gearcli.design.allowances import NO_ALLOWANCE, AllowanceInfeasible, pair_allowances
 from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
@@ -40,7 +40,7 @@ from gearcli.results import (
 )
 from gearcli.stages import gear_design as _gear_design  # noqa: F401  # registers the built-in kinds' design facets
 from gearcli.stages import kinds
-from gearcli.stages.design import design_kind, gear_pairs, pair_view
+from gearcli.stages.design import design_kind, file_key, gear_pairs, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -58,11 +58,14 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
                             cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
                             tuple(kind[k].reverse_efficiency(s, k) for k, s in enumerate(cfg.stage)))
-    stages = tuple(kind[k].result(cfg, pairs, k, kin, _stage_result) for k in range(len(cfg.stage)))
-    rating_diagnostics: tuple = ()
-    if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
-        stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
-        rating_diagnostics += tuple(_not_rated(st) for st in stages if not design_kind(st).gear_pair)
+    try:  # a key of the pair view (stage[k].pinion.x) named as the file names it (a planetary's sun.x)
+        stages = tuple(kind[k].result(cfg, pairs, k, kin, _stage_result) for k in range(len(cfg.stage)))
+        rating_diagnostics: tuple = ()
+        if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
+            stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
+            rating_diagnostics += tuple(_not_rated(st) for st in stages if not design_kind(st).gear_pair)
+    except DesignError as exc:
+        raise DesignError(exc.message, key=file_key(cfg, exc.key), source=exc.source) from None
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
@@ -338,14 +341,11 @@ def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: in
                              pair(members[1].tooth_thickness_allowance_mm)),
                             (pair(members[0].tip_diameter_allowance_mm), pair(members[1].tip_diameter_allowance_mm)),
                             pair(stage.center_distance_allowance_mm), stage.basic_rack.dedendum)
-    except ValueError:  # InfeasibleGeometry too: no involute mesh at these limits
+    except AllowanceInfeasible as e:  # no involute mesh, or no contact, at these limits: the key to blame
+        raise DesignError(e.message, key=f"stage[{k}]." + (f"{e.part}." if e.part else "") + e.field) from None
+    except ValueError:  # InfeasibleGeometry, or a limit the checks above do not foresee
         raise DesignError("the allowances leave no involute mesh (the teeth at their limits cannot mesh at the "
                           "centre distance's limits): check their magnitudes against the module", key=f"stage[{k}]") from None
-    for i, part in enumerate(("pinion", "gear")):
-        if min(a.manufactured_root_diameter_mm[i]) <= 0.0:
-            raise DesignError(f"the tooth thickness allowance leaves no root: manufactured d_f = "
-                              f"{min(a.manufactured_root_diameter_mm[i]):.4g} mm ≤ 0",
-                              key=f"stage[{k}].{part}.tooth_thickness_allowance_mm")
     gears = tuple(replace(g, generating_profile_shift=a.generating_profile_shift[i],
                           manufactured_root_diameter_mm=a.manufactured_root_diameter_mm[i])
                   for i, g in enumerate((result.pinion, result.gear)))
