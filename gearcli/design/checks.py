@@ -96,6 +96,10 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
         found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at,
                                                      "contact_ratio_transverse": stage.contact_ratio_transverse,
                                                      "contact_ratio_total": stage.contact_ratio_total}))
+        for gear in (stage.pinion, stage.gear):
+            clearance = tip_clearance_with_allowances_mm(stage, stage_cfg, gear)
+            found.append((tip_clearance_warning(stage, gear, clearance),
+                          {"check": "tip_clearance", **at, "member": _part(stage, gear), "tip_clearance_mm": clearance}))
         found.append((contact_ratio_allowances_warning(stage),
                       {"check": "contact_ratio_allowances", **at,
                        "contact_ratio_transverse_with_allowances": stage.contact_ratio_transverse_with_allowances}))
@@ -201,6 +205,27 @@ def undercut_warning(stage: StageResult, gear: GearResult) -> str | None:
     return (f"stage {stage.index}: {_part(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
             f"({_shift_text(gear)}, β = {stage.helix_angle_deg:g}°): undercut risk; "
             f"use {what} ≥ {x_needed:+.2f} or more teeth")
+
+
+def tip_clearance_with_allowances_mm(stage: StageResult, stage_cfg: Stage, gear: GearResult) -> float | None:
+    """The smallest clearance between ``gear``'s tip and its mate's root with allowances: c = a_w + A_ai − (d_a +
+    A_dae)/2 − d_f,e/2, the largest tip against the mate's highest root (its thickest tooth, x_E,e) at the smallest
+    centre distance. None without allowances (the nominal clearance is the basic rack's, by the tip alteration)."""
+    mate = stage.gear if gear is stage.pinion else stage.pinion
+    if mate.manufactured_root_diameter_mm is None:
+        return None
+    tip = getattr(stage_cfg, _part(stage, gear)).tip_diameter_allowance_mm
+    centre = stage_cfg.center_distance_allowance_mm
+    return (stage.center_distance_mm + (centre[1] if centre else 0.0)
+            - 0.5 * (gear.tip_diameter_mm + (tip[0] if tip else 0.0)) - 0.5 * mate.manufactured_root_diameter_mm[0])
+
+
+def tip_clearance_warning(stage: StageResult, gear: GearResult, clearance: float | None) -> str | None:
+    if clearance is None or clearance >= 0.0:
+        return None
+    return (f"stage {stage.index}: {_part(stage, gear)} tip clearance with allowances c = {clearance:.3g} mm < 0: at "
+            "the upper tip allowance, the mate's upper tooth-thickness allowance and the smallest centre distance the "
+            "tip runs into the mate's root; narrow the tip allowance (tip_diameter_allowance_mm)")
 
 
 def contact_ratio_allowances_warning(stage: StageResult) -> str | None:

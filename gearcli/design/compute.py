@@ -72,10 +72,13 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     own = tuple(d for k, st in enumerate(stages) for d in kind[k].diagnostics(st))
     jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
                            f"{st.backlash_circumferential_mm[1]:.4g} mm (< 0): at the upper tooth-thickness "
-                           "allowances and the smallest centre distance the teeth jam; thin the teeth "
-                           "(tooth_thickness_allowance_mm) or widen the centre distance", check="backlash_negative",
-                           stage=st.index,
-                           backlash_min_mm=st.backlash_circumferential_mm[1])
+                           "allowances and the smallest centre distance the teeth jam"
+                           + (f" (the maximum, {st.backlash_circumferential_mm[0]:.4g} mm, too: every pair within the "
+                              "tolerances jams)" if st.backlash_circumferential_mm[0] < 0.0 else "")
+                           + "; thin the teeth (tooth_thickness_allowance_mm) or widen the centre distance",
+                           check="backlash_negative", stage=st.index,
+                           backlash_min_mm=st.backlash_circumferential_mm[1],
+                           backlash_max_mm=st.backlash_circumferential_mm[0])
                    for _, st in gear_pairs(stages) if st.backlash_circumferential_mm is not None
                    and st.backlash_circumferential_mm[1] < 0.0)
     pins, bearings = _bearings(cfg, stages, kin)

@@ -356,7 +356,19 @@ def test_thicker_than_nominal_teeth_jam_and_say_so():
                     rtol=1e-9)
     assert max(st["backlash_circumferential_mm"]) < 0
     (w,) = [w for w in doc["warnings"] if w.get("check") == "backlash_negative"]
-    assert "jam" in w["message"]
+    assert "jam" in w["message"] and "every pair within the tolerances jams" in w["message"]
+    assert w["backlash_max_mm"] == st["backlash_circumferential_mm"][0]
+
+
+def test_a_tip_into_the_mate_s_root_warns():
+    """Pinion tip +6 mm: c = a_w + A_ai − (d_a1 + A_dae)/2 − d_f2,e/2 = 192.9655 − 55.216 − 139.635 = −1.886 mm."""
+    text = HELICAL.replace("[-0.070, -0.130] }", "[-0.070, -0.130], tip_diameter_allowance_mm = [6.0, 0.0] }")
+    (w,) = _warnings(text, "tip_clearance")
+    d_f2e = Hand.d[1] + 2 * Hand.x_e(1, 0) * M - 2.5 * M
+    assert_allclose(w["tip_clearance_mm"], Hand.a_w - 0.023 - (Hand.d_a[0] + 6.0) / 2 - d_f2e / 2, rtol=1e-9)
+    assert_allclose(w["tip_clearance_mm"], -1.886, atol=1e-3)
+    assert w["member"] == "pinion" and "runs into the mate's root" in w["message"]
+    assert _warnings(HELICAL, "tip_clearance") == []
 
 
 def test_one_member_only_and_the_centre_distance_only():
