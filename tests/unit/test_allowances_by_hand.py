@@ -384,3 +384,28 @@ def test_one_member_only_and_the_centre_distance_only():
                                                         Hand.backlash_by_thickness(X, Hand.a_w - 0.023)], rtol=1e-9)
     assert_allclose(st["backlash_circumferential_mm"], [2 * 0.023 * math.tan(Hand.alpha_w),
                                                         -2 * 0.023 * math.tan(Hand.alpha_w)], rtol=1e-3)
+
+
+def test_iso_21771_sum_of_generating_shifts_from_the_normal_backlash():
+    """ISO 21771:2007 eqs. (62)/(63) as worked in a published calculation sheet ("Gear Generating Profile Shift
+    Calculations": z 31/30, m_n 3.5, α_n 20°, β 21°, a_w 116.5 mm; α_t 21.2990642859°, α_wt 23.8707609654°,
+    Σx = 0.651877131252, and for j_n = 0.030 mm Σx_E = 0.639346541, i.e. Σx − Σx_E = j_n / (2 m_n sin α_n)).
+    gearcli's backlash of teeth cut at that Σx_E (all of the thinning on the pinion) is j_n = 0.030 mm."""
+    sum_x, sum_x_e, m_n = 0.651877131252, 0.639346541, 3.5
+    assert_allclose(sum_x - sum_x_e, 0.030 / (2 * m_n * math.sin(ALPHA)), rtol=1e-6)  # the sheet's eq. (63)
+    a_sn = (sum_x_e - sum_x) * 2 * m_n * math.tan(ALPHA)  # −0.031925 mm
+    text = (HELICAL.replace("normal_module_mm = 4", "normal_module_mm = 3.5").replace("helix_angle_deg = 12",
+                                                                                      "helix_angle_deg = 21")
+            .replace("center_distance_allowance_mm = [0.023, -0.023]\n", "")
+            .replace("teeth = 23", "teeth = 31").replace("teeth = 71", "teeth = 30")
+            .replace("profile_shift = 0.3,", "profile_shift = 0.291,")
+            .replace("profile_shift = -0.1,", f"profile_shift = {sum_x - 0.291!r},")
+            .replace("[-0.070, -0.130]", f"[{a_sn!r}, {a_sn!r}]")
+            .replace(", tooth_thickness_allowance_mm = [-0.100, -0.170]", ""))
+    st = _design(text)["stages"][0]
+    assert_allclose(st["center_distance_mm"], 116.5, atol=1e-9)
+    assert_allclose([st["transverse_pressure_angle_deg"], st["working_pressure_angle_deg"]],
+                    [21.2990642859, 23.8707609654], atol=1e-9)
+    assert_allclose(sum(xe[1] for xe in (st["pinion"]["generating_profile_shift"],
+                                         st["gear"]["generating_profile_shift"])), sum_x_e, rtol=1e-12)
+    assert_allclose(st["backlash_normal_mm"], [0.030, 0.030], rtol=1e-7)  # the sheet's Σx_E has 9 digits
