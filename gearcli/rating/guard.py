@@ -32,6 +32,8 @@ class Guarded:
         self.title = std.title
 
     def __getattr__(self, attr: str) -> Any:  # rate_at_force (optional) and anything else a standard offers
+        if attr.startswith("__") or attr == "std":  # copy and pickle ask before __init__ ran
+            raise AttributeError(attr)
         value = getattr(self.std, attr)
         if attr == "rate_at_force" and callable(value):
             return lambda cfg, stage, ratio: self._mesh(self._call(attr, value, cfg, stage, ratio), attr, None)

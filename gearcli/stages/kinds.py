@@ -73,6 +73,8 @@ class Guarded:
         self._impl = implementation
 
     def __getattr__(self, attr: str) -> Any:
+        if attr.startswith("__") or attr in ("_impl", "_where"):  # copy and pickle ask before __init__ ran
+            raise AttributeError(attr)
         try:
             value = getattr(self._impl, attr)
         except AttributeError:

@@ -6,7 +6,9 @@ package (a ``*.dist-info`` with an ``entry_points.txt`` of the group ``gearcli.p
   sigma_HP = sigma_HG / S_Hmin and sigma_FP = sigma_FG / S_Fmin and the warnings at the raised minima, its ratings
   titled :data:`TITLE`;
 - a stage kind ``test_fixed_ratio``: an ideal speed ratio i = omega_in / omega_out (no loss) with a torsional
-  stiffness k on its input shaft (twist = theta_in - i theta_out), its input and output inertias; not rated.
+  stiffness k on its input shaft (twist = theta_in - i theta_out), its input and output inertias; not rated;
+- a model element ``test_plugin_spring`` (``plug_element.py``) the stage kind places with ``law =
+  "test_plugin_spring"``.
 
 And the misbehaving standards the guard is tested with (:data:`MISBEHAVING`), registered by their test only.
 """
@@ -68,6 +70,11 @@ class Marine:
     def sn_curve(self, cfg, member, treatment, mode, variant):
         return ISO6336.sn_curve(_raised(cfg), member, treatment, mode, variant)
 
+    def rate_at_force(self, cfg, stage, force_ratio):
+        """Life's load classes re-rated as ISO re-rates them (every load factor at the class's load)."""
+        rating = ISO6336.rate_at_force(_raised(cfg), stage, force_ratio)
+        return None if rating is None else replace(rating, standard=TITLE)
+
     def curve_name(self, mode: str) -> str:
         return ISO6336.curve_name(mode)
 
@@ -83,6 +90,7 @@ class FixedRatioStage(StrictTable):
     damping_Nms_rad: Annotated[float, Field(ge=0, le=1e9)] = 0.0
     input_inertia_kg_m2: Annotated[float, Field(gt=0, le=1e6)]
     output_inertia_kg_m2: Annotated[float, Field(gt=0, le=1e6)]
+    law: Literal["spring", "test_plugin_spring"] = "spring"  # the element on the twist (the plug-in's own, or not)
     mesh: None = None  # no contact law
     shaft: None = None  # no flexible output shaft
 
@@ -108,6 +116,7 @@ class FixedRatioResult:
     stiffness_Nm_rad: float
     damping_Nms_rad: float
     static_twist_deg: float
+    law: str
     input_inertia_kg_m2: float
     output_inertia_kg_m2: float
     type: str = KIND
@@ -131,7 +140,7 @@ class FixedRatioDesign:
         t_in, t_out = (v / 1000.0 for v in kin.stage_torques_Nmm[k])
         return FixedRatioResult(k + 1, t.ratio, 1.0, w_in * RPM, w_out * RPM, math.degrees(w_out), t_in, t_out,
                                 t.stiffness_Nm_rad, t.damping_Nms_rad, math.degrees(t_in / t.stiffness_Nm_rad),
-                                t.input_inertia_kg_m2, t.output_inertia_kg_m2)
+                                t.law, t.input_inertia_kg_m2, t.output_inertia_kg_m2)
 
     def inertia(self, result, side):
         return result.input_inertia_kg_m2 if side == "input" else result.output_inertia_kg_m2
@@ -170,11 +179,12 @@ class FixedRatioModel:
     ratio: float
     stiffness_Nm_rad: float
     damping_Nms_rad: float
+    law: str = "spring"
     efficiency: float = 1.0
     reverse_efficiency: float = 1.0
 
     def place(self, k, bodies, conns, body, out_inertia):
-        kind = elements.kind_of("spring")
+        kind = elements.kind_of(self.law)
         law = elements.law_of(kind).pack(SpringSpec(self.stiffness_Nm_rad, self.damping_Nms_rad))
         n = len(bodies)  # twist = 1 theta_in - i theta_out: levers (1 m, i m), the "force" the input torque
         conns.append(Connector(kind, (n - 1, n), (1.0, self.ratio), tuple(float(v) for v in law),
@@ -190,7 +200,7 @@ class FixedRatioModelKind:
                         static_tangential_N=st.input_torque_Nm, law=KIND, iso_normal_stiffness_N_m=0.0)
 
     def stage_model(self, cfg, st, k, mesh):
-        return FixedRatioModel(st.ratio, st.stiffness_Nm_rad, st.damping_Nms_rad)
+        return FixedRatioModel(st.ratio, st.stiffness_Nm_rad, st.damping_Nms_rad, st.law)
 
 
 SIMULATED = {"tangential_N": "input_torque_Nm", "static_tangential_N": "static_input_torque_Nm",
@@ -237,6 +247,9 @@ FACETS = {"design": FixedRatioDesign(), "model": FixedRatioModelKind(), "io": Fi
 
 def register() -> None:
     """The entry point (``gearcli.plugins``): the standard and the stage kind."""
+    import plug_element
+
+    elements.register(plug_element)  # the Python engine only (compiled=False): the kernel and its cache unchanged
     register_standard(Marine())
     register_stage_table(KIND, FixedRatioStage)
     for name, facet in FACETS.items():

@@ -112,11 +112,12 @@ def test_the_plug_in_standard_warns_at_its_own_minimum(installed):
 
 
 def test_life_and_the_simulated_rating_use_the_plug_in_standard(installed):
-    """Life sums damage on the standard's S–N curves (ISO's here: sigma_HG / Z_NT does not depend on S_Hmin, so
-    the damage is ISO's to the last digits) under the standard's title; the simulated-K_v rating of a run is
-    the plug-in's too."""
-    iso = _json("life", MIXER, "--static")["life"]
-    marine = _json("life", MIXER, "--static", *MARINE)["life"]
+    """Life sums damage on the standard's S–N curves and its load classes re-rated by its optional
+    ``rate_at_force`` (ISO's here: sigma_HG / Z_NT and the class stresses do not depend on S_Hmin, so the damage
+    is ISO's to the last digits; without ``rate_at_force`` the classes' stresses would be scaled, 4e-7 off on
+    stage 3) under the standard's title; the simulated-K_v rating of a run is the plug-in's too."""
+    iso = _json("life", MIXER)["life"]
+    marine = _json("life", MIXER, *MARINE)["life"]
     assert marine["standard"] == px.TITLE
     for a, b in zip(iso["stages"], marine["stages"], strict=True):
         for m in ("pinion", "gear"):
@@ -236,3 +237,18 @@ def test_a_stage_kind_without_a_facet_a_command_needs_is_named(tmp_path):
         px.withdraw()
     assert r.exit_code == 1 and "Traceback" not in r.output and "internal error" not in r.output
     assert f'stage type "{px.KIND}" has no model facet registered (the stage types with one: "parallel", ' in r.output
+
+
+def test_a_plug_in_element_runs_on_the_python_engine_with_the_closed_form_modes(installed, tmp_path):
+    """The stage placing the plug-in's own element (the spring's law under its name, not compiled): the same
+    closed-form modes as above, and a run whose engine choice says the compiled kernel does not know the element
+    (``auto`` falls back to Python, the kernel and its cache untouched)."""
+    path = _write(tmp_path, {**ONLY_FIXED, "stage": [{**FIXED, "law": "test_plugin_spring"}]})
+    modes = _json("modes", path)
+    assert modes["elements"] == ["stage 1 fixed ratio"]
+    (held,) = [m for m in modes["boundaries"]["clamped_input"] if not m["rigid"]]
+    assert_allclose(held["frequency_Hz"], math.sqrt(K * I**2 / J_OUT) / (2 * math.pi), rtol=1e-9)
+    run = _json("simulate", path)
+    assert run["solver"]["engine"] == "python"
+    assert "connector kinds" in run["solver"]["engine_reason"]
+    assert_allclose(run["summary"]["stages"][0]["input_torque_Nm"]["mean"], T_OUT / I, rtol=1e-3)
