@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable, Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from gearcli.core.text import shorten
 from gearcli.diagnostics import Diagnostic
@@ -81,7 +81,7 @@ class Guarded:
         except Exception as exc:  # third-party code: named, with what it raised
             self._fail(what, f"raised {type(exc).__name__}: {shorten(' '.join(str(exc).split()), 300)}")
 
-    def _fail(self, what: str, text: str) -> None:
+    def _fail(self, what: str, text: str) -> NoReturn:
         raise PluginError(f'rating standard "{self.name}" ({type(self.std).__module__}): {what} {text} '
                           "(docs/plugins.md, the rating standard's protocol)")
 
@@ -90,11 +90,12 @@ class Guarded:
             self._fail(what, f"returned {type(value).__name__}, not a str")
         return str(value)
 
-    def _stages(self, what: str, out: object, given: Sequence) -> tuple[tuple, list]:
+    def _stages(self, what: str, out: Any, given: Sequence) -> tuple[tuple, list]:
         if not (isinstance(out, (list, tuple)) and len(out) == 2 and isinstance(out[0], (list, tuple))
                 and isinstance(out[1], (list, tuple))):
             self._fail(what, f"must return (stages, warnings), got {shorten(repr(out), 200)}")
-        rated, diags = out  # type: ignore[misc]
+        rated: Sequence[Any] = out[0]
+        diags: Sequence[Any] = out[1]
         if len(rated) != len(given):
             self._fail(what, f"returned {len(rated)} stages for {len(given)}")
         for k, (new, old) in enumerate(zip(rated, given, strict=True)):
@@ -102,6 +103,7 @@ class Guarded:
                 self._fail(what, f"returned stage {k + 1} as {type(new).__name__}, not the {type(old).__name__} it "
                            "was given (dataclasses.replace(stage, rating=...))")
             self._mesh(getattr(new, "rating", None), what, k)
+            self._mesh(getattr(new, "planet_ring_rating", None), what, k)  # a planetary stage's second mesh
         for d in diags:
             if not isinstance(d, Diagnostic):
                 self._fail(what, f"returned the warning {shorten(repr(d), 100)}, not a gearcli.diagnostics.Diagnostic "
@@ -150,4 +152,4 @@ def guarded(std: RatingStandard) -> RatingStandard:
     """``std`` as the registry keeps it: gearcli's own standards as they are, a plug-in's behind :class:`Guarded`."""
     if type(std).__module__.split(".")[0] == "gearcli":
         return std
-    return Guarded(std)  # type: ignore[return-value]
+    return Guarded(std)
