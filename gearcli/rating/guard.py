@@ -18,6 +18,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError, PluginError
 from gearcli.rating.sn import SNCurve
 from gearcli.rating.standard import MODES
+from gearcli.stages import kinds
 
 if TYPE_CHECKING:
     from gearcli.rating.standard import RatingStandard
@@ -103,18 +104,19 @@ class Guarded:
                 self._fail(what, f"returned stage {k + 1} as {type(new).__name__}, not the {type(old).__name__} it "
                            "was given (dataclasses.replace(stage, rating=...))")
             self._mesh(getattr(new, "rating", None), what, k)
-            self._mesh(getattr(new, "planet_ring_rating", None), what, k)  # a planetary stage's second mesh
+            for further in _further_ratings(new):  # a planetary stage's planet–ring mesh
+                self._mesh(further, what, k, "planet–ring rating")
         for d in diags:
             if not isinstance(d, Diagnostic):
                 self._fail(what, f"returned the warning {shorten(repr(d), 100)}, not a gearcli.diagnostics.Diagnostic "
                            "(gearcli.diagnostics.warning(code, message))")
         return tuple(rated), list(diags)
 
-    def _mesh(self, rating: object, what: str, k: int | None) -> object:
+    def _mesh(self, rating: object, what: str, k: int | None, label: str = "rating") -> object:
         """A rated mesh as the layers above read it (``gearcli.rating.RatedMesh``); None is "not rated"."""
         if rating is None:
             return rating
-        where = f"stage {k + 1}'s rating" if k is not None else "the rating"
+        where = f"stage {k + 1}'s {label}" if k is not None else f"the {label}"
         if not dataclasses.is_dataclass(rating) or isinstance(rating, type):
             self._fail(what, f"returned {where} as {type(rating).__name__}: a rated mesh is a dataclass (its JSON "
                        "is its fields)")
@@ -140,6 +142,16 @@ class Guarded:
     def _number(self, what: str, name: str, value: object) -> None:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value) or value < 0:
             self._fail(what, f"returned {name} = {shorten(repr(value), 60)}: a number ≥ 0 was expected")
+
+
+def _further_ratings(stage: object) -> list:
+    """The stage's ratings beyond its first, as its kind's design facet gives them (a design's stage; a run's
+    summary carries its planet–ring rating as ``planet_ring_rating``)."""
+    if hasattr(stage, "planet_ring_rating"):
+        ring = getattr(stage, "planet_ring_rating")
+        return [] if ring is None else [ring]
+    further = getattr(kinds.facet(kinds.kind_of(stage), "design"), "further_ratings", None)
+    return list(further(stage)) if further is not None else []
 
 
 def _missing(name: str) -> Callable:

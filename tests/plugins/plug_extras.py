@@ -46,10 +46,21 @@ def _raised(cfg):
         "min_safety_bending": max(S_F_MIN, r.min_safety_bending)})})
 
 
-def _titled(stage):
+def _titled(stage, ring: bool = True):
+    """The stage's ratings under this standard's title: its rating, and a planetary stage's planet–ring rating
+    (a design's ``planetary.planet_ring.rating``, a run's ``planet_ring_rating``)."""
     if getattr(stage, "rating", None) is None:
         return stage
-    return replace(stage, rating=replace(stage.rating, standard=TITLE))
+    stage = replace(stage, rating=replace(stage.rating, standard=TITLE))
+    if not ring:
+        return stage
+    if getattr(stage, "planet_ring_rating", None) is not None:
+        return replace(stage, planet_ring_rating=replace(stage.planet_ring_rating, standard=TITLE))
+    p = getattr(stage, "planetary", None)
+    if p is not None and p.planet_ring.rating is not None:
+        ring_mesh = replace(p.planet_ring, rating=replace(p.planet_ring.rating, standard=TITLE))
+        return replace(stage, planetary=replace(p, planet_ring=ring_mesh))
+    return stage
 
 
 class Marine:
@@ -287,7 +298,9 @@ class _Misbehaving(Marine):
             return tuple(replace(s, rating={"S_H": 1.0}) for s in rated), diags
         if self.how == "short":
             return rated[:1], diags
+        if self.how == "ring_untitled":  # a planetary stage's planet–ring rating left ISO's
+            return tuple(_titled(s, ring=False) for s in ISO6336.rate_design(_raised(cfg), stages)[0]), diags
         return rated, (*diags, "a plain string")  # warning_text
 
 
-MISBEHAVING = ("raises", "nan", "untitled", "dict", "short", "warning_text")
+MISBEHAVING = ("raises", "nan", "untitled", "dict", "short", "warning_text", "ring_untitled")

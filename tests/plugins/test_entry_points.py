@@ -28,6 +28,7 @@ from gearcli.rating.registry import withdraw as withdraw_standard
 ROOT = Path(__file__).resolve().parents[2]
 RATED = str(ROOT / "configs" / "industrial_two_stage_rated.toml")
 MIXER = str(ROOT / "configs" / "mixer_duty.toml")
+PLANETARY = str(ROOT / "configs" / "planetary_duty.toml")
 MARINE = ("--set", f"rating.standard={px.MARINE}")
 I, K, J_IN, J_OUT, T_OUT, N_IN = 4.0, 2.0e5, 0.02, 0.5, 1340.0, 1450.0  # -, N m/rad, kg m², kg m², N m, rpm
 FIXED = {"type": px.KIND, "ratio": I, "stiffness_Nm_rad": K, "damping_Nms_rad": 5.0,
@@ -97,6 +98,17 @@ def test_a_plug_in_standard_loads_from_its_entry_point_and_rates_by_iso_at_its_m
             assert_allclose(ra["sigma_HP_MPa"], ra["sigma_HG_MPa"] / 1.25, rtol=1e-13)  # ISO at the file's 1.25
     table = _invoke("design", RATED, *MARINE, "--format", "table", "-q").stdout
     assert f"strength rating, {px.TITLE}" in table
+
+
+def test_a_planetary_stage_s_planet_ring_mesh_is_rated_by_the_plug_in_too(installed):
+    """Both meshes of a planetary stage carry the standard's title and its permissible stresses (S_Hmin 1.4 over
+    the file's 1.0), the ring's safeties ISO's."""
+    iso = _json("design", PLANETARY)["stages"][0]["meshes"][1]["rating"]
+    sun, ring = (m["rating"] for m in _json("design", PLANETARY, *MARINE)["stages"][0]["meshes"])
+    assert sun["standard"] == ring["standard"] == px.TITLE
+    for m in ("pinion", "gear"):
+        assert_allclose(ring[m]["S_H"], iso[m]["S_H"], rtol=1e-13)
+        assert_allclose(ring[m]["sigma_HP_MPa"], iso[m]["sigma_HG_MPa"] / 1.4, rtol=1e-13)
 
 
 def test_the_plug_in_standard_warns_at_its_own_minimum(installed):
@@ -192,6 +204,7 @@ MESSAGES = {
     "dict": "returned stage 1's rating as dict: a rated mesh is a dataclass",
     "short": "returned 1 stages for 2",
     "warning_text": "returned the warning 'a plain string', not a gearcli.diagnostics.Diagnostic",
+    "ring_untitled": "returned stage 1's planet–ring rating titled 'ISO 6336:2006 method B'",
 }
 
 
@@ -200,7 +213,7 @@ def test_a_standard_that_raises_or_breaks_its_protocol_is_named_not_a_traceback(
     std = px._Misbehaving(how)
     register_standard(std)
     try:
-        r = _invoke("design", RATED, "--set", f"rating.standard={std.name}")
+        r = _invoke("design", PLANETARY if how == "ring_untitled" else RATED, "--set", f"rating.standard={std.name}")
     finally:
         withdraw_standard(std.name)
     assert r.exit_code == 1, r.output
