@@ -148,7 +148,7 @@ def _further_ratings(stage: object) -> list:
     """The stage's ratings beyond its first, as its kind's design facet gives them (a design's stage; a run's
     summary carries its planet–ring rating as ``planet_ring_rating``)."""
     if hasattr(stage, "planet_ring_rating"):
-        ring = getattr(stage, "planet_ring_rating")
+        ring = stage.planet_ring_rating
         return [] if ring is None else [ring]
     further = getattr(kinds.facet(kinds.kind_of(stage), "design"), "further_ratings", None)
     return list(further(stage)) if further is not None else []
