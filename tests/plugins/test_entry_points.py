@@ -265,3 +265,14 @@ def test_a_plug_in_element_runs_on_the_python_engine_with_the_closed_form_modes(
     assert run["solver"]["engine"] == "python"
     assert "connector kinds" in run["solver"]["engine_reason"]
     assert_allclose(run["summary"]["stages"][0]["input_torque_Nm"]["mean"], T_OUT / I, rtol=1e-3)
+
+
+def test_the_report_names_the_plug_in_standard_s_k_v_as_the_design_s(installed, tmp_path):
+    """`gearcli report` sets the design's K_v beside the simulated one: ISO 6336-1's under ISO 6336, the
+    plug-in standard's own (its title, "K_v design") under a plug-in."""
+    out = tmp_path / "report.md"
+    r = _invoke("report", RATED, *MARINE, "--set", "simulation.duration_s=0.3", "-q", "-o", str(out))
+    assert r.exit_code == 0, r.output
+    text = out.read_text(encoding="utf-8")
+    assert f"## Dynamic factor: {px.TITLE} against the simulation" in text and "| K_v design |" in text
+    assert "K_v ISO" not in text
