@@ -232,6 +232,7 @@ def _parse(raw: bytes, source: str) -> dict:
         raise ConfigError("TOML syntax error: arrays or inline tables nested too deeply", source=source) from None
     if not data:
         raise ConfigError(f"file is empty: no keys, only comments ({_INIT_HINT})", source=source)
+    _unknown_kinds(data)  # a plug-in's kind is registered before --set walks into its table
     return data
 
 
@@ -301,17 +302,23 @@ def _check_window(design: DesignFile, source: str, paths: Sequence[tuple]) -> No
                           key="simulation.window_start_s", source=_overrides.SOURCE if blamed else source)
 
 
+def _unknown_kinds(data: dict) -> tuple[int | None, str | None, tuple[str, ...]]:
+    """The first stage whose ``type`` no loaded code registered, after loading the installed plug-ins (once per
+    process, and only when a stage names such a type): its index, its type and the plug-ins that failed to load."""
+    stages = data.get("stage")
+    named = [(i, s["type"]) for i, s in enumerate(stages) if isinstance(s, dict) and isinstance(s.get("type"), str)
+             ] if isinstance(stages, list) else []
+    if all(t in kinds.kinds("table") for _, t in named):
+        return None, None, ()
+    failures = plugins.load()
+    i, t = next(((i, t) for i, t in named if t not in kinds.kinds("table")), (None, None))
+    return i, t, failures
+
+
 def _plug_in_kinds(data: dict, source: str, paths: Sequence[tuple]) -> None:
     """A stage ``type`` no loaded code registered loads the installed plug-ins (:mod:`gearcli.core.plugins`) before
     the file is validated; still unknown with a plug-in that failed to load, a ConfigError saying so."""
-    stages = data.get("stage")
-    types_ = {(i, s["type"]) for i, s in enumerate(stages) if isinstance(s, dict) and isinstance(s.get("type"), str)
-              } if isinstance(stages, list) else set()
-    unknown = [(i, t) for i, t in sorted(types_) if t not in kinds.kinds("table")]
-    if not unknown:
-        return
-    failures = plugins.load()
-    i, t = next(((i, t) for i, t in unknown if t not in kinds.kinds("table")), (None, None))
+    i, t, failures = _unknown_kinds(data)
     if i is not None and failures:  # else validation names the registered kinds
         known = ", ".join(f'"{k}"' for k in kinds.kinds("table"))
         path = ("stage", i, "type")

@@ -276,3 +276,21 @@ def test_the_report_names_the_plug_in_standard_s_k_v_as_the_design_s(installed, 
     text = out.read_text(encoding="utf-8")
     assert f"## Dynamic factor: {px.TITLE} against the simulation" in text and "| K_v design |" in text
     assert "K_v ISO" not in text
+
+
+def test_set_reaches_into_a_plug_in_stage_s_table(installed, tmp_path):
+    """``--set stage.0.ratio=2`` walks into the plug-in's table (its kind loaded before the overrides apply, in the
+    main process and in a sweep's workers): T_in = T_out / i = 670 N m. On a stage whose type no kind registered
+    the message names the type and the registered kinds (not "a value, not a table")."""
+    path = _write(tmp_path, ONLY_FIXED)
+    (st,) = _json("design", path, "--set", "stage.0.ratio=2")["stages"]
+    assert_allclose(st["input_torque_Nm"], T_OUT / 2.0, rtol=1e-13)
+    r = _invoke("sweep", path, "--vary", "stage.0.ratio=2,4", "--jobs", "2", "-q", "--format", "json")
+    assert r.exit_code == 0, r.output
+    rows = json.loads(r.stdout)["rows"] if r.stdout.lstrip().startswith("{") else json.loads(r.stdout)
+    assert [row["status"] for row in rows] == ["ok", "ok"]
+    bevel = _write(tmp_path, {**ONLY_FIXED, "stage": [{**FIXED, "type": "bevel"}]}, "bevel.toml")
+    r = _invoke("design", bevel, "--set", "stage.0.ratio=2")
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    assert ('--set: stage.0.ratio: stage[0] is of type "bevel", which no stage kind registered (registered: '
+            '"parallel", "planetary", "test_fixed_ratio"') in r.output
