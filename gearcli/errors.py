@@ -53,6 +53,11 @@ class DesignError(GearcliError):
         super().__init__(located(message, source, key))
 
 
+class PluginError(GearcliError):
+    """A plug-in (a stage kind or a rating standard registered from outside gearcli, docs/plugins.md) raised, or
+    returned what its protocol does not allow: the message names the plug-in, what was asked and what it did."""
+
+
 class SimulationError(GearcliError):
     """The integration failed or diverged; the message names the likely cause and the fix."""
 

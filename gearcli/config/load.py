@@ -29,7 +29,9 @@ from gearcli.config.messages import translate
 from gearcli.config.prescan import MAX_BYTES, check_bytes, check_text
 from gearcli.config.schema import DesignFile
 from gearcli.config.starter import json_schema, starter_toml
+from gearcli.core import plugins
 from gearcli.errors import ConfigError
+from gearcli.stages import kinds
 
 __all__ = ["ConfigErrors", "LoadedDesign", "load_design", "json_schema", "starter_toml", "MAX_BYTES", "STDIN",
            "read_input_file"]
@@ -230,6 +232,7 @@ def _parse(raw: bytes, source: str) -> dict:
         raise ConfigError("TOML syntax error: arrays or inline tables nested too deeply", source=source) from None
     if not data:
         raise ConfigError(f"file is empty: no keys, only comments ({_INIT_HINT})", source=source)
+    _unknown_kinds(data)  # a plug-in's kind is registered before --set walks into its table
     return data
 
 
@@ -299,9 +302,34 @@ def _check_window(design: DesignFile, source: str, paths: Sequence[tuple]) -> No
                           key="simulation.window_start_s", source=_overrides.SOURCE if blamed else source)
 
 
+def _unknown_kinds(data: dict) -> tuple[int | None, str | None, tuple[str, ...]]:
+    """The first stage whose ``type`` no loaded code registered, after loading the installed plug-ins (once per
+    process, and only when a stage names such a type): its index, its type and the plug-ins that failed to load."""
+    stages = data.get("stage")
+    named = [(i, s["type"]) for i, s in enumerate(stages) if isinstance(s, dict) and isinstance(s.get("type"), str)
+             ] if isinstance(stages, list) else []
+    if all(t in kinds.kinds("table") for _, t in named):
+        return None, None, ()
+    failures = plugins.load()
+    i, t = next(((i, t) for i, t in named if t not in kinds.kinds("table")), (None, None))
+    return i, t, failures
+
+
+def _plug_in_kinds(data: dict, source: str, paths: Sequence[tuple]) -> None:
+    """A stage ``type`` no loaded code registered loads the installed plug-ins (:mod:`gearcli.core.plugins`) before
+    the file is validated; still unknown with a plug-in that failed to load, a ConfigError saying so."""
+    i, t, failures = _unknown_kinds(data)
+    if i is not None and failures:  # else validation names the registered kinds
+        known = ", ".join(f'"{k}"' for k in kinds.kinds("table"))
+        path = ("stage", i, "type")
+        raise ConfigError(f'unknown stage type "{t}"; registered: {known}{plugins.failures_text(failures)}',
+                          key=format_path(path), source=_overrides.SOURCE if _overrides.blamed(path, paths) else source)
+
+
 def _validate(data: dict, source: str, paths: Sequence[tuple]) -> DesignFile:
     """The validated model, or ConfigError(s) naming each wrong key (``--set`` as the source of
     errors at or below an overridden key)."""
+    _plug_in_kinds(data, source, paths)
     try:
         design = DesignFile.model_validate(data)
         _check_window(design, source, paths)

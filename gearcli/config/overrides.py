@@ -36,6 +36,7 @@ from gearcli.config.messages import got
 from gearcli.config.schema import DesignFile, Input, Load, Target
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
+from gearcli.stages import kinds
 
 SOURCE = "--set"
 
@@ -123,7 +124,13 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
             raise _fail(ov, f"index {seg} is out of range: the file has {have}")
         child_tp = item_type(tp)
         if isinstance(node[seg], dict):  # a stage: the member of the stage union its ``type`` names
-            child_tp = tagged(child_tp, str(node[seg].get("type", "parallel"))) or child_tp
+            tag = str(node[seg].get("type", "parallel"))
+            member = tagged(child_tp, tag)
+            if member is None and ov.path[:1] == ("stage",) and not last:
+                known = ", ".join(f'"{k}"' for k in kinds.kinds("table"))
+                raise _fail(ov, f'{format_path(ov.path[: depth + 1])} is of type "{shorten(tag)}", which no stage kind '
+                                f"registered (registered: {known}; an installed plug-in's, docs/plugins.md)")
+            child_tp = member or child_tp
         return (child_tp, None) if last else (child_tp, _descend(ov, node[seg], child_tp, depth))
     if is_model(tp):
         if not isinstance(seg, str) or seg not in tp.model_fields:

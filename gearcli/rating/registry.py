@@ -1,10 +1,16 @@
-"""The registry of rating standards, keyed by ``[rating] standard`` (scipy's ``METHODS``, sqlite-utils' hooks)."""
+"""The registry of rating standards, keyed by ``[rating] standard`` (scipy's ``METHODS``, sqlite-utils' hooks).
+
+A name no loaded code registered loads the installed plug-ins (the entry-point group ``gearcli.plugins``,
+:mod:`gearcli.core.plugins`) once and is looked up again; a plug-in's standard is kept behind
+:class:`gearcli.rating.guard.Guarded` (docs/plugins.md)."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from gearcli.core import plugins
 from gearcli.errors import ConfigError
+from gearcli.rating.guard import guarded
 
 if TYPE_CHECKING:
     from gearcli.rating.standard import RatedMesh, RatingStandard
@@ -15,8 +21,13 @@ _STANDARDS: dict[str, RatingStandard] = {}
 
 def register(std: RatingStandard) -> RatingStandard:
     """Register ``std`` under its ``name`` (a later registration of the same name replaces it); returns it."""
-    _STANDARDS[std.name] = std
+    _STANDARDS[std.name] = guarded(std)
     return std
+
+
+def withdraw(name: str) -> None:
+    """Remove the standard registered as ``name`` (a plug-in unloaded, a test's standard after the test)."""
+    _STANDARDS.pop(name, None)
 
 
 def names() -> tuple[str, ...]:
@@ -26,13 +37,18 @@ def names() -> tuple[str, ...]:
 
 
 def standard(name: str, *, source: str | None = None) -> RatingStandard:
-    """The standard registered as ``name``; an unknown name is a ``ConfigError`` (exit 2) naming the key
-    ``rating.standard`` and the registered names."""
+    """The standard registered as ``name`` (the installed plug-ins loaded first when none is); an unknown name is a
+    ``ConfigError`` (exit 2) naming the key ``rating.standard``, the registered names and any plug-in that failed
+    to load."""
     found = _STANDARDS.get(name)
+    failures: tuple[str, ...] = ()
+    if found is None:
+        failures = plugins.load()
+        found = _STANDARDS.get(name)
     if found is None:
         known = ", ".join(f'"{n}"' for n in names()) or "none"
-        raise ConfigError(f'unknown rating standard "{name}"; registered: {known}', source=source,
-                          key="rating.standard")
+        raise ConfigError(f'unknown rating standard "{name}"; registered: {known}{plugins.failures_text(failures)}',
+                          source=source, key="rating.standard")
     return found
 
 

@@ -8,14 +8,22 @@ gearcli (a plug-in, or a test: ``tests/stages/belt.py``) calls :func:`provide` o
 
 from __future__ import annotations
 
+import functools
+from typing import Any
+
+from gearcli.core.text import shorten
+from gearcli.errors import GearcliError, PluginError
+
 PARALLEL = "parallel"  # the kind of a stage table without ``type``
 
 _FACETS: dict[tuple[str, str], object] = {}
 
 
 def provide(kind: str, facet: str, implementation: object) -> None:
-    """Register ``implementation`` as the ``facet`` ("design", "model", "io", …) of stage ``type = kind``."""
-    _FACETS[(kind, facet)] = implementation
+    """Register ``implementation`` as the ``facet`` ("design", "model", "io", …) of stage ``type = kind``. A
+    plug-in's (an implementation from outside gearcli, not a class) is kept behind :class:`Guarded`."""
+    builtin = type(implementation).__module__.split(".")[0] == "gearcli" or isinstance(implementation, type)
+    _FACETS[(kind, facet)] = implementation if builtin else Guarded(kind, facet, implementation)
 
 
 def withdraw(kind: str, facet: str) -> None:
@@ -28,8 +36,9 @@ def facet(kind: str, facet: str) -> object:
     try:
         return _FACETS[(kind, facet)]
     except KeyError:
-        known = sorted(k for k, f in _FACETS if f == facet)
-        raise KeyError(f"stage type {kind!r} has no {facet} registered (known: {', '.join(known)})") from None
+        known = ", ".join(f'"{k}"' for k in sorted(k for k, f in _FACETS if f == facet)) or "none"
+        raise MissingFacet(f'stage type "{kind}" has no {facet} facet registered (the stage types with one: '
+                           f"{known}; docs/plugins.md)") from None
 
 
 def kinds(facet: str) -> tuple[str, ...]:
@@ -40,3 +49,46 @@ def kinds(facet: str) -> tuple[str, ...]:
 def kind_of(stage: object) -> str:
     """The kind of a stage table or a stage result: its ``type``, "parallel" when it has none."""
     return str(getattr(stage, "type", None) or PARALLEL)
+
+
+class MissingFacet(PluginError, KeyError):
+    """A stage kind without the facet a command needs (a plug-in kind without a ``"life"`` facet run by
+    ``gearcli life``): a plain message, exit 1."""
+
+    def __str__(self) -> str:  # KeyError's own quotes its message
+        return str(self.args[0])
+
+
+class FacetError(PluginError, AttributeError):
+    """A plug-in facet lacks an attribute its protocol has (an AttributeError still, for ``getattr`` defaults)."""
+
+
+class Guarded:
+    """A plug-in kind's facet: its attributes as they are; a call that raises (other than gearcli's own errors,
+    which keep their message and exit code) is a :class:`~gearcli.errors.PluginError` naming the stage type, the
+    facet and the method, never an internal error far from its cause."""
+
+    def __init__(self, kind: str, facet: str, implementation: object):
+        self._where = f'stage type "{kind}" ({type(implementation).__module__}): its {facet} facet\'s'
+        self._impl = implementation
+
+    def __getattr__(self, attr: str) -> Any:
+        if attr.startswith("__") or attr in ("_impl", "_where"):  # copy and pickle ask before __init__ ran
+            raise AttributeError(attr)
+        try:
+            value = getattr(self._impl, attr)
+        except AttributeError:
+            raise FacetError(f"{self._where} {attr} is missing (docs/plugins.md, the facet's protocol)") from None
+        if not callable(value) or isinstance(value, type):
+            return value
+
+        @functools.wraps(value)
+        def call(*args: Any, **kwargs: Any) -> Any:
+            try:
+                return value(*args, **kwargs)
+            except GearcliError:
+                raise
+            except Exception as exc:  # third-party code: named, with what it raised
+                raise PluginError(f"{self._where} {attr} raised {type(exc).__name__}: "
+                                  f"{shorten(' '.join(str(exc).split()), 300)}") from exc
+        return call
