@@ -101,11 +101,12 @@ def static_warning(cfg: DesignFile, j: int, kind: str, s0: float | None, where: 
                    "larger C_0", bearing=j + 1, s0=s0, s0_min=needed)
 
 
-def kappa_warning(j: int, kappa: float) -> Diagnostic | None:
+def kappa_warning(j: int, kappa: float, where: str = "") -> Diagnostic | None:
+    """A warning when bearing j's kappa is below ISO 281's range (``where``: " (the lowest over the duty)", ...)."""
     if kappa >= iso281.KAPPA_MIN:
         return None
-    return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {kappa:.3g} is below 0.1, where "
-                   "ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
+    return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {kappa:.3g}{where} is below 0.1, "
+                   "where ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
 
 
 def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.ModifiedLife]]
