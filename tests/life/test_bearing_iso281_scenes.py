@@ -296,3 +296,20 @@ def test_an_oil_thicker_at_100_than_at_40_degrees_is_exit_2(tmp_path):
         assert res.exit_code == 2, res.output
         assert "viscosity_100C_mm2_s" in res.output and "scene.toml" in res.output
         assert "Traceback" not in res.output
+
+
+def test_mean_effective_load_of_a_textbook_duty(tmp_path):
+    """Mott, *Machine Elements in Mechanical Design* (4th ed.), Example Problem 14-6: a 6308 ball bearing at a
+    constant 600 r/min under 650 lb for 30 min, 750 lb for 10 min and 250 lb for 20 min has the mean effective
+    load F_m = (Σ N_i F_i³ / N)^(1/3) = 597 lb (printed). Scene A's reactions are proportional to the output
+    torque (spur, no losses), so a duty of 650, 750 and 250 N·m for 30, 10 and 20 h at one speed loads each
+    bearing with F_i = r·T_i: its equivalent load over r is 597 to the printed digits."""
+    text = SPUR.split("[[duty]]")[0] + "".join(
+        f'[[duty]]\nname = "p{i}"\nhours = {h}\ntorque_Nm = {t}\nspeed_rpm = 1800\n'
+        for i, (t, h) in enumerate(((650, 30), (750, 10), (250, 20))))
+    bearings = _json(tmp_path, "life", text, "--static")["life"]["bearings"]
+    per_Nm = 0.5 * math.hypot(1, math.tan(math.radians(20))) * 2e3 / RATIO / D1_MM  # reaction per N·m of output
+    for b in bearings[:2]:  # the ball bearings (p = 3, as the example's)
+        assert round(b["equivalent_load_N"] / per_Nm) == 597
+        assert_allclose(b["equivalent_load_N"] / per_Nm, ((30 * 650**3 + 10 * 750**3 + 20 * 250**3) / 60) ** (1 / 3),
+                        rtol=1e-9)
