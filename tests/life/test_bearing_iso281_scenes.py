@@ -313,3 +313,20 @@ def test_mean_effective_load_of_a_textbook_duty(tmp_path):
         assert round(b["equivalent_load_N"] / per_Nm) == 597
         assert_allclose(b["equivalent_load_N"] / per_Nm, ((30 * 650**3 + 10 * 750**3 + 20 * 250**3) / 60) ** (1 / 3),
                         rtol=1e-9)
+
+
+def test_x_and_y_without_e_is_exit_2(tmp_path):
+    """ISO 281: P = F_r while F_a/F_r <= e, X F_r + Y F_a beyond; a catalogue's (X, Y, e) meet near F_r at
+    F_a/F_r = e (deep-groove ball: 0.56 + 2.0 · 0.22 ≈ 1). Without e (default 0) scene B's locating bearing
+    (F_a/F_r 0.48) with X 0.56, Y 1.0 got P = 0.56 F_r + F_a = 1.04 F_r, and at F_a/F_r = 0.36
+    0.92 F_r, below F_r. Exit 2 naming the key now; e = 0 written out keeps that choice."""
+    factors = "factors = { X = 0.56, Y = 1.0 }\n"
+    text = SLOW.replace("kind = \"ball\"\nlocating = true", "kind = \"ball\"\nlocating = true\n" + factors, 1)
+    res = _run(tmp_path, "design", text)
+    assert res.exit_code == 2 and "bearing[0].factors" in res.output and "need e" in res.output, res.output
+    assert "Traceback" not in res.output
+    b = _json(tmp_path, "design", text.replace(factors, "factors = { X = 0.56, Y = 1.0, e = 0 }\n"))["bearings"][0]
+    assert_allclose(b["equivalent_load_N"], 0.56 * b["radial_N"] + abs(b["axial_N"]), rtol=1e-12)
+    b = _json(tmp_path, "design", text.replace(factors, "factors = { X = 0.56, Y = 1.0, e = 0.5 }\n"))["bearings"][0]
+    assert abs(b["axial_N"]) / b["radial_N"] <= 0.5
+    assert b["equivalent_load_N"] == b["radial_N"]  # below e: P = F_r
