@@ -16,8 +16,13 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from gearcli.design import iso281
-from gearcli.design.bearing_life import (duty_modified_life, kappa_warning, lubrication, min_static_safety,
-                                        static_warning)
+from gearcli.design.bearing_life import (
+    duty_modified_life,
+    kappa_warning,
+    lubrication,
+    min_static_safety,
+    static_warning,
+)
 from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivalent_load_N
 from gearcli.life.result import BearingLife
 

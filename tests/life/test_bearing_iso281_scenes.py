@@ -185,7 +185,7 @@ def test_spur_design_every_bearing_by_hand(tmp_path):
     got = _json(tmp_path, "design", SPUR)["bearings"]
     hand = _spur_point(400, 1500)
     assert 1 < hand[0]["kappa"] < 4 and 0.4 < hand[2]["kappa"] < 1  # the branches this scene checks
-    for j, (b, h) in enumerate(zip(got, hand)):
+    for j, (b, h) in enumerate(zip(got, hand, strict=True)):
         for key in ("radial_N", "equivalent_load_N", "L10_Mrev", "speed_rpm", "kappa", "a_ISO", "a_1",
                     "L_nm_Mrev", "L_nm_h", "static_equivalent_load_N", "static_safety"):
             # the statics and formulas are closed-form: only the floating point rounding differs
@@ -206,9 +206,9 @@ def test_spur_two_point_duty_palmgren_miner_by_hand(tmp_path):
         p = 3.0 if kind == "ball" else 10 / 3
         revs = [h * pt[j]["revolutions_per_h"] for h, pt in points]
         loads = [pt[j]["equivalent_load_N"] for _, pt in points]
-        p_eq = (sum(u * q**p for u, q in zip(revs, loads)) / sum(revs)) ** (1 / p)
+        p_eq = (sum(u * q**p for u, q in zip(revs, loads, strict=True)) / sum(revs)) ** (1 / p)
         l10 = (c / p_eq) ** p
-        l_nm = sum(revs) / 1e6 / sum(u / 1e6 / pt[j]["L_nm_Mrev"] for u, (_, pt) in zip(revs, points))
+        l_nm = sum(revs) / 1e6 / sum(u / 1e6 / pt[j]["L_nm_Mrev"] for u, (_, pt) in zip(revs, points, strict=True))
         mean_rpm = sum(revs) / (60 * 8000)
         expected = {"revolutions": sum(revs), "equivalent_load_N": p_eq, "L10_Mrev": l10,
                     "L10_h": l10 * 1e6 / (60 * mean_rpm), "L_nm_Mrev": l_nm, "L_nm_h": l_nm * 1e6 / (60 * mean_rpm),
@@ -267,7 +267,7 @@ def test_kappa_below_the_range_is_taken_at_0_1_and_warned_in_the_life_json(tmp_p
     life = _json(tmp_path, "life", SLOW, "--static")
     below = [w for w in life["warnings"] if "kappa" in w and "below 0.1" in w]
     assert [w.split(":")[0] for w in below] == [f"bearing {j}" for j in range(1, 5)], life["warnings"]
-    for w, b in zip(below, life["life"]["bearings"]):
+    for w, b in zip(below, life["life"]["bearings"], strict=True):
         assert f"kappa = {b['kappa']:.3g}" in w and b["kappa"] == min(b["kappa_points"])
 
 
