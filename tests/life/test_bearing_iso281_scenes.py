@@ -356,3 +356,32 @@ def test_dynamic_route_p_mean_of_a_fluctuating_load(tmp_path):
         assert_allclose(b["static_equivalent_load_N"], 1.3 * hand[j]["equivalent_load_N"], rtol=1e-5)
         l_nm = a1 * _a_iso(hand[j]["kappa"], E_C_NORMAL_SMALL * cu / p_eq, kind) * (c / p_eq) ** p
         assert_allclose(b["L_nm_Mrev"], l_nm, rtol=5e-5)  # L ∝ P^-p (and a_ISO): a few times the load's 1e-5
+
+
+def test_an_axial_force_without_factors_warns(tmp_path):
+    """Scene B's locating bearing on the pinion shaft carries the helix's axial force (F_a/F_r from the statics:
+    F_a = F_t tan β on the locating bearing, F_r = half of the gear force's radial part, the gear midway), but
+    has no factors: P = F_r (default X = 1, Y = 0) ignores it, and so does P_0 without static_factors. The design
+    says so once per bearing; the life output once over the duty (F_a/F_r is the train's at every point)."""
+    design = _json(tmp_path, "design", SLOW)
+    found = [w for w in design["warnings"] if w["code"] == "bearing_axial_not_rated"]
+    b = design["bearings"][0]
+    assert [w["bearing"] for w in found] == [1, 3]  # the locating bearings; the floating ones carry no F_a
+    assert b["equivalent_load_N"] == b["radial_N"] and b["static_equivalent_load_N"] == b["radial_N"]
+    # hand statics: pinion shaft, gear midway between bearings 120 mm apart; the axial force's moment
+    # F_a d_1/2 shifts the radial reactions by ± F_a d_1 / (2 · 120) in the plane of F_r
+    beta, alpha_n = math.radians(15), math.radians(20)
+    d1 = 3 * 20 / math.cos(beta)
+    ft = 2 * (400e3 / RATIO) / d1  # output 400 N·m, no losses
+    fr_gear, fa = ft * math.tan(alpha_n) / math.cos(beta), ft * math.tan(beta)
+    radial = [math.hypot(ft / 2, fr_gear / 2 + s * fa * d1 / 2 / 120) for s in (1, -1)]
+    assert_allclose(sorted([b["radial_N"], design["bearings"][1]["radial_N"]]), sorted(radial), rtol=1e-9)
+    assert_allclose(abs(b["axial_N"]), fa, rtol=1e-9)
+    assert f"F_a/F_r = {fa / b['radial_N']:.3g}" in found[0]["message"] and "static_factors" in found[0]["message"]
+    life = _json(tmp_path, "life", SLOW, "--static")
+    assert len([w for w in life["warnings"] if "axial force" in w]) == 2  # once per bearing over two points
+    text = SLOW.replace('kind = "ball"\nlocating = true', 'kind = "ball"\nlocating = true\nfactors = { e = 0.3, X = 0.56, '
+                        'Y = 1.5 }', 1)
+    assert [w["bearing"] for w in _json(tmp_path, "design", text)["warnings"]
+            if w["code"] == "bearing_axial_not_rated"] == [3]
+    assert not [w for w in _json(tmp_path, "design", SPUR)["warnings"] if w["code"] == "bearing_axial_not_rated"]
