@@ -109,6 +109,11 @@ class Duty(_Table):
         if own:
             raise ValueError(f"set: {own[0]} is the point's own: its torque is {given[0]}, its speed speed_rpm, "
                              "K_A = 1 (the spectrum is the load); a set of it would contradict the point reported")
+        hardware = [k for k in self.set if k.strip().startswith("bearing")]
+        if hardware:
+            raise ValueError(f"set: {hardware[0]}: a bearing is the same at every duty point (its catalogue data, place "
+                             "and reliability hold over the whole duty, which its L10, L_nm and s_0 sum); set it in "
+                             "[[bearing]] itself")
         return self
 
     def output_torque_Nm(self, total_ratio: float) -> float:

@@ -385,3 +385,18 @@ def test_an_axial_force_without_factors_warns(tmp_path):
     assert [w["bearing"] for w in _json(tmp_path, "design", text)["warnings"]
             if w["code"] == "bearing_axial_not_rated"] == [3]
     assert not [w for w in _json(tmp_path, "design", SPUR)["warnings"] if w["code"] == "bearing_axial_not_rated"]
+
+
+def test_a_point_may_not_set_a_bearing_but_may_heat_the_oil(tmp_path):
+    """A duty point's `set` of a bearing key (here its reliability) made L_nm mix a_1 = 0.64 into one level
+    while the output reported the first point's a_1 = 1 and reliability 90 %: exit 2 naming duty[1] now. The oil's
+    temperature per point stays: the light point at 90 °C has its own kappa (ASTM D341, ν_1 at 750 r/min)."""
+    hot = SPUR.replace('name = "light"\nhours = 6000\n',
+                       'name = "light"\nhours = 6000\nset = { "lubricant.temperature_C" = 90 }\n')
+    res = _run(tmp_path, "life", hot.replace('"lubricant.temperature_C" = 90',
+                                             '"lubricant.temperature_C" = 90, "bearing[0].reliability_percent" = 95'),
+               "--static", "--format", "json")
+    assert res.exit_code == 2 and "duty[1]" in res.output and "bearing[0].reliability_percent" in res.output
+    b = _json(tmp_path, "life", hot, "--static")["life"]["bearings"][0]
+    assert_allclose(b["kappa_points"], [_nu(70, 68, 8.7) / _nu1(1500, 60), _nu(90, 68, 8.7) / _nu1(750, 60)],
+                    rtol=1e-12)
