@@ -36,6 +36,14 @@ class BearingFactors(_Table):
     X: Annotated[float, Field(ge=0.0, le=10.0)] = 1.0
     Y: Annotated[float, Field(ge=0.0, le=100.0)] = 0.0
 
+    @model_validator(mode="after")
+    def _e_with_x_and_y(self) -> "BearingFactors":
+        # without e (default 0) any axial force switched to X F_r + Y F_a, below F_r for a small F_a (X < 1)
+        if "e" not in self.model_fields_set and (self.X != 1.0 or self.Y != 0.0):
+            raise ValueError(f"X = {self.X:g}, Y = {self.Y:g} need e, the catalogue's limit of F_a/F_r below which P = F_r "
+                             "(give e = 0 to apply X and Y at any axial force)")
+        return self
+
 
 class StaticFactors(_Table):
     """ISO 76 static equivalent load of a radial bearing: P_0 = max(F_r, X0 F_r + Y0 F_a) (catalogue values)."""
@@ -101,6 +109,11 @@ class Duty(_Table):
         if own:
             raise ValueError(f"set: {own[0]} is the point's own: its torque is {given[0]}, its speed speed_rpm, "
                              "K_A = 1 (the spectrum is the load); a set of it would contradict the point reported")
+        hardware = [k for k in self.set if k.strip().startswith("bearing")]
+        if hardware:
+            raise ValueError(f"set: {hardware[0]}: a bearing is the same at every duty point (its catalogue data, place "
+                             "and reliability hold over the whole duty, which its L10, L_nm and s_0 sum); set it in "
+                             "[[bearing]] itself")
         return self
 
     def output_torque_Nm(self, total_ratio: float) -> float:

@@ -125,6 +125,10 @@ class Lubricant(_Table):
     def _one_cleanliness(self) -> "Lubricant":
         if self.contamination is not None and self.e_C is not None:
             raise ValueError("give one of contamination (an ISO 281 cleanliness level) and e_C (its factor)")
+        nu40, nu100 = self.viscosity_40C_mm2_s, self.viscosity_100C_mm2_s
+        if nu40 is not None and nu100 is not None and nu100 >= nu40:
+            raise ValueError(f"viscosity_100C_mm2_s = {nu100:g} is not below viscosity_40C_mm2_s = {nu40:g}: an oil "
+                             "thins as it warms (the bearings' viscosity at temperature_C runs through both, ASTM D341)")
         return self
 
 

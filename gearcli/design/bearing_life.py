@@ -21,6 +21,7 @@ if TYPE_CHECKING:
 
 STATIC_SAFETY_LOW = "bearing_static_safety_low"
 KAPPA_OUT_OF_RANGE = "bearing_kappa_below_range"
+AXIAL_NOT_RATED = "bearing_axial_not_rated"
 MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent")
 
 
@@ -101,11 +102,12 @@ def static_warning(cfg: DesignFile, j: int, kind: str, s0: float | None, where: 
                    "larger C_0", bearing=j + 1, s0=s0, s0_min=needed)
 
 
-def kappa_warning(j: int, kappa: float) -> Diagnostic | None:
+def kappa_warning(j: int, kappa: float, where: str = "") -> Diagnostic | None:
+    """A warning when bearing j's kappa is below ISO 281's range (``where``: " (the lowest over the duty)", ...)."""
     if kappa >= iso281.KAPPA_MIN:
         return None
-    return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {kappa:.3g} is below 0.1, where "
-                   "ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
+    return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {kappa:.3g}{where} is below 0.1, "
+                   "where ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
 
 
 def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.ModifiedLife]]
@@ -123,11 +125,28 @@ def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.Modifi
     return l_nm, l_nm / (a1 * revs / basic) if basic > 0.0 else None
 
 
+def axial_warning(cfg: DesignFile, j: int, b: BearingResult) -> Diagnostic | None:
+    """A warning when bearing j carries an axial force without ``factors``: its ISO 281 P = F_r by the default
+    X = 1, Y = 0 ignores F_a (and, with C_0 and no ``static_factors``, so does ISO 76's P_0). The message names
+    F_a/F_r, not F_a: the same at every duty point of the same train, it is said once by ``gearcli life``."""
+    given = cfg.bearing[j].model_fields_set
+    fa, fr = abs(b.axial_N), abs(b.radial_N)
+    if "factors" in given or fa <= 1e-9 * max(fr, 1.0):
+        return None
+    static = b.static_load_rating_kN is not None and "static_factors" not in given
+    ratio = f"{fa / fr:.3g}" if fr > 0.0 else "inf"
+    return warning(AXIAL_NOT_RATED, f"bearing {j + 1} carries an axial force (F_a/F_r = {ratio}) "
+                   f"but has no factors: its ISO 281 equivalent load P{' and ISO 76 P_0' if static else ''} take F_r "
+                   "alone (default X = 1, Y = 0); give the catalogue's factors = { e, X, Y }"
+                   + (" and static_factors = { X0, Y0 }" if static else ""), bearing=j + 1, axial_N=fa, radial_N=fr)
+
+
 def bearing_diagnostics(cfg: DesignFile, bearings: Sequence[BearingResult]) -> list[Diagnostic]:
-    """The design's bearing warnings: s_0 below its minimum at the static load, kappa below ISO 281's range."""
+    """The design's bearing warnings: s_0 below its minimum at the static load, kappa below ISO 281's range, an
+    axial force the equivalent loads ignore."""
     out: list[Diagnostic] = []
     for j, b in enumerate(bearings):
         found = [static_warning(cfg, j, b.kind, b.static_safety, "at the static load"),
-                 None if b.kappa is None else kappa_warning(j, b.kappa)]
+                 None if b.kappa is None else kappa_warning(j, b.kappa), axial_warning(cfg, j, b)]
         out += [d for d in found if d is not None]
     return out

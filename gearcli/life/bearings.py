@@ -16,7 +16,14 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from gearcli.design import iso281
-from gearcli.design.bearing_life import duty_modified_life, lubrication, min_static_safety, static_warning
+from gearcli.design.bearing_life import (
+    axial_warning,
+    duty_modified_life,
+    kappa_warning,
+    lubrication,
+    min_static_safety,
+    static_warning,
+)
 from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivalent_load_N
 from gearcli.life.result import BearingLife
 
@@ -117,8 +124,14 @@ def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] 
 
 
 def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife]) -> list[str]:
-    """s_0 below the minimum over the duty (and its starts)."""
+    """s_0 below the minimum over the duty (and its starts); kappa below ISO 281's range at any of the duty's load
+    levels (a point's, or its starts' at their slower mean speed); an axial force the equivalent loads ignore."""
     cfg = points[0].cfg
     found = [static_warning(cfg, j, b.kind, b.static_safety, "at the largest peak load over the duty")
              for j, b in enumerate(lives)]
+    found += [None if b.kappa is None else kappa_warning(j, b.kappa, " (the lowest over the duty)")
+              for j, b in enumerate(lives)]
+    for j in range(len(lives)):  # an axial force without factors: the first point's word (its F_a/F_r is the train's)
+        found.append(next((d for pd in points if (d := axial_warning(pd.cfg, j, pd.design.bearings[j])) is not None),
+                          None))
     return [d.message for d in found if d is not None]

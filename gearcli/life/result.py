@@ -82,7 +82,7 @@ class BearingLife:
     fatigue_load_limit_kN: float | None = None
     pitch_diameter_mm: float | None = None
     reliability_percent: float | None = None
-    kappa: float | None = None  # the lowest of the points'
+    kappa: float | None = None  # the lowest of the duty's load levels (its points' and its starts')
     a_ISO: float | None = None  # the duty's: L_nm / (a_1 L10)
     a_1: float | None = None
     L_nm_Mrev: float | None = None  # Palmgren–Miner over the points' L_nm
