@@ -204,3 +204,167 @@ def test_lone_mesh_modal_damping_is_zeta_over_cos_beta_b(tmp_path):
     (mode,) = _elastic(_run(tmp_path, text, "modes"), "clamped_input")
     assert_allclose(mode["frequency_Hz"], w_n / (2 * math.pi), rtol=1e-9)
     assert_allclose(mode["damping_ratio"], zeta / cbb, rtol=1e-9)
+
+
+# --- two helical stages, a motor (torque-speed table) on a coupling, a fan load on a coupling --------------------
+
+STAGES = ((2.5, 15.0, 19, 61, 35.0, 0.001, 0.02), (4.0, 10.0, 17, 71, 60.0, 0.004, 0.3))  # m_n, beta, z, z, b, J, J
+J_ROTOR, J_FAN, K_M, C_M, K_L, C_L = 0.08, 3.0, 3000.0, 1.5, 60000.0, 20.0
+N_IN = 1450.0
+RATIO = 61 / 19 * 71 / 17
+T_FAN = 150.0 * RATIO  # the fan's torque at its nominal speed: 150 N m at the motor, the table's torque at 1450 rpm
+
+
+def _two_stage(contact: str = "") -> str:
+    (m1, b1, z1, z2, f1, jp1, jg1), (m2, b2, z3, z4, f2, jp2, jg2) = STAGES
+    return MATERIAL + f"""
+[[stage]]
+normal_module_mm = {m1}
+normal_pressure_angle_deg = 20
+helix_angle_deg = {b1}
+pinion = {{ teeth = {z1}, face_width_mm = {f1}, hand = "left", material = "steel", inertia_kg_m2 = {jp1} }}
+gear   = {{ teeth = {z2}, face_width_mm = {f1}, hand = "right", material = "steel", inertia_kg_m2 = {jg1} }}
+[[stage]]
+normal_module_mm = {m2}
+normal_pressure_angle_deg = 20
+helix_angle_deg = {b2}
+pinion = {{ teeth = {z3}, face_width_mm = {f2}, hand = "right", material = "steel", inertia_kg_m2 = {jp2} }}
+gear   = {{ teeth = {z4}, face_width_mm = {f2}, hand = "left", material = "steel", inertia_kg_m2 = {jg2} }}
+{contact}
+[input]
+speed_rpm = {N_IN}
+drive = "motor"
+motor = {{ torque_speed = [[0, 400], [1400, 300], [1500, 0]] }}
+inertia_kg_m2 = {J_ROTOR}
+coupling_stiffness_Nm_rad = {K_M}
+coupling_damping_Nms_rad = {C_M}
+[load]
+torque_Nm = {T_FAN}
+speed_exponent = 2
+inertia_kg_m2 = {J_FAN}
+coupling_stiffness_Nm_rad = {K_L}
+coupling_damping_Nms_rad = {C_L}
+[simulation]
+duration_s = 1.0
+"""
+
+
+def _two_stage_hand(cgas: list[float], zeta: float):
+    """J, K, C over (motor, shaft 1, shaft 2, shaft 3, fan), free. The motor's table falls 300 N m over
+    1400 .. 1500 rpm, so -dT/dw = 300 / (100 pi / 30) N m s/rad; the table gives 150 N m at 1450 rpm, which the fan's
+    reflected T_FAN (n / 1450)^2 / i takes there: the operating point is 1450 rpm, and the fan adds
+    dT_L/dw = 2 T_FAN / w_n at its nominal speed w_n = 1450 rpm / i."""
+    (m1, b1, z1, z2, f1, jp1, jg1), (m2, b2, z3, z4, f2, jp2, jg2) = STAGES
+    J = np.array([J_ROTOR, jp1, jg1 + jp2, jg2, J_FAN])
+    K, C = np.zeros((5, 5)), np.zeros((5, 5))
+    _add(K, {0: 1.0, 1: -1.0}, K_M)
+    _add(C, {0: 1.0, 1: -1.0}, C_M)
+    for (m, beta, zp, zg, b, _, _), cga, (p, g) in zip(STAGES, cgas, ((1, 2), (2, 3)), strict=True):
+        rp, rg = _base_radius_m(zp, m, 20.0, beta), _base_radius_m(zg, m, 20.0, beta)
+        k_t = cga * b * 1e6
+        m_e = J[p] * J[g] / (J[p] * rg**2 + J[g] * rp**2)
+        _add(K, {p: rp, g: -rg}, k_t)
+        _add(C, {p: rp, g: -rg}, 2 * zeta * math.sqrt(k_t / _cos_beta_b(20.0, beta) ** 2 * m_e))
+    _add(K, {3: 1.0, 4: -1.0}, K_L)
+    _add(C, {3: 1.0, 4: -1.0}, C_L)
+    C[0, 0] += 300.0 / (100 * math.pi / 30)
+    C[4, 4] += 2 * T_FAN / (N_IN * math.pi / 30 / RATIO)
+    return J, K, C
+
+
+@pytest.mark.parametrize("exponent", [1.0, 1.5, 2.0])
+def test_motor_driven_two_stage_train_against_the_hand_model(tmp_path, exponent):
+    """Frequencies and damping ratios, free and with the motor held, for e = 1, 1.5 (default), 2."""
+    contact = "" if exponent == 1.5 else f"[contact]\nexponent = {exponent}\n"
+    text = _two_stage(contact)
+    design = _run(tmp_path, text, "design")
+    assert not design["warnings"], design["warnings"]  # the table carries the fan at 1450 rpm: balanced
+    J, K, C = _two_stage_hand([s["iso6336_mesh_stiffness_N_mm_um"] for s in design["stages"]], 0.05)
+    out = _run(tmp_path, text, "modes")
+    for ms in out["meshes"]:
+        assert_allclose(ms["mesh_stiffness"]["linearised_N_mm"], ms["mesh_stiffness"]["iso_N_mm"], rtol=1e-9)
+    for boundary, sl in (("free", slice(0, 5)), ("clamped_input", slice(1, 5))):
+        Cb = C[sl, sl].copy()
+        lam = _damped(J[sl], K[sl, sl], Cb)
+        tool = _elastic(out, boundary)
+        assert len(tool) == len(lam) == (4 if boundary == "free" else 4)
+        assert_allclose([m["frequency_Hz"] for m in tool], _undamped_Hz(J[sl], K[sl, sl])[-4:], rtol=1e-8,
+                        err_msg=boundary)
+        assert_allclose([m["damping_ratio"] for m in tool], [-z.real / abs(z) for z in lam], rtol=1e-6,
+                        err_msg=boundary)
+
+
+# --- a planetary stage: sun 21, three planets 27, ring 75 held, carrier driven at 300 rpm, sun loaded --------------
+
+J_SUN, J_PLANET, M_PLANET, J_CARRIER = 0.01, 0.004, 2.0, 0.3
+
+
+def _planetary(contact: str = "") -> str:
+    return MATERIAL + f"""
+[[stage]]
+type = "planetary"
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+helix_angle_deg = 0
+sun    = {{ teeth = 21, face_width_mm = 30, material = "steel", inertia_kg_m2 = {J_SUN} }}
+planet = {{ teeth = 27, face_width_mm = 30, material = "steel", count = 3, inertia_kg_m2 = {J_PLANET}, mass_kg = {M_PLANET} }}
+ring   = {{ teeth = 75, face_width_mm = 30, material = "steel" }}
+carrier = {{ inertia_kg_m2 = {J_CARRIER} }}
+fixed = "ring"
+input = "carrier"
+{contact}
+[input]
+speed_rpm = 300
+ramp_s = 0.1
+[load]
+torque_Nm = 100
+ramp_s = 0.1
+[simulation]
+duration_s = 0.3
+"""
+
+
+def _planetary_hand(k_sp: float, k_pr: float, zeta: float):
+    """J, K, C over (sun, planets 1-3, carrier), torsional only, angles in one absolute sense. In the carrier's frame
+    each mesh is a fixed-axis pair: delta_sp = r_bs (th_s - th_c) + r_bp (th_p - th_c) (external),
+    delta_pr = r_bp (th_p - th_c) - r_br (0 - th_c) (internal, ring held). The carrier carries N m_p r_c^2,
+    r_c = m (z_s + z_p) / 2 = 72 mm. Viscous c = 2 zeta sqrt(k m_e) with the speed-driven carrier infinitely heavy
+    (DESIGN section 6): m_e = 1 / (r_bs^2 / J_s + r_bp^2 / J_p) on a sun mesh, J_p / r_bp^2 on a ring mesh."""
+    a = math.radians(20.0)
+    rbs, rbp, rbr = (z * 3.0 / 2 * math.cos(a) / 1000 for z in (21, 27, 75))
+    J = np.array([J_SUN, J_PLANET, J_PLANET, J_PLANET, J_CARRIER + 3 * M_PLANET * 0.072**2])
+    K, C = np.zeros((5, 5)), np.zeros((5, 5))
+    c_sp = 2 * zeta * math.sqrt(k_sp / (rbs**2 / J_SUN + rbp**2 / J_PLANET))
+    c_pr = 2 * zeta * math.sqrt(k_pr * J_PLANET / rbp**2)
+    for p in (1, 2, 3):
+        for M, (k, c) in ((K, (k_sp, k_pr)), (C, (c_sp, c_pr))):
+            _add(M, {0: rbs, p: rbp, 4: -(rbs + rbp)}, k)
+            _add(M, {p: rbp, 4: rbr - rbp}, c)
+    return J, K, C
+
+
+@pytest.mark.parametrize("exponent", [1.0, 1.5, 2.0])
+def test_planetary_modes_against_the_hand_model(tmp_path, exponent):
+    contact = "" if exponent == 1.5 else f"[contact]\nexponent = {exponent}\n"
+    text = _planetary(contact)
+    design = _run(tmp_path, text, "design")
+    st = design["stages"][0]
+    assert_allclose(st["carrier"]["planets_translational_inertia_kg_m2"], 3 * M_PLANET * 0.072**2, rtol=1e-12)
+    cga = {m["name"]: m["iso6336_mesh_stiffness_N_mm_um"] for m in st["meshes"]}
+    k_sp, k_pr = cga["sun_planet"] * 30e6, cga["planet_ring"] * 30e6  # spur: k_n = k_t = c_gamma_alpha b
+    out = _run(tmp_path, text, "modes")
+    for ms in out["meshes"]:
+        k = ms["mesh_stiffness"]
+        assert_allclose(k["linearised_N_mm"], k["iso_N_mm"], rtol=1e-9)
+        assert_allclose(k["iso_N_mm"], (k_sp if ms["mesh"] == "sun_planet" else k_pr) / 1000, rtol=1e-9)
+        assert k["exponent"] == exponent
+    J, K, C = _planetary_hand(k_sp, k_pr, 0.05)
+    for boundary, sl in (("free", slice(0, 5)), ("clamped_input", slice(0, 4))):
+        tool = _elastic(out, boundary)
+        lam = _damped(J[sl], K[sl, sl], C[sl, sl])
+        assert len(tool) == len(lam) == 4
+        # the planet mode (sun and carrier still) is twofold, N - 1 = 2
+        assert_allclose([m["frequency_Hz"] for m in tool], _undamped_Hz(J[sl], K[sl, sl])[-4:], rtol=1e-8,
+                        err_msg=boundary)
+        assert_allclose([m["damping_ratio"] for m in tool], [-z.real / abs(z) for z in lam], rtol=1e-6,
+                        err_msg=boundary)
