@@ -368,3 +368,53 @@ def test_planetary_modes_against_the_hand_model(tmp_path, exponent):
                         err_msg=boundary)
         assert_allclose([m["damping_ratio"] for m in tool], [-z.real / abs(z) for z in lam], rtol=1e-6,
                         err_msg=boundary)
+
+
+# --- simulate: the lone gear rings after a short start; its decay and frequency against the hand model -------------
+
+def test_simulated_free_vibration_against_the_hand_model(tmp_path):
+    """A 10 ms start leaves the gear ringing at +-13 % of the static force; the window after it is a free decay of the
+    default Hertzian law (e = 1.5, linearised at the static load). An independent least-squares fit of
+    F0 + A exp(-sigma t) cos(w_d t + psi) to the simulated F_t gives sigma = zeta_m w_n and w_d = w_n sqrt(1 - zeta_m^2),
+    zeta_m = zeta / cos beta_b, w_n^2 = k_t r_bg^2 / J_G; F0 the static F_t = 2 T / d of the gear (DESIGN section 4:
+    F_t = F_bt cos alpha_t, the reference circle). The run's ringing record names the same mode."""
+    from scipy.optimize import curve_fit
+
+    zeta, t0 = 0.005, 0.012
+    text = _lone_gear(f"[contact]\ndamping_ratio = {zeta}\n",
+                      f"duration_s = 0.05\nwindow_start_s = {t0}\nsteps = 20000\nrtol = 1e-9")
+    text = text.replace("ramp_s = 0.02", "ramp_s = 0.01")
+    cga = _run(tmp_path, text, "design")["stages"][0]["iso6336_mesh_stiffness_N_mm_um"]
+    out = _run(tmp_path, text, "simulate", "--series")
+    rg, cbb = _base_radius_m(Z2, M_N, ALPHA_N, BETA), _cos_beta_b(ALPHA_N, BETA)
+    w_n = math.sqrt(cga * B * 1e6 * rg**2 / J_G)
+    zeta_m = zeta / cbb
+    sigma, w_d = zeta_m * w_n, w_n * math.sqrt(1 - zeta_m**2)
+    d_gear = Z2 * M_N / math.cos(math.radians(BETA)) / 1000
+    F_static = 2 * T_LOAD / d_gear
+    assert_allclose(out["summary"]["natural_frequencies_Hz"], [w_n / (2 * math.pi)], rtol=1e-9)
+    st = out["summary"]["stages"][0]
+    assert_allclose(st["static_tangential_N"], F_static, rtol=1e-9)
+    # the mean of a decay over a window that is not whole periods: up to A / (w_d T_window) = 363 / (11545 * 0.038) N
+    assert_allclose(st["tangential_N"]["mean"], F_static, atol=1.0)
+    t = np.asarray(out["series"]["time_s"])
+    F = np.asarray(out["series"]["stage1_tangential_N"])
+    keep = t >= t0
+    t, F = t[keep] - t0, F[keep]
+
+    def model(t, A, s, w, psi, F0):
+        return F0 + A * np.exp(-s * t) * np.cos(w * t + psi)
+
+    fits = []
+    for psi in np.linspace(0.0, 2 * math.pi, 8, endpoint=False):
+        p, _ = curve_fit(model, t, F, p0=[300.0, 50.0, w_n, psi, F_static], maxfev=20000)
+        fits.append((float(np.sum((model(t, *p) - F) ** 2)), p))
+    p = min(fits, key=lambda f: f[0])[1]
+    assert abs(p[0]) > 0.05 * F_static  # it rings: the test has something to fit
+    assert_allclose(p[1], sigma, rtol=2e-3)  # linear decay rate; the Hertzian law's amplitude effect is O(a^2)
+    assert_allclose(p[2], w_d, rtol=5e-4)  # the Hertzian law softens +-13 % swings by ~1e-4
+    assert_allclose(p[4], F_static, rtol=1e-4)
+    ring = next(w for w in out["warnings"] if w.get("mode_frequency_Hz"))
+    assert_allclose(ring["mode_frequency_Hz"], w_d / (2 * math.pi), rtol=1e-6)
+    # it settles where the fitted envelope falls to 1 % of the static force: t0 + ln(a0 / 0.01 F) / sigma
+    assert_allclose(ring["settle_time_s"], t0 + math.log(abs(p[0]) / (0.01 * F_static)) / sigma, rtol=0.02)
