@@ -418,3 +418,88 @@ def test_simulated_free_vibration_against_the_hand_model(tmp_path):
     assert_allclose(ring["mode_frequency_Hz"], w_d / (2 * math.pi), rtol=1e-6)
     # it settles where the fitted envelope falls to 1 % of the static force: t0 + ln(a0 / 0.01 F) / sigma
     assert_allclose(ring["settle_time_s"], t0 + math.log(abs(p[0]) / (0.01 * F_static)) / sigma, rtol=0.02)
+
+
+# --- statics: the calibrated law's deflection, the rigid-body limit, the Hertz law and stiffness_not_iso ------------
+
+def _static_normal_force_N() -> float:
+    """F_n0 = T / (r_bg cos beta_b): the load torque on the gear along the normal line of action."""
+    return T_LOAD / _base_radius_m(Z2, M_N, ALPHA_N, BETA) / _cos_beta_b(ALPHA_N, BETA)
+
+
+@pytest.mark.parametrize("exponent", [1.0, 1.5, 2.0])
+def test_static_deflection_is_e_times_iso(tmp_path, exponent):
+    """h0 = e F_n0 / k_n (docs/physics.md), in design, modes and the settled simulated penetration."""
+    text = _lone_gear(f"[contact]\nexponent = {exponent}\ndamping_ratio = 0.3\n", "duration_s = 0.06")
+    design = _run(tmp_path, text, "design")
+    st = design["stages"][0]
+    k_n = st["iso6336_mesh_stiffness_N_mm_um"] * B * 1e3 / _cos_beta_b(ALPHA_N, BETA) ** 2  # N/mm
+    h0 = exponent * _static_normal_force_N() / k_n
+    assert_allclose(st["static_force_N"]["normal"], _static_normal_force_N(), rtol=1e-9)
+    assert_allclose(st["mesh_stiffness"]["static_approach_mm"], h0, rtol=1e-9)
+    assert_allclose(_run(tmp_path, text, "modes")["meshes"][0]["mesh_stiffness"]["static_approach_mm"], h0, rtol=1e-9)
+    sim = _run(tmp_path, text, "simulate")["summary"]["stages"][0]
+    assert_allclose(sim["penetration_mm"]["mean"], h0, rtol=1e-5)  # settled at 30 % damping
+    assert_allclose(sim["tangential_N"]["mean"], 2 * T_LOAD / (Z2 * M_N / math.cos(math.radians(BETA)) / 1000),
+                    rtol=1e-6)
+
+
+def test_rigid_body_limit(tmp_path):
+    """A mesh 1300 times ISO's: the output turns at input / i, F_t is the static 2 T / d, the mode is at
+    sqrt(K cos^2 beta_b r_bg^2 / J_G), and stiffness_not_iso says so."""
+    K = 1e9  # N/mm, e = 1
+    text = _lone_gear(f"[contact]\nstiffness = {K}\nexponent = 1.0\ndamping_ratio = 0.1\n", "duration_s = 0.06")
+    out = _run(tmp_path, text, "simulate")
+    s = out["summary"]
+    assert_allclose(s["output_speed_rpm"], 1500 * Z1 / Z2, rtol=1e-9)
+    assert_allclose(s["ratio"], Z2 / Z1, rtol=1e-9)
+    st = s["stages"][0]
+    assert_allclose(st["tangential_N"]["mean"], 2 * T_LOAD / (Z2 * M_N / math.cos(math.radians(BETA)) / 1000),
+                    rtol=1e-9)
+    assert st["tangential_N"]["std"] < 1e-6 * st["tangential_N"]["mean"]
+    rg, cbb = _base_radius_m(Z2, M_N, ALPHA_N, BETA), _cos_beta_b(ALPHA_N, BETA)
+    assert_allclose(s["natural_frequencies_Hz"], [math.sqrt(K * 1e3 * cbb**2 * rg**2 / J_G) / (2 * math.pi)],
+                    rtol=1e-9)
+    assert_allclose(st["penetration_mm"]["mean"], _static_normal_force_N() / K, rtol=1e-6)
+    assert st["mesh_stiffness"]["law"] == "given"
+    assert [w["code"] for w in out["warnings"]].count("stiffness_not_iso") == 1
+
+
+def test_hertz_law_is_four_thirds_sqrt_r_e_star_and_warned(tmp_path):
+    """stiffness = "hertz": K = 4/3 sqrt(R) E*, E* = E / (2 (1 - nu^2)) for two steel wheels, linearised
+    e K h0^(e-1) with h0 = (F_n0 / K)^(1/e): 75 % below ISO's k_n, warned the same in design, modes and simulate."""
+    text = _lone_gear('[contact]\nstiffness = "hertz"\n', "duration_s = 0.06")
+    design = _run(tmp_path, text, "design")
+    st = design["stages"][0]
+    e_star = 2.1e5 / (2 * (1 - 0.3**2))
+    K = 4 / 3 * math.sqrt(st["equivalent_radius_mm"]) * e_star
+    F = _static_normal_force_N()
+    lin = 1.5 * K * (F / K) ** (1 / 3)
+    k_n = st["iso6336_mesh_stiffness_N_mm_um"] * B * 1e3 / _cos_beta_b(ALPHA_N, BETA) ** 2
+    for cmd, ms in (("design", st["mesh_stiffness"]),
+                    ("modes", (m := _run(tmp_path, text, "modes"))["meshes"][0]["mesh_stiffness"]),
+                    ("simulate", (s := _run(tmp_path, text, "simulate"))["summary"]["stages"][0]["mesh_stiffness"])):
+        assert ms["law"] == "hertz", cmd
+        assert_allclose([ms["K"], ms["linearised_N_mm"], ms["iso_N_mm"], ms["static_approach_mm"]],
+                        [K, lin, k_n, (F / K) ** (2 / 3)], rtol=1e-9, err_msg=cmd)
+    for out in (design, m, s):
+        (w,) = [w for w in out["warnings"] if w["code"] == "stiffness_not_iso"]
+        assert_allclose(w["departure"], lin / k_n - 1, rtol=1e-9)
+        assert lin / k_n - 1 < -0.7
+
+
+@pytest.mark.parametrize(("exponent", "ratio", "warned"),
+                         [(1.0, 1.24, False), (1.0, 1.26, True), (1.0, 0.76, False), (1.0, 0.74, True),
+                          (1.5, 1.24, False), (1.5, 1.26, True), (1.5, 0.76, False), (1.5, 0.74, True)])
+def test_stiffness_not_iso_fires_beyond_25_percent(tmp_path, exponent, ratio, warned):
+    """A given K whose tangent at F_n0 is `ratio` times k_n: K = (ratio k_n / e)^e / F_n0^(e-1)."""
+    probe = _run(tmp_path, _lone_gear("", "duration_s = 0.06"), "design")["stages"][0]
+    k_n = probe["iso6336_mesh_stiffness_N_mm_um"] * B * 1e3 / _cos_beta_b(ALPHA_N, BETA) ** 2
+    F = _static_normal_force_N()
+    K = (ratio * k_n / exponent) ** exponent / F ** (exponent - 1)
+    text = _lone_gear(f"[contact]\nstiffness = {K!r}\nexponent = {exponent}\n", "duration_s = 0.06")
+    for cmd in ("design", "modes"):
+        out = _run(tmp_path, text, cmd)
+        ms = (out["stages"][0] if cmd == "design" else out["meshes"][0])["mesh_stiffness"]
+        assert_allclose(ms["linearised_N_mm"] / ms["iso_N_mm"], ratio, rtol=1e-9, err_msg=cmd)
+        assert any(w["code"] == "stiffness_not_iso" for w in out["warnings"]) is warned, cmd
