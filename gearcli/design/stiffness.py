@@ -167,6 +167,16 @@ def iso_reference_normal_force_N(tangential_force_N: float, face_width_mm: float
                           normal_pressure_rad, helix_rad)
 
 
+def calibration_line_force_N(stiffness: str | float, face_width_mm: float, normal_pressure_rad: float,
+                             helix_rad: float, base_helix_rad: float) -> float:
+    """The transverse line force F_bt = F_n cos β_b of the floor an ``iso6336`` law is calibrated at when the load is
+    below it (1 N/mm of face width: its tangent is k_n there, and its reported ``linearised_N_mm`` is taken there), so
+    that a linearisation at a smaller load holds at it; 0 for the other laws (linearised at the load itself)."""
+    if stiffness != "iso6336":
+        return 0.0
+    return normal_force_N(MIN_LINE_LOAD_N_mm * face_width_mm, normal_pressure_rad, helix_rad) * math.cos(base_helix_rad)
+
+
 def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
 
