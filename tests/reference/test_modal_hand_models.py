@@ -565,3 +565,35 @@ def test_transmission_error_response_against_the_hand_transfer_function(tmp_path
     # 40 ms of window after 60 ms of settling at 5 % damping (w_n zeta t ~ 35 decay lengths): steady to < 1e-4
     assert_allclose(st["tangential_N"]["std"], F * math.cos(alpha_t) / math.sqrt(2), rtol=5e-4)
     assert_allclose(st["dte_um"]["rms"], abs(q) * 1e6 / math.sqrt(2), rtol=5e-4)
+
+
+def test_motor_driven_train_with_a_flexible_intermediate_shaft(tmp_path):
+    """[stage.shaft] on stage 1: shaft 2 splits into its gear end (J_g1) and pinion end (J_p2) on a 20 kN m/rad,
+    0.5 N m s/rad spring; each mesh's m_e then takes the end it touches."""
+    text = _two_stage().replace(
+        'hand = "right", material = "steel", inertia_kg_m2 = 0.02 }',
+        'hand = "right", material = "steel", inertia_kg_m2 = 0.02 }\nshaft = { stiffness_Nm_rad = 20000, '
+        'damping_Nms_rad = 0.5 }', 1)
+    design = _run(tmp_path, text, "design")
+    out = _run(tmp_path, text, "modes")
+    assert out["bodies"] == ["motor", "shaft 1", "shaft 2 gear end", "shaft 2 pinion end", "shaft 3", "drum"]
+    (_, _, _, _, _, jp1, jg1), (_, _, _, _, _, jp2, jg2) = STAGES
+    J = np.array([J_ROTOR, jp1, jg1, jp2, jg2, J_FAN])
+    K, C = np.zeros((6, 6)), np.zeros((6, 6))
+    _add(K, {0: 1.0, 1: -1.0}, K_M)
+    _add(C, {0: 1.0, 1: -1.0}, C_M)
+    for (m, beta, zp, zg, b, _, _), st, (p, g) in zip(STAGES, design["stages"], ((1, 2), (3, 4)), strict=True):
+        rp, rg = _base_radius_m(zp, m, 20.0, beta), _base_radius_m(zg, m, 20.0, beta)
+        k_t = st["iso6336_mesh_stiffness_N_mm_um"] * b * 1e6
+        m_e = J[p] * J[g] / (J[p] * rg**2 + J[g] * rp**2)
+        _add(K, {p: rp, g: -rg}, k_t)
+        _add(C, {p: rp, g: -rg}, 2 * 0.05 * math.sqrt(k_t / _cos_beta_b(20.0, beta) ** 2 * m_e))
+    _add(K, {2: 1.0, 3: -1.0}, 20000.0)
+    _add(C, {2: 1.0, 3: -1.0}, 0.5)
+    _add(K, {4: 1.0, 5: -1.0}, K_L)
+    _add(C, {4: 1.0, 5: -1.0}, C_L)
+    C[0, 0] += 300.0 / (100 * math.pi / 30)
+    C[5, 5] += 2 * T_FAN / (N_IN * math.pi / 30 / RATIO)
+    tool = _elastic(out, "free")
+    assert_allclose([m["frequency_Hz"] for m in tool], _undamped_Hz(J, K)[1:], rtol=1e-8)
+    assert_allclose([m["damping_ratio"] for m in tool], [-z.real / abs(z) for z in _damped(J, K, C)], rtol=1e-6)
