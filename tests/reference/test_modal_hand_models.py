@@ -597,3 +597,20 @@ def test_motor_driven_train_with_a_flexible_intermediate_shaft(tmp_path):
     tool = _elastic(out, "free")
     assert_allclose([m["frequency_Hz"] for m in tool], _undamped_Hz(J, K)[1:], rtol=1e-8)
     assert_allclose([m["damping_ratio"] for m in tool], [-z.real / abs(z) for z in _damped(J, K, C)], rtol=1e-6)
+
+
+def test_planetary_simulate_reports_both_mesh_laws(tmp_path):
+    """DESIGN section 13: simulate gives every mesh's mesh_stiffness; a planetary stage's planet–ring law is
+    ``planet_ring_mesh_stiffness`` beside the sun–planet mesh's ``mesh_stiffness`` (it had none). A planet carries
+    r_bp F_sp = r_bp F_pr (spur, lossless): both meshes F_n0 = T_sun / (N r_bs), h0 = e F_n0 / k_n each."""
+    text = _planetary()
+    st = _run(tmp_path, text, "design")["stages"][0]
+    cga = {m["name"]: m["iso6336_mesh_stiffness_N_mm_um"] for m in st["meshes"]}
+    sim = _run(tmp_path, text, "simulate")["summary"]["stages"][0]
+    F_n0 = 100.0 / (3 * 21 * 3.0 / 2 * math.cos(math.radians(20.0)) / 1000)
+    for key, name in (("mesh_stiffness", "sun_planet"), ("planet_ring_mesh_stiffness", "planet_ring")):
+        k_n = cga[name] * 30 * 1e3  # N/mm, spur
+        ms = sim[key]
+        assert ms["law"] == "iso6336" and ms["exponent"] == 1.5
+        assert_allclose([ms["linearised_N_mm"], ms["iso_N_mm"], ms["static_approach_mm"]],
+                        [k_n, k_n, 1.5 * F_n0 / k_n], rtol=1e-9, err_msg=key)
