@@ -614,3 +614,25 @@ def test_planetary_simulate_reports_both_mesh_laws(tmp_path):
         assert ms["law"] == "iso6336" and ms["exponent"] == 1.5
         assert_allclose([ms["linearised_N_mm"], ms["iso_N_mm"], ms["static_approach_mm"]],
                         [k_n, k_n, 1.5 * F_n0 / k_n], rtol=1e-9, err_msg=key)
+
+
+def test_impact_damped_mesh_modal_damping_at_its_static_penetration(tmp_path):
+    """The IMPACT law (DESIGN section 4): F_n = K h^e + STEP(h, 0, 0, d, C) h'. At the static approach h0 (inside the
+    ramp here, s = h0 / d) the normal damping is C s^2 (3 - 2 s); along delta (h = cos beta_b delta, F_bt = cos beta_b
+    F_n) it is cos^2 beta_b times that, so the lone gear's modal ratio is cos^2 beta_b c_n / (2 sqrt(k_t m_e))."""
+    C_Ns_mm, d_mm = 10.0, 0.02
+    text = _lone_gear(f"[contact]\ndamping_Ns_mm = {C_Ns_mm}\nfull_damping_penetration_mm = {d_mm}\n",
+                      "duration_s = 0.1")
+    st = _run(tmp_path, text, "design")["stages"][0]
+    (mode,) = _elastic(out := _run(tmp_path, text, "modes"), "clamped_input")
+    ms = out["meshes"][0]["mesh_stiffness"]
+    rg, cbb = _base_radius_m(Z2, M_N, ALPHA_N, BETA), _cos_beta_b(ALPHA_N, BETA)
+    k_t = st["iso6336_mesh_stiffness_N_mm_um"] * B * 1e6
+    h0 = 1.5 * _static_normal_force_N() / (k_t / cbb**2 / 1000)  # mm: the default e = 1.5, tangent k_n
+    assert_allclose(ms["static_approach_mm"], h0, rtol=1e-9)
+    s = h0 / d_mm
+    assert 0 < s < 1  # inside the ramp
+    c_n = C_Ns_mm * 1000 * s * s * (3 - 2 * s)  # N s/m
+    m_e = J_G / rg**2
+    assert_allclose(mode["frequency_Hz"], math.sqrt(k_t / m_e) / (2 * math.pi), rtol=1e-9)
+    assert_allclose(mode["damping_ratio"], cbb**2 * c_n / (2 * math.sqrt(k_t * m_e)), rtol=1e-9)
