@@ -636,3 +636,27 @@ def test_impact_damped_mesh_modal_damping_at_its_static_penetration(tmp_path):
     m_e = J_G / rg**2
     assert_allclose(mode["frequency_Hz"], math.sqrt(k_t / m_e) / (2 * math.pi), rtol=1e-9)
     assert_allclose(mode["damping_ratio"], cbb**2 * c_n / (2 * math.sqrt(k_t * m_e)), rtol=1e-9)
+
+
+def test_sweep_points_calibrate_at_their_own_load(tmp_path):
+    """DESIGN section 13: K follows each sweep point's static load, so each point's mean DTE is its own
+    h0 / cos beta_b = e F_n0 / (k_n cos beta_b), k_n from that point's c_gamma_alpha (ISO's low-load factor moves it)."""
+    import csv
+
+    text = _lone_gear("[contact]\ndamping_ratio = 0.3\n", "duration_s = 0.08\nwindow_start_s = 0.06")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "sweep.csv"
+    res = CliRunner().invoke(cli, ["sweep", str(scene), "--vary", "load.torque_Nm=150,600", "--jobs", "1",
+                                   "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    rows = list(csv.DictReader(line for line in out.read_text().splitlines() if not line.startswith("#")))
+    cbb = _cos_beta_b(ALPHA_N, BETA)
+    assert len(rows) == 2
+    for row in rows:
+        torque = float(row["load.torque_Nm"])
+        res = CliRunner().invoke(cli, ["design", str(scene), "--set", f"load.torque_Nm={torque}", "--format", "json"])
+        cga = json.loads(res.stdout)["stages"][0]["iso6336_mesh_stiffness_N_mm_um"]
+        k_n = cga * B * 1e3 / cbb**2
+        F_n0 = torque / _base_radius_m(Z2, M_N, ALPHA_N, BETA) / cbb
+        assert_allclose(float(row["stage1_dte_um_mean"]), 1.5 * F_n0 / k_n / cbb * 1000, rtol=1e-6)
