@@ -660,3 +660,25 @@ def test_sweep_points_calibrate_at_their_own_load(tmp_path):
         k_n = cga * B * 1e3 / cbb**2
         F_n0 = torque / _base_radius_m(Z2, M_N, ALPHA_N, BETA) / cbb
         assert_allclose(float(row["stage1_dte_um_mean"]), 1.5 * F_n0 / k_n / cbb * 1000, rtol=1e-6)
+
+
+@pytest.mark.parametrize("torque", [0.0, 1.0])
+def test_hertz_law_below_the_floor_reports_its_own_tangent(tmp_path, torque):
+    """A Hertz law needs no calibration floor: design and modes reported its tangent at 1 N/mm of face width
+    (45201 N/mm, h0 1.5 um) where simulate reported it at the static load (1 N m: 27844 N/mm, h0 0.57 um; 0 N m: 0).
+    All three now give e K h0^(e-1) with h0 = (F_n0 / K)^(1/e) at the static F_n0, and warn the same departure."""
+    text = _lone_gear('[contact]\nstiffness = "hertz"\n', "duration_s = 0.06").replace(
+        f"torque_Nm = {T_LOAD}", f"torque_Nm = {torque}")
+    st = _run(tmp_path, text, "design")["stages"][0]
+    K = st["hertz_stiffness_N_mm1_5"]
+    F = torque / _base_radius_m(Z2, M_N, ALPHA_N, BETA) / _cos_beta_b(ALPHA_N, BETA)
+    h0 = (F / K) ** (2 / 3)
+    lin = 1.5 * K * h0**0.5
+    docs = {"design": (d := _run(tmp_path, text, "design"), d["stages"][0]["mesh_stiffness"]),
+            "modes": (m := _run(tmp_path, text, "modes"), m["meshes"][0]["mesh_stiffness"]),
+            "simulate": (s := _run(tmp_path, text, "simulate"), s["summary"]["stages"][0]["mesh_stiffness"])}
+    for cmd, (doc, ms) in docs.items():
+        assert_allclose([ms["static_approach_mm"], ms["linearised_N_mm"]], [h0, lin], rtol=1e-9, atol=1e-12,
+                        err_msg=cmd)
+        (w,) = [w for w in doc["warnings"] if w["code"] == "stiffness_not_iso"]
+        assert_allclose(w["departure"], lin / ms["iso_N_mm"] - 1, rtol=1e-9, err_msg=cmd)
