@@ -682,3 +682,24 @@ def test_hertz_law_below_the_floor_reports_its_own_tangent(tmp_path, torque):
                         err_msg=cmd)
         (w,) = [w for w in doc["warnings"] if w["code"] == "stiffness_not_iso"]
         assert_allclose(w["departure"], lin / ms["iso_N_mm"] - 1, rtol=1e-9, err_msg=cmd)
+
+
+def test_torque_driven_planetary_damping_takes_the_free_carrier(tmp_path):
+    """With a torque drive no member is prescribed: a planet mesh's m_e = 1 / sum r_j^2 / J_j over the three bodies it
+    joins (sun or held ring, planet, carrier with lever r_bs + r_bp or r_br - r_bp and its N m_p r_c^2)."""
+    text = _planetary().replace("speed_rpm = 300", f"speed_rpm = 300\ndrive = \"torque\"\ntorque_Nm = {100 * (1 + 75 / 21)!r}")
+    st = _run(tmp_path, text, "design")["stages"][0]
+    cga = {m["name"]: m["iso6336_mesh_stiffness_N_mm_um"] for m in st["meshes"]}
+    k_sp, k_pr = cga["sun_planet"] * 30e6, cga["planet_ring"] * 30e6
+    J, K, _ = _planetary_hand(k_sp, k_pr, 0.05)
+    a = math.radians(20.0)
+    rbs, rbp, rbr = (z * 1.5 * math.cos(a) / 1000 for z in (21, 27, 75))
+    c_sp = 0.1 * math.sqrt(k_sp / (rbs**2 / J_SUN + rbp**2 / J_PLANET + (rbs + rbp) ** 2 / J[4]))
+    c_pr = 0.1 * math.sqrt(k_pr / (rbp**2 / J_PLANET + (rbr - rbp) ** 2 / J[4]))
+    C = np.zeros((5, 5))
+    for p in (1, 2, 3):
+        _add(C, {0: rbs, p: rbp, 4: -(rbs + rbp)}, c_sp)
+        _add(C, {p: rbp, 4: rbr - rbp}, c_pr)
+    tool = _elastic(_run(tmp_path, text, "modes"), "free")
+    assert_allclose([m["frequency_Hz"] for m in tool], _undamped_Hz(J, K)[1:], rtol=1e-8)
+    assert_allclose([m["damping_ratio"] for m in tool], [-z.real / abs(z) for z in _damped(J, K, C)], rtol=1e-6)
