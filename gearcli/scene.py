@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 from gearcli import diagnostics as dg
 from gearcli.design import contact_stiffness_N_mm_e
 from gearcli.design.stiffness import (
+    calibration_line_force_N,
     iso6336_normal_stiffness_N_mm,
     law_name,
 )
@@ -78,6 +79,9 @@ def _mesh(cfg: DesignFile, st: StageResult, k: int) -> MeshSpec:
         damping_ratio=law.damping_ratio,
         law=law_name(law.stiffness),
         iso_normal_stiffness_N_m=k_n * 1000.0,
+        linearisation_line_force_N=calibration_line_force_N(
+            law.stiffness, st.face_width_mm, math.radians(st.normal_pressure_angle_deg),
+            math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg)),
     )
 
 

@@ -167,6 +167,16 @@ def iso_reference_normal_force_N(tangential_force_N: float, face_width_mm: float
                           normal_pressure_rad, helix_rad)
 
 
+def calibration_line_force_N(stiffness: str | float, face_width_mm: float, normal_pressure_rad: float,
+                             helix_rad: float, base_helix_rad: float) -> float:
+    """The transverse line force F_bt = F_n cos β_b of the floor an ``iso6336`` law is calibrated at when the load is
+    below it (1 N/mm of face width: its tangent is k_n there, and its reported ``linearised_N_mm`` is taken there), so
+    that a linearisation at a smaller load holds at it; 0 for the other laws (linearised at the load itself)."""
+    if stiffness != "iso6336":
+        return 0.0
+    return normal_force_N(MIN_LINE_LOAD_N_mm * face_width_mm, normal_pressure_rad, helix_rad) * math.cos(base_helix_rad)
+
+
 def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
 
@@ -205,12 +215,16 @@ def mesh_law_stiffness(stiffness: str | float, exponent: float, *, hertz: float,
                        helix_rad: float) -> MeshStiffness:
     """The law's K, its tangent at the static load and ISO's k_n beside it (``mesh_stiffness`` of design JSON).
 
-    The tangent is taken at the static normal force floored as ISO's stiffness is (1 N/mm of face width): the
-    load the ``iso6336`` law is calibrated at, so that law's ``linearised_N_mm`` is ``iso_N_mm`` at any load; the
-    static approach is at the same force."""
+    An ``iso6336`` law's tangent is taken at the static normal force floored as ISO's stiffness is (1 N/mm of face
+    width): the load it is calibrated at, so its ``linearised_N_mm`` is ``iso_N_mm`` at any load (and the models
+    linearise it there: :attr:`gearcli.model.spec.MeshSpec.linearisation_line_force_N`). A Hertz or numeric law
+    needs no floor (module text): its tangent and static approach are at the static force itself, as ``simulate``
+    reports them (0 for e > 1 unloaded)."""
     f_n0 = iso_reference_normal_force_N(tangential_force_N, face_width_mm, normal_pressure_rad, helix_rad)
     K = law_coefficient_N_mm_e(stiffness, exponent, hertz=hertz, iso_normal_stiffness_N_mm=iso_normal_stiffness_N_mm,
                                iso_reference_normal_force_N=f_n0)
+    if stiffness != "iso6336":
+        f_n0 = normal_force_N(abs(tangential_force_N), normal_pressure_rad, helix_rad)
     h0 = static_approach_mm(f_n0, K, exponent)
     return MeshStiffness(law_N_mm_e=K, exponent=exponent, linearised_N_mm=linearised_stiffness_N_mm(K, exponent, h0),
                          static_approach_mm=h0, law=law_name(stiffness), K=K, iso_N_mm=iso_normal_stiffness_N_mm)

@@ -134,6 +134,8 @@ def simulation_dict(result: SimulationResult, *, series: bool = False) -> JsonOb
                                               "sampling_error")}
         | ({"rating": _stage_rating(s.rating, sharing=bool(s.planets))} if s.rating is not None else {})
         | ({"planet_ring_rating": plain(s.planet_ring_rating)} if s.planet_ring_rating is not None else {})
+        | ({"planet_ring_mesh_stiffness": plain(s.planet_ring_mesh_stiffness)}
+           if s.planet_ring_mesh_stiffness is not None else {})
         | ({"planets": plain(s.planets), "load_sharing_factor": s.load_sharing_factor} if s.planets else {})
         for s in result.stages
     ]

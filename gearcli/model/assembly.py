@@ -153,13 +153,28 @@ def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> l
         F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb) * loss if x.role else 0.0
         if x.load_body >= 0:  # a planet mesh: its share of the planetary's output torque
             F = abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever) * loss
+        floor = _linearisation_floor(spec, x)
+        if floor > 0.0:
+            x = replace(x, min_line_force=floor)
         mobility = [0.0 if (j == 0 and spec.drive.kind == "speed") else r**2 / bodies[j].inertia
                     for j, r in zip(x.bodies, x.radii, strict=True)]
-        row = x.element.assembled(x.params, F, 1.0 / _ordered_sum(mobility))
+        row = x.element.assembled(x.params, max(F, floor), 1.0 / _ordered_sum(mobility))
         if row is not x.params:
             x = replace(x, params=_row(row))
         out.append(x)
     return out
+
+
+def _linearisation_floor(spec: ModelSpec, x: Connector) -> float:
+    """The line force below which mesh ``x`` is linearised at that force (:attr:`MeshSpec.linearisation_line_force_N`:
+    an iso6336 law's calibration load, where its tangent is ISO's k_n); 0 for every other connector."""
+    if x.role not in ("mesh", "planet") or x.index < 0:
+        return 0.0
+    own = spec.stage_models[x.index] if x.index < len(spec.stage_models) else None
+    if own is None:
+        return spec.meshes[x.index].linearisation_line_force_N if x.role == "mesh" else 0.0
+    mesh = getattr(own, f"{x.gear}_mesh", None) if x.gear else None
+    return float(getattr(mesh, "linearisation_line_force_N", 0.0))
 
 
 def power_path_loss_factors(spec: ModelSpec, conns: list[Connector]) -> list[float]:

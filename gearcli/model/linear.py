@@ -151,9 +151,11 @@ def tangent(lay: Layout, c: int, F: float, *, stiffest_phase: bool = False) -> t
     """(stiffness, damping, static deflection or penetration) of connector c carrying |F|, from the
     element's own force law. A mesh is taken on its drive flank, without its gap, at its mean stiffness
     (``stiffest_phase``: its largest contact-line factor); unloaded, a linear mesh keeps K, a Hertzian
-    one has no stiffness."""
+    one has no stiffness. A mesh whose law was calibrated at a floor load (an iso6336 law below 1 N/mm of face width:
+    :attr:`Connector.min_line_force`) is taken at that load, where its tangent is ISO's k_n, as its reported
+    ``mesh_stiffness`` is."""
     x = lay.connectors[c]
-    return x.element.tangent(x.params, abs(float(F)), stiffest_phase)
+    return x.element.tangent(x.params, max(abs(float(F)), x.min_line_force), stiffest_phase)
 
 
 def speed_map(lay: Layout, free: range | None = None) -> np.ndarray:
@@ -174,7 +176,7 @@ def linearise(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool = False)
     lay = _lay(spec)
     F = np.abs(np.asarray(forces, dtype=float))
     key = (stiffest_phase, F.shape, F.tobytes(), lay.n_bodies, lay.state.first_free, tuple(lay.inertias),
-           lay.stage_conn, tuple((x.kind, x.params, x.bodies, x.levers) for x in lay.connectors))
+           lay.stage_conn, tuple((x.kind, x.params, x.bodies, x.levers, x.min_line_force) for x in lay.connectors))
     found = _LINEARISED.get(key)
     return found if found is not None else remember(_LINEARISED, key, _read_only(_linearise(lay, F, stiffest_phase)))
 

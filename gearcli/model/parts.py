@@ -41,6 +41,8 @@ class Connector:
     gear: str = ""
     chain_in: int = -1  # a planet mesh: the body of its stage's input member (the reducer shaft before it)
     initial_deflection: float = 0.0  # a planet's position error along its sun mesh (m): delta - R theta
+    min_line_force: float = 0.0  # a mesh linearised at a smaller |F| holds at this one (MeshSpec's
+    # linearisation_line_force_N, set by the assembly)
 
     @property
     def element(self):

@@ -59,6 +59,10 @@ class MeshSpec:
     # mesh stiffness k_n = c_gamma_alpha b / cos^2 beta_b (N/m; 0: unknown)
     law: str = ""
     iso_normal_stiffness_N_m: float = 0.0
+    # the line force F_bt (N) below which the linearisation (modes, a viscous mesh's k_lin) holds at this force:
+    # an iso6336 law's calibration load, 1 N/mm of face width (DESIGN section 13: its tangent is k_n there, as the
+    # reported mesh_stiffness says); 0: at the static load, whatever it is
+    linearisation_line_force_N: float = 0.0
 
     def __post_init__(self) -> None:
         if len(self.transmission_error_phase_rad) > len(self.transmission_error_m) or \

@@ -118,6 +118,8 @@ class StageDynamics:
     # [rating] dynamic_factor = "simulated" on a planetary stage: its planet–ring mesh rated at the ring meshes'
     # own simulated K_v (``rating`` is the sun–planet mesh's, at the sun meshes' K_v)
     planet_ring_rating: RatedMesh | None = None
+    planet_ring_mesh_stiffness: MeshStiffness | None = None  # a planetary stage's planet–ring law (mesh_stiffness:
+    # its sun–planet mesh's)
     # the stage's kind (the design file's stage ``type``, ``ModelSpec.stage_types``): its output facet names
     # the statistics (a belt's span force and stretch); not a JSON key of a gear stage
     type: str = "parallel"

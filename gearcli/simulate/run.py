@@ -50,6 +50,7 @@ from gearcli.simulate.solver import (
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
+    from gearcli.model.spec import MeshSpec
 
 RAD_TO_DEG = 180.0 / math.pi
 StageSeries = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # F_t, F_r, F_a (N), pen. (mm), DTE (um)
@@ -297,14 +298,27 @@ def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness
     """The contact law each mesh used, in the design file's units: K (N/mm^e), and its slope along the normal
     at the static approach h0 of the linearisation at full load, e K h0^(e-1) (N/mm; the design's
     ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm), the law's name and ISO 6336-1's k_n (N/mm)."""
-    out = []
-    for k, m in enumerate(model.spec.meshes):
-        K = m.stiffness_N_m_e / 1000.0**m.exponent
-        h0 = float(choice.at_full_load.penetration_m[k]) * 1000.0
-        slope = m.exponent * K * h0 ** (m.exponent - 1.0) if h0 > 0 or m.exponent == 1.0 else 0.0
-        out.append(MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0,
-                                 law=m.law, K=K, iso_N_mm=m.iso_normal_stiffness_N_m / 1000.0))
-    return tuple(out)
+    return tuple(_law(m, float(choice.at_full_load.penetration_m[k])) for k, m in enumerate(model.spec.meshes))
+
+
+def planet_ring_stiffness(model: TorsionalModel, choice: Choice) -> dict[int, MeshStiffness]:
+    """Per planetary stage (0-based), its planet–ring mesh's law as :func:`mesh_stiffness` gives the sun–planet
+    mesh's (planet 1's meshes stand for the stage; DESIGN section 13: every mesh's ``mesh_stiffness``)."""
+    out = {}
+    for c, x in enumerate(model.layout.connectors):
+        own = model.spec.stage_models[x.index] if 0 <= x.index < len(model.spec.stage_models) else None
+        ring = getattr(own, "ring_mesh", None)
+        if x.gear == "ring" and x.planet == 0 and ring is not None:
+            out[x.index] = _law(ring, float(choice.at_full_load.deflection[c]))
+    return out
+
+
+def _law(m: MeshSpec, h0_m: float) -> MeshStiffness:
+    K = m.stiffness_N_m_e / 1000.0**m.exponent
+    h0 = h0_m * 1000.0
+    slope = m.exponent * K * h0 ** (m.exponent - 1.0) if h0 > 0 or m.exponent == 1.0 else 0.0
+    return MeshStiffness(law_N_mm_e=K, exponent=m.exponent, linearised_N_mm=slope, static_approach_mm=h0,
+                         law=m.law, K=K, iso_N_mm=m.iso_normal_stiffness_N_m / 1000.0)
 
 
 def _residual_text(residual: float | None) -> str:
@@ -425,6 +439,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
     stages = tuple(with_planets(st, *planets_of(model, s, mask, k)) for k, st in enumerate(stages))
+    rings = planet_ring_stiffness(model, choice)
+    stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
     w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Protocol, cast
 
 from gearcli.design.planetary_balance import balance, willis_speeds
 from gearcli.design.stiffness import (
+    calibration_line_force_N,
     iso6336_normal_stiffness_N_mm,
     iso_reference_normal_force_N,
     law_coefficient_N_mm_e,
@@ -104,7 +105,10 @@ def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> 
     sun_mesh = replace(sun_mesh, efficiency=eta_m)
     ring_mesh = replace(sun_mesh, stiffness_N_m_e=float(coefficient) * 1000.0**e,
                         contact_ratio=ring.contact_ratio_transverse, overlap_ratio=ring.overlap_ratio,
-                        iso_normal_stiffness_N_m=k_n * 1000.0)
+                        iso_normal_stiffness_N_m=k_n * 1000.0,
+                        linearisation_line_force_N=calibration_line_force_N(
+                            law.stiffness, ring.face_width_mm, math.radians(st.normal_pressure_angle_deg),
+                            math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg)))
     r_bs, r_bp, r_br = (0.5 * MM * g.base_diameter_mm for g in (p.sun, p.planet, p.ring))
     unit = willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)
     third = next(m for m in ("sun", "carrier", "ring") if m not in (p.input, p.output))
