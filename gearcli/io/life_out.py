@@ -11,11 +11,12 @@ from typing import cast
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
+from gearcli.diagnostics import warning_objects
 from gearcli.io.life_tables import modified_rows
 from gearcli.io.serialize import bearings_csv, csv_text, plain
 from gearcli.io.table_kit import FittedTable, StageColumns, _g, text
 from gearcli.life.result import LifeResult, ModeLife, StageLife
-from gearcli.results import drop_absent_bearing_keys
+from gearcli.results import DesignResult, drop_absent_bearing_keys
 
 MEMBERS = ("pinion", "gear")
 MODES = ("pitting", "bending")
@@ -37,12 +38,16 @@ def _stage_dict(st: StageLife) -> JsonObject:
     return out
 
 
-def life_dict(r: LifeResult) -> JsonObject:
+def life_dict(r: LifeResult, design: DesignResult | None = None) -> JsonObject:
+    """The life JSON; ``warnings`` are objects (code, message, data), the base file's ``design`` warnings first, as
+    stderr says them (docs/output.md, "Warnings")."""
     stages: list[JsonObject] = [_stage_dict(st) for st in r.stages]
+    first = warning_objects(design.warnings, design.diagnostics) if design is not None else []
     return {
         "life": {"route": r.route, "miner": r.miner, "standard": r.standard, "hours": r.hours,
                  "stages": stages, "bearings": _bearing_docs(r), "points": plain(r.points)},
-        "warnings": list(r.warnings),
+        "warnings": first + warning_objects([w for w in r.warnings if design is None or w not in design.warnings],
+                                            r.diagnostics),
     }
 
 

@@ -21,6 +21,7 @@ from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivale
 from gearcli.life.result import BearingLife
 
 if TYPE_CHECKING:
+    from gearcli.diagnostics import Diagnostic
     from gearcli.life.run import _PointData
 
 
@@ -116,9 +117,9 @@ def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] 
     return tuple(out)
 
 
-def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife]) -> list[str]:
+def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife]) -> list[Diagnostic]:
     """s_0 below the minimum over the duty (and its starts)."""
     cfg = points[0].cfg
     found = [static_warning(cfg, j, b.kind, b.static_safety, "at the largest peak load over the duty")
              for j, b in enumerate(lives)]
-    return [d.message for d in found if d is not None]
+    return [d for d in found if d is not None]
