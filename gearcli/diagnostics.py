@@ -89,7 +89,8 @@ WARNING_SCHEMA: JsonObject = {
         "code": {"type": "string", "pattern": "^[a-z][a-z0-9]*(_[a-z0-9]+)*$"},
         "message": {"type": "string"},
         "stage": {"anyOf": [{"type": "integer", "minimum": 1}, {"type": "null"}]},
-        "member": {"enum": ["pinion", "gear"]},
+        # a parallel stage's pinion/gear; a planetary stage's ring (its planet–ring mesh); life's members
+        "member": {"enum": ["pinion", "gear", "sun", "planet", "ring", "planet_ring_side", "planet_root"]},
     },
 }
 

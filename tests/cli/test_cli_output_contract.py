@@ -4,11 +4,20 @@ objects {code, message, ...data} in every command that computes them, in the ord
 from __future__ import annotations
 
 import json
+import sys
+from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from gearcli.cli import cli
 from gearcli.diagnostics import WARNING_SCHEMA
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from jsonschema_subset import valid  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+LIST_SCHEMA = {"type": "array", "items": WARNING_SCHEMA}
 
 # one rated helical stage in rpm and N·m with a two-point duty; the "heavy" point's torque (4000 N·m, 6.7x the
 # nominal 600 N·m) takes the root stress over the permissible one (S_F ≈ 1.15 < S_Fmin = 1.4 and S_H ≈ 0.84 <
@@ -61,11 +70,6 @@ def _stderr_warnings(res) -> list[str]:
     return [line[len("warning: "):] for line in res.stderr.splitlines() if line.startswith("warning: ")]
 
 
-def _is_warning_object(w) -> bool:
-    return (isinstance(w, dict) and set(WARNING_SCHEMA["required"]) <= set(w) and isinstance(w["code"], str)
-            and isinstance(w["message"], str))
-
-
 def test_life_json_warnings_are_objects_in_stderr_order(tmp_path):
     # they were plain strings: the only JSON whose warnings were not {code, message, ...} (DESIGN §12)
     path = tmp_path / "rated.toml"
@@ -73,7 +77,7 @@ def test_life_json_warnings_are_objects_in_stderr_order(tmp_path):
     res = CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "json"])
     assert res.exit_code == 0, res.output
     warnings = json.loads(res.stdout)["warnings"]
-    assert warnings and all(_is_warning_object(w) for w in warnings), warnings
+    assert warnings and valid(warnings, LIST_SCHEMA, LIST_SCHEMA), warnings
     assert [w["message"] for w in warnings] == _stderr_warnings(res)  # the same list in every format (§7)
     # the heavy point's own design warning keeps the rating's code and data, and names the point
     heavy = [w for w in warnings if w.get("point") == "heavy"]
@@ -82,3 +86,19 @@ def test_life_json_warnings_are_objects_in_stderr_order(tmp_path):
     assert any(w["code"] == "bending_safety_low" and w["S"] < w["S_min"] == 1.4 for w in heavy), heavy
     # --static cannot count the duty's starts: said with its own code
     assert [w["code"] for w in warnings if "dynamic route only" in w["message"]] == ["starts_not_counted"]
+
+
+@pytest.mark.parametrize("command", ["design", "modes", "life"])
+def test_planetary_warnings_fit_the_warning_schema(command, tmp_path):
+    # the NREL 5 MW stage 1 rates its ring below S_Hmin = 1.25 and S_Fmin = 1.56 (S_H 0.86, S_F 1.49) and its rim
+    # s_R/h_t = 1.56 is below ISO 6336-3's 1.75: these warnings name member "ring", which the schema's member enum
+    # (pinion, gear) refused
+    args = [command, str(ROOT / "configs" / "planetary_stage.toml"), "--format", "json"]
+    if command == "life":
+        args += ["--static", "--set", 'duty=[{name="rated", hours=1000, torque_Nm=999650.9, speed_rpm=12.127}]']
+    res = CliRunner().invoke(cli, args)
+    assert res.exit_code == 0, res.output
+    warnings = json.loads(res.stdout)["warnings"]
+    assert {"ring"} <= {w.get("member") for w in warnings}, warnings
+    assert valid(warnings, LIST_SCHEMA, LIST_SCHEMA), [w for w in warnings if not valid([w], LIST_SCHEMA, LIST_SCHEMA)]
+    assert [w["message"] for w in warnings] == _stderr_warnings(res)
