@@ -93,8 +93,8 @@ def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = N
 def design(loaded: LoadedDesign, overrides: Sequence[str] = ()) -> DesignResult:
     """The design calculations of a loaded file; an infeasible design raises
     :class:`~gearcli.errors.DesignError` naming the file, or the ``--set`` whose value it is about."""
-    try:
-        return design_layer.compute_design(loaded.design)
+    try:  # written in the units of the file's keys (docs/output.md, "Units")
+        return dataclasses.replace(design_layer.compute_design(loaded.design), units=key_units(loaded.design))
     except DesignError as exc:
         source = SOURCE if blames_key(exc.key, overrides) else loaded.source
         raise DesignError(exc.message, key=exc.key, source=source) from exc

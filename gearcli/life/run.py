@@ -23,6 +23,8 @@ from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.memo import remember
+from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
+from gearcli.design.standards import standard_of
 from gearcli.diagnostics import (
     BEYOND_STATIC_STRENGTH,
     DUTY,
@@ -35,8 +37,6 @@ from gearcli.diagnostics import (
     messages,
     warning,
 )
-from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
-from gearcli.design.standards import standard_of
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
 from gearcli.life import spectra
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings

@@ -160,3 +160,54 @@ def test_dynamic_factor_of_a_reversed_load_through_lossy_meshes(tmp_path):
         ripple = (st["tangential_N"]["max"] - st["tangential_N"]["min"]) / hand
         assert 1.0 <= st["dynamic_factor"] <= 1.0 + ripple + 1e-9, (st["dynamic_factor"], ripple)
         assert ripple < 1e-3  # the window is steady: K_v ≈ 1, far from 1/η (1.02, 1.03)
+
+
+# one helical stage in rad/s and N·m (the fourth speed/torque combination: neither the seed's °/s nor rpm)
+RAD_S_NM = """
+title = "one helical stage, rad/s and N*m"
+[[stage]]
+normal_module_mm = 4
+normal_pressure_angle_deg = 20
+helix_angle_deg = 12
+pinion = { teeth = 19, face_width_mm = 75, hand = "left" }
+gear   = { teeth = 74, face_width_mm = 70, hand = "right" }
+[input]
+speed_rad_s = 150.0
+[load]
+torque_Nm = 700
+"""
+
+
+def test_design_writes_a_rad_s_and_n_m_file_in_its_units(tmp_path):
+    """DESIGN §12: speeds in the unit of the input's speed key, torques in the load's (N·m everywhere). The design
+    JSON kept only °/s and rpm (no rad/s anywhere) and N·mm at the top; the contract's fixed keys stay beside."""
+    path = tmp_path / "rad.toml"
+    path.write_text(RAD_S_NM)
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    ratio = 74 / 19
+    assert doc["units"] == {"speed": "rad_s", "torque": "Nm"}
+    assert_allclose(doc["input_speed_rad_s"], 150.0, rtol=1e-12)
+    assert_allclose(doc["output_speed_rad_s"], 150.0 / ratio, rtol=1e-12)
+    assert_allclose(doc["output_speed_rpm"], 150.0 / ratio * 30 / math.pi, rtol=1e-12)  # the fixed keys stay
+    assert_allclose(doc["output_torque_Nm"], 700.0, rtol=1e-12)
+    assert_allclose(doc["input_torque_Nm"], 700.0 / ratio, rtol=1e-12)  # lossless
+    assert_allclose(doc["input_torque_Nmm"], 700e3 / ratio, rtol=1e-12)
+    stage = doc["stages"][0]
+    assert_allclose(stage["pinion"]["speed_rad_s"], 150.0, rtol=1e-12)
+    assert_allclose(stage["gear"]["speed_rad_s"], 150.0 / ratio, rtol=1e-12)
+    assert_allclose([sh["speed_rad_s"] for sh in doc["shafts"]], [150.0, 150.0 / ratio], rtol=1e-12)
+    csv = CliRunner().invoke(cli, ["design", str(path), "--format", "csv"])
+    assert {"pinion_speed_rad_s", "gear_speed_rad_s"} <= set(csv.stdout.splitlines()[0].split(","))
+    table = CliRunner().invoke(cli, ["design", str(path), "--format", "table"], env={"COLUMNS": "120"})
+    assert "speed [rad/s]" in table.stdout and f"= {150.0 / ratio:.5g} rad/s" in table.stdout
+
+
+def test_a_seed_unit_file_states_its_units_and_adds_no_other_speed_key(tmp_path):
+    path = tmp_path / "a.toml"
+    path.write_text(LOSSY_REVERSED)
+    doc = json.loads(CliRunner().invoke(cli, ["design", str(path), "--format", "json"]).stdout)
+    assert doc["units"] == {"speed": "deg_s", "torque": "Nmm"}
+    assert not [k for k in doc if k.endswith(("_rad_s", "_torque_Nm"))]
+    assert "speed_rad_s" not in doc["stages"][0]["pinion"]
