@@ -211,3 +211,16 @@ def test_a_seed_unit_file_states_its_units_and_adds_no_other_speed_key(tmp_path)
     assert doc["units"] == {"speed": "deg_s", "torque": "Nmm"}
     assert not [k for k in doc if k.endswith(("_rad_s", "_torque_Nm"))]
     assert "speed_rad_s" not in doc["stages"][0]["pinion"]
+
+
+@pytest.mark.parametrize(("option", "args"), [("--vary", ["--vary", "stage.0.pinion.teath=20,21"]),
+                                               ("--random", ["--samples", "2", "--random", "nosuch=normal(1,0.1)"])])
+def test_sweep_names_the_option_of_a_bad_key(option, args, tmp_path):
+    # the message named --set for a key the user gave to --vary or --random
+    path = tmp_path / "rad.toml"
+    path.write_text(RAD_S_NM)
+    res = CliRunner().invoke(cli, ["sweep", str(path), *args, "--jobs", "1"])
+    assert res.exit_code == 2 and res.stdout == ""
+    assert res.stderr.startswith(f"gearcli: {option}: ") and "Traceback" not in res.stderr, res.stderr
+    res = CliRunner().invoke(cli, ["sweep", str(path), "--vary", "input.speed_rad_s=100,150", "--set", "nosuch=1"])
+    assert res.exit_code == 2 and res.stderr.startswith("gearcli: --set: nosuch: ")
