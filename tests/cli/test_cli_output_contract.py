@@ -224,3 +224,16 @@ def test_sweep_names_the_option_of_a_bad_key(option, args, tmp_path):
     assert res.stderr.startswith(f"gearcli: {option}: ") and "Traceback" not in res.stderr, res.stderr
     res = CliRunner().invoke(cli, ["sweep", str(path), "--vary", "input.speed_rad_s=100,150", "--set", "nosuch=1"])
     assert res.exit_code == 2 and res.stderr.startswith("gearcli: --set: nosuch: ")
+
+
+def test_report_design_section_in_the_files_units(tmp_path):
+    path = tmp_path / "rad.toml"
+    path.write_text(RAD_S_NM + "[simulation]\nduration_s = 0.2\nsteps = 400\n")
+    res = CliRunner().invoke(cli, ["report", str(path), "--quick", "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    d = json.loads(res.stdout)["design"]
+    ratio = 74 / 19
+    assert d["units"] == {"speed": "rad_s", "torque": "Nm"}
+    assert_allclose(d["shaft_speeds_rad_s"], [150.0, 150.0 / ratio], rtol=1e-12)
+    assert_allclose([d["input_torque_Nm"], d["output_torque_Nm"]], [700.0 / ratio, 700.0], rtol=1e-12)
+    assert_allclose(d["shaft_speeds_deg_s"][0], 150.0 * 180 / math.pi, rtol=1e-12)  # the fixed key stays
