@@ -237,3 +237,12 @@ def test_report_design_section_in_the_files_units(tmp_path):
     assert_allclose(d["shaft_speeds_rad_s"], [150.0, 150.0 / ratio], rtol=1e-12)
     assert_allclose([d["input_torque_Nm"], d["output_torque_Nm"]], [700.0 / ratio, 700.0], rtol=1e-12)
     assert_allclose(d["shaft_speeds_deg_s"][0], 150.0 * 180 / math.pi, rtol=1e-12)  # the fixed key stays
+
+
+def test_sweep_legend_says_no_direction_for_independent_points():
+    from gearcli.io.sweep_plots import _label  # the legend of the response curves (gearcli sweep --plots)
+
+    assert _label(("none",), []) == ""  # was "none" (the legend read "none mean", "none min", "none max")
+    assert _label(("up",), []) == "up"
+    assert _label(("none", "20"), ["stage.0.pinion.teeth"]) == "(stage.0.pinion.teeth=20)"
+    assert _label(("down", "20"), ["stage.0.pinion.teeth"]) == "down (stage.0.pinion.teeth=20)"
