@@ -268,8 +268,10 @@ def modes_section(r: Report) -> Section | None:
             continue
         near = [c for c in m.crossings if c.input_speed_rpm is None  # a fixed frequency near the mode: at any speed
                 or abs(c.input_speed_rpm / ana.nominal_input_rpm - 1.0) <= RESONANCE_BAND]
+        u = of_result(r.simulation)
         cross = ", ".join(f"{c.excitation} at " + ("any speed" if c.input_speed_rpm is None else
-                                                   f"{c.input_speed_rpm:.4g} rpm") + f" ({c.strength})"
+                                                   f"{u.speed_from_deg_s(6.0 * c.input_speed_rpm):.4g} "
+                                                   f"{u.speed_label}") + f" ({c.strength})"
                           for c in near) or "none"
         rows.append((str(m.number), g(m.frequency_Hz, 5), f"{100 * m.damping_ratio:.2g}",
                      f"{m.dominant} ({100 * max(m.energy_share):.0f} %)", cross))

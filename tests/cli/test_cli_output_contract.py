@@ -246,3 +246,20 @@ def test_sweep_legend_says_no_direction_for_independent_points():
     assert _label(("up",), []) == "up"
     assert _label(("none", "20"), ["stage.0.pinion.teeth"]) == "(stage.0.pinion.teeth=20)"
     assert _label(("down", "20"), ["stage.0.pinion.teeth"]) == "down (stage.0.pinion.teeth=20)"
+
+
+def test_modes_table_gives_crossing_speeds_in_the_files_unit(tmp_path):
+    """The modes table said "input rpm" whatever the file's speed key (DESIGN §12: tables in its unit). The crossing
+    of the mesh's 1x order with a mode at f: z1 n = f, so n = f / 19 rev/s = 2π f / 19 rad/s."""
+    path = tmp_path / "rad.toml"
+    path.write_text(RAD_S_NM)
+    drum = ["--set", "load.inertia_kg_m2=20", "--set", "load.coupling_stiffness_Nm_rad=2e5"]  # a low mode
+    doc = json.loads(CliRunner().invoke(cli, ["modes", str(path), *drum, "--format", "json"]).stdout)
+    crossing = next(c | {"f": m["frequency_Hz"]} for modes in doc["boundaries"].values() for m in modes
+                    for c in m["crossings"] if c["excitation"] == "stage 1 mesh 1x")
+    assert_allclose(crossing["input_speed_rpm"], 60 * crossing["f"] / 19, rtol=1e-9)
+    table = CliRunner().invoke(cli, ["modes", str(path), *drum, "--format", "table", "-q"],
+                               env={"COLUMNS": "400"}).stdout
+    assert "[input rad/s]" in table and "input rpm" not in table
+    assert f"stage 1 mesh 1x @ {2 * math.pi * crossing['f'] / 19:.4g} " in table
+    assert f"crossings for input 0 .. {1.2 * 150.0:.5g} rad/s" in table  # 0 … 1.2 × nominal
