@@ -95,7 +95,8 @@ def peaks_section(r: Report) -> Section:
                                                       "dynamic factor", "run peak |F_t| [N]", "at t [s]",
                                                       "run-up factor"), rows, "lrrrrrr",
                    ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (the "
-                    "stage efficiencies act in the dynamics, so it equals the design's static F_t); "
+                    "stage efficiencies act in the dynamics, so it equals the design's static F_t; with a reversed load the "
+                    "driving gear's, the design's over η); "
                     "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",
                     *sampling_notes(r)))
 
