@@ -14,8 +14,10 @@ import multiprocessing
 import os
 import signal
 import socket
+import threading
 from collections.abc import Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from multiprocessing import forkserver
 from urllib.parse import urlsplit
 
 from gearcli import engine
@@ -163,9 +165,6 @@ def _start_forkserver_deaf() -> None:
     Python or importing its preload (half a second of numpy, scipy and gearcli) died of it with a KeyboardInterrupt
     traceback on the user's terminal. This process handles Ctrl-C (exit 130) and ends the workers. (A blocked
     signal mask would keep a Ctrl-C of these few milliseconds for us, but the server's exec does not inherit it.)"""
-    import threading
-    from multiprocessing import forkserver
-
     if threading.current_thread() is not threading.main_thread():  # no handler to swap there
         forkserver.ensure_running()
         return
