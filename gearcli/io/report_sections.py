@@ -212,9 +212,17 @@ def solver_lines(r: Report) -> list[str]:
         f"njev {sv.njev}, wall {sv.wall_s:.3g} s",
         f"energy balance residual {sv.energy_residual:.2e} (input work − load work − damping loss − ΔKE − ΔPE, "
         "relative to the largest energy)",
-        f"dynamic ratio {sim.ratio:.6g}, output {sim.output_speed_deg_s:.6g} °/s = {sim.output_speed_deg_s / 6:.5g} rpm"
-        + ("" if sim.units[0] != "rad_s" else f" = {sim.output_speed_deg_s * 3.141592653589793 / 180:.5g} rad/s"),
+        f"dynamic ratio {sim.ratio:.6g}, output {_output_speed(sim)}",
     ]
+
+
+def _output_speed(sim) -> str:
+    """The window-mean output speed in the design file's speed unit, as `simulate`'s footer (°/s files: also rpm;
+    rad/s files: also rpm)."""
+    u, v = of_result(sim), sim.output_speed_deg_s
+    if u.speed == "deg_s":
+        return f"{v:.6g} °/s = {v / 6:.5g} rpm"
+    return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}" + (f" = {v / 6:.5g} rpm" if u.speed == "rad_s" else "")
 
 
 def rating_section(r: Report) -> Section | None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -263,3 +264,17 @@ def test_modes_table_gives_crossing_speeds_in_the_files_unit(tmp_path):
     assert "[input rad/s]" in table and "input rpm" not in table
     assert f"stage 1 mesh 1x @ {2 * math.pi * crossing['f'] / 19:.4g} " in table
     assert f"crossings for input 0 .. {1.2 * 150.0:.5g} rad/s" in table  # 0 … 1.2 × nominal
+
+
+@pytest.mark.parametrize(("speed", "unit"), [("input.speed_rpm=1432.4", "rpm"), ("input.speed_rad_s=150", "rad/s")])
+def test_report_footer_speed_in_the_files_unit(tmp_path, speed, unit):
+    """The report's footer printed °/s first whatever the file's key (`simulate`'s footer already followed it).
+    Lossless and steady: output = input / (74/19)."""
+    path = tmp_path / "rad.toml"
+    path.write_text(RAD_S_NM + "[simulation]\nduration_s = 0.2\nsteps = 400\n")
+    res = CliRunner().invoke(cli, ["report", str(path), "--quick", "--format", "markdown", "-q", "--set", speed])
+    assert res.exit_code == 0, res.output
+    footer = next(line for line in res.stdout.splitlines() if "dynamic ratio" in line)
+    value = float(speed.split("=")[1]) / (74 / 19)
+    assert "°/s" not in footer and re.search(rf"output ([\d.]+) {re.escape(unit)}", footer), footer
+    assert_allclose(float(re.search(rf"output ([\d.]+) {re.escape(unit)}", footer).group(1)), value, rtol=1e-4)
