@@ -282,9 +282,10 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
     ``variant`` (``iso``, ``elementary``, ``modified``)."""
     from gearcli.life.run import compute_life  # lazy: the sweep and life layers, start-up time of gearcli design
 
-    return compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
-                        progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
-                        base_warnings=session.design.warnings)
+    result = compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
+                          progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
+                          base_warnings=session.design.warnings)
+    return dataclasses.replace(result, units=key_units(session.loaded.design))  # tables in the file's units
 
 
 # ----------------------------------------------------------------- points (injected into sweep and life)

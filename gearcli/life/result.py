@@ -119,3 +119,4 @@ class LifeResult:
     bearings: tuple[BearingLife, ...]
     warnings: tuple[str, ...] = field(default_factory=tuple)
     diagnostics: tuple[Diagnostic, ...] = field(default_factory=tuple)  # the warnings' (code, data): the JSON's
+    units: tuple[str, str] | None = None  # the design file's (speed, torque) key suffixes: the tables' torque unit

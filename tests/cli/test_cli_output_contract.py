@@ -278,3 +278,22 @@ def test_report_footer_speed_in_the_files_unit(tmp_path, speed, unit):
     value = float(speed.split("=")[1]) / (74 / 19)
     assert "°/s" not in footer and re.search(rf"output ([\d.]+) {re.escape(unit)}", footer), footer
     assert_allclose(float(re.search(rf"output ([\d.]+) {re.escape(unit)}", footer).group(1)), value, rtol=1e-4)
+
+
+def test_life_duty_table_in_the_load_keys_torque_unit(tmp_path):
+    """The duty table printed N·m whatever the file's torque key (DESIGN §12: torque_Nmm -> N·mm everywhere); the
+    JSON keeps the contract's `torque_Nm`. 600 N·m as `torque_Nmm = 6e5` on the load and the duty."""
+    text = RATED_RPM.replace("torque_Nm = 600\nramp_s", "torque_Nmm = 6e5\nramp_s", 1)
+    assert "torque_Nmm = 6e5" in text
+    path = tmp_path / "nmm.toml"
+    path.write_text(text)
+    table = CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "table", "-q"], env={"COLUMNS": "200"})
+    assert table.exit_code == 0, table.output
+    assert "output torque [N·mm]" in table.stdout and "output torque [N·m]" not in table.stdout
+    row = next(line for line in table.stdout.splitlines() if "│ nominal" in line)
+    assert "6e+05" in row, row  # 600 N·m in N·mm
+    doc = json.loads(CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "json", "-q"]).stdout)
+    assert [p["torque_Nm"] for p in doc["life"]["points"]] == [600.0, 4000.0]  # the JSON's fixed key, N·m
+    rpm = CliRunner().invoke(cli, ["life", str(tmp_path / "nmm.toml"), "--static", "-q", "--format", "table",
+                                   "--set", "load.torque_Nm=600"], env={"COLUMNS": "200"})
+    assert "output torque [N·m]" in rpm.stdout
