@@ -157,7 +157,8 @@ def test_dynamic_factor_of_a_reversed_load_through_lossy_meshes(tmp_path):
     stages = json.loads(res.stdout)["summary"]["stages"]
     for st, hand in zip(stages, (f1, f2), strict=True):
         assert_allclose(st["simulated_static_tangential_N"], -hand, rtol=1e-9)  # statics: rounding only
-        assert_allclose(st["tangential_N"]["mean"], -hand, rtol=1e-6)  # a settled, unexcited window's mean
+        # a settled, unexcited window's mean: to a few times the run's rtol (1e-6), whichever method auto takes
+        assert_allclose(st["tangential_N"]["mean"], -hand, rtol=2e-5)
         ripple = (st["tangential_N"]["max"] - st["tangential_N"]["min"]) / hand
         assert 1.0 <= st["dynamic_factor"] <= 1.0 + ripple + 1e-9, (st["dynamic_factor"], ripple)
         assert ripple < 1e-3  # the window is steady: K_v ≈ 1, far from 1/η (1.02, 1.03)
