@@ -93,8 +93,8 @@ def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = N
 def design(loaded: LoadedDesign, overrides: Sequence[str] = ()) -> DesignResult:
     """The design calculations of a loaded file; an infeasible design raises
     :class:`~gearcli.errors.DesignError` naming the file, or the ``--set`` whose value it is about."""
-    try:
-        return design_layer.compute_design(loaded.design)
+    try:  # written in the units of the file's keys (docs/output.md, "Units")
+        return dataclasses.replace(design_layer.compute_design(loaded.design), units=key_units(loaded.design))
     except DesignError as exc:
         source = SOURCE if blames_key(exc.key, overrides) else loaded.source
         raise DesignError(exc.message, key=exc.key, source=source) from exc
@@ -282,9 +282,10 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
     ``variant`` (``iso``, ``elementary``, ``modified``)."""
     from gearcli.life.run import compute_life  # lazy: the sweep and life layers, start-up time of gearcli design
 
-    return compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
-                        progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
-                        base_warnings=session.design.warnings)
+    result = compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
+                          progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
+                          base_warnings=session.design.warnings)
+    return dataclasses.replace(result, units=key_units(session.loaded.design))  # tables in the file's units
 
 
 # ----------------------------------------------------------------- points (injected into sweep and life)

@@ -50,6 +50,13 @@ ACCURACY = "accuracy"  # report: the accuracy study's verdict on the file's solv
 NEAR_BIFURCATION = "near_bifurcation"  # steady = "periodic": a Floquet multiplier near +1 (fold, jump) or -1
 SHOOTING_FALLBACK = "shooting_fallback"  # steady = "periodic": Newton on the period map failed; brute force
 PERIODIC_NOT_ATTRACTING = "periodic_not_attracting"  # steady = "periodic": a state the motion never settles into
+# life (gearcli life): about the duty, a point's run, the spectrum
+DUTY = "duty"  # about the duty itself: a series' reverse rows, a load reversal
+LOAD_SHARING = "load_sharing"  # how the dynamic route takes the planets' load sharing
+MOTOR_SPEED_MISMATCH = "motor_speed_mismatch"  # the motor runs at another speed than the point's speed_rpm
+PEAKS_UNRESOLVED = "peaks_unresolved"  # the mesh-cycle peaks are resolved worse than the target
+STARTS_NOT_COUNTED = "starts_not_counted"  # --static: the duty's starts are counted on the dynamic route only
+BEYOND_STATIC_STRENGTH = "beyond_static_strength"  # load classes beyond the static strength (slope extrapolated)
 OTHER = "other"
 
 
@@ -82,7 +89,8 @@ WARNING_SCHEMA: JsonObject = {
         "code": {"type": "string", "pattern": "^[a-z][a-z0-9]*(_[a-z0-9]+)*$"},
         "message": {"type": "string"},
         "stage": {"anyOf": [{"type": "integer", "minimum": 1}, {"type": "null"}]},
-        "member": {"enum": ["pinion", "gear"]},
+        # a parallel stage's pinion/gear; a planetary stage's ring (its planet–ring mesh); life's members
+        "member": {"enum": ["pinion", "gear", "sun", "planet", "ring", "planet_ring_side", "planet_root"]},
     },
 }
 
@@ -106,10 +114,16 @@ def as_dict(d: Diagnostic) -> JsonObject:
     return {"code": d.code, "message": d.message, **data}
 
 
-def warning_objects(messages_: Iterable[str], diags: Iterable[Diagnostic] = ()) -> list[JsonObject]:
-    """The JSON ``warnings`` list: one object per message, in the messages' order, from the diagnostic
-    that carries it (code ``other`` for a message no diagnostic carries)."""
+def carrying(messages_: Iterable[str], diags: Iterable[Diagnostic] = ()) -> list[Diagnostic]:
+    """One diagnostic per message, in the messages' order: the one that carries it (code ``other`` for a message
+    no diagnostic carries)."""
     by_message: dict[str, Diagnostic] = {}
     for d in diags:
         by_message.setdefault(d.message, d)
-    return [as_dict(by_message.get(m) or Diagnostic(OTHER, "warning", m)) for m in messages_]
+    return [by_message.get(m) or Diagnostic(OTHER, "warning", m) for m in messages_]
+
+
+def warning_objects(messages_: Iterable[str], diags: Iterable[Diagnostic] = ()) -> list[JsonObject]:
+    """The JSON ``warnings`` list: one object per message, in the messages' order, from the diagnostic
+    that carries it (code ``other`` for a message no diagnostic carries)."""
+    return [as_dict(d) for d in carrying(messages_, diags)]

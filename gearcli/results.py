@@ -230,6 +230,9 @@ class DesignResult:
     output_power_kW: float = 0.0
     bearings: tuple[BearingResult, ...] = ()  # with [[bearing]] tables only (docs/life.md)
     diagnostics: tuple[Diagnostic, ...] = ()  # the warnings' diagnostics (code, data); JSON writes these
+    # the output units, the design file's key suffixes (speed, torque: io.units.key_units, set by the facade
+    # gearcli.api); None: the contract's fixed keys only
+    units: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True)

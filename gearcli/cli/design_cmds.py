@@ -123,7 +123,9 @@ def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:
     elif target.fmt == "csv":
         emit(modes_out.modes_csv(analyses), target)
     else:
-        emit_tables(modes_out.modes_tables(analyses), target)
+        from gearcli.io import units  # lazy: start-up time of --help
+
+        emit_tables(modes_out.modes_tables(analyses, units.of_design_file(loaded.design)), target)
     if plots_dir:
         _write_campbell(loaded, api.campbell(loaded.design, design_result), plots_dir)
 

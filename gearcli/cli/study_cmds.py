@@ -244,7 +244,7 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
 
     with TerminalProgress("life", enabled=not is_quiet()) as progress:
         result = api.life(session, static=static, variant=miner, progress=progress)
-    emit_as(target.fmt, target, result, sha256=session.loaded.sha256, json_doc=lambda: life_dict(result),
+    emit_as(target.fmt, target, result, sha256=session.loaded.sha256, json_doc=lambda: life_dict(result, session.design),
             csv_text=lambda: life_bearings_csv(result) if bearings else life_csv(result),
             table_builder="life_tables")
     warn(w for w in result.warnings if w not in session.design.warnings)

@@ -11,11 +11,13 @@ from typing import cast
 from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
+from gearcli.diagnostics import warning_objects
 from gearcli.io.life_tables import modified_rows
 from gearcli.io.serialize import bearings_csv, csv_text, plain
 from gearcli.io.table_kit import FittedTable, StageColumns, _g, text
+from gearcli.io.units import OutputUnits
 from gearcli.life.result import LifeResult, ModeLife, StageLife
-from gearcli.results import drop_absent_bearing_keys
+from gearcli.results import DesignResult, drop_absent_bearing_keys
 
 MEMBERS = ("pinion", "gear")
 MODES = ("pitting", "bending")
@@ -37,12 +39,16 @@ def _stage_dict(st: StageLife) -> JsonObject:
     return out
 
 
-def life_dict(r: LifeResult) -> JsonObject:
+def life_dict(r: LifeResult, design: DesignResult | None = None) -> JsonObject:
+    """The life JSON; ``warnings`` are objects (code, message, data), the base file's ``design`` warnings first, as
+    stderr says them (docs/output.md, "Warnings")."""
     stages: list[JsonObject] = [_stage_dict(st) for st in r.stages]
+    first = warning_objects(design.warnings, design.diagnostics) if design is not None else []
     return {
         "life": {"route": r.route, "miner": r.miner, "standard": r.standard, "hours": r.hours,
                  "stages": stages, "bearings": _bearing_docs(r), "points": plain(r.points)},
-        "warnings": list(r.warnings),
+        "warnings": first + warning_objects([w for w in r.warnings if design is None or w not in design.warnings],
+                                            r.diagnostics),
     }
 
 
@@ -86,9 +92,11 @@ def life_csv(r: LifeResult) -> str:
 
 def _duty_table(r: LifeResult) -> FittedTable:
     n = len(r.points[0].K_v) if r.points else 0
-    cols = ["point", "hours", "output torque [N·m]", "input speed [rpm]", "starts",
+    u = OutputUnits(*r.units) if r.units is not None else OutputUnits(torque="Nm")  # the file's torque unit
+    cols = ["point", "hours", f"output torque [{u.torque_label}]", "input speed [rpm]", "starts",
             *(f"K_v stage {k + 1}" if r.route == "static" else f"max/static F_t st. {k + 1}" for k in range(n))]
-    rows = [[p.name, _g(p.hours), _g(p.torque_Nm), _g(p.speed_rpm), str(p.start["count"]) if p.start else "0",
+    rows = [[p.name, _g(p.hours), _g(u.torque_from_Nm(p.torque_Nm)), _g(p.speed_rpm),
+             str(p.start["count"]) if p.start else "0",
              *(_g(k, 4) for k in p.K_v)] for p in r.points]
     return FittedTable(f"duty ({r.route} route): {r.hours:.6g} h in {len(r.points)} point(s)", cols, rows,
                        [c != "point" for c in cols])

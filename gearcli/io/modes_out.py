@@ -7,6 +7,7 @@ from rich.console import RenderableType
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import as_object, csv_text, plain
+from gearcli.io.units import OutputUnits
 from gearcli.model.modes import ModalAnalysis
 from gearcli.results import DesignResult
 from gearcli.stages.design import design_kind
@@ -73,9 +74,17 @@ def modes_csv(analyses: list[ModalAnalysis]) -> str:
     return csv_text(header, rows)
 
 
-def _at(c, fmt: str) -> str:
-    """The crossing's input speed, ``any`` for a fixed frequency near the mode at every speed."""
-    return "any" if c.input_speed_rpm is None else format(c.input_speed_rpm, fmt)
+def _at(c, fmt: str, units: OutputUnits | None = None) -> str:
+    """The crossing's input speed (rpm, or in ``units``), ``any`` for a fixed frequency near the mode at every
+    speed."""
+    if c.input_speed_rpm is None:
+        return "any"
+    return format(c.input_speed_rpm if units is None else in_speed_unit(c.input_speed_rpm, units), fmt)
+
+
+def in_speed_unit(rpm: float, units: OutputUnits) -> float:
+    """An input speed in rpm in the design file's speed unit."""
+    return units.speed_from_deg_s(6.0 * rpm)
 
 
 def _strength(c) -> str:
@@ -83,20 +92,24 @@ def _strength(c) -> str:
     return f"{100 * c.participation:.2g} %, {gain}"
 
 
-def modes_tables(analyses: list[ModalAnalysis]) -> list[RenderableType]:
+def modes_tables(analyses: list[ModalAnalysis], units: OutputUnits | None = None) -> list[RenderableType]:
+    """The modes per boundary, input speeds in the design file's speed unit (``units``; rpm without)."""
     from rich.table import Table  # lazy: rich, imported only for a table
     from rich.text import Text  # lazy: rich, imported only for a table
 
+    u = units or OutputUnits("rpm")
     out: list = []
     for a in analyses:
+        also = f" = {a.speed_range_rpm[1]:.5g} rpm" if u.speed == "deg_s" else ""  # °/s files: also rpm
         t = Table(title=f"modes, {a.boundary} (linearised at full load; crossings for input 0 .. "
-                        f"{a.speed_range_rpm[1]:.5g} rpm)", title_justify="left", header_style="bold")
+                        f"{in_speed_unit(a.speed_range_rpm[1], u):.5g} {u.speed_label}{also})", title_justify="left",
+                  header_style="bold")
         for col in ("mode", "f [Hz]", "ζ [%]", "dominant element (share)",
-                    "orders crossing [input rpm] (exciting share, resonant gain s/2ζ)"):
+                    f"orders crossing [input {u.speed_label}] (exciting share, resonant gain s/2ζ)"):
             t.add_column(col)
         for m in a.modes:
             share = "rigid-body rotation" if m.rigid else f"{m.dominant} ({100 * max(m.energy_share):.0f} %)"
-            cross = ", ".join(f"{c.excitation} @ {_at(c, '.4g')} ({_strength(c)})" for c in m.crossings) or "-"
+            cross = ", ".join(f"{c.excitation} @ {_at(c, '.4g', u)} ({_strength(c)})" for c in m.crossings) or "-"
             t.add_row(str(m.number), f"{m.frequency_Hz:.4g}", "-" if m.rigid else f"{100 * m.damping_ratio:.2g}",
                       Text(share), Text(cross))
         out.append(t)

@@ -17,6 +17,7 @@ from gearcli.core.jsontypes import JsonObject, JsonValue
 from gearcli.diagnostics import warning_objects
 from gearcli.io.modes_out import modes_dict
 from gearcli.io.serialize import as_object, plain, simulation_dict
+from gearcli.io.units import OutputUnits
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
 
@@ -36,8 +37,26 @@ def design_summary(d: DesignResult) -> JsonObject:
         "output_torque_Nmm": d.output_torque_Nmm,
         "stages": [{k: plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS} for s in d.stages],
         "shaft_speeds_deg_s": [sh.speed_deg_s for sh in d.shafts],
+        **_in_file_units(d),
         "warnings": warning_objects(d.warnings, d.diagnostics),
     }
+
+
+def _in_file_units(d: DesignResult) -> JsonObject:
+    """Beside the fixed °/s and N·mm keys, the design file's own units (docs/output.md, "Units"): ``units``, a
+    speed key other than °/s as ``input_speed_<u>``, ``output_speed_<u>``, ``shaft_speeds_<u>``, N·m torques."""
+    if d.units is None:
+        return {}
+    u = OutputUnits(*d.units)
+    out: JsonObject = {"units": {"speed": u.speed, "torque": u.torque}}
+    if u.speed != "deg_s":
+        out[f"input_speed_{u.speed}"] = u.speed_from_deg_s(d.input_speed_deg_s)
+        out[f"output_speed_{u.speed}"] = u.speed_from_deg_s(d.output_speed_deg_s)
+        out[f"shaft_speeds_{u.speed}"] = [u.speed_from_deg_s(sh.speed_deg_s) for sh in d.shafts]
+    if u.torque == "Nm":
+        out["input_torque_Nm"] = d.input_torque_Nmm / 1000.0
+        out["output_torque_Nm"] = d.output_torque_Nmm / 1000.0
+    return out
 
 
 def stage_dict(s: StageReport) -> JsonObject:

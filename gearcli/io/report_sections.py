@@ -96,7 +96,8 @@ def peaks_section(r: Report) -> Section:
                                                       "dynamic factor", "run peak |F_t| [N]", "at t [s]",
                                                       "run-up factor"), rows, "lrrrrrr",
                    ("dynamic factor = max |F_t| over the steady window / |static F_t| of the simulated load (the "
-                    "stage efficiencies act in the dynamics, so it equals the design's static F_t); "
+                    "stage efficiencies act in the dynamics, so it equals the design's static F_t; with a reversed load the "
+                    "driving gear's, the design's over η); "
                     "run-up factor = peak |F_t| over the whole run, run-up included / |static F_t|",
                     *sampling_notes(r)))
 
@@ -212,9 +213,17 @@ def solver_lines(r: Report) -> list[str]:
         f"njev {sv.njev}, wall {sv.wall_s:.3g} s",
         f"energy balance residual {sv.energy_residual:.2e} (input work − load work − damping loss − ΔKE − ΔPE, "
         "relative to the largest energy)",
-        f"dynamic ratio {sim.ratio:.6g}, output {sim.output_speed_deg_s:.6g} °/s = {sim.output_speed_deg_s / 6:.5g} rpm"
-        + ("" if sim.units[0] != "rad_s" else f" = {sim.output_speed_deg_s * 3.141592653589793 / 180:.5g} rad/s"),
+        f"dynamic ratio {sim.ratio:.6g}, output {_output_speed(sim)}",
     ]
+
+
+def _output_speed(sim) -> str:
+    """The window-mean output speed in the design file's speed unit, as `simulate`'s footer (°/s files: also rpm;
+    rad/s files: also rpm)."""
+    u, v = of_result(sim), sim.output_speed_deg_s
+    if u.speed == "deg_s":
+        return f"{v:.6g} °/s = {v / 6:.5g} rpm"
+    return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}" + (f" = {v / 6:.5g} rpm" if u.speed == "rad_s" else "")
 
 
 def rating_section(r: Report) -> Section | None:
@@ -275,8 +284,10 @@ def modes_section(r: Report) -> Section | None:
             continue
         near = [c for c in m.crossings if c.input_speed_rpm is None  # a fixed frequency near the mode: at any speed
                 or abs(c.input_speed_rpm / ana.nominal_input_rpm - 1.0) <= RESONANCE_BAND]
+        u = of_result(r.simulation)
         cross = ", ".join(f"{c.excitation} at " + ("any speed" if c.input_speed_rpm is None else
-                                                   f"{c.input_speed_rpm:.4g} rpm") + f" ({c.strength})"
+                                                   f"{u.speed_from_deg_s(6.0 * c.input_speed_rpm):.4g} "
+                                                   f"{u.speed_label}") + f" ({c.strength})"
                           for c in near) or "none"
         rows.append((str(m.number), g(m.frequency_Hz, 5), f"{100 * m.damping_ratio:.2g}",
                      f"{m.dominant} ({100 * max(m.energy_share):.0f} %)", cross))

@@ -64,8 +64,9 @@ def design_dict(result: DesignResult) -> JsonObject:
 
 
 def _design_doc(result: DesignResult) -> _Doc:
-    doc: _Doc = _plain(dataclasses.replace(result, diagnostics=()))
+    doc: _Doc = _plain(dataclasses.replace(result, diagnostics=(), units=None))
     doc.pop("diagnostics", None)
+    doc.pop("units", None)
     if not result.bearings:  # a design file without [[bearing]] tables means what it meant before them
         doc.pop("bearings", None)
     for b in doc.get("bearings", []):  # planet_stage: a planet pin's bearings only
@@ -76,7 +77,47 @@ def _design_doc(result: DesignResult) -> _Doc:
         _drop_absent_allowances(s)
     doc["stages"] = [_stage_json(s) for s in doc["stages"]]
     doc["warnings"] = warning_objects(result.warnings, result.diagnostics)
-    return doc
+    return _in_file_units(doc, result) if result.units is not None else doc
+
+
+def _in_file_units(doc: _Doc, result: DesignResult) -> _Doc:
+    """The contract's fixed keys (°/s and rpm, N·mm and N·m per member) and, besides them, the design file's own
+    units where those are not among them: ``units`` {speed, torque}; a ``speed_rad_s`` file's ``input_speed_rad_s``,
+    ``output_speed_rad_s`` and every member's and shaft's ``speed_rad_s``; a ``torque_Nm`` (or ``power_kW``) file's
+    ``input_torque_Nm``, ``output_torque_Nm`` (docs/output.md, "Units")."""
+    assert result.units is not None
+    u = output_units.OutputUnits(*result.units)
+    out: _Doc = {}
+    for key, value in doc.items():
+        out[key] = value
+        if key == "output_speed_rpm" and u.speed == "rad_s":
+            out["input_speed_rad_s"] = u.speed_from_deg_s(result.input_speed_deg_s)
+            out["output_speed_rad_s"] = u.speed_from_deg_s(result.output_speed_deg_s)
+        elif key == "output_torque_Nmm" and u.torque == "Nm":
+            out["input_torque_Nm"] = result.input_torque_Nmm / 1000.0
+            out["output_torque_Nm"] = result.output_torque_Nmm / 1000.0
+    out["units"] = {"speed": u.speed, "torque": u.torque}
+    if u.speed == "rad_s":
+        _add_rad_s(out, u)
+    return out
+
+
+def _add_rad_s(node: JsonValue, u: output_units.OutputUnits) -> None:
+    """``speed_rad_s`` after ``speed_rpm`` in every object that has ``speed_deg_s`` (members, shafts), in place."""
+    if isinstance(node, list):
+        for v in node:
+            _add_rad_s(v, u)
+    elif isinstance(node, dict):
+        for v in node.values():
+            _add_rad_s(v, u)
+        deg = node.get("speed_deg_s")
+        if isinstance(deg, (int, float)) and "speed_rpm" in node:
+            items = list(node.items())
+            node.clear()
+            for k, v in items:
+                node[k] = v
+                if k == "speed_rpm":
+                    node["speed_rad_s"] = u.speed_from_deg_s(float(deg))
 
 
 # the allowances' figures and the CSV column suffixes of their limits (docs/output.md); absent without the keys

@@ -94,7 +94,8 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
             for g, rs in groups.items():
                 x = [_num(r.get(key)) for r in rs]
                 for c, style in cols.items():
-                    label = _label(g, others) + (f" {c.rsplit('_', 1)[-1]}" if len(cols) > 1 else "")
+                    label = " ".join(p for p in (_label(g, others), c.rsplit('_', 1)[-1] if len(cols) > 1 else "")
+                                     if p)
                     ax.plot(x, [_num(r.get(f"stage{k}_{c}")) for r in rs], style, marker=".", ms=4, lw=1,
                             color=COLOURS.get(str(g[0]), "k"), label=label)
             ax.set_title(f"stage {k}: {title}", fontsize=9)
@@ -117,8 +118,11 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
 
 
 def _label(group: tuple, others: Sequence[str]) -> str:
+    """A curve's legend: its direction (up, down; none for independent points, where it says nothing) and the
+    other varied keys' values."""
     extra = ", ".join(f"{k}={v}" for k, v in zip(others, group[1:], strict=True))
-    return str(group[0]) + (f" ({extra})" if extra else "")
+    direction = "" if str(group[0]) in ("none", "None") else str(group[0])
+    return " ".join(p for p in (direction, f"({extra})" if extra else "") if p)
 
 
 def _campbell(campbell: SweepCampbell):

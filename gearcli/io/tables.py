@@ -10,6 +10,7 @@ never rich markup, control characters escaped.
 from __future__ import annotations
 
 import io
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol, cast
@@ -36,11 +37,15 @@ from gearcli.stages.design import gear_pairs
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
 
+RAD_PER_DEG = math.pi / 180.0
+
+
 def design_tables(r: DesignResult) -> list[RenderableType]:
     """The design's tables: the gear stages' geometry, loads and rating (a column per stage whose kind is a gear
     pair), each kind's own tables, the shafts, the bearings and the summary lines."""
     s = [st for _, st in gear_pairs(r.stages)]
     cols = [f"stage {st.index}" for st in s]
+    rad_s = r.units is not None and r.units[0] == "rad_s"  # a speed_rad_s file: its unit beside °/s and rpm
 
     def row(label, fn, digits=5):
         return label, [_g(fn(st), digits) for st in s]
@@ -72,6 +77,7 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     parallel = any(_kind(st).pair_members for st in s)
     loads = _quantity_table("loads and stiffness", cols, [
         *([pinion("pinion speed [rpm]", lambda st: st.pinion.speed_rpm),
+           *([pinion("pinion speed [rad/s]", lambda st: st.pinion.speed_deg_s * RAD_PER_DEG)] if rad_s else []),
            pinion("pinion torque [N·mm]", lambda st: st.pinion.torque_Nmm),
            pinion("pinion torque [N·m]", lambda st: st.pinion.torque_Nm),
            pinion("pinion power [kW]", lambda st: st.pinion.power_kW)] if parallel else []),
@@ -98,13 +104,15 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     train = _quantity_table("shafts", [f"shaft {sh.index}" for sh in r.shafts], [
         ("speed [°/s]", [_g(sh.speed_deg_s) for sh in r.shafts]),
         ("speed [rpm]", [_g(sh.speed_rpm) for sh in r.shafts]),
+        *([("speed [rad/s]", [_g(sh.speed_deg_s * RAD_PER_DEG) for sh in r.shafts])] if rad_s else []),
         ("torque [N·mm]", [_g(sh.torque_Nmm) for sh in r.shafts]),
         ("torque [N·m]", [_g(sh.torque_Nm) for sh in r.shafts]),
         ("power [kW]", [_g(sh.power_kW) for sh in r.shafts]),
         ("inertia [kg·m²]", [_g(sh.inertia_kg_m2, 4) for sh in r.shafts]),
     ])
+    in_rad_s = f" = {r.output_speed_deg_s * RAD_PER_DEG:.5g} rad/s" if rad_s else ""
     summary = [text(f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
-                    f"{r.output_speed_rpm:.4g} rpm   input torque {r.input_torque_Nmm:.5g} N·mm"),
+                    f"{r.output_speed_rpm:.4g} rpm{in_rad_s}   input torque {r.input_torque_Nmm:.5g} N·mm"),
                text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
     gears = [geometry, loads] if s else []  # a train without gear stages (all belts) has no gear columns

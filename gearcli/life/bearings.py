@@ -17,6 +17,8 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import iso281
 from gearcli.design.bearing_life import (
+    AXIAL_NOT_RATED,
+    KAPPA_OUT_OF_RANGE,
     axial_warning,
     duty_modified_life,
     kappa_warning,
@@ -28,6 +30,7 @@ from gearcli.design.shafts import basic_life_Mrev, life_hours, spectrum_equivale
 from gearcli.life.result import BearingLife
 
 if TYPE_CHECKING:
+    from gearcli.diagnostics import Diagnostic
     from gearcli.life.run import _PointData
 
 
@@ -123,9 +126,12 @@ def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] 
     return tuple(out)
 
 
-def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife]) -> list[str]:
+def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife],
+                     said: Sequence[str] = ()) -> list[Diagnostic]:
     """s_0 below the minimum over the duty (and its starts); kappa below ISO 281's range at any of the duty's load
-    levels (a point's, or its starts' at their slower mean speed); an axial force the equivalent loads ignore."""
+    levels (a point's, or its starts' at their slower mean speed); an axial force the equivalent loads ignore. A
+    kappa or axial-force word the life output already carries for the same bearing (the base file's design
+    warning: the lowest kappa is the base file's own, the same F_a/F_r) is not said twice."""
     cfg = points[0].cfg
     found = [static_warning(cfg, j, b.kind, b.static_safety, "at the largest peak load over the duty")
              for j, b in enumerate(lives)]
@@ -134,4 +140,17 @@ def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife])
     for j in range(len(lives)):  # an axial force without factors: the first point's word (its F_a/F_r is the train's)
         found.append(next((d for pd in points if (d := axial_warning(pd.cfg, j, pd.design.bearings[j])) is not None),
                           None))
-    return [d.message for d in found if d is not None]
+    return [d for d in found if d is not None and not _said(d, said)]
+
+
+def _said(d: Diagnostic, said: Sequence[str]) -> bool:
+    """Whether the base file's design warnings (``said``) already carry ``d``'s word: the same F_a/F_r, or the
+    same kappa (the lowest over the duty is the base file's own)."""
+    if d.code == AXIAL_NOT_RATED:
+        return d.message in said
+    if d.code == KAPPA_OUT_OF_RANGE:
+        base = kappa_warning(int(d.data["bearing"]) - 1, float(d.data["kappa"]))  # type: ignore[arg-type]
+        return base is not None and base.message in said
+    return False
+
+

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from gearcli.core.jsontypes import JsonObject
+from gearcli.diagnostics import Diagnostic
 
 
 @dataclass(frozen=True)
@@ -117,3 +118,5 @@ class LifeResult:
     stages: tuple[StageLife, ...]
     bearings: tuple[BearingLife, ...]
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    diagnostics: tuple[Diagnostic, ...] = field(default_factory=tuple)  # the warnings' (code, data): the JSON's
+    units: tuple[str, str] | None = None  # the design file's (speed, torque) key suffixes: the tables' torque unit

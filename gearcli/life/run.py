@@ -25,6 +25,18 @@ from gearcli.core.jsontypes import JsonObject
 from gearcli.core.memo import remember
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.design.standards import standard_of
+from gearcli.diagnostics import (
+    BEYOND_STATIC_STRENGTH,
+    DUTY,
+    LOAD_SHARING,
+    MOTOR_SPEED_MISMATCH,
+    PEAKS_UNRESOLVED,
+    STARTS_NOT_COUNTED,
+    Diagnostic,
+    carrying,
+    messages,
+    warning,
+)
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
 from gearcli.life import spectra
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
@@ -134,12 +146,12 @@ def k_gamma(st: StageResult) -> float:
 
 
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
-                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[str, ...], tuple[str, ...]]:
+                   evaluate: PointEvaluator) -> tuple[_PointData, tuple[Diagnostic, ...], tuple[Diagnostic, ...]]:
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
     _life_kinds(design, scene)
-    notes: list[str] = []
+    notes: list[Diagnostic] = []
     sharing = [st for st in design.stages if design_kind(st).shares_load]  # planets sharing the load
     given = cfg.rating is not None and cfg.rating.load_sharing_factor not in (None, 1.0)
     if sharing and given:
@@ -147,15 +159,16 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
         if all(e is not None for e in errors):
             # the simulated planets share the load themselves (their position errors): K_gamma = 1 in the rating
             extra += ("rating.load_sharing_factor=1.0",)
-            notes += [f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
+            notes += [warning(LOAD_SHARING, f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
                       f"(stage[{st.index - 1}].planet.position_error_um); [rating] load_sharing_factor = "
-                      f"{k_gamma(st):g} is not applied" for st in sharing]
+                      f"{k_gamma(st):g} is not applied", stage=st.index, load_sharing_factor=k_gamma(st))
+                      for st in sharing]
         else:
             # identical planets share equally in the model: the ISO allowance for unequal sharing stays
-            notes += [f"stage {st.index}: the simulated planets are identical (no planet.position_error_um), so "
+            notes += [warning(LOAD_SHARING, f"stage {st.index}: the simulated planets are identical (no planet.position_error_um), so "
                       f"[rating] load_sharing_factor = {k_gamma(st):g} stays on the planet meshes' stresses and the "
-                      "planet pins' loads; give the planets' position errors to simulate the sharing instead"
-                      for st in sharing]
+                      "planet pins' loads; give the planets' position errors to simulate the sharing instead",
+                              stage=st.index, load_sharing_factor=k_gamma(st)) for st in sharing]
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
@@ -196,18 +209,23 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
                    peak_error=tuple(ld.peak_error for ld in loads), settled=settled)
-    warnings = [w for w in result.warnings if w not in design.warnings]  # the point's rating at K_v = 1: superseded
+    # the point's rating at K_v = 1: superseded
+    warnings = [d for d in carrying(result.warnings, result.diagnostics) if d.message not in design.warnings]
     if cfg.input.drive == "motor" and cfg.input.starting != "vfd" and result.extra and "motor" in result.extra:
         running = result.extra["motor"].get("operating_speed_rpm")
         if running and abs(running - point.speed_rpm) > 0.02 * point.speed_rpm:
-            warnings.append(f"the motor (starting = \"{cfg.input.starting}\") runs at {running:.5g} rpm, not the point's "
-                            f"speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: give the speed the "
-                            "motor runs at, or starting = \"vfd\" (the supply follows the point's speed)")
+            warnings.append(warning(
+                MOTOR_SPEED_MISMATCH, f"the motor (starting = \"{cfg.input.starting}\") runs at {running:.5g} rpm, not "
+                f"the point's speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: give the speed the "
+                "motor runs at, or starting = \"vfd\" (the supply follows the point's speed)",
+                operating_speed_rpm=running, speed_rpm=point.speed_rpm))
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
-            warnings.append(f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
-                            f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
-                            f"sample finer: --set simulation.steps={4 * steps}")
+            warnings.append(warning(
+                PEAKS_UNRESOLVED, f"stage {k + 1}: the mesh-cycle peaks are resolved to about {ld.peak_error:.1e} of "
+                f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
+                f"sample finer: --set simulation.steps={4 * steps}", stage=k + 1, relative_error=ld.peak_error,
+                target_relative=PEAK_TOLERANCE, steps=4 * steps))
     return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
 
 
@@ -417,12 +435,19 @@ def _no_progress(label: str, done: int, total: int) -> None:
 
 
 def _point_design_warnings(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
-                           base_warnings: Sequence[str], design: DesignResult | None = None) -> list[str]:
+                           base_warnings: Sequence[str], design: DesignResult | None = None) -> list[Diagnostic]:
     """What ``gearcli design`` says of the point (its torque, speed and ``set``: undercut, S_H below the
     minimum ...) beyond what it says of the base file, each naming the point."""
     if design is None:
         design = _point_design(scene, point, design_case).design
-    return [f"duty point {point.name}: {w}" for w in design.warnings if w not in base_warnings]
+    return _of_point(point, [d for d in carrying(design.warnings, design.diagnostics) if d.message not in base_warnings])
+
+
+def _of_point(point: DutyPoint, diags: Sequence[Diagnostic]) -> list[Diagnostic]:
+    """A duty point's own warnings: each message names the point, its data carries it as ``point``; the code and
+    the rest of the data stay the diagnostic's."""
+    return [replace(d, message=f"duty point {point.name}: {d.message}", data={**d.data, "point": point.name})
+            for d in diags]
 
 
 def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: CaseDesigner, evaluate: PointEvaluator,
@@ -438,7 +463,7 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
         raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
                           "--series FILE.csv", source=scene.source, key="duty")
     evaluated: list[_PointData] = []
-    warnings: list[str] = list(notes)
+    warnings: list[Diagnostic] = [warning(DUTY, n) for n in notes]
     if route == "static":
         for i, p in enumerate(points):
             progress(p.name, i, len(points))
@@ -458,21 +483,22 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                     raise type(exc)(f"{scene.source}: duty point {p.name}: {exc}") from None
                 evaluated.append(pd)
                 warnings += _point_design_warnings(scene, p, design_case, base_warnings)
-                warnings += [n for n in point_notes if n not in warnings]
-                warnings += [f"duty point {p.name}: {w}" for w in run_warnings]
+                warnings += [n for n in point_notes if n.message not in messages(warnings)]
+                warnings += _of_point(p, run_warnings)
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
     warnings += _static_warnings(stages)
     if route == "static" and any(p.starts for p in points):
-        warnings.append("the duty's starts ([[duty]] starts) are counted on the dynamic route only (each point's "
-                        "start simulated from rest); --static rates the steady points alone")
+        warnings.append(warning(STARTS_NOT_COUNTED, "the duty's starts ([[duty]] starts) are counted on the dynamic "
+                                "route only (each point's start simulated from rest); --static rates the steady "
+                                "points alone"))
     bearings = bearing_lives(evaluated, start_bearings(evaluated))
-    warnings += bearing_warnings(evaluated, bearings)
+    warnings += bearing_warnings(evaluated, bearings, base_warnings)
     runs = tuple(replace(pd.run, start=start_record(pd, stages)) if pd.start is not None else pd.run
                  for pd in evaluated)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
-                      runs, stages, bearings, tuple(warnings))
+                      runs, stages, bearings, messages(warnings), tuple(warnings))
 
 
 def start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:
@@ -516,7 +542,7 @@ def start_record(pd: _PointData, stages: Sequence[StageLife]) -> JsonObject:
             "peak_tangential_N": list(pd.start.peak_tangential_N), "damage": damage, "bearings": bearings}
 
 
-def _static_warnings(stages: Sequence[StageLife]) -> list[str]:
+def _static_warnings(stages: Sequence[StageLife]) -> list[Diagnostic]:
     out = []
     for st in stages:
         for member in (*MEMBERS, *RING_MEMBERS):
@@ -526,7 +552,9 @@ def _static_warnings(stages: Sequence[StageLife]) -> list[str]:
                 ml: ModeLife = getattr(getattr(st, member), mode)
                 over = [b for b in ml.bins if b.cycles_to_failure is not None and b.cycles_to_failure < ml.static_cycles]
                 if over:
-                    out.append(f"stage {st.index} {member} {mode}: {len(over)} load class(es) beyond the static "
-                               f"strength (fewer than {ml.static_cycles:.3g} cycles to failure), e.g. at point "
-                               f"{over[0].point}: the finite-life slope is extrapolated there")
+                    out.append(warning(
+                        BEYOND_STATIC_STRENGTH, f"stage {st.index} {member} {mode}: {len(over)} load class(es) beyond "
+                        f"the static strength (fewer than {ml.static_cycles:.3g} cycles to failure), e.g. at point "
+                        f"{over[0].point}: the finite-life slope is extrapolated there", stage=st.index, member=member,
+                        mode=mode, classes=len(over), static_cycles=ml.static_cycles, point=over[0].point))
     return out

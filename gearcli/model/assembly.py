@@ -180,8 +180,9 @@ def _linearisation_floor(spec: ModelSpec, x: Connector) -> float:
 def power_path_loss_factors(spec: ModelSpec, conns: list[Connector]) -> list[float]:
     """Per connector, what the losses between it and the load multiply its static force by: the product of
     1/eta of the lossy connectors (and lossy stage models) after it on the power path, and its own (the force of a
-    lossy mesh is its driving side's); eta instead of 1/eta for a reversed load, whose power flows from the
-    output. A planet mesh's own loss is in its share of the output torque; its stage's loss counts before the
+    lossy mesh is its driving side's: the pinion's); for a reversed load, whose power flows from the output, eta of
+    those after it and not its own (its driving side is then the gear, which gets the law's whole force: f_b = f
+    at sigma = -1, docs/physics.md "Stage efficiency in the dynamics"). A planet mesh's own loss is in its share of the output torque; its stage's loss counts before the
     stage. 1 everywhere when no connector loses (a stage model's own efficiency then counts nowhere either)."""
     forward = spec.load.torque_Nm >= 0
     out = [1.0] * len(conns)
@@ -199,9 +200,11 @@ def power_path_loss_factors(spec: ModelSpec, conns: list[Connector]) -> list[flo
             assert p is not None
             factor *= 1.0 / p.efficiency if forward else p.reverse_efficiency
             pending = None
-        if x.lossy:
-            factor *= 1.0 / x.efficiency if forward else x.efficiency
+        if x.lossy and forward:  # its driving side is the pinion's: its own loss is in its force
+            factor *= 1.0 / x.efficiency
         out[c] = factor
+        if x.lossy and not forward:  # its driving side is the gear's: only the meshes upstream lose its loss
+            factor *= x.efficiency
     return out
 
 

@@ -14,11 +14,14 @@ import multiprocessing
 import os
 import signal
 import socket
+import threading
 from collections.abc import Iterable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from multiprocessing import forkserver
 from urllib.parse import urlsplit
 
 from gearcli import engine
+from gearcli.core.signals import deferred
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
 from gearcli.sweep.columns import Row, failed_row
@@ -135,9 +138,14 @@ def _lost(task: Task, exc: BaseException) -> list[Row]:
 def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
     ctx = multiprocessing.get_context("forkserver")
     ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate", "gearcli.api"])
+    _start_forkserver_deaf()
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_ignore_sigint)
     try:
-        futures = {pool.submit(run_task, t): t for t in tasks}
+        # submitting starts the workers (the first waits for the forkserver's preload): a signal meanwhile is held
+        # until each has started and is in the pool's table, where the handler below ends it; raised inside
+        # Process.start it left a worker that read its start after we had gone (a FileNotFoundError traceback)
+        with deferred():
+            futures = {pool.submit(run_task, t): t for t in tasks}
         for fut in as_completed(futures):
             try:
                 rows = fut.result()
@@ -151,14 +159,33 @@ def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
         pool.shutdown(wait=True, cancel_futures=True)  # joins the pool's thread: its queues and semaphores released
 
 
+def _start_forkserver_deaf() -> None:
+    """Start the forkserver with SIGINT ignored, a disposition that exec keeps and Python then leaves alone (so its
+    workers inherit it too): Ctrl-C on a terminal reaches the whole process group, and a forkserver still starting
+    Python or importing its preload (half a second of numpy, scipy and gearcli) died of it with a KeyboardInterrupt
+    traceback on the user's terminal. This process handles Ctrl-C (exit 130) and ends the workers. (A blocked
+    signal mask would keep a Ctrl-C of these few milliseconds for us, but the server's exec does not inherit it.)"""
+    if threading.current_thread() is not threading.main_thread():  # no handler to swap there
+        forkserver.ensure_running()
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        forkserver.ensure_running()
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 def _stop_workers(pool) -> None:
     """End the pool's workers now (each is mid-point; its rows are lost, the rows already yielded are kept).
     ``ProcessPoolExecutor.terminate_workers`` exists from Python 3.14; before, the pool's own process table."""
     terminate = getattr(pool, "terminate_workers", None)
     if terminate is not None:
         terminate()
-        return
     processes = list((getattr(pool, "_processes", None) or {}).values())
+    # and a worker started but not yet in the pool's table (the signal came while the pool was launching it):
+    # left running, it reads its start from the parent after the parent has gone (its queues' semaphores
+    # unlinked) and prints a FileNotFoundError traceback on the user's terminal
+    processes += [p for p in multiprocessing.active_children() if p not in processes]
     for proc in processes:
         proc.terminate()
     for proc in processes:

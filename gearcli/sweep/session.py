@@ -21,6 +21,7 @@ from gearcli import __version__, engine
 from gearcli.config import DesignFile, LoadedDesign
 from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
 from gearcli.config.load import integer_keys, list_keys
+from gearcli.config.overrides import SOURCE
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
@@ -94,7 +95,10 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages), load_law_of(loaded.design))
     check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
-    check_keys(scene, spec.branches()[0][0])
+    try:
+        check_keys(scene, spec.branches()[0][0])
+    except ConfigError as exc:
+        raise _named_by_option(exc, spec, sets) from None
     _no_continuous_integers(spec, scene)
     check_motor_speed(spec.keys, loaded.design, loaded.source)
     ident = identity(spec, loaded.sha256, __version__)
@@ -110,6 +114,17 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
     return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), sharing), ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+
+
+def _named_by_option(exc: ConfigError, spec: SweepSpec, sets: Sequence[str]) -> ConfigError:
+    """A bad key of ``--vary`` or ``--random`` named by that option, not ``--set`` (the keys are checked as
+    overrides): ``gearcli: --vary: nosuch.x: unknown key ...``."""
+    if exc.source != SOURCE or any(s.partition("=")[0].strip() == exc.key for s in sets):
+        return exc
+    for option, keys in (("--vary", [a.key for a in spec.axes]), ("--random", [d.key for d in spec.randoms])):
+        if exc.key in keys:
+            return ConfigError(exc.message, source=option, key=exc.key)
+    return exc
 
 
 def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:

@@ -137,7 +137,7 @@ def test_life_series_rows_with_negative_speed_are_counted_and_said(tmp_path):
     assert doc["life"]["hours"] == pytest.approx(2.0, rel=1e-12)  # both rows' hours: 3600 s + 3600 s
     top = max(p["torque_Nm"] for p in doc["life"]["points"])
     assert top == pytest.approx(500000.0, rel=1e-12)  # the reverse row's level is in the spectrum
-    said = [w for w in doc["warnings"] if "reverse" in w]
+    said = [w["message"] for w in doc["warnings"] if "reverse" in w["message"]]
     assert said and "drive flanks" in said[0] and "data row 2" in said[0], doc["warnings"]
     # its revolutions count like a forward row's: the same damage as the history with +600 rpm
     fwd = run("life", DUTY, "--static", "--series", _history(tmp_path, name="f.csv"), "--format", "json")
@@ -210,7 +210,7 @@ def test_per_point_design_warnings_reach_the_life_output(tmp_path):
     f = _duty_file(tmp_path, 'set = { "stage.0.pinion.teeth" = 5 }\n')
     res = run("life", f, "--static", "--format", "json")
     assert res.exit_code == 0, res.stderr
-    warnings = json.loads(res.stdout)["warnings"]
+    warnings = [w["message"] for w in json.loads(res.stdout)["warnings"]]
     assert any(w.startswith("duty point charging:") and "undercut" in w for w in warnings), warnings
     assert any(w.startswith("duty point charging:") and "S_H" in w for w in warnings), warnings
     assert "undercut" in res.stderr  # and on the terminal
@@ -220,7 +220,7 @@ def test_per_point_design_warnings_reach_the_life_output(tmp_path):
 def test_a_negative_duty_torque_gets_the_warning_docs_promise(tmp_path):
     res = run("life", DUTY, "--static", "--set", "duty.0.torque_Nm=-300000", "--format", "json")
     assert res.exit_code == 0, res.stderr
-    warnings = json.loads(res.stdout)["warnings"]
+    warnings = [w["message"] for w in json.loads(res.stdout)["warnings"]]
     assert any("charging" in w and "load reversal" in w and "back flanks" in w for w in warnings), warnings
 
 
