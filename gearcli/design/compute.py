@@ -189,13 +189,15 @@ def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
                                                  stage.normal_pressure_angle_deg, line_load,
                                                  blank_factor=factors.C_R, dedendum_factor=stage.basic_rack.dedendum)
     c_mesh = stf.mesh_stiffness_N_mm_um(c_single, geo.contact_ratio_transverse)
+    law_force = stf.law_tangential_force_N(forces.tangential, stage.efficiency)  # the run's static load
     at_load = stf.mesh_law_stiffness(
         law.stiffness, law.exponent, hertz=hertz,
         iso_normal_stiffness_N_mm=stf.iso6336_normal_stiffness_N_mm(c_mesh, geo.face_width_mm, geo.base_helix_rad),
-        tangential_force_N=forces.tangential, face_width_mm=geo.face_width_mm,
+        tangential_force_N=law_force, face_width_mm=geo.face_width_mm,
         normal_pressure_rad=geo.normal_pressure_rad, helix_rad=geo.helix_rad)
     coefficient = at_load.K
-    h0 = stf.static_approach_mm(forces.normal, coefficient, law.exponent)
+    h0 = stf.static_approach_mm(forces.normal * (law_force / forces.tangential if forces.tangential else 1.0),
+                                coefficient, law.exponent)
     return _Stiffness(radius, modulus, hertz, c_single, c_mesh, h0,
                       stf.linearised_stiffness_N_mm(coefficient, law.exponent, h0), factors, line_load, at_load)
 

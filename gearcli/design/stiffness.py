@@ -177,6 +177,17 @@ def calibration_line_force_N(stiffness: str | float, face_width_mm: float, norma
     return normal_force_N(MIN_LINE_LOAD_N_mm * face_width_mm, normal_pressure_rad, helix_rad) * math.cos(base_helix_rad)
 
 
+def law_tangential_force_N(tangential_N: float, efficiency: float) -> float:
+    """The static transverse force a parallel mesh's law carries, from the design's F_t = T_pinion / r_pinion: F_t
+    itself under a forward load (the pinion drives and the law's force is its side's), F_t / eta when the load
+    drives back through a lossy mesh (the gear drives with the law's whole force f and the pinion gets eta f = F_t:
+    docs/physics.md "Stage efficiency in the dynamics"). The run's static load, where an iso6336 law's tangent is
+    k_n (DESIGN section 13)."""
+    if tangential_N < 0.0 and 0.0 < efficiency < 1.0:
+        return tangential_N / efficiency
+    return tangential_N
+
+
 def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """The coefficient K (N/mm^e) mesh ``stage`` uses under ``contact`` (``cfg.contact_for(k)``).
 
@@ -186,7 +197,8 @@ def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """
     beta_b = math.radians(stage.base_helix_angle_deg)
     k_n = iso6336_normal_stiffness_N_mm(stage.iso6336_mesh_stiffness_N_mm_um, stage.face_width_mm, beta_b)
-    f_n0 = iso_reference_normal_force_N(stage.static_force_N.tangential, stage.face_width_mm,
+    f_n0 = iso_reference_normal_force_N(law_tangential_force_N(stage.static_force_N.tangential, stage.efficiency),
+                                        stage.face_width_mm,
                                         math.radians(stage.normal_pressure_angle_deg),
                                         math.radians(stage.helix_angle_deg))
     return law_coefficient_N_mm_e(contact.stiffness, contact.exponent, hertz=stage.hertz_stiffness_N_mm1_5,

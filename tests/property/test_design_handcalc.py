@@ -73,6 +73,9 @@ def inv_inverse(y: float) -> float:
 
 
 def hand_stage(s: dict, n_p_rpm: float, t_p_Nm: float, k_a: float) -> dict:
+    """The stage by the textbook formulas. The law's K is calibrated at the force the mesh law carries (DESIGN
+    section 13, the run's static load): F_t, or F_t / eta when the load drives back through a lossy mesh (the gear
+    drives with the law's whole force, the pinion gets eta of it: DESIGN section 9), ISO's k_n at F_t."""
     m_n, beta, a_n = s["normal_module_mm"], radians(s["helix_angle_deg"]), radians(s["normal_pressure_angle_deg"])
     z1, z2 = s["pinion"]["teeth"], s["gear"]["teeth"]
     x1, x2 = s["pinion"]["profile_shift"], s["gear"]["profile_shift"]
@@ -106,7 +109,8 @@ def hand_stage(s: dict, n_p_rpm: float, t_p_Nm: float, k_a: float) -> dict:
     c_p = (1 / q) * 0.8 * 1.0 * c_b * cos(beta) * min(line_load / 100, 1.0) ** 0.25
     c_ga = c_p * (0.75 * eps_a + 0.25)
     k_n = c_ga * b * 1000 / cos(b_b) ** 2  # N/mm along the normal
-    f_n_ref = max(abs(f_t), b) / (cos(a_n) * cos(beta))
+    f_law = f_t / s["efficiency"] if f_t < 0 and s.get("efficiency", 1.0) < 1.0 else f_t
+    f_n_ref = max(abs(f_law), b) / (cos(a_n) * cos(beta))
     h0 = 1.5 * f_n_ref / k_n  # e F / k_n for the default exponent e = 1.5
     # inertia: solid disc of the pitch diameter; ISO body (d_m = (d_a + d_f)/2) for m_red, per mm of face
     disc = [RHO * pi * (bw / 1e3) * (d / 1e3) ** 4 / 32 for d, bw in ((d1, b1), (d2, b2))]
