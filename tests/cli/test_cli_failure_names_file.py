@@ -1,5 +1,5 @@
-"""A run that genuinely fails (exit 1) names its design file, as every gearcli error does (DESIGN.md §5: messages
-"name the file and the key path"; docs/output.md, "Exit codes"). Before, a solver failure printed only its cause:
+"""A run that genuinely fails (exit 1) names its design file, as every gearcli error does (docs/output.md, "Exit
+codes": messages "name the file (or `--set`) and the key path"). Before, a solver failure printed only its cause:
 ``gearcli: method = "RK45" cannot integrate this scene: ...`` without the file, so a script running many files
 could not tell which one failed.
 
