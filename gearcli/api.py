@@ -35,7 +35,7 @@ from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.standards import with_simulated_rating
-from gearcli.errors import ConfigError, DesignError, RunTooLong
+from gearcli.errors import ConfigError, DesignError, RunTooLong, SimulationError
 from gearcli.io.units import key_units
 from gearcli.model import TorsionalModel
 from gearcli.model.assembly import Layout
@@ -162,6 +162,8 @@ def simulate_file(loaded: LoadedDesign, design_result: DesignResult, *,
         result = simulate(loaded.design, design_result, want_series=True, progress=progress)  # statistics need them
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
+    except SimulationError as exc:  # the run failed (exit 1): named with its file, as every error is
+        raise SimulationError(f"{loaded.source}: {exc}") from None
     except DesignError as exc:  # what the model cannot integrate (a planetary's phase-dependent excitation)
         raise DesignError(exc.message, key=exc.key, source=loaded.source) from None
     except ConfigError as exc:  # a cross-key rule only the model can check (a periodic run's duration)
@@ -220,6 +222,8 @@ def report_file(loaded: LoadedDesign, design_result: DesignResult, *, accuracy: 
         return report(loaded.design, design_result, accuracy=accuracy, quick=quick, spec=spec, progress=progress)
     except RunTooLong as exc:
         raise RunTooLong(f"{loaded.source}: {exc}") from None
+    except SimulationError as exc:  # the report's own run failed (exit 1): named with its file
+        raise SimulationError(f"{loaded.source}: {exc}") from None
     except ConfigError as exc:  # a file the report cannot compare (a stage kind without a gear mesh): named
         raise _located(exc, loaded, overrides) from None
 

@@ -219,7 +219,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
-    mode = estimate.unresolved_mode(choice, run, duration_s) if ref is not None and ref.errors else None
+    mode = estimate.unresolved_mode(choice, run, duration_s, window[0]) if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)

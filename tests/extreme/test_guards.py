@@ -141,7 +141,8 @@ def test_refusal_through_the_cli_is_exit_1_one_line_and_no_file(tmp_path):
     assert "Traceback" not in res.output
     # the design's warnings first (its point-contact law is far from ISO's stiffness), then the one error line
     (error,) = [line for line in res.stderr.splitlines() if not line.startswith("warning: ")]
-    assert error.startswith('gearcli: method = "DOP853" cannot integrate')
+    # the failed run names its file first, as every message does (docs/output.md, "Exit codes")
+    assert error.startswith(f'gearcli: {SCENES_DIR / "unequal_inertias.toml"}: method = "DOP853" cannot integrate')
     assert 'use method = "Radau"' in res.stderr
     assert out.read_text() == "previous\n" and sorted(p.name for p in tmp_path.iterdir()) == ["out.csv"]
 
