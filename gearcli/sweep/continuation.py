@@ -65,6 +65,7 @@ def continue_state(y_prev: np.ndarray, model_prev: TorsionalModel, model_new: To
 # ------------------------------------------------------------------------------- jumps and folds
 JUMP_CHANGE = 0.3  # a relative change of a stage's DTE rms (or force std) this large between neighbours: a jump
 FOLD_BISECTIONS = 5  # parameter halvings that close in on the end of a branch
+MAX_REFINEMENTS = 4 * FOLD_BISECTIONS  # evaluations spent following a branch towards the next point
 
 
 RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is rounding (an equilibrium's: none)
@@ -72,11 +73,13 @@ RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is roun
 
 def on_branch(prev, result) -> bool:
     """Whether ``result`` (a periodic point continued from ``prev``'s orbit) stayed on ``prev``'s branch: its
-    shooting converged from the continued orbit at the first start (or it is an equilibrium found directly), and
+    shooting converged from the continued orbit at the first start (or it is an equilibrium found directly, or
+    the integration from that orbit reached a settled window: a refinement point close to ``prev``), and
     no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the larger one, or of
     :data:`RESOLVED` of the channel's mean where both are below it (an equilibrium's rms is rounding)."""
     st = result.steady
-    if st is None or st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1:
+    settled_window = st is not None and st.mode == "window" and st.settled is True  # integrated on to a settled state
+    if st is None or not settled_window and (st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1):
         return False
     for a, b in zip(prev.stages, result.stages, strict=False):
         dte = a.dte_um is not None and b.dte_um is not None
@@ -108,19 +111,31 @@ def fold_estimate(v_a: float, mu_a: float, v_b: float, mu_b: float) -> float | N
 
 
 def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> str:
-    """The row's mark when a continued periodic point left its predecessor's branch: where the branch ended
-    (``refine(value, last)`` evaluates the scene at a value between the two, continued along the branch from
-    ``last``: the bisection closes in on the end) and what its Floquet multipliers say there: a real one heading
-    to +1 is a fold, located where it reaches +1 (:func:`fold_estimate` from the last two points of the branch)."""
-    last, last_v, lo, hi = prev, v_prev, v_prev, v
+    """The row's mark when a continued periodic point left its predecessor's branch, or "" when it did not:
+    the branch is followed from ``prev`` towards ``v`` by step halving (``refine(value, last)`` evaluates the
+    scene at a value, continued along the branch from ``last``; a step that leaves the branch is halved, one that
+    stays on it is taken). Reaching ``v`` on the branch means the neighbours only differed by a steep but smooth
+    flank (a linear resonance swept coarsely): no jump. A jump is a step of 1/2^FOLD_BISECTIONS of the
+    neighbours' distance that still leaves the branch; where it ends, the Floquet multipliers say what it is: a
+    real one heading to +1 is a fold, located where it reaches +1 (:func:`fold_estimate` from the last two
+    points of the branch)."""
+    last, last_v, hi = prev, v_prev, v
     before, before_v = None, None
-    for _ in range(FOLD_BISECTIONS if refine is not None else 0):
-        mid = 0.5 * (lo + hi)
-        got = refine(mid, last)
-        if got is not None and on_branch(last, got):
-            before, before_v, last, last_v, lo = last, last_v, got, mid, mid
-        else:
-            hi = mid
+    if refine is not None:
+        finest = abs(v - v_prev) / 2 ** FOLD_BISECTIONS * (1 + 1e-9)
+        step = 0.5 * (v - v_prev)  # the whole step left the branch (the row itself)
+        for _ in range(MAX_REFINEMENTS):
+            nxt = v if abs(step) >= abs(v - last_v) else last_v + step
+            got = refine(nxt, last)
+            if got is not None and on_branch(last, got):
+                before, before_v, last, last_v = last, last_v, got, nxt
+                if nxt == v:
+                    return ""  # followed to the point itself: a smooth flank, not a jump
+            elif abs(nxt - last_v) <= finest:
+                hi = nxt  # the finest step leaves the branch: it ends here
+                break
+            else:
+                hi, step = nxt, 0.5 * (nxt - last_v)
     mus = last.steady.multipliers if last.steady is not None and last.steady.multipliers else ()
     mu = max(mus, key=lambda m: m[0]) if mus else None
     if mu is None:
