@@ -9,7 +9,10 @@ to 1/32 of the step. The toy results stand for SimulationResults: only what ``on
 
 from __future__ import annotations
 
+import re
 from types import SimpleNamespace
+
+import pytest
 
 from gearcli.sweep.continuation import jump_note, on_branch
 
@@ -48,17 +51,40 @@ def test_a_settled_window_continued_from_the_orbit_counts_as_on_the_branch():
     assert not on_branch(_result(1.0), _result(1.05, mode="window", method=None, settled=False))
 
 
-def test_a_real_jump_is_marked_and_located_to_a_32nd_of_the_step():
+def _ends(note: str) -> tuple[float, float]:
+    m = re.match(r"jump: the branch of the previous point \(input.speed_rpm = 480\) ends between (\S+) and (\S+?)(;|$)", note)
+    assert m, note
+    return float(m[1]), float(m[2])
+
+
+def test_a_real_jump_is_marked_and_located_to_a_1024th_of_the_step():
     def rms(rpm: float) -> float:
         return 10.0 if rpm < 490.0 else 2.0
 
-    prev, row = _result(rms(480)), _result(rms(500))
-    note = jump_note("input.speed_rpm", 480.0, 500.0, prev, row, lambda v, last: _result(rms(v)))
-    # halving from 480: 490 off, 485 on, 490 off, 487.5 on, ..., 489.375 on, then a 0.625 step (20/32) still off
-    assert note.startswith("jump: the branch of the previous point (input.speed_rpm = 480) ends between 489.375 and 490")
+    calls = []
+
+    def refine(value, last):
+        calls.append(value)
+        return _result(rms(value))
+
+    note = jump_note("input.speed_rpm", 480.0, 500.0, _result(rms(480)), _result(rms(500)), refine)
+    lo, hi = _ends(note)  # the branch reaches lo (< 490) and a step of at most 20 / 2^10 rpm from it leaves it
+    assert lo < 490.0 <= hi and hi - lo <= 20 / 1024 * (1 + 1e-9)
+    assert len(calls) <= 60
+
+
+def test_a_sharp_resonance_over_a_wide_step_is_followed_not_marked():
+    # zeta = 0.01 crossed between 400 and 600 rpm: |H| rises from 3.7 to 50 and falls to 1.5, its half-power
+    # band 2 zeta = 2 % of the speed (9 rpm) inside a 200 rpm step
+    def rms(rpm: float) -> float:
+        r = rpm / N_RES
+        return 1.0 / ((1 - r * r) ** 2 + (2 * 0.01 * r) ** 2) ** 0.5
+
+    prev, row = _result(rms(400.0)), _result(rms(600.0))
+    note = jump_note("input.speed_rpm", 400.0, 600.0, prev, row, lambda v, last: _result(rms(v)))
+    assert note == ""
 
 
 def test_a_failed_refinement_point_is_off_the_branch():
-    prev, row = _result(10.0), _result(2.0)
-    note = jump_note("input.speed_rpm", 480.0, 500.0, prev, row, lambda v, last: None)
-    assert note.startswith("jump: the branch of the previous point (input.speed_rpm = 480) ends between 480 and 480.625")
+    note = jump_note("input.speed_rpm", 480.0, 500.0, _result(10.0), _result(2.0), lambda v, last: None)
+    assert _ends(note) == pytest.approx((480.0, 480.0 + 20 / 1024), abs=1e-5)  # printed to 8 digits

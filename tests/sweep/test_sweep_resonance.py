@@ -115,3 +115,16 @@ def test_a_steep_linear_flank_swept_down_is_not_marked_as_a_jump(scene):
     assert float(rows[1]["stage1_dte_um_rms"]) < 0.6 * float(rows[0]["stage1_dte_um_rms"])
     assert all(float(r["stage1_contact_loss_fraction"]) == 0.0 for r in rows)
     assert not any("jump" in r["message"] for r in rows), rows[1]["message"]
+
+
+def test_a_continued_point_is_not_judged_as_a_start_from_rest(scene):
+    # 5000 -> 50000 N m/rad continued: the point starts from the previous point's state with the ramps off (the
+    # sweep's rule), so summary.start (a start from rest against the rigid start) does not apply to it
+    res = CliRunner().invoke(cli, ["sweep", str(scene), "--vary", "input.coupling_stiffness_Nm_rad=5000,50000",
+                                   "--direction", "up", "--jobs", "1"])
+    assert res.exit_code == 0, res.stderr
+    rows = _rows(res.stdout)
+    assert not any("start's peak" in r["message"] or "ramp_s" in r["message"] for r in rows), rows[1]["message"]
+    # by hand: F_t1 = T_L / (i1 i2) / r_1 = 600 / (67/21 * 61/20) / (21 * 2.5 / cos 15 deg / 2000) = 2268.9 N
+    f_t = 600 / (67 / 21 * 61 / 20) / (21 * 2.5 / math.cos(math.radians(15)) / 2000)
+    assert [float(r["stage1_tangential_N_mean"]) for r in rows] == pytest.approx([f_t, f_t], rel=2e-3)
