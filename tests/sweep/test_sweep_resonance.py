@@ -128,3 +128,51 @@ def test_a_continued_point_is_not_judged_as_a_start_from_rest(scene):
     # by hand: F_t1 = T_L / (i1 i2) / r_1 = 600 / (67/21 * 61/20) / (21 * 2.5 / cos 15 deg / 2000) = 2268.9 N
     f_t = 600 / (67 / 21 * 61 / 20) / (21 * 2.5 / math.cos(math.radians(15)) / 2000)
     assert [float(r["stage1_tangential_N_mean"]) for r in rows] == pytest.approx([f_t, f_t], rel=2e-3)
+
+
+RANDOM = ["--samples", "6", "--random", "stage.0.mesh.transmission_error_um.0=normal(4,0.8)",
+          "--random", "load.torque_Nm=uniform(500,700)", "--set", "simulation.duration_s=0.1"]
+
+
+def _without_wall(rows: list[dict]) -> list[dict]:
+    return [{k: v for k, v in r.items() if k != "wall_s"} for r in rows]
+
+
+def test_a_tolerance_study_draws_the_documented_latin_hypercube_and_runs_alike_everywhere(scene, tmp_path):
+    """The drawn seed is said and recorded; the draws are scipy's LatinHypercube(seed=default_rng(seed)) mapped by
+    the inverse CDFs (docs/sweeps.md), one per stratum; each row's F_t mean is its own torque's, by hand; --jobs 1,
+    --jobs 2 and a Dask cluster on the loopback give the same rows bit for bit (but wall_s)."""
+    import numpy as np
+    from scipy.stats import norm, qmc
+
+    distributed = pytest.importorskip("distributed")
+    one = tmp_path / "one.csv"
+    res = CliRunner().invoke(cli, ["sweep", str(scene), *RANDOM, "--jobs", "1", "-o", str(one)])
+    assert res.exit_code == 0, res.stderr
+    header = json.loads(one.read_text().splitlines()[0][len("# gearcli sweep: "):])
+    seed = header["sweep"]["seed"]
+    assert f"samples drawn with --seed {seed}" in res.stderr
+    rows = _rows(one.read_text())
+    u = qmc.LatinHypercube(d=2, seed=np.random.default_rng(seed)).random(6)
+    te = np.array([float(r["stage.0.mesh.transmission_error_um.0"]) for r in rows])
+    torque = np.array([float(r["load.torque_Nm"]) for r in rows])
+    np.testing.assert_array_equal(te, norm.ppf(u[:, 0], loc=4, scale=0.8))
+    np.testing.assert_array_equal(torque, 500 + 200 * u[:, 1])
+    assert sorted(np.floor(norm.cdf(te, 4, 0.8) * 6).astype(int)) == list(range(6))  # one per stratum
+    assert sorted(np.floor((torque - 500) / 200 * 6).astype(int)) == list(range(6))
+    r_1 = 21 * 2.5 / math.cos(math.radians(15)) / 2000
+    np.testing.assert_allclose([float(r["stage1_tangential_N_mean"]) for r in rows],
+                               torque / (67 / 21 * 61 / 20) / r_1, rtol=2e-3)  # window mean, lossless
+    two = tmp_path / "two.csv"
+    res = CliRunner().invoke(cli, ["sweep", str(scene), *RANDOM, "--seed", str(seed), "--jobs", "2", "-o", str(two)])
+    assert res.exit_code == 0, res.stderr
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, host="127.0.0.1",
+                                  protocol="tcp://", dashboard_address=None) as cluster:
+        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+        dask = tmp_path / "dask.csv"
+        res = CliRunner().invoke(cli, ["sweep", str(scene), *RANDOM, "--seed", str(seed), "--scheduler",
+                                       cluster.scheduler_address, "-o", str(dask)])
+        assert res.exit_code == 0, res.stderr
+    first = one.read_text().splitlines()[0]
+    assert two.read_text().splitlines()[0] == dask.read_text().splitlines()[0] == first
+    assert _without_wall(_rows(two.read_text())) == _without_wall(rows) == _without_wall(_rows(dask.read_text()))
