@@ -176,3 +176,23 @@ def test_a_tolerance_study_draws_the_documented_latin_hypercube_and_runs_alike_e
     first = one.read_text().splitlines()[0]
     assert two.read_text().splitlines()[0] == dask.read_text().splitlines()[0] == first
     assert _without_wall(_rows(two.read_text())) == _without_wall(rows) == _without_wall(_rows(dask.read_text()))
+
+
+def test_plots_of_a_speed_sweep_with_a_failed_speed_leave_it_out_and_exit_1(scene, tmp_path):
+    # 0 rpm is below the file's bounds: its row fails (exit 1), and the Campbell diagram is drawn from the others
+    # instead of failing the whole command with exit 2 after the rows were written
+    from gearcli.api import design_case
+    from gearcli.sweep.modes import campbell
+    from gearcli.sweep.worker import Scene
+
+    points = campbell(Scene(SCENE.encode(), "scene.toml"), "input.speed_rpm", [0, 400], design_case)
+    assert len(points) == 1 and points[0].value == 400 and points[0].input_rpm == pytest.approx(400, rel=1e-12)
+    # by hand: stage 1 meshes at 21 x 400 / 60 = 140 Hz, stage 2 at 20 x (400 x 21/67) / 60 = 41.79 Hz
+    assert points[0].mesh_Hz == pytest.approx((140.0, 20 * 400 * 21 / 67 / 60), rel=1e-9)
+    assert points[0].natural_Hz[0] == pytest.approx(hand_frequency_Hz(), rel=0.02)
+    plots = tmp_path / "p"
+    res = CliRunner().invoke(cli, ["sweep", str(scene), "--vary", "input.speed_rpm=0,400", "--jobs", "1",
+                                   "--set", "simulation.duration_s=0.1", "--plots", str(plots)])
+    assert res.exit_code == 1, res.stderr
+    assert "2 points, 1 failed" in res.stderr and "Traceback" not in res.stderr
+    assert sorted(p.name for p in plots.iterdir()) == ["campbell.png", "response_input_speed_rpm.png"]
