@@ -18,7 +18,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.modes import SPEED_RANGE, CampbellData, campbell_data, modal_analysis
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
-from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec
+from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec, toml_value
 from gearcli.sweep.worker import CaseDesigner, Scene
 
 UnitsOf = Callable[[DesignFile], tuple[str, str]]  # a file's output units (io.units.key_units, injected by the facade)
@@ -100,10 +100,21 @@ def speed_axis(spec: SweepSpec) -> Axis | None:
 
 
 def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner, units_of: UnitsOf) -> SweepCampbell | None:
-    """``gearcli sweep --plots``: the Campbell diagram over the swept input speed (the other axes at their first
-    values); None when no input speed is swept."""
+    """``gearcli sweep --plots``: the Campbell diagram over the swept input speed (each other axis at its first
+    value that designs); None when no input speed is swept, or none designs."""
     axis = speed_axis(spec)
     if axis is None:
         return None
-    fixed = [f"{a.key}={a.values[0]!r}" for a in spec.axes[1:] if a.key != axis.key]
+    fixed: list[str] = []
+    for other in (a for a in spec.axes if a.key != axis.key):  # its first value that designs (a failed row's not)
+        sets = [f"{other.key}={toml_value(v)}" for v in other.values]
+        fixed.append(next((s for s in sets if _designs(scene, design_case, (*fixed, s))), sets[0]))
     return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, units_of, fixed)
+
+
+def _designs(scene: Scene, design_case: CaseDesigner, overrides: Sequence[str]) -> bool:
+    try:
+        design_case(scene, tuple(overrides))
+    except GearcliError:
+        return False
+    return True

@@ -196,3 +196,19 @@ def test_plots_of_a_speed_sweep_with_a_failed_speed_leave_it_out_and_exit_1(scen
     assert res.exit_code == 1, res.stderr
     assert "2 points, 1 failed" in res.stderr and "Traceback" not in res.stderr
     assert sorted(p.name for p in plots.iterdir()) == ["campbell.png", "response_input_speed_rpm.png"]
+
+
+@pytest.mark.parametrize("vary", [("input.speed_rpm=400,500", "contact.time_varying=true,false"),
+                                  ("stage.0.pinion.teeth=3,21", "input.speed_rpm=400,500")])
+def test_the_campbell_diagram_holds_the_other_axes_at_a_value_that_designs(vary):
+    # a boolean axis is set as TOML (true, not Python's True); an axis before the speed's is held too, at its
+    # first value that designs (teeth = 3 is a failed row, 21 the file's)
+    from gearcli.api import design_case
+    from gearcli.sweep.modes import sweep_campbell
+    from gearcli.sweep.spec import spec_from_options
+    from gearcli.sweep.worker import Scene
+
+    spec = spec_from_options(vary, (), None, "lhs", None, None)
+    got = sweep_campbell(spec, Scene(SCENE.encode(), "scene.toml"), design_case, lambda cfg: ("rpm", "Nm"))
+    assert got is not None
+    assert got.swept_rpm == pytest.approx((400.0, 500.0), rel=1e-12)
