@@ -80,7 +80,7 @@ def ordered(rows: Sequence[dict], spec: SweepSpec) -> list[dict]:
         indices[:] = [i for i in indices if i not in keyed]
     for row in rows:
         if row.get("_index") is None:
-            indices = free.get(row_ident(row, spec.keys))
-            if indices:
-                keyed[indices.pop(0)] = row
+            left = free.get(row_ident(row, spec.keys))
+            if left:
+                keyed[left.pop(0)] = row
     return [keyed[i] for i in sorted(keyed)]
