@@ -88,3 +88,21 @@ def test_a_sharp_resonance_over_a_wide_step_is_followed_not_marked():
 def test_a_failed_refinement_point_is_off_the_branch():
     note = jump_note("input.speed_rpm", 480.0, 500.0, _result(10.0), _result(2.0), lambda v, last: None)
     assert _ends(note) == pytest.approx((480.0, 480.0 + 20 / 1024), abs=1e-5)  # printed to 8 digits
+
+
+def test_a_refinement_point_that_raises_leaves_the_row_ok(monkeypatch):
+    """The row's own point ran; a refinement point between it and its neighbour that fails numerically (a
+    ValueError, an ArithmeticError) only ends the branch there: the row stays ``ok`` with its jump mark."""
+    from gearcli.sweep import worker
+    from gearcli.sweep.spec import Point
+
+    def evaluate(evaluator, scene, point, prev, check=False):
+        if point.index < 0:  # a refinement point
+            raise ValueError("a numerical failure")
+        return SimpleNamespace(case=None, result=_result(10.0 if point.index == 0 else 2.0), carried=object())
+
+    monkeypatch.setattr(worker, "_evaluate", evaluate)
+    points = tuple(Point(i, (("input.speed_rpm", v),), "up") for i, v in enumerate((480.0, 500.0)))
+    task = worker.Task(worker.Scene(b"", "scene.toml"), points, True, evaluate)
+    note = worker._jump(task, worker._Before(points[0], _result(10.0), object()), points[1], _result(2.0))
+    assert _ends(note) == pytest.approx((480.0, 480.0 + 20 / 1024), abs=1e-5)
