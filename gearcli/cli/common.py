@@ -335,7 +335,8 @@ def write_figures(write, plots_dir: str, what: str) -> bool:
     except OSError as exc:
         fail(f"{plots_dir}: cannot write plots: {exc.strerror or exc}", EXIT_FAILED)
     if not is_quiet():
-        click.echo(f"wrote {', '.join(visible(p.name) for p in paths)} to {visible(plots_dir)}", err=True)
+        click.echo(f"wrote {', '.join(visible(p.name) for p in paths)} to {visible(plots_dir)}" if paths else
+                   f"no figures for {visible(plots_dir)}: {what} has no result to draw", err=True)
     return True
 
 

@@ -237,7 +237,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
 
     def summary(deferred: list[bool] | None) -> SimulationResult:
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
-                         ref, stat_diags, eng.reason, deferred, diagnose, steps=file_steps or steps)
+                         ref, stat_diags, eng.reason, deferred, diagnose, steps=file_steps or steps,
+                         from_rest=y0 is None)
         out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
                                           course_changes=tuple(c.as_json() for c in changes)))
         _require_finite(out)
@@ -414,12 +415,13 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
-               diagnose: bool = True, steps: int | None = None) -> SimulationResult:
+               diagnose: bool = True, steps: int | None = None, from_rest: bool = True) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``steps``: the run's
     ``simulation.steps`` (the sampling estimate's suggestion scales it; whole periods: the window's samples). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
-    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order)."""
+    its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order).
+    ``from_rest``: the run started from rest (not continued from another run's state): only then a start summary."""
     spec = model.spec
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
@@ -449,7 +451,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m)
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
                                                        [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID) \
-        if diagnose else (None, [])
+        if diagnose and from_rest else (None, [])  # a continued run (a sweep's next point) has no start from rest
     diags += start_diags
     motor_summary = None
     if model.layout.drive.motor is not None and diagnose:

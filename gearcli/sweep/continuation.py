@@ -64,7 +64,8 @@ def continue_state(y_prev: np.ndarray, model_prev: TorsionalModel, model_new: To
 
 # ------------------------------------------------------------------------------- jumps and folds
 JUMP_CHANGE = 0.3  # a relative change of a stage's DTE rms (or force std) this large between neighbours: a jump
-FOLD_BISECTIONS = 5  # parameter halvings that close in on the end of a branch
+FOLD_BISECTIONS = 10  # halvings of the neighbours' distance after which a step that leaves the branch is a jump
+MAX_REFINEMENTS = 6 * FOLD_BISECTIONS  # evaluations spent following a branch towards the next point
 
 
 RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is rounding (an equilibrium's: none)
@@ -72,20 +73,27 @@ RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is roun
 
 def on_branch(prev, result) -> bool:
     """Whether ``result`` (a periodic point continued from ``prev``'s orbit) stayed on ``prev``'s branch: its
-    shooting converged from the continued orbit at the first start (or it is an equilibrium found directly), and
+    shooting converged from the continued orbit at the first start (or it is an equilibrium found directly, or
+    the integration from that orbit reached a settled window: a refinement point close to ``prev``), and
     no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the larger one, or of
     :data:`RESOLVED` of the channel's mean where both are below it (an equilibrium's rms is rounding)."""
     st = result.steady
-    if st is None or st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1:
+    settled_window = st is not None and st.mode == "window" and st.settled is True  # integrated on to a settled state
+    if st is None or not settled_window and (st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1):
         return False
     for a, b in zip(prev.stages, result.stages, strict=False):
-        dte = a.dte_um is not None and b.dte_um is not None
-        x = (a.dte_um.rms, b.dte_um.rms) if dte else (a.tangential_N.std, b.tangential_N.std)
-        mean = max(abs(a.dte_um.mean), abs(b.dte_um.mean)) if dte \
-            else max(abs(a.tangential_N.mean), abs(b.tangential_N.mean))
-        if abs(x[1] - x[0]) > JUMP_CHANGE * max(abs(x[0]), abs(x[1]), RESOLVED * mean, 1e-300):
+        (x0, m0), (x1, m1) = _amplitude(a, b), _amplitude(b, a)
+        if abs(x1 - x0) > JUMP_CHANGE * max(abs(x0), abs(x1), RESOLVED * max(m0, m1), 1e-300):
             return False
     return True
+
+
+def _amplitude(stage, other) -> tuple[float, float]:
+    """A stage's vibration measure for :func:`on_branch` and its channel's |mean|: the DTE rms where both results
+    have the DTE (``other``: the stage compared with), else the force std."""
+    if stage.dte_um is not None and other.dte_um is not None:
+        return stage.dte_um.rms, abs(stage.dte_um.mean)
+    return stage.tangential_N.std, abs(stage.tangential_N.mean)
 
 
 def _top_real(result) -> float | None:
@@ -108,19 +116,35 @@ def fold_estimate(v_a: float, mu_a: float, v_b: float, mu_b: float) -> float | N
 
 
 def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> str:
-    """The row's mark when a continued periodic point left its predecessor's branch: where the branch ended
-    (``refine(value, last)`` evaluates the scene at a value between the two, continued along the branch from
-    ``last``: the bisection closes in on the end) and what its Floquet multipliers say there: a real one heading
-    to +1 is a fold, located where it reaches +1 (:func:`fold_estimate` from the last two points of the branch)."""
-    last, last_v, lo, hi = prev, v_prev, v_prev, v
+    """The row's mark when a continued periodic point left its predecessor's branch, or "" when it did not:
+    the branch is followed from ``prev`` towards ``v`` by step halving (``refine(value, last)`` evaluates the
+    scene at a value, continued along the branch from ``last``; a step that leaves the branch is halved, one that
+    stays on it is taken and the next one doubled). Reaching ``v`` on the branch means the neighbours only differed
+    by a steep but smooth flank (a sharp linear resonance swept coarsely): no jump. A jump is a step of
+    1/2^FOLD_BISECTIONS of the neighbours' distance that still leaves the branch (a smooth response changes less
+    and less as the step shrinks, a discontinuity does not); where it ends, the Floquet multipliers say what it is: a
+    real one heading to +1 is a fold, located where it reaches +1 (:func:`fold_estimate` from the last two
+    points of the branch)."""
+    last, last_v, hi = prev, v_prev, v
     before, before_v = None, None
-    for _ in range(FOLD_BISECTIONS if refine is not None else 0):
-        mid = 0.5 * (lo + hi)
-        got = refine(mid, last)
-        if got is not None and on_branch(last, got):
-            before, before_v, last, last_v, lo = last, last_v, got, mid, mid
-        else:
-            hi = mid
+    if refine is not None:
+        finest = abs(v - v_prev) / 2 ** FOLD_BISECTIONS * (1 + 1e-9)
+        step = 0.5 * (v - v_prev)  # the whole step left the branch (the row itself)
+        for _ in range(MAX_REFINEMENTS):
+            nxt = v if abs(step) >= abs(v - last_v) else last_v + step
+            got = refine(nxt, last)
+            if got is not None and on_branch(last, got):
+                before, before_v, last, last_v = last, last_v, got, nxt
+                if nxt == v:
+                    return ""  # followed to the point itself: a smooth flank, not a jump
+                step *= 2  # a smooth stretch: longer steps again
+            elif abs(nxt - last_v) > finest:
+                hi, step = nxt, 0.5 * (nxt - last_v)
+            else:
+                hi = nxt  # the finest step leaves the branch: it ends here
+                break
+        else:  # out of refinements: the branch is known to reach last_v, not where it ends
+            hi = hi if (hi - last_v) * (v - v_prev) > 0 else v
     mus = last.steady.multipliers if last.steady is not None and last.steady.multipliers else ()
     mu = max(mus, key=lambda m: m[0]) if mus else None
     if mu is None:
@@ -135,5 +159,5 @@ def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> s
     else:
         fold = (f"; there its largest Floquet multiplier {mu[0]:.3g}{mu[1]:+.3g}i is not near +1: a non-smooth end "
                 "(a contact starting to open, impacts) rather than a smooth fold")
-    return (f"jump: the branch of the previous point ({key} = {v_prev:g}) ends between {last_v:.6g} and {hi:.6g}"
+    return (f"jump: the branch of the previous point ({key} = {v_prev:g}) ends between {last_v:.8g} and {hi:.8g}"
             f"{fold}")

@@ -15,7 +15,8 @@ import os
 import signal
 import socket
 import threading
-from collections.abc import Iterable, Iterator, Sequence
+from collections import Counter
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import forkserver
 from urllib.parse import urlsplit
@@ -76,18 +77,21 @@ def jobs_cap(point_bytes: float) -> tuple[int, str]:
     return cap, f"{cores} usable core{'s' if cores != 1 else ''}{memory}"
 
 
-def plan(spec: SweepSpec, scene: Scene, done: set[tuple[str, ...]], workers: int,
+def plan(spec: SweepSpec, scene: Scene, done: Mapping[tuple[str, ...], int], workers: int,
          evaluate: PointEvaluator) -> tuple[list[Task], int]:
-    """The tasks that produce every point not in ``done`` (idents), and how many points they return; each
-    evaluates its points with ``evaluate``.
+    """The tasks that produce every point not in ``done`` (idents and how many rows of each the file holds: the
+    first that many points of an ident are done), and how many points they return; each evaluates its points
+    with ``evaluate``.
 
     A continuation branch is one task; its points up to the last missing one are computed (a point's
     start state needs its predecessors), the ones already written are not returned again."""
     tasks: list[Task] = []
     single: list[Point] = []
     todo = 0
+    left = Counter(done)
     for branch in spec.branches():
-        missing = [i for i, p in enumerate(branch) if p.ident not in done]
+        written = [_take(left, p.ident) for p in branch]
+        missing = [i for i, w in enumerate(written) if not w]
         if not missing:
             continue
         todo += len(missing)
@@ -95,12 +99,20 @@ def plan(spec: SweepSpec, scene: Scene, done: set[tuple[str, ...]], workers: int
             single.extend(branch[i] for i in missing)
             continue
         head = branch[:missing[-1] + 1]
-        skip = frozenset(p.index for p in head if p.ident in done)
+        skip = frozenset(p.index for p, w in zip(head, written, strict=False) if w)
         tasks.append(Task(scene, tuple(head), True, evaluate, skip))
     size = batch_size(len(single), workers)
     tasks += [Task(scene, tuple(single[i:i + size]), False, evaluate) for i in range(0, len(single), size)]
     share = math.ceil(todo / max(1, workers))  # each worker's part of the sweep (engine = "auto" amortises over it)
     return [dataclasses.replace(t, runs_hint=share) for t in tasks], todo
+
+
+def _take(left: Counter, ident: tuple[str, ...]) -> bool:
+    """Whether a row of ``ident`` is left in the file for this point (and count it as used)."""
+    if left[ident] > 0:
+        left[ident] -= 1
+        return True
+    return False
 
 
 def batch_size(n_points: int, workers: int) -> int:

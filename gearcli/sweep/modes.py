@@ -13,11 +13,12 @@ from typing import cast
 
 from gearcli.config import DesignFile
 from gearcli.core.jsontypes import JsonScalar
+from gearcli.errors import GearcliError
 from gearcli.model.assembly import Layout
 from gearcli.model.modes import SPEED_RANGE, CampbellData, campbell_data, modal_analysis
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
-from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec
+from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec, toml_value
 from gearcli.sweep.worker import CaseDesigner, Scene
 
 UnitsOf = Callable[[DesignFile], tuple[str, str]]  # a file's output units (io.units.key_units, injected by the facade)
@@ -39,6 +40,7 @@ class CampbellPoint:
     input_rpm: float
     natural_Hz: tuple[float, ...]
     mesh_Hz: tuple[float, ...]  # first-order mesh frequency of each stage
+    value: JsonScalar = None  # the swept key's value (in its own unit)
 
 
 @dataclass(frozen=True)
@@ -61,27 +63,34 @@ def _speed_point(key: str, value: JsonScalar) -> str:
 
 def campbell(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: CaseDesigner,
              fixed: Sequence[str] = ()) -> list[CampbellPoint]:
-    """Natural and mesh frequencies at each swept input speed (the other keys at ``fixed`` overrides)."""
+    """Natural and mesh frequencies at each swept input speed that designs (the other keys at ``fixed``
+    overrides); a speed the design file's bounds refuse is left out, as its row is a failed one."""
     out = []
     for v in values:
-        cfg, design = design_case(scene, (*fixed, _speed_point(key, v)))
+        try:
+            cfg, design = design_case(scene, (*fixed, _speed_point(key, v)))
+        except GearcliError:  # a speed whose row failed (0 rpm, beyond the bounds): no modes there
+            continue
         mesh = tuple(st.pinion.teeth * st.pinion.speed_rpm / 60.0 for st in design.stages)
-        out.append(CampbellPoint(design.stages[0].pinion.speed_rpm, natural_frequencies_Hz(cfg, design), mesh))
+        out.append(CampbellPoint(design.stages[0].pinion.speed_rpm, natural_frequencies_Hz(cfg, design), mesh, v))
     return out
 
 
 def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: CaseDesigner,
-                     units_of: UnitsOf, fixed: Sequence[str] = ()) -> SweepCampbell:
+                     units_of: UnitsOf, fixed: Sequence[str] = ()) -> SweepCampbell | None:
     """The modes and order lines of the scene at the file's own speed (the other keys at ``fixed``), over
     0 .. the larger of 1.2 x that speed and the fastest swept point: the same drawing as ``gearcli modes
     --plots``, with the swept speeds."""
-    swept = [p.input_rpm for p in campbell(scene, key, values, design_case, fixed)]
+    points = campbell(scene, key, values, design_case, fixed)
+    swept = [p.input_rpm for p in points]
+    if not points:  # every swept speed failed: no diagram
+        return None
     cfg, design = design_case(scene, tuple(fixed))
     lay = Layout.of(spec_from_design(cfg, design))
     nominal = design.stages[0].pinion.speed_rpm
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
                          max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
-    units = units_of(design_case(scene, (*fixed, _speed_point(key, values[0]))).cfg)  # the swept key's unit
+    units = units_of(design_case(scene, (*fixed, _speed_point(key, points[0].value))).cfg)  # the swept key's unit
     return SweepCampbell(data, tuple(swept), units)
 
 
@@ -91,10 +100,21 @@ def speed_axis(spec: SweepSpec) -> Axis | None:
 
 
 def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner, units_of: UnitsOf) -> SweepCampbell | None:
-    """``gearcli sweep --plots``: the Campbell diagram over the swept input speed (the other axes at their first
-    values); None when no input speed is swept."""
+    """``gearcli sweep --plots``: the Campbell diagram over the swept input speed (each other axis at its first
+    value that designs); None when no input speed is swept, or none designs."""
     axis = speed_axis(spec)
     if axis is None:
         return None
-    fixed = [f"{a.key}={a.values[0]!r}" for a in spec.axes[1:] if a.key != axis.key]
+    fixed: list[str] = []
+    for other in (a for a in spec.axes if a.key != axis.key):  # its first value that designs (a failed row's not)
+        sets = [f"{other.key}={toml_value(v)}" for v in other.values]
+        fixed.append(next((s for s in sets if _designs(scene, design_case, (*fixed, s))), sets[0]))
     return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, units_of, fixed)
+
+
+def _designs(scene: Scene, design_case: CaseDesigner, overrides: Sequence[str]) -> bool:
+    try:
+        design_case(scene, tuple(overrides))
+    except GearcliError:
+        return False
+    return True

@@ -9,6 +9,7 @@ random sweep draws one and records it; a re-run without ``--seed`` reuses the re
 from __future__ import annotations
 
 import secrets
+from collections import Counter
 from collections.abc import Sequence
 from typing import Any
 
@@ -56,13 +57,30 @@ def row_ident(row: dict, keys: Sequence[str]) -> tuple:
     return (str(row.get("direction")), *(_ident_value(_parse_cell(row.get(k))) for k in keys))
 
 
+def done_counts(rows: Sequence[dict], keys: Sequence[str]) -> Counter:
+    """How many rows of each ident a file holds: a sweep may list a value twice (``--vary KEY=400,400,500``), and
+    each of those points is done only when a row stands for it."""
+    return Counter(row_ident(r, keys) for r in rows)
+
+
 def ordered(rows: Sequence[dict], spec: SweepSpec) -> list[dict]:
-    """Rows in the sweep's point order (a row this sweep does not know is dropped)."""
-    index = {p.ident: p.index for branch in spec.branches() for p in branch}
-    keyed = {}
+    """Rows in the sweep's point order (a row this sweep does not know is dropped). A row computed in this run
+    carries its point's index (``_index``); a row read back from the file takes the first point of its ident that
+    no other row holds (repeated values: one row per point, none lost)."""
+    free: dict[tuple, list[int]] = {}
+    for branch in spec.branches():
+        for p in branch:
+            free.setdefault(p.ident, []).append(p.index)
+    keyed: dict[int, dict] = {}
     for row in rows:
         i = row.get("_index")
-        i = index.get(row_ident(row, spec.keys)) if i is None else i
         if i is not None:
             keyed[i] = row
+    for indices in free.values():
+        indices[:] = [i for i in indices if i not in keyed]
+    for row in rows:
+        if row.get("_index") is None:
+            left = free.get(row_ident(row, spec.keys))
+            if left:
+                keyed[left.pop(0)] = row
     return [keyed[i] for i in sorted(keyed)]

@@ -29,7 +29,7 @@ from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.load_law import load_law_of
-from gearcli.sweep.resume import check_same, identity, ordered, row_ident, seed_for
+from gearcli.sweep.resume import check_same, done_counts, identity, ordered, seed_for
 from gearcli.sweep.spec import SPEED_KEYS, SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
@@ -104,7 +104,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
-    done = {row_ident(r, spec.keys) for r in previous}
+    done = done_counts(previous, spec.keys)
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
     tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers, evaluate)
     if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once

@@ -175,14 +175,15 @@ class Point:
         return (self.direction, *(_ident_value(v) for _, v in self.values))
 
     def overrides(self) -> list[str]:
-        return [f"{k}={_toml(v)}" for k, v in self.values]
+        return [f"{k}={toml_value(v)}" for k, v in self.values]
 
 
 def _ident_value(v: JsonScalar) -> str:
     return repr(float(v)) if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)
 
 
-def _toml(v: JsonScalar) -> str:
+def toml_value(v: JsonScalar) -> str:
+    """A value as ``--set`` reads it (TOML: ``true``, ``"text"``, ``1.5``)."""
     return tomli_w.dumps({"v": v})[4:].strip()
 
 

@@ -29,6 +29,9 @@ from gearcli.sweep.family import Family
 from gearcli.sweep.load_law import LoadLaw, law_overrides
 from gearcli.sweep.spec import Point
 
+#: what a point's run may raise besides a GearcliError (a bug or a numerical failure): the point's row is failed
+NUMERICAL = (ArithmeticError, ValueError, RuntimeError, OverflowError)
+
 
 @dataclass(frozen=True)
 class Scene:
@@ -109,7 +112,7 @@ def iter_task(task: Task) -> Iterator[Row]:
             except GearcliError as exc:
                 prev = before = None
                 row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
-            except (ArithmeticError, ValueError, RuntimeError, OverflowError) as exc:  # a bug or a numerical failure
+            except NUMERICAL as exc:  # a bug or a numerical failure
                 prev = before = None
                 row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
             else:
@@ -145,7 +148,7 @@ def _jump(task: Task, before: _Before | None, point: Point, result: SimulationRe
         mid = Point(-1, tuple((k, value if k == key else v) for k, v in point.values), point.direction)
         try:
             _, got, c = _evaluate(task.evaluate, task.scene, mid, carried[id(last)])
-        except GearcliError:
+        except (GearcliError, *NUMERICAL):  # a refinement point that fails is off the branch; the row stands
             return None
         carried[id(got)] = c
         return got

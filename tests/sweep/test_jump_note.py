@@ -1,0 +1,108 @@
+"""A continued point is marked as a jump only where the branch really ends, not on a steep but smooth flank.
+
+The row's mark compares neighbours: a 30 % change of the DTE rms between two continued points of a coarse speed
+grid sends the refinement (``jump_note``) following the branch towards the point. A linear resonance swept in
+20 rpm steps changes that much on its flanks without any jump; the branch must then be followed to the point
+(no mark). A discontinuous response (an amplitude that drops at 490 rpm) must still be marked, and the end located
+to 1/32 of the step. The toy results stand for SimulationResults: only what ``on_branch`` reads.
+"""
+
+from __future__ import annotations
+
+import re
+from types import SimpleNamespace
+
+import pytest
+
+from gearcli.sweep.continuation import jump_note, on_branch
+
+N_RES, ZETA = 467.0, 0.02  # the two-stage scene's coupling mode met by the stage-1 mesh order (163.4 Hz x 60 / 21)
+
+
+def _result(rms: float, mode: str = "periodic", method: str | None = "shooting", settled: bool | None = None):
+    stage = SimpleNamespace(dte_um=SimpleNamespace(rms=rms, mean=6.0), tangential_N=SimpleNamespace(std=rms, mean=2e3))
+    steady = SimpleNamespace(mode=mode, method=method, attempts=1, settled=settled, multipliers=None)
+    return SimpleNamespace(steady=steady, stages=(stage,))
+
+
+def linear_rms(rpm: float) -> float:
+    """Base-excited linear oscillator: |H| = 1 / sqrt((1 - r^2)^2 + (2 zeta r)^2), r = n / n_res."""
+    r = rpm / N_RES
+    return 1.0 / ((1 - r * r) ** 2 + (2 * ZETA * r) ** 2) ** 0.5
+
+
+def test_a_steep_linear_flank_is_followed_to_the_point_without_a_jump_mark():
+    prev, row = _result(linear_rms(480)), _result(linear_rms(500))
+    # by hand: |H|(480) = 14.3, |H|(500) = 6.56, a 54 % change: the neighbours alone look like a jump
+    assert not on_branch(prev, row)
+    calls = []
+
+    def refine(value, last):
+        calls.append(value)
+        return _result(linear_rms(value))
+
+    assert jump_note("input.speed_rpm", 480.0, 500.0, prev, row, refine) == ""
+    assert calls[-1] == 500.0 and len(calls) <= 20
+
+
+def test_a_settled_window_continued_from_the_orbit_counts_as_on_the_branch():
+    # a refinement point close to the previous one settles in its first window (no shooting needed)
+    assert on_branch(_result(1.0), _result(1.05, mode="window", method=None, settled=True))
+    assert not on_branch(_result(1.0), _result(1.05, mode="window", method=None, settled=False))
+
+
+def _ends(note: str) -> tuple[float, float]:
+    m = re.match(r"jump: the branch of the previous point \(input.speed_rpm = 480\) ends between (\S+) and (\S+?)(;|$)", note)
+    assert m, note
+    return float(m[1]), float(m[2])
+
+
+def test_a_real_jump_is_marked_and_located_to_a_1024th_of_the_step():
+    def rms(rpm: float) -> float:
+        return 10.0 if rpm < 490.0 else 2.0
+
+    calls = []
+
+    def refine(value, last):
+        calls.append(value)
+        return _result(rms(value))
+
+    note = jump_note("input.speed_rpm", 480.0, 500.0, _result(rms(480)), _result(rms(500)), refine)
+    lo, hi = _ends(note)  # the branch reaches lo (< 490) and a step of at most 20 / 2^10 rpm from it leaves it
+    assert lo < 490.0 <= hi and hi - lo <= 20 / 1024 * (1 + 1e-9)
+    assert len(calls) <= 60
+
+
+def test_a_sharp_resonance_over_a_wide_step_is_followed_not_marked():
+    # zeta = 0.01 crossed between 400 and 600 rpm: |H| rises from 3.7 to 50 and falls to 1.5, its half-power
+    # band 2 zeta = 2 % of the speed (9 rpm) inside a 200 rpm step
+    def rms(rpm: float) -> float:
+        r = rpm / N_RES
+        return 1.0 / ((1 - r * r) ** 2 + (2 * 0.01 * r) ** 2) ** 0.5
+
+    prev, row = _result(rms(400.0)), _result(rms(600.0))
+    note = jump_note("input.speed_rpm", 400.0, 600.0, prev, row, lambda v, last: _result(rms(v)))
+    assert note == ""
+
+
+def test_a_failed_refinement_point_is_off_the_branch():
+    note = jump_note("input.speed_rpm", 480.0, 500.0, _result(10.0), _result(2.0), lambda v, last: None)
+    assert _ends(note) == pytest.approx((480.0, 480.0 + 20 / 1024), abs=1e-5)  # printed to 8 digits
+
+
+def test_a_refinement_point_that_raises_leaves_the_row_ok(monkeypatch):
+    """The row's own point ran; a refinement point between it and its neighbour that fails numerically (a
+    ValueError, an ArithmeticError) only ends the branch there: the row stays ``ok`` with its jump mark."""
+    from gearcli.sweep import worker
+    from gearcli.sweep.spec import Point
+
+    def evaluate(evaluator, scene, point, prev, check=False):
+        if point.index < 0:  # a refinement point
+            raise ValueError("a numerical failure")
+        return SimpleNamespace(case=None, result=_result(10.0 if point.index == 0 else 2.0), carried=object())
+
+    monkeypatch.setattr(worker, "_evaluate", evaluate)
+    points = tuple(Point(i, (("input.speed_rpm", v),), "up") for i, v in enumerate((480.0, 500.0)))
+    task = worker.Task(worker.Scene(b"", "scene.toml"), points, True, evaluate)
+    note = worker._jump(task, worker._Before(points[0], _result(10.0), object()), points[1], _result(2.0))
+    assert _ends(note) == pytest.approx((480.0, 480.0 + 20 / 1024), abs=1e-5)
