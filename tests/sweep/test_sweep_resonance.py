@@ -117,6 +117,7 @@ def test_a_steep_linear_flank_swept_down_is_not_marked_as_a_jump(scene):
     assert not any("jump" in r["message"] for r in rows), rows[1]["message"]
 
 
+@pytest.mark.slow  # ~7 s: a continued sweep over the resonance
 def test_a_continued_point_is_not_judged_as_a_start_from_rest(scene):
     # 5000 -> 50000 N m/rad continued: the point starts from the previous point's state with the ramps off (the
     # sweep's rule), so summary.start (a start from rest against the rigid start) does not apply to it
