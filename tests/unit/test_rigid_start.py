@@ -138,3 +138,25 @@ def test_simulate_json_has_summary_start():
     for k, st in enumerate(summary["stages"]):
         assert_allclose(start["peak_over_rigid"][k] * start["rigid_peak_N"][k], st["peak_tangential_N"], rtol=1e-12)
     assert summary["steady"]["settled"] is True  # the 15 kW motor's start is over long before the window
+
+
+def test_a_start_peak_held_by_the_transmission_error_at_t0_names_it():
+    """configs/industrial_two_stage.toml with a 4 µm first-harmonic TE and a light load (150 N·m): every body starts
+    at rest at zero angle (DESIGN section 4), so each mesh starts compressed by e(0) = 4 µm on its back flank, and its
+    force at t = 0 is the law's at that penetration: F_n = K (e(0) cos β_b)^e (the file's linear iso6336 law, e = 1:
+    K = k_n in N/mm), F_t = F_n cos β_b cos α_t, before anything turns (no speed yet: no damping force). That peak is the initial state's, not the start's dynamics:
+    the warning names the TE, not a mode swinging or a gentler ramp."""
+    cfg = api.load(str(ROOT / "configs" / "industrial_two_stage.toml"),
+                   ["contact.transmission_error_um=[4]", "load.torque_Nm=150"])
+    design = api.design(cfg)
+    sim = api.simulate(cfg.design, design)
+    warned = [d for d in sim.diagnostics if d.code == "peak_over_rigid"]
+    assert len(warned) == 2
+    for k, (st, d) in enumerate(zip(design.stages, warned, strict=True)):
+        beta_b, alpha_t = math.radians(st.base_helix_angle_deg), math.radians(st.transverse_pressure_angle_deg)
+        f_n = st.mesh_stiffness.K * (4e-3 * math.cos(beta_b)) ** st.mesh_stiffness.exponent
+        f_t0 = f_n * math.cos(beta_b) * math.cos(alpha_t)
+        assert_allclose(sim.stages[k].peak_tangential_N, f_t0, rtol=1e-6)
+        assert sim.stages[k].peak_time_s == 0.0
+        assert "transmission error e(0) = 4 µm" in d.message and "swings" not in d.message, d.message
+    assert rigid_start.initial_te_um(Layout.of(spec_from_design(cfg.design, design)), 0) == 4.0
