@@ -246,10 +246,19 @@ def rating_section(r: Report) -> Section | None:
                     'with [rating] dynamic_factor = "simulated"',))
 
 
+def _driver(s):
+    """The driving member of a stage in the housing's frame: a parallel stage's pinion, a planetary's input member
+    (sun, carrier or ring; not the sun–planet pair's pinion, whose speed is relative to the carrier)."""
+    return s.pinion if s.planetary is None else getattr(s.planetary, s.planetary.input)
+
+
 def design_section(r: Report) -> Section:
     """The geometry and loads of each stage: what the engineer checks first."""
     u = of_result(r.simulation)
     st = r.design.stages
+    # a planetary stage's pinion is its sun in the carrier's frame (a relative speed, one planet's share of the
+    # torque): its column shows the stage's input member in the housing's frame, as design's member table does
+    driver = "pinion" if all(s.planetary is None for s in st) else "pinion (planetary: input member)"
     rows = [
         ("teeth z1 / z2", *(f"{s.pinion.teeth} / {s.gear.teeth}" for s in st)),
         ("ratio", *(g(s.ratio, 5) for s in st)),
@@ -258,8 +267,8 @@ def design_section(r: Report) -> Section:
         ("centre distance a [mm]", *(g(s.center_distance_mm, 6) for s in st)),
         ("face width b [mm]", *(g(s.face_width_mm) for s in st)),
         ("contact ratios ε_α / ε_β", *(f"{s.contact_ratio_transverse:.3f} / {s.overlap_ratio:.3f}" for s in st)),
-        (f"pinion speed [{u.speed_label}]", *(g(u.speed_from_deg_s(s.pinion.speed_deg_s), 6) for s in st)),
-        (f"pinion torque [{u.torque_label}]", *(g(u.torque_from_Nmm(s.pinion.torque_Nmm), 6) for s in st)),
+        (f"{driver} speed [{u.speed_label}]", *(g(u.speed_from_deg_s(_driver(s).speed_deg_s), 6) for s in st)),
+        (f"{driver} torque [{u.torque_label}]", *(g(u.torque_from_Nmm(_driver(s).torque_Nmm), 6) for s in st)),
         ("mesh frequency [Hz]", *(g(s.mesh_frequency_Hz) for s in st)),
         ("static F_t [N]", *(g(s.static_force_N.tangential) for s in st)),
         ("mesh stiffness c_γα [N/(mm·µm)]", *(g(s.iso6336_mesh_stiffness_N_mm_um, 4) for s in st)),

@@ -1,0 +1,94 @@
+"""The report on an engineer's own scenes, checked against hand calculations (trial, round 5).
+
+A planetary stage 24 / 18 / 60, three planets, ring held, sun driving at 1500 rpm against 700 N·m on the carrier:
+  ratio 1 + z_r / z_s = 1 + 60 / 24 = 3.5, carrier 1500 / 3.5 = 428.571 rpm, sun torque 700 / 3.5 = 200 N·m,
+  F_t per planet at equal sharing 2 T_sun / (d_s N) = 2 · 200e3 / (3 · 24 · 3) = 1851.85 N,
+  F_r = F_t tan 20° = 674.02 N, mesh frequency z_r n_c / 60 = 60 · 428.571 / 60 = 428.571 Hz.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+PLANETARY = """
+title = "Planetary 24/18/60, 3 planets, ring held, sun drives"
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 2.1e5
+poisson_ratio = 0.3
+[[stage]]
+type = "planetary"
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+sun    = { teeth = 24, face_width_mm = 40, material = "steel" }
+planet = { teeth = 18, face_width_mm = 40, count = 3, material = "steel" }
+ring   = { teeth = 60, face_width_mm = 40, material = "steel" }
+carrier = { inertia_kg_m2 = 0.2 }
+fixed = "ring"
+input = "sun"
+[contact]
+stiffness = "iso6336"
+exponent = 1.0
+damping_ratio = 0.05
+[input]
+speed_rpm = 1500
+ramp_s = 0.1
+[load]
+torque_Nm = 700
+ramp_s = 0.1
+[simulation]
+duration_s = 0.3
+steps = 1500
+"""
+
+SUN_RPM, RING, SUN, PLANETS, M, T_OUT = 1500.0, 60, 24, 3, 3.0, 700.0
+RATIO = 1 + RING / SUN
+SUN_TORQUE = T_OUT / RATIO
+
+
+@pytest.fixture(scope="module")
+def planetary(tmp_path_factory):
+    path = tmp_path_factory.mktemp("planetary") / "planet.toml"
+    path.write_text(PLANETARY)
+    out = {}
+    for fmt in ("markdown", "json"):
+        res = CliRunner().invoke(cli, ["report", str(path), "--quick", "--format", fmt, "-q"])
+        assert res.exit_code == 0, res.output
+        out[fmt] = res.stdout
+    return out
+
+
+def _row(markdown: str, label: str) -> list[str]:
+    line = next(x for x in markdown.splitlines() if x.startswith(f"| {label}"))
+    return [c.strip() for c in line.strip("|").split("|")]
+
+
+def test_planetary_design_section_gives_the_sun_in_the_housing_frame(planetary):
+    """The design section printed the sun–planet pair's 'pinion': the sun relative to the carrier (1071.43 rpm)
+    and one planet's share of its torque (66.67 N·m), under 'pinion speed' / 'pinion torque', where `gearcli
+    design` gives the sun 1500 rpm and 200 N·m."""
+    md = planetary["markdown"].split("## Design", 1)[1].split("## ", 1)[0]
+    speed = _row(md, "pinion (planetary: input member) speed [rpm]")
+    torque = _row(md, "pinion (planetary: input member) torque [N·m]")
+    assert_allclose(float(speed[1]), SUN_RPM, rtol=1e-6)  # 6 significant digits printed
+    assert_allclose(float(torque[1]), SUN_TORQUE, rtol=1e-5)  # 200 N·m = 700 / 3.5
+    # the mesh frequency stays the carrier frame's: z_s (n_s - n_c) / 60 = z_r n_c / 60
+    assert_allclose(float(_row(md, "mesh frequency [Hz]")[1]), RING * SUN_RPM / RATIO / 60, rtol=1e-4)
+
+
+def test_planetary_theory_by_hand(planetary):
+    doc = json.loads(planetary["json"])
+    theory = {(c["stage"], c["quantity"]): c["theory"] for c in doc["comparison"]}
+    d_sun = M * SUN  # spur: m_t = m_n
+    f_t = 2 * SUN_TORQUE * 1e3 / (d_sun * PLANETS)
+    assert_allclose(doc["design"]["total_ratio"], RATIO, rtol=1e-12)
+    tangential, radial = theory[(1, "tangential_N")], theory[(1, "radial_N")]
+    assert_allclose(tangential, f_t, rtol=1e-12)
+    assert_allclose(radial, f_t * math.tan(math.radians(20)), rtol=1e-12)
