@@ -323,9 +323,18 @@ def sections(r: Report) -> list[Section]:
     return out
 
 
-def method_paragraph(study: AccuracyStudy) -> str:
-    """How the numbers of the accuracy study were obtained, for a reader of the markdown report."""
+def method_paragraph(study: AccuracyStudy, report_window_s: tuple[float, float] | None = None) -> str:
+    """How the numbers of the accuracy study were obtained, for a reader of the markdown report. ``report_window_s``:
+    the window of the report's own run, which the settle test may have moved past the study's (the file's)."""
     ref = study.reference
+    window = "the steady window"
+    if ref.window_s is not None:
+        w0, w1 = ref.window_s
+        window = f"the window {w0:.4g}–{w1:.4g} s"
+        if report_window_s is not None and not all(
+                abs(a - b) <= 1e-9 * max(1.0, abs(b)) for a, b in zip(ref.window_s, report_window_s, strict=True)):
+            window += (f" (the file's, as every run of the study takes it; the sections above use the window "
+                       f"{report_window_s[0]:.4g}–{report_window_s[1]:.4g} s, where the run is settled)")
     rtols = sorted({r.rtol for r in study.runs}, reverse=True)
     methods = list(dict.fromkeys(r.method for r in study.runs))
     return (
@@ -334,7 +343,7 @@ def method_paragraph(study: AccuracyStudy) -> str:
         f"checked by an independent run with a different method ({ref.check_method} at rtol {ref.check_rtol:g}); "
         f"the largest relative difference between the two over the compared quantities, {ref.uncertainty:.1e}, "
         f"is the reference's own uncertainty, and errors below it are reported as below the reference resolution "
-        f"(\"< {ref.uncertainty:.1e}\"). Compared quantities: the mean output speed over the steady window, the mean "
+        f"(\"< {ref.uncertainty:.1e}\"). Compared quantities: the mean output speed over {window}, the mean "
         f"F_t (largest relative error over the stages) and the run-up peak |F_t| (largest over the stages). A "
         f"setting meets the target {study.requested_accuracy:g} when max(error, uncertainty) is within it for all "
         f"three; ★ marks the cheapest such setting, priced as its evaluations times its method's median "

@@ -136,7 +136,7 @@ def reference_run(ref: SimulationResult, check: SimulationResult, ref_rtol: floa
         method=ref.solver.method, rtol=ref_rtol, wall_s=ref.solver.wall_s, nfev=ref.solver.nfev,
         check_method=check.solver.method, check_rtol=check_rtol, check_wall_s=check.solver.wall_s,
         check_nfev=check.solver.nfev, uncertainty=max(differences.values()), differences=differences,
-        metrics=ref_m,
+        metrics=ref_m, window_s=(float(ref.window_s[0]), float(ref.window_s[1])),
     )
 
 

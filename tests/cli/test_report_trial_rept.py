@@ -92,3 +92,66 @@ def test_planetary_theory_by_hand(planetary):
     tangential, radial = theory[(1, "tangential_N")], theory[(1, "radial_N")]
     assert_allclose(tangential, f_t, rtol=1e-12)
     assert_allclose(radial, f_t * math.tan(math.radians(20)), rtol=1e-12)
+
+
+MOTOR = """
+title = "Motor-driven single helical stage, 11 kW"
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 2.1e5
+poisson_ratio = 0.3
+[[stage]]
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+helix_angle_deg = 12
+efficiency = 0.98
+pinion = { teeth = 23, face_width_mm = 50, hand = "left", material = "steel", profile_shift = 0.2 }
+gear   = { teeth = 97, face_width_mm = 45, hand = "right", material = "steel" }
+[contact]
+stiffness = "iso6336"
+exponent = 1.0
+damping_ratio = 0.05
+[input]
+speed_rpm = 1460
+drive = "motor"
+motor = { rated_power_kW = 11, rated_speed_rpm = 1460, synchronous_speed_rpm = 1500, breakdown_torque_ratio = 2.7, locked_rotor_torque_ratio = 2.2 }
+starting = "direct"
+inertia_kg_m2 = 0.05
+coupling_stiffness_Nm_rad = 1.5e4
+coupling_damping_Nms_rad = 3
+[load]
+torque_Nm = 280
+inertia_kg_m2 = 5
+coupling_stiffness_Nm_rad = 1.2e5
+coupling_damping_Nms_rad = 40
+[simulation]
+duration_s = 2.0
+steps = 2000
+method = "auto"
+rtol = 1e-6
+"""
+
+
+def test_accuracy_study_names_its_window_when_the_report_run_was_settled_later(tmp_path):
+    """A direct-on-line start still running when the file's window opens (0.4 s; the motor reaches 98 % of its
+    speed at ~0.5 s): the report's own run is moved to a settled window, but every rung of the accuracy study (and
+    its reference) runs the file's settings and window. The method paragraph said "the mean output speed over the
+    steady window" although the study's window is the file's unsettled one; it now names it and the settled one."""
+    path = tmp_path / "motor.toml"
+    path.write_text(MOTOR)
+    runner = CliRunner()
+    doc = json.loads(runner.invoke(cli, ["report", str(path), "--rtols", "1e-4,1e-6", "--format", "json", "-q"]).stdout)
+    sim = json.loads(runner.invoke(cli, ["simulate", str(path), "--format", "json", "-q"]).stdout)
+    study_window = doc["accuracy"]["reference"]["window_s"]
+    own_window = doc["simulation"]["summary"]["window_s"]
+    assert_allclose(study_window, sim["summary"]["window_s"], rtol=1e-12)  # the file's window, as simulate takes it
+    assert own_window[0] > study_window[0]  # the report's run was settled later
+    # the reference's mean output speed is over the file's window: it meets simulate's (rtol 1e-6) there, and not
+    # the report's settled mean (the motor is still accelerating in the file's window: ~0.6 % apart)
+    ref_speed = doc["accuracy"]["reference"]["values"]["output_speed_deg_s"]
+    assert_allclose(ref_speed, sim["summary"]["output_speed_deg_s"], rtol=1e-5)
+    assert abs(ref_speed / doc["simulation"]["summary"]["output_speed_deg_s"] - 1) > 1e-3
+    res = runner.invoke(cli, ["report", str(path), "--rtols", "1e-4,1e-6", "--format", "markdown", "-q"])
+    method = next(line for line in res.stdout.splitlines() if line.startswith("**Method.**"))
+    assert f"over the window {study_window[0]:.4g}–{study_window[1]:.4g} s (the file's" in method
+    assert f"use the window {own_window[0]:.4g}–{own_window[1]:.4g} s" in method
