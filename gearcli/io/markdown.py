@@ -38,7 +38,7 @@ def report_markdown(r: Report, sha256: str = "") -> str:
     for s in sections(r):
         extra = ""
         if s.title.startswith("Numerical accuracy") and r.accuracy is not None:
-            extra = "**Method.** " + method_paragraph(r.accuracy)
+            extra = "**Method.** " + method_paragraph(r.accuracy, (float(r.simulation.window_s[0]), float(r.simulation.window_s[1])))
         body.append(_section(s, extra))
     if r.accuracy is None:
         body.append("## Numerical accuracy\n\nSkipped (`--quick`).\n")

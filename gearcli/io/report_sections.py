@@ -246,10 +246,19 @@ def rating_section(r: Report) -> Section | None:
                     'with [rating] dynamic_factor = "simulated"',))
 
 
+def _driver(s):
+    """The driving member of a stage in the housing's frame: a parallel stage's pinion, a planetary's input member
+    (sun, carrier or ring; not the sun–planet pair's pinion, whose speed is relative to the carrier)."""
+    return s.pinion if s.planetary is None else getattr(s.planetary, s.planetary.input)
+
+
 def design_section(r: Report) -> Section:
     """The geometry and loads of each stage: what the engineer checks first."""
     u = of_result(r.simulation)
     st = r.design.stages
+    # a planetary stage's pinion is its sun in the carrier's frame (a relative speed, one planet's share of the
+    # torque): its column shows the stage's input member in the housing's frame, as design's member table does
+    driver = "pinion" if all(s.planetary is None for s in st) else "pinion (planetary: input member)"
     rows = [
         ("teeth z1 / z2", *(f"{s.pinion.teeth} / {s.gear.teeth}" for s in st)),
         ("ratio", *(g(s.ratio, 5) for s in st)),
@@ -258,8 +267,8 @@ def design_section(r: Report) -> Section:
         ("centre distance a [mm]", *(g(s.center_distance_mm, 6) for s in st)),
         ("face width b [mm]", *(g(s.face_width_mm) for s in st)),
         ("contact ratios ε_α / ε_β", *(f"{s.contact_ratio_transverse:.3f} / {s.overlap_ratio:.3f}" for s in st)),
-        (f"pinion speed [{u.speed_label}]", *(g(u.speed_from_deg_s(s.pinion.speed_deg_s), 6) for s in st)),
-        (f"pinion torque [{u.torque_label}]", *(g(u.torque_from_Nmm(s.pinion.torque_Nmm), 6) for s in st)),
+        (f"{driver} speed [{u.speed_label}]", *(g(u.speed_from_deg_s(_driver(s).speed_deg_s), 6) for s in st)),
+        (f"{driver} torque [{u.torque_label}]", *(g(u.torque_from_Nmm(_driver(s).torque_Nmm), 6) for s in st)),
         ("mesh frequency [Hz]", *(g(s.mesh_frequency_Hz) for s in st)),
         ("static F_t [N]", *(g(s.static_force_N.tangential) for s in st)),
         ("mesh stiffness c_γα [N/(mm·µm)]", *(g(s.iso6336_mesh_stiffness_N_mm_um, 4) for s in st)),
@@ -314,9 +323,18 @@ def sections(r: Report) -> list[Section]:
     return out
 
 
-def method_paragraph(study: AccuracyStudy) -> str:
-    """How the numbers of the accuracy study were obtained, for a reader of the markdown report."""
+def method_paragraph(study: AccuracyStudy, report_window_s: tuple[float, float] | None = None) -> str:
+    """How the numbers of the accuracy study were obtained, for a reader of the markdown report. ``report_window_s``:
+    the window of the report's own run, which the settle test may have moved past the study's (the file's)."""
     ref = study.reference
+    window = "the steady window"
+    if ref.window_s is not None:
+        w0, w1 = ref.window_s
+        window = f"the window {w0:.4g}–{w1:.4g} s"
+        if report_window_s is not None and not all(
+                abs(a - b) <= 1e-9 * max(1.0, abs(b)) for a, b in zip(ref.window_s, report_window_s, strict=True)):
+            window += (f" (the file's, as every run of the study takes it; the sections above use the window "
+                       f"{report_window_s[0]:.4g}–{report_window_s[1]:.4g} s, where the run is settled)")
     rtols = sorted({r.rtol for r in study.runs}, reverse=True)
     methods = list(dict.fromkeys(r.method for r in study.runs))
     return (
@@ -325,7 +343,7 @@ def method_paragraph(study: AccuracyStudy) -> str:
         f"checked by an independent run with a different method ({ref.check_method} at rtol {ref.check_rtol:g}); "
         f"the largest relative difference between the two over the compared quantities, {ref.uncertainty:.1e}, "
         f"is the reference's own uncertainty, and errors below it are reported as below the reference resolution "
-        f"(\"< {ref.uncertainty:.1e}\"). Compared quantities: the mean output speed over the steady window, the mean "
+        f"(\"< {ref.uncertainty:.1e}\"). Compared quantities: the mean output speed over {window}, the mean "
         f"F_t (largest relative error over the stages) and the run-up peak |F_t| (largest over the stages). A "
         f"setting meets the target {study.requested_accuracy:g} when max(error, uncertainty) is within it for all "
         f"three; ★ marks the cheapest such setting, priced as its evaluations times its method's median "

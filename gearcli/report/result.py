@@ -123,6 +123,7 @@ class ReferenceRun:
     uncertainty: float
     differences: dict[str, float]
     metrics: RunMetrics
+    window_s: tuple[float, float] | None = None  # the study's statistics window: the file's, never moved by the settle test
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,8 @@ What each method needs (the constants and their measurements: :mod:`gearcli.core
 
 Each is priced on the engine that would run it (the compiled engine's ~0.4 µs per evaluation, or scipy's
 ~10 µs, plus what loading the compiled engine still costs this process), and ``auto`` takes DOP853 unless
-Radau's predicted wall time (loading the engine aside) is ``IMPLICIT_MARGIN`` times lower.
+Radau's predicted wall time is ``IMPLICIT_MARGIN`` times lower, both with the loading aside: each method is priced
+on the engine that would run it were the kernel loaded, so that the choice does not depend on the load.
 """
 
 from __future__ import annotations
@@ -242,7 +243,7 @@ def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float =
     walls, names, loads = [], [], []
     for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), (x * work_factor for x in nfev), strict=True):
         options = (engines or {}).get(name) or {"python": 0.0}
-        best = min(options, key=lambda e: predicted_wall_s(e, name, n, options[e], size))
+        best = min(options, key=lambda e: predicted_wall_s(e, name, n, 0.0, size))  # as if loaded: no load dependence
         walls.append(predicted_wall_s(best, name, n, options[best], size))
         names.append(best)
         loads.append(options[best])
@@ -301,7 +302,7 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     why = f"{summary}, {vib:.3g} rad of excited vibration, {exc:.3g} rad of excitation: {costs}"
     if requested != AUTO:
         chosen, reason = requested, f"as requested ({summary})"
-    elif walls[0] <= loads[1] + IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator):
+    elif walls[0] - loads[0] <= IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator):
         chosen = EXPLICIT_METHOD
         reason = f"{why}: explicit {chosen}"
     else:

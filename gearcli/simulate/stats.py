@@ -36,16 +36,16 @@ def steady_window(spec: ModelSpec, duration_s: float,
     end. ``start_s`` (``simulation.window_start_s``) overrides the start; it must lie before the end
     (ValueError otherwise: the caller checks the design file).
     """
-    if start_s is not None:
-        if start_s >= duration_s:
-            raise ValueError(f"the window start {start_s:g} s is not before the end of the run {duration_s:g} s")
-        return (float(start_s), duration_s), []
+    if start_s is not None and start_s >= duration_s:
+        raise ValueError(f"the window start {start_s:g} s is not before the end of the run {duration_s:g} s")
     ramps = max(spec.drive.ramp_s, spec.load.ramp_s)
-    if ramps >= duration_s:
-        start = NO_RAMP_WINDOW_FRACTION * duration_s
+    if ramps >= duration_s:  # whoever chose the window's start (a settle re-run's too): it lies in the ramps
+        start = NO_RAMP_WINDOW_FRACTION * duration_s if start_s is None else float(start_s)
         return (start, duration_s), [dg.warning(
             dg.RAMPS_OUTLAST_RUN, f"the ramps ({ramps:g} s) outlast the run ({duration_s:g} s): the statistics "
             f"window [{start:.4g}, {duration_s:g}] s is not steady; lengthen duration_s", ramps_s=ramps)]
+    if start_s is not None:
+        return (float(start_s), duration_s), []
     return (ramps + SETTLE_FRACTION * (duration_s - ramps), duration_s), []
 
 
