@@ -118,3 +118,27 @@ def test_soft_start_rolls_back_only_below_the_reflected_load(u0, rolls):
     if rolls:
         assert got[0].data["start_torque_Nm"] == pytest.approx(u0**2 * KL * T_R, rel=1e-9)
         assert got[0].data["load_torque_Nm"] == pytest.approx(load, rel=1e-9)
+
+
+@pytest.mark.parametrize(("torque", "runs_away"), [(-3000.0, False), (-9000.0, True)])
+def test_overhauling_load_is_braked_on_the_generating_branch_by_hand(torque, runs_away):
+    """A negative (overhauling) constant load: power flows back, the load at the motor is η1 η2 T / i. The curve
+    is odd in s, so its generating branch brakes down to −T_b = −582.7 N m: −3000 N m (−210.1 N m at the motor)
+    settles above the synchronous speed where T_m = that (hand: Brent on the hand curve, 1527.82 rpm);
+    −9000 N m (−630.2 N m) exceeds the generating breakdown torque and runs away. Was: the first case also
+    warned ``motor_runs_away`` ("net torque stays positive up to its synchronous speed") with no operating
+    point, though the run sat at 1527.8 rpm."""
+    sb, a = _hand_curve()
+    load = torque * ETA1 * ETA2 / I_TOT
+    assert (load < -KB * T_R) is runs_away
+    _, res = _run((f"load.torque_Nm={torque}", "load.speed_exponent=0", "simulation.duration_s=3.0"))
+    motor = res.extra["motor"]
+    assert bool([d for d in res.diagnostics if d.code == "motor_runs_away"]) is runs_away
+    if runs_away:
+        assert motor["operating_point_rpm"] is None
+        return
+    n_gen = brentq(lambda n: _kloss(1 - n / N_S, sb, a) - load, N_S, N_S * (1 + sb), xtol=1e-10)
+    assert motor["operating_point_rpm"] == pytest.approx(n_gen, abs=1e-6)  # both root finds to 1e-9 rpm
+    assert motor["operating_speed_rpm"] == pytest.approx(n_gen, abs=0.01)  # the simulated steady state
+    assert motor["start_time_s"] is not None and motor["start_time_s"] < 0.5
+    assert not [d for d in res.diagnostics if d.code in ("motor_stalls", "window_not_settled", "start_not_settled")]
