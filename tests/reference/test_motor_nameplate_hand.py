@@ -142,3 +142,28 @@ def test_overhauling_load_is_braked_on_the_generating_branch_by_hand(torque, run
     assert motor["operating_speed_rpm"] == pytest.approx(n_gen, abs=0.01)  # the simulated steady state
     assert motor["start_time_s"] is not None and motor["start_time_s"] < 0.5
     assert not [d for d in res.diagnostics if d.code in ("motor_stalls", "window_not_settled", "start_not_settled")]
+
+
+def test_life_of_a_lowering_point_runs_on_the_generating_branch():
+    """``gearcli life`` on a lowering duty point (−6000 N m at the output, 160 kW motor): the load at the motor is
+    −6000 η1 η2 / i = −420 N m, well inside the generating breakdown −2.6 T_r = −2676 N m, so the motor settles
+    just above 1500 rpm and the point's window is a steady one. Was: ``motor_runs_away`` and an unsettled window
+    whose start-up transient gave K_v 1.21 / 1.19 (now 1.03 / 1.02: this scene has no excitation beyond the
+    meshes' own). Cycles: hours × 60 × the member's speed from the point's speed_rpm (docs/life.md)."""
+    import json
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    path = SCENE.parent / "hoist_lowering_duty.toml"
+    res = CliRunner().invoke(cli, ["life", str(path), "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    codes = {w["code"] for w in out["warnings"]}
+    assert not codes & {"motor_runs_away", "window_not_settled", "start_not_settled", "motor_speed_mismatch"}
+    point = out["life"]["points"][0]
+    assert point["settled"] is True
+    assert max(point["K_v"]) < 1.1  # a settled window: no start-up transient in it (the unsettled one: 1.21)
+    cycles = sum(b["cycles"] for b in out["life"]["stages"][0]["pinion"]["pitting"]["bins"])
+    assert cycles == pytest.approx(1000 * 60 * 1485, rel=1e-12)
