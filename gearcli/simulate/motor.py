@@ -29,6 +29,7 @@ RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 STEADY_T = 1e12  # s: a time past every start ramp
 ROLLBACK = 0.01  # a motor turning backwards faster than 1 % of its synchronous speed is driven back by the load
 RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
+LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
 GENERATING_SCAN = 2.0  # an overhauling load's operating point is sought up to slip -1 (twice the synchronous speed)
 
 
@@ -139,6 +140,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
         diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
+    if op.reaches and op.speed_rad_s is not None and motor.starting != "vfd":
+        diags += _load_off_design(lay, op.speed_rad_s)
     w_mean = float(w_motor[mask].mean())
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
@@ -146,6 +149,24 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
            "mean_torque_Nm": float(t_motor[mask].mean())}
     return out, diags
+
+
+def _load_off_design(lay: Layout, w_op: float) -> list[Diagnostic]:
+    """A speed-dependent load that the motor meets at another speed than ``speed_rpm``: the design's static forces
+    (and every dynamic factor against them) assume the load at ``speed_rpm``, the run carries the load at the
+    motor's own operating speed. Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %)."""
+    w_nom = lay.drive.speed_rad_s
+    nominal = reflected_load(lay, w_nom)
+    if not lay.load_law or w_nom <= 0.0 or nominal == 0.0:
+        return []
+    ratio = reflected_load(lay, w_op) / nominal
+    if abs(ratio - 1.0) <= LOAD_OFF_DESIGN:
+        return []
+    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
+                       f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
+                       "the design's static forces and the dynamic factors against them are off by that much; give "
+                       "the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)",
+                       operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
 
 
 def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:

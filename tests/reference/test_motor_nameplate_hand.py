@@ -167,3 +167,27 @@ def test_life_of_a_lowering_point_runs_on_the_generating_branch():
     assert max(point["K_v"]) < 1.1  # a settled window: no start-up transient in it (the unsettled one: 1.21)
     cycles = sum(b["cycles"] for b in out["life"]["stages"][0]["pinion"]["pitting"]["bins"])
     assert cycles == pytest.approx(1000 * 60 * 1485, rel=1e-12)
+
+
+@pytest.mark.parametrize(("speed_rpm", "exponent", "warned"), [(1400.0, 2, True), (1475.0, 2, False), (1400.0, 0, False)])
+def test_a_fan_met_off_the_design_speed_is_warned(speed_rpm, exponent, warned):
+    """A DOL motor runs where its curve meets the load, not at ``speed_rpm``: with the fan's 2000 N m given at
+    1400 rpm (over the ratio) it runs at the hand crossing n* (1478.56 rpm), where the fan takes (n*/1400)² =
+    1.1154x the design's torque, and the window's F_t over the design's static F_t (the dynamic factor) is that
+    ratio, not dynamics: warned. At 1475 rpm the fan meets (1481.14/1475)² = 1.0083 (under the 1 % threshold);
+    a constant load is the same at every speed."""
+    sb, a = _hand_curve()
+
+    def load(n: float) -> float:
+        return T_FAN * (n / speed_rpm) ** exponent / (I_TOT * ETA1 * ETA2)
+
+    n_op = brentq(lambda n: _kloss(1 - n / N_S, sb, a) - load(n), 1400.0, N_S - 1e-6, xtol=1e-10)
+    ratio = (n_op / speed_rpm) ** exponent
+    assert (abs(ratio - 1) > 0.01) is warned
+    _, res = _run((f"input.speed_rpm={speed_rpm}", f"load.speed_exponent={exponent}"))
+    got = [d for d in res.diagnostics if d.code == "motor_speed_mismatch"]
+    assert bool(got) is warned
+    if warned:
+        assert got[0].data["load_ratio"] == pytest.approx(ratio, rel=1e-8)
+        # the window's force over the design's: the load ratio (a steady fan, no excitation: within 0.5 %)
+        assert res.stages[0].dynamic_factor == pytest.approx(ratio, rel=5e-3)
