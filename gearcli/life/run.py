@@ -213,7 +213,8 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     warnings = [d for d in carrying(result.warnings, result.diagnostics) if d.message not in design.warnings]
     if cfg.input.drive == "motor" and cfg.input.starting != "vfd" and result.extra and "motor" in result.extra:
         running = result.extra["motor"].get("operating_speed_rpm")
-        if running and abs(running - point.speed_rpm) > 0.02 * point.speed_rpm:
+        said = any(d.code == MOTOR_SPEED_MISMATCH for d in warnings)  # the run's own, on its load
+        if running and not said and abs(running - point.speed_rpm) > 0.02 * point.speed_rpm:
             warnings.append(warning(
                 MOTOR_SPEED_MISMATCH, f"the motor (starting = \"{cfg.input.starting}\") runs at {running:.5g} rpm, not "
                 f"the point's speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: give the speed the "

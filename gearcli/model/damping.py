@@ -35,6 +35,7 @@ from gearcli.model.elements import machine
 
 STEADY_T = 1e12  # s: a time past every start ramp (the motor's steady curve)
 SPEED_SAMPLES = 4000  # grid over 0 .. the synchronous speed on which the motor's crossings are bracketed
+GENERATING_SCAN = 2.0  # an overhauling load's crossing is sought up to slip -1 (as gearcli.simulate.motor does)
 UNDAMPED_PER_PERIOD = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million
 # periods, past any run's 3600 s for a mode above 0.3 Hz): what is left of a chain without damping is the eigen
 # solver's roundoff (zeta ~ 1e-17 .. 1e-30), which read as a decay time of 1e28 s and a resonance 1e16 x
@@ -66,7 +67,10 @@ def operating_speed_rad_s(lay: Layout) -> float:
     curve = np.array([machine.motor_torque(row, STEADY_T, w)[0] for w in grid])
     f = curve - np.array([_reflected_load_Nm(lay, w) for w in grid])
     w_b = float(grid[int(np.argmax(curve))])
-    down = [i for i in range(SPEED_SAMPLES) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b]
+    if f[-1] > 0.0:  # an overhauling load: the generating branch above the synchronous speed, to slip -1
+        above = np.linspace(ws, GENERATING_SCAN * ws, SPEED_SAMPLES + 1)[1:]
+        grid, f = np.concatenate([grid, above]), np.concatenate([f, [net(w) for w in above]])
+    down = [i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b]
     if not down:
         return lay.drive.speed_rad_s
     lo, hi = float(grid[down[-1]]), float(grid[down[-1] + 1])

@@ -6,7 +6,9 @@ full synchronous speed and torque limit) against the load reflected to the motor
 eta`` (power flowing forward through every lossy mesh), rho_N the output's speed over the motor's. From rest
 the motor accelerates while ``T_m > T_refl``; it settles at the first speed where the net torque reaches 0. The
 motor's stable branch lies above its breakdown speed (the curve's largest torque); a motor whose first
-crossing from rest is not on that branch (or that cannot start at all) stalls: a warning.
+crossing from rest is not on that branch (or that cannot start at all) stalls: a warning. An overhauling load
+(net torque still positive at the synchronous speed) is sought on the generating branch, up to slip -1: the
+motor brakes it there as a generator (a hoist lowering), and runs away only where no crossing exists.
 """
 
 from __future__ import annotations
@@ -27,6 +29,8 @@ RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 STEADY_T = 1e12  # s: a time past every start ramp
 ROLLBACK = 0.01  # a motor turning backwards faster than 1 % of its synchronous speed is driven back by the load
 RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
+LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
+GENERATING_SCAN = 2.0  # an overhauling load's operating point is sought up to slip -1 (twice the synchronous speed)
 
 
 @dataclass(frozen=True)
@@ -62,6 +66,10 @@ def operating_point(lay: Layout, samples: int = 4000) -> OperatingPoint:
     f = np.array([net(w) for w in grid])
     curve = np.array([machine.motor_torque(row, STEADY_T, w)[0] for w in grid])
     w_b = float(grid[int(np.argmax(curve))])
+    if f[-1] > 0.0:  # an overhauling load drives the motor past its synchronous speed: the generating branch
+        above = np.linspace(ws, GENERATING_SCAN * ws, samples + 1)[1:]
+        grid, f = np.concatenate([grid, above]), np.concatenate([f, [net(w) for w in above]])
+        samples = grid.size - 1
     down = [i for i in range(samples) if f[i] > 0.0 >= f[i + 1]]  # net torque falls through 0: stable crossings
     crossings = [float(brentq(net, grid[i], grid[i + 1], xtol=1e-12 * ws)) if f[i + 1] < 0.0 else float(grid[i + 1])
                  for i in down]
@@ -123,7 +131,7 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 stall_speed_rpm=None if op.speed_rad_s is None else op.speed_rad_s * rpm,
                                 operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm))
     if not driven:
-        diags += _runaway(t, w_motor, ws)
+        diags += _runaway(t, w_motor, ws, op.stable_rad_s)
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
         diags += _rolls_back(lay, t, w_motor, ws)
     t_start = start_time(t, w_motor, op.speed_rad_s)
@@ -132,6 +140,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
         diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
+    if op.reaches and op.speed_rad_s is not None and motor.starting != "vfd":
+        diags += _load_off_design(lay, op.speed_rad_s)
     w_mean = float(w_motor[mask].mean())
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
@@ -139,6 +149,24 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
            "mean_torque_Nm": float(t_motor[mask].mean())}
     return out, diags
+
+
+def _load_off_design(lay: Layout, w_op: float) -> list[Diagnostic]:
+    """A speed-dependent load that the motor meets at another speed than ``speed_rpm``: the design's static forces
+    (and every dynamic factor against them) assume the load at ``speed_rpm``, the run carries the load at the
+    motor's own operating speed. Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %)."""
+    w_nom = lay.drive.speed_rad_s
+    nominal = reflected_load(lay, w_nom)
+    if not lay.load_law or w_nom <= 0.0 or nominal == 0.0:
+        return []
+    ratio = reflected_load(lay, w_op) / nominal
+    if abs(ratio - 1.0) <= LOAD_OFF_DESIGN:
+        return []
+    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
+                       f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
+                       "the design's static forces and the dynamic factors against them are off by that much; give "
+                       "the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)",
+                       operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
 
 
 def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:
@@ -164,15 +192,19 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> l
                        start_torque_Nm=t0, load_torque_Nm=load)]
 
 
-def _runaway(t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:
+def _runaway(t: np.ndarray, w_motor: np.ndarray, ws: float, generating_rad_s: float | None = None) -> list[Diagnostic]:
     """The motor far past its synchronous speed: a load that drives it beyond the curve's generating
-    breakdown, or a curve that never brakes it. Named, with where it got to."""
+    breakdown, or a curve that never brakes it. Named, with where it got to. A generating operating point
+    above the synchronous speed moves the limit with it (0.1 x the synchronous speed beyond it)."""
     i = int(np.argmax(w_motor))
     top = float(w_motor[i])
-    if not top > RUNAWAY * ws:
+    limit = RUNAWAY * ws
+    if generating_rad_s is not None and generating_rad_s > ws:
+        limit = generating_rad_s + (RUNAWAY - 1.0) * ws
+    if not top > limit:
         return []
-    at = float(t[int(np.argmax(w_motor > RUNAWAY * ws))])
-    return [dg.warning(dg.MOTOR_RUNS_AWAY, f"the motor runs away: it passes {RUNAWAY:g} x its synchronous speed "
+    at = float(t[int(np.argmax(w_motor > limit))])
+    return [dg.warning(dg.MOTOR_RUNS_AWAY, f"the motor runs away: it passes {limit / ws:.3g} x its synchronous speed "
                        f"{ws * RAD_S_TO_RPM:.5g} rpm at {at:.4g} s and reaches {top * RAD_S_TO_RPM:.5g} rpm at "
                        f"{float(t[i]):.4g} s; nothing brakes it there (the load drives the motor past its curve): "
                        "the run's numbers are not an operating point", max_speed_rpm=top * RAD_S_TO_RPM,

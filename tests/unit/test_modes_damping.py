@@ -178,3 +178,17 @@ def test_default_law_damps_mesh_dominated_modes_between_1_and_20_percent(path):
         if m.rigid or "mesh" not in m.dominant or max(m.energy_share) < 0.5:
             continue  # a planetary stage's modes share their strain energy among its planet meshes
         assert 0.01 <= m.damping_ratio <= 0.20, f"mode {m.number} {m.frequency_Hz:.4g} Hz ({m.dominant})"
+
+
+def test_an_overhauling_load_linearises_at_the_generating_crossing():
+    """A lowering load (-600 N m at the drum, -600/3.895 = -154 N m at the motor, inside the generating breakdown
+    -2.8 T_r): the motor brakes it above its synchronous speed; modes' operating speed is that crossing (the
+    simulation layer's root), not the nominal speed it fell back to when the scan stopped at synchronous speed."""
+    doc = copy.deepcopy(SCENE)
+    doc["load"]["torque_Nm"] = -600.0
+    _, _, lay = _case(doc)
+    w = operating_point(lay).stable_rad_s
+    assert w is not None and w > 1500 * math.pi / 30  # generating: above the synchronous speed
+    net = machine.motor_torque(lay.motor_row, 1e12, w)[0] + 600.0 * 19 / 74  # lossless stage: T_L rho
+    assert abs(net) < 1e-6
+    assert_allclose(operating_speed_rad_s(lay), w, rtol=1e-9)
