@@ -279,6 +279,13 @@ def _at_operating_point(lay: Layout, operating: np.ndarray) -> Linearisation:
     return cache[key]
 
 
+def _priced(nfev: float, wall_s: float, engine: str, load_s: float) -> str:
+    """One method's prediction in the choice's words: its evaluations and time on the engine it is priced on, the
+    engine's load (which the choice leaves aside) named apart."""
+    load = f", +{load_s:.2g} s to load it" if load_s > 0 else ""
+    return f"{nfev:.2g} evaluations ~{wall_s - load_s:.2g} s ({engine}{load})"
+
+
 def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: float = 1e-6,
                   engines: dict[str, dict[str, float]] | None = None, work_factor: float = 1.0, *,
                   layout: Layout | None = None) -> Choice:
@@ -297,8 +304,7 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     size = model_size(lay, spec)
     nfev, walls, on, loads = predicted_costs(indicator, vib, exc, rtol, engines, work_factor, size)
     summary = f"max|λ|·T = {indicator:.3g}"
-    costs = (f"predicted DOP853 {nfev[0]:.2g} evaluations ~{walls[0]:.2g} s ({on[0]}), Radau {nfev[1]:.2g} "
-             f"~{walls[1]:.2g} s ({on[1]})")
+    costs = f"predicted DOP853 {_priced(nfev[0], walls[0], on[0], loads[0])}, Radau {_priced(nfev[1], walls[1], on[1], loads[1])}"
     why = f"{summary}, {vib:.3g} rad of excited vibration, {exc:.3g} rad of excitation: {costs}"
     if requested != AUTO:
         chosen, reason = requested, f"as requested ({summary})"
