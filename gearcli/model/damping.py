@@ -35,20 +35,40 @@ from gearcli.model.elements import machine
 
 STEADY_T = 1e12  # s: a time past every start ramp (the motor's steady curve)
 SPEED_SAMPLES = 4000  # grid over 0 .. the synchronous speed on which the motor's crossings are bracketed
-GENERATING_SCAN = 2.0  # an overhauling load's crossing is sought up to slip -1 (as gearcli.simulate.motor does)
+GENERATING_SCAN = 2.0  # an overhauling load's crossing is sought up to slip -1 (twice the synchronous speed)
 UNDAMPED_PER_PERIOD = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million
 # periods, past any run's 3600 s for a mode above 0.3 Hz): what is left of a chain without damping is the eigen
 # solver's roundoff (zeta ~ 1e-17 .. 1e-30), which read as a decay time of 1e28 s and a resonance 1e16 x
 MIN_MAC = 0.5  # a damped eigenvector matches an undamped mode when their modal assurance criterion exceeds this
 
 
-def _reflected_load_Nm(lay: Layout, w: float) -> float:
-    """The load torque at the input body (N m) when it turns at w in steady state (losses forward)."""
+def reflected_load_Nm(lay: Layout, w: float) -> float:
+    """The load torque at the input body (N m) when it turns at w in steady state: the load law at the output's
+    speed, through the train's efficiency (:meth:`Layout.train_efficiency`; with the power flowing back when the
+    load drives)."""
     rho = lay.bodies[-1].ratio
     g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
-    eta = math.prod(x.efficiency for x in lay.connectors if x.lossy)
     t = lay.load.torque_Nm * g * rho
-    return t / eta if t >= 0 else t * eta
+    return t / lay.train_efficiency() if t >= 0 else t * lay.train_efficiency(forward=False)
+
+
+def net_torque_scan(lay: Layout, row, samples: int = SPEED_SAMPLES):
+    """The motor's steady net torque over the reflected load, f = T_m - T_load, on a grid from rest to the
+    synchronous speed, continued to ``GENERATING_SCAN`` x it when the load still overhauls there (the generating
+    branch, slip down to -1): (grid, f, the curve's breakdown speed w_b, the net torque as a function of w)."""
+    ws = row[machine.M_WS]
+
+    def net(w: float) -> float:
+        return machine.motor_torque(row, STEADY_T, w)[0] - reflected_load_Nm(lay, w)
+
+    grid = np.linspace(0.0, ws, samples + 1)
+    curve = np.array([machine.motor_torque(row, STEADY_T, w)[0] for w in grid])
+    f = curve - np.array([reflected_load_Nm(lay, w) for w in grid])
+    w_b = float(grid[int(np.argmax(curve))])
+    if f[-1] > 0.0:  # an overhauling load drives the motor past its synchronous speed
+        above = np.linspace(ws, GENERATING_SCAN * ws, samples + 1)[1:]
+        grid, f = np.concatenate([grid, above]), np.concatenate([f, [net(w) for w in above]])
+    return grid, f, w_b, net
 
 
 def operating_speed_rad_s(lay: Layout) -> float:
@@ -57,19 +77,7 @@ def operating_speed_rad_s(lay: Layout) -> float:
     a speed or torque drive's nominal speed."""
     if not lay.motor_drive or not lay.motor_row:
         return lay.drive.speed_rad_s
-    row = lay.motor_row
-    ws = row[machine.M_WS]
-
-    def net(w: float) -> float:
-        return machine.motor_torque(row, STEADY_T, w)[0] - _reflected_load_Nm(lay, w)
-
-    grid = np.linspace(0.0, ws, SPEED_SAMPLES + 1)
-    curve = np.array([machine.motor_torque(row, STEADY_T, w)[0] for w in grid])
-    f = curve - np.array([_reflected_load_Nm(lay, w) for w in grid])
-    w_b = float(grid[int(np.argmax(curve))])
-    if f[-1] > 0.0:  # an overhauling load: the generating branch above the synchronous speed, to slip -1
-        above = np.linspace(ws, GENERATING_SCAN * ws, SPEED_SAMPLES + 1)[1:]
-        grid, f = np.concatenate([grid, above]), np.concatenate([f, [net(w) for w in above]])
+    grid, f, w_b, net = net_torque_scan(lay, lay.motor_row)
     down = [i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b]
     if not down:
         return lay.drive.speed_rad_s

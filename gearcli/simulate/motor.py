@@ -22,15 +22,15 @@ from scipy.optimize import brentq
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
+from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
+from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
-STEADY_T = 1e12  # s: a time past every start ramp
 ROLLBACK = 0.01  # a motor turning backwards faster than 1 % of its synchronous speed is driven back by the load
 RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
 LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
-GENERATING_SCAN = 2.0  # an overhauling load's operating point is sought up to slip -1 (twice the synchronous speed)
 
 
 @dataclass(frozen=True)
@@ -46,31 +46,12 @@ class OperatingPoint:
         return self.speed_rad_s is not None and self.speed_rad_s == self.stable_rad_s
 
 
-def reflected_load(lay: Layout, w: float) -> float:
-    """The load torque at the motor (N m) when the motor turns at w in steady state."""
-    rho = lay.bodies[-1].ratio
-    g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
-    t = lay.load.torque_Nm * g * rho
-    return t / lay.train_efficiency() if t >= 0 else t * lay.train_efficiency(forward=False)
-
-
-def operating_point(lay: Layout, samples: int = 4000) -> OperatingPoint:
+def operating_point(lay: Layout, samples: int = SPEED_SAMPLES) -> OperatingPoint:
     """The motor's steady operating point against the reflected load (module text)."""
     row = lay.motor_row if lay.motor_drive else machine.motor_row(lay.drive.motor)
     ws = row[machine.M_WS]
-
-    def net(w: float) -> float:
-        return machine.motor_torque(row, STEADY_T, w)[0] - reflected_load(lay, w)
-
-    grid = np.linspace(0.0, ws, samples + 1)
-    f = np.array([net(w) for w in grid])
-    curve = np.array([machine.motor_torque(row, STEADY_T, w)[0] for w in grid])
-    w_b = float(grid[int(np.argmax(curve))])
-    if f[-1] > 0.0:  # an overhauling load drives the motor past its synchronous speed: the generating branch
-        above = np.linspace(ws, GENERATING_SCAN * ws, samples + 1)[1:]
-        grid, f = np.concatenate([grid, above]), np.concatenate([f, [net(w) for w in above]])
-        samples = grid.size - 1
-    down = [i for i in range(samples) if f[i] > 0.0 >= f[i + 1]]  # net torque falls through 0: stable crossings
+    grid, f, w_b, net = net_torque_scan(lay, row, samples)
+    down = [i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1]]  # net torque falls through 0: stable crossings
     crossings = [float(brentq(net, grid[i], grid[i + 1], xtol=1e-12 * ws)) if f[i + 1] < 0.0 else float(grid[i + 1])
                  for i in down]
     stable = [c for c in crossings if c >= w_b]

@@ -192,3 +192,27 @@ def test_an_overhauling_load_linearises_at_the_generating_crossing():
     net = machine.motor_torque(lay.motor_row, 1e12, w)[0] + 600.0 * 19 / 74  # lossless stage: T_L rho
     assert abs(net) < 1e-6
     assert_allclose(operating_speed_rad_s(lay), w, rtol=1e-9)
+
+
+def test_a_motor_driven_planetary_is_linearised_at_the_simulated_operating_speed():
+    """configs/mixer_planetary_motor.toml: the settled run's motor speed against its steady net torque, written out
+    here (the load at the drum through the train's power efficiency: its planetary stage's eta as a whole, not
+    each planet mesh's eta_m; DESIGN section 13: modes linearise what simulate integrates). The linearisation used
+    the product of every lossy connector's eta (a planetary's six planet meshes: eta_m^6), a reflected load 5 % high
+    and an operating speed 0.12 rad/s low."""
+    from scipy.optimize import brentq
+
+    loaded = api.load(str(ROOT / "configs" / "mixer_planetary_motor.toml"), [])
+    design = api.design(loaded)
+    lay = Layout.of(api.model_spec(loaded.design, design))
+    rho = lay.bodies[-1].ratio
+    eta = math.prod(s.efficiency for s in design.stages)  # the stages' power efficiencies, input to drum
+
+    def net(w: float) -> float:
+        g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
+        return machine.motor_torque(lay.motor_row, 1e12, w)[0] - loaded.design.load.torque_Nm * g * rho / eta
+
+    ws = lay.motor_row[machine.M_WS]
+    w_hand = brentq(net, 0.9 * ws, ws, xtol=1e-13 * ws)
+    assert_allclose(operating_speed_rad_s(lay), w_hand, rtol=1e-9)
+    assert_allclose(operating_point(lay).stable_rad_s, w_hand, rtol=1e-9)
