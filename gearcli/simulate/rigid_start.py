@@ -30,7 +30,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.elements import machine
+from gearcli.model.elements import machine, mesh
 from gearcli.model.modes import modal_analysis
 from gearcli.model.outputs import tooth_forces
 from gearcli.model.step import ramp, ramp_motion
@@ -199,14 +199,12 @@ def swing(t: np.ndarray, deviation: np.ndarray, modes: list[tuple[float, str]],
 
 
 def initial_te_um(lay: Layout, k: int) -> float:
-    """Stage k's static transmission error at t = 0, e(0) = sum e_j cos(psi_j) (the mesh phase starts at 0), in µm;
-    0 for a stage with its own model (a planetary) or without a transmission error."""
-    spec = lay.spec
-    if k >= len(spec.meshes) or (k < len(spec.stage_models) and spec.stage_models[k] is not None):
+    """Stage k's static transmission error at t = 0 in µm: its mesh's e(phi) at the phase 0 every body starts from;
+    0 for a stage that is no pair mesh (a planetary's) or has no transmission error."""
+    x = lay.connectors[lay.stage_conn[k]]
+    if x.role != "mesh" or not x.excited:
         return 0.0
-    m = spec.meshes[k]
-    phases = tuple(m.transmission_error_phase_rad) + (0.0,) * len(m.transmission_error_m)
-    return 1e6 * sum(e * math.cos(p) for e, p in zip(m.transmission_error_m, phases, strict=False))
+    return 1e6 * mesh.transmission_error(x.params, 0.0)[0]
 
 
 def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.ndarray], window_s: tuple[float, float],
