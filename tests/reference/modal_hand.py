@@ -81,14 +81,18 @@ K_IN, K_OUT = 5000.0, 40000.0
 T_LOAD = 300.0
 
 
-def _single(contact: str = "", simulation: str = "duration_s = 0.4") -> str:
-    return MATERIAL + f"""
+_STAGE = f"""
 [[stage]]
 normal_module_mm = {M_N}
 normal_pressure_angle_deg = {ALPHA_N}
 helix_angle_deg = {BETA}
 pinion = {{ teeth = {Z1}, face_width_mm = {B}, hand = "left", material = "steel", inertia_kg_m2 = {J_P} }}
 gear   = {{ teeth = {Z2}, face_width_mm = {B}, hand = "right", material = "steel", inertia_kg_m2 = {J_G} }}
+"""  # the single helical stage of _single and _lone_gear
+
+
+def _single(contact: str = "", simulation: str = "duration_s = 0.4") -> str:
+    return MATERIAL + _STAGE + f"""
 {contact}
 [input]
 speed_rpm = 1500
@@ -125,13 +129,7 @@ def _single_hand(c_gamma_alpha: float, zeta: float):
 
 def _lone_gear(contact: str, simulation: str) -> str:
     """The stage alone: the pinion follows the prescribed speed, the gear (J_G) is the one degree of freedom."""
-    return MATERIAL + f"""
-[[stage]]
-normal_module_mm = {M_N}
-normal_pressure_angle_deg = {ALPHA_N}
-helix_angle_deg = {BETA}
-pinion = {{ teeth = {Z1}, face_width_mm = {B}, hand = "left", material = "steel", inertia_kg_m2 = {J_P} }}
-gear   = {{ teeth = {Z2}, face_width_mm = {B}, hand = "right", material = "steel", inertia_kg_m2 = {J_G} }}
+    return MATERIAL + _STAGE + f"""
 {contact}
 [input]
 speed_rpm = 1500
