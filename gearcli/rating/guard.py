@@ -158,10 +158,3 @@ def _missing(name: str) -> Callable:
     def absent(*args: Any) -> Any:
         raise AttributeError(f"the rated mesh has no {name}()")
     return absent
-
-
-def guarded(std: RatingStandard) -> RatingStandard:
-    """``std`` as the registry keeps it: gearcli's own standards as they are, a plug-in's behind :class:`Guarded`."""
-    if type(std).__module__.split(".")[0] == "gearcli":
-        return std
-    return Guarded(std)

@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING
 
 from gearcli.core import plugins
 from gearcli.errors import ConfigError
-from gearcli.rating.guard import guarded
 
 if TYPE_CHECKING:
     from gearcli.rating.standard import RatedMesh, RatingStandard
@@ -21,7 +20,12 @@ _STANDARDS: dict[str, RatingStandard] = {}
 
 def register(std: RatingStandard) -> RatingStandard:
     """Register ``std`` under its ``name`` (a later registration of the same name replaces it); returns it."""
-    _STANDARDS[std.name] = guarded(std)
+    if type(std).__module__.split(".")[0] == "gearcli":  # gearcli's own standards are kept as they are
+        _STANDARDS[std.name] = std
+    else:
+        from gearcli.rating.guard import Guarded  # lazy: only a plug-in's standard is wrapped (start-up without one)
+
+        _STANDARDS[std.name] = Guarded(std)
     return std
 
 
