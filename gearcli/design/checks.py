@@ -25,7 +25,14 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from gearcli.core.jsontypes import JsonObject
-from gearcli.design.geometry import normal_tip_thickness_mm, undercut_limit_teeth, undercut_min_profile_shift
+from gearcli.design.geometry import (
+    form_point_from_base_tangent_mm,
+    normal_tip_thickness_mm,
+    rack_form_height_factor,
+    tip_reach_mm,
+    undercut_limit_teeth,
+    undercut_min_profile_shift,
+)
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.design.stiffness import smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
@@ -90,9 +97,13 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
         at: JsonObject = {"stage": stage.index}
         found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):
-            found.append((undercut_warning(stage, gear), {"check": "undercut", **at, "member": _part(stage, gear),
-                                                          "teeth": gear.teeth, "profile_shift": gear.profile_shift,
-                                                          **_cut_shift_data(gear)}))
+            found.append((undercut_warning(stage, gear, stage_cfg), {"check": "undercut", **at,
+                                                                     "member": _part(stage, gear),
+                                                                     "teeth": gear.teeth,
+                                                                     "profile_shift": gear.profile_shift,
+                                                                     **_cut_shift_data(gear)}))
+        for gear in (stage.pinion, stage.gear):
+            found.append(interference_warning(stage, stage_cfg, gear))
         found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at,
                                                      "contact_ratio_transverse": stage.contact_ratio_transverse,
                                                      "contact_ratio_total": stage.contact_ratio_total}))
@@ -195,16 +206,76 @@ def _shift_text(gear: GearResult) -> str:
     return text
 
 
-def undercut_warning(stage: StageResult, gear: GearResult) -> str | None:
+def form_height_factor(stage: StageResult, stage_cfg: Stage) -> float:
+    """h_FfP* of the stage's basic rack: the straight-flank height of the rack that generates its teeth."""
+    rack = stage_cfg.basic_rack
+    return rack_form_height_factor(rack.dedendum, rack.root_radius, math.radians(stage.normal_pressure_angle_deg))
+
+
+def undercut_warning(stage: StageResult, gear: GearResult, stage_cfg: Stage) -> str | None:
+    """z < z_min = 2 (h_FfP* − x) cos β / sin² α_t with h_FfP* of the stage's basic rack (``basic_rack``)."""
     beta, alpha_t = math.radians(stage.helix_angle_deg), math.radians(stage.transverse_pressure_angle_deg)
-    z_min = undercut_limit_teeth(_cut_shift(gear), beta, alpha_t)
+    h_ff = form_height_factor(stage, stage_cfg)
+    z_min = undercut_limit_teeth(_cut_shift(gear), beta, alpha_t, h_ff)
     if gear.teeth >= z_min:
         return None
-    x_needed = undercut_min_profile_shift(gear.teeth, beta, alpha_t)
+    x_needed = undercut_min_profile_shift(gear.teeth, beta, alpha_t, h_ff)
     what = "a profile shift" if gear.generating_profile_shift is None else "a generating profile shift x_E,i"
     return (f"stage {stage.index}: {_part(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
             f"({_shift_text(gear)}, β = {stage.helix_angle_deg:g}°): undercut risk; "
             f"use {what} ≥ {x_needed:+.2f} or more teeth")
+
+
+#: contact may start this far (× m_n, along the line of action) below a form circle before it is called interference:
+#: ISO 53 profile A's straight flank (0.99997 m_n at 20°) ends a hair below a rack mate's tip line (1 m_n)
+INTERFERENCE_TOLERANCE_PER_MODULE = 1e-3
+
+
+def interference_warning(stage: StageResult, stage_cfg: Stage,
+                         gear: GearResult) -> tuple[str | None, JsonObject]:
+    """The mate's tip reaches ``gear``'s flank below the lowest point of its involute (ISO 21771 meshing check).
+
+    Along the transverse line of action T1T2 = a_w sin α_wt, the mate's tip circle starts contact at s = T1T2 −
+    g_mate from ``gear``'s base tangent point T (g = √(r_a² − r_b²)); the involute the rack generated reaches down to
+    q = r sin α_t − (h_FfP* − x) m_n / sin α_t from T (its form circle d_Ff = 2 √(r_b² + q²); undercut when q < 0,
+    and then no lower than T). s < max(q, 0) is tip interference: the mate's tip runs into the root fillet (or the
+    undercut), and ε_α, computed from the tips, counts a path that carries no involute contact. The data give the
+    usable ε_α: the path between both members' lowest involute points and the tips, over p_bt.
+    """
+    mate = stage.gear if gear is stage.pinion else stage.pinion
+    m_n, alpha_t = stage.normal_module_mm, math.radians(stage.transverse_pressure_angle_deg)
+    h_ff = form_height_factor(stage, stage_cfg)
+    line = stage.center_distance_mm * math.sin(math.radians(stage.working_pressure_angle_deg))
+
+    def lowest(g: GearResult) -> float:  # the lowest involute point's distance from g's base tangent point
+        return max(form_point_from_base_tangent_mm(g.pitch_diameter_mm, alpha_t, m_n, g.profile_shift, h_ff), 0.0)
+
+    start = line - tip_reach_mm(mate.tip_diameter_mm, mate.base_diameter_mm)
+    form = lowest(gear)
+    data: JsonObject = {"check": "interference", "stage": stage.index, "member": _part(stage, gear)}
+    if start >= form - INTERFERENCE_TOLERANCE_PER_MODULE * m_n:
+        return None, data
+    # the usable path, measured from the pinion's T: from the higher of the gear's tip point and the pinion's lowest
+    # involute point, to the lower of the pinion's tip point and the gear's lowest involute point
+    p, g = stage.pinion, stage.gear
+    usable = (min(tip_reach_mm(p.tip_diameter_mm, p.base_diameter_mm), line - lowest(g))
+              - max(line - tip_reach_mm(g.tip_diameter_mm, g.base_diameter_mm), lowest(p)))
+    eps = max(usable, 0.0) / stage.transverse_base_pitch_mm
+    part, other = _part(stage, gear), _part(stage, mate)
+    if form > 0.0:
+        d_ff = 2.0 * math.hypot(0.5 * gear.base_diameter_mm, form)
+        below = f"below its involute form circle d_Ff = {d_ff:.4g} mm, in its root fillet"
+    else:
+        d_ff = None
+        below = (f"beyond its base tangent point (base circle d_b = {gear.base_diameter_mm:.4g} mm), in its undercut "
+                 "root")
+    depth = form - start
+    data.update(form_diameter_mm=d_ff, depth_mm=depth, contact_ratio_transverse=stage.contact_ratio_transverse,
+                contact_ratio_transverse_usable=eps)
+    return (f"stage {stage.index}: tip interference: the {other}'s tip meets the {part} {depth:.3g} mm along the line "
+            f"of action {below}; the usable transverse contact ratio is {eps:.3f}, not ε_α = "
+            f"{stage.contact_ratio_transverse:.3f} (which counts that path); give the {part} a larger profile "
+            f"shift, the {other} a smaller one, or the {part} more teeth"), data
 
 
 def tip_clearance_with_allowances_mm(stage: StageResult, stage_cfg: Stage, gear: GearResult) -> float | None:

@@ -144,21 +144,48 @@ def overlap_ratio(face_width: float, helix_rad: float, normal_module_mm: float) 
 
 
 # ---------------------------------------------------------------------------- design-rule checks
-def undercut_limit_teeth(profile_shift: float, helix_rad: float, transverse_pressure_rad: float,
-                         addendum_factor: float = 1.0) -> float:
-    """Theoretical undercut limit z_min = 2 (h_aP/m_n − x) cos β / sin² α_t (rack-generated teeth).
+def rack_form_height_factor(dedendum_factor: float, root_radius_factor: float, normal_pressure_rad: float) -> float:
+    """h_FfP* = h_fP* − ρ_fP* (1 − sin α_n): the height of the straight flank of the generating rack (the tool's
+    addendum h_aP0 = h_fP less its tip rounding ρ_aP0 = ρ_fP), in multiples of m_n (ISO 21771 / DIN 3960).
 
-    h_aP/m_n = 1 is the practical DIN 3960 / ISO 21771 value (the tool tip radius lets a few teeth
+    The straight flank generates the involute; where it ends the tip rounding cuts the root fillet. ISO 53
+    profile A (1.25, 0.38) at α_n = 20° gives 0.99997, the familiar h_a = m_n of the undercut rule z_min = 17.1.
+    """
+    return dedendum_factor - root_radius_factor * (1.0 - math.sin(normal_pressure_rad))
+
+
+def undercut_limit_teeth(profile_shift: float, helix_rad: float, transverse_pressure_rad: float,
+                         form_height_factor: float = 1.0) -> float:
+    """Theoretical undercut limit z_min = 2 (h_FfP* − x) cos β / sin² α_t (rack-generated teeth).
+
+    h_FfP* is the straight-flank height of the generating rack (``rack_form_height_factor``; ≈ 1 for
+    ISO 53 profile A at 20°, the practical DIN 3960 / ISO 21771 value; the tool tip radius lets a few teeth
     fewer pass in practice, so this limit errs on the safe side). Spur 20°: z_min = 17.1.
     """
-    return 2.0 * (addendum_factor - profile_shift) * math.cos(helix_rad) / math.sin(transverse_pressure_rad) ** 2
+    return 2.0 * (form_height_factor - profile_shift) * math.cos(helix_rad) / math.sin(transverse_pressure_rad) ** 2
 
 
 def undercut_min_profile_shift(teeth: int, helix_rad: float, transverse_pressure_rad: float,
-                               addendum_factor: float = 1.0) -> float:
+                               form_height_factor: float = 1.0) -> float:
     """The profile shift that just avoids undercut: ``undercut_limit_teeth`` solved for x,
-    x_min = h_aP/m_n − z sin² α_t / (2 cos β)."""
-    return addendum_factor - teeth * math.sin(transverse_pressure_rad) ** 2 / (2.0 * math.cos(helix_rad))
+    x_min = h_FfP* − z sin² α_t / (2 cos β)."""
+    return form_height_factor - teeth * math.sin(transverse_pressure_rad) ** 2 / (2.0 * math.cos(helix_rad))
+
+
+def form_point_from_base_tangent_mm(pitch_diameter: float, transverse_pressure_rad: float, normal_module_mm: float,
+                                    profile_shift: float, form_height_factor: float) -> float:
+    """q = r sin α_t − (h_FfP* − x) m_n / sin α_t: how far from the member's base tangent point T, along the
+    transverse line of action of its generation by the rack, the rack's straight flank ends: the lowest point
+    of the generated involute, on the root form circle d_Ff = 2 √(r_b² + q²) (ISO 21771). q < 0 is undercut
+    (the same condition as ``undercut_limit_teeth``): the involute then ends above T, higher than this formula
+    can say."""
+    return (0.5 * pitch_diameter * math.sin(transverse_pressure_rad)
+            - (form_height_factor - profile_shift) * normal_module_mm / math.sin(transverse_pressure_rad))
+
+
+def tip_reach_mm(tip_diameter: float, base_diameter: float) -> float:
+    """g = √(r_a² − r_b²): from a member's base tangent point to where its tip circle crosses the line of action."""
+    return math.sqrt(max(0.25 * (tip_diameter ** 2 - base_diameter ** 2), 0.0))
 
 
 def normal_tip_thickness_mm(teeth: int, normal_module_mm: float, profile_shift: float, helix_rad: float,
