@@ -38,21 +38,42 @@ def involute(alpha_rad: float) -> float:
     return math.tan(alpha_rad) - alpha_rad
 
 
+#: below this angle inv α is summed from its series (tan α − α cancels there: 1e-12 relative at 0.01 rad)
+_SERIES_BELOW_RAD = 0.02
+_INV_SERIES = (1.0 / 3.0, 2.0 / 15.0, 17.0 / 315.0, 62.0 / 2835.0, 1382.0 / 155925.0)  # α³, α⁵, ..., α¹¹
+
+
+def _involute_accurate(alpha_rad: float) -> float:
+    """inv α to full relative precision: the Taylor series of tan α − α below 0.02 rad (next term < 1e-19
+    relative), tan α − α above."""
+    if alpha_rad >= _SERIES_BELOW_RAD:
+        return involute(alpha_rad)
+    a2 = alpha_rad * alpha_rad
+    return alpha_rad * a2 * sum(c * a2 ** j for j, c in enumerate(_INV_SERIES))
+
+
 def inverse_involute(value: float, *, tol_rad: float = 1e-15, max_iter: int = 60) -> float:
     """The angle α in (0, π/2) with inv α = ``value`` > 0, by Newton's method.
 
     inv is convex and increasing on (0, π/2) with d(inv)/dα = tan² α. The start α0 = (3 v)^(1/3)
     (from inv α = α³/3 + 2α⁵/15 + ... ≥ α³/3) lies at or right of the root, so the iterates
-    decrease monotonically onto it; a handful of steps reach machine precision.
+    decrease monotonically onto it; a handful of steps reach machine precision. At small angles tan α − α
+    cancels (its rounding over tan² α put a noise floor on the step above ``tol_rad``, and Newton never met the
+    tolerance below α ≈ 4.7°), so the residual takes inv α from its series there (``_involute_accurate``); as a
+    guard the iteration also ends once a step below 1e-9 α fails to halve the one before.
     """
     if not value > 0.0:
         raise ValueError(f"inverse involute needs a positive value, got {value!r}")
     alpha = min((3.0 * value) ** (1.0 / 3.0), HALF_PI - 1e-9)
+    last = math.inf
     for _ in range(max_iter):
-        step = (involute(alpha) - value) / math.tan(alpha) ** 2
+        step = (_involute_accurate(alpha) - value) / math.tan(alpha) ** 2
+        if abs(step) <= 1e-9 * alpha and abs(step) > 0.5 * last:  # the noise floor of inv α
+            return alpha
         alpha -= step
         if abs(step) <= tol_rad * max(1.0, alpha):
             return alpha
+        last = abs(step)
     raise ValueError(f"inverse involute did not converge for {value!r}")
 
 
