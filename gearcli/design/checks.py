@@ -272,10 +272,12 @@ def interference_warning(stage: StageResult, stage_cfg: Stage,
     depth = form - start
     data.update(form_diameter_mm=d_ff, depth_mm=depth, contact_ratio_transverse=stage.contact_ratio_transverse,
                 contact_ratio_transverse_usable=eps)
+    fix = (f"lower the {part}'s form circle (a smaller profile shift, or a basic rack whose straight flank reaches "
+           f"deeper: a larger dedendum, a smaller root radius) or shorten the {other}'s tip" if form > 0.0 else
+           f"give the {part} a larger profile shift (the {other} a smaller one) or more teeth")
     return (f"stage {stage.index}: tip interference: the {other}'s tip meets the {part} {depth:.3g} mm along the line "
             f"of action {below}; the usable transverse contact ratio is {eps:.3f}, not ε_α = "
-            f"{stage.contact_ratio_transverse:.3f} (which counts that path); give the {part} a larger profile "
-            f"shift, the {other} a smaller one, or the {part} more teeth"), data
+            f"{stage.contact_ratio_transverse:.3f} (which counts that path); {fix}"), data
 
 
 def tip_clearance_with_allowances_mm(stage: StageResult, stage_cfg: Stage, gear: GearResult) -> float | None:

@@ -72,6 +72,7 @@ def test_usable_contact_ratio_of_an_8_tooth_pinion_stops_at_its_base_tangent_poi
     assert_allclose(w.data["depth_mm"], g_a2 - line, rtol=1e-12)
     assert w.data["form_diameter_mm"] is None  # undercut: the involute's lowest point is not the rack's
     assert "1.117" in w.message and "1.510" in w.message
+    assert "give the pinion a larger profile shift" in w.message  # the cure of an undercut flank
 
 
 def test_interference_into_the_root_fillet_of_a_non_undercut_member():
@@ -96,6 +97,7 @@ def test_interference_into_the_root_fillet_of_a_non_undercut_member():
         assert_allclose(w.data["form_diameter_mm"], d_ff, rtol=1e-12)
         assert_allclose(w.data["depth_mm"], q - start, rtol=1e-12)
         assert_allclose(w.data["contact_ratio_transverse_usable"], usable, rtol=1e-12)
+        assert "shorten the" in w.message and "larger profile shift" not in w.message  # a higher shift hurts here
     # ISO 53 profile A on the same pair: the form circle lies below the mate's reach, no warning
     assert checks(design(60, 60, m_n=m), "interference") == []
 
