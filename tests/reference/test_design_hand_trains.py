@@ -327,3 +327,18 @@ def test_scene_d_low_load_factor():
     full = h["c_single"] / (25 / 100) ** 0.25
     assert_allclose(st.iso6336_single_pair_stiffness_N_mm_um, full * 0.25 ** 0.25, rtol=1e-12)
     assert_allclose(st.iso6336_mesh_stiffness_N_mm_um, h["c_mesh"], rtol=1e-12)
+
+
+def test_scene_d_application_factor_enters_the_line_load():
+    # K_A = 1.5: F_t K_A / b = 37.5 N/mm, so c′ grows by 1.5^0.25 and ISO's N_S = 0.5 + 0.35 √(37.5/100)
+    def stage(k_a):
+        doc = {"stage": [{"normal_module_mm": 2.0, "pinion": {"teeth": 20, "face_width_mm": 20.0},
+                          "gear": {"teeth": 50, "face_width_mm": 20.0}}],
+               "input": {"speed_rpm": 1000.0}, "load": {"torque_Nm": 25.0, "application_factor": k_a}}
+        return compute_design(DesignFile.model_validate(doc)).stages[0]
+
+    plain, factored = stage(1.0), stage(1.5)
+    assert_allclose(factored.iso6336_single_pair_stiffness_N_mm_um / plain.iso6336_single_pair_stiffness_N_mm_um,
+                    1.5 ** 0.25, rtol=1e-13)
+    assert_allclose(factored.resonance_lower_limit, 0.5 + 0.35 * math.sqrt(37.5 / 100), rtol=1e-13)
+    assert_allclose(factored.static_force_N.tangential, plain.static_force_N.tangential, rtol=0)  # nominal force
