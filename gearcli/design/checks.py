@@ -10,7 +10,10 @@ Choices where the contract is silent:
 - β = 0 makes a spur pair whatever the hands say. Hands given on a spur pair are not an error (a sweep
   over β may pass through 0), but a warning asks whether ``helix_angle_deg`` was forgotten, since it
   defaults to 0. The result then reports hand "spur".
-- Limits: undercut below z_min = 2 (1 − x) cos β / sin² α_t (h_aP = m_n, ISO 21771 / DIN 3960);
+- Limits: undercut below z_min = 2 (h_FfP* − x) cos β / sin² α_t (h_FfP* = h_fP* − ρ_fP* (1 − sin α_n), the
+  straight flank of the stage's basic rack; ≈ 1 for ISO 53 profile A at 20°; ISO 21771 / DIN 3960); tip
+  interference where the mate's tip meets a flank below its involute form circle (or beyond its base tangent
+  point when undercut: Shigley's interference condition), with the usable ε_α;
   ε_α < 1.2 (common design minimum) and ε_α < 1 (interrupted
   transverse contact) as separate messages; b/d1 outside 0.2 … 1.5 (Niemann/Winter, Maschinenelemente II:
   b/d1 ≲ 1.1–1.6 for straddle-mounted pinions depending on hardening, 1.5 taken as the upper end;
