@@ -15,11 +15,14 @@ References:
 
 from __future__ import annotations
 
+import json
 import math
 
 import pytest
+from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
+from gearcli.cli import cli
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
 
@@ -138,3 +141,16 @@ def test_helical_undercut_limit_in_the_transverse_section():
     assert checks(design(12, 50, beta=30.0), "undercut") == []
     (w,) = checks(design(11, 50, beta=30.0), "undercut")
     assert f"z_min = {z_min:.1f}" in w.message
+
+
+def test_interference_in_json_and_on_stderr(tmp_path):
+    path = tmp_path / "small_pinion.toml"
+    path.write_text("[[stage]]\nnormal_module_mm = 2\npinion = { teeth = 8, face_width_mm = 20 }\n"
+                    "gear = { teeth = 40, face_width_mm = 20 }\n[input]\nspeed_rpm = 1000\n[load]\ntorque_Nm = 100\n",
+                    encoding="utf-8")
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "json"], catch_exceptions=False)
+    assert res.exit_code == 0
+    (w,) = [w for w in json.loads(res.stdout)["warnings"] if w.get("check") == "interference"]
+    assert w["code"] == "design" and w["stage"] == 1 and w["member"] == "pinion"
+    assert w["form_diameter_mm"] is None  # undercut: JSON null
+    assert f"warning: {w['message']}" in res.stderr
