@@ -99,3 +99,47 @@ def test_equally_spaced_planets_declared_or_implied_leave_the_sun_unloaded():
         d = design_of(scene_a(count, planet=extra + ", axial_position_mm = 100", sun=", axial_position_mm = 100",
                               bearings=SUN_BEARINGS))
         assert [b.radial_N for b in d.bearings] == [0.0, 0.0]
+
+
+# ------------------------------------------------------------------------------------------ hostile inputs
+def _cli(tmp_path, text: str, *args: str):
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    path = tmp_path / "hostile.toml"
+    path.write_text(text, encoding="utf-8")
+    return path, CliRunner().invoke(cli, ["design", str(path), *args], catch_exceptions=False)
+
+
+@pytest.mark.parametrize(("old", "new", "key", "says"), [
+    # a ring with fewer teeth than the sun: the planets cannot fit (z_r must be about z_s + 2 z_p = 96)
+    (f"teeth = {Z_R},", "teeth = 20,", "stage[0]", "ring.teeth (20)"),
+    (f"count = 3,", "count = -3,", "stage[0].planet.count", "must be ≥ 1"),
+    # five planets: (24 + 96)/5 = 24 spaces them, but 2 a sin 36° = 141.07 mm < d_a = (36 + 2) 4 = 152 mm
+    (f"count = 3,", "count = 5,", "stage[0].planet.count", "141.0685 mm"),
+    # seven: 120/7 = 17.14 is not whole
+    (f"count = 3,", "count = 7,", "stage[0].planet.count", "(24 + 96)/7"),
+    # two planets declared 30° apart: 2 a sin 15° = 62.1166 mm < 152 mm; the declared angles place them
+    (f"count = 3,", "count = 2, angles_deg = [0, 30],", "stage[0].planet.angles_deg", "62.1166 mm"),
+])
+def test_a_planetary_that_cannot_be_built_is_exit_2_naming_file_and_key(tmp_path, old, new, key, says):
+    path, res = _cli(tmp_path, scene_a().replace(old, new, 1))
+    assert res.exit_code == 2, res.stderr
+    assert f"{path.name}: {key}" in res.stderr and says in res.stderr
+    assert "Traceback" not in res.stderr
+
+
+def test_helical_planetary_hands_external_pair_and_ring(tmp_path):
+    """The sun and planet (an external pair) need opposite hands; the ring (internal) the planet's."""
+    helical = scene_a().replace("normal_module_mm = 4", "normal_module_mm = 4\nhelix_angle_deg = 15")
+    same = helical.replace(f"teeth = {Z_S},", f'teeth = {Z_S}, hand = "left",').replace(
+        f"teeth = {Z_P},", f'teeth = {Z_P}, hand = "left",')
+    path, res = _cli(tmp_path, same)
+    assert res.exit_code == 2 and f"{path.name}: stage[0].planet.hand" in res.stderr and "Traceback" not in res.stderr
+    ring = same.replace(f'teeth = {Z_P}, hand = "left",', f'teeth = {Z_P}, hand = "right",').replace(
+        f"teeth = {Z_R},", f'teeth = {Z_R}, hand = "left",')
+    path, res = _cli(tmp_path, ring)
+    assert res.exit_code == 2 and f"{path.name}: stage[0].ring.hand" in res.stderr and "Traceback" not in res.stderr
+    path, res = _cli(tmp_path, ring.replace(f'teeth = {Z_R}, hand = "left",', f'teeth = {Z_R}, hand = "right",'))
+    assert res.exit_code == 0, res.stderr
