@@ -16,6 +16,7 @@ from numpy.testing import assert_allclose
 
 from tests.life.scenes import design_of as _design_of
 
+
 def design_of(toml: str, overrides: tuple[str, ...] = ()):
     return _design_of(toml, overrides)[1]
 
@@ -115,13 +116,13 @@ def _cli(tmp_path, text: str, *args: str):
 @pytest.mark.parametrize(("old", "new", "key", "says"), [
     # a ring with fewer teeth than the sun: the planets cannot fit (z_r must be about z_s + 2 z_p = 96)
     (f"teeth = {Z_R},", "teeth = 20,", "stage[0]", "ring.teeth (20)"),
-    (f"count = 3,", "count = -3,", "stage[0].planet.count", "must be ≥ 1"),
+    ("count = 3,", "count = -3,", "stage[0].planet.count", "must be ≥ 1"),
     # five planets: (24 + 96)/5 = 24 spaces them, but 2 a sin 36° = 141.07 mm < d_a = (36 + 2) 4 = 152 mm
-    (f"count = 3,", "count = 5,", "stage[0].planet.count", "141.0685 mm"),
+    ("count = 3,", "count = 5,", "stage[0].planet.count", "141.0685 mm"),
     # seven: 120/7 = 17.14 is not whole
-    (f"count = 3,", "count = 7,", "stage[0].planet.count", "(24 + 96)/7"),
+    ("count = 3,", "count = 7,", "stage[0].planet.count", "(24 + 96)/7"),
     # two planets declared 30° apart: 2 a sin 15° = 62.1166 mm < 152 mm; the declared angles place them
-    (f"count = 3,", "count = 2, angles_deg = [0, 30],", "stage[0].planet.angles_deg", "62.1166 mm"),
+    ("count = 3,", "count = 2, angles_deg = [0, 30],", "stage[0].planet.angles_deg", "62.1166 mm"),
 ])
 def test_a_planetary_that_cannot_be_built_is_exit_2_naming_file_and_key(tmp_path, old, new, key, says):
     path, res = _cli(tmp_path, scene_a().replace(old, new, 1))
@@ -143,3 +144,196 @@ def test_helical_planetary_hands_external_pair_and_ring(tmp_path):
     assert res.exit_code == 2 and f"{path.name}: stage[0].ring.hand" in res.stderr and "Traceback" not in res.stderr
     path, res = _cli(tmp_path, ring.replace(f'teeth = {Z_R}, hand = "left",', f'teeth = {Z_R}, hand = "right",'))
     assert res.exit_code == 0, res.stderr
+
+
+# --------------------------------------------------------------------------------- scene A by hand: statics
+ALPHA = math.radians(20.0)
+R_S, R_P, R_R = 0.5 * Z_S * M_N, 0.5 * Z_P * M_N, 0.5 * Z_R * M_N  # pitch radii, mm (spur, x = 0)
+RB_S, RB_P, RB_R = (r * math.cos(ALPHA) for r in (R_S, R_P, R_R))
+A_W = R_S + R_P  # = R_R - R_P: concentric without shifts
+P_BT = math.pi * M_N * math.cos(ALPHA)
+U = Z_R / Z_S
+
+
+def _willis(fixed: str, driven: str) -> dict[str, float]:
+    """Member speeds for a unit speed of the driven member, from w_s - w_c = -u (w_r - w_c) with the held one at 0,
+    solved here by linear algebra (an independent route from the code's table of the three arrangements)."""
+    import numpy as np
+
+    order = ("sun", "carrier", "ring")
+    a = np.array([[1.0, -(1.0 + U), U],  # w_s - (1 + u) w_c + u w_r = 0
+                  [float(m == fixed) for m in order],
+                  [float(m == driven) for m in order]])
+    w = np.linalg.solve(a, [0.0, 0.0, 1.0])
+    return dict(zip(order, w, strict=True))
+
+
+@pytest.mark.parametrize(("fixed", "driven"), [("ring", "sun"), ("ring", "carrier"), ("carrier", "sun"),
+                                               ("carrier", "ring"), ("sun", "ring"), ("sun", "carrier")])
+def test_member_speeds_torques_and_per_planet_force_by_hand(fixed, driven):
+    """Willis speeds; lossless torques from the members' power balance (sum T w = 0 with sum T = 0: the sun's share
+    1, the ring's u, the carrier's -(1 + u)); the planet's speed relative to the carrier (z_s/z_p)|w_s - w_c|;
+    F_t = T_sun / (N r_s) per planet on both meshes; mesh frequency z_s |n_s - n_c| / 60 = z_r |n_r - n_c| / 60."""
+    text = scene_a().replace('fixed = "ring"', f'fixed = "{fixed}"').replace('input = "sun"', f'input = "{driven}"')
+    st = design_of(text).stages[0]
+    p = st.planetary
+    w = {m: v * N_IN for m, v in _willis(fixed, driven).items()}  # rpm
+    out = next(m for m in ("sun", "carrier", "ring") if m not in (fixed, driven))
+    share = {"sun": 1.0, "ring": U, "carrier": 1.0 + U}
+    t_sun = T_OUT / share[out]  # N·m, the load on the output member
+    assert_allclose([p.sun.speed_rpm, p.carrier.speed_rpm, p.ring.speed_rpm], [w["sun"], w["carrier"], w["ring"]],
+                    rtol=1e-13, atol=1e-9)
+    assert_allclose(st.ratio, abs(w[driven] / w[out]), rtol=1e-13)
+    assert_allclose([p.sun.torque_Nm, p.ring.torque_Nm, p.carrier.torque_Nm],
+                    [t_sun, U * t_sun, (1 + U) * t_sun], rtol=1e-13)
+    moments = p.moment_balance_Nm
+    assert_allclose(moments["carrier"], -(moments["sun"] + moments["ring"]), rtol=1e-13)  # T_c = -(T_s + T_r)
+    assert_allclose(abs(p.planet.speed_rpm), Z_S / Z_P * abs(w["sun"] - w["carrier"]), rtol=1e-13)
+    f_t = t_sun * 1e3 / (3 * R_S)
+    assert_allclose([st.static_force_N.tangential, p.planet_ring.static_force_N.tangential], [f_t, f_t], rtol=1e-13)
+    assert_allclose(p.planet.torque_Nm, f_t * R_P / 1e3, rtol=1e-13)  # one planet's flank torque
+    f_z = Z_S * abs(w["sun"] - w["carrier"]) / 60.0
+    assert_allclose([st.mesh_frequency_Hz, p.planet_ring.mesh_frequency_Hz], [f_z, f_z], rtol=1e-12)
+    assert_allclose(f_z, Z_R * abs(w["ring"] - w["carrier"]) / 60.0, rtol=1e-12)
+
+
+def test_contact_ratios_and_iso_stiffness_of_both_meshes_by_hand():
+    """ISO 21771: external e_a = (sqrt(r_a1^2 - r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a sin a) / p_bt; internal
+    e_a = (sqrt(r_ap^2 - r_bp^2) - sqrt(r_ar^2 - r_br^2) + a sin a) / p_bt with the ring's tip r_ar = r_r - m.
+    ISO 6336-1: q' = C1 + C2/z_n1 + C3/z_n2 (x = 0), z_n2 = inf for the ring; c' = C_M C_B / q' (C_R 1, spur,
+    F_t/b = 174 N/mm > 100: no load correction); C_B = 1 + 0.5 (1.2 - 1.25) = 0.975; c_ga = c' (0.75 e_a + 0.25)."""
+    st = design_of(scene_a()).stages[0]
+    pr = st.planetary.planet_ring
+    ra_s, ra_p, ra_r = R_S + M_N, R_P + M_N, R_R - M_N
+    e_sp = (math.sqrt(ra_s**2 - RB_S**2) + math.sqrt(ra_p**2 - RB_P**2) - A_W * math.sin(ALPHA)) / P_BT
+    e_pr = (math.sqrt(ra_p**2 - RB_P**2) - math.sqrt(ra_r**2 - RB_R**2) + A_W * math.sin(ALPHA)) / P_BT
+    assert_allclose([st.contact_ratio_transverse, pr.contact_ratio_transverse], [e_sp, e_pr], rtol=1e-12)
+    assert_allclose([e_sp, e_pr], [1.6472, 1.9324], atol=5e-5)  # the figures worked on paper
+    c_b, c_m = 1.0 + 0.5 * (1.2 - 1.25), 0.8
+    c_sp = c_m * c_b / (0.04723 + 0.15551 / Z_S + 0.25791 / Z_P)
+    c_pr = c_m * c_b / (0.04723 + 0.15551 / Z_P)
+    assert_allclose([st.iso6336_single_pair_stiffness_N_mm_um, pr.iso6336_single_pair_stiffness_N_mm_um],
+                    [c_sp, c_pr], rtol=1e-12)
+    assert_allclose([st.iso6336_mesh_stiffness_N_mm_um, pr.iso6336_mesh_stiffness_N_mm_um],
+                    [c_sp * (0.75 * e_sp + 0.25), c_pr * (0.75 * e_pr + 0.25)], rtol=1e-12)
+    # the ring: d_a = d - 2 m, d_f = d + 2.5 m; the concave-convex Hertz radius r_p r_r / (r_r - r_p)
+    assert_allclose([st.planetary.ring.tip_diameter_mm, st.planetary.ring.root_diameter_mm],
+                    [2 * R_R - 2 * M_N, 2 * R_R + 2.5 * M_N], rtol=1e-14)
+    assert_allclose(pr.equivalent_radius_mm, R_P * R_R / (R_R - R_P), rtol=1e-14)
+
+
+# one planet: the disc of pitch diameter and face width (the model's default); the sun likewise
+RHO, B_M = 7850.0, B * 1e-3
+M_PLANET = RHO * math.pi / 4 * (2 * R_P * 1e-3) ** 2 * B_M
+J_PLANET = 0.5 * M_PLANET * (R_P * 1e-3) ** 2
+J_SUN = RHO * math.pi / 32 * B_M * (2 * R_S * 1e-3) ** 4
+
+
+@pytest.mark.parametrize("count", [1, 2, 3, 4])
+def test_carrier_inertia_and_planet_clearance_with_one_to_four_planets(count):
+    """The carrier carries the planets' translation N m_p a^2; neighbours' tips clear by 2 a sin(pi/N) - d_a,p
+    (d_a,p = (z_p + 2) m = 152 mm), and one planet has no neighbour."""
+    p = design_of(scene_a(count)).stages[0].planetary
+    assert_allclose(p.carrier.planets_translational_inertia_kg_m2, count * M_PLANET * (A_W * 1e-3) ** 2, rtol=1e-12)
+    assert_allclose(p.planet.inertia_kg_m2, J_PLANET, rtol=1e-12)
+    if count > 1:
+        assert_allclose(p.tip_clearance_between_planets_mm, 2 * A_W * math.sin(math.pi / count) - (Z_P + 2) * M_N,
+                        rtol=1e-12)
+
+
+# ------------------------------------------------------------------ scene A by hand: modes, simulate, life
+def _run_json(tmp_path, command: str, text: str, *args: str) -> dict:
+    import json
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    path = tmp_path / "scene.toml"
+    path.write_text(text, encoding="utf-8")
+    res = CliRunner().invoke(cli, [command, str(path), "--format", "json", *args], catch_exceptions=False)
+    assert res.exit_code == 0, res.stderr
+    return json.loads(res.stdout)
+
+
+def _hand_k_sp_k_pr() -> tuple[float, float]:
+    """k_n = c_ga b (N/m) of both meshes from the hand formulas of the test above."""
+    ra_s, ra_p, ra_r = R_S + M_N, R_P + M_N, R_R - M_N
+    e_sp = (math.sqrt(ra_s**2 - RB_S**2) + math.sqrt(ra_p**2 - RB_P**2) - A_W * math.sin(ALPHA)) / P_BT
+    e_pr = (math.sqrt(ra_p**2 - RB_P**2) - math.sqrt(ra_r**2 - RB_R**2) + A_W * math.sin(ALPHA)) / P_BT
+    c_sp = 0.8 * 0.975 / (0.04723 + 0.15551 / Z_S + 0.25791 / Z_P) * (0.75 * e_sp + 0.25)
+    c_pr = 0.8 * 0.975 / (0.04723 + 0.15551 / Z_P) * (0.75 * e_pr + 0.25)
+    return c_sp * B * 1e6, c_pr * B * 1e6
+
+
+def test_modes_against_a_hand_assembled_eigenproblem(tmp_path):
+    """Bodies (absolute angles): sun, N planets, carrier (its inertia N m_p a^2: no own inertia, no load inertia).
+    Along planet j's sun mesh d = r_bs (th_s - th_c) + r_bp (th_j - th_c); along its ring mesh (ring held)
+    d = -r_bp (th_j - th_c) - r_br th_c, both from the pitch-point kinematics in the carrier's frame. K = sum k v v^T,
+    J diagonal, w^2 from det(K - w^2 J) = 0; clamped_input holds the sun. The modes are load-independent here as
+    the iso6336 law is calibrated to the tangent k_n at the static load (DESIGN section 13)."""
+    import numpy as np
+    from scipy.linalg import eigh
+
+    data = _run_json(tmp_path, "modes", scene_a())
+    k_sp, k_pr = _hand_k_sp_k_pr()
+    rb_s, rb_p, rb_r = RB_S * 1e-3, RB_P * 1e-3, RB_R * 1e-3
+    n = 3
+    k = np.zeros((n + 2, n + 2))  # sun, planets, carrier
+    for j in range(n):
+        v = np.zeros(n + 2)
+        v[0], v[1 + j], v[-1] = rb_s, rb_p, -(rb_s + rb_p)
+        k += k_sp * np.outer(v, v)
+        v = np.zeros(n + 2)
+        v[1 + j], v[-1] = -rb_p, rb_p - rb_r
+        k += k_pr * np.outer(v, v)
+    j_c = n * M_PLANET * (A_W * 1e-3) ** 2
+    m = np.diag([J_SUN, *(n * [J_PLANET]), j_c])
+    free = np.sqrt(np.abs(eigh(k, m, eigvals_only=True))) / (2 * math.pi)
+    clamped = np.sqrt(eigh(k[1:, 1:], m[1:, 1:], eigvals_only=True)) / (2 * math.pi)
+    got = {b: sorted(x["frequency_Hz"] for x in modes) for b, modes in data["boundaries"].items()}
+    assert_allclose(got["clamped_input"], clamped, rtol=1e-9)
+    assert_allclose(got["free"][1:], free[1:], rtol=1e-9)
+    assert got["free"][0] == 0.0
+    # the planet mode, N - 1 fold, in closed form: sun and carrier still, w^2 = (k_sp + k_pr) r_bp^2 / J_p
+    planet_mode = math.sqrt((k_sp + k_pr) * rb_p**2 / J_PLANET) / (2 * math.pi)
+    assert_allclose(sorted(got["clamped_input"])[1:3], [planet_mode] * 2, rtol=1e-9)
+
+
+def test_simulate_rigid_limit_mean_forces_equal_the_static_design(tmp_path):
+    """No excitation, constant stiffness, no losses: over the settled window the mean of every planet's sun- and
+    ring-mesh F_t equals T_sun / (N r_s), the mean input torque T_out / i, the speed ratio 1 + u (conservation of
+    the mean; energy residual small)."""
+    text = scene_a() + "\n[simulation]\nduration_s = 0.2\nsteps = 2000\n"
+    text = text.replace(f"speed_rpm = {N_IN}", f"speed_rpm = {N_IN}\nramp_s = 0.04").replace(
+        f"torque_Nm = {T_OUT}", f"torque_Nm = {T_OUT}\nramp_s = 0.04")
+    s = _run_json(tmp_path, "simulate", text)["summary"]
+    f_t = T_OUT / (1 + U) * 1e3 / (3 * R_S)
+    st = s["stages"][0]
+    means = [p[m]["tangential_N"]["mean"] for p in st["planets"] for m in ("sun", "ring")]
+    assert_allclose(means, [f_t] * 6, rtol=1e-7)  # the settled window's integral mean; solver rtol 1e-6
+    assert_allclose(st["load_sharing_factor"], 1.0, atol=1e-9)
+    assert_allclose(s["input_torque_Nm"], T_OUT / (1 + U), rtol=1e-7)
+    assert_allclose(s["ratio"], 1 + U, rtol=1e-9)
+
+
+def test_life_static_load_cycles_of_every_member_by_hand(tmp_path):
+    """Cycles per duty point: sun h 60 |n_s - n_c| N, planet (either flank) h 60 |n_p,rel|, ring h 60 |n_r - n_c| N;
+    ring held, sun 1500 rpm: n_c = 300, n_p,rel = 24/36 x 1200 = 800 rpm."""
+    rated = scene_a().replace('material = "steel"', 'material = "steel", flank_roughness_Rz_um = 4, '
+                                                    'root_roughness_Rz_um = 16')
+    rated = rated.replace(f"normal_module_mm = {M_N}", f"normal_module_mm = {M_N}\naccuracy_grade = 6")
+    rated = rated.replace("poisson_ratio = 0.3", 'poisson_ratio = 0.3\ntreatment = "case_carburized"\n'
+                          "contact_fatigue_limit_MPa = 1500\nbending_fatigue_limit_MPa = 430")
+    rated += ("\n[lubricant]\nviscosity_40C_mm2_s = 220\n\n[rating]\nrequired_life_h = 20000\nface_load_factor = 1.15"
+              "\nload_sharing_factor = 1.1\n\n[[duty]]\nname = \"full\"\nhours = 1000\ntorque_Nm = 5000\n"
+              "speed_rpm = 1500\n")
+    stage = _run_json(tmp_path, "life", rated, "--static")["life"]["stages"][0]
+    h = 1000.0
+    cycles = {"pinion": h * 60 * 1200 * 3, "gear": h * 60 * 800, "ring": h * 60 * 300 * 3,
+              "planet_ring_side": h * 60 * 800}
+    for member, n_l in cycles.items():
+        for mode in ("pitting", "bending"):
+            assert_allclose([b["cycles"] for b in stage[member][mode]["bins"]], [n_l], rtol=1e-12)
+    # the rated force is the mean planet's (K_gamma acts in the stress): T_sun / (N r_s)
+    assert_allclose(stage["pinion"]["pitting"]["bins"][0]["force_N"], 1000e3 / (3 * R_S), rtol=1e-12)
