@@ -236,7 +236,9 @@ def test_carrier_inertia_and_planet_clearance_with_one_to_four_planets(count):
     p = design_of(scene_a(count)).stages[0].planetary
     assert_allclose(p.carrier.planets_translational_inertia_kg_m2, count * M_PLANET * (A_W * 1e-3) ** 2, rtol=1e-12)
     assert_allclose(p.planet.inertia_kg_m2, J_PLANET, rtol=1e-12)
-    if count > 1:
+    if count == 1:
+        assert p.tip_clearance_between_planets_mm is None  # no neighbour (was 0.0, read as tips touching)
+    else:
         assert_allclose(p.tip_clearance_between_planets_mm, 2 * A_W * math.sin(math.pi / count) - (Z_P + 2) * M_N,
                         rtol=1e-12)
 
