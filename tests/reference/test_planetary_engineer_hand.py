@@ -339,3 +339,109 @@ def test_life_static_load_cycles_of_every_member_by_hand(tmp_path):
             assert_allclose([b["cycles"] for b in stage[member][mode]["bins"]], [n_l], rtol=1e-12)
     # the rated force is the mean planet's (K_gamma acts in the stress): T_sun / (N r_s)
     assert_allclose(stage["pinion"]["pitting"]["bins"][0]["force_N"], 1000e3 / (3 * R_S), rtol=1e-12)
+
+
+# ------------------------------------------- scene B: a helical, profile-shifted planetary, then a helical stage
+SCENE_B = """
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 206000
+poisson_ratio = 0.3
+
+[[stage]]
+type = "planetary"
+normal_module_mm = 3
+helix_angle_deg = 15
+sun    = { teeth = 21, face_width_mm = 45, hand = "left", profile_shift = 0.3 }
+planet = { teeth = 30, face_width_mm = 42, hand = "right", profile_shift = 0.2, count = 3 }
+ring   = { teeth = 81, face_width_mm = 42, profile_shift = -0.7 }
+fixed = "ring"
+input = "sun"
+
+[[stage]]
+normal_module_mm = 4
+helix_angle_deg = 12
+pinion = { teeth = 19, face_width_mm = 60, hand = "left" }
+gear   = { teeth = 77, face_width_mm = 55, hand = "right" }
+
+[input]
+speed_rpm = 1500
+
+[load]
+torque_Nm = 8000
+"""
+
+
+def _inv(a: float) -> float:
+    return math.tan(a) - a
+
+
+def _inv_inverse(v: float) -> float:
+    from scipy.optimize import brentq
+
+    return brentq(lambda a: _inv(a) - v, 1e-6, 1.5)
+
+
+def test_helical_profile_shifted_planetary_geometry_by_hand():
+    """ISO 21771 with z_r - z_p = z_s + z_p (51): the ring's shift x_r = -(x_s + 2 x_p) = -0.7 gives the internal
+    mesh the sun mesh's working pressure angle, hence the same working centre distance (concentric).
+    Sun mesh: inv a_wt = inv a_t + 2 tan a_n (x_s + x_p)/(z_s + z_p), a_w = (z_s + z_p) m_t cos a_t / (2 cos a_wt),
+    tip alteration k = (a_w - a_d)/m_n - (x_s + x_p), d_a = d + 2 m_n (1 + x + k). Ring: d_a = d - 2 m_n (1 + x_r),
+    inv a_wt = inv a_t + 2 tan a_n (x_p + x_r)/(z_p - z_r). Contact ratios as in scene A; overlap b sin(beta)/(pi m_n).
+    ISO 6336-1 with z_n = z / (cos^2 b_b cos b), the shifts' terms C4..C9, cos(beta), and the load correction
+    (F_t/b / 100)^0.25 since F_t/b = 98.9 N/mm < 100."""
+    d = design_of(SCENE_B)
+    st, nxt = d.stages
+    p, pr = st.planetary, st.planetary.planet_ring
+    m_n, a_n, beta = 3.0, math.radians(20.0), math.radians(15.0)
+    m_t, a_t = m_n / math.cos(beta), math.atan(math.tan(a_n) / math.cos(beta))
+    zs, zp, zr, xs, xp, xr = 21, 30, 81, 0.3, 0.2, -0.7
+    a_wt = _inv_inverse(_inv(a_t) + 2 * math.tan(a_n) * (xs + xp) / (zs + zp))
+    a_w = (zs + zp) * m_t * math.cos(a_t) / (2 * math.cos(a_wt))
+    k = (a_w - 0.5 * (zs + zp) * m_t) / m_n - (xs + xp)
+    d_s, d_p, d_r = zs * m_t, zp * m_t, zr * m_t
+    da_s, da_p, da_r = d_s + 2 * m_n * (1 + xs + k), d_p + 2 * m_n * (1 + xp + k), d_r - 2 * m_n * (1 + xr)
+    db_s, db_p, db_r = (x * math.cos(a_t) for x in (d_s, d_p, d_r))
+    a_wt_r = _inv_inverse(_inv(a_t) + 2 * math.tan(a_n) * (xp + xr) / (zp - zr))
+    a_w_r = (zr - zp) * m_t * math.cos(a_t) / (2 * math.cos(a_wt_r))
+    p_bt = math.pi * m_t * math.cos(a_t)
+    e_sp = (math.sqrt(da_s**2 - db_s**2) / 2 + math.sqrt(da_p**2 - db_p**2) / 2 - a_w * math.sin(a_wt)) / p_bt
+    e_pr = (math.sqrt(da_p**2 - db_p**2) / 2 - math.sqrt(da_r**2 - db_r**2) / 2 + a_w_r * math.sin(a_wt_r)) / p_bt
+    assert_allclose([st.working_pressure_angle_deg, pr.working_pressure_angle_deg], [math.degrees(a_wt)] * 2,
+                    rtol=1e-12)
+    assert_allclose([st.center_distance_mm, pr.center_distance_mm, a_w_r], [a_w] * 3, rtol=1e-12)
+    assert_allclose([p.sun.tip_diameter_mm, p.planet.tip_diameter_mm, p.ring.tip_diameter_mm], [da_s, da_p, da_r],
+                    rtol=1e-12)
+    assert_allclose(p.ring.root_diameter_mm, d_r + 2 * m_n * (1.25 - xr), rtol=1e-12)
+    assert_allclose([st.contact_ratio_transverse, pr.contact_ratio_transverse], [e_sp, e_pr], rtol=1e-11)
+    assert_allclose([st.overlap_ratio, pr.overlap_ratio], [42 * math.sin(beta) / (math.pi * m_n)] * 2, rtol=1e-12)
+    # forces: T_sun = T_out / (i_1 i_2), F_t = T_sun / (N r_s) at the reference pitch circle, F_a = F_t tan(beta)
+    i_1, i_2 = 1 + zr / zs, 77 / 19
+    t_sun = 8000e3 / (i_1 * i_2)
+    f_t = t_sun / (3 * d_s / 2)
+    for f in (st.static_force_N, pr.static_force_N):
+        assert_allclose([f.tangential, f.axial, f.radial], [f_t, f_t * math.tan(beta), f_t * math.tan(a_t)],
+                        rtol=1e-12)
+    # ISO 6336-1, index 1 the smaller wheel (the sun; the planet against the ring)
+    b_b = math.atan(math.tan(beta) * math.cos(a_t))
+    c = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
+
+    def q(z1, z2, x1, x2):
+        zn1 = z1 / (math.cos(b_b) ** 2 * math.cos(beta))
+        inv2 = 0.0 if z2 is None else math.cos(b_b) ** 2 * math.cos(beta) / z2
+        return (c[0] + c[1] / zn1 + c[2] * inv2 + c[3] * x1 + c[4] * x1 / zn1 + c[5] * x2 + c[6] * x2 * inv2
+                + c[7] * x1**2 + c[8] * x2**2)
+
+    correction = (f_t / 42 / 100) ** 0.25
+    assert f_t / 42 < 100
+    c_sp = 0.8 * 0.975 * math.cos(beta) * correction / q(zs, zp, xs, xp)
+    c_pr = 0.8 * 0.975 * math.cos(beta) * correction / q(zp, None, xp, xr)
+    assert_allclose([st.iso6336_single_pair_stiffness_N_mm_um, pr.iso6336_single_pair_stiffness_N_mm_um],
+                    [c_sp, c_pr], rtol=1e-12)
+    assert_allclose([st.iso6336_mesh_stiffness_N_mm_um, pr.iso6336_mesh_stiffness_N_mm_um],
+                    [c_sp * (0.75 * e_sp + 0.25), c_pr * (0.75 * e_pr + 0.25)], rtol=1e-12)
+    # the helical stage after it runs on the carrier: n = 1500 / i_1, T = T_sun i_1
+    assert_allclose([nxt.pinion.speed_rpm, nxt.pinion.torque_Nm], [1500 / i_1, t_sun * i_1 / 1e3], rtol=1e-12)
+    assert_allclose(nxt.static_force_N.tangential, t_sun * i_1 / (19 * 4.0 / math.cos(math.radians(12)) / 2),
+                    rtol=1e-12)
+    assert p.ring.hand == "right"  # an omitted ring hand takes the planet's
