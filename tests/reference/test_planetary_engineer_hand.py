@@ -445,3 +445,40 @@ def test_helical_profile_shifted_planetary_geometry_by_hand():
     assert_allclose(nxt.static_force_N.tangential, t_sun * i_1 / (19 * 4.0 / math.cos(math.radians(12)) / 2),
                     rtol=1e-12)
     assert p.ring.hand == "right"  # an omitted ring hand takes the planet's
+
+
+# ------------------------------------------------- the planet–ring rating at the simulated K_v keeps ISO's books
+def _rated_a(dynamic_factor: str) -> str:
+    text = scene_a().replace('material = "steel"', 'material = "steel", flank_roughness_Rz_um = 4, '
+                                                   'root_roughness_Rz_um = 16')
+    text = text.replace(f"normal_module_mm = {M_N}", f"normal_module_mm = {M_N}\naccuracy_grade = 6")
+    text = text.replace("poisson_ratio = 0.3", 'poisson_ratio = 0.3\ntreatment = "case_carburized"\n'
+                        "contact_fatigue_limit_MPa = 1500\nbending_fatigue_limit_MPa = 430")
+    return text + ("\n[lubricant]\nviscosity_40C_mm2_s = 220\n\n[rating]\nrequired_life_h = 20000\n"
+                   f"face_load_factor = 1.15\nload_sharing_factor = 1.1\ndynamic_factor = {dynamic_factor}\n"
+                   "\n[simulation]\nduration_s = 0.2\nsteps = 2000\n")
+
+
+def test_planet_ring_rating_at_the_simulated_k_v_lists_k_gamma_and_the_nominal_stress(tmp_path):
+    """ISO 6336-2 for the internal planet–ring mesh (spur, x = 0): sigma_H0 = Z_H Z_E Z_eps sqrt(F_t/(d_p b) (u - 1)/u),
+    u = z_r/z_p, F_t the MEAN planet's force (nominal); Z_H = sqrt(2 cos(b_b) cos(a_wt) / (cos^2(a_t) sin(a_wt)))
+    = sqrt(2 / (cos a sin a)) at beta = 0, a_wt = a_t; Z_E = sqrt(E / (2 pi (1 - nu^2)));
+    Z_eps = sqrt((4 - e_a)/3). sigma_H = sigma_H0 sqrt(K_A K_gamma K_v K_Hb K_Ha): K_gamma applied once and listed.
+    With dynamic_factor = "simulated", simulate's planet_ring_rating listed K_gamma = 1 and a sigma_H0 inflated by
+    sqrt(K_gamma) (the sun mesh's and the design's ring rating did it right)."""
+    ra_p, ra_r = R_P + M_N, R_R - M_N
+    e_pr = (math.sqrt(ra_p**2 - RB_P**2) - math.sqrt(ra_r**2 - RB_R**2) + A_W * math.sin(ALPHA)) / P_BT
+    z_h = math.sqrt(2.0 / (math.cos(ALPHA) * math.sin(ALPHA)))
+    z_e = math.sqrt(206000.0 / (2 * math.pi * (1 - 0.3**2)))
+    z_eps = math.sqrt((4 - e_pr) / 3)
+    f_t = T_OUT / (1 + U) * 1e3 / (3 * R_S)
+    u = Z_R / Z_P
+    sigma_h0 = z_h * z_e * z_eps * math.sqrt(f_t / (2 * R_P * B) * (u - 1) / u)
+    design = _run_json(tmp_path, "design", _rated_a('"iso"'))["stages"][0]["meshes"][1]["rating"]
+    sim = _run_json(tmp_path, "simulate", _rated_a('"simulated"'))["summary"]["stages"][0]["planet_ring_rating"]
+    for r in (design, sim):
+        assert r["K_gamma"] == 1.1
+        assert_allclose(r["sigma_H0_MPa"], sigma_h0, rtol=1e-12)
+        assert_allclose(r["sigma_H_MPa"], sigma_h0 * math.sqrt(r["K_A"] * 1.1 * r["K_v"] * r["K_Hbeta"]
+                                                               * r["K_Halpha"]), rtol=1e-12)
+    assert sim["K_v_source"] == "simulated" and design["K_v_source"] == "iso"
