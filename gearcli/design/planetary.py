@@ -312,8 +312,8 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
 
 # ---------------------------------------------------------------------------------- warnings
 def planetary_warnings(stage_result: StageResult) -> list[str]:
-    """The ring mesh's contact ratio (spacing, concentricity and adjacency are errors:
-    :func:`gearcli.design.planetary_balance.check_assembly`)."""
+    """The ring mesh's contact ratio and its involute interference (spacing, concentricity and adjacency are
+    errors: :func:`gearcli.design.planetary_balance.check_assembly`)."""
     p = stage_result.planetary
     if p is None:
         return []
@@ -321,7 +321,32 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
     if p.planet_ring.contact_ratio_transverse < 1.2:
         out.append(f"stage {i}: planet–ring transverse contact ratio {p.planet_ring.contact_ratio_transverse:.3f} "
                    "< 1.2")
-    return out
+    interference = ring_interference_warning(stage_result)
+    return out + ([interference] if interference else [])
+
+
+def ring_tip_minimum_mm(ring_base_mm: float, center_distance_mm: float, working_pressure_deg: float) -> float:
+    """The smallest tip diameter of an internal gear free of involute interference: its tip meets the line of
+    action no nearer its own tangent point T2 than the pinion's tangent point T1 (T2T1 = a_w sin α_wt), so
+    d_a2,min = √(d_b2² + (2 a_w sin α_wt)²) (DIN 3960 / ISO 21771's internal pair)."""
+    return math.hypot(ring_base_mm, 2.0 * center_distance_mm * math.sin(math.radians(working_pressure_deg)))
+
+
+def ring_interference_warning(stage_result: StageResult) -> str | None:
+    """The ring's tip reaching inside the planet's base-circle tangent point: its tip would cut the planet's flank
+    below the involute (involute interference of the internal pair), and ε_α of the planet–ring mesh counts a path
+    of approach that does not exist."""
+    p = stage_result.planetary
+    assert p is not None  # a planetary stage's result
+    mesh = p.planet_ring
+    d_min = ring_tip_minimum_mm(p.ring.base_diameter_mm, mesh.center_distance_mm, mesh.working_pressure_angle_deg)
+    if p.ring.tip_diameter_mm >= d_min:
+        return None
+    return (f"stage {stage_result.index}: planet–ring involute interference: the ring's tip diameter d_a = "
+            f"{p.ring.tip_diameter_mm:.4g} mm is below d_a,min = √(d_b² + (2 a_w sin α_wt)²) = {d_min:.4g} mm, so its "
+            "tip meets the planet's flank inside the planet's base circle (the planet–ring ε_α "
+            f"{mesh.contact_ratio_transverse:.3f} is not valid); give the ring a more negative profile shift (with "
+            "the planet's and sun's to stay concentric) or fewer planet teeth")
 
 
 def check_stage_inputs(cfg: DesignFile, k: int) -> None:

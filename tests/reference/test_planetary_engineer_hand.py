@@ -482,3 +482,37 @@ def test_planet_ring_rating_at_the_simulated_k_v_lists_k_gamma_and_the_nominal_s
         assert_allclose(r["sigma_H_MPa"], sigma_h0 * math.sqrt(r["K_A"] * 1.1 * r["K_v"] * r["K_Hbeta"]
                                                                * r["K_Halpha"]), rtol=1e-12)
     assert sim["K_v_source"] == "simulated" and design["K_v_source"] == "iso"
+
+
+# ------------------------------------------------------------------- the internal pair's involute interference
+@pytest.mark.parametrize(("shifts", "interferes"), [((0.0, 0.0, 0.0), False), ((0.9, -0.9, 0.9), True),
+                                                    ((0.5, -0.5, 0.5), False)])
+def test_ring_tip_inside_the_planet_tangent_point_warns_involute_interference(shifts, interferes):
+    """Along the line of action the ring's tip point lies sqrt(r_ar^2 - r_br^2) from the ring's tangent point T2,
+    the planet's tangent point T1 lies a_w sin(a_wt) from T2; a ring tip nearer T2 than T1 meets the planet below
+    its base circle: involute interference, d_a,r < sqrt(d_b,r^2 + (2 a_w sin a_wt)^2). Shifts (x_s, x_p, x_r) with
+    x_s + x_p = 0 = x_p + x_r keep a_w = 120 mm and a_wt = 20 deg on both meshes; the ring tip
+    d_a = d - 2 m (1 + x_r) = 384 - 8 (1 + x_r): 376 (x_r 0), 368.8 (x_r 0.9, interferes), 372 (x_r 0.5)
+    against d_a,min = sqrt(360.842^2 + (240 sin 20 deg)^2) = 370.06 mm."""
+    x_s, x_p, x_r = shifts
+    text = scene_a(sun=f", profile_shift = {x_s}", planet=f", profile_shift = {x_p}").replace(
+        f"teeth = {Z_R},", f"teeth = {Z_R}, profile_shift = {x_r},")
+    d = design_of(text)
+    d_min = math.hypot(2 * RB_R, 2 * A_W * math.sin(ALPHA))
+    assert_allclose(d_min, 370.061, atol=5e-4)
+    assert_allclose(d.stages[0].planetary.ring.tip_diameter_mm, 2 * R_R - 2 * M_N * (1 + x_r), rtol=1e-14)
+    hits = [w for w in d.warnings if "involute interference" in w]
+    assert bool(hits) == interferes
+    if interferes:
+        assert "368.8 mm" in hits[0] and "370.1 mm" in hits[0]
+
+
+def test_a_small_planet_in_a_large_ring_interferes():
+    """Sun 60, six planets of 12, ring 84 (x = 0, m 4): d_a,r = 328 mm < sqrt((336 cos 20)^2 + (2 x 144 sin 20)^2)
+    = 330.75 mm: the classic small-pinion internal-gear interference."""
+    text = scene_a(6).replace(f"teeth = {Z_S},", "teeth = 60,").replace(f"teeth = {Z_P},", "teeth = 12,").replace(
+        f"teeth = {Z_R},", "teeth = 84,")
+    d = design_of(text)
+    d_min = math.hypot(336 * math.cos(ALPHA), 2 * 144 * math.sin(ALPHA))
+    assert_allclose(d_min, 330.745, atol=5e-4)
+    assert any("involute interference" in w and "330.7 mm" in w for w in d.warnings)
