@@ -123,6 +123,8 @@ def _cli(tmp_path, text: str, *args: str):
     ("count = 3,", "count = 7,", "stage[0].planet.count", "(24 + 96)/7"),
     # two planets declared 30° apart: 2 a sin 15° = 62.1166 mm < 152 mm; the declared angles place them
     ("count = 3,", "count = 2, angles_deg = [0, 30],", "stage[0].planet.angles_deg", "62.1166 mm"),
+    # an internal ring has no bore (the key was accepted and ignored)
+    (f"teeth = {Z_R},", f"teeth = {Z_R}, bore_diameter_mm = 500,", "stage[0].ring.bore_diameter_mm", "has no bore"),
 ])
 def test_a_planetary_that_cannot_be_built_is_exit_2_naming_file_and_key(tmp_path, old, new, key, says):
     path, res = _cli(tmp_path, scene_a().replace(old, new, 1))
