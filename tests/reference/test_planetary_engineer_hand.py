@@ -94,6 +94,15 @@ def test_unequally_spaced_planets_load_the_sun_bearings_with_their_resultant(ang
                              scale * (y0 * math.sin(turn) + z0 * math.cos(turn))], rtol=1e-9, atol=1e-6)
 
 
+def test_one_planet_loads_the_sun_bearings_with_its_whole_mesh_force():
+    """A single planet: nothing balances its mesh force on the sun, F_t / cos(alpha) with F_t = T_sun / r_s, half on
+    each of two bearings symmetric about the sun's plane."""
+    d = design_of(scene_a(1, planet=", axial_position_mm = 100", sun=", axial_position_mm = 100",
+                          bearings=SUN_BEARINGS))
+    f_t = T_OUT / (1.0 + Z_R / Z_S) * 1e3 / (0.5 * Z_S * M_N)
+    assert_allclose([b.radial_N for b in d.bearings], [f_t / math.cos(math.radians(20.0)) / 2.0] * 2, rtol=1e-12)
+
+
 def test_equally_spaced_planets_declared_or_implied_leave_the_sun_unloaded():
     """Three planets at 0/120/240 (declared, or implied by equal spacing) and two at 0/180: no net radial force."""
     for count, extra in ((3, ", angles_deg = [0, 120, 240]"), (3, ""), (2, ", angles_deg = [0, 180]")):
