@@ -527,3 +527,17 @@ def test_a_small_planet_in_a_large_ring_interferes():
     d_min = math.hypot(336 * math.cos(ALPHA), 2 * 144 * math.sin(ALPHA))
     assert_allclose(d_min, 330.745, atol=5e-4)
     assert any("involute interference" in w and "330.7 mm" in w for w in d.warnings)
+
+
+def test_an_unloaded_planetary_has_no_load_sharing_factor(tmp_path):
+    """At zero load every planet's window-mean sun-mesh force is round-off (~1e-10 N against a run-up peak of the
+    inertia torques): their ratio (it read 1.0006) is no load sharing; null. A light load (50 N·m on the carrier:
+    F_t = 50/5 / (3 x 0.048) = 69.44 N per planet) is shared equally: 1."""
+    base = scene_a() + "\n[simulation]\nduration_s = 0.2\nsteps = 2000\n"
+    base = base.replace(f"speed_rpm = {N_IN}", f"speed_rpm = {N_IN}\nramp_s = 0.04")
+    zero = _run_json(tmp_path, "simulate", base.replace(f"torque_Nm = {T_OUT}", "torque_Nm = 0"))
+    assert zero["summary"]["stages"][0]["load_sharing_factor"] is None
+    light = _run_json(tmp_path, "simulate", base.replace(f"torque_Nm = {T_OUT}", "torque_Nm = 50"))["summary"]
+    assert_allclose([p["sun"]["tangential_N"]["mean"] for p in light["stages"][0]["planets"]],
+                    [50 / (1 + U) * 1e3 / (3 * R_S)] * 3, rtol=1e-6)
+    assert_allclose(light["stages"][0]["load_sharing_factor"], 1.0, atol=1e-9)
