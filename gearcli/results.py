@@ -296,6 +296,7 @@ class InternalMeshResult:
     resonance_speed_rpm: float = 0.0
     resonance_ratio: float = 0.0
     resonance_lower_limit: float = 0.0
+    resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
     mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
 
 

@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, TypeVar, cast
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_material
+from gearcli.design.checks import check_material, resonance_text
 from gearcli.design.geometry import (
     base_diameter_mm,
     base_helix_angle_rad,
@@ -307,7 +307,9 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(c_mesh), iso6336_factors=factors,
         mesh_frequency_Hz=stage.planet.teeth * w_rel / (2.0 * math.pi), reduced_mass_kg_mm=m_red,
         resonance_speed_rpm=n_e1, resonance_ratio=abs(planet.speed_rpm) / n_e1,
-        resonance_lower_limit=res.lower_main_resonance_limit(line_load), mesh_stiffness=at_load)
+        resonance_lower_limit=res.lower_main_resonance_limit(line_load),
+        resonance_range=res.resonance_range(abs(planet.speed_rpm) / n_e1, res.lower_main_resonance_limit(line_load)),
+        mesh_stiffness=at_load)
 
 
 # ---------------------------------------------------------------------------------- warnings
@@ -323,6 +325,17 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
                    "< 1.2")
     interference = ring_interference_warning(stage_result)
     return out + ([interference] if interference else [])
+
+
+def ring_resonance_warning(stage_result: StageResult) -> str | None:
+    """ISO 6336-1's speed ranges for the planet–ring mesh (its own N = n_p/n_E1, the planet's speed relative to the
+    carrier, the ring taken infinitely heavy), as for any mesh (:func:`gearcli.design.checks.resonance_warning`)."""
+    p = stage_result.planetary
+    assert p is not None  # a planetary stage's result
+    m = p.planet_ring
+    head = (f"stage {stage_result.index}: planet–ring mesh resonance ratio N = n_p/n_E1 = {m.resonance_ratio:.3f} "
+            f"(n_E1 = {m.resonance_speed_rpm:.4g} rpm of the planet relative to the carrier, ISO 6336-1)")
+    return resonance_text(head, m.resonance_ratio, m.resonance_lower_limit, m.resonance_range)
 
 
 def ring_tip_minimum_mm(ring_base_mm: float, center_distance_mm: float, working_pressure_deg: float) -> float:

@@ -541,3 +541,25 @@ def test_an_unloaded_planetary_has_no_load_sharing_factor(tmp_path):
     assert_allclose([p["sun"]["tangential_N"]["mean"] for p in light["stages"][0]["planets"]],
                     [50 / (1 + U) * 1e3 / (3 * R_S)] * 3, rtol=1e-6)
     assert_allclose(light["stages"][0]["load_sharing_factor"], 1.0, atol=1e-9)
+
+
+def test_planet_ring_mesh_in_its_main_resonance_warns_as_any_mesh():
+    """ISO 6336-1 for the planet–ring mesh: m_red = the planet's m* = J_p / (b r_bp^2) (the ring infinitely heavy;
+    J_p of ISO's body, a disc of d_m = (d_a + d_f)/2 = (152 + 134)/2 mm), n_E1 = 30000/(pi z_p) sqrt(c_ga / m_red)
+    in the planet's rpm relative to the carrier, N = n_p / n_E1, main resonance N_S = 0.85 < N <= 1.15. The sun
+    mesh has its own N (here 0.41: no warning); the ring mesh's N went unchecked (and had no resonance_range)."""
+    _, k_pr = _hand_k_sp_k_pr()
+    c_ga = k_pr / B / 1e6  # N/(mm um)
+    j_body = RHO * math.pi * B_M * (0.5 * (152 + 134) * 1e-3) ** 4 / 32 * 1e6  # kg mm^2
+    m_red = j_body / (B * RB_P**2)  # kg/mm
+    n_e1 = 30000 / (math.pi * Z_P) * math.sqrt(c_ga / m_red)
+    n_sun = n_e1 / (Z_S / Z_P * (1 - 1 / (1 + U)))  # the planet at n_E1 relative to the carrier: N = 1
+    d = design_of(scene_a().replace(f"speed_rpm = {N_IN}", f"speed_rpm = {n_sun!r}"))
+    pr = d.stages[0].planetary.planet_ring
+    assert_allclose([pr.resonance_speed_rpm, pr.resonance_ratio], [n_e1, 1.0], rtol=1e-9)
+    assert pr.resonance_range == "main resonance"
+    hits = [x for x in d.diagnostics if x.data.get("check") == "iso6336_resonance"]
+    assert [x.data["mesh"] for x in hits] == ["planet_ring"] and "main resonance range" in hits[0].message
+    calm = design_of(scene_a())  # 1500 rpm: N = 800 / n_E1 = 0.158
+    assert calm.stages[0].planetary.planet_ring.resonance_range == "subcritical"
+    assert not [x for x in calm.diagnostics if x.data.get("check") == "iso6336_resonance"]
