@@ -493,6 +493,17 @@ def test_planet_ring_rating_at_the_simulated_k_v_lists_k_gamma_and_the_nominal_s
         assert_allclose(r["sigma_H_MPa"], sigma_h0 * math.sqrt(r["K_A"] * 1.1 * r["K_v"] * r["K_Hbeta"]
                                                                * r["K_Halpha"]), rtol=1e-12)
     assert sim["K_v_source"] == "simulated" and design["K_v_source"] == "iso"
+    # the sun–planet mesh (external): sigma_H0 = Z_H Z_E Z_eps sqrt(F_t/(d_s b) (u + 1)/u), u = z_p/z_s, and
+    # F_t K_gamma in sigma_H: the most loaded planet's T_sun K_gamma / (N r_s)
+    ra_s, ra_p = R_S + M_N, R_P + M_N
+    e_sp = (math.sqrt(ra_s**2 - RB_S**2) + math.sqrt(ra_p**2 - RB_P**2) - A_W * math.sin(ALPHA)) / P_BT
+    u_sp = Z_P / Z_S
+    sigma_h0_sp = z_h * z_e * math.sqrt((4 - e_sp) / 3) * math.sqrt(f_t / (2 * R_S * B) * (u_sp + 1) / u_sp)
+    sun = _run_json(tmp_path, "design", _rated_a('"iso"'))["stages"][0]["meshes"][0]["rating"]
+    assert sun["K_gamma"] == 1.1
+    assert_allclose(sun["sigma_H0_MPa"], sigma_h0_sp, rtol=1e-12)
+    assert_allclose(sun["sigma_H_MPa"], sigma_h0_sp * math.sqrt(sun["K_A"] * 1.1 * sun["K_v"] * sun["K_Hbeta"]
+                                                                * sun["K_Halpha"]), rtol=1e-12)
 
 
 # ------------------------------------------------------------------- the internal pair's involute interference
