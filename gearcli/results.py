@@ -317,7 +317,7 @@ class PlanetaryResult:
     planet_mass_kg: float
     planet_ring: InternalMeshResult
     load_sharing_factor: float  # K_gamma
-    equal_spacing: bool  # (z_s + z_r) / N integer
+    equal_spacing: bool  # the planets sit 360°/N apart (implied: (z_s + z_r)/N whole; or as declared)
     tip_clearance_between_planets_mm: float | None  # 2 a sin(Δψ/2) − d_a,planet (adjacency); None: one planet
     concentricity_mm: float  # a_w(planet–ring) − a_w(sun–planet)
     mesh_efficiency: float = 1.0  # η_m of every planet mesh (carrier frame), from the stage's efficiency

@@ -245,12 +245,15 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
     k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
     angles = bal.planet_angles_deg(n, stage.planet.angles_deg)
     order = sorted(a % 360.0 for a in angles)
-    gap = min(((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True))
+    gaps = [((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True)]
+    gap = min(gaps)
+    # the planets as they sit (declared angles may space them unequally even where (z_s + z_r)/N is whole)
+    equal = all(abs(g - 360.0 / n) <= bal.ANGLE_TOLERANCE_DEG for g in gaps)
     adjacency = 2.0 * r_c * math.sin(math.radians(gap) / 2.0) - planet.tip_diameter_mm if n > 1 else math.inf
     result = PlanetaryResult(
         fixed=stage.fixed, input=stage.input, output=stage.output, planet_count=n, ratio=kin.ratios[k],
         willis_ratio=-z_r / z_s, sun=sun, planet=planet, ring=ring, carrier=carrier, planet_mass_kg=m_p,
-        planet_ring=ring_mesh, load_sharing_factor=k_gamma, equal_spacing=(z_s + z_r) % n == 0,
+        planet_ring=ring_mesh, load_sharing_factor=k_gamma, equal_spacing=equal,
         tip_clearance_between_planets_mm=adjacency if math.isfinite(adjacency) else None,  # one planet: no neighbour
         concentricity_mm=geo.center_distance_mm - r_c, mesh_efficiency=eta_m,
         basic_efficiency=eta_m ** 2, moment_balance_Nm={m: v / 1000.0 for m, v in moments.items()},

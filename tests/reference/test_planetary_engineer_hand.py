@@ -109,6 +109,14 @@ def test_equally_spaced_planets_declared_or_implied_leave_the_sun_unloaded():
         d = design_of(scene_a(count, planet=extra + ", axial_position_mm = 100", sun=", axial_position_mm = 100",
                               bearings=SUN_BEARINGS))
         assert [b.radial_N for b in d.bearings] == [0.0, 0.0]
+        assert d.stages[0].planetary.equal_spacing
+
+
+def test_declared_unequal_spacing_is_not_reported_as_equal_spacing():
+    """Two planets at 0 and 120 deg: (z_s + z_r)/2 = 60 is whole (they could be equally spaced) but they are not;
+    equal_spacing said true."""
+    d = design_of(scene_a(2, planet=", angles_deg = [0, 120]"))
+    assert not d.stages[0].planetary.equal_spacing
 
 
 # ------------------------------------------------------------------------------------------ hostile inputs
