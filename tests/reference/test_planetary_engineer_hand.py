@@ -582,3 +582,22 @@ def test_planet_ring_mesh_in_its_main_resonance_warns_as_any_mesh():
     calm = design_of(scene_a())  # 1500 rpm: N = 800 / n_E1 = 0.158
     assert calm.stages[0].planetary.planet_ring.resonance_range == "subcritical"
     assert not [x for x in calm.diagnostics if x.data.get("check") == "iso6336_resonance"]
+
+
+def test_two_planets_with_a_position_error_share_as_the_series_spring_model_says(tmp_path):
+    """Linear meshes (exponent 1, k_n = c_ga b). A planet is a free lever: its sun- and ring-mesh forces are equal,
+    and delta_sp + delta_pr = r_bs th_s - (r_bs + r_br) th_c + e_j is the same for every planet but its error e_j,
+    so F_j = k_eq (X + e_j) with k_eq = k_sp k_pr / (k_sp + k_pr): F_j = F_mean + k_eq (e_j - mean e) along the line
+    of action, times cos(alpha) as F_t. Two planets, e = (10, 0) um: +-k_eq 5 um cos 20 deg about T_sun/(2 r_s)."""
+    k_sp, k_pr = _hand_k_sp_k_pr()  # N/m
+    k_eq = k_sp * k_pr / (k_sp + k_pr)
+    text = scene_a(2, planet=", position_error_um = [10, 0]") + "\n[contact]\nexponent = 1\n"
+    text += "\n[simulation]\nduration_s = 0.2\nsteps = 2000\n"
+    text = text.replace(f"speed_rpm = {N_IN}", f"speed_rpm = {N_IN}\nramp_s = 0.04").replace(
+        f"torque_Nm = {T_OUT}", f"torque_Nm = {T_OUT}\nramp_s = 0.04")
+    st = _run_json(tmp_path, "simulate", text)["summary"]["stages"][0]
+    mean = T_OUT / (1 + U) * 1e3 / (2 * R_S)
+    shift = k_eq * 5e-6 * math.cos(ALPHA)
+    for m in ("sun", "ring"):
+        assert_allclose([p[m]["tangential_N"]["mean"] for p in st["planets"]], [mean + shift, mean - shift], rtol=1e-6)
+    assert_allclose(st["load_sharing_factor"], (mean + shift) / mean, rtol=1e-6)
