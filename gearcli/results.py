@@ -296,6 +296,7 @@ class InternalMeshResult:
     resonance_speed_rpm: float = 0.0
     resonance_ratio: float = 0.0
     resonance_lower_limit: float = 0.0
+    resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
     mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
 
 
@@ -316,8 +317,8 @@ class PlanetaryResult:
     planet_mass_kg: float
     planet_ring: InternalMeshResult
     load_sharing_factor: float  # K_gamma
-    equal_spacing: bool  # (z_s + z_r) / N integer
-    tip_clearance_between_planets_mm: float  # 2 a sin(π/N) − d_a,planet (adjacency)
+    equal_spacing: bool  # the planets sit 360°/N apart (implied: (z_s + z_r)/N whole; or as declared)
+    tip_clearance_between_planets_mm: float | None  # 2 a sin(Δψ/2) − d_a,planet (adjacency); None: one planet
     concentricity_mm: float  # a_w(planet–ring) − a_w(sun–planet)
     mesh_efficiency: float = 1.0  # η_m of every planet mesh (carrier frame), from the stage's efficiency
     basic_efficiency: float = 1.0  # η_0 = η_m², the stage's efficiency with the carrier held

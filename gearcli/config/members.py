@@ -113,6 +113,8 @@ class Ring(Gear):
     # reason
     tooth_thickness_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
     tip_diameter_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
+    # an internal gear has no bore: named here (not in the schema) to refuse it with the reason (it was ignored)
+    bore_diameter_mm: SkipJsonSchema[float | None] = None
 
     @field_validator("tooth_thickness_allowance_mm", "tip_diameter_allowance_mm")
     @classmethod
@@ -122,6 +124,14 @@ class Ring(Gear):
                              "profile shift, root and the planet–ring backlash are not modelled; give the "
                              "allowances on the sun and the planets (docs/planetary.md, \"Tooth-thickness "
                              "allowances\")")
+        return None
+
+    @field_validator("bore_diameter_mm")
+    @classmethod
+    def _no_bore(cls, value: float | None) -> None:
+        if value is not None:
+            raise ValueError("the ring (an internal gear) has no bore: its teeth are inside, its body the rim "
+                             "outside the root; give rim_thickness_mm (and web_thickness_mm) or inertia_kg_m2")
         return None
 
 

@@ -84,10 +84,10 @@ def _members_rule() -> Any:
 
 
 class PlanetaryStage(_Table):
-    """A simple planetary stage: sun, ``planet.count`` equally spaced planets on a carrier, an internal ring
-    (``ring.teeth`` is the number of internal teeth, given positive). One member is held (``fixed``); the
-    previous stage (or the input) drives ``input``; the third member is the output the next stage (or the
-    load) is driven by."""
+    """A simple planetary stage: sun, ``planet.count`` planets on a carrier (equally spaced, or at
+    ``planet.angles_deg``), an internal ring (``ring.teeth`` is the number of internal teeth, given positive). One
+    member is held (``fixed``); the previous stage (or the input) drives ``input``; the third member is the output
+    the next stage (or the load) is driven by."""
 
     type: Literal["planetary"]
     normal_module_mm: Annotated[float, Field(ge=0.05, le=100)]

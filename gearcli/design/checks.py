@@ -370,10 +370,15 @@ def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm
 def resonance_warning(stage: StageResult) -> str | None:
     """ISO 6336-1 speed ranges: the main resonance N_S < N ≤ 1.15, and the subcritical resonances near
     N = 1/2 and 1/3 (the main range's band divided by 2 and 3; ISO names the points, gearcli the band)."""
-    n, lower = stage.resonance_ratio, stage.resonance_lower_limit
-    head = (f"stage {stage.index}: resonance ratio N = n1/n_E1 = {n:.3f} (n_E1 = {stage.resonance_speed_rpm:.4g} rpm "
-            "of the smaller wheel, ISO 6336-1)")
-    if stage.resonance_range == "main resonance":
+    head = (f"stage {stage.index}: resonance ratio N = n1/n_E1 = {stage.resonance_ratio:.3f} (n_E1 = "
+            f"{stage.resonance_speed_rpm:.4g} rpm of the smaller wheel, ISO 6336-1)")
+    return resonance_text(head, stage.resonance_ratio, stage.resonance_lower_limit, stage.resonance_range)
+
+
+def resonance_text(head: str, n: float, lower: float, speed_range: str) -> str | None:
+    """The verdict on a mesh's ISO 6336-1 resonance ratio N (``head`` names the mesh and N): main resonance, or
+    near a subcritical resonance; None elsewhere."""
+    if speed_range == "main resonance":
         return (f"{head} lies in the main resonance range {lower:.2f} < N ≤ {MAIN_RESONANCE_UPPER}: the mesh "
                 "frequency meets the mesh's natural frequency; change the speed, the masses or the stiffness")
     order = subharmonic_order(n, lower)

@@ -173,7 +173,8 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
         if _planets(rated) and sd.planets:
             ring = rate_planet_ring(cfg, k, pl.with_load_sharing(design.stages[k]),
                                     simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
-            if ring is not None:
+            if ring is not None:  # ISO's nominal σ_H0, σ_F0 and K_gamma listed, as the design's ring rating
+                ring = pl.nominal_with_sharing(ring, pl.load_sharing_of(shared))
                 mesh = replace(rated.planetary.planet_ring, rating=ring)
                 diags += planet_ring_safety_diagnostics(cfg, replace(rated, planetary=replace(rated.planetary,
                                                                                                planet_ring=mesh)))

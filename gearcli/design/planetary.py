@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, TypeVar, cast
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_material
+from gearcli.design.checks import check_material, resonance_text
 from gearcli.design.geometry import (
     base_diameter_mm,
     base_helix_angle_rad,
@@ -245,14 +245,16 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
     k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
     angles = bal.planet_angles_deg(n, stage.planet.angles_deg)
     order = sorted(a % 360.0 for a in angles)
-    order = sorted(a % 360.0 for a in angles)
-    gap = min(((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True))
+    gaps = [((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True)]
+    gap = min(gaps)
+    # the planets as they sit (declared angles may space them unequally even where (z_s + z_r)/N is whole)
+    equal = all(abs(g - 360.0 / n) <= bal.ANGLE_TOLERANCE_DEG for g in gaps)
     adjacency = 2.0 * r_c * math.sin(math.radians(gap) / 2.0) - planet.tip_diameter_mm if n > 1 else math.inf
     result = PlanetaryResult(
         fixed=stage.fixed, input=stage.input, output=stage.output, planet_count=n, ratio=kin.ratios[k],
         willis_ratio=-z_r / z_s, sun=sun, planet=planet, ring=ring, carrier=carrier, planet_mass_kg=m_p,
-        planet_ring=ring_mesh, load_sharing_factor=k_gamma, equal_spacing=(z_s + z_r) % n == 0,
-        tip_clearance_between_planets_mm=adjacency if math.isfinite(adjacency) else 0.0,
+        planet_ring=ring_mesh, load_sharing_factor=k_gamma, equal_spacing=equal,
+        tip_clearance_between_planets_mm=adjacency if math.isfinite(adjacency) else None,  # one planet: no neighbour
         concentricity_mm=geo.center_distance_mm - r_c, mesh_efficiency=eta_m,
         basic_efficiency=eta_m ** 2, moment_balance_Nm={m: v / 1000.0 for m, v in moments.items()},
         planet_angles_deg=tuple(angles))
@@ -308,13 +310,15 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(c_mesh), iso6336_factors=factors,
         mesh_frequency_Hz=stage.planet.teeth * w_rel / (2.0 * math.pi), reduced_mass_kg_mm=m_red,
         resonance_speed_rpm=n_e1, resonance_ratio=abs(planet.speed_rpm) / n_e1,
-        resonance_lower_limit=res.lower_main_resonance_limit(line_load), mesh_stiffness=at_load)
+        resonance_lower_limit=res.lower_main_resonance_limit(line_load),
+        resonance_range=res.resonance_range(abs(planet.speed_rpm) / n_e1, res.lower_main_resonance_limit(line_load)),
+        mesh_stiffness=at_load)
 
 
 # ---------------------------------------------------------------------------------- warnings
 def planetary_warnings(stage_result: StageResult) -> list[str]:
-    """The ring mesh's contact ratio (spacing, concentricity and adjacency are errors:
-    :func:`gearcli.design.planetary_balance.check_assembly`)."""
+    """The ring mesh's contact ratio and its involute interference (spacing, concentricity and adjacency are
+    errors: :func:`gearcli.design.planetary_balance.check_assembly`)."""
     p = stage_result.planetary
     if p is None:
         return []
@@ -322,7 +326,43 @@ def planetary_warnings(stage_result: StageResult) -> list[str]:
     if p.planet_ring.contact_ratio_transverse < 1.2:
         out.append(f"stage {i}: planet–ring transverse contact ratio {p.planet_ring.contact_ratio_transverse:.3f} "
                    "< 1.2")
-    return out
+    interference = ring_interference_warning(stage_result)
+    return out + ([interference] if interference else [])
+
+
+def ring_resonance_warning(stage_result: StageResult) -> str | None:
+    """ISO 6336-1's speed ranges for the planet–ring mesh (its own N = n_p/n_E1, the planet's speed relative to the
+    carrier, the ring taken infinitely heavy), as for any mesh (:func:`gearcli.design.checks.resonance_warning`)."""
+    p = stage_result.planetary
+    assert p is not None  # a planetary stage's result
+    m = p.planet_ring
+    head = (f"stage {stage_result.index}: planet–ring mesh resonance ratio N = n_p/n_E1 = {m.resonance_ratio:.3f} "
+            f"(n_E1 = {m.resonance_speed_rpm:.4g} rpm of the planet relative to the carrier, ISO 6336-1)")
+    return resonance_text(head, m.resonance_ratio, m.resonance_lower_limit, m.resonance_range)
+
+
+def ring_tip_minimum_mm(ring_base_mm: float, center_distance_mm: float, working_pressure_deg: float) -> float:
+    """The smallest tip diameter of an internal gear free of involute interference: its tip meets the line of
+    action no nearer its own tangent point T2 than the pinion's tangent point T1 (T2T1 = a_w sin α_wt), so
+    d_a2,min = √(d_b2² + (2 a_w sin α_wt)²) (DIN 3960 / ISO 21771's internal pair)."""
+    return math.hypot(ring_base_mm, 2.0 * center_distance_mm * math.sin(math.radians(working_pressure_deg)))
+
+
+def ring_interference_warning(stage_result: StageResult) -> str | None:
+    """The ring's tip reaching inside the planet's base-circle tangent point: its tip would cut the planet's flank
+    below the involute (involute interference of the internal pair), and ε_α of the planet–ring mesh counts a path
+    of approach that does not exist."""
+    p = stage_result.planetary
+    assert p is not None  # a planetary stage's result
+    mesh = p.planet_ring
+    d_min = ring_tip_minimum_mm(p.ring.base_diameter_mm, mesh.center_distance_mm, mesh.working_pressure_angle_deg)
+    if p.ring.tip_diameter_mm >= d_min:
+        return None
+    return (f"stage {stage_result.index}: planet–ring involute interference: the ring's tip diameter d_a = "
+            f"{p.ring.tip_diameter_mm:.4g} mm is below d_a,min = √(d_b² + (2 a_w sin α_wt)²) = {d_min:.4g} mm, so its "
+            "tip meets the planet's flank inside the planet's base circle (the planet–ring ε_α "
+            f"{mesh.contact_ratio_transverse:.3f} is not valid); give the ring a more negative profile shift (with "
+            "the planet's and sun's to stay concentric) or fewer planet teeth")
 
 
 def check_stage_inputs(cfg: DesignFile, k: int) -> None:

@@ -144,11 +144,13 @@ def check_assembly(k: int, z_s: int, z_r: int, count: int, given_angles: list[fl
         gap = min(gaps)
         room = 2.0 * a_sun_planet * math.sin(math.radians(gap) / 2.0)
         if room <= planet_tip_mm:
+            declared = given_angles is not None  # the declared angles place the clashing pair, not the count
             raise DesignError(
                 f"adjacency: neighbouring planets {gap:.4g}° apart have centres {room:.4f} mm apart "
                 f"(2 a sin(Δψ/2), a = {a_sun_planet:.4f} mm), not more than the planet's tip diameter "
-                f"d_a = {planet_tip_mm:.4f} mm: their tip circles overlap by {planet_tip_mm - room:.4g} mm; fewer "
-                "or smaller planets", key=f"{key}.planet.count")
+                f"d_a = {planet_tip_mm:.4f} mm: their tip circles overlap by {planet_tip_mm - room:.4g} mm; "
+                + ("spread the declared angles, or " if declared else "") + "fewer or smaller planets",
+                key=f"{key}.planet.{'angles_deg' if declared else 'count'}")
 
 
 def _check_angles(key: str, angles: list[float], count: int, step: float) -> None:

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, cast
 
 from gearcli.design.bearing_life import check_inputs, lubrication, static_figures
 from gearcli.design.iso281 import Lubrication, modified_life
-from gearcli.design.planetary_balance import willis_speeds
+from gearcli.design.planetary_balance import planet_angles_deg, willis_speeds
 from gearcli.errors import DesignError
 from gearcli.results import BearingResult
 from gearcli.stages.design import design_kind
@@ -471,7 +471,7 @@ def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayou
     share = {"sun": 1.0, "ring": u, "carrier": -(1.0 + u)}[p.input]
     n = p.planet_count
     return PlanetaryLayout(
-        stage=k, planets=n, psi_rad=tuple(2.0 * math.pi * j / n for j in range(n)),
+        stage=k, planets=n, psi_rad=tuple(math.radians(a) for a in p.planet_angles_deg or planet_angles_deg(n, None)),
         r_w_sun_mm=0.5 * p.sun.base_diameter_mm / math.cos(a_sp),
         r_w_planet_sun_mm=0.5 * p.planet.base_diameter_mm / math.cos(a_sp),
         r_w_planet_ring_mm=0.5 * p.planet.base_diameter_mm / math.cos(a_rp),

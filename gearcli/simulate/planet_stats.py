@@ -18,6 +18,10 @@ if TYPE_CHECKING:
     from gearcli.simulate.results import StageDynamics
 
 
+#: a stage whose planets' mean sun-mesh force is below this fraction of the run's peak carries no load to share
+UNLOADED_OF_PEAK = 1e-3
+
+
 def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]]:
     """(stage, planet, "sun" | "ring") -> (F_t in N, DTE in m) of every planet mesh, in connector order."""
     lay = model.layout
@@ -32,7 +36,7 @@ def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str
 def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> tuple[tuple[PlanetDynamics, ...],
                                                                                      float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
-    their mean; None for a parallel stage) and the whole run's peak |F_t| over every planet's sun mesh with its time
+    their mean; None for a parallel stage and for an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time
     (0, 0 for a parallel stage)."""
     series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
     if not series:
@@ -49,7 +53,10 @@ def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> t
     peaks = [(float(np.max(np.abs(series[(j, "sun")][0]))), int(np.argmax(np.abs(series[(j, "sun")][0]))))
              for j in range(n)]
     peak, at = max(peaks)
-    return planets, (float(means.max() / means.mean()) if means.mean() > 0 else None), (peak, float(s.time_s[at]))
+    # an unloaded stage's window means are round-off (~1e-10 N): their ratio is no load sharing (the report's
+    # accuracy study takes the same line between a load and none: 1e-3 of the run-up peak)
+    loaded = means.mean() > UNLOADED_OF_PEAK * peak
+    return planets, (float(means.max() / means.mean()) if loaded else None), (peak, float(s.time_s[at]))
 
 
 def with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharing: float | None,

@@ -105,7 +105,13 @@ class PlanetaryDesign:
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
         from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
 
-        return tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
+        found = tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
+        ring = pl.ring_resonance_warning(result)
+        if ring is None:
+            return found
+        mesh = result.planetary.planet_ring  # type: ignore[union-attr]  # a planetary stage's result
+        return (*found, warning(DESIGN, ring, check="iso6336_resonance", stage=result.index, mesh="planet_ring",
+                                resonance_ratio=mesh.resonance_ratio, resonance_speed_rpm=mesh.resonance_speed_rpm))
 
     def check_inputs(self, cfg: DesignFile, k: int) -> None:
         from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
