@@ -1,4 +1,4 @@
-"""``[rating] min_static_safety_bearing`` without a gear rating (DESIGN.md section 13; docs/bearings.md): a
+"""``[rating] min_static_safety_bearing`` without a gear rating (docs/bearings.md): a
 ``[rating]`` table that sets only the bearings' ISO 76 minimum rates no gear and needs none of the gear rating's
 keys (it used to be refused: ``rating.required_life_h: missing required key``, then the oil, the materials' limits).
 
