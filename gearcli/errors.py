@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from gearcli.core.plugins import NameConflict
 from gearcli.core.text import shorten
 
 EXIT_OK = 0
@@ -56,6 +57,11 @@ class DesignError(GearcliError):
 class PluginError(GearcliError):
     """A plug-in (a stage kind or a rating standard registered from outside gearcli, docs/plugins.md) raised, or
     returned what its protocol does not allow: the message names the plug-in, what was asked and what it did."""
+
+
+class PluginConflict(PluginError, NameConflict):
+    """Two registrants of one stage type or rating standard name (two plug-ins, or a plug-in and gearcli's own
+    built-in name): refused, naming both and the name (docs/plugins.md, "Names")."""
 
 
 class SimulationError(GearcliError):

@@ -112,9 +112,14 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
         from gearcli.io.report_tables import report_tables  # lazy: start-up time of --help
 
         emit_tables(report_tables(rep), target)
-    warn(w for w in rep.warnings if w not in design_result.warnings)  # design ones went out first
+    failed = {d.message for d in rep.diagnostics if d.code == "accuracy" and d.data.get("failed")}  # said below
+    warn(w for w in rep.warnings if w not in design_result.warnings and w not in failed)  # design ones went first
     if plots_dir:
         _write_report_plots(rep, plots_dir)
+    if rep.accuracy_failure is not None:  # the report is written whole; the run's verdict is a failure (exit 1)
+        click.echo(f"gearcli: {visible(loaded.source)}: the report is written without its accuracy study, which "
+                   f"failed: {rep.accuracy_failure}", err=True)
+        sys.exit(EXIT_FAILED)
 
 
 
@@ -128,7 +133,7 @@ def _write_report_plots(rep, plots_dir: str) -> None:
     from gearcli.io.plots import write_plots  # lazy: start-up time of --help
 
     if write_figures(lambda: write_plots(rep, plots_dir), plots_dir, "the report") and not is_quiet() \
-            and rep.accuracy is None:
+            and rep.accuracy is None and rep.accuracy_failure is None:
         click.echo("work_precision.png needs the accuracy study: run without --quick", err=True)
 
 

@@ -14,7 +14,7 @@ whole file (:class:`DesignFile`) and the small tables, with every table's name r
 import math
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from gearcli.config.bounds_types import NotTiny
 from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file's tables, one namespace)
@@ -132,14 +132,32 @@ class Lubricant(_Table):
         return self
 
 
+BEARING_ONLY = frozenset({"min_static_safety_bearing"})  # [rating] keys about the bearings, not the gears
+
+
+def _rating_schema(schema: dict) -> None:
+    """The JSON Schema of [rating]: ``required_life_h`` (a number) unless the table holds the bearings' keys only."""
+    schema["required"] = [k for k in schema.get("required", []) if k != "required_life_h"]
+    if not schema["required"]:
+        del schema["required"]
+    life = schema["properties"]["required_life_h"]
+    schema["properties"]["required_life_h"] = {**life["anyOf"][0], "title": life.get("title", "Required Life H")}
+    schema["anyOf"] = [{"required": ["required_life_h"]},
+                       {"required": sorted(BEARING_ONLY), "maxProperties": len(BEARING_ONLY)}]
+
+
 class Rating(_Table):
     """Strength rating of every stage by the standard ``standard`` names: ISO 6336-2 (pitting) and -3 (tooth root),
     2006 editions, method B, by default. With this table present, every key the rating needs is required
-    (materials, accuracy, roughness, oil)."""
+    (required_life_h, materials, accuracy, roughness, oil), unless the table sets only min_static_safety_bearing:
+    then it rates no gear and sets the bearings' ISO 76 minimum alone."""
+
+    model_config = ConfigDict(json_schema_extra=_rating_schema)
 
     # the rating standard, a name registered in gearcli.rating (docs/iso6336.md, "Rating standards")
     standard: Annotated[str, Field(min_length=1, max_length=64)] = "iso6336"
-    required_life_h: Annotated[float, Field(ge=1e-3, le=1e7)]  # load cycles N_L = 60 n t per member
+    # load cycles N_L = 60 n t per member; required (None only in a table that sets only the bearings' minimum)
+    required_life_h: Annotated[float, Field(ge=1e-3, le=1e7)] | None
     face_load_factor: Annotated[float, Field(ge=1, le=10)] | None = None  # K_Hbeta; absent: an ISO estimate
     min_safety_pitting: Annotated[float, Field(ge=0.5, le=10)] = 1.0  # S_Hmin
     min_safety_bending: Annotated[float, Field(ge=0.5, le=10)] = 1.4  # S_Fmin
@@ -155,6 +173,21 @@ class Rating(_Table):
     load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
     # a bearing's ISO 76 s_0 below it warns; absent: ball 1.0, roller 1.5 (docs/bearings.md)
     min_static_safety_bearing: Annotated[float, Field(ge=0.1, le=20)] | None = None
+
+    @property
+    def life_h(self) -> float:
+        """``required_life_h`` of a table that rates the gears (the only kind ``DesignFile.rating`` holds)."""
+        assert self.required_life_h is not None, "a bearing-only [rating] table rates no gear"
+        return self.required_life_h
+
+    @model_validator(mode="before")
+    @classmethod
+    def _bearing_only(cls, data: object) -> object:
+        """A table of the bearings' keys only rates no gear: its life is None (DesignFile then drops the table
+        from the gear rating); any other table without ``required_life_h`` is that key missing, as pydantic says."""
+        if isinstance(data, dict) and data and set(data) <= BEARING_ONLY:
+            return {**data, "required_life_h": None}
+        return data
 
 
 class DesignFile(_Table):
@@ -174,6 +207,23 @@ class DesignFile(_Table):
     duty: Annotated[list[Duty], Field(max_length=200)] = []  # duty cycle of `gearcli life`
     lubricant: Lubricant | None = None
     rating: Rating | None = None
+    _min_static_safety_bearing: float | None = PrivateAttr(default=None)  # of a bearing-only [rating] table
+
+    @model_validator(mode="after")
+    def _bearing_only_rating(self) -> "DesignFile":
+        """A ``[rating]`` table that sets only the bearings' ISO 76 minimum (``Rating._bearing_only``) rates no
+        gear: ``rating`` None, the minimum kept for :attr:`min_static_safety_bearing`."""
+        r = self.rating
+        if r is None or r.required_life_h is not None:
+            return self
+        self._min_static_safety_bearing = r.min_static_safety_bearing
+        object.__setattr__(self, "rating", None)
+        return self
+
+    @property
+    def min_static_safety_bearing(self) -> float | None:
+        """``[rating] min_static_safety_bearing``, whether the table rates the gears or sets only this minimum."""
+        return self.rating.min_static_safety_bearing if self.rating is not None else self._min_static_safety_bearing
 
     @model_validator(mode="after")
     def _load_power_to_torque(self) -> "DesignFile":

@@ -10,24 +10,76 @@ gearcli loads the group once per process, and only when a design file names what
 ``[[stage]] type`` or a ``[rating] standard``): a file that names only the built-in kinds and ISO 6336 never scans
 the installed packages (start-up time). A plug-in that fails to load does not stop the others; what it raised is
 returned, so the message that a name is unknown can say why. Imports nothing of gearcli.
+
+Who registered each name is recorded (:func:`claim`, called by the registries of stage kinds and rating
+standards): a name another registrant holds, or a name built into gearcli, is refused with a :class:`NameConflict`
+naming both registrants, which ends the load (it is no failure of one plug-in the others could do without: which of
+the two a file would get is undecidable).
 """
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from importlib.metadata import EntryPoint, entry_points
 
 GROUP = "gearcli.plugins"
+BUILT_IN = "gearcli (built-in)"
 
 _failures: tuple[str, ...] | None = None  # None: the group is not loaded yet
+_conflict: Exception | None = None  # the NameConflict that ended the load, raised again on every load()
+_loading: EntryPoint | None = None  # the entry point being loaded: the registrant of what registers meanwhile
+_owners: dict[tuple[str, str, str], tuple[str, str]] = {}  # (what, name, part) -> (identity, label)
+
+
+class NameConflict(Exception):  # noqa: N818 - a marker: gearcli.errors.PluginConflict is the error raised
+    """A registration refused: the name is another registrant's or gearcli's own (docs/plugins.md)."""
+
+
+def claim(what: str, name: str, implementation: object, *, built_in: Collection[str], part: str = "") -> str | None:
+    """Record the registrant of ``name`` (``what``: "rating standard", "stage type"; ``part``: a stage type's facet)
+    and return None, or return why the registration is refused (and record nothing): ``name`` is built into gearcli
+    and the registrant is not gearcli, or another registrant holds it. The registrant is gearcli for its own
+    implementation of a built-in name, else the entry point being loaded, else the implementation's top-level
+    package (a script or a test registering directly); the same registrant may register a name again (it replaces
+    its own)."""
+    module = (implementation if isinstance(implementation, type) else type(implementation)).__module__
+    top = module.split(".")[0]
+    if top == "gearcli" and name in built_in:
+        who = ("gearcli", BUILT_IN)
+    elif _loading is not None:
+        who = (_loading.value.split(":")[0].split(".")[0].strip(), f"plug-in {_loading.name!r} ({_loading.value})")
+    else:
+        who = (top, f"module {module!r}")
+    label = f'{what} "{name}"' + (f" (its {part} facet)" if part else "")
+    if name in built_in and who[0] != "gearcli":
+        return (f"{who[1]} registers {label}, a name built into gearcli: a plug-in cannot replace a built-in "
+                f"{what}; give it a name of its own (docs/plugins.md)")
+    held = _owners.get((what, name, part))
+    if held is not None and held[0] != who[0]:
+        return (f"{label} is registered twice, by {held[1]} and by {who[1]}: a name selects one; uninstall one of "
+                "them (docs/plugins.md)")
+    _owners[(what, name, part)] = who
+    return None
+
+
+def release(what: str, name: str, part: str = "") -> None:
+    """Forget the registrant of ``name`` (its registration withdrawn)."""
+    _owners.pop((what, name, part), None)
 
 
 def load() -> tuple[str, ...]:
     """Load every plug-in of the group (once per process): each entry point's object is imported, and called
     with no arguments when it is a function. Returns the failures, one line each (``name (value): Error: text``)."""
-    global _failures
+    global _failures, _conflict
+    if _conflict is not None:
+        raise _conflict
     if _failures is None:
         _failures = ()  # set first: a plug-in that reads a design file while it loads does not load the group again
-        _failures = tuple(f for f in (_load_one(ep) for ep in entry_points(group=GROUP)) if f)
+        try:
+            _failures = tuple(f for f in (_load_one(ep) for ep in entry_points(group=GROUP)) if f)
+        except NameConflict as exc:  # two registrants of one name: no plug-in's name can be trusted to mean one
+            _conflict = exc
+            raise
     return _failures
 
 
@@ -38,16 +90,22 @@ def failures_text(failures: tuple[str, ...]) -> str:
 
 def reset() -> None:
     """Forget that the group was loaded (a test that installs a plug-in after gearcli looked)."""
-    global _failures
-    _failures = None
+    global _failures, _conflict
+    _failures = _conflict = None
 
 
 def _load_one(ep: EntryPoint) -> str:
+    global _loading
+    _loading = ep
     try:
         obj = ep.load()
         if callable(obj) and not isinstance(obj, type):
             obj()
+    except NameConflict:  # not this plug-in's failure alone: the load ends (module text)
+        raise
     except Exception as exc:  # any error of third-party code: reported with the name that needs it
         text = " ".join(str(exc).split())[:300]
         return f"{ep.name!r} ({ep.value}) failed to load: {type(exc).__name__}: {text}"
+    finally:
+        _loading = None
     return ""

@@ -71,8 +71,9 @@ def lubrication(cfg: DesignFile) -> iso281.Lubrication | None:
 
 
 def min_static_safety_required(cfg: DesignFile, kind: str) -> float:
-    """``[rating] min_static_safety_bearing`` or the guideline for the bearing kind (iso281.MIN_STATIC_SAFETY)."""
-    given = cfg.rating.min_static_safety_bearing if cfg.rating is not None else None
+    """``[rating] min_static_safety_bearing`` (with or without a gear rating) or the guideline for the bearing kind
+    (iso281.MIN_STATIC_SAFETY)."""
+    given = cfg.min_static_safety_bearing
     return given if given is not None else iso281.MIN_STATIC_SAFETY[kind]
 
 

@@ -266,7 +266,7 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
     # flank, rated in rating_internal)
     kind = design_kind(st)
     meetings = kind.meetings(st, i)
-    cycles = 60.0 * abs(g.speed_rpm) * rating.required_life_h * meetings
+    cycles = 60.0 * abs(g.speed_rpm) * rating.life_h * meetings
     z_nt = rf.life_factor_pitting(mesh.treatments[i], cycles, rating.material_quality)
     sig_h = flank.z_bd[i] * flank.sigma_h
     sig_hg = mesh.hlim[i] * z_nt * flank.z_l * flank.z_v * flank.z_r * flank.z_w.get(i, 1.0)  # Z_X = 1

@@ -122,8 +122,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
         soft = 1 if hard[0] else 0
         hv = mats[soft].surface_hardness_HV
         z_w = rf.work_hardening_factor(None if hv is None else HB_PER_HV * hv)
-    cycles = (60.0 * abs(st.gear.speed_rpm) * rating.required_life_h,
-              60.0 * p.planet_count * abs(ring.speed_rpm - p.carrier.speed_rpm) * rating.required_life_h)
+    cycles = (60.0 * abs(st.gear.speed_rpm) * rating.life_h,
+              60.0 * p.planet_count * abs(ring.speed_rpm - p.carrier.speed_rpm) * rating.life_h)
     z_nt = tuple(rf.life_factor_pitting(treat[i], cycles[i], rating.material_quality) for i in (0, 1))
     sig_hg = tuple(hlim[i] * z_nt[i] * z_l * z_v * z_r * (z_w if i == soft else 1.0) for i in (0, 1))
     sig_hb = (z_b * sigma_h, sigma_h)  # Z_D = 1 for the internal gear

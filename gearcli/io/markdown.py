@@ -40,7 +40,11 @@ def report_markdown(r: Report, sha256: str = "") -> str:
         if s.title.startswith("Numerical accuracy") and r.accuracy is not None:
             extra = "**Method.** " + method_paragraph(r.accuracy, (float(r.simulation.window_s[0]), float(r.simulation.window_s[1])))
         body.append(_section(s, extra))
-    if r.accuracy is None:
+    if r.accuracy_failure is not None:
+        body.append("## Numerical accuracy\n\n**The accuracy study failed**: " + visible(r.accuracy_failure) +
+                    ". The sections above are the file's own run, complete; its solver settings are not checked "
+                    "against a reference.\n")
+    elif r.accuracy is None:
         body.append("## Numerical accuracy\n\nSkipped (`--quick`).\n")
     body.append("## Solver and energy balance\n\n" + "\n".join(f"- {line}" for line in solver_lines(r)) + "\n")
     warnings = "\n".join(f"- {visible(w)}" for w in r.warnings) if r.warnings else "None."

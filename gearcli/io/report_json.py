@@ -2,8 +2,8 @@
 
 Keys: ``comparison`` [{stage, quantity, theory, simulated, error_percent}] (stage null: the train),
 ``dynamics`` (per stage: force statistics, run-up peak, spectrum peak), ``accuracy`` (null with
---quick) {requested_accuracy, reference, runs, recommended, file_settings_meet_accuracy, notes},
-``design`` and ``simulation`` summaries, ``energy_residual``, ``warnings``. Errors in ``runs`` are
+--quick or when the study failed) {requested_accuracy, reference, runs, recommended, file_settings_meet_accuracy,
+notes}, ``accuracy_failure`` (why the study failed, else null), ``design`` and ``simulation`` summaries, ``energy_residual``, ``warnings``. Errors in ``runs`` are
 relative (not %); an error below the reference's uncertainty keeps its number and is flagged in
 ``below_reference_resolution``.
 """
@@ -137,6 +137,7 @@ def _report_dict(r: Report) -> JsonObject:
         "simulation": sim,
         "energy_residual": r.energy_residual,
         "accuracy": accuracy_dict(r.accuracy),
+        "accuracy_failure": r.accuracy_failure,  # why the study failed (accuracy null); null otherwise
         "warnings": warning_objects(r.warnings, r.diagnostics),
     }
 

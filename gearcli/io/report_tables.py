@@ -32,6 +32,8 @@ def section_table(section: Section) -> RenderableType:
 def report_tables(r: Report) -> list[RenderableType]:
     out: list[RenderableType] = [text(f"gearcli report: {r.title or 'design'}", "bold")]
     out += [section_table(s) for s in sections(r)]
+    if r.accuracy_failure is not None:
+        out.append(text_lines([f"Numerical accuracy: the study failed: {r.accuracy_failure}"], "red"))
     out.append(text_lines(solver_lines(r)))
     if r.warnings:
         out.append(text_lines(["warnings:", *(f"  - {w}" for w in r.warnings)], "yellow"))

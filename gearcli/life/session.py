@@ -76,8 +76,10 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     notes += reversal_notes(points)
     points = with_drive(loaded.design, points)
     if loaded.design.rating is None:
+        only = " (this file's [rating] sets only the bearings' min_static_safety_bearing)" \
+            if loaded.design.min_static_safety_bearing is not None else ""
         raise ConfigError("gearcli life rates every member by ISO 6336-2/-3: add a [rating] table (with the "
-                          "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])",
-                          source=loaded.source, key="rating")
+                          "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])"
+                          + only, source=loaded.source, key="rating")
     return Session(Scene(raw, loaded.source, tuple(sets), len(design.stages)), loaded, design, tuple(points),
                    tuple(notes))

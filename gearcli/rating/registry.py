@@ -9,17 +9,24 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from gearcli.core import plugins
-from gearcli.errors import ConfigError
+from gearcli.errors import ConfigError, PluginConflict
 
 if TYPE_CHECKING:
     from gearcli.rating.standard import RatedMesh, RatingStandard
 
 DEFAULT = "iso6336"
+BUILT_IN = (DEFAULT,)  # gearcli's own standards' names: no plug-in registers them (ISO 6336 registers lazily)
+SEAM = "rating standard"
 _STANDARDS: dict[str, RatingStandard] = {}
 
 
 def register(std: RatingStandard) -> RatingStandard:
-    """Register ``std`` under its ``name`` (a later registration of the same name replaces it); returns it."""
+    """Register ``std`` under its ``name``; returns it. The same registrant's later registration replaces its own;
+    a name another registrant holds, or a built-in name registered from outside gearcli, is a
+    :class:`~gearcli.errors.PluginConflict` naming both (:func:`gearcli.core.plugins.claim`)."""
+    refused = plugins.claim(SEAM, std.name, std, built_in=BUILT_IN)
+    if refused:
+        raise PluginConflict(refused)
     if type(std).__module__.split(".")[0] == "gearcli":  # gearcli's own standards are kept as they are
         _STANDARDS[std.name] = std
     else:
@@ -32,6 +39,7 @@ def register(std: RatingStandard) -> RatingStandard:
 def withdraw(name: str) -> None:
     """Remove the standard registered as ``name`` (a plug-in unloaded, a test's standard after the test)."""
     _STANDARDS.pop(name, None)
+    plugins.release(SEAM, name)
 
 
 def names() -> tuple[str, ...]:

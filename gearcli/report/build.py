@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 from functools import partial
 from typing import TYPE_CHECKING
 
@@ -11,13 +12,13 @@ from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import EXPLICIT_METHOD, METHODS
 from gearcli.design.standards import with_simulated_rating
-from gearcli.errors import ConfigError, StudyTooLong
+from gearcli.errors import ConfigError, SimulationError, StudyTooLong
 from gearcli.model import TorsionalModel
 from gearcli.model.modes import campbell_data, modal_analysis
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study, same_rtol
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
-from gearcli.report.result import Report
+from gearcli.report.result import AccuracyStudy, Report
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
 from gearcli.simulate.results import SimulationResult
@@ -84,42 +85,73 @@ def build_report(
         cfg, design, want_series=True)
     sim = with_simulated_rating(cfg, design, own)  # the rating at the run's K_v (simulate knows no standard)
     stages = stage_reports(design, sim)
-    study = None
+    study, failure = None, None
     if not quick:
-        budget = ReportBudget(_work(sim), sim_cfg.duration_s)
-        budget.check_projection(sim.solver.rtol, spec)  # the run's own rtol (auto may have tightened it)
-        shared = own if same_as_rung(own, sim_cfg) else None
-        compiled = _ladder_compiled(model, sim_cfg.engine)
-
-        def run(method: str, rtol: float) -> SimulationResult:
-            if shared is not None and method == sim_cfg.method and same_rtol(rtol, sim_cfg.rtol):
-                return shared  # the file's settings' rung is the file's own run (its work is counted already)
-            # a rung's error is measured against the study's reference, so its own check pass (issue 10's
-            # estimate, which doubles a run) would be computed and never read
-            # nor its ringing fit, settle test and resonance check: the study reads its statistics and counters only
-            out = simulate(cfg, design, method=method, rtol=rtol, want_series=False, error_estimate=False,
-                           **({"diagnose": False} if model is not None else {}))
-            budget.spend(_work(out))
-            return out
-
-        with engine.batch(0):  # the ladder: auto may run Radau compiled too (labelled)
-            study = accuracy_study(
-                run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
-                auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
-                stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
-                explicit_speedup=compiled_speedup(EXPLICIT_METHOD) if compiled else 1.0,
-                engine_methods=engine.COMPILED_METHODS if compiled else None,
-                progress=lambda label, done, total: tick(label, done + 1, total + 1),
-            )
+        try:
+            study = _study(Ladder(cfg, design, own, sim, model, simulate), spec, accuracy, tick)
+        except SimulationError as exc:  # the reference failed or diverged, or the study's budget ran out
+            failure = str(exc)  # (StudyTooLong): the engineering sections stand; the study's section says why
     checks = (*(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
               *(dg.warning(dg.SAMPLING, w) for w in sampling_checks(stages, sim.natural_frequencies_Hz)),
-              *(dg.warning(dg.ACCURACY, w) for w in accuracy_checks(study, sim_cfg.method, sim_cfg.rtol)))
+              *(dg.warning(dg.ACCURACY, w) for w in accuracy_checks(study, sim_cfg.method, sim_cfg.rtol)),
+              *([dg.warning(dg.ACCURACY, study_failed_text(failure), failed=True)] if failure else []))
     warnings = _merge(design.warnings, sim.warnings, dg.messages(checks))
     diagnostics = (*getattr(design, "diagnostics", ()), *sim.diagnostics, *checks)
     return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim),
                   stages=stages, accuracy=study, warnings=warnings, diagnostics=diagnostics,
                   rating=rating_comparison(design, sim),
-                  modes=modes[0] if modes else None, campbell=modes[1] if modes else None)
+                  modes=modes[0] if modes else None, campbell=modes[1] if modes else None,
+                  accuracy_failure=failure)
+
+
+def study_failed_text(failure: str) -> str:
+    """The warning of a report whose accuracy study failed (``Report.accuracy_failure`` is ``failure``)."""
+    return (f"the accuracy study failed, so the file's solver settings are not checked against a reference: {failure}; "
+            "the theory-against-simulation sections are the file's own run, complete")
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """What the accuracy study runs on: the file, its design, its own run (``own``, the rating at the run's K_v:
+    ``sim``), the model every run shares (None with a stand-in ``simulate``) and the simulate function."""
+
+    cfg: DesignFile
+    design: DesignResult
+    own: SimulationResult
+    sim: SimulationResult
+    model: TorsionalModel | None
+    simulate: SimulateFn
+
+
+def _study(lad: Ladder, spec: LadderSpec, accuracy: float, tick: ProgressFn) -> AccuracyStudy:
+    """The work-precision study (``report.accuracy``) within the report's budget; raises SimulationError when the
+    reference or its check fails, StudyTooLong when the budget cannot hold it."""
+    sim_cfg, sim, own, model = lad.cfg.simulation, lad.sim, lad.own, lad.model
+    budget = ReportBudget(_work(sim), sim_cfg.duration_s)
+    budget.check_projection(sim.solver.rtol, spec)  # the run's own rtol (auto may have tightened it)
+    shared = own if same_as_rung(own, sim_cfg) else None
+    compiled = _ladder_compiled(model, sim_cfg.engine)
+
+    def run(method: str, rtol: float) -> SimulationResult:
+        if shared is not None and method == sim_cfg.method and same_rtol(rtol, sim_cfg.rtol):
+            return shared  # the file's settings' rung is the file's own run (its work is counted already)
+        # a rung's error is measured against the study's reference, so its own check pass (issue 10's
+        # estimate, which doubles a run) would be computed and never read
+        # nor its ringing fit, settle test and resonance check: the study reads its statistics and counters only
+        out = lad.simulate(lad.cfg, lad.design, method=method, rtol=rtol, want_series=False, error_estimate=False,
+                           **({"diagnose": False} if model is not None else {}))
+        budget.spend(_work(out))
+        return out
+
+    with engine.batch(0):  # the ladder: auto may run Radau compiled too (labelled)
+        return accuracy_study(
+            run, file_method=sim_cfg.method, file_rtol=sim_cfg.rtol, accuracy=accuracy, spec=spec,
+            auto_choice=sim.solver.method if sim_cfg.method == "auto" else None,
+            stiffness_indicator=(sim.extra or {}).get("stiffness_indicator"),
+            explicit_speedup=compiled_speedup(EXPLICIT_METHOD) if compiled else 1.0,
+            engine_methods=engine.COMPILED_METHODS if compiled else None,
+            progress=lambda label, done, total: tick(label, done + 1, total + 1),
+        )
 
 
 def same_as_rung(sim: SimulationResult, sim_cfg) -> bool:

@@ -193,12 +193,13 @@ class Report:
     simulation: SimulationResult  # the run with the file's own [simulation] settings, with series
     comparison: tuple[ComparisonRow, ...]
     stages: tuple[StageReport, ...]
-    accuracy: AccuracyStudy | None  # None with --quick
+    accuracy: AccuracyStudy | None  # None with --quick, or when the study failed (``accuracy_failure``)
     warnings: tuple[str, ...] = field(default_factory=tuple)
     rating: tuple[RatingComparison, ...] = ()  # with [rating] (issue 22)
     diagnostics: tuple = field(default_factory=tuple)  # gearcli.diagnostics.Diagnostic of the warnings
     modes: ModalAnalysis | None = None  # at the drive's boundary (None: not computed, e.g. a stand-in simulation)
     campbell: CampbellData | None = None  # for the Campbell figure
+    accuracy_failure: str | None = None  # why the accuracy study failed (``accuracy`` is then None)
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:

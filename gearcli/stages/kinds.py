@@ -11,17 +11,26 @@ from __future__ import annotations
 import functools
 from typing import Any
 
+from gearcli.core import plugins
 from gearcli.core.text import shorten
-from gearcli.errors import GearcliError, PluginError
+from gearcli.errors import GearcliError, PluginConflict, PluginError
 
 PARALLEL = "parallel"  # the kind of a stage table without ``type``
+BUILT_IN = (PARALLEL, "planetary")  # gearcli's own kinds: no plug-in provides a facet of theirs
+SEAM = "stage type"
 
 _FACETS: dict[tuple[str, str], object] = {}
 
 
 def provide(kind: str, facet: str, implementation: object) -> None:
     """Register ``implementation`` as the ``facet`` ("design", "model", "io", …) of stage ``type = kind``. A
-    plug-in's (an implementation from outside gearcli, not a class) is kept behind :class:`Guarded`."""
+    plug-in's (an implementation from outside gearcli, not a class) is kept behind :class:`Guarded`. The same
+    registrant's later implementation replaces its own; a facet another registrant provides, or a facet of a built-in
+    kind provided from outside gearcli, is a :class:`~gearcli.errors.PluginConflict` naming both
+    (:func:`gearcli.core.plugins.claim`)."""
+    refused = plugins.claim(SEAM, kind, implementation, built_in=BUILT_IN, part=facet)
+    if refused:
+        raise PluginConflict(refused)
     builtin = type(implementation).__module__.split(".")[0] == "gearcli" or isinstance(implementation, type)
     _FACETS[(kind, facet)] = implementation if builtin else Guarded(kind, facet, implementation)
 
@@ -29,6 +38,7 @@ def provide(kind: str, facet: str, implementation: object) -> None:
 def withdraw(kind: str, facet: str) -> None:
     """Remove the ``facet`` of stage kind ``kind`` (a plug-in unloaded, a test's kind after the test)."""
     _FACETS.pop((kind, facet), None)
+    plugins.release(SEAM, kind, facet)
 
 
 def facet(kind: str, facet: str) -> object:

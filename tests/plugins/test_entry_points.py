@@ -229,6 +229,7 @@ class _Raising(px.FixedRatioDesign):
 @pytest.fixture
 def raising_kind():
     px.register()
+    px.kinds.withdraw(px.KIND, "design")  # another module's facet replaces the plug-in's only once it is withdrawn
     px.kinds.provide(px.KIND, "design", _Raising())
     yield
     px.withdraw()

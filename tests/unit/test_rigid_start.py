@@ -160,3 +160,46 @@ def test_a_start_peak_held_by_the_transmission_error_at_t0_names_it():
         assert sim.stages[k].peak_time_s == 0.0
         assert "transmission error e(0) = 4 µm" in d.message and "swings" not in d.message, d.message
     assert rigid_start.initial_te_um(Layout.of(spec_from_design(cfg.design, design)), 0) == 4.0
+
+
+def test_a_hertz_mesh_pre_stressed_by_its_te_is_blamed_on_the_te_and_the_advice_removes_it():
+    """configs/industrial_two_stage.toml with the Hertz law (e = 1.5), a light load (150 N·m) and a 30 µm TE on stage 2
+    only. Every body starts at rest at zero angle, so stage 2 starts compressed by e(0) = 30 µm: by hand its force at
+    t = 0 is F_n = K (e(0) cos β_b)^1.5, F_t(0) = F_n cos β_b cos α_t (no speed yet: no damping force), the run's
+    peak. Released, the pre-stress loads stage 1 (no TE of its own) within one period of the lowest mode. Both
+    warnings blame the TE pre-stress and advise what acts on it (a TE that is 0 at t = 0, the steady window), not a
+    ramp, a swinging mode or "a numerical artefact" (stage 1's warning said the latter). The advice holds: with the
+    TE's phase at 90°, e(0) = cos 90° = 0, nothing is compressed at t = 0 (F_t(0) = 0 on both stages) and neither
+    start peak reaches the warning's 2x the rigid-body start."""
+    sets = ["stage.1.mesh.transmission_error_um=[30]", "load.torque_Nm=150", "contact.stiffness=hertz",
+            "contact.exponent=1.5"]
+    cfg = api.load(str(ROOT / "configs" / "industrial_two_stage.toml"), sets)
+    design = api.design(cfg)
+    sim = api.simulate(cfg.design, design)
+    st = design.stages[1]
+    beta_b, alpha_t = math.radians(st.base_helix_angle_deg), math.radians(st.transverse_pressure_angle_deg)
+    assert st.mesh_stiffness.law == "hertz" and st.mesh_stiffness.exponent == 1.5
+    f_t0 = st.mesh_stiffness.K * (30e-3 * math.cos(beta_b)) ** 1.5 * math.cos(beta_b) * math.cos(alpha_t)
+    assert_allclose(sim.stages[1].peak_tangential_N, f_t0, rtol=1e-6)  # the law at the initial penetration
+    assert sim.stages[1].peak_time_s == 0.0
+    clamped = next(a for a in api.modes(cfg.design, design) if a.boundary == "clamped_input")  # a speed drive
+    lowest_Hz = min(m.frequency_Hz for m in clamped.modes if not m.rigid)
+    assert 0.0 < sim.stages[0].peak_time_s <= 1.0 / lowest_Hz  # stage 1's peak: the pre-stress released
+    warned = {d.data["stage"]: d.message for d in sim.diagnostics if d.code == "peak_over_rigid"}
+    assert set(warned) == {1, 2}
+    assert f"transmission error e(0) = 30 µm (every body starts at rest at zero angle), {f_t0:.5g} N at t = 0" \
+        in warned[2]
+    assert "pre-stressed by the stage 2 mesh's transmission error e(0) = 30 µm" in warned[1]
+    for message in warned.values():
+        assert "transmission_error_phase_deg = 90" in message and "simulation.window_start_s" in message
+        for wrong in ("ramp_s >", "longer ramps", "gentler", "swings with", "numerical artefact"):
+            assert wrong not in message, (wrong, message)
+    phased = api.load(str(ROOT / "configs" / "industrial_two_stage.toml"),
+                      [*sets, "stage.1.mesh.transmission_error_phase_deg=[90]"])
+    again = api.simulate(phased.design, api.design(phased))
+    start, before = again.extra["start"], sim.extra["start"]
+    assert start["rigid_peak_N"] == before["rigid_peak_N"]  # the same rigid start: the TE is no part of it
+    f0 = [again.series[Channel("tangential_force", f"stage{k}")][0] for k in (1, 2)]
+    assert_allclose(f0, [0.0, 0.0], atol=1e-9)  # nothing compressed at t = 0 (the law at zero penetration)
+    assert max(start["peak_over_rigid"]) < 2.0
+    assert not [d for d in again.diagnostics if d.code == "peak_over_rigid"]
