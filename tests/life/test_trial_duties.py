@@ -92,6 +92,13 @@ def test_a_duty_of_one_point_is_the_plain_rating(tmp_path):
     assert_allclose(pinion["life_h"], 10000.0 / pinion["damage"], rtol=1e-12)
     again = _rating(path, 2000.0, 1460.0, "--set", f"rating.required_life_h={pinion['life_h']!r}")
     assert_allclose(again["pinion"]["S_H"], 1.0, rtol=1e-9)
+    # the verdict: the pinion's flank does not last the duty (S_H 0.9997 below the minimum 1.0, D = 1.009); every
+    # other member and mode does (gear flank S_H 1.049, roots S_F 1.82 and 1.84 above 1.4)
+    verdicts = [w for w in _life(path, "--static")["warnings"] if w["code"] == "life_safety_low"]
+    assert [(w["member"], w["mode"]) for w in verdicts] == [("pinion", "pitting")]
+    assert_allclose([verdicts[0]["stress_safety"], verdicts[0]["damage"], verdicts[0]["life_h"]],
+                    [pinion["stress_safety"], pinion["damage"], pinion["life_h"]], rtol=1e-12)
+    assert verdicts[0]["min_safety"] == 1.0 and verdicts[0]["hours"] == 10000.0
 
 
 SPECTRUM = [
@@ -145,21 +152,27 @@ def test_hours_as_fractions_scale_the_damage_not_the_life(tmp_path):
             assert_allclose(a["damage"], b["damage"] * scale, rtol=1e-9)
             if a["life_h"] is not None:
                 assert_allclose(a["life_h"], b["life_h"], rtol=1e-9)
+    # the time shares are not the required life (10 000 h): the safety is over 0.95 h, and a warning says so
+    said = [w for w in _life(tmp_path / "shares.toml", "--static")["warnings"] if w["code"] == "duty"]
+    assert len(said) == 1 and said[0]["hours"] == pytest.approx(0.95) and said[0]["required_life_h"] == 10000.0
+    assert not [w for w in _life(tmp_path / "hours.toml", "--static")["warnings"] if w["code"] == "duty"]
+    assert_allclose(share["stages"][0]["pinion"]["pitting"]["load_multiplier"], 3.4176, rtol=1e-4)  # over 0.95 h
+    assert_allclose(full["stages"][0]["pinion"]["pitting"]["load_multiplier"], 0.96507, rtol=1e-4)  # over 10 000 h
     # the heavy point dominates the pinion's flank: 500 h at 2600 N.m do more damage than 6000 h at 1800 N.m
     bins = full["stages"][0]["pinion"]["pitting"]["bins"]
     assert bins[0]["damage"] > 0.8 * full["stages"][0]["pinion"]["pitting"]["damage"]
 
 
 def test_a_reversed_point_counts_by_magnitude_and_reverses_the_bearing_reactions(tmp_path):
-    """A crane hoist: 4000 h hoisting at +1500 N.m, 4000 h lowering with the motor braking (-1500 N.m). The teeth
+    """A crane hoist: 5000 h hoisting at +1500 N.m, 5000 h lowering with the motor braking (-1500 N.m). The teeth
     count the reversed point by magnitude (docs/life.md, "Limits"), so the damage is the same as with two hoisting
     points; the gear shaft's bearings see the axial force's moment reversed: by hand below."""
     crane = write(tmp_path / "crane.toml", SPEED_DRIVE,
-                  {"name": "hoist", "hours": 4000.0, "torque_Nm": 1500.0, "speed_rpm": 1460.0},
-                  {"name": "lower", "hours": 4000.0, "torque_Nm": -1500.0, "speed_rpm": 1460.0})
+                  {"name": "hoist", "hours": 5000.0, "torque_Nm": 1500.0, "speed_rpm": 1460.0},
+                  {"name": "lower", "hours": 5000.0, "torque_Nm": -1500.0, "speed_rpm": 1460.0})
     same = write(tmp_path / "same.toml", SPEED_DRIVE,
-                 {"name": "hoist", "hours": 4000.0, "torque_Nm": 1500.0, "speed_rpm": 1460.0},
-                 {"name": "lower", "hours": 4000.0, "torque_Nm": 1500.0, "speed_rpm": 1460.0})
+                 {"name": "hoist", "hours": 5000.0, "torque_Nm": 1500.0, "speed_rpm": 1460.0},
+                 {"name": "lower", "hours": 5000.0, "torque_Nm": 1500.0, "speed_rpm": 1460.0})
     doc, ref = _life(crane, "--static"), _life(same, "--static")
     for member in ("pinion", "gear"):
         for mode in ("pitting", "bending"):
@@ -183,9 +196,9 @@ def test_a_reversed_point_counts_by_magnitude_and_reverses_the_bearing_reactions
     assert_allclose(sorted(b4["loads_N"]), sorted([near, far]), rtol=1e-9)
     p = 10.0 / 3.0  # equal revolutions at the two points: P = (mean P_i^p)^(1/p)
     assert_allclose(b3["equivalent_load_N"], (0.5 * sum(x**p for x in b3["loads_N"])) ** (1 / p), rtol=1e-12)
-    revs = 8000 * 60 * 1460 / RATIO
+    revs = 10000 * 60 * 1460 / RATIO
     assert_allclose(b3["L10_Mrev"], (90e3 / b3["equivalent_load_N"]) ** p, rtol=1e-12)
-    assert_allclose(b3["L10_h"], b3["L10_Mrev"] * 1e6 / (revs / 8000), rtol=1e-12)
+    assert_allclose(b3["L10_h"], b3["L10_Mrev"] * 1e6 / (revs / 10000), rtol=1e-12)
 
 
 @pytest.mark.parametrize(("edit", "key"), [
@@ -245,3 +258,21 @@ def test_a_conveyor_start_longer_than_the_run_is_counted_whole(tmp_path):
                         240000 * start["input_revolutions"] * turns, rtol=1e-9)
         assert_allclose(sum(b["cycles"] for b in bins if b["point"] == "loaded"), 8000 * 60 * 1460 * turns,
                         rtol=1e-9)
+
+
+@pytest.mark.parametrize("c_kN", [40.0, 120.0])
+def test_a_bearing_outlived_by_its_duty_is_warned(tmp_path, c_kN):
+    """The input shaft's locating ball bearing over the one-point duty (10 000 h at 1460 rpm), by hand: L10 = (C/P)^3
+    million revolutions, L10h = L10 / (60 n); with C = 40 kN it lasts (40/12.2)^3 = 35 Mrev, 402 h: warned; with
+    C = 120 kN, 1.1e4 h: not."""
+    path = write(tmp_path / "one.toml", SPEED_DRIVE, {"name": "only", "hours": 10000.0, "torque_Nm": 2000.0,
+                                                      "speed_rpm": 1460.0})
+    doc = _life(path, "--static", "--set", f"bearing[0].dynamic_load_rating_kN={c_kN!r}")
+    b = doc["life"]["bearings"][0]
+    l10_h = (c_kN * 1e3 / b["equivalent_load_N"]) ** 3 * 1e6 / (60 * 1460)
+    assert_allclose(b["L10_h"], l10_h, rtol=1e-12)
+    said = [w for w in doc["warnings"] if w["code"] == "bearing_life_short"]
+    assert (l10_h < 10000.0) == bool(said)
+    if said:
+        assert said[0]["bearing"] == 1 and said[0]["life"] == "L10"
+        assert_allclose(said[0]["life_h"], l10_h, rtol=1e-12)

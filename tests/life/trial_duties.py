@@ -34,7 +34,7 @@ required_life_h = 10000
 [[bearing]]
 shaft = 1
 position_mm = 0
-dynamic_load_rating_kN = 50
+dynamic_load_rating_kN = 120
 kind = "ball"
 locating = true
 factors = { e = 0.3, X = 0.56, Y = 1.5 }
@@ -42,7 +42,7 @@ factors = { e = 0.3, X = 0.56, Y = 1.5 }
 [[bearing]]
 shaft = 1
 position_mm = 160
-dynamic_load_rating_kN = 50
+dynamic_load_rating_kN = 120
 kind = "ball"
 
 [[bearing]]
