@@ -496,19 +496,21 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                                 "points alone"))
     bearings = bearing_lives(evaluated, start_bearings(evaluated))
     warnings += bearing_warnings(evaluated, bearings, base_warnings)
-    warnings += _verdicts(evaluated[0].cfg, stages, bearings, hours)
+    from_series = {p.key for p in points if not p.key.startswith("duty[")}  # a history's classes carry its name
+    warnings += _verdicts(evaluated[0].cfg, stages, bearings, hours, next(iter(from_series), None))
     runs = tuple(replace(pd.run, start=start_record(pd, stages)) if pd.start is not None else pd.run
                  for pd in evaluated)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
                       runs, stages, bearings, messages(warnings), tuple(warnings))
 
 
-def _verdicts(cfg: DesignFile, stages: Sequence[StageLife], bearings: Sequence[BearingLife], hours: float) -> list[Diagnostic]:
+def _verdicts(cfg: DesignFile, stages: Sequence[StageLife], bearings: Sequence[BearingLife], hours: float,
+              series: str | None) -> list[Diagnostic]:
     """The duty's verdicts (:mod:`gearcli.life.verdicts`): hours not the required life, spectrum safeties below the
-    minimum, bearings outlived by the duty."""
+    minimum, bearings outlived by the duty (``series``: the history file the points were classed from)."""
     rating = cfg.rating
     assert rating is not None  # every life point is rated (_require_rating)
-    return [*verdicts.hours_warning(hours, rating.required_life_h),
+    return [*verdicts.hours_warning(hours, rating.required_life_h, series),
             *verdicts.gear_warnings(stages, rating.min_safety_pitting, rating.min_safety_bending, hours),
             *verdicts.bearing_life_warnings(bearings, hours)]
 

@@ -19,15 +19,19 @@ _MEMBERS = ("pinion", "gear", "ring", "planet_ring_side")
 _SYMBOL = {"pitting": "S_H", "bending": "S_F"}
 
 
-def hours_warning(hours: float, required_h: float | None) -> list[Diagnostic]:
-    """A duty whose hours differ from [rating] required_life_h: its D and spectrum safety are over its own hours."""
+def hours_warning(hours: float, required_h: float | None, series: str | None = None) -> list[Diagnostic]:
+    """A duty whose hours differ from [rating] required_life_h: its D and spectrum safety are over its own hours.
+    ``series``: the history file the duty was classed from (its record's time is the duty's hours)."""
     if required_h is None or abs(hours - required_h) <= HOURS_TOLERANCE * required_h:
         return []
-    return [warning(DUTY, f"the duty's hours sum to {hours:.6g} h, not [rating] required_life_h = {required_h:.6g} h: "
-                    "the Miner damage D and the spectrum safety (the load multiplier that makes D = 1) are over the "
-                    f"duty's {hours:.6g} h, the life in hours is not affected; give each point its hours over the "
-                    "required life (ISO 6336-6 scales the spectrum to it), or set rating.required_life_h to the "
-                    "duty's hours", hours=hours, required_life_h=required_h)]
+    what = f"the history {series} records {hours:.6g} h" if series else f"the duty's hours sum to {hours:.6g} h"
+    fix = (f"scale its time_s column by {required_h / hours:.6g} (ISO 6336-6 Annex C scales its 70-day record to "
+           "the 30-year life)" if series else "give each point its hours over the required life (ISO 6336-6 "
+           "scales the spectrum to it)")
+    return [warning(DUTY, f"{what}, not [rating] required_life_h = {required_h:.6g} h: the Miner damage D and the "
+                    "spectrum safety (the load multiplier that makes D = 1) are over those "
+                    f"{hours:.6g} h, the life in hours is not affected; {fix}, or set rating.required_life_h to "
+                    "the duty's hours", hours=hours, required_life_h=required_h)]
 
 
 def _mode_warning(stage: int, member: str, mode: str, ml: ModeLife, minimum: float, hours: float) -> Diagnostic | None:

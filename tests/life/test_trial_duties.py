@@ -276,3 +276,23 @@ def test_a_bearing_outlived_by_its_duty_is_warned(tmp_path, c_kN):
     if said:
         assert said[0]["bearing"] == 1 and said[0]["life"] == "L10"
         assert_allclose(said[0]["life_h"], l10_h, rtol=1e-12)
+
+
+def test_a_recorded_history_shorter_than_the_required_life_is_warned_with_its_scale(tmp_path):
+    """A 2.5 h record (--series) against the required 10 000 h: the damage and safety are the record's; the warning
+    names the history and the factor 4000 that scales its time to the required life. Scaled by it, the record's
+    classes carry 4000 times the cycles (the life in hours stays) and the warning is gone."""
+    path = write(tmp_path / "base.toml", SPEED_DRIVE)
+    rows = [(0.0, 1000.0, 1460.0), (3600.0, 2000.0, 1460.0), (7200.0, 1500.0, 1460.0), (9000.0, 0.0, 0.0)]
+    record, scaled = tmp_path / "record.csv", tmp_path / "scaled.csv"
+    for f, k in ((record, 1.0), (scaled, 4000.0)):
+        f.write_text("time_s,torque_Nm,speed_rpm\n" + "".join(f"{t * k!r},{q!r},{n!r}\n" for t, q, n in rows))
+    short = _life(path, "--static", "--series", str(record))
+    said = [w for w in short["warnings"] if w["code"] == "duty"]
+    assert len(said) == 1 and str(record) in said[0]["message"] and "by 4000" in said[0]["message"]
+    assert said[0]["hours"] == pytest.approx(2.5)
+    full = _life(path, "--static", "--series", str(scaled))
+    assert not [w for w in full["warnings"] if w["code"] == "duty"]
+    a, b = full["life"]["stages"][0]["pinion"]["pitting"], short["life"]["stages"][0]["pinion"]["pitting"]
+    assert_allclose(a["damage"], 4000.0 * b["damage"], rtol=1e-9)
+    assert_allclose(a["life_h"], b["life_h"], rtol=1e-9)
