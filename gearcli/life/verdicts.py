@@ -39,12 +39,16 @@ def _mode_warning(stage: int, member: str, mode: str, ml: ModeLife, minimum: flo
     if not (low or ml.damage >= 1.0):
         return None
     where = f"stage {stage} {member}" + (f" (planet {ml.planet})" if ml.planet is not None else "")
-    safety = "" if ml.stress_safety is None else (
-        f"its spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress (load multiplier {ml.safety:.4g}) "
-        f"is {'below' if low else 'at least'} the minimum {minimum:g} ([rating] min_safety_{mode}); ")
     life = "" if ml.life_h is None else f", a life of {ml.life_h:.4g} h"
-    return warning(LIFE_SAFETY_LOW, f"{where} {mode}: {safety}Miner damage D = {ml.damage:.4g} over the duty's "
-                   f"{hours:.6g} h{life}", stage=stage, member=member, mode=mode, stress_safety=ml.stress_safety,
+    damage = f"Miner damage D = {ml.damage:.4g} over the duty's {hours:.6g} h{life}"
+    if low:
+        text = (f"spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress (load multiplier {ml.safety:.4g}) "
+                f"is below the minimum {minimum:g} ([rating] min_safety_{mode}); {damage}")
+    else:
+        text = f"{damage}: it fails within the duty" + ("" if ml.stress_safety is None else (
+            f" (spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress, load multiplier {ml.safety:.4g}; "
+            f"minimum {minimum:g})"))
+    return warning(LIFE_SAFETY_LOW, f"{where} {mode}: {text}", stage=stage, member=member, mode=mode, stress_safety=ml.stress_safety,
                    load_multiplier=ml.safety, min_safety=minimum, damage=ml.damage, life_h=ml.life_h, hours=hours)
 
 

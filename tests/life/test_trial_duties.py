@@ -99,6 +99,10 @@ def test_a_duty_of_one_point_is_the_plain_rating(tmp_path):
     assert_allclose([verdicts[0]["stress_safety"], verdicts[0]["damage"], verdicts[0]["life_h"]],
                     [pinion["stress_safety"], pinion["damage"], pinion["life_h"]], rtol=1e-12)
     assert verdicts[0]["min_safety"] == 1.0 and verdicts[0]["hours"] == 10000.0
+    # a minimum below 1 (0.9): the safety passes it, but D = 1.009 still fails the duty, and says so
+    low_min = _life(path, "--static", "--set", "rating.min_safety_pitting=0.9")["warnings"]
+    said = [w for w in low_min if w["code"] == "life_safety_low"]
+    assert len(said) == 1 and said[0]["min_safety"] == 0.9 and "fails within the duty" in said[0]["message"]
 
 
 SPECTRUM = [
