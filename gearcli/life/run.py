@@ -486,6 +486,7 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                 warnings += _point_design_warnings(scene, p, design_case, base_warnings)
                 warnings += [n for n in point_notes if n.message not in messages(warnings)]
                 warnings += _of_point(p, run_warnings)
+                warnings += verdicts.starts_warning(p, pd.start)
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))

@@ -12,7 +12,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from gearcli.diagnostics import BEARING_LIFE_SHORT, DUTY, LIFE_SAFETY_LOW, Diagnostic, warning
+from gearcli.life.duty import DutyPoint
 from gearcli.life.result import BearingLife, ModeLife, StageLife
+from gearcli.life.starts import StartData
 
 HOURS_TOLERANCE = 1e-3  # relative difference of the duty's hours from [rating] required_life_h without a warning
 _MEMBERS = ("pinion", "gear", "ring", "planet_ring_side")
@@ -85,3 +87,18 @@ def bearing_life_warnings(bearings: Sequence[BearingLife], hours: float) -> list
                            f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN)",
                            bearing=j + 1, life=name, life_h=life, hours=hours))
     return out
+
+
+def starts_warning(point: DutyPoint, start: StartData | None) -> list[Diagnostic]:
+    """A point whose starts, as counted (each from rest to its settled window), take longer than the point's hours:
+    more starts than its hours can hold (a typo in ``starts`` or ``hours``); the damage counts them all."""
+    if start is None or not start.count:
+        return []
+    each_s = start.span_s[1] - start.span_s[0]
+    total_h = start.count * each_s / 3600.0
+    if total_h <= point.hours:
+        return []
+    return [warning(DUTY, f"duty point {point.name} ({point.key}): its {start.count} starts of {each_s:.4g} s each (from "
+                    f"rest to the settled window, as counted) take {total_h:.4g} h, more than the point's {point.hours:.6g} "
+                    "h: check starts and hours (the damage counts every start and every hour)", point=point.name,
+                    starts=start.count, start_s=each_s, starts_h=total_h, hours=point.hours)]

@@ -16,6 +16,9 @@ from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
 from gearcli.cli import cli
+from gearcli.life.duty import DutyPoint
+from gearcli.life.starts import StartData
+from gearcli.life.verdicts import starts_warning
 from tests.life.trial_duties import MOTOR_DRIVE, SPEED_DRIVE, write
 
 # ISO 6336-2:2006 Table 2 (Z_NT, case-carburized, no pitting permitted) and ISO 6336-3:2006 Table 3 (Y_NT, Eh
@@ -243,7 +246,7 @@ def test_a_conveyor_start_longer_than_the_run_is_counted_whole(tmp_path):
     path = write(tmp_path / "conveyor.toml", MOTOR_DRIVE, *points)
     doc = _life(path)
     assert not [w for w in doc["warnings"] if w["code"] in ("motor_speed_mismatch", "start_not_settled",
-                                                            "window_not_settled")], doc["warnings"]
+                                                            "window_not_settled", "duty")], doc["warnings"]
     t, rpm = _series(path, "load.torque_Nm=380", "simulation.duration_s=6", "simulation.steps=12000")
     t98 = t[np.argmax(rpm >= 0.98 * rpm[-1])]  # the loaded start reaches 98 % of its speed here (about 2.5 s)
     assert t98 > 2.0
@@ -300,3 +303,15 @@ def test_a_recorded_history_shorter_than_the_required_life_is_warned_with_its_sc
     a, b = full["life"]["stages"][0]["pinion"]["pitting"], short["life"]["stages"][0]["pinion"]["pitting"]
     assert_allclose(a["damage"], 4000.0 * b["damage"], rtol=1e-9)
     assert_allclose(a["life_h"], b["life_h"], rtol=1e-9)
+
+
+def test_more_starts_than_the_hours_hold_are_warned():
+    """240 000 starts of 3.19 s each (from rest to the settled window) take 240000 x 3.19 / 3600 = 212.67 h: over
+    a point of 10 h that is a typo, warned; over 8000 h (30 starts an hour), not."""
+    start = StartData(240000, (0.0, 3.19), [], 46.8, (19087.0,))
+    typo = DutyPoint("loaded belt", 10.0, 380.0, 1460.0, key="duty[0]", starts=240000)
+    said = starts_warning(typo, start)
+    assert len(said) == 1 and said[0].code == "duty" and "duty[0]" in said[0].message
+    assert_allclose(said[0].data["starts_h"], 240000 * 3.19 / 3600.0, rtol=1e-12)
+    assert not starts_warning(DutyPoint("loaded belt", 8000.0, 380.0, 1460.0, key="duty[0]", starts=240000), start)
+    assert not starts_warning(typo, None)
