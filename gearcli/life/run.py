@@ -38,11 +38,11 @@ from gearcli.diagnostics import (
     warning,
 )
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
-from gearcli.life import spectra
+from gearcli.life import spectra, verdicts
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
-from gearcli.life.result import Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
+from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles, start_data
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
@@ -486,6 +486,7 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                 warnings += _point_design_warnings(scene, p, design_case, base_warnings)
                 warnings += [n for n in point_notes if n.message not in messages(warnings)]
                 warnings += _of_point(p, run_warnings)
+                warnings += verdicts.starts_warning(p, pd.start)
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
@@ -496,10 +497,23 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                                 "points alone"))
     bearings = bearing_lives(evaluated, start_bearings(evaluated))
     warnings += bearing_warnings(evaluated, bearings, base_warnings)
+    from_series = {p.key for p in points if not p.key.startswith("duty[")}  # a history's classes carry its name
+    warnings += _verdicts(evaluated[0].cfg, stages, bearings, hours, next(iter(from_series), None))
     runs = tuple(replace(pd.run, start=start_record(pd, stages)) if pd.start is not None else pd.run
                  for pd in evaluated)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
                       runs, stages, bearings, messages(warnings), tuple(warnings))
+
+
+def _verdicts(cfg: DesignFile, stages: Sequence[StageLife], bearings: Sequence[BearingLife], hours: float,
+              series: str | None) -> list[Diagnostic]:
+    """The duty's verdicts (:mod:`gearcli.life.verdicts`): hours not the required life, spectrum safeties below the
+    minimum, bearings outlived by the duty (``series``: the history file the points were classed from)."""
+    rating = cfg.rating
+    assert rating is not None  # every life point is rated (_require_rating)
+    return [*verdicts.hours_warning(hours, rating.required_life_h, series),
+            *verdicts.gear_warnings(stages, rating.min_safety_pitting, rating.min_safety_bending, hours),
+            *verdicts.bearing_life_warnings(bearings, hours)]
 
 
 def start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:

@@ -11,7 +11,8 @@ and the fitted amplitude at the window's start must stay below :data:`SETTLED_FR
 force. A motor whose start reaches 98 % of its operating speed only after the window starts is unsettled too.
 
 An unsettled window names the time from which it would be settled (the largest transient decayed to the
-fraction: ``t0 + ln(a0 / (f F)) / sigma``). :func:`settled_run` repeats the run with its window from there
+fraction: ``t0 + ln(a0 / (f F)) / sigma``; a motor that has not reached its operating speed within the run:
+the run's end). :func:`settled_run` repeats the run with its window from there
 (the window's length kept, the samples scaled with it), at most :data:`MAX_RUNS` times and within
 :data:`MAX_DURATION_FACTOR` times the first run's duration; where that budget cannot settle it, the periodic
 steady state is sought (shooting where it applies, within the same duration) and taken when it converges; a
@@ -144,10 +145,18 @@ def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], wo
 def next_window(settling: Settling, window_s: tuple[float, float], first_duration_s: float) -> tuple[float, float] | None:
     """(window start, duration) of the next run: the window from the settle time on, its length kept; None when
     there is no estimate or the run would exceed the budget."""
-    if settling.settled or settling.settle_time_s is None or not math.isfinite(settling.settle_time_s):
+    if settling.settled:
         return None
     length = window_s[1] - window_s[0]
-    start = max(settling.settle_time_s, window_s[0] + 0.25 * length)  # progress, however small the estimate
+    if settling.settle_time_s is None and math.isinf(settling.transient_fraction):
+        # a motor start that has not reached its operating speed within the run (:func:`check`): it is not
+        # settled before the run's end, so the next window starts there (no estimate of how much later)
+        settle = window_s[1]
+    elif settling.settle_time_s is None or not math.isfinite(settling.settle_time_s):
+        return None
+    else:
+        settle = settling.settle_time_s
+    start = max(settle, window_s[0] + 0.25 * length)  # progress, however small the estimate
     duration = start + length
     if duration > min(MAX_DURATION_S, MAX_DURATION_FACTOR * first_duration_s):
         return None

@@ -135,3 +135,25 @@ def test_damage_sum_and_spectrum_safety():
         miner_damage([r["sigma_HxS_H"] for r in rows], [r["n_30y"] for r in rows], [curve] * len(rows)), rel=1e-12)
     # pitting: stress ∝ √load, D ∝ s^(k/2) near D = 1, so |s − 1| ≲ (2/k) |D − 1|
     assert life.safety == pytest.approx(1.0, abs=2.0 / K_FINITE * (abs(TABLE_SUM - 1.0) + tol))
+
+
+FIGURE = Path(__file__).parent / "data" / "iso6336_6_annex_c" / "figC1_sn_curves_digitised.csv"
+
+
+def test_curve_is_the_annex_figure_c1():
+    """Figure C.1's S–N curve (curve ``SN``, digitised: a few 0.1 % of noise) against the curve ``gearcli life``
+    builds with the endurance stress the table implies: on the finite-life line (1.2e5 to 5e7 cycles) and beyond
+    the knee (the 0.85-at-1e10 slope, to 6e9 cycles) within 1 %; up to the static node the figure is flat at the
+    static strength 1.6 σ_HG,ref, the curve's value at its static node (the damage sum continues the finite line
+    above it, as Table C.2's bins 3-6 do: a warning says so)."""
+    with FIGURE.open() as fh:
+        pts = [(float(r["N_SN"]), float(r["sigma_SN"])) for r in csv.DictReader(fh) if r["N_SN"]]
+    ref, _ = _sigma_ref(_rows())
+    curve = SNCurve(rf.znt_curve("case_carburized"), ref, "iso", False)
+    sloped = [(n, s) for n, s in pts if 1.2e5 <= n <= 6e9]
+    flat = [(n, s) for n, s in pts if n <= 8e4]
+    assert len(sloped) > 40 and len(flat) > 30
+    for n, s in sloped:
+        assert curve.stress_at(n) == pytest.approx(s, rel=1e-2), n
+    np.testing.assert_allclose([s for _, s in flat], curve.stress_at(curve.static_cycles), rtol=5e-3)
+    np.testing.assert_allclose(curve.stress_at(curve.static_cycles), 1.6 * ref, rtol=1e-12)

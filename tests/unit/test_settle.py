@@ -54,6 +54,11 @@ def test_a_motor_start_after_the_window_start_is_unsettled():
     assert not found.settled and found.settle_time_s == 1.2 and "motor" in found.cause
     never = settle.check(t, mask, [np.full_like(t, 5.0)], [5.0], np.array([]), window, None, True)
     assert not never.settled
+    # a motor still starting at the run's end is not settled before it: the next window starts at the end (4 s),
+    # its length (3.2 s) kept; it used to have no settle time, and the window was never moved
+    assert settle.next_window(never, window, 4.0) == (4.0, 7.2)
+    # ... within the budget (8 x the first run's 4 s): a run already at 30 s is not lengthened to 33.2 s
+    assert settle.next_window(never, (26.8, 30.0), 4.0) is None
 
 
 def test_the_window_move_keeps_within_its_budget():

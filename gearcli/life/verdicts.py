@@ -1,0 +1,104 @@
+"""The verdicts of a life over its duty (docs/life.md, "Verdicts"): a member's spectrum safety below the file's
+minimum (or its Miner damage reaching 1 within the duty), a bearing whose life is shorter than the duty it
+carries, and a duty whose hours are not the required life the rating and the verdicts are meant for.
+
+ISO 6336-6 compares the spectrum's safety with the minimum safety factors S_Hmin and S_Fmin of ISO 6336-2/-3
+([rating] min_safety_pitting, min_safety_bending); the safety is the one that makes D = 1 over the duty's hours,
+so it is the required life's only when the duty's hours are the required life.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from gearcli.diagnostics import BEARING_LIFE_SHORT, DUTY, LIFE_SAFETY_LOW, Diagnostic, warning
+from gearcli.life.duty import DutyPoint
+from gearcli.life.result import BearingLife, ModeLife, StageLife
+from gearcli.life.starts import StartData
+
+HOURS_TOLERANCE = 1e-3  # relative difference of the duty's hours from [rating] required_life_h without a warning
+_MEMBERS = ("pinion", "gear", "ring", "planet_ring_side")
+_SYMBOL = {"pitting": "S_H", "bending": "S_F"}
+
+
+def hours_warning(hours: float, required_h: float | None, series: str | None = None) -> list[Diagnostic]:
+    """A duty whose hours differ from [rating] required_life_h: its D and spectrum safety are over its own hours.
+    ``series``: the history file the duty was classed from (its record's time is the duty's hours)."""
+    if required_h is None or abs(hours - required_h) <= HOURS_TOLERANCE * required_h:
+        return []
+    what = f"the history {series} records {hours:.6g} h" if series else f"the duty's hours sum to {hours:.6g} h"
+    fix = (f"scale its time_s column by {required_h / hours:.6g} (ISO 6336-6 Annex C scales its 70-day record to "
+           "the 30-year life)" if series else "give each point its hours over the required life (ISO 6336-6 "
+           "scales the spectrum to it)")
+    return [warning(DUTY, f"{what}, not [rating] required_life_h = {required_h:.6g} h: the Miner damage D and the "
+                    "spectrum safety (the load multiplier that makes D = 1) are over those "
+                    f"{hours:.6g} h, the life in hours is not affected; {fix}, or set rating.required_life_h to "
+                    "the duty's hours", hours=hours, required_life_h=required_h)]
+
+
+def _mode_warning(stage: int, member: str, mode: str, ml: ModeLife, minimum: float, hours: float) -> Diagnostic | None:
+    low = ml.stress_safety is not None and ml.stress_safety < minimum
+    if not (low or ml.damage >= 1.0):
+        return None
+    where = f"stage {stage} {member}" + (f" (planet {ml.planet})" if ml.planet is not None else "")
+    life = "" if ml.life_h is None else f", a life of {ml.life_h:.4g} h"
+    damage = f"Miner damage D = {ml.damage:.4g} over the duty's {hours:.6g} h{life}"
+    if low:
+        text = (f"spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress (load multiplier {ml.safety:.4g}) "
+                f"is below the minimum {minimum:g} ([rating] min_safety_{mode}); {damage}")
+    else:
+        text = f"{damage}: it fails within the duty" + ("" if ml.stress_safety is None else (
+            f" (spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress, load multiplier {ml.safety:.4g}; "
+            f"minimum {minimum:g})"))
+    return warning(LIFE_SAFETY_LOW, f"{where} {mode}: {text}", stage=stage, member=member, mode=mode, stress_safety=ml.stress_safety,
+                   load_multiplier=ml.safety, min_safety=minimum, damage=ml.damage, life_h=ml.life_h, hours=hours)
+
+
+def gear_warnings(stages: Sequence[StageLife], min_pitting: float, min_bending: float, hours: float) -> list[Diagnostic]:
+    """Every member and mode whose spectrum safety on stress is below the minimum, or whose damage reaches 1."""
+    out: list[Diagnostic] = []
+    for st in stages:
+        for member in _MEMBERS:
+            ml_pair = getattr(st, member, None)
+            if ml_pair is None:
+                continue
+            for mode, minimum in (("pitting", min_pitting), ("bending", min_bending)):
+                d = _mode_warning(st.index, member, mode, getattr(ml_pair, mode), minimum, hours)
+                if d is not None:
+                    out.append(d)
+        if st.planet_root is not None:
+            d = _mode_warning(st.index, "planet_root", "bending", st.planet_root, min_bending, hours)
+            if d is not None:
+                out.append(d)
+    return out
+
+
+def bearing_life_warnings(bearings: Sequence[BearingLife], hours: float) -> list[Diagnostic]:
+    """Every bearing whose life over the duty (L_nm where its catalogue data give it, else L10) is shorter than the
+    duty's hours."""
+    out = []
+    for j, b in enumerate(bearings):
+        name, life = ("L_nm", b.L_nm_h) if b.L_nm_h is not None else ("L10", b.L10_h)
+        if life is None or life >= hours:
+            continue
+        place = f"planet pin of stage {b.planet_stage}" if b.planet_stage else f"shaft {b.shaft}"
+        out.append(warning(BEARING_LIFE_SHORT, f"bearing {j + 1} ({place}, x = {b.position_mm:g} mm): its ISO 281 "
+                           f"life {name} = {life:.4g} h over the duty is shorter than the duty's {hours:.6g} h "
+                           f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN)",
+                           bearing=j + 1, life=name, life_h=life, hours=hours))
+    return out
+
+
+def starts_warning(point: DutyPoint, start: StartData | None) -> list[Diagnostic]:
+    """A point whose starts, as counted (each from rest to its settled window), take longer than the point's hours:
+    more starts than its hours can hold (a typo in ``starts`` or ``hours``); the damage counts them all."""
+    if start is None or not start.count:
+        return []
+    each_s = start.span_s[1] - start.span_s[0]
+    total_h = start.count * each_s / 3600.0
+    if total_h <= point.hours:
+        return []
+    return [warning(DUTY, f"duty point {point.name} ({point.key}): its {start.count} starts of {each_s:.4g} s each (from "
+                    f"rest to the settled window, as counted) take {total_h:.4g} h, more than the point's {point.hours:.6g} "
+                    "h: check starts and hours (the damage counts every start and every hour)", point=point.name,
+                    starts=start.count, start_s=each_s, starts_h=total_h, hours=point.hours)]
