@@ -36,7 +36,22 @@ def _stage_dict(st: StageLife) -> JsonObject:
                                              for m in _members(st)}}
     if st.planet_root is not None:
         out["planet_root"] = {"bending": _mode_dict(st.planet_root)}
+    if st.ring is not None and st.planet_ring_side is not None:
+        out.update(_planetary_members(st, out))
     return out
+
+
+def _planetary_members(st: StageLife, out: JsonObject) -> JsonObject:
+    """A planetary stage's members under the contract's names (DESIGN §10: ``sun``, ``planet``, ``ring``) beside
+    the per-mesh entries: ``sun`` is the sun–planet mesh's ``pinion``; ``planet`` the planet as a whole, its
+    flank the more damaged of its two (``gear``, the sun side, and ``planet_ring_side``; ``flank`` says which:
+    different flanks, independent damages) and its root ``planet_root`` (both meshes' bending on the same root,
+    summed); ``ring`` is already there."""
+    assert st.planet_ring_side is not None and st.planet_root is not None
+    sides = (("sun_mesh", "gear", st.gear.pitting), ("ring_mesh", "planet_ring_side", st.planet_ring_side.pitting))
+    flank, key, _ = max(sides, key=lambda s: s[2].damage)  # the sun side on a tie (max keeps the first)
+    pitting = dict(cast(JsonObject, cast(JsonObject, out[key])["pitting"]), flank=flank)
+    return {"sun": out["pinion"], "planet": {"pitting": pitting, "bending": cast(JsonObject, out["planet_root"])["bending"]}}
 
 
 def life_dict(r: LifeResult, design: DesignResult | None = None) -> JsonObject:

@@ -126,7 +126,7 @@ def test_the_sun_planet_members_are_unchanged_and_the_planet_root_sums_both_mesh
     else:
         assert_allclose(root["life_h"], HOURS / total, rtol=1e-12)
     assert len(root["bins"]) == 2 * len(POINTS)
-    assert set(stage) == {"index", "pinion", "gear", "ring", "planet_ring_side", "planet_root"}
+    assert set(stage) == {"index", "pinion", "gear", "ring", "planet_ring_side", "planet_root", "sun", "planet"}
 
 
 def test_csv_and_tables_name_the_ring_mesh_members():
@@ -175,3 +175,23 @@ def test_the_ring_spectrum_safety_makes_the_damage_one():
     d = sum(b["cycles"] / _cycles_to_failure(b["stress_MPa"] * math.sqrt(s) / b["endurance_MPa"], ZNT)
             for b in ml["bins"])
     assert_allclose(d, 1.0, rtol=1e-8)
+
+
+def test_the_contract_names_sun_planet_and_ring():
+    """DESIGN §10 names a planetary stage's members ``sun``, ``planet``, ``ring``: ``sun`` is the sun–planet mesh's
+    sun, counted by hand (hours × 60 × |n_s − n_c| × N, n_s − n_c = n_c z_r / z_s by Willis); ``planet`` takes
+    the more damaged of the planet's two flanks (the sun drives one, the ring reacts on the other) and the
+    root bending of both meshes summed on the same root."""
+    st = _doc()["stages"][0]
+    assert st["sun"] == st["pinion"]
+    cycles = [b["cycles"] for b in st["sun"]["pitting"]["bins"]]
+    assert_allclose(cycles, [h * 60 * n * Z_R / Z_S * N for _, h, _, n in POINTS], rtol=1e-12)
+    flanks = {"sun_mesh": st["gear"]["pitting"], "ring_mesh": st["planet_ring_side"]["pitting"]}
+    worst = max(flanks, key=lambda k: flanks[k]["damage"])
+    planet = st["planet"]
+    assert planet["pitting"]["flank"] == worst
+    assert planet["pitting"]["damage"] == flanks[worst]["damage"]
+    assert planet["pitting"]["bins"] == flanks[worst]["bins"]
+    assert planet["bending"] == st["planet_root"]["bending"]
+    both = st["gear"]["bending"]["damage"] + st["planet_ring_side"]["bending"]["damage"]
+    assert_allclose(planet["bending"]["damage"], both, rtol=1e-12)  # the planet root's Miner sum over both meshes
