@@ -249,7 +249,7 @@ def y_rrelt(t: str, rz: float) -> float:
     if t == "structural_steel":
         return 1.070 if rz < 1 else 5.306 - 4.203 * (min(rz, 40) + 1) ** 0.01
     if t in ("grey_iron", "nitrided", "nitrocarburized"):
-        return 1.025 if rz < 1 else 4.299 - 3.259 * (min(rz, 40) + 1) ** 0.005
+        return 1.025 if rz < 1 else 4.299 - 3.259 * (min(rz, 40) + 1) ** 0.0058
     return 1.120 if rz < 1 else 1.674 - 0.529 * (min(rz, 40) + 1) ** 0.1
 
 

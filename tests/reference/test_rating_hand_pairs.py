@@ -177,3 +177,26 @@ def test_mixed_pair_running_in_is_symmetric():
         assert_allclose(getattr(b, key), getattr(a, key), rtol=1e-12, err_msg=key)
     assert b.pinion.sigma_HG_MPa / b.pinion.Z_NT == pytest.approx(750 * b.Z_L * b.Z_V * b.Z_R * b.Z_W, rel=1e-12)
     assert math.isclose(b.gear.sigma_HG_MPa / b.gear.Z_NT, 1500 * b.Z_L * b.Z_V * b.Z_R, rel_tol=1e-12)
+
+
+@pytest.mark.parametrize(("treatment", "rz", "expected"), [
+    # 4.299 − 3.259 (R_z + 1)^0.0058: R_z 1 → 4.299 − 3.259 · 2^0.0058 = 4.299 − 3.259 · 1.0040283 = 1.02687;
+    # R_z 10 → 4.299 − 3.259 · 11^0.0058 = 4.299 − 3.259 · 1.0140050 = 0.99436 (3.0 % below the smooth 1.025);
+    # R_z 40 → 4.299 − 3.259 · 41^0.0058 = 4.299 − 3.259 · 1.0217716 = 0.96904
+    ("nitrided", 1.0, 1.02687), ("nitrocarburized", 10.0, 0.99436), ("grey_iron", 40.0, 0.96904),
+    ("nitrided", 0.5, 1.025),
+    # the other two lines for contrast: 1.674 − 0.529 · 11^0.1 = 1.00165; 5.306 − 4.203 · 11^0.01 = 1.00100
+    ("case_carburized", 10.0, 1.00165), ("structural_steel", 10.0, 1.00100),
+])
+def test_relative_surface_factor_lines(treatment, rz, expected):
+    """Y_RrelT of ISO 6336-3:2006, 13.3 (method B), on a nitrided pair's root roughness: the GG/NT/NV line's exponent is
+    0.0058 (ISO 6336-3; DIN 3990-3 the same; as reproduced in IACS UR M56.3 and coded in GEARpie,
+    github.com/cfernandesFEUP/GEARpie, CLASSES/DIN3990.py at 329b03ce). gearcli had 0.005, which gives 1.00069 at
+    R_z 10 (0.6 % too strong a root) and puts the reference roughness on the wrong side of 1."""
+    q = Pair(Member(17, 60.0, rz_flank=3.0, rz_root=rz, treatment=treatment, hlim=1250.0, flim=420.0),
+             Member(71, 55.0, rz_flank=3.0, rz_root=rz, treatment=treatment, hlim=1250.0, flim=420.0), mn=3.0,
+             alpha_n_deg=20.0, beta_deg=15.0, grade=6, torque_pinion_Nm=250.0, n1_rpm=2900.0, k_a=1.1, nu40=100.0,
+             life_h=20000.0)
+    r = _tool(q).rating
+    assert_allclose(r.pinion.Y_R_rel_T, expected, atol=6e-6)
+    assert_allclose(r.gear.Y_R_rel_T, expected, atol=6e-6)
