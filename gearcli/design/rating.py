@@ -101,9 +101,17 @@ def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:
 
 
 def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
-    """Warnings where the stage lies outside what method B covers: ε_α < 1 (no continuous mesh), and a
-    notch parameter q_s of the root outside 1 … 8 (Y_S's range)."""
+    """Warnings where the stage lies outside what method B covers: a nominal F_t below the 1 N/mm floor the rating
+    then uses (an unloaded stage), ε_α < 1 (no continuous mesh), and a notch parameter q_s of the root outside
+    1 … 8 (Y_S's range)."""
     out = []
+    floor = reference_tangential_force_N(0.0, st.face_width_mm)
+    if abs(st.static_force_N.tangential) < floor:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index}: the nominal tangential force "
+                           f"{abs(st.static_force_N.tangential):.3g} N is below 1 N per mm of face width: the strength "
+                           f"rating is at F_t = {floor:.3g} N (that floor), a token load whose load factors (K_v, K_Hβ, "
+                           "K_Hα) and safeties describe no operating point; rate the stage at its working torque",
+                           stage=st.index, quantity="tangential_force_N", value=abs(st.static_force_N.tangential)))
     if st.contact_ratio_transverse < 1.0:
         out.append(warning(OUT_OF_RANGE, f"stage {st.index}: ε_α = {st.contact_ratio_transverse:.3g} < 1: ISO 6336 "
                            "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",

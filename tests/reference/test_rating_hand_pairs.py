@@ -200,3 +200,24 @@ def test_relative_surface_factor_lines(treatment, rz, expected):
     r = _tool(q).rating
     assert_allclose(r.pinion.Y_R_rel_T, expected, atol=6e-6)
     assert_allclose(r.gear.Y_R_rel_T, expected, atol=6e-6)
+
+
+@pytest.mark.parametrize("torque", [0.0, 0.5])
+def test_unloaded_stage_is_rated_at_the_floor_with_a_warning(torque):
+    """An unloaded stage (zero torque, or below 1 N/mm) is rated at F_t = 1 N/mm · b = 40 N, as docs/iso6336.md says,
+    and the design says so: a ``rating_out_of_range`` warning naming the stage and the nominal force. By hand:
+    σ_H0 = Z_H Z_E Z_ε √(40/(80 · 40) · 4/3) = 2.49457 · 189.812 · 0.88114 · 0.129099 = 53.862 MPa."""
+    q = _mixed_spur(torque_pinion_Nm=torque)
+    design = compute_design(DesignFile.model_validate(toml_doc(q)))
+    r = design.stages[0].rating
+    assert_allclose(r.sigma_H0_MPa, 2.49457 * 189.812 * 0.88114 * math.sqrt(40.0 / 3200.0 * 4.0 / 3.0), rtol=2e-5)
+    floor = [d for d in design.diagnostics if d.code == "rating_out_of_range" and
+             d.data.get("quantity") == "tangential_force_N"]
+    assert len(floor) == 1 and floor[0].data["stage"] == 1
+    assert_allclose(floor[0].data["value"], torque * 1000.0 / 40.0, rtol=1e-12)
+    assert "40 N" in floor[0].message
+
+
+def test_loaded_stage_has_no_floor_warning():
+    design = compute_design(DesignFile.model_validate(toml_doc(_mixed_spur())))
+    assert not [d for d in design.diagnostics if d.data.get("quantity") == "tangential_force_N"]
