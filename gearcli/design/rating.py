@@ -127,6 +127,31 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
             out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
                                f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
                                stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
+    return out + static_range_diagnostics(cfg, k, st)
+
+
+def static_range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
+    """A warning for a member whose load cycles lie in the static range of its life factor (N_L at or below the first
+    node of its Z_NT or Y_NT curve, ISO 6336-2 Table 2, ISO 6336-3 Table 3): the static proof takes its own
+    (Z_L Z_V Z_R)_st, Y_δrelT,st, Y_RrelT,st, Y_X,st, which gearcli does not compute (docs/iso6336.md, "Not
+    covered"); the rating keeps the endurance values of those factors with the static Z_NT, Y_NT."""
+    r = st.rating
+    if r is None:
+        return []
+    out = []
+    stage = cfg.pair(k)
+    for part in ("pinion", "gear"):
+        treatment = str(cfg.materials[getattr(stage, part).material].treatment)
+        cycles = getattr(r, part).load_cycles
+        modes = (("Z_NT", rf.znt_curve(treatment)[0][0], "Z_L Z_V Z_R"),
+                 ("Y_NT", rf.ynt_curve(treatment)[0][0], "Y_δrelT, Y_RrelT, Y_X"))
+        static = [(f"{name} (N_L ≤ {n:.0e})", factors) for name, n, factors in modes if cycles <= n]
+        if static:
+            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: N_L = {cycles:.3g} load cycles lie in the "
+                               f"static range of {' and '.join(m for m, _ in static)}: ISO 6336's static proof takes "
+                               f"static values of {'; '.join(f for _, f in static)}, which gearcli does not compute; "
+                               "this rating keeps their endurance values beside the static life factors",
+                               stage=st.index, member=part, quantity="load_cycles", value=cycles))
     return out
 
 

@@ -221,3 +221,24 @@ def test_unloaded_stage_is_rated_at_the_floor_with_a_warning(torque):
 def test_loaded_stage_has_no_floor_warning():
     design = compute_design(DesignFile.model_validate(toml_doc(_mixed_spur())))
     assert not [d for d in design.diagnostics if d.data.get("quantity") == "tangential_force_N"]
+
+
+def _static_warnings(q: Pair) -> dict[str, str]:
+    design = compute_design(DesignFile.model_validate(toml_doc(q)))
+    return {d.data["member"]: d.message for d in design.diagnostics
+            if d.code == "rating_out_of_range" and d.data.get("quantity") == "load_cycles"}
+
+
+def test_static_range_is_flagged():
+    """N_L at or below the first node of a member's life curve (ISO 6336-2 Table 2: 1e5 for Eh and V; ISO 6336-3
+    Table 3: 1e3 for Eh, 1e4 for V) is the static range, whose proof ISO 6336 makes with static values of Z_L Z_V Z_R
+    and of Y_δrelT, Y_RrelT, Y_X that gearcli does not compute (docs/iso6336.md, "Not covered"): the design says so.
+    0.01 h at 1000/333 rpm: N_L = 600 (pinion, Eh) and 200 (wheel, V): both curves static for both members;
+    1 h: 6e4 and 2e4: Z_NT static only (Y_NT's nodes 1e3, 1e4 are passed); 20 h: 1.2e6, 4e5: none."""
+    short = _static_warnings(_mixed_spur(life_h=0.01))
+    assert set(short) == {"pinion", "gear"}
+    assert "Z_NT (N_L ≤ 1e+05) and Y_NT (N_L ≤ 1e+03)" in short["pinion"]
+    assert "Y_NT (N_L ≤ 1e+04)" in short["gear"]
+    one_hour = _static_warnings(_mixed_spur(life_h=1.0))
+    assert set(one_hour) == {"pinion", "gear"} and all("Y_NT" not in m for m in one_hour.values())
+    assert _static_warnings(_mixed_spur(life_h=20.0)) == {}
