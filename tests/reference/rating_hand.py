@@ -336,6 +336,8 @@ def rate(q: Pair) -> dict:
             hb = min(max(0.95 * hv, 130), 470)
             z_w[soft] = 1.2 - (hb - 130) / 1700
     y_b = 1 - min(eb, 1) * min(q.beta_deg, 30) / 120
+    ean = ea / math.cos(g["bb"]) ** 2  # Y_DT (ISO 6336-3:2006, 11): grade ≤ 4 and ε_αn > 2.05 only
+    y_dt = 1.0 if q.grade > 4 or ean <= 2.05 else (-0.666 * ean + 2.366 if ean <= 2.5 else 0.7)
     out = dict(g=g, s=s, res=res, v=v, F_t=ft, f_pb=fpb, f_fa=ffa, y_a=ya, y_f=yf, K_v=k_v, range=rng, K_Hbeta=khb,
                K_Fbeta=kfb, K_Halpha=kha, K_Falpha=kfa, Z_eps=z_eps, Z_H=z_h, Z_E=z_e, Z_beta=z_b, sigma_H0=s_h0,
                sigma_H=s_h, Z_L=z_l, Z_V=z_v, Z_R=z_r, Z_W=max(z_w), Y_beta=y_b)
@@ -345,7 +347,7 @@ def rate(q: Pair) -> dict:
         shg = m.hlim * znt * z_l * z_v * z_r * z_w[i]
         form = tooth_form(m, q, g, i)
         bf = min(m.b, b + 2 * q.mn)
-        sf0 = ft / (bf * q.mn) * form["Y_F"] * form["Y_S"] * y_b
+        sf0 = ft / (bf * q.mn) * form["Y_F"] * form["Y_S"] * y_b * y_dt
         sf = sf0 * q.k_a * k_v * kfb * kfa
         rho_s = SLIP[m.treatment]
         yd = (1 + math.sqrt(rho_s * (1 + 2 * form["q_s"]) / 5)) / (1 + math.sqrt(rho_s * 1.2))
@@ -355,7 +357,7 @@ def rate(q: Pair) -> dict:
         sfg = m.flim * 2 * ynt * yd * yr * yx
         out[("pinion", "gear")[i]] = dict(
             load_cycles=n_l, Z_BD=zbd[i], sigma_H=zbd[i] * s_h, Z_NT=znt, sigma_HG=shg, S_H=shg / (zbd[i] * s_h),
-            Y_F=form["Y_F"], Y_S=form["Y_S"], q_s=form["q_s"], sigma_F0=sf0, sigma_F=sf, Y_delta_rel_T=yd,
+            Y_F=form["Y_F"], Y_S=form["Y_S"], Y_DT=y_dt, q_s=form["q_s"], sigma_F0=sf0, sigma_F=sf, Y_delta_rel_T=yd,
             Y_R_rel_T=yr, Y_X=yx, Y_NT=ynt, sigma_FG=sfg, S_F=sfg / sf, Z_W=z_w[i])
     return out
 

@@ -32,7 +32,7 @@ STAGE_KEYS = ("K_v", "K_Hbeta", "K_Fbeta", "K_Halpha", "K_Falpha", "Z_eps", "Z_H
 STRESS_KEYS = {"sigma_H0": "sigma_H0_MPa", "sigma_H": "sigma_H_MPa"}
 MEMBER_KEYS = {"load_cycles": "load_cycles", "Z_BD": "Z_BD", "sigma_H": "sigma_H_MPa", "Z_NT": "Z_NT",
                "sigma_HG": "sigma_HG_MPa", "S_H": "S_H", "Y_F": "Y_F", "Y_S": "Y_S", "sigma_F0": "sigma_F0_MPa",
-               "sigma_F": "sigma_F_MPa", "Y_delta_rel_T": "Y_delta_rel_T", "Y_R_rel_T": "Y_R_rel_T", "Y_X": "Y_X",
+               "sigma_F": "sigma_F_MPa", "Y_DT": "Y_DT", "Y_delta_rel_T": "Y_delta_rel_T", "Y_R_rel_T": "Y_R_rel_T", "Y_X": "Y_X",
                "Y_NT": "Y_NT", "sigma_FG": "sigma_FG_MPa", "S_F": "S_F"}
 
 
@@ -60,6 +60,14 @@ def _materials(tp: str, tg: str) -> Pair:
                 nu40=150.0, life_h=10000.0)
 
 
+def _deep_tooth(grade: int, rack: tuple[float, float, float]) -> Pair:
+    """Helical 30/90, α_n 16°, β 25°: ε_αn = ε_α/cos² β_b = 2.08 on the standard rack, 2.53 with a 1.25 m_n
+    addendum, where Y_DT (grade ≤ 4) is −0.666 ε_αn + 2.366 and 0.7; basic racks A, D and a long-addendum one."""
+    return Pair(Member(30, 50.0, rz_flank=2.0, rz_root=5.0, **EH), Member(90, 50.0, rz_flank=2.0, rz_root=5.0, **EH),
+                mn=3.0, alpha_n_deg=16.0, beta_deg=25.0, grade=grade, torque_pinion_Nm=400.0, n1_rpm=3000.0, k_a=1.0,
+                nu40=100.0, life_h=20000.0, rack=rack)
+
+
 SCENES = {
     "spur_mixed_hard_soft": _mixed_spur(),
     "helical_nitrided_shifted_tip_relief": Pair(
@@ -79,6 +87,9 @@ SCENES = {
                                   Member(60, 200.0, rz_flank=4.0, rz_root=12.0, **EH), mn=4.0, alpha_n_deg=20.0,
                                   beta_deg=0.0, grade=9, torque_pinion_Nm=600.0, n1_rpm=1000.0, k_a=1.25, nu40=150.0,
                                   life_h=10000.0),
+    "deep_tooth_grade_3": _deep_tooth(3, (1.0, 1.25, 0.38)),
+    "deep_tooth_grade_4_long_addendum": _deep_tooth(4, (1.25, 1.5, 0.3)),
+    "deep_tooth_grade_5_profile_d": _deep_tooth(5, (1.0, 1.4, 0.39)),
     "static_range": _mixed_spur(life_h=0.01),
     "finite_life_1h": _mixed_spur(life_h=1.0),
     "finite_life_20h": _mixed_spur(life_h=20.0),
@@ -125,6 +136,16 @@ def test_the_scenes_span_method_b_ranges(name, expected):
     hand, st = rate(SCENES[name]), _tool(SCENES[name])
     assert st.resonance_range == expected
     assert hand["range"] == expected.split()[0]
+
+
+@pytest.mark.parametrize(("name", "y_dt"), [("deep_tooth_grade_3", -0.666 * 2.0766051227 + 2.366),
+                                            ("deep_tooth_grade_4_long_addendum", 0.7),
+                                            ("deep_tooth_grade_5_profile_d", 1.0)])
+def test_deep_tooth_factor(name, y_dt):
+    """Y_DT where ISO 6336-3 applies it (grade ≤ 4, ε_αn > 2.05): ε_αn = 2.07661 gives 0.98298, ε_αn 2.528 > 2.5
+    gives 0.7; grade 5 gives 1 whatever ε_αn."""
+    r = _tool(SCENES[name]).rating
+    assert_allclose([r.pinion.Y_DT, r.gear.Y_DT], [y_dt, y_dt], rtol=1e-9)
 
 
 def test_mixed_pair_written_out():
