@@ -268,7 +268,9 @@ def c_zl(h: float) -> float:
 
 
 # ------------------------------------------------------------------------------------ the rating
-def rate(q: Pair) -> dict:
+def rate(q: Pair, k_v_given: float | None = None) -> dict:
+    """The whole rating; ``k_v_given`` replaces method B's K_v (a simulated or given dynamic factor), and every
+    factor that reads K_v (K_Hβ's estimate, K_Hα, K_Fα) follows it."""
     g = geometry(q)
     b = g["b"]
     d1 = g["d"][0]
@@ -283,6 +285,8 @@ def rate(q: Pair) -> dict:
     ya = 0.5 * (y_alpha(q.p, fpb, v) + y_alpha(q.g, fpb, v))
     yf = 0.5 * (y_alpha(q.p, ffa, v) + y_alpha(q.g, ffa, v))
     k_v, rng = k_v_method_b(res, g["eg"], s["cp"], wl, fpb - ya, ffa - yf, q.c_a)
+    if k_v_given is not None:
+        k_v = k_v_given
     fm = wl * k_v  # F_m / b
     if q.k_hbeta is None:
         fhb = tolerances(d1, q.mn, b, q.grade)[2]
