@@ -117,12 +117,15 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
                            "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",
                            stage=st.index, quantity="contact_ratio_transverse", value=st.contact_ratio_transverse))
     stage = cfg.pair(k)
+    assert cfg.rating is not None  # rate_design's caller
     for part in ("pinion", "gear"):
         g = getattr(st, part)
+        # the root as the rating rates it: at x_E of the chosen allowance where the member has one
         form = rr.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
-                             math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg), g.profile_shift,
-                             g.tip_diameter_mm, g.pitch_diameter_mm, st.contact_ratio_transverse,
-                             (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+                             math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),
+                             root_shift(g, cfg.rating.root_profile_shift), g.tip_diameter_mm, g.pitch_diameter_mm,
+                             st.contact_ratio_transverse, (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
+                             virtual_tooth_count=cfg.rating.virtual_tooth_count)
         if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
             out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
                                f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",

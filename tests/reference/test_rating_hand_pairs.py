@@ -293,3 +293,29 @@ def test_simulated_dynamic_factor_rating():
     for part in ("pinion", "gear"):
         for mine, theirs in MEMBER_KEYS.items():
             assert_allclose(getattr(getattr(r, part), theirs), hand[part][mine], rtol=1e-9, err_msg=f"{part}.{mine}")
+
+
+def test_notch_warning_reads_the_rated_root():
+    """The q_s range warning (Y_S holds for 1 ≤ q_s < 8) looks at the root the rating rates: with a tooth-thickness
+    allowance that is the generating shift x_E,i = x + A_sni/(2 m_n tan α_n) = −0.35 − 0.4/(8 tan 20°) = −0.48737
+    (docs/iso6336.md, "Allowances in the strength rating"). A 14-tooth pinion at x = −0.35 has q_s = 1.03 but is
+    rated at q_s = 0.875 (hand: method B's s_Fn/(2 ρ_F) at x_E,i): the warning fires with that value. It read the
+    nominal x and stayed silent."""
+    from dataclasses import replace as dc_replace
+
+    from tests.reference.rating_hand import geometry, tooth_form
+
+    q = _mixed_spur()
+    q = dc_replace(q, p=dc_replace(q.p, z=14, x=-0.35))
+    doc = toml_doc(q)
+    doc["stage"][0]["pinion"]["tooth_thickness_allowance_mm"] = [-0.2, -0.4]
+    design = compute_design(DesignFile.model_validate(doc))
+    x_ei = -0.35 - 0.4 / (2 * 4.0 * math.tan(math.radians(20.0)))
+    assert_allclose(design.stages[0].pinion.generating_profile_shift[1], x_ei, rtol=1e-12)
+    g = geometry(q)
+    nominal = tooth_form(q.p, q, g, 0)["q_s"]
+    rated = tooth_form(dc_replace(q.p, x=x_ei), q, g, 0)["q_s"]
+    assert nominal > 1.0 > rated
+    warned = [d for d in design.diagnostics if d.code == "rating_out_of_range" and d.data.get("quantity") == "q_s"]
+    assert [d.data["member"] for d in warned] == ["pinion"]
+    assert_allclose(warned[0].data["value"], rated, rtol=1e-9)
