@@ -101,24 +101,60 @@ def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:
 
 
 def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
-    """Warnings where the stage lies outside what method B covers: ε_α < 1 (no continuous mesh), and a
-    notch parameter q_s of the root outside 1 … 8 (Y_S's range)."""
+    """Warnings where the stage lies outside what method B covers: a nominal F_t below the 1 N/mm floor the rating
+    then uses (an unloaded stage), ε_α < 1 (no continuous mesh), and a notch parameter q_s of the root outside
+    1 … 8 (Y_S's range)."""
     out = []
+    floor = reference_tangential_force_N(0.0, st.face_width_mm)
+    if abs(st.static_force_N.tangential) < floor:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index}: the nominal tangential force "
+                           f"{abs(st.static_force_N.tangential):.3g} N is below 1 N per mm of face width: the strength "
+                           f"rating is at F_t = {floor:.3g} N (that floor), a token load whose load factors (K_v, K_Hβ, "
+                           "K_Hα) and safeties describe no operating point; rate the stage at its working torque",
+                           stage=st.index, quantity="tangential_force_N", value=abs(st.static_force_N.tangential)))
     if st.contact_ratio_transverse < 1.0:
         out.append(warning(OUT_OF_RANGE, f"stage {st.index}: ε_α = {st.contact_ratio_transverse:.3g} < 1: ISO 6336 "
                            "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",
                            stage=st.index, quantity="contact_ratio_transverse", value=st.contact_ratio_transverse))
     stage = cfg.pair(k)
+    assert cfg.rating is not None  # rate_design's caller
     for part in ("pinion", "gear"):
         g = getattr(st, part)
+        # the root as the rating rates it: at x_E of the chosen allowance where the member has one
         form = rr.tooth_form(g.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
-                             math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg), g.profile_shift,
-                             g.tip_diameter_mm, g.pitch_diameter_mm, st.contact_ratio_transverse,
-                             (stage.basic_rack.dedendum, stage.basic_rack.root_radius))
+                             math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),
+                             root_shift(g, cfg.rating.root_profile_shift), g.tip_diameter_mm, g.pitch_diameter_mm,
+                             st.contact_ratio_transverse, (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
+                             virtual_tooth_count=cfg.rating.virtual_tooth_count)
         if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
             out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
                                f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
                                stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
+    return out + static_range_diagnostics(cfg, k, st)
+
+
+def static_range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
+    """A warning for a member whose load cycles lie in the static range of its life factor (N_L at or below the first
+    node of its Z_NT or Y_NT curve, ISO 6336-2 Table 2, ISO 6336-3 Table 3): the static proof takes its own
+    (Z_L Z_V Z_R)_st, Y_δrelT,st, Y_RrelT,st, Y_X,st, which gearcli does not compute (docs/iso6336.md, "Not
+    covered"); the rating keeps the endurance values of those factors with the static Z_NT, Y_NT."""
+    r = st.rating
+    if r is None:
+        return []
+    out = []
+    stage = cfg.pair(k)
+    for part in ("pinion", "gear"):
+        treatment = str(cfg.materials[getattr(stage, part).material].treatment)
+        cycles = getattr(r, part).load_cycles
+        modes = (("Z_NT", rf.znt_curve(treatment)[0][0], "Z_L Z_V Z_R"),
+                 ("Y_NT", rf.ynt_curve(treatment)[0][0], "Y_δrelT, Y_RrelT, Y_X"))
+        static = [(f"{name} (N_L ≤ {n:.0e})", factors) for name, n, factors in modes if cycles <= n]
+        if static:
+            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: N_L = {cycles:.3g} load cycles lie in the "
+                               f"static range of {' and '.join(m for m, _ in static)}: ISO 6336's static proof takes "
+                               f"static values of {'; '.join(f for _, f in static)}, which gearcli does not compute; "
+                               "this rating keeps their endurance values beside the static life factors",
+                               stage=st.index, member=part, quantity="load_cycles", value=cycles))
     return out
 
 

@@ -194,14 +194,18 @@ def face_running_in_um(treatment: str, sigma_hlim: float, misalignment_um: float
 
 
 def face_load_factor_estimate(mesh_beta: float, line_load_m: float, helix_slope_um: float, width_ratio: float,
-                              running_in: tuple[str, float, float]) -> float:
+                              running_in: tuple[tuple[str, float], tuple[str, float], float]) -> float:
     """K_Hβ, method C of ISO 6336-1:2006 (7.6) for a pinion centred between its bearings, without lead
     correction: F_βx = 1.33 f_sh + f_ma, f_sh = 0.023 F_m/b (b/d1)² µm, f_ma = f_Hβ; F_βx ≥ max(0.005 F_m/b,
-    0.5 f_Hβ); F_βy = F_βx − y_β (``running_in`` = treatment, σ_Hlim, v for ``face_running_in_um``);
-    K_Hβ = 1 + c_γβ F_βy/(2 F_m/b), or √(2 c_γβ F_βy/(F_m/b)) above 2. ``line_load_m`` = F_m/b = F_t K_A K_v/b."""
+    0.5 f_Hβ); F_βy = F_βx − y_β, y_β = (y_β1 + y_β2)/2 the mean of the two members (``running_in`` = (treatment,
+    σ_Hlim) of each member and v, for ``face_running_in_um``; ISO's rule for a pinion and wheel of different
+    materials, as for y_α); K_Hβ = 1 + c_γβ F_βy/(2 F_m/b), or √(2 c_γβ F_βy/(F_m/b)) above 2.
+    ``line_load_m`` = F_m/b = F_t K_A K_v/b."""
     f_sh = 0.023 * line_load_m * width_ratio ** 2
     f_bx = max(1.33 * f_sh + helix_slope_um, 0.005 * line_load_m, 0.5 * helix_slope_um)
-    f_by = max(f_bx - face_running_in_um(running_in[0], running_in[1], f_bx, running_in[2]), 0.0)
+    (t1, h1), (t2, h2), speed = running_in
+    y_b = 0.5 * (face_running_in_um(t1, h1, f_bx, speed) + face_running_in_um(t2, h2, f_bx, speed))
+    f_by = max(f_bx - y_b, 0.0)
     k = 1.0 + mesh_beta * f_by / (2.0 * line_load_m)
     return k if k <= 2.0 else math.sqrt(2.0 * mesh_beta * f_by / line_load_m)
 

@@ -78,7 +78,7 @@ def resolve_load_factors(rating: Rating, m: MeshLoad, simulated_k_v: float | Non
     else:
         f_hb = rf.helix_slope_tolerance_um(d1, b, m.grade)
         k_hb = rf.face_load_factor_estimate(m.mesh_stiffness_beta, line_load * k_v, f_hb, b / d1,
-                                            (m.treatments[m.small], m.hlim_MPa[m.small], m.speed_m_s))
+                                            (pairs[0], pairs[1], m.speed_m_s))
         k_hb_source = "estimated"
     z_eps = rf.contact_ratio_factor(eps_a, eps_b)
     k_ha, k_fa = rf.transverse_load_factors(eps_a, eps_g, z_eps, m.mesh_stiffness, max(f_pb, f_fa) - y_a,

@@ -114,11 +114,11 @@ def relative_notch_sensitivity(treatment: str, q_s: float) -> float:
 
 def relative_surface_factor(treatment: str, rz_um: float) -> float:
     """Y_RrelT (ISO 6336-3:2006, 13.3), 1 ≤ R_z ≤ 40 µm: 1.674 − 0.529 (R_z + 1)^0.1 (V, GGG, Eh, IF),
-    5.306 − 4.203 (R_z + 1)^0.01 (St), 4.299 − 3.259 (R_z + 1)^0.005 (GG, NT, NV); below 1 µm: 1.120, 1.070, 1.025."""
+    5.306 − 4.203 (R_z + 1)^0.01 (St), 4.299 − 3.259 (R_z + 1)^0.0058 (GG, NT, NV); below 1 µm: 1.120, 1.070, 1.025."""
     if treatment == "structural_steel":
         a, b, p, smooth = 5.306, 4.203, 0.01, 1.070
     elif treatment in ("grey_iron", "nitrided", "nitrocarburized"):
-        a, b, p, smooth = 4.299, 3.259, 0.005, 1.025
+        a, b, p, smooth = 4.299, 3.259, 0.0058, 1.025
     else:
         a, b, p, smooth = 1.674, 0.529, 0.1, 1.120
     if rz_um < 1.0:
