@@ -38,6 +38,7 @@ from gearcli.simulate.results import StartSummary
 
 SAMPLES = 2001
 SWING_FRACTION = 0.02  # a mode swinging with less than this of the rigid peak is not named
+SWING_PERIODS = 2.0  # a mode's swing is measured over this many of its periods about the peak
 
 
 @dataclass(frozen=True)
@@ -179,20 +180,27 @@ def resonance_passage(lay: Layout, rigid: RigidStart, peak_time_s: float, mode_H
 
 
 def swing(t: np.ndarray, deviation: np.ndarray, modes: list[tuple[float, str]],
-          min_amplitude_N: float) -> tuple[float, str, float] | None:
-    """The mode that swings in the start: the deviation of the simulated force from the rigid one (a line
-    fitted and removed) projected on each mode's frequency (the DFT amplitude 2 |sum x e^(-i w t)| / n; modes with
-    at least two periods in the span and four samples per period); the largest, as (frequency, dominant element,
-    amplitude), when it reaches ``min_amplitude_N``; else None."""
+          min_amplitude_N: float, peak_time_s: float | None = None) -> tuple[float, str, float] | None:
+    """The mode that swings at the start's peak: the deviation of the simulated force from the rigid one projected on
+    each mode's frequency over ``SWING_PERIODS`` of its periods about ``peak_time_s`` (shifted into the span where the
+    peak lies near its start or end; the span's middle without a peak time), the window's own mean removed (the DFT
+    amplitude 2 |sum x e^(-i w t)| / n; modes with at least that many periods in the span and four samples per period);
+    the largest, as (frequency, dominant element, amplitude), when it reaches ``min_amplitude_N``; else None. The
+    amplitude is the swing's where the peak is: a lightly damped mode rung by a step decays long before the window
+    starts, so its amplitude averaged over the whole start would be a small fraction of the swing that made the peak."""
     if t.size < 16 or t[-1] <= t[0]:
         return None
-    x = deviation - np.polyval(np.polyfit(t, deviation, 1), t)
     span, dt = t[-1] - t[0], (t[-1] - t[0]) / (t.size - 1)
+    centre = 0.5 * (t[0] + t[-1]) if peak_time_s is None else float(peak_time_s)
     best: tuple[float, str, float] | None = None
     for f, element in modes:
-        if f * span < 2.0 or f * dt > 0.25:
+        if f * span < SWING_PERIODS or f * dt > 0.25:
             continue
-        amplitude = 2.0 * abs(np.sum(x * np.exp(-2j * math.pi * f * t))) / t.size
+        width = SWING_PERIODS / f
+        lo = min(max(centre - 0.5 * width, t[0]), t[-1] - width)
+        sel = (t >= lo) & (t <= lo + width)
+        x = deviation[sel] - deviation[sel].mean()
+        amplitude = 2.0 * abs(np.sum(x * np.exp(-2j * math.pi * f * t[sel]))) / x.size
         if best is None or amplitude > best[2]:
             best = (f, element, float(amplitude))
     return best if best is not None and best[2] >= min_amplitude_N else None
@@ -236,7 +244,7 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
                    "no ramp or damping lowers a force the initial state holds (the run-up factor counts it; the "
                    "steady window's statistics do not)")
         else:
-            found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k])
+            found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k], float(t[i]))
             why = cause(lay, rigid, float(t[i]), found)
         diags.append(dg.warning(dg.PEAK_OVER_RIGID, f"stage {k + 1}: the start's peak mesh force {peaks[k]:.5g} N "
                                 f"(at {t[i]:.3g} s) is {ratio:.3g}x the rigid-body start's {rigid_peaks[k]:.5g} N (the "
