@@ -114,11 +114,14 @@ def decide(model: TorsionalModel, choice: Choice, run: Spent, t_end: float, left
            requested_engine: str, nfev_left: float = math.inf) -> tuple[str, str, str] | None:
     """(method, engine, why) to go on with from ``run.t_at`` (state ``run.y_at``), or None to go on as before
     (module text). ``left``: the methods already abandoned; ``nfev_left``: the evaluations the run's budget still
-    allows, which an option predicted to need more is not taken for (it would only end the run in the budget's
-    failure, where going on may finish: an implicit method's pace through a start transient overstates its rest)."""
+    allows. A run that has advanced (its pace measured) is not moved to an option predicted to need more: that would
+    only end it in the budget's failure, where going on may finish (an implicit method's pace through a start
+    transient overstates its rest). A run stopped before it advanced has no pace to weigh and moves as before."""
     rest = max(t_end - run.t_at, 0.0)
     nfev = max(run.nfev, 1)
     pace = nfev / max(run.t_at - run.t_from, 1e-300)  # evaluations per simulated second so far
+    if not run.t_at > run.t_from:
+        nfev_left = math.inf  # no pace measured: the budget decides nothing (module text)
     here = _label(run.method, run.engine)
     # every option at the cost model's prices for this model's size (not the clock of this run: the same state
     # reached takes the same decision on a busy machine and a quiet one, in a pool worker and a Dask thread)

@@ -234,9 +234,12 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
         lost = loaded * pen[mask] <= 0.0
         if m.static_tangential_N != 0 and np.any(lost):
             flank = "drive" if loaded > 0 else "back"
+            what = ("tooth impacts (rattle) — the load is too small for the vibration" if m.backlash_m > 0 else
+                    "without backlash the other flank takes the force at once, no gap to cross and no impact, but the "
+                    "mesh force reverses — the vibration's force exceeds the static load")
             out.append(dg.warning(dg.CONTACT_LOSS, f"stage {k + 1}: the loaded ({flank}) flank loses contact in the "
-                                  f"steady window ({100.0 * lost.mean():.3g} % of the samples): tooth impacts (rattle) "
-                                  "— the load is too small for the vibration", stage=k + 1, fraction=float(lost.mean())))
+                                  f"steady window ({100.0 * lost.mean():.3g} % of the samples): {what}", stage=k + 1,
+                                  fraction=float(lost.mean())))
     return out
 
 
