@@ -235,7 +235,8 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
         if modes is None:
             modes = [(m.frequency_Hz, m.dominant) for m in modal_analysis(lay, boundary).modes if not m.rigid]
         i = int(np.argmax(np.abs(forces_N[k])))
-        dev = np.abs(forces_N[k][start]) - np.interp(t[start], rigid.time_s, np.abs(rigid.tangential_N[k]))
+        # signed: a force swinging through zero (a reversing mesh) keeps its fundamental, which |F| would fold
+        dev = forces_N[k][start] - np.interp(t[start], rigid.time_s, rigid.tangential_N[k])
         e0 = initial_te_um(lay, k)
         if i == 0 and e0 != 0.0:  # the peak is the mesh's pre-stress by its TE at t = 0, no start dynamics
             found = None
@@ -243,6 +244,11 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
                    f"body starts at rest at zero angle), {abs(forces_N[k][0]):.5g} N at t = 0 before anything turns: "
                    "no ramp or damping lowers a force the initial state holds (the run-up factor counts it; the "
                    "steady window's statistics do not)")
+        elif t[i] > window_s[0]:  # the run's peak lies in the statistics window: the response there, not the start's
+            found = None
+            why = (f"the peak lies in the statistics window (from {window_s[0]:.4g} s), not in the start: it is the "
+                   "response there, which the window's statistics and dynamic factor carry (see the resonance, contact "
+                   "and window warnings for its cause)")
         else:
             found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k], float(t[i]))
             why = cause(lay, rigid, float(t[i]), found)

@@ -220,3 +220,33 @@ def test_the_swing_amplitude_is_the_swing_at_the_peak_not_its_average_over_the_s
     assert_allclose(diags[0].data["swing_amplitude_N"], expected, rtol=0.02)
     overshoot = f_s * math.exp(-zeta * math.pi / math.sqrt(1 - zeta**2))
     assert 0.8 * overshoot < diags[0].data["swing_amplitude_N"] <= 1.05 * overshoot / math.sqrt(1 - zeta**2)
+
+
+def test_a_swing_through_zero_force_is_measured_signed_and_a_peak_in_the_window_is_not_the_starts(tmp_path):
+    # The step scene's layout (a 926.8 Hz mesh mode, static F_t 2500 N) with forces written here: the rigid
+    # (static) force plus a swing of 3x it that decays over 10 ms, so the mesh force runs through zero (-2 F_s ..
+    # 4 F_s). The swing's amplitude over two periods from t = 0 (where its peak lies) is, by hand,
+    # 3 F_s tau / (2 T) (1 - exp(-2 T / tau)); |F| would fold the negative half-waves and lose some of it.
+    path = tmp_path / "step.toml"
+    path.write_text(_STEP_SCENE)
+    loaded = api.load(str(path), [])
+    design = api.design(loaded)
+    lay = Layout.of(spec_from_design(loaded.design, design))
+    f_s = 200.0 / 0.080  # T_L / r_g
+    f_n = math.sqrt(3e8 / (0.05 / (0.080 * math.cos(math.radians(20.0))) ** 2)) / (2 * math.pi)
+    t = np.linspace(0.0, 0.1, 40001)
+    tau = 0.01
+    force = f_s + 3 * f_s * np.exp(-t / tau) * np.sin(2 * math.pi * f_n * t)
+    _, diags = rigid_start.start_summary(lay, "clamped_input", t, [force], (0.02, 0.1), 1.0)
+    (d,) = diags
+    two_periods = 2 / f_n
+    want = 3 * f_s * tau / two_periods * (1 - math.exp(-two_periods / tau))
+    assert_allclose(d.data["swing_Hz"], f_n, rtol=1e-3)
+    assert_allclose(d.data["swing_amplitude_N"], want, rtol=0.02)
+    # the same force growing through the window (an undamped resonance): the run's peak lies in the window, where the
+    # statistics carry it; the start's causes (a step, a swinging mode, an artefact) do not explain it
+    growing = f_s + 3 * f_s * (t / 0.1) * np.sin(2 * math.pi * f_n * t)
+    _, diags = rigid_start.start_summary(lay, "clamped_input", t, [growing], (0.02, 0.1), 1.0)
+    (d,) = diags
+    assert "peak lies in the statistics window" in d.message
+    assert "numerical artefact" not in d.message and d.data["swing_Hz"] is None
