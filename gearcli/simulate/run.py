@@ -468,6 +468,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     if not periodic:  # a periodic window has its own grid: 64 samples a period of its fastest excitation
         diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
                                               steps or s.time_s.size - 1)
+        if diagnose and from_rest:  # the start's peak (a continued run has no start)
+            diags += sampling.peak_warnings(s.time_s, [p[0] for p in per_stage], steps or s.time_s.size - 1)
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
