@@ -7,7 +7,8 @@ Rigid kinematics: body i turns at ``rho_i w`` (w the input body's speed). A moto
 
 (T_m the motor's curve with its starting method, :func:`gearcli.model.elements.machine.motor_torque`; T_L the
 load torque with its ramp and speed law; f = 1 / prod eta the losses of the meshes, forward power flow, applied to
-the whole torque downstream of the input body), a torque drive the same with its input torque ramp, a speed drive
+the whole torque downstream of the input body), a torque drive the same with its input torque ramp from its nominal
+speed (where the simulation starts it), a speed drive
 takes its prescribed ramp. The mesh force follows from the torque transmitted through the stage: everything
 downstream of the mesh's driven body, its inertia reaction plus the load,
 
@@ -107,7 +108,7 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
             load = float(_load_torque(lay, tt, y[0] * rho[-1]))
             return [(drive(tt, y[0]) - f0 * rho[-1] * load) / j_eff]
 
-        w0 = 0.0
+        w0 = 0.0 if lay.motor_drive else lay.drive.speed_rad_s  # as the simulation: a torque drive at its nominal speed
         sol = solve_ivp(rhs, (0.0, duration_s), [w0], t_eval=t, method="LSODA", rtol=1e-9, atol=1e-9,
                         max_step=duration_s / 200)
         w = sol.y[0] if sol.success and sol.y.shape[1] == t.size else np.interp(t, sol.t, sol.y[0])

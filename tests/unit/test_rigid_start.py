@@ -257,3 +257,48 @@ def test_a_swing_through_zero_force_is_measured_signed_and_a_peak_in_the_window_
     (d,) = diags
     assert d.data["swing_Hz"] is None and "response in operation" in d.message
     assert "lowers it" not in d.message and "numerical artefact" not in d.message
+
+
+_FAN_TORQUE_DRIVE = """
+title = "a helical stage, a balanced torque drive and a fan load"
+[materials.steel]
+density_kg_m3 = 7800
+youngs_modulus_MPa = 2.07e5
+poisson_ratio = 0.3
+[[stage]]
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+helix_angle_deg = 20
+pinion = { teeth = 23, face_width_mm = 30, hand = "left", material = "steel", inertia_kg_m2 = 0.003 }
+gear   = { teeth = 47, face_width_mm = 30, hand = "right", material = "steel", inertia_kg_m2 = 0.03 }
+[input]
+drive = "torque"
+torque_Nm = 300
+speed_rpm = 1000
+ramp_s = 0.02
+[load]
+torque_Nm = 613.0434782608696
+speed_exponent = 2
+ramp_s = 0.02
+[simulation]
+duration_s = 0.1
+"""
+
+
+def test_a_torque_drives_rigid_start_runs_from_the_nominal_speed_the_simulation_starts_at(tmp_path):
+    # the simulation starts a torque drive's train at its nominal speed (docs/design-file.md), so must the rigid
+    # estimate: from there the balanced drive (300 N m x 47/23 = the fan's 613 N m at the nominal speed, both ramped
+    # alike) never accelerates, and the mesh carries the load's ramp, F_t = T_L STEP(t) / r_g. From rest (as it was)
+    # the fan's torque is ~0 while the drive accelerates the train, and the estimate was another run than the one
+    # simulated.
+    path = tmp_path / "fan.toml"
+    path.write_text(_FAN_TORQUE_DRIVE)
+    loaded = api.load(str(path), [])
+    lay = Layout.of(spec_from_design(loaded.design, api.design(loaded)))
+    got = rigid_start.integrate(lay, 0.1, samples=1001)
+    w_n = 1000 * RPM
+    assert_allclose(got.speed_rad_s, w_n, rtol=1e-6)
+    r_g = 0.5 * 47 * 3e-3 / math.cos(math.radians(20.0))
+    s = np.clip(got.time_s / 0.02, 0.0, 1.0)
+    ft = 613.0434782608696 * s * s * (3 - 2 * s) / r_g
+    assert_allclose(got.tangential_N[0], ft, rtol=1e-5, atol=1e-6 * ft.max())
