@@ -38,6 +38,7 @@ SLOW_PACE = "slow_pace"  # a run far slower than auto's cost model predicted (or
 STATISTICS_UNRESOLVED = "statistics_unresolved"
 STATISTICS_UNDERSAMPLED = "statistics_undersampled"  # the output samples miss the window's min/max between them
 EXCITATION_UNDERSAMPLED = "excitation_undersampled"  # an excitation has too few output samples a period
+PEAK_UNDERSAMPLED = "peak_undersampled"  # the output samples miss the run's peak |F_t| (and run-up factor) between them
 RTOL_TIGHTENED = "rtol_tightened"  # auto repeated a run at a tighter rtol to resolve its window means
 DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap

@@ -95,7 +95,8 @@ def channels(ch: Mapping[str, np.ndarray], units: OutputUnits | None) -> dict[st
 
 def input_torque_window_means(result: SimulationResult) -> tuple[float, float] | None:
     """(mean input torque N·m, mean input power kW) over the statistics window, from the series: the power as
-    the mean of torque x speed of the driven body (the motor when there is one), not a product of means.
+    the mean of torque x speed of the driven body (the motor when there is one), not a product of means; each the
+    integral over the window by the trapezoid rule (the plain mean over a periodic window's whole periods).
     None without series."""
     import numpy as np  # lazy: numpy, kept out of io.units' import (a design file's units need none)
 
@@ -111,4 +112,9 @@ def input_torque_window_means(result: SimulationResult) -> tuple[float, float] |
         return None
     t_nm = np.asarray(torque)[mask] / 1000.0
     power_kw = t_nm * np.radians(np.asarray(speed)[mask]) / 1000.0
-    return float(t_nm.mean()), float(power_kw.mean())
+    tw = t[mask]
+    steady = getattr(result, "steady", None)
+    if (steady is not None and steady.mode == "periodic") or tw.size < 2 or tw[-1] <= tw[0]:
+        return float(t_nm.mean()), float(power_kw.mean())  # whole periods without their closing sample
+    span = tw[-1] - tw[0]  # the integral over the window (trapezoid rule), as the stages' means
+    return float(np.trapezoid(t_nm, tw) / span), float(np.trapezoid(power_kw, tw) / span)

@@ -111,12 +111,17 @@ class Spent:
 
 
 def decide(model: TorsionalModel, choice: Choice, run: Spent, t_end: float, left: set[str],
-           requested_engine: str) -> tuple[str, str, str] | None:
+           requested_engine: str, nfev_left: float = math.inf) -> tuple[str, str, str] | None:
     """(method, engine, why) to go on with from ``run.t_at`` (state ``run.y_at``), or None to go on as before
-    (module text). ``left``: the methods already abandoned."""
+    (module text). ``left``: the methods already abandoned; ``nfev_left``: the evaluations the run's budget still
+    allows. A run that has advanced (its pace measured) is not moved to an option predicted to need more: that would
+    only end it in the budget's failure, where going on may finish (an implicit method's pace through a start
+    transient overstates its rest). A run stopped before it advanced has no pace to weigh and moves as before."""
     rest = max(t_end - run.t_at, 0.0)
     nfev = max(run.nfev, 1)
     pace = nfev / max(run.t_at - run.t_from, 1e-300)  # evaluations per simulated second so far
+    if not run.t_at > run.t_from:
+        nfev_left = math.inf  # no pace measured: the budget decides nothing (module text)
     here = _label(run.method, run.engine)
     # every option at the cost model's prices for this model's size (not the clock of this run: the same state
     # reached takes the same decision on a busy machine and a quiet one, in a pool worker and a Dask thread)
@@ -125,7 +130,8 @@ def decide(model: TorsionalModel, choice: Choice, run: Spent, t_end: float, left
     for e in _engines_for(model, run.method, requested_engine):
         if e != run.engine:
             s = pace * rest * cost.seconds_per_eval(e, run.method, choice.size) + eng_mod.load_share_s() * (e == "compiled")
-            options.append((s, run.method, e, f"~{pace * rest:.2g} more evaluations at its measured pace"))
+            if pace * rest <= nfev_left:
+                options.append((s, run.method, e, f"~{pace * rest:.2g} more evaluations at its measured pace"))
     other = IMPLICIT_METHOD if run.method == EXPLICIT_METHOD else EXPLICIT_METHOD
     if other not in left:
         share = rest / t_end if t_end > 0 else 0.0
@@ -134,7 +140,7 @@ def decide(model: TorsionalModel, choice: Choice, run: Spent, t_end: float, left
         if other == EXPLICIT_METHOD:
             lam = _stiffness_now(model, run.t_at, run.y_at)
             n = max(n, cost.EXPLICIT_PER_UNIT * lam * rest)
-        for e in _engines_for(model, other, requested_engine):
+        for e in _engines_for(model, other, requested_engine) if n <= nfev_left else ():
             s = n * cost.seconds_per_eval(e, other, choice.size) + eng_mod.load_share_s() * (e == "compiled")
             stiff = f", max|λ| {lam:.3g} 1/s at the state reached" if lam else ""
             options.append((s, other, e, f"~{n:.2g} evaluations predicted for the rest{stiff}"))
@@ -180,8 +186,9 @@ def integrate_auto(model: TorsionalModel, t_eval: np.ndarray, choice: Choice, rt
         verdict: list[tuple[str, str, str] | None] = []
         if lim is not None and engine != "compiled":
             def ask(t: float, y_now: np.ndarray, nfev: int, m=method, e=engine, start=t0,
-                    box=verdict) -> str | None:
-                box.append(decide(model, choice, Spent(m, e, nfev, start, t, y_now), t_end, left, requested_engine))
+                    box=verdict, spent=used) -> str | None:
+                box.append(decide(model, choice, Spent(m, e, nfev, start, t, y_now), t_end, left, requested_engine,
+                                  max_nfev - spent - nfev))
                 return None if box[-1] is None else box[-1][2]
             lim.decide = ask
         budget = max_nfev - used
@@ -201,7 +208,7 @@ def integrate_auto(model: TorsionalModel, t_eval: np.ndarray, choice: Choice, rt
             j = k + _last_sample(pieces[-1][1], 0)
             y_at = pieces[-1][1].y[:, j - k]
             got = decide(model, choice, Spent(method, engine, run.nfev, t0, float(t_eval[j]), y_at), t_end, left,
-                         requested_engine)
+                         requested_engine, max_nfev - used)
             m, e, why = got if got is not None else (method, engine, "")
             t_at = float(t_eval[j])
             if got is None:

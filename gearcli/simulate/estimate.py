@@ -57,6 +57,7 @@ from gearcli.model.outputs import Sampled, mesh_line_forces, tooth_forces
 from gearcli.simulate.choice import Choice, excited_radians
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
+from gearcli.simulate.stats import window_means
 
 TARGET = 1e-3  # of the stage's mean force: min, max, std, the spectrum
 MEAN_TARGET = 1e-4  # of the stage's mean force: the mean (module doc, "Targets")
@@ -110,8 +111,9 @@ def _dominant(freqs: np.ndarray, amp: np.ndarray) -> float:
     return float(freqs[1 + int(np.argmax(amp[1:]))]) if amp.size > 1 else 0.0
 
 
-def _stats(x: np.ndarray) -> ChannelStats:
-    return ChannelStats(float(x.mean()), float(x.min()), float(x.max()), float(x.std()))
+def _stats(t: np.ndarray, x: np.ndarray) -> ChannelStats:
+    """The window statistics of ``x`` at the times ``t``, the mean the integral's as the run reports it."""
+    return ChannelStats(float(window_means(t, x, False)[0]), float(x.min()), float(x.max()), float(x.std()))
 
 
 def target(statistic: str) -> float:
@@ -143,7 +145,7 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
                 rtol: float, scale: float = 1.0) -> StatisticsError:
     """The error estimate of stage ``k`` (0-based) of the run from its F_t and the check pass's over the
     window samples: ``scale`` x the difference of each statistic."""
-    a, b = _stats(ft_run), _stats(ft_check)
+    a, b = _stats(t, ft_run), _stats(t, ft_check)
     fa, aa = spectrum(t, ft_run)
     fb, ab = spectrum(t, ft_check)
     d = scale

@@ -33,8 +33,8 @@ def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str
     return out
 
 
-def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> tuple[tuple[PlanetDynamics, ...],
-                                                                                     float | None, tuple[float, float]]:
+def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False
+               ) -> tuple[tuple[PlanetDynamics, ...], float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
     their mean; None for a parallel stage and for an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time
     (0, 0 for a parallel stage)."""
@@ -44,8 +44,9 @@ def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int) -> t
 
     def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
         q = dte[mask] * 1e6  # um
-        return PlanetMeshDynamics(stats.channel_stats(ft, mask), DteStats(float(q.mean()), float(q.std()),
-                                                                         float(q.min()), float(q.max())))
+        mean = float(stats.window_means(s.time_s[mask], q, periodic)[0])
+        return PlanetMeshDynamics(stats.channel_stats(ft, mask, s.time_s, periodic=periodic),
+                                  DteStats(mean, float(q.std()), float(q.min()), float(q.max())))
 
     n = 1 + max(j for j, _ in series)
     planets = tuple(PlanetDynamics(j + 1, mesh(*series[(j, "sun")]), mesh(*series[(j, "ring")])) for j in range(n))

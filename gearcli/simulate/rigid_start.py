@@ -7,7 +7,8 @@ Rigid kinematics: body i turns at ``rho_i w`` (w the input body's speed). A moto
 
 (T_m the motor's curve with its starting method, :func:`gearcli.model.elements.machine.motor_torque`; T_L the
 load torque with its ramp and speed law; f = 1 / prod eta the losses of the meshes, forward power flow, applied to
-the whole torque downstream of the input body), a torque drive the same with its input torque ramp, a speed drive
+the whole torque downstream of the input body), a torque drive the same with its input torque ramp from its nominal
+speed (where the simulation starts it), a speed drive
 takes its prescribed ramp. The mesh force follows from the torque transmitted through the stage: everything
 downstream of the mesh's driven body, its inertia reaction plus the load,
 
@@ -38,6 +39,11 @@ from gearcli.simulate.results import StartSummary
 
 SAMPLES = 2001
 SWING_FRACTION = 0.02  # a mode swinging with less than this of the rigid peak is not named
+SWING_PERIODS = 2.0  # a mode's swing is measured over this many of its periods about the peak
+STEADY_PEAK = 1.05  # a run peak within this of the window's own is the response in operation, not the start's
+NOTHING_FOUND = "no step, motor torque or swinging mode explains it"
+IN_OPERATION = ("which the window's statistics and dynamic factor carry (see the resonance, contact and window "
+                "warnings for its cause; a gentler start does not lower it)")
 
 
 @dataclass(frozen=True)
@@ -102,7 +108,7 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
             load = float(_load_torque(lay, tt, y[0] * rho[-1]))
             return [(drive(tt, y[0]) - f0 * rho[-1] * load) / j_eff]
 
-        w0 = 0.0
+        w0 = 0.0 if lay.motor_drive else lay.drive.speed_rad_s  # as the simulation: a torque drive at its nominal speed
         sol = solve_ivp(rhs, (0.0, duration_s), [w0], t_eval=t, method="LSODA", rtol=1e-9, atol=1e-9,
                         max_step=duration_s / 200)
         w = sol.y[0] if sol.success and sol.y.shape[1] == t.size else np.interp(t, sol.t, sol.y[0])
@@ -132,8 +138,8 @@ def cause(lay: Layout, rigid: RigidStart, peak_time_s: float, swinging: tuple[fl
                      f"the {f:.3g} Hz mode{dominated} swings with ±{amplitude:.4g} N about the rigid-body force "
                      "during the start: more damping there or a gentler start (soft start, VFD, longer ramps) "
                      "lowers it")
-    return "; ".join(parts) if parts else ("no step, motor torque or swinging mode explains it: a violent impact or "
-                                           "a numerical artefact — check with a tighter rtol")
+    return "; ".join(parts) if parts else (f"{NOTHING_FOUND}: a violent impact or a numerical artefact — check with a "
+                                           "tighter rtol")
 
 
 def shocks(lay: Layout) -> list[str]:
@@ -230,20 +236,27 @@ def resonance_passage(lay: Layout, rigid: RigidStart, peak_time_s: float, mode_H
 
 
 def swing(t: np.ndarray, deviation: np.ndarray, modes: list[tuple[float, str]],
-          min_amplitude_N: float) -> tuple[float, str, float] | None:
-    """The mode that swings in the start: the deviation of the simulated force from the rigid one (a line
-    fitted and removed) projected on each mode's frequency (the DFT amplitude 2 |sum x e^(-i w t)| / n; modes with
-    at least two periods in the span and four samples per period); the largest, as (frequency, dominant element,
-    amplitude), when it reaches ``min_amplitude_N``; else None."""
+          min_amplitude_N: float, peak_time_s: float | None = None) -> tuple[float, str, float] | None:
+    """The mode that swings at the start's peak: the deviation of the simulated force from the rigid one projected on
+    each mode's frequency over ``SWING_PERIODS`` of its periods about ``peak_time_s`` (shifted into the span where the
+    peak lies near its start or end; the span's middle without a peak time), the window's own mean removed (the DFT
+    amplitude 2 |sum x e^(-i w t)| / n; modes with at least that many periods in the span and four samples per period);
+    the largest, as (frequency, dominant element, amplitude), when it reaches ``min_amplitude_N``; else None. The
+    amplitude is the swing's where the peak is: a lightly damped mode rung by a step decays long before the window
+    starts, so its amplitude averaged over the whole start would be a small fraction of the swing that made the peak."""
     if t.size < 16 or t[-1] <= t[0]:
         return None
-    x = deviation - np.polyval(np.polyfit(t, deviation, 1), t)
     span, dt = t[-1] - t[0], (t[-1] - t[0]) / (t.size - 1)
+    centre = 0.5 * (t[0] + t[-1]) if peak_time_s is None else float(peak_time_s)
     best: tuple[float, str, float] | None = None
     for f, element in modes:
-        if f * span < 2.0 or f * dt > 0.25:
+        if f * span < SWING_PERIODS or f * dt > 0.25:
             continue
-        amplitude = 2.0 * abs(np.sum(x * np.exp(-2j * math.pi * f * t))) / t.size
+        width = SWING_PERIODS / f
+        lo = min(max(centre - 0.5 * width, t[0]), t[-1] - width)
+        sel = (t >= lo) & (t <= lo + width)
+        x = deviation[sel] - deviation[sel].mean()
+        amplitude = 2.0 * abs(np.sum(x * np.exp(-2j * math.pi * f * t[sel]))) / x.size
         if best is None or amplitude > best[2]:
             best = (f, element, float(amplitude))
     return best if best is not None and best[2] >= min_amplitude_N else None
@@ -271,6 +284,8 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
     out = StartSummary(peak_over_rigid=ratios, rigid_peak_N=rigid_peaks)
     diags: list[Diagnostic] = []
     start = t <= max(window_s[0], t[0])
+    in_window = t >= window_s[0]
+    window_peaks = [float(np.max(np.abs(f[in_window]))) if np.any(in_window) else 0.0 for f in forces_N]
     modes: list[tuple[float, str]] | None = None
     initial_te = [initial_te_um(lay, k) for k in range(len(forces_N))]
     prestress = [abs(float(f[0])) / r for f, r, e in zip(forces_N, rigid_peaks, initial_te, strict=True)
@@ -281,12 +296,23 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
         if modes is None:
             modes = [(m.frequency_Hz, m.dominant) for m in modal_analysis(lay, boundary).modes if not m.rigid]
         i = int(np.argmax(np.abs(forces_N[k])))
-        dev = np.abs(forces_N[k][start]) - np.interp(t[start], rigid.time_s, np.abs(rigid.tangential_N[k]))
+        # signed: a force swinging through zero (a reversing mesh) keeps its fundamental, which |F| would fold
+        dev = forces_N[k][start] - np.interp(t[start], rigid.time_s, rigid.tangential_N[k])
         if prestress_explains(float(t[i] - t[0]), ratio, prestress, modes):  # the initial state's, not the start's
             found = None
             why = prestress_cause(lay, k, initial_te, abs(float(forces_N[k][0])), float(t[i] - t[0]))
+        elif t[i] > window_s[0]:  # the run's peak lies in the statistics window: the response there, not the start's
+            found = None
+            why = (f"the peak lies in the statistics window (from {window_s[0]:.4g} s), not in the start: it is the "
+                   f"response in operation, {IN_OPERATION}")
+        elif peaks[k] <= STEADY_PEAK * window_peaks[k]:  # the window reaches it too: the steady response's peak
+            found = None
+            named = cause(lay, rigid, float(t[i]), None)  # a step or the motor, named; no swing of the start
+            why = ("" if named.startswith(NOTHING_FOUND) else named + "; ") + (
+                f"the statistics window (from {window_s[0]:.4g} s) reaches {window_peaks[k]:.5g} N too, within "
+                f"{100 * (STEADY_PEAK - 1):.0f} % of the peak: it is the response in operation, {IN_OPERATION}")
         else:
-            found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k])
+            found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k], float(t[i]))
             why = cause(lay, rigid, float(t[i]), found)
         diags.append(dg.warning(dg.PEAK_OVER_RIGID, f"stage {k + 1}: the start's peak mesh force {peaks[k]:.5g} N "
                                 f"(at {t[i]:.3g} s) is {ratio:.3g}x the rigid-body start's {rigid_peaks[k]:.5g} N (the "

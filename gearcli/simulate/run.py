@@ -440,7 +440,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         simulated_static_N=simulated_static, error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
-    stages = tuple(with_planets(st, *planets_of(model, s, mask, k)) for k, st in enumerate(stages))
+    stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic)) for k, st in enumerate(stages))
     rings = planet_ring_stiffness(model, choice)
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
     shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
@@ -468,6 +468,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     if not periodic:  # a periodic window has its own grid: 64 samples a period of its fastest excitation
         diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
                                               steps or s.time_s.size - 1)
+        if diagnose and from_rest:  # the start's peak (a continued run has no start)
+            diags += sampling.peak_warnings(s.time_s, [p[0] for p in per_stage], steps or s.time_s.size - 1)
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],

@@ -10,6 +10,8 @@ import pytest
 
 from gearcli.config import load_design
 from gearcli.design import compute_design
+from gearcli.model import TorsionalModel
+from gearcli.scene import spec_from_design
 from gearcli.simulate import choice as choice_mod
 from gearcli.simulate import course, run_simulation
 
@@ -93,3 +95,62 @@ def test_a_run_within_its_prediction_keeps_its_course():
 
     fixed = RUN_FIXED_S[got.solver.engine]
     assert p["wall_s"] == pytest.approx(fixed + p["nfev"] * p["price_us_per_eval"] * 1e-6, rel=1e-12)
+
+
+_FEATHER_GEAR = """
+title = "one spur stage, a 1e-9 kg m^2 gear on a linear mesh, the load applied as a step"
+[materials.steel]
+density_kg_m3 = 7800
+youngs_modulus_MPa = 2.07e5
+poisson_ratio = 0.3
+[[stage]]
+normal_module_mm = 4
+normal_pressure_angle_deg = 20
+pinion = { teeth = 20, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.01 }
+gear   = { teeth = 40, face_width_mm = 30, material = "steel", inertia_kg_m2 = 1e-9 }
+[contact]
+stiffness = 3e5
+exponent = 1
+damping_ratio = 0.05
+[input]
+speed_rpm = 600
+ramp_s = 0.0
+[load]
+torque_Nm = 200
+ramp_s = 0.0
+[simulation]
+duration_s = 0.1
+steps = 4000
+engine = "python"
+"""
+
+
+def test_auto_does_not_leave_radau_for_an_explicit_run_its_budget_cannot_pay(tmp_path):
+    # m_e = J_g / r_bg^2 = 1e-9 / 0.0752^2 = 1.8e-7 kg on k = 3e8 N/m: a 6.6 MHz mesh mode, max|lambda| = 4.1e7 1/s.
+    # The load step rings it from t = 0; Radau resolves the ringing (~10 us at zeta = 0.05) in more evaluations than
+    # its prediction, and its pace through that transient, extrapolated, made auto switch to DOP853, whose stability
+    # alone needs ~2.6 x 4.1e7 x 0.1 s = 1.1e7 evaluations: over the run's budget (5e6), so the run failed (exit 1)
+    # at t = 0.043 s where Radau alone finishes in ~1e4 evaluations.
+    path = tmp_path / "feather.toml"
+    path.write_text(_FEATHER_GEAR)
+    cfg = load_design(str(path)).design
+    got = run_simulation(cfg, compute_design(cfg), want_series=False)
+    assert got.solver.method == "Radau"
+    assert not [c for c in got.solver.course_changes if c["to"].startswith("DOP853")]
+    # the quasi-static limit by hand: the gear carries the load alone, F_t = T_L / r_bg cos(alpha_t) = T_L / r_g
+    f_t = 200.0 / 0.080
+    np.testing.assert_allclose(got.stages[0].tangential_N.mean, f_t, rtol=1e-4)
+    assert abs(got.stages[0].tangential_N.max - f_t) <= 1e-3 * f_t  # the ringing died out long before the window
+
+
+def test_decide_passes_over_an_option_its_budget_cannot_pay():
+    cfg, design = _case()
+    model = TorsionalModel(spec_from_design(cfg, design))
+    ch = choice_mod.choose_method(model.spec, cfg.simulation.duration_s, "auto", layout=model.layout)
+    y = model.initial_state()
+    spent = course.Spent("Radau", "python", 100_000, 0.0, 1e-3, y)  # a pace that makes DOP853 look cheaper
+    t_end = cfg.simulation.duration_s
+    got = course.decide(model, ch, spent, t_end, set(), "python")
+    assert got is not None and got[0] == "DOP853"
+    # DOP853's need for the rest, 2.6 max|lambda| (T - t), over what the budget has left: not taken
+    assert course.decide(model, ch, spent, t_end, set(), "python", nfev_left=10.0) is None

@@ -203,3 +203,143 @@ def test_a_hertz_mesh_pre_stressed_by_its_te_is_blamed_on_the_te_and_the_advice_
     assert_allclose(f0, [0.0, 0.0], atol=1e-9)  # nothing compressed at t = 0 (the law at zero penetration)
     assert max(start["peak_over_rigid"]) < 2.0
     assert not [d for d in again.diagnostics if d.code == "peak_over_rigid"]
+_STEP_SCENE = """
+title = "one spur stage, linear viscous mesh, the load applied as a step"
+[materials.steel]
+density_kg_m3 = 7800
+youngs_modulus_MPa = 2.07e5
+poisson_ratio = 0.3
+[[stage]]
+normal_module_mm = 4
+normal_pressure_angle_deg = 20
+pinion = { teeth = 20, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.01 }
+gear   = { teeth = 40, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.05 }
+[contact]
+stiffness = 3e5
+exponent = 1
+damping_ratio = 0.05
+[input]
+speed_rpm = 600
+ramp_s = 0.0
+[load]
+torque_Nm = 200
+ramp_s = 0.0
+[simulation]
+duration_s = 0.1
+steps = 4000
+"""
+
+
+def test_the_swing_amplitude_is_the_swing_at_the_peak_not_its_average_over_the_start(tmp_path):
+    # A speed-driven pinion (rigid speed from t = 0) and a free gear loaded by a step: one degree of freedom,
+    # m_e q'' + c q' + k q = F_s, from q = 0 at rest. The mesh's total force f = k q + c q' (F_t = f cos alpha_t)
+    # by hand: f / F_s - 1 = -exp(-zeta w t) (cos w_d t - zeta / sqrt(1 - zeta^2) sin w_d t), so the force swings
+    # about the rigid (static) force with the envelope F_s exp(-zeta w t) / sqrt(1 - zeta^2); its peak, at
+    # t = pi / w_d, is F_s (1 + exp(-zeta pi / sqrt(1 - zeta^2))). The warning's amplitude must be that swing near
+    # the peak (2 periods from t = 0, where the peak lies), not its mean over the 0.02 s start (~0.2 of it).
+    path = tmp_path / "step.toml"
+    path.write_text(_STEP_SCENE)
+    loaded = api.load(str(path), [])
+    design = api.design(loaded)
+    lay = Layout.of(spec_from_design(loaded.design, design))
+    diags = _warnings(loaded.design, design, lay, ratio=1.0)
+    assert len(diags) == 1
+    alpha = math.radians(20.0)
+    r_bg = 0.5 * 40 * 4e-3 * math.cos(alpha)
+    m_e = 0.05 / r_bg**2  # the pinion's speed is prescribed: m_e = J_g / r_bg^2
+    k, zeta = 3e8, 0.05
+    w = math.sqrt(k / m_e)
+    w_d = w * math.sqrt(1 - zeta**2)
+    f_s = 200.0 / r_bg * math.cos(alpha)  # static F_t = 2500 N
+    assert_allclose(diags[0].data["swing_Hz"], w / (2 * math.pi), rtol=1e-3)
+    # the closed-form deviation projected on the mode over the same two periods from t = 0, its mean removed
+    t = np.linspace(0.0, 2 * (2 * math.pi / w), 4001)
+    x = -f_s * np.exp(-zeta * w * t) * (np.cos(w_d * t) - zeta / math.sqrt(1 - zeta**2) * np.sin(w_d * t))
+    x -= x.mean()
+    expected = 2 * abs(np.trapezoid(x * np.exp(-1j * w * t), t)) / t[-1]
+    # the tool projects the 25 us output samples (~43 per period): 2 % for the sampled sum and the window's edges
+    assert_allclose(diags[0].data["swing_amplitude_N"], expected, rtol=0.02)
+    overshoot = f_s * math.exp(-zeta * math.pi / math.sqrt(1 - zeta**2))
+    assert 0.8 * overshoot < diags[0].data["swing_amplitude_N"] <= 1.05 * overshoot / math.sqrt(1 - zeta**2)
+
+
+def test_a_swing_through_zero_force_is_measured_signed_and_a_peak_in_the_window_is_not_the_starts(tmp_path):
+    # The step scene's layout (a 926.8 Hz mesh mode, static F_t 2500 N) with forces written here: the rigid
+    # (static) force plus a swing of 3x it that decays over 10 ms, so the mesh force runs through zero (-2 F_s ..
+    # 4 F_s). The swing's amplitude over two periods from t = 0 (where its peak lies) is, by hand,
+    # 3 F_s tau / (2 T) (1 - exp(-2 T / tau)); |F| would fold the negative half-waves and lose some of it.
+    path = tmp_path / "step.toml"
+    path.write_text(_STEP_SCENE)
+    loaded = api.load(str(path), [])
+    design = api.design(loaded)
+    lay = Layout.of(spec_from_design(loaded.design, design))
+    f_s = 200.0 / 0.080  # T_L / r_g
+    f_n = math.sqrt(3e8 / (0.05 / (0.080 * math.cos(math.radians(20.0))) ** 2)) / (2 * math.pi)
+    t = np.linspace(0.0, 0.1, 40001)
+    tau = 0.01
+    force = f_s + 3 * f_s * np.exp(-t / tau) * np.sin(2 * math.pi * f_n * t)
+    _, diags = rigid_start.start_summary(lay, "clamped_input", t, [force], (0.02, 0.1), 1.0)
+    (d,) = diags
+    two_periods = 2 / f_n
+    want = 3 * f_s * tau / two_periods * (1 - math.exp(-two_periods / tau))
+    assert_allclose(d.data["swing_Hz"], f_n, rtol=1e-3)
+    assert_allclose(d.data["swing_amplitude_N"], want, rtol=0.02)
+    # the same force growing through the window (an undamped resonance): the run's peak lies in the window, where the
+    # statistics carry it; the start's causes (a step, a swinging mode, an artefact) do not explain it
+    growing = f_s + 3 * f_s * (t / 0.1) * np.sin(2 * math.pi * f_n * t)
+    _, diags = rigid_start.start_summary(lay, "clamped_input", t, [growing], (0.02, 0.1), 1.0)
+    (d,) = diags
+    assert "peak lies in the statistics window" in d.message
+    assert "numerical artefact" not in d.message and d.data["swing_Hz"] is None
+    # a steady forced response (a transmission error near a mode) of constant amplitude from the start: the run's
+    # peak falls in the start, but the window reaches it too: the response in operation, no start swing nor its advice
+    steady = f_s + 3 * f_s * np.sin(2 * math.pi * 1.1 * f_n * t)
+    _, diags = rigid_start.start_summary(lay, "clamped_input", t, [steady], (0.02, 0.1), 1.0)
+    (d,) = diags
+    assert d.data["swing_Hz"] is None and "response in operation" in d.message
+    assert "lowers it" not in d.message and "numerical artefact" not in d.message
+
+
+_FAN_TORQUE_DRIVE = """
+title = "a helical stage, a balanced torque drive and a fan load"
+[materials.steel]
+density_kg_m3 = 7800
+youngs_modulus_MPa = 2.07e5
+poisson_ratio = 0.3
+[[stage]]
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+helix_angle_deg = 20
+pinion = { teeth = 23, face_width_mm = 30, hand = "left", material = "steel", inertia_kg_m2 = 0.003 }
+gear   = { teeth = 47, face_width_mm = 30, hand = "right", material = "steel", inertia_kg_m2 = 0.03 }
+[input]
+drive = "torque"
+torque_Nm = 300
+speed_rpm = 1000
+ramp_s = 0.02
+[load]
+torque_Nm = 613.0434782608696
+speed_exponent = 2
+ramp_s = 0.02
+[simulation]
+duration_s = 0.1
+"""
+
+
+def test_a_torque_drives_rigid_start_runs_from_the_nominal_speed_the_simulation_starts_at(tmp_path):
+    # the simulation starts a torque drive's train at its nominal speed (docs/design-file.md), so must the rigid
+    # estimate: from there the balanced drive (300 N m x 47/23 = the fan's 613 N m at the nominal speed, both ramped
+    # alike) never accelerates, and the mesh carries the load's ramp, F_t = T_L STEP(t) / r_g. From rest (as it was)
+    # the fan's torque is ~0 while the drive accelerates the train, and the estimate was another run than the one
+    # simulated.
+    path = tmp_path / "fan.toml"
+    path.write_text(_FAN_TORQUE_DRIVE)
+    loaded = api.load(str(path), [])
+    lay = Layout.of(spec_from_design(loaded.design, api.design(loaded)))
+    got = rigid_start.integrate(lay, 0.1, samples=1001)
+    w_n = 1000 * RPM
+    assert_allclose(got.speed_rad_s, w_n, rtol=1e-6)
+    r_g = 0.5 * 47 * 3e-3 / math.cos(math.radians(20.0))
+    s = np.clip(got.time_s / 0.02, 0.0, 1.0)
+    ft = 613.0434782608696 * s * s * (3 - 2 * s) / r_g
+    assert_allclose(got.tangential_N[0], ft, rtol=1e-5, atol=1e-6 * ft.max())
