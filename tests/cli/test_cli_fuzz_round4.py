@@ -82,7 +82,8 @@ def test_a_life_run_shorter_than_the_motor_start_is_lengthened_past_the_start(tm
     doc = json.loads(out.read_text())
     for point in doc["life"]["points"]:
         assert min(point["mesh_cycles"]) >= 1, point
-        assert point["start"]["span_s"][1] > 0.05, point["start"]  # the start counted outlasts the run given
+        if point["start"] is not None:  # a point with starts: the start counted outlasts the run given
+            assert point["start"]["span_s"][1] > 0.05, point["start"]
     windows = [w["message"] for w in doc["warnings"] if "statistics window" in w["message"]]
     assert windows and all(float(m.split("statistics window ")[1].split("–")[0]) > 0.05 for m in windows), windows
 
