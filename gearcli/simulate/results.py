@@ -58,18 +58,19 @@ class StatisticsError:
 
 @dataclass(frozen=True)
 class SamplingError:
-    """Estimated error of one stage's window min and max of F_t from the output sampling alone (the peaks
-    between samples: gearcli.simulate.sampling), computed for every run (no integration)."""
+    """Estimated error of one stage's window min, max and mean of F_t from the output sampling alone (the peaks
+    between samples, the integral's rule: gearcli.simulate.sampling), computed for every run (no integration)."""
 
     min_N: float
     max_N: float
-    relative: dict[str, float]  # min, max over reference_N
+    relative: dict[str, float]  # min, max, mean over reference_N
     reference_N: float  # as StatisticsError.reference_N: |mean F_t| (static |F_t| when the mean is 0)
     target_relative: float  # 1e-3 (with the solver's estimate where a check pass ran)
     samples: int  # window samples
     resolved: bool  # the sampling's share, with the solver's where a check pass ran, within the target
     suggested_steps: int | None  # simulation.steps that resolves it (None: resolved, or beyond the schema's maximum)
     steps_cap: int  # the schema's maximum of simulation.steps
+    mean_N: float = 0.0  # the mean's: |T_h - T_2h| of the trapezoid rule (0 for a periodic window)
 
 
 @dataclass(frozen=True)
