@@ -1,0 +1,93 @@
+"""docs/tour.md and docs/errata.md quote the seed reducer's numbers; they must be what the tool prints now, to the
+digits shown. The design figures are checked against the hand calculation written out here (the errata's
+corrected values, from the seed's geometry), the simulated ones against a run of the seed (a doc figure that
+drifts from the tool is a defect of the doc, so the page is compared with the run, digit for digit)."""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+TOUR = (ROOT / "docs" / "tour.md").read_text()
+ERRATA = (ROOT / "docs" / "errata.md").read_text()
+SEED = str(ROOT / "configs" / "concrete_mixer.toml")
+
+
+def _in(text: str, figure: str) -> None:
+    assert figure in text, f"the page should quote {figure!r}"
+
+
+def test_seed_design_figures_are_the_hand_calculation_and_the_pages_quote_them():
+    from gearcli import api
+
+    _, design = api.load_and_design(SEED)
+    # hand calculation: teeth 21/51, 17/50, 17/53; input 3600 °/s; output torque 5.31e6 N·mm (the file's load)
+    ratio = (51 / 21) * (50 / 17) * (53 / 17)
+    assert math.isclose(design.total_ratio, ratio, rel_tol=1e-12)
+    out_deg_s = 3600 / ratio
+    out_rpm = out_deg_s / 6
+    # E* of two steels E = 2.07e5 MPa, ν = 0.29: 1/E* = 2 (1 − ν²)/E; K = 4/3 √R E* with stage 1's R
+    e_star = 2.07e5 / (2 * (1 - 0.29**2))
+    stage = design.stages[0]
+    k_hertz = 4 / 3 * math.sqrt(stage.equivalent_radius_mm) * e_star
+    assert math.isclose(stage.effective_modulus_MPa, e_star, rel_tol=1e-12)
+    assert math.isclose(stage.hertz_stiffness_N_mm1_5, k_hertz, rel_tol=1e-12)
+    # stage 1 forces from the pinion torque T1 = T_out / ratio (η = 1), d1 = z m_n / cos β
+    d1 = 21 * 12 / math.cos(math.radians(12))
+    ft = 2 * design.input_torque_Nmm / d1
+    alpha_t = math.atan(math.tan(math.radians(20)) / math.cos(math.radians(12)))
+    assert math.isclose(stage.static_force_N.tangential, ft, rel_tol=1e-9)
+    for text in (TOUR, ERRATA):
+        _in(text, f"{out_deg_s:.2f} °/s")
+        _in(text, f"{out_rpm:.2f} rpm")
+        _in(text, f"{e_star:.3e}".replace("e+05", "e5") + " MPa")
+        _in(text, f"{k_hertz:.3e}".replace("e+06", "e6") + " N/mm^1.5")
+    _in(TOUR, f"total ratio {ratio:.4f}")
+    _in(TOUR, f"F_t {ft:.1f} N, F_r {ft * math.tan(alpha_t):.1f} N, F_a {ft * math.tan(math.radians(12)):.1f} N")
+    _in(ERRATA, f"{3600 * 21 / 51:.2f} °/s")
+
+
+@pytest.fixture(scope="module")
+def seed_run():
+    from gearcli import api
+
+    # a fresh process runs the seed on the Python engine (fewer evaluations than loading the compiled one costs);
+    # named here so that a process that has loaded the compiled engine prints the same figures
+    loaded, design = api.load_and_design(SEED, ["simulation.engine=python"])
+    return design, api.simulate(loaded.design, design)
+
+
+def test_tour_simulation_table_and_solver_lines_are_what_simulate_prints(seed_run):
+    design, result = seed_run
+    means = [s.tangential_N.mean for s in result.stages]
+    static = [s.static_force_N.tangential for s in design.stages]
+    s1 = result.stages[0]
+    _in(TOUR, f"| {s1.tangential_N.mean:.1f} / {s1.radial_N.mean:.1f} / {s1.axial_N.mean:.1f} |")
+    for k in (1, 2):
+        _in(TOUR, f"| {means[k]:.1f} | {100 * (means[k] / static[k] - 1):+.2f} %".replace("-", "−"))
+    _in(TOUR, f"{100 * (means[0] / static[0] - 1):+.2f} %".replace("-", "−"))
+    _in(TOUR, f"std {s1.tangential_N.std:.0f} N on stage 1")
+    _in(TOUR, f"({s1.dynamic_factor:.2f} on the seed's stage 1")
+    _in(TOUR, f"over it ({s1.runup_factor:.2f}, at {s1.peak_time_s:.2f} s")
+    _in(TOUR, f"{s1.peak_tangential_N / 1e3:.2f} k at {s1.peak_time_s:.3f} s")
+    assert result.extra is not None
+    rigid = result.extra["start"]["rigid_peak_N"][0]
+    _in(TOUR, f"| {rigid / 1e3:.2f} k (rigid-body")
+    _in(TOUR, f"| {100 * (s1.peak_tangential_N / rigid - 1):+.1f} % (dynamic overshoot)")
+    ratio = result.ratio
+    _in(TOUR, f"| {ratio:.4f} | {100 * (ratio / design.total_ratio - 1):+.4f} %".replace("-", "−"))
+    solver = result.solver
+    _in(TOUR, f"`solver {solver.method} rtol {solver.rtol:g} steps {solver.steps} nfev {solver.nfev}`")
+    _in(TOUR, f"`energy residual\n{solver.energy_residual:.2e}`")
+    # the method line: its indicator and predicted evaluations (the seconds are the engine's it is priced on)
+    flat = re.sub(r"\s+", " ", TOUR)
+    head, _, tail = solver.choice_reason.partition(": predicted ")
+    _in(flat, f"`method: {head}: predicted ")
+    for method, nfev in re.findall(r"(DOP853|Radau) (\S+) evaluations", tail):
+        _in(flat, f"{method} {nfev} evaluations")
+    _in(flat, f"{tail.rsplit(': ', 1)[1]}` (the load time")
+    _in(TOUR, f"({result.natural_frequencies_Hz[0]:.0f} Hz;")
