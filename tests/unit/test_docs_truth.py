@@ -91,3 +91,14 @@ def test_tour_simulation_table_and_solver_lines_are_what_simulate_prints(seed_ru
         _in(flat, f"{method} {nfev} evaluations")
     _in(flat, f"{tail.rsplit(': ', 1)[1]}` (the load time")
     _in(TOUR, f"({result.natural_frequencies_Hz[0]:.0f} Hz;")
+
+
+def test_every_warning_code_is_named_in_the_output_contract():
+    """docs/output.md, "Warnings", lists the codes a script may meet; a code the tool emits that the page does
+    not name is one a user cannot look up."""
+    import gearcli.diagnostics as dg
+
+    codes = {v for k, v in vars(dg).items() if k.isupper() and isinstance(v, str) and re.fullmatch(r"[a-z_0-9]+", v)}
+    assert len(codes) > 30  # the module's constants were found
+    text = (ROOT / "docs" / "output.md").read_text()
+    assert sorted(c for c in codes if f"`{c}`" not in text) == []
