@@ -102,3 +102,60 @@ def test_every_warning_code_is_named_in_the_output_contract():
     assert len(codes) > 30  # the module's constants were found
     text = (ROOT / "docs" / "output.md").read_text()
     assert sorted(c for c in codes if f"`{c}`" not in text) == []
+
+
+# The product contract's machine-readable keys (its section 5, with section 12's `warnings` objects and factors),
+# copied here: the output contract page must name each and the seed's JSON and CSV must carry each.
+CONTRACT_DESIGN_TOP = ["total_ratio", "output_speed_deg_s", "output_speed_rpm", "input_torque_Nmm", "warnings",
+                       "stages", "gearcli_version", "input_sha256"]
+CONTRACT_DESIGN_STAGE = ["ratio", "contact_ratio_transverse", "overlap_ratio", "contact_ratio_total",
+                         "center_distance_mm", "equivalent_radius_mm", "effective_modulus_MPa",
+                         "hertz_stiffness_N_mm1_5", "mesh_frequency_Hz", "static_force_N",
+                         "iso6336_single_pair_stiffness_N_mm_um", "iso6336_mesh_stiffness_N_mm_um"]
+CONTRACT_FORCES = ["tangential", "radial", "axial", "normal"]
+CONTRACT_MEMBER = ["teeth", "pitch_diameter_mm", "base_diameter_mm", "tip_diameter_mm", "root_diameter_mm",
+                   "speed_deg_s", "speed_rpm", "torque_Nmm", "inertia_kg_m2"]
+CONTRACT_SUMMARY = ["ratio", "output_speed_deg_s", "window_s", "stages"]
+CONTRACT_SUMMARY_STAGE = ["tangential_N", "radial_N", "axial_N", "dynamic_factor", "runup_factor"]
+CONTRACT_SOLVER = ["method", "rtol", "atol", "nfev", "njev", "steps", "wall_s", "energy_residual"]
+CONTRACT_CSV = ["time_s", "shaft1_speed_deg_s", "shaft4_speed_deg_s", "input_torque_Nmm", "stage1_tangential_N",
+                "stage1_radial_N", "stage1_axial_N", "stage3_penetration_mm"]
+
+
+def test_the_contracts_keys_are_in_the_output_page_and_in_the_seeds_output(tmp_path):
+    import csv
+    import json
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    page = (ROOT / "docs" / "output.md").read_text()
+    generic = {"shaft1_speed_deg_s": "shaft{i}_speed_deg_s", "shaft4_speed_deg_s": "shaft{i}_speed_deg_s",
+               "stage1_tangential_N": "stage{k}_tangential_N", "stage1_radial_N": "stage{k}_radial_N",
+               "stage1_axial_N": "stage{k}_axial_N", "stage3_penetration_mm": "stage{k}_penetration_mm"}
+    for key in {*CONTRACT_DESIGN_TOP, *CONTRACT_DESIGN_STAGE, *CONTRACT_FORCES, *CONTRACT_MEMBER,
+                *CONTRACT_SUMMARY, *CONTRACT_SUMMARY_STAGE, *CONTRACT_SOLVER, *CONTRACT_CSV}:
+        assert f"`{generic.get(key, key)}`" in page, key
+    runner = CliRunner()
+    out = tmp_path / "d.json"
+    assert runner.invoke(cli, ["-q", "design", SEED, "-o", str(out)]).exit_code == 0
+    d = json.loads(out.read_text())
+    stage = d["stages"][0]
+    assert set(CONTRACT_DESIGN_TOP) <= d.keys() and set(CONTRACT_DESIGN_STAGE) <= stage.keys()
+    assert set(CONTRACT_FORCES) <= stage["static_force_N"].keys()
+    assert set(CONTRACT_MEMBER) <= stage["pinion"].keys() and set(CONTRACT_MEMBER) <= stage["gear"].keys()
+    assert all({"code", "message"} <= w.keys() for w in d["warnings"])
+    short = ["--set", "simulation.duration_s=0.05", "--set", "simulation.steps=50"]
+    out = tmp_path / "s.json"
+    assert runner.invoke(cli, ["-q", "simulate", SEED, *short, "-o", str(out)]).exit_code == 0
+    s = json.loads(out.read_text())
+    assert set(CONTRACT_SUMMARY) <= s["summary"].keys() and set(CONTRACT_SOLVER) <= s["solver"].keys()
+    for st in s["summary"]["stages"]:
+        assert set(CONTRACT_SUMMARY_STAGE) <= st.keys()
+        assert all({"mean", "min", "max", "std"} <= st[k].keys() for k in ("tangential_N", "radial_N", "axial_N"))
+    assert "series" not in s
+    out = tmp_path / "s.csv"
+    assert runner.invoke(cli, ["-q", "simulate", SEED, *short, "-o", str(out)]).exit_code == 0
+    header = next(csv.reader(out.open()))
+    assert header[0] == "time_s" and set(CONTRACT_CSV) <= set(header)
