@@ -78,7 +78,8 @@ Examples:
 @click.option("--rtols", callback=_parse_rtols, metavar="LIST",
               help="The accuracy ladder's tolerances, comma-separated [default: 1e-3,1e-4,...,1e-9].")
 @click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
-              help="Also write campbell.png, speeds.png, mesh_forces.png, spectrum.png, work_precision.png to DIR. Needs "
+              help="Also write campbell.png, speeds.png, mesh_forces.png, spectrum.png and (not with --quick) "
+                   "work_precision.png to DIR. Needs "
                    "matplotlib (pip install 'gearcli[plot]'); without it: a warning, the rest of the report, exit 0.")
 @quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")

@@ -18,6 +18,7 @@ New commands reuse :func:`output_option` (the click option) and these two functi
 
 from __future__ import annotations
 
+import errno
 import io
 import os
 import stat
@@ -234,13 +235,32 @@ def write_stream(stream: TextIO, text: str) -> None:
     2), and what is still buffered is dropped so that the interpreter's last flush cannot fail again. A
     reader gone away stays :class:`BrokenPipeError` (exit 141)."""
     try:
-        stream.write(text)
-        stream.flush()
+        _write_all(stream, text)
     except BrokenPipeError:
         raise
     except OSError as exc:
         drop_buffered(stream)
         raise _refuse(STDOUT_NAME, f"cannot write: {exc.strerror or exc}") from None
+
+
+def _write_all(stream: TextIO, text: str) -> None:
+    """``text`` to ``stream``, every byte or an error. A pipe whose reader goes away while a large write waits in
+    it takes part of the write and sends SIGPIPE, which Python ignores: CPython's buffered writer then returns
+    the short count without an error and the text layer drops the rest, so a cut output would end as a success
+    (exit 0). The bytes go through the binary buffer until all are taken, so that the next write meets EPIPE."""
+    buffer = getattr(stream, "buffer", None)
+    if buffer is None or os.linesep != "\n":
+        stream.write(text)
+        stream.flush()
+        return
+    stream.flush()
+    data = memoryview(text.encode(stream.encoding or "utf-8", stream.errors or "strict"))
+    while data:
+        n = buffer.write(data)
+        if not n:  # a non-blocking stdout that takes nothing: an output that cannot be written
+            raise BlockingIOError(errno.EAGAIN, "the output takes no more data")
+        data = data[n:]
+    buffer.flush()
 
 
 def drop_buffered(stream: TextIO) -> None:

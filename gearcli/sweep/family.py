@@ -1,4 +1,4 @@
-"""A sweep's error estimate, shared by a family of neighbouring points (README "Honest statistics"; docs/performance.md).
+"""A sweep's error estimate, shared by a family of neighbouring points (docs/numerics.md, "Honest statistics"; docs/performance.md).
 
 A point's check pass (:mod:`gearcli.simulate.estimate`) integrates the scene a second time; paid at every point
 it doubles a sweep. Every ``CHECK_EVERY``-th point of the sweep (its index a multiple of it: which points are

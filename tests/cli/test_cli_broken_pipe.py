@@ -41,3 +41,24 @@ def test_a_closed_pipe_exits_141_quietly(name, tmp_path):
     stderr = (tmp_path / "stderr").read_text()
     assert proc.returncode == 141, (proc.returncode, stderr)
     assert stderr.strip() in ("", "sweep: 2 points, 0 failed"), stderr  # sweep's summary is on stderr
+
+
+def test_a_reader_that_goes_away_mid_output_exits_141(tmp_path):
+    """`gearcli simulate f.toml | head -1`: the reader takes the first bytes and leaves while gearcli's write
+    of a CSV several times the pipe's 64 KiB waits in the pipe. The kernel lets that write through partly and
+    sends SIGPIPE (ignored by Python); CPython's buffered writer returned the short count without an error and the
+    text layer dropped the rest, so the cut output ended as exit 0. The rest must meet EPIPE: exit 141, quiet."""
+    r, w = os.pipe()
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    with open(tmp_path / "stderr", "wb") as err:
+        # 0.05 s at 4000 steps: 4001 rows of 21 columns, about 1 MB of CSV
+        proc = subprocess.Popen([sys.executable, "-m", "gearcli", "-q", "simulate", SEED, "--format", "csv",
+                                 "--set", "simulation.duration_s=0.05", "--set", "simulation.steps=4000"],
+                                stdout=w, stderr=err, env=env)
+        os.close(w)
+        first = os.read(r, 64)  # blocks until gearcli has begun to write
+        os.close(r)
+        code = proc.wait(timeout=120)
+    assert first.startswith(b"time_s,")
+    assert code == 141, (tmp_path / "stderr").read_text()
+    assert (tmp_path / "stderr").read_text().strip() == ""
