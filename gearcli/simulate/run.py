@@ -263,17 +263,25 @@ def prediction(choice: Choice, engine: str, nfev: float) -> JsonObject:
 
 def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
     """A run whose evaluations far exceed what the cost model predicted for its method says so, with both figures
-    (counters, not the wall clock: the same warning on a busy machine and a quiet one)."""
-    if run.method not in (EXPLICIT_METHOD, IMPLICIT_METHOD):
-        return []
+    (counters, not the wall clock: the same warning on a busy machine and a quiet one). Every method is judged: the
+    cost model predicts DOP853 and Radau, and prices RK45 as DOP853, BDF and LSODA as Radau (a requested BDF run
+    on a stiff scene took 180x Radau's prediction, 27 s, unwarned when only the two were judged)."""
     n = predicted_nfev(choice)
     took = cost.predicted_wall_s(run.engine, run.method, run.nfev, size=choice.size)
     if took < cost.PACE_MIN_S or run.nfev < cost.PACE_WARN_FACTOR * n:
         return []
+    family = IMPLICIT_METHOD if method_info(run.method).implicit else EXPLICIT_METHOD
+    what = "the cost model predicted" if family == run.method else f"the cost model predicted for {family}"
+    if choice.requested == AUTO:
+        tail = 'method = "auto" may have chosen the slower method here'
+    else:
+        explicit, implicit = choice.predicted_evals
+        tail = (f'method = "{choice.requested}" was requested (the cost model predicts {explicit:.2g} evaluations '
+                f'for {EXPLICIT_METHOD}, {implicit:.2g} for {IMPLICIT_METHOD}; method = "auto" chooses between them)')
     return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
-                       f"{run.nfev / n:.2g}x the {n:.2g} the cost model predicted (~{took:.2g} s against "
-                       f"~{cost.predicted_wall_s(run.engine, run.method, n, size=choice.size):.2g} s); method = \"auto\" may have chosen "
-                       "the slower method here (docs/numerics.md, \"Choosing the method: auto\")",
+                       f"{run.nfev / n:.2g}x the {n:.2g} {what} (~{took:.2g} s against "
+                       f"~{cost.predicted_wall_s(run.engine, run.method, n, size=choice.size):.2g} s); {tail} "
+                       '(docs/numerics.md, "Choosing the method: auto")',
                        nfev=run.nfev, predicted_nfev=n)]
 
 

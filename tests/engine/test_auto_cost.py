@@ -158,3 +158,33 @@ def test_a_run_far_over_its_predicted_evaluations_says_so_on_either_engine(engin
     warned = [d for d in got.diagnostics if d.code == "slow_pace"]
     assert len(warned) == 1 and f"({engine_name} engine) took 5407 evaluations" in warned[0].message
     assert warned[0].data["nfev"] == 5407 and warned[0].data["predicted_nfev"] * cost.PACE_WARN_FACTOR < 5407
+
+
+@pytest.mark.parametrize("method", ["RK45", "BDF", "LSODA"])
+def test_every_requested_method_is_judged_against_its_familys_prediction(method, monkeypatch):
+    # the cost model predicts DOP853 and Radau only and prices RK45 as DOP853, BDF and LSODA as Radau
+    # (gearcli/core/cost.py); a run of any of them far over that prediction must say so. Found: BDF requested on a
+    # 1e-6 kg m2 pinion against a 1e3 kg m2 gear took 475,807 evaluations against Radau's predicted 2,665 (~13 s
+    # priced against ~0.07 s) without a word. Here the seed's prediction is shrunk 1000-fold so that any of these
+    # runs is far over it; the warning's figures are the run's own counters (solver.nfev) and the family's number.
+    cfg, design = _cfg("concrete_mixer.toml", [f"simulation.method={method}", "simulation.engine=python",
+                                                "simulation.duration_s=0.25", "simulation.steps=500"])
+    from gearcli.core.methods import IMPLICIT_METHOD, METHODS
+    from gearcli.simulate import run as run_module
+    from gearcli.simulate import run_simulation
+
+    real = run_module.predicted_nfev
+    monkeypatch.setattr(run_module, "predicted_nfev", lambda choice: real(choice) / 1000.0)
+    monkeypatch.setattr(cost, "PACE_MIN_S", 0.0)
+    got = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    assert got.solver.method == method
+    (warned,) = [d for d in got.diagnostics if d.code == "slow_pace"]
+    family = IMPLICIT_METHOD if METHODS[method].implicit else "DOP853"
+    assert warned.data["nfev"] == got.solver.nfev
+    assert warned.data["predicted_nfev"] * cost.PACE_WARN_FACTOR < got.solver.nfev
+    assert f"({got.solver.engine} engine) took {got.solver.nfev} evaluations" in warned.message
+    assert f"predicted for {family}" in warned.message and f'method = "{method}" was requested' in warned.message
+    # unpatched, the same run is within its prediction: no warning
+    monkeypatch.setattr(run_module, "predicted_nfev", real)
+    quiet = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    assert not any(d.code == "slow_pace" for d in quiet.diagnostics)
