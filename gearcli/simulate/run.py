@@ -477,7 +477,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
                                               steps or s.time_s.size - 1)
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
-            diags += sampling.peak_warnings(s.time_s, [p[0] for p in per_stage], steps or s.time_s.size - 1)
+            diags += sampling.peak_warnings(s.time_s, [p[0] for p in per_stage], steps or s.time_s.size - 1,
+                                            max(choice.natural_frequencies_Hz, default=0.0))
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
