@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from gearcli.core.text import shorten
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND
+from gearcli.report.compare import reversed_lossy_stages
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
 
 LABELS = {
@@ -59,6 +60,7 @@ def _in_units(r: Report, quantity: str, label: str, value: float | None) -> tupl
 
 def comparison_section(r: Report) -> Section:
     rows = []
+    reversed_stages = reversed_lossy_stages(r.design)
     for row in r.comparison:
         label, theory = _in_units(r, row.quantity, quantity_label(row.stage, row.quantity), row.theory)
         simulated = _in_units(r, row.quantity, label, row.simulated)[1]
@@ -69,7 +71,10 @@ def comparison_section(r: Report) -> Section:
                                                  "error [%]"), tuple(rows), "llrrr",
                    (f"simulated: mean over the steady window {w0:.4g}–{w1:.4g} s; error = (simulated − theory)"
                     " / |theory|" + ("; a planetary stage's forces: the mean over its planets' sun meshes (each planet's"
-                                     " own: gearcli simulate, JSON planets)" if _has_planets(r) else ""),))
+                                     " own: gearcli simulate, JSON planets)" if _has_planets(r) else "")
+                    + ("; reversed load (the gear drives) on stage " + ", ".join(map(str, reversed_stages))
+                       + ": theory's forces are the driving gear's, T_g / r_g = the design's F_t / η"
+                       if reversed_stages else ""),))
 
 
 def _has_planets(r: Report) -> bool:

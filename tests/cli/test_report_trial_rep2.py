@@ -1,0 +1,209 @@
+"""`gearcli report` on an engineer's own scenes (trial, round 5, rep2), checked against hand calculations.
+
+Spur stage, linear mesh (exponent 1, K = 4e5 N/mm, no backlash, no excitation), 21/63 teeth, m = 4 mm, α = 20°,
+1500 rpm against 600 N·m on the gear. By hand:
+  d_1 = m z_1 = 84 mm, i = 63 / 21 = 3, output 1500 / 3 = 500 rpm, pinion torque 600 / 3 = 200 N·m,
+  F_t = 2 T_1 / d_1 = 2 · 200e3 / 84 = 4761.905 N, F_r = F_t tan 20° = 1733.19 N, F_a = 0,
+  mesh frequency z_1 n_1 / 60 = 21 · 1500 / 60 = 525 Hz,
+  ε_α = (√(r_a1² − r_b1²) + √(r_a2² − r_b2²) − a sin α) / (π m cos α) = 1.6807.
+In the rigid limit (settled, no excitation) the window means are the static values to the solver's accuracy.
+
+Lossy three-stage helical reducer (η = 0.98, 0.97, 0.96), 9000 N·m on the output. Forward load: the pinion drives,
+T_p = T_g / (i η) down the train. Reversed (overhauling, −9000 N·m): the gear drives, its tooth force is
+T_g / r_g (T_g the gear's own torque, T_p = T_g η / i up the train), which the simulation's window mean equals; the
+report's theory column showed the design's pinion-side force η T_g / r_g instead, a 1/η − 1 = 2.0, 3.1 and 4.2 %
+"error" in the rigid limit.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+SPUR = """
+title = "Single spur stage, linear mesh"
+[[stage]]
+normal_module_mm = 4
+normal_pressure_angle_deg = 20
+helix_angle_deg = 0
+pinion = { teeth = 21, face_width_mm = 40, material = "steel" }
+gear   = { teeth = 63, face_width_mm = 40, material = "steel" }
+[contact]
+stiffness = 4e5
+exponent = 1
+damping_Ns_mm = 5
+full_damping_penetration_mm = 0.001
+[input]
+speed_rpm = 1500
+ramp_s = 0.1
+[load]
+torque_Nm = 600
+ramp_s = 0.1
+[simulation]
+duration_s = 0.4
+steps = 2000
+"""
+
+LOSSY3 = """
+title = "Lossy three-stage helical reducer"
+[[stage]]
+normal_module_mm = 2.5
+normal_pressure_angle_deg = 20
+helix_angle_deg = 15
+efficiency = 0.98
+pinion = { teeth = 20, face_width_mm = 35, hand = "left", material = "steel" }
+gear   = { teeth = 71, face_width_mm = 32, hand = "right", material = "steel" }
+[[stage]]
+normal_module_mm = 4
+normal_pressure_angle_deg = 20
+helix_angle_deg = 12
+efficiency = 0.97
+pinion = { teeth = 19, face_width_mm = 55, hand = "right", material = "steel" }
+gear   = { teeth = 67, face_width_mm = 50, hand = "left", material = "steel" }
+[[stage]]
+normal_module_mm = 6
+normal_pressure_angle_deg = 20
+helix_angle_deg = 10
+efficiency = 0.96
+pinion = { teeth = 17, face_width_mm = 90, hand = "left", material = "steel" }
+gear   = { teeth = 59, face_width_mm = 85, hand = "right", material = "steel" }
+[contact]
+stiffness = "iso6336"
+exponent = 1.5
+damping_ratio = 0.05
+[input]
+speed_rpm = 1480
+ramp_s = 0.15
+[load]
+torque_Nm = LOAD
+ramp_s = 0.15
+[simulation]
+duration_s = 0.5
+"""
+STAGES = ((2.5, 15.0, 20, 71, 0.98), (4.0, 12.0, 19, 67, 0.97), (6.0, 10.0, 17, 59, 0.96))  # m_n, β, z1, z2, η
+
+
+def _run(*args: str) -> tuple[int, str]:
+    res = CliRunner().invoke(cli, [*args, "-q"])
+    return res.exit_code, res.stdout
+
+
+def _forces_by_hand(load_Nm: float) -> list[tuple[float, float, float]]:
+    """(F_t, F_r, F_a) per stage, signed with the load, of the member that drives: the pinion's F_t = 2 T_p / d_p
+    with T_p = T_g / (i η) for a forward load; the gear's F_t = 2 T_g / d_g for a reversed one."""
+    out = []
+    torque = load_Nm * 1e3  # N·mm on the last gear
+    for m_n, beta_deg, z1, z2, eta in reversed(STAGES):
+        beta = math.radians(beta_deg)
+        d1, d2 = m_n * z1 / math.cos(beta), m_n * z2 / math.cos(beta)
+        alpha_t = math.atan(math.tan(math.radians(20.0)) / math.cos(beta))
+        ratio = z2 / z1
+        f_t = 2 * torque / d2 if torque < 0 else 2 * torque / (ratio * eta) / d1
+        out.append((f_t, f_t * math.tan(alpha_t), f_t * math.tan(beta)))
+        torque = torque * eta / ratio if torque < 0 else torque / (ratio * eta)  # the next pinion's = this gear's
+    return out[::-1]
+
+
+@pytest.fixture(scope="module")
+def spur(tmp_path_factory):
+    path = tmp_path_factory.mktemp("spur") / "spur.toml"
+    path.write_text(SPUR)
+    out = {"path": path}
+    for fmt in ("json", "markdown"):
+        code, out[fmt] = _run("report", str(path), "--quick", "--format", fmt)
+        assert code == 0
+    for cmd in ("design", "simulate"):
+        code, text = _run(cmd, str(path), "--format", "json")
+        assert code == 0
+        out[cmd] = json.loads(text)
+    out["report"] = json.loads(out["json"])
+    return out
+
+
+def test_spur_theory_column_by_hand(spur):
+    theory = {(c["stage"], c["quantity"]): c["theory"] for c in spur["report"]["comparison"]}
+    f_t = 2 * 200e3 / 84.0
+    assert_allclose(theory[(None, "ratio")], 3.0, rtol=1e-14)
+    assert_allclose(theory[(None, "output_speed_deg_s")], 500 * 6.0, rtol=1e-14)  # 500 rpm = 3000 °/s
+    assert_allclose(theory[(1, "tangential_N")], f_t, rtol=1e-12)
+    assert_allclose(theory[(1, "radial_N")], f_t * math.tan(math.radians(20)), rtol=1e-12)
+    assert theory[(1, "axial_N")] == 0.0
+    stage = spur["report"]["design"]["stages"][0]
+    assert_allclose(stage["mesh_frequency_Hz"], 525.0, rtol=1e-12)
+    r_a1, r_b1, r_a2, r_b2 = 46.0, 42 * math.cos(math.radians(20)), 130.0, 126 * math.cos(math.radians(20))
+    eps = (math.sqrt(r_a1**2 - r_b1**2) + math.sqrt(r_a2**2 - r_b2**2) - 168 * math.sin(math.radians(20))) / (
+        math.pi * 4 * math.cos(math.radians(20)))
+    assert_allclose(stage["contact_ratio_transverse"], eps, rtol=1e-9)
+
+
+def test_spur_rigid_limit_simulation_meets_theory(spur):
+    """Linear mesh, settled, nothing excites it: the window means are the statics to the solver's rtol (1e-6
+    here; the linear mesh's mean is far better, the test allows 1e-7)."""
+    for row in spur["report"]["comparison"]:
+        if row["theory"] != 0:
+            assert abs(row["error_percent"]) < 1e-5, row  # 1e-7 relative
+    dyn = spur["report"]["dynamics"][0]
+    assert_allclose(dyn["dynamic_factor"], 1.0, atol=1e-6)  # no fluctuation in the window
+
+
+def test_spur_report_numbers_equal_design_and_simulate(spur):
+    """The same file: the report's design is `design`'s JSON, its simulation summary's stage statistics are
+    `simulate`'s, to the last digit (the same deterministic run)."""
+    rep, des, sim = spur["report"], spur["design"], spur["simulate"]
+    for key in ("total_ratio", "output_speed_rpm", "input_torque_Nm", "output_torque_Nm"):
+        assert rep["design"][key] == des[key], key
+    # the markdown's design section prints m_n, β, a, b, c_γα and the teeth: the JSON carries them too (they were
+    # missing), under design's own key names
+    for key in ("static_force_N", "mesh_frequency_Hz", "contact_ratio_transverse", "iso6336_mesh_stiffness_N_mm_um",
+                "normal_module_mm", "helix_angle_deg", "center_distance_mm", "face_width_mm"):
+        assert rep["design"]["stages"][0][key] == des["stages"][0][key], key
+    for member in ("pinion", "gear"):
+        assert rep["design"]["stages"][0][member]["teeth"] == des["stages"][0][member]["teeth"]
+    assert_allclose(rep["design"]["stages"][0]["center_distance_mm"], 4 * (21 + 63) / 2, rtol=1e-12)
+    r_st, s_st = rep["dynamics"][0], sim["summary"]["stages"][0]
+    for key in ("tangential_N", "radial_N", "axial_N", "dynamic_factor", "runup_factor", "peak_tangential_N",
+                "static_tangential_N", "simulated_static_tangential_N"):
+        assert r_st[key] == s_st[key], key
+    assert rep["simulation"]["summary"]["output_speed_deg_s"] == sim["summary"]["output_speed_deg_s"]
+    assert rep["natural_frequencies_Hz"] == sim["summary"]["natural_frequencies_Hz"]
+    assert [w["code"] for w in rep["warnings"]] == [w["code"] for w in sim["warnings"]]
+
+
+def test_spur_markdown_rows_are_the_json_numbers(spur):
+    """The markdown's theory-against-simulation rows print the JSON's numbers (speeds in the file's rpm)."""
+    md = spur["markdown"].split("## Theory against simulation", 1)[1].split("\n## ", 1)[0]
+    rows = [[c.strip() for c in x.strip().strip("|").split("|")] for x in md.splitlines() if x.startswith("| ")]
+    assert rows[0] == ["stage", "quantity", "theory (static)", "simulated (mean)", "error [%]"]
+    cells = {(r[0], r[1]): r for r in rows[2:]}
+    assert_allclose(float(cells[("1", "F_t mean [N]")][2]), 2 * 200e3 / 84.0, rtol=5e-6)  # 6 digits printed
+    assert_allclose(float(cells[("train", "output speed [rpm]")][3]), 500.0, rtol=5e-6)
+    for line in md.splitlines():  # a well-formed table: every row has the header's column count
+        if line.startswith("|"):
+            assert line.count("|") == 6, line
+
+
+@pytest.mark.parametrize("load", [9000.0, -9000.0], ids=["forward", "reversed"])
+def test_lossy_three_stage_theory_is_the_driving_members_force(tmp_path, load):
+    path = tmp_path / "lossy3.toml"
+    path.write_text(LOSSY3.replace("LOAD", f"{load:g}"))
+    code, text = _run("report", str(path), "--quick", "--format", "json")
+    assert code == 0
+    doc = json.loads(text)
+    theory = {(c["stage"], c["quantity"]): c for c in doc["comparison"]}
+    for k, forces in enumerate(_forces_by_hand(load), start=1):
+        for name, f in zip(("tangential_N", "radial_N", "axial_N"), forces, strict=True):
+            row = theory[(k, name)]
+            assert_allclose(row["theory"], f, rtol=1e-12, err_msg=f"stage {k} {name}")
+            # rigid limit (settled, unexcited): the mean meets it to the solver's accuracy (rtol 1e-6 by default)
+            assert abs(row["error_percent"]) < 1e-4, row
+    # the design's own static forces stay the pinion's (T_p = T_g η / i reversed): only the comparison changed
+    stage3 = doc["design"]["stages"][2]["static_force_N"]["tangential"]
+    eta3 = STAGES[2][4]
+    expected3 = _forces_by_hand(load)[2][0] * (eta3 if load < 0 else 1.0)
+    assert_allclose(stage3, expected3, rtol=1e-12)
