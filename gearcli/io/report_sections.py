@@ -145,8 +145,12 @@ def mesh_orders_section(r: Report) -> Section:
     rows = []
     errors = {e.stage: e.spectrum_N for st in r.simulation.stages if (e := st.error_estimate) is not None}
     below = False
+    quiet = []
     for s in r.stages:
         err = errors.get(s.stage)
+        if not s.spectrum.mesh_orders:  # nothing fluctuates in the window (JSON: mesh_orders []): a row says so
+            quiet.append(str(s.stage))
+            rows.append((str(s.stage), "–", "–", "–", "–"))
         for o in s.spectrum.mesh_orders:
             if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
                 below = True
@@ -159,6 +163,9 @@ def mesh_orders_section(r: Report) -> Section:
     how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
            if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
     notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
+    if quiet:
+        notes.append(f"stage {', '.join(quiet)}: '–', no fluctuation of F_t in the steady window (nothing excites the "
+                     "mesh), so no mesh-order amplitude")
     if below:
         notes.append("'< e': the computed amplitude is below e, the run's estimated error of its F_t spectrum (the "
                      "check pass's largest amplitude difference): not resolved, the amplitude is below about 2e")

@@ -356,3 +356,13 @@ def test_te_mesh_orders_by_hand_and_dynamic_factor_equals_simulate(tmp_path):
     assert_allclose(r_st["static_tangential_N"], static, rtol=1e-12)
     bound = (static + orders[1]["tangential_N"] + orders[2]["tangential_N"] + orders[3]["tangential_N"]) / static
     assert 1.4 < r_st["dynamic_factor"] <= bound * 1.001
+
+
+def test_unexcited_mesh_orders_section_is_not_an_empty_table(spur):
+    """Nothing excites the spur scene's mesh (JSON mesh_orders []): the markdown printed the section's header and no
+    row, in the table format an empty box; now a row of '–' per such stage and a note say why."""
+    assert spur["report"]["dynamics"][0]["spectrum"]["mesh_orders"] == []
+    md = spur["markdown"].split("## Mesh-order amplitudes", 1)[1].split("\n## ", 1)[0]
+    rows = [x for x in md.splitlines() if x.startswith("| ")]
+    assert rows[2:] == ["| 1 | – | – | – | – |"]
+    assert "no fluctuation" in md
