@@ -366,3 +366,29 @@ def test_unexcited_mesh_orders_section_is_not_an_empty_table(spur):
     rows = [x for x in md.splitlines() if x.startswith("| ")]
     assert rows[2:] == ["| 1 | – | – | – | – |"]
     assert "no fluctuation" in md
+
+
+def test_mesh_forces_plot_reversed_load_static_line_and_peak_marker(tmp_path):
+    """mesh_forces.png of the reversed lossy reducer drew the static line at the design's pinion-side −7304 N
+    (stage 1) beside a mean of −7453 N, and the run-up peak marker at +7454 N, above a curve that never leaves the
+    negative half. The line is now the comparison's theory (the driving gear's T_g / r_g) and the marker sits on the
+    curve, signed."""
+    pytest.importorskip("matplotlib")
+    from gearcli import api
+    from gearcli.io.plots import mesh_forces_figure
+
+    path = tmp_path / "reversed.toml"
+    path.write_text(LOSSY3.replace("LOAD", "-9000"))
+    loaded = api.load(str(path))
+    rep = api.report_file(loaded, api.design(loaded), quick=True)
+    fig = mesh_forces_figure(rep)
+    hand = _forces_by_hand(-9000.0)
+    axes = fig.axes
+    for k in range(3):
+        main = axes[2 * k] if len(axes) == 6 else axes[k]
+        lines = {ln.get_label(): ln for ln in main.get_lines()}
+        static = next(v for lbl, v in lines.items() if lbl.startswith("static F_t"))
+        assert_allclose(static.get_ydata()[0], hand[k][0], rtol=1e-12)
+        peak = next(v for lbl, v in lines.items() if lbl.startswith("run-up peak"))
+        assert peak.get_ydata()[0] < 0  # on the curve: the forces of a reversed load are negative
+        assert_allclose(abs(peak.get_ydata()[0]), rep.stages[k].peak_tangential_N, rtol=1e-12)
