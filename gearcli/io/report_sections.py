@@ -145,13 +145,17 @@ def mesh_orders_section(r: Report) -> Section:
     rows = []
     errors = {e.stage: e.spectrum_N for st in r.simulation.stages if (e := st.error_estimate) is not None}
     below = False
-    quiet = []
+    quiet, aliased = [], []
     for s in r.stages:
         err = errors.get(s.stage)
         if not s.spectrum.mesh_orders:  # nothing fluctuates in the window (JSON: mesh_orders []): a row says so
             quiet.append(str(s.stage))
             rows.append((str(s.stage), "–", "–", "–", "–"))
         for o in s.spectrum.mesh_orders:
+            if o.tangential_N is None:  # at or above the samples' Nyquist frequency: an alias, not an amplitude
+                aliased.append(f"{s.stage} ({o.order}x)")
+                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), "> Nyquist", "> Nyquist"))
+                continue
             if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
                 below = True
                 dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 and o.dte_um is not None \
@@ -163,6 +167,10 @@ def mesh_orders_section(r: Report) -> Section:
     how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
            if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
     notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
+    if aliased:
+        notes.append(f"stage {', '.join(aliased)}: '> Nyquist', the order lies at or above the Nyquist frequency of the "
+                     "output samples (less one resolution bin), where they alias it: no amplitude; raise "
+                     "simulation.steps to see it")
     if quiet:
         notes.append(f"stage {', '.join(quiet)}: '–', no fluctuation of F_t in the steady window (nothing excites the "
                      "mesh), so no mesh-order amplitude")
