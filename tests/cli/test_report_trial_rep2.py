@@ -446,3 +446,15 @@ def test_te_mesh_orders_over_whole_periods_meet_the_closed_form_closely(tmp_path
         amp = k * e_um * 1e-6 * r**2 * math.hypot(1, 2 * zeta * r) / math.hypot(1 - r**2, 2 * zeta * r)
         assert_allclose(orders[h]["tangential_N"], amp * cos_a, rtol=1e-4, err_msg=f"order {h}")
     assert orders[3]["tangential_N"] < 1e-3 * orders[1]["tangential_N"]  # the linear mesh makes no 3x
+
+
+def test_work_precision_wall_column_shows_sub_millisecond_runs():
+    """A compiled rung of 135 evaluations takes ~0.35 ms: the column printed "0.000" (no time at all) and the ★ note
+    "(0.000 s, ...)"; below 10 ms it now keeps two significant digits, above it millisecond resolution as before."""
+    from gearcli.io.report_sections import wall_text
+
+    assert wall_text(0.00035) == "0.00035"
+    assert wall_text(0.0029) == "0.0029"
+    assert wall_text(0.038) == "0.038"
+    assert wall_text(1.23456) == "1.235"
+    assert wall_text(0.0) == "0.000"
