@@ -458,3 +458,34 @@ def test_work_precision_wall_column_shows_sub_millisecond_runs():
     assert wall_text(0.038) == "0.038"
     assert wall_text(1.23456) == "1.235"
     assert wall_text(0.0) == "0.000"
+
+
+def test_intermediate_shaft_mean_speed_is_the_window_integral(tmp_path):
+    """A two-stage reducer with 8 µm of TE on its meshes: the intermediate shaft's speed swings 0.5 % in the window.
+    The report's stage-1 gear speed was the plain mean of the window's samples, which counts both ends in full and
+    was 3.5e-6 below the window integral (the mean DESIGN §7 and simulate take); it is now the trapezoid integral,
+    which the test computes from simulate's CSV of the same file (printed to 10 digits)."""
+    import numpy as np
+
+    path = tmp_path / "two_te.toml"
+    text = LOSSY3.split("[[stage]]\nnormal_module_mm = 6")[0]  # stages 1 and 2
+    text += LOSSY3[LOSSY3.index("[contact]"):]
+    text = (text.replace("exponent = 1.5", "exponent = 1.0")
+            .replace("damping_ratio = 0.05", "damping_ratio = 0.02\ntransmission_error_um = [8.0]")
+            .replace("LOAD", "2500"))
+    path.write_text(text)
+    code, out = _run("report", str(path), "--quick", "--format", "json")
+    assert code == 0
+    rep = json.loads(out)
+    code, csv = _run("simulate", str(path), "--format", "csv")
+    assert code == 0
+    data = np.genfromtxt(csv.splitlines(), delimiter=",", names=True)
+    w0, w1 = rep["simulation"]["summary"]["window_s"]
+    t = data["time_s"]
+    sel = (t >= w0 - 1e-9) & (t <= w1 + 1e-9)
+    speed = data["shaft2_speed_rpm"][sel]
+    assert speed.std() / speed.mean() > 1e-3  # the shaft does swing
+    integral = float(np.sum(0.5 * (speed[1:] + speed[:-1]) * np.diff(t[sel])) / (t[sel][-1] - t[sel][0]))
+    row = next(c for c in rep["comparison"] if c["stage"] == 1 and c["quantity"] == "output_speed_deg_s")
+    assert_allclose(row["simulated"] / 6.0, integral, rtol=1e-9)  # rpm = °/s / 6; CSV's 10 digits
+    assert abs(float(np.mean(speed)) - integral) / integral > 1e-6  # the plain mean would fail the line above
