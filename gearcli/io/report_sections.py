@@ -148,8 +148,8 @@ def mesh_orders_section(r: Report) -> Section:
     quiet, aliased = [], []
     for s in r.stages:
         err = errors.get(s.stage)
-        if not s.spectrum.mesh_orders:  # nothing fluctuates in the window (JSON: mesh_orders []): a row says so
-            quiet.append(str(s.stage))
+        if not s.spectrum.mesh_orders:  # nothing fluctuates, or too few samples (JSON: mesh_orders []): a row says so
+            quiet.append((str(s.stage), s.spectrum.matches))
             rows.append((str(s.stage), "–", "–", "–", "–"))
         for o in s.spectrum.mesh_orders:
             if o.tangential_N is None:  # at or above the samples' Nyquist frequency: an alias, not an amplitude
@@ -171,9 +171,11 @@ def mesh_orders_section(r: Report) -> Section:
         notes.append(f"stage {', '.join(aliased)}: '> Nyquist', the order lies at or above the Nyquist frequency of the "
                      "output samples (less one resolution bin), where they alias it: no amplitude; raise "
                      "simulation.steps to see it")
-    if quiet:
-        notes.append(f"stage {', '.join(quiet)}: '–', no fluctuation of F_t in the steady window (nothing excites the "
-                     "mesh), so no mesh-order amplitude")
+    for why in dict.fromkeys(w for _, w in quiet):
+        stages = ", ".join(k for k, w in quiet if w == why)
+        reason = ("no fluctuation of F_t in the steady window (nothing excites the mesh)" if why == "no fluctuation"
+                  else why)
+        notes.append(f"stage {stages}: '–', {reason}, so no mesh-order amplitude")
     if below:
         notes.append("'< e': the computed amplitude is below e, the run's estimated error of its F_t spectrum (the "
                      "check pass's largest amplitude difference): not resolved, the amplitude is below about 2e")

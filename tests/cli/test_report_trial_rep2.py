@@ -489,3 +489,13 @@ def test_intermediate_shaft_mean_speed_is_the_window_integral(tmp_path):
     row = next(c for c in rep["comparison"] if c["stage"] == 1 and c["quantity"] == "output_speed_deg_s")
     assert_allclose(row["simulated"] / 6.0, integral, rtol=1e-9)  # rpm = °/s / 6; CSV's 10 digits
     assert abs(float(np.mean(speed)) - integral) / integral > 1e-6  # the plain mean would fail the line above
+
+
+def test_mesh_orders_section_names_too_few_samples(tmp_path):
+    """simulation.steps = 1 leaves the window two samples: no spectrum, for want of samples, not of fluctuation."""
+    path = tmp_path / "spur.toml"
+    path.write_text(SPUR.replace("steps = 2000", "steps = 1"))
+    code, md = _run("report", str(path), "--quick", "--format", "markdown")
+    assert code == 0
+    section = md.split("## Mesh-order amplitudes", 1)[1].split("\n## ", 1)[0]
+    assert "too few samples in the window" in section and "no fluctuation" not in section
