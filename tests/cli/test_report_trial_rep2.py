@@ -267,9 +267,10 @@ def test_study_reference_within_its_stated_uncertainty_of_an_independent_solve(s
     u = ref["uncertainty"]
     assert u < 1e-10  # the pair agrees closely on this linear scene
     vals = ref["values"]
-    assert abs(vals["output_speed_deg_s"] - mine["output_speed_deg_s"]) <= (u + 1e-12) * mine["output_speed_deg_s"]
-    assert abs(vals["mean_tangential_N"][0] - mine["mean_tangential_N"]) <= (u + 5e-13) * mine["mean_tangential_N"]
-    assert abs(vals["peak_tangential_N"][0] - mine["peak_tangential_N"]) <= (u + 5e-13) * mine["peak_tangential_N"]
+    assert abs(vals["output_speed_deg_s"] - mine["output_speed_deg_s"]) <= (u + 2e-12) * mine["output_speed_deg_s"]
+    # 2e-12 beside u: the round-off floor of a run at rtol 1e-12 (another engine or machine may land elsewhere in it)
+    assert abs(vals["mean_tangential_N"][0] - mine["mean_tangential_N"]) <= (u + 2e-12) * mine["mean_tangential_N"]
+    assert abs(vals["peak_tangential_N"][0] - mine["peak_tangential_N"]) <= (u + 2e-12) * mine["peak_tangential_N"]
     # and the rigid limit by hand: the settled mean is the static force 2 T_1 / d_1
     assert_allclose(mine["mean_tangential_N"], 2 * 200e3 / 84.0, rtol=1e-10)
 
