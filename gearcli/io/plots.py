@@ -19,7 +19,9 @@ from gearcli.io.figures import check as _figure_check
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
 from gearcli.io.units import of_result
+from gearcli.report.compare import driving_gear_factor
 from gearcli.report.result import Report
+from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:  # matplotlib is imported when a figure is drawn (the plot extra)
     from matplotlib.figure import Figure
@@ -74,6 +76,7 @@ def speeds_figure(r: Report) -> Figure:
 def mesh_forces_figure(r: Report) -> Figure:
     sim = r.simulation
     fig, axes = _figure(len(r.stages), 2, sharex="col", height=2.1, width=12.0, width_ratios=(3, 2))
+    factors = {st.index: driving_gear_factor(st, design_kind(st).model_signs_forces) for st in r.design.stages}
     for (ax, zoom), s in zip(axes, r.stages, strict=True):
         series = named(sim).get(f"stage{s.stage}_tangential_N")
         color = f"C{(s.stage - 1) % 10}"
@@ -81,10 +84,12 @@ def mesh_forces_figure(r: Report) -> Figure:
         if series is not None:
             ax.plot(sim.time_s, series, lw=0.8, color=color, label="F_t simulated")
             _zoom(zoom, sim.time_s, series, sim.window_s, color)
+        static = s.static_tangential_N * factors.get(s.stage, 1.0)  # the comparison's theory (the driving member's)
         for a in (ax, zoom):
-            a.axhline(s.static_tangential_N, ls="--", lw=1.2, color="k", label=f"static F_t {s.static_tangential_N:.5g} N")
+            a.axhline(static, ls="--", lw=1.2, color="k", label=f"static F_t {static:.5g} N")
         zoom.axhline(s.tangential_N.mean, ls=":", lw=1.2, color="C3", label=f"mean {s.tangential_N.mean:.5g} N")
-        ax.plot([s.peak_time_s], [s.peak_tangential_N], "v", color="C3", ms=6,
+        ax.plot([s.peak_time_s], [_signed_peak(sim.time_s, series, s.peak_time_s, s.peak_tangential_N)], "v",
+                color="C3", ms=6,
                 label=f"run-up peak {s.peak_tangential_N:.5g} N"
                 + (f" (run-up factor {s.runup_factor:.3g})" if s.runup_factor is not None else ""))
         ax.set_ylabel("F_t [N]")
@@ -97,6 +102,15 @@ def mesh_forces_figure(r: Report) -> Figure:
     axes[-1, 1].set_xlabel("time [s]")
     fig.suptitle("Tangential mesh forces (dashed: static theory)", fontsize=11)
     return fig
+
+
+def _signed_peak(time_s: np.ndarray, series: np.ndarray | None, at_s: float | None, peak_N: float) -> float:
+    """The run-up peak |F_t| with the sign the force has there (a reversed load's forces are negative: the marker
+    belongs on the curve, not mirrored above it)."""
+    if series is None or at_s is None or len(time_s) == 0:
+        return peak_N
+    value = series[int(np.argmin(np.abs(np.asarray(time_s) - at_s)))]
+    return -abs(peak_N) if value < 0 else abs(peak_N)
 
 
 def spectrum_figure(r: Report) -> Figure:

@@ -23,7 +23,17 @@ from gearcli.results import DesignResult
 
 DESIGN_STAGE_KEYS = ("index", "ratio", "mesh_frequency_Hz", "contact_ratio_transverse", "overlap_ratio",
                      "contact_ratio_total", "hertz_stiffness_N_mm1_5", "linearised_stiffness_N_mm",
-                     "static_approach_mm", "static_force_N")
+                     "static_approach_mm", "static_force_N",
+                     # what the design section of the markdown and table prints, under `design`'s own key names
+                     "normal_module_mm", "helix_angle_deg", "center_distance_mm", "face_width_mm",
+                     "iso6336_mesh_stiffness_N_mm_um")
+
+
+def _stage_summary(s) -> JsonObject:
+    out: JsonObject = {k: plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS}
+    out["pinion"] = {"teeth": s.pinion.teeth}
+    out["gear"] = {"teeth": s.gear.teeth}
+    return out
 
 
 def design_summary(d: DesignResult) -> JsonObject:
@@ -35,7 +45,7 @@ def design_summary(d: DesignResult) -> JsonObject:
         "output_speed_rpm": d.output_speed_rpm,
         "input_torque_Nmm": d.input_torque_Nmm,
         "output_torque_Nmm": d.output_torque_Nmm,
-        "stages": [{k: plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS} for s in d.stages],
+        "stages": [_stage_summary(s) for s in d.stages],
         "shaft_speeds_deg_s": [sh.speed_deg_s for sh in d.shafts],
         **_in_file_units(d),
         "warnings": warning_objects(d.warnings, d.diagnostics),

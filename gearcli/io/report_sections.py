@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from gearcli.core.text import shorten
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND
+from gearcli.report.compare import reversed_lossy_stages
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
 
 LABELS = {
@@ -59,6 +60,7 @@ def _in_units(r: Report, quantity: str, label: str, value: float | None) -> tupl
 
 def comparison_section(r: Report) -> Section:
     rows = []
+    reversed_stages = reversed_lossy_stages(r.design)
     for row in r.comparison:
         label, theory = _in_units(r, row.quantity, quantity_label(row.stage, row.quantity), row.theory)
         simulated = _in_units(r, row.quantity, label, row.simulated)[1]
@@ -69,7 +71,10 @@ def comparison_section(r: Report) -> Section:
                                                  "error [%]"), tuple(rows), "llrrr",
                    (f"simulated: mean over the steady window {w0:.4g}–{w1:.4g} s; error = (simulated − theory)"
                     " / |theory|" + ("; a planetary stage's forces: the mean over its planets' sun meshes (each planet's"
-                                     " own: gearcli simulate, JSON planets)" if _has_planets(r) else ""),))
+                                     " own: gearcli simulate, JSON planets)" if _has_planets(r) else "")
+                    + ("; reversed load (the gear drives) on stage " + ", ".join(map(str, reversed_stages))
+                       + ": theory's forces are the driving gear's, T_g / r_g = the design's F_t / η"
+                       if reversed_stages else ""),))
 
 
 def _has_planets(r: Report) -> bool:
@@ -140,9 +145,17 @@ def mesh_orders_section(r: Report) -> Section:
     rows = []
     errors = {e.stage: e.spectrum_N for st in r.simulation.stages if (e := st.error_estimate) is not None}
     below = False
+    quiet, aliased = [], []
     for s in r.stages:
         err = errors.get(s.stage)
+        if not s.spectrum.mesh_orders:  # nothing fluctuates, or too few samples (JSON: mesh_orders []): a row says so
+            quiet.append((str(s.stage), s.spectrum.matches))
+            rows.append((str(s.stage), "–", "–", "–", "–"))
         for o in s.spectrum.mesh_orders:
+            if o.tangential_N is None:  # at or above the samples' Nyquist frequency: an alias, not an amplitude
+                aliased.append(f"{s.stage} ({o.order}x)")
+                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), "> Nyquist", "> Nyquist"))
+                continue
             if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
                 below = True
                 dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 and o.dte_um is not None \
@@ -154,6 +167,15 @@ def mesh_orders_section(r: Report) -> Section:
     how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
            if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
     notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
+    if aliased:
+        notes.append(f"stage {', '.join(aliased)}: '> Nyquist', the order lies at or above the Nyquist frequency of the "
+                     "output samples (less one resolution bin), where they alias it: no amplitude; raise "
+                     "simulation.steps to see it")
+    for why in dict.fromkeys(w for _, w in quiet):
+        stages = ", ".join(k for k, w in quiet if w == why)
+        reason = ("no fluctuation of F_t in the steady window (nothing excites the mesh)" if why == "no fluctuation"
+                  else why)
+        notes.append(f"stage {stages}: '–', {reason}, so no mesh-order amplitude")
     if below:
         notes.append("'< e': the computed amplitude is below e, the run's estimated error of its F_t spectrum (the "
                      "check pass's largest amplitude difference): not resolved, the amplitude is below about 2e")
@@ -170,6 +192,12 @@ def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
     return f"{e:.2e}"
 
 
+def wall_text(wall_s: float) -> str:
+    """A wall time in ms resolution, and two significant digits below 10 ms: a compiled rung of a few hundred
+    evaluations takes ~0.3 ms, which "0.000" showed as no time at all."""
+    return f"{wall_s:.3f}" if wall_s >= 0.01 or wall_s == 0 else f"{wall_s:.2g}"
+
+
 def accuracy_section(study: AccuracyStudy) -> Section:
     ref, rec = study.reference, study.recommended
     rows: list[tuple[str, ...]] = []
@@ -181,7 +209,7 @@ def accuracy_section(study: AccuracyStudy) -> Section:
             rows.append((method, f"{run.rtol:.0e}", "–", "–", "–", "–", "–", run.failure[:60] + (" " + marks if marks else "")))
             continue
         cells = [error_cell(run, q, ref.uncertainty) for q in ("speed", "mean_force", "peak_force")]
-        rows.append((method, f"{run.rtol:.0e}", f"{run.wall_s:.3f}", str(run.nfev), *cells,
+        rows.append((method, f"{run.rtol:.0e}", wall_text(run.wall_s), str(run.nfev), *cells,
                      ("yes" if run.meets_accuracy else "no") + (f"  {marks}" if marks else "")))
     return Section(f"Numerical accuracy: work against precision (target {study.requested_accuracy:g})",
                    ("method", "rtol", "wall [s]", "nfev", "error ω_out", "error mean F_t", "error peak F_t",
@@ -194,7 +222,7 @@ def accuracy_notes(study: AccuracyStudy) -> list[str]:
         f"reference: {ref.method} at rtol {ref.rtol:g} ({ref.wall_s:.2f} s, nfev {ref.nfev}); checked against "
         f"{ref.check_method} at rtol {ref.check_rtol:g} ({ref.check_wall_s:.2f} s): uncertainty {ref.uncertainty:.1e} "
         f"(largest relative difference); '< u' = below reference resolution",
-        "★ cheapest meeting the target: " + (f"{rec.method} at rtol {rec.rtol:g} ({rec.wall_s:.3f} s, nfev {rec.nfev})"
+        "★ cheapest meeting the target: " + (f"{rec.method} at rtol {rec.rtol:g} ({wall_text(rec.wall_s)} s, nfev {rec.nfev})"
                                              if rec else "none"),
     ]
     if fr is not None:

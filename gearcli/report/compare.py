@@ -1,7 +1,8 @@
 """Theory against simulation (seed paper section 4.1-4.2, with the corrected theory values).
 
 Theory is the design layer's static answer (ratios z2/z1, shaft speeds down the train, tooth forces
-F_t = T / r, F_r = F_t tan α_t, F_a = F_t tan β); simulation is the mean over the steady window.
+F_t = T / r, F_r = F_t tan α_t, F_a = F_t tan β; under a reversed load on a lossy stage the driving gear's,
+T_g / r_g, the design's pinion-side force over η); simulation is the mean over the steady window.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
 from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult
 from gearcli.simulate.results import SimulationResult
+from gearcli.simulate.stats import window_means
 from gearcli.stages.design import design_kind
 
 RAD_TO_DEG = 180.0 / math.pi
@@ -35,7 +37,9 @@ def _row(stage: int | None, quantity: str, theory: float, simulated: float) -> C
 
 
 def shaft_mean_speeds_deg_s(sim: SimulationResult, n_shafts: int) -> list[float]:
-    """Mean speed of every shaft over the steady window, from the shafts' speed series.
+    """Mean speed of every shaft over the steady window, from the shafts' speed series (the trapezoid rule's
+    integral over the window, as every mean of simulate; the plain mean of the samples erred by
+    (mean − (x_0 + x_N)/2) / N: 3.5e-6 on a shaft whose speed swings 0.5 %).
 
     The input and output means are taken from the simulation's own summary, so the report and
     ``gearcli simulate`` agree to the last digit.
@@ -44,8 +48,10 @@ def shaft_mean_speeds_deg_s(sim: SimulationResult, n_shafts: int) -> list[float]
     means = []
     for i in range(1, n_shafts + 1):
         series = sim.series.get(Channel("speed", f"shaft{i}"))
-        means.append(float(np.mean((series * RAD_TO_DEG)[mask])) if series is not None and mask.any()
-                     else float("nan"))
+        # the integral over the window (trapezoid rule, DESIGN §7), as simulate's means; over whole periods the
+        # closed window's trapezoid rule is the periodic mean too
+        means.append(float(window_means(sim.time_s[mask], (series * RAD_TO_DEG)[mask], False)[0])
+                     if series is not None and mask.any() else float("nan"))
     means[0] = float(sim.input_speed_deg_s)
     means[-1] = float(sim.output_speed_deg_s)
     return means
@@ -69,6 +75,7 @@ def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[Compar
         if kind.model_signs_forces:  # F_t with the flank sign the model gives it
             sign = -1.0 if (dyn.static_tangential_N < 0) != (static.tangential < 0) else 1.0
         share = _planets_mean_over_planet_1(dyn)
+        sign *= driving_gear_factor(st, kind.model_signs_forces)
         rows += [
             _row(k, "ratio", st.ratio, ratio_sim),
             _row(k, "output_speed_deg_s", out_speed, gear_speed),
@@ -77,6 +84,24 @@ def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[Compar
             _row(k, "axial_N", sign * static.axial, share * dyn.axial_N.mean),
         ]
     return tuple(r for r in rows if np.isfinite(r.simulated))
+
+
+def driving_gear_factor(st, planetary: bool) -> float:
+    """1/η for a lossy parallel stage under a reversed load (power from gear to pinion), else 1.
+
+    The design's static forces are the pinion's (T_p = T_g η / i, F_t = 2 T_p / d_p); under a reversed load the gear
+    drives, and the tooth force is the driving gear's, F_t = T_g / r_g = the design's over η: what the mesh carries
+    and what the simulation's window mean of a settled run equals (docs/physics.md, "Mesh losses"). Comparing it
+    with the pinion's would show 1/η − 1 as an "error" in the rigid limit."""
+    eta = float(getattr(st, "efficiency", 1.0) or 1.0)
+    if planetary or st.static_force_N.tangential >= 0 or not 0.0 < eta < 1.0:
+        return 1.0
+    return 1.0 / eta
+
+
+def reversed_lossy_stages(design: DesignResult) -> list[int]:
+    """The stages whose theory forces are the driving gear's (:func:`driving_gear_factor` ≠ 1)."""
+    return [st.index for st in design.stages if driving_gear_factor(st, design_kind(st).model_signs_forces) != 1.0]
 
 
 def _planets_mean_over_planet_1(dyn) -> float:

@@ -39,8 +39,8 @@ class MeshOrder:
 
     order: int  # h = 1, 2, 3 ...
     frequency_Hz: float
-    tangential_N: float
-    dte_um: float | None  # None when the result carries no DTE channel
+    tangential_N: float | None  # None at or above the samples' Nyquist frequency (an alias is no amplitude)
+    dte_um: float | None  # None when the result carries no DTE channel, or above Nyquist
 
 
 @dataclass(frozen=True, eq=False)

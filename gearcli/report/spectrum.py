@@ -49,7 +49,8 @@ def mesh_orders(time_s: np.ndarray, force_N: np.ndarray, dte_um: np.ndarray | No
                 mesh_frequency_Hz: float, *, whole_periods: bool = False,
                 orders: Sequence[int] = MESH_ORDERS) -> tuple[MeshOrder, ...]:
     """F_t (and DTE) amplitudes at ``orders`` x the mesh frequency over ``window_s`` (:func:`order_amplitude`;
-    ``whole_periods`` leaves out the window's closing sample, the first of the next period)."""
+    ``whole_periods`` leaves out the window's closing sample, the first of the next period); an order at or above
+    the samples' Nyquist frequency (:func:`nyquist_Hz`) has no amplitude (None): the samples alias it."""
     t = np.asarray(time_s, float)
     mask = window_mask(t, window_s)
     if whole_periods:
@@ -57,13 +58,25 @@ def mesh_orders(time_s: np.ndarray, force_N: np.ndarray, dte_um: np.ndarray | No
     if mask.sum() < MIN_SAMPLES or mesh_frequency_Hz <= 0:
         return ()
     out = []
+    nyquist = nyquist_Hz(t[mask])
     for h in orders:
         f = h * mesh_frequency_Hz
+        if f >= nyquist:  # the samples cannot hold it: the projection would measure an alias (2 f_N - f)
+            out.append(MeshOrder(h, f, None, None))
+            continue
         dte = None if dte_um is None else order_amplitude(t[mask], np.asarray(dte_um)[mask], f,
                                                            whole_periods=whole_periods)
         out.append(MeshOrder(h, f, order_amplitude(t[mask], np.asarray(force_N)[mask], f, whole_periods=whole_periods),
                              dte))
     return tuple(out)
+
+
+def nyquist_Hz(t: np.ndarray) -> float:
+    """Half the sample rate of the window's samples, less one resolution bin 1/T: an order within a bin of it
+    overlaps its own mirror image 2 f_N − f in the Hann main lobe (and exactly at f_N its sine part is invisible)."""
+    span = float(t[-1] - t[0])
+    dt = span / (t.size - 1)
+    return 0.5 / dt - 1.0 / (t.size * dt)
 
 
 def window_mask(time_s: np.ndarray, window_s: tuple[float, float]) -> np.ndarray:
