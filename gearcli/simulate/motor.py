@@ -25,6 +25,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
+from gearcli.model.spec import MotorSpec
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
@@ -115,6 +116,7 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
         diags += _runaway(t, w_motor, ws, op.stable_rad_s)
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
         diags += _rolls_back(lay, t, w_motor, ws)
+    diags += _reswitches(motor, t, w_motor)
     t_start = start_time(t, w_motor, op.speed_rad_s)
     if op.reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
@@ -171,6 +173,38 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> l
                        "torque at standstill exceeds the load (a higher initial_voltage_fraction, a direct start), "
                        "or a backstop or brake holding the load until it does", reverse_speed_rpm=low * RAD_S_TO_RPM,
                        start_torque_Nm=t0, load_torque_Nm=load)]
+
+
+def _reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Diagnostic]:
+    """A star-delta motor that falls back through its whole switch band after it first reached the switch-over
+    speed: the model's switch is a function of speed (docs/physics.md), so it runs in star again, a third of the
+    torque, and a rotor swinging on its coupling can toggle star and delta on every swing. A real starter (a timer
+    or a latching speed relay) stays in delta: the start's forces past the first switch-over are the model's."""
+    if motor.starting != "star_delta":
+        return []
+    w_sw = motor.start_parameters[0]
+    low = w_sw - machine.STAR_DELTA_WIDTH * motor.synchronous_speed_rad_s  # below it: fully in star
+    up = np.nonzero(w_motor >= w_sw)[0]
+    if up.size == 0:
+        return []
+    after = w_motor[int(up[0]):]
+    below = after < low
+    if not below.any():
+        return []
+    times = t[int(up[0]):]
+    # each entry into star is a fall from above the band's lower edge to below it
+    entries = int(np.count_nonzero(below[1:] & ~below[:-1])) + int(below[0])
+    first = float(times[int(np.argmax(below))])
+    slowest = float(after.min())
+    rpm = RAD_S_TO_RPM
+    return [dg.warning(dg.STAR_DELTA_RESWITCH, f"the star-delta motor reached its switch-over speed {w_sw * rpm:.5g} "
+                       f"rpm at {float(times[0]):.4g} s and fell back below it into star {entries} time(s), first at "
+                       f"{first:.4g} s, down to {slowest * rpm:.5g} rpm: the model switches on speed, a real starter "
+                       "(timer or latching relay) stays in delta, so the start's forces after the first switch-over "
+                       "include a star-delta toggling no contactor makes; a switch speed nearer the operating speed, "
+                       "or a stiffer or better damped input coupling", switch_speed_rpm=w_sw * rpm,
+                       switch_time_s=float(times[0]), reswitches=entries, first_reswitch_s=first,
+                       min_speed_after_switch_rpm=slowest * rpm)]
 
 
 def _runaway(t: np.ndarray, w_motor: np.ndarray, ws: float, generating_rad_s: float | None = None) -> list[Diagnostic]:
