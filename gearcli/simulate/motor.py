@@ -180,31 +180,41 @@ def _reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Di
     speed: the model's switch is a function of speed (docs/physics.md), so it runs in star again, a third of the
     torque, and a rotor swinging on its coupling can toggle star and delta on every swing. A real starter (a timer
     or a latching speed relay) stays in delta: the start's forces past the first switch-over are the model's."""
-    if motor.starting != "star_delta":
+    found = reswitches(motor, t, w_motor)
+    if found is None:
         return []
+    switched, entries, first, slowest = found
     w_sw = motor.start_parameters[0]
-    low = w_sw - machine.STAR_DELTA_WIDTH * motor.synchronous_speed_rad_s  # below it: fully in star
-    up = np.nonzero(w_motor >= w_sw)[0]
-    if up.size == 0:
-        return []
-    after = w_motor[int(up[0]):]
-    below = after < low
-    if not below.any():
-        return []
-    times = t[int(up[0]):]
-    # each entry into star is a fall from above the band's lower edge to below it
-    entries = int(np.count_nonzero(below[1:] & ~below[:-1])) + int(below[0])
-    first = float(times[int(np.argmax(below))])
-    slowest = float(after.min())
     rpm = RAD_S_TO_RPM
     return [dg.warning(dg.STAR_DELTA_RESWITCH, f"the star-delta motor reached its switch-over speed {w_sw * rpm:.5g} "
-                       f"rpm at {float(times[0]):.4g} s and fell back below it into star {entries} time(s), first at "
+                       f"rpm at {switched:.4g} s and fell back below it into star {entries} time(s), first at "
                        f"{first:.4g} s, down to {slowest * rpm:.5g} rpm: the model switches on speed, a real starter "
                        "(timer or latching relay) stays in delta, so the start's forces after the first switch-over "
                        "include a star-delta toggling no contactor makes; a switch speed nearer the operating speed, "
                        "or a stiffer or better damped input coupling", switch_speed_rpm=w_sw * rpm,
-                       switch_time_s=float(times[0]), reswitches=entries, first_reswitch_s=first,
+                       switch_time_s=switched, reswitches=entries, first_reswitch_s=first,
                        min_speed_after_switch_rpm=slowest * rpm)]
+
+
+def reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> tuple[float, int, float, float] | None:
+    """(time of the first switch-over, entries into star after it, time of the first, the lowest speed after the
+    switch-over) of a star-delta motor that falls below its switch band after reaching the switch-over speed;
+    None for any other start."""
+    if motor.starting != "star_delta":
+        return None
+    w_sw = motor.start_parameters[0]
+    low = w_sw - machine.STAR_DELTA_WIDTH * motor.synchronous_speed_rad_s  # below it: fully in star
+    up = np.nonzero(w_motor >= w_sw)[0]
+    if up.size == 0:
+        return None
+    after = w_motor[int(up[0]):]
+    below = after < low
+    if not below.any():
+        return None
+    times = t[int(up[0]):]
+    # each entry into star is a fall from above the band's lower edge to below it
+    entries = int(np.count_nonzero(below[1:] & ~below[:-1])) + int(below[0])
+    return float(times[0]), entries, float(times[int(np.argmax(below))]), float(after.min())
 
 
 def _runaway(t: np.ndarray, w_motor: np.ndarray, ws: float, generating_rad_s: float | None = None) -> list[Diagnostic]:

@@ -196,7 +196,8 @@ def _star_delta_reversals(n: np.ndarray, switch_rpm: float, width_rpm: float) ->
 
 
 @pytest.mark.parametrize(("sets", "toggles"), [
-    (("input.switch_speed_rpm=2", "simulation.duration_s=2.0"), True),  # switched at once: the swing reverses it
+    (("input.switch_speed_rpm=2", "simulation.duration_s=2.0", "simulation.window_start_s=1.5"), True),  # switched
+    # at once: the swing back reverses it
     (("input.switch_speed_rpm=900", "load.torque_Nm=400", "simulation.duration_s=14.0", "simulation.steps=7000"),
      True),  # the delta torque step winds the coupling up; the rotor swings back below the band
 ])
@@ -217,6 +218,13 @@ def test_a_star_delta_motor_that_falls_back_into_star_is_warned(sets, toggles):
     assert len(warned) == 1
     assert warned[0]["reswitches"] == count
     assert warned[0]["min_speed_after_switch_rpm"] == pytest.approx(n[k], rel=1e-12)
+    # a start peak after the first fall back is named with it, not only with a load step's advice
+    f = np.abs(ch["stage1_tangential_N"])
+    i = int(np.argmax(f))
+    if t_peak_in_start := bool(ch["time_s"][i] <= doc["summary"]["window_s"][0]):
+        peak = [w for w in doc["warnings"] if w["code"] == "peak_over_rigid"]
+        assert peak and "star_delta_reswitch" in peak[0]["message"]
+    assert t_peak_in_start is (switch < 10.0)  # the 2 rpm scene's peak lies in its start (window from 1.5 s)
 
 
 def test_a_clean_star_delta_start_is_not_warned():
