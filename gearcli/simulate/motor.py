@@ -106,6 +106,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     elif not op.reaches:
         where = ("at standstill: it cannot start" if op.speed_rad_s is None else
                  f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm")
+        if motor.starting == "star_delta" and (op.speed_rad_s or 0.0) < motor.start_parameters[0]:
+            where = _in_star(lay, motor, op.speed_rad_s)
         aim = ("" if op.stable_rad_s is None else
                f", so it never reaches its operating point {op.stable_rad_s * rpm:.5g} rpm")
         diags.append(dg.warning(dg.MOTOR_STALLS, "the motor's curve cannot carry the load (reflected through the "
@@ -132,6 +134,18 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
            "mean_torque_Nm": float(t_motor[mask].mean())}
     return out, diags
+
+
+def _in_star(lay: Layout, motor: MotorSpec, stall_rad_s: float | None) -> str:
+    """Where a star-delta motor stalls in star, in words: at standstill (a third of the locked-rotor torque is
+    short of the load), or on the star curve below the switch-over speed, which it then never reaches."""
+    sw = motor.start_parameters[0] * RAD_S_TO_RPM
+    if stall_rad_s is None:
+        row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
+        return (f"at standstill: in star it gives {machine.motor_torque(row, STEADY_T, 0.0)[0]:.4g} N·m (a third of "
+                f"its locked-rotor torque) against {reflected_load(lay, 0.0):.4g} N·m: it cannot start")
+    return (f"in star at {stall_rad_s * RAD_S_TO_RPM:.5g} rpm, where a third of its torque meets the load, below its "
+            f"switch-over speed {sw:.5g} rpm: it never switches to delta (a lower switch_speed_rpm, or another start)")
 
 
 def _load_off_design(lay: Layout, w_op: float) -> list[Diagnostic]:

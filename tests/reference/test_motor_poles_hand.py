@@ -273,3 +273,25 @@ def test_life_counts_the_conveyor_start_n_times_with_the_simulated_peak_and_revo
                 assert s2 == pytest.approx(10.0 * s1, rel=1e-9)
                 assert d1 == pytest.approx(d0 + s1, rel=1e-9)
                 assert d2 == pytest.approx(d0 + s2, rel=1e-9)
+
+
+@pytest.mark.parametrize(("load_nm", "switch_rpm"), [(632.0, 985.0), (800.0, 900.0)])
+def test_a_star_delta_motor_stuck_in_star_is_named_with_the_hand_numbers(load_nm, switch_rpm):
+    """632 N·m: the star curve T/3 meets the reflected 215.0 N·m at the hand crossing (956.1 rpm), below the
+    985 rpm switch-over: it never switches. 800 N·m: 272.1 N·m reflected against T_lr/3 = 239.1 N·m at standstill:
+    it cannot start in star, though the delta curve would carry it."""
+    load = load_nm / (I * 0.98)
+    _, _, doc = _run(CONVEYOR, 'input.starting="star_delta"', f"input.switch_speed_rpm={switch_rpm}",
+                     f"load.torque_Nm={load_nm}", "simulation.duration_s=1.0")
+    stall = [w for w in doc["warnings"] if w["code"] == "motor_stalls"]
+    assert len(stall) == 1
+    if SIX_POLE.kl * SIX_POLE.t_r / 3.0 > load:
+        n_star = brentq(lambda x: SIX_POLE.at_rpm(x) / 3.0 - load, 800.0, switch_rpm - 10.0, xtol=1e-10)
+        assert stall[0]["stall_speed_rpm"] == pytest.approx(n_star, abs=1e-4)  # 956.10 rpm
+        assert f"in star at {n_star:.5g} rpm" in stall[0]["message"] and "never switches to delta" in stall[0]["message"]
+    else:
+        assert stall[0]["stall_speed_rpm"] is None
+        assert f"in star it gives {SIX_POLE.kl * SIX_POLE.t_r / 3.0:.4g} N·m" in stall[0]["message"]
+        assert f"against {load:.4g} N·m" in stall[0]["message"]
+    n_op = brentq(lambda x: SIX_POLE.at_rpm(x) - load, 800.0, 1000.0 - 1e-9, xtol=1e-10)
+    assert stall[0]["operating_point_rpm"] == pytest.approx(n_op, abs=1e-4)  # the delta curve's, never reached
