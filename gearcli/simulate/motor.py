@@ -119,6 +119,7 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
         diags += _rolls_back(lay, t, w_motor, ws)
     diags += _reswitches(motor, t, w_motor)
+    diags += _vfd_outrun(lay, motor, t, w_motor)
     t_start = start_time(t, w_motor, op.speed_rad_s)
     if op.reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
@@ -134,6 +135,33 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
            "mean_torque_Nm": float(t_motor[mask].mean())}
     return out, diags
+
+
+def _vfd_outrun(lay: Layout, motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Diagnostic]:
+    """A VFD whose speed ramp outruns the motor: the supply's synchronous speed w_s STEP(t, 0, 0, ramp_s, 1) runs
+    ahead of the rotor by more than the curve's breakdown slip speed (w_s less the speed of the bare curve's
+    largest torque, unchanged along the ramp at constant V/f): the motor has fallen out onto the unstable side of
+    its moving curve, its torque falls as the supply pulls away, and it runs up only once the ramp has ended (a
+    real converter trips on current or stretches the ramp). The speed-drive ramp's warning, for the VFD's ramp."""
+    ramp = motor.start_parameters[0]
+    if motor.starting != "vfd" or ramp <= 0.0:
+        return []
+    row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
+    ws = row[machine.M_WS]
+    grid = np.linspace(0.0, ws, 4001)
+    w_b = float(grid[int(np.argmax([machine.motor_curve(row, w, ws)[0] for w in grid]))])
+    slip_b = ws - w_b
+    ahead = np.array([ws * machine._step01(float(x), ramp) for x in t]) - w_motor
+    i = int(np.argmax(ahead))
+    if not ahead[i] > slip_b * (1.0 + 1e-3):
+        return []
+    rpm = RAD_S_TO_RPM
+    return [dg.warning(dg.RAMP_OVER_BREAKDOWN, f"the VFD's speed ramp (ramp_s = {ramp:.4g} s) outruns the motor: the "
+                       f"supply runs {ahead[i] * rpm:.4g} rpm ahead of the rotor at {float(t[i]):.4g} s, past the "
+                       f"breakdown slip speed {slip_b * rpm:.4g} rpm (the curve's largest torque): the motor falls "
+                       "out behind its supply and runs up only after the ramp (a real converter trips on current or "
+                       "stretches the ramp); lengthen [input] ramp_s", slip_speed_rpm=ahead[i] * rpm,
+                       breakdown_slip_speed_rpm=slip_b * rpm, at_s=float(t[i]))]
 
 
 def _in_star(lay: Layout, motor: MotorSpec, stall_rad_s: float | None) -> str:

@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
-from scipy.integrate import quad
+from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq, fsolve
 
 from gearcli.cli import cli
@@ -295,3 +295,35 @@ def test_a_star_delta_motor_stuck_in_star_is_named_with_the_hand_numbers(load_nm
         assert f"against {load:.4g} N·m" in stall[0]["message"]
     n_op = brentq(lambda x: SIX_POLE.at_rpm(x) - load, 800.0, 1000.0 - 1e-9, xtol=1e-10)
     assert stall[0]["operating_point_rpm"] == pytest.approx(n_op, abs=1e-4)  # the delta curve's, never reached
+
+
+def _step(x: np.ndarray) -> np.ndarray:
+    x = np.clip(x, 0.0, 1.0)
+    return x * x * (3 - 2 * x)
+
+
+@pytest.mark.parametrize(("ramp_s", "outruns"), [(1.0, True), (3.0, False), (12.0, False)])
+def test_a_vfd_ramp_that_outruns_the_motor_is_warned(ramp_s, outruns):
+    """The supply's synchronous speed 1000 rpm STEP(t/ramp_s) runs ahead of the rotor; past the breakdown slip speed
+    s_b n_s = 242.3 rpm (hand fit) the motor is on the unstable side of its moving curve and falls out. 1 s for the
+    16.8 kg m² conveyor: a rigid chain integrated here (solve_ivp) lags by more than that too; 3 s and 12 s not."""
+    delta_b = SIX_POLE.sb * 1000.0
+    assert delta_b == pytest.approx(242.3, abs=0.05)
+    _, ch, doc = _run(CONVEYOR, 'input.starting="vfd"', f"input.ramp_s={ramp_s}",
+                      f"simulation.duration_s={ramp_s + 3.0}")
+    lag = 1000.0 * _step(ch["time_s"] / ramp_s) - ch["motor_speed_rpm"]
+    warned = [w for w in doc["warnings"] if w["code"] == "ramp_over_breakdown"]
+    assert bool(lag.max() > delta_b) is outruns
+    assert bool(warned) is outruns
+    if outruns:
+        assert warned[0]["slip_speed_rpm"] == pytest.approx(lag.max(), rel=1e-9)
+        assert warned[0]["breakdown_slip_speed_rpm"] == pytest.approx(delta_b, rel=1e-3)  # the 4001-point scan
+    j_eq, load = 0.82 + 140.9 / (I * I * 0.98), 632.0 / (I * 0.98)
+
+    def rhs(t, y):
+        slip = (1000.0 * _step(np.array(t / ramp_s)) - y[0] / RPM) / 1000.0
+        return [(SIX_POLE.kloss(float(slip), SIX_POLE.sb, SIX_POLE.a) - load) / j_eq]
+
+    sol = solve_ivp(rhs, (0.0, ramp_s + 1.0), [0.0], max_step=0.002, rtol=1e-8)
+    rigid_lag = 1000.0 * _step(sol.t / ramp_s) - sol.y[0] / RPM
+    assert bool(rigid_lag.max() > delta_b) is outruns
