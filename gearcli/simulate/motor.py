@@ -151,7 +151,8 @@ def _vfd_outrun(lay: Layout, motor: MotorSpec, t: np.ndarray, w_motor: np.ndarra
     grid = np.linspace(0.0, ws, 4001)
     w_b = float(grid[int(np.argmax([machine.motor_curve(row, w, ws)[0] for w in grid]))])
     slip_b = ws - w_b
-    ahead = np.array([ws * machine._step01(float(x), ramp) for x in t]) - w_motor
+    x = np.clip(t / ramp, 0.0, 1.0)
+    ahead = ws * x * x * (3.0 - 2.0 * x) - w_motor  # machine._step01, vectorised
     i = int(np.argmax(ahead))
     if not ahead[i] > slip_b * (1.0 + 1e-3):
         return []
