@@ -262,6 +262,12 @@ def test_life_counts_the_conveyor_start_n_times_with_the_simulated_peak_and_revo
     rigid0 = ((SIX_POLE.kl * SIX_POLE.t_r - 632.0 / (I * 0.98)) / (0.82 + 140.9 / (I * I * 0.98)) * 140.9 / I
               + 632.0) / (0.98 * r)
     assert 1.6 * rigid0 < start["peak_tangential_N"][0] < 2.1 * rigid0
+    # the start's classes: N x its input revolutions x the member's turns per input turn (one contact a turn)
+    for member, turns in (("pinion", 1.0), ("gear", 21 / 63)):
+        for mode in ("pitting", "bending"):
+            bins = [b for b in some["stages"][0][member][mode]["bins"] if b["point"] == "full (start)"]
+            assert sum(b["cycles"] for b in bins) == pytest.approx(1000 * start["input_revolutions"] * turns, rel=1e-12)
+            assert sum(b["damage"] for b in bins) == pytest.approx(start["damage"][0][member][mode], rel=1e-12)
     # N starts: N times one start's damage, on top of the running's
     for stage in range(1):
         for member in ("pinion", "gear"):
