@@ -159,6 +159,11 @@ def test_six_pole_conveyor_runs_up_in_the_hand_time_with_the_hand_energy_balance
     # the couplings' and mesh's modes (> 5 Hz) are fast against the 2.9 s run-up: the rigid chain within 0.5 %
     assert s["start_time_s"] == pytest.approx(t_hand, rel=5e-3)
     assert "start_not_settled" in _codes(doc)  # the window starts at 2.4 s, before the start ends
+    # the rigid start's peak: at the breakdown torque, the gear carries the drum side's inertia torque and the
+    # load, F_t = ((T_b - T_L,refl) / J_eq (J_g + J_drum) / i + T_out) / (η r), r = the gear's pitch radius
+    r = 63 * 4 / math.cos(math.radians(12)) / 2000.0
+    rigid = ((m.kb * m.t_r - load) / j_eq * (0.9 + 140.0) / I + 632.0) / (0.98 * r)  # 20109.6 N
+    assert s["start"]["rigid_peak_N"][0] == pytest.approx(rigid, rel=1e-4)  # the rigid run's samples near T_b
     t, wm, wd = ch["time_s"], ch["motor_speed_rpm"] * RPM, ch["drum_speed_rpm"] * RPM
     w_in = np.trapezoid(ch["motor_torque_Nm"] * wm, t)
     w_load = np.trapezoid(632.0 * wd, t)
