@@ -29,6 +29,7 @@ RAMP_OVER_BREAKDOWN = "ramp_over_breakdown"  # a prescribed speed ramp needs mor
 START_NOT_SETTLED = "start_not_settled"  # the motor start has not settled before the statistics window
 MOTOR_ROLLS_BACK = "motor_rolls_back"  # the load turns the train backwards: the start's torque at standstill is short
 MOTOR_RUNS_AWAY = "motor_runs_away"  # the motor turns well past its synchronous speed: nothing holds it
+STAR_DELTA_RESWITCH = "star_delta_reswitch"  # a star-delta motor fell back below its switch band after switching
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"

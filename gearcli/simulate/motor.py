@@ -25,6 +25,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
+from gearcli.model.spec import MotorSpec
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
@@ -105,6 +106,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     elif not op.reaches:
         where = ("at standstill: it cannot start" if op.speed_rad_s is None else
                  f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm")
+        if motor.starting == "star_delta" and (op.speed_rad_s or 0.0) < motor.start_parameters[0]:
+            where = _in_star(lay, motor, op.speed_rad_s)
         aim = ("" if op.stable_rad_s is None else
                f", so it never reaches its operating point {op.stable_rad_s * rpm:.5g} rpm")
         diags.append(dg.warning(dg.MOTOR_STALLS, "the motor's curve cannot carry the load (reflected through the "
@@ -115,6 +118,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
         diags += _runaway(t, w_motor, ws, op.stable_rad_s)
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
         diags += _rolls_back(lay, t, w_motor, ws)
+    diags += _reswitches(motor, t, w_motor)
+    diags += _vfd_outrun(lay, motor, t, w_motor)
     t_start = start_time(t, w_motor, op.speed_rad_s)
     if op.reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
@@ -130,6 +135,46 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
            "mean_torque_Nm": float(t_motor[mask].mean())}
     return out, diags
+
+
+def _vfd_outrun(lay: Layout, motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Diagnostic]:
+    """A VFD whose speed ramp outruns the motor: the supply's synchronous speed w_s STEP(t, 0, 0, ramp_s, 1) runs
+    ahead of the rotor by more than the curve's breakdown slip speed (w_s less the speed of the bare curve's
+    largest torque, unchanged along the ramp at constant V/f): the motor has fallen out onto the unstable side of
+    its moving curve, its torque falls as the supply pulls away, and it runs up only once the ramp has ended (a
+    real converter trips on current or stretches the ramp). The speed-drive ramp's warning, for the VFD's ramp."""
+    ramp = motor.start_parameters[0]
+    if motor.starting != "vfd" or ramp <= 0.0:
+        return []
+    row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
+    ws = row[machine.M_WS]
+    grid = np.linspace(0.0, ws, 4001)
+    w_b = float(grid[int(np.argmax([machine.motor_curve(row, w, ws)[0] for w in grid]))])
+    slip_b = ws - w_b
+    x = np.clip(t / ramp, 0.0, 1.0)
+    ahead = ws * x * x * (3.0 - 2.0 * x) - w_motor  # machine._step01, vectorised
+    i = int(np.argmax(ahead))
+    if not ahead[i] > slip_b * (1.0 + 1e-3):
+        return []
+    rpm = RAD_S_TO_RPM
+    return [dg.warning(dg.RAMP_OVER_BREAKDOWN, f"the VFD's speed ramp (ramp_s = {ramp:.4g} s) outruns the motor: the "
+                       f"supply runs {ahead[i] * rpm:.4g} rpm ahead of the rotor at {float(t[i]):.4g} s, past the "
+                       f"breakdown slip speed {slip_b * rpm:.4g} rpm (the curve's largest torque): the motor falls "
+                       "out behind its supply and runs up only after the ramp (a real converter trips on current or "
+                       "stretches the ramp); lengthen [input] ramp_s", slip_speed_rpm=ahead[i] * rpm,
+                       breakdown_slip_speed_rpm=slip_b * rpm, at_s=float(t[i]))]
+
+
+def _in_star(lay: Layout, motor: MotorSpec, stall_rad_s: float | None) -> str:
+    """Where a star-delta motor stalls in star, in words: at standstill (a third of the locked-rotor torque is
+    short of the load), or on the star curve below the switch-over speed, which it then never reaches."""
+    sw = motor.start_parameters[0] * RAD_S_TO_RPM
+    if stall_rad_s is None:
+        row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
+        return (f"at standstill: in star it gives {machine.motor_torque(row, STEADY_T, 0.0)[0]:.4g} N·m (a third of "
+                f"its locked-rotor torque) against {reflected_load(lay, 0.0):.4g} N·m: it cannot start")
+    return (f"in star at {stall_rad_s * RAD_S_TO_RPM:.5g} rpm, where a third of its torque meets the load, below its "
+            f"switch-over speed {sw:.5g} rpm: it never switches to delta (a lower switch_speed_rpm, or another start)")
 
 
 def _load_off_design(lay: Layout, w_op: float) -> list[Diagnostic]:
@@ -171,6 +216,48 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> l
                        "torque at standstill exceeds the load (a higher initial_voltage_fraction, a direct start), "
                        "or a backstop or brake holding the load until it does", reverse_speed_rpm=low * RAD_S_TO_RPM,
                        start_torque_Nm=t0, load_torque_Nm=load)]
+
+
+def _reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Diagnostic]:
+    """A star-delta motor that falls back through its whole switch band after it first reached the switch-over
+    speed: the model's switch is a function of speed (docs/physics.md), so it runs in star again, a third of the
+    torque, and a rotor swinging on its coupling can toggle star and delta on every swing. A real starter (a timer
+    or a latching speed relay) stays in delta: the start's forces past the first switch-over are the model's."""
+    found = reswitches(motor, t, w_motor)
+    if found is None:
+        return []
+    switched, entries, first, slowest = found
+    w_sw = motor.start_parameters[0]
+    rpm = RAD_S_TO_RPM
+    return [dg.warning(dg.STAR_DELTA_RESWITCH, f"the star-delta motor reached its switch-over speed {w_sw * rpm:.5g} "
+                       f"rpm at {switched:.4g} s and fell back below it into star {entries} time(s), first at "
+                       f"{first:.4g} s, down to {slowest * rpm:.5g} rpm: the model switches on speed, a real starter "
+                       "(timer or latching relay) stays in delta, so the start's forces after the first switch-over "
+                       "include a star-delta toggling no contactor makes; a switch speed nearer the operating speed, "
+                       "or a stiffer or better damped input coupling", switch_speed_rpm=w_sw * rpm,
+                       switch_time_s=switched, reswitches=entries, first_reswitch_s=first,
+                       min_speed_after_switch_rpm=slowest * rpm)]
+
+
+def reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> tuple[float, int, float, float] | None:
+    """(time of the first switch-over, entries into star after it, time of the first, the lowest speed after the
+    switch-over) of a star-delta motor that falls below its switch band after reaching the switch-over speed;
+    None for any other start."""
+    if motor.starting != "star_delta":
+        return None
+    w_sw = motor.start_parameters[0]
+    low = w_sw - machine.STAR_DELTA_WIDTH * motor.synchronous_speed_rad_s  # below it: fully in star
+    up = np.nonzero(w_motor >= w_sw)[0]
+    if up.size == 0:
+        return None
+    after = w_motor[int(up[0]):]
+    below = after < low
+    if not below.any():
+        return None
+    times = t[int(up[0]):]
+    # each entry into star is a fall from above the band's lower edge to below it
+    entries = int(np.count_nonzero(below[1:] & ~below[:-1])) + int(below[0])
+    return float(times[0]), entries, float(times[int(np.argmax(below))]), float(after.min())
 
 
 def _runaway(t: np.ndarray, w_motor: np.ndarray, ws: float, generating_rad_s: float | None = None) -> list[Diagnostic]:

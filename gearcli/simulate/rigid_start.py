@@ -272,9 +272,10 @@ def initial_te_um(lay: Layout, k: int) -> float:
 
 
 def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.ndarray], window_s: tuple[float, float],
-                  warn_ratio: float) -> tuple[StartSummary | None, list[Diagnostic]]:
+                  warn_ratio: float, reswitch_s: float | None = None) -> tuple[StartSummary | None, list[Diagnostic]]:
     """``summary.start`` = {``peak_over_rigid``, ``rigid_peak_N``} per stage (the run's peak |F_t| over the rigid
-    start's) and the ``peak_over_rigid`` warnings where the ratio exceeds ``warn_ratio``, naming the cause."""
+    start's) and the ``peak_over_rigid`` warnings where the ratio exceeds ``warn_ratio``, naming the cause;
+    ``reswitch_s`` the time a star-delta motor first fell back into star (a peak after it is named with it)."""
     if t.size < 2 or t[-1] <= 0:
         return None, []
     rigid = integrate(lay, float(t[-1]))
@@ -314,6 +315,10 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
         else:
             found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k], float(t[i]))
             why = cause(lay, rigid, float(t[i]), found)
+        if reswitch_s is not None and t[i] >= reswitch_s and t[i] <= window_s[0]:
+            why = (f"the star-delta motor fell back into star at {reswitch_s:.4g} s and toggles star and delta on its "
+                   "rotor's swings (star_delta_reswitch), which the rigid start does not and a latching starter does "
+                   "not either; besides: " + why)
         diags.append(dg.warning(dg.PEAK_OVER_RIGID, f"stage {k + 1}: the start's peak mesh force {peaks[k]:.5g} N "
                                 f"(at {t[i]:.3g} s) is {ratio:.3g}x the rigid-body start's {rigid_peaks[k]:.5g} N (the "
                                 f"same drive and load law without compliance): {why}", stage=k + 1, ratio=ratio,

@@ -457,8 +457,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
     diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m)
+    toggled = (motor_side.reswitches(model.layout.drive.motor, s.time_s, s.omega_rad_s[0])
+               if model.layout.motor_drive and model.layout.drive.motor is not None else None)
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
-                                                       [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID) \
+                                                       [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID,
+                                                       reswitch_s=None if toggled is None else toggled[2]) \
         if diagnose and from_rest else (None, [])  # a continued run (a sweep's next point) has no start from rest
     diags += start_diags
     motor_summary = None
