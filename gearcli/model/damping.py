@@ -102,13 +102,32 @@ def body_damping(lay: Layout) -> np.ndarray:
 
 
 def loss_factors(lay: Layout) -> np.ndarray:
-    """Per connector and body slot, the fraction of the connector's force that reaches that body: a lossy mesh's
-    ``eta`` on the side that receives the power (its gear for a forward load), 1 elsewhere."""
+    """Per connector and body slot, the fraction of the connector's force that reaches that body at the operating
+    point, as the simulation's loss hook scatters it (:func:`.elements.mesh.loss_factors`, its element's
+    ``loss_sides``): the side that drives takes ``f``, the driven side ``eta f``, the power-flow sign that of
+    ``f v`` with the static force ``f`` and the mean pitch-line speed ``v`` of the rigid chain (a pair mesh's gear
+    for a forward load, its pinion for a reversed one; a planet mesh in the carrier's frame, so the planet drives
+    the ring of a sun-driven stage and takes ``f`` there, its carrier ``l_a f_a + l_b f_b``); 1 elsewhere."""
     g = np.ones((lay.n_conn, max(len(x.bodies) for x in lay.connectors)))
+    if not any(x.lossy for x in lay.connectors):
+        return g
+    from gearcli.model.linear import static_forces  # linear imports this module
+
+    F = static_forces(lay)
+    ratio = [b.ratio for b in lay.bodies]
     forward = lay.load.torque_Nm >= 0.0
     for c, x in enumerate(lay.connectors):
-        if x.lossy:
-            g[c, 1 if forward else 0] = x.efficiency
+        if not x.lossy:
+            continue
+        side_a, side_b = x.loss_speeds
+        v = 0.5 * (sum(k * ratio[b] for b, k in side_a) + sum(k * ratio[b] for b, k in side_b))
+        s = math.copysign(1.0, F[c] * v) if F[c] * v != 0.0 else (1.0 if forward else -1.0)
+        half = 0.5 * (1.0 - x.efficiency)
+        ga, gb = 1.0 - half * (1.0 - s), 1.0 - half * (1.0 + s)
+        for j in range(len(x.bodies)):
+            sa, sb = x.loss_share(j)
+            if sa or sb:
+                g[c, j] = sa * ga + sb * gb
     return g
 
 
