@@ -40,6 +40,7 @@ UNDAMPED_PER_PERIOD = 1e-6  # a mode decaying by less than this per period is un
 # periods, past any run's 3600 s for a mode above 0.3 Hz): what is left of a chain without damping is the eigen
 # solver's roundoff (zeta ~ 1e-17 .. 1e-30), which read as a decay time of 1e28 s and a resonance 1e16 x
 MIN_MAC = 0.5  # a damped eigenvector matches an undamped mode when their modal assurance criterion exceeds this
+MAX_FREQUENCY_RATIO = 2.0  # ... and its |lambda| lies within this factor of the mode's undamped frequency
 
 
 def reflected_load_Nm(lay: Layout, w: float) -> float:
@@ -189,6 +190,9 @@ def _modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: n
             continue
         phi = shapes[:, j]
         for i in osc:
+            if not 1.0 / MAX_FREQUENCY_RATIO <= abs(lam[i]) / omega[j] <= MAX_FREQUENCY_RATIO:
+                continue  # |lambda| is the mode's natural frequency (exactly for one degree of freedom): another mode's,
+                # or the round-off of an unresolved one (a chain with stiffness ratios of 1e12: eps x its largest)
             v = vec[:n, i]
             mac = abs(np.vdot(phi * J, v)) ** 2 / (float(phi @ (J * phi)) * float(np.real(np.vdot(v * J, v))))
             pairs.append((mac, j, i))
