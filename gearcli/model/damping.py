@@ -112,7 +112,7 @@ def loss_factors(lay: Layout) -> np.ndarray:
     g = np.ones((lay.n_conn, max(len(x.bodies) for x in lay.connectors)))
     if not any(x.lossy for x in lay.connectors):
         return g
-    from gearcli.model.linear import static_forces  # linear imports this module
+    from gearcli.model.linear import static_forces  # lazy: an import cycle (linear imports this module)
 
     F = static_forces(lay)
     ratio = [b.ratio for b in lay.bodies]
