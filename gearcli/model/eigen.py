@@ -7,7 +7,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import scipy.linalg
 
 
 def soft_modes_refined(R: np.ndarray, k: np.ndarray, J: np.ndarray, w2: np.ndarray, u: np.ndarray,
@@ -25,15 +24,18 @@ def soft_modes_refined(R: np.ndarray, k: np.ndarray, J: np.ndarray, w2: np.ndarr
     n_el = R.shape[0]
     if n_el == 0 or n_el > R.shape[1] or np.any(k <= 0.0) or np.linalg.matrix_rank(R) < n_el:
         return w2, u
+    D = np.diag(1.0 / k)
     try:
-        if L is None:
-            mu, f = scipy.linalg.eigh(np.diag(1.0 / k), R @ (R.T / J[:, None]))
+        if L is None:  # Cholesky M = C C^T: C^-1 D C^-T y = mu y, f = C^-T y (numpy only: design never loads scipy)
+            chol = np.linalg.cholesky(R @ (R.T / J[:, None]))
+            half = np.linalg.solve(chol, D)
+            mu, y = np.linalg.eigh(np.linalg.solve(chol, half.T).T)
+            f = np.linalg.solve(chol.T, y)
         else:  # real: the lossy chain is a lossless one up to a diagonal similarity (real_eigenpairs)
-            mu, f = scipy.linalg.eig(np.diag(1.0 / k), R @ (L.T / J[:, None]))
-            ok = np.isfinite(mu)
-            mu, f = np.where(ok, np.real(mu), -np.inf), np.real(f * np.exp(-1j * np.angle(
-                f[np.argmax(np.abs(f), axis=0), np.arange(f.shape[1])]))[None, :])
-    except (np.linalg.LinAlgError, ValueError):
+            mu_c, f_c = np.linalg.eig(np.linalg.solve(R @ (L.T / J[:, None]), D))
+            mu = np.where(np.isfinite(mu_c), np.real(mu_c), -np.inf)
+            f = np.real(f_c * np.exp(-1j * np.angle(f_c[np.argmax(np.abs(f_c), axis=0), np.arange(f_c.shape[1])]))[None, :])
+    except np.linalg.LinAlgError:
         return w2, u
     by_softness = np.argsort(-mu)  # mu = 1 / omega^2, largest first (a stiff mode's tiny mu may round below 0)
     order = np.argsort(w2)
