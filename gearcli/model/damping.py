@@ -40,6 +40,7 @@ UNDAMPED_PER_PERIOD = 1e-6  # a mode decaying by less than this per period is un
 # periods, past any run's 3600 s for a mode above 0.3 Hz): what is left of a chain without damping is the eigen
 # solver's roundoff (zeta ~ 1e-17 .. 1e-30), which read as a decay time of 1e28 s and a resonance 1e16 x
 MIN_MAC = 0.5  # a damped eigenvector matches an undamped mode when their modal assurance criterion exceeds this
+MAX_FREQUENCY_RATIO = 2.0  # ... and its |lambda| lies within this factor of the mode's undamped frequency
 
 
 def reflected_load_Nm(lay: Layout, w: float) -> float:
@@ -102,13 +103,32 @@ def body_damping(lay: Layout) -> np.ndarray:
 
 
 def loss_factors(lay: Layout) -> np.ndarray:
-    """Per connector and body slot, the fraction of the connector's force that reaches that body: a lossy mesh's
-    ``eta`` on the side that receives the power (its gear for a forward load), 1 elsewhere."""
+    """Per connector and body slot, the fraction of the connector's force that reaches that body at the operating
+    point, as the simulation's loss hook scatters it (:func:`.elements.mesh.loss_factors`, its element's
+    ``loss_sides``): the side that drives takes ``f``, the driven side ``eta f``, the power-flow sign that of
+    ``f v`` with the static force ``f`` and the mean pitch-line speed ``v`` of the rigid chain (a pair mesh's gear
+    for a forward load, its pinion for a reversed one; a planet mesh in the carrier's frame, so the planet drives
+    the ring of a sun-driven stage and takes ``f`` there, its carrier ``l_a f_a + l_b f_b``); 1 elsewhere."""
     g = np.ones((lay.n_conn, max(len(x.bodies) for x in lay.connectors)))
+    if not any(x.lossy for x in lay.connectors):
+        return g
+    from gearcli.model.linear import static_forces  # lazy: an import cycle (linear imports this module)
+
+    F = static_forces(lay)
+    ratio = [b.ratio for b in lay.bodies]
     forward = lay.load.torque_Nm >= 0.0
     for c, x in enumerate(lay.connectors):
-        if x.lossy:
-            g[c, 1 if forward else 0] = x.efficiency
+        if not x.lossy:
+            continue
+        side_a, side_b = x.loss_speeds
+        v = 0.5 * (sum(k * ratio[b] for b, k in side_a) + sum(k * ratio[b] for b, k in side_b))
+        s = math.copysign(1.0, F[c] * v) if F[c] * v != 0.0 else (1.0 if forward else -1.0)
+        half = 0.5 * (1.0 - x.efficiency)
+        ga, gb = 1.0 - half * (1.0 - s), 1.0 - half * (1.0 + s)
+        for j in range(len(x.bodies)):
+            sa, sb = x.loss_share(j)
+            if sa or sb:
+                g[c, j] = sa * ga + sb * gb
     return g
 
 
@@ -170,6 +190,9 @@ def _modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: n
             continue
         phi = shapes[:, j]
         for i in osc:
+            if not 1.0 / MAX_FREQUENCY_RATIO <= abs(lam[i]) / omega[j] <= MAX_FREQUENCY_RATIO:
+                continue  # |lambda| is the mode's natural frequency (exactly for one degree of freedom): another mode's,
+                # or the round-off of an unresolved one (a chain with stiffness ratios of 1e12: eps x its largest)
             v = vec[:n, i]
             mac = abs(np.vdot(phi * J, v)) ** 2 / (float(phi @ (J * phi)) * float(np.real(np.vdot(v * J, v))))
             pairs.append((mac, j, i))

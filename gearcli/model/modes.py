@@ -48,7 +48,8 @@ import numpy as np
 
 from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import body_matrices, loss_factors, modal_damping_ratios
+from gearcli.model.damping import body_matrices, lever_matrices, loss_factors, modal_damping_ratios
+from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, soft_modes_refined
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
 
@@ -274,25 +275,16 @@ def _eigenproblem(lay: Layout, boundary: str, k: np.ndarray, cd: np.ndarray) -> 
         # a lossy mesh passes eta of its force to the side that receives the power (what simulate integrates):
         # K = L^T diag(k) R is not symmetric, and the chain rings at its eigenvalues (a single mesh behind a speed
         # drive at w^2 = eta k_t r_bg^2 / J_g, not k_t r_bg^2 / J_g)
-        w2, u = _real_eigenpairs(inv_sqrt[:, None] * body_matrices(lay, k, cd, first)[1] * inv_sqrt[None, :])
+        w2, u = real_eigenpairs(inv_sqrt[:, None] * body_matrices(lay, k, cd, first)[1] * inv_sqrt[None, :])
+        w2, u = orthonormal_clusters(*soft_modes_refined(R, k, J, w2, u, lever_matrices(lay, first)[1]))
     else:
         Kb = R.T @ (k[:, None] * R)
         w2, u = np.linalg.eigh(inv_sqrt[:, None] * Kb * inv_sqrt[None, :])  # mass-normalised: J^-1/2 K J^-1/2
+        w2, u = soft_modes_refined(R, k, J, w2, u)
     found = _Undamped(k, cd, first, R, inv_sqrt, w2, u, rigid_mode_count(lay, k, clamped=first), np.argsort(w2))
     for a in (k, cd, R, inv_sqrt, w2, u, found.order):  # shared by the points of one chain: read only
         a.flags.writeable = False
     return found
-
-
-def _real_eigenpairs(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Eigenvalues and unit eigenvectors of J^-1/2 K J^-1/2 for a lossy chain's non-symmetric K. Its eigenvalues are
-    real (the lossy chain is the lossless one with each body's inertia over the efficiencies between it and the
-    drive, up to a diagonal similarity): the real parts are kept, each vector turned real by the phase of its
-    largest entry."""
-    w2, u = np.linalg.eig(a)
-    big = np.argmax(np.abs(u), axis=0)
-    u = np.real(u * np.exp(-1j * np.angle(u[big, np.arange(u.shape[1])]))[None, :])
-    return np.real(w2), u / np.linalg.norm(u, axis=0)
 
 
 def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnalysis:

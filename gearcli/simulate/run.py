@@ -574,7 +574,7 @@ def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic
     model's own: found once per layout and boundary (a sweep point's settle runs ask again)."""
     cache = model.layout.__dict__.setdefault("_resonance_warnings", {})
     if choice.boundary not in cache:
-        cache[choice.boundary] = [dg.warning(dg.RESONANCE, r.message, **r.data)
+        cache[choice.boundary] = [dg.warning(dg.RESONANCE, r.message, **r.data, boundary=choice.boundary)
                                   for r in resonances(model.layout, boundary=choice.boundary)]
     return list(cache[choice.boundary])
 
