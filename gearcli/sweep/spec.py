@@ -216,7 +216,20 @@ class SweepSpec:
         if self.randoms and self.seed is None:
             raise ValueError("random samples need a seed (the CLI draws one when --seed is absent)")
         if self.n_points > MAX_POINTS:
-            raise SweepUsageError(f"{self.n_points} points is more than {MAX_POINTS}")
+            raise SweepUsageError(f"{self._count_words()} = {self.n_points} points is more than the {MAX_POINTS} a "
+                                  "sweep may have", source=self._count_options())
+
+    def _count_words(self) -> str:
+        """How the point count comes about: ``--vary input.speed_rpm (1000) x ... x --samples 5 x 2 directions``."""
+        parts = [f"--vary {a.key} ({len(a.values)})" for a in self.axes]
+        parts += [f"--samples {self.samples}"] if self.samples else []
+        parts += ["2 directions (--direction both)"] if self.direction == "both" else []
+        return " x ".join(parts)
+
+    def _count_options(self) -> str:
+        """The options that make the point count (the error's source)."""
+        return "/".join(o for o, used in (("--vary", self.axes), ("--samples", self.samples),
+                                          ("--direction", self.direction == "both")) if used)
 
     @property
     def keys(self) -> tuple[str, ...]:
