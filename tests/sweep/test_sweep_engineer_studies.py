@@ -247,3 +247,65 @@ def test_grid_response_curves_are_told_apart(direction):
     fig = _response(rows, "input.speed_rpm", spec, 1)
     looks = {(to_rgba(line.get_color()), line.get_marker()) for line in fig.axes[0].get_lines()}
     assert len(looks) == (4 if direction else 2)  # a look per curve (mean, min and max of one curve share it)
+
+
+TOLERANCE = ["--samples", "8", "--random", "stage.0.pinion.profile_shift=normal(0.2,0.05)",
+             "--random", "contact.transmission_error_um.0=uniform(2,6)"]
+
+
+def _tolerance_scene(tmp_path) -> str:
+    """The resonance scene run at 1000 rpm, well below the mode: r = z_1 n / 60 / f_n = 0.214."""
+    text = (SCENE.replace("backlash_mm = 0.05", "backlash_mm = 0.0")
+            .replace(f"damping_ratio = {ZETA}", f"damping_ratio = {ZETA}\ntransmission_error_um = [4.0]")
+            .replace(f"ramp_s = {RAMP_S}", "ramp_s = 0.01")
+            .replace("duration_s = 0.15", "duration_s = 0.06").replace("steps = 1500", "steps = 3000"))
+    return _scene(tmp_path, text, "tolerance.toml")
+
+
+def test_tolerance_study_draws_reproduce_and_follow_the_distributions_and_the_physics(tmp_path):
+    from scipy.stats import norm, qmc
+
+    scene = _tolerance_scene(tmp_path)
+    a, b, c = tmp_path / "a.csv", tmp_path / "b.csv", tmp_path / "c.csv"
+    for out, seed in ((a, "11"), (b, "11"), (c, "12")):
+        res = _sweep(scene, *TOLERANCE, "--seed", seed, "-o", str(out))
+        assert res.exit_code == 0, res.output
+    ra, rb, rc = _rows(a), _rows(b), _rows(c)
+    keys = ("stage.0.pinion.profile_shift", "contact.transmission_error_um.0")
+    drawn = np.array([[_f(r, k) for k in keys] for r in ra])
+    # --seed reproduces the draws bit for bit and with them every number but the wall time
+    assert [[r[k] for k in keys] for r in rb] == [[r[k] for k in keys] for r in ra]
+    assert [{k: v for k, v in r.items() if k != "wall_s"} for r in rb] == [
+        {k: v for k, v in r.items() if k != "wall_s"} for r in ra]
+    assert [[r[k] for k in keys] for r in rc] != [[r[k] for k in keys] for r in ra]
+    # the documented draw (docs/sweeps.md): scipy's Latin hypercube on numpy's Generator, then each inverse CDF
+    u = qmc.LatinHypercube(d=2, seed=np.random.default_rng(11)).random(8)
+    assert_allclose(drawn, np.column_stack([norm.ppf(u[:, 0], 0.2, 0.05), 2 + 4 * u[:, 1]]), rtol=1e-15)
+    # one sample in each of the 8 equal-probability strata of each distribution; uniform inside its bounds
+    assert sorted(np.floor(8 * norm.cdf(drawn[:, 0], 0.2, 0.05)).astype(int)) == list(range(8))
+    assert sorted(np.floor(8 * (drawn[:, 1] - 2) / 4).astype(int)) == list(range(8))
+    # physics: the shift moves no base radius and no inertia, so the mesh mode stays; the DTE is the linear
+    # response to the TE amplitude, rms = e H(r) / sqrt(2) with H = r^2 / sqrt((1 - r^2)^2 + (2 zeta r)^2)
+    f_n = math.sqrt(K_N_MM * 1e3 * math.cos(BETA_B) ** 2 * R_BG_M**2 / J_G) / (2 * math.pi)
+    r, zeta = Z1 * 1000 / 60 / f_n, ZETA / math.cos(BETA_B)
+    h = r**2 / math.sqrt((1 - r**2) ** 2 + (2 * zeta * r) ** 2)
+    # 0.5 %: the window holds ~14 mesh periods, not a whole number of them (0.18 % seen)
+    assert_allclose([_f(row, "stage1_dte_um_rms") for row in ra], drawn[:, 1] * h / math.sqrt(2), rtol=5e-3)
+    # F_t on the pitch circle, T_L / r_g, whatever the shift (DESIGN 4: F_t = F_bt cos(alpha_t)); the window mean of a
+    # harmonic over a window of ~14 periods that is not a whole number of them: 0.2 % (0.07 % seen)
+    assert_allclose([_f(row, "stage1_tangential_N_mean") for row in ra], static_ft(600.0), rtol=2e-3)
+
+
+def test_latin_hypercube_statistics_of_the_drawn_values():
+    """400 draws of normal(0.2, 0.05) and uniform(2, 6): sample mean, std and bounds against the distributions."""
+    from gearcli.sweep.spec import spec_from_options
+
+    spec = spec_from_options([], ["stage.0.pinion.profile_shift=normal(0.2,0.05)",
+                                  "contact.transmission_error_um.0=uniform(2,6)"], 400, "lhs", 5, None)
+    x = np.array([[v for _, v in b[0].values] for b in spec.branches()])
+    # Latin hypercube: one draw per 1/400 of probability, so the sample moments sit far closer than Monte
+    # Carlo's sigma/sqrt(N) = 0.0025; 3 sigma/sqrt(N) is a bound any fair sampling meets
+    assert abs(x[:, 0].mean() - 0.2) < 3 * 0.05 / 20 and abs(x[:, 0].std(ddof=1) / 0.05 - 1) < 0.05
+    assert abs(x[:, 1].mean() - 4.0) < 3 * (4 / math.sqrt(12)) / 20
+    assert abs(x[:, 1].std(ddof=1) / (4 / math.sqrt(12)) - 1) < 0.05
+    assert 2.0 <= x[:, 1].min() < 2.0 + 4 / 400 and 6.0 - 4 / 400 <= x[:, 1].max() < 6.0  # the end strata filled
