@@ -309,3 +309,33 @@ def test_latin_hypercube_statistics_of_the_drawn_values():
     assert abs(x[:, 1].mean() - 4.0) < 3 * (4 / math.sqrt(12)) / 20
     assert abs(x[:, 1].std(ddof=1) / (4 / math.sqrt(12)) - 1) < 0.05
     assert 2.0 <= x[:, 1].min() < 2.0 + 4 / 400 and 6.0 - 4 / 400 <= x[:, 1].max() < 6.0  # the end strata filled
+
+
+def test_vary_over_whole_arrays_keeps_their_commas(tmp_path):
+    """``--vary 'contact.transmission_error_um=[1.0, 0.5],[2.0, 0.1]'``: two TE spectra, two points (each value read
+    as TOML, as ``--set`` reads it); before, the commas inside the arrays split them into four failed points."""
+    from gearcli.sweep.spec import parse_vary
+
+    assert parse_vary("contact.transmission_error_um=[1.0, 0.5],[2.0, 0.1]").values == ([1.0, 0.5], [2.0, 0.1])
+    assert parse_vary('input.drive="speed","torque"').values == ("speed", "torque")
+    assert parse_vary("input.drive=speed,torque").values == ("speed", "torque")  # bare words, as before
+    assert parse_vary('title="a, b","c"').values == ("a, b", "c")
+    scene = _tolerance_scene(tmp_path)
+    out = tmp_path / "te.json"
+    args = (scene, "--vary", "contact.transmission_error_um=[4.0, 0.0],[2.0, 1.0]", "-o", str(out))
+    res = _sweep(*args)
+    assert res.exit_code == 0, res.output
+    rows = json.loads(out.read_text(encoding="utf-8"))["rows"]
+    assert [r["contact.transmission_error_um"] for r in rows] == [[4.0, 0.0], [2.0, 1.0]]
+    # a linear mesh below its mode: each harmonic j of the TE is a base excitation at j f_z, rms sqrt(sum (e_j H_j)^2/2)
+    f_n = math.sqrt(K_N_MM * 1e3 * math.cos(BETA_B) ** 2 * R_BG_M**2 / J_G) / (2 * math.pi)
+    zeta = ZETA / math.cos(BETA_B)
+
+    def h(r: float) -> float:
+        return r**2 / math.sqrt((1 - r**2) ** 2 + (2 * zeta * r) ** 2)
+
+    r1 = Z1 * 1000 / 60 / f_n
+    hand = [math.hypot(4.0 * h(r1), 0.0) / math.sqrt(2), math.hypot(2.0 * h(r1), 1.0 * h(2 * r1)) / math.sqrt(2)]
+    assert_allclose([r["stage1_dte_um_rms"] for r in rows], hand, rtol=5e-3)  # window: not whole periods
+    before = out.read_bytes()
+    assert _sweep(*args).exit_code == 0 and out.read_bytes() == before  # resumed: the array values match the rows
