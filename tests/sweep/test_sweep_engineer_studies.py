@@ -339,3 +339,27 @@ def test_vary_over_whole_arrays_keeps_their_commas(tmp_path):
     assert_allclose([r["stage1_dte_um_rms"] for r in rows], hand, rtol=5e-3)  # window: not whole periods
     before = out.read_bytes()
     assert _sweep(*args).exit_code == 0 and out.read_bytes() == before  # resumed: the array values match the rows
+
+
+def test_a_point_longer_than_the_settle_budget_is_a_row_not_a_value_error(tmp_path):
+    """A run of 700 s (past the settle test's 600 s budget, simulation.duration_s allows 3600): every point of the
+    sweep failed with "ValueError: the window start 700 s is not before the end of the run 600 s" (the equilibrium
+    search asked to start where its budget ends). Now the window run's rows, at the static load by hand."""
+    text = (SCENE.replace("duration_s = 0.15", "duration_s = 700").replace("steps = 1500", "steps = 1400"))
+    out = tmp_path / "long.csv"
+    res = _sweep(_scene(tmp_path, text, "long.toml"), "--vary", "load.torque_Nm=200,600", "-o", str(out))
+    assert res.exit_code == 0, res.output
+    rows = _rows(out)
+    assert [r["status"] for r in rows] == ["ok", "ok"], [r["message"] for r in rows]
+    assert_allclose([_f(r, "stage1_tangential_N_mean") for r in rows], [static_ft(200.0), static_ft(600.0)], rtol=1e-6)
+    assert_allclose([_f(r, "stage1_dte_um_mean") for r in rows], [dte_um(200.0, 0.05), dte_um(600.0, 0.05)],
+                    rtol=1e-6)
+
+
+def test_the_periodic_search_past_its_budget_does_not_run():
+    from gearcli.simulate.settle import MAX_DURATION_S, periodic_state
+
+    def run(*args, **kwargs):
+        raise AssertionError(f"ran {args}")
+
+    assert periodic_state(run, 1.5 * MAX_DURATION_S, 100, 0, 1.5 * MAX_DURATION_S) is None
