@@ -13,6 +13,7 @@ goes on, starting cold again.
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
@@ -167,17 +168,28 @@ def _message(exc: GearcliError, scene: Scene, point: Point) -> str:
     """A failed point's message. A value of the point's own (a ``--vary`` or ``--random`` value the schema
     rejects) is named by its key alone, as the row's design errors are: the point's overrides are checked as
     ``--set`` overrides, but the user gave no ``--set`` for it."""
-    if isinstance(exc, ConfigError) and exc.source == SOURCE and exc.key and _varied(exc.key, point):
-        return located(exc.message, None, exc.key)
+    if isinstance(exc, ConfigError) and exc.source == SOURCE:
+        named = exc.key or _leading_key(exc.message)  # a table-level check names its table in the message
+        if named and _varied(named, point):
+            return located(exc.message, None, exc.key)
     text = str(exc)
     return text.replace("<stdin>", scene.source) if scene.source != "<stdin>" else text
 
 
+def _leading_key(message: str) -> str | None:
+    """``stage[0].shaft`` of ``"stage[0].shaft: the last stage's gear ..."``."""
+    m = re.match(r"([A-Za-z_][\w.\[\]-]*): ", message)
+    return m[1] if m else None
+
+
 def _varied(key: str, point: Point) -> bool:
+    """Whether the error's key is a varied key, or a table holding one (``load`` for ``load.inertia_kg_m2``), or a
+    key inside a varied table."""
     try:
-        return canonical_key(key) in {k for k, _ in point.values}
+        named = canonical_key(key)
     except ConfigError:
         return False
+    return any(named == k or k.startswith(named + ".") or named.startswith(k + ".") for k, _ in point.values)
 
 
 def check_keys(scene: Scene, point: Point) -> None:

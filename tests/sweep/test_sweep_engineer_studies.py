@@ -363,3 +363,22 @@ def test_the_periodic_search_past_its_budget_does_not_run():
         raise AssertionError(f"ran {args}")
 
     assert periodic_state(run, 1.5 * MAX_DURATION_S, 100, 0, 1.5 * MAX_DURATION_S) is None
+
+
+@pytest.mark.parametrize("vary, start", [
+    ("load.inertia_kg_m2=1", "load: load.inertia_kg_m2 and load.coupling_stiffness_Nm_rad go together"),
+    ("stage.0.shaft.stiffness_Nm_rad=1e6", "stage[0].shaft: the last stage's gear sits on the output shaft"),
+])
+def test_a_rejected_table_of_a_varied_key_is_named_without_set(tmp_path, vary, start):
+    """A table-level check on a varied key (its table named in the message): no '--set' the user never gave."""
+    res = _sweep(_scene(tmp_path), "--vary", vary)
+    assert res.exit_code == 1
+    (row,) = list(csv.DictReader(io.StringIO(res.stdout)))
+    assert row["status"] == "failed" and row["message"].startswith(start), row["message"]
+
+
+def test_a_base_set_named_in_a_point_error_keeps_its_option(tmp_path):
+    """The user's own ``--set`` that a varied value contradicts is still named as ``--set``."""
+    res = _sweep(_scene(tmp_path), "--set", "simulation.window_start_s=0.1", "--vary", "simulation.duration_s=0.05")
+    (row,) = list(csv.DictReader(io.StringIO(res.stdout)))
+    assert row["status"] == "failed" and "--set: simulation.window_start_s" in row["message"], row["message"]
