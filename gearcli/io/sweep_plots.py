@@ -1,7 +1,8 @@
 """``gearcli sweep --plots DIR``: response curves, a Campbell diagram, histograms and ECDFs (matplotlib Agg).
 
 - ``response_<key>.png`` for each ``--vary`` key: every statistic with data against the key, one column per
-  stage, each direction (up, down, or independent points) in its own colour and overlaid.
+  stage, each direction (up, down, or independent points) in its own colour and overlaid; in a grid each
+  combination of the other varied keys' values in its own colour, the direction by its marker (up ^, down v).
 - ``campbell.png`` when the input speed is swept: the Campbell diagram of ``gearcli modes --plots``
   (:mod:`gearcli.io.campbell`) over the swept range, the swept speeds marked.
 - ``distributions.png`` for ``--random`` samples: histogram and empirical CDF of the main statistics.
@@ -24,6 +25,7 @@ from gearcli.sweep.modes import SweepCampbell
 from gearcli.sweep.session import Session
 
 COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
+MARKERS = {"up": "^", "down": "v", "none": "."}
 #: (title with unit, columns of one stage as {suffix: line style})
 FAMILIES = (
     ("tangential force F_t (N)", {"tangential_N_mean": "-", "tangential_N_min": ":", "tangential_N_max": "--"}),
@@ -88,22 +90,24 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
     fig, axes = _figure(len(families) + 1, n_stages, height=2.1, width=4.2 * n_stages + 1, sharex=True)
     others = [k for k in spec.keys if k != key]
     groups = _groups(rows, key, spec.keys)
+    looks = _looks(groups)
     for i, (title, cols) in enumerate(families):
         for k in range(1, n_stages + 1):
             ax = axes[i][k - 1]
             for g, rs in groups.items():
                 x = [_num(r.get(key)) for r in rs]
+                colour, marker = looks[g]
                 for c, style in cols.items():
                     label = " ".join(p for p in (_label(g, others), c.rsplit('_', 1)[-1] if len(cols) > 1 else "")
                                      if p)
-                    ax.plot(x, [_num(r.get(f"stage{k}_{c}")) for r in rs], style, marker=".", ms=4, lw=1,
-                            color=COLOURS.get(str(g[0]), "k"), label=label)
+                    ax.plot(x, [_num(r.get(f"stage{k}_{c}")) for r in rs], style, marker=marker, ms=4, lw=1,
+                            color=colour, label=label)
             ax.set_title(f"stage {k}: {title}", fontsize=9)
             ax.grid(alpha=0.3)
     ax = axes[-1][0]
     for g, rs in groups.items():
-        ax.plot([_num(r.get(key)) for r in rs], [_num(r.get("output_speed_rpm")) for r in rs], marker=".",
-                color=COLOURS.get(str(g[0]), "k"), label=_label(g, others))
+        ax.plot([_num(r.get(key)) for r in rs], [_num(r.get("output_speed_rpm")) for r in rs], marker=looks[g][1],
+                color=looks[g][0], label=_label(g, others))
     ax.set_title("output speed (rpm)", fontsize=9)
     ax.grid(alpha=0.3)
     for extra in axes[-1][1:]:
@@ -115,6 +119,16 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
     axes[0][0].legend(fontsize=7, loc="best")
     fig.suptitle(f"sweep response against {key}", fontsize=11)
     return fig
+
+
+def _looks(groups: dict[tuple, list[dict]]) -> dict[tuple, tuple[str, str]]:
+    """Each curve's (colour, marker). One curve per direction: the direction's colour. Curves that differ in the
+    other varied keys' values (a grid): a colour per combination of those values, the direction by its marker
+    (up ^, down v), so that no two curves of one plot look alike."""
+    combos = list(dict.fromkeys(g[1:] for g in groups))
+    if len(combos) <= 1:
+        return {g: (COLOURS.get(str(g[0]), "k"), ".") for g in groups}
+    return {g: (f"C{combos.index(g[1:]) % 10}", MARKERS.get(str(g[0]), ".")) for g in groups}
 
 
 def _label(group: tuple, others: Sequence[str]) -> str:

@@ -236,9 +236,14 @@ def periodic_state(run: Callable[..., SimulationResult], duration_s: float, step
                    window_start_s: float | None = None, **kwargs) -> SimulationResult | None:
     """The periodic steady state (``run(..., steady="periodic")``: the equilibrium, shooting, or period by period)
     within the budget's duration (:func:`longest_run_s`), marked settled after ``settle_runs`` runs; None where
-    the search cannot run the scene, does not converge, or the motion does not settle into it (:func:`reached`)."""
+    the search cannot run the scene, does not converge, or the motion does not settle into it (:func:`reached`).
+    A search that would start at or past the budget's end (a first run longer than :data:`MAX_DURATION_S`) cannot
+    run: None, and the caller keeps its window."""
+    longest = longest_run_s(duration_s)
+    if window_start_s is not None and window_start_s >= longest:
+        return None
     try:
-        found = run(longest_run_s(duration_s), steps, window_start_s, steady="periodic", **kwargs)
+        found = run(longest, steps, window_start_s, steady="periodic", **kwargs)
     except GearcliError:  # the periodic search cannot run this scene
         return None
     if not reached(found.steady):

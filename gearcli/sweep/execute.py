@@ -202,6 +202,18 @@ def _stop_workers(pool) -> None:
         proc.terminate()
     for proc in processes:
         proc.join(timeout=10)
+    _release_result_reader(pool)
+
+
+def _release_result_reader(pool) -> None:
+    """Close this process's end of the pool's result pipe once its workers are gone. A worker ended while it was
+    writing its task's rows leaves half a message in the pipe; the pool's manager thread, reading it, waited for
+    the rest for ever, and ``shutdown(wait=True)`` (and the interpreter's exit, which joins that thread) with it:
+    a Ctrl-C or SIGTERM hung the sweep with its finished rows unwritten. With no writer left the read ends (EOF),
+    the thread marks the pool broken and ends."""
+    writer = getattr(getattr(pool, "_result_queue", None), "_writer", None)
+    if writer is not None:
+        writer.close()
 
 
 def require_distributed() -> None:

@@ -22,6 +22,7 @@ from __future__ import annotations
 import itertools
 import math
 import re
+import tomllib
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import cast
@@ -115,14 +116,34 @@ def parse_vary(text: str) -> Axis:
         return Axis(key, values)
     if ":" in value and "," not in value and not value.strip().startswith(("[", "{", '"')):
         raise SweepUsageError(f"{key}: expected START:STOP:N with an integer N, got {value!r}", source=option)
-    items = [v.strip() for v in value.split(",")]
-    if any(not v for v in items):
-        raise SweepUsageError(f"{key}: empty value in {value!r}", source=option)
-    values = tuple(parse_value(v) for v in items)
+    listed = _toml_items(value)
+    if listed is not None:  # TOML values, arrays and quoted strings whose own commas are not separators
+        items, values = [toml_value(v) for v in listed], tuple(listed)
+    else:
+        items = [v.strip() for v in value.split(",")]
+        if any(not v for v in items):
+            raise SweepUsageError(f"{key}: empty value in {value!r}", source=option)
+        values = tuple(parse_value(v) for v in items)
     bad = next((t for t, v in zip(items, values, strict=True) if not _finite(v)), None)
     if bad is not None:  # nan/inf would make a point no output format can write (JSON has no NaN)
         raise SweepUsageError(f"{key}: values must be finite, got {bad!r}", source=option)
     return Axis(key, values)
+
+
+def _toml_items(value: str) -> list | None:
+    """``v1,v2,...`` read as the items of one TOML array, so that an array value keeps its commas
+    (``[1.0, 0.5],[2.0, 0.1]`` is two values, not four); None when it is not all TOML (bare words such as
+    ``speed,torque``: then each item is read on its own, as ``--set`` reads it) or has an empty item (TOML
+    allows a trailing comma; a sweep's value list does not)."""
+    text = value.strip()
+    if not text or text.endswith(",") or text.startswith(","):
+        return None
+    try:
+        parsed = tomllib.loads(f"v = [{text}]")
+    except (ValueError, RecursionError):  # TOMLDecodeError is a ValueError
+        return None
+    items = parsed.get("v")
+    return items if list(parsed) == ["v"] and isinstance(items, list) and items else None
 
 
 def _finite(value: object) -> bool:
@@ -216,7 +237,20 @@ class SweepSpec:
         if self.randoms and self.seed is None:
             raise ValueError("random samples need a seed (the CLI draws one when --seed is absent)")
         if self.n_points > MAX_POINTS:
-            raise SweepUsageError(f"{self.n_points} points is more than {MAX_POINTS}")
+            raise SweepUsageError(f"{self._count_words()} = {self.n_points} points is more than the {MAX_POINTS} a "
+                                  "sweep may have", source=self._count_options())
+
+    def _count_words(self) -> str:
+        """How the point count comes about: ``--vary input.speed_rpm (1000) x ... x --samples 5 x 2 directions``."""
+        parts = [f"--vary {a.key} ({len(a.values)})" for a in self.axes]
+        parts += [f"--samples {self.samples}"] if self.samples else []
+        parts += ["2 directions (--direction both)"] if self.direction == "both" else []
+        return " x ".join(parts)
+
+    def _count_options(self) -> str:
+        """The options that make the point count (the error's source)."""
+        return "/".join(o for o, used in (("--vary", self.axes), ("--samples", self.samples),
+                                          ("--direction", self.direction == "both")) if used)
 
     @property
     def keys(self) -> tuple[str, ...]:

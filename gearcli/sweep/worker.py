@@ -13,6 +13,7 @@ goes on, starting cold again.
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
@@ -20,14 +21,15 @@ from typing import NamedTuple, Protocol, cast
 
 from gearcli import engine
 from gearcli.config import DesignFile, check_override_keys
-from gearcli.errors import GearcliError
+from gearcli.config.overrides import SOURCE
+from gearcli.errors import ConfigError, GearcliError, located
 from gearcli.results import DesignResult
 from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
 from gearcli.sweep.continuation import Carried, jump_note, on_branch
 from gearcli.sweep.family import Family
 from gearcli.sweep.load_law import LoadLaw, law_overrides
-from gearcli.sweep.spec import Point
+from gearcli.sweep.spec import Point, canonical_key
 
 #: what a point's run may raise besides a GearcliError (a bug or a numerical failure): the point's row is failed
 NUMERICAL = (ArithmeticError, ValueError, RuntimeError, OverflowError)
@@ -111,7 +113,8 @@ def iter_task(task: Task) -> Iterator[Row]:
                 jump = _jump(task, before, point, result) if task.continuation else ""
             except GearcliError as exc:
                 prev = before = None
-                row = failed_row(point.values, point.direction, _message(exc, task.scene), time.perf_counter() - t0)
+                row = failed_row(point.values, point.direction, _message(exc, task.scene, point),
+                                 time.perf_counter() - t0)
             except NUMERICAL as exc:  # a bug or a numerical failure
                 prev = before = None
                 row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
@@ -161,9 +164,32 @@ def run_task(task: Task) -> list[Row]:
     return list(iter_task(task))
 
 
-def _message(exc: GearcliError, scene: Scene) -> str:
+def _message(exc: GearcliError, scene: Scene, point: Point) -> str:
+    """A failed point's message. A value of the point's own (a ``--vary`` or ``--random`` value the schema
+    rejects) is named by its key alone, as the row's design errors are: the point's overrides are checked as
+    ``--set`` overrides, but the user gave no ``--set`` for it."""
+    if isinstance(exc, ConfigError) and exc.source == SOURCE:
+        named = exc.key or _leading_key(exc.message)  # a table-level check names its table in the message
+        if named and _varied(named, point):
+            return located(exc.message, None, exc.key)
     text = str(exc)
     return text.replace("<stdin>", scene.source) if scene.source != "<stdin>" else text
+
+
+def _leading_key(message: str) -> str | None:
+    """``stage[0].shaft`` of ``"stage[0].shaft: the last stage's gear ..."``."""
+    m = re.match(r"([A-Za-z_][\w.\[\]-]*): ", message)
+    return m[1] if m else None
+
+
+def _varied(key: str, point: Point) -> bool:
+    """Whether the error's key is a varied key, or a table holding one (``load`` for ``load.inertia_kg_m2``), or a
+    key inside a varied table."""
+    try:
+        named = canonical_key(key)
+    except ConfigError:
+        return False
+    return any(named == k or k.startswith(named + ".") or named.startswith(k + ".") for k, _ in point.values)
 
 
 def check_keys(scene: Scene, point: Point) -> None:
