@@ -73,12 +73,16 @@ def test_auto_repeats_the_run_at_the_rtol_that_resolves_its_means(reference):
     true_error = abs(run.stages[0].tangential_N.mean - reference.stages[0].tangential_N.mean) / static
     assert true_error < MEAN_TARGET / 10  # measured 1.4e-6
     e = run.stages[0].error_estimate
-    # the solver resolves every statistic; the impacts' sharp min and max fall between the output samples, which
-    # the samples' own estimate says apart (statistics_undersampled, docs/numerics.md "The output sampling")
+    # the solver resolves every statistic; the impacts' sharp min and max fall between the output samples, and so
+    # do the impacts' share of the window's integral (20 samples a mesh period: the mean of the same run at rtol
+    # 1e-9 is 1880.53 N against 1879.42 N at 320 samples a period, 5.9e-4; measured), which the samples' own
+    # estimate says apart (statistics_undersampled, docs/numerics.md "The output sampling")
     assert e.relative["mean"] <= MEAN_TARGET and all(e.relative[q] <= e.target_relative
                                                      for q in ("min", "max", "std", "spectrum"))
-    assert set(e.unresolved) <= {"min", "max"}
-    assert e.resolved or any(d.code == dg.STATISTICS_UNDERSAMPLED for d in run.diagnostics)
+    assert set(e.unresolved) <= {"min", "max", "mean"}
+    undersampled = [d for d in run.diagnostics if d.code == dg.STATISTICS_UNDERSAMPLED]
+    assert e.resolved or undersampled
+    assert set(e.unresolved) <= {q for d in undersampled for q in d.data["statistics"]}
     assert not any(d.code == dg.STATISTICS_UNRESOLVED for d in run.diagnostics)
     said = [d for d in run.diagnostics if d.code == dg.RTOL_TIGHTENED]
     assert len(said) == 1 and said[0].data["rtol"] == 1e-6 and said[0].data["tightened_rtol"] == 1e-7
