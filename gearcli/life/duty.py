@@ -84,34 +84,56 @@ def points_from_config(cfg) -> list[DutyPoint]:
 
 
 def read_series(text: str, source: str) -> tuple[list[float], list[float], list[float]]:
-    """time_s, torque_Nm, speed_rpm columns of a CSV text (ConfigError naming the file and row on bad data)."""
+    """time_s, torque_Nm, speed_rpm columns of a CSV text (ConfigError naming the file, the row and the column
+    on bad data; rows are numbered as a spreadsheet numbers them, the header being row 1)."""
     reader = csv.reader(io.StringIO(text))
     header = [h.strip() for h in next(reader, [])]
     need = ("time_s", "torque_Nm", "speed_rpm")
     missing = [c for c in need if c not in header]
     if missing:
-        raise ConfigError(f"needs the columns {', '.join(need)} (missing {', '.join(missing)})", source=source)
+        raise ConfigError(f"needs the columns {', '.join(need)} (missing {', '.join(missing)}; the header row "
+                          f"has {', '.join(repr(h) for h in header) or 'nothing'})", source=source)
+    twice = [c for c in need if header.count(c) > 1]
+    if twice:
+        raise ConfigError(f"the header row names the column {twice[0]} {header.count(twice[0])} times: "
+                          "which one is the history is ambiguous", source=source)
     idx = [header.index(c) for c in need]
     cols: tuple[list[float], list[float], list[float]] = ([], [], [])
+    rows: list[int] = []  # the file's row number of each data row (for messages)
     for row_no, row in enumerate(reader, start=2):
         if not row or all(not c.strip() for c in row):
             continue
         if row_no > MAX_SERIES_ROWS:
             raise ConfigError(f"more than {MAX_SERIES_ROWS} rows", source=source)
-        try:
-            values = [float(row[i]) for i in idx]
-        except (ValueError, IndexError):
-            raise ConfigError(f"row {row_no}: expected three numbers, got {row!r}", source=source) from None
-        if not all(math.isfinite(v) for v in values):
-            raise ConfigError(f"row {row_no}: not a finite number", source=source)
-        for col, v in zip(cols, values, strict=True):
-            col.append(v)
+        for col, name, i in zip(cols, need, idx, strict=True):
+            col.append(_cell(row, i, name, row_no, source))
+        rows.append(row_no)
     t = cols[0]
     if len(t) < 2:
         raise ConfigError("needs at least two rows (each level holds from its time to the next row's)", source=source)
-    if any(b <= a for a, b in zip(t, t[1:], strict=False)):
-        raise ConfigError("time_s must increase from row to row", source=source)
+    for k in range(1, len(t)):
+        if t[k] <= t[k - 1]:
+            raise ConfigError(f"row {rows[k]}, column time_s: {t[k]!r} s does not follow row {rows[k - 1]}'s "
+                              f"{t[k - 1]!r} s (time_s must increase from row to row: sort the history and "
+                              "drop repeated time stamps)", source=source)
     return cols
+
+
+def _cell(row: Sequence[str], i: int, name: str, row_no: int, source: str) -> float:
+    """The finite number in column ``name`` (index ``i``) of the file's row ``row_no``."""
+    if i >= len(row):
+        raise ConfigError(f"row {row_no}, column {name}: missing (the row has {len(row)} of the header's cells)",
+                          source=source)
+    text = row[i].strip()
+    if not text:
+        raise ConfigError(f"row {row_no}, column {name}: empty cell", source=source)
+    try:
+        value = float(text)
+    except ValueError:
+        raise ConfigError(f"row {row_no}, column {name}: expected a number, got {text!r}", source=source) from None
+    if not math.isfinite(value):
+        raise ConfigError(f"row {row_no}, column {name}: not a finite number ({text!r})", source=source)
+    return value
 
 
 def points_from_series(time_s: Sequence[float], torque_Nm: Sequence[float], speed_rpm: Sequence[float],

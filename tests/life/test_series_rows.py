@@ -1,0 +1,62 @@
+"""``gearcli life --series``: a bad history row is exit 2 naming the file, the row and the column (no output
+written), and a square history with reverse and idle stretches counted by hand."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+from tests.life.scenes import RATED
+
+HEADER = "time_s,torque_Nm,speed_rpm\n"
+
+
+@pytest.mark.parametrize(("body", "row", "column"), [
+    ("0,1500,1500\n10,nan,1500\n20,1,1\n", "row 3", "column torque_Nm"),
+    ("0,1500,1500\n10,,1500\n20,1,1\n", "row 3", "column torque_Nm"),
+    ("0,1500,1500\n10,1500\n20,1,1\n", "row 3", "column speed_rpm"),
+    ("0,1500,1500\n1e400,1500,1500\n", "row 3", "column time_s"),
+    ("0,1500,1500\n10,1500,fast\n20,1,1\n", "row 3", "column speed_rpm"),
+    ("0,1500,1500\n10,1500,1500\n10,1200,1500\n20,1,1\n", "row 4", "column time_s"),  # a repeated stamp
+    ("0,1500,1500\n\n20,1500,1500\n10,1200,1500\n30,1,1\n", "row 5", "column time_s"),  # unsorted, after a blank
+])
+def test_bad_row_names_file_row_and_column(tmp_path, body, row, column):
+    path, csv, out = tmp_path / "s.toml", tmp_path / "h.csv", tmp_path / "out.json"
+    path.write_text(RATED)
+    csv.write_text(HEADER + body)
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--series", str(csv), "-o", str(out)])
+    assert res.exit_code == 2, res.output
+    assert str(csv) in res.stderr and f"{row}, {column}" in res.stderr and "Traceback" not in res.stderr
+    assert not out.exists()
+
+
+def test_a_twice_named_column_is_exit_2(tmp_path):
+    """Two torque_Nm columns: which is the history is ambiguous (it used to take the first silently)."""
+    path, csv = tmp_path / "s.toml", tmp_path / "h.csv"
+    path.write_text(RATED)
+    csv.write_text("time_s,torque_Nm,speed_rpm,torque_Nm\n0,1500,1500,9\n10,1500,1500,9\n")
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--series", str(csv)])
+    assert res.exit_code == 2 and "torque_Nm" in res.stderr and str(csv) in res.stderr
+
+
+def test_square_history_with_reverse_and_idle_rows_counted_by_hand(tmp_path):
+    """1000 h at 2400 N·m and 1500 rpm, 3000 h at 1200 N·m turning in reverse at -750 rpm, then 0.5 h idle
+    (a 9000 N·m stall at zero speed, no revolutions); the last row only ends the history. By hand: the pinion
+    makes 1000·60·1500 = 9e7 and 3000·60·750 = 1.35e8 revolutions (|n| dt), the gear (z2/z1 = 3) a third
+    of each; each revolution is one load cycle of a tooth; the reverse level's force is half the other's."""
+    path, csv = tmp_path / "s.toml", tmp_path / "h.csv"
+    path.write_text(RATED)
+    t1, t2, t3 = 1000 * 3600.0, 4000 * 3600.0, 4000.5 * 3600.0
+    csv.write_text(HEADER + f"0,2400,1500\n{t1},1200,-750\n{t2},9000,0\n{t3},2400,1500\n")
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--series", str(csv), "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    life = json.loads(res.stdout)["life"]
+    assert_allclose(life["hours"], 4000.0, rtol=1e-12)  # the idle half hour is no duty
+    for member, per_rev in (("pinion", 1.0), ("gear", 1.0 / 3.0)):
+        bins = sorted(life["stages"][0][member]["pitting"]["bins"], key=lambda b: b["force_N"])
+        assert_allclose([b["cycles"] for b in bins], [1.35e8 * per_rev, 9e7 * per_rev], rtol=1e-12)
+        assert_allclose(bins[0]["force_N"] / bins[1]["force_N"], 0.5, rtol=1e-12)  # static forces ∝ torque
