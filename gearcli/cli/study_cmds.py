@@ -7,6 +7,7 @@ import math
 import sys
 
 import click
+from click.core import ParameterSource
 
 from gearcli.cli.common import (
     check_plots_dir,
@@ -240,6 +241,9 @@ def life(file: str, overrides, fmt, output, static: bool, series, classes: int, 
     from gearcli import api  # lazy: start-up time of --help
     from gearcli.io.life_out import life_bearings_csv, life_csv, life_dict  # lazy: start-up time of --help
 
+    if series is None and click.get_current_context().get_parameter_source("classes") is not ParameterSource.DEFAULT:
+        raise click.UsageError("--classes classes a --series history; without --series the [[duty]] tables are the "
+                               "points: give --series FILE.csv or drop --classes")
     target = check_target(fmt, output)
     if plots_dir:
         check_plots_dir(plots_dir, ("pitting.png", "bending.png"), target)

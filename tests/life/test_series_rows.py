@@ -60,3 +60,12 @@ def test_square_history_with_reverse_and_idle_rows_counted_by_hand(tmp_path):
         bins = sorted(life["stages"][0][member]["pitting"]["bins"], key=lambda b: b["force_N"])
         assert_allclose([b["cycles"] for b in bins], [1.35e8 * per_rev, 9e7 * per_rev], rtol=1e-12)
         assert_allclose(bins[0]["force_N"] / bins[1]["force_N"], 0.5, rtol=1e-12)  # static forces ∝ torque
+
+
+def test_classes_without_a_series_is_a_usage_error(tmp_path):
+    """--classes only classes a --series history: given with the [[duty]] tables it was silently ignored."""
+    path, out = tmp_path / "s.toml", tmp_path / "out.json"
+    path.write_text(RATED)
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--classes", "3", "-o", str(out)])
+    assert res.exit_code == 2 and "--classes" in res.stderr and "--series" in res.stderr
+    assert "Traceback" not in res.output and not out.exists()
