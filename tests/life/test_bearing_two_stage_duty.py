@@ -211,3 +211,42 @@ def test_design_kappa_and_a_iso_by_hand(tmp_path):
     kappa = _nu(65.0) / (45000.0 * (1450.0 / 3.0) ** -0.83 / math.sqrt(110.0))
     assert_allclose(b[3]["kappa"], kappa, rtol=1e-9)
     assert_allclose(b[3]["a_1"], 0.25, rtol=0)
+
+
+def test_series_history_gives_the_same_bearing_duty(tmp_path):
+    """The same three levels as a measured history (each row holds until the next): equal revolutions and loads,
+    so the same p-mean, L10 and L_nm as the [[duty]] tables, order aside."""
+    path = tmp_path / "duty.toml"
+    path.write_text(SCENE)
+    series = tmp_path / "h.csv"
+    series.write_text("time_s,torque_Nm,speed_rpm\n0,600,1450\n3600000,300,900\n14400000,900,600\n16200000,900,600\n")
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--series", str(series), "--format", "json"])
+    assert res.exit_code == 0, res.output
+    got = json.loads(res.stdout[res.stdout.index("{"):])["life"]["bearings"]
+    want = _run(tmp_path, "life")["life"]["bearings"]
+    for j in range(6):
+        for key in ("revolutions", "equivalent_load_N", "L10_Mrev", "L10_h"):
+            # rtol 1e-12: the same levels summed in another order
+            assert_allclose(got[j][key], want[j][key], rtol=1e-12, err_msg=f"bearing {j} {key}")
+    assert_allclose(got[0]["L_nm_Mrev"], want[0]["L_nm_Mrev"], rtol=1e-12)
+
+
+def test_reversed_point_recomputes_the_reactions(tmp_path):
+    """A point at -300 N m: F_t and F_a change sign, F_r still separates the wheels, so the reactions are not
+    those of +300 N m. Bearing 0 (pinion 1 at x = 40 between 0 and 100, right hand, cw): on the pinion
+    (-F_a, -F_r, +F_t) at (40, r_1, 0): R_Bz = -0.4 F_t, R_By = (0.4 F_r - F_a r_1 / 100), F_a on bearing 0."""
+    path = tmp_path / "duty.toml"
+    path.write_text(SCENE.replace("torque_Nm = 300", "torque_Nm = -300"))
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    b = json.loads(res.stdout[res.stdout.index("{"):])["life"]["bearings"][0]
+    beta = math.radians(15.0)
+    d1 = 2.0 * 20 / math.cos(beta)
+    f_t = 2.0 * 300e3 / 9.0 / d1
+    f_r = f_t * math.tan(math.atan(math.tan(math.radians(20.0)) / math.cos(beta)))
+    f_a = f_t * math.tan(beta)
+    rb_y, rb_z = (0.4 * f_r - f_a * d1 / 2.0 / 100.0), -0.4 * f_t
+    fr = math.hypot(f_r - rb_y, -f_t - rb_z)
+    assert f_a / fr > 0.3  # beyond e: P = X F_r + Y F_a
+    # rtol 1e-9: closed-form statics both ways
+    assert_allclose(b["loads_N"][1], 0.56 * fr + 1.5 * f_a, rtol=1e-9)
