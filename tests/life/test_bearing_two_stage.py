@@ -156,3 +156,19 @@ def test_overhung_pinion_reactions_by_hand(tmp_path):
     # A pulls the other way (lever): F - R_B < 0
     assert_allclose([b[0]["radial_y_N"], b[0]["radial_z_N"]], [fr1 - rb_y, ft1 - rb_z], rtol=1e-9)
     assert b[0]["radial_z_N"] < 0.0
+
+
+def test_axial_without_factors_warning_names_the_ratio(tmp_path):
+    """Bearing 5 (shaft 3, locating, no factors) carries F_a2 = F_t2 tan 12 deg against F_r = 4472.9 N (by hand in
+    test_two_stage_reactions_by_hand): the warning names F_a/F_r and says P takes F_r alone."""
+    path = tmp_path / "two.toml"
+    path.write_text(SCENE)
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "json"])
+    assert res.exit_code == 0
+    b = json.loads(res.stdout[res.stdout.index("{"):])["bearings"][4]
+    ft2, _, fa2, _ = _forces(3.0, 18, 12.0, 600e3 / 3.0)
+    assert_allclose(b["axial_N"], fa2, rtol=1e-9)
+    ratio = f"{fa2 / b['radial_N']:.3g}"
+    assert f"bearing 5 carries an axial force (F_a/F_r = {ratio})" in res.stderr
+    assert "equivalent load P takes F_r alone" in res.stderr
+    assert_allclose(b["equivalent_load_N"], b["radial_N"], rtol=0)  # default X = 1, Y = 0
