@@ -168,12 +168,12 @@ def _expected(design_b, j, ratio, kind, c_n, cu_n, dm, e_c, a1, c0_n, x0, y0):
     p = 3.0 if kind == "ball" else 10.0 / 3.0
     loads = [design_b["equivalent_load_N"] * t / 600.0 for t in TORQUES]
     speeds = [n / ratio for n in SPEEDS]
-    revs = [60.0 * n * h for n, h in zip(speeds, HOURS)]
-    p_eq = (sum(u * q ** p for u, q in zip(revs, loads)) / sum(revs)) ** (1.0 / p)
+    revs = [60.0 * n * h for n, h in zip(speeds, HOURS, strict=True)]
+    p_eq = (sum(u * q ** p for u, q in zip(revs, loads, strict=True)) / sum(revs)) ** (1.0 / p)
     nu = _nu(65.0)
     kappas = [nu / _nu1(n, dm) for n in speeds]
-    a_isos = [_a_iso(kind, min(k, 4.0), e_c * cu_n / q) for k, q in zip(kappas, loads)]
-    l_nm = sum(revs) / sum(u / (a1 * a * (c_n / q) ** p) for u, a, q in zip(revs, a_isos, loads))
+    a_isos = [_a_iso(kind, min(k, 4.0), e_c * cu_n / q) for k, q in zip(kappas, loads, strict=True)]
+    l_nm = sum(revs) / sum(u / (a1 * a * (c_n / q) ** p) for u, a, q in zip(revs, a_isos, loads, strict=True))
     n_mean = sum(revs) / (60.0 * sum(HOURS))
     fr, fa = design_b["radial_N"] * 1.5, abs(design_b["axial_N"]) * 1.5  # the 900 N m point
     s0 = c0_n / max(fr, x0 * fr + y0 * fa)
