@@ -137,7 +137,7 @@ def axial_warning(cfg: DesignFile, j: int, b: BearingResult) -> Diagnostic | Non
     static = b.static_load_rating_kN is not None and "static_factors" not in given
     ratio = f"{fa / fr:.3g}" if fr > 0.0 else "inf"
     return warning(AXIAL_NOT_RATED, f"bearing {j + 1} carries an axial force (F_a/F_r = {ratio}) "
-                   f"but has no factors: its ISO 281 equivalent load P{' and ISO 76 P_0' if static else ''} take F_r "
+                   f"but has no factors: its ISO 281 equivalent load P{' and ISO 76 P_0 take' if static else ' takes'} F_r "
                    "alone (default X = 1, Y = 0); give the catalogue's factors = { e, X, Y }"
                    + (" and static_factors = { X0, Y0 }" if static else ""), bearing=j + 1, axial_N=fa, radial_N=fr)
 
