@@ -286,6 +286,9 @@ def build(force: bool = False, quiet: bool = False) -> Built:
     """Compile the kernel into the cache (``force``: discard what is there first) and load it as a run would."""
     if not available():
         raise ConfigError("the compiled engine needs numba, the fast extra: pip install 'gearcli[fast]'")
+    if (why := import_problem()) is not None:
+        raise ConfigError(f"the compiled engine needs numba, the fast extra, and numba is installed but cannot be "
+                          f"imported ({why}): pip install --force-reinstall 'gearcli[fast]'")
     if "loaded" in _state:
         raise RuntimeError("build() runs in a process that has not loaded the kernel")
     problem = cache_problem()
@@ -302,6 +305,19 @@ def available() -> bool:
     if "numba" in sys.modules:
         return sys.modules["numba"] is not None
     return importlib.util.find_spec("numba") is not None
+
+
+def import_problem() -> str | None:
+    """Why numba, though installed, cannot be imported here (a numba built for another numpy, a broken install):
+    one line, or None when it imports. Imports numba (once per process): called only where a run is about to use
+    the compiled engine, which imports it anyway."""
+    if "import_problem" not in _state:
+        try:
+            importlib.import_module("numba")
+            _state["import_problem"] = None
+        except Exception as exc:  # noqa: BLE001 - whatever numba's import raises, the engine cannot run
+            _state["import_problem"] = f"{type(exc).__name__}: {exc}".splitlines()[0]
+    return _state["import_problem"]
 
 
 def loaded_kernel() -> Any:
