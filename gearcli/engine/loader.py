@@ -179,6 +179,9 @@ def _load_from(cdir: Path, quiet: bool) -> tuple[Any, bool]:
 
 
 def _build(cdir: Path, quiet: bool) -> None:
+    why = cache_choice()[1]  # $XDG_CACHE_HOME (or ~/.cache) cannot hold the cache: the build says where it goes
+    if why and cdir == cache_dir():
+        _say(f"{why}; the integration engine is cached in {cache_root()} instead", quiet)
     try:
         _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, _reporter(quiet))
     except builder.BuildFailed as exc:
