@@ -24,6 +24,7 @@ class LineReporter:
     """The build as lines on stderr: what is compiled where, every ~15 s how far, and the time it took."""
 
     EVERY_S = 15.0
+    reason = "its first use here"  # why the kernel is compiled (the loader says "again: --force", say)
 
     def __init__(self, quiet: bool = False) -> None:
         self.quiet = quiet
@@ -35,7 +36,7 @@ class LineReporter:
             print(f"gearcli: {text}", file=sys.stderr, flush=True)
 
     def start(self, directory: Path) -> None:
-        self._say(f"compiling the integration engine (its first use here; cached in {directory}) ...")
+        self._say(f"compiling the integration engine ({self.reason}; cached in {directory}) ...")
 
     def step(self, done: int, total: int, elapsed_s: float) -> None:
         if elapsed_s - self.last >= self.EVERY_S:

@@ -182,8 +182,10 @@ def _build(cdir: Path, quiet: bool) -> None:
     why = cache_choice()[1]  # $XDG_CACHE_HOME (or ~/.cache) cannot hold the cache: the build says where it goes
     if why and cdir == cache_dir():
         _say(f"{why}; the integration engine is cached in {cache_root()} instead", quiet)
+    reporter = _reporter(quiet)
+    reporter.reason = _state.pop("why_build", reporter.reason)  # not its first use: --force, or a damaged cache
     try:
-        _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, _reporter(quiet))
+        _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, reporter)
     except builder.BuildFailed as exc:
         raise SimulationError(str(exc)) from None
 
@@ -191,6 +193,7 @@ def _build(cdir: Path, quiet: bool) -> None:
 def _discard(exc: CacheDamaged, cdir: Path, quiet: bool) -> None:
     """Name a damaged entry in one line and remove it (the next build compiles it again)."""
     _say(f"the engine cache {cdir} is damaged ({_short(str(exc), cdir)}); discarded, building it again", quiet)
+    _state["why_build"] = "again, its cache was damaged"
     if exc.entry:
         cachedir.discard_entry(exc.entry)
     else:
@@ -295,6 +298,8 @@ def build(force: bool = False, quiet: bool = False) -> Built:
     if "loaded" in _state:
         raise RuntimeError("build() runs in a process that has not loaded the kernel")
     problem = cache_problem()
+    if force:
+        _state["why_build"] = "again, as --force asked"
     if force and problem is None:
         cachedir.discard(cache_dir())
         cachedir.make_private(cache_dir())

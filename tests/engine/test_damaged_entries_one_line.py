@@ -50,3 +50,38 @@ def test_quiet_says_nothing(capsys):
         rep.note("x")
     rep.finish(1.0, Path("/c"))
     assert capsys.readouterr().err == ""
+
+
+def _reasons(monkeypatch) -> list[str]:
+    from gearcli.engine import loader
+
+    seen: list[str] = []
+    monkeypatch.setattr(builder, "run", lambda cdir, reporter: seen.append(reporter.reason) or 0.0)
+    monkeypatch.delitem(loader._state, "quiet", raising=False)
+    return seen
+
+
+def test_a_rebuild_says_why_not_first_use(tmp_path, monkeypatch, capsys):
+    """The build's first line says why it compiles: a first use, a damaged cache, or --force (it said 'its first
+    use here' for all three)."""
+    from gearcli.engine import loader
+    from gearcli.engine.cachedir import CacheDamaged
+
+    seen = _reasons(monkeypatch)
+    cdir = tmp_path / "key"
+    cdir.mkdir()
+    entry = cdir / "x.nbi"
+    entry.write_text("")
+    loader._build(cdir, quiet=True)
+    loader._discard(CacheDamaged("x.nbi: EOFError", (str(entry),)), cdir, quiet=True)
+    loader._build(cdir, quiet=True)
+    monkeypatch.setitem(loader._state, "why_build", "again, as --force asked")  # what build(force=True) records
+    loader._build(cdir, quiet=True)
+    loader._build(cdir, quiet=True)
+    assert seen == ["its first use here", "again, its cache was damaged", "again, as --force asked",
+                    "its first use here"]
+    assert not entry.exists()
+    rep = BuildProgress()
+    rep.reason = "again, as --force asked"
+    rep.start(cdir)
+    assert capsys.readouterr().err.startswith("gearcli: compiling the integration engine (again, as --force asked; ")
