@@ -85,3 +85,15 @@ def test_a_rebuild_says_why_not_first_use(tmp_path, monkeypatch, capsys):
     rep.reason = "again, as --force asked"
     rep.start(cdir)
     assert capsys.readouterr().err.startswith("gearcli: compiling the integration engine (again, as --force asked; ")
+
+
+def test_a_build_process_that_cannot_start_is_a_clear_failure(tmp_path, monkeypatch):
+    """Popen's PermissionError (an interpreter this user may not execute) was an 'internal error'."""
+    import pytest
+
+    def denied(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(subprocess, "Popen", denied)
+    with pytest.raises(builder.BuildFailed, match="cannot start its build process .*Permission denied"):
+        builder.run(tmp_path, BuildProgress(quiet=True))
