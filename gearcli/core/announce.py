@@ -24,17 +24,19 @@ class LineReporter:
     """The build as lines on stderr: what is compiled where, every ~15 s how far, and the time it took."""
 
     EVERY_S = 15.0
+    reason = "its first use here"  # why the kernel is compiled (the loader says "again: --force", say)
 
     def __init__(self, quiet: bool = False) -> None:
         self.quiet = quiet
         self.last = 0.0
+        self.damaged = 0  # damaged entries the build compiled again: the first named, the rest counted
 
     def _say(self, text: str) -> None:
         if not self.quiet:
             print(f"gearcli: {text}", file=sys.stderr, flush=True)
 
     def start(self, directory: Path) -> None:
-        self._say(f"compiling the integration engine (its first use here; cached in {directory}) ...")
+        self._say(f"compiling the integration engine ({self.reason}; cached in {directory}) ...")
 
     def step(self, done: int, total: int, elapsed_s: float) -> None:
         if elapsed_s - self.last >= self.EVERY_S:
@@ -42,9 +44,13 @@ class LineReporter:
             self._say(f"compiling the integration engine: {done} of ~{total} functions, {elapsed_s:.0f} s")
 
     def note(self, line: str) -> None:
-        self._say(f"the engine cache had a damaged entry, compiled again: {line}")
+        self.damaged += 1
+        if self.damaged == 1:  # one line however many entries were damaged (a truncated cache: a hundred)
+            self._say(f"the engine cache had a damaged entry, compiled again: {line}")
 
     def finish(self, seconds: float, directory: Path, waited: bool = False) -> None:
+        if self.damaged > 1:
+            self._say(f"the engine cache had {self.damaged - 1} more damaged entries, compiled again too")
         if waited:
             self._say(f"another process compiled the integration engine; waited {seconds:.1f} s for it")
             return

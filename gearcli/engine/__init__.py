@@ -42,6 +42,7 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     entry,
     expected_load_s,
     import_kernel,
+    import_problem,
     load,
     loaded_kernel,
     mark_ready,
@@ -212,6 +213,10 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
     if missing:
         return EngineChoice("python", requested, "the compiled engine does not support " + "; ".join(missing),
                             missing)
+    why = None if "loaded" in _state else import_problem() if requested == "compiled" else None
+    if why is not None:
+        raise ConfigError(f'engine = "compiled" needs numba, the fast extra, and numba is installed but cannot be '
+                          f"imported ({why}): pip install --force-reinstall 'gearcli[fast]'", key="simulation.engine")
     if requested == "compiled":
         return EngineChoice("compiled", requested, "as requested")
     if not have:
@@ -226,6 +231,8 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
         return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations: the compiled {method} (which "
                             f"agrees with scipy to the tolerance, not step for step) would save less than "
                             f"{REFERENCE_KEEP_S:g} s of ~{python_s:.2g} s: scipy's, the reference")
+    if compiled_s < python_s and "loaded" not in _state and (why := import_problem()) is not None:
+        return EngineChoice("python", requested, f"numba is installed but cannot be imported ({why})")
     if compiled_s < python_s:
         return EngineChoice("compiled", requested, f"~{nfev_estimate:.2g} evaluations: ~{compiled_s:.2g} s compiled "
                             f"(load included) against ~{python_s:.2g} s in Python")

@@ -48,9 +48,13 @@ def run(directory: Path, reporter: Reporter, expected: int = EXPECTED_FUNCTIONS)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (pkg_root, os.environ.get("PYTHONPATH", "")) if p),
                PYTHONDONTWRITEBYTECODE="1")  # a killed build leaves no half-written .pyc in the cache
     reporter.start(directory)
-    proc = subprocess.Popen([sys.executable, "-m", "gearcli.engine.builder_child", str(directory)], env=env,
-                            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            start_new_session=True)  # a terminal's Ctrl-C is the parent's to act on
+    try:
+        proc = subprocess.Popen([sys.executable, "-m", "gearcli.engine.builder_child", str(directory)], env=env,
+                                stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                start_new_session=True)  # a terminal's Ctrl-C is the parent's to act on
+    except OSError as exc:  # the interpreter cannot be started again (permissions, no process left): named
+        raise BuildFailed(f"compiling the integration engine failed: cannot start its build process "
+                          f"({sys.executable}: {exc.strerror or exc})") from None
     other: list[str] = []
     done = 0
     waited = False

@@ -179,8 +179,13 @@ def _load_from(cdir: Path, quiet: bool) -> tuple[Any, bool]:
 
 
 def _build(cdir: Path, quiet: bool) -> None:
+    why = cache_choice()[1]  # $XDG_CACHE_HOME (or ~/.cache) cannot hold the cache: the build says where it goes
+    if why and cdir == cache_dir():
+        _say(f"{why}; the integration engine is cached in {cache_root()} instead", quiet)
+    reporter = _reporter(quiet)
+    reporter.reason = _state.pop("why_build", reporter.reason)  # not its first use: --force, or a damaged cache
     try:
-        _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, _reporter(quiet))
+        _state["build_s"] = _state.get("build_s", 0.0) + builder.run(cdir, reporter)
     except builder.BuildFailed as exc:
         raise SimulationError(str(exc)) from None
 
@@ -188,6 +193,7 @@ def _build(cdir: Path, quiet: bool) -> None:
 def _discard(exc: CacheDamaged, cdir: Path, quiet: bool) -> None:
     """Name a damaged entry in one line and remove it (the next build compiles it again)."""
     _say(f"the engine cache {cdir} is damaged ({_short(str(exc), cdir)}); discarded, building it again", quiet)
+    _state["why_build"] = "again, its cache was damaged"
     if exc.entry:
         cachedir.discard_entry(exc.entry)
     else:
@@ -286,9 +292,14 @@ def build(force: bool = False, quiet: bool = False) -> Built:
     """Compile the kernel into the cache (``force``: discard what is there first) and load it as a run would."""
     if not available():
         raise ConfigError("the compiled engine needs numba, the fast extra: pip install 'gearcli[fast]'")
+    if (why := import_problem()) is not None:
+        raise ConfigError(f"the compiled engine needs numba, the fast extra, and numba is installed but cannot be "
+                          f"imported ({why}): pip install --force-reinstall 'gearcli[fast]'")
     if "loaded" in _state:
         raise RuntimeError("build() runs in a process that has not loaded the kernel")
     problem = cache_problem()
+    if force:
+        _state["why_build"] = "again, as --force asked"
     if force and problem is None:
         cachedir.discard(cache_dir())
         cachedir.make_private(cache_dir())
@@ -302,6 +313,19 @@ def available() -> bool:
     if "numba" in sys.modules:
         return sys.modules["numba"] is not None
     return importlib.util.find_spec("numba") is not None
+
+
+def import_problem() -> str | None:
+    """Why numba, though installed, cannot be imported here (a numba built for another numpy, a broken install):
+    one line, or None when it imports. Imports numba (once per process): called only where a run is about to use
+    the compiled engine, which imports it anyway."""
+    if "import_problem" not in _state:
+        try:
+            importlib.import_module("numba")
+            _state["import_problem"] = None
+        except Exception as exc:  # noqa: BLE001 - whatever numba's import raises, the engine cannot run
+            _state["import_problem"] = f"{type(exc).__name__}: {exc}".splitlines()[0]
+    return _state["import_problem"]
 
 
 def loaded_kernel() -> Any:

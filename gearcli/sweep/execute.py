@@ -9,6 +9,7 @@ cancels what has not started and stops (the rows already yielded are kept by the
 from __future__ import annotations
 
 import dataclasses
+import logging
 import math
 import multiprocessing
 import os
@@ -16,7 +17,7 @@ import signal
 import socket
 import threading
 from collections import Counter
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import forkserver
 from urllib.parse import urlsplit
@@ -24,7 +25,7 @@ from urllib.parse import urlsplit
 from gearcli import engine
 from gearcli.core.signals import deferred
 from gearcli.core.text import shorten
-from gearcli.errors import ConfigError
+from gearcli.errors import ConfigError, SimulationError
 from gearcli.sweep.columns import Row, failed_row
 from gearcli.sweep.spec import Point, SweepSpec
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, iter_task, run_task
@@ -297,16 +298,53 @@ def _dask(tasks: Sequence[Task], address: str) -> Iterator[Row]:
         raise ConfigError(f"cannot reach the Dask scheduler at {address}: {type(exc).__name__}: {exc}",
                           source="--scheduler") from None
     futures = []
+    quiet = _quiet_dask_client()
     try:
         futures = [client.submit(run_task, t, pure=False) for t in tasks]
         by_key = {f.key: t for f, t in zip(futures, tasks, strict=True)}
+        done = 0
         for fut in as_completed(futures):
             try:
                 rows = fut.result()
             except Exception as exc:  # noqa: BLE001 - a lost worker or a task error: failed rows
+                if scheduler_lost(exc):
+                    raise SchedulerLost(_lost_words(address, done, len(tasks))) from None
                 rows = _lost(by_key[fut.key], exc)
+            done += 1
             yield from rows
     finally:
         if futures:
             client.cancel(futures)
         client.close()
+        quiet()
+
+
+class SchedulerLost(SimulationError):
+    """The Dask scheduler went away mid-sweep: the sweep stops (exit 1); the rows written so far stay in ``-o``."""
+
+
+def scheduler_lost(exc: BaseException) -> bool:
+    """Whether a task's error is the client's lost connection to the scheduler (not the task's, nor a worker's):
+    its points did not fail, they did not run, so they are not written as failed rows (a re-run runs them)."""
+    return getattr(exc, "reason", None) == "scheduler-connection-lost"
+
+
+def _lost_words(address: str, done: int, total: int) -> str:
+    return (f"--scheduler: lost the Dask scheduler at {address} after {done} of {total} tasks: the sweep stops; "
+            "the points that finished are kept in the -o file, and the same command run again (with a scheduler "
+            "or without --scheduler) runs only the rest")
+
+
+def _quiet_dask_client() -> Callable[[], None]:
+    """Keep the Dask client's own log records (a reconnect's traceback when the scheduler goes away) off stderr:
+    gearcli says what happened in one line. Returns the function that restores the loggers' levels."""
+    names = ("distributed.client", "distributed.comm", "distributed.core", "distributed.batched")
+    loggers = [logging.getLogger(n) for n in names]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL)
+
+    def restore() -> None:
+        for lg, level in zip(loggers, levels, strict=True):
+            lg.setLevel(level)
+    return restore
