@@ -59,7 +59,7 @@ if TYPE_CHECKING:
     from gearcli.sweep.worker import Case, Evaluation, Scene
 
 __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "design", "design_case",
-           "engine_build", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
+           "engine_build", "engine_cache_refusal", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
            "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
 
@@ -77,6 +77,14 @@ def engine_build(*, force: bool = False, quiet: bool = False) -> Built:
     from gearcli import engine  # lazy: numpy and the engine, start-up time of gearcli design
 
     return engine.build(force=force, quiet=quiet)
+
+
+def engine_cache_refusal() -> str:
+    """Why the compiled engine's cache is not where ``$XDG_CACHE_HOME`` (or the home directory) asks ('' when it
+    is): :func:`gearcli.engine.location.cache_choice`."""
+    from gearcli.engine.location import cache_choice  # lazy: the engine's modules, start-up time of gearcli design
+
+    return cache_choice()[1]
 
 
 def design_file_schema() -> JsonObject:

@@ -29,12 +29,11 @@ Examples:
 def engine_build(force: bool) -> None:
     """Compile the integration kernel into the cache now (with progress), so that no run pays for it."""
     from gearcli import api  # lazy: start-up time of --help
-    from gearcli.engine.location import cache_choice  # lazy: numpy and the engine, start-up time of --help
 
     built = api.engine_build(force=force, quiet=is_quiet())
     if built.refused:  # compiled, but nothing cached: the command's purpose failed
         fail(f"the kernel compiled, but nothing was cached: {built.refused}", EXIT_FAILED)
-    why = cache_choice()[1]
+    why = api.engine_cache_refusal()
     if why and built.directory is not None and not is_quiet():
         click.echo(f"gearcli: {why}; the engine is cached in {built.directory} instead", err=True)
     if built.build_s:

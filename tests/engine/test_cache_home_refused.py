@@ -10,6 +10,7 @@ from click.testing import CliRunner
 
 from gearcli import api
 from gearcli.cli import cli
+from gearcli.core import announce
 from gearcli.engine import builder, loader
 
 
@@ -19,6 +20,7 @@ def _refused_xdg(tmp_path: Path, monkeypatch) -> Path:
     monkeypatch.setenv("XDG_CACHE_HOME", str(not_a_dir))
     monkeypatch.setenv("HOME", str(tmp_path / "home"))
     monkeypatch.delitem(loader._state, "quiet", raising=False)
+    monkeypatch.setattr(announce, "_reporter", [])  # no reporter an earlier command (-q, say) left installed
     return not_a_dir
 
 

@@ -1,5 +1,5 @@
 """A two-stage helical reducer with bearings at both ends of every shaft, checked against shaft statics by
-hand (DESIGN.md §10, docs/life.md "Bearings"):
+hand (docs/life.md "Bearings", docs/bearings.md):
 
 - output torque 600 N m, ratios 3 and 3, efficiency 1: T_1 = 600/9 N m, T_2 = 600/3 N m;
 - tooth forces at the pitch circle: F_t = 2 T / d, F_r = F_t tan(alpha_t), F_a = F_t tan(beta);

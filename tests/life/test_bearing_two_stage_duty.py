@@ -1,5 +1,5 @@
 """The two-stage reducer of test_bearing_two_stage.py over a three-point duty (``life --static``), every bearing
-figure by hand (DESIGN.md §10 and §13, docs/bearings.md):
+figure by hand (docs/bearings.md, docs/life.md):
 
 - static route: each point's reactions scale with its torque (600, 300, 900 N m), so P_i = P_600 T_i / 600;
 - revolutions per point U_i = 60 n_i h_i (the bearing's shaft speed), the equivalent load over the duty the
