@@ -70,7 +70,7 @@ class SamplingError:
     resolved: bool  # the sampling's share, with the solver's where a check pass ran, within the target
     suggested_steps: int | None  # simulation.steps that resolves it (None: resolved, or beyond the schema's maximum)
     steps_cap: int  # the schema's maximum of simulation.steps
-    mean_N: float = 0.0  # the mean's: |T_h - T_2h| of the trapezoid rule (0 for a periodic window)
+    mean_N: float = 0.0  # the mean's: |T_h - T_2h| / 3 of the trapezoid rule (0 for a periodic window)
 
 
 @dataclass(frozen=True)
