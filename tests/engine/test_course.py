@@ -14,6 +14,7 @@ from gearcli.model import TorsionalModel
 from gearcli.scene import spec_from_design
 from gearcli.simulate import choice as choice_mod
 from gearcli.simulate import course, run_simulation
+from tests.reference.step_scene import feather_gear
 
 ROOT = Path(__file__).resolve().parents[2]
 STIFF = ROOT / "configs" / "stiff_linear_mesh.toml"  # a very stiff linear mesh: DOP853 needs ~1.1e5 evaluations
@@ -97,32 +98,7 @@ def test_a_run_within_its_prediction_keeps_its_course():
     assert p["wall_s"] == pytest.approx(fixed + p["nfev"] * p["price_us_per_eval"] * 1e-6, rel=1e-12)
 
 
-_FEATHER_GEAR = """
-title = "one spur stage, a 1e-9 kg m^2 gear on a linear mesh, the load applied as a step"
-[materials.steel]
-density_kg_m3 = 7800
-youngs_modulus_MPa = 2.07e5
-poisson_ratio = 0.3
-[[stage]]
-normal_module_mm = 4
-normal_pressure_angle_deg = 20
-pinion = { teeth = 20, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.01 }
-gear   = { teeth = 40, face_width_mm = 30, material = "steel", inertia_kg_m2 = 1e-9 }
-[contact]
-stiffness = 3e5
-exponent = 1
-damping_ratio = 0.05
-[input]
-speed_rpm = 600
-ramp_s = 0.0
-[load]
-torque_Nm = 200
-ramp_s = 0.0
-[simulation]
-duration_s = 0.1
-steps = 4000
-engine = "python"
-"""
+_FEATHER_GEAR = feather_gear()  # a 1e-9 kg m^2 gear: a 6.6 MHz mesh mode
 
 
 def test_auto_does_not_leave_radau_for_an_explicit_run_its_budget_cannot_pay(tmp_path):

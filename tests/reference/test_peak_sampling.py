@@ -12,32 +12,7 @@ import numpy as np
 from numpy.testing import assert_allclose
 
 from gearcli import api
-
-SCENE = """
-title = "one spur stage, linear viscous mesh, the load applied as a step"
-[materials.steel]
-density_kg_m3 = 7800
-youngs_modulus_MPa = 2.07e5
-poisson_ratio = 0.3
-[[stage]]
-normal_module_mm = 4
-normal_pressure_angle_deg = 20
-pinion = { teeth = 20, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.01 }
-gear   = { teeth = 40, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.05 }
-[contact]
-stiffness = 3e5
-exponent = 1
-damping_ratio = 0.05
-[input]
-speed_rpm = 600
-ramp_s = 0.0
-[load]
-torque_Nm = 200
-ramp_s = 0.0
-[simulation]
-duration_s = 0.1
-steps = 4000
-"""
+from tests.reference.step_scene import STEP_SCENE as SCENE
 
 
 def _closed_form_peak() -> float:

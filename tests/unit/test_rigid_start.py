@@ -16,6 +16,7 @@ from gearcli.core.channels import Channel
 from gearcli.model.assembly import Layout
 from gearcli.scene import spec_from_design
 from gearcli.simulate import rigid_start
+from tests.reference.step_scene import STEP_SCENE
 
 ROOT = Path(__file__).resolve().parents[2]
 DOL = str(ROOT / "configs" / "motor_direct_start.toml")
@@ -203,31 +204,6 @@ def test_a_hertz_mesh_pre_stressed_by_its_te_is_blamed_on_the_te_and_the_advice_
     assert_allclose(f0, [0.0, 0.0], atol=1e-9)  # nothing compressed at t = 0 (the law at zero penetration)
     assert max(start["peak_over_rigid"]) < 2.0
     assert not [d for d in again.diagnostics if d.code == "peak_over_rigid"]
-_STEP_SCENE = """
-title = "one spur stage, linear viscous mesh, the load applied as a step"
-[materials.steel]
-density_kg_m3 = 7800
-youngs_modulus_MPa = 2.07e5
-poisson_ratio = 0.3
-[[stage]]
-normal_module_mm = 4
-normal_pressure_angle_deg = 20
-pinion = { teeth = 20, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.01 }
-gear   = { teeth = 40, face_width_mm = 30, material = "steel", inertia_kg_m2 = 0.05 }
-[contact]
-stiffness = 3e5
-exponent = 1
-damping_ratio = 0.05
-[input]
-speed_rpm = 600
-ramp_s = 0.0
-[load]
-torque_Nm = 200
-ramp_s = 0.0
-[simulation]
-duration_s = 0.1
-steps = 4000
-"""
 
 
 def test_the_swing_amplitude_is_the_swing_at_the_peak_not_its_average_over_the_start(tmp_path):
@@ -238,7 +214,7 @@ def test_the_swing_amplitude_is_the_swing_at_the_peak_not_its_average_over_the_s
     # t = pi / w_d, is F_s (1 + exp(-zeta pi / sqrt(1 - zeta^2))). The warning's amplitude must be that swing near
     # the peak (2 periods from t = 0, where the peak lies), not its mean over the 0.02 s start (~0.2 of it).
     path = tmp_path / "step.toml"
-    path.write_text(_STEP_SCENE)
+    path.write_text(STEP_SCENE)
     loaded = api.load(str(path), [])
     design = api.design(loaded)
     lay = Layout.of(spec_from_design(loaded.design, design))
@@ -269,7 +245,7 @@ def test_a_swing_through_zero_force_is_measured_signed_and_a_peak_in_the_window_
     # 4 F_s). The swing's amplitude over two periods from t = 0 (where its peak lies) is, by hand,
     # 3 F_s tau / (2 T) (1 - exp(-2 T / tau)); |F| would fold the negative half-waves and lose some of it.
     path = tmp_path / "step.toml"
-    path.write_text(_STEP_SCENE)
+    path.write_text(STEP_SCENE)
     loaded = api.load(str(path), [])
     design = api.design(loaded)
     lay = Layout.of(spec_from_design(loaded.design, design))
