@@ -1,0 +1,413 @@
+"""A downstream program reading `gearcli design`: `-o x.json`, `--format json` and `--format csv` on stdout, for
+designs of our own, every key DESIGN §3/§5/§7/§12 names checked for presence, unit and sign, and every number against
+a hand calculation written out here (ISO 21771 geometry, statics with stage efficiencies, Hertz, ISO 6336-1 c′).
+
+The hand calculation never calls gearcli's formula modules: inverse involute by bisection, the train by hand.
+
+Scenes:
+- FOUR: four stages, 1480 rpm, 25 kN·m on the output (N·m key): helical β = 15° (right/left), an 1/8-DP module
+  3.175 mm at α_n = 22.5° with x = +0.3/−0.1 (working centre distance, tip alteration) and a cast-iron gear, a spur
+  stage, and a 25° β = 20° stage with x = +0.4/+0.2; η = 0.985, 0.98, 0.99, 1.
+- INCREASER: two stages with the big wheel driving (i = 23/97 and 21/88 < 1), 20 rpm in, 1.5 kN·m on the fast
+  output; the same reversed (−1.5 kN·m: the output drives back, losses taken on the gear side).
+- INCH: two stages in inch modules (6 DP = 4.2333 mm at 14.5°, 10 DP = 2.54 mm at 20°), input in °/s, load in N·mm,
+  target in °/s.
+- SPUR: one 8-DP spur pair 24/72 (d1 = 3 in, a = 6 in): a clean design, no warning.
+- POWER: FOUR with the load as 34.74 kW at the output speed instead of a torque.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+RTOL = 1e-11  # the same closed-form formulas in another order: round-off only
+
+MATERIALS = """
+[materials.st]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 2.1e5
+poisson_ratio = 0.3
+[materials.ci]
+density_kg_m3 = 7200
+youngs_modulus_MPa = 1.7e5
+poisson_ratio = 0.26
+"""
+MAT = {"st": (7850.0, 2.1e5, 0.3), "ci": (7200.0, 1.7e5, 0.26)}
+
+# (m_n, alpha_n, beta, eta, (z1, z2), (x1, x2), (b1, b2), (hand1, hand2), (mat1, mat2))
+FOUR_STAGES = [
+    (2.5, 20, 15, 0.985, (23, 67), (0.0, 0.0), (32, 30), ("right", "left"), ("st", "st")),
+    (3.175, 22.5, 10, 0.98, (19, 71), (0.3, -0.1), (45, 42), ("left", "right"), ("st", "ci")),
+    (5, 20, 0, 0.99, (21, 62), (0.0, 0.0), (70, 65), (None, None), ("st", "st")),
+    (8, 25, 20, 1.0, (17, 59), (0.4, 0.2), (120, 110), ("right", "left"), ("st", "st")),
+]
+INCREASER_STAGES = [
+    (6, 20, 8, 0.97, (97, 23), (0.0, 0.25), (120, 125), ("left", "right"), ("st", "st")),
+    (4, 20, 12, 0.98, (88, 21), (0.0, 0.0), (80, 85), ("right", "left"), ("st", "st")),
+]
+INCH_STAGES = [
+    (25.4 / 6, 14.5, 0, 1.0, (36, 90), (0.0, 0.0), (40, 38), (None, None), ("st", "st")),
+    (2.54, 20, 18, 0.985, (31, 113), (0.1, 0.0), (60, 56), ("left", "right"), ("st", "st")),
+]
+SPUR_STAGES = [(3.175, 20, 0, 1.0, (24, 72), (0.0, 0.0), (38.1, 38.1), (None, None), ("st", "st"))]
+
+
+def scene_text(title: str, stages, speed: str, load: str, extra: str = "") -> str:
+    lines = [f'title = "{title}"', MATERIALS]
+    for m_n, a_n, beta, eta, z, x, b, hand, mat in stages:
+        lines += ["[[stage]]", f"normal_module_mm = {m_n!r}", f"normal_pressure_angle_deg = {a_n!r}",
+                  f"helix_angle_deg = {beta!r}", f"efficiency = {eta!r}"]
+        for part, i in (("pinion", 0), ("gear", 1)):
+            h = f'hand = "{hand[i]}", ' if hand[i] else ""
+            lines.append(f'{part} = {{ teeth = {z[i]}, face_width_mm = {b[i]!r}, {h}material = "{mat[i]}", '
+                         f"profile_shift = {x[i]!r} }}")
+    lines += ["[input]", speed, "[load]", load, extra]
+    return "\n".join(lines) + "\n"
+
+
+# ------------------------------------------------------------------------------------- hand calculation
+def inv(a: float) -> float:
+    return math.tan(a) - a
+
+
+def inv_inverse(v: float) -> float:
+    lo, hi = 1e-6, 1.5  # bisection, independent of the code's Newton iteration
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if inv(mid) < v else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+C_ISO = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)  # ISO 6336-1 cl. 9
+
+
+def hand_stage(m_n, a_n_deg, beta_deg, z, x, b, mats, t_pinion_Nmm):
+    """ISO 21771 geometry, the forces on the pinion's reference circle (DESIGN §3), Hertz, ISO 6336-1 c′."""
+    a_n, beta = math.radians(a_n_deg), math.radians(beta_deg)
+    m_t = m_n / math.cos(beta)
+    a_t = math.atan(math.tan(a_n) / math.cos(beta))
+    b_b = math.atan(math.tan(beta) * math.cos(a_t))
+    d = [zi * m_t for zi in z]
+    d_b = [di * math.cos(a_t) for di in d]
+    shift = x[0] + x[1]
+    a_wt = inv_inverse(inv(a_t) + 2 * math.tan(a_n) * shift / (z[0] + z[1])) if shift else a_t
+    a = (d[0] + d[1]) / 2
+    a_w = a * math.cos(a_t) / math.cos(a_wt)
+    k = (a_w - a) / m_n - shift
+    d_a = [di + 2 * m_n * (1 + xi + k) for di, xi in zip(d, x, strict=True)]
+    d_f = [di - 2 * m_n * (1.25 - xi) for di, xi in zip(d, x, strict=True)]
+    p_bt = math.pi * m_t * math.cos(a_t)
+    eps_a = (math.sqrt((d_a[0] / 2) ** 2 - (d_b[0] / 2) ** 2) + math.sqrt((d_a[1] / 2) ** 2 - (d_b[1] / 2) ** 2)
+             - a_w * math.sin(a_wt)) / p_bt
+    bw = min(b)
+    eps_b = bw * math.sin(beta) / (math.pi * m_n)
+    f_t = 2 * t_pinion_Nmm / d[0]
+    f_n = f_t / (math.cos(a_n) * math.cos(beta))
+    r1, r2 = d[0] / 2, d[1] / 2
+    (_, e1, nu1), (_, e2, nu2) = MAT[mats[0]], MAT[mats[1]]
+    e_star = 1 / ((1 - nu1 ** 2) / e1 + (1 - nu2 ** 2) / e2)
+    radius = r1 * r2 / (r1 + r2)
+    order = (0, 1) if z[0] <= z[1] else (1, 0)  # ISO's wheel 1 is the smaller one, whichever drives
+    zn = [z[i] / (math.cos(b_b) ** 2 * math.cos(beta)) for i in order]
+    xs = [x[i] for i in order]
+    c = C_ISO
+    q = (c[0] + c[1] / zn[0] + c[2] / zn[1] + c[3] * xs[0] + c[4] * xs[0] / zn[0] + c[5] * xs[1]
+         + c[6] * xs[1] / zn[1] + c[7] * xs[0] ** 2 + c[8] * xs[1] ** 2)
+    c_b = (1 + 0.5 * (1.2 - 1.25)) * (1 - 0.02 * (20 - a_n_deg))
+    line_load = max(abs(f_t), bw) / bw  # K_A = 1; ISO's c′ evaluated at ≥ 1 N/mm (docs/physics.md)
+    c_single = 0.8 * c_b * math.cos(beta) / q * min(line_load / 100, 1) ** 0.25
+    return dict(m_t=m_t, a_t=math.degrees(a_t), b_b=math.degrees(b_b), a_wt=math.degrees(a_wt), a_w=a_w, k=k, d=d,
+                d_b=d_b, d_a=d_a, d_f=d_f, p_bt=p_bt, eps_a=eps_a, eps_b=eps_b, b=bw,
+                F_t=f_t, F_r=f_t * math.tan(a_t), F_a=f_t * math.tan(beta), F_n=f_n,
+                R=radius, E=e_star, K=4 / 3 * math.sqrt(radius) * e_star,
+                c_single=c_single, c_mesh=c_single * (0.75 * eps_a + 0.25))
+
+
+def hand_train(stages, n_in_rpm: float, t_out_Nmm: float):
+    """Speeds down the train (n_{k+1} = n_k z1/z2), torques up it: T_p = T_g/(i η) while the pinion drives,
+    T_g η / i when the load drives back (the loss on the driving side)."""
+    ratios = [z[1] / z[0] for _, _, _, _, z, *_ in stages]
+    speeds = [n_in_rpm]
+    for i in ratios:
+        speeds.append(speeds[-1] / i)
+    torques = []
+    t_g = t_out_Nmm
+    for (_, _, _, eta, *_), i in zip(reversed(stages), reversed(ratios), strict=True):
+        t_p = t_g / (i * eta) if t_g >= 0 else t_g * eta / i
+        torques.append((t_p, t_g))
+        t_g = t_p
+    return ratios, speeds, torques[::-1]
+
+
+def disc_inertia(rho, b_mm, d_mm):
+    return rho * math.pi * (b_mm / 1000) * (d_mm / 1000) ** 4 / 32  # solid disc of pitch diameter (DESIGN §2)
+
+
+# ------------------------------------------------------------------------------------------ the consumer
+def run(args, **kw):
+    return CliRunner().invoke(cli, args, catch_exceptions=False, **kw)
+
+
+def consume(tmp_path: Path, name: str, text: str):
+    """Reads the design as a script would: -o x.json, --format json and --format csv on stdout."""
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text, encoding="utf-8")
+    out = tmp_path / f"{name}.json"
+    res_file = run(["design", str(path), "-o", str(out)])
+    assert res_file.exit_code == 0, res_file.stderr
+    res_json = run(["design", str(path), "--format", "json"])
+    res_csv = run(["design", str(path), "--format", "csv"])
+    assert res_json.exit_code == 0 and res_csv.exit_code == 0, res_json.stderr
+    from_file = json.loads(out.read_text(encoding="utf-8"))
+    doc = json.loads(res_json.stdout)
+    assert from_file == doc  # the file and stdout carry the same document
+    rows = list(csv.DictReader(io.StringIO(res_csv.stdout)))
+    # warnings: one "warning: <message>" line on stderr each, in the JSON's order, in every format
+    for res in (res_file, res_json, res_csv):
+        said = [line[len("warning: "):] for line in res.stderr.splitlines() if line.startswith("warning: ")]
+        assert said == [w["message"] for w in doc["warnings"]]
+    return doc, rows
+
+
+TOP_KEYS = {"gearcli_version", "input_sha256", "title", "total_ratio", "input_speed_deg_s", "output_speed_deg_s",
+            "output_speed_rpm", "input_torque_Nmm", "output_torque_Nmm", "input_power_kW", "output_power_kW", "units",
+            "warnings", "shafts", "stages"}
+STAGE_KEYS = {"index", "ratio", "efficiency", "normal_module_mm", "transverse_module_mm", "normal_pressure_angle_deg",
+              "transverse_pressure_angle_deg", "working_pressure_angle_deg", "helix_angle_deg",
+              "base_helix_angle_deg", "center_distance_mm", "transverse_base_pitch_mm", "face_width_mm",
+              "contact_ratio_transverse", "overlap_ratio", "contact_ratio_total", "mesh_frequency_Hz",
+              "equivalent_radius_mm", "effective_modulus_MPa", "hertz_stiffness_N_mm1_5", "static_approach_mm",
+              "linearised_stiffness_N_mm", "static_force_N", "iso6336_single_pair_stiffness_N_mm_um",
+              "iso6336_mesh_stiffness_N_mm_um", "iso6336_mesh_stiffness_beta_N_mm_um", "iso6336_factors",
+              "reduced_mass_kg_mm", "resonance_speed_rpm", "resonance_ratio", "backlash_mm", "tip_alteration_coefficient",
+              "mesh_stiffness", "rating", "pinion", "gear"}
+MEMBER_KEYS = {"teeth", "hand", "profile_shift", "face_width_mm", "pitch_diameter_mm", "base_diameter_mm",
+               "tip_diameter_mm", "root_diameter_mm", "speed_deg_s", "speed_rpm", "torque_Nmm", "torque_Nm",
+               "power_kW", "inertia_kg_m2", "inertia_given"}
+SHAFT_KEYS = {"index", "speed_deg_s", "speed_rpm", "torque_Nmm", "torque_Nm", "power_kW", "inertia_kg_m2"}
+
+
+def check_contract_keys(doc, rows, speed_unit: str, torque_unit: str):
+    """Every key DESIGN §5, §7, §12 and docs/output.md name, in the JSON and (flattened) in the CSV."""
+    assert TOP_KEYS <= set(doc), TOP_KEYS - set(doc)
+    assert doc["units"] == {"speed": speed_unit, "torque": torque_unit}
+    assert len(doc["input_sha256"]) == 64 and doc["gearcli_version"]
+    # §12: a file's own units beside the fixed keys, and no other unit's keys
+    assert ("input_speed_rad_s" in doc) == ("output_speed_rad_s" in doc) == (speed_unit == "rad_s")
+    assert ("input_torque_Nm" in doc) == ("output_torque_Nm" in doc) == (torque_unit == "Nm")
+    for w in doc["warnings"]:
+        assert isinstance(w, dict) and {"code", "message"} <= set(w), w
+    assert len(rows) == len(doc["stages"])
+    for st, row in zip(doc["stages"], rows, strict=True):
+        assert STAGE_KEYS <= set(st), STAGE_KEYS - set(st)
+        assert set(st["static_force_N"]) == {"tangential", "radial", "axial", "normal"}
+        assert set(st["iso6336_factors"]) == {"C_M", "C_R", "C_B"}
+        assert {"law", "K", "exponent", "linearised_N_mm", "iso_N_mm"} <= set(st["mesh_stiffness"])
+        for part in ("pinion", "gear"):
+            assert MEMBER_KEYS <= set(st[part]), MEMBER_KEYS - set(st[part])
+            assert ("speed_rad_s" in st[part]) == (speed_unit == "rad_s")
+        # the CSV: one row per stage, nested keys flattened with "_", the same numbers as the JSON
+        flat = {}
+        for key, value in st.items():
+            if isinstance(value, dict):
+                flat.update({f"{key}_{k}": v for k, v in value.items()})
+            elif key != "rating":  # no rating columns without [rating] (docs/output.md)
+                flat[key] = value
+        assert set(flat) <= set(row), set(flat) - set(row)
+        for key, value in flat.items():
+            if isinstance(value, bool) or value is None or isinstance(value, str):
+                assert row[key] == ("" if value is None else str(value)), key
+            else:
+                assert float(row[key]) == value, key  # repr round-trips: the same float
+    for sh in doc["shafts"]:
+        assert SHAFT_KEYS <= set(sh), SHAFT_KEYS - set(sh)
+
+
+def check_against_hand(doc, stages, n_in_rpm: float, t_out_Nmm: float):
+    ratios, speeds, torques = hand_train(stages, n_in_rpm, t_out_Nmm)
+    assert_allclose(doc["total_ratio"], math.prod(ratios), rtol=RTOL)
+    assert_allclose(doc["output_speed_rpm"], speeds[-1], rtol=RTOL)
+    assert_allclose(doc["output_speed_deg_s"], 6 * speeds[-1], rtol=RTOL)
+    assert_allclose(doc["input_speed_deg_s"], 6 * n_in_rpm, rtol=RTOL)
+    assert_allclose(doc["input_torque_Nmm"], torques[0][0], rtol=RTOL)
+    assert_allclose(doc["output_torque_Nmm"], t_out_Nmm, rtol=RTOL)
+    w = [n * math.pi / 30 for n in speeds]
+    p_in, p_out = torques[0][0] * w[0] * 1e-6, t_out_Nmm * w[-1] * 1e-6  # N·mm · rad/s = mW
+    assert_allclose([doc["input_power_kW"], doc["output_power_kW"]], [p_in, p_out], rtol=RTOL)
+    # the efficiency chain: the power lost on the way is Π η of the driving side's power
+    eta = math.prod(s[3] for s in stages)
+    if t_out_Nmm >= 0:
+        assert_allclose(p_out, p_in * eta, rtol=1e-12)
+    else:  # the load drives back: the input receives Π η of the output's power, all signs negative
+        assert_allclose(p_in, p_out * eta, rtol=1e-12)
+    sign = math.copysign(1.0, t_out_Nmm)
+    for k, (spec, st) in enumerate(zip(stages, doc["stages"], strict=True)):
+        m_n, a_n, beta, eta_k, z, x, b, hand, mats = spec
+        h = hand_stage(m_n, a_n, beta, z, x, b, mats, torques[k][0])
+        assert st["index"] == k + 1
+        assert_allclose(st["ratio"], z[1] / z[0], rtol=RTOL)
+        assert st["efficiency"] == eta_k
+        assert_allclose([st["transverse_module_mm"], st["transverse_pressure_angle_deg"], st["base_helix_angle_deg"],
+                         st["working_pressure_angle_deg"], st["center_distance_mm"], st["tip_alteration_coefficient"],
+                         st["transverse_base_pitch_mm"], st["face_width_mm"]],
+                        [h["m_t"], h["a_t"], h["b_b"], h["a_wt"], h["a_w"], h["k"], h["p_bt"], h["b"]],
+                        rtol=1e-10, atol=1e-12)  # bisection to 1e-15 rad: a_wt to ~1e-13
+        for i, part in enumerate(("pinion", "gear")):
+            g = st[part]
+            assert g["teeth"] == z[i] and g["profile_shift"] == x[i]
+            assert g["hand"] == (hand[i] if beta else "spur")
+            assert_allclose([g["pitch_diameter_mm"], g["base_diameter_mm"], g["tip_diameter_mm"],
+                             g["root_diameter_mm"]], [h["d"][i], h["d_b"][i], h["d_a"][i], h["d_f"][i]], rtol=1e-10)
+            assert_allclose(g["speed_rpm"], speeds[k + i], rtol=RTOL)
+            assert_allclose(g["speed_deg_s"], 6 * speeds[k + i], rtol=RTOL)
+            assert g["speed_rpm"] > 0  # every shaft turns in its own running direction
+            assert_allclose(g["torque_Nmm"], torques[k][i], rtol=RTOL)
+            assert_allclose(g["torque_Nm"], torques[k][i] / 1000, rtol=RTOL)
+            assert math.copysign(1.0, g["torque_Nmm"]) == sign
+            assert_allclose(g["power_kW"], torques[k][i] * speeds[k + i] * math.pi / 30 * 1e-6, rtol=RTOL)
+            assert_allclose(g["inertia_kg_m2"], disc_inertia(MAT[mats[i]][0], b[i], h["d"][i]), rtol=RTOL)
+        assert_allclose([st["contact_ratio_transverse"], st["overlap_ratio"], st["contact_ratio_total"]],
+                        [h["eps_a"], h["eps_b"], h["eps_a"] + h["eps_b"]], rtol=1e-10)
+        assert_allclose(st["mesh_frequency_Hz"], z[0] * speeds[k] / 60, rtol=RTOL)  # = z2 n2 / 60 too
+        assert_allclose(st["mesh_frequency_Hz"], z[1] * speeds[k + 1] / 60, rtol=RTOL)
+        f = st["static_force_N"]
+        assert_allclose([f["tangential"], f["radial"], f["axial"], f["normal"]],
+                        [h["F_t"], h["F_r"], h["F_a"], h["F_n"]], rtol=RTOL, atol=1e-9)
+        # the sign of the load, and F_n along the line of action: T / (r_b cos β_b), whichever circle F_t is on
+        assert math.copysign(1.0, f["tangential"]) == sign
+        assert_allclose(f["normal"], 2 * torques[k][0] / (h["d_b"][0] * math.cos(math.radians(h["b_b"]))), rtol=1e-12)
+        assert_allclose([st["equivalent_radius_mm"], st["effective_modulus_MPa"], st["hertz_stiffness_N_mm1_5"]],
+                        [h["R"], h["E"], h["K"]], rtol=RTOL)
+        assert_allclose([st["iso6336_single_pair_stiffness_N_mm_um"], st["iso6336_mesh_stiffness_N_mm_um"],
+                         st["iso6336_mesh_stiffness_beta_N_mm_um"]],
+                        [h["c_single"], h["c_mesh"], 0.85 * h["c_mesh"]], rtol=1e-10)
+        # the default law (DESIGN §13): its tangent at the static load is ISO's k_n = c_γα b / cos² β_b
+        k_n = h["c_mesh"] * h["b"] * 1000 / math.cos(math.radians(h["b_b"])) ** 2
+        assert st["mesh_stiffness"]["law"] == "iso6336"
+        assert_allclose([st["mesh_stiffness"]["iso_N_mm"], st["linearised_stiffness_N_mm"]], [k_n, k_n], rtol=1e-10)
+        e = st["mesh_stiffness"]["exponent"]
+        law_force = abs(h["F_n"]) / (eta_k if t_out_Nmm < 0 and eta_k < 1 else 1.0)  # reversed: the gear drives
+        assert_allclose(st["static_approach_mm"], e * law_force / k_n, rtol=1e-10)  # h0 = e F_n0 / k_n
+    for j, sh in enumerate(doc["shafts"]):
+        assert sh["index"] == j + 1
+        assert_allclose(sh["speed_rpm"], speeds[j], rtol=RTOL)
+        assert_allclose(sh["torque_Nmm"], torques[j][0] if j < len(stages) else t_out_Nmm, rtol=RTOL)
+        on_shaft = ([doc["stages"][j - 1]["gear"]] if j else []) + ([doc["stages"][j]["pinion"]] if j < len(stages)
+                                                                      else [])
+        assert_allclose(sh["inertia_kg_m2"], sum(g["inertia_kg_m2"] for g in on_shaft), rtol=1e-12)
+
+
+FOUR = scene_text("FOUR", FOUR_STAGES, "speed_rpm = 1480", "torque_Nm = 25000")
+
+
+def test_four_stage_reducer(tmp_path):
+    doc, rows = consume(tmp_path, "four", FOUR)
+    check_contract_keys(doc, rows, "rpm", "Nm")
+    check_against_hand(doc, FOUR_STAGES, 1480.0, 25e6)
+    assert_allclose(doc["output_torque_Nm"], 25000.0, rtol=RTOL)
+    assert_allclose(doc["input_torque_Nm"], doc["input_torque_Nmm"] / 1000, rtol=RTOL)
+    # 1480 rpm / (67/23 · 71/19 · 62/21 · 59/17) = 13.2689 rpm; T_in = 25 kN·m / (111.539 · 0.955647) = 234.54 N·m
+    assert_allclose(doc["output_speed_rpm"], 13.2689, rtol=5e-6)
+    assert_allclose(doc["input_torque_Nm"], 234.539, rtol=5e-6)
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+def test_speed_increaser_forward_and_reversed(tmp_path, reverse):
+    t_nm = -1500.0 if reverse else 1500.0
+    text = scene_text("INC", INCREASER_STAGES, "speed_rpm = 20", f"torque_Nm = {t_nm!r}",
+                      "[target]\noutput_speed_rpm = 350\ntolerance_percent = 1\n")
+    doc, rows = consume(tmp_path, "inc", text)
+    check_contract_keys(doc, rows, "rpm", "Nm")
+    check_against_hand(doc, INCREASER_STAGES, 20.0, t_nm * 1000)
+    assert doc["total_ratio"] < 1 and all(st["ratio"] < 1 for st in doc["stages"])
+    # 20 rpm · 97/23 · 88/21 = 353.458 rpm: within 1 % of 350, so no target warning
+    assert_allclose(doc["output_speed_rpm"], 353.458, rtol=5e-6)
+    assert doc["warnings"] == []
+    if reverse:  # the fast output drives back: T_in = −1500 · 0.98 · 0.97 / (23/97 · 21/88) N·m = −25199.8 N·m
+        assert_allclose(doc["input_torque_Nm"], -25199.76, rtol=5e-7)
+        assert all(st["static_force_N"][k] < 0 for st in doc["stages"] for k in ("tangential", "radial", "axial"))
+    else:  # T_in = 1500 / (0.98 · 0.97 · 23/97 · 21/88) N·m = 27886.9 N·m
+        assert_allclose(doc["input_torque_Nm"], 27886.93, rtol=5e-7)
+
+
+def test_inch_modules_in_deg_s_and_n_mm(tmp_path):
+    text = scene_text("INCH", INCH_STAGES, "speed_deg_s = 6900", "torque_Nmm = 1.8e6",
+                      "[target]\noutput_speed_deg_s = 345\n")
+    doc, rows = consume(tmp_path, "inch", text)
+    check_contract_keys(doc, rows, "deg_s", "Nmm")
+    check_against_hand(doc, INCH_STAGES, 6900 / 6, 1.8e6)
+    # 6 DP, 36 teeth: d1 = 6 in = 152.4 mm; 10 DP β = 18°: d1 = 31 · 2.54 / cos 18° = 78.74 / 0.951057 = 82.7921 mm
+    assert_allclose(doc["stages"][0]["pinion"]["pitch_diameter_mm"], 152.4, rtol=1e-12)
+    assert_allclose(doc["stages"][1]["pinion"]["pitch_diameter_mm"], 82.7921, rtol=2e-6)
+    # 6900 °/s · 36/90 · 31/113 = 757.17 °/s misses 345 °/s by +119 %; 14.5°, 36 teeth: z_min = 2 · 0.965 / sin² 14.5°
+    # = 30.8 (h_FfP* = 1.25 − 0.38 (1 − sin 14.5°) = 0.965): no undercut
+    checks = [(w["code"], w.get("check")) for w in doc["warnings"]]
+    assert ("design", "target_speed") in checks
+    target = next(w for w in doc["warnings"] if w.get("check") == "target_speed")
+    assert_allclose(target["target_rpm"], 345 / 6, rtol=1e-12)
+    assert_allclose(target["output_speed_rpm"], 6900 / 6 * 36 / 90 * 31 / 113, rtol=1e-12)
+    assert not [c for c in checks if c[1] == "undercut"]
+
+
+def test_single_spur_pair_is_clean(tmp_path):
+    text = scene_text("SPUR", SPUR_STAGES, "speed_rpm = 1750", "torque_Nm = 300")
+    doc, rows = consume(tmp_path, "spur", text)
+    check_contract_keys(doc, rows, "rpm", "Nm")
+    check_against_hand(doc, SPUR_STAGES, 1750.0, 3e5)
+    st = doc["stages"][0]
+    # 8 DP: d1 = 24/8 in = 76.2 mm, a = 96/16 in = 152.4 mm; F_t = 2 · 100 N·m / 76.2 mm = 2624.67 N, F_a = 0
+    assert_allclose([st["pinion"]["pitch_diameter_mm"], st["center_distance_mm"]], [76.2, 152.4], rtol=1e-12)
+    assert_allclose(st["static_force_N"]["tangential"], 2624.67, rtol=2e-6)
+    assert st["static_force_N"]["axial"] == 0.0 and st["overlap_ratio"] == 0.0
+    assert doc["warnings"] == []
+
+
+SPELLINGS = {  # the FOUR scene's speed and load in every spelling the schema allows
+    "rpm_Nm": ("speed_rpm = 1480", "torque_Nm = 25000", ("rpm", "Nm")),
+    "deg_s_Nmm": ("speed_deg_s = 8880", "torque_Nmm = 2.5e7", ("deg_s", "Nmm")),
+    "rad_s_Nm": (f"speed_rad_s = {1480 * math.pi / 30!r}", "torque_Nm = 25000", ("rad_s", "Nm")),
+    # P = T ω_out = 25 kN·m · (1480 rpm / 111.539) · π/30 = 34.738 kW: the power at the nominal output speed
+    "rpm_kW": ("speed_rpm = 1480", f"power_kW = {25000 * 1480 / (67 / 23 * 71 / 19 * 62 / 21 * 59 / 17) * math.pi / 30000!r}",
+               ("rpm", "Nm")),
+}
+
+
+def _flat(obj, prefix=""):
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            yield from _flat(v, f"{prefix}.{k}")
+    elif isinstance(obj, list):
+        for i, v in enumerate(obj):
+            yield from _flat(v, f"{prefix}[{i}]")
+    else:
+        yield prefix, obj
+
+
+def test_the_same_design_in_every_unit_spelling_gives_the_same_numbers(tmp_path):
+    docs = {}
+    for name, (speed, load, units) in SPELLINGS.items():
+        doc, rows = consume(tmp_path, name, scene_text("FOUR", FOUR_STAGES, speed, load))
+        check_contract_keys(doc, rows, *units)
+        check_against_hand(doc, FOUR_STAGES, 1480.0, 25e6)
+        docs[name] = dict(_flat({k: v for k, v in doc.items() if k not in ("input_sha256", "units")}))
+    ref = docs["rpm_Nm"]
+    for name, flat in docs.items():
+        common = set(ref) & set(flat)
+        assert {k for k in set(ref) ^ set(flat) if not k.endswith(("_rad_s", "_torque_Nm"))} == set(), name
+        for key in common:
+            if isinstance(ref[key], float):
+                assert_allclose(flat[key], ref[key], rtol=1e-9, err_msg=f"{name} {key}")  # unit conversions only
+            else:
+                assert flat[key] == ref[key], (name, key)
