@@ -411,3 +411,178 @@ def test_the_same_design_in_every_unit_spelling_gives_the_same_numbers(tmp_path)
                 assert_allclose(flat[key], ref[key], rtol=1e-9, err_msg=f"{name} {key}")  # unit conversions only
             else:
                 assert flat[key] == ref[key], (name, key)
+
+
+# --------------------------------------------------------------------------------------------- warnings
+SPUR = scene_text("SPUR", SPUR_STAGES, "speed_rpm = 1750", "torque_Nm = 300")
+SIN2_20 = math.sin(math.radians(20)) ** 2
+H_FF = 1.25 - 0.38 * (1 - math.sin(math.radians(20)))  # ISO 53 profile A's straight flank: 0.99997 m_n
+
+
+def design_with(tmp_path, *sets, text=SPUR):
+    path = tmp_path / "w.toml"
+    path.write_text(text, encoding="utf-8")
+    args = ["design", str(path), "--format", "json"]
+    for s in sets:
+        args += ["--set", s]
+    res = run(args)
+    assert res.exit_code == 0, res.stderr
+    doc = json.loads(res.stdout)
+    said = [line[len("warning: "):] for line in res.stderr.splitlines() if line.startswith("warning: ")]
+    assert said == [w["message"] for w in doc["warnings"]]  # stderr says each JSON warning, in order
+    return doc
+
+
+def checks_of(doc):
+    return [(w["code"], w.get("check"), w.get("stage"), w.get("member")) for w in doc["warnings"]]
+
+
+def test_target_speed_fires_only_outside_its_tolerance(tmp_path):
+    # 1750 rpm / 3 = 583.33 rpm: −16.7 % from 700 rpm (fires), −2.8 % from 600 rpm (inside the default 5 %)
+    doc = design_with(tmp_path, "target.output_speed_rpm=700")
+    assert checks_of(doc) == [("design", "target_speed", None, None)]
+    w = doc["warnings"][0]
+    assert_allclose([w["output_speed_rpm"], w["target_rpm"], w["tolerance_percent"]], [1750 / 3, 700, 5], rtol=1e-12)
+    assert "-16.7 %" in w["message"]
+    assert design_with(tmp_path, "target.output_speed_rpm=600")["warnings"] == []
+    assert design_with(tmp_path, "target.output_speed_deg_s=3600")["warnings"] == []  # 600 rpm in °/s
+    doc = design_with(tmp_path, "target.output_speed_rpm=600", "target.tolerance_percent=2")  # −2.78 % > 2 %
+    assert checks_of(doc) == [("design", "target_speed", None, None)]
+
+
+def test_spur_hand_warns_that_the_hands_are_ignored(tmp_path):
+    doc = design_with(tmp_path, 'stage.0.pinion.hand="left"')
+    assert checks_of(doc) == [("design", "spur_hand", 1, None)]
+    assert doc["stages"][0]["pinion"]["hand"] == "spur"
+
+
+@pytest.mark.parametrize(("teeth", "shift", "fires"), [(14, 0.0, True), (17, 0.0, True), (18, 0.0, False),
+                                                       (14, 0.19, False), (14, 0.17, True)])
+def test_undercut_at_the_rack_limit(tmp_path, teeth, shift, fires):
+    """z_min = 2 (h_FfP* − x) / sin² α for a spur pinion: 17.097 at x = 0; x_min = h_FfP* − z sin² α / 2 = 0.1810 for
+    z = 14 (ISO 21771 / DIN 3960, the rack's straight flank)."""
+    assert_allclose(2 * H_FF / SIN2_20, 17.097, rtol=1e-4)
+    doc = design_with(tmp_path, f"stage.0.pinion.teeth={teeth}", f"stage.0.pinion.profile_shift={shift}")
+    cut = [w for w in doc["warnings"] if w.get("check") == "undercut"]
+    assert bool(cut) == fires, doc["warnings"]
+    if fires:
+        assert (cut[0]["stage"], cut[0]["member"], cut[0]["teeth"]) == (1, "pinion", teeth)
+        assert f"{H_FF - teeth * SIN2_20 / 2:+.2f}" in cut[0]["message"]  # the shift that avoids it
+
+
+def test_contact_ratio_warnings_below_1_2_and_below_1(tmp_path):
+    # α_n = 35°, z = 10/11, x = 0: ε_α = 1.184 (hand: hand_stage) < 1.2
+    h = hand_stage(3.175, 35, 0, (10, 11), (0.0, 0.0), (38.1, 38.1), ("st", "st"), 1e5)
+    assert 1.0 < h["eps_a"] < 1.2
+    doc = design_with(tmp_path, "stage.0.normal_pressure_angle_deg=35", "stage.0.pinion.teeth=10",
+                      "stage.0.gear.teeth=11")
+    w = next(w for w in doc["warnings"] if w.get("check") == "contact_ratio")
+    assert_allclose(w["contact_ratio_transverse"], h["eps_a"], rtol=1e-10)
+    assert "< 1.2" in w["message"] and "< 1:" not in w["message"]
+    # α_n = 25°, z = 12/13, x = +0.8/+0.8: the working pressure angle grows, ε_α = 0.962 < 1
+    h = hand_stage(3.175, 25, 0, (12, 13), (0.8, 0.8), (38.1, 38.1), ("st", "st"), 1e5)
+    assert h["eps_a"] < 1.0
+    doc = design_with(tmp_path, "stage.0.normal_pressure_angle_deg=25", "stage.0.pinion.teeth=12",
+                      "stage.0.gear.teeth=13", "stage.0.pinion.profile_shift=0.8", "stage.0.gear.profile_shift=0.8")
+    w = next(w for w in doc["warnings"] if w.get("check") == "contact_ratio")
+    assert_allclose(w["contact_ratio_transverse"], h["eps_a"], rtol=1e-10)
+    assert "< 1:" in w["message"]
+
+
+@pytest.mark.parametrize(("width", "fires"), [(130, True), (114, False), (15.0, True), (15.3, False)])
+def test_face_width_ratio_outside_0_2_to_1_5(tmp_path, width, fires):
+    # b/d1 with d1 = 76.2 mm: 130 → 1.706, 114 → 1.496, 15 → 0.1969, 15.3 → 0.2008
+    ratio = width / 76.2
+    doc = design_with(tmp_path, f"stage.0.pinion.face_width_mm={width}", f"stage.0.gear.face_width_mm={width}")
+    found = [w for w in doc["warnings"] if w.get("check") == "face_width"]
+    assert (not 0.2 <= ratio <= 1.5) == fires
+    assert bool(found) == fires, (ratio, found)
+    if found:
+        assert_allclose(found[0]["face_width_ratio"], ratio, rtol=1e-12)
+
+
+def test_pointed_tip_warns(tmp_path):
+    """z = 12, x = +1.0 at 20°: s_an = d_a (π/(2z) + 2 x tan α / z + inv α − inv α_a) with d_a = d + 2 m (1 + x + k)
+    is below 0.2 m_n (hand: ISO 21771 5.4)."""
+    h = hand_stage(3.175, 20, 0, (12, 72), (1.0, 0.0), (38.1, 38.1), ("st", "st"), 1e5)
+    d, d_a = h["d"][0], h["d_a"][0]
+    a = math.radians(20)
+    a_a = math.acos(d * math.cos(a) / d_a)
+    s_an = d_a * (math.pi / 24 + 2 * math.tan(a) / 12 + inv(a) - inv(a_a))
+    assert s_an < 0.2 * 3.175
+    doc = design_with(tmp_path, "stage.0.pinion.teeth=12", "stage.0.pinion.profile_shift=1.0")
+    w = next(w for w in doc["warnings"] if w.get("check") == "tip_thickness")
+    assert (w["stage"], w["member"]) == (1, "pinion")
+    assert f"{s_an:.3g} mm" in w["message"]
+
+
+@pytest.mark.parametrize(("rpm", "verdict"), [(13000, "main resonance"), (6500, "1/2"), (3000, None)])
+def test_iso6336_resonance_ranges(tmp_path, rpm, verdict):
+    """N = n1/n_E1 against ISO 6336-1's ranges: the main resonance N_S < N ≤ 1.15 with N_S = 0.5 + 0.35 √(F_t/b / 100)
+    below 100 N/mm (here F_t/b = 2624.67/38.1 = 68.89 N/mm: N_S = 0.7905), and N near 1/2 (N_S/2 < N ≤ 0.575)."""
+    doc = design_with(tmp_path, f"input.speed_rpm={rpm}")
+    st = doc["stages"][0]
+    assert_allclose(st["resonance_lower_limit"], 0.5 + 0.35 * math.sqrt(2624.6719 / 38.1 / 100), rtol=1e-6)
+    assert_allclose(st["resonance_ratio"], rpm / st["resonance_speed_rpm"], rtol=1e-12)
+    iso = [w for w in doc["warnings"] if w.get("check") == "iso6336_resonance"]
+    if verdict is None:
+        assert not iso
+    else:
+        assert len(iso) == 1 and verdict in iso[0]["message"] and iso[0]["stage"] == 1
+
+
+def test_stiffness_not_iso_for_the_seed_hertz_law(tmp_path):
+    """K = 4/3 √R E* at the static load: k_lin = 1.5 K h0^0.5, h0 = (F_n/K)^(2/3); far from ISO's k_n, so it warns
+    with departure = k_lin/k_n − 1."""
+    doc = design_with(tmp_path, 'contact.stiffness="hertz"')
+    st = doc["stages"][0]
+    h = hand_stage(3.175, 20, 0, (24, 72), (0.0, 0.0), (38.1, 38.1), ("st", "st"), 1e5)
+    h0 = (h["F_n"] / h["K"]) ** (2 / 3)
+    k_lin = 1.5 * h["K"] * h0 ** 0.5
+    k_n = h["c_mesh"] * 38.1 * 1000
+    assert_allclose([st["static_approach_mm"], st["linearised_stiffness_N_mm"]], [h0, k_lin], rtol=1e-10)
+    (w,) = [w for w in doc["warnings"] if w["code"] == "stiffness_not_iso"]
+    assert_allclose([w["linearised_N_mm"], w["iso_N_mm"], w["departure"]], [k_lin, k_n, k_lin / k_n - 1], rtol=1e-10)
+    assert abs(k_lin / k_n - 1) > 0.25
+
+
+# ------------------------------------------------------------------------------------ exit codes and files
+def test_bad_and_infeasible_files_exit_2_and_leave_no_file(tmp_path):
+    """A same-hand helical pair, a helical pair without hands and a key out of range: exit 2, one line naming the
+    file and the key path, no traceback; -o creates nothing, and an existing -o file keeps its bytes."""
+    helical = SPUR.replace("helix_angle_deg = 0", "helix_angle_deg = 12")
+    cases = {
+        "same_hand": (helical.replace('material = "st", profile_shift = 0.0 }', 'hand = "left", material = "st", '
+                                      'profile_shift = 0.0 }'), "stage[0].gear.hand"),
+        "no_hand": (helical, "stage[0].pinion.hand"),
+        "teeth": (SPUR.replace("teeth = 24", "teeth = 4"), "stage[0].pinion.teeth"),
+        "both_speeds": (SPUR.replace("speed_rpm = 1750", "speed_rpm = 1750\nspeed_deg_s = 10500"), "input"),
+    }
+    for name, (text, key) in cases.items():
+        path = tmp_path / f"{name}.toml"
+        path.write_text(text, encoding="utf-8")
+        new, old = tmp_path / f"{name}_new.json", tmp_path / f"{name}_old.json"
+        old.write_bytes(b"previous run\n")
+        for target in (new, old):
+            res = run(["design", str(path), "-o", str(target)])
+            assert res.exit_code == 2, (name, res.stderr)
+            assert res.stdout == "" and "Traceback" not in res.stderr
+            assert res.stderr.startswith(f"gearcli: {path}: ") and key in res.stderr, res.stderr
+        assert not new.exists() and old.read_bytes() == b"previous run\n"
+        assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(name)) == sorted(
+            [f"{name}.toml", f"{name}_old.json"])  # no temporary file left beside
+
+
+def test_piped_stdout_is_clean_csv_with_the_warnings_on_stderr(tmp_path):
+    """A real process with stdout a pipe: the default format is CSV, parseable whole; warnings only on stderr."""
+    path = tmp_path / "spur.toml"
+    path.write_text(SPUR, encoding="utf-8")
+    res = subprocess.run([sys.executable, "-m", "gearcli", "design", str(path), "--set", "target.output_speed_rpm=700",
+                          "--set", 'stage.0.pinion.hand="right"'], capture_output=True, text=True, check=False)
+    assert res.returncode == 0, res.stderr
+    rows = list(csv.DictReader(io.StringIO(res.stdout)))
+    assert len(rows) == 1 and float(rows[0]["ratio"]) == 3.0
+    assert "warning" not in res.stdout
+    lines = res.stderr.splitlines()
+    assert len(lines) == 2 and all(line.startswith("warning: ") for line in lines), res.stderr
+    assert "misses the target 700 rpm" in lines[0] and "hand given" in lines[1]
