@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import io
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol, cast
 
@@ -45,7 +45,7 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
     pair), each kind's own tables, the shafts, the bearings and the summary lines."""
     s = [st for _, st in gear_pairs(r.stages)]
     cols = [f"stage {st.index}" for st in s]
-    rad_s = r.units is not None and r.units[0] == "rad_s"  # a speed_rad_s file: its unit beside °/s and rpm
+    speeds, torques = _speed_units(r), _torque_units(r)
 
     def row(label, fn, digits=5):
         return label, [_g(fn(st), digits) for st in s]
@@ -76,10 +76,8 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
 
     parallel = any(_kind(st).pair_members for st in s)
     loads = _quantity_table("loads and stiffness", cols, [
-        *([pinion("pinion speed [rpm]", lambda st: st.pinion.speed_rpm),
-           *([pinion("pinion speed [rad/s]", lambda st: st.pinion.speed_deg_s * RAD_PER_DEG)] if rad_s else []),
-           pinion("pinion torque [N·mm]", lambda st: st.pinion.torque_Nmm),
-           pinion("pinion torque [N·m]", lambda st: st.pinion.torque_Nm),
+        *([*(pinion(f"pinion speed [{unit}]", lambda st, f=f: f(st.pinion.speed_deg_s)) for unit, f in speeds),
+           *(pinion(f"pinion torque [{unit}]", lambda st, f=f: f(st.pinion.torque_Nmm)) for unit, f in torques),
            pinion("pinion power [kW]", lambda st: st.pinion.power_kW)] if parallel else []),
         row("mesh frequency [Hz]", lambda st: st.mesh_frequency_Hz),
         row("F_t tangential [N]", lambda st: st.static_force_N.tangential),
@@ -102,24 +100,40 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         ("ISO 6336 speed range", [st.resonance_range for st in s]),
     ])
     train = _quantity_table("shafts", [f"shaft {sh.index}" for sh in r.shafts], [
-        ("speed [°/s]", [_g(sh.speed_deg_s) for sh in r.shafts]),
-        ("speed [rpm]", [_g(sh.speed_rpm) for sh in r.shafts]),
-        *([("speed [rad/s]", [_g(sh.speed_deg_s * RAD_PER_DEG) for sh in r.shafts])] if rad_s else []),
-        ("torque [N·mm]", [_g(sh.torque_Nmm) for sh in r.shafts]),
-        ("torque [N·m]", [_g(sh.torque_Nm) for sh in r.shafts]),
+        *((f"speed [{unit}]", [_g(f(sh.speed_deg_s)) for sh in r.shafts]) for unit, f in speeds),
+        *((f"torque [{unit}]", [_g(f(sh.torque_Nmm)) for sh in r.shafts]) for unit, f in torques),
         ("power [kW]", [_g(sh.power_kW) for sh in r.shafts]),
         ("inertia [kg·m²]", [_g(sh.inertia_kg_m2, 4) for sh in r.shafts]),
     ])
-    in_rad_s = f" = {r.output_speed_deg_s * RAD_PER_DEG:.5g} rad/s" if rad_s else ""
-    summary = [text(f"total ratio {r.total_ratio:.6g}   output {r.output_speed_deg_s:.5g} °/s = "
-                    f"{r.output_speed_rpm:.4g} rpm{in_rad_s}   input torque {r.input_torque_Nmm:.5g} N·mm"),
-               text(f"input torque {r.input_torque_Nmm / 1000:.5g} N·m   input power {r.input_power_kW:.5g} kW")]
+    output = " = ".join(f"{f(r.output_speed_deg_s):{'.4g' if j else '.5g'}} {unit}" for j, (unit, f) in enumerate(speeds))
+    torque = " = ".join(f"{f(r.input_torque_Nmm):.5g} {unit}" for unit, f in torques)
+    summary = [text(f"total ratio {r.total_ratio:.6g}   output {output}"),
+               text(f"input torque {torque}   input power {r.input_power_kW:.5g} kW")]
     rated = [st for st in s if st.rating is not None]
     gears = [geometry, loads] if s else []  # a train without gear stages (all belts) has no gear columns
     own = [*_allowance_table(s), *_kind_tables(r)]
     if r.bearings:  # [[bearing]] tables: shaft statics and ISO 281 (docs/life.md)
         return [*gears, *([rating_table(rated)] if rated else []), *own, train, bearing_table(r.bearings), *summary]
     return [*gears, *([rating_table(rated)] if rated else []), *own, train, *summary]
+
+
+def _speed_units(r: DesignResult) -> list[tuple[str, Callable[[float], float]]]:
+    """The design file's speed unit for the table (DESIGN §12), from °/s: a °/s or rad/s file also in rpm, as the
+    simulate and report footers give them."""
+    unit = of_result(r).speed
+    rpm = ("rpm", lambda v: v / 6.0)
+    if unit == "deg_s":
+        return [("°/s", lambda v: v), rpm]
+    if unit == "rad_s":
+        return [("rad/s", lambda v: v * RAD_PER_DEG), rpm]
+    return [rpm]
+
+
+def _torque_units(r: DesignResult) -> list[tuple[str, Callable[[float], float]]]:
+    """The design file's torque unit for the table (DESIGN §12: torque_Nm → N·m everywhere), from N·mm: an N·mm
+    file also in N·m."""
+    n_m = ("N·m", lambda v: v / 1000.0)
+    return [("N·mm", lambda v: v), n_m] if of_result(r).torque == "Nmm" else [n_m]
 
 
 class StageOutput(Protocol):

@@ -586,3 +586,29 @@ def test_piped_stdout_is_clean_csv_with_the_warnings_on_stderr(tmp_path):
     lines = res.stderr.splitlines()
     assert len(lines) == 2 and all(line.startswith("warning: ") for line in lines), res.stderr
     assert "misses the target 700 rpm" in lines[0] and "hand given" in lines[1]
+
+
+# ------------------------------------------------------------------------------------------ the table's units
+@pytest.mark.parametrize(("speed", "load", "present", "absent"), [
+    ("speed_rpm = 1480", "torque_Nm = 25000", ["speed [rpm]", "torque [N·m]", "output 13.269 rpm",
+                                               "input torque 234.54 N·m"], ["°/s", "N·mm", "rad/s"]),
+    ("speed_deg_s = 8880", "torque_Nmm = 2.5e7", ["speed [°/s]", "speed [rpm]", "torque [N·mm]", "torque [N·m]",
+                                                  "output 79.613 °/s = 13.27 rpm",
+                                                  "input torque 2.3454e+05 N·mm = 234.54 N·m"], ["rad/s"]),
+    (f"speed_rad_s = {1480 * math.pi / 30!r}", "power_kW = 34.73787", ["speed [rad/s]", "torque [N·m]",
+                                                                        "output 1.3895 rad/s = 13.27 rpm"],
+     ["°/s", "N·mm"]),
+])
+def test_design_table_speaks_the_files_units(tmp_path, speed, load, present, absent):
+    """DESIGN §12: speeds in the input speed key's unit, torques in the load torque key's (torque_Nm or power_kW →
+    N·m everywhere); °/s files also in rpm, N·mm files also in N·m, as the simulate and report footers give them.
+    The design table printed °/s and N·mm rows and footer for every file. FOUR: 1480 rpm / 111.539 = 13.269 rpm
+    = 79.613 °/s = 1.3895 rad/s; T_in = 234.54 N·m."""
+    path = tmp_path / "t.toml"
+    path.write_text(scene_text("FOUR", FOUR_STAGES, speed, load), encoding="utf-8")
+    res = run(["design", str(path), "--format", "table", "-q"], env={"COLUMNS": "200"})
+    assert res.exit_code == 0, res.stderr
+    for s in present:
+        assert s in res.stdout, s
+    for s in absent:
+        assert s not in res.stdout, s
