@@ -293,6 +293,15 @@ def check_against_hand(doc, stages, n_in_rpm: float, t_out_Nmm: float):
         assert_allclose([st["iso6336_single_pair_stiffness_N_mm_um"], st["iso6336_mesh_stiffness_N_mm_um"],
                          st["iso6336_mesh_stiffness_beta_N_mm_um"]],
                         [h["c_single"], h["c_mesh"], 0.85 * h["c_mesh"]], rtol=1e-10)
+        # ISO 6336-1 resonance: solid bodies of d_m = (d_a + d_f)/2, m* = J/(b r_b²) = ρ π d_m⁴ / (32 r_b²) (kg/mm),
+        # m_red = m1* m2* / (m1* + m2*), n_E1 = 30000/(π z1) √(c_γα / m_red) of the smaller wheel, N = n1 / n_E1
+        m_star = [MAT[mats[i]][0] * 1e-9 * math.pi * ((h["d_a"][i] + h["d_f"][i]) / 2) ** 4 / 32 / (h["d_b"][i] / 2) ** 2
+                  for i in range(2)]
+        m_red = m_star[0] * m_star[1] / (m_star[0] + m_star[1])
+        small = 0 if (z[0], x[0]) <= (z[1], x[1]) else 1
+        n_e1 = 30000 / (math.pi * z[small]) * math.sqrt(h["c_mesh"] / m_red)
+        assert_allclose([st["reduced_mass_kg_mm"], st["resonance_speed_rpm"], st["resonance_ratio"]],
+                        [m_red, n_e1, speeds[k + small] / n_e1], rtol=1e-10)
         # the default law (DESIGN §13): its tangent at the static load is ISO's k_n = c_γα b / cos² β_b
         k_n = h["c_mesh"] * h["b"] * 1000 / math.cos(math.radians(h["b_b"])) ** 2
         assert st["mesh_stiffness"]["law"] == "iso6336"
