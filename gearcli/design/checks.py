@@ -138,8 +138,10 @@ def target_speed_warning(cfg: DesignFile, output_speed_rpm: float) -> str | None
     deviation = 100.0 * (output_speed_rpm - target) / target
     if abs(deviation) <= cfg.target.tolerance_percent:
         return None
-    return (f"output speed {output_speed_rpm:.4g} rpm misses the target {target:.4g} rpm by {deviation:+.1f} % "
-            f"(tolerance ±{cfg.target.tolerance_percent:g} %)")
+    # in the unit the target is given in (DESIGN §12): a target in °/s is not echoed back in rpm
+    scale, unit = (6.0, "°/s") if cfg.target.output_speed_rpm is None else (1.0, "rpm")
+    return (f"output speed {scale * output_speed_rpm:.4g} {unit} misses the target {scale * target:.4g} {unit} by "
+            f"{deviation:+.1f} % (tolerance ±{cfg.target.tolerance_percent:g} %)")
 
 
 def massless_rotor_warning(cfg: DesignFile) -> str | None:

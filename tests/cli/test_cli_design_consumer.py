@@ -367,6 +367,8 @@ def test_inch_modules_in_deg_s_and_n_mm(tmp_path):
     target = next(w for w in doc["warnings"] if w.get("check") == "target_speed")
     assert_allclose(target["target_rpm"], 345 / 6, rtol=1e-12)
     assert_allclose(target["output_speed_rpm"], 6900 / 6 * 36 / 90 * 31 / 113, rtol=1e-12)
+    # the message speaks the target's own unit (it said "126.2 rpm misses the target 57.5 rpm" for a target in °/s)
+    assert "output speed 757.2 °/s misses the target 345 °/s by +119.5 %" in target["message"], target["message"]
     assert not [c for c in checks if c[1] == "undercut"]
 
 
