@@ -16,6 +16,7 @@ from gearcli.stages import kinds
 if TYPE_CHECKING:  # the tables' modules (rich) are imported by the table builders below, only when tables are made
     from rich.console import RenderableType
 
+    from gearcli.io.units import OutputUnits
     from gearcli.results import DesignResult, RatedMesh, StageResult
     from gearcli.simulate.results import SimulationResult, StageDynamics
 
@@ -59,7 +60,9 @@ class PlanetaryOutput:
     load_sharing = True
 
     def design_tables(self, r: DesignResult, stages: list[StageResult]) -> list[RenderableType]:
-        return [*_planetary_design(stages), *_planet_ring_rating(stages)]
+        from gearcli.io.units import of_result  # lazy: the io layer's units, only when tables are made
+
+        return [*_planetary_design(stages, of_result(r)), *_planet_ring_rating(stages)]
 
     def simulation_tables(self, r: SimulationResult, stages: list[StageDynamics]) -> list[RenderableType]:
         return []  # its planets' tables are the run's (``io.tables``), in today's place
@@ -100,9 +103,12 @@ def _planet_ring_rating(stages: list[StageResult]) -> list[RenderableType]:
     return [rating_table(meshes, "planet–ring mesh strength rating, {standard} (p planet, g ring)")]
 
 
-def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
-    """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh."""
+def _planetary_design(stages: list[StageResult], u: OutputUnits) -> list[RenderableType]:
+    """The planetary stages (their columns above are the sun–planet mesh): members and the planet–ring mesh; speeds
+    and torques in the design file's units ``u`` (DESIGN §12)."""
     from gearcli.io.table_kit import _g, _quantity_table  # lazy: rich, only when tables are made
+
+    speed, torque = u.speed_label, u.torque_label
 
     s = [st for st in stages if st.planetary is not None]
     ps = [st.planetary for st in stages if st.planetary is not None]
@@ -113,14 +119,14 @@ def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
         ("teeth sun / planet / ring, planets", [f"{p.sun.teeth} / {p.planet.teeth} / {p.ring.teeth}, "
                                                 f"{p.planet_count}" for p in ps]),
         ("ratio |ω_in/ω_out|", [_g(p.ratio, 6) for p in ps]),
-        *(_member_row(m, ps) for m in ("sun", "carrier", "ring")),
-        ("moment balance T_sun + T_carrier + T_ring [N·m]", [_balance(p) for p in ps]),
+        *(_member_row(m, ps, u) for m in ("sun", "carrier", "ring")),
+        (f"moment balance T_sun + T_carrier + T_ring [{torque}]", [_balance(p, u) for p in ps]),
         ("efficiency stage η / carrier-held η_0 / per mesh η_m",
          [f"{_g(p.stage_efficiency, 4)} / {_g(p.basic_efficiency, 5)} / {_g(p.mesh_efficiency, 5)}"
           for p in _efficiencies(s)]),
-        ("planet speed relative to the carrier [rpm]", [_g(p.planet.speed_rpm) for p in ps]),
-        ("per planet, carrier frame: sun-side / planet torque [N·m]",
-         [f"{_g(st.pinion.torque_Nm)} / {_g(st.gear.torque_Nm)}" for st in s]),
+        (f"planet speed relative to the carrier [{speed}]", [_g(u.speed_from_deg_s(p.planet.speed_deg_s)) for p in ps]),
+        (f"per planet, carrier frame: sun-side / planet torque [{torque}]",
+         [f"{_g(u.torque_from_Nmm(st.pinion.torque_Nmm))} / {_g(u.torque_from_Nmm(st.gear.torque_Nmm))}" for st in s]),
         ("per planet, carrier frame: rolling power [kW]", [_g(abs(st.pinion.power_kW)) for st in s]),
         ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
                                      f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
@@ -139,24 +145,26 @@ def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
                             [f"stage {st.index}" for st in s], rows)]
 
 
-def _member_row(member: str, ps) -> tuple[str, list[str]]:
-    """A member's own speed, torque (its magnitude) and power, in the housing's frame."""
+def _member_row(member: str, ps, u: OutputUnits) -> tuple[str, list[str]]:
+    """A member's own speed, torque (its magnitude) and power, in the housing's frame and the file's units."""
     from gearcli.io.table_kit import _g  # lazy: rich, only when tables are made
 
     def cell(g) -> str:
-        return f"{_g(g.speed_rpm)} / {_g(g.torque_Nm)} / {_g(abs(g.power_kW))}"
+        return (f"{_g(u.speed_from_deg_s(g.speed_deg_s))} / {_g(u.torque_from_Nmm(g.torque_Nmm))} / "
+                f"{_g(abs(g.power_kW))}")
 
-    return f"{member}: speed [rpm] / torque [N·m] / power [kW]", [cell(getattr(p, member)) for p in ps]
+    return (f"{member}: speed [{u.speed_label}] / torque [{u.torque_label}] / power [kW]",
+            [cell(getattr(p, member)) for p in ps])
 
 
-def _balance(p) -> str:
+def _balance(p, u: OutputUnits) -> str:
     """The signed external torques (positive in the input member's sense) and their sum."""
     from gearcli.io.table_kit import _g  # lazy: rich, only when tables are made
 
     m = p.moment_balance_Nm
     if not m:
         return "—"
-    terms = [m["sun"], m["carrier"], m["ring"]]
+    terms = [u.torque_from_Nm(m[k]) for k in ("sun", "carrier", "ring")]
     text_ = _g(terms[0]) + "".join(f" {'-' if v < 0 else '+'} {_g(abs(v))}" for v in terms[1:])
     return f"{text_} = {_g(sum(terms), 2)}"
 

@@ -623,3 +623,21 @@ def test_design_table_speaks_the_files_units(tmp_path, speed, load, present, abs
         assert s in res.stdout, s
     for s in absent:
         assert s not in res.stdout, s
+
+
+def test_planetary_design_table_speaks_the_files_units(tmp_path):
+    """configs/planetary_stage.toml (carrier driven at 12.127 rpm, ring held, sun out) written in °/s and N·mm: the
+    planetary table's member rows were in rpm and N·m whatever the file. The sun turns at 12.127 (1 + 56/19) =
+    47.870 rpm = 287.22 °/s; the carrier's 72.762 °/s; the load 999650.9 N·m = 9.9965e+08 N·mm on the sun."""
+    root = Path(__file__).resolve().parents[2]
+    res = run(["design", str(root / "configs" / "planetary_stage.toml"), "--format", "table", "-q",
+               "--set", "input.speed_deg_s=72.762", "--set", "load.torque_Nmm=999650900"], env={"COLUMNS": "200"})
+    assert res.exit_code == 0, res.stderr
+    out = res.stdout
+    assert_allclose(72.762 * (1 + 56 / 19), 287.22, rtol=2e-5)
+    for s in ("sun: speed [°/s] / torque [N·mm] / power [kW]", "287.22 / 9.9965e+08 /", "carrier: speed [°/s]",
+              "72.762 /", "moment balance T_sun + T_carrier + T_ring [N·mm]",
+              "per planet, carrier frame: sun-side / planet torque [N·mm]",
+              "planet speed relative to the carrier [°/s]"):
+        assert s in out, s
+    assert "[N·m]" not in out.split("planetary stages", 1)[1].split("shafts", 1)[0]
