@@ -20,6 +20,7 @@ if TYPE_CHECKING:  # `gearcli design` imports this module: no numpy at start-up
     import numpy as np
 
     from gearcli.config import DesignFile
+    from gearcli.results import DesignResult
     from gearcli.simulate.results import SimulationResult
 
 SPEED_UNITS = {"deg_s": ("°/s", 1.0), "rpm": ("rpm", 1.0 / 6.0), "rad_s": ("rad/s", math.pi / 180.0)}  # from °/s
@@ -71,8 +72,8 @@ def of_design_file(cfg: DesignFile) -> OutputUnits:
     return OutputUnits(*key_units(cfg))
 
 
-def of_result(result: SimulationResult) -> OutputUnits:
-    """The units a simulation result is written in (its ``units``: speed and torque key suffixes)."""
+def of_result(result: SimulationResult | DesignResult) -> OutputUnits:
+    """The units a simulation or design result is written in (its ``units``: speed and torque key suffixes)."""
     units = getattr(result, "units", None)
     return OutputUnits(*units) if units else DEFAULT
 
