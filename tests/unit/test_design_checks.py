@@ -122,7 +122,7 @@ def test_target_speed_within_tolerance_is_quiet_and_a_miss_below_is_signed():
     def above(d):
         d["target"] = {"output_speed_deg_s": 180.0, "tolerance_percent": 5}  # 30 rpm: (26.943 − 30)/30 = −10.2 %
     (w,) = design(above).warnings
-    assert "-10.2 %" in w and "30 rpm" in w
+    assert "-10.2 %" in w and "the target 180 °/s" in w  # in the target's own unit (DESIGN §12), 30 rpm
 
 
 def test_no_target_no_target_warning():
