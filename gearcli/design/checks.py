@@ -100,11 +100,13 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
         at: JsonObject = {"stage": stage.index}
         found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):
+            z_min, x_min = undercut_figures(stage, gear, stage_cfg)
             found.append((undercut_warning(stage, gear, stage_cfg), {"check": "undercut", **at,
                                                                      "member": _part(stage, gear),
                                                                      "teeth": gear.teeth,
                                                                      "profile_shift": gear.profile_shift,
-                                                                     **_cut_shift_data(gear)}))
+                                                                     **_cut_shift_data(gear),
+                                                                     "min_teeth": z_min, "min_profile_shift": x_min}))
         for gear in (stage.pinion, stage.gear):
             found.append(interference_warning(stage, stage_cfg, gear))
         found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at,
@@ -122,9 +124,12 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                                                   / smaller_pitch_diameter_mm(stage)}))
         for gear in (stage.pinion, stage.gear):
             tip_allowance = getattr(stage_cfg, _part(stage, gear)).tip_diameter_allowance_mm
-            found.append((tip_thickness_warning(stage, gear, tip_allowance[0] if tip_allowance else 0.0),
+            tip_mm = tip_allowance[0] if tip_allowance else 0.0
+            found.append((tip_thickness_warning(stage, gear, tip_mm),
                           {"check": "tip_thickness", **at, "member": _part(stage, gear),
-                           "profile_shift": gear.profile_shift, **_cut_shift_data(gear)}))
+                           "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
+                           "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm),
+                           "min_tip_thickness_mm": MIN_TIP_THICKNESS_PER_MODULE * stage.normal_module_mm}))
         found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at,
                                                  "resonance_ratio": stage.resonance_ratio,
                                                  "resonance_speed_rpm": stage.resonance_speed_rpm}))
@@ -217,14 +222,20 @@ def form_height_factor(stage: StageResult, stage_cfg: Stage) -> float:
     return rack_form_height_factor(rack.dedendum, rack.root_radius, math.radians(stage.normal_pressure_angle_deg))
 
 
-def undercut_warning(stage: StageResult, gear: GearResult, stage_cfg: Stage) -> str | None:
-    """z < z_min = 2 (h_FfP* − x) cos β / sin² α_t with h_FfP* of the stage's basic rack (``basic_rack``)."""
+def undercut_figures(stage: StageResult, gear: GearResult, stage_cfg: Stage) -> tuple[float, float]:
+    """(z_min, x_min): the undercut limit z_min = 2 (h_FfP* − x) cos β / sin² α_t at the member's cut shift, and the
+    profile shift x_min that just avoids undercut with its teeth, h_FfP* of the stage's basic rack (``basic_rack``)."""
     beta, alpha_t = math.radians(stage.helix_angle_deg), math.radians(stage.transverse_pressure_angle_deg)
     h_ff = form_height_factor(stage, stage_cfg)
-    z_min = undercut_limit_teeth(_cut_shift(gear), beta, alpha_t, h_ff)
+    return (undercut_limit_teeth(_cut_shift(gear), beta, alpha_t, h_ff),
+            undercut_min_profile_shift(gear.teeth, beta, alpha_t, h_ff))
+
+
+def undercut_warning(stage: StageResult, gear: GearResult, stage_cfg: Stage) -> str | None:
+    """z < z_min = 2 (h_FfP* − x) cos β / sin² α_t with h_FfP* of the stage's basic rack (``basic_rack``)."""
+    z_min, x_needed = undercut_figures(stage, gear, stage_cfg)
     if gear.teeth >= z_min:
         return None
-    x_needed = undercut_min_profile_shift(gear.teeth, beta, alpha_t, h_ff)
     what = "a profile shift" if gear.generating_profile_shift is None else "a generating profile shift x_E,i"
     return (f"stage {stage.index}: {_part(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
             f"({_shift_text(gear)}, β = {stage.helix_angle_deg:g}°): undercut risk; "
@@ -352,12 +363,18 @@ def face_width_warning(stage: StageResult) -> str | None:
     return None
 
 
-def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0) -> str | None:
+def tip_thickness_mm(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0) -> float:
     """s_an of the thinnest cut tooth (x_E,i, ``_cut_shift``) on the largest tip, d_a + A_dae."""
+    return normal_tip_thickness_mm(gear.teeth, stage.normal_module_mm, _cut_shift(gear),
+                                   math.radians(stage.helix_angle_deg), math.radians(stage.normal_pressure_angle_deg),
+                                   gear.tip_diameter_mm + tip_allowance_mm)
+
+
+def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0) -> str | None:
+    """s_an (``tip_thickness_mm``) below 0.2 m_n."""
     m_n = stage.normal_module_mm
     tip = gear.tip_diameter_mm + tip_allowance_mm
-    s_an = normal_tip_thickness_mm(gear.teeth, m_n, _cut_shift(gear), math.radians(stage.helix_angle_deg),
-                                   math.radians(stage.normal_pressure_angle_deg), tip)
+    s_an = tip_thickness_mm(stage, gear, tip_allowance_mm)
     limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
     if s_an >= limit:
         return None

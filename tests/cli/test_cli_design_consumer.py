@@ -479,6 +479,9 @@ def test_undercut_at_the_rack_limit(tmp_path, teeth, shift, fires):
     if fires:
         assert (cut[0]["stage"], cut[0]["member"], cut[0]["teeth"]) == (1, "pinion", teeth)
         assert f"{H_FF - teeth * SIN2_20 / 2:+.2f}" in cut[0]["message"]  # the shift that avoids it
+        # and the numbers in the data, so that a script need not parse the message (they were only in the text)
+        assert_allclose([cut[0]["min_teeth"], cut[0]["min_profile_shift"]],
+                        [2 * (H_FF - shift) / SIN2_20, H_FF - teeth * SIN2_20 / 2], rtol=1e-12)
 
 
 def test_contact_ratio_warnings_below_1_2_and_below_1(tmp_path):
@@ -525,6 +528,7 @@ def test_pointed_tip_warns(tmp_path):
     w = next(w for w in doc["warnings"] if w.get("check") == "tip_thickness")
     assert (w["stage"], w["member"]) == (1, "pinion")
     assert f"{s_an:.3g} mm" in w["message"]
+    assert_allclose([w["tip_thickness_mm"], w["min_tip_thickness_mm"]], [s_an, 0.2 * 3.175], rtol=1e-10)
 
 
 @pytest.mark.parametrize(("rpm", "verdict"), [(13000, "main resonance"), (6500, "1/2"), (3000, None)])
