@@ -132,7 +132,9 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                            "min_tip_thickness_mm": MIN_TIP_THICKNESS_PER_MODULE * stage.normal_module_mm}))
         found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at,
                                                  "resonance_ratio": stage.resonance_ratio,
-                                                 "resonance_speed_rpm": stage.resonance_speed_rpm}))
+                                                 "resonance_speed_rpm": stage.resonance_speed_rpm,
+                                                 "resonance_lower_limit": stage.resonance_lower_limit,
+                                                 "resonance_range": stage.resonance_range}))
     return tuple(warning(DESIGN, w, **data) for w, data in found if w)
 
 

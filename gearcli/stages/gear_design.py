@@ -111,7 +111,8 @@ class PlanetaryDesign:
             return found
         mesh = result.planetary.planet_ring  # type: ignore[union-attr]  # a planetary stage's result
         return (*found, warning(DESIGN, ring, check="iso6336_resonance", stage=result.index, mesh="planet_ring",
-                                resonance_ratio=mesh.resonance_ratio, resonance_speed_rpm=mesh.resonance_speed_rpm))
+                                resonance_ratio=mesh.resonance_ratio, resonance_speed_rpm=mesh.resonance_speed_rpm,
+                                resonance_lower_limit=mesh.resonance_lower_limit, resonance_range=mesh.resonance_range))
 
     def check_inputs(self, cfg: DesignFile, k: int) -> None:
         from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it

@@ -544,6 +544,9 @@ def test_iso6336_resonance_ranges(tmp_path, rpm, verdict):
         assert not iso
     else:
         assert len(iso) == 1 and verdict in iso[0]["message"] and iso[0]["stage"] == 1
+        assert_allclose([iso[0]["resonance_ratio"], iso[0]["resonance_lower_limit"]],
+                        [st["resonance_ratio"], st["resonance_lower_limit"]], rtol=0)
+        assert iso[0]["resonance_range"] == st["resonance_range"]
 
 
 def test_stiffness_not_iso_for_the_seed_hertz_law(tmp_path):
