@@ -22,6 +22,30 @@ if TYPE_CHECKING:
     from gearcli.stages.design import MeshResult
 
 
+def _planet_ring_allowance_diagnostics(result: StageResult) -> tuple[Diagnostic, ...]:
+    """The planet–ring mesh's allowances: a negative minimum backlash (``backlash_negative``) and ε_α,i < 1 where
+    the nominal ε_α ≥ 1 (``contact_ratio_allowances``), ``mesh`` "planet_ring"."""
+    mesh = result.planetary.planet_ring  # type: ignore[union-attr]  # a planetary stage's result
+    j, eps = mesh.backlash_circumferential_mm, mesh.contact_ratio_transverse_with_allowances
+    out: list[Diagnostic] = []
+    if j is not None and j[1] < 0.0:
+        out.append(warning(
+            DESIGN, f"stage {result.index} planet–ring mesh: the minimum circumferential backlash is {j[1]:.4g} mm "
+            "(< 0): at the upper tooth-thickness allowances of planet and ring, on the carrier's radius, the teeth jam"
+            + (f" (the maximum, {j[0]:.4g} mm, too: every pair within the tolerances jams)" if j[0] < 0.0 else "")
+            + "; thin the teeth (tooth_thickness_allowance_mm of the planet or the ring)",
+            check="backlash_negative", stage=result.index, mesh="planet_ring", backlash_min_mm=j[1],
+            backlash_max_mm=j[0]))
+    if eps is not None and min(eps) < 1.0 <= mesh.contact_ratio_transverse:
+        out.append(warning(
+            DESIGN, f"stage {result.index} planet–ring mesh: transverse contact ratio with allowances ε_α,i = "
+            f"{min(eps):.3f} < 1 (nominal {mesh.contact_ratio_transverse:.3f}): at the planet's lower tip contact is "
+            "interrupted in every transverse section; narrow the planet's tip allowance",
+            check="contact_ratio_allowances", stage=result.index, mesh="planet_ring",
+            contact_ratio_transverse_with_allowances=list(eps)))
+    return tuple(out)
+
+
 class ParallelDesign:
     """A parallel stage: one external pair (pinion on the input shaft, gear on the output shaft)."""
 
@@ -106,6 +130,7 @@ class PlanetaryDesign:
         from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
 
         found = tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
+        found += _planet_ring_allowance_diagnostics(result)
         ring = pl.ring_resonance_warning(result)
         if ring is None:
             return found

@@ -134,9 +134,27 @@ def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
         ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
         ("planets at [°], load-sharing K_γ", [f"{', '.join(_g(a, 5) for a in p.planet_angles_deg)}, "
                                              f"{_g(p.load_sharing_factor, 4)}" for p in ps]),
+        *_ring_allowance_rows(ps),
     ]
     return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
                             [f"stage {st.index}" for st in s], rows)]
+
+
+def _ring_allowance_rows(ps) -> list[tuple[str, list[str]]]:
+    """The planet–ring mesh's tooth-thickness allowances (docs/planetary.md), where any stage has them."""
+    if all(p.planet_ring.backlash_circumferential_mm is None for p in ps):
+        return []
+
+    def limits(values, digits: int) -> str:
+        return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
+
+    return [("ring x_E e / i", [limits(p.ring.generating_profile_shift, 4) for p in ps]),
+            ("ring d_f e / i [mm]", [limits(p.ring.manufactured_root_diameter_mm, 3) for p in ps]),
+            ("planet–ring backlash j_t max / min [mm]", [limits(p.planet_ring.backlash_circumferential_mm, 3)
+                                                         for p in ps]),
+            ("planet–ring backlash j_n max / min [mm]", [limits(p.planet_ring.backlash_normal_mm, 3) for p in ps]),
+            ("planet–ring ε_α e / m / i", [limits(p.planet_ring.contact_ratio_transverse_with_allowances, 3)
+                                           for p in ps])]
 
 
 def _member_row(member: str, ps) -> tuple[str, list[str]]:
