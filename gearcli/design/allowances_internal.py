@@ -96,3 +96,17 @@ def internal_allowances(mesh: InternalMesh, shifts: Pair, planet_cut: Pair, ring
     eps = (contact_ratio(mesh, planet_tips[0], ring_tip_mm), contact_ratio(mesh, mean_tip, ring_tip_mm),
            contact_ratio(mesh, planet_tips[1], ring_tip_mm))
     return InternalAllowances(ring_cut, roots, (j_max, j_min), (j_max * to_normal, j_min * to_normal), eps)
+
+
+def internal_normal_tip_thickness_mm(teeth: int, normal_module_mm: float, profile_shift: float, helix_rad: float,
+                                     normal_pressure_rad: float, tip_diameter: float) -> float:
+    """Normal tooth thickness of an internal gear at its tip circle (the inner one), s_an = s_at cos β_a: with
+    s_t = m_t (π/2 + 2 x tan α_n) on the reference circle (ISO 21771's sign of x), an internal tooth thins inwards,
+    s_at = d_a (s_t/d − inv α_t + inv α_at), cos α_at = d_b/d_a, tan β_a = tan β d_a/d. Negative: pointed."""
+    m_t = normal_module_mm / math.cos(helix_rad)
+    alpha_t = math.atan(math.tan(normal_pressure_rad) / math.cos(helix_rad))
+    d = teeth * m_t
+    alpha_at = math.acos(min(d * math.cos(alpha_t) / tip_diameter, 1.0))
+    s_t = m_t * (0.5 * math.pi + 2.0 * profile_shift * math.tan(normal_pressure_rad))
+    s_at = tip_diameter * (s_t / d - involute(alpha_t) + involute(alpha_at))
+    return s_at * math.cos(math.atan(math.tan(helix_rad) * tip_diameter / d))

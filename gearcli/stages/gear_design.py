@@ -43,7 +43,34 @@ def _planet_ring_allowance_diagnostics(result: StageResult) -> tuple[Diagnostic,
             "interrupted in every transverse section; narrow the planet's tip allowance",
             check="contact_ratio_allowances", stage=result.index, mesh="planet_ring",
             contact_ratio_transverse_with_allowances=list(eps)))
-    return tuple(out)
+    return (*out, *_ring_tip_thickness_diagnostics(result))
+
+
+RING_MIN_TIP_THICKNESS_PER_MODULE = 0.2  # as an external gear's (design.checks.MIN_TIP_THICKNESS_PER_MODULE)
+
+
+def _ring_tip_thickness_diagnostics(result: StageResult) -> tuple[Diagnostic, ...]:
+    """``tip_thickness`` of the ring: its normal tip thickness at the thinnest cut tooth (x_E,i of its allowance, or
+    x) below 0.2 m_n (pointed at ≤ 0), as an external member's."""
+    from gearcli.design.allowances_internal import internal_normal_tip_thickness_mm
+
+    p = result.planetary
+    assert p is not None  # a planetary stage's result
+    ring, m_n = p.ring, result.normal_module_mm
+    cut = ring.profile_shift if ring.generating_profile_shift is None else ring.generating_profile_shift[1]
+    s_an = internal_normal_tip_thickness_mm(ring.teeth, m_n, cut, math.radians(result.helix_angle_deg),
+                                            math.radians(result.normal_pressure_angle_deg), ring.tip_diameter_mm)
+    limit = RING_MIN_TIP_THICKNESS_PER_MODULE * m_n
+    if s_an >= limit:
+        return ()
+    what = "pointed tooth: the flanks meet before the tip circle" if s_an <= 0 else "thin tooth tip"
+    shift = f"x = {ring.profile_shift:+.3f}" + (f", cut at x_E,i = {cut:+.3f} by the lower tooth-thickness allowance"
+                                                if ring.generating_profile_shift is not None else "")
+    return (warning(DESIGN, f"stage {result.index}: ring {what}, normal tip thickness s_an = {s_an:.3g} mm < "
+                    f"{RING_MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({shift}); raise the ring's profile "
+                    "shift or narrow its tooth-thickness allowance", check="tip_thickness", stage=result.index,
+                    member="ring", profile_shift=ring.profile_shift, normal_tip_thickness_mm=s_an,
+                    **({} if ring.generating_profile_shift is None else {"generating_profile_shift": cut})),)
 
 
 class ParallelDesign:

@@ -264,3 +264,41 @@ def test_bad_ring_allowances_exit_2_naming_file_and_key(tmp_path, new, key):
     res = _run(tmp_path, SPUR.replace("[-0.120, -0.200]", new), "--format", "json")
     assert res.exit_code == 2, res.output
     assert key in res.output and "ring_allowances.toml" in res.output and "Traceback" not in res.output
+
+
+def _ring_tip_thickness_by_hand(z: int, m: float, x: float, tip: float) -> float:
+    """Spur: the ring's tooth is the tooth space of the external gear of the same z cut at −x (the internal gear is
+    the external one's negative): e_y = π d_y/z − d_y (s(−x)/d + inv α − inv α_y), s(−x) = m (π/2 − 2 x tan α)."""
+    alpha = math.radians(20.0)
+    d = z * m
+    alpha_y = math.acos(d * math.cos(alpha) / tip)
+    s_minus = m * (math.pi / 2 - 2 * x * math.tan(alpha))
+    return math.pi * tip / z - tip * (s_minus / d + _inv(alpha) - _inv(alpha_y))
+
+
+def test_a_ring_thinned_to_a_thin_tip_warns(tmp_path):
+    """A_sn,r = [−2.3, −2.5] mm (m 3): x_E,i = 0.25 − 2.5/(6 tan 20°) = −0.8947; the ring's tip thickness at
+    d_a = 235.5 mm by hand, 0.3777 mm < 0.2 m = 0.6 mm: warned (`tip_thickness`, member ring); the nominal ring
+    (x = 0.25: 2.80 mm) is not."""
+    x_e = 0.25 - 2.5 / (6 * math.tan(math.radians(20.0)))
+    s = _ring_tip_thickness_by_hand(81, 3.0, x_e, 235.5)
+    assert_allclose(s, 0.3777, atol=1e-4)
+    data = _design(tmp_path, SPUR.replace("[-0.120, -0.200]", "[-2.3, -2.5]"))
+    found = [w for w in data["warnings"] if w.get("check") == "tip_thickness" and w.get("member") == "ring"]
+    assert len(found) == 1
+    assert_allclose(found[0]["normal_tip_thickness_mm"], s, rtol=1e-9)
+    assert_allclose(found[0]["generating_profile_shift"], x_e, rtol=1e-12)
+    assert _ring_tip_thickness_by_hand(81, 3.0, 0.25, 235.5) > 0.6
+    nominal = _design(tmp_path, SPUR)
+    assert not [w for w in nominal["warnings"] if w.get("check") == "tip_thickness"]
+
+
+def test_the_ring_tip_thickness_tends_to_the_rack_s():
+    """z → ∞: the rack's tooth at its tip, π m/2 − 2 h_a tan α with h_a = m (1 + x) measured from a reference line
+    the shift moves by x m: π m/2 − 2 m tan α whatever x."""
+    from gearcli.design.allowances_internal import internal_normal_tip_thickness_mm
+
+    m, z = 4.0, 200000
+    for x in (-0.5, 0.0, 0.3):
+        s = internal_normal_tip_thickness_mm(z, m, x, 0.0, math.radians(20.0), z * m - 2 * m * (1 + x))
+        assert_allclose(s, m * (math.pi / 2 - 2 * math.tan(math.radians(20.0))), rtol=1e-4)
