@@ -14,7 +14,6 @@ import json
 import math
 from pathlib import Path
 
-import pytest
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
