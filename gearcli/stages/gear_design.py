@@ -52,7 +52,7 @@ RING_MIN_TIP_THICKNESS_PER_MODULE = 0.2  # as an external gear's (design.checks.
 def _ring_tip_thickness_diagnostics(result: StageResult) -> tuple[Diagnostic, ...]:
     """``tip_thickness`` of the ring: its normal tip thickness at the thinnest cut tooth (x_E,i of its allowance, or
     x) below 0.2 m_n (pointed at ≤ 0), as an external member's."""
-    from gearcli.design.allowances_internal import internal_normal_tip_thickness_mm
+    from gearcli.design.allowances_internal import internal_normal_tip_thickness_mm  # lazy: planetary files only
 
     p = result.planetary
     assert p is not None  # a planetary stage's result
