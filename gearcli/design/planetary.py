@@ -352,9 +352,16 @@ def _with_ring_allowances(k: int, stage: PlanetaryStage, geo: InternalGeometry, 
                           key=f"stage[{k}].planet.tip_diameter_allowance_mm")
     ring = replace(ring, generating_profile_shift=a.ring_generating_profile_shift,
                    manufactured_root_diameter_mm=a.ring_manufactured_root_diameter_mm)
+    # tip clearances at the limits: the planet's largest tip on the ring's shallowest root (its thickest tooth), the
+    # ring's tip on the planet's highest root (its thickest tooth, x_E,e)
+    planet_root = planet.manufactured_root_diameter_mm or (planet.root_diameter_mm, planet.root_diameter_mm)
+    clearance = (0.5 * (a.ring_manufactured_root_diameter_mm[0] - planet.tip_diameter_mm - tips[0])
+                 - mesh.center_distance_mm,
+                 0.5 * (geo.tip_diameter_mm - planet_root[0]) - mesh.center_distance_mm)
     return ring, replace(ring_mesh, backlash_circumferential_mm=a.backlash_circumferential_mm,
                          backlash_normal_mm=a.backlash_normal_mm,
-                         contact_ratio_transverse_with_allowances=a.contact_ratio_transverse_with_allowances)
+                         contact_ratio_transverse_with_allowances=a.contact_ratio_transverse_with_allowances,
+                         tip_clearance_with_allowances_mm=clearance)
 
 
 # ---------------------------------------------------------------------------------- warnings

@@ -43,6 +43,15 @@ def _planet_ring_allowance_diagnostics(result: StageResult) -> tuple[Diagnostic,
             "interrupted in every transverse section; narrow the planet's tip allowance",
             check="contact_ratio_allowances", stage=result.index, mesh="planet_ring",
             contact_ratio_transverse_with_allowances=list(eps)))
+    clearances = mesh.tip_clearance_with_allowances_mm
+    for member, mate, c in zip(("planet", "ring"), ("ring", "planet"), clearances or (0.0, 0.0), strict=True):
+        if c < 0.0:
+            out.append(warning(
+                DESIGN, f"stage {result.index} planet–ring mesh: {member} tip clearance with allowances c = {c:.3g} mm "
+                f"< 0: at the upper tip and the {mate}'s upper tooth-thickness allowance the tip runs into the {mate}'s "
+                f"root; narrow the {mate}'s positive tooth-thickness allowance"
+                + (" or the planet's tip allowance (tip_diameter_allowance_mm)" if member == "planet" else ""),
+                check="tip_clearance", stage=result.index, mesh="planet_ring", member=member, tip_clearance_mm=c))
     return (*out, *_ring_tip_thickness_diagnostics(result))
 
 

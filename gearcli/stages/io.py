@@ -72,6 +72,7 @@ class PlanetaryOutput:
         stage.pop("pinion")
         stage.pop("gear")
         ring_mesh = p.pop("planet_ring")
+        ring_mesh.pop("tip_clearance_with_allowances_mm", None)  # the warning's data only (docs/planetary.md)
         planet = {**p.pop("planet"), "count": p["planet_count"], "mass_kg": p.pop("planet_mass_kg")}
         return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
                 "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,

@@ -302,3 +302,21 @@ def test_the_ring_tip_thickness_tends_to_the_rack_s():
     for x in (-0.5, 0.0, 0.3):
         s = internal_normal_tip_thickness_mm(z, m, x, 0.0, math.radians(20.0), z * m - 2 * m * (1 + x))
         assert_allclose(s, m * (math.pi / 2 - 2 * math.tan(math.radians(20.0))), rtol=1e-4)
+
+
+def test_a_thickened_ring_s_root_under_the_planet_tip_warns(tmp_path):
+    """Ring A_sn = [+0.8, +0.6] (m 3): x_E,e = 0.25 + 0.8/(6 tan 20°) = 0.61633, its root d_f,e = 243 + 6 (1.25 −
+    0.61633) = 246.802 mm; the planet's largest tip (d_a + A_dae = 94.5 mm) on the carrier's radius 76.5 mm leaves
+    c = 246.802/2 − 76.5 − 94.5/2 = −0.349 mm: warned (`tip_clearance`, mesh planet_ring, member planet). The ring's
+    tip against the planet's highest root, 235.5/2 − 76.5 − d_f,e,p/2 = +0.846 mm, is not; neither is in the JSON."""
+    x_e = 0.25 + 0.8 / (6 * math.tan(math.radians(20.0)))
+    c_planet = (243 + 6 * (1.25 - x_e)) / 2 - 76.5 - A.planet_tip / 2
+    assert_allclose(c_planet, -0.349, atol=5e-4)
+    planet_root = A.d[1] + 2 * 3.0 * (A.x_e(1, 0) - 1.25)
+    assert_allclose(A.ring_tip / 2 - 76.5 - planet_root / 2, 0.846, atol=5e-4)
+    data = _design(tmp_path, SPUR.replace("[-0.120, -0.200]", "[0.8, 0.6]"))
+    found = [w for w in data["warnings"] if w.get("check") == "tip_clearance"]
+    assert len(found) == 1 and found[0]["mesh"] == "planet_ring" and found[0]["member"] == "planet"
+    assert_allclose(found[0]["tip_clearance_mm"], c_planet, rtol=1e-9)
+    assert "tip_clearance_with_allowances_mm" not in data["stages"][0]["meshes"][1]
+    assert not [w for w in _design(tmp_path, SPUR)["warnings"] if w.get("check") == "tip_clearance"]
