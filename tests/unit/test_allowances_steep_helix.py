@@ -235,3 +235,22 @@ def test_a_centre_distance_allowance_alone_leaves_the_root_rating(tmp_path):
     b = _design(tmp_path, centre_only)["stages"][0]["rating"]
     assert "backlash_circumferential_mm" in _design(tmp_path, centre_only)["stages"][0]
     assert b["K_Fbeta"] == a["K_Fbeta"]
+
+
+def _span_mm(z: int, k: int, x: float, m_n: float, beta: float) -> float:
+    """Base tangent length over k teeth (ISO 21771): W_k = m_n cos α_n [(k − 0.5) π + z inv α_t] + 2 x m_n sin α_n."""
+    an = math.radians(20.0)
+    at = math.atan(math.tan(an) / math.cos(beta))
+    return m_n * math.cos(an) * ((k - 0.5) * math.pi + z * _inv(at)) + 2 * x * m_n * math.sin(an)
+
+
+def test_the_generating_shift_is_the_one_the_span_measures(tmp_path):
+    """How the workshop checks a thickness allowance: the span over k teeth shrinks by A_sn cos α_n (the tooth
+    thinned by A_sn in the normal section, seen along the base tangent). The x_E gearcli prints must give exactly
+    that span: W_k(x_E) = W_k(x) + A_sn cos α_n, for both limits of both members (k = 3 and 6 teeth)."""
+    st = _design(tmp_path, HELICAL)["stages"][0]
+    for i, (member, k) in enumerate((("pinion", 3), ("gear", 6))):
+        nominal = _span_mm(H.z[i], k, H.x[i], 4.0, H.b)
+        for j in (0, 1):
+            cut = _span_mm(H.z[i], k, st[member]["generating_profile_shift"][j], 4.0, H.b)
+            assert_allclose(cut, nominal + H.a_sn[i][j] * math.cos(math.radians(20.0)), rtol=0, atol=1e-12)
