@@ -74,10 +74,11 @@ def _ring_tip_thickness_diagnostics(result: StageResult) -> tuple[Diagnostic, ..
         return ()
     what = "pointed tooth: the flanks meet before the tip circle" if s_an <= 0 else "thin tooth tip"
     shift = f"x = {ring.profile_shift:+.3f}" + (f", cut at x_E,i = {cut:+.3f} by the lower tooth-thickness allowance"
-                                                if ring.generating_profile_shift is not None else "")
+                                                if cut != ring.profile_shift else "")
     return (warning(DESIGN, f"stage {result.index}: ring {what}, normal tip thickness s_an = {s_an:.3g} mm < "
-                    f"{RING_MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({shift}); raise the ring's profile "
-                    "shift or narrow its tooth-thickness allowance", check="tip_thickness", stage=result.index,
+                    f"{RING_MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({shift}); narrow the ring's "
+                    "tooth-thickness allowance or shorten its teeth (basic_rack addendum)", check="tip_thickness",
+                    stage=result.index,
                     member="ring", profile_shift=ring.profile_shift, normal_tip_thickness_mm=s_an,
                     **({} if ring.generating_profile_shift is None else {"generating_profile_shift": cut})),)
 
