@@ -298,6 +298,13 @@ class InternalMeshResult:
     resonance_lower_limit: float = 0.0
     resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
     mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
+    # tooth-thickness allowances of the planet and the ring (ISO 21771; None without them), at the carrier's radius
+    backlash_circumferential_mm: tuple[float, float] | None = None  # [max, min] on the working circles
+    backlash_normal_mm: tuple[float, float] | None = None  # [max, min] between the idle flanks
+    contact_ratio_transverse_with_allowances: tuple[float, float, float] | None = None  # [e, m, i]
+    # the smallest tip clearances with allowances (planet tip on the ring's root, ring tip on the planet's root) for
+    # the ``tip_clearance`` warning; not in the JSON (as a parallel stage's, only the warning carries them)
+    tip_clearance_with_allowances_mm: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)

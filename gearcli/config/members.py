@@ -109,22 +109,29 @@ class Ring(Gear):
     # the pinion-type cutter that generates the ring: its teeth z_0 set the root fillet the ring's tooth-root rating
     # uses (ISO 6336-3 for internal gears); absent: the basic rack's fillet (z_0 -> infinity: smaller, conservative)
     cutter_teeth: Annotated[int, Field(ge=8, le=200)] | None = None
-    # the allowances of an internal gear are not modelled: named here (not in the schema) to refuse them with the
+    # tooth thickness allowances [A_sne, A_sni] (normal section, mm; negative: thinner teeth, ISO 21771's signs, as
+    # on an external gear): the ring's generating profile shift and root, the planet–ring backlash (docs/planetary.md,
+    # "Tooth-thickness allowances")
+    tooth_thickness_allowance_mm: AllowancePair | None = None
+    # the tip allowance of an internal gear is not modelled: named here (not in the schema) to refuse it with the
     # reason
-    tooth_thickness_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
     tip_diameter_allowance_mm: SkipJsonSchema[AllowancePair | None] = None
     # an internal gear has no bore: named here (not in the schema) to refuse it with the reason (it was ignored)
     bore_diameter_mm: SkipJsonSchema[float | None] = None
 
-    @field_validator("tooth_thickness_allowance_mm", "tip_diameter_allowance_mm")
+    @field_validator("tip_diameter_allowance_mm")
     @classmethod
-    def _no_internal_allowances(cls, value: list[float] | None) -> None:
+    def _no_internal_tip_allowance(cls, value: list[float] | None) -> None:
         if value is not None:
-            raise ValueError("the ring (an internal gear) takes no manufacturing allowance yet: its generating "
-                             "profile shift, root and the planet–ring backlash are not modelled; give the "
-                             "allowances on the sun and the planets (docs/planetary.md, \"Tooth-thickness "
-                             "allowances\")")
+            raise ValueError("the ring (an internal gear) takes no tip diameter allowance yet: the planet–ring contact "
+                             "ratio with allowances uses its nominal tip; give the ring's tooth_thickness_allowance_mm "
+                             "and the planets' tip allowances (docs/planetary.md, \"Tooth-thickness allowances\")")
         return None
+
+    @model_validator(mode="after")
+    def _allowance_order(self) -> "Ring":
+        _upper_not_below_lower("tooth_thickness_allowance_mm", self.tooth_thickness_allowance_mm)
+        return self
 
     @field_validator("bore_diameter_mm")
     @classmethod

@@ -114,7 +114,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                                                      "contact_ratio_total": stage.contact_ratio_total}))
         for gear in (stage.pinion, stage.gear):
             clearance = tip_clearance_with_allowances_mm(stage, stage_cfg, gear)
-            found.append((tip_clearance_warning(stage, gear, clearance),
+            found.append((tip_clearance_warning(stage, gear, clearance, stage_cfg),
                           {"check": "tip_clearance", **at, "member": _part(stage, gear), "tip_clearance_mm": clearance}))
         found.append((contact_ratio_allowances_warning(stage),
                       {"check": "contact_ratio_allowances", **at,
@@ -311,12 +311,31 @@ def tip_clearance_with_allowances_mm(stage: StageResult, stage_cfg: Stage, gear:
             - 0.5 * (gear.tip_diameter_mm + (tip[0] if tip else 0.0)) - 0.5 * mate.manufactured_root_diameter_mm[0])
 
 
-def tip_clearance_warning(stage: StageResult, gear: GearResult, clearance: float | None) -> str | None:
+def tip_clearance_warning(stage: StageResult, gear: GearResult, clearance: float | None,
+                          stage_cfg: Stage | None = None) -> str | None:
     if clearance is None or clearance >= 0.0:
         return None
     return (f"stage {stage.index}: {_part(stage, gear)} tip clearance with allowances c = {clearance:.3g} mm < 0: at "
             "the upper tip allowance, the mate's upper tooth-thickness allowance and the smallest centre distance the "
-            "tip runs into the mate's root; narrow the tip allowance (tip_diameter_allowance_mm)")
+            f"tip runs into the mate's root; narrow {_clearance_culprits(stage, gear, stage_cfg)}")
+
+
+def _clearance_culprits(stage: StageResult, gear: GearResult, stage_cfg: Stage | None) -> str:
+    """The allowances that take the clearance below the basic rack's: a positive upper tip allowance, a positive
+    upper tooth-thickness allowance of the mate (its root raised), a negative lower centre-distance allowance."""
+    if stage_cfg is None:
+        return "the tip allowance (tip_diameter_allowance_mm)"
+    own = getattr(stage_cfg, _part(stage, gear))
+    mate = getattr(stage_cfg, _part(stage, stage.gear if gear is stage.pinion else stage.pinion))
+    centre = stage_cfg.center_distance_allowance_mm
+    named = [text for text, on in (
+        (f"the {_part(stage, gear)}'s tip allowance (tip_diameter_allowance_mm)",
+         bool(own.tip_diameter_allowance_mm and own.tip_diameter_allowance_mm[0] > 0.0)),
+        ("the mate's upper tooth-thickness allowance (tooth_thickness_allowance_mm)",
+         bool(mate.tooth_thickness_allowance_mm and mate.tooth_thickness_allowance_mm[0] > 0.0)),
+        ("the centre distance's lower allowance (center_distance_allowance_mm)", bool(centre and centre[1] < 0.0)))
+        if on]
+    return " or ".join(named) if named else "the tip allowance (tip_diameter_allowance_mm)"
 
 
 def contact_ratio_allowances_warning(stage: StageResult) -> str | None:

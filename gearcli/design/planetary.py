@@ -28,6 +28,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, TypeVar, cast
 
+from gearcli.design import allowances_internal as ia
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
@@ -242,6 +243,7 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
                        planet.tip_diameter_mm, stage.normal_module_mm)
     # the planet–ring mesh: its (driving-side) force against the sun–planet mesh's
     ring_mesh = _ring_mesh(cfg, k, stage, geo, mesh, planet_mat, ring_mat, m_t, books.ring_mesh / books.sun_mesh)
+    ring, ring_mesh = _with_ring_allowances(k, stage, geo, mesh, ring, ring_mesh)
     k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
     angles = bal.planet_angles_deg(n, stage.planet.angles_deg)
     order = sorted(a % 360.0 for a in angles)
@@ -313,6 +315,53 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         resonance_lower_limit=res.lower_main_resonance_limit(line_load),
         resonance_range=res.resonance_range(abs(planet.speed_rpm) / n_e1, res.lower_main_resonance_limit(line_load)),
         mesh_stiffness=at_load)
+
+
+def _with_ring_allowances(k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult, ring: GearResult,
+                          ring_mesh: InternalMeshResult) -> tuple[GearResult, InternalMeshResult]:
+    """The ring's x_E and manufactured root, the planet–ring backlash and ε_α with allowances (design.allowances_
+    internal) where the planet or the ring has allowance keys; unchanged otherwise."""
+    planet_cfg, ring_cfg = stage.planet, stage.ring
+    if (planet_cfg.tooth_thickness_allowance_mm is None and planet_cfg.tip_diameter_allowance_mm is None
+            and ring_cfg.tooth_thickness_allowance_mm is None):
+        return ring, ring_mesh
+    beta = math.radians(stage.helix_angle_deg)
+    alpha_t = transverse_pressure_angle_rad(math.radians(stage.normal_pressure_angle_deg), beta)
+    planet = mesh.gear
+    internal = ia.InternalMesh(
+        normal_module_mm=stage.normal_module_mm, normal_pressure_rad=math.radians(stage.normal_pressure_angle_deg),
+        transverse_pressure_rad=alpha_t, base_helix_rad=base_helix_angle_rad(beta, alpha_t),
+        transverse_module_mm=transverse_module_mm(stage.normal_module_mm, beta), teeth=(planet_cfg.teeth, ring_cfg.teeth),
+        base_diameter_mm=(planet.base_diameter_mm, geo.base_diameter_mm), center_distance_mm=mesh.center_distance_mm)
+    x_p = planet.generating_profile_shift or (planet_cfg.profile_shift, planet_cfg.profile_shift)
+    thickness = ring_cfg.tooth_thickness_allowance_mm or (0.0, 0.0)
+    tips = planet_cfg.tip_diameter_allowance_mm or (0.0, 0.0)
+    a = ia.internal_allowances(internal, (planet_cfg.profile_shift, ring_cfg.profile_shift), (x_p[0], x_p[1]),
+                               (thickness[0], thickness[1]),
+                               (planet.tip_diameter_mm + tips[0], planet.tip_diameter_mm + tips[1]),
+                               geo.tip_diameter_mm, geo.pitch_diameter_mm, stage.basic_rack.dedendum)
+    if a.ring_manufactured_root_diameter_mm[0] <= geo.tip_diameter_mm:
+        raise DesignError(f"the ring's upper tooth-thickness allowance cuts its root at d_f = "
+                          f"{a.ring_manufactured_root_diameter_mm[0]:.4g} mm, not outside its tip circle d_a = "
+                          f"{geo.tip_diameter_mm:.4g} mm: no tooth depth is left",
+                          key=f"stage[{k}].ring.tooth_thickness_allowance_mm")
+    if min(a.contact_ratio_transverse_with_allowances) <= 0.0:
+        raise DesignError(f"the planet–ring contact ratio with allowances ε_α = "
+                          f"{min(a.contact_ratio_transverse_with_allowances):.3f} ≤ 0: at the planet's lower tip the "
+                          "tips do not reach the line of action, the teeth lose contact",
+                          key=f"stage[{k}].planet.tip_diameter_allowance_mm")
+    ring = replace(ring, generating_profile_shift=a.ring_generating_profile_shift,
+                   manufactured_root_diameter_mm=a.ring_manufactured_root_diameter_mm)
+    # tip clearances at the limits: the planet's largest tip on the ring's shallowest root (its thickest tooth), the
+    # ring's tip on the planet's highest root (its thickest tooth, x_E,e)
+    planet_root = planet.manufactured_root_diameter_mm or (planet.root_diameter_mm, planet.root_diameter_mm)
+    clearance = (0.5 * (a.ring_manufactured_root_diameter_mm[0] - planet.tip_diameter_mm - tips[0])
+                 - mesh.center_distance_mm,
+                 0.5 * (geo.tip_diameter_mm - planet_root[0]) - mesh.center_distance_mm)
+    return ring, replace(ring_mesh, backlash_circumferential_mm=a.backlash_circumferential_mm,
+                         backlash_normal_mm=a.backlash_normal_mm,
+                         contact_ratio_transverse_with_allowances=a.contact_ratio_transverse_with_allowances,
+                         tip_clearance_with_allowances_mm=clearance)
 
 
 # ---------------------------------------------------------------------------------- warnings

@@ -131,13 +131,14 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     rack = (stage.basic_rack.dedendum, stage.basic_rack.root_radius)
     an = math.radians(st.normal_pressure_angle_deg)
     z_gamma = rating.virtual_tooth_count
-    # the planet's root at x, or at x_E of its tooth-thickness allowance (``[rating] root_profile_shift``), as in
-    # its sun mesh; the ring takes no allowance (schema)
+    # the planet's and the ring's roots at x, or at x_E of their tooth-thickness allowances (``[rating]
+    # root_profile_shift``; the planet's as in its sun mesh)
     forms = (rr.tooth_form(planet.teeth, m_n, an, beta, beta_b, root_shift(planet, rating.root_profile_shift),
                            planet.tip_diameter_mm, planet.pitch_diameter_mm, eps_a, rack,
                            virtual_tooth_count=z_gamma),
-             rr.internal_tooth_form(ring.teeth, m_n, an, beta, beta_b, ring.profile_shift, ring.tip_diameter_mm,
-                                    ring.pitch_diameter_mm, eps_a, rack, cutter_teeth=stage.ring.cutter_teeth,
+             rr.internal_tooth_form(ring.teeth, m_n, an, beta, beta_b, root_shift(ring, rating.root_profile_shift),
+                                    ring.tip_diameter_mm, ring.pitch_diameter_mm, eps_a, rack,
+                                    cutter_teeth=stage.ring.cutter_teeth,
                                     virtual_tooth_count=z_gamma))
     y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
     y_bs = (rr.rim_factor(stage.planet.rim_thickness_mm, 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm)),
@@ -178,7 +179,8 @@ def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic
     ring, mesh = p.ring, p.planet_ring
     form = rr.internal_tooth_form(ring.teeth, st.normal_module_mm, math.radians(st.normal_pressure_angle_deg),
                                   math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg),
-                                  ring.profile_shift, ring.tip_diameter_mm, ring.pitch_diameter_mm,
+                                  root_shift(ring, cfg.rating.root_profile_shift if cfg.rating is not None
+                                             else "nominal"), ring.tip_diameter_mm, ring.pitch_diameter_mm,
                                   mesh.contact_ratio_transverse,
                                   (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
                                   cutter_teeth=stage.ring.cutter_teeth)

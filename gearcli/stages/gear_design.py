@@ -22,6 +22,67 @@ if TYPE_CHECKING:
     from gearcli.stages.design import MeshResult
 
 
+def _planet_ring_allowance_diagnostics(result: StageResult) -> tuple[Diagnostic, ...]:
+    """The planet–ring mesh's allowances: a negative minimum backlash (``backlash_negative``) and ε_α,i < 1 where
+    the nominal ε_α ≥ 1 (``contact_ratio_allowances``), ``mesh`` "planet_ring"."""
+    mesh = result.planetary.planet_ring  # type: ignore[union-attr]  # a planetary stage's result
+    j, eps = mesh.backlash_circumferential_mm, mesh.contact_ratio_transverse_with_allowances
+    out: list[Diagnostic] = []
+    if j is not None and j[1] < 0.0:
+        out.append(warning(
+            DESIGN, f"stage {result.index} planet–ring mesh: the minimum circumferential backlash is {j[1]:.4g} mm "
+            "(< 0): at the upper tooth-thickness allowances of planet and ring, on the carrier's radius, the teeth jam"
+            + (f" (the maximum, {j[0]:.4g} mm, too: every pair within the tolerances jams)" if j[0] < 0.0 else "")
+            + "; thin the teeth (tooth_thickness_allowance_mm of the planet or the ring)",
+            check="backlash_negative", stage=result.index, mesh="planet_ring", backlash_min_mm=j[1],
+            backlash_max_mm=j[0]))
+    if eps is not None and min(eps) < 1.0 <= mesh.contact_ratio_transverse:
+        out.append(warning(
+            DESIGN, f"stage {result.index} planet–ring mesh: transverse contact ratio with allowances ε_α,i = "
+            f"{min(eps):.3f} < 1 (nominal {mesh.contact_ratio_transverse:.3f}): at the planet's lower tip contact is "
+            "interrupted in every transverse section; narrow the planet's tip allowance",
+            check="contact_ratio_allowances", stage=result.index, mesh="planet_ring",
+            contact_ratio_transverse_with_allowances=list(eps)))
+    clearances = mesh.tip_clearance_with_allowances_mm
+    for member, mate, c in zip(("planet", "ring"), ("ring", "planet"), clearances or (0.0, 0.0), strict=True):
+        if c < 0.0:
+            out.append(warning(
+                DESIGN, f"stage {result.index} planet–ring mesh: {member} tip clearance with allowances c = {c:.3g} mm "
+                f"< 0: at the upper tip and the {mate}'s upper tooth-thickness allowance the tip runs into the {mate}'s "
+                f"root; narrow the {mate}'s positive tooth-thickness allowance"
+                + (" or the planet's tip allowance (tip_diameter_allowance_mm)" if member == "planet" else ""),
+                check="tip_clearance", stage=result.index, mesh="planet_ring", member=member, tip_clearance_mm=c))
+    return (*out, *_ring_tip_thickness_diagnostics(result))
+
+
+RING_MIN_TIP_THICKNESS_PER_MODULE = 0.2  # as an external gear's (design.checks.MIN_TIP_THICKNESS_PER_MODULE)
+
+
+def _ring_tip_thickness_diagnostics(result: StageResult) -> tuple[Diagnostic, ...]:
+    """``tip_thickness`` of the ring: its normal tip thickness at the thinnest cut tooth (x_E,i of its allowance, or
+    x) below 0.2 m_n (pointed at ≤ 0), as an external member's."""
+    from gearcli.design.allowances_internal import internal_normal_tip_thickness_mm  # lazy: planetary files only
+
+    p = result.planetary
+    assert p is not None  # a planetary stage's result
+    ring, m_n = p.ring, result.normal_module_mm
+    cut = ring.profile_shift if ring.generating_profile_shift is None else ring.generating_profile_shift[1]
+    s_an = internal_normal_tip_thickness_mm(ring.teeth, m_n, cut, math.radians(result.helix_angle_deg),
+                                            math.radians(result.normal_pressure_angle_deg), ring.tip_diameter_mm)
+    limit = RING_MIN_TIP_THICKNESS_PER_MODULE * m_n
+    if s_an >= limit:
+        return ()
+    what = "pointed tooth: the flanks meet before the tip circle" if s_an <= 0 else "thin tooth tip"
+    shift = f"x = {ring.profile_shift:+.3f}" + (f", cut at x_E,i = {cut:+.3f} by the lower tooth-thickness allowance"
+                                                if cut != ring.profile_shift else "")
+    return (warning(DESIGN, f"stage {result.index}: ring {what}, normal tip thickness s_an = {s_an:.3g} mm < "
+                    f"{RING_MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({shift}); narrow the ring's "
+                    "tooth-thickness allowance or shorten its teeth (basic_rack addendum)", check="tip_thickness",
+                    stage=result.index,
+                    member="ring", profile_shift=ring.profile_shift, tip_thickness_mm=s_an, min_tip_thickness_mm=limit,
+                    **({} if ring.generating_profile_shift is None else {"generating_profile_shift": cut})),)
+
+
 class ParallelDesign:
     """A parallel stage: one external pair (pinion on the input shaft, gear on the output shaft)."""
 
@@ -106,6 +167,7 @@ class PlanetaryDesign:
         from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
 
         found = tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
+        found += _planet_ring_allowance_diagnostics(result)
         ring = pl.ring_resonance_warning(result)
         if ring is None:
             return found

@@ -75,6 +75,7 @@ class PlanetaryOutput:
         stage.pop("pinion")
         stage.pop("gear")
         ring_mesh = p.pop("planet_ring")
+        ring_mesh.pop("tip_clearance_with_allowances_mm", None)  # the warning's data only (docs/planetary.md)
         planet = {**p.pop("planet"), "count": p["planet_count"], "mass_kg": p.pop("planet_mass_kg")}
         return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,
                 "ring": p.pop("ring"), "carrier": p.pop("carrier"), **p,
@@ -140,9 +141,27 @@ def _planetary_design(stages: list[StageResult], u: OutputUnits) -> list[Rendera
         ("carrier inertia (own + planets) [kg·m²]", [_g(p.carrier.inertia_kg_m2) for p in ps]),
         ("planets at [°], load-sharing K_γ", [f"{', '.join(_g(a, 5) for a in p.planet_angles_deg)}, "
                                              f"{_g(p.load_sharing_factor, 4)}" for p in ps]),
+        *_ring_allowance_rows(ps),
     ]
     return [_quantity_table("planetary stages (the columns above: their sun–planet mesh, z1 sun, z2 planet)",
                             [f"stage {st.index}" for st in s], rows)]
+
+
+def _ring_allowance_rows(ps) -> list[tuple[str, list[str]]]:
+    """The planet–ring mesh's tooth-thickness allowances (docs/planetary.md), where any stage has them."""
+    if all(p.planet_ring.backlash_circumferential_mm is None for p in ps):
+        return []
+
+    def limits(values, digits: int) -> str:
+        return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
+
+    return [("ring x_E e / i", [limits(p.ring.generating_profile_shift, 4) for p in ps]),
+            ("ring d_f e / i [mm]", [limits(p.ring.manufactured_root_diameter_mm, 3) for p in ps]),
+            ("planet–ring backlash j_t max / min [mm]", [limits(p.planet_ring.backlash_circumferential_mm, 3)
+                                                         for p in ps]),
+            ("planet–ring backlash j_n max / min [mm]", [limits(p.planet_ring.backlash_normal_mm, 3) for p in ps]),
+            ("planet–ring ε_α e / m / i", [limits(p.planet_ring.contact_ratio_transverse_with_allowances, 3)
+                                           for p in ps])]
 
 
 def _member_row(member: str, ps, u: OutputUnits) -> tuple[str, list[str]]:

@@ -133,11 +133,15 @@ def test_bad_allowances_exit_2_naming_the_key(old, new, key):
     assert key in res.output and "Traceback" not in res.output
 
 
-def test_a_planetary_ring_has_no_allowance_keys():
-    """The sun and planets take them (tests/unit/test_planetary_allowances.py); the ring, an internal gear, not."""
+def test_a_planetary_ring_takes_a_thickness_allowance_but_no_tip_allowance():
+    """The ring's tooth-thickness allowance acts on the planet–ring mesh (tests/unit/test_ring_allowances.py); its
+    tip allowance is not modelled and refused naming the key."""
     text = (ROOT / "configs" / "planetary_stage.toml").read_text()
     doc = tomllib.loads(text)
     assert doc["stage"][0]["type"] == "planetary"
-    res = _run(text=text.replace("profile_shift = -0.5013", "profile_shift = -0.5013, tooth_thickness_allowance_mm = "
-                                 "[-0.1, -0.2]", 1))
-    assert res.exit_code == 2 and "ring.tooth_thickness_allowance_mm" in res.output
+    res = _run("--format", "json", text=text.replace("profile_shift = -0.5013", "profile_shift = -0.5013, "
+                                                     "tooth_thickness_allowance_mm = [-0.1, -0.2]", 1))
+    assert res.exit_code == 0, res.output
+    res = _run(text=text.replace("profile_shift = -0.5013", "profile_shift = -0.5013, tip_diameter_allowance_mm = "
+                                 "[0.1, 0.0]", 1))
+    assert res.exit_code == 2 and "ring.tip_diameter_allowance_mm" in res.output

@@ -1,5 +1,6 @@
 """Tooth-thickness and tip allowances on a planetary stage's sun and planets (the sun–planet mesh, an external
-pair: docs/planetary.md, "Tooth-thickness allowances"), by hand; the ring (an internal gear) refuses them.
+pair: docs/planetary.md, "Tooth-thickness allowances"), by hand; the ring's own allowances and the planet–ring
+mesh: tests/unit/test_ring_allowances.py.
 
 The stage is configs/planetary_stage.toml (NREL 5 MW stage 1: spur, m_n 45, z 19/17/56, x 0.617/0.8021/−0.5013)
 with A_sn = [−0.3, −0.5] mm on the sun and the planets and A_da = [0, −0.2] mm on the sun. At the nominal
@@ -13,7 +14,6 @@ import json
 import math
 from pathlib import Path
 
-import pytest
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
@@ -62,7 +62,10 @@ def test_generating_shifts_and_roots_by_hand(tmp_path):
     # sun: 0.617 − 0.3/32.757318 = 0.607842; 855 + 2 (0.607842 · 45 − 56.25) = 797.206 mm
     assert_allclose(st["sun"]["generating_profile_shift"][0], 0.607842, atol=5e-7)
     assert_allclose(st["sun"]["manufactured_root_diameter_mm"][0], 797.206, atol=5e-4)
-    assert "generating_profile_shift" not in st["ring"]
+    # the ring without an allowance of its own, in a stage whose planets have one: its nominal x and root (as a
+    # parallel stage's member without the key)
+    assert_allclose(st["ring"]["generating_profile_shift"], [-0.5013, -0.5013], rtol=0, atol=1e-15)
+    assert_allclose(st["ring"]["manufactured_root_diameter_mm"], [st["ring"]["root_diameter_mm"]] * 2, rtol=1e-14)
 
 
 def test_sun_planet_backlash_in_closed_form(tmp_path):
@@ -127,8 +130,9 @@ def test_without_the_keys_nothing_is_added(tmp_path):
     assert not any("allowances" in k or k.startswith("backlash_c") for k in st["meshes"][0])
 
 
-@pytest.mark.parametrize("key", ["tooth_thickness_allowance_mm", "tip_diameter_allowance_mm"])
-def test_the_ring_refuses_them_naming_the_key(tmp_path, key):
+def test_the_ring_refuses_a_tip_allowance_naming_the_key(tmp_path):
+    """Its tooth-thickness allowance is taken (tests/unit/test_ring_allowances.py), its tip allowance not yet."""
+    key = "tip_diameter_allowance_mm"
     text = BASE.replace("profile_shift = -0.5013,", f"profile_shift = -0.5013, {key} = [-0.1, -0.2],")
     res = _run(tmp_path, text)
     assert res.exit_code == 2
