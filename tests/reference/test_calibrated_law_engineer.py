@@ -425,3 +425,56 @@ def test_stiffness_not_iso_threshold(tmp_path, command, factor, warned):
     if warned:
         assert found[0]["stage"] == 1
         assert_allclose(found[0]["departure"], factor - 1, rtol=1e-9)
+
+
+def _with_duty(doc):
+    """THREE_SPEED with a rating-free duty cycle: 600 N m at 1470 rpm, 30 kW at 980 rpm (T = P / w_out by hand),
+    a light 40 N m at 1470 rpm with the exponent raised to 2.0 for that point only (``set``)."""
+    out = copy.deepcopy(doc)
+    # what gearcli life needs to rate the members (it plays no part in the stiffness)
+    out["materials"]["steel"].update({"treatment": "case_carburized", "contact_fatigue_limit_MPa": 1500.0,
+                                      "bending_fatigue_limit_MPa": 500.0})
+    for st in out["stage"]:
+        st["accuracy_grade"] = 6
+        for member in ("pinion", "gear"):
+            st[member].update({"flank_roughness_Rz_um": 4.0, "root_roughness_Rz_um": 12.0})
+    out["lubricant"] = {"viscosity_40C_mm2_s": 220.0}
+    out["rating"] = {"required_life_h": 20000.0}
+    out["duty"] = [{"name": "a", "hours": 100.0, "torque_Nm": 600.0, "speed_rpm": 1470.0},
+                   {"name": "b", "hours": 100.0, "power_kW": 30.0, "speed_rpm": 980.0},
+                   {"name": "c", "hours": 100.0, "torque_Nm": 40.0, "speed_rpm": 1470.0,
+                    "set": {"contact.exponent": 2.0}}]
+    return out
+
+
+def test_each_duty_point_and_sweep_point_calibrates_at_its_own_load(tmp_path):
+    """K follows the static load of every duty point (gearcli life) and sweep point (gearcli sweep): the model each
+    point integrates has the hand K of the iso6336 meshes at that point's output torque (and exponent), and the
+    Hertz mesh keeps its 4/3 sqrt(R) E*."""
+    doc = _with_duty(THREE_SPEED)
+    path = tmp_path / "duty.toml"
+    path.write_text(tomli_w.dumps(doc), encoding="utf-8")
+    i_tot = math.prod(st["gear"]["teeth"] / st["pinion"]["teeth"] for st in doc["stage"])
+    torques = [600.0, 30e3 / (980.0 * RPM / i_tot), 40.0]
+    session = api.prepare_life(str(path))
+    assert len(session.points) == 3
+    for p, torque in zip(session.points, torques, strict=True):
+        case = api.design_case(session.scene, p.overrides())
+        point = copy.deepcopy(doc)
+        point["load"]["torque_Nm"] = torque
+        if p.name == "c":
+            point["contact"]["exponent"] = 2.0
+        spec = api.model_spec(case.cfg, case.design)
+        for k, (mesh, hand) in enumerate(zip(spec.meshes, _hand_meshes(point), strict=True)):
+            assert_allclose(mesh.stiffness_N_m_e / 1000.0 ** mesh.exponent, hand["K"], rtol=1e-11,
+                            err_msg=f"duty {p.name} stage {k + 1}")
+            assert mesh.exponent == _law(point, k)["exponent"]
+    # a sweep over the load torque: each point's design and model at its own torque
+    sweep = api.prepare_sweep(str(path), (), vary=("load.torque_Nm=200,3000",), fmt="json")
+    for torque in (200.0, 3000.0):
+        case = api.design_case(sweep.scene, (f"load.torque_Nm={torque!r}",))
+        point = {**copy.deepcopy(THREE_SPEED), "load": {**THREE_SPEED["load"], "torque_Nm": torque}}
+        spec = api.model_spec(case.cfg, case.design)
+        for k, (mesh, hand) in enumerate(zip(spec.meshes, _hand_meshes(point), strict=True)):
+            assert_allclose(mesh.stiffness_N_m_e / 1000.0 ** mesh.exponent, hand["K"], rtol=1e-11,
+                            err_msg=f"sweep {torque} stage {k + 1}")
