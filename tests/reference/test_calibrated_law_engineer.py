@@ -478,3 +478,68 @@ def test_each_duty_point_and_sweep_point_calibrates_at_its_own_load(tmp_path):
         for k, (mesh, hand) in enumerate(zip(spec.meshes, _hand_meshes(point), strict=True)):
             assert_allclose(mesh.stiffness_N_m_e / 1000.0 ** mesh.exponent, hand["K"], rtol=1e-11,
                             err_msg=f"sweep {torque} stage {k + 1}")
+
+
+# a sun-driven spur planetary 20/31/82 (3 planets, ring held, m_n 3, b 40) with Hertz meshes at e = 1.3 and a
+# helical stage after it on the calibrated law at the same exponent
+PLANETARY = {
+    "materials": {"steel": STEEL},
+    "contact": {"exponent": 1.3},
+    "stage": [{"type": "planetary", "normal_module_mm": 3.0, "normal_pressure_angle_deg": 20.0,
+               "sun": {"teeth": 20, "face_width_mm": 40.0, "material": "steel", "inertia_kg_m2": 0.002},
+               "planet": {"teeth": 31, "face_width_mm": 40.0, "count": 3, "material": "steel",
+                          "inertia_kg_m2": 0.004, "mass_kg": 1.5},
+               "ring": {"teeth": 82, "face_width_mm": 40.0, "material": "steel"},
+               "carrier": {"inertia_kg_m2": 0.3}, "fixed": "ring", "input": "sun", "mesh": {"stiffness": "hertz"}},
+              _stage(5.0, 12.0, 19, 77, 70.0, 65.0, 0.02, 1.4)],
+    "input": {"speed_rpm": 1500.0, "ramp_s": 0.02},
+    "load": {"torque_Nm": 9000.0, "ramp_s": 0.02},
+    "simulation": {"duration_s": 0.06, "steps": 120},
+}
+
+
+def _hand_planetary() -> dict:
+    """The two planet meshes by hand (spur, x = 0, m_t = m_n = 3 mm, alpha_t = 20 deg).
+    Per planet F_t = T_sun / (3 r_s), T_sun = T_carrier / (1 + z_r / z_s), T_carrier = 9000 N m x 19/77.
+    Sun-planet: external, the formulas above. Planet-ring: R = r_p r_r / (r_r - r_p) (concave Hertz contact),
+    ISO 6336-1 q' with z_n2 = infinity for the internal gear, eps_alpha = (sqrt(r_ap^2 - r_bp^2) - sqrt(r_ar^2 -
+    r_br^2) + a sin alpha_t) / (pi m_t cos alpha_t), r_ar = r_r - m_n (internal tips), a = r_r - r_p."""
+    a_t, m = math.radians(20.0), 3.0
+    r_s, r_p, r_r = 30.0, 46.5, 123.0
+    f_t = 9000e3 * 19 / 77 / (1 + 82 / 20) / (3 * r_s)
+    f_n = f_t / math.cos(a_t)
+    e_star = 1 / (2 * (1 - 0.3**2) / 2.1e5)
+    c_b = 1 + 0.5 * (1.2 - 1.25)
+    out = {}
+    for name, radius, q, eps in (
+        ("sun_planet", r_s * r_p / (r_s + r_p), Q_COEF[0] + Q_COEF[1] / 20 + Q_COEF[2] / 31,
+         (math.sqrt((r_s + m) ** 2 - (r_s * math.cos(a_t)) ** 2) + math.sqrt((r_p + m) ** 2 - (r_p * math.cos(a_t)) ** 2)
+          - (r_s + r_p) * math.sin(a_t)) / (math.pi * m * math.cos(a_t))),
+        ("planet_ring", r_p * r_r / (r_r - r_p), Q_COEF[0] + Q_COEF[1] / 31,
+         (math.sqrt((r_p + m) ** 2 - (r_p * math.cos(a_t)) ** 2) - math.sqrt((r_r - m) ** 2 - (r_r * math.cos(a_t)) ** 2)
+          + (r_r - r_p) * math.sin(a_t)) / (math.pi * m * math.cos(a_t)))):
+        k_n = 1 / q * 0.8 * c_b * (0.75 * eps + 0.25) * 40.0 * 1000.0  # F_t / b = 121 N/mm: full load
+        K = 4 / 3 * math.sqrt(radius) * e_star
+        h0 = (f_n / K) ** (1 / 1.3)
+        out[name] = {"K": K, "k_lin": 1.3 * K * h0**0.3, "k_n": k_n}
+    return out
+
+
+@pytest.mark.parametrize("command", ["design", "modes", "simulate"])
+def test_planetary_meshes_mesh_stiffness_by_hand(tmp_path, command):
+    d = _cli_json(tmp_path, PLANETARY, command)
+    if command == "design":
+        laws = {m["name"]: m["mesh_stiffness"] for m in d["stages"][0]["meshes"]}
+    elif command == "modes":
+        laws = {m["mesh"]: m["mesh_stiffness"] for m in d["meshes"] if m["stage"] == 1}
+    else:
+        st = d["summary"]["stages"][0]
+        laws = {"sun_planet": st["mesh_stiffness"], "planet_ring": st["planet_ring_mesh_stiffness"]}
+    for name, hand in _hand_planetary().items():
+        ms = laws[name]
+        assert ms["law"] == "hertz" and ms["exponent"] == 1.3
+        assert_allclose([ms["K"], ms["linearised_N_mm"], ms["iso_N_mm"]], [hand["K"], hand["k_lin"], hand["k_n"]],
+                        rtol=1e-9, err_msg=f"{command} {name}")
+    # both Hertz planet meshes lie > 25 % below ISO's k_n (hand: -61 %, -53 %); the calibrated stage 2 does not
+    warned = sorted((w["stage"], w["mesh"]) for w in d["warnings"] if w["code"] == "stiffness_not_iso")
+    assert warned == [(1, "planet_ring"), (1, "sun_planet")]
