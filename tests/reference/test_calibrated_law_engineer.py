@@ -97,7 +97,14 @@ HUGE_HELICAL = {
     "input": {"speed_rpm": 300.0},
     "load": {"torque_Nm": 2.5e6},
 }
-SCENES = {"two_helical": TWO_HELICAL, "three_mixed": THREE_MIXED, "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
+# the two helical stages behind a speed-driven motor on a coupling (the pinion shaft is free: its mesh's m_e has both
+# sides) and a drum on a linear (speed_exponent 1) law, [contact] exponent 2.0 with the default damping
+COUPLED_SPEED = {**copy.deepcopy(TWO_HELICAL), "contact": {"exponent": 2.0},
+                 "input": {"speed_rpm": 1480.0, "ramp_s": 0.05, "inertia_kg_m2": 0.3,
+                           "coupling_stiffness_Nm_rad": 1.5e4, "coupling_damping_Nms_rad": 1.0},
+                 "load": {"torque_Nm": 4000.0, "ramp_s": 0.05, "speed_exponent": 1, "inertia_kg_m2": 25.0,
+                          "coupling_stiffness_Nm_rad": 8.0e5, "coupling_damping_Nms_rad": 20.0}}
+SCENES = {"two_helical": TWO_HELICAL, "coupled_speed": COUPLED_SPEED, "three_mixed": THREE_MIXED, "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
 
 
 # ------------------------------------------------------------------------------------- hand calculations
@@ -316,7 +323,7 @@ def _operating_state(doc, model):
     return y
 
 
-@pytest.mark.parametrize("name", ["two_helical", "three_mixed", "huge_helical"])
+@pytest.mark.parametrize("name", ["two_helical", "coupled_speed", "three_mixed", "huge_helical"])
 def test_simulate_rhs_jacobian_has_the_modes_eigenvalues(name):
     """Central differences of simulate's right-hand side at the operating point: its eigenvalues are the hand
     model's damped eigenvalues (the boundary the drive imposes), and the right-hand side vanishes there."""
