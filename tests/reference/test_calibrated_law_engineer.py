@@ -67,11 +67,13 @@ TWO_HELICAL = {
     "load": {"torque_Nm": 4000.0, "ramp_s": 0.05},
 }
 # three stages (helical, spur, helical), a table motor on a coupling, a drum on a coupling with a quadratic (fan)
-# law, [contact] e = 1.3, stage 2 overridden to Hertz e = 2.0, stage 3 to iso6336 e = 2.5 with zeta = 0.08
+# law, [contact] e = 1.3, stage 1 IMPACT-damped (30 N s/mm at 5 um: its STEP ramp at the static approach), stage 2
+# overridden to Hertz e = 2.0, stage 3 to iso6336 e = 2.5 with zeta = 0.08
 THREE_MIXED = {
     "materials": {"steel": STEEL},
     "contact": {"exponent": 1.3},
-    "stage": [_stage(3.0, 12.0, 21, 67, 45.0, 40.0, 0.004, 0.16),
+    "stage": [_stage(3.0, 12.0, 21, 67, 45.0, 40.0, 0.004, 0.16,
+                     mesh={"damping_Ns_mm": 30.0, "full_damping_penetration_mm": 0.005}),
               _stage(5.0, 0.0, 18, 59, 70.0, 65.0, 0.03, 1.1, mesh={"stiffness": "hertz", "exponent": 2.0}),
               _stage(8.0, 20.0, 17, 53, 110.0, 100.0, 0.2, 9.0,
                      mesh={"stiffness": "iso6336", "exponent": 2.5, "damping_ratio": 0.08})],
@@ -144,16 +146,32 @@ def _hand_mesh(st: dict, law: dict, pinion_torque_Nmm: float, load_scale: float 
         K = 4 / 3 * math.sqrt(r_eq) * e_star if law["stiffness"] == "hertz" else float(law["stiffness"])
         h0 = (f_n / K) ** (1 / e)
         k_lin = e * K * (h0 * load_scale ** (1 / e)) ** (e - 1)
-    return {"rb1": rb1 / 1000, "rb2": rb2 / 1000, "cos_bb": math.cos(b_b), "eps_a": eps_a, "c_single": c_single,
+    # the static approach where the models linearise: at the load (times load_scale), an iso6336 law not below
+    # its calibration load
+    h_op = (max(f_n * load_scale, f_n_ref if law["stiffness"] == "iso6336" else 0.0) / K) ** (1 / e)
+    return {"h_op_mm": h_op, "rb1": rb1 / 1000, "rb2": rb2 / 1000, "cos_bb": math.cos(b_b), "eps_a": eps_a, "c_single": c_single,
             "c_ga": c_ga, "k_n": k_n, "K": K, "h0_mm": h0, "k_lin": k_lin, "f_n": f_n, "f_t": f_t,
             "ratio": z2 / z1, "e": e}
 
 
+IMPACT = ("damping_Ns_mm", "full_damping_penetration_mm")
+
+
 def _law(doc: dict, k: int) -> dict:
-    law = {"stiffness": "iso6336", "exponent": 1.5, "damping_ratio": 0.05}
-    law.update(doc.get("contact", {}))
-    law.update(doc["stage"][k].get("mesh", {}))
+    """Stage k's law: the defaults (iso6336, 1.5, zeta 0.05; IMPACT 50 N s/mm at 0.1 mm), [contact], its
+    [stage.mesh]; an IMPACT key given without a damping_ratio anywhere makes it IMPACT-damped (DESIGN section 13)."""
+    contact, mesh = doc.get("contact", {}), doc["stage"][k].get("mesh", {})
+    law = {"stiffness": "iso6336", "exponent": 1.5, "damping_ratio": 0.05, "damping_Ns_mm": 50.0,
+           "full_damping_penetration_mm": 0.1, **contact, **mesh}
+    if any(key in {**contact, **mesh} for key in IMPACT) and "damping_ratio" not in {**contact, **mesh}:
+        law["damping_ratio"] = None
     return law
+
+
+def _step(x, x1, h1):
+    """STEP(x, 0, 0, x1, h1) = h1 s^2 (3 - 2 s), s = x / x1 clamped to [0, 1] (DESIGN section 4)."""
+    s = min(max(x / x1, 0.0), 1.0)
+    return h1 * s * s * (3 - 2 * s)
 
 
 def _hand_meshes(doc: dict, load_scale: float = 1.0) -> list[dict]:
@@ -230,8 +248,12 @@ def _hand_linear(doc: dict, at_operating_load: bool = False):
     for k, (m, at_design) in enumerate(zip(meshes, _hand_meshes(doc), strict=True)):
         p, g = first_shaft + k, first_shaft + k + 1
         inv = (0.0 if p == driven else m["rb1"] ** 2 / J[p]) + m["rb2"] ** 2 / J[g]
-        # c = 2 zeta sqrt(k_lin m_e), k_lin at the design's static load (N/m along the normal): a constant
-        c = 2 * _law(doc, k)["damping_ratio"] * math.sqrt(at_design["k_lin"] * 1000.0 / inv)
+        law = _law(doc, k)
+        if law["damping_ratio"] is None:  # IMPACT: F_n = K h^e + STEP(h, 0, 0, d, C) h', h = cos(beta_b) delta
+            c = m["cos_bb"] ** 2 * _step(m["h_op_mm"], law["full_damping_penetration_mm"],
+                                         law["damping_Ns_mm"] * 1000.0)
+        else:  # c = 2 zeta sqrt(k_lin m_e), k_lin at the design's static load (N/m along the normal): a constant
+            c = 2 * law["damping_ratio"] * math.sqrt(at_design["k_lin"] * 1000.0 / inv)
         add(p, g, m["rb1"], m["rb2"], m["k_lin"] * 1000.0 * m["cos_bb"] ** 2, c)
     if "coupling_stiffness_Nm_rad" in load:
         add(n - 2, n - 1, 1.0, 1.0, load["coupling_stiffness_Nm_rad"], load.get("coupling_damping_Nms_rad", 0.0))
