@@ -572,3 +572,24 @@ def test_planetary_meshes_mesh_stiffness_by_hand(tmp_path, command):
     # both Hertz planet meshes lie > 25 % below ISO's k_n (hand: -61 %, -53 %); the calibrated stage 2 does not
     warned = sorted((w["stage"], w["mesh"]) for w in d["warnings"] if w["code"] == "stiffness_not_iso")
     assert warned == [(1, "planet_ring"), (1, "sun_planet")]
+
+
+@pytest.mark.parametrize("meshes", [({}, {}), ({"exponent": 2.5}, {"stiffness": "hertz", "exponent": 2.0})],
+                         ids=["default", "iso_e2.5_hertz_e2"])
+def test_simulated_static_approach_is_the_laws(tmp_path, meshes):
+    """The settled window mean of the DTE is the law's static approach along the transverse line of action,
+    delta0 = h0 / cos(beta_b): h0 = e F_n0 / k_n for an iso6336 mesh (e times ISO's deflection F_n0 / k_n), (F_n0 /
+    K)^(1/e) for a Hertz one; an integration of the nonlinear law, against the hand calculation."""
+    doc = {**copy.deepcopy(TWO_HELICAL), "simulation": {"duration_s": 0.3, "steps": 600}}
+    for st, mesh in zip(doc["stage"], meshes, strict=True):
+        if mesh:
+            st["mesh"] = mesh
+    d = _cli_json(tmp_path, doc, "simulate")
+    for k, (st, hand) in enumerate(zip(d["summary"]["stages"], _hand_meshes(doc), strict=True)):
+        # what rings on in the window (rms about the mean, < 1e-4 of it here) moves the window mean by less than its rms
+        rms = st["dte_um"]["rms"]
+        assert rms < 1e-4 * st["dte_um"]["mean"]
+        assert_allclose(st["dte_um"]["mean"], hand["h0_mm"] / hand["cos_bb"] * 1000.0, rtol=1e-7, atol=rms,
+                        err_msg=f"stage {k + 1}")
+        if _law(doc, k)["stiffness"] == "iso6336":
+            assert_allclose(hand["h0_mm"], _law(doc, k)["exponent"] * hand["f_n"] / hand["k_n"], rtol=1e-12)
