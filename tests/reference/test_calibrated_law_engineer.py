@@ -593,3 +593,20 @@ def test_simulated_static_approach_is_the_laws(tmp_path, meshes):
                         err_msg=f"stage {k + 1}")
         if _law(doc, k)["stiffness"] == "iso6336":
             assert_allclose(hand["h0_mm"], _law(doc, k)["exponent"] * hand["f_n"] / hand["k_n"], rtol=1e-12)
+
+
+def test_design_table_names_the_law_its_K_and_iso_k_n(tmp_path):
+    """The design table's static approach and linearised stiffness are the law's: the table names the law, its K,
+    its tangent and ISO's k_n beside the Hertz K (which only a "hertz" law uses), each by hand to 4 digits."""
+    path = tmp_path / "scene.toml"
+    path.write_text(tomli_w.dumps(THREE_SPEED), encoding="utf-8")
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "table"], terminal_width=200)
+    assert res.exit_code == 0, res.output
+    lines = {line.split("│")[1].strip(): [c.strip() for c in line.split("│")[2:-1]]
+             for line in res.stdout.splitlines() if line.count("│") == 5}
+    hand = _hand_meshes(THREE_SPEED)
+    assert lines["mesh law"] == ["iso6336, e = 1.3", "hertz, e = 2", "iso6336, e = 2.5"]
+    assert lines["law K [N/mm^e]"] == [f"{m['K']:.4g}" for m in hand]
+    assert lines["law tangent, models [N/mm]"] == [f"{m['k_lin']:.4g}" for m in hand]
+    assert lines["ISO k_n = c_γα b / cos² β_b [N/mm]"] == [f"{m['k_n']:.4g}" for m in hand]
+    assert lines["static approach h_0 [mm]"] == [f"{m['h0_mm']:.4g}" for m in hand]
