@@ -610,3 +610,29 @@ def test_design_table_names_the_law_its_K_and_iso_k_n(tmp_path):
     assert lines["law tangent, models [N/mm]"] == [f"{m['k_lin']:.4g}" for m in hand]
     assert lines["ISO k_n = c_γα b / cos² β_b [N/mm]"] == [f"{m['k_n']:.4g}" for m in hand]
     assert lines["static approach h_0 [mm]"] == [f"{m['h0_mm']:.4g}" for m in hand]
+
+
+@pytest.mark.parametrize("member", ["sun", "carrier"])
+@pytest.mark.parametrize("torque", [9000.0, -9000.0])
+def test_lossy_planetary_meshes_linearise_to_iso_either_way(member, torque):
+    """A lossy planetary (stage efficiency 0.96) under a forward and a reversed load, sun- or carrier-driven, on the
+    calibrated law (e = 1.3): every planet mesh is linearised (modes, at the model's static forces) at ISO's k_n by
+    hand (spur: k_n = c_gamma_alpha b; F_t / b > 100 N/mm on both meshes, so no low-load factor), and the design
+    reports that tangent. The sun–planet mesh's design force is already its driving side's (the planet's when the
+    planet drives the sun): calibrating at it over the efficiency once more left the mesh 0.96^(0.3/1.3) = 0.9906
+    times as stiff as ISO under a reversed load."""
+    doc = copy.deepcopy(PLANETARY)
+    doc["stage"][0].pop("mesh")
+    doc["stage"][0].update({"efficiency": 0.96, "input": member})
+    doc["load"]["torque_Nm"] = torque
+    cfg, design = _design(doc)
+    st = design.stages[0]
+    hand = _hand_planetary()
+    for name, law in (("sun_planet", st.mesh_stiffness), ("planet_ring", st.planetary.planet_ring.mesh_stiffness)):
+        assert law.law == "iso6336"
+        assert_allclose([law.iso_N_mm, law.linearised_N_mm], hand[name]["k_n"], rtol=1e-12, err_msg=name)
+    for a in api.modes(cfg, design):
+        for name, label in (("sun_planet", "sun mesh"), ("planet_ring", "ring mesh")):
+            k = [s for c, s in zip(a.connectors, a.stiffness, strict=True) if c.endswith(label)]
+            assert len(k) == 3
+            assert_allclose(k, hand[name]["k_n"] * 1000.0, rtol=1e-9, err_msg=f"{a.boundary} {name}")
