@@ -106,7 +106,12 @@ COUPLED_SPEED = {**copy.deepcopy(TWO_HELICAL), "contact": {"exponent": 2.0},
                            "coupling_stiffness_Nm_rad": 1.5e4, "coupling_damping_Nms_rad": 1.0},
                  "load": {"torque_Nm": 4000.0, "ramp_s": 0.05, "speed_exponent": 1, "inertia_kg_m2": 25.0,
                           "coupling_stiffness_Nm_rad": 8.0e5, "coupling_damping_Nms_rad": 20.0}}
-SCENES = {"two_helical": TWO_HELICAL, "coupled_speed": COUPLED_SPEED, "three_mixed": THREE_MIXED, "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
+# the two helical stages with losses (eta 0.97 and 0.95), forward and reversed (the load drives back), e = 1.3
+LOSSY = {**copy.deepcopy(TWO_HELICAL), "contact": {"exponent": 1.3}}
+for _st, _eta in zip(LOSSY["stage"], (0.97, 0.95), strict=True):
+    _st["efficiency"] = _eta
+LOSSY_REVERSED = {**copy.deepcopy(LOSSY), "load": {"torque_Nm": -4000.0, "ramp_s": 0.05}}
+SCENES = {"two_helical": TWO_HELICAL, "lossy": LOSSY, "lossy_reversed": LOSSY_REVERSED, "coupled_speed": COUPLED_SPEED, "three_mixed": THREE_MIXED, "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
 
 
 # ------------------------------------------------------------------------------------- hand calculations
@@ -174,14 +179,24 @@ def _step(x, x1, h1):
     return h1 * s * s * (3 - 2 * s)
 
 
+def _efficiencies(doc: dict) -> list[float]:
+    return [st.get("efficiency", 1.0) for st in doc["stage"]]
+
+
 def _hand_meshes(doc: dict, load_scale: float = 1.0) -> list[dict]:
-    """Every stage's hand mesh at the static load: the output torque reflected back without losses."""
-    n = len(doc["stage"])
-    ratios = [st["gear"]["teeth"] / st["pinion"]["teeth"] for st in doc["stage"]]
+    """Every stage's hand mesh at the static load: the output torque reflected back through the stages. The law's
+    force is the driving side's (DESIGN section 9): a forward load's pinion torque T_out / prod(i eta) drives; a
+    reversed load (T_out < 0) drives from the gear, the pinion then gets T_out prod(eta / i) and the law carries
+    that over its own stage's eta."""
+    ratios, etas = [st["gear"]["teeth"] / st["pinion"]["teeth"] for st in doc["stage"]], _efficiencies(doc)
+    t_out = doc["load"]["torque_Nm"] * 1000.0
     out = []
     for k, st in enumerate(doc["stage"]):
-        pinion_torque_Nmm = doc["load"]["torque_Nm"] * 1000.0 / math.prod(ratios[k:n])
-        out.append(_hand_mesh(st, _law(doc, k), pinion_torque_Nmm, load_scale))
+        if t_out >= 0:
+            law_torque_Nmm = t_out / math.prod(i * eta for i, eta in zip(ratios[k:], etas[k:], strict=True))
+        else:
+            law_torque_Nmm = t_out * math.prod(eta / i for i, eta in zip(ratios[k:], etas[k:], strict=True)) / etas[k]
+        out.append(_hand_mesh(st, _law(doc, k), law_torque_Nmm, load_scale))
     return out
 
 
@@ -237,11 +252,15 @@ def _hand_linear(doc: dict, at_operating_load: bool = False):
     driven = None if inp.get("drive") in ("torque", "motor") else 0
     Kmat, Cmat = np.zeros((n, n)), np.zeros((n, n))
 
-    def add(a, b, ra, rb, k, c):
-        lev = np.zeros(n)
+    def add(a, b, ra, rb, k, c, eta=1.0):
+        """A connector delta = ra theta_a - rb theta_b carrying f = k delta + c delta': the driving side takes f,
+        the driven side eta f (DESIGN section 9; a forward load: a drives; reversed: b drives)."""
+        lev, scatter = np.zeros(n), np.zeros(n)
         lev[a], lev[b] = ra, -rb
-        Kmat[:] += k * np.outer(lev, lev)
-        Cmat[:] += c * np.outer(lev, lev)
+        forward = load["torque_Nm"] >= 0
+        scatter[a], scatter[b] = (ra, -eta * rb) if forward else (eta * ra, -rb)
+        Kmat[:] += k * np.outer(scatter, lev)
+        Cmat[:] += c * np.outer(scatter, lev)
 
     if first_shaft:
         add(0, 1, 1.0, 1.0, inp["coupling_stiffness_Nm_rad"], inp.get("coupling_damping_Nms_rad", 0.0))
@@ -254,7 +273,7 @@ def _hand_linear(doc: dict, at_operating_load: bool = False):
                                          law["damping_Ns_mm"] * 1000.0)
         else:  # c = 2 zeta sqrt(k_lin m_e), k_lin at the design's static load (N/m along the normal): a constant
             c = 2 * law["damping_ratio"] * math.sqrt(at_design["k_lin"] * 1000.0 / inv)
-        add(p, g, m["rb1"], m["rb2"], m["k_lin"] * 1000.0 * m["cos_bb"] ** 2, c)
+        add(p, g, m["rb1"], m["rb2"], m["k_lin"] * 1000.0 * m["cos_bb"] ** 2, c, _efficiencies(doc)[k])
     if "coupling_stiffness_Nm_rad" in load:
         add(n - 2, n - 1, 1.0, 1.0, load["coupling_stiffness_Nm_rad"], load.get("coupling_damping_Nms_rad", 0.0))
     if inp.get("drive") == "motor":
@@ -299,7 +318,7 @@ def test_iso_stiffness_and_law_coefficient_by_hand(name):
 
 @pytest.mark.parametrize("name", SCENES)
 def test_modes_are_the_hand_linear_model(name):
-    """Undamped frequencies of J^-1 K (scipy.linalg.eigh) and damping ratios -Re(lambda)/|lambda| of the damped
+    """Undamped frequencies of J^-1 K (scipy.linalg.eigvals) and damping ratios -Re(lambda)/|lambda| of the damped
     state matrix, at both boundaries, against ``api.modes``."""
     doc = SCENES[name]
     cfg, design = _design(doc)
@@ -307,7 +326,8 @@ def test_modes_are_the_hand_linear_model(name):
     got = {a.boundary: a for a in api.modes(cfg, design)}
     for boundary, keep in (("free", slice(0, None)), ("clamped_input", slice(1, None))):
         Jb, Kb, Cb = J[keep], K[keep, keep], C[keep, keep]
-        w2 = scipy.linalg.eigh(Kb, np.diag(Jb), eigvals_only=True)
+        # a lossy chain's K = L^T diag(k) R is not symmetric: the generalised eigenvalues of (K, J), real here
+        w2 = np.sort(scipy.linalg.eigvals(Kb, np.diag(Jb)).real)
         f_hand = np.sqrt(np.clip(w2, 0, None)) / (2 * math.pi)
         elastic = [m for m in got[boundary].modes if not m.rigid]
         f_hand = f_hand[f_hand > 1e-6 * f_hand.max()]
@@ -329,23 +349,26 @@ def _operating_state(doc, model):
     w_in = rpm_in * RPM
     for i in lay.free_bodies:
         y[st.omega(i)] = lay.bodies[i].ratio * w_in
-    i_tot = math.prod(m["ratio"] for m in meshes)
     load = doc["load"]
     t_out = load["torque_Nm"] * (rpm_in / doc["input"]["speed_rpm"]) ** load.get("speed_exponent", 0)
+    etas = _efficiencies(doc)
+    t_in = t_out / math.prod(m["ratio"] * eta for m, eta in zip(meshes, etas, strict=True)) if t_out >= 0 else \
+        t_out * math.prod(eta / m["ratio"] for m, eta in zip(meshes, etas, strict=True))
     hand = iter(meshes)
     for c, x in enumerate(lay.connectors):
-        if x.role == "mesh":
+        if x.role == "mesh":  # the drive flank, or the back flank (delta < 0) of a reversed load
             m = next(hand)
             h0 = (m["f_n"] * (t_out / load["torque_Nm"]) / m["K"]) ** (1 / m["e"]) / 1000.0
-            y[st.delta(c)] = h0 / m["cos_bb"]
+            y[st.delta(c)] = math.copysign(h0 / m["cos_bb"], t_out)
         elif x.label.startswith("input"):
-            y[st.delta(c)] = t_out / i_tot / doc["input"]["coupling_stiffness_Nm_rad"]
+            y[st.delta(c)] = t_in / doc["input"]["coupling_stiffness_Nm_rad"]
         else:
             y[st.delta(c)] = t_out / load["coupling_stiffness_Nm_rad"]
     return y
 
 
-@pytest.mark.parametrize("name", ["two_helical", "coupled_speed", "three_mixed", "huge_helical"])
+@pytest.mark.parametrize("name", ["two_helical", "lossy", "lossy_reversed", "coupled_speed", "three_mixed",
+                                  "huge_helical"])
 def test_simulate_rhs_jacobian_has_the_modes_eigenvalues(name):
     """Central differences of simulate's right-hand side at the operating point: its eigenvalues are the hand
     model's damped eigenvalues (the boundary the drive imposes), and the right-hand side vanishes there."""
