@@ -111,7 +111,14 @@ LOSSY = {**copy.deepcopy(TWO_HELICAL), "contact": {"exponent": 1.3}}
 for _st, _eta in zip(LOSSY["stage"], (0.97, 0.95), strict=True):
     _st["efficiency"] = _eta
 LOSSY_REVERSED = {**copy.deepcopy(LOSSY), "load": {"torque_Nm": -4000.0, "ramp_s": 0.05}}
-SCENES = {"two_helical": TWO_HELICAL, "lossy": LOSSY, "lossy_reversed": LOSSY_REVERSED, "coupled_speed": COUPLED_SPEED, "three_mixed": THREE_MIXED, "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
+# the two helical stages against a load table (torque rising with speed: 3500 N m at 0.8 and 9000 N m at twice the
+# nominal output speed, so 3500 + 5500 x 0.2 / 1.2 = 4416.7 N m at it): the static load is the table's torque at the
+# nominal speed, not its largest
+_N_OUT = 1480.0 / (71 / 23 * 62 / 19)
+TABLE_LOAD = {**copy.deepcopy(TWO_HELICAL), "contact": {"exponent": 1.5},
+              "load": {"ramp_s": 0.05, "torque_speed": [[0.0, 1000.0], [0.8 * _N_OUT, 3500.0],
+                                                         [2 * _N_OUT, 9000.0]]}}
+SCENES = {"two_helical": TWO_HELICAL, "table_load": TABLE_LOAD, "lossy": LOSSY, "lossy_reversed": LOSSY_REVERSED, "coupled_speed": COUPLED_SPEED, "three_mixed": THREE_MIXED, "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
 
 
 # ------------------------------------------------------------------------------------- hand calculations
@@ -179,6 +186,19 @@ def _step(x, x1, h1):
     return h1 * s * s * (3 - 2 * s)
 
 
+def _i_total(doc: dict) -> float:
+    return math.prod(st["gear"]["teeth"] / st["pinion"]["teeth"] for st in doc["stage"])
+
+
+def _load_at(doc: dict, rpm_in: float) -> float:
+    """The load torque (N m) at the output speed of input speed ``rpm_in``: [load] torque_Nm (n / n_0)^p, or a
+    torque_speed table read linearly at the output speed."""
+    load = doc["load"]
+    if "torque_speed" in load:
+        return _table_slope(load["torque_speed"], rpm_in / _i_total(doc))[1]
+    return load["torque_Nm"] * (rpm_in / doc["input"]["speed_rpm"]) ** load.get("speed_exponent", 0)
+
+
 def _efficiencies(doc: dict) -> list[float]:
     return [st.get("efficiency", 1.0) for st in doc["stage"]]
 
@@ -189,7 +209,7 @@ def _hand_meshes(doc: dict, load_scale: float = 1.0) -> list[dict]:
     reversed load (T_out < 0) drives from the gear, the pinion then gets T_out prod(eta / i) and the law carries
     that over its own stage's eta."""
     ratios, etas = [st["gear"]["teeth"] / st["pinion"]["teeth"] for st in doc["stage"]], _efficiencies(doc)
-    t_out = doc["load"]["torque_Nm"] * 1000.0
+    t_out = _load_at(doc, doc["input"]["speed_rpm"]) * 1000.0  # the static load: at the nominal speed
     out = []
     for k, st in enumerate(doc["stage"]):
         if t_out >= 0:
@@ -224,8 +244,8 @@ def _operating_input_rpm(doc: dict) -> float:
 
 
 def _load_scale(doc: dict, rpm_in: float) -> float:
-    """The load law's torque at the operating speed over its torque at the nominal speed ([load] speed_exponent)."""
-    return (rpm_in / doc["input"]["speed_rpm"]) ** doc["load"].get("speed_exponent", 0)
+    """The load law's torque at the operating speed over its torque at the nominal speed."""
+    return _load_at(doc, rpm_in) / _load_at(doc, doc["input"]["speed_rpm"])
 
 
 def _hand_linear(doc: dict, at_operating_load: bool = False):
@@ -257,7 +277,7 @@ def _hand_linear(doc: dict, at_operating_load: bool = False):
         the driven side eta f (DESIGN section 9; a forward load: a drives; reversed: b drives)."""
         lev, scatter = np.zeros(n), np.zeros(n)
         lev[a], lev[b] = ra, -rb
-        forward = load["torque_Nm"] >= 0
+        forward = _load_at(doc, inp["speed_rpm"]) >= 0
         scatter[a], scatter[b] = (ra, -eta * rb) if forward else (eta * ra, -rb)
         Kmat[:] += k * np.outer(scatter, lev)
         Cmat[:] += c * np.outer(scatter, lev)
@@ -283,6 +303,8 @@ def _hand_linear(doc: dict, at_operating_load: bool = False):
         i_tot = math.prod(m["ratio"] for m in meshes)
         w, w_n = rpm_in * RPM / i_tot, inp["speed_rpm"] * RPM / i_tot
         Cmat[n - 1, n - 1] += p * load["torque_Nm"] * w ** (p - 1) / w_n**p
+    if "torque_speed" in load:  # the slope of the table's segment at the output speed, N m s/rad
+        Cmat[n - 1, n - 1] += _table_slope(load["torque_speed"], rpm_in / _i_total(doc))[0]
     return np.array(J), Kmat, Cmat, driven, meshes, rpm_in
 
 
@@ -350,7 +372,7 @@ def _operating_state(doc, model):
     for i in lay.free_bodies:
         y[st.omega(i)] = lay.bodies[i].ratio * w_in
     load = doc["load"]
-    t_out = load["torque_Nm"] * (rpm_in / doc["input"]["speed_rpm"]) ** load.get("speed_exponent", 0)
+    t_out = _load_at(doc, rpm_in)
     etas = _efficiencies(doc)
     t_in = t_out / math.prod(m["ratio"] * eta for m, eta in zip(meshes, etas, strict=True)) if t_out >= 0 else \
         t_out * math.prod(eta / m["ratio"] for m, eta in zip(meshes, etas, strict=True))
@@ -358,7 +380,7 @@ def _operating_state(doc, model):
     for c, x in enumerate(lay.connectors):
         if x.role == "mesh":  # the drive flank, or the back flank (delta < 0) of a reversed load
             m = next(hand)
-            h0 = (m["f_n"] * (t_out / load["torque_Nm"]) / m["K"]) ** (1 / m["e"]) / 1000.0
+            h0 = (m["f_n"] * (t_out / _load_at(doc, doc["input"]["speed_rpm"])) / m["K"]) ** (1 / m["e"]) / 1000.0
             y[st.delta(c)] = math.copysign(h0 / m["cos_bb"], t_out)
         elif x.label.startswith("input"):
             y[st.delta(c)] = t_in / doc["input"]["coupling_stiffness_Nm_rad"]
@@ -367,7 +389,7 @@ def _operating_state(doc, model):
     return y
 
 
-@pytest.mark.parametrize("name", ["two_helical", "lossy", "lossy_reversed", "coupled_speed", "three_mixed",
+@pytest.mark.parametrize("name", ["two_helical", "table_load", "lossy", "lossy_reversed", "coupled_speed", "three_mixed",
                                   "huge_helical"])
 def test_simulate_rhs_jacobian_has_the_modes_eigenvalues(name):
     """Central differences of simulate's right-hand side at the operating point: its eigenvalues are the hand
@@ -659,3 +681,22 @@ def test_lossy_planetary_meshes_linearise_to_iso_either_way(member, torque):
             k = [s for c, s in zip(a.connectors, a.stiffness, strict=True) if c.endswith(label)]
             assert len(k) == 3
             assert_allclose(k, hand[name]["k_n"] * 1000.0, rtol=1e-9, err_msg=f"{a.boundary} {name}")
+
+
+def test_table_load_runs_and_linearises_at_its_torque_at_the_nominal_speed(tmp_path):
+    """[load] torque_speed: the static load is the table's torque at the nominal output speed (4416.7 N m by hand),
+    as the design takes it; the model's static forces, its linearisation and the dynamic factor used the table's
+    largest torque (9000 N m) instead: natural frequencies 14 % high (k_lin (9000/4416.7)^(1/3) = 1.27 k_n),
+    dynamic_factor 0.49 for a settled run."""
+    doc = {**copy.deepcopy(TABLE_LOAD), "simulation": {"duration_s": 0.3, "steps": 600}}
+    assert_allclose(_load_at(doc, 1480.0), 3500.0 + 5500.0 * 0.2 / 1.2, rtol=1e-12)
+    d = _cli_json(tmp_path, doc, "simulate")
+    for k, (st, hand) in enumerate(zip(d["summary"]["stages"], _hand_meshes(doc), strict=True)):
+        assert_allclose(st["tangential_N"]["mean"], hand["f_t"], rtol=1e-7, err_msg=f"stage {k + 1}")
+        assert_allclose(st["dynamic_factor"], 1.0, atol=1e-5)  # settled: max |F_t| is the static F_t
+        ms = st["mesh_stiffness"]
+        assert_allclose([ms["K"], ms["linearised_N_mm"]], [hand["K"], hand["k_n"]], rtol=1e-9)
+    # simulate's natural frequencies are the hand model's (the speed drive holds the input)
+    J, K, _, _, _, _ = _hand_linear(doc)
+    w2 = np.sort(scipy.linalg.eigvals(K[1:, 1:], np.diag(J[1:])).real)
+    assert_allclose(d["summary"]["natural_frequencies_Hz"], np.sqrt(w2) / (2 * math.pi), rtol=1e-8)
