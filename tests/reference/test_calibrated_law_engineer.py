@@ -118,7 +118,21 @@ _N_OUT = 1480.0 / (71 / 23 * 62 / 19)
 TABLE_LOAD = {**copy.deepcopy(TWO_HELICAL), "contact": {"exponent": 1.5},
               "load": {"ramp_s": 0.05, "torque_speed": [[0.0, 1000.0], [0.8 * _N_OUT, 3500.0],
                                                          [2 * _N_OUT, 9000.0]]}}
-SCENES = {"two_helical": TWO_HELICAL, "table_load": TABLE_LOAD, "lossy": LOSSY, "lossy_reversed": LOSSY_REVERSED, "coupled_speed": COUPLED_SPEED, "three_mixed": THREE_MIXED, "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
+# a speed-driven variant of THREE_MIXED for the command line: [contact] e = 1.3, stage 2 Hertz e = 2.0, stage 3
+# iso6336 e = 2.5 (zeta 0.08), the drum on its coupling with a constant torque
+THREE_SPEED = {**copy.deepcopy(THREE_MIXED),
+               "input": {"speed_rpm": 1470.0, "ramp_s": 0.02},
+               "load": {"torque_Nm": 2500.0, "ramp_s": 0.02, "inertia_kg_m2": 60.0,
+                        "coupling_stiffness_Nm_rad": 2.0e6, "coupling_damping_Nms_rad": 40.0},
+               "simulation": {"duration_s": 0.06, "steps": 120}}
+# THREE_SPEED with flexible shafts between the stages (the second undamped) and a torque drive
+FLEXIBLE = copy.deepcopy(THREE_SPEED)
+FLEXIBLE["stage"][0]["shaft"] = {"stiffness_Nm_rad": 3.0e5, "damping_Nms_rad": 2.0}
+FLEXIBLE["stage"][1]["shaft"] = {"stiffness_Nm_rad": 1.2e6}
+FLEXIBLE["input"] = {"speed_rpm": 1470.0, "drive": "torque", "torque_Nm": 2500.0 * 21 / 67 * 18 / 59 * 17 / 53}
+SCENES = {"two_helical": TWO_HELICAL, "table_load": TABLE_LOAD, "flexible": FLEXIBLE, "lossy": LOSSY,
+          "lossy_reversed": LOSSY_REVERSED, "coupled_speed": COUPLED_SPEED, "three_mixed": THREE_MIXED,
+          "tiny_spur": TINY_SPUR, "huge_helical": HUGE_HELICAL}
 
 
 # ------------------------------------------------------------------------------------- hand calculations
@@ -262,10 +276,19 @@ def _hand_linear(doc: dict, at_operating_load: bool = False):
         J.append(inp["inertia_kg_m2"])
     first_shaft = len(J)
     stages = doc["stage"]
+    # bodies: a rigid intermediate shaft carries gear k and pinion k+1; a flexible one ([stage.shaft]) is two
+    # bodies, the gear end and the pinion end, joined by its spring (DESIGN section 6)
+    pinion_body, gear_body, shafts = [len(J)], [], []
     J.append(stages[0]["pinion"]["inertia_kg_m2"])
     for k, st in enumerate(stages):
-        J.append(st["gear"]["inertia_kg_m2"] + (stages[k + 1]["pinion"]["inertia_kg_m2"] if k + 1 < len(stages)
-                                                 else 0.0))
+        gear_body.append(len(J))
+        J.append(st["gear"]["inertia_kg_m2"])
+        if k + 1 < len(stages):
+            if "shaft" in st:
+                shafts.append((len(J) - 1, len(J), st["shaft"]))
+                J.append(0.0)
+            pinion_body.append(len(J) - 1)
+            J[-1] += stages[k + 1]["pinion"]["inertia_kg_m2"]
     if "coupling_stiffness_Nm_rad" in load:
         J.append(load["inertia_kg_m2"])
     n = len(J)
@@ -284,8 +307,10 @@ def _hand_linear(doc: dict, at_operating_load: bool = False):
 
     if first_shaft:
         add(0, 1, 1.0, 1.0, inp["coupling_stiffness_Nm_rad"], inp.get("coupling_damping_Nms_rad", 0.0))
+    for a, b, shaft in shafts:
+        add(a, b, 1.0, 1.0, shaft["stiffness_Nm_rad"], shaft.get("damping_Nms_rad", 0.0))
     for k, (m, at_design) in enumerate(zip(meshes, _hand_meshes(doc), strict=True)):
-        p, g = first_shaft + k, first_shaft + k + 1
+        p, g = pinion_body[k], gear_body[k]
         inv = (0.0 if p == driven else m["rb1"] ** 2 / J[p]) + m["rb2"] ** 2 / J[g]
         law = _law(doc, k)
         if law["damping_ratio"] is None:  # IMPACT: F_n = K h^e + STEP(h, 0, 0, d, C) h', h = cos(beta_b) delta
@@ -435,15 +460,6 @@ def test_simulate_rhs_jacobian_has_the_modes_eigenvalues(name):
         assert_allclose(m.frequency_Hz, abs(z) / (2 * math.pi), rtol=5e-3 if same_load else 1e-2)
         assert_allclose(m.damping_ratio, -z.real / abs(z), rtol=1e-4 if same_load else 2e-2,
                         err_msg=f"mode {m.number}")
-
-
-# a speed-driven variant of THREE_MIXED for the command line: [contact] e = 1.3, stage 2 Hertz e = 2.0, stage 3
-# iso6336 e = 2.5 (zeta 0.08), the drum on its coupling with a constant torque
-THREE_SPEED = {**copy.deepcopy(THREE_MIXED),
-               "input": {"speed_rpm": 1470.0, "ramp_s": 0.02},
-               "load": {"torque_Nm": 2500.0, "ramp_s": 0.02, "inertia_kg_m2": 60.0,
-                        "coupling_stiffness_Nm_rad": 2.0e6, "coupling_damping_Nms_rad": 40.0},
-               "simulation": {"duration_s": 0.06, "steps": 120}}
 
 
 def _cli_json(tmp_path, doc, command, *extra):
