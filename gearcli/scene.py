@@ -146,11 +146,13 @@ def vfd_supply(spec: MotorSpec, shift_rad_s: float) -> MotorSpec:
 
 
 def load_spec(load_cfg: Load) -> LoadSpec:
-    """The load of a ``[load]`` table: a table's speeds rpm -> rad/s, its torque scale the largest |T|."""
+    """The load of a ``[load]`` table: a table's speeds rpm -> rad/s, its reference torque the table's torque at the
+    nominal output speed (the design's static load, ``torque_Nm_value``), as a speed law's is: the model's static
+    forces, linearisation and viscous damping then hold at the load the run settles at."""
     fluct = tuple((f.amplitude_percent / 100.0, f.frequency_Hz) for f in load_cfg.fluctuation)
     if load_cfg.torque_speed is not None:
         table = tuple((float(n) * RPM, float(t)) for n, t in load_cfg.torque_speed)
-        return LoadSpec(torque_Nm=max(abs(t) for _, t in table), ramp_s=load_cfg.ramp_s, fluctuation=fluct,
+        return LoadSpec(torque_Nm=load_cfg.torque_Nm_value, ramp_s=load_cfg.ramp_s, fluctuation=fluct,
                         table=table)
     return LoadSpec(torque_Nm=load_cfg.torque_Nm_value, ramp_s=load_cfg.ramp_s, fluctuation=fluct,
                     speed_exponent=load_cfg.speed_exponent)

@@ -171,8 +171,9 @@ def _iso_factors(stage: Stage) -> Iso6336Factors:
 
 
 def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
-               materials: tuple[Material, Material]) -> _Stiffness:
-    """Hertz (seed 3.3), ISO 6336-1 c' and c_γα, and the static point of the stage's own contact law."""
+               materials: tuple[Material, Material], driving_side: bool = False) -> _Stiffness:
+    """Hertz (seed 3.3), ISO 6336-1 c' and c_γα, and the static point of the stage's own contact law (at the
+    law's force: ``forces`` as they are where they are the driving side's, ``MeshResult``)."""
     stage, law = cfg.pair(k), cfg.contact_for(k)
     radius = stf.equivalent_radius_mm(0.5 * geo.pitch_diameter_mm[0], 0.5 * geo.pitch_diameter_mm[1])
     modulus = stf.effective_modulus_MPa(materials[0].youngs_modulus_MPa, materials[0].poisson_ratio,
@@ -189,7 +190,8 @@ def _stiffness(cfg: DesignFile, k: int, geo: PairGeometry, forces: StaticForces,
                                                  stage.normal_pressure_angle_deg, line_load,
                                                  blank_factor=factors.C_R, dedendum_factor=stage.basic_rack.dedendum)
     c_mesh = stf.mesh_stiffness_N_mm_um(c_single, geo.contact_ratio_transverse)
-    law_force = stf.law_tangential_force_N(forces.tangential, stage.efficiency)  # the run's static load
+    law_force = forces.tangential if driving_side else \
+        stf.law_tangential_force_N(forces.tangential, stage.efficiency)  # the run's static load
     at_load = stf.mesh_law_stiffness(
         law.stiffness, law.exponent, hertz=hertz,
         iso_normal_stiffness_N_mm=stf.iso6336_normal_stiffness_N_mm(c_mesh, geo.face_width_mm, geo.base_helix_rad),
@@ -293,15 +295,17 @@ def _bearing_diagnostics(cfg: DesignFile, bearings: tuple[BearingResult, ...]) -
     return bearing_diagnostics(cfg, bearings)
 
 
-def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1) -> StageResult:
-    """A parallel stage, or a planetary stage's sun–planet mesh (``planets``: its planet count, for m_red)."""
+def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1, /, *,
+                  driving_side: bool = False) -> StageResult:
+    """A parallel stage, or a planetary stage's sun–planet mesh (``planets``: its planet count, for m_red;
+    ``driving_side``: ``kin`` gives the mesh's driving-side force, :class:`gearcli.stages.design.MeshResult`)."""
     stage = cfg.pair(k)
     geo = _geometry(stage, k)
     materials = (cfg.materials[stage.pinion.material], cfg.materials[stage.gear.material])
     t_pinion, t_gear = kin.stage_torques_Nmm[k]
     forces = static_forces(t_pinion, 0.5 * geo.pitch_diameter_mm[0], geo.normal_pressure_rad,
                            geo.transverse_pressure_rad, geo.helix_rad)
-    s = _stiffness(cfg, k, geo, forces, materials)
+    s = _stiffness(cfg, k, geo, forces, materials, driving_side)
     w_p, w_g, helical = kin.shaft_speeds_rad_s[k], kin.shaft_speeds_rad_s[k + 1], stage.helix_angle_deg > 0
     for i, part in enumerate(("pinion", "gear")):
         _check_bore(getattr(stage, part), geo.root_diameter_mm[i], f"stage[{k}].{part}.bore_diameter_mm")

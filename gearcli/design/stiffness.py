@@ -197,7 +197,10 @@ def contact_stiffness_N_mm_e(stage: StageResult, contact: Contact) -> float:
     """
     beta_b = math.radians(stage.base_helix_angle_deg)
     k_n = iso6336_normal_stiffness_N_mm(stage.iso6336_mesh_stiffness_N_mm_um, stage.face_width_mm, beta_b)
-    f_n0 = iso_reference_normal_force_N(law_tangential_force_N(stage.static_force_N.tangential, stage.efficiency),
+    f_t = stage.static_force_N.tangential
+    if stage.planetary is None:  # a planetary's sun–planet force is its driving side's already (design.planetary)
+        f_t = law_tangential_force_N(f_t, stage.efficiency)
+    f_n0 = iso_reference_normal_force_N(f_t,
                                         stage.face_width_mm,
                                         math.radians(stage.normal_pressure_angle_deg),
                                         math.radians(stage.helix_angle_deg))

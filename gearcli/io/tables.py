@@ -87,6 +87,7 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
         row("equivalent radius R [mm]", lambda st: st.equivalent_radius_mm),
         row("E* [MPa]", lambda st: st.effective_modulus_MPa, 4),
         row("Hertz K [N/mm^1.5]", lambda st: st.hertz_stiffness_N_mm1_5, 4),
+        *_law_rows(s),
         row("static approach h_0 [mm]", lambda st: st.static_approach_mm, 4),
         row("linearised k [N/mm]", lambda st: st.linearised_stiffness_N_mm, 4),
         row("ISO 6336 c′ [N/(mm·µm)]", lambda st: st.iso6336_single_pair_stiffness_N_mm_um, 4),
@@ -134,6 +135,21 @@ def _torque_units(r: DesignResult) -> list[tuple[str, Callable[[float], float]]]
     file also in N·m."""
     n_m = ("N·m", lambda v: v / 1000.0)
     return [("N·mm", lambda v: v), n_m] if of_result(r).torque == "Nmm" else [n_m]
+
+
+def _law_rows(stages: Sequence[StageResult]) -> list[tuple[str, list[str]]]:
+    """The mesh law each stage runs (DESIGN section 13's ``mesh_stiffness``: a planetary's sun–planet mesh), its K,
+    its tangent where the models linearise it and ISO's k_n beside it: the static approach and linearised stiffness
+    below are this law's, not the Hertz K's above (unless the law is "hertz")."""
+    laws = [st.mesh_stiffness for st in stages]
+
+    def cells(fn) -> list[str]:
+        return ["—" if law is None else fn(law) for law in laws]
+
+    return [("mesh law", cells(lambda law: f"{law.law}, e = {law.exponent:g}")),
+            ("law K [N/mm^e]", cells(lambda law: _g(law.K, 4))),
+            ("law tangent, models [N/mm]", cells(lambda law: _g(law.linearised_N_mm, 4))),
+            ("ISO k_n = c_γα b / cos² β_b [N/mm]", cells(lambda law: _g(law.iso_N_mm, 4)))]
 
 
 class StageOutput(Protocol):

@@ -338,7 +338,8 @@ class Layout:
     def load_law(self) -> tuple[float, ...]:
         """The load's speed law row (empty: a constant torque), on the last body's nominal speed."""
         w_n = self.bodies[-1].ratio * self.drive.speed_rad_s
-        return machine.load_row(self.load.speed_exponent, w_n, self.load.table, abs(self.load.torque_Nm) or 1.0)
+        # a table's torques over the (signed) reference torque: T_L = torque_Nm g(w) is the table's torque
+        return machine.load_row(self.load.speed_exponent, w_n, self.load.table, self.load.torque_Nm or 1.0)
 
     def train_efficiency(self, forward: bool = True) -> float:
         """The power efficiency from the input to the output: every lossy pair mesh's eta, every stage model's

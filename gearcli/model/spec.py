@@ -165,7 +165,7 @@ class LoadSpec:
     fluctuation: tuple[tuple[float, float], ...] = ()  # (amplitude fraction, frequency Hz): x (1 + b sin 2 pi f t)
     clock_s: float = 0.0  # the fluctuation is a function of t + clock_s
     speed_exponent: int = 0  # 0 constant, 1 linear, 2 quadratic in the load body's speed (torque_Nm at nominal)
-    table: tuple[tuple[float, float], ...] = ()  # (load body speed rad/s, N m); torque_Nm is then max |T|
+    table: tuple[tuple[float, float], ...] = ()  # (load body speed rad/s, N m); torque_Nm: its T at the nominal speed
 
     def __post_init__(self) -> None:
         if self.speed_exponent not in (0, 1, 2):

@@ -9,7 +9,7 @@ may ask a stage's kind (the design layer's inner contract, ARCHITECTURE.md). The
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, Protocol, TypeVar, cast
 
 from gearcli.diagnostics import Diagnostic
@@ -22,8 +22,15 @@ if TYPE_CHECKING:
 
 S = TypeVar("S")
 
-#: the pair's stage result: (the design file as pairs, stage index, train, meshes in parallel) -> StageResult
-MeshResult = Callable[["DesignFile", int, "Train", int], StageResult]
+class MeshResult(Protocol):
+    """The pair's stage result: (the design file as pairs, stage index, train, meshes in parallel) -> StageResult;
+    ``driving_side``: the train's torques give the mesh's driving-side force whichever way the load runs (a
+    planetary's sun–planet mesh: over eta_m where the planet drives the sun), so its law calibrates at that force
+    as it is (a parallel pair's F_t is the pinion's: over eta when the gear drives a reversed load)."""
+
+    def __call__(self, cfg: DesignFile, k: int, kin: Train, planets: int = 1, /, *,
+                 driving_side: bool = False) -> StageResult: ...
+
 
 
 class DesignKind(Protocol):

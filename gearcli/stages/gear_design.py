@@ -154,7 +154,7 @@ class PlanetaryDesign:
 
         stage = cfg.stage[k]
         count = stage.planet.count  # type: ignore[union-attr]
-        sun_planet = mesh(pairs, k, pl.mesh_train(k, stage, kin), count)  # type: ignore[arg-type]
+        sun_planet = mesh(pairs, k, pl.mesh_train(k, stage, kin), count, driving_side=True)  # type: ignore[arg-type]
         return pl.planetary_result(cfg, k, kin, sun_planet)
 
     def inertia(self, result: StageResult, side: str) -> float:
