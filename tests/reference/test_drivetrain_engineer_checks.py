@@ -385,3 +385,33 @@ def test_a_tolerance_study_draws_one_sample_per_stratum_and_its_rows_match_one_s
     for r in rows:
         _assert_row_is_the_one_shot(tmp_path, r, [f"contact.transmission_error_um.0={r['contact.transmission_error_um.0']}",
                                                   f"load.torque_Nm={r['load.torque_Nm']}"])
+
+
+# --------------------------------------------------------- unloaded statistics: the targets' reference
+def test_an_unloaded_mesh_statistics_refer_to_its_rms_not_to_a_mean_that_is_noise():
+    from gearcli.simulate.estimate import stage_error
+
+    # by hand: an unloaded mesh swinging ±75 N at 1 kHz about a mean that is zero but for 1e-4 N of noise; the
+    # check pass differs by 1e-3 N everywhere. Against the noise (1e-4 N) that error is 10x "the mean"; against
+    # what the mesh carries, its rms 75/sqrt(2) N, it is 2e-5: resolved
+    t = np.linspace(0.0, 0.1, 20001)
+    run = 75.0 * np.sin(2 * np.pi * 1000.0 * t) + 1e-4
+    e = stage_error(0, t, run, run + 1e-3, 0.0, 1e-6)
+    assert_allclose(e.reference_N, 75.0 / math.sqrt(2), rtol=1e-4)
+    assert_allclose(e.tangential_N.mean, 1e-3, rtol=1e-6)
+    assert e.resolved and e.suggested_rtol is None
+    loaded = stage_error(0, t, run + 1000.0, run + 1000.0 + 1e-3, 1000.0, 1e-6)  # a loaded mesh: |mean| as before
+    assert_allclose(loaded.reference_N, 1000.0 + 1e-4, rtol=1e-12)
+
+
+def test_an_unloaded_rattling_train_is_not_warned_unresolved_against_its_zero_mean(tmp_path):
+    # the 2-DOF train without load and with 0.05 mm backlash: TE drives the gear across the gap, F_t swings ±75 N
+    # about a window mean of ~1e-4 N; the statistics are resolved to 1e-3 of that swing at the file's rtol
+    d = _simulate(tmp_path, SHORT, "load.torque_Nm=0", "stage.0.backlash_mm=0.05")
+    st = d["summary"]["stages"][0]
+    ft = st["tangential_N"]
+    assert abs(ft["mean"]) < 1e-3 * ft["std"]
+    assert_allclose(st["error_estimate"]["reference_N"], math.hypot(ft["mean"], ft["std"]), rtol=1e-6)
+    assert_allclose(st["sampling_error"]["reference_N"], math.hypot(ft["mean"], ft["std"]), rtol=1e-6)
+    assert not [w for w in d["warnings"] if w["code"] in ("statistics_unresolved", "statistics_undersampled")]
+    assert st["error_estimate"]["resolved"] and st["sampling_error"]["resolved"]
