@@ -118,6 +118,27 @@ def test_two_dof_train_forced_by_a_te_harmonic_against_its_receptance(tmp_path):
     assert_allclose(st["tangential_N"]["mean"], static, rtol=1e-6)
     assert_allclose(st["dte_um"]["mean"], 750 / rg / k * 1e6, rtol=1e-6)  # static deflection F_bt / k
     assert st["contact_loss_fraction"] == 0.0
+    _assert_energy_channels_by_hand(d["energy"], rp, rg, k, kc)
+
+
+def _assert_energy_channels_by_hand(energy: dict, rp: float, rg: float, k: float, kc: float) -> None:
+    """The 2-DOF train's energy over its 0.3 s run: the bodies' kinetic energy at their final speeds (the motor's
+    too: its prescribed motion is paid by the input work), the coupling's twist and the mesh's deflection under
+    the static load, and the load's work T_L(t) w_g(t) with both STEP ramps ending at T = 0.05 s."""
+    Om, T, TL, i = 4500 * RPM, 0.05, 750.0, rg / rp
+    kinetic = 0.5 * (0.01 + 0.002) * Om**2 + 0.5 * 0.02 * (Om / i) ** 2
+    twist, deflection = TL / i / kc, TL / rg / k  # coupling twist (pinion torque / kc), mesh F_bt / k
+    potential = 0.5 * kc * twist**2 + 0.5 * k * deflection**2
+    # int_0^T STEP_T * STEP_w dt = T int_0^1 (s^2 (3 - 2 s))^2 ds = T (9/5 - 2 + 4/7); the gear lags the rigid
+    # motion by its compliance in proportion to the load: int T_L d(lag) = T_L lag / 2 at the end
+    lag = twist / i + deflection / rg
+    load = TL * Om / i * (0.3 - T + T * (9 / 5 - 2 + 4 / 7)) - 0.5 * TL * lag
+    assert_allclose(energy["kinetic_change_J"], kinetic, rtol=1e-4)  # + the TE's vibration at the end (~1e-5)
+    assert_allclose(energy["potential_change_J"], potential, rtol=2e-2)  # + the vibration's own share (~0.7 %)
+    assert_allclose(energy["load_work_J"], load, rtol=1e-4)  # the inertial lag of the ramp: ~3e-5
+    assert energy["damping_loss_J"] > 0.0
+    assert_allclose(energy["input_work_J"], energy["load_work_J"] + energy["damping_loss_J"]
+                    + energy["kinetic_change_J"] + energy["potential_change_J"], rtol=1e-8)
 
 
 # ------------------------------------------------------------ springs in series, load fluctuation
