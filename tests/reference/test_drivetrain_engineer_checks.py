@@ -506,3 +506,18 @@ def test_a_slow_helical_mesh_follows_its_contact_line_length(tmp_path):
     assert share.max() / share.min() > 1.04  # eps_beta = 0.93: a 5 % stiffness variation, visible in q
     ft = _simulate(tmp_path, TIME_VARYING)["summary"]["stages"][0]["tangential_N"]
     assert_allclose([ft["min"], ft["max"]], [2000 / (4 * 77 / math.cos(beta) / 1000)] * 2, rtol=2e-4)
+
+
+def test_a_continuation_file_with_rows_missing_inside_its_branches_resumes_to_the_uninterrupted_file(tmp_path):
+    # a resumed branch recomputes the points before a missing one for their state, writes only the missing rows,
+    # and the completed file equals the uninterrupted one but for wall_s (docs/sweeps.md, "-o FILE")
+    args = ("--vary", "input.speed_rpm=3000:4500:3", "--direction", "both")
+    full, code = _sweep_rows(tmp_path, *args)
+    assert code == "0" and [r["direction"] for r in full] == ["up"] * 3 + ["down"] * 3
+    out = tmp_path / "rows.csv"
+    lines = out.read_text(encoding="utf-8").splitlines(keepends=True)
+    out.write_text("".join(lines[:2] + [lines[2], lines[4], lines[6]]), encoding="utf-8")  # 2nd of up, 1st and 3rd of down gone
+    resumed, code = _sweep_rows(tmp_path, *args)
+    assert code == "0"
+    strip = [{k: v for k, v in r.items() if k != "wall_s"} for r in full]
+    assert [{k: v for k, v in r.items() if k != "wall_s"} for r in resumed] == strip
