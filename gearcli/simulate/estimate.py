@@ -121,6 +121,24 @@ def target(statistic: str) -> float:
     return MEAN_TARGET if statistic == "mean" else TARGET
 
 
+def force_reference(mean: float, std: float, static_N: float) -> float:
+    """The force a stage's targets refer to: |mean F_t| (the static |F_t| when the mean is 0). A mesh that
+    carries no static force (an unloaded train rattling, a mesh whose load is zero) has a window mean that is
+    zero but for the run's own noise (1e-4 N on a ±75 N swing), 1e-3 of which no rtol and no number of samples
+    reaches: its targets refer to the channel's rms about zero, sqrt(mean² + std²), the size of what it carries."""
+    if static_N == 0.0:
+        return math.hypot(mean, std)
+    return abs(mean) or abs(static_N)
+
+
+def reference_words(reference_N: float, unloaded: bool) -> str:
+    """How a warning names the force its relative error refers to (:func:`force_reference`; ``unloaded``: the
+    stage carries no static force)."""
+    if unloaded:
+        return f"the rms {reference_N:.4g} N of the unloaded stage's F_t"
+    return f"the mean {reference_N:.4g} N"
+
+
 def suggested_rtol(rtol: float, relative_error: float, goal: float = TARGET) -> float:
     """The rtol that brings an error of ``relative_error`` at ``rtol`` below half the target ``goal``, assuming
     the error falls in proportion to rtol (the slowest order of these statistics, measured), rounded down to
@@ -154,7 +172,7 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
     # a mesh that carries nothing in the run's window (no load, teeth apart: F_t = 0 throughout) is measured
     # against the check pass's force, so an error is a finite fraction of what the tighter pass sees (1 when
     # only it sees contact) and never inf, which no JSON can hold; both passes at zero: no error at all
-    reference = abs(a.mean) or abs(static_N) or math.hypot(a.mean, a.std) or math.hypot(b.mean, b.std)
+    reference = force_reference(a.mean, a.std, static_N) or math.hypot(b.mean, b.std)
     rel = {q: (v / reference if reference > 0 else 0.0) for q, v in err.items()}
     unresolved = tuple(q for q in STATISTICS if rel[q] > target(q))
     if any(q in AMPLITUDE for q in unresolved):  # one vibration error moves them all: name them together
@@ -356,8 +374,9 @@ def mode_warning(stage: int, mode: tuple[float, float], run: Integration, durati
 _NAMES = {"mean": "mean", "min": "min", "max": "max", "std": "std", "spectrum": "spectrum peaks"}
 
 
-def warnings(ref: CheckPass, method: str) -> list[Diagnostic]:
-    """``statistics_unresolved``, one per stage with a statistic beyond the target (none when resolved)."""
+def warnings(ref: CheckPass, method: str, unloaded: frozenset[int] = frozenset()) -> list[Diagnostic]:
+    """``statistics_unresolved``, one per stage with a statistic beyond the target (none when resolved);
+    ``unloaded``: the stages (1-based) that carry no static force (:func:`force_reference`)."""
     if ref.status != STATUS_FINISHED:
         return [dg.warning(dg.STATISTICS_UNRESOLVED, f"the error of the window statistics could not be estimated: "
                            f"the check pass at rtol {ref.rtol:g} stopped ({ref.message}); min, max, std and "
@@ -377,7 +396,8 @@ def warnings(ref: CheckPass, method: str) -> list[Diagnostic]:
         out.append(dg.warning(
             dg.STATISTICS_UNRESOLVED,
             f"stage {e.stage}: F_t {names} not resolved by {method} at the run's rtol: estimated error up to "
-            f"{absolute:.3g} N ({e.relative[worst]:.2g} of the mean {e.reference_N:.4g} N, target {target(worst):g}){moved}; "
+            f"{absolute:.3g} N ({e.relative[worst]:.2g} of {reference_words(e.reference_N, e.stage in unloaded)}, "
+            f"target {target(worst):g}){moved}; "
             f"{fix} would resolve it",
             stage=e.stage, statistics=list(e.unresolved), estimated_error_N=float(absolute),
             relative_error=float(e.relative[worst]), rtol=e.suggested_rtol))

@@ -62,8 +62,9 @@ class Ringing:
     damping_ratio: float
     amplitude_start_N: float  # fitted transient amplitude in F_t at the window's start
     amplitude_end_N: float  # ... at its end
-    reference_N: float  # the stage's |static F_t|
+    reference_N: float  # the stage's |static F_t| (an unloaded stage: its window mean |F_t|, see ``loaded``)
     settle_time_s: float  # when the amplitude falls to MIN_FRACTION of the reference (inf if never)
+    loaded: bool = True  # False: the stage carries no static force, the reference is the window's mean |F_t|
 
     @property
     def fraction_end(self) -> float:
@@ -242,10 +243,18 @@ def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_
                 continue
             settle = (window_s[0] + math.log(a0 / (MIN_FRACTION * ref)) / sigma) if sigma > 0 else math.inf
             r = Ringing(k + 1, omega / (2 * math.pi), 1.0 / sigma if sigma > 0 else math.inf,
-                        sigma / math.hypot(sigma, omega), a0, a1, ref, settle)
+                        sigma / math.hypot(sigma, omega), a0, a1, ref, settle, float(static_N[k]) != 0.0)
             if j not in best or r.fraction_end > best[j].fraction_end:
                 best[j] = r
     return [best[j] for j in sorted(best)]
+
+
+def reference_words(reference_N: float, loaded: bool) -> str:
+    """What a transient is measured against: the stage's static force, or, for a stage that carries none (an
+    unloaded train's rattle), the window's mean |F_t| that stands in for it."""
+    if loaded:
+        return f"the static {reference_N:.5g} N"
+    return f"the window's mean |F_t| {reference_N:.5g} N, the stage carrying no static load"
 
 
 def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
@@ -257,7 +266,7 @@ def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
     return (f"the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s still rings: the {r.frequency_Hz:.3g} Hz mode "
             f"({decay}, {100 * r.damping_ratio:.2g} % of critical damping) carries a run-up vibration of "
             f"±{r.amplitude_start_N:.4g} N in stage {r.stage}'s F_t at the window's start and ±{r.amplitude_end_N:.4g} N "
-            f"at its end ({100 * r.fraction_end:.2g} % of the static {r.reference_N:.5g} N), so the window's std, "
+            f"at its end ({100 * r.fraction_end:.2g} % of {reference_words(r.reference_N, r.loaded)}), so the window's std, "
             "min, max and dynamic factor include an undecayed transient. To settle it: "
             f"{later}; more damping{dominated}; or [simulation] steady = \"periodic\"")
 

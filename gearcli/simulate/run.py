@@ -220,7 +220,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
     mode = estimate.unresolved_mode(choice, run, duration_s, window[0]) if ref is not None and ref.errors else None
-    stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
+    stat_diags = estimate.warnings(ref, run.method, _unloaded(spec)) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
     finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \
@@ -475,7 +475,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                 residual=energy.residual_relative))
     diags += stat_diags or []
     diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
-                               {e.stage: e for e in solver_errors if e is not None})
+                               {e.stage: e for e in solver_errors if e is not None}, _unloaded(spec))
     if not periodic:  # a periodic window has its own grid: 64 samples a period of its fastest excitation
         diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
                                               steps or s.time_s.size - 1)
@@ -533,6 +533,12 @@ def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSerie
     return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
                                     periodic=periodic, solver=solver_errors[k])
             for k, m in enumerate(spec.meshes)]
+
+
+def _unloaded(spec) -> frozenset[int]:
+    """The stages (1-based) that carry no static force: their statistics' targets refer to the channel's rms
+    (:func:`gearcli.simulate.estimate.force_reference`)."""
+    return frozenset(k + 1 for k, m in enumerate(spec.meshes) if m.static_tangential_N == 0.0)
 
 
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:

@@ -94,7 +94,11 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.config.schema import MAX_STEPS
 from gearcli.diagnostics import Diagnostic
-from gearcli.simulate.estimate import TARGET  # of the stage's mean force: the solver's and the samples' together
+from gearcli.simulate.estimate import (
+    TARGET,  # of the stage's mean force: the solver's and the samples' together
+    force_reference,
+    reference_words,
+)
 from gearcli.simulate.estimate import target as target_of  # MEAN_TARGET for the mean, TARGET else
 from gearcli.simulate.periodic import excitation_periods
 from gearcli.simulate.results import SamplingError, StatisticsError
@@ -228,9 +232,6 @@ def _up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
     return int(math.ceil(wanted / digits * (1.0 - slack)) * digits)
 
 
-def reference(mean: float, std: float, static_N: float) -> float:
-    """The force the target refers to: |mean F_t|, the static |F_t| when the mean is 0 (as the solver's estimate)."""
-    return abs(mean) or abs(static_N) or math.sqrt(mean**2 + std**2)
 
 
 def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
@@ -243,7 +244,7 @@ def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *
         ref = solver.reference_N
     else:
         mean = float(ft.mean())
-        ref = reference(mean, float(ft.std()) if mean == 0 and static_N == 0 else 0.0, static_N)
+        ref = force_reference(mean, float(ft.std()), static_N)
     err = {"min": SAFETY * lo, "max": SAFETY * hi, "mean": 0.0 if periodic else mean_error(t, ft)}
     rel = {q: (v / ref if ref > 0 else (0.0 if v == 0 else math.inf)) for q, v in err.items()}
     bad = [q for q in STATISTICS if _undersampled(rel[q], solver.relative[q] if solver is not None else 0.0, q)]
@@ -280,9 +281,10 @@ def merged(e: StatisticsError, s: SamplingError) -> StatisticsError:
                    unresolved=unresolved, resolved=not unresolved)
 
 
-def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, StatisticsError]) -> list[Diagnostic]:
+def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, StatisticsError],
+             unloaded: frozenset[int] = frozenset()) -> list[Diagnostic]:
     """``statistics_undersampled``, one per stage (1-based index, its sampling error) whose window min or max
-    the output samples leave unresolved."""
+    the output samples leave unresolved; ``unloaded``: the stages that carry no static force."""
     out = []
     for stage, s in stages:
         if s.resolved:
@@ -305,7 +307,7 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
         out.append(dg.warning(
             dg.STATISTICS_UNDERSAMPLED,
             f"stage {stage}: F_t {' and '.join(bad)} not resolved by the output samples: {what} "
-            f"({s.relative[worst]:.2g} of the mean {s.reference_N:.4g} N{with_solver}, target "
+            f"({s.relative[worst]:.2g} of {reference_words(s.reference_N, stage in unloaded)}{with_solver}, target "
             f"{target_of(worst):g}); {fix}",
             stage=stage, statistics=bad, estimated_error_N=float(absolute), relative_error=float(s.relative[worst]),
             steps=s.suggested_steps, steps_cap=s.steps_cap))

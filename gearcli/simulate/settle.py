@@ -106,7 +106,8 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
             worst = Settling(fraction < SETTLED_FRACTION, fraction, k + 1, omega / (2 * math.pi), settle,
                              "" if fraction < SETTLED_FRACTION else
                              f"the {omega / (2 * math.pi):.3g} Hz mode rings from the start with ±{a0:.4g} N in stage "
-                             f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of the static {ref:.5g} N)")
+                             f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of "
+                             f"{ringing.reference_words(ref, float(static_N[k]) != 0.0)})")
     worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst)
     if motor_start_s is not None and motor_start_s > window_s[0]:
         settle = max(motor_start_s, worst.settle_time_s or 0.0)
@@ -124,8 +125,8 @@ def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], wo
     if t.size < 8:
         return worst
     quarter, half = t <= t[0] + 0.25 * (t[-1] - t[0]), t >= t[0] + 0.5 * (t[-1] - t[0])
-    for k, (f, ref) in enumerate(zip(forces, static_N, strict=True)):
-        ref = abs(float(ref)) or float(np.mean(f))
+    for k, (f, static) in enumerate(zip(forces, static_N, strict=True)):
+        ref = abs(float(static)) or float(np.mean(f))
         if ref <= 0.0:
             continue
         steady_max = float(np.max(f[half]))
@@ -138,7 +139,8 @@ def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], wo
             settle = worst.settle_time_s
         worst = Settling(False, max(excess, worst.transient_fraction), k + 1, worst.frequency_Hz, settle,
                          f"stage {k + 1}'s max |F_t| in the window's first quarter exceeds its last half's by "
-                         f"{100 * excess:.2g} % of the static {ref:.5g} N: a start-up transient decays through it")
+                         f"{100 * excess:.2g} % of {ringing.reference_words(ref, float(static) != 0.0)}: a start-up "
+                         "transient decays through it")
     return worst
 
 
