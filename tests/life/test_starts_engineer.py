@@ -155,3 +155,63 @@ def test_the_start_damage_scales_with_the_count_and_none_without_starts(tmp_path
     assert_allclose(p1["life_h"], 10000 / p1["damage"], rtol=1e-12)
     big = lives[100_000_000]["life"]["stages"][0]["pinion"]["pitting"]
     assert big["damage"] > 1 and big["load_multiplier"] < 1  # 1e8 DOL starts destroy the pinion's flanks
+
+
+# bearing 5 (the output shaft's locating bearing, F_a/F_r about 0.8) with ISO 76 factors: P_0 = max(F_r, X0 F_r +
+# Y0 F_a) takes its axial force
+BEARING_SCENE = SCENE.replace('kind = "roller"\nlocating = true\n[[bearing]]\nshaft = 3',
+                              'kind = "roller"\nlocating = true\nstatic_factors = { X0 = 0.5, Y0 = 1.0 }\n'
+                              '[[bearing]]\nshaft = 3')
+BEARING_DUTY = (("run", LOAD_NM, 100, 10000.0), ("light", 400.0, 300, 5000.0))
+
+
+def test_bearings_over_the_duty_and_its_starts_by_hand(tmp_path):
+    assert "X0 = 0.5" in BEARING_SCENE
+    text = BEARING_SCENE + "".join(f"\n[[duty]]\nname = \"{n}\"\nhours = {h!r}\nstarts = {s}\ntorque_Nm = {t!r}\n"
+                                   f"speed_rpm = {SPEED_RPM!r}\n" for n, t, s, h in BEARING_DUTY)
+    life = _run(tmp_path, text, "life")["life"]
+    ratio = (1.0, 1.0 / I1, 1.0 / (I1 * I2))  # shaft speed over the input's
+    c = [30e3, 30e3, 90e3, 90e3, 150e3, 150e3]
+    c0 = [18e3, 18e3, 100e3, 100e3, 180e3, 180e3]
+    p_exp = [3.0, 3.0, 10 / 3, 10 / 3, 10 / 3, 10 / 3]  # ball, roller (ISO 281)
+    levels = [[] for _ in c]  # (revolutions, equivalent load) per bearing
+    peaks = [0.0 for _ in c]
+    for (name, torque, n_starts, hours), point in zip(BEARING_DUTY, life["points"], strict=True):
+        sv = point["solver"]
+        sim = _run(tmp_path, BEARING_SCENE, "simulate", "--series", *[x for s in (
+            f"input.speed_rpm={SPEED_RPM!r}", f"load.torque_Nm={torque!r}", "load.application_factor=1",
+            "rating.dynamic_factor=1.0", f"simulation.steps={sv['output_samples'] - 1}",
+            f"simulation.duration_s={sv['duration_s']!r}", f"simulation.window_start_s={sv['window_s'][0]!r}")
+            for x in ("--set", s)])
+        series = {k: np.asarray(v) for k, v in sim["series"].items()}
+        t = series["time_s"]
+        start = t <= sv["window_s"][0] + 1e-12
+        window = t >= sv["window_s"][0] - 1e-12
+        w1 = np.abs(series["shaft1_speed_rpm"])
+        revs = point["start"]["input_revolutions"]
+        for j in range(len(c)):
+            fr, fa = np.abs(series[f"bearing{j + 1}_radial_N"]), np.abs(series[f"bearing{j + 1}_axial_N"])
+            p = fr  # no ISO 281 factors: P = F_r
+            # the start: P^p averaged over its revolutions (the input shaft's speed the weight)
+            p_start = (np.sum(p[start] ** p_exp[j] * w1[start]) / np.sum(w1[start])) ** (1 / p_exp[j])
+            assert_allclose(point["start"]["bearings"][j]["equivalent_load_N"], p_start, rtol=1e-6)
+            assert_allclose(point["start"]["bearings"][j]["peak_radial_N"], fr[start].max(), rtol=1e-6)
+            # the steady window at the point's speed: P^p averaged over the window's samples
+            p_window = np.mean(p[window] ** p_exp[j]) ** (1 / p_exp[j])
+            levels[j] += [(hours * 60 * SPEED_RPM * ratio[(j // 2)], p_window),
+                          (n_starts * revs * ratio[j // 2], p_start)]
+            x0, y0 = (0.5, 1.0) if j == 4 else (1.0, 0.0)
+            peaks[j] = max(peaks[j], float(np.max(np.maximum(fr, x0 * fr + y0 * fa))))
+    hours = sum(h for *_, h in BEARING_DUTY)
+    for j, b in enumerate(life["bearings"]):
+        n = np.array([r for r, _ in levels[j]])
+        load = np.array([x for _, x in levels[j]])
+        p_eq = (np.sum(n * load ** p_exp[j]) / n.sum()) ** (1 / p_exp[j])
+        l10 = (c[j] / p_eq) ** p_exp[j]  # million revolutions
+        # 1e-5: the window's P from a re-run of each point (same sets, same engine)
+        assert_allclose(b["revolutions"], n.sum(), rtol=1e-9, err_msg=j)
+        assert_allclose(b["equivalent_load_N"], p_eq, rtol=1e-5, err_msg=j)
+        assert_allclose(b["L10_Mrev"], l10, rtol=5e-5, err_msg=j)
+        assert_allclose(b["L10_h"], l10 * 1e6 / (60 * n.sum() / (60 * hours)), rtol=5e-5, err_msg=j)  # at the mean rpm
+        # ISO 76 over the duty and its starts: C_0 over the largest P_0 of both runs from rest (their starts)
+        assert_allclose(b["static_safety_min"], c0[j] / peaks[j], rtol=1e-6, err_msg=j)
