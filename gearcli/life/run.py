@@ -487,6 +487,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                 warnings += [n for n in point_notes if n.message not in messages(warnings)]
                 warnings += _of_point(p, run_warnings)
                 warnings += verdicts.starts_warning(p, pd.start)
+                if route != "static":
+                    warnings += verdicts.starts_from_rest_warning(p, pd.cfg.input.drive, pd.cfg.input.ramp_s)
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))

@@ -215,3 +215,19 @@ def test_bearings_over_the_duty_and_its_starts_by_hand(tmp_path):
         assert_allclose(b["L10_h"], l10 * 1e6 / (60 * n.sum() / (60 * hours)), rtol=5e-5, err_msg=j)  # at the mean rpm
         # ISO 76 over the duty and its starts: C_0 over the largest P_0 of both runs from rest (their starts)
         assert_allclose(b["static_safety_min"], c0[j] / peaks[j], rtol=1e-6, err_msg=j)
+
+
+@pytest.mark.parametrize("sets, warned", [
+    (("input.drive=torque", f"input.torque_Nm={LOAD_NM / (I1 * I2)!r}", "input.ramp_s=0.2"), True),
+    (("input.drive=speed", "input.ramp_s=0"), True),
+    (("input.drive=speed", "input.ramp_s=0.5"), False),
+    ((), False),  # the file's DOL motor
+])
+def test_starts_on_a_drive_that_does_not_start_from_rest_are_warned(tmp_path, sets, warned):
+    """A torque drive's run starts at its nominal speed, a speed drive without a ramp at its speed (docs/physics.md):
+    the run before the window is then no start-up, though counted as one; the warning names the point."""
+    doc = _run(tmp_path, _duty(("run", LOAD_NM, 100)), "life", *[x for s in sets for x in ("--set", s)])
+    found = [w for w in doc["warnings"] if w["code"] == "starts_not_from_rest"]
+    assert len(found) == (1 if warned else 0), found
+    if warned:
+        assert found[0]["point"] == "run" and "duty point run" in found[0]["message"]
