@@ -160,3 +160,29 @@ def test_rigid_peak_is_the_rigid_drivetrains(tmp_path, case):
     # the ratio is the run's peak over this rigid peak: the run's sampled peak of each stage (the --series check
     # of the same number is tests/unit/test_rigid_start.py's)
     assert all(r is not None and r > 0 for r in start["peak_over_rigid"])
+
+
+@pytest.mark.parametrize("load_nm, exponent, warned", [(300.0, 2, True), (LOAD_NM, 2, False), (300.0, 0, False)])
+def test_a_vfd_fan_at_part_load_runs_off_its_speed_and_says_so(tmp_path, load_nm, exponent, warned):
+    """A VFD's supply is set for the rated torque at speed_rpm (docs/physics.md): at part load the motor slips
+    less and runs faster, and a fan takes (n/n_0)^2 more than the design's load. The operating point by hand: the
+    nameplate's curve in slip speed (the supply at n_s + speed_rpm - n_r) meets the fan reflected to the motor;
+    the warning (silent for every VFD before) fires where that load is more than 1 % off."""
+    motor = _motor("vfd", ramp_s=1.5, torque_limit_Nm=150.0)  # its smooth torque limit included
+    supply = (MOTOR["n_s"] + SPEED_RPM - MOTOR["n_r"]) * RPM
+    w_n = SPEED_RPM * RPM
+
+    def net(w):  # after the ramp
+        return motor(10.0, w) - RHO_OUT * load_nm * (w / w_n) ** exponent
+
+    w_op = brentq(net, 0.9 * w_n, supply - 1e-9, xtol=1e-12)
+    doc = _simulate(tmp_path, ["input.starting=vfd", "input.ramp_s=1.5", "input.torque_limit_Nm=150",
+                               f"load.speed_exponent={exponent}", f"load.torque_Nm={load_nm!r}"])
+    assert_allclose(doc["summary"]["motor"]["operating_point_rpm"], w_op / RPM, rtol=1e-7)
+    found = [w for w in doc["warnings"] if w["code"] == "motor_speed_mismatch"]
+    ratio = (w_op / w_n) ** exponent
+    assert (abs(ratio - 1) > 0.01) == warned
+    assert len(found) == (1 if warned else 0), found
+    if warned:
+        assert_allclose(found[0]["load_ratio"], ratio, rtol=1e-6)  # 1.043 at 300 N·m: 1490.9 rpm against 1460
+        assert "VFD" in found[0]["message"]
