@@ -176,7 +176,7 @@ def test_bearings_over_the_duty_and_its_starts_by_hand(tmp_path):
     p_exp = [3.0, 3.0, 10 / 3, 10 / 3, 10 / 3, 10 / 3]  # ball, roller (ISO 281)
     levels = [[] for _ in c]  # (revolutions, equivalent load) per bearing
     peaks = [0.0 for _ in c]
-    for (name, torque, n_starts, hours), point in zip(BEARING_DUTY, life["points"], strict=True):
+    for (_, torque, n_starts, hours), point in zip(BEARING_DUTY, life["points"], strict=True):
         sv = point["solver"]
         sim = _run(tmp_path, BEARING_SCENE, "simulate", "--series", *[x for s in (
             f"input.speed_rpm={SPEED_RPM!r}", f"load.torque_Nm={torque!r}", "load.application_factor=1",

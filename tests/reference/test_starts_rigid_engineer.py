@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,9 +23,25 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from gearcli.cli import cli
-from tests.reference.starts_scene import (DRIVE_SCENE, DURATION_S, HELIX_DEG, J_G1, J_G2, J_LOAD, J_MOTOR, J_P1,
-                                          J_P2, LOAD_NM, MODULE_MM, MOTOR, RPM, SPEED_RPM, TEETH)
+from tests.reference.starts_scene import (
+    DRIVE_SCENE,
+    DURATION_S,
+    HELIX_DEG,
+    J_G1,
+    J_G2,
+    J_LOAD,
+    J_MOTOR,
+    J_P1,
+    J_P2,
+    LOAD_NM,
+    MODULE_MM,
+    MOTOR,
+    RPM,
+    SPEED_RPM,
+    TEETH,
+)
 
+ROOT = Path(__file__).resolve().parents[2]
 I1, I2 = TEETH[1] / TEETH[0], TEETH[3] / TEETH[2]
 RHO_G1, RHO_OUT = 1.0 / I1, 1.0 / (I1 * I2)  # speed of gear 1 (and pinion 2), of gear 2 (and the load) per motor speed
 D_G1 = TEETH[1] * MODULE_MM[0] / math.cos(math.radians(HELIX_DEG[0]))  # reference diameters of the driven gears, mm
@@ -141,7 +158,7 @@ CASES = {
     "speed_ramp_fan": (["input.drive=speed", "input.ramp_s=0.6", "load.speed_exponent=2"],
                        lambda: _rigid_speed(0.6, 2)),
     # a torque drive starts at its nominal speed (as the simulation does), its torque 10 % over the fan's need
-    "torque_fan": ([f"input.drive=torque", f"input.torque_Nm={1.1 * LOAD_NM * RHO_OUT!r}", "input.ramp_s=0.3",
+    "torque_fan": (["input.drive=torque", f"input.torque_Nm={1.1 * LOAD_NM * RHO_OUT!r}", "input.ramp_s=0.3",
                     "load.speed_exponent=2"],
                    lambda: _rigid_driven(lambda t, w: 1.1 * LOAD_NM * RHO_OUT * _smooth(t / 0.3), 2,
                                          w0=SPEED_RPM * RPM)),
@@ -186,3 +203,91 @@ def test_a_vfd_fan_at_part_load_runs_off_its_speed_and_says_so(tmp_path, load_nm
     if warned:
         assert_allclose(found[0]["load_ratio"], ratio, rtol=1e-6)  # 1.043 at 300 N·m: 1490.9 rpm against 1460
         assert "VFD" in found[0]["message"]
+
+
+PLANET_SCENE = """
+title = "a 3-planet stage (ring held, sun in, carrier out), DOL 11 kW, fan on the carrier, explicit inertias"
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 2.06e5
+poisson_ratio = 0.3
+[[stage]]
+type = "planetary"
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+efficiency = 1.0
+sun    = { teeth = 18, face_width_mm = 50, material = "steel", inertia_kg_m2 = 0.004 }
+planet = { teeth = 45, face_width_mm = 48, count = 3, material = "steel", inertia_kg_m2 = 0.02, mass_kg = 4.0 }
+ring   = { teeth = 108, face_width_mm = 48, material = "steel" }
+carrier = { inertia_kg_m2 = 0.35 }
+fixed = "ring"
+input = "sun"
+[input]
+speed_rpm = 1460
+drive = "motor"
+motor = { rated_power_kW = 11, rated_speed_rpm = 1460, synchronous_speed_rpm = 1500, breakdown_torque_ratio = 2.9, locked_rotor_torque_ratio = 2.2 }
+starting = "direct"
+inertia_kg_m2 = 0.045
+coupling_stiffness_Nm_rad = 8.0e3
+coupling_damping_Nms_rad = 3
+[load]
+torque_Nm = 420
+speed_exponent = 2
+inertia_kg_m2 = 6
+coupling_stiffness_Nm_rad = 1.0e5
+coupling_damping_Nms_rad = 30
+[simulation]
+duration_s = 2.0
+steps = 4000
+window_start_s = 1.5
+"""
+
+
+def test_a_planetary_stages_rigid_peak_includes_the_planets_spin(tmp_path):
+    """The sun mesh of a rigid planetary drives the planets' spin besides the carrier and what follows it: with
+    the ring held, w_c = w_s z_s / (z_s + z_r) = w_s / 7, a planet's absolute w_p = w_c - (z_s / z_p)(w_s - w_c)
+    = -0.2 w_s; the power through the N sun meshes, N F r_s w_s = d/dt(kinetic energy downstream) + T_L w_c, gives
+    N F r_s = (N J_p rho_p^2 + (J_c + N m_p r_c^2 + J_L) rho_c^2) dw/dt + rho_c T_L (r_s = 27 mm, r_c = 94.5 mm,
+    zero shifts). The tool's estimate from the carrier's torque alone was 1.4 % low (1964.7 N for 1992.9 N)."""
+    path = tmp_path / "planet.toml"
+    path.write_text(PLANET_SCENE)
+    res = CliRunner().invoke(cli, ["-q", "simulate", str(path), "--format", "json"])
+    assert res.exit_code == 0, res.output
+    got = json.loads(res.stdout)["summary"]["start"]["rigid_peak_N"]
+    rho_c, rho_p, r_s, r_c = 1 / 7, -0.2, 0.027, 0.0945
+    j_down = 3 * 0.02 * rho_p**2 + (0.35 + 3 * 4.0 * r_c**2 + 6.0) * rho_c**2
+    j_total = J_MOTOR + 0.004 + j_down
+    curve, ws, w0 = _kloss(), MOTOR["n_s"] * RPM, SPEED_RPM * RPM * rho_c
+
+    def fan(w):
+        return 420.0 * (w * rho_c) * np.abs(w * rho_c) / w0**2
+
+    def rhs(t, y):
+        return (curve(ws - y[0]) - rho_c * fan(y[0])) / j_total
+
+    sol = solve_ivp(lambda t, y: [rhs(t, y)], (0.0, 2.0), [0.0], method="LSODA", rtol=1e-11, atol=1e-11,
+                    max_step=1e-3, dense_output=True)
+    t = np.linspace(0.0, 2.0, 400_001)
+    w = sol.sol(t)[0]
+    force = (j_down * rhs(t, [w]) + rho_c * fan(w)) / (3 * r_s)
+    assert_allclose(got, [np.max(np.abs(force))], rtol=1e-5)
+
+
+def test_a_lossy_planetary_trains_rigid_start_settles_on_the_design_statics():
+    """configs/mixer_planetary_motor.toml (a 3-planet stage at eta 0.98, a helical stage at 0.985, a viscous
+    mixer): the rigid start's settled sun-mesh force is the design's static one, by hand T_L / (i_2 eta_2) /
+    (i_1 eta_1) / (N r_s), 5954.2 N. Multiplying each of the six planet meshes' eta in turn put it at 1.07x that."""
+    from gearcli import api
+    from gearcli.model.assembly import Layout
+    from gearcli.scene import spec_from_design
+    from gearcli.simulate import rigid_start
+
+    loaded = api.load(str(ROOT / "configs" / "mixer_planetary_motor.toml"), [])
+    design = api.design(loaded)
+    lay = Layout.of(spec_from_design(loaded.design, design))
+    rigid = rigid_start.integrate(lay, loaded.design.simulation.duration_s)
+    sun = 23195.46 / (121 / 17 * 0.985) / ((1 + 108 / 18) * 0.98) / (3 * 0.027)  # N, at the sun's reference radius
+    # the helical mesh's force is its driving side's (the pinion's: the load over eta), at the reference radius
+    helical = 23195.46 / 0.985 / (121 * 6 / math.cos(math.radians(12)) / 2e3)
+    assert_allclose(abs(rigid.tangential_N[0][-1]), sun, rtol=1e-4)  # the mixer's speed 1e-4 short of settled
+    assert_allclose(abs(rigid.tangential_N[1][-1]), helical, rtol=1e-4)
