@@ -241,3 +241,16 @@ def test_a_vfd_point_at_part_load_is_warned_off_its_speed(tmp_path):
     found = [w for w in doc["warnings"] if w["code"] == "motor_speed_mismatch"]
     assert [w["point"] for w in found] == ["light"], found
     assert found[0]["operating_speed_rpm"] > 1.02 * SPEED_RPM and "VFD" in found[0]["message"]
+
+
+@pytest.mark.parametrize("starts, said", [(250, True), (0, False)])
+def test_a_history_replacing_tables_with_starts_says_the_starts_are_not_counted(tmp_path, starts, said):
+    """--series replaces the [[duty]] tables (docs/life.md); their starts went with them without a word."""
+    history = tmp_path / "history.csv"
+    history.write_text("time_s,torque_Nm,speed_rpm\n0,1000,1460\n36000000,300,1460\n72000000,0,1460\n")
+    doc = _run(tmp_path, _duty(("run", LOAD_NM, starts)), "life", "--static", "--series", str(history))
+    found = [w for w in doc["warnings"] if "[[duty]] starts" in w["message"]]
+    assert len(found) == (1 if said else 0), found
+    if said:
+        assert found[0]["code"] == "duty" and f"their {starts} starts" in found[0]["message"]
+        assert all(p["start"] is None for p in doc["life"]["points"])
