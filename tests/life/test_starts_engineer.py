@@ -254,3 +254,16 @@ def test_a_history_replacing_tables_with_starts_says_the_starts_are_not_counted(
     if said:
         assert found[0]["code"] == "duty" and f"their {starts} starts" in found[0]["message"]
         assert all(p["start"] is None for p in doc["life"]["points"])
+
+
+def test_a_quiet_window_is_one_class_at_the_static_force(base):
+    """No excitation: every engagement of the settled window meets the static force (the design's F_t = 2 T / d,
+    lossless), to the integration's noise; that is one class, not 20 of the same force 5e-10 apart."""
+    _, life, _, _ = base
+    for k in range(2):
+        static = LOAD_NM / (I2 if k == 0 else 1.0) * 2e3 / D_GEAR[k]  # the torque on gear k over its radius
+        for member, per_turn in (("pinion", 1.0 if k == 0 else 1 / I1), ("gear", 1 / I1 if k == 0 else 1 / (I1 * I2))):
+            steady = [b for b in life["life"]["stages"][k][member]["pitting"]["bins"] if b["point"] == "run"]
+            assert len(steady) == 1, (k, member, len(steady))
+            assert_allclose(steady[0]["force_N"], static, rtol=1e-6)
+            assert_allclose(steady[0]["cycles"], 10000 * 60 * SPEED_RPM * per_turn, rtol=1e-12)
