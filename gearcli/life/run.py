@@ -189,7 +189,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
             raise
         raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
-    loads = spectra.dynamic_loads(result, design)
+    loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver

@@ -108,6 +108,39 @@ def dynamic_loads(result, design, span: tuple[float, float] | None = None) -> li
             for k, st in enumerate(design.stages)]
 
 
+@dataclass(frozen=True)
+class _Window:
+    """A window's samples as :func:`dynamic_loads` reads them (``time_s``, ``window_s``, ``series``)."""
+
+    time_s: np.ndarray
+    window_s: tuple[float, float]
+    series: dict[Channel, np.ndarray]
+
+
+def periodic_tiled(result, design):
+    """The converged periodic state's window repeated until it holds MIN_WINDOW_MESH_CYCLES of the slowest mesh
+    (exact: the state repeats every window), so that a mesh cycle longer than the period (a slow stage's, when the
+    period is the fastest excitation's) is counted; ``result`` itself for any other run. The periodic window of a
+    two-stage drive without excitation is one stage-2 mesh period: it held no whole cycle of it (exit 2)."""
+    steady = getattr(result, "steady", None)
+    if steady is None or steady.mode != "periodic" or not steady.converged or steady.periodicity == "none":
+        return result
+    t = result.time_s
+    lo, hi = result.window_s
+    mask = (t >= lo - 1e-12) & (t <= hi + 1e-12)
+    tw = t[mask]
+    period = float(tw[-1] - tw[0])
+    if tw.size < 2 or period <= 0.0:
+        return result
+    f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)
+    copies = max(1, math.ceil(MIN_WINDOW_MESH_CYCLES / f_min / period))
+    if copies == 1:
+        return result
+    time = np.concatenate([tw[:-1] + i * period for i in range(copies)] + [tw[-1:] + (copies - 1) * period])
+    series = {n: np.concatenate([c[mask][:-1]] * copies + [c[mask][-1:]]) for n, c in result.series.items()}
+    return _Window(time, (float(time[0]), float(time[-1])), series)
+
+
 class _KindLoads(Protocol):
     """What the spectra ask of a stage's kind (its life facet, :mod:`gearcli.stages.life`)."""
 

@@ -267,3 +267,19 @@ def test_a_quiet_window_is_one_class_at_the_static_force(base):
             assert len(steady) == 1, (k, member, len(steady))
             assert_allclose(steady[0]["force_N"], static, rtol=1e-6)
             assert_allclose(steady[0]["cycles"], 10000 * 60 * SPEED_RPM * per_turn, rtol=1e-12)
+
+
+def test_a_periodic_steady_state_counts_a_slow_stages_mesh_cycles(tmp_path):
+    """steady = "periodic": the window is one period of the state, here one stage-2 mesh period (8.5 ms), which holds
+    no whole stage-2 mesh cycle between its boundaries: every multi-stage duty stopped with exit 2 ("lengthen
+    simulation.duration_s", which cannot help). The orbit repeated gives the spectrum: the quiet drive's static
+    forces by hand, the cycles hours x 60 x n, as the window route's."""
+    doc = _run(tmp_path, _duty(("run", LOAD_NM, 0)), "life", "--set", "simulation.steady=periodic")
+    point = doc["life"]["points"][0]
+    assert min(point["mesh_cycles"]) >= 40
+    for k in range(2):
+        static = LOAD_NM / (I2 if k == 0 else 1.0) * 2e3 / D_GEAR[k]
+        bins = doc["life"]["stages"][k]["gear"]["pitting"]["bins"]
+        assert len(bins) == 1
+        assert_allclose(bins[0]["force_N"], static, rtol=1e-6)
+        assert_allclose(bins[0]["cycles"], 10000 * 60 * SPEED_RPM / (I1 if k == 0 else I1 * I2), rtol=1e-12)
