@@ -170,6 +170,18 @@ def test_bearings_over_the_duty_and_its_starts_by_hand(tmp_path):
     text = BEARING_SCENE + "".join(f"\n[[duty]]\nname = \"{n}\"\nhours = {h!r}\nstarts = {s}\ntorque_Nm = {t!r}\n"
                                    f"speed_rpm = {SPEED_RPM!r}\n" for n, t, s, h in BEARING_DUTY)
     life = _run(tmp_path, text, "life")["life"]
+    # two points with different starts: each point's starts are classes of their own, named by the point, and the
+    # duty's damage is the sum of every class's (the steady points' and both points' starts')
+    for k, st in enumerate(life["stages"]):
+        for member in ("pinion", "gear"):
+            for mode in ("pitting", "bending"):
+                ml = st[member][mode]
+                assert_allclose(ml["damage"], sum(b["damage"] for b in ml["bins"]), rtol=1e-12)
+                for (name, *_), point in zip(BEARING_DUTY, life["points"], strict=True):
+                    own = [b for b in ml["bins"] if b["point"] == f"{name} (start)"]
+                    assert own and all(b["damage"] > 0 for b in own)
+                    assert_allclose(point["start"]["damage"][k][member][mode], sum(b["damage"] for b in own),
+                                    rtol=1e-12)
     ratio = (1.0, 1.0 / I1, 1.0 / (I1 * I2))  # shaft speed over the input's
     c = [30e3, 30e3, 90e3, 90e3, 150e3, 150e3]
     c0 = [18e3, 18e3, 100e3, 100e3, 180e3, 180e3]
