@@ -58,6 +58,7 @@ LOAD_SHARING = "load_sharing"  # how the dynamic route takes the planets' load s
 MOTOR_SPEED_MISMATCH = "motor_speed_mismatch"  # the motor runs at another speed than the point's speed_rpm
 PEAKS_UNRESOLVED = "peaks_unresolved"  # the mesh-cycle peaks are resolved worse than the target
 STARTS_NOT_COUNTED = "starts_not_counted"  # --static: the duty's starts are counted on the dynamic route only
+STARTS_NOT_FROM_REST = "starts_not_from_rest"  # starts on a drive whose run does not start from rest
 BEYOND_STATIC_STRENGTH = "beyond_static_strength"  # load classes beyond the static strength (slope extrapolated)
 LIFE_SAFETY_LOW = "life_safety_low"  # a member's spectrum safety below the minimum, or D >= 1 within the duty
 BEARING_LIFE_SHORT = "bearing_life_short"  # a bearing's ISO 281 life over the duty shorter than the duty

@@ -47,6 +47,7 @@ from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles, start_data
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
 from gearcli.simulate.bearings import peak_static_load_N, reaction_series
+from gearcli.simulate.motor import VFD_OFF_SPEED
 from gearcli.simulate.results import SimulationResult
 from gearcli.stages.design import design_kind
 from gearcli.stages.life import LifeKind, life_kind
@@ -188,7 +189,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
             raise
         raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
-    loads = spectra.dynamic_loads(result, design)
+    loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
@@ -211,14 +212,15 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    peak_error=tuple(ld.peak_error for ld in loads), settled=settled)
     # the point's rating at K_v = 1: superseded
     warnings = [d for d in carrying(result.warnings, result.diagnostics) if d.message not in design.warnings]
-    if cfg.input.drive == "motor" and cfg.input.starting != "vfd" and result.extra and "motor" in result.extra:
+    if cfg.input.drive == "motor" and result.extra and "motor" in result.extra:
         running = result.extra["motor"].get("operating_speed_rpm")
         said = any(d.code == MOTOR_SPEED_MISMATCH for d in warnings)  # the run's own, on its load
         if running and not said and abs(running - point.speed_rpm) > 0.02 * point.speed_rpm:
             warnings.append(warning(
                 MOTOR_SPEED_MISMATCH, f"the motor (starting = \"{cfg.input.starting}\") runs at {running:.5g} rpm, not "
-                f"the point's speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: give the speed the "
-                "motor runs at, or starting = \"vfd\" (the supply follows the point's speed)",
+                f"the point's speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: "
+                + (VFD_OFF_SPEED if cfg.input.starting == "vfd" else
+                   "give the speed the motor runs at, or starting = \"vfd\" (the supply follows the point's speed)"),
                 operating_speed_rpm=running, speed_rpm=point.speed_rpm))
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
@@ -487,6 +489,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                 warnings += [n for n in point_notes if n.message not in messages(warnings)]
                 warnings += _of_point(p, run_warnings)
                 warnings += verdicts.starts_warning(p, pd.start)
+                if route != "static":
+                    warnings += verdicts.starts_from_rest_warning(p, pd.cfg.input.drive, pd.cfg.input.ramp_s)
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))

@@ -70,6 +70,11 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         cols = read_series(_series_text(series), source)
         points = points_from_series(*cols, source=source, classes=classes)
         notes = series_notes(*cols, source=source)
+        starts = sum(d.starts for d in loaded.design.duty)
+        if starts:  # the tables the history replaces carried start-ups: say that they are not counted
+            notes.append(f"the history {source} replaces the file's [[duty]] tables, and with them their {starts} "
+                         "starts ([[duty]] starts): a history's rows count no start-ups from rest, so no start is "
+                         "counted; rate the starts with the [[duty]] tables")
     else:
         points = points_from_config(loaded.design)
         notes = []

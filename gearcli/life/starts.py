@@ -8,7 +8,8 @@ and each member's classes count ``N`` times the member's load cycles of one star
 start, by the design's kinematics from the input shaft's, times its contacts per turn), in bins of their own
 (named ``"<point> (start)"``). The bearings take the start's ISO 281 equivalent load (P^p averaged over the
 start's revolutions) for ``N`` times the start's revolutions of their shaft. What runs after the start has
-settled but before the window is counted with the start (a few settled cycles per start: conservative).
+settled but before the window is counted with the start (conservative; a few settled cycles where the window
+follows the settling, all of it where a file's ``window_start_s`` puts the window later).
 """
 
 from __future__ import annotations

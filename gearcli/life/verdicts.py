@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from gearcli.diagnostics import BEARING_LIFE_SHORT, DUTY, LIFE_SAFETY_LOW, Diagnostic, warning
+from gearcli.diagnostics import BEARING_LIFE_SHORT, DUTY, LIFE_SAFETY_LOW, STARTS_NOT_FROM_REST, Diagnostic, warning
 from gearcli.life.duty import DutyPoint
 from gearcli.life.result import BearingLife, ModeLife, StageLife
 from gearcli.life.starts import StartData
@@ -102,3 +102,17 @@ def starts_warning(point: DutyPoint, start: StartData | None) -> list[Diagnostic
                     f"rest to the settled window, as counted) take {total_h:.4g} h, more than the point's {point.hours:.6g} "
                     "h: check starts and hours (the damage counts every start and every hour)", point=point.name,
                     starts=start.count, start_s=each_s, starts_h=total_h, hours=point.hours)]
+
+
+def starts_from_rest_warning(point: DutyPoint, drive: str, ramp_s: float) -> list[Diagnostic]:
+    """A point with starts whose run does not start from rest (docs/life.md, "Starts"): a torque drive's run starts
+    at its nominal speed, a speed drive without ``ramp_s`` at its full speed; what is counted ``starts`` times is then
+    that run before the window, not a start-up from rest."""
+    if not point.starts or drive == "motor" or (drive == "speed" and ramp_s > 0):
+        return []
+    how = ("a torque drive's run starts at its nominal speed" if drive == "torque" else
+           "a speed drive without ramp_s starts at its full speed")
+    return [warning(STARTS_NOT_FROM_REST, f"duty point {point.name} ({point.key}): starts = {point.starts}, but {how}, "
+                    "not from rest: what is counted as its start is the run before the window at that speed, not a "
+                    "start-up; give drive = \"motor\" with its starting method (or a speed drive's input.ramp_s > 0) to "
+                    "count starts from rest", point=point.name, starts=point.starts, drive=drive)]

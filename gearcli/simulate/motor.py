@@ -126,8 +126,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
         diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
-    if op.reaches and op.speed_rad_s is not None and motor.starting != "vfd":
-        diags += _load_off_design(lay, op.speed_rad_s)
+    if op.reaches and op.speed_rad_s is not None:
+        diags += _load_off_design(lay, op.speed_rad_s, motor.starting == "vfd")
     w_mean = float(w_motor[mask].mean())
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
@@ -177,10 +177,17 @@ def _in_star(lay: Layout, motor: MotorSpec, stall_rad_s: float | None) -> str:
             f"switch-over speed {sw:.5g} rpm: it never switches to delta (a lower switch_speed_rpm, or another start)")
 
 
-def _load_off_design(lay: Layout, w_op: float) -> list[Diagnostic]:
+#: why a VFD runs off its speed_rpm, and what to give (a VFD's supply is set for the rated torque: docs/physics.md)
+VFD_OFF_SPEED = ("a VFD's supply is set so that the motor runs at speed_rpm at its rated torque (the rated slip speed "
+                 "above it): at another load it slips less or more (a converter with slip compensation would hold "
+                 "speed_rpm; the model's does not)")
+
+
+def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagnostic]:
     """A speed-dependent load that the motor meets at another speed than ``speed_rpm``: the design's static forces
     (and every dynamic factor against them) assume the load at ``speed_rpm``, the run carries the load at the
-    motor's own operating speed. Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %)."""
+    motor's own operating speed. Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %). A VFD
+    (``vfd``) too: its supply follows speed_rpm at the rated torque only, a fan at part load runs faster."""
     w_nom = lay.drive.speed_rad_s
     nominal = reflected_load(lay, w_nom)
     if not lay.load_law or w_nom <= 0.0 or nominal == 0.0:
@@ -190,8 +197,9 @@ def _load_off_design(lay: Layout, w_op: float) -> list[Diagnostic]:
         return []
     return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
                        f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
-                       "the design's static forces and the dynamic factors against them are off by that much; give "
-                       "the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)",
+                       "the design's static forces and the dynamic factors against them are off by that much; "
+                       + (VFD_OFF_SPEED if vfd else
+                          "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)"),
                        operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
 
 

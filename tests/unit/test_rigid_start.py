@@ -79,8 +79,12 @@ def test_simulate_summary_start_compares_with_the_rigid_start():
     start = result.extra["start"]
     rigid = rigid_start.integrate(lay, float(result.time_s[-1]))
     for k, st in enumerate(result.stages):
-        rigid_peak = float(np.abs(rigid.tangential_N[k]).max())
+        rigid_peak = rigid.peak_tangential_N[k]
         assert_allclose(start["rigid_peak_N"][k], rigid_peak, rtol=1e-12)
+        # the peak of the continuous rigid start: at or above the largest of its output samples, and close to it
+        # on this smooth DOL start (a star-delta switch-over is not: tests/reference/test_starts_rigid_engineer.py)
+        sampled = float(np.abs(rigid.tangential_N[k]).max())
+        assert sampled * (1 - 1e-12) <= rigid_peak <= sampled * (1 + 1e-3)
         assert_allclose(start["peak_over_rigid"][k], st.peak_tangential_N / rigid_peak, rtol=1e-12)
         # an elastic drivetrain answers the DOL torque step with at most about twice the rigid force
         assert 1.0 < start["peak_over_rigid"][k] < 2.2
