@@ -243,7 +243,7 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
     # the planet–ring mesh: its (driving-side) force against the sun–planet mesh's
     ring_mesh = _ring_mesh(cfg, k, stage, geo, mesh, planet_mat, ring_mat, m_t, books.ring_mesh / books.sun_mesh)
     k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
-    angles = bal.planet_angles_deg(n, stage.planet.angles_deg)
+    angles = bal.planet_angles_deg(n, stage.planet.angles_deg, 360.0 / (z_s + z_r))
     order = sorted(a % 360.0 for a in angles)
     gaps = [((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True)]
     gap = min(gaps)

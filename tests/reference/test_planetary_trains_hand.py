@@ -1,0 +1,114 @@
+"""A drivetrain engineer's own planetary trains, checked by hand (round 4's §11/§13 planetary re-test).
+
+Scene S ("star then helical"): a spur planetary, sun 22 / planets 30 / ring 82 (z_r = z_s + 2 z_p, no profile
+shift), m_n 4, b 40, steel, 4 planets ((22 + 82)/4 = 26), stage efficiency 0.97, the held member and the driven one
+varied; then a helical parallel stage 19/57 (m_n 5, β 10°, η 0.98) to a 2000 N·m load; input 1500 rpm.
+
+Scene P ("helical then planetary"): the reverse order, a parallel stage 20/50 driving the sun of a ring-held
+planetary 24/36/96 with 3 planets.
+
+Every expected number is a hand formula written out in the test (Willis, the textbook basic-efficiency relations,
+F_t = T/(N r), ISO 21771 for the working pressure angle); none is taken from the code's output.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+ZS, ZP, ZR, MN, B, N_PL = 22, 30, 82, 4.0, 40.0, 4
+ETA1, ETA2 = 0.97, 0.98
+Z1, Z2 = 19, 57
+N_IN, T_OUT = 1500.0, 2000.0
+U = ZR / ZS
+
+STAR = f"""
+title = "planetary then helical"
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 206000
+poisson_ratio = 0.3
+
+[[stage]]
+type = "planetary"
+normal_module_mm = {MN}
+normal_pressure_angle_deg = 20
+efficiency = {ETA1}
+sun    = {{ teeth = {ZS}, face_width_mm = {B}, material = "steel" }}
+planet = {{ teeth = {ZP}, face_width_mm = {B}, count = {N_PL}, material = "steel" }}
+ring   = {{ teeth = {ZR}, face_width_mm = {B}, material = "steel" }}
+fixed = "carrier"
+input = "sun"
+
+[[stage]]
+normal_module_mm = 5
+helix_angle_deg = 10
+efficiency = {ETA2}
+pinion = {{ teeth = {Z1}, face_width_mm = 60, hand = "left", material = "steel" }}
+gear   = {{ teeth = {Z2}, face_width_mm = 60, hand = "right", material = "steel" }}
+
+[input]
+speed_rpm = {N_IN}
+
+[load]
+torque_Nm = {T_OUT}
+
+[simulation]
+duration_s = 0.3
+steps = 300
+"""
+
+
+def _run(*args: str):
+    return CliRunner().invoke(cli, list(args), catch_exceptions=False)
+
+
+def _write(tmp_path, text: str, name: str = "train.toml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def design(tmp_path, text: str = STAR, *sets: str) -> dict:
+    path = _write(tmp_path, text)
+    res = _run("design", str(path), "--format", "json", *sum((["--set", s] for s in sets), []))
+    assert res.exit_code == 0, res.stderr
+    return json.loads(res.stdout)
+
+
+def refused(tmp_path, text: str, *sets: str):
+    path = _write(tmp_path, text)
+    res = _run("design", str(path), "--format", "json", *sum((["--set", s] for s in sets), []))
+    assert res.exit_code == 2, (res.exit_code, res.stderr)
+    assert "Traceback" not in res.stderr and res.stdout == ""
+    return path, res.stderr
+
+
+# ---------------------------------------------------------------------------------------------------- angles
+STEP = 360.0 / (ZS + ZR)  # 3.461538...°: where a planet meshes with both sun and ring
+
+
+def test_declared_angles_typed_to_a_drawings_digits_are_accepted_and_taken_exactly(tmp_path):
+    """Planet 4 at 80 steps = 276.923077°: typed as 276.923 (7.7e-5° off, 2e-5 of a step: 8e-5 mm on the 104 mm
+    carrier circle) it is that position; the 1e-6° tolerance refused it, with a message whose 'nearest' (printed
+    to 6 digits, 276.923°) was the value refused. The design reports (and the model phases) the exact angle."""
+    doc = design(tmp_path, STAR, "stage[0].planet.angles_deg=[0,90,180,276.923]")
+    st = doc["stages"][0]
+    assert_allclose(st["planet_angles_deg"], [0.0, 26 * STEP, 52 * STEP, 80 * STEP], rtol=0, atol=1e-12)
+    assert st["equal_spacing"] is False
+
+
+def test_an_angle_between_the_assemblable_positions_names_them_to_digits_that_pass(tmp_path):
+    path, err = refused(tmp_path, STAR, "stage[0].planet.angles_deg=[0,90,180,275]")
+    # 275/3.4615 = 79.44 steps: the neighbours 79 and 80 steps
+    lo, hi = 79 * STEP, 80 * STEP
+    assert "stage[0].planet.angles_deg" in err and f"{lo:.6f}°" in err and f"{hi:.6f}°" in err
+    # the printed neighbour, typed back, is accepted
+    doc = design(tmp_path, STAR, f"stage[0].planet.angles_deg=[0,90,180,{hi:.6f}]")
+    assert_allclose(doc["stages"][0]["planet_angles_deg"][3], hi, rtol=1e-14)
