@@ -28,23 +28,26 @@ Z1, Z2 = 19, 57
 N_IN, T_OUT = 1500.0, 2000.0
 U = ZR / ZS
 
-STAR = f"""
+def star(zs: int = ZS, zp: int = ZP, zr: int = ZR, count: int = N_PL, planet: str = "", fixed: str = "carrier",
+         driven: str = "sun", eta: float = ETA1, contact: str = "", extra: str = "") -> str:
+    """Scene S (module text), its planetary varied."""
+    return f"""
 title = "planetary then helical"
 [materials.steel]
 density_kg_m3 = 7850
 youngs_modulus_MPa = 206000
 poisson_ratio = 0.3
-
+{contact}
 [[stage]]
 type = "planetary"
 normal_module_mm = {MN}
 normal_pressure_angle_deg = 20
-efficiency = {ETA1}
-sun    = {{ teeth = {ZS}, face_width_mm = {B}, material = "steel" }}
-planet = {{ teeth = {ZP}, face_width_mm = {B}, count = {N_PL}, material = "steel" }}
-ring   = {{ teeth = {ZR}, face_width_mm = {B}, material = "steel" }}
-fixed = "carrier"
-input = "sun"
+efficiency = {eta}
+sun    = {{ teeth = {zs}, face_width_mm = {B}, material = "steel" }}
+planet = {{ teeth = {zp}, face_width_mm = {B}, count = {count}, material = "steel"{planet} }}
+ring   = {{ teeth = {zr}, face_width_mm = {B}, material = "steel" }}
+fixed = "{fixed}"
+input = "{driven}"
 
 [[stage]]
 normal_module_mm = 5
@@ -58,11 +61,11 @@ speed_rpm = {N_IN}
 
 [load]
 torque_Nm = {T_OUT}
-
-[simulation]
-duration_s = 0.3
-steps = 300
+{extra}
 """
+
+
+STAR = star()
 
 
 def _run(*args: str):
@@ -112,3 +115,27 @@ def test_an_angle_between_the_assemblable_positions_names_them_to_digits_that_pa
     # the printed neighbour, typed back, is accepted
     doc = design(tmp_path, STAR, f"stage[0].planet.angles_deg=[0,90,180,{hi:.6f}]")
     assert_allclose(doc["stages"][0]["planet_angles_deg"][3], hi, rtol=1e-14)
+
+
+# ------------------------------------------------------------------------------------- what cannot be built
+@pytest.mark.parametrize(("scene", "key", "says"), [
+    # a ring too small: 70 teeth where 22 + 2 x 30 = 82 (the cross-key rule named only "stage[0]")
+    (star(zr=70), "stage[0].ring.teeth", "ring.teeth (70)"),
+    # the driven member held (named the key the file gives: input)
+    (star(driven="carrier"), "stage[0].input", "same member ('carrier')"),
+    (star(planet=", position_error_um = [1, 2]"), "stage[0].planet.position_error_um", "(4), got 2"),
+    # spacing: (22 + 82)/5 = 20.8 is not whole
+    (star(count=5), "stage[0].planet.count", "(22 + 82)/5 = 20.8"),
+    # concentricity: ring 86 (spacing 108/4 = 27 fine): a_pr = (86 - 30) 4/2 = 112 mm, a_sp = (22 + 30) 4/2 = 104 mm
+    (star(zr=86), "stage[0].ring.profile_shift", "a_w = 112.0000 mm"),
+    # adjacency: 6 planets 32 teeth on ring 86 ((22 + 86)/6 = 18): a = 108 mm, 2 a sin 30° = 108 mm < d_a = 136 mm
+    (star(zp=32, zr=86, count=6), "stage[0].planet.count", "centres 108.0000 mm apart"),
+    # declared angles 20 steps apart (69.23°): 2 x 104 sin 34.615° = 118.1575 mm < 128 mm
+    (star(planet=f", angles_deg = [0, {20 * STEP:.6f}, {40 * STEP:.6f}, {60 * STEP:.6f}]"),
+     "stage[0].planet.angles_deg", "118.1575 mm"),
+    (star(planet=", angles_deg = [0, 90, 180, 180]"), "stage[0].planet.angles_deg", "same position"),
+    (star(planet=", angles_deg = [0, 90, 180]"), "stage[0].planet.angles_deg", "one angle per planet (4), got 3"),
+])
+def test_a_planetary_that_cannot_be_built_is_exit_2_naming_the_key_and_the_numbers(tmp_path, scene, key, says):
+    path, err = refused(tmp_path, scene)
+    assert f"{path.name}: {key}: " in err and says in err, err
