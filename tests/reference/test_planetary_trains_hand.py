@@ -139,3 +139,97 @@ def test_an_angle_between_the_assemblable_positions_names_them_to_digits_that_pa
 def test_a_planetary_that_cannot_be_built_is_exit_2_naming_the_key_and_the_numbers(tmp_path, scene, key, says):
     path, err = refused(tmp_path, scene)
     assert f"{path.name}: {key}: " in err and says in err, err
+
+
+# ------------------------------------------------------------------------------------- the books by hand
+def _eta0_by_textbook(fixed: str, driven: str, eta: float) -> float:
+    """The basic (carrier-held) efficiency from the stage's, inverting the textbook relation of each arrangement."""
+    return {("ring", "sun"): (eta * (1 + U) - 1) / U,  # eta = (1 + eta0 u)/(1 + u)
+            ("ring", "carrier"): U / ((1 + U) / eta - 1),  # eta = (1 + u)/(1 + u/eta0)
+            ("carrier", "sun"): eta, ("carrier", "ring"): eta,
+            ("sun", "ring"): eta * (1 + U) - U,  # eta = (u + eta0)/(1 + u)
+            ("sun", "carrier"): eta / (1 + U - eta * U),  # eta = eta0 (1 + u)/(1 + eta0 u)
+            }[(fixed, driven)]
+
+
+ARRANGEMENTS = [("ring", "sun"), ("ring", "carrier"), ("carrier", "sun"), ("carrier", "ring"), ("sun", "ring"),
+                ("sun", "carrier")]
+
+
+@pytest.mark.parametrize(("fixed", "driven"), ARRANGEMENTS)
+def test_willis_speeds_torques_moment_balance_and_mesh_forces_of_every_arrangement(tmp_path, fixed, driven):
+    doc = design(tmp_path, star(fixed=fixed, driven=driven))
+    st = doc["stages"][0]
+    out = next(m for m in ("sun", "carrier", "ring") if m not in (fixed, driven))
+    # Willis: w_s - w_c = -u (w_r - w_c), the held member at rest, the driven one at 1500 rpm
+    w = {fixed: 0.0, driven: N_IN}
+    if fixed == "ring":
+        w[out] = N_IN * (1 + U) if out == "sun" else N_IN / (1 + U)
+    elif fixed == "carrier":
+        w[out] = -N_IN * U if out == "sun" else -N_IN / U
+    else:  # sun held: w_c (1 + u) = u w_r
+        w[out] = N_IN * U / (1 + U) if out == "carrier" else N_IN * (1 + U) / U
+    for m in ("sun", "carrier", "ring"):
+        assert_allclose(st[m]["speed_rpm"], w[m], rtol=1e-12, atol=1e-9)
+    assert_allclose(st["ratio"], abs(N_IN / w[out]), rtol=1e-12)
+    assert_allclose(st["willis_ratio"], -U, rtol=1e-12)
+    # the planet's speed relative to the carrier (docs/output.md): |w_s - w_c| z_s / z_p
+    assert_allclose(st["planet"]["speed_rpm"], abs(w["sun"] - w["carrier"]) * ZS / ZP, rtol=1e-12)
+    assert_allclose(doc["output_speed_rpm"], abs(w[out]) * Z1 / Z2, rtol=1e-12)
+    # torques: the helical stage's pinion (on the output member) needs T_out/(i_2 eta_2); the stage's input eta_1 less
+    t_out = T_OUT / (Z2 / Z1 * ETA2)
+    t_in = t_out / (st["ratio"] * ETA1)
+    assert_allclose(doc["input_torque_Nm"], t_in, rtol=1e-12)
+    eta0 = _eta0_by_textbook(fixed, driven, ETA1)
+    assert_allclose(st["basic_efficiency"], eta0, rtol=1e-10)
+    assert_allclose(st["mesh_efficiency"], math.sqrt(eta0), rtol=1e-10)
+    # in the carrier's frame the sun drives when its power there, T_s (w_s - w_c), is positive; T_s runs with the
+    # input where the sun is driven, against the output's motion where it is the output, and as the ring where held
+    sun_drives = (fixed, driven) in (("ring", "sun"), ("carrier", "sun"), ("sun", "carrier"))
+    rho = eta0 * U if sun_drives else U / eta0  # |T_ring| / |T_sun|
+    mag = dict(zip((driven, out), (t_in, t_out), strict=True))
+    if "sun" in mag:
+        t_s = mag["sun"]
+    else:  # the sun held: |T_carrier| = |T_s| (1 + rho), |T_ring| = rho |T_s|
+        t_s = mag["carrier"] / (1 + rho)
+    t_r, t_c = rho * t_s, (1 + rho) * t_s
+    assert_allclose([st[m]["torque_Nm"] for m in ("sun", "ring", "carrier")], [t_s, t_r, t_c], rtol=1e-10)
+    assert_allclose(mag[driven], {"sun": t_s, "ring": t_r, "carrier": t_c}[driven], rtol=1e-10)
+    # the signed balance: the driven member's torque with its motion, the output's against its motion
+    bal = st["moment_balance_Nm"]
+    assert_allclose(bal[driven], t_in, rtol=1e-10)
+    assert_allclose(bal[out], -math.copysign(t_out, w[out] / N_IN), rtol=1e-10)
+    assert_allclose(sum(bal.values()), 0.0, atol=1e-9 * t_c)
+    # per planet mesh, the driving side's force on the pitch circle (no profile shift: working = pitch)
+    r_s, r_r = ZS * MN / 2e3, ZR * MN / 2e3
+    if sun_drives:
+        f_sp = t_s / (N_PL * r_s)
+        f_pr = math.sqrt(eta0) * f_sp
+    else:
+        f_pr = t_r / (N_PL * r_r)
+        f_sp = math.sqrt(eta0) * f_pr
+    sp, pr = st["meshes"]
+    assert (sp["name"], pr["name"]) == ("sun_planet", "planet_ring")
+    assert_allclose([sp["static_force_N"]["tangential"], pr["static_force_N"]["tangential"]], [f_sp, f_pr],
+                    rtol=1e-10)
+    tan20 = math.tan(math.radians(20))
+    assert_allclose([sp["static_force_N"]["radial"], pr["static_force_N"]["radial"]],
+                    [f_sp * tan20, f_pr * tan20], rtol=1e-10)
+    assert_allclose(sp["static_force_N"]["normal"], f_sp / math.cos(math.radians(20)), rtol=1e-10)
+
+
+@pytest.mark.parametrize(("zs", "zp", "zr", "count"), [(24, 36, 96, 3), (22, 30, 82, 4), (40, 20, 80, 5)])
+def test_planet_count_shares_the_sun_torque(tmp_path, zs, zp, zr, count):
+    """Ring held, sun in, no losses: F_t per planet = T_s / (N r_s); the carrier's planets' translational inertia
+    N m_p a^2 with the solid planet disc m_p = rho pi d^2 b / 4 of pitch diameter (docs/design-file.md)."""
+    doc = design(tmp_path, star(zs, zp, zr, count, fixed="ring", driven="sun", eta=1.0))
+    st = doc["stages"][0]
+    i1 = 1 + zr / zs
+    t_s = T_OUT / (Z2 / Z1 * ETA2) / i1
+    assert_allclose(st["meshes"][0]["static_force_N"]["tangential"], t_s / (count * zs * MN / 2e3), rtol=1e-12)
+    assert_allclose(st["meshes"][1]["static_force_N"]["tangential"], t_s / (count * zs * MN / 2e3), rtol=1e-12)
+    a = (zs + zp) * MN / 2e3
+    m_p = 7850 * math.pi * (zp * MN * 1e-3) ** 2 / 4 * B * 1e-3
+    assert_allclose(st["carrier"]["planets_translational_inertia_kg_m2"], count * m_p * a**2, rtol=1e-12)
+    assert_allclose(st["planet_angles_deg"], [360 * j / count for j in range(count)], rtol=1e-12)
+    assert st["equal_spacing"] is True
