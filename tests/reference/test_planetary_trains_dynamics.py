@@ -296,3 +296,44 @@ def test_energy_record_against_the_channels(tmp_path, fixed):
     after = t >= 0.1
     assert share * np.trapezoid((a["input_torque_Nm"] * w1)[after], t[after]) < energy["damping_loss_J"]
     assert energy["damping_loss_J"] < 1.05 * share * energy["input_work_J"]
+
+
+# ------------------------------------------------------------------------------------------ declared angles
+def _two_planets(tmp_path, angles: str):
+    """Scene S with two planets at ``angles``, carrier held, 300 rpm, time-varying contact lines on the planet
+    meshes (the helical stage's constant: its own mesh frequency would break the symmetry below), no losses;
+    30 sun-mesh periods, 400 samples each, the last 10 kept."""
+    period = 60 / (22 * 300)  # the sun and ring mesh period, s (carrier held: z_s n_s = z_r n_r)
+    text = star(count=2, planet=f", angles_deg = {angles}", eta=1.0,
+                contact="[contact]\ntime_varying = true\n",
+                extra=f"[simulation]\nduration_s = {30 * period!r}\nsteps = {30 * 400}\n").replace(
+        f"efficiency = {ETA2}", "efficiency = 1.0").replace(f"speed_rpm = {N_IN}", "speed_rpm = 300")
+    text = text.replace("gear   = {", "mesh = { time_varying = false }\ngear   = {", 1)
+    a = run_csv(tmp_path, text)
+    keep = a["time_s"] >= 20 * period - 1e-12
+    return {m: (a[f"stage1_planet1_{m}_tangential_N"][keep], a[f"stage1_planet2_{m}_tangential_N"][keep])
+            for m in ("sun", "ring")}
+
+
+def _rms(x: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(x**2)))
+
+
+def test_declared_planet_angles_phase_the_planet_meshes(tmp_path):
+    """Two planets, 22/30/82 (one step 360/104°): at 0° and 180° (52 steps) planet 2's sun mesh leads planet 1's
+    by z_s x 180/360 = 11 cycles and its ring mesh by -82/2 = -41: in phase, the two planets' forces are the same
+    series. Declared at 0° and 90° (26 steps; unequal spacing, 90° and 270° gaps): 22/4 = 5.5 and -82/4 = -20.5
+    cycles, half a mesh cycle on both meshes, so the torsional model is symmetric under half a mesh period: planet
+    2's forces are planet 1's half a period later (200 samples). Were the declared angles ignored (equal spacing,
+    180°), the two series would be equal. Tolerance: the sun mesh's stiffness steps fall on sample instants, where
+    a series is not periodic to the sample either (its own one-period rms difference bounds the shift's)."""
+    in_phase = _two_planets(tmp_path, "[0, 180]")
+    for f1, f2 in in_phase.values():
+        assert _rms(f1 - f2) <= 1e-9 * np.ptp(f1)
+    half = _two_planets(tmp_path, "[0, 90]")
+    n, h = 400, 200
+    for f1, f2 in half.values():
+        assert _rms(f1 - f2) > 0.1 * np.ptp(f1)  # the planets are out of phase
+        periodic = _rms(f1[n:] - f1[:-n])
+        shifted = _rms(f2[:-n] - f1[h:len(f1) - n + h])
+        assert shifted <= 1.5 * periodic + 1e-4 * np.ptp(f1)
