@@ -233,3 +233,86 @@ def test_planet_count_shares_the_sun_torque(tmp_path, zs, zp, zr, count):
     assert_allclose(st["carrier"]["planets_translational_inertia_kg_m2"], count * m_p * a**2, rtol=1e-12)
     assert_allclose(st["planet_angles_deg"], [360 * j / count for j in range(count)], rtol=1e-12)
     assert st["equal_spacing"] is True
+
+
+# ------------------------------------------------------------------------------ a helical, shifted planetary
+HELICAL = """
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 206000
+poisson_ratio = 0.3
+
+[[stage]]
+type = "planetary"
+normal_module_mm = 3
+helix_angle_deg = 15
+efficiency = 0.98
+sun    = { teeth = 20, face_width_mm = 50, material = "steel", hand = "left", profile_shift = 0.3 }
+planet = { teeth = 32, face_width_mm = 48, count = 3, material = "steel", hand = "right", profile_shift = 0.1 }
+ring   = { teeth = 85, face_width_mm = 48, material = "steel", profile_shift = 0.03345573 }
+fixed = "ring"
+input = "sun"
+
+[input]
+speed_rpm = 1000
+
+[load]
+torque_Nm = 1500
+"""
+
+
+def _inv(a: float) -> float:
+    return math.tan(a) - a
+
+
+def _inv_inverse(v: float) -> float:
+    lo, hi = 0.0, 1.5
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _inv(mid) < v else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def test_helical_shifted_planetary_centre_distances_and_forces_by_hand(tmp_path):
+    """Sun 20 (x 0.3) / planets 32 (x 0.1) / ring 85, m_n 3, beta 15°, ring held. ISO 21771 with the internal
+    gear's signed teeth (z_2 = -85, the ring's x as the file gives it, the KISSsoft/DIN 3960 convention): inv a_wt =
+    inv a_t + 2 tan a_n (x_1 + x_2)/(z_1 + z_2) on both meshes, a_w = (z_1 + z_2) m_t cos a_t / (2 cos a_wt). The
+    ring's x = 0.03345573 was solved by hand (bisection) for a_w,pr = a_w,sp = 81.8969 mm (concentric). Forces on
+    the reference circle (DESIGN section 3): F_t = T_s / (N r_s) with T_s = T_out / ((1 + u) eta), the ring mesh
+    eta_m F_t (eta_0 = (eta (1 + u) - 1)/u), F_r = F_t tan a_t, F_a = F_t tan beta; the ring has the planet's hand."""
+    doc = design(tmp_path, HELICAL)
+    st = doc["stages"][0]
+    a_n, beta = math.radians(20), math.radians(15)
+    a_t = math.atan(math.tan(a_n) / math.cos(beta))
+    m_t = 3 / math.cos(beta)
+    aw_sp = _inv_inverse(_inv(a_t) + 2 * math.tan(a_n) * (0.3 + 0.1) / (20 + 32))
+    aw_pr = _inv_inverse(_inv(a_t) + 2 * math.tan(a_n) * (0.1 + 0.03345573) / (32 - 85))
+    a_sp = (20 + 32) * m_t * math.cos(a_t) / (2 * math.cos(aw_sp))
+    a_pr = (85 - 32) * m_t * math.cos(a_t) / (2 * math.cos(aw_pr))
+    assert_allclose(a_pr, a_sp, atol=1e-6)  # the hand-solved shift makes the stage concentric
+    sp, pr = st["meshes"]
+    assert_allclose([sp["center_distance_mm"], pr["center_distance_mm"]], [a_sp, a_pr], rtol=1e-10)
+    assert_allclose([sp["working_pressure_angle_deg"], pr["working_pressure_angle_deg"]],
+                    [math.degrees(aw_sp), math.degrees(aw_pr)], rtol=1e-9)
+    assert st["ring"]["hand"] == "right"
+    u = 85 / 20
+    t_s = 1500 / ((1 + u) * 0.98)
+    f_t = t_s * 1e3 / (3 * 20 * m_t / 2)
+    eta_m = math.sqrt((0.98 * (1 + u) - 1) / u)
+    for mesh, f in ((sp, f_t), (pr, eta_m * f_t)):
+        assert_allclose([mesh["static_force_N"][c] for c in ("tangential", "radial", "axial")],
+                        [f, f * math.tan(a_t), f * math.tan(beta)], rtol=1e-10)
+
+
+@pytest.mark.parametrize(("old", "new", "key", "says"), [
+    ('hand = "left", profile_shift = 0.3', 'hand = "right", profile_shift = 0.3', "stage[0].planet.hand",
+     'the sun is "right", so the planet must be "left"'),
+    ('hand = "left", profile_shift = 0.3', 'profile_shift = 0.3', "stage[0].sun.hand",
+     'needs hand = "left" (opposite to the planet), got no hand'),
+    ('profile_shift = 0.03345573 }', 'profile_shift = 0.03345573, hand = "left" }', "stage[0].ring.hand",
+     'the ring needs the planet\'s hand "right"'),
+])
+def test_helical_planetary_hands_are_named_as_the_file_names_the_members(tmp_path, old, new, key, says):
+    """The sun–planet pair is checked as an external pair; its messages said "pinion" and "gear"."""
+    path, err = refused(tmp_path, HELICAL.replace(old, new, 1))
+    assert f"{path.name}: {key}: " in err and says in err and "pinion" not in err, err
