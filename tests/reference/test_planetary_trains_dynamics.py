@@ -337,3 +337,89 @@ def test_declared_planet_angles_phase_the_planet_meshes(tmp_path):
         periodic = _rms(f1[n:] - f1[:-n])
         shifted = _rms(f2[:-n] - f1[h:len(f1) - n + h])
         assert shifted <= 1.5 * periodic + 1e-4 * np.ptp(f1)
+
+
+# ------------------------------------------------------------------------ parallel, planetary, star in a row
+MIXED = """
+title = "helical, then planetary (ring held), then star with unequally spaced planets"
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 206000
+poisson_ratio = 0.3
+
+[[stage]]
+normal_module_mm = 3
+helix_angle_deg = 15
+efficiency = 0.985
+pinion = { teeth = 20, face_width_mm = 40, hand = "left", material = "steel" }
+gear   = { teeth = 50, face_width_mm = 40, hand = "right", material = "steel" }
+
+[[stage]]
+type = "planetary"
+normal_module_mm = 4
+efficiency = 0.98
+sun    = { teeth = 24, face_width_mm = 40, material = "steel" }
+planet = { teeth = 36, face_width_mm = 40, count = 3, material = "steel" }
+ring   = { teeth = 96, face_width_mm = 40, material = "steel" }
+fixed = "ring"
+input = "sun"
+
+[[stage]]
+type = "planetary"
+normal_module_mm = 6
+efficiency = 0.975
+sun    = { teeth = 21, face_width_mm = 60, material = "steel" }
+planet = { teeth = 27, face_width_mm = 60, count = 4, material = "steel", angles_deg = [0, 93.75, 180, 273.75] }
+ring   = { teeth = 75, face_width_mm = 60, material = "steel" }
+fixed = "carrier"
+input = "sun"
+
+[input]
+speed_rpm = 1500
+ramp_s = 0.05
+
+[load]
+torque_Nm = 5000
+ramp_s = 0.05
+
+[simulation]
+duration_s = 0.4
+steps = 400
+"""
+
+
+def test_parallel_then_planetary_then_star_by_hand_and_settled(tmp_path):
+    """Helical 20/50 (eta 0.985) drives the sun of a ring-held 24/36/96 x3 (eta 0.98), whose carrier drives the
+    sun of a star 21/27/75 x4 (eta 0.975 = eta_0, planets at 0, 25, 48, 73 steps of 360/96 = 3.75°: (21 + 75)/4 = 24
+    would allow equal spacing, these are not). Ratio 2.5 x 5 x 75/21; torques up the train with each stage's eta;
+    F_t per planet T_s/(N r_s) on each planetary's sun mesh (the sun drives in both), eta_m F_t on the ring mesh;
+    the helical mesh F_t = T_1 / r_1. The settled run's means equal them, and the planets share equally."""
+    doc = design(tmp_path, MIXED)
+    st = doc["stages"]
+    ratio = 2.5 * 5 * 75 / 21
+    assert_allclose(doc["total_ratio"], ratio, rtol=1e-12)
+    assert_allclose(doc["output_speed_rpm"], 1500 / ratio, rtol=1e-12)
+    assert_allclose([st[1]["sun"]["speed_rpm"], st[1]["carrier"]["speed_rpm"], st[2]["sun"]["speed_rpm"],
+                     st[2]["ring"]["speed_rpm"]], [600, 120, 120, -120 * 21 / 75], rtol=1e-12)
+    t_s3 = 5000 / (75 / 21 * 0.975)
+    t_s2 = t_s3 / (5 * 0.98)
+    t_1 = t_s2 / (2.5 * 0.985)
+    assert_allclose(doc["input_torque_Nm"], t_1, rtol=1e-12)
+    r_1 = 20 * 3 / math.cos(math.radians(15)) / 2e3
+    f_sp2, f_sp3 = t_s2 / (3 * 0.048), t_s3 / (4 * 0.063)
+    eta_m2 = math.sqrt((0.98 * 5 - 1) / 4)  # eta_0 = (eta (1 + u) - 1)/u, u = 4
+    eta_m3 = math.sqrt(0.975)
+    hand = [t_1 / r_1, f_sp2, eta_m2 * f_sp2, f_sp3, eta_m3 * f_sp3]
+    got = [st[0]["static_force_N"]["tangential"], *(m["static_force_N"]["tangential"] for s in st[1:]
+                                                   for m in s["meshes"])]
+    assert_allclose(got, hand, rtol=1e-10)
+    assert_allclose(st[2]["planet_angles_deg"], [0, 25 * 3.75, 48 * 3.75, 73 * 3.75], rtol=1e-12)
+    assert st[2]["equal_spacing"] is False
+    sim = run_json(tmp_path, "simulate", MIXED)["summary"]
+    ss = sim["stages"]
+    assert_allclose(ss[0]["tangential_N"]["mean"], hand[0], rtol=1e-6)
+    for s, (f_sp, f_pr) in zip(ss[1:], ((hand[1], hand[2]), (hand[3], hand[4])), strict=True):
+        assert_allclose([p["sun"]["tangential_N"]["mean"] for p in s["planets"]], f_sp, rtol=1e-6)
+        assert_allclose([p["ring"]["tangential_N"]["mean"] for p in s["planets"]], f_pr, rtol=1e-6)
+        assert_allclose(s["load_sharing_factor"], 1.0, rtol=1e-8)
+    assert_allclose(sim["input_torque_Nm"], t_1, rtol=1e-6)
