@@ -316,3 +316,61 @@ def test_helical_planetary_hands_are_named_as_the_file_names_the_members(tmp_pat
     """The sun–planet pair is checked as an external pair; its messages said "pinion" and "gear"."""
     path, err = refused(tmp_path, HELICAL.replace(old, new, 1))
     assert f"{path.name}: {key}: " in err and says in err and "pinion" not in err, err
+
+
+# ---------------------------------------------------------------------------------------------- life keys
+def _rated(text: str) -> str:
+    """Scene text with what the rating needs: fatigue limits, roughness, accuracy, a lubricant, two duty points."""
+    text = text.replace("poisson_ratio = 0.3\n", "poisson_ratio = 0.3\ntreatment = \"case_carburized\"\n"
+                        "contact_fatigue_limit_MPa = 1500\nbending_fatigue_limit_MPa = 500\n", 1)
+    text = text.replace('material = "steel"', 'material = "steel", flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10')
+    text = text.replace("normal_module_mm = ", "accuracy_grade = 6\nnormal_module_mm = ")
+    return text + """
+[lubricant]
+viscosity_40C_mm2_s = 220
+viscosity_100C_mm2_s = 19
+temperature_C = 70
+
+[rating]
+required_life_h = 4000
+
+[[duty]]
+name = "rated"
+hours = 1000
+torque_Nm = 2000
+speed_rpm = 1500
+
+[[duty]]
+name = "half"
+hours = 3000
+torque_Nm = 1000
+speed_rpm = 1200
+"""
+
+
+def test_life_of_a_star_counts_the_turning_ring_and_keys_every_member(tmp_path):
+    """Carrier held, the ring turning (z_s/z_r of the sun's speed, against it): per point, the sun's flanks meet N
+    planets per turn, N n_s t; each planet tooth meets the sun and the ring once per planet turn, (z_s/z_p) n_s t on
+    each flank (its root: both meshes' bins, docs/life.md's conservative sum); the ring meets N planets per turn of its own,
+    N (z_s/z_r) n_s t. The forces: the static F_t per planet, halved at half the load. JSON keys: `sun`, `planet`,
+    `ring`, `planet_ring_side`, `planet_root` (docs/life.md)."""
+    path = _write(tmp_path, _rated(star()))
+    res = _run("life", str(path), "--static", "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    st = json.loads(res.stdout)["life"]["stages"][0]
+    minutes = {"rated": (1000 * 60, 1500.0), "half": (3000 * 60, 1200.0)}
+    want = {"sun": N_PL, "planet": ZS / ZP, "planet_ring_side": ZS / ZP, "ring": N_PL * ZS / ZR}
+    for member, per_turn in want.items():
+        for mode in ("pitting", "bending") if member != "planet" else ("pitting",):  # its bending: planet_root
+            bins = st[member][mode]["bins"]
+            for point, (t, n) in minutes.items():
+                got = sum(b["cycles"] for b in bins if b["point"] == point)
+                assert_allclose(got, per_turn * n * t, rtol=1e-12, err_msg=f"{member} {mode} {point}")
+    for member in ("planet", "planet_root"):  # both meshes' bins on one root, conservatively (docs/life.md)
+        root = st[member]["bending"]["bins"]
+        assert_allclose(sum(b["cycles"] for b in root if b["point"] == "rated"), 2 * ZS / ZP * 1500 * 60000,
+                        rtol=1e-12)
+    f_sp = T_OUT / (Z2 / Z1 * ETA2) / (ZR / ZS * ETA1) / (N_PL * ZS * MN / 2e3)
+    assert_allclose([b["force_N"] for b in st["sun"]["pitting"]["bins"]], [f_sp, f_sp / 2], rtol=1e-12)
+    assert_allclose([b["force_N"] for b in st["ring"]["pitting"]["bins"]],
+                    [math.sqrt(ETA1) * f_sp, math.sqrt(ETA1) * f_sp / 2], rtol=1e-12)
