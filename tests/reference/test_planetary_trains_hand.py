@@ -374,3 +374,15 @@ def test_life_of_a_star_counts_the_turning_ring_and_keys_every_member(tmp_path):
     assert_allclose([b["force_N"] for b in st["sun"]["pitting"]["bins"]], [f_sp, f_sp / 2], rtol=1e-12)
     assert_allclose([b["force_N"] for b in st["ring"]["pitting"]["bins"]],
                     [math.sqrt(ETA1) * f_sp, math.sqrt(ETA1) * f_sp / 2], rtol=1e-12)
+
+
+@pytest.mark.parametrize("command", ["design", "simulate", "modes", "life", "sweep"])
+def test_an_infeasible_set_is_blamed_on_the_set_by_every_command(tmp_path, command):
+    """`--set stage[0].planet.count=5` makes the stage unassemblable ((22 + 82)/5 = 20.8): every command names the
+    --set that gave the value, as `design` does (life and sweep named the design file, whose count is 4)."""
+    path = _write(tmp_path, _rated(star()))
+    extra = ["--vary", "input.speed_rpm=1000,1500"] if command == "sweep" else []
+    res = _run(command, str(path), "--set", "stage[0].planet.count=5", *extra)
+    assert res.exit_code == 2, res.stderr
+    assert "gearcli: --set: stage[0].planet.count: planet spacing" in res.stderr, res.stderr
+    assert "Traceback" not in res.stderr
