@@ -234,25 +234,31 @@ def test_stiff_meshes_follow_the_rigid_drivetrain_through_the_ramp(tmp_path, fix
         assert_allclose(a[name][settled], want[settled], rtol=1e-8, err_msg=name)
 
 
+@pytest.mark.parametrize("load", [T_OUT, -T_OUT])
 @pytest.mark.parametrize(("fixed", "driven"), ARRANGEMENTS)
-def test_settled_mean_forces_of_every_arrangement_with_losses_equal_the_design(tmp_path, fixed, driven):
-    """eta 0.97 on the planetary, 0.98 on the helical stage, the default (calibrated ISO) law: the settled window's
-    mean of every planet mesh's force equals the design's static force in magnitude (its sign is the flank's,
-    docs/output.md), the helical mesh's and the input torque too; the planets share equally (K_gamma 1). To 1e-5:
-    the 0.3 s run's window keeps a decaying start transient (~1e-7 seen on the speed increaser)."""
+def test_settled_mean_forces_of_every_arrangement_with_losses_equal_the_design(tmp_path, fixed, driven, load):
+    """eta 0.97 on the planetary, 0.98 on the helical stage, the default (calibrated ISO) law, the load forward and
+    reversed: the settled window's mean of every planet mesh's force equals the design's static force in magnitude,
+    signed by the flank the sun loads, i.e. as the sun's external torque `moment_balance_Nm.sun` (docs/output.md:
+    negative with the carrier driven and the ring or the sun held, positive for a ring-driven star, all reversed
+    by a reversed load); the input torque equals the design's; the planets share equally (K_gamma 1). The helical
+    mesh: the design's force, over eta where the load reverses (the gear drives, docs/output.md). To 1e-5: the
+    0.3 s run's window keeps a decaying start transient (~1e-7 seen on the speed increaser)."""
     text = STAR.replace('input = "sun"', f'input = "{driven}"').replace('fixed = "carrier"', f'fixed = "{fixed}"')
     text = text.replace(f"speed_rpm = {N_IN}\n", f"speed_rpm = {N_IN}\nramp_s = 0.05\n")
-    text = text.replace(f"torque_Nm = {T_OUT}\n", f"torque_Nm = {T_OUT}\nramp_s = 0.05\n")
+    text = text.replace(f"torque_Nm = {T_OUT}\n", f"torque_Nm = {load}\nramp_s = 0.05\n")
     text += "[simulation]\nduration_s = 0.3\nsteps = 300\n"
     doc = design(tmp_path, text)
     sim = run_json(tmp_path, "simulate", text)
     st, ss = doc["stages"], sim["summary"]["stages"]
-    f_sp, f_pr = (m["static_force_N"]["tangential"] for m in st[0]["meshes"])
+    f_sp, f_pr = (abs(m["static_force_N"]["tangential"]) for m in st[0]["meshes"])
+    flank = math.copysign(1.0, st[0]["moment_balance_Nm"]["sun"])
     for p in ss[0]["planets"]:
-        assert_allclose(abs(p["sun"]["tangential_N"]["mean"]), f_sp, rtol=1e-5)
-        assert_allclose(abs(p["ring"]["tangential_N"]["mean"]), f_pr, rtol=1e-5)
+        assert_allclose(p["sun"]["tangential_N"]["mean"], flank * f_sp, rtol=1e-5)
+        assert_allclose(p["ring"]["tangential_N"]["mean"], flank * f_pr, rtol=1e-5)
     assert_allclose(ss[0]["load_sharing_factor"], 1.0, rtol=1e-7)
-    assert_allclose(ss[1]["tangential_N"]["mean"], st[1]["static_force_N"]["tangential"], rtol=1e-5)
+    helical = st[1]["static_force_N"]["tangential"] / (ETA2 if load < 0 else 1.0)
+    assert_allclose(ss[1]["tangential_N"]["mean"], helical, rtol=1e-5)
     assert_allclose(sim["summary"]["input_torque_Nm"], doc["input_torque_Nm"], rtol=1e-5)
     assert_allclose(sim["summary"]["ratio"], doc["total_ratio"], rtol=1e-7)
 
