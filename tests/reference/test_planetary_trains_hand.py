@@ -386,3 +386,17 @@ def test_an_infeasible_set_is_blamed_on_the_set_by_every_command(tmp_path, comma
     assert res.exit_code == 2, res.stderr
     assert "gearcli: --set: stage[0].planet.count: planet spacing" in res.stderr, res.stderr
     assert "Traceback" not in res.stderr
+
+
+def test_rating_of_a_star_counts_the_turning_ring_and_bends_the_planet_both_ways(tmp_path):
+    """`design` with [rating] (required life 4000 h): the sun–planet mesh's pinion (the sun) N n_s L, its gear (the
+    planet) (z_s/z_p) n_s L; the planet–ring mesh's pinion (the planet) the same, its gear (the turning ring)
+    N (z_s/z_r) n_s L (L in minutes); Y_M = 0.7 on the planet in both meshes (an idler, ISO 6336-3), 1 elsewhere."""
+    doc = design(tmp_path, _rated(star()))
+    sp, pr = (m["rating"] for m in doc["stages"][0]["meshes"])
+    minutes = 4000 * 60
+    assert_allclose([sp["pinion"]["load_cycles"], sp["gear"]["load_cycles"], pr["pinion"]["load_cycles"],
+                     pr["gear"]["load_cycles"]],
+                    [N_PL * N_IN * minutes, ZS / ZP * N_IN * minutes, ZS / ZP * N_IN * minutes,
+                     N_PL * ZS / ZR * N_IN * minutes], rtol=1e-12)
+    assert [sp["pinion"]["Y_M"], sp["gear"]["Y_M"], pr["pinion"]["Y_M"], pr["gear"]["Y_M"]] == [1.0, 0.7, 0.7, 1.0]
