@@ -119,9 +119,12 @@ def mesh_train(k: int, stage: PlanetaryStage, kin: Train) -> Train:
     # the sun–planet mesh's (driving-side) force on the sun's lever, per planet, with the load's sign
     t_sun = math.copysign(t_sun_abs * b.sun_mesh, t_out) / stage.planet.count
     ratio = stage.planet.teeth / stage.sun.teeth
+    # the planet's torque: its side's force on its lever, the driven side's eta_m F where the sun drives (as a lossy
+    # pair's gear torque; equal to the ring mesh's planet-side force times r_p either way)
+    planet_side = stage_mesh_efficiency(stage, k) if b.sun_drives else 1.0
     pad = k * (1.0,)
     return Train(ratios=(*pad, ratio), shaft_speeds_rad_s=(*(k * (0.0,)), relative, relative / ratio),
-                 stage_torques_Nmm=(*(k * ((0.0, 0.0),)), (t_sun, t_sun * ratio)),
+                 stage_torques_Nmm=(*(k * ((0.0, 0.0),)), (t_sun, t_sun * ratio * planet_side)),
                  load_torque_Nmm=kin.load_torque_Nmm)
 
 

@@ -7,6 +7,8 @@ looked up in :mod:`gearcli.stages.kinds`) and never which kind a stage is.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -119,8 +121,9 @@ def _planetary_design(stages: list[StageResult]) -> list[RenderableType]:
          [f"{_g(p.stage_efficiency, 4)} / {_g(p.basic_efficiency, 5)} / {_g(p.mesh_efficiency, 5)}"
           for p in _efficiencies(s)]),
         ("planet speed relative to the carrier [rpm]", [_g(p.planet.speed_rpm) for p in ps]),
-        ("per planet, carrier frame: sun-side / planet torque [N·m]",
-         [f"{_g(st.pinion.torque_Nm)} / {_g(st.gear.torque_Nm)}" for st in s]),
+        ("per planet, carrier frame: sun-side / planet torque [N·m]",  # each the member's own (after its losses)
+         [f"{_g(math.copysign(p.sun.torque_Nm / p.planet_count, st.pinion.torque_Nm))} / {_g(p.planet.torque_Nm)}"
+          for st, p in zip(s, ps, strict=True)]),
         ("per planet, carrier frame: rolling power [kW]", [_g(abs(st.pinion.power_kW)) for st in s]),
         ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
                                      f"{_g(p.ring.root_diameter_mm)}" for p in ps]),

@@ -216,6 +216,10 @@ def test_willis_speeds_torques_moment_balance_and_mesh_forces_of_every_arrangeme
     assert_allclose([sp["static_force_N"]["radial"], pr["static_force_N"]["radial"]],
                     [f_sp * tan20, f_pr * tan20], rtol=1e-10)
     assert_allclose(sp["static_force_N"]["normal"], f_sp / math.cos(math.radians(20)), rtol=1e-10)
+    # the planet's own torque: the planet-side force of either mesh (they are equal: it spins freely) on its lever,
+    # the driven side's eta_m F where the sun drives; it was F_sp r_p whatever drove (1/eta_m too high)
+    r_p = ZP * MN / 2e3
+    assert_allclose(st["planet"]["torque_Nm"], min(f_sp, f_pr) * r_p, rtol=1e-10)
 
 
 @pytest.mark.parametrize(("zs", "zp", "zr", "count"), [(24, 36, 96, 3), (22, 30, 82, 4), (40, 20, 80, 5)])
