@@ -8,7 +8,6 @@ looked up in :mod:`gearcli.stages.kinds`) and never which kind a stage is.
 from __future__ import annotations
 
 import math
-
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
