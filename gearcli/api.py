@@ -247,7 +247,7 @@ def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), r
 
     raw = read_bytes(file)
     loaded = load(file, sets, stdin=io.BytesIO(raw))
-    return prepare(raw, loaded, design(loaded), sets, vary=vary, randoms=randoms, samples=samples,
+    return prepare(raw, loaded, design(loaded, sets), sets, vary=vary, randoms=randoms, samples=samples,
                    sampling=sampling, seed=seed, direction=direction, jobs=jobs, scheduler=scheduler, output=output,
                    fmt=fmt, evaluate=evaluate_point, read_previous=read_identity)
 
@@ -284,7 +284,7 @@ def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None
                           "file", source="--series")
     raw = read_bytes(file)
     loaded = load(file, overrides, stdin=io.BytesIO(raw))
-    return prepare(raw, loaded, design(loaded), overrides, series=series, classes=classes)
+    return prepare(raw, loaded, design(loaded, overrides), overrides, series=series, classes=classes)
 
 
 def life(session: LifeSession, *, static: bool = False, variant: str = "iso",

@@ -182,6 +182,9 @@ def translate(exc: ValidationError) -> list[tuple[tuple[Segment, ...], str]]:
         where = resolve(err["loc"])
         if err["type"] == "union_tag_invalid":  # a stage's type: name the key
             where = Resolved(where.path + ("type",), where.parent)
+        keyed = getattr((err.get("ctx") or {}).get("error"), "key", None) if err["type"] == "value_error" else None
+        if isinstance(keyed, str):  # a cross-key rule naming the key it refuses (schema_rules.KeyedValueError)
+            where = Resolved(where.path + tuple(keyed.split(".")), None)
         groups.setdefault(where.path, (where, []))[1].append(err)
     skip = _superseded(groups)
     out = []

@@ -82,6 +82,15 @@ AllowanceMm = Annotated[float, Field(ge=-50, le=50), NotTiny(1e-6)]
 AllowancePair = Annotated[list[AllowanceMm], Field(min_length=2, max_length=2)]
 
 
+class KeyedValueError(ValueError):
+    """A table's cross-key rule that one of its keys breaks: ``key`` (dotted, relative to the table) is appended to
+    the table's path in the message (``stage[0].ring.teeth: ...``, not ``stage[0]: ...``)."""
+
+    def __init__(self, key: str, text: str) -> None:
+        super().__init__(text)
+        self.key = key
+
+
 def _upper_not_below_lower(name: str, pair: list[float] | None) -> None:
     if pair is not None and pair[0] < pair[1]:
         raise ValueError(f"{name} = [upper, lower]: the upper allowance ({pair[0]:g}) is below the lower "

@@ -12,6 +12,7 @@ from gearcli.config.duty import CenterAngleDeg
 from gearcli.config.members import BasicRack, Carrier, PairGear, Planet, Ring, Sun
 from gearcli.config.schema_rules import (
     AllowancePair,
+    KeyedValueError,
     TorsionDamping,
     TorsionStiffness,
     _hands_rule,
@@ -110,16 +111,18 @@ class PlanetaryStage(_Table):
 
     @model_validator(mode="after")
     def _members(self) -> "PlanetaryStage":
-        if self.input == self.fixed:
-            raise ValueError(f"input and fixed name the same member ({self.input!r}): the held member "
-                             "cannot be driven; name two different members of sun, carrier, ring")
+        if self.input == self.fixed:  # name the key the file gave (both given: the driven member)
+            key = "fixed" if "input" not in self.model_fields_set else "input"
+            raise KeyedValueError(key, f"input and fixed name the same member ({self.input!r}): the held member "
+                                  "cannot be driven; name two different members of sun, carrier, ring")
         errors = self.planet.position_error_um
         if errors is not None and len(errors) != self.planet.count:
-            raise ValueError(f"planet.position_error_um needs one value per planet ({self.planet.count}), "
-                             f"got {len(errors)}")
+            raise KeyedValueError("planet.position_error_um", "planet.position_error_um needs one value per planet "
+                                  f"({self.planet.count}), got {len(errors)}")
         if self.ring.teeth <= self.sun.teeth + 2 * self.planet.teeth - 3:
-            raise ValueError(f"ring.teeth ({self.ring.teeth}) must be about sun.teeth + 2 planet.teeth "
-                             f"({self.sun.teeth + 2 * self.planet.teeth}): the planets must fit between sun and ring")
+            raise KeyedValueError("ring.teeth", f"ring.teeth ({self.ring.teeth}) must be about sun.teeth + 2 "
+                                  f"planet.teeth ({self.sun.teeth + 2 * self.planet.teeth}): the planets must fit "
+                                  "between sun and ring")
         return self
 
     @property

@@ -62,21 +62,24 @@ def check_material(name: str, materials: dict[str, Material], key: str) -> None:
         raise DesignError(f"unknown material {name!r}: define [materials.{name}] (defined: {known})", key=key)
 
 
-def check_hands(stage: Stage, k: int) -> None:
-    """A helical pair (β > 0) needs a hand on each gear, and opposite hands (external pair)."""
+def check_hands(stage: Stage, k: int, names: tuple[str, str] = ("pinion", "gear")) -> None:
+    """A helical pair (β > 0) needs a hand on each gear, and opposite hands (external pair). ``names``: what the
+    design file calls the pair's members (a planetary's sun–planet pair: "sun", "planet"), for the messages."""
     if stage.helix_angle_deg == 0.0:
         return
+    name = dict(zip(("pinion", "gear"), names, strict=True))
     hands = {"pinion": stage.pinion.hand or "", "gear": stage.gear.hand or ""}
     for part, other in (("pinion", "gear"), ("gear", "pinion")):
         if hands[part] not in HANDS:
-            need = f'"{OPPOSITE[hands[other]]}" (opposite to the {other})' if hands[other] in HANDS \
+            need = f'"{OPPOSITE[hands[other]]}" (opposite to the {name[other]})' if hands[other] in HANDS \
                 else '"left" or "right"'
             got = f'"{hands[part]}"' if hands[part] else "no hand"
             raise DesignError(f"helix angle β = {stage.helix_angle_deg:g}° needs hand = {need}, got {got}",
                               key=f"stage[{k}].{part}.hand")
     if hands["pinion"] == hands["gear"]:
-        raise DesignError(f'an external helical pair needs opposite hands: the pinion is "{hands["pinion"]}", '
-                          f'so the gear must be "{OPPOSITE[hands["pinion"]]}"', key=f"stage[{k}].gear.hand")
+        raise DesignError(f'an external helical pair needs opposite hands: the {name["pinion"]} is '
+                          f'"{hands["pinion"]}", so the {name["gear"]} must be "{OPPOSITE[hands["pinion"]]}"',
+                          key=f"stage[{k}].gear.hand")
 
 
 # ---------------------------------------------------------------------------------------- warnings

@@ -28,7 +28,8 @@ def check_inputs(cfg: DesignFile) -> None:
             stage = pairs.pair(k)
             for part in ("pinion", "gear"):
                 check_material(getattr(stage, part).material, pairs.materials, f"stage[{k}].{part}.material")
-            check_hands(stage, k)
+            first, second = (str(file_key(cfg, f"stage[{k}].{part}.hand")).split(".")[-2] for part in ("pinion", "gear"))
+            check_hands(stage, k, (first, second))  # as the file names them (a planetary: sun, planet)
         if cfg.rating is not None:  # the [rating] standard's required keys (gearcli.rating)
             standard_of(cfg).check_inputs(cfg)
     except DesignError as exc:

@@ -120,9 +120,12 @@ def mesh_train(k: int, stage: PlanetaryStage, kin: Train) -> Train:
     # the sun–planet mesh's (driving-side) force on the sun's lever, per planet, with the load's sign
     t_sun = math.copysign(t_sun_abs * b.sun_mesh, t_out) / stage.planet.count
     ratio = stage.planet.teeth / stage.sun.teeth
+    # the planet's torque: its side's force on its lever, the driven side's eta_m F where the sun drives (as a lossy
+    # pair's gear torque; equal to the ring mesh's planet-side force times r_p either way)
+    planet_side = stage_mesh_efficiency(stage, k) if b.sun_drives else 1.0
     pad = k * (1.0,)
     return Train(ratios=(*pad, ratio), shaft_speeds_rad_s=(*(k * (0.0,)), relative, relative / ratio),
-                 stage_torques_Nmm=(*(k * ((0.0, 0.0),)), (t_sun, t_sun * ratio)),
+                 stage_torques_Nmm=(*(k * ((0.0, 0.0),)), (t_sun, t_sun * ratio * planet_side)),
                  load_torque_Nmm=kin.load_torque_Nmm)
 
 
@@ -245,7 +248,7 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
     ring_mesh = _ring_mesh(cfg, k, stage, geo, mesh, planet_mat, ring_mat, m_t, books.ring_mesh / books.sun_mesh)
     ring, ring_mesh = _with_ring_allowances(k, stage, geo, mesh, ring, ring_mesh)
     k_gamma = cfg.rating.load_sharing_factor if cfg.rating is not None and cfg.rating.load_sharing_factor else 1.0
-    angles = bal.planet_angles_deg(n, stage.planet.angles_deg)
+    angles = bal.planet_angles_deg(n, stage.planet.angles_deg, 360.0 / (z_s + z_r))
     order = sorted(a % 360.0 for a in angles)
     gaps = [((b - a) % 360.0 or 360.0) for a, b in zip(order, order[1:] + order[:1], strict=True)]
     gap = min(gaps)

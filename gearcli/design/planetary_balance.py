@@ -29,7 +29,11 @@ from gearcli.errors import DesignError
 
 MEMBERS = ("sun", "carrier", "ring")
 CONCENTRICITY_TOLERANCE_MODULES = 0.01  # |a_w,pr - a_w,sp| allowed, in normal modules
-ANGLE_TOLERANCE_DEG = 1e-6  # an assemblable planet angle: a whole multiple of 360/(z_s + z_r) within this
+ANGLE_TOLERANCE_DEG = 1e-6  # two planet gaps alike (equal spacing) within this
+# a declared planet angle is assemblable within this fraction of the step 360/(z_s + z_r) of a whole multiple of it
+# (then taken as that multiple): 1e-4 of a step is a mesh phase error below 1e-4 z_s/(z_s + z_r) of a cycle and
+# lets an angle typed to the digits a drawing gives (e.g. 276.923° for 3.6/1.04 x 80) pass, which 1e-6° did not
+ANGLE_TOLERANCE_STEPS = 1e-4
 
 
 def willis_speeds(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]:
@@ -109,10 +113,15 @@ def mesh_efficiency(z_sun: int, z_ring: int, fixed: str, driven: str, efficiency
 
 
 # ----------------------------------------------------------------------------------------------- assembly
-def planet_angles_deg(count: int, given: list[float] | None) -> list[float]:
-    """Each planet's position on the carrier: the declared ``planet.angles_deg`` or equal spacing."""
+def planet_angles_deg(count: int, given: list[float] | None, step_deg: float | None = None) -> list[float]:
+    """Each planet's position on the carrier: the declared ``planet.angles_deg`` (with ``step_deg`` = 360/(z_s + z_r),
+    each snapped to the whole multiple of the step from planet 1 that :func:`check_assembly` accepted) or equal
+    spacing."""
     if given:
-        return [float(a) for a in given]
+        first = float(given[0])
+        if step_deg is None:
+            return [float(a) for a in given]
+        return [first + round((a - first) / step_deg) * step_deg for a in given]
     return [360.0 * j / count for j in range(count)]
 
 
@@ -138,7 +147,7 @@ def check_assembly(k: int, z_s: int, z_r: int, count: int, given_angles: list[fl
             f"sun–planet one a_w = {a_sun_planet:.4f} mm by {a_planet_ring - a_sun_planet:+.4f} mm (allowed "
             f"{tol:.3g} mm = 0.01 m_n): the planets cannot sit on one carrier radius; adjust the profile shifts "
             "(z_r - z_s = 2 z_p for zero shifts)", key=f"{key}.ring.profile_shift")
-    angles = sorted(a % 360.0 for a in planet_angles_deg(count, given_angles))
+    angles = sorted(a % 360.0 for a in planet_angles_deg(count, given_angles, step))
     if count > 1:
         gaps = [(angles[(j + 1) % count] - angles[j]) % 360.0 or 360.0 for j in range(count)]
         gap = min(gaps)
@@ -162,11 +171,12 @@ def _check_angles(key: str, angles: list[float], count: int, step: float) -> Non
     for j, a in enumerate(angles):
         steps = (a - first) / step
         whole = round(steps)
-        if abs(steps - whole) * step > ANGLE_TOLERANCE_DEG:
+        if abs(steps - whole) > ANGLE_TOLERANCE_STEPS:
             raise DesignError(
-                f"planet {j + 1} at {a:g}°: a planet meshes with both sun and ring only at whole multiples of "
-                f"360/(z_s + z_r) = {step:.6g}° from planet 1 ({first:g}°); the nearest are "
-                f"{first + math.floor(steps) * step:.6g}° and {first + math.ceil(steps) * step:.6g}°", key=where)
+                f"planet {j + 1} at {a:.10g}°: a planet meshes with both sun and ring only at whole multiples of "
+                f"360/(z_s + z_r) = {step:.10g}° from planet 1 ({first:.10g}°), within {ANGLE_TOLERANCE_STEPS:g} of "
+                f"that step; the nearest are {first + math.floor(steps) * step:.6f}° and "
+                f"{first + math.ceil(steps) * step:.6f}°", key=where)
         slot = whole % round(360.0 / step)
         if slot in seen:
             raise DesignError(f"planet {j + 1} at {a:g}°: two planets at the same position", key=where)
