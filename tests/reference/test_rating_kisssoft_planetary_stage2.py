@@ -141,6 +141,15 @@ def test_sun_planet_pitting():
     assert_allclose([sun.S_H, planet.S_H], [1.21, 1.38], atol=5e-3)  # SHBD = sigHG/sigHBD
 
 
+def test_the_suns_flank_below_its_minimum_is_a_warning():
+    """The report's sun: SHBD 1.21 against S_Hmin 1.25 (its planet's 1.38 and both roots' 2.82 / 2.04 pass): one
+    pitting warning naming stage, member and mode, none for the planet."""
+    result = compute_design(DesignFile.model_validate(_doc(2.06, _kv23())))
+    found = [(d.code, d.data["member"]) for d in result.diagnostics
+             if d.code.endswith("_safety_low") and "mesh" not in d.data]
+    assert found == [("pitting_safety_low", "pinion")]
+
+
 def test_sun_planet_tooth_root():
     st = _stage(2.06, _kv23())
     r = st.rating
