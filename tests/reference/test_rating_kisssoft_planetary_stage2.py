@@ -32,8 +32,6 @@ Tolerances: half a unit of the printed last digit, widened only where stated bes
 
 from __future__ import annotations
 
-import math
-
 from numpy.testing import assert_allclose
 
 from gearcli.config.schema import DesignFile
@@ -204,13 +202,18 @@ def test_planet_ring_mesh():
 
 
 def test_k_fbeta_of_the_nominal_depth_without_allowances():
-    """Without allowances K_Fβ keeps the basic rack's depth (h_aP* + h_fP*) m_n = 47.25 mm (docs/iso6336.md), so
-    the same stage prints the rack's 1.9368, 0.19 % below the report's manufactured-depth value."""
+    """Without allowances K_Fβ takes the nominal tooth depth (d_a − d_f)/2 of the deeper member (docs/iso6336.md), which
+    the tip alteration makes shallower than the basic rack's (h_aP* + h_fP*) m_n = 47.25 mm; the report's
+    manufactured (deeper) cut gives its 1.9403 (test above), the nominal a little more, the rack a little less."""
     doc = _doc(2.06)
     for part in ("sun", "planet", "ring"):
         doc["stage"][0][part].pop("tooth_thickness_allowance_mm")
         doc["stage"][0][part].pop("tip_diameter_allowance_mm", None)
-    r = compute_design(DesignFile.model_validate(doc)).stages[0].rating
-    bh = 550.0 / 47.25
+    st = compute_design(DesignFile.model_validate(doc)).stages[0]
+    r, p = st.rating, st.planetary
+    h = max(0.5 * (g.tip_diameter_mm - g.root_diameter_mm) for g in (p.sun, p.planet))
+    assert h < 47.25
+    bh = 550.0 / h
     assert_allclose(r.K_Fbeta, 2.06 ** (bh * bh / (1.0 + bh + bh * bh)), rtol=1e-12)
-    assert math.isclose(r.K_Fbeta, 1.9368, abs_tol=5e-5)
+    rack = 550.0 / 47.25
+    assert 2.06 ** (rack * rack / (1.0 + rack + rack * rack)) < 1.9403 < r.K_Fbeta
