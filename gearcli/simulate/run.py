@@ -27,7 +27,7 @@ from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import equilibrium, estimate, rigid_start, sampling, stats
+from gearcli.simulate import equilibrium, estimate, rigid_start, sampling, stats, stepped_over
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
@@ -219,7 +219,9 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
-    mode = estimate.unresolved_mode(choice, run, duration_s, window[0]) if ref is not None and ref.errors else None
+    mode = (estimate.unresolved_mode(choice, run, duration_s, window[0])
+            or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
+        if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
