@@ -32,7 +32,6 @@ from gearcli.simulate.stepped_over import radau_factor
 from tests.extreme.light_mesh_scene import SCENE
 
 
-
 @pytest.fixture(scope="module")
 def scene(tmp_path_factory):
     path = tmp_path_factory.mktemp("ringing") / "light_mesh_damping.toml"
