@@ -76,6 +76,18 @@ MAX_RTOL = 1e-2  # the loosest check pass (the schema's ceiling of simulation.rt
 
 
 @dataclass(frozen=True)
+class PeakError:
+    """The solver's error of a stage's run peak |F_t| (``peak_tangential_N``, ``runup_factor``), estimated as the
+    window statistics are: the check pass's peak over the same samples of its span against the run's."""
+
+    stage: int  # 1-based
+    peak_N: float  # the run's peak |F_t|
+    at_s: float
+    error_N: float  # scale x |run peak - check peak|
+    relative: float  # error_N / peak_N
+
+
+@dataclass(frozen=True)
 class CheckPass:
     """The check pass and the per-stage error estimates (empty where it did not finish)."""
 
@@ -90,6 +102,7 @@ class CheckPass:
     message: str
     errors: tuple[StatisticsError, ...]
     passes: int = 1  # 2 when a loose check's warning was confirmed by a tight one
+    peaks: tuple[PeakError, ...] = ()  # the run's peak |F_t| per stage, where the check pass spans it
     def summary(self) -> dict:
         return {"rtol": self.rtol, "from_s": self.from_s, "estimate_factor": self.scale, "nfev": self.nfev, "njev": self.njev, "steps": self.steps,
                 "wall_s": self.wall_s, "finished": self.status == STATUS_FINISHED, "passes": self.passes}
@@ -170,6 +183,49 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
         resolved=not unresolved)
 
 
+PEAK_NEIGHBOURS = 2  # the check pass's peak is looked for this many samples either side of the run's
+
+
+def peak_samples(peaks: list[int], lo: int, hi: int) -> list[int]:
+    """The samples around the run's peaks ``peaks`` (indices) within [lo, hi) that a check pass reads its peak from."""
+    return sorted({j for i in peaks for j in range(i - PEAK_NEIGHBOURS, i + PEAK_NEIGHBOURS + 1) if lo <= j < hi})
+
+
+def peak_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray, idx: np.ndarray,
+               scale: float = 1.0) -> PeakError | None:
+    """Stage ``k``'s (0-based) run peak |F_t| (over the run's samples ``ft_run`` at ``t``) and its error from the check
+    pass's F_t ``ft_check`` at the samples ``idx``: ``scale`` x the difference between the run's peak and the check's
+    largest |F_t| within ``PEAK_NEIGHBOURS`` samples of it; None where the check has no sample there."""
+    a = np.abs(ft_run)
+    if a.size == 0 or not float(a.max()) > 0.0:
+        return None
+    i = int(np.argmax(a))
+    near = np.abs(np.asarray(idx) - i) <= PEAK_NEIGHBOURS
+    if not near.any():
+        return None
+    peak = float(a[i])
+    error = scale * abs(peak - float(np.max(np.abs(ft_check[near]))))
+    return PeakError(k + 1, peak, float(t[i]), error, error / peak)
+
+
+def peak_warnings(ref: CheckPass, run_rtol: float, method: str) -> list[Diagnostic]:
+    """``peak_unresolved``, one per stage whose run peak |F_t| the check pass finds off by more than
+    :data:`TARGET` of it (the run's ``peak_tangential_N`` and ``runup_factor``)."""
+    out = []
+    for p in ref.peaks:
+        if p.relative <= TARGET:
+            continue
+        rtol = suggested_rtol(run_rtol, p.relative)
+        out.append(dg.warning(
+            dg.PEAK_UNRESOLVED,
+            f"stage {p.stage}: the run's peak |F_t| {p.peak_N:.5g} N (at {p.at_s:.4g} s) and its run-up factor are not "
+            f"resolved by {method} at the run's rtol: estimated error up to {p.error_N:.3g} N ({p.relative:.2g} of "
+            f"it, target {TARGET:g}); --set simulation.rtol={rtol:g} would resolve it",
+            stage=p.stage, peak_N=p.peak_N, at_s=p.at_s, estimated_error_N=p.error_N, relative_error=p.relative,
+            rtol=rtol))
+    return out
+
+
 @dataclass(frozen=True)
 class Plan:
     """The span and tolerance of the check pass (module doc), fixed by the samples, the run's rtol, the
@@ -194,19 +250,19 @@ def plan(t_eval: np.ndarray, rtol: float, choice: Choice, window: tuple[float, f
     return Plan(i_w, i_s, rtol * LOOSE_FACTOR, LOOSE_SAFETY)
 
 
-def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, i_s: int, i_w: int, method: str,
+def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, idx: np.ndarray, method: str,
              rtol: float, max_nfev: int, engine: str) -> tuple[Integration, list[np.ndarray] | None, float]:
-    """One check pass from sample ``i_s`` (state ``y_start``) over the window samples ``t_eval[i_w:]``: the
-    integration, the meshes' line forces over the window (None when it did not finish) and the wall time."""
+    """One check pass from sample ``idx[0]`` (state ``y_start``) to sample ``idx[-1]``, sampled at ``t_eval[idx]``
+    (dense output costs DOP853 three evaluations a step where it samples: only the samples read are asked for): the
+    integration, the meshes' line forces at those samples (None when it did not finish) and the wall time."""
     t0 = time.perf_counter()
-    tw = t_eval[i_w:]
-    t_check = tw if i_s == i_w else np.concatenate(([t_eval[i_s]], tw))  # the start, then the window only
-    fine = integrate(model, t_check, method, rtol, y0=y_start, t0=float(t_eval[i_s]), max_nfev=max_nfev,
+    t_check = t_eval[idx]
+    fine = integrate(model, t_check, method, rtol, y0=y_start, t0=float(t_check[0]), max_nfev=max_nfev,
                      watch_energy=False,  # the run itself was watched
                      engine=engine)  # the run's engine: scipy's steps either way
     forces = None
     if fine.status == STATUS_FINISHED:
-        forces = mesh_line_forces(model.layout, tw, fine.y[:, t_check.size - tw.size:])
+        forces = mesh_line_forces(model.layout, t_check, fine.y)
     return fine, forces, time.perf_counter() - t0
 
 
@@ -222,31 +278,72 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     t0 = time.perf_counter()
     tw = t_eval[i_w:]
     if sampled is None:
-        run_forces = mesh_line_forces(lay, tw, run.y[:, i_w:])
+        run_all = mesh_line_forces(lay, t_eval, run.y)
     else:
-        run_forces = [m.line_force_N[i_w:] for m in sampled.meshes]
+        run_all = [m.line_force_N for m in sampled.meshes]
+    run_forces = [f[i_w:] for f in run_all]
+    ft_all = [tooth_forces(lay, k, f)[0] for k, f in enumerate(run_all)]
+    peak_at = [int(np.argmax(np.abs(f))) for f in ft_all if f.size]
+    # the span's first sample, the samples around the run's peaks before the window, the window's
+    idx = np.array(sorted({i_s, *peak_samples(peak_at, i_s, i_w), *range(i_w, t_eval.size)}))
     nfev = njev = steps = 0
     passes = 0
     while True:
         passes += 1
-        fine, fine_forces, _ = one_pass(model, t_eval, run.y[:, i_s], i_s, i_w, run.method, rtol, max_nfev,
-                                        run.engine)
+        fine, fine_forces, _ = one_pass(model, t_eval, run.y[:, i_s], idx, run.method, rtol, max_nfev, run.engine)
         nfev, njev, steps = nfev + fine.nfev, njev + fine.njev, steps + fine.steps
         status, message = fine.status, fine.message
         errors: tuple[StatisticsError, ...] = ()
+        peaks: tuple[PeakError, ...] = ()
         if status != STATUS_FINISHED or fine_forces is None:
             break
         errors = tuple(stage_error(k, tw, tooth_forces(lay, k, run_forces[k])[0],
-                                   tooth_forces(lay, k, fine_forces[k])[0], m.static_tangential_N,
-                                   run.rtol, scale) for k, m in enumerate(model.spec.meshes))
+                                   tooth_forces(lay, k, fine_forces[k][idx.size - tw.size:])[0],
+                                   m.static_tangential_N, run.rtol, scale) for k, m in enumerate(model.spec.meshes))
+        peaks = tuple(p for k in range(len(model.spec.meshes))
+                      if (p := peak_error(k, t_eval, ft_all[k], tooth_forces(lay, k, fine_forces[k])[0], idx,
+                                          scale)) is not None)
         if scale == 1.0 or all(e.resolved for e in errors):
             break
         # the loose check flags a statistic: confirm it with a tight pass over the same span, whose difference
         # is the run's error to first order (a loose pass that rattles differently overstates it 1e5-fold:
         # configs/concrete_mixer_drivetrain.toml, stage 1 max estimated 4.3 of the mean, true 3e-5)
         rtol, scale = max(run.rtol / TIGHT_FACTOR, MIN_RTOL), 1.0
+    if status == STATUS_FINISHED:  # the peaks before the span: a short tight pass of their own
+        early, cost = runup_peaks(model, run, choice, ft_all, i_s, max_nfev)
+        peaks = tuple(sorted(peaks + early, key=lambda x: x.stage))
+        nfev, njev, steps = nfev + cost[0], njev + cost[1], steps + cost[2]
     wall = time.perf_counter() - t0
-    return CheckPass(rtol, float(t_eval[i_s]), scale, nfev, njev, steps, wall, status, message, errors, passes)
+    return CheckPass(rtol, float(t_eval[i_s]), scale, nfev, njev, steps, wall, status, message, errors, passes,
+                     peaks if status == STATUS_FINISHED else ())
+
+
+def runup_peaks(model: TorsionalModel, run: Integration, choice: Choice, ft_run: list[np.ndarray], i_s: int,
+                max_nfev: int) -> tuple[tuple[PeakError, ...], tuple[int, int, int]]:
+    """The error of the run peaks |F_t| (stage F_t over the run's samples ``ft_run``) that lie before the check pass's
+    span (sample ``i_s``): one pass at rtol / ``TIGHT_FACTOR`` from where the errors made earlier have decayed to 1 %
+    of themselves (``DECAY_SPANS`` / sigma before the earliest such peak, as the window's check starts; t = 0 in a
+    lightly damped scene) to just past the last one; its difference is the run's error to first order. Returns the
+    estimates and the pass's (nfev, njev, steps)."""
+    t = run.t
+    early = [(k, int(np.argmax(np.abs(f)))) for k, f in enumerate(ft_run) if f.size and np.abs(f).max() > 0.0]
+    early = [(k, i) for k, i in early if i < i_s]
+    if not early:
+        return (), (0, 0, 0)
+    first = min(i for _, i in early)
+    start = start_time(choice, (float(t[first]), float(t[-1])))
+    i_0 = max(0, min(first - PEAK_NEIGHBOURS, int(np.searchsorted(t, start, side="right")) - 1))
+    idx = np.array(sorted({i_0, *peak_samples([i for _, i in early], i_0 + 1, t.size)}))
+    if idx.size < 2:
+        return (), (0, 0, 0)
+    rtol = max(run.rtol / TIGHT_FACTOR, MIN_RTOL)
+    fine, forces, _ = one_pass(model, t, run.y[:, i_0], idx, run.method, rtol, max_nfev, run.engine)
+    cost = (fine.nfev, fine.njev, fine.steps)
+    if fine.status != STATUS_FINISHED or forces is None:
+        return (), cost
+    lay = model.layout
+    out = (peak_error(k, t, ft_run[k], tooth_forces(lay, k, forces[k])[0], idx) for k, _ in early)
+    return tuple(p for p in out if p is not None), cost
 
 
 def means_rtol(ref: CheckPass) -> float | None:

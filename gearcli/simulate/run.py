@@ -225,6 +225,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     stat_diags = estimate.warnings(ref, run.method) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
+    if ref is not None:  # the run's peak |F_t| (docs/numerics.md, "The run's peak")
+        stat_diags += estimate.peak_warnings(ref, run.rtol, run.method)
     finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \
         and choice.requested == AUTO else None
     if ref is not None and finer is not None:  # auto resolves the means at a tighter rtol (docs/numerics.md "... auto")
