@@ -322,8 +322,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         errors = tuple(stage_error(k, tw, tooth_forces(lay, k, run_forces[k])[0],
                                    tooth_forces(lay, k, fine_forces[k][idx.size - tw.size:])[0],
                                    m.static_tangential_N, run.rtol, scale) for k, m in enumerate(model.spec.meshes))
-        peaks = tuple(p for k in range(len(model.spec.meshes))
-                      if (p := peak_error(k, t_eval, ft_all[k], tooth_forces(lay, k, fine_forces[k])[0], idx,
+        peaks = tuple(e for k in range(len(model.spec.meshes))
+                      if (e := peak_error(k, t_eval, ft_all[k], tooth_forces(lay, k, fine_forces[k])[0], idx,
                                           scale)) is not None)
         if scale == 1.0 or all(e.resolved for e in errors):
             break
