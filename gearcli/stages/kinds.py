@@ -82,6 +82,11 @@ class Guarded:
         self._where = f'stage type "{kind}" ({type(implementation).__module__}): its {facet} facet\'s'
         self._impl = implementation
 
+    @property
+    def origin(self) -> str:
+        """The module of the plug-in's implementation."""
+        return type(self._impl).__module__
+
     def __getattr__(self, attr: str) -> Any:
         if attr.startswith("__") or attr in ("_impl", "_where"):  # copy and pickle ask before __init__ ran
             raise AttributeError(attr)
