@@ -13,6 +13,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, NoReturn
 
+from gearcli.core import plugins
 from gearcli.core.text import shorten
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError, PluginError
@@ -75,6 +76,9 @@ class Guarded:
 
     # ------------------------------------------------------------------------------------------- the checks
     def _call(self, what: str, fn: Callable, *args: Any) -> Any:
+        if isinstance(self.std, type):  # the class registered where its instance belongs: every call would fail
+            self._fail(what, f"cannot be called: the standard registered is the class {self.std.__name__}, not an "
+                       f"instance of it (register({self.std.__name__}()))")
         try:
             return fn(*args)
         except GearcliError:
@@ -83,7 +87,7 @@ class Guarded:
             self._fail(what, f"raised {type(exc).__name__}: {shorten(' '.join(str(exc).split()), 300)}")
 
     def _fail(self, what: str, text: str) -> NoReturn:
-        raise PluginError(f'rating standard "{self.name}" ({type(self.std).__module__}): {what} {text} '
+        raise PluginError(f'rating standard "{self.name}" ({plugins.origin(self.std)}): {what} {text} '
                           "(docs/plugins.md, the rating standard's protocol)")
 
     def _text(self, what: str, value: object) -> str:

@@ -31,8 +31,9 @@ def provide(kind: str, facet: str, implementation: object) -> None:
     refused = plugins.claim(SEAM, kind, implementation, built_in=BUILT_IN, part=facet)
     if refused:
         raise PluginConflict(refused)
-    builtin = type(implementation).__module__.split(".")[0] == "gearcli" or isinstance(implementation, type)
-    _FACETS[(kind, facet)] = implementation if builtin else Guarded(kind, facet, implementation)
+    # gearcli's own, and a schema table (a class): kept as they are
+    kept = plugins.origin(implementation).split(".")[0] == "gearcli" or facet == "table"
+    _FACETS[(kind, facet)] = implementation if kept else Guarded(kind, facet, implementation)
 
 
 def withdraw(kind: str, facet: str) -> None:
@@ -79,17 +80,21 @@ class Guarded:
     facet and the method, never an internal error far from its cause."""
 
     def __init__(self, kind: str, facet: str, implementation: object):
-        self._where = f'stage type "{kind}" ({type(implementation).__module__}): its {facet} facet\'s'
+        self._where = f'stage type "{kind}" ({plugins.origin(implementation)}): its {facet} facet\'s'
         self._impl = implementation
+        self._provided = f'kinds.provide("{kind}", "{facet}", {getattr(implementation, "__name__", "")}())'
 
     @property
     def origin(self) -> str:
         """The module of the plug-in's implementation."""
-        return type(self._impl).__module__
+        return plugins.origin(self._impl)
 
     def __getattr__(self, attr: str) -> Any:
-        if attr.startswith("__") or attr in ("_impl", "_where"):  # copy and pickle ask before __init__ ran
+        if attr.startswith("__") or attr in ("_impl", "_where", "_provided"):  # copy and pickle ask before __init__
             raise AttributeError(attr)
+        if isinstance(self._impl, type):  # the class given where its instance belongs: every call would fail
+            raise FacetError(f"{self._where} {attr} cannot be asked: the facet provided is the class "
+                             f"{self._impl.__name__}, not an instance of it ({self._provided}; docs/plugins.md)")
         try:
             value = getattr(self._impl, attr)
         except AttributeError:
