@@ -271,6 +271,11 @@ BROKEN = {
                          f'stage[1].type: unknown stage type "{KIND}"; registered: "parallel", "planetary"; '
                          "plug-in 'gearcli_test_chain' (gearcli_test_chain:register) failed to load: "
                          "RuntimeError: no licence"),
+    "raises on import, --set into its table": ([("KIND = ", "raise RuntimeError('no licence')\nKIND = ")], "design-set",
+                                               2, f'stage.1.pitch_mm: stage[1] is of type "{KIND}", which no stage '
+                                               "kind registered (registered: \"parallel\", \"planetary\"; an "
+                                               "installed plug-in's, docs/plugins.md); plug-in 'gearcli_test_chain' "
+                                               "(gearcli_test_chain:register) failed to load: RuntimeError: no licence"),
     "rate_design returns a wrong count": ([("return tuple(st if st.type", "return (stages[0],) or tuple(st if st.type")],
                                           "design-rated", 1, f'rating standard "{STD}" (gearcli_test_chain): '
                                           "rate_design returned 1 stages for 3"),
@@ -301,7 +306,8 @@ def test_a_broken_plug_in_is_one_line_with_its_exit_code(install, mixed, tmp_pat
         text = text.replace(old, new)
     install(text)
     args = {"design": ["design", mixed], "design-rated": ["design", mixed, "--set", f"rating.standard={STD}"],
-            "simulate": ["simulate", mixed, "-o", str(tmp_path / "run.json")]}[command]
+            "simulate": ["simulate", mixed, "-o", str(tmp_path / "run.json")],
+            "design-set": ["design", mixed, "--set", "stage.1.pitch_mm=20"]}[command]
     r = _invoke(*args, "-q")
     assert r.exit_code == code, r.output
     assert message in r.output
