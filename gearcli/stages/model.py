@@ -19,10 +19,10 @@ from gearcli.design.stiffness import (
     iso_reference_normal_force_N,
     law_coefficient_N_mm_e,
 )
+from gearcli.errors import GearcliError, PluginError
 from gearcli.model.parts import Body, Connector
 from gearcli.model.planet_assembly import place_planetary
 from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
-from gearcli.errors import GearcliError, PluginError
 from gearcli.model.spec import MM, MeshSpec, PlanetarySpec, StageModel
 from gearcli.results import StageResult
 from gearcli.stages import kinds

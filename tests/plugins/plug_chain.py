@@ -5,7 +5,7 @@ it the ways a plug-in breaks.
 
 Chain: sprockets of z1, z2 teeth, pitch p; mean ratio i = z2 / z1; efficiency eta (T_out = eta i T_in);
 levers: the mean (chordal-average) radius r = z p / (2 pi), so r2 / r1 = i exactly; chain stiffness k (N/m)
-along the tight span: F = k (r1 th1 - r2 th2) + c (...)' (the built-in mesh element, linear, one-sided, of
+along the tight span: F = k (r1 th1 - r2 th2) + c (...)' (the built-in mesh element, linear, no backlash, of
 efficiency eta: the driver sprocket pulls F, the driven gets eta F); chain force: the driver's pull T_in / r1.
 
 Toy Lewis: sigma_F = K_v F_t / (b m_n Y), Y = pi (0.154 - 0.912 / z) (Lewis, 20 deg full depth);
@@ -147,7 +147,7 @@ class ChainDesign:
 class ChainModel:
     r1: float
     r2: float
-    line: MeshSpec  # the span as a one-sided linear contact (a chain pulls, never pushes) of efficiency eta
+    line: MeshSpec  # the spans as a linear contact without backlash (either span pulls), of efficiency eta
     efficiency: float = 1.0  # its loss is its connector's
     reverse_efficiency: float = 1.0
 

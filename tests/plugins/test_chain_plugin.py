@@ -136,7 +136,7 @@ def test_design_carries_speeds_and_torques_through_the_chain_with_its_loss(insta
 
 
 def test_the_parallel_stages_json_keys_are_todays(install, mixed):
-    """A plug-in kind beside them changes no key of the parallel stages' objects (DESIGN.md section 13)."""
+    """A plug-in kind beside them changes no key of the parallel stages' objects (the contract: plug-in seams)."""
     install()
     plain = _json("design", str(RATED))["stages"]
     mixed_stages = _json("design", mixed)["stages"]
