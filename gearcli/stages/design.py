@@ -10,6 +10,7 @@ may ask a stage's kind (the design layer's inner contract, ARCHITECTURE.md). The
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Protocol, TypeVar, cast
 
@@ -97,6 +98,21 @@ class DesignKind(Protocol):
 def design_kind(stage: object) -> DesignKind:
     """The design facet of a stage table or stage result (by its ``type``)."""
     return cast(DesignKind, kinds.facet(kinds.kind_of(stage), "design"))
+
+
+def checked_figures(table: object, k: int) -> tuple[float, float]:
+    """(speed_ratio, efficiency) of stage table k (0-based): a plug-in table's properties that are no ratio
+    |omega_in / omega_out| (a finite number > 0) or no efficiency in (0, 1] are a
+    :class:`~gearcli.errors.PluginError` naming the kind (the kinematics would carry them to every shaft)."""
+    values = []
+    for name, ok, what in (("speed_ratio", lambda v: v > 0.0, "a finite number > 0 (|ω_in / ω_out|)"),
+                           ("efficiency", lambda v: 0.0 < v <= 1.0, "a number in (0, 1]")):
+        v = getattr(table, name)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or not ok(v):
+            raise PluginError(f'stage type "{kinds.kind_of(table)}" ({type(table).__module__}): its table\'s {name} '
+                              f'is {v!r} for stage {k + 1}, not {what} (docs/plugins.md, "A stage kind")')
+        values.append(float(v))
+    return values[0], values[1]
 
 
 RESULT_FIELDS = ("index", "ratio", "efficiency", "type", "rating")  # what every stage result has (docs/plugins.md)

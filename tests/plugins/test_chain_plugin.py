@@ -290,6 +290,21 @@ BROKEN = {
                                          "simulate", 1, "its stage model's place raised ZeroDivisionError"),
     "a result that is no dataclass": ([("        return ChainResult(\n", "        return dict(\n")], "design", 1,
                                       "its design facet's result for stage 2 has a dict, not a dataclass"),
+    "design tables that are no list": ([("        return [t]\n\n    def simulation_tables",
+                                         "        return None\n\n    def simulation_tables")], "design-table", 1,
+                                       f'stage type "{KIND}" (gearcli_test_chain): its io facet\'s design_tables '
+                                       "returned None, not a list of rich renderables"),
+    "a stage JSON that is no dict": ([("        stage.pop(\"rating\", None)\n        return {",
+                                       "        return 5\n        return {")], "design", 1,
+                                     "its io facet's json_stage returned 5, not a dict"),
+    "a simulated stage JSON that is no dict": ([("        return {\"index\": stage[\"index\"], \"type\": KIND,",
+                                                 "        return [stage[\"index\"]]\n        return {\"index\": "
+                                                 "stage[\"index\"], \"type\": KIND,")], "simulate", 1,
+                                               "its io facet's json_simulated_stage returned [2], not a dict"),
+    "a negative speed ratio": ([("        return self.driven_teeth / self.driver_teeth", "        return -2.0")],
+                               "design", 1, "its table's speed_ratio is -2.0 for stage 2, not a finite number > 0"),
+    "an efficiency above 1": ([("        return self.chain_efficiency", "        return 1.5")], "design", 1,
+                              "its table's efficiency is 1.5 for stage 2, not a number in (0, 1]"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
@@ -307,8 +322,9 @@ def test_a_broken_plug_in_is_one_line_with_its_exit_code(install, mixed, tmp_pat
     install(text)
     args = {"design": ["design", mixed], "design-rated": ["design", mixed, "--set", f"rating.standard={STD}"],
             "simulate": ["simulate", mixed, "-o", str(tmp_path / "run.json")],
-            "design-set": ["design", mixed, "--set", "stage.1.pitch_mm=20"]}[command]
-    r = _invoke(*args, "-q")
+            "design-set": ["design", mixed, "--set", "stage.1.pitch_mm=20"],
+            "design-table": ["design", mixed, "--format", "table"]}[command]
+    r = _invoke(*args, "-q", *(() if "--format" in args else ("--format", "json")))
     assert r.exit_code == code, r.output
     assert message in r.output
     assert "Traceback" not in r.output and "internal error" not in r.output
