@@ -284,6 +284,9 @@ BROKEN = {
                                    "the facet provided is the class ChainDesign, not an instance of it"),
     "the standard given as its class": ([("register_standard(ToyLewis())", "register_standard(ToyLewis)")],
                                         "design-rated", 1, "the standard registered is the class ToyLewis"),
+    "a standard without check_inputs": ([("    def check_inputs(self, cfg):", "    def check_inputs_(self, cfg):")],
+                                        "design-rated", 1, f'rating standard "{STD}" (gearcli_test_chain): '
+                                        "check_inputs is missing"),
     "a missing method": ([("    def fastest_rad_s(", "    def fastest_rad_s_(")], "simulate", 1,
                          f'stage type "{KIND}" (gearcli_test_chain): its design facet\'s fastest_rad_s is missing'),
     "a stage model whose place raises": ([("        n = len(bodies)\n", "        n = len(bodies) // 0\n")],
