@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 import tomli_w
 from click.testing import CliRunner
+from jsonschema_subset import valid
 from numpy.testing import assert_allclose
 
 from gearcli.cli import cli
@@ -347,3 +348,22 @@ def test_two_plug_ins_registering_one_standard_name(install, mixed):
     assert "'gearcli_test_chain' (gearcli_test_chain:register)" in r.output
     assert "'gearcli_test_chain_b' (gearcli_test_chain_b:register)" in r.output
     assert len(r.output.strip().splitlines()) == 1
+
+
+def test_the_schema_holds_the_installed_plug_ins_stage_tables(install, mixed):
+    """``gearcli schema`` loads the installed plug-ins first: the file with the chain is valid against it, and a
+    chain table missing a key of its own is not (the schema is the one the file is validated with)."""
+    import tomllib
+
+    install()
+    schema = _json_plain("schema")
+    doc = tomllib.loads(Path(mixed).read_text(encoding="utf-8"))
+    assert valid(doc, schema, schema)
+    del doc["stage"][1]["pitch_mm"]
+    assert not valid(doc, schema, schema)
+
+
+def _json_plain(*args: str) -> dict:
+    r = _invoke(*args)
+    assert r.exit_code == 0, r.output
+    return json.loads(r.stdout)
