@@ -165,6 +165,22 @@ def test_simulate_loses_the_chain_s_loss_as_the_design_does(install, mixed):
     assert_allclose(ch["stretch_um"]["mean"], ch["chain_force_N"]["mean"] / K_C * 1e6, rtol=1e-5)
 
 
+def test_the_chain_s_time_series_columns(install, mixed, tmp_path):
+    """The series keep the gear stages' column names (docs/plugins.md, "io"): the chain's force in
+    stage2_tangential_N, its stretch in stage2_dte_um, no radial or axial force (a line without angles)."""
+    import csv
+
+    install()
+    r = _invoke("simulate", mixed, "-q", "-o", str(tmp_path / "run.csv"))
+    assert r.exit_code == 0, r.output
+    rows = list(csv.DictReader((tmp_path / "run.csv").open(encoding="utf-8")))
+    last = rows[-1]
+    force = T_OUT / (68 / 19 * 0.98) / (Z2 / Z1 * ETA_C) / _r(Z1)  # the chain's T_in over r_1
+    assert_allclose(float(last["stage2_tangential_N"]), force, rtol=1e-4)  # settled: the ramp ended at 0.2 s
+    assert_allclose(float(last["stage2_dte_um"]), force / K_C * 1e6, rtol=1e-4)
+    assert float(last["stage2_radial_N"]) == 0.0 and float(last["stage2_axial_N"]) == 0.0
+
+
 def test_modes_hold_the_chain_s_stiffness_and_the_sprockets_inertias(install, mixed):
     """Lossless stages (a lossy element's split makes the stiffness matrix unsymmetric): the natural frequencies
     of the 4-shaft chain K theta = omega^2 J theta, K = sum_e k_e v v^T, v the element's levers (a mesh: base
