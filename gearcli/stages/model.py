@@ -12,6 +12,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, cast
 
+from gearcli.core import plugins
 from gearcli.design.planetary_balance import balance, willis_speeds
 from gearcli.design.stiffness import (
     calibration_line_force_N,
@@ -59,10 +60,11 @@ def checked_losses(st: StageResult, k: int, own: StageModel | None) -> StageMode
     estimates read it (:meth:`gearcli.model.assembly.Layout.train_efficiency`). So a stage model that places no
     planet mesh must give ``efficiency`` and ``reverse_efficiency`` 1, and its connectors must lose the design's
     (1 - eta): else the simulated forces before the stage are eta x the design's (docs/plugins.md)."""
-    if own is None or type(own).__module__.split(".")[0] == "gearcli":
+    if own is None or plugins.origin(own).split(".")[0] == "gearcli":
         return own
-    where = f'stage type "{kinds.kind_of(st)}" ({type(own).__module__}): its stage model'
-    bodies, conns = [Body(1.0, "input", 1.0)], []  # type: ignore[var-annotated]
+    where = f'stage type "{kinds.kind_of(st)}" ({plugins.origin(own)}): its stage model'
+    bodies: list[Body] = [Body(1.0, "input", 1.0)]
+    conns: list[Connector] = []
 
     def body(inertia: float, label: str, ratio: float = 1.0) -> None:
         bodies.append(Body(float(inertia), label, ratio))
