@@ -143,6 +143,9 @@ def test_the_parallel_stages_json_keys_are_todays(install, mixed):
     mixed_stages = _json("design", mixed)["stages"]
     assert list(mixed_stages[0]) == list(plain[0]) and list(mixed_stages[2]) == list(plain[1])
     assert list(mixed_stages[0]["rating"]) == list(plain[0]["rating"])
+    sim_plain = _json("simulate", str(RATED))["summary"]["stages"]
+    sim_mixed = _json("simulate", mixed)["summary"]["stages"]
+    assert list(sim_mixed[0]) == list(sim_plain[0]) and list(sim_mixed[2]) == list(sim_plain[1])
 
 
 def test_simulate_loses_the_chain_s_loss_as_the_design_does(install, mixed):
