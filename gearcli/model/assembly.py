@@ -286,12 +286,12 @@ class Layout:
     def n_conn(self) -> int:
         return len(self.connectors)
 
-    @property
+    @cached_property
     def inertias(self) -> tuple[float, ...]:
         return tuple(b.inertia for b in self.bodies)
 
     # ------------------------------------------------------------------------------- element roles
-    @property
+    @cached_property
     def stage_conn(self) -> tuple[int, ...]:
         """Connector index of each stage's connector (its mesh; a belt's span), in stage order."""
         return tuple(c for c, x in enumerate(self.connectors) if x.role in STAGE_ROLES)

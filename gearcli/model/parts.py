@@ -7,6 +7,7 @@ bodies and connectors), which both build them; neither imports the other's build
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 from gearcli.model.elements import law_of, loses
 
@@ -66,7 +67,7 @@ class Connector:
     def rb(self) -> float:
         return self.radii[1]
 
-    @property
+    @cached_property
     def levers(self) -> tuple[float, ...]:
         """Signed levers s_j r_j: delta = sum_j levers[j] theta_{bodies[j]}; body j takes -levers[j] F."""
         return tuple(s * r for s, r in zip(self.element.SIGNS, self.radii, strict=True))

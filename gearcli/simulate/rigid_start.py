@@ -34,7 +34,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, mesh
 from gearcli.model.modes import modal_analysis
 from gearcli.model.outputs import tooth_forces
-from gearcli.model.step import ramp, ramp_motion
+from gearcli.model.step import ramp, ramp_rates
 from gearcli.simulate.results import StartSummary
 
 SAMPLES = 2001
@@ -94,8 +94,8 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
     j_eff = float(J[0] + f0 * (J[1:] @ rho[1:] ** 2))
     t = np.linspace(0.0, duration_s, samples)
     if lay.speed_drive:
-        _, w, a = (np.asarray(x, float) * np.ones_like(t) for x in ramp_motion(t, lay.drive.ramp_s,
-                                                                                 lay.drive.speed_rad_s))
+        w, a = (np.asarray(x, float) * np.ones_like(t) for x in ramp_rates(t, lay.drive.ramp_s,
+                                                                           lay.drive.speed_rad_s))
     else:
         row = lay.motor_row if lay.motor_drive else ()
 
