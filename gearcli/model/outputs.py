@@ -154,8 +154,8 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
         U = np.array([potential(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
         channels = {name: np.array([channel(P, i, dj, phj) for dj, phj in zip(ds, phs, strict=True)],
                                    dtype=float).reshape(n) for i, name in enumerate(el.CHANNELS)}
-    pen = channels.get("penetration_m", np.zeros(n))
-    q = channels.get("dte_m", d.copy()) if x.excited else d.copy()  # without a transmission error q = delta
+    pen = channels["penetration_m"] if "penetration_m" in channels else np.zeros(n)
+    q = channels["dte_m"] if x.excited and "dte_m" in channels else d.copy()  # without a transmission error q = delta
     return ConnectorSeries(F, d.copy(), pen, U, q)
 
 
