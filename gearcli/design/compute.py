@@ -122,13 +122,24 @@ def _not_rated(st: StageResult) -> Diagnostic:
 def _require_finite(obj, key: str) -> None:
     """Every number of a stage result must be finite; a value in range that still overflows (a huge
     module with a huge density) is a bad design file, not a result (exit 2, never inf in the output)."""
-    for f in fields(obj):
-        value = getattr(obj, f.name)
-        if is_dataclass(value):
+    for name in _dataclass_fields(type(obj)) or ():
+        value = getattr(obj, name)
+        if _dataclass_fields(type(value)) is not None:
             _require_finite(value, key)
         elif isinstance(value, float) and not math.isfinite(value):
-            raise DesignError(f"the design gives a non-finite {f.name} ({value}): check the magnitudes of "
+            raise DesignError(f"the design gives a non-finite {name} ({value}): check the magnitudes of "
                               "module, face width, density, speed and torque", key=key)
+
+
+_FIELDS: dict[type, tuple[str, ...] | None] = {}
+
+
+def _dataclass_fields(cls: type) -> tuple[str, ...] | None:
+    """The field names of a dataclass (None: no dataclass), once per class: every sweep point checks the same
+    result classes."""
+    if cls not in _FIELDS:
+        _FIELDS[cls] = tuple(f.name for f in fields(cls)) if is_dataclass(cls) else None
+    return _FIELDS[cls]
 
 
 def _geometry(stage: Stage, k: int) -> PairGeometry:
