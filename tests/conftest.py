@@ -42,6 +42,15 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # round 4, eighth session: the engineers' new hand checks that simulate a whole duty or sweep (7-20 s each on the
+    # loaded machine); the cheaper warning checks of the same modules stay in the default tier
+    "tests/life/test_starts_engineer.py::test_the_start_damage_from_the_simulated_series_by_hand",
+    "tests/life/test_starts_engineer.py::test_the_start_damage_scales_with_the_count_and_none_without_starts",
+    "tests/life/test_starts_engineer.py::test_bearings_over_the_duty_and_its_starts_by_hand",
+    "tests/life/test_starts_engineer.py::test_a_quiet_window_is_one_class_at_the_static_force",
+    "tests/life/test_starts_engineer.py::test_a_periodic_steady_state_counts_a_slow_stages_mesh_cycles",
+    "tests/cli/test_sweep_disk_full.py::test_resumed_after_full_disk_equals_uninterrupted",
+    "tests/cli/test_cli_fuzz_round4.py::test_a_life_run_shorter_than_the_motor_start_is_lengthened_past_the_start",
     # round 4 (measured with --durations on the merged suite, 2 workers): > ~12 s each
     "tests/engine/test_course.py::test_a_hidden_stiffness_makes_auto_change_course_from_the_state_reached",
     "tests/life/test_starts.py::test_start_record_names_the_bearing_peaks_and_the_bearings_count_the_starts",
