@@ -228,7 +228,9 @@ def accuracy_notes(study: AccuracyStudy) -> list[str]:
     if fr is not None:
         notes.append(f"the file's settings ({fr.method}, rtol {fr.rtol:g}) "
                      + ("meet" if study.file_settings_meet_accuracy else "do NOT meet")
-                     + f" the target {study.requested_accuracy:g}")
+                     + f" the target {study.requested_accuracy:g} in the three quantities compared (ω_out, mean and "
+                     "peak F_t); the window's min, max and std have their own estimate, the run's "
+                     "statistics_unresolved and statistics_undersampled warnings")
     notes.append("error peak F_t: the solver's, every run on the same output samples; the peaks the samples miss "
                  "between them are the sampling error of section \"Dynamic factor and run-up peak\"")
     return notes + list(study.notes)

@@ -16,3 +16,16 @@ def test_method_paragraph_does_not_promise_per_cent_wall_times():
     assert "some per cent" not in text
     assert "single measurements" in text and "several-fold" in text and "(nfev)" in text
     assert "several-fold" in report_markdown(fake_report(), "ab" * 32)
+
+
+def test_the_file_settings_verdict_names_what_the_ladder_compares():
+    """The study compares ω_out, mean and peak F_t only; a verdict "the file's settings meet the target" read as a
+    verdict on every statistic while the same report warned the window max 2.5e-3 off (a lightly damped reducer at
+    DOP853 rtol 1e-4): the note now names the three and points to the window statistics' own warnings."""
+    from gearcli.io.report_sections import accuracy_notes
+
+    study = fake_report().accuracy
+    verdict = [n for n in accuracy_notes(study) if n.startswith("the file's settings")]
+    assert study.file_run is not None  # the fake's study ran the file's settings
+    assert len(verdict) == 1 and "ω_out, mean and peak F_t" in verdict[0]
+    assert "statistics_unresolved" in verdict[0]
