@@ -102,7 +102,7 @@ Examples:
 """)
 @click.argument("file", type=str)
 @io_options()
-@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+@click.option("--plots", "plots_dir", type=click.Path(), metavar="DIR",
               help="Also write the Campbell diagram campbell.png to DIR (pip install 'gearcli[plot]').")
 @guarded
 def modes(file: str, overrides, fmt, output, plots_dir=None) -> None:

@@ -78,7 +78,7 @@ Examples:
 @click.option("--quick", is_flag=True, help="Skip the accuracy study (one simulation).")
 @click.option("--rtols", callback=_parse_rtols, metavar="LIST",
               help="The accuracy ladder's tolerances, comma-separated [default: 1e-3,1e-4,...,1e-9].")
-@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+@click.option("--plots", "plots_dir", type=click.Path(), metavar="DIR",
               help="Also write campbell.png, speeds.png, mesh_forces.png, spectrum.png and (not with --quick) "
                    "work_precision.png to DIR. Needs "
                    "matplotlib (pip install 'gearcli[plot]'); without it: a warning, the rest of the report, exit 0.")
@@ -168,7 +168,7 @@ Examples:
 @click.option("--format", "fmt", type=click.Choice(SWEEP_FORMATS), help="[default: from -o's suffix, else csv]")
 @outfiles.output_option("Write rows to FILE as they finish (.csv or .json; '-' is stdout); a re-run skips the "
                         "points done.")
-@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+@click.option("--plots", "plots_dir", type=click.Path(), metavar="DIR",
               help="Response curves, Campbell diagram, histograms into DIR (pip install 'gearcli[plot]').")
 @quiet_option
 @click.option("--debug", is_flag=True, help="Show tracebacks on errors.")
@@ -230,7 +230,7 @@ Examples:
               help="Torque classes of a --series history.")
 @click.option("--miner", type=click.Choice(("iso", "elementary", "modified")), default="iso", show_default=True,
               help="The S-N curve below the knee (ISO 6336-6 Miner variants, docs/life.md).")
-@click.option("--plots", "plots_dir", type=click.Path(file_okay=False), metavar="DIR",
+@click.option("--plots", "plots_dir", type=click.Path(), metavar="DIR",
               help="Also write pitting.png and bending.png (spectra against the S-N curves) to DIR "
                    "(pip install 'gearcli[plot]').")
 @csv_table_option("classes", "classes (a row per load class)")
