@@ -16,9 +16,10 @@ from __future__ import annotations
 import copy
 import re
 import tomllib
+import types
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Union, get_args, get_origin
 
 from pydantic import BaseModel
 
@@ -102,6 +103,21 @@ def _descend(ov: Override, child: Any, child_tp: Any, depth: int) -> Any:
     return child
 
 
+def _entry_keys(tp: Any) -> dict[str, Any]:
+    """The keys an entry of the array ``tp`` may have and their types (of every member of a union of tables, and
+    of every registered stage kind where the entry is a stage table)."""
+    entry = item_type(tp)
+    members = [unwrap(a) for a in get_args(entry)] if get_origin(entry) in (Union, types.UnionType) else [entry]
+    members = [m for m in members if is_model(m)]
+    if any("type" in m.model_fields for m in members):
+        members += [kinds.facet(k, "table") for k in kinds.kinds("table")]
+    return {k: unwrap(f.annotation) for m in members if is_model(m) for k, f in m.model_fields.items()}
+
+
+def _holds_keys(tp: Any) -> bool:
+    return is_model(tp) or container(tp) is not None or get_origin(tp) in (Union, types.UnionType)
+
+
 def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[Any, Any]:
     """The schema type and the data one segment down from ``node``, created when absent.
     For the last segment only the schema is checked and the data is None."""
@@ -110,7 +126,11 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
     if container(tp) == "list":
         if not isinstance(seg, int):
             signed = isinstance(seg, str) and seg[:1] in "+-" and seg[1:].isdigit()
-            rest = ov.path[depth + 1:] if signed else ov.path[depth:]  # a signed index is replaced, not kept
+            # a signed index, or a word no entry has as a key (``stage.x.pinion``: meant as the index), is replaced
+            # by the index; an entry's key (``stage.pinion``: the index left out) is kept after it
+            keys = _entry_keys(tp)
+            kept = str(seg) in keys and (last or _holds_keys(keys[str(seg)]))
+            rest = ov.path[depth:] if kept else ov.path[depth + 1:]
             example = ".".join(map(str, ov.path[:depth] + (0,) + rest))
             if signed:
                 n = len(node) if isinstance(node, list) else 0

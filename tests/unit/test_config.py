@@ -165,6 +165,15 @@ def test_unknown_override_key_has_source_set_and_hint():
     [
         ("stage.3.pinion.teeth=22", "index 3 is out of range: the file has 3 stage entries (0–2)"),
         ("stage.pinion.teeth=22", "give an index, e.g. stage.0.pinion.teeth"),
+        # a word in the index's place that no stage has as a key is the index, mistyped: replaced, not kept before
+        # (before: "e.g. stage.0.x.pinion.teeth", a key that does not exist either)
+        ("stage.x.pinion.teeth=22", "give an index, e.g. stage.0.pinion.teeth"),
+        ("stage.first.gear.teeth=22", "give an index, e.g. stage.0.gear.teeth"),
+        ("stage.mesh.damping_ratio=0.1", "give an index, e.g. stage.0.mesh.damping_ratio"),  # a key: kept
+        ("stage.fixed=ring", "give an index, e.g. stage.0.fixed"),  # a planetary stage's key: kept
+        ("stage.ring.teeth=57", "give an index, e.g. stage.0.ring.teeth"),
+        ("load.fluctuation.a.amplitude_percent=5", "e.g. load.fluctuation.0.amplitude_percent"),
+        ("duty.name.hours=3", "e.g. duty.0.hours"),  # a key holding a value, not a table: not kept before "hours"
         ("input.speed_rpm.x=3", "input.speed_rpm is a value, not a table"),
         ("input.speed_rpm", "expected KEY=VALUE"),
         ("=3", "expected KEY=VALUE"),
