@@ -44,7 +44,7 @@ SOURCE = "--set"
 #: Keys of which a table holds exactly one (or at most one): setting one replaces its siblings.
 EXCLUSIVE: dict[type[BaseModel], tuple[tuple[str, ...], ...]] = {
     Input: (("speed_deg_s", "speed_rpm", "speed_rad_s"), ("torque_Nm", "torque_Nmm", "power_kW")),
-    Load: (("torque_Nmm", "torque_Nm", "power_kW"),),
+    Load: (("torque_Nmm", "torque_Nm", "power_kW", "torque_speed"),),  # a torque-speed table is the torque too  # a torque-speed table is the torque too
     Target: (("output_speed_rpm", "output_speed_deg_s"),),
 }
 

@@ -144,6 +144,19 @@ def test_override_replaces_its_exclusive_sibling(override, table, gone, key):
     assert getattr(getattr(loaded.design, table), gone) is None
 
 
+def test_load_torque_speed_table_and_torque_key_replace_each_other(tmp_path, seed_text):
+    """`[load] torque_speed` is the load's torque given as a table, instead of a torque key (the starter file's
+    comment): `--set load.torque_speed=...` on a file with `torque_Nmm` replaces it, as `--set load.torque_Nm`
+    does; before, it was exit 2 "torque_speed gives the load's torque: no torque_Nmm beside it"."""
+    loaded = load_design(str(SEED), ["load.torque_speed=[[0, 4000], [30, 5310]]"])
+    assert "torque_Nmm" not in loaded.raw["load"] and loaded.design.load.torque_Nmm is None
+    assert loaded.design.load.torque_speed is not None
+    table = seed_text.replace("torque_Nmm = 5.31e6", "torque_speed = [[0, 4000], [30, 5310]]", 1)
+    assert table != seed_text
+    loaded = load_design(write(tmp_path, table), ["load.torque_Nm=5310"])
+    assert loaded.design.load.torque_Nm == 5310 and loaded.design.load.torque_speed is None
+
+
 def test_input_torque_override_replaces_its_sibling(tmp_path, seed_text):
     torque = seed_text.replace("ramp_s = 0.18\n", 'ramp_s = 0.18\ndrive = "torque"\ntorque_Nmm = 1e5\n', 1)
     loaded = load_design(write(tmp_path, torque), ["input.torque_Nm=250"])
