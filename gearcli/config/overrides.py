@@ -1,10 +1,12 @@
 """``--set KEY=VALUE``: command-line overrides of design-file keys, applied before validation.
 
 KEY is dotted; numeric segments index arrays (``stage.0.pinion.teeth``; ``stage[0].pinion.teeth``,
-the form error messages print, is accepted too). KEY must name a key of the schema, present in
+the form error messages print, is accepted too), and name a key under a table (``materials.4140``); a quoted
+segment (``materials."S355.J2"``) is a name as TOML's quoted keys are. KEY must name a key of the schema, present in
 the file or not: a missing key or table is created. VALUE is read as a TOML value
 (``22`` int, ``1e-8`` float, ``true`` bool, ``"x"`` string, ``{ ... }`` inline table), and as
-a bare string when it is not one (``hand=left``).
+a bare string when it is not one (``hand=left``); a number given to a key that holds a string is its text
+(``material=4140``).
 
 Setting one key of a group where the schema wants exactly one (``input.speed_rpm`` when the file
 has ``speed_deg_s``) removes the others of the group: the user means to change the speed, not to
@@ -68,9 +70,27 @@ def parse_value(text: str) -> Any:
     return parsed["v"] if list(parsed) == ["v"] else text
 
 
-def _split_key(key: str) -> list[str]:
+def _split_key(key: str) -> list[tuple[str, bool]]:
+    """The key's segments, each with whether it was quoted: ``materials."4140".density_kg_m3`` (TOML's quoted
+    key) names the material 4140, never an index, and may hold dots."""
     key = re.sub(r"\[(\d+)\]", r".\1", key.strip())
-    return key.split(".")
+    segments: list[tuple[str, bool]] = []
+    rest = key
+    while True:
+        m = re.match(r'"([^"]*)"(?=\.|$)|\'([^\']*)\'(?=\.|$)', rest)
+        if m:
+            segments.append((m.group(1) if m.group(1) is not None else m.group(2), True))
+            rest = rest[m.end():]
+        else:
+            head = rest.partition(".")[0]
+            segments.append((head, False))
+            rest = rest[len(head):]
+        if not rest:
+            return segments
+        rest = rest[1:]  # the dot
+        if not rest:
+            segments.append(("", False))
+            return segments
 
 
 def parse(text: str) -> Override:
@@ -81,10 +101,24 @@ def parse(text: str) -> Override:
         raise ConfigError(f"expected KEY=VALUE, got {shorten(repr(text))} (e.g. --set input.speed_rpm=1450)",
                           source=SOURCE)
     segments = _split_key(key)
-    if any(s == "" for s in segments):
+    if any(s == "" and not quoted for s, quoted in segments):
         raise ConfigError("empty key segment (keys look like stage.0.pinion.teeth)", source=SOURCE, key=key)
-    path = tuple(int(s) if s.isascii() and s.isdigit() else s for s in segments)
+    path = tuple(int(s) if not quoted and s.isascii() and s.isdigit() else s for s, quoted in segments)
     return Override(text, key, path, parse_value(value.strip()))
+
+
+def _as_key(tp: Any, seg: Segment) -> Segment:
+    """A segment under a table (a model, or a name-keyed table such as ``[materials]``) is a key, a string: the
+    material ``4140`` of ``materials.4140``, not an index."""
+    return str(seg) if isinstance(seg, int) and (is_model(tp) or container(tp) == "dict") else seg
+
+
+def _as_text(leaf_tp: Any, ov: Override) -> Any:
+    """The value as typed where the key holds a string and TOML read a number (``material=4140``, ``title=2024``):
+    the text, as a bare word is."""
+    if leaf_tp is str and isinstance(ov.value, int | float) and not isinstance(ov.value, bool):
+        return ov.text.partition("=")[2].strip()
+    return ov.value
 
 
 def _fail(ov: Override, message: str) -> ConfigError:
@@ -186,20 +220,24 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
     the path of what it wrote: the key, or the outermost table it had to create for it."""
     tp: Any = DesignFile
     node: Any = data
-    written = ov.path
+    path: list[Segment] = []
+    created: int | None = None
     for depth, seg in enumerate(ov.path[:-1]):
-        if written == ov.path and isinstance(node, dict) and seg not in node:
-            written = ov.path[: depth + 1]
+        seg = _as_key(tp, seg)
+        path.append(seg)
+        if created is None and isinstance(node, dict) and seg not in node:
+            created = depth + 1
         tp, node = _step(ov, node, tp, seg, depth)
-    last = ov.path[-1]
-    _step(ov, node, tp, last, len(ov.path) - 1)  # checks the last key exists in the schema
+    last = _as_key(tp, ov.path[-1])
+    path.append(last)
+    leaf_tp = _step(ov, node, tp, last, len(ov.path) - 1)[0]  # checks the last key exists in the schema
     if isinstance(node, dict):
         for group in EXCLUSIVE.get(tp, ()):
             if last in group:
                 for sibling in group:
                     node.pop(sibling, None)
-    node[last] = ov.value
-    return written
+    node[last] = _as_text(leaf_tp, ov)
+    return tuple(path[:created]) if created is not None else tuple(path)
 
 
 def leaf_type(data: dict, key: str) -> Any:
@@ -209,8 +247,8 @@ def leaf_type(data: dict, key: str) -> Any:
     tp: Any = DesignFile
     node: Any = copy.deepcopy(data)
     for depth, seg in enumerate(ov.path[:-1]):
-        tp, node = _step(ov, node, tp, seg, depth)
-    return _step(ov, node, tp, ov.path[-1], len(ov.path) - 1)[0]
+        tp, node = _step(ov, node, tp, _as_key(tp, seg), depth)
+    return _step(ov, node, tp, _as_key(tp, ov.path[-1]), len(ov.path) - 1)[0]
 
 
 def apply_all(data: dict, texts: Sequence[str]) -> list[tuple[Segment, ...]]:

@@ -157,6 +157,32 @@ def test_load_torque_speed_table_and_torque_key_replace_each_other(tmp_path, see
     assert loaded.design.load.torque_Nm == 5310 and loaded.design.load.torque_speed is None
 
 
+STEEL_4140 = "{density_kg_m3 = 7850, youngs_modulus_MPa = 205000, poisson_ratio = 0.29}"
+
+
+@pytest.mark.parametrize("table", ["materials.4140", 'materials."4140"', "materials.'4140'"])
+@pytest.mark.parametrize("name", ["4140", '"4140"'])
+def test_a_material_named_by_a_number(table, name):
+    """AISI 4140, a material name that is a number: `--set materials.4140={...}` defines it (a segment under a
+    name-keyed table is a name, never an index) and `--set stage.0.pinion.material=4140` uses it (a key that holds
+    a string takes the text as typed). Before: "materials: must be a string, got 4140" and
+    "stage[0].pinion.material: must be a string, got 4140"."""
+    loaded = load_design(str(SEED), [f"{table}={STEEL_4140}", f"stage.0.pinion.material={name}"])
+    assert set(loaded.design.materials) == {"steel", "4140"}
+    assert loaded.design.stage[0].pinion.material == "4140"
+    assert loaded.design.materials["4140"].density_kg_m3 == 7850
+
+
+def test_a_string_key_takes_a_number_as_its_text():
+    assert load_design(str(SEED), ["title=2024"]).design.title == "2024"
+    assert load_design(str(SEED), ["title=1e3"]).design.title == "1e3"  # as typed, not "1000.0"
+    assert load_design(str(SEED), ['materials."a.b"=' + STEEL_4140]).design.materials["a.b"].density_kg_m3 == 7850
+    err = error_of(str(SEED), ["simulation.method=1"])  # a choice of words stays a choice: 1 is none of them
+    assert "must be 'auto'" in str(err) and err.exit_code == EXIT_USAGE
+    err = error_of(str(SEED), ["stage.0.pinion.teeth=abc"])  # and a number stays a number
+    assert str(err) == '--set: stage[0].pinion.teeth: must be a whole number, got "abc"'
+
+
 def test_input_torque_override_replaces_its_sibling(tmp_path, seed_text):
     torque = seed_text.replace("ramp_s = 0.18\n", 'ramp_s = 0.18\ndrive = "torque"\ntorque_Nmm = 1e5\n', 1)
     loaded = load_design(write(tmp_path, torque), ["input.torque_Nm=250"])
