@@ -56,12 +56,16 @@ def canonical_key(key: str) -> str:
 
 
 def _check_exclusive(keys: Sequence[str]) -> None:
-    """Two varied keys of one table that give one quantity (``input.speed_rpm`` and ``input.speed_deg_s``): each
-    point's second override replaces the first (``--set``'s rule), so the first key's column would name values
-    the point never ran at."""
+    """Two varied keys of one table that give one quantity (``input.speed_rpm`` and ``input.speed_deg_s``), or a
+    key inside a varied table (``stage.0.pinion.teeth`` and ``stage.0.pinion``): each point's second override
+    replaces (part of) the first (``--set``'s rule), so a column would name values the point never ran at."""
     groups = {group for table in EXCLUSIVE.values() for group in table}
     for i, a in enumerate(keys):
         for b in keys[i + 1:]:
+            outer, inner = (a, b) if b.startswith(a + ".") else (b, a)
+            if inner.startswith(outer + "."):
+                raise SweepUsageError(f"{inner} lies inside {outer}, which is varied too: vary one of them",
+                                      source="--vary/--random")
             (pa, _, la), (pb, _, lb) = a.rpartition("."), b.rpartition(".")
             group = next((g for g in groups if la in g and lb in g), None)
             if pa == pb and group is not None:
