@@ -24,6 +24,7 @@ from gearcli.report.result import Report
 from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:  # matplotlib is imported when a figure is drawn (the plot extra)
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 FILES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
@@ -193,7 +194,7 @@ def work_precision_figure(r: Report) -> Figure:
     return fig
 
 
-def log_ticks(ax) -> None:
+def log_ticks(ax: Axes) -> None:
     """Labels on a logarithmic x axis that do not run into each other: plain numbers (0.002, 0.005, 0.01) at 1-9,
     1-2-5 or 1 of each decade as the axis spans under half a decade, under 1.5 or more, and no labelled minor ticks
     (matplotlib labels them on an axis short of a decade, and on a panel a third of the page wide
