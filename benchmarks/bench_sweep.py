@@ -79,7 +79,9 @@ def breakdown(n: int) -> dict[str, float]:
     time (the compiled kernel runs in a worker thread: counted), which other jobs on the machine do not inflate.
     "integration" is every integration of the point (the run, a settle test's longer runs, the periodic
     search's shots: :func:`gearcli.simulate.solver.integrate`'s engine part), "check pass" the check pass's
-    whole cost (its integration included), "design and model" loading, designing and the model's set-up."""
+    whole cost (its integration included), "design and model" loading, designing and the model's set-up (the
+    point's model parameters and its TorsionalModel; the equations' arrays, built lazily on the run's first use,
+    count as post-processing)."""
     from gearcli import api, engine
     from gearcli.simulate import estimate, solver
     from gearcli.sweep.family import CHECK_EVERY
@@ -105,7 +107,8 @@ def breakdown(n: int) -> dict[str, float]:
                 parts["runs"] += runs
         return wrapper
 
-    patches = [(api, "design_case", "design and model", False), (estimate, "check_pass", "check pass", False),
+    patches = [(api, "design_case", "design and model", False), (api, "spec_from_design", "design and model", False),
+               (api, "TorsionalModel", "design and model", False), (estimate, "check_pass", "check pass", False),
                (solver, "_integrate_compiled", "integration", True), (solver, "_segment", "integration", True)]
     saved = [(mod, name, getattr(mod, name)) for mod, name, _, _ in patches]
     for mod, name, part, runs in patches:

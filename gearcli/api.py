@@ -33,6 +33,7 @@ from gearcli.config import DesignFile, LoadedDesign, json_schema, load_design, l
 from gearcli.config.bounds import check_memory, check_run_budget, memory_limit_bytes
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
+from gearcli.core import plugins
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, DesignError, RunTooLong, SimulationError
@@ -88,7 +89,9 @@ def engine_cache_refusal() -> str:
 
 
 def design_file_schema() -> JsonObject:
-    """The JSON Schema of the design file (``gearcli schema``)."""
+    """The JSON Schema of the design file (``gearcli schema``), with the stage tables of the installed plug-ins
+    (their entry points loaded first: a file may name their types; docs/plugins.md)."""
+    plugins.load()
     return json_schema()
 
 

@@ -40,6 +40,7 @@ STATISTICS_UNRESOLVED = "statistics_unresolved"
 STATISTICS_UNDERSAMPLED = "statistics_undersampled"  # the output samples miss the window's min/max between them
 EXCITATION_UNDERSAMPLED = "excitation_undersampled"  # an excitation has too few output samples a period
 PEAK_UNDERSAMPLED = "peak_undersampled"  # the output samples miss the run's peak |F_t| (and run-up factor) between them
+PEAK_UNRESOLVED = "peak_unresolved"  # the solver's error of the run's peak |F_t| (check pass) beyond the target
 RTOL_TIGHTENED = "rtol_tightened"  # auto repeated a run at a tighter rtol to resolve its window means
 DESIGN = "design"  # a warning of the design the simulation ran on
 NOT_PERIODIC = "not_periodic"  # steady = "periodic": no repeat found up to the cap

@@ -95,9 +95,20 @@ def load_variant(raw: bytes, source: str, overrides: Sequence[str]) -> DesignFil
     """The validated ``DesignFile`` of a variant of the design file ``raw`` (named ``source`` in messages): its
     data with the ``--set`` ``overrides`` applied in order. The file is parsed once per process (a sweep's or a
     duty's points differ only in their overrides)."""
-    data = copy.deepcopy(_parsed(raw, source))
+    data = _copied(_parsed(raw, source))
     paths = _overrides.apply_all(data, overrides)
     return _validate(data, source, paths)
+
+
+def _copied(data):
+    """A deep copy of parsed TOML data: its tables and arrays copied, its leaves (str, int, float, bool, dates and
+    times: immutable) shared; what ``copy.deepcopy`` gives for a tree the parser built (no object in two places),
+    at a fraction of its cost (a sweep point copies the file's data once)."""
+    if type(data) is dict:
+        return {k: _copied(v) for k, v in data.items()}
+    if type(data) is list:
+        return [_copied(v) for v in data]
+    return data
 
 
 def check_override_keys(raw: bytes, source: str, overrides: Sequence[str]) -> None:

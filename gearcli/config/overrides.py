@@ -37,6 +37,7 @@ from gearcli.config.keys import (
 )
 from gearcli.config.messages import got
 from gearcli.config.schema import DesignFile, Input, Load, Target
+from gearcli.core import plugins
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
 from gearcli.stages import kinds
@@ -183,7 +184,8 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
             if member is None and ov.path[:1] == ("stage",) and not last:
                 known = ", ".join(f'"{k}"' for k in kinds.kinds("table"))
                 raise _fail(ov, f'{format_path(ov.path[: depth + 1])} is of type "{shorten(tag)}", which no stage kind '
-                                f"registered (registered: {known}; an installed plug-in's, docs/plugins.md)")
+                                f"registered (registered: {known}; an installed plug-in's, docs/plugins.md)"
+                                f"{plugins.failures_text(plugins.load())}")  # why a plug-in that would have did not
             child_tp = member or child_tp
         return (child_tp, None) if last else (child_tp, _descend(ov, node[seg], child_tp, depth))
     if is_model(tp):

@@ -42,7 +42,7 @@ def claim(what: str, name: str, implementation: object, *, built_in: Collection[
     implementation of a built-in name, else the entry point being loaded, else the implementation's top-level
     package (a script or a test registering directly); the same registrant may register a name again (it replaces
     its own)."""
-    module = (implementation if isinstance(implementation, type) else type(implementation)).__module__
+    module = origin(implementation)
     top = module.split(".")[0]
     if top == "gearcli" and name in built_in:
         who = ("gearcli", BUILT_IN)
@@ -60,6 +60,11 @@ def claim(what: str, name: str, implementation: object, *, built_in: Collection[
                 "them (docs/plugins.md)")
     _owners[(what, name, part)] = who
     return None
+
+
+def origin(implementation: object) -> str:
+    """The module an implementation (an instance, or a class given where an instance belongs) comes from."""
+    return str((implementation if isinstance(implementation, type) else type(implementation)).__module__)
 
 
 def release(what: str, name: str, part: str = "") -> None:

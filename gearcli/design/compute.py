@@ -40,7 +40,7 @@ from gearcli.results import (
 )
 from gearcli.stages import gear_design as _gear_design  # noqa: F401  # registers the built-in kinds' design facets
 from gearcli.stages import kinds
-from gearcli.stages.design import design_kind, file_key, gear_pairs, pair_view
+from gearcli.stages.design import checked_figures, checked_result, design_kind, file_key, gear_pairs, pair_view
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -55,11 +55,13 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     kind = tuple(design_kind(s) for s in cfg.stage)
     pairs = pair_view(cfg)
     check_inputs(cfg)
-    kin = train_from_ratios(tuple(s.speed_ratio for s in cfg.stage), tuple(s.efficiency for s in cfg.stage),
+    figures = tuple(checked_figures(s, k) for k, s in enumerate(cfg.stage))
+    kin = train_from_ratios(tuple(f[0] for f in figures), tuple(f[1] for f in figures),
                             cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
                             tuple(kind[k].reverse_efficiency(s, k) for k, s in enumerate(cfg.stage)))
     try:  # a key of the pair view (stage[k].pinion.x) named as the file names it (a planetary's sun.x)
-        stages = tuple(kind[k].result(cfg, pairs, k, kin, _stage_result) for k in range(len(cfg.stage)))
+        stages = tuple(checked_result(cfg.stage[k], k, kind[k].result(cfg, pairs, k, kin, _stage_result))
+                       for k in range(len(cfg.stage)))
         rating_diagnostics: tuple = ()
         if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
             stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
@@ -120,13 +122,24 @@ def _not_rated(st: StageResult) -> Diagnostic:
 def _require_finite(obj, key: str) -> None:
     """Every number of a stage result must be finite; a value in range that still overflows (a huge
     module with a huge density) is a bad design file, not a result (exit 2, never inf in the output)."""
-    for f in fields(obj):
-        value = getattr(obj, f.name)
-        if is_dataclass(value):
+    for name in _dataclass_fields(type(obj)) or ():
+        value = getattr(obj, name)
+        if _dataclass_fields(type(value)) is not None:
             _require_finite(value, key)
         elif isinstance(value, float) and not math.isfinite(value):
-            raise DesignError(f"the design gives a non-finite {f.name} ({value}): check the magnitudes of "
+            raise DesignError(f"the design gives a non-finite {name} ({value}): check the magnitudes of "
                               "module, face width, density, speed and torque", key=key)
+
+
+_FIELDS: dict[type, tuple[str, ...] | None] = {}
+
+
+def _dataclass_fields(cls: type) -> tuple[str, ...] | None:
+    """The field names of a dataclass (None: no dataclass), once per class: every sweep point checks the same
+    result classes."""
+    if cls not in _FIELDS:
+        _FIELDS[cls] = tuple(f.name for f in fields(cls)) if is_dataclass(cls) else None
+    return _FIELDS[cls]
 
 
 def _geometry(stage: Stage, k: int) -> PairGeometry:

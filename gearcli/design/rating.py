@@ -230,15 +230,15 @@ def root_shift(g, choice: str) -> float:
 
 
 def _tooth_depth_mm(stage, st: StageResult) -> float:
-    """h of K_Fβ's b/h (ISO 6336-1:2006, 7.7, the smaller b/h of the pair): the basic rack's h_aP + h_fP; with
-    tooth-thickness allowances the deepest tooth cut, (d_a + A_dae − d_f,i)/2 of the deeper member (docs/iso6336.md,
-    "Tooth-thickness allowances")."""
-    rack = (stage.basic_rack.addendum + stage.basic_rack.dedendum) * st.normal_module_mm
-
+    """h of K_Fβ's b/h (ISO 6336-1:2006, 7.7, the smaller b/h of the pair): the deeper member's tooth depth
+    (d_a − d_f)/2, which a tip alteration k shortens; with tooth-thickness allowances the deepest tooth cut,
+    (d_a + A_dae − d_f,i)/2 (docs/iso6336.md, "Tooth-thickness allowances"). A [0, 0] allowance gives the nominal
+    depth: the two paths meet."""
     depths = [manufactured_tooth_depth_mm(g.tip_diameter_mm, part.tip_diameter_allowance_mm, roots)
-              for g, part in ((st.pinion, stage.pinion), (st.gear, stage.gear))
-              if (roots := g.manufactured_root_diameter_mm) is not None]
-    return max(depths) if depths else rack
+              if (roots := g.manufactured_root_diameter_mm) is not None
+              else 0.5 * (g.tip_diameter_mm - g.root_diameter_mm)
+              for g, part in ((st.pinion, stage.pinion), (st.gear, stage.gear))]
+    return max(depths)
 
 
 def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:

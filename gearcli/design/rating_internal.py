@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, cast
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design import resonance as res
+from gearcli.design.allowances import manufactured_tooth_depth_mm
 from gearcli.design.rating import (
     BENDING_LOW,
     HB_PER_HV,
@@ -42,6 +43,17 @@ from gearcli.diagnostics import Diagnostic, warning
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material, PlanetaryStage
     from gearcli.results import StageResult
+
+
+def _tooth_depth_mm(stage, planet, ring) -> float:
+    """h of K_Fβ's b/h on the planet–ring mesh (ISO 6336-1:2006, 7.7): the deeper tooth of the pair, (d_a − d_f)/2
+    of the planet and (d_f − d_a)/2 of the ring, each at its deepest cut where tooth-thickness allowances are given
+    (the external members' rule, gearcli.design.rating)."""
+    roots = planet.manufactured_root_diameter_mm
+    planet_depth = (manufactured_tooth_depth_mm(planet.tip_diameter_mm, stage.planet.tip_diameter_allowance_mm, roots)
+                    if roots is not None else 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm))
+    ring_root = max(ring.manufactured_root_diameter_mm or (ring.root_diameter_mm,))
+    return max(planet_depth, 0.5 * (ring_root - ring.tip_diameter_mm))
 
 
 def _complete(mat: Material, ring_rz: float | None) -> bool:
@@ -97,7 +109,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
         single_pair_stiffness=mesh.iso6336_single_pair_stiffness_N_mm_um,
         mesh_stiffness=mesh.iso6336_mesh_stiffness_N_mm_um, mesh_stiffness_beta=mesh.iso6336_mesh_stiffness_beta_N_mm_um,
         tip_relief_um=stage.tip_relief_um or 0.0,
-        tooth_depth_mm=(stage.basic_rack.addendum + stage.basic_rack.dedendum) * m_n), simulated_k_v)
+        tooth_depth_mm=_tooth_depth_mm(stage, planet, ring)), simulated_k_v)
     k_v, k_hb, k_fb, k_ha, k_fa, z_eps = lf.k_v, lf.k_hb, lf.k_fb, lf.k_ha, lf.k_fa, lf.z_eps
     # ISO 6336-2: pitting
     z_h = rf.zone_factor(beta_b, alpha_t, alpha_wt)

@@ -376,5 +376,7 @@ def method_paragraph(study: AccuracyStudy, report_window_s: tuple[float, float] 
         f"setting meets the target {study.requested_accuracy:g} when max(error, uncertainty) is within it for all "
         f"three; ★ marks the cheapest such setting, priced as its evaluations times its method's median "
         f"integration time per evaluation over the ladder (one run's wall time is too noisy to rank neighbouring "
-        f"rungs). Wall times are from this machine and vary from run to run by some per cent."
+        f"rungs). Wall times are single measurements on this machine and move with its load (a rung of a few "
+        f"milliseconds by up to several-fold from one report to the next); the evaluations (nfev) are the repeatable "
+        f"measure of work."
     )

@@ -26,6 +26,7 @@ import csv
 import io
 import json
 import math
+import os
 import re
 import sys
 import time
@@ -34,8 +35,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar
-from gearcli.core.text import csv_text_cell
-from gearcli.errors import ConfigError
+from gearcli.core.text import csv_text_cell, shorten
+from gearcli.errors import ConfigError, OutputError
 from gearcli.io.atomic import write_atomic
 from gearcli.io.output import write_stream
 
@@ -47,9 +48,18 @@ _INT = re.compile(r"-?[0-9]+")
 JSON_EVERY_S = 1.0
 
 
+def _unwritable(path: Path, exc: OSError) -> OutputError:
+    """A sweep file the system refuses (a full disk, a file-size limit, a vanished directory): exit 2 naming it, as
+    every ``-o`` (the rows already on disk stay; a row a full disk cut short is dropped when the sweep resumes)."""
+    return OutputError(f"cannot write: {exc.strerror or exc}", path=shorten(str(path)))
+
+
 def _replace(path: Path, text: str) -> None:
     """The one place a whole sweep file is written (atomically); swap for the shared -o helper."""
-    write_atomic(path, text)
+    try:
+        write_atomic(path, text)
+    except OSError as exc:
+        raise _unwritable(path, exc) from None
 
 
 def _cell(v: JsonScalar) -> str:
@@ -162,7 +172,10 @@ class CsvFile(RowSink):
         self.path = Path(path)
         self.rows = list(previous)
         _replace(self.path, self._text(self.rows))  # also drops a row a hard kill cut short
-        self.fh: TextIO | None = self.path.open("a", encoding="utf-8", newline="")
+        try:
+            self.fh: TextIO | None = self.path.open("a", encoding="utf-8", newline="")
+        except OSError as exc:
+            raise _unwritable(self.path, exc) from None
 
     def _text(self, rows: Sequence[Row]) -> str:
         return (MARK + json.dumps(self.identity, separators=(", ", ": ")) + "\n" + _csv_line(self.columns)
@@ -171,8 +184,28 @@ class CsvFile(RowSink):
     def add(self, row: Row) -> None:
         super().add(row)
         assert self.fh is not None
-        self.fh.write(_csv_line([row.get(c) for c in self.columns]))  # one write per row: whole lines only
-        self.fh.flush()
+        whole = os.fstat(self.fh.fileno()).st_size  # the file's whole lines (every row before was flushed)
+        try:
+            self.fh.write(_csv_line([row.get(c) for c in self.columns]))  # one write per row: whole lines only
+            self.fh.flush()
+        except OSError as exc:
+            self._abandon(whole)
+            raise _unwritable(self.path, exc) from None
+
+    def _abandon(self, whole: int) -> None:
+        """After a failed write: drop the handle (its buffer cannot be written either: closing it fails again, and
+        at exit Python would print that failure), then cut the part of the row the disk took, so the file keeps
+        whole rows only."""
+        fh, self.fh = self.fh, None
+        if fh is not None:
+            try:
+                fh.close()
+            except OSError:
+                pass
+        try:
+            os.truncate(self.path, whole)
+        except OSError:
+            pass  # the resume drops a cut row too
 
     def close(self) -> None:
         if self.fh is not None:

@@ -286,12 +286,12 @@ class Layout:
     def n_conn(self) -> int:
         return len(self.connectors)
 
-    @property
+    @cached_property
     def inertias(self) -> tuple[float, ...]:
         return tuple(b.inertia for b in self.bodies)
 
     # ------------------------------------------------------------------------------- element roles
-    @property
+    @cached_property
     def stage_conn(self) -> tuple[int, ...]:
         """Connector index of each stage's connector (its mesh; a belt's span), in stage order."""
         return tuple(c for c, x in enumerate(self.connectors) if x.role in STAGE_ROLES)
@@ -320,21 +320,21 @@ class Layout:
         return self.n_bodies - 1 if self.spec.drum is not None else None
 
     # --------------------------------------------------------------------------------------- flags
-    @property
+    @cached_property
     def speed_drive(self) -> bool:
         return self.drive.kind == "speed"
 
-    @property
+    @cached_property
     def motor_drive(self) -> bool:
         return self.drive.kind == "motor"
 
-    @property
+    @cached_property
     def motor_row(self) -> tuple[float, ...]:
         """The motor's row (:mod:`gearcli.model.elements.machine`) of a motor drive; empty otherwise."""
         motor = self.drive.motor
         return machine.motor_row(motor) if self.motor_drive and motor is not None else ()
 
-    @property
+    @cached_property
     def load_law(self) -> tuple[float, ...]:
         """The load's speed law row (empty: a constant torque), on the last body's nominal speed."""
         w_n = self.bodies[-1].ratio * self.drive.speed_rad_s
@@ -351,34 +351,34 @@ class Layout:
                 out *= p.efficiency if forward else p.reverse_efficiency
         return out
 
-    @property
+    @cached_property
     def n_lossy(self) -> int:
         return sum(x.lossy for x in self.connectors)
 
-    @property
+    @cached_property
     def n_tv(self) -> int:
         return sum(x.time_varying for x in self.connectors)
 
-    @property
+    @cached_property
     def ripple(self) -> tuple[float, ...]:
         """The input torque ripple row (:mod:`gearcli.model.elements.torque`); empty for none."""
         return torque.flat(self.drive.ripple)
 
-    @property
+    @cached_property
     def fluctuation(self) -> tuple[float, ...]:
         """The load fluctuation row; empty for none."""
         return torque.flat(self.load.fluctuation)
 
-    @property
+    @cached_property
     def needs_angles(self) -> bool:
         return any(x.phased for x in self.connectors) or bool(self.ripple)
 
-    @property
+    @cached_property
     def last_angle_body(self) -> int:
         """The last body whose angle a phase-dependent mesh needs (its pinion's body); -1 for none."""
         return max((x.a for x in self.connectors if x.phased), default=-1)
 
-    @property
+    @cached_property
     def has_theta_state(self) -> bool:
         return self.needs_angles and not self.speed_drive
 

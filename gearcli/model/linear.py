@@ -31,7 +31,7 @@ from gearcli.core.memo import remember
 from gearcli.model.assembly import Layout, power_path_loss_factors
 from gearcli.model.damping import body_matrices, lever_matrices, state_matrix
 from gearcli.model.spec import ModelSpec
-from gearcli.model.step import ramp, ramp_motion
+from gearcli.model.step import ramp, ramp_rates
 
 
 def _lay(x) -> Layout:
@@ -79,7 +79,7 @@ def rigid_forces(lay: Layout, t: np.ndarray) -> np.ndarray:
     J = np.asarray(lay.inertias)
     t_load = np.asarray(ramp(t, lay.load.ramp_s, lay.load.torque_Nm)) * np.ones_like(t)
     if lay.speed_drive:
-        alpha0 = ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)[2] * np.ones_like(t)
+        alpha0 = ramp_rates(t, lay.drive.ramp_s, lay.drive.speed_rad_s)[1] * np.ones_like(t)
     elif lay.motor_drive and lay.drive.motor is not None:  # run-up at the motor's largest torque
         alpha0 = (lay.drive.motor.peak_torque_Nm - rho[-1] * t_load) / float(J @ rho**2)
     else:

@@ -14,6 +14,7 @@ bodies and levers, :class:`gearcli.model.assembly.Connector`).
 from __future__ import annotations
 
 import math
+from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,7 +23,7 @@ from gearcli.core import signals
 from gearcli.model import elements
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
-from gearcli.model.step import ramp, ramp_motion
+from gearcli.model.step import ramp, ramp_motion, ramp_rates
 
 
 @dataclass(frozen=True)
@@ -75,10 +76,12 @@ class Sampled:
 
 def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Speeds of all bodies, their angles (if needed) and the input body's acceleration."""
-    if lay.speed_drive:
+    if lay.speed_drive and lay.needs_angles:
         th0, w0, a0 = ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)
         if lay.drive.angle_rad != 0.0:  # a continued sweep point's start angle
             th0 = th0 + lay.drive.angle_rad
+    elif lay.speed_drive:  # (no angle read)
+        th0, (w0, a0) = None, ramp_rates(t, lay.drive.ramp_s, lay.drive.speed_rad_s)
     else:
         th0 = Y[lay.state.i_theta] if lay.state.i_theta is not None else None
         w0, a0 = None, np.zeros_like(t)  # a torque drive's input torque is prescribed
@@ -151,8 +154,8 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
         U = np.array([potential(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
         channels = {name: np.array([channel(P, i, dj, phj) for dj, phj in zip(ds, phs, strict=True)],
                                    dtype=float).reshape(n) for i, name in enumerate(el.CHANNELS)}
-    pen = channels.get("penetration_m", np.zeros(n))
-    q = channels.get("dte_m", d.copy()) if x.excited else d.copy()  # without a transmission error q = delta
+    pen = channels["penetration_m"] if "penetration_m" in channels else np.zeros(n)
+    q = channels["dte_m"] if x.excited and "dte_m" in channels else d.copy()  # without a transmission error q = delta
     return ConnectorSeries(F, d.copy(), pen, U, q)
 
 
@@ -190,9 +193,11 @@ def stored_energy(lay: Layout, t: float, y: np.ndarray) -> float:
     tt, Y = np.array([t]), y[:, None]
     omega, theta, _ = body_motion(lay, tt, Y)
     elastic = np.zeros_like(tt)
-    for c, x in enumerate(lay.connectors):
-        if not x.time_varying:  # the connector's own series at the one sample (compiled, vectorised or scalar)
-            elastic += connector_series(lay, c, Y, omega, theta).potential_J
+    kernel = _loaded_kernel()
+    with signals.deferred() if kernel is not None else nullcontext():  # once for the connectors' compiled calls
+        for c, x in enumerate(lay.connectors):
+            if not x.time_varying:  # the connector's own series at the one sample (compiled, vectorised or scalar)
+                elastic += _connector_series(lay, c, Y, omega, theta, kernel).potential_J
     return float(kinetic_energy(lay, omega)[0]) + float(elastic[0])
 
 

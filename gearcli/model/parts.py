@@ -7,6 +7,7 @@ bodies and connectors), which both build them; neither imports the other's build
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 from gearcli.model.elements import law_of, loses
 
@@ -66,21 +67,21 @@ class Connector:
     def rb(self) -> float:
         return self.radii[1]
 
-    @property
+    @cached_property
     def levers(self) -> tuple[float, ...]:
         """Signed levers s_j r_j: delta = sum_j levers[j] theta_{bodies[j]}; body j takes -levers[j] F."""
         return tuple(s * r for s, r in zip(self.element.SIGNS, self.radii, strict=True))
 
-    @property
+    @cached_property
     def damped(self) -> bool:
         return self.element.damped(self.params)
 
-    @property
+    @cached_property
     def lossy(self) -> bool:
         """An element that loses (1 - eta) of the power it transmits (its loss hook, :data:`.elements.LOSS_HOOK`)."""
         return loses(self.element, self.params)
 
-    @property
+    @cached_property
     def efficiency(self) -> float:
         """eta of a lossy element; 1 otherwise."""
         return self.element.efficiency(self.params) if self.lossy else 1.0
@@ -103,15 +104,15 @@ class Connector:
         side_a, side_b = self.element.loss_sides(self.params)
         return (sum(s for j, s in side_a if j == slot), sum(s for j, s in side_b if j == slot))
 
-    @property
+    @cached_property
     def time_varying(self) -> bool:
         return self.element.time_varying(self.params)
 
-    @property
+    @cached_property
     def phased(self) -> bool:
         return self.element.phased(self.params)
 
-    @property
+    @cached_property
     def excited(self) -> bool:
         return self.element.excited(self.params)
 

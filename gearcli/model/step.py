@@ -33,14 +33,29 @@ def ramp_motion(t, ramp_s: float, speed: float):
     Works on a float or an array ``t >= 0``; returns a tuple of three of the same shape.
     """
     t = np.asarray(t, dtype=float)
+    omega, alpha = _rates(t, ramp_s, speed)
     if ramp_s <= 0.0:
-        angle, omega, alpha = speed * t, np.full(t.shape, float(speed)), np.zeros(t.shape)
+        angle = speed * t
     else:
         s = np.clip(t / ramp_s, 0.0, 1.0)
-        during = t < ramp_s
-        angle = np.where(during, speed * ramp_s * (s**3 - 0.5 * s**4), speed * (t - 0.5 * ramp_s))
-        omega = speed * s * s * (3.0 - 2.0 * s)
-        alpha = 6.0 * speed * s * (1.0 - s) / ramp_s
+        angle = np.where(t < ramp_s, speed * ramp_s * (s**3 - 0.5 * s**4), speed * (t - 0.5 * ramp_s))
     if t.ndim == 0:
         return float(angle), float(omega), float(alpha)
     return angle, omega, alpha
+
+
+def ramp_rates(t, ramp_s: float, speed: float):
+    """Speed and acceleration of :func:`ramp_motion` alone (the same numbers, without the angle): for a float or an
+    array ``t >= 0``, a tuple of two of its shape."""
+    t = np.asarray(t, dtype=float)
+    omega, alpha = _rates(t, ramp_s, speed)
+    if t.ndim == 0:
+        return float(omega), float(alpha)
+    return omega, alpha
+
+
+def _rates(t: np.ndarray, ramp_s: float, speed: float) -> tuple[np.ndarray, np.ndarray]:
+    if ramp_s <= 0.0:
+        return np.full(t.shape, float(speed)), np.zeros(t.shape)
+    s = np.clip(t / ramp_s, 0.0, 1.0)
+    return speed * s * s * (3.0 - 2.0 * s), 6.0 * speed * s * (1.0 - s) / ramp_s

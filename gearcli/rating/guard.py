@@ -13,6 +13,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, NoReturn
 
+from gearcli.core import plugins
 from gearcli.core.text import shorten
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError, PluginError
@@ -41,29 +42,30 @@ class Guarded:
         return value
 
     def check_inputs(self, cfg: Any) -> None:
-        self._call("check_inputs", self.std.check_inputs, cfg)
+        self._call("check_inputs", self._method("check_inputs"), cfg)
 
     def rate_design(self, cfg: Any, stages: tuple) -> tuple[tuple, tuple[Diagnostic, ...]]:
-        out = self._call("rate_design", self.std.rate_design, cfg, stages)
+        out = self._call("rate_design", self._method("rate_design"), cfg, stages)
         rated, diags = self._stages("rate_design", out, stages)
         return rated, tuple(diags)
 
     def rate_simulation(self, cfg: Any, design: Any, stages: Sequence) -> tuple[tuple, list[Diagnostic]]:
-        out = self._call("rate_simulation", self.std.rate_simulation, cfg, design, stages)
+        out = self._call("rate_simulation", self._method("rate_simulation"), cfg, design, stages)
         rated, diags = self._stages("rate_simulation", out, stages)
         return rated, list(diags)
 
     def sn_curve(self, cfg: Any, member: Any, treatment: str, mode: str, variant: str) -> SNCurve:
-        curve = self._call("sn_curve", self.std.sn_curve, cfg, member, treatment, mode, variant)
+        curve = self._call("sn_curve", self._method("sn_curve"), cfg, member, treatment, mode, variant)
         if not isinstance(curve, SNCurve):
             self._fail("sn_curve", f"returned {type(curve).__name__}, not a gearcli.rating.sn.SNCurve")
         return curve
 
     def curve_name(self, mode: str) -> str:
-        return self._text("curve_name", self._call("curve_name", self.std.curve_name, mode))
+        return self._text("curve_name", self._call("curve_name", self._method("curve_name"), mode))
 
     def table_rows(self, ratings: Sequence, *, shared: bool) -> list[tuple[str, list[str]]]:
-        rows = self._call("table_rows", lambda: self.std.table_rows(ratings, shared=shared))
+        method = self._method("table_rows")
+        rows = self._call("table_rows", lambda: method(ratings, shared=shared))
         ok = isinstance(rows, (list, tuple)) and all(
             isinstance(r, (list, tuple)) and len(r) == 2 and isinstance(r[0], str)
             and isinstance(r[1], (list, tuple)) and len(r[1]) == len(ratings) and all(isinstance(c, str) for c in r[1])
@@ -75,6 +77,9 @@ class Guarded:
 
     # ------------------------------------------------------------------------------------------- the checks
     def _call(self, what: str, fn: Callable, *args: Any) -> Any:
+        if isinstance(self.std, type):  # the class registered where its instance belongs: every call would fail
+            self._fail(what, f"cannot be called: the standard registered is the class {self.std.__name__}, not an "
+                       f"instance of it (register({self.std.__name__}()))")
         try:
             return fn(*args)
         except GearcliError:
@@ -82,8 +87,15 @@ class Guarded:
         except Exception as exc:  # third-party code: named, with what it raised
             self._fail(what, f"raised {type(exc).__name__}: {shorten(' '.join(str(exc).split()), 300)}")
 
+    def _method(self, what: str) -> Callable:
+        """The standard's method ``what``, or a PluginError: it is missing (the protocol's every method is asked)."""
+        method = getattr(self.std, what, None)
+        if method is None or not callable(method):
+            self._fail(what, "is missing" if method is None else f"is {type(method).__name__}, not a method")
+        return method
+
     def _fail(self, what: str, text: str) -> NoReturn:
-        raise PluginError(f'rating standard "{self.name}" ({type(self.std).__module__}): {what} {text} '
+        raise PluginError(f'rating standard "{self.name}" ({plugins.origin(self.std)}): {what} {text} '
                           "(docs/plugins.md, the rating standard's protocol)")
 
     def _text(self, what: str, value: object) -> str:

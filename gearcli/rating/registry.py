@@ -27,7 +27,7 @@ def register(std: RatingStandard) -> RatingStandard:
     refused = plugins.claim(SEAM, std.name, std, built_in=BUILT_IN)
     if refused:
         raise PluginConflict(refused)
-    if type(std).__module__.split(".")[0] == "gearcli":  # gearcli's own standards are kept as they are
+    if plugins.origin(std).split(".")[0] == "gearcli":  # gearcli's own standards are kept as they are
         _STANDARDS[std.name] = std
     else:
         from gearcli.rating.guard import Guarded  # lazy: only a plug-in's standard is wrapped (start-up without one)

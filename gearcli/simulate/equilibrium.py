@@ -184,10 +184,10 @@ def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
     rows = [*head.omega_rad_s, np.broadcast_to(head.input_torque_Nm, head.time_s.shape),
             np.broadcast_to(head.load_torque_Nm, head.time_s.shape),
             *(getattr(c, name) for c in head.connectors for name in names)]
-    full = [np.empty(t.size) for _ in rows]
-    for r, row in zip(full, rows, strict=True):  # every row its last sample repeated
+    full = np.empty((len(rows), t.size))
+    for r, row in zip(full, rows, strict=True):
         r[:start + 1] = row
-        r[start + 1:] = row[-1]
+    full[:, start + 1:] = full[:, start:start + 1]  # every row its last sample repeated
     nb, w = head.omega_rad_s.shape[0], len(names)
     conns = tuple(ConnectorSeries(*full[nb + 2 + w * i: nb + 2 + w * (i + 1)]) for i in range(len(head.connectors)))
     return Sampled(np.asarray(t, dtype=float), np.array(full[:nb]), None, full[nb], full[nb + 1], conns, layout)

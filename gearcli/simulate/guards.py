@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearcli import diagnostics as dg
-from gearcli.core import cost, signals
+from gearcli.core import cost
 from gearcli.core.cost import (
     CAP,
     EXPLICIT_CAP,
@@ -142,8 +142,7 @@ class EnergyWatch:
     def _stored(self, t: float, y: np.ndarray) -> float:
         """Kinetic energy + elastic energy of constant-stiffness meshes + work done on time-varying springs."""
         lay = self.model.layout
-        with signals.deferred():  # once for the connectors' compiled calls (each one's own block then costs nothing)
-            stored = stored_energy(lay, t, y)  # the elements' own laws, one sample
+        stored = stored_energy(lay, t, y)  # the elements' own laws, one sample (the signals held once inside)
         i_tv = lay.state.quadrature("elastic_work_tv_J")
         if i_tv is not None:
             stored += float(y[i_tv])

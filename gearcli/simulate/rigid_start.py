@@ -35,7 +35,7 @@ from gearcli.model.assembly import Layout, power_path_loss_factors
 from gearcli.model.elements import machine, mesh
 from gearcli.model.modes import modal_analysis
 from gearcli.model.outputs import tooth_forces
-from gearcli.model.step import ramp, ramp_motion
+from gearcli.model.step import ramp, ramp_rates
 from gearcli.simulate.results import StartSummary
 
 SAMPLES = 2001
@@ -165,7 +165,7 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
     t = np.linspace(0.0, duration_s, samples)
     if lay.speed_drive:
         def motion(tt):
-            _, ww, aa = ramp_motion(tt, lay.drive.ramp_s, lay.drive.speed_rad_s)
+            ww, aa = ramp_rates(tt, lay.drive.ramp_s, lay.drive.speed_rad_s)
             return np.asarray(ww, float) * np.ones_like(tt), np.asarray(aa, float) * np.ones_like(tt)
 
         w, a = motion(t)

@@ -27,7 +27,7 @@ from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import equilibrium, estimate, rigid_start, sampling, stats
+from gearcli.simulate import equilibrium, estimate, rigid_start, sampling, stats, stepped_over
 from gearcli.simulate import motor as motor_side
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
@@ -219,10 +219,14 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
-    mode = estimate.unresolved_mode(choice, run, duration_s, window[0]) if ref is not None and ref.errors else None
+    mode = (estimate.unresolved_mode(choice, run, duration_s, window[0])
+            or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
+        if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method, _unloaded(spec)) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
+    if ref is not None:  # the run's peak |F_t| (docs/numerics.md, "The run's peak")
+        stat_diags += estimate.peak_warnings(ref, run.rtol, run.method)
     finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \
         and choice.requested == AUTO else None
     if ref is not None and finer is not None:  # auto resolves the means at a tighter rtol (docs/numerics.md "... auto")
@@ -440,7 +444,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     simulated_static = simulated_static_tangential_N(model)
     ks = range(len(spec.meshes))
     solver_errors = [errors[k] if k < len(errors) else None for k in ks]
-    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic)
+    run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
+    share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
+    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
@@ -522,7 +528,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
 
 def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSeries], spec, solver_errors: list,
-                     steps: int | None, periodic: bool) -> list[SamplingError | None]:
+                     steps: int | None, periodic: bool, window_share: float = 1.0) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
     judged with the solver's estimate where a check pass ran; None for an empty window."""
     sel = stats.window_slice(mask)
@@ -531,7 +537,7 @@ def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSerie
         return [None] * len(spec.meshes)
     basis = int(tw.size) if periodic or steps is None else int(steps)  # whole periods: steps per window
     return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
-                                    periodic=periodic, solver=solver_errors[k])
+                                    periodic=periodic, solver=solver_errors[k], window_share=window_share)
             for k, m in enumerate(spec.meshes)]
 
 

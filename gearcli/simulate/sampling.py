@@ -108,6 +108,11 @@ SAFETY = 2.0  # the estimate is this x the interpolated excess (module doc, "Saf
 RICHARDSON = 3.0  # 2^2 - 1: the trapezoid rule's T_h - T_2h over its error where it is O(h^2) (module doc, "The mean")
 EXTREMES = ("min", "max")
 STATISTICS = ("mean", "min", "max")  # the statistics the samples can leave unresolved
+# fewer window samples than this and no estimate can be made (the mean's Richardson step needs 5, the parabola through
+# a peak 3): a fixed window of 1 or 2 samples (simulation.steps = 1 .. 3) reported its one sample as mean = min = max
+# and std 0, "resolved", where a lightly damped reducer's window swings by +-9.5 % of the mean
+MIN_WINDOW_SAMPLES = 5
+TOO_FEW = ("mean", "min", "max", "std")  # what a window of too few samples leaves unknown
 MIN_PER_PERIOD = 4.0  # output samples a period of an excitation, at least (module doc, "Aliased excitation")
 GOOD_PER_PERIOD = 16.0  # what the suggestion aims at (a sinusoid's sampled peak then misses by 2 %)
 ALIAS_CURVATURE = 1.0  # |second difference| / peak sample beyond which the samples alias it (module doc)
@@ -235,10 +240,13 @@ def _up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
 
 
 def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
-                   solver: StatisticsError | None = None) -> SamplingError:
+                   solver: StatisticsError | None = None, window_share: float = 1.0) -> SamplingError:
     """The sampling error of a stage's window min and max of F_t (``t``, ``ft``: the window's samples), judged
     with the solver's estimate ``solver`` where a check pass ran (their sum against :data:`TARGET`).
-    ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps)."""
+    ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps);
+    ``window_share``: the window's length over the run's (what a window of too few samples needs more steps for)."""
+    if not periodic and t.size < MIN_WINDOW_SAMPLES:
+        return _too_few(t, ft, static_N, steps, solver, window_share)
     lo, hi = extremes_error(t, ft, periodic=periodic)
     if solver is not None:
         ref = solver.reference_N
@@ -262,6 +270,23 @@ def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *
                          mean_N=err["mean"])
 
 
+def too_few(s: SamplingError) -> bool:
+    """A fixed window with fewer samples than any estimate needs (:data:`MIN_WINDOW_SAMPLES`): nothing resolved."""
+    return not s.resolved and s.samples < MIN_WINDOW_SAMPLES
+
+
+def _too_few(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, solver: StatisticsError | None,
+             window_share: float) -> SamplingError:
+    """A window of too few samples: no error estimated (0), not resolved, and the ``simulation.steps`` that gives it
+    :data:`MIN_WINDOW_SAMPLES` (the least an estimate needs; that run's estimate then says what resolves it)."""
+    mean = float(ft.mean()) if ft.size else 0.0
+    ref = solver.reference_N if solver is not None else force_reference(mean, float(ft.std()) if ft.size else 0.0, static_N)
+    wanted = max(steps + 1, math.ceil(MIN_WINDOW_SAMPLES / max(window_share, 1e-12)))
+    return SamplingError(min_N=0.0, max_N=0.0, relative={q: 0.0 for q in STATISTICS}, reference_N=ref,
+                         target_relative=TARGET, samples=int(t.size), resolved=False,
+                         suggested_steps=wanted if wanted <= MAX_STEPS else None, steps_cap=MAX_STEPS)
+
+
 def _undersampled(sampling: float, solver: float, statistic: str = "max") -> bool:
     """The samples leave the statistic unresolved: the sum beyond its target (:data:`MEAN_TARGET` for the mean,
     :data:`TARGET` else), and the sampling a cause of it (the solver's part within the target, or the sampling's own
@@ -274,7 +299,7 @@ def merged(e: StatisticsError, s: SamplingError) -> StatisticsError:
     """The solver's estimate with the sampling's share of min and max added (new keys; ``unresolved`` and
     ``resolved`` then cover both; the solver's own keys keep their meaning)."""
     total = {q: e.relative[q] + s.relative[q] for q in STATISTICS}
-    over = {q for q in STATISTICS if total[q] > target_of(q)}
+    over = {q for q in STATISTICS if total[q] > target_of(q)} | (set(TOO_FEW) if too_few(s) else set())
     unresolved = tuple(q for q in ("mean", "min", "max", "std", "spectrum") if q in e.unresolved or q in over)
     return replace(e, sampling_N={"min": s.min_N, "max": s.max_N, "mean": s.mean_N}, sampling_relative=dict(s.relative),
                    total_relative=total, suggested_steps=s.suggested_steps if not s.resolved else None,
@@ -288,6 +313,9 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
     out = []
     for stage, s in stages:
         if s.resolved:
+            continue
+        if too_few(s):
+            out.append(_too_few_warning(stage, s))
             continue
         e = solver.get(stage)
         bad = [q for q in STATISTICS if _undersampled(s.relative[q], e.relative[q] if e is not None else 0.0, q)]
@@ -312,6 +340,18 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
             stage=stage, statistics=bad, estimated_error_N=float(absolute), relative_error=float(s.relative[worst]),
             steps=s.suggested_steps, steps_cap=s.steps_cap))
     return out
+
+
+def _too_few_warning(stage: int, s: SamplingError) -> Diagnostic:
+    fix = (f"--set simulation.steps={s.suggested_steps} gives it {MIN_WINDOW_SAMPLES} or more, and an estimate"
+           if s.suggested_steps is not None else "a longer window (simulation.window_start_s) gives it more")
+    return dg.warning(
+        dg.STATISTICS_UNDERSAMPLED,
+        f"stage {stage}: F_t {', '.join(TOO_FEW)} not resolved by the output samples: the window holds "
+        f"{s.samples} sample{'s' if s.samples != 1 else ''}, fewer than the {MIN_WINDOW_SAMPLES} an error estimate "
+        f"needs, so its statistics are those samples' and say nothing of the force between them; {fix}",
+        stage=stage, statistics=list(TOO_FEW), estimated_error_N=None, relative_error=None,
+        steps=s.suggested_steps, steps_cap=s.steps_cap)
 
 
 def excitation_warnings(layout, t: np.ndarray, steps: int) -> list[Diagnostic]:

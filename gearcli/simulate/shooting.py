@@ -51,6 +51,7 @@ from gearcli.simulate import periodic as pr
 from gearcli.simulate.periodic import CONVERGED, PeriodicRun, _joined, boundary_residual, scene_period
 from gearcli.simulate.results import SteadyState
 from gearcli.simulate.solver import integrate
+from gearcli.simulate.stats import window_slice
 
 MAX_NEWTON = 8  # Newton iterations per attempt
 HALVINGS = 3  # step halvings of the damped Newton step
@@ -462,7 +463,8 @@ def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: 
             k: int = 1, method: str = "shooting"):
     fine = shot.run
     keep = first.t < fine.t[0]  # the run-up's last state is no sample of the orbit where the orbit starts there
-    joined = _joined(parts, np.concatenate([first.t[keep], fine.t]), np.hstack([first.y[:, keep], fine.y]))
+    kept = window_slice(keep)  # (a slice of the leading samples: read in place, the same numbers as the mask's copy)
+    joined = _joined(parts, np.concatenate([first.t[kept], fine.t]), np.hstack([first.y[:, kept], fine.y]))
     steady = SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=ledger.periods,
                          periodicity=f"period-{k}", converged=True, residual=float(shot.residual),
                          period_source=period.source, window_periods=k, samples_per_period=samples // k,

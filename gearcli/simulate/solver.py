@@ -313,7 +313,7 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     loaded = engine.load()
     kernel, entry_s = engine.entry(method)
     compile_s = (loaded.load_s if not _COMPILED_USED else 0.0) + entry_s
-    _COMPILED_USED.append(True)
+    _COMPILED_USED[:] = [True]  # (one entry: a sweep's thousands of runs do not grow it)
     n = y.size
     rtol_v = np.array(np.broadcast_to(np.asarray(rtol, dtype=float), (n,)))  # writable: one kernel signature
     atol_v = np.array(np.broadcast_to(np.asarray(atol, dtype=float), (n,)))

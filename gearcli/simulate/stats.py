@@ -145,11 +145,11 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
         ref = float(static_tangential_N[k]) if given is None else float(given)
         wmax = float(window_max[k])
         r = 5 * k
-        out.append(replace(StageDynamics(
+        named = {**responses[k], "runup_factor": peak / abs(ref) if ref != 0 else None,
+                 "simulated_static_tangential_N": ref, **{f: v[k] for f, v in fields.items()}}  # fields win, as replace
+        out.append(StageDynamics(
             k + 1, channel(r), channel(r + 1), channel(r + 2), channel(r + 3), float(static_tangential_N[k]), peak,
-            float(t[i]), wmax / abs(ref) if ref != 0 and math.isfinite(wmax) else None, **responses[k],
-            runup_factor=peak / abs(ref) if ref != 0 else None, simulated_static_tangential_N=ref),
-            **{f: v[k] for f, v in fields.items()}))
+            float(t[i]), wmax / abs(ref) if ref != 0 and math.isfinite(wmax) else None, **named))
     return out
 
 

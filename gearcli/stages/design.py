@@ -9,10 +9,13 @@ may ask a stage's kind (the design layer's inner contract, ARCHITECTURE.md). The
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Protocol, TypeVar, cast
 
 from gearcli.diagnostics import Diagnostic
+from gearcli.errors import PluginError
 from gearcli.results import MeshStiffness, RatedMesh, StageResult
 from gearcli.stages import kinds
 
@@ -95,6 +98,42 @@ class DesignKind(Protocol):
 def design_kind(stage: object) -> DesignKind:
     """The design facet of a stage table or stage result (by its ``type``)."""
     return cast(DesignKind, kinds.facet(kinds.kind_of(stage), "design"))
+
+
+def checked_figures(table: object, k: int) -> tuple[float, float]:
+    """(speed_ratio, efficiency) of stage table k (0-based): a plug-in table's properties that are no ratio
+    |omega_in / omega_out| (a finite number > 0) or no efficiency in (0, 1] are a
+    :class:`~gearcli.errors.PluginError` naming the kind (the kinematics would carry them to every shaft)."""
+    values = []
+    for name, ok, what in (("speed_ratio", lambda v: v > 0.0, "a finite number > 0 (|ω_in / ω_out|)"),
+                           ("efficiency", lambda v: 0.0 < v <= 1.0, "a number in (0, 1]")):
+        v = getattr(table, name)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or not ok(v):
+            raise PluginError(f'stage type "{kinds.kind_of(table)}" ({type(table).__module__}): its table\'s {name} '
+                              f'is {v!r} for stage {k + 1}, not {what} (docs/plugins.md, "A stage kind")')
+        values.append(float(v))
+    return values[0], values[1]
+
+
+RESULT_FIELDS = ("index", "ratio", "efficiency", "type", "rating")  # what every stage result has (docs/plugins.md)
+
+
+def checked_result(table: object, k: int, result: StageResult) -> StageResult:
+    """The design facet's result for stage k (0-based), or a :class:`~gearcli.errors.PluginError` naming the kind
+    where it is no stage result (a frozen dataclass with :data:`RESULT_FIELDS`, its ``type`` the table's): every
+    layer above reads its fields and its ``type``, and an object without them fails far from its cause."""
+    kind = kinds.kind_of(table)
+    lacks = [f for f in RESULT_FIELDS if not hasattr(result, f)]
+    if dataclasses.is_dataclass(result) and not isinstance(result, type) and not lacks \
+            and kinds.kind_of(result) == kind and result.index == k + 1:
+        return result
+    origin = getattr(kinds.facet(kind, "design"), "origin", None)
+    why = (f"a {type(result).__name__}, not a dataclass" if not dataclasses.is_dataclass(result)
+           or isinstance(result, type) else f"no {', '.join(lacks)}" if lacks
+           else f'type "{kinds.kind_of(result)}"' if kinds.kind_of(result) != kind else f"index {result.index}")
+    raise PluginError(f'stage type "{kind}"' + (f" ({origin})" if origin else "") + f": its design facet's result "
+                      f"for stage {k + 1} has {why}: a stage result is a frozen dataclass with index (= {k + 1}), "
+                      f'ratio, efficiency, type (= "{kind}") and rating (docs/plugins.md, "A stage kind")')
 
 
 def pair_view(cfg: DesignFile) -> DesignFile:

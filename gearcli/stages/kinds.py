@@ -9,6 +9,8 @@ gearcli (a plug-in, or a test: ``tests/stages/belt.py``) calls :func:`provide` o
 from __future__ import annotations
 
 import functools
+import math
+from collections.abc import Callable
 from typing import Any
 
 from gearcli.core import plugins
@@ -31,8 +33,9 @@ def provide(kind: str, facet: str, implementation: object) -> None:
     refused = plugins.claim(SEAM, kind, implementation, built_in=BUILT_IN, part=facet)
     if refused:
         raise PluginConflict(refused)
-    builtin = type(implementation).__module__.split(".")[0] == "gearcli" or isinstance(implementation, type)
-    _FACETS[(kind, facet)] = implementation if builtin else Guarded(kind, facet, implementation)
+    # gearcli's own, and a schema table (a class): kept as they are
+    kept = plugins.origin(implementation).split(".")[0] == "gearcli" or facet == "table"
+    _FACETS[(kind, facet)] = implementation if kept else Guarded(kind, facet, implementation)
 
 
 def withdraw(kind: str, facet: str) -> None:
@@ -79,12 +82,22 @@ class Guarded:
     facet and the method, never an internal error far from its cause."""
 
     def __init__(self, kind: str, facet: str, implementation: object):
-        self._where = f'stage type "{kind}" ({type(implementation).__module__}): its {facet} facet\'s'
+        self._where = f'stage type "{kind}" ({plugins.origin(implementation)}): its {facet} facet\'s'
         self._impl = implementation
+        self._facet = facet
+        self._provided = f'kinds.provide("{kind}", "{facet}", {getattr(implementation, "__name__", "")}())'
+
+    @property
+    def origin(self) -> str:
+        """The module of the plug-in's implementation."""
+        return plugins.origin(self._impl)
 
     def __getattr__(self, attr: str) -> Any:
-        if attr.startswith("__") or attr in ("_impl", "_where"):  # copy and pickle ask before __init__ ran
+        if attr.startswith("__") or attr in ("_impl", "_where", "_provided", "_facet"):  # copy and pickle ask before __init__
             raise AttributeError(attr)
+        if isinstance(self._impl, type):  # the class given where its instance belongs: every call would fail
+            raise FacetError(f"{self._where} {attr} cannot be asked: the facet provided is the class "
+                             f"{self._impl.__name__}, not an instance of it ({self._provided}; docs/plugins.md)")
         try:
             value = getattr(self._impl, attr)
         except AttributeError:
@@ -95,10 +108,35 @@ class Guarded:
         @functools.wraps(value)
         def call(*args: Any, **kwargs: Any) -> Any:
             try:
-                return value(*args, **kwargs)
+                out = value(*args, **kwargs)
             except GearcliError:
                 raise
             except Exception as exc:  # third-party code: named, with what it raised
                 raise PluginError(f"{self._where} {attr} raised {type(exc).__name__}: "
                                   f"{shorten(' '.join(str(exc).split()), 300)}") from exc
+            wanted = _RETURNS.get((self._facet, attr))
+            if wanted is not None and not wanted[0](out):
+                raise PluginError(f"{self._where} {attr} returned {shorten(repr(out), 120)}, not {wanted[1]} "
+                                  "(docs/plugins.md, the facet's protocol)")
+            return out
         return call
+
+
+def _number(x: object) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) and x >= 0
+
+
+def _sequence(x: object) -> bool:
+    return isinstance(x, (list, tuple))
+
+
+#: what a facet's call must return where a wrong value would fail far from its cause (an output's type error)
+_RETURNS: dict[tuple[str, str], tuple[Callable[[object], bool], str]] = {
+    ("design", "inertia"): (_number, "an inertia (kg·m², a finite number ≥ 0)"),
+    ("design", "fastest_rad_s"): (_number, "an angular frequency (rad/s, a finite number ≥ 0)"),
+    ("design", "diagnostics"): (_sequence, "a list of gearcli.diagnostics.Diagnostic"),
+    ("io", "design_tables"): (_sequence, "a list of rich renderables"),
+    ("io", "simulation_tables"): (_sequence, "a list of rich renderables"),
+    ("io", "json_stage"): (lambda x: isinstance(x, dict), "a dict (the stage's JSON object)"),
+    ("io", "json_simulated_stage"): (lambda x: isinstance(x, dict), "a dict (the simulated stage's JSON object)"),
+}

@@ -12,6 +12,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, cast
 
+from gearcli.core import plugins
 from gearcli.design.planetary_balance import balance, willis_speeds
 from gearcli.design.stiffness import (
     calibration_line_force_N,
@@ -19,6 +20,7 @@ from gearcli.design.stiffness import (
     iso_reference_normal_force_N,
     law_coefficient_N_mm_e,
 )
+from gearcli.errors import GearcliError, PluginError
 from gearcli.model.parts import Body, Connector
 from gearcli.model.planet_assembly import place_planetary
 from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
@@ -48,6 +50,48 @@ class ModelKind(Protocol):
 def model_kind(stage: object) -> ModelKind:
     """The model facet of a stage table or stage result (by its ``type``)."""
     return cast(ModelKind, kinds.facet(kinds.kind_of(stage), "model"))
+
+
+def checked_losses(st: StageResult, k: int, own: StageModel | None) -> StageModel | None:
+    """A plug-in's stage model ``own`` of stage ``st`` (0-based ``k``) whose losses are its design's, or a
+    :class:`~gearcli.errors.PluginError` naming the kind. The dynamics lose only what a connector's element loses
+    (a lossy element: the built-in ``mesh`` with ``MeshSpec.efficiency``); a stage model's own ``efficiency`` acts
+    only through a planetary's planet meshes (connectors with a ``load_body``), and the steady-state and rigid-start
+    estimates read it (:meth:`gearcli.model.assembly.Layout.train_efficiency`). So a stage model that places no
+    planet mesh must give ``efficiency`` and ``reverse_efficiency`` 1, and its connectors must lose the design's
+    (1 - eta): else the simulated forces before the stage are eta x the design's (docs/plugins.md)."""
+    if own is None or plugins.origin(own).split(".")[0] == "gearcli":
+        return own
+    where = f'stage type "{kinds.kind_of(st)}" ({plugins.origin(own)}): its stage model'
+    bodies: list[Body] = [Body(1.0, "input", 1.0)]
+    conns: list[Connector] = []
+
+    def body(inertia: float, label: str, ratio: float = 1.0) -> None:
+        bodies.append(Body(float(inertia), label, ratio))
+
+    try:
+        own.place(k, bodies, conns, body, 1.0)
+        if any(c.load_body >= 0 for c in conns):
+            return own
+        eta = math.prod(c.efficiency for c in conns if c.lossy)
+        given = {n: float(getattr(own, n)) for n in ("efficiency", "reverse_efficiency")}
+    except GearcliError:
+        raise
+    except Exception as exc:  # third-party code: named, with what it raised
+        raise PluginError(f"{where}'s place raised {type(exc).__name__}: {' '.join(str(exc).split())[:300]}") \
+            from exc
+    design_eta = float(getattr(st, "efficiency", 1.0))
+    for name, value in given.items():
+        if value != 1.0:
+            raise PluginError(f"{where} gives {name} = {value:.6g}, which no element of it loses: the dynamics "
+                              "lose only what its connectors' elements lose; give the model 1 and place a lossy "
+                              "element (the built-in mesh with MeshSpec.efficiency; docs/plugins.md)")
+    if not math.isclose(eta, design_eta, rel_tol=1e-9, abs_tol=1e-12):
+        raise PluginError(f"{where}'s connectors lose {1.0 - eta:.6g} of the power, its design {1.0 - design_eta:.6g} "
+                          f"(efficiency {design_eta:.6g}): the simulated forces before stage {k + 1} would be "
+                          f"{eta / design_eta:.6g} x the design's; place a lossy element of the design's efficiency "
+                          "(the built-in mesh with MeshSpec.efficiency; docs/plugins.md)")
+    return own
 
 
 class ParallelModel:

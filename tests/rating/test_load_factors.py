@@ -48,7 +48,7 @@ def test_without_given_factors_iso_and_the_estimate_answer():
 
 def test_the_gear_pair_and_the_planet_ring_mesh_resolve_alike(tmp_path):
     """A planetary stage's two meshes take the file's K_v and K_Hβ the same way, and each its own K_Fβ from its
-    b/h (the rack's tooth depth (1 + 1.25) m_n on both meshes of this stage)."""
+    b/h, h the deeper tooth of its pair ((d_a − d_f)/2; the ring's (d_f − d_a)/2)."""
     from pathlib import Path
 
     from gearcli import api
@@ -57,9 +57,13 @@ def test_the_gear_pair_and_the_planet_ring_mesh_resolve_alike(tmp_path):
     loaded = api.load(str(cfg), ("rating.dynamic_factor=1.3", "rating.face_load_factor=1.5"))
     st = api.design(loaded).stages[0]
     assert st.planetary is not None and st.planetary.planet_ring.rating is not None
-    for r, b in ((st.rating, st.face_width_mm), (st.planetary.planet_ring.rating, st.planetary.planet_ring.face_width_mm)):
+    p = st.planetary
+    depth = {"sun": max(0.5 * (g.tip_diameter_mm - g.root_diameter_mm) for g in (p.sun, p.planet)),
+             "ring": max(0.5 * (p.planet.tip_diameter_mm - p.planet.root_diameter_mm),
+                         0.5 * (p.ring.root_diameter_mm - p.ring.tip_diameter_mm))}
+    for r, b, h in ((st.rating, st.face_width_mm, depth["sun"]),
+                    (p.planet_ring.rating, p.planet_ring.face_width_mm, depth["ring"])):
         assert r is not None
         f = r.factor_table()
         assert (f["K_v"], f["K_v_source"], f["K_Hbeta"], f["K_Hbeta_source"]) == (1.3, "given", 1.5, "given")
-        h = 2.25 * st.normal_module_mm
         assert_allclose(f["K_Fbeta"], 1.5 ** _n_f(max(b / h, 3.0)), rtol=1e-14)

@@ -299,7 +299,10 @@ def rate(q: Pair, k_v_given: float | None = None) -> dict:
             khb = math.sqrt(2 * s["cgb"] * fby / fm)
     else:
         khb = q.k_hbeta
-    bh = max(b / ((q.rack[0] + q.rack[1]) * q.mn), 3.0)
+    # h: the tooth depth (d_a - d_f)/2, the deeper member's (both (h_aP* + h_fP* + k) m_n here: the tip alteration k
+    # shortens it), as ISO 6336-1 7.7 and the published reports (KISSsoft, ISO/TR 6336-30) take it
+    depth = 0.5 * max(g["da"][i] - g["df"][i] for i in (0, 1))
+    bh = max(b / depth, 3.0)
     kfb = khb ** (bh ** 2 / (1 + bh + bh ** 2))
     ea, eb, eg = g["ea"], g["eb"], g["eg"]
     z_eps = math.sqrt(1 / ea) if eb >= 1 else math.sqrt((4 - ea) / 3 * (1 - eb) + eb / ea)

@@ -155,7 +155,7 @@ def test_report_rates_the_root_at_x_not_x_e():
 def test_allowances_in_the_rating():
     """gearcli rates the root at x, as the report does. The allowances enter through the tooth depth h of K_Fβ's
     b/h (ISO 6336-1:2006, 7.7): the deepest tooth cut, (d_a + A_dae − d_f,i)/2 = (1395.377 − 1333.318)/2 = 31.03 mm
-    on the wheel, where gearcli takes the basic rack's (1.25 + 1) m_n = 31.5 mm without allowances. The report's
+    on the wheel, where gearcli takes the nominal depth (d_a − d_f)/2 without allowances. The report's
     KFb 1.136 and its sigF/sigF0 = 195.64/117.92 = 1.65909 (K_A K_v K_Fβ K_Fα) need the manufactured depth."""
     with_, without = _design(True), _design(False)
     h = 0.5 * (with_.gear.tip_diameter_mm - with_.gear.manufactured_root_diameter_mm[1])
@@ -164,7 +164,9 @@ def test_allowances_in_the_rating():
     n_f = bh ** 2 / (1 + bh + bh ** 2)
     assert_allclose(with_.rating.K_Fbeta, 1.15 ** n_f, rtol=1e-12)
     assert_allclose(with_.rating.K_Fbeta, 1.136, atol=5e-4)  # KFb
-    bh0 = 360.0 / 31.5
+    h0 = max(0.5 * (g.tip_diameter_mm - g.root_diameter_mm) for g in (without.pinion, without.gear))
+    assert h0 < 31.5  # the tip alteration shortens the teeth below the rack's 2.25 m_n
+    bh0 = 360.0 / h0
     assert_allclose(without.rating.K_Fbeta, 1.15 ** (bh0 ** 2 / (1 + bh0 + bh0 ** 2)), rtol=1e-12)
     r = with_.rating
     for m in (r.pinion, r.gear):

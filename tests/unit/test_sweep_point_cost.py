@@ -1,6 +1,7 @@
 """A sweep point's post-processing shortcuts (issue 33 item 3) give the numbers of the long way, bit for bit: the
 equilibrium's constant statistics period sampled once and repeated against every sample sampled, and the resonance
-check that leaves the modal analysis out where no order lies near a mode against the analysis itself."""
+check that leaves the modal analysis out where no order lies near a mode against the analysis itself; a STEP
+ramp's rates without its angle, the layout's cached flags and a variant's copied data against their definitions."""
 
 from __future__ import annotations
 
@@ -176,3 +177,70 @@ def test_what_a_sweeps_points_share_gives_each_point_its_own_numbers():
     cold = points(True)
     assert any("resonance" in w for _, warnings, *_ in cold for w in warnings)
     assert points(False) == cold
+
+
+def test_a_ramps_rates_are_its_motions_without_the_angle():
+    """``ramp_rates`` (the rigid chain, the rigid start and a body motion without angles take it) gives the speed and
+    acceleration of ``ramp_motion`` bit for bit, and the STEP ramp's closed form: at T/2 the speed v/2 and the
+    largest acceleration 1.5 v/T (d/dt of v s^2 (3 - 2 s) = 6 v s (1 - s) / T at s = 1/2); past T the speed v,
+    no acceleration; a ramp of 0 s the full speed from t = 0."""
+    from gearcli.model.step import ramp_motion, ramp_rates
+
+    v, T = 62.83, 0.18
+    t = np.linspace(0.0, 0.3, 601)
+    for ramp_s in (T, 0.0):
+        w, a = ramp_rates(t, ramp_s, v)
+        _, w_all, a_all = ramp_motion(t, ramp_s, v)
+        assert np.array_equal(w, w_all) and np.array_equal(a, a_all)
+    # the speed's round-off: v s^2 (3 - 2 s) at s = 1/2 is exact in binary, the acceleration one rounding of 6 v / 4T
+    assert ramp_rates(T / 2, T, v) == pytest.approx((v / 2, 1.5 * v / T), rel=1e-15)
+    assert ramp_rates(0.25, T, v) == (v, 0.0)
+    assert ramp_rates(0.1, 0.0, v) == (v, 0.0)
+
+
+@pytest.mark.parametrize("name", ["concrete_mixer", "planetary_stage", "lossy_reducer", "concrete_mixer_te",
+                                  "motor_direct_start"])
+def test_the_cached_flags_are_the_fields_functions(name):
+    """The layout's and connectors' flags kept per instance (functions of frozen fields) equal their definitions
+    worked out anew from the elements' laws."""
+    lay = _model(name).layout
+    for x in lay.connectors:
+        el, P = x.element, x.params
+        assert (x.phased, x.excited, x.time_varying, x.damped) == (el.phased(P), el.excited(P), el.time_varying(P),
+                                                                   el.damped(P))
+        assert x.levers == tuple(s * r for s, r in zip(el.SIGNS, x.radii, strict=True))
+    assert lay.needs_angles == (any(el.phased(x.params) for x in lay.connectors for el in [x.element])
+                                or bool(lay.ripple))
+    assert lay.inertias == tuple(b.inertia for b in lay.bodies)
+    assert lay.n_lossy == sum(x.lossy for x in lay.connectors)
+    assert lay.stage_conn == tuple(c for c, x in enumerate(lay.connectors) if x.role in ("mesh", "stage"))
+
+
+def test_a_variants_data_is_a_deep_copy_of_the_parsed_file():
+    """``load_variant`` copies the file's parsed TOML as a plain tree (tables and arrays new, leaves shared): equal
+    to ``copy.deepcopy``'s, and an override applied to one variant leaves the next variant and the parsed file as
+    they were."""
+    import copy
+
+    from gearcli.config import load as load_mod
+
+    raw = (ROOT / "configs" / "planetary_duty.toml").read_bytes()
+    parsed = load_mod._parsed(raw, "planetary_duty.toml")
+    before = copy.deepcopy(parsed)
+    mine = load_mod._copied(parsed)
+    assert mine == before
+
+    def containers(x, out):
+        if isinstance(x, (dict, list)):
+            out.append(id(x))
+            for v in (x.values() if isinstance(x, dict) else x):
+                containers(v, out)
+        return out
+
+    assert not set(containers(mine, [])) & set(containers(parsed, []))  # no table or array shared
+    plain = load_mod.load_variant(raw, "planetary_duty.toml", ())
+    varied = load_mod.load_variant(raw, "planetary_duty.toml", ("input.speed_rpm=900",))
+    again = load_mod.load_variant(raw, "planetary_duty.toml", ())
+    assert parsed == before
+    assert varied.input.speed_rad_s_value == pytest.approx(900.0 * 2.0 * np.pi / 60.0, rel=1e-12)  # rpm -> rad/s
+    assert again == plain and again.input.speed_rad_s_value != varied.input.speed_rad_s_value
