@@ -93,6 +93,8 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
     target = check_target(fmt, output, REPORT_FORMATS, pipe_format="markdown")
     if plots_dir:
         _check_plots_dir(plots_dir, file, target)
+    if quick:
+        warn(f"{o} sets the accuracy study, which --quick skips: it has no effect" for o in _given("accuracy", "rtols"))
     loaded, design_result = load_and_design(file, overrides)
     api.check_budget(loaded, design_result)  # the file's own run; the ladder's runs bound themselves
     warn(design_result.warnings)
@@ -123,6 +125,12 @@ def report(file: str, overrides, fmt, output, accuracy: float, quick: bool, rtol
                    f"failed: {rep.accuracy_failure}", err=True)
         sys.exit(EXIT_FAILED)
 
+
+
+def _given(*names: str) -> list[str]:
+    """The options among ``names`` that the command line gave (not left at their defaults), as typed."""
+    ctx = click.get_current_context()
+    return [f"--{n}" for n in names if ctx.get_parameter_source(n) == ParameterSource.COMMANDLINE]
 
 
 def _check_plots_dir(plots_dir: str, file: str, target) -> None:
@@ -183,6 +191,9 @@ def sweep(file: str, vary, randoms, samples, sampling, seed, direction, jobs, sc
     if plots_dir:
         check_sweep_plots_dir(plots_dir, file, target, vary)
     output = target.shown if target.path is not None else None
+    if not randoms:
+        warn(f"{o} sets how the --random samples are drawn, and there are none: it has no effect"
+             for o in _given("seed", "sampling"))
     session = api.prepare_sweep(file, overrides, vary=vary, randoms=randoms, samples=samples, sampling=sampling, seed=seed,
                       direction=direction, jobs=jobs, scheduler=scheduler,
                       output=str(target.path) if target.path is not None else None, fmt=target.fmt)

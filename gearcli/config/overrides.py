@@ -1,10 +1,12 @@
 """``--set KEY=VALUE``: command-line overrides of design-file keys, applied before validation.
 
 KEY is dotted; numeric segments index arrays (``stage.0.pinion.teeth``; ``stage[0].pinion.teeth``,
-the form error messages print, is accepted too). KEY must name a key of the schema, present in
+the form error messages print, is accepted too), and name a key under a table (``materials.4140``); a quoted
+segment (``materials."S355.J2"``) is a name as TOML's quoted keys are. KEY must name a key of the schema, present in
 the file or not: a missing key or table is created. VALUE is read as a TOML value
 (``22`` int, ``1e-8`` float, ``true`` bool, ``"x"`` string, ``{ ... }`` inline table), and as
-a bare string when it is not one (``hand=left``).
+a bare string when it is not one (``hand=left``); a number given to a key that holds a string is its text
+(``material=4140``).
 
 Setting one key of a group where the schema wants exactly one (``input.speed_rpm`` when the file
 has ``speed_deg_s``) removes the others of the group: the user means to change the speed, not to
@@ -16,9 +18,10 @@ from __future__ import annotations
 import copy
 import re
 import tomllib
+import types
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Union, get_args, get_origin
 
 from pydantic import BaseModel
 
@@ -44,7 +47,7 @@ SOURCE = "--set"
 #: Keys of which a table holds exactly one (or at most one): setting one replaces its siblings.
 EXCLUSIVE: dict[type[BaseModel], tuple[tuple[str, ...], ...]] = {
     Input: (("speed_deg_s", "speed_rpm", "speed_rad_s"), ("torque_Nm", "torque_Nmm", "power_kW")),
-    Load: (("torque_Nmm", "torque_Nm", "power_kW"),),
+    Load: (("torque_Nmm", "torque_Nm", "power_kW", "torque_speed"),),  # a torque-speed table is the torque too  # a torque-speed table is the torque too
     Target: (("output_speed_rpm", "output_speed_deg_s"),),
 }
 
@@ -68,9 +71,27 @@ def parse_value(text: str) -> Any:
     return parsed["v"] if list(parsed) == ["v"] else text
 
 
-def _split_key(key: str) -> list[str]:
+def _split_key(key: str) -> list[tuple[str, bool]]:
+    """The key's segments, each with whether it was quoted: ``materials."4140".density_kg_m3`` (TOML's quoted
+    key) names the material 4140, never an index, and may hold dots."""
     key = re.sub(r"\[(\d+)\]", r".\1", key.strip())
-    return key.split(".")
+    segments: list[tuple[str, bool]] = []
+    rest = key
+    while True:
+        m = re.match(r'"([^"]*)"(?=\.|$)|\'([^\']*)\'(?=\.|$)', rest)
+        if m:
+            segments.append((m.group(1) if m.group(1) is not None else m.group(2), True))
+            rest = rest[m.end():]
+        else:
+            head = rest.partition(".")[0]
+            segments.append((head, False))
+            rest = rest[len(head):]
+        if not rest:
+            return segments
+        rest = rest[1:]  # the dot
+        if not rest:
+            segments.append(("", False))
+            return segments
 
 
 def parse(text: str) -> Override:
@@ -81,10 +102,24 @@ def parse(text: str) -> Override:
         raise ConfigError(f"expected KEY=VALUE, got {shorten(repr(text))} (e.g. --set input.speed_rpm=1450)",
                           source=SOURCE)
     segments = _split_key(key)
-    if any(s == "" for s in segments):
+    if any(s == "" and not quoted for s, quoted in segments):
         raise ConfigError("empty key segment (keys look like stage.0.pinion.teeth)", source=SOURCE, key=key)
-    path = tuple(int(s) if s.isascii() and s.isdigit() else s for s in segments)
+    path = tuple(int(s) if not quoted and s.isascii() and s.isdigit() else s for s, quoted in segments)
     return Override(text, key, path, parse_value(value.strip()))
+
+
+def _as_key(tp: Any, seg: Segment) -> Segment:
+    """A segment under a table (a model, or a name-keyed table such as ``[materials]``) is a key, a string: the
+    material ``4140`` of ``materials.4140``, not an index."""
+    return str(seg) if isinstance(seg, int) and (is_model(tp) or container(tp) == "dict") else seg
+
+
+def _as_text(leaf_tp: Any, ov: Override) -> Any:
+    """The value as typed where the key holds a string and TOML read a number (``material=4140``, ``title=2024``):
+    the text, as a bare word is."""
+    if leaf_tp is str and isinstance(ov.value, int | float) and not isinstance(ov.value, bool):
+        return ov.text.partition("=")[2].strip()
+    return ov.value
 
 
 def _fail(ov: Override, message: str) -> ConfigError:
@@ -103,6 +138,21 @@ def _descend(ov: Override, child: Any, child_tp: Any, depth: int) -> Any:
     return child
 
 
+def _entry_keys(tp: Any) -> dict[str, Any]:
+    """The keys an entry of the array ``tp`` may have and their types (of every member of a union of tables, and
+    of every registered stage kind where the entry is a stage table)."""
+    entry = item_type(tp)
+    members = [unwrap(a) for a in get_args(entry)] if get_origin(entry) in (Union, types.UnionType) else [entry]
+    members = [m for m in members if is_model(m)]
+    if any("type" in m.model_fields for m in members):
+        members += [kinds.facet(k, "table") for k in kinds.kinds("table")]
+    return {k: unwrap(f.annotation) for m in members if is_model(m) for k, f in m.model_fields.items()}
+
+
+def _holds_keys(tp: Any) -> bool:
+    return is_model(tp) or container(tp) is not None or get_origin(tp) in (Union, types.UnionType)
+
+
 def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[Any, Any]:
     """The schema type and the data one segment down from ``node``, created when absent.
     For the last segment only the schema is checked and the data is None."""
@@ -111,7 +161,11 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
     if container(tp) == "list":
         if not isinstance(seg, int):
             signed = isinstance(seg, str) and seg[:1] in "+-" and seg[1:].isdigit()
-            rest = ov.path[depth + 1:] if signed else ov.path[depth:]  # a signed index is replaced, not kept
+            # a signed index, or a word no entry has as a key (``stage.x.pinion``: meant as the index), is replaced
+            # by the index; an entry's key (``stage.pinion``: the index left out) is kept after it
+            keys = _entry_keys(tp)
+            kept = str(seg) in keys and (last or _holds_keys(keys[str(seg)]))
+            rest = ov.path[depth:] if kept else ov.path[depth + 1:]
             example = ".".join(map(str, ov.path[:depth] + (0,) + rest))
             if signed:
                 n = len(node) if isinstance(node, list) else 0
@@ -168,20 +222,24 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
     the path of what it wrote: the key, or the outermost table it had to create for it."""
     tp: Any = DesignFile
     node: Any = data
-    written = ov.path
+    path: list[Segment] = []
+    created: int | None = None
     for depth, seg in enumerate(ov.path[:-1]):
-        if written == ov.path and isinstance(node, dict) and seg not in node:
-            written = ov.path[: depth + 1]
+        seg = _as_key(tp, seg)
+        path.append(seg)
+        if created is None and isinstance(node, dict) and seg not in node:
+            created = depth + 1
         tp, node = _step(ov, node, tp, seg, depth)
-    last = ov.path[-1]
-    _step(ov, node, tp, last, len(ov.path) - 1)  # checks the last key exists in the schema
+    last = _as_key(tp, ov.path[-1])
+    path.append(last)
+    leaf_tp = _step(ov, node, tp, last, len(ov.path) - 1)[0]  # checks the last key exists in the schema
     if isinstance(node, dict):
         for group in EXCLUSIVE.get(tp, ()):
             if last in group:
                 for sibling in group:
                     node.pop(sibling, None)
-    node[last] = ov.value
-    return written
+    node[last] = _as_text(leaf_tp, ov)
+    return tuple(path[:created]) if created is not None else tuple(path)
 
 
 def leaf_type(data: dict, key: str) -> Any:
@@ -191,8 +249,8 @@ def leaf_type(data: dict, key: str) -> Any:
     tp: Any = DesignFile
     node: Any = copy.deepcopy(data)
     for depth, seg in enumerate(ov.path[:-1]):
-        tp, node = _step(ov, node, tp, seg, depth)
-    return _step(ov, node, tp, ov.path[-1], len(ov.path) - 1)[0]
+        tp, node = _step(ov, node, tp, _as_key(tp, seg), depth)
+    return _step(ov, node, tp, _as_key(tp, ov.path[-1]), len(ov.path) - 1)[0]
 
 
 def apply_all(data: dict, texts: Sequence[str]) -> list[tuple[Segment, ...]]:

@@ -12,6 +12,7 @@ inside the margin at the nominal speed are labelled.
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -27,6 +28,7 @@ from gearcli.model.modes import RESONANCE_BAND, CampbellData
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
+TITLE_CHARS = 110  # the axes title's line length at 8.5 pt on the 11 in figure, within the axes' width
 STYLES = {"strongly": dict(marker="o", ms=8, mfc="tab:red", mec="darkred", zorder=6),
           "moderately": dict(marker="o", ms=6.5, mfc="orange", mec="darkorange", zorder=5),
           "weakly": dict(marker="o", ms=3.5, mfc="none", mec="0.55", zorder=4)}
@@ -110,12 +112,15 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     hidden = len(data.modes) - len(shown)
     note = f"; {hidden} mode{'s' if hidden > 1 else ''} above the highest order not shown" if hidden else ""
     fig.suptitle(f"Campbell diagram{' — ' + title if title else ''}", fontsize=11)
-    ax.set_title(f"modes {data.boundary.replace('_', ' ')}, linearised at full load; grey bands: ±"
-                 f"{100 * RESONANCE_BAND:.0f} % resonance margin{note}\nmarkers: crossings, by how strongly the "
-                 "order excites the mode (exciting meshes' strain-energy share / 2ζ; a torque: its body's kinetic-energy "
-                 "share / 2ζ)", fontsize=8.5, loc="left")
-    handles, labels = ax.get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside right upper", fontsize=7.5)
+    head = (f"modes {data.boundary.replace('_', ' ')}, linearised at full load; grey bands: ±"
+            f"{100 * RESONANCE_BAND:.0f} % resonance margin{note}")
+    key = ("markers: crossings, by how strongly the order excites the mode (exciting meshes' strain-energy share / "
+           "2ζ; a torque: its body's kinetic-energy share / 2ζ)")
+    ax.set_title("\n".join(textwrap.wrap(head, TITLE_CHARS) + textwrap.wrap(key, TITLE_CHARS)), fontsize=8.5,
+                 loc="left")
+    # the legend beside the axes (a part of the axes' layout), so the figure title and the axes title, above,
+    # never run under it as they did with a figure legend in the top right corner
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=7.5)
     return fig
 
 

@@ -10,6 +10,8 @@ never pyplot, so no global backend state is touched. The bottom of ``io``'s figu
 from __future__ import annotations
 
 import io
+import os
+import sys
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
@@ -34,11 +36,9 @@ def figure(rows: int, cols: int = 1, *, height: float = 2.3, width: float = 9.0,
            sharey: Shared = False) -> tuple[Figure, np.ndarray]:
     """A figure on the Agg canvas and its ``rows`` x ``cols`` axes (``sharex``, ``sharey`` as
     ``Figure.subplots`` takes them)."""
-    try:
-        from matplotlib.backends.backend_agg import FigureCanvasAgg  # lazy: matplotlib, the optional plot extra
-        from matplotlib.figure import Figure  # lazy: matplotlib, the optional plot extra
-    except ImportError as exc:
-        raise PlotsUnavailable(f"--plots needs matplotlib: {INSTALL_HINT}") from exc
+    _import_matplotlib()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # lazy: matplotlib, the optional plot extra
+    from matplotlib.figure import Figure  # lazy: matplotlib, the optional plot extra
     fig = Figure(figsize=(width, max(3.2, height * rows + 0.8)), dpi=DPI, layout="constrained")
     FigureCanvasAgg(fig)
     axes = fig.subplots(rows, cols, squeeze=False, width_ratios=width_ratios, sharex=sharex, sharey=sharey)
@@ -55,8 +55,18 @@ def save(fig: Figure, path: Path) -> Path:
 
 def check() -> None:
     """Fail early (before any directory is made) when matplotlib is missing."""
+    _import_matplotlib()
+
+
+def _import_matplotlib() -> None:
+    """Import matplotlib, or say how to install it. ``MPLBACKEND`` is set aside while it is first imported: gearcli
+    draws on the Agg canvas itself and never selects a backend, but matplotlib validates the variable on import, and
+    a value it does not know (a typo, a backend of another installation) made every ``--plots`` an internal error."""
+    saved = None if "matplotlib" in sys.modules else os.environ.pop("MPLBACKEND", None)
     try:
         import matplotlib  # noqa: F401  # lazy: matplotlib, the optional plot extra
     except ImportError as exc:
         raise PlotsUnavailable(f"--plots needs matplotlib: {INSTALL_HINT}") from exc
-    return None
+    finally:
+        if saved is not None:
+            os.environ["MPLBACKEND"] = saved

@@ -24,6 +24,7 @@ from gearcli.report.result import Report
 from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:  # matplotlib is imported when a figure is drawn (the plot extra)
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 FILES = ("speeds.png", "mesh_forces.png", "spectrum.png", "work_precision.png")
@@ -180,6 +181,7 @@ def work_precision_figure(r: Report) -> Figure:
         _mark(ax, study.recommended, q, "*", "recommended (cheapest meeting the target)", 15)
         _mark(ax, study.file_run, q, "s", "the file's settings", 10)
         ax.set_ylim(low, high)
+        log_ticks(ax)
         ax.set_title(f"error of the {title}", fontsize=9)
         ax.set_xlabel("wall time [s]")
         ax.grid(alpha=0.3, which="both")
@@ -190,6 +192,21 @@ def work_precision_figure(r: Report) -> Figure:
     fig.suptitle(f"Work against precision — reference {ref.method} rtol {ref.rtol:g}, checked with "
                  f"{ref.check_method} rtol {ref.check_rtol:g} (uncertainty {unc:.1e})", fontsize=11)
     return fig
+
+
+def log_ticks(ax: Axes) -> None:
+    """Labels on a logarithmic x axis that do not run into each other: plain numbers (0.002, 0.005, 0.01) at 1-9,
+    1-2-5 or 1 of each decade as the axis spans under half a decade, under 1.5 or more, and no labelled minor ticks
+    (matplotlib labels them on an axis short of a decade, and on a panel a third of the page wide
+    "2x10^-3 3x10^-3 4x10^-3" overlapped)."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # lazy: the optional plot extra
+
+    lo, hi = ax.get_xlim()
+    decades = float(np.log10(hi / lo)) if lo > 0 and hi > lo else 1.0
+    subs = tuple(range(1, 10)) if decades < 0.5 else (1, 2, 5) if decades < 1.5 else (1,)
+    ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=subs))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _pos: f"{v:g}"))
+    ax.xaxis.set_minor_formatter(NullFormatter())
 
 
 def _mark(ax, run, q: str, marker: str, label: str, size: float) -> None:

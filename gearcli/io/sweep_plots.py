@@ -36,6 +36,12 @@ FAMILIES = (
     ("dynamic factor: window max / static F_t (-)", {"dynamic_factor": "-"}),
     ("run-up factor: run peak / static F_t (-)", {"runup_factor": "-"}),
 )
+#: the column whose magnitude a family's values are measured against (a std is zero at the scale of its mean)
+SCALE_OF = {"tangential_N_std": "tangential_N_mean", "dte_um_rms": "dte_um_mean"}
+#: families that cannot be negative, whose pinned axis starts at zero
+NON_NEGATIVE = ("tangential_N_std", "dte_um_rms", "contact_loss_fraction")
+#: relative spread below which a family's values differ by roundoff only (an equilibrium row's std is ~1e-13 N)
+ROUNDOFF = 1e-9
 DISTRIBUTION_STATS = (("tangential_N_max", "peak F_t in window (N)"), ("tangential_N_std", "F_t std (N)"),
                       ("dynamic_factor", "dynamic factor (-)"), ("dte_um_rms", "DTE rms (µm)"))
 
@@ -102,6 +108,7 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
                                      if p)
                     ax.plot(x, [_num(r.get(f"stage{k}_{c}")) for r in rs], style, marker=marker, ms=4, lw=1,
                             color=colour, label=label)
+            _pin_roundoff(ax, rows, [f"stage{k}_{c}" for c in cols])
             ax.set_title(f"stage {k}: {title}", fontsize=9)
             ax.grid(alpha=0.3)
     ax = axes[-1][0]
@@ -119,6 +126,28 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
     axes[0][0].legend(fontsize=7, loc="best")
     fig.suptitle(f"sweep response against {key}", fontsize=11)
     return fig
+
+
+def _pin_roundoff(ax, rows: Sequence[dict], cols: Sequence[str]) -> None:
+    """A panel whose values differ only by roundoff (the rows of an unexcited scene are its equilibrium: std 0,
+    dynamic factor 1, the same mean at every speed) is drawn as the constant it is, ±5 % of its scale (the
+    values' magnitude, a std's or rms's the mean's, at least 1), without an offset; autoscaling would blow the
+    last bits (1e-13 N) up to the panel's height."""
+    values = np.array([_num(r.get(c)) for r in rows for c in cols])
+    values = values[np.isfinite(values)]
+    if not values.size:
+        return
+    refs = np.array([_num(r.get(c.replace(k, v))) for r in rows for c in cols for k, v in SCALE_OF.items()
+                     if c.endswith(k)])
+    scale = float(np.max(np.abs(np.concatenate([values, refs[np.isfinite(refs)], [1.0]]))))
+    lo, hi = float(values.min()), float(values.max())
+    if hi - lo > ROUNDOFF * scale:
+        return
+    half = 0.05 * scale
+    mid = 0.5 * (lo + hi)
+    bottom = max(mid - half, -0.1 * half) if any(c.endswith(NON_NEGATIVE) for c in cols) else mid - half
+    ax.set_ylim(bottom, mid + half)
+    ax.ticklabel_format(axis="y", useOffset=False, style="plain")
 
 
 def _looks(groups: dict[tuple, list[dict]]) -> dict[tuple, tuple[str, str]]:

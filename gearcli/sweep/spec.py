@@ -30,7 +30,7 @@ from typing import cast
 import numpy as np
 import tomli_w
 
-from gearcli.config.overrides import parse, parse_value
+from gearcli.config.overrides import EXCLUSIVE, parse, parse_value
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.errors import ConfigError
 
@@ -53,6 +53,24 @@ class SweepUsageError(ConfigError):
 def canonical_key(key: str) -> str:
     """``stage[0].pinion.teeth`` -> ``stage.0.pinion.teeth``: the column name of a varied key."""
     return ".".join(str(s) for s in parse(f"{key}=0").path)
+
+
+def _check_exclusive(keys: Sequence[str]) -> None:
+    """Two varied keys of one table that give one quantity (``input.speed_rpm`` and ``input.speed_deg_s``), or a
+    key inside a varied table (``stage.0.pinion.teeth`` and ``stage.0.pinion``): each point's second override
+    replaces (part of) the first (``--set``'s rule), so a column would name values the point never ran at."""
+    groups = {group for table in EXCLUSIVE.values() for group in table}
+    for i, a in enumerate(keys):
+        for b in keys[i + 1:]:
+            outer, inner = (a, b) if b.startswith(a + ".") else (b, a)
+            if inner.startswith(outer + "."):
+                raise SweepUsageError(f"{inner} lies inside {outer}, which is varied too: vary one of them",
+                                      source="--vary/--random")
+            (pa, _, la), (pb, _, lb) = a.rpartition("."), b.rpartition(".")
+            group = next((g for g in groups if la in g and lb in g), None)
+            if pa == pb and group is not None:
+                raise SweepUsageError(f"{a} and {b} give one quantity ({pa} takes one of {', '.join(group)}): vary "
+                                      "one of them", source="--vary/--random")
 
 
 @dataclass(frozen=True)
@@ -222,6 +240,7 @@ class SweepSpec:
         dup = next((k for k in keys if keys.count(k) > 1), None)
         if dup:
             raise SweepUsageError(f"{dup} is varied twice", source="--vary/--random")
+        _check_exclusive(keys)
         if not keys:
             raise SweepUsageError("nothing to sweep: give --vary KEY=START:STOP:N or --samples N --random KEY=...")
         if self.randoms and not self.samples:

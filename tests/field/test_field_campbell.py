@@ -92,3 +92,29 @@ def test_sweep_campbell_is_the_same_drawing(tmp_path, monkeypatch):
     assert data.max_input_rpm == pytest.approx(900.0)  # the swept range beyond 1.2 x the file's 600 rpm
     assert data.top_Hz == pytest.approx(3 * 21 * 900 / 60)
     assert math.isclose(data.nominal_input_rpm, 600.0)
+
+
+@pytest.mark.parametrize("path", [CONVEYOR, str(ROOT / "configs" / "industrial_two_stage_rated.toml")])
+def test_campbell_legend_hides_no_title(path):
+    """Every text of the drawing stays readable: the legend (beside the axes) overlaps neither the figure title nor
+    the axes title (the boundary, margin and marker key, wrapped to the axes' width) nor the plotting area. Before,
+    a figure legend in the top right corner ran over the end of both titles ("... rated", "... share / 2ζ)")."""
+    from gearcli.io.campbell import campbell_figure
+
+    cfg = load_design(path, []).design
+    title = str(cfg.title)
+    fig = campbell_figure(campbell_data(_layout(path)), OutputUnits("rpm", "Nm"), title)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    legend = (ax.get_legend() or fig.legends[0]).get_window_extent(renderer)  # the one legend, wherever it is
+    texts = [fig._suptitle, ax.title, ax._left_title]  # the figure title, the centre and the left axes title
+    for text in texts:
+        if text.get_text():
+            box = text.get_window_extent(renderer)
+            assert not legend.overlaps(box), text.get_text()
+            assert box.x1 <= fig.bbox.x1 + 0.5 and box.x0 >= -0.5, text.get_text()  # inside the picture
+    assert legend.x0 >= ax.get_window_extent(renderer).x1  # beside the plotting area, not over the curves
+    assert legend.x1 <= fig.bbox.x1 + 0.5
+    left = ax._left_title.get_window_extent(renderer)
+    assert left.x1 <= ax.get_window_extent(renderer).x1 + 0.5  # the wrapped key fits the axes' width

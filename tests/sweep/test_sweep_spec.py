@@ -117,3 +117,28 @@ def test_spec_rules():
         spec_from_options(["a.b=1,2", "a.b=3"], [], None, "lhs", None, None)  # the same key twice
     with pytest.raises(SweepUsageError):
         spec_from_options([], ["a.b=uniform(0,1)"], 3, "lhs", 1, "up")  # continuation needs a --vary key
+
+
+@pytest.mark.parametrize(("vary", "random"), [
+    (["input.speed_rpm=300,600", "input.speed_deg_s=2400,3600"], []),
+    (["load.torque_Nm=300,600"], ["load.torque_Nmm=normal(3e5,1e4)"]),
+    (["target.output_speed_rpm=20,30", "target.output_speed_deg_s=120,180"], []),
+    (["load.torque_speed=[[0, 1], [9, 2]]", "load.power_kW=5,6"], []),
+    (["stage.0.pinion.teeth=20,21", "stage.0.pinion={teeth = 22, face_width_mm = 190}"], []),
+])
+def test_two_keys_that_give_one_quantity_are_refused(vary, random):
+    """Each point applies its overrides in turn and the second of `input.speed_rpm` / `input.speed_deg_s` replaces
+    the first (--set's rule), so the rows labelled 300 and 600 rpm both ran at 2400 or 3600 °/s (seen: identical
+    rows under different `input.speed_rpm` values). Exit 2, naming both keys."""
+    with pytest.raises(SweepUsageError) as exc:
+        spec_from_options(vary, random, 2 if random else None, "lhs", 1 if random else None, None)
+    assert exc.value.exit_code == 2
+    assert "give one quantity" in str(exc.value) or "lies inside" in str(exc.value)
+    a, b = (v.split("=")[0] for v in (*vary, *random))
+    assert a in str(exc.value) and b in str(exc.value)
+
+
+def test_keys_of_different_tables_or_groups_are_a_grid():
+    spec = spec_from_options(["input.speed_rpm=300,600", "load.torque_Nm=1,2", "stage.0.pinion.teeth=20,21",
+                              "stage.1.pinion.teeth=17,18", "stage.10.pinion.teeth=5,6"], [], None, "lhs", None, None)
+    assert spec.n_points == 32  # stage.1 is no prefix of stage.10

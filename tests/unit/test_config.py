@@ -144,6 +144,45 @@ def test_override_replaces_its_exclusive_sibling(override, table, gone, key):
     assert getattr(getattr(loaded.design, table), gone) is None
 
 
+def test_load_torque_speed_table_and_torque_key_replace_each_other(tmp_path, seed_text):
+    """`[load] torque_speed` is the load's torque given as a table, instead of a torque key (the starter file's
+    comment): `--set load.torque_speed=...` on a file with `torque_Nmm` replaces it, as `--set load.torque_Nm`
+    does; before, it was exit 2 "torque_speed gives the load's torque: no torque_Nmm beside it"."""
+    loaded = load_design(str(SEED), ["load.torque_speed=[[0, 4000], [30, 5310]]"])
+    assert "torque_Nmm" not in loaded.raw["load"] and loaded.design.load.torque_Nmm is None
+    assert loaded.design.load.torque_speed is not None
+    table = seed_text.replace("torque_Nmm = 5.31e6", "torque_speed = [[0, 4000], [30, 5310]]", 1)
+    assert table != seed_text
+    loaded = load_design(write(tmp_path, table), ["load.torque_Nm=5310"])
+    assert loaded.design.load.torque_Nm == 5310 and loaded.design.load.torque_speed is None
+
+
+STEEL_4140 = "{density_kg_m3 = 7850, youngs_modulus_MPa = 205000, poisson_ratio = 0.29}"
+
+
+@pytest.mark.parametrize("table", ["materials.4140", 'materials."4140"', "materials.'4140'"])
+@pytest.mark.parametrize("name", ["4140", '"4140"'])
+def test_a_material_named_by_a_number(table, name):
+    """AISI 4140, a material name that is a number: `--set materials.4140={...}` defines it (a segment under a
+    name-keyed table is a name, never an index) and `--set stage.0.pinion.material=4140` uses it (a key that holds
+    a string takes the text as typed). Before: "materials: must be a string, got 4140" and
+    "stage[0].pinion.material: must be a string, got 4140"."""
+    loaded = load_design(str(SEED), [f"{table}={STEEL_4140}", f"stage.0.pinion.material={name}"])
+    assert set(loaded.design.materials) == {"steel", "4140"}
+    assert loaded.design.stage[0].pinion.material == "4140"
+    assert loaded.design.materials["4140"].density_kg_m3 == 7850
+
+
+def test_a_string_key_takes_a_number_as_its_text():
+    assert load_design(str(SEED), ["title=2024"]).design.title == "2024"
+    assert load_design(str(SEED), ["title=1e3"]).design.title == "1e3"  # as typed, not "1000.0"
+    assert load_design(str(SEED), ['materials."a.b"=' + STEEL_4140]).design.materials["a.b"].density_kg_m3 == 7850
+    err = error_of(str(SEED), ["simulation.method=1"])  # a choice of words stays a choice: 1 is none of them
+    assert "must be 'auto'" in str(err) and err.exit_code == EXIT_USAGE
+    err = error_of(str(SEED), ["stage.0.pinion.teeth=abc"])  # and a number stays a number
+    assert str(err) == '--set: stage[0].pinion.teeth: must be a whole number, got "abc"'
+
+
 def test_input_torque_override_replaces_its_sibling(tmp_path, seed_text):
     torque = seed_text.replace("ramp_s = 0.18\n", 'ramp_s = 0.18\ndrive = "torque"\ntorque_Nmm = 1e5\n', 1)
     loaded = load_design(write(tmp_path, torque), ["input.torque_Nm=250"])
@@ -165,6 +204,15 @@ def test_unknown_override_key_has_source_set_and_hint():
     [
         ("stage.3.pinion.teeth=22", "index 3 is out of range: the file has 3 stage entries (0–2)"),
         ("stage.pinion.teeth=22", "give an index, e.g. stage.0.pinion.teeth"),
+        # a word in the index's place that no stage has as a key is the index, mistyped: replaced, not kept before
+        # (before: "e.g. stage.0.x.pinion.teeth", a key that does not exist either)
+        ("stage.x.pinion.teeth=22", "give an index, e.g. stage.0.pinion.teeth"),
+        ("stage.first.gear.teeth=22", "give an index, e.g. stage.0.gear.teeth"),
+        ("stage.mesh.damping_ratio=0.1", "give an index, e.g. stage.0.mesh.damping_ratio"),  # a key: kept
+        ("stage.fixed=ring", "give an index, e.g. stage.0.fixed"),  # a planetary stage's key: kept
+        ("stage.ring.teeth=57", "give an index, e.g. stage.0.ring.teeth"),
+        ("load.fluctuation.a.amplitude_percent=5", "e.g. load.fluctuation.0.amplitude_percent"),
+        ("duty.name.hours=3", "e.g. duty.0.hours"),  # a key holding a value, not a table: not kept before "hours"
         ("input.speed_rpm.x=3", "input.speed_rpm is a value, not a table"),
         ("input.speed_rpm", "expected KEY=VALUE"),
         ("=3", "expected KEY=VALUE"),

@@ -1,0 +1,71 @@
+"""The response plot's y axes: a statistic that is constant to roundoff is drawn as the constant it is.
+
+An unexcited scene's sweep rows are its equilibrium (docs/sweeps.md): F_t std 0, DTE rms 0, dynamic factor 1 and
+the same mean F_t at every speed, each to the last bits of a double. Before, matplotlib autoscaled those panels to
+the roundoff (a "F_t standard deviation" axis of 0 to 9e-13 N, a mean of "1e-9 + 3.715366283e3"), so the seed
+speed sweep of docs/sweeps.md drew noise as if it were a response.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("matplotlib")
+
+from gearcli.io.sweep_plots import _response  # noqa: E402
+from gearcli.sweep.spec import spec_from_options  # noqa: E402
+
+SPEEDS = (300.0, 600.0, 900.0, 1200.0)
+F_T = 1851.1  # N, the seed's stage 1 static tangential force
+DTE = 12.756  # µm, its static deflection
+
+
+def _rows(std, mean_jitter):
+    spec = spec_from_options([f"input.speed_rpm={','.join(map(str, SPEEDS))}"], [], None, "lhs", None, None)
+    rows = []
+    for i, p in enumerate(p for branch in spec.branches() for p in branch):
+        mean = F_T + mean_jitter[i]
+        rows.append({**dict(p.values), "direction": p.direction, "status": "ok",
+                     "stage1_tangential_N_mean": mean, "stage1_tangential_N_min": mean,
+                     "stage1_tangential_N_max": mean, "stage1_tangential_N_std": std[i],
+                     "stage1_dte_um_mean": DTE, "stage1_dte_um_min": DTE, "stage1_dte_um_max": DTE,
+                     "stage1_dte_um_rms": 3.6e-15 * (i % 2), "stage1_contact_loss_fraction": 0.0,
+                     "stage1_dynamic_factor": 1.0 + 4.4e-16 * i, "stage1_runup_factor": 10.0 - 3.0 * i,
+                     "output_speed_rpm": p.values[0][1] / 22.27})
+    return spec, rows
+
+
+def _axis(fig, title):
+    return next(ax for ax in fig.axes if ax.get_title() == f"stage 1: {title}")
+
+
+def test_roundoff_panels_are_drawn_as_constants_at_their_scale():
+    # the roundoff of a double at 1851 N is 2.3e-13 N: the std and mean differ by a few ulps from point to point
+    spec, rows = _rows(std=[4.5e-13, 9.1e-13, 0.0, 6.8e-13], mean_jitter=[0.0, 2.3e-13, -4.5e-13, 0.0])
+    fig = _response(rows, "input.speed_rpm", spec, 1)
+    std = _axis(fig, "F_t standard deviation (N)").get_ylim()
+    # the std axis spans 5 % of the mean force (92.6 N) above zero: a zero std reads as zero, not as noise
+    assert std[0] <= 0.0 <= std[1]
+    assert std[1] == pytest.approx(0.05 * F_T, rel=1e-6)  # 5 % of the mean F_t, the std's scale
+    mean = _axis(fig, "tangential force F_t (N)").get_ylim()
+    assert mean == pytest.approx((0.95 * F_T, 1.05 * F_T), rel=1e-6)  # ±5 % of the force itself
+    rms = _axis(fig, "DTE rms (µm)").get_ylim()
+    assert rms[1] == pytest.approx(0.05 * DTE, rel=1e-6)  # 5 % of the mean DTE, the rms's scale
+    dyn = _axis(fig, "dynamic factor: window max / static F_t (-)").get_ylim()
+    assert dyn == pytest.approx((0.95, 1.05), rel=1e-6)  # a factor's scale is 1
+    for ax in fig.axes:  # no "1e-9 + 3.715e3" offset or "1e-13" multiplier on any axis
+        ax.figure.canvas.draw()
+        assert ax.yaxis.get_major_formatter().get_offset() == "", ax.get_title()
+
+
+def test_a_real_response_keeps_matplotlib_autoscale():
+    """A std that varies by hundreds of newtons (a resonance) and a run-up factor of 10 to 1 are data, not
+    roundoff: their axes cover the data as matplotlib chose them, not a ±5 % band."""
+    spec, rows = _rows(std=[700.0, 430.0, 160.0, 60.0], mean_jitter=[-8.0, -3.0, 1.0, 0.5])
+    fig = _response(rows, "input.speed_rpm", spec, 1)
+    lo, hi = _axis(fig, "F_t standard deviation (N)").get_ylim()
+    assert lo <= 60.0 and hi >= 700.0 and hi < 0.05 * F_T * 10  # autoscaled round the data (60..700 N)
+    lo, hi = _axis(fig, "tangential force F_t (N)").get_ylim()
+    assert lo <= F_T - 8.0 and hi >= F_T + 1.0 and hi - lo < 0.05 * F_T  # a 9 N spread, not pinned to ±92 N
+    lo, hi = _axis(fig, "run-up factor: run peak / static F_t (-)").get_ylim()
+    assert lo <= 1.0 and hi >= 10.0
