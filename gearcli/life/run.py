@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from typing import cast
 
 import numpy as np
 
@@ -543,7 +544,7 @@ def start_record(pd: _PointData, stages: Sequence[StageLife]) -> JsonObject:
     name = label(pd.point.name)
     damage: list[JsonObject] = []
     for st in stages:
-        doc: JsonObject = {}
+        doc: dict[str, dict[str, float]] = {}
         members = [m for m in (*MEMBERS, *RING_MEMBERS) if getattr(st, m, None) is not None]
         for member in (*members, *(("planet_root",) if st.planet_root is not None else ())):
             ml = getattr(st, member) if member != "planet_root" else None
@@ -553,7 +554,7 @@ def start_record(pd: _PointData, stages: Sequence[StageLife]) -> JsonObject:
         if st.planet_ring_side is not None and st.planet_root is not None:  # DESIGN §10's sun, planet (as stages[k])
             doc.update(sun=doc["pinion"], planet={"pitting": doc[planet_flank(st)[1]]["pitting"],
                                                   "bending": doc["planet_root"]["bending"]})
-        damage.append(doc)
+        damage.append(cast(JsonObject, doc))
     bearings: list[JsonObject] = []
     for j, b in enumerate(pd.design.bearings):
         if j < len(pd.start.bearing_peaks):
