@@ -16,12 +16,13 @@ from gearcli.io.life_tables import modified_rows
 from gearcli.io.serialize import bearings_csv, csv_text, plain
 from gearcli.io.table_kit import FittedTable, StageColumns, _g, text
 from gearcli.io.units import OutputUnits
-from gearcli.life.result import LifeResult, ModeLife, StageLife
+from gearcli.life.result import LifeResult, ModeLife, StageLife, planet_flank
 from gearcli.results import DesignResult, drop_absent_bearing_keys
 
 MEMBERS = ("pinion", "gear")
 MODES = ("pitting", "bending")
 RING_MEMBERS = ("ring", "planet_ring_side")  # a planetary stage's planet–ring mesh (after pinion, gear)
+PLANETARY_ALIASES = ("sun", "planet")  # a planetary stage's members under DESIGN §10's names, beside the per-mesh ones
 LABELS = {"pinion": "pinion", "gear": "gear", "ring": "ring", "planet_ring_side": "planet (ring mesh)"}
 ROOT_LABEL = "planet root (both meshes)"
 
@@ -48,8 +49,7 @@ def _planetary_members(st: StageLife, out: JsonObject) -> JsonObject:
     different flanks, independent damages) and its root ``planet_root`` (both meshes' bending on the same root,
     summed); ``ring`` is already there."""
     assert st.planet_ring_side is not None and st.planet_root is not None
-    sides = (("sun_mesh", "gear", st.gear.pitting), ("ring_mesh", "planet_ring_side", st.planet_ring_side.pitting))
-    flank, key, _ = max(sides, key=lambda s: s[2].damage)  # the sun side on a tie (max keeps the first)
+    flank, key = planet_flank(st)  # the sun side on a tie
     pitting = dict(cast(JsonObject, cast(JsonObject, out[key])["pitting"]), flank=flank)
     return {"sun": out["pinion"], "planet": {"pitting": pitting, "bending": cast(JsonObject, out["planet_root"])["bending"]}}
 
@@ -124,6 +124,8 @@ def _start_line(name: str, start: JsonObject) -> RenderableType:
     worst: tuple[float, str] = (0.0, "")
     for k, doc in enumerate(cast("Sequence[dict]", start["damage"])):
         for member, modes in doc.items():
+            if member in PLANETARY_ALIASES:  # the contract's names of entries already counted
+                continue
             for mode, d in modes.items():
                 worst = max(worst, (float(d), f"stage {k + 1} {LABELS.get(member, member)} {mode}"))
     most = f", largest start damage {_g(worst[0], 3)} ({worst[1]})" if worst[1] else ""

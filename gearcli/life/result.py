@@ -60,6 +60,15 @@ class StageLife:
     planet_root: ModeLife | None = None  # bending only
 
 
+def planet_flank(st: StageLife) -> tuple[str, str]:
+    """A planetary stage's planet flank that its ``planet`` entry reports as pitting (DESIGN §10's member names):
+    the more damaged over the duty of its sun-mesh side (``gear``) and its ring-mesh side (``planet_ring_side``),
+    the sun side on a tie; (``flank``, the member key)."""
+    assert st.planet_ring_side is not None
+    ring_side = st.planet_ring_side.pitting.damage > st.gear.pitting.damage
+    return ("ring_mesh", "planet_ring_side") if ring_side else ("sun_mesh", "gear")
+
+
 @dataclass(frozen=True)
 class BearingLife:
     """ISO 281 over the duty: the spectrum's equivalent load and the basic rating life it gives."""

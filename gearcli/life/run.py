@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from typing import cast
 
 import numpy as np
 
@@ -42,7 +43,7 @@ from gearcli.life import spectra, verdicts
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
-from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife
+from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife, planet_flank
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles, start_data
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
@@ -543,14 +544,17 @@ def start_record(pd: _PointData, stages: Sequence[StageLife]) -> JsonObject:
     name = label(pd.point.name)
     damage: list[JsonObject] = []
     for st in stages:
-        doc: JsonObject = {}
+        doc: dict[str, dict[str, float]] = {}
         members = [m for m in (*MEMBERS, *RING_MEMBERS) if getattr(st, m, None) is not None]
         for member in (*members, *(("planet_root",) if st.planet_root is not None else ())):
             ml = getattr(st, member) if member != "planet_root" else None
             modes = {"bending": st.planet_root} if ml is None else {m: getattr(ml, m) for m in MODES}
             doc[member] = {m: sum(b.damage for b in x.bins if b.point == name) for m, x in modes.items()
                            if x is not None}
-        damage.append(doc)
+        if st.planet_ring_side is not None and st.planet_root is not None:  # DESIGN §10's sun, planet (as stages[k])
+            doc.update(sun=doc["pinion"], planet={"pitting": doc[planet_flank(st)[1]]["pitting"],
+                                                  "bending": doc["planet_root"]["bending"]})
+        damage.append(cast(JsonObject, doc))
     bearings: list[JsonObject] = []
     for j, b in enumerate(pd.design.bearings):
         if j < len(pd.start.bearing_peaks):
