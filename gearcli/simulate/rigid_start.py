@@ -76,15 +76,21 @@ def loss_factors(lay: Layout) -> np.ndarray:
     return np.asarray(power_path_loss_factors(lay.spec, list(lay.connectors)), float)
 
 
-def _tangential(lay: Layout, t: np.ndarray, w: np.ndarray, a: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _coefficients(lay: Layout) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """What :func:`_tangential` needs of the layout, once per start: the bodies' ratios and inertias, the connectors'
+    loss factors and the planet meshes' force per unit acceleration and per unit load (the peak search calls it
+    some 20 times a stage: a pseudo-inverse each time cost ~1 ms a sweep point)."""
+    return (np.array([b.ratio for b in lay.bodies]), np.asarray(lay.inertias, float), loss_factors(lay),
+            *_planet_coefficients(lay))
+
+
+def _tangential(lay: Layout, t: np.ndarray, w: np.ndarray, a: np.ndarray,
+                coefficients: tuple | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The load torque, the line force of every connector and F_t of every stage at the rigid state (t, w, dw/dt)
-    (module text)."""
-    rho = np.array([b.ratio for b in lay.bodies])
-    J = np.asarray(lay.inertias, float)
-    f = loss_factors(lay)
+    (module text); ``coefficients``: :func:`_coefficients` of ``lay`` where the caller holds them."""
+    rho, J, f, per_accel, per_load = coefficients if coefficients is not None else _coefficients(lay)
     load = _load_torque(lay, t, w * rho[-1])
     forces = np.zeros((lay.n_conn, t.size))
-    per_accel, per_load = _planet_coefficients(lay)
     for c, x in enumerate(lay.connectors):
         if not x.role:
             continue
@@ -128,7 +134,7 @@ def _planet_coefficients(lay: Layout) -> tuple[np.ndarray, np.ndarray]:
     return per_accel, per_load
 
 
-def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray) -> tuple[float, ...]:
+def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: tuple | None = None) -> tuple[float, ...]:
     """Per stage, the largest |F_t| of the continuous rigid start: the largest over ``times`` (the output grid and
     the integrator's own steps, which follow every fast change of the drive: a star-delta switch-over, the end of a
     ramp), refined by a bounded scalar search between the neighbouring times on the continuous state ``state(t) ->
@@ -136,9 +142,11 @@ def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray) -> tuple[float
     below the peak on 2001 samples over 3 s)."""
     from scipy.optimize import minimize_scalar  # lazy: scipy, start-up time
 
+    coefficients = coefficients if coefficients is not None else _coefficients(lay)
+
     def magnitude(k: int, tt: float) -> float:
         w, a = state(tt)
-        return abs(float(_tangential(lay, np.array([tt]), np.array([w]), np.array([a]))[2][k][0]))
+        return abs(float(_tangential(lay, np.array([tt]), np.array([w]), np.array([a]), coefficients)[2][k][0]))
 
     out = []
     for k in range(ft.shape[0]):
@@ -196,12 +204,13 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
         def state(tt: float) -> tuple[float, float]:
             ww = float(sol.sol(tt)[0]) if sol.success else float(np.interp(tt, sol.t, sol.y[0]))
             return ww, rhs(tt, np.array([ww]))[0]
-    load, forces, ft = _tangential(lay, t, w, a)
+    coefficients = _coefficients(lay)
+    load, forces, ft = _tangential(lay, t, w, a, coefficients)
     # the peaks over the grid and the integrator's steps, each refined on the continuous state
     times = np.unique(np.concatenate((t, steps[(steps >= 0.0) & (steps <= duration_s)])))
     ws_as = np.array([state(float(tt)) for tt in times]) if steps.size else np.column_stack((w, a))
-    ft_all = _tangential(lay, times, ws_as[:, 0], ws_as[:, 1])[2] if steps.size else ft
-    return RigidStart(t, w, a, load, forces, ft, _peaks(lay, state, times, ft_all))
+    ft_all = _tangential(lay, times, ws_as[:, 0], ws_as[:, 1], coefficients)[2] if steps.size else ft
+    return RigidStart(t, w, a, load, forces, ft, _peaks(lay, state, times, ft_all, coefficients))
 
 
 def cause(lay: Layout, rigid: RigidStart, peak_time_s: float, swinging: tuple[float, str, float] | None) -> str:
