@@ -229,16 +229,20 @@ def root_shift(g, choice: str) -> float:
     return {"upper": x_e[0], "lower": x_e[1], "mean": 0.5 * (x_e[0] + x_e[1])}[choice]
 
 
+def member_tooth_depth_mm(g, tip_allowance_mm: list[float] | None) -> float:
+    """A member's tooth depth for K_Fβ's b/h (ISO 6336-1:2006, 7.7): (d_a − d_f)/2, which a tip alteration k
+    shortens, or with tooth-thickness allowances the deepest tooth cut, (d_a + A_dae − d_f,i)/2 (docs/iso6336.md,
+    "Tooth-thickness allowances"). A [0, 0] allowance gives the nominal depth: the two paths meet."""
+    roots = g.manufactured_root_diameter_mm
+    if roots is None:
+        return 0.5 * (g.tip_diameter_mm - g.root_diameter_mm)
+    return manufactured_tooth_depth_mm(g.tip_diameter_mm, tip_allowance_mm, roots)
+
+
 def _tooth_depth_mm(stage, st: StageResult) -> float:
-    """h of K_Fβ's b/h (ISO 6336-1:2006, 7.7, the smaller b/h of the pair): the deeper member's tooth depth
-    (d_a − d_f)/2, which a tip alteration k shortens; with tooth-thickness allowances the deepest tooth cut,
-    (d_a + A_dae − d_f,i)/2 (docs/iso6336.md, "Tooth-thickness allowances"). A [0, 0] allowance gives the nominal
-    depth: the two paths meet."""
-    depths = [manufactured_tooth_depth_mm(g.tip_diameter_mm, part.tip_diameter_allowance_mm, roots)
-              if (roots := g.manufactured_root_diameter_mm) is not None
-              else 0.5 * (g.tip_diameter_mm - g.root_diameter_mm)
-              for g, part in ((st.pinion, stage.pinion), (st.gear, stage.gear))]
-    return max(depths)
+    """h of K_Fβ's b/h: the deeper member's (:func:`member_tooth_depth_mm`; ISO's smaller b/h of the pair)."""
+    return max(member_tooth_depth_mm(g, part.tip_diameter_allowance_mm)
+               for g, part in ((st.pinion, stage.pinion), (st.gear, stage.gear)))
 
 
 def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float | None = None) -> RatingResult:

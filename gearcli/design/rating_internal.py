@@ -24,7 +24,6 @@ from typing import TYPE_CHECKING, cast
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design import resonance as res
-from gearcli.design.allowances import manufactured_tooth_depth_mm
 from gearcli.design.rating import (
     BENDING_LOW,
     HB_PER_HV,
@@ -33,6 +32,7 @@ from gearcli.design.rating import (
     Q_S_RANGE,
     STANDARD,
     STRESS_CORRECTION_TEST_GEAR,
+    member_tooth_depth_mm,
     root_shift,
 )
 from gearcli.design.rating_load import MeshLoad, resolve_load_factors
@@ -46,14 +46,12 @@ if TYPE_CHECKING:
 
 
 def _tooth_depth_mm(stage, planet, ring) -> float:
-    """h of K_Fβ's b/h on the planet–ring mesh (ISO 6336-1:2006, 7.7): the deeper tooth of the pair, (d_a − d_f)/2
-    of the planet and (d_f − d_a)/2 of the ring, each at its deepest cut where tooth-thickness allowances are given
-    (the external members' rule, gearcli.design.rating)."""
-    roots = planet.manufactured_root_diameter_mm
-    planet_depth = (manufactured_tooth_depth_mm(planet.tip_diameter_mm, stage.planet.tip_diameter_allowance_mm, roots)
-                    if roots is not None else 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm))
+    """h of K_Fβ's b/h on the planet–ring mesh (ISO 6336-1:2006, 7.7): the deeper tooth of the pair, the planet's
+    as an external member's (:func:`gearcli.design.rating.member_tooth_depth_mm`) and the ring's (d_f − d_a)/2, at
+    its deepest cut where it has a tooth-thickness allowance."""
     ring_root = max(ring.manufactured_root_diameter_mm or (ring.root_diameter_mm,))
-    return max(planet_depth, 0.5 * (ring_root - ring.tip_diameter_mm))
+    return max(member_tooth_depth_mm(planet, stage.planet.tip_diameter_allowance_mm),
+               0.5 * (ring_root - ring.tip_diameter_mm))
 
 
 def _complete(mat: Material, ring_rz: float | None) -> bool:
