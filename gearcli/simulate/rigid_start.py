@@ -85,10 +85,10 @@ def _coefficients(lay: Layout) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.n
 
 
 def _tangential(lay: Layout, t: np.ndarray, w: np.ndarray, a: np.ndarray,
-                coefficients: tuple | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                coefficients: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The load torque, the line force of every connector and F_t of every stage at the rigid state (t, w, dw/dt)
-    (module text); ``coefficients``: :func:`_coefficients` of ``lay`` where the caller holds them."""
-    rho, J, f, per_accel, per_load = coefficients if coefficients is not None else _coefficients(lay)
+    (module text); ``coefficients``: :func:`_coefficients` of ``lay``."""
+    rho, J, f, per_accel, per_load = coefficients
     load = _load_torque(lay, t, w * rho[-1])
     forces = np.zeros((lay.n_conn, t.size))
     for c, x in enumerate(lay.connectors):
@@ -134,15 +134,13 @@ def _planet_coefficients(lay: Layout) -> tuple[np.ndarray, np.ndarray]:
     return per_accel, per_load
 
 
-def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: tuple | None = None) -> tuple[float, ...]:
+def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: tuple) -> tuple[float, ...]:
     """Per stage, the largest |F_t| of the continuous rigid start: the largest over ``times`` (the output grid and
     the integrator's own steps, which follow every fast change of the drive: a star-delta switch-over, the end of a
     ramp), refined by a bounded scalar search between the neighbouring times on the continuous state ``state(t) ->
     (w, dw/dt)``. The output grid alone misses a short peak (a star-delta switch-over against a fan load: 1.8 %
     below the peak on 2001 samples over 3 s)."""
     from scipy.optimize import minimize_scalar  # lazy: scipy, start-up time
-
-    coefficients = coefficients if coefficients is not None else _coefficients(lay)
 
     def magnitude(k: int, tt: float) -> float:
         w, a = state(tt)
