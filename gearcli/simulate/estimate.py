@@ -268,6 +268,11 @@ def stability_limited(choice: Choice, method: str, steps: int) -> bool:
     return steps < STABILITY_LIMITED * choice.indicator / m.stability_radius
 
 
+def tight_rtol(rtol: float) -> float:
+    """The tight check pass's rtol: the run's / :data:`TIGHT_FACTOR`, not below the schema's floor."""
+    return max(rtol / TIGHT_FACTOR, MIN_RTOL)
+
+
 def plan(t_eval: np.ndarray, rtol: float, choice: Choice, window: tuple[float, float],
          stability_bound: bool = False) -> Plan:
     """Where the check pass starts and at which tolerance (module doc); ``stability_bound``: the run is
@@ -279,7 +284,7 @@ def plan(t_eval: np.ndarray, rtol: float, choice: Choice, window: tuple[float, f
     i_s = max(i_s, 0)
     share = (t_eval[-1] - t_eval[i_s]) / max(t_eval[-1] - t_eval[0], 1e-300)
     if TIGHT_FACTOR ** 0.125 * share <= TIGHT_COST or rtol * LOOSE_FACTOR > MAX_RTOL or stability_bound:
-        return Plan(i_w, i_s, max(rtol / TIGHT_FACTOR, MIN_RTOL), 1.0)
+        return Plan(i_w, i_s, tight_rtol(rtol), 1.0)
     return Plan(i_w, i_s, rtol * LOOSE_FACTOR, LOOSE_SAFETY)
 
 
@@ -345,7 +350,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         # the loose check flags a statistic: confirm it with a tight pass over the same span, whose difference
         # is the run's error to first order (a loose pass that rattles differently overstates it 1e5-fold:
         # configs/concrete_mixer_drivetrain.toml, stage 1 max estimated 4.3 of the mean, true 3e-5)
-        rtol, scale = max(run.rtol / TIGHT_FACTOR, MIN_RTOL), 1.0
+        rtol, scale = tight_rtol(run.rtol), 1.0
     if status == STATUS_FINISHED:  # the peaks before the span: a short tight pass of their own
         before, cost = runup_peaks(model, run, choice, ft_all, i_s, max_nfev)
         peaks = tuple(sorted(peaks + before, key=lambda x: x.stage))
@@ -373,7 +378,7 @@ def runup_peaks(model: TorsionalModel, run: Integration, choice: Choice, ft_run:
     idx = np.arange(i_0, min(t.size, last + 2))  # to just past the last peak
     if idx.size < 2:
         return (), (0, 0, 0)
-    rtol = max(run.rtol / TIGHT_FACTOR, MIN_RTOL)
+    rtol = tight_rtol(run.rtol)
     fine, forces, _ = one_pass(model, t, run.y[:, i_0], idx, run.method, rtol, max_nfev, run.engine)
     cost = (fine.nfev, fine.njev, fine.steps)
     if fine.status != STATUS_FINISHED or forces is None:
