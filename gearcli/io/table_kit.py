@@ -160,6 +160,11 @@ def _g(v: float | None, digits: int = 5) -> str:
     return "—" if v is None else f"{v + 0.0:.{digits}g}"  # + 0.0: no negative zero
 
 
+def limits(values: Sequence[float] | None, digits: int) -> str:
+    """A pair or triple of limits ([upper, lower], [e, m, i]) to ``digits`` decimals, "a / b"; "—" where absent."""
+    return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
+
+
 def _table(title: str, columns: Sequence[str], rows: Iterable[tuple[str, Sequence[str]]]) -> FittedTable:
     body = [(label, *cells) for label, cells in rows]  # text(): '[mm]' is a unit, not rich markup
     return FittedTable(title, ["quantity", *columns], body, [False] + [True] * len(columns),

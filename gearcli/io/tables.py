@@ -24,6 +24,7 @@ from gearcli.io.table_kit import (
     StageColumns,
     _g,
     _quantity_table,
+    limits,
     output_width,
     text,
 )
@@ -196,10 +197,6 @@ def _kind_tables(r: DesignResult) -> list[RenderableType]:
                 r, [st for st in r.stages if kinds.kind_of(st) == name])]
 
 
-def _limits(values: Sequence[float] | None, digits: int) -> str:
-    return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
-
-
 def _allowance_table(stages: list) -> list[RenderableType]:
     """Tooth-thickness allowances (ISO 21771): only gear stages that give allowance keys have figures."""
     s = [st for st in stages if st.backlash_circumferential_mm is not None]
@@ -211,13 +208,13 @@ def _allowance_table(stages: list) -> list[RenderableType]:
     one, two = (f"pinion/{named[0][0]}", f"gear/{named[0][1]}") if named else ("pinion", "  gear")
     heads = [f"stage {st.index}" + (f" {n[0]}–{n[1]}" if (n := _kind(st).pair_names) else "") for st in s]
     return [_quantity_table("allowances (ISO 21771): [upper / lower] limits", heads, [
-        (f"{one} x_E e / i", [_limits(st.pinion.generating_profile_shift, 4) for st in s]),
-        (f"{two} x_E e / i", [_limits(st.gear.generating_profile_shift, 4) for st in s]),
-        (f"{one} d_f e / i [mm]", [_limits(st.pinion.manufactured_root_diameter_mm, 3) for st in s]),
-        (f"{two} d_f e / i [mm]", [_limits(st.gear.manufactured_root_diameter_mm, 3) for st in s]),
-        ("backlash j_t max / min [mm]", [_limits(st.backlash_circumferential_mm, 3) for st in s]),
-        ("backlash j_n max / min [mm]", [_limits(st.backlash_normal_mm, 3) for st in s]),
-        ("ε_α e / m / i", [_limits(st.contact_ratio_transverse_with_allowances, 3) for st in s]),
+        (f"{one} x_E e / i", [limits(st.pinion.generating_profile_shift, 4) for st in s]),
+        (f"{two} x_E e / i", [limits(st.gear.generating_profile_shift, 4) for st in s]),
+        (f"{one} d_f e / i [mm]", [limits(st.pinion.manufactured_root_diameter_mm, 3) for st in s]),
+        (f"{two} d_f e / i [mm]", [limits(st.gear.manufactured_root_diameter_mm, 3) for st in s]),
+        ("backlash j_t max / min [mm]", [limits(st.backlash_circumferential_mm, 3) for st in s]),
+        ("backlash j_n max / min [mm]", [limits(st.backlash_normal_mm, 3) for st in s]),
+        ("ε_α e / m / i", [limits(st.contact_ratio_transverse_with_allowances, 3) for st in s]),
     ])]
 
 

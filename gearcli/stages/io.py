@@ -153,9 +153,7 @@ def _ring_allowance_rows(ps) -> list[tuple[str, list[str]]]:
     """The planet–ring mesh's tooth-thickness allowances (docs/planetary.md), where any stage has them."""
     if all(p.planet_ring.backlash_circumferential_mm is None for p in ps):
         return []
-
-    def limits(values, digits: int) -> str:
-        return "—" if values is None else " / ".join(f"{v:.{digits}f}" for v in values)
+    from gearcli.io.table_kit import limits  # lazy: rich, only when tables are made
 
     return [("ring x_E e / i", [limits(p.ring.generating_profile_shift, 4) for p in ps]),
             ("ring d_f e / i [mm]", [limits(p.ring.manufactured_root_diameter_mm, 3) for p in ps]),
