@@ -128,8 +128,8 @@ def _planetary_design(stages: list[StageResult], u: OutputUnits) -> list[Rendera
           for p in _efficiencies(s)]),
         (f"planet speed relative to the carrier [{speed}]", [_g(u.speed_from_deg_s(p.planet.speed_deg_s)) for p in ps]),
         (f"per planet, carrier frame: sun-side / planet torque [{torque}]",  # each the member's own (after its losses)
-         [f"{_g(u.torque_from_Nmm(1000.0 * math.copysign(p.sun.torque_Nm / p.planet_count, st.pinion.torque_Nm)))} / "
-          f"{_g(u.torque_from_Nmm(1000.0 * p.planet.torque_Nm))}" for st, p in zip(s, ps, strict=True)]),
+         [f"{_g(u.torque_from_Nm(math.copysign(p.sun.torque_Nm / p.planet_count, st.pinion.torque_Nm)))} / "
+          f"{_g(u.torque_from_Nm(p.planet.torque_Nm))}" for st, p in zip(s, ps, strict=True)]),
         ("per planet, carrier frame: rolling power [kW]", [_g(abs(st.pinion.power_kW)) for st in s]),
         ("ring d / d_a / d_f [mm]", [f"{_g(p.ring.pitch_diameter_mm)} / {_g(p.ring.tip_diameter_mm)} / "
                                      f"{_g(p.ring.root_diameter_mm)}" for p in ps]),
