@@ -13,6 +13,7 @@ from typing import Annotated, Any, Literal
 from pydantic import ConfigDict, Field, model_validator
 
 from gearcli.config.bounds_types import StrictTable
+from gearcli.config.schema_rules import MAX_TORQUE_NMM
 
 AxialPositionMm = Annotated[float, Field(ge=-1e5, le=1e5)]  # along x from the housing plane, mm
 CenterAngleDeg = Annotated[float, Field(ge=-360.0, le=360.0)]
@@ -89,8 +90,8 @@ class Duty(_Table):
     name: Annotated[str, Field(min_length=1, max_length=60)]
     hours: Annotated[float, Field(gt=0.0, le=1e7)]
     speed_rpm: Annotated[float, Field(ge=1e-3, le=200_000.0)]
-    torque_Nm: Annotated[float, Field(ge=-1e7, le=1e7)] | None = None
-    torque_Nmm: Annotated[float, Field(ge=-1e10, le=1e10)] | None = None
+    torque_Nm: Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=MAX_TORQUE_NMM / 1e3)] | None = None
+    torque_Nmm: Annotated[float, Field(ge=-MAX_TORQUE_NMM, le=MAX_TORQUE_NMM)] | None = None
     power_kW: Annotated[float, Field(ge=-1e6, le=1e6)] | None = None
     set: Annotated[dict[str, Any], Field(max_length=50)] = {}
     starts: Annotated[int, Field(ge=0, le=100_000_000)] = 0  # start-ups over the point's hours (issue 30)

@@ -7,13 +7,14 @@ from typing import Annotated
 from pydantic import ConfigDict, Field, model_validator
 
 from gearcli.config.bounds_types import StrictTable
+from gearcli.config.schema_rules import MAX_TORQUE_NMM
 
 MAX_TABLE = 32
 MAX_RATED_SLIP = 0.25  # high-slip (NEMA D) motors reach ~13 %; 25 % is past any induction motor's nameplate
 NAMEPLATE = ("rated_power_kW", "rated_speed_rpm", "synchronous_speed_rpm", "breakdown_torque_ratio",
              "locked_rotor_torque_ratio")
 
-TablePoint = Annotated[list[Annotated[float, Field(ge=-1e7, le=1e7)]], Field(min_length=2, max_length=2)]
+TablePoint = Annotated[list[Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=MAX_TORQUE_NMM / 1e3)]], Field(min_length=2, max_length=2)]
 Table = Annotated[list[TablePoint], Field(min_length=2, max_length=MAX_TABLE)]
 
 

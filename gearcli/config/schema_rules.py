@@ -16,7 +16,7 @@ from gearcli.config.bounds_types import NotTiny, StrictTable
 
 MAX_SPEED_RPM = 200_000.0  # a turbo-compressor pinion turns at ~60,000 rpm; this is generous
 MIN_SPEED_RPM = 1e-3  # one turn in ~17 hours
-MAX_TORQUE_NMM = 1e10  # 10 MN·m: beyond the largest mill and ship drives
+MAX_TORQUE_NMM = 1e11  # 100 MN·m: a 15 MW wind rotor (~20 MN·m) or a girth-gear mill drive (~12 MN·m) with room to spare
 RPM_TO_RAD_S = 2 * 3.141592653589793 / 60
 MAX_TIME_S = 3600.0  # durations, ramps and windows: one hour of simulated time
 SpeedRpm = Annotated[float, Field(ge=MIN_SPEED_RPM, le=MAX_SPEED_RPM)]
