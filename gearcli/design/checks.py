@@ -19,6 +19,8 @@ Choices where the contract is silent:
   b/d1 ≲ 1.1–1.6 for straddle-mounted pinions depending on hardening, 1.5 taken as the upper end;
   below 0.2 the face is so narrow that the module, not the width, carries the load); normal tip
   thickness s_an < 0.2 m_n (pointed teeth, Niemann/Winter's minimum for through-hardened gears).
+- An intermediate shaft whose gear and next pinion (both helical, parallel stages) have opposite hands: their axial
+  forces add on its bearings (the countershaft rule says one hand on both, so they oppose): a warning.
 """
 
 from __future__ import annotations
@@ -98,6 +100,8 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
     found.append((torque_drive_warning(cfg, required_input_Nm, input_speed_rpm),
                   {"check": "torque_drive_balance", "input_torque_Nm": cfg.input.torque_Nm_value,
                    "required_input_torque_Nm": required_input_Nm}))
+    stages = tuple(stages)
+    found += axial_hand_warnings(stages)
     for k, stage in gear_pairs(stages):
         stage_cfg = cfg.pair(k)
         at: JsonObject = {"stage": stage.index}
@@ -139,6 +143,31 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                                                  "resonance_lower_limit": stage.resonance_lower_limit,
                                                  "resonance_range": stage.resonance_range}))
     return tuple(warning(DESIGN, w, **data) for w, data in found if w)
+
+
+def axial_hand_warnings(stages: tuple[StageResult, ...]) -> list[tuple[str | None, JsonObject]]:
+    """An intermediate shaft between two helical parallel stages whose gear (driven) and pinion (driving) have
+    opposite hands: their axial forces point the same way and add on the shaft's bearings, where one hand on both
+    opposes them (the countershaft rule: a driven and a driving helical gear on one shaft push opposite ways when
+    their hands are the same)."""
+    found: list[tuple[str | None, JsonObject]] = []
+    for prev, nxt in zip(stages, stages[1:], strict=False):
+        if prev.type != "parallel" or nxt.type != "parallel":
+            continue
+        hands = (prev.gear.hand, nxt.pinion.hand)
+        if hands[0] not in HANDS or hands[1] not in HANDS or hands[0] == hands[1]:
+            continue
+        forces = (abs(prev.static_force_N.axial), abs(nxt.static_force_N.axial))
+        shaft = nxt.index
+        message = (f"shaft {shaft}: the stage {prev.index} gear ({hands[0]}) and the stage {nxt.index} pinion "
+                   f"({hands[1]}) on it have opposite hands, so their axial forces add: {forces[0]:.4g} + "
+                   f"{forces[1]:.4g} = {sum(forces):.4g} N on the shaft's locating bearing; with the same hand on "
+                   f'both (stage {nxt.index} pinion "{hands[0]}", its gear "{OPPOSITE[hands[0]]}") they oppose and '
+                   f"leave {abs(forces[0] - forces[1]):.4g} N")
+        found.append((message, {"check": "axial_forces_add", "shaft": shaft, "stage": nxt.index,
+                                "axial_N": list(forces), "net_axial_N": sum(forces),
+                                "opposed_axial_N": abs(forces[0] - forces[1])}))
+    return found
 
 
 def target_speed_warning(cfg: DesignFile, output_speed_rpm: float) -> str | None:

@@ -407,3 +407,33 @@ def test_same_hand_and_double_helical_are_refused(tmp_path, hands, key):
     res, _, path = _check(tmp_path, mn=12.0, beta=30.0, z=(19, 77), hands=hands)
     assert res.exit_code == 2
     assert str(path) in res.output and key in res.output and "Traceback" not in res.output
+
+
+def _axial_on_shaft(hand_gear: str, fa_gear: float, hand_pinion: str, fa_pinion: float) -> float:
+    """The net axial force on an intermediate shaft, by vectors. On the pitch cylinder (axis x, e_θ the running
+    direction) a right-hand tooth line runs along t = sin β e_θ + cos β e_x, so a tooth force normal to it has
+    F_x = −h F_θ tan β (h = +1 right, −1 left). The driven gear k is pushed along its rotation (F_θ = +F_t,k), the
+    driving pinion k+1 is held back by its mate (F_θ = −F_t,k+1): F_x = −h_g F_a,k + h_p F_a,k+1."""
+    h = {"right": 1.0, "left": -1.0}
+    return -h[hand_gear] * fa_gear + h[hand_pinion] * fa_pinion
+
+
+def test_intermediate_shaft_hands_opposite_warns_the_axial_forces_add(tmp_path, mill):
+    """The mill's shafts 2 and 3 carry a gear and a pinion of one hand (axial forces oppose: no warning, checked in
+    test_mill_warnings_are_the_rating_shortfalls_only). Turning stage 2's hands round makes both shafts carry opposite
+    hands: the forces add, and the warning gives the sum and what one hand would leave."""
+    flipped = _mill().replace('hand = "right", profile_shift = 0.4', 'hand = "LEFTX", profile_shift = 0.4')
+    flipped = flipped.replace('hand = "left", profile_shift = 0.1', 'hand = "right", profile_shift = 0.1')
+    flipped = flipped.replace("LEFTX", "left")
+    d = _json(tmp_path, flipped)
+    hands = [("right", "left"), ("right", "left")]  # (gear k, pinion k+1) on shafts 2 and 3
+    warned = {w["shaft"]: w for w in d["warnings"] if w.get("check") == "axial_forces_add"}
+    assert sorted(warned) == [2, 3]
+    for shaft, (hg, hp) in zip((2, 3), hands, strict=True):
+        fa = (hand_stages()[shaft - 2]["fa"], hand_stages()[shaft - 1]["fa"])
+        w = warned[shaft]
+        assert_allclose(w["axial_N"], fa, rtol=RTOL)
+        assert_allclose(abs(_axial_on_shaft(hg, fa[0], hp, fa[1])), fa[0] + fa[1], rtol=1e-12)
+        assert_allclose(w["net_axial_N"], abs(_axial_on_shaft(hg, fa[0], hp, fa[1])), rtol=RTOL)
+        assert_allclose(w["opposed_axial_N"], abs(_axial_on_shaft(hg, fa[0], hg, fa[1])), rtol=RTOL)
+    assert all(w.get("check") != "axial_forces_add" for w in mill["warnings"])
