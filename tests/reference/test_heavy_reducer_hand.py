@@ -437,3 +437,30 @@ def test_intermediate_shaft_hands_opposite_warns_the_axial_forces_add(tmp_path, 
         assert_allclose(w["net_axial_N"], abs(_axial_on_shaft(hg, fa[0], hp, fa[1])), rtol=RTOL)
         assert_allclose(w["opposed_axial_N"], abs(_axial_on_shaft(hg, fa[0], hg, fa[1])), rtol=RTOL)
     assert all(w.get("check") != "axial_forces_add" for w in mill["warnings"])
+
+
+B_RANGES = (4, 10, 20, 40, 80, 160, 250, 400, 650, 1000)
+
+
+def test_mill_estimated_face_load_factor_by_method_c(tmp_path):
+    """Without face_load_factor, K_Hβ by ISO 6336-1 method C (pinion centred between bearings, no lead
+    correction): F_βx = max(1.33 f_sh + f_Hβ, 0.005 F_m/b, 0.5 f_Hβ), f_sh = 0.023 F_m/b (b/d1)², F_m = F_t K_A K_v;
+    y_β = 0.15 F_βx ≤ 6 µm (case-carburized), 320/σ_Hlim F_βx (through-hardened, v ≤ 5 m/s), the pair's mean;
+    K_Hβ = 1 + c_γβ (F_βx − y_β)/(2 F_m/b). f_Hβ (ISO 1328-1, 0.07 √d + 0.45 √b + 3 for class 5) is taken at the
+    smaller wheel's d1 and the smaller face width, as docs/iso6336.md says (the wheel's larger d would give
+    0.3–0.8 % more K_Hβ here)."""
+    d = _json(tmp_path, _mill().replace("face_load_factor = 1.2\n", ""))
+    for g, s, spec in zip(hand_stages(), d["stages"], STAGES, strict=True):
+        grade, mats = spec[8], spec[11]
+        st = hh.stiffness(g, K_A)
+        k_v = hh.k_v_subcritical(g, st, grade, K_A, _running_in(mats))
+        dm, bm = hh._mean_of_range(g["d"][0], hh.D_RANGES), hh._mean_of_range(g["bmin"], B_RANGES)
+        f_hb = hh._round_1328((0.07 * math.sqrt(dm) + 0.45 * math.sqrt(bm) + 3) * 2 ** ((grade - 5) / 2))
+        f_m = g["ft"] * K_A * k_v / g["bmin"]
+        f_bx = max(1.33 * 0.023 * f_m * (g["bmin"] / g["d"][0]) ** 2 + f_hb, 0.005 * f_m, 0.5 * f_hb)
+        y_b = 0.5 * sum(min(0.15 * f_bx, 6.0) if m["t"] == "Eh" else 320 / m["hlim"] * f_bx for m in mats)
+        k_hb = 1 + st["c_gb"] * (f_bx - y_b) / (2 * f_m)
+        assert k_hb <= 2
+        r = s["rating"]
+        assert r["K_Hbeta_source"] == "estimated"
+        assert_allclose(r["K_Hbeta"], k_hb, rtol=RTOL)
