@@ -464,3 +464,19 @@ def test_mill_estimated_face_load_factor_by_method_c(tmp_path):
         r = s["rating"]
         assert r["K_Hbeta_source"] == "estimated"
         assert_allclose(r["K_Hbeta"], k_hb, rtol=RTOL)
+
+
+@pytest.mark.parametrize(("beta", "z1", "x1", "warned"), [(35.0, 13, 1.5, True), (40.0, 11, 1.5, True),
+                                                          (20.0, 14, 1.1, True), (35.0, 13, 1.2, False),
+                                                          (20.0, 14, 0.95, False)])
+def test_thin_tip_on_high_helix_pinions(tmp_path, beta, z1, x1, warned):
+    """s_an on the tip of a high-helix long-addendum pinion (the tip helix β_a = atan(tan β d_a/d)), by hand, against
+    0.2 m_n: the warning fires exactly below it and carries the hand figure."""
+    _, d, _ = _check(tmp_path, mn=12.0, beta=beta, z=(z1, 60), x=(x1, 0.0), b=200.0)
+    g = hh.pair(12.0, 20.0, beta, (z1, 60), (x1, 0.0), (200.0, 200.0), 1.0, 1.0)
+    s_an = hh.tip_thickness(g, 0)
+    assert (s_an < 0.2 * 12.0) == warned
+    w = _checks(d).get("tip_thickness")
+    assert (w is not None) == warned
+    if warned:
+        assert_allclose(w["tip_thickness_mm"], s_an, rtol=1e-9)
