@@ -294,6 +294,24 @@ def test_mill_modes_are_the_four_shaft_chain(tmp_path, mill):
     tool_free = [m["frequency_Hz"] for m in modes["boundaries"]["free"]]
     assert tool_free[0] == 0.0
     assert_allclose(tool_free[1:], free, rtol=1e-9)
+    # modal damping of the default mesh law (DESIGN §6/§13): c = 2 ζ √(k_n m_e), ζ = 0.05, k_n = k_t / cos² β_b the
+    # normal stiffness, m_e = J_p J_g / (J_p r_bg² + J_g r_bp²) (the speed-driven input: m_e = J_g / r_bg²), acting
+    # on the transverse q̇; the damped clamped-input modes from the state matrix's complex eigenvalues
+    damp = np.zeros((4, 4))
+    for k, g in enumerate(hand_stages()):
+        k_n = hh.stiffness(g, K_A)["c_ga"] * g["bmin"] * 1e6 / math.cos(g["bb"]) ** 2
+        rp, rg = g["db"][0] / 2e3, g["db"][1] / 2e3
+        j_p, j_g = inertia[k], inertia[k + 1]
+        m_e = j_g / rg ** 2 if k == 0 else j_p * j_g / (j_p * rg ** 2 + j_g * rp ** 2)
+        lever = np.zeros(4)
+        lever[k], lever[k + 1] = rp, -rg
+        damp += 2 * 0.05 * math.sqrt(k_n * m_e) * np.outer(lever, lever)
+    jc = np.diag(inertia[1:])
+    state = np.block([[np.zeros((3, 3)), np.eye(3)],
+                      [-np.linalg.solve(jc, stiff[1:, 1:]), -np.linalg.solve(jc, damp[1:, 1:])]])
+    poles = sorted((e for e in np.linalg.eigvals(state) if e.imag > 0), key=abs)
+    assert_allclose([m["damping_ratio"] for m in modes["boundaries"]["clamped_input"]],
+                    [-e.real / abs(e) for e in poles], rtol=1e-6)
 
 
 def test_mill_simulated_steady_forces_are_the_static_ones(tmp_path, mill):
