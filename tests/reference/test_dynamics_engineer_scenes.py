@@ -437,3 +437,33 @@ def test_a_run_too_costly_for_its_stiffness_is_refused_with_the_duration_that_fi
     out = _run(tmp_path, TWO_STAGE.format(k_shaft=1.0), "simulate", "--set", "stage[0].mesh.stiffness=1e14",
                "--set", "simulation.duration_s=0.2", code=2)
     assert "simulation.duration_s" in out["stderr"] and "Traceback" not in out["stderr"]
+
+
+def _up_front_refusal(tmp_path, *sets: str) -> str:
+    args = [x for s in sets for x in ("--set", s)]
+    return _run(tmp_path, ONE_SPUR, "simulate", "--set", "stage[0].pinion.inertia_kg_m2=1e-6", *args, code=2)["stderr"]
+
+
+def test_the_up_front_cost_estimate_holds_a_speed_driven_input_pinion_still(tmp_path):
+    """The speed drive prescribes the input pinion's motion: it has no degree of freedom, so its inertia (here a
+    1e-6 kg m^2 pinion) makes no vibration. The only mode is the gear on the mesh, f = sqrt(k r_bg^2 / J_g) / 2 pi
+    = 802.6 Hz (modes' clamped_input), and the estimate is 30 evaluations per radian: 3600 s need
+    30 x 2 pi 802.6 x 3600 = 5.4e8, over the 5e8 limit, refused with the duration that fits, 5e8 / (30 x 2 pi 802.6)
+    = 3.3e3 s. Before, the estimate took the free pair's sqrt(k (r_bp^2 / J_p + r_bg^2 / J_g)) = 1.2e5 Hz, a mode
+    the model does not have, and refused every run beyond 22 s (a 30-s run takes ~5e3 evaluations)."""
+    a = math.radians(20)
+    r_bp, r_bg = 0.040 * math.cos(a), 0.120 * math.cos(a)
+    f_gear = math.sqrt(4e8 * r_bg**2 / 0.2) / (2 * math.pi)
+    msg = _up_front_refusal(tmp_path, "simulation.duration_s=3600")
+    assert f"fastest oscillation {f_gear:.3g} Hz over 3600 s" in msg, msg
+    assert f"simulation.duration_s ≤ {5e8 / (30 * 2 * math.pi * f_gear):.3g}" in msg, msg
+    # a motor on a coupling follows the profile instead, and the pinion is free: the free pair's frequency counts
+    f_pair = math.sqrt(4e8 * (r_bp**2 / 1e-6 + r_bg**2 / 0.2)) / (2 * math.pi)
+    msg = _up_front_refusal(tmp_path, "simulation.duration_s=3600", "input.inertia_kg_m2=0.5",
+                            "input.coupling_stiffness_Nm_rad=1e4")
+    assert f"fastest oscillation {f_pair:.3g} Hz over 3600 s" in msg, msg
+    # and the 30-s run the old estimate refused runs (the implicit method steps over the quiet gear mode)
+    out = _run(tmp_path, ONE_SPUR, "simulate", "--set", "stage[0].pinion.inertia_kg_m2=1e-6", "--set",
+               "simulation.duration_s=30", "--set", "simulation.method=auto")
+    assert_allclose(out["summary"]["ratio"], 3.0, rtol=1e-9)
+    assert_allclose(out["summary"]["natural_frequencies_Hz"], [f_gear], rtol=1e-9)
