@@ -8,7 +8,8 @@ JSON with ``--series`` 5.6 GB for 2e6 x 19 values) and are rounded up here. A ru
 
 Cost. An adaptive integrator's cost follows ``max|lambda| T``: the fastest oscillation of the linearised
 train times the duration (gearcli.simulate.guards). Estimated here from the design alone (no scipy): each
-mesh's own angular frequency ``sqrt(k (r_b1^2 / J_1 + r_b2^2 / J_2))`` with the linearised stiffness at
+mesh's own angular frequency ``sqrt(k (r_b1^2 / J_1 + r_b2^2 / J_2))`` (a speed-driven input shaft without a
+motor coupling has no degree of freedom: J_1 infinite, as in the model) with the linearised stiffness at
 the static load (at least the stiffness of a 1 um approach, so an unloaded mesh is not free), the mesh
 frequency when the stiffness varies in time, times the highest harmonic of a mesh excitation
 (transmission error, stiffness harmonics), the highest input torque-ripple order times the input speed and
@@ -104,6 +105,8 @@ def check_memory(cfg, *, fmt: str, series: bool, source: str, steps: int | None 
 def fastest_rad_s(cfg, design) -> float:
     """The fastest angular frequency the integrator must follow, from the design (see the module text)."""
     inertia = [sh.inertia_kg_m2 for sh in design.shafts]
+    if _input_prescribed(cfg):
+        inertia[0] = math.inf  # no degree of freedom: infinitely heavy, as the model's damping sizes it (model.assembly)
     fastest = 0.0
     for k, st in enumerate(design.stages):  # each stage as its kind puts it in the model (gearcli.stages)
         kind = kinds.facet(kinds.kind_of(st), "design")
@@ -111,6 +114,12 @@ def fastest_rad_s(cfg, design) -> float:
     fastest = max([fastest] + [r.order * cfg.input.speed_rad_s_value for r in cfg.input.torque_ripple]
                   + [2 * math.pi * f.frequency_Hz for f in cfg.load.fluctuation])
     return fastest
+
+
+def _input_prescribed(cfg) -> bool:
+    """Shaft 1 follows the speed profile itself (``drive = "speed"`` without a motor on a coupling): its motion is
+    given, so its inertia takes part in no vibration; a coupled motor leaves it free (the motor follows the profile)."""
+    return cfg.input.drive == "speed" and cfg.input.coupling_stiffness_Nm_rad is None
 
 
 def evaluations_estimate(cfg, design, rtol: float) -> float:
