@@ -29,16 +29,18 @@ DUTY_WIDE_KEYS = frozenset({"rating.required_life_h", "rating.min_safety_pitting
 MAX_BEARINGS = 200
 
 
-def set_paths(key: str, value: Any) -> list[str]:
-    """The dotted paths of the keys a duty point's ``set`` entry writes: its key read as ``--set`` reads it
-    (``input."speed_rpm"`` and ``stage[0]`` are ``input.speed_rpm`` and ``stage.0``), and, where the value is a
-    table (``{"input" = {"speed_rpm" = 3}}`` replaces the whole [input]), every key under it."""
+def set_paths(key: str, value: Any) -> list[tuple[str, str]]:
+    """The keys a duty point's ``set`` entry writes, each as (written, its dotted path): the key read as ``--set``
+    reads it (``input."speed_rpm"`` and ``stage[0]`` are ``input.speed_rpm`` and ``stage.0``), and, where the value
+    is a table (``{"input" = {"speed_rpm" = 3}}`` replaces the whole [input]), every key under it."""
     from gearcli.config.overrides import split_key  # lazy: overrides imports the schema, which imports this module
 
-    head = ".".join(seg for seg, _ in split_key(key))
+    head = ".".join(seg for seg, _ in split_key(key)).replace(" ", "")
+    out = [(key.strip(), head)]
     if isinstance(value, dict):
-        return [head] + [p for k, v in value.items() for p in set_paths(f"{head}.{_quoted(str(k))}", v)]
-    return [head]
+        out += [(f"{key.strip()}.{k}", p) for k, v in value.items()
+                for _, p in set_paths(f"{head}.{_quoted(str(k))}", v)]
+    return out
 
 
 def _quoted(segment: str) -> str:
@@ -125,16 +127,16 @@ class Duty(_Table):
         if len(given) != 1:
             raise ValueError(f"give exactly one of {', '.join(DUTY_TORQUE_KEYS)}"
                              + (f" (got {', '.join(given)})" if given else ""))
-        paths = [p.replace(" ", "") for k, v in self.set.items() for p in set_paths(k, v)]
-        own = [p for p in paths if p in POINT_OWN_KEYS]
+        paths = [pair for k, v in self.set.items() for pair in set_paths(k, v)]
+        own = [shown for shown, p in paths if p in POINT_OWN_KEYS]
         if own:
             raise ValueError(f"set: {own[0]} is the point's own: its torque is {given[0]}, its speed speed_rpm, "
                              "K_A = 1 (the spectrum is the load); a set of it would contradict the point reported")
-        wide = [p for p in paths if p in DUTY_WIDE_KEYS or p.split(".")[0] == "duty"]
+        wide = [shown for shown, p in paths if p in DUTY_WIDE_KEYS or p.split(".")[0] == "duty"]
         if wide:
             raise ValueError(f"set: {wide[0]} is the duty's, not a point's: the duty's hours, required life and "
                              "minimum safeties judge all its points together; set it in the file itself")
-        hardware = [p for p in paths if p.startswith("bearing")]
+        hardware = [shown for shown, p in paths if p.startswith("bearing")]
         if hardware:
             raise ValueError(f"set: {hardware[0]}: a bearing is the same at every duty point (its catalogue data, place "
                              "and reliability hold over the whole duty, which its L10, L_nm and s_0 sum); set it in "

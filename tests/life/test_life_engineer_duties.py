@@ -369,11 +369,12 @@ STEP = '\n[[duty]]\nname = "x"\nhours = 20000\ntorque_Nm = 900\nspeed_rpm = 1000
     # and 900 N·m while the damage was computed at 3 rpm / 3 N·m
     ('set = { input = { speed_rpm = 3 } }', "input.speed_rpm"),
     ('set = { load = { torque_Nm = 3, ramp_s = 0.05 } }', "load.torque_Nm"),
-    ("set = { 'input.\"speed_rpm\"' = 3 }", "input.speed_rpm"),  # a quoted segment, as --set reads it
+    ("set = { 'input.\"speed_rpm\"' = 3 }", 'input."speed_rpm"'),  # a quoted segment, as --set reads it
     ('set = { "stage[0].gear.teeth" = 61, "load.application_factor" = 2 }', "load.application_factor"),
     # the duty's verdicts read the first step's file: its set moved the duty's required life and minimum safety
     ('set = { "rating.required_life_h" = 5 }', "rating.required_life_h"),
     ('set = { rating = { min_safety_pitting = 3 } }', "rating.min_safety_pitting"),
+    ('set = { "stage[0].gear.teeth" = 61, "bearing[0].reliability_percent" = 95 }', "bearing[0].reliability_percent"),
     ('set = { "duty.0.hours" = 5 }', "duty.0.hours"),
     ('set = { bearing = [] }', "bearing"),
 ])
@@ -559,3 +560,53 @@ def test_the_unloaded_reference_floor_by_hand():
     assert_allclose(force_floors_N(model, 1e-6), [line * math.cos(ALPHA)], rtol=1e-9)
     # far below a loaded mesh's reference (7500 N at 900 N·m) and far above round-off (1e-11 N)
     assert 1e-3 < force_floors_N(model, 1e-6)[0] < 100.0
+
+
+# --- starts, and hours that are not the required life -------------------------------------------------------------
+
+def test_starts_add_their_own_cycles_and_damage_by_hand(tmp_path):
+    """50 starts on the full-load step: each start is the run from rest to the window (the file's 0.05 s speed ramp,
+    then full speed), 1500/60 x (t_w - 0.05/2) input revolutions; the pinion turns with the input, the gear 1/3 as
+    fast, one tooth contact per turn each. The start's classes are rated on the same S–N curve (written out above)
+    and add exactly their own damage."""
+    n_starts, hours = 50, 20000.0
+    text = PAR_BASE + _duty((("full", hours, 900.0, 1500.0),)).replace('name = "full"', f'name = "full"\nstarts = {n_starts}')
+    life = _run(tmp_path, text)["life"]
+    start = life["points"][0]["start"]
+    assert start["count"] == n_starts
+    t_w = start["span_s"][1]
+    revs = 1500.0 / 60.0 * (t_w - 0.05 / 2.0)  # the ramp's half plus the rest at speed
+    assert_allclose(start["input_revolutions"], revs, rtol=1e-9)
+    # the ramp's inertia torque on top of the load: the start's peak is above the static 7500 N, by a few per cent
+    assert 7500.0 < start["peak_tangential_N"][0] < 1.1 * 7500.0
+    for member, speed, nodes in (("pinion", 1.0, ZNT_CASE), ("gear", 1.0 / U, ZNT_CASE)):
+        ml = life["stages"][0][member]["pitting"]
+        own = [b for b in ml["bins"] if b["point"] == "full (start)"]
+        steady = [b for b in ml["bins"] if b["point"] == "full"]
+        assert_allclose(sum(b["cycles"] for b in own), n_starts * revs * speed, rtol=1e-9)
+        assert_allclose(sum(b["cycles"] for b in steady), hours * 60.0 * 1500.0 * speed, rtol=1e-9)
+        d_start = sum(b["cycles"] / _cycles_to_failure(b["stress_MPa"] / b["endurance_MPa"], nodes) for b in own)
+        assert_allclose(start["damage"][0][member]["pitting"], d_start, rtol=1e-9)
+        assert_allclose(ml["damage"], d_start + sum(b["damage"] for b in steady), rtol=1e-9)
+    for b in life["bearings"]:
+        speed = 1500.0 if b["shaft"] == 1 else 500.0
+        assert_allclose(b["revolutions"], hours * 60.0 * speed + n_starts * revs * speed / 1500.0, rtol=1e-12)
+
+
+def test_hours_that_do_not_add_up_to_the_required_life(tmp_path):
+    """The same spectrum as time shares (0.2 / 0.6 / 0.01 / 0.19 = 100 % of 1 h) instead of hours over the 20 000 h:
+    a `duty` warning names the sum; D scales with the hours (every class's cycles do), the life in hours does
+    not, and the load multiplier is that of D over 1 h."""
+    shares = tuple((n, h / 20000.0, t, s) for n, h, t, s in STEPS)
+    full = _run(tmp_path, PAR, "--static")
+    frac = _run(tmp_path, PAR_BASE + _duty(shares), "--static")
+    assert not [w for w in full["warnings"] if w["code"] == "duty"]
+    said = [w for w in frac["warnings"] if w["code"] == "duty"]
+    assert len(said) == 1 and said[0]["hours"] == pytest.approx(1.0) and said[0]["required_life_h"] == 20000.0
+    a, b = full["life"]["stages"][0]["pinion"]["pitting"], frac["life"]["stages"][0]["pinion"]["pitting"]
+    assert_allclose(b["damage"], a["damage"] / 20000.0, rtol=1e-9)
+    assert b["load_multiplier"] > a["load_multiplier"]
+    # the bearings: the same equivalent load and lives (revolutions scale, the p-mean does not)
+    for x, y in zip(full["life"]["bearings"], frac["life"]["bearings"], strict=True):
+        assert_allclose(y["equivalent_load_N"], x["equivalent_load_N"], rtol=1e-9)
+        assert_allclose(y["L10_h"], x["L10_h"], rtol=1e-9)
