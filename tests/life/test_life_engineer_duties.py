@@ -610,3 +610,20 @@ def test_hours_that_do_not_add_up_to_the_required_life(tmp_path):
     for x, y in zip(full["life"]["bearings"], frac["life"]["bearings"], strict=True):
         assert_allclose(y["equivalent_load_N"], x["equivalent_load_N"], rtol=1e-9)
         assert_allclose(y["L10_h"], x["L10_h"], rtol=1e-9)
+
+
+@pytest.mark.parametrize("variant", ["elementary", "modified"])
+def test_miner_variants_below_the_knee_by_hand(tmp_path, variant):
+    """ISO 6336-6's Miner variants on the same bins: elementary continues the finite-life slope k (static node 1e5
+    at 1.6, knee 5e7 at 1.0: k = ln 500 / ln 1.6 = 13.22) below the knee; modified (Haibach) uses 2k - 1 there."""
+    life = _run(tmp_path, PAR, "--static", "--miner", variant)["life"]
+    assert variant in life["miner"].lower() or "haibach" in life["miner"].lower()
+    k = math.log(5e7 / 1e5) / math.log(1.6)
+    assert_allclose(k, 13.22, rtol=1e-3)
+    for b in life["stages"][0]["pinion"]["pitting"]["bins"]:
+        if b["stress_MPa"] == 0.0:
+            continue
+        ratio = b["stress_MPa"] / b["endurance_MPa"]
+        assert ratio < 1.0  # every loaded step of this duty lies below the knee
+        n_f = 1e5 * (1.6 / ratio) ** k if variant == "elementary" else 5e7 * (1.0 / ratio) ** (2.0 * k - 1.0)
+        assert_allclose(b["cycles_to_failure"], n_f, rtol=1e-9)
