@@ -627,3 +627,54 @@ def test_miner_variants_below_the_knee_by_hand(tmp_path, variant):
         assert ratio < 1.0  # every loaded step of this duty lies below the knee
         n_f = 1e5 * (1.6 / ratio) ** k if variant == "elementary" else 5e7 * (1.0 / ratio) ** (2.0 * k - 1.0)
         assert_allclose(b["cycles_to_failure"], n_f, rtol=1e-9)
+
+
+CENTRAL_BEARINGS = """
+[[bearing]]
+shaft = 1
+position_mm = 20
+dynamic_load_rating_kN = 20
+kind = "ball"
+locating = true
+fatigue_load_limit_kN = 1
+pitch_diameter_mm = 40
+static_load_rating_kN = 10
+
+[[bearing]]
+shaft = 1
+position_mm = 180
+dynamic_load_rating_kN = 20
+kind = "ball"
+
+[[bearing]]
+shaft = 2
+position_mm = 150
+dynamic_load_rating_kN = 50
+kind = "roller"
+locating = true
+"""
+
+
+def test_central_members_of_equally_spaced_planets_carry_no_bearing_load(tmp_path):
+    """Three identical planets 120° apart: their radial forces on the sun (and through the pins on the carrier) sum
+    to zero, spur teeth add no axial force: P = 0, L10 = (C/P)^p unbounded (JSON null), and the tables print ∞ as
+    they do for a gear's infinite life (they printed "—", the sign of a figure not computed)."""
+    text = PLANET + CENTRAL_BEARINGS + "\n[[bearing]]\nshaft = 2\nposition_mm = 250\ndynamic_load_rating_kN = 50\n" \
+        'kind = "roller"\n' + _duty(P_STEPS)
+    life = _run(tmp_path, text, "--static")["life"]
+    central = [b for b in life["bearings"] if b["shaft"] in (1, 2)]
+    assert len(central) == 4
+    for b in central:
+        assert b["equivalent_load_N"] == 0.0 and b["L10_Mrev"] is None and b["L10_h"] is None
+    assert central[0]["L_nm_Mrev"] is None and central[0]["static_safety"] is None
+    path = tmp_path / "table.toml"
+    path.write_text(text)
+    res = CliRunner().invoke(cli, ["-q", "life", str(path), "--static", "--format", "table"], terminal_width=250)
+    assert res.exit_code == 0, res.output
+    rows = {line.split("│")[1].strip(): [c.strip() for c in line.split("│")[2:-1]]
+            for line in res.output.splitlines() if line.count("│") > 3}
+    # bearings 1, 2: the planet pins (finite); 3-6: the sun's and the carrier's (unloaded)
+    assert rows["L10 [10^6 rev]"][2:] == ["∞"] * 4 and rows["L10h [h]"][2:] == ["∞"] * 4
+    assert rows["L10 [10^6 rev]"][0] not in ("∞", "—")
+    assert rows["L_nm [10^6 rev]"][2] == "∞" and rows["L_nm [10^6 rev]"][3] == "—"  # no C_u: not computed
+    assert next(v for k, v in rows.items() if k.startswith("static safety s_0"))[2] == "∞"
