@@ -678,3 +678,21 @@ def test_central_members_of_equally_spaced_planets_carry_no_bearing_load(tmp_pat
     assert rows["L10 [10^6 rev]"][0] not in ("∞", "—")
     assert rows["L_nm [10^6 rev]"][2] == "∞" and rows["L_nm [10^6 rev]"][3] == "—"  # no C_u: not computed
     assert next(v for k, v in rows.items() if k.startswith("static safety s_0"))[2] == "∞"
+
+
+@pytest.mark.parametrize("second", ["full", "full (start)"])
+def test_each_duty_point_has_a_name_of_its_own(tmp_path, second):
+    """Two points named "full", each with 100 starts, reported each a start damage of 5.435e-12 (their start
+    classes merged by name), the damage of 200 starts: exit 2 naming the second point's name now; so is a point
+    named as the first one's start classes. Without starts "full (start)" names no start classes and is a name."""
+    def point(name: str, starts: int) -> str:
+        return f'\n[[duty]]\nname = "{name}"\nhours = 10000\nstarts = {starts}\ntorque_Nm = 900\nspeed_rpm = 1500\n'
+
+    path = tmp_path / "scene.toml"
+    path.write_text(PAR_BASE + point("full", 100) + point(second, 100))
+    res = CliRunner().invoke(cli, ["life", str(path), "--static"])
+    assert res.exit_code == 2 and str(path) in res.output and "duty[1].name" in res.output, res.output
+    assert repr(second) in res.output and "Traceback" not in res.output
+    path.write_text(PAR_BASE + point("full", 0) + point(second, 0))
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "-q"])
+    assert (res.exit_code == 0) is (second == "full (start)"), res.output
