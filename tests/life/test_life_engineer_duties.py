@@ -496,6 +496,13 @@ def test_planetary_cycles_per_member_and_the_pin_bearings_by_hand(tmp_path):
     assert_allclose(full["stress_MPa"], ring["sigma_H_MPa"], rtol=1e-12)
     assert_allclose(full["cycles_to_failure"], _cycles_to_failure(full["stress_MPa"] / sigma_inf, ZNT_THROUGH),
                     rtol=1e-9)
+    # and its root on Y_NT of through-hardened steel (static node 1e4 at 2.5, ISO 6336-3 Table 3)
+    assert_allclose(ring["Y_NT"], _factor(n_l, YNT_THROUGH), rtol=1e-12)
+    sigma_f_inf = ring["sigma_FG_MPa"] / _factor(n_l, YNT_THROUGH)
+    root = next(b for b in stage["ring"]["bending"]["bins"] if b["point"] == "full")
+    assert_allclose(root["stress_MPa"], ring["sigma_F_MPa"], rtol=1e-12)
+    assert_allclose(root["cycles_to_failure"], _cycles_to_failure(root["stress_MPa"] / sigma_f_inf, YNT_THROUGH),
+                    rtol=1e-9)
     # the planet pins: per planet F_t = T_sun / (N r_sun), T_sun = T_out / (1 + z_r / z_s); the sun and the ring push
     # the planet the same way: 2 F_t K_gamma on the pin, half on each bearing (symmetric at 85 / 115 mm)
     for b in life["bearings"]:
