@@ -23,7 +23,29 @@ MAX_DUTY_POINTS = 200
 POINT_OWN_KEYS = frozenset({"input.speed_rpm", "input.speed_deg_s", "input.speed_rad_s", "input.torque_Nm",
                             "input.torque_Nmm", "input.power_kW", "load.torque_Nm", "load.torque_Nmm",
                             "load.power_kW", "load.torque_speed", "load.application_factor"})
+#: the keys that judge or make the duty as a whole (its required life, minimum safeties, its points): the same for
+#: every point, so a point's ``set`` may not give them (the duty's verdicts would follow one point's)
+DUTY_WIDE_KEYS = frozenset({"rating.required_life_h", "rating.min_safety_pitting", "rating.min_safety_bending",
+                            "rating.min_static_safety_bearing"})
 MAX_BEARINGS = 200
+
+
+def set_paths(key: str, value: Any) -> list[tuple[str, str]]:
+    """The keys a duty point's ``set`` entry writes, each as (written, its dotted path): the key read as ``--set``
+    reads it (``input."speed_rpm"`` and ``stage[0]`` are ``input.speed_rpm`` and ``stage.0``), and, where the value
+    is a table (``{"input" = {"speed_rpm" = 3}}`` replaces the whole [input]), every key under it."""
+    from gearcli.config.overrides import split_key  # lazy: overrides imports the schema, which imports this module
+
+    head = ".".join(seg for seg, _ in split_key(key)).replace(" ", "")
+    out = [(key.strip(), head)]
+    if isinstance(value, dict):
+        out += [(f"{key.strip()}.{k}", p) for k, v in value.items()
+                for _, p in set_paths(f"{head}.{_quoted(str(k))}", v)]
+    return out
+
+
+def _quoted(segment: str) -> str:
+    return f'"{segment}"' if "." in segment or '"' in segment else segment
 
 
 class _Table(StrictTable):
@@ -106,11 +128,16 @@ class Duty(_Table):
         if len(given) != 1:
             raise ValueError(f"give exactly one of {', '.join(DUTY_TORQUE_KEYS)}"
                              + (f" (got {', '.join(given)})" if given else ""))
-        own = [k for k in self.set if k.strip().replace(" ", "") in POINT_OWN_KEYS]
+        paths = [pair for k, v in self.set.items() for pair in set_paths(k, v)]
+        own = [shown for shown, p in paths if p in POINT_OWN_KEYS]
         if own:
             raise ValueError(f"set: {own[0]} is the point's own: its torque is {given[0]}, its speed speed_rpm, "
                              "K_A = 1 (the spectrum is the load); a set of it would contradict the point reported")
-        hardware = [k for k in self.set if k.strip().startswith("bearing")]
+        wide = [shown for shown, p in paths if p in DUTY_WIDE_KEYS or p.split(".")[0] == "duty"]
+        if wide:
+            raise ValueError(f"set: {wide[0]} is the duty's, not a point's: the duty's hours, required life and "
+                             "minimum safeties judge all its points together; set it in the file itself")
+        hardware = [shown for shown, p in paths if p.startswith("bearing")]
         if hardware:
             raise ValueError(f"set: {hardware[0]}: a bearing is the same at every duty point (its catalogue data, place "
                              "and reliability hold over the whole duty, which its L10, L_nm and s_0 sum); set it in "

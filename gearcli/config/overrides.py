@@ -71,7 +71,7 @@ def parse_value(text: str) -> Any:
     return parsed["v"] if list(parsed) == ["v"] else text
 
 
-def _split_key(key: str) -> list[tuple[str, bool]]:
+def split_key(key: str) -> list[tuple[str, bool]]:
     """The key's segments, each with whether it was quoted: ``materials."4140".density_kg_m3`` (TOML's quoted
     key) names the material 4140, never an index, and may hold dots."""
     key = re.sub(r"\[(\d+)\]", r".\1", key.strip())
@@ -101,7 +101,7 @@ def parse(text: str) -> Override:
     if not sep or not key:
         raise ConfigError(f"expected KEY=VALUE, got {shorten(repr(text))} (e.g. --set input.speed_rpm=1450)",
                           source=SOURCE)
-    segments = _split_key(key)
+    segments = split_key(key)
     if any(s == "" and not quoted for s, quoted in segments):
         raise ConfigError("empty key segment (keys look like stage.0.pinion.teeth)", source=SOURCE, key=key)
     path = tuple(int(s) if not quoted and s.isascii() and s.isdigit() else s for s, quoted in segments)

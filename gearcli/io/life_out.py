@@ -12,7 +12,7 @@ from rich.console import Console, ConsoleOptions, RenderableType, RenderResult
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar, JsonValue
 from gearcli.diagnostics import warning_objects
-from gearcli.io.life_tables import modified_rows
+from gearcli.io.life_tables import life_rows, modified_rows
 from gearcli.io.serialize import bearings_csv, csv_text, plain
 from gearcli.io.table_kit import FittedTable, StageColumns, _g, text
 from gearcli.io.units import OutputUnits
@@ -236,8 +236,7 @@ def _bearings(r: LifeResult) -> StageColumns:
         ("equivalent load P [N]", [_g(x.equivalent_load_N) for x in b]),
         ("rating C [kN]", [_g(x.dynamic_load_rating_kN) for x in b]),
         ("revolutions over the duty", [_g(x.revolutions, 4) for x in b]),
-        ("L10 [10^6 rev]", [_g(x.L10_Mrev, 4) for x in b]),
-        ("L10h [h]", [_g(x.L10_h, 4) for x in b]),
+        *life_rows(b),
         *modified_rows(b),
     ])
 

@@ -27,10 +27,21 @@ def bearing_table(bearings: Sequence[BearingResult], title: str = "bearings: sta
         ("axial F_a [N]", [_g(x.axial_N) for x in b]),
         ("equivalent load P [N]", [_g(x.equivalent_load_N) for x in b]),
         ("rating C [kN]", [_g(x.dynamic_load_rating_kN) for x in b]),
-        ("L10 [10^6 rev]", [_g(x.L10_Mrev, 4) for x in b]),
-        ("L10h [h]", [_g(x.L10_h, 4) for x in b]),
+        *life_rows(b),
         *modified_rows(b),
     ])
+
+
+def unbounded(value: float | None, load_N: float | None, digits: int = 4) -> str:
+    """A life or safety cell: ∞ where it is unbounded because the bearing carries no load (ISO 281 L10 = (C/P)^p,
+    s_0 = C_0/P_0 with P = 0), as the gear tables print an infinite life; else the number ("—": not computed)."""
+    return "∞" if value is None and load_N == 0.0 else _g(value, digits)
+
+
+def life_rows(b: Sequence[BearingResult] | Sequence[BearingLife]) -> list[tuple[str, list[str]]]:
+    """The basic rating life rows L10 and L10h (∞ for an unloaded bearing)."""
+    return [("L10 [10^6 rev]", [unbounded(x.L10_Mrev, x.equivalent_load_N) for x in b]),
+            ("L10h [h]", [unbounded(x.L10_h, x.equivalent_load_N) for x in b])]
 
 
 def _given(value: float | None, shown: str) -> str:
@@ -47,14 +58,17 @@ def modified_rows(b: Sequence[BearingResult] | Sequence[BearingLife]) -> list[tu
             ("viscosity ratio κ", [_given(x.fatigue_load_limit_kN, _g(x.kappa, 4)) for x in b]),
             ("a_ISO (ISO 281)", [_given(x.fatigue_load_limit_kN, _g(x.a_ISO, 4)) for x in b]),
             ("a_1 (reliability)", [_given(x.fatigue_load_limit_kN, _g(x.a_1, 4)) for x in b]),
-            ("L_nm [10^6 rev]", [_given(x.fatigue_load_limit_kN, _g(x.L_nm_Mrev, 4)) for x in b]),
-            ("L_nmh [h]", [_given(x.fatigue_load_limit_kN, _g(x.L_nm_h, 4)) for x in b]),
+            ("L_nm [10^6 rev]", [_given(x.fatigue_load_limit_kN, unbounded(x.L_nm_Mrev, x.equivalent_load_N))
+                                 for x in b]),
+            ("L_nmh [h]", [_given(x.fatigue_load_limit_kN, unbounded(x.L_nm_h, x.equivalent_load_N)) for x in b]),
         ]
     if any(x.static_load_rating_kN is not None for x in b):
         rows += [
             ("static rating C_0 [kN]", [_given(x.static_load_rating_kN, _g(x.static_load_rating_kN)) for x in b]),
             ("static equivalent P_0 [N]", [_given(x.static_load_rating_kN, _g(x.static_equivalent_load_N)) for x in b]),
-            ("static safety s_0 = C_0/P_0", [_given(x.static_load_rating_kN, _g(x.static_safety, 4)) for x in b]),
+            ("static safety s_0 = C_0/P_0", [_given(x.static_load_rating_kN,
+                                                    unbounded(x.static_safety, x.static_equivalent_load_N))
+                                             for x in b]),
         ]
     return rows
 

@@ -23,6 +23,7 @@ from gearcli.life.duty import (
     series_notes,
     with_drive,
 )
+from gearcli.life.starts import label
 from gearcli.results import DesignResult
 from gearcli.sweep.worker import Scene
 
@@ -59,6 +60,21 @@ def _series_text(path: str, stdin: BinaryIO | None = None) -> str:
         raise ConfigError("not UTF-8 text", source=path) from None
 
 
+def _check_names(points: Sequence[DutyPoint], source: str) -> None:
+    """Every [[duty]] name names one point in the spectra (bins' ``point``), and no point's name is another's start
+    classes' (``"<name> (start)"``): a repeated name merged two points' start damage in ``points[i].start``."""
+    seen: dict[str, str] = {}
+    for p in points:
+        for name in (p.name, label(p.name)) if p.starts else (p.name,):
+            if name in seen:
+                raise ConfigError(f"{name!r} is already {seen[name]}: each duty point needs a name of its own (the "
+                                  "spectra's classes and the start records are keyed by it)",
+                                  source=source, key=f"{p.key}.name")
+        seen[p.name] = f"the name of {p.key}"
+        if p.starts:
+            seen[label(p.name)] = f"the name of {p.key}'s start classes"
+
+
 def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequence[str], *,
             series: str | None = None, classes: int | None = None) -> Session:
     """The duty points of the base file ``raw`` (``loaded`` and ``design`` with the ``sets`` applied): its
@@ -77,6 +93,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
                          "counted; rate the starts with the [[duty]] tables")
     else:
         points = points_from_config(loaded.design)
+        _check_names(points, loaded.source)
         notes = []
     notes += reversal_notes(points)
     points = with_drive(loaded.design, points)

@@ -143,14 +143,29 @@ def target(statistic: str) -> float:
     return MEAN_TARGET if statistic == "mean" else TARGET
 
 
-def force_reference(mean: float, std: float, static_N: float) -> float:
+def force_reference(mean: float, std: float, static_N: float, floor_N: float = 0.0) -> float:
     """The force a stage's targets refer to: |mean F_t| (the static |F_t| when the mean is 0). A mesh that
     carries no static force (an unloaded train rattling, a mesh whose load is zero) has a window mean that is
     zero but for the run's own noise (1e-4 N on a ±75 N swing), 1e-3 of which no rtol and no number of samples
-    reaches: its targets refer to the channel's rms about zero, sqrt(mean² + std²), the size of what it carries."""
+    reaches: its targets refer to the channel's rms about zero, sqrt(mean² + std²), the size of what it carries,
+    but never to less than ``floor_N`` (:func:`force_floors_N`: a stage at rest carries only round-off)."""
     if static_N == 0.0:
-        return math.hypot(mean, std)
+        return max(math.hypot(mean, std), floor_N)
     return abs(mean) or abs(static_N)
+
+
+def force_floors_N(model: TorsionalModel, rtol: float) -> list[float]:
+    """Per stage, the least F_t its relative targets refer to: 1/TARGET times the force the run resolves, the
+    mesh's tangent stiffness at its deflection scale h (the atol's: the static deflection, the backlash's half gap,
+    at least 1 um) times the absolute tolerance rtol h on its deflection, e K h^e rtol along the line of action.
+    An unloaded stage whose F_t stays below it is at rest to the run's accuracy (a zero-load duty step: F_t of
+    1e-11 N, round-off) and has nothing to resolve or to settle; a rattling train (±75 N) lies far above it."""
+    scales = model.deflection_scales_m()
+    out = []
+    for k, (m, h) in enumerate(zip(model.spec.meshes, scales, strict=True)):
+        line = m.exponent * m.stiffness_N_m_e * float(h) ** m.exponent * rtol / TARGET
+        out.append(abs(float(tooth_forces(model.layout, k, np.array([line]))[0][0])))
+    return out
 
 
 def reference_words(reference_N: float, unloaded: bool) -> str:
@@ -182,7 +197,7 @@ def start_time(choice: Choice, window: tuple[float, float]) -> float:
 
 
 def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray, static_N: float,
-                rtol: float, scale: float = 1.0) -> StatisticsError:
+                rtol: float, scale: float = 1.0, floor_N: float = 0.0) -> StatisticsError:
     """The error estimate of stage ``k`` (0-based) of the run from its F_t and the check pass's over the
     window samples: ``scale`` x the difference of each statistic."""
     a, b = _stats(t, ft_run), _stats(t, ft_check)
@@ -194,7 +209,7 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
     # a mesh that carries nothing in the run's window (no load, teeth apart: F_t = 0 throughout) is measured
     # against the check pass's force, so an error is a finite fraction of what the tighter pass sees (1 when
     # only it sees contact) and never inf, which no JSON can hold; both passes at zero: no error at all
-    reference = force_reference(a.mean, a.std, static_N) or math.hypot(b.mean, b.std)
+    reference = force_reference(a.mean, a.std, static_N, floor_N) or math.hypot(b.mean, b.std)
     rel = {q: (v / reference if reference > 0 else 0.0) for q, v in err.items()}
     unresolved = tuple(q for q in STATISTICS if rel[q] > target(q))
     if any(q in AMPLITUDE for q in unresolved):  # one vibration error moves them all: name them together
@@ -329,6 +344,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         idx = np.concatenate(([i_s], idx))
     nfev = njev = steps = 0
     passes = 0
+    floors = force_floors_N(model, run.rtol)
     while True:
         passes += 1
         fine, fine_forces, _ = one_pass(model, t_eval, run.y[:, i_s], idx, run.method, rtol, max_nfev, run.engine)
@@ -340,7 +356,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
             break
         errors = tuple(stage_error(k, tw, tooth_forces(lay, k, run_forces[k])[0],
                                    tooth_forces(lay, k, fine_forces[k][idx.size - tw.size:])[0],
-                                   m.static_tangential_N, run.rtol, scale) for k, m in enumerate(model.spec.meshes))
+                                   m.static_tangential_N, run.rtol, scale, floors[k])
+                       for k, m in enumerate(model.spec.meshes))
         lead = 1 if idx.size > 1 and idx[1] != idx[0] + 1 else 0  # the span's first sample alone, then contiguous
         peaks = tuple(e for k in range(len(model.spec.meshes))
                       if (e := peak_error(k, t_eval, ft_all[k], tooth_forces(lay, k, fine_forces[k])[0][lead:],

@@ -219,7 +219,8 @@ def can_ring(x: np.ndarray, reference_N: float) -> bool:
 
 
 def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
-            eigenvalues: np.ndarray, window_s: tuple[float, float]) -> list[Ringing]:
+            eigenvalues: np.ndarray, window_s: tuple[float, float],
+            floors_N: list[float] | None = None) -> list[Ringing]:
     """Per slow mode, the stage where its transient is largest relative to the static force, when that
     amplitude at the window's end reaches MIN_FRACTION of it."""
     tw = t[mask]
@@ -227,7 +228,9 @@ def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_
     if not modes:
         return []
     length = window_s[1] - window_s[0]
-    refs = [abs(float(ref)) or float(np.mean(np.abs(ft[mask]))) for ft, ref in zip(forces_N, static_N, strict=True)]
+    floors = floors_N or [0.0] * len(static_N)
+    refs = [abs(float(ref)) or max(float(np.mean(np.abs(ft[mask]))), floor)
+            for ft, ref, floor in zip(forces_N, static_N, floors, strict=True)]
     stages = [k for k, (ft, ref) in enumerate(zip(forces_N, refs, strict=True)) if ref > 0.0 and can_ring(ft[mask], ref)]
     best: dict[int, Ringing] = {}
     if not stages:
@@ -272,10 +275,11 @@ def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
 
 
 def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray,
-                     forces_N: list[np.ndarray], static_N: list[float], window) -> list[Diagnostic]:
+                     forces_N: list[np.ndarray], static_N: list[float], window,
+                     floors_N: list[float] | None = None) -> list[Diagnostic]:
     """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
     that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
-    found = ringing(t, mask, forces_N, static_N, choice.run_eigenvalues, window)
+    found = ringing(t, mask, forces_N, static_N, choice.run_eigenvalues, window, floors_N)
     if not found:
         return []
     modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]

@@ -446,7 +446,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     solver_errors = [errors[k] if k < len(errors) else None for k in ks]
     run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
     share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
-    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share)
+    floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
+    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share, floors)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
@@ -491,13 +492,13 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
-                                [st.simulated_static_tangential_N or 0.0 for st in stages], window)
+                                [st.simulated_static_tangential_N or 0.0 for st in stages], window, floors)
 
     if not periodic and deferred is None and diagnose:
         diags += ringing_diags()
     if diagnose:
         steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
-                                           motor_summary, diags)
+                                           motor_summary, diags, floors)
     if not periodic and deferred is not None:
         if steady.settled is False:
             deferred.append(True)
@@ -528,7 +529,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
 
 def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSeries], spec, solver_errors: list,
-                     steps: int | None, periodic: bool, window_share: float = 1.0) -> list[SamplingError | None]:
+                     steps: int | None, periodic: bool, window_share: float,
+                     floors: list[float]) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
     judged with the solver's estimate where a check pass ran; None for an empty window."""
     sel = stats.window_slice(mask)
@@ -537,7 +539,7 @@ def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSerie
         return [None] * len(spec.meshes)
     basis = int(tw.size) if periodic or steps is None else int(steps)  # whole periods: steps per window
     return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
-                                    periodic=periodic, solver=solver_errors[k], window_share=window_share)
+                                    periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k])
             for k, m in enumerate(spec.meshes)]
 
 

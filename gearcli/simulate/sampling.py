@@ -240,19 +240,21 @@ def _up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
 
 
 def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
-                   solver: StatisticsError | None = None, window_share: float = 1.0) -> SamplingError:
+                   solver: StatisticsError | None = None, window_share: float = 1.0,
+                   floor_N: float = 0.0) -> SamplingError:
     """The sampling error of a stage's window min and max of F_t (``t``, ``ft``: the window's samples), judged
     with the solver's estimate ``solver`` where a check pass ran (their sum against :data:`TARGET`).
     ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps);
-    ``window_share``: the window's length over the run's (what a window of too few samples needs more steps for)."""
+    ``window_share``: the window's length over the run's (what a window of too few samples needs more steps for);
+    ``floor_N``: the least force an unloaded stage's targets refer to (:func:`estimate.force_floors_N`)."""
     if not periodic and t.size < MIN_WINDOW_SAMPLES:
-        return _too_few(t, ft, static_N, steps, solver, window_share)
+        return _too_few(t, ft, static_N, steps, solver, window_share, floor_N)
     lo, hi = extremes_error(t, ft, periodic=periodic)
     if solver is not None:
         ref = solver.reference_N
     else:
         mean = float(ft.mean())
-        ref = force_reference(mean, float(ft.std()), static_N)
+        ref = force_reference(mean, float(ft.std()), static_N, floor_N)
     err = {"min": SAFETY * lo, "max": SAFETY * hi, "mean": 0.0 if periodic else mean_error(t, ft)}
     rel = {q: (v / ref if ref > 0 else (0.0 if v == 0 else math.inf)) for q, v in err.items()}
     bad = [q for q in STATISTICS if _undersampled(rel[q], solver.relative[q] if solver is not None else 0.0, q)]
@@ -276,11 +278,12 @@ def too_few(s: SamplingError) -> bool:
 
 
 def _too_few(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, solver: StatisticsError | None,
-             window_share: float) -> SamplingError:
+             window_share: float, floor_N: float = 0.0) -> SamplingError:
     """A window of too few samples: no error estimated (0), not resolved, and the ``simulation.steps`` that gives it
     :data:`MIN_WINDOW_SAMPLES` (the least an estimate needs; that run's estimate then says what resolves it)."""
     mean = float(ft.mean()) if ft.size else 0.0
-    ref = solver.reference_N if solver is not None else force_reference(mean, float(ft.std()) if ft.size else 0.0, static_N)
+    ref = solver.reference_N if solver is not None else force_reference(mean, float(ft.std()) if ft.size else 0.0,
+                                                                        static_N, floor_N)
     wanted = max(steps + 1, math.ceil(MIN_WINDOW_SAMPLES / max(window_share, 1e-12)))
     return SamplingError(min_N=0.0, max_N=0.0, relative={q: 0.0 for q in STATISTICS}, reference_N=ref,
                          target_relative=TARGET, samples=int(t.size), resolved=False,

@@ -80,15 +80,19 @@ def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
 
 def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
           eigenvalues: np.ndarray, window_s: tuple[float, float],
-          motor_start_s: float | None = None, motor_reaches: bool = True) -> Settling:
+          motor_start_s: float | None = None, motor_reaches: bool = True,
+          floors_N: list[float] | None = None) -> Settling:
     """The settle test of the window ``mask`` of the samples ``t`` (module text). ``motor_start_s``: when the
-    motor reached 98 % of its operating speed (None with ``motor_reaches``: never within the run)."""
+    motor reached 98 % of its operating speed (None with ``motor_reaches``: never within the run). ``floors_N``: per
+    stage the least force an unloaded stage's transient is measured against (:func:`estimate.force_floors_N`)."""
     if motor_reaches and motor_start_s is None:
         return Settling(False, math.inf, cause="the motor start does not reach its operating speed within the run")
     tw = t[mask]
     modes = candidate_modes(eigenvalues, window_s, (tw[-1] - tw[0]) / (tw.size - 1) if tw.size > 1 else 0.0)
     worst = Settling(True, 0.0)
-    refs = [abs(float(ref)) or float(np.mean(np.abs(ft[mask]))) for ft, ref in zip(forces_N, static_N, strict=True)]
+    floors = floors_N or [0.0] * len(static_N)
+    refs = [abs(float(ref)) or max(float(np.mean(np.abs(ft[mask]))), floor)
+            for ft, ref, floor in zip(forces_N, static_N, floors, strict=True)]
     fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []
     # every stage's fit at once (independent per stage: the same numbers as one fit per stage, one batched solve)
     amps, sigs = ringing.fit_transients(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes) \
@@ -108,7 +112,7 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
                              f"the {omega / (2 * math.pi):.3g} Hz mode rings from the start with ±{a0:.4g} N in stage "
                              f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of "
                              f"{ringing.reference_words(ref, float(static_N[k]) != 0.0)})")
-    worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst)
+    worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst, floors)
     if motor_start_s is not None and motor_start_s > window_s[0]:
         settle = max(motor_start_s, worst.settle_time_s or 0.0)
         return Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
@@ -117,7 +121,8 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
     return worst
 
 
-def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], worst: Settling) -> Settling:
+def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], worst: Settling,
+              floors_N: list[float]) -> Settling:
     """The model-free half of the test: a transient that decays through the window raises its first quarter's
     max |F_t| above its last half's (the steady part, which holds every steady peak the first quarter holds); by
     more than SETTLED_FRACTION of the static force, the window is unsettled from the last sample above that
@@ -125,8 +130,8 @@ def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], wo
     if t.size < 8:
         return worst
     quarter, half = t <= t[0] + 0.25 * (t[-1] - t[0]), t >= t[0] + 0.5 * (t[-1] - t[0])
-    for k, (f, static) in enumerate(zip(forces, static_N, strict=True)):
-        ref = abs(float(static)) or float(np.mean(f))
+    for k, (f, static, floor) in enumerate(zip(forces, static_N, floors_N, strict=True)):
+        ref = abs(float(static)) or max(float(np.mean(f)), floor)
         if ref <= 0.0:
             continue
         steady_max = float(np.max(f[half]))
@@ -177,7 +182,8 @@ def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str
 
 
 def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray, window, per_stage,
-                   stages, steady: SteadyState, motor_summary, diags: list[Diagnostic]) -> SteadyState:
+                   stages, steady: SteadyState, motor_summary, diags: list[Diagnostic],
+                   floors_N: list[float] | None = None) -> SteadyState:
     """``steady`` with the settle test of the window (:mod:`gearcli.simulate.settle`; a periodic state: settled
     when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
     ringing or the motor's start warning already says so."""
@@ -194,7 +200,7 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     # ringing fit and `modes` take them: the connectors' damping alone leaves a motor-damped mode undamped
     found = check(t, mask, [p[0] for p in per_stage],
                          [st.simulated_static_tangential_N or 0.0 for st in stages],
-                         choice.run_eigenvalues, window, motor_start, reaches)
+                         choice.run_eigenvalues, window, motor_start, reaches, floors_N)
     if not found.settled and not any(d.code in (dg.WINDOW_RINGING, dg.START_NOT_SETTLED) for d in diags):
         diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
                                 transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
