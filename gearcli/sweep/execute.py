@@ -21,7 +21,7 @@ from collections.abc import Callable, Generator, Iterable, Iterator, Mapping, Se
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
 from multiprocessing import forkserver
-from typing import NamedTuple
+from typing import NamedTuple, cast
 from urllib.parse import urlsplit
 
 from gearcli import engine
@@ -155,12 +155,13 @@ def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
     crash in compiled code) breaks a ``ProcessPoolExecutor`` for every task not yet finished, not only its own: the
     tasks that had not started go on in a new pool, and each that had started runs again alone, so that only the
     dead worker's own task becomes ``failed`` rows (it dies alone too) and the others' points are computed."""
-    queue = list(tasks)
+    queue, idle_breaks = list(tasks), 0
     while queue:
         started, broken, queue = yield from _pool_round(queue, jobs)
-        if broken is not None and not started:  # the pool broke before any task started: it cannot run them
+        idle_breaks = idle_breaks + 1 if broken is not None and not started else 0
+        if idle_breaks >= 2:  # two pools in a row broke with no task of theirs started: this pool cannot run them
             for task in queue:
-                yield from _lost(task, broken)
+                yield from _lost(task, cast(BaseException, broken))
             return
         for task in started:
             _, lost, _ = yield from _pool_round([task], 1)
