@@ -171,7 +171,9 @@ def _label(group: tuple, others: Sequence[str]) -> str:
 def _campbell(campbell: SweepCampbell):
     """The Campbell diagram of ``gearcli modes --plots`` (:mod:`gearcli.io.campbell`), over the swept range,
     with the swept speeds marked."""
-    return campbell_io.campbell_figure(campbell.data, OutputUnits(*campbell.units), swept=list(campbell.swept_rpm))
+    at = f"at {', '.join(campbell.at)}" if campbell.at else ""  # a grid: which point of the other keys it shows
+    return campbell_io.campbell_figure(campbell.data, OutputUnits(*campbell.units), title=at,
+                                       swept=list(campbell.swept_rpm))
 
 
 def _bins(x: np.ndarray) -> dict:

@@ -17,9 +17,11 @@ import signal
 import socket
 import threading
 from collections import Counter
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Generator, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from multiprocessing import forkserver
+from typing import NamedTuple, cast
 from urllib.parse import urlsplit
 
 from gearcli import engine
@@ -149,27 +151,83 @@ def _lost(task: Task, exc: BaseException) -> list[Row]:
 
 
 def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
+    """Every row of ``tasks`` on a pool of ``jobs`` worker processes. A worker that dies (killed, out of memory, a
+    crash in compiled code) breaks a ``ProcessPoolExecutor`` for every task not yet finished, not only its own: the
+    tasks that had not started go on in a new pool, and each that had started runs again alone, so that only the
+    dead worker's own task becomes ``failed`` rows (it dies alone too) and the others' points are computed."""
+    queue, idle_breaks = list(tasks), 0
+    while queue:
+        started, broken, queue = yield from _pool_round(queue, jobs)
+        idle_breaks = idle_breaks + 1 if broken is not None and not started else 0
+        if idle_breaks >= 2:  # two pools in a row broke with no task of theirs started: this pool cannot run them
+            for task in queue:
+                yield from _lost(task, cast(BaseException, broken))
+            return
+        for task in started:
+            _, lost, _ = yield from _pool_round([task], 1)
+            if lost is not None:
+                yield from _lost(task, lost)
+
+
+def _pool_round(tasks: Sequence[Task], jobs: int) -> Generator[Row, None, _Round]:
+    """Run ``tasks`` on one pool, yielding their rows; returns (the tasks that had started when the pool broke, the
+    exception that broke it (None: it did not), the tasks that had not started)."""
     ctx = multiprocessing.get_context("forkserver")
     ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate", "gearcli.api"])
     _start_forkserver_deaf()
-    pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_ignore_sigint)
+    marks = ctx.RawArray("b", len(tasks))  # a worker sets its task's flag as it starts it
+    pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_start_worker,
+                               initargs=(marks,))
+    started: list[Task] = []
+    unstarted: list[Task] = []
+    broken: BaseException | None = None
     try:
         # submitting starts the workers (the first waits for the forkserver's preload): a signal meanwhile is held
         # until each has started and is in the pool's table, where the handler below ends it; raised inside
         # Process.start it left a worker that read its start after we had gone (a FileNotFoundError traceback)
         with deferred():
-            futures = {pool.submit(run_task, t): t for t in tasks}
+            futures = {pool.submit(_run_marked, i, t): (i, t) for i, t in enumerate(tasks)}
         for fut in as_completed(futures):
+            i, task = futures[fut]
             try:
                 rows = fut.result()
-            except Exception as exc:  # noqa: BLE001 - a broken worker: its points become failed rows
-                rows = _lost(futures[fut], exc)
+            except BrokenProcessPool as exc:  # a worker died: this task's or another's
+                broken = exc
+                (started if marks[i] else unstarted).append(task)
+                continue
+            except Exception as exc:  # noqa: BLE001 - a task that failed outright: its points become failed rows
+                rows = _lost(task, exc)
             yield from rows
     except BaseException:  # Ctrl-C, SIGTERM/SIGHUP, the consumer gone (GeneratorExit): no worker outlives us
         _stop_workers(pool)
         raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)  # joins the pool's thread: its queues and semaphores released
+    order = {id(t): n for n, t in enumerate(tasks)}
+    return _Round(sorted(started, key=lambda t: order[id(t)]), broken, sorted(unstarted, key=lambda t: order[id(t)]))
+
+
+class _Round(NamedTuple):
+    started: list[Task]  # had started when the pool broke
+    broken: BaseException | None  # what broke the pool (None: it did not)
+    unstarted: list[Task]
+
+
+_MARKS = None  # a pool worker's view of its round's started-task flags (:func:`_start_worker`)
+
+
+def _start_worker(marks) -> None:
+    """A pool worker's start: the round's started-task flags; Ctrl-C is the parent's (:func:`_ignore_sigint`)."""
+    global _MARKS
+    _MARKS = marks
+    _ignore_sigint()
+
+
+def _run_marked(index: int, task: Task) -> list[Row]:
+    """Run a task in a pool worker, first flagging it started (a worker that dies is then known to have held it)."""
+    if _MARKS is not None:
+        _MARKS[index] = 1
+    return run_task(task)
 
 
 def _start_forkserver_deaf() -> None:

@@ -51,6 +51,7 @@ class SweepCampbell:
     data: CampbellData
     swept_rpm: tuple[float, ...]
     units: tuple[str, str]
+    at: tuple[str, ...] = ()  # the other swept keys' values it is drawn at (``load.torque_Nm=300``), named in its title
 
 
 def _number(value: JsonScalar) -> float:
@@ -91,7 +92,7 @@ def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], desig
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
                          max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
     units = units_of(design_case(scene, (*fixed, _speed_point(key, points[0].value))).cfg)  # the swept key's unit
-    return SweepCampbell(data, tuple(swept), units)
+    return SweepCampbell(data, tuple(swept), units, tuple(fixed))
 
 
 def speed_axis(spec: SweepSpec) -> Axis | None:
