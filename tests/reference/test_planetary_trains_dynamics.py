@@ -423,9 +423,12 @@ def test_parallel_then_planetary_then_star_by_hand_and_settled(tmp_path):
     assert st[2]["equal_spacing"] is False
     sim = run_json(tmp_path, "simulate", MIXED)["summary"]
     ss = sim["stages"]
-    assert_allclose(ss[0]["tangential_N"]["mean"], hand[0], rtol=1e-6)
+    # the run is at rtol 1e-6: its global error is a small multiple of that (the engine `auto` takes depends on
+    # whether the process has the compiled kernel loaded already; measured up to 6e-6 off on one of them)
+    tol = 20 * 1e-6
+    assert_allclose(ss[0]["tangential_N"]["mean"], hand[0], rtol=tol)
     for s, (f_sp, f_pr) in zip(ss[1:], ((hand[1], hand[2]), (hand[3], hand[4])), strict=True):
-        assert_allclose([p["sun"]["tangential_N"]["mean"] for p in s["planets"]], f_sp, rtol=1e-6)
-        assert_allclose([p["ring"]["tangential_N"]["mean"] for p in s["planets"]], f_pr, rtol=1e-6)
+        assert_allclose([p["sun"]["tangential_N"]["mean"] for p in s["planets"]], f_sp, rtol=tol)
+        assert_allclose([p["ring"]["tangential_N"]["mean"] for p in s["planets"]], f_pr, rtol=tol)
         assert_allclose(s["load_sharing_factor"], 1.0, rtol=1e-8)
-    assert_allclose(sim["input_torque_Nm"], t_1, rtol=1e-6)
+    assert_allclose(sim["input_torque_Nm"], t_1, rtol=tol)
