@@ -176,16 +176,16 @@ def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: 
     for k in range(ft.shape[0]):
         force = _stage_force(lay, k, coefficients)
 
-        def magnitude(tt: float, force=force) -> float:
+        def negative_magnitude(tt: float, force=force) -> float:  # what the search minimises
             w, a = state(tt)
-            return abs(force(tt, w, a))
+            return -abs(force(tt, w, a))
 
         i = int(np.argmax(np.abs(ft[k])))
         best = float(abs(ft[k][i]))
         lo, hi = float(times[max(i - 1, 0)]), float(times[min(i + 1, times.size - 1)])
         if hi > lo:
             # scipy's bounded Brent (minimize_scalar), step for step on floats (gearcli.core.bounded)
-            _, fun, _ = minimise_bounded(lambda tt, magnitude=magnitude: -magnitude(tt), lo, hi, 1e-12 * max(hi, 1.0))
+            _, fun, _ = minimise_bounded(negative_magnitude, lo, hi, 1e-12 * max(hi, 1.0))
             best = max(best, -float(fun))
         out.append(best)
     return tuple(out)
