@@ -39,6 +39,15 @@ def _remember(signum: int, frame: object) -> None:
         flag[index] = 1.0
 
 
+def handled() -> bool:
+    """Whether a Python handler could run for SIGINT, SIGTERM or SIGHUP here: in the main thread, one of them has a
+    callable handler (a sweep's pool worker ignores SIGINT and leaves SIGTERM and SIGHUP to the system's default
+    action, which ends it at once, compiled code running or not: nothing there for :func:`deferred` to hold back)."""
+    if threading.current_thread() is not threading.main_thread():
+        return False
+    return any(callable(_getsignal(s)) for s in SIGNALS)
+
+
 def pending() -> int | None:
     """The first signal held back by the open :func:`deferred` blocks (None: none)."""
     return _pending[0] if _pending else None
