@@ -25,11 +25,13 @@ swing of the drivetrain's mode that the start excites (the deviation from the ri
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.bounded import minimise_bounded
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout, power_path_loss_factors
 from gearcli.model.elements import machine, mesh
@@ -134,27 +136,57 @@ def _planet_coefficients(lay: Layout) -> tuple[np.ndarray, np.ndarray]:
     return per_accel, per_load
 
 
+def _stage_force(lay: Layout, k: int, coefficients: tuple) -> Callable[[float, float, float], float]:
+    """Stage k's F_t at one rigid state ``(t, w, dw/dt)`` as a function on floats: the operations of
+    :func:`_tangential` (and :func:`_load_torque`, :func:`gearcli.model.step.ramp`, :func:`tooth_forces`) for
+    this stage alone, in the same order, so the same number bit for bit (tests/simulate/test_rigid_start_peaks.py).
+    The peak search evaluates it some 20 times a stage: the arrays of every connector cost ~0.1 ms a call."""
+    rho, J, f, per_accel, per_load = coefficients
+    c = lay.stage_conn[k]
+    x = lay.connectors[c]
+    cos_a = math.cos(lay.spec.meshes[k].transverse_pressure_angle_rad)
+    rho_n, ramp_s, torque_Nm, law = float(rho[-1]), float(lay.load.ramp_s), float(lay.load.torque_Nm), lay.load_law
+
+    def load_at(t: float, w_load: float) -> float:
+        if ramp_s <= 0.0:
+            base = torque_Nm
+        else:  # gearcli.model.step.step(t, 0, 0, ramp_s, torque_Nm)
+            s = min(max((t - 0.0) / (ramp_s - 0.0), 0.0), 1.0)
+            base = 0.0 + (torque_Nm - 0.0) * s * s * (3.0 - 2.0 * s)
+        return base if not law else base * machine.load_factor(law, w_load)[0]
+
+    if not x.role:
+        return lambda t, w, a: 0.0
+    if x.load_body >= 0:
+        fc, pa, pl = float(f[c]), float(per_accel[c]), float(per_load[c])
+        return lambda t, w, a: fc * (pa * a + pl * load_at(t, w * rho_n)) * cos_a
+    b = x.b
+    downstream = float(float(J[b:] @ rho[b:] ** 2) / rho[b])
+    rho_b, fc, rb = float(rho[b]), float(f[c]), float(x.rb)
+    return lambda t, w, a: fc * (downstream * a + load_at(t, w * rho_n) * rho_n / rho_b) / rb * cos_a
+
+
 def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: tuple) -> tuple[float, ...]:
     """Per stage, the largest |F_t| of the continuous rigid start: the largest over ``times`` (the output grid and
     the integrator's own steps, which follow every fast change of the drive: a star-delta switch-over, the end of a
     ramp), refined by a bounded scalar search between the neighbouring times on the continuous state ``state(t) ->
-    (w, dw/dt)``. The output grid alone misses a short peak (a star-delta switch-over against a fan load: 1.8 %
-    below the peak on 2001 samples over 3 s)."""
-    from scipy.optimize import minimize_scalar  # lazy: scipy, start-up time
-
-    def magnitude(k: int, tt: float) -> float:
-        w, a = state(tt)
-        return abs(float(_tangential(lay, np.array([tt]), np.array([w]), np.array([a]), coefficients)[2][k][0]))
-
+    (w, dw/dt)`` (floats). The output grid alone misses a short peak (a star-delta switch-over against a fan load:
+    1.8 % below the peak on 2001 samples over 3 s)."""
     out = []
     for k in range(ft.shape[0]):
+        force = _stage_force(lay, k, coefficients)
+
+        def negative_magnitude(tt: float, force=force) -> float:  # what the search minimises
+            w, a = state(tt)
+            return -abs(force(tt, w, a))
+
         i = int(np.argmax(np.abs(ft[k])))
         best = float(abs(ft[k][i]))
         lo, hi = float(times[max(i - 1, 0)]), float(times[min(i + 1, times.size - 1)])
         if hi > lo:
-            res = minimize_scalar(lambda tt, k=k: -magnitude(k, tt), bounds=(lo, hi), method="bounded",
-                                  options={"xatol": 1e-12 * max(hi, 1.0)})
-            best = max(best, -float(res.fun))
+            # scipy's bounded Brent (minimize_scalar), step for step on floats (gearcli.core.bounded)
+            _, fun, _ = minimise_bounded(negative_magnitude, lo, hi, 1e-12 * max(hi, 1.0))
+            best = max(best, -float(fun))
         out.append(best)
     return tuple(out)
 
@@ -176,10 +208,13 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
 
         w, a = motion(t)
         steps = np.array([], float)
+        ramp_s, speed = float(lay.drive.ramp_s), float(lay.drive.speed_rad_s)
 
-        def state(tt: float) -> tuple[float, float]:
-            ww, aa = motion(np.array([tt]))
-            return float(ww[0]), float(aa[0])
+        def state(tt: float) -> tuple[float, float]:  # motion(np.array([tt])) on floats, the same operations
+            if ramp_s <= 0.0:
+                return speed, 0.0
+            s = min(max(tt / ramp_s, 0.0), 1.0)
+            return speed * s * s * (3.0 - 2.0 * s), 6.0 * speed * s * (1.0 - s) / ramp_s
     else:
         row = lay.motor_row if lay.motor_drive else ()
 
@@ -205,9 +240,11 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
     coefficients = _coefficients(lay)
     load, forces, ft = _tangential(lay, t, w, a, coefficients)
     # the peaks over the grid and the integrator's steps, each refined on the continuous state
-    times = np.unique(np.concatenate((t, steps[(steps >= 0.0) & (steps <= duration_s)])))
-    ws_as = np.array([state(float(tt)) for tt in times]) if steps.size else np.column_stack((w, a))
-    ft_all = _tangential(lay, times, ws_as[:, 0], ws_as[:, 1], coefficients)[2] if steps.size else ft
+    times, ft_all = t, ft  # a speed drive's: the grid (increasing: its own np.unique)
+    if steps.size:
+        times = np.unique(np.concatenate((t, steps[(steps >= 0.0) & (steps <= duration_s)])))
+        ws_as = np.array([state(float(tt)) for tt in times])
+        ft_all = _tangential(lay, times, ws_as[:, 0], ws_as[:, 1], coefficients)[2]
     return RigidStart(t, w, a, load, forces, ft, _peaks(lay, state, times, ft_all, coefficients))
 
 

@@ -274,7 +274,11 @@ def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.nd
     (KeyboardInterrupt or ``Terminated``), never while machine code runs under an unwinding interpreter. With
     ``progress``, the time the kernel has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) is
     reported as the fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are
-    those of a run without progress; the thread costs ~0.1 ms. ``wpar`` must have both entries."""
+    those of a run without progress; the thread costs ~0.1 ms. ``wpar`` must have both entries. Without
+    ``progress`` and with no Python signal handler to hold back (:func:`gearcli.core.signals.handled`: a sweep's
+    pool or Dask worker) the kernel is called here, directly: the same call without the thread."""
+    if progress is None and not signals.handled():
+        return kernel(*args)
     box: dict[str, Any] = {}
 
     def work() -> None:

@@ -53,6 +53,38 @@ def test_an_error_in_the_worker_reaches_the_caller():
         solver._kernel_with_progress(kernel, (), np.zeros(17), (0.0, 1.0), lambda f: None)
 
 
+def _thread_of_a_kernel_call(handlers: dict) -> str:
+    """The name of the thread a progress-less compiled call runs its kernel in, with ``handlers`` installed."""
+    import signal
+    import threading
+
+    from gearcli.core.signals import SIGNALS
+
+    previous = {s: signal.getsignal(s) for s in SIGNALS}
+    seen: list[str] = []
+    try:
+        for s in SIGNALS:
+            signal.signal(s, handlers.get(s, signal.SIG_DFL))
+        out = solver._kernel_with_progress(lambda *a: seen.append(threading.current_thread().name) or a, (1, 2),
+                                           np.zeros(17), (0.0, 1.0), None)
+    finally:
+        for s, h in previous.items():
+            signal.signal(s, h)
+    assert out == (1, 2)  # the kernel's return, either way
+    return seen[0]
+
+
+def test_a_sweep_workers_kernel_runs_in_its_own_thread_and_a_cli_s_in_the_worker_thread():
+    """A sweep's pool worker (SIGINT ignored, SIGTERM and SIGHUP the system's default action, which ends it at once)
+    has no Python handler to hold back: the kernel is called directly, without a thread; with a handler (the CLI's
+    KeyboardInterrupt) it runs in the worker thread, the handler deferred until it returns."""
+    import signal
+    import threading
+
+    assert _thread_of_a_kernel_call({signal.SIGINT: signal.SIG_IGN}) == threading.current_thread().name
+    assert _thread_of_a_kernel_call({signal.SIGINT: signal.default_int_handler}) == "gearcli-kernel"
+
+
 def _run_on_a_terminal(args: list[str]) -> tuple[int, bytes]:
     """``gearcli ARGS`` with stderr on a pseudo-terminal (stdout a pipe): (exit code, what the terminal got)."""
     master, slave = pty.openpty()
