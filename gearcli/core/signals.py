@@ -15,7 +15,6 @@ the default action), in ordinary Python code, once the kernel has returned.
 
 from __future__ import annotations
 
-import _signal
 import signal
 import threading
 from collections.abc import Callable, Iterator
@@ -24,10 +23,6 @@ from typing import Any
 
 SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
 
-# signal.getsignal and signal.signal without their conversion of the handlers to the Handlers enum (an exception
-# raised and caught for every callable handler: ~15 µs of a block's ~25, and a sweep point opens some six blocks);
-# SIG_DFL and SIG_IGN come back as the plain ints they equal
-_getsignal, _setsignal = _signal.getsignal, _signal.signal
 
 _pending: list[int] = []  # signals that arrived inside the outermost deferred block, in order
 _flags: list[Any] = []  # the stop flags of the blocks open now (array-likes: entry [index] set to 1.0)
@@ -45,7 +40,7 @@ def handled() -> bool:
     action, which ends it at once, compiled code running or not: nothing there for :func:`deferred` to hold back)."""
     if threading.current_thread() is not threading.main_thread():
         return False
-    return any(callable(_getsignal(s)) for s in SIGNALS)
+    return any(callable(signal.getsignal(s)) for s in SIGNALS)
 
 
 def pending() -> int | None:
@@ -62,13 +57,13 @@ def deferred(flag: Any = None, index: int = 0) -> Iterator[Callable[[], int | No
     if threading.current_thread() is not threading.main_thread():
         yield pending
         return
-    previous = {s: _getsignal(s) for s in SIGNALS}
+    previous = {s: signal.getsignal(s) for s in SIGNALS}
     outermost = not any(h is _remember for h in previous.values())
     # a block inside another finds the handlers it would install already there: it leaves them (what it would
     # restore on leaving is the same _remember), the stop flag and the delivery stay as they are
-    installed = [s for s, h in previous.items() if h != signal.SIG_IGN and h is not None and h is not _remember]
+    installed = [s for s, h in previous.items() if h is not signal.SIG_IGN and h is not None and h is not _remember]
     for s in installed:
-        _setsignal(s, _remember)
+        signal.signal(s, _remember)
     entry = (flag, index) if flag is not None else None
     if entry is not None:
         _flags.append(entry)
@@ -80,7 +75,7 @@ def deferred(flag: Any = None, index: int = 0) -> Iterator[Callable[[], int | No
         if entry is not None:
             _flags.remove(entry)
         for s in installed:
-            _setsignal(s, previous[s])
+            signal.signal(s, previous[s])
         if outermost and _pending:
             _deliver(_pending[0], previous.get(_pending[0]))
 
