@@ -145,6 +145,9 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     absolute tolerances of :func:`tolerances` (an array of the state's size, or a scalar); ``rtol`` is a
     scalar for every method.
 
+    An explicit method's steps are capped at its stability limit on the scene's stiffest mode
+    (:func:`step_ceiling`, on both engines).
+
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
     "compiled" runs :mod:`gearcli.engine` (DOP853, RK45, Radau; from ``t0`` too; the caller checks
