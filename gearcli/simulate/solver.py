@@ -138,15 +138,15 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
               t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python",
               pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None,
-              course: CourseLimit | None = None) -> Integration:
+              course: CourseLimit | None = None, ceiling: float = 1.0) -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
     drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
     absolute tolerances of :func:`tolerances` (an array of the state's size, or a scalar); ``rtol`` is a
     scalar for every method.
 
-    An explicit method's steps are capped at its stability limit on the scene's stiffest mode
-    (:func:`step_ceiling`, on both engines).
+    An explicit method's steps are capped at ``ceiling`` times its stability limit on the scene's stiffest mode
+    (:func:`step_ceiling`, on both engines; a check pass halves it).
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
@@ -168,7 +168,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     if atol is None:
         atol = tolerances(model, rtol, watch)
     atol = np.broadcast_to(np.asarray(atol, dtype=float), y.shape).copy()
-    max_step = step_ceiling(model, method)
+    max_step = ceiling * step_ceiling(model, method)
     if engine == "compiled" and t_eval[-1] > t0:  # (an empty run is scipy's: nothing to integrate)
         return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0), progress,
                                    max_step)
