@@ -8,8 +8,9 @@ from gearcli.engine.rhs import rhs
 
 
 @jit
-def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, scale, diff, tmp, exponent):
-    """scipy's ``select_initial_step`` (max_step = inf, forward direction; ``exponent`` 1 / (error order + 1))."""
+def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, scale, diff, tmp, exponent, max_step):
+    """scipy's ``select_initial_step`` (forward direction; ``exponent`` 1 / (error order + 1); ``max_step`` the
+    solver's, ``math.inf`` for none)."""
     n = y0.size
     interval = abs(t_bound - t0)
     if interval == 0.0:
@@ -33,4 +34,4 @@ def select_initial_step(t0, y0, t_bound, f0, rtol, atol, model, th, fc, y1, f1, 
         h1 = max(1e-6, h0 * 1e-3)
     else:
         h1 = (0.01 / max(d1, d2)) ** exponent
-    return min(100 * h0, h1, interval)
+    return min(100 * h0, h1, interval, max_step)

@@ -24,6 +24,7 @@ WP_CAP, WP_AFTER, WP_LIMIT, WP_EVERY, WP_P_EVAL, WP_P_JAC, WP_P_LU, WP_P_STEP, W
 N_WPAR = 15
 WP_PROGRESS = st.WP_PROGRESS  # optional: the time reached, written at every budget check (a progress bar reads it)
 WP_STOP = st.WP_STOP  # optional: the stop flag a signal handler sets (gearcli.core.signals), read after every step
+WP_MAX_STEP = st.WP_MAX_STEP  # optional: the explicit methods' step ceiling (scipy's max_step)
 
 
 @jit

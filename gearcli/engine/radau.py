@@ -6,6 +6,8 @@ not LAPACK's to the last bit.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from gearcli.engine.common import select_initial_step
@@ -174,7 +176,8 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
         seg_nfev = 0
         rhs(t, y, f, model, th, fc)
         seg_nfev += 1
-        h_self = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, w3, w4, 0.25)
+        h_self = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, w3, w4, 0.25,
+                                     math.inf)
         seg_nfev += 1
         h_abs_old_self = -1.0
         err_old_self = -1.0

@@ -1,10 +1,10 @@
 """The explicit Runge-Kutta driver (:func:`rk_run`): ``scipy.integrate``'s ``RungeKutta`` loop transcribed, the method
 read as data (a :class:`~gearcli.engine.tableau.Tableau`: DOP853 or RK45).
 
-The initial step of ``select_initial_step``, the stage sums, the error norm (DOP853's combined 5th/3rd-order one),
-SAFETY 0.9, MIN_FACTOR 0.2, MAX_FACTOR 10, the rejected-step rule (no growth right after a rejection), the minimum
-step ``10 ulp(t)``, the clamp at ``t_bound``, and the dense output (DOP853's three extra stages, counted in nfev as
-scipy counts them) at the requested samples. The run is integrated in segments between the ramp ends, with a fresh
+The initial step of ``select_initial_step`` and the step ceiling ``max_step`` (``wpar[WP_MAX_STEP]``), the stage
+sums, the error norm (DOP853's combined 5th/3rd-order one), SAFETY 0.9, MIN_FACTOR 0.2, MAX_FACTOR 10, the
+rejected-step rule (no growth right after a rejection), the minimum step ``10 ulp(t)``, the clamp at ``t_bound``, and
+the dense output (DOP853's three extra stages, counted in nfev as scipy counts them) at the requested samples. The run is integrated in segments between the ramp ends, with a fresh
 solver (and initial step) at each, as :mod:`gearcli.simulate.solver` does.
 """
 
@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from gearcli.engine.common import select_initial_step
-from gearcli.engine.guards import STATUS_FINISHED, WP_SCALE, WP_T0, guards, start, step_accepted
+from gearcli.engine.guards import STATUS_FINISHED, WP_MAX_STEP, WP_SCALE, WP_T0, guards, start, step_accepted
 from gearcli.engine.linalg import dot_self, gemm, gemv_t
 from gearcli.engine.numba_cache import jit, jit_alloc
 from gearcli.engine.rhs import rhs
@@ -164,6 +164,7 @@ def rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
     watched = np.array([0.0, wpar[WP_SCALE]])
     out, done = start(y0, t_eval, wpar)
     t = wpar[WP_T0]  # the run's start (a continuation starts later)
+    max_step = wpar[WP_MAX_STEP] if wpar.size > WP_MAX_STEP else np.inf  # scipy's max_step
     nfev = 0
     steps = 0
     status = STATUS_FINISHED
@@ -173,11 +174,13 @@ def rk_run(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, t
         rhs(t, y, f, model, th, fc)
         seg_nfev += 1
         h_abs = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, ytmp, dv,
-                                    -error_exponent)
+                                    -error_exponent, max_step)
         seg_nfev += 1
         while True:
             min_step = 10 * abs(np.nextafter(t, np.inf) - t)
-            if h_abs < min_step:
+            if h_abs > max_step:
+                h_abs = max_step
+            elif h_abs < min_step:
                 h_abs = min_step
             accepted_step = False
             rejected = False

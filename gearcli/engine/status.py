@@ -17,3 +17,7 @@ WP_PROGRESS = 15
 #: and one more after it: the stop flag, set (to 1.0) by a signal handler from the main thread while the kernel runs in
 #: a worker thread; the kernel reads it after every accepted step and returns with :data:`INTERRUPTED`
 WP_STOP = 16
+
+#: and one more after that: the explicit methods' step ceiling (s), scipy's ``max_step``: the initial step and every
+#: step are clamped to it (:func:`gearcli.simulate.choice.stability_step`); absent, no ceiling
+WP_MAX_STEP = 17

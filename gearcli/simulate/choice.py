@@ -266,6 +266,24 @@ def _at_full_load(spec: ModelSpec, layout: Layout | None = None) -> tuple[Layout
     return entry[1:]
 
 
+def stability_step(spec: ModelSpec, layout: Layout, name: str) -> float:
+    """The step ceiling of an explicit method ``name`` on the scene (s): its stability radius along the imaginary axis
+    over the largest |lambda| of the scene linearised at full load, where its stiffest mode sits at rest (math.inf
+    for an implicit method, or a scene without a stiff mode). A step beyond it amplifies that mode (DOP853 at h |lambda|
+    = 12: ~5e3-fold a step, at 120: 3e15-fold); the error estimate rejects such a step only once the mode carries
+    more than the tolerance, so a run that starts at rest in the mode (a sweep point continued from its
+    neighbour's equilibrium) took them undetected, and DOP853's dense output between two such accepted steps
+    swung by the amplified mode (docs/numerics.md "The step ceiling"); at a loose rtol, where the tolerance lets
+    the mode grow further, a run-up peak came out many times the true one. Where the mode is excited, the error
+    control keeps the steps below the ceiling anyway. A run whose steps the ceiling sets is refined by halving the
+    ceiling, not by a tighter rtol: its check pass does both (:data:`gearcli.simulate.estimate.CHECK_CEILING`)."""
+    m = method(name)
+    if m.implicit:
+        return math.inf
+    lam = _at_full_load(spec, layout)[2].max_abs_eigenvalue
+    return m.stability_radius / lam if lam > 0 and math.isfinite(lam) else math.inf
+
+
 def _at_operating_point(lay: Layout, operating: np.ndarray) -> Linearisation:
     """The linearisation at the run-up forces ``operating`` (time-varying stiffness at its stiffest phase), kept
     with the layout for the last few operating points: a model's runs past its ramps (a sweep point's settle runs)

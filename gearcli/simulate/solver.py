@@ -38,6 +38,7 @@ from gearcli.core.methods import METHODS, scipy_solver
 from gearcli.engine import status as st
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
+from gearcli.simulate.choice import stability_step
 from gearcli.simulate.guards import ENERGY_MARGIN, EnergyReport, EnergyWatch, energy_watch, over_budget, priced_work_s
 
 # how a run ended (gearcli.engine.status: one set of codes for both engines)
@@ -67,11 +68,20 @@ class Integration:
 
 
 def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end: float, rtol: float,
-            atol: np.ndarray) -> OdeSolver:
+            atol: np.ndarray, max_step: float = np.inf) -> OdeSolver:
     if method not in METHODS:
         raise SimulationError(f"unknown integration method {method!r}; use one of {', '.join(METHODS)}")
     extra = {"jac": model.jac} if METHODS[method].takes_jacobian else {}
-    return scipy_solver(method)(model.rhs, t0, y0, t_end, rtol=rtol, atol=atol, **extra)
+    return scipy_solver(method)(model.rhs, t0, y0, t_end, rtol=rtol, atol=atol, max_step=max_step, **extra)
+
+
+def step_ceiling(model: TorsionalModel, method: str) -> float:
+    """The largest step ``method`` may take on ``model`` (scipy's ``max_step``): an explicit method's stability
+    limit on the scene's stiffest mode (:func:`gearcli.simulate.choice.stability_step`), none (inf) for an
+    implicit one or an unknown method (refused by :func:`_solver`)."""
+    if method not in METHODS or METHODS[method].implicit:
+        return np.inf
+    return stability_step(model.spec, model.layout, method)
 
 
 def breakpoints(model: TorsionalModel, t_end: float, t0: float = 0.0) -> list[float]:
@@ -128,12 +138,15 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
               y0: np.ndarray | None = None, max_nfev: int = MAX_NFEV, watch_energy: bool = True,
               t0: float = 0.0, atol: np.ndarray | None = None, engine: str = "python",
               pace_limit_s: float | None = None, progress: Callable[[float], None] | None = None,
-              course: CourseLimit | None = None) -> Integration:
+              course: CourseLimit | None = None, ceiling: float = 1.0) -> Integration:
     """Integrate from ``t0`` (default 0, the start of the run) to ``t_eval[-1]`` and sample at ``t_eval``
     (ascending, starting at ``t0``). A continuation (``t0 > 0``) needs ``y0``, the state at ``t0``: the
     drive's and the load's profiles are functions of the absolute time. ``atol`` overrides the per-state
     absolute tolerances of :func:`tolerances` (an array of the state's size, or a scalar); ``rtol`` is a
     scalar for every method.
+
+    An explicit method's steps are capped at ``ceiling`` times its stability limit on the scene's stiffest mode
+    (:func:`step_ceiling`, on both engines; a check pass halves it).
 
     Never raises on a solver failure: the returned ``status`` says what happened and ``y`` holds
     the samples reached (the rest NaN); :func:`check` turns a failure into an error. ``engine``
@@ -155,8 +168,10 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     if atol is None:
         atol = tolerances(model, rtol, watch)
     atol = np.broadcast_to(np.asarray(atol, dtype=float), y.shape).copy()
+    max_step = ceiling * step_ceiling(model, method)
     if engine == "compiled" and t_eval[-1] > t0:  # (an empty run is scipy's: nothing to integrate)
-        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0), progress)
+        return _integrate_compiled(model, t_eval, method, rtol, y, atol, max_nfev, watch, float(t0), progress,
+                                   max_step)
     out = np.full((y.size, t_eval.size), np.nan)
     out[:, t_eval <= t0] = y[:, None]
     done = int(np.searchsorted(t_eval, t0, side="right"))
@@ -164,7 +179,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
     cpu_start = time.thread_time()
     for t_end in breakpoints(model, float(t_eval[-1]), t):
-        solver = _solver(model, method, t, y, t_end, rtol, atol)
+        solver = _solver(model, method, t, y, t_end, rtol, atol, max_step)
         status, message, done = _segment(solver, t_eval, out, done, count, max_nfev, watch,
                                          (0.0, float(t_eval[-1])), METHODS[method].implicit,
                                          _Pace(float(t0), float(t_eval[-1]), pace_limit_s, progress, course, cpu_start))
@@ -307,9 +322,9 @@ def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.nd
 
 def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,
                         atol: np.ndarray, max_nfev: int, watch: EnergyWatch | None, t0: float = 0.0,
-                        progress: Callable[[float], None] | None = None) -> Integration:
-    """The same run on the compiled kernel: same start, segments, tolerances (vectors), guards and statuses;
-    ``progress`` as in :func:`integrate`."""
+                        progress: Callable[[float], None] | None = None, max_step: float = np.inf) -> Integration:
+    """The same run on the compiled kernel: same start, segments, tolerances (vectors), step ceiling, guards and
+    statuses; ``progress`` as in :func:`integrate`."""
 
     if method not in engine.COMPILED_METHODS:
         raise SimulationError(f"the compiled engine integrates {', '.join(engine.COMPILED_METHODS)} only, "
@@ -331,7 +346,8 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
                      cost.PROJECTION_LIMIT,
                      float(BUDGET_CHECK_EVERY), p["eval"], p["jac"], p["lu"],
                      p["step_implicit" if implicit else "step_explicit"], 0.0, float(t_eval[-1])]
-                    + [t0, 0.0])  # the kernel writes the time reached there; a signal raises the stop flag
+                    + [t0, 0.0]  # the kernel writes the time reached there; a signal raises the stop flag
+                    + [max_step])
     every = np.int64(watch.every if watch is not None else 0)
     start = time.perf_counter()
     args = (_packed(model), np.ascontiguousarray(y, dtype=float), np.ascontiguousarray(t_eval, dtype=float),

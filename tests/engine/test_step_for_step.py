@@ -36,19 +36,19 @@ def non_stiff(path: str) -> bool:
     return choose_method(model.spec, cfg.simulation.duration_s, "auto").method == "DOP853"
 
 
-def scipy_dop853(model, t_eval, rtol, atol, method="DOP853"):
+def scipy_dop853(model, t_eval, rtol, atol, method="DOP853", max_step=np.inf, y0=None):
     """scipy.integrate.DOP853 (or RK45) over the run's segments: (samples, accepted step times, nfev)."""
     import scipy.integrate
 
     DOP853 = getattr(scipy.integrate, method)
 
-    y, t = model.initial_state(), 0.0
+    y, t = (model.initial_state() if y0 is None else y0), 0.0
     out = np.full((y.size, t_eval.size), np.nan)
     done = int(np.searchsorted(t_eval, 0.0, side="right"))
     out[:, :done] = y[:, None]
     times, nfev = [], 0
     for t_end in breakpoints(model, float(t_eval[-1])):
-        s = DOP853(model.rhs, t, y, t_end, rtol=rtol, atol=atol)
+        s = DOP853(model.rhs, t, y, t_end, rtol=rtol, atol=atol, max_step=max_step)
         while s.status == "running":
             s.step()
             assert s.status != "failed"
@@ -62,15 +62,22 @@ def scipy_dop853(model, t_eval, rtol, atol, method="DOP853"):
     return out, np.array(times), nfev
 
 
-def compiled_dop853(model, t_eval, rtol, atol, max_nfev=10**8, method="DOP853"):
+def compiled_dop853(model, t_eval, rtol, atol, max_nfev=10**8, method="DOP853", max_step=None, y0=None):
     k = engine.load(quiet=True).kernel
     n = model.n_states
     trace = np.full(10**6, np.nan)
-    out, counters, floats, _ = getattr(k, method.lower())(engine.pack(model.arrays), model.initial_state(), t_eval,
+    wpar = np.zeros(5)
+    if max_step is not None:  # the full parameter vector, its budget checks never due, the ceiling in its slot
+        from gearcli.engine.guards import WP_EVERY, WP_MAX_STEP
+
+        wpar = np.zeros(WP_MAX_STEP + 1)
+        wpar[WP_EVERY], wpar[WP_MAX_STEP] = 1e15, max_step
+    out, counters, floats, _ = getattr(k, method.lower())(engine.pack(model.arrays),
+                                        model.initial_state() if y0 is None else y0, t_eval,
                                         np.array(breakpoints(model, float(t_eval[-1]))),
                                         np.array(np.broadcast_to(rtol, (n,)), dtype=float),
                                         np.array(np.broadcast_to(atol, (n,)), dtype=float), np.int64(max_nfev),
-                                        np.int64(0), np.zeros(5), trace)
+                                        np.int64(0), wpar, trace)
     nfev, steps, status, _ = (int(v) for v in counters)
     return out, trace[:steps], nfev, status
 
@@ -95,6 +102,21 @@ def test_same_steps_as_scipy(path):
     t_eval = np.linspace(0.0, cfg.simulation.duration_s, cfg.simulation.steps + 1)
     atol = model.atol(rtol)
     assert_same(scipy_dop853(model, t_eval, rtol, atol), compiled_dop853(model, t_eval, rtol, atol))
+
+
+@pytest.mark.parametrize("method", ["DOP853", "RK45"])
+def test_same_steps_as_scipy_under_a_step_ceiling(method):
+    """scipy's ``max_step`` (the initial step and every step clamped to it) and the kernel's ``wpar[WP_MAX_STEP]``:
+    the same accepted steps, none longer than the ceiling, on the seed's run-up with a ceiling well below the steps
+    it takes without one."""
+    cfg, model = scene(str(ROOT / "configs" / "concrete_mixer.toml"))
+    rtol, ceiling = 1e-6, 4e-4
+    t_eval = np.linspace(0.0, 0.3, 601)
+    atol = model.atol(rtol)
+    ref = scipy_dop853(model, t_eval, rtol, atol, method, max_step=ceiling)
+    assert np.max(np.diff(np.concatenate(([0.0], ref[1])))) <= ceiling * (1 + 1e-12)
+    assert ref[1].size >= 0.3 / ceiling  # the ceiling bound: the free run's steps are longer (cf. the seed's 285)
+    assert_same(ref, compiled_dop853(model, t_eval, rtol, atol, method=method, max_step=ceiling))
 
 
 def test_per_component_tolerance_vectors():

@@ -3,12 +3,14 @@ estimated like the window statistics' (DESIGN section 7: every number either res
 check pass spans the peak, from its own samples; where the peak lies before it (a run-up peak of a well damped scene),
 from a short pass at rtol / 10 from DECAY_SPANS / sigma before the peak. Beyond 1e-3 of the peak: ``peak_unresolved``.
 
-Scene: the two-stage reducer of light_mesh_scene.py with the default mesh damping ratio 0.05, RK45 at rtol 1e-4.
+Scene: the two-stage reducer of light_mesh_scene.py with the default mesh damping ratio 0.05, DOP853 at rtol 1e-5.
 The truth is DOP853 at rtol 1e-10 on the same samples (its peak agrees with rtol 1e-9 to 1e-10). Measured: the run-up
-peaks at 0.036 s and 0.042 s are 4045.5 N and 6637.1 N against the truth's 4026.0 N and 6617.8 N (4.8e-3 and 2.9e-3
-off; estimated 4.3e-3 and 2.5e-3), before the window's check pass (from 0.049 s); before this fix no warning said
-so. (DOP853 at rtol 1e-5 is 1.5e-3 off on stage 2 with one BLAS and 4.8e-4 with another: too close to the target
-for a test.)
+peaks at 0.036 s and 0.042 s are 4030.0 N and 6638.3 N against the truth's 4026.0 N and 6617.8 N (1.0e-3 and 3.1e-3
+off; stage 2 estimated 3.1e-3), before the window's check pass (from 0.049 s); before the estimate of run-up peaks no
+warning said so. The run's steps sit on the explicit step ceiling there (docs/numerics.md "The step ceiling"): the
+check pass halves the ceiling as well as tightening the rtol, or it would take the same steps and see nothing. (Until
+the ceiling the scene ran RK45 at rtol 1e-4, 4.8e-3 off; RK45 now keeps to its stability limit there and is 5e-6
+off at any rtol from 1e-3.)
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from gearcli.simulate import run_simulation
 from gearcli.simulate.estimate import TARGET, peak_error
 from tests.extreme.light_mesh_scene import SCENE
 
-SETS = ["contact.damping_ratio=0.05", "simulation.method=RK45", "simulation.rtol=1e-4"]
+GREY = 1.2  # an error within 20 % of the target may be estimated either side of it
+SETS = ["contact.damping_ratio=0.05", "simulation.method=DOP853", "simulation.rtol=1e-5"]
 
 
 @pytest.fixture(scope="module")
@@ -54,12 +57,13 @@ def test_runup_peak_error_is_estimated_and_warned(scene, truth):
     true = _peak_errors(sim, truth)
     warned = {d.data["stage"]: d for d in sim.diagnostics if d.code == dg.PEAK_UNRESOLVED}
     for k, e in enumerate(true):
-        if e > TARGET:  # both stages
+        if e > GREY * TARGET:  # stage 2 (stage 1, 1.0e-3 off, sits on the target: warned or not, both are right)
             assert k + 1 in warned, (k, e)
-            # the estimate is the run's error to first order: within 2x of the truth (measured 0.9x)
+        if k + 1 in warned:
+            # the estimate is the run's error to first order: within 2x of the truth (measured 1.0x)
             assert 0.5 * e < warned[k + 1].data["relative_error"] < 2.0 * e
             assert warned[k + 1].data["at_s"] < sim.window_s[0]  # a run-up peak, before the window
-    assert warned, "the scene's premise: a run-up peak off by more than the target"
+    assert any(e > GREY * TARGET for e in true), "the scene's premise: a run-up peak off by more than the target"
     assert sim.solver.check_pass["finished"]
 
 
