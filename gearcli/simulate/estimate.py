@@ -268,21 +268,29 @@ def stability_limited(choice: Choice, method: str, steps: int) -> bool:
     return steps < STABILITY_LIMITED * choice.indicator / m.stability_radius
 
 
-def tight_rtol(rtol: float) -> float:
-    """The tight check pass's rtol: the run's / :data:`TIGHT_FACTOR`, not below the schema's floor."""
-    return max(rtol / TIGHT_FACTOR, MIN_RTOL)
+def tight_rtol(rtol: float, mixed: bool = False) -> float:
+    """The tight check pass's rtol: the run's / :data:`TIGHT_FACTOR`, not below the schema's floor; a run of several
+    methods (``mixed``: ``auto`` changed course, :mod:`gearcli.simulate.course`) one factor tighter again. The check
+    integrates with the run's last method, whose error at the run's rtol may be many times another segment's (a
+    lightly damped scene: DOP853's window max 8.5 N off at rtol 1e-5 where Radau's at 1e-4 is 6.5 N off): at
+    rtol / 10 the check then carries an error as large as the run's and their difference says little (1.6 N
+    estimated); at rtol / 100 (0.06 N off) the difference is the run's error again."""
+    return max(rtol / (TIGHT_FACTOR * (TIGHT_FACTOR if mixed else 1.0)), MIN_RTOL)
 
 
 def plan(t_eval: np.ndarray, rtol: float, choice: Choice, window: tuple[float, float],
-         stability_bound: bool = False) -> Plan:
+         stability_bound: bool = False, mixed: bool = False) -> Plan:
     """Where the check pass starts and at which tolerance (module doc); ``stability_bound``: the run is
-    :func:`stability_limited` (then always the tight pass)."""
+    :func:`stability_limited` (then always the tight pass); ``mixed``: the run changed course (then always the tight
+    pass, at :func:`tight_rtol`'s mixed tolerance: a loose pass of the last method says nothing of the first's)."""
     mask = (t_eval >= window[0] - 1e-9 * max(1.0, window[1]))
     i_w = int(np.argmax(mask))
     t_start = start_time(choice, window)
     i_s = min(i_w, int(np.searchsorted(t_eval, t_start, side="right")) - 1)
     i_s = max(i_s, 0)
     share = (t_eval[-1] - t_eval[i_s]) / max(t_eval[-1] - t_eval[0], 1e-300)
+    if mixed:
+        return Plan(i_w, i_s, tight_rtol(rtol, mixed=True), 1.0)
     if TIGHT_FACTOR ** 0.125 * share <= TIGHT_COST or rtol * LOOSE_FACTOR > MAX_RTOL or stability_bound:
         return Plan(i_w, i_s, tight_rtol(rtol), 1.0)
     return Plan(i_w, i_s, rtol * LOOSE_FACTOR, LOOSE_SAFETY)
@@ -305,13 +313,14 @@ def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, idx
 
 
 def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float], *,
-               max_nfev: int, sampled: Sampled | None = None) -> CheckPass:
+               max_nfev: int, sampled: Sampled | None = None, mixed: bool = False) -> CheckPass:
     """The check pass and its per-stage error estimates (module doc). ``sampled``: the run's own samples at
     ``run.t`` when the caller has them (their window part is the run's side of the comparison; the channels
-    are sample by sample, so the slice equals sampling the window again)."""
+    are sample by sample, so the slice equals sampling the window again); ``mixed``: the run changed course
+    (:func:`tight_rtol`)."""
     lay = model.layout
     t_eval = run.t
-    p = plan(t_eval, run.rtol, choice, window, stability_limited(choice, run.method, run.steps))
+    p = plan(t_eval, run.rtol, choice, window, stability_limited(choice, run.method, run.steps), mixed)
     i_w, i_s, rtol, scale = p.i_w, p.i_s, p.rtol, p.scale
     t0 = time.perf_counter()
     tw = t_eval[i_w:]
@@ -352,7 +361,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         # configs/concrete_mixer_drivetrain.toml, stage 1 max estimated 4.3 of the mean, true 3e-5)
         rtol, scale = tight_rtol(run.rtol), 1.0
     if status == STATUS_FINISHED:  # the peaks before the span: a short tight pass of their own
-        before, cost = runup_peaks(model, run, choice, ft_all, i_s, max_nfev)
+        before, cost = runup_peaks(model, run, choice, ft_all, i_s, max_nfev, mixed)
         peaks = tuple(sorted(peaks + before, key=lambda x: x.stage))
         nfev, njev, steps = nfev + cost[0], njev + cost[1], steps + cost[2]
     wall = time.perf_counter() - t0
@@ -361,7 +370,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
 
 
 def runup_peaks(model: TorsionalModel, run: Integration, choice: Choice, ft_run: list[np.ndarray], i_s: int,
-                max_nfev: int) -> tuple[tuple[PeakError, ...], tuple[int, int, int]]:
+                max_nfev: int, mixed: bool = False) -> tuple[tuple[PeakError, ...], tuple[int, int, int]]:
     """The error of the run peaks |F_t| (stage F_t over the run's samples ``ft_run``) that lie before the check pass's
     span (sample ``i_s``): one pass at rtol / ``TIGHT_FACTOR`` from where the errors made earlier have decayed to 1 %
     of themselves (``DECAY_SPANS`` / sigma before the earliest such peak, as the window's check starts; t = 0 in a
@@ -378,7 +387,7 @@ def runup_peaks(model: TorsionalModel, run: Integration, choice: Choice, ft_run:
     idx = np.arange(i_0, min(t.size, last + 2))  # to just past the last peak
     if idx.size < 2:
         return (), (0, 0, 0)
-    rtol = tight_rtol(run.rtol)
+    rtol = tight_rtol(run.rtol, mixed)
     fine, forces, _ = one_pass(model, t, run.y[:, i_0], idx, run.method, rtol, max_nfev, run.engine)
     cost = (fine.nfev, fine.njev, fine.steps)
     if fine.status != STATUS_FINISHED or forces is None:

@@ -218,7 +218,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
-    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s,
+                              mixed=bool(changes)) if error_estimate else None
     mode = (estimate.unresolved_mode(choice, run, duration_s, window[0])
             or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
         if ref is not None and ref.errors else None
