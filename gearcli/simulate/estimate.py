@@ -61,8 +61,7 @@ from gearcli import diagnostics as dg
 from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
-from gearcli.model.outputs import (Sampled, connector_line_forces, mesh_line_forces, planet_sun_connectors,
-                                    tooth_forces)
+from gearcli.model.outputs import Sampled, connector_line_forces, mesh_line_forces, planet_sun_connectors, tooth_forces
 from gearcli.simulate.choice import Choice, excited_radians
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
