@@ -137,3 +137,18 @@ def test_the_resonance_warnings_gain_is_what_the_run_shows_at_that_resonance(tmp
     amp = next(o for o in rep.stages[0].spectrum.mesh_orders if o.order == 1).tangential_N
     # 0.25 % apart on this scene; the modal gain neglects the other mode's share and the TE's own quasi-static force
     assert_allclose(amp / blocked_ft, gain, rtol=0.02)
+
+
+def test_the_report_json_names_the_contact_law_the_run_integrates(report):
+    """The report's design section gives each stage's contact law (default: ISO 6336-1 calibrated, K such that
+    e K h0^(e-1) = k_n = c_γα b / cos² β_b), not only the Hertz line contact's K, which the default law does not use."""
+    from gearcli.io.report_json import report_dict
+
+    st = report_dict(report)["design"]["stages"][0]
+    ms = st["mesh_stiffness"]
+    d = report.design.stages[0]
+    k_n = d.iso6336_mesh_stiffness_N_mm_um * 1e3 * d.face_width_mm / math.cos(math.radians(d.base_helix_angle_deg)) ** 2
+    assert ms["law"] == "iso6336" and ms["exponent"] == 1.5
+    assert_allclose(ms["linearised_N_mm"], k_n, rtol=1e-9)  # the hand k_n
+    assert_allclose(1.5 * ms["K"] * ms["static_approach_mm"] ** 0.5, k_n, rtol=1e-9)  # the law's tangent at h0
+    assert ms["K"] != pytest.approx(st["hertz_stiffness_N_mm1_5"], rel=0.1)  # a different number: both needed
