@@ -237,6 +237,27 @@ def worst_planet(stage: StatisticsError, planets: list[StatisticsError], rtol: f
                              stage.check_dominant_frequency_Hz)
 
 
+def _over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], suns: dict[int, list[np.ndarray]],
+                  fine_suns: dict[int, list[np.ndarray]], tw: np.ndarray, n_check: int, rtol: float,
+                  scale: float) -> tuple[StatisticsError, ...]:
+    """``errors`` with each planetary stage's replaced by :func:`worst_planet` over its planets' sun meshes: the
+    run's F_t ``suns`` (every sample of the run) against the check's ``fine_suns`` (its ``n_check`` samples, the
+    window's ``tw`` last)."""
+    n_w = tw.size
+    out = []
+    for e in errors:
+        k = e.stage - 1
+        if k not in suns:
+            out.append(e)
+            continue
+        static = model.spec.meshes[k].static_tangential_N
+        n_run = suns[k][0].size
+        each = [stage_error(k, tw, a[n_run - n_w:], b[n_check - n_w:], static, rtol, scale)
+                for a, b in zip(suns[k], fine_suns[k], strict=True)]
+        out.append(worst_planet(e, each, rtol))
+    return tuple(out)
+
+
 def peak_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray, i_from: int,
                scale: float = 1.0) -> PeakError | None:
     """Stage ``k``'s (0-based) run peak |F_t| (over the run's samples ``ft_run`` at ``t``) and its error from the check
@@ -384,12 +405,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         fine_ft = [tooth_forces(lay, k, f)[0] for k, f in enumerate(fine_forces)]
         if suns:
             fine_suns = planet_suns(model, t_eval[idx], fine.y)
-            n_w = tw.size
-            errors = tuple(worst_planet(e, [stage_error(e.stage - 1, tw, a[i_w:], b[idx.size - n_w:],
-                                                        model.spec.meshes[e.stage - 1].static_tangential_N, run.rtol,
-                                                        scale) for a, b in zip(suns[e.stage - 1],
-                                                                               fine_suns[e.stage - 1], strict=True)],
-                                        run.rtol) if e.stage - 1 in suns else e for e in errors)
+            errors = _over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale)
             for k, j in worst.items():
                 fine_ft[k] = fine_suns[k][j]
         lead = 1 if idx.size > 1 and idx[1] != idx[0] + 1 else 0  # the span's first sample alone, then contiguous
