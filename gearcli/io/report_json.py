@@ -31,6 +31,9 @@ DESIGN_STAGE_KEYS = ("index", "ratio", "mesh_frequency_Hz", "contact_ratio_trans
 
 def _stage_summary(s) -> JsonObject:
     out: JsonObject = {k: plain(getattr(s, k)) for k in DESIGN_STAGE_KEYS}
+    # the contact law the run integrates ({law, K, exponent, linearised_N_mm, iso_N_mm, ...}, as `design` gives it):
+    # hertz_stiffness_N_mm1_5 is the Hertz line contact's K, not the default iso6336 law's
+    out["mesh_stiffness"] = plain(getattr(s, "mesh_stiffness", None))
     out["pinion"] = {"teeth": s.pinion.teeth}
     out["gear"] = {"teeth": s.gear.teeth}
     return out

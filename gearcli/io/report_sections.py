@@ -365,10 +365,15 @@ def method_paragraph(study: AccuracyStudy, report_window_s: tuple[float, float] 
                 abs(a - b) <= 1e-9 * max(1.0, abs(b)) for a, b in zip(ref.window_s, report_window_s, strict=True)):
             window += (f" (the file's, as every run of the study takes it; the sections above use the window "
                        f"{report_window_s[0]:.4g}–{report_window_s[1]:.4g} s, where the run is settled)")
-    rtols = sorted({r.rtol for r in study.runs}, reverse=True)
-    methods = list(dict.fromkeys(r.method for r in study.runs))
+    # the ladder's grid: every method at every rtol; the file's own setting, where it is no rung, is named apart
+    rungs = [r for r in study.runs if not (study.file_run_extra and r.file_settings)]
+    rtols = sorted({r.rtol for r in rungs}, reverse=True)
+    methods = list(dict.fromkeys(r.method for r in rungs))
+    file = study.file_run
+    besides = (f", and the file's own setting, {file.method} at rtol {file.rtol:g}" if study.file_run_extra
+               and file is not None else "")
     return (
-        f"The scene was run with {', '.join(methods)} at rtol {', '.join(f'{x:g}' for x in rtols)}. "
+        f"The scene was run with {', '.join(methods)} at rtol {', '.join(f'{x:g}' for x in rtols)}{besides}. "
         f"Each run's error is relative to a reference run ({ref.method} at rtol {ref.rtol:g}). The reference was "
         f"checked by an independent run with a different method ({ref.check_method} at rtol {ref.check_rtol:g}); "
         f"the largest relative difference between the two over the compared quantities, {ref.uncertainty:.1e}, "

@@ -186,6 +186,22 @@ def mesh_line_forces(lay: Layout, t: np.ndarray, Y: np.ndarray) -> list[np.ndarr
     return [_connector_force(lay, c, Y, omega, theta) for c in lay.stage_conn]
 
 
+def planet_sun_connectors(lay: Layout) -> dict[int, list[int]]:
+    """Stage (0-based) -> its planets' sun-mesh connectors in planet order (planetary stages only): the meshes whose
+    largest force is the stage's dynamic and run-up factor (:mod:`gearcli.simulate.planet_stats`)."""
+    out: dict[int, list[tuple[int, int]]] = {}
+    for c, x in enumerate(lay.connectors):
+        if x.load_body >= 0 and x.gear == "sun":
+            out.setdefault(x.index, []).append((x.planet, c))
+    return {k: [c for _, c in sorted(v)] for k, v in out.items()}
+
+
+def connector_line_forces(lay: Layout, t: np.ndarray, Y: np.ndarray, connectors: list[int]) -> list[np.ndarray]:
+    """The line forces (N) of ``connectors`` at the sample times ``t``, as :func:`mesh_line_forces` gives the stages'."""
+    omega, theta, _ = body_motion(lay, np.asarray(t, dtype=float), Y)
+    return [_connector_force(lay, c, Y, omega, theta) for c in connectors]
+
+
 def stored_energy(lay: Layout, t: float, y: np.ndarray) -> float:
     """Kinetic energy plus the elastic energy of the constant-stiffness connectors at one state ``y`` at time
     ``t``: what ``kinetic_energy`` and ``potential_energy(time_varying=False)`` of ``sample`` at that one state

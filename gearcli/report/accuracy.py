@@ -219,7 +219,8 @@ def accuracy_study(
     # (their run budget refuses them within seconds) instead of after the whole ladder
     ref = _reference(runner, spec.reference_pair(stiffness_indicator, explicit_speedup))
     outcomes, slow = _ladder(runner, spec, rtols, auto_choice, (file_method, file_rtol), engine_methods)
-    if not any(_is_file(m, r, file_method, file_rtol) for m, r, _ in outcomes):  # e.g. swapped for a sibling
+    extra = not any(_is_file(m, r, file_method, file_rtol) for m, r, _ in outcomes)
+    if extra:  # e.g. swapped for a sibling, or an rtol off the ladder
         runner.total += 1 if in_ladder else 0
         outcomes.append((file_method, file_rtol, runner(file_method, file_rtol)))
     runner.tick("done", runner.total, runner.total)
@@ -233,7 +234,7 @@ def accuracy_study(
     best = min(ok, key=lambda x: (cost(x), x.nfev)) if ok else None
     file_run = next(x for x in runs if x.file_settings)
     return AccuracyStudy(accuracy, ref, tuple(runs), best, file_run.meets_accuracy,
-                         tuple(_notes(ref, runs, accuracy, slow)))
+                         tuple(_notes(ref, runs, accuracy, slow)), file_run_extra=extra)
 
 
 def _cost(runs: Iterable[AccuracyRun]) -> Callable[[AccuracyRun], float]:

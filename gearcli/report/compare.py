@@ -118,6 +118,7 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
     """Fluctuation, run-up peak, dynamic factor and the F_t spectrum of every mesh."""
     out = []
     natural: Sequence[float] = tuple(sim.natural_frequencies_Hz)
+    meshes = [(st.index, float(st.mesh_frequency_Hz)) for st in design.stages]
     for st, dyn in zip(design.stages, sim.stages, strict=True):
         series = sim.series.get(Channel("tangential_force", f"stage{st.index}"))
         dte_m = sim.series.get(Channel("dte", f"stage{st.index}"))
@@ -126,7 +127,8 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
         spectrum = force_spectrum(sim.time_s, series, sim.window_s, stage=st.index,
                                   mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural,
                                   dte_um=dte_m * 1e6 if dte_m is not None else None,
-                                  whole_periods=sim.steady is not None and sim.steady.mode == "periodic")
+                                  whole_periods=sim.steady is not None and sim.steady.mode == "periodic",
+                                  other_meshes_Hz=[m for m in meshes if m[0] != st.index])
         out.append(StageReport(
             stage=st.index, tangential_N=dyn.tangential_N, radial_N=dyn.radial_N, axial_N=dyn.axial_N,
             static_tangential_N=dyn.static_tangential_N, peak_tangential_N=dyn.peak_tangential_N,

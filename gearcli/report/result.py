@@ -162,6 +162,7 @@ class AccuracyStudy:
     recommended: AccuracyRun | None  # cheapest (nfev x the method's median s/eval) meeting the accuracy
     file_settings_meet_accuracy: bool
     notes: tuple[str, ...] = ()
+    file_run_extra: bool = False  # the file's own setting is no rung of the ladder: a run of its own, besides it
 
     @property
     def file_run(self) -> AccuracyRun | None:

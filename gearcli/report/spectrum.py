@@ -95,9 +95,12 @@ def force_spectrum(
     natural_frequencies_Hz: Sequence[float] = (),
     dte_um: np.ndarray | None = None,
     whole_periods: bool = False,
+    other_meshes_Hz: Sequence[tuple[int, float]] = (),
 ) -> Spectrum:
     """Hann-windowed amplitude spectrum of the detrended force over ``window_s``; see the module doc. The
-    mesh orders (:func:`mesh_orders`) are listed too, from ``dte_um`` as well when it is given."""
+    mesh orders (:func:`mesh_orders`) are listed too, from ``dte_um`` as well when it is given.
+    ``other_meshes_Hz``: (stage, mesh frequency) of the train's other stages, whose harmonics the peak may be
+    (:func:`name_peak`)."""
     mask = window_mask(np.asarray(time_s, float), window_s)
     t = np.asarray(time_s, float)[mask]
     f = np.asarray(force_N, float)[mask]
@@ -121,15 +124,24 @@ def force_spectrum(
     peak = float(freqs[k])
     orders = mesh_orders(time_s, force_N, dte_um, window_s, mesh_frequency_Hz, whole_periods=whole_periods)
     return Spectrum(stage, freqs, amplitude, peak, float(amplitude[k]), resolution, float(freqs[-1]), window_s,
-                    mesh_frequency_Hz, name_peak(peak, resolution, mesh_frequency_Hz, natural_frequencies_Hz), orders)
+                    mesh_frequency_Hz, name_peak(peak, resolution, mesh_frequency_Hz, natural_frequencies_Hz,
+                                                 other_meshes_Hz), orders)
 
 
-def name_peak(peak_Hz: float, resolution_Hz: float, mesh_Hz: float, natural_Hz: Sequence[float]) -> str:
-    """The nearest known line within ±MATCH_BINS bins: a mesh harmonic or a natural frequency."""
+def name_peak(peak_Hz: float, resolution_Hz: float, mesh_Hz: float, natural_Hz: Sequence[float],
+              other_meshes_Hz: Sequence[tuple[int, float]] = ()) -> str:
+    """The nearest known line within ±MATCH_BINS bins: a mesh harmonic (of this stage's mesh, or of another stage's,
+    ``other_meshes_Hz`` = (stage, mesh frequency): a mesh's excitation reaches every mesh of the train through the
+    shafts, so a force may be dominated by a neighbour's line) or a natural frequency; on a tie this stage's own
+    mesh line first, then the other stages' in their order, then the natural frequencies."""
     lines: list[tuple[float, str]] = []
     if mesh_Hz > 0:
         lines.append((mesh_Hz, "mesh frequency"))
         lines += [(h * mesh_Hz, f"mesh harmonic {h}") for h in (2, 3)]
+    for stage, f_mesh in other_meshes_Hz:
+        if f_mesh > 0:
+            lines.append((f_mesh, f"stage {stage} mesh frequency"))
+            lines += [(h * f_mesh, f"stage {stage} mesh harmonic {h}") for h in (2, 3)]
     lines += [(fn, f"natural frequency {j}") for j, fn in enumerate(natural_Hz, start=1) if fn > 0]
     best: tuple[float, str] | None = None
     for f_line, name in lines:

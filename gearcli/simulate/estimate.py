@@ -61,7 +61,7 @@ from gearcli import diagnostics as dg
 from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
-from gearcli.model.outputs import Sampled, mesh_line_forces, tooth_forces
+from gearcli.model.outputs import Sampled, connector_line_forces, mesh_line_forces, planet_sun_connectors, tooth_forces
 from gearcli.simulate.choice import Choice, excited_radians
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
@@ -210,6 +210,12 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
     # against the check pass's force, so an error is a finite fraction of what the tighter pass sees (1 when
     # only it sees contact) and never inf, which no JSON can hold; both passes at zero: no error at all
     reference = force_reference(a.mean, a.std, static_N, floor_N) or math.hypot(b.mean, b.std)
+    return _statistics_error(k, err, reference, rtol, _dominant(fa, aa), _dominant(fb, ab))
+
+
+def _statistics_error(k: int, err: dict[str, float], reference: float, rtol: float, dominant_Hz: float,
+                      check_dominant_Hz: float) -> StatisticsError:
+    """Stage ``k``'s (0-based) estimate from its statistics' errors ``err`` (N) over the force ``reference``."""
     rel = {q: (v / reference if reference > 0 else 0.0) for q, v in err.items()}
     unresolved = tuple(q for q in STATISTICS if rel[q] > target(q))
     if any(q in AMPLITUDE for q in unresolved):  # one vibration error moves them all: name them together
@@ -220,9 +226,51 @@ def stage_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray,
     return StatisticsError(
         stage=k + 1, reference_N=reference, target_relative=TARGET, mean_target_relative=MEAN_TARGET,
         tangential_N=ChannelStats(err["mean"], err["min"], err["max"], err["std"]), spectrum_N=err["spectrum"],
-        relative={q: rel[q] for q in STATISTICS}, dominant_frequency_Hz=_dominant(fa, aa),
-        check_dominant_frequency_Hz=_dominant(fb, ab), unresolved=unresolved, suggested_rtol=suggestion,
+        relative={q: rel[q] for q in STATISTICS}, dominant_frequency_Hz=dominant_Hz,
+        check_dominant_frequency_Hz=check_dominant_Hz, unresolved=unresolved, suggested_rtol=suggestion,
         resolved=not unresolved)
+
+
+def planet_suns(model: TorsionalModel, t: np.ndarray, Y: np.ndarray) -> dict[int, list[np.ndarray]]:
+    """Stage (0-based) -> its planets' sun-mesh F_t (N) at ``t``, planet 1 first; {} without planetary stages. A
+    planetary stage's dynamic and run-up factors are its most loaded planet's (:mod:`gearcli.simulate.planet_stats`),
+    its channels planet 1's: the check compares every planet, so the factors it prints are covered too."""
+    lay = model.layout
+    return {k: [tooth_forces(lay, k, f)[0] for f in connector_line_forces(lay, t, Y, conns)]
+            for k, conns in planet_sun_connectors(lay).items()}
+
+
+def worst_planet(stage: StatisticsError, planets: list[StatisticsError], rtol: float) -> StatisticsError:
+    """A planetary stage's estimate over its planets' sun meshes: each statistic's largest error (N) over them (planet
+    1's, the stage's channels, among them), over the mean of the planets' reference forces (a loaded stage's: the
+    static force per planet, which its dynamic and run-up factors refer to)."""
+    every = [stage, *planets]
+    err = {q: max(float(getattr(e.tangential_N, q)) for e in every) for q in ("mean", "min", "max", "std")}
+    err["spectrum"] = max(e.spectrum_N for e in every)
+    reference = float(np.mean([e.reference_N for e in planets])) if planets else stage.reference_N
+    return _statistics_error(stage.stage - 1, err, reference, rtol, stage.dominant_frequency_Hz,
+                             stage.check_dominant_frequency_Hz)
+
+
+def _over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], suns: dict[int, list[np.ndarray]],
+                  fine_suns: dict[int, list[np.ndarray]], tw: np.ndarray, n_check: int, rtol: float,
+                  scale: float) -> tuple[StatisticsError, ...]:
+    """``errors`` with each planetary stage's replaced by :func:`worst_planet` over its planets' sun meshes: the
+    run's F_t ``suns`` (every sample of the run) against the check's ``fine_suns`` (its ``n_check`` samples, the
+    window's ``tw`` last)."""
+    n_w = tw.size
+    out = []
+    for e in errors:
+        k = e.stage - 1
+        if k not in suns:
+            out.append(e)
+            continue
+        static = model.spec.meshes[k].static_tangential_N
+        n_run = suns[k][0].size
+        each = [stage_error(k, tw, a[n_run - n_w:], b[n_check - n_w:], static, rtol, scale)
+                for a, b in zip(suns[k], fine_suns[k], strict=True)]
+        out.append(worst_planet(e, each, rtol))
+    return tuple(out)
 
 
 def peak_error(k: int, t: np.ndarray, ft_run: np.ndarray, ft_check: np.ndarray, i_from: int,
@@ -283,21 +331,29 @@ def stability_limited(choice: Choice, method: str, steps: int) -> bool:
     return steps < STABILITY_LIMITED * choice.indicator / m.stability_radius
 
 
-def tight_rtol(rtol: float) -> float:
-    """The tight check pass's rtol: the run's / :data:`TIGHT_FACTOR`, not below the schema's floor."""
-    return max(rtol / TIGHT_FACTOR, MIN_RTOL)
+def tight_rtol(rtol: float, mixed: bool = False) -> float:
+    """The tight check pass's rtol: the run's / :data:`TIGHT_FACTOR`, not below the schema's floor; a run of several
+    methods (``mixed``: ``auto`` changed course, :mod:`gearcli.simulate.course`) one factor tighter again. The check
+    integrates with the run's last method, whose error at the run's rtol may be many times another segment's (a
+    lightly damped scene: DOP853's window max 8.5 N off at rtol 1e-5 where Radau's at 1e-4 is 6.5 N off): at
+    rtol / 10 the check then carries an error as large as the run's and their difference says little (1.6 N
+    estimated); at rtol / 100 (0.06 N off) the difference is the run's error again."""
+    return max(rtol / (TIGHT_FACTOR * (TIGHT_FACTOR if mixed else 1.0)), MIN_RTOL)
 
 
 def plan(t_eval: np.ndarray, rtol: float, choice: Choice, window: tuple[float, float],
-         stability_bound: bool = False) -> Plan:
+         stability_bound: bool = False, mixed: bool = False) -> Plan:
     """Where the check pass starts and at which tolerance (module doc); ``stability_bound``: the run is
-    :func:`stability_limited` (then always the tight pass)."""
+    :func:`stability_limited` (then always the tight pass); ``mixed``: the run changed course (then always the tight
+    pass, at :func:`tight_rtol`'s mixed tolerance: a loose pass of the last method says nothing of the first's)."""
     mask = (t_eval >= window[0] - 1e-9 * max(1.0, window[1]))
     i_w = int(np.argmax(mask))
     t_start = start_time(choice, window)
     i_s = min(i_w, int(np.searchsorted(t_eval, t_start, side="right")) - 1)
     i_s = max(i_s, 0)
     share = (t_eval[-1] - t_eval[i_s]) / max(t_eval[-1] - t_eval[0], 1e-300)
+    if mixed:
+        return Plan(i_w, i_s, tight_rtol(rtol, mixed=True), 1.0)
     if TIGHT_FACTOR ** 0.125 * share <= TIGHT_COST or rtol * LOOSE_FACTOR > MAX_RTOL or stability_bound:
         return Plan(i_w, i_s, tight_rtol(rtol), 1.0)
     return Plan(i_w, i_s, rtol * LOOSE_FACTOR, LOOSE_SAFETY)
@@ -329,13 +385,14 @@ def one_pass(model: TorsionalModel, t_eval: np.ndarray, y_start: np.ndarray, idx
 
 
 def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: tuple[float, float], *,
-               max_nfev: int, sampled: Sampled | None = None) -> CheckPass:
+               max_nfev: int, sampled: Sampled | None = None, mixed: bool = False) -> CheckPass:
     """The check pass and its per-stage error estimates (module doc). ``sampled``: the run's own samples at
     ``run.t`` when the caller has them (their window part is the run's side of the comparison; the channels
-    are sample by sample, so the slice equals sampling the window again)."""
+    are sample by sample, so the slice equals sampling the window again); ``mixed``: the run changed course
+    (:func:`tight_rtol`)."""
     lay = model.layout
     t_eval = run.t
-    p = plan(t_eval, run.rtol, choice, window, stability_limited(choice, run.method, run.steps))
+    p = plan(t_eval, run.rtol, choice, window, stability_limited(choice, run.method, run.steps), mixed)
     i_w, i_s, rtol, scale = p.i_w, p.i_s, p.rtol, p.scale
     t0 = time.perf_counter()
     tw = t_eval[i_w:]
@@ -345,6 +402,10 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         run_all = [m.line_force_N for m in sampled.meshes]
     run_forces = [f[i_w:] for f in run_all]
     ft_all = [tooth_forces(lay, k, f)[0] for k, f in enumerate(run_all)]
+    suns = planet_suns(model, t_eval, run.y)  # a planetary stage's peak is its most loaded planet's
+    worst = {k: int(np.argmax([np.max(np.abs(f)) if f.size else 0.0 for f in fs])) for k, fs in suns.items()}
+    for k, j in worst.items():
+        ft_all[k] = suns[k][j]
     # every sample of the span: the window's, and where a run's peak lies before the window, the run-up's too (its
     # dense output costs DOP853 three evaluations a step: +420 on the seed's 4426, so only when a peak is there)
     in_runup = any(i_s <= int(np.argmax(np.abs(f))) < i_w for f in ft_all if f.size)
@@ -367,10 +428,15 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
                                    tooth_forces(lay, k, fine_forces[k][idx.size - tw.size:])[0],
                                    m.static_tangential_N, run.rtol, scale, floors[k])
                        for k, m in enumerate(model.spec.meshes))
+        fine_ft = [tooth_forces(lay, k, f)[0] for k, f in enumerate(fine_forces)]
+        if suns:
+            fine_suns = planet_suns(model, t_eval[idx], fine.y)
+            errors = _over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale)
+            for k, j in worst.items():
+                fine_ft[k] = fine_suns[k][j]
         lead = 1 if idx.size > 1 and idx[1] != idx[0] + 1 else 0  # the span's first sample alone, then contiguous
         peaks = tuple(e for k in range(len(model.spec.meshes))
-                      if (e := peak_error(k, t_eval, ft_all[k], tooth_forces(lay, k, fine_forces[k])[0][lead:],
-                                          int(idx[lead]), scale)) is not None)
+                      if (e := peak_error(k, t_eval, ft_all[k], fine_ft[k][lead:], int(idx[lead]), scale)) is not None)
         if scale == 1.0 or all(e.resolved for e in errors):
             break
         # the loose check flags a statistic: confirm it with a tight pass over the same span, whose difference
@@ -378,7 +444,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         # configs/concrete_mixer_drivetrain.toml, stage 1 max estimated 4.3 of the mean, true 3e-5)
         rtol, scale = tight_rtol(run.rtol), 1.0
     if status == STATUS_FINISHED:  # the peaks before the span: a short tight pass of their own
-        before, cost = runup_peaks(model, run, choice, ft_all, i_s, max_nfev)
+        before, cost = runup_peaks(model, run, choice, ft_all, i_s, max_nfev, mixed, worst)
         peaks = tuple(sorted(peaks + before, key=lambda x: x.stage))
         nfev, njev, steps = nfev + cost[0], njev + cost[1], steps + cost[2]
     wall = time.perf_counter() - t0
@@ -387,7 +453,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
 
 
 def runup_peaks(model: TorsionalModel, run: Integration, choice: Choice, ft_run: list[np.ndarray], i_s: int,
-                max_nfev: int) -> tuple[tuple[PeakError, ...], tuple[int, int, int]]:
+                max_nfev: int, mixed: bool = False, planet: dict[int, int] | None = None
+                ) -> tuple[tuple[PeakError, ...], tuple[int, int, int]]:
     """The error of the run peaks |F_t| (stage F_t over the run's samples ``ft_run``) that lie before the check pass's
     span (sample ``i_s``): one pass at rtol / ``TIGHT_FACTOR`` from where the errors made earlier have decayed to 1 %
     of themselves (``DECAY_SPANS`` / sigma before the earliest such peak, as the window's check starts; t = 0 in a
@@ -404,13 +471,18 @@ def runup_peaks(model: TorsionalModel, run: Integration, choice: Choice, ft_run:
     idx = np.arange(i_0, min(t.size, last + 2))  # to just past the last peak
     if idx.size < 2:
         return (), (0, 0, 0)
-    rtol = tight_rtol(run.rtol)
+    rtol = tight_rtol(run.rtol, mixed)
     fine, forces, _ = one_pass(model, t, run.y[:, i_0], idx, run.method, rtol, max_nfev, run.engine)
     cost = (fine.nfev, fine.njev, fine.steps)
     if fine.status != STATUS_FINISHED or forces is None:
         return (), cost
     lay = model.layout
-    out = (peak_error(k, t, ft_run[k], tooth_forces(lay, k, forces[k])[0], i_0) for k, _ in early)
+    fine_ft = [tooth_forces(lay, k, f)[0] for k, f in enumerate(forces)]
+    if planet:  # ``planet``: stage -> the planet whose sun mesh ``ft_run`` holds (its most loaded)
+        fine_suns = planet_suns(model, t[idx], fine.y)
+        for k, j in planet.items():
+            fine_ft[k] = fine_suns[k][j]
+    out = (peak_error(k, t, ft_run[k], fine_ft[k], i_0) for k, _ in early)
     return tuple(p for p in out if p is not None), cost
 
 

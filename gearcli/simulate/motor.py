@@ -110,10 +110,13 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
             where = _in_star(lay, motor, op.speed_rad_s)
         aim = ("" if op.stable_rad_s is None else
                f", so it never reaches its operating point {op.stable_rad_s * rpm:.5g} rpm")
+        back = _driven_back(t, w_motor, ws)
         diags.append(dg.warning(dg.MOTOR_STALLS, "the motor's curve cannot carry the load (reflected through the "
-                                f"reducer, losses included): it stalls {where}{aim}; a larger motor or a smaller load",
+                                f"reducer, losses included): it stalls {where}{aim}{back[0]}; a larger motor or a "
+                                "smaller load",
                                 stall_speed_rpm=None if op.speed_rad_s is None else op.speed_rad_s * rpm,
-                                operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm))
+                                operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm,
+                                reverse_speed_rpm=back[1]))
     if not driven:
         diags += _runaway(t, w_motor, ws, op.stable_rad_s)
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
@@ -201,6 +204,17 @@ def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagno
                        + (VFD_OFF_SPEED if vfd else
                           "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)"),
                        operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
+
+
+def _driven_back(t: np.ndarray, w_motor: np.ndarray, ws: float) -> tuple[str, float | None]:
+    """A stalled motor that the load then turned backwards (faster than ``ROLLBACK`` of its synchronous speed): the
+    stall warning's words for it and the lowest speed (rpm); ("", None) when it did not."""
+    if w_motor.size == 0 or not float(w_motor.min()) < -ROLLBACK * ws:
+        return "", None
+    i = int(np.argmin(w_motor))
+    low = float(w_motor[i]) * RAD_S_TO_RPM
+    return (f"; the load drives the train backwards (the motor at {low:.4g} rpm at {float(t[i]):.4g} s): the run's "
+            "numbers are no forward operating point", low)
 
 
 def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:

@@ -33,6 +33,21 @@ def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str
     return out
 
 
+def peak_series(model: TorsionalModel, s: Sampled, stages_ft: list[np.ndarray]) -> list[np.ndarray]:
+    """Each stage's F_t whose whole-run peak is the stage's ``peak_tangential_N``: ``stages_ft`` (the stages'
+    channels), a planetary stage's replaced by its most loaded planet's sun mesh (:func:`with_planets`), so that the
+    peak's sampling estimate reads the series the peak comes from."""
+    out = list(stages_ft)
+    suns: dict[int, list[np.ndarray]] = {}
+    for (k, _, gear), (ft, _) in planet_series(model, s).items():
+        if gear == "sun":
+            suns.setdefault(k, []).append(ft)
+    for k, fs in suns.items():
+        if k < len(out) and fs:
+            out[k] = max(fs, key=lambda f: float(np.max(np.abs(f))) if f.size else 0.0)
+    return out
+
+
 def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False
                ) -> tuple[tuple[PlanetDynamics, ...], float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over

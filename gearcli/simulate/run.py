@@ -35,7 +35,7 @@ from gearcli.simulate.course import CourseChange, integrate_auto
 from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
-from gearcli.simulate.planet_stats import planet_series, planets_of, with_planets
+from gearcli.simulate.planet_stats import peak_series, planet_series, planets_of, with_planets
 from gearcli.simulate.results import (
     EnergyBalance,
     SamplingError,
@@ -218,7 +218,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
-    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s) if error_estimate else None
+    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s,
+                              mixed=bool(changes)) if error_estimate else None
     mode = (estimate.unresolved_mode(choice, run, duration_s, window[0])
             or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
         if ref is not None and ref.errors else None
@@ -487,7 +488,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
                                               steps or s.time_s.size - 1)
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
-            diags += sampling.peak_warnings(s.time_s, [p[0] for p in per_stage], steps or s.time_s.size - 1,
+            diags += sampling.peak_warnings(s.time_s, peak_series(model, s, [p[0] for p in per_stage]),
+                                            steps or s.time_s.size - 1,
                                             max(choice.natural_frequencies_Hz, default=0.0))
 
     def ringing_diags() -> list[Diagnostic]:
