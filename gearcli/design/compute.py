@@ -29,7 +29,6 @@ from gearcli.design.standards import standard_of
 from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
-    BearingResult,
     DesignResult,
     GearResult,
     Iso6336Factors,
@@ -44,6 +43,7 @@ from gearcli.stages.design import checked_figures, checked_result, design_kind, 
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
+    from gearcli.optional_results import BearingResult
 
 
 def compute_design(cfg: DesignFile) -> DesignResult:
