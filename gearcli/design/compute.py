@@ -12,7 +12,6 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.allowances import NO_ALLOWANCE, AllowanceInfeasible, pair_allowances
 from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
@@ -352,6 +351,8 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1, /, *,
 
 def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: int) -> StageResult:
     """The stage with its allowances' figures (ISO 21771, docs/iso6336.md "Tooth-thickness allowances")."""
+    from gearcli.design.allowances import NO_ALLOWANCE, AllowanceInfeasible, pair_allowances  # lazy: with them only
+
     def pair(value: list[float] | None) -> tuple[float, float]:
         return NO_ALLOWANCE if value is None else (value[0], value[1])
 
