@@ -11,7 +11,7 @@ mistake or garbage) is refused with the bound named. Used by :mod:`gearcli.confi
 
 import sys
 from dataclasses import dataclass
-from typing import Any, TypeVar
+from typing import Any
 
 from pydantic import BaseModel, ConfigDict, GetCoreSchemaHandler, GetJsonSchemaHandler, field_validator
 from pydantic.json_schema import JsonSchemaValue
@@ -81,14 +81,3 @@ class StrictTable(BaseModel):
     @classmethod
     def _no_subnormal(cls, value: Any) -> Any:
         return refuse_subnormal(value)
-
-
-T = TypeVar("T", bound=BaseModel)
-
-
-def default_table(table: type[T]) -> T:
-    """A table with every key at its default, as ``table()`` gives it, made without building the table's validator
-    (``model_construct``: its own defaults, which its rules accept; no key is given, so no rule applies): the
-    default of a table key (``basic_rack: BasicRack = default_table(BasicRack)``) would otherwise compile the
-    table's validator at import, which the design file's validator, built on the first load, holds again."""
-    return table.model_construct()

@@ -12,7 +12,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
-from gearcli.config.bounds_types import StrictTable, default_table
+from gearcli.config.bounds_types import StrictTable
 
 AxialPositionMm = Annotated[float, Field(ge=-1e5, le=1e5)]  # along x from the housing plane, mm
 CenterAngleDeg = Annotated[float, Field(ge=-360.0, le=360.0)]
@@ -65,10 +65,10 @@ class Bearing(_Table):
     dynamic_load_rating_kN: Annotated[float, Field(ge=1e-3, le=1e5)]  # C
     kind: Literal["ball", "roller"]
     locating: bool = False
-    factors: BearingFactors = default_table(BearingFactors)
+    factors: BearingFactors = BearingFactors()
     # ISO 76 static safety and ISO 281 modified life (docs/bearings.md); all optional
     static_load_rating_kN: Annotated[float, Field(ge=1e-3, le=1e5)] | None = None  # C_0
-    static_factors: StaticFactors = default_table(StaticFactors)
+    static_factors: StaticFactors = StaticFactors()
     fatigue_load_limit_kN: Annotated[float, Field(ge=1e-4, le=1e4)] | None = None  # C_u
     pitch_diameter_mm: Annotated[float, Field(ge=1.0, le=1e4)] | None = None  # d_m = (d + D) / 2
     reliability_percent: Annotated[float, Field(ge=90.0, le=99.95)] | None = None  # a_1; absent: 90

@@ -16,7 +16,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
-from gearcli.config.bounds_types import NotTiny, default_table
+from gearcli.config.bounds_types import NotTiny
 from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file's tables, one namespace)
     DEFAULT_DAMPING_RATIO,
     IMPACT_KEYS,
@@ -198,11 +198,11 @@ class DesignFile(_Table):
         default_factory=lambda: {"steel": Material(density_kg_m3=7800, youngs_modulus_MPa=2.07e5, poisson_ratio=0.29)}
     )
     stage: Annotated[list[AnyStage], Field(min_length=1, max_length=50)]
-    contact: Contact = default_table(Contact)
+    contact: Contact = Contact()
     input: Input
     load: Load
     target: Target | None = None
-    simulation: Simulation = default_table(Simulation)
+    simulation: Simulation = Simulation()
     bearing: Annotated[list[Bearing], Field(max_length=200)] = []  # shaft statics and ISO 281 (docs/life.md)
     duty: Annotated[list[Duty], Field(max_length=200)] = []  # duty cycle of `gearcli life`
     lubricant: Lubricant | None = None

@@ -6,7 +6,7 @@ from typing import Annotated, Any, Literal, cast
 from pydantic import ConfigDict, Field, GetCoreSchemaHandler, Tag, model_validator
 from pydantic_core import core_schema
 
-from gearcli.config.bounds_types import NotTiny, default_table
+from gearcli.config.bounds_types import NotTiny
 from gearcli.config.contact import ContactOverride
 from gearcli.config.duty import CenterAngleDeg
 from gearcli.config.members import BasicRack, Carrier, PairGear, Planet, Ring, Sun
@@ -42,7 +42,7 @@ class Stage(_Table):
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
     mesh: ContactOverride | None = None
-    basic_rack: BasicRack = default_table(BasicRack)
+    basic_rack: BasicRack = BasicRack()
     shaft: ShaftSpring | None = None
     center_angle_deg: CenterAngleDeg = 0.0  # line of centres pinion -> gear, from y, cw seen from the input end
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
@@ -97,13 +97,13 @@ class PlanetaryStage(_Table):
     sun: Sun
     planet: Planet
     ring: Ring
-    carrier: Carrier = default_table(Carrier)
+    carrier: Carrier = Carrier()
     fixed: PlanetaryMember = "ring"
     input: PlanetaryMember = "sun"
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
     mesh: ContactOverride | None = None
-    basic_rack: BasicRack = default_table(BasicRack)
+    basic_rack: BasicRack = BasicRack()
     shaft: ShaftSpring | None = None
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None
