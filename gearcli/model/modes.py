@@ -501,8 +501,8 @@ CAMPBELL = ("CampbellCrossing", "CampbellData")
 
 
 def __getattr__(name: str) -> object:
-    if name in CAMPBELL:  # lazy (PEP 562): a run that draws no Campbell diagram never creates its classes
-        from gearcli.model import campbell
+    if name in CAMPBELL:  # PEP 562
+        from gearcli.model import campbell  # lazy: a run that draws no Campbell diagram never creates its classes
 
         return getattr(campbell, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

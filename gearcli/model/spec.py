@@ -277,8 +277,8 @@ class ModelSpec:
 
 
 def __getattr__(name: str) -> object:
-    if name == "PlanetarySpec":  # lazy (PEP 562): a scene without planetary stages never creates the class
-        from gearcli.model.planet_spec import PlanetarySpec
+    if name == "PlanetarySpec":  # PEP 562
+        from gearcli.model.planet_spec import PlanetarySpec  # lazy: a scene without planetary stages never creates it
 
         return PlanetarySpec
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
