@@ -49,7 +49,8 @@ if TYPE_CHECKING:
     from gearcli.engine import Built
     from gearcli.life.result import LifeResult
     from gearcli.life.session import Session as LifeSession
-    from gearcli.model.modes import CampbellData, ModalAnalysis
+    from gearcli.model.campbell import CampbellData
+    from gearcli.model.modes import ModalAnalysis
     from gearcli.report import LadderSpec, Report
     from gearcli.report.accuracy import ProgressFn
     from gearcli.simulate.results import SimulationResult

@@ -1,5 +1,6 @@
 """Frozen result objects of the design: ``DesignResult`` and its stages, gears, static forces, mesh stiffness,
-ratings, shafts, bearings, a planetary stage's members and meshes. What ``simulate`` produces
+ratings, shafts; a planetary stage's members and meshes and the bearings are in :mod:`gearcli.optional_results`
+(re-exported here by name). What ``simulate`` produces
 (``SimulationResult``, ``StageDynamics``, ``ChannelStats``, ``SolverStats`` ...) is in
 :mod:`gearcli.simulate.results`.
 
@@ -17,6 +18,10 @@ from gearcli.core.jsontypes import JsonObject
 
 if TYPE_CHECKING:
     from gearcli.diagnostics import Diagnostic
+    from gearcli.optional_results import BearingResult, PlanetaryResult
+
+#: the result types of a planetary stage and of bearings (:mod:`gearcli.optional_results`), imported on first use
+OPTIONAL = ("BearingResult", "CarrierResult", "InternalMeshResult", "PlanetaryResult")
 
 
 # ----------------------------------------------------------------------------------------- design
@@ -162,40 +167,6 @@ class ShaftResult:
     power_kW: float = 0.0
 
 
-@dataclass(frozen=True)
-class BearingResult:
-    """One bearing's static reaction on its shaft (N; y, z radial components, axial along x) and its ISO 281
-    basic rating life (None, JSON null, when the bearing carries no load or its shaft stands still)."""
-
-    shaft: int  # 1-based
-    position_mm: float
-    radial_N: float
-    radial_y_N: float
-    radial_z_N: float
-    axial_N: float
-    equivalent_load_N: float
-    L10_Mrev: float | None
-    L10_h: float | None
-    kind: str = "ball"
-    locating: bool = False
-    dynamic_load_rating_kN: float = 0.0
-    speed_rpm: float = 0.0
-    planet_stage: int | None = None  # a planet pin's bearing (shaft 0): its planetary stage, 1-based
-    # ISO 76 static safety (with static_load_rating_kN) and ISO 281 modified life (with fatigue_load_limit_kN):
-    # absent from JSON without their keys (docs/bearings.md)
-    static_load_rating_kN: float | None = None
-    static_equivalent_load_N: float | None = None  # P_0
-    static_safety: float | None = None  # s_0 = C_0 / P_0
-    fatigue_load_limit_kN: float | None = None
-    pitch_diameter_mm: float | None = None
-    reliability_percent: float | None = None
-    kappa: float | None = None
-    a_ISO: float | None = None
-    a_1: float | None = None
-    L_nm_Mrev: float | None = None
-    L_nm_h: float | None = None
-
-
 # the bearing keys that appear only with their inputs (docs/bearings.md): ISO 76 with C_0, ISO 281 with C_u
 BEARING_STATIC_KEYS = ("static_load_rating_kN", "static_equivalent_load_N", "static_safety", "static_safety_min")
 BEARING_MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent", "kappa", "a_ISO", "a_1",
@@ -254,81 +225,9 @@ class MeshStiffness:
         return self.linearised_N_mm / self.iso_N_mm - 1.0 if self.iso_N_mm > 0.0 else None
 
 
-# ------------------------------------------------------------------------------ planetary stages (issue 25)
-@dataclass(frozen=True)
-class CarrierResult:
-    """The planet carrier: its speed and torque, its own inertia and the planets' translational N m_p r_c²."""
+def __getattr__(name: str) -> object:
+    if name in OPTIONAL:
+        from gearcli import optional_results  # lazy: a file without planetary stages or bearings never needs them
 
-    radius_mm: float  # r_c, the working centre distance of the sun–planet mesh
-    speed_deg_s: float
-    speed_rpm: float
-    torque_Nmm: float
-    torque_Nm: float
-    power_kW: float
-    own_inertia_kg_m2: float
-    planets_translational_inertia_kg_m2: float
-    inertia_kg_m2: float  # own + planets' translational
-
-
-@dataclass(frozen=True)
-class InternalMeshResult:
-    """The planet–ring mesh of one planet (ISO 21771 internal gear geometry, ISO 6336-1 stiffness)."""
-
-    working_pressure_angle_deg: float
-    center_distance_mm: float
-    transverse_base_pitch_mm: float
-    face_width_mm: float
-    contact_ratio_transverse: float
-    overlap_ratio: float
-    contact_ratio_total: float
-    static_force_N: StaticForces  # per planet, on the planet's reference circle (= the sun mesh's F_t)
-    equivalent_radius_mm: float  # r_p r_r / (r_r − r_p): a convex flank on a concave one
-    hertz_stiffness_N_mm1_5: float
-    iso6336_single_pair_stiffness_N_mm_um: float
-    iso6336_mesh_stiffness_N_mm_um: float
-    iso6336_mesh_stiffness_beta_N_mm_um: float
-    iso6336_factors: Iso6336Factors
-    mesh_frequency_Hz: float
-    rating: RatedMesh | None = None  # ISO 6336-2/-3 of the internal mesh (docs/iso6336.md)
-    # ISO 6336-1 resonance of this mesh: m_red = the planet's m* (the ring taken infinitely heavy), n_E1 in
-    # planet rpm relative to the carrier, N = n_p/n_E1, N_S (0 where not computed)
-    reduced_mass_kg_mm: float = 0.0
-    resonance_speed_rpm: float = 0.0
-    resonance_ratio: float = 0.0
-    resonance_lower_limit: float = 0.0
-    resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
-    mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
-    # tooth-thickness allowances of the planet and the ring (ISO 21771; None without them), at the carrier's radius
-    backlash_circumferential_mm: tuple[float, float] | None = None  # [max, min] on the working circles
-    backlash_normal_mm: tuple[float, float] | None = None  # [max, min] between the idle flanks
-    contact_ratio_transverse_with_allowances: tuple[float, float, float] | None = None  # [e, m, i]
-    # the smallest tip clearances with allowances (planet tip on the ring's root, ring tip on the planet's root) for
-    # the ``tip_clearance`` warning; not in the JSON (as a parallel stage's, only the warning carries them)
-    tip_clearance_with_allowances_mm: tuple[float, float] | None = None
-
-
-@dataclass(frozen=True)
-class PlanetaryResult:
-    """What a planetary stage adds to its sun–planet mesh: members, the ring mesh, assembly checks."""
-
-    fixed: str
-    input: str
-    output: str
-    planet_count: int
-    ratio: float  # |ω_input / ω_output|
-    willis_ratio: float  # i_0 = −z_r / z_s (carrier held)
-    sun: GearResult  # absolute speeds; torque of the member (all planets)
-    planet: GearResult  # speed relative to the carrier; torque per planet
-    ring: GearResult
-    carrier: CarrierResult
-    planet_mass_kg: float
-    planet_ring: InternalMeshResult
-    load_sharing_factor: float  # K_gamma
-    equal_spacing: bool  # the planets sit 360°/N apart (implied: (z_s + z_r)/N whole; or as declared)
-    tip_clearance_between_planets_mm: float | None  # 2 a sin(Δψ/2) − d_a,planet (adjacency); None: one planet
-    concentricity_mm: float  # a_w(planet–ring) − a_w(sun–planet)
-    mesh_efficiency: float = 1.0  # η_m of every planet mesh (carrier frame), from the stage's efficiency
-    basic_efficiency: float = 1.0  # η_0 = η_m², the stage's efficiency with the carrier held
-    # signed external torques on sun, carrier, ring (positive in the input member's running sense), N·m: sum 0
-    moment_balance_Nm: dict[str, float] = field(default_factory=dict)
-    planet_angles_deg: tuple[float, ...] = ()  # each planet's position on the carrier
+        return getattr(optional_results, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

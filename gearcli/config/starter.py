@@ -8,8 +8,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import tomli_w
-
 from gearcli.config.schema import DesignFile
 
 
@@ -87,10 +85,14 @@ _COMMENTS = {
 
 def _inline(table: dict) -> str:
     """``{ teeth = 21, hand = "left" }``, each value formatted by tomli-w."""
+    import tomli_w  # lazy: `gearcli init` only (start-up time of the other commands)
+
     return "{ " + ", ".join(tomli_w.dumps({k: v}).strip() for k, v in table.items()) + " }"
 
 
 def _stage_toml(stage: dict) -> str:
+    import tomli_w  # lazy: `gearcli init` only
+
     scalars = {k: v for k, v in stage.items() if not isinstance(v, dict)}
     tables = "".join(f"{k} = {_inline(v)}\n" for k, v in stage.items() if isinstance(v, dict))
     return "[[stage]]\n" + tomli_w.dumps(scalars) + tables
@@ -98,6 +100,8 @@ def _stage_toml(stage: dict) -> str:
 
 def starter_toml() -> str:
     """A commented starter design file: the seed reducer, loadable as it is."""
+    import tomli_w  # lazy: `gearcli init` only
+
     parts = [_HEADER + tomli_w.dumps({"title": SEED["title"]})]
     parts.append(_COMMENTS["materials"] + "\n" + tomli_w.dumps({"materials": SEED["materials"]}).strip() + "\n")
     stages = "\n".join(_stage_toml(s) for s in SEED["stage"])

@@ -17,7 +17,7 @@ from gearcli.errors import DesignError
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
-    from gearcli.results import BearingResult
+    from gearcli.optional_results import BearingResult
 
 STATIC_SAFETY_LOW = "bearing_static_safety_low"
 KAPPA_OUT_OF_RANGE = "bearing_kappa_below_range"

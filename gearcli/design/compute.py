@@ -12,7 +12,6 @@ from typing import TYPE_CHECKING
 
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.allowances import NO_ALLOWANCE, AllowanceInfeasible, pair_allowances
 from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
@@ -29,7 +28,6 @@ from gearcli.design.standards import standard_of
 from gearcli.diagnostics import DESIGN, Diagnostic, warning
 from gearcli.errors import DesignError
 from gearcli.results import (
-    BearingResult,
     DesignResult,
     GearResult,
     Iso6336Factors,
@@ -44,6 +42,7 @@ from gearcli.stages.design import checked_figures, checked_result, design_kind, 
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
+    from gearcli.optional_results import BearingResult
 
 
 def compute_design(cfg: DesignFile) -> DesignResult:
@@ -352,6 +351,8 @@ def _stage_result(cfg: DesignFile, k: int, kin: Train, planets: int = 1, /, *,
 
 def _with_allowances(result: StageResult, stage: Stage, geo: PairGeometry, k: int) -> StageResult:
     """The stage with its allowances' figures (ISO 21771, docs/iso6336.md "Tooth-thickness allowances")."""
+    from gearcli.design.allowances import NO_ALLOWANCE, AllowanceInfeasible, pair_allowances  # lazy: with them only
+
     def pair(value: list[float] | None) -> tuple[float, float]:
         return NO_ALLOWANCE if value is None else (value[0], value[1])
 

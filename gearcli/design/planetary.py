@@ -48,15 +48,8 @@ from gearcli.design.inertia import annulus_inertia_kg_m2
 from gearcli.design.kinematics import Train, power_kW, speed_deg_s, speed_rpm
 from gearcli.design.rating_results import InternalRatingResult, RatingResult
 from gearcli.errors import DesignError
-from gearcli.results import (
-    CarrierResult,
-    GearResult,
-    InternalMeshResult,
-    Iso6336Factors,
-    PlanetaryResult,
-    StageResult,
-    StaticForces,
-)
+from gearcli.optional_results import CarrierResult, InternalMeshResult, PlanetaryResult
+from gearcli.results import GearResult, Iso6336Factors, StageResult, StaticForces
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, PlanetaryStage, Stage

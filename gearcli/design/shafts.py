@@ -28,7 +28,7 @@ from gearcli.design.bearing_life import check_inputs, lubrication, static_figure
 from gearcli.design.iso281 import Lubrication, modified_life
 from gearcli.design.planetary_balance import planet_angles_deg, willis_speeds
 from gearcli.errors import DesignError
-from gearcli.results import BearingResult
+from gearcli.optional_results import BearingResult
 from gearcli.stages.design import design_kind
 
 if TYPE_CHECKING:

@@ -23,7 +23,8 @@ from gearcli.io.figures import check as _figure_check
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
 from gearcli.io.units import OutputUnits
-from gearcli.model.modes import RESONANCE_BAND, CampbellData
+from gearcli.model.campbell import CampbellData
+from gearcli.model.modes import RESONANCE_BAND
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

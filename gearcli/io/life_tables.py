@@ -8,7 +8,7 @@ from rich.console import RenderableType
 
 from gearcli.io.table_kit import FittedTable, StageColumns, _g
 from gearcli.life.result import BearingLife
-from gearcli.results import BearingResult
+from gearcli.optional_results import BearingResult
 from gearcli.simulate.results import BearingStats
 
 

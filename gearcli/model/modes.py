@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -52,6 +52,9 @@ from gearcli.model.damping import body_matrices, lever_matrices, loss_factors, m
 from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, soft_modes_refined
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
+
+if TYPE_CHECKING:
+    from gearcli.model.campbell import CampbellData
 
 SPEED_RANGE = 1.2  # operating range: 0 .. 1.2 x the nominal input speed
 MESH_ORDERS = (1, 2, 3)  # harmonics of each stage's mesh frequency
@@ -467,38 +470,11 @@ def _frequency_Hz(und: _Undamped, j: int) -> float:
     return math.sqrt(max(float(und.w2[j]), 0.0)) / (2.0 * math.pi)
 
 
-@dataclass(frozen=True)
-class CampbellCrossing:
-    mode: int
-    frequency_Hz: float
-    crossing: Crossing
-
-
-@dataclass(frozen=True)
-class CampbellData:
-    """What a Campbell diagram shows: the modes (linearised at full load, so flat in speed), every order line
-    (mesh 1x-3x, shaft 1x, input torque ripple orders) as frequency per input revolution, every fixed frequency
-    (load fluctuation: a horizontal line), and each crossing with how strongly it is excited, for input speeds
-    0 .. ``max_input_rpm`` (a fixed frequency's: within ``RESONANCE_BAND`` of the mode, ``input_speed_rpm`` None)."""
-
-    boundary: str
-    nominal_input_rpm: float
-    max_input_rpm: float
-    modes: tuple[Mode, ...]  # the non-rigid ones
-    orders: tuple[tuple[str, float], ...]  # (name, Hz per input Hz): lines through the origin
-    crossings: tuple[CampbellCrossing, ...]
-    fixed: tuple[tuple[str, float], ...] = ()  # (name, Hz): speed-independent excitations (load fluctuation)
-
-    @property
-    def top_Hz(self) -> float:
-        """The highest excitation's frequency at the top speed: the frequency range worth drawing."""
-        top = max((r for _, r in self.orders), default=1.0) * self.max_input_rpm / 60.0
-        return max([top] + [f for _, f in self.fixed])
-
-
 def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0,
                   max_input_rpm: float | None = None) -> CampbellData:
     """The Campbell diagram of the chain up to ``max_input_rpm`` (default ``SPEED_RANGE`` x nominal)."""
+    from gearcli.model.campbell import CampbellCrossing, CampbellData  # lazy: a diagram only
+
     ana = modal_analysis(lay, boundary, duration_s=duration_s)
     top = max_input_rpm if max_input_rpm is not None else SPEED_RANGE * ana.nominal_input_rpm
     sources = excitation_sources(lay)
@@ -518,3 +494,15 @@ def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: f
     return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
                         tuple(orders), tuple(crossings),
                         tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None))
+
+
+#: the Campbell diagram's types (:mod:`gearcli.model.campbell`), imported on first use by this module's name too
+CAMPBELL = ("CampbellCrossing", "CampbellData")
+
+
+def __getattr__(name: str) -> object:
+    if name in CAMPBELL:  # PEP 562
+        from gearcli.model import campbell  # lazy: a run that draws no Campbell diagram never creates its classes
+
+        return getattr(campbell, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

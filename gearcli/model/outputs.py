@@ -212,9 +212,22 @@ def stored_energy(lay: Layout, t: float, y: np.ndarray) -> float:
     kernel = _loaded_kernel()
     with signals.deferred() if kernel is not None else nullcontext():  # once for the connectors' compiled calls
         for c, x in enumerate(lay.connectors):
-            if not x.time_varying:  # the connector's own series at the one sample (compiled, vectorised or scalar)
-                elastic += _connector_series(lay, c, Y, omega, theta, kernel).potential_J
+            if not x.time_varying:  # the connector's own law at the one sample
+                elastic += _potential(lay, c, Y, omega, theta, kernel)
     return float(kinetic_energy(lay, omega)[0]) + float(elastic[0])
+
+
+def _potential(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, kernel) -> np.ndarray:
+    """Connector c's stored energy at the samples: the compiled laws' series where the ``kernel`` is loaded, else the
+    element's scalar ``potential`` sample by sample, which its vectorised hook gives value for value
+    (:data:`~gearcli.model.elements.SERIES_HOOK`): at the energy watch's one sample, without the numpy calls the
+    hook's forces and channels cost."""
+    x = lay.connectors[c]
+    if kernel is not None and x.kind in kernel.KINDS:
+        return _connector_series(lay, c, Y, omega, theta, kernel).potential_J
+    d, _, phi, _ = _law_arguments(lay, c, Y, omega, theta)
+    potential, P = x.element.potential, x.params
+    return np.array([potential(P, dj, phj) for dj, phj in zip(d.tolist(), phi.tolist(), strict=True)], dtype=float)
 
 
 _compiled: list = []  # the compiled engine's kernel once gearcli.engine has loaded it (use_compiled)

@@ -10,7 +10,7 @@ from dataclasses import replace
 
 from gearcli.model.elements import kind_of, law_of, mesh
 from gearcli.model.parts import Body, Connector, _row
-from gearcli.model.spec import PlanetarySpec
+from gearcli.model.planet_spec import PlanetarySpec
 
 
 def place_planetary(p: PlanetarySpec, k: int, bodies: list[Body], conns: list[Connector], body, out_inertia: float) -> None:

@@ -15,7 +15,8 @@ from gearcli.results import DesignResult
 from gearcli.simulate.results import ChannelStats, SimulationResult
 
 if TYPE_CHECKING:
-    from gearcli.model.modes import CampbellData, ModalAnalysis
+    from gearcli.model.campbell import CampbellData
+    from gearcli.model.modes import ModalAnalysis
 
 
 # ------------------------------------------------------------------------------ theory vs simulation

@@ -27,8 +27,7 @@ from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import equilibrium, estimate, rigid_start, sampling, stats, stepped_over
-from gearcli.simulate import motor as motor_side
+from gearcli.simulate import estimate, rigid_start, sampling, stats, stepped_over
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.course import CourseChange, integrate_auto
@@ -105,7 +104,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         return next((whole() for r, whole in pending if r is result), result)
 
     periodic = settle != "window"
-    if settle and periodic and sim.steady == "window" and equilibrium.applies(model):
+    if settle and periodic and sim.steady == "window" and _at_rest(model):
         # an unexcited scene's steady state is its equilibrium: the run from rest to simulation.duration_s, sampled
         # as the window run would be (its start-up peaks the same), then the periodic search from its end
         found = settle_mod.periodic_state(run, sim.duration_s, sim.steps, 0, sim.duration_s, run_up_samples=sim.steps)
@@ -116,6 +115,13 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     if settle:
         result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=periodic, finish=finish)
     return result
+
+
+def _at_rest(model: TorsionalModel) -> bool:
+    """The scene's steady state is its equilibrium (:func:`gearcli.simulate.equilibrium.applies`)."""
+    from gearcli.simulate import equilibrium  # lazy: a settled or periodic run only (start-up time of a one-shot run)
+
+    return equilibrium.applies(model)
 
 
 def _design_diagnostics(design) -> list[Diagnostic]:
@@ -174,7 +180,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         from gearcli.simulate.shooting import priced_nfev  # lazy: start-up time of a fixed window's one-shot run
 
         nfev_estimate = priced_nfev(nfev_estimate, model.layout, duration_s, window_start_s,
-                                    at_rest=equilibrium.applies(model))
+                                    at_rest=_at_rest(model))
     eng = choose_engine(engine, model.arrays, choice.method, nfev_estimate, replaced, choice.size)
     eng = _loadable(eng)
     first_engine = eng.engine  # what the prediction is priced on (a course change may move the run)
@@ -208,8 +214,12 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
-    s = equilibrium.sampled(model.layout, run.t, run.y, energy_from) \
-        if getattr(steady_state, "method", None) == "equilibrium" else sample(model.layout, run.t, run.y)
+    if getattr(steady_state, "method", None) == "equilibrium":
+        from gearcli.simulate import equilibrium  # lazy: a settled run's equilibrium only
+
+        s = equilibrium.sampled(model.layout, run.t, run.y, energy_from)
+    else:
+        s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y) if not energy_from else \
         model.energy(s.tail(energy_from), run.y[:, energy_from:])
     diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
@@ -465,8 +475,12 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
     diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m)
-    toggled = (motor_side.reswitches(model.layout.drive.motor, s.time_s, s.omega_rad_s[0])
-               if model.layout.motor_drive and model.layout.drive.motor is not None else None)
+    toggled = None
+    if model.layout.drive.motor is not None:
+        from gearcli.simulate import motor as motor_side  # lazy: a motor drive's run only
+
+        toggled = (motor_side.reswitches(model.layout.drive.motor, s.time_s, s.omega_rad_s[0])
+                   if model.layout.motor_drive else None)
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
                                                        [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID,
                                                        reswitch_s=None if toggled is None else toggled[2]) \

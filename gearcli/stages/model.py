@@ -9,22 +9,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING, Protocol, cast
 
 from gearcli.core import plugins
-from gearcli.design.planetary_balance import balance, willis_speeds
-from gearcli.design.stiffness import (
-    calibration_line_force_N,
-    iso6336_normal_stiffness_N_mm,
-    iso_reference_normal_force_N,
-    law_coefficient_N_mm_e,
-)
 from gearcli.errors import GearcliError, PluginError
 from gearcli.model.parts import Body, Connector
-from gearcli.model.planet_assembly import place_planetary
-from gearcli.model.planet_phasing import stage_contact_phase_cycles, sun_drives
-from gearcli.model.spec import MM, MeshSpec, PlanetarySpec, StageModel
+from gearcli.model.spec import MeshSpec, StageModel
 from gearcli.results import StageResult
 from gearcli.stages import kinds
 
@@ -104,23 +95,16 @@ class ParallelModel:
         return None
 
 
-@dataclass(frozen=True)
-class PlanetaryModel(PlanetarySpec):
-    """A planetary stage's model: its spec, placed by :func:`gearcli.model.planet_assembly.place_planetary`."""
-
-    def place(self, k: int, bodies: list[Body], conns: list[Connector], body: Callable[..., None],
-              out_inertia: float) -> None:
-        place_planetary(self, k, bodies, conns, body, out_inertia)
-
-
 class PlanetaryModelKind:
     """A planetary stage: the sun–planet mesh law signed by the output member's moment balance, and its
-    :class:`PlanetaryModel` (levers from the base radii, the members' inertias, both mesh laws)."""
+    :class:`~gearcli.stages.planetary_model.PlanetaryModel` (levers from the base radii, the members' inertias, both mesh laws)."""
 
     def line(self, cfg: DesignFile, st: StageResult, k: int, pair_mesh: PairMesh) -> MeshSpec:
         """The sun–planet mesh law with a planet mesh's static F_t signed as its deflection is in the model: the
         moment balance of the output member, N c_out F = T_out sign(w_out), c_out = -r_bs (sun), r_bs + r_br
         (carrier), -r_br (ring) (:func:`gearcli.model.planet_assembly.place_planetary`)."""
+        from gearcli.design.planetary_balance import willis_speeds  # lazy: planetary stages only
+
         mesh = pair_mesh(cfg, st, k)
         p = st.planetary
         assert p is not None
@@ -129,75 +113,9 @@ class PlanetaryModelKind:
         return replace(mesh, static_tangential_N=sign * mesh.static_tangential_N)
 
     def stage_model(self, cfg: DesignFile, st: StageResult, k: int, mesh: MeshSpec) -> StageModel | None:
-        return _planetary(cfg, st, k, mesh)
+        from gearcli.stages.planetary_model import planetary_model  # lazy: a file without planetary stages
 
-
-def _planetary(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec) -> PlanetaryModel:
-    """A planetary stage's model (SI): levers from the base radii, the members' inertias, both mesh laws."""
-    p = st.planetary
-    assert p is not None
-    law = cfg.contact_for(k)
-    e = float(law.exponent)
-    ring = p.planet_ring
-    k_n = iso6336_normal_stiffness_N_mm(ring.iso6336_mesh_stiffness_N_mm_um, ring.face_width_mm,
-                                        math.radians(st.base_helix_angle_deg))
-    f_n0 = iso_reference_normal_force_N(ring.static_force_N.tangential, ring.face_width_mm,
-                                        math.radians(st.normal_pressure_angle_deg), math.radians(st.helix_angle_deg))
-    coefficient = law_coefficient_N_mm_e(law.stiffness, law.exponent, hertz=ring.hertz_stiffness_N_mm1_5,
-                                         iso_normal_stiffness_N_mm=k_n, iso_reference_normal_force_N=f_n0)
-    eta_m = p.mesh_efficiency  # each planet mesh loses in the carrier's frame (docs/planetary.md)
-    sun_mesh = replace(sun_mesh, efficiency=eta_m)
-    ring_mesh = replace(sun_mesh, stiffness_N_m_e=float(coefficient) * 1000.0**e,
-                        contact_ratio=ring.contact_ratio_transverse, overlap_ratio=ring.overlap_ratio,
-                        iso_normal_stiffness_N_m=k_n * 1000.0,
-                        linearisation_line_force_N=calibration_line_force_N(
-                            law.stiffness, ring.face_width_mm, math.radians(st.normal_pressure_angle_deg),
-                            math.radians(st.helix_angle_deg), math.radians(st.base_helix_angle_deg)))
-    r_bs, r_bp, r_br = (0.5 * MM * g.base_diameter_mm for g in (p.sun, p.planet, p.ring))
-    unit = willis_speeds(p.sun.teeth, p.ring.teeth, p.fixed, p.input)
-    third = next(m for m in ("sun", "carrier", "ring") if m not in (p.input, p.output))
-    inertia = {"sun": p.sun.inertia_kg_m2, "ring": p.ring.inertia_kg_m2, "carrier": p.carrier.inertia_kg_m2}
-    return PlanetaryModel(
-        fixed=p.fixed, input=p.input, output=p.output, planets=p.planet_count, sun_teeth=p.sun.teeth,
-        planet_teeth=p.planet.teeth, ring_teeth=p.ring.teeth, base_radius_sun_m=r_bs, base_radius_planet_m=r_bp,
-        base_radius_ring_m=r_br, lever_sun_carrier_m=r_bs + r_bp, lever_ring_carrier_m=r_br - r_bp,
-        third_inertia_kg_m2=inertia[third], planet_inertia_kg_m2=p.planet.inertia_kg_m2, sun_mesh=sun_mesh,
-        ring_mesh=ring_mesh, unit_speeds=(unit["sun"], unit["carrier"], unit["ring"]),
-        planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)),
-        planet_angles_rad=tuple(math.radians(a - p.planet_angles_deg[0]) for a in p.planet_angles_deg)
-        if _unequal(cfg, k) else (),
-        ring_contact_phase_cycles=_ring_contact_phase(st, unit),
-        **_loss_factors(p, eta_m, -1.0 if (cfg.load.torque_Nm_value or 0.0) < 0.0 else 1.0))
-
-
-def _unequal(cfg: DesignFile, k: int) -> bool:
-    """The stage declares its planets' positions (``planet.angles_deg``)."""
-    planet = getattr(cfg.stage[k], "planet", None)
-    return planet is not None and planet.angles_deg is not None
-
-
-def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
-    """The planet meshes' static (driving-side) forces over the lossless ones, in the power flow of the load's
-    sign, and the stage's efficiencies (:mod:`gearcli.design.planetary_balance`)."""
-    lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, load_sign)
-    lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, load_sign)
-    scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
-    back = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, -1.0)
-    return {"sun_force_factor": lossy.sun_mesh * scale, "ring_force_factor": lossy.ring_mesh * scale,
-            "efficiency": lossy.efficiency, "reverse_efficiency": back.efficiency}
-
-
-def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:
-    """Planet 1's ring-mesh contact-line phase against its sun mesh's (:mod:`gearcli.model.planet_phasing`)."""
-    p = st.planetary
-    assert p is not None
-    return stage_contact_phase_cycles(st, sun_drives(unit, p.input, p.sun.teeth, p.ring.teeth))
-
-
-def _planet_errors_um(cfg: DesignFile, k: int) -> list[float]:
-    stage = cfg.stage[k]
-    planet = getattr(stage, "planet", None)
-    return list(planet.position_error_um or []) if planet is not None else []
+        return planetary_model(cfg, st, k, mesh)
 
 
 kinds.provide(kinds.PARALLEL, "model", ParallelModel())

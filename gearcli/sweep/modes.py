@@ -15,7 +15,8 @@ from gearcli.config import DesignFile
 from gearcli.core.jsontypes import JsonScalar
 from gearcli.errors import GearcliError
 from gearcli.model.assembly import Layout
-from gearcli.model.modes import SPEED_RANGE, CampbellData, campbell_data, modal_analysis
+from gearcli.model.campbell import CampbellData
+from gearcli.model.modes import SPEED_RANGE, campbell_data, modal_analysis
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
 from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec, toml_value
