@@ -86,20 +86,20 @@ def test_a_zero_load_step_is_at_rest_not_an_unresolved_or_unsettled_window(tmp_p
 
 
 def test_the_unloaded_reference_floor_by_hand():
-    """estimate.force_floors_N: the line force e K h^e rtol / TARGET at h = 1 um (an unloaded mesh without backlash:
-    the atol's deflection floor), as F_t = F_bt cos(alpha_wt) ... here through the model's own K and e."""
+    """estimate.force_floors_N: the line force e K h^e rtol at h = 1 um (an unloaded mesh without backlash: the
+    atol's deflection floor), as F_t = F_bt cos(alpha_wt) ... here through the model's own K and e."""
     from gearcli.model import TorsionalModel
     from gearcli.scene import spec_from_design
-    from gearcli.simulate.estimate import TARGET, force_floors_N
+    from gearcli.simulate.estimate import force_floors_N
 
     cfg, design = design_of(PAR_BASE, ("load.torque_Nm=0",))
     model = TorsionalModel(spec_from_design(cfg, design))
     (m,) = model.spec.meshes
-    line = m.exponent * m.stiffness_N_m_e * 1e-6 ** m.exponent * 1e-6 / TARGET
+    line = m.exponent * m.stiffness_N_m_e * 1e-6 ** m.exponent * 1e-6
     # spur, no profile shift: the working pressure angle is 20°, F_t = F_bt cos(20°)
     assert_allclose(force_floors_N(model, 1e-6), [line * math.cos(ALPHA)], rtol=1e-9)
     # far below a loaded mesh's reference (7500 N at 900 N·m) and far above round-off (1e-11 N)
-    assert 1e-3 < force_floors_N(model, 1e-6)[0] < 100.0
+    assert 1e-6 < force_floors_N(model, 1e-6)[0] < 0.1
 
 
 # --- starts, and hours that are not the required life -------------------------------------------------------------
