@@ -4,8 +4,9 @@ read as data (a :class:`~gearcli.engine.tableau.Tableau`: DOP853 or RK45).
 The initial step of ``select_initial_step`` and the step ceiling ``max_step`` (``wpar[WP_MAX_STEP]``), the stage
 sums, the error norm (DOP853's combined 5th/3rd-order one), SAFETY 0.9, MIN_FACTOR 0.2, MAX_FACTOR 10, the
 rejected-step rule (no growth right after a rejection), the minimum step ``10 ulp(t)``, the clamp at ``t_bound``, and
-the dense output (DOP853's three extra stages, counted in nfev as scipy counts them) at the requested samples. The run is integrated in segments between the ramp ends, with a fresh
-solver (and initial step) at each, as :mod:`gearcli.simulate.solver` does.
+the dense output (DOP853's three extra stages, counted in nfev as scipy counts them) at the requested samples. The
+run is integrated in segments between the ramp ends, with a fresh solver (and initial step) at each, as
+:mod:`gearcli.simulate.solver` does.
 """
 
 from __future__ import annotations
