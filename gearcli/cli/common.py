@@ -121,6 +121,7 @@ def guarded(fn: Callable) -> Callable:
     def wrapper(*args, debug: bool = False, quiet: bool = False, **kwargs):
         root = click.get_current_context().find_root()
         debug = debug or bool(root.params.get("debug"))
+        _SIGNALLED.clear()  # this command's signals (a signal before it raised already; in-process callers run many)
         if quiet:
             click.get_current_context().meta["gearcli.quiet"] = True
         _show_engine_builds()
@@ -137,6 +138,8 @@ def guarded(fn: Callable) -> Callable:
         except GearcliError as exc:
             if debug:
                 raise
+            if _SIGNALLED:  # a signal's exception turned into a refusal: numba's C import made a SIGHUP 0.75 s into
+                fail(_SIGNAL_WORDS[_SIGNALLED[0]], _SIGNALLED[0])  # a compiled run "numba cannot be imported" (exit 2)
             fail(str(exc), exc.exit_code)
         except BrokenPipeError:
             broken_pipe()
