@@ -147,6 +147,15 @@ class DriveSpec:
     angle_rad: float = 0.0  # speed drive: theta_0(0)
     motor: MotorSpec | None = None  # kind = "motor"; with a speed drive: the motor that must follow the ramp
 
+    @property
+    def ramps_end_s(self) -> float:
+        """When the drive stops changing with time: its own ramp, or a soft start's voltage ramp (the motor's
+        torque grows as u(t)^2 until then, so its speed and the train's forces drift until that ramp ends)."""
+        motor = self.motor
+        if self.kind == "motor" and motor is not None and motor.starting == "soft_start":
+            return max(self.ramp_s, motor.start_parameters[0])
+        return self.ramp_s
+
     def __post_init__(self) -> None:
         if self.ripple and self.kind != "torque":
             raise ValueError("a torque ripple needs a torque drive (a speed drive prescribes the motion)")

@@ -300,7 +300,7 @@ def run_up(model, method: str, rtol: float, *, steps: int, duration_s: float, wi
     most ``steps`` samples; ``samples``: that many); refused when not one excitation period fits between it and
     ``duration_s`` (the search may not run past the run's duration)."""
     lay = model.layout
-    t_start = max(lay.drive.ramp_s, lay.load.ramp_s, window_start_s or 0.0)
+    t_start = max(lay.drive.ramps_end_s, lay.load.ramp_s, window_start_s or 0.0)
     T = scene_period(lay).period_s
     if periods_cap(duration_s, t_start, T) == 0:
         raise ConfigError(f"steady = \"periodic\" needs at least one excitation period ({T:.4g} s) between the end "

@@ -491,6 +491,6 @@ def priced_nfev(nfev_run: float, layout, duration_s: float, window_start_s: floa
     (:mod:`gearcli.simulate.equilibrium`): the run-up alone."""
     T = scene_period(layout).period_s
     d = layout.state.n_mechanical
-    t_start = max(layout.drive.ramp_s, layout.load.ramp_s, window_start_s or 0.0)
+    t_start = max(layout.drive.ramps_end_s, layout.load.ramp_s, window_start_s or 0.0)
     span = t_start if at_rest else t_start + T * (PREAMBLE_COLD + PRICED_VARIATIONAL_PERIODS * (1 + d))
     return nfev_run * span / max(duration_s, 1e-300)

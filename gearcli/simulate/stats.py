@@ -32,13 +32,13 @@ def steady_window(spec: ModelSpec, duration_s: float,
                   start_s: float | None) -> tuple[tuple[float, float], list[Diagnostic]]:
     """``(from, to)`` of the steady window and any warning about it.
 
-    Default: from the end of the slower ramp (input and load) plus 20 % of the remaining time, to the
-    end. ``start_s`` (``simulation.window_start_s``) overrides the start; it must lie before the end
+    Default: from the end of the slower ramp (input, a soft start's voltage ramp included, and load) plus 20 % of
+    the remaining time, to the end. ``start_s`` (``simulation.window_start_s``) overrides the start; it must lie before the end
     (ValueError otherwise: the caller checks the design file).
     """
     if start_s is not None and start_s >= duration_s:
         raise ValueError(f"the window start {start_s:g} s is not before the end of the run {duration_s:g} s")
-    ramps = max(spec.drive.ramp_s, spec.load.ramp_s)
+    ramps = max(spec.drive.ramps_end_s, spec.load.ramp_s)
     if ramps >= duration_s:  # whoever chose the window's start (a settle re-run's too): it lies in the ramps
         start = NO_RAMP_WINDOW_FRACTION * duration_s if start_s is None else float(start_s)
         return (start, duration_s), [dg.warning(
