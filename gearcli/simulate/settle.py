@@ -8,7 +8,9 @@ of the window's first quarter must not exceed its last half's by more than :data
 static force; (modal) the window's F_t of every stage is fitted by least squares with a constant plus the free decay of the oscillating modes of the linearised chain (the slowest
 decaying first, their decay rates refined to the record's envelope: :func:`gearcli.simulate.ringing.fit_transient`)
 and the fitted amplitude at the window's start must stay below :data:`SETTLED_FRACTION` of the stage's static
-force. A motor whose start reaches 98 % of its operating speed only after the window starts is unsettled too.
+force; (drift) a window shorter than half a period of a mode that has not decayed since t = 0, which the fit
+cannot see, is unsettled when a stage's F_t drifts across it by more than that fraction. A motor whose start
+reaches 98 % of its operating speed only after the window starts is unsettled too.
 
 An unsettled window names the time from which it would be settled (the largest transient decayed to the
 fraction: ``t0 + ln(a0 / (f F)) / sigma``; a motor that has not reached its operating speed within the run:
@@ -113,11 +115,42 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
                              f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of "
                              f"{ringing.reference_words(ref, float(static_N[k]) != 0.0)})")
     worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst, floors)
+    if worst.settled:
+        worst = _unseen_drift(tw, [ft[mask] for ft in forces_N], refs, static_N, eigenvalues, window_s, worst)
     if motor_start_s is not None and motor_start_s > window_s[0]:
         settle = max(motor_start_s, worst.settle_time_s or 0.0)
         return Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
                         f"the motor reaches 98 % of its operating speed at {motor_start_s:.4g} s, after the window "
                         f"starts ({window_s[0]:.4g} s)")
+    return worst
+
+
+def _unseen_drift(t: np.ndarray, forces: list[np.ndarray], refs: list[float], static_N: list[float],
+                  eigenvalues: np.ndarray, window_s: tuple[float, float], worst: Settling) -> Settling:
+    """A window shorter than half a period of an oscillating mode that has not decayed since t = 0 cannot show that
+    mode's transient as ringing (the fit leaves such a mode out): it shows it as a drift. Unsettled when a stage's
+    F_t drifts across the window (its least-squares line changes) by more than SETTLED_FRACTION of its reference
+    force: no settle time is estimated (the window must first hold half a period of the mode)."""
+    length = window_s[1] - window_s[0]
+    lam = np.asarray(eigenvalues, dtype=complex)
+    unseen = [(decay_rate(z), float(z.imag)) for z in lam
+              if z.imag > 0.0 and z.imag * length <= math.pi and decay_rate(z) * window_s[0] < DECAYED]
+    if not unseen or t.size < 2 or length <= 0.0:
+        return worst
+    sigma, omega = min(unseen, key=lambda m: m[1])  # the slowest: the one the window sees least of
+    for k, (f, ref, static) in enumerate(zip(forces, refs, static_N, strict=True)):
+        if ref <= 0.0:
+            continue
+        drift = abs(float(np.polyfit(t - t[0], f, 1)[0])) * length
+        if drift / ref > max(SETTLED_FRACTION, worst.transient_fraction):
+            period = 2 * math.pi / omega
+            worst = Settling(False, drift / ref, k + 1, omega / (2 * math.pi), None,
+                             f"the window ({length:.3g} s) is shorter than half a period ({period / 2:.3g} s) of the "
+                             f"{omega / (2 * math.pi):.3g} Hz mode, which has not decayed since the start, and stage "
+                             f"{k + 1}'s F_t drifts across it by {drift:.4g} N ({100 * drift / ref:.2g} % of "
+                             f"{ringing.reference_words(ref, float(static) != 0.0)}): it cannot be told from that mode's start-up "
+                             f"transient; lengthen simulation.duration_s (the window needs ≥ {period / 2:.3g} s, "
+                             "and the mode time to decay)")
     return worst
 
 
