@@ -1,9 +1,10 @@
 """The periodic steady state: the excitation period, the Poincare map over it, subharmonics.
 
 Excitation period. Every excitation of the scene has its own period at the steady operating speed (the
-nominal input speed, after the ramps): a mesh whose stiffness or transmission error varies with its phase
-``phi = z_p theta_p`` repeats every mesh period ``60 / (z_p n_p)`` (n_p the pinion's speed in rpm); an input
-torque ripple of order o every ``1 / (o n_in / 60)``; a load fluctuation of frequency f every ``1 / f``.
+nominal input speed, after the ramps; a motor's operating point, :func:`steady_input_speed_rad_s`): a mesh
+whose stiffness or transmission error varies with its phase ``phi = z_p theta_p`` repeats every mesh period
+``60 / (z_p n_p)`` (n_p the pinion's speed in rpm); an input torque ripple of order o every
+``1 / (o n_in / 60)``; a load fluctuation of frequency f every ``1 / f``.
 :func:`excitation_periods` lists them from the scene's elements (each says whether it excites and the
 period of its cycle) and arrays (``drive_ripple``, ``load_fluct``), :func:`common_period` combines them: the least common period when the ratios of
 the periods are rational within a tolerance (with denominators up to :data:`MAX_DENOMINATOR`), else the
@@ -36,6 +37,7 @@ import numpy as np
 
 from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
 from gearcli.errors import ConfigError
+from gearcli.model.damping import operating_speed_rad_s
 from gearcli.simulate.results import SteadyState
 from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
@@ -78,7 +80,7 @@ def excitation_periods(layout) -> list[Excitation]:
     with a transmission-error or stiffness harmonic) adds the period of its own cycle at its first body's
     nominal speed (``cycle_period_s``: the mesh period); the drive's ripple rows (amplitude, order) and the
     load's fluctuation rows (amplitude, frequency_Hz) with a non-zero amplitude each add theirs. The input
-    body's nominal speed is the drive's speed.
+    body's speed is :func:`steady_input_speed_rad_s` (a motor's operating point).
     """
     cached = layout.__dict__.get("_excitation_periods")
     if cached is None:  # the layout's own (frozen): worked out once (the period, the statistics grid ask for them)
@@ -87,10 +89,20 @@ def excitation_periods(layout) -> list[Excitation]:
     return list(cached)
 
 
+def steady_input_speed_rad_s(layout) -> float:
+    """The input body's speed in the steady state: a speed or torque drive's nominal speed, a motor's operating
+    point (the stable crossing of its curve with the load reflected to it, :func:`operating_speed_rad_s`), where
+    it runs, not at ``[input] speed_rpm``: a mesh period from the nominal 1470 rpm of a motor running at 1472 rpm
+    is 0.14 % short, and the response, whose mesh phases follow the motor, never repeats over it."""
+    if layout.motor_drive:
+        return operating_speed_rad_s(layout)
+    return layout.drive.speed_rad_s
+
+
 def _excitation_periods(layout) -> tuple[Excitation, ...]:
     """:func:`excitation_periods` of a layout, worked out (the drive's ripple and the load's fluctuation rows as
     the model's arrays hold them, without building the arrays)."""
-    w_in = layout.drive.speed_rad_s
+    w_in = steady_input_speed_rad_s(layout)
     out: list[Excitation] = []
     if w_in == 0.0:
         return ()
@@ -111,7 +123,7 @@ def _excitation_periods(layout) -> tuple[Excitation, ...]:
 def unexcited_period(layout) -> float:
     """The period used when nothing excites the scene: the slowest element cycle, a mesh period (the steady
     state is an equilibrium, which repeats over any period)."""
-    w_in = layout.drive.speed_rad_s
+    w_in = steady_input_speed_rad_s(layout)
     periods = [x.element.cycle_period_s(x.params, layout.bodies[x.a].ratio * w_in)
                for x in layout.connectors if w_in != 0.0]
     return max((p for p in periods if p > 0.0), default=1.0)

@@ -214,3 +214,25 @@ def test_window_after_the_voltage_ramp_and_statics(tmp_path: Path) -> None:
     e = out["energy"]
     closes = e["input_work_J"] - e["load_work_J"] - e["damping_loss_J"] - e["kinetic_change_J"] - e["potential_change_J"]
     assert abs(closes) < 1e-7 * e["input_work_J"]
+
+
+def test_periodic_steady_state_at_the_motor_s_operating_speed(tmp_path: Path) -> None:
+    """With a 2 um transmission error on both meshes the steady state is periodic; its period is that of the meshes
+    at the speed the motor runs at (its operating point, 1472.05 rpm), not at the nominal `speed_rpm` 1470: the
+    two mesh orders, 23 per input turn and 21 x 23/91 = 483/91, repeat together every 13/23 input turns. The period
+    from the nominal speed was 0.14 % short and the search never converged (94 periods, residual 608 x its
+    tolerance)."""
+    hand = _hand()
+    path = tmp_path / "soft_start_reducer_te.toml"
+    path.write_text(SCENE.replace('[simulation]', '[contact]\ntransmission_error_um = [2]\n[simulation]\n'
+                                  'steady = "periodic"'), encoding="utf-8")
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    s = json.loads(res.stdout)["summary"]
+    steady = s["steady"]
+    assert steady["converged"] is True and steady["periodicity"] == "period-1"
+    assert_allclose(steady["period_s"], 2 * math.pi * 13 / (23 * hand["wm"]), rtol=1e-9)
+    assert s["window_s"][0] >= 1.0  # the search starts after the voltage ramp
+    for st, Ft in zip(s["stages"], hand["Ft"], strict=True):
+        # a transmission error adds no mean force; its damping draws a little more slip (a few 1e-6)
+        assert_allclose(st["tangential_N"]["mean"], Ft, rtol=1e-4)
