@@ -29,6 +29,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
 from scipy.optimize import brentq
@@ -121,7 +122,7 @@ def _kloss() -> tuple:
     return (lambda w: T(1 - w / ws, sb, a)), wr, ws
 
 
-def _hand() -> dict:
+def _hand(k_shaft: float = 3e5) -> dict:
     g = [_stage(s) for s in STAGES]
     curve, wr, ws = _kloss()
     i = g[0]["ratio"] * g[1]["ratio"]
@@ -146,7 +147,7 @@ def _hand() -> dict:
     def m_e(st, Jp, Jg):
         return 1 / (st["rb1"] ** 2 / Jp + st["rb2"] ** 2 / Jg)
 
-    for M, vals in ((K, (1.5e4, g[0]["k_t"], 3e5, g[1]["k_t"], 4e5)),
+    for M, vals in ((K, (1.5e4, g[0]["k_t"], k_shaft, g[1]["k_t"], 4e5)),
                     (C, (3.0, 2 * ZETA * math.sqrt(g[0]["k_n"] * m_e(g[0], J[1], J[2])), 2.0,
                          2 * ZETA * math.sqrt(g[1]["k_n"] * m_e(g[1], J[3], J[4])), 40.0))):
         connect(M, 0, 1, vals[0])
@@ -159,20 +160,24 @@ def _hand() -> dict:
     T_out = load(wm / i)
     Ft2 = T_out / (g[1]["ratio"] * ETA) / g[1]["r1"]
     Ft1 = T_out / (g[1]["ratio"] * ETA) / (g[0]["ratio"] * ETA) / g[0]["r1"]
-    return dict(J=J, K=K, C=C, wm=wm, Ft=(Ft1, Ft2), k_n=[s["k_n"] for s in g])
+    return dict(J=J, K=K, C=C, wm=wm, Ft=(Ft1, Ft2), k_n=[s["k_n"] for s in g], T_shaft=Ft1 * g[0]["r1"] * g[0]["ratio"] * ETA)
 
 
-def _run(tmp_path: Path, command: str) -> dict:
+def _run(tmp_path: Path, command: str, *sets: str) -> dict:
     path = tmp_path / "soft_start_reducer.toml"
     path.write_text(SCENE, encoding="utf-8")
-    res = CliRunner().invoke(cli, [command, str(path), "--format", "json", "-q"])
+    args = [command, str(path), "--format", "json", "-q"]
+    for s in sets:
+        args += ["--set", s]
+    res = CliRunner().invoke(cli, args)
     assert res.exit_code == 0, res.output
     return json.loads(res.stdout)
 
 
-def test_modes_against_the_hand_eigenproblem(tmp_path: Path) -> None:
-    hand = _hand()
-    out = _run(tmp_path, "modes")
+@pytest.mark.parametrize("k_shaft", [3e5, 5e3, 1e11])  # the file's, a very compliant and a very stiff shaft
+def test_modes_against_the_hand_eigenproblem(tmp_path: Path, k_shaft: float) -> None:
+    hand = _hand(k_shaft)
+    out = _run(tmp_path, "modes", f"stage.0.shaft.stiffness_Nm_rad={k_shaft!r}")
     for mesh, k_n in zip(out["meshes"], hand["k_n"], strict=True):
         # the default law is calibrated to ISO 6336-1: its tangent is k_n (N/mm)
         assert_allclose(mesh["mesh_stiffness"]["iso_N_mm"], k_n / 1e3, rtol=1e-9)
@@ -236,3 +241,23 @@ def test_periodic_steady_state_at_the_motor_s_operating_speed(tmp_path: Path) ->
     for st, Ft in zip(s["stages"], hand["Ft"], strict=True):
         # a transmission error adds no mean force; its damping draws a little more slip (a few 1e-6)
         assert_allclose(st["tangential_N"]["mean"], Ft, rtol=1e-4)
+
+
+@pytest.mark.parametrize("k_shaft", [5e3, 1e11])
+def test_shaft_twist_is_the_static_torque_over_the_stiffness(tmp_path: Path, k_shaft: float) -> None:
+    """The intermediate shaft's window-mean twist is its static torque (gear 1's, at the operating point) over its
+    stiffness: 6.05 deg on a very compliant shaft, 3e-7 deg on a very stiff one; the mesh forces do not change."""
+    hand = _hand(k_shaft)
+    path = tmp_path / "soft_start_reducer.toml"
+    path.write_text(SCENE, encoding="utf-8")
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-q", "--series",
+                                   "--set", f"stage.0.shaft.stiffness_Nm_rad={k_shaft!r}",
+                                   "--set", "simulation.duration_s=6"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    t, twist = np.array(out["series"]["time_s"]), np.array(out["series"]["shaft2_twist_deg"])
+    w = t >= out["summary"]["window_s"][0] - 1e-12
+    assert_allclose(np.trapezoid(twist[w], t[w]) / (t[w][-1] - t[w][0]), math.degrees(hand["T_shaft"] / k_shaft),
+                    rtol=1e-6)
+    for st, Ft in zip(out["summary"]["stages"], hand["Ft"], strict=True):
+        assert_allclose(st["tangential_N"]["mean"], Ft, rtol=2e-6)
