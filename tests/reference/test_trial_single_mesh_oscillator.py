@@ -119,6 +119,21 @@ def test_modes_frequency_and_damping_by_hand(tmp_path: Path) -> None:
     assert_allclose(clamped["damping_ratio"], ZETA * math.sqrt(ME * RBG**2 / JG), rtol=1e-9)
 
 
+def test_modes_damping_of_the_impact_law_by_hand(tmp_path: Path) -> None:
+    """A file that names `damping_Ns_mm` (20 N s/mm) without `damping_ratio` gets the seed's IMPACT ramp with its
+    default full-damping depth 0.1 mm (DESIGN section 13); linearised at the static approach h0 = e F_n0 / k_n
+    (the calibrated law's, e = 1.5), its damping is STEP(h0, 0, 0, 0.1 mm, C) = C s^2 (3 - 2 s), s = h0 / 0.1 mm."""
+    out = _run(tmp_path, "modes", "contact.damping_Ns_mm=20")
+    f_n0 = 400.0 / (M * Z2 / 2e3) / math.cos(ALPHA)
+    h0_mm = 1.5 * f_n0 / (K / 1e3)
+    assert_allclose(out["meshes"][0]["mesh_stiffness"]["static_approach_mm"], h0_mm, rtol=1e-9)
+    s = h0_mm / 0.1
+    c = 2e4 * s * s * (3 - 2 * s)
+    (free,) = [m for m in out["boundaries"]["free"] if not m["rigid"]]
+    assert_allclose(free["damping_ratio"], c / (2 * math.sqrt(K * ME)), rtol=1e-9)
+    assert_allclose(free["frequency_Hz"], math.sqrt(K / ME) / (2 * math.pi), rtol=1e-9)
+
+
 def test_free_decay_against_hand_and_solve_ivp(tmp_path: Path) -> None:
     out = _run(tmp_path, "simulate", "contact.exponent=1", "simulation.duration_s=0.05", "simulation.steps=5000")
     res = CliRunner()  # the series: the same run as CSV
