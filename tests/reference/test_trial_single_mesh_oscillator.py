@@ -26,6 +26,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
@@ -206,3 +207,26 @@ def test_window_shorter_than_half_the_mode_is_not_settled(tmp_path: Path) -> Non
     (w,) = [w for w in out["warnings"] if w["code"] == "window_not_settled"]
     assert w["stage"] == 1
     assert_allclose(w["mode_frequency_Hz"], math.sqrt(K / ME) / (2 * math.pi), rtol=0.01)
+
+
+@pytest.mark.parametrize("stiffness", ["1e8", "1e11"])
+def test_rigid_limit_forces_are_the_rigid_body_statics(tmp_path: Path, stiffness: str) -> None:
+    """A very stiff linear mesh (K 1e8 and 1e11 N/mm, 130 and 4000 x ISO's) under a prescribed speed ramp: the mesh
+    force is the rigid drivetrain's, F_t(t) = (J_g a_g(t) + T_L(t)) / r_g, with the STEP ramps of speed and load over
+    0.05 s (a_g = w_g 6 s (1 - s) / T); its peak by hand, and the window mean the static 5000 N."""
+    path = tmp_path / "rigid.toml"
+    path.write_text(SCENE.replace('drive = "torque"\ntorque_Nm = 200\nramp_s = 0', "ramp_s = 0.05")
+                    .replace("torque_Nm = 400\nramp_s = 0", "torque_Nm = 400\nramp_s = 0.05"), encoding="utf-8")
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-q", "--set", "simulation.duration_s=0.2",
+                                   "--set", f"contact.stiffness={stiffness}", "--set", "contact.exponent=1"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    s = np.linspace(0.0, 1.0, 200001)
+    w_g = 300 * math.pi / 30
+    f_rigid = (JG * w_g * 6 * s * (1 - s) / 0.05 + 400.0 * s * s * (3 - 2 * s)) / (M * Z2 / 2e3)
+    st = out["summary"]["stages"][0]
+    # the compliance's share falls with 1/k: 1e-6 of the peak at 1e8 N/mm, the sampling's 1e-7 at 1e11
+    assert_allclose(st["peak_tangential_N"], f_rigid.max(), rtol=2e-6)
+    assert_allclose(out["summary"]["start"]["rigid_peak_N"][0], f_rigid.max(), rtol=1e-8)
+    assert_allclose(st["tangential_N"]["mean"], 5000.0, rtol=1e-8)
+    assert abs(out["solver"]["energy_residual"]) < 1e-8
