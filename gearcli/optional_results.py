@@ -78,6 +78,7 @@ class InternalMeshResult:
     contact_ratio_total: float
     static_force_N: StaticForces  # per planet, on the planet's reference circle (= the sun mesh's F_t)
     equivalent_radius_mm: float  # r_p r_r / (r_r − r_p): a convex flank on a concave one
+    effective_modulus_MPa: float  # E* of the planet's and the ring's materials (DESIGN 3, 11: a stage's keys)
     hertz_stiffness_N_mm1_5: float
     iso6336_single_pair_stiffness_N_mm_um: float
     iso6336_mesh_stiffness_N_mm_um: float

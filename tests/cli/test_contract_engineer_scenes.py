@@ -1,0 +1,86 @@
+"""The output contract on an engineer's own scenes (DESIGN §3, §5, §11): every key a parallel stage's JSON names is
+on each mesh of a planetary stage too, in the contract's unit, with the value a hand calculation gives."""
+
+from __future__ import annotations
+
+import json
+
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+# a sun-driven planetary stage, ring held: 24/24/72, 4 planets ((24 + 72)/4 = 24, equally spaced), m_n 2, spur;
+# the planets and the ring of one steel (E = 2.1e5 MPa, nu = 0.3)
+PLANETARY = """
+title = "planetary 24/24/72, 4 planets, ring held, sun in"
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 2.1e5
+poisson_ratio = 0.3
+[materials.soft]
+density_kg_m3 = 7200
+youngs_modulus_MPa = 1.7e5
+poisson_ratio = 0.26
+[[stage]]
+type = "planetary"
+normal_module_mm = 2
+normal_pressure_angle_deg = 20
+sun    = { teeth = 24, face_width_mm = 25, material = "steel" }
+planet = { teeth = 24, face_width_mm = 25, count = 4, material = "steel" }
+ring   = { teeth = 72, face_width_mm = 25, material = "soft" }
+fixed = "ring"
+input = "sun"
+[input]
+speed_rpm = 3000
+[load]
+torque_Nm = 400
+"""
+
+# DESIGN §5: the keys of a parallel stage that §11 gives each planetary mesh ("each with the keys of a parallel stage")
+STAGE_KEYS = {"contact_ratio_transverse", "overlap_ratio", "contact_ratio_total", "center_distance_mm",
+              "equivalent_radius_mm", "effective_modulus_MPa", "hertz_stiffness_N_mm1_5", "mesh_frequency_Hz",
+              "static_force_N", "iso6336_single_pair_stiffness_N_mm_um", "iso6336_mesh_stiffness_N_mm_um",
+              "iso6336_mesh_stiffness_beta_N_mm_um", "iso6336_factors", "reduced_mass_kg_mm", "resonance_speed_rpm",
+              "resonance_ratio", "rating", "mesh_stiffness"}
+
+
+def _e_star(e1: float, nu1: float, e2: float, nu2: float) -> float:
+    """DESIGN §3: 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2, MPa."""
+    return 1.0 / ((1.0 - nu1 ** 2) / e1 + (1.0 - nu2 ** 2) / e2)
+
+
+def _design(tmp_path, text: str, *args: str) -> dict:
+    path = tmp_path / "scene.toml"
+    path.write_text(text, encoding="utf-8")
+    res = CliRunner().invoke(cli, ["-q", "design", str(path), *args])
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout)
+
+
+def test_every_planetary_mesh_has_a_parallel_stages_keys_with_its_own_effective_modulus(tmp_path):
+    doc = _design(tmp_path, PLANETARY, "--format", "json")
+    meshes = doc["stages"][0]["meshes"]
+    assert [m["name"] for m in meshes] == ["sun_planet", "planet_ring"]
+    for mesh in meshes:
+        assert STAGE_KEYS <= set(mesh), (mesh["name"], sorted(STAGE_KEYS - set(mesh)))
+    sun_planet, planet_ring = meshes
+    # steel on steel: 1/E* = 2 (1 − 0.09)/2.1e5 -> E* = 115 384.6 MPa; steel planet on the soft ring: its own E*
+    assert_allclose(sun_planet["effective_modulus_MPa"], 2.1e5 / (2 * 0.91), rtol=1e-12)
+    assert_allclose(planet_ring["effective_modulus_MPa"], _e_star(2.1e5, 0.3, 1.7e5, 0.26), rtol=1e-12)
+    # and the Hertz value on it is §3's K = 4/3 √R E* (R = r_p r_r / (r_r − r_p) for the concave ring flank)
+    r_p, r_r = 24.0, 72.0  # pitch radii, mm: z m / 2
+    radius = r_p * r_r / (r_r - r_p)
+    assert_allclose(planet_ring["equivalent_radius_mm"], radius, rtol=1e-12)
+    assert_allclose(planet_ring["hertz_stiffness_N_mm1_5"],
+                    4.0 / 3.0 * radius ** 0.5 * _e_star(2.1e5, 0.3, 1.7e5, 0.26), rtol=1e-12)
+
+
+def test_the_planet_ring_modulus_is_a_csv_column_too(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text(PLANETARY, encoding="utf-8")
+    res = CliRunner().invoke(cli, ["-q", "design", str(path), "--format", "csv"])
+    assert res.exit_code == 0, res.output
+    head, row = res.stdout.splitlines()[:2]
+    cells = dict(zip(head.split(","), row.split(","), strict=True))
+    assert_allclose(float(cells["planet_ring_effective_modulus_MPa"]), _e_star(2.1e5, 0.3, 1.7e5, 0.26), rtol=1e-12)
