@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
@@ -84,3 +85,65 @@ def test_the_planet_ring_modulus_is_a_csv_column_too(tmp_path):
     head, row = res.stdout.splitlines()[:2]
     cells = dict(zip(head.split(","), row.split(","), strict=True))
     assert_allclose(float(cells["planet_ring_effective_modulus_MPa"]), _e_star(2.1e5, 0.3, 1.7e5, 0.26), rtol=1e-12)
+
+
+# ------------------------------------------------------------------ simulate --dump-model: the file it names
+
+SPUR = """
+title = "spur pair 20/40, m 3"
+[materials.steel]
+density_kg_m3 = 7850
+youngs_modulus_MPa = 2.1e5
+poisson_ratio = 0.3
+[[stage]]
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+pinion = { teeth = 20, face_width_mm = 30, material = "steel" }
+gear   = { teeth = 40, face_width_mm = 30, material = "steel" }
+[input]
+speed_rpm = 1500
+ramp_s = 0.05
+[load]
+torque_Nm = 200
+ramp_s = 0.05
+"""
+
+
+@pytest.mark.parametrize("name", ["run.csv", "run.json", "run.md", "run.toml"])
+def test_dump_model_refuses_a_data_suffix_and_writes_nothing(tmp_path, name):
+    """DESIGN §7: a suffix chooses the format and one that contradicts it is exit 2 naming the path: the equations
+    are Python source, never CSV or JSON under that name (a pipeline reading run.csv would choke on them)."""
+    path = tmp_path / "spur.toml"
+    path.write_text(SPUR, encoding="utf-8")
+    out = tmp_path / name
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--dump-model", "-o", str(out)])
+    assert res.exit_code == 2, res.output
+    assert res.stderr.startswith(f"gearcli: {out}: --dump-model writes the equations as Python source")
+    assert "Traceback" not in res.stderr
+    assert list(tmp_path.iterdir()) == [path]
+
+
+@pytest.mark.parametrize("name", ["model.py", "model.txt", "model"])
+def test_dump_model_writes_python_source_to_a_source_or_text_name(tmp_path, name):
+    path = tmp_path / "spur.toml"
+    path.write_text(SPUR, encoding="utf-8")
+    out = tmp_path / name
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--dump-model", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    assert res.stdout == "" and res.stderr == ""
+    source = out.read_text(encoding="utf-8")
+    compile(source, str(out), "exec")  # it is Python
+    assert "def rhs(t, y):" in source
+
+
+def test_dump_model_warns_that_the_runs_output_options_have_no_effect(tmp_path):
+    path = tmp_path / "spur.toml"
+    path.write_text(SPUR, encoding="utf-8")
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--dump-model", "--format", "json", "--series"])
+    assert res.exit_code == 0, res.output
+    assert "def rhs(t, y):" in res.stdout and not res.stdout.lstrip().startswith("{")
+    lines = res.stderr.splitlines()
+    assert [line.split(" chooses")[0] for line in lines] == ["warning: --format", "warning: --series"]
+    assert all(line.endswith("it has no effect") for line in lines)
+    quiet = CliRunner().invoke(cli, ["-q", "simulate", str(path), "--dump-model", "--format", "json"])
+    assert quiet.exit_code == 0 and quiet.stderr == ""
