@@ -147,3 +147,23 @@ def test_dump_model_warns_that_the_runs_output_options_have_no_effect(tmp_path):
     assert all(line.endswith("it has no effect") for line in lines)
     quiet = CliRunner().invoke(cli, ["-q", "simulate", str(path), "--dump-model", "--format", "json"])
     assert quiet.exit_code == 0 and quiet.stderr == ""
+
+
+# ------------------------------------------------------------------ docs/output.md names every warning code
+
+def test_output_md_lists_every_warning_code_the_tool_emits():
+    """DESIGN §12: `code` is stable and a program switches on it, so the contract page's list of codes names every
+    code gearcli can emit (the diagnostics' codes and the rating's and the bearings' own)."""
+    import inspect
+    from pathlib import Path
+
+    from gearcli import diagnostics
+    from gearcli.design import bearing_life, iso6336, rating
+
+    codes = {v for k, v in vars(diagnostics).items() if k.isupper() and isinstance(v, str) and v.islower()
+             and v.replace("_", "").isalpha() and not k.startswith("_")}
+    codes |= {rating.PITTING_LOW, rating.BENDING_LOW, rating.OUT_OF_RANGE, rating.NOT_ISO, iso6336.UNRATED_MESH,
+              bearing_life.STATIC_SAFETY_LOW, bearing_life.KAPPA_OUT_OF_RANGE, bearing_life.AXIAL_NOT_RATED}
+    assert {"design", "stiffness_not_iso", "window_ringing", "pitting_safety_low"} <= codes  # the harvest works
+    page = (Path(inspect.getfile(diagnostics)).resolve().parents[1] / "docs" / "output.md").read_text(encoding="utf-8")
+    assert sorted(c for c in codes if f"`{c}`" not in page) == []
