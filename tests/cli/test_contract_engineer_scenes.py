@@ -4,6 +4,7 @@ on each mesh of a planetary stage too, in the contract's unit, with the value a 
 from __future__ import annotations
 
 import json
+import sys
 
 import pytest
 from click.testing import CliRunner
@@ -167,3 +168,36 @@ def test_output_md_lists_every_warning_code_the_tool_emits():
     assert {"design", "stiffness_not_iso", "window_ringing", "pitting_safety_low"} <= codes  # the harvest works
     page = (Path(inspect.getfile(diagnostics)).resolve().parents[1] / "docs" / "output.md").read_text(encoding="utf-8")
     assert sorted(c for c in codes if f"`{c}`" not in page) == []
+
+
+# ------------------------------------------------------------------ --plots without the plot extra
+
+RATED_SPUR = SPUR.replace('poisson_ratio = 0.3\n', 'poisson_ratio = 0.3\ntreatment = "case_carburized"\n'
+                          'contact_fatigue_limit_MPa = 1500\nbending_fatigue_limit_MPa = 450\n', 1).replace(
+    'material = "steel" }', 'material = "steel", flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10 }').replace(
+    "[input]", "accuracy_grade = 6\n[input]", 1) + """
+[lubricant]
+viscosity_40C_mm2_s = 150
+[rating]
+required_life_h = 20000
+[[duty]]
+name = "full"
+hours = 20000
+torque_Nm = 200
+speed_rpm = 1500
+"""
+
+
+@pytest.mark.parametrize("args", [("life", "--static"), ("modes",)])
+def test_plots_without_matplotlib_warn_and_create_no_directory(tmp_path, monkeypatch, args):
+    """docs/sweeps.md, docs/life.md: without the plot extra --plots is a warning and exit 0, the command's output
+    whole; and nothing is left behind (life made the empty directory before it found matplotlib missing)."""
+    path = tmp_path / "spur.toml"
+    path.write_text(RATED_SPUR, encoding="utf-8")
+    monkeypatch.setitem(sys.modules, "matplotlib", None)  # import matplotlib -> ImportError
+    plots = tmp_path / "figures"
+    res = CliRunner().invoke(cli, [args[0], str(path), *args[1:], "--format", "json", "--plots", str(plots)])
+    assert res.exit_code == 0, res.output
+    assert "--plots needs matplotlib" in res.stderr and "itself is complete" in res.stderr
+    json.loads(res.stdout)  # the output is whole
+    assert not plots.exists()
