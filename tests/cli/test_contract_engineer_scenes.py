@@ -201,3 +201,31 @@ def test_plots_without_matplotlib_warn_and_create_no_directory(tmp_path, monkeyp
     assert "--plots needs matplotlib" in res.stderr and "itself is complete" in res.stderr
     json.loads(res.stdout)  # the output is whole
     assert not plots.exists()
+
+
+# ------------------------------------------------------------------ life --series: the history is an input
+
+def test_life_series_input_sha256_covers_the_history(tmp_path):
+    """DESIGN §5: every JSON carries `input_sha256`, the provenance of its inputs; `life --series` reads two, the
+    design file and the history, and two different histories gave one hash for two different lives. It is now the
+    sha256 of the file's bytes, then b"\\0--series " and the history's bytes (hashlib here, independently)."""
+    import hashlib
+
+    path = tmp_path / "spur.toml"
+    path.write_text(RATED_SPUR, encoding="utf-8")
+    docs, hashes = [], []
+    for i, speed in enumerate((1500, 1000)):
+        history = tmp_path / f"h{i}.csv"
+        history.write_text(f"time_s,torque_Nm,speed_rpm\n0,200,{speed}\n3600,200,{speed}\n", encoding="utf-8")
+        res = CliRunner().invoke(cli, ["-q", "life", str(path), "--series", str(history), "--static",
+                                       "--format", "json"])
+        assert res.exit_code == 0, res.output
+        docs.append(json.loads(res.stdout))
+        h = hashlib.sha256(path.read_bytes())
+        h.update(b"\0--series " + history.read_bytes())
+        hashes.append(h.hexdigest())
+    assert [d["input_sha256"] for d in docs] == hashes
+    assert hashes[0] != hashes[1]
+    # without --series: the plain sha256sum of the design file, as before
+    res = CliRunner().invoke(cli, ["-q", "life", str(path), "--static", "--format", "json"])
+    assert json.loads(res.stdout)["input_sha256"] == hashlib.sha256(path.read_bytes()).hexdigest()
