@@ -311,7 +311,8 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         resonance_speed_rpm=n_e1, resonance_ratio=abs(planet.speed_rpm) / n_e1,
         resonance_lower_limit=res.lower_main_resonance_limit(line_load),
         resonance_range=res.resonance_range(abs(planet.speed_rpm) / n_e1, res.lower_main_resonance_limit(line_load)),
-        mesh_stiffness=at_load)
+        mesh_stiffness=at_load, static_approach_mm=at_load.static_approach_mm,
+        linearised_stiffness_N_mm=at_load.linearised_N_mm)
 
 
 def _with_ring_allowances(k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult, ring: GearResult,

@@ -4,6 +4,7 @@ on each mesh of a planetary stage too, in the contract's unit, with the value a 
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 import pytest
@@ -44,7 +45,7 @@ STAGE_KEYS = {"contact_ratio_transverse", "overlap_ratio", "contact_ratio_total"
               "equivalent_radius_mm", "effective_modulus_MPa", "hertz_stiffness_N_mm1_5", "mesh_frequency_Hz",
               "static_force_N", "iso6336_single_pair_stiffness_N_mm_um", "iso6336_mesh_stiffness_N_mm_um",
               "iso6336_mesh_stiffness_beta_N_mm_um", "iso6336_factors", "reduced_mass_kg_mm", "resonance_speed_rpm",
-              "resonance_ratio", "rating", "mesh_stiffness"}
+              "resonance_ratio", "rating", "mesh_stiffness", "static_approach_mm", "linearised_stiffness_N_mm"}
 
 
 def _e_star(e1: float, nu1: float, e2: float, nu2: float) -> float:
@@ -76,6 +77,13 @@ def test_every_planetary_mesh_has_a_parallel_stages_keys_with_its_own_effective_
     assert_allclose(planet_ring["equivalent_radius_mm"], radius, rtol=1e-12)
     assert_allclose(planet_ring["hertz_stiffness_N_mm1_5"],
                     4.0 / 3.0 * radius ** 0.5 * _e_star(2.1e5, 0.3, 1.7e5, 0.26), rtol=1e-12)
+    # §3's h_0 and k_lin of the default law (iso6336, e = 1.5, DESIGN §13): its tangent e K h0^(e-1) is ISO's
+    # k_n = c_γα b (spur: cos β_b = 1) at the static normal force, so h0 = e F_n / k_n; F_n per planet from the
+    # sun's torque: 400 N·m on the carrier / (1 + 72/24) = 100 N·m, over 4 planets at r_s = 24 mm, / cos 20°
+    f_n = 100e3 / 4 / 24.0 / math.cos(math.radians(20.0))
+    k_n = planet_ring["iso6336_mesh_stiffness_N_mm_um"] * 1e3 * 25.0
+    assert_allclose(planet_ring["linearised_stiffness_N_mm"], k_n, rtol=1e-9)
+    assert_allclose(planet_ring["static_approach_mm"], 1.5 * f_n / k_n, rtol=1e-9)
 
 
 def test_the_planet_ring_modulus_is_a_csv_column_too(tmp_path):
