@@ -78,6 +78,7 @@ class InternalMeshResult:
     contact_ratio_total: float
     static_force_N: StaticForces  # per planet, on the planet's reference circle (= the sun mesh's F_t)
     equivalent_radius_mm: float  # r_p r_r / (r_r − r_p): a convex flank on a concave one
+    effective_modulus_MPa: float  # E* of the planet's and the ring's materials (DESIGN 3, 11: a stage's keys)
     hertz_stiffness_N_mm1_5: float
     iso6336_single_pair_stiffness_N_mm_um: float
     iso6336_mesh_stiffness_N_mm_um: float
@@ -93,6 +94,9 @@ class InternalMeshResult:
     resonance_lower_limit: float = 0.0
     resonance_range: str = ""  # "subcritical" | "main resonance" | "intermediate" | "supercritical"
     mesh_stiffness: MeshStiffness | None = None  # the contact law at the static load beside ISO's (DESIGN 13)
+    # the law at the static load as a parallel stage states it (DESIGN 3: h_0 and k_lin; = mesh_stiffness's)
+    static_approach_mm: float = 0.0
+    linearised_stiffness_N_mm: float = 0.0
     # tooth-thickness allowances of the planet and the ring (ISO 21771; None without them), at the carrier's radius
     backlash_circumferential_mm: tuple[float, float] | None = None  # [max, min] on the working circles
     backlash_normal_mm: tuple[float, float] | None = None  # [max, min] between the idle flanks

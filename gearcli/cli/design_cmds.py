@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import PurePath
 
 import click
 
@@ -24,7 +25,7 @@ from gearcli.cli.common import (
     write_figures,
 )
 from gearcli.core.text import visible
-from gearcli.errors import EXIT_USAGE
+from gearcli.errors import EXIT_USAGE, OutputError
 from gearcli.io import output as outfiles
 
 
@@ -72,12 +73,12 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
     """Torsional lumped-parameter simulation with nonlinear Hertz meshes."""
     from gearcli import api  # lazy: start-up time of --help
 
+    if dump_model:
+        _dump_model(file, overrides, output)
+        return
     target = check_target(fmt, output)
     loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
     bearings = wants_bearing_csv(csv_table, "series", target.fmt, loaded)
-    if dump_model:
-        emit(api.model_source(loaded.design, design_result), target)  # -o FILE honoured (atomically)
-        return
     # the bearings' CSV holds no series: budgeted as the JSON summary
     api.check_budget(loaded, design_result, output_format="json" if bearings else target.fmt, series=series)
     warn(design_result.warnings)
@@ -91,6 +92,27 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
             csv_text=lambda: (serialize.simulation_bearings_csv(result) if bearings
                               else serialize.simulation_csv(result)), table_builder="simulation_tables")
     warn(w for w in result.warnings if w not in design_result.warnings)  # the design's went out first
+
+
+def _dump_model(file: str, overrides, output) -> None:
+    """``simulate --dump-model``: the generated equations, Python source, to stdout or ``-o`` (atomically). The
+    options of the run's output (``--format``, ``--series``, ``--table``) have no effect: a warning each; an ``-o``
+    whose suffix names a data format (``run.csv``, ``run.json``) would hold Python source under that name: exit 2."""
+    from gearcli import api  # lazy: start-up time of --help
+
+    ctx = click.get_current_context()
+    given = {"fmt": "--format", "series": "--series", "csv_table": "--table"}
+    warn(f"{option} chooses the run's output, which --dump-model does not write (it writes the equations, Python "
+         "source): it has no effect" for name, option in given.items()
+         if ctx.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE)
+    suffix = PurePath(output).suffix.lower() if output not in (None, outfiles.STDOUT) else ""
+    said = outfiles.SUFFIX_FORMAT.get(suffix, "text")
+    if said != "table" and said != "text":
+        raise OutputError(f"--dump-model writes the equations as Python source, and the suffix {suffix} says {said}; "
+                          "name the file .py (or .txt)", path=visible(str(output)))
+    target = check_target(None, output, ("text", "table"), pipe_format="text")  # .txt: the table format's suffix
+    loaded, design_result = load_and_design(file, overrides)
+    emit(api.model_source(loaded.design, design_result), target)
 
 
 @click.command(epilog="""\b

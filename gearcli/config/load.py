@@ -147,9 +147,18 @@ def _takes_real(tp: object) -> bool:
 
 
 def _digest(raw: bytes, overrides: Sequence[str]) -> str:
+    return input_digest(raw, overrides)
+
+
+def input_digest(raw: bytes, overrides: Sequence[str], history: bytes | None = None) -> str:
+    """The JSON's ``input_sha256``: of the design file's bytes, then ``b"\\0--set " + override`` per override
+    (:class:`LoadedDesign`), then, for ``gearcli life --series``, ``b"\\0--series "`` and the history's bytes
+    (its UTF-8 text, without a BOM): every input of the run, so that two runs on different histories never share it."""
     h = hashlib.sha256(raw)
     for text in overrides:
         h.update(b"\0--set " + text.encode("utf-8", "surrogateescape"))
+    if history is not None:
+        h.update(b"\0--series " + history)
     return h.hexdigest()
 
 

@@ -303,14 +303,16 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         contact_ratio_total=geo.contact_ratio_transverse + geo.overlap_ratio,
         static_force_N=StaticForces(forces.tangential, forces.tangential * math.tan(alpha_t), forces.axial,
                                     forces.normal),
-        equivalent_radius_mm=radius, hertz_stiffness_N_mm1_5=stf.hertz_stiffness_N_mm1_5(radius, modulus),
+        equivalent_radius_mm=radius, effective_modulus_MPa=modulus,
+        hertz_stiffness_N_mm1_5=stf.hertz_stiffness_N_mm1_5(radius, modulus),
         iso6336_single_pair_stiffness_N_mm_um=c_single, iso6336_mesh_stiffness_N_mm_um=c_mesh,
         iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(c_mesh), iso6336_factors=factors,
         mesh_frequency_Hz=stage.planet.teeth * w_rel / (2.0 * math.pi), reduced_mass_kg_mm=m_red,
         resonance_speed_rpm=n_e1, resonance_ratio=abs(planet.speed_rpm) / n_e1,
         resonance_lower_limit=res.lower_main_resonance_limit(line_load),
         resonance_range=res.resonance_range(abs(planet.speed_rpm) / n_e1, res.lower_main_resonance_limit(line_load)),
-        mesh_stiffness=at_load)
+        mesh_stiffness=at_load, static_approach_mm=at_load.static_approach_mm,
+        linearised_stiffness_N_mm=at_load.linearised_N_mm)
 
 
 def _with_ring_allowances(k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult, ring: GearResult,

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from gearcli.io.figures import check as _check
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
 from gearcli.life.miner import SNCurve
@@ -22,7 +23,9 @@ LABELS = {"pinion": "pinion", "gear": "gear", "ring": "ring", "planet_ring_side"
 
 
 def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
-    """Both figures into ``plots_dir`` (created if missing), each written atomically."""
+    """Both figures into ``plots_dir`` (created if missing), each written atomically; without matplotlib
+    :class:`~gearcli.io.figures.PlotsUnavailable` before the directory is made."""
+    _check()
     out_dir = Path(plots_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     paths = []

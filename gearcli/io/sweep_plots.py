@@ -133,21 +133,30 @@ def _pin_roundoff(ax, rows: Sequence[dict], cols: Sequence[str]) -> None:
     dynamic factor 1, the same mean at every speed) is drawn as the constant it is, ±5 % of its scale (the
     values' magnitude, a std's or rms's the mean's, at least 1), without an offset; autoscaling would blow the
     last bits (1e-13 N) up to the panel's height."""
+    limits = _roundoff_limits(rows, cols)
+    if limits is None:
+        return
+    ax.set_ylim(*limits)
+    ax.ticklabel_format(axis="y", useOffset=False, style="plain")
+
+
+def _roundoff_limits(rows: Sequence[dict], cols: Sequence[str]) -> tuple[float, float] | None:
+    """The axis limits of values that differ only by roundoff over ``rows`` and ``cols`` (:func:`_pin_roundoff`):
+    the constant ±5 % of its scale (a non-negative family's from just below zero); None where they differ."""
     values = np.array([_num(r.get(c)) for r in rows for c in cols])
     values = values[np.isfinite(values)]
     if not values.size:
-        return
+        return None
     refs = np.array([_num(r.get(c.replace(k, v))) for r in rows for c in cols for k, v in SCALE_OF.items()
                      if c.endswith(k)])
     scale = float(np.max(np.abs(np.concatenate([values, refs[np.isfinite(refs)], [1.0]]))))
     lo, hi = float(values.min()), float(values.max())
     if hi - lo > ROUNDOFF * scale:
-        return
+        return None
     half = 0.05 * scale
     mid = 0.5 * (lo + hi)
     bottom = max(mid - half, -0.1 * half) if any(c.endswith(NON_NEGATIVE) for c in cols) else mid - half
-    ax.set_ylim(bottom, mid + half)
-    ax.ticklabel_format(axis="y", useOffset=False, style="plain")
+    return bottom, mid + half
 
 
 def _looks(groups: dict[tuple, list[dict]]) -> dict[tuple, tuple[str, str]]:
@@ -187,18 +196,28 @@ def _bins(x: np.ndarray) -> dict:
     return {"bins": min(30, max(5, x.size // 5))}
 
 
+def _pinned_bar(x: np.ndarray, limits: tuple[float, float]) -> dict:
+    """One bar at the constant ``x`` shares to roundoff, 4 % of the pinned axis ``limits`` wide."""
+    mid, width = 0.5 * float(x[0] + x[-1]), 0.02 * (limits[1] - limits[0])
+    return {"bins": 1, "range": (mid - width, mid + width)}
+
+
 def _distributions(rows: Sequence[dict], n_stages: int):
     stats = [(c, t) for c, t in DISTRIBUTION_STATS if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1))]
     if not rows or not stats:
         return None
     fig, axes = _figure(len(stats), 2, height=2.3, width=9.0)
     for i, (c, title) in enumerate(stats):
+        # a statistic every sample shares to roundoff (an unexcited scene's std 0 and dynamic factor 1) is one bar
+        # at its constant on an axis of ±5 % of its scale, as the response plot draws it, not its last bits
+        pinned = _roundoff_limits(rows, [f"stage{k}_{c}" for k in range(1, n_stages + 1)])
         for k in range(1, n_stages + 1):
             x = np.array([_num(r.get(f"stage{k}_{c}")) for r in rows])
             x = np.sort(x[np.isfinite(x)])
             if not x.size:
                 continue
-            axes[i][0].hist(x, **_bins(x), alpha=0.5, color=f"C{k - 1}", label=f"stage {k}")
+            bins = _bins(x) if pinned is None else _pinned_bar(x, pinned)
+            axes[i][0].hist(x, **bins, alpha=0.5, color=f"C{k - 1}", label=f"stage {k}")
             axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=f"C{k - 1}", label=f"stage {k}")
         axes[i][0].set_xlabel(title)
         axes[i][0].set_ylabel("count")
@@ -206,6 +225,9 @@ def _distributions(rows: Sequence[dict], n_stages: int):
         axes[i][1].set_ylabel("ECDF")
         for a in axes[i]:
             a.grid(alpha=0.3)
+            if pinned is not None:
+                a.set_xlim(*pinned)
+                a.ticklabel_format(axis="x", useOffset=False, style="plain")
     axes[0][0].legend(fontsize=7)
     fig.suptitle(f"distributions over {len(rows)} random samples", fontsize=11)
     return fig

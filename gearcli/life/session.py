@@ -7,11 +7,11 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import BinaryIO
 
 from gearcli.config import LoadedDesign
-from gearcli.config.load import STDIN, read_input_file
+from gearcli.config.load import STDIN, input_digest, read_input_file
 from gearcli.errors import ConfigError
 from gearcli.life.duty import (
     DEFAULT_CLASSES,
@@ -83,7 +83,10 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     classes = DEFAULT_CLASSES if classes is None else classes
     if series is not None:
         source = STDIN if series == STDOUT_OR_STDIN else series
-        cols = read_series(_series_text(series), source)
+        text = _series_text(series)
+        cols = read_series(text, source)
+        # the history is an input of the run: input_sha256 covers it (a run on another history is another run)
+        loaded = replace(loaded, sha256=input_digest(raw, sets, text.encode("utf-8")))
         points = points_from_series(*cols, source=source, classes=classes)
         notes = series_notes(*cols, source=source)
         starts = sum(d.starts for d in loaded.design.duty)

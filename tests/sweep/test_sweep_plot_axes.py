@@ -69,3 +69,41 @@ def test_a_real_response_keeps_matplotlib_autoscale():
     assert lo <= F_T - 8.0 and hi >= F_T + 1.0 and hi - lo < 0.05 * F_T  # a 9 N spread, not pinned to ±92 N
     lo, hi = _axis(fig, "run-up factor: run peak / static F_t (-)").get_ylim()
     assert lo <= 1.0 and hi >= 10.0
+
+
+# the random samples' distributions.png: the same rule on its x axes (a tolerance study of an unexcited scene draws
+# every sample at its equilibrium, std 0 and dynamic factor 1 to roundoff; before, its histograms and ECDFs spread
+# 1e-12 N of std and "1e-6 + 1" of dynamic factor over the whole panel as if they were a distribution)
+
+def _samples(peaks, std, dyn, rms):
+    return [{"status": "ok", "stage1_tangential_N_mean": F_T, "stage1_tangential_N_max": p,
+             "stage1_tangential_N_std": s, "stage1_dynamic_factor": d, "stage1_dte_um_mean": DTE,
+             "stage1_dte_um_rms": r} for p, s, d, r in zip(peaks, std, dyn, rms, strict=True)]
+
+
+def _panel(fig, xlabel, side):
+    axes = [ax for ax in fig.axes if ax.get_xlabel() == xlabel]
+    return axes[side]  # 0: the histogram, 1: the ECDF
+
+
+def test_distributions_draw_roundoff_statistics_as_one_bar_at_their_scale():
+    from gearcli.io.sweep_plots import _distributions
+
+    rows = _samples(peaks=[1700.0, 1851.1, 2000.0, 2100.0], std=[4.5e-13, 9.1e-13, 0.0, 1.36e-12],
+                    dyn=[1.0, 1.0 + 4.4e-16, 1.0 - 2.2e-16, 1.0], rms=[0.0, 3.6e-15, 1.8e-15, 0.0])
+    fig = _distributions(rows, 1)
+    for side in (0, 1):
+        lo, hi = _panel(fig, "F_t std (N)", side).get_xlim()
+        assert lo <= 0.0 <= hi and hi == pytest.approx(0.05 * F_T, rel=1e-6)  # 5 % of the mean F_t
+        lo, hi = _panel(fig, "dynamic factor (-)", side).get_xlim()
+        assert (lo, hi) == pytest.approx((0.95, 1.05), rel=1e-6)  # a factor's scale is 1
+        lo, hi = _panel(fig, "DTE rms (µm)", side).get_xlim()
+        assert hi == pytest.approx(0.05 * DTE, rel=1e-6)  # 5 % of the mean DTE
+    bars = [p for p in _panel(fig, "F_t std (N)", 0).patches if p.get_height() > 0]
+    assert len(bars) == 1 and bars[0].get_height() == 4  # every sample in the one bar at 0
+    fig.canvas.draw()
+    for ax in fig.axes:
+        assert ax.xaxis.get_major_formatter().get_offset() == "", ax.get_xlabel()
+    # the peaks vary by hundreds of newtons: data, autoscaled round them
+    lo, hi = _panel(fig, "peak F_t in window (N)", 0).get_xlim()
+    assert lo <= 1700.0 and hi >= 2100.0 and hi - lo < 0.5 * F_T
