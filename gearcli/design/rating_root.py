@@ -80,13 +80,16 @@ def helix_factor_bending(overlap_ratio: float, helix_deg: float) -> float:
     return 1.0 - min(overlap_ratio, 1.0) * min(helix_deg, 30.0) / 120.0
 
 
+RIM_RANGE = (0.5, 1.2)  # s_R/h_t where an external gear's Y_B formula holds, and from where Y_B = 1
+
+
 def rim_factor(rim_thickness_mm: float | None, tooth_depth_mm: float) -> float:
     """Y_B = 1 for s_R/h_t ≥ 1.2 (or a solid blank), 1.6 ln(2.242 h_t/s_R) for 0.5 < s_R/h_t < 1.2 (ISO 6336-3:2006,
     10; below 0.5 the standard does not apply and the 0.5 value is used)."""
     if rim_thickness_mm is None:
         return 1.0
-    ratio = max(rim_thickness_mm / tooth_depth_mm, 0.5)
-    return 1.0 if ratio >= 1.2 else 1.6 * math.log(2.242 / ratio)
+    ratio = max(rim_thickness_mm / tooth_depth_mm, RIM_RANGE[0])
+    return 1.0 if ratio >= RIM_RANGE[1] else 1.6 * math.log(2.242 / ratio)
 
 
 def deep_tooth_factor(eps_alpha: float, base_helix_rad: float, grade: int) -> float:
