@@ -84,7 +84,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     if rating is None or lub is None or lub.viscosity_40C_mm2_s is None or stage.accuracy_grade is None:
         return None
     mats = (cfg.materials[stage.planet.material], cfg.materials[stage.ring.material])
-    if not _complete(mats[1], stage.ring.flank_roughness_Rz_um) or not _complete(mats[0], 0.0):
+    if (not _complete(mats[1], stage.ring.flank_roughness_Rz_um) or not _complete(mats[0], 0.0)
+            or stage.ring.root_roughness_Rz_um is None):  # Y_RrelT of the ring's root, never a polished default
         return None
     mesh, planet, ring = p.planet_ring, p.planet, p.ring
     treat = (str(mats[0].treatment), str(mats[1].treatment))
