@@ -346,6 +346,12 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
                          g.pitch_diameter_mm, st.contact_ratio_transverse,
                          (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
                          virtual_tooth_count=rating.virtual_tooth_count)
+    if abs(form["theta_residual"]) > rr.FILLET_ANGLE_TOLERANCE:
+        raise DesignError(f"ISO 6336-3 (method B) finds no critical section on the root of this {g.teeth}-tooth "
+                          "member: the 30° tangent's iteration θ = 2G/z_n tan θ − H has no solution (residual "
+                          f"{form['theta_residual']:.2g} rad; a small, far-shifted tooth at a low pressure angle): "
+                          "change the profile shift, the tooth count or the pressure angle to rate it",
+                          key=f"stage[{k}].{('pinion', 'gear')[i]}.profile_shift")
     if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
         raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
                           f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "
