@@ -41,7 +41,7 @@ def valid(value, schema: dict, root: dict) -> bool:
             return False
         if "exclusiveMaximum" in schema and not value < schema["exclusiveMaximum"]:
             return False
-    if isinstance(value, str) and len(value) > schema.get("maxLength", len(value)):
+    if isinstance(value, str) and not schema.get("minLength", 0) <= len(value) <= schema.get("maxLength", len(value)):
         return False
     if isinstance(value, str) and "pattern" in schema and re.search(schema["pattern"], value) is None:
         return False

@@ -129,6 +129,12 @@ def message(err: dict, where: Resolved) -> str:
         if actual is None and isinstance(inp, (dict, list, tuple, str)):  # pydantic leaves it out for a table
             actual = len(inp)
         return f"needs {what} {n} entr{'y' if n == 1 else 'ies'}, got {actual if actual is not None else 'more'}"
+    if t in ("string_too_short", "string_too_long"):
+        n = ctx.get("min_length") if t == "string_too_short" else ctx.get("max_length")
+        if t == "string_too_short" and n == 1:
+            return "must not be empty"
+        what = "at least" if t == "string_too_short" else "at most"
+        return f"must be {what} {n} character{'' if n == 1 else 's'} long, got {len(str(inp))}"
     if t == "value_error":
         return str(err["msg"]).removeprefix("Value error, ")
     if t == "union_tag_invalid":  # a stage's type

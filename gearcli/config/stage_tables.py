@@ -46,7 +46,7 @@ class Stage(_Table):
     shaft: ShaftSpring | None = None
     center_angle_deg: CenterAngleDeg = 0.0  # line of centres pinion -> gear, from y, cw seen from the input end
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
-    tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: running-in C_ay)
+    tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: 0, DESIGN §8)
     type: Literal["parallel"] = "parallel"  # a planetary stage says type = "planetary"
     center_distance_allowance_mm: AllowancePair | None = None  # [A_ae, A_ai] on the working centre distance
     model_config = ConfigDict(json_schema_extra=_hands_rule())

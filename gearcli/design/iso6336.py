@@ -239,13 +239,15 @@ def _unrated_ring_mesh(cfg: DesignFile, stage: StageResult) -> Diagnostic:
     ring_mat, planet_mat = cfg.materials[st.ring.material], cfg.materials[st.planet.material]
     if st.ring.flank_roughness_Rz_um is None:
         key = f"stage[{k}].ring.flank_roughness_Rz_um"
+    elif st.ring.root_roughness_Rz_um is None:
+        key = f"stage[{k}].ring.root_roughness_Rz_um"
     else:
         missing = [(name, m) for name, m in ((st.ring.material, ring_mat), (st.planet.material, planet_mat))
                    if m.treatment is None or m.contact_fatigue_limit_MPa is None or m.bending_fatigue_limit_MPa is None]
         key = f"materials.{missing[0][0]}" if missing else "rating"
     return warning(UNRATED_MESH, f"stage {stage.index}: the planet–ring mesh is not rated (ISO 6336): it needs {key} "
-                   "(the ring's flank roughness, and the ring's and planet's material treatment and fatigue limits); "
-                   "the ring and the planet's ring side have no safeties", stage=stage.index, mesh="planet_ring",
+                   "(the ring's flank and root roughness, and the ring's and planet's material treatment and fatigue "
+                   "limits); the ring and the planet's ring side have no safeties", stage=stage.index, mesh="planet_ring",
                    key=key)
 
 

@@ -44,6 +44,7 @@ PITTING_LOW = "pitting_safety_low"
 BENDING_LOW = "bending_safety_low"
 OUT_OF_RANGE = "rating_out_of_range"
 NOT_ISO = "rating_not_iso"  # a rating option that departs from the standard ([rating] virtual_tooth_count)
+EPS_ALPHA_N_MAX = 2.5  # ISO 6336-2:2006 (Scope): teeth of other basic racks while ε_αn = ε_α/cos² β_b < 2.5
 Q_S_RANGE = (1.0, 8.0)  # the notch parameter range of Y_S, method B (ISO 6336-3:2006, 7.2)
 
 
@@ -102,8 +103,8 @@ def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:
 
 def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
     """Warnings where the stage lies outside what method B covers: a nominal F_t below the 1 N/mm floor the rating
-    then uses (an unloaded stage), ε_α < 1 (no continuous mesh), and a notch parameter q_s of the root outside
-    1 … 8 (Y_S's range)."""
+    then uses (an unloaded stage), ε_α < 1 (no continuous mesh), ε_αn ≥ 2.5 (ISO 6336-2's scope), a notch parameter
+    q_s of the root outside 1 … 8 (Y_S's range) and a rim thinner than half the tooth depth (Y_B's range)."""
     out = []
     floor = reference_tangential_force_N(0.0, st.face_width_mm)
     if abs(st.static_force_N.tangential) < floor:
@@ -116,6 +117,7 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
         out.append(warning(OUT_OF_RANGE, f"stage {st.index}: ε_α = {st.contact_ratio_transverse:.3g} < 1: ISO 6336 "
                            "assumes a continuous mesh (ε_α ≥ 1); the strength rating of this stage is not valid",
                            stage=st.index, quantity="contact_ratio_transverse", value=st.contact_ratio_transverse))
+    out.extend(virtual_contact_ratio_diagnostics(st.index, st.contact_ratio_transverse, st.base_helix_angle_deg))
     stage = cfg.pair(k)
     assert cfg.rating is not None  # rate_design's caller
     for part in ("pinion", "gear"):
@@ -130,7 +132,35 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
             out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
                                f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
                                stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
+        out.extend(_rim_range_diagnostics(st, part, getattr(stage, part).rim_thickness_mm, g))
     return out + static_range_diagnostics(cfg, k, st)
+
+
+def _rim_range_diagnostics(st: StageResult, part: str, rim_mm: float | None, g: GearResult) -> list[Diagnostic]:
+    """``rating_out_of_range`` for a rim thinner than half the tooth depth (s_R/h_t < 0.5), where ISO 6336-3's rim
+    factor of an external gear no longer applies: Y_B is taken at 0.5 (``rating_root.rim_factor``)."""
+    depth = 0.5 * (g.tip_diameter_mm - g.root_diameter_mm)  # h_t as the rating's Y_B reads it
+    if rim_mm is None or rim_mm / depth >= rr.RIM_RANGE[0]:
+        return []
+    return [warning(OUT_OF_RANGE, f"stage {st.index} {part}: rim s_R/h_t = {rim_mm / depth:.3g} below 0.5, where "
+                    "ISO 6336-3's rim factor of an external gear ends; Y_B is taken at 0.5 "
+                    f"({rr.rim_factor(rim_mm, depth):.3g}), a thinner rim needs a finite element check",
+                    stage=st.index, member=part, quantity="rim_ratio", value=rim_mm / depth)]
+
+
+def virtual_contact_ratio_diagnostics(stage: int, eps_alpha: float, base_helix_deg: float,
+                                      **data: str) -> list[Diagnostic]:
+    """``rating_out_of_range`` for a mesh whose virtual contact ratio ε_αn = ε_α / cos² β_b reaches 2.5: ISO
+    6336-2:2006 (Scope) holds for teeth of other basic racks only while ε_αn < 2.5 (ISO 6336-3's Y_DT is its one
+    factor beyond); ``data`` adds to the warning's data (``mesh`` of a planetary stage's planet–ring mesh)."""
+    eps_an = eps_alpha / math.cos(math.radians(base_helix_deg)) ** 2
+    if eps_an < EPS_ALPHA_N_MAX:
+        return []
+    where = f"stage {stage}" + (" planet–ring mesh" if data.get("mesh") == "planet_ring" else "")
+    return [warning(OUT_OF_RANGE, f"{where}: the virtual contact ratio ε_αn = ε_α/cos² β_b = {eps_an:.3g} is not "
+                    f"below {EPS_ALPHA_N_MAX:g}, where ISO 6336-2 (and its pitting factors Z_ε, Z_B, Z_D) holds; the "
+                    "strength rating of this mesh is outside the standard's scope", stage=stage,
+                    quantity="contact_ratio_virtual", value=eps_an, **data)]
 
 
 def static_range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
@@ -316,6 +346,12 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
                          g.pitch_diameter_mm, st.contact_ratio_transverse,
                          (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
                          virtual_tooth_count=rating.virtual_tooth_count)
+    if abs(form["theta_residual"]) > rr.FILLET_ANGLE_TOLERANCE:
+        raise DesignError(f"ISO 6336-3 (method B) finds no critical section on the root of this {g.teeth}-tooth "
+                          "member: the 30° tangent's iteration θ = 2G/z_n tan θ − H has no solution (residual "
+                          f"{form['theta_residual']:.2g} rad; a small, far-shifted tooth at a low pressure angle): "
+                          "change the profile shift, the tooth count or the pressure angle to rate it",
+                          key=f"stage[{k}].{('pinion', 'gear')[i]}.profile_shift")
     if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
         raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
                           f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "

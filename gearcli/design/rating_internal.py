@@ -34,6 +34,7 @@ from gearcli.design.rating import (
     STRESS_CORRECTION_TEST_GEAR,
     member_tooth_depth_mm,
     root_shift,
+    virtual_contact_ratio_diagnostics,
 )
 from gearcli.design.rating_load import MeshLoad, resolve_load_factors
 from gearcli.design.rating_results import InternalRatingResult, MemberRating
@@ -83,7 +84,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     if rating is None or lub is None or lub.viscosity_40C_mm2_s is None or stage.accuracy_grade is None:
         return None
     mats = (cfg.materials[stage.planet.material], cfg.materials[stage.ring.material])
-    if not _complete(mats[1], stage.ring.flank_roughness_Rz_um) or not _complete(mats[0], 0.0):
+    if (not _complete(mats[1], stage.ring.flank_roughness_Rz_um) or not _complete(mats[0], 0.0)
+            or stage.ring.root_roughness_Rz_um is None):  # Y_RrelT of the ring's root, never a polished default
         return None
     mesh, planet, ring = p.planet_ring, p.planet, p.ring
     treat = (str(mats[0].treatment), str(mats[1].treatment))
@@ -183,7 +185,8 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
 
 def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
-    outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value)."""
+    outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value); and
+    where the planet–ring mesh's ε_αn reaches 2.5 (ISO 6336-2's scope)."""
     stage, p = cast("PlanetaryStage", cfg.stage[st.index - 1]), st.planetary
     assert p is not None  # a planetary stage's result
     ring, mesh = p.ring, p.planet_ring
@@ -199,6 +202,8 @@ def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic
         out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: the root's notch parameter q_s = {form['q_s']:.3g} "
                            "lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds", stage=st.index,
                            member="ring", quantity="q_s", value=form["q_s"], mesh="planet_ring"))
+    out.extend(virtual_contact_ratio_diagnostics(st.index, mesh.contact_ratio_transverse, st.base_helix_angle_deg,
+                                                 mesh="planet_ring"))
     depth = 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)
     rim = stage.ring.rim_thickness_mm
     if rim is not None and rim / depth < rr.INTERNAL_RIM_RANGE[0]:

@@ -21,6 +21,27 @@ def _fillet_angle(g: float, z_n: float, h: float, iterations: int) -> float:
     return theta
 
 
+def _bracketed_fillet_angle(g: float, z_n: float, h: float, fallback: float) -> float:
+    """The root of 2G/z_n tan θ − H − θ = 0 in (0, π/2) nearest π/6, by bisection, where the fixed-point iteration
+    of ISO 6336-3 diverges (the same equation, solved another way); ``fallback`` when the interval holds none."""
+    def f(t: float) -> float:
+        return 2.0 * g / z_n * math.tan(t) - h - t
+
+    grid = [1e-6 + (0.5 * math.pi - 2e-6) * i / 400 for i in range(401)]
+    brackets = [(a, b) for a, b in zip(grid, grid[1:], strict=False) if f(a) * f(b) <= 0.0]
+    if not brackets:
+        return fallback
+    a, b = min(brackets, key=lambda ab: abs(0.5 * (ab[0] + ab[1]) - math.pi / 6.0))
+    for _ in range(200):
+        mid = 0.5 * (a + b)
+        if f(a) * f(mid) <= 0.0:
+            b = mid
+        else:
+            a = mid
+    return 0.5 * (a + b)
+
+
+FILLET_ANGLE_TOLERANCE = 1e-9  # rad: θ's fixed-point residual above which method B found no 30° tangent
 VIRTUAL_TOOTH_COUNTS = ("iso", "cos3")  # [rating] virtual_tooth_count: z_n in the load angle γ_e
 
 
@@ -42,7 +63,9 @@ def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, hel
     the basic rack (h_fP*, ρ_fP*) without protuberance: the 30° tangent to the root fillet, θ by iteration.
     ``virtual_tooth_count``: the z_n of the load angle γ_e (:func:`load_angle_teeth`; every other z_n is ISO's).
 
-    Returns ``Y_F``, ``Y_S``, ``s_Fn``, ``h_Fe``, ``rho_F``, ``alpha_Fen`` (rad), ``q_s``, ``d_en``.
+    Returns ``Y_F``, ``Y_S``, ``s_Fn``, ``h_Fe``, ``rho_F``, ``alpha_Fen`` (rad), ``q_s``, ``d_en`` and
+    ``theta_residual`` (rad): θ's fixed-point residual, above ``FILLET_ANGLE_TOLERANCE`` where the iteration finds
+    no 30° tangent (a small, far-shifted tooth at a low pressure angle): then no figure here is ISO's.
     """
     m, an = normal_module, normal_pressure_rad
     h_fp, rho_fp = rack[0] * m, rack[1] * m
@@ -50,7 +73,11 @@ def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, hel
     e = math.pi / 4.0 * m - h_fp * math.tan(an) - (1.0 - math.sin(an)) * rho_fp / math.cos(an)
     g = rho_fp / m - h_fp / m + profile_shift
     h = 2.0 / z_n * (math.pi / 2.0 - e / m) - math.pi / 3.0
-    theta = _fillet_angle(g, z_n, h, 100)
+    theta = _fillet_angle(g, z_n, h, 1000)  # linear convergence, slow near the method's edge
+    residual = 2.0 * g / z_n * math.tan(theta) - h - theta
+    if abs(residual) > FILLET_ANGLE_TOLERANCE:  # the iteration diverges (|2G/z_n sec² θ| > 1): bracket the root
+        theta = _bracketed_fillet_angle(g, z_n, h, theta)
+        residual = 2.0 * g / z_n * math.tan(theta) - h - theta
     s_fn = m * (z_n * math.sin(math.pi / 3.0 - theta) + math.sqrt(3.0) * (g / math.cos(theta) - rho_fp / m))
     rho_f = m * (rho_fp / m + 2.0 * g * g / (math.cos(theta) * (z_n * math.cos(theta) ** 2 - 2.0 * g)))
     d_n = m * z_n
@@ -70,9 +97,10 @@ def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, hel
     y_f = 6.0 * (h_fe / m) * math.cos(alpha_fen) / ((s_fn / m) ** 2 * math.cos(an))
     ell = s_fn / h_fe
     q_s = s_fn / (2.0 * rho_f)
-    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell))
+    # no section (s_Fn, h_Fe or ρ_F ≤ 0, the caller's exit 2): Y_S is not defined there (a complex power)
+    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell)) if q_s > 0.0 and ell > 0.0 else math.nan
     return {"Y_F": y_f, "Y_S": y_s, "s_Fn": s_fn, "h_Fe": h_fe, "rho_F": rho_f, "alpha_Fen": alpha_fen,
-            "q_s": q_s, "d_en": d_en}
+            "q_s": q_s, "d_en": d_en, "theta_residual": residual}
 
 
 def helix_factor_bending(overlap_ratio: float, helix_deg: float) -> float:
@@ -80,13 +108,16 @@ def helix_factor_bending(overlap_ratio: float, helix_deg: float) -> float:
     return 1.0 - min(overlap_ratio, 1.0) * min(helix_deg, 30.0) / 120.0
 
 
+RIM_RANGE = (0.5, 1.2)  # s_R/h_t where an external gear's Y_B formula holds, and from where Y_B = 1
+
+
 def rim_factor(rim_thickness_mm: float | None, tooth_depth_mm: float) -> float:
     """Y_B = 1 for s_R/h_t ≥ 1.2 (or a solid blank), 1.6 ln(2.242 h_t/s_R) for 0.5 < s_R/h_t < 1.2 (ISO 6336-3:2006,
     10; below 0.5 the standard does not apply and the 0.5 value is used)."""
     if rim_thickness_mm is None:
         return 1.0
-    ratio = max(rim_thickness_mm / tooth_depth_mm, 0.5)
-    return 1.0 if ratio >= 1.2 else 1.6 * math.log(2.242 / ratio)
+    ratio = max(rim_thickness_mm / tooth_depth_mm, RIM_RANGE[0])
+    return 1.0 if ratio >= RIM_RANGE[1] else 1.6 * math.log(2.242 / ratio)
 
 
 def deep_tooth_factor(eps_alpha: float, base_helix_rad: float, grade: int) -> float:

@@ -13,8 +13,9 @@ a 584.000, ISO 53 profile A (sun, planet), 3 planets, ring held, sun 294.5 rpm, 
 999650.881), K_A 1.25, K_γ 1.10, 175 200 h, grade 6 (ISO 1328-1:1995), inner diameters 194.32 / 576.96,
 18CrNiMo7-6 case-carburized sun and planet (σ_Hlim 1500, σ_Flim 430, Rz 4.8 / 20 µm), 34CrNiMo6 through-hardened
 ring (σ_Hlim 700, σ_Flim 290, HBW 240 given as HV 240/0.95, Rz 8.0 / 20 µm), material quality normal, oil ν40 220,
-"Type of profile modification: none (only running-in)" (C_a 2.00 / 2.00 / 8.50 printed = gearcli's running-in C_ay
-when tip_relief_um is absent), K_Hβ user-specified 2.06 (sun–planet) and 1.15 (planet–ring), S_Hmin 1.25,
+"Type of profile modification: none (only running-in)" (C_a 2.00 / 2.00 / 8.50 printed: ISO 6336-1's running-in
+C_ay = (σ_Hlim/97 − 18.45)²/18 + 1.5 of σ_Hlim 1500 and 700; gearcli takes C_a = 0 when tip_relief_um is absent, as
+DESIGN §8 says, and its KV23 is then 1e-4 from the report's implied value, against 1e-3 with C_a = 2), K_Hβ user-specified 2.06 (sun–planet) and 1.15 (planet–ring), S_Hmin 1.25,
 S_Fmin 1.56, tooth-thickness allowances A_s.e/i −0.130/−0.190, −0.175/−0.255, −0.320/−0.450 mm and tip allowances
 0/−0.010 mm (sun, planet). The report rates the root at the nominal x ("Calculated with profile shift [x]"), hence
 ``root_profile_shift = "nominal"``. C_R 0.862 (b_s/b 0.250) is printed for both meshes: b_s = 0.25 b and
