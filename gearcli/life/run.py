@@ -191,6 +191,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
         raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
+    loads = [spectra.referred(ld, _resolved_force_N(result, k)) for k, ld in enumerate(loads)]
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
@@ -231,6 +232,14 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 f"sample finer: --set simulation.steps={4 * steps}", stage=k + 1, relative_error=ld.peak_error,
                 target_relative=PEAK_TOLERANCE, steps=4 * steps))
     return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
+
+
+def _resolved_force_N(result: SimulationResult, k: int) -> float:
+    """The force stage k's targets refer to in the run (at least the force the run resolves: a stage at rest
+    carries round-off only), 0 where the run gives none."""
+    st = result.stages[k] if k < len(result.stages) else None
+    est = None if st is None else (st.sampling_error or st.error_estimate)
+    return float(est.reference_N) if est is not None else 0.0
 
 
 def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
