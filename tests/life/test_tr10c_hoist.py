@@ -291,3 +291,34 @@ def test_idle_step_is_not_warned_as_unresolved_peaks(hoist):
     b = doc["life"]["bearings"][0]
     assert_allclose(b["revolutions"], sum(h * 60 * n for _, h, _, n in POINTS), rtol=1e-12)
     assert b["loads_N"][2] < 1e-3  # the idle step's equivalent load: round-off
+
+
+@pytest.mark.parametrize(("set_line", "named"), [
+    ('set = { "stage.0.pinion.teeth" = 25 }', "stage.0.pinion.teeth"),  # was: a 25/71 pair's damage summed with 23/71's
+    ('set = { "stage[0].normal_module_mm" = 4 }', "stage[0].normal_module_mm"),
+    ('set = { "materials.case.contact_fatigue_limit_MPa" = 1000 }', "materials.case.contact_fatigue_limit_MPa"),
+    ('set = { rating = { material_quality = "optimum" } }', "rating.material_quality"),  # another S-N curve
+    ('set = { "stage.0" = { backlash_mm = 0.1 } }', "stage.0"),  # the whole stage table
+])
+def test_a_point_may_not_set_another_gear(tmp_path, set_line, named):
+    """The Miner sum adds one member's damage over the duty's points: a point whose `set` gives the member another
+    tooth count, module, material or S-N curve was accepted and its damage added to the file's gear (the creep step's
+    gear at 25 teeth: 3.80e7 cycles at 602.6 MPa summed into the 23-tooth pinion's gear). Exit 2 naming the point and
+    the key, as a bearing's key is; nothing written."""
+    path = tmp_path / "hoist.toml"
+    path.write_text(HOIST.replace('name = "creep"\n', 'name = "creep"\n' + set_line + "\n"), encoding="utf-8")
+    out = tmp_path / "life.json"
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "json", "-o", str(out)])
+    assert res.exit_code == 2, res.output
+    assert str(path) in res.output and "duty[2]" in res.output and named in res.output
+    assert "Traceback" not in res.output and not out.exists()
+
+
+def test_a_point_may_still_set_its_operating_conditions(hoist, tmp_path):
+    """What a point runs under may differ (the oil's temperature, the backlash as it warms, the mesh's excitation, the
+    stage efficiency): accepted; the creep step's ball bearings' kappa follows its oil by hand."""
+    path = tmp_path / "hoist.toml"
+    path.write_text(HOIST.replace('name = "creep"\n', 'name = "creep"\nset = { "lubricant.temperature_C" = 80, '
+                                  '"stage.0.backlash_mm" = 0.12, "stage.0.efficiency" = 0.98 }\n'), encoding="utf-8")
+    life = json.loads(_run("life", str(path), "--static", "--format", "json").stdout)["life"]
+    assert_allclose(life["bearings"][0]["kappa_points"][2], _nu(80.0) / _nu1(600.0, 45.0), rtol=1e-12)
