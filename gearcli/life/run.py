@@ -203,7 +203,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                     s.sampling_error.max_N / abs(s.simulated_static_tangential_N or s.static_tangential_N)
                     for s in result.stages]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
-              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": steps + 1, "window_s": list(result.window_s),
+              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": int(result.time_s.size), "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "k_v_sampling_error": k_v_sampling,
               "energy_residual": sv.energy_residual}
