@@ -24,6 +24,7 @@ from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.memo import remember
+from gearcli.design.bearing_life import AXIAL_NOT_RATED
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.design.standards import standard_of
 from gearcli.diagnostics import (
@@ -450,10 +451,13 @@ def _no_progress(label: str, done: int, total: int) -> None:
 def _point_design_warnings(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                            base_warnings: Sequence[str], design: DesignResult | None = None) -> list[Diagnostic]:
     """What ``gearcli design`` says of the point (its torque, speed and ``set``: undercut, S_H below the
-    minimum ...) beyond what it says of the base file, each naming the point."""
+    minimum ...) beyond what it says of the base file, each naming the point. A bearing's axial force that its
+    equivalent loads ignore is the duty's word, said once per bearing (a reversed point's F_a/F_r differs: the axial
+    force's moment loads the other bearing; it repeated per point)."""
     if design is None:
         design = _point_design(scene, point, design_case).design
-    return _of_point(point, [d for d in carrying(design.warnings, design.diagnostics) if d.message not in base_warnings])
+    return _of_point(point, [d for d in carrying(design.warnings, design.diagnostics)
+                             if d.message not in base_warnings and d.code != AXIAL_NOT_RATED])
 
 
 def _of_point(point: DutyPoint, diags: Sequence[Diagnostic]) -> list[Diagnostic]:

@@ -322,3 +322,34 @@ def test_a_point_may_still_set_its_operating_conditions(hoist, tmp_path):
                                   '"stage.0.backlash_mm" = 0.12, "stage.0.efficiency" = 0.98 }\n'), encoding="utf-8")
     life = json.loads(_run("life", str(path), "--static", "--format", "json").stdout)["life"]
     assert_allclose(life["bearings"][0]["kappa_points"][2], _nu(80.0) / _nu1(600.0, 45.0), rtol=1e-12)
+
+
+def test_dynamic_factors_without_static_factors_warn_that_p0_ignores_the_axial_force(hoist, tmp_path):
+    """Bearing 1 (locating ball, C_0 16 kN) has the catalogue's dynamic factors but no static_factors: its ISO 76 P_0
+    was F_r alone (4766.9 N, s_0 3.357) with no word, though it carries F_a = F_t tan(beta) = 1952.2 N. Now the
+    `bearing_axial_not_rated` warning names static_factors (design; once over the duty in life). With them, P_0 =
+    max(F_r, X0 F_r + Y0 F_a) by hand, and no warning."""
+    design = json.loads(_run("design", str(hoist), "--format", "json").stdout)
+    said = [w for w in design["warnings"] if w["code"] == "bearing_axial_not_rated"]
+    assert [w["bearing"] for w in said] == [1, 3] and all("static_factors" in w["message"] for w in said)
+    life = json.loads(_run("life", str(hoist), "--static", "--format", "json").stdout)
+    assert [w["bearing"] for w in life["warnings"] if w["code"] == "bearing_axial_not_rated"] == [1, 3]
+    st = design["stages"][0]
+    fa = st["static_force_N"]["axial"]
+    assert_allclose(fa, st["static_force_N"]["tangential"] * math.tan(math.radians(12.0)), rtol=1e-12)
+    b = design["bearings"][0]
+    assert_allclose(b["static_equivalent_load_N"], b["radial_N"], rtol=1e-12)  # X0 = 1, Y0 = 0: F_r alone
+    path = tmp_path / "hoist.toml"
+    text = HOIST.replace('factors = { e = 0.3, X = 0.56, Y = 1.5 }',
+                         'factors = { e = 0.3, X = 0.56, Y = 1.5 }\nstatic_factors = { X0 = 0.5, Y0 = 2.0 }', 1)
+    text = text.replace('factors = { e = 0.4, X = 0.4, Y = 1.5 }',
+                        'factors = { e = 0.4, X = 0.4, Y = 1.5 }\nstatic_factors = { X0 = 0.5, Y0 = 0.9 }', 1)
+    path.write_text(text, encoding="utf-8")
+    design = json.loads(_run("design", str(path), "--format", "json").stdout)
+    assert not [w for w in design["warnings"] if w["code"] == "bearing_axial_not_rated"]
+    for j, (x0, y0, c0) in ((0, (0.5, 2.0, 16e3)), (2, (0.5, 0.9, 100e3))):
+        b = design["bearings"][j]
+        p0 = max(b["radial_N"], x0 * b["radial_N"] + y0 * abs(b["axial_N"]))
+        assert_allclose(b["static_equivalent_load_N"], p0, rtol=1e-12)
+        assert_allclose(b["static_safety"], c0 / p0, rtol=1e-12)
+    assert design["bearings"][0]["static_equivalent_load_N"] > design["bearings"][0]["radial_N"]  # F_a now counts
