@@ -179,9 +179,18 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     steps = spectra.steps_for(design, duration, cfg.simulation.steps)
     check_memory(cfg, fmt="json", series=False, source=scene.source, steps=steps)  # the point's run, in memory
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
+    from_rest = cfg.simulation.steady == "window" or point.starts > 0
+    run_notes: list[Diagnostic] = []
+    if cfg.simulation.steady != "window" and point.starts > 0:
+        # the periodic state keeps no run from rest: a point whose starts are counted runs from rest with its window
+        # settled (the window route), or its start was empty (exit 2: "no whole mesh cycle")
+        extra += ("simulation.steady=window",)
+        run_notes.append(warning(DUTY, f"its {point.starts} starts are counted on the run from rest, so its spectrum is "
+                                 "that run's settled window, not [simulation] steady = \"periodic\"'s periodic state "
+                                 "(which keeps no start)", starts=point.starts))
     try:
         # a settled window of the run from rest (its start is counted); the periodic state would skip the start
-        settle = "window" if cfg.simulation.steady == "window" else True
+        settle = "window" if from_rest else True
         (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None,
                                             settle=settle)
     except (ConfigError, DesignError) as exc:
@@ -192,7 +201,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
         raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
-    loads = [spectra.referred(ld, _resolved_force_N(result, k)) for k, ld in enumerate(loads)]
+    loads = [spectra.referred(ld, spectra.resolved_force_N(result, k)) for k, ld in enumerate(loads)]
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
@@ -225,6 +234,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 + (VFD_OFF_SPEED if cfg.input.starting == "vfd" else
                    "give the speed the motor runs at, or starting = \"vfd\" (the supply follows the point's speed)"),
                 operating_speed_rpm=running, speed_rpm=point.speed_rpm))
+    warnings += run_notes
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(warning(
@@ -233,14 +243,6 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 f"sample finer: --set simulation.steps={4 * steps}", stage=k + 1, relative_error=ld.peak_error,
                 target_relative=PEAK_TOLERANCE, steps=4 * steps))
     return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
-
-
-def _resolved_force_N(result: SimulationResult, k: int) -> float:
-    """The force stage k's targets refer to in the run (at least the force the run resolves: a stage at rest
-    carries round-off only), 0 where the run gives none."""
-    st = result.stages[k] if k < len(result.stages) else None
-    est = None if st is None else (st.sampling_error or st.error_estimate)
-    return float(est.reference_N) if est is not None else 0.0
 
 
 def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:

@@ -110,6 +110,14 @@ def referred(loads: StageLoads, reference_N: float) -> StageLoads:
     return replace(loads, peak_error=loads.peak_error * loads.mean_peak_N / ref)
 
 
+def resolved_force_N(result, k: int) -> float:
+    """The force stage k's targets refer to in the run (``reference_N``: at least the force the run resolves, a stage
+    at rest carrying round-off only), 0 where the run gives none."""
+    st = result.stages[k] if k < len(result.stages) else None
+    est = None if st is None else (st.sampling_error or st.error_estimate)
+    return float(est.reference_N) if est is not None else 0.0
+
+
 def dynamic_loads(result, design, span: tuple[float, float] | None = None) -> list[StageLoads]:
     """Per stage, the classes of the mesh-cycle peaks of |F_t| over the run's steady window, or over ``span``
     (a start: from rest to the window; a planetary stage: the sun's, with every member's in ``planetary``)."""

@@ -261,3 +261,25 @@ def test_planetary_cycles_per_carrier_revolution(tmp_path, route):
     if route == "dynamic":
         # ramps of 0.05 s to 1000 rpm (S-shaped, mean half the speed) then 0.05 s at speed: 1.25 sun turns
         assert_allclose(life["points"][0]["start"]["input_revolutions"], 1000 / 60 * (0.025 + 0.05), rtol=1e-6)
+
+
+def test_starts_under_a_periodic_steady_state_are_counted_from_rest(motor, tmp_path):
+    """With [simulation] steady = "periodic" the run keeps the periodic state only, no run from rest: the full-load
+    point's 600,000 starts had nothing to count and `life` stopped, exit 2, "the steady window holds no whole mesh
+    cycle; lengthen simulation.duration_s" (which does not help). A point with starts now runs from rest with its
+    window settled, as the window route does (its start identical to it), and says so; a point without starts keeps
+    the periodic state."""
+    _, window_doc = motor
+    path = tmp_path / "periodic.toml"
+    path.write_text(MOTOR.replace("steps = 3000\n", 'steps = 3000\nsteady = "periodic"\n'), encoding="utf-8")
+    doc = json.loads(_run("life", str(path), "--format", "json").stdout)
+    full, part = doc["life"]["points"]
+    ref = window_doc["life"]["points"][0]["start"]
+    assert full["start"]["count"] == STARTS
+    assert_allclose(full["start"]["input_revolutions"], ref["input_revolutions"], rtol=1e-12)
+    assert full["start"]["damage"] == ref["damage"]  # the same run from rest, the same classes
+    said = [w for w in doc["warnings"] if w["code"] == "duty" and "run from rest" in w["message"]]
+    assert len(said) == 1 and said[0]["message"].startswith("duty point full:") and "periodic" in said[0]["message"]
+    # the point without starts: its window is one period of the periodic state (an equilibrium: one mesh period)
+    assert part["start"] is None
+    assert_allclose(part["solver"]["window_s"][1] - part["solver"]["window_s"][0], 60 / (1480 * 23), rtol=1e-9)
