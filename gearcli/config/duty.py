@@ -28,6 +28,24 @@ POINT_OWN_KEYS = frozenset({"input.speed_rpm", "input.speed_deg_s", "input.speed
 DUTY_WIDE_KEYS = frozenset({"rating.required_life_h", "rating.min_safety_pitting", "rating.min_safety_bending",
                             "rating.min_static_safety_bearing"})
 MAX_BEARINGS = 200
+#: what makes a rated gear and its S-N curve (docs/life.md "Inputs"): the Miner sum adds one member's damage over the
+#: points, so a point's ``set`` may not give another gear (stage.k's geometry and members, the materials, the curve)
+GEAR_STAGE_KEYS = frozenset({"normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "pinion", "gear",
+                             "sun", "planet", "ring", "basic_rack", "accuracy_grade", "type", "fixed", "input",
+                             "center_angle_deg", "center_distance_allowance_mm"})
+GEAR_RATING_KEYS = frozenset({"rating.standard", "rating.material_quality", "rating.root_profile_shift",
+                              "rating.virtual_tooth_count"})
+
+
+def is_gear_key(path: str) -> bool:
+    """Whether the dotted ``path`` a duty point's ``set`` writes gives a gear of its own: the stage list or a
+    stage table, a stage's geometry or member key, a material, or the rating's S-N curve and standard."""
+    parts = path.split(".")
+    if parts[0] == "materials" or path in GEAR_RATING_KEYS:
+        return True
+    if parts[0] != "stage":
+        return False
+    return len(parts) < 3 or parts[2] in GEAR_STAGE_KEYS
 
 
 def set_paths(key: str, value: Any) -> list[tuple[str, str]]:
@@ -142,6 +160,11 @@ class Duty(_Table):
             raise ValueError(f"set: {hardware[0]}: a bearing is the same at every duty point (its catalogue data, place "
                              "and reliability hold over the whole duty, which its L10, L_nm and s_0 sum); set it in "
                              "[[bearing]] itself")
+        gears = [shown for shown, p in paths if is_gear_key(p)]
+        if gears:
+            raise ValueError(f"set: {gears[0]}: a gear is the same at every duty point (its geometry, material and "
+                             "S-N curve hold over the whole duty, whose Miner sum adds its points' damage); set it in "
+                             "the file itself, or run life on each variant")
         return self
 
     def output_torque_Nm(self, total_ratio: float) -> float:

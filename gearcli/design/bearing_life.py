@@ -128,14 +128,24 @@ def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.Modifi
 
 def axial_warning(cfg: DesignFile, j: int, b: BearingResult) -> Diagnostic | None:
     """A warning when bearing j carries an axial force without ``factors``: its ISO 281 P = F_r by the default
-    X = 1, Y = 0 ignores F_a (and, with C_0 and no ``static_factors``, so does ISO 76's P_0). The message names
-    F_a/F_r, not F_a: the same at every duty point of the same train, it is said once by ``gearcli life``."""
+    X = 1, Y = 0 ignores F_a (and, with C_0 and no ``static_factors``, so does ISO 76's P_0); with ``factors`` but
+    C_0 and no ``static_factors``, that its P_0 ignores F_a. The message names
+    F_a/F_r, not F_a; ``gearcli life`` says it once per bearing over the duty (a reversed point's F_a/F_r differs,
+    its axial force's moment loading the other bearing)."""
     given = cfg.bearing[j].model_fields_set
     fa, fr = abs(b.axial_N), abs(b.radial_N)
-    if "factors" in given or fa <= 1e-9 * max(fr, 1.0):
+    if fa <= 1e-9 * max(fr, 1.0):
         return None
     static = b.static_load_rating_kN is not None and "static_factors" not in given
     ratio = f"{fa / fr:.3g}" if fr > 0.0 else "inf"
+    if "factors" in given:
+        if not static:
+            return None
+        # the dynamic factors given, the static ones not: ISO 76's P_0 = F_r silently ignored F_a
+        return warning(AXIAL_NOT_RATED, f"bearing {j + 1} carries an axial force (F_a/F_r = {ratio}) but has no "
+                       "static_factors: its ISO 76 static equivalent load P_0 takes F_r alone (default X0 = 1, Y0 = 0), "
+                       "so its static safety s_0 ignores F_a; give the catalogue's static_factors = { X0, Y0 }",
+                       bearing=j + 1, axial_N=fa, radial_N=fr)
     return warning(AXIAL_NOT_RATED, f"bearing {j + 1} carries an axial force (F_a/F_r = {ratio}) "
                    f"but has no factors: its ISO 281 equivalent load P{' and ISO 76 P_0 take' if static else ' takes'} F_r "
                    "alone (default X = 1, Y = 0); give the catalogue's factors = { e, X, Y }"

@@ -24,6 +24,7 @@ from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.memo import remember
+from gearcli.design.bearing_life import AXIAL_NOT_RATED
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.design.standards import standard_of
 from gearcli.diagnostics import (
@@ -178,9 +179,18 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     steps = spectra.steps_for(design, duration, cfg.simulation.steps)
     check_memory(cfg, fmt="json", series=False, source=scene.source, steps=steps)  # the point's run, in memory
     extra += (f"simulation.steps={steps}", f"simulation.duration_s={duration!r}")
+    from_rest = cfg.simulation.steady == "window" or point.starts > 0
+    run_notes: list[Diagnostic] = []
+    if cfg.simulation.steady != "window" and point.starts > 0:
+        # the periodic state keeps no run from rest: a point whose starts are counted runs from rest with its window
+        # settled (the window route), or its start was empty (exit 2: "no whole mesh cycle")
+        extra += ("simulation.steady=window",)
+        run_notes.append(warning(DUTY, f"its {point.starts} starts are counted on the run from rest, so its spectrum is "
+                                 "that run's settled window, not [simulation] steady = \"periodic\"'s periodic state "
+                                 "(which keeps no start)", starts=point.starts))
     try:
         # a settled window of the run from rest (its start is counted); the periodic state would skip the start
-        settle = "window" if cfg.simulation.steady == "window" else True
+        settle = "window" if from_rest else True
         (cfg, design), result, _ = evaluate(scene, (*point.overrides(), *extra), None, series=True, check=None,
                                             settle=settle)
     except (ConfigError, DesignError) as exc:
@@ -191,6 +201,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
         raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
+    loads = [spectra.referred(ld, spectra.resolved_force_N(result, k)) for k, ld in enumerate(loads)]
     bearing_loads = _dynamic_bearing_loads(cfg, design, result)
     start = _start(point, cfg, design, result) if point.starts else None
     sv = result.solver
@@ -202,7 +213,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                     s.sampling_error.max_N / abs(s.simulated_static_tangential_N or s.static_tangential_N)
                     for s in result.stages]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
-              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": steps + 1, "window_s": list(result.window_s),
+              "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": int(result.time_s.size), "window_s": list(result.window_s),
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "k_v_sampling_error": k_v_sampling,
               "energy_residual": sv.energy_residual}
@@ -223,6 +234,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 + (VFD_OFF_SPEED if cfg.input.starting == "vfd" else
                    "give the speed the motor runs at, or starting = \"vfd\" (the supply follows the point's speed)"),
                 operating_speed_rpm=running, speed_rpm=point.speed_rpm))
+    warnings += run_notes
     for k, ld in enumerate(loads):
         if ld.peak_error > PEAK_TOLERANCE:
             warnings.append(warning(
@@ -441,10 +453,13 @@ def _no_progress(label: str, done: int, total: int) -> None:
 def _point_design_warnings(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                            base_warnings: Sequence[str], design: DesignResult | None = None) -> list[Diagnostic]:
     """What ``gearcli design`` says of the point (its torque, speed and ``set``: undercut, S_H below the
-    minimum ...) beyond what it says of the base file, each naming the point."""
+    minimum ...) beyond what it says of the base file, each naming the point. A bearing's axial force that its
+    equivalent loads ignore is the duty's word, said once per bearing (a reversed point's F_a/F_r differs: the axial
+    force's moment loads the other bearing; it repeated per point)."""
     if design is None:
         design = _point_design(scene, point, design_case).design
-    return _of_point(point, [d for d in carrying(design.warnings, design.diagnostics) if d.message not in base_warnings])
+    return _of_point(point, [d for d in carrying(design.warnings, design.diagnostics)
+                             if d.message not in base_warnings and d.code != AXIAL_NOT_RATED])
 
 
 def _of_point(point: DutyPoint, diags: Sequence[Diagnostic]) -> list[Diagnostic]:

@@ -41,6 +41,7 @@ class StageLoads:
     static_N: float
     mesh_cycles: int
     peak_error: float = 0.0  # estimated relative error of the mean mesh-cycle peak from the output sampling
+    mean_peak_N: float = 0.0  # the mean mesh-cycle peak the error is relative to (what :func:`referred` rescales)
     planetary: PlanetaryLoads | None = None  # a planetary stage's dynamic spectra per member (the stage's own: the sun's)
 
 
@@ -85,8 +86,9 @@ def classes(peaks: np.ndarray, static_N: float, n: int = MESH_CLASSES) -> StageL
     :data:`CLASS_RESOLUTION` of the force are one class at the largest (a quiet window's engagements differ by the
     integration's noise only: 20 classes of the same 2297.3044 N, 5e-10 apart, said nothing and filled the table)."""
     lo, hi = float(peaks.min()), float(peaks.max())
+    mean = float(np.mean(peaks))
     if hi - lo <= CLASS_RESOLUTION * max(abs(hi), 1.0):
-        return StageLoads((hi,), (1.0,), static_N, len(peaks))
+        return StageLoads((hi,), (1.0,), static_N, len(peaks), mean_peak_N=mean)
     idx = np.minimum(((peaks - lo) / (hi - lo) * n).astype(np.int64), n - 1)
     forces, shares = [], []
     for c in range(n):
@@ -94,7 +96,26 @@ def classes(peaks: np.ndarray, static_N: float, n: int = MESH_CLASSES) -> StageL
         if len(members):
             forces.append(float(members.max()))
             shares.append(len(members) / len(peaks))
-    return StageLoads(tuple(forces), tuple(shares), static_N, len(peaks))
+    return StageLoads(tuple(forces), tuple(shares), static_N, len(peaks), mean_peak_N=mean)
+
+
+def referred(loads: StageLoads, reference_N: float) -> StageLoads:
+    """``loads`` with its peak error relative to the larger of its mean peak and ``reference_N``, the force the run
+    resolves on the stage (docs/output.md, ``reference_N``): a zero-load step's engagements meet 1e-8 N of
+    round-off whose every-second-sample estimate is 4e-3 of itself, an error no finer sampling removes and no damage
+    follows from; a loaded stage's mean peak is the larger, and its error is unchanged."""
+    ref = max(loads.mean_peak_N, reference_N)
+    if not ref or not loads.mean_peak_N:
+        return loads
+    return replace(loads, peak_error=loads.peak_error * loads.mean_peak_N / ref)
+
+
+def resolved_force_N(result, k: int) -> float:
+    """The force stage k's targets refer to in the run (``reference_N``: at least the force the run resolves, a stage
+    at rest carrying round-off only), 0 where the run gives none."""
+    st = result.stages[k] if k < len(result.stages) else None
+    est = None if st is None else (st.sampling_error or st.error_estimate)
+    return float(est.reference_N) if est is not None else 0.0
 
 
 def dynamic_loads(result, design, span: tuple[float, float] | None = None) -> list[StageLoads]:

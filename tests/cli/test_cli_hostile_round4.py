@@ -206,15 +206,18 @@ def test_a_duty_point_reports_what_it_computed():
 
 
 def test_per_point_design_warnings_reach_the_life_output(tmp_path):
-    # was: pinion damage 171.5 and no warning, where `design` of the same change warns of undercut
-    f = _duty_file(tmp_path, 'set = { "stage.0.pinion.teeth" = 5 }\n')
+    # was: pinion damage 171.5 and no warning, where `design` of the same change warns of undercut; a point's own
+    # tooth count is now refused (its damage would be summed with another gear's: tr10c), so the point's own
+    # warnings come from a point's face load factor
+    f = _duty_file(tmp_path, 'set = { "rating.face_load_factor" = 4.0 }\n')
     res = run("life", f, "--static", "--format", "json")
     assert res.exit_code == 0, res.stderr
     warnings = [w["message"] for w in json.loads(res.stdout)["warnings"]]
-    assert any(w.startswith("duty point charging:") and "undercut" in w for w in warnings), warnings
     assert any(w.startswith("duty point charging:") and "S_H" in w for w in warnings), warnings
-    assert "undercut" in res.stderr  # and on the terminal
+    assert "duty point charging:" in res.stderr and "S_H" in res.stderr  # and on the terminal
     assert not any(w.startswith("duty point mixing:") for w in warnings)  # only what differs from the base file
+    teeth = _duty_file(tmp_path, 'set = { "stage.0.pinion.teeth" = 5 }\n')
+    assert_usage_error(run("life", teeth, "--static"), "duty[0]", "stage.0.pinion.teeth", "a gear is the same")
 
 
 def test_a_negative_duty_torque_gets_the_warning_docs_promise(tmp_path):

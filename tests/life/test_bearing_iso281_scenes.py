@@ -381,9 +381,15 @@ def test_an_axial_force_without_factors_warns(tmp_path):
     life = _json(tmp_path, "life", SLOW, "--static")
     assert len([w for w in life["warnings"] if w["code"] == "bearing_axial_not_rated"]) == 2  # once per bearing over two points
     text = SLOW.replace('kind = "ball"\nlocating = true', 'kind = "ball"\nlocating = true\nfactors = { e = 0.3, X = 0.56, '
-                        'Y = 1.5 }', 1)
+                        'Y = 1.5 }\nstatic_factors = { X0 = 0.6, Y0 = 0.5 }', 1)
     assert [w["bearing"] for w in _json(tmp_path, "design", text)["warnings"]
             if w["code"] == "bearing_axial_not_rated"] == [3]
+    # the dynamic factors alone (tr10c): its P_0 still took F_r alone, silently; now said, naming static_factors
+    text = SLOW.replace('kind = "ball"\nlocating = true', 'kind = "ball"\nlocating = true\nfactors = { e = 0.3, X = 0.56, '
+                        'Y = 1.5 }', 1)
+    said = {w["bearing"]: w["message"] for w in _json(tmp_path, "design", text)["warnings"]
+            if w["code"] == "bearing_axial_not_rated"}
+    assert sorted(said) == [1, 3] and "no static_factors" in said[1] and "P_0 takes F_r alone" in said[1]
     assert not [w for w in _json(tmp_path, "design", SPUR)["warnings"] if w["code"] == "bearing_axial_not_rated"]
 
 
