@@ -12,7 +12,7 @@ mean, ``TARGET`` (1e-3) for min, max, std and the spectrum. The mean is the numb
 static force plus what the window's speed change stores), an integral of the solution that converges with
 it at the rate of the tolerance, so the check pass estimates it well (0.6-1.2x the true error on every scene
 of benchmarks/bench_auto.py whose mean is off by more than 1e-5, measured against DOP853 at rtol 1e-10; the
-exception, Radau stepping over an undamped mode, has its own warning: :func:`unresolved_mode`) and resolving
+exception, Radau stepping over an undamped mode, has its own warning: :func:`gearcli.simulate.stepped_over.unresolved_mode`) and resolving
 it to 1e-4 costs one decade of rtol where it is needed. Where it was needed (measured): a resonant, impacting mesh
 (benchmarks/bench_excitation.py's spur oscillator at 2800 rpm) under DOP853 at rtol 1e-6 settles on a
 periodic response whose window mean is 1.7e-4 off, although every step meets its tolerance: the steps that
@@ -53,7 +53,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -62,7 +62,7 @@ from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, connector_line_forces, mesh_line_forces, planet_sun_connectors, tooth_forces
-from gearcli.simulate.choice import Choice, excited_radians
+from gearcli.simulate.choice import Choice
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
 from gearcli.simulate.stats import window_means
@@ -79,7 +79,6 @@ AMPLITUDE = ("min", "max", "std", "spectrum")  # set by the vibration the solver
 LIGHT_DAMPING = 0.05  # damping ratio below which a mode's vibration outlasts the run-up
 FORGOTTEN = math.log(100.0 / TARGET)  # e-folds after which a run-up vibration of 100x the mean is below TARGET
 STABILITY_LIMITED = 1.25  # an explicit run with fewer steps than this x stability's alone is stability-limited
-MIN_STEPS_PER_PERIOD = 0.2  # an implicit run with fewer steps per period of such a mode damps it away (Radau's |R(i w h)| ~ 3/(w h): ~0.1 a step at 0.2 a period)
 MIN_RTOL = 1e-13  # the schema's floor of simulation.rtol
 MAX_RTOL = 1e-2  # the loosest check pass (the schema's ceiling of simulation.rtol)
 
@@ -518,78 +517,6 @@ def tightened_warning(run: Integration, ref: CheckPass, finer: float) -> Diagnos
         "of that run and its check pass spent before the repeat)",
         stage=worst.stage, rtol=rtol, tightened_rtol=finer, relative_error=float(worst.relative["mean"]),
         discarded_nfev=run.nfev + ref.nfev)
-
-
-def quiet_since(choice: Choice, duration_s: float) -> float | None:
-    """The time from which nothing drives the chain's vibration, or None: the end of the drive's and the load's
-    ramps in a scene of parallel stages without excitation (transmission error, stiffness harmonics, time-varying
-    contact, torque ripple, load fluctuation), without backlash (impacts) and with a speed or torque drive (a motor
-    start has no end known before the run); from there every mode's vibration decays at its own rate."""
-    lay = choice.layout
-    spec = lay.spec
-    if spec.drive.kind == "motor" or spec.elements or any(m is not None for m in spec.stage_models):
-        return None
-    if any(m.backlash_m > 0.0 for m in spec.meshes) or excited_radians(spec, lay, duration_s) > 0.0:
-        return None
-    return max(spec.drive.ramp_s, spec.load.ramp_s)
-
-
-def unresolved_mode(choice: Choice, run: Integration, duration_s: float,
-                    window_start_s: float | None = None) -> tuple[float, float] | None:
-    """(frequency Hz, damping ratio) of a lightly damped mode that an implicit run steps over, or None.
-
-    An implicit method damps vibration it does not resolve, and a second pass of it does too, so the check
-    pass cannot see it. Measured: Radau on configs/extreme/stiff_linear_10000x.toml takes 51 steps over 9206
-    periods of its 18 kHz undamped mesh mode and shows no vibration, where DOP853 and Radau at rtol 1e-10
-    agree on a std of 15 N (0.8 % of the mean); configs/stiff_linear_mesh.toml, 0.24 steps per period of a
-    mode excited far less, is resolved to 5e-5.
-
-    A mode counts only where its vibration can reach the window (``window_start_s``): not where nothing drives it
-    after the ramps (:func:`quiet_since`) and its physical decay from there to the window start is over
-    ``FORGOTTEN`` e-folds (a run-up vibration of 100x the mean force left below the target). A slow crane drum
-    (tests/extreme/test_quiet_mode.py): Radau's 53 steps over 1250 periods of a 12.5 Hz mode of damping ratio 0.015
-    warned "not estimable", where DOP853 at rtol 1e-9 finds the window at rest to 6e-7 of the mean: the ramp's
-    ringing had decayed 23 e-folds before the window.
-    """
-    if not method_info(run.method).implicit or duration_s <= 0:
-        return None
-    ev = np.concatenate([choice.at_full_load.eigenvalues, choice.at_operating_point.eigenvalues])
-    osc = ev[np.abs(ev.imag) > 1e-9 * np.maximum(np.abs(ev), 1.0)]
-    if osc.size == 0:
-        return None
-    zeta = -osc.real / np.abs(osc)
-    light = osc[zeta < LIGHT_DAMPING]
-    quiet = quiet_since(choice, duration_s)
-    if quiet is not None and window_start_s is not None:  # a mode at rest in the window hides nothing
-        light = light[-light.real * max(0.0, window_start_s - quiet) < FORGOTTEN]
-    if light.size == 0:
-        return None
-    i = int(np.argmax(np.abs(light.imag)))
-    f = float(abs(light[i].imag)) / (2 * math.pi)
-    if run.steps >= MIN_STEPS_PER_PERIOD * f * duration_s:
-        return None
-    return f, float(-light[i].real / abs(light[i]))
-
-
-def mode_unresolved(ref: CheckPass, mode: tuple[float, float], run: Integration,
-                    duration_s: float) -> tuple[CheckPass, list[Diagnostic]]:
-    """The check pass with every stage's amplitude statistics marked unresolved, and one warning per stage."""
-    rtol = max(MIN_RTOL, run.rtol / 1000)
-    errors = tuple(replace(e, unresolved=tuple(q for q in STATISTICS if q in e.unresolved or q in AMPLITUDE),
-                           resolved=False, suggested_rtol=rtol) for e in ref.errors)
-    return replace(ref, errors=errors), [mode_warning(k + 1, mode, run, duration_s) for k in range(len(errors))]
-
-
-def mode_warning(stage: int, mode: tuple[float, float], run: Integration, duration_s: float) -> Diagnostic:
-    f, zeta = mode
-    return dg.warning(
-        dg.STATISTICS_UNRESOLVED,
-        f"stage {stage}: F_t min, max, std, spectrum peaks not resolved by {run.method}: its {run.steps} steps span "
-        f"{f * duration_s:.3g} periods of the {f:.4g} Hz mode (damping ratio {zeta:.2g}), whose vibration it damps "
-        f"numerically; the error is not estimable from this run (the check pass damps it too) — "
-        f"--set simulation.rtol={max(MIN_RTOL, run.rtol / 1000):g} or method = \"DOP853\" resolves the mode",
-        stage=stage, statistics=list(AMPLITUDE), estimated_error_N=None, relative_error=None,
-        rtol=max(MIN_RTOL, run.rtol / 1000), mode_Hz=f)
 
 
 _NAMES = {"mean": "mean", "min": "min", "max": "max", "std": "std", "spectrum": "spectrum peaks"}

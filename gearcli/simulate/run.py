@@ -230,12 +230,12 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s,
                               mixed=bool(changes)) if error_estimate else None
-    mode = (estimate.unresolved_mode(choice, run, duration_s, window[0])
+    mode = (stepped_over.unresolved_mode(choice, run, duration_s, window[0])
             or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
         if ref is not None and ref.errors else None
     stat_diags = estimate.warnings(ref, run.method, _unloaded(spec)) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
-        ref, stat_diags = estimate.mode_unresolved(ref, mode, run, duration_s)
+        ref, stat_diags = stepped_over.mode_unresolved(ref, mode, run, duration_s)
     if ref is not None:  # the run's peak |F_t| (docs/numerics.md, "The run's peak")
         stat_diags += estimate.peak_warnings(ref, run.rtol, run.method)
     finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \

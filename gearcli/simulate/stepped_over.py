@@ -1,7 +1,7 @@
 """A run-up vibration that an implicit run damped away after the ramps, seen in the run's own record.
 
 Radau damps a vibration it steps over (its stability function |R(i w h)| ~ 3/(w h) for w h >> 1), and its check
-pass does too, so the check pass cannot see the loss. :func:`gearcli.simulate.estimate.unresolved_mode` warns
+pass does too, so the check pass cannot see the loss. :func:`unresolved_mode` warns
 where the run takes fewer than ``MIN_STEPS_PER_PERIOD`` steps a period of a lightly damped mode over the whole
 run. A run can take more than that and still lose the mode: Radau resolves a strong run-up vibration while the
 ramps force small steps, and after the ramps' end its steps grow to a few periods of the mode and kill it within
@@ -17,7 +17,7 @@ damped mode's frequency (the linearised chain at full load, which the ramps' end
 amplitude, decayed physically (e^(-sigma (t_w - t_q))) to the window start t_w, is what the window must still carry.
 Where that sum exceeds the target (``TARGET`` of the stage's mean) and the run's window shows less than
 ``SHOWN`` of it (half its peak-to-peak), the run damped it numerically: the mode is returned for the
-``statistics_unresolved`` warning of :func:`gearcli.simulate.estimate.mode_warning`. A mode the run resolves
+``statistics_unresolved`` warning of :func:`mode_warning`. A mode the run resolves
 (the window carries it) or that the ramps hardly excite (configs/stiff_linear_mesh.toml: 0.24 steps a period of an
 11.5 kHz mode of damping ratio 2.8e-4, its vibration below the target) does not warn.
 """
@@ -25,18 +25,95 @@ Where that sum exceeds the target (``TARGET`` of the stage's mean) and the run's
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
+from gearcli import diagnostics as dg
 from gearcli.core.methods import method as method_info
+from gearcli.diagnostics import Diagnostic
 from gearcli.model.outputs import Sampled, tooth_forces
-from gearcli.simulate.choice import Choice
-from gearcli.simulate.estimate import FORGOTTEN, LIGHT_DAMPING, TARGET, quiet_since
+from gearcli.simulate.choice import Choice, excited_radians
+from gearcli.simulate.estimate import AMPLITUDE, FORGOTTEN, LIGHT_DAMPING, MIN_RTOL, STATISTICS, TARGET, CheckPass
+from gearcli.simulate.solver import Integration
 
 FIT_PERIODS = 3.0  # a block of the record fitted at once, in periods of the slowest light mode
 MIN_SAMPLES_PER_PERIOD = 4.0  # a mode the record samples more coarsely is not fitted
 SHOWN = 0.5  # the window shows less than this share of the vibration physics keeps: it was damped numerically
 MAX_BLOCKS = 200  # the record before the window is fitted in at most this many blocks (evenly spread)
+MIN_STEPS_PER_PERIOD = 0.2  # an implicit run with fewer steps per period of such a mode damps it away (Radau's |R(i w h)| ~ 3/(w h): ~0.1 a step at 0.2 a period)
+
+
+def quiet_since(choice: Choice, duration_s: float) -> float | None:
+    """The time from which nothing drives the chain's vibration, or None: the end of the drive's and the load's
+    ramps in a scene of parallel stages without excitation (transmission error, stiffness harmonics, time-varying
+    contact, torque ripple, load fluctuation), without backlash (impacts) and with a speed or torque drive (a motor
+    start has no end known before the run); from there every mode's vibration decays at its own rate."""
+    lay = choice.layout
+    spec = lay.spec
+    if spec.drive.kind == "motor" or spec.elements or any(m is not None for m in spec.stage_models):
+        return None
+    if any(m.backlash_m > 0.0 for m in spec.meshes) or excited_radians(spec, lay, duration_s) > 0.0:
+        return None
+    return max(spec.drive.ramp_s, spec.load.ramp_s)
+
+
+def unresolved_mode(choice: Choice, run: Integration, duration_s: float,
+                    window_start_s: float | None = None) -> tuple[float, float] | None:
+    """(frequency Hz, damping ratio) of a lightly damped mode that an implicit run steps over, or None.
+
+    An implicit method damps vibration it does not resolve, and a second pass of it does too, so the check
+    pass cannot see it. Measured: Radau on configs/extreme/stiff_linear_10000x.toml takes 51 steps over 9206
+    periods of its 18 kHz undamped mesh mode and shows no vibration, where DOP853 and Radau at rtol 1e-10
+    agree on a std of 15 N (0.8 % of the mean); configs/stiff_linear_mesh.toml, 0.24 steps per period of a
+    mode excited far less, is resolved to 5e-5.
+
+    A mode counts only where its vibration can reach the window (``window_start_s``): not where nothing drives it
+    after the ramps (:func:`quiet_since`) and its physical decay from there to the window start is over
+    ``FORGOTTEN`` e-folds (a run-up vibration of 100x the mean force left below the target). A slow crane drum
+    (tests/extreme/test_quiet_mode.py): Radau's 53 steps over 1250 periods of a 12.5 Hz mode of damping ratio 0.015
+    warned "not estimable", where DOP853 at rtol 1e-9 finds the window at rest to 6e-7 of the mean: the ramp's
+    ringing had decayed 23 e-folds before the window.
+    """
+    if not method_info(run.method).implicit or duration_s <= 0:
+        return None
+    ev = np.concatenate([choice.at_full_load.eigenvalues, choice.at_operating_point.eigenvalues])
+    osc = ev[np.abs(ev.imag) > 1e-9 * np.maximum(np.abs(ev), 1.0)]
+    if osc.size == 0:
+        return None
+    zeta = -osc.real / np.abs(osc)
+    light = osc[zeta < LIGHT_DAMPING]
+    quiet = quiet_since(choice, duration_s)
+    if quiet is not None and window_start_s is not None:  # a mode at rest in the window hides nothing
+        light = light[-light.real * max(0.0, window_start_s - quiet) < FORGOTTEN]
+    if light.size == 0:
+        return None
+    i = int(np.argmax(np.abs(light.imag)))
+    f = float(abs(light[i].imag)) / (2 * math.pi)
+    if run.steps >= MIN_STEPS_PER_PERIOD * f * duration_s:
+        return None
+    return f, float(-light[i].real / abs(light[i]))
+
+
+def mode_unresolved(ref: CheckPass, mode: tuple[float, float], run: Integration,
+                    duration_s: float) -> tuple[CheckPass, list[Diagnostic]]:
+    """The check pass with every stage's amplitude statistics marked unresolved, and one warning per stage."""
+    rtol = max(MIN_RTOL, run.rtol / 1000)
+    errors = tuple(replace(e, unresolved=tuple(q for q in STATISTICS if q in e.unresolved or q in AMPLITUDE),
+                           resolved=False, suggested_rtol=rtol) for e in ref.errors)
+    return replace(ref, errors=errors), [mode_warning(k + 1, mode, run, duration_s) for k in range(len(errors))]
+
+
+def mode_warning(stage: int, mode: tuple[float, float], run: Integration, duration_s: float) -> Diagnostic:
+    f, zeta = mode
+    return dg.warning(
+        dg.STATISTICS_UNRESOLVED,
+        f"stage {stage}: F_t min, max, std, spectrum peaks not resolved by {run.method}: its {run.steps} steps span "
+        f"{f * duration_s:.3g} periods of the {f:.4g} Hz mode (damping ratio {zeta:.2g}), whose vibration it damps "
+        f"numerically; the error is not estimable from this run (the check pass damps it too) — "
+        f"--set simulation.rtol={max(MIN_RTOL, run.rtol / 1000):g} or method = \"DOP853\" resolves the mode",
+        stage=stage, statistics=list(AMPLITUDE), estimated_error_N=None, relative_error=None,
+        rtol=max(MIN_RTOL, run.rtol / 1000), mode_Hz=f)
 
 
 def radau_factor(omega_h: float) -> float:

@@ -1,4 +1,4 @@
-"""Radau's "mode not resolved" warning (gearcli.simulate.estimate.unresolved_mode) only for a mode whose vibration
+"""Radau's "mode not resolved" warning (gearcli.simulate.stepped_over.unresolved_mode) only for a mode whose vibration
 can reach the statistics window.
 
 A slow crane hoist drum (one helical stage, 50 rpm input, a 800 kg m^2 drum on a 5e6 N m/rad coupling, 100 s) at
@@ -27,7 +27,7 @@ from gearcli.design import compute_design
 from gearcli.scene import build_model
 from gearcli.simulate import run_simulation
 from gearcli.simulate.choice import choose_method
-from gearcli.simulate.estimate import quiet_since
+from gearcli.simulate.stepped_over import quiet_since
 
 CRANE = """\
 title = "slow crane hoist drum"
