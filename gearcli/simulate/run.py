@@ -555,8 +555,10 @@ def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSerie
     if tw.size == 0:
         return [None] * len(spec.meshes)
     basis = int(tw.size) if periodic or steps is None else int(steps)  # whole periods: steps per window
+    dt = np.diff(tw)  # the window's steps, every stage's
     return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
-                                    periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k])
+                                    periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k],
+                                    dt=dt)
             for k, m in enumerate(spec.meshes)]
 
 
