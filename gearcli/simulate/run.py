@@ -608,7 +608,9 @@ def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic
     cache = model.layout.__dict__.setdefault("_resonance_warnings", {})
     if choice.boundary not in cache:
         cache[choice.boundary] = [dg.warning(dg.RESONANCE, r.message, **r.data, boundary=choice.boundary)
-                                  for r in resonances(model.layout, boundary=choice.boundary)]
+                                  for r in resonances(model.layout, boundary=choice.boundary,
+                                                      full_load=(choice.at_full_load.stiffness,
+                                                                 choice.at_full_load.damping))]
     return list(cache[choice.boundary])
 
 
