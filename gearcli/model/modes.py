@@ -252,12 +252,14 @@ class _Undamped:
     order: np.ndarray
 
 
-def _undamped(lay: Layout, boundary: str, duration_s: float) -> _Undamped:
-    """:class:`_Undamped` of a layout, boundary and run-up (kept with the layout until the analysis is made)."""
+def _undamped(lay: Layout, boundary: str, duration_s: float,
+              tangents: tuple[np.ndarray, np.ndarray] | None = None) -> _Undamped:
+    """:class:`_Undamped` of a layout, boundary and run-up (kept with the layout until the analysis is made);
+    ``tangents``: :func:`_tangents` when the caller has them (:func:`resonances`)."""
     cache = lay.__dict__.setdefault("_undamped_modes", {})
     key = (boundary, float(duration_s))
     if key not in cache:
-        k, cd = _tangents(lay, duration_s)
+        k, cd = _tangents(lay, duration_s) if tangents is None else tangents
         # the eigenproblem of these very tangents on this very chain: a speed sweep's points share it
         chain = (boundary, k.tobytes(), cd.tobytes(), lay.n_bodies, tuple(lay.inertias),
                  tuple((x.bodies, x.levers, x.radii) for x in lay.connectors), loss_factors(lay).tobytes())
@@ -389,13 +391,18 @@ def _percent(x: float) -> str:
     return f"{100 * x:.2g} %" if x < 0.1 else f"{100 * x:.0f} %"
 
 
-def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0) -> list[Resonance]:
+def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0,
+               full_load: tuple[np.ndarray, np.ndarray] | None = None) -> list[Resonance]:
     """Excitations at the nominal speed within ``RESONANCE_BAND`` of a natural frequency that excite the mode
     (:attr:`Crossing.amplification` at least ``WARN_AMPLIFICATION``): mesh orders 1x-3x, shaft orders 1x, the input
-    torque ripple's orders and the load fluctuation's frequencies."""
+    torque ripple's orders and the load fluctuation's frequencies. ``full_load``: every connector's tangent
+    stiffness and damping at the static forces when the caller has them (a run's method choice linearised the
+    chain there: :func:`gearcli.model.linearise` takes the same tangents), used where none of them is 0 (an unloaded
+    Hertzian mesh's modes are those of the run-up load, :func:`_tangents`)."""
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
     out = []
-    for m in _near_modes(lay, boundary, duration_s, f_in):
+    tangents = full_load if full_load is not None and not bool(np.any(np.asarray(full_load[0]) == 0.0)) else None
+    for m in _near_modes(lay, boundary, duration_s, f_in, tangents):
         if m.rigid:
             continue
         share = max(m.energy_share)
@@ -448,14 +455,15 @@ def _torque_resonances(lay: Layout, m: Mode, boundary: str, f_in: float) -> list
     return out
 
 
-def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float) -> list[Mode]:
+def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float,
+                tangents: tuple[np.ndarray, np.ndarray] | None = None) -> list[Mode]:
     """The modes an order at the nominal speed may lie near (:func:`resonances` passes over the others): the
     analysis's where it is made; else only the elastic modes within ``RESONANCE_BAND`` of an order, without their
     crossings (the same numbers: the analysis's own steps, :func:`_mode`)."""
     ana = lay.__dict__.get("_modal_analyses", {}).get((boundary, float(duration_s)))
     if ana is not None:
         return list(ana.modes)
-    und = _undamped(lay, boundary, duration_s)
+    und = _undamped(lay, boundary, duration_s, tangents)
     fe = [o.hz_per_input_hz * f_in for o in excitation_sources(lay)]
     fe += [t.fixed_Hz if t.fixed_Hz is not None else t.hz_per_input_hz * f_in for t in torque_sources(lay)]
     near = [(rank, j) for rank, j in enumerate(und.order) if rank >= und.n_rigid

@@ -139,10 +139,7 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
     d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
     n = d.size
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-        F, U, ch = kernel.connector_series(x.kind, np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float),
-                                           np.ascontiguousarray(dd, dtype=float),
-                                           np.ascontiguousarray(phi, dtype=float),
-                                           np.ascontiguousarray(wphi, dtype=float))
+        F, U, ch = kernel.connector_series(x.kind, *_compiled_arguments(P, d, dd, phi, wphi))
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
     elif (vectorised := elements.series_of(el, P, d, dd, phi, wphi)) is not None:  # the same values at once
         F, U, ch = vectorised
@@ -157,6 +154,13 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
     pen = channels["penetration_m"] if "penetration_m" in channels else np.zeros(n)
     q = channels["dte_m"] if x.excited and "dte_m" in channels else d.copy()  # without a transmission error q = delta
     return ConnectorSeries(F, d.copy(), pen, U, q)
+
+
+def _compiled_arguments(P, d, dd, phi, wphi) -> tuple[np.ndarray, ...]:
+    """The compiled ``connector_series``'s arguments after the kind: the parameter row and the law arguments as
+    contiguous float arrays."""
+    return (np.asarray(P, dtype=float), np.ascontiguousarray(d, dtype=float), np.ascontiguousarray(dd, dtype=float),
+            np.ascontiguousarray(phi, dtype=float), np.ascontiguousarray(wphi, dtype=float))
 
 
 def _connector_force(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta) -> np.ndarray:
@@ -223,8 +227,9 @@ def _potential(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, ker
     (:data:`~gearcli.model.elements.SERIES_HOOK`): at the energy watch's one sample, without the numpy calls the
     hook's forces and channels cost."""
     x = lay.connectors[c]
-    if kernel is not None and x.kind in kernel.KINDS:
-        return _connector_series(lay, c, Y, omega, theta, kernel).potential_J
+    if kernel is not None and x.kind in kernel.KINDS:  # the series' own call (its potential), without its channels
+        args = _compiled_arguments(x.params, *_law_arguments(lay, c, Y, omega, theta))
+        return kernel.connector_series(x.kind, *args)[1]
     d, _, phi, _ = _law_arguments(lay, c, Y, omega, theta)
     potential, P = x.element.potential, x.params
     return np.array([potential(P, dj, phj) for dj, phj in zip(d.tolist(), phi.tolist(), strict=True)], dtype=float)

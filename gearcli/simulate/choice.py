@@ -42,6 +42,7 @@ from gearcli.core.cost import (
     predicted_evaluations,
     predicted_wall_s,
 )
+from gearcli.core.memo import remember
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 from gearcli.model import Layout, Linearisation, ModelSpec, linearise
 from gearcli.model.linear import damped_eigenvalues, peak_rigid_forces, speed_map, static_forces
@@ -132,16 +133,35 @@ def _ramp_excitation(spec: ModelSpec, omega: float) -> float:
 
 
 def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration_s: float, rtol: float) -> float:
-    """P: the largest omega_j min(T, 5/sigma_j) over the excited modes of the linearised chain (module doc)."""
+    """P: the largest omega_j min(T, 5/sigma_j) over the excited modes of the linearised chain (module text)."""
     first = 1 if lay.speed_drive else 0
     if lay.n_bodies - first < 1:
         return 0.0
+    best = 0.0
+    for omega, share, sigma in _chain_modes(lay, spec, lin):
+        if share < SELF_EXCITING_SHARE and _ramp_excitation(spec, omega) < rtol:
+            continue
+        span = duration_s if sigma <= 0 else min(duration_s, DECAY_TIMES / sigma)
+        best = max(best, omega * span)
+    return best
+
+
+def _chain_modes(lay: Layout, spec: ModelSpec, lin: Linearisation) -> tuple[tuple[float, float, float], ...]:
+    """Per elastic mode of the linearised chain (ascending eigenvalue order): its omega, the self-exciting
+    connectors' share of its strain energy and its decay rate sigma, for :func:`vibration_radians` (which adds
+    what depends on the run: the ramps, rtol, the duration). Kept for the last few exact inputs (the chain's speed
+    map, inertias, self-exciting connectors and the linearisation's stiffness and damping): the points of a speed
+    sweep linearise the same chain at the same full load, the same numbers."""
     R, J, inv_sqrt, exciting = _chain(lay, spec)
     k, c = np.asarray(lin.stiffness, dtype=float), np.asarray(lin.damping, dtype=float)
+    key = (R.shape, R.tobytes(), J.tobytes(), exciting.tobytes(), k.tobytes(), c.tobytes())
+    found = _CHAIN_MODES.get(key)
+    if found is not None:
+        return found
     w2, u = np.linalg.eigh(inv_sqrt[:, None] * (R.T @ (k[:, None] * R)) * inv_sqrt[None, :])
     phi = inv_sqrt[:, None] * u
     top = max(float(np.max(np.abs(w2))), np.finfo(float).tiny)
-    best = 0.0
+    out = []
     for j in range(w2.size):
         if w2[j] <= 1e-9 * top:
             continue
@@ -149,12 +169,12 @@ def vibration_radians(spec: ModelSpec, lay: Layout, lin: Linearisation, duration
         d = R @ phi[:, j]
         strain = k * d**2
         share = float(strain[exciting].sum() / strain.sum()) if strain.sum() > 0 else 0.0
-        if share < SELF_EXCITING_SHARE and _ramp_excitation(spec, omega) < rtol:
-            continue
         sigma = float(c @ d**2) / (2.0 * float(J @ phi[:, j] ** 2))
-        span = duration_s if sigma <= 0 else min(duration_s, DECAY_TIMES / sigma)
-        best = max(best, omega * span)
-    return best
+        out.append((omega, share, sigma))
+    return remember(_CHAIN_MODES, key, tuple(out))
+
+
+_CHAIN_MODES: dict[tuple, tuple[tuple[float, float, float], ...]] = {}  # _chain_modes by its exact inputs
 
 
 def _chain(lay: Layout, spec: ModelSpec) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

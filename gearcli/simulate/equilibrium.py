@@ -177,20 +177,23 @@ def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
     n = t.size - start - 1
     if (n < 1 or start < 0 or not layout.speed_drive or layout.needs_angles or layout.fluctuation
             or t[start] < max(layout.drive.ramp_s, layout.load.ramp_s)
-            or not np.array_equal(Y[:d, start:], np.broadcast_to(Y[:d, start:start + 1], (d, n + 1)))):
+            or Y.shape[1] != t.size or not bool((Y[:d, start:] == Y[:d, start:start + 1]).all())):
         return sample(layout, t, Y)
     head = sample(layout, t[:start + 1], Y[:, :start + 1])
-    names = [f.name for f in fields(ConnectorSeries)]
-    rows = [*head.omega_rad_s, np.broadcast_to(head.input_torque_Nm, head.time_s.shape),
-            np.broadcast_to(head.load_torque_Nm, head.time_s.shape),
-            *(getattr(c, name) for c in head.connectors for name in names)]
-    full = np.empty((len(rows), t.size))
-    for r, row in zip(full, rows, strict=True):
-        r[:start + 1] = row
+    nb, w = head.omega_rad_s.shape[0], len(_SERIES)
+    full = np.empty((nb + 2 + w * len(head.connectors), t.size))  # the speeds, the two torques, every series
+    part = full[:, :start + 1]
+    part[:nb] = head.omega_rad_s
+    part[nb], part[nb + 1] = head.input_torque_Nm, head.load_torque_Nm  # (a constant torque broadcast)
+    for i, c in enumerate(head.connectors):
+        for j, name in enumerate(_SERIES):
+            part[nb + 2 + w * i + j] = getattr(c, name)
     full[:, start + 1:] = full[:, start:start + 1]  # every row its last sample repeated
-    nb, w = head.omega_rad_s.shape[0], len(names)
     conns = tuple(ConnectorSeries(*full[nb + 2 + w * i: nb + 2 + w * (i + 1)]) for i in range(len(head.connectors)))
     return Sampled(np.asarray(t, dtype=float), np.array(full[:nb]), None, full[nb], full[nb + 1], conns, layout)
+
+
+_SERIES = tuple(f.name for f in fields(ConnectorSeries))  # a connector's series, in ConnectorSeries' field order
 
 
 __all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]

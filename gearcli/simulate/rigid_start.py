@@ -38,6 +38,7 @@ from gearcli.model.modes import modal_analysis
 from gearcli.model.outputs import tooth_forces
 from gearcli.model.step import ramp, ramp_rates
 from gearcli.simulate.results import StartSummary
+from gearcli.simulate.stats import window_slice
 
 SAMPLES = 2001
 SWING_FRACTION = 0.02  # a mode swinging with less than this of the rigid peak is not named
@@ -171,7 +172,7 @@ def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: 
     ramp), refined by a bounded scalar search between the neighbouring times on the continuous state ``state(t) ->
     (w, dw/dt)`` (floats). The output grid alone misses a short peak (a star-delta switch-over against a fan load:
     1.8 % below the peak on 2001 samples over 3 s)."""
-    from scipy.optimize import minimize_scalar  # lazy: scipy, start-up time
+    from scipy.optimize import fminbound  # lazy: scipy, start-up time
 
     out = []
     for k in range(ft.shape[0]):
@@ -184,10 +185,9 @@ def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: 
         i = int(np.argmax(np.abs(ft[k])))
         best = float(abs(ft[k][i]))
         lo, hi = float(times[max(i - 1, 0)]), float(times[min(i + 1, times.size - 1)])
-        if hi > lo:
-            res = minimize_scalar(negative_magnitude, bounds=(lo, hi), method="bounded",
-                                  options={"xatol": 1e-12 * max(hi, 1.0)})
-            best = max(best, -float(res.fun))
+        if hi > lo:  # scipy's bounded Brent (minimize_scalar(method="bounded")'s own search, without its wrapping)
+            fun = fminbound(negative_magnitude, lo, hi, xtol=1e-12 * max(hi, 1.0), full_output=True, disp=0)[1]
+            best = max(best, -float(fun))
         out.append(best)
     return tuple(out)
 
@@ -409,7 +409,8 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
     diags: list[Diagnostic] = []
     start = t <= max(window_s[0], t[0])
     in_window = t >= window_s[0]
-    window_peaks = [float(np.max(np.abs(f[in_window]))) if np.any(in_window) else 0.0 for f in forces_N]
+    inside = window_slice(in_window)  # read in place where contiguous (ascending times): the mask's numbers
+    window_peaks = [float(np.max(np.abs(f[inside]))) if np.any(in_window) else 0.0 for f in forces_N]
     modes: list[tuple[float, str]] | None = None
     initial_te = [initial_te_um(lay, k) for k in range(len(forces_N))]
     prestress = [abs(float(f[0])) / r for f, r, e in zip(forces_N, rigid_peaks, initial_te, strict=True)

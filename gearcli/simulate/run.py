@@ -253,9 +253,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     def summary(deferred: list[bool] | None) -> SimulationResult:
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
                          ref, stat_diags, eng.reason, deferred, diagnose, steps=file_steps or steps,
-                         from_rest=y0 is None)
-        out = replace(out, solver=replace(out.solver, prediction=prediction(choice, first_engine, nfev_estimate / work),
-                                          course_changes=tuple(c.as_json() for c in changes)))
+                         from_rest=y0 is None, prediction=prediction(choice, first_engine, nfev_estimate / work),
+                         course_changes=tuple(c.as_json() for c in changes))
         _require_finite(out)
         return out
 
@@ -438,13 +437,15 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                diags: list[Diagnostic], want_series: bool, steady: SteadyState,
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
-               diagnose: bool = True, steps: int | None = None, from_rest: bool = True) -> SimulationResult:
+               diagnose: bool = True, steps: int | None = None, from_rest: bool = True,
+               prediction: JsonObject | None = None, course_changes: tuple[JsonObject, ...] = ()) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``steps``: the run's
     ``simulation.steps`` (the sampling estimate's suggestion scales it; whole periods: the window's samples). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
     its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order).
-    ``from_rest``: the run started from rest (not continued from another run's state): only then a start summary."""
+    ``from_rest``: the run started from rest (not continued from another run's state): only then a start summary.
+    ``prediction``, ``course_changes``: the solver's (:class:`SolverStats`)."""
     spec = model.spec
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
@@ -526,7 +527,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
         energy_residual=energy.residual_relative, status=run.status, message=run.message,
         check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
-        compile_s=run.compile_s)
+        compile_s=run.compile_s, prediction=prediction, course_changes=course_changes)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
                             energy.potential_change_J, energy.residual_relative)
     return SimulationResult(
@@ -554,8 +555,10 @@ def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSerie
     if tw.size == 0:
         return [None] * len(spec.meshes)
     basis = int(tw.size) if periodic or steps is None else int(steps)  # whole periods: steps per window
+    dt = np.diff(tw)  # the window's steps, every stage's
     return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
-                                    periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k])
+                                    periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k],
+                                    dt=dt)
             for k, m in enumerate(spec.meshes)]
 
 
@@ -605,7 +608,9 @@ def resonance_warnings(model: TorsionalModel, choice: Choice) -> list[Diagnostic
     cache = model.layout.__dict__.setdefault("_resonance_warnings", {})
     if choice.boundary not in cache:
         cache[choice.boundary] = [dg.warning(dg.RESONANCE, r.message, **r.data, boundary=choice.boundary)
-                                  for r in resonances(model.layout, boundary=choice.boundary)]
+                                  for r in resonances(model.layout, boundary=choice.boundary,
+                                                      full_load=(choice.at_full_load.stiffness,
+                                                                 choice.at_full_load.damping))]
     return list(cache[choice.boundary])
 
 

@@ -189,10 +189,12 @@ def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_flo
     return max(0.0, best - top)
 
 
-def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False) -> tuple[float, float]:
+def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False,
+                   dt: np.ndarray | None = None) -> tuple[float, float]:
     """(min, max) sampling errors of the force ``x`` over the window ``t`` (N when ``x`` is in N; module doc): neither
-    interpolated extreme crosses zero, where the contact law clamps the force (module doc, "Bound")."""
-    dt = np.diff(t)
+    interpolated extreme crosses zero, where the contact law clamps the force (module doc, "Bound"). ``dt``:
+    ``np.diff(t)`` when the caller has it (every stage's window shares it)."""
+    dt = np.diff(t) if dt is None else dt
     return (max_excess(t, -x, periodic=periodic, zero_floor=True, dt=dt),
             max_excess(t, x, periodic=periodic, zero_floor=True, dt=dt))
 
@@ -241,15 +243,16 @@ def _up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
 
 def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
                    solver: StatisticsError | None = None, window_share: float = 1.0,
-                   floor_N: float = 0.0) -> SamplingError:
+                   floor_N: float = 0.0, dt: np.ndarray | None = None) -> SamplingError:
     """The sampling error of a stage's window min and max of F_t (``t``, ``ft``: the window's samples), judged
     with the solver's estimate ``solver`` where a check pass ran (their sum against :data:`TARGET`).
     ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps);
     ``window_share``: the window's length over the run's (what a window of too few samples needs more steps for);
-    ``floor_N``: the least force an unloaded stage's targets refer to (:func:`estimate.force_floors_N`)."""
+    ``floor_N``: the least force an unloaded stage's targets refer to (:func:`estimate.force_floors_N`); ``dt``:
+    ``np.diff(t)`` when the caller has it."""
     if not periodic and t.size < MIN_WINDOW_SAMPLES:
         return _too_few(t, ft, static_N, steps, solver, window_share, floor_N)
-    lo, hi = extremes_error(t, ft, periodic=periodic)
+    lo, hi = extremes_error(t, ft, periodic=periodic, dt=dt)
     if solver is not None:
         ref = solver.reference_N
     else:

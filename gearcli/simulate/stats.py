@@ -217,6 +217,7 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
     penetration lies below d, i.e. when the law was set up in the seed's sense and a transient exceeds it.
     """
     out = []
+    sel = window_slice(mask)  # the window's samples read in place (the same numbers as the mask's copy)
     for k, (m, pen) in enumerate(zip(spec.meshes, penetration_m, strict=True)):
         if pen is None:  # a stage whose connector is no mesh (a belt's span): no contact to lose
             continue
@@ -231,7 +232,7 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
                                   f"({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity",
                                   stage=k + 1, penetration_m=deepest))
         loaded = math.copysign(1.0, m.static_tangential_N)  # the flank that carries the static load
-        lost = loaded * pen[mask] <= 0.0
+        lost = loaded * pen[sel] <= 0.0
         if m.static_tangential_N != 0 and np.any(lost):
             flank = "drive" if loaded > 0 else "back"
             what = ("tooth impacts (rattle) — the load is too small for the vibration" if m.backlash_m > 0 else

@@ -154,13 +154,13 @@ def test_every_stage_at_once_has_the_statistics_of_one_stage_at_a_time(periodic,
 
 def test_what_a_sweeps_points_share_gives_each_point_its_own_numbers():
     """The memos a speed sweep's points share (the full-load linearisation, the modal damping ratios, the
-    eigenproblem of the chain, the structural rank: each keyed by its exact inputs) against every point worked out
+    eigenproblem of the chain, the structural rank, the method choice's modal data: each keyed by its exact inputs) against every point worked out
     cold, the memos emptied before it: the same statistics and warnings, bit for bit."""
     from gearcli.model import damping, linear
-    from gearcli.simulate import shooting
+    from gearcli.simulate import choice, shooting
     from gearcli.sweep.worker import Scene
 
-    memos = (linear._LINEARISED, damping._RATIOS, modes_mod._CHAINS, shooting._RANKS)
+    memos = (linear._LINEARISED, damping._RATIOS, modes_mod._CHAINS, shooting._RANKS, choice._CHAIN_MODES)
     seed = ROOT / "configs" / "concrete_mixer.toml"
     scene = Scene(seed.read_bytes(), str(seed), ("simulation.engine=python",), 3)
 
