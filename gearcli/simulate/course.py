@@ -38,11 +38,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from gearcli import diagnostics as dg
 from gearcli import engine as eng_mod
 from gearcli.core import cost
 from gearcli.core.jsontypes import JsonObject
-from gearcli.core.methods import EXPLICIT_METHOD, IMPLICIT_METHOD
+from gearcli.core.methods import AUTO, EXPLICIT_METHOD, IMPLICIT_METHOD
 from gearcli.core.methods import method as method_info
+from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
 from gearcli.simulate.choice import Choice
 from gearcli.simulate.solver import STATUS_BUDGET, STATUS_SWITCH, CourseLimit, Integration, integrate
@@ -258,3 +260,37 @@ def _merge(t_eval: np.ndarray, pieces: list[tuple[int, Integration]]) -> Integra
     last = pieces[-1][1]
     total = {f: sum(getattr(r, f) for _, r in pieces) for f in ("nfev", "njev", "nlu", "steps", "wall_s", "compile_s")}
     return replace(last, t=t_eval, y=y, **total)
+
+
+def prediction(choice: Choice, engine: str, nfev: float) -> JsonObject:
+    """``solver.prediction``: what ``auto``'s cost model predicted for the run's own integration (the chosen
+    method on the engine first chosen; the check pass aside): evaluations, the price per evaluation of this
+    model's size on that engine (:func:`gearcli.core.cost.price_us_per_eval`) and their product plus the engine's
+    fixed cost per run."""
+    price = cost.price_us_per_eval(engine, choice.method, choice.size)
+    return {"nfev": float(nfev), "price_us_per_eval": price,
+            "wall_s": cost.RUN_FIXED_S.get(engine, 0.0) + nfev * price * 1e-6}
+
+
+def pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
+    """A run whose evaluations far exceed what the cost model predicted for its method says so, with both figures
+    (counters, not the wall clock: the same warning on a busy machine and a quiet one). Every method is judged: the
+    cost model predicts DOP853 and Radau, and prices RK45 as DOP853, BDF and LSODA as Radau (a requested BDF run
+    on a stiff scene took 180x Radau's prediction, 27 s, unwarned when only the two were judged)."""
+    n = predicted_nfev(choice, choice.method)
+    took = cost.predicted_wall_s(run.engine, run.method, run.nfev, size=choice.size)
+    if took < cost.PACE_MIN_S or run.nfev < cost.PACE_WARN_FACTOR * n:
+        return []
+    family = IMPLICIT_METHOD if method_info(run.method).implicit else EXPLICIT_METHOD
+    what = "the cost model predicted" if family == run.method else f"the cost model predicted for {family}"
+    if choice.requested == AUTO:
+        tail = 'method = "auto" may have chosen the slower method here'
+    else:
+        explicit, implicit = choice.predicted_evals
+        tail = (f'method = "{choice.requested}" was requested (the cost model predicts {explicit:.2g} evaluations '
+                f'for {EXPLICIT_METHOD}, {implicit:.2g} for {IMPLICIT_METHOD}; method = "auto" chooses between them)')
+    return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
+                       f"{run.nfev / n:.2g}x the {n:.2g} {what} (~{took:.2g} s against "
+                       f"~{cost.predicted_wall_s(run.engine, run.method, n, size=choice.size):.2g} s); {tail} "
+                       '(docs/numerics.md, "Choosing the method: auto")',
+                       nfev=run.nfev, predicted_nfev=n)]

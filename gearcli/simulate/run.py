@@ -15,7 +15,6 @@ from gearcli.core import cost
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD
-from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
@@ -30,7 +29,7 @@ from gearcli.scene import spec_from_design
 from gearcli.simulate import estimate, rigid_start, sampling, stats, stepped_over
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
-from gearcli.simulate.course import CourseChange, integrate_auto
+from gearcli.simulate.course import CourseChange, integrate_auto, pace_warnings, predicted_nfev, prediction
 from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
@@ -175,7 +174,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
         max_nfev = nfev_budget(choice.indicator, rtol)
         require_feasible(choice, max_nfev)
-    nfev_estimate = work * predicted_nfev(choice)
+    nfev_estimate = work * predicted_nfev(choice, choice.method)
     if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost
         from gearcli.simulate.shooting import priced_nfev  # lazy: start-up time of a fixed window's one-shot run
 
@@ -222,7 +221,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         s = sample(model.layout, run.t, run.y)
     energy = model.energy(s, run.y) if not energy_from else \
         model.energy(s.tail(energy_from), run.y[:, energy_from:])
-    diags = prior + diags + fallback + (_pace_warnings(run, choice) if not changes else []) \
+    diags = prior + diags + fallback + (pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
         + _choice_warnings(choice)
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
@@ -263,45 +262,6 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if deferred and unfinished is not None:
         unfinished.append(lambda: summary(None))
     return result
-
-
-def prediction(choice: Choice, engine: str, nfev: float) -> JsonObject:
-    """``solver.prediction``: what ``auto``'s cost model predicted for the run's own integration (the chosen
-    method on the engine first chosen; the check pass aside): evaluations, the price per evaluation of this
-    model's size on that engine (:func:`gearcli.core.cost.price_us_per_eval`) and their product plus the engine's
-    fixed cost per run."""
-    price = cost.price_us_per_eval(engine, choice.method, choice.size)
-    return {"nfev": float(nfev), "price_us_per_eval": price,
-            "wall_s": cost.RUN_FIXED_S.get(engine, 0.0) + nfev * price * 1e-6}
-
-
-def _pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
-    """A run whose evaluations far exceed what the cost model predicted for its method says so, with both figures
-    (counters, not the wall clock: the same warning on a busy machine and a quiet one). Every method is judged: the
-    cost model predicts DOP853 and Radau, and prices RK45 as DOP853, BDF and LSODA as Radau (a requested BDF run
-    on a stiff scene took 180x Radau's prediction, 27 s, unwarned when only the two were judged)."""
-    n = predicted_nfev(choice)
-    took = cost.predicted_wall_s(run.engine, run.method, run.nfev, size=choice.size)
-    if took < cost.PACE_MIN_S or run.nfev < cost.PACE_WARN_FACTOR * n:
-        return []
-    family = IMPLICIT_METHOD if method_info(run.method).implicit else EXPLICIT_METHOD
-    what = "the cost model predicted" if family == run.method else f"the cost model predicted for {family}"
-    if choice.requested == AUTO:
-        tail = 'method = "auto" may have chosen the slower method here'
-    else:
-        explicit, implicit = choice.predicted_evals
-        tail = (f'method = "{choice.requested}" was requested (the cost model predicts {explicit:.2g} evaluations '
-                f'for {EXPLICIT_METHOD}, {implicit:.2g} for {IMPLICIT_METHOD}; method = "auto" chooses between them)')
-    return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
-                       f"{run.nfev / n:.2g}x the {n:.2g} {what} (~{took:.2g} s against "
-                       f"~{cost.predicted_wall_s(run.engine, run.method, n, size=choice.size):.2g} s); {tail} "
-                       '(docs/numerics.md, "Choosing the method: auto")',
-                       nfev=run.nfev, predicted_nfev=n)]
-
-
-def predicted_nfev(choice: Choice) -> float:
-    """The cost model's evaluations for the chosen method (an explicit one: DOP853's; an implicit one: Radau's)."""
-    return choice.predicted_evals[1 if method_info(choice.method).implicit else 0]
 
 
 def _loadable(eng: EngineChoice) -> EngineChoice:

@@ -147,11 +147,11 @@ def test_a_run_far_over_its_predicted_evaluations_says_so_on_either_engine(engin
     # the seed's DOP853 run: 5368 evaluations (both engines take scipy's steps, under the step ceiling) against a
     # prediction the test shrinks 100-fold, so the run is 100x over it: the warning names the engine and both figures
     cfg, design = _cfg("concrete_mixer.toml", [f"simulation.engine={engine_name}", "simulation.method=DOP853"])
-    from gearcli.simulate import run as run_module
+    from gearcli.simulate import course as course_module  # the pace warning's prediction (gearcli.simulate.course)
     from gearcli.simulate import run_simulation
 
-    real = run_module.predicted_nfev
-    monkeypatch.setattr(run_module, "predicted_nfev", lambda choice: real(choice) / 100.0)
+    real = course_module.predicted_nfev
+    monkeypatch.setattr(course_module, "predicted_nfev", lambda choice, method: real(choice, method) / 100.0)
     monkeypatch.setattr(cost, "PACE_MIN_S", 0.0)  # the seed's run is short: judge it anyway
     got = run_simulation(cfg, design, want_series=False, error_estimate=False)
     assert got.solver.engine == engine_name and got.solver.nfev == 5368
@@ -170,11 +170,11 @@ def test_every_requested_method_is_judged_against_its_familys_prediction(method,
     cfg, design = _cfg("concrete_mixer.toml", [f"simulation.method={method}", "simulation.engine=python",
                                                 "simulation.duration_s=0.25", "simulation.steps=500"])
     from gearcli.core.methods import IMPLICIT_METHOD, METHODS
-    from gearcli.simulate import run as run_module
+    from gearcli.simulate import course as course_module  # the pace warning's prediction (gearcli.simulate.course)
     from gearcli.simulate import run_simulation
 
-    real = run_module.predicted_nfev
-    monkeypatch.setattr(run_module, "predicted_nfev", lambda choice: real(choice) / 1000.0)
+    real = course_module.predicted_nfev
+    monkeypatch.setattr(course_module, "predicted_nfev", lambda choice, method: real(choice, method) / 1000.0)
     monkeypatch.setattr(cost, "PACE_MIN_S", 0.0)
     got = run_simulation(cfg, design, want_series=False, error_estimate=False)
     assert got.solver.method == method
@@ -185,6 +185,6 @@ def test_every_requested_method_is_judged_against_its_familys_prediction(method,
     assert f"({got.solver.engine} engine) took {got.solver.nfev} evaluations" in warned.message
     assert f"predicted for {family}" in warned.message and f'method = "{method}" was requested' in warned.message
     # unpatched, the same run is within its prediction: no warning
-    monkeypatch.setattr(run_module, "predicted_nfev", real)
+    monkeypatch.setattr(course_module, "predicted_nfev", real)
     quiet = run_simulation(cfg, design, want_series=False, error_estimate=False)
     assert not any(d.code == "slow_pace" for d in quiet.diagnostics)
