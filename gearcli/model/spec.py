@@ -245,6 +245,8 @@ class StageModel(Protocol):
 
 @dataclass(frozen=True)
 class ModelSpec:
+    """The torsional model's SI parameters: meshes, shaft inertias, drive, load and further elements."""
+
     meshes: tuple[MeshSpec, ...]
     inertias_kg_m2: tuple[float, ...]  # one per reducer shaft: len(meshes) + 1
     drive: DriveSpec

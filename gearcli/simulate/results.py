@@ -23,6 +23,8 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class ChannelStats:
+    """A channel's statistics over the steady window."""
+
     mean: float
     min: float
     max: float
@@ -91,6 +93,8 @@ REGIME_DOUBLE_SIDED = "double-sided impact"  # it also strikes the other (back) 
 
 @dataclass(frozen=True)
 class StageDynamics:
+    """One stage's simulated forces over the steady window, its run peak and mesh response."""
+
     index: int  # 1-based
     tangential_N: ChannelStats  # over the steady window
     radial_N: ChannelStats
@@ -138,6 +142,8 @@ class PlanetMeshDynamics:
 
 @dataclass(frozen=True)
 class PlanetDynamics:
+    """One planet's sun and ring meshes' simulated forces."""
+
     index: int  # 1-based
     sun: PlanetMeshDynamics
     ring: PlanetMeshDynamics
@@ -145,6 +151,8 @@ class PlanetDynamics:
 
 @dataclass(frozen=True)
 class SolverStats:
+    """What the integration did: method, tolerances, evaluations, steps, time and status."""
+
     method: str  # the scipy method that ran
     requested_method: str  # as in the design file ("auto" ...)
     choice_reason: str  # why auto chose it, or "as requested"
@@ -256,6 +264,8 @@ class SimulationExtra(TypedDict, total=False):
 
 @dataclass(frozen=True)
 class SimulationResult:
+    """One simulation: the series, the window's statistics per stage, the solver and the energy."""
+
     time_s: np.ndarray
     series: dict[Channel, np.ndarray]  # what it measures -> samples in SI, in output order (io.channels names them)
     window_s: tuple[float, float]
