@@ -9,7 +9,9 @@ mistake or garbage) is refused with the bound named. Used by :mod:`gearcli.confi
 """
 
 
+import inspect
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -71,6 +73,15 @@ def refuse_subnormal(value: Any) -> Any:
     return value
 
 
+def _signature_once(fn: Callable) -> Callable:
+    """``fn`` with its signature computed now (``__signature__``, what :func:`inspect.signature` would compute):
+    pydantic reads a field validator's signature for every field it applies to (whether it takes an ``info``
+    argument), and :class:`StrictTable`'s applies to every field of every table, ~210 in the design file's
+    validator (~2 ms of its ~18 ms build)."""
+    fn.__signature__ = inspect.signature(fn)  # type: ignore[attr-defined]
+    return fn
+
+
 class StrictTable(BaseModel):
     """Base of every design-file table: :data:`STRICT`, and :func:`refuse_subnormal` on every field (the rule
     lives here once, so a key added later is covered without a word)."""
@@ -79,5 +90,6 @@ class StrictTable(BaseModel):
 
     @field_validator("*", mode="after")
     @classmethod
+    @_signature_once
     def _no_subnormal(cls, value: Any) -> Any:
         return refuse_subnormal(value)
