@@ -19,6 +19,11 @@ if TYPE_CHECKING:
     import numpy as np
 
     from gearcli.diagnostics import Diagnostic
+    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics  # noqa: F401 - re-exported
+
+#: the planetary stage's planet results, in :mod:`gearcli.simulate.planet_results` (a parallel file never creates
+#: them) and importable from here by name (:func:`__getattr__`)
+PLANETARY = ("PlanetDynamics", "PlanetMeshDynamics")
 
 
 @dataclass(frozen=True)
@@ -130,23 +135,6 @@ class StageDynamics:
     type: str = "parallel"
     # the window min/max's error from the output sampling (every run; error_estimate adds it to the solver's)
     sampling_error: SamplingError | None = None
-
-
-@dataclass(frozen=True)
-class PlanetMeshDynamics:
-    """One planet mesh over the statistics window: F_t (N) and the dynamic transmission error (um)."""
-
-    tangential_N: ChannelStats
-    dte_um: DteStats
-
-
-@dataclass(frozen=True)
-class PlanetDynamics:
-    """One planet's sun and ring meshes' simulated forces."""
-
-    index: int  # 1-based
-    sun: PlanetMeshDynamics
-    ring: PlanetMeshDynamics
 
 
 @dataclass(frozen=True)
@@ -285,3 +273,11 @@ class SimulationResult:
     steady: SteadyState | None = None  # how the window was found ([simulation] steady)
     units: tuple[str, str] = ("deg_s", "Nmm")  # output speed and torque units: the design file's key suffixes
     # (io.units.key_units, set by the facade gearcli.api)
+
+
+def __getattr__(name: str) -> object:
+    if name in PLANETARY:
+        from gearcli.simulate import planet_results  # lazy: a file without planetary stages never needs them
+
+        return getattr(planet_results, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
