@@ -12,9 +12,11 @@ whole file (:class:`DesignFile`) and the small tables, with every table's name r
 """
 
 import math
-from typing import Annotated, Literal
+from contextvars import ContextVar
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, TypeAdapter, model_validator
+from pydantic import BaseModel, ConfigDict, Field, GetCoreSchemaHandler, PrivateAttr, TypeAdapter, model_validator
+from pydantic_core import core_schema
 
 from gearcli.config.bounds_types import NotTiny
 from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file's tables, one namespace)
@@ -193,6 +195,27 @@ class Rating(_Table):
         return data
 
 
+#: the design file's optional tables that a validator of the tables a file gives (:func:`validate_design`) holds
+#: only when the file gives them
+OPTIONAL_TABLES = frozenset({"bearing", "duty", "lubricant", "rating"})
+#: the optional tables a validator being built holds (None: all), :func:`validate_design`
+_GIVEN: ContextVar[frozenset[str] | None] = ContextVar("gearcli_given_tables", default=None)
+
+
+class _IfGiven:
+    """Annotation of an optional table ``key``: its schema, except in a validator built for files without the key
+    (:func:`validate_design`), where nothing ever reaches it (an absent key takes its default, unvalidated)."""
+
+    def __init__(self, key: str) -> None:
+        self.key = key
+
+    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+        given = _GIVEN.get()
+        if given is not None and self.key not in given:
+            return core_schema.any_schema()
+        return handler(source)
+
+
 class DesignFile(_Table):
     """The whole design file."""
 
@@ -206,10 +229,10 @@ class DesignFile(_Table):
     load: Load
     target: Target | None = None
     simulation: Simulation = Simulation()
-    bearing: Annotated[list[Bearing], Field(max_length=200)] = []  # shaft statics and ISO 281 (docs/life.md)
-    duty: Annotated[list[Duty], Field(max_length=200)] = []  # duty cycle of `gearcli life`
-    lubricant: Lubricant | None = None
-    rating: Rating | None = None
+    bearing: Annotated[list[Bearing], Field(max_length=200), _IfGiven("bearing")] = []  # shaft statics, ISO 281
+    duty: Annotated[list[Duty], Field(max_length=200), _IfGiven("duty")] = []  # duty cycle of `gearcli life`
+    lubricant: Annotated[Lubricant | None, _IfGiven("lubricant")] = None
+    rating: Annotated[Rating | None, _IfGiven("rating")] = None
     _min_static_safety_bearing: float | None = PrivateAttr(default=None)  # of a bearing-only [rating] table
 
     @model_validator(mode="after")
@@ -279,22 +302,30 @@ class DesignFile(_Table):
         return self.contact.merged(self.stage[k].mesh)
 
 
-#: the design file's validators of some stage kinds only (:func:`validate_design`), by the kinds
-_BY_KINDS: dict[frozenset[str], TypeAdapter] = {}
+#: the design file's validators of the tables a file gives (:func:`validate_design`), by its stage kinds and
+#: optional tables
+_BY_KINDS: dict[tuple[frozenset[str] | None, frozenset[str]], TypeAdapter] = {}
 
 
 def validate_design(data: dict) -> DesignFile:
-    """``DesignFile.model_validate(data)``, by a validator of the stage kinds the file names when they are not every
-    registered kind (:func:`gearcli.config.stage_tables.kinds_named`): a parallel file's validator holds no
-    planetary stage table (its members, their rules), ~6 ms of the ~17 ms that building the whole file's costs on
-    the first load. The same instance and the same errors: a stage validates by its kind's table either way."""
+    """``DesignFile.model_validate(data)``, by a validator of the tables the file gives: of the stage kinds it
+    names (:func:`gearcli.config.stage_tables.kinds_named`: a parallel file's holds no planetary stage table, its
+    members and their rules) and of the :data:`OPTIONAL_TABLES` it gives (no bearing, duty, lubricant or rating
+    table without them), about half of what building the whole file's validator costs on the first load (~17 ms).
+    The same instance and the same errors: a stage validates by its kind's table either way, and a table the file
+    does not give is never validated."""
     used = kinds_named(data)
-    if used is None:
+    given = frozenset(k for k in OPTIONAL_TABLES if k in data)
+    if used is None and given == OPTIONAL_TABLES:
         return DesignFile.model_validate(data)
-    adapter = _BY_KINDS.get(used)
+    adapter = _BY_KINDS.get((used, given))
     if adapter is None:
-        adapter = TypeAdapter(DesignFile)  # a table's validator is deferred (STRICT): built now, of those kinds
-        with only_kinds(used):
-            adapter.rebuild()
-        _BY_KINDS[used] = adapter
+        adapter = TypeAdapter(DesignFile)  # a table's validator is deferred (STRICT): built now, of those tables
+        token = _GIVEN.set(given)
+        try:
+            with only_kinds(used):
+                adapter.rebuild()
+        finally:
+            _GIVEN.reset(token)
+        _BY_KINDS[(used, given)] = adapter
     return adapter.validate_python(data)

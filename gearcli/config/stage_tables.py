@@ -155,9 +155,9 @@ _ONLY: ContextVar[frozenset[str] | None] = ContextVar("gearcli_stage_kinds", def
 
 
 @contextmanager
-def only_kinds(used: frozenset[str]) -> Iterator[None]:
-    """Within: a validator built of the design file holds the tables of the stage kinds ``used`` only
-    (:func:`gearcli.config.schema.validate_design`); the class's own validator and JSON Schema hold every kind."""
+def only_kinds(used: frozenset[str] | None) -> Iterator[None]:
+    """Within: a validator built of the design file holds the tables of the stage kinds ``used`` only (None: every
+    kind; :func:`gearcli.config.schema.validate_design`); the class's own validator and JSON Schema hold every kind."""
     token = _ONLY.set(used)
     try:
         yield
