@@ -11,7 +11,9 @@ mistake or garbage) is refused with the bound named. Used by :mod:`gearcli.confi
 
 import inspect
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any
 
@@ -41,6 +43,36 @@ class NotTiny:
                   {"exclusiveMinimum": -self.tiny, "exclusiveMaximum": 0}]
         out["not"] = {"anyOf": ranges if out.get("minimum", 0) < 0 else ranges[:1]}
         return out
+
+
+#: the optional tables a validator being built holds (None: all), :func:`given_tables`
+_GIVEN: ContextVar[frozenset[str] | None] = ContextVar("gearcli_given_tables", default=None)
+
+
+@contextmanager
+def given_tables(given: frozenset[str] | None) -> Iterator[None]:
+    """Within: a validator built of the design file holds the optional tables (:class:`IfGiven`) of ``given`` only
+    (None: all; :func:`gearcli.config.schema.validate_design`); the classes' own validators hold every table."""
+    token = _GIVEN.set(given)
+    try:
+        yield
+    finally:
+        _GIVEN.reset(token)
+
+
+@dataclass(frozen=True)
+class IfGiven:
+    """Annotation of an optional table at ``path`` ("bearing", "input.motor", "stage.mesh": any stage's): its
+    schema, except in a validator built for files that do not give it (:func:`given_tables`), where nothing ever
+    reaches it (an absent key takes its default, unvalidated) and its schema is not built."""
+
+    path: str
+
+    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> Any:
+        given = _GIVEN.get()
+        if given is not None and self.path not in given:
+            return core_schema.any_schema()
+        return handler(source)
 
 
 #: every table of the design file: unknown keys, NaN, infinity and type coercion refused. ``defer_build``: a

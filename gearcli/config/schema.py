@@ -12,13 +12,11 @@ whole file (:class:`DesignFile`) and the small tables, with every table's name r
 """
 
 import math
-from contextvars import ContextVar
-from typing import Annotated, Any, Literal
+from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, GetCoreSchemaHandler, PrivateAttr, TypeAdapter, model_validator
-from pydantic_core import core_schema
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, TypeAdapter, model_validator
 
-from gearcli.config.bounds_types import NotTiny
+from gearcli.config.bounds_types import IfGiven, NotTiny, given_tables
 from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file's tables, one namespace)
     DEFAULT_DAMPING_RATIO,
     IMPACT_KEYS,
@@ -195,25 +193,10 @@ class Rating(_Table):
         return data
 
 
-#: the design file's optional tables that a validator of the tables a file gives (:func:`validate_design`) holds
-#: only when the file gives them
-OPTIONAL_TABLES = frozenset({"bearing", "duty", "lubricant", "rating"})
-#: the optional tables a validator being built holds (None: all), :func:`validate_design`
-_GIVEN: ContextVar[frozenset[str] | None] = ContextVar("gearcli_given_tables", default=None)
-
-
-class _IfGiven:
-    """Annotation of an optional table ``key``: its schema, except in a validator built for files without the key
-    (:func:`validate_design`), where nothing ever reaches it (an absent key takes its default, unvalidated)."""
-
-    def __init__(self, key: str) -> None:
-        self.key = key
-
-    def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
-        given = _GIVEN.get()
-        if given is not None and self.key not in given:
-            return core_schema.any_schema()
-        return handler(source)
+#: the design file's optional tables (:class:`~gearcli.config.bounds_types.IfGiven`): a validator of the tables a
+#: file gives (:func:`validate_design`) holds these only when the file gives them
+OPTIONAL_TABLES = ("bearing", "duty", "lubricant", "rating", "input.motor", "input.torque_ripple", "load.fluctuation",
+                   "stage.mesh", "stage.shaft")
 
 
 class DesignFile(_Table):
@@ -229,10 +212,10 @@ class DesignFile(_Table):
     load: Load
     target: Target | None = None
     simulation: Simulation = Simulation()
-    bearing: Annotated[list[Bearing], Field(max_length=200), _IfGiven("bearing")] = []  # shaft statics, ISO 281
-    duty: Annotated[list[Duty], Field(max_length=200), _IfGiven("duty")] = []  # duty cycle of `gearcli life`
-    lubricant: Annotated[Lubricant | None, _IfGiven("lubricant")] = None
-    rating: Annotated[Rating | None, _IfGiven("rating")] = None
+    bearing: Annotated[list[Bearing], Field(max_length=200), IfGiven("bearing")] = []  # shaft statics, ISO 281
+    duty: Annotated[list[Duty], Field(max_length=200), IfGiven("duty")] = []  # duty cycle of `gearcli life`
+    lubricant: Annotated[Lubricant | None, IfGiven("lubricant")] = None
+    rating: Annotated[Rating | None, IfGiven("rating")] = None
     _min_static_safety_bearing: float | None = PrivateAttr(default=None)  # of a bearing-only [rating] table
 
     @model_validator(mode="after")
@@ -307,25 +290,36 @@ class DesignFile(_Table):
 _BY_KINDS: dict[tuple[frozenset[str] | None, frozenset[str]], TypeAdapter] = {}
 
 
+def _given(data: dict) -> frozenset[str]:
+    """The :data:`OPTIONAL_TABLES` ``data`` (a design file, parsed) gives: a key of its table, or of any stage
+    (a table of the wrong type counts as given: its own error comes first)."""
+    out = []
+    for path in OPTIONAL_TABLES:
+        head, _, key = path.partition(".")
+        if head not in data:
+            continue
+        value = data[head]
+        items = [value] if isinstance(value, dict) else value if isinstance(value, list) else None
+        if not key or items is None or any(not isinstance(v, dict) or key in v for v in items):
+            out.append(path)
+    return frozenset(out)
+
+
 def validate_design(data: dict) -> DesignFile:
     """``DesignFile.model_validate(data)``, by a validator of the tables the file gives: of the stage kinds it
     names (:func:`gearcli.config.stage_tables.kinds_named`: a parallel file's holds no planetary stage table, its
-    members and their rules) and of the :data:`OPTIONAL_TABLES` it gives (no bearing, duty, lubricant or rating
+    members and their rules) and of the :data:`OPTIONAL_TABLES` it gives (no bearing, duty, motor or mesh override
     table without them), about half of what building the whole file's validator costs on the first load (~17 ms).
     The same instance and the same errors: a stage validates by its kind's table either way, and a table the file
     does not give is never validated."""
     used = kinds_named(data)
-    given = frozenset(k for k in OPTIONAL_TABLES if k in data)
-    if used is None and given == OPTIONAL_TABLES:
+    given = _given(data)
+    if used is None and len(given) == len(OPTIONAL_TABLES):
         return DesignFile.model_validate(data)
     adapter = _BY_KINDS.get((used, given))
     if adapter is None:
         adapter = TypeAdapter(DesignFile)  # a table's validator is deferred (STRICT): built now, of those tables
-        token = _GIVEN.set(given)
-        try:
-            with only_kinds(used):
-                adapter.rebuild()
-        finally:
-            _GIVEN.reset(token)
+        with only_kinds(used), given_tables(given):
+            adapter.rebuild()
         _BY_KINDS[(used, given)] = adapter
     return adapter.validate_python(data)

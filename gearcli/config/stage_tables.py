@@ -9,7 +9,7 @@ from typing import Annotated, Any, Literal, cast
 from pydantic import ConfigDict, Field, GetCoreSchemaHandler, Tag, model_validator
 from pydantic_core import core_schema
 
-from gearcli.config.bounds_types import NotTiny
+from gearcli.config.bounds_types import IfGiven, NotTiny
 from gearcli.config.contact import ContactOverride
 from gearcli.config.duty import CenterAngleDeg
 from gearcli.config.members import BasicRack, Carrier, PairGear, Planet, Ring, Sun
@@ -44,9 +44,9 @@ class Stage(_Table):
     gear: PairGear
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
-    mesh: ContactOverride | None = None
+    mesh: Annotated[ContactOverride | None, IfGiven("stage.mesh")] = None
     basic_rack: BasicRack = BasicRack()
-    shaft: ShaftSpring | None = None
+    shaft: Annotated[ShaftSpring | None, IfGiven("stage.shaft")] = None
     center_angle_deg: CenterAngleDeg = 0.0  # line of centres pinion -> gear, from y, cw seen from the input end
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: running-in C_ay)
@@ -105,9 +105,9 @@ class PlanetaryStage(_Table):
     input: PlanetaryMember = "sun"
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
-    mesh: ContactOverride | None = None
+    mesh: Annotated[ContactOverride | None, IfGiven("stage.mesh")] = None
     basic_rack: BasicRack = BasicRack()
-    shaft: ShaftSpring | None = None
+    shaft: Annotated[ShaftSpring | None, IfGiven("stage.shaft")] = None
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None
     model_config = ConfigDict(json_schema_extra=_members_rule())
