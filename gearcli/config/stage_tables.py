@@ -100,7 +100,7 @@ class PlanetaryStage(_Table):
     sun: Sun
     planet: Planet
     ring: Ring
-    carrier: Carrier = Carrier()
+    carrier: Carrier = Carrier.model_construct()
     fixed: PlanetaryMember = "ring"
     input: PlanetaryMember = "sun"
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
