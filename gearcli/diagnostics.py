@@ -68,6 +68,8 @@ OTHER = "other"
 
 @dataclass(frozen=True)
 class Diagnostic:
+    """A warning as data: its stable ``code``, severity, message and the values it names."""
+
     code: str
     severity: Severity
     message: str

@@ -37,6 +37,8 @@ class StaticForces:
 
 @dataclass(frozen=True)
 class GearResult:
+    """One member of a gear pair: its geometry, speed, torque and inertia (``design``'s ``pinion``/``gear``)."""
+
     teeth: int
     hand: str  # "left" | "right" | "spur"
     profile_shift: float
@@ -107,6 +109,8 @@ class RatedMesh(Protocol):
 
 @dataclass(frozen=True)
 class StageResult:
+    """One stage's design results: ratio, geometry, contact ratios, stiffness and static forces."""
+
     index: int  # 1-based
     ratio: float
     efficiency: float
@@ -187,6 +191,8 @@ def drop_absent_bearing_keys(doc: JsonObject) -> JsonObject:
 
 @dataclass(frozen=True)
 class DesignResult:
+    """The design calculations of a whole file (``gearcli design``'s document)."""
+
     title: str
     stages: tuple[StageResult, ...]
     shafts: tuple[ShaftResult, ...]

@@ -6,6 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import ConfigDict, Field, PrivateAttr, ValidationInfo, field_validator, model_validator
 
+from gearcli.config.bounds_types import IfGiven
 from gearcli.config.excitation import MAX_HARMONICS, Fluctuation, Ripple
 from gearcli.config.machine import Motor, Table, increasing_speeds
 from gearcli.config.schema_rules import (
@@ -85,10 +86,10 @@ class Input(_Coupled):
     torque_Nm: TorqueNm | None = None
     torque_Nmm: TorqueNmm | None = None
     power_kW: Power | None = None  # converted to a torque at the nominal input speed
-    torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS)] = []  # drive = "torque" only
+    torque_ripple: Annotated[list[Ripple], Field(max_length=MAX_HARMONICS), IfGiven("input.torque_ripple")] = []
     rotation: Literal["cw", "ccw"] = "cw"  # seen from the input end looking along +x (shaft statics)
     # an induction motor (drive = "motor"; with drive = "speed" it checks that the motor can follow the ramp)
-    motor: Motor | None = None
+    motor: Annotated[Motor | None, IfGiven("input.motor")] = None
     starting: Literal["direct", "star_delta", "soft_start", "vfd"] = "direct"
     switch_speed_rpm: Annotated[float, Field(ge=1.0, le=MAX_SPEED_RPM)] | None = None  # star_delta
     voltage_ramp_s: Annotated[float, Field(ge=1e-3, le=MAX_TIME_S)] | None = None  # soft_start
@@ -197,7 +198,7 @@ class Load(_Coupled):
     ramp_s: Seconds = 0.0
     application_factor: Annotated[float, Field(ge=1.0, le=10.0)] = 1.0
     power_kW: Power | None = None  # converted to a torque at the nominal output speed (see DesignFile)
-    fluctuation: Annotated[list[Fluctuation], Field(max_length=MAX_HARMONICS)] = []
+    fluctuation: Annotated[list[Fluctuation], Field(max_length=MAX_HARMONICS), IfGiven("load.fluctuation")] = []
     # torque against speed: a power law of the load body's speed (the torque given at the nominal output
     # speed), or a table [[rpm, N·m], ...] of the output speed (then no torque key: the table gives it)
     speed_exponent: Literal[0, 1, 2] = 0

@@ -106,10 +106,10 @@ class Bearing(_Table):
     dynamic_load_rating_kN: Annotated[float, Field(ge=1e-3, le=1e5)]  # C
     kind: Literal["ball", "roller"]
     locating: bool = False
-    factors: BearingFactors = BearingFactors()
+    factors: BearingFactors = BearingFactors.model_construct()
     # ISO 76 static safety and ISO 281 modified life (docs/bearings.md); all optional
     static_load_rating_kN: Annotated[float, Field(ge=1e-3, le=1e5)] | None = None  # C_0
-    static_factors: StaticFactors = StaticFactors()
+    static_factors: StaticFactors = StaticFactors.model_construct()
     fatigue_load_limit_kN: Annotated[float, Field(ge=1e-4, le=1e4)] | None = None  # C_u
     pitch_diameter_mm: Annotated[float, Field(ge=1.0, le=1e4)] | None = None  # d_m = (d + D) / 2
     reliability_percent: Annotated[float, Field(ge=90.0, le=99.95)] | None = None  # a_1; absent: 90

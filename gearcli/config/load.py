@@ -27,7 +27,7 @@ from gearcli.config import overrides as _overrides
 from gearcli.config.keys import format_path
 from gearcli.config.messages import translate
 from gearcli.config.prescan import MAX_BYTES, check_bytes, check_text
-from gearcli.config.schema import DesignFile
+from gearcli.config.schema import DesignFile, validate_design
 from gearcli.config.starter import json_schema, starter_toml
 from gearcli.core import plugins
 from gearcli.errors import ConfigError
@@ -351,7 +351,7 @@ def _validate(data: dict, source: str, paths: Sequence[tuple]) -> DesignFile:
     errors at or below an overridden key)."""
     _plug_in_kinds(data, source, paths)
     try:
-        design = DesignFile.model_validate(data)
+        design = validate_design(data)
         _check_window(design, source, paths)
         return design
     except ValidationError as exc:

@@ -1,12 +1,15 @@
 """The design file's stage tables: a parallel stage (a gear pair) and a planetary stage, the flexible shaft after a
 stage, and the union of every registered stage kind's table (``type``, :mod:`gearcli.stages.kinds`)."""
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from typing import Annotated, Any, Literal, cast
 
 from pydantic import ConfigDict, Field, GetCoreSchemaHandler, Tag, model_validator
 from pydantic_core import core_schema
 
-from gearcli.config.bounds_types import NotTiny
+from gearcli.config.bounds_types import IfGiven, NotTiny
 from gearcli.config.contact import ContactOverride
 from gearcli.config.duty import CenterAngleDeg
 from gearcli.config.members import BasicRack, Carrier, PairGear, Planet, Ring, Sun
@@ -41,9 +44,9 @@ class Stage(_Table):
     gear: PairGear
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
-    mesh: ContactOverride | None = None
+    mesh: Annotated[ContactOverride | None, IfGiven("stage.mesh")] = None
     basic_rack: BasicRack = BasicRack()
-    shaft: ShaftSpring | None = None
+    shaft: Annotated[ShaftSpring | None, IfGiven("stage.shaft")] = None
     center_angle_deg: CenterAngleDeg = 0.0  # line of centres pinion -> gear, from y, cw seen from the input end
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None  # C_a (rating; absent: 0, DESIGN §8)
@@ -97,14 +100,14 @@ class PlanetaryStage(_Table):
     sun: Sun
     planet: Planet
     ring: Ring
-    carrier: Carrier = Carrier()
+    carrier: Carrier = Carrier.model_construct()
     fixed: PlanetaryMember = "ring"
     input: PlanetaryMember = "sun"
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
-    mesh: ContactOverride | None = None
+    mesh: Annotated[ContactOverride | None, IfGiven("stage.mesh")] = None
     basic_rack: BasicRack = BasicRack()
-    shaft: ShaftSpring | None = None
+    shaft: Annotated[ShaftSpring | None, IfGiven("stage.shaft")] = None
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None
     model_config = ConfigDict(json_schema_extra=_members_rule())
@@ -147,13 +150,42 @@ def _stage_tag(value: Any) -> str:
     return str(getattr(value, "type", "parallel"))
 
 
+#: the stage kinds a validator being built holds (None: every registered kind), :func:`only_kinds`
+_ONLY: ContextVar[frozenset[str] | None] = ContextVar("gearcli_stage_kinds", default=None)
+
+
+@contextmanager
+def only_kinds(used: frozenset[str] | None) -> Iterator[None]:
+    """Within: a validator built of the design file holds the tables of the stage kinds ``used`` only (None: every
+    kind; :func:`gearcli.config.schema.validate_design`); the class's own validator and JSON Schema hold every kind."""
+    token = _ONLY.set(used)
+    try:
+        yield
+    finally:
+        _ONLY.reset(token)
+
+
+def kinds_named(data: dict) -> frozenset[str] | None:
+    """The stage kinds the stage tables of ``data`` (a design file, parsed) name when each is a registered kind and
+    they are not all of them, else None (a validator with every kind: it names them all in an unknown one's error)."""
+    stages = data.get("stage")
+    if not isinstance(stages, list):
+        return None
+    used = frozenset(_stage_tag(s) for s in stages)
+    registered = set(kinds.kinds("table"))
+    return used if used < registered else None
+
+
 class _RegisteredStages:
     """A stage table validates as the table of its kind: one union of every registered kind's table, tagged by
-    ``type`` (:mod:`gearcli.stages.kinds`; a kind registered later, :func:`register_stage_table`, rebuilds it)."""
+    ``type`` (:mod:`gearcli.stages.kinds`; a kind registered later, :func:`register_stage_table`, rebuilds it), or
+    of the kinds :func:`only_kinds` names (a stage's validation and its errors are those of its kind's table
+    either way)."""
 
     def __get_pydantic_core_schema__(self, source: Any, handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+        only = _ONLY.get()
         choices = {k: handler.generate_schema(Annotated[cast(type, kinds.facet(k, "table")), Tag(k)])
-                   for k in kinds.kinds("table")}
+                   for k in kinds.kinds("table") if only is None or k in only}
         return core_schema.tagged_union_schema(choices, discriminator=_stage_tag)
 
 

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Method:
+    """An integration method by name: whether it is implicit and takes a Jacobian."""
+
     name: str
     implicit: bool
     takes_jacobian: bool

@@ -156,6 +156,8 @@ def _geometry(stage: Stage, k: int) -> PairGeometry:
 
 @dataclass(frozen=True)
 class _Stiffness:
+    """A stage's Hertz line contact and ISO 6336-1 mesh stiffness."""
+
     equivalent_radius_mm: float
     effective_modulus_MPa: float
     hertz_N_mm1_5: float
@@ -261,6 +263,8 @@ def _model_inertia_kg_m2(gear: Gear, density_kg_m3: float, pitch_mm: float, mean
 
 @dataclass(frozen=True)
 class _Resonance:
+    """A stage's ISO 6336-1 resonance figures: reduced mass, resonance speed and ratio."""
+
     reduced_mass_kg_mm: float
     speed_rpm: float
     ratio: float

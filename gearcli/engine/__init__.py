@@ -183,6 +183,8 @@ def options(requested: str, arrays, methods: tuple[str, ...], also: tuple[str, .
 
 @dataclass(frozen=True)
 class EngineChoice:
+    """The engine a run takes (python or compiled) and why."""
+
     engine: str  # "python" or "compiled"
     requested: str
     reason: str

@@ -93,6 +93,8 @@ def _say(text: str, quiet: bool) -> None:
 # ------------------------------------------------------------------------------------------- loading
 @dataclass(frozen=True)
 class Loaded:
+    """The compiled kernel as loaded in this process, and what loading it cost."""
+
     kernel: Any  # the gearcli.engine.kernel module
     load_s: float  # numba import + the kernel module's (and a build's, when this process built it)
     compiled: bool  # compiled now (no cache)

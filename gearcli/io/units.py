@@ -32,6 +32,8 @@ TORQUE_UNITS = {"Nmm": ("N·mm", 1000.0), "Nm": ("N·m", 1.0)}  # from N·m
 
 @dataclass(frozen=True)
 class OutputUnits:
+    """The units a file's outputs are written in: those of its speed and torque keys."""
+
     speed: str = "deg_s"  # "deg_s" | "rpm" | "rad_s": the suffix of the input's speed key
     torque: str = "Nmm"  # "Nmm" | "Nm": the suffix of the load's torque key (power_kW: N·m)
 

@@ -45,6 +45,8 @@ MIN_TWIST_SCALE_RAD = 1e-6  # atol floor for unloaded springs: 1 urad of twist
 
 @dataclass(frozen=True)
 class Energy:
+    """The energy balance's terms at the end of a run (J)."""
+
     input_work_J: float
     load_work_J: float
     damping_loss_J: float

@@ -116,6 +116,8 @@ def peak_rigid_forces(lay: Layout, duration_s: float, samples: int = 801) -> np.
 
 @dataclass(frozen=True)
 class Linearisation:
+    """The model linearised at one operating point: forces, tangent stiffness and damping, eigenvalues."""
+
     forces: np.ndarray  # the operating point, per connector (N along a mesh, N m for a spring)
     deflection: np.ndarray  # per connector: a mesh's penetration p0 (m), a spring's twist (rad)
     stiffness: np.ndarray  # k_c = dF/d delta

@@ -70,6 +70,8 @@ SOURCES = ("mesh", "shaft", "input_torque_ripple", "load_fluctuation")  # Crossi
 
 @dataclass(frozen=True)
 class Crossing:
+    """Where an excitation meets a mode: its Hz per input Hz, the input speed there, participation, amplification."""
+
     excitation: str  # "stage 1 mesh 1x", "shaft 2 1x", "input torque ripple order 2", "load fluctuation 14.5 Hz"
     hz_per_input_hz: float  # excitation frequency over the input body's rotation frequency (0: a fixed frequency)
     input_speed_rpm: float | None  # input body speed at which it meets the mode; None: at every speed (fixed Hz)
@@ -94,6 +96,8 @@ class Crossing:
 
 @dataclass(frozen=True)
 class Mode:
+    """One natural mode: frequency, shape, strain-energy shares, dominant element and crossings."""
+
     number: int  # 1-based, ascending frequency
     frequency_Hz: float
     rigid: bool
@@ -106,6 +110,8 @@ class Mode:
 
 @dataclass(frozen=True)
 class ModalAnalysis:
+    """The modes of the linearised chain at one boundary condition."""
+
     boundary: str
     bodies: tuple[str, ...]
     connectors: tuple[str, ...]
@@ -364,6 +370,8 @@ def _torque_crossing(lay: Layout, t: TorqueSource, f: float, shape: tuple[float,
 
 @dataclass(frozen=True)
 class Resonance:
+    """An excitation near a natural frequency at the operating speed, with its warning's message."""
+
     mode: int
     frequency_Hz: float
     element: str

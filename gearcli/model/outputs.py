@@ -28,6 +28,8 @@ from gearcli.model.step import ramp, ramp_motion, ramp_rates
 
 @dataclass(frozen=True)
 class ConnectorSeries:
+    """One connector's sampled force, deflection, penetration, stored energy and DTE."""
+
     force: np.ndarray  # F_bt (N) of a mesh, torque (N m) of a spring; signed
     deflection: np.ndarray  # delta (m or rad)
     penetration_m: np.ndarray  # mesh: signed penetration beyond the gap; spring: zeros
@@ -46,6 +48,8 @@ class ConnectorSeries:
 
 @dataclass(frozen=True)
 class Sampled:
+    """A run's samples: body speeds (and angles), drive and load torques, every connector's series."""
+
     time_s: np.ndarray
     omega_rad_s: np.ndarray  # (n_bodies, T)
     theta_rad: np.ndarray | None  # (n_bodies, T), only when the scene needs angles

@@ -17,6 +17,8 @@ STAGE_ROLES = ("mesh", "stage")
 
 @dataclass(frozen=True)
 class Body:
+    """One rigid body of the chain: inertia, label and nominal speed ratio to the input body."""
+
     inertia: float  # kg m^2
     label: str  # "motor", "shaft 1", "shaft 2 gear end", "shaft 2 pinion end", "drum"
     ratio: float  # nominal speed over the input body's speed (rigid kinematics)

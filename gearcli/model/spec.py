@@ -254,6 +254,10 @@ class StageModel(Protocol):
 
 @dataclass(frozen=True)
 class ModelSpec:
+    """The torsional model's SI parameters: ``meshes``, ``inertias_kg_m2`` (one per reducer shaft), ``drive``,
+    ``load``, the optional ``motor`` and ``drum`` couplings, flexible ``shafts``, further ``elements``, and per stage
+    its own model (``stage_models``) and kind (``stage_types``)."""
+
     meshes: tuple[MeshSpec, ...]
     inertias_kg_m2: tuple[float, ...]  # one per reducer shaft: len(meshes) + 1
     drive: DriveSpec

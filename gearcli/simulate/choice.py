@@ -54,6 +54,8 @@ __all__ = ["EXPLICIT", "EXPLICIT_METHOD", "IMPLICIT_METHOD", "STIFFNESS_LIMIT", 
 
 @dataclass(frozen=True)
 class Choice:
+    """The integration method chosen for a run, why, and the linearisations and cost model behind it."""
+
     method: str
     requested: str
     reason: str

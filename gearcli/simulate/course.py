@@ -54,6 +54,8 @@ MAX_COURSE_CHANGES = 2
 
 @dataclass(frozen=True)
 class CourseChange:
+    """A mid-run change of method or engine: when, from what, to what and why."""
+
     at_s: float
     from_: str
     to: str

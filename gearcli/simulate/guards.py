@@ -106,6 +106,8 @@ def require_feasible(choice: Choice, budget: int) -> None:
 
 @dataclass(frozen=True)
 class EnergyReport:
+    """Energy the integration created beyond the net work put in, and its scale."""
+
     created_J: float  # growth of kinetic + stored energy beyond the net work put in
     scale_J: float
 

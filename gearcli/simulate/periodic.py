@@ -51,12 +51,16 @@ CONVERGED = 1.0  # residual (in units of the tolerance) at or below which two st
 
 @dataclass(frozen=True)
 class Excitation:
+    """One excitation of the scene and its period."""
+
     label: str  # "stage 1 mesh", "input torque ripple order 2", "load fluctuation 3 Hz"
     period_s: float
 
 
 @dataclass(frozen=True)
 class CommonPeriod:
+    """The scene's common excitation period and how it was formed."""
+
     period_s: float
     source: str  # how it was formed
     exact: bool  # True when it is a common period of every excitation
@@ -176,6 +180,8 @@ def boundary_residual(y_now: np.ndarray, y_then: np.ndarray, rtol: float, atol: 
 
 @dataclass(frozen=True)
 class Repeat:
+    """After how many periods the state repeats, and the residual that decided it."""
+
     k: int  # the state repeats after k periods; 0: no repeat found
     residual: float  # the residual that decided it (units of the tolerance)
 

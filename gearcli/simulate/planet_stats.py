@@ -10,11 +10,12 @@ import numpy as np
 
 from gearcli.model.outputs import tooth_forces
 from gearcli.simulate import stats
-from gearcli.simulate.results import DteStats, PlanetDynamics, PlanetMeshDynamics
+from gearcli.simulate.results import DteStats
 
 if TYPE_CHECKING:
     from gearcli.model import TorsionalModel
     from gearcli.model.outputs import Sampled
+    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics
     from gearcli.simulate.results import StageDynamics
 
 
@@ -56,6 +57,7 @@ def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, peri
     series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
     if not series:
         return (), None, (0.0, 0.0)
+    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics  # lazy: a planetary stage only
 
     def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
         q = dte[mask] * 1e6  # um

@@ -19,10 +19,17 @@ if TYPE_CHECKING:
     import numpy as np
 
     from gearcli.diagnostics import Diagnostic
+    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics  # noqa: F401 - re-exported
+
+#: the planetary stage's planet results, in :mod:`gearcli.simulate.planet_results` (a parallel file never creates
+#: them) and importable from here by name (:func:`__getattr__`)
+PLANETARY = ("PlanetDynamics", "PlanetMeshDynamics")
 
 
 @dataclass(frozen=True)
 class ChannelStats:
+    """A channel's statistics over the steady window."""
+
     mean: float
     min: float
     max: float
@@ -91,6 +98,8 @@ REGIME_DOUBLE_SIDED = "double-sided impact"  # it also strikes the other (back) 
 
 @dataclass(frozen=True)
 class StageDynamics:
+    """One stage's simulated forces over the steady window, its run peak and mesh response."""
+
     index: int  # 1-based
     tangential_N: ChannelStats  # over the steady window
     radial_N: ChannelStats
@@ -129,22 +138,9 @@ class StageDynamics:
 
 
 @dataclass(frozen=True)
-class PlanetMeshDynamics:
-    """One planet mesh over the statistics window: F_t (N) and the dynamic transmission error (um)."""
-
-    tangential_N: ChannelStats
-    dte_um: DteStats
-
-
-@dataclass(frozen=True)
-class PlanetDynamics:
-    index: int  # 1-based
-    sun: PlanetMeshDynamics
-    ring: PlanetMeshDynamics
-
-
-@dataclass(frozen=True)
 class SolverStats:
+    """What the integration did: method, tolerances, evaluations, steps, time and status."""
+
     method: str  # the scipy method that ran
     requested_method: str  # as in the design file ("auto" ...)
     choice_reason: str  # why auto chose it, or "as requested"
@@ -256,6 +252,8 @@ class SimulationExtra(TypedDict, total=False):
 
 @dataclass(frozen=True)
 class SimulationResult:
+    """One simulation: the series, the window's statistics per stage, the solver and the energy."""
+
     time_s: np.ndarray
     series: dict[Channel, np.ndarray]  # what it measures -> samples in SI, in output order (io.channels names them)
     window_s: tuple[float, float]
@@ -275,3 +273,11 @@ class SimulationResult:
     steady: SteadyState | None = None  # how the window was found ([simulation] steady)
     units: tuple[str, str] = ("deg_s", "Nmm")  # output speed and torque units: the design file's key suffixes
     # (io.units.key_units, set by the facade gearcli.api)
+
+
+def __getattr__(name: str) -> object:
+    if name in PLANETARY:
+        from gearcli.simulate import planet_results  # lazy: a file without planetary stages never needs them
+
+        return getattr(planet_results, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

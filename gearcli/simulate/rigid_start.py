@@ -51,6 +51,8 @@ IN_OPERATION = ("which the window's statistics and dynamic factor carry (see the
 
 @dataclass(frozen=True)
 class RigidStart:
+    """The rigid drivetrain's start: input speed and acceleration, load, line and tangential forces."""
+
     time_s: np.ndarray
     speed_rad_s: np.ndarray  # the input body's speed
     accel_rad_s2: np.ndarray

@@ -56,6 +56,8 @@ MIN_SAMPLES_PER_PERIOD = 4.0  # a mode fitted needs this many samples per period
 
 @dataclass(frozen=True)
 class Ringing:
+    """An undecayed run-up transient of one mode in one stage's window."""
+
     stage: int  # 1-based
     frequency_Hz: float  # damped frequency of the ringing mode
     decay_time_s: float  # 1 / sigma (inf when undamped)

@@ -49,6 +49,8 @@ STATUS_SWITCH = st.SWITCH
 
 @dataclass(frozen=True)
 class Integration:
+    """One integration's samples, tolerances, counters, wall time and status."""
+
     t: np.ndarray  # the requested samples
     y: np.ndarray  # (n_states, len(t))
     method: str
@@ -123,6 +125,8 @@ class CourseLimit:
 
 @dataclass
 class _Counters:
+    """A run's evaluation, Jacobian and LU counts as they accumulate."""
+
     nfev: int = 0
     njev: int = 0
     nlu: int = 0

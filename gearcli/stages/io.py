@@ -190,6 +190,8 @@ def _balance(p, u: OutputUnits) -> str:
 
 @dataclass(frozen=True)
 class _Efficiencies:
+    """A stage's efficiencies as its table prints them: the stage's, the basic and the mesh's."""
+
     stage_efficiency: float
     basic_efficiency: float
     mesh_efficiency: float
