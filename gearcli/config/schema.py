@@ -285,9 +285,9 @@ class DesignFile(_Table):
         return self.contact.merged(self.stage[k].mesh)
 
 
-#: the design file's validators of the tables a file gives (:func:`validate_design`), by its stage kinds and
-#: optional tables
-_BY_KINDS: dict[tuple[frozenset[str] | None, frozenset[str]], TypeAdapter] = {}
+#: the design file's validators of the tables a file gives (:func:`validate_design`), by its stage kinds (each with
+#: the table class registered for it when the validator was built) and optional tables
+_BY_KINDS: dict[tuple[frozenset[tuple[str, object]] | None, frozenset[str]], TypeAdapter] = {}
 
 
 def _given(data: dict) -> frozenset[str]:
@@ -316,10 +316,13 @@ def validate_design(data: dict) -> DesignFile:
     given = _given(data)
     if used is None and len(given) == len(OPTIONAL_TABLES):
         return DesignFile.model_validate(data)
-    adapter = _BY_KINDS.get((used, given))
+    # keyed by the kinds' table classes too: a table withdrawn and provided again (kinds.withdraw, kinds.provide:
+    # a test swapping a plug-in's table) is validated by the new class, as DesignFile's rebuilt validator does
+    key = (None if used is None else frozenset((k, kinds.facet(k, "table")) for k in used), given)
+    adapter = _BY_KINDS.get(key)
     if adapter is None:
         adapter = TypeAdapter(DesignFile)  # a table's validator is deferred (STRICT): built now, of those tables
         with only_kinds(used), given_tables(given):
             adapter.rebuild()
-        _BY_KINDS[(used, given)] = adapter
+        _BY_KINDS[key] = adapter
     return adapter.validate_python(data)
