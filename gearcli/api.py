@@ -60,7 +60,7 @@ if TYPE_CHECKING:
     from gearcli.sweep.session import Session, SinkFactory
     from gearcli.sweep.worker import Case, Evaluation, Scene
 
-__all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "design", "design_case",
+__all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "check_budget", "design", "design_case",
            "engine_build", "engine_cache_refusal", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
            "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
