@@ -70,7 +70,7 @@ def test_errors_of_edited_seeds_are_the_whole_class_s(edit, what):
 def test_a_parallel_file_s_validator_holds_no_planetary_or_bearing_table_and_the_class_keeps_them():
     data = tomllib.loads(SEED.read_text())
     validate_design(data)
-    adapter = schema._BY_KINDS[(frozenset({"parallel"}), frozenset())]
+    adapter = schema._BY_KINDS[(frozenset({("parallel", schema.Stage)}), frozenset())]  # kind, its table
     built = repr(adapter.core_schema)
     assert "PlanetaryStage" not in built and "Bearing" not in built and "Motor" not in built
     assert "Stage" in built and "PairGear" in built  # what the seed gives is validated
