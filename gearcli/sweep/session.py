@@ -76,6 +76,9 @@ class Session:
     design_warnings: tuple[str, ...]
     notes: tuple[str, ...] = ()  # about the run itself (--jobs capped), printed as warnings
 
+#: the row formats a sweep writes (``--format``; ``gearcli.io.sweep_file``'s sinks)
+FORMATS = ("csv", "json")
+
 
 def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequence[str], *, vary: Sequence[str],
             randoms: Sequence[str], samples: int | None, sampling: str, seed: int | None, direction: str | None,
@@ -84,6 +87,8 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     """The checked sweep of the base file ``raw`` (``loaded`` and ``design`` with the ``sets`` applied): every
     usage error raised before any point runs; ``output``, when given, read for a resume by ``read_previous``;
     the points evaluated by ``evaluate`` when :func:`run` runs them."""
+    if fmt not in FORMATS:  # the CLI's choice; a script's typo would otherwise write CSV silently
+        raise SweepUsageError(f"must be one of {', '.join(FORMATS)}, got {fmt!r}", source="--format")
     if scheduler is not None:  # '' too: an empty address is a mistake, never a silent local run
         require_distributed()
         check_scheduler(scheduler)

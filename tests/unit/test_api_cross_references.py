@@ -35,3 +35,16 @@ def test_check_budget_refuses_a_run_over_the_memory_limit_naming_the_file_and_ke
     loaded, design = api.load_and_design(path, ["simulation.steps=2000000", "simulation.duration_s=100"])
     with pytest.raises(ResourceError, match=r"industrial_two_stage\.toml: simulation\.steps"):
         api.check_budget(loaded, design, series=True)
+
+
+def test_a_documented_choice_given_wrong_is_a_clear_error_not_a_silent_default_or_a_key_error():
+    """api.life's ``variant`` (iso, elementary, modified: a typo was a bare KeyError deep in the life layer) and
+    api.prepare_sweep's ``fmt`` (csv, json: 'xml' wrote CSV without a word), as the CLI's choices refuse them."""
+    from gearcli.sweep.spec import SweepUsageError
+
+    path = str(ROOT / "configs" / "mixer_duty.toml")
+    with pytest.raises(SweepUsageError, match=r"--format: must be one of csv, json, got 'xml'"):
+        api.prepare_sweep(path, [], vary=["input.speed_rpm=600,700"], fmt="xml", jobs=1)
+    session = api.prepare_life(path)
+    with pytest.raises(ValueError, match=r"variant: must be one of iso, elementary, modified, got 'bogus'"):
+        api.life(session, static=True, variant="bogus")
