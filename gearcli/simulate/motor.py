@@ -112,8 +112,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                f", so it never reaches its operating point {op.stable_rad_s * rpm:.5g} rpm")
         back = _driven_back(t, w_motor, ws)
         diags.append(dg.warning(dg.MOTOR_STALLS, "the motor's curve cannot carry the load (reflected through the "
-                                f"reducer, losses included): it stalls {where}{aim}{back[0]}; a larger motor or a "
-                                "smaller load",
+                                f"reducer, losses included): it stalls {where}{aim}{back[0]}; "
+                                f"{_limit_advice(lay, motor, op.speed_rad_s or 0.0)}a larger motor or a smaller load",
                                 stall_speed_rpm=None if op.speed_rad_s is None else op.speed_rad_s * rpm,
                                 operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm,
                                 reverse_speed_rpm=back[1]))
@@ -168,6 +168,16 @@ def _vfd_outrun(lay: Layout, motor: MotorSpec, t: np.ndarray, w_motor: np.ndarra
                        breakdown_slip_speed_rpm=slip_b * rpm, at_s=float(t[i]))]
 
 
+def _limit_advice(lay: Layout, motor: MotorSpec, w: float) -> str:
+    """A VFD whose torque limit is below the load where the motor stalls: the limit, not the motor, is short."""
+    limit = motor.start_parameters[1] if motor.starting == "vfd" else 0.0
+    load = reflected_load(lay, w)
+    if not 0.0 < limit < load:
+        return ""
+    return (f"the VFD's torque_limit_Nm {limit:.4g} N·m is below the load there ({load:.4g} N·m): a torque_limit_Nm "
+            f"above it, ")
+
+
 def _in_star(lay: Layout, motor: MotorSpec, stall_rad_s: float | None) -> str:
     """Where a star-delta motor stalls in star, in words: at standstill (a third of the locked-rotor torque is
     short of the load), or on the star curve below the switch-over speed, which it then never reaches."""
@@ -198,11 +208,17 @@ def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagno
     ratio = reflected_load(lay, w_op) / nominal
     if abs(ratio - 1.0) <= LOAD_OFF_DESIGN:
         return []
+    motor = lay.drive.motor
+    limit = motor.start_parameters[1] if vfd and motor is not None else 0.0
+    why = (VFD_OFF_SPEED if vfd else
+           "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)")
+    if limit > 0.0 and nominal >= limit:  # not slip: the converter's torque limit holds the motor below speed_rpm
+        why = (f"the VFD's torque_limit_Nm {limit:.4g} N·m is below the load reflected to the motor at speed_rpm, "
+               f"{nominal:.4g} N·m: the limit holds the motor where the load has fallen to it; a torque_limit_Nm "
+               f"above {nominal:.4g} N·m (or a smaller load)")
     return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
                        f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
-                       "the design's static forces and the dynamic factors against them are off by that much; "
-                       + (VFD_OFF_SPEED if vfd else
-                          "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)"),
+                       "the design's static forces and the dynamic factors against them are off by that much; " + why,
                        operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
 
 
