@@ -105,7 +105,10 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
             "(the load drives it): it would run away past it; the run ended before", synchronous_speed_rpm=ws * rpm)]
     elif not op.reaches:
         where = ("at standstill: it cannot start" if op.speed_rad_s is None else
-                 f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm")
+                 f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm"
+                 if op.speed_rad_s < op.breakdown_rad_s else  # a table's dip (its largest torque at or below it)
+                 f"at {op.speed_rad_s * rpm:.5g} rpm, where its curve dips below the load (a pull-up torque short "
+                 "of it)")
         if motor.starting == "star_delta" and (op.speed_rad_s or 0.0) < motor.start_parameters[0]:
             where = _in_star(lay, motor, op.speed_rad_s)
         aim = ("" if op.stable_rad_s is None else

@@ -270,8 +270,9 @@ def test_motor_that_cannot_start(tmp_path: Path) -> None:
     ("{ rated_power_kW = 22, rated_speed_rpm = 1465, synchronous_speed_rpm = 1400, breakdown_torque_ratio = 2.7, "
      "locked_rotor_torque_ratio = 2.2 }", "rated_speed_rpm must be below synchronous_speed_rpm"),
     ("{ torque_speed = [[0, 300], [1000, 330], [500, 280], [1500, 0]] }", "must increase"),
-    ("{ torque_speed = [[0, -300], [1500, 0]] }", "torque_speed"),
-    ("{ torque_speed = [[0, 300], [1500, 50]] }", "torque_speed"),
+    # a table without torque at standstill is told to start with the locked-rotor torque (it was told how to end)
+    ("{ torque_speed = [[0, -300], [1500, 0]] }", "start it with the locked-rotor torque"),
+    ("{ torque_speed = [[0, 300], [1500, 50]] }", "end it at (or past) the synchronous speed"),
 ])
 def test_hostile_motors_exit_2_naming_file_and_key(tmp_path: Path, motor: str, words: str) -> None:
     path = scene(tmp_path, "bad", 1465, motor, 'starting = "direct"', 0.12, 480.0, 2, 0.2)
@@ -280,3 +281,22 @@ def test_hostile_motors_exit_2_naming_file_and_key(tmp_path: Path, motor: str, w
     assert "bad.toml" in res.output and "input.motor" in res.output and words in res.output
     assert "Traceback" not in res.output
     assert not (tmp_path / "o.json").exists()
+
+
+@pytest.mark.parametrize(("locked", "crawl_rpm", "words"), [
+    (300.0, (300 - 480 / (I * ETA)) / 0.5, "where its curve dips below the load"),  # largest torque at standstill
+    (200.0, (200 - 480 / (I * ETA)) / 0.25, "below its breakdown speed 1000.1 rpm"),  # largest at 1000 rpm
+])
+def test_table_motor_crawls_on_its_pull_up_dip(tmp_path: Path, locked: float, crawl_rpm: float, words: str) -> None:
+    """A table with a pull-up dip to 100 N·m at 400 rpm against a constant 480 N·m (123.9 N·m at the motor): it
+    crawls where the first segment meets the load, T = locked − (locked − 100) n / 400 = 123.9 N·m (352.15 rpm for
+    300 N·m at standstill, 304.3 rpm for 200 N·m). With the table's largest torque at standstill the warning used
+    to say "below its breakdown speed 0 rpm"."""
+    table = [[0, locked], [400, 100], [1000, 300], [1450, 200], [1500, 0]]
+    d = simulate(scene(tmp_path, "crawl", 1465, f"{{ torque_speed = {table} }}", 'starting = "direct"', 0.12, 480.0,
+                       0, 1.0))
+    assert_allclose(d["summary"]["motor"]["operating_point_rpm"], crawl_rpm, rtol=1e-9)
+    stall = [x for x in d["warnings"] if x["code"] == "motor_stalls"]
+    assert len(stall) == 1
+    assert words in stall[0]["message"] and "breakdown speed 0 rpm" not in stall[0]["message"]
+    assert_allclose(stall[0]["stall_speed_rpm"], crawl_rpm, rtol=1e-9)
