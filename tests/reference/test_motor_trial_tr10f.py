@@ -300,3 +300,55 @@ def test_table_motor_crawls_on_its_pull_up_dip(tmp_path: Path, locked: float, cr
     assert len(stall) == 1
     assert words in stall[0]["message"] and "breakdown speed 0 rpm" not in stall[0]["message"]
     assert_allclose(stall[0]["stall_speed_rpm"], crawl_rpm, rtol=1e-9)
+
+
+def test_report_on_the_four_pole_fan(tmp_path: Path) -> None:
+    """`gearcli report` on the four-pole fan drive: the theory column is the design's static load at speed_rpm
+    (T_in = 480 / (i η) = 123.92 N·m; F_t = T_in / r_p, r_p = z m_n / (2 cos β); F_r = F_t tan α_t; F_a = F_t tan β),
+    the simulated column the fan at the motor's operating speed n* (brentq): F_t (n*/1465)²; and each rung's errors
+    against a DOP853 rtol 1e-11 reference run here by `simulate` (agreeing to the report's reference uncertainty).
+    Figures: F_t 3800.06 N → 3830.63 N (+0.805 %); the rtol 1e-3 rung's peak error 1.17e-4."""
+    path = scene(tmp_path, "rep", 1465, FOUR.toml(), 'starting = "direct"', 0.12, 480.0, 2, 1.5)
+    out = tmp_path / "rep.json"
+    res = CliRunner().invoke(cli, ["report", str(path), "--format", "json", "-o", str(out), "-q", "--rtols", "1e-3,1e-5"])
+    assert res.exit_code == 0, res.output
+    rep = json.loads(out.read_text(encoding="utf-8"))
+    for key in ("gearcli_version", "input_sha256", "title", "design", "modes", "comparison", "dynamics",
+                "natural_frequencies_Hz", "simulation", "energy_residual", "accuracy", "accuracy_failure", "warnings"):
+        assert key in rep, key
+    assert rep["accuracy_failure"] is None
+    t_in = 480.0 / (I * ETA)
+    beta, alpha_n = math.radians(15.0), math.radians(20.0)
+    alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))
+    ft = t_in * 1e3 / (21 * 3.0 / (2 * math.cos(beta)))
+    load = reflected(480.0, 2, 1465)
+    w_op = brentq(lambda w: FOUR.torque(w) - load(w), (1 - FOUR.sb) * 1500 * RPM, 1500 * RPM, xtol=1e-12)
+    grow = (w_op / RPM / 1465) ** 2
+    rows = {(c["stage"], c["quantity"]): c for c in rep["comparison"]}
+    for q, theory in (("tangential_N", ft), ("radial_N", ft * math.tan(alpha_t)), ("axial_N", ft * math.tan(beta))):
+        assert_allclose(rows[(1, q)]["theory"], theory, rtol=1e-9)
+        assert_allclose(rows[(1, q)]["simulated"], theory * grow, rtol=1e-6)  # a settled window mean
+        assert_allclose(rows[(1, q)]["error_percent"], 100 * (grow - 1), rtol=1e-4)
+    assert_allclose(rows[(None, "ratio")]["theory"], I, rtol=1e-12)
+    assert_allclose(rows[(None, "input_speed_deg_s")]["simulated"], w_op * 180 / math.pi, rtol=1e-7)
+
+    ref_path = tmp_path / "ref.json"
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-o", str(ref_path), "-q", "--set",
+                                   "simulation.rtol=1e-11", "--set", "simulation.method=DOP853"])
+    assert res.exit_code == 0, res.output
+    ref = json.loads(ref_path.read_text(encoding="utf-8"))["summary"]
+    ref_vals = (ref["output_speed_deg_s"], ref["stages"][0]["tangential_N"]["mean"], ref["stages"][0]["peak_tangential_N"])
+    acc = rep["accuracy"]
+    u = acc["reference"]["uncertainty"]
+    for run in acc["runs"]:
+        rung = tmp_path / f"rung_{run['method']}_{run['rtol']}.json"
+        res = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-o", str(rung), "-q", "--set",
+                                       f"simulation.rtol={run['rtol']}", "--set", f"simulation.method={run['method']}"])
+        assert res.exit_code == 0, res.output
+        s = json.loads(rung.read_text(encoding="utf-8"))["summary"]
+        mine = [abs(v - r) / abs(r) for v, r in zip(
+            (s["output_speed_deg_s"], s["stages"][0]["tangential_N"]["mean"], s["stages"][0]["peak_tangential_N"]),
+            ref_vals, strict=True)]
+        # two references (the report's DOP853 1e-12, this DOP853 1e-11) differ by ~u: agreement to 1 % or 3 u
+        for got, key in zip(mine, ("error_speed", "error_mean_force", "error_peak_force"), strict=True):
+            assert abs(run[key] - got) <= max(0.01 * got, 3 * u + 1e-12), (run["method"], run["rtol"], key)
