@@ -352,3 +352,22 @@ def test_report_on_the_four_pole_fan(tmp_path: Path) -> None:
         # two references (the report's DOP853 1e-12, this DOP853 1e-11) differ by ~u: agreement to 1 % or 3 u
         for got, key in zip(mine, ("error_speed", "error_mean_force", "error_peak_force"), strict=True):
             assert abs(run[key] - got) <= max(0.01 * got, 3 * u + 1e-12), (run["method"], run["rtol"], key)
+
+
+def test_star_delta_switch_above_the_star_crossing_stays_in_star(tmp_path: Path) -> None:
+    """The six-pole star-delta on its linear load with switch_speed_rpm 990, above where a third of the curve meets
+    the load (brentq: 892.35 rpm, and the full curve's crossing 985.39 rpm lies under the switch band too): it runs
+    on in star and never switches. Warned as `motor_stalls` in star (it used to pass as a reached operating point
+    with only `motor_speed_mismatch`, "give the speed the motor runs at")."""
+    load = reflected(900.0, 1, 980)
+    star = brentq(lambda w: SIX.torque(w) / 3 - load(w), (1 - SIX.sb) * 1000 * RPM, 980 * RPM, xtol=1e-12)
+    delta = brentq(lambda w: SIX.torque(w) - load(w), (1 - SIX.sb) * 1000 * RPM, 1000 * RPM, xtol=1e-12)
+    d = simulate(scene(tmp_path, "sd_high", 980, SIX.toml(), 'starting = "star_delta"\nswitch_speed_rpm = 990', 0.6,
+                       900.0, 1, 1.5))
+    assert_allclose(d["summary"]["motor"]["operating_point_rpm"], star / RPM, rtol=1e-8)
+    codes = {x["code"]: x for x in d["warnings"]}
+    assert "motor_speed_mismatch" not in codes
+    stall = codes["motor_stalls"]
+    assert "in star at 892.35 rpm" in stall["message"] and "never switches to delta" in stall["message"]
+    assert_allclose(stall["stall_speed_rpm"], star / RPM, rtol=1e-8)
+    assert_allclose(stall["operating_point_rpm"], delta / RPM, rtol=1e-8)
