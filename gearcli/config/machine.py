@@ -51,11 +51,15 @@ class Motor(StrictTable):
             if self.torque_speed[0][0] < 0.0:
                 raise ValueError("torque_speed: speeds must be 0 or more (from standstill to the synchronous speed)")
             speed, torque = self.torque_speed[-1]
-            if torque > 0.0 or self.torque_speed[0][1] <= 0.0:
+            if self.torque_speed[0][1] <= 0.0:
                 raise ValueError(f"torque_speed: an induction motor's torque is positive from standstill and falls to 0 at "
-                                 f"its synchronous speed; this table {'ends at' if torque > 0.0 else 'starts at'} "
-                                 f"{self.torque_speed[-1 if torque > 0.0 else 0]!r} (held past its last point the "
-                                 "motor would run away): end it at (or past) the synchronous speed with torque 0")
+                                 f"its synchronous speed; this table starts at {self.torque_speed[0]!r} (no torque at "
+                                 "standstill: the motor could not start): start it with the locked-rotor torque")
+            if torque > 0.0:
+                raise ValueError(f"torque_speed: an induction motor's torque is positive from standstill and falls to 0 at "
+                                 f"its synchronous speed; this table ends at {self.torque_speed[-1]!r} (held past its "
+                                 "last point the motor would run away): end it at (or past) the synchronous speed with "
+                                 "torque 0")
             return self
         if len(given) != len(NAMEPLATE):
             missing = [k for k in NAMEPLATE if getattr(self, k) is None]

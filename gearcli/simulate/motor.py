@@ -99,23 +99,31 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
         return {"synchronous_speed_rpm": ws * RAD_S_TO_RPM, "peak_required_torque_Nm": need}, diags
     rpm = RAD_S_TO_RPM
     driven = op.speed_rad_s is None and op.stable_rad_s is None and _net_at(lay, 0.0) > 0.0
+    # a star-delta motor whose star curve meets the load below the switch-over speed never switches to delta: it
+    # runs on in star (a third of its torque), though the crossing is on the stable branch
+    in_star = (motor.starting == "star_delta" and op.speed_rad_s is not None
+               and op.speed_rad_s < motor.start_parameters[0])
+    reaches = op.reaches and not in_star
     if driven:  # the net torque never falls to 0 up to synchronous speed: the load drives the motor on
         diags += _runaway(t, w_motor, ws) or [dg.warning(
             dg.MOTOR_RUNS_AWAY, f"the motor's net torque stays positive up to its synchronous speed {ws * rpm:.5g} rpm "
             "(the load drives it): it would run away past it; the run ended before", synchronous_speed_rpm=ws * rpm)]
-    elif not op.reaches:
+    elif not reaches:
         where = ("at standstill: it cannot start" if op.speed_rad_s is None else
-                 f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm")
+                 f"at {op.speed_rad_s * rpm:.5g} rpm, below its breakdown speed {op.breakdown_rad_s * rpm:.5g} rpm"
+                 if op.speed_rad_s < op.breakdown_rad_s else  # a table's dip (its largest torque at or below it)
+                 f"at {op.speed_rad_s * rpm:.5g} rpm, where its curve dips below the load (a pull-up torque short "
+                 "of it)")
         if motor.starting == "star_delta" and (op.speed_rad_s or 0.0) < motor.start_parameters[0]:
             where = _in_star(lay, motor, op.speed_rad_s)
-        aim = ("" if op.stable_rad_s is None else
-               f", so it never reaches its operating point {op.stable_rad_s * rpm:.5g} rpm")
+        aim_rad_s = _delta_point(lay, motor, op) if in_star else op.stable_rad_s
+        aim = ("" if aim_rad_s is None else f", so it never reaches its operating point {aim_rad_s * rpm:.5g} rpm")
         back = _driven_back(t, w_motor, ws)
         diags.append(dg.warning(dg.MOTOR_STALLS, "the motor's curve cannot carry the load (reflected through the "
-                                f"reducer, losses included): it stalls {where}{aim}{back[0]}; a larger motor or a "
-                                "smaller load",
+                                f"reducer, losses included): it stalls {where}{aim}{back[0]}; "
+                                f"{_limit_advice(lay, motor, op.speed_rad_s or 0.0)}a larger motor or a smaller load",
                                 stall_speed_rpm=None if op.speed_rad_s is None else op.speed_rad_s * rpm,
-                                operating_point_rpm=None if op.stable_rad_s is None else op.stable_rad_s * rpm,
+                                operating_point_rpm=None if aim_rad_s is None else aim_rad_s * rpm,
                                 reverse_speed_rpm=back[1]))
     if not driven:
         diags += _runaway(t, w_motor, ws, op.stable_rad_s)
@@ -124,12 +132,12 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     diags += _reswitches(motor, t, w_motor)
     diags += _vfd_outrun(lay, motor, t, w_motor)
     t_start = start_time(t, w_motor, op.speed_rad_s)
-    if op.reaches and (t_start is None or t_start > window[0]):
+    if reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
         diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
-    if op.reaches and op.speed_rad_s is not None:
+    if reaches and op.speed_rad_s is not None:
         diags += _load_off_design(lay, op.speed_rad_s, motor.starting == "vfd")
     w_mean = float(w_motor[mask].mean())
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
@@ -168,6 +176,27 @@ def _vfd_outrun(lay: Layout, motor: MotorSpec, t: np.ndarray, w_motor: np.ndarra
                        breakdown_slip_speed_rpm=slip_b * rpm, at_s=float(t[i]))]
 
 
+def _delta_point(lay: Layout, motor: MotorSpec, op: OperatingPoint) -> float | None:
+    """Where the full (delta) curve meets the load on its stable branch: the operating point a star-delta motor
+    stuck in star never reaches (None: no crossing there)."""
+    def net(w: float) -> float:
+        return motor.curve(w) - reflected_load(lay, w)
+    lo, hi = max(op.breakdown_rad_s, op.speed_rad_s or 0.0), op.synchronous_rad_s
+    if not net(lo) > 0.0 > net(hi):
+        return None
+    return float(brentq(net, lo, hi, xtol=1e-12 * hi))
+
+
+def _limit_advice(lay: Layout, motor: MotorSpec, w: float) -> str:
+    """A VFD whose torque limit is below the load where the motor stalls: the limit, not the motor, is short."""
+    limit = motor.start_parameters[1] if motor.starting == "vfd" else 0.0
+    load = reflected_load(lay, w)
+    if not 0.0 < limit < load:
+        return ""
+    return (f"the VFD's torque_limit_Nm {limit:.4g} N·m is below the load there ({load:.4g} N·m): a torque_limit_Nm "
+            f"above it, ")
+
+
 def _in_star(lay: Layout, motor: MotorSpec, stall_rad_s: float | None) -> str:
     """Where a star-delta motor stalls in star, in words: at standstill (a third of the locked-rotor torque is
     short of the load), or on the star curve below the switch-over speed, which it then never reaches."""
@@ -198,11 +227,17 @@ def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagno
     ratio = reflected_load(lay, w_op) / nominal
     if abs(ratio - 1.0) <= LOAD_OFF_DESIGN:
         return []
+    motor = lay.drive.motor
+    limit = motor.start_parameters[1] if vfd and motor is not None else 0.0
+    why = (VFD_OFF_SPEED if vfd else
+           "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)")
+    if limit > 0.0 and nominal >= limit:  # not slip: the converter's torque limit holds the motor below speed_rpm
+        why = (f"the VFD's torque_limit_Nm {limit:.4g} N·m is below the load reflected to the motor at speed_rpm, "
+               f"{nominal:.4g} N·m: the limit holds the motor where the load has fallen to it; a torque_limit_Nm "
+               f"above {nominal:.4g} N·m (or a smaller load)")
     return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
                        f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
-                       "the design's static forces and the dynamic factors against them are off by that much; "
-                       + (VFD_OFF_SPEED if vfd else
-                          "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)"),
+                       "the design's static forces and the dynamic factors against them are off by that much; " + why,
                        operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
 
 
