@@ -280,6 +280,15 @@ def test_starts_under_a_periodic_steady_state_are_counted_from_rest(motor, tmp_p
     assert full["start"]["damage"] == ref["damage"]  # the same run from rest, the same classes
     said = [w for w in doc["warnings"] if w["code"] == "duty" and "run from rest" in w["message"]]
     assert len(said) == 1 and said[0]["message"].startswith("duty point full:") and "periodic" in said[0]["message"]
-    # the point without starts: its window is one period of the periodic state (an equilibrium: one mesh period)
+    # the point without starts: its window is one period of the periodic state (an equilibrium: one mesh period) at
+    # the motor's operating point, where the nameplate's Kloss curve (fitted by hand, tests/reference/
+    # test_motor_trial_tr10f.py) carries the part load's 400 N m x 23/71 (one stage, no losses): brentq, ~1490.8 rpm
+    from scipy.optimize import brentq
+
+    from tests.reference.test_motor_trial_tr10f import RPM, Nameplate
+
+    plate = Nameplate(45.0, 1475, 1500, 2.8, 2.2)
+    w_op = brentq(lambda w: plate.torque(w) - 400.0 * RATIO, (1 - plate.sb) * 1500 * RPM, 1500 * RPM, xtol=1e-12)
+    assert 1480 < w_op / RPM < 1500
     assert part["start"] is None
-    assert_allclose(part["solver"]["window_s"][1] - part["solver"]["window_s"][0], 60 / (1480 * 23), rtol=1e-9)
+    assert_allclose(part["solver"]["window_s"][1] - part["solver"]["window_s"][0], 2 * np.pi / (w_op * 23), rtol=1e-7)
