@@ -2,7 +2,7 @@
 
 Scene: one helical stage (m_n 4, 20/60 teeth, beta 15 deg) under the ISO-calibrated Hertzian mesh with no damping
 at all, 1500 rpm, 300 N m: after the 0.05 s ramps the mesh rings undamped at ~600 Hz for the whole window. The
-reference is the same scene at rtol / 1000 with DOP853 (rtol 7e-10: its own estimate of its error is below 1e-6 of
+reference is the same scene at rtol / 1000 with DOP853 (its own estimate of its error is below 1e-6 of
 the mean). RK45 converges at q ~ 0.8 in rtol, so the bare difference to a pass at rtol / 10 is only 1 - 10^-0.8 =
 0.84 of the run's error: before the fix a min 1.15e-3 of the mean off was estimated 0.97e-3 and called resolved.
 The static force, an independent check of the window mean: F_t = T / r = 300e3 N mm / (4 x 60 / cos 15 deg / 2).
@@ -47,17 +47,20 @@ steps = 400
 engine = "python"
 """
 
-RTOL = 7e-7  # RK45's min and max land just beyond the 1e-3 target here
+# where the min and max land just beyond the 1e-3 target (2.77 N and 2.87 N against 2.415 N): before the fix RK45
+# estimated 2.33 N (0.84x) and BDF 2.28 N (0.80x), both "resolved"; now 3.12 N and 3.04 N, warned
+CASES = (("RK45", 7e-7), ("BDF", 8e-8))
 
 
 @pytest.mark.slow
-def test_rk45_estimate_is_not_below_the_true_error(tmp_path):
+@pytest.mark.parametrize(("method", "rtol"), CASES)
+def test_estimate_is_not_below_the_true_error(tmp_path, method, rtol):
     path = tmp_path / "undamped.toml"
     path.write_text(SCENE, encoding="utf-8")
     cfg = load_design(str(path), []).design
     design = compute_design(cfg)
-    run = run_simulation(cfg, design, method="RK45", rtol=RTOL, want_series=False)
-    ref = run_simulation(cfg, design, method="DOP853", rtol=RTOL / 1000, want_series=False,
+    run = run_simulation(cfg, design, method=method, rtol=rtol, want_series=False)
+    ref = run_simulation(cfg, design, method="DOP853", rtol=rtol / 1000, want_series=False,
                          error_estimate=False, max_nfev=5_000_000)
     r_pitch_mm = 4 * 60 / math.cos(math.radians(15)) / 2
     # the window mean rings about the static force (Hertzian asymmetry shifts it by ~5e-5)
