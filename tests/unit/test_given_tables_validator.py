@@ -8,13 +8,16 @@ the restricted one."""
 from __future__ import annotations
 
 import copy
+import os
+import subprocess
+import sys
+import textwrap
 import tomllib
 from pathlib import Path
 
 import pytest
 from pydantic import ValidationError
 
-from gearcli.config import json_schema, schema
 from gearcli.config.schema import DesignFile, validate_design
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -68,14 +71,25 @@ def test_errors_of_edited_seeds_are_the_whole_class_s(edit, what):
 
 
 def test_a_parallel_file_s_validator_holds_no_planetary_or_bearing_table_and_the_class_keeps_them():
-    data = tomllib.loads(SEED.read_text())
-    validate_design(data)
-    adapter = schema._BY_KINDS[(frozenset({("parallel", schema.Stage)}), frozenset())]  # kind, its table
-    built = repr(adapter.core_schema)
-    assert "PlanetaryStage" not in built and "Bearing" not in built and "Motor" not in built
-    assert "Stage" in built and "PairGear" in built  # what the seed gives is validated
-    # the class, its validator and its JSON Schema are the whole file's whatever was validated before
-    assert "PlanetaryStage" in str(json_schema()) and "Bearing" in str(json_schema())
-    planetary = _parsed(ROOT / "configs" / "planetary_stage.toml")
-    assert planetary is not None
-    assert type(DesignFile.model_validate(planetary).stage[0]).__name__ == "PlanetaryStage"
+    """In a fresh interpreter, as a one-shot command loads a file: what another test registered or built in this
+    process (a plug-in kind's rebuild of the class) cannot hide or fake the restricted build."""
+    code = textwrap.dedent(f"""
+        import tomllib
+        from pathlib import Path
+        from gearcli.config import json_schema, schema
+        from gearcli.config.schema import DesignFile, validate_design
+        data = tomllib.loads(Path({str(SEED)!r}).read_text())
+        validate_design(data)
+        adapter = schema._BY_KINDS[(frozenset({{("parallel", schema.Stage)}}), frozenset())]  # kind, its table
+        built = repr(adapter.core_schema)
+        assert "PlanetaryStage" not in built and "Bearing" not in built and "Motor" not in built
+        assert "Stage" in built and "PairGear" in built  # what the seed gives is validated
+        # the class, its validator and its JSON Schema are the whole file's whatever was validated before
+        assert "PlanetaryStage" in str(json_schema()) and "Bearing" in str(json_schema())
+        planetary = tomllib.loads(Path({str(ROOT / "configs" / "planetary_stage.toml")!r}).read_text())
+        assert type(DesignFile.model_validate(planetary).stage[0]).__name__ == "PlanetaryStage"
+        print("ok")
+    """)
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=ROOT)
+    assert res.returncode == 0 and res.stdout.strip() == "ok", res.stderr[-2000:]
