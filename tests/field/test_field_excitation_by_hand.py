@@ -229,7 +229,7 @@ def test_speed_sweep_peaks_at_the_hand_resonance_speed(tmp_path):
     speeds = [float(row["input.speed_rpm"]) for row in rows]
     rms = [float(row["stage1_dte_um_rms"]) for row in rows]
     assert speeds[rms.index(max(rms))] == min(speeds, key=lambda n: abs(n - N_RES))
-    for n, value in zip(speeds, rms):
+    for n, value in zip(speeds, rms, strict=True):
         r = n / N_RES
         d = math.sqrt((1 - r * r) ** 2 + (2 * ZETA * r) ** 2)
         assert value == pytest.approx(E_MM * 1e3 * r * r / d / math.sqrt(2), rel=2e-3)
@@ -296,5 +296,6 @@ def test_order_zero_and_negative_amplitudes_are_refused(tmp_path, setting):
     path = _write(tmp_path, RIPPLE_SCENE.format(order=10, steps=1000))
     result = CliRunner().invoke(cli, ["simulate", path, "--set", setting, "--format", "json"])
     assert result.exit_code == 2
-    assert "Traceback" not in result.output and ("order" in result.output or "amplitude" in result.output
-                                                or "frequency" in result.output)
+    assert "Traceback" not in result.output and (
+        "order" in result.output or "amplitude" in result.output or "frequency" in result.output
+    )
