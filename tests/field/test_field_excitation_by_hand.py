@@ -299,3 +299,25 @@ def test_order_zero_and_negative_amplitudes_are_refused(tmp_path, setting):
     assert "Traceback" not in result.output and (
         "order" in result.output or "amplitude" in result.output or "frequency" in result.output
     )
+
+
+def test_modes_table_writes_whole_numbers_out(tmp_path):
+    """The TE scene's mesh holds all of its mode's strain energy: the table says (100 %, 10), not
+    (1e+02 %, 10); a °/s file's 1x crossing at 60 f_n / 25 rpm x 6 = 14389 °/s is 14389, not 1.439e+04."""
+    text = TE_SCENE.format(speed=N_RES, steady="").replace(f"speed_rpm = {N_RES}", f"speed_deg_s = {6 * N_RES}")
+    result = CliRunner().invoke(cli, ["modes", _write(tmp_path, text), "--format", "table"])
+    assert result.exit_code == 0, result.output
+    assert "e+0" not in result.stdout
+    assert "(100 %, 10)" in result.stdout
+    assert f"stage 1 mesh 1x @ {6 * N_RES:.0f} " in result.stdout
+
+
+@pytest.mark.parametrize(
+    ("x", "digits", "text"),
+    [(100.0, 2, "100"), (14389.46, 4, "14389"), (99.4, 2, "99"), (0.0031, 2, "0.0031"), (4.9e-6, 2, "4.9e-06"),
+     (9.96, 2, "10"), (0.0, 2, "0"), (1.5e9, 4, "1.5e+09")],
+)
+def test_figure_keeps_significant_digits_without_exponents_for_whole_numbers(x, digits, text):
+    from gearcli.io.modes_out import figure
+
+    assert figure(x, digits) == text
