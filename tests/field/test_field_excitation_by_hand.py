@@ -314,8 +314,16 @@ def test_modes_table_writes_whole_numbers_out(tmp_path):
 
 @pytest.mark.parametrize(
     ("x", "digits", "text"),
-    [(100.0, 2, "100"), (14389.46, 4, "14389"), (99.4, 2, "99"), (0.0031, 2, "0.0031"), (4.9e-6, 2, "4.9e-06"),
-     (9.96, 2, "10"), (0.0, 2, "0"), (1.5e9, 4, "1.5e+09")],
+    [
+        (100.0, 2, "100"),
+        (14389.46, 4, "14389"),
+        (99.4, 2, "99"),
+        (0.0031, 2, "0.0031"),
+        (4.9e-6, 2, "4.9e-06"),
+        (9.96, 2, "10"),
+        (0.0, 2, "0"),
+        (1.5e9, 4, "1.5e+09"),
+    ],
 )
 def test_figure_keeps_significant_digits_without_exponents_for_whole_numbers(x, digits, text):
     from gearcli.io.modes_out import figure
