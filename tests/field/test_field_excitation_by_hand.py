@@ -329,3 +329,58 @@ def test_figure_keeps_significant_digits_without_exponents_for_whole_numbers(x, 
     from gearcli.io.modes_out import figure
 
     assert figure(x, digits) == text
+
+
+MOTOR_SCENE = """
+title = "motor on a coupling, second-order torque ripple"
+[[stage]]
+normal_module_mm = 3
+normal_pressure_angle_deg = 20
+pinion = { teeth = 25, face_width_mm = 20, hand = "spur", inertia_kg_m2 = 0.01 }
+gear   = { teeth = 50, face_width_mm = 20, hand = "spur", inertia_kg_m2 = 0.16 }
+[contact]
+stiffness = 1e8
+exponent = 1
+damping_ratio = 0.05
+[input]
+drive = "torque"
+torque_Nm = 100
+speed_rpm = 1500
+inertia_kg_m2 = 0.05
+coupling_stiffness_Nm_rad = 1e4
+coupling_damping_Nms_rad = 1.0
+torque_ripple = [{amplitude_percent = 10, order = 2}]
+[load]
+torque_Nm = 200
+[simulation]
+duration_s = 1.0
+steps = 40000
+"""
+
+
+def test_motor_coupling_ripple_by_hand(tmp_path):
+    """Motor J_m = 0.05 on a 1e4 N m/rad, 1 N m s/rad coupling to a stiff reducer of J_r = 0.01 + 0.16 / 2^2
+    = 0.05 kg m^2 (input side): the free mode at sqrt(k (J_m + J_r) / (J_m J_r)) / 2 pi = 100.66 Hz with
+    zeta = c / (2 sqrt(k mu)), mu = J_m J_r / (J_m + J_r); the 10 N m ripple at 2 per revolution (50 Hz,
+    r = 0.497) gives a coupling torque of mu T_r / J_m sqrt(1 + (2 zeta r)^2) / D (the last 0.1 s, after
+    ~15 decay times)."""
+    j_m, j_r, k, c = 0.05, 0.01 + 0.16 / 4, 1e4, 1.0
+    mu = j_m * j_r / (j_m + j_r)
+    omega_n, zeta = math.sqrt(k / mu), c / (2 * math.sqrt(k * mu))
+    path = _write(tmp_path, MOTOR_SCENE)
+    modes = _json(["modes", path])
+    free = modes["boundaries"]["free"][1]
+    # 1e-4: the 1e8 N/mm mesh's compliance in series (its own mode at 19.8 kHz)
+    assert free["frequency_Hz"] == pytest.approx(omega_n / (2 * math.pi), rel=1e-4)
+    assert free["damping_ratio"] == pytest.approx(zeta, rel=1e-3)
+    result = CliRunner().invoke(cli, ["simulate", path, "--format", "csv", "-q"])
+    assert result.exit_code == 0, result.output
+    rows = list(csv.DictReader(line for line in result.stdout.splitlines() if not line.startswith("#")))
+    late = [row for row in rows if float(row["time_s"]) > 0.9]
+    torque = [float(row["input_coupling_torque_Nm"]) for row in late]
+    n = sum(float(row["motor_speed_rpm"]) for row in late) / len(late)
+    r = 2 * n / 60 * 2 * math.pi / omega_n
+    d = math.sqrt((1 - r * r) ** 2 + (2 * zeta * r) ** 2)
+    hand = mu * 10.0 / j_m * math.sqrt(1 + (2 * zeta * r) ** 2) / d
+    assert (max(torque) - min(torque)) / 2 == pytest.approx(hand, rel=1e-3)
+    assert sum(torque) / len(torque) == pytest.approx(100.0, rel=1e-3)
