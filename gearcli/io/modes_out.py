@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from rich.console import RenderableType
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar
@@ -79,7 +81,8 @@ def _at(c, fmt: str, units: OutputUnits | None = None) -> str:
     speed."""
     if c.input_speed_rpm is None:
         return "any"
-    return format(c.input_speed_rpm if units is None else in_speed_unit(c.input_speed_rpm, units), fmt)
+    value = c.input_speed_rpm if units is None else in_speed_unit(c.input_speed_rpm, units)
+    return format(value, fmt) if fmt != "table" else figure(value, 4)
 
 
 def in_speed_unit(rpm: float, units: OutputUnits) -> float:
@@ -88,8 +91,16 @@ def in_speed_unit(rpm: float, units: OutputUnits) -> float:
 
 
 def _strength(c) -> str:
-    gain = "∞" if c.amplification is None else f"{c.amplification:.2g}"
-    return f"{100 * c.participation:.2g} %, {gain}"
+    gain = "∞" if c.amplification is None else figure(c.amplification, 2)
+    return f"{figure(100 * c.participation, 2)} %, {gain}"
+
+
+def figure(x: float, digits: int) -> str:
+    """``x`` to ``digits`` significant digits, whole numbers written out (a 100 % share as ``100``, not
+    ``1e+02``; a 14389 °/s crossing as ``14389``); small numbers as ``format(x, '.{digits}g')``."""
+    if x == 0.0 or not math.isfinite(x) or abs(x) >= 1e9 or math.floor(math.log10(abs(x))) < digits - 1:
+        return format(x, f".{digits}g")
+    return f"{x:.0f}"
 
 
 def modes_tables(analyses: list[ModalAnalysis], units: OutputUnits | None = None) -> list[RenderableType]:
@@ -109,8 +120,8 @@ def modes_tables(analyses: list[ModalAnalysis], units: OutputUnits | None = None
             t.add_column(col)
         for m in a.modes:
             share = "rigid-body rotation" if m.rigid else f"{m.dominant} ({100 * max(m.energy_share):.0f} %)"
-            cross = ", ".join(f"{c.excitation} @ {_at(c, '.4g', u)} ({_strength(c)})" for c in m.crossings) or "-"
-            t.add_row(str(m.number), f"{m.frequency_Hz:.4g}", "-" if m.rigid else f"{100 * m.damping_ratio:.2g}",
+            cross = ", ".join(f"{c.excitation} @ {_at(c, 'table', u)} ({_strength(c)})" for c in m.crossings) or "-"
+            t.add_row(str(m.number), figure(m.frequency_Hz, 4), "-" if m.rigid else figure(100 * m.damping_ratio, 2),
                       Text(share), Text(cross))
         out.append(t)
     return out

@@ -50,6 +50,8 @@ MAX_MODES = 6  # the slowest-decaying oscillating modes fitted at once
 MAX_RUNS = 3  # runs after the first one, each with a later window
 MAX_DURATION_FACTOR = 8.0  # the longest run, in units of the first run's duration
 MAX_DURATION_S = 600.0
+GROWTH_SEGMENTS = 8  # equal parts of the window whose oscillations must grow one after the other (_growth)
+GROWTH_FACTOR = 2.0  # the last part's peak to peak over the first's
 NEUTRAL = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million periods)
 
 
@@ -65,6 +67,7 @@ class Settling:
     frequency_Hz: float | None = None
     settle_time_s: float | None = None
     cause: str = ""
+    growing: bool = False  # the oscillation grows through the window (_growth), not a decaying transient
 
 
 def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
@@ -116,6 +119,8 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
                              f"{ringing.reference_words(ref, float(static_N[k]) != 0.0)})")
     worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst, floors)
     if worst.settled:
+        worst = _growth([ft[mask] for ft in forces_N], refs, static_N, worst)
+    if worst.settled:
         worst = _unseen_drift(tw, [ft[mask] for ft in forces_N], refs, static_N, eigenvalues, window_s, worst)
     if motor_start_s is not None and motor_start_s > window_s[0]:
         settle = max(motor_start_s, worst.settle_time_s or 0.0)
@@ -151,6 +156,30 @@ def _unseen_drift(t: np.ndarray, forces: list[np.ndarray], refs: list[float], st
                              f"{ringing.reference_words(ref, float(static) != 0.0)}): it cannot be told from that mode's start-up "
                              f"transient; lengthen simulation.duration_s (the window needs ≥ {period / 2:.3g} s, "
                              "and the mode time to decay)")
+    return worst
+
+
+def _growth(forces: list[np.ndarray], refs: list[float], static_N: list[float], worst: Settling) -> Settling:
+    """The growing half of the model-free test: a stage's F_t oscillation (peak to peak in each of
+    :data:`GROWTH_SEGMENTS` equal parts of the window, each holding at least two cycles about its own mean) that grows
+    from part to part, by more than :data:`GROWTH_FACTOR` over the window and to more than SETTLED_FRACTION of the
+    reference force, is no steady state: a build-up still under way, or an instability (a parametric resonance of
+    the stiffness harmonics: the response grows without bound on a linear mesh). No settle time is estimated."""
+    for k, (f, ref, static) in enumerate(zip(forces, refs, static_N, strict=True)):
+        if ref <= 0.0 or f.size < 8 * GROWTH_SEGMENTS:
+            continue
+        parts = np.array_split(f, GROWTH_SEGMENTS)
+        if any(np.count_nonzero(np.diff(np.sign(p - np.mean(p)))) < 4 for p in parts):
+            continue  # not an oscillation the parts resolve (a slow swing, a drift: _unseen_drift's)
+        ptp = np.array([float(np.ptp(p)) for p in parts])
+        if not (np.all(np.diff(ptp) > 0.0) and ptp[-1] > GROWTH_FACTOR * ptp[0] and ptp[-1] > SETTLED_FRACTION * ref):
+            continue
+        return Settling(False, float(ptp[-1] / ref), k + 1, worst.frequency_Hz, None, growing=True, cause=
+                        f"stage {k + 1}'s F_t oscillation grows through the window, from ±{ptp[0] / 2:.4g} N in its "
+                        f"first {GROWTH_SEGMENTS}th to ±{ptp[-1] / 2:.4g} N in its last ({ptp[-1] / ptp[0]:.3g}x, "
+                        f"{100 * ptp[-1] / ref:.3g} % of {ringing.reference_words(ref, float(static) != 0.0)}): a build-up still under "
+                        "way or an instability (a parametric resonance of the mesh stiffness harmonics grows without "
+                        "bound on a linear mesh), no steady state")
     return worst
 
 
@@ -209,6 +238,10 @@ def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str
     when = (f"; it would be settled from about {settling.settle_time_s:.4g} s (simulation.window_start_s, "
             "simulation.duration_s beyond it)" if settling.settle_time_s is not None
             and math.isfinite(settling.settle_time_s) else "")
+    if settling.growing:
+        return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}; "
+                "its statistics, dynamic factor and load peaks grow with the window (more mesh damping, or stiffness "
+                "harmonics below the parametric-resonance threshold, bound it)")
     return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}"
             f"{when}; its max |F_t|, dynamic factor and load peaks include the start-up transient "
             "(or [simulation] steady = \"periodic\")")
