@@ -291,3 +291,65 @@ def test_simulated_planet_means_against_statics(tmp_path):
         assert_allclose(p["sun"]["tangential_N"]["mean"], f_sp, rtol=1e-4)
         assert_allclose(p["ring"]["tangential_N"]["mean"], f_pr, rtol=1e-4)
     assert_allclose(st["load_sharing_factor"], 1.0, rtol=1e-6)
+
+
+def test_sun_larger_than_planet_single_pair_factors_and_k_gamma(tmp_path):
+    """The sun (40) is the larger wheel of its mesh: ISO 6336-2's single-pair factor belongs to each member's own
+    inner point of single contact, so the planet (20) takes M = tan α_wt / √[(√(d_a1²/d_b1² − 1) − 2π/z1)
+    (√(d_a2²/d_b2² − 1) − (ε_α − 1) 2π/z2)] with 1 the planet, and the sun's M < 1 gives Z_B = 1; σ_H scales with
+    √K_γ through σ_H = Z_B σ_H0 √(K_A K_γ K_v K_Hβ K_Hα)."""
+    text = scene(rated=True)
+    d = _design(tmp_path, text)
+    mesh = d["stages"][1]["meshes"][0]
+    r = mesh["rating"]
+    eps = mesh["contact_ratio_transverse"]
+    assert_allclose(eps, _eps_external(ZS, ZP), rtol=1e-9)
+
+    def m_factor(z1: int, z2: int) -> float:
+        root = lambda z: math.sqrt(((z + 2) / (z * math.cos(ALPHA))) ** 2 - 1)  # noqa: E731  d_a/d_b at x = 0
+        return math.tan(ALPHA) / math.sqrt((root(z1) - 2 * math.pi / z1) * (root(z2) - (eps - 1) * 2 * math.pi / z2))
+
+    assert m_factor(ZS, ZP) < 1.0
+    assert_allclose(r["pinion"]["Z_BD"], 1.0, rtol=1e-12)               # the sun
+    assert_allclose(r["gear"]["Z_BD"], m_factor(ZP, ZS), rtol=1e-9)      # the planet: 1.06234
+    assert_allclose(r["K_gamma"], 1.2, rtol=1e-12)
+    # σ_H0 = Z_H Z_E Z_ε Z_β √(F_t/(d_1 b) (u + 1)/u), symmetric in which wheel is "1": 1/d_sun + 1/d_planet
+    f_t = mesh["static_force_N"]["tangential"]
+    s_h0 = r["Z_H"] * r["Z_E"] * r["Z_eps"] * r["Z_beta"] * math.sqrt(f_t / B * (1 / (MN * ZS) + 1 / (MN * ZP)))
+    assert_allclose(r["sigma_H0_MPa"], s_h0, rtol=1e-9)
+    assert_allclose(r["gear"]["sigma_H_MPa"], r["gear"]["Z_BD"] * s_h0 * math.sqrt(
+        r["K_A"] * r["K_gamma"] * r["K_v"] * r["K_Hbeta"] * r["K_Halpha"]), rtol=1e-9)
+
+
+def test_helical_shifted_concentric_by_hand(tmp_path):
+    """β 15°, x_s 0.3, x_p 0.2: the sun–planet α_wt from inv α_wt = inv α_t + 2 (x_s + x_p) tan α_n/(z_s + z_p);
+    the ring's x_r = −(x_s + 2 x_p) = −0.7 makes the internal pair's inv α_wt = inv α_t − 2 (x_p + x_r) tan α_n /
+    (z_r − z_p) the same (z_r − z_p = z_s + z_p), so both centre distances agree (concentricity 0)."""
+    text = scene().replace(f"normal_module_mm = {MN}\n", f"normal_module_mm = {MN}\nhelix_angle_deg = 15\n")
+    text = text.replace(f"sun    = {{ teeth = {ZS}, face_width_mm = {B}",
+                        f'sun    = {{ teeth = {ZS}, face_width_mm = {B}, hand = "right", profile_shift = 0.3')
+    text = text.replace(f"planet = {{ teeth = {ZP}, face_width_mm = {B}, count = 5",
+                        f'planet = {{ teeth = {ZP}, face_width_mm = {B}, count = 5, hand = "left", profile_shift = 0.2')
+    text = text.replace(f"ring   = {{ teeth = {ZR}, face_width_mm = {B}",
+                        f"ring   = {{ teeth = {ZR}, face_width_mm = {B}, profile_shift = -0.7")
+    sp = _design(tmp_path, text)["stages"][1]
+    beta = math.radians(15)
+    at = math.atan(math.tan(ALPHA) / math.cos(beta))
+
+    def inv(x: float) -> float:
+        return math.tan(x) - x
+
+    target = inv(at) + 2 * 0.5 * math.tan(ALPHA) / (ZS + ZP)
+    lo, hi = at, math.radians(40)
+    for _ in range(200):                                   # bisection for α_wt
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if inv(mid) < target else (lo, mid)
+    awt = (lo + hi) / 2
+    a_w = MN / math.cos(beta) * (ZS + ZP) / 2 * math.cos(at) / math.cos(awt)
+    assert_allclose(awt, math.radians(22.830219628), rtol=1e-9)
+    for mesh in sp["meshes"]:
+        assert_allclose(mesh["working_pressure_angle_deg"], math.degrees(awt), rtol=1e-9)
+        assert_allclose(mesh["center_distance_mm"], a_w, rtol=1e-9)
+        assert_allclose(mesh["overlap_ratio"], B * math.sin(beta) / (math.pi * MN), rtol=1e-9)
+    assert_allclose(sp["concentricity_mm"], 0.0, atol=1e-9)
+    assert sp["ring"]["hand"] == "left"                    # the ring takes the planet's hand
