@@ -353,3 +353,26 @@ def test_helical_shifted_concentric_by_hand(tmp_path):
         assert_allclose(mesh["overlap_ratio"], B * math.sin(beta) / (math.pi * MN), rtol=1e-9)
     assert_allclose(sp["concentricity_mm"], 0.0, atol=1e-9)
     assert sp["ring"]["hand"] == "left"                    # the ring takes the planet's hand
+
+
+def test_planetary_pair_warnings_name_sun_and_planet(tmp_path):
+    """A 10-tooth planet (sun 100, ring 120, 20 planets: 220/20 = 11) is undercut: z_min = 2/sin²α = 17.10 and
+    x_min = 1 − z sin²α / 2 = +0.415 (h_FfP* = 1, β = 0); the messages name the file's members (sun, planet, not
+    the pair's pinion/gear), the JSON ``member`` stays the pair's (docs/output.md)."""
+    text = (scene(fixed="carrier", driven="sun").replace(f"teeth = {ZS}, face_width_mm", "teeth = 100, face_width_mm")
+            .replace(f"teeth = {ZP}, face_width_mm = {B}, count = 5", f"teeth = 10, face_width_mm = {B}, count = 20")
+            .replace(f"teeth = {ZR},", "teeth = 120,")
+            .replace(f"sun    = {{ teeth = 100, face_width_mm = {B}", f'sun    = {{ teeth = 100, face_width_mm = {B}, hand = "right"'))
+    res = _run(tmp_path, text, "design", "--format", "json", "-o", str(tmp_path / "d.json"))
+    assert res.exit_code == 0, res.output
+    z_min = 2 / math.sin(ALPHA) ** 2
+    x_min = 1 - 10 * math.sin(ALPHA) ** 2 / 2
+    assert f"stage 2: planet z = 10 < z_min = {z_min:.1f}" in res.output and f"≥ {x_min:+.2f}" in res.output
+    assert "the sun's tip meets the planet" in res.output
+    assert 'hand given (sun "right")' in res.output
+    assert "gear z =" not in res.output and "pinion's tip" not in res.output
+    warnings = json.loads((tmp_path / "d.json").read_text(encoding="utf-8"))["warnings"]
+    undercut = next(w for w in warnings if w.get("check") == "undercut")
+    assert undercut["member"] == "gear" and undercut["teeth"] == 10
+    # ISO 53 profile A's straight flank ends at h_FfP* = 0.99997 (not 1): z_min 3e-5 lower than 2/sin²α
+    assert_allclose(undercut["min_teeth"], z_min, rtol=1e-4)
