@@ -42,7 +42,7 @@ from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.design.stiffness import smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
-from gearcli.stages.design import design_kind, gear_pairs
+from gearcli.stages.design import design_kind, gear_pairs, member_name
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material, Stage
@@ -473,7 +473,7 @@ def _part(stage: StageResult, gear: GearResult) -> str:
 def _name(stage: StageResult, gear: GearResult) -> str:
     """The member as the design file names it, for the messages (a planetary's sun–planet pair: sun, planet);
     the diagnostics' ``member`` stays the pair's (``_part``: pinion/gear, docs/output.md)."""
-    return design_kind(stage).file_key(0, f"stage[0].{_part(stage, gear)}.x").split(".")[1]
+    return member_name(stage, _part(stage, gear))
 
 
 #: |linearised / ISO - 1| beyond which a mesh law is warned about (DESIGN section 13)

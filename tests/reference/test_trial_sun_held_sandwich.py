@@ -376,3 +376,17 @@ def test_planetary_pair_warnings_name_sun_and_planet(tmp_path):
     assert undercut["member"] == "gear" and undercut["teeth"] == 10
     # ISO 53 profile A's straight flank ends at h_FfP* = 0.99997 (not 1): z_min 3e-5 lower than 2/sin²α
     assert_allclose(undercut["min_teeth"], z_min, rtol=1e-4)
+
+
+def test_planetary_safety_warnings_name_sun_and_planet(tmp_path):
+    """Sixty times the load overloads the sun–planet mesh: its safety warnings name the sun (z = 40) and the
+    planet (z = 20) as the file does; the JSON ``member`` stays the pair's pinion/gear (docs/output.md)."""
+    text = scene(rated=True).replace(f"torque_Nm = {T_OUT}\n", "torque_Nm = 30000\n")
+    res = _run(tmp_path, text, "design", "--format", "json", "-o", str(tmp_path / "d.json"))
+    assert res.exit_code == 0, res.output
+    assert "stage 2 sun (z = 40): pitting (flank) safety S_H" in res.output
+    assert "stage 2 planet (z = 20): pitting (flank) safety S_H" in res.output
+    assert "stage 2 pinion" not in res.output and "stage 2 gear" not in res.output
+    warnings = json.loads((tmp_path / "d.json").read_text(encoding="utf-8"))["warnings"]
+    low = [w for w in warnings if w.get("stage") == 2 and w.get("mode") == "pitting" and w.get("mesh") is None]
+    assert {w["member"] for w in low} == {"pinion", "gear"}
