@@ -406,7 +406,9 @@ def face_width_warning(stage: StageResult) -> str | None:
     d1 = smaller_pitch_diameter_mm(stage)
     ratio = stage.face_width_mm / d1
     low, high = FACE_RATIO_RANGE
-    which = "pinion" if d1 == stage.pinion.pitch_diameter_mm else "smaller wheel's (the driven gear's)"
+    gear = _name(stage, stage.gear)  # a planetary's sun–planet pair: the planet
+    which = _name(stage, stage.pinion) if d1 == stage.pinion.pitch_diameter_mm else \
+        f"smaller wheel's (the {'driven gear' if gear == 'gear' else gear}'s)"
     if ratio > high:
         return (f"stage {stage.index}: face width / {which} pitch diameter b/d1 = {stage.face_width_mm:g}/"
                 f"{d1:.4g} = {ratio:.3g} > {high}: the load concentrates along the "

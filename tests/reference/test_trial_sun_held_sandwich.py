@@ -390,3 +390,12 @@ def test_planetary_safety_warnings_name_sun_and_planet(tmp_path):
     warnings = json.loads((tmp_path / "d.json").read_text(encoding="utf-8"))["warnings"]
     low = [w for w in warnings if w.get("stage") == 2 and w.get("mode") == "pitting" and w.get("mesh") is None]
     assert {w["member"] for w in low} == {"pinion", "gear"}
+
+
+def test_planetary_face_width_warning_names_the_planet(tmp_path):
+    """b = 200 mm on the 80 mm planet (smaller than the 160 mm sun): b/d = 2.5 > 1.5 warns naming the planet."""
+    text = scene().replace(f"face_width_mm = {B}", "face_width_mm = 200")
+    res = _run(tmp_path, text, "design", "--format", "json", "-o", str(tmp_path / "d.json"))
+    assert res.exit_code == 0, res.output
+    assert f"stage 2: face width / smaller wheel's (the planet's) pitch diameter b/d1 = 200/{MN * ZP:g} = 2.5 > 1.5" \
+        in res.output
