@@ -399,3 +399,20 @@ def test_planetary_face_width_warning_names_the_planet(tmp_path):
     assert res.exit_code == 0, res.output
     assert f"stage 2: face width / smaller wheel's (the planet's) pitch diameter b/d1 = 200/{MN * ZP:g} = 2.5 > 1.5" \
         in res.output
+
+
+def test_planetary_life_messages_and_tables_name_sun_and_planet(tmp_path):
+    """Sixty times the load: the life's verdicts and its tables name the sun–planet mesh's members sun and planet
+    (sun mesh), as its JSON's contract names do (``sun``, ``planet``); the JSON per-mesh keys stay."""
+    text = scene(rated=True).replace(f"torque_Nm = {T_OUT}\n", "torque_Nm = 30000\n").replace(
+        "torque_Nm = 500\nspeed_rpm = 1500", "torque_Nm = 30000\nspeed_rpm = 1500")
+    res = _run(tmp_path, text, "life", "--static", "--format", "table")
+    assert res.exit_code == 0, res.output
+    assert "stage 2 sun pitting: spectrum safety S_H" in res.output
+    assert "stage 2 planet (sun mesh) pitting" in res.output
+    assert "stage 2 sun: load spectrum and Miner damage" in res.output
+    assert "stage 2 pinion" not in res.output and "stage 2 gear" not in res.output
+    assert "stage 1 pinion" in res.output                  # a parallel stage keeps its names
+    res = _run(tmp_path, text, "life", "--static", "--format", "json", "-q")
+    st = json.loads(res.output)["life"]["stages"][1]
+    assert {"pinion", "gear", "sun", "planet", "ring", "planet_ring_side", "planet_root"} <= set(st)
