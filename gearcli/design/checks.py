@@ -42,7 +42,7 @@ from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
 from gearcli.design.stiffness import smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
-from gearcli.stages.design import design_kind, gear_pairs
+from gearcli.stages.design import design_kind, gear_pairs, member_name
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Material, Stage
@@ -105,7 +105,8 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
     for k, stage in gear_pairs(stages):
         stage_cfg = cfg.pair(k)
         at: JsonObject = {"stage": stage.index}
-        found.append((spur_hand_warning(stage.index, stage_cfg), {"check": "spur_hand", **at}))
+        names = (_name(stage, stage.pinion), _name(stage, stage.gear))
+        found.append((spur_hand_warning(stage.index, stage_cfg, names), {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):
             z_min, x_min = undercut_figures(stage, gear, stage_cfg)
             found.append((undercut_warning(stage, gear, stage_cfg), {"check": "undercut", **at,
@@ -224,8 +225,9 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
             + ("" if p > 0 else " (or give the load a speed law, load.speed_exponent)"))
 
 
-def spur_hand_warning(index: int, stage_cfg: Stage) -> str | None:
-    given = [f'{part} "{getattr(stage_cfg, part).hand}"' for part in ("pinion", "gear")
+def spur_hand_warning(index: int, stage_cfg: Stage, names: tuple[str, str] = ("pinion", "gear")) -> str | None:
+    """Hands on a spur pair; ``names``: the pair's members as the file names them (a planetary: sun, planet)."""
+    given = [f'{name} "{getattr(stage_cfg, part).hand}"' for part, name in zip(("pinion", "gear"), names, strict=True)
              if getattr(stage_cfg, part).hand in HANDS]
     if stage_cfg.helix_angle_deg != 0.0 or not given:
         return None
@@ -271,7 +273,7 @@ def undercut_warning(stage: StageResult, gear: GearResult, stage_cfg: Stage) -> 
     if gear.teeth >= z_min:
         return None
     what = "a profile shift" if gear.generating_profile_shift is None else "a generating profile shift x_E,i"
-    return (f"stage {stage.index}: {_part(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
+    return (f"stage {stage.index}: {_name(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
             f"({_shift_text(gear)}, β = {stage.helix_angle_deg:g}°): undercut risk; "
             f"use {what} ≥ {x_needed:+.2f} or more teeth")
 
@@ -311,7 +313,7 @@ def interference_warning(stage: StageResult, stage_cfg: Stage,
     usable = (min(tip_reach_mm(p.tip_diameter_mm, p.base_diameter_mm), line - lowest(g))
               - max(line - tip_reach_mm(g.tip_diameter_mm, g.base_diameter_mm), lowest(p)))
     eps = max(usable, 0.0) / stage.transverse_base_pitch_mm
-    part, other = _part(stage, gear), _part(stage, mate)
+    part, other = _name(stage, gear), _name(stage, mate)
     if form > 0.0:
         d_ff = 2.0 * math.hypot(0.5 * gear.base_diameter_mm, form)
         below = f"below its involute form circle d_Ff = {d_ff:.4g} mm, in its root fillet"
@@ -347,7 +349,7 @@ def tip_clearance_warning(stage: StageResult, gear: GearResult, clearance: float
                           stage_cfg: Stage | None = None) -> str | None:
     if clearance is None or clearance >= 0.0:
         return None
-    return (f"stage {stage.index}: {_part(stage, gear)} tip clearance with allowances c = {clearance:.3g} mm < 0: at "
+    return (f"stage {stage.index}: {_name(stage, gear)} tip clearance with allowances c = {clearance:.3g} mm < 0: at "
             "the upper tip allowance, the mate's upper tooth-thickness allowance and the smallest centre distance the "
             f"tip runs into the mate's root; narrow {_clearance_culprits(stage, gear, stage_cfg)}")
 
@@ -361,7 +363,7 @@ def _clearance_culprits(stage: StageResult, gear: GearResult, stage_cfg: Stage |
     mate = getattr(stage_cfg, _part(stage, stage.gear if gear is stage.pinion else stage.pinion))
     centre = stage_cfg.center_distance_allowance_mm
     named = [text for text, on in (
-        (f"the {_part(stage, gear)}'s tip allowance (tip_diameter_allowance_mm)",
+        (f"the {_name(stage, gear)}'s tip allowance (tip_diameter_allowance_mm)",
          bool(own.tip_diameter_allowance_mm and own.tip_diameter_allowance_mm[0] > 0.0)),
         ("the mate's upper tooth-thickness allowance (tooth_thickness_allowance_mm)",
          bool(mate.tooth_thickness_allowance_mm and mate.tooth_thickness_allowance_mm[0] > 0.0)),
@@ -404,7 +406,9 @@ def face_width_warning(stage: StageResult) -> str | None:
     d1 = smaller_pitch_diameter_mm(stage)
     ratio = stage.face_width_mm / d1
     low, high = FACE_RATIO_RANGE
-    which = "pinion" if d1 == stage.pinion.pitch_diameter_mm else "smaller wheel's (the driven gear's)"
+    gear = _name(stage, stage.gear)  # a planetary's sun–planet pair: the planet
+    which = _name(stage, stage.pinion) if d1 == stage.pinion.pitch_diameter_mm else \
+        f"smaller wheel's (the {'driven gear' if gear == 'gear' else gear}'s)"
     if ratio > high:
         return (f"stage {stage.index}: face width / {which} pitch diameter b/d1 = {stage.face_width_mm:g}/"
                 f"{d1:.4g} = {ratio:.3g} > {high}: the load concentrates along the "
@@ -435,7 +439,7 @@ def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm
     at_tip = f", d_a + A_dae = {tip:.4g} mm" if tip_allowance_mm else ""
     fix = "reduce the profile shift" if gear.generating_profile_shift is None else \
         "reduce the profile shift or the tooth-thickness / tip allowances"
-    return (f"stage {stage.index}: {_part(stage, gear)} {what}, normal tip thickness s_an = {s_an:.3g} mm "
+    return (f"stage {stage.index}: {_name(stage, gear)} {what}, normal tip thickness s_an = {s_an:.3g} mm "
             f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({_shift_text(gear)}{at_tip}); {fix}")
 
 
@@ -466,6 +470,12 @@ def _ordinal(n: int) -> str:
 
 def _part(stage: StageResult, gear: GearResult) -> str:
     return "pinion" if gear is stage.pinion else "gear"
+
+
+def _name(stage: StageResult, gear: GearResult) -> str:
+    """The member as the design file names it, for the messages (a planetary's sun–planet pair: sun, planet);
+    the diagnostics' ``member`` stays the pair's (``_part``: pinion/gear, docs/output.md)."""
+    return member_name(stage, _part(stage, gear))
 
 
 #: |linearised / ISO - 1| beyond which a mesh law is warned about (DESIGN section 13)

@@ -31,7 +31,7 @@ from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
-from gearcli.stages.design import design_kind, gear_pairs
+from gearcli.stages.design import design_kind, gear_pairs, member_name
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
@@ -404,7 +404,7 @@ def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") ->
                 code = PITTING_LOW if mode == "pitting" else BENDING_LOW
                 what = "pitting (flank)" if mode == "pitting" else "tooth-root bending"
                 teeth = (st.pinion if part == "pinion" else st.gear).teeth
-                message = (f"stage {st.index} {part} (z = {teeth}): {what} safety {symbol} = {value:.3g} is below the minimum "
+                message = (f"stage {st.index} {member_name(st, part)} (z = {teeth}): {what} safety {symbol} = {value:.3g} is below the minimum "
                            f"{minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} {r.K_v_source}{source}); widen the face, "
                            "raise the module or choose a stronger material")
                 out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,

@@ -16,7 +16,7 @@ from gearcli.io.life_tables import life_rows, modified_rows
 from gearcli.io.serialize import bearings_csv, csv_text, plain
 from gearcli.io.table_kit import FittedTable, StageColumns, _g, text
 from gearcli.io.units import OutputUnits
-from gearcli.life.result import LifeResult, ModeLife, StageLife, planet_flank
+from gearcli.life.result import LifeResult, ModeLife, StageLife, member_label, planet_flank
 from gearcli.results import DesignResult, drop_absent_bearing_keys
 
 MEMBERS = ("pinion", "gear")
@@ -152,7 +152,7 @@ def _spectrum_table(r: LifeResult, stage, member: str) -> _Fitting:
     narrower terminal a pitting and a bending table, narrower still the classes, pitting, bending apart."""
     pit, ben = getattr(stage, member).pitting, getattr(stage, member).bending
     which = f", planet {pit.planet} (the most severely loaded)" if pit.planet is not None else ""
-    title = f"stage {stage.index} {LABELS[member]}{which}: load spectrum and Miner damage"
+    title = f"stage {stage.index} {member_label(stage, member)}{which}: load spectrum and Miner damage"
     point = [[b.point] for b in pit.bins] + [["sum"]]
     load = [[_g(b.force_N, 4), _g(b.cycles, 4)] for b in pit.bins] + [["", _g(sum(b.cycles for b in pit.bins), 4)]]
 
@@ -204,7 +204,7 @@ def _summary(r: LifeResult) -> StageColumns:
 
     for st in r.stages:
         for m in _members(st):
-            cols.append(f"stage {st.index} {LABELS[m]}")
+            cols.append(f"stage {st.index} {member_label(st, m)}")
             for mode in MODES:
                 add(mode, getattr(getattr(st, m), mode))
         if st.planet_root is not None:

@@ -15,11 +15,10 @@ from gearcli.io.figures import check as _check
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
 from gearcli.life.miner import SNCurve
-from gearcli.life.result import LifeResult
+from gearcli.life.result import LifeResult, member_label
 
 FIGURE_NAMES = ("pitting.png", "bending.png")
 COLORS = {"pinion": "tab:blue", "gear": "tab:orange", "ring": "tab:red", "planet_ring_side": "tab:green"}
-LABELS = {"pinion": "pinion", "gear": "gear", "ring": "ring", "planet_ring_side": "planet (ring mesh)"}
 
 
 def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
@@ -34,7 +33,7 @@ def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
         for ax, st in zip(axes[:, 0], r.stages, strict=True):
             members = [m for m in COLORS if getattr(st, m) is not None]  # a planetary stage's ring mesh too
             for member in members:
-                label = LABELS[member]
+                label = member_label(st, member)
                 ml = getattr(getattr(st, member), mode)
                 curve: SNCurve = ml.sn
                 n = np.logspace(3, 12, 200)

@@ -60,6 +60,18 @@ class StageLife:
     planet_root: ModeLife | None = None  # bending only
 
 
+#: a planetary stage's members in messages and tables: the sun–planet mesh's pinion is the sun, its gear the
+#: planet's sun-mesh flank (the JSON keys stay the mesh's: docs/life.md)
+PLANETARY_LABELS = {"pinion": "sun", "gear": "planet (sun mesh)", "planet_ring_side": "planet (ring mesh)",
+                    "planet_root": "planet root (both meshes)"}
+
+
+def member_label(st: StageLife, member: str) -> str:
+    """``member`` (a StageLife key) of stage ``st`` as an engineer reads it: a planetary stage's pinion "sun", its
+    gear "planet (sun mesh)"; a parallel stage's keys as they are."""
+    return PLANETARY_LABELS.get(member, member) if st.ring is not None else member
+
+
 def planet_flank(st: StageLife) -> tuple[str, str]:
     """A planetary stage's planet flank that its ``planet`` entry reports as pitting (DESIGN §10's member names):
     the more damaged over the duty of its sun-mesh side (``gear``) and its ring-mesh side (``planet_ring_side``),

@@ -44,7 +44,17 @@ from gearcli.life import spectra, verdicts
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
-from gearcli.life.result import BearingLife, Bin, LifeResult, MemberLife, ModeLife, PointRun, StageLife, planet_flank
+from gearcli.life.result import (
+    BearingLife,
+    Bin,
+    LifeResult,
+    MemberLife,
+    ModeLife,
+    PointRun,
+    StageLife,
+    member_label,
+    planet_flank,
+)
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles, start_data
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
@@ -591,7 +601,7 @@ def _static_warnings(stages: Sequence[StageLife]) -> list[Diagnostic]:
                 over = [b for b in ml.bins if b.cycles_to_failure is not None and b.cycles_to_failure < ml.static_cycles]
                 if over:
                     out.append(warning(
-                        BEYOND_STATIC_STRENGTH, f"stage {st.index} {member} {mode}: {len(over)} load class(es) beyond "
+                        BEYOND_STATIC_STRENGTH, f"stage {st.index} {member_label(st, member)} {mode}: {len(over)} load class(es) beyond "
                         f"the static strength (fewer than {ml.static_cycles:.3g} cycles to failure), e.g. at point "
                         f"{over[0].point}: the finite-life slope is extrapolated there", stage=st.index, member=member,
                         mode=mode, classes=len(over), static_cycles=ml.static_cycles, point=over[0].point))

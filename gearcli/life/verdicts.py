@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 from gearcli.diagnostics import BEARING_LIFE_SHORT, DUTY, LIFE_SAFETY_LOW, STARTS_NOT_FROM_REST, Diagnostic, warning
 from gearcli.life.duty import DutyPoint
-from gearcli.life.result import BearingLife, ModeLife, StageLife
+from gearcli.life.result import BearingLife, ModeLife, StageLife, member_label
 from gearcli.life.starts import StartData
 
 HOURS_TOLERANCE = 1e-3  # relative difference of the duty's hours from [rating] required_life_h without a warning
@@ -36,11 +36,12 @@ def hours_warning(hours: float, required_h: float | None, series: str | None = N
                     "the duty's hours", hours=hours, required_life_h=required_h)]
 
 
-def _mode_warning(stage: int, member: str, mode: str, ml: ModeLife, minimum: float, hours: float) -> Diagnostic | None:
+def _mode_warning(stage: int, member: str, mode: str, ml: ModeLife, minimum: float, hours: float,
+                  label: str | None = None) -> Diagnostic | None:
     low = ml.stress_safety is not None and ml.stress_safety < minimum
     if not (low or ml.damage >= 1.0):
         return None
-    where = f"stage {stage} {member}" + (f" (planet {ml.planet})" if ml.planet is not None else "")
+    where = f"stage {stage} {label or member}" + (f" (planet {ml.planet})" if ml.planet is not None else "")
     life = "" if ml.life_h is None else f", a life of {ml.life_h:.4g} h"
     damage = f"Miner damage D = {ml.damage:.4g} over the duty's {hours:.6g} h{life}"
     if low:
@@ -63,11 +64,12 @@ def gear_warnings(stages: Sequence[StageLife], min_pitting: float, min_bending: 
             if ml_pair is None:
                 continue
             for mode, minimum in (("pitting", min_pitting), ("bending", min_bending)):
-                d = _mode_warning(st.index, member, mode, getattr(ml_pair, mode), minimum, hours)
+                d = _mode_warning(st.index, member, mode, getattr(ml_pair, mode), minimum, hours, member_label(st, member))
                 if d is not None:
                     out.append(d)
         if st.planet_root is not None:
-            d = _mode_warning(st.index, "planet_root", "bending", st.planet_root, min_bending, hours)
+            d = _mode_warning(st.index, "planet_root", "bending", st.planet_root, min_bending, hours,
+                              member_label(st, "planet_root"))
             if d is not None:
                 out.append(d)
     return out

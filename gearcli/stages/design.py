@@ -149,6 +149,12 @@ def gear_pairs(stages: Iterable[S]) -> list[tuple[int, S]]:
     return [(k, s) for k, s in enumerate(stages) if design_kind(s).gear_pair]
 
 
+def member_name(stage: object, part: str) -> str:
+    """A pair member (``part``: "pinion" or "gear") of stage table or result ``stage`` as the design file names it
+    (a planetary's sun–planet pair: "sun", "planet"), for messages; diagnostics' ``member`` keys stay the pair's."""
+    return design_kind(stage).file_key(0, f"stage[0].{part}.x").split(".")[1]
+
+
 def file_key(cfg: DesignFile, key: str | None) -> str | None:
     """A key of the pair view (``stage[k].pinion.x``) as the design file names it (a planetary's ``sun.x``)."""
     if key is None or not key.startswith("stage["):
