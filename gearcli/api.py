@@ -297,7 +297,7 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
     mesh-cycle load spectrum) or, ``static``, rated at its static forces with the rating's K_v; Miner damage by
     ``variant`` (``iso``, ``elementary``, ``modified``)."""
     from gearcli.life.run import compute_life  # lazy: the sweep and life layers, start-up time of gearcli design
-    from gearcli.rating.sn import VARIANTS
+    from gearcli.rating.sn import VARIANTS  # lazy: the rating layer's S-N curves, start-up time of gearcli design
 
     if variant not in VARIANTS:  # the CLI's --miner choice; a script's typo was a bare KeyError deep in life
         raise ValueError(f"variant: must be one of {', '.join(VARIANTS)}, got {variant!r}")

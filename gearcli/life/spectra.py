@@ -153,8 +153,12 @@ def periodic_tiled(result, design):
     period = float(tw[-1] - tw[0])
     if tw.size < 2 or period <= 0.0:
         return result
-    f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)
-    copies = max(1, math.ceil(MIN_WINDOW_MESH_CYCLES / f_min / period))
+    f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)  # at the design's input speed
+    speed = result.series.get(Channel("speed", "shaft1"))
+    nominal = abs(design.input_speed_deg_s) * math.pi / 180.0
+    if speed is not None and nominal > 0.0:  # a motor runs at its operating point, off the nominal speed
+        f_min *= float(np.mean(np.abs(speed[mask]))) / nominal
+    copies = max(1, math.ceil((MIN_WINDOW_MESH_CYCLES + 2) / f_min / period))  # +2: the cycles cut by both ends
     if copies == 1:
         return result
     time = np.concatenate([tw[:-1] + i * period for i in range(copies)] + [tw[-1:] + (copies - 1) * period])

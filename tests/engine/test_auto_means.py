@@ -61,7 +61,9 @@ def test_dop853_at_the_default_rtol_warns_that_its_mean_is_unresolved(reference)
     true_error = abs(run.stages[0].tangential_N.mean - reference.stages[0].tangential_N.mean) / static
     assert true_error > MEAN_TARGET  # the case: ~1.7e-4
     est = run.stages[0].error_estimate
-    assert est.relative["mean"] == pytest.approx(true_error, rel=0.2)  # the check pass sees the error
+    # the check pass sees the error: its difference scaled by 1/(1 - 10^-0.6) = 1.33 for a statistic converging as
+    # slowly as rtol^0.6 (gearcli.simulate.estimate.tight_scale), so at or above the true error and not far beyond
+    assert true_error <= est.relative["mean"] <= 1.5 * true_error
     warned = [d for d in run.diagnostics if d.code == dg.STATISTICS_UNRESOLVED]
     assert len(warned) == 1 and warned[0].data["statistics"] == ["mean"] and warned[0].data["rtol"] == 1e-7
 
