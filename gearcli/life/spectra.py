@@ -158,6 +158,8 @@ def periodic_tiled(result, design):
     nominal = abs(design.input_speed_deg_s) * math.pi / 180.0
     if speed is not None and nominal > 0.0:  # a motor runs at its operating point, off the nominal speed
         f_min *= float(np.mean(np.abs(speed[mask]))) / nominal
+    if not f_min > 0.0:  # at standstill (a motor that cannot start): no mesh cycle to repeat the window for
+        return result
     copies = max(1, math.ceil((MIN_WINDOW_MESH_CYCLES + 2) / f_min / period))  # +2: the cycles cut by both ends
     if copies == 1:
         return result
