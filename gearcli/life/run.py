@@ -15,17 +15,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import cast
 
-import numpy as np
-
 from gearcli import engine
 from gearcli.config import DesignFile
 from gearcli.config.bounds import check_memory
 from gearcli.config.overrides import SOURCE, blames_key
-from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.memo import remember
 from gearcli.design.bearing_life import AXIAL_NOT_RATED
-from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.design.standards import standard_of
 from gearcli.diagnostics import (
     BEYOND_STATIC_STRENGTH,
@@ -40,7 +36,7 @@ from gearcli.diagnostics import (
     warning,
 )
 from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
-from gearcli.life import spectra, verdicts
+from gearcli.life import point_loads, spectra, verdicts
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
@@ -56,11 +52,9 @@ from gearcli.life.result import (
     planet_flank,
 )
 from gearcli.life.spectra import StageLoads
-from gearcli.life.starts import StartData, label, member_start_cycles, start_data
+from gearcli.life.starts import StartData, label, member_start_cycles
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
-from gearcli.simulate.bearings import peak_static_load_N, reaction_series
 from gearcli.simulate.motor import VFD_OFF_SPEED
-from gearcli.simulate.results import SimulationResult
 from gearcli.stages.design import design_kind
 from gearcli.stages.life import LifeKind, life_kind
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
@@ -153,11 +147,6 @@ def _static_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner) -> 
     return _PointData(point, design, cfg, loads, bearings, PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v))
 
 
-def k_gamma(st: StageResult) -> float:
-    """A stage's load-sharing factor K_gamma in its design (1 where nothing shares the load)."""
-    return life_kind(st).k_gamma(st)
-
-
 def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    evaluate: PointEvaluator) -> tuple[_PointData, tuple[Diagnostic, ...], tuple[Diagnostic, ...]]:
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
@@ -174,14 +163,14 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
             extra += ("rating.load_sharing_factor=1.0",)
             notes += [warning(LOAD_SHARING, f"stage {st.index}: the dynamic route takes the planets' load sharing from the simulation "
                       f"(stage[{st.index - 1}].planet.position_error_um); [rating] load_sharing_factor = "
-                      f"{k_gamma(st):g} is not applied", stage=st.index, load_sharing_factor=k_gamma(st))
+                      f"{point_loads.k_gamma(st):g} is not applied", stage=st.index, load_sharing_factor=point_loads.k_gamma(st))
                       for st in sharing]
         else:
             # identical planets share equally in the model: the ISO allowance for unequal sharing stays
             notes += [warning(LOAD_SHARING, f"stage {st.index}: the simulated planets are identical (no planet.position_error_um), so "
-                      f"[rating] load_sharing_factor = {k_gamma(st):g} stays on the planet meshes' stresses and the "
+                      f"[rating] load_sharing_factor = {point_loads.k_gamma(st):g} stays on the planet meshes' stresses and the "
                       "planet pins' loads; give the planets' position errors to simulate the sharing instead",
-                              stage=st.index, load_sharing_factor=k_gamma(st)) for st in sharing]
+                              stage=st.index, load_sharing_factor=point_loads.k_gamma(st)) for st in sharing]
     if cfg.simulation.engine == "auto" and engine.available():
         # a duty is a batch of long runs: the compiled engine (DOP853 takes scipy's steps bit for bit) pays off
         extra += ("simulation.engine=compiled",)
@@ -212,8 +201,8 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     _require_rating(cfg, scene)
     loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
     loads = [spectra.referred(ld, spectra.resolved_force_N(result, k)) for k, ld in enumerate(loads)]
-    bearing_loads = _dynamic_bearing_loads(cfg, design, result)
-    start = _start(point, cfg, design, result) if point.starts else None
+    bearing_loads = point_loads.dynamic_bearing_loads(cfg, design, result)
+    start = point_loads.start_of(point, cfg, design, result) if point.starts else None
     sv = result.solver
     # the solver's and the output sampling's estimates (K_v is the window max over the static force: its sampling
     # error is the max's, over the static force)
@@ -253,69 +242,6 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 f"sample finer: --set simulation.steps={4 * steps}", stage=k + 1, relative_error=ld.peak_error,
                 target_relative=PEAK_TOLERANCE, steps=4 * steps))
     return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
-
-
-def _start(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
-    """The point's start from rest (its run before the settled window), with the bearings' loads."""
-    if result.window_s[0] <= result.time_s[0]:
-        raise SimulationError(f"duty point {point.name}: starts = {point.starts} needs the run from rest before its "
-                              "window; simulation.window_start_s = 0 leaves no start to count")
-    lay = stage_layout(cfg, design.stages)
-    if lay is None:
-        return start_data(point.starts, result, design)
-    series = _with_planet_mean(design, dict(result.series))
-    return start_data(point.starts, result, design, reaction_series(lay, design, series), lay.specs)
-
-
-def _with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
-    """The series with each stage with planets its own F_t channel: its planets' sun-mesh mean (the central
-    members' load; the statics' input)."""
-    for st in design.stages:
-        forces = life_kind(st).planet_forces(st, series)
-        if forces:
-            series[Channel("tangential_force", f"stage{st.index}")] = np.mean(forces, axis=0)
-    return series
-
-
-def _dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> PointBearings:
-    """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
-    window (at a steady speed, revolutions are proportional to time), and the window's peak ISO 76 P_0."""
-    lay = stage_layout(cfg, design.stages)
-    if lay is None:
-        return PointBearings((), ())
-    t = result.time_s
-    mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
-    series = {k: v[mask] for k, v in result.series.items()}
-    specs = lay.specs
-
-    def equivalent(r: np.ndarray, j: int) -> tuple[float, float]:
-        spec = specs[j]
-        fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
-        p = np.array([equivalent_load_N(a, b, spec.e, spec.X, spec.Y) for a, b in zip(fr, fa, strict=True)])
-        e = life_exponent(spec.kind)
-        return float(np.mean(p**e) ** (1.0 / e)), peak_static_load_N(spec, fr, fa)
-
-    # a planetary stage: the central members carry the mean planet's force N times (their torque), each pin its
-    # own planet's times the design's K_gamma (1 where the simulated position errors share the load); a pin bearing
-    # reports the worst planet's
-    per_planet: dict[int, list[dict[Channel, np.ndarray]]] = {}
-    for st in design.stages:
-        forces = life_kind(st).planet_forces(st, series)
-        if not forces:
-            continue
-        own = Channel("tangential_force", f"stage{st.index}")
-        series[own] = np.mean(forces, axis=0)
-        forces = [f * k_gamma(st) for f in forces]
-        per_planet[st.index] = [{**series, own: f} for f in forces]
-    r = reaction_series(lay, design, series)
-    out = []
-    for j, spec in enumerate(specs):
-        if spec.planet_stage and spec.planet_stage in per_planet:
-            each = [equivalent(reaction_series(lay, design, s), j) for s in per_planet[spec.planet_stage]]
-            out.append((max(e for e, _ in each), max(p for _, p in each)))  # the worst planet's
-        else:
-            out.append(equivalent(r, j))
-    return PointBearings(tuple(e for e, _ in out), tuple(p for _, p in out))
 
 
 # ------------------------------------------------------------------------------------- damage

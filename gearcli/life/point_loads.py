@@ -1,0 +1,87 @@
+"""A dynamic duty point's loads from its run: the bearings' ISO 281 equivalent loads over the settled window and
+the start from rest before it (:mod:`gearcli.life.starts`), a planetary stage's central members carrying its
+planets' mean force (docs/life.md, "Starts"; docs/bearings.md)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from gearcli.config import DesignFile
+from gearcli.core.channels import Channel
+from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
+from gearcli.errors import SimulationError
+from gearcli.life.bearings import PointBearings
+from gearcli.life.duty import DutyPoint
+from gearcli.life.starts import StartData, start_data
+from gearcli.results import DesignResult, StageResult
+from gearcli.simulate.bearings import peak_static_load_N, reaction_series
+from gearcli.simulate.results import SimulationResult
+from gearcli.stages.life import life_kind
+
+
+def k_gamma(st: StageResult) -> float:
+    """A stage's load-sharing factor K_gamma in its design (1 where nothing shares the load)."""
+    return life_kind(st).k_gamma(st)
+
+
+def start_of(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
+    """The point's start from rest (its run before the settled window), with the bearings' loads."""
+    if result.window_s[0] <= result.time_s[0]:
+        raise SimulationError(f"duty point {point.name}: starts = {point.starts} needs the run from rest before its "
+                              "window; simulation.window_start_s = 0 leaves no start to count")
+    lay = stage_layout(cfg, design.stages)
+    if lay is None:
+        return start_data(point.starts, result, design)
+    series = with_planet_mean(design, dict(result.series))
+    return start_data(point.starts, result, design, reaction_series(lay, design, series), lay.specs)
+
+
+def with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
+    """The series with each stage with planets its own F_t channel: its planets' sun-mesh mean (the central
+    members' load; the statics' input)."""
+    for st in design.stages:
+        forces = life_kind(st).planet_forces(st, series)
+        if forces:
+            series[Channel("tangential_force", f"stage{st.index}")] = np.mean(forces, axis=0)
+    return series
+
+
+def dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: SimulationResult) -> PointBearings:
+    """Per bearing, the ISO 281 equivalent of the window's varying load: (mean of P(t)^p)^(1/p) over the
+    window (at a steady speed, revolutions are proportional to time), and the window's peak ISO 76 P_0."""
+    lay = stage_layout(cfg, design.stages)
+    if lay is None:
+        return PointBearings((), ())
+    t = result.time_s
+    mask = (t >= result.window_s[0] - 1e-12) & (t <= result.window_s[1] + 1e-12)
+    series = {k: v[mask] for k, v in result.series.items()}
+    specs = lay.specs
+
+    def equivalent(r: np.ndarray, j: int) -> tuple[float, float]:
+        spec = specs[j]
+        fr, fa = np.hypot(r[j, 0], r[j, 1]), r[j, 2]
+        p = np.array([equivalent_load_N(a, b, spec.e, spec.X, spec.Y) for a, b in zip(fr, fa, strict=True)])
+        e = life_exponent(spec.kind)
+        return float(np.mean(p**e) ** (1.0 / e)), peak_static_load_N(spec, fr, fa)
+
+    # a planetary stage: the central members carry the mean planet's force N times (their torque), each pin its
+    # own planet's times the design's K_gamma (1 where the simulated position errors share the load); a pin bearing
+    # reports the worst planet's
+    per_planet: dict[int, list[dict[Channel, np.ndarray]]] = {}
+    for st in design.stages:
+        forces = life_kind(st).planet_forces(st, series)
+        if not forces:
+            continue
+        own = Channel("tangential_force", f"stage{st.index}")
+        series[own] = np.mean(forces, axis=0)
+        forces = [f * k_gamma(st) for f in forces]
+        per_planet[st.index] = [{**series, own: f} for f in forces]
+    r = reaction_series(lay, design, series)
+    out = []
+    for j, spec in enumerate(specs):
+        if spec.planet_stage and spec.planet_stage in per_planet:
+            each = [equivalent(reaction_series(lay, design, s), j) for s in per_planet[spec.planet_stage]]
+            out.append((max(e for e, _ in each), max(p for _, p in each)))  # the worst planet's
+        else:
+            out.append(equivalent(r, j))
+    return PointBearings(tuple(e for e, _ in out), tuple(p for _, p in out))
