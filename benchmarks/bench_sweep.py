@@ -22,7 +22,10 @@ the method and engine choice, the steady-state search's own algebra such as the 
 integration's preparation) and the post-processing (output sampling and energy balance, statistics with the
 ringing fit and settle test, diagnostics and warnings, the simulated rating, and the untimed lines between the
 parts); the parts sum to the point. Printed: post-processing / integration (issue 33's target <= 0.20) and
-(run set-up + post-processing) / integration, both.
+(run set-up + post-processing) / integration, both. The points run in this process's main thread, whose Python
+SIGINT handler makes each compiled integration run in a worker thread (gearcli.simulate.solver's
+_kernel_with_progress), as in `gearcli sweep --jobs 1`; a pool worker (--jobs 2 and up) ignores SIGINT and calls the
+kernel directly. The thread's start and join count to the integration.
 
     python benchmarks/bench_sweep.py --points 1000 --loop 0 --no-dask     # the sweep against the floor only
 """
