@@ -138,12 +138,32 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                            "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
                            "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm),
                            "min_tip_thickness_mm": MIN_TIP_THICKNESS_PER_MODULE * stage.normal_module_mm}))
+        found.append((static_approach_warning(stage), {"check": "static_approach", **at,
+                                                       "static_approach_mm": stage.static_approach_mm,
+                                                       "normal_module_mm": stage.normal_module_mm}))
         found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at,
                                                  "resonance_ratio": stage.resonance_ratio,
                                                  "resonance_speed_rpm": stage.resonance_speed_rpm,
                                                  "resonance_lower_limit": stage.resonance_lower_limit,
                                                  "resonance_range": stage.resonance_range}))
     return tuple(warning(DESIGN, w, **data) for w, data in found if w)
+
+
+#: a static approach beyond this fraction of the normal module: the contact law far outside its validity (the
+#: simulation's penetration_over_module warns the same fraction of the run's deepest penetration)
+STATIC_APPROACH_MODULE_FRACTION = 0.10
+
+
+def static_approach_warning(stage: StageResult) -> str | None:
+    """The mesh's static approach h0 = (|F_n| / K)^(1/e) beyond 10 % of the normal module: a real tooth pair
+    deflects some micrometres at its rated load, so a load or a contact stiffness off by orders of magnitude
+    (a unit mistake) shows here, before any simulation."""
+    h0, m_n = stage.static_approach_mm, stage.normal_module_mm
+    if not (h0 > STATIC_APPROACH_MODULE_FRACTION * m_n):
+        return None
+    return (f"stage {stage.index}: the static approach of the mesh is {h0:.3g} mm at the design load, more than 10 % "
+            f"of the normal module ({m_n:.3g} mm): the contact law is far outside its validity (a tooth pair "
+            "deflects some micrometres at its rated load); check the load torque, [contact] stiffness and their units")
 
 
 def axial_hand_warnings(stages: tuple[StageResult, ...]) -> list[tuple[str | None, JsonObject]]:
