@@ -130,7 +130,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
         diags += _rolls_back(lay, t, w_motor, ws)
     diags += _reswitches(motor, t, w_motor)
-    diags += _vfd_outrun(lay, motor, t, w_motor)
+    if reaches:  # a motor whose steady curve cannot carry the load stalls however slowly its supply ramps: the
+        diags += _vfd_outrun(lay, motor, t, w_motor)  # stall warning names why; "lengthen ramp_s" would mislead
     t_start = start_time(t, w_motor, op.speed_rad_s)
     if reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
