@@ -26,12 +26,9 @@ LOAD_AT_MOTOR = 300.0 * 21 / 83  # N m, lossless: 75.90
 
 
 def _warnings(tmp_path, *sets: str) -> list[dict]:
-    path = tmp_path / "vfd.toml"
-    path.write_text(SCENE)
-    args = ["-q", "simulate", str(path), "--format", "json"]
-    for s in sets:
-        args += ["--set", s]
-    res = CliRunner().invoke(cli, args)
+    (tmp_path / "vfd.toml").write_text(SCENE)
+    overrides = [arg for s in sets for arg in ("--set", s)]
+    res = CliRunner().invoke(cli, ["-q", "simulate", str(tmp_path / "vfd.toml"), "--format", "json", *overrides])
     assert res.exit_code == 0, res.output
     return json.loads(res.stdout)["warnings"]
 
