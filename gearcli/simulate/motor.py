@@ -127,12 +127,13 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 reverse_speed_rpm=back[1]))
     if not driven:
         diags += _runaway(t, w_motor, ws, op.stable_rad_s)
+    t_start = start_time(t, w_motor, op.speed_rad_s)
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
-        diags += _rolls_back(lay, t, w_motor, ws)
+        recovered = reaches and t_start is not None and t_start <= window[0]
+        diags += _rolls_back(lay, t, w_motor, ws, window[0] if recovered else None)
     diags += _reswitches(motor, t, w_motor)
     if reaches:  # a motor whose steady curve cannot carry the load stalls however slowly its supply ramps: the
         diags += _vfd_outrun(lay, motor, t, w_motor)  # stall warning names why; "lengthen ramp_s" would mislead
-    t_start = start_time(t, w_motor, op.speed_rad_s)
     if reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
         diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
@@ -253,10 +254,18 @@ def _driven_back(t: np.ndarray, w_motor: np.ndarray, ws: float) -> tuple[str, fl
             "numbers are no forward operating point", low)
 
 
-def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:
+#: what lifts a start's torque at standstill above the load, per starting method (a VFD's supply starts at 0 Hz)
+STANDSTILL_CURE = {"soft_start": "a higher initial_voltage_fraction (u0² of the locked-rotor torque above the load), or ",
+                   "star_delta": "a direct start (the full locked-rotor torque), or "}
+
+
+def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
+                window_from_s: float | None = None) -> list[Diagnostic]:
     """The load turns the train backwards during the start: the starting method's torque at standstill (a soft
-    start's u0² of the locked-rotor torque, a star start's third) is below the load reflected to the motor, though
-    the full curve carries it. Named with how far back it ran and the torques at standstill at t = 0."""
+    start's u0² of the locked-rotor torque, a star start's third, a VFD's 0 at 0 Hz) is below the load reflected to
+    the motor, though the full curve carries it. Named with how far back it ran and the torques at standstill at
+    t = 0. ``window_from_s``: the statistics window's start where the motor had reached its operating speed before
+    it (the window's numbers are then an operating point's; only the start's include the roll-back)."""
     i = int(np.argmin(w_motor))
     low = float(w_motor[i])
     motor = lay.drive.motor
@@ -267,13 +276,15 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> l
     if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= load:
         return []
     turns = float(np.nonzero(w_motor < 0.0)[0].size) / max(w_motor.size, 1)
+    consequence = ("the run's numbers are no forward operating point" if window_from_s is None else
+                   "the start's time and peak forces include the roll-back; the motor then runs up, before the "
+                   f"statistics window ({window_from_s:.4g} s on), whose numbers are the operating point's")
     return [dg.warning(dg.MOTOR_ROLLS_BACK, f"the load turns the train backwards during the start: the motor reaches "
                        f"{low * RAD_S_TO_RPM:.4g} rpm at {float(t[i]):.4g} s ({100 * turns:.2g} % of the run backwards): "
                        f"its {motor.starting} start gives {t0:.4g} N·m at standstill at t = 0, below the load reflected "
-                       f"to the motor, {load:.4g} N·m; the run's numbers are no forward operating point. A start whose "
-                       "torque at standstill exceeds the load (a higher initial_voltage_fraction, a direct start), "
-                       "or a backstop or brake holding the load until it does", reverse_speed_rpm=low * RAD_S_TO_RPM,
-                       start_torque_Nm=t0, load_torque_Nm=load)]
+                       f"to the motor, {load:.4g} N·m; {consequence}; it needs {STANDSTILL_CURE.get(motor.starting, '')}"
+                       "a backstop or a brake holding the load until the motor's torque exceeds it",
+                       reverse_speed_rpm=low * RAD_S_TO_RPM, start_torque_Nm=t0, load_torque_Nm=load)]
 
 
 def _reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Diagnostic]:

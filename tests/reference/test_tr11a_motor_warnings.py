@@ -1,13 +1,16 @@
-"""A VFD whose torque limit is below the load cannot start however slowly its supply ramps (tr11a): the stall
-warning names the limit, and the ramp warning ("lengthen ramp_s") is not given beside it, where it said the
-ramp outran the motor because the load had turned the stalled motor backwards."""
+"""Motor warnings that must be true and actionable (tr11a). A VFD whose torque limit is below the load cannot
+start however slowly its supply ramps: the stall warning names the limit, and the ramp warning ("lengthen ramp_s") is not given beside it, where it said the
+ramp outran the motor because the load had turned the stalled motor backwards. A start that rolls back and then
+runs up before the statistics window says so, where it said the run's numbers were no forward operating point."""
 
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 from click.testing import CliRunner
+from scipy.optimize import brentq, fsolve
 
 from gearcli.cli import cli
 
@@ -25,12 +28,16 @@ gear = { teeth = 83, face_width_mm = 38, hand = "right" }
 LOAD_AT_MOTOR = 300.0 * 21 / 83  # N m, lossless: 75.90
 
 
-def _warnings(tmp_path, *sets: str) -> list[dict]:
+def _run(tmp_path, *sets: str) -> dict:
     (tmp_path / "vfd.toml").write_text(SCENE)
     overrides = [arg for s in sets for arg in ("--set", s)]
     res = CliRunner().invoke(cli, ["-q", "simulate", str(tmp_path / "vfd.toml"), "--format", "json", *overrides])
     assert res.exit_code == 0, res.output
-    return json.loads(res.stdout)["warnings"]
+    return json.loads(res.stdout)
+
+
+def _warnings(tmp_path, *sets: str) -> list[dict]:
+    return _run(tmp_path, *sets)["warnings"]
 
 
 @pytest.mark.parametrize("ramp_s", [0.3, 5.0])
@@ -51,3 +58,45 @@ def test_a_limit_above_the_load_starts_and_is_not_warned(tmp_path):
     # exceeded by the 0.09 + 0.14 kg m² train, 1500 rpm in 0.3 s needing ~120 N m of acceleration torque on average)
     found = _warnings(tmp_path, "input.ramp_s=0.3", "input.torque_limit_Nm=200")
     assert not {"motor_stalls", "ramp_over_breakdown"} & {w["code"] for w in found}, found
+
+
+def _kloss_slip_speed_rpm(torque_Nm: float) -> float:
+    """The nameplate's extended Kloss curve (15 kW, 1460/1500 rpm, k_b 2.8, k_l 2.3) solved by hand: s_b and a
+    from the rated and locked-rotor points, then the slip speed (rpm, constant V/f: the curve's shape in slip
+    speed) where it gives ``torque_Nm`` on its stable branch."""
+    t_r = 15e3 / (1460 * math.pi / 30)
+
+    def kloss(s, sb, a):
+        return 2 * 2.8 * t_r * (1 + a * sb) * s * sb / (s * s + sb * sb + 2 * a * sb * sb * abs(s))
+
+    sb, a = fsolve(lambda x: [kloss(1 - 1460 / 1500, *x) / t_r - 1, kloss(1.0, *x) / t_r - 2.3], [0.1, 0.5])
+    return 1500 * brentq(lambda s: kloss(s, sb, a) - torque_Nm, 1e-9, sb)
+
+
+def test_a_vfd_start_that_rolls_back_then_runs_up_says_its_window_is_an_operating_point(tmp_path):
+    # a VFD set to 1000 rpm: its supply starts at 0 Hz (no torque at standstill), the 300 N m load turns the train
+    # back until the supply's frequency gives 75.9 N m; then it runs up to the rated slip speed above 1000 rpm
+    doc = _run(tmp_path, "input.ramp_s=0.5", "input.speed_rpm=1000")
+    back = [w for w in doc["warnings"] if w["code"] == "motor_rolls_back"]
+    assert len(back) == 1 and back[0]["start_torque_Nm"] == 0.0
+    window = doc["summary"]["window_s"]
+    assert doc["summary"]["start_time_s"] < window[0]
+    assert "no forward operating point" not in back[0]["message"]
+    assert f"({window[0]:.4g} s on)" in back[0]["message"]
+    assert "initial_voltage_fraction" not in back[0]["message"]  # a soft start's cure, not a VFD's
+    # and the window is the operating point: the supply 1000 + 40 rpm (the rated slip speed) less the slip speed
+    # of 75.9 N m on the same curve
+    by_hand = 1000 + (1500 - 1460) - _kloss_slip_speed_rpm(LOAD_AT_MOTOR)
+    assert doc["summary"]["motor"]["operating_speed_rpm"] == pytest.approx(by_hand, rel=1e-7)
+
+
+def test_a_soft_start_still_rolling_back_into_the_window_is_no_operating_point(tmp_path):
+    # u0 = 0.3: 0.09 x 2.3 x 98.1 N m = 20.3 N m at standstill against 75.9 N m; the window from 0.3 s, before the
+    # 1 s voltage ramp has lifted the torque: the motor still turns backwards there
+    doc = _run(tmp_path, 'input.starting="soft_start"', "input.voltage_ramp_s=1.0",
+               "input.initial_voltage_fraction=0.3", "simulation.window_start_s=0.3")
+    back = [w for w in doc["warnings"] if w["code"] == "motor_rolls_back"]
+    assert len(back) == 1
+    assert back[0]["start_torque_Nm"] == pytest.approx(0.09 * 2.3 * 15e3 / (1460 * math.pi / 30), rel=1e-9)
+    assert "no forward operating point" in back[0]["message"]
+    assert "initial_voltage_fraction" in back[0]["message"]
