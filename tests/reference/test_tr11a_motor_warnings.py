@@ -1,7 +1,8 @@
 """Motor warnings that must be true and actionable (tr11a). A VFD whose torque limit is below the load cannot
-start however slowly its supply ramps: the stall warning names the limit, and the ramp warning ("lengthen ramp_s") is not given beside it, where it said the
-ramp outran the motor because the load had turned the stalled motor backwards. A start that rolls back and then
-runs up before the statistics window says so, where it said the run's numbers were no forward operating point."""
+start however slowly its supply ramps: the stall warning names the limit, and the ramp warning ("lengthen
+ramp_s") is not given beside it, where it said the ramp outran the motor because the load had turned the stalled
+motor backwards. A start that rolls back and then runs up before the statistics window says so, where it said
+the run's numbers were no forward operating point."""
 
 from __future__ import annotations
 
