@@ -32,6 +32,7 @@ RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 ROLLBACK = 0.01  # a motor turning backwards faster than 1 % of its synchronous speed is driven back by the load
 RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
 LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
+SPEED_OFF_DESIGN = 0.02  # a motor running more than 2 % off speed_rpm is warned (as a life point off its speed)
 
 
 @dataclass(frozen=True)
@@ -140,7 +141,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
     if reaches and op.speed_rad_s is not None:
-        diags += _load_off_design(lay, op.speed_rad_s, motor.starting == "vfd")
+        diags += (_load_off_design(lay, op.speed_rad_s, motor.starting == "vfd")
+                  or _speed_off_design(lay, motor, op.speed_rad_s))
     w_mean = float(w_motor[mask].mean())
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
@@ -241,6 +243,29 @@ def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagno
                        f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
                        "the design's static forces and the dynamic factors against them are off by that much; " + why,
                        operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
+
+
+def _speed_off_design(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagnostic]:
+    """A motor whose operating point lies more than SPEED_OFF_DESIGN from ``[input] speed_rpm``, whatever its load
+    law: the design's speeds, mesh frequencies, resonance checks and the rating's K_v and load cycles are at
+    speed_rpm, the run at the motor's own speed (a constant load's forces agree, nothing else does). A nameplate
+    VFD's supply follows speed_rpm (off by its slip at other loads than the rated torque, by design); a torque_speed
+    table has no rated point to set its supply by and runs at its own synchronous speed."""
+    w_nom = lay.drive.speed_rad_s
+    vfd = motor.starting == "vfd"
+    if w_nom <= 0.0 or abs(w_op - w_nom) <= SPEED_OFF_DESIGN * w_nom or (vfd and not motor.table):
+        return []  # a nameplate VFD follows speed_rpm to within its rated slip speed (no slip compensation)
+    rpm = RAD_S_TO_RPM
+    nominal = reflected_load(lay, w_nom)
+    why = ("a VFD's supply follows speed_rpm with a nameplate motor only (its rated slip speed sets the supply); this "
+           "torque_speed table runs at its own synchronous speed: give speed_rpm the speed it runs at, or the motor's "
+           "nameplate" if vfd else
+           "give [input] speed_rpm the speed the motor runs at (or starting = \"vfd\", whose supply follows it)")
+    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * rpm:.5g} rpm, not [input] speed_rpm = "
+                       f"{w_nom * rpm:.5g} ({100 * (w_op / w_nom - 1):+.3g} %): the design's speeds, mesh frequencies "
+                       "and resonance checks and the rating's K_v and load cycles are at speed_rpm, the run at the "
+                       f"motor's own speed; {why}", operating_speed_rpm=w_op * rpm, speed_rpm=w_nom * rpm,
+                       load_ratio=reflected_load(lay, w_op) / nominal if nominal else 1.0)]
 
 
 def _driven_back(t: np.ndarray, w_motor: np.ndarray, ws: float) -> tuple[str, float | None]:

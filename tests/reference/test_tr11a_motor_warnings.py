@@ -101,3 +101,30 @@ def test_a_soft_start_still_rolling_back_into_the_window_is_no_operating_point(t
     assert back[0]["start_torque_Nm"] == pytest.approx(0.09 * 2.3 * 15e3 / (1460 * math.pi / 30), rel=1e-9)
     assert "no forward operating point" in back[0]["message"]
     assert "initial_voltage_fraction" in back[0]["message"]
+
+
+@pytest.mark.parametrize(("speed_rpm", "table", "warned"), [
+    (1000.0, False, True),    # DOL at its curve's 1471.18 rpm: 47 % off, the design's speeds all at 1000 rpm
+    (1460.0, False, False),   # the nameplate's rated speed: 0.8 % off at 77 % of the rated torque
+    (1000.0, True, True),     # a VFD with a table motor: its supply does not follow speed_rpm
+])
+def test_a_motor_running_off_speed_rpm_is_warned_whatever_its_load(tmp_path, speed_rpm, table, warned):
+    sets = [f"input.speed_rpm={speed_rpm}"]
+    if table:  # the table's last segment (1450, 120)-(1500, 0) meets 75.9 N m at 1500 - 75.9 x 50 / 120 rpm
+        sets += ["input.motor={torque_speed=[[0,200],[1000,180],[1300,260],[1450,120],[1500,0]]}", "input.ramp_s=0.5"]
+        by_hand = 1500 - LOAD_AT_MOTOR * 50 / 120
+    else:
+        sets += ['input.starting="direct"']
+        by_hand = 1500 - _kloss_slip_speed_rpm(LOAD_AT_MOTOR)
+    doc = _run(tmp_path, *sets)
+    assert doc["summary"]["motor"]["operating_point_rpm"] == pytest.approx(by_hand, rel=1e-8)
+    found = [w for w in doc["warnings"] if w["code"] == "motor_speed_mismatch"]
+    assert (abs(by_hand / speed_rpm - 1) > 0.02) is warned
+    assert len(found) == (1 if warned else 0), found
+    if warned:
+        assert found[0]["operating_speed_rpm"] == pytest.approx(by_hand, rel=1e-8)
+        assert found[0]["speed_rpm"] == pytest.approx(speed_rpm)
+        assert found[0]["load_ratio"] == 1.0  # a constant load: the forces agree, the speeds do not
+        assert ("torque_speed table" in found[0]["message"]) is table
+    # the run turns at the motor's own speed, not at speed_rpm (the window's mean holds the start's tail: 1e-3)
+    assert doc["summary"]["output_speed_rpm"] == pytest.approx(by_hand * 21 / 83, rel=1e-3)
