@@ -128,3 +128,17 @@ def test_a_motor_running_off_speed_rpm_is_warned_whatever_its_load(tmp_path, spe
         assert ("torque_speed table" in found[0]["message"]) is table
     # the run turns at the motor's own speed, not at speed_rpm (the window's mean holds the start's tail: 1e-3)
     assert doc["summary"]["output_speed_rpm"] == pytest.approx(by_hand * 21 / 83, rel=1e-3)
+
+
+def test_a_motor_stalled_in_star_is_not_also_told_to_move_its_window(tmp_path):
+    # star: a third of the locked-rotor torque, 2.3 x 98.11 / 3 = 75.22 N m, against 75.90 N m: it cannot start, and
+    # the load turns the train backwards; "it would be settled from about 0.575 s (simulation.window_start_s)" was
+    # given beside the stall, but no window of this run is an operating point
+    t_star = 2.3 * 15e3 / (1460 * math.pi / 30) / 3
+    assert t_star < LOAD_AT_MOTOR
+    doc = _run(tmp_path, 'input.starting="star_delta"', "input.switch_speed_rpm=1300", "simulation.duration_s=2.0")
+    codes = [w["code"] for w in doc["warnings"]]
+    stall = next(w for w in doc["warnings"] if w["code"] == "motor_stalls")
+    assert f"{t_star:.4g} N·m" in stall["message"]
+    assert "window_not_settled" not in codes, doc["warnings"]
+    assert doc["summary"]["motor"]["operating_speed_rpm"] < 0.0  # driven backwards: no forward operating point
