@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 import os
 
+from gearcli.config.schema_rules import MIN_DURATION_S
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError, ResourceError
 from gearcli.stages import kinds
@@ -134,11 +135,13 @@ def check_cost(cfg, design, *, source: str) -> None:
     if math.isfinite(total) and total <= ABSURD_EVALUATIONS:
         return
     fit = sim.duration_s * ABSURD_EVALUATIONS / total if math.isfinite(total) and total > 0 else 0.0
+    shorter = f"set simulation.duration_s ≤ {fit:.3g}, or check" if fit >= MIN_DURATION_S else \
+        f"no simulation.duration_s from its least {MIN_DURATION_S:g} s fits: check"  # a limit the schema refuses
     raise ResourceError(
         f"{source}: simulation.duration_s: this run would need about {total:.2g} right-hand-side evaluations "
         f"(fastest oscillation {fastest_rad_s(cfg, design) / (2 * math.pi):.3g} Hz over {sim.duration_s:g} s), "
-        f"over the limit of {ABSURD_EVALUATIONS:.2g}; set simulation.duration_s ≤ {fit:.3g}, or check the "
-        "speeds, loads and inertias for a unit mistake")
+        f"over the limit of {ABSURD_EVALUATIONS:.2g}; {shorter} the speeds, loads, mesh stiffnesses and inertias "
+        "for a unit mistake")
 
 
 def check_run_budget(cfg, design, *, fmt: str, series: bool, source: str) -> None:

@@ -36,6 +36,7 @@ from gearcli.config.schema_rules import (  # noqa: F401 (re-exported)
     MAX_SPEED_RPM,
     MAX_TIME_S,
     MAX_TORQUE_NMM,
+    MIN_DURATION_S,
     MIN_SPEED_RPM,
     RPM_TO_RAD_S,
     AllowanceMm,
@@ -104,7 +105,7 @@ MAX_STEPS = 2_000_000
 
 
 class Simulation(_Table):
-    duration_s: Annotated[float, Field(ge=1e-4, le=MAX_TIME_S)] = 0.5
+    duration_s: Annotated[float, Field(ge=MIN_DURATION_S, le=MAX_TIME_S)] = 0.5
     steps: Annotated[int, Field(ge=1, le=MAX_STEPS)] = 2000
     method: Literal[METHODS] = "auto"  # type: ignore[valid-type]
     rtol: Annotated[float, Field(ge=1e-13, le=1e-2)] = 1e-6

@@ -19,6 +19,7 @@ MIN_SPEED_RPM = 1e-3  # one turn in ~17 hours
 MAX_TORQUE_NMM = 1e11  # 100 MN·m: a 15 MW wind rotor (~20 MN·m) or a girth-gear mill drive (~12 MN·m) with room to spare
 RPM_TO_RAD_S = 2 * 3.141592653589793 / 60
 MAX_TIME_S = 3600.0  # durations, ramps and windows: one hour of simulated time
+MIN_DURATION_S = 1e-4  # simulation.duration_s: the shortest run
 SpeedRpm = Annotated[float, Field(ge=MIN_SPEED_RPM, le=MAX_SPEED_RPM)]
 SpeedDegS = Annotated[float, Field(ge=MIN_SPEED_RPM * 6, le=MAX_SPEED_RPM * 6)]
 SpeedRadS = Annotated[float, Field(ge=MIN_SPEED_RPM * RPM_TO_RAD_S, le=MAX_SPEED_RPM * RPM_TO_RAD_S)]

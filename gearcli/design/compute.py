@@ -143,7 +143,7 @@ def _dataclass_fields(cls: type) -> tuple[str, ...] | None:
 
 def _geometry(stage: Stage, k: int) -> PairGeometry:
     try:
-        return pair_geometry(stage.normal_module_mm, stage.normal_pressure_angle_deg, stage.helix_angle_deg,
+        geo = pair_geometry(stage.normal_module_mm, stage.normal_pressure_angle_deg, stage.helix_angle_deg,
                              (stage.pinion.teeth, stage.gear.teeth),
                              (stage.pinion.profile_shift, stage.gear.profile_shift),
                              (stage.pinion.face_width_mm, stage.gear.face_width_mm),
@@ -152,6 +152,18 @@ def _geometry(stage: Stage, k: int) -> PairGeometry:
     except InfeasibleGeometry as exc:
         key = f"stage[{k}]" + (f".{exc.part}.{exc.field}" if exc.part else "")
         raise DesignError(exc.message, key=key) from None
+    _require_tooth_left(stage.backlash_mm, geo, k)
+    return geo
+
+
+def _require_tooth_left(backlash_mm: float, geo: PairGeometry, k: int) -> None:
+    """The normal backlash is the normal base pitch p_bn = π m_n cos α_n less both teeth's normal base thicknesses:
+    one at or beyond p_bn leaves the teeth no thickness (the torsional model would turn the gap past a pitch)."""
+    p_bn = geo.transverse_base_pitch_mm * math.cos(geo.base_helix_rad)
+    if backlash_mm >= p_bn:
+        raise DesignError(f"the normal backlash {backlash_mm:g} mm is not less than the normal base pitch "
+                          f"p_bn = π m_n cos α_n = {p_bn:.4g} mm, which it shares with the two teeth: no tooth "
+                          "thickness is left (backlash is normal, along the line of action)", key=f"stage[{k}].backlash_mm")
 
 
 @dataclass(frozen=True)

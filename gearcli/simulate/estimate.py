@@ -182,12 +182,19 @@ def reference_words(reference_N: float, unloaded: bool) -> str:
     return f"the mean {reference_N:.4g} N"
 
 
-def suggested_rtol(rtol: float, relative_error: float, goal: float = TARGET) -> float:
+def suggested_rtol(rtol: float, relative_error: float, goal: float = TARGET) -> float | None:
     """The rtol that brings an error of ``relative_error`` at ``rtol`` below half the target ``goal``, assuming
     the error falls in proportion to rtol (the slowest order of these statistics, measured), rounded down to
-    a power of ten."""
+    a power of ten and at least the schema's floor ``MIN_RTOL``; None where even the floor is predicted to leave
+    the error above ``goal`` (a run at the floor has no tighter rtol to suggest)."""
     wanted = rtol * 0.5 * goal / max(relative_error, 1e-300)
+    if 2.0 * wanted < MIN_RTOL:
+        return None
     return max(MIN_RTOL, 10.0 ** math.floor(math.log10(wanted)))
+
+
+NO_RTOL_RESOLVES = (f"no simulation.rtol down to the schema's floor {MIN_RTOL:g} is predicted to resolve it: take the "
+                    "statistic as uncertain by the estimated error")  # where suggested_rtol has none
 
 
 def start_time(choice: Choice, window: tuple[float, float]) -> float:
@@ -228,7 +235,8 @@ def _statistics_error(k: int, err: dict[str, float], reference: float, rtol: flo
         unresolved = tuple(q for q in STATISTICS if q in unresolved or q in AMPLITUDE)
     suggestion = None
     if unresolved and all(math.isfinite(rel[q]) for q in STATISTICS):  # the rtol that resolves every statistic
-        suggestion = min(suggested_rtol(rtol, rel[q], target(q)) for q in STATISTICS)
+        each = [suggested_rtol(rtol, rel[q], target(q)) for q in STATISTICS]
+        suggestion = None if None in each else min(r for r in each if r is not None)
     return StatisticsError(
         stage=k + 1, reference_N=reference, target_relative=TARGET, mean_target_relative=MEAN_TARGET,
         tangential_N=ChannelStats(err["mean"], err["min"], err["max"], err["std"]), spectrum_N=err["spectrum"],
@@ -305,11 +313,12 @@ def peak_warnings(ref: CheckPass, run_rtol: float, method: str) -> list[Diagnost
         if p.relative <= TARGET:
             continue
         rtol = suggested_rtol(run_rtol, p.relative)
+        fix = f"--set simulation.rtol={rtol:g} would resolve it" if rtol is not None else NO_RTOL_RESOLVES
         out.append(dg.warning(
             dg.PEAK_UNRESOLVED,
             f"stage {p.stage}: the run's peak |F_t| {p.peak_N:.5g} N (at {p.at_s:.4g} s) and its run-up factor are not "
             f"resolved by {method} at the run's rtol: estimated error up to {p.error_N:.3g} N ({p.relative:.2g} of "
-            f"it, target {TARGET:g}); --set simulation.rtol={rtol:g} would resolve it",
+            f"it, target {TARGET:g}); {fix}",
             stage=p.stage, peak_N=p.peak_N, at_s=p.at_s, estimated_error_N=p.error_N, relative_error=p.relative,
             rtol=rtol))
     return out
@@ -551,7 +560,7 @@ def warnings(ref: CheckPass, method: str, unloaded: frozenset[int] = frozenset()
         names = ", ".join(_NAMES[q] for q in e.unresolved)
         worst = max(e.unresolved, key=lambda q: e.relative[q] / target(q))
         absolute = e.spectrum_N if worst == "spectrum" else getattr(e.tangential_N, worst)
-        fix = f"--set simulation.rtol={e.suggested_rtol:g}" if e.suggested_rtol else "a tighter simulation.rtol"
+        fix = f"--set simulation.rtol={e.suggested_rtol:g} would resolve it" if e.suggested_rtol else NO_RTOL_RESOLVES
         moved = ""
         if "spectrum" in e.unresolved and abs(e.dominant_frequency_Hz - e.check_dominant_frequency_Hz) > 0:
             moved = (f"; the dominant frequency {e.dominant_frequency_Hz:.4g} Hz is "
@@ -561,7 +570,7 @@ def warnings(ref: CheckPass, method: str, unloaded: frozenset[int] = frozenset()
             f"stage {e.stage}: F_t {names} not resolved by {method} at the run's rtol: estimated error up to "
             f"{absolute:.3g} N ({e.relative[worst]:.2g} of {reference_words(e.reference_N, e.stage in unloaded)}, "
             f"target {target(worst):g}){moved}; "
-            f"{fix} would resolve it",
+            f"{fix}",
             stage=e.stage, statistics=list(e.unresolved), estimated_error_N=float(absolute),
             relative_error=float(e.relative[worst]), rtol=e.suggested_rtol))
     return out

@@ -50,7 +50,8 @@ class StatisticsError:
     dominant_frequency_Hz: float  # of the run
     check_dominant_frequency_Hz: float  # of the check pass
     unresolved: tuple[str, ...]  # statistics beyond the target
-    suggested_rtol: float | None  # simulation.rtol that would resolve them (None when resolved)
+    suggested_rtol: float | None  # simulation.rtol that would resolve them (None when resolved, or when none down to
+    # the schema's floor is predicted to: estimate.suggested_rtol)
     resolved: bool = True  # no statistic beyond the target (the solver's and the sampling's errors together)
     mean_target_relative: float = 1e-4  # the mean's target (target_relative is that of min, max, std, spectrum)
     # the output sampling's share of min and max (gearcli.simulate.sampling), added to the solver's above for

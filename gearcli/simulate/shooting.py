@@ -342,6 +342,10 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                      "in these states; brute force")
     if cap < 1:
         return brute(t_start, first.y[:, -1], "no whole period fits before simulation.duration_s")
+    if not period.exact:  # excitations without a common period: the response is quasi-periodic, no orbit exists
+        return brute(t_start, first.y[:, -1], "the excitations have no common period, so the response has no "
+                     "periodic orbit: a fixed point of the map over the slowest one's period is no state of the motion "
+                     "(it adds free vibration to close the period); brute force")
     y_motion, t_motion = first.y[:, -1], t_start  # the motion's own state (no Newton correction in it)
     if eq.applies(model):  # nothing excites it: the equilibrium, found directly (gearcli.simulate.equilibrium)
         direct = _at_equilibrium(model, rtol, first, parts, period, patol, ledger, steps, cap, engine)

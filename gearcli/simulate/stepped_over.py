@@ -98,22 +98,30 @@ def unresolved_mode(choice: Choice, run: Integration, duration_s: float,
 def mode_unresolved(ref: CheckPass, mode: tuple[float, float], run: Integration,
                     duration_s: float) -> tuple[CheckPass, list[Diagnostic]]:
     """The check pass with every stage's amplitude statistics marked unresolved, and one warning per stage."""
-    rtol = max(MIN_RTOL, run.rtol / 1000)
+    rtol = _tighter_rtol(run)
     errors = tuple(replace(e, unresolved=tuple(q for q in STATISTICS if q in e.unresolved or q in AMPLITUDE),
                            resolved=False, suggested_rtol=rtol) for e in ref.errors)
     return replace(ref, errors=errors), [mode_warning(k + 1, mode, run, duration_s) for k in range(len(errors))]
 
 
+def _tighter_rtol(run: Integration) -> float | None:
+    """The rtol that resolves a stepped-over mode (the run's / 1000, not below the schema's floor), or None at the
+    floor, where no tighter rtol exists."""
+    rtol = max(MIN_RTOL, run.rtol / 1000)
+    return rtol if rtol < run.rtol else None
+
+
 def mode_warning(stage: int, mode: tuple[float, float], run: Integration, duration_s: float) -> Diagnostic:
     f, zeta = mode
+    rtol = _tighter_rtol(run)
+    fix = f"--set simulation.rtol={rtol:g} or " if rtol is not None else ""
     return dg.warning(
         dg.STATISTICS_UNRESOLVED,
         f"stage {stage}: F_t min, max, std, spectrum peaks not resolved by {run.method}: its {run.steps} steps span "
         f"{f * duration_s:.3g} periods of the {f:.4g} Hz mode (damping ratio {zeta:.2g}), whose vibration it damps "
         f"numerically; the error is not estimable from this run (the check pass damps it too) — "
-        f"--set simulation.rtol={max(MIN_RTOL, run.rtol / 1000):g} or method = \"DOP853\" resolves the mode",
-        stage=stage, statistics=list(AMPLITUDE), estimated_error_N=None, relative_error=None,
-        rtol=max(MIN_RTOL, run.rtol / 1000), mode_Hz=f)
+        f"{fix}method = \"DOP853\" resolves the mode",
+        stage=stage, statistics=list(AMPLITUDE), estimated_error_N=None, relative_error=None, rtol=rtol, mode_Hz=f)
 
 
 def radau_factor(omega_h: float) -> float:

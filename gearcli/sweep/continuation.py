@@ -74,12 +74,15 @@ RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is roun
 def on_branch(prev, result) -> bool:
     """Whether ``result`` (a periodic point continued from ``prev``'s orbit) stayed on ``prev``'s branch: its
     shooting converged from the continued orbit at the first start (or it is an equilibrium found directly, or
-    the integration from that orbit reached a settled window: a refinement point close to ``prev``), and
-    no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the larger one, or of
-    :data:`RESOLVED` of the channel's mean where both are below it (an equilibrium's rms is rounding)."""
+    the motion itself was integrated on from that orbit: a settled window, a refinement point close to ``prev``,
+    or the brute-force search of a scene the shooting leaves to it, a torque drive or excitations without a
+    common period), and no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the
+    larger one, or of :data:`RESOLVED` of the channel's mean where both are below it (an equilibrium's rms is
+    rounding)."""
     st = result.steady
-    settled_window = st is not None and st.mode == "window" and st.settled is True  # integrated on to a settled state
-    if st is None or not settled_window and (st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1):
+    followed = st is not None and (st.mode == "window" and st.settled is True  # integrated on to a settled state
+                                   or st.mode == "periodic" and st.method == "brute force")  # the motion, from prev
+    if st is None or not followed and (st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1):
         return False
     for a, b in zip(prev.stages, result.stages, strict=False):
         (x0, m0), (x1, m1) = _amplitude(a, b), _amplitude(b, a)

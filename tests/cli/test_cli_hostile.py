@@ -146,6 +146,19 @@ def test_absurd_cost_is_refused_up_front_with_the_estimate():
     assert_clean_exit_2(res, "simulation.duration_s", "evaluations", "set simulation.duration_s ≤")
     res = run("report", SEED, *absurd)
     assert_clean_exit_2(res, "simulation.duration_s", "evaluations")
+    advised = float(res.stderr.split("set simulation.duration_s ≤ ")[1].split(",")[0])
+    assert advised >= 1e-4  # the schema's least duration: the advice is a run the file may ask for
+
+
+def test_absurd_cost_at_the_least_duration_advises_no_duration_below_it():
+    # a linear 1e14 N/mm mesh on a 1e-9 kg m^2 gear (m_n 3 mm, 25 teeth: r_b = 37.5 mm cos 20° = 35.2 mm) driven at a
+    # prescribed speed: omega = r_b sqrt(k / J) = 0.0352 m x sqrt(1e17 / 1e-9) = 3.5e11 rad/s, so even the least
+    # duration 1e-4 s needs ~30 omega T = 1.1e9 evaluations, over the 5e8 limit; the refusal once advised
+    # simulation.duration_s ≤ 2.7e-05 (on a scene like it), which the schema refuses
+    tiny = ["--set", "contact.stiffness=1e14", "--set", "stage.0.gear.inertia_kg_m2=1e-9"]
+    res = run("simulate", ROOT / "configs" / "spur_oscillator_te.toml", *tiny, "--set", "simulation.duration_s=1e-4")
+    assert_clean_exit_2(res, "simulation.duration_s", "evaluations", "no simulation.duration_s from its least 0.0001 s")
+    assert "set simulation.duration_s ≤" not in res.stderr
 
 
 # ------------------------------------------------------------------------------- literal text

@@ -106,3 +106,10 @@ def test_a_refinement_point_that_raises_leaves_the_row_ok(monkeypatch):
     task = worker.Task(worker.Scene(b"", "scene.toml"), points, True, evaluate)
     note = worker._jump(task, worker._Before(points[0], _result(10.0), object()), points[1], _result(2.0))
     assert _ends(note) == pytest.approx((480.0, 480.0 + 20 / 1024), abs=1e-5)
+
+
+def test_a_brute_force_result_is_judged_by_its_amplitude():
+    # the brute-force search integrates the motion on from the previous point's state (a torque drive, or excitations
+    # without a common period): on the branch unless the response changed by 30 % (module text)
+    assert on_branch(_result(1.0), _result(1.05, method="brute force"))
+    assert not on_branch(_result(1.0), _result(1.6, method="brute force"))
