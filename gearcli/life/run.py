@@ -28,6 +28,9 @@ from gearcli.diagnostics import (
     DUTY,
     LOAD_SHARING,
     MOTOR_SPEED_MISMATCH,
+    PEAK_OVER_RIGID,
+    PEAK_UNDERSAMPLED,
+    PEAK_UNRESOLVED,
     PEAKS_UNRESOLVED,
     STARTS_NOT_COUNTED,
     Diagnostic,
@@ -222,7 +225,8 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,
                    peak_error=tuple(ld.peak_error for ld in loads), settled=settled)
     # the point's rating at K_v = 1: superseded
-    warnings = [d for d in carrying(result.warnings, result.diagnostics) if d.message not in design.warnings]
+    warnings = [d for d in carrying(result.warnings, result.diagnostics) if d.message not in design.warnings
+                and (point.starts or d.code not in RUN_UP_ONLY)]
     if cfg.input.drive == "motor" and result.extra and "motor" in result.extra:
         running = result.extra["motor"].get("operating_speed_rpm")
         said = any(d.code == MOTOR_SPEED_MISMATCH for d in warnings)  # the run's own, on its load
@@ -242,6 +246,12 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 f"sample finer: --set simulation.steps={4 * steps}", stage=k + 1, relative_error=ld.peak_error,
                 target_relative=PEAK_TOLERANCE, steps=4 * steps))
     return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
+
+
+#: warnings of a point's run that concern its run-up peak alone: a point without starts counts the settled window,
+#: never the run from rest that reaches it, so they change no figure of the life ("give ramp_s > 0", "sample finer
+#: for the run's peak") and are dropped there; a point with starts counts the run-up and keeps them
+RUN_UP_ONLY = (PEAK_OVER_RIGID, PEAK_UNDERSAMPLED, PEAK_UNRESOLVED)
 
 
 # ------------------------------------------------------------------------------------- damage

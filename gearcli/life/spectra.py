@@ -71,13 +71,18 @@ def pinion_angle_rad(t: np.ndarray, series: Mapping[Channel, np.ndarray], shaft:
 
 
 def mesh_cycle_peaks(t: np.ndarray, ft: np.ndarray, angle_rad: np.ndarray, teeth: int) -> np.ndarray:
-    """max |F_t| over each whole mesh cycle (pinion phase z theta / 2 pi between integers) of the samples."""
+    """max |F_t| over each whole mesh cycle (pinion phase z theta / 2 pi between integers) of the samples.
+
+    The phase counts from the first sample, so the first cycle, [0, 1), is as whole as every later one: it is
+    counted (a start from rest meets its largest force there, in the first fraction of a tooth pitch); the last,
+    cut off by the end of the samples, is not."""
     phase = teeth * (angle_rad - angle_rad[0]) / (2.0 * math.pi)
     cycle = np.floor(phase).astype(np.int64)
     starts = np.flatnonzero(np.diff(cycle)) + 1  # first sample of each new cycle
-    if len(starts) < 2:
+    if len(starts) < 1:
         return np.empty(0)
-    return np.maximum.reduceat(np.abs(ft)[: starts[-1]], starts[:-1])  # cycle i: samples starts[i] .. starts[i+1]-1
+    bounds = np.concatenate(([0], starts[:-1]))  # cycle i: samples bounds[i] .. starts[i]-1
+    return np.maximum.reduceat(np.abs(ft)[: starts[-1]], bounds)
 
 
 def classes(peaks: np.ndarray, static_N: float, n: int = MESH_CLASSES) -> StageLoads:

@@ -32,6 +32,7 @@ RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 ROLLBACK = 0.01  # a motor turning backwards faster than 1 % of its synchronous speed is driven back by the load
 RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
 LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
+SPEED_OFF_DESIGN = 0.02  # a motor running more than 2 % off speed_rpm is warned (as a life point off its speed)
 
 
 @dataclass(frozen=True)
@@ -127,18 +128,21 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 reverse_speed_rpm=back[1]))
     if not driven:
         diags += _runaway(t, w_motor, ws, op.stable_rad_s)
-    if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
-        diags += _rolls_back(lay, t, w_motor, ws)
-    diags += _reswitches(motor, t, w_motor)
-    diags += _vfd_outrun(lay, motor, t, w_motor)
     t_start = start_time(t, w_motor, op.speed_rad_s)
+    if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
+        recovered = reaches and t_start is not None and t_start <= window[0]
+        diags += _rolls_back(lay, t, w_motor, ws, window[0] if recovered else None)
+    diags += _reswitches(motor, t, w_motor)
+    if reaches:  # a motor whose steady curve cannot carry the load stalls however slowly its supply ramps: the
+        diags += _vfd_outrun(lay, motor, t, w_motor)  # stall warning names why; "lengthen ramp_s" would mislead
     if reaches and (t_start is None or t_start > window[0]):
         when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
         diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
     if reaches and op.speed_rad_s is not None:
-        diags += _load_off_design(lay, op.speed_rad_s, motor.starting == "vfd")
+        diags += (_load_off_design(lay, op.speed_rad_s, motor.starting == "vfd")
+                  or _speed_off_design(lay, motor, op.speed_rad_s))
     w_mean = float(w_motor[mask].mean())
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
@@ -241,6 +245,29 @@ def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagno
                        operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
 
 
+def _speed_off_design(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagnostic]:
+    """A motor whose operating point lies more than SPEED_OFF_DESIGN from ``[input] speed_rpm``, whatever its load
+    law: the design's speeds, mesh frequencies, resonance checks and the rating's K_v and load cycles are at
+    speed_rpm, the run at the motor's own speed (a constant load's forces agree, nothing else does). A nameplate
+    VFD's supply follows speed_rpm (off by its slip at other loads than the rated torque, by design); a torque_speed
+    table has no rated point to set its supply by and runs at its own synchronous speed."""
+    w_nom = lay.drive.speed_rad_s
+    vfd = motor.starting == "vfd"
+    if w_nom <= 0.0 or abs(w_op - w_nom) <= SPEED_OFF_DESIGN * w_nom or (vfd and not motor.table):
+        return []  # a nameplate VFD follows speed_rpm to within its rated slip speed (no slip compensation)
+    rpm = RAD_S_TO_RPM
+    nominal = reflected_load(lay, w_nom)
+    why = ("a VFD's supply follows speed_rpm with a nameplate motor only (its rated slip speed sets the supply); this "
+           "torque_speed table runs at its own synchronous speed: give speed_rpm the speed it runs at, or the motor's "
+           "nameplate" if vfd else
+           "give [input] speed_rpm the speed the motor runs at (or starting = \"vfd\", whose supply follows it)")
+    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * rpm:.5g} rpm, not [input] speed_rpm = "
+                       f"{w_nom * rpm:.5g} ({100 * (w_op / w_nom - 1):+.3g} %): the design's speeds, mesh frequencies "
+                       "and resonance checks and the rating's K_v and load cycles are at speed_rpm, the run at the "
+                       f"motor's own speed; {why}", operating_speed_rpm=w_op * rpm, speed_rpm=w_nom * rpm,
+                       load_ratio=reflected_load(lay, w_op) / nominal if nominal else 1.0)]
+
+
 def _driven_back(t: np.ndarray, w_motor: np.ndarray, ws: float) -> tuple[str, float | None]:
     """A stalled motor that the load then turned backwards (faster than ``ROLLBACK`` of its synchronous speed): the
     stall warning's words for it and the lowest speed (rpm); ("", None) when it did not."""
@@ -252,10 +279,18 @@ def _driven_back(t: np.ndarray, w_motor: np.ndarray, ws: float) -> tuple[str, fl
             "numbers are no forward operating point", low)
 
 
-def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> list[Diagnostic]:
+#: what lifts a start's torque at standstill above the load, per starting method (a VFD's supply starts at 0 Hz)
+STANDSTILL_CURE = {"soft_start": "a higher initial_voltage_fraction (u0² of the locked-rotor torque above the load), or ",
+                   "star_delta": "a direct start (the full locked-rotor torque), or "}
+
+
+def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
+                window_from_s: float | None = None) -> list[Diagnostic]:
     """The load turns the train backwards during the start: the starting method's torque at standstill (a soft
-    start's u0² of the locked-rotor torque, a star start's third) is below the load reflected to the motor, though
-    the full curve carries it. Named with how far back it ran and the torques at standstill at t = 0."""
+    start's u0² of the locked-rotor torque, a star start's third, a VFD's 0 at 0 Hz) is below the load reflected to
+    the motor, though the full curve carries it. Named with how far back it ran and the torques at standstill at
+    t = 0. ``window_from_s``: the statistics window's start where the motor had reached its operating speed before
+    it (the window's numbers are then an operating point's; only the start's include the roll-back)."""
     i = int(np.argmin(w_motor))
     low = float(w_motor[i])
     motor = lay.drive.motor
@@ -266,13 +301,15 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float) -> l
     if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= load:
         return []
     turns = float(np.nonzero(w_motor < 0.0)[0].size) / max(w_motor.size, 1)
+    consequence = ("the run's numbers are no forward operating point" if window_from_s is None else
+                   "the start's time and peak forces include the roll-back; the motor then runs up, before the "
+                   f"statistics window ({window_from_s:.4g} s on), whose numbers are the operating point's")
     return [dg.warning(dg.MOTOR_ROLLS_BACK, f"the load turns the train backwards during the start: the motor reaches "
                        f"{low * RAD_S_TO_RPM:.4g} rpm at {float(t[i]):.4g} s ({100 * turns:.2g} % of the run backwards): "
                        f"its {motor.starting} start gives {t0:.4g} N·m at standstill at t = 0, below the load reflected "
-                       f"to the motor, {load:.4g} N·m; the run's numbers are no forward operating point. A start whose "
-                       "torque at standstill exceeds the load (a higher initial_voltage_fraction, a direct start), "
-                       "or a backstop or brake holding the load until it does", reverse_speed_rpm=low * RAD_S_TO_RPM,
-                       start_torque_Nm=t0, load_torque_Nm=load)]
+                       f"to the motor, {load:.4g} N·m; {consequence}; it needs {STANDSTILL_CURE.get(motor.starting, '')}"
+                       "a backstop or a brake holding the load until the motor's torque exceeds it",
+                       reverse_speed_rpm=low * RAD_S_TO_RPM, start_torque_Nm=t0, load_torque_Nm=load)]
 
 
 def _reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Diagnostic]:

@@ -252,7 +252,7 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
                    floors_N: list[float] | None = None) -> SteadyState:
     """``steady`` with the settle test of the window (:mod:`gearcli.simulate.settle`; a periodic state: settled
     when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
-    ringing or the motor's start warning already says so."""
+    ringing or the motor's start, stall or runaway warning already says so."""
     if steady.mode == "periodic":
         attracting = reached(steady)
         if steady.converged and not attracting:
@@ -267,7 +267,9 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     found = check(t, mask, [p[0] for p in per_stage],
                          [st.simulated_static_tangential_N or 0.0 for st in stages],
                          choice.run_eigenvalues, window, motor_start, reaches, floors_N)
-    if not found.settled and not any(d.code in (dg.WINDOW_RINGING, dg.START_NOT_SETTLED) for d in diags):
+    # a stalled or runaway motor's warning says the run is no operating point: no later window would settle it
+    said = (dg.WINDOW_RINGING, dg.START_NOT_SETTLED, dg.MOTOR_STALLS, dg.MOTOR_RUNS_AWAY)
+    if not found.settled and not any(d.code in said for d in diags):
         diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
                                 transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
                                 else None, stage=found.stage, mode_frequency_Hz=found.frequency_Hz,

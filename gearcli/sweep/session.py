@@ -150,17 +150,22 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
 
 
 def check_motor_speed(keys: Sequence[str], cfg: DesignFile, source: str) -> None:
-    """A speed sweep on a motor drive: with ``starting = "vfd"`` the drive's supply follows each row's speed
-    (:func:`gearcli.scene.motor_spec`); any other start runs at its own curve's speed, so varying the input speed
-    would design each row at a speed the motor does not run: refused (exit 2) naming what to vary instead."""
-    if cfg.input.drive != "motor" or cfg.input.starting == "vfd" or "input.drive" in keys:
+    """A speed sweep on a motor drive: with ``starting = "vfd"`` on a nameplate motor the drive's supply follows each
+    row's speed (:func:`gearcli.scene.motor_spec`); any other start, and a VFD on a ``torque_speed`` table (no rated
+    point to set the supply by), runs at its own curve's speed, so varying the input speed would design each row at
+    a speed the motor does not run: refused (exit 2) naming what to vary instead."""
+    table = cfg.input.motor is not None and cfg.input.motor.torque_speed is not None
+    if cfg.input.drive != "motor" or (cfg.input.starting == "vfd" and not table) or "input.drive" in keys:
         return
     varied = [k for k in keys if k in SPEED_KEYS]
     if varied:
-        raise ConfigError(f'drive = "motor" with starting = "{cfg.input.starting}": the motor runs at the speed its '
-                          "curve and the load give, so varying the input speed would design each row at a speed the "
-                          "motor does not run. Vary it with a frequency converter (--set 'input.starting=\"vfd\"': "
-                          "the supply follows each row's speed), sweep a prescribed speed "
+        how = ('starting = "vfd" on a torque_speed table: a converter\'s supply follows the speed with a nameplate '
+               "motor only (its rated slip speed sets the supply), a table runs at its own synchronous speed"
+               if cfg.input.starting == "vfd" else
+               f'starting = "{cfg.input.starting}": the motor runs at the speed its curve and the load give')
+        raise ConfigError(f'drive = "motor" with {how}, so varying the input speed would design each row at a speed '
+                          "the motor does not run. Vary it with a frequency converter on a nameplate motor "
+                          "(--set 'input.starting=\"vfd\"': the supply follows each row's speed), sweep a prescribed speed "
                           "(--set 'input.drive=\"speed\"'), "
                           "or vary the load (load.torque_Nm) or the motor (input.motor) instead",
                           source=source, key=varied[0])

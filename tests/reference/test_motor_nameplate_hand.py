@@ -185,7 +185,8 @@ def test_a_fan_met_off_the_design_speed_is_warned(speed_rpm, exponent, warned):
     ratio = (n_op / speed_rpm) ** exponent
     assert (abs(ratio - 1) > 0.01) is warned
     _, res = _run((f"input.speed_rpm={speed_rpm}", f"load.speed_exponent={exponent}"))
-    got = [d for d in res.diagnostics if d.code == "motor_speed_mismatch"]
+    # the load's warning (a motor 5.6 % off speed_rpm is warned for its speed too, whatever the load: tr11a's test)
+    got = [d for d in res.diagnostics if d.code == "motor_speed_mismatch" and "speed-dependent load" in d.message]
     assert bool(got) is warned
     if warned:
         assert got[0].data["load_ratio"] == pytest.approx(ratio, rel=1e-8)

@@ -54,3 +54,13 @@ def test_drive_torque_override_on_a_motor_file_ignores_the_motor_with_a_note():
     assert res.exit_code == 0, res.output
     warnings = [w["message"] if isinstance(w, dict) else w for w in json.loads(res.stdout)["warnings"]]
     assert any("motor, starting" in w and 'drive = "torque" ignores them' in w for w in warnings)
+
+
+def test_a_speed_sweep_on_a_vfd_with_a_table_motor_is_refused_up_front():
+    # tr11a: a table has no rated point to set the converter's supply by, so its motor runs at the table's own
+    # synchronous speed whatever speed_rpm says, and every row of the sweep ran at that one speed
+    table = "input.motor={torque_speed=[[0,700],[1400,700],[1500,0]]}"
+    res = CliRunner().invoke(cli, ["sweep", VFD, "--set", table, "--vary", "input.speed_rpm=1000,1460"])
+    assert res.exit_code == 2, res.output
+    assert "input.speed_rpm" in res.stderr and "torque_speed table" in res.stderr
+    assert "Traceback" not in res.output
