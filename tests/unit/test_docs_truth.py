@@ -167,3 +167,66 @@ def test_the_contracts_keys_are_in_the_output_page_and_in_the_seeds_output(tmp_p
     assert runner.invoke(cli, ["-q", "simulate", SEED, *short, "-o", str(out)]).exit_code == 0
     header = next(csv.reader(out.open()))
     assert header[0] == "time_s" and set(CONTRACT_CSV) <= set(header)
+
+
+def _key_names(doc: object, skip: frozenset[str]) -> set[str]:
+    """Every object key in a JSON document, not descending into the keys in ``skip`` (objects whose keys are data:
+    body and element names, a rating's factors, a warning's own data)."""
+    found: set[str] = set()
+    if isinstance(doc, dict):
+        for k, v in doc.items():
+            found.add(k)
+            if k not in skip:
+                found |= _key_names(v, skip)
+    elif isinstance(doc, list):
+        for v in doc:
+            found |= _key_names(v, skip)
+    return found
+
+
+def test_every_key_of_the_design_simulate_and_modes_json_is_named_in_the_output_contract(tmp_path):
+    """The reverse of the contract check above: a key the tool writes that docs/output.md does not name is one a
+    script cannot look up. The drivetrain scene adds the couplings' and shafts' keys (`twist_rad`)."""
+    import json
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    page = (ROOT / "docs" / "output.md").read_text()
+    drivetrain = str(ROOT / "configs" / "concrete_mixer_drivetrain.toml")
+    short = ["--set", "simulation.duration_s=0.05", "--set", "simulation.steps=50"]
+    skip = frozenset({"warnings", "rating", "shape", "energy_share"})
+    runs = [["design", SEED], ["modes", SEED], ["simulate", SEED, *short], ["design", drivetrain],
+            ["simulate", drivetrain, *short]]
+    missing = {}
+    for k, args in enumerate(runs):
+        out = tmp_path / f"{k}.json"
+        r = CliRunner().invoke(cli, ["-q", *args, "-o", str(out)])
+        assert r.exit_code == 0, r.output
+        unnamed = sorted(key for key in _key_names(json.loads(out.read_text()), skip) if f"`{key}`" not in page)
+        if unnamed:
+            missing[" ".join(args[:2])] = unnamed
+    assert missing == {}
+
+
+@pytest.mark.slow
+@pytest.mark.bitwise
+def test_numerics_report_ladder_excerpt_has_the_evaluations_of_the_runs():
+    """docs/numerics.md quotes the seed report's work-precision ladder: each DOP853 rung's nfev is that of a run of
+    the seed at the rung's rtol (the same step sequence on either engine). The file's own rung (1e-6, which the
+    tour quotes too) to the evaluation; the looser rungs within the few evaluations that the BLAS kernel numpy
+    dispatches to moves them (the page says so: this suite pins OpenBLAS's Haswell kernel, tests/conftest.py)."""
+    from gearcli import api
+
+    page = (ROOT / "docs" / "numerics.md").read_text()
+    rows = re.findall(r"^\| auto \(DOP853\) \[compiled\] \| (\S+) \| \S+ \| (\d+) \|", page, re.M)
+    assert len(rows) == 3
+    for rtol, nfev in rows:
+        loaded, design = api.load_and_design(SEED, ["simulation.engine=python", "simulation.method=DOP853",
+                                                    f"simulation.rtol={rtol}", "simulation.error_estimate=false"])
+        found = api.simulate(loaded.design, design).solver.nfev
+        if float(rtol) == 1e-6:
+            assert found == int(nfev)
+        else:
+            assert abs(found - int(nfev)) <= 0.01 * int(nfev), (rtol, found, nfev)
