@@ -230,3 +230,17 @@ def test_numerics_report_ladder_excerpt_has_the_evaluations_of_the_runs():
             assert found == int(nfev)
         else:
             assert abs(found - int(nfev)) <= 0.01 * int(nfev), (rtol, found, nfev)
+
+
+def test_modes_element_stiffness_is_the_design_tangent_on_the_transverse_line_as_the_page_says():
+    """docs/output.md: a mesh's `element_stiffness` is N/m along the transverse line of action, the design's normal
+    tangent `linearised_N_mm` × 1000 cos² β_b (h = δ cos β_b, so dF_n/dδ = k_n cos β_b and the transverse force's
+    F_n cos β_b gives the other)."""
+    from gearcli import api
+
+    loaded, design = api.load_and_design(SEED)
+    clamped = api.modes(loaded.design, design)[0]
+    for k, st in enumerate(design.stages):
+        expected = st.linearised_stiffness_N_mm * 1e3 * math.cos(math.radians(st.base_helix_angle_deg)) ** 2
+        assert clamped.connectors[k] == f"stage {k + 1} mesh"
+        assert math.isclose(clamped.stiffness[k], expected, rel_tol=1e-9), k
