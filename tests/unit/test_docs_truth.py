@@ -244,3 +244,26 @@ def test_modes_element_stiffness_is_the_design_tangent_on_the_transverse_line_as
         expected = st.linearised_stiffness_N_mm * 1e3 * math.cos(math.radians(st.base_helix_angle_deg)) ** 2
         assert clamped.connectors[k] == f"stage {k + 1} mesh"
         assert math.isclose(clamped.stiffness[k], expected, rel_tol=1e-9), k
+
+
+def test_elements_page_names_the_drivetrain_channels_the_csv_has(tmp_path):
+    """docs/elements.md's "New channels" are the CSV columns of its own example, configs/concrete_mixer_drivetrain.toml
+    (°/s and N·mm: the names carry the file's units)."""
+    import csv
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    page = (ROOT / "docs" / "elements.md").read_text()
+    paragraph = page[page.index("New channels:"):].split("\n\n")[0]
+    named = re.findall(r"`([A-Za-z_{}0-9]+)`", paragraph.split("(named in")[0])
+    assert len(named) == 5
+    out = tmp_path / "d.csv"
+    args = ["-q", "simulate", str(ROOT / "configs" / "concrete_mixer_drivetrain.toml"), "--set",
+            "simulation.duration_s=0.05", "--set", "simulation.steps=50", "-o", str(out)]
+    assert CliRunner().invoke(cli, args).exit_code == 0
+    header = next(csv.reader(out.open()))
+    for name in named:
+        pattern = name.replace("{i}", r"\d+")
+        assert any(re.fullmatch(pattern, col) for col in header), name
