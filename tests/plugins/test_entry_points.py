@@ -253,6 +253,15 @@ def test_a_stage_kind_that_raises_is_named_not_a_traceback(raising_kind, tmp_pat
             "table has no row for 4") in r.output
 
 
+def test_debug_shows_where_in_the_plug_in_it_raised(raising_kind, tmp_path):
+    """docs/plugins.md: `--debug` shows the traceback of a plug-in's bug (its own frame), then the same line."""
+    r = _invoke("design", _write(tmp_path, ONLY_FIXED), "--debug")
+    assert r.exit_code == 1
+    assert "Traceback" in r.stderr and 'raise ValueError("the ratio table has no row for 4")' in r.stderr
+    assert r.stderr.splitlines()[-1] == (f'gearcli: stage type "{px.KIND}" (test_entry_points): its design facet\'s '
+                                         "result raised ValueError: the ratio table has no row for 4")
+
+
 def test_a_stage_kind_without_a_facet_a_command_needs_is_named(tmp_path):
     px.register()
     px.kinds.withdraw(px.KIND, "model")
