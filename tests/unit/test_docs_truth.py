@@ -184,9 +184,10 @@ def _key_names(doc: object, skip: frozenset[str]) -> set[str]:
     return found
 
 
-def test_every_key_of_the_design_simulate_and_modes_json_is_named_in_the_output_contract(tmp_path):
+def test_every_key_of_the_design_simulate_modes_and_report_json_is_named_in_the_output_contract(tmp_path):
     """The reverse of the contract check above: a key the tool writes that docs/output.md does not name is one a
-    script cannot look up. The drivetrain scene adds the couplings' and shafts' keys (`twist_rad`)."""
+    script cannot look up. The drivetrain scene adds the couplings' and shafts' keys (`twist_rad`); the report its
+    comparison, spectrum and accuracy study (a two-rung ladder on a short run)."""
     import json
 
     from click.testing import CliRunner
@@ -198,7 +199,8 @@ def test_every_key_of_the_design_simulate_and_modes_json_is_named_in_the_output_
     short = ["--set", "simulation.duration_s=0.05", "--set", "simulation.steps=50"]
     skip = frozenset({"warnings", "rating", "shape", "energy_share"})
     runs = [["design", SEED], ["modes", SEED], ["simulate", SEED, *short], ["design", drivetrain],
-            ["simulate", drivetrain, *short]]
+            ["simulate", drivetrain, *short],
+            ["report", SEED, "--set", "simulation.duration_s=0.3", "--rtols", "1e-5,1e-6"]]
     missing = {}
     for k, args in enumerate(runs):
         out = tmp_path / f"{k}.json"
