@@ -63,7 +63,7 @@ if TYPE_CHECKING:
 __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "check_budget", "design", "design_case",
            "engine_build", "engine_cache_refusal", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
-           "sweep_campbell", "with_resonances", "design_file_schema", "starter_toml"]
+           "sweep_campbell", "with_resonances", "design_file_schema", "plugin_failures", "starter_toml"]
 
 
 def check_environment() -> None:
@@ -94,6 +94,12 @@ def design_file_schema() -> JsonObject:
     (their entry points loaded first: a file may name their types; docs/plugins.md)."""
     plugins.load()
     return json_schema()
+
+
+def plugin_failures() -> tuple[str, ...]:
+    """The installed plug-ins that failed to load, one line each (``'name' (value) failed to load: Error: text``);
+    the entry points are loaded first if no file has asked for them yet (docs/plugins.md)."""
+    return plugins.load()
 
 
 def load(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:

@@ -9,6 +9,7 @@ import signal
 import sys
 import threading
 import time
+import traceback
 import warnings as warnings_module
 from collections.abc import Callable
 from pathlib import Path
@@ -136,8 +137,8 @@ def guarded(fn: Callable) -> Callable:
                 finally:
                     _report_numeric_warnings(caught)
         except GearcliError as exc:
-            if debug:
-                raise
+            if debug:  # the traceback, then the same one line and exit code (raised on, main() would print the line
+                traceback.print_exc()  # alone: it catches gearcli's errors for click's own output)
             if _SIGNALLED:  # a signal's exception turned into a refusal: numba's C import made a SIGHUP 0.75 s into
                 fail(_SIGNAL_WORDS[_SIGNALLED[0]], _SIGNALLED[0])  # a compiled run "numba cannot be imported" (exit 2)
             fail(str(exc), exc.exit_code)

@@ -199,4 +199,7 @@ def schema(output: str | None) -> None:
 
     target = outfiles.check_output(output, formats=("json",))
     emit(json.dumps(api.design_file_schema(), indent=2) + "\n", target)
+    # a plug-in that failed to load gave the schema none of its tables: an editor validating against it would refuse
+    # the plug-in's stage type with no word why
+    warn(f"plug-in {f}; the schema has none of its stage tables" for f in api.plugin_failures())
 

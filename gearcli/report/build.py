@@ -38,7 +38,7 @@ def _require_gear_meshes(design: DesignResult) -> None:
     if other:
         st = other[0]
         raise ConfigError(f"gearcli report compares every stage's gear mesh with its theory, and stage {st.index} is "
-                          f"a {getattr(st, 'type', '?')} stage without one: run gearcli simulate on this file",
+                          f'of type "{getattr(st, "type", "?")}", which has none: run gearcli simulate on this file',
                           key=f"stage[{st.index - 1}].type")
 
 

@@ -75,8 +75,8 @@ def life_kind(stage: object) -> LifeKind:
     kind = kinds.kind_of(stage)
     if kind not in kinds.kinds("life"):
         index = getattr(stage, "index", None)
-        raise ConfigError(f"gearcli life rates gear teeth, and a {kind} stage has none to rate (no life model of "
-                          "its kind): run gearcli design or simulate on this file",
+        raise ConfigError(f'gearcli life rates gear teeth, and a stage of type "{kind}" has none to rate (no life '
+                          "model of its kind): run gearcli design or simulate on this file",
                           key=None if index is None else f"stage[{index - 1}].type")
     return cast(LifeKind, kinds.facet(kind, "life"))
 

@@ -269,13 +269,13 @@ def test_life_on_the_toy_standard_s_curve_and_the_chain_refused(install, tmp_pat
     doc["duty"] = [{"name": "rated", "hours": 1000.0, "torque_Nm": 1340.0, "speed_rpm": 1450.0}]
     path.write_text(tomli_w.dumps(doc), encoding="utf-8")
     r = _invoke("life", str(path), "--static", "-q")
-    assert r.exit_code == 2 and f'a {KIND} stage has none to rate' in r.output and "Traceback" not in r.output
+    assert r.exit_code == 2 and f'a stage of type "{KIND}" has none to rate' in r.output and "Traceback" not in r.output
 
 
 def test_report_refuses_the_chain_and_runs_on_the_toy_standard(install, mixed, tmp_path):
     install()
     r = _invoke("report", mixed, "-q", "-o", str(tmp_path / "r.html"))
-    assert r.exit_code == 2 and "stage 2 is a test_chain stage" in r.output
+    assert r.exit_code == 2 and 'stage 2 is of type "test_chain"' in r.output
     assert not (tmp_path / "r.html").exists()
 
 

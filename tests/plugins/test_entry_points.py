@@ -81,6 +81,17 @@ def test_a_file_naming_only_built_in_names_never_scans_the_installed_packages():
     assert plugins._failures is None  # start-up time: the entry points are read only for an unknown name
 
 
+def test_schema_has_the_plug_in_s_tables_and_warns_of_one_that_failed_to_load(installed):
+    """``gearcli schema`` loads the plug-ins first (docs/plugins.md): the installed kind's table is in it, and the
+    broken plug-in beside it, whose tables cannot be, is a warning naming it (exit 0: the schema is still whole)."""
+    r = _invoke("schema")
+    assert r.exit_code == 0, r.output
+    assert f'"{px.KIND}"' in r.stdout
+    assert "warning: plug-in 'broken' (plug_no_such_module) failed to load: ModuleNotFoundError" in r.stderr
+    assert "the schema has none of its stage tables" in r.stderr and "Traceback" not in r.output
+    assert _invoke("-q", "schema").stderr == ""
+
+
 def test_a_plug_in_standard_loads_from_its_entry_point_and_rates_by_iso_at_its_minima(installed):
     """The plug-in is ISO 6336 with S_Hmin >= 1.4, S_Fmin >= 1.8: every safety is ISO's (the same formulas on the
     same file) and the permissible stresses are ISO 6336-2/-3's sigma_HP = sigma_HG / S_Hmin, sigma_FP =
@@ -240,6 +251,15 @@ def test_a_stage_kind_that_raises_is_named_not_a_traceback(raising_kind, tmp_pat
     assert r.exit_code == 1 and "Traceback" not in r.output and "internal error" not in r.output
     assert (f'stage type "{px.KIND}" (test_entry_points): its design facet\'s result raised ValueError: the ratio '
             "table has no row for 4") in r.output
+
+
+def test_debug_shows_where_in_the_plug_in_it_raised(raising_kind, tmp_path):
+    """docs/plugins.md: `--debug` shows the traceback of a plug-in's bug (its own frame), then the same line."""
+    r = _invoke("design", _write(tmp_path, ONLY_FIXED), "--debug")
+    assert r.exit_code == 1
+    assert "Traceback" in r.stderr and 'raise ValueError("the ratio table has no row for 4")' in r.stderr
+    assert r.stderr.splitlines()[-1] == (f'gearcli: stage type "{px.KIND}" (test_entry_points): its design facet\'s '
+                                         "result raised ValueError: the ratio table has no row for 4")
 
 
 def test_a_stage_kind_without_a_facet_a_command_needs_is_named(tmp_path):

@@ -233,7 +233,7 @@ def test_life_refuses_a_kind_without_a_life_model_by_name(belt, tmp_path, route)
     doc["duty"] = [{"name": "rated", "hours": 1000.0, "torque_Nm": 1000.0, "speed_rpm": 1450.0}]
     res = CliRunner().invoke(cli, ["life", str(_write(tmp_path, doc)), *route])
     assert res.exit_code == 2, res.output
-    assert "stage[1].type" in res.stderr and "test_belt stage has none to rate" in res.stderr
+    assert "stage[1].type" in res.stderr and 'a stage of type "test_belt" has none to rate' in res.stderr
     assert "Traceback" not in res.output
 
 
@@ -243,4 +243,4 @@ def test_report_refuses_a_kind_without_a_gear_mesh_by_name(belt, tmp_path):
     path = _write(tmp_path, BELT_ONLY)
     res = CliRunner().invoke(cli, ["report", str(path), "--quick"])
     assert res.exit_code == 2, res.output
-    assert f"{path}: stage[0].type:" in res.stderr and "test_belt stage without one" in res.stderr
+    assert f"{path}: stage[0].type:" in res.stderr and 'of type "test_belt", which has none' in res.stderr

@@ -167,3 +167,105 @@ def test_the_contracts_keys_are_in_the_output_page_and_in_the_seeds_output(tmp_p
     assert runner.invoke(cli, ["-q", "simulate", SEED, *short, "-o", str(out)]).exit_code == 0
     header = next(csv.reader(out.open()))
     assert header[0] == "time_s" and set(CONTRACT_CSV) <= set(header)
+
+
+def _key_names(doc: object, skip: frozenset[str]) -> set[str]:
+    """Every object key in a JSON document, not descending into the keys in ``skip`` (objects whose keys are data:
+    body and element names, a rating's factors, a warning's own data)."""
+    found: set[str] = set()
+    if isinstance(doc, dict):
+        for k, v in doc.items():
+            found.add(k)
+            if k not in skip:
+                found |= _key_names(v, skip)
+    elif isinstance(doc, list):
+        for v in doc:
+            found |= _key_names(v, skip)
+    return found
+
+
+def test_every_key_of_the_design_simulate_modes_and_report_json_is_named_in_the_output_contract(tmp_path):
+    """The reverse of the contract check above: a key the tool writes that docs/output.md does not name is one a
+    script cannot look up. The drivetrain scene adds the couplings' and shafts' keys (`twist_rad`); the report its
+    comparison, spectrum and accuracy study (a two-rung ladder on a short run)."""
+    import json
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    page = (ROOT / "docs" / "output.md").read_text()
+    drivetrain = str(ROOT / "configs" / "concrete_mixer_drivetrain.toml")
+    short = ["--set", "simulation.duration_s=0.05", "--set", "simulation.steps=50"]
+    skip = frozenset({"warnings", "rating", "shape", "energy_share"})
+    runs = [["design", SEED], ["modes", SEED], ["simulate", SEED, *short], ["design", drivetrain],
+            ["simulate", drivetrain, *short],
+            ["report", SEED, "--set", "simulation.duration_s=0.3", "--rtols", "1e-5,1e-6"]]
+    missing = {}
+    for k, args in enumerate(runs):
+        out = tmp_path / f"{k}.json"
+        r = CliRunner().invoke(cli, ["-q", *args, "-o", str(out)])
+        assert r.exit_code == 0, r.output
+        unnamed = sorted(key for key in _key_names(json.loads(out.read_text()), skip) if f"`{key}`" not in page)
+        if unnamed:
+            missing[" ".join(args[:2])] = unnamed
+    assert missing == {}
+
+
+@pytest.mark.slow
+@pytest.mark.bitwise
+def test_numerics_report_ladder_excerpt_has_the_evaluations_of_the_runs():
+    """docs/numerics.md quotes the seed report's work-precision ladder: each DOP853 rung's nfev is that of a run of
+    the seed at the rung's rtol (the same step sequence on either engine). The file's own rung (1e-6, which the
+    tour quotes too) to the evaluation; the looser rungs within the few evaluations that the BLAS kernel numpy
+    dispatches to moves them (the page says so: this suite pins OpenBLAS's Haswell kernel, tests/conftest.py)."""
+    from gearcli import api
+
+    page = (ROOT / "docs" / "numerics.md").read_text()
+    rows = re.findall(r"^\| auto \(DOP853\) \[compiled\] \| (\S+) \| \S+ \| (\d+) \|", page, re.M)
+    assert len(rows) == 3
+    for rtol, nfev in rows:
+        loaded, design = api.load_and_design(SEED, ["simulation.engine=python", "simulation.method=DOP853",
+                                                    f"simulation.rtol={rtol}", "simulation.error_estimate=false"])
+        found = api.simulate(loaded.design, design).solver.nfev
+        if float(rtol) == 1e-6:
+            assert found == int(nfev)
+        else:
+            assert abs(found - int(nfev)) <= 0.01 * int(nfev), (rtol, found, nfev)
+
+
+def test_modes_element_stiffness_is_the_design_tangent_on_the_transverse_line_as_the_page_says():
+    """docs/output.md: a mesh's `element_stiffness` is N/m along the transverse line of action, the design's normal
+    tangent `linearised_N_mm` × 1000 cos² β_b (h = δ cos β_b, so dF_n/dδ = k_n cos β_b and the transverse force's
+    F_n cos β_b gives the other)."""
+    from gearcli import api
+
+    loaded, design = api.load_and_design(SEED)
+    clamped = api.modes(loaded.design, design)[0]
+    for k, st in enumerate(design.stages):
+        expected = st.linearised_stiffness_N_mm * 1e3 * math.cos(math.radians(st.base_helix_angle_deg)) ** 2
+        assert clamped.connectors[k] == f"stage {k + 1} mesh"
+        assert math.isclose(clamped.stiffness[k], expected, rel_tol=1e-9), k
+
+
+def test_elements_page_names_the_drivetrain_channels_the_csv_has(tmp_path):
+    """docs/elements.md's "New channels" are the CSV columns of its own example, configs/concrete_mixer_drivetrain.toml
+    (°/s and N·mm: the names carry the file's units)."""
+    import csv
+
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+
+    page = (ROOT / "docs" / "elements.md").read_text()
+    paragraph = page[page.index("New channels:"):].split("\n\n")[0]
+    named = re.findall(r"`([A-Za-z_{}0-9]+)`", paragraph.split("(named in")[0])
+    assert len(named) == 5
+    out = tmp_path / "d.csv"
+    args = ["-q", "simulate", str(ROOT / "configs" / "concrete_mixer_drivetrain.toml"), "--set",
+            "simulation.duration_s=0.05", "--set", "simulation.steps=50", "-o", str(out)]
+    assert CliRunner().invoke(cli, args).exit_code == 0
+    header = next(csv.reader(out.open()))
+    for name in named:
+        pattern = name.replace("{i}", r"\d+")
+        assert any(re.fullmatch(pattern, col) for col in header), name
