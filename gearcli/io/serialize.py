@@ -275,6 +275,9 @@ def design_csv(result: DesignResult) -> str:
     """One row per stage, nested objects flattened (``pinion_pitch_diameter_mm``)."""
     rows = [flatten(_allowance_columns({k: v for k, v in _named_meshes(s).items() if not (k == "rating" and v is None)}))
             for s in _design_doc(result)["stages"]]
+    if any("type" in r for r in rows):  # a train of mixed kinds: every row names its kind (parallel rows too)
+        for r, st in zip(rows, result.stages, strict=True):
+            r.setdefault("type", st.type)
     header = list(rows[0])
     header += [h for r in rows[1:] for h in r if h not in header]  # a planetary stage's columns after
     return csv_text(header, ([r.get(h, "") for h in header] for r in rows))
