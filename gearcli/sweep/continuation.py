@@ -23,6 +23,7 @@ import numpy as np
 
 from gearcli.model import TorsionalModel
 from gearcli.model.spec import ModelSpec
+from gearcli.simulate.shooting import FALLBACK_NOTE
 
 #: ``--set`` overrides of a continued point: no start-up ramps
 NO_RAMPS = ("input.ramp_s=0.0", "load.ramp_s=0.0")
@@ -76,12 +77,14 @@ def on_branch(prev, result) -> bool:
     shooting converged from the continued orbit at the first start (or it is an equilibrium found directly, or
     the motion itself was integrated on from that orbit: a settled window, a refinement point close to ``prev``,
     or the brute-force search of a scene the shooting leaves to it, a torque drive or excitations without a
-    common period), and no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the
+    common period; not a brute-force search the shooting fell back to after failing from the continued orbit,
+    which is how a branch that ends at a fold shows), and no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the
     larger one, or of :data:`RESOLVED` of the channel's mean where both are below it (an equilibrium's rms is
     rounding)."""
     st = result.steady
     followed = st is not None and (st.mode == "window" and st.settled is True  # integrated on to a settled state
-                                   or st.mode == "periodic" and st.method == "brute force")  # the motion, from prev
+                                   or st.mode == "periodic" and st.method == "brute force"  # the motion, from prev,
+                                   and not st.note.startswith(FALLBACK_NOTE))  # where no shooting failed on it
     if st is None or not followed and (st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1):
         return False
     for a, b in zip(prev.stages, result.stages, strict=False):

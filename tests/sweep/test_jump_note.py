@@ -19,9 +19,10 @@ from gearcli.sweep.continuation import jump_note, on_branch
 N_RES, ZETA = 467.0, 0.02  # the two-stage scene's coupling mode met by the stage-1 mesh order (163.4 Hz x 60 / 21)
 
 
-def _result(rms: float, mode: str = "periodic", method: str | None = "shooting", settled: bool | None = None):
+def _result(rms: float, mode: str = "periodic", method: str | None = "shooting", settled: bool | None = None,
+            note: str = ""):
     stage = SimpleNamespace(dte_um=SimpleNamespace(rms=rms, mean=6.0), tangential_N=SimpleNamespace(std=rms, mean=2e3))
-    steady = SimpleNamespace(mode=mode, method=method, attempts=1, settled=settled, multipliers=None)
+    steady = SimpleNamespace(mode=mode, method=method, attempts=1, settled=settled, multipliers=None, note=note)
     return SimpleNamespace(steady=steady, stages=(stage,))
 
 
@@ -113,3 +114,13 @@ def test_a_brute_force_result_is_judged_by_its_amplitude():
     # without a common period): on the branch unless the response changed by 30 % (module text)
     assert on_branch(_result(1.0), _result(1.05, method="brute force"))
     assert not on_branch(_result(1.0), _result(1.6, method="brute force"))
+
+
+def test_a_brute_force_search_the_shooting_fell_back_to_leaves_the_branch():
+    # the shooting failed from the continued orbit (FALLBACK_NOTE): near a fold the orbit it followed is gone, so the
+    # brute-force state it fell back to is no evidence of the branch, however little the response changed (the
+    # Kahraman-Singh fold of tests/reference/test_shooting_kahraman_singh.py is found and named this way)
+    from gearcli.simulate.shooting import FALLBACK_NOTE
+
+    fallen = _result(1.05, method="brute force", note=f"{FALLBACK_NOTE} (the Newton steps diverged); brute force")
+    assert not on_branch(_result(1.0), fallen)
