@@ -24,7 +24,7 @@ LABELS = {
     "radial_N": "F_r mean [N]",
     "axial_N": "F_a mean [N]",
 }
-STAGE_LABELS = {"output_speed_deg_s": "gear speed [°/s]", "ratio": "stage ratio"}
+STAGE_LABELS = {"output_speed_deg_s": "stage output speed [°/s]", "ratio": "stage ratio"}
 
 
 @dataclass(frozen=True)
