@@ -24,7 +24,7 @@ from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
 from gearcli.io.units import OutputUnits
 from gearcli.model.campbell import CampbellData
-from gearcli.model.modes import RESONANCE_BAND
+from gearcli.model.modes import RESONANCE_BAND, near_nominal
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -93,7 +93,7 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
         label = f"crossing, {s} excited" if s not in seen else None
         seen.add(s)
         ax.plot([x], [f], ls="none", label=label, **STYLES[s])
-        if abs(rpm / data.nominal_input_rpm - 1.0) <= RESONANCE_BAND and s != "weakly":
+        if near_nominal(rpm, data.nominal_input_rpm) and s != "weakly":
             near.append(c)
     for c in near:
         ax.annotate(f"{c.crossing.excitation} × mode {c.mode}", (_speed(units, c.crossing.input_speed_rpm or 0.0),

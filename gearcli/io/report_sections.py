@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 from gearcli.core.text import shorten
 from gearcli.io.units import of_result
-from gearcli.model.modes import RESONANCE_BAND
+from gearcli.model.modes import RESONANCE_BAND, near_nominal
 from gearcli.report.compare import reversed_lossy_stages
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
 
@@ -24,7 +24,7 @@ LABELS = {
     "radial_N": "F_r mean [N]",
     "axial_N": "F_a mean [N]",
 }
-STAGE_LABELS = {"output_speed_deg_s": "gear speed [°/s]", "ratio": "stage ratio"}
+STAGE_LABELS = {"output_speed_deg_s": "stage output speed [°/s]", "ratio": "stage ratio"}
 
 
 @dataclass(frozen=True)
@@ -322,7 +322,7 @@ def modes_section(r: Report) -> Section | None:
             rows.append((str(m.number), "0", "–", "rigid-body rotation", "–"))
             continue
         near = [c for c in m.crossings if c.input_speed_rpm is None  # a fixed frequency near the mode: at any speed
-                or abs(c.input_speed_rpm / ana.nominal_input_rpm - 1.0) <= RESONANCE_BAND]
+                or near_nominal(c.input_speed_rpm, ana.nominal_input_rpm)]
         u = of_result(r.simulation)
         cross = ", ".join(f"{c.excitation} at " + ("any speed" if c.input_speed_rpm is None else
                                                    f"{u.speed_from_deg_s(6.0 * c.input_speed_rpm):.4g} "
@@ -331,7 +331,7 @@ def modes_section(r: Report) -> Section | None:
         rows.append((str(m.number), g(m.frequency_Hz, 5), f"{100 * m.damping_ratio:.2g}",
                      f"{m.dominant} ({100 * max(m.energy_share):.0f} %)", cross))
     return Section("Modes and resonances", ("mode", "f [Hz]", "ζ [%]", "dominant element (strain energy)",
-                                            f"orders within ±{100 * RESONANCE_BAND:.0f} % of the nominal speed"),
+                                            f"orders within ±{100 * RESONANCE_BAND:.0f} % of the mode at the nominal speed"),
                    tuple(rows), "lrrll",
                    (f"linearised at full load, {ana.boundary.replace('_', ' ')}; "
                     "the Campbell diagram (all orders 0 … 1.2 × nominal) is campbell.png with --plots",))

@@ -273,7 +273,9 @@ def duration_for(cfg, design) -> float:
     """A run long enough that its steady window holds MIN_WINDOW_MESH_CYCLES of the slowest mesh (at least
     the file's duration): the window is [ramps + 20 % of the rest, end], or [window_start_s, end]."""
     f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)
-    window = MIN_WINDOW_MESH_CYCLES / f_min
+    # +1: the cycle the window's end cuts off, which mesh_cycle_peaks does not count (40 periods of window held
+    # 39 whole cycles)
+    window = (MIN_WINDOW_MESH_CYCLES + 1) / f_min
     sim = cfg.simulation
     if sim.window_start_s is not None:
         need = sim.window_start_s + window

@@ -344,6 +344,14 @@ def _crossing(o: OrderSource, f: float, share: np.ndarray, zeta: float) -> Cross
                     o.source, o.order)
 
 
+def near_nominal(crossing_rpm: float, nominal_rpm: float) -> bool:
+    """Whether an order crossing a mode at ``crossing_rpm`` lies, at the nominal input speed, within
+    ``RESONANCE_BAND`` of the mode: |f_e - f_m| / f_m with f_e / f_m = n_nominal / n_crossing, the measure of the
+    ``resonance`` warning (:func:`resonances`), so the report's and the Campbell diagram's "near the nominal speed"
+    name exactly the orders the warning can name (not |n_crossing / n_nominal - 1|, 10.2 % for a warned 9.3 %)."""
+    return crossing_rpm > 0.0 and abs(nominal_rpm / crossing_rpm - 1.0) <= RESONANCE_BAND
+
+
 def _meets(t: TorqueSource, f: float, top_rpm: float) -> bool:
     """Whether torque source ``t`` crosses a mode of ``f`` Hz for input speeds 0 .. ``top_rpm``: an order below the
     top speed, a fixed frequency within ``RESONANCE_BAND`` of the mode (then at every speed)."""

@@ -9,8 +9,10 @@ Each check returns plain sentences; nothing here prints.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
+from gearcli.config.schema import MAX_STEPS
 from gearcli.diagnostics import ENERGY_RESIDUAL, has
 from gearcli.report.accuracy import struggling_runs
 from gearcli.report.result import AccuracyStudy, StageReport
@@ -30,19 +32,37 @@ def energy_check(sim: SimulationResult, limit: float = ENERGY_RESIDUAL_LIMIT) ->
     return []
 
 
-def sampling_checks(stages: Sequence[StageReport], natural_Hz: Sequence[float]) -> list[str]:
-    """Lines above the Nyquist frequency of the output sampling alias in the spectrum."""
+#: the Nyquist frequency a suggested ``simulation.steps`` puts above the highest line, as a multiple of it
+NYQUIST_MARGIN = 1.25
+
+
+def _steps_hint(steps: int | None, nyq: float, top_Hz: float) -> str:
+    """``--set simulation.steps=N`` that puts the Nyquist frequency (steps / (2 duration): linear in the steps) at
+    ``NYQUIST_MARGIN`` times ``top_Hz``; the plain advice when the run's steps are not known or N is beyond the
+    schema's maximum."""
+    if steps is None or steps <= 0:
+        return "raise simulation.steps"
+    need = math.ceil(steps * NYQUIST_MARGIN * top_Hz / nyq)
+    if need > MAX_STEPS:
+        return (f"raise simulation.steps (it would take {need}, beyond the schema's maximum {MAX_STEPS}: "
+                "shorten simulation.duration_s as well)")
+    return f"--set simulation.steps={need} would sample it"
+
+
+def sampling_checks(stages: Sequence[StageReport], natural_Hz: Sequence[float], steps: int | None = None) -> list[str]:
+    """Lines above the Nyquist frequency of the output sampling alias in the spectrum. ``steps``: the run's
+    ``simulation.steps``, for the value that would sample them."""
     if not stages or stages[0].spectrum.nyquist_Hz <= 0:
         return []
     nyq = stages[0].spectrum.nyquist_Hz
     out = [f"stage {s.stage}: mesh frequency {s.spectrum.mesh_frequency_Hz:.4g} Hz is above the Nyquist frequency "
-           f"{nyq:.4g} Hz of the output samples; raise simulation.steps" for s in stages
-           if s.spectrum.mesh_frequency_Hz > nyq]
+           f"{nyq:.4g} Hz of the output samples; {_steps_hint(steps, nyq, s.spectrum.mesh_frequency_Hz)}"
+           for s in stages if s.spectrum.mesh_frequency_Hz > nyq]
     above = [f for f in natural_Hz if f > nyq]
     if above:
         out.append(f"{len(above)} natural frequenc{'y' if len(above) == 1 else 'ies'} (up to {max(above):.4g} Hz) "
                    f"above the Nyquist frequency {nyq:.4g} Hz of the output samples: they alias in the "
-                   "spectrum; raise simulation.steps to see them")
+                   f"spectrum; {_steps_hint(steps, nyq, max(above))}")
     return out
 
 

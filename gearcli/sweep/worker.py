@@ -109,7 +109,7 @@ def iter_task(task: Task) -> Iterator[Row]:
                 check = family.needs_check(point.index)
                 _, result, carried = _evaluate(task.evaluate, task.scene, point, prev if task.continuation else None,
                                                check)
-                shared = family.checked(one_line(str(point.values)), result) if check else family.carried(result)
+                shared = family.checked(one_line(", ".join(point.overrides())), result) if check else family.carried(result)
                 jump = _jump(task, before, point, result) if task.continuation else ""
             except GearcliError as exc:
                 prev = before = None

@@ -94,6 +94,15 @@ def test_planetary_theory_by_hand(planetary):
     assert_allclose(radial, f_t * math.tan(math.radians(20)), rtol=1e-12)
 
 
+
+def test_planetary_comparison_row_is_the_stage_output_not_a_gear(planetary):
+    """The theory-against-simulation row of a stage's output speed read "gear speed" beside the carrier's
+    1500 / 3.5 = 428.571 rpm, where the stage's "gear" (the planet) turns at another speed: it is the stage's output."""
+    md = planetary["markdown"].split("## Theory against simulation", 1)[1].split("## ", 1)[0]
+    row = _row(md, "1 | stage output speed [rpm]")
+    assert_allclose([float(row[2]), float(row[3])], [SUN_RPM / RATIO] * 2, rtol=1e-5)
+    assert "gear speed" not in md
+
 MOTOR = """
 title = "Motor-driven single helical stage, 11 kW"
 [materials.steel]

@@ -52,4 +52,5 @@ def test_a_loose_sweep_carries_the_checked_points_warning_into_its_neighbours_ro
     rows = list(iter_task(Task(scene, points, False, functools.partial(evaluate_point, settle=False))))
     assert "not resolved" in rows[0]["message"] and "family's checked point" not in rows[0]["message"]
     for r in rows[1:]:
-        assert "family's checked point" in r["message"] and "input.speed_rpm" in r["message"]
+        # named as the user writes the point (`--set` form), not as a Python tuple
+        assert "family's checked point input.speed_rpm=600.0)" in r["message"] and "((" not in r["message"]

@@ -244,6 +244,13 @@ def test_sampling_check_names_lines_above_nyquist():
     assert sampling_checks(stages, (160.0, 900.0)) == []
     msg = sampling_checks(stages, (160.0, 4700.0))
     assert len(msg) == 1 and "4700 Hz" in msg[0] and "simulation.steps" in msg[0]
+    # with the run's steps, the value to use. The check's Nyquist is half the sample rate less one bin 1/T:
+    # 2000 - 1/0.5 s = 1998 Hz, linear in the steps: 2000 x 1.25 x 4700 / 1998 = 5880.9 -> 5881, whose Nyquist
+    # 5881 / (2 x 0.5 s) - 2 Hz = 5879 Hz holds 1.25 x 4700 = 5875 Hz
+    (hint,) = sampling_checks(stages, (160.0, 4700.0), 2000)
+    assert "Nyquist frequency 1998 Hz" in hint and hint.endswith("--set simulation.steps=5881 would sample it"), hint
+    (capped,) = sampling_checks(stages, (4.7e9,), 2000)  # 5.875e9 steps: beyond the schema's 2e6
+    assert "beyond the schema's maximum 2000000" in capped and "duration_s" in capped
 
 
 def test_accuracy_check_says_what_to_use_instead():
