@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Literal, cast
 
 from gearcli.core.jsontypes import JsonObject, JsonValue
+from gearcli.core.records import record
 
 Severity = Literal["info", "warning"]
 
@@ -66,7 +67,7 @@ BEARING_LIFE_SHORT = "bearing_life_short"  # a bearing's ISO 281 life over the d
 OTHER = "other"
 
 
-@dataclass(frozen=True)
+@record
 class Diagnostic:
     """A warning as data: its stable ``code``, severity, message and the values it names."""
 

@@ -8,14 +8,16 @@ classes: a frozen dataclass costs about 40 us per field to create on Python 3.11
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING
+
+from gearcli.core.records import record
 
 if TYPE_CHECKING:
     from gearcli.results import GearResult, Iso6336Factors, MeshStiffness, RatedMesh, StaticForces
 
 
-@dataclass(frozen=True)
+@record
 class BearingResult:
     """One bearing's static reaction on its shaft (N; y, z radial components, axial along x) and its ISO 281
     basic rating life (None, JSON null, when the bearing carries no load or its shaft stands still)."""
@@ -50,7 +52,7 @@ class BearingResult:
 
 
 # ------------------------------------------------------------------------------ planetary stages (issue 25)
-@dataclass(frozen=True)
+@record
 class CarrierResult:
     """The planet carrier: its speed and torque, its own inertia and the planets' translational N m_p r_c²."""
 
@@ -65,7 +67,7 @@ class CarrierResult:
     inertia_kg_m2: float  # own + planets' translational
 
 
-@dataclass(frozen=True)
+@record
 class InternalMeshResult:
     """The planet–ring mesh of one planet (ISO 21771 internal gear geometry, ISO 6336-1 stiffness)."""
 
@@ -106,7 +108,7 @@ class InternalMeshResult:
     tip_clearance_with_allowances_mm: tuple[float, float] | None = None
 
 
-@dataclass(frozen=True)
+@record
 class PlanetaryResult:
     """What a planetary stage adds to its sun–planet mesh: members, the ring mesh, assembly checks."""
 

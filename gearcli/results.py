@@ -11,10 +11,11 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING, Protocol
 
 from gearcli.core.jsontypes import JsonObject
+from gearcli.core.records import record
 
 if TYPE_CHECKING:
     from gearcli.diagnostics import Diagnostic
@@ -25,7 +26,7 @@ OPTIONAL = ("BearingResult", "CarrierResult", "InternalMeshResult", "PlanetaryRe
 
 
 # ----------------------------------------------------------------------------------------- design
-@dataclass(frozen=True)
+@record
 class StaticForces:
     """Static tooth forces on the pinion pitch circle, N (signed: negative under load reversal)."""
 
@@ -35,7 +36,7 @@ class StaticForces:
     normal: float
 
 
-@dataclass(frozen=True)
+@record
 class GearResult:
     """One member of a gear pair: its geometry, speed, torque and inertia (``design``'s ``pinion``/``gear``)."""
 
@@ -63,7 +64,7 @@ class GearResult:
     manufactured_root_diameter_mm: tuple[float, float] | None = None  # [d_f,e, d_f,i], cut at x_E
 
 
-@dataclass(frozen=True)
+@record
 class Iso6336Factors:
     """The correction factors of c' = c'_th C_M C_R C_B cos beta (ISO 6336-1, clause 9)."""
 
@@ -107,7 +108,7 @@ class RatedMesh(Protocol):
     def factor_table(self) -> Mapping[str, float | str]: ...
 
 
-@dataclass(frozen=True)
+@record
 class StageResult:
     """One stage's design results: ratio, geometry, contact ratios, stiffness and static forces."""
 
@@ -158,7 +159,7 @@ class StageResult:
     type: str = "parallel"  # the stage kind (the design file's stage ``type``; gearcli.stages); JSON: its own
 
 
-@dataclass(frozen=True)
+@record
 class ShaftResult:
     """A rigid shaft: shaft 1 carries pinion 1, shaft k+1 carries gear k and pinion k+1."""
 
@@ -189,7 +190,7 @@ def drop_absent_bearing_keys(doc: JsonObject) -> JsonObject:
     return doc
 
 
-@dataclass(frozen=True)
+@record
 class DesignResult:
     """The design calculations of a whole file (``gearcli design``'s document)."""
 
@@ -212,7 +213,7 @@ class DesignResult:
     units: tuple[str, str] | None = None
 
 
-@dataclass(frozen=True)
+@record
 class MeshStiffness:
     """The contact law of one mesh: K in N/mm^e, its slope along the normal at the static load, and ISO 6336-1's
     normal mesh stiffness k_n = c_gamma_alpha b / cos^2 beta_b beside it (DESIGN section 13)."""

@@ -14,15 +14,16 @@ import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
-from dataclasses import dataclass
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict, GetCoreSchemaHandler, GetJsonSchemaHandler, field_validator
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import core_schema
 
+from gearcli.core.records import record
 
-@dataclass(frozen=True)
+
+@record
 class NotTiny:
     """Annotation: 0 is allowed, but no magnitude in (0, tiny); in the JSON Schema a "not" range."""
 
@@ -60,7 +61,7 @@ def given_tables(given: frozenset[str] | None) -> Iterator[None]:
         _GIVEN.reset(token)
 
 
-@dataclass(frozen=True)
+@record
 class IfGiven:
     """Annotation of an optional table at ``path`` ("bearing", "input.motor", "stage.mesh": any stage's): its
     schema, except in a validator built for files that do not give it (:func:`given_tables`), where nothing ever

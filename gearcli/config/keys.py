@@ -11,12 +11,12 @@ import json
 import re
 import types
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Annotated, Any, Union, get_args, get_origin
 
 from pydantic import BaseModel
 
 from gearcli.config.schema import DesignFile
+from gearcli.core.records import record
 from gearcli.stages import kinds
 
 Segment = str | int
@@ -108,7 +108,7 @@ def unknown_key_hint(word: str, model: type[BaseModel]) -> str:
     return f" (allowed: {', '.join(fields)})" if len(fields) <= 8 else ""
 
 
-@dataclass(frozen=True)
+@record
 class Resolved:
     """Where a pydantic error location lands in the schema.
 

@@ -16,7 +16,6 @@ import sys
 import tomllib
 import types
 from collections.abc import Sequence
-from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import BinaryIO, Union, get_args, get_origin
@@ -30,6 +29,7 @@ from gearcli.config.prescan import MAX_BYTES, check_bytes, check_text
 from gearcli.config.schema import DesignFile, validate_design
 from gearcli.config.starter import json_schema, starter_toml
 from gearcli.core import plugins
+from gearcli.core.records import record
 from gearcli.errors import ConfigError
 from gearcli.stages import kinds
 
@@ -58,7 +58,7 @@ class ConfigErrors(ConfigError):
         return "\n".join(lines)
 
 
-@dataclass(frozen=True)
+@record
 class LoadedDesign:
     """A validated design file.
 

@@ -20,7 +20,6 @@ import re
 import tomllib
 import types
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any, Union, get_args, get_origin
 
 from pydantic import BaseModel
@@ -38,6 +37,7 @@ from gearcli.config.keys import (
 from gearcli.config.messages import got
 from gearcli.config.schema import DesignFile, Input, Load, Target
 from gearcli.core import plugins
+from gearcli.core.records import record
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError
 from gearcli.stages import kinds
@@ -52,7 +52,7 @@ EXCLUSIVE: dict[type[BaseModel], tuple[tuple[str, ...], ...]] = {
 }
 
 
-@dataclass(frozen=True)
+@record
 class Override:
     """One parsed ``--set``: the key as typed, its path, and the value."""
 

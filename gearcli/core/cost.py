@@ -44,7 +44,8 @@ is what a choice between them needs.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from gearcli.core.records import record
 
 # ----------------------------------------------------------------------------------------------- prices
 #: seconds per counter, per engine (benchmarks/bench_cost.py)
@@ -63,7 +64,7 @@ COUNTERS_PER_EVAL: dict[str, dict[str, float]] = {
 IMPLICIT = ("Radau", "BDF", "LSODA")
 
 
-@dataclass(frozen=True)
+@record
 class ModelSize:
     """What a right-hand side's price depends on (:data:`PRICE_US`): the state's size, the mesh connectors
     (a planetary stage's planet meshes each count, and count again as planet meshes: their load sharing and

@@ -10,10 +10,10 @@ gearcli.engine, the ``fast`` extra).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from gearcli.core.records import record
 
 
-@dataclass(frozen=True)
+@record
 class Method:
     """An integration method by name: whether it is implicit and takes a Jacobian."""
 

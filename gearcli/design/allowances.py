@@ -10,8 +10,8 @@ section, at the reference circle), A_dae ≥ A_dai (tip diameter), A_ae ≥ A_ai
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
+from gearcli.core.records import record
 from gearcli.design.geometry import PairGeometry, involute, transverse_contact_ratio, working_pressure_angle_rad
 
 Pair = tuple[float, float]  # [upper, lower]
@@ -76,7 +76,7 @@ def contact_ratio_at(geo: PairGeometry, tips: Pair, center_distance: float) -> f
                                     center_distance, alpha, geo.transverse_base_pitch_mm)
 
 
-@dataclass(frozen=True)
+@record
 class PairAllowances:
     """What the allowances of one pair give; per member tuples are (pinion, gear), every pair [upper, lower]."""
 

@@ -21,15 +21,15 @@ Unlike an external pair's, it falls as the centre distance grows. j_n = j_t cos 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
+from gearcli.core.records import record
 from gearcli.design.allowances import generating_profile_shift
 from gearcli.design.geometry import involute
 
 Pair = tuple[float, float]  # [upper, lower]
 
 
-@dataclass(frozen=True)
+@record
 class InternalMesh:
     """What the internal mesh's allowances need: the teeth, module, angles and the planet's and ring's circles."""
 
@@ -43,7 +43,7 @@ class InternalMesh:
     center_distance_mm: float  # the carrier's radius a′
 
 
-@dataclass(frozen=True)
+@record
 class InternalAllowances:
     ring_generating_profile_shift: Pair  # [x_E,e, x_E,i]
     ring_manufactured_root_diameter_mm: Pair  # [d_f,e, d_f,i]

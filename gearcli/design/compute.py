@@ -7,9 +7,10 @@ This module only assembles: every formula lives, with its source, in ``geometry`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, is_dataclass, replace
+from dataclasses import fields, is_dataclass, replace
 from typing import TYPE_CHECKING
 
+from gearcli.core.records import record
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
@@ -166,7 +167,7 @@ def _require_tooth_left(backlash_mm: float, geo: PairGeometry, k: int) -> None:
                           "thickness is left (backlash is normal, along the line of action)", key=f"stage[{k}].backlash_mm")
 
 
-@dataclass(frozen=True)
+@record
 class _Stiffness:
     """A stage's Hertz line contact and ISO 6336-1 mesh stiffness."""
 
@@ -273,7 +274,7 @@ def _model_inertia_kg_m2(gear: Gear, density_kg_m3: float, pitch_mm: float, mean
     return annulus_inertia_kg_m2(density_kg_m3, gear.face_width_mm, mean_mm, gear.bore_diameter_mm or 0.0)
 
 
-@dataclass(frozen=True)
+@record
 class _Resonance:
     """A stage's ISO 6336-1 resonance figures: reduced mass, resonance speed and ratio."""
 

@@ -17,7 +17,8 @@ Conventions where the standard leaves a choice:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from gearcli.core.records import record
 
 HALF_PI = 0.5 * math.pi
 
@@ -227,7 +228,7 @@ def normal_tip_thickness_mm(teeth: int, normal_module_mm: float, profile_shift: 
 
 
 # ------------------------------------------------------------------------------- assembled pair
-@dataclass(frozen=True)
+@record
 class PairGeometry:
     """Everything ISO 21771 gives for one external pair; angles in rad, lengths in mm."""
 
@@ -250,7 +251,7 @@ class PairGeometry:
     tip_alteration_coefficient: float = 0.0  # k (ISO 21771), tips shortened by k m_n (k <= 0)
 
 
-@dataclass(frozen=True)
+@record
 class BasicRackFactors:
     """The basic rack (ISO 53) in multiples of m_n; the default is profile A."""
 

@@ -18,7 +18,8 @@ Pure ``math``: the design layer never imports numpy or scipy.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from gearcli.core.records import record
 
 # ISO 281:2007 Table 12: reliability % -> a_1
 RELIABILITY_TABLE = {90.0: 1.0, 95.0: 0.64, 96.0: 0.55, 97.0: 0.47, 98.0: 0.37, 99.0: 0.25, 99.2: 0.22,
@@ -103,7 +104,7 @@ def static_safety(static_rating_N: float, static_load_N: float) -> float | None:
     return None if static_load_N <= 0.0 else static_rating_N / static_load_N
 
 
-@dataclass(frozen=True)
+@record
 class Lubrication:
     """What a_ISO needs of the oil and its cleanliness (``[lubricant]``)."""
 
@@ -118,7 +119,7 @@ class Lubrication:
         return contamination_factor(self.contamination, pitch_diameter_mm)
 
 
-@dataclass(frozen=True)
+@record
 class ModifiedLife:
     """One load level's modified life: kappa, a_ISO, a_1 and L_nm (10^6 revolutions; None: unbounded)."""
 

@@ -9,7 +9,8 @@ torque in the train negative.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from gearcli.core.records import record
 
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 
@@ -76,7 +77,7 @@ def power_kW(torque_Nmm: float, speed_rad_s: float) -> float:
     return torque_Nmm * speed_rad_s * 1e-6
 
 
-@dataclass(frozen=True)
+@record
 class Train:
     """Ratios, shaft speeds (rad/s) and stage torques (N·mm) of the whole train."""
 

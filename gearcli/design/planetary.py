@@ -25,9 +25,10 @@ blank factors, as for any pair of different blanks.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING, TypeVar, cast
 
+from gearcli.core.records import record
 from gearcli.design import allowances_internal as ia
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
@@ -123,7 +124,7 @@ def mesh_train(k: int, stage: PlanetaryStage, kin: Train) -> Train:
 
 
 # ------------------------------------------------------------------------- internal geometry
-@dataclass(frozen=True)
+@record
 class InternalGeometry:
     pitch_diameter_mm: float
     base_diameter_mm: float

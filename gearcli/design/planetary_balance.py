@@ -23,8 +23,8 @@ member (the sense of the members' signed speeds): the input member's torque is p
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
+from gearcli.core.records import record
 from gearcli.errors import DesignError
 
 MEMBERS = ("sun", "carrier", "ring")
@@ -52,7 +52,7 @@ def willis(z_sun: int, z_ring: int, fixed: str, driven: str) -> dict[str, float]
     return {m: v + 0.0 for m, v in willis_speeds(z_sun, z_ring, fixed, driven).items()}
 
 
-@dataclass(frozen=True)
+@record
 class Balance:
     """The stage's statics per unit |T_sun|: signed member torques, which member drives in the carrier frame,
     the sun–planet and planet–ring mesh forces (the driving side's, N r_b F in units of |T_sun| / r_bs ...)."""

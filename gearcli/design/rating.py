@@ -20,9 +20,10 @@ Choices where the contract is silent (docs/iso6336.md says each):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from gearcli.core.records import record
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design.allowances import manufactured_tooth_depth_mm
@@ -188,7 +189,7 @@ def static_range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[D
     return out
 
 
-@dataclass(frozen=True)
+@record
 class _Mesh:
     """A stage as the rating sees it: ISO's index 1 (``small``) is the wheel with fewer teeth."""
 
@@ -312,7 +313,7 @@ def rate_stage(cfg: DesignFile, k: int, st: StageResult, *, simulated_k_v: float
         pinion=_member(cfg, k, st, mesh, lf, flank, y_beta, 0), gear=_member(cfg, k, st, mesh, lf, flank, y_beta, 1))
 
 
-@dataclass(frozen=True)
+@record
 class _Flank:
     """The pitting factors a member's figures need: Z_B/Z_D by member index, σ_H at the pitch point, Z_L, Z_V, Z_R,
     and Z_W by the index of the member it acts on."""

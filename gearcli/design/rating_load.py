@@ -10,16 +10,16 @@ the ISO 1328-1 grade less running-in; K_Fβ, K_Hα, K_Fα and Z_ε follow.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from gearcli.core.records import record
 from gearcli.design import rating_factors as rf
 
 if TYPE_CHECKING:
     from gearcli.config.schema import Rating
 
 
-@dataclass(frozen=True)
+@record
 class MeshLoad:
     """What ISO 6336-1's load factors read of a mesh; index ``small`` of the pairs is ISO's pinion (index 1)."""
 
@@ -43,7 +43,7 @@ class MeshLoad:
     tooth_depth_mm: float  # h of K_Fβ's b/h
 
 
-@dataclass(frozen=True)
+@record
 class LoadFactors:
     k_v: float
     k_v_source: str  # "simulated" | "given" | "iso"

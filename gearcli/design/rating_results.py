@@ -4,10 +4,12 @@ is all the layers above read."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import fields
+
+from gearcli.core.records import record
 
 
-@dataclass(frozen=True)
+@record
 class MemberRating:
     """ISO 6336-2/-3 figures of one member (docs/iso6336.md, "Strength rating"); JSON ``rating.pinion|gear``."""
 
@@ -43,7 +45,7 @@ class MemberRating:
         return self.sigma_H_MPa if mode == "pitting" else self.sigma_F_MPa
 
 
-@dataclass(frozen=True)
+@record
 class MeshRatingFactors:
     """The mesh-level figures of an ISO 6336:2006 method B rating (load factors, pitting factors, σ_H0, σ_H),
     shared by a gear pair's rating and the planet–ring mesh's."""
@@ -74,7 +76,7 @@ class MeshRatingFactors:
         return {f.name: getattr(self, f.name) for f in fields(self) if f.name not in ("pinion", "gear")}
 
 
-@dataclass(frozen=True)
+@record
 class RatingResult(MeshRatingFactors):
     """The strength rating of one stage, ISO 6336:2006 method B; JSON ``stages[k].rating``."""
 
@@ -83,7 +85,7 @@ class RatingResult(MeshRatingFactors):
     K_gamma: float = 1.0  # load-sharing factor of a planetary stage (in σ_H, σ_F; not in the nominal σ_H0, σ_F0)
 
 
-@dataclass(frozen=True)
+@record
 class InternalRatingResult(MeshRatingFactors):
     """The planet–ring mesh's strength rating (ISO 6336:2006 method B); JSON ``meshes[1].rating``, the keys of a
     parallel stage's ``rating``: ``pinion`` is the planet, ``gear`` the ring (its root by ISO 6336-3's internal

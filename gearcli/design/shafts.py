@@ -21,9 +21,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import field, replace
 from typing import TYPE_CHECKING, cast
 
+from gearcli.core.records import record
 from gearcli.design.bearing_life import check_inputs, lubrication, static_figures
 from gearcli.design.iso281 import Lubrication, modified_life
 from gearcli.design.planetary_balance import planet_angles_deg, willis_speeds
@@ -82,7 +83,7 @@ def cross(a: Vec, b: Vec) -> Vec:
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-@dataclass(frozen=True)
+@record
 class PointLoad:
     """A force (N) on a shaft at a point (mm): x along the shaft, y and z off its axis."""
 
@@ -90,7 +91,7 @@ class PointLoad:
     force_N: Vec
 
 
-@dataclass(frozen=True)
+@record
 class Reaction:
     """What a bearing exerts on its shaft (N): radial components in y and z, axial along x."""
 
@@ -124,7 +125,7 @@ def shaft_reactions(loads: Sequence[PointLoad], x_a_mm: float, x_b_mm: float,
     return (Reaction(ra_y, ra_z, -fx if locating_a else 0.0), Reaction(rb_y, rb_z, 0.0 if locating_a else -fx))
 
 
-@dataclass(frozen=True)
+@record
 class MeshLayout:
     """What the statics needs of one stage, independent of the load."""
 
@@ -154,7 +155,7 @@ def mesh_loads(m: MeshLayout, line_force_N: float) -> tuple[PointLoad, PointLoad
             PointLoad((xg, -rg * u[1], -rg * u[2]), on_gear))
 
 
-@dataclass(frozen=True)
+@record
 class BearingSpec:
     index: int  # 0-based position in [[bearing]]
     shaft: int  # 1-based; 0 for a planet pin's bearing
@@ -184,7 +185,7 @@ def _spec(j: int, b, shaft: int, planet_stage: int = 0) -> BearingSpec:
                        b.pitch_diameter_mm, 90.0 if b.reliability_percent is None else b.reliability_percent)
 
 
-@dataclass(frozen=True)
+@record
 class PlanetaryLayout:
     """What the statics needs of one planetary stage (docs/life.md, "Planetary stages").
 
@@ -274,7 +275,7 @@ def _neg(f: Vec) -> Vec:
     return (-f[0], -f[1], -f[2])
 
 
-@dataclass(frozen=True)
+@record
 class ShaftLayout:
     """The supported shafts of a design: which mesh loads act on which shaft, and its two bearings."""
 

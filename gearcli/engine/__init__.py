@@ -21,12 +21,12 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearcli.core.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
 from gearcli.core.methods import METHODS
+from gearcli.core.records import record
 from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     Built,
     LineReporter,
@@ -181,7 +181,7 @@ def options(requested: str, arrays, methods: tuple[str, ...], also: tuple[str, .
     return out
 
 
-@dataclass(frozen=True)
+@record
 class EngineChoice:
     """The engine a run takes (python or compiled) and why."""
 

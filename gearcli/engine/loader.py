@@ -25,7 +25,6 @@ import tempfile
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +33,7 @@ import numpy as np
 from gearcli.core import announce, signals
 from gearcli.core.announce import LineReporter
 from gearcli.core.cost import COMPILE_S, DEFAULT_LOAD_S
+from gearcli.core.records import record
 from gearcli.engine import builder, cachedir
 from gearcli.engine.cachedir import CacheDamaged
 from gearcli.engine.location import (  # noqa: F401 - the package's interface (gearcli.engine re-exports them)
@@ -91,7 +91,7 @@ def _say(text: str, quiet: bool) -> None:
 
 
 # ------------------------------------------------------------------------------------------- loading
-@dataclass(frozen=True)
+@record
 class Loaded:
     """The compiled kernel as loaded in this process, and what loading it cost."""
 
@@ -279,7 +279,7 @@ def _warm_entry(kernel: Any, name: str) -> None:
         kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
 
 
-@dataclass(frozen=True)
+@record
 class Built:
     """What ``gearcli engine build`` did: where the cache is, the build's time (0: it was there) and what loading the
     kernel then cost this process (numba import, the kernel module, the DOP853 entry)."""

@@ -24,12 +24,12 @@ import os
 import stat
 import sys
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO, TypeVar
 
 import click
 
+from gearcli.core.records import record
 from gearcli.core.text import shorten
 from gearcli.errors import OutputError, StdoutClosed
 from gearcli.io.atomic import write_atomic
@@ -43,7 +43,7 @@ SUFFIX_FORMAT = {".json": "json", ".csv": "csv", ".md": "markdown", ".markdown":
                  ".toml": "toml"}
 
 
-@dataclass(frozen=True)
+@record
 class OutputTarget:
     """A checked destination. ``path`` is the regular file to replace (a symlink's target), or None for
     stdout; ``shown`` is the path as the user typed it (for messages); ``fmt`` the chosen format."""

@@ -8,8 +8,7 @@ cannot resolve.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+from gearcli.core.records import record
 from gearcli.core.text import shorten
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
@@ -27,7 +26,7 @@ LABELS = {
 STAGE_LABELS = {"output_speed_deg_s": "stage output speed [°/s]", "ratio": "stage ratio"}
 
 
-@dataclass(frozen=True)
+@record
 class Section:
     title: str
     headers: tuple[str, ...]

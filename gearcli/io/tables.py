@@ -12,11 +12,11 @@ from __future__ import annotations
 import io
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol, cast
 
 from rich.console import Console, RenderableType
 
+from gearcli.core.records import record
 from gearcli.io.life_out import life_tables as _life_tables
 from gearcli.io.life_tables import bearing_stats_table, bearing_table
 from gearcli.io.table_kit import (
@@ -333,7 +333,7 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
     return [*head, *tail, *own, *simulated, *(text(line) for line in lines)]
 
 
-@dataclass(frozen=True)
+@record
 class _RingRating:
     """A planetary stage's planet–ring rating as a stage with a rating (rating_table's rows)."""
 

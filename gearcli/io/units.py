@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeVar
 
+from gearcli.core.records import record
 from gearcli.io.channels import named
 
 if TYPE_CHECKING:  # `gearcli design` imports this module: no numpy at start-up
@@ -30,7 +30,7 @@ Number = TypeVar("Number", float, "np.ndarray")
 TORQUE_UNITS = {"Nmm": ("N·mm", 1000.0), "Nm": ("N·m", 1.0)}  # from N·m
 
 
-@dataclass(frozen=True)
+@record
 class OutputUnits:
     """The units a file's outputs are written in: those of its speed and torque keys."""
 

@@ -12,9 +12,9 @@ their own, their peaks in s_0. ``gearcli.life.run.start_bearings`` makes them fr
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from gearcli.core.records import record
 from gearcli.design import iso281
 from gearcli.design.bearing_life import (
     AXIAL_NOT_RATED,
@@ -34,7 +34,7 @@ if TYPE_CHECKING:
     from gearcli.life.run import _PointData
 
 
-@dataclass(frozen=True)
+@record
 class PointBearings:
     """What one duty point gives each bearing: the ISO 281 equivalent load of its (simulated) load and its
     peak ISO 76 static equivalent load P_0."""
@@ -43,7 +43,7 @@ class PointBearings:
     peak_static_N: tuple[float, ...]
 
 
-@dataclass(frozen=True)
+@record
 class StartBearings:
     """What the starts of one duty point give each bearing (from the point's start record)."""
 
@@ -54,7 +54,7 @@ class StartBearings:
     peak_static_N: tuple[float, ...]  # the start's peak ISO 76 P_0
 
 
-@dataclass(frozen=True)
+@record
 class _Level:
     """One load level of a bearing: its revolutions, equivalent load and speed, and the point it belongs to."""
 

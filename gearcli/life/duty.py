@@ -11,9 +11,10 @@ import csv
 import io
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Any
 
+from gearcli.core.records import record
 from gearcli.design.kinematics import pinion_torque_Nmm
 from gearcli.errors import ConfigError
 
@@ -21,7 +22,7 @@ MAX_SERIES_ROWS = 2_000_000
 DEFAULT_CLASSES = 10
 
 
-@dataclass(frozen=True)
+@record
 class DutyPoint:
     """One operating point: hours at an output torque and input speed, and the other keys it sets."""
 

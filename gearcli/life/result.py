@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 
 from gearcli.core.jsontypes import JsonObject
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 
 
-@dataclass(frozen=True)
+@record
 class Bin:
     """One load class of a member's spectrum: the tooth force it stands for, the stress it causes, the load
     cycles at it and the cycles the S–N curve allows (None: unbounded, below a flat endurance limit)."""
@@ -22,7 +23,7 @@ class Bin:
     endurance_MPa: float  # the S–N curve's stress at its knee for this point (factor 1)
 
 
-@dataclass(frozen=True)
+@record
 class ModeLife:
     """Miner damage of one member and failure mode over the duty."""
 
@@ -40,13 +41,13 @@ class ModeLife:
     # bending (σ_F ∝ F); ``safety`` is the load multiplier (JSON also ``load_multiplier``)
 
 
-@dataclass(frozen=True)
+@record
 class MemberLife:
     pitting: ModeLife
     bending: ModeLife
 
 
-@dataclass(frozen=True)
+@record
 class StageLife:
     """A stage's members. A planetary stage: ``pinion`` the sun and ``gear`` the planet in the sun–planet mesh;
     its planet–ring mesh adds ``ring``, ``planet_ring_side`` (the planet's flank and root in the ring mesh) and
@@ -81,7 +82,7 @@ def planet_flank(st: StageLife) -> tuple[str, str]:
     return ("ring_mesh", "planet_ring_side") if ring_side else ("sun_mesh", "gear")
 
 
-@dataclass(frozen=True)
+@record
 class BearingLife:
     """ISO 281 over the duty: the spectrum's equivalent load and the basic rating life it gives."""
 
@@ -113,7 +114,7 @@ class BearingLife:
     a_ISO_points: tuple[float, ...] | None = None
 
 
-@dataclass(frozen=True)
+@record
 class PointRun:
     """What one duty point was, and for the dynamic route how its simulation ran."""
 
@@ -129,7 +130,7 @@ class PointRun:
     start: JsonObject | None = None  # the point's starts (docs/life.md, "Starts"); None without
 
 
-@dataclass(frozen=True)
+@record
 class LifeResult:
     route: str  # "static" | "dynamic"
     miner: str  # the variant's name

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import cast
 
 from gearcli import engine
@@ -21,6 +21,7 @@ from gearcli.config.bounds import check_memory
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.memo import remember
+from gearcli.core.records import record
 from gearcli.design.bearing_life import AXIAL_NOT_RATED
 from gearcli.design.standards import standard_of
 from gearcli.diagnostics import (
@@ -67,7 +68,7 @@ PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output
 MEMBERS = ("pinion", "gear")
 
 
-@dataclass(frozen=True)
+@record
 class _PointData:
     """What the damage sums need of one evaluated point."""
 

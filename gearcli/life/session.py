@@ -7,11 +7,12 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import BinaryIO
 
 from gearcli.config import LoadedDesign
 from gearcli.config.load import STDIN, input_digest, read_input_file
+from gearcli.core.records import record
 from gearcli.errors import ConfigError
 from gearcli.life.duty import (
     DEFAULT_CLASSES,
@@ -31,7 +32,7 @@ MAX_SERIES_BYTES = 64 * 1024 * 1024
 STDOUT_OR_STDIN = "-"
 
 
-@dataclass(frozen=True)
+@record
 class Session:
     scene: Scene
     loaded: LoadedDesign  # the base file

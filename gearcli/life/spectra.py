@@ -13,12 +13,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Protocol, cast
 
 import numpy as np
 
 from gearcli.core.channels import Channel
+from gearcli.core.records import record
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.stages import kinds
 
@@ -31,7 +32,7 @@ SETTLE_FRACTION = 0.2  # gearcli.simulate.stats: the window starts 20 % of the t
 MAX_DURATION_S = 600.0
 
 
-@dataclass(frozen=True)
+@record
 class StageLoads:
     """A stage's tooth-force classes at one point: forces (N, reference circle) and their share of the
     engagements (sums to 1); ``static_N`` the point's static F_t."""
@@ -45,7 +46,7 @@ class StageLoads:
     planetary: PlanetaryLoads | None = None  # a planetary stage's dynamic spectra per member (the stage's own: the sun's)
 
 
-@dataclass(frozen=True)
+@record
 class PlanetaryLoads:
     """A planetary stage's dynamic spectra (docs/life.md, "Planetary stages, dynamic route"): the sun's and the
     ring's are the union of their N meshes' engagements (each mesh cycle of planet j's mesh is one tooth of the
@@ -134,7 +135,7 @@ def dynamic_loads(result, design, span: tuple[float, float] | None = None) -> li
             for k, st in enumerate(design.stages)]
 
 
-@dataclass(frozen=True)
+@record
 class _Window:
     """A window's samples as :func:`dynamic_loads` reads them (``time_s``, ``window_s``, ``series``)."""
 

@@ -15,11 +15,11 @@ follows the settling, all of it where a file's ``window_start_s`` puts the windo
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearcli.core.channels import Channel
+from gearcli.core.records import record
 from gearcli.design.shafts import equivalent_load_N, life_exponent
 from gearcli.life import spectra
 from gearcli.life.spectra import StageLoads
@@ -31,7 +31,7 @@ from gearcli.stages.life import life_kind
 START_LABEL = "{name} (start)"
 
 
-@dataclass(frozen=True)
+@record
 class StartData:
     """One start of a duty point: its tooth-force classes per stage (the window's format), the input shaft's
     revolutions during it, the peak |F_t| per stage, and per bearing the start's ISO 281 equivalent load and

@@ -36,11 +36,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import field, replace
 from functools import cached_property
 
 import numpy as np
 
+from gearcli.core.records import record
 from gearcli.model.elements import (
     MAX_BODIES,
     N_PARAM,
@@ -54,7 +55,7 @@ from gearcli.model.parts import STAGE_ROLES, Body, Connector, _row
 from gearcli.model.spec import DriveSpec, LoadSpec, MeshSpec, ModelSpec
 
 
-@dataclass(frozen=True)
+@record
 class AngleRow:
     """A body's angle where no tree connector gives it (:attr:`Layout.angle_rows`):
     ``theta_b = sum coef theta_j (bodies) + sum coef delta_c (deflections) + constant``."""
@@ -103,7 +104,7 @@ def _chain(spec: ModelSpec) -> tuple[list[Body], list[Connector]]:
     return bodies, _loss_widths(spec, bodies, _assembled(spec, bodies, conns))
 
 
-@dataclass(frozen=True)
+@record
 class _Pair:
     """A stage that is one pair mesh between its input shaft's body and a new body (the chain's own stage; a
     kind with a model of its own gives ``ModelSpec.stage_models``)."""
@@ -215,7 +216,7 @@ def _ordered_sum(values: list[float]) -> float:
     return total
 
 
-@dataclass(frozen=True)
+@record
 class ModelArrays:
     """The model as plain arrays (picklable), for engines that interpret it (one compiled kernel for
     every scene). Kinds and parameter rows: :mod:`gearcli.model.elements`."""
@@ -253,7 +254,7 @@ class ModelArrays:
     body_angle_row: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
 
-@dataclass(frozen=True)
+@record
 class Layout:
     """Bodies, connectors and the state vector of one scene."""
 

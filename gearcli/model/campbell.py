@@ -5,21 +5,22 @@ name, so that a run that draws no diagram does not create their classes.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from gearcli.core.records import record
 
 if TYPE_CHECKING:
     from gearcli.model.modes import Crossing, Mode
 
 
-@dataclass(frozen=True)
+@record
 class CampbellCrossing:
     mode: int
     frequency_Hz: float
     crossing: Crossing
 
 
-@dataclass(frozen=True)
+@record
 class CampbellData:
     """What a Campbell diagram shows: the modes (linearised at full load, so flat in speed), every order line
     (mesh 1x-3x, shaft 1x, input torque ripple orders) as frequency per input revolution, every fixed frequency

@@ -26,10 +26,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.records import record
 from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.codegen import compile_functions
 from gearcli.model.linear import static_forces
@@ -43,7 +43,7 @@ MIN_DEFLECTION_SCALE_M = 1e-6  # atol floor for unloaded meshes: 1 um of deflect
 MIN_TWIST_SCALE_RAD = 1e-6  # atol floor for unloaded springs: 1 urad of twist
 
 
-@dataclass(frozen=True)
+@record
 class Energy:
     """The energy balance's terms at the end of a run (J)."""
 

@@ -9,13 +9,13 @@ the solvers' tolerances, the periodic steady state and the shooting's variationa
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from gearcli.core.records import record
 
 #: the energy quadratures, in state order (the last only with time-varying springs)
 QUADRATURES = ("input_work_J", "load_work_J", "damping_loss_J", "elastic_work_tv_J")
 
 
-@dataclass(frozen=True)
+@record
 class StateLayout:
     """Slices and indices of one scene's state vector.
 

@@ -23,11 +23,11 @@ method choice; the undamped natural frequencies are ``sqrt(eig(K^1/2 M K^1/2)) /
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearcli.core.memo import remember
+from gearcli.core.records import record
 from gearcli.model.assembly import Layout, power_path_loss_factors
 from gearcli.model.damping import body_matrices, lever_matrices, state_matrix
 from gearcli.model.spec import ModelSpec
@@ -114,7 +114,7 @@ def peak_rigid_forces(lay: Layout, duration_s: float, samples: int = 801) -> np.
     return cache[key]
 
 
-@dataclass(frozen=True)
+@record
 class Linearisation:
     """The model linearised at one operating point: forces, tangent stiffness and damping, eigenvalues."""
 

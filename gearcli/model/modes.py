@@ -41,12 +41,12 @@ and the meshes' losses; it is ``-Re lambda / |lambda|`` of the damped eigenvalue
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
 from gearcli.core.memo import remember
+from gearcli.core.records import record
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_matrices, lever_matrices, loss_factors, modal_damping_ratios
 from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, soft_modes_refined
@@ -68,7 +68,7 @@ BOUNDARIES = ("clamped_input", "free")
 SOURCES = ("mesh", "shaft", "input_torque_ripple", "load_fluctuation")  # Crossing.source
 
 
-@dataclass(frozen=True)
+@record
 class Crossing:
     """Where an excitation meets a mode: its Hz per input Hz, the input speed there, participation, amplification."""
 
@@ -94,7 +94,7 @@ class Crossing:
         return "strongly" if a >= STRONG_AMPLIFICATION else "moderately" if a >= WARN_AMPLIFICATION else "weakly"
 
 
-@dataclass(frozen=True)
+@record
 class Mode:
     """One natural mode: frequency, shape, strain-energy shares, dominant element and crossings."""
 
@@ -108,7 +108,7 @@ class Mode:
     damping_ratio: float = 0.0  # modal, from the linearised element damping (0 for a rigid mode)
 
 
-@dataclass(frozen=True)
+@record
 class ModalAnalysis:
     """The modes of the linearised chain at one boundary condition."""
 
@@ -174,7 +174,7 @@ def _excitation_sources(lay: Layout) -> list[OrderSource]:
     return out
 
 
-@dataclass(frozen=True)
+@record
 class TorqueSource:
     """A harmonic torque on an end body: an input ripple order (``hz_per_input_hz`` = order x the input body's
     rotation over itself, ``fixed_Hz`` None) or a load fluctuation (``fixed_Hz``, ``hz_per_input_hz`` 0)."""
@@ -241,7 +241,7 @@ def modal_analysis(lay: Layout, boundary: str = "clamped_input", *, duration_s: 
     return cache[key]
 
 
-@dataclass(frozen=True)
+@record
 class _Undamped:
     """The undamped eigenproblem of :func:`modal_analysis`: tangent stiffness and damping per connector, the
     first free body, the speed map and inertias of the free bodies, 1/sqrt(J), the eigenpairs of the
@@ -376,7 +376,7 @@ def _torque_crossing(lay: Layout, t: TorqueSource, f: float, shape: tuple[float,
                     t.fixed_Hz)
 
 
-@dataclass(frozen=True)
+@record
 class Resonance:
     """An excitation near a natural frequency at the operating speed, with its warning's message."""
 

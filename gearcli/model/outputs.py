@@ -15,18 +15,18 @@ from __future__ import annotations
 
 import math
 from contextlib import nullcontext
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearcli.core import signals
+from gearcli.core.records import record
 from gearcli.model import elements
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine, torque
 from gearcli.model.step import ramp, ramp_motion, ramp_rates
 
 
-@dataclass(frozen=True)
+@record
 class ConnectorSeries:
     """One connector's sampled force, deflection, penetration, stored energy and DTE."""
 
@@ -46,7 +46,7 @@ class ConnectorSeries:
                                self.potential_J[start:], self.dte_m[start:])
 
 
-@dataclass(frozen=True)
+@record
 class Sampled:
     """A run's samples: body speeds (and angles), drive and load torques, every connector's series."""
 

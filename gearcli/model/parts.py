@@ -6,16 +6,16 @@ bodies and connectors), which both build them; neither imports the other's build
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
 
+from gearcli.core.records import record
 from gearcli.model.elements import law_of, loses
 
 #: the roles of the connector that stands for a stage (its forces, deflection and statistics), one per stage
 STAGE_ROLES = ("mesh", "stage")
 
 
-@dataclass(frozen=True)
+@record
 class Body:
     """One rigid body of the chain: inertia, label and nominal speed ratio to the input body."""
 
@@ -24,7 +24,7 @@ class Body:
     ratio: float  # nominal speed over the input body's speed (rigid kinematics)
 
 
-@dataclass(frozen=True)
+@record
 class Connector:
     """One element placed in the scene: its kind (:mod:`gearcli.model.elements`), the bodies it joins by
     index and its lever on each (a mesh: base radii; a spring: 1), its parameter row, and its role."""

@@ -6,8 +6,9 @@ that a scene without planetary stages does not create the class (24 fields: abou
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from gearcli.core.records import record
 
 if TYPE_CHECKING:
     from gearcli.model.spec import MeshSpec
@@ -15,7 +16,7 @@ if TYPE_CHECKING:
 MEMBERS = ("sun", "carrier", "ring")
 
 
-@dataclass(frozen=True)
+@record
 class PlanetarySpec:
     """A planetary stage in the model (SI). The stage's input member is the chain's body before it (its inertia
     is the reducer shaft's), its output member the body after it; the third member is a body unless it is

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal, Protocol
 
+from gearcli.core.records import record
 from gearcli.model.elements.machine import kloss_fit, motor_curve, motor_row, motor_torque
 
 if TYPE_CHECKING:  # the parts a stage model places (model.parts builds on this module's specs)
@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # the parts a stage model places (model.parts builds on this 
 MM = 1e-3  # m per mm
 
 
-@dataclass(frozen=True)
+@record
 class MeshSpec:
     """One mesh along its transverse line of action (all SI)."""
 
@@ -78,7 +78,7 @@ class MeshSpec:
         return math.cos(self.base_helix_angle_rad)
 
 
-@dataclass(frozen=True)
+@record
 class MotorSpec:
     """An induction motor (:mod:`gearcli.model.elements.machine`): the extended Kloss curve (breakdown torque,
     breakdown slip, shape term a) or a table of (speed rad/s, torque N m), and its starting method with its two
@@ -128,7 +128,7 @@ class MotorSpec:
         return self.breakdown_torque_Nm
 
 
-@dataclass(frozen=True)
+@record
 class DriveSpec:
     """``kind = "speed"``: shaft 1 follows ``ramp(t, ramp_s, speed_rad_s)`` exactly (no DOF).
     ``kind = "torque"``: shaft 1 is free, driven by ``ramp(t, ramp_s, torque_Nm)`` times the ripple
@@ -163,7 +163,7 @@ class DriveSpec:
             raise ValueError('drive kind "motor" needs a MotorSpec')
 
 
-@dataclass(frozen=True)
+@record
 class LoadSpec:
     """Torque resisting the last shaft's rotation, ``ramp(t, ramp_s, torque_Nm)`` (negative: reversal),
     times the fluctuation (:mod:`gearcli.model.elements.torque`). ``clock_s``: the fluctuation's time at
@@ -184,7 +184,7 @@ class LoadSpec:
             raise ValueError("a load table needs two or more points at increasing, non-negative speeds")
 
 
-@dataclass(frozen=True)
+@record
 class SpringSpec:
     """A torsional spring-damper (coupling or shaft): torque = k twist + c twist rate."""
 
@@ -198,7 +198,7 @@ class SpringSpec:
             raise ValueError("a spring's damping must be non-negative and finite")
 
 
-@dataclass(frozen=True)
+@record
 class CoupledInertia:
     """A body outside the reducer (motor rotor, driven drum) and the coupling that joins it."""
 
@@ -206,7 +206,7 @@ class CoupledInertia:
     coupling: SpringSpec
 
 
-@dataclass(frozen=True)
+@record
 class FlexibleShaft:
     """An intermediate shaft as two bodies: the gear end (``gear_end_kg_m2``, gear k's inertia) and the
     pinion end (the rest of the shaft's inertia), joined by the shaft's torsional spring."""
@@ -215,7 +215,7 @@ class FlexibleShaft:
     gear_end_kg_m2: float
 
 
-@dataclass(frozen=True)
+@record
 class ElementSpec:
     """A further element of a registered type (:mod:`gearcli.model.elements`) placed between bodies given by
     their index in the assembly (:class:`gearcli.model.assembly.Layout`), with its lever on each body (1 for
@@ -252,7 +252,7 @@ class StageModel(Protocol):
         its output shaft's body of inertia ``out_inertia``; ``body(inertia, label, ratio)`` adds a body."""
 
 
-@dataclass(frozen=True)
+@record
 class ModelSpec:
     """The torsional model's SI parameters: ``meshes``, ``inertias_kg_m2`` (one per reducer shaft), ``drive``,
     ``load``, the optional ``motor`` and ``drum`` couplings, flexible ``shafts``, further ``elements``, and per stage

@@ -21,7 +21,8 @@ bin is reported with ``cycles_to_failure`` below the static node and a warning.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from gearcli.core.records import record
 
 VARIANTS = ("iso", "elementary", "modified")
 VARIANT_NAMES = {
@@ -32,7 +33,7 @@ VARIANT_NAMES = {
 }
 
 
-@dataclass(frozen=True)
+@record
 class SNCurve:
     """A life-factor curve as nodes (N, factor), power law between them, scaled by ``endurance_MPa``."""
 

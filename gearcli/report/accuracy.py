@@ -19,10 +19,10 @@ from __future__ import annotations
 
 import statistics
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
 
 from gearcli.core.cost import EXPLICIT_CAP
 from gearcli.core.methods import method as method_info
+from gearcli.core.records import record
 from gearcli.errors import GearcliError, RunTooLong, SimulationError, StudyTooLong
 from gearcli.report.result import QUANTITIES, AccuracyRun, AccuracyStudy, ReferenceRun, RunMetrics
 from gearcli.simulate.results import SimulationResult
@@ -35,7 +35,7 @@ RunFn = Callable[[str, float], SimulationResult]  # (method, rtol) -> result (se
 ProgressFn = Callable[[str, int, int], None]  # (label, runs done, runs planned)
 
 
-@dataclass(frozen=True)
+@record
 class LadderSpec:
     """What the study runs.
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from functools import partial
 from typing import TYPE_CHECKING
 
@@ -11,6 +10,7 @@ from gearcli import diagnostics as dg
 from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import EXPLICIT_METHOD, METHODS
+from gearcli.core.records import record
 from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, SimulationError, StudyTooLong
 from gearcli.model import TorsionalModel
@@ -110,7 +110,7 @@ def study_failed_text(failure: str) -> str:
             "the theory-against-simulation sections are the file's own run, complete")
 
 
-@dataclass(frozen=True)
+@record
 class Ladder:
     """What the accuracy study runs on: the file, its design, its own run (``own``, the rating at the run's K_v:
     ``sim``), the model every run shares (None with a stand-in ``simulate``) and the simulate function."""

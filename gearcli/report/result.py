@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli.core.records import record
 from gearcli.results import DesignResult
 from gearcli.simulate.results import ChannelStats, SimulationResult
 
@@ -20,7 +21,7 @@ if TYPE_CHECKING:
 
 
 # ------------------------------------------------------------------------------ theory vs simulation
-@dataclass(frozen=True)
+@record
 class ComparisonRow:
     """One design (static) value against the simulated mean over the steady window.
 
@@ -34,7 +35,7 @@ class ComparisonRow:
     error_percent: float | None
 
 
-@dataclass(frozen=True)
+@record
 class MeshOrder:
     """The amplitude of one mesh order (h x the mesh frequency) in a stage's F_t and DTE over the window."""
 
@@ -87,7 +88,7 @@ class StageReport:
 QUANTITIES = ("speed", "mean_force", "peak_force")
 
 
-@dataclass(frozen=True)
+@record
 class RunMetrics:
     """What the accuracy study compares between runs: window-mean output speed, per-stage mean F_t
     and per-stage run-up peak |F_t|."""
@@ -105,7 +106,7 @@ class RunMetrics:
         )
 
 
-@dataclass(frozen=True)
+@record
 class ReferenceRun:
     """The tight-tolerance reference and the independent check that bounds its own error.
 
@@ -127,7 +128,7 @@ class ReferenceRun:
     window_s: tuple[float, float] | None = None  # the study's statistics window: the file's, never moved by the settle test
 
 
-@dataclass(frozen=True)
+@record
 class AccuracyRun:
     """One rung of the work-precision ladder, with its errors relative to the reference.
 
@@ -155,7 +156,7 @@ class AccuracyRun:
         return getattr(self, f"error_{quantity}")
 
 
-@dataclass(frozen=True)
+@record
 class AccuracyStudy:
     requested_accuracy: float
     reference: ReferenceRun
@@ -171,7 +172,7 @@ class AccuracyStudy:
 
 
 # ------------------------------------------------------------------------------------ the report
-@dataclass(frozen=True)
+@record
 class RatingComparison:
     """One rated stage: ISO 6336-1's K_v (theory) beside the simulated one, with the smallest safeties at each
     (the simulated ones only when ``[rating] dynamic_factor = "simulated"``, else None)."""

@@ -29,7 +29,6 @@ on the engine that would run it were the kernel loaded, so that the choice does 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -44,6 +43,7 @@ from gearcli.core.cost import (
 )
 from gearcli.core.memo import remember
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
+from gearcli.core.records import record
 from gearcli.model import Layout, Linearisation, ModelSpec, linearise
 from gearcli.model.linear import damped_eigenvalues, peak_rigid_forces, speed_map, static_forces
 
@@ -52,7 +52,7 @@ SELF_EXCITING_SHARE = 0.01  # strain-energy share of a nonlinear/time-varying/ba
 __all__ = ["EXPLICIT", "EXPLICIT_METHOD", "IMPLICIT_METHOD", "STIFFNESS_LIMIT", "Choice", "choose_method"]
 
 
-@dataclass(frozen=True)
+@record
 class Choice:
     """The integration method chosen for a run, why, and the linearisations and cost model behind it."""
 

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
@@ -44,6 +44,7 @@ from gearcli.core import cost
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.methods import AUTO, EXPLICIT_METHOD, IMPLICIT_METHOD
 from gearcli.core.methods import method as method_info
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
 from gearcli.simulate.choice import Choice
@@ -52,7 +53,7 @@ from gearcli.simulate.solver import STATUS_BUDGET, STATUS_SWITCH, CourseLimit, I
 MAX_COURSE_CHANGES = 2
 
 
-@dataclass(frozen=True)
+@record
 class CourseChange:
     """A mid-run change of method or engine: when, from what, to what and why."""
 
@@ -102,7 +103,7 @@ def _engines_for(model: TorsionalModel, method: str, requested_engine: str) -> l
     return out or ["python"]
 
 
-@dataclass(frozen=True)
+@record
 class Spent:
     """What a run of ``method`` on ``engine`` from ``t_from`` had spent when it reached ``t_at`` (state ``y_at``)."""
 

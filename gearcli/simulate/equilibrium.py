@@ -36,11 +36,12 @@ more than 1e-6 per period; an undamped scene's root is not).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields, replace
+from dataclasses import fields, replace
 
 import numpy as np
 
 from gearcli import engine
+from gearcli.core.records import record
 from gearcli.model.outputs import ConnectorSeries, Sampled, sample
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.solver import _packed
@@ -76,7 +77,7 @@ def _step(J: np.ndarray, f: np.ndarray, C: np.ndarray) -> np.ndarray | None:
     return dx if np.all(np.isfinite(dx)) else None
 
 
-@dataclass(frozen=True)
+@record
 class Root:
     """The equilibrium: the full state (the quadratures as given), the Jacobian's dynamic block there, the
     right-hand side there (the quadratures' rates; the dynamic states' drift), the drift over one period in

@@ -57,12 +57,12 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.core.methods import method as method_info
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
 from gearcli.model.outputs import Sampled, connector_line_forces, mesh_line_forces, planet_sun_connectors, tooth_forces
@@ -88,7 +88,7 @@ MIN_RTOL = 1e-13  # the schema's floor of simulation.rtol
 MAX_RTOL = 1e-2  # the loosest check pass (the schema's ceiling of simulation.rtol)
 
 
-@dataclass(frozen=True)
+@record
 class PeakError:
     """The solver's error of a stage's run peak |F_t| (``peak_tangential_N``, ``runup_factor``), estimated as the
     window statistics are: the check pass's peak over the same samples of its span against the run's."""
@@ -100,7 +100,7 @@ class PeakError:
     relative: float  # error_N / peak_N
 
 
-@dataclass(frozen=True)
+@record
 class CheckPass:
     """The check pass and the per-stage error estimates (empty where it did not finish)."""
 
@@ -324,7 +324,7 @@ def peak_warnings(ref: CheckPass, run_rtol: float, method: str) -> list[Diagnost
     return out
 
 
-@dataclass(frozen=True)
+@record
 class Plan:
     """The span and tolerance of the check pass (module doc), fixed by the samples, the run's rtol, the
     method choice and the window, so known before the run."""

@@ -27,7 +27,6 @@ the signature of a numerical instability, long before the state overflows.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -46,6 +45,7 @@ from gearcli.core.cost import (
     priced_work_s,
 )
 from gearcli.core.methods import IMPLICIT_METHOD, method
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
 from gearcli.model import Layout, TorsionalModel
@@ -104,7 +104,7 @@ def require_feasible(choice: Choice, budget: int) -> None:
         f"\"{IMPLICIT_METHOD}\" (or \"auto\")")
 
 
-@dataclass(frozen=True)
+@record
 class EnergyReport:
     """Energy the integration created beyond the net work put in, and its scale."""
 

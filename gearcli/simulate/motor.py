@@ -14,12 +14,12 @@ motor brakes it there as a generator (a hoist lowering), and runs away only wher
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
 
 from gearcli import diagnostics as dg
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
@@ -35,7 +35,7 @@ LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the desig
 SPEED_OFF_DESIGN = 0.02  # a motor running more than 2 % off speed_rpm is warned (as a life point off its speed)
 
 
-@dataclass(frozen=True)
+@record
 class OperatingPoint:
     speed_rad_s: float | None  # where the motor settles from rest: the first crossing (None: it cannot start)
     stable_rad_s: float | None  # the crossing on the curve's stable branch (above the breakdown speed); None: none

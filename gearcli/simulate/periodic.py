@@ -29,13 +29,14 @@ integrated again from the boundary state with fine samples.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from fractions import Fraction
 from functools import reduce
 
 import numpy as np
 
 from gearcli.config.bounds import PERIODIC_STATISTICS_SAMPLES
+from gearcli.core.records import record
 from gearcli.errors import ConfigError
 from gearcli.model.damping import operating_speed_rad_s
 from gearcli.simulate.results import SteadyState
@@ -49,7 +50,7 @@ MAX_COMMON_OVER_SLOWEST = 1000  # a least common period beyond this many slowest
 CONVERGED = 1.0  # residual (in units of the tolerance) at or below which two states are the same
 
 
-@dataclass(frozen=True)
+@record
 class Excitation:
     """One excitation of the scene and its period."""
 
@@ -57,7 +58,7 @@ class Excitation:
     period_s: float
 
 
-@dataclass(frozen=True)
+@record
 class CommonPeriod:
     """The scene's common excitation period and how it was formed."""
 
@@ -178,7 +179,7 @@ def boundary_residual(y_now: np.ndarray, y_then: np.ndarray, rtol: float, atol: 
     return float(np.max(np.abs(y_now - y_then) / scale)) if y_now.size else 0.0
 
 
-@dataclass(frozen=True)
+@record
 class Repeat:
     """After how many periods the state repeats, and the residual that decided it."""
 
@@ -265,7 +266,7 @@ MIN_SAMPLES_PER_FASTEST = 64  # statistics samples per period of the fastest exc
 FIRST_CHUNK, LAST_CHUNK = 4, 64  # periods integrated per solver start while looking for the repeat
 
 
-@dataclass(frozen=True)
+@record
 class PeriodicRun:
     """The run-up samples ``[0, t_start]`` followed by the statistics periods ``[t_n, t_n + k T]``."""
 

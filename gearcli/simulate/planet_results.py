@@ -3,14 +3,15 @@ stages only (:mod:`gearcli.simulate.planet_stats`), and by name from :mod:`gearc
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from gearcli.core.records import record
 
 if TYPE_CHECKING:
     from gearcli.simulate.results import ChannelStats, DteStats
 
 
-@dataclass(frozen=True)
+@record
 class PlanetMeshDynamics:
     """One planet mesh over the statistics window: F_t (N) and the dynamic transmission error (um)."""
 
@@ -18,7 +19,7 @@ class PlanetMeshDynamics:
     dte_um: DteStats
 
 
-@dataclass(frozen=True)
+@record
 class PlanetDynamics:
     """One planet's sun and ring meshes' simulated forces."""
 

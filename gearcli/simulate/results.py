@@ -8,11 +8,12 @@ importing them. The design's own results are :mod:`gearcli.results`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING, NotRequired, TypedDict
 
 from gearcli.core.channels import Channel
 from gearcli.core.jsontypes import JsonObject
+from gearcli.core.records import record
 from gearcli.results import MeshStiffness, RatedMesh
 
 if TYPE_CHECKING:
@@ -26,7 +27,7 @@ if TYPE_CHECKING:
 PLANETARY = ("PlanetDynamics", "PlanetMeshDynamics")
 
 
-@dataclass(frozen=True)
+@record
 class ChannelStats:
     """A channel's statistics over the steady window."""
 
@@ -36,7 +37,7 @@ class ChannelStats:
     std: float
 
 
-@dataclass(frozen=True)
+@record
 class StatisticsError:
     """Estimated error of one stage's window statistics of F_t (absolute, N), from the check pass
     (gearcli.simulate.estimate); radial and axial forces share the relative error."""
@@ -64,7 +65,7 @@ class StatisticsError:
     suggested_steps: int | None = None
 
 
-@dataclass(frozen=True)
+@record
 class SamplingError:
     """Estimated error of one stage's window min, max and mean of F_t from the output sampling alone (the peaks
     between samples, the integral's rule: gearcli.simulate.sampling), computed for every run (no integration)."""
@@ -81,7 +82,7 @@ class SamplingError:
     mean_N: float = 0.0  # the mean's: |T_h - T_2h| / 3 of the trapezoid rule (0 for a periodic window)
 
 
-@dataclass(frozen=True)
+@record
 class DteStats:
     """Dynamic transmission error q = delta - e over the statistics window, um (``rms`` about the mean)."""
 
@@ -97,7 +98,7 @@ REGIME_SINGLE_SIDED = "single-sided impact"  # it loses contact but never touche
 REGIME_DOUBLE_SIDED = "double-sided impact"  # it also strikes the other (back) flank
 
 
-@dataclass(frozen=True)
+@record
 class StageDynamics:
     """One stage's simulated forces over the steady window, its run peak and mesh response."""
 
@@ -138,7 +139,7 @@ class StageDynamics:
     sampling_error: SamplingError | None = None
 
 
-@dataclass(frozen=True)
+@record
 class SolverStats:
     """What the integration did: method, tolerances, evaluations, steps, time and status."""
 
@@ -165,7 +166,7 @@ class SolverStats:
     course_changes: tuple[JsonObject, ...] = ()
 
 
-@dataclass(frozen=True)
+@record
 class EnergyBalance:
     """Energies in J over the run; residual = input - load - damping - kinetic - potential."""
 
@@ -177,7 +178,7 @@ class EnergyBalance:
     residual_relative: float
 
 
-@dataclass(frozen=True)
+@record
 class SteadyState:
     """How the statistics window was found (``[simulation] steady``).
 
@@ -251,7 +252,7 @@ class SimulationExtra(TypedDict, total=False):
     start: StartSummary  # the run's peak over the rigid-body start's (issue 30)
 
 
-@dataclass(frozen=True)
+@record
 class SimulationResult:
     """One simulation: the series, the window's statistics per stage, the solver and the energy."""
 

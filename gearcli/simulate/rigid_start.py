@@ -26,11 +26,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout, power_path_loss_factors
 from gearcli.model.elements import machine, mesh
@@ -49,7 +49,7 @@ IN_OPERATION = ("which the window's statistics and dynamic factor carry (see the
                 "warnings for its cause; a gentler start does not lower it)")
 
 
-@dataclass(frozen=True)
+@record
 class RigidStart:
     """The rigid drivetrain's start: input speed and acceleration, load, line and tangential forces."""
 

@@ -27,12 +27,12 @@ the window's std of stage 1's F_t (476 N) is that transient; it is warned about.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.damping import decay_rate
 from gearcli.model.modes import modal_analysis
@@ -54,7 +54,7 @@ TRIALS = 25  # decay rates tried per mode between 0.25 and 4 x the linearised on
 MIN_SAMPLES_PER_PERIOD = 4.0  # a mode fitted needs this many samples per period (2 is Nyquist's bare minimum)
 
 
-@dataclass(frozen=True)
+@record
 class Ringing:
     """An undecayed run-up transient of one mode in one stage's window."""
 

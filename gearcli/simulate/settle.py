@@ -28,12 +28,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING, TypeGuard
 
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
@@ -55,7 +56,7 @@ GROWTH_FACTOR = 2.0  # the last part's peak to peak over the first's
 NEUTRAL = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million periods)
 
 
-@dataclass(frozen=True)
+@record
 class Settling:
     """The settle test of one window: ``settled``, the largest transient at the window's start (fraction of the
     static force, its stage and mode frequency), and the time from which the window would be settled (None:

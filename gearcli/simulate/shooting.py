@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 
 from gearcli.core.memo import remember
+from gearcli.core.records import record
 from gearcli.simulate import equilibrium as eq
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.periodic import CONVERGED, PeriodicRun, _joined, boundary_residual, scene_period
@@ -66,7 +67,7 @@ FALLBACK_NOTE = "shooting did not converge"  # how a fallback's note starts (its
 FD_STEP = 1e-3  # finite-difference step, relative to the state's natural scale (its atol / rtol)
 
 
-@dataclass(frozen=True)
+@record
 class Floquet:
     """The Floquet multipliers of a periodic orbit and what they say."""
 
@@ -206,7 +207,7 @@ class Ledger:
     notes: list[str] = field(default_factory=list)
 
 
-@dataclass(frozen=True)
+@record
 class Shot:
     """One period map evaluation: the finely sampled run from ``x`` (all states), its residual, ``M``."""
 

@@ -35,6 +35,7 @@ from gearcli.core import cost, signals
 from gearcli.core.cost import BUDGET_CHECK_EVERY
 from gearcli.core.cost import CAP as MAX_NFEV
 from gearcli.core.methods import METHODS, scipy_solver
+from gearcli.core.records import record
 from gearcli.engine import status as st
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
@@ -47,7 +48,7 @@ STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.
 STATUS_SWITCH = st.SWITCH
 
 
-@dataclass(frozen=True)
+@record
 class Integration:
     """One integration's samples, tolerances, counters, wall time and status."""
 
@@ -196,7 +197,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
                        message, t, y_end=np.array(y, dtype=float) if status == STATUS_SWITCH else None)
 
 
-@dataclass(frozen=True)
+@record
 class _Pace:
     """The run's pace limit (priced work) and its progress callback."""
     t0: float

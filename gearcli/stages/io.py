@@ -8,10 +8,10 @@ looked up in :mod:`gearcli.stages.kinds`) and never which kind a stage is.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from gearcli.core.jsontypes import JsonObject
+from gearcli.core.records import record
 from gearcli.stages import kinds
 
 if TYPE_CHECKING:  # the tables' modules (rich) are imported by the table builders below, only when tables are made
@@ -86,7 +86,7 @@ class PlanetaryOutput:
         return stage
 
 
-@dataclass(frozen=True)
+@record
 class _RatedMesh:
     """A planet–ring mesh as ``rating_table`` reads a stage: its stage's index and its rating."""
 
@@ -188,7 +188,7 @@ def _balance(p, u: OutputUnits) -> str:
     return f"{text_} = {_g(sum(terms), 2)}"
 
 
-@dataclass(frozen=True)
+@record
 class _Efficiencies:
     """A stage's efficiencies as its table prints them: the stage's, the basic and the mesh's."""
 

@@ -7,9 +7,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from gearcli.core.records import record
 from gearcli.design.planetary_balance import balance, willis_speeds
 from gearcli.design.stiffness import (
     calibration_line_force_N,
@@ -28,7 +29,7 @@ if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
 
 
-@dataclass(frozen=True)
+@record
 class PlanetaryModel(PlanetarySpec):
     """A planetary stage's model: its spec, placed by :func:`gearcli.model.planet_assembly.place_planetary`."""
 

@@ -17,10 +17,10 @@ connectors, another drive), the point starts cold, like the first point of a bra
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 
 import numpy as np
 
+from gearcli.core.records import record
 from gearcli.model import TorsionalModel
 from gearcli.model.spec import ModelSpec
 from gearcli.simulate.shooting import FALLBACK_NOTE
@@ -29,7 +29,7 @@ from gearcli.simulate.shooting import FALLBACK_NOTE
 NO_RAMPS = ("input.ramp_s=0.0", "load.ramp_s=0.0")
 
 
-@dataclass(frozen=True)
+@record
 class Carried:
     """What a point hands on to the next point of its branch: its model, final state and its time."""
 

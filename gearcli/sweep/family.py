@@ -20,15 +20,14 @@ point alone).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+from gearcli.core.records import record
 from gearcli.simulate.results import SimulationResult
 
 CHECK_EVERY = 16  # every CHECK_EVERY-th point of a sweep runs its check pass
 PACE_RATIO = 1.5  # a point whose evaluations per simulated second differ more from the checked one's: re-check
 
 
-@dataclass(frozen=True)
+@record
 class Verdict:
     """The checked point's run and what its check pass said."""
 

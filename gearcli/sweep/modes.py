@@ -8,11 +8,11 @@ The points are loaded and designed by the injected ``design_case`` (the facade's
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import cast
 
 from gearcli.config import DesignFile
 from gearcli.core.jsontypes import JsonScalar
+from gearcli.core.records import record
 from gearcli.errors import GearcliError
 from gearcli.model.assembly import Layout
 from gearcli.model.campbell import CampbellData
@@ -36,7 +36,7 @@ def natural_frequencies_Hz(cfg: DesignFile, design: DesignResult) -> tuple[float
     return tuple(float(m.frequency_Hz) for m in analysis.modes if not m.rigid)
 
 
-@dataclass(frozen=True)
+@record
 class CampbellPoint:
     input_rpm: float
     natural_Hz: tuple[float, ...]
@@ -44,7 +44,7 @@ class CampbellPoint:
     value: JsonScalar = None  # the swept key's value (in its own unit)
 
 
-@dataclass(frozen=True)
+@record
 class SweepCampbell:
     """The Campbell diagram of a speed sweep: the data, the swept input speeds (rpm), and the output units
     (speed and torque key suffixes) of the swept key."""

@@ -24,7 +24,6 @@ import math
 import re
 import tomllib
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import cast
 
 import numpy as np
@@ -32,6 +31,7 @@ import tomli_w
 
 from gearcli.config.overrides import EXCLUSIVE, parse, parse_value
 from gearcli.core.jsontypes import JsonObject, JsonScalar
+from gearcli.core.records import record
 from gearcli.errors import ConfigError
 
 # the input-speed keys of the design file (a speed axis: the Campbell diagram; a motor drive's refusal)
@@ -73,13 +73,13 @@ def _check_exclusive(keys: Sequence[str]) -> None:
                                       "one of them", source="--vary/--random")
 
 
-@dataclass(frozen=True)
+@record
 class Axis:
     key: str  # canonical dotted key path
     values: tuple[JsonScalar, ...]
 
 
-@dataclass(frozen=True)
+@record
 class Distribution:
     key: str
     kind: str  # "normal" | "uniform"
@@ -200,7 +200,7 @@ def unit_samples(n: int, dims: int, sampling: str, seed: int):
     return np.random.default_rng(seed).random((n, dims))
 
 
-@dataclass(frozen=True)
+@record
 class Point:
     """One operating point: its position in the sweep's canonical order, and the values to set."""
 
@@ -226,7 +226,7 @@ def toml_value(v: JsonScalar) -> str:
     return tomli_w.dumps({"v": v})[4:].strip()
 
 
-@dataclass(frozen=True)
+@record
 class SweepSpec:
     axes: tuple[Axis, ...] = ()
     randoms: tuple[Distribution, ...] = ()

@@ -16,12 +16,13 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import NamedTuple, Protocol, cast
 
 from gearcli import engine
 from gearcli.config import DesignFile, check_override_keys
 from gearcli.config.overrides import SOURCE
+from gearcli.core.records import record
 from gearcli.errors import ConfigError, GearcliError, located
 from gearcli.results import DesignResult
 from gearcli.simulate.results import SimulationResult
@@ -35,7 +36,7 @@ from gearcli.sweep.spec import Point, canonical_key
 NUMERICAL = (ArithmeticError, ValueError, RuntimeError, OverflowError)
 
 
-@dataclass(frozen=True)
+@record
 class Scene:
     """The base scene of a sweep: the design file's bytes, its name for messages, and ``--set``."""
 
@@ -78,7 +79,7 @@ class PointEvaluator(Protocol):
                  series: bool = False, check: bool | None = False, settle: bool | str = True) -> Evaluation: ...
 
 
-@dataclass(frozen=True)
+@record
 class Task:
     scene: Scene
     points: tuple[Point, ...]

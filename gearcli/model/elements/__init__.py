@@ -52,9 +52,10 @@ Torques on the end bodies (input torque ripple, load fluctuation) are laws of :m
 from __future__ import annotations
 
 import types as _types
-from dataclasses import dataclass
 from types import ModuleType
 from typing import Protocol
+
+from gearcli.core.records import record
 
 N_HARM = 8  # transmission-error / stiffness harmonics per mesh
 N_PARAM = 27 + 4 * N_HARM  # width of every parameter row (the mesh's: gearcli.model.elements.mesh.PARAMS)
@@ -89,7 +90,7 @@ class ElementLaw(Protocol):
     def excited(self, P) -> bool: ...
 
 
-@dataclass(frozen=True)
+@record
 class ElementType:
     """A registered element type: its kind (the index the arrays carry), name and law module.
     ``compiled``: the compiled kernel (:mod:`gearcli.engine`) dispatches to it (its module is compiled and

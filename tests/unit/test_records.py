@@ -1,0 +1,80 @@
+"""``@record`` behaves as ``@dataclass(frozen=True)``: the same fields, constructor, frozenness, ``replace``,
+equality, hash and repr, a method of the class body kept, and a subclass its own record."""
+
+from __future__ import annotations
+
+import dataclasses
+import pickle
+
+import pytest
+
+from gearcli.core.records import record
+
+
+@record
+class Sample:
+    """A record at module level (pickle finds its class by name)."""
+
+    a: float
+    b: tuple = ()
+
+
+def _pair(body: dict, name: str = "Point"):
+    """The same class made by ``@record`` and by ``@dataclass(frozen=True)``."""
+    ann = {"x": "float", "y": "float", "tag": "str", "note": "str", "items": "tuple"}
+    ns = {"__annotations__": ann, "__module__": __name__, "__doc__": "A point.",
+          "tag": "a", "note": dataclasses.field(default="", compare=False, repr=False),
+          "items": dataclasses.field(default=(), hash=False), **body}
+    return record(type(name, (), dict(ns))), dataclasses.dataclass(frozen=True)(type(name, (), dict(ns)))
+
+
+def test_equality_hash_and_repr_as_a_frozen_dataclass():
+    ours, theirs = _pair({})
+    for args in [(1.0, 2.0), (1.0, 2.0, "b", "x", (1, 2)), (float("nan"), 0.0)]:
+        a, b = ours(*args), theirs(*args)
+        assert repr(a) == repr(b)
+        assert hash(a) == hash(b)
+        assert (a == ours(*args)) == (b == theirs(*args))
+    assert ours(1.0, 2.0, note="x") == ours(1.0, 2.0, note="y")  # note: compare=False
+    assert ours(1.0, 2.0) != ours(1.0, 3.0)
+    assert ours(1.0, 2.0, items=(1,)) != ours(1.0, 2.0, items=(2,))  # compared, not hashed
+    assert hash(ours(1.0, 2.0, items=(1,))) == hash(ours(1.0, 2.0, items=(2,)))
+    assert ours(1.0, 2.0) != theirs(1.0, 2.0)  # another class: NotImplemented both ways
+    assert ours(1.0, 2.0).__eq__(object()) is NotImplemented
+    assert [f.name for f in dataclasses.fields(ours)] == [f.name for f in dataclasses.fields(theirs)]
+    assert ours.__match_args__ == theirs.__match_args__ and ours.__doc__ == theirs.__doc__
+
+
+def test_frozen_replace_pickle_and_recursion():
+    ours, _ = _pair({})
+    a = ours(1.0, 2.0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        a.x = 3.0  # type: ignore[misc]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        del a.x  # type: ignore[misc]
+    assert dataclasses.replace(a, y=5.0) == ours(1.0, 5.0)
+    assert pickle.loads(pickle.dumps(Sample(1.5, (2,)))) == Sample(1.5, (2,))
+    b = ours(1.0, 2.0, items=[])
+    b.items.append(b)  # a record inside itself: "..." as dataclass's repr
+    assert repr(b) == "Point(x=1.0, y=2.0, tag='a', items=[...])"
+
+
+def test_the_class_bodys_methods_are_kept():
+    def eq(self, other):
+        return True
+
+    ours, theirs = _pair({"__eq__": eq, "__repr__": lambda self: "mine", "__hash__": lambda self: 7})
+    assert ours(1.0, 2.0) == ours(3.0, 4.0) and repr(ours(1.0, 2.0)) == "mine" and hash(ours(1.0, 2.0)) == 7
+    ours, theirs = _pair({"__eq__": eq, "__hash__": None})  # an own __eq__ alone: the fields' hash, as dataclass
+    assert hash(ours(1.0, 2.0)) == hash(theirs(1.0, 2.0))
+
+
+def test_a_subclass_is_a_record_of_its_own():
+    base, _ = _pair({})
+    sub = record(type("Sub", (base,), {"__annotations__": {"z": "int"}, "__module__": __name__, "z": 0,
+                                       "__doc__": "A sub."}))
+    s = sub(1.0, 2.0, z=3)
+    assert repr(s) == "Sub(x=1.0, y=2.0, tag='a', items=(), z=3)"
+    assert s != base(1.0, 2.0) and s == sub(1.0, 2.0, z=3) and hash(s) == hash(sub(1.0, 2.0, z=3))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        s.z = 4  # type: ignore[misc]
