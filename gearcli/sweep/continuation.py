@@ -78,9 +78,9 @@ def on_branch(prev, result) -> bool:
     the motion itself was integrated on from that orbit: a settled window, a refinement point close to ``prev``,
     or the brute-force search of a scene the shooting leaves to it, a torque drive or excitations without a
     common period; not a brute-force search the shooting fell back to after failing from the continued orbit,
-    which is how a branch that ends at a fold shows), and no stage's DTE rms (force std when no DTE) changed by :data:`JUMP_CHANGE` or more of the
-    larger one, or of :data:`RESOLVED` of the channel's mean where both are below it (an equilibrium's rms is
-    rounding)."""
+    which is how a branch that ends at a fold shows), and no stage's DTE rms (force std when no DTE) changed by
+    :data:`JUMP_CHANGE` or more of the larger one, or of :data:`RESOLVED` of the channel's mean where both are
+    below it (an equilibrium's rms is rounding)."""
     st = result.steady
     followed = st is not None and (st.mode == "window" and st.settled is True  # integrated on to a settled state
                                    or st.mode == "periodic" and st.method == "brute force"  # the motion, from prev,
