@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from gearcli import api
-from gearcli.model import TorsionalModel, outputs
+from gearcli.model import TorsionalModel
 from gearcli.model import modes as modes_mod
 from gearcli.model.outputs import ConnectorSeries, sample
 from gearcli.simulate import equilibrium
@@ -55,21 +55,6 @@ def _same(a, b) -> None:
     for ca, cb in zip(a.connectors, b.connectors, strict=True):
         for f in fields(ConnectorSeries):
             assert np.array_equal(getattr(ca, f.name), getattr(cb, f.name)), f.name
-
-
-@pytest.fixture(params=["scalar laws", "compiled"])
-def laws(request, monkeypatch):
-    """Sampling with the elements' scalar laws, and with the compiled engine's where it is installed."""
-    from gearcli import engine
-
-    if request.param == "compiled":
-        if not engine.available():
-            pytest.skip("the compiled engine is not installed")
-        engine.load(quiet=True)
-        assert outputs._loaded_kernel() is not None
-    else:
-        monkeypatch.setattr(outputs, "_compiled", [])
-    return request.param
 
 
 @pytest.mark.parametrize("name", SCENES)

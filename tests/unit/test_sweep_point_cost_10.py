@@ -105,21 +105,6 @@ def test_the_resonance_check_on_the_choices_tangents_still_warns():
     assert len(found) == 3
 
 
-@pytest.fixture(params=["scalar laws", "compiled"])
-def laws(request, monkeypatch):
-    """The elements' scalar laws, and the compiled engine's where it is installed."""
-    from gearcli import engine
-
-    if request.param == "compiled":
-        if not engine.available():
-            pytest.skip("the compiled engine is not installed")
-        engine.load(quiet=True)
-        assert outputs._loaded_kernel() is not None
-    else:
-        monkeypatch.setattr(outputs, "_compiled", [])
-    return request.param
-
-
 @pytest.mark.parametrize("name", SCENES)
 def test_the_energy_watchs_one_sample_energy_is_the_sampled_energys(name, laws):
     """``stored_energy`` at one state: the kinetic energy plus every constant-stiffness connector's stored energy,
