@@ -150,7 +150,8 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
 
 
 #: a static approach beyond this fraction of the normal module: the contact law far outside its validity (the
-#: simulation's penetration_over_module warns the same fraction of the run's deepest penetration)
+#: simulation's penetration_over_module, gearcli.simulate.stats, warns at this fraction of the run's deepest
+#: penetration)
 STATIC_APPROACH_MODULE_FRACTION = 0.10
 
 

@@ -323,7 +323,7 @@ def window_steady(model: TorsionalModel) -> SteadyState:
 
 def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnostic]:
     """A response that did not repeat, or repeats only after k periods; a period that is not common."""
-    from gearcli.simulate.shooting import FALLBACK_NOTE  # lazy: start-up time of a fixed window's one-shot run
+    from gearcli.simulate.shooting import fell_back  # lazy: start-up time of a fixed window's one-shot run
 
     out = []
     if not period.exact:
@@ -337,7 +337,7 @@ def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnosti
                               f"simulation.duration_s to search longer (cap {MAX_PERIODS} periods); the statistics "
                               f"are over the last {steady.window_periods} periods", periods=steady.periods_to_converge,
                               residual=steady.residual))
-    if steady.method == "brute force" and steady.note.startswith(FALLBACK_NOTE):
+    if fell_back(steady):
         out.append(dg.warning(dg.SHOOTING_FALLBACK, f"steady = \"periodic\": {steady.note}", note=steady.note))
     if steady.bifurcation in ("fold", "period doubling") and steady.multipliers:
         mu = max(steady.multipliers, key=lambda m: -abs(complex(*m) - (1.0 if steady.bifurcation == "fold" else -1.0)))

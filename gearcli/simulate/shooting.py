@@ -67,6 +67,12 @@ FALLBACK_NOTE = "shooting did not converge"  # how a fallback's note starts (its
 FD_STEP = 1e-3  # finite-difference step, relative to the state's natural scale (its atol / rtol)
 
 
+def fell_back(steady) -> bool:
+    """A periodic state that is the brute-force search the shooting fell back to after failing (its note says why),
+    not a search of a scene the shooting leaves to it (a torque drive, excitations without a common period)."""
+    return steady.method == "brute force" and steady.note.startswith(FALLBACK_NOTE)
+
+
 @record
 class Floquet:
     """The Floquet multipliers of a periodic orbit and what they say."""

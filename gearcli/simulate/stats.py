@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.design.checks import STATIC_APPROACH_MODULE_FRACTION as PENETRATION_MODULE_FRACTION  # one limit for both
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.spec import MeshSpec, ModelSpec
 from gearcli.simulate.results import (
@@ -23,7 +24,6 @@ from gearcli.simulate.results import (
 
 SETTLE_FRACTION = 0.2  # of the time left after the slower ramp (docs/physics.md, "Torsional model")
 WARN_ENERGY_RESIDUAL = 1e-3
-WARN_PENETRATION_MODULE_FRACTION = 0.10
 WARN_PEAK_OVER_RIGID = 2.0  # smooth run-ups amplify the rigid-body force by a few % (seed: 1.05)
 NO_RAMP_WINDOW_FRACTION = 0.8  # window start when the ramps outlast the run: the last 20 %
 
@@ -226,7 +226,7 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
             out.append(dg.warning(dg.PENETRATION_BEYOND_DAMPING, f"stage {k + 1}: penetration reached "
                                   f"{deepest * 1e3:.3g} mm, beyond the full-damping depth {m.full_damping_m * 1e3:.3g} mm "
                                   "(the damping saturates there)", stage=k + 1, penetration_m=deepest))
-        if m.normal_module_m > 0 and deepest > WARN_PENETRATION_MODULE_FRACTION * m.normal_module_m:
+        if m.normal_module_m > 0 and deepest > PENETRATION_MODULE_FRACTION * m.normal_module_m:
             out.append(dg.warning(dg.PENETRATION_OVER_MODULE, f"stage {k + 1}: penetration reached "
                                   f"{deepest * 1e3:.3g} mm, more than 10 % of the normal module "
                                   f"({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity",

@@ -23,7 +23,7 @@ import numpy as np
 from gearcli.core.records import record
 from gearcli.model import TorsionalModel
 from gearcli.model.spec import ModelSpec
-from gearcli.simulate.shooting import FALLBACK_NOTE
+from gearcli.simulate.shooting import fell_back
 
 #: ``--set`` overrides of a continued point: no start-up ramps
 NO_RAMPS = ("input.ramp_s=0.0", "load.ramp_s=0.0")
@@ -84,7 +84,7 @@ def on_branch(prev, result) -> bool:
     st = result.steady
     followed = st is not None and (st.mode == "window" and st.settled is True  # integrated on to a settled state
                                    or st.mode == "periodic" and st.method == "brute force"  # the motion, from prev,
-                                   and not st.note.startswith(FALLBACK_NOTE))  # where no shooting failed on it
+                                   and not fell_back(st))  # where no shooting failed on it
     if st is None or not followed and (st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1):
         return False
     for a, b in zip(prev.stages, result.stages, strict=False):
