@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, BinaryIO
 
 import gearcli.design as design_layer
 from gearcli.config import DesignFile, LoadedDesign, json_schema, load_design, load_variant, starter_toml
-from gearcli.config.bounds import check_memory, check_run_budget, memory_limit_bytes
+from gearcli.config.bounds import check_run_budget, memory_limit_bytes
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core import plugins
@@ -348,7 +348,9 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     from gearcli.sweep.worker import Evaluation  # lazy: the sweep and life layers, start-up time of gearcli design
 
     case = design_case(scene, (*overrides, *(NO_RAMPS if start else ())))
-    check_memory(case.cfg, fmt="json", series=False, source=scene.source)  # the point's run, held in memory
+    # the point's run, held in memory and refused up front where its cost estimate is absurd, as simulate refuses
+    # it (a ResourceError: a sweep's failed row with simulate's message, a duty point's error)
+    check_run_budget(case.cfg, case.design, fmt="json", series=False, source=scene.source)
     spec = spec_from_design(*case)
     y0 = None
     if start is not None:
