@@ -39,7 +39,7 @@ from gearcli.diagnostics import (
     messages,
     warning,
 )
-from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
+from gearcli.errors import ConfigError, DesignError, GearcliError, ResourceError, SimulationError
 from gearcli.life import point_loads, spectra, verdicts
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
@@ -104,7 +104,8 @@ def _point_design(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     return case
 
 
-def _lengthened(exc: SimulationError, duration_s: float, design: DesignResult) -> SimulationError:
+def _lengthened(exc: SimulationError | ResourceError, duration_s: float,
+                design: DesignResult) -> SimulationError | ResourceError:
     """A point's run that failed (over its budget) at the duration the life route chose, not the file's: the
     run's own advice to shorten simulation.duration_s would not help, the route lengthens it again."""
     f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)
@@ -198,7 +199,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                                             settle=settle)
     except (ConfigError, DesignError) as exc:
         raise _named(scene, point, exc) from None
-    except SimulationError as exc:
+    except (SimulationError, ResourceError) as exc:  # over its budget, or refused up front for its cost
         if duration <= cfg.simulation.duration_s:
             raise
         raise _lengthened(exc, duration, design) from None

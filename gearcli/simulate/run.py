@@ -460,8 +460,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
                                {e.stage: e for e in solver_errors if e is not None}, _unloaded(spec))
     if not periodic:  # a periodic window has its own grid: 64 samples a period of its fastest excitation
-        diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
-                                              steps or s.time_s.size - 1)
+        sel = stats.window_slice(mask)
+        diags += sampling.excitation_warnings(model.layout, s.time_s[sel], steps or s.time_s.size - 1)
+        diags += sampling.window_period_warnings(model.layout, s.time_s[sel],  # the mean's partial period
+                                                 [np.asarray(p[0])[sel] for p in per_stage[:len(samplings)]],
+                                                 [se.reference_N if se is not None else None for se in samplings])
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
             diags += sampling.peak_warnings(s.time_s, peak_series(model, s, [p[0] for p in per_stage]),
                                             steps or s.time_s.size - 1,
