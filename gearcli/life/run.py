@@ -447,7 +447,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                         if exc.source is None:  # a rule of the run's own (its window too short): the point named
                             raise _named(scene, p, exc) from None
                         raise
-                    raise type(exc)(f"{scene.source}: duty point {p.name}: {exc}") from None
+                    own = str(exc).removeprefix(f"{scene.source}: ")  # a refusal that names the file already
+                    raise type(exc)(f"{scene.source}: duty point {p.name}: {own}") from None
                 evaluated.append(pd)
                 warnings += _point_design_warnings(scene, p, design_case, base_warnings)
                 warnings += [n for n in point_notes if n.message not in messages(warnings)]
