@@ -469,7 +469,7 @@ def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray],
             whole = int(math.floor(span / common.period_s))
             start = float(t[-1]) - whole * common.period_s
             fix = (f"a window of whole periods of the excitations' common period {common.period_s:.4g} s (--set "
-                   f"simulation.window_start_s={start:.9g}: its last {whole}) or ")
+                   f"{_start_setting(start)}: its last {whole}) or ")
         elif common is not None and common.exact:
             fix = (f"a window of whole periods of the excitations' common period {common.period_s:.4g} s (a longer "
                    "simulation.duration_s) or ")
@@ -485,6 +485,27 @@ def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray],
             stage=k + 1, statistic="mean", excitation=label, frequency_Hz=f, periods=f * span, amplitude_N=amplitude,
             estimated_bias_N=bound, relative_bias=bound / ref, window_start_s=start))
     return out
+
+
+def _start_setting(start_s: float, run: tuple[float, int] | None = None) -> str:
+    """The ``--set`` keys of a window of whole periods from ``start_s``; ``run``: the (duration, steps) of the run
+    that warned where it was not the file's own (a sweep row's or duty point's run repeated longer to settle)."""
+    before = "" if run is None else f"simulation.duration_s={run[0]:.9g} --set simulation.steps={run[1]} --set "
+    return f"{before}simulation.window_start_s={start_s:.9g}"
+
+
+def with_run_duration(diag: Diagnostic, duration_s: float, steps: int) -> Diagnostic:
+    """``diag`` as the run of ``duration_s`` sampled ``steps`` times says it, where that run is longer than the
+    design file's (the settle test's repeat, :func:`gearcli.simulate.settle.settled_run`): a
+    ``window_partial_period`` warning's whole periods then end at that run's end and start at one of its samples,
+    so its suggestion names its duration and steps too (the window start alone would hold a partial period of the
+    file's shorter run). Any other diagnostic is returned as it is."""
+    start = diag.data.get("window_start_s") if diag.code == dg.WINDOW_PARTIAL_PERIOD else None
+    if not isinstance(start, float) or _start_setting(start) not in diag.message:
+        return diag
+    alone = _start_setting(start)
+    return replace(diag, message=diag.message.replace(alone, _start_setting(start, (duration_s, steps))),
+                   data={**diag.data, "duration_s": duration_s, "steps": steps})
 
 
 def peak_warnings(t: np.ndarray, forces_N: list[np.ndarray], steps: int, fastest_Hz: float = 0.0) -> list[Diagnostic]:

@@ -38,7 +38,7 @@ from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
-from gearcli.simulate import ringing
+from gearcli.simulate import ringing, sampling
 from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
 
 if TYPE_CHECKING:
@@ -340,13 +340,13 @@ def settled_run(result: SimulationResult, run: Callable[..., SimulationResult],
     it). A periodic result keeps the first run's start-up peaks (:func:`with_start`), which the search's run-up, to
     the end of the ramps only, may not reach."""
     first = result
-    result, runs = _moved_window(result, run, duration_s, steps)
+    result, runs, longest = _moved_window(result, run, duration_s, steps)
     if periodic and result.steady is not None and result.steady.mode == "window" and result.steady.settled is False:
         before = runs if runs else result.steady.settle_runs
         orbit = periodic_state(run, duration_s, steps, before + 1)
         if orbit is not None:
             return with_start(orbit, first)
-    return _after_runs(finish(result), runs)
+    return _after_runs(finish(result), runs, longest)
 
 
 def with_start(orbit: SimulationResult, first: SimulationResult) -> SimulationResult:
@@ -370,9 +370,10 @@ def with_start(orbit: SimulationResult, first: SimulationResult) -> SimulationRe
 
 
 def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult], duration_s: float,
-                  steps: int) -> tuple[SimulationResult, int]:
-    """The window moved later while it is not settled (:func:`settled_run`), and the longer runs made."""
-    runs = 0
+                  steps: int) -> tuple[SimulationResult, int, tuple[float, int]]:
+    """The window moved later while it is not settled (:func:`settled_run`), the longer runs made, and the (duration,
+    steps) of the last run."""
+    runs, last = 0, (duration_s, steps)
     while result.steady is not None and result.steady.mode == "window" and result.steady.settled is False \
             and runs < MAX_RUNS:
         st = result.steady
@@ -381,20 +382,24 @@ def _moved_window(result: SimulationResult, run: Callable[..., SimulationResult]
         if nxt is None:
             break
         start, duration = nxt
+        samples = max(steps, math.ceil(steps * duration / duration_s))
         try:
-            longer = run(duration, max(steps, math.ceil(steps * duration / duration_s)), start)
+            longer = run(duration, samples, start)
         except GearcliError:  # the longer run exceeds its own budget (or fails): the window's warning stands
             break
         runs += 1
-        result = longer
-    return result, runs
+        result, last = longer, (duration, samples)
+    return result, runs, last
 
 
-def _after_runs(result: SimulationResult, runs: int) -> SimulationResult:
-    """The kept window's ``settle_runs``, and its warning's note of the longer runs."""
+def _after_runs(result: SimulationResult, runs: int, last: tuple[float, int]) -> SimulationResult:
+    """The kept window's ``settle_runs``, its warning's note of the longer runs, and the last run's duration and
+    steps (``last``) in a suggestion that starts the window at a time of that run
+    (:func:`gearcli.simulate.sampling.with_run_duration`)."""
     if runs and result.steady is not None:
         steady = replace(result.steady, settle_runs=runs)
-        result = replace(result, steady=steady)
+        diags = tuple(sampling.with_run_duration(d, *last) for d in result.diagnostics)
+        result = replace(result, steady=steady, diagnostics=diags, warnings=dg.messages(list(diags)))
         if steady.settled is False:
             note = f" (after {runs} longer run{'s' if runs > 1 else ''} within the budget)"
             diags = tuple(replace(d, message=d.message + note) if d.code == dg.WINDOW_NOT_SETTLED else d

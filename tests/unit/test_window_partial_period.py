@@ -96,3 +96,53 @@ def test_a_run_warned_moves_its_mean_within_the_bound_when_its_window_holds_whol
     assert not [x for x in whole["warnings"] if x["code"] == "window_partial_period"]
     moved = abs(doc["summary"]["stages"][0]["tangential_N"]["mean"] - whole["summary"]["stages"][0]["tangential_N"]["mean"])
     assert 1e-4 * 2969 < moved <= w["estimated_bias_N"]
+
+
+def _settling_scene() -> str:
+    """Two lightly loaded stages with 0.02 mm backlash, an 8 um transmission error on stage 1 (its 420 Hz mesh the
+    only excitation), 1200 rpm in, 200 N m out: a 0.1 s run whose window the start-up still rings in."""
+    pair = ('{{ normal_module_mm = {m}, normal_pressure_angle_deg = 20, helix_angle_deg = {beta}, backlash_mm = 0.02, '
+            'pinion = {{ teeth = {z1}, face_width_mm = {b}, hand = "{h1}" }}, '
+            'gear = {{ teeth = {z2}, face_width_mm = {b}, hand = "{h2}" }}{extra} }}')
+    stages = [pair.format(m=3, beta=12, z1=21, z2=50, b=40, h1="left", h2="right",
+                          extra=", mesh = { transmission_error_um = [8.0] }"),
+              pair.format(m=4, beta=10, z1=19, z2=53, b=50, h1="right", h2="left", extra="")]
+    return (f'title = "settling"\nstage = [{", ".join(stages)}]\n'
+            "input = { speed_rpm = 1200, ramp_s = 0.02 }\nload = { torque_Nm = 200, ramp_s = 0.02 }\n"
+            "simulation = { duration_s = 0.1, steps = 3000, error_estimate = false }\n")
+
+
+
+def test_a_run_repeated_longer_to_settle_names_its_duration_beside_the_window_start(tmp_path):
+    # a sweep row's or duty point's run is repeated with a later window (gearcli.simulate.settle): the whole periods
+    # its warning suggests end at that longer run's end and start at one of its samples, so the window start alone,
+    # on the file's 0.1 s, would hold a partial period again; the suggestion names that run's duration and steps
+    # too, and a one-shot run of all three is not warned
+    from gearcli import api
+    from gearcli.simulate import run_simulation
+
+    path = tmp_path / "settling.toml"
+    path.write_text(_settling_scene())
+    loaded, design = api.load_and_design(str(path))
+    result = run_simulation(loaded.design, design, settle=True, error_estimate=False)
+    assert result.steady.settle_runs >= 1 and result.window_s[1] > 0.1 + 1e-9
+    warned = [d for d in result.diagnostics if d.code == "window_partial_period"]
+    assert warned
+    f_mesh = 21 * 1200 / 60.0  # Hz: the stage 1 mesh's transmission error, the scene's only excitation
+    for w in warned:
+        start, duration, steps = w.data["window_start_s"], w.data["duration_s"], w.data["steps"]
+        assert duration == result.window_s[1] and steps == math.ceil(3000 * duration / 0.1)  # the samples scaled
+        assert (f"--set simulation.duration_s={duration:.9g} --set simulation.steps={steps} "
+                f"--set simulation.window_start_s={start:.9g}: its last") in w.message
+        held = (duration - start) * f_mesh
+        assert abs(held - round(held)) < 1e-6  # whole periods of the run that warned
+        alone = (0.1 - start) * f_mesh  # what the window start alone gives the file's own run
+        assert abs(alone - round(alone)) > 0.01
+    data = warned[0].data
+    res = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-q",
+                                   "--set", f"simulation.duration_s={data['duration_s']!r}",
+                                   "--set", f"simulation.steps={data['steps']}",
+                                   "--set", f"simulation.window_start_s={data['window_start_s']!r}"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    assert not [x for x in doc["warnings"] if x["code"] == "window_partial_period"]
