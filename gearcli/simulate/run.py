@@ -464,7 +464,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         diags += sampling.excitation_warnings(model.layout, s.time_s[sel], steps or s.time_s.size - 1)
         diags += sampling.window_period_warnings(model.layout, s.time_s[sel],  # the mean's partial period
                                                  [np.asarray(p[0])[sel] for p in per_stage[:len(samplings)]],
-                                                 [se.reference_N if se is not None else None for se in samplings])
+                                                 [se.reference_N if se is not None else None for se in samplings],
+                                                 _unloaded(spec))
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
             diags += sampling.peak_warnings(s.time_s, peak_series(model, s, [p[0] for p in per_stage]),
                                             steps or s.time_s.size - 1,

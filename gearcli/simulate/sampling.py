@@ -439,12 +439,13 @@ def _lines(periods, span: float, nyquist: float) -> list[tuple[float, str]]:
     return sorted(kept)
 
 
-def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray],
-                           references_N: list[float | None]) -> list[Diagnostic]:
+def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray], references_N: list[float | None],
+                           unloaded: frozenset[int] = frozenset()) -> list[Diagnostic]:
     """``window_partial_period``, one per stage whose window mean F_t the partial periods of the scene's excitations
     (their fundamentals and first :data:`PARTIAL_HARMONICS` harmonics below the samples' Nyquist frequency) may bias
     beyond the mean's target (module doc, "The mean: a partial period"). ``forces_N``: the window's F_t per stage;
-    ``references_N``: the force each stage's targets refer to (None: not judged)."""
+    ``references_N``: the force each stage's targets refer to (None: not judged); ``unloaded``: the stages (1-based)
+    that carry no static force, whose reference is the rms of their F_t, not their mean."""
     periods = [ex for ex in excitation_periods(layout) if ex.period_s > 0.0]
     judged = [k for k, ref in enumerate(references_N) if ref is not None and ref > 0.0]
     if not periods or not judged or t.size < MIN_WINDOW_SAMPLES or not float(t[-1] - t[0]) > 0.0:
@@ -479,8 +480,9 @@ def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray],
             dg.WINDOW_PARTIAL_PERIOD,
             f"stage {k + 1}: the steady window ({span:.4g} s) holds {f * span:.4g} periods of the {label} excitation "
             f"({f:.4g} Hz), not a whole number: its response there ({amplitude:.3g} N amplitude) may bias the window "
-            f"mean F_t by up to {worst:.3g} N, and the excitations together by {bound:.3g} N ({bound / ref:.2g} of the "
-            f"mean), beyond the mean's target {MEAN_TARGET:g}; {fix}steady = \"periodic\" (whole periods) "
+            f"mean F_t by up to {worst:.3g} N, and the excitations together by {bound:.3g} N ({bound / ref:.2g} of "
+            f"{reference_words(ref, True) if k + 1 in unloaded else 'the mean'}), beyond the mean's target "
+            f"{MEAN_TARGET:g}; {fix}steady = \"periodic\" (whole periods) "
             "removes it",
             stage=k + 1, statistic="mean", excitation=label, frequency_Hz=f, periods=f * span, amplitude_N=amplitude,
             estimated_bias_N=bound, relative_bias=bound / ref, window_start_s=start))

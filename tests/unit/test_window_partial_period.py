@@ -77,6 +77,21 @@ def test_the_warning_states_the_bound_and_the_window_of_whole_periods(monkeypatc
     assert not sampling.window_period_warnings(None, t, [x], [MEAN])
 
 
+def test_an_unloaded_stage_s_bias_is_named_against_its_rms_not_its_mean(monkeypatch):
+    # a stage with no static force refers its targets to the rms of its F_t (gearcli.simulate.estimate): the warning
+    # said "(x of the mean)" of that rms (a rattling unloaded stage: 0.005 "of the mean" where the mean was 0.68 N
+    # and the bound 0.41 N); it names the rms, and a loaded stage's words stay "of the mean"
+    monkeypatch.setattr(sampling, "excitation_periods", lambda layout: [Excitation("stage 1 mesh", 1.0 / F)])
+    t, x = _window(10.5, 50.0)
+    rms = 80.0  # N: the reference the caller gives an unloaded stage
+    (w,) = sampling.window_period_warnings(None, t, [x - MEAN], [rms], frozenset({1}))
+    bound = 50.0 / (10.5 * math.pi)  # the closed form A |sin(pi n)| / (pi n)
+    assert_allclose(w.data["relative_bias"], bound / rms, rtol=leak(10.5))
+    assert f"of the rms {rms:.4g} N of the unloaded stage's F_t)" in w.message and "of the mean)" not in w.message
+    (loaded,) = sampling.window_period_warnings(None, t, [x], [MEAN])
+    assert f"({loaded.data['relative_bias']:.2g} of the mean)" in loaded.message
+
+
 def test_a_run_warned_moves_its_mean_within_the_bound_when_its_window_holds_whole_periods():
     # configs/backlash_oscillator.toml: a 51 Hz mesh, the window 0.44 .. 1 s holds 28.56 of its periods
     config = Path(__file__).resolve().parents[2] / "configs" / "backlash_oscillator.toml"
