@@ -14,6 +14,7 @@ from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
 from gearcli.report.compare import reversed_lossy_stages
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
+from gearcli.simulate.estimate import reference_words
 
 LABELS = {
     "ratio": "ratio i",
@@ -117,7 +118,9 @@ def sampling_notes(r: Report) -> list[str]:
         fix = "" if e.resolved else (f" — NOT resolved: --set simulation.steps={e.suggested_steps}"
                                      if e.suggested_steps else " — NOT resolved within the schema's maximum steps")
         out.append(f"stage {st.index}: sampling error of the window min / max F_t {e.min_N:.2g} / {e.max_N:.2g} N "
-                   f"({e.relative['min']:.1e} / {e.relative['max']:.1e} of the mean, target {e.target_relative:g}; "
+                   f"({e.relative['min']:.1e} / {e.relative['max']:.1e} of "
+                   f"{reference_words(e.reference_N, True) if not st.static_tangential_N else 'the mean'}, target "
+                   f"{e.target_relative:g}; "
                    f"{e.samples} window samples){fix}")
     return out
 
