@@ -49,7 +49,7 @@ from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import SimulationError
 from gearcli.model import Layout, TorsionalModel
-from gearcli.model.linear import static_forces
+from gearcli.model.linear import Linearisation, static_forces
 from gearcli.model.outputs import stored_energy
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
 
@@ -93,15 +93,44 @@ def require_feasible(choice: Choice, budget: int) -> None:
     budget = min(budget, EXPLICIT_CAP)
     if needed <= budget:
         return
-    k = choice.stiffest_mesh
     freqs = choice.at_operating_point.natural_frequencies_Hz
     f = float(freqs[-1]) if freqs.size else 0.0
+    lin, fastest = _fastest_eigenvalue(choice)
+    if abs(fastest.imag) < DECAY_SHARE * abs(fastest):  # a decay, not a vibration: a damper sets it, no stiffness
+        cause = (f"its fastest motion is a decay at {abs(fastest):.3g} 1/s (time constant {1.0 / abs(fastest):.2g} s, "
+                 f"{abs(fastest) / (2.0 * math.pi * f) if f > 0 else math.inf:.2g}x its highest mode's 2 pi f): "
+                 f"{_fastest_damper(lin, choice.layout)}'s damping against the light inertias it joins makes it")
+    else:
+        cause = f"mesh stage {choice.stiffest_mesh + 1} makes it"
     raise SimulationError(
-        f"method = \"{choice.method}\" cannot integrate this scene: mesh stage {k + 1} makes it "
+        f"method = \"{choice.method}\" cannot integrate this scene: {cause} "
         f"{choice.indicator / STIFFNESS_LIMIT:.2g}x stiffer than an explicit method affords (highest mode "
         f"{f:.3g} Hz, max|λ|·T = {choice.indicator:.3g}, limit {STIFFNESS_LIMIT:.0e}); stability alone would take "
         f"{needed:.2g} right-hand-side evaluations, over the explicit budget of {budget:.2g}: use method = "
         f"\"{IMPLICIT_METHOD}\" (or \"auto\")")
+
+
+#: the imaginary part, as a share of |lambda|, below which the scene's fastest eigenvalue is a decay (damping ratio
+#: above sqrt(1 - 0.5^2) = 0.87) rather than a vibration of a mode
+DECAY_SHARE = 0.5
+
+
+def _fastest_eigenvalue(choice: Choice) -> tuple[Linearisation, complex]:
+    """The linearisation (of the two the indicator max|lambda| T takes) with the eigenvalue of largest |lambda|, and
+    that eigenvalue (0 if none)."""
+    lin = max((choice.at_full_load, choice.at_operating_point), key=lambda x: x.max_abs_eigenvalue)
+    values = np.asarray(lin.eigenvalues, dtype=complex).ravel()
+    return lin, complex(values[int(np.argmax(np.abs(values)))]) if values.size else 0j
+
+
+def _fastest_damper(lin: Linearisation, lay: Layout) -> str:
+    """The connector whose damping against the inertias it joins decays fastest (its c times the sum of its levers
+    squared over those inertias, the rate c / m of a damper on a free mass), in a message's words."""
+    rates = [float(lin.damping[c]) * sum(lever**2 / lay.inertias[b] for lever, b in zip(x.levers, x.bodies, strict=True)
+                                         if lay.state.omega(b) is not None)
+             for c, x in enumerate(lay.connectors)]
+    x = lay.connectors[int(np.argmax(rates))]
+    return f"mesh stage {x.index + 1}" if x.role == "mesh" else f"the {x.label}"
 
 
 @record

@@ -127,9 +127,37 @@ def test_explicit_method_on_an_extremely_stiff_scene_is_refused_before_it_starts
     with pytest.raises(SimulationError) as err:  # refused up front (the message below), not ground through
         run_simulation(cfg, design, method=method)
     msg = str(err.value)
-    assert f'method = "{method}" cannot integrate this scene: mesh stage 1' in msg
+    # its fastest eigenvalue is a decay (the stage 1 mesh's damping against the 1e-6 kg m^2 shaft), not a vibration
+    assert f'method = "{method}" cannot integrate this scene: its fastest motion is a decay' in msg
+    assert "mesh stage 1's damping against the light inertias it joins makes it" in msg
     assert "stiffer than an explicit method affords" in msg and 'use method = "Radau"' in msg
     assert err.value.exit_code == 1
+
+
+def test_a_refusal_set_by_a_damper_on_a_light_body_names_the_damper_not_a_mesh(tmp_path):
+    # a 2e-6 kg m^2 gear on a 5 N m s/rad load coupling to a 0.5 kg m^2 drum: the coupling's damper alone decays
+    # the gear's motion at c / J = 2.5e6 1/s, four times faster than the mesh mode (1e5 N/mm against 1e-6 and
+    # 2e-6 kg m^2: sqrt(k (r1^2/J1 + r2^2/J2)) = 6.0e5 rad/s); an explicit method's steps are set by that decay,
+    # and the refusal said "mesh stage 1 makes it ... stiffer" (highest mode 96 kHz), which no mesh change cures
+    path = tmp_path / "damper.toml"
+    path.write_text(
+        'title = "damper on a light gear"\n'
+        "stage = [{ normal_module_mm = 4, normal_pressure_angle_deg = 20, "
+        "pinion = { teeth = 20, face_width_mm = 30, inertia_kg_m2 = 1e-6 }, "
+        "gear = { teeth = 35, face_width_mm = 30, inertia_kg_m2 = 2e-6 } }]\n"
+        "contact = { stiffness = 1e5, exponent = 1, damping_ratio = 0.05 }\n"
+        "input = { drive = \"torque\", speed_rpm = 1000, torque_Nm = 5.714285714285714, ramp_s = 0.01 }\n"
+        "load = { torque_Nm = 10, ramp_s = 0.01, inertia_kg_m2 = 0.5, coupling_stiffness_Nm_rad = 2e4, "
+        "coupling_damping_Nms_rad = 5 }\n"
+        "simulation = { duration_s = 0.3, steps = 3000 }\n")
+    cfg = load_design(str(path)).design
+    with pytest.raises(SimulationError) as err:
+        run_simulation(cfg, compute_design(cfg), method="DOP853")
+    msg = str(err.value)
+    assert "the load coupling's damping against the light inertias it joins makes it" in msg
+    assert "mesh stage 1 makes it" not in msg
+    rate = float(msg.split("a decay at ")[1].split(" 1/s")[0])
+    assert abs(rate - 5.0 / 2e-6) <= 0.05 * 5.0 / 2e-6  # c / J of the gear, to the mesh's and drum's share
 
 
 def test_refusal_through_the_cli_is_exit_1_one_line_and_no_file(tmp_path):
