@@ -6,12 +6,10 @@ not LAPACK's to the last bit.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from gearcli.engine.common import select_initial_step
-from gearcli.engine.guards import STATUS_FINISHED, WP_SCALE, WP_T0, guards, start, step_accepted
+from gearcli.engine.guards import STATUS_FINISHED, WP_MAX_STEP, WP_SCALE, WP_T0, guards, start, step_accepted
 from gearcli.engine.jacobian import jacobian
 from gearcli.engine.linalg import _rms, _rms_matrix, lu_factor, lu_solve
 from gearcli.engine.numba_cache import jit, jit_alloc
@@ -166,6 +164,7 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
     watched = np.array([0.0, wpar[WP_SCALE]])
     out, done = start(y0, t_eval, wpar)
     t = wpar[WP_T0]  # the run's start (a continuation starts later)
+    max_step = wpar[WP_MAX_STEP] if wpar.size > WP_MAX_STEP else np.inf  # scipy's max_step
     nfev = 0
     njev = 0
     nlu = 0
@@ -177,7 +176,7 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
         rhs(t, y, f, model, th, fc)
         seg_nfev += 1
         h_self = select_initial_step(t, y, t_bound, f, rtol, atol, model, th, fc, w1, w2, scale, w3, w4, 0.25,
-                                     math.inf)
+                                     max_step)
         seg_nfev += 1
         h_abs_old_self = -1.0
         err_old_self = -1.0
@@ -190,7 +189,11 @@ def radau(model, y0, t_eval, breaks, rtol, atol, max_nfev, watch_every, wpar, tr
         lu_ok = False
         while True:
             min_step = 10 * abs(np.nextafter(t, np.inf) - t)
-            if h_self < min_step:
+            if h_self > max_step:  # scipy's order: the ceiling first, then the floor
+                h_abs = max_step
+                h_abs_old = -1.0
+                err_old = -1.0
+            elif h_self < min_step:
                 h_abs = min_step
                 h_abs_old = -1.0
                 err_old = -1.0

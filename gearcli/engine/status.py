@@ -18,6 +18,7 @@ WP_PROGRESS = 15
 #: a worker thread; the kernel reads it after every accepted step and returns with :data:`INTERRUPTED`
 WP_STOP = 16
 
-#: and one more after that: the explicit methods' step ceiling (s), scipy's ``max_step``: the initial step and every
-#: step are clamped to it (:func:`gearcli.simulate.choice.stability_step`); absent, no ceiling
+#: and one more after that: the step ceiling (s), scipy's ``max_step``: the initial step and every step are clamped
+#: to it (an explicit method's stability limit, :func:`gearcli.simulate.choice.stability_step`; Radau's on a
+#: time-varying contact length, :func:`gearcli.simulate.solver.contact_step`); absent, no ceiling
 WP_MAX_STEP = 17

@@ -35,6 +35,18 @@ def _line_offsets(eps_alpha: float, eps_beta: float) -> range:
     return range(-int(math.floor(eps_beta)) - 1, int(math.ceil(eps_alpha)) + 1)
 
 
+def shortest_stretch(eps_alpha: float, eps_beta: float) -> float:
+    """The shortest stretch of mesh phase (in mesh cycles) between two kinks of ``L(phi)`` (spur: its steps),
+    where a line's clipped overlap ``o(phi + j)`` changes slope: phi = 0, -eps_alpha, eps_beta and eps_beta -
+    eps_alpha (mod 1); 1.0 where ``L`` is constant (an integer overlap ratio) or has one kink a cycle."""
+    if eps_beta >= SPUR_OVERLAP and abs(eps_beta - round(eps_beta)) < 1e-9:
+        return 1.0
+    kinks = [0.0, -eps_alpha] + ([eps_beta, eps_beta - eps_alpha] if eps_beta >= SPUR_OVERLAP else [])
+    at = sorted({round(k % 1.0, 12) % 1.0 for k in kinks})
+    gaps = [b - a for a, b in zip(at, [*at[1:], at[0] + 1.0], strict=True)]
+    return min((g for g in gaps if g > 1e-9), default=1.0)
+
+
 def contact_length_factor(phi, eps_alpha: float, eps_beta: float):
     """``L(phi) / L_mean`` for a float or an array of mesh phases (any real; the fractional part is used)."""
     if eps_alpha <= 0:

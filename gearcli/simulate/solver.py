@@ -39,7 +39,7 @@ from gearcli.core.records import record
 from gearcli.engine import status as st
 from gearcli.errors import SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.simulate.choice import stability_step
+from gearcli.simulate.choice import contact_step, stability_step
 from gearcli.simulate.guards import ENERGY_MARGIN, EnergyReport, EnergyWatch, energy_watch, over_budget, priced_work_s
 
 # how a run ended (gearcli.engine.status: one set of codes for both engines)
@@ -80,10 +80,13 @@ def _solver(model: TorsionalModel, method: str, t0: float, y0: np.ndarray, t_end
 
 def step_ceiling(model: TorsionalModel, method: str) -> float:
     """The largest step ``method`` may take on ``model`` (scipy's ``max_step``): an explicit method's stability
-    limit on the scene's stiffest mode (:func:`gearcli.simulate.choice.stability_step`), none (inf) for an
-    implicit one or an unknown method (refused by :func:`_solver`)."""
-    if method not in METHODS or METHODS[method].implicit:
+    limit on the scene's stiffest mode (:func:`gearcli.simulate.choice.stability_step`); an implicit one's
+    :func:`gearcli.simulate.choice.contact_step` (inf without a time-varying contact length); none (inf) for an unknown method (refused by
+    :func:`_solver`)."""
+    if method not in METHODS:
         return np.inf
+    if METHODS[method].implicit:
+        return contact_step(model.layout)
     return stability_step(model.spec, model.layout, method)
 
 
