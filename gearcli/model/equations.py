@@ -38,6 +38,7 @@ from gearcli.model.parts import STAGE_ROLES
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp_motion
 
+ENDS = [0, -1]  # the first and the last sample
 QUADRATURE_ATOL = 1e20  # J: excludes the energy quadratures from step-size control
 MIN_DEFLECTION_SCALE_M = 1e-6  # atol floor for unloaded meshes: 1 um of deflection
 MIN_TWIST_SCALE_RAD = 1e-6  # atol floor for unloaded springs: 1 urad of twist
@@ -210,8 +211,8 @@ class TorsionalModel:
         lay = self.layout
         st = lay.state
         ke = kinetic_energy(lay, s.omega_rad_s[:, [0, -1]])
-        u_const = potential_energy(lay, s, time_varying=False)
-        u_tv = potential_energy(lay, s, time_varying=True)
+        u_const = potential_energy(lay, s, time_varying=False, at=ENDS)  # the balance reads its two ends
+        u_tv = potential_energy(lay, s, time_varying=True, at=ENDS)
         d_u_tv = float(u_tv[-1] - u_tv[0])
 
         def change(name: str) -> float:  # a quadrature's change over the run; 0 where the scene has none
