@@ -38,7 +38,6 @@ from gearcli.model.parts import STAGE_ROLES
 from gearcli.model.spec import ModelSpec
 from gearcli.model.step import ramp_motion
 
-ENDS = [0, -1]  # the first and the last sample
 QUADRATURE_ATOL = 1e20  # J: excludes the energy quadratures from step-size control
 MIN_DEFLECTION_SCALE_M = 1e-6  # atol floor for unloaded meshes: 1 um of deflection
 MIN_TWIST_SCALE_RAD = 1e-6  # atol floor for unloaded springs: 1 urad of twist
@@ -206,18 +205,20 @@ class TorsionalModel:
         return out
 
     # ------------------------------------------------------------------------------------ energy
-    def energy(self, s, Y: np.ndarray) -> Energy:
-        """Energy balance over the run from its samples ``s`` (``outputs.Sampled``) and states ``Y``."""
+    def energy(self, s, Y: np.ndarray, start: int = 0) -> Energy:
+        """Energy balance over the run from its samples ``s`` (``outputs.Sampled``) and states ``Y``, from sample
+        ``start`` on (``energy(s.tail(start), Y[:, start:])``: the balance reads its first and last samples)."""
         lay = self.layout
         st = lay.state
-        ke = kinetic_energy(lay, s.omega_rad_s[:, [0, -1]])
-        u_const = potential_energy(lay, s, time_varying=False, at=ENDS)  # the balance reads its two ends
-        u_tv = potential_energy(lay, s, time_varying=True, at=ENDS)
+        ends = [start, -1]
+        ke = kinetic_energy(lay, s.omega_rad_s[:, ends])
+        u_const = potential_energy(lay, s, time_varying=False, at=ends)
+        u_tv = potential_energy(lay, s, time_varying=True, at=ends)
         d_u_tv = float(u_tv[-1] - u_tv[0])
 
         def change(name: str) -> float:  # a quadrature's change over the run; 0 where the scene has none
             i = st.quadrature(name)
-            return 0.0 if i is None else float(Y[i, -1] - Y[i, 0])
+            return 0.0 if i is None else float(Y[i, -1] - Y[i, start])
 
         w_el_tv = change("elastic_work_tv_J")
         return Energy(

@@ -222,8 +222,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         s = equilibrium.sampled(model.layout, run.t, run.y, energy_from)
     else:
         s = sample(model.layout, run.t, run.y)
-    energy = model.energy(s, run.y) if not energy_from else \
-        model.energy(s.tail(energy_from), run.y[:, energy_from:])
+    energy = model.energy(s, run.y, start=energy_from)
     diags = prior + diags + fallback + (pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
         + _choice_warnings(choice)

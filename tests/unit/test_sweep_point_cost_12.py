@@ -13,7 +13,6 @@ import pytest
 from gearcli import api
 from gearcli.model import TorsionalModel
 from gearcli.model import modes as modes_mod
-from gearcli.model.equations import ENDS
 from gearcli.model.outputs import potential_energy, sample
 from gearcli.simulate import run as run_mod
 
@@ -83,7 +82,10 @@ def test_the_stored_energy_at_the_ends_is_the_whole_series_ends(name, laws):
     s = sample(lay, t, Y)
     for tv in (False, True):
         whole = potential_energy(lay, s, time_varying=tv)
-        np.testing.assert_array_equal(potential_energy(lay, s, time_varying=tv, at=ENDS), whole[ENDS])
+        np.testing.assert_array_equal(potential_energy(lay, s, time_varying=tv, at=[7, -1]), whole[[7, -1]])
+    # the balance from a sample on, read in place: the balance of the samples from there, the same numbers
+    assert model.energy(s, Y, start=7) == model.energy(s.tail(7), Y[:, 7:])
+    assert model.energy(s, Y) == model.energy(s.tail(0), Y)
     # the stored energy left out before the balance's first sample: every other series the same, bit for bit
     part = sample(lay, t, Y, energy_from=30)
     for a, b in zip(part.connectors, s.connectors, strict=True):
