@@ -212,16 +212,6 @@ def _speed_motion(lay: Layout, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(ww, float) * np.ones_like(t), np.asarray(aa, float) * np.ones_like(t)
 
 
-def _speed_drive_near(lay: Layout, duration_s: float, times: list[float]) -> np.ndarray:
-    """A speed drive's rigid start: F_t of every stage (rows) at the samples of its grid (:func:`_on_grid`'s) next to
-    ``times`` (columns; the grid's own operations on those samples, so the grid's numbers), whose largest |F_t| a
-    stage's peak is not below (:func:`_no_warning`)."""
-    grid = np.linspace(0.0, duration_s, SAMPLES)
-    i = np.searchsorted(grid, np.asarray(times, float))
-    t = grid[np.unique(np.clip(np.concatenate((i - 1, i)), 0, grid.size - 1))]
-    return _tangential(lay, t, *_speed_motion(lay, t), _coefficients(lay))[2]
-
-
 def _on_grid(lay: Layout, duration_s: float, samples: int = SAMPLES) -> tuple:
     """The rigid start on its grid, before its peaks are refined: (lay, the start without ``peak_tangential_N``,
     the continuous state ``state(t) -> (w, dw/dt)``, the times the peaks are sought about, F_t at them, the
@@ -430,16 +420,11 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
     ``reswitch_s`` the time a star-delta motor first fell back into star (a peak after it is named with it).
     ``summary=False``: the warnings alone, the summary None (a caller that reads none: a sweep row, a duty point),
     and the rigid peaks refined only where a warning may follow: a refined peak is at least the grid's largest
-    |F_t|, which is at least that of any of its samples (a speed drive's: those next to the run's peaks, without
-    the grid), so a run peak within ``warn_ratio`` of that (the same division) is within it of the refined one too."""
+    |F_t|, so a run peak within ``warn_ratio`` of that (the same division) is within it of the refined one too."""
     if t.size < 2 or t[-1] <= 0:
         return None, []
-    peaks = [float(np.max(np.abs(f))) for f in forces_N]
-    if not summary and lay.speed_drive and _no_warning(  # at the run's peaks: a speed drive's rigid state is its ramp
-            peaks, _speed_drive_near(lay, float(t[-1]), [float(t[np.argmax(np.abs(f))]) for f in forces_N]),
-            warn_ratio):
-        return None, []
     grid = _on_grid(lay, float(t[-1]))
+    peaks = [float(np.max(np.abs(f))) for f in forces_N]
     if not summary and _no_warning(peaks, grid[1].tangential_N, warn_ratio):
         return None, []
     rigid = _refined(*grid)
@@ -492,8 +477,8 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
 
 
 def _no_warning(peaks: list[float], rigid_ft: np.ndarray, warn_ratio: float) -> bool:
-    """No stage's ratio can exceed ``warn_ratio``: each run peak over the largest |F_t| of the rigid start's samples
-    ``rigid_ft`` (stages x some of its grid's samples; positive) is within it; the refined peak, not below that
-    largest, only lowers the ratio (a correctly rounded division is monotone in its divisor)."""
+    """No stage's ratio can exceed ``warn_ratio``: each run peak over the largest |F_t| of the rigid start's grid
+    ``rigid_ft`` (stages x samples; positive) is within it; the refined peak, not below that largest, only lowers
+    the ratio (a correctly rounded division is monotone in its divisor)."""
     grid = [float(np.max(np.abs(f))) for f in rigid_ft]
     return all(g > 0 and p / g <= warn_ratio for p, g in zip(peaks, grid, strict=True))
