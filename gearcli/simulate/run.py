@@ -437,8 +437,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic)) for k, st in enumerate(stages))
     rings = planet_ring_stiffness(model, choice)
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
-    shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
-    w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
+    # the reducer's ratio: shaft 1 over the last shaft, not motor over drum (the window's samples read in place)
+    first, last, sel = model.layout.shaft_body[0], model.layout.shaft_body[-1], stats.window_slice(mask)
+    w_in, w_out = float(s.omega_rad_s[first][sel].mean()), float(s.omega_rad_s[last][sel].mean())
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]

@@ -110,3 +110,19 @@ def test_the_stages_series_without_the_channels_are_the_channels(name):
     for a, b in zip(alone, whole, strict=True):
         for x, y in zip(a, b, strict=True):
             np.testing.assert_array_equal(x, y)
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_a_window_read_in_place_has_the_masks_means(name):
+    # the ratio's shaft speeds: a contiguous window's view reduces as the mask's copy does, bit for bit
+    from gearcli.simulate import stats
+
+    model = _model(name)
+    t = np.linspace(0.0, 0.5, 2001)
+    rng = np.random.default_rng(5)
+    w = 100.0 + rng.standard_normal((model.layout.n_bodies, t.size))
+    mask = stats.window_mask(t, (0.2437, 0.5))
+    sel = stats.window_slice(mask)
+    assert isinstance(sel, slice)
+    for b in model.layout.shaft_body:
+        assert float(w[b][sel].mean()) == float(w[b][mask].mean())
