@@ -72,11 +72,6 @@ class Sampled:
                        np.broadcast_to(self.load_torque_Nm, self.time_s.shape)[start:],
                        tuple(c.tail(start) for c in self.connectors), self.layout)
 
-    @property
-    def shaft_omega_rad_s(self) -> np.ndarray:
-        """Speeds of the reducer shafts (a flexible shaft: its gear end), (n_shafts, T)."""
-        return self.omega_rad_s[list(self.layout.shaft_body)]
-
 
 def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Speeds of all bodies, their angles (if needed) and the input body's acceleration."""
