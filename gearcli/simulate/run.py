@@ -21,7 +21,7 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.linear import static_line_forces_N
+from gearcli.model.linear import damped_modes, static_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
@@ -503,6 +503,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
+               "damped_modes": damped_modes(choice.run_eigenvalues),
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
