@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, BinaryIO
 
 import gearcli.design as design_layer
 from gearcli.config import DesignFile, LoadedDesign, json_schema, load_design, load_variant, starter_toml
-from gearcli.config.bounds import check_memory, check_run_budget, memory_limit_bytes
+from gearcli.config.bounds import check_run_budget, memory_limit_bytes
 from gearcli.config.load import read_bytes
 from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core import plugins
@@ -43,9 +43,10 @@ from gearcli.model.assembly import Layout
 from gearcli.model.modes import BOUNDARIES, campbell_data, modal_analysis
 from gearcli.model.spec import ElementSpec, ModelSpec
 from gearcli.results import DesignResult
-from gearcli.scene import build_model, resonance_diagnostics, spec_from_design
+from gearcli.scene import build_model, motor_start_warnings, resonance_diagnostics, spec_from_design
 
 if TYPE_CHECKING:
+    from gearcli.diagnostics import Diagnostic
     from gearcli.engine import Built
     from gearcli.life.result import LifeResult
     from gearcli.life.session import Session as LifeSession
@@ -63,7 +64,7 @@ if TYPE_CHECKING:
 __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "check_budget", "design", "design_case",
            "engine_build", "engine_cache_refusal", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
-           "sweep_campbell", "with_resonances", "design_file_schema", "plugin_failures", "starter_toml"]
+           "sweep_campbell", "with_motor_start", "with_resonances", "design_file_schema", "plugin_failures", "starter_toml"]
 
 
 def check_environment() -> None:
@@ -128,7 +129,17 @@ def load_and_design(path: str, overrides: Sequence[str] = (), *,
 def with_resonances(cfg: DesignFile, design_result: DesignResult) -> DesignResult:
     """The design with the drivetrain's resonance warnings added (``gearcli design``: a mesh order near a natural
     frequency of the linearised chain, the same messages ``simulate`` gives)."""
-    found = resonance_diagnostics(cfg, design_result)
+    return _with(design_result, resonance_diagnostics(cfg, design_result))
+
+
+def with_motor_start(cfg: DesignFile, design_result: DesignResult) -> DesignResult:
+    """The design with a motor drive's start judged from its curves (``gearcli design``): the warning that the
+    motor cannot start its load (check ``motor_cannot_start``, or a soft start's ``soft_start_rolls_back``), the
+    physics ``simulate`` warns of as ``motor_stalls`` and ``motor_rolls_back`` after its run."""
+    return _with(design_result, motor_start_warnings(cfg, design_result))
+
+
+def _with(design_result: DesignResult, found: tuple[Diagnostic, ...]) -> DesignResult:
     return dataclasses.replace(design_result, warnings=design_result.warnings + tuple(d.message for d in found),
                                diagnostics=design_result.diagnostics + found)
 
@@ -338,7 +349,9 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     from gearcli.sweep.worker import Evaluation  # lazy: the sweep and life layers, start-up time of gearcli design
 
     case = design_case(scene, (*overrides, *(NO_RAMPS if start else ())))
-    check_memory(case.cfg, fmt="json", series=False, source=scene.source)  # the point's run, held in memory
+    # the point's run, held in memory and refused up front where its cost estimate is absurd, as simulate refuses
+    # it (a ResourceError: a sweep's failed row with simulate's message, a duty point's error)
+    check_run_budget(case.cfg, case.design, fmt="json", series=False, source=scene.source)
     spec = spec_from_design(*case)
     y0 = None
     if start is not None:

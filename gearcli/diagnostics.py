@@ -40,6 +40,7 @@ SLOW_PACE = "slow_pace"  # a run far slower than auto's cost model predicted (or
 STATISTICS_UNRESOLVED = "statistics_unresolved"
 STATISTICS_UNDERSAMPLED = "statistics_undersampled"  # the output samples miss the window's min/max between them
 EXCITATION_UNDERSAMPLED = "excitation_undersampled"  # an excitation has too few output samples a period
+WINDOW_PARTIAL_PERIOD = "window_partial_period"  # a partial period of the slowest excitation biases the mean
 PEAK_UNDERSAMPLED = "peak_undersampled"  # the output samples miss the run's peak |F_t| (and run-up factor) between them
 PEAK_UNRESOLVED = "peak_unresolved"  # the solver's error of the run's peak |F_t| (check pass) beyond the target
 RTOL_TIGHTENED = "rtol_tightened"  # auto repeated a run at a tighter rtol to resolve its window means

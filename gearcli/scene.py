@@ -194,3 +194,14 @@ def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple[Diagno
     boundary = "clamped_input" if lay.speed_drive else "free"
     return tuple(dg.warning(dg.RESONANCE, r.message, **r.data, boundary=boundary)
                  for r in resonances(lay, boundary, duration_s=cfg.simulation.duration_s))
+
+
+def motor_start_warnings(cfg: DesignFile, design: DesignResult) -> tuple[Diagnostic, ...]:
+    """A motor drive that cannot start its load, for ``gearcli design``: its curves against the load reflected
+    through the train (:mod:`gearcli.model.motor_start`, the physics of ``simulate``'s ``motor_stalls``). Imports
+    numpy, never scipy; nothing for a speed or torque drive."""
+    if cfg.input.drive != "motor" or cfg.input.motor is None:
+        return ()
+    from gearcli.model.motor_start import motor_start_diagnostics  # lazy: a motor drive's design only
+
+    return motor_start_diagnostics(Layout.of(spec_from_design(cfg, design)))

@@ -48,7 +48,7 @@ def design(file: str, overrides, fmt, output, csv_table: str = "stages") -> None
     target = check_target(fmt, output)
     loaded, result = load_and_design(file, overrides)
     bearings = wants_bearing_csv(csv_table, "stages", target.fmt, loaded)
-    result = api.with_resonances(loaded.design, result)
+    result = api.with_motor_start(loaded.design, api.with_resonances(loaded.design, result))
     emit_as(target.fmt, target, result, sha256=loaded.sha256,
             json_doc=lambda: serialize.design_dict(result),
             csv_text=lambda: serialize.design_bearings_csv(result) if bearings else serialize.design_csv(result), table_builder="design_tables")

@@ -135,7 +135,9 @@ def design_file_reference() -> str:
            "- a simulation whose output would need more memory than `GEARCLI_MEMORY_LIMIT_MB` (default 2048) is "
            "refused with the estimate and the `simulation.steps` that fits; one whose cost estimate is absurd "
            "(over 5e8 right-hand-side evaluations) is refused with the `simulation.duration_s` that fits (or, where not "
-           "even the least duration fits, with the speeds, stiffnesses and inertias to check).", ""]
+           "even the least duration fits, with the speeds, stiffnesses and inertias to check). Each sweep point and life "
+           "duty point is checked the same way with its own values: a refused sweep point is a `failed` row with that "
+           "message, a refused duty point ends `life` (exit 2) naming it.", ""]
     for title, name, what in _TABLES:
         if name == "DesignFile" or name in defs:
             out += _table(title, name, what, defs, schema)

@@ -39,7 +39,7 @@ from gearcli.design.geometry import (
     undercut_min_profile_shift,
 )
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
-from gearcli.design.stiffness import smaller_wheel_first
+from gearcli.design.stiffness import material_factor, smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
 from gearcli.stages.design import design_kind, gear_pairs, member_name
@@ -138,6 +138,8 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                            "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
                            "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm),
                            "min_tip_thickness_mm": MIN_TIP_THICKNESS_PER_MODULE * stage.normal_module_mm}))
+        found.append(steel_stiffness_warning(cfg, stage.index, "mesh" if stage.planetary is None else "sun_planet",
+                                             (stage_cfg.pinion.material, stage_cfg.gear.material)))
         found.append((static_approach_warning(stage), {"check": "static_approach", **at,
                                                        "static_approach_mm": stage.static_approach_mm,
                                                        "normal_module_mm": stage.normal_module_mm}))
@@ -165,6 +167,34 @@ def static_approach_warning(stage: StageResult) -> str | None:
     return (f"stage {stage.index}: the static approach of the mesh is {h0:.3g} mm at the design load, more than 10 % "
             f"of the normal module ({m_n:.3g} mm): the contact law is far outside its validity (a tooth pair "
             "deflects some micrometres at its rated load); check the load torque, [contact] stiffness and their units")
+
+
+def steel_stiffness_warning(cfg: DesignFile, stage: int, mesh: str,
+                            materials: tuple[str, str]) -> tuple[str | None, JsonObject]:
+    """A mesh of a pairing other than steel on steel: ISO 6336-1's c′ (and so c_γα, the ``iso6336`` law, K_v and
+    K_Hβ) is steel's in gearcli (the formula has no material term), where the standard scales it by E/E_st for
+    other pairings: cast irons, bronzes, light alloys and polymers mesh softer than steel's c′ says."""
+    mats = [cfg.materials[name] for name in materials]
+    factor = material_factor(mats[0].youngs_modulus_MPa, mats[0].treatment, mats[1].youngs_modulus_MPa,
+                             mats[1].treatment)
+    data: JsonObject = {"check": "steel_stiffness", "stage": stage, "mesh": mesh, "modulus_ratio": factor}
+    if factor == 1.0:
+        return None, data
+    where = f"stage {stage}" + ("" if mesh == "mesh" else f" {mesh.replace('_', '–')} mesh")
+    return (f"{where}: the {materials[0]}/{materials[1]} pairing is not steel on steel, but c′ = c′_th C_M C_R C_B "
+            "cos β is steel's (ISO 6336-1 measured c′_th on steel pairs and scales it by E/E_st for other pairings, "
+            f"here {factor:.3g}: E = 2E1E2/(E1+E2), E_st = 206,000 N/mm²); the iso6336 mesh law, modes and the "
+            "rating's K_v and K_Hβ take this mesh stiffer than the standard would; where that matters, give "
+            "[contact] stiffness as a number"), data
+
+
+def planet_ring_steel_warnings(cfg: DesignFile, stages: Iterable[StageResult]) -> tuple[Diagnostic, ...]:
+    """:func:`steel_stiffness_warning` of every planetary stage's planet–ring mesh (``cfg`` the file, not the pair
+    view: the ring is not a member of the sun–planet pair)."""
+    found = (steel_stiffness_warning(cfg, st.index, "planet_ring", (cfg.stage[k].planet.material,  # type: ignore[union-attr]
+                                                                   cfg.stage[k].ring.material))  # type: ignore[union-attr]
+             for k, st in enumerate(stages) if getattr(st, "planetary", None) is not None)
+    return tuple(warning(DESIGN, w, **data) for w, data in found if w)
 
 
 def axial_hand_warnings(stages: tuple[StageResult, ...]) -> list[tuple[str | None, JsonObject]]:

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from gearcli.core.records import record
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import design_diagnostics, stiffness_diagnostics
+from gearcli.design.checks import design_diagnostics, planet_ring_steel_warnings, stiffness_diagnostics
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
 from gearcli.design.inertia import (
@@ -92,7 +92,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         if ignored else ()
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out), kin.shaft_torque_Nmm(0) / 1000.0,
                                        speed_rpm(kin.shaft_speeds_rad_s[0])), *own, *pins, *jammed,
-                   *stiffness_diagnostics(stages), *rating_diagnostics, *_bearing_diagnostics(cfg, bearings),
+                   *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages), *rating_diagnostics, *_bearing_diagnostics(cfg, bearings),
                    *drive_notes)
     return DesignResult(
         title=cfg.title,

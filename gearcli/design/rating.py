@@ -32,6 +32,7 @@ from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
+from gearcli.stages import kinds
 from gearcli.stages.design import design_kind, gear_pairs, member_name
 
 if TYPE_CHECKING:
@@ -88,7 +89,43 @@ def rate_design(cfg: DesignFile, stages: tuple[StageResult, ...]) -> tuple[tuple
     pairs = dict(gear_pairs(stages))
     rated = tuple(replace(st, rating=rate_stage(cfg, k, st)) if k in pairs else st for k, st in enumerate(stages))
     return rated, (*not_iso_diagnostics(cfg), *(d for k, st in enumerate(rated) if k in pairs
-                                                 for d in range_diagnostics(cfg, k, st) + safety_diagnostics(cfg, st)))
+                                                 for d in range_diagnostics(cfg, k, st) + safety_diagnostics(cfg, st)),
+                   *reversal_diagnostics(cfg, [st for k, st in enumerate(rated) if k in pairs]))
+
+
+def reversal_diagnostics(cfg: DesignFile, stages: list[StageResult]) -> list[Diagnostic]:
+    """Warnings (``rating_out_of_range``) where the rating's unidirectional load is not the load the teeth see:
+
+    - a lossy parallel stage under load reversal (a negative load torque: the gear drives, the back flanks carry the
+      load) is rated as ISO 6336-1 writes F_t, from the pinion's torque T_1, which the mesh's losses put η below the
+      driving gear's torque over its radius: named with both forces (σ_H grows as √F_t, σ_F as F_t);
+    - a load whose fluctuations (``[load] fluctuation``, or a torque drive's ``torque_ripple``) sum to more than 100 %
+      of it changes sign: the teeth bend both ways, for which ISO 6336-5 takes 0.7 of σ_FE (the idler rule, Y_M
+      = 0.7, as on a planet); this rating keeps Y_M = 1 on every member but an idler's."""
+    out = []
+    for st in stages:
+        if kinds.kind_of(st) != "parallel" or not st.static_force_N.tangential < 0.0:
+            continue
+        rated = abs(st.static_force_N.tangential)
+        driving = abs(st.gear.torque_Nmm) / (0.5 * st.gear.pitch_diameter_mm)
+        if not driving > rated * (1.0 + 1e-9):  # a lossless mesh: the back flanks' force is the rated one
+            continue
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index}: load reversal (negative load torque): the gear drives and "
+                           "the back flanks carry the load, rated as the drive flanks (symmetric teeth) at ISO 6336-1's "
+                           f"F_t = T_1 / r_1 = {rated:.5g} N from the pinion's torque; the driving gear's |T_2| / r_2 is "
+                           f"{driving:.5g} N, {driving / rated:.4g}x it through the mesh's losses (σ_H "
+                           f"{math.sqrt(driving / rated):.4g}x, σ_F {driving / rated:.4g}x at that force)",
+                           stage=st.index, quantity="load_reversal", value=rated, driving_force_N=driving))
+    fluctuating = [(f"[load] fluctuation amplitudes sum to {a:.4g} %", a)
+                   for a in (sum(f.amplitude_percent for f in cfg.load.fluctuation),) if a > 100.0]
+    if cfg.input.drive == "torque":
+        fluctuating += [(f"[input] torque_ripple amplitudes sum to {a:.4g} %", a)
+                        for a in (sum(r.amplitude_percent for r in cfg.input.torque_ripple),) if a > 100.0]
+    out += [warning(OUT_OF_RANGE, f"{what} of the torque: the load changes sign and the teeth bend both ways; ISO 6336-5 "
+                    "takes 0.7 of σ_FE for alternating bending (the idler rule, Y_M = 0.7), which this rating does not "
+                    "apply but on an idler: S_F of every other member is up to 1/0.7 = 1.43x too high",
+                    stage=None, quantity="alternating_load", value=a) for what, a in fluctuating]
+    return out
 
 
 def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:

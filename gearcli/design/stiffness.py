@@ -39,6 +39,9 @@ FULL_LOAD_LINE_LOAD_N_mm = 100.0  # above this F_t K_A / b, c' no longer depends
 C_GAMMA_BETA_PER_ALPHA = 0.85  # c_gamma_beta = 0.85 c_gamma_alpha (ISO 6336-1, clause 9)
 WEB_RATIO_RANGE = (0.2, 1.2)  # b_s / b limits of the C_R formula (ISO 6336-1); values outside are clamped
 MIN_RIM_PER_MODULE = 1.0  # s_R / m_n below this is taken as 1 (ISO 6336-1)
+E_ST_MPa = 206_000.0  # the steel modulus ISO 6336-1 writes c'_th for
+STEEL_MODULUS_RANGE_MPa = (190_000.0, 220_000.0)  # a member counts as steel (stainless 193-200, steels 200-215)
+IRON_TREATMENTS = ("nodular_iron", "grey_iron")  # ISO 6336-5 material classes that are cast irons, not steels
 
 
 # ------------------------------------------------------------------------ Hertz (seed section 3.3)
@@ -68,6 +71,25 @@ def flexibility_q_prime(zn1: float, zn2: float, x1: float, x2: float) -> float:
     c1, c2, c3, c4, c5, c6, c7, c8, c9 = ISO6336_C
     return (c1 + c2 / zn1 + c3 / zn2 + c4 * x1 + c5 * x1 / zn1 + c6 * x2 + c7 * x2 / zn2
             + c8 * x1 ** 2 + c9 * x2 ** 2)
+
+
+def counts_as_steel(youngs_modulus_MPa: float, treatment: str | None) -> bool:
+    """A member whose modulus lies in :data:`STEEL_MODULUS_RANGE_MPa` and that is not an ISO 6336-5 cast iron."""
+    low, high = STEEL_MODULUS_RANGE_MPa
+    return low <= youngs_modulus_MPa <= high and treatment not in IRON_TREATMENTS
+
+
+def material_factor(youngs_1_MPa: float, treatment_1: str | None, youngs_2_MPa: float,
+                    treatment_2: str | None) -> float:
+    """ISO 6336-1's E/E_st, E = 2 E1 E2 / (E1 + E2), of a pairing that is not steel on steel; 1 for steel on steel.
+
+    ISO's c'_th is measured on steel pairs and the standard scales it by E/E_st (E_st = 206,000 N/mm²) for other
+    pairings. gearcli's c' has no material term (the design contract's formula), so this factor only sets the
+    design's ``steel_stiffness`` warning.
+    """
+    if counts_as_steel(youngs_1_MPa, treatment_1) and counts_as_steel(youngs_2_MPa, treatment_2):
+        return 1.0
+    return 2.0 * youngs_1_MPa * youngs_2_MPa / (youngs_1_MPa + youngs_2_MPa) / E_ST_MPa
 
 
 def smaller_wheel_first(teeth: tuple[int, int], values: tuple, shifts: tuple[float, float] = (0.0, 0.0)) -> tuple:

@@ -39,7 +39,7 @@ from gearcli.diagnostics import (
     messages,
     warning,
 )
-from gearcli.errors import ConfigError, DesignError, GearcliError, SimulationError
+from gearcli.errors import ConfigError, DesignError, GearcliError, ResourceError, SimulationError
 from gearcli.life import point_loads, spectra, verdicts
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
@@ -57,8 +57,8 @@ from gearcli.life.result import (
 )
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles
+from gearcli.model.motor_start import VFD_OFF_SPEED
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
-from gearcli.simulate.motor import VFD_OFF_SPEED
 from gearcli.stages.design import design_kind
 from gearcli.stages.life import LifeKind, life_kind
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
@@ -104,7 +104,8 @@ def _point_design(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     return case
 
 
-def _lengthened(exc: SimulationError, duration_s: float, design: DesignResult) -> SimulationError:
+def _lengthened(exc: SimulationError | ResourceError, duration_s: float,
+                design: DesignResult) -> SimulationError | ResourceError:
     """A point's run that failed (over its budget) at the duration the life route chose, not the file's: the
     run's own advice to shorten simulation.duration_s would not help, the route lengthens it again."""
     f_min = min(abs(st.mesh_frequency_Hz) for st in design.stages)
@@ -198,7 +199,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                                             settle=settle)
     except (ConfigError, DesignError) as exc:
         raise _named(scene, point, exc) from None
-    except SimulationError as exc:
+    except (SimulationError, ResourceError) as exc:  # over its budget, or refused up front for its cost
         if duration <= cfg.simulation.duration_s:
             raise
         raise _lengthened(exc, duration, design) from None
@@ -446,7 +447,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                         if exc.source is None:  # a rule of the run's own (its window too short): the point named
                             raise _named(scene, p, exc) from None
                         raise
-                    raise type(exc)(f"{scene.source}: duty point {p.name}: {exc}") from None
+                    own = str(exc).removeprefix(f"{scene.source}: ")  # a refusal that names the file already
+                    raise type(exc)(f"{scene.source}: duty point {p.name}: {own}") from None
                 evaluated.append(pd)
                 warnings += _point_design_warnings(scene, p, design_case, base_warnings)
                 warnings += [n for n in point_notes if n.message not in messages(warnings)]

@@ -21,7 +21,7 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.linear import static_line_forces_N
+from gearcli.model.linear import damped_modes, static_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
@@ -469,8 +469,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
                                {e.stage: e for e in solver_errors if e is not None}, _unloaded(spec))
     if not periodic:  # a periodic window has its own grid: 64 samples a period of its fastest excitation
-        diags += sampling.excitation_warnings(model.layout, s.time_s[stats.window_slice(mask)],
-                                              steps or s.time_s.size - 1)
+        sel = stats.window_slice(mask)
+        diags += sampling.excitation_warnings(model.layout, s.time_s[sel], steps or s.time_s.size - 1)
+        diags += sampling.window_period_warnings(model.layout, s.time_s[sel],  # the mean's partial period
+                                                 [np.asarray(p[0])[sel] for p in per_stage[:len(samplings)]],
+                                                 [se.reference_N if se is not None else None for se in samplings])
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
             diags += sampling.peak_warnings(s.time_s, peak_series(model, s, [p[0] for p in per_stage]),
                                             steps or s.time_s.size - 1,
@@ -509,6 +512,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
+               "damped_modes": damped_modes(choice.run_eigenvalues),
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )

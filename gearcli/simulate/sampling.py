@@ -75,6 +75,21 @@ judged against the mean's own target (``MEAN_TARGET``, with the solver's estimat
 ``statistics_undersampled`` (statistic ``mean``); its suggestion assumes the O(h) rate. A periodic window (whole periods, 64 samples a period of its fastest excitation) is
 the exact rule of a band-limited signal and is not estimated.
 
+The mean: a partial period. The window mean is the mean over the window, and the steady state's mean is the mean
+over whole periods of its excitations: a window that holds n = f T periods of a response component of amplitude A
+at frequency f, not a whole number, adds A sin(pi n) cos(2 pi f t_mid + phase) / (pi n) to the mean (t_mid its
+middle), at most A |sin(pi n)| / (pi n) and 0 for whole periods. :func:`window_period_warnings` bounds it from the
+window itself: for every excitation's fundamental and first :data:`PARTIAL_HARMONICS` harmonics below the samples'
+Nyquist frequency (one per frequency resolution 1 / T, the lower harmonic kept), A from the trapezoid-rule
+projection of F_t about its mean (accurate to ~1 / (2 pi n) of A: the negative-frequency image leaks in), under one
+period the window's half range; the bounds summed over the frequencies. Where the sum exceeds the mean's target
+(``MEAN_TARGET`` of the reference force), the run warns ``window_partial_period`` naming the largest contributor and,
+where the excitations' common period fits in the window, the ``simulation.window_start_s`` of its last whole periods
+(configs/backlash_oscillator.toml: 28.56 periods of its 51 Hz mesh, bound 9.1 N or 3.1e-3 of the mean; its last 28
+periods move the mean by 6.0 N and carry no warning). Vibration that is no excitation's (a mode ringing from the
+run-up) is ``window_ringing``'s and ``window_not_settled``'s, not counted here. A periodic window holds whole
+periods and is not judged.
+
 Verdict and suggestion. Where a check pass ran, the estimate is added to the solver's for min and max
 (:func:`merged`); the samples leave a statistic unresolved when the sum exceeds :data:`TARGET` and the sampling is
 a cause of it (:func:`_undersampled`). The error of a smooth peak falls as h^2, so ``suggested_steps`` scales the
@@ -95,12 +110,13 @@ from gearcli import diagnostics as dg
 from gearcli.config.schema import MAX_STEPS
 from gearcli.diagnostics import Diagnostic
 from gearcli.simulate.estimate import (
+    MEAN_TARGET,
     TARGET,  # of the stage's mean force: the solver's and the samples' together
     force_reference,
     reference_words,
 )
 from gearcli.simulate.estimate import target as target_of  # MEAN_TARGET for the mean, TARGET else
-from gearcli.simulate.periodic import excitation_periods
+from gearcli.simulate.periodic import common_period, excitation_periods
 from gearcli.simulate.results import SamplingError, StatisticsError
 
 MARGIN = 1.25  # suggested_steps: the h^2 extrapolation's samples x this
@@ -115,6 +131,7 @@ MIN_WINDOW_SAMPLES = 5
 TOO_FEW = ("mean", "min", "max", "std")  # what a window of too few samples leaves unknown
 MIN_PER_PERIOD = 4.0  # output samples a period of an excitation, at least (module doc, "Aliased excitation")
 GOOD_PER_PERIOD = 16.0  # what the suggestion aims at (a sinusoid's sampled peak then misses by 2 %)
+PARTIAL_HARMONICS = 4  # harmonics of each excitation whose partial period the mean's bias bound counts
 ALIAS_CURVATURE = 1.0  # |second difference| / peak sample beyond which the samples alias it (module doc)
 
 
@@ -387,6 +404,86 @@ def excitation_warnings(layout, t: np.ndarray, steps: int) -> list[Diagnostic]:
             f"cannot see; {fix}",
             excitation=ex.label, frequency_Hz=1.0 / ex.period_s, samples_per_period=per,
             steps=n if n <= MAX_STEPS else None))
+    return out
+
+
+def partial_period_bias(t: np.ndarray, x: np.ndarray, frequency_Hz: float,
+                        phasor: np.ndarray | None = None) -> tuple[float, float]:
+    """(amplitude, bias bound) of ``x``'s component at ``frequency_Hz`` over the window ``t`` (module doc, "The mean:
+    a partial period"): the amplitude A from the trapezoid-rule projection ``2 |∫ (x - mean) e^(-i w t) dt| / T``,
+    the bound ``A |sin(pi f T)| / (pi f T)`` on what its partial period puts into the window mean (a sinusoid's mean
+    over n periods is ``A sin(pi n) cos(phase) / (pi n)``). Under one period the projection cannot tell the component
+    from the mean: A is then the window's half range. ``phasor``: ``e^(-i w (t - t0))`` when the caller has it."""
+    span = float(t[-1] - t[0])
+    n = frequency_Hz * span
+    if n < 1.0:
+        amplitude = 0.5 * float(np.ptp(x))
+    else:
+        if phasor is None:
+            phasor = np.exp(-2j * math.pi * frequency_Hz * (t - t[0]))
+        mean = float(np.trapezoid(x, t)) / span
+        amplitude = 2.0 * abs(complex(np.trapezoid((x - mean) * phasor, t))) / span
+    return amplitude, amplitude * abs(math.sin(math.pi * n)) / (math.pi * n)
+
+
+def _lines(periods, span: float, nyquist: float) -> list[tuple[float, str]]:
+    """The excitations' frequencies and their harmonics below ``nyquist``, slowest first, each at least one frequency
+    resolution ``1 / span`` from the others (a projection over the window cannot tell closer ones apart): of two
+    closer ones the lower harmonic is kept (a mesh's fundamental, not another mesh's harmonic at its frequency)."""
+    found = sorted((j, j / ex.period_s, ex.label if j == 1 else f"{ex.label} (harmonic {j})")
+                   for ex in periods for j in range(1, PARTIAL_HARMONICS + 1) if j / ex.period_s < nyquist)
+    kept: list[tuple[float, str]] = []
+    for _, f, label in found:
+        if all(abs(f - g) >= 1.0 / span for g, _ in kept):
+            kept.append((f, label))
+    return sorted(kept)
+
+
+def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray],
+                           references_N: list[float | None]) -> list[Diagnostic]:
+    """``window_partial_period``, one per stage whose window mean F_t the partial periods of the scene's excitations
+    (their fundamentals and first :data:`PARTIAL_HARMONICS` harmonics below the samples' Nyquist frequency) may bias
+    beyond the mean's target (module doc, "The mean: a partial period"). ``forces_N``: the window's F_t per stage;
+    ``references_N``: the force each stage's targets refer to (None: not judged)."""
+    periods = [ex for ex in excitation_periods(layout) if ex.period_s > 0.0]
+    judged = [k for k, ref in enumerate(references_N) if ref is not None and ref > 0.0]
+    if not periods or not judged or t.size < MIN_WINDOW_SAMPLES or not float(t[-1] - t[0]) > 0.0:
+        return []
+    span = float(t[-1] - t[0])
+    lines = _lines(periods, span, 0.5 * (t.size - 1) / span)
+    found: dict[int, list] = {k: [] for k in judged}
+    for f, label in lines:
+        phasor = np.exp(-2j * math.pi * f * (t - t[0])) if f * span >= 1.0 else None  # shared by the stages
+        for k in judged:
+            found[k].append((partial_period_bias(t, forces_N[k], f, phasor), f, label))
+    common = common_period(periods)
+    out = []
+    for k in judged:
+        ref = float(references_N[k] or 0.0)
+        bound = sum(b for (_, b), _, _ in found[k])
+        if not bound > MEAN_TARGET * ref:
+            continue
+        (amplitude, worst), f, label = max(found[k], key=lambda item: item[0][1])
+        start = None
+        if common is not None and common.exact and common.period_s <= span:
+            whole = int(math.floor(span / common.period_s))
+            start = float(t[-1]) - whole * common.period_s
+            fix = (f"a window of whole periods of the excitations' common period {common.period_s:.4g} s (--set "
+                   f"simulation.window_start_s={start:.9g}: its last {whole}) or ")
+        elif common is not None and common.exact:
+            fix = (f"a window of whole periods of the excitations' common period {common.period_s:.4g} s (a longer "
+                   "simulation.duration_s) or ")
+        else:
+            fix = "a longer window (the bias falls as 1 / its length) or "
+        out.append(dg.warning(
+            dg.WINDOW_PARTIAL_PERIOD,
+            f"stage {k + 1}: the steady window ({span:.4g} s) holds {f * span:.4g} periods of the {label} excitation "
+            f"({f:.4g} Hz), not a whole number: its response there ({amplitude:.3g} N amplitude) may bias the window "
+            f"mean F_t by up to {worst:.3g} N, and the excitations together by {bound:.3g} N ({bound / ref:.2g} of the "
+            f"mean), beyond the mean's target {MEAN_TARGET:g}; {fix}steady = \"periodic\" (whole periods) "
+            "removes it",
+            stage=k + 1, statistic="mean", excitation=label, frequency_Hz=f, periods=f * span, amplitude_N=amplitude,
+            estimated_bias_N=bound, relative_bias=bound / ref, window_start_s=start))
     return out
 
 

@@ -97,6 +97,7 @@ def test_a_life_point_too_slow_to_simulate_says_the_duration_is_the_routes_and_n
               "--set", "simulation.steps=50", "-o", out)
     assert_clean_exit_2(res, "mixer_planetary_motor.toml: duty point mixing:", "600 s",
                         "whatever simulation.duration_s says", "--static")
+    assert res.stderr.count("mixer_planetary_motor.toml") == 1, res.stderr  # the file named once
     assert not out.exists()
 
 
