@@ -112,10 +112,11 @@ def _parts():
     whole = [(api, "design_case", "design and model"), (api, "spec_from_design", "design and model"),
              (api, "TorsionalModel", "design and model"), (estimate, "check_pass", "check pass")]
     own = [(solver, "_integrate_compiled", "integration"), (solver, "_segment", "integration"),
-           # set-up: what the run needs before (and around) its integrations: the equations' arrays, the method and
-           # engine choice and budget, the steady-state search's own algebra (run-up start, equilibrium Newton,
-           # shooting), an integration's own preparation (energy watch, tolerances, step ceiling)
-           (api, "check_memory", SETUP), (Layout, "arrays", SETUP), (stats, "steady_window", SETUP),
+           # set-up: what the run needs before (and around) its integrations: the memory and cost guard, the
+           # equations' arrays, the method and engine choice and budget, the steady-state search's own algebra
+           # (run-up start, equilibrium Newton, shooting), an integration's own preparation (energy watch,
+           # tolerances, step ceiling)
+           (api, "check_run_budget", SETUP), (Layout, "arrays", SETUP), (stats, "steady_window", SETUP),
            (run, "engine_options", SETUP), (run, "choose_method", SETUP), (run, "choose_engine", SETUP),
            (run, "_loadable", SETUP), (guards, "nfev_budget", SETUP), (guards, "require_feasible", SETUP),
            (run, "_at_rest", SETUP), (shooting, "priced_nfev", SETUP), (shooting, "integrate_shooting", SETUP),
@@ -130,6 +131,7 @@ def _parts():
            (rigid_start, "start_summary", "diagnostics"), (ringing, "ringing_warnings", "diagnostics"),
            (settle, "settled_steady", "diagnostics"), (stats, "contact_warnings", "diagnostics"),
            (sampling, "warnings", "diagnostics"), (sampling, "excitation_warnings", "diagnostics"),
+           (sampling, "window_period_warnings", "diagnostics"),
            (sampling, "peak_warnings", "diagnostics"), (api, "with_simulated_rating", "rating")]
     return [(m, a, p, True) for m, a, p in whole] + [(m, a, p, False) for m, a, p in own]
 

@@ -340,7 +340,8 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
     state, :mod:`gearcli.sweep.continuation`) when given: without the start-up ramps, from that state, the
     phases carried on; a point whose chain differs starts cold with the file's ramps. ``series`` keeps the time
     series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``); ``settle`` the window
-    shown settled (:func:`gearcli.simulate.settle.settled_run`; ``"window"``: never the periodic state)."""
+    shown settled (:func:`gearcli.simulate.settle.settled_run`; ``"window"``: never the periodic state). The
+    result has the start's warnings but no ``summary.start`` (``extra["start"]``), which neither reads."""
     from gearcli.simulate import run_simulation  # lazy: the solver layers (scipy), start-up time of gearcli design
 
     # lazy: the sweep and life layers, start-up time of gearcli design
@@ -363,7 +364,7 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
         model = TorsionalModel(spec)
     # a sweep row and a duty point are dynamic verdicts: from a window shown settled (gearcli.simulate.settle)
     result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check,
-                            settle=settle)
+                            settle=settle, summary_start=False)  # a row and a duty point read no summary.start
     result = with_simulated_rating(case.cfg, case.design, result)
     if result.final_state is None or result.final_time_s is None:
         return Evaluation(case, result, None)

@@ -25,7 +25,6 @@ from gearcli.errors import ConfigError
 from gearcli.model import TorsionalModel
 from gearcli.model.assembly import Layout
 from gearcli.model.modes import resonances
-from gearcli.model.motor_start import motor_start_diagnostics
 from gearcli.model.spec import (
     MM,
     CoupledInertia,
@@ -203,4 +202,6 @@ def motor_start_warnings(cfg: DesignFile, design: DesignResult) -> tuple[Diagnos
     numpy, never scipy; nothing for a speed or torque drive."""
     if cfg.input.drive != "motor" or cfg.input.motor is None:
         return ()
+    from gearcli.model.motor_start import motor_start_diagnostics  # lazy: a motor drive's design only
+
     return motor_start_diagnostics(Layout.of(spec_from_design(cfg, design)))

@@ -72,16 +72,17 @@ def evaluate_many(model, t, y, times):
     return acc
 
 @jit_alloc
-def connector_series(kind, P, d, dd, phi, wphi):
+def connector_series(kind, P, d, dd, phi, wphi, energy_from):
     """Force, stored energy and the element's own output channels (its ``CHANNELS``, rows of ``ch``) of one
-    connector at every sample (:func:`gearcli.model.outputs.connector_series`, through the same element laws)."""
+    connector at every sample (:func:`gearcli.model.outputs.connector_series`, through the same element laws); the
+    stored energy from sample ``energy_from`` on, NaN before it (not evaluated: a caller that reads it from there)."""
     n = d.size
     F = np.empty(n)
     U = np.empty(n)
     ch = np.zeros((conn_n_channels(kind), n))
     for j in range(n):
         F[j] = conn_force(kind, P, d[j], dd[j], phi[j], wphi[j])[0]
-        U[j] = conn_potential(kind, P, d[j], phi[j])
+        U[j] = conn_potential(kind, P, d[j], phi[j]) if j >= energy_from else np.nan
         for i in range(ch.shape[0]):
             ch[i, j] = conn_channel(kind, P, i, d[j], phi[j])
     return F, U, ch

@@ -276,7 +276,8 @@ def _warm_entry(kernel: Any, name: str) -> None:
     getattr(kernel, name)(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16), wpar,
                           np.empty(0))
     for c in range(2):
-        kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2))
+        kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2),
+                                np.int64(0))
 
 
 @record

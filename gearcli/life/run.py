@@ -57,8 +57,8 @@ from gearcli.life.result import (
 )
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles
+from gearcli.model.motor_start import VFD_OFF_SPEED
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
-from gearcli.simulate.motor import VFD_OFF_SPEED
 from gearcli.stages.design import design_kind
 from gearcli.stages.life import LifeKind, life_kind
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene

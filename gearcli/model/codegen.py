@@ -8,7 +8,7 @@ in one call — and calls each connector's element force law (:mod:`gearcli.mode
 no formula of an element is spelt here. ``gearcli simulate --dump-model`` prints that source. What is
 compiled is its structure: the float literals become names bound as closure constants (the same values,
 so the same results), so the points of a sweep that differ only in numbers share one compilation per
-process (:func:`compile_functions`). The compiled module is registered with :mod:`linecache` under a
+process (:func:`compile_function`; ``jac`` only for a method that takes it). The compiled module is registered with :mod:`linecache` under a
 file name of its own, so tracebacks and debuggers show its lines.
 
 Notation (SI): ``d{c}``/``dd{c}`` deflection of connector c and its rate, ``w{b}``/``a{b}``/``th{b}``
@@ -405,24 +405,29 @@ def _template(source: str) -> tuple[str, tuple[float, ...]]:
 
 
 @lru_cache(maxsize=64)
-def _compiled(template: str, n_constants: int):
-    """The code of a module defining ``_make(_k0, ..., _kN)`` that returns the ``rhs`` and ``jac`` of a
-    model structure as closures over its constants: compiled once per structure and process (a sweep's
-    points differ only in the constants)."""
+def _compiled(template: str, n_constants: int, name: str):
+    """The code of a module defining ``_make(_k0, ..., _kN)`` that returns the function ``name`` (``rhs`` or
+    ``jac``) of a model structure as a closure over its constants: compiled once per structure, function and
+    process (a sweep's points differ only in the constants)."""
     params = ", ".join(f"_k{i}" for i in range(n_constants))
     body = "".join("    " + line if line.strip() else line for line in template.splitlines(True))
-    module = f"def _make({params}):\n{body}\n    return rhs, jac\n"
+    module = f"def _make({params}):\n{body}\n    return {name}\n"
     digest = hashlib.sha1(module.encode()).hexdigest()[:12]
     filename = f"gearcli/model/_generated_{digest}.py"
     linecache.cache[filename] = (len(module), None, module.splitlines(True), filename)
     return compile(module, filename, "exec")
 
 
-def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
-    """The scene's ``rhs(t, y)`` and ``jac(t, y)``; returns them and their source.
+#: what the generated functions are written for, by the name they call it
+GENERATED = {"rhs": rhs_source, "jac": jac_source}
 
-    The source is the scene's own, with its constants as literals (``--dump-model``). What runs is its
-    structure (:func:`_template`), compiled once per process (:func:`_compiled`) and bound to this scene's
+
+def compile_function(lay: Layout, name: str) -> Callable:
+    """The scene's generated ``rhs(t, y)`` or ``jac(t, y)`` (``name``), each made on first use: a method without
+    a Jacobian (DOP853, RK45) never generates nor compiles ``jac``.
+
+    Its source is the scene's own, with its constants as literals (:func:`source_of`, ``--dump-model``). What runs
+    is its structure (:func:`_template`), compiled once per process (:func:`_compiled`) and bound to this scene's
     constants and element parameters; the compiled module is registered with linecache, so a traceback
     through the generated code shows its lines."""
     namespace: dict = {"_drive_power": energy.speed_drive_power, "_torque_power": energy.torque_power,
@@ -436,8 +441,6 @@ def compile_functions(lay: Layout) -> tuple[Callable, Callable, str]:
             namespace[f"_loss{c}"] = x.element.loss_factors
         namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
         namespace[f"_power{c}"] = x.element.power_gradient
-    source = source_of(lay)
-    template, constants = _template(source)
-    exec(_compiled(template, len(constants)), namespace)  # noqa: S102 - our own generated source
-    rhs, jac = namespace["_make"](*constants)
-    return rhs, jac, source
+    template, constants = _template(_header(lay) + GENERATED[name](lay))
+    exec(_compiled(template, len(constants), name), namespace)  # noqa: S102 - our own generated source
+    return namespace["_make"](*constants)

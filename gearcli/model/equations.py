@@ -31,7 +31,7 @@ import numpy as np
 
 from gearcli.core.records import record
 from gearcli.model.assembly import Layout, ModelArrays
-from gearcli.model.codegen import compile_functions
+from gearcli.model.codegen import compile_function, source_of
 from gearcli.model.linear import static_forces
 from gearcli.model.outputs import kinetic_energy, potential_energy
 from gearcli.model.parts import STAGE_ROLES
@@ -73,19 +73,20 @@ class TorsionalModel:
     def __init__(self, spec: ModelSpec):
         self.spec = spec
         self.layout = Layout.of(spec)
-        self._functions: tuple[Callable, Callable, str] | None = None  # generated on first use
+        self._functions: dict[str, Callable] = {}  # generated on first use, each
         self._replaced: dict[str, Callable] = {}
 
-    def _generated(self) -> tuple[Callable, Callable, str]:
-        """The generated ``rhs``, ``jac`` and their source, made on first use: a run on the compiled engine
-        (a sweep point) integrates the model's arrays and never needs them."""
-        if self._functions is None:
-            self._functions = compile_functions(self.layout)
-        return self._functions
+    def _generated(self, name: str) -> Callable:
+        """The generated ``rhs`` or ``jac``, made on first use: a run on the compiled engine (a sweep point)
+        integrates the model's arrays and never needs them, a method without a Jacobian never needs ``jac``."""
+        fn = self._functions.get(name)
+        if fn is None:
+            fn = self._functions[name] = compile_function(self.layout, name)
+        return fn
 
     @property
     def rhs(self) -> Callable[[float, np.ndarray], np.ndarray]:
-        return self._replaced.get("rhs") or self._generated()[0]
+        return self._replaced.get("rhs") or self._generated("rhs")
 
     @rhs.setter
     def rhs(self, fn: Callable[[float, np.ndarray], np.ndarray]) -> None:
@@ -93,7 +94,7 @@ class TorsionalModel:
 
     @property
     def jac(self) -> Callable[[float, np.ndarray], np.ndarray]:
-        return self._replaced.get("jac") or self._generated()[1]
+        return self._replaced.get("jac") or self._generated("jac")
 
     @jac.setter
     def jac(self, fn: Callable[[float, np.ndarray], np.ndarray]) -> None:
@@ -101,16 +102,14 @@ class TorsionalModel:
 
     @property
     def source(self) -> str:
-        return self._generated()[2]
+        """The generated module's source: ``rhs`` and ``jac`` with the scene's constants as literals."""
+        return source_of(self.layout)
 
     @property
     def generated(self) -> bool:
         """Whether ``rhs`` and ``jac`` are still the generated ones (the arrays describe them); False when a
         caller replaced them (tests that sabotage a run), which only the Python engine can integrate."""
-        if not self._replaced:
-            return True
-        fns = self._generated()
-        return all(f is fns[i] for i, f in ((0, self._replaced.get("rhs", fns[0])), (1, self._replaced.get("jac", fns[1]))))
+        return all(fn is self._generated(name) for name, fn in self._replaced.items())
 
     @property
     def n_states(self) -> int:
@@ -205,18 +204,20 @@ class TorsionalModel:
         return out
 
     # ------------------------------------------------------------------------------------ energy
-    def energy(self, s, Y: np.ndarray) -> Energy:
-        """Energy balance over the run from its samples ``s`` (``outputs.Sampled``) and states ``Y``."""
+    def energy(self, s, Y: np.ndarray, start: int = 0) -> Energy:
+        """Energy balance over the run from its samples ``s`` (``outputs.Sampled``) and states ``Y``, from sample
+        ``start`` on (``energy(s.tail(start), Y[:, start:])``: the balance reads its first and last samples)."""
         lay = self.layout
         st = lay.state
-        ke = kinetic_energy(lay, s.omega_rad_s[:, [0, -1]])
-        u_const = potential_energy(lay, s, time_varying=False)
-        u_tv = potential_energy(lay, s, time_varying=True)
+        ends = [start, -1]
+        ke = kinetic_energy(lay, s.omega_rad_s[:, ends])
+        u_const = potential_energy(lay, s, time_varying=False, at=ends)
+        u_tv = potential_energy(lay, s, time_varying=True, at=ends)
         d_u_tv = float(u_tv[-1] - u_tv[0])
 
         def change(name: str) -> float:  # a quadrature's change over the run; 0 where the scene has none
             i = st.quadrature(name)
-            return 0.0 if i is None else float(Y[i, -1] - Y[i, 0])
+            return 0.0 if i is None else float(Y[i, -1] - Y[i, start])
 
         w_el_tv = change("elastic_work_tv_J")
         return Energy(

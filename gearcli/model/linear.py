@@ -230,3 +230,10 @@ def damped_eigenvalues(spec: ModelSpec | Layout, forces, *, stiffest_phase: bool
     F = np.abs(np.asarray(forces, dtype=float))
     kc = np.array([tangent(lay, c, F[c], stiffest_phase=stiffest_phase)[:2] for c in range(F.size)])
     return np.linalg.eigvals(state_matrix(*body_matrices(lay, kc[:, 0], kc[:, 1], lay.state.first_free)))
+
+
+def damped_modes(eigenvalues: np.ndarray) -> list[tuple[float, float]]:
+    """(f_d, zeta) of every oscillating eigenvalue lambda = -zeta omega +- i omega_d, once per pair, by frequency:
+    the frequencies at which the linearised chain rings (f_d = omega_d / 2 pi, zeta = -Re lambda / |lambda|)."""
+    lam = np.asarray(eigenvalues, dtype=complex)
+    return sorted((float(z.imag / (2.0 * math.pi)), float(-z.real / abs(z))) for z in lam if z.imag > 0.0)

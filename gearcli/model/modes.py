@@ -48,7 +48,7 @@ import numpy as np
 from gearcli.core.memo import remember
 from gearcli.core.records import record
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import body_matrices, lever_matrices, loss_factors, modal_damping_ratios
+from gearcli.model.damping import body_damping, body_matrices, lever_matrices, loss_factors, modal_damping_ratios
 from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, soft_modes_refined
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
@@ -154,9 +154,23 @@ def excitation_sources(lay: Layout) -> list[OrderSource]:
     it carries (shaft 1: stage 1's pinion; shaft k + 1: stage k's gear and stage k + 1's pinion). Found once per
     layout (every mode's crossings and every resonance check read them)."""
     cache = lay.__dict__.setdefault("_excitation_sources", [])
-    if not cache:
-        cache.append(_excitation_sources(lay))
+    if not cache:  # what they are made of, the same for every point of a speed sweep: made once for them all
+        key = _sources_key(lay)
+        found = _SOURCES.get(key)
+        cache.append(found if found is not None else remember(_SOURCES, key, _excitation_sources(lay)))
     return list(cache[0])
+
+
+_SOURCES: dict[tuple, list[OrderSource]] = {}  # _excitation_sources by what it reads of a layout (_sources_key)
+
+
+def _sources_key(lay: Layout) -> tuple:
+    """Everything :func:`_excitation_sources` reads of ``lay``: the stages' connectors, their roles, tooth counts and
+    driving bodies' ratios, the shafts' bodies and ratios (the sources are records: shared, never changed)."""
+    stages = tuple(lay.stage_conn)
+    return (stages, tuple((lay.connectors[c].role, float(lay.connectors[c].params[I_Z]),
+                           lay.bodies[lay.connectors[c].a].ratio) for c in stages),
+            tuple((b, lay.bodies[b].ratio) for b in lay.shaft_body))
 
 
 def _excitation_sources(lay: Layout) -> list[OrderSource]:
@@ -309,7 +323,21 @@ def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnaly
 
 
 def _damping(lay: Layout, und: _Undamped) -> tuple[np.ndarray, np.ndarray]:
-    """The body-angle shapes (mass-normalised) and every mode's damping ratio."""
+    """The body-angle shapes (mass-normalised) and every mode's damping ratio: kept with ``und`` (the chain's
+    eigenproblem, which a speed sweep's points share: :func:`_undamped`) for the bodies' own damping by the drive
+    and the load (:func:`gearcli.model.damping.body_damping`, the one input of the ratios ``und``'s chain does not
+    fix: a motor's slope and a load law's at the point's speed), read only."""
+    kept = und.__dict__.setdefault("_damping", {})
+    key = body_damping(lay).tobytes()
+    if key not in kept:
+        found = _damping_of(lay, und)
+        for a in found:
+            a.flags.writeable = False
+        remember(kept, key, found)
+    return kept[key]
+
+
+def _damping_of(lay: Layout, und: _Undamped) -> tuple[np.ndarray, np.ndarray]:
     phi = und.inv_sqrt[:, None] * und.u  # body-angle shapes
     order, n_rigid = und.order, und.n_rigid
     omega = np.zeros(und.w2.size)

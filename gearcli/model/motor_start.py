@@ -17,6 +17,7 @@ how fast its supply ramps against the inertias, which only ``simulate`` judges.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
@@ -24,8 +25,75 @@ from gearcli.model.assembly import Layout
 from gearcli.model.damping import STEADY_T, net_torque_scan, reflected_load_Nm
 from gearcli.model.elements import machine
 
+if TYPE_CHECKING:
+    from gearcli.model.spec import MotorSpec
+
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 BISECTIONS = 200  # to the last bit of a crossing bracketed by the scan
+LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
+SPEED_OFF_DESIGN = 0.02  # a motor running more than 2 % off speed_rpm is warned (as a life point off its speed)
+
+
+#: why a VFD runs off its speed_rpm, and what to give (a VFD's supply is set for the rated torque: docs/physics.md)
+VFD_OFF_SPEED = ("a VFD's supply is set so that the motor runs at speed_rpm at its rated torque (the rated slip speed "
+                 "above it): at another load it slips less or more (a converter with slip compensation would hold "
+                 "speed_rpm; the model's does not)")
+
+
+def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagnostic]:
+    """A speed-dependent load that the motor meets at another speed than ``speed_rpm``: the design's static forces
+    (and every dynamic factor against them) assume the load at ``speed_rpm``, the run carries the load at the
+    motor's own operating speed. Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %). A VFD
+    (``vfd``) too: its supply follows speed_rpm at the rated torque only, a fan at part load runs faster."""
+    w_nom = lay.drive.speed_rad_s
+    nominal = reflected_load_Nm(lay, w_nom)
+    if not lay.load_law or w_nom <= 0.0 or nominal == 0.0:
+        return []
+    ratio = reflected_load_Nm(lay, w_op) / nominal
+    if abs(ratio - 1.0) <= LOAD_OFF_DESIGN:
+        return []
+    motor = lay.drive.motor
+    limit = motor.start_parameters[1] if vfd and motor is not None else 0.0
+    why = (VFD_OFF_SPEED if vfd else
+           "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)")
+    if limit > 0.0 and nominal >= limit:  # not slip: the converter's torque limit holds the motor below speed_rpm
+        why = (f"the VFD's torque_limit_Nm {limit:.4g} N·m is below the load reflected to the motor at speed_rpm, "
+               f"{nominal:.4g} N·m: the limit holds the motor where the load has fallen to it; a torque_limit_Nm "
+               f"above {nominal:.4g} N·m (or a smaller load)")
+    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
+                       f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
+                       "the design's static forces and the dynamic factors against them are off by that much; " + why,
+                       operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
+
+
+def _speed_off_design(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagnostic]:
+    """A motor whose operating point lies more than SPEED_OFF_DESIGN from ``[input] speed_rpm``, whatever its load
+    law: the design's speeds, mesh frequencies, resonance checks and the rating's K_v and load cycles are at
+    speed_rpm, the run at the motor's own speed (a constant load's forces agree, nothing else does). A nameplate
+    VFD's supply follows speed_rpm (off by its slip at other loads than the rated torque, by design); a torque_speed
+    table has no rated point to set its supply by and runs at its own synchronous speed."""
+    w_nom = lay.drive.speed_rad_s
+    vfd = motor.starting == "vfd"
+    if w_nom <= 0.0 or abs(w_op - w_nom) <= SPEED_OFF_DESIGN * w_nom or (vfd and not motor.table):
+        return []  # a nameplate VFD follows speed_rpm to within its rated slip speed (no slip compensation)
+    rpm = RAD_S_TO_RPM
+    nominal = reflected_load_Nm(lay, w_nom)
+    why = ("a VFD's supply follows speed_rpm with a nameplate motor only (its rated slip speed sets the supply); this "
+           "torque_speed table runs at its own synchronous speed: give speed_rpm the speed it runs at, or the motor's "
+           "nameplate" if vfd else
+           "give [input] speed_rpm the speed the motor runs at (or starting = \"vfd\", whose supply follows it)")
+    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * rpm:.5g} rpm, not [input] speed_rpm = "
+                       f"{w_nom * rpm:.5g} ({100 * (w_op / w_nom - 1):+.3g} %): the design's speeds, mesh frequencies "
+                       "and resonance checks and the rating's K_v and load cycles are at speed_rpm, the run at the "
+                       f"motor's own speed; {why}", operating_speed_rpm=w_op * rpm, speed_rpm=w_nom * rpm,
+                       load_ratio=reflected_load_Nm(lay, w_op) / nominal if nominal else 1.0)]
+
+
+def off_design_speed(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagnostic]:
+    """``motor_speed_mismatch`` of a motor whose operating point ``w_op`` (rad/s, on the stable branch) lies off
+    ``[input] speed_rpm``: a speed-dependent load met at another load than the design's, else a speed more than
+    SPEED_OFF_DESIGN away (``simulate`` after its run; ``design`` from the curves, :func:`motor_start_diagnostics`)."""
+    return _load_off_design(lay, w_op, motor.starting == "vfd") or _speed_off_design(lay, motor, w_op)
 
 
 def _first_crossing(grid, f, net) -> float | None:
@@ -45,7 +113,9 @@ def _first_crossing(grid, f, net) -> float | None:
 def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
     """The design's warnings of a motor drive that cannot start its load (module text): code ``design``, check
     ``motor_cannot_start`` (with ``stall_speed_rpm``, 0 at standstill, and the motor's and the reflected load's
-    torques there) and ``soft_start_rolls_back``. Nothing for any other drive."""
+    torques there) and ``soft_start_rolls_back``; a motor that starts, ``motor_speed_mismatch`` where its operating point
+    lies off ``[input] speed_rpm`` (:func:`off_design_speed`, as ``simulate`` warns after its run). Nothing for any
+    other drive."""
     motor = lay.drive.motor
     if not lay.motor_drive or motor is None:
         return ()
@@ -55,7 +125,9 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
     start = motor.starting
     switch = motor.start_parameters[0] if start == "star_delta" else 0.0
     stall = 0.0 if f[0] <= 0.0 else _first_crossing(grid, f, net)
-    if stall is not None and (stall == 0.0 or stall < w_b or stall < switch):
+    cannot = stall is not None and (stall == 0.0 or stall < w_b or stall < switch)
+    if cannot:
+        assert stall is not None
         t_m = machine.motor_torque(row, STEADY_T, stall)[0]
         load = reflected_load_Nm(lay, stall)
         where = (f"at standstill: its {start} start gives {t_m:.4g} N·m there" if stall == 0.0 else
@@ -70,7 +142,10 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
             + ("a direct start, " if start == "star_delta" else "") + "or a smaller load",
             check="motor_cannot_start", starting=start, stall_speed_rpm=stall * RAD_S_TO_RPM, motor_torque_Nm=t_m,
             load_torque_Nm=load, breakdown_speed_rpm=w_b * RAD_S_TO_RPM))
-    elif start == "soft_start":
+    elif stall is not None:  # it runs up to its operating point: is that where the design's speeds are?
+        found += [dg.warning(dg.DESIGN, f'input: drive = "motor": {d.message}', check="motor_speed_mismatch", **d.data)
+                  for d in off_design_speed(lay, motor, stall)]
+    if start == "soft_start" and not cannot:
         u0 = motor.start_parameters[1]
         t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load_Nm(lay, 0.0)
         if 0.0 < load and t0 < load:

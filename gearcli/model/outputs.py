@@ -72,11 +72,6 @@ class Sampled:
                        np.broadcast_to(self.load_torque_Nm, self.time_s.shape)[start:],
                        tuple(c.tail(start) for c in self.connectors), self.layout)
 
-    @property
-    def shaft_omega_rad_s(self) -> np.ndarray:
-        """Speeds of the reducer shafts (a flexible shaft: its gear end), (n_shafts, T)."""
-        return self.omega_rad_s[list(self.layout.shaft_body)]
-
 
 def body_motion(lay: Layout, t: np.ndarray, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Speeds of all bodies, their angles (if needed) and the input body's acceleration."""
@@ -134,25 +129,30 @@ def connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, thet
         return _connector_series(lay, c, Y, omega, theta, kernel)
 
 
-def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, kernel) -> ConnectorSeries:
+def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, kernel,
+                      energy_from: int = 0) -> ConnectorSeries:
     """:func:`connector_series` with the compiled engine's ``kernel`` (None: the scalar laws), called with the
     signals held back by the caller (:func:`gearcli.core.signals.deferred`, once for all of a sample's
-    connectors)."""
+    connectors); the stored energy from sample ``energy_from`` on (NaN before it: :func:`sample`)."""
     x = lay.connectors[c]
     el, P = x.element, x.params
     d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
     n = d.size
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-        F, U, ch = kernel.connector_series(x.kind, *_compiled_arguments(P, d, dd, phi, wphi))
+        F, U, ch = kernel.connector_series(x.kind, *_compiled_arguments(P, d, dd, phi, wphi), energy_from)
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
     elif (vectorised := elements.series_of(el, P, d, dd, phi, wphi)) is not None:  # the same values at once
         F, U, ch = vectorised
+        if energy_from > 0:
+            U = np.array(U, dtype=float)
+            U[:energy_from] = np.nan
         channels = dict(zip(el.CHANNELS, ch, strict=True))
     else:  # the scalar laws on Python floats (tolist: the values of float(d[j]), without numpy's per-item cost)
         potential, channel = el.potential, el.channel
         ds, phs = d.tolist(), phi.tolist()
         F = _scalar_forces(el, P, d, dd, phi, wphi)
-        U = np.array([potential(P, dj, phj) for dj, phj in zip(ds, phs, strict=True)], dtype=float).reshape(n)
+        U = np.array([potential(P, dj, phj) if j >= energy_from else math.nan
+                      for j, (dj, phj) in enumerate(zip(ds, phs, strict=True))], dtype=float).reshape(n)
         channels = {name: np.array([channel(P, i, dj, phj) for dj, phj in zip(ds, phs, strict=True)],
                                    dtype=float).reshape(n) for i, name in enumerate(el.CHANNELS)}
     pen = channels["penetration_m"] if "penetration_m" in channels else np.zeros(n)
@@ -233,7 +233,7 @@ def _potential(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, ker
     x = lay.connectors[c]
     if kernel is not None and x.kind in kernel.KINDS:  # the series' own call (its potential), without its channels
         args = _compiled_arguments(x.params, *_law_arguments(lay, c, Y, omega, theta))
-        return kernel.connector_series(x.kind, *args)[1]
+        return kernel.connector_series(x.kind, *args, 0)[1]
     d, _, phi, _ = _law_arguments(lay, c, Y, omega, theta)
     potential, P = x.element.potential, x.params
     return np.array([potential(P, dj, phj) for dj, phj in zip(d.tolist(), phi.tolist(), strict=True)], dtype=float)
@@ -253,18 +253,20 @@ def _loaded_kernel():
     return _compiled[0] if _compiled else None
 
 
-def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True) -> Sampled:
+def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, energy_from: int = 0) -> Sampled:
     """Everything the channels and the energy balance need, at the sample times ``t``. ``torques=False``: without
     the input and load torques (empty arrays; a caller that reads only the speeds, connector forces and energies:
-    the energy watch, the settle test, the check pass)."""
+    the energy watch, the settle test, the check pass). ``energy_from``: the connectors' stored energy
+    (``potential_J``) from this sample on, NaN before it (not evaluated: an energy balance that starts there,
+    :func:`gearcli.simulate.equilibrium.sampled`; every other channel is sampled whole)."""
     t = np.asarray(t, dtype=float)
     omega, theta, a0 = body_motion(lay, t, Y)
     kernel = _loaded_kernel()
     if kernel is None:
-        conns = tuple(_connector_series(lay, c, Y, omega, theta, None) for c in range(lay.n_conn))
+        conns = tuple(_connector_series(lay, c, Y, omega, theta, None, energy_from) for c in range(lay.n_conn))
     else:
         with signals.deferred():  # once for every connector (a signal acted on after the compiled calls)
-            conns = tuple(_connector_series(lay, c, Y, omega, theta, kernel) for c in range(lay.n_conn))
+            conns = tuple(_connector_series(lay, c, Y, omega, theta, kernel, energy_from) for c in range(lay.n_conn))
     if not torques:
         return Sampled(t, omega, theta, np.empty(0), np.empty(0), conns, lay)
     if lay.speed_drive:  # what the drive puts into body 0: its connectors' reactions and its inertia
@@ -329,10 +331,11 @@ def kinetic_energy(lay: Layout, omega: np.ndarray) -> np.ndarray:
     return 0.5 * np.asarray(lay.inertias) @ (omega * omega)
 
 
-def potential_energy(lay: Layout, s: Sampled, *, time_varying: bool) -> np.ndarray:
-    """Stored energy of the connectors with constant (``time_varying=False``) or time-varying stiffness, J."""
-    total = np.zeros_like(s.time_s)
+def potential_energy(lay: Layout, s: Sampled, *, time_varying: bool, at: list[int] | None = None) -> np.ndarray:
+    """Stored energy of the connectors with constant (``time_varying=False``) or time-varying stiffness, J; at the
+    samples ``at`` alone (indices; default: every sample), each the same sum."""
+    total = np.zeros_like(s.time_s) if at is None else np.zeros(len(at))
     for x, cs in zip(lay.connectors, s.connectors, strict=True):
         if x.time_varying == time_varying:
-            total += cs.potential_J
+            total += cs.potential_J if at is None else cs.potential_J[at]
     return total

@@ -128,7 +128,8 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
                                   mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural,
                                   dte_um=dte_m * 1e6 if dte_m is not None else None,
                                   whole_periods=sim.steady is not None and sim.steady.mode == "periodic",
-                                  other_meshes_Hz=[m for m in meshes if m[0] != st.index])
+                                  other_meshes_Hz=[m for m in meshes if m[0] != st.index],
+                                  damped_modes=(sim.extra or {}).get("damped_modes", ()))
         out.append(StageReport(
             stage=st.index, tangential_N=dyn.tangential_N, radial_N=dyn.radial_N, axial_N=dyn.axial_N,
             static_tangential_N=dyn.static_tangential_N, peak_tangential_N=dyn.peak_tangential_N,

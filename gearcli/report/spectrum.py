@@ -96,6 +96,7 @@ def force_spectrum(
     dte_um: np.ndarray | None = None,
     whole_periods: bool = False,
     other_meshes_Hz: Sequence[tuple[int, float]] = (),
+    damped_modes: Sequence[tuple[float, float]] = (),
 ) -> Spectrum:
     """Hann-windowed amplitude spectrum of the detrended force over ``window_s``; see the module doc. The
     mesh orders (:func:`mesh_orders`) are listed too, from ``dte_um`` as well when it is given.
@@ -125,15 +126,18 @@ def force_spectrum(
     orders = mesh_orders(time_s, force_N, dte_um, window_s, mesh_frequency_Hz, whole_periods=whole_periods)
     return Spectrum(stage, freqs, amplitude, peak, float(amplitude[k]), resolution, float(freqs[-1]), window_s,
                     mesh_frequency_Hz, name_peak(peak, resolution, mesh_frequency_Hz, natural_frequencies_Hz,
-                                                 other_meshes_Hz), orders)
+                                                 other_meshes_Hz, damped_modes), orders)
 
 
 def name_peak(peak_Hz: float, resolution_Hz: float, mesh_Hz: float, natural_Hz: Sequence[float],
-              other_meshes_Hz: Sequence[tuple[int, float]] = ()) -> str:
+              other_meshes_Hz: Sequence[tuple[int, float]] = (),
+              damped_modes: Sequence[tuple[float, float]] = ()) -> str:
     """The nearest known line within ±MATCH_BINS bins: a mesh harmonic (of this stage's mesh, or of another stage's,
     ``other_meshes_Hz`` = (stage, mesh frequency): a mesh's excitation reaches every mesh of the train through the
     shafts, so a force may be dominated by a neighbour's line) or a natural frequency; on a tie this stage's own
-    mesh line first, then the other stages' in their order, then the natural frequencies."""
+    mesh line first, then the other stages' in their order, then the natural frequencies. Where none of them
+    matches, a damped mode (f_d, ζ) of ``damped_modes``: a ringing the undamped modes do not place, as a drum's
+    mode against a motor whose slip damping holds it (the undamped free chain puts that mode elsewhere)."""
     lines: list[tuple[float, str]] = []
     if mesh_Hz > 0:
         lines.append((mesh_Hz, "mesh frequency"))
@@ -143,9 +147,15 @@ def name_peak(peak_Hz: float, resolution_Hz: float, mesh_Hz: float, natural_Hz: 
             lines.append((f_mesh, f"stage {stage} mesh frequency"))
             lines += [(h * f_mesh, f"stage {stage} mesh harmonic {h}") for h in (2, 3)]
     lines += [(fn, f"natural frequency {j}") for j, fn in enumerate(natural_Hz, start=1) if fn > 0]
+    damped = [(fd, f"damped mode {fd:.4g} Hz (ζ {zeta:.2g})") for fd, zeta in damped_modes]
+    return _nearest(peak_Hz, resolution_Hz, lines) or _nearest(peak_Hz, resolution_Hz, damped) or "none"
+
+
+def _nearest(peak_Hz: float, resolution_Hz: float, lines: Sequence[tuple[float, str]]) -> str | None:
+    """The name of the line nearest ``peak_Hz`` within ±MATCH_BINS bins (the first on a tie), or None."""
     best: tuple[float, str] | None = None
     for f_line, name in lines:
         d = abs(f_line - peak_Hz)
         if d <= MATCH_BINS * resolution_Hz and (best is None or d < best[0]):
             best = (d, name)
-    return best[1] if best else "none"
+    return best[1] if best else None

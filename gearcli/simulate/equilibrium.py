@@ -180,7 +180,7 @@ def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
             or t[start] < max(layout.drive.ramp_s, layout.load.ramp_s)
             or Y.shape[1] != t.size or not bool((Y[:d, start:] == Y[:d, start:start + 1]).all())):
         return sample(layout, t, Y)
-    head = sample(layout, t[:start + 1], Y[:, :start + 1])
+    head = sample(layout, t[:start + 1], Y[:, :start + 1], energy_from=start)  # the balance reads it from start
     nb, w = head.omega_rad_s.shape[0], len(_SERIES)
     full = np.empty((nb + 2 + w * len(head.connectors), t.size))  # the speeds, the two torques, every series
     part = full[:, :start + 1]

@@ -25,14 +25,13 @@ from gearcli.model.assembly import Layout
 from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
+from gearcli.model.motor_start import off_design_speed
 from gearcli.model.spec import MotorSpec
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 ROLLBACK = 0.01  # a motor turning backwards faster than 1 % of its synchronous speed is driven back by the load
 RUNAWAY = 1.1  # a motor above 1.1 x its synchronous speed runs away (generating, an induction motor stays near it)
-LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
-SPEED_OFF_DESIGN = 0.02  # a motor running more than 2 % off speed_rpm is warned (as a life point off its speed)
 
 
 @record
@@ -141,8 +140,7 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
                                 "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
     if reaches and op.speed_rad_s is not None:
-        diags += (_load_off_design(lay, op.speed_rad_s, motor.starting == "vfd")
-                  or _speed_off_design(lay, motor, op.speed_rad_s))
+        diags += off_design_speed(lay, motor, op.speed_rad_s)
     w_mean = float(w_motor[mask].mean())
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
@@ -211,61 +209,6 @@ def _in_star(lay: Layout, motor: MotorSpec, stall_rad_s: float | None) -> str:
                 f"its locked-rotor torque) against {reflected_load(lay, 0.0):.4g} N·m: it cannot start")
     return (f"in star at {stall_rad_s * RAD_S_TO_RPM:.5g} rpm, where a third of its torque meets the load, below its "
             f"switch-over speed {sw:.5g} rpm: it never switches to delta (a lower switch_speed_rpm, or another start)")
-
-
-#: why a VFD runs off its speed_rpm, and what to give (a VFD's supply is set for the rated torque: docs/physics.md)
-VFD_OFF_SPEED = ("a VFD's supply is set so that the motor runs at speed_rpm at its rated torque (the rated slip speed "
-                 "above it): at another load it slips less or more (a converter with slip compensation would hold "
-                 "speed_rpm; the model's does not)")
-
-
-def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagnostic]:
-    """A speed-dependent load that the motor meets at another speed than ``speed_rpm``: the design's static forces
-    (and every dynamic factor against them) assume the load at ``speed_rpm``, the run carries the load at the
-    motor's own operating speed. Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %). A VFD
-    (``vfd``) too: its supply follows speed_rpm at the rated torque only, a fan at part load runs faster."""
-    w_nom = lay.drive.speed_rad_s
-    nominal = reflected_load(lay, w_nom)
-    if not lay.load_law or w_nom <= 0.0 or nominal == 0.0:
-        return []
-    ratio = reflected_load(lay, w_op) / nominal
-    if abs(ratio - 1.0) <= LOAD_OFF_DESIGN:
-        return []
-    motor = lay.drive.motor
-    limit = motor.start_parameters[1] if vfd and motor is not None else 0.0
-    why = (VFD_OFF_SPEED if vfd else
-           "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)")
-    if limit > 0.0 and nominal >= limit:  # not slip: the converter's torque limit holds the motor below speed_rpm
-        why = (f"the VFD's torque_limit_Nm {limit:.4g} N·m is below the load reflected to the motor at speed_rpm, "
-               f"{nominal:.4g} N·m: the limit holds the motor where the load has fallen to it; a torque_limit_Nm "
-               f"above {nominal:.4g} N·m (or a smaller load)")
-    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
-                       f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
-                       "the design's static forces and the dynamic factors against them are off by that much; " + why,
-                       operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
-
-
-def _speed_off_design(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagnostic]:
-    """A motor whose operating point lies more than SPEED_OFF_DESIGN from ``[input] speed_rpm``, whatever its load
-    law: the design's speeds, mesh frequencies, resonance checks and the rating's K_v and load cycles are at
-    speed_rpm, the run at the motor's own speed (a constant load's forces agree, nothing else does). A nameplate
-    VFD's supply follows speed_rpm (off by its slip at other loads than the rated torque, by design); a torque_speed
-    table has no rated point to set its supply by and runs at its own synchronous speed."""
-    w_nom = lay.drive.speed_rad_s
-    vfd = motor.starting == "vfd"
-    if w_nom <= 0.0 or abs(w_op - w_nom) <= SPEED_OFF_DESIGN * w_nom or (vfd and not motor.table):
-        return []  # a nameplate VFD follows speed_rpm to within its rated slip speed (no slip compensation)
-    rpm = RAD_S_TO_RPM
-    nominal = reflected_load(lay, w_nom)
-    why = ("a VFD's supply follows speed_rpm with a nameplate motor only (its rated slip speed sets the supply); this "
-           "torque_speed table runs at its own synchronous speed: give speed_rpm the speed it runs at, or the motor's "
-           "nameplate" if vfd else
-           "give [input] speed_rpm the speed the motor runs at (or starting = \"vfd\", whose supply follows it)")
-    return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * rpm:.5g} rpm, not [input] speed_rpm = "
-                       f"{w_nom * rpm:.5g} ({100 * (w_op / w_nom - 1):+.3g} %): the design's speeds, mesh frequencies "
-                       "and resonance checks and the rating's K_v and load cycles are at speed_rpm, the run at the "
-                       f"motor's own speed; {why}", operating_speed_rpm=w_op * rpm, speed_rpm=w_nom * rpm,
-                       load_ratio=reflected_load(lay, w_op) / nominal if nominal else 1.0)]
 
 
 def _driven_back(t: np.ndarray, w_motor: np.ndarray, ws: float) -> tuple[str, float | None]:

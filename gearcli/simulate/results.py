@@ -247,6 +247,7 @@ class SimulationExtra(TypedDict, total=False):
     parametric_work_J: float
     stiffness_indicator: float
     natural_frequencies_runup_Hz: list[float]
+    damped_modes: list[tuple[float, float]]  # (f_d Hz, ζ) of the run's damped eigenvalues (Choice.run_eigenvalues)
     motor: dict[str, float | None]
     bearings: list[BearingStats]
     start: StartSummary  # the run's peak over the rigid-body start's (issue 30)

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 
@@ -196,6 +197,25 @@ def _peaks(lay: Layout, state, times: np.ndarray, ft: np.ndarray, coefficients: 
 
 def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidStart:
     """The rigid start over [0, duration_s] (module text)."""
+    return _refined(*_on_grid(lay, duration_s, samples))
+
+
+def _refined(lay: Layout, rigid: RigidStart, state, times: np.ndarray, ft_all: np.ndarray,
+             coefficients: tuple) -> RigidStart:
+    """``rigid`` (:func:`_on_grid`) with its peaks refined on the continuous state (:func:`_peaks`)."""
+    return replace(rigid, peak_tangential_N=_peaks(lay, state, times, ft_all, coefficients))
+
+
+def _speed_motion(lay: Layout, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A speed drive's prescribed input speed and acceleration at the times ``t`` (its ramp)."""
+    ww, aa = ramp_rates(t, lay.drive.ramp_s, lay.drive.speed_rad_s)
+    return np.asarray(ww, float) * np.ones_like(t), np.asarray(aa, float) * np.ones_like(t)
+
+
+def _on_grid(lay: Layout, duration_s: float, samples: int = SAMPLES) -> tuple:
+    """The rigid start on its grid, before its peaks are refined: (lay, the start without ``peak_tangential_N``,
+    the continuous state ``state(t) -> (w, dw/dt)``, the times the peaks are sought about, F_t at them, the
+    coefficients of :func:`_tangential`): the arguments of :func:`_refined`."""
     from scipy.integrate import solve_ivp  # lazy: scipy, start-up time
 
     rho = np.array([b.ratio for b in lay.bodies])
@@ -205,11 +225,7 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
     j_eff = float(J[0] + f0 * (J[1:] @ rho[1:] ** 2))
     t = np.linspace(0.0, duration_s, samples)
     if lay.speed_drive:
-        def motion(tt):
-            ww, aa = ramp_rates(tt, lay.drive.ramp_s, lay.drive.speed_rad_s)
-            return np.asarray(ww, float) * np.ones_like(tt), np.asarray(aa, float) * np.ones_like(tt)
-
-        w, a = motion(t)
+        w, a = _speed_motion(lay, t)
         steps = np.array([], float)
         ramp_s, speed = float(lay.drive.ramp_s), float(lay.drive.speed_rad_s)
 
@@ -248,7 +264,7 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
         times = np.unique(np.concatenate((t, steps[(steps >= 0.0) & (steps <= duration_s)])))
         ws_as = np.array([state(float(tt)) for tt in times])
         ft_all = _tangential(lay, times, ws_as[:, 0], ws_as[:, 1], coefficients)[2]
-    return RigidStart(t, w, a, load, forces, ft, _peaks(lay, state, times, ft_all, coefficients))
+    return lay, RigidStart(t, w, a, load, forces, ft), state, times, ft_all, coefficients
 
 
 def cause(lay: Layout, rigid: RigidStart, peak_time_s: float, swinging: tuple[float, str, float] | None) -> str:
@@ -397,14 +413,21 @@ def initial_te_um(lay: Layout, k: int) -> float:
 
 
 def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.ndarray], window_s: tuple[float, float],
-                  warn_ratio: float, reswitch_s: float | None = None) -> tuple[StartSummary | None, list[Diagnostic]]:
+                  warn_ratio: float, reswitch_s: float | None = None, *,
+                  summary: bool = True) -> tuple[StartSummary | None, list[Diagnostic]]:
     """``summary.start`` = {``peak_over_rigid``, ``rigid_peak_N``} per stage (the run's peak |F_t| over the rigid
     start's) and the ``peak_over_rigid`` warnings where the ratio exceeds ``warn_ratio``, naming the cause;
-    ``reswitch_s`` the time a star-delta motor first fell back into star (a peak after it is named with it)."""
+    ``reswitch_s`` the time a star-delta motor first fell back into star (a peak after it is named with it).
+    ``summary=False``: the warnings alone, the summary None (a caller that reads none: a sweep row, a duty point),
+    and the rigid peaks refined only where a warning may follow: a refined peak is at least the grid's largest
+    |F_t|, so a run peak within ``warn_ratio`` of that (the same division) is within it of the refined one too."""
     if t.size < 2 or t[-1] <= 0:
         return None, []
-    rigid = integrate(lay, float(t[-1]))
+    grid = _on_grid(lay, float(t[-1]))
     peaks = [float(np.max(np.abs(f))) for f in forces_N]
+    if not summary and _no_warning(peaks, grid[1].tangential_N, warn_ratio):
+        return None, []
+    rigid = _refined(*grid)
     rigid_peaks = list(rigid.peak_tangential_N)
     ratios = [p / r if r > 0 else None for p, r in zip(peaks, rigid_peaks, strict=True)]
     out = StartSummary(peak_over_rigid=ratios, rigid_peak_N=rigid_peaks)
@@ -450,4 +473,12 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
                                 f"same drive and load law without compliance): {why}", stage=k + 1, ratio=ratio,
                                 rigid_peak_N=rigid_peaks[k], swing_Hz=found[0] if found else None,
                                 swing_amplitude_N=found[2] if found else None))
-    return out, diags
+    return (out if summary else None), diags
+
+
+def _no_warning(peaks: list[float], rigid_ft: np.ndarray, warn_ratio: float) -> bool:
+    """No stage's ratio can exceed ``warn_ratio``: each run peak over the largest |F_t| of the rigid start's grid
+    ``rigid_ft`` (stages x samples; positive) is within it; the refined peak, not below that largest, only lowers
+    the ratio (a correctly rounded division is monotone in its divisor)."""
+    grid = [float(np.max(np.abs(f))) for f in rigid_ft]
+    return all(g > 0 and p / g <= warn_ratio for p, g in zip(peaks, grid, strict=True))

@@ -21,7 +21,7 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
-from gearcli.model.linear import static_line_forces_N
+from gearcli.model.linear import damped_modes, static_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
@@ -58,7 +58,8 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                    want_series: bool = True, max_nfev: int | None = None,
                    y0: np.ndarray | None = None, model: TorsionalModel | None = None,
                    error_estimate: bool | None = None, settle: bool | str | None = None,
-                   progress: Callable[[float], None] | None = None, diagnose: bool = True) -> SimulationResult:
+                   progress: Callable[[float], None] | None = None, diagnose: bool = True,
+                   summary_start: bool = True) -> SimulationResult:
     """Simulate a validated ``DesignFile`` with its ``DesignResult`` (``method``/``rtol`` default to
     ``cfg.simulation``). ``want_series=False`` leaves ``time_s`` and ``series`` empty (the statistics
     are still computed from the full samples). ``max_nfev`` defaults to the scene's budget
@@ -71,8 +72,9 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     (:func:`gearcli.simulate.settle.settled_run`: the dynamic verdicts of life, sweep and report ask for it).
     ``diagnose=False``: the statistics without the window's ringing fit, settle test, resonance check, start-up
     summary and motor summary (a run only its statistics and counters are read from: the report's accuracy
-    ladder). The design's own
-    warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
+    ladder). ``summary_start=False``: the start's warnings without ``summary.start`` (``extra["start"]``; a caller
+    that reads no summary: a sweep row, a duty point; :func:`gearcli.simulate.rigid_start.start_summary`). The
+    design's own warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
         raise ConfigError(f"must be below simulation.duration_s = {sim.duration_s:g} s, got {sim.window_start_s:g}",
@@ -94,7 +96,8 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                                 max_nfev=max_nfev, y0=y0, steady=steady, error_estimate=check,
                                 prior_diagnostics=design_diags, engine=sim.engine, progress=progress,
                                 unfinished=unfinished, diagnose=diagnose, run_up_samples=run_up_samples,
-                                file_steps=max(1, round(steps * sim.duration_s / duration_s)))
+                                file_steps=max(1, round(steps * sim.duration_s / duration_s)),
+                                summary_start=summary_start)
         if unfinished:
             pending.append((result, unfinished[0]))
         return result
@@ -138,7 +141,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    tightened: Diagnostic | None = None,
                    unfinished: list[Callable[[], SimulationResult]] | None = None,
                    diagnose: bool = True, run_up_samples: int | None = None,
-                   file_steps: int | None = None) -> SimulationResult:
+                   file_steps: int | None = None, summary_start: bool = True) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
     ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
@@ -162,7 +165,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     (:func:`run_simulation`). ``run_up_samples``: ``steady = "periodic"``'s run-up sampled with this many samples
     (default: as a window run over ``duration_s`` would sample it). ``file_steps``: the design file's
     ``simulation.steps`` that samples as densely as this run (a settled run's longer one keeps the density), which
-    the sampling estimate's suggestion scales (default ``steps``)."""
+    the sampling estimate's suggestion scales (default ``steps``). ``summary_start``: :func:`run_simulation`'s."""
     spec = model.spec
     window, diags = stats.steady_window(spec, duration_s, window_start_s)
     prior = list(prior_diagnostics or [])
@@ -219,8 +222,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         s = equilibrium.sampled(model.layout, run.t, run.y, energy_from)
     else:
         s = sample(model.layout, run.t, run.y)
-    energy = model.energy(s, run.y) if not energy_from else \
-        model.energy(s.tail(energy_from), run.y[:, energy_from:])
+    energy = model.energy(s, run.y, start=energy_from)
     diags = prior + diags + fallback + (pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
         + _choice_warnings(choice)
@@ -245,7 +247,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
                               engine=engine, progress=progress,
                               tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
-                              diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps)
+                              diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps,
+                              summary_start=summary_start)
     if tightened is not None:
         diags.append(tightened)
 
@@ -253,7 +256,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         out = _summarise(model, s, run, choice, (window, mask_window), energy, list(diags), want_series, steady_state,
                          ref, stat_diags, eng.reason, deferred, diagnose, steps=file_steps or steps,
                          from_rest=y0 is None, prediction=prediction(choice, first_engine, nfev_estimate / work),
-                         course_changes=tuple(c.as_json() for c in changes))
+                         course_changes=tuple(c.as_json() for c in changes), summary_start=summary_start)
         _require_finite(out)
         return out
 
@@ -361,19 +364,21 @@ def _series(model: TorsionalModel, s: Sampled, channels: bool = True) -> tuple[d
     um) for its statistics. Reducer shafts first (a flexible shaft reports its gear end), then the
     drivetrain's own channels. ``channels=False``: the stages' series alone (a run that keeps no series)."""
     lay = model.layout
-    ch: dict[Channel, np.ndarray] = {Channel("speed", f"shaft{i + 1}"): s.omega_rad_s[b]
-                                     for i, b in enumerate(lay.shaft_body)}
-    ch[Channel("torque", "input")] = s.input_torque_Nm
     per_stage: list[StageSeries] = []
     for k, ms in enumerate(s.meshes):
         ft, fr, fa = tooth_forces(lay, k, ms.line_force_N)
+        per_stage.append((ft, fr, fa, ms.penetration_m * 1e3, ms.dte_m * 1e6))
+    if not channels:
+        return {}, per_stage
+    ch: dict[Channel, np.ndarray] = {Channel("speed", f"shaft{i + 1}"): s.omega_rad_s[b]
+                                     for i, b in enumerate(lay.shaft_body)}
+    ch[Channel("torque", "input")] = s.input_torque_Nm
+    for k, ms in enumerate(s.meshes):
+        ft, fr, fa = per_stage[k][:3]
         stage = f"stage{k + 1}"
         ch.update({Channel("tangential_force", stage): ft, Channel("radial_force", stage): fr,
                    Channel("axial_force", stage): fa, Channel("penetration", stage): ms.penetration_m,
                    Channel("dte", stage): ms.dte_m})
-        per_stage.append((ft, fr, fa, ms.penetration_m * 1e3, ms.dte_m * 1e6))
-    if not channels:
-        return {}, per_stage
     for (k, j, gear), (ft, dte_m) in planet_series(model, s).items():  # a planetary stage: every planet mesh
         ch[Channel("tangential_force", f"stage{k + 1}_planet{j + 1}_{gear}")] = ft
         ch[Channel("dte", f"stage{k + 1}_planet{j + 1}_{gear}")] = dte_m
@@ -398,14 +403,16 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                ref: estimate.CheckPass | None = None, stat_diags: list[Diagnostic] | None = None,
                engine_reason: str = "as requested", deferred: list[bool] | None = None,
                diagnose: bool = True, steps: int | None = None, from_rest: bool = True,
-               prediction: JsonObject | None = None, course_changes: tuple[JsonObject, ...] = ()) -> SimulationResult:
+               prediction: JsonObject | None = None, course_changes: tuple[JsonObject, ...] = (),
+               summary_start: bool = True) -> SimulationResult:
     """``windows``: the reported statistics window and the one the sample mask uses (for whole periods,
     the window without its closing sample, which starts the next period). ``steps``: the run's
     ``simulation.steps`` (the sampling estimate's suggestion scales it; whole periods: the window's samples). ``deferred`` (a list): a fixed window
     that the settle test finds unsettled skips the ringing fit and says so (``True`` appended); a settled one has
     its ringing warnings after the settle test's (which adds none then: the same warnings, in the same order).
     ``from_rest``: the run started from rest (not continued from another run's state): only then a start summary.
-    ``prediction``, ``course_changes``: the solver's (:class:`SolverStats`)."""
+    ``prediction``, ``course_changes``: the solver's (:class:`SolverStats`). ``summary_start=False``: the start's
+    warnings without its summary (:func:`run_simulation`)."""
     spec = model.spec
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
@@ -430,8 +437,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic)) for k, st in enumerate(stages))
     rings = planet_ring_stiffness(model, choice)
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
-    shafts = s.shaft_omega_rad_s  # the reducer's ratio: shaft 1 over the last shaft, not motor over drum
-    w_in, w_out = float(shafts[0][mask].mean()), float(shafts[-1][mask].mean())
+    # the reducer's ratio: shaft 1 over the last shaft, not motor over drum (the window's samples read in place)
+    first, last, sel = model.layout.shaft_body[0], model.layout.shaft_body[-1], stats.window_slice(mask)
+    w_in, w_out = float(s.omega_rad_s[first][sel].mean()), float(s.omega_rad_s[last][sel].mean())
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
@@ -444,7 +452,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                    if model.layout.motor_drive else None)
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
                                                        [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID,
-                                                       reswitch_s=None if toggled is None else toggled[2]) \
+                                                       reswitch_s=None if toggled is None else toggled[2],
+                                                       summary=summary_start) \
         if diagnose and from_rest else (None, [])  # a continued run (a sweep's next point) has no start from rest
     diags += start_diags
     motor_summary = None
@@ -504,6 +513,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
+               "damped_modes": damped_modes(choice.run_eigenvalues),
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )

@@ -132,7 +132,8 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
     means, mins, maxs, stds = window_means(t[sel], W, periodic), W.min(axis=1), W.max(axis=1), W.std(axis=1)
     peaks_at = np.argmax(np.abs(whole), axis=1)
     window_max = np.max(np.abs(W[0::5]), axis=1)
-    responses = _responses(t[sel], W[4::5], W[0::5], W[3::5], static_tangential_N, periodic)
+    responses = _responses(t[sel], W[4::5], W[0::5], W[3::5], static_tangential_N, periodic,
+                           (means[4::5], stds[4::5], mins[4::5], maxs[4::5]))  # the DTE rows' own reductions
 
     def channel(j: int) -> ChannelStats:
         return ChannelStats(float(means[j]), float(mins[j]), float(maxs[j]), float(stds[j]))
@@ -184,16 +185,18 @@ def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, f
 
 
 def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
-               periodic: bool) -> list[dict]:
+               periodic: bool, q_stats: tuple[np.ndarray, ...] | None = None) -> list[dict]:
     """:func:`mesh_response` of every row of the window's DTE ``q``, F_t ``f`` and penetration ``p`` (a stage a row,
     ``tw`` the window's times): one reduction along the rows each (numpy reduces a contiguous row as the row
-    alone, so a single row gives the 1-D numbers)."""
+    alone, so a single row gives the 1-D numbers); ``q_stats``: the rows' (window means, std, min, max) where the
+    caller has reduced them already."""
     loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
     lost = (f == 0.0) | (p == 0.0)
     back = loaded[:, None] * p < 0.0
     lost_fraction, back_fraction = _time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic)
     any_lost, any_back = np.any(lost, axis=1), np.any(back, axis=1)
-    means, stds, mins, maxs = window_means(tw, q, periodic), q.std(axis=1), q.min(axis=1), q.max(axis=1)
+    means, stds, mins, maxs = q_stats if q_stats is not None else (window_means(tw, q, periodic), q.std(axis=1),
+                                                                    q.min(axis=1), q.max(axis=1))
     return [{"dte_um": DteStats(float(means[k]), float(stds[k]), float(mins[k]), float(maxs[k])),
              "contact_loss_fraction": lost_fraction[k], "back_flank_fraction": back_fraction[k],
              "regime": REGIME_DOUBLE_SIDED if any_back[k] else REGIME_SINGLE_SIDED if any_lost[k] else REGIME_NO_IMPACT}

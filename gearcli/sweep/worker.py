@@ -6,7 +6,7 @@ sweep never loads, designs or simulates a point itself: the evaluator is injecte
 :func:`gearcli.api.evaluate_point`, a top-level function, so that it pickles by reference to a pool or a
 Dask worker). It validates a point's overrides on the file parsed once per process, computes the design,
 builds one model (its generated code compiled once per model structure and process,
-:func:`gearcli.model.codegen.compile_functions`) and simulates. A point that fails (a value the schema
+:func:`gearcli.model.codegen.compile_function`) and simulates. A point that fails (a value the schema
 rejects, an infeasible design, a run refused up front for its memory or its cost as ``simulate``
 refuses it, a solver failure) becomes a ``failed`` row with its message and the branch
 goes on, starting cold again.

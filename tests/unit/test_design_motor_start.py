@@ -98,3 +98,22 @@ def test_the_stall_speed_is_where_simulate_finds_the_motor_settling():
     assert op.speed_rad_s is not None and not op.reaches
     (w,) = _design(*sets)
     assert_allclose(w["stall_speed_rpm"], op.speed_rad_s * 60 / (2 * math.pi), rtol=1e-9)
+
+
+def _mismatch(*sets: str) -> list[dict]:
+    res = CliRunner().invoke(cli, ["design", str(CONFIG), "--format", "json", "-q",
+                                   *[a for s in sets for a in ("--set", s)]])
+    assert res.exit_code == 0, res.output
+    return [w for w in json.loads(res.stdout)["warnings"] if w.get("check") == "motor_speed_mismatch"]
+
+
+def test_a_speed_rpm_off_the_motors_operating_point_is_warned_before_any_run():
+    # the rated torque at the motor (T_N x the train at the output): the nameplate's curve carries it at its rated
+    # 1460 rpm, so a design at speed_rpm = 1300 has every speed, mesh frequency and K_v 11 % low
+    rated = f"load.torque_Nm={T_RATED * TRAIN!r}"
+    (w,) = _mismatch(rated, "input.speed_rpm=1300")
+    assert w["code"] == "design" and w["speed_rpm"] == 1300.0
+    assert_allclose(w["operating_speed_rpm"], 1460.0, rtol=1e-6)
+    assert "runs at 1460 rpm" in w["message"]
+    assert not _mismatch(rated)  # speed_rpm where the curve carries the load
+    assert not _mismatch(rated, "input.speed_rpm=1440")  # within 2 %

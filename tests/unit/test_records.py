@@ -3,8 +3,10 @@ equality, hash and repr, a method of the class body kept, and a subclass its own
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import pickle
+from typing import Any
 
 import pytest
 
@@ -78,3 +80,43 @@ def test_a_subclass_is_a_record_of_its_own():
     assert s != base(1.0, 2.0) and s == sub(1.0, 2.0, z=3) and hash(s) == hash(sub(1.0, 2.0, z=3))
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.z = 4  # type: ignore[misc]
+
+
+def _refuses(obj, action) -> bool:
+    try:
+        action(obj)
+    except dataclasses.FrozenInstanceError:
+        return True
+    return False
+
+
+def test_frozen_as_a_frozen_dataclass_after_the_constructor():
+    # the class is made by dataclass(frozen=False) and frozen by its own __setattr__ and __delattr__: each refusal
+    # of dataclass(frozen=True)'s, on the class's instances and on a plain subclass's (which may add attributes)
+    ours, theirs = _pair({})
+    plain = [type("Plain", (cls,), {}) for cls in (ours, theirs)]
+    actions = [lambda o: setattr(o, "x", 9.0), lambda o: setattr(o, "note", "n"), lambda o: setattr(o, "extra", 1),
+               lambda o: delattr(o, "y"), lambda o: delattr(o, "extra")]
+    for a, b in [(ours(1.0, 2.0), theirs(1.0, 2.0)), (plain[0](1.0, 2.0), plain[1](1.0, 2.0))]:
+        assert [_refuses(a, act) for act in actions] == [_refuses(b, act) for act in actions]
+    sub = plain[0](1.0, 2.0)
+    sub.extra = 1  # a plain subclass's own attribute, as dataclass allows
+    assert sub.extra == 1 and sub.x == 1.0
+    with pytest.raises(TypeError, match="Cannot overwrite attribute __setattr__"):
+        record(type("Own", (), {"__annotations__": {"x": "float"}, "__module__": __name__,
+                                "__setattr__": lambda self, name, value: None}))
+
+
+def test_a_field_set_after_init_is_frozen_too():
+    # a field init=False is set in __post_init__ (object.__setattr__, as a frozen dataclass needs) and then frozen
+    def post_init(self):
+        object.__setattr__(self, "total", self.x + self.y)
+
+    ann = {"x": "float", "y": "float", "total": "float"}
+    cls: Any = record(type("Sum", (), {"__annotations__": ann, "__module__": __name__, "__post_init__": post_init,
+                                  "total": dataclasses.field(init=False), "__doc__": "A sum."}))
+    s = cls(1.0, 2.0)
+    assert s.total == 3.0 and repr(s) == "Sum(x=1.0, y=2.0, total=3.0)"
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        s.total = 4.0
+    assert copy.copy(s) == s and copy.deepcopy(s) == s and dataclasses.replace(s, x=2.0).total == 4.0

@@ -47,14 +47,19 @@ def _record(model: TorsionalModel, head: int = 300, period: int = 200, seed: int
     return t, Y, head
 
 
-def _same(a, b) -> None:
+def _same(a, b, energy_from: int = 0) -> None:
+    """``a`` is ``b`` bit for bit, but for the stored energy before ``energy_from``, which ``a`` leaves out (NaN)."""
     assert np.array_equal(a.time_s, b.time_s) and np.array_equal(a.omega_rad_s, b.omega_rad_s)
     assert a.theta_rad is None and b.theta_rad is None
     assert np.array_equal(np.broadcast_to(a.input_torque_Nm, a.time_s.shape), b.input_torque_Nm)
     assert np.array_equal(np.broadcast_to(a.load_torque_Nm, a.time_s.shape), b.load_torque_Nm)
     for ca, cb in zip(a.connectors, b.connectors, strict=True):
         for f in fields(ConnectorSeries):
-            assert np.array_equal(getattr(ca, f.name), getattr(cb, f.name)), f.name
+            x, y = getattr(ca, f.name), getattr(cb, f.name)
+            if f.name == "potential_J":  # not evaluated before the energy balance's first sample
+                assert np.isnan(x[:energy_from]).all() and np.isfinite(y).all()
+                x, y = x[energy_from:], y[energy_from:]
+            assert np.array_equal(x, y), f.name
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -63,7 +68,7 @@ def test_the_constant_period_sampled_once_is_every_sample_sampled(name, laws):
     assert equilibrium.applies(model) and not model.layout.needs_angles
     t, Y, head = _record(model)
     whole, short = sample(model.layout, t, Y), equilibrium.sampled(model.layout, t, Y, head)
-    _same(short, whole)
+    _same(short, whole, head)  # the run-up's stored energy left out: the balance starts at the period
     # the energy balance reads the period's first and last samples: the same
     assert model.energy(short.tail(head), Y[:, head:]) == model.energy(whole.tail(head), Y[:, head:])
 
