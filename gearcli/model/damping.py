@@ -82,13 +82,19 @@ def operating_speed_rad_s(lay: Layout) -> float:
     down = [i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b]
     if not down:
         return lay.drive.speed_rad_s
-    lo, hi = float(grid[down[-1]]), float(grid[down[-1] + 1])
-    for _ in range(200):  # bisection to the last bit (net falls through 0 on [lo, hi])
+    lo, hi = falling_zero(net, float(grid[down[-1]]), float(grid[down[-1] + 1]))
+    return 0.5 * (lo + hi)
+
+
+def falling_zero(net, lo: float, hi: float) -> tuple[float, float]:
+    """Where ``net`` falls through 0 on [lo, hi] (net(lo) > 0 >= net(hi)), bisected to adjacent floats: the last
+    bracket (lo, hi). scipy-free, for ``gearcli design``'s start-up."""
+    for _ in range(200):  # 200 halvings cover any float bracket
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):
             break
         lo, hi = (mid, hi) if net(mid) > 0.0 else (lo, mid)
-    return 0.5 * (lo + hi)
+    return lo, hi
 
 
 def body_damping(lay: Layout) -> np.ndarray:

@@ -22,14 +22,13 @@ from typing import TYPE_CHECKING
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import STEADY_T, net_torque_scan, reflected_load_Nm
+from gearcli.model.damping import STEADY_T, falling_zero, net_torque_scan, reflected_load_Nm
 from gearcli.model.elements import machine
 
 if TYPE_CHECKING:
     from gearcli.model.spec import MotorSpec
 
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
-BISECTIONS = 200  # to the last bit of a crossing bracketed by the scan
 LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
 SPEED_OFF_DESIGN = 0.02  # a motor running more than 2 % off speed_rpm is warned (as a life point off its speed)
 
@@ -100,13 +99,7 @@ def _first_crossing(grid, f, net) -> float | None:
     """The first speed from rest where the net torque falls through 0 (None: it never does up to the scan's end)."""
     for i in range(grid.size - 1):
         if f[i] > 0.0 >= f[i + 1]:
-            lo, hi = float(grid[i]), float(grid[i + 1])
-            for _ in range(BISECTIONS):
-                mid = 0.5 * (lo + hi)
-                if mid in (lo, hi):
-                    break
-                lo, hi = (mid, hi) if net(mid) > 0.0 else (lo, mid)
-            return hi
+            return falling_zero(net, float(grid[i]), float(grid[i + 1]))[1]
     return None
 
 
