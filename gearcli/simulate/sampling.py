@@ -408,12 +408,13 @@ def excitation_warnings(layout, t: np.ndarray, steps: int) -> list[Diagnostic]:
 
 
 def partial_period_bias(t: np.ndarray, x: np.ndarray, frequency_Hz: float,
-                        phasor: np.ndarray | None = None) -> tuple[float, float]:
+                        phasor: np.ndarray | None = None, centred: np.ndarray | None = None) -> tuple[float, float]:
     """(amplitude, bias bound) of ``x``'s component at ``frequency_Hz`` over the window ``t`` (module doc, "The mean:
     a partial period"): the amplitude A from the trapezoid-rule projection ``2 |∫ (x - mean) e^(-i w t) dt| / T``,
     the bound ``A |sin(pi f T)| / (pi f T)`` on what its partial period puts into the window mean (a sinusoid's mean
     over n periods is ``A sin(pi n) cos(phase) / (pi n)``). Under one period the projection cannot tell the component
-    from the mean: A is then the window's half range. ``phasor``: ``e^(-i w (t - t0))`` when the caller has it."""
+    from the mean: A is then the window's half range. ``phasor``: ``e^(-i w (t - t0))``, ``centred``: ``x`` less its
+    trapezoid-rule mean, when the caller has them (one per window and frequency, one per window and stage)."""
     span = float(t[-1] - t[0])
     n = frequency_Hz * span
     if n < 1.0:
@@ -421,8 +422,9 @@ def partial_period_bias(t: np.ndarray, x: np.ndarray, frequency_Hz: float,
     else:
         if phasor is None:
             phasor = np.exp(-2j * math.pi * frequency_Hz * (t - t[0]))
-        mean = float(np.trapezoid(x, t)) / span
-        amplitude = 2.0 * abs(complex(np.trapezoid((x - mean) * phasor, t))) / span
+        if centred is None:
+            centred = x - float(np.trapezoid(x, t)) / span
+        amplitude = 2.0 * abs(complex(np.trapezoid(centred * phasor, t))) / span
     return amplitude, amplitude * abs(math.sin(math.pi * n)) / (math.pi * n)
 
 
@@ -453,10 +455,11 @@ def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray], re
     span = float(t[-1] - t[0])
     lines = _lines(periods, span, 0.5 * (t.size - 1) / span)
     found: dict[int, list] = {k: [] for k in judged}
+    centred = {k: forces_N[k] - float(np.trapezoid(forces_N[k], t)) / span for k in judged}  # shared by the lines
     for f, label in lines:
         phasor = np.exp(-2j * math.pi * f * (t - t[0])) if f * span >= 1.0 else None  # shared by the stages
         for k in judged:
-            found[k].append((partial_period_bias(t, forces_N[k], f, phasor), f, label))
+            found[k].append((partial_period_bias(t, forces_N[k], f, phasor, centred[k]), f, label))
     common = common_period(periods)
     out = []
     for k in judged:
