@@ -93,7 +93,7 @@ class DteStats:
 
 
 #: Impact regimes of a mesh over the statistics window (the loaded flank: the one the static load presses)
-REGIME_NO_IMPACT = "no impact"  # the mesh force never drops to zero
+REGIME_NO_IMPACT = "no impact"  # never out of contact (a mesh without backlash may pass to its back flank)
 REGIME_SINGLE_SIDED = "single-sided impact"  # it loses contact but never touches the other flank
 REGIME_DOUBLE_SIDED = "double-sided impact"  # it also strikes the other (back) flank
 

@@ -431,7 +431,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
         s.time_s, mask, per_stage[:len(ks)], [m.static_tangential_N for m in spec.meshes], periodic=periodic,
-        simulated_static_N=simulated_static, error_estimate=merged, sampling_error=samplings,
+        simulated_static_N=simulated_static, gapless=[m.backlash_m == 0.0 for m in spec.meshes],
+        error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
     stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic)) for k, st in enumerate(stages))

@@ -88,7 +88,8 @@ def channel_stats(x: np.ndarray, mask: np.ndarray | slice, t: np.ndarray | None 
 
 def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: np.ndarray, fa: np.ndarray,
                    pen_mm: np.ndarray, static_tangential_N: float, dte_um: np.ndarray | None = None, *,
-                   periodic: bool = False, simulated_static_N: float | None = None) -> StageDynamics:
+                   periodic: bool = False, simulated_static_N: float | None = None,
+                   gapless: bool = False) -> StageDynamics:
     """Window statistics and the run's peak |F_t| (over the output samples) of stage ``k`` (0-based), and
     the mesh response over the window (:func:`mesh_response`) when ``dte_um`` is given.
 
@@ -104,7 +105,7 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
     factor = window_max / abs(ref) if ref != 0 and math.isfinite(window_max) else None
     runup = peak / abs(ref) if ref != 0 else None
     response = {} if dte_um is None else mesh_response(t, sel, dte_um, ft, pen_mm, static_tangential_N,
-                                                       periodic=periodic)
+                                                       periodic=periodic, gapless=gapless)
     return StageDynamics(k + 1, channel_stats(ft, sel, t, periodic=periodic), channel_stats(fr, sel, t, periodic=periodic),
                          channel_stats(fa, sel, t, periodic=periodic), channel_stats(pen_mm, sel, t, periodic=periodic),
                          float(static_tangential_N), peak, float(t[i]), factor,
@@ -113,19 +114,21 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
 
 def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequence[np.ndarray]],
                     static_tangential_N: Sequence[float], *, periodic: bool = False,
-                    simulated_static_N: Sequence[float | None] | None = None,
+                    simulated_static_N: Sequence[float | None] | None = None, gapless: Sequence[bool] = (),
                     **fields: Sequence[Any]) -> list[StageDynamics]:
     """:func:`stage_dynamics` of every stage at once (``per_stage``: each stage's (F_t, F_r, F_a, penetration in mm,
     DTE in um)), ``fields`` (one entry per stage) set on each: the same numbers, each statistic a reduction along a
     row of one array of every stage's window (numpy reduces a contiguous row as the row alone), in a few calls where
-    a stage at a time makes a few dozen."""
+    a stage at a time makes a few dozen. ``gapless``: per stage, whether its mesh has no backlash (missing: it may)."""
     n = len(per_stage)
+    gaps = [bool(gapless[k]) if k < len(gapless) else False for k in range(n)]
     simulated = list(simulated_static_N) if simulated_static_N is not None else [None] * n
     sel = window_slice(mask)
     if n == 0 or not np.any(mask) or any(len(p) != 5 for p in per_stage):  # an empty window: one stage at a time
         return [replace(stage_dynamics(k, t, mask, p[0], p[1], p[2], p[3], static_tangential_N[k],
                                        p[4] if len(p) > 4 else None, periodic=periodic,
-                                       simulated_static_N=simulated[k]), **{f: v[k] for f, v in fields.items()})
+                                       simulated_static_N=simulated[k], gapless=gaps[k]),
+                        **{f: v[k] for f, v in fields.items()})
                 for k, p in enumerate(per_stage)]
     whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])  # F_t over the run: its peaks
     W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])  # (5 n, window): rows per stage
@@ -133,7 +136,7 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
     peaks_at = np.argmax(np.abs(whole), axis=1)
     window_max = np.max(np.abs(W[0::5]), axis=1)
     responses = _responses(t[sel], W[4::5], W[0::5], W[3::5], static_tangential_N, periodic,
-                           (means[4::5], stds[4::5], mins[4::5], maxs[4::5]))  # the DTE rows' own reductions
+                           (means[4::5], stds[4::5], mins[4::5], maxs[4::5]), gaps)  # the DTE rows' own reductions
 
     def channel(j: int) -> ChannelStats:
         return ChannelStats(float(means[j]), float(mins[j]), float(maxs[j]), float(stds[j]))
@@ -170,7 +173,7 @@ def time_fraction(t: np.ndarray, flag: np.ndarray, *, periodic: bool) -> float:
 
 
 def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, ft: np.ndarray, pen_mm: np.ndarray,
-                  static_tangential_N: float, *, periodic: bool = False) -> dict:
+                  static_tangential_N: float, *, periodic: bool = False, gapless: bool = False) -> dict:
     """DTE statistics (rms about the mean), the time fractions without contact and in contact on the back
     flank, and the impact regime, over the window ``mask``.
 
@@ -178,14 +181,18 @@ def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, f
     carries its damping force there) or pressed with a zero force (the IMPACT law's clamp). The loaded flank
     is the one the static load presses (the drive flank when the load is zero); the back flank is the other
     one. Regime: "no impact" when no sample of the window is without contact, "single-sided impact" when
-    some is but none touches the back flank, else "double-sided impact".
+    some is but none touches the back flank, else "double-sided impact". A ``gapless`` mesh (no backlash) that
+    moves to its back flank without a sample out of contact has no gap to cross and strikes nothing: "no impact"
+    (its force reverses, which the contact-loss warning says); a mesh with backlash that touches its back flank
+    has crossed the gap, sampled or not: "double-sided impact".
     """
     return _responses(t[mask], dte_um[mask][None, :], ft[mask][None, :], pen_mm[mask][None, :], [static_tangential_N],
-                      periodic)[0]
+                      periodic, gapless=[gapless])[0]
 
 
 def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
-               periodic: bool, q_stats: tuple[np.ndarray, ...] | None = None) -> list[dict]:
+               periodic: bool, q_stats: tuple[np.ndarray, ...] | None = None,
+               gapless: Sequence[bool] = ()) -> list[dict]:
     """:func:`mesh_response` of every row of the window's DTE ``q``, F_t ``f`` and penetration ``p`` (a stage a row,
     ``tw`` the window's times): one reduction along the rows each (numpy reduces a contiguous row as the row
     alone, so a single row gives the 1-D numbers); ``q_stats``: the rows' (window means, std, min, max) where the
@@ -199,8 +206,16 @@ def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, stat
                                                                     q.min(axis=1), q.max(axis=1))
     return [{"dte_um": DteStats(float(means[k]), float(stds[k]), float(mins[k]), float(maxs[k])),
              "contact_loss_fraction": lost_fraction[k], "back_flank_fraction": back_fraction[k],
-             "regime": REGIME_DOUBLE_SIDED if any_back[k] else REGIME_SINGLE_SIDED if any_lost[k] else REGIME_NO_IMPACT}
+             "regime": _regime(bool(any_lost[k]), bool(any_back[k]), k < len(gapless) and bool(gapless[k]))}
             for k in range(q.shape[0])]
+
+
+def _regime(lost: bool, back: bool, gapless: bool) -> str:
+    """The impact regime of :func:`mesh_response` from whether a sample was out of contact, one on the back flank,
+    and whether the mesh has no backlash (then a move to the back flank without a lost sample crosses no gap)."""
+    if back and (lost or not gapless):
+        return REGIME_DOUBLE_SIDED
+    return REGIME_SINGLE_SIDED if lost else REGIME_NO_IMPACT
 
 
 def impact_damped(mesh: MeshSpec) -> bool:

@@ -177,6 +177,13 @@ def test_regime_classification():
     # under load reversal the loaded flank is the back one: contact there is not a back-flank impact
     reversed_ = _response(-np.full(n, 900.0), np.full(n, -0.01), static=-1000.0)
     assert reversed_["regime"] == REGIME_NO_IMPACT and reversed_["back_flank_fraction"] == 0.0
+    # a force that reverses without a sample out of contact: across a backlash the teeth crossed the gap between
+    # samples (double-sided), without one there is no gap to cross and nothing strikes
+    swing = 900.0 * np.sin(np.linspace(0.0, 6 * np.pi, n) + 0.1) + 400.0
+    t = np.linspace(0.0, 1.0, n)
+    crossing = [mesh_response(t, np.ones(n, bool), swing, swing, swing * 1e-5, 400.0, gapless=g) for g in (False, True)]
+    assert [c["contact_loss_fraction"] for c in crossing] == [0.0, 0.0]
+    assert [c["regime"] for c in crossing] == [REGIME_DOUBLE_SIDED, REGIME_NO_IMPACT]
 
 
 def test_dte_statistics_rms_is_about_the_mean():

@@ -1,0 +1,103 @@
+"""Trial tr13: scenes of a first-time user's own, against hand calculations written here.
+
+A spur 11/400 stage (m_n 1 mm, b 10 mm) behind a speed drive, a linear ISO-calibrated mesh (exponent 1,
+ζ = 0.02), 20 N·m on the output and a 0.05 µm first-harmonic transmission error, run at the mesh's natural
+frequency. By hand:
+
+- F_t = T_out / (i r_1) = 20 N·m / (400/11 · 5.5 mm) = 100 N;
+- ISO 6336-1: z_n = z (spur), q′ = 0.04723 + 0.15551/11 + 0.25791/400, c′ = (1/q′) 0.8 · 0.975 · (F_t/b / 100)^0.25
+  (F_t/b = 10 N/mm < 100), ε_α from the tip circles, c_γα = c′ (0.75 ε_α + 0.25), k = c_γα b (spur: k_n = k_t);
+- the gear alone moves (the pinion's speed is prescribed): m_e = J_g / r_b2², ω_n = √(k / m_e);
+- at r = 1 the steady response to a base excitation E: the mesh force's dynamic part is
+  k E √(1 + (2ζ)²) / (2ζ) along the line of action, F_t = F_bt cos α_t; it exceeds the static 100 N, so the
+  force reverses: without backlash the back flank takes it at once, nothing is crossed and nothing strikes.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+Z1, Z2, MN, B, J_G = 11, 400, 1.0, 10.0, 1e-2
+ALPHA = math.radians(20.0)
+TORQUE_NM, E_UM, ZETA = 20.0, 0.05, 0.02
+
+
+def _hand() -> tuple[float, float, float]:
+    """(static F_t in N, mesh stiffness k in N/m, natural frequency in Hz), by hand."""
+    r1, r2 = Z1 * MN / 2, Z2 * MN / 2  # mm
+    ft = TORQUE_NM * 1e3 / (Z2 / Z1) / r1
+    rb1, rb2 = r1 * math.cos(ALPHA), r2 * math.cos(ALPHA)
+    a = r1 + r2
+    eps = (math.sqrt((r1 + MN) ** 2 - rb1**2) + math.sqrt((r2 + MN) ** 2 - rb2**2) - a * math.sin(ALPHA)) / (
+        math.pi * MN * math.cos(ALPHA))
+    q = 0.04723 + 0.15551 / Z1 + 0.25791 / Z2
+    c1 = (1 / q) * 0.8 * 0.975 * (ft / B / 100) ** 0.25
+    k = c1 * (0.75 * eps + 0.25) * B * 1e6  # N/(mm um) * mm -> N/m
+    m_e = J_G / (rb2 * 1e-3) ** 2
+    return ft, k, math.sqrt(k / m_e) / (2 * math.pi)
+
+
+def _scene(tmp_path: Path, speed_rpm: float, backlash_mm: float = 0.0, e_um: float = E_UM) -> Path:
+    path = tmp_path / "reversal.toml"
+    path.write_text(f"""
+title = "tr13 zero-backlash force reversal"
+[[stage]]
+normal_module_mm = {MN}
+backlash_mm = {backlash_mm}
+pinion = {{ teeth = {Z1}, face_width_mm = {B}, inertia_kg_m2 = 1e-7 }}
+gear = {{ teeth = {Z2}, face_width_mm = {B}, inertia_kg_m2 = {J_G} }}
+[contact]
+stiffness = "iso6336"
+exponent = 1.0
+damping_ratio = {ZETA}
+transmission_error_um = [{e_um}]
+[input]
+speed_rpm = {speed_rpm}
+[load]
+torque_Nm = {TORQUE_NM}
+[simulation]
+duration_s = 0.06
+window_start_s = 0.04
+""")
+    return path
+
+
+def test_zero_backlash_force_reversal_at_resonance_is_no_impact(tmp_path):
+    ft, k, fn = _hand()
+    assert_allclose(ft, 100.0, rtol=1e-12)
+    rpm = fn * 60 / Z1  # the mesh frequency on the natural frequency: r = 1
+    out = CliRunner().invoke(cli, ["simulate", str(_scene(tmp_path, rpm)), "--format", "json", "-q"])
+    assert out.exit_code == 0, out.output
+    doc = json.loads(out.stdout)
+    assert_allclose(doc["summary"]["natural_frequencies_Hz"][0], fn, rtol=1e-6)
+    st = doc["summary"]["stages"][0]
+    amplitude = k * E_UM * 1e-6 * math.sqrt(1 + (2 * ZETA) ** 2) / (2 * ZETA) * math.cos(ALPHA)  # of F_t
+    assert amplitude > ft  # the force reverses
+    # the window (from 0.04 s: 19 time constants 1/(ζ ω_n) after the start) is settled to exp(-19) ~ 1e-8
+    assert_allclose(st["tangential_N"]["max"], ft + amplitude, rtol=2e-3)
+    assert_allclose(st["tangential_N"]["min"], ft - amplitude, rtol=2e-2)
+    # time on the back flank: where 100 + A sin < 0, a fraction acos(100 / A) / π of the period
+    assert_allclose(st["back_flank_fraction"], math.acos(ft / amplitude) / math.pi, atol=0.01)
+    assert st["contact_loss_fraction"] == 0.0
+    # no gap to cross: no impact (the contact_loss warning says the force reverses, and says "no impact")
+    assert st["regime"] == "no impact"
+    assert "contact_loss" in [w["code"] for w in doc["warnings"]]
+
+
+def test_the_same_reversal_across_a_backlash_is_double_sided(tmp_path):
+    _, _, fn = _hand()
+    # a 0.5 µm gap and 10 times the excitation (the gap's softening keeps 0.05 µm on the drive flank): the teeth
+    # leave the drive flank, cross the gap and strike the back one
+    path = _scene(tmp_path, fn * 60 / Z1, backlash_mm=0.0005, e_um=10 * E_UM)
+    out = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-q"])
+    assert out.exit_code == 0, out.output
+    st = json.loads(out.stdout)["summary"]["stages"][0]
+    assert st["back_flank_fraction"] > 0.0 and st["contact_loss_fraction"] > 0.0
+    assert st["regime"] == "double-sided impact"
