@@ -135,10 +135,10 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     if reaches:  # a motor whose steady curve cannot carry the load stalls however slowly its supply ramps: the
         diags += _vfd_outrun(lay, motor, t, w_motor)  # stall warning names why; "lengthen ramp_s" would mislead
     if reaches and (t_start is None or t_start > window[0]):
-        when = "not within the run" if t_start is None else f"at {t_start:.4g} s"
-        diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start reaches 98 % of its operating speed {when}, "
-                                f"after the statistics window starts ({window[0]:.4g} s): the window is not steady; "
-                                "lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
+        when = (f"does not reach 98 % of its operating speed within the run (to {float(t[-1]):.4g} s)" if t_start is None
+                else f"reaches 98 % of its operating speed at {t_start:.4g} s, after the statistics window starts")
+        diags.append(dg.warning(dg.START_NOT_SETTLED, f"the motor start {when}: the window (from {window[0]:.4g} s) is "
+                                "not steady; lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
     if reaches and op.speed_rad_s is not None:
         diags += off_design_speed(lay, motor, op.speed_rad_s)
     w_mean = float(w_motor[mask].mean())

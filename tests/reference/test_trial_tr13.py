@@ -101,3 +101,39 @@ def test_the_same_reversal_across_a_backlash_is_double_sided(tmp_path):
     st = json.loads(out.stdout)["summary"]["stages"][0]
     assert st["back_flank_fraction"] > 0.0 and st["contact_loss_fraction"] > 0.0
     assert st["regime"] == "double-sided impact"
+
+
+def test_a_start_that_cannot_finish_within_the_run_says_so(tmp_path):
+    """A 30 kW four-pole DOL motor (breakdown 2.8 T_r) on a 4 kg m² flywheel: by hand, the start to 98 % of the
+    synchronous speed takes at least J ω / T_b (the largest torque the curve gives, nothing resisting), far beyond
+    a 0.4 s run: the warning must say the start does not finish within the run, not that it "reaches" it."""
+    t_rated = 30e3 / (1470 * math.pi / 30)
+    bound_s = 4.0 * 0.98 * 1470 * math.pi / 30 / (2.8 * t_rated)
+    assert bound_s > 1.0  # 1.1 s (0.98 of the rated speed, below the operating one): more than twice the run
+    path = tmp_path / "flywheel.toml"
+    path.write_text("""
+title = "tr13 flywheel start"
+[[stage]]
+normal_module_mm = 3
+helix_angle_deg = 15
+pinion = { teeth = 20, face_width_mm = 50, hand = "left" }
+gear = { teeth = 80, face_width_mm = 45, hand = "right" }
+[input]
+speed_rpm = 1470
+drive = "motor"
+motor = { rated_power_kW = 30, rated_speed_rpm = 1470, synchronous_speed_rpm = 1500, breakdown_torque_ratio = 2.8, locked_rotor_torque_ratio = 2.5 }
+starting = "direct"
+inertia_kg_m2 = 4.0
+coupling_stiffness_Nm_rad = 2e4
+coupling_damping_Nms_rad = 10
+[load]
+torque_Nm = 1.0
+[simulation]
+duration_s = 0.4
+""")
+    out = CliRunner().invoke(cli, ["simulate", str(path), "--format", "json", "-q"])
+    assert out.exit_code == 0, out.output
+    doc = json.loads(out.stdout)
+    assert doc["summary"]["start_time_s"] is None
+    (msg,) = [w["message"] for w in doc["warnings"] if w["code"] == "start_not_settled"]
+    assert "does not reach 98 % of its operating speed within the run (to 0.4 s)" in msg, msg
