@@ -347,7 +347,11 @@ def layout(cfg: DesignFile, working_radii_mm: Sequence[tuple[float, float]],
     for j, b in enumerate(cfg.bearing):
         if b.planet_stage is not None:
             k = b.planet_stage
-            if k > len(cfg.stage) or k > len(planetaries) or planetaries[k - 1] is None:  # no planets there
+            if k > len(cfg.stage):
+                raise DesignError(f"stage {k} does not exist: this train has stages 1 to {len(cfg.stage)} (planet_stage "
+                                  "names the planetary stage whose planet pins carry the bearing, 1-based)",
+                                  key=f"bearing[{j}].planet_stage")
+            if k > len(planetaries) or planetaries[k - 1] is None:  # no planets there
                 raise DesignError(f"stage {k} is not a planetary stage: planet_stage names the planetary stage whose "
                                   "planet pins carry the bearing (1-based)", key=f"bearing[{j}].planet_stage")
             by_pin.setdefault(k, []).append(_spec(j, b, 0, k))

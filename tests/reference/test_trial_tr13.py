@@ -137,3 +137,39 @@ duration_s = 0.4
     assert doc["summary"]["start_time_s"] is None
     (msg,) = [w["message"] for w in doc["warnings"] if w["code"] == "start_not_settled"]
     assert "does not reach 98 % of its operating speed within the run (to 0.4 s)" in msg, msg
+
+
+def test_a_planet_pin_bearing_on_a_stage_that_does_not_exist_says_so(tmp_path):
+    """planet_stage = 3 on a two-stage parallel train named "stage 3 is not a planetary stage": there is no stage 3."""
+    path = tmp_path / "two.toml"
+    path.write_text("""
+[[stage]]
+normal_module_mm = 3
+pinion = { teeth = 20, face_width_mm = 40, axial_position_mm = 100 }
+gear = { teeth = 60, face_width_mm = 40, axial_position_mm = 100 }
+[[stage]]
+normal_module_mm = 4
+pinion = { teeth = 20, face_width_mm = 50, axial_position_mm = 200 }
+gear = { teeth = 60, face_width_mm = 50, axial_position_mm = 200 }
+[input]
+speed_rpm = 1000
+[load]
+torque_Nm = 500
+[[bearing]]
+planet_stage = 1
+position_mm = 50
+dynamic_load_rating_kN = 50
+kind = "roller"
+locating = true
+[[bearing]]
+planet_stage = 1
+position_mm = 150
+dynamic_load_rating_kN = 50
+kind = "roller"
+""")
+    for k, expected in ((1, "stage 1 is not a planetary stage"), (3, "stage 3 does not exist: this train has stages 1 to 2")):
+        res = CliRunner().invoke(cli, ["design", str(path), "--set", f"bearing.0.planet_stage={k}",
+                                       "--set", f"bearing.1.planet_stage={k}"])
+        assert res.exit_code == 2, res.output
+        assert "bearing[0].planet_stage" in res.stderr and expected in res.stderr, res.stderr
+        assert "Traceback" not in res.stderr
