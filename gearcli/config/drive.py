@@ -51,7 +51,8 @@ class _Coupled(_Table):
                              "coupling_stiffness_Nm_rad")
 
 
-_START_PARAMS = {"switch_speed_rpm": "star_delta", "voltage_ramp_s": "soft_start",
+#: Each starting method's own parameters (the VFD's also ramp_s, which a motor drive takes for it alone)
+START_PARAMETERS = {"switch_speed_rpm": "star_delta", "voltage_ramp_s": "soft_start",
                  "initial_voltage_fraction": "soft_start", "torque_limit_Nm": "vfd"}
 
 
@@ -61,7 +62,7 @@ def _starting_rules() -> list[dict]:
     motor = {**_required("drive"), "properties": {"drive": {"const": "motor"}}}
     # another drive ignores them (with a note in the design), so that --set input.drive="speed" works on a motor file
     rules: list[dict] = []
-    for key, method in _START_PARAMS.items():
+    for key, method in START_PARAMETERS.items():
         rules.append({"not": {**_required("drive", key), "properties": {"drive": {"const": "motor"}},
                               "not": {**_required("starting"), "properties": {"starting": {"const": method}}}}})
     for method, key in (("star_delta", "switch_speed_rpm"), ("soft_start", "voltage_ramp_s")):

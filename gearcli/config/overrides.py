@@ -10,7 +10,8 @@ a bare string when it is not one (``hand=left``); a number given to a key that h
 
 Setting one key of a group where the schema wants exactly one (``input.speed_rpm`` when the file
 has ``speed_deg_s``) removes the others of the group: the user means to change the speed, not to
-give it twice.
+give it twice. Setting ``input.starting`` removes the parameters of the other starting methods (a star-delta
+file's ``switch_speed_rpm`` under ``starting = "direct"``), which the command line could not unset otherwise.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from typing import Any, Union, get_args, get_origin
 
 from pydantic import BaseModel
 
+from gearcli.config.drive import START_PARAMETERS
 from gearcli.config.keys import (
     Segment,
     container,
@@ -238,8 +240,21 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
             if last in group:
                 for sibling in group:
                     node.pop(sibling, None)
+        if tp is Input and last == "starting":
+            _drop_other_starting_parameters(node, ov.value)
     node[last] = _as_text(leaf_tp, ov)
     return tuple(path[:created]) if created is not None else tuple(path)
+
+
+def _drop_other_starting_parameters(node: dict, method: Any) -> None:
+    """Make the input's starting parameters ``method``'s: another method's would be a stray key (exit 2) that a
+    ``--set`` cannot remove, so comparing starts (``--set input.starting=direct`` on a star-delta file, a sweep over
+    ``input.starting``) would need an edited file. A motor drive's ``ramp_s`` is the VFD's alone."""
+    for key, owner in START_PARAMETERS.items():
+        if owner != method:
+            node.pop(key, None)
+    if method != "vfd" and node.get("drive") == "motor":
+        node.pop("ramp_s", None)
 
 
 def leaf_type(data: dict, key: str) -> Any:

@@ -232,3 +232,67 @@ def test_sweep_points_calibrate_the_mesh_at_their_own_load(tmp_path):
         r = 97 * 3000 / 60 / (math.sqrt(kt / m_e) / (2 * math.pi))
         amp = kt * 0.2e-6 * r**2 * math.sqrt(1 + (2 * zeta * r) ** 2) / math.hypot(1 - r**2, 2 * zeta * r) * math.cos(at)
         assert_allclose(row["stage1_tangential_N_max"], ft + amp, rtol=1e-4, err_msg=f"{torque} N·m")
+
+
+HOIST = """
+title = "tr13 hoist 30 kW star-delta"
+[[stage]]
+normal_module_mm = 3
+helix_angle_deg = 15
+efficiency = 0.98
+pinion = { teeth = 20, face_width_mm = 50, hand = "left" }
+gear   = { teeth = 80, face_width_mm = 45, hand = "right" }
+[[stage]]
+normal_module_mm = 5
+helix_angle_deg = 10
+efficiency = 0.98
+pinion = { teeth = 18, face_width_mm = 90, hand = "right" }
+gear   = { teeth = 90, face_width_mm = 85, hand = "left" }
+[input]
+speed_rpm = 1470
+drive = "motor"
+motor = { rated_power_kW = 30, rated_speed_rpm = 1470, synchronous_speed_rpm = 1500, breakdown_torque_ratio = 2.8, locked_rotor_torque_ratio = 2.5 }
+starting = "star_delta"
+switch_speed_rpm = 1400
+inertia_kg_m2 = 0.25
+coupling_stiffness_Nm_rad = 1.2e4
+coupling_damping_Nms_rad = 8
+[load]
+torque_Nm = 3000
+[simulation]
+duration_s = 1.0
+"""
+
+
+def test_set_starting_compares_starts_on_a_star_delta_file(tmp_path):
+    """`--set input.starting=direct` on a star-delta file was exit 2 ("switch_speed_rpm: not a parameter of starting =
+    direct"), and no --set can remove a key: comparing starts needed an edited file. By hand: T_r = 30 kW / 1470 rpm
+    = 194.9 N·m; the load reflected to the motor 3000 / 20 / 0.98² = 156.2 N·m; in star a third of the curve, whose
+    breakdown 2.8 T_r / 3 = 181.9 N·m leaves it stalled below the 1400 rpm switch-over (design says so), while
+    direct-on-line starts from 2.5 T_r = 487 N·m; the rigid drivetrain then needs at least
+    J_eq 0.98 ω_s / (T_b − T_L) to reach 98 % of its speed."""
+    path = tmp_path / "hoist.toml"
+    path.write_text(HOIST)
+    t_r = 30e3 / (1470 * math.pi / 30)
+    t_load = 3000 / 20 / 0.98**2
+    assert 2.8 * t_r / 3 < t_load * 1.2 and 2.5 * t_r > 3 * t_load
+    star = CliRunner().invoke(cli, ["design", str(path), "--format", "json"])
+    assert star.exit_code == 0, star.output
+    assert any(w.get("check") == "motor_cannot_start" for w in json.loads(star.stdout)["warnings"])
+    out = CliRunner().invoke(cli, ["simulate", str(path), "--set", "input.starting=direct", "--format", "json", "-q"])
+    assert out.exit_code == 0, out.output
+    doc = json.loads(out.stdout)
+    assert not [w for w in doc["warnings"] if w["code"] in ("motor_stalls", "start_not_settled")]
+    def disc(z: int, mn: float, beta_deg: float, b_mm: float) -> float:  # solid steel disc of the pitch diameter
+        return 7800 * math.pi * b_mm * 1e-3 * (z * mn / math.cos(math.radians(beta_deg)) * 1e-3) ** 4 / 32
+
+    j_down = disc(20, 3, 15, 50) + (disc(80, 3, 15, 45) + disc(18, 5, 10, 90)) / 16 + disc(90, 5, 10, 85) / 400
+    j_eq = 0.25 + j_down / 0.98**2  # the rotor, and the train behind its losses (f = 1/η)
+    lower = j_eq * 0.98 * 1500 * math.pi / 30 / (2.8 * t_r - t_load)
+    assert lower < doc["summary"]["start_time_s"] < 1.0
+    # a sweep over the starting method: every point its own method's parameters
+    sw = CliRunner().invoke(cli, ["sweep", str(path), "--vary", "input.starting=direct,star_delta", "--set",
+                                  "input.switch_speed_rpm=1200", "--format", "json", "-q"])
+    assert sw.exit_code == 0, sw.output
+    rows = json.loads(sw.stdout)["rows"]
+    assert [r["status"] for r in rows] == ["ok", "ok"], rows
