@@ -22,6 +22,8 @@ back to the resolution of the tolerance (tests/extreme/test_guards.py).
 from __future__ import annotations
 
 import math
+import os
+import queue
 import threading
 import time
 from bisect import bisect_right
@@ -300,8 +302,8 @@ def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.nd
     (KeyboardInterrupt or ``Terminated``), never while machine code runs under an unwinding interpreter. With
     ``progress``, the time the kernel has reached (``wpar[status.WP_PROGRESS]``, written at every budget check) is
     reported as the fraction of ``span`` every :data:`PROGRESS_EVERY_S`. One call either way, so the numbers are
-    those of a run without progress; the thread costs ~0.1 ms. ``wpar`` must have both entries. Without
-    ``progress`` and with no Python signal handler to hold back (:func:`gearcli.core.signals.handled`: a sweep's
+    those of a run without progress; the thread is one a process (:class:`_KernelThread`). ``wpar`` must have both
+    entries. Without ``progress`` and with no Python signal handler to hold back (:func:`gearcli.core.signals.handled`: a sweep's
     pool or Dask worker) the kernel is called here, directly: the same call without the thread."""
     if progress is None and not signals.handled():
         return kernel(*args)
@@ -320,15 +322,50 @@ def _kernel_with_progress(kernel: Callable[..., tuple], args: tuple, wpar: np.nd
             progress(min(1.0, max(0.0, (float(wpar[st.WP_PROGRESS]) - span[0]) / length)))
 
     with signals.deferred(wpar, st.WP_STOP):
-        worker = threading.Thread(target=work, name="gearcli-kernel", daemon=True)
-        worker.start()
-        while worker.is_alive():
-            worker.join(PROGRESS_EVERY_S)
+        done = _KERNEL_THREAD.run(work)
+        while not done.acquire(timeout=PROGRESS_EVERY_S):
             report()
         report()  # where the kernel stopped (its last budget check), also when it finished before the first poll
     if "exc" in box:
         raise box["exc"]
     return box["out"]
+
+
+class _KernelThread:
+    """The worker thread that runs :func:`_kernel_with_progress`'s kernels, one at a time: started on first use and
+    kept for the process's later runs (a sweep's thousands of points each handed it their integration; a thread
+    started and joined per run cost ~0.2 ms a point). A forked child, where the thread does not exist, starts its
+    own. A daemon thread: one idle at exit waits on its queue and is not joined."""
+
+    def __init__(self) -> None:
+        self._thread: threading.Thread | None = None
+        self._pid = 0
+        self._jobs: queue.SimpleQueue = queue.SimpleQueue()
+
+    def run(self, work: Callable[[], None]) -> Any:
+        """Hand ``work`` (which must not raise) to the thread; returns a lock released when it has returned."""
+        if self._thread is None or self._pid != os.getpid() or not self._thread.is_alive():
+            self._jobs = queue.SimpleQueue()
+            self._thread = threading.Thread(target=self._serve, args=(self._jobs,), name="gearcli-kernel",
+                                            daemon=True)
+            self._thread.start()
+            self._pid = os.getpid()
+        done = threading.Lock()
+        done.acquire()
+        self._jobs.put((work, done))
+        return done
+
+    @staticmethod
+    def _serve(jobs: queue.SimpleQueue) -> None:
+        while True:
+            work, done = jobs.get()
+            try:
+                work()
+            finally:
+                done.release()
+
+
+_KERNEL_THREAD = _KernelThread()
 
 
 def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol, y: np.ndarray,

@@ -85,6 +85,28 @@ def test_a_sweep_workers_kernel_runs_in_its_own_thread_and_a_cli_s_in_the_worker
     assert _thread_of_a_kernel_call({signal.SIGINT: signal.default_int_handler}) == "gearcli-kernel"
 
 
+def test_the_kernel_thread_is_started_once_and_serves_every_later_run():
+    """The worker thread is kept for the process's later runs (a sweep's points): each call's kernel runs in the
+    same thread, returns its own arguments, and an error in one run leaves the thread serving the next."""
+    import signal
+    import threading
+
+    def ident(*a):
+        return (threading.get_ident(), *a)
+
+    previous = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        first = solver._kernel_with_progress(ident, (1,), np.zeros(17), (0.0, 1.0), None)
+        with pytest.raises(ZeroDivisionError):
+            solver._kernel_with_progress(lambda: 1 / 0, (), np.zeros(17), (0.0, 1.0), None)
+        second = solver._kernel_with_progress(ident, (2,), np.zeros(17), (0.0, 1.0), None)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert first[1:] == (1,) and second[1:] == (2,)
+    assert first[0] == second[0] != threading.get_ident()
+
+
 def _run_on_a_terminal(args: list[str]) -> tuple[int, bytes]:
     """``gearcli ARGS`` with stderr on a pseudo-terminal (stdout a pipe): (exit code, what the terminal got)."""
     master, slave = pty.openpty()
