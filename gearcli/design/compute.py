@@ -7,7 +7,9 @@ This module only assembles: every formula lives, with its source, in ``geometry`
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import fields, is_dataclass, replace
+from operator import attrgetter
 from typing import TYPE_CHECKING
 
 from gearcli.core.records import record
@@ -122,24 +124,39 @@ def _not_rated(st: StageResult) -> Diagnostic:
 def _require_finite(obj, key: str) -> None:
     """Every number of a stage result must be finite; a value in range that still overflows (a huge
     module with a huge density) is a bad design file, not a result (exit 2, never inf in the output)."""
-    for name in _dataclass_fields(type(obj)) or ():
-        value = getattr(obj, name)
-        if _dataclass_fields(type(value)) is not None:
+    names, values = _dataclass_fields(type(obj)) or ((), _NO_VALUES)
+    for name, value in zip(names, values(obj), strict=True):
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                raise DesignError(f"the design gives a non-finite {name} ({value}): check the magnitudes of "
+                                  "module, face width, density, speed and torque", key=key)
+        elif value.__class__ in _FIELDS and _FIELDS[value.__class__] is None:
+            continue  # a class known not to be a dataclass (a str, an int, a tuple, None)
+        elif _dataclass_fields(type(value)) is not None:
             _require_finite(value, key)
-        elif isinstance(value, float) and not math.isfinite(value):
-            raise DesignError(f"the design gives a non-finite {name} ({value}): check the magnitudes of "
-                              "module, face width, density, speed and torque", key=key)
 
 
-_FIELDS: dict[type, tuple[str, ...] | None] = {}
+def _NO_VALUES(obj) -> tuple:  # noqa: N802 - a getter of no fields
+    return ()
 
 
-def _dataclass_fields(cls: type) -> tuple[str, ...] | None:
-    """The field names of a dataclass (None: no dataclass), once per class: every sweep point checks the same
-    result classes."""
+_FIELDS: dict[type, tuple[tuple[str, ...], Callable[[object], tuple]] | None] = {}
+
+
+def _dataclass_fields(cls: type) -> tuple[tuple[str, ...], Callable[[object], tuple]] | None:
+    """The field names of a dataclass and the function that reads their values (None: no dataclass), once per
+    class: every sweep point checks the same result classes."""
     if cls not in _FIELDS:
-        _FIELDS[cls] = tuple(f.name for f in fields(cls)) if is_dataclass(cls) else None
+        names = tuple(f.name for f in fields(cls)) if is_dataclass(cls) else None
+        _FIELDS[cls] = None if names is None else (names, _getter(names))
     return _FIELDS[cls]
+
+
+def _getter(names: tuple[str, ...]) -> Callable[[object], tuple]:
+    """obj -> the tuple of its attributes ``names`` (``attrgetter`` returns a bare value for one name)."""
+    if len(names) > 1:
+        return attrgetter(*names)
+    return (lambda obj: (getattr(obj, names[0]),)) if names else _NO_VALUES
 
 
 def _geometry(stage: Stage, k: int) -> PairGeometry:
