@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
@@ -73,3 +74,32 @@ def test_a_constant_load_is_the_same_torque_at_every_speed_given_by_torque_or_by
         rows = _sweep(tmp_path, load, 0, "--vary", "input.speed_rpm=600,1800")
         for r in rows:
             assert_allclose(float(r["stage1_tangential_N_mean"]), 200.0 / R_GEAR, rtol=1e-5)
+
+
+def _iso_k_n_N_mm(f_t_N: float) -> float:
+    """ISO 6336-1 k_n = c_γα b (spur: cos β_b = 1) of the scene's 20/40 m 3 b 30 stage at the static force F_t, by
+    hand from DESIGN section 3: q' polynomial (x = 0), C_M 0.8, C_R 1, C_B 0.975, the load correction below
+    100 N/mm, c_γα = c' (0.75 ε_α + 0.25)."""
+    m, b, alpha = 3.0, 30.0, math.radians(20.0)
+    r1, r2 = 30.0, 60.0
+    rb1, rb2 = r1 * math.cos(alpha), r2 * math.cos(alpha)
+    eps_a = (math.sqrt((r1 + m) ** 2 - rb1**2) + math.sqrt((r2 + m) ** 2 - rb2**2) - (r1 + r2) * math.sin(alpha)) / (
+        math.pi * m * math.cos(alpha))
+    c_prime = 0.8 * 0.975 / (0.04723 + 0.15551 / 20 + 0.25791 / 40) * min(1.0, f_t_N / b / 100.0) ** 0.25
+    return c_prime * (0.75 * eps_a + 0.25) * b * 1e3
+
+
+def test_a_fan_loads_mesh_law_is_calibrated_at_each_points_own_load(tmp_path):
+    """DESIGN section 13: K follows the static load of each sweep point; with a fan law that load is T_0 (n/n_0)^2
+    (section 9), so the default law (iso6336, e = 1.5) settles at h_0 = e F_n / k_n(F_t) of that torque: the row's
+    window-mean DTE (spur: q = h) in µm. A K calibrated at the file's 200 N·m instead would give (F_n / K_0)^(2/3)."""
+    rows = _sweep(tmp_path, "torque_Nm = 200", 2, "--vary", "input.speed_rpm=600,1800")
+    k0 = _iso_k_n_N_mm(200.0 / R_GEAR)
+    big_k0 = (200.0 / R_GEAR / math.cos(math.radians(20.0))) / (1.5 * 200.0 / R_GEAR / math.cos(math.radians(20.0))
+                                                                  / k0) ** 1.5
+    for r in rows:
+        f_t = 200.0 * (float(r["input.speed_rpm"]) / 1200.0) ** 2 / R_GEAR  # 833 N (27.8 N/mm: corrected), 7500 N
+        f_n = f_t / math.cos(math.radians(20.0))
+        h0_um = 1.5 * f_n / _iso_k_n_N_mm(f_t) * 1e3
+        assert_allclose(float(r["stage1_dte_um_mean"]), h0_um, rtol=1e-5)
+        assert abs((f_n / big_k0) ** (1 / 1.5) * 1e3 / h0_um - 1) > 0.05  # the test tells the two apart
