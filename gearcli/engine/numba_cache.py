@@ -12,7 +12,12 @@ get this cache instead (:func:`jit`):
   :class:`CacheDamaged` naming it; with :data:`STRICT` (a process that only loads what a build cached) a missing
   entry does too, so that a process never compiles by surprise;
 - a cached function is loaded without numba's full target refresh (which imports every numba extension, ~0.2 s;
-  the compiler still does it before any compilation): only the runtime (NRT) a cached function calls.
+  the compiler still does it before any compilation): only the runtime (NRT) a cached function calls;
+- and without parsing its linkable IR (:class:`_Library`): numba stores, beside a function's machine code, its
+  LLVM module in a form other functions can link in, and parses it on every load only to list the symbols the
+  machine code defines. The entry stores that list (:meth:`_Impl.reduce`), and the module is parsed when a
+  compilation first links the function in (a build, or numba compiling a signature the cache lacks), never in a
+  process that only loads: 0.08 s of the 0.14 s of CPU a ``report`` of the seed spent loading its three entries.
 """
 
 from __future__ import annotations
@@ -29,7 +34,9 @@ from collections.abc import Iterator
 from typing import Any
 
 import numba
-from numba.core import caching
+from llvmlite import binding as llvm
+from numba.core import caching, compiler
+from numba.core.codegen import JITCodeLibrary
 from numba.core.runtime import rtsys
 
 from gearcli.engine import cachedir, location
@@ -73,6 +80,68 @@ class _Impl(caching.CompileResultCacheImpl):
         self._locator.ensure_cache_path()
         modname = os.path.splitext(os.path.basename(source))[0]
         self._filename_base = self.get_filename_base(f"{modname}.{py_func.__qualname__}", getattr(sys, "abiflags", ""))
+
+    def reduce(self, cres: Any) -> Any:
+        """numba's entry (``CompileResult._reduce``) and the symbols its machine code defines: what numba's loader
+        reads off the parsed linkable module (``JitEngine._load_defined_symbols``), listed here from the same
+        module, which numba's serialisation has just made."""
+        payload = cres._reduce()
+        mod = cres.library._get_module_for_linking()
+        defined = frozenset(gv.name for gs in (mod.functions, mod.global_variables) for gv in gs
+                            if not gv.is_declaration)
+        return _FORMAT, defined, payload
+
+    def rebuild(self, target_context: Any, payload: Any) -> Any:
+        """numba's ``CompileResult._rebuild``, step for step, with the library loaded by :func:`_load_library`."""
+        tag, defined, (libdata, fndesc, env, signature, objectmode, lifted, typeann, reload_init,
+                       referenced_envs) = payload
+        if tag != _FORMAT:
+            raise ValueError(f"an entry of another format ({tag!r})")
+        for fn in reload_init or ():
+            fn()
+        library = _load_library(target_context.codegen(), libdata, defined)
+        cfunc = target_context.get_executable(library, fndesc, env)
+        cres = _COMPILE_RESULT(
+            target_context=target_context, typing_context=target_context.typing_context, library=library,
+            environment=env, entry_point=cfunc, fndesc=fndesc, type_annotation=typeann, signature=signature,
+            objectmode=objectmode, lifted=lifted, typing_error=None, call_helper=None, metadata=None,
+            reload_init=reload_init, referenced_envs=referenced_envs)
+        for ref in referenced_envs:
+            library.codegen.set_env(ref.env_name, ref)
+        return cres
+
+
+_FORMAT = "gearcli-1: machine code, defined symbols, linkable IR parsed on first link"
+_COMPILE_RESULT: Any = compiler.CompileResult  # a namedtuple numba builds from its field list: keywords, as numba's own
+
+
+class _Library(JITCodeLibrary):
+    """numba's library of a cached function, whose linkable module (``_shared_module``) is parsed from the stored
+    bitcode the first time a compilation links the function in, not when the function is loaded."""
+
+    _linkable: bytes | None = None
+
+    def _get_module_for_linking(self) -> Any:
+        if self._shared_module is None and self._linkable is not None:
+            self._shared_module = llvm.parse_bitcode(self._linkable)
+            self._linkable = None
+        return super()._get_module_for_linking()
+
+
+def _load_library(codegen: Any, libdata: Any, defined: frozenset[str]) -> Any:
+    """numba's ``CodeLibrary._unserialize`` of an object-code entry (``serialize_using_object_code``), step for
+    step, except that the linkable module is kept as bitcode (:class:`_Library`) and the symbols the machine code
+    defines come from the entry instead of that module's parse."""
+    name, kind, (object_code, shared_bitcode) = libdata
+    if kind != "object" or codegen._library_class is not JITCodeLibrary:
+        raise ValueError(f"an entry of kind {kind!r} for {type(codegen).__name__}")
+    library = _Library(codegen, name)
+    library.enable_object_caching()
+    library._set_compiled_object(object_code)
+    library._linkable = shared_bitcode
+    library._finalize_final_module()
+    codegen._engine._defined_symbols |= defined  # what _load_defined_symbols(parsed module) would add
+    return library
 
 
 def _read(path: str) -> bytes:
