@@ -86,6 +86,8 @@ class _Impl(caching.CompileResultCacheImpl):
         reads off the parsed linkable module (``JitEngine._load_defined_symbols``), listed here from the same
         module, which numba's serialisation has just made."""
         payload = cres._reduce()
+        if not _fast_load() or len(payload) != len(_PAYLOAD):  # another numba: its own entry, rebuilt its own way
+            return _NUMBA, None, payload
         mod = cres.library._get_module_for_linking()
         defined = frozenset(gv.name for gs in (mod.functions, mod.global_variables) for gv in gs
                             if not gv.is_declaration)
@@ -93,10 +95,12 @@ class _Impl(caching.CompileResultCacheImpl):
 
     def rebuild(self, target_context: Any, payload: Any) -> Any:
         """numba's ``CompileResult._rebuild``, step for step, with the library loaded by :func:`_load_library`."""
-        tag, defined, (libdata, fndesc, env, signature, objectmode, lifted, typeann, reload_init,
-                       referenced_envs) = payload
+        tag, defined, entry = payload
+        if tag == _NUMBA:
+            return compiler.CompileResult._rebuild(target_context, *entry)
         if tag != _FORMAT:
             raise ValueError(f"an entry of another format ({tag!r})")
+        libdata, fndesc, env, signature, objectmode, lifted, typeann, reload_init, referenced_envs = entry
         for fn in reload_init or ():
             fn()
         library = _load_library(target_context.codegen(), libdata, defined)
@@ -112,7 +116,23 @@ class _Impl(caching.CompileResultCacheImpl):
 
 
 _FORMAT = "gearcli-1: machine code, defined symbols, linkable IR parsed on first link"
+_NUMBA = "numba: CompileResult._reduce's entry, rebuilt by CompileResult._rebuild"
 _COMPILE_RESULT: Any = compiler.CompileResult  # a namedtuple numba builds from its field list: keywords, as numba's own
+#: the entry ``CompileResult._reduce`` makes, in the order :meth:`_Impl.rebuild` reads it (numba 0.60 ... 0.68)
+_PAYLOAD = ("libdata", "fndesc", "env", "signature", "objectmode", "lifted", "typeann", "reload_init",
+            "referenced_envs")
+_RESULT_FIELDS = frozenset({"target_context", "typing_context", "library", "environment", "entry_point", "fndesc",
+                            "type_annotation", "signature", "objectmode", "lifted", "typing_error", "call_helper",
+                            "metadata", "reload_init", "referenced_envs"})
+
+
+def _fast_load() -> bool:
+    """Whether this numba's internals are those :meth:`_Impl.rebuild` and :func:`_load_library` follow step for step
+    (numba 0.68's); with another numba the entries are numba's own, loaded numba's way (the IR parsed on load)."""
+    return (frozenset(getattr(compiler.CompileResult, "_fields", ())) == _RESULT_FIELDS
+            and all(hasattr(JITCodeLibrary, name) for name in ("enable_object_caching", "_set_compiled_object",
+                                                               "_finalize_final_module", "_get_module_for_linking"))
+            and hasattr(compiler.CompileResult, "_rebuild"))
 
 
 class _Library(JITCodeLibrary):
