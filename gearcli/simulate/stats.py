@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli import engine
 from gearcli.design.checks import STATIC_APPROACH_MODULE_FRACTION as PENETRATION_MODULE_FRACTION  # one limit for both
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.spec import MeshSpec, ModelSpec
@@ -132,11 +133,10 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
                 for k, p in enumerate(per_stage)]
     whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])  # F_t over the run: its peaks
     W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])  # (5 n, window): rows per stage
-    means, mins, maxs, stds = window_means(t[sel], W, periodic), W.min(axis=1), W.max(axis=1), W.std(axis=1)
-    peaks_at = np.argmax(np.abs(whole), axis=1)
-    window_max = np.max(np.abs(W[0::5]), axis=1)
+    means, mins, maxs, stds, peaks_at, contact = _reductions(t[sel], W, whole, static_tangential_N, periodic)
+    window_max = np.maximum(np.abs(mins[0::5]), np.abs(maxs[0::5]))  # the window's max |F_t|: its min's or max's
     responses = _responses(t[sel], W[4::5], W[0::5], W[3::5], static_tangential_N, periodic,
-                           (means[4::5], stds[4::5], mins[4::5], maxs[4::5]), gaps)  # the DTE rows' own reductions
+                           (means[4::5], stds[4::5], mins[4::5], maxs[4::5]), gaps, contact)  # the DTE rows' reductions
 
     def channel(j: int) -> ChannelStats:
         return ChannelStats(float(means[j]), float(mins[j]), float(maxs[j]), float(stds[j]))
@@ -155,6 +155,36 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
             k + 1, channel(r), channel(r + 1), channel(r + 2), channel(r + 3), float(static_tangential_N[k]), peak,
             float(t[i]), wmax / abs(ref) if ref != 0 and math.isfinite(wmax) else None, **named))
     return out
+
+
+def _reductions(tw: np.ndarray, W: np.ndarray, whole: np.ndarray, static_tangential_N: Sequence[float],
+                periodic: bool) -> tuple[Any, ...]:
+    """The reductions of :func:`stages_dynamics`: every row of the window's ``W`` (sampled at ``tw``, five rows a
+    stage) its window mean, min, max and std; each stage's index of its run's first largest |F_t| (``whole``: F_t
+    over the run, a stage a row); and its contact's fractions and flags (:func:`_contact`). In one compiled pass
+    where this process has loaded the compiled engine (:func:`gearcli.engine.window.window_statistics`: numpy's
+    numbers bit for bit), else numpy's reductions; numpy's too where a window value is not finite (its min and
+    max carry the NaN the compiled pass's would not)."""
+    kernel = engine.loaded_kernel()
+    if kernel is not None:
+        loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+        stats, peaks_at, fractions, flags = kernel.window_statistics(W, whole, tw, bool(periodic), loaded)
+        if np.isfinite(stats).all():
+            contact = (fractions[:, 0].tolist(), fractions[:, 1].tolist(), flags[:, 0] > 0, flags[:, 1] > 0)
+            return stats[:, 0], stats[:, 1], stats[:, 2], stats[:, 3], peaks_at, contact
+    return (window_means(tw, W, periodic), W.min(axis=1), W.max(axis=1), W.std(axis=1),
+            np.argmax(np.abs(whole), axis=1), _contact(tw, W[0::5], W[3::5], static_tangential_N, periodic))
+
+
+def _contact(tw: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
+             periodic: bool) -> tuple:
+    """Per row of the window's F_t ``f`` and penetration ``p``: the time fractions without contact and on the back
+    flank (:func:`mesh_response`), and whether any sample is so."""
+    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+    lost = (f == 0.0) | (p == 0.0)
+    back = loaded[:, None] * p < 0.0
+    return (_time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic), np.any(lost, axis=1),
+            np.any(back, axis=1))
 
 
 def _time_fractions(t: np.ndarray, flags: np.ndarray, periodic: bool) -> list[float]:
@@ -192,16 +222,13 @@ def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, f
 
 def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
                periodic: bool, q_stats: tuple[np.ndarray, ...] | None = None,
-               gapless: Sequence[bool] = ()) -> list[dict]:
+               gapless: Sequence[bool] = (), contact: tuple | None = None) -> list[dict]:
     """:func:`mesh_response` of every row of the window's DTE ``q``, F_t ``f`` and penetration ``p`` (a stage a row,
     ``tw`` the window's times): one reduction along the rows each (numpy reduces a contiguous row as the row
-    alone, so a single row gives the 1-D numbers); ``q_stats``: the rows' (window means, std, min, max) where the
-    caller has reduced them already."""
-    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
-    lost = (f == 0.0) | (p == 0.0)
-    back = loaded[:, None] * p < 0.0
-    lost_fraction, back_fraction = _time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic)
-    any_lost, any_back = np.any(lost, axis=1), np.any(back, axis=1)
+    alone, so a single row gives the 1-D numbers); ``q_stats``: the rows' (window means, std, min, max) and
+    ``contact`` their :func:`_contact` where the caller has reduced them already."""
+    lost_fraction, back_fraction, any_lost, any_back = contact if contact is not None \
+        else _contact(tw, f, p, static_tangential_N, periodic)
     means, stds, mins, maxs = q_stats if q_stats is not None else (window_means(tw, q, periodic), q.std(axis=1),
                                                                     q.min(axis=1), q.max(axis=1))
     return [{"dte_um": DteStats(float(means[k]), float(stds[k]), float(mins[k]), float(maxs[k])),
