@@ -138,14 +138,14 @@ def window_statistics(W, whole, t, periodic, loaded):
     samples (at least one, at the times ``t``), five rows a stage (F_t, F_r, F_a, penetration, DTE); ``whole``: each
     stage's F_t over the whole run; ``loaded``: each stage's loaded flank, the sign (+1 or -1) of its static F_t.
 
-    Returns ``stats`` (a row of ``W`` a row: its window mean, min, max and standard deviation about the samples'
-    mean), ``peak_at`` (a stage's index of its first largest |F_t| in ``whole``) and per stage, columns (no contact,
+    Returns ``stats`` (a row of ``W`` a row: its window mean, min, max, standard deviation about the samples' mean
+    and that plain mean), ``peak_at`` (a stage's index of its first largest |F_t| in ``whole``) and per stage, columns (no contact,
     back flank), the window's ``fractions`` of time (:func:`gearcli.simulate.stats.time_fraction`) and ``flags``
     (1.0: some sample is so) of no contact (F_t or the penetration exactly 0) and of the back flank (a penetration
     of the other sign than the loaded flank's)."""
     rows, m = W.shape
     stages = rows // 5
-    stats = np.empty((rows, 4))
+    stats = np.empty((rows, 5))
     peak_at = np.zeros(stages, dtype=np.int64)
     fractions = np.empty((stages, 2))
     flags = np.zeros((stages, 2))
@@ -158,6 +158,7 @@ def window_statistics(W, whole, t, periodic, loaded):
         x = W[r]
         plain = (0.0 + pairwise_sum(x, 0, m, span, left)) / m  # numpy's mean, and its std's centre
         stats[r, 0] = _window_mean(x, t, buf, plain, periodic, span, left)
+        stats[r, 4] = plain
         stats[r, 1], stats[r, 2] = _extremes(x)
         for j in range(m):
             d = x[j] - plain

@@ -42,9 +42,7 @@ from gearcli.simulate.results import (
     SteadyState,
 )
 from gearcli.simulate.ringing import ringing_warnings
-from gearcli.simulate.solver import (
-    Integration,
-)
+from gearcli.simulate.solver import Integration
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -426,11 +424,14 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
     share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
-    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share, floors)
+    statics = [m.static_tangential_N for m in spec.meshes]
+    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic)  # read by both below
+    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share, floors,
+                                 reduced)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
-        s.time_s, mask, per_stage[:len(ks)], [m.static_tangential_N for m in spec.meshes], periodic=periodic,
+        s.time_s, mask, per_stage[:len(ks)], statics, periodic=periodic, reduced=reduced,
         simulated_static_N=simulated_static, gapless=[m.backlash_m == 0.0 for m in spec.meshes],
         error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
@@ -522,9 +523,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
 def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSeries], spec, solver_errors: list,
                      steps: int | None, periodic: bool, window_share: float,
-                     floors: list[float]) -> list[SamplingError | None]:
+                     floors: list[float], reduced: stats.Reduced | None = None) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
-    judged with the solver's estimate where a check pass ran; None for an empty window."""
+    judged with the solver's estimate where a check pass ran; None for an empty window. ``reduced``: the window's
+    reductions (:func:`gearcli.simulate.stats.window_reductions`), where the caller has them."""
     sel = stats.window_slice(mask)
     tw = t[sel]
     if tw.size == 0:
@@ -533,7 +535,7 @@ def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSerie
     dt = np.diff(tw)  # the window's steps, every stage's
     return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
                                     periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k],
-                                    dt=dt)
+                                    dt=dt, reduced=None if reduced is None else reduced.force(k))
             for k, m in enumerate(spec.meshes)]
 
 

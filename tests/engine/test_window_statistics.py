@@ -42,7 +42,8 @@ def test_sine_over_whole_periods_has_zero_mean_and_rms_amplitude_over_root_two()
     x = A * np.sin(2 * np.pi * periods * t)
     W = _stage(x, 2 * x, -x, x, x + 1.0)
     S, _, _, _ = _stats(W, x[None, :], t, True, [1.0])
-    mean, lo, hi, std = S[0]
+    mean, lo, hi, std, plain = S[0]
+    assert plain == pytest.approx(0.0, abs=1e-12 * A)
     assert mean == pytest.approx(0.0, abs=1e-12 * A)
     assert std == pytest.approx(A / math.sqrt(2.0), rel=1e-12)  # about the mean 0: the rms
     assert (lo, hi) == pytest.approx((-A, A), rel=1e-12)  # n / periods divisible by 4: the crests are samples
@@ -58,6 +59,7 @@ def test_trapezoid_mean_of_a_ramp_on_an_uneven_grid_is_its_midpoint_value():
     assert S[0, 0] == pytest.approx(4.0 + 1.5 * (t[0] + t[-1]) / 2, rel=1e-13)
     assert S[0, 1] == 4.0 + 1.5 * t[0] and S[0, 2] == 4.0 + 1.5 * t[-1]
     assert S[0, 3] == pytest.approx(np.sqrt(np.mean((x - x.mean()) ** 2)), rel=1e-12)  # std about the plain mean
+    assert S[0, 4] == pytest.approx(4.0 + 1.5 * np.mean(t), rel=1e-13)  # the plain mean: the samples' own
 
 
 def test_run_up_peak_is_the_first_largest_magnitude():
@@ -100,6 +102,8 @@ def test_random_rows_against_independent_numpy_reductions(n, periodic):
     np.testing.assert_array_equal(S[:, 2], W.max(axis=1))
     np.testing.assert_allclose(S[:, 3], np.sqrt(((W - W.mean(axis=1, keepdims=True)) ** 2).mean(axis=1)),
                                rtol=1e-10, atol=1e-12 * np.abs(W).max())
+    np.testing.assert_allclose(S[:, 4], np.array([math.fsum(r) / n for r in W.tolist()]), rtol=1e-12,
+                               atol=1e-12 * np.abs(W).max())
     np.testing.assert_array_equal(peak_at, np.argmax(np.abs(whole), axis=1))
 
 
@@ -131,3 +135,22 @@ def test_stages_dynamics_compiled_and_numpy_are_the_same_numbers(n, periodic, mo
     with_numpy = run()
     assert with_kernel == with_numpy
     assert repr(with_kernel) == repr(with_numpy)  # every float's repr: bit for bit, the NaN-free records
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+@pytest.mark.parametrize("kind", ["random", "constant", "sine"])
+def test_sampling_estimate_from_the_reductions_is_the_one_from_the_samples(kind, periodic):
+    """gearcli.simulate.sampling.stage_sampling given the window's reductions (the sweep's path) and computing them
+    itself: the same estimate."""
+    from gearcli.simulate import sampling
+
+    n = 400
+    t = np.linspace(0.0, 0.1, n, endpoint=not periodic)
+    ft = {"random": np.random.default_rng(7).standard_normal(n) * 30 + 900, "constant": np.full(n, 812.5),
+          "sine": 900 + 40 * np.sin(2 * np.pi * 7 * t / 0.1)}[kind]
+    W = _stage(ft, ft, ft, ft, ft)
+    S, _, _, _ = _stats(W, ft[None, :], t, periodic, [1.0])
+    given = sampling.stage_sampling(t, ft, 880.0, n, periodic=periodic, reduced=(S[0, 4], S[0, 3], S[0, 1], S[0, 2]))
+    assert given == sampling.stage_sampling(t, ft, 880.0, n, periodic=periodic)
+    if kind == "constant":  # nothing between equal samples: no sampling error
+        assert (given.min_N, given.max_N) == (0.0, 0.0)
