@@ -71,7 +71,8 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     ``diagnose=False``: the statistics without the window's ringing fit, settle test, resonance check, start-up
     summary and motor summary (a run only its statistics and counters are read from: the report's accuracy
     ladder). ``summary_start=False``: the start's warnings without ``summary.start`` (``extra["start"]``; a caller
-    that reads no summary: a sweep row, a duty point; :func:`gearcli.simulate.rigid_start.start_summary`). The
+    that reads no summary: a sweep row, a duty point; :func:`gearcli.simulate.rigid_start.start_summary`) nor
+    ``extra["damped_modes"]`` (the report's spectrum reads them). The
     design's own warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -436,6 +437,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
+    peaks = [st.peak_tangential_N for st in stages] if len(stages) == len(per_stage) else None  # max |F_t|, each
     stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic)) for k, st in enumerate(stages))
     rings = planet_ring_stiffness(model, choice)
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
@@ -455,7 +457,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
                                                        [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID,
                                                        reswitch_s=None if toggled is None else toggled[2],
-                                                       summary=summary_start) \
+                                                       summary=summary_start, peaks_N=peaks) \
         if diagnose and from_rest else (None, [])  # a continued run (a sweep's next point) has no start from rest
     diags += start_diags
     motor_summary = None
@@ -515,7 +517,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
-               "damped_modes": damped_modes(choice.run_eigenvalues),
+               **({"damped_modes": damped_modes(choice.run_eigenvalues)} if summary_start else {}),  # the report's
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
