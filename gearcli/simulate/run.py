@@ -418,8 +418,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     periodic = steady.mode == "periodic"
     series, per_stage = _series(model, s, want_series)
     errors = ref.errors if ref is not None else ()
-    stiffness = mesh_stiffness(model, choice)
-    simulated_static = simulated_static_tangential_N(model)
+    stiffness, simulated_static = mesh_stiffness(model, choice), simulated_static_tangential_N(model)
     ks = range(len(spec.meshes))
     solver_errors = [errors[k] if k < len(errors) else None for k in ks]
     run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
