@@ -12,7 +12,8 @@ entries a run and the tests call), the kernel's parts are its neighbours:
   Radau IIA; :mod:`gearcli.engine.common` the initial step both share;
 - :mod:`gearcli.engine.guards`: after every accepted step (trace, non-finite state, the samples due, the
   evaluation budget, the priced work budget with its projection, the energy watch, the stop flag);
-- :mod:`gearcli.engine.linalg`: scipy's vector sums through the same BLAS, its norm, the LU of Radau.
+- :mod:`gearcli.engine.linalg`: scipy's vector sums through the same BLAS, its norm, the LU of Radau;
+- :mod:`gearcli.engine.window`: a run's window statistics, numpy's numbers in one pass (the results').
 
 Imported only through :func:`gearcli.engine.load` (which points numba's cache at the user's cache directory first).
 Nothing here closes over a scene: every function takes the model as arrays (:mod:`gearcli.engine.packing`), so one
@@ -34,6 +35,7 @@ from gearcli.engine.numba_cache import jit_alloc
 from gearcli.engine.radau import radau  # noqa: F401 - an entry (gearcli.engine.loader.ENTRIES)
 from gearcli.engine.rhs import rhs
 from gearcli.engine.rk import rk_run
+from gearcli.engine.window import window_statistics  # noqa: F401 - the results' window statistics
 
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
 STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED

@@ -271,13 +271,15 @@ def point_functions() -> tuple[Any, Any]:
 
 
 def _warm_entry(kernel: Any, name: str) -> None:
-    """Load one integration entry (and the output channels' function, which every run's results call)."""
+    """Load one integration entry (and the output channels' and window statistics' functions, which every run's
+    results call)."""
     model, y0, t_eval, tol, wpar = _tiny_args()
     getattr(kernel, name)(model, y0, t_eval, np.array([1e-3]), tol, tol, np.int64(100), np.int64(16), wpar,
                           np.empty(0))
     for c in range(2):
         kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2),
                                 np.int64(0))
+    kernel.window_statistics(np.zeros((5, 2)), np.zeros((1, 2)), np.arange(2.0), False, np.ones(1))
 
 
 @record

@@ -22,7 +22,8 @@ from gearcli.model import elements
 #: in the cache key (tests/engine/test_engine_layers.py checks that every module the kernel imports is here)
 KERNEL_SOURCES = ("engine/kernel.py", "engine/rk.py", "engine/radau.py", "engine/common.py", "engine/guards.py",
                   "engine/rhs.py", "engine/jacobian.py", "engine/assembly.py", "engine/linalg.py", "engine/laws.py",
-                  "engine/dispatch.py", "engine/tableau.py", "engine/packing.py", "engine/blas.py", "engine/status.py",
+                  "engine/dispatch.py", "engine/tableau.py", "engine/window.py", "engine/packing.py", "engine/blas.py",
+                  "engine/status.py",
                   "engine/numba_cache.py",  # its jit options (reference counting or not) are in the machine code
                   "model/elements/__init__.py", "model/elements/torque.py", "model/elements/machine.py",
                   "model/elements/profile.py", "model/elements/energy.py",
@@ -30,7 +31,7 @@ KERNEL_SOURCES = ("engine/kernel.py", "engine/rk.py", "engine/radau.py", "engine
 #: the modules holding numba dispatchers (bound to the cache directory at import): a fresh load imports them anew
 FRESH = ("gearcli.engine.kernel", "gearcli.engine.rk", "gearcli.engine.radau", "gearcli.engine.common",
          "gearcli.engine.guards", "gearcli.engine.rhs", "gearcli.engine.jacobian", "gearcli.engine.assembly",
-         "gearcli.engine.linalg", "gearcli.engine.laws", "gearcli_dispatch")
+         "gearcli.engine.linalg", "gearcli.engine.laws", "gearcli.engine.window", "gearcli_dispatch")
 
 _memo: dict = {}
 

@@ -25,7 +25,7 @@ swing of the drivetrain's mode that the start excites (the deviation from the ri
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -413,18 +413,19 @@ def initial_te_um(lay: Layout, k: int) -> float:
 
 
 def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.ndarray], window_s: tuple[float, float],
-                  warn_ratio: float, reswitch_s: float | None = None, *,
-                  summary: bool = True) -> tuple[StartSummary | None, list[Diagnostic]]:
+                  warn_ratio: float, reswitch_s: float | None = None, *, summary: bool = True,
+                  peaks_N: Sequence[float] | None = None) -> tuple[StartSummary | None, list[Diagnostic]]:
     """``summary.start`` = {``peak_over_rigid``, ``rigid_peak_N``} per stage (the run's peak |F_t| over the rigid
     start's) and the ``peak_over_rigid`` warnings where the ratio exceeds ``warn_ratio``, naming the cause;
     ``reswitch_s`` the time a star-delta motor first fell back into star (a peak after it is named with it).
     ``summary=False``: the warnings alone, the summary None (a caller that reads none: a sweep row, a duty point),
     and the rigid peaks refined only where a warning may follow: a refined peak is at least the grid's largest
-    |F_t|, so a run peak within ``warn_ratio`` of that (the same division) is within it of the refined one too."""
+    |F_t|, so a run peak within ``warn_ratio`` of that (the same division) is within it of the refined one too.
+    ``peaks_N``: each stage's run peak max |F_t| where the caller has it (``StageDynamics.peak_tangential_N``)."""
     if t.size < 2 or t[-1] <= 0:
         return None, []
     grid = _on_grid(lay, float(t[-1]))
-    peaks = [float(np.max(np.abs(f))) for f in forces_N]
+    peaks = [float(np.max(np.abs(f))) for f in forces_N] if peaks_N is None else [float(p) for p in peaks_N]
     if not summary and _no_warning(peaks, grid[1].tangential_N, warn_ratio):
         return None, []
     rigid = _refined(*grid)

@@ -42,9 +42,7 @@ from gearcli.simulate.results import (
     SteadyState,
 )
 from gearcli.simulate.ringing import ringing_warnings
-from gearcli.simulate.solver import (
-    Integration,
-)
+from gearcli.simulate.solver import Integration
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -73,7 +71,8 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     ``diagnose=False``: the statistics without the window's ringing fit, settle test, resonance check, start-up
     summary and motor summary (a run only its statistics and counters are read from: the report's accuracy
     ladder). ``summary_start=False``: the start's warnings without ``summary.start`` (``extra["start"]``; a caller
-    that reads no summary: a sweep row, a duty point; :func:`gearcli.simulate.rigid_start.start_summary`). The
+    that reads no summary: a sweep row, a duty point; :func:`gearcli.simulate.rigid_start.start_summary`) nor
+    ``extra["damped_modes"]`` (the report's spectrum reads them). The
     design's own warnings come first in the result's. Raises SimulationError on failure, never returns NaN."""
     sim = cfg.simulation
     if sim.window_start_s is not None and sim.window_start_s >= sim.duration_s:
@@ -419,22 +418,25 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     periodic = steady.mode == "periodic"
     series, per_stage = _series(model, s, want_series)
     errors = ref.errors if ref is not None else ()
-    stiffness = mesh_stiffness(model, choice)
-    simulated_static = simulated_static_tangential_N(model)
+    stiffness, simulated_static = mesh_stiffness(model, choice), simulated_static_tangential_N(model)
     ks = range(len(spec.meshes))
     solver_errors = [errors[k] if k < len(errors) else None for k in ks]
     run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
     share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
-    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share, floors)
+    statics = [m.static_tangential_N for m in spec.meshes]
+    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic)  # read by both below
+    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share, floors,
+                                 reduced)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
-        s.time_s, mask, per_stage[:len(ks)], [m.static_tangential_N for m in spec.meshes], periodic=periodic,
+        s.time_s, mask, per_stage[:len(ks)], statics, periodic=periodic, reduced=reduced,
         simulated_static_N=simulated_static, gapless=[m.backlash_m == 0.0 for m in spec.meshes],
         error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
+    peaks = [st.peak_tangential_N for st in stages] if len(stages) == len(per_stage) else None  # max |F_t|, each
     stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic)) for k, st in enumerate(stages))
     rings = planet_ring_stiffness(model, choice)
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
@@ -454,7 +456,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     start_doc, start_diags = rigid_start.start_summary(model.layout, choice.boundary, s.time_s,
                                                        [p[0] for p in per_stage], window, stats.WARN_PEAK_OVER_RIGID,
                                                        reswitch_s=None if toggled is None else toggled[2],
-                                                       summary=summary_start) \
+                                                       summary=summary_start, peaks_N=peaks) \
         if diagnose and from_rest else (None, [])  # a continued run (a sweep's next point) has no start from rest
     diags += start_diags
     motor_summary = None
@@ -514,7 +516,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         extra={"parametric_work_J": energy.parametric_work_J,
                "stiffness_indicator": choice.indicator,
                "natural_frequencies_runup_Hz": [float(f) for f in choice.at_operating_point.natural_frequencies_Hz],
-               "damped_modes": damped_modes(choice.run_eigenvalues),
+               **({"damped_modes": damped_modes(choice.run_eigenvalues)} if summary_start else {}),  # the report's
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
@@ -522,9 +524,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
 
 def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSeries], spec, solver_errors: list,
                      steps: int | None, periodic: bool, window_share: float,
-                     floors: list[float]) -> list[SamplingError | None]:
+                     floors: list[float], reduced: stats.Reduced | None = None) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
-    judged with the solver's estimate where a check pass ran; None for an empty window."""
+    judged with the solver's estimate where a check pass ran; None for an empty window. ``reduced``: the window's
+    reductions (:func:`gearcli.simulate.stats.window_reductions`), where the caller has them."""
     sel = stats.window_slice(mask)
     tw = t[sel]
     if tw.size == 0:
@@ -533,7 +536,7 @@ def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSerie
     dt = np.diff(tw)  # the window's steps, every stage's
     return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
                                     periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k],
-                                    dt=dt)
+                                    dt=dt, reduced=None if reduced is None else reduced.force(k))
             for k, m in enumerate(spec.meshes)]
 
 

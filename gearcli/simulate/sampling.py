@@ -169,15 +169,15 @@ def _edge_excess(t: np.ndarray, x: np.ndarray, at_end: bool) -> float:
 
 
 def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_floor: bool = False,
-               dt: np.ndarray | None = None) -> float:
+               dt: np.ndarray | None = None, extremes: tuple[float, float] | None = None) -> float:
     """How far the interpolated max of ``x`` over the window ``t`` lies above its sampled max (>= 0; module doc);
     ``zero_floor``: not past zero from a sampled max at or below it (a force that the contact law clamps there);
-    ``dt``: ``np.diff(t)`` when the caller has it."""
+    ``dt``: ``np.diff(t)`` when the caller has it; ``extremes``: ``x``'s (min, max) when the caller has them."""
     n = x.size
     if n < 3:
         return 0.0
-    top = float(x.max())
-    if top == float(x.min()):
+    bottom, top = (float(x.min()), float(x.max())) if extremes is None else extremes
+    if top == bottom:
         return 0.0
     dt = np.diff(t) if dt is None else dt
     d = np.diff(x)
@@ -206,14 +206,18 @@ def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_flo
     return max(0.0, best - top)
 
 
-def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False,
-                   dt: np.ndarray | None = None) -> tuple[float, float]:
+def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, dt: np.ndarray | None = None,
+                   extremes: tuple[float, float] | None = None) -> tuple[float, float]:
     """(min, max) sampling errors of the force ``x`` over the window ``t`` (N when ``x`` is in N; module doc): neither
     interpolated extreme crosses zero, where the contact law clamps the force (module doc, "Bound"). ``dt``:
-    ``np.diff(t)`` when the caller has it (every stage's window shares it)."""
+    ``np.diff(t)`` when the caller has it (every stage's window shares it); ``extremes``: ``x``'s (min, max) when
+    the caller has them (-x's are their negatives, exactly)."""
     dt = np.diff(t) if dt is None else dt
-    return (max_excess(t, -x, periodic=periodic, zero_floor=True, dt=dt),
-            max_excess(t, x, periodic=periodic, zero_floor=True, dt=dt))
+    if extremes is not None and x.size >= 3 and extremes[0] == extremes[1]:  # a constant window: nothing between
+        return 0.0, 0.0
+    flipped = None if extremes is None else (-extremes[1], -extremes[0])
+    return (max_excess(t, -x, periodic=periodic, zero_floor=True, dt=dt, extremes=flipped),
+            max_excess(t, x, periodic=periodic, zero_floor=True, dt=dt, extremes=extremes))
 
 
 def mean_error(t: np.ndarray, x: np.ndarray) -> float:
@@ -260,21 +264,23 @@ def _up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
 
 def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
                    solver: StatisticsError | None = None, window_share: float = 1.0,
-                   floor_N: float = 0.0, dt: np.ndarray | None = None) -> SamplingError:
+                   floor_N: float = 0.0, dt: np.ndarray | None = None,
+                   reduced: tuple[float, float, float, float] | None = None) -> SamplingError:
     """The sampling error of a stage's window min and max of F_t (``t``, ``ft``: the window's samples), judged
     with the solver's estimate ``solver`` where a check pass ran (their sum against :data:`TARGET`).
     ``steps``: the ``simulation.steps`` that sampled the window (the window's h is proportional to 1/steps);
     ``window_share``: the window's length over the run's (what a window of too few samples needs more steps for);
     ``floor_N``: the least force an unloaded stage's targets refer to (:func:`estimate.force_floors_N`); ``dt``:
-    ``np.diff(t)`` when the caller has it."""
+    ``np.diff(t)`` when the caller has it; ``reduced``: ``ft``'s (plain mean, std, min, max) when the caller has
+    them (:func:`gearcli.simulate.stats.window_reductions`)."""
     if not periodic and t.size < MIN_WINDOW_SAMPLES:
         return _too_few(t, ft, static_N, steps, solver, window_share, floor_N)
-    lo, hi = extremes_error(t, ft, periodic=periodic, dt=dt)
+    lo, hi = extremes_error(t, ft, periodic=periodic, dt=dt, extremes=None if reduced is None else reduced[2:])
     if solver is not None:
         ref = solver.reference_N
     else:
-        mean = float(ft.mean())
-        ref = force_reference(mean, float(ft.std()), static_N, floor_N)
+        mean, std = (float(ft.mean()), float(ft.std())) if reduced is None else reduced[:2]
+        ref = force_reference(mean, std, static_N, floor_N)
     err = {"min": SAFETY * lo, "max": SAFETY * hi, "mean": 0.0 if periodic else mean_error(t, ft)}
     rel = {q: (v / ref if ref > 0 else (0.0 if v == 0 else math.inf)) for q, v in err.items()}
     bad = [q for q in STATISTICS if _undersampled(rel[q], solver.relative[q] if solver is not None else 0.0, q)]

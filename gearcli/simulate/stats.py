@@ -5,11 +5,12 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli import engine
 from gearcli.design.checks import STATIC_APPROACH_MODULE_FRACTION as PENETRATION_MODULE_FRACTION  # one limit for both
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.spec import MeshSpec, ModelSpec
@@ -112,31 +113,65 @@ def stage_dynamics(k: int, t: np.ndarray, mask: np.ndarray, ft: np.ndarray, fr: 
                          **response, runup_factor=runup, simulated_static_tangential_N=ref)
 
 
+class Reduced(NamedTuple):
+    """Every stage's window reductions (:func:`window_reductions`), rows as :func:`stages_dynamics` stacks them:
+    five a stage (F_t, F_r, F_a, penetration, DTE)."""
+
+    tw: np.ndarray  # the window's times
+    W: np.ndarray  # the window's samples, a row a channel
+    whole: np.ndarray  # each stage's F_t over the run
+    means: np.ndarray  # the window means (the integral's, :func:`window_means`)
+    plain: np.ndarray  # the samples' plain means
+    mins: np.ndarray
+    maxs: np.ndarray
+    stds: np.ndarray  # about the plain mean
+    peaks_at: np.ndarray  # a stage's index of its run's first largest |F_t|
+    contact: tuple  # :func:`_contact`'s
+
+    def force(self, k: int) -> tuple[float, float, float, float]:
+        """Stage ``k``'s (0-based) F_t over the window: (plain mean, std, min, max)."""
+        r = 5 * k
+        return float(self.plain[r]), float(self.stds[r]), float(self.mins[r]), float(self.maxs[r])
+
+
+def window_reductions(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequence[np.ndarray]],
+                      static_tangential_N: Sequence[float], periodic: bool) -> Reduced | None:
+    """The reductions :func:`stages_dynamics` reads (and a stage's sampling estimate: its F_t's plain mean, std,
+    min and max, :func:`gearcli.simulate.sampling.stage_sampling`), once; None where it takes a stage at a time (an
+    empty window, a stage without its five series)."""
+    if not per_stage or not np.any(mask) or any(len(p) != 5 for p in per_stage):
+        return None
+    sel = window_slice(mask)
+    whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])  # F_t over the run: its peaks
+    W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])  # (5 n, window): rows per stage
+    return Reduced(t[sel], W, whole, *_reductions(t[sel], W, whole, static_tangential_N, periodic))
+
+
 def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequence[np.ndarray]],
                     static_tangential_N: Sequence[float], *, periodic: bool = False,
                     simulated_static_N: Sequence[float | None] | None = None, gapless: Sequence[bool] = (),
+                    reduced: Reduced | None = None,
                     **fields: Sequence[Any]) -> list[StageDynamics]:
     """:func:`stage_dynamics` of every stage at once (``per_stage``: each stage's (F_t, F_r, F_a, penetration in mm,
     DTE in um)), ``fields`` (one entry per stage) set on each: the same numbers, each statistic a reduction along a
     row of one array of every stage's window (numpy reduces a contiguous row as the row alone), in a few calls where
-    a stage at a time makes a few dozen. ``gapless``: per stage, whether its mesh has no backlash (missing: it may)."""
+    a stage at a time makes a few dozen. ``gapless``: per stage, whether its mesh has no backlash (missing: it may).
+    ``reduced``: :func:`window_reductions` of the same arguments, where the caller has them."""
     n = len(per_stage)
     gaps = [bool(gapless[k]) if k < len(gapless) else False for k in range(n)]
     simulated = list(simulated_static_N) if simulated_static_N is not None else [None] * n
-    sel = window_slice(mask)
-    if n == 0 or not np.any(mask) or any(len(p) != 5 for p in per_stage):  # an empty window: one stage at a time
+    if reduced is None:
+        reduced = window_reductions(t, mask, per_stage, static_tangential_N, periodic)
+    if reduced is None:  # an empty window: one stage at a time
         return [replace(stage_dynamics(k, t, mask, p[0], p[1], p[2], p[3], static_tangential_N[k],
                                        p[4] if len(p) > 4 else None, periodic=periodic,
                                        simulated_static_N=simulated[k], gapless=gaps[k]),
                         **{f: v[k] for f, v in fields.items()})
                 for k, p in enumerate(per_stage)]
-    whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])  # F_t over the run: its peaks
-    W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])  # (5 n, window): rows per stage
-    means, mins, maxs, stds = window_means(t[sel], W, periodic), W.min(axis=1), W.max(axis=1), W.std(axis=1)
-    peaks_at = np.argmax(np.abs(whole), axis=1)
-    window_max = np.max(np.abs(W[0::5]), axis=1)
-    responses = _responses(t[sel], W[4::5], W[0::5], W[3::5], static_tangential_N, periodic,
-                           (means[4::5], stds[4::5], mins[4::5], maxs[4::5]), gaps)  # the DTE rows' own reductions
+    tw, W, whole, means, _, mins, maxs, stds, peaks_at, contact = reduced
+    window_max = np.maximum(np.abs(mins[0::5]), np.abs(maxs[0::5]))  # the window's max |F_t|: its min's or max's
+    responses = _responses(tw, W[4::5], W[0::5], W[3::5], static_tangential_N, periodic,
+                           (means[4::5], stds[4::5], mins[4::5], maxs[4::5]), gaps, contact)  # the DTE rows' reductions
 
     def channel(j: int) -> ChannelStats:
         return ChannelStats(float(means[j]), float(mins[j]), float(maxs[j]), float(stds[j]))
@@ -155,6 +190,36 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
             k + 1, channel(r), channel(r + 1), channel(r + 2), channel(r + 3), float(static_tangential_N[k]), peak,
             float(t[i]), wmax / abs(ref) if ref != 0 and math.isfinite(wmax) else None, **named))
     return out
+
+
+def _reductions(tw: np.ndarray, W: np.ndarray, whole: np.ndarray, static_tangential_N: Sequence[float],
+                periodic: bool) -> tuple[Any, ...]:
+    """The reductions of :func:`stages_dynamics`: every row of the window's ``W`` (sampled at ``tw``, five rows a
+    stage) its window mean, plain mean, min, max and std; each stage's index of its run's first largest |F_t| (``whole``: F_t
+    over the run, a stage a row); and its contact's fractions and flags (:func:`_contact`). In one compiled pass
+    where this process has loaded the compiled engine (:func:`gearcli.engine.window.window_statistics`: numpy's
+    numbers bit for bit), else numpy's reductions; numpy's too where a window value is not finite (its min and
+    max carry the NaN the compiled pass's would not)."""
+    kernel = engine.loaded_kernel()
+    if kernel is not None:
+        loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+        stats, peaks_at, fractions, flags = kernel.window_statistics(W, whole, tw, bool(periodic), loaded)
+        if np.isfinite(stats).all():
+            contact = (fractions[:, 0].tolist(), fractions[:, 1].tolist(), flags[:, 0] > 0, flags[:, 1] > 0)
+            return stats[:, 0], stats[:, 4], stats[:, 1], stats[:, 2], stats[:, 3], peaks_at, contact
+    return (window_means(tw, W, periodic), W.mean(axis=1), W.min(axis=1), W.max(axis=1), W.std(axis=1),
+            np.argmax(np.abs(whole), axis=1), _contact(tw, W[0::5], W[3::5], static_tangential_N, periodic))
+
+
+def _contact(tw: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
+             periodic: bool) -> tuple:
+    """Per row of the window's F_t ``f`` and penetration ``p``: the time fractions without contact and on the back
+    flank (:func:`mesh_response`), and whether any sample is so."""
+    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+    lost = (f == 0.0) | (p == 0.0)
+    back = loaded[:, None] * p < 0.0
+    return (_time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic), np.any(lost, axis=1),
+            np.any(back, axis=1))
 
 
 def _time_fractions(t: np.ndarray, flags: np.ndarray, periodic: bool) -> list[float]:
@@ -192,16 +257,13 @@ def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, f
 
 def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
                periodic: bool, q_stats: tuple[np.ndarray, ...] | None = None,
-               gapless: Sequence[bool] = ()) -> list[dict]:
+               gapless: Sequence[bool] = (), contact: tuple | None = None) -> list[dict]:
     """:func:`mesh_response` of every row of the window's DTE ``q``, F_t ``f`` and penetration ``p`` (a stage a row,
     ``tw`` the window's times): one reduction along the rows each (numpy reduces a contiguous row as the row
-    alone, so a single row gives the 1-D numbers); ``q_stats``: the rows' (window means, std, min, max) where the
-    caller has reduced them already."""
-    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
-    lost = (f == 0.0) | (p == 0.0)
-    back = loaded[:, None] * p < 0.0
-    lost_fraction, back_fraction = _time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic)
-    any_lost, any_back = np.any(lost, axis=1), np.any(back, axis=1)
+    alone, so a single row gives the 1-D numbers); ``q_stats``: the rows' (window means, std, min, max) and
+    ``contact`` their :func:`_contact` where the caller has reduced them already."""
+    lost_fraction, back_fraction, any_lost, any_back = contact if contact is not None \
+        else _contact(tw, f, p, static_tangential_N, periodic)
     means, stds, mins, maxs = q_stats if q_stats is not None else (window_means(tw, q, periodic), q.std(axis=1),
                                                                     q.min(axis=1), q.max(axis=1))
     return [{"dte_um": DteStats(float(means[k]), float(stds[k]), float(mins[k]), float(maxs[k])),
