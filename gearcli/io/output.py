@@ -23,6 +23,7 @@ import io
 import os
 import stat
 import sys
+import tempfile
 from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TextIO, TypeVar
@@ -202,6 +203,11 @@ def check_writable_dir(directory: str, option: str) -> None:
     if not os.access(probe, os.W_OK | os.X_OK):
         what = "directory not writable" if probe == Path(directory) else f"cannot create it in {shorten(str(probe))}"
         raise _refuse(directory, f"{option}: {what}; choose a directory you can write")
+    try:  # access() passes for root, and on a filesystem that takes no new entries (/proc): try one
+        os.rmdir(tempfile.mkdtemp(prefix=".gearcli-probe-", dir=probe))
+    except OSError as exc:
+        raise _refuse(directory, f"{option}: cannot create entries in {shorten(str(probe))} "
+                                 f"({exc.strerror or exc}); choose a directory you can write") from None
 
 
 def write_output(target: OutputTarget, text: str) -> None:
