@@ -53,7 +53,7 @@ class _Coupled(_Table):
 
 #: Each starting method's own parameters (the VFD's also ramp_s, which a motor drive takes for it alone)
 START_PARAMETERS = {"switch_speed_rpm": "star_delta", "voltage_ramp_s": "soft_start",
-                 "initial_voltage_fraction": "soft_start", "torque_limit_Nm": "vfd"}
+                    "initial_voltage_fraction": "soft_start", "torque_limit_Nm": "vfd"}
 
 
 def _starting_rules() -> list[dict]:
