@@ -74,18 +74,20 @@ def evaluate_many(model, t, y, times):
     return acc
 
 @jit_alloc
-def connector_series(kind, P, d, dd, phi, wphi, energy_from):
+def connector_series(kind, P, d, dd, phi, wphi, energy_from, channels):
     """Force, stored energy and the element's own output channels (its ``CHANNELS``, rows of ``ch``) of one
     connector at every sample (:func:`gearcli.model.outputs.connector_series`, through the same element laws); the
-    stored energy from sample ``energy_from`` on, NaN before it (not evaluated: a caller that reads it from there)."""
+    stored energy from sample ``energy_from`` on, NaN before it, and the first ``channels`` channels alone, zeros in
+    the rows after them (not evaluated: a caller that reads them from there, or not at all)."""
     n = d.size
     F = np.empty(n)
     U = np.empty(n)
     ch = np.zeros((conn_n_channels(kind), n))
+    rows = min(channels, ch.shape[0])
     for j in range(n):
         F[j] = conn_force(kind, P, d[j], dd[j], phi[j], wphi[j])[0]
         U[j] = conn_potential(kind, P, d[j], phi[j]) if j >= energy_from else np.nan
-        for i in range(ch.shape[0]):
+        for i in range(rows):
             ch[i, j] = conn_channel(kind, P, i, d[j], phi[j])
     return F, U, ch
 

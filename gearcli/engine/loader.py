@@ -278,7 +278,7 @@ def _warm_entry(kernel: Any, name: str) -> None:
                           np.empty(0))
     for c in range(2):
         kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2),
-                                np.int64(0))
+                                np.int64(0), np.int64(8))
     kernel.window_statistics(np.zeros((5, 2)), np.zeros((1, 2)), np.arange(2.0), False, np.ones(1))
 
 

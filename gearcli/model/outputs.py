@@ -133,13 +133,15 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
                       energy_from: int = 0) -> ConnectorSeries:
     """:func:`connector_series` with the compiled engine's ``kernel`` (None: the scalar laws), called with the
     signals held back by the caller (:func:`gearcli.core.signals.deferred`, once for all of a sample's
-    connectors); the stored energy from sample ``energy_from`` on (NaN before it: :func:`sample`)."""
+    connectors); the stored energy from sample ``energy_from`` on (NaN before it: :func:`sample`). The compiled
+    laws never evaluate an unexcited mesh's DTE channel (its ``dte_m`` is the deflection)."""
     x = lay.connectors[c]
     el, P = x.element, x.params
     d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
     n = d.size
     if kernel is not None and x.kind in kernel.KINDS:  # the same laws, compiled (gearcli.engine): ~100x faster
-        F, U, ch = kernel.connector_series(x.kind, *_compiled_arguments(P, d, dd, phi, wphi), energy_from)
+        F, U, ch = kernel.connector_series(x.kind, *_compiled_arguments(P, d, dd, phi, wphi), energy_from,
+                                           _evaluated_channels(x))
         channels = {name: ch[i] for i, name in enumerate(el.CHANNELS)}
     elif (vectorised := elements.series_of(el, P, d, dd, phi, wphi)) is not None:  # the same values at once
         F, U, ch = vectorised
@@ -160,6 +162,13 @@ def _connector_series(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, the
     return ConnectorSeries(F, d.copy(), pen, U, q)
 
 
+def _evaluated_channels(x) -> int:
+    """How many of connector ``x``'s leading channels the compiled laws evaluate: all of them but an unexcited
+    mesh's DTE (its last channel; its ``dte_m`` is the deflection)."""
+    names = x.element.CHANNELS
+    return len(names) - 1 if names and names[-1] == "dte_m" and not x.excited else len(names)
+
+
 def _compiled_arguments(P, d, dd, phi, wphi) -> tuple[np.ndarray, ...]:
     """The compiled ``connector_series``'s arguments after the kind: the parameter row and the law arguments as
     contiguous float arrays."""
@@ -168,13 +177,14 @@ def _compiled_arguments(P, d, dd, phi, wphi) -> tuple[np.ndarray, ...]:
 
 
 def _connector_force(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta) -> np.ndarray:
-    """``connector_series(...).force`` alone: the scalar law's force at every sample, without the energy and
-    channels the series also evaluates (the compiled laws give them all in one call: the series' force)."""
+    """``connector_series(...).force`` alone: the law's force at every sample, without the energy and channels the
+    series also evaluates (the compiled call told to evaluate neither: the series' force, the same numbers)."""
     x = lay.connectors[c]
     kernel = _loaded_kernel()
-    if kernel is not None and x.kind in kernel.KINDS:
-        return connector_series(lay, c, Y, omega, theta).force
     d, dd, phi, wphi = _law_arguments(lay, c, Y, omega, theta)
+    if kernel is not None and x.kind in kernel.KINDS:  # the compiled laws' force, no energy nor channel evaluated
+        with signals.deferred():
+            return kernel.connector_series(x.kind, *_compiled_arguments(x.params, d, dd, phi, wphi), d.size, 0)[0]
     vectorised = elements.series_of(x.element, x.params, d, dd, phi, wphi)
     return vectorised[0] if vectorised is not None else _scalar_forces(x.element, x.params, d, dd, phi, wphi)
 
@@ -233,7 +243,7 @@ def _potential(lay: Layout, c: int, Y: np.ndarray, omega: np.ndarray, theta, ker
     x = lay.connectors[c]
     if kernel is not None and x.kind in kernel.KINDS:  # the series' own call (its potential), without its channels
         args = _compiled_arguments(x.params, *_law_arguments(lay, c, Y, omega, theta))
-        return kernel.connector_series(x.kind, *args, 0)[1]
+        return kernel.connector_series(x.kind, *args, 0, 0)[1]
     d, _, phi, _ = _law_arguments(lay, c, Y, omega, theta)
     potential, P = x.element.potential, x.params
     return np.array([potential(P, dj, phj) for dj, phj in zip(d.tolist(), phi.tolist(), strict=True)], dtype=float)
