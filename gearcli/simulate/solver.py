@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 import os
-import queue
 import threading
 import time
 from bisect import bisect_right
@@ -340,12 +339,13 @@ class _KernelThread:
     def __init__(self) -> None:
         self._thread: threading.Thread | None = None
         self._pid = 0
-        self._jobs: queue.SimpleQueue = queue.SimpleQueue()
 
     def run(self, work: Callable[[], None]) -> Any:
         """Hand ``work`` (which must not raise) to the thread; returns a lock released when it has returned."""
         if self._thread is None or self._pid != os.getpid() or not self._thread.is_alive():
-            self._jobs = queue.SimpleQueue()
+            import queue  # lazy: a run on scipy alone never hands a kernel over
+
+            self._jobs: Any = queue.SimpleQueue()
             self._thread = threading.Thread(target=self._serve, args=(self._jobs,), name="gearcli-kernel",
                                             daemon=True)
             self._thread.start()
@@ -356,7 +356,7 @@ class _KernelThread:
         return done
 
     @staticmethod
-    def _serve(jobs: queue.SimpleQueue) -> None:
+    def _serve(jobs: Any) -> None:  # a queue.SimpleQueue
         while True:
             work, done = jobs.get()
             try:
