@@ -30,8 +30,10 @@ from typing import Any, TypeVar, cast, dataclass_transform
 T = TypeVar("T")
 
 
-def _getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
-    """obj -> the tuple of its attributes ``names`` (``attrgetter`` returns a bare value for one name)."""
+def fields_getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
+    """obj -> the tuple of its attributes ``names``, in C (``attrgetter`` returns a bare value for one name, so one
+    name is wrapped, and no names give ``()``): what a record compares, hashes and shows, and what
+    :func:`gearcli.design.compute` checks for finiteness."""
     if len(names) == 1:
         one = attrgetter(names[0])
         return lambda obj: (one(obj),)
@@ -41,10 +43,10 @@ def _getter(names: tuple[str, ...]) -> Callable[[Any], tuple]:
 
 
 def _methods(cls: type, fields: tuple[dataclasses.Field, ...]) -> dict[str, Callable]:
-    compared = _getter(tuple(f.name for f in fields if f.compare))
-    hashed = _getter(tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash)))
+    compared = fields_getter(tuple(f.name for f in fields if f.compare))
+    hashed = fields_getter(tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash)))
     shown = tuple(f.name for f in fields if f.repr)
-    shown_values = _getter(shown)
+    shown_values = fields_getter(shown)
 
     def __eq__(self, other):  # noqa: N807 - dataclass's: same class, equal compared fields
         if other.__class__ is self.__class__:

@@ -9,10 +9,9 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import fields, is_dataclass, replace
-from operator import attrgetter
 from typing import TYPE_CHECKING
 
-from gearcli.core.records import record
+from gearcli.core.records import fields_getter, record
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.checks import design_diagnostics, planet_ring_steel_warnings, stiffness_diagnostics
@@ -124,7 +123,7 @@ def _not_rated(st: StageResult) -> Diagnostic:
 def _require_finite(obj, key: str) -> None:
     """Every number of a stage result must be finite; a value in range that still overflows (a huge
     module with a huge density) is a bad design file, not a result (exit 2, never inf in the output)."""
-    names, values = _dataclass_fields(type(obj)) or ((), _NO_VALUES)
+    names, values = _dataclass_fields(type(obj)) or ((), _NO_FIELDS)
     for name, value in zip(names, values(obj), strict=True):
         if isinstance(value, float):
             if not math.isfinite(value):
@@ -136,10 +135,7 @@ def _require_finite(obj, key: str) -> None:
             _require_finite(value, key)
 
 
-def _NO_VALUES(obj) -> tuple:  # noqa: N802 - a getter of no fields
-    return ()
-
-
+_NO_FIELDS = fields_getter(())
 _FIELDS: dict[type, tuple[tuple[str, ...], Callable[[object], tuple]] | None] = {}
 
 
@@ -148,15 +144,8 @@ def _dataclass_fields(cls: type) -> tuple[tuple[str, ...], Callable[[object], tu
     class: every sweep point checks the same result classes."""
     if cls not in _FIELDS:
         names = tuple(f.name for f in fields(cls)) if is_dataclass(cls) else None
-        _FIELDS[cls] = None if names is None else (names, _getter(names))
+        _FIELDS[cls] = None if names is None else (names, fields_getter(names))
     return _FIELDS[cls]
-
-
-def _getter(names: tuple[str, ...]) -> Callable[[object], tuple]:
-    """obj -> the tuple of its attributes ``names`` (``attrgetter`` returns a bare value for one name)."""
-    if len(names) > 1:
-        return attrgetter(*names)
-    return (lambda obj: (getattr(obj, names[0]),)) if names else _NO_VALUES
 
 
 def _geometry(stage: Stage, k: int) -> PairGeometry:
