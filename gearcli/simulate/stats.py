@@ -202,7 +202,7 @@ def _reductions(tw: np.ndarray, W: np.ndarray, whole: np.ndarray, static_tangent
     max carry the NaN the compiled pass's would not)."""
     kernel = engine.loaded_kernel()
     if kernel is not None:
-        loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+        loaded = _loaded_signs(static_tangential_N)
         stats, peaks_at, fractions, flags = kernel.window_statistics(W, whole, tw, bool(periodic), loaded)
         if np.isfinite(stats).all():
             contact = (fractions[:, 0].tolist(), fractions[:, 1].tolist(), flags[:, 0] > 0, flags[:, 1] > 0)
@@ -211,11 +211,17 @@ def _reductions(tw: np.ndarray, W: np.ndarray, whole: np.ndarray, static_tangent
             np.argmax(np.abs(whole), axis=1), _contact(tw, W[0::5], W[3::5], static_tangential_N, periodic))
 
 
+def _loaded_signs(static_tangential_N: Sequence[float]) -> np.ndarray:
+    """Per stage, the sign of the flank its static load presses (+1 the drive flank, also under no load; -1 the
+    back flank): what :func:`mesh_response` calls the loaded flank."""
+    return np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+
+
 def _contact(tw: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
              periodic: bool) -> tuple:
     """Per row of the window's F_t ``f`` and penetration ``p``: the time fractions without contact and on the back
     flank (:func:`mesh_response`), and whether any sample is so."""
-    loaded = np.array([-1.0 if s < 0 else 1.0 for s in static_tangential_N])
+    loaded = _loaded_signs(static_tangential_N)
     lost = (f == 0.0) | (p == 0.0)
     back = loaded[:, None] * p < 0.0
     return (_time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic), np.any(lost, axis=1),
