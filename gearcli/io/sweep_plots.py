@@ -67,7 +67,7 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     paths: list[Path] = []
     figs = []
     for axis in session.spec.axes:
-        figs.append((f"response_{axis.key.replace('.', '_')}.png", _response(ok, axis.key, session.spec, n_stages)))
+        figs.append((f"response_{axis.key.replace('.', '_')}.png", _response(ok, axis.column, session.spec, n_stages)))
     if campbell is not None:
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
@@ -94,8 +94,8 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
     if not rows or not families:
         return None
     fig, axes = _figure(len(families) + 1, n_stages, height=2.1, width=4.2 * n_stages + 1, sharex=True)
-    others = [k for k in spec.keys if k != key]
-    groups = _groups(rows, key, spec.keys)
+    others = [k for k in spec.columns if k != key]
+    groups = _groups(rows, key, spec.columns)
     looks = _looks(groups)
     for i, (title, cols) in enumerate(families):
         for k in range(1, n_stages + 1):

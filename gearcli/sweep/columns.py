@@ -1,6 +1,6 @@
 """The columns of a sweep's output, and one row from one simulation result: the mapping lives here only.
 
-One row per point (docs: docs/sweeps.md): the varied keys (named by their dotted key path),
+One row per point (docs: docs/sweeps.md): the varied keys (each named by its key path as the user wrote it),
 ``direction``, ``status`` (``ok``/``failed``), ``message``, then per stage k
 ``stage{k}_tangential_N_{mean,std,min,max}``, ``stage{k}_dte_um_{mean,rms,min,max}``,
 ``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor`` (steady-window max |F_t| / static),

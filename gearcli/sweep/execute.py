@@ -146,7 +146,7 @@ def _ignore_sigint() -> None:
 def _lost(task: Task, exc: BaseException) -> list[Row]:
     """Rows for a task whose worker failed outright (not a point failure: a crash or a lost worker)."""
     msg = f"worker failed: {type(exc).__name__}: {exc}"
-    return [{"_index": p.index, **failed_row(p.values, p.direction, msg, 0.0)}
+    return [{"_index": p.index, **failed_row(p.cells(), p.direction, msg, 0.0)}
             for p in task.points if p.index not in task.skip]
 
 

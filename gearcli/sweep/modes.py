@@ -109,7 +109,7 @@ def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner, uni
         return None
     fixed: list[str] = []
     for other in (a for a in spec.axes if a.key != axis.key):  # its first value that designs (a failed row's not)
-        sets = [f"{other.key}={toml_value(v)}" for v in other.values]
+        sets = [f"{other.column}={toml_value(v)}" for v in other.values]  # as written: named in the title
         fixed.append(next((s for s in sets if _designs(scene, design_case, (*fixed, s))), sets[0]))
     return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, units_of, fixed)
 

@@ -1,5 +1,9 @@
 """A sweep's identity (what makes two runs the same sweep), and matching rows already written to points.
 
+Rows read back name their varied keys' columns as the run that wrote them spelled the keys (``stage[0].x`` or
+``stage.0.x``); :func:`relabel` renames them to this run's spelling, so a resume matches the points by the keys
+themselves, and the finished file is in this run's spelling throughout.
+
 Identity: the input's sha256 (the design file and the base ``--set`` overrides) and the sweep's
 arguments (:meth:`SweepSpec.arguments`: varied keys and values, distributions, samples, sampling, seed,
 direction). How the points are run (``--jobs``, ``--scheduler``) is not part of it. Without ``--seed`` a
@@ -14,7 +18,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from gearcli.errors import ConfigError
-from gearcli.sweep.spec import SweepSpec, _ident_value
+from gearcli.sweep.spec import SweepSpec, _ident_value, canonical_key
 
 
 def identity(spec: SweepSpec, sha256: str, version: str) -> dict:
@@ -41,6 +45,24 @@ def check_same(stored: dict, current: dict, path: str) -> None:
     if diffs:
         raise ConfigError(f"holds a different sweep: {'; '.join(diffs)}. Use another -o FILE, or remove this one "
                           "to start over", source=path)
+
+
+def relabel(rows: Sequence[dict], spec: SweepSpec) -> list[dict]:
+    """Rows read back from a file with their varied keys' columns named as ``spec`` names them: a column written in
+    the other spelling of a key (``stage.0.x`` for ``stage[0].x``) takes this run's name. Other columns stay."""
+    wanted = dict(zip(spec.keys, spec.columns, strict=True))
+    names: dict[str, str] = {}
+
+    def name(column: str) -> str:
+        if column not in names:
+            try:
+                key = canonical_key(column)
+            except ConfigError:  # not a key path: a statistic's column, say
+                key = column
+            names[column] = wanted.get(key, column)
+        return names[column]
+
+    return [{name(c): v for c, v in r.items()} for r in rows]
 
 
 def _parse_cell(v: Any) -> Any:
@@ -80,7 +102,7 @@ def ordered(rows: Sequence[dict], spec: SweepSpec) -> list[dict]:
         indices[:] = [i for i in indices if i not in keyed]
     for row in rows:
         if row.get("_index") is None:
-            left = free.get(row_ident(row, spec.keys))
+            left = free.get(row_ident(row, spec.columns))
             if left:
                 keyed[left.pop(0)] = row
     return [keyed[i] for i in sorted(keyed)]

@@ -29,7 +29,7 @@ from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
 from gearcli.sweep.load_law import load_law_of
-from gearcli.sweep.resume import check_same, done_counts, identity, ordered, seed_for
+from gearcli.sweep.resume import check_same, done_counts, identity, ordered, relabel, seed_for
 from gearcli.sweep.spec import SPEED_KEYS, SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
@@ -98,6 +98,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         stored, previous = read_previous(output)
         previous = [r for r in previous if r.get("status") in (OK, FAILED)]  # a corrupted status: computed again
     spec = spec_from_options(vary, randoms, samples, sampling, seed_for(seed, stored, bool(randoms)), direction)
+    previous = relabel(previous, spec)  # a key spelled otherwise by the run that wrote them (stage.0.x, stage[0].x)
     scene = Scene(raw, loaded.source, tuple(sets), len(design.stages), load_law_of(loaded.design))
     check_memory(loaded.design, fmt="json", series=False, source=loaded.source)  # each point's run, in memory
     try:
@@ -109,7 +110,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
-    done = done_counts(previous, spec.keys)
+    done = done_counts(previous, spec.columns)
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
     tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers, evaluate)
     if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once
@@ -117,7 +118,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
     sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
-    return Session(spec, scene, loaded.design, design, columns(spec.keys, len(design.stages), sharing), ident,
+    return Session(spec, scene, loaded.design, design, columns(spec.columns, len(design.stages), sharing), ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 
@@ -126,9 +127,10 @@ def _named_by_option(exc: ConfigError, spec: SweepSpec, sets: Sequence[str]) -> 
     overrides): ``gearcli: --vary: nosuch.x: unknown key ...``."""
     if exc.source != SOURCE or any(s.partition("=")[0].strip() == exc.key for s in sets):
         return exc
-    for option, keys in (("--vary", [a.key for a in spec.axes]), ("--random", [d.key for d in spec.randoms])):
-        if exc.key in keys:
-            return ConfigError(exc.message, source=option, key=exc.key)
+    for option, varied in (("--vary", spec.axes), ("--random", spec.randoms)):
+        written = next((v.column for v in varied if v.key == exc.key), None)
+        if written is not None:  # named as the user wrote it (stage[0].x or stage.0.x)
+            return ConfigError(exc.message, source=option, key=written)
     return exc
 
 
@@ -139,10 +141,10 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
     if whole:
         d = next(d for d in spec.randoms if d.key == whole[0])
         if list_keys(scene.raw, scene.source, scene.sets, [d.key]):
-            raise SweepUsageError(f"{d.key} is a list, {d.kind}(...) draws one number: draw its entries by index, "
-                                  f"--random '{d.key}.0={d.kind}(...)' (the first; .1 the second ...; in a list of "
-                                  f"tables the entry's key: {d.key}.0.KEY)", source="--random")
-        raise SweepUsageError(f"{d.key} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
+            raise SweepUsageError(f"{d.column} is a list, {d.kind}(...) draws one number: draw its entries by index, "
+                                  f"--random '{d.column}.0={d.kind}(...)' (the first; .1 the second ...; in a list of "
+                                  f"tables the entry's key: {d.column}.0.KEY)", source="--random")
+        raise SweepUsageError(f"{d.column} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
                               "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")
 

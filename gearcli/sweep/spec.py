@@ -51,7 +51,8 @@ class SweepUsageError(ConfigError):
 
 
 def canonical_key(key: str) -> str:
-    """``stage[0].pinion.teeth`` -> ``stage.0.pinion.teeth``: the column name of a varied key."""
+    """``stage[0].pinion.teeth`` -> ``stage.0.pinion.teeth``: what identifies a varied key (the overrides, the
+    sweep's recorded arguments, resume), whichever of the two spellings the user wrote."""
     return ".".join(str(s) for s in parse(f"{key}=0").path)
 
 
@@ -77,6 +78,11 @@ def _check_exclusive(keys: Sequence[str]) -> None:
 class Axis:
     key: str  # canonical dotted key path
     values: tuple[JsonScalar, ...]
+    label: str = ""  # the key path as the user wrote it (``stage[0].backlash_mm``): the column's name
+
+    @property
+    def column(self) -> str:
+        return self.label or self.key
 
 
 @record
@@ -85,6 +91,11 @@ class Distribution:
     kind: str  # "normal" | "uniform"
     a: float  # mu or lower bound
     b: float  # sigma or upper bound
+    label: str = ""  # the key path as the user wrote it: the column's name
+
+    @property
+    def column(self) -> str:
+        return self.label or self.key
 
     def ppf(self, u):
         """Inverse CDF on uniform draws in [0, 1)."""
@@ -105,12 +116,13 @@ def _number(text: str, option: str, what: str) -> float:
     return x
 
 
-def _split(text: str, option: str, example: str) -> tuple[str, str]:
+def _split(text: str, option: str, example: str) -> tuple[str, str, str]:
+    """``KEY=VALUE`` -> (canonical key, the key as written, value)."""
     key, sep, value = text.partition("=")
     if not sep or not key.strip() or not value.strip():
         raise SweepUsageError(f"expected KEY={example}, got {text!r}", source=option)
     try:
-        return canonical_key(key), value
+        return canonical_key(key), key.strip(), value
     except ConfigError as exc:
         raise SweepUsageError(exc.message, source=option, key=key.strip()) from None
 
@@ -118,7 +130,7 @@ def _split(text: str, option: str, example: str) -> tuple[str, str]:
 def parse_vary(text: str) -> Axis:
     """``input.speed_rpm=300:1500:13`` or ``stage.0.backlash_mm=0.1,0.2,0.3`` -> an :class:`Axis`."""
     option = "--vary"
-    key, value = _split(text, option, "START:STOP:N or KEY=v1,v2,...")
+    canonical, key, value = _split(text, option, "START:STOP:N or KEY=v1,v2,...")
     m = _RANGE.match(value)
     if m:
         start, stop = _number(m[1], option, f"{key}: START"), _number(m[2], option, f"{key}: STOP")
@@ -131,7 +143,7 @@ def parse_vary(text: str) -> Axis:
         values: tuple[float, ...] = (start,) if n == 1 else tuple(start + (stop - start) * i / (n - 1) for i in range(n))
         if all(re.fullmatch(r"\s*[+-]?\d+\s*", t) for t in (m[1], m[2])) and all(float(v).is_integer() for v in values):
             values = tuple(int(v) for v in values)  # 17:25:9 is teeth 17, 18, ..., 25 (integers)
-        return Axis(key, values)
+        return Axis(canonical, values, key)
     if ":" in value and "," not in value and not value.strip().startswith(("[", "{", '"')):
         raise SweepUsageError(f"{key}: expected START:STOP:N with an integer N, got {value!r}", source=option)
     listed = _toml_items(value)
@@ -145,7 +157,7 @@ def parse_vary(text: str) -> Axis:
     bad = next((t for t, v in zip(items, values, strict=True) if not _finite(v)), None)
     if bad is not None:  # nan/inf would make a point no output format can write (JSON has no NaN)
         raise SweepUsageError(f"{key}: values must be finite, got {bad!r}", source=option)
-    return Axis(key, values)
+    return Axis(canonical, values, key)
 
 
 def _toml_items(value: str) -> list | None:
@@ -178,7 +190,7 @@ def _finite(value: object) -> bool:
 def parse_random(text: str) -> Distribution:
     """``stage.0.backlash_mm=normal(0.25,0.02)`` or ``...=uniform(0.2,0.3)`` -> a :class:`Distribution`."""
     option = "--random"
-    key, value = _split(text, option, "normal(mu,sigma) or KEY=uniform(a,b)")
+    canonical, key, value = _split(text, option, "normal(mu,sigma) or KEY=uniform(a,b)")
     m = _DIST.match(value)
     if not m:
         raise SweepUsageError(f"{key}: expected normal(mu,sigma) or uniform(a,b), got {value!r}", source=option)
@@ -188,7 +200,7 @@ def parse_random(text: str) -> Distribution:
         raise SweepUsageError(f"{key}: normal(mu, sigma) needs sigma > 0, got {b:g}", source=option)
     if kind == "uniform" and not b > a:
         raise SweepUsageError(f"{key}: uniform(a, b) needs b > a, got ({a:g}, {b:g})", source=option)
-    return Distribution(key, kind, a, b)
+    return Distribution(canonical, kind, a, b, key)
 
 
 def unit_samples(n: int, dims: int, sampling: str, seed: int):
@@ -205,8 +217,15 @@ class Point:
     """One operating point: its position in the sweep's canonical order, and the values to set."""
 
     index: int
-    values: tuple[tuple[str, JsonScalar], ...]  # (key, value) in column order
+    values: tuple[tuple[str, JsonScalar], ...]  # (canonical key, value) in column order
     direction: str  # "up" | "down" | "none"
+    columns: tuple[str, ...] = ()  # the varied keys' column names (as the user wrote them); () = the keys
+
+    def cells(self) -> tuple[tuple[str, JsonScalar], ...]:
+        """(column, value) of the varied keys: the row's first cells."""
+        if not self.columns:
+            return self.values
+        return tuple((c, v) for c, (_, v) in zip(self.columns, self.values, strict=True))
 
     @property
     def ident(self) -> tuple[str, ...]:
@@ -239,7 +258,9 @@ class SweepSpec:
         keys = [a.key for a in self.axes] + [d.key for d in self.randoms]
         dup = next((k for k in keys if keys.count(k) > 1), None)
         if dup:
-            raise SweepUsageError(f"{dup} is varied twice", source="--vary/--random")
+            written = list(dict.fromkeys(c for k, c in zip(keys, self.columns, strict=True) if k == dup))
+            raise SweepUsageError(f"{' and '.join(written)} {'is' if len(written) == 1 else 'are one key,'} varied "
+                                  "twice", source="--vary/--random")
         _check_exclusive(keys)
         if not keys:
             raise SweepUsageError("nothing to sweep: give --vary KEY=START:STOP:N or --samples N --random KEY=...")
@@ -273,7 +294,13 @@ class SweepSpec:
 
     @property
     def keys(self) -> tuple[str, ...]:
+        """The varied keys, canonical (``stage.0.backlash_mm``): what the points set and resume compares."""
         return tuple(a.key for a in self.axes) + tuple(d.key for d in self.randoms)
+
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """The varied keys' column names: each key path as the user wrote it (``stage[0].backlash_mm``)."""
+        return tuple(a.column for a in self.axes) + tuple(d.column for d in self.randoms)
 
     @property
     def n_points(self) -> int:
@@ -289,7 +316,8 @@ class SweepSpec:
         grids = [tuple(a.values) for a in self.axes]
         if not self.direction:
             combos = [g + s for g in itertools.product(*grids) for s in samples]
-            return [[Point(i, tuple(zip(self.keys, c, strict=True)), NO_DIRECTION)] for i, c in enumerate(combos)]
+            return [[Point(i, tuple(zip(self.keys, c, strict=True)), NO_DIRECTION, self.columns)]
+                    for i, c in enumerate(combos)]
         out: list[list[Point]] = []
         index = 0
         for direction in ("up", "down") if self.direction == "both" else (self.direction,):
@@ -297,8 +325,8 @@ class SweepSpec:
             first = ascending[::-1] if direction == "down" else ascending
             for rest in itertools.product(*grids[1:]):
                 for sample in samples:
-                    branch = [Point(index + j, tuple(zip(self.keys, (v, *rest, *sample), strict=True)), direction)
-                              for j, v in enumerate(first)]
+                    branch = [Point(index + j, tuple(zip(self.keys, (v, *rest, *sample), strict=True)), direction,
+                                    self.columns) for j, v in enumerate(first)]
                     index += len(branch)
                     out.append(branch)
         return out

@@ -115,14 +115,14 @@ def iter_task(task: Task) -> Iterator[Row]:
                 jump = _jump(task, before, point, result) if task.continuation else ""
             except GearcliError as exc:
                 prev = before = None
-                row = failed_row(point.values, point.direction, _message(exc, task.scene, point),
+                row = failed_row(point.cells(), point.direction, _message(exc, task.scene, point),
                                  time.perf_counter() - t0)
             except NUMERICAL as exc:  # a bug or a numerical failure
                 prev = before = None
-                row = failed_row(point.values, point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
+                row = failed_row(point.cells(), point.direction, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
             else:
                 prev, before = carried, _Before(point, result, carried)
-                row = ok_row(point.values, point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
+                row = ok_row(point.cells(), point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
                              message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings)
                                                         + tuple(shared or ()))))
             if point.index not in task.skip:
@@ -143,14 +143,15 @@ def _jump(task: Task, before: _Before | None, point: Point, result: SimulationRe
     p0, r0, c0 = before
     if on_branch(r0, result):
         return ""
-    changed = [(k, a, b) for (k, a), (_, b) in zip(p0.values, point.values, strict=True) if a != b]
+    changed = [(i, a, b) for i, ((_, a), (_, b)) in enumerate(zip(p0.values, point.values, strict=True)) if a != b]
     if len(changed) != 1 or not all(isinstance(v, (int, float)) for v in changed[0][1:]):
-        return f"jump: left the branch of the previous point ({one_line(str(p0.values))})"
-    key, v0, v1 = changed[0]
+        return f"jump: left the branch of the previous point ({one_line(str(p0.cells()))})"
+    at, v0, v1 = changed[0]
     carried = {id(r0): c0}
 
     def refine(value: float, last: SimulationResult) -> SimulationResult | None:
-        mid = Point(-1, tuple((k, value if k == key else v) for k, v in point.values), point.direction)
+        mid = Point(-1, tuple((k, value if i == at else v) for i, (k, v) in enumerate(point.values)), point.direction,
+                    point.columns)
         try:
             _, got, c = _evaluate(task.evaluate, task.scene, mid, carried[id(last)])
         except (GearcliError, *NUMERICAL):  # a refinement point that fails is off the branch; the row stands
@@ -158,7 +159,7 @@ def _jump(task: Task, before: _Before | None, point: Point, result: SimulationRe
         carried[id(got)] = c
         return got
 
-    return jump_note(key, float(cast(float, v0)), float(cast(float, v1)), r0, result, refine)  # numbers (above)
+    return jump_note(point.cells()[at][0], float(cast(float, v0)), float(cast(float, v1)), r0, result, refine)  # numbers (above)
 
 
 def run_task(task: Task) -> list[Row]:
