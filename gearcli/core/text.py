@@ -10,11 +10,13 @@ markdown file, a CSV cell or an error message (docs/output.md, "Text fields"):
 - :func:`shorten` also caps the length (a 1 MB key name is shown as its start, its end and its length).
 - :func:`markdown_inline` also escapes the characters markdown would read as structure.
 - :func:`csv_text_cell` neutralises spreadsheet formulas in text (never numeric) CSV cells.
+- :func:`figure` writes a number to a few significant digits without an exponent for whole numbers.
 Rich markup is avoided at the source: writers hand rich ``Text`` objects, never markup strings.
 """
 
 from __future__ import annotations
 
+import math
 import re
 
 _BIDI = "\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"
@@ -61,3 +63,11 @@ def csv_text_cell(text: str) -> str:
     (the OWASP advice for CSV injection); controls escaped. Numbers are never passed here."""
     shown = visible(text)
     return "'" + shown if text.startswith(_FORMULA_START) else shown
+
+
+def figure(x: float, digits: int) -> str:
+    """``x`` to ``digits`` significant digits, whole numbers written out (a 100 % share as ``100``, not
+    ``1e+02``; a 14389 °/s crossing as ``14389``); small numbers as ``format(x, '.{digits}g')``."""
+    if x == 0.0 or not math.isfinite(x) or abs(x) >= 1e9 or math.floor(math.log10(abs(x))) < digits - 1:
+        return format(x, f".{digits}g")
+    return f"{x:.0f}"

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import math
-
 from rich.console import RenderableType
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar
+from gearcli.core.text import figure
 from gearcli.diagnostics import warning_objects
 from gearcli.io.serialize import as_object, csv_text, plain
 from gearcli.io.units import OutputUnits
@@ -93,14 +92,6 @@ def in_speed_unit(rpm: float, units: OutputUnits) -> float:
 def _strength(c) -> str:
     gain = "∞" if c.amplification is None else figure(c.amplification, 2)
     return f"{figure(100 * c.participation, 2)} %, {gain}"
-
-
-def figure(x: float, digits: int) -> str:
-    """``x`` to ``digits`` significant digits, whole numbers written out (a 100 % share as ``100``, not
-    ``1e+02``; a 14389 °/s crossing as ``14389``); small numbers as ``format(x, '.{digits}g')``."""
-    if x == 0.0 or not math.isfinite(x) or abs(x) >= 1e9 or math.floor(math.log10(abs(x))) < digits - 1:
-        return format(x, f".{digits}g")
-    return f"{x:.0f}"
 
 
 def modes_tables(analyses: list[ModalAnalysis], units: OutputUnits | None = None) -> list[RenderableType]:

@@ -9,7 +9,7 @@ cannot resolve.
 from __future__ import annotations
 
 from gearcli.core.records import record
-from gearcli.core.text import shorten
+from gearcli.core.text import figure, shorten
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
 from gearcli.report.compare import reversed_lossy_stages
@@ -330,7 +330,7 @@ def modes_section(r: Report) -> Section | None:
                                                    f"{u.speed_from_deg_s(6.0 * c.input_speed_rpm):.4g} "
                                                    f"{u.speed_label}") + f" ({c.strength})"
                           for c in near) or "none"
-        rows.append((str(m.number), g(m.frequency_Hz, 5), f"{100 * m.damping_ratio:.2g}",
+        rows.append((str(m.number), g(m.frequency_Hz, 5), figure(100 * m.damping_ratio, 2),
                      f"{m.dominant} ({100 * max(m.energy_share):.0f} %)", cross))
     return Section("Modes and resonances", ("mode", "f [Hz]", "ζ [%]", "dominant element (strain energy)",
                                             f"orders within ±{100 * RESONANCE_BAND:.0f} % of the mode at the nominal speed"),
