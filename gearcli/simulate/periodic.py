@@ -313,6 +313,39 @@ def poincare_atol(layout, atol: np.ndarray, rtol: float, fastest_rad_s: float) -
     return out
 
 
+#: a motor's run-up lasts at least this many times its rigid drivetrain's start (to 98 % of the operating speed)
+START_MARGIN = 1.25
+
+
+def run_up_end(model, sim, from_rest: bool) -> float | None:
+    """The ``window_start_s`` a run of the file's ``[simulation]`` ``sim`` takes: the file's, and where
+    ``steady = "periodic"``, where its sampled run-up ends (:func:`run_up`): for a start from rest that no ramp bounds (no ramps, where the drive's and the load's steps
+    at t = 0 ring on after them, or a motor, whose start lasts until it reaches its operating point) the fixed
+    window's default start (docs/numerics.md), a motor's no earlier than :data:`START_MARGIN` times its rigid
+    drivetrain's start (:mod:`gearcli.simulate.rigid_start`), so the start-up's samples give its peaks, its
+    ``runup_factor``, ``summary.start`` and the motor's ``start_time_s`` as a window run's do; else None (the run-up
+    ends with the ramps). A later end that leaves no whole period before ``duration_s`` is not taken."""
+    spec, lay = model.spec, model.layout
+    duration_s, window_start_s = sim.duration_s, sim.window_start_s
+    ramps = max(spec.drive.ramps_end_s, spec.load.ramp_s)
+    motor = spec.drive.kind == "motor"
+    if sim.steady != "periodic" or window_start_s is not None or not from_rest or (ramps > 0 and not motor) \
+            or ramps >= duration_s:
+        return window_start_s
+    from gearcli.simulate import stats  # lazy: a periodic run from rest only
+
+    ends = [stats.steady_window(spec, duration_s, None)[0][0]]
+    if motor:
+        from gearcli.simulate import motor as motor_mod  # lazy: scipy.optimize, a motor's periodic run only
+        from gearcli.simulate import rigid_start  # lazy: a motor's periodic run only
+
+        rigid = rigid_start.integrate(lay, duration_s)
+        started = motor_mod.start_time(rigid.time_s, rigid.speed_rad_s, motor_mod.operating_point(lay).speed_rad_s)
+        ends = ([START_MARGIN * started] if started is not None else []) + ends
+    T = scene_period(lay).period_s
+    return max((e for e in ends if periods_cap(duration_s, max(e, ramps), T) >= 1), default=None)
+
+
 def run_up(model, method: str, rtol: float, *, steps: int, duration_s: float, window_start_s: float | None,
            y0: np.ndarray | None, max_nfev: int, engine: str, samples: int | None = None):
     """The run from 0 to the end of the ramps (or ``window_start_s``), sampled as a window run would be (at

@@ -32,7 +32,7 @@ from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.course import CourseChange, integrate_auto, pace_warnings, predicted_nfev, prediction
 from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
-from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, scene_period
+from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, run_up_end, scene_period
 from gearcli.simulate.planet_stats import peak_series, planet_series, planets_of, with_planets
 from gearcli.simulate.results import (
     EnergyBalance,
@@ -112,7 +112,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         if found is not None:
             return found
         periodic = False  # the periodic search was tried: the later windows are what is left
-    result = run(sim.duration_s, sim.steps, sim.window_start_s)
+    result = run(sim.duration_s, sim.steps, run_up_end(model, sim, from_rest=y0 is None))  # a window's: its start
     if settle:
         result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=periodic, finish=finish)
     return result
