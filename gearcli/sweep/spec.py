@@ -235,6 +235,10 @@ class Point:
     def overrides(self) -> list[str]:
         return [f"{k}={toml_value(v)}" for k, v in self.values]
 
+    def shown(self) -> str:
+        """The point's values with the keys as the user wrote them (``stage[0].backlash_mm=0.1, ...``): messages."""
+        return ", ".join(f"{c}={toml_value(v)}" for c, v in self.cells())
+
 
 def _ident_value(v: JsonScalar) -> str:
     return repr(float(v)) if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)

@@ -111,7 +111,7 @@ def iter_task(task: Task) -> Iterator[Row]:
                 check = family.needs_check(point.index)
                 _, result, carried = _evaluate(task.evaluate, task.scene, point, prev if task.continuation else None,
                                                check)
-                shared = family.checked(one_line(", ".join(point.overrides())), result) if check else family.carried(result)
+                shared = family.checked(one_line(point.shown()), result) if check else family.carried(result)
                 jump = _jump(task, before, point, result) if task.continuation else ""
             except GearcliError as exc:
                 prev = before = None
@@ -145,7 +145,7 @@ def _jump(task: Task, before: _Before | None, point: Point, result: SimulationRe
         return ""
     changed = [(i, a, b) for i, ((_, a), (_, b)) in enumerate(zip(p0.values, point.values, strict=True)) if a != b]
     if len(changed) != 1 or not all(isinstance(v, (int, float)) for v in changed[0][1:]):
-        return f"jump: left the branch of the previous point ({one_line(str(p0.cells()))})"
+        return f"jump: left the branch of the previous point ({one_line(p0.shown())})"
     at, v0, v1 = changed[0]
     carried = {id(r0): c0}
 

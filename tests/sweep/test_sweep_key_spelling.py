@@ -106,3 +106,10 @@ def test_plot_axis_label_is_the_key_as_written():
     assert fig._suptitle.get_text() == f"sweep response against {BRACKET}"
     legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert any("load.torque_Nm=4000" in t for t in legend)
+
+
+def test_a_points_messages_name_its_keys_as_written():
+    spec = spec_from_options([f"{BRACKET}=0.25"], [], None, "lhs", None, None)
+    point = spec.branches()[0][0]
+    assert point.overrides() == [f"{DOTTED}=0.25"]  # what the point sets: the key itself
+    assert point.shown() == f"{BRACKET}=0.25"  # what a row's message says (the family's checked point, a jump)
