@@ -52,8 +52,9 @@ def peak_series(model: TorsionalModel, s: Sampled, stages_ft: list[np.ndarray]) 
 def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False
                ) -> tuple[tuple[PlanetDynamics, ...], float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
-    the mean planet's, the sun torque's share: |mean of the flank-signed means|; None for a parallel stage and for an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time
-    (0, 0 for a parallel stage)."""
+    the mean planet's, the sun torque's share: |mean of the flank-signed means|; None for a parallel stage and for
+    an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time (0, 0 for a parallel
+    stage)."""
     series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
     if not series:
         return (), None, (0.0, 0.0)
