@@ -58,6 +58,7 @@ PERIODIC_NOT_ATTRACTING = "periodic_not_attracting"  # steady = "periodic": a st
 # life (gearcli life): about the duty, a point's run, the spectrum
 DUTY = "duty"  # about the duty itself: a series' reverse rows, a load reversal
 LOAD_SHARING = "load_sharing"  # how the dynamic route takes the planets' load sharing
+DYNAMIC_UNEXCITED = "dynamic_unexcited"  # the dynamic route's window met one force at every engagement (K_v = 1)
 MOTOR_SPEED_MISMATCH = "motor_speed_mismatch"  # the motor runs at another speed than the point's speed_rpm
 PEAKS_UNRESOLVED = "peaks_unresolved"  # the mesh-cycle peaks are resolved worse than the target
 STARTS_NOT_COUNTED = "starts_not_counted"  # --static: the duty's starts are counted on the dynamic route only

@@ -192,12 +192,14 @@ class PlanetaryLayout:
     The global frame of the module; planet j sits at psi_j about the central axis, r_j = (0, cos psi_j,
     sin psi_j) from the axis to its centre, t_j = x X r_j. The sun-mesh pitch point is at r_w,s r_j from the
     axis (r_w,p,s from the planet's centre towards the sun), the ring-mesh pitch point at r_w,r r_j (r_w,p,r
-    beyond the planet's centre). Per planet and unit transverse line force F_bt of its sun mesh (F_t =
-    F_bt cos a_w,sp, the ring mesh carrying the same F_t by the planet's moment balance), the forces on the
-    planet are
+    beyond the planet's centre). Per planet and transverse line force F_bt of its sun mesh: the planet's moment
+    balance about its own axis, F_bt,sp r_b,p = F_bt,rp r_b,p (both meshes act on the planet's one base
+    cylinder), gives the ring mesh the same F_bt, so its tangential force at its own working circle is
+    F_bt cos a_w,rp (not the sun mesh's F_bt cos a_w,sp: the two differ where the working pressure angles do,
+    e.g. profile-shifted NREL-type stages). The forces on the planet are
 
-        from the sun:   s F_t t_j + F_t tan(a_w,sp) r_j + h_p s F_t tan(b_b)/cos(a_w,sp) x      at the sun pitch point
-        from the ring:  s F_t t_j - F_t tan(a_w,rp) r_j - h_p s F_t tan(b_b)/cos(a_w,rp) x      at the ring pitch point
+        from the sun:   s F_bt cos(a_w,sp) t_j + F_bt sin(a_w,sp) r_j + h_p s F_bt tan(b_b) x    at the sun pitch point
+        from the ring:  s F_bt cos(a_w,rp) t_j - F_bt sin(a_w,rp) r_j - h_p s F_bt tan(b_b) x    at the ring pitch point
 
     (s = +1/-1 the sense of the sun's external torque, which the planets' tangential forces on the sun
     oppose; h_p the planet's hand: an axial force on a gear is -h (F_tang . t_P) tan(b_w) x, t_P = x X (axis to
@@ -233,15 +235,14 @@ class PlanetaryLayout:
         psi = self.psi_rad[j]
         r = (0.0, math.cos(psi), math.sin(psi))
         t = (0.0, -math.sin(psi), math.cos(psi))
-        f_t = line_force_N * math.cos(self.alpha_w_sun_rad)
         s, h = self.torque_sense, self.planet_hand
-        tan_b = math.tan(self.base_helix_rad)
-        radial_s = abs(f_t) * math.tan(self.alpha_w_sun_rad)
-        radial_r = abs(f_t) * math.tan(self.alpha_w_ring_rad)
-        axial_s = h * s * f_t * tan_b / math.cos(self.alpha_w_sun_rad)
-        axial_r = -h * s * f_t * tan_b / math.cos(self.alpha_w_ring_rad)
-        from_sun = (axial_s, s * f_t * t[1] + radial_s * r[1], s * f_t * t[2] + radial_s * r[2])
-        from_ring = (axial_r, s * f_t * t[1] - radial_r * r[1], s * f_t * t[2] - radial_r * r[2])
+        f_ts = line_force_N * math.cos(self.alpha_w_sun_rad)  # tangential, each mesh at its own working circle
+        f_tr = line_force_N * math.cos(self.alpha_w_ring_rad)
+        radial_s = abs(line_force_N) * math.sin(self.alpha_w_sun_rad)
+        radial_r = abs(line_force_N) * math.sin(self.alpha_w_ring_rad)
+        axial = h * s * line_force_N * math.tan(self.base_helix_rad)  # F_bt tan(b_b) on each mesh, opposite senses
+        from_sun = (axial, s * f_ts * t[1] + radial_s * r[1], s * f_ts * t[2] + radial_s * r[2])
+        from_ring = (-axial, s * f_tr * t[1] - radial_r * r[1], s * f_tr * t[2] - radial_r * r[2])
         x = self.axial_mm["planet"] or 0.0
         centre = 0.0 if about_planet else self.centre_distance_mm
         at_sun = centre - self.r_w_planet_sun_mm

@@ -456,6 +456,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                 warnings += verdicts.starts_warning(p, pd.start)
                 if route != "static":
                     warnings += verdicts.starts_from_rest_warning(p, pd.cfg.input.drive, pd.cfg.input.ramp_s)
+    if route != "static":
+        warnings += verdicts.unexcited_warning([pd.point.name for pd in evaluated if _unexcited(pd.loads)])
     hours = sum(p.hours for p in points)
     first = evaluated[0].design
     stages = tuple(_stage_life(evaluated, k, variant, hours) for k in range(len(first.stages)))
@@ -472,6 +474,14 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
                  for pd in evaluated)
     return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
                       runs, stages, bearings, messages(warnings), tuple(warnings))
+
+
+def _unexcited(loads: Sequence[StageLoads]) -> bool:
+    """Whether every loaded stage met one force at every engagement of its window: its classes spread by no more
+    than ``verdicts.UNEXCITED_K_V`` of the largest (a quiet window's are one class), no dynamic increment."""
+    loaded = [ld for ld in loads if ld.static_N and ld.forces_N]
+    return bool(loaded) and all(max(ld.forces_N) - min(ld.forces_N) <= verdicts.UNEXCITED_K_V * max(ld.forces_N)
+                                for ld in loaded)
 
 
 def _verdicts(cfg: DesignFile, stages: Sequence[StageLife], bearings: Sequence[BearingLife], hours: float,

@@ -11,11 +11,20 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from gearcli.diagnostics import BEARING_LIFE_SHORT, DUTY, LIFE_SAFETY_LOW, STARTS_NOT_FROM_REST, Diagnostic, warning
+from gearcli.diagnostics import (
+    BEARING_LIFE_SHORT,
+    DUTY,
+    DYNAMIC_UNEXCITED,
+    LIFE_SAFETY_LOW,
+    STARTS_NOT_FROM_REST,
+    Diagnostic,
+    warning,
+)
 from gearcli.life.duty import DutyPoint
 from gearcli.life.result import BearingLife, ModeLife, StageLife, member_label
 from gearcli.life.starts import StartData
 
+UNEXCITED_K_V = 1e-6  # classes spread by no more than this share of the largest: one force at every engagement
 HOURS_TOLERANCE = 1e-3  # relative difference of the duty's hours from [rating] required_life_h without a warning
 _MEMBERS = ("pinion", "gear", "ring", "planet_ring_side")
 _SYMBOL = {"pitting": "S_H", "bending": "S_F"}
@@ -118,3 +127,18 @@ def starts_from_rest_warning(point: DutyPoint, drive: str, ramp_s: float) -> lis
                     "not from rest: what is counted as its start is the run before the window at that speed, not a "
                     "start-up; give drive = \"motor\" with its starting method (or a speed drive's input.ramp_s > 0) to "
                     "count starts from rest", point=point.name, starts=point.starts, drive=drive)]
+
+
+def unexcited_warning(points: Sequence[str]) -> list[Diagnostic]:
+    """The dynamic route's duty ``points`` whose steady window met one force at every tooth engagement (the
+    classes of every loaded stage within :data:`UNEXCITED_K_V`): the model has none of the excitation that ISO
+    6336-1's K_v stands for, so their damage carries no dynamic increment, less than the static route's; said once,
+    as the identical planets' K_gamma is (the dynamic spectrum stands for K_v only as far as the model excites)."""
+    if not points:
+        return []
+    return [warning(DYNAMIC_UNEXCITED, f"duty point(s) {', '.join(points)}: every simulated tooth engagement met the "
+                    "same force, the steady one (no dynamic increment: the model has no mesh excitation, "
+                    "transmission_error_um, stiffness_harmonics or time_varying, nor torque ripple or load "
+                    "fluctuation), so these points' damage is the rating's at K_v = 1, below the static route's with "
+                    "ISO 6336-1's K_v (--static); give the meshes their excitation for a dynamic spectrum that stands "
+                    "for K_v", points=list(points))]

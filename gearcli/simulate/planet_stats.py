@@ -52,8 +52,9 @@ def peak_series(model: TorsionalModel, s: Sampled, stages_ft: list[np.ndarray]) 
 def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False
                ) -> tuple[tuple[PlanetDynamics, ...], float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
-    their mean; None for a parallel stage and for an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time
-    (0, 0 for a parallel stage)."""
+    the mean planet's, the sun torque's share: |mean of the flank-signed means|; None for a parallel stage and for
+    an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time (0, 0 for a parallel
+    stage)."""
     series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
     if not series:
         return (), None, (0.0, 0.0)
@@ -67,14 +68,17 @@ def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, peri
 
     n = 1 + max(j for j, _ in series)
     planets = tuple(PlanetDynamics(j + 1, mesh(*series[(j, "sun")]), mesh(*series[(j, "ring")])) for j in range(n))
-    means = np.array([abs(p.sun.tangential_N.mean) for p in planets])
+    # signed by the flank: a planet that a position error pushes onto its back flank takes load off the others, so
+    # the mean planet is the sun torque's share, |mean of the signed means| (a mean of magnitudes counted it twice)
+    signed = np.array([p.sun.tangential_N.mean for p in planets])
+    means, share = np.abs(signed), abs(float(signed.mean()))
     peaks = [(float(np.max(np.abs(series[(j, "sun")][0]))), int(np.argmax(np.abs(series[(j, "sun")][0]))))
              for j in range(n)]
     peak, at = max(peaks)
     # an unloaded stage's window means are round-off (~1e-10 N): their ratio is no load sharing (the report's
     # accuracy study takes the same line between a load and none: 1e-3 of the run-up peak)
-    loaded = means.mean() > UNLOADED_OF_PEAK * peak
-    return planets, (float(means.max() / means.mean()) if loaded else None), (peak, float(s.time_s[at]))
+    loaded = share > UNLOADED_OF_PEAK * peak
+    return planets, (float(means.max() / share) if loaded else None), (peak, float(s.time_s[at]))
 
 
 def with_planets(st: StageDynamics, planets: tuple[PlanetDynamics, ...], sharing: float | None,

@@ -33,6 +33,7 @@ from gearcli import diagnostics as dg
 from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.outputs import Sampled, tooth_forces
+from gearcli.model.planet_spec import PlanetarySpec
 from gearcli.simulate.choice import Choice, excited_radians
 from gearcli.simulate.estimate import AMPLITUDE, FORGOTTEN, LIGHT_DAMPING, MIN_RTOL, STATISTICS, TARGET, CheckPass
 from gearcli.simulate.solver import Integration
@@ -46,16 +47,28 @@ MIN_STEPS_PER_PERIOD = 0.2  # an implicit run with fewer steps per period of suc
 
 def quiet_since(choice: Choice, duration_s: float) -> float | None:
     """The time from which nothing drives the chain's vibration, or None: the end of the drive's and the load's
-    ramps in a scene of parallel stages without excitation (transmission error, stiffness harmonics, time-varying
+    ramps in a scene of parallel (or quiet planetary, :func:`_quiet_stage`) stages without excitation (transmission error, stiffness harmonics, time-varying
     contact, torque ripple, load fluctuation), without backlash (impacts) and with a speed or torque drive (a motor
     start has no end known before the run); from there every mode's vibration decays at its own rate."""
     lay = choice.layout
     spec = lay.spec
-    if spec.drive.kind == "motor" or spec.elements or any(m is not None for m in spec.stage_models):
+    if spec.drive.kind == "motor" or spec.elements or not all(_quiet_stage(m) for m in spec.stage_models):
         return None
     if any(m.backlash_m > 0.0 for m in spec.meshes) or excited_radians(spec, lay, duration_s) > 0.0:
         return None
     return max(spec.drive.ramp_s, spec.load.ramp_s)
+
+
+def _quiet_stage(model: object) -> bool:
+    """Whether a stage's own model (``ModelSpec.stage_models[k]``) drives nothing after the ramps: none (the chain's
+    pair, checked with the chain), or a planetary stage whose sun and ring meshes have no excitation and no
+    backlash (its planets' position errors are constant offsets); any other kind's model is not known quiet."""
+    if model is None:
+        return True
+    if not isinstance(model, PlanetarySpec):
+        return False
+    return not any(m.backlash_m > 0.0 or m.time_varying or any(m.transmission_error_m) or any(m.stiffness_harmonics)
+                   for m in (model.sun_mesh, model.ring_mesh))
 
 
 def unresolved_mode(choice: Choice, run: Integration, duration_s: float,

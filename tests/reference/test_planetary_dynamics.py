@@ -89,6 +89,28 @@ def test_a_planet_with_a_position_error_carries_more_as_the_hand_model_says(erro
         assert_allclose(abs(p.sun.tangential_N.mean), f_mean_bt * math.cos(alpha_t) - extra / 2, rtol=1e-3)
 
 
+def test_a_planet_pushed_onto_its_back_flank_still_shares_by_the_sun_torque():
+    """A 12 um error on planet 1 unloads planets 2 and 3 past zero (the hand model's F_mean - k_eq e / N < 0): with no
+    backlash and linear meshes they go on along their back flanks, the same law, so F_j = F_mean + k_eq (e_j - mean e)
+    still holds, signed. The mean planet is the sun torque's share F_mean, not the mean of the magnitudes."""
+    error_um = 12.0
+    design, sim = _run([error_um, 0.0, 0.0])
+    st, ds = sim.stages[0], design.stages[0]
+    k_sp = ds.iso6336_mesh_stiffness_N_mm_um * ds.face_width_mm * 1e6
+    k_rp = ds.planetary.planet_ring.iso6336_mesh_stiffness_N_mm_um * ds.planetary.planet_ring.face_width_mm * 1e6
+    k_eq = k_sp * k_rp / (k_sp + k_rp)
+    f_mean_bt = T_LOAD / (1 + Z_R / Z_S) / (N * 0.5e-3 * ds.pinion.base_diameter_mm)
+    gain = k_eq * error_um * 1e-6
+    assert f_mean_bt - gain / N < -0.2 * f_mean_bt  # the scene is what the test is for: planets 2 and 3 reversed
+    alpha_t = math.radians(20.0)
+    signed = [p.sun.tangential_N.mean for p in st.planets]
+    sense = math.copysign(1.0, signed[0])
+    assert_allclose([sense * f for f in signed],
+                    [(f_mean_bt + gain * (e - error_um / N) / error_um) * math.cos(alpha_t) for e in (error_um, 0, 0)],
+                    rtol=1e-3)
+    assert_allclose(st.load_sharing_factor, 1 + gain * (1 - 1 / N) / f_mean_bt, rtol=1e-3)
+
+
 def test_the_compiled_engine_runs_the_planet_meshes_through_the_registry():
     """The three-body planet mesh is a registered compiled element: the kernel integrates the planetary and
     matches the Python engine (same method and tolerance; the two engines' step sequences differ only by
