@@ -124,7 +124,7 @@ class StageDynamics:
     simulated_static_tangential_N: float | None = None  # static F_t of the load the simulation applies, with
     # the losses its dynamics model (the stage efficiencies): the reference of both factors
     # a planetary stage (issue 25): every planet's sun and ring mesh; the largest planet's window-mean sun-mesh
-    # |F_t| over the mean of all planets (the stage's own fields are planet 1's sun mesh)
+    # |F_t| over the mean planet's (the sun torque's share) (the stage's own fields are planet 1's sun mesh)
     planets: tuple[PlanetDynamics, ...] = ()
     load_sharing_factor: float | None = None
     # [rating] dynamic_factor = "simulated" on a planetary stage: its planet–ring mesh rated at the ring meshes'

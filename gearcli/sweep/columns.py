@@ -5,7 +5,7 @@ One row per point (docs: docs/sweeps.md): the varied keys (each named by its key
 ``stage{k}_tangential_N_{mean,std,min,max}``, ``stage{k}_dte_um_{mean,rms,min,max}``,
 ``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor`` (steady-window max |F_t| / static),
 ``stage{k}_runup_factor`` (whole-run peak / static), a planetary stage's ``stage{k}_load_sharing_factor``
-(the largest planet's window-mean sun-mesh |F_t| over the planets' mean; parallel stages have no such
+(the largest planet's window-mean sun-mesh |F_t| over the mean planet's, the sun torque's share; parallel stages have no such
 column), then ``output_speed_rpm``, ``nfev``, ``wall_s``. A cell the result does not provide is empty (``None``): the dynamic transmission error and
 the contact-loss fraction come from the excitation outputs; :data:`STAGE_STATISTICS` reads them from
 ``StageDynamics.dte_um`` (an object with ``mean``/``rms``/``min``/``max``) and
