@@ -213,7 +213,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     # error is the max's, over the static force)
     unresolved = [s.index for s in result.stages if (s.error_estimate is not None and not s.error_estimate.resolved)
                   or (s.sampling_error is not None and not s.sampling_error.resolved)]
-    k_v_sampling = [None if s.sampling_error is None or not s.static_tangential_N else
+    k_v_sampling = [None if s.sampling_error is None or not s.static_tangential_N or s.sampling_error.aliased else
                     s.sampling_error.max_N / abs(s.simulated_static_tangential_N or s.static_tangential_N)
                     for s in result.stages]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
