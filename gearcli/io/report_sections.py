@@ -247,7 +247,8 @@ def solver_lines(r: Report) -> list[str]:
     sv, sim = r.simulation.solver, r.simulation
     return [
         f"solver {sv.method} ({sv.choice_reason}), rtol {sv.rtol:g}: {sv.steps} steps, nfev {sv.nfev}, "
-        f"njev {sv.njev}, wall {sv.wall_s:.3g} s",
+        f"njev {sv.njev}, wall {sv.wall_s:.3g} s" + (f" (the result's {sv.runs} runs: nfev {sv.total_nfev}, wall "
+                                                     f"{sv.total_wall_s:.3g} s)" if sv.runs > 1 else ""),
         f"energy balance residual {sv.energy_residual:.2e} (input work − load work − damping loss − ΔKE − ΔPE, "
         "relative to the largest energy)",
         f"dynamic ratio {sim.ratio:.6g}, output {_output_speed(sim)}",

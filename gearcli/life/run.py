@@ -218,6 +218,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                     for s in result.stages]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
               "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": int(result.time_s.size), "window_s": list(result.window_s),
+              "runs": sv.runs, "total_nfev": sv.total_nfev, "total_wall_s": sv.total_wall_s,  # every run: spent.py
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "k_v_sampling_error": k_v_sampling,
               "energy_residual": sv.energy_residual}

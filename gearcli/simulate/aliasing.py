@@ -73,31 +73,37 @@ def amplitude(t: np.ndarray, centred: np.ndarray, weights: np.ndarray, f: float)
     return 2.0 * abs(complex(np.sum(weights * centred * phasor))) / float(np.sum(weights))
 
 
-def found(t: np.ndarray, ft: np.ndarray, reference_N: float, steps: int,
-          lines: tuple[list[tuple[float, str]], list[float]]) -> JsonObject | None:
-    """The strongest component of ``lines`` above the Nyquist frequency of the window's samples ``t`` that carries
-    more than the target of ``reference_N`` in the window's F_t ``ft`` (module text), or None: {frequency_Hz,
-    source, alias_Hz, amplitude_N, samples_per_period, steps} (``steps``: the file's ``simulation.steps`` that
-    samples it GOOD_PER_PERIOD times a period; None beyond the schema's maximum)."""
+def found(t: np.ndarray, forces_N: list[np.ndarray], references_N: list[float], steps: int,
+          lines: tuple[list[tuple[float, str]], list[float]]) -> list[JsonObject | None]:
+    """Per stage (its window F_t in ``forces_N``), the strongest component of ``lines`` above the Nyquist frequency
+    of the window's samples ``t`` that carries more than the target of its reference force (module text), or None:
+    {frequency_Hz, source, alias_Hz, amplitude_N, samples_per_period, steps} (``steps``: the file's
+    ``simulation.steps`` that samples it GOOD_PER_PERIOD times a period; None beyond the schema's maximum). Each
+    alias's phasor is made once, for every stage."""
     above, below = lines
     n, span = t.size, float(t[-1] - t[0]) if t.size > 1 else 0.0
-    if not above or n < sampling.MIN_WINDOW_SAMPLES or not span > 0.0 or not reference_N > 0.0:
-        return None
-    h = span / (n - 1)
-    fs, gap = 1.0 / h, RESOLUTION_BINS / span
+    best: list[JsonObject | None] = [None] * len(forces_N)
+    judged = [k for k, ref in enumerate(references_N) if ref > 0.0]
+    if not above or not judged or n < sampling.MIN_WINDOW_SAMPLES or not span > 0.0:
+        return best
+    fs, gap = (n - 1) / span, RESOLUTION_BINS / span
     weights = 0.5 - 0.5 * np.cos(2.0 * math.pi * (t - t[0]) / span)
-    centred = ft - float(np.sum(weights * ft)) / float(np.sum(weights))
-    best: JsonObject | None = None
+    total = float(np.sum(weights))
+    # every judged stage's Hann-weighted F_t about its weighted mean, one row each (einsum: no BLAS threads)
+    rows = np.array([weights * (forces_N[k] - float(np.einsum("i,i->", weights, forces_N[k])) / total)
+                     for k in judged])
     for f, label in above:
         fa = alias_Hz(f, fs)
         if fa < gap or any(abs(fa - g) < gap for g in below):
             continue  # a drift, or a resolved line's: the projection cannot tell them apart
-        a = amplitude(t, centred, weights, fa)
-        if a > sampling.TARGET * reference_N and (best is None or a > _num(best, "amplitude_N")):
-            per = fs / f
-            want = sampling.up_to_two_figures(steps * sampling.GOOD_PER_PERIOD / per, slack=1e-9)
-            best = {"frequency_Hz": f, "source": label, "alias_Hz": fa, "amplitude_N": a, "samples_per_period": per,
-                    "steps": want if want <= MAX_STEPS else None}
+        phase = (2.0 * math.pi * fa) * (t - t[0])
+        amps = 2.0 * np.hypot(np.einsum("kn,n->k", rows, np.cos(phase)), np.einsum("kn,n->k", rows, np.sin(phase))) \
+            / total
+        for k, a in zip(judged, (float(x) for x in amps), strict=True):
+            if a > sampling.TARGET * references_N[k] and (best[k] is None or a > _num(best[k] or {}, "amplitude_N")):
+                want = sampling.up_to_two_figures(steps * sampling.GOOD_PER_PERIOD * f / fs, slack=1e-9)
+                best[k] = {"frequency_Hz": f, "source": label, "alias_Hz": fa, "amplitude_N": a,
+                           "samples_per_period": fs / f, "steps": want if want <= MAX_STEPS else None}
     return best
 
 
@@ -124,9 +130,11 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
         return out  # a periodic window: 64 samples a period of its fastest excitation
     nyquist = 0.5 * (tw.size - 1) / float(tw[-1] - tw[0])
     lines = candidates(layout, np.zeros(0) if eigenvalues is None else eigenvalues, nyquist)
-    return [se if se is None or sampling.too_few(se) else
-            unbounded(se, found(tw, np.asarray(per_stage[k][0])[sel], se.reference_N, basis, lines))
-            for k, se in enumerate(out)]
+    judged = [se is not None and not sampling.too_few(se) for se in out]
+    hits = found(tw, [np.asarray(per_stage[k][0])[sel] for k in range(len(out))],
+                 [se.reference_N if se is not None and ok else 0.0 for se, ok in zip(out, judged, strict=True)],
+                 basis, lines)
+    return [se if se is None else unbounded(se, hit) for se, hit in zip(out, hits, strict=True)]
 
 
 def unbounded(se: SamplingError, alias: JsonObject | None) -> SamplingError:

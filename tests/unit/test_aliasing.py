@@ -26,7 +26,7 @@ def _window(components: list[tuple[float, float]], mean: float = 1000.0) -> tupl
 def test_a_sinusoid_above_nyquist_is_found_with_its_amplitude():
     # 2500 Hz sampled at 4 kHz shows at 1500 Hz with its own amplitude (a sinusoid keeps it when sampled)
     t, x = _window([(625.0, 50.0), (2500.0, 20.0)])
-    got = aliasing.found(t, x, 1000.0, 2000, ([(2500.0, "test line")], [625.0, 1250.0, 1875.0]))
+    got = aliasing.found(t, [x], [1000.0], 2000, ([(2500.0, "test line")], [625.0, 1250.0, 1875.0]))[0]
     assert got is not None
     assert_allclose(got["frequency_Hz"], 2500.0, rtol=1e-12)
     assert_allclose(got["alias_Hz"], FS - 2500.0, rtol=1e-12)
@@ -38,13 +38,13 @@ def test_a_sinusoid_above_nyquist_is_found_with_its_amplitude():
 
 def test_a_component_below_the_target_is_not_force_the_window_carries():
     t, x = _window([(625.0, 50.0), (2500.0, 0.5 * sampling.TARGET * 1000.0)])
-    assert aliasing.found(t, x, 1000.0, 2000, ([(2500.0, "small")], [625.0])) is None
+    assert aliasing.found(t, [x], [1000.0], 2000, ([(2500.0, "small")], [625.0])) == [None]
 
 
 def test_an_alias_on_a_resolved_line_is_not_judged():
     # 3375 Hz aliases to 625 Hz, the resolved fundamental's: the projection cannot tell them apart
     t, x = _window([(625.0, 50.0)])
-    assert aliasing.found(t, x, 1000.0, 2000, ([(3375.0, "on the line")], [625.0])) is None
+    assert aliasing.found(t, [x], [1000.0], 2000, ([(3375.0, "on the line")], [625.0])) == [None]
 
 
 def test_the_alias_folds_into_the_first_nyquist_band():
