@@ -10,8 +10,9 @@ between the samples: the window's min, max and std may miss up to about that amp
 
 The candidates are what the scene can put there: its excitation lines (each excitation's fundamental and its first
 :data:`gearcli.simulate.sampling.PARTIAL_HARMONICS` harmonics: a transmission error's or stiffness cycle's
-harmonics, a torque ripple, a load fluctuation) and its modes' damped frequencies (the run's linearisation)
-above the Nyquist frequency. What each carries is measured from the window itself: F_t about its mean projected
+harmonics, a torque ripple, a load fluctuation; and its higher harmonics within a mode's resonance band, which a
+lightly damped mode amplifies) and its modes' damped frequencies (the run's linearisation) above the Nyquist
+frequency. What each carries is measured from the window itself: F_t about its mean projected
 on the alias frequency with a Hann window (``2 |sum w x e^(-i w t)| / sum w``: a sinusoid's amplitude, the leakage
 of other lines falling as the cube of their distance). It cannot be told apart from a resolved line at the same
 alias: an alias within :data:`RESOLUTION_BINS` frequency resolutions ``1 / T`` of an excitation line below the
@@ -38,26 +39,33 @@ from gearcli.simulate.periodic import excitation_periods
 from gearcli.simulate.results import SamplingError
 
 RESOLUTION_BINS = 2.0  # the Hann window's main lobe half-width, in units of 1 / T
+BAND_WIDTHS = 3.0  # a mode's resonance band whose excitation harmonics are candidates, in half-power half-widths
+MAX_HARMONIC = 256  # the highest harmonic of an excitation taken as a candidate
 
 
-def candidates(layout, eigenvalues: np.ndarray, nyquist_Hz: float) -> tuple[list[tuple[float, str]], list[float]]:
+def candidates(layout, eigenvalues: np.ndarray, nyquist_Hz: float,
+               span_s: float = 0.0) -> tuple[list[tuple[float, str]], list[float]]:
     """(frequency, label) of the scene's excitation lines and modes above ``nyquist_Hz``, and the excitation lines
-    below it (the resolved ones an alias may fall on)."""
-    above: list[tuple[float, str]] = []
+    below it (the resolved ones an alias may fall on). Besides each excitation's first harmonics, its higher ones
+    within a mode's resonance band above ``nyquist_Hz`` (:data:`BAND_WIDTHS` half-power half-widths sigma / 2 pi,
+    at least RESOLUTION_BINS / ``span_s``; at most :data:`MAX_HARMONIC`): a lightly damped mode amplifies a high
+    harmonic of a stiffness cycle or a contact nonlinearity there."""
+    periods = [ex for ex in excitation_periods(layout) if ex.period_s > 0.0]
+    modes = [(float(z.imag) / (2.0 * math.pi), max(0.0, -float(z.real)) / (2.0 * math.pi))
+             for z in np.asarray(eigenvalues, dtype=complex) if float(z.imag) / (2.0 * math.pi) > nyquist_Hz]
+    above: list[tuple[float, str]] = [(f, "natural mode") for f, _ in modes]
     below: list[float] = []
-    for ex in excitation_periods(layout):
-        if not ex.period_s > 0.0:
-            continue
-        for j in range(1, sampling.PARTIAL_HARMONICS + 1):
-            f = j / ex.period_s
-            if f > nyquist_Hz:
-                above.append((f, f"{ex.label} excitation" + (f"'s harmonic {j}" if j > 1 else "")))
-            else:
-                below.append(f)
-    for z in np.asarray(eigenvalues, dtype=complex):
-        f = float(z.imag) / (2.0 * math.pi)
-        if f > nyquist_Hz:
-            above.append((f, "natural mode"))
+    for ex in periods:
+        fe = 1.0 / ex.period_s
+        orders = set(range(1, sampling.PARTIAL_HARMONICS + 1))
+        for f, half in modes:
+            band = max(BAND_WIDTHS * half, RESOLUTION_BINS / span_s if span_s > 0.0 else 0.0)
+            orders |= set(range(max(1, math.ceil((f - band) / fe)), min(MAX_HARMONIC, math.floor((f + band) / fe)) + 1))
+        for j in sorted(orders):
+            if j * fe > nyquist_Hz:
+                above.append((j * fe, f"{ex.label} excitation" + (f"'s harmonic {j}" if j > 1 else "")))
+            elif j <= sampling.PARTIAL_HARMONICS:
+                below.append(j * fe)
     return above, below
 
 
@@ -129,7 +137,7 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
     if periodic or layout is None or tw.size < sampling.MIN_WINDOW_SAMPLES or not float(tw[-1] - tw[0]) > 0.0:
         return out  # a periodic window: 64 samples a period of its fastest excitation
     nyquist = 0.5 * (tw.size - 1) / float(tw[-1] - tw[0])
-    lines = candidates(layout, np.zeros(0) if eigenvalues is None else eigenvalues, nyquist)
+    lines = candidates(layout, np.zeros(0) if eigenvalues is None else eigenvalues, nyquist, float(tw[-1] - tw[0]))
     judged = [se is not None and not sampling.too_few(se) for se in out]
     hits = found(tw, [np.asarray(per_stage[k][0])[sel] for k in range(len(out))],
                  [se.reference_N if se is not None and ok else 0.0 for se, ok in zip(out, judged, strict=True)],

@@ -242,13 +242,14 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \
         and choice.requested == AUTO else None
     if ref is not None and finer is not None:  # auto resolves the means at a tighter rtol (docs/numerics.md "... auto")
-        return spent.added(simulate_model(model, duration_s=duration_s, steps=steps, method=method, rtol=finer,
-                              window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
-                              steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
-                              engine=engine, progress=progress,
-                              tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
-                              diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps,
-                              summary_start=summary_start), run.nfev + ref.nfev, run.wall_s + ref.wall_s)
+        again = simulate_model(model, duration_s=duration_s, steps=steps, method=method, rtol=finer,
+                               window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
+                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
+                               engine=engine, progress=progress,
+                               tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
+                               diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps,
+                               summary_start=summary_start)
+        return spent.added(again, run.nfev + ref.nfev, run.wall_s + ref.wall_s)  # this run and its check replaced
     if tightened is not None:
         diags.append(tightened)
 

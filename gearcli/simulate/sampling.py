@@ -36,8 +36,9 @@ is piecewise linear in the mesh phase) 1.2-4.5x on configs/mixer_time_varying_ba
 configs/concrete_mixer_te.toml (benchmarks/bench_sampling.py, against the same run sampled 16x finer).
 Not seen at all: vibration faster than the samples resolve (a few samples per period or fewer: it aliases to
 a slower, smooth-looking signal). configs/conveyor.toml's stage 2 carries a ~1.6 kHz vibration sampled at 2 kHz:
-its min is 5.2e-3 off, estimated 5e-5. Above the Nyquist frequency a mode or excitation line the window carries is
-found and the estimate is not taken for a bound there (:mod:`gearcli.simulate.aliasing`: ``sampling_error.aliased``).
+its min is 5.2e-3 off, estimated 5e-5. ``gearcli report`` warns (``sampling``) where a natural frequency lies
+above the samples' Nyquist frequency; there a mode or excitation line that carries force in the window is found and
+the estimate not taken for a bound (:mod:`gearcli.simulate.aliasing`: ``sampling_error.aliased``).
 
 Aliased excitation. The estimate needs the peaks to be sampled at all: an excitation (a mesh's transmission
 error or stiffness cycle, a torque ripple, a load fluctuation: :func:`gearcli.simulate.periodic.excitation_periods`,
