@@ -40,6 +40,7 @@ from gearcli.simulate.results import SamplingError
 
 RESOLUTION_BINS = 2.0  # the Hann window's main lobe half-width, in units of 1 / T
 BAND_WIDTHS = 3.0  # a mode's resonance band whose excitation harmonics are candidates, in half-power half-widths
+BAND_MAX = 0.1  # ... at most this share of the mode's frequency either side (a heavily damped mode amplifies little)
 MAX_HARMONIC = 256  # the highest harmonic of an excitation taken as a candidate
 
 
@@ -48,7 +49,8 @@ def candidates(layout, eigenvalues: np.ndarray, nyquist_Hz: float,
     """(frequency, label) of the scene's excitation lines and modes above ``nyquist_Hz``, and the excitation lines
     below it (the resolved ones an alias may fall on). Besides each excitation's first harmonics, its higher ones
     within a mode's resonance band above ``nyquist_Hz`` (:data:`BAND_WIDTHS` half-power half-widths sigma / 2 pi,
-    at least RESOLUTION_BINS / ``span_s``; at most :data:`MAX_HARMONIC`): a lightly damped mode amplifies a high
+    at least RESOLUTION_BINS / ``span_s``, at most :data:`BAND_MAX` of its frequency; harmonics up to
+    :data:`MAX_HARMONIC`): a lightly damped mode amplifies a high
     harmonic of a stiffness cycle or a contact nonlinearity there."""
     periods = [ex for ex in excitation_periods(layout) if ex.period_s > 0.0]
     modes = [(float(z.imag) / (2.0 * math.pi), max(0.0, -float(z.real)) / (2.0 * math.pi))
@@ -59,7 +61,7 @@ def candidates(layout, eigenvalues: np.ndarray, nyquist_Hz: float,
         fe = 1.0 / ex.period_s
         orders = set(range(1, sampling.PARTIAL_HARMONICS + 1))
         for f, half in modes:
-            band = max(BAND_WIDTHS * half, RESOLUTION_BINS / span_s if span_s > 0.0 else 0.0)
+            band = min(BAND_MAX * f, max(BAND_WIDTHS * half, RESOLUTION_BINS / span_s if span_s > 0.0 else 0.0))
             orders |= set(range(max(1, math.ceil((f - band) / fe)), min(MAX_HARMONIC, math.floor((f + band) / fe)) + 1))
         for j in sorted(orders):
             if j * fe > nyquist_Hz:
