@@ -256,8 +256,11 @@ def life_tables(r: LifeResult) -> list[RenderableType]:
         if p.solver:
             s = p.solver
             window = cast("Sequence[float]", s["window_s"])
+            runs = s.get("runs") or 1
+            whole = f" (its {runs} runs: nfev {s['total_nfev']}, wall {s['total_wall_s']:.3g} s)" \
+                if isinstance(runs, int) and runs > 1 else ""
             out.append(text(f"point {p.name}: {s['method']} ({s['engine']}) rtol {s['rtol']:g}, nfev {s['nfev']}, "
-                            f"wall {s['wall_s']:.3g} s, window {window[0]:.4g}–{window[1]:.4g} s, "
+                            f"wall {s['wall_s']:.3g} s{whole}, window {window[0]:.4g}–{window[1]:.4g} s, "
                             f"mesh cycles {', '.join(str(c) for c in p.mesh_cycles)}, peak error "
                             f"{', '.join(f'{e:.1e}' for e in p.peak_error)}, statistics "
                             f"{'resolved' if s['statistics_resolved'] else 'NOT resolved'}"))

@@ -117,6 +117,11 @@ def sampling_notes(r: Report) -> list[str]:
             continue
         fix = "" if e.resolved else (f" — NOT resolved: --set simulation.steps={e.suggested_steps}"
                                      if e.suggested_steps else " — NOT resolved within the schema's maximum steps")
+        if e.aliased:  # force above the samples' Nyquist frequency: no bound (gearcli.simulate.aliasing)
+            out.append(f"stage {st.index}: sampling error of the window min / max F_t not bounded: the "
+                       f"{e.aliased.get('source')} at {e.aliased.get('frequency_Hz'):.4g} Hz is above the samples' "
+                       f"Nyquist frequency{fix}")
+            continue
         out.append(f"stage {st.index}: sampling error of the window min / max F_t {e.min_N:.2g} / {e.max_N:.2g} N "
                    f"({e.relative['min']:.1e} / {e.relative['max']:.1e} of "
                    f"{reference_words(e.reference_N, True) if not st.static_tangential_N else 'the mean'}, target "
@@ -242,7 +247,8 @@ def solver_lines(r: Report) -> list[str]:
     sv, sim = r.simulation.solver, r.simulation
     return [
         f"solver {sv.method} ({sv.choice_reason}), rtol {sv.rtol:g}: {sv.steps} steps, nfev {sv.nfev}, "
-        f"njev {sv.njev}, wall {sv.wall_s:.3g} s",
+        f"njev {sv.njev}, wall {sv.wall_s:.3g} s" + (f" (the result's {sv.runs} runs: nfev {sv.total_nfev}, wall "
+                                                     f"{sv.total_wall_s:.3g} s)" if sv.runs > 1 else ""),
         f"energy balance residual {sv.energy_residual:.2e} (input work − load work − damping loss − ΔKE − ΔPE, "
         "relative to the largest energy)",
         f"dynamic ratio {sim.ratio:.6g}, output {_output_speed(sim)}",

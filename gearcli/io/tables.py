@@ -31,7 +31,7 @@ from gearcli.io.table_kit import (
 from gearcli.io.units import input_torque_window_means, of_result
 from gearcli.rating import for_rating
 from gearcli.results import DesignResult, RatedMesh, StageResult
-from gearcli.simulate.results import SimulationResult, StageDynamics
+from gearcli.simulate.results import SamplingError, SimulationResult, StageDynamics
 from gearcli.stages import kinds
 from gearcli.stages.design import gear_pairs
 
@@ -287,8 +287,7 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
              [_g(m.linearised_N_mm) if (m := s.mesh_stiffness) else "—" for s in gear])]
     rows += [(f"est. error {q} F_t [N]", [_g(_est(s.error_estimate, q), 2) for s in gear])
              for q in ("min", "max", "std")]
-    rows.append(("sampling error min / max F_t [N]", [f"{_g(e.min_N, 2)} / {_g(e.max_N, 2)}"
-                                                      if (e := s.sampling_error) else "—" for s in gear]))
+    rows.append(("sampling error min / max F_t [N]", [_sampling_cell(s.sampling_error) for s in gear]))
     rows.append(("statistics resolved (mean 1e-4, else 1e-3)", [_resolved(s) for s in gear]))
     mesh = _quantity_table("mesh stiffness used and error estimate", [f"stage {s.index}" for s in gear], rows)
     sv = r.solver
@@ -307,7 +306,8 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         lines.append(f"motor: start to 98 % {start}   window mean {motor['operating_speed_rpm']:.5g} rpm, slip "
                      f"{100 * slip:.3g} %   operating point of the curves {point}")
     lines.append(f"solver {sv.method}  rtol {sv.rtol:g}  steps {sv.steps}  nfev {sv.nfev}  njev {sv.njev}  "
-                 f"wall {sv.wall_s:.3g} s")
+                 f"wall {sv.wall_s:.3g} s" + (f"   (the result's {sv.runs} runs: nfev {sv.total_nfev}, wall "
+                                              f"{sv.total_wall_s:.3g} s)" if sv.runs > 1 else ""))
     lines.append(f"energy residual {sv.energy_residual:.2e}")
     lines.append(f"method: {sv.choice_reason}")
     steady = steady_line(r)
@@ -331,6 +331,15 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         return [*head, bearing_stats_table(r.window_s, r.extra["bearings"]), *tail, *own, *simulated,
                 *(text(line) for line in lines)]
     return [*head, *tail, *own, *simulated, *(text(line) for line in lines)]
+
+
+def _sampling_cell(e: SamplingError | None) -> str:
+    """The sampling estimate's min / max, or what the samples cannot bound (docs/numerics.md, "Aliasing")."""
+    if e is None:
+        return "—"
+    if e.aliased:
+        return f"not bounded ({_g(cast(float, e.aliased.get('frequency_Hz')), 4)} Hz aliased)"
+    return f"{_g(e.min_N, 2)} / {_g(e.max_N, 2)}"
 
 
 @record

@@ -213,11 +213,12 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     # error is the max's, over the static force)
     unresolved = [s.index for s in result.stages if (s.error_estimate is not None and not s.error_estimate.resolved)
                   or (s.sampling_error is not None and not s.sampling_error.resolved)]
-    k_v_sampling = [None if s.sampling_error is None or not s.static_tangential_N else
+    k_v_sampling = [None if s.sampling_error is None or not s.static_tangential_N or s.sampling_error.aliased else
                     s.sampling_error.max_N / abs(s.simulated_static_tangential_N or s.static_tangential_N)
                     for s in result.stages]
     solver: JsonObject = {"method": sv.method, "engine": sv.engine, "engine_reason": sv.engine_reason, "rtol": sv.rtol, "nfev": sv.nfev, "steps": sv.steps,
               "wall_s": sv.wall_s, "compile_s": sv.compile_s, "duration_s": result.final_time_s or duration, "output_samples": int(result.time_s.size), "window_s": list(result.window_s),
+              "runs": sv.runs, "total_nfev": sv.total_nfev, "total_wall_s": sv.total_wall_s,  # every run: spent.py
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "k_v_sampling_error": k_v_sampling,
               "energy_residual": sv.energy_residual}

@@ -80,6 +80,9 @@ class SamplingError:
     suggested_steps: int | None  # simulation.steps that resolves it (None: resolved, or beyond the schema's maximum)
     steps_cap: int  # the schema's maximum of simulation.steps
     mean_N: float = 0.0  # the mean's: |T_h - T_2h| / 3 of the trapezoid rule (0 for a periodic window)
+    # a mode or excitation line above the samples' Nyquist frequency that carries force in the window
+    # (gearcli.simulate.aliasing): min_N and max_N are then no bound. None: none found
+    aliased: JsonObject | None = None
 
 
 @record
@@ -164,6 +167,18 @@ class SolverStats:
     prediction: JsonObject | None = None
     #: where an auto run re-decided mid-run: [{at_s, from, to, why}] (gearcli.simulate.course)
     course_changes: tuple[JsonObject, ...] = ()
+    #: what the whole result cost (gearcli.simulate.spent): the evaluations and integration seconds of every run
+    #: behind it, this one and those it replaced with their check passes, its own check pass aside (check_pass);
+    #: and how many runs (1: this one alone). Not given: this run's own nfev and wall_s
+    total_nfev: int = -1
+    total_wall_s: float = -1.0
+    runs: int = 1
+
+    def __post_init__(self) -> None:  # a run alone cost what it took (object.__setattr__: the record is frozen)
+        if self.total_nfev < 0:
+            object.__setattr__(self, "total_nfev", self.nfev)
+        if self.total_wall_s < 0.0:
+            object.__setattr__(self, "total_wall_s", self.wall_s)
 
 
 @record

@@ -26,7 +26,7 @@ from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import estimate, rigid_start, sampling, stats, stepped_over
+from gearcli.simulate import aliasing, estimate, rigid_start, sampling, spent, stats, stepped_over
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.course import CourseChange, integrate_auto, pace_warnings, predicted_nfev, prediction
@@ -36,7 +36,6 @@ from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod
 from gearcli.simulate.planet_stats import peak_series, planet_series, planets_of, with_planets
 from gearcli.simulate.results import (
     EnergyBalance,
-    SamplingError,
     SimulationResult,
     SolverStats,
     SteadyState,
@@ -85,6 +84,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
     if settle is None:
         settle = cfg.rating is not None and cfg.rating.dynamic_factor == "simulated"
     pending: list[tuple[SimulationResult, Callable[[], SimulationResult]]] = []  # this call's unfinished runs
+    made: list[SimulationResult] = []  # every run this call made: what the result cost (gearcli.simulate.spent)
 
     def run(duration_s: float, steps: int, window_start_s: float | None, steady: str = sim.steady,
             run_up_samples: int | None = None) -> SimulationResult:
@@ -99,6 +99,7 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
                                 summary_start=summary_start)
         if unfinished:
             pending.append((result, unfinished[0]))
+        made.append(result)
         return result
 
     def finish(result: SimulationResult) -> SimulationResult:
@@ -110,12 +111,12 @@ def run_simulation(cfg: DesignFile, design: DesignResult, *, method: str | None 
         # as the window run would be (its start-up peaks the same), then the periodic search from its end
         found = settle_mod.periodic_state(run, sim.duration_s, sim.steps, 0, sim.duration_s, run_up_samples=sim.steps)
         if found is not None:
-            return found
+            return spent.totalled(found, made)
         periodic = False  # the periodic search was tried: the later windows are what is left
     result = run(sim.duration_s, sim.steps, run_up_end(model, sim, from_rest=y0 is None))  # a window's: its start
     if settle:
         result = settle_mod.settled_run(result, run, sim.duration_s, sim.steps, periodic=periodic, finish=finish)
-    return result
+    return spent.totalled(result, made)
 
 
 def _at_rest(model: TorsionalModel) -> bool:
@@ -241,13 +242,14 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     finer = estimate.means_rtol(ref) if ref is not None and mode is None and tightened is None \
         and choice.requested == AUTO else None
     if ref is not None and finer is not None:  # auto resolves the means at a tighter rtol (docs/numerics.md "... auto")
-        return simulate_model(model, duration_s=duration_s, steps=steps, method=method, rtol=finer,
-                              window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
-                              steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
-                              engine=engine, progress=progress,
-                              tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
-                              diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps,
-                              summary_start=summary_start)
+        again = simulate_model(model, duration_s=duration_s, steps=steps, method=method, rtol=finer,
+                               window_start_s=window_start_s, want_series=want_series, y0=y0, max_nfev=given_nfev,
+                               steady=steady, error_estimate=True, prior_diagnostics=prior_diagnostics,
+                               engine=engine, progress=progress,
+                               tightened=estimate.tightened_warning(run, ref, finer), unfinished=unfinished,
+                               diagnose=diagnose, run_up_samples=run_up_samples, file_steps=file_steps,
+                               summary_start=summary_start)
+        return spent.added(again, run.nfev + ref.nfev, run.wall_s + ref.wall_s)  # this run and its check replaced
     if tightened is not None:
         diags.append(tightened)
 
@@ -426,8 +428,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
     statics = [m.static_tangential_N for m in spec.meshes]
     reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic)  # read by both below
-    samplings = _sampling_errors(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share, floors,
-                                 reduced)
+    samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
+                                         floors, reduced, model.layout, choice.run_eigenvalues)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
@@ -470,7 +472,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                 residual=energy.residual_relative))
     diags += stat_diags or []
     diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
-                               {e.stage: e for e in solver_errors if e is not None}, _unloaded(spec))
+                               {e.stage: e for e in solver_errors if e is not None}, _unloaded(spec)) \
+        + aliasing.warnings(samplings)
     if not periodic:  # a periodic window has its own grid: 64 samples a period of its fastest excitation
         sel = stats.window_slice(mask)
         diags += sampling.excitation_warnings(model.layout, s.time_s[sel], steps or s.time_s.size - 1)
@@ -479,9 +482,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                                  [se.reference_N if se is not None else None for se in samplings],
                                                  _unloaded(spec))
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
-            diags += sampling.peak_warnings(s.time_s, peak_series(model, s, [p[0] for p in per_stage]),
-                                            steps or s.time_s.size - 1,
-                                            max(choice.natural_frequencies_Hz, default=0.0))
+            peaks_N = peak_series(model, s, [p[0] for p in per_stage])
+            diags += aliasing.peak_warnings(sampling.peak_warnings(s.time_s, peaks_N, steps or s.time_s.size - 1,
+                                                                   max(choice.natural_frequencies_Hz, default=0.0)),
+                                            samplings, s.time_s, peaks_N)
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
@@ -520,24 +524,6 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                **({"motor": motor_summary} if motor_summary is not None else {}),
                **({"start": start_doc} if start_doc else {})},
     )
-
-
-def _sampling_errors(t: np.ndarray, mask: np.ndarray, per_stage: list[StageSeries], spec, solver_errors: list,
-                     steps: int | None, periodic: bool, window_share: float,
-                     floors: list[float], reduced: stats.Reduced | None = None) -> list[SamplingError | None]:
-    """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
-    judged with the solver's estimate where a check pass ran; None for an empty window. ``reduced``: the window's
-    reductions (:func:`gearcli.simulate.stats.window_reductions`), where the caller has them."""
-    sel = stats.window_slice(mask)
-    tw = t[sel]
-    if tw.size == 0:
-        return [None] * len(spec.meshes)
-    basis = int(tw.size) if periodic or steps is None else int(steps)  # whole periods: steps per window
-    dt = np.diff(tw)  # the window's steps, every stage's
-    return [sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis,
-                                    periodic=periodic, solver=solver_errors[k], window_share=window_share, floor_N=floors[k],
-                                    dt=dt, reduced=None if reduced is None else reduced.force(k))
-            for k, m in enumerate(spec.meshes)]
 
 
 def _unloaded(spec) -> frozenset[int]:

@@ -37,7 +37,8 @@ configs/concrete_mixer_te.toml (benchmarks/bench_sampling.py, against the same r
 Not seen at all: vibration faster than the samples resolve (a few samples per period or fewer: it aliases to
 a slower, smooth-looking signal). configs/conveyor.toml's stage 2 carries a ~1.6 kHz vibration sampled at 2 kHz:
 its min is 5.2e-3 off, estimated 5e-5. ``gearcli report`` warns (``sampling``) where a natural frequency lies
-above the samples' Nyquist frequency.
+above the samples' Nyquist frequency; there a mode or excitation line that carries force in the window is found and
+the estimate not taken for a bound (:mod:`gearcli.simulate.aliasing`: ``sampling_error.aliased``).
 
 Aliased excitation. The estimate needs the peaks to be sampled at all: an excitation (a mesh's transmission
 error or stiffness cycle, a torque ripple, a load fluctuation: :func:`gearcli.simulate.periodic.excitation_periods`,
@@ -129,6 +130,7 @@ STATISTICS = ("mean", "min", "max")  # the statistics the samples can leave unre
 # and std 0, "resolved", where a lightly damped reducer's window swings by +-9.5 % of the mean
 MIN_WINDOW_SAMPLES = 5
 TOO_FEW = ("mean", "min", "max", "std")  # what a window of too few samples leaves unknown
+UNBOUNDED = ("min", "max", "std")  # what force above the samples' Nyquist frequency leaves unknown (aliasing.py)
 MIN_PER_PERIOD = 4.0  # output samples a period of an excitation, at least (module doc, "Aliased excitation")
 GOOD_PER_PERIOD = 16.0  # what the suggestion aims at (a sinusoid's sampled peak then misses by 2 %)
 PARTIAL_HARMONICS = 4  # harmonics of each excitation whose partial period the mean's bias bound counts
@@ -241,7 +243,7 @@ def suggested_steps_linear(steps: int, relative_error: float, goal: float, cap: 
     (error ∝ h, times :data:`MARGIN`; module doc, "The mean"), as :func:`suggested_steps` rounds it."""
     if relative_error <= goal:
         return steps
-    n = _up_to_two_figures(steps * relative_error / goal * MARGIN)
+    n = up_to_two_figures(steps * relative_error / goal * MARGIN)
     return n if n <= cap else None
 
 
@@ -250,16 +252,14 @@ def suggested_steps(steps: int, relative_error: float, goal: float, cap: int = M
     (error ∝ h^2, times :data:`MARGIN`), rounded up to two significant figures; None when ``cap`` cannot."""
     if relative_error <= goal:
         return steps
-    n = _up_to_two_figures(steps * math.sqrt(relative_error / goal) * MARGIN)
+    n = up_to_two_figures(steps * math.sqrt(relative_error / goal) * MARGIN)
     return n if n <= cap else None
 
 
-def _up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
+def up_to_two_figures(wanted: float, slack: float = 0.0) -> int:
     """``wanted`` samples rounded up to two significant figures (``slack``: a relative round-off not rounded up)."""
     digits = 10.0 ** max(0, math.floor(math.log10(wanted)) - 1)
     return int(math.ceil(wanted / digits * (1.0 - slack)) * digits)
-
-
 
 
 def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *, periodic: bool = False,
@@ -328,7 +328,8 @@ def merged(e: StatisticsError, s: SamplingError) -> StatisticsError:
     """The solver's estimate with the sampling's share of min and max added (new keys; ``unresolved`` and
     ``resolved`` then cover both; the solver's own keys keep their meaning)."""
     total = {q: e.relative[q] + s.relative[q] for q in STATISTICS}
-    over = {q for q in STATISTICS if total[q] > target_of(q)} | (set(TOO_FEW) if too_few(s) else set())
+    over = {q for q in STATISTICS if total[q] > target_of(q)} | (set(TOO_FEW) if too_few(s) else set()) \
+        | (set(UNBOUNDED) if s.aliased else set())
     unresolved = tuple(q for q in ("mean", "min", "max", "std", "spectrum") if q in e.unresolved or q in over)
     return replace(e, sampling_N={"min": s.min_N, "max": s.max_N, "mean": s.mean_N}, sampling_relative=dict(s.relative),
                    total_relative=total, suggested_steps=s.suggested_steps if not s.resolved else None,
@@ -343,8 +344,8 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
     for stage, s in stages:
         if s.resolved:
             continue
-        if too_few(s):
-            out.append(_too_few_warning(stage, s))
+        if too_few(s) or s.aliased:  # force above the Nyquist frequency: aliasing.warnings'
+            out += [_too_few_warning(stage, s)] if too_few(s) else []
             continue
         e = solver.get(stage)
         bad = [q for q in STATISTICS if _undersampled(s.relative[q], e.relative[q] if e is not None else 0.0, q)]
@@ -397,7 +398,7 @@ def excitation_warnings(layout, t: np.ndarray, steps: int) -> list[Diagnostic]:
         per = ex.period_s / h
         if not (ex.period_s > 0.0 and per < MIN_PER_PERIOD):
             continue
-        n = _up_to_two_figures(steps * GOOD_PER_PERIOD / per, slack=1e-9)  # not rounded up past round-off
+        n = up_to_two_figures(steps * GOOD_PER_PERIOD / per, slack=1e-9)  # not rounded up past round-off
         fix = (f"--set simulation.steps={n} samples it {GOOD_PER_PERIOD:g} times a period" if n <= MAX_STEPS else
                f"the schema's maximum simulation.steps = {MAX_STEPS} cannot sample it: a shorter run "
                "(simulation.duration_s)")
@@ -572,7 +573,7 @@ def _aliased_steps(t: np.ndarray, steps: int, fastest_Hz: float) -> int | None:
     span = float(t[-1] - t[0])
     if not (fastest_Hz > 0.0 and span > 0.0):
         return None
-    n = _up_to_two_figures(max(2.0 * steps, span * fastest_Hz * GOOD_PER_PERIOD))
+    n = up_to_two_figures(max(2.0 * steps, span * fastest_Hz * GOOD_PER_PERIOD))
     return n if n <= MAX_STEPS else None
 
 

@@ -6,7 +6,8 @@ One row per point (docs: docs/sweeps.md): the varied keys (each named by its key
 ``stage{k}_contact_loss_fraction``, ``stage{k}_dynamic_factor`` (steady-window max |F_t| / static),
 ``stage{k}_runup_factor`` (whole-run peak / static), a planetary stage's ``stage{k}_load_sharing_factor``
 (the largest planet's window-mean sun-mesh |F_t| over the mean planet's, the sun torque's share; parallel stages have no such
-column), then ``output_speed_rpm``, ``nfev``, ``wall_s``. A cell the result does not provide is empty (``None``): the dynamic transmission error and
+column), then ``output_speed_rpm``, ``nfev`` (the point's evaluations: every run and check pass it took,
+:func:`gearcli.simulate.spent.whole`), ``wall_s``. A cell the result does not provide is empty (``None``): the dynamic transmission error and
 the contact-loss fraction come from the excitation outputs; :data:`STAGE_STATISTICS` reads them from
 ``StageDynamics.dte_um`` (an object with ``mean``/``rms``/``min``/``max``) and
 ``StageDynamics.contact_loss_fraction`` when those exist, so they fill in without touching the sweep.
@@ -19,6 +20,7 @@ from collections.abc import Callable, Sequence
 from typing import TypeAlias, cast
 
 from gearcli.core.jsontypes import JsonScalar
+from gearcli.simulate import spent
 from gearcli.simulate.results import SimulationResult, StageDynamics
 
 FIXED = ("direction", "status", "message")
@@ -84,7 +86,7 @@ def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: Sim
             for name, get in PLANETARY_STATISTICS.items():
                 row[f"stage{k}_{name}"] = get(st)
     row["output_speed_rpm"] = result.output_speed_deg_s / 6.0
-    row["nfev"] = int(result.solver.nfev)
+    row["nfev"] = spent.whole(result)[0]  # the point's: every run it took and its check pass, as wall_s
     row["wall_s"] = wall_s
     return row
 

@@ -110,7 +110,7 @@ def _numbers(x, path=""):
     if isinstance(x, dict):
         out = {}
         for k, v in x.items():
-            if k not in ("wall_s", "compile_s", "engine", "engine_reason", "choice_reason", "input_sha256",
+            if k not in ("wall_s", "total_wall_s", "compile_s", "engine", "engine_reason", "choice_reason", "input_sha256",
                          "prediction"):
                 out.update(_numbers(v, f"{path}.{k}"))
         return out

@@ -1,0 +1,224 @@
+"""Force the output samples cannot resolve: a mode or excitation line above their Nyquist frequency that carries
+force in the window (docs/numerics.md, "Aliasing").
+
+The sampling estimate (:mod:`gearcli.simulate.sampling`) interpolates the peaks between samples: it assumes the
+force is smooth on the sample grid, each peak sampled a few times. A component above the samples' Nyquist frequency
+``fs / 2`` (fewer than 2 samples a period) is not sampled as a peak at all: the samples show it as a slower
+sinusoid at its alias ``|f - k fs|`` (folded into 0 .. fs / 2), of the same amplitude (a sinusoid sampled at any
+rate keeps its amplitude), so the interpolation sees a smooth signal and its estimate bounds nothing of what lies
+between the samples: the window's min, max and std may miss up to about that amplitude.
+
+The candidates are what the scene can put there: its excitation lines (each excitation's fundamental and its first
+:data:`gearcli.simulate.sampling.PARTIAL_HARMONICS` harmonics: a transmission error's or stiffness cycle's
+harmonics, a torque ripple, a load fluctuation; and its higher harmonics within a mode's resonance band, which a
+lightly damped mode amplifies) and its modes' damped frequencies (the run's linearisation) above the Nyquist
+frequency. What each carries is measured from the window itself: F_t about its mean projected
+on the alias frequency with a Hann window (``2 |sum w x e^(-i w t)| / sum w``: a sinusoid's amplitude, the leakage
+of other lines falling as the cube of their distance). It cannot be told apart from a resolved line at the same
+alias: an alias within :data:`RESOLUTION_BINS` frequency resolutions ``1 / T`` of an excitation line below the
+Nyquist frequency (or of zero: a slow drift) is not judged. A component of more than the sampling target
+(:data:`gearcli.simulate.sampling.TARGET`) of the stage's reference force carries force in the window: its sampling
+error is not bounded (``sampling_error.aliased``), the stage's min, max and std are unresolved, and the warning
+names the frequency and the ``simulation.steps`` that samples it :data:`~gearcli.simulate.sampling.GOOD_PER_PERIOD`
+times a period (where the sampling estimate holds; that run's estimate says what else it needs).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from gearcli import diagnostics as dg
+from gearcli.config.schema import MAX_STEPS
+from gearcli.core.jsontypes import JsonObject
+from gearcli.diagnostics import Diagnostic
+from gearcli.simulate import sampling, stats
+from gearcli.simulate.periodic import excitation_periods
+from gearcli.simulate.results import SamplingError
+
+RESOLUTION_BINS = 2.0  # the Hann window's main lobe half-width, in units of 1 / T
+BAND_WIDTHS = 3.0  # a mode's resonance band whose excitation harmonics are candidates, in half-power half-widths
+BAND_MAX = 0.1  # ... at most this share of the mode's frequency either side (a heavily damped mode amplifies little)
+MAX_HARMONIC = 256  # the highest harmonic of an excitation taken as a candidate
+
+
+def candidates(layout, eigenvalues: np.ndarray, nyquist_Hz: float,
+               span_s: float = 0.0) -> tuple[list[tuple[float, str]], list[float]]:
+    """(frequency, label) of the scene's excitation lines and modes above ``nyquist_Hz``, and the excitation lines
+    below it (the resolved ones an alias may fall on). Besides each excitation's first harmonics, its higher ones
+    within a mode's resonance band above ``nyquist_Hz`` (:data:`BAND_WIDTHS` half-power half-widths sigma / 2 pi,
+    at least RESOLUTION_BINS / ``span_s``, at most :data:`BAND_MAX` of its frequency; harmonics up to
+    :data:`MAX_HARMONIC`): a lightly damped mode amplifies a high
+    harmonic of a stiffness cycle or a contact nonlinearity there."""
+    periods = [ex for ex in excitation_periods(layout) if ex.period_s > 0.0]
+    modes = [(float(z.imag) / (2.0 * math.pi), max(0.0, -float(z.real)) / (2.0 * math.pi))
+             for z in np.asarray(eigenvalues, dtype=complex) if float(z.imag) / (2.0 * math.pi) > nyquist_Hz]
+    above: list[tuple[float, str]] = [(f, "natural mode") for f, _ in modes]
+    below: list[float] = []
+    for ex in periods:
+        fe = 1.0 / ex.period_s
+        orders = set(range(1, sampling.PARTIAL_HARMONICS + 1))
+        for f, half in modes:
+            band = min(BAND_MAX * f, max(BAND_WIDTHS * half, RESOLUTION_BINS / span_s if span_s > 0.0 else 0.0))
+            orders |= set(range(max(1, math.ceil((f - band) / fe)), min(MAX_HARMONIC, math.floor((f + band) / fe)) + 1))
+        for j in sorted(orders):
+            if j * fe > nyquist_Hz:
+                above.append((j * fe, f"{ex.label} excitation" + (f"'s harmonic {j}" if j > 1 else "")))
+            elif j <= sampling.PARTIAL_HARMONICS:
+                below.append(j * fe)
+    return above, below
+
+
+def alias_Hz(f: float, fs: float) -> float:
+    """Where samples at ``fs`` show a component at ``f``: folded into 0 .. fs / 2."""
+    r = math.fmod(f, fs)
+    return min(r, fs - r)
+
+
+def amplitude(t: np.ndarray, centred: np.ndarray, weights: np.ndarray, f: float) -> float:
+    """The amplitude of ``centred``'s component at ``f`` (Hann-weighted projection; module text)."""
+    phasor = np.exp(-2j * math.pi * f * (t - t[0]))
+    return 2.0 * abs(complex(np.sum(weights * centred * phasor))) / float(np.sum(weights))
+
+
+def found(t: np.ndarray, forces_N: list[np.ndarray], references_N: list[float], steps: int,
+          lines: tuple[list[tuple[float, str]], list[float]]) -> list[JsonObject | None]:
+    """Per stage (its window F_t in ``forces_N``), the strongest component of ``lines`` above the Nyquist frequency
+    of the window's samples ``t`` that carries more than the target of its reference force (module text), or None:
+    {frequency_Hz, source, alias_Hz, amplitude_N, samples_per_period, steps} (``steps``: the file's
+    ``simulation.steps`` that samples it GOOD_PER_PERIOD times a period; None beyond the schema's maximum). Each
+    alias's phasor is made once, for every stage."""
+    above, below = lines
+    n, span = t.size, float(t[-1] - t[0]) if t.size > 1 else 0.0
+    best: list[JsonObject | None] = [None] * len(forces_N)
+    judged = [k for k, ref in enumerate(references_N) if ref > 0.0]
+    if not above or not judged or n < sampling.MIN_WINDOW_SAMPLES or not span > 0.0:
+        return best
+    fs, gap = (n - 1) / span, RESOLUTION_BINS / span
+    weights = 0.5 - 0.5 * np.cos(2.0 * math.pi * (t - t[0]) / span)
+    total = float(np.sum(weights))
+    # every judged stage's Hann-weighted F_t about its weighted mean, one row each (einsum: no BLAS threads)
+    rows = np.array([weights * (forces_N[k] - float(np.einsum("i,i->", weights, forces_N[k])) / total)
+                     for k in judged])
+    for f, label in above:
+        fa = alias_Hz(f, fs)
+        if fa < gap or any(abs(fa - g) < gap for g in below):
+            continue  # a drift, or a resolved line's: the projection cannot tell them apart
+        phase = (2.0 * math.pi * fa) * (t - t[0])
+        amps = 2.0 * np.hypot(np.einsum("kn,n->k", rows, np.cos(phase)), np.einsum("kn,n->k", rows, np.sin(phase))) \
+            / total
+        for k, a in zip(judged, (float(x) for x in amps), strict=True):
+            if a > sampling.TARGET * references_N[k] and (best[k] is None or a > _num(best[k] or {}, "amplitude_N")):
+                want = sampling.up_to_two_figures(steps * sampling.GOOD_PER_PERIOD * f / fs, slack=1e-9)
+                best[k] = {"frequency_Hz": f, "source": label, "alias_Hz": fa, "amplitude_N": a,
+                           "samples_per_period": fs / f, "steps": want if want <= MAX_STEPS else None}
+    return best
+
+
+def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solver_errors: list,
+                    steps: int | None, periodic: bool, window_share: float, floors: list[float],
+                    reduced: stats.Reduced | None = None, layout=None,
+                    eigenvalues: np.ndarray | None = None) -> list[SamplingError | None]:
+    """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
+    judged with the solver's estimate where a check pass ran, and a fixed window's force above the samples' Nyquist
+    frequency (``layout``, ``eigenvalues``: the scene's excitations and modes; module text); None for an empty
+    window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`)."""
+    sel = stats.window_slice(mask)
+    tw = t[sel]
+    if tw.size == 0:
+        return [None] * len(spec.meshes)
+    basis = int(tw.size) if periodic or steps is None else int(steps)  # whole periods: steps per window
+    dt = np.diff(tw)  # the window's steps, every stage's
+    out: list[SamplingError | None] = [
+        sampling.stage_sampling(tw, np.asarray(per_stage[k][0])[sel], m.static_tangential_N, basis, periodic=periodic,
+                                solver=solver_errors[k], window_share=window_share, floor_N=floors[k], dt=dt,
+                                reduced=None if reduced is None else reduced.force(k))
+        for k, m in enumerate(spec.meshes)]
+    if periodic or layout is None or tw.size < sampling.MIN_WINDOW_SAMPLES or not float(tw[-1] - tw[0]) > 0.0:
+        return out  # a periodic window: 64 samples a period of its fastest excitation
+    nyquist = 0.5 * (tw.size - 1) / float(tw[-1] - tw[0])
+    lines = candidates(layout, np.zeros(0) if eigenvalues is None else eigenvalues, nyquist, float(tw[-1] - tw[0]))
+    judged = [se is not None and not sampling.too_few(se) for se in out]
+    hits = found(tw, [np.asarray(per_stage[k][0])[sel] for k in range(len(out))],
+                 [se.reference_N if se is not None and ok else 0.0 for se, ok in zip(out, judged, strict=True)],
+                 basis, lines)
+    return [se if se is None else unbounded(se, hit) for se, hit in zip(out, hits, strict=True)]
+
+
+def unbounded(se: SamplingError, alias: JsonObject | None) -> SamplingError:
+    """``se`` with the component ``alias`` (:func:`found`) that the samples cannot resolve: not resolved, its
+    suggestion the steps that sample it (kept where the estimate's own asks for more)."""
+    if alias is None:
+        return se
+    want = alias["steps"]
+    steps = want if isinstance(want, int) and (se.suggested_steps is None or se.resolved
+                                               or want > se.suggested_steps) else se.suggested_steps
+    return replace(se, resolved=False, suggested_steps=steps, aliased=alias)
+
+
+def warnings(samplings: list[SamplingError | None]) -> list[Diagnostic]:
+    """``statistics_undersampled``, one per stage whose window carries force above the samples' Nyquist frequency
+    (module text; the other stages' are :func:`gearcli.simulate.sampling.warnings`')."""
+    out = []
+    for k, s in enumerate(samplings):
+        a = s.aliased if s is not None else None
+        if s is None or a is None or sampling.too_few(s):
+            continue
+        out.append(dg.warning(
+            dg.STATISTICS_UNDERSAMPLED,
+            f"stage {k + 1}: F_t {', '.join(sampling.UNBOUNDED)} not resolved by the output samples, and no estimate "
+            f"from them bounds the error: {_carried(a)}, so what lies between them may reach that amplitude; "
+            f"{_fix(a, 'it')}",
+            stage=k + 1, statistics=list(sampling.UNBOUNDED), estimated_error_N=None, relative_error=None,
+            steps=a["steps"], steps_cap=s.steps_cap, aliased_Hz=a["frequency_Hz"], amplitude_N=a["amplitude_N"]))
+    return out
+
+
+def peak_warnings(found: list[Diagnostic], samplings: list[SamplingError | None], t: np.ndarray,
+                  forces_N: list[np.ndarray]) -> list[Diagnostic]:
+    """``found`` (:func:`gearcli.simulate.sampling.peak_warnings`) with the run's peak of every stage whose window
+    carries force above the samples' Nyquist frequency, more than the target of that peak, warned as not bounded
+    by them (the whole run's F_t ``forces_N`` at the times ``t``; the frequency's suggestion), in place of its
+    estimate's warning."""
+    aliased = {k: s.aliased for k, s in enumerate(samplings) if s is not None and s.aliased is not None}
+    if not aliased:
+        return found
+    peaks = {k: np.abs(np.asarray(forces_N[k], dtype=float)) for k in aliased if k < len(forces_N)}
+    over = {k: int(np.argmax(f)) for k, f in peaks.items()
+            if f.size and _num(aliased[k], "amplitude_N") > sampling.TARGET * float(np.max(f))}
+    out = [d for d in found if _stage(d) - 1 not in over]
+    for k, i in over.items():
+        a, peak = aliased[k], float(peaks[k][i])
+        out.append(dg.warning(
+            dg.PEAK_UNDERSAMPLED,
+            f"stage {k + 1}: the run's peak |F_t| {peak:.5g} N (at {float(t[i]):.3g} s) and its run-up factor are not "
+            f"resolved by the output samples, and no estimate from them bounds the error: {_carried(a)}; "
+            f"{_fix(a, 'it')}",
+            stage=k + 1, peak_N=peak, estimated_error_N=None, relative_error=None, steps=a["steps"],
+            steps_cap=MAX_STEPS, aliased=True, aliased_Hz=a["frequency_Hz"]))
+    return sorted(out, key=_stage)
+
+
+def _carried(a: JsonObject) -> str:
+    return (f"the {a['source']} at {_num(a, 'frequency_Hz'):.4g} Hz carries ±{_num(a, 'amplitude_N'):.3g} N in the "
+            f"window and is sampled {_num(a, 'samples_per_period'):.2g} times a period (fewer than 2: the samples "
+            f"show it at {_num(a, 'alias_Hz'):.4g} Hz)")
+
+
+def _num(a: JsonObject, key: str) -> float:
+    value = a.get(key)
+    return float(value) if isinstance(value, (int, float)) else math.nan
+
+
+def _stage(d: Diagnostic) -> int:
+    stage = d.data.get("stage")
+    return stage if isinstance(stage, int) else 0
+
+
+def _fix(a: JsonObject, what: str) -> str:
+    if a.get("steps") is not None:
+        return f"--set simulation.steps={a['steps']} samples {what} {sampling.GOOD_PER_PERIOD:g} times a period"
+    return (f"the schema's maximum simulation.steps = {MAX_STEPS} cannot sample {what}: a shorter run "
+            "(simulation.duration_s)")
