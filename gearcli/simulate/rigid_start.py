@@ -212,6 +212,20 @@ def _speed_motion(lay: Layout, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(ww, float) * np.ones_like(t), np.asarray(aa, float) * np.ones_like(t)
 
 
+def _speed_state(lay: Layout) -> Callable[[float], tuple[float, float]]:
+    """A speed drive's continuous state ``state(t) -> (w, dw/dt)`` on floats: :func:`_speed_motion` at one time,
+    the same operations (:func:`gearcli.model.step.ramp_rates`)."""
+    ramp_s, speed = float(lay.drive.ramp_s), float(lay.drive.speed_rad_s)
+
+    def state(tt: float) -> tuple[float, float]:
+        if ramp_s <= 0.0:
+            return speed, 0.0
+        s = min(max(tt / ramp_s, 0.0), 1.0)
+        return speed * s * s * (3.0 - 2.0 * s), 6.0 * speed * s * (1.0 - s) / ramp_s
+
+    return state
+
+
 def _on_grid(lay: Layout, duration_s: float, samples: int = SAMPLES) -> tuple:
     """The rigid start on its grid, before its peaks are refined: (lay, the start without ``peak_tangential_N``,
     the continuous state ``state(t) -> (w, dw/dt)``, the times the peaks are sought about, F_t at them, the
@@ -227,13 +241,7 @@ def _on_grid(lay: Layout, duration_s: float, samples: int = SAMPLES) -> tuple:
     if lay.speed_drive:
         w, a = _speed_motion(lay, t)
         steps = np.array([], float)
-        ramp_s, speed = float(lay.drive.ramp_s), float(lay.drive.speed_rad_s)
-
-        def state(tt: float) -> tuple[float, float]:  # motion(np.array([tt])) on floats, the same operations
-            if ramp_s <= 0.0:
-                return speed, 0.0
-            s = min(max(tt / ramp_s, 0.0), 1.0)
-            return speed * s * s * (3.0 - 2.0 * s), 6.0 * speed * s * (1.0 - s) / ramp_s
+        state = _speed_state(lay)
     else:
         row = lay.motor_row if lay.motor_drive else ()
 
@@ -420,12 +428,15 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
     ``reswitch_s`` the time a star-delta motor first fell back into star (a peak after it is named with it).
     ``summary=False``: the warnings alone, the summary None (a caller that reads none: a sweep row, a duty point),
     and the rigid peaks refined only where a warning may follow: a refined peak is at least the grid's largest
-    |F_t|, so a run peak within ``warn_ratio`` of that (the same division) is within it of the refined one too.
+    |F_t|, so a run peak within ``warn_ratio`` of that (the same division) is within it of the refined one too; a
+    speed drive's is judged on the grid's last sample first, before the grid is made (:func:`_no_warning_at_end`).
     ``peaks_N``: each stage's run peak max |F_t| where the caller has it (``StageDynamics.peak_tangential_N``)."""
     if t.size < 2 or t[-1] <= 0:
         return None, []
-    grid = _on_grid(lay, float(t[-1]))
     peaks = [float(np.max(np.abs(f))) for f in forces_N] if peaks_N is None else [float(p) for p in peaks_N]
+    if not summary and _no_warning_at_end(lay, float(t[-1]), peaks, warn_ratio):
+        return None, []
+    grid = _on_grid(lay, float(t[-1]))
     if not summary and _no_warning(peaks, grid[1].tangential_N, warn_ratio):
         return None, []
     rigid = _refined(*grid)
@@ -475,6 +486,29 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
                                 rigid_peak_N=rigid_peaks[k], swing_Hz=found[0] if found else None,
                                 swing_amplitude_N=found[2] if found else None))
     return (out if summary else None), diags
+
+
+def _no_warning_at_end(lay: Layout, duration_s: float, peaks: list[float], warn_ratio: float,
+                       samples: int = SAMPLES) -> bool:
+    """:func:`_no_warning` judged on a few samples of a speed drive's rigid start grid (:func:`_on_grid`'s own times),
+    before the grid is made: those next to the drive ramp's middle (its largest acceleration) and end, the load
+    ramp's end, and the last. Each sample's |F_t| (:func:`_stage_force`, the grid's own number bit for bit) is at
+    most the grid's largest, so a ratio within ``warn_ratio`` of the largest of them is within it of the grid's
+    largest too; False (the grid decides) for another drive, whose rigid start is integrated."""
+    if not lay.speed_drive:
+        return False
+    t = np.linspace(0.0, duration_s, samples)
+    ramp_s = float(lay.drive.ramp_s)
+    near = np.searchsorted(t, [0.5 * ramp_s, ramp_s, float(lay.load.ramp_s)])
+    times = [float(t[i]) for i in sorted({*(int(i) for i in near[:1] - 1), *(int(i) for i in near), samples - 1})
+             if 0 <= i < samples]
+    coefficients, state = _coefficients(lay), _speed_state(lay)
+    motion = [state(tt) for tt in times]
+    ends = []
+    for k in range(len(lay.stage_conn)):
+        force = _stage_force(lay, k, coefficients)
+        ends.append(max(abs(force(tt, w, a)) for tt, (w, a) in zip(times, motion, strict=True)))
+    return all(g > 0 and p / g <= warn_ratio for p, g in zip(peaks, ends, strict=True))
 
 
 def _no_warning(peaks: list[float], rigid_ft: np.ndarray, warn_ratio: float) -> bool:

@@ -1,7 +1,8 @@
 """The start's warnings without its summary (``start_summary(summary=False)``, a sweep point's: its row reads no
 ``summary.start``): the same warnings as the whole summary's, whether the early exit is taken (every run peak within
-the threshold of the rigid start's largest force on its grid, a lower bound of the refined peak) or not; the bound's
-premise; and a sweep point's result against a full run's."""
+the threshold of the rigid start's largest force on its grid, a lower bound of the refined peak, or of a speed
+drive's force at the grid's last sample, a lower bound of that largest) or not; the bounds' premises; and a sweep
+point's result against a full run's."""
 
 from __future__ import annotations
 
@@ -72,3 +73,27 @@ def test_a_sweep_points_result_is_the_full_runs_without_summary_start(name, rpm)
     assert "start" not in (point.extra or {}) and "start" in (full.extra or {})
     assert point.warnings == full.warnings
     assert point.stages == full.stages
+
+
+@pytest.mark.parametrize(("name", "sets"), SPEED)
+def test_the_sampled_bound_before_the_grid_takes_only_exits_the_grid_takes(name, sets):
+    """The early exit before the grid (:func:`rigid_start._no_warning_at_end`, a speed drive's): its forces at a few
+    of the grid's times are the grid's own numbers there, bit for bit (every sample checked), so their largest
+    bounds the grid's largest from below and every exit it takes the grid's test takes too."""
+    lay = _layout(name, sets)
+    duration = 1.7
+    rigid = rigid_start.integrate(lay, duration)
+    coefficients = rigid_start._coefficients(lay)
+    state = rigid_start._speed_state(lay)
+    for k, grid in enumerate(rigid.tangential_N):
+        force = rigid_start._stage_force(lay, k, coefficients)
+        np.testing.assert_array_equal([force(float(tt), *state(float(tt))) for tt in rigid.time_s], grid)
+    top = [float(np.max(np.abs(f))) for f in rigid.tangential_N]
+    taken = 0
+    for scale in (0.5, 1.0, 1.04, 1.5, 1.99, 2.0, 2.5):
+        peaks = [scale * t for t in top]
+        for warn in (1.0, 1.3, 2.0):
+            if rigid_start._no_warning_at_end(lay, duration, peaks, warn):
+                taken += 1
+                assert rigid_start._no_warning(peaks, rigid.tangential_N, warn)
+    assert taken > 0  # the bound is taken where the peaks lie well within the threshold
