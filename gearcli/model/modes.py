@@ -322,13 +322,14 @@ def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnaly
                          tuple(float(v) for v in und.k), tuple(modes), rpm, (0.0, SPEED_RANGE * rpm))
 
 
-def _damping(lay: Layout, und: _Undamped) -> tuple[np.ndarray, np.ndarray]:
+def _damping(lay: Layout, und: _Undamped, key: bytes | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The body-angle shapes (mass-normalised) and every mode's damping ratio: kept with ``und`` (the chain's
     eigenproblem, which a speed sweep's points share: :func:`_undamped`) for the bodies' own damping by the drive
     and the load (:func:`gearcli.model.damping.body_damping`, the one input of the ratios ``und``'s chain does not
-    fix: a motor's slope and a load law's at the point's speed), read only."""
+    fix: a motor's slope and a load law's at the point's speed; ``key``: its bytes where the caller has them), read
+    only."""
     kept = und.__dict__.setdefault("_damping", {})
-    key = body_damping(lay).tobytes()
+    key = body_damping(lay).tobytes() if key is None else key
     if key not in kept:
         found = _damping_of(lay, und)
         for a in found:
@@ -514,8 +515,18 @@ def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float,
             and any(not abs(x - f) > RESONANCE_BAND * f for f in [_frequency_Hz(und, j)] for x in fe)]
     if not near:
         return []  # no order near a mode: no shapes, shares nor damping to work out
-    phi, zetas = _damping(lay, und)
-    return [_mode(lay, und, phi, zetas, rank, j, f_in, crossings=False) for rank, j in near]
+    damping = body_damping(lay).tobytes()
+    phi, zetas = _damping(lay, und, damping)
+    # a mode without its crossings reads no speed: the chain's (und), its damping and the connectors' names fix it
+    kept = und.__dict__.setdefault("_near_modes", {})
+    labels = tuple(x.label for x in lay.connectors)
+    out = []
+    for rank, j in near:
+        key = (damping, labels, rank, j)
+        found = kept.get(key)
+        out.append(found if found is not None else remember(kept, key, _mode(lay, und, phi, zetas, rank, j, f_in,
+                                                                             crossings=False), cap=64))
+    return out
 
 
 def _frequency_Hz(und: _Undamped, j: int) -> float:

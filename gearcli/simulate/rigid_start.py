@@ -490,18 +490,15 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
 
 def _no_warning_at_end(lay: Layout, duration_s: float, peaks: list[float], warn_ratio: float,
                        samples: int = SAMPLES) -> bool:
-    """:func:`_no_warning` judged on a few samples of a speed drive's rigid start grid (:func:`_on_grid`'s own times),
-    before the grid is made: those next to the drive ramp's middle (its largest acceleration) and end, the load
-    ramp's end, and the last. Each sample's |F_t| (:func:`_stage_force`, the grid's own number bit for bit) is at
-    most the grid's largest, so a ratio within ``warn_ratio`` of the largest of them is within it of the grid's
-    largest too; False (the grid decides) for another drive, whose rigid start is integrated."""
-    if not lay.speed_drive:
+    """:func:`_no_warning` judged on a few samples of a speed drive's rigid start grid (:func:`_on_grid`'s), before
+    the grid is made: the two about the drive ramp's middle (its largest acceleration) and the last. Each sample's
+    |F_t| (:func:`_stage_force` at :func:`_grid_time`, the grid's own number bit for bit) is at most the grid's
+    largest, so a ratio within ``warn_ratio`` of the largest of them is within it of the grid's largest too; False
+    (the grid decides) for another drive, whose rigid start is integrated."""
+    if not lay.speed_drive or samples < 2:
         return False
-    t = np.linspace(0.0, duration_s, samples)
-    ramp_s = float(lay.drive.ramp_s)
-    near = np.searchsorted(t, [0.5 * ramp_s, ramp_s, float(lay.load.ramp_s)])
-    times = [float(t[i]) for i in sorted({*(int(i) for i in near[:1] - 1), *(int(i) for i in near), samples - 1})
-             if 0 <= i < samples]
+    middle = int(0.5 * float(lay.drive.ramp_s) / duration_s * (samples - 1))
+    times = [_grid_time(i, duration_s, samples) for i in sorted({middle, middle + 1, samples - 1}) if 0 <= i < samples]
     coefficients, state = _coefficients(lay), _speed_state(lay)
     motion = [state(tt) for tt in times]
     ends = []
@@ -509,6 +506,12 @@ def _no_warning_at_end(lay: Layout, duration_s: float, peaks: list[float], warn_
         force = _stage_force(lay, k, coefficients)
         ends.append(max(abs(force(tt, w, a)) for tt, (w, a) in zip(times, motion, strict=True)))
     return all(g > 0 and p / g <= warn_ratio for p, g in zip(peaks, ends, strict=True))
+
+
+def _grid_time(i: int, duration_s: float, samples: int) -> float:
+    """Sample ``i`` of ``numpy.linspace(0.0, duration_s, samples)`` (``samples`` >= 2), the same number: numpy's
+    ``i * step + 0.0`` with ``step = duration_s / (samples - 1)``, the last sample ``duration_s`` itself."""
+    return duration_s if i == samples - 1 else i * (duration_s / (samples - 1)) + 0.0
 
 
 def _no_warning(peaks: list[float], rigid_ft: np.ndarray, warn_ratio: float) -> bool:

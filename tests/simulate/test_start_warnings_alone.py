@@ -97,3 +97,11 @@ def test_the_sampled_bound_before_the_grid_takes_only_exits_the_grid_takes(name,
                 taken += 1
                 assert rigid_start._no_warning(peaks, rigid.tangential_N, warn)
     assert taken > 0  # the bound is taken where the peaks lie well within the threshold
+
+
+@pytest.mark.parametrize(("duration", "samples"), [(1.7, rigid_start.SAMPLES), (3.0, 2001), (0.37, 4001), (1e-3, 2),
+                                                   (2.5, 7)])
+def test_a_grid_time_is_linspaces_own(duration, samples):
+    grid = np.linspace(0.0, duration, samples)
+    got = [rigid_start._grid_time(i, duration, samples) for i in range(samples)]
+    np.testing.assert_array_equal(got, grid)
