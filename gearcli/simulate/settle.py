@@ -325,6 +325,8 @@ def periodic_state(run: Callable[..., SimulationResult], duration_s: float, step
         return None
     if not reached(found.steady):
         return None
+    if found.steady.settled is True and found.steady.settle_runs == settle_runs:  # marked so already: as it is
+        return found
     return replace(found, steady=replace(found.steady, settled=True, settle_runs=settle_runs))
 
 

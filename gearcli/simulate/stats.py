@@ -133,6 +133,11 @@ class Reduced(NamedTuple):
         r = 5 * k
         return float(self.plain[r]), float(self.stds[r]), float(self.mins[r]), float(self.maxs[r])
 
+    def penetration(self, k: int) -> tuple[float, float]:
+        """Stage ``k``'s (0-based) penetration over the window, mm: (min, max)."""
+        r = 5 * k + 3
+        return float(self.mins[r]), float(self.maxs[r])
+
 
 def window_reductions(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequence[np.ndarray]],
                       static_tangential_N: Sequence[float], periodic: bool) -> Reduced | None:
@@ -293,7 +298,7 @@ def impact_damped(mesh: MeshSpec) -> bool:
 
 
 def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray | None],
-                     static_penetration_m: np.ndarray) -> list[Diagnostic]:
+                     static_penetration_m: np.ndarray, reduced: Reduced | None = None) -> list[Diagnostic]:
     """Penetration beyond the full-damping depth (IMPACT-damped meshes) or 10 % of the module; loss of contact on the loaded
     flank in the steady window (a loaded mesh that separates or crosses to its other flank rattles).
 
@@ -301,9 +306,14 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
     penetration", while in Adams it is only where the damping ramp ends, often set below the static
     approach on purpose (configs/industrial_two_stage.toml). The warning is given only when the static
     penetration lies below d, i.e. when the law was set up in the seed's sense and a transient exceeds it.
+
+    ``reduced``: the window's reductions of the same stages (:func:`window_reductions`), where the caller has them:
+    a loaded flank loses contact in the window exactly when the window's least (drive flank) or largest (back flank)
+    penetration is on the other side of 0 (:meth:`Reduced.penetration`: a finite one's sign that of the metres its
+    millimetres scale); the samples are read only for a warning's fraction.
     """
     out = []
-    sel = window_slice(mask)  # the window's samples read in place (the same numbers as the mask's copy)
+    sel = window_slice(mask) if reduced is None else None  # the window's samples read in place
     for k, (m, pen) in enumerate(zip(spec.meshes, penetration_m, strict=True)):
         if pen is None:  # a stage whose connector is no mesh (a belt's span): no contact to lose
             continue
@@ -318,8 +328,11 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
                                   f"({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity",
                                   stage=k + 1, penetration_m=deepest))
         loaded = math.copysign(1.0, m.static_tangential_N)  # the flank that carries the static load
-        lost = loaded * pen[sel] <= 0.0
-        if m.static_tangential_N != 0 and np.any(lost):
+        if m.static_tangential_N == 0 or not _loses_contact(pen, mask, sel, loaded,
+                                                            None if reduced is None else reduced.penetration(k)):
+            continue
+        lost = loaded * pen[window_slice(mask) if sel is None else sel] <= 0.0
+        if np.any(lost):
             flank = "drive" if loaded > 0 else "back"
             what = ("tooth impacts (rattle) — the load is too small for the vibration" if m.backlash_m > 0 else
                     "without backlash the other flank takes the force at once, no gap to cross and no impact, but the "
@@ -328,6 +341,15 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
                                   f"steady window ({100.0 * lost.mean():.3g} % of the samples): {what}", stage=k + 1,
                                   fraction=float(lost.mean())))
     return out
+
+
+def _loses_contact(pen: np.ndarray, mask: np.ndarray, sel: slice | np.ndarray | None, loaded: float,
+                   extremes: tuple[float, float] | None) -> bool:
+    """Whether a sample of the window has ``loaded * pen <= 0`` (:func:`contact_warnings`): from the window's least
+    and largest penetration where both are finite, else from the samples."""
+    if extremes is not None and math.isfinite(extremes[0]) and math.isfinite(extremes[1]):
+        return extremes[0] <= 0.0 if loaded > 0 else extremes[1] >= 0.0
+    return bool(np.any(loaded * pen[window_slice(mask) if sel is None else sel] <= 0.0))
 
 
 def peak_warnings(spec: ModelSpec, peak_line_forces_N, rigid_line_forces_N) -> list[Diagnostic]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import inspect
 import pickle
 from typing import Any
 
@@ -120,3 +121,53 @@ def test_a_field_set_after_init_is_frozen_too():
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.total = 4.0
     assert copy.copy(s) == s and copy.deepcopy(s) == s and dataclasses.replace(s, x=2.0).total == 4.0
+
+
+def _both(ns: dict, name: str = "Made"):
+    """The same class body made by ``@record`` and by ``@dataclass(frozen=True)`` (each from its own copy)."""
+    body = {"__module__": __name__, "__doc__": "Made.", **ns}
+    return record(type(name, (), dict(body))), dataclasses.dataclass(frozen=True)(type(name, (), dict(body)))
+
+
+def test_the_constructor_is_a_frozen_dataclasss():
+    # defaults, a default factory (a fresh value each instance), keyword-only fields, fields init=False with a
+    # default and with a factory, a field named self, and __post_init__ (called once, after every field is set)
+    calls: list = []
+
+    def post_init(self):
+        calls.append(dict(vars(self)))
+
+    ns = {"__annotations__": {"self": "int", "a": "float", "b": "list", "c": "str", "d": "int", "e": "list",
+                              "k": "int"},
+          "b": dataclasses.field(default_factory=list), "c": "x", "d": dataclasses.field(default=4, init=False),
+          "e": dataclasses.field(default_factory=lambda: [1], init=False), "k": dataclasses.field(default=0, kw_only=True),
+          "__post_init__": post_init}
+    ours, theirs = _both(ns)
+    assert str(inspect.signature(ours)) == str(inspect.signature(theirs))  # (each its own <factory> sentinel)
+    assert ours.__init__.__annotations__ == theirs.__init__.__annotations__
+    for args, kwargs in [((1, 2.0), {}), ((1, 2.0, [3], "y"), {"k": 5}), ((), {"self": 7, "a": 1.5, "c": "z"})]:
+        a, b = ours(*args, **kwargs), theirs(*args, **kwargs)
+        assert vars(a) == vars(b) and repr(a) == repr(b).replace(theirs.__qualname__, ours.__qualname__)
+        assert calls[-1] == calls[-2] == vars(a)
+    assert ours(1, 2.0).b is not ours(1, 2.0).b and ours(1, 2.0).e is not ours(1, 2.0).e
+    for args in [(), (1,), (1, 2.0, [], "c", 9)]:  # too few, too many: the same refusals
+        with pytest.raises(TypeError):
+            ours(*args)
+        with pytest.raises(TypeError):
+            theirs(*args)
+    with pytest.raises(TypeError, match="non-default argument 'b' follows default argument"):
+        record(type("Bad", (), {"__annotations__": {"a": "int", "b": "int"}, "a": 1, "__module__": __name__}))
+
+
+def test_the_constructor_sets_fields_as_a_frozen_dataclass_does():
+    # object.__setattr__, as dataclass(frozen=True): a subclass's own __setattr__ is not called by the constructor
+    ours, theirs = _both({"__annotations__": {"x": "int"}})
+    seen: list = []
+    subs = [type("Sub", (cls,), {"__setattr__": lambda self, n, v: seen.append(n)}) for cls in (ours, theirs)]
+    assert subs[0](3).x == subs[1](3).x == 3 and seen == []
+    own = record(type("Own", (), {"__annotations__": {"x": "int"}, "__module__": __name__,
+                                  "__init__": lambda self: object.__setattr__(self, "x", 8)}))
+    assert own().x == 8  # an __init__ of the class body is kept, as dataclass keeps it
+    with pytest.raises(TypeError, match="InitVar"):
+        record(type("Iv", (), {"__annotations__": {"x": "int", "y": dataclasses.InitVar[int]},
+                               "__module__": __name__}))
