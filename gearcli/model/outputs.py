@@ -336,6 +336,11 @@ def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndar
     return ft, ft * math.tan(m.transverse_pressure_angle_rad), ft * math.tan(m.helix_angle_rad)
 
 
+def tangential_force_N(lay: Layout, k: int, line_force_N: float) -> float:
+    """Stage k's F_t of one line force F_bt (N): :func:`tooth_forces`' F_t on a float, the same multiplication."""
+    return float(line_force_N) * math.cos(lay.spec.meshes[k].transverse_pressure_angle_rad)
+
+
 def kinetic_energy(lay: Layout, omega: np.ndarray) -> np.ndarray:
     """0.5 sum J_i w_i^2 over all bodies, J."""
     return 0.5 * np.asarray(lay.inertias) @ (omega * omega)

@@ -65,7 +65,14 @@ from gearcli.core.methods import method as method_info
 from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
-from gearcli.model.outputs import Sampled, connector_line_forces, mesh_line_forces, planet_sun_connectors, tooth_forces
+from gearcli.model.outputs import (
+    Sampled,
+    connector_line_forces,
+    mesh_line_forces,
+    planet_sun_connectors,
+    tangential_force_N,
+    tooth_forces,
+)
 from gearcli.simulate.choice import Choice
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
@@ -170,7 +177,7 @@ def force_floors_N(model: TorsionalModel, rtol: float) -> list[float]:
     out = []
     for k, (m, h) in enumerate(zip(model.spec.meshes, scales, strict=True)):
         line = m.exponent * m.stiffness_N_m_e * float(h) ** m.exponent * rtol
-        out.append(abs(float(tooth_forces(model.layout, k, np.array([line]))[0][0])))
+        out.append(abs(tangential_force_N(model.layout, k, line)))
     return out
 
 

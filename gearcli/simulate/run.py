@@ -23,7 +23,7 @@ from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.linear import damped_modes, static_line_forces_N
 from gearcli.model.modes import resonances
-from gearcli.model.outputs import Sampled, sample, tooth_forces
+from gearcli.model.outputs import Sampled, sample, tangential_force_N, tooth_forces
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
 from gearcli.simulate import aliasing, estimate, rigid_start, sampling, spent, stats, stepped_over
@@ -537,7 +537,7 @@ def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     model's own steady-state connector forces, the meshes' efficiencies included: on a settled unexcited run the
     window means equal them and the design's static F_t): the reference of the dynamic and run-up factors."""
     lay = model.layout
-    return [float(tooth_forces(lay, k, np.array([f]))[0][0]) for k, f in enumerate(static_line_forces_N(lay))]
+    return [tangential_force_N(lay, k, f) for k, f in enumerate(static_line_forces_N(lay).tolist())]
 
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:

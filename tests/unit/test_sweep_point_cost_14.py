@@ -98,3 +98,17 @@ def test_the_contact_check_on_the_windows_extremes_is_the_check_on_its_samples(p
             assert [(d.code, d.message, d.data) for d in got] == [(d.code, d.message, d.data) for d in want]
             losses.append(sum(d.code == dg.CONTACT_LOSS for d in want))
     assert 0 < sum(losses) < 3 * len(losses)  # stages that keep contact and stages that lose it, on either flank
+
+
+@pytest.mark.parametrize("name", ["concrete_mixer", "mixer_planetary_motor", "wind_turbine_gearbox"])
+def test_a_stages_tangential_force_on_a_float_is_tooth_forces_own(name):
+    import numpy as np
+
+    from gearcli.model.outputs import tangential_force_N, tooth_forces
+
+    lay = _layout(name)
+    forces = np.random.default_rng(3).normal(0.0, 1e5, 200)
+    forces[:3] = (0.0, -0.0, 1e-300)
+    for k in range(len(lay.spec.meshes)):
+        want = tooth_forces(lay, k, forces)[0]
+        np.testing.assert_array_equal([tangential_force_N(lay, k, f) for f in forces.tolist()], want)
