@@ -511,8 +511,8 @@ def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float,
     und = _undamped(lay, boundary, duration_s, tangents)
     fe = [o.hz_per_input_hz * f_in for o in excitation_sources(lay)]
     fe += [t.fixed_Hz if t.fixed_Hz is not None else t.hz_per_input_hz * f_in for t in torque_sources(lay)]
-    near = [(rank, j) for rank, j in enumerate(und.order) if rank >= und.n_rigid
-            and any(not abs(x - f) > RESONANCE_BAND * f for f in [_frequency_Hz(und, j)] for x in fe)]
+    near = [(rank, j) for rank, (j, f) in enumerate(_elastic_Hz(und)) if rank >= und.n_rigid
+            and any(not abs(x - f) > RESONANCE_BAND * f for x in fe)]
     if not near:
         return []  # no order near a mode: no shapes, shares nor damping to work out
     damping = body_damping(lay).tobytes()
@@ -527,6 +527,15 @@ def _near_modes(lay: Layout, boundary: str, duration_s: float, f_in: float,
         out.append(found if found is not None else remember(kept, key, _mode(lay, und, phi, zetas, rank, j, f_in,
                                                                              crossings=False), cap=64))
     return out
+
+
+def _elastic_Hz(und: _Undamped) -> list[tuple[int, float]]:
+    """(eigenpair, :func:`_frequency_Hz`) in ascending order (``und.order``), once per chain (its points share it)."""
+    kept = und.__dict__.get("_hz")
+    if kept is None:
+        kept = [(int(j), _frequency_Hz(und, int(j))) for j in und.order]
+        und.__dict__["_hz"] = kept
+    return kept
 
 
 def _frequency_Hz(und: _Undamped, j: int) -> float:
