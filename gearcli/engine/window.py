@@ -6,11 +6,16 @@ The same numbers as numpy's, bit for bit: a sum is numpy's pairwise summation (:
 accumulators over blocks of at most 128 elements, halves above, added to the reduction's identity 0.0, as
 ``np.add.reduce`` sums a contiguous row), and every element that is summed is formed in numpy's operation order
 (the trapezoid's ``0.5 * (x[i + 1] + x[i]) * (t[i + 1] - t[i])``, the deviation's ``(x - mean) * (x - mean)``); a
-minimum, maximum or first maximum's index does not depend on the order. tests/engine/test_window_statistics.py
-checks the pass against closed forms and against numpy's reductions.
+minimum, maximum or first maximum's index does not depend on the order. A constant row (an equilibrium's window:
+one state repeated, :func:`gearcli.simulate.equilibrium.sampled`) is reduced without its samples: its sums are the
+pairwise sums of copies of one value (:func:`constant_sum`: the same additions, each equal half once), its min and
+max that value, the same numbers. tests/engine/test_window_statistics.py checks the pass against closed forms and
+against numpy's reductions.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -88,6 +93,50 @@ def pairwise_sum(a, lo, n, span, left):
 
 
 @jit
+def _block_constant(c, n):
+    """:func:`_block` of ``n`` copies of ``c``, the same additions: its eight accumulators are equal, one is summed."""
+    if n < 8:
+        res = 0.0
+        for _ in range(n):
+            res += c
+        return res
+    whole = n - n % 8
+    r = c
+    for _ in range(whole // 8 - 1):
+        r += c
+    res = ((r + r) + (r + r)) + ((r + r) + (r + r))
+    for _ in range(n - whole):
+        res += c
+    return res
+
+
+@jit
+def constant_sum(c, n):
+    """:func:`pairwise_sum` of ``n`` copies of ``c``, the same additions in the same order (its splits depend on the
+    lengths alone, and equal halves have equal sums: each is worked out once), in a few dozen additions."""
+    if n <= BLOCK:
+        return _block_constant(c, n)
+    half = n // 2
+    half -= half % 8
+    lhs = constant_sum(c, half)
+    return lhs + (lhs if n - half == half else constant_sum(c, n - half))
+
+
+@jit
+def constant(x):
+    """Whether every value of ``x`` (at least one) is its first, bit for bit but for a NaN's payload (a NaN: no)."""
+    c = x[0]
+    if c != c:
+        return False
+    zero = c == 0.0
+    sign = math.copysign(1.0, c)
+    for j in range(1, x.size):
+        if x[j] != c or (zero and math.copysign(1.0, x[j]) != sign):
+            return False
+    return True
+
+
+@jit
 def _window_mean(x, t, buf, plain, periodic, span, left):
     """The window mean of the row ``x`` sampled at ``t`` (:func:`gearcli.simulate.stats.window_means`): the trapezoid
     rule over the window's length; for whole periods (or fewer than two samples, or a window of no length) the
@@ -154,20 +203,37 @@ def window_statistics(W, whole, t, periodic, loaded):
     back = np.empty(m)
     span = np.empty((DEPTH, 3), dtype=np.int64)  # the pairwise sums' scratch
     left = np.empty(DEPTH)
+    same = np.zeros(rows, dtype=np.bool_)  # a constant row (an equilibrium's window): its sums of copies, once
     for r in range(rows):
         x = W[r]
-        plain = (0.0 + pairwise_sum(x, 0, m, span, left)) / m  # numpy's mean, and its std's centre
+        same[r] = constant(x)
+        if same[r]:  # the same numbers: every summed element is the same copy (constant_sum), min = max = it
+            plain = (0.0 + constant_sum(x[0], m)) / m
+            stats[r, 1], stats[r, 2] = x[0], x[0]
+            d = x[0] - plain
+            deviations = constant_sum(d * d, m)
+        else:
+            plain = (0.0 + pairwise_sum(x, 0, m, span, left)) / m  # numpy's mean, and its std's centre
+            stats[r, 1], stats[r, 2] = _extremes(x)
+            for j in range(m):
+                d = x[j] - plain
+                buf[j] = d * d
+            deviations = pairwise_sum(buf, 0, m, span, left)
         stats[r, 0] = _window_mean(x, t, buf, plain, periodic, span, left)
         stats[r, 4] = plain
-        stats[r, 1], stats[r, 2] = _extremes(x)
-        for j in range(m):
-            d = x[j] - plain
-            buf[j] = d * d
-        stats[r, 3] = np.sqrt((0.0 + pairwise_sum(buf, 0, m, span, left)) / m)
+        stats[r, 3] = np.sqrt((0.0 + deviations) / m)
+    plainly = periodic or m < 2 or t[m - 1] <= t[0]  # a window mean that is the plain mean
     for k in range(stages):
         peak_at[k] = _first_abs_max(whole[k])
         f = W[5 * k]
         p = W[5 * k + 3]
+        if plainly and same[5 * k] and same[5 * k + 3]:  # constant flags: their plain means of copies
+            for c, v in enumerate((1.0 if f[0] == 0.0 or p[0] == 0.0 else 0.0,
+                                   1.0 if loaded[k] * p[0] < 0.0 else 0.0)):
+                plain = (0.0 + constant_sum(v, m)) / m
+                fractions[k, c] = plain
+                flags[k, c] = 1.0 if plain > 0.0 else 0.0
+            continue
         for j in range(m):
             lost[j] = 1.0 if f[j] == 0.0 or p[j] == 0.0 else 0.0
             back[j] = 1.0 if loaded[k] * p[j] < 0.0 else 0.0

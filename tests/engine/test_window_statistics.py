@@ -154,3 +154,93 @@ def test_sampling_estimate_from_the_reductions_is_the_one_from_the_samples(kind,
     assert given == sampling.stage_sampling(t, ft, 880.0, n, periodic=periodic)
     if kind == "constant":  # nothing between equal samples: no sampling error
         assert (given.min_N, given.max_N) == (0.0, 0.0)
+
+
+CONSTANTS = [812.5, -3.3e-7, 1e300, 5e-324, 0.0, -0.0, 0.1, -1234.5678]
+
+
+@pytest.mark.parametrize("n", LENGTHS)
+def test_a_constant_sum_is_the_pairwise_sum_of_its_copies(n):
+    span, left = np.empty((window.DEPTH, 3), dtype=np.int64), np.empty(window.DEPTH)
+    for c in CONSTANTS + list(np.random.default_rng(n).standard_normal(5) * 1e4):
+        copies = np.full(n, c)
+        got = window.constant_sum(c, n)
+        want = window.pairwise_sum(copies, 0, n, span, left)
+        assert math.copysign(1.0, got) == math.copysign(1.0, want) and (got == want or math.isnan(want))
+        assert 0.0 + got == np.sum(copies)  # numpy's own sum of the copies
+        nudged = np.concatenate([copies[:-1], [np.nextafter(c, np.inf)]])
+        assert window.constant(copies) and (n < 2 or not window.constant(nudged))
+
+
+def test_a_row_is_constant_bit_for_bit():
+    assert not window.constant(np.array([0.0, -0.0])) and not window.constant(np.array([-0.0, 0.0, -0.0]))
+    assert not window.constant(np.array([np.nan, np.nan])) and not window.constant(np.array([1.0, np.nan]))
+    assert window.constant(np.array([-0.0, -0.0])) and window.constant(np.array([np.inf, np.inf]))
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+@pytest.mark.parametrize("n", LENGTHS)
+def test_constant_rows_are_the_general_passs_numbers(n, periodic):
+    """Constant rows (an equilibrium's window: sums of copies, min = max = the value) against the same rows each with
+    its last sample nudged and back (the general pass on rows that differ by one sample: then equal again), and
+    against numpy's reductions of the copies; the contact flags of constant rows too."""
+    rng = np.random.default_rng(7 + n)
+    t = np.sort(rng.uniform(0.0, 2.0, n))
+    values = (CONSTANTS * 2)[:10]
+    W = np.array([np.full(n, c) for c in values])
+    whole = rng.standard_normal((2, n + 50))
+    S, peak_at, frac, flags = _stats(W, whole, t, periodic, [1.0, -1.0])
+    np.testing.assert_array_equal(S[:, 1], W.min(axis=1))
+    np.testing.assert_array_equal(S[:, 2], W.max(axis=1))
+    with np.errstate(over="ignore", invalid="ignore"):  # 1e300's copies overflow their sum: inf, NaN both ways
+        np.testing.assert_array_equal(S[:, 4], W.mean(axis=1))  # numpy's mean: its pairwise sum over n
+        np.testing.assert_array_equal(S[:, 3], W.std(axis=1))
+    if periodic or n < 2:
+        np.testing.assert_array_equal(S[:, 0], S[:, 4])
+    # the general pass on the same values (a row made non-constant in a copy of the scratch only: each row's
+    # statistics depend on its own samples alone), row by row
+    for r in range(W.shape[0]):
+        if n < 2:
+            break
+        varied = W.copy()
+        varied[r, -1] = np.nextafter(varied[r, -1], np.inf) if varied[r, -1] != 0.0 else 1.0
+        S2, _, _, _ = _stats(varied, whole, t, periodic, [1.0, -1.0])
+        others = [i for i in range(W.shape[0]) if i != r]
+        np.testing.assert_array_equal(S2[others], S[others])
+    span, left = np.empty((window.DEPTH, 3), dtype=np.int64), np.empty(window.DEPTH)
+    for k, loaded in enumerate((1.0, -1.0)):
+        f, p = W[5 * k], W[5 * k + 3]
+        lost = ((f == 0.0) | (p == 0.0)).astype(float)
+        back = (loaded * p < 0.0).astype(float)
+        for c, flag in enumerate((lost, back)):
+            plain = (0.0 + window.pairwise_sum(flag, 0, n, span, left)) / n
+            if periodic or n < 2:
+                assert frac[k, c] == plain
+            assert flags[k, c] == (1.0 if plain > 0.0 else 0.0)
+    np.testing.assert_array_equal(peak_at, np.argmax(np.abs(whole), axis=1))
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+def test_stages_dynamics_of_an_equilibriums_window_compiled_and_numpy_are_the_same_numbers(periodic, monkeypatch):
+    """A window constant in every channel (an equilibrium's), a run-up before it: stages_dynamics with the compiled
+    pass and with numpy's reductions, bit for bit."""
+    rng = np.random.default_rng(11)
+    n = 4001
+    t = np.linspace(0.0, 3.0, n)
+    mask = t >= 1.5
+    per_stage = []
+    for scale in (1851.1, 3715.4, -7916.4):
+        rows = []
+        for factor in (1.0, 0.36, 0.18, 1e-3, 1e-2):
+            x = scale * factor * (1.0 + 0.3 * rng.standard_normal(n))
+            x[mask] = x[np.argmax(mask)]  # the window: one sample repeated
+            rows.append(x)
+        per_stage.append(tuple(rows))
+    static = [1851.1, 3715.4, -7916.4]
+    from gearcli.engine import kernel as compiled
+
+    monkeypatch.setattr(engine, "loaded_kernel", lambda: compiled)
+    with_kernel = stats.stages_dynamics(t, mask, per_stage, static, periodic=periodic)
+    monkeypatch.setattr(engine, "loaded_kernel", lambda: None)
+    with_numpy = stats.stages_dynamics(t, mask, per_stage, static, periodic=periodic)
+    assert repr(with_kernel) == repr(with_numpy)
