@@ -336,6 +336,21 @@ def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndar
     return ft, ft * math.tan(m.transverse_pressure_angle_rad), ft * math.tan(m.helix_angle_rad)
 
 
+def stage_rows(lay: Layout, meshes: tuple[ConnectorSeries, ...]) -> np.ndarray:
+    """Every stage's F_t, F_r, F_a (N), penetration (mm) and DTE (um) at the samples of its mesh's series
+    ``meshes`` (stage order), five rows a stage of one array: :func:`tooth_forces`' products and the units'
+    scalings, each written in its row (the same multiplications)."""
+    rows = np.empty((5 * len(meshes), meshes[0].force.size if meshes else 0))
+    for k, ms in enumerate(meshes):
+        m = lay.spec.meshes[k]
+        ft = np.multiply(ms.line_force_N, math.cos(m.transverse_pressure_angle_rad), out=rows[5 * k])
+        np.multiply(ft, math.tan(m.transverse_pressure_angle_rad), out=rows[5 * k + 1])
+        np.multiply(ft, math.tan(m.helix_angle_rad), out=rows[5 * k + 2])
+        np.multiply(ms.penetration_m, 1e3, out=rows[5 * k + 3])
+        np.multiply(ms.dte_m, 1e6, out=rows[5 * k + 4])
+    return rows
+
+
 def tangential_force_N(lay: Layout, k: int, line_force_N: float) -> float:
     """Stage k's F_t of one line force F_bt (N): :func:`tooth_forces`' F_t on a float, the same multiplication."""
     return float(line_force_N) * math.cos(lay.spec.meshes[k].transverse_pressure_angle_rad)

@@ -23,7 +23,7 @@ from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.linear import damped_modes, static_line_forces_N
 from gearcli.model.modes import resonances
-from gearcli.model.outputs import Sampled, sample, tangential_force_N, tooth_forces
+from gearcli.model.outputs import Sampled, sample, stage_rows, tangential_force_N
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
 from gearcli.simulate import aliasing, estimate, rigid_start, sampling, spent, stats, stepped_over
@@ -359,18 +359,17 @@ def steady_warnings(steady: SteadyState, period: CommonPeriod) -> list[Diagnosti
 
 
 def _series(model: TorsionalModel, s: Sampled, channels: bool = True) -> tuple[dict[Channel, np.ndarray],
-                                                                               list[StageSeries]]:
+                                                                               list[StageSeries], np.ndarray]:
     """The time series in SI, keyed by what they are, in the output's column order (docs/output.md; the names
     and units are :mod:`gearcli.io.channels`'); and per stage (F_t, F_r, F_a in N, penetration in mm, DTE in
-    um) for its statistics. Reducer shafts first (a flexible shaft reports its gear end), then the
-    drivetrain's own channels. ``channels=False``: the stages' series alone (a run that keeps no series)."""
+    um) for its statistics, the rows of one array (:func:`gearcli.model.outputs.stage_rows`, also returned). Reducer
+    shafts first (a flexible shaft reports its gear end), then the drivetrain's own channels. ``channels=False``: the
+    stages' series alone (a run that keeps no series)."""
     lay = model.layout
-    per_stage: list[StageSeries] = []
-    for k, ms in enumerate(s.meshes):
-        ft, fr, fa = tooth_forces(lay, k, ms.line_force_N)
-        per_stage.append((ft, fr, fa, ms.penetration_m * 1e3, ms.dte_m * 1e6))
+    rows = stage_rows(lay, s.meshes)
+    per_stage: list[StageSeries] = [(r[0], r[1], r[2], r[3], r[4]) for r in (rows[5 * k:] for k in range(len(s.meshes)))]
     if not channels:
-        return {}, per_stage
+        return {}, per_stage, rows
     ch: dict[Channel, np.ndarray] = {Channel("speed", f"shaft{i + 1}"): s.omega_rad_s[b]
                                      for i, b in enumerate(lay.shaft_body)}
     ch[Channel("torque", "input")] = s.input_torque_Nm
@@ -396,7 +395,7 @@ def _series(model: TorsionalModel, s: Sampled, channels: bool = True) -> tuple[d
         named = lay.conn_named(label)
         if named is not None:
             ch[Channel("torque", owner)] = s.connectors[named].force
-    return ch, per_stage
+    return ch, per_stage, rows
 
 
 def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choice, windows, energy,
@@ -418,7 +417,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     window, mask_window = windows
     mask = stats.window_mask(s.time_s, mask_window)
     periodic = steady.mode == "periodic"
-    series, per_stage = _series(model, s, want_series)
+    series, per_stage, rows = _series(model, s, want_series)
     errors = ref.errors if ref is not None else ()
     stiffness, simulated_static = mesh_stiffness(model, choice), simulated_static_tangential_N(model)
     ks = range(len(spec.meshes))
@@ -427,7 +426,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
     statics = [m.static_tangential_N for m in spec.meshes]
-    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic)  # read by both below
+    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic, rows)  # both below
     samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
                                          floors, reduced, model.layout, choice.run_eigenvalues)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e

@@ -140,15 +140,23 @@ class Reduced(NamedTuple):
 
 
 def window_reductions(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequence[np.ndarray]],
-                      static_tangential_N: Sequence[float], periodic: bool) -> Reduced | None:
+                      static_tangential_N: Sequence[float], periodic: bool,
+                      rows: np.ndarray | None = None) -> Reduced | None:
     """The reductions :func:`stages_dynamics` reads (and a stage's sampling estimate: its F_t's plain mean, std,
     min and max, :func:`gearcli.simulate.sampling.stage_sampling`), once; None where it takes a stage at a time (an
-    empty window, a stage without its five series)."""
+    empty window, a stage without its five series). ``rows``: an array whose leading rows are ``per_stage``'s series
+    in order (:func:`gearcli.model.outputs.stage_rows`), where the caller made them so: the window's rows copied from
+    it at once."""
     if not per_stage or not np.any(mask) or any(len(p) != 5 for p in per_stage):
         return None
     sel = window_slice(mask)
-    whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])  # F_t over the run: its peaks
-    W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])  # (5 n, window): rows per stage
+    n = 5 * len(per_stage)
+    if rows is not None and rows.dtype == np.float64 and rows.ndim == 2 and rows.shape[0] >= n:
+        whole = np.ascontiguousarray(rows[0:n:5])  # F_t over the run: its peaks
+        W = np.ascontiguousarray(rows[:n, sel])  # (5 n, window): rows per stage
+    else:
+        whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])
+        W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])
     return Reduced(t[sel], W, whole, *_reductions(t[sel], W, whole, static_tangential_N, periodic))
 
 

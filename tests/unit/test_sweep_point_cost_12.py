@@ -104,12 +104,13 @@ def test_the_stages_series_without_the_channels_are_the_channels(name):
     Y = np.repeat(model.initial_state()[:, None], t.size, axis=1)
     Y[lay.state.deflections] = model.deflection_scales()[:, None] * np.linspace(0.5, 1.5, t.size)[None, :]
     s = sample(lay, t, Y)
-    ch, whole = run_mod._series(model, s, True)
-    none, alone = run_mod._series(model, s, False)
+    ch, whole, rows = run_mod._series(model, s, True)
+    none, alone, _ = run_mod._series(model, s, False)
     assert ch and none == {}
-    for a, b in zip(alone, whole, strict=True):
-        for x, y in zip(a, b, strict=True):
+    for k, (a, b) in enumerate(zip(alone, whole, strict=True)):
+        for j, (x, y) in enumerate(zip(a, b, strict=True)):
             np.testing.assert_array_equal(x, y)
+            np.testing.assert_array_equal(rows[5 * k + j], y)  # the stages' rows of one array, in order
 
 
 @pytest.mark.parametrize("name", SCENES)

@@ -112,3 +112,46 @@ def test_a_stages_tangential_force_on_a_float_is_tooth_forces_own(name):
     for k in range(len(lay.spec.meshes)):
         want = tooth_forces(lay, k, forces)[0]
         np.testing.assert_array_equal([tangential_force_N(lay, k, f) for f in forces.tolist()], want)
+
+
+@pytest.mark.parametrize("name", ["concrete_mixer", "concrete_mixer_te", "mixer_planetary_motor"])
+@pytest.mark.parametrize("periodic", [False, True])
+def test_the_stages_rows_in_one_array_are_the_series_and_their_reductions(name, periodic):
+    """outputs.stage_rows (five rows a stage in one array) against tooth_forces and the units' scalings, bit for bit,
+    and the window reductions copied from it against those stacked from the stages' series (a contiguous window and
+    a window with a hole: a mask, not a slice)."""
+    import numpy as np
+
+    from gearcli.model import outputs
+    from gearcli.simulate import stats
+
+    model = TorsionalModel(api.model_spec(*_spec(name)))
+    lay = model.layout
+    t = np.linspace(0.0, 0.3, 301)
+    rng = np.random.default_rng(17)
+    Y = np.repeat(model.initial_state()[:, None], t.size, axis=1)
+    Y[lay.state.deflections] = model.deflection_scales()[:, None] * rng.uniform(-0.5, 2.0, (lay.n_conn, t.size))
+    s = outputs.sample(lay, t, Y)
+    rows = outputs.stage_rows(lay, s.meshes)
+    per_stage = []
+    for k, ms in enumerate(s.meshes):
+        ft, fr, fa = outputs.tooth_forces(lay, k, ms.line_force_N)
+        want = (ft, fr, fa, ms.penetration_m * 1e3, ms.dte_m * 1e6)
+        np.testing.assert_array_equal(rows[5 * k: 5 * k + 5], np.stack(want))
+        per_stage.append(want)
+    statics = [m.static_tangential_N for m in model.spec.meshes]
+    for mask in (t >= 0.1, (t >= 0.1) & ((t < 0.2) | (t > 0.22))):
+        stacked = stats.window_reductions(t, mask, per_stage, statics, periodic)
+        copied = stats.window_reductions(t, mask, per_stage, statics, periodic, rows)
+        assert stacked is not None and copied is not None
+        for a, b in zip(stacked[:-1], copied[:-1], strict=True):  # every array, every element: equal
+            np.testing.assert_array_equal(a, b)
+            assert a.dtype == b.dtype
+        assert all(x.flags.c_contiguous for x in (*stacked[:3], *copied[:3]))  # the times and rows the pass reads
+        for a, b in zip(stacked.contact, copied.contact, strict=True):
+            np.testing.assert_array_equal(a, b)
+
+
+def _spec(name: str):
+    loaded, design = api.load_and_design(str(ROOT / "configs" / f"{name}.toml"))
+    return loaded.design, design
