@@ -183,11 +183,12 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
                 for k, p in enumerate(per_stage)]
     tw, W, whole, means, _, mins, maxs, stds, peaks_at, contact = reduced
     window_max = np.maximum(np.abs(mins[0::5]), np.abs(maxs[0::5]))  # the window's max |F_t|: its min's or max's
+    means, mins, maxs, stds = means.tolist(), mins.tolist(), maxs.tolist(), stds.tolist()  # float() of each, at once
     responses = _responses(tw, W[4::5], W[0::5], W[3::5], static_tangential_N, periodic,
                            (means[4::5], stds[4::5], mins[4::5], maxs[4::5]), gaps, contact)  # the DTE rows' reductions
 
     def channel(j: int) -> ChannelStats:
-        return ChannelStats(float(means[j]), float(mins[j]), float(maxs[j]), float(stds[j]))
+        return ChannelStats(means[j], mins[j], maxs[j], stds[j])
 
     out = []
     for k in range(n):
@@ -275,7 +276,7 @@ def mesh_response(t: np.ndarray, mask: np.ndarray | slice, dte_um: np.ndarray, f
 
 
 def _responses(tw: np.ndarray, q: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: Sequence[float],
-               periodic: bool, q_stats: tuple[np.ndarray, ...] | None = None,
+               periodic: bool, q_stats: tuple[np.ndarray | Sequence[float], ...] | None = None,
                gapless: Sequence[bool] = (), contact: tuple | None = None) -> list[dict]:
     """:func:`mesh_response` of every row of the window's DTE ``q``, F_t ``f`` and penetration ``p`` (a stage a row,
     ``tw`` the window's times): one reduction along the rows each (numpy reduces a contiguous row as the row
