@@ -6,26 +6,23 @@ each on the reference machine. gearcli creates ~80 such classes before a one-sho
 file. :func:`record` compiles only ``__init__``: ``__eq__``, ``__hash__`` and ``__repr__`` are closures over the
 class's field names (``operator.attrgetter`` builds the same tuples the generated methods compare and hash, in
 C), and so are ``__setattr__`` and ``__delattr__``, which refuse what ``dataclass(frozen=True)``'s refuse once
-the instance is made. The class is made by ``dataclass(frozen=False, init=False)``; its ``__init__`` is
-``dataclass(frozen=True)``'s, written and compiled here as dataclass writes it (:func:`_init`: the class's one
-``exec``), each field assigned with ``object.__setattr__`` (a field ``init=False`` is set by ``__post_init__`` the
-same way, as a frozen dataclass's); the ``__setattr__`` above lets a field's first assignment through too (an
-instance made some other way).
+the instance is made. The class is made by ``dataclass(frozen=False)``, whose ``__init__`` assigns each field
+once through that ``__setattr__``: a field's first assignment, in the constructor, is the one it lets through
+(a field ``init=False`` is set by ``__post_init__`` with ``object.__setattr__``, as a frozen dataclass's).
 
 What the class does is ``dataclass(frozen=True)``'s: the same fields, ``__init__``, ``replace``, equality (same
 class and equal compared fields), hash (of the hashed fields' tuple), repr (the fields with ``repr=True``,
 ``...`` on recursion), and after construction no field assigned or deleted and, on the class's own instances, no
 attribute added (``FrozenInstanceError``); a method the class body defines is kept
 (tests/unit/test_records.py checks each against ``dataclass(frozen=True)``). What differs: the dataclass
-parameters say ``frozen=False`` (so ``dataclass(frozen=True)`` cannot subclass a record; ``@record`` can), and a
-record takes no ``InitVar`` (none has one: a field ``init=False`` set by ``__post_init__`` instead).
+parameters say ``frozen=False`` (so ``dataclass(frozen=True)`` cannot subclass a record; ``@record`` can), and
+constructing an instance costs ~0.1 us a field more (the Python ``__setattr__``).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import reprlib
-import sys
 from collections.abc import Callable
 from operator import attrgetter
 from typing import Any, TypeVar, cast, dataclass_transform
@@ -91,87 +88,18 @@ def _methods(cls: type, fields: tuple[dataclasses.Field, ...]) -> dict[str, Call
     return out
 
 
-class _Factory:
-    """The default of a parameter whose field has a ``default_factory`` (dataclass's own sentinel's repr)."""
-
-    def __repr__(self) -> str:
-        return "<factory>"
-
-
-_FACTORY = _Factory()
-
-
-def _init(cls: type) -> Callable[..., None]:
-    """``dataclass(frozen=True)``'s ``__init__`` of ``cls`` (a dataclass made with ``init=False``): its parameters,
-    defaults, default factories, ``init=False`` fields and ``__post_init__`` call, written as dataclass writes them
-    and compiled once (the one ``exec`` the class costs, dataclass's own ``__init__``'s), each field assigned with
-    ``object.__setattr__`` as a frozen dataclass assigns it, not through the record's ``__setattr__`` (a Python call
-    a field: ~0.1 us). An ``InitVar`` is refused (no record has one; dataclass passes it to ``__post_init__``)."""
-    pseudo = [f.name for f in vars(cls)["__dataclass_fields__"].values()
-              if getattr(f, "_field_type", None) is getattr(dataclasses, "_FIELD_INITVAR", object())]
-    if pseudo:
-        raise TypeError(f"@record takes no InitVar ({', '.join(pseudo)} of {cls.__name__}): use a field "
-                        "init=False that __post_init__ sets")
-    fields = dataclasses.fields(cast(Any, cls))
-    positional = [f for f in fields if f.init and not f.kw_only]
-    seen_default = False
-    for f in positional:  # dataclass's check, with its message
-        if f.default is not dataclasses.MISSING or f.default_factory is not dataclasses.MISSING:
-            seen_default = True
-        elif seen_default:
-            raise TypeError(f"non-default argument {f.name!r} follows default argument")
-    me = "__dataclass_self__" if any(f.name == "self" for f in fields) else "self"
-    scope: dict[str, Any] = {"__set": object.__setattr__, "_FACTORY": _FACTORY, "_return_type": None}
-    lines = []
-    for f in fields:
-        scope[f"_type_{f.name}"] = f.type
-        if f.default_factory is not dataclasses.MISSING:
-            scope[f"_dflt_{f.name}"] = f.default_factory
-            value = f"_dflt_{f.name}() if {f.name} is _FACTORY else {f.name}" if f.init else f"_dflt_{f.name}()"
-        elif f.init:
-            if f.default is not dataclasses.MISSING:
-                scope[f"_dflt_{f.name}"] = f.default
-            value = f.name
-        else:
-            continue  # no default to assign: the class attribute holds it (or __post_init__ sets it)
-        lines.append(f"__set({me},{f.name!r},{value})")
-    if hasattr(cls, "__post_init__"):
-        lines.append(f"{me}.__post_init__()")
-
-    def param(f: dataclasses.Field) -> str:
-        default = ("=_FACTORY" if f.default_factory is not dataclasses.MISSING else
-                   f"=_dflt_{f.name}" if f.default is not dataclasses.MISSING else "")
-        return f"{f.name}:_type_{f.name}{default}"
-
-    keywords = [param(f) for f in fields if f.init and f.kw_only]
-    args = ",".join([me, *(param(f) for f in positional), *(["*", *keywords] if keywords else [])])
-    body = "\n".join(f"  {line}" for line in lines or ["pass"])
-    source = (f"def __create_fn__({', '.join(scope)}):\n def __init__({args})->_return_type:\n{body}\n"
-              " return __init__")
-    module = sys.modules.get(cls.__module__)
-    namespace: dict[str, Any] = {}
-    code = compile(source, "<string>", "exec", dont_inherit=True)  # annotations the types, not this module's strings
-    exec(code, module.__dict__ if module is not None else {}, namespace)  # noqa: S102 - dataclass's own way
-    fn = namespace["__create_fn__"](**scope)
-    fn.__qualname__ = f"{cls.__qualname__}.__init__"
-    return fn
-
-
 @dataclass_transform(frozen_default=True, field_specifiers=(dataclasses.field, dataclasses.Field))
 def record(cls: type[T]) -> type[T]:
-    """``@dataclass(frozen=True)`` with five methods made without ``exec`` and its ``__init__`` (module docstring)."""
+    """``@dataclass(frozen=True)`` with five methods made without ``exec`` (module docstring)."""
     body = cls.__dict__
     own_eq = "__eq__" in body
     own_repr = "__repr__" in body
-    own_init = "__init__" in body  # dataclass's rule: an __init__ the body defines is kept
     # dataclass's rule: a __hash__ the body sets is kept, unless it is the None Python puts there for an own __eq__
     own_hash = "__hash__" in body and not (body["__hash__"] is None and own_eq)
     for name in ("__setattr__", "__delattr__"):
         if name in body:  # as dataclass(frozen=True)
             raise TypeError(f"Cannot overwrite attribute {name} in class {cls.__name__}")
-    cls = dataclasses.dataclass(eq=False, repr=False, init=False)(cls)  # frozen by the methods below (module text)
-    if not own_init:
-        cls.__init__ = _init(cls)  # type: ignore[method-assign]
+    cls = dataclasses.dataclass(eq=False, repr=False)(cls)  # frozen by the methods below (module docstring)
     methods = _methods(cls, dataclasses.fields(cast(Any, cls)))
     cls.__setattr__ = methods["__setattr__"]  # type: ignore[method-assign]
     cls.__delattr__ = methods["__delattr__"]  # type: ignore[method-assign]

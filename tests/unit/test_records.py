@@ -158,16 +158,3 @@ def test_the_constructor_is_a_frozen_dataclasss():
     with pytest.raises(TypeError, match="non-default argument 'b' follows default argument"):
         record(type("Bad", (), {"__annotations__": {"a": "int", "b": "int"}, "a": 1, "__module__": __name__}))
 
-
-def test_the_constructor_sets_fields_as_a_frozen_dataclass_does():
-    # object.__setattr__, as dataclass(frozen=True): a subclass's own __setattr__ is not called by the constructor
-    ours, theirs = _both({"__annotations__": {"x": "int"}})
-    seen: list = []
-    subs = [type("Sub", (cls,), {"__setattr__": lambda self, n, v: seen.append(n)}) for cls in (ours, theirs)]
-    assert subs[0](3).x == subs[1](3).x == 3 and seen == []
-    own = record(type("Own", (), {"__annotations__": {"x": "int"}, "__module__": __name__,
-                                  "__init__": lambda self: object.__setattr__(self, "x", 8)}))
-    assert own().x == 8  # an __init__ of the class body is kept, as dataclass keeps it
-    with pytest.raises(TypeError, match="InitVar"):
-        record(type("Iv", (), {"__annotations__": {"x": "int", "y": dataclasses.InitVar[int]},
-                               "__module__": __name__}))
