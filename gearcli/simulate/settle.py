@@ -188,8 +188,8 @@ def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], wo
               floors_N: list[float]) -> Settling:
     """The model-free half of the test: a transient that decays through the window raises its first quarter's
     max |F_t| above its last half's (the steady part, which holds every steady peak the first quarter holds); by
-    more than SETTLED_FRACTION of the static force, the window is unsettled from the last sample above that
-    level on (the fit's settle time where it gives a later one)."""
+    more than SETTLED_FRACTION of the static force, the window is settled from the sample after the last one above
+    that level (the fit's settle time where it gives a later one)."""
     if t.size < 8:
         return worst
     quarter, half = t <= t[0] + 0.25 * (t[-1] - t[0]), t >= t[0] + 0.5 * (t[-1] - t[0])
@@ -202,7 +202,9 @@ def _envelope(t: np.ndarray, forces: list[np.ndarray], static_N: list[float], wo
         if excess <= SETTLED_FRACTION or excess <= worst.transient_fraction and not worst.settled:
             continue
         above = np.nonzero(f > steady_max + SETTLED_FRACTION * ref)[0]
-        settle = float(t[above[-1]]) if above.size else None
+        # settled from the sample after the last one above the level: a window starting at that sample itself
+        # would still hold it, and the test would name the same start again
+        settle = float(t[min(above[-1] + 1, t.size - 1)]) if above.size else None
         if worst.settle_time_s is not None and (settle is None or worst.settle_time_s > settle):
             settle = worst.settle_time_s
         worst = Settling(False, max(excess, worst.transient_fraction), k + 1, worst.frequency_Hz, settle,
