@@ -483,7 +483,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
             peaks_N = peak_series(model, s, [p[0] for p in per_stage])
             diags += aliasing.peak_warnings(sampling.peak_warnings(s.time_s, peaks_N, steps or s.time_s.size - 1,
-                                                                   max(choice.natural_frequencies_Hz, default=0.0)),
+                                                                   max(choice.natural_frequencies_Hz, default=0.0),
+                                                                   diags),
                                             samplings, s.time_s, peaks_N)
 
     def ringing_diags() -> list[Diagnostic]:

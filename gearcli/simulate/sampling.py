@@ -115,6 +115,7 @@ from gearcli.simulate.estimate import (
     TARGET,  # of the stage's mean force: the solver's and the samples' together
     force_reference,
     reference_words,
+    solver_first,
 )
 from gearcli.simulate.estimate import target as target_of  # MEAN_TARGET for the mean, TARGET else
 from gearcli.simulate.periodic import common_period, excitation_periods
@@ -352,7 +353,9 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
         worst = max(bad, key=lambda q: s.relative[q] / target_of(q))
         absolute = {"min": s.min_N, "max": s.max_N, "mean": s.mean_N}[worst]
         with_solver = "" if e is None else f", the solver's estimate {e.relative[worst]:.2g} besides"
-        if s.suggested_steps is not None:
+        if e is not None and e.relative[worst] > max(target_of(worst), s.relative[worst]):
+            fix = solver_first(s.suggested_steps, MAX_STEPS)
+        elif s.suggested_steps is not None:
             fix = f"--set simulation.steps={s.suggested_steps} would resolve it"
         else:
             fix = (f"the schema's maximum simulation.steps = {s.steps_cap} cannot resolve it: sample a shorter run "
@@ -520,15 +523,18 @@ def with_run_duration(diag: Diagnostic, duration_s: float, steps: int) -> Diagno
                    data={**diag.data, "duration_s": duration_s, "steps": steps})
 
 
-def peak_warnings(t: np.ndarray, forces_N: list[np.ndarray], steps: int, fastest_Hz: float = 0.0) -> list[Diagnostic]:
+def peak_warnings(t: np.ndarray, forces_N: list[np.ndarray], steps: int, fastest_Hz: float = 0.0,
+                  said: list[Diagnostic] | tuple[Diagnostic, ...] = ()) -> list[Diagnostic]:
     """``peak_undersampled``, one per stage (its F_t over the whole run in ``forces_N``, stage order) whose run peak
     |F_t| the output samples at the times ``t`` miss by more than :data:`TARGET` of it, or alias (module doc, "The
     run's peak"); ``steps``: the file's ``simulation.steps`` (the suggestion scales it); ``fastest_Hz``: the scene's
-    highest natural frequency (what an aliased peak's suggestion samples)."""
+    highest natural frequency (what an aliased peak's suggestion samples); ``said``: the run's warnings so far (a
+    stage whose ``peak_unresolved`` estimate exceeds the samples' is told to fix the rtol first)."""
     if t.size < 3:
         return []
     dt = np.diff(t)
     out = []
+    unresolved = {d.data.get("stage"): d.data.get("relative_error") for d in said if d.code == dg.PEAK_UNRESOLVED}
     for k, ft in enumerate(forces_N):
         a = np.abs(np.asarray(ft, dtype=float))
         peak = float(a.max()) if a.size else 0.0
@@ -546,7 +552,8 @@ def peak_warnings(t: np.ndarray, forces_N: list[np.ndarray], steps: int, fastest
             out.append(_aliased_peak_warning(k, peak, at, a, i, n, error))
             continue
         n = suggested_steps(steps, rel, 0.5 * TARGET)
-        fix = (f"--set simulation.steps={n} would resolve it" if n is not None else
+        fix = (solver_first(n, MAX_STEPS, dg.PEAK_UNRESOLVED) if isinstance(e := unresolved.get(k + 1), float) and e > rel
+               else f"--set simulation.steps={n} would resolve it" if n is not None else
                f"the schema's maximum simulation.steps = {MAX_STEPS} cannot resolve it: sample a shorter run "
                "(simulation.duration_s)")
         out.append(dg.warning(
