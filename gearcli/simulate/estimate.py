@@ -25,7 +25,9 @@ happened before it; where errors made before the window survive into it (a light
 run-up vibration), it starts earlier: at the window start minus ``DECAY_SPANS`` / sigma, sigma the slowest
 decay rate of the oscillating modes of the linearised scene, and never before t = 0 (the seed, with
 damping ratios below 1 %, is checked from the start). Started at the window on such a scene, the check
-misses the error entirely (configs/extreme/load_reversal.toml: 1e-7 estimated, 5e-3 true).
+misses the error entirely (configs/extreme/load_reversal.toml: 1e-7 estimated, 5e-3 true). A mesh that leaves its
+flank in the window (rattle) is checked from t = 0 whatever its damping: where responses coexist the run-up picks one
+(docs/numerics.md; tests/extreme/test_rattle_span.py).
 
 Tolerance. Where the span costs little (``TIGHT_FACTOR`` ** (1/8) x its share of the run, DOP853's order,
 at most ``TIGHT_COST``), the check runs at rtol / ``TIGHT_FACTOR`` and the difference is (1 - 10^-q) of the run's
@@ -76,7 +78,7 @@ from gearcli.model.outputs import (
 from gearcli.simulate.choice import Choice
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
-from gearcli.simulate.stats import window_means
+from gearcli.simulate.stats import leaves_flank, window_means
 
 TARGET = 1e-3  # of the stage's mean force: min, max, std, the spectrum
 MEAN_TARGET = 1e-4  # of the stage's mean force: the mean (module doc, "Targets")
@@ -383,13 +385,14 @@ def tight_scale(rtol: float, check_rtol: float) -> float:
 
 
 def plan(t_eval: np.ndarray, rtol: float, choice: Choice, window: tuple[float, float],
-         stability_bound: bool = False, mixed: bool = False) -> Plan:
+         stability_bound: bool = False, mixed: bool = False, impacting: bool = False) -> Plan:
     """Where the check pass starts and at which tolerance (module doc); ``stability_bound``: the run is
     :func:`stability_limited` (then always the tight pass); ``mixed``: the run changed course (then always the tight
-    pass, at :func:`tight_rtol`'s mixed tolerance: a loose pass of the last method says nothing of the first's)."""
+    pass, at :func:`tight_rtol`'s mixed tolerance: a loose pass of the last method says nothing of the first's);
+    ``impacting``: a mesh leaves its flank in the window (:func:`~gearcli.simulate.stats.leaves_flank`): from t = 0."""
     mask = (t_eval >= window[0] - 1e-9 * max(1.0, window[1]))
     i_w = int(np.argmax(mask))
-    t_start = start_time(choice, window)
+    t_start = 0.0 if impacting else start_time(choice, window)
     i_s = min(i_w, int(np.searchsorted(t_eval, t_start, side="right")) - 1)
     i_s = max(i_s, 0)
     share = (t_eval[-1] - t_eval[i_s]) / max(t_eval[-1] - t_eval[0], 1e-300)
@@ -433,7 +436,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     (:func:`tight_rtol`)."""
     lay = model.layout
     t_eval = run.t
-    p = plan(t_eval, run.rtol, choice, window, stability_limited(choice, run.method, run.steps), mixed)
+    p = plan(t_eval, run.rtol, choice, window, stability_limited(choice, run.method, run.steps), mixed,
+             sampled is not None and leaves_flank(sampled, window))
     i_w, i_s, rtol, scale = p.i_w, p.i_s, p.rtol, p.scale
     t0 = time.perf_counter()
     tw = t_eval[i_w:]

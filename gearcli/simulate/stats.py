@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -22,6 +22,9 @@ from gearcli.simulate.results import (
     DteStats,
     StageDynamics,
 )
+
+if TYPE_CHECKING:
+    from gearcli.model.outputs import Sampled
 
 SETTLE_FRACTION = 0.2  # of the time left after the slower ramp (docs/physics.md, "Torsional model")
 WARN_ENERGY_RESIDUAL = 1e-3
@@ -240,6 +243,14 @@ def _contact(tw: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: 
     back = loaded[:, None] * p < 0.0
     return (_time_fractions(tw, lost, periodic), _time_fractions(tw, back, periodic), np.any(lost, axis=1),
             np.any(back, axis=1))
+
+
+def leaves_flank(s: Sampled, window: tuple[float, float]) -> bool:
+    """Whether a mesh leaves its (mean) flank in the window: a gap or the other flank, penetration <= 0 at a sample.
+    Such a response is not smooth: an error made in the run-up is not forgotten at the linear modes' decay rate, and
+    where responses coexist the run-up picks one (the check pass then starts at t = 0: gearcli/simulate/estimate.py)."""
+    w = s.time_s >= window[0]
+    return any(bool(np.any(m.penetration_m[w] * np.sign(np.mean(m.penetration_m[w])) <= 0.0)) for m in s.meshes)
 
 
 def _time_fractions(t: np.ndarray, flags: np.ndarray, periodic: bool) -> list[float]:
