@@ -38,7 +38,7 @@ from gearcli.design.geometry import (
     undercut_limit_teeth,
     undercut_min_profile_shift,
 )
-from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_order
+from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_orders
 from gearcli.design.stiffness import material_factor, smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.errors import DesignError
@@ -517,11 +517,13 @@ def resonance_text(head: str, n: float, lower: float, speed_range: str) -> str |
     if speed_range == "main resonance":
         return (f"{head} lies in the main resonance range {lower:.2f} < N ≤ {MAIN_RESONANCE_UPPER}: the mesh "
                 "frequency meets the mesh's natural frequency; change the speed, the masses or the stiffness")
-    order = subharmonic_order(n, lower)
-    if order:
-        return (f"{head} lies near N = 1/{order} ({lower / order:.3f} < N ≤ {MAIN_RESONANCE_UPPER / order:.3f}) in "
-                f"the subcritical range: the mesh frequency's {_ordinal(order)} harmonic can excite the resonance")
-    return None
+    orders = subharmonic_orders(n, lower)
+    if not orders:
+        return None
+    near = " and ".join(f"N = 1/{j} ({lower / j:.3f} < N ≤ {MAIN_RESONANCE_UPPER / j:.3f})" for j in orders)
+    which = " and ".join(_ordinal(j) for j in orders)
+    return (f"{head} lies near {near} in the subcritical range: the mesh frequency's {which} "
+            f"harmonic{'s' if len(orders) > 1 else ''} can excite the resonance")
 
 
 def _ordinal(n: int) -> str:

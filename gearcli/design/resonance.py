@@ -61,12 +61,10 @@ def resonance_range(ratio: float, lower_limit: float) -> str:
     return "supercritical"
 
 
-def subharmonic_order(ratio: float, lower_limit: float) -> int:
-    """In the subcritical range, the order j (2 or 3) when N lies in the main range's band scaled by 1/j,
-    (N_S/j, 1.15/j]: the mesh frequency's j-th harmonic excites the resonance. 0 otherwise."""
+def subharmonic_orders(ratio: float, lower_limit: float) -> tuple[int, ...]:
+    """In the subcritical range, every order j (2, 3) whose band, the main range's scaled by 1/j, (N_S/j, 1.15/j],
+    holds N: the mesh frequency's j-th harmonic excites the resonance. Below N_S = 0.767 the two bands overlap (a
+    light load: N_S = 0.58 puts N = 0.292 in both, its 2nd harmonic at 0.584 and its 3rd at 0.876 of n_E1)."""
     if ratio > lower_limit:
-        return 0
-    for order in SUBHARMONICS:
-        if lower_limit / order < ratio <= MAIN_RESONANCE_UPPER / order:
-            return order
-    return 0
+        return ()
+    return tuple(j for j in SUBHARMONICS if lower_limit / j < ratio <= MAIN_RESONANCE_UPPER / j)
