@@ -137,8 +137,43 @@ def _project_out(q: np.ndarray, x: np.ndarray, out: np.ndarray | None = None) ->
     return np.subtract(x, out, out=out)
 
 
+FORCED_GUARD = 3.0  # a forced line within this many half-bandwidths of a fitted mode is left to the fit
+
+
+def forced_rad_s(layout) -> tuple[float, ...]:
+    """The steady lines of the scene's forced response: each excitation's fundamental and first harmonics
+    (:func:`gearcli.simulate.periodic.excitation_periods`, as the window's partial-period bound counts them)."""
+    from gearcli.simulate.periodic import excitation_periods  # lazy: the scene's excitations, when there are any
+    from gearcli.simulate.sampling import PARTIAL_HARMONICS
+
+    return tuple(2 * math.pi * j / ex.period_s for ex in excitation_periods(layout) if ex.period_s > 0.0
+                 for j in range(1, PARTIAL_HARMONICS + 1))
+
+
+def _without_forced(tau: np.ndarray, Y: np.ndarray, modes: np.ndarray, sigma: np.ndarray,
+                    forced: tuple[float, ...]) -> np.ndarray:
+    """``Y`` (S, n) less its least-squares steady lines at the ``forced`` angular frequencies: a resonant forced
+    response is no transient, and left in it leaks into the modes' columns (a spur chain at its 2840 Hz mesh
+    resonance, 878 N of F_t: its 112 Hz coupling transient, 4.5 N at the window start by a closed-form steady
+    state, was fitted at 12-27 N as the window start moved by 0.1-10 ms, settled and unsettled in turn). A line
+    within FORCED_GUARD half-bandwidths (sigma, or the window's resolution 2 pi / T) of a fitted mode, its alias
+    on the thinned samples included, cannot be told from that mode's transient and stays in the record."""
+    if not forced or tau.size < 2:
+        return Y
+    dt = float(tau[1] - tau[0])
+    nyquist = math.pi / dt
+    width = np.maximum(np.abs(sigma), 2 * math.pi / max(float(tau[-1]), dt))
+    lines = [w for w in forced
+             if np.all(np.abs(abs((w + nyquist) % (2 * nyquist) - nyquist) - modes) > FORCED_GUARD * width)]
+    if not lines:
+        return Y
+    w = np.array(lines)[:, None] * tau
+    q = _orthonormal(np.concatenate((np.cos(w), np.sin(w))).T)
+    return Y - (Y @ q) @ q.T
+
+
 def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]], *,
-                   refine: bool = True) -> tuple[np.ndarray, np.ndarray]:
+                   refine: bool = True, forced: tuple[float, ...] = ()) -> tuple[np.ndarray, np.ndarray]:
     """:func:`fit_transient` of every column of ``X`` (shape (n, S): one stage's F_t per column) at once:
     amplitudes (S, M) at ``t[0]`` and the decay rates used (S, M).
 
@@ -158,6 +193,7 @@ def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]
     stride = max(1, min(t.size // FIT_SAMPLES, int(2 * math.pi / (fastest * dt * SAMPLES_PER_PERIOD)) if dt > 0 else 1))
     tau = t[::stride] - t[0]
     Y = X[::stride].T - X[::stride].mean(axis=0)[:, None]  # (S, n), centred: the constant column takes the rest
+    Y = _without_forced(tau, Y, base[:, 1], base[:, 0], forced)  # the steady forced lines are no transient
     cos, sin = np.cos(base[:, 1:2] * tau), np.sin(base[:, 1:2] * tau)  # (M, n)
     sigma = np.broadcast_to(base[:, 0], (S, M)).copy()
     factors = np.geomspace(0.25, 4.0, TRIALS)
@@ -222,7 +258,7 @@ def can_ring(x: np.ndarray, reference_N: float) -> bool:
 
 def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
             eigenvalues: np.ndarray, window_s: tuple[float, float],
-            floors_N: list[float] | None = None) -> list[Ringing]:
+            floors_N: list[float] | None = None, forced: tuple[float, ...] = ()) -> list[Ringing]:
     """Per slow mode, the stage where its transient is largest relative to the static force, when that
     amplitude at the window's end reaches MIN_FRACTION of it."""
     tw = t[mask]
@@ -237,7 +273,7 @@ def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_
     best: dict[int, Ringing] = {}
     if not stages:
         return []
-    amplitudes, sigmas = fit_transients(tw, np.column_stack([forces_N[k][mask] for k in stages]), modes)
+    amplitudes, sigmas = fit_transients(tw, np.column_stack([forces_N[k][mask] for k in stages]), modes, forced=forced)
     for i, k in enumerate(stages):
         ref = refs[k]
         for j, a0 in enumerate(amplitudes[i]):
@@ -281,7 +317,7 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
                      floors_N: list[float] | None = None) -> list[Diagnostic]:
     """An undecayed run-up transient in the fixed window (:mod:`gearcli.simulate.ringing`), naming the element
     that dominates the ringing mode (the modal analysis at the run's boundary, nearest frequency)."""
-    found = ringing(t, mask, forces_N, static_N, choice.run_eigenvalues, window, floors_N)
+    found = ringing(t, mask, forces_N, static_N, choice.run_eigenvalues, window, floors_N, forced_rad_s(model.layout))
     if not found:
         return []
     modes = [m for m in modal_analysis(model.layout, choice.boundary).modes if not m.rigid]

@@ -87,7 +87,7 @@ def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
 def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
           eigenvalues: np.ndarray, window_s: tuple[float, float],
           motor_start_s: float | None = None, motor_reaches: bool = True,
-          floors_N: list[float] | None = None) -> Settling:
+          floors_N: list[float] | None = None, forced: tuple[float, ...] = ()) -> Settling:
     """The settle test of the window ``mask`` of the samples ``t`` (module text). ``motor_start_s``: when the
     motor reached 98 % of its operating speed (None with ``motor_reaches``: never within the run). ``floors_N``: per
     stage the least force an unloaded stage's transient is measured against (:func:`estimate.force_floors_N`)."""
@@ -101,7 +101,7 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
             for ft, ref, floor in zip(forces_N, static_N, floors, strict=True)]
     fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []
     # every stage's fit at once (independent per stage: the same numbers as one fit per stage, one batched solve)
-    amps, sigs = ringing.fit_transients(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes) \
+    amps, sigs = ringing.fit_transients(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes, forced=forced) \
         if fitted else (np.empty((0, 0)), np.empty((0, 0)))
     for i, k in enumerate(fitted):
         ref = refs[k]
@@ -269,7 +269,8 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
     # ringing fit and `modes` take them: the connectors' damping alone leaves a motor-damped mode undamped
     found = check(t, mask, [p[0] for p in per_stage],
                          [st.simulated_static_tangential_N or 0.0 for st in stages],
-                         choice.run_eigenvalues, window, motor_start, reaches, floors_N)
+                         choice.run_eigenvalues, window, motor_start, reaches, floors_N,
+                         ringing.forced_rad_s(model.layout))
     # a stalled or runaway motor's warning says the run is no operating point: no later window would settle it
     said = (dg.WINDOW_RINGING, dg.START_NOT_SETTLED, dg.MOTOR_STALLS, dg.MOTOR_RUNS_AWAY)
     if not found.settled and not any(d.code in said for d in diags):
