@@ -144,7 +144,7 @@ def forced_rad_s(layout) -> tuple[float, ...]:
     """The steady lines of the scene's forced response: each excitation's fundamental and first harmonics
     (:func:`gearcli.simulate.periodic.excitation_periods`, as the window's partial-period bound counts them)."""
     from gearcli.simulate.periodic import excitation_periods  # lazy: the scene's excitations, when there are any
-    from gearcli.simulate.sampling import PARTIAL_HARMONICS
+    from gearcli.simulate.sampling import PARTIAL_HARMONICS  # lazy: sampling imports this module's neighbours
 
     return tuple(2 * math.pi * j / ex.period_s for ex in excitation_periods(layout) if ex.period_s > 0.0
                  for j in range(1, PARTIAL_HARMONICS + 1))
