@@ -36,6 +36,8 @@ from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.damping import decay_rate
 from gearcli.model.modes import modal_analysis
+from gearcli.simulate.periodic import excitation_periods
+from gearcli.simulate.sampling import PARTIAL_HARMONICS
 
 if TYPE_CHECKING:
     from gearcli.model import TorsionalModel
@@ -143,9 +145,6 @@ FORCED_GUARD = 3.0  # a forced line within this many half-bandwidths of a fitted
 def forced_rad_s(layout) -> tuple[float, ...]:
     """The steady lines of the scene's forced response: each excitation's fundamental and first harmonics
     (:func:`gearcli.simulate.periodic.excitation_periods`, as the window's partial-period bound counts them)."""
-    from gearcli.simulate.periodic import excitation_periods  # lazy: the scene's excitations, when there are any
-    from gearcli.simulate.sampling import PARTIAL_HARMONICS  # lazy: sampling imports this module's neighbours
-
     return tuple(2 * math.pi * j / ex.period_s for ex in excitation_periods(layout) if ex.period_s > 0.0
                  for j in range(1, PARTIAL_HARMONICS + 1))
 
