@@ -528,8 +528,7 @@ def peak_warnings(t: np.ndarray, forces_N: list[np.ndarray], steps: int, fastest
     """``peak_undersampled``, one per stage (its F_t over the whole run in ``forces_N``, stage order) whose run peak
     |F_t| the output samples at the times ``t`` miss by more than :data:`TARGET` of it, or alias (module doc, "The
     run's peak"); ``steps``: the file's ``simulation.steps`` (the suggestion scales it); ``fastest_Hz``: the scene's
-    highest natural frequency (what an aliased peak's suggestion samples); ``said``: the run's warnings so far (a
-    stage whose ``peak_unresolved`` estimate exceeds the samples' is told to fix the rtol first)."""
+    highest natural frequency (what an aliased peak's suggestion samples); ``said``: the run's warnings (its rtol first)."""
     if t.size < 3:
         return []
     dt = np.diff(t)
