@@ -185,8 +185,15 @@ def _pool_round(tasks: Sequence[Task], jobs: int) -> Generator[Row, None, _Round
         # submitting starts the workers (the first waits for the forkserver's preload): a signal meanwhile is held
         # until each has started and is in the pool's table, where the handler below ends it; raised inside
         # Process.start it left a worker that read its start after we had gone (a FileNotFoundError traceback)
+        futures: dict = {}
         with deferred():
-            futures = {pool.submit(_run_marked, i, t): (i, t) for i, t in enumerate(tasks)}
+            for i, t in enumerate(tasks):
+                try:
+                    futures[pool.submit(_run_marked, i, t)] = (i, t)
+                except BrokenProcessPool as exc:  # a worker died while the round was still being submitted
+                    broken = exc
+                    unstarted.extend(tasks[i:])  # never submitted: they go on in a new pool
+                    break
         for fut in as_completed(futures):
             i, task = futures[fut]
             try:

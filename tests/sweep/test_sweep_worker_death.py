@@ -68,3 +68,41 @@ def test_a_dead_worker_fails_its_own_task_and_the_others_run(tmp_path):
     # every other point ran, the transient death's task (points 8 and 9) on its second try
     assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
     assert (tmp_path / "died_once").exists()  # the transient death did happen
+
+
+# the same scenario with the break landing while the round is still being submitted: submit() waits, after the
+# task of the point that kills its worker, until that task's future is done (the pool broken under it), so the next
+# submit raises BrokenProcessPool (under load a worker can die that early: CI met it as a traceback)
+LATE_SUBMIT = CHILD.replace('if __name__ == "__main__":', textwrap.dedent('''
+    import time
+    from concurrent.futures import ProcessPoolExecutor
+
+    real_submit = ProcessPoolExecutor.submit
+
+
+    def submit_then_wait(self, fn, /, *args, **kwargs):
+        fut = real_submit(self, fn, *args, **kwargs)
+        if any(p.values[0][1] == 5 for p in args[1].points):  # the killing task: wait until the pool breaks
+            deadline = time.monotonic() + 120
+            while not fut.done() and time.monotonic() < deadline:
+                time.sleep(0.01)
+        return fut
+
+
+    ProcessPoolExecutor.submit = submit_then_wait
+
+
+    if __name__ == "__main__":''').strip("\n"), 1)
+
+
+def test_a_worker_dead_before_the_round_is_submitted_costs_its_own_task_only(tmp_path):
+    script = tmp_path / "child.py"
+    script.write_text(LATE_SUBMIT, encoding="utf-8")
+    done = subprocess.run([sys.executable, str(script), str(tmp_path / "died_once")], capture_output=True,
+                          text=True, timeout=240)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-2000:]
+    rows = sorted(json.loads(done.stdout.strip().splitlines()[-1]))
+    assert [r[0] for r in rows] == list(range(12))
+    lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
+    assert lost == [4, 5]
+    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
