@@ -54,14 +54,20 @@ CHILD = textwrap.dedent("""
 """)
 
 
-def test_a_dead_worker_fails_its_own_task_and_the_others_run(tmp_path):
+def _rows(tmp_path, child: str) -> list:
+    """The child scenario's rows, sorted by point: it exits 0 without a traceback, one row per point."""
     script = tmp_path / "child.py"
-    script.write_text(CHILD, encoding="utf-8")
+    script.write_text(child, encoding="utf-8")
     done = subprocess.run([sys.executable, str(script), str(tmp_path / "died_once")], capture_output=True,
                           text=True, timeout=240)
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-2000:]
     rows = sorted(json.loads(done.stdout.strip().splitlines()[-1]))
     assert [r[0] for r in rows] == list(range(12))  # one row per point, none lost, none twice
+    return rows
+
+
+def test_a_dead_worker_fails_its_own_task_and_the_others_run(tmp_path):
+    rows = _rows(tmp_path, CHILD)
     assert all(status == "failed" for _, status, _ in rows)  # the fake evaluator fails every point it runs
     lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
     assert lost == [4, 5]  # the task of the point that kills its worker every time (points 4 and 5), nothing else
@@ -96,13 +102,7 @@ LATE_SUBMIT = CHILD.replace('if __name__ == "__main__":', textwrap.dedent('''
 
 
 def test_a_worker_dead_before_the_round_is_submitted_costs_its_own_task_only(tmp_path):
-    script = tmp_path / "child.py"
-    script.write_text(LATE_SUBMIT, encoding="utf-8")
-    done = subprocess.run([sys.executable, str(script), str(tmp_path / "died_once")], capture_output=True,
-                          text=True, timeout=240)
-    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr[-2000:]
-    rows = sorted(json.loads(done.stdout.strip().splitlines()[-1]))
-    assert [r[0] for r in rows] == list(range(12))
+    rows = _rows(tmp_path, LATE_SUBMIT)
     lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
     assert lost == [4, 5]
     assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
