@@ -329,23 +329,27 @@ def _pitch_line_speed(terms: list[tuple[int, float]], omega: np.ndarray, shape: 
     return np.broadcast_to(0.0 if v is None else v, shape)
 
 
-def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Stage k: F_t = F_bt cos(alpha_t), F_r = F_t tan(alpha_t), F_a = F_t tan(beta), N."""
+def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray,
+                 out: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Stage k: F_t = F_bt cos(alpha_t), F_r = F_t tan(alpha_t), F_a = F_t tan(beta), N; ``out``: three rows the
+    three are written into (the same multiplications), returned."""
     m = lay.spec.meshes[k]
-    ft = line_force_N * math.cos(m.transverse_pressure_angle_rad)
-    return ft, ft * math.tan(m.transverse_pressure_angle_rad), ft * math.tan(m.helix_angle_rad)
+    cos_a, tan_a, tan_b = (math.cos(m.transverse_pressure_angle_rad), math.tan(m.transverse_pressure_angle_rad),
+                           math.tan(m.helix_angle_rad))
+    if out is None:
+        ft = line_force_N * cos_a
+        return ft, ft * tan_a, ft * tan_b
+    ft = np.multiply(line_force_N, cos_a, out=out[0])
+    return ft, np.multiply(ft, tan_a, out=out[1]), np.multiply(ft, tan_b, out=out[2])
 
 
 def stage_rows(lay: Layout, meshes: tuple[ConnectorSeries, ...]) -> np.ndarray:
     """Every stage's F_t, F_r, F_a (N), penetration (mm) and DTE (um) at the samples of its mesh's series
-    ``meshes`` (stage order), five rows a stage of one array: :func:`tooth_forces`' products and the units'
-    scalings, each written in its row (the same multiplications)."""
+    ``meshes`` (stage order), five rows a stage of one array: :func:`tooth_forces` and the units' scalings, each
+    written in its row."""
     rows = np.empty((5 * len(meshes), meshes[0].force.size if meshes else 0))
     for k, ms in enumerate(meshes):
-        m = lay.spec.meshes[k]
-        ft = np.multiply(ms.line_force_N, math.cos(m.transverse_pressure_angle_rad), out=rows[5 * k])
-        np.multiply(ft, math.tan(m.transverse_pressure_angle_rad), out=rows[5 * k + 1])
-        np.multiply(ft, math.tan(m.helix_angle_rad), out=rows[5 * k + 2])
+        tooth_forces(lay, k, ms.line_force_N, out=rows[5 * k:5 * k + 3])
         np.multiply(ms.penetration_m, 1e3, out=rows[5 * k + 3])
         np.multiply(ms.dte_m, 1e6, out=rows[5 * k + 4])
     return rows
