@@ -192,15 +192,16 @@ def power_path_loss_factors(spec: ModelSpec, conns: list[Connector]) -> list[flo
     factor, pending = 1.0, None
     for c in range(len(conns) - 1, -1, -1):
         x = conns[c]
-        if x.load_body >= 0:
-            out[c] = factor
-            pending = x.index
-            continue
-        if pending is not None:
+        if pending is not None and not (x.load_body >= 0 and x.index == pending):
+            # past the last planet mesh of a stage model (a planetary straight after another one included)
             p = spec.stage_models[pending]
             assert p is not None
             factor *= 1.0 / p.efficiency if forward else p.reverse_efficiency
             pending = None
+        if x.load_body >= 0:
+            out[c] = factor
+            pending = x.index
+            continue
         if x.lossy and forward:  # its driving side is the pinion's: its own loss is in its force
             factor *= 1.0 / x.efficiency
         out[c] = factor
