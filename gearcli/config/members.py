@@ -129,6 +129,15 @@ class Ring(Gear):
         return None
 
     @model_validator(mode="after")
+    def _web_needs_rim(self) -> "Ring":
+        # an internal gear is a rim: its rim_thickness_mm alone sets its Y_B (ISO 6336-3) and its inertia (an annulus
+        # outside the root), with the solid blank's C_R; a web needs the rim it carries
+        if self.web_thickness_mm is not None and self.rim_thickness_mm is None:
+            raise ValueError("the ring's web_thickness_mm needs its rim_thickness_mm (the rim outside the root "
+                             "the web carries; a rim alone is a ring without a web)")
+        return self
+
+    @model_validator(mode="after")
     def _allowance_order(self) -> "Ring":
         _upper_not_below_lower("tooth_thickness_allowance_mm", self.tooth_thickness_allowance_mm)
         return self
@@ -138,7 +147,7 @@ class Ring(Gear):
     def _no_bore(cls, value: float | None) -> None:
         if value is not None:
             raise ValueError("the ring (an internal gear) has no bore: its teeth are inside, its body the rim "
-                             "outside the root; give rim_thickness_mm (and web_thickness_mm) or inertia_kg_m2")
+                             "outside the root; give rim_thickness_mm (a web with web_thickness_mm) or inertia_kg_m2")
         return None
 
 
