@@ -175,6 +175,7 @@ class Rating(_Table):
     virtual_tooth_count: Literal["iso", "cos3"] = "iso"
     dynamic_factor: Literal["iso", "simulated"] | Annotated[float, Field(ge=1, le=10)] = "iso"  # K_v
     load_sharing_factor: Annotated[float, Field(ge=1, le=3)] | None = None  # K_gamma of planetary stages; absent: 1
+    K_gamma: Annotated[float, Field(ge=1, le=3)] | None = None  # the same K_gamma under DESIGN §11's name (one of the two)
     # a bearing's ISO 76 s_0 below it warns; absent: ball 1.0, roller 1.5 (docs/bearings.md)
     min_static_safety_bearing: Annotated[float, Field(ge=0.1, le=20)] | None = None
 
@@ -183,6 +184,15 @@ class Rating(_Table):
         """``required_life_h`` of a table that rates the gears (the only kind ``DesignFile.rating`` holds)."""
         assert self.required_life_h is not None, "a bearing-only [rating] table rates no gear"
         return self.required_life_h
+
+    @model_validator(mode="after")
+    def _one_load_sharing_factor(self) -> "Rating":
+        """``K_gamma`` is ``load_sharing_factor`` under the symbol's name: either key, not both."""
+        if self.K_gamma is not None:
+            if self.load_sharing_factor is not None:
+                raise ValueError("give one of load_sharing_factor and K_gamma: both are the planets' K_gamma")
+            object.__setattr__(self, "load_sharing_factor", self.K_gamma)
+        return self
 
     @model_validator(mode="before")
     @classmethod

@@ -36,7 +36,8 @@ def check_inputs(cfg: DesignFile) -> None:
         raise DesignError(exc.message, key=file_key(cfg, exc.key), source=exc.source) from None
     given = cfg.rating.load_sharing_factor if cfg.rating is not None else None
     if given is not None and not any(design_kind(s).shares_load for s in cfg.stage):
-        raise DesignError(f"load_sharing_factor = {given:g} is K_gamma of a planetary stage's planets, and this train "
-                          "has no planetary stage: remove it", key="rating.load_sharing_factor")
+        name = "load_sharing_factor" if cfg.rating is None or cfg.rating.K_gamma is None else "K_gamma"
+        raise DesignError(f"{name} = {given:g} is the load-sharing factor K_gamma of a planetary stage's planets, "
+                          "and this train has no planetary stage: remove it", key=f"rating.{name}")
     for k, s in enumerate(cfg.stage):
         design_kind(s).check_inputs(cfg, k)
