@@ -112,6 +112,9 @@ class Input(_Coupled):
     @field_validator("torque_ripple")
     @classmethod
     def _ripple_needs_torque_drive(cls, v: list[Ripple], info: ValidationInfo) -> list[Ripple]:
+        if v and info.data.get("drive") == "motor":
+            raise ValueError('needs drive = "torque": a motor drive\'s torque is its curve with its starting method; '
+                             "a ripple on it is not modelled")
         if v and info.data.get("drive") != "torque":
             raise ValueError('needs drive = "torque": a speed drive prescribes the input motion, so a torque '
                              "ripple would act on nothing")
