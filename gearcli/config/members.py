@@ -94,7 +94,7 @@ class Planet(PairGear):
     """The planets of a planetary stage: one gear description and how many there are."""
 
     count: Annotated[int, Field(ge=1, le=20)]
-    mass_kg: Annotated[float, Field(ge=1e-6, le=1e6)] | None = None  # else from geometry (a solid disc)
+    mass_kg: Annotated[float, Field(ge=1e-6, le=1e6)] | None = None  # else from geometry (the inertia's body)
     # per planet, its position error along its sun mesh's line of action (a constant transmission error, um;
     # positive: that planet meets the sun early and carries more); the simulation's load sharing sees it
     position_error_um: Annotated[list[Annotated[float, Field(ge=-1000, le=1000)]], Field(max_length=20)] | None = None

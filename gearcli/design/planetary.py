@@ -45,7 +45,7 @@ from gearcli.design.geometry import (
     transverse_module_mm,
     transverse_pressure_angle_rad,
 )
-from gearcli.design.inertia import annulus_inertia_kg_m2
+from gearcli.design.inertia import annulus_inertia_kg_m2, mean_body_diameter_mm
 from gearcli.design.kinematics import Train, power_kW, speed_deg_s, speed_rpm
 from gearcli.design.rating_results import InternalRatingResult, RatingResult
 from gearcli.errors import DesignError
@@ -179,11 +179,16 @@ def _ring_inertia_kg_m2(ring: Gear, normal_module: float, geo: InternalGeometry,
 
 
 def planet_mass_kg(planet_cfg, planet: GearResult, density: float) -> float:
-    """Given ``mass_kg``, else a disc of pitch diameter and face width with the bore, if any."""
+    """Given ``mass_kg``, else the mass of the body whose inertia the model takes (:mod:`gearcli.design.compute`):
+    ISO's body, a disc of d_m = (d_a + d_f)/2 with the bore, where the file describes it (bore, rim or web), else
+    a solid disc of pitch diameter; face width b."""
     if planet_cfg.mass_kg is not None:
         return float(planet_cfg.mass_kg)
-    bore = planet.bore_diameter_mm or 0.0
-    return density * math.pi / 4.0 * (planet.pitch_diameter_mm ** 2 - bore ** 2) * planet.face_width_mm * 1e-9
+    if planet_cfg.body_given:
+        outer, bore = mean_body_diameter_mm(planet.tip_diameter_mm, planet.root_diameter_mm), planet.bore_diameter_mm
+    else:
+        outer, bore = planet.pitch_diameter_mm, None
+    return density * math.pi / 4.0 * (outer ** 2 - (bore or 0.0) ** 2) * planet.face_width_mm * 1e-9
 
 
 def _member(g: GearResult, speed_rad_s: float, torque_Nmm: float) -> GearResult:
