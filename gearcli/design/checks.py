@@ -545,7 +545,7 @@ def resonance_text(head: str, n: float, lower: float, speed_range: str) -> str |
     """The verdict on a mesh's ISO 6336-1 resonance ratio N (``head`` names the mesh and N): main resonance, or
     near a subcritical resonance; None elsewhere."""
     if speed_range == "main resonance":
-        return (f"{head} lies in the main resonance range {lower:.2f} < N ≤ {MAIN_RESONANCE_UPPER}: the mesh "
+        return (f"{head} lies in the main resonance range {lower:.3f} < N ≤ {MAIN_RESONANCE_UPPER}: the mesh "
                 "frequency meets the mesh's natural frequency; change the speed, the masses or the stiffness")
     orders = subharmonic_orders(n, lower)
     if not orders:
