@@ -97,7 +97,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                        "target_rpm": cfg.target.output_speed_rpm_value,
                        "tolerance_percent": cfg.target.tolerance_percent}))
     found.append((massless_rotor_warning(cfg), {"check": "motor_rotor_inertia"}))
-    found.append((torque_drive_warning(cfg, required_input_Nm, input_speed_rpm),
+    found.append((torque_drive_warning(cfg, required_input_Nm, input_speed_rpm, output_speed_rpm),
                   {"check": "torque_drive_balance", "input_torque_Nm": cfg.input.torque_Nm_value,
                    "required_input_torque_Nm": required_input_Nm}))
     stages = tuple(stages)
@@ -246,12 +246,15 @@ def massless_rotor_warning(cfg: DesignFile) -> str | None:
             "the rotor's inertia (the motor's catalogue) as input.inertia_kg_m2 with input.coupling_stiffness_Nm_rad")
 
 
-def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_rpm: float) -> str | None:
+def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_rpm: float,
+                         output_speed_rpm: float = 0.0) -> str | None:
     """A torque drive whose torque differs from the one the load needs at the nominal speed (the design's input
     torque: load / ratio, with the stage efficiencies) by more than :data:`TORQUE_BALANCE_TOLERANCE`: the train does
     not run at the nominal speed. A load torque T_L (n / n_0)^p (``speed_exponent`` p = 1, 2) balances the drive at
-    n* = n_0 (T_in / T_req)^(1/p) (the steady speed the run settles to); a constant load (p = 0) or a table never
-    does: the train accelerates (decelerates, reverses) for the whole run and every window statistic drifts."""
+    n* = n_0 (T_in / T_req)^(1/p) (the steady speed the run settles to), a ``torque_speed`` table where it meets
+    the drive's torque reflected to the output (:func:`_table_settle_rpm`, at the nominal ``output_speed_rpm``'s
+    scale); a constant load (p = 0), or a table the train never meets, does not: the train accelerates
+    (decelerates, reverses) for the whole run and every window statistic drifts."""
     t_in = cfg.input.torque_Nm_value
     if cfg.input.drive != "torque" or t_in is None:
         return None
@@ -264,16 +267,43 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
             f"at its nominal {input_speed_rpm:.5g} rpm (the load torque over the ratio, with the stage efficiencies)")
     p = cfg.load.speed_exponent if cfg.load.torque_speed is None else 0
     ratio = t_in / required_input_Nm if required_input_Nm != 0.0 else 0.0
+    table = cfg.load.torque_speed
+    met = _table_settle_rpm(table, ratio, output_speed_rpm) if table is not None and output_speed_rpm > 0.0 else None
     if p > 0 and ratio > 0.0:
         settle = input_speed_rpm * ratio ** (1.0 / p)
         fate = (f"; the load's torque grows with speed^{p}, so the train settles at {settle:.5g} rpm "
                 f"(n_0 (T_in / T_req)^(1/{p})), not at {input_speed_rpm:.5g} rpm")
+    elif met is not None:
+        fate = (f"; the load's torque_speed table meets it at {met:.5g} rpm of the output, so the train settles at "
+                f"{met * input_speed_rpm / output_speed_rpm:.5g} rpm, not at {input_speed_rpm:.5g} rpm")
     else:
         way = "accelerates" if excess * (required_input_Nm or 1.0) > 0.0 else "decelerates (and reverses)"
         fate = (f"; nothing balances the difference ({excess:+.4g} N·m), so the train {way} for the whole run and "
                 "its speeds and window statistics drift")
     return (lead + fate + f": set the drive's torque to {required_input_Nm:.5g} N·m for the nominal speed"
-            + ("" if p > 0 else " (or give the load a speed law, load.speed_exponent)"))
+            + ("" if p > 0 or met is not None else " (or give the load a speed law, load.speed_exponent)"))
+
+
+def _table_settle_rpm(table: list[list[float]], ratio: float, n0: float) -> float | None:
+    """The output speed at which the load table (rpm, N·m: linear between its points, constant below the first, its
+    last segment extended, as the model takes it) reaches ``ratio`` x its torque at the nominal output speed ``n0``,
+    first met from n0 in the way the train moves (up where the drive exceeds the load); None where it never is."""
+    xs, ys = [float(x) for x, _ in table], [float(y) for _, y in table]
+
+    def y(n: float) -> float:
+        j = next((i for i in range(len(xs) - 1) if n <= xs[i + 1]), len(xs) - 2)
+        return ys[0] if n <= xs[0] else ys[j] + (ys[j + 1] - ys[j]) * (n - xs[j]) / (xs[j + 1] - xs[j])
+
+    target, up = ratio * y(n0), ratio > 1.0
+    slope = (ys[-1] - ys[-2]) / (xs[-1] - xs[-2])
+    ends = [x for x in xs if x > n0] + ([xs[-1] + (target - ys[-1]) / slope] if slope > 0.0 and ys[-1] < target
+                                       else []) if up else sorted((x for x in xs if x < n0), reverse=True)
+    a = n0
+    for b in ends:
+        if (y(b) >= target) if up else (y(b) <= target):
+            return a + (target - y(a)) * (b - a) / (y(b) - y(a)) if y(b) != y(a) else b
+        a = b
+    return None
 
 
 def spur_hand_warning(index: int, stage_cfg: Stage, names: tuple[str, str] = ("pinion", "gear")) -> str | None:
@@ -515,7 +545,7 @@ def resonance_text(head: str, n: float, lower: float, speed_range: str) -> str |
     """The verdict on a mesh's ISO 6336-1 resonance ratio N (``head`` names the mesh and N): main resonance, or
     near a subcritical resonance; None elsewhere."""
     if speed_range == "main resonance":
-        return (f"{head} lies in the main resonance range {lower:.2f} < N ≤ {MAIN_RESONANCE_UPPER}: the mesh "
+        return (f"{head} lies in the main resonance range {lower:.3f} < N ≤ {MAIN_RESONANCE_UPPER}: the mesh "
                 "frequency meets the mesh's natural frequency; change the speed, the masses or the stiffness")
     orders = subharmonic_orders(n, lower)
     if not orders:

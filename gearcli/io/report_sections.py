@@ -37,7 +37,7 @@ class Section:
 
 
 def g(v: float | None, digits: int = 5) -> str:
-    return "–" if v is None else f"{v:.{digits}g}"
+    return "–" if v is None else f"{v + 0.0:.{digits}g}"  # + 0.0: no negative zero
 
 
 def percent(v: float | None) -> str:

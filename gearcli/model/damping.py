@@ -75,7 +75,10 @@ def net_torque_scan(lay: Layout, row, samples: int = SPEED_SAMPLES):
 def operating_speed_rad_s(lay: Layout) -> float:
     """The input body's speed at the operating point: a motor's stable crossing of its curve with the reflected
     load (the crossing above the curve's largest torque, the highest one; the nominal speed when there is none);
-    a speed or torque drive's nominal speed."""
+    a torque drive's balance with a speed-dependent load (:func:`torque_drive_speed_rad_s`); a speed drive's
+    nominal speed."""
+    if not lay.speed_drive and not lay.motor_drive:
+        return torque_drive_speed_rad_s(lay)
     if not lay.motor_drive or not lay.motor_row:
         return lay.drive.speed_rad_s
     grid, f, w_b, net = net_torque_scan(lay, lay.motor_row)
@@ -83,6 +86,39 @@ def operating_speed_rad_s(lay: Layout) -> float:
     if not down:
         return lay.drive.speed_rad_s
     lo, hi = falling_zero(net, float(grid[down[-1]]), float(grid[down[-1] + 1]))
+    return 0.5 * (lo + hi)
+
+
+def torque_drive_speed_rad_s(lay: Layout) -> float:
+    """The input speed a torque drive settles at: where its torque meets the load reflected to it,
+    ``T_in = T_L(w rho_N) rho_N / prod eta`` (for ``speed_exponent`` p: w_0 (T_in / T_req)^(1/p), as ``gearcli
+    design`` warns). The nominal speed where nothing balances (a constant load: the train accelerates or
+    decelerates for the whole run) or where the drive already balances the load there."""
+    w0, t_in = lay.drive.speed_rad_s, lay.drive.torque_Nm
+    if not lay.load_law or w0 <= 0.0 or t_in <= 0.0:
+        return w0
+
+    def net(w: float) -> float:
+        return t_in - reflected_load_Nm(lay, w)
+
+    f0 = net(w0)
+    if f0 == 0.0:
+        return w0
+    lo, hi = w0, w0
+    for _ in range(64):  # a factor of 2 per step: 64 steps span any speed the schema allows
+        if f0 > 0.0:
+            lo, hi = hi, 2.0 * hi
+            if net(hi) <= 0.0:
+                break
+        else:
+            lo, hi = 0.5 * lo, lo
+            if net(lo) > 0.0:
+                break
+    else:
+        return w0
+    if not net(lo) > 0.0 >= net(hi):
+        return w0
+    lo, hi = falling_zero(net, lo, hi)
     return 0.5 * (lo + hi)
 
 

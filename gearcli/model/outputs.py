@@ -332,14 +332,18 @@ def _pitch_line_speed(terms: list[tuple[int, float]], omega: np.ndarray, shape: 
 def tooth_forces(lay: Layout, k: int, line_force_N: np.ndarray,
                  out: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Stage k: F_t = F_bt cos(alpha_t), F_r = F_t tan(alpha_t), F_a = F_t tan(beta), N; ``out``: three rows the
-    three are written into (the same multiplications), returned."""
+    three are written into (the same multiplications), returned. A spur stage's F_a is zero, never the negative
+    zero a reversed F_t times tan 0 would give (printed "-0" in CSV and reports)."""
     m = lay.spec.meshes[k]
     cos_a, tan_a, tan_b = (math.cos(m.transverse_pressure_angle_rad), math.tan(m.transverse_pressure_angle_rad),
                            math.tan(m.helix_angle_rad))
     if out is None:
         ft = line_force_N * cos_a
-        return ft, ft * tan_a, ft * tan_b
+        return ft, ft * tan_a, ft * tan_b if tan_b else np.zeros_like(ft)
     ft = np.multiply(line_force_N, cos_a, out=out[0])
+    if not tan_b:
+        out[2].fill(0.0)
+        return ft, np.multiply(ft, tan_a, out=out[1]), out[2]
     return ft, np.multiply(ft, tan_a, out=out[1]), np.multiply(ft, tan_b, out=out[2])
 
 

@@ -95,13 +95,14 @@ def excitation_periods(layout) -> list[Excitation]:
 
 
 def steady_input_speed_rad_s(layout) -> float:
-    """The input body's speed in the steady state: a speed or torque drive's nominal speed, a motor's operating
-    point (the stable crossing of its curve with the load reflected to it, :func:`operating_speed_rad_s`), where
-    it runs, not at ``[input] speed_rpm``: a mesh period from the nominal 1470 rpm of a motor running at 1472 rpm
-    is 0.14 % short, and the response, whose mesh phases follow the motor, never repeats over it."""
-    if layout.motor_drive:
-        return operating_speed_rad_s(layout)
-    return layout.drive.speed_rad_s
+    """The input body's speed in the steady state: a speed drive's nominal speed, a motor's operating point (the
+    stable crossing of its curve with the load reflected to it), a torque drive's balance with a speed-dependent
+    load (:func:`operating_speed_rad_s`), where it runs, not at ``[input] speed_rpm``: a mesh period from the
+    nominal 1470 rpm of a motor running at 1472 rpm is 0.14 % short, and the response, whose mesh phases follow
+    the motor, never repeats over it."""
+    if layout.speed_drive:
+        return layout.drive.speed_rad_s
+    return operating_speed_rad_s(layout)
 
 
 def _excitation_periods(layout) -> tuple[Excitation, ...]:

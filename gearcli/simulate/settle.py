@@ -53,6 +53,8 @@ MAX_DURATION_FACTOR = 8.0  # the longest run, in units of the first run's durati
 MAX_DURATION_S = 600.0
 GROWTH_SEGMENTS = 8  # equal parts of the window whose oscillations must grow one after the other (_growth)
 GROWTH_FACTOR = 2.0  # the last part's peak to peak over the first's
+SEEN_DECAY = 0.2  # a rigid mode decaying by less than e^-0.2 over the window: its amplitude and the operating point
+# cannot be told apart by a fit (_speed_approach)
 NEUTRAL = 1e-6  # a mode decaying by less than this per period is undamped (e-fold after a million periods)
 
 
@@ -87,10 +89,12 @@ def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
 def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N: list[float],
           eigenvalues: np.ndarray, window_s: tuple[float, float],
           motor_start_s: float | None = None, motor_reaches: bool = True,
-          floors_N: list[float] | None = None, forced: tuple[float, ...] = ()) -> Settling:
+          floors_N: list[float] | None = None, forced: tuple[float, ...] = (),
+          speed_rad_s: np.ndarray | None = None) -> Settling:
     """The settle test of the window ``mask`` of the samples ``t`` (module text). ``motor_start_s``: when the
     motor reached 98 % of its operating speed (None with ``motor_reaches``: never within the run). ``floors_N``: per
-    stage the least force an unloaded stage's transient is measured against (:func:`estimate.force_floors_N`)."""
+    stage the least force an unloaded stage's transient is measured against (:func:`estimate.force_floors_N`).
+    ``speed_rad_s``: the input shaft's speed, where it is free (:func:`_speed_approach`)."""
     if motor_reaches and motor_start_s is None:
         return Settling(False, math.inf, cause="the motor start does not reach its operating speed within the run")
     tw = t[mask]
@@ -123,6 +127,8 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
         worst = _growth([ft[mask] for ft in forces_N], refs, static_N, worst)
     if worst.settled:
         worst = _unseen_drift(tw, [ft[mask] for ft in forces_N], refs, static_N, eigenvalues, window_s, worst)
+    if worst.settled and speed_rad_s is not None:
+        worst = _speed_approach(tw, speed_rad_s[mask], eigenvalues, window_s, worst)
     if motor_start_s is not None and motor_start_s > window_s[0]:
         settle = max(motor_start_s, worst.settle_time_s or 0.0)
         return Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
@@ -158,6 +164,45 @@ def _unseen_drift(t: np.ndarray, forces: list[np.ndarray], refs: list[float], st
                              f"transient; lengthen simulation.duration_s (the window needs ≥ {period / 2:.3g} s, "
                              "and the mode time to decay)")
     return worst
+
+
+def _speed_approach(t: np.ndarray, w: np.ndarray, eigenvalues: np.ndarray, window_s: tuple[float, float],
+                    worst: Settling) -> Settling:
+    """The free train's approach to its operating speed: a real eigenvalue -sigma of the linearised chain (the
+    rigid-body mode a speed-dependent load or a motor's slip damps, tau = J_eff / (dT/dw)) carries no force the
+    mesh tests see (a torque drive's mesh carries its torque whatever the speed), but every speed of the window
+    creeps towards the operating point. For the slowest such mode not decayed since t = 0 that decays by at least
+    :data:`SEEN_DECAY` within the window, the input speed is fitted by least squares with a constant plus its free
+    decay, ``w_op + b e^(-sigma (t - t0))``: unsettled when |b| exceeds SETTLED_FRACTION of w_op, settled from
+    ``t0 + ln(|b| / (f w_op)) / sigma``. A slower one (a neutral rigid mode: a balanced torque drive) cannot be told
+    from the operating point within the window: unsettled only when the speed drifts across the window (its
+    least-squares line) by more than that fraction of its mean, with no settle time."""
+    length = window_s[1] - window_s[0]
+    real = sorted(-float(z.real) for z in np.asarray(eigenvalues, dtype=complex)
+                  if z.imag == 0.0 and z.real < 0.0 and -z.real * window_s[0] < DECAYED)
+    if not real or t.size < 4 or length <= 0.0:
+        return worst
+    mean, rpm = float(np.mean(w)), 30.0 / math.pi
+    seen = [x for x in real if x * length >= SEEN_DECAY]
+    if len(seen) < len(real) or not seen:  # a slower mode: the drift across the window
+        drift = abs(float(np.polyfit(t - t[0], w, 1)[0])) * length
+        if mean != 0.0 and drift / abs(mean) > SETTLED_FRACTION:
+            return Settling(False, drift / abs(mean), None, None, None,
+                            f"the input speed drifts across the window by {drift * rpm:.4g} rpm ({100 * drift / abs(mean):.2g} "
+                            f"% of its mean): the train's rigid-body mode (time constant {1.0 / real[0]:.3g} s, longer "
+                            "than the window) has not brought it to its operating point; lengthen simulation.duration_s")
+        if not seen:
+            return worst
+    sigma = seen[0]
+    (w_op, b), *_ = np.linalg.lstsq(np.column_stack([np.ones_like(t), np.exp(-sigma * (t - t[0]))]), w, rcond=None)
+    fraction = abs(float(b)) / abs(float(w_op)) if w_op != 0.0 else 0.0
+    if fraction <= SETTLED_FRACTION:
+        return worst
+    return Settling(False, fraction, None, None, float(t[0]) + math.log(fraction / SETTLED_FRACTION) / sigma,
+                    f"the input speed still approaches its operating point, about {float(w_op) * rpm:.4g} rpm: the "
+                    f"train's rigid-body mode (time constant {1.0 / sigma:.3g} s, from the load's and drive's dT/dw) "
+                    f"carries {float(b) * rpm:+.4g} rpm at the window's start ({100 * fraction:.2g} % of it), so the "
+                    "window's speeds and their means are not the operating point's")
 
 
 def _growth(forces: list[np.ndarray], refs: list[float], static_N: list[float], worst: Settling) -> Settling:
@@ -252,10 +297,11 @@ def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str
 
 def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray, window, per_stage,
                    stages, steady: SteadyState, motor_summary, diags: list[Diagnostic],
-                   floors_N: list[float] | None = None) -> SteadyState:
+                   floors_N: list[float] | None = None, speeds_rad_s: np.ndarray | None = None) -> SteadyState:
     """``steady`` with the settle test of the window (:mod:`gearcli.simulate.settle`; a periodic state: settled
     when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
-    ringing or the motor's start, stall or runaway warning already says so."""
+    ringing or the motor's start, stall or runaway warning already says so. ``speeds_rad_s``: the input shaft's
+    speed at the samples (a free one's approach to its operating point is tested too)."""
     if steady.mode == "periodic":
         attracting = reached(steady)
         if steady.converged and not attracting:
@@ -267,10 +313,11 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
         reaches = not any(d.code == dg.MOTOR_STALLS for d in diags)
     # the eigenvalues with every damping the run integrates (a motor's slip damping, the load law's dT/dw), as the
     # ringing fit and `modes` take them: the connectors' damping alone leaves a motor-damped mode undamped
+    free = None if model.layout.speed_drive else speeds_rad_s
     found = check(t, mask, [p[0] for p in per_stage],
                          [st.simulated_static_tangential_N or 0.0 for st in stages],
                          choice.run_eigenvalues, window, motor_start, reaches, floors_N,
-                         ringing.forced_rad_s(model.layout))
+                         ringing.forced_rad_s(model.layout), free)
     # a stalled or runaway motor's warning says the run is no operating point: no later window would settle it
     said = (dg.WINDOW_RINGING, dg.START_NOT_SETTLED, dg.MOTOR_STALLS, dg.MOTOR_RUNS_AWAY)
     if not found.settled and not any(d.code in said for d in diags):
