@@ -41,7 +41,10 @@ STDOUT = "-"
 
 #: What a suffix says about the format of the file's content.
 SUFFIX_FORMAT = {".json": "json", ".csv": "csv", ".md": "markdown", ".markdown": "markdown", ".txt": "table",
-                 ".toml": "toml"}
+                 ".toml": "toml",
+                 # formats no command writes: named, so `-o out.xlsx` is refused rather than given CSV under that name
+                 ".xlsx": "an Excel workbook", ".xls": "an Excel workbook", ".ods": "an OpenDocument spreadsheet",
+                 ".parquet": "Parquet", ".h5": "HDF5", ".hdf5": "HDF5"}
 
 
 @record

@@ -144,6 +144,8 @@ def test_a_directory_and_a_trailing_slash_are_refused(work, command):
     ("simulate", "x.md", "cannot write markdown"),
     ("report", "r.csv", "cannot write csv"),
     ("schema", "s.csv", "cannot write csv"),
+    ("simulate", "run.xlsx", "cannot write an Excel workbook"),  # not CSV under a workbook's name
+    ("design", "d.parquet", "cannot write Parquet"),
 ])
 def test_a_suffix_the_command_cannot_write_is_an_error(work, command, name, fragment):
     args = ["schema", "-o", name] if command == "schema" else [command, "in.toml", "-o", name]
