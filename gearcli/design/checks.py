@@ -61,7 +61,9 @@ TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a 
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:
     if name not in materials:
         known = ", ".join(sorted(materials)) or "none"
-        raise DesignError(f"unknown material {name!r}: define [materials.{name}] (defined: {known})", key=key)
+        hint = ("; the built-in steel applies only to a file without a [materials] table"
+                if name == "steel" and materials else "")
+        raise DesignError(f"unknown material {name!r}: define [materials.{name}] (defined: {known}){hint}", key=key)
 
 
 def check_hands(stage: Stage, k: int, names: tuple[str, str] = ("pinion", "gear")) -> None:

@@ -48,6 +48,9 @@ OUT_OF_RANGE = "rating_out_of_range"
 NOT_ISO = "rating_not_iso"  # a rating option that departs from the standard ([rating] virtual_tooth_count)
 EPS_ALPHA_N_MAX = 2.5  # ISO 6336-2:2006 (Scope): teeth of other basic racks while ε_αn = ε_α/cos² β_b < 2.5
 Q_S_RANGE = (1.0, 8.0)  # the notch parameter range of Y_S, method B (ISO 6336-3:2006, 7.2)
+# the lowest modulus of ISO 6336's gear materials: its Z_E table's cast tin bronze (103,000 N/mm²) under grey cast
+# iron's 118,000, steel's 206,000; ISO 6336-5's strength values are steels' and cast irons' (polymers: VDI 2736)
+ISO_MATERIAL_MODULUS_MIN_MPa = 100_000.0
 
 
 # ------------------------------------------------------------------------------ required inputs
@@ -171,7 +174,21 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
                                f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
                                stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
         out.extend(_rim_range_diagnostics(st, part, getattr(stage, part).rim_thickness_mm, g))
+        out.extend(_material_range_diagnostics(cfg, st, part, getattr(stage, part).material))
     return out + static_range_diagnostics(cfg, k, st)
+
+
+def _material_range_diagnostics(cfg: DesignFile, st: StageResult, part: str, name: str) -> list[Diagnostic]:
+    """A member softer than every ISO 6336 gear material (a polymer, a light alloy): its σ_Hlim, σ_FE and S-N curves
+    are steel's or cast iron's (ISO 6336-5), so its safeties describe no real part."""
+    modulus = cfg.materials[name].youngs_modulus_MPa
+    if modulus >= ISO_MATERIAL_MODULUS_MIN_MPa:
+        return []
+    return [warning(OUT_OF_RANGE, f"stage {st.index} {part}: its material {name!r} has E = {modulus:,.0f} N/mm², below "
+                    f"every ISO 6336 gear material (from {ISO_MATERIAL_MODULUS_MIN_MPa:,.0f} N/mm²: bronzes, cast irons, "
+                    "steels): ISO 6336-5's strength values and S-N curves are steels' and cast irons', so the "
+                    "safeties of this member are not a rating of it (polymer gears: VDI 2736)",
+                    stage=st.index, member=part, quantity="youngs_modulus_MPa", value=modulus)]
 
 
 def _rim_range_diagnostics(st: StageResult, part: str, rim_mm: float | None, g: GearResult) -> list[Diagnostic]:
