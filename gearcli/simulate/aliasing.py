@@ -123,8 +123,8 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
                     eigenvalues: np.ndarray | None = None) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
     judged with the solver's estimate where a check pass ran, and a fixed window's force above the samples' Nyquist
-    frequency (``layout``, ``eigenvalues``: the scene's excitations and modes; module text); None for an empty
-    window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`)."""
+    frequency (``layout``, ``eigenvalues``: the scene's excitations and modes, read for a fixed window only; module
+    text); None for an empty window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`)."""
     sel = stats.window_slice(mask)
     tw = t[sel]
     if tw.size == 0:

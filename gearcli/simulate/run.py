@@ -427,8 +427,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
     statics = [m.static_tangential_N for m in spec.meshes]
     reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic, rows)  # both below
+    # a periodic window is judged without the modes (its own grid): their eigenproblem is not solved for it
     samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
-                                         floors, reduced, model.layout, choice.run_eigenvalues)
+                                         floors, reduced, model.layout, None if periodic else choice.run_eigenvalues)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
