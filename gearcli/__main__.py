@@ -6,20 +6,22 @@ traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same wa
 the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
 
 A command that integrates (:data:`INTEGRATING`) imports numpy and scipy.integrate right after that guard, before
-gearcli's own modules: the same modules it would import anyway, from a frame next to the entry point instead of
-from inside gearcli's import tree and the command's body (25-50 frames deeper). Python 3.11 keeps frames in 16 KiB
-chunks and frees a chunk whenever the frame at its start returns, so an import-time loop whose calls straddle a
-chunk's end maps and unmaps a chunk per call (docs/performance.md, "The one-shot commands, session 13"); the
-shallower the imports, the fewer such loops: on the seed's ``simulate`` over 19 caller depths, 125-3,135 unmapped
-chunks (median 1,020) against 1,658-14,300 (median 4,805) from inside gearcli, and ~3,100 fewer page faults from
-``python -m gearcli`` (docs/performance.md, "The one-shot simulate, session 15").
+gearcli's own modules, and one that computes with numpy alone (:data:`NUMERIC`) numpy: modules it would import
+anyway, from a frame next to the entry point instead of from inside gearcli's import tree and the command's body
+(25-50 frames deeper). Python 3.11 keeps frames in 16 KiB chunks and frees a chunk whenever the frame at its start
+returns, so an import-time loop whose calls straddle a chunk's end maps and unmaps a chunk per call
+(docs/performance.md, "The one-shot commands, session 13"); the shallower the imports, the fewer such loops. The
+seed's ``simulate`` over 19 caller depths: 129-3,144 unmapped chunks (median 1,041) against 1,658-14,300 (median
+4,805) from inside gearcli; ``python -m gearcli design`` 54 against 990 (docs/performance.md, "The one-shot
+simulate, session 15").
 """
 
 import sys
 
 INTERRUPTED = (129, 130, 143)  # SIGHUP, SIGINT, SIGTERM: gearcli has said so and removed its temporary files
-#: the commands whose runs step scipy's solvers (module doc); ``modes`` and ``design`` import numpy alone
+#: the commands whose runs step scipy's solvers, and those that compute with numpy alone (module doc)
 INTEGRATING = frozenset({"simulate", "report", "sweep", "life"})
+NUMERIC = INTEGRATING | {"design", "modes", "schema"}
 
 
 def command_word(argv: list[str]) -> str | None:
@@ -43,8 +45,10 @@ def main() -> None:
 
         streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
         argv = sys.argv[1:]
-        if command_word(argv) in INTEGRATING and "--help" not in argv and "-h" not in argv:
+        word = command_word(argv) if "--help" not in argv and "-h" not in argv else None
+        if word in NUMERIC:
             import numpy  # noqa: F401 - first, from here: the module doc
+        if word in INTEGRATING:
             import scipy.integrate  # noqa: F401
         # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
         from gearcli.cli import main as run

@@ -1,6 +1,6 @@
 """The entry point's command word: the commands that integrate import numpy and scipy first (gearcli/__main__.py)."""
 
-from gearcli.__main__ import INTEGRATING, command_word
+from gearcli.__main__ import INTEGRATING, NUMERIC, command_word
 from gearcli.cli import cli
 
 
@@ -14,5 +14,5 @@ def test_no_command_word():
     assert command_word(["--version"]) is None
 
 
-def test_the_integrating_commands_are_commands():
-    assert INTEGRATING <= set(cli.commands)
+def test_the_numeric_commands_are_commands():
+    assert INTEGRATING <= NUMERIC <= set(cli.commands)
