@@ -47,9 +47,9 @@ def main() -> None:
         argv = sys.argv[1:]
         word = command_word(argv) if "--help" not in argv and "-h" not in argv else None
         if word in NUMERIC:
-            import numpy  # noqa: F401 - first, from here: the module doc
+            import numpy  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
         if word in INTEGRATING:
-            import scipy.integrate  # noqa: F401
+            import scipy.integrate  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
         # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
         from gearcli.cli import main as run
     except KeyboardInterrupt:
