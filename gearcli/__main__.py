@@ -1,9 +1,9 @@
 """``python -m gearcli`` and the ``gearcli`` console script.
 
 The command-line module is imported inside :func:`main` so that a Ctrl-C during the start-up imports
-(click, pydantic, rich; scipy later for simulate) also ends with exit code 130 and one line, never a
-traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The process then ends
-the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
+(numpy and scipy first where the command uses them, below; then click, pydantic, rich) also ends with exit code 130
+and one line, never a traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The
+process then ends the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
 
 A command that integrates (:data:`INTEGRATING`) imports numpy and scipy.integrate right after that guard, before
 gearcli's own modules, and one that computes with numpy alone (:data:`NUMERIC`) numpy: modules it would import
