@@ -1,14 +1,33 @@
 """``python -m gearcli`` and the ``gearcli`` console script.
 
 The command-line module is imported inside :func:`main` so that a Ctrl-C during the start-up imports
-(click, pydantic, rich; scipy later for simulate) also ends with exit code 130 and one line, never a
-traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The process then ends
-the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
+(numpy and scipy first where the command uses them, below; then click, pydantic, rich) also ends with exit code 130
+and one line, never a traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The
+process then ends the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
+
+A command that integrates (:data:`INTEGRATING`) imports numpy and scipy.integrate right after that guard, before
+gearcli's own modules, and one that computes with numpy alone (:data:`NUMERIC`) numpy: modules it would import
+anyway, from a frame next to the entry point instead of from inside gearcli's import tree and the command's body
+(25-50 frames deeper). Python 3.11 keeps frames in 16 KiB chunks and frees a chunk whenever the frame at its start
+returns, so an import-time loop whose calls straddle a chunk's end maps and unmaps a chunk per call
+(docs/performance.md, "The one-shot commands, session 13"); the shallower the imports, the fewer such loops. The
+seed's ``simulate`` over 19 caller depths: 129-3,144 unmapped chunks (median 1,041) against 1,658-14,300 (median
+4,805) from inside gearcli; ``python -m gearcli design`` 54 against 990 (docs/performance.md, "The one-shot
+simulate, session 15").
 """
 
 import sys
 
 INTERRUPTED = (129, 130, 143)  # SIGHUP, SIGINT, SIGTERM: gearcli has said so and removed its temporary files
+#: the commands whose runs step scipy's solvers, and those that compute with numpy alone (module doc)
+INTEGRATING = frozenset({"simulate", "report", "sweep", "life"})
+NUMERIC = INTEGRATING | {"design", "modes", "schema"}
+
+
+def command_word(argv: list[str]) -> str | None:
+    """The command a command line names: its first argument that is not an option (gearcli's own options take no
+    value), or None."""
+    return next((a for a in argv if not a.startswith("-")), None)
 
 
 def _forget_handled_interrupt() -> None:
@@ -25,6 +44,12 @@ def main() -> None:
         from gearcli.io import streams  # lazy: inside main, so a Ctrl-C during the start-up imports exits 130
 
         streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
+        argv = sys.argv[1:]
+        word = command_word(argv) if "--help" not in argv and "-h" not in argv else None
+        if word in NUMERIC:
+            import numpy  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
+        if word in INTEGRATING:
+            import scipy.integrate  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
         # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
         from gearcli.cli import main as run
     except KeyboardInterrupt:
