@@ -31,6 +31,7 @@ START_NOT_SETTLED = "start_not_settled"  # the motor start has not settled befor
 MOTOR_ROLLS_BACK = "motor_rolls_back"  # the load turns the train backwards: the start's torque at standstill is short
 MOTOR_RUNS_AWAY = "motor_runs_away"  # the motor turns well past its synchronous speed: nothing holds it
 STAR_DELTA_RESWITCH = "star_delta_reswitch"  # a star-delta motor fell back below its switch band after switching
+MOTOR_OVERLOADED = "motor_overloaded"  # the steady motor torque exceeds the nameplate's rated torque beyond the margin
 STIFF_FOR_EXPLICIT = "stiff_for_explicit"
 FORCE_NOISE = "force_noise"
 RESONANCE = "resonance"

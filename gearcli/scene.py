@@ -198,9 +198,10 @@ def resonance_diagnostics(cfg: DesignFile, design: DesignResult) -> tuple[Diagno
 
 def motor_start_warnings(cfg: DesignFile, design: DesignResult) -> tuple[Diagnostic, ...]:
     """A motor drive that cannot start its load, for ``gearcli design``: its curves against the load reflected
-    through the train (:mod:`gearcli.model.motor_start`, the physics of ``simulate``'s ``motor_stalls``). Imports
-    numpy, never scipy; nothing for a speed or torque drive."""
-    if cfg.input.drive != "motor" or cfg.input.motor is None:
+    through the train (:mod:`gearcli.model.motor_start`, the physics of ``simulate``'s ``motor_stalls``), and a
+    motor (a speed drive's described one too) loaded beyond its rated torque. Imports numpy, never scipy; nothing
+    for a torque drive or a drive without a motor."""
+    if cfg.input.drive == "torque" or cfg.input.motor is None:
         return ()
     from gearcli.model.motor_start import motor_start_diagnostics  # lazy: a motor drive's design only
 

@@ -65,13 +65,14 @@ def _kind(prop: dict, defs: dict) -> tuple[str, str]:
         return "tables by name", ""
     if t == "array":
         items = prop.get("minItems"), prop.get("maxItems")
-        count = f"{items[0]} to {items[1]} entries" if all(i is not None for i in items) else \
-            f"at most {items[1]} entries" if items[1] is not None else ""
+        count = (f"{items[0]} entries" if items[0] == items[1] else f"{items[0]} to {items[1]} entries") \
+            if all(i is not None for i in items) else f"at most {items[1]} entries" if items[1] is not None else ""
         item = prop.get("items", {})
         if "$ref" in item:
             return "array of tables", count
         kind, rng = _kind(item, defs)
-        return f"array of {kind}s", "; ".join(x for x in (count, f"each {rng}" if rng else "") if x)
+        plural = f"arrays of {kind[len('array of '):]}" if kind.startswith("array of ") else f"{kind}s"
+        return f"array of {plural}", "; ".join(x for x in (count, f"each {rng}" if rng else "") if x)
     lo = prop.get("minimum", prop.get("exclusiveMinimum"))
     hi = prop.get("maximum", prop.get("exclusiveMaximum"))
     rng = ""

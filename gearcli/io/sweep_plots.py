@@ -40,6 +40,8 @@ FAMILIES = (
 SCALE_OF = {"tangential_N_std": "tangential_N_mean", "dte_um_rms": "dte_um_mean"}
 #: families that cannot be negative, whose pinned axis starts at zero
 NON_NEGATIVE = ("tangential_N_std", "dte_um_rms", "contact_loss_fraction")
+#: legend entries (curves x line styles) that fit inside the first panel; more go below the panels
+LEGEND_INSIDE = 6
 #: relative spread below which a family's values differ by roundoff only (an equilibrium row's std is ~1e-13 N)
 ROUNDOFF = 1e-9
 DISTRIBUTION_STATS = (("tangential_N_max", "peak F_t in window (N)"), ("tangential_N_std", "F_t std (N)"),
@@ -123,7 +125,12 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
     for k in range(1, n_stages):
         axes[-2][k].set_xlabel(key)
         axes[-2][k].xaxis.set_tick_params(labelbottom=True)
-    axes[0][0].legend(fontsize=7, loc="best")
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    if len(labels) > LEGEND_INSIDE:  # a grid's curves: a legend inside a 2-inch panel hid its title and its data
+        fig.legend(handles, labels, loc="outside lower center", ncol=2 * n_stages, fontsize=7)
+        fig.set_figheight(fig.get_figheight() + 0.16 * -(-len(labels) // (2 * n_stages)) + 0.2)
+    else:
+        axes[0][0].legend(fontsize=7, loc="best")
     fig.suptitle(f"sweep response against {key}", fontsize=11)
     return fig
 

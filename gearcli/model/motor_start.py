@@ -31,6 +31,10 @@ if TYPE_CHECKING:
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
 LOAD_OFF_DESIGN = 0.01  # a speed-dependent load met more than 1 % off the design's load is warned (as a torque drive)
 SPEED_OFF_DESIGN = 0.02  # a motor running more than 2 % off speed_rpm is warned (as a life point off its speed)
+#: a motor whose steady torque exceeds its rated torque (rated power over rated speed) by more than this is warned:
+#: an IEC motor's S1 rating (service factor 1.0) is for its rated torque continuously; 5 % covers the nameplate's
+#: rounding and the load's estimate, and already means ~10 % more winding (I²R) losses (docs/motors.md)
+OVERLOAD_MARGIN = 0.05
 
 
 #: why a VFD runs off its speed_rpm, and what to give (a VFD's supply is set for the rated torque: docs/physics.md)
@@ -95,6 +99,26 @@ def off_design_speed(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagnos
     return _load_off_design(lay, w_op, motor.starting == "vfd") or _speed_off_design(lay, motor, w_op)
 
 
+def overloaded(motor: MotorSpec, torque_Nm: float, where: str) -> list[Diagnostic]:
+    """``motor_overloaded``: the steady torque ``torque_Nm`` the motor carries (``where`` says whose figure it is)
+    beyond OVERLOAD_MARGIN above its nameplate's rated torque P_rated / w_rated (S1, continuous duty); nothing for
+    a motor without a rated point (a ``torque_speed`` table). A start's overshoot is no steady load: not judged."""
+    rated = motor.rated_torque_Nm
+    if not rated > 0.0 or not abs(torque_Nm) > (1.0 + OVERLOAD_MARGIN) * rated:
+        return []
+    ratio = abs(torque_Nm) / rated
+    return [dg.warning(dg.MOTOR_OVERLOADED, f"the motor carries {abs(torque_Nm):.4g} N·m in steady operation ({where}), {ratio:.3g}x "
+                       f"its rated torque {rated:.4g} N·m (rated_power_kW / rated_speed_rpm): beyond the "
+                       f"{100 * OVERLOAD_MARGIN:g} % margin on its S1 (continuous duty) rating its winding runs hotter "
+                       "than its insulation class allows; a larger motor (rated torque above the load) or a smaller "
+                       "load", torque_Nm=abs(torque_Nm), rated_torque_Nm=rated, overload_ratio=ratio)]
+
+
+def _as_design(diags: list[Diagnostic]) -> list[Diagnostic]:
+    """``design``'s form of a motor warning: code ``design``, ``check`` the warning's own code."""
+    return [dg.warning(dg.DESIGN, f"input: motor: {d.message}", check=d.code, **d.data) for d in diags]
+
+
 def _first_crossing(grid, f, net) -> float | None:
     """The first speed from rest where the net torque falls through 0 (None: it never does up to the scan's end)."""
     for i in range(grid.size - 1):
@@ -110,8 +134,12 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
     lies off ``[input] speed_rpm`` (:func:`off_design_speed`, as ``simulate`` warns after its run). Nothing for any
     other drive."""
     motor = lay.drive.motor
-    if not lay.motor_drive or motor is None:
+    if motor is None:
         return ()
+    if not lay.motor_drive:  # a prescribed speed with a motor described: it must carry the design's input torque
+        w_nom = lay.drive.speed_rad_s
+        return tuple(_as_design(overloaded(motor, reflected_load_Nm(lay, w_nom), "the design's input torque at "
+                                           "speed_rpm"))) if w_nom > 0.0 else ()
     row = lay.motor_row
     grid, f, w_b, net = net_torque_scan(lay, row)
     found: list[Diagnostic] = []
@@ -138,6 +166,8 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
     elif stall is not None:  # it runs up to its operating point: is that where the design's speeds are?
         found += [dg.warning(dg.DESIGN, f'input: drive = "motor": {d.message}', check="motor_speed_mismatch", **d.data)
                   for d in off_design_speed(lay, motor, stall)]
+        found += _as_design(overloaded(motor, reflected_load_Nm(lay, stall), "the load reflected to it at its "
+                                       f"operating point {stall * RAD_S_TO_RPM:.5g} rpm"))
     if start == "soft_start" and not cannot:
         u0 = motor.start_parameters[1]
         t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load_Nm(lay, 0.0)

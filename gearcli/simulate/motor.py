@@ -25,7 +25,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
-from gearcli.model.motor_start import off_design_speed
+from gearcli.model.motor_start import off_design_speed, overloaded
 from gearcli.model.spec import MotorSpec
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
@@ -96,6 +96,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                     f"({motor.peak_torque_Nm:.4g} N·m): the motor cannot follow it; lengthen "
                                     "[input] ramp_s or simulate drive = \"motor\"", torque_Nm=need,
                                     breakdown_torque_Nm=motor.peak_torque_Nm))
+        diags += overloaded(motor, float(t_motor[mask].mean()), "the mean torque the prescribed speed needs over the "
+                            "steady window")
         return {"synchronous_speed_rpm": ws * RAD_S_TO_RPM, "peak_required_torque_Nm": need}, diags
     rpm = RAD_S_TO_RPM
     driven = op.speed_rad_s is None and op.stable_rad_s is None and _net_at(lay, 0.0) > 0.0
@@ -142,6 +144,11 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     if reaches and op.speed_rad_s is not None:
         diags += off_design_speed(lay, motor, op.speed_rad_s)
     w_mean = float(w_motor[mask].mean())
+    if reaches and op.speed_rad_s is not None:  # a start's overshoot is not judged, only the steady torque
+        settled = t_start is not None and t_start <= window[0]
+        diags += overloaded(motor, float(t_motor[mask].mean()) if settled else reflected_load(lay, op.speed_rad_s),
+                            "its mean torque over the steady window" if settled else "the load reflected to it at "
+                            f"its operating point {op.speed_rad_s * rpm:.5g} rpm; the window is not steady yet")
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
            "operating_point_rpm": None if op.speed_rad_s is None else op.speed_rad_s * RAD_S_TO_RPM,

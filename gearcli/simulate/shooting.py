@@ -11,7 +11,8 @@ the variational equations ``Phi' = J(t, y) Phi``, ``Phi(t0) = I``, integrated be
 model's analytic Jacobian ``J`` (its dynamic block: the quadratures do not act back). Where the variational
 equations are unavailable (a right-hand side replaced in Python, which has no Jacobian to go with it) the
 columns of ``M`` are finite differences of the map, one extra period per state. The step
-``dx = -(M - I)^-1 F`` is damped: halved (at most :data:`HALVINGS` times) until the residual decreases.
+``dx = -(M - I)^-1 F`` is damped: halved (at most :data:`HALVINGS` times) until the residual decreases. Closed
+loops keep combinations of deflections constant (:func:`structural_constraints`): the step keeps them too.
 
 The residual is measured as the brute-force search measures it, ``max_i |F_i| / (rtol |x_i| + atol_i)``
 with the boundary comparison's absolute tolerances (:func:`gearcli.simulate.periodic.poincare_atol`):
@@ -109,12 +110,8 @@ def judged(mu: np.ndarray, near: float = NEAR, structural: int = 0) -> Floquet:
     return Floquet(pairs, rho, rho <= 1.0 + STABLE_SLACK, kind, critical)
 
 
-def structural_unit_multipliers(layout) -> int:
-    """How many Floquet multipliers are 1 by construction: the state holds every connector's deflection, and
-    where connectors close loops (a planetary stage: each planet's sun and ring mesh, more deflections than the
-    free bodies' speeds can move independently) the combinations of deflections no free body's speed changes
-    are constants of the motion, each an eigenvalue 1 of the monodromy whatever the orbit. Their number is
-    n_conn - rank(R), ``R`` the map from the free bodies' speeds to the deflection rates."""
+def _rates(layout) -> np.ndarray:
+    """``R``: the map from the free bodies' speeds to the connectors' deflection rates."""
     free = list(layout.free_bodies)
     R = np.zeros((layout.n_conn, len(free)))
     col = {b: i for i, b in enumerate(free)}
@@ -122,6 +119,33 @@ def structural_unit_multipliers(layout) -> int:
         for b, lever in zip(x.bodies, x.levers, strict=True):
             if b in col:
                 R[c, col[b]] += lever
+    return R
+
+
+def structural_constraints(layout, structural: int) -> np.ndarray:
+    """``C^T`` (``structural`` rows over the dynamic states): the combinations of deflections no free body's speed
+    changes, the constants of the motion of closed loops (the left null space of ``R``, zero on the speeds). A
+    Newton step on the period map must keep them (``C^T dx = 0``): ``M - I`` is singular along them, and a step
+    that moved them (np.linalg.solve on the near-singular matrix did) locks a preload into the loops, an orbit of
+    planets fighting each other (+24 kN against -322 kN on a stage whose planets carry 2 kN each), which no motion
+    from rest reaches."""
+    R = _rates(layout)
+    d = layout.state.n_mechanical
+    if structural <= 0:
+        return np.zeros((0, d))
+    u, _, _ = np.linalg.svd(R / (np.max(np.abs(R)) or 1.0))
+    C = np.zeros((structural, d))
+    C[:, :layout.n_conn] = u[:, -structural:].T
+    return C
+
+
+def structural_unit_multipliers(layout) -> int:
+    """How many Floquet multipliers are 1 by construction: the state holds every connector's deflection, and
+    where connectors close loops (a planetary stage: each planet's sun and ring mesh, more deflections than the
+    free bodies' speeds can move independently) the combinations of deflections no free body's speed changes
+    are constants of the motion, each an eigenvalue 1 of the monodromy whatever the orbit. Their number is
+    n_conn - rank(R), ``R`` the map from the free bodies' speeds to the deflection rates."""
+    R = _rates(layout)
     if R.size == 0:
         return layout.n_conn
     # the rank of this very matrix: a sweep's points that share their chain (its levers) share it, not recomputed
@@ -223,11 +247,16 @@ class Shot:
     M: np.ndarray | None
 
 
-def newton_step(M: np.ndarray, F: np.ndarray) -> np.ndarray | None:
-    """``dx`` solving ``(M - I) dx = -F``; None when ``M - I`` is singular to working precision."""
+def newton_step(M: np.ndarray, F: np.ndarray, C: np.ndarray | None = None) -> np.ndarray | None:
+    """``dx`` solving ``(M - I) dx = -F``; None when ``M - I`` is singular to working precision. ``C`` (rows
+    ``C^T``, :func:`structural_constraints`): the constants of the motion the step keeps, ``[M - I; C^T] dx =
+    [-F; 0]`` by least squares (``M - I`` is singular along them, the stacked matrix is not)."""
     A = M - np.eye(M.shape[0])
     try:
-        dx = np.linalg.solve(A, -F)
+        if C is not None and C.shape[0]:
+            dx = np.linalg.lstsq(np.vstack([A, C]), np.concatenate([-F, np.zeros(C.shape[0])]), rcond=None)[0]
+        else:
+            dx = np.linalg.solve(A, -F)
     except np.linalg.LinAlgError:
         return None
     return dx if np.all(np.isfinite(dx)) else None
@@ -249,6 +278,7 @@ class _Shooter:
         self.used = 0
         self.variational = bool(getattr(model, "generated", True))
         self.structural = structural_unit_multipliers(lay)  # closed planet loops: constants of the motion
+        self.constraints = structural_constraints(lay, self.structural)  # which Newton's step keeps
         if self.structural:
             ledger.notes.append(structural_note(lay, self.structural))
         if not self.variational:
@@ -447,7 +477,7 @@ def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet]
         if sh.ledger.periods >= cap:
             return None, f"the periods allowed by simulation.duration_s ({cap}) are used up"
         F = shot.run.y[:sh.d, -1] - shot.x
-        dx = newton_step(shot.M, F)
+        dx = newton_step(shot.M, F, sh.constraints)
         if dx is None:
             return None, "M - I is singular (a multiplier at +1)"
         lam, trial = 1.0, None

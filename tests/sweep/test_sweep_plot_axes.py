@@ -107,3 +107,26 @@ def test_distributions_draw_roundoff_statistics_as_one_bar_at_their_scale():
     # the peaks vary by hundreds of newtons: data, autoscaled round them
     lo, hi = _panel(fig, "peak F_t in window (N)", 0).get_xlim()
     assert lo <= 1700.0 and hi >= 2100.0 and hi - lo < 0.5 * F_T
+
+
+def test_a_grids_many_curves_legend_hides_no_panel_title_and_no_data():
+    """A speed sweep on a grid of 5 backlash values draws 15 legend entries (5 curves x mean/min/max): inside the
+    first 2-inch panel the legend covered its title ("stage 1: tangential force F_t (N)") and its curves. It goes
+    below the panels: it overlaps no axes, no axes title and not the figure's title."""
+    spec = spec_from_options([f"input.speed_rpm={','.join(map(str, SPEEDS))}",
+                              "stage.0.backlash_mm=0.05,0.1,0.15,0.2,0.3"], [], None, "lhs", None, None)
+    rows = [{**dict(p.cells()), "direction": p.direction, "status": "ok", "stage1_tangential_N_mean": F_T,
+             "stage1_tangential_N_min": F_T - 100.0 * i, "stage1_tangential_N_max": F_T + 100.0 * i,
+             "output_speed_rpm": 20.0} for i, p in enumerate(p for branch in spec.branches() for p in branch)]
+    fig = _response(rows, spec.axes[0].column, spec, 1)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    legends = [leg for leg in [*fig.legends, *(ax.get_legend() for ax in fig.axes)] if leg is not None]
+    assert len(legends) == 1 and len(legends[0].get_texts()) == 15
+    box = legends[0].get_window_extent(renderer)
+    for ax in fig.axes:
+        if ax.get_visible():
+            assert not box.overlaps(ax.get_window_extent(renderer)), ax.get_title()
+            assert not box.overlaps(ax.title.get_window_extent(renderer)), ax.get_title()
+    assert not box.overlaps(fig._suptitle.get_window_extent(renderer))
+    assert fig.bbox.x0 - 0.5 <= box.x0 and box.x1 <= fig.bbox.x1 + 0.5 and box.y0 >= fig.bbox.y0 - 0.5  # inside it
