@@ -476,6 +476,12 @@ def start_summary(lay: Layout, boundary: str, t: np.ndarray, forces_N: list[np.n
         else:
             found = swing(t[start], dev, modes, SWING_FRACTION * rigid_peaks[k], float(t[i]))
             why = cause(lay, rigid, float(t[i]), found)
+            if why.startswith(NOTHING_FOUND) and window_peaks[k] > warn_ratio * rigid_peaks[k]:
+                # the response in operation alone is over the ratio: the start runs into it, it is no artefact
+                why = (f"the statistics window (from {window_s[0]:.4g} s) reaches {window_peaks[k]:.5g} N, itself "
+                       f"{window_peaks[k] / rigid_peaks[k]:.3g}x the rigid start's peak: the start runs into the "
+                       f"response in operation and overshoots it by {100 * (peaks[k] / window_peaks[k] - 1):.2g} %, "
+                       f"{IN_OPERATION}")
         if reswitch_s is not None and t[i] >= reswitch_s and t[i] <= window_s[0]:
             why = (f"the star-delta motor fell back into star at {reswitch_s:.4g} s and toggles star and delta on its "
                    "rotor's swings (star_delta_reswitch), which the rigid start does not and a latching starter does "
