@@ -446,6 +446,16 @@ SCENES: tuple[Scene, ...] = (
            FORCE_TOL, Check("ratio", 2e-3, "pitch-line speeds 1000x lower (1.8 mm/s at stage 3): deflection range "
                             "1e-3 mm over 0.26 s gives <= 2e-3")),
     _scene("high_speed", "DOP853", 45_000, FORCE_TOL, RATIO_TOL),
+    # near auto's line: Radau where the compiled engine is at hand (5e3 evaluations), DOP853 on Python (1.8e4)
+    _scene("ratio_1_and_12", "Radau|DOP853", 55_000,
+           Check("static_force", 1e-4, "the 400 Hz mode at 2 % of critical rings down to std / F ~ 7e-5 by the window "
+                 "(0.18 s on): the mean is the static force up to ~1e-6"), FORCE_TOL,
+           Check("ratio", 1e-6, "settled: deflection range ~1e-5 mm over 0.32 s at 2.4 m/s, slip ~1e-8")),
+    _scene("crawl_1rpm", "Radau", 20_000,
+           Check("static_force", 1e-9, "a 5 s ramp against a 446 Hz mode is quasi-static to ~1e-12 (the mode's "
+                 "response to the ramp's jerk, (1 / (2 pi f T))^2 x ...); rtol 1e-10 and rounding only"),
+           Check("ringing", 1e-9, "quasi-static: nothing rings (std of F_t at rounding level)"),
+           Check("ratio", 1e-9, "no ringing, so no slip; rounding only")),
     _scene("unequal_inertias", "Radau", 20_000,
            FORCE_TOL, Check("ratio", 5e-4, "deflection ranges 0.04/0.06 mm over the 0.8 s window at pitch-line speeds "
                             "0.75/0.38 m/s: <= 2.5e-4")),
