@@ -1,61 +1,57 @@
 """The error estimate of the window statistics: a check pass over the window (docs/numerics.md "Honest statistics").
 
-``mean`` is the integral of a channel and converges with the solution; ``min``, ``max``, ``std`` and the
-spectrum depend on how finely the solver resolves the oscillation. The run estimates their error from a
-second pass on the same output samples and the difference of every statistic between the two passes.
-Each stage's statistics either meet their target or the run carries a ``statistics_unresolved`` warning
-naming the statistic, the stage, the estimated error and the ``--set simulation.rtol=...`` that would resolve
-them all.
+``mean`` is the integral of a channel and converges with the solution; ``min``, ``max``, ``std`` and the spectrum depend
+on how finely the solver resolves the oscillation. The run estimates their error from a second pass on the same output
+samples and the difference of every statistic between the two passes. Each stage's statistics either meet their target
+or the run carries a ``statistics_unresolved`` warning naming the statistic, the stage, the estimated error and the
+``--set simulation.rtol=...`` that would resolve them all (not promised where a mesh leaves its flank in the window:
+:data:`NONSMOOTH`).
 
-Targets. ``MEAN_TARGET`` (1e-4 of the stage's mean |F_t|, or of its static force when the mean is ~0) for the
-mean, ``TARGET`` (1e-3) for min, max, std and the spectrum. The mean is the number a rating reads (it is the
-static force plus what the window's speed change stores), an integral of the solution that converges with
-it at the rate of the tolerance, so the check pass estimates it well (0.6-1.2x the true error on every scene
-of benchmarks/bench_auto.py whose mean is off by more than 1e-5, measured against DOP853 at rtol 1e-10; the
-exception, Radau stepping over an undamped mode, has its own warning: :func:`gearcli.simulate.stepped_over.unresolved_mode`) and resolving
-it to 1e-4 costs one decade of rtol where it is needed. Where it was needed (measured): a resonant, impacting mesh
-(benchmarks/bench_excitation.py's spur oscillator at 2800 rpm) under DOP853 at rtol 1e-6 settles on a
-periodic response whose window mean is 1.7e-4 off, although every step meets its tolerance: the steps that
-straddle a contact loss or a re-contact carry local errors of ~0.7 of the tolerance against ~0.02 for the
-smooth steps, with the same sign every mesh period, and the damping's memory (a few periods) adds them up.
-The amplitude statistics of that run are within 2.4e-4, so the single 1e-3 target let it pass unwarned.
+Targets. ``MEAN_TARGET`` (1e-4 of the stage's mean |F_t|, or of its static force when the mean is ~0) for the mean,
+``TARGET`` (1e-3) for min, max, std and the spectrum. The mean is the number a rating reads (it is the static force plus
+what the window's speed change stores), an integral of the solution that converges with it at the rate of the tolerance,
+so the check pass estimates it well (0.6-1.2x the true error on every scene of benchmarks/bench_auto.py whose mean is
+off by more than 1e-5, measured against DOP853 at rtol 1e-10; the exception, Radau stepping over an undamped mode, has
+its own warning: :func:`gearcli.simulate.stepped_over.unresolved_mode`) and resolving it to 1e-4 costs one decade of
+rtol where it is needed. Where it was needed (measured): a resonant, impacting mesh (benchmarks/bench_excitation.py's
+spur oscillator at 2800 rpm) under DOP853 at rtol 1e-6 settles on a periodic response whose window mean is 1.7e-4 off,
+although every step meets its tolerance: the steps that straddle a contact loss or a re-contact carry local errors of
+~0.7 of the tolerance against ~0.02 for the smooth steps, with the same sign every mesh period, and the damping's memory
+(a few periods) adds them up. The amplitude statistics of that run are within 2.4e-4, so the single 1e-3 target let it
+pass unwarned.
 
-Span. The check pass starts from the run's own state at the window start when the scene forgets what
-happened before it; where errors made before the window survive into it (a lightly damped scene keeps its
-run-up vibration), it starts earlier: at the window start minus ``DECAY_SPANS`` / sigma, sigma the slowest
-decay rate of the oscillating modes of the linearised scene, and never before t = 0 (the seed, with
-damping ratios below 1 %, is checked from the start). Started at the window on such a scene, the check
-misses the error entirely (configs/extreme/load_reversal.toml: 1e-7 estimated, 5e-3 true). A mesh that leaves its
-flank in the window (rattle) is checked from t = 0 whatever its damping: where responses coexist the run-up picks one
-(docs/numerics.md; tests/extreme/test_rattle_span.py).
+Span. The check pass starts from the run's own state at the window start when the scene forgets what happened before it;
+where errors made before the window survive into it (a lightly damped scene keeps its run-up vibration), it starts
+earlier: at the window start minus ``DECAY_SPANS`` / sigma, sigma the slowest decay rate of the oscillating modes of the
+linearised scene, and never before t = 0 (the seed, with damping ratios below 1 %, is checked from the start). Started
+at the window on such a scene, the check misses the error entirely (configs/extreme/load_reversal.toml: 1e-7 estimated,
+5e-3 true). A mesh that leaves its flank in the window (rattle) is checked from t = 0 whatever its damping: where
+responses coexist the run-up picks one (docs/numerics.md; tests/extreme/test_rattle_span.py).
 
-Tolerance. Where the span costs little (``TIGHT_FACTOR`` ** (1/8) x its share of the run, DOP853's order,
-at most ``TIGHT_COST``), the check runs at rtol / ``TIGHT_FACTOR`` and the difference is (1 - 10^-q) of the run's
-error, q the statistic's convergence order in rtol; the estimate is :func:`tight_scale` x the difference, 1.33x
-for the slowest measured q = ``SLOW_ORDER`` (0.6), so that it is never below the error where q >= 0.6. Measured
-against DOP853 at rtol 1e-9 (an undamped ISO mesh, tests/extreme/test_tight_estimate.py): RK45, BDF and LSODA
-converge at q ~ 0.7-0.8 and their bare difference was 0.80-0.84x the true error, so a min 1.15e-3 of the mean
-off (RK45, rtol 7e-7) was estimated 0.97e-3 and reported resolved. Where
-the span is most of the run, a tighter pass would cost 2.3x the run on the seed, so the check runs at
-``LOOSE_FACTOR`` x rtol instead (0.92x the cost) and the estimate is ``LOOSE_SAFETY`` x the difference:
-with an error that falls as rtol^p, the difference is (2^p - 1) times the run's error, which is 0.5x for
-the slowest convergence measured (p = 0.6, configs/extreme/load_reversal.toml) and 1x at p = 1;
-faster-converging statistics are overestimated, never under. When that loose estimate flags a statistic,
-a tight pass (rtol / 10, same span) confirms it and its scaled difference is the estimate: a resolved run pays
-for one cheap pass, a flagged one for both, and a loose pass that rattles or spikes where the run did not
-does not turn into a false warning.
+Tolerance. Where the span costs little (``TIGHT_FACTOR`` ** (1/8) x its share of the run, DOP853's order, at most
+``TIGHT_COST``), the check runs at rtol / ``TIGHT_FACTOR`` and the difference is (1 - 10^-q) of the run's error, q the
+statistic's convergence order in rtol; the estimate is :func:`tight_scale` x the difference, 1.33x for the slowest
+measured q = ``SLOW_ORDER`` (0.6), so that it is never below the error where q >= 0.6. Measured against DOP853 at rtol
+1e-9 (an undamped ISO mesh, tests/extreme/test_tight_estimate.py): RK45, BDF and LSODA converge at q ~ 0.7-0.8 and their
+bare difference was 0.80-0.84x the true error, so a min 1.15e-3 of the mean off (RK45, rtol 7e-7) was estimated 0.97e-3
+and reported resolved. Where the span is most of the run, a tighter pass would cost 2.3x the run on the seed, so the
+check runs at ``LOOSE_FACTOR`` x rtol instead (0.92x the cost) and the estimate is ``LOOSE_SAFETY`` x the difference:
+with an error that falls as rtol^p, the difference is (2^p - 1) times the run's error, which is 0.5x for the slowest
+convergence measured (p = 0.6, configs/extreme/load_reversal.toml) and 1x at p = 1; faster-converging statistics are
+overestimated, never under. When that loose estimate flags a statistic, a tight pass (rtol / 10, same span) confirms it
+and its scaled difference is the estimate: a resolved run pays for one cheap pass, a flagged one for both, and a loose
+pass that rattles or spikes where the run did not does not turn into a false warning.
 
 Stability-limited runs. An explicit run whose steps are set by stability rather than by its tolerance (fewer than
-``STABILITY_LIMITED`` x max|lambda| T / R steps, R the method's stability radius) carries its stiff mode as noise
-that the step-size control sustains, and a loose pass of the same method carries noise of the same size: their
-statistics agree by chance. Such a run gets the tight pass whatever its span. Measured (a two-stage reducer under
-90x its rated load, 1e5 N m, DOP853 at rtol 1e-5, 359 steps against 388 for stability): the loose pass estimated
-the window's min and max 4e-5 and 7e-5 of the mean where DOP853 at rtol 1e-10 finds 1.1e-3 and 1.4e-3 (unwarned);
-the tight pass estimates 1.0e-3 and 1.4e-3 (tests/extreme/test_stability_limited.py). Its run-up carries the noise at
-the force's size, not the tolerance's: the pass starts ``FORGOTTEN`` / sigma before the window, not ``DECAY_SPANS`` /
-sigma (tests/extreme/test_stability_runup.py: min 0.039 N off, estimated 6.8e-6 N from 0.094 s, 0.052 N from 0).
-Radial and axial forces are the tangential one times constants of the stage, so they share its relative error.
-"""
+``STABILITY_LIMITED`` x max|lambda| T / R steps, R the method's stability radius) carries its stiff mode as noise that
+the step-size control sustains, and a loose pass of the same method carries noise of the same size: their statistics
+agree by chance. Such a run gets the tight pass whatever its span. Measured (a two-stage reducer under 90x its rated
+load, 1e5 N m, DOP853 at rtol 1e-5, 359 steps against 388 for stability): the loose pass estimated the window's min and
+max 4e-5 and 7e-5 of the mean where DOP853 at rtol 1e-10 finds 1.1e-3 and 1.4e-3 (unwarned); the tight pass estimates
+1.0e-3 and 1.4e-3 (tests/extreme/test_stability_limited.py). Its run-up carries the noise at the force's size, not the
+tolerance's: the pass starts ``FORGOTTEN`` / sigma before the window, not ``DECAY_SPANS`` / sigma
+(tests/extreme/test_stability_runup.py: min 0.039 N off, estimated 6.8e-6 N from 0.094 s, 0.052 N from 0). Radial and
+axial forces are the tangential one times constants of the stage, so they share its relative error."""
 
 from __future__ import annotations
 
@@ -206,6 +202,8 @@ def suggested_rtol(rtol: float, relative_error: float, goal: float = TARGET) -> 
 
 NO_RTOL_RESOLVES = (f"no simulation.rtol down to the schema's floor {MIN_RTOL:g} is predicted to resolve it: take the "
                     "statistic as uncertain by the estimated error")  # where suggested_rtol has none
+NONSMOOTH = ("a mesh leaves its flank in the window, where responses can coexist and a tighter rtol (this one predicts "
+             "{rtol:g}) may land on another rather than converge: take the statistic as uncertain by the estimated error")
 
 
 def solver_first(steps: int | None, cap: int, code: str = dg.STATISTICS_UNRESOLVED) -> str:
@@ -569,9 +567,10 @@ def tightened_warning(run: Integration, ref: CheckPass, finer: float) -> Diagnos
 _NAMES = {"mean": "mean", "min": "min", "max": "max", "std": "std", "spectrum": "spectrum peaks"}
 
 
-def warnings(ref: CheckPass, method: str, unloaded: frozenset[int] = frozenset()) -> list[Diagnostic]:
-    """``statistics_unresolved``, one per stage with a statistic beyond the target (none when resolved);
-    ``unloaded``: the stages (1-based) that carry no static force (:func:`force_reference`)."""
+def warnings(ref: CheckPass, method: str, unloaded: frozenset[int] = frozenset(),
+             nonsmooth: bool = False) -> list[Diagnostic]:
+    """``statistics_unresolved``, one per stage with a statistic beyond the target (none when resolved); ``unloaded``:
+    the stages (1-based) without static force (:func:`force_reference`); ``nonsmooth``: :data:`NONSMOOTH`'s case."""
     if ref.status != STATUS_FINISHED:
         return [dg.warning(dg.STATISTICS_UNRESOLVED, f"the error of the window statistics could not be estimated: "
                            f"the check pass at rtol {ref.rtol:g} stopped ({ref.message}); min, max, std and "
@@ -583,7 +582,8 @@ def warnings(ref: CheckPass, method: str, unloaded: frozenset[int] = frozenset()
         names = ", ".join(_NAMES[q] for q in e.unresolved)
         worst = max(e.unresolved, key=lambda q: e.relative[q] / target(q))
         absolute = e.spectrum_N if worst == "spectrum" else getattr(e.tangential_N, worst)
-        fix = f"--set simulation.rtol={e.suggested_rtol:g} would resolve it" if e.suggested_rtol else NO_RTOL_RESOLVES
+        fix = (NONSMOOTH.format(rtol=e.suggested_rtol) if nonsmooth and e.suggested_rtol else
+               f"--set simulation.rtol={e.suggested_rtol:g} would resolve it" if e.suggested_rtol else NO_RTOL_RESOLVES)
         moved = ""
         if "spectrum" in e.unresolved and abs(e.dominant_frequency_Hz - e.check_dominant_frequency_Hz) > 0:
             moved = (f"; the dominant frequency {e.dominant_frequency_Hz:.4g} Hz is "

@@ -234,7 +234,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     mode = (stepped_over.unresolved_mode(choice, run, duration_s, window[0])
             or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
         if ref is not None and ref.errors else None
-    stat_diags = estimate.warnings(ref, run.method, _unloaded(spec)) if ref is not None else []
+    nonsmooth = ref is not None and any(e.unresolved for e in ref.errors) and stats.leaves_flank(s, window)
+    stat_diags = estimate.warnings(ref, run.method, _unloaded(spec), nonsmooth) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = stepped_over.mode_unresolved(ref, mode, run, duration_s)
     if ref is not None:  # the run's peak |F_t| (docs/numerics.md, "The run's peak")
