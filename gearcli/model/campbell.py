@@ -1,4 +1,4 @@
-"""The Campbell diagram's data types (:func:`gearcli.model.modes.campbell_data` fills them: ``gearcli modes
+"""The Campbell diagram's data types and :func:`campbell_of` (:func:`gearcli.model.modes.campbell_data`: ``gearcli modes
 --plots``, ``report``, a sweep's Campbell diagram). Apart from :mod:`gearcli.model.modes`, which re-exports them by
 name, so that a run that draws no diagram does not create their classes.
 """
@@ -8,8 +8,18 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from gearcli.core.records import record
+from gearcli.model.modes import (
+    SPEED_RANGE,
+    excitation_sources,
+    meets,
+    modal_analysis,
+    order_crossing,
+    torque_crossing,
+    torque_sources,
+)
 
 if TYPE_CHECKING:
+    from gearcli.model.assembly import Layout
     from gearcli.model.modes import Crossing, Mode
 
 
@@ -40,3 +50,28 @@ class CampbellData:
         """The highest excitation's frequency at the top speed: the frequency range worth drawing."""
         top = max((r for _, r in self.orders), default=1.0) * self.max_input_rpm / 60.0
         return max([top] + [f for _, f in self.fixed])
+
+
+def campbell_of(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0,
+                max_input_rpm: float | None = None) -> CampbellData:
+    """The Campbell diagram of the chain up to ``max_input_rpm`` (default ``SPEED_RANGE`` x nominal): every
+    crossing as the modal analysis's modes hold it (:func:`gearcli.model.modes.order_crossing`)."""
+    ana = modal_analysis(lay, boundary, duration_s=duration_s)
+    top = max_input_rpm if max_input_rpm is not None else SPEED_RANGE * ana.nominal_input_rpm
+    sources = excitation_sources(lay)
+    torques = torque_sources(lay)
+    crossings = []
+    for m in ana.modes:
+        if m.rigid:
+            continue
+        for o in sources:
+            c = order_crossing(lay, boundary, duration_s, m, o)
+            if c.input_speed_rpm is not None and c.input_speed_rpm <= top:
+                crossings.append(CampbellCrossing(m.number, m.frequency_Hz, c))
+        crossings += [CampbellCrossing(m.number, m.frequency_Hz,
+                                       torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio))
+                      for t in torques if meets(t, m.frequency_Hz, top)]
+    orders = [(o.name, o.hz_per_input_hz) for o in sources] + [(t.name, t.hz_per_input_hz) for t in torques if t.fixed_Hz is None]
+    return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
+                        tuple(orders), tuple(crossings),
+                        tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None))

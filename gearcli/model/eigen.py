@@ -5,8 +5,12 @@ eigenproblem with real pairs, and repeated eigenvalues with an orthonormal basis
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from gearcli.model.assembly import Layout
 
 
 def soft_modes_refined(R: np.ndarray, k: np.ndarray, J: np.ndarray, w2: np.ndarray, u: np.ndarray,
@@ -85,3 +89,25 @@ def orthonormal_clusters(w2: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.
             u[:, group] = np.linalg.qr(u[:, group])[0]
         start = stop
     return w2, u
+
+
+def rigid_mode_count(lay: Layout, k: np.ndarray, clamped: int = 0) -> int:
+    """Rigid-body modes of the chain: its connected groups of bodies (joined by connectors of non-zero
+    stiffness) that hold none of the ``clamped`` first bodies. Counted on the graph, so a badly scaled
+    eigenproblem (1e-9 and 1e6 kg m^2 in one chain) cannot turn a slow elastic mode into a rigid one."""
+    parent = list(range(lay.n_bodies))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for c, x in enumerate(lay.connectors):
+        joined = [b for b, r in zip(x.bodies, x.radii, strict=True) if r != 0.0]  # a planet mesh joins three
+        if k[c] > 0.0:
+            for b in joined[1:]:
+                parent[root(b)] = root(joined[0])
+    grounded = {root(i) for i in range(clamped)}
+    return len({root(i) for i in range(clamped, lay.n_bodies)} - grounded)
+

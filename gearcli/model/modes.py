@@ -49,9 +49,10 @@ from gearcli.core.memo import remember
 from gearcli.core.records import record
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_damping, body_matrices, lever_matrices, loss_factors, modal_damping_ratios
-from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, soft_modes_refined
+from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, rigid_mode_count, soft_modes_refined
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
+from gearcli.model.planet_excitation import phased_participation, planet_phases, repeated_ranks
 
 if TYPE_CHECKING:
     from gearcli.model.campbell import CampbellData
@@ -137,7 +138,9 @@ def _stiffness(lay: Layout, duration_s: float) -> np.ndarray:
 
 class OrderSource(NamedTuple):
     """A mesh or shaft order: its name, its frequency over the input body's rotation frequency, the connectors it
-    acts through, its kind (``"mesh"`` or ``"shaft"``), its harmonic and its stage (1-based; None for a shaft)."""
+    acts through, its kind (``"mesh"`` or ``"shaft"``), its harmonic and its stage (1-based; None for a shaft);
+    ``phased``: a planetary stage's mesh order acts through all its planet meshes at once, each (connector, phase
+    of its error at this harmonic in cycles), empty for any other order (:mod:`gearcli.model.planet_excitation`)."""
 
     name: str
     hz_per_input_hz: float
@@ -145,6 +148,7 @@ class OrderSource(NamedTuple):
     source: str
     order: float
     stage: int | None
+    phased: tuple[tuple[int, float], ...] = ()
 
 
 def excitation_sources(lay: Layout) -> list[OrderSource]:
@@ -170,17 +174,20 @@ def _sources_key(lay: Layout) -> tuple:
     stages = tuple(lay.stage_conn)
     return (stages, tuple((lay.connectors[c].role, float(lay.connectors[c].params[I_Z]),
                            lay.bodies[lay.connectors[c].a].ratio) for c in stages),
-            tuple((b, lay.bodies[b].ratio) for b in lay.shaft_body))
+            tuple((b, lay.bodies[b].ratio) for b in lay.shaft_body), planet_phases(lay))
 
 
 def _excitation_sources(lay: Layout) -> list[OrderSource]:
     out: list[OrderSource] = []
     stages = lay.stage_conn
+    phases = planet_phases(lay)
     for k, c in enumerate(stages):
         x = lay.connectors[c]
+        planets = [(i, ph) for stage, i, ph in phases if stage == x.index] if x.planet >= 0 else []
         for h in MESH_ORDERS if x.role == "mesh" else ():
+            phased = tuple((i, (h * ph) % 1.0) for i, ph in planets)
             out.append(OrderSource(f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * abs(lay.bodies[x.a].ratio), (c,),
-                                   "mesh", float(h), k + 1))
+                                   "mesh", float(h), k + 1, phased))
     for i, b in enumerate(lay.shaft_body):
         via = tuple(stages[j] for j in (i - 1, i) if 0 <= j < len(stages))
         for h in SHAFT_ORDERS:
@@ -215,27 +222,6 @@ def torque_sources(lay: Layout) -> list[TorqueSource]:
 def excitations(lay: Layout) -> list[tuple[str, float]]:
     """(name, frequency over the input body's rotation frequency) of the mesh and shaft orders."""
     return [(o.name, o.hz_per_input_hz) for o in excitation_sources(lay)]
-
-
-def rigid_mode_count(lay: Layout, k: np.ndarray, clamped: int = 0) -> int:
-    """Rigid-body modes of the chain: its connected groups of bodies (joined by connectors of non-zero
-    stiffness) that hold none of the ``clamped`` first bodies. Counted on the graph, so a badly scaled
-    eigenproblem (1e-9 and 1e6 kg m^2 in one chain) cannot turn a slow elastic mode into a rigid one."""
-    parent = list(range(lay.n_bodies))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for c, x in enumerate(lay.connectors):
-        joined = [b for b, r in zip(x.bodies, x.radii, strict=True) if r != 0.0]  # a planet mesh joins three
-        if k[c] > 0.0:
-            for b in joined[1:]:
-                parent[root(b)] = root(joined[0])
-    grounded = {root(i) for i in range(clamped)}
-    return len({root(i) for i in range(clamped, lay.n_bodies)} - grounded)
 
 
 def _shape(v: np.ndarray) -> np.ndarray:
@@ -359,19 +345,44 @@ def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank:
     zeta = 0.0 if rigid else float(zetas[j])
     found: tuple[Crossing, ...] = ()
     if crossings and not rigid:
-        found = tuple(_crossing(o, f, share, zeta) for o in excitation_sources(lay)
+        found = tuple(_crossing(o, f, _participation(und, rank, o, share), zeta) for o in excitation_sources(lay)
                       if f / o.hz_per_input_hz <= SPEED_RANGE * f_in)
-        found += tuple(_torque_crossing(lay, t, f, shape, zeta) for t in torque_sources(lay)
-                       if _meets(t, f, 60.0 * SPEED_RANGE * f_in))
+        found += tuple(torque_crossing(lay, t, f, shape, zeta) for t in torque_sources(lay)
+                       if meets(t, f, 60.0 * SPEED_RANGE * f_in))
     return Mode(rank + 1, f, rigid, tuple(float(v) for v in shape), tuple(float(s) for s in share), dominant,
                 found, zeta)
 
 
-def _crossing(o: OrderSource, f: float, share: np.ndarray, zeta: float) -> Crossing:
-    s = float(max((share[c] for c in o.via), default=0.0))
+def _crossing(o: OrderSource, f: float, s: float, zeta: float) -> Crossing:
+    """Order ``o`` crossing a mode of ``f`` Hz whose participation in it is ``s`` (:func:`_participation`)."""
     return Crossing(o.name, o.hz_per_input_hz, 60.0 * f / o.hz_per_input_hz, s, s / (2.0 * zeta) if zeta > 0 else None,
                     o.source, o.order)
 
+
+def order_crossing(lay: Layout, boundary: str, duration_s: float, m: Mode, o: OrderSource) -> Crossing:
+    """Order ``o`` crossing mode ``m`` of the analysis (``boundary``, ``duration_s``): what ``m.crossings`` holds
+    for it, at any speed (the Campbell diagram's up to its own top speed)."""
+    und = _undamped(lay, boundary, duration_s)
+    return _crossing(o, m.frequency_Hz, _participation(und, m.number - 1, o, m.energy_share), m.damping_ratio)
+
+
+def _participation(und: _Undamped, rank: int, o: OrderSource, share: np.ndarray | tuple[float, ...]) -> float:
+    """Order ``o``'s participation in mode ``rank``: a planetary stage's mesh order, its planet meshes' phased sum
+    over the mode's repeated group (:func:`phased_participation`); any other order, the largest share of the mode's
+    strain energy among the connectors it acts through."""
+    if o.phased:
+        return _phased(und, repeated_group(und, rank), o)
+    return _participation_of_shares(o, share)
+
+
+def repeated_group(und: _Undamped, rank: int) -> tuple[int, ...]:
+    """The ranks of mode ``rank``'s repeated group (:func:`gearcli.model.planet_excitation.repeated_ranks`)."""
+    return repeated_ranks(_elastic_Hz(und), und.n_rigid, rank)
+
+
+def _phased(und: _Undamped, ranks: tuple[int, ...], o: OrderSource) -> float:
+    """:func:`gearcli.model.planet_excitation.phased_participation` of order ``o`` in the modes ``ranks``."""
+    return phased_participation(und.k, und.R, und.inv_sqrt, und.u[:, und.order[list(ranks)]], o.phased)
 
 def near_nominal(crossing_rpm: float, nominal_rpm: float) -> bool:
     """Whether an order crossing a mode at ``crossing_rpm`` lies, at the nominal input speed, within
@@ -381,7 +392,7 @@ def near_nominal(crossing_rpm: float, nominal_rpm: float) -> bool:
     return crossing_rpm > 0.0 and abs(nominal_rpm / crossing_rpm - 1.0) <= RESONANCE_BAND
 
 
-def _meets(t: TorqueSource, f: float, top_rpm: float) -> bool:
+def meets(t: TorqueSource, f: float, top_rpm: float) -> bool:
     """Whether torque source ``t`` crosses a mode of ``f`` Hz for input speeds 0 .. ``top_rpm``: an order below the
     top speed, a fixed frequency within ``RESONANCE_BAND`` of the mode (then at every speed)."""
     if t.fixed_Hz is not None:
@@ -397,7 +408,7 @@ def kinetic_share(lay: Layout, shape: tuple[float, ...] | np.ndarray, body: int)
     return float(J[body] * v[body] ** 2 / total) if total > 0 else 0.0
 
 
-def _torque_crossing(lay: Layout, t: TorqueSource, f: float, shape: tuple[float, ...] | np.ndarray,
+def torque_crossing(lay: Layout, t: TorqueSource, f: float, shape: tuple[float, ...] | np.ndarray,
                      zeta: float) -> Crossing:
     p = kinetic_share(lay, shape, t.body)
     rpm = None if t.fixed_Hz is not None else 60.0 * f / t.hz_per_input_hz
@@ -447,31 +458,59 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
     out = []
     tangents = full_load if full_load is not None and not bool(np.any(np.asarray(full_load[0]) == 0.0)) else None
+    und: _Undamped | None = None  # the eigenproblem, for a planetary's phased mesh orders only
     for m in _near_modes(lay, boundary, duration_s, f_in, tangents):
         if m.rigid:
             continue
         share = max(m.energy_share)
         for o in excitation_sources(lay):
-            name, via, fe = o.name, o.via, o.hz_per_input_hz * f_in
+            name, fe = o.name, o.hz_per_input_hz * f_in
             if abs(fe - m.frequency_Hz) > RESONANCE_BAND * m.frequency_Hz:
                 continue
-            c = _crossing(o, m.frequency_Hz, np.asarray(m.energy_share), m.damping_ratio)
+            group: tuple[int, ...] = ()
+            if o.phased:
+                und = und if und is not None else _undamped(lay, boundary, duration_s, tangents)
+                group = repeated_group(und, m.number - 1)
+                if group[0] != m.number - 1:
+                    continue  # a repeated mode is warned once, at its first mode
+                s = _phased(und, group, o)
+            else:
+                s = _participation_of_shares(o, m.energy_share)
+            c = _crossing(o, m.frequency_Hz, s, m.damping_ratio)
             if c.amplification is not None and c.amplification < WARN_AMPLIFICATION:
                 continue  # the exciting mesh holds too little of the mode's strain energy to drive it
-            source = lay.connectors[via[0]].label if len(via) == 1 else "meshes of shaft " + name.split()[1]
             gain = (f"resonant response ≈ {c.amplification:.2g}x its blocked error force at "
                     f"{100 * m.damping_ratio:.2g} % modal damping" if c.amplification is not None
                     else "undamped: the response grows without bound")
             msg = (f"resonance: the {name} order ({fe:.4g} Hz at the nominal input speed) lies within "
-                   f"{100 * abs(fe - m.frequency_Hz) / m.frequency_Hz:.2g} % of mode {m.number} "
+                   f"{100 * abs(fe - m.frequency_Hz) / m.frequency_Hz:.2g} % of {_mode_name(m.number, group)} "
                    f"({m.frequency_Hz:.4g} Hz, {boundary}), dominated by the {m.dominant} "
-                   f"({100 * share:.0f} % of its strain energy); {c.strength} excited: the {source} "
-                   f"holds {_percent(c.participation)} of the mode's strain energy ({gain})")
+                   f"({100 * share:.0f} % of its strain energy); {c.strength} excited: {_holder(lay, o)} "
+                   f"{_percent(c.participation)} of the mode's strain energy ({gain})")
             out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, name, fe, msg, c.participation,
                                  c.amplification, m.damping_ratio, c.strength,
                                  o.stage, c.source))
         out += _torque_resonances(lay, m, boundary, f_in)
     return out
+
+
+def _participation_of_shares(o: OrderSource, share: np.ndarray | tuple[float, ...]) -> float:
+    """An unphased order's participation: the largest share of the mode's strain energy among its connectors."""
+    return float(max((share[c] for c in o.via), default=0.0))
+
+
+def _mode_name(number: int, group: tuple[int, ...]) -> str:
+    """"mode 4", or a repeated mode's "modes 4-5 (repeated)"."""
+    return f"modes {group[0] + 1}-{group[-1] + 1} (repeated)" if len(group) > 1 else f"mode {number}"
+
+
+def _holder(lay: Layout, o: OrderSource) -> str:
+    """What holds the participation, in a resonance warning: "the stage 1 mesh holds"."""
+    if o.phased:
+        return f"the {len(o.phased)} planet meshes of stage {o.stage}, summed at their mesh phases, reach"
+    via = o.via
+    source = lay.connectors[via[0]].label if len(via) == 1 else "meshes of shaft " + o.name.split()[1]
+    return f"the {source} holds"
 
 
 def _torque_resonances(lay: Layout, m: Mode, boundary: str, f_in: float) -> list[Resonance]:
@@ -482,7 +521,7 @@ def _torque_resonances(lay: Layout, m: Mode, boundary: str, f_in: float) -> list
         fe = t.fixed_Hz if t.fixed_Hz is not None else t.hz_per_input_hz * f_in
         if abs(fe - m.frequency_Hz) > RESONANCE_BAND * m.frequency_Hz:
             continue
-        c = _torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio)
+        c = torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio)
         if c.amplification is not None and c.amplification < WARN_AMPLIFICATION:
             continue  # the excited body barely moves in the mode (near a node of it)
         body = lay.bodies[t.body].label
@@ -545,28 +584,9 @@ def _frequency_Hz(und: _Undamped, j: int) -> float:
 def campbell_data(lay: Layout, boundary: str = "clamped_input", *, duration_s: float = 1.0,
                   max_input_rpm: float | None = None) -> CampbellData:
     """The Campbell diagram of the chain up to ``max_input_rpm`` (default ``SPEED_RANGE`` x nominal)."""
-    from gearcli.model.campbell import CampbellCrossing, CampbellData  # lazy: a diagram only
+    from gearcli.model.campbell import campbell_of  # lazy: a diagram only
 
-    ana = modal_analysis(lay, boundary, duration_s=duration_s)
-    top = max_input_rpm if max_input_rpm is not None else SPEED_RANGE * ana.nominal_input_rpm
-    sources = excitation_sources(lay)
-    torques = torque_sources(lay)
-    crossings = []
-    for m in ana.modes:
-        if m.rigid:
-            continue
-        for o in sources:
-            c = _crossing(o, m.frequency_Hz, np.asarray(m.energy_share), m.damping_ratio)
-            if c.input_speed_rpm is not None and c.input_speed_rpm <= top:
-                crossings.append(CampbellCrossing(m.number, m.frequency_Hz, c))
-        crossings += [CampbellCrossing(m.number, m.frequency_Hz,
-                                       _torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio))
-                      for t in torques if _meets(t, m.frequency_Hz, top)]
-    orders = [(o.name, o.hz_per_input_hz) for o in sources] + [(t.name, t.hz_per_input_hz) for t in torques if t.fixed_Hz is None]
-    return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
-                        tuple(orders), tuple(crossings),
-                        tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None))
-
+    return campbell_of(lay, boundary, duration_s=duration_s, max_input_rpm=max_input_rpm)
 
 #: the Campbell diagram's types (:mod:`gearcli.model.campbell`), imported on first use by this module's name too
 CAMPBELL = ("CampbellCrossing", "CampbellData")

@@ -1,0 +1,73 @@
+"""A planetary stage's mesh orders against the chain's modes (:mod:`gearcli.model.modes`): every planet mesh at its
+own mesh phase, and a repeated mode as one eigenspace.
+
+A mesh order of a planetary stage acts through all its planet meshes at once, each with the error
+e exp(2 pi i p_c), p_c its phase at this harmonic: h z_s psi_j / 2 pi for planet j's sun mesh, -h z_r psi_j / 2 pi for
+its ring mesh, the phases the model shifts their transmission error by (Parker & Lin, J. Mech. Des. 126, 2004;
+:meth:`gearcli.model.planet_spec.PlanetarySpec.mesh_phase_cycles`). On a mass-normalised shape phi the modal force
+is e P, P = sum_c k_c (R phi)_c exp(2 pi i p_c), and the order's participation |P|^2 / (K omega^2), K = sum_c k_c
+the planet meshes' stiffness and omega^2 = sum k (R phi)^2 the mode's strain energy: a single mesh's share
+k_c (R phi)_c^2 / omega^2 where there is one mesh, the meshes' summed shares where all mesh in phase, never more
+than that (Cauchy-Schwarz), and 0 where the phases cancel. In-phase meshing (h z_s / N an integer) so drives only
+the rotational modes; sequential meshing only the planet modes (the N - 1 repeated modes in which the central
+members stand still): sum_j a_j exp(2 pi i h z_s j / N) vanishes for a_j equal (rotational) when h z_s / N is no
+integer, and for sum_j a_j = 0 (planet) when it is.
+
+A repeated mode (frequencies equal within ``REPEATED``): the solver returns any basis of its eigenspace, and a
+basis vector's |P|^2 depends on which. The group's participation is the sum of |P|^2 over an orthonormal basis
+(the squared projection of the modal force on the eigenspace) over K times the basis's mean strain energy: the
+same for every basis.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, cast
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from gearcli.model.assembly import Layout
+    from gearcli.model.planet_spec import PlanetarySpec
+
+REPEATED = 1e-6  # modes whose frequencies differ by less than this fraction are one repeated mode (a group)
+
+
+def planet_phases(lay: Layout) -> tuple[tuple[int, int, float], ...]:
+    """(stage, connector, mesh phase in cycles at the mesh frequency) of every planet mesh of the layout: between
+    planets Parker & Lin's, and a ring mesh's against its own planet's sun mesh (``ring_contact_phase_cycles``, the
+    contact-line phase the model's time-varying stiffness takes). Without the latter the planet modes would be
+    driven by no order at all: a planet's two meshes in phase push it equally both ways."""
+    models = lay.spec.stage_models
+    out = []
+    for c, x in enumerate(lay.connectors):
+        own = models[x.index] if x.planet >= 0 and 0 <= x.index < len(models) else None
+        if own is not None:
+            p = cast("PlanetarySpec", own)
+            within = p.ring_contact_phase_cycles if x.gear == "ring" else 0.0
+            out.append((x.index, c, float(p.mesh_phase_cycles(x.planet, x.gear) + within)))
+    return tuple(out)
+
+
+def repeated_ranks(hz: list[tuple[int, float]], n_rigid: int, rank: int) -> tuple[int, ...]:
+    """The ranks of the elastic modes (``hz``: (eigenpair, Hz) in ascending order, the first ``n_rigid`` rigid)
+    whose frequency equals mode ``rank``'s within ``REPEATED``: one repeated mode."""
+    f = hz[rank][1]
+    return tuple(r for r, (_, g) in enumerate(hz) if r >= n_rigid and abs(g - f) <= REPEATED * f)
+
+
+def phased_participation(k: np.ndarray, R: np.ndarray, inv_sqrt: np.ndarray, u: np.ndarray,
+                         phased: tuple[tuple[int, float], ...]) -> float:
+    """The participation (module text) of the meshes ``phased`` ((connector, phase in cycles) each) in the
+    eigenspace spanned by the mass-weighted eigenvectors ``u`` (columns; any basis) of the chain with tangent
+    stiffness ``k``, speed map ``R`` over the free bodies and their 1/sqrt(J) ``inv_sqrt``."""
+    cs = [c for c, _ in phased]
+    total = float(k[cs].sum())
+    if total <= 0.0:
+        return 0.0
+    turn = np.exp(2j * math.pi * np.array([p for _, p in phased]))
+    force = inv_sqrt * ((k[cs] * turn) @ R[cs])  # sum_c k_c e^(2 pi i p_c) R_c, in mass-weighted coordinates
+    basis = np.linalg.qr(u)[0]  # orthonormal: mass-orthonormal shapes
+    strain = k @ (R @ (inv_sqrt[:, None] * basis)) ** 2
+    mean = float(strain.mean())
+    return float(np.sum(np.abs(basis.T @ force) ** 2) / (total * mean)) if mean > 0.0 else 0.0
