@@ -89,9 +89,11 @@ def _phased_mesh(mesh, offset_cycles: float, p: PlanetarySpec, contact_cycles: f
     z_eff = z_s |w_s - w_c| / |w_in| (mesh cycles per input radian under rigid kinematics: the mesh frequency
     is z_s |w_s - w_c| / 2 pi), its harmonics and its contact-line stiffness shifted by the planet's phase
     offset; the contact lines of a ring mesh also by ``contact_cycles``, the ring mesh's phase against the
-    same planet's sun mesh (:mod:`gearcli.model.planet_phasing`)."""
+    same planet's sun mesh (:mod:`gearcli.model.planet_phasing`), and so are its error and stiffness harmonics: the
+    mesh cycle they follow is the one its contact lines count (without it a planet's two errors cancelled on the
+    planet modes, which then no mesh order could drive)."""
     z_eff = p.sun_teeth * abs(p.unit_speed("sun") - p.unit_speed("carrier")) / abs(p.unit_speed(p.input))
-    shift = 2.0 * math.pi * offset_cycles
+    shift = 2.0 * math.pi * (offset_cycles + contact_cycles)
     te_phase = tuple(list(mesh.transmission_error_phase_rad) + [0.0] * len(mesh.transmission_error_m))
     ks_phase = tuple(list(mesh.stiffness_harmonics_phase_rad) + [0.0] * len(mesh.stiffness_harmonics))
     return replace(mesh, pinion_teeth=z_eff, contact_phase_cycles=(offset_cycles + contact_cycles) % 1.0,

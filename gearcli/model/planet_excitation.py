@@ -36,7 +36,7 @@ REPEATED = 1e-6  # modes whose frequencies differ by less than this fraction are
 def planet_phases(lay: Layout) -> tuple[tuple[int, int, float], ...]:
     """(stage, connector, mesh phase in cycles at the mesh frequency) of every planet mesh of the layout: between
     planets Parker & Lin's, and a ring mesh's against its own planet's sun mesh (``ring_contact_phase_cycles``, the
-    contact-line phase the model's time-varying stiffness takes). Without the latter the planet modes would be
+    contact-line phase the model's contact lines, error and stiffness harmonics take). Without the latter the planet modes would be
     driven by no order at all: a planet's two meshes in phase push it equally both ways."""
     models = lay.spec.stage_models
     out = []

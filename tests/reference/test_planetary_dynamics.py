@@ -143,8 +143,10 @@ def _phased_run(z_s: int, z_p: int, z_r: int):
 
 def test_mesh_phasing_between_planets_follows_the_geometry():
     """Planet j (position psi_j = 2 pi j / N) meets the sun z_s psi_j / 2 pi mesh cycles after planet 1 and the
-    ring -z_r psi_j / 2 pi (Parker & Lin, J. Mech. Des. 126, 2004): the first TE harmonic's phase per planet."""
-    from gearcli.model.elements.mesh import I_TEP
+    ring -z_r psi_j / 2 pi (Parker & Lin, J. Mech. Des. 126, 2004): the first TE harmonic's phase per planet. A ring
+    mesh runs besides gamma_rs cycles from its own planet's sun mesh (Parker & Lin's sun-ring phase, the contact
+    lines' ``ring_contact_phase_cycles``), the same for every planet."""
+    from gearcli.model.elements.mesh import I_CPH, I_TEP
     from gearcli.model.equations import TorsionalModel
     from gearcli.scene import spec_from_design
 
@@ -155,10 +157,15 @@ def test_mesh_phasing_between_planets_follows_the_geometry():
            "input": {"speed_rpm": 300.0}, "load": {"torque_Nm": T_LOAD}}
     cfg = DesignFile.model_validate(doc)
     lay = TorsionalModel(spec_from_design(cfg, compute_design(cfg))).layout
+    gamma_rs = lay.spec.stage_models[0].ring_contact_phase_cycles
+    assert 0.0 < gamma_rs < 1.0  # these teeth put the ring's contact off the sun's
     for x in lay.connectors:
         z = z_s if x.gear == "sun" else -z_r
         expected = 2 * math.pi * z * x.planet / N  # 2 pi x (z psi_j / 2 pi), psi_j = 2 pi j / N
+        expected += 2 * math.pi * gamma_rs if x.gear == "ring" else 0.0
         assert_allclose(math.remainder(x.params[I_TEP] - expected, 2 * math.pi), 0.0, atol=1e-12)
+        # the error follows the mesh cycle the contact lines count: its first harmonic's phase is theirs, 2 pi x cycles
+        assert_allclose(math.remainder(x.params[I_TEP] - 2 * math.pi * x.params[I_CPH], 2 * math.pi), 0.0, atol=1e-12)
 
 
 def test_sequential_phasing_cancels_the_rotational_response():
