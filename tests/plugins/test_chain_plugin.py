@@ -265,6 +265,8 @@ def test_life_on_the_toy_standard_s_curve_and_the_chain_refused(install, tmp_pat
     assert_allclose(over["cycles_to_failure"], n_fail, rtol=1e-9)
     assert_allclose(over["cycles"], 50.0 * 60.0 * 1450.0 / (75 / 19), rtol=1e-12)  # stage 2 pinion's speed
     assert_allclose(over["damage"], over["cycles"] / n_fail, rtol=1e-9)
+    # the rule's name does not claim ISO 6336-2/-3's curve (0.85 at 1e10) for the standard's own S-N lines
+    assert "ISO 6336-2/-3" not in life["miner"] and "standard's own" in life["miner"], life["miner"]
     doc = _doc()
     doc["duty"] = [{"name": "rated", "hours": 1000.0, "torque_Nm": 1340.0, "speed_rpm": 1450.0}]
     path.write_text(tomli_w.dumps(doc), encoding="utf-8")
