@@ -51,7 +51,8 @@ def claim(what: str, name: str, implementation: object, *, built_in: Collection[
     if top == "gearcli" and name in built_in:
         who = ("gearcli", BUILT_IN)
     elif _loading is not None:
-        ep = _group.get(_caller_package(), _loading)  # another plug-in's module imported by the one loading: its own
+        caller = _caller_package()  # another plug-in's module, imported by the one loading, registers as its own
+        ep = _loading if caller == _package(_loading) else _group.get(caller, _loading)
         who = (_package(ep), f"plug-in {ep.name!r} ({ep.value})")
     else:
         who = (top, f"module {module!r}")
