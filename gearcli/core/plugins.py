@@ -19,8 +19,10 @@ the two a file would get is undecidable).
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Collection
 from importlib.metadata import EntryPoint, entry_points
+from types import FrameType
 
 GROUP = "gearcli.plugins"
 BUILT_IN = "gearcli (built-in)"
@@ -28,6 +30,7 @@ BUILT_IN = "gearcli (built-in)"
 _failures: tuple[str, ...] | None = None  # None: the group is not loaded yet
 _conflict: Exception | None = None  # the NameConflict that ended the load, raised again on every load()
 _loading: EntryPoint | None = None  # the entry point being loaded: the registrant of what registers meanwhile
+_group: dict[str, EntryPoint] = {}  # the group's entry points by their top-level package, while it loads
 _owners: dict[tuple[str, str, str], tuple[str, str]] = {}  # (what, name, part) -> (identity, label)
 
 
@@ -39,15 +42,18 @@ def claim(what: str, name: str, implementation: object, *, built_in: Collection[
     """Record the registrant of ``name`` (``what``: "rating standard", "stage type"; ``part``: a stage type's facet)
     and return None, or return why the registration is refused (and record nothing): ``name`` is built into gearcli
     and the registrant is not gearcli, or another registrant holds it. The registrant is gearcli for its own
-    implementation of a built-in name, else the entry point being loaded, else the implementation's top-level
-    package (a script or a test registering directly); the same registrant may register a name again (it replaces
-    its own)."""
+    implementation of a built-in name, else the entry point being loaded (the group's entry point of the calling
+    code's package when that is another one: a plug-in's module imported by the plug-in loading registers as its
+    own), else the implementation's top-level package (a script or a test registering directly); the same
+    registrant may register a name again (it replaces its own)."""
     module = origin(implementation)
     top = module.split(".")[0]
     if top == "gearcli" and name in built_in:
         who = ("gearcli", BUILT_IN)
     elif _loading is not None:
-        who = (_loading.value.split(":")[0].split(".")[0].strip(), f"plug-in {_loading.name!r} ({_loading.value})")
+        caller = _caller_package()  # another plug-in's module, imported by the one loading, registers as its own
+        ep = _loading if caller == _package(_loading) else _group.get(caller, _loading)
+        who = (_package(ep), f"plug-in {ep.name!r} ({ep.value})")
     else:
         who = (top, f"module {module!r}")
     label = f'{what} "{name}"' + (f" (its {part} facet)" if part else "")
@@ -60,6 +66,23 @@ def claim(what: str, name: str, implementation: object, *, built_in: Collection[
                 "them (docs/plugins.md)")
     _owners[(what, name, part)] = who
     return None
+
+
+def _package(ep: EntryPoint) -> str:
+    """The top-level package of an entry point's object."""
+    return ep.value.split(":")[0].split(".")[0].strip()
+
+
+def _caller_package() -> str:
+    """The top-level package of the code that called gearcli's registration: the first frame outside gearcli and
+    the import machinery (a plug-in's ``register``, or the body of a module registering on import)."""
+    frame: FrameType | None = sys._getframe(1)
+    while frame is not None:
+        top = str(frame.f_globals.get("__name__", "")).split(".")[0]
+        if top not in ("gearcli", "importlib", "_frozen_importlib", "_frozen_importlib_external"):
+            return top
+        frame = frame.f_back
+    return ""
 
 
 def origin(implementation: object) -> str:
@@ -80,11 +103,15 @@ def load() -> tuple[str, ...]:
         raise _conflict
     if _failures is None:
         _failures = ()  # set first: a plug-in that reads a design file while it loads does not load the group again
+        group = tuple(entry_points(group=GROUP))
+        _group.update((_package(ep), ep) for ep in group)
         try:
-            _failures = tuple(f for f in (_load_one(ep) for ep in entry_points(group=GROUP)) if f)
+            _failures = tuple(f for f in (_load_one(ep) for ep in group) if f)
         except NameConflict as exc:  # two registrants of one name: no plug-in's name can be trusted to mean one
             _conflict = exc
             raise
+        finally:
+            _group.clear()
     return _failures
 
 

@@ -43,7 +43,7 @@ from gearcli.errors import ConfigError, DesignError, GearcliError, ResourceError
 from gearcli.life import point_loads, spectra, verdicts
 from gearcli.life.bearings import PointBearings, StartBearings, bearing_lives, bearing_warnings
 from gearcli.life.duty import DutyPoint
-from gearcli.life.miner import VARIANT_NAMES, SNCurve, spectrum_safety
+from gearcli.life.miner import SNCurve, spectrum_safety
 from gearcli.life.result import (
     BearingLife,
     Bin,
@@ -58,6 +58,8 @@ from gearcli.life.result import (
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles
 from gearcli.model.motor_start import VFD_OFF_SPEED
+from gearcli.rating.registry import DEFAULT as DEFAULT_STANDARD
+from gearcli.rating.sn import miner_name
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
 from gearcli.stages.design import design_kind
 from gearcli.stages.life import LifeKind, life_kind
@@ -473,7 +475,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
     warnings += _verdicts(evaluated[0].cfg, stages, bearings, hours, next(iter(from_series), None))
     runs = tuple(replace(pd.run, start=start_record(pd, stages)) if pd.start is not None else pd.run
                  for pd in evaluated)
-    return LifeResult(route, VARIANT_NAMES[variant], _rating(first.stages[0]).standard, hours,
+    miner = miner_name(variant, iso_curves=standard_of(evaluated[0].cfg).name == DEFAULT_STANDARD)
+    return LifeResult(route, miner, _rating(first.stages[0]).standard, hours,
                       runs, stages, bearings, messages(warnings), tuple(warnings))
 
 

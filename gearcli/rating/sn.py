@@ -31,6 +31,14 @@ VARIANT_NAMES = {
     "elementary": "ISO 6336-6 Miner elementary: the finite-life slope continued below the knee",
     "modified": "ISO 6336-6 Miner modified (Haibach): exponent 2k-1 below the knee",
 }
+OWN_CURVES = ("ISO 6336-6 Miner rule on the rating standard's own life-factor curves (each mode's `curve`: its nodes "
+              "past the knee; optimum: no damage below the endurance limit)")
+
+
+def miner_name(variant: str, *, iso_curves: bool) -> str:
+    """The Miner rule's name in life's output (JSON ``life.miner``): the ``"iso"`` variant follows the curve's own
+    nodes past the knee, which are ISO 6336-2/-3's only for ISO 6336 (a plug-in standard has its own)."""
+    return VARIANT_NAMES[variant] if iso_curves or variant != "iso" else OWN_CURVES
 
 
 @record

@@ -184,6 +184,21 @@ def test_the_chain_s_time_series_columns(install, mixed, tmp_path):
     assert float(last["stage2_radial_N"]) == 0.0 and float(last["stage2_axial_N"]) == 0.0
 
 
+def test_a_sweep_s_rows_name_the_chain_as_a_gear_stage(install, mixed):
+    """A sweep's rows keep the gear stages' column names for the chain too (docs/plugins.md, "io"), its points
+    designed in workers that load the plug-in themselves: stage2_tangential_N_mean the chain's pull T_in / r_1 at
+    each driven sprocket (T_in = T_out / (i3 eta) / (i_c eta_c), i_c = z2 / z1), its stretch F / k."""
+    install()
+    r = _invoke("sweep", mixed, "--vary", f"stage.1.driven_teeth={Z2},51", "--jobs", "2", "-q", "--format", "json")
+    assert r.exit_code == 0, r.output
+    rows = json.loads(r.stdout)["rows"]
+    assert [row["status"] for row in rows] == ["ok", "ok"]
+    for row, z2 in zip(rows, (Z2, 51), strict=True):
+        force = T_OUT / (68 / 19 * 0.98) / (z2 / Z1 * ETA_C) / _r(Z1)
+        assert_allclose(row["stage2_tangential_N_mean"], force, rtol=1e-4)
+        assert_allclose(row["stage2_dte_um_mean"], force / K_C * 1e6, rtol=1e-4)
+
+
 def test_modes_hold_the_chain_s_stiffness_and_the_sprockets_inertias(install, mixed):
     """Lossless stages (a lossy element's split makes the stiffness matrix unsymmetric): the natural frequencies
     of the 4-shaft chain K theta = omega^2 J theta, K = sum_e k_e v v^T, v the element's levers (a mesh: base
@@ -265,6 +280,8 @@ def test_life_on_the_toy_standard_s_curve_and_the_chain_refused(install, tmp_pat
     assert_allclose(over["cycles_to_failure"], n_fail, rtol=1e-9)
     assert_allclose(over["cycles"], 50.0 * 60.0 * 1450.0 / (75 / 19), rtol=1e-12)  # stage 2 pinion's speed
     assert_allclose(over["damage"], over["cycles"] / n_fail, rtol=1e-9)
+    # the rule's name does not claim ISO 6336-2/-3's curve (0.85 at 1e10) for the standard's own S-N lines
+    assert "ISO 6336-2/-3" not in life["miner"] and "standard's own" in life["miner"], life["miner"]
     doc = _doc()
     doc["duty"] = [{"name": "rated", "hours": 1000.0, "torque_Nm": 1340.0, "speed_rpm": 1450.0}]
     path.write_text(tomli_w.dumps(doc), encoding="utf-8")
