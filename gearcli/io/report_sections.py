@@ -8,6 +8,8 @@ cannot resolve.
 
 from __future__ import annotations
 
+import math
+
 from gearcli.core.records import record
 from gearcli.core.text import figure, shorten
 from gearcli.io.units import of_result
@@ -130,11 +132,20 @@ def sampling_notes(r: Report) -> list[str]:
     return out
 
 
+def peak_text(peak_Hz: float, resolution_Hz: float) -> str:
+    """"f ± 1/T" with f printed to the decimal place of the resolution's second digit, no further: a bin's
+    centre is good to the resolution, so "0.6248 ± 0.62" claimed digits the FFT cannot give ("0.62 ± 0.62")."""
+    if not (resolution_Hz > 0 and math.isfinite(resolution_Hz)):
+        return f"{peak_Hz:.4g} ± {resolution_Hz:.2g}"
+    decimals = max(0, 1 - math.floor(math.log10(float(f"{resolution_Hz:.2g}"))))
+    return f"{peak_Hz:.{decimals}f} ± {resolution_Hz:.2g}"
+
+
 def spectrum_section(r: Report) -> Section:
     rows = []
     for s in r.stages:
         sp = s.spectrum
-        peak = "–" if sp.peak_frequency_Hz is None else f"{sp.peak_frequency_Hz:.4g} ± {sp.resolution_Hz:.2g}"
+        peak = "–" if sp.peak_frequency_Hz is None else peak_text(sp.peak_frequency_Hz, sp.resolution_Hz)
         rows.append((str(s.stage), peak, g(sp.peak_amplitude_N, 3), g(sp.mesh_frequency_Hz, 4), sp.matches))
     notes = []
     if r.stages:
