@@ -163,3 +163,62 @@ def test_peak_frequency_printed_to_its_resolution():
     assert peak_text(156.2482, 3.1240) == "156.2 ± 3.1"
     assert peak_text(499.8798, 9.613) == "499.9 ± 9.6"
     assert peak_text(1234.5, 12.5) == "1234 ± 12"  # 1234.5 to even: a whole-hertz line at this resolution
+
+
+SPUR = """
+title = "spur pair, linear mesh, first-harmonic TE"
+[[stage]]
+normal_module_mm = 2.5
+pinion = { teeth = 30, face_width_mm = 25 }
+gear = { teeth = 45, face_width_mm = 25, inertia_kg_m2 = 0.02 }
+[contact]
+stiffness = 3e5
+exponent = 1
+damping_ratio = 0.04
+transmission_error_um = [4.0]
+[input]
+speed_rpm = 1000
+ramp_s = 0.02
+[load]
+torque_Nm = 100
+ramp_s = 0.02
+[simulation]
+duration_s = 0.15
+steps = 6000
+"""
+
+
+def _error_cells(rep):
+    from gearcli.io.report_sections import comparison_section
+
+    section = comparison_section(rep)
+    return {(row[0], row[1]): row[4] for row in section.rows}, section
+
+
+def test_force_error_below_the_runs_own_accuracy_is_not_printed_as_digits(tmp_path, forward):
+    """A linear spur pair (30/45 teeth, m 2.5 mm, 100 N·m on the gear) meets F_t = T_p / r_p = 66.667 N·m /
+    37.5 mm = 1777.78 N to ~5e-9: the table printed "+5.04e-07" %, digits below the run's own estimated error
+    of the mean (~9e-9), i.e. solver noise. It prints "< e" with e that estimate, and e bounds the difference
+    from the hand value. The two-stage reducer's −0.0034 % (its window's partial TE period, far above its
+    accuracy) is still a number, the difference from the hand F_t."""
+    path = tmp_path / "spur.toml"
+    path.write_text(SPUR)
+    loaded = api.load(str(path))
+    rep = api.report_file(loaded, api.design(loaded), quick=True)
+    hand_ft = (100.0 * 30 / 45) / (30 * 2.5 / 2e3)
+    mean_ft = rep.simulation.stages[0].tangential_N.mean
+    cells, section = _error_cells(rep)
+    cell = cells[("1", "F_t mean [N]")]
+    assert cell.startswith("< "), cell
+    assert abs(mean_ft - hand_ft) / hand_ft * 100 < float(cell[2:])
+    assert cells[("1", "F_r mean [N]")] == cell
+    assert any(note.startswith("'< e'") for note in section.notes)
+
+    design, rep2 = forward
+    cells2, section2 = _error_cells(rep2)
+    hand = _by_hand(design)
+    for k in range(2):
+        printed = float(cells2[(str(k + 1), "F_t mean [N]")])
+        sim = rep2.simulation.stages[k].tangential_N.mean
+        assert_allclose(printed, 100 * (sim - hand["F_t"][k]) / hand["F_t"][k], rtol=5e-3)  # 3 digits printed
+    assert not any(note.startswith("'< e'") for note in section2.notes)
