@@ -171,7 +171,8 @@ def spectrum_section(r: Report) -> Section:
     for s in r.stages:
         sp = s.spectrum
         peak = "–" if sp.peak_frequency_Hz is None else peak_text(sp.peak_frequency_Hz, sp.resolution_Hz)
-        rows.append((str(s.stage), peak, g(sp.peak_amplitude_N, 3), g(sp.mesh_frequency_Hz, 4), sp.matches))
+        rows.append((str(s.stage), peak, "–" if sp.peak_frequency_Hz is None else figure(sp.peak_amplitude_N, 3),
+                     g(sp.mesh_frequency_Hz, 4), sp.matches))
     notes = []
     if r.stages:
         sp = r.stages[0].spectrum

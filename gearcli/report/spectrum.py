@@ -4,7 +4,7 @@ amplitudes of the mesh orders (1x, 2x, 3x the mesh frequency) in the force and t
 The force is detrended (least-squares line removed), multiplied by a Hann window and transformed
 with a real FFT. The amplitude is scaled by 2 / sum(w), so a sine of amplitude A shows a peak of
 A at its own frequency; between two bins the FFT's largest bin shows up to 15 % less (scalloping), so the
-peak's amplitude is the maximum of the same windowed transform over the bins either side of the largest
+peak's amplitude is the maximum of the same windowed transform within half a bin of the largest
 (:func:`peak_line_amplitude`). The frequency resolution is 1 / T with T = n dt the record length; with a
 Hann window a spectral line spreads over about ±2 bins, which is also the tolerance used to name the peak.
 """
@@ -50,12 +50,14 @@ def order_amplitude(time_s: np.ndarray, x: np.ndarray, frequency_Hz: float, *, w
 def peak_line_amplitude(u: np.ndarray, weighted: np.ndarray, w_sum: float, freqs: np.ndarray, k: int,
                         bin_amplitude: float) -> float:
     """Amplitude of the line whose FFT peak is bin ``k``: the largest ``2 |sum(w x e^(-i 2 pi f u))| / sum(w)``
-    over f between the neighbouring bins (``weighted`` = the Hann-weighted detrended record, ``u`` its times
-    from the first sample). An isolated sine of amplitude A gives A wherever it lies between the bins, where
-    the bin itself shows down to 0.85 A (Hann scalloping); never below the bin's own value."""
+    over f within half a bin of the peak bin (where a line lies whose nearest bin is ``k``; never down to DC;
+    ``weighted`` = the Hann-weighted detrended record, ``u`` its times from the first sample). An isolated sine of
+    amplitude A gives A wherever it lies between the bins, where the bin itself shows down to 0.85 A (Hann
+    scalloping); never below the bin's own value."""
     from scipy.optimize import minimize_scalar  # noqa: PLC0415 (only a report with a fluctuating force needs it)
 
-    lo, hi = float(freqs[max(k - 1, 0)]), float(freqs[min(k + 1, freqs.size - 1)])
+    half = 0.5 * float(freqs[1] - freqs[0])
+    lo, hi = max(float(freqs[k]) - half, float(freqs[0]) + half), min(float(freqs[k]) + half, float(freqs[-1]))
     if hi <= lo:
         return bin_amplitude
 
