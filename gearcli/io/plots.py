@@ -96,13 +96,20 @@ def mesh_forces_figure(r: Report) -> Figure:
         ax.set_ylabel("F_t [N]")
         ax.set_title(f"stage {s.stage}: tangential mesh force", fontsize=9, loc="left")
         zoom.set_title(f"stage {s.stage}, steady window (std {s.tangential_N.std:.3g} N)", fontsize=9, loc="left")
-        ax.legend(loc="upper right", fontsize=8)
+        ax.legend(loc=_clear_corner(ax, s.tangential_N.mean), fontsize=8)
         zoom.legend(loc="upper right", fontsize=8)
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time [s]")
     axes[-1, 1].set_xlabel("time [s]")
     fig.suptitle("Tangential mesh forces (dashed: static theory)", fontsize=11)
     return fig
+
+
+def _clear_corner(ax, steady_level: float) -> str:
+    """The right-hand corner the steady trace leaves free: it runs along the right half of the panel at its steady
+    level, so a loaded train's forces (at the top) take the legend below them, a reversed load's above them."""
+    lo, hi = ax.get_ylim()
+    return "lower right" if steady_level > 0.5 * (lo + hi) else "upper right"
 
 
 def _signed_peak(time_s: np.ndarray, series: np.ndarray | None, at_s: float | None, peak_N: float) -> float:
@@ -126,7 +133,8 @@ def spectrum_figure(r: Report) -> Figure:
         for j, fn in enumerate(f for f in natural if f <= sp.nyquist_Hz):
             ax.axvline(fn, color="C3", ls=":", lw=1.2, label="natural frequencies" if j == 0 else None)
         if sp.peak_frequency_Hz is not None:
-            ax.plot([sp.peak_frequency_Hz], [sp.peak_amplitude_N], "o", mfc="none", color="k", ms=7,
+            on_curve = sp.amplitude_N[int(np.argmin(np.abs(sp.frequency_Hz - sp.peak_frequency_Hz)))]
+            ax.plot([sp.peak_frequency_Hz], [on_curve], "o", mfc="none", color="k", ms=7,  # the bin on the curve
                     label=f"peak {sp.peak_frequency_Hz:.4g} ± {sp.resolution_Hz:.2g} Hz")
         ax.set_ylabel("amplitude [N]")
         ax.set_title(f"stage {s.stage}", fontsize=9, loc="left")

@@ -51,7 +51,9 @@ class Spectrum:
 
     ``amplitude_N`` is scaled so that a pure sine of amplitude A shows a peak of A (coherent gain of
     the Hann window removed). ``peak_frequency_Hz`` is the centre of the largest non-DC bin, good to
-    ``resolution_Hz`` = 1 / T_window; ``None`` when the force does not fluctuate.
+    ``resolution_Hz`` = 1 / T_window; ``None`` when the force does not fluctuate. ``peak_amplitude_N`` is
+    the amplitude of that line wherever it lies between the bins (the windowed transform's maximum next to the
+    peak bin), not the bin's value, which Hann scalloping lowers by up to 15 %.
     """
 
     stage: int
