@@ -104,7 +104,9 @@ def test_a_transmission_error_on_the_second_planetary_excites_at_its_mesh_freque
     f_mesh = 18 * (N3_HZ - N2_HZ)
     assert math.isclose(f_mesh, 93 * N2_HZ, rel_tol=1e-12)  # = z_r n_carrier with the ring held
     band = (0.8 * f_mesh, 1.25 * f_mesh)
-    assert_allclose(_peak_hz(sim, "stage2_planet1_sun_tangential_N", band), f_mesh, rtol=5e-4)
+    # within 2e-3 (0.15 Hz, 5 % of the window's 3 Hz resolution): the leakage of the ringing mode's harmonics moves
+    # the line's maximum by a few hundredths of a hertz (0.04 Hz once the planets' masses were their bodies')
+    assert_allclose(_peak_hz(sim, "stage2_planet1_sun_tangential_N", band), f_mesh, rtol=2e-3)
     # the line is the TE's: without it the band holds no line there
     base = _run()
     assert abs(_peak_hz(base, "stage2_planet1_sun_tangential_N", band) / f_mesh - 1) > 5e-3
