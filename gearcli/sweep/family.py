@@ -31,7 +31,7 @@ from collections.abc import Iterator
 
 from gearcli.core.records import record
 from gearcli.simulate.results import SimulationResult
-from gearcli.sweep.columns import Row, one_line
+from gearcli.sweep.columns import OK, Row, one_line
 
 CHECK_EVERY = 16  # every CHECK_EVERY-th point of a sweep runs its check pass
 PACE_RATIO = 1.5  # a point whose evaluations per simulated second differ more from the checked one's: re-check
@@ -100,7 +100,7 @@ UNRESOLVED_MARK = "at the run's rtol"  # in statistics_unresolved's message (gea
 def unresolved_row(row: Row) -> bool:
     """Whether a written row may be a checked point's unresolved verdict (its own statistics_unresolved warning; a
     peak_unresolved one reads alike, and only costs a rerun): a resume runs such a point again for its family."""
-    return row.get("status") == "ok" and UNRESOLVED_MARK in str(row.get("message") or "")
+    return row.get("status") == OK and UNRESOLVED_MARK in str(row.get("message") or "")
 
 
 SEPARATOR = "\x1e"  # between the warnings of a checked row's hidden verdict (a warning may hold a newline)
@@ -143,7 +143,7 @@ class Carrier:
                 yield self._done(row, family)
             for waiting in self.waiting.pop(family, []):
                 yield self._done(waiting, family)
-        elif row.get("status") == "ok" and family not in self.verdicts:
+        elif row.get("status") == OK and family not in self.verdicts:
             self.waiting.setdefault(family, []).append(row)
         else:
             yield self._done(row, family)
