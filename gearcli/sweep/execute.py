@@ -17,7 +17,7 @@ import signal
 import socket
 import threading
 from collections import Counter
-from collections.abc import Callable, Generator, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Collection, Generator, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
 from multiprocessing import forkserver
@@ -29,6 +29,7 @@ from gearcli.core.signals import deferred
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.sweep.columns import Row, failed_row
+from gearcli.sweep.family import Family, family_of
 from gearcli.sweep.spec import Point, SweepSpec
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, iter_task, run_task
 
@@ -81,31 +82,42 @@ def jobs_cap(point_bytes: float) -> tuple[int, str]:
 
 
 def plan(spec: SweepSpec, scene: Scene, done: Mapping[tuple[str, ...], int], workers: int,
-         evaluate: PointEvaluator) -> tuple[list[Task], int]:
+         evaluate: PointEvaluator, unresolved: Collection[tuple[str, ...]] = ()) -> tuple[list[Task], int]:
     """The tasks that produce every point not in ``done`` (idents and how many rows of each the file holds: the
     first that many points of an ident are done), and how many points they return; each evaluates its points
     with ``evaluate``.
 
     A continuation branch is one task; its points up to the last missing one are computed (a point's
-    start state needs its predecessors), the ones already written are not returned again."""
+    start state needs its predecessors), the ones already written are not returned again. Independent points go in
+    batches; a family (:mod:`gearcli.sweep.family`) with points to run whose checked point is written with an
+    unresolved verdict (its ident in ``unresolved``) has that point run again, not returned, for the verdict."""
     tasks: list[Task] = []
     single: list[Point] = []
+    checked: list[Point] = []  # independent checked points already written (their family's verdict: gearcli.sweep.family)
     todo = 0
     left = Counter(done)
     for branch in spec.branches():
         written = [_take(left, p.ident) for p in branch]
         missing = [i for i, w in enumerate(written) if not w]
+        independent = len(branch) == 1 or not spec.direction
+        if independent:
+            checked.extend(p for p, w in zip(branch, written, strict=True) if w and Family.needs_check(p.index)
+                           and p.ident in unresolved)
         if not missing:
             continue
         todo += len(missing)
-        if len(branch) == 1 or not spec.direction:
+        if independent:
             single.extend(branch[i] for i in missing)
             continue
         head = branch[:missing[-1] + 1]
         skip = frozenset(p.index for p, w in zip(head, written, strict=False) if w)
         tasks.append(Task(scene, tuple(head), True, evaluate, skip))
+    families = {family_of(p.index) for p in single}
+    again = {p.index: p for p in checked if family_of(p.index) in families}  # written: run for the verdict alone
+    single = sorted([*single, *again.values()], key=lambda p: p.index)
     size = batch_size(len(single), workers)
-    tasks += [Task(scene, tuple(single[i:i + size]), False, evaluate) for i in range(0, len(single), size)]
+    tasks += [Task(scene, tuple(part), False, evaluate, frozenset(again) & {p.index for p in part})
+              for part in (single[i:i + size] for i in range(0, len(single), size))]
     share = math.ceil(todo / max(1, workers))  # each worker's part of the sweep (engine = "auto" amortises over it)
     return [dataclasses.replace(t, runs_hint=share) for t in tasks], todo
 

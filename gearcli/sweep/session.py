@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from itertools import chain
 from typing import Protocol
 
 from gearcli import __version__, engine
@@ -28,8 +29,9 @@ from gearcli.results import DesignResult
 from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
 from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
+from gearcli.sweep.family import Carrier, unresolved_row
 from gearcli.sweep.load_law import load_law_of
-from gearcli.sweep.resume import check_same, done_counts, identity, ordered, relabel, seed_for
+from gearcli.sweep.resume import check_same, done_counts, identity, ordered, relabel, row_ident, seed_for
 from gearcli.sweep.spec import SPEED_KEYS, SweepSpec, SweepUsageError, spec_from_options
 from gearcli.sweep.worker import PointEvaluator, Scene, Task, check_keys
 
@@ -112,7 +114,8 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         check_same(stored, ident, output)
     done = done_counts(previous, spec.columns)
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
-    tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers, evaluate)
+    unresolved = {row_ident(r, spec.columns) for r in previous if unresolved_row(r)}  # verdicts a resume needs again
+    tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers, evaluate, unresolved)
     if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
@@ -191,8 +194,9 @@ def run(session: Session, open_sink: SinkFactory, on_row: Callable[[bool], None]
     """Run the session's tasks; every row goes to the sink as it arrives. Returns all rows in point order."""
     sink = open_sink(session.output, session.fmt, session.columns, session.identity, session.previous)
     rows_in = execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler)
+    carrier = Carrier()  # independent rows take their family's verdict here, whichever task ran them
     try:
-        for row in rows_in:
+        for row in chain((r for got in rows_in for r in carrier.add(got)), carrier.rest()):
             sink.add(row)
             on_row(row.get("status") == FAILED)
     except BaseException:

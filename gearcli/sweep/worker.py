@@ -29,7 +29,7 @@ from gearcli.results import DesignResult
 from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
 from gearcli.sweep.continuation import Carried, jump_note, on_branch
-from gearcli.sweep.family import Family
+from gearcli.sweep.family import Family, marks
 from gearcli.sweep.load_law import LoadLaw, law_overrides
 from gearcli.sweep.spec import Point, canonical_key
 
@@ -107,11 +107,15 @@ def iter_task(task: Task) -> Iterator[Row]:
         before: _Before | None = None  # the previous ok point of the branch
         for point in task.points:
             t0 = time.perf_counter()
+            check = family.needs_check(point.index)
+            got: SimulationResult | None = None
             try:
-                check = family.needs_check(point.index)
                 _, result, carried = _evaluate(task.evaluate, task.scene, point, prev if task.continuation else None,
                                                check)
-                shared = family.checked(one_line(point.shown()), result) if check else family.carried(result)
+                got = result
+                shared: tuple[str, ...] = ()
+                if task.continuation:  # a branch carries its verdict along itself; independent points: the Carrier
+                    shared = family.checked(one_line(point.shown()), result) if check else family.carried(result)
                 jump = _jump(task, before, point, result) if task.continuation else ""
             except GearcliError as exc:
                 prev = before = None
@@ -123,10 +127,12 @@ def iter_task(task: Task) -> Iterator[Row]:
             else:
                 prev, before = carried, _Before(point, result, carried)
                 row = ok_row(point.cells(), point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
-                             message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings)
-                                                        + tuple(shared or ()))))
+                             message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings) + shared)))
+            hidden = {} if task.continuation else marks(got, one_line(point.shown()) if check else None)
             if point.index not in task.skip:
-                yield {"_index": point.index, **row}
+                yield {"_index": point.index, **row, **hidden}
+            elif check and not task.continuation:  # run again for its family's verdict alone (a resume)
+                yield {"_index": point.index, **hidden, "_verdict_only": True}
 
 
 class _Before(NamedTuple):
