@@ -54,7 +54,7 @@ def peak_line_amplitude(u: np.ndarray, weighted: np.ndarray, w_sum: float, freqs
     ``weighted`` = the Hann-weighted detrended record, ``u`` its times from the first sample). An isolated sine of
     amplitude A gives A wherever it lies between the bins, where the bin itself shows down to 0.85 A (Hann
     scalloping); never below the bin's own value."""
-    from scipy.optimize import minimize_scalar  # noqa: PLC0415 (only a report with a fluctuating force needs it)
+    from scipy.optimize import minimize_scalar  # lazy: only a report with a fluctuating force needs it
 
     half = 0.5 * float(freqs[1] - freqs[0])
     lo, hi = max(float(freqs[k]) - half, float(freqs[0]) + half), min(float(freqs[k]) + half, float(freqs[-1]))
