@@ -27,11 +27,15 @@ point alone).
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING
 
 from gearcli.core.records import record
 from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import OK, Row, one_line
+
+if TYPE_CHECKING:
+    from gearcli.sweep.worker import Task
 
 CHECK_EVERY = 16  # every CHECK_EVERY-th point of a sweep runs its check pass
 PACE_RATIO = 1.5  # a point whose evaluations per simulated second differ more from the checked one's: re-check
@@ -127,8 +131,12 @@ class Carrier:
     """The parent's side of the independent points' families: each row waits for its family's checked row, then
     takes its verdict; a checked point that failed carries nothing. Rows come out without the hidden fields."""
 
-    def __init__(self) -> None:
-        self.verdicts: dict[int, Verdict | None] = {}
+    def __init__(self, tasks: Iterable[Task] = ()) -> None:
+        """``tasks``: the sweep's; a family whose checked point none of them runs (written before a resume with a
+        resolved verdict, which carries nothing) has no verdict to wait for: its rows are written as they come."""
+        running = {p.index for t in tasks if not t.continuation for p in t.points}
+        self.verdicts: dict[int, Verdict | None] = {family_of(i): None for i in running
+                                                    if family_of(i) * CHECK_EVERY not in running}
         self.waiting: dict[int, list[Row]] = {}
 
     def add(self, row: Row) -> Iterator[Row]:

@@ -194,7 +194,7 @@ def run(session: Session, open_sink: SinkFactory, on_row: Callable[[bool], None]
     """Run the session's tasks; every row goes to the sink as it arrives. Returns all rows in point order."""
     sink = open_sink(session.output, session.fmt, session.columns, session.identity, session.previous)
     rows_in = execute(session.tasks, jobs=session.jobs, scheduler=session.scheduler)
-    carrier = Carrier()  # independent rows take their family's verdict here, whichever task ran them
+    carrier = Carrier(session.tasks)  # independent rows take their family's verdict here, whichever task ran them
     try:
         for row in chain((r for got in rows_in for r in carrier.add(got)), carrier.rest()):
             sink.add(row)

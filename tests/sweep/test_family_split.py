@@ -85,6 +85,24 @@ def test_a_row_whose_checked_point_never_came_is_written_without_a_verdict():
     assert list(carrier.rest()) == [{"_index": CHECK_EVERY + 3, "status": "ok", "message": "own"}]
 
 
+def test_a_family_whose_checked_point_is_written_resolved_streams_its_rows():
+    """A resume whose family's checked point is in the file with a resolved verdict (it carries nothing, and no task
+    runs it): the family's rows have no verdict to wait for, so they are written as they come, not held to the end
+    of the sweep (where a Ctrl-C would have dropped them)."""
+    n = 2 * CHECK_EVERY
+    spec = spec_from_options([f"input.speed_rpm=100:{100 + n - 1}:{n}"], [], None, "lhs", None, None)
+    points = [b[0] for b in spec.branches()]
+    written = CHECK_EVERY + 3  # family 1's checked point and two more are in the file
+    tasks, _ = execute.plan(spec, Scene(b"", "x.toml"), {p.ident: 1 for p in points[:written]}, 2, None)
+    carrier = Carrier(tasks)
+    row = _row(written, 1000.0)
+    assert list(carrier.add(dict(row))) == [{"_index": written, "status": "ok", "message": "own"}]
+    assert list(carrier.rest()) == []
+    # a family whose checked point does run still waits for it
+    fresh = Carrier(execute.plan(spec, Scene(b"", "x.toml"), {}, 2, None)[0])
+    assert list(fresh.add(_row(3, 1000.0))) == [] and len(list(fresh.rest())) == 1
+
+
 @pytest.mark.parametrize("workers", [1, 2, 7])
 def test_a_resume_runs_a_written_checked_point_again_unwritten(workers):
     n = 3 * CHECK_EVERY
