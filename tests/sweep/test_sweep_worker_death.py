@@ -25,7 +25,7 @@ import pytest
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="forkserver pool")
 
 CHILD = textwrap.dedent("""
-    import json, os, sys, time
+    import json, os, sys
 
     from gearcli.errors import SimulationError
     from gearcli.sweep.execute import execute
@@ -33,18 +33,11 @@ CHILD = textwrap.dedent("""
     from gearcli.sweep.worker import Scene, Task
 
     MARK = sys.argv[1]
-    KILLER_WAITS = True  # the killing point first waits for the transient death (below)
 
 
     def fake(scene, overrides, start=None, /, *, series=False, check=False):
         value = int(overrides[0].split("=")[1])
         if value == 5:  # kills its worker every time
-            # but not before point 8 has died once: were point 5 first, the pool's break could end the task of
-            # point 8 after it had started and before point 8 was reached, and its first death would then come in
-            # its run alone, where a death marks the culprit (a race CI's load exposed once)
-            deadline = time.monotonic() + 60
-            while KILLER_WAITS and not os.path.exists(MARK) and time.monotonic() < deadline:
-                time.sleep(0.01)
             os._exit(9)
         if value == 8 and not os.path.exists(MARK):  # kills its worker the first time only
             open(MARK, "w").close()
@@ -86,9 +79,8 @@ def test_a_dead_worker_fails_its_own_task_and_the_others_run(tmp_path):
 # the same scenario with the break landing while the round is still being submitted: submit() waits, after the
 # task of the point that kills its worker, until that task's future is done (the pool broken under it), so the next
 # submit raises BrokenProcessPool (under load a worker can die that early: CI met it as a traceback)
-# (the killing point does not wait here: point 8's task is submitted only after the break)
-LATE_SUBMIT = CHILD.replace("KILLER_WAITS = True", "KILLER_WAITS = False").replace(
-    'if __name__ == "__main__":', textwrap.dedent('''
+LATE_SUBMIT = CHILD.replace('if __name__ == "__main__":', textwrap.dedent('''
+    import time
     from concurrent.futures import ProcessPoolExecutor
 
     real_submit = ProcessPoolExecutor.submit
