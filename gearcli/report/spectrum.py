@@ -44,7 +44,13 @@ def order_amplitude(time_s: np.ndarray, x: np.ndarray, frequency_Hz: float, *, w
     u = t - t[0]
     detrended = x - np.polyval(np.polyfit(u, x, 1), u)
     w = np.hanning(t.size)
-    return float(2.0 * abs(np.sum(w * detrended * phase)) / w.sum())
+    return _hann_line(w * detrended, phase, float(w.sum()))
+
+
+def _hann_line(weighted: np.ndarray, phase: np.ndarray, w_sum: float) -> float:
+    """``2 |sum(w x e^(-i w t))| / sum(w)`` of the Hann-weighted detrended record ``weighted`` at the line whose
+    ``e^(-i w t)`` is ``phase``: the amplitude of a sine there."""
+    return float(2.0 * abs(np.sum(weighted * phase)) / w_sum)
 
 
 def peak_line_amplitude(u: np.ndarray, weighted: np.ndarray, w_sum: float, freqs: np.ndarray, k: int,
@@ -62,7 +68,7 @@ def peak_line_amplitude(u: np.ndarray, weighted: np.ndarray, w_sum: float, freqs
         return bin_amplitude
 
     def negative(f: float) -> float:
-        return -2.0 * abs(np.dot(weighted, np.exp(-2j * np.pi * f * u))) / w_sum
+        return -_hann_line(weighted, np.exp(-2j * np.pi * f * u), w_sum)
 
     best = minimize_scalar(negative, bounds=(lo, hi), method="bounded",
                            options={"xatol": 1e-4 * (freqs[1] - freqs[0])})
