@@ -220,9 +220,10 @@ def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: f
     alpha_fen = alpha_en - gamma_e
     h_fe = 0.5 * (d_sfn - (math.cos(gamma_e) - math.sin(gamma_e) * math.tan(alpha_fen)) * d_en)
     y_f = 6.0 * (h_fe / m) * math.cos(alpha_fen) / ((s_fn / m) ** 2 * math.cos(an))
-    ell = s_fn / h_fe
-    q_s = s_fn / (2.0 * rho_f)
-    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell))
+    ell = s_fn / h_fe if h_fe != 0.0 else math.nan
+    q_s = s_fn / (2.0 * rho_f) if rho_f > 0.0 else math.inf  # a sharp root (ρ_F = 0): no notch parameter
+    # Y_S only where the root has a section, a fillet and a lever (the caller refuses the rest, naming the key)
+    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell)) if 0.0 < q_s < math.inf and ell > 0.0 else math.nan
     return {"Y_F": y_f, "Y_S": y_s, "s_Fn": s_fn, "h_Fe": h_fe, "rho_F": rho_f, "alpha_Fen": alpha_fen,
             "q_s": q_s, "d_en": d_en, "d_sFn": d_sfn}
 

@@ -129,6 +129,8 @@ def _read_csv(text: str, path: str) -> tuple[JsonObject, list[Row]]:
         identity = json.loads(first[len(MARK):])
     except ValueError:
         raise _not_ours(path) from None
+    if not _is_identity(identity):
+        raise _not_ours(path)
     lines = list(csv.reader(io.StringIO(rest)))
     if not lines:
         return identity, []
@@ -160,10 +162,16 @@ def _read_json(text: str, path: str) -> tuple[JsonObject, list[Row]]:
         doc = json.loads(text)
     except ValueError:
         raise _not_ours(path) from None
-    if not isinstance(doc, dict) or "sweep" not in doc or not isinstance(doc.get("rows"), list):
+    if not _is_identity(doc) or "sweep" not in doc or not isinstance(doc.get("rows"), list):
         raise _not_ours(path)
     identity = {k: doc.get(k) for k in ("gearcli_version", "input_sha256", "sweep")}
-    return identity, list(doc["rows"])
+    return identity, [r for r in doc["rows"] if isinstance(r, dict)]  # anything else is no row: computed again
+
+
+def _is_identity(doc: object) -> bool:
+    """Whether ``doc`` has the shape of a sweep file's identity: an object whose ``sweep`` (the arguments), when
+    present, is an object too. Valid JSON of another shape (a list, ``"sweep": 3``) is no sweep file of ours."""
+    return isinstance(doc, dict) and isinstance(doc.get("sweep", {}), dict)
 
 
 class CsvFile(RowSink):

@@ -1,0 +1,102 @@
+"""Hostile inputs that reached an internal error (exit 1, "internal error: ...") instead of the contract's exit 2
+naming the file and the key, with no output file left behind (trial tr17d).
+
+- A planetary ring cut by a sharp basic rack (``basic_rack.root_radius = 0``) and no pinion-type cutter has a root
+  fillet of radius ρ_F = ρ_fP = 0: ISO 6336-3's notch parameter q_s = s_Fn / (2 ρ_F) divided by zero.
+- A sweep's ``-o FILE`` whose identity is valid JSON of another shape (a list, ``"sweep": 3``), or whose JSON rows
+  are not objects: ``'list' object has no attribute 'get'``.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from cases import HERE
+from click.testing import CliRunner
+
+from gearcli.cli import cli
+
+SHARP = HERE / "rule_planetary_ring_sharp_root.toml"
+SEED = Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer.toml"
+ONE_POINT = ["--vary", "input.speed_rpm=600", "--jobs", "1"]
+
+
+def _run(*args: str):
+    return CliRunner().invoke(cli, list(args))
+
+
+def _refused(res, source: str, key: str) -> None:
+    assert res.exit_code == 2, (res.exit_code, res.stderr)
+    assert f"gearcli: {source}: {key}: " in res.stderr, res.stderr
+    assert "Traceback" not in res.stderr and "internal error" not in res.stderr, res.stderr
+
+
+@pytest.mark.parametrize("command", [["design"], ["life", "--static"]])
+def test_a_ring_with_a_sharp_rack_root_is_refused_naming_the_key(command, tmp_path):
+    design = tmp_path / "sharp.toml"
+    shutil.copyfile(SHARP, design)
+    if command[0] == "life":
+        design.write_text(design.read_text() + '\n[[duty]]\nname = "run"\nhours = 1000\ntorque_Nm = 100\nspeed_rpm = 1000\n')
+    out = tmp_path / "out.json"
+    res = _run(*command, str(design), "-o", str(out))
+    _refused(res, str(design), "stage[0].basic_rack.root_radius")
+    assert "ρ_F = 0 mm" in res.stderr and "cutter_teeth" in res.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sharp.toml"]  # no output, no temporary file
+
+
+def test_the_same_ring_rates_with_a_fillet_or_a_cutter(tmp_path):
+    """The refusal is the sharp root's alone: the ISO 53 rack's fillet (ρ_fP = 0.38 m_n), or a pinion-type cutter,
+    whose generation rounds the root even from a sharp rack (ρ_F = 2 G² m_n / (cos θ (z_0 cos² θ − 2G)) > 0)."""
+    text = SHARP.read_text()
+    for name, edited in (("fillet", text.replace("root_radius = 0 }", "root_radius = 0.38 }")),
+                         ("cutter", text.replace("root_roughness_Rz_um = 20 }\n\n[lub",
+                                                 "root_roughness_Rz_um = 20, cutter_teeth = 25 }\n\n[lub"))):
+        assert edited != text
+        design = tmp_path / f"{name}.toml"
+        design.write_text(edited)
+        res = _run("design", str(design), "--format", "json", "-q")
+        assert res.exit_code == 0, res.stderr
+        ring = json.loads(res.stdout)["stages"][0]["meshes"][1]["rating"]["gear"]
+        assert ring["Y_S"] > 1.0 and ring["S_F"] > 0.0  # a finite stress correction and safety
+
+
+def _resume_against(tmp_path: Path, name: str, text: str):
+    out = tmp_path / name
+    out.write_text(text)
+    before = out.read_bytes()
+    res = _run("sweep", str(SEED), *ONE_POINT, "-q", "-o", str(out))
+    return res, out, before
+
+
+@pytest.mark.parametrize(("name", "text"), [
+    ("list.csv", '# gearcli sweep: [1, 2]\ninput.speed_rpm,status\n600,ok\n'),
+    ("number.csv", '# gearcli sweep: 3\n'),
+    ("sweep_is_a_number.csv", '# gearcli sweep: {"sweep": 3}\ninput.speed_rpm,status\n600,ok\n'),
+    ("list.json", '[{"sweep": {}, "rows": []}]'),
+    ("sweep_is_a_list.json", '{"gearcli_version": "0.1.0", "sweep": [1], "rows": []}'),
+    ("sweep_is_text.json", '{"gearcli_version": "0.1.0", "sweep": "x", "rows": []}'),
+    ("sweep_is_null.json", '{"gearcli_version": "0.1.0", "sweep": null, "rows": []}'),
+])
+def test_a_resume_file_of_another_shape_is_not_ours(tmp_path, name, text):
+    res, out, before = _resume_against(tmp_path, name, text)
+    assert res.exit_code == 2, (res.exit_code, res.stderr)
+    assert f"gearcli: {out}: exists and is not a gearcli sweep file" in res.stderr, res.stderr
+    assert "internal error" not in res.stderr and "Traceback" not in res.stderr
+    assert out.read_bytes() == before  # left as it was, nothing beside it
+    assert sorted(p.name for p in tmp_path.iterdir()) == [name]
+
+
+def test_json_rows_that_are_not_objects_are_computed_again(tmp_path):
+    """A resume file of this very sweep whose rows were replaced by numbers, text and null: those are no finished
+    points, so the point runs and the file ends as an uninterrupted run's (one row, at its speed)."""
+    fresh = tmp_path / "fresh.json"
+    assert _run("sweep", str(SEED), *ONE_POINT, "-q", "-o", str(fresh)).exit_code == 0
+    doc = json.loads(fresh.read_text())
+    doc["rows"] = [1, "x", None, []]
+    res, out, _ = _resume_against(tmp_path, "resume.json", json.dumps(doc))
+    assert res.exit_code == 0, res.stderr
+    rows = json.loads(out.read_text())["rows"]
+    assert [(r["input.speed_rpm"], r["status"]) for r in rows] == [(600, "ok")]
