@@ -122,13 +122,17 @@ class Bearing(_Table):
         return self
 
 
+#: the most hours one duty point (a [[duty]] table, or a --series history) may hold: 1,141 years
+MAX_DUTY_HOURS = 1e7
+
+
 class Duty(_Table):
     """One operating point of the duty cycle: its share of the life in hours, the output torque (one of
     torque_Nm, torque_Nmm, power_kW at the output speed) and the input speed; ``set`` holds any other key
     of the design file as ``--set`` takes it (``{"load.fluctuation" = ...}``)."""
 
     name: Annotated[str, Field(min_length=1, max_length=60)]
-    hours: Annotated[float, Field(gt=0.0, le=1e7)]
+    hours: Annotated[float, Field(gt=0.0, le=MAX_DUTY_HOURS)]
     speed_rpm: Annotated[float, Field(ge=1e-3, le=200_000.0)]
     torque_Nm: Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=MAX_TORQUE_NMM / 1e3)] | None = None
     torque_Nmm: Annotated[float, Field(ge=-MAX_TORQUE_NMM, le=MAX_TORQUE_NMM)] | None = None

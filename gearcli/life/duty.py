@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
+from gearcli.config.duty import MAX_DUTY_HOURS
 from gearcli.core.records import record
 from gearcli.design.kinematics import pinion_torque_Nmm
 from gearcli.errors import ConfigError
@@ -117,6 +118,11 @@ def read_series(text: str, source: str) -> tuple[list[float], list[float], list[
             raise ConfigError(f"row {rows[k]}, column time_s: {t[k]!r} s does not follow row {rows[k - 1]}'s "
                               f"{t[k - 1]!r} s (time_s must increase from row to row: sort the history and "
                               "drop repeated time stamps)", source=source)
+    span = t[-1] - t[0]  # inf when it overflows (time stamps of either sign near 1e308)
+    if not span <= MAX_DUTY_HOURS * 3600.0:
+        raise ConfigError(f"row {rows[-1]}, column time_s: the history spans {span:.4g} s from row {rows[0]} "
+                          f"({span / 3600.0:.4g} h), more than a duty point may hold ({MAX_DUTY_HOURS:.4g} h): "
+                          "time_s is in seconds", source=source)
     return cols
 
 

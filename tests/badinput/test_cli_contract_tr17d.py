@@ -10,6 +10,7 @@ naming the file and the key, with no output file left behind (trial tr17d).
 from __future__ import annotations
 
 import json
+import math
 import shutil
 from pathlib import Path
 
@@ -100,3 +101,39 @@ def test_json_rows_that_are_not_objects_are_computed_again(tmp_path):
     assert res.exit_code == 0, res.stderr
     rows = json.loads(out.read_text())["rows"]
     assert [(r["input.speed_rpm"], r["status"]) for r in rows] == [(600, "ok")]
+
+
+DUTY = Path(__file__).resolve().parents[2] / "configs" / "mixer_duty.toml"
+HOUR_CAP_S = 1e7 * 3600.0  # a [[duty]] point's hours are at most 1e7; a history may span no more
+
+
+def _history(tmp_path: Path, *times: float) -> Path:
+    path = tmp_path / "history.csv"
+    path.write_text("time_s,torque_Nm,speed_rpm\n" + "".join(f"{t!r},1000,600\n" for t in times))
+    return path
+
+
+@pytest.mark.parametrize("times", [(0.0, 1e300), (-1e308, 1e308), (0.0, 1e308), (0.0, HOUR_CAP_S * 1.001)],
+                         ids=["1e300_s", "overflows", "1e308_s", "just_over_the_cap"])
+def test_a_history_longer_than_a_duty_point_may_hold_is_refused(tmp_path, times):
+    """A time_s column that is not in seconds (or absurd) spanned 1e300 s: the classes' cycles overflowed to inf
+    (exit 1, "Out of range float values are not JSON compliant") or the speed the class keeps its revolutions by
+    came out inf and was blamed on the design file's input.speed_rpm."""
+    history, out = _history(tmp_path, *times), tmp_path / "life.json"
+    res = _run("life", str(DUTY), "--static", "--series", str(history), "-o", str(out))
+    _refused(res, str(history), "row 3, column time_s")
+    assert "more than a duty point may hold" in res.stderr and "input.speed_rpm" not in res.stderr
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["history.csv"]
+
+
+def test_a_history_at_the_cap_is_rated_with_its_cycles(tmp_path):
+    """At the cap (1e7 h = 3.6e10 s) the history is a duty: the input pinion turns 600/60 rev/s for 3.6e10 s, 3.6e11
+    load cycles, at F_t = T_out / i / r_1 = 1000 N m / (51/21 · 50/17 · 53/17) / (21 · 12 mm / cos 12° / 2) = 348.6 N."""
+    history = _history(tmp_path, 0.0, HOUR_CAP_S)
+    res = _run("life", str(DUTY), "--static", "--series", str(history), "--format", "json", "-q")
+    assert res.exit_code == 0, res.stderr
+    (pinion_bin,) = json.loads(res.stdout)["life"]["stages"][0]["pinion"]["pitting"]["bins"]
+    assert pinion_bin["cycles"] == pytest.approx(600.0 / 60.0 * HOUR_CAP_S, rel=1e-12)
+    ratio = 51 / 21 * 50 / 17 * 53 / 17
+    r_1 = 21 * 12.0 / math.cos(math.radians(12.0)) / 2.0
+    assert pinion_bin["force_N"] == pytest.approx(1000e3 / ratio / r_1, rel=1e-9)
