@@ -199,10 +199,14 @@ def check_writable_dir(directory: str, option: str) -> None:
     """Refuse a directory (``--plots DIR``) that cannot be written, or created, before any computation: the
     directory itself when it exists, else the nearest existing parent it would be created in."""
     probe = Path(directory)
-    while not probe.exists() and probe != probe.parent:
-        probe = probe.parent
+    try:
+        while not probe.exists() and probe != probe.parent:
+            probe = probe.parent
+    except OSError as exc:  # a name the system refuses to look up (longer than NAME_MAX, ...): not a path at all
+        raise _refuse(directory, f"{option}: {exc.strerror or exc}; choose a directory you can write") from None
     if not probe.is_dir():
         raise _refuse(directory, f"{option}: {shorten(str(probe))} is not a directory")
+    _check_creatable_names(directory, probe, option)
     if not os.access(probe, os.W_OK | os.X_OK):
         what = "directory not writable" if probe == Path(directory) else f"cannot create it in {shorten(str(probe))}"
         raise _refuse(directory, f"{option}: {what}; choose a directory you can write")
@@ -211,6 +215,19 @@ def check_writable_dir(directory: str, option: str) -> None:
     except OSError as exc:
         raise _refuse(directory, f"{option}: cannot create entries in {shorten(str(probe))} "
                                  f"({exc.strerror or exc}); choose a directory you can write") from None
+
+
+def _check_creatable_names(directory: str, existing: Path, option: str) -> None:
+    """Refuse the directories still to create under ``existing`` whose names the filesystem would refuse (a
+    component longer than its NAME_MAX): found now, not by the ``mkdir`` after the computing."""
+    try:
+        name_max = os.pathconf(existing, "PC_NAME_MAX")
+    except (OSError, ValueError):  # pathconf unknown here: the mkdir will say
+        return
+    for part in Path(directory).parts:  # an existing one is within the limit: only those to create can fail
+        if len(os.fsencode(part)) > name_max:
+            raise _refuse(directory, f"{option}: the name {shorten(part, 40)!r} is longer than the {name_max} bytes a "
+                                     "file name may have here; choose a shorter directory name")
 
 
 def write_output(target: OutputTarget, text: str) -> None:

@@ -137,3 +137,20 @@ def test_a_history_at_the_cap_is_rated_with_its_cycles(tmp_path):
     ratio = 51 / 21 * 50 / 17 * 53 / 17
     r_1 = 21 * 12.0 / math.cos(math.radians(12.0)) / 2.0
     assert pinion_bin["force_N"] == pytest.approx(1000e3 / ratio / r_1, rel=1e-9)
+
+
+MODES_SCENE = Path(__file__).resolve().parents[2] / "configs" / "extreme" / "one_stage.toml"
+
+
+@pytest.mark.parametrize("where", ["{long}", "new/{long}/figures"])
+def test_a_plots_directory_the_filesystem_cannot_name_is_refused_before_the_run(tmp_path, where):
+    """A ``--plots`` name longer than NAME_MAX (255 bytes on Linux): looking the name up raised OSError (exit 1,
+    internal error), and under a directory still to create it ran the command, created ``new/`` and failed at the
+    figures' mkdir (exit 1). Now exit 2 naming the option, nothing run, created or written."""
+    plots = tmp_path / where.format(long="p" * 300)
+    out = tmp_path / "modes.json"
+    res = _run("modes", str(MODES_SCENE), "-o", str(out), "--plots", str(plots))
+    assert res.exit_code == 2, (res.exit_code, res.stderr)
+    assert res.stderr.startswith("gearcli: ") and "--plots: " in res.stderr, res.stderr
+    assert "internal error" not in res.stderr and "Traceback" not in res.stderr
+    assert list(tmp_path.iterdir()) == []  # no -o file, no new/ directory, no figure
