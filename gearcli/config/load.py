@@ -165,17 +165,25 @@ def input_digest(raw: bytes, overrides: Sequence[str], history: bytes | None = N
 def read_bytes(path: str, stdin: BinaryIO | None = None) -> bytes:
     """The raw bytes of the file (or stdin), at most :data:`MAX_BYTES`."""
     if path == "-":
-        stream = stdin if stdin is not None else sys.stdin.buffer
         source = STDIN
-        try:
-            raw = stream.read(MAX_BYTES + 1)
-        except OSError as exc:
-            raise ConfigError(f"cannot read standard input: {exc.strerror or exc}", source=STDIN) from None
+        raw = read_stdin(MAX_BYTES, stdin)
     else:
         source = path
         raw = _read_file(path)
     check_bytes(raw, source)
     return raw
+
+
+def read_stdin(limit: int, stdin: BinaryIO | None = None) -> bytes:
+    """At most ``limit`` + 1 bytes of standard input (``stdin``, else ``sys.stdin.buffer``). A closed standard input
+    (``<&-``: Python's ``sys.stdin`` is None) or one that cannot be read is a :class:`ConfigError` naming it."""
+    stream = stdin if stdin is not None else getattr(sys.stdin, "buffer", None)
+    if stream is None:
+        raise ConfigError("standard input is closed ('-' reads it): pipe the file in, or give its path", source=STDIN)
+    try:
+        return stream.read(limit + 1)
+    except OSError as exc:
+        raise ConfigError(f"cannot read standard input: {exc.strerror or exc}", source=STDIN) from None
 
 
 def _read_bounded(path: str, limit: int = MAX_BYTES) -> bytes:

@@ -5,13 +5,12 @@ The facade (:func:`gearcli.api.prepare_life`) loads and designs the base file; t
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import BinaryIO
 
 from gearcli.config import LoadedDesign
-from gearcli.config.load import STDIN, input_digest, read_input_file
+from gearcli.config.load import STDIN, input_digest, read_input_file, read_stdin
 from gearcli.core.records import record
 from gearcli.errors import ConfigError
 from gearcli.life.duty import (
@@ -45,11 +44,7 @@ def _series_text(path: str, stdin: BinaryIO | None = None) -> str:
     """The history's text: a file read like the design file (a FIFO without a writer refused, never a hang),
     or ``-``: standard input."""
     if path == STDOUT_OR_STDIN:
-        stream = stdin if stdin is not None else sys.stdin.buffer
-        try:
-            raw = stream.read(MAX_SERIES_BYTES + 1)
-        except OSError as exc:
-            raise ConfigError(f"cannot read standard input: {exc.strerror or exc}", source=STDIN) from None
+        raw = read_stdin(MAX_SERIES_BYTES, stdin)
         path = STDIN
     else:
         raw = read_input_file(path, MAX_SERIES_BYTES, what="a CSV file")

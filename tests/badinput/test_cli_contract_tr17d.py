@@ -154,3 +154,20 @@ def test_a_plots_directory_the_filesystem_cannot_name_is_refused_before_the_run(
     assert res.stderr.startswith("gearcli: ") and "--plots: " in res.stderr, res.stderr
     assert "internal error" not in res.stderr and "Traceback" not in res.stderr
     assert list(tmp_path.iterdir()) == []  # no -o file, no new/ directory, no figure
+
+
+@pytest.mark.parametrize("args", [["design", "-"], ["life", str(DUTY), "--static", "--series", "-"]],
+                         ids=["design_file", "series"])
+def test_a_closed_standard_input_is_named(tmp_path, args):
+    """``gearcli design - <&-`` (a script that closed stdin): Python leaves ``sys.stdin`` None, and reading '-' was an
+    internal error (exit 1, "'NoneType' object has no attribute 'buffer'")."""
+    import os
+    import subprocess
+    import sys
+
+    out = tmp_path / "out.json"
+    res = subprocess.run([sys.executable, "-m", "gearcli", *args, "-o", str(out)], cwd=tmp_path, capture_output=True,
+                         text=True, preexec_fn=lambda: os.close(0), timeout=120)
+    assert res.returncode == 2, (res.returncode, res.stderr)
+    assert res.stderr == "gearcli: <stdin>: standard input is closed ('-' reads it): pipe the file in, or give its path\n"
+    assert list(tmp_path.iterdir()) == []
