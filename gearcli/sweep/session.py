@@ -108,6 +108,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     except ConfigError as exc:
         raise _named_by_option(exc, spec, sets) from None
     _no_continuous_integers(spec, scene)
+    _no_fractional_counts(spec, scene)
     check_motor_speed(spec.keys, loaded.design, loaded.source)
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
@@ -152,6 +153,24 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
                               source="--random")
 
 
+
+
+def _no_fractional_counts(spec: SweepSpec, scene: Scene) -> None:
+    """A ``--vary`` value with a fractional part on a key that takes whole numbers (a tooth or planet count): no
+    file could hold it, so the sweep is refused before any point runs, as ``--random`` on such a key is. A range's
+    steps are what make it (``stage.0.pinion.teeth=20:21:3`` steps by 0.5, and its 20 and 21 came out 20.0 and 21.0,
+    every point a failed row)."""
+    fractional = [(a, v) for a in spec.axes for v in a.values
+                  if isinstance(v, float) and not v.is_integer()]
+    if not fractional:
+        return
+    whole = set(integer_keys(scene.raw, scene.source, scene.sets, sorted({a.key for a, _ in fractional})))
+    bad = next(((a, v) for a, v in fractional if a.key in whole), None)
+    if bad is not None:
+        axis, value = bad
+        raise SweepUsageError(f"{axis.column} takes whole numbers, and {value!r} is one of its values: list whole "
+                              f"values (--vary {axis.column}=v1,v2,...), or give START:STOP:N with whole START and STOP "
+                              "and a whole step (STOP - START)/(N - 1)", source="--vary")
 
 
 def check_motor_speed(keys: Sequence[str], cfg: DesignFile, source: str) -> None:

@@ -171,3 +171,26 @@ def test_a_closed_standard_input_is_named(tmp_path, args):
     assert res.returncode == 2, (res.returncode, res.stderr)
     assert res.stderr == "gearcli: <stdin>: standard input is closed ('-' reads it): pipe the file in, or give its path\n"
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(("vary", "fraction"), [("stage.0.pinion.teeth=20:21:3", "20.5"),
+                                                ("stage[0].pinion.teeth=21,21.5", "21.5"),
+                                                ("load.speed_exponent=0.5,1", "0.5")])
+def test_a_fractional_value_of_a_whole_number_key_is_refused_before_any_point(tmp_path, vary, fraction):
+    """``--vary stage.0.pinion.teeth=20:21:3`` steps by (21 - 20)/(3 - 1) = 0.5: the grid 20, 20.5, 21 came out as
+    floats and every point was a failed row ("must be a whole number, got 20.0"), exit 1 after running the sweep.
+    A value no design file could hold is a usage error (as ``--random`` on such a key is): exit 2, nothing written."""
+    out = tmp_path / "sweep.csv"
+    res = _run("sweep", str(SEED), "--vary", vary, "--jobs", "1", "-o", str(out))
+    column = vary.partition("=")[0]
+    assert res.exit_code == 2, (res.exit_code, res.stderr)
+    assert res.stderr.startswith(f"gearcli: --vary: {column} takes whole numbers, and {fraction} is one of its values")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_whole_step_range_of_a_whole_number_key_runs_as_integers():
+    """20:22:3 steps by (22 - 20)/2 = 1: teeth 20, 21, 22, each a design of its own."""
+    res = _run("sweep", str(MODES_SCENE), "--vary", "stage.0.pinion.teeth=20:22:3", "--jobs", "1", "-q")
+    assert res.exit_code == 0, res.stderr
+    lines = res.stdout.splitlines()[1:]
+    assert [line.split(",")[:3] for line in lines] == [["20", "none", "ok"], ["21", "none", "ok"], ["22", "none", "ok"]]
