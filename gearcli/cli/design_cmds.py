@@ -77,6 +77,10 @@ def simulate(file: str, overrides, fmt, output, series: bool, dump_model: bool =
         _dump_model(file, overrides, output)
         return
     target = check_target(fmt, output)
+    if series and target.fmt != "json":  # as --dump-model's options: an option that cannot act says so
+        warn([f"--series adds the time series to the JSON output; the {target.fmt} output "
+              + ("always has them" if target.fmt == "csv" else "shows the statistics, never the series")
+              + ": it has no effect"])
     loaded, design_result = load_and_design(file, overrides)  # bad input fails before scipy loads
     bearings = wants_bearing_csv(csv_table, "series", target.fmt, loaded)
     # the bearings' CSV holds no series: budgeted as the JSON summary

@@ -66,3 +66,19 @@ def test_sweep_with_random_takes_them_silently():
                                    "--seed", "3", "--sampling", "mc", "--jobs", "1"])
     assert res.exit_code == 0, res.stderr
     assert not _warnings(res)
+
+
+@pytest.mark.parametrize(("fmt", "why"), [("csv", "always has them"),
+                                         ("table", "shows the statistics, never the series"), ("json", None)])
+def test_simulate_series_outside_json_says_it_does_nothing(fmt, why):
+    """``--series`` adds the series to the JSON output only (its help says so): with CSV (which always has them) or
+    a table it was silently ignored."""
+    scene = str(Path(__file__).resolve().parents[2] / "configs" / "extreme" / "one_stage.toml")
+    res = CliRunner().invoke(cli, ["simulate", scene, "--series", "--format", fmt,
+                                   "--set", "simulation.duration_s=0.05", "--set", "simulation.steps=50"])
+    assert res.exit_code == 0, res.stderr
+    if why is None:
+        assert _warnings(res) == [] and '"series"' in res.stdout
+    else:
+        assert _warnings(res) == [f"warning: --series adds the time series to the JSON output; the {fmt} output "
+                                  f"{why}: it has no effect"]
