@@ -131,7 +131,7 @@ def _read_csv(text: str, path: str) -> tuple[JsonObject, list[Row]]:
         raise _not_ours(path) from None
     if not _is_identity(identity):
         raise _not_ours(path)
-    lines = list(csv.reader(io.StringIO(rest)))
+    lines = _csv_lines(rest, path)
     if not lines:
         return identity, []
     header, body = lines[0], lines[1:]
@@ -139,6 +139,19 @@ def _read_csv(text: str, path: str) -> tuple[JsonObject, list[Row]]:
         body = body[:-1]
     rows: list[Row] = [dict(zip(header, map(_typed, r), strict=True)) for r in body if len(r) == len(header)]
     return identity, rows
+
+
+def _csv_lines(text: str, path: str) -> list[list[str]]:
+    """The CSV records of ``text``. A cell is read back whatever its length (a point's long message: the csv module's
+    default limit, 128 KiB a field, would refuse the file this module wrote); text that is no CSV is no sweep file."""
+    limit = csv.field_size_limit()
+    csv.field_size_limit(max(limit, len(text)))
+    try:
+        return list(csv.reader(io.StringIO(text)))
+    except csv.Error:
+        raise _not_ours(path) from None
+    finally:
+        csv.field_size_limit(limit)
 
 
 def _typed(cell: str) -> JsonScalar:

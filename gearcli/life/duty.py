@@ -89,6 +89,13 @@ def read_series(text: str, source: str) -> tuple[list[float], list[float], list[
     """time_s, torque_Nm, speed_rpm columns of a CSV text (ConfigError naming the file, the row and the column
     on bad data; rows are numbered as a spreadsheet numbers them, the header being row 1)."""
     reader = csv.reader(io.StringIO(text))
+    try:
+        return _read_series(reader, source)
+    except csv.Error as exc:  # a cell over the csv module's 128 KiB field limit, ...: no history of numbers
+        raise ConfigError(f"row {reader.line_num}: not CSV ({exc})", source=source) from None
+
+
+def _read_series(reader, source: str) -> tuple[list[float], list[float], list[float]]:
     header = [h.strip() for h in next(reader, [])]
     need = ("time_s", "torque_Nm", "speed_rpm")
     missing = [c for c in need if c not in header]

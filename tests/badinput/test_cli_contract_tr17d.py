@@ -9,6 +9,7 @@ naming the file and the key, with no output file left behind (trial tr17d).
 
 from __future__ import annotations
 
+import csv
 import json
 import math
 import shutil
@@ -194,3 +195,26 @@ def test_a_whole_step_range_of_a_whole_number_key_runs_as_integers():
     assert res.exit_code == 0, res.stderr
     lines = res.stdout.splitlines()[1:]
     assert [line.split(",")[:3] for line in lines] == [["20", "none", "ok"], ["21", "none", "ok"], ["22", "none", "ok"]]
+
+
+def test_a_resume_file_with_a_cell_over_the_csv_field_limit_is_read_back(tmp_path):
+    """The csv module refuses a field over 128 KiB (131,072 characters) by default: a sweep file whose row carries a
+    longer message (a point's warnings) was an internal error on resume. The row is this sweep's and is kept."""
+    out = tmp_path / "sweep.csv"
+    assert _run("sweep", str(SEED), *ONE_POINT, "-q", "-o", str(out)).exit_code == 0
+    identity, header, row = out.read_text().splitlines()
+    fields = next(csv.reader([row]))
+    fields[header.split(",").index("message")] = "w" * 200_000
+    out.write_text("\n".join([identity, header, ",".join(f'"{f}"' for f in fields)]) + "\n")
+    res = _run("sweep", str(SEED), *ONE_POINT, "-q", "-o", str(out))
+    assert res.exit_code == 0, res.stderr
+    assert "w" * 200_000 in out.read_text()  # the finished point, not computed again
+
+
+def test_a_history_cell_over_the_csv_field_limit_is_named(tmp_path):
+    history = tmp_path / "history.csv"
+    history.write_text('time_s,torque_Nm,speed_rpm\n0,"' + "1" * 200_000 + '",600\n1,1000,600\n')
+    res = _run("life", str(DUTY), "--static", "--series", str(history), "-o", str(tmp_path / "life.json"))
+    _refused(res, str(history), "row 2")
+    assert "not CSV (field larger than field limit" in res.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["history.csv"]
