@@ -81,6 +81,9 @@ def _resume_against(tmp_path: Path, name: str, text: str):
     ("sweep_is_a_list.json", '{"gearcli_version": "0.1.0", "sweep": [1], "rows": []}'),
     ("sweep_is_text.json", '{"gearcli_version": "0.1.0", "sweep": "x", "rows": []}'),
     ("sweep_is_null.json", '{"gearcli_version": "0.1.0", "sweep": null, "rows": []}'),
+    # nested past the JSON parser's recursion limit: RecursionError, an internal error too
+    ("deep.json", "[" * 200_000 + "]" * 200_000),
+    ("deep_identity.csv", "# gearcli sweep: " + "[" * 200_000 + "]" * 200_000 + "\n"),
 ])
 def test_a_resume_file_of_another_shape_is_not_ours(tmp_path, name, text):
     res, out, before = _resume_against(tmp_path, name, text)
@@ -92,16 +95,18 @@ def test_a_resume_file_of_another_shape_is_not_ours(tmp_path, name, text):
 
 
 def test_json_rows_that_are_not_objects_are_computed_again(tmp_path):
-    """A resume file of this very sweep whose rows were replaced by numbers, text and null: those are no finished
-    points, so the point runs and the file ends as an uninterrupted run's (one row, at its speed)."""
+    """A resume file of this very sweep whose rows were replaced by numbers, text, null, a list and a row whose message
+    is an object: those are no finished points, so the point runs and the file ends as an uninterrupted run's (one row,
+    at its speed, its message text)."""
     fresh = tmp_path / "fresh.json"
     assert _run("sweep", str(SEED), *ONE_POINT, "-q", "-o", str(fresh)).exit_code == 0
     doc = json.loads(fresh.read_text())
-    doc["rows"] = [1, "x", None, []]
+    doc["rows"] = [1, "x", None, [], {**doc["rows"][0], "message": {"m": [1]}}]  # the last: a cell no row holds
     res, out, _ = _resume_against(tmp_path, "resume.json", json.dumps(doc))
     assert res.exit_code == 0, res.stderr
     rows = json.loads(out.read_text())["rows"]
     assert [(r["input.speed_rpm"], r["status"]) for r in rows] == [(600, "ok")]
+    assert isinstance(rows[0]["message"], str)
 
 
 DUTY = Path(__file__).resolve().parents[2] / "configs" / "mixer_duty.toml"
