@@ -178,13 +178,7 @@ def _read_json(text: str, path: str) -> tuple[JsonObject, list[Row]]:
     if not _is_identity(doc) or "sweep" not in doc or not isinstance(doc.get("rows"), list):
         raise _not_ours(path)
     identity = {k: doc.get(k) for k in ("gearcli_version", "input_sha256", "sweep")}
-    return identity, [r for r in doc["rows"] if _is_row(r)]  # anything else is no finished point: computed again
-
-
-def _is_row(row: object) -> bool:
-    """A row as this module writes it: an object whose cells are JSON scalars (a cell holding an object or a list, or
-    a row that is none, is a corrupted row: its point runs again)."""
-    return isinstance(row, dict) and all(v is None or isinstance(v, str | int | float) for v in row.values())
+    return identity, [r for r in doc["rows"] if isinstance(r, dict)]  # anything else is no row: computed again
 
 
 def _is_identity(doc: object) -> bool:
