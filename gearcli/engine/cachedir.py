@@ -120,7 +120,7 @@ def read_json(path: Path) -> Any:
     text = read_text(path)
     try:
         return json.loads(text) if text is not None else None
-    except ValueError:
+    except (ValueError, RecursionError):  # not JSON, or nested past the parser's recursion limit
         return None
 
 

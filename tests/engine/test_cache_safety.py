@@ -85,6 +85,15 @@ def test_json_files_are_never_opened_through_a_link(tmp_path):
     assert stat.S_IMODE(link.stat().st_mode) == 0o600
 
 
+def test_a_cache_record_that_is_no_readable_json_reads_as_none(tmp_path):
+    """A corrupted record (``ready.json``, ``load_time.json``) nested past the JSON parser's recursion limit raised
+    RecursionError out of read_json, and every compiled run and sweep ended in an internal error (exit 1)."""
+    for name, text in (("deep.json", "[" * 100_000), ("garbage.json", "{not json"), ("empty.json", "")):
+        path = tmp_path / name
+        path.write_text(text)
+        assert cachedir.read_json(path) is None, name
+
+
 @pytest.mark.slow  # ~10 s: three processes load the engine
 @pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="acting as a second user needs root")
 def test_a_cache_directory_another_user_prepared_is_refused(tmp_path):
