@@ -156,21 +156,23 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
 
 
 def _no_fractional_counts(spec: SweepSpec, scene: Scene) -> None:
-    """A ``--vary`` value with a fractional part on a key that takes whole numbers (a tooth or planet count): no
-    file could hold it, so the sweep is refused before any point runs, as ``--random`` on such a key is. A range's
-    steps are what make it (``stage.0.pinion.teeth=20:21:3`` steps by 0.5, and its 20 and 21 came out 20.0 and 21.0,
-    every point a failed row)."""
-    fractional = [(a, v) for a in spec.axes for v in a.values
-                  if isinstance(v, float) and not v.is_integer()]
-    if not fractional:
+    """A ``--vary`` value written as a real number on a key that takes whole numbers (a tooth or planet count): no
+    file could hold it (a file's ``teeth = 21.0`` is refused too), so the sweep is refused before any point runs, as
+    ``--random`` on such a key is. A range's steps make such values (``stage.0.pinion.teeth=20:21:3`` steps by 0.5,
+    and its 20 and 21 came out 20.0 and 21.0), and so do real ends (``20.0:22.0:3``): every point was a failed row."""
+    reals = [(a, v) for a in spec.axes for v in a.values if isinstance(v, float)]
+    if not reals:
         return
-    whole = set(integer_keys(scene.raw, scene.source, scene.sets, sorted({a.key for a, _ in fractional})))
-    bad = next(((a, v) for a, v in fractional if a.key in whole), None)
-    if bad is not None:
-        axis, value = bad
-        raise SweepUsageError(f"{axis.column} takes whole numbers, and {value!r} is one of its values: list whole "
-                              f"values (--vary {axis.column}=v1,v2,...), or give START:STOP:N with whole START and STOP "
-                              "and a whole step (STOP - START)/(N - 1)", source="--vary")
+    whole = set(integer_keys(scene.raw, scene.source, scene.sets, sorted({a.key for a, _ in reals})))
+    bad = sorted(((a, v) for a, v in reals if a.key in whole), key=lambda av: av[1].is_integer())  # a fraction first
+    if not bad:
+        return
+    axis, value = bad[0]
+    how = (f"{value!r} is one of its values" if not value.is_integer() else
+           f"{value!r} is written as a real number (write {int(value)})")
+    raise SweepUsageError(f"{axis.column} takes whole numbers, and {how}: list whole values (--vary "
+                          f"{axis.column}=v1,v2,...), or give START:STOP:N with whole START and STOP and a whole step "
+                          "(STOP - START)/(N - 1)", source="--vary")
 
 
 def check_motor_speed(keys: Sequence[str], cfg: DesignFile, source: str) -> None:
