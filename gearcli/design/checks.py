@@ -25,10 +25,13 @@ Choices where the contract is silent:
 
 from __future__ import annotations
 
+import json
 import math
+import re
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
+from gearcli.config.keys import suggest
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
@@ -59,11 +62,19 @@ TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a 
 
 # ------------------------------------------------------------------------------------------ errors
 def check_material(name: str, materials: dict[str, Material], key: str) -> None:
+    """Refuse a member's material that ``[materials]`` does not define, suggesting the defined one it most likely
+    means (``stel`` -> ``steel``) and the table to add (its name quoted where TOML needs it: ``[materials."a.b"]``)."""
     if name not in materials:
         known = ", ".join(sorted(materials)) or "none"
         hint = ("; the built-in steel applies only to a file without a [materials] table"
                 if name == "steel" and materials else "")
-        raise DesignError(f"unknown material {name!r}: define [materials.{name}] (defined: {known}){hint}", key=key)
+        best = suggest(name, list(materials))
+        meant = f" (did you mean {best!r}?)" if best else ""
+        table = name if _BARE_KEY.fullmatch(name) else json.dumps(name, ensure_ascii=False)
+        raise DesignError(f"unknown material {name!r}{meant}: define [materials.{table}] (defined: {known}){hint}",
+                          key=key)
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")  # a TOML bare key; any other name is written quoted
 
 
 def check_hands(stage: Stage, k: int, names: tuple[str, str] = ("pinion", "gear")) -> None:
