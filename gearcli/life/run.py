@@ -373,7 +373,7 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float, curve_name: str = ""
                         c.endurance_MPa))
     d = sum(b.damage for b in bins)
     first = raw[0][4]
-    below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's last node: infinite life
+    below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's endurance limit: infinite life
     load = spectrum_safety(damage_at)
     return ModeLife(d, hours / d if d > 0 and not below else None, load, tuple(bins),
                     curve_name,
