@@ -495,8 +495,9 @@ def _verdicts(cfg: DesignFile, stages: Sequence[StageLife], bearings: Sequence[B
     rating = cfg.rating
     assert rating is not None  # every life point is rated (_require_rating)
     return [*verdicts.hours_warning(hours, rating.required_life_h, series),
-            *verdicts.gear_warnings(stages, rating.min_safety_pitting, rating.min_safety_bending, hours),
-            *verdicts.bearing_life_warnings(bearings, hours)]
+            *verdicts.gear_warnings(stages, rating.min_safety_pitting, rating.min_safety_bending, hours,
+                                    rating.required_life_h),
+            *verdicts.bearing_life_warnings(bearings, hours, rating.required_life_h)]
 
 
 def start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:

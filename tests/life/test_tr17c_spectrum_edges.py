@@ -143,3 +143,39 @@ def test_miner_elementary_below_the_last_node_has_a_finite_life(tmp_path):
     # the iso variant keeps its endurance limit on the same bins: an infinite life, its extrapolated damage tiny
     iso = life_of(tmp_path, SCENE.format(flim=flim) + duty(BINS))["life"]["stages"][0]["gear"]["bending"]
     assert iso["below_endurance"] is True and iso["life_h"] is None and iso["damage"] < 1e-3 * damage
+
+
+# the input shaft's two ball bearings, the locating one at x = 0 (the pinion at 60 mm)
+BEARINGS = "".join(f'[[bearing]]\nshaft = 1\nposition_mm = {x}\ndynamic_load_rating_kN = 80\nkind = "ball"\n{extra}'
+                   for x, extra in ((0, 'locating = true\nfactors = { e = 0.3, X = 0.56, Y = 1.5 }\n'), (300, '')))
+
+
+def test_a_life_short_of_the_required_life_warns_whatever_the_duty_hours(tmp_path):
+    """The same duty as time shares (0.02 + 0.75 + 0.23 = 1 h) against a required 20 000 h: D is over 1 h and far below
+    1, the life in hours is the same, and a life shorter than [rating] required_life_h is still a verdict (the wheel's
+    flank: 20 000 h / D by hand; the bearing next to the pinion); members and bearings that outlive it are not."""
+    base = SCENE.format(flim=310).replace('material = "nt",', 'material = "nt", axial_position_mm = 60,') + BEARINGS
+    full = life_of(tmp_path, base + duty(BINS))
+    shares = life_of(tmp_path, base + duty([(n, h / REQUIRED_H, t, s) for n, h, t, s in BINS]))
+    # the wheel's flank by hand: ISO 6336-2 stresses of each bin (K_A = 1), Z_NT nodes of through-hardened steel
+    k_fin, k_long = math.log(5e7 / 1e5) / math.log(1.6), math.log(1e10 / 5e7) / math.log(1 / 0.85)
+    damage = 0.0
+    for _, hours, torque, speed in BINS:
+        wheel = rate(hand_pair(310.0, torque, speed))["gear"]
+        sigma_inf = wheel["sigma_HG"] / wheel["Z_NT"]
+        y = wheel["sigma_H"] / sigma_inf
+        damage += hours * 60 * speed * Z1 / Z2 / (5e7 * (1 / y) ** (k_fin if y >= 1 else k_long))
+    life_h = REQUIRED_H / damage
+    assert life_h < REQUIRED_H
+    for doc in (full, shares):
+        flank = doc["life"]["stages"][0]["gear"]["pitting"]
+        assert_allclose(flank["life_h"], life_h, rtol=1e-6)
+    pitting = shares["life"]["stages"][0]["gear"]["pitting"]
+    assert pitting["damage"] < 0.01 and pitting["stress_safety"] > 1.0  # over 1 h: neither verdict of the duty
+    verdicts = [(w["member"], w["mode"]) for w in shares["warnings"] if w["code"] == "life_safety_low"]
+    assert verdicts == [("gear", "pitting")]
+    lives = [b["L10_h"] for b in shares["life"]["bearings"]]
+    assert_allclose(lives, [b["L10_h"] for b in full["life"]["bearings"]], rtol=1e-12)
+    short = [w["bearing"] for w in shares["warnings"] if w["code"] == "bearing_life_short"]
+    assert short == [j + 1 for j, life in enumerate(lives) if life < REQUIRED_H] and len(short) == 1
+    assert {w["code"] for w in shares["warnings"]} >= {"duty"}  # the hours' own warning stays
