@@ -22,6 +22,7 @@ from click.testing import CliRunner
 from numpy.testing import assert_allclose
 
 from gearcli.cli import cli
+from tests.life.engineer_duties import MATERIAL  # case-carburized steel, 1500 / 500 N/mm², named st
 from tests.reference.rating_hand import Member, Pair, geometry, stiffness
 
 J_GEAR = 0.4  # kg m²: the wheel's natural frequency with the mesh about 800 Hz, above both mesh frequencies
@@ -29,38 +30,20 @@ E_UM, ZETA = 4.0, 0.05
 POINTS = (("a", 6000.0, 1500.0, 1500.0), ("b", 4000.0, 900.0, 1000.0))  # name, hours, output N·m, input rpm
 SCENE = f"""
 title = "spur 20/60, one harmonic of transmission error on a linear ISO mesh: a 1-DOF forced response"
-[materials.cc]
-density_kg_m3 = 7850
-youngs_modulus_MPa = 206000
-poisson_ratio = 0.3
-treatment = "case_carburized"
-contact_fatigue_limit_MPa = 1500
-bending_fatigue_limit_MPa = 500
+contact = {{ stiffness = "iso6336", exponent = 1.0, damping_ratio = {ZETA}, transmission_error_um = [{E_UM}] }}
+input = {{ speed_rpm = 1500, ramp_s = 0.05 }}
+load = {{ torque_Nm = 1500, ramp_s = 0.05 }}
+lubricant = {{ viscosity_40C_mm2_s = 220 }}
+rating = {{ required_life_h = 10000 }}
+simulation = {{ duration_s = 0.3, steps = 4000 }}
+{MATERIAL}
 [[stage]]
 normal_module_mm = 4
 normal_pressure_angle_deg = 20
 helix_angle_deg = 0
 accuracy_grade = 6
-pinion = {{ teeth = 20, face_width_mm = 40, material = "cc", flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10 }}
-gear   = {{ teeth = 60, face_width_mm = 40, material = "cc", flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10, inertia_kg_m2 = {J_GEAR} }}
-[contact]
-stiffness = "iso6336"
-exponent = 1.0
-damping_ratio = {ZETA}
-transmission_error_um = [{E_UM}]
-[input]
-speed_rpm = 1500
-ramp_s = 0.05
-[load]
-torque_Nm = 1500
-ramp_s = 0.05
-[lubricant]
-viscosity_40C_mm2_s = 220
-[rating]
-required_life_h = 10000
-[simulation]
-duration_s = 0.3
-steps = 4000
+pinion = {{ teeth = 20, face_width_mm = 40, material = "st", flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10 }}
+gear   = {{ teeth = 60, face_width_mm = 40, material = "st", flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10, inertia_kg_m2 = {J_GEAR} }}
 """ + "".join(f'[[duty]]\nname = "{n}"\nhours = {h}\ntorque_Nm = {t}\nspeed_rpm = {s}\n' for n, h, t, s in POINTS)
 
 
