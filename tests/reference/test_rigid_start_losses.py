@@ -29,8 +29,10 @@ from click.testing import CliRunner
 from scipy.integrate import solve_ivp
 
 from gearcli.cli import cli
+from tests.reference import lossy_train
+from tests.reference.lossy_train import pitch_radius_m
 
-# (m_n, beta, z_p, z_g, eta, J_p, J_g, b_p): one stage; the gear's face 2 mm narrower, hands opposite
+MESH = "{ stiffness = 5e6, exponent = 1, damping_ratio = 0.2 }"  # stiff and well damped: the train is rigid to 1e-3
 TORQUE_STAGES = [(4, 15, 19, 67, 0.90, 0.004, 0.6, 40), (6, 10, 17, 71, 0.90, 0.02, 1.5, 60)]
 SPEED_STAGES = [(3, 18, 23, 71, 0.92, 0.003, 0.4, 35), (5, 12, 19, 64, 0.94, 0.05, 3.0, 55),
                 (8, 8, 17, 59, 0.96, 0.3, 20.0, 90)]
@@ -60,19 +62,6 @@ rtol = 1e-8
 """
 
 
-def _scene(stages, drive: str) -> str:
-    """The design file: stiff linear meshes, heavily damped, so the simulated train is the rigid one to 1e-3."""
-    hands = ("left", "right")
-    text = 'title = "lossy rigid start"\n'
-    for k, (mn, beta, zp, zg, eta, jp, jg, b) in enumerate(stages):
-        hp, hg = hands[k % 2], hands[1 - k % 2]
-        text += (f"[[stage]]\nnormal_module_mm = {mn}\nhelix_angle_deg = {beta}\nefficiency = {eta}\n"
-                 f'pinion = {{ teeth = {zp}, face_width_mm = {b}, hand = "{hp}", inertia_kg_m2 = {jp} }}\n'
-                 f'gear = {{ teeth = {zg}, face_width_mm = {b - 2}, hand = "{hg}", inertia_kg_m2 = {jg} }}\n'
-                 "mesh = { stiffness = 5e6, exponent = 1, damping_ratio = 0.2 }\n")
-    return text + drive
-
-
 def _step(t, x1, h1):
     """STEP(t, 0, 0, x1, h1) (DESIGN section 2)."""
     s = np.clip(t / x1, 0.0, 1.0)
@@ -82,10 +71,6 @@ def _step(t, x1, h1):
 def _step_rate(t, x1, h1):
     s = np.clip(t / x1, 0.0, 1.0)
     return 6.0 * h1 * s * (1.0 - s) / x1
-
-
-def _pitch_radius_m(z: int, m_n: float, beta_deg: float) -> float:
-    return z * m_n / (2.0 * math.cos(math.radians(beta_deg))) / 1e3
 
 
 def _forces(stages, t_in, accel):
@@ -103,7 +88,7 @@ def _forces(stages, t_in, accel):
 
 def _stages(spec):
     return [{"z_p": zp, "z_g": zg, "eta": eta, "J_p": jp, "J_g": jg,
-             "r_p": _pitch_radius_m(zp, mn, beta), "r_g": _pitch_radius_m(zg, mn, beta)}
+             "r_p": pitch_radius_m(zp, mn, beta), "r_g": pitch_radius_m(zg, mn, beta)}
             for mn, beta, zp, zg, eta, jp, jg, _b in spec]
 
 
@@ -149,8 +134,8 @@ def test_lossy_rigid_start_counts_each_inertia_with_the_losses_before_it(tmp_pat
                 torque = f * st[k]["r_p"] + shafts[k - 1] * rho[k - 1] * accel
         assert w_in > 0.0
     hand_peaks = [float(np.max(np.abs(f))) for f in forces]
-    out = _run(tmp_path, _scene(TORQUE_STAGES, TORQUE_DRIVE) if scene == "torque"
-               else _scene(SPEED_STAGES, SPEED_DRIVE))
+    out = _run(tmp_path, lossy_train.scene(TORQUE_STAGES, TORQUE_DRIVE, MESH) if scene == "torque"
+               else lossy_train.scene(SPEED_STAGES, SPEED_DRIVE, MESH))
     start = out["summary"]["start"]
     np.testing.assert_allclose(start["rigid_peak_N"], hand_peaks, rtol=1e-6)
     # the stiff, well-damped train's own peak is the rigid one (its mesh modes add < 1e-3)
