@@ -3,12 +3,13 @@
 Python 3.11's ``dataclasses`` writes each generated method as source text and compiles it (``exec``): six per
 frozen class (``__init__``, ``__repr__``, ``__eq__``, ``__hash__``, ``__setattr__``, ``__delattr__``), ~0.13 ms
 each on the reference machine. gearcli creates ~80 such classes before a one-shot ``simulate`` has read its
-file. :func:`record` compiles at most ``__init__`` (below): ``__eq__``, ``__hash__`` and ``__repr__`` are closures over the
-class's field names (``operator.attrgetter`` builds the same tuples the generated methods compare and hash, in
-C), and so are ``__setattr__`` and ``__delattr__``, which refuse what ``dataclass(frozen=True)``'s refuse once
-the instance is made. The class is made by ``dataclass(frozen=False)``, whose ``__init__`` assigns each field
-once through that ``__setattr__``: a field's first assignment, in the constructor, is the one it lets through
-(a field ``init=False`` is set by ``__post_init__`` with ``object.__setattr__``, as a frozen dataclass's).
+file. :func:`record` compiles at most ``__init__`` (below): ``__eq__``, ``__hash__`` and ``__repr__`` are
+closures over the class's field names (``operator.attrgetter`` builds the same tuples the generated methods
+compare and hash, in C), and so are ``__setattr__`` and ``__delattr__``, which refuse what
+``dataclass(frozen=True)``'s refuse once the instance is made. The class is made by ``dataclass(frozen=False)``,
+whose ``__init__`` assigns each field once through that ``__setattr__``: a field's first assignment, in the
+constructor, is the one it lets through (a field ``init=False`` is set by ``__post_init__`` with
+``object.__setattr__``, as a frozen dataclass's).
 
 What the class does is ``dataclass(frozen=True)``'s: the same fields, ``__init__``, ``replace``, equality (same
 class and equal compared fields), hash (of the hashed fields' tuple), repr (the fields with ``repr=True``,
