@@ -217,12 +217,15 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
+    # the drive's and the load's torques are read by the series' channels and a motor's summary alone (a sweep point
+    # without a motor samples neither)
+    torques = want_series or model.layout.drive.motor is not None
     if getattr(steady_state, "method", None) == "equilibrium":
         from gearcli.simulate import equilibrium  # lazy: a settled run's equilibrium only
 
-        s = equilibrium.sampled(model.layout, run.t, run.y, energy_from)
+        s = equilibrium.sampled(model.layout, run.t, run.y, energy_from, torques=torques)
     else:
-        s = sample(model.layout, run.t, run.y)
+        s = sample(model.layout, run.t, run.y, torques=torques)
     energy = model.energy(s, run.y, start=energy_from)
     diags = prior + diags + fallback + (pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
