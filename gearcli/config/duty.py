@@ -132,7 +132,7 @@ class Duty(_Table):
     of the design file as ``--set`` takes it (``{"load.fluctuation" = ...}``)."""
 
     name: Annotated[str, Field(min_length=1, max_length=60)]
-    hours: Annotated[float, Field(gt=0.0, le=MAX_DUTY_HOURS)]
+    hours: Annotated[float, Field(ge=0.0, le=MAX_DUTY_HOURS)]  # 0: an empty bin of a spectrum (left out, with a note)
     speed_rpm: Annotated[float, Field(ge=1e-3, le=200_000.0)]
     torque_Nm: Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=MAX_TORQUE_NMM / 1e3)] | None = None
     torque_Nmm: Annotated[float, Field(ge=-MAX_TORQUE_NMM, le=MAX_TORQUE_NMM)] | None = None

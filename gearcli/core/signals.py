@@ -15,6 +15,7 @@ the default action), in ordinary Python code, once the kernel has returned.
 
 from __future__ import annotations
 
+import importlib
 import signal
 import threading
 from collections.abc import Callable, Iterator
@@ -22,6 +23,21 @@ from contextlib import contextmanager
 from typing import Any
 
 SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
+
+
+def _unwrapped() -> tuple[Callable[..., Any], Callable[..., Any]]:
+    """``getsignal`` and ``signal`` of ``_signal``, the C module under :mod:`signal` (CPython's; the wrappers where it
+    is missing): the same handlers read and installed, without the wrappers' conversions to and from the enums,
+    which raise and catch an exception for every function handler (``Handlers(f)``, ``int(f)``), ~15 us of the ~20
+    us a block took. They give SIG_DFL and SIG_IGN as the integers 0 and 1, equal to the enum members."""
+    try:
+        raw = importlib.import_module("_signal")
+    except ImportError:
+        return signal.getsignal, signal.signal
+    return raw.getsignal, raw.signal
+
+
+_getsignal, _setsignal = _unwrapped()
 
 
 _pending: list[int] = []  # signals that arrived inside the outermost deferred block, in order
@@ -40,7 +56,7 @@ def handled() -> bool:
     action, which ends it at once, compiled code running or not: nothing there for :func:`deferred` to hold back)."""
     if threading.current_thread() is not threading.main_thread():
         return False
-    return any(callable(signal.getsignal(s)) for s in SIGNALS)
+    return any(callable(_getsignal(s)) for s in SIGNALS)
 
 
 def pending() -> int | None:
@@ -57,13 +73,13 @@ def deferred(flag: Any = None, index: int = 0) -> Iterator[Callable[[], int | No
     if threading.current_thread() is not threading.main_thread():
         yield pending
         return
-    previous = {s: signal.getsignal(s) for s in SIGNALS}
+    previous = {s: _getsignal(s) for s in SIGNALS}
     outermost = not any(h is _remember for h in previous.values())
     # a block inside another finds the handlers it would install already there: it leaves them (what it would
     # restore on leaving is the same _remember), the stop flag and the delivery stay as they are
-    installed = [s for s, h in previous.items() if h is not signal.SIG_IGN and h is not None and h is not _remember]
+    installed = [s for s, h in previous.items() if h is not None and h is not _remember and not _ignored(h)]
     for s in installed:
-        signal.signal(s, _remember)
+        _setsignal(s, _remember)
     entry = (flag, index) if flag is not None else None
     if entry is not None:
         _flags.append(entry)
@@ -75,9 +91,14 @@ def deferred(flag: Any = None, index: int = 0) -> Iterator[Callable[[], int | No
         if entry is not None:
             _flags.remove(entry)
         for s in installed:
-            signal.signal(s, previous[s])
+            _setsignal(s, previous[s])
         if outermost and _pending:
             _deliver(_pending[0], previous.get(_pending[0]))
+
+
+def _ignored(handler: Any) -> bool:
+    """Whether ``handler`` is SIG_IGN (the enum member or the integer 1 the unwrapped ``getsignal`` gives)."""
+    return not callable(handler) and handler == signal.SIG_IGN
 
 
 def _deliver(signum: int, handler: Any) -> None:

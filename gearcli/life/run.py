@@ -373,7 +373,7 @@ def _from_raw(raw: Sequence[_Raw], mode: str, hours: float, curve_name: str = ""
                         c.endurance_MPa))
     d = sum(b.damage for b in bins)
     first = raw[0][4]
-    below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's last node: infinite life
+    below = all(s < c.endurance_limit_MPa for _, _, s, _, c in raw)  # below the curve's endurance limit: infinite life
     load = spectrum_safety(damage_at)
     return ModeLife(d, hours / d if d > 0 and not below else None, load, tuple(bins),
                     curve_name,
@@ -495,8 +495,9 @@ def _verdicts(cfg: DesignFile, stages: Sequence[StageLife], bearings: Sequence[B
     rating = cfg.rating
     assert rating is not None  # every life point is rated (_require_rating)
     return [*verdicts.hours_warning(hours, rating.required_life_h, series),
-            *verdicts.gear_warnings(stages, rating.min_safety_pitting, rating.min_safety_bending, hours),
-            *verdicts.bearing_life_warnings(bearings, hours)]
+            *verdicts.gear_warnings(stages, rating.min_safety_pitting, rating.min_safety_bending, hours,
+                                    rating.required_life_h),
+            *verdicts.bearing_life_warnings(bearings, hours, rating.required_life_h)]
 
 
 def start_bearings(points: Sequence[_PointData]) -> list[StartBearings]:

@@ -71,6 +71,26 @@ def _check_names(points: Sequence[DutyPoint], source: str) -> None:
             seen[label(p.name)] = f"the name of {p.key}'s start classes"
 
 
+def _without_empty_points(points: Sequence[DutyPoint], source: str) -> tuple[list[DutyPoint], list[str]]:
+    """The points that run: a ``hours = 0`` point is an empty bin of a load spectrum (ISO 6336-6's own Table 4 has
+    them), no load cycle and no revolution, so it is left out with a note; its starts would need hours to run in
+    (exit 2), and a duty whose every point is empty has nothing to rate (exit 2)."""
+    empty = [p for p in points if p.hours == 0.0]
+    for p in empty:
+        if p.starts:
+            raise ConfigError(f"0 hours with starts = {p.starts}: the starts are counted over the point's hours (each "
+                              "from rest to its settled running); give the hours it runs", source=source,
+                              key=f"{p.key}.hours")
+    if empty and len(empty) == len(points):
+        raise ConfigError("every [[duty]] point has hours = 0: no load cycle, nothing to rate; give the points "
+                          "their hours", source=source, key="duty")
+    if not empty:
+        return list(points), []
+    names = ", ".join(f"{p.name} ({p.key})" for p in empty)
+    return [p for p in points if p.hours > 0.0], [
+        f"{len(empty)} duty point(s) with hours = 0 left out (no load cycles, no revolutions): {names}"]
+
+
 def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequence[str], *,
             series: str | None = None, classes: int | None = None) -> Session:
     """The duty points of the base file ``raw`` (``loaded`` and ``design`` with the ``sets`` applied): its
@@ -93,7 +113,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     else:
         points = points_from_config(loaded.design)
         _check_names(points, loaded.source)
-        notes = []
+        points, notes = _without_empty_points(points, loaded.source)
     notes += reversal_notes(points)
     points = with_drive(loaded.design, points)
     if loaded.design.rating is None:

@@ -1,6 +1,7 @@
 """The verdicts of a life over its duty (docs/life.md, "Verdicts"): a member's spectrum safety below the file's
-minimum (or its Miner damage reaching 1 within the duty), a bearing whose life is shorter than the duty it
-carries, and a duty whose hours are not the required life the rating and the verdicts are meant for.
+minimum (or its Miner damage reaching 1 within the duty, or its life shorter than [rating] required_life_h), a
+bearing whose life is shorter than the duty it carries or the required life, and a duty whose hours are not the
+required life the rating and the verdicts are meant for.
 
 ISO 6336-6 compares the spectrum's safety with the minimum safety factors S_Hmin and S_Fmin of ISO 6336-2/-3
 ([rating] min_safety_pitting, min_safety_bending); the safety is the one that makes D = 1 over the duty's hours,
@@ -45,27 +46,40 @@ def hours_warning(hours: float, required_h: float | None, series: str | None = N
                     "the duty's hours", hours=hours, required_life_h=required_h)]
 
 
+def _short_of_required(life_h: float | None, required_h: float | None) -> bool:
+    """A life shorter than [rating] required_life_h: the target the duty's hours stand for (a duty given in time
+    shares sums to 1 h, its D to far below 1, while the life in hours is the same)."""
+    return life_h is not None and required_h is not None and life_h < required_h
+
+
 def _mode_warning(stage: int, member: str, mode: str, ml: ModeLife, minimum: float, hours: float,
-                  label: str | None = None) -> Diagnostic | None:
+                  label: str | None = None, required_h: float | None = None) -> Diagnostic | None:
     low = ml.stress_safety is not None and ml.stress_safety < minimum
-    if not (low or ml.damage >= 1.0):
+    short = _short_of_required(ml.life_h, required_h)
+    if not (low or ml.damage >= 1.0 or short):
         return None
     where = f"stage {stage} {label or member}" + (f" (planet {ml.planet})" if ml.planet is not None else "")
     life = "" if ml.life_h is None else f", a life of {ml.life_h:.4g} h"
     damage = f"Miner damage D = {ml.damage:.4g} over the duty's {hours:.6g} h{life}"
+    safety = "" if ml.stress_safety is None else (
+        f" (spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress, load multiplier {ml.safety:.4g}; "
+        f"minimum {minimum:g})")
     if low:
         text = (f"spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress (load multiplier {ml.safety:.4g}) "
                 f"is below the minimum {minimum:g} ([rating] min_safety_{mode}); {damage}")
+    elif ml.damage >= 1.0:
+        text = f"{damage}: it fails within the duty{safety}"
     else:
-        text = f"{damage}: it fails within the duty" + ("" if ml.stress_safety is None else (
-            f" (spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress, load multiplier {ml.safety:.4g}; "
-            f"minimum {minimum:g})"))
+        text = f"{damage}: shorter than the required {required_h:.6g} h ([rating] required_life_h){safety}"
     return warning(LIFE_SAFETY_LOW, f"{where} {mode}: {text}", stage=stage, member=member, mode=mode, stress_safety=ml.stress_safety,
-                   load_multiplier=ml.safety, min_safety=minimum, damage=ml.damage, life_h=ml.life_h, hours=hours)
+                   load_multiplier=ml.safety, min_safety=minimum, damage=ml.damage, life_h=ml.life_h, hours=hours,
+                   required_life_h=required_h)
 
 
-def gear_warnings(stages: Sequence[StageLife], min_pitting: float, min_bending: float, hours: float) -> list[Diagnostic]:
-    """Every member and mode whose spectrum safety on stress is below the minimum, or whose damage reaches 1."""
+def gear_warnings(stages: Sequence[StageLife], min_pitting: float, min_bending: float, hours: float,
+                  required_h: float | None = None) -> list[Diagnostic]:
+    """Every member and mode whose spectrum safety on stress is below the minimum, whose damage reaches 1 within the
+    duty, or whose life is shorter than ``required_h`` ([rating] required_life_h)."""
     out: list[Diagnostic] = []
     for st in stages:
         for member in _MEMBERS:
@@ -73,30 +87,34 @@ def gear_warnings(stages: Sequence[StageLife], min_pitting: float, min_bending: 
             if ml_pair is None:
                 continue
             for mode, minimum in (("pitting", min_pitting), ("bending", min_bending)):
-                d = _mode_warning(st.index, member, mode, getattr(ml_pair, mode), minimum, hours, member_label(st, member))
+                d = _mode_warning(st.index, member, mode, getattr(ml_pair, mode), minimum, hours, member_label(st, member),
+                                  required_h)
                 if d is not None:
                     out.append(d)
         if st.planet_root is not None:
             d = _mode_warning(st.index, "planet_root", "bending", st.planet_root, min_bending, hours,
-                              member_label(st, "planet_root"))
+                              member_label(st, "planet_root"), required_h)
             if d is not None:
                 out.append(d)
     return out
 
 
-def bearing_life_warnings(bearings: Sequence[BearingLife], hours: float) -> list[Diagnostic]:
+def bearing_life_warnings(bearings: Sequence[BearingLife], hours: float,
+                          required_h: float | None = None) -> list[Diagnostic]:
     """Every bearing whose life over the duty (L_nm where its catalogue data give it, else L10) is shorter than the
-    duty's hours."""
+    duty's hours or than ``required_h`` ([rating] required_life_h)."""
     out = []
     for j, b in enumerate(bearings):
         name, life = ("L_nm", b.L_nm_h) if b.L_nm_h is not None else ("L10", b.L10_h)
-        if life is None or life >= hours:
+        if life is None or (life >= hours and not _short_of_required(life, required_h)):
             continue
+        target = (f"the duty's {hours:.6g} h" if life < hours else
+                  f"the required {required_h:.6g} h ([rating] required_life_h)")
         place = f"planet pin of stage {b.planet_stage}" if b.planet_stage else f"shaft {b.shaft}"
         out.append(warning(BEARING_LIFE_SHORT, f"bearing {j + 1} ({place}, x = {b.position_mm:g} mm): its ISO 281 "
-                           f"life {name} = {life:.4g} h over the duty is shorter than the duty's {hours:.6g} h "
+                           f"life {name} = {life:.4g} h over the duty is shorter than {target} "
                            f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN)",
-                           bearing=j + 1, life=name, life_h=life, hours=hours))
+                           bearing=j + 1, life=name, life_h=life, hours=hours, required_life_h=required_h))
     return out
 
 

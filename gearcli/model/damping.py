@@ -89,6 +89,14 @@ def operating_speed_rad_s(lay: Layout) -> float:
     return 0.5 * (lo + hi)
 
 
+def operating_load_factor(lay: Layout) -> float:
+    """g of the load law T_L = T_ref g(w) at the output's speed in the steady state (:func:`operating_speed_rad_s`;
+    1 without a law): what the load torque the train carries there is of the nominal one."""
+    if not lay.load_law:
+        return 1.0
+    return float(machine.load_factor(lay.load_law, operating_speed_rad_s(lay) * lay.bodies[-1].ratio)[0])
+
+
 def torque_drive_speed_rad_s(lay: Layout) -> float:
     """The input speed a torque drive settles at: where its torque meets the load reflected to it,
     ``T_in = T_L(w rho_N) rho_N / prod eta`` (for ``speed_exponent`` p: w_0 (T_in / T_req)^(1/p), as ``gearcli

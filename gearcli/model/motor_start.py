@@ -45,8 +45,8 @@ VFD_OFF_SPEED = ("a VFD's supply is set so that the motor runs at speed_rpm at i
 
 def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagnostic]:
     """A speed-dependent load that the motor meets at another speed than ``speed_rpm``: the design's static forces
-    (and every dynamic factor against them) assume the load at ``speed_rpm``, the run carries the load at the
-    motor's own operating speed. Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %). A VFD
+    assume the load at ``speed_rpm``, the run carries the load at the motor's own operating speed (which the
+    dynamic factors refer to: :func:`gearcli.simulate.run.simulated_static_tangential_N`). Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %). A VFD
     (``vfd``) too: its supply follows speed_rpm at the rated torque only, a fan at part load runs faster."""
     w_nom = lay.drive.speed_rad_s
     nominal = reflected_load_Nm(lay, w_nom)
@@ -65,7 +65,8 @@ def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagno
                f"above {nominal:.4g} N·m (or a smaller load)")
     return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * RAD_S_TO_RPM:.5g} rpm, not [input] speed_rpm "
                        f"= {w_nom * RAD_S_TO_RPM:.5g}: the speed-dependent load there is {ratio:.4g}x the design's, so "
-                       "the design's static forces and the dynamic factors against them are off by that much; " + why,
+                       "the design's static forces are off by that much (the dynamic factors refer to the load "
+                       "at the operating speed); " + why,
                        operating_speed_rpm=w_op * RAD_S_TO_RPM, speed_rpm=w_nom * RAD_S_TO_RPM, load_ratio=ratio)]
 
 

@@ -100,9 +100,13 @@ class SNCurve:
 
     @property
     def endurance_limit_MPa(self) -> float:
-        """The stress below which ISO 6336-2/-3 print no further point of the curve: its last node's (normal
-        quality: 0.85 of the knee at 1e10 cycles), the knee's where the curve stays flat (optimum quality). A
-        spectrum entirely below it has an infinite life (``below_endurance``), whatever a variant extrapolates."""
+        """The stress below which the curve has an endurance limit: for the ``iso`` variant the last node ISO
+        6336-2/-3 print (normal quality: 0.85 of the knee at 1e10 cycles), the knee where the curve stays flat
+        (optimum quality). A spectrum entirely below it has an infinite life (``below_endurance``). Miner elementary
+        and modified have none (0): their slope below the knee is the damage the user chose to count, so their life
+        is the duty's hours over that damage, never infinite while it is positive."""
+        if self.variant != "iso":
+            return 0.0
         return self.endurance_MPa * (self.knee[1] if self.optimum else self.nodes[-1][1])
 
     @property

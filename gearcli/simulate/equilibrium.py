@@ -168,30 +168,34 @@ def steady_period(first, rates: np.ndarray, y_eq: np.ndarray, t0: float, period_
     return replace(first, t=grid, y=y, nfev=0, njev=0, nlu=0, steps=0, wall_s=0.0, t_fail=float(grid[-1]))
 
 
-def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int) -> Sampled:
+def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int, *, torques: bool = True) -> Sampled:
     """:func:`gearcli.model.outputs.sample` of ``(t, Y)`` whose dynamic states are one constant state from sample
     ``start`` on (the equilibrium's statistics period, :func:`steady_period`), the same numbers with the constant
     part sampled once: every channel is a function of its own sample's state, speeds and the drive's and load's
     ramps, which are constant past the ramps, so the sample at ``start`` repeated is what sampling each would give.
-    A scene whose mesh phases advance with the angles (or any other case) is sampled whole."""
+    A scene whose mesh phases advance with the angles (or any other case) is sampled whole. ``torques=False``:
+    without the input and load torques (``sample``'s)."""
     d = layout.state.n_mechanical
     n = t.size - start - 1
     if (n < 1 or start < 0 or not layout.speed_drive or layout.needs_angles or layout.fluctuation
             or t[start] < max(layout.drive.ramp_s, layout.load.ramp_s)
             or Y.shape[1] != t.size or not bool((Y[:d, start:] == Y[:d, start:start + 1]).all())):
-        return sample(layout, t, Y)
-    head = sample(layout, t[:start + 1], Y[:, :start + 1], energy_from=start)  # the balance reads it from start
-    nb, w = head.omega_rad_s.shape[0], len(_SERIES)
-    full = np.empty((nb + 2 + w * len(head.connectors), t.size))  # the speeds, the two torques, every series
+        return sample(layout, t, Y, torques=torques)
+    # the balance reads the stored energy from start
+    head = sample(layout, t[:start + 1], Y[:, :start + 1], torques=torques, energy_from=start)
+    nb, w, m = head.omega_rad_s.shape[0], len(_SERIES), 2 if torques else 0
+    full = np.empty((nb + m + w * len(head.connectors), t.size))  # the speeds, the two torques, every series
     part = full[:, :start + 1]
     part[:nb] = head.omega_rad_s
-    part[nb], part[nb + 1] = head.input_torque_Nm, head.load_torque_Nm  # (a constant torque broadcast)
+    if torques:
+        part[nb], part[nb + 1] = head.input_torque_Nm, head.load_torque_Nm  # (a constant torque broadcast)
     for i, c in enumerate(head.connectors):
         for j, name in enumerate(_SERIES):
-            part[nb + 2 + w * i + j] = getattr(c, name)
+            part[nb + m + w * i + j] = getattr(c, name)
     full[:, start + 1:] = full[:, start:start + 1]  # every row its last sample repeated
-    conns = tuple(ConnectorSeries(*full[nb + 2 + w * i: nb + 2 + w * (i + 1)]) for i in range(len(head.connectors)))
-    return Sampled(np.asarray(t, dtype=float), np.array(full[:nb]), None, full[nb], full[nb + 1], conns, layout)
+    conns = tuple(ConnectorSeries(*full[nb + m + w * i: nb + m + w * (i + 1)]) for i in range(len(head.connectors)))
+    t_in, t_load = (full[nb], full[nb + 1]) if torques else (head.input_torque_Nm, head.load_torque_Nm)
+    return Sampled(np.asarray(t, dtype=float), full[:nb], None, t_in, t_load, conns, layout)
 
 
 _SERIES = tuple(f.name for f in fields(ConnectorSeries))  # a connector's series, in ConnectorSeries' field order

@@ -3,19 +3,21 @@ simulation (docs/physics.md, "Rigid-body start"), the reference of ``summary.sta
 
 Rigid kinematics: body i turns at ``rho_i w`` (w the input body's speed). A motor drive integrates
 
-    (J_0 + f sum_{i>0} J_i rho_i^2) dw/dt = T_m(t, w) - f rho_N T_L(t, rho_N w),
+    (J_0 + f sum_{i>0} J_i rho_i^2 / g_i) dw/dt = T_m(t, w) - f rho_N T_L(t, rho_N w),
 
 (T_m the motor's curve with its starting method, :func:`gearcli.model.elements.machine.motor_torque`; T_L the
-load torque with its ramp and speed law; f = 1 / the train's efficiency, forward power flow, applied to the whole
-torque downstream of the input body), a torque drive the same with its input torque ramp from its nominal
-speed (where the simulation starts it), a speed drive
-takes its prescribed ramp. The mesh force follows from the torque transmitted through the stage: everything
-downstream of the mesh's driven body, its inertia reaction plus the load,
+load torque with its ramp and speed law; f = 1 / the train's efficiency, forward power flow; g_i the losses
+between body i and the load, so that f / g_i = 1 / the efficiency of the meshes between the input and body i:
+each body's inertia torque passes through the meshes before it only, as in the simulation's lossy meshes),
+a torque drive the same with its input torque ramp from its nominal speed (where the simulation starts it), a
+speed drive takes its prescribed ramp. The mesh force follows from the torque transmitted through the stage:
+everything downstream of the mesh's driven body, its inertia reaction plus the load,
 
-    F_c = f_c (sum_{i >= b} J_i rho_i^2 / rho_b dw/dt + rho_N / rho_b T_L) / r_b,
+    F_c = f_c (sum_{i >= b} J_i rho_i^2 / g_i / rho_b dw/dt + rho_N / rho_b T_L) / r_b,
 
-(f_c the losses of the meshes from c on, as the statics; a planet mesh: the rigid bodies' equations solved for the
-connector forces, the planets' spin inertia included, :func:`_planet_coefficients`).
+(f_c the losses of the meshes from c on, as the statics, so f_c / g_i those of the meshes from c to body i; a
+planet mesh: the rigid bodies' equations solved for the connector forces, the planets' spin inertia included,
+:func:`_planet_coefficients`).
 The estimate's peak is the largest |F_t| of each stage over the run; ``peak_over_rigid`` is the simulated peak over
 it. The cause of a large ratio is named from the run: a step of the drive or the load at t = 0, the motor's torque
 at breakdown, a resonance passage (an excited mesh's order crossing the swinging mode during the run-up) and the
@@ -85,8 +87,35 @@ def _coefficients(lay: Layout) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.n
     """What :func:`_tangential` needs of the layout, once per start: the bodies' ratios and inertias, the connectors'
     loss factors and the planet meshes' force per unit acceleration and per unit load (the peak search calls it
     some 20 times a stage: a pseudo-inverse each time cost ~1 ms a sweep point)."""
-    return (np.array([b.ratio for b in lay.bodies]), np.asarray(lay.inertias, float), loss_factors(lay),
+    f = loss_factors(lay)
+    return (np.array([b.ratio for b in lay.bodies]), np.asarray(lay.inertias, float) / downstream_losses(lay, f), f,
             *_planet_coefficients(lay))
+
+
+def downstream_losses(lay: Layout, f: np.ndarray | None = None) -> np.ndarray:
+    """Per body, g_i: what the losses between it and the load multiply a force by (module text), from the
+    connector that drives it: a chain connector's ``loss_factors`` without its own loss (the power reaches the
+    driven body after it). A body a planet mesh drives (a planet, a carrier) takes its planet meshes' factor (the
+    stage's own loss counted before it); a body driven by nothing (the input) 1. Lossless trains: 1 everywhere.
+    Dividing each inertia by it counts its inertia torque with the losses of the meshes before it only: with
+    the train's whole 1/eta on every body, a lossy train's start force was 0.1 - 0.4 % off the simulation's own
+    rigid limit on two 0.9 - 0.97 stages (tests/reference/test_rigid_start_losses.py)."""
+    f = loss_factors(lay) if f is None else f
+    forward = lay.load.torque_Nm >= 0
+    g = np.ones(len(lay.bodies))
+    driven = np.zeros(len(lay.bodies), bool)
+    for c, x in enumerate(lay.connectors):  # chain connectors first: a planetary's input member is driven by one
+        if x.load_body < 0 and len(x.bodies) == 2 and not driven[x.b]:
+            g[x.b] = f[c] * (x.efficiency if forward else 1.0)
+            driven[x.b] = True
+    for c, x in enumerate(lay.connectors):
+        if x.load_body >= 0:
+            for b in x.bodies[1:]:
+                if not driven[b]:
+                    g[b] = f[c]
+                    driven[b] = True
+    g[0] = 1.0
+    return g
 
 
 def _tangential(lay: Layout, t: np.ndarray, w: np.ndarray, a: np.ndarray,
@@ -232,9 +261,9 @@ def _on_grid(lay: Layout, duration_s: float, samples: int = SAMPLES) -> tuple:
     coefficients of :func:`_tangential`): the arguments of :func:`_refined`."""
     from scipy.integrate import solve_ivp  # lazy: scipy, start-up time
 
-    rho = np.array([b.ratio for b in lay.bodies])
-    J = np.asarray(lay.inertias, float)
-    # the whole train's losses on everything downstream of the input body (a planetary's as its stage efficiency)
+    coefficients = _coefficients(lay)
+    rho, J = coefficients[0], coefficients[1]  # J: each inertia over the losses between it and the load
+    # the whole train's losses (a planetary's as its stage efficiency); f0 / g_i those before body i
     f0 = 1.0 / lay.train_efficiency(True) if lay.load.torque_Nm >= 0 else lay.train_efficiency(False)
     j_eff = float(J[0] + f0 * (J[1:] @ rho[1:] ** 2))
     t = np.linspace(0.0, duration_s, samples)
@@ -264,7 +293,6 @@ def _on_grid(lay: Layout, duration_s: float, samples: int = SAMPLES) -> tuple:
         def state(tt: float) -> tuple[float, float]:
             ww = float(sol.sol(tt)[0]) if sol.success else float(np.interp(tt, sol.t, sol.y[0]))
             return ww, rhs(tt, np.array([ww]))[0]
-    coefficients = _coefficients(lay)
     load, forces, ft = _tangential(lay, t, w, a, coefficients)
     # the peaks over the grid and the integrator's steps, each refined on the continuous state
     times, ft_all = t, ft  # a speed drive's: the grid (increasing: its own np.unique)

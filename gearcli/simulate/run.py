@@ -21,6 +21,7 @@ from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
+from gearcli.model.damping import operating_load_factor
 from gearcli.model.linear import damped_modes, static_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, stage_rows, tangential_force_N
@@ -216,12 +217,15 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
         steady_state = window_steady(model)
     check(run, choice, duration_s)
     error_estimate = error_estimate and steady != "periodic"
+    # the drive's and the load's torques are read by the series' channels and a motor's summary alone (a sweep point
+    # without a motor samples neither)
+    torques = want_series or model.layout.drive.motor is not None
     if getattr(steady_state, "method", None) == "equilibrium":
         from gearcli.simulate import equilibrium  # lazy: a settled run's equilibrium only
 
-        s = equilibrium.sampled(model.layout, run.t, run.y, energy_from)
+        s = equilibrium.sampled(model.layout, run.t, run.y, energy_from, torques=torques)
     else:
-        s = sample(model.layout, run.t, run.y)
+        s = sample(model.layout, run.t, run.y, torques=torques)
     energy = model.energy(s, run.y, start=energy_from)
     diags = prior + diags + fallback + (pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \
@@ -537,9 +541,16 @@ def _unloaded(spec) -> frozenset[int]:
 def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     """Per stage, the static F_t of the load the simulation applies, with the losses its dynamics model (the
     model's own steady-state connector forces, the meshes' efficiencies included: on a settled unexcited run the
-    window means equal them and the design's static F_t): the reference of the dynamic and run-up factors."""
+    window means equal them and the design's static F_t): the reference of the dynamic and run-up factors.
+
+    A speed-dependent load (``load.speed_exponent``, ``load.torque_speed``) is taken at the speed the train runs
+    at (:func:`gearcli.model.damping.operating_speed_rad_s`: a motor's operating point, a torque drive's balance),
+    not at the nominal speed its ``torque_Nm`` is given for: a torque drive settling at 1.28x the nominal speed of
+    a quadratic load carried 1.65x the nominal force, which read as a dynamic factor of 1.65 on a steady run."""
     lay = model.layout
-    return [tangential_force_N(lay, k, f) for k, f in enumerate(static_line_forces_N(lay).tolist())]
+    scale = operating_load_factor(lay)
+    return [tangential_force_N(lay, k, f * scale) for k, f in enumerate(static_line_forces_N(lay).tolist())]
+
 
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:

@@ -60,7 +60,18 @@ def window_mask(t: np.ndarray, window: tuple[float, float]) -> np.ndarray:
 
 def window_slice(mask: np.ndarray) -> slice | np.ndarray:
     """The window's samples as a slice (indexing gives a view, the same numbers as the mask's copy) when they are
-    contiguous, as a window of ascending times is; else the mask itself."""
+    contiguous, as a window of ascending times is; else the mask itself. A boolean mask is read from its first true
+    sample to its next false one (``argmax``, ``argmin``: without the index array of every true sample)."""
+    if mask.dtype == np.bool_ and mask.ndim == 1 and mask.size:
+        first = int(mask.argmax())
+        if not mask[first]:  # no sample in the window
+            return mask
+        rest = mask[first:]
+        k = int(rest.argmin())
+        if rest[k]:  # true to the end
+            return slice(first, mask.size)
+        end = first + k
+        return mask if mask[end:].any() else slice(first, end)
     idx = np.flatnonzero(mask)
     if idx.size and int(idx[-1]) - int(idx[0]) + 1 == idx.size:
         return slice(int(idx[0]), int(idx[-1]) + 1)

@@ -40,6 +40,16 @@ def test_miner_elementary_and_modified_below_the_knee():
         assert_allclose(c.cycles_to_failure(1200.0), 5e7 * (1000 / 1200) ** K_FIN, rtol=1e-12)
 
 
+def test_endurance_limit_of_each_variant():
+    """The stress under which a spectrum has an infinite life: the iso curve's last node (normal quality, 0.85 σ_∞ at
+    1e10) or its knee (optimum, flat); Miner elementary and modified have none: every stress damages on their slope."""
+    assert_allclose(SNCurve(ZNT_EH, 1000.0).endurance_limit_MPa, 850.0, rtol=1e-12)
+    assert_allclose(SNCurve(ZNT_EH, 1000.0, optimum=True).endurance_limit_MPa, 1000.0, rtol=1e-12)
+    for variant in ("elementary", "modified"):
+        c = SNCurve(ZNT_EH, 1000.0, variant)
+        assert c.endurance_limit_MPa == 0.0 and math.isfinite(c.cycles_to_failure(100.0))
+
+
 def test_spectrum_safety_closed_form():
     """One class on the finite-life branch: D(s) = n (sigma s^e / sigma_0)^k / N_0 = 1 solved by hand."""
     c = SNCurve(ZNT_EH, 1000.0, "elementary")

@@ -210,7 +210,6 @@ def test_a_reversed_point_counts_by_magnitude_and_reverses_the_bearing_reactions
 
 @pytest.mark.parametrize(("edit", "key"), [
     (lambda t: t.replace("hours = 0.2", "hours = -0.2"), "duty[0].hours"),
-    (lambda t: t.replace("hours = 0.2", "hours = 0"), "duty[0].hours"),  # a zero time share: exit 2, named
     (lambda t: t.replace("hours = 0.2", "hours = nan"), "duty[0].hours"),
     (lambda t: t.replace("hours = 0.2\n", ""), "duty[0].hours"),
     (lambda t: t.replace('name = "normal"', 'name = "normal"\nset = { "stage[1].gear.teeth" = 70 }'),

@@ -67,6 +67,28 @@ def test_a_window_slice_reads_the_same_samples_as_its_mask():
     assert stats.window_slice(holes) is holes  # not contiguous: the mask itself
 
 
+@pytest.mark.parametrize(("true", "expected"), [
+    ((2000, 4001), slice(2000, 4001)),  # to the end: a fixed window
+    ((1000, 3000), slice(1000, 3000)),  # inside: a window moved earlier
+    ((0, 5), slice(0, 5)),  # from the first sample
+    ((0, 4001), slice(0, 4001)),  # every sample
+    ((4000, 4001), slice(4000, 4001)),  # the last sample alone
+])
+def test_a_contiguous_boolean_window_is_its_slice(true, expected):
+    mask = np.zeros(4001, dtype=bool)
+    mask[true[0]:true[1]] = True
+    assert stats.window_slice(mask) == expected
+
+
+@pytest.mark.parametrize("true", [[], [3, 7], [0, 4000], [10, 11, 13]])
+def test_an_empty_or_broken_boolean_window_is_its_mask(true):
+    mask = np.zeros(4001, dtype=bool)
+    mask[true] = True
+    assert stats.window_slice(mask) is mask
+    empty = np.zeros(0, dtype=bool)
+    assert stats.window_slice(empty) is empty
+
+
 @pytest.fixture(scope="module")
 def seed_model():
     from gearcli import api

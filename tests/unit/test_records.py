@@ -158,3 +158,43 @@ def test_the_constructor_is_a_frozen_dataclasss():
     with pytest.raises(TypeError, match="non-default argument 'b' follows default argument"):
         record(type("Bad", (), {"__annotations__": {"a": "int", "b": "int"}, "a": 1, "__module__": __name__}))
 
+
+
+def test_the_constructor_made_without_compiling_its_source_is_dataclasss():
+    # a record of plain fields (positional parameters without a default factory): its __init__ is made from a
+    # template shared by the classes of its field count (defaults, __post_init__, a subclass adding fields), the
+    # same parameters, annotations, assignments and refusals as dataclass's
+    calls: list = []
+
+    def post_init(self):
+        calls.append(dict(vars(self)))
+
+    ns = {"__annotations__": {"n": "int", "a": "float", "c": "str", "d": "tuple"}, "c": "x", "d": (),
+          "__post_init__": post_init}
+    ours, theirs = _both(ns)
+    assert ours.__init__.__code__.co_qualname == "Made.__init__"  # not dataclass's __create_fn__.<locals>.__init__
+    assert str(inspect.signature(ours)) == str(inspect.signature(theirs)) == \
+        "(n: 'int', a: 'float', c: 'str' = 'x', d: 'tuple' = ()) -> None"
+    assert ours.__init__.__annotations__ == theirs.__init__.__annotations__
+    assert ours.__dataclass_params__.init and ours.__match_args__ == theirs.__match_args__
+    for args, kwargs in [((1, 2.0), {}), ((1, 2.0, "y", (3,)), {}), ((), {"n": 7, "a": 1.5, "d": (4,)})]:
+        a, b = ours(*args, **kwargs), theirs(*args, **kwargs)
+        assert vars(a) == vars(b) and repr(a) == repr(b).replace(theirs.__qualname__, ours.__qualname__)
+        assert calls[-1] == calls[-2] == vars(a)
+    for args, kwargs in [((), {}), ((1,), {}), ((1, 2.0, "c", (), 9), {}), ((1, 2.0), {"e": 5}),
+                         ((1, 2.0), {"n": 1})]:  # too few, too many, not a parameter, given twice
+        with pytest.raises(TypeError) as mine:
+            ours(*args, **kwargs)
+        with pytest.raises(TypeError) as dataclasss:
+            theirs(*args, **kwargs)
+        assert str(mine.value).split("() ")[1] == str(dataclasss.value).split("() ")[1]
+    sub = record(type("Sub", (ours,), {"__annotations__": {"z": "int"}, "__module__": __name__, "z": 0,
+                                       "__doc__": "A sub."}))
+    subd = dataclasses.dataclass(frozen=True)(type("Sub", (theirs,), {"__annotations__": {"z": "int"},
+                                                                      "__module__": __name__, "z": 0}))
+    assert sub.__init__.__code__.co_qualname == "Sub.__init__"
+    assert str(inspect.signature(sub)) == str(inspect.signature(subd))
+    assert vars(sub(1, 2.0, z=3)) == vars(subd(1, 2.0, z=3))
+    with pytest.raises(TypeError, match="non-default argument 'b' follows default argument"):
+        record(type("Bad", (), {"__annotations__": {"a": "int", "b": "int"}, "a": 1, "__module__": __name__,
+                                "__doc__": "Bad."}))

@@ -108,3 +108,30 @@ def test_a_worker_thread_runs_the_block_as_is():
     t.start()
     t.join()
     assert seen == [None]
+
+
+def test_a_default_handler_is_held_in_the_block_and_restored_after():
+    previous = signal.getsignal(signal.SIGTERM)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    try:
+        with signals.deferred():
+            assert signal.getsignal(signal.SIGTERM) is signals._remember  # held: no termination inside the block
+        assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL  # the same handler back, as the enum member
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def test_a_signal_whose_handler_is_the_default_takes_its_default_action_after_the_block():
+    import subprocess
+    import sys
+
+    code = ("import signal, sys\n"
+            "from gearcli.core import signals\n"
+            "signal.signal(signal.SIGTERM, signal.SIG_DFL)\n"
+            "with signals.deferred():\n"
+            "    signal.raise_signal(signal.SIGTERM)\n"
+            "    print('block ran to its end', flush=True)\n"
+            "print('not reached', flush=True)\n")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert res.returncode == -signal.SIGTERM  # terminated by the signal itself, once the block ended
+    assert res.stdout == "block ran to its end\n"

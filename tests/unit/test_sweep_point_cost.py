@@ -73,6 +73,23 @@ def test_the_constant_period_sampled_once_is_every_sample_sampled(name, laws):
     assert model.energy(short.tail(head), Y[:, head:]) == model.energy(whole.tail(head), Y[:, head:])
 
 
+@pytest.mark.parametrize("name", SCENES)
+def test_the_period_sampled_once_without_the_torques_is_the_rest_of_every_sample_sampled(name, laws):
+    """A run that keeps no series and has no motor reads neither torque: the speeds and every connector's series of
+    the shortcut without them are those of the whole sampling with them, and the torques are left empty."""
+    model = _model(name)
+    t, Y, head = _record(model)
+    whole, brief = sample(model.layout, t, Y), equilibrium.sampled(model.layout, t, Y, head, torques=False)
+    assert brief.input_torque_Nm.size == 0 and brief.load_torque_Nm.size == 0
+    assert np.array_equal(brief.time_s, whole.time_s) and np.array_equal(brief.omega_rad_s, whole.omega_rad_s)
+    for cb, cw in zip(brief.connectors, whole.connectors, strict=True):
+        for f in fields(ConnectorSeries):
+            x, y = getattr(cb, f.name), getattr(cw, f.name)
+            if f.name == "potential_J":  # not evaluated before the energy balance's first sample
+                x, y = x[head:], y[head:]
+            assert np.array_equal(x, y), f.name
+
+
 def test_a_period_that_is_not_constant_is_sampled_whole(monkeypatch):
     model = _model("concrete_mixer")
     t, Y, head = _record(model)
