@@ -83,6 +83,10 @@ class BearingFactors(_Table):
         if "e" not in self.model_fields_set and (self.X != 1.0 or self.Y != 0.0):
             raise ValueError(f"X = {self.X:g}, Y = {self.Y:g} need e, the catalogue's limit of F_a/F_r below which P = F_r "
                              "(give e = 0 to apply X and Y at any axial force)")
+        if self.X == 0.0 and self.Y == 0.0:  # P = 0 above e: no load, an infinite life, whatever the forces
+            raise ValueError("X = 0 and Y = 0 make the equivalent load P = X F_r + Y F_a zero when F_a/F_r > e (no load, "
+                             "an infinite life): give the catalogue's X and Y (a radial bearing: X 0.4 to 0.56, Y > 0; "
+                             "a thrust bearing: X 0, Y 1)")
         return self
 
 
