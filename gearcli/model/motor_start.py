@@ -46,8 +46,9 @@ VFD_OFF_SPEED = ("a VFD's supply is set so that the motor runs at speed_rpm at i
 def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagnostic]:
     """A speed-dependent load that the motor meets at another speed than ``speed_rpm``: the design's static forces
     assume the load at ``speed_rpm``, the run carries the load at the motor's own operating speed (which the
-    dynamic factors refer to: :func:`gearcli.simulate.run.simulated_static_tangential_N`). Warned beyond LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %). A VFD
-    (``vfd``) too: its supply follows speed_rpm at the rated torque only, a fan at part load runs faster."""
+    dynamic factors refer to: :func:`gearcli.simulate.run.simulated_static_tangential_N`). Warned beyond
+    LOAD_OFF_DESIGN of the load (a fan 1 % off in speed: 2 %). A VFD (``vfd``) too: its supply follows speed_rpm
+    at the rated torque only, a fan at part load runs faster."""
     w_nom = lay.drive.speed_rad_s
     nominal = reflected_load_Nm(lay, w_nom)
     if not lay.load_law or w_nom <= 0.0 or nominal == 0.0:

@@ -552,7 +552,6 @@ def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     return [tangential_force_N(lay, k, f * scale) for k, f in enumerate(static_line_forces_N(lay).tolist())]
 
 
-
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
     """The smallest absolute tolerance of each state group (deflections, speeds)."""
     lay = model.layout
