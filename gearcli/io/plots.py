@@ -85,7 +85,8 @@ def mesh_forces_figure(r: Report) -> Figure:
         if series is not None:
             ax.plot(sim.time_s, series, lw=0.8, color=color, label="F_t simulated")
             _zoom(zoom, sim.time_s, series, sim.window_s, color)
-        static = s.static_tangential_N * factors.get(s.stage, 1.0)  # the comparison's theory (the driving member's)
+        static = (s.static_tangential_N * factors.get(s.stage, 1.0)  # the comparison's theory (the driving member's,
+                  * (r.theory_point.load_factor if r.theory_point is not None else 1.0))  # at the operating point)
         for a in (ax, zoom):
             a.axhline(static, ls="--", lw=1.2, color="k", label=f"static F_t {static:.5g} N")
         zoom.axhline(s.tangential_N.mean, ls=":", lw=1.2, color="C3", label=f"mean {s.tangential_N.mean:.5g} N")

@@ -144,6 +144,9 @@ def _report_dict(r: Report) -> JsonObject:
         "design": design_summary(r.design),
         "modes": modes_summary(r),
         "comparison": [plain(row) for row in r.comparison],
+        # where the theory is taken when the drive does not prescribe the speed (null: the design's nominal point)
+        "theory_point": None if r.theory_point is None else {**plain(r.theory_point),  # type: ignore[dict-item]
+                                                             "speed_factor": r.theory_point.speed_factor},
         "dynamics": [stage_dict(s) for s in r.stages],
         "natural_frequencies_Hz": list(r.natural_frequencies_Hz),
         **({"rating": [plain(c) for c in r.rating]} if r.rating else {}),  # ISO against simulated K_v (issue 22)

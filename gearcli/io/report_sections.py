@@ -83,7 +83,22 @@ def comparison_section(r: Report) -> Section:
                                      " own: gearcli simulate, JSON planets)" if _has_planets(r) else "")
                     + ("; reversed load (the gear drives) on stage " + ", ".join(map(str, reversed_stages))
                        + ": theory's forces are the driving gear's, T_g / r_g = the design's F_t / η"
-                       if reversed_stages else ""), *notes))
+                       if reversed_stages else ""), *notes, *_theory_point_note(r)))
+
+
+def _theory_point_note(r: Report) -> tuple[str, ...]:
+    """Where the theory is taken, when not at the design's nominal speed (:class:`TheoryPoint`)."""
+    p = r.theory_point
+    if p is None:
+        return ()
+    u = of_result(r.simulation)
+    unit, at, nominal = u.speed_label, u.speed_from_deg_s(p.input_speed_deg_s), u.speed_from_deg_s(
+        p.nominal_input_speed_deg_s)
+    where = ("the motor's operating point (its curve crossing the load reflected to it, losses included)"
+             if p.drive == "motor" else "the torque drive's balance with the speed-dependent load")
+    return (f"theory at {where}: input {at:.6g} {unit} (the design's nominal {nominal:.6g} {unit}), the speeds scaled "
+            f"to it" + (f", the forces at the load there, {p.load_factor:.6g}x the nominal torque"
+                        if p.load_factor != 1.0 else ""),)
 
 
 FORCE_QUANTITIES = ("tangential_N", "radial_N", "axial_N")

@@ -14,11 +14,12 @@ from gearcli.core.records import record
 from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, SimulationError, StudyTooLong
 from gearcli.model import TorsionalModel
+from gearcli.model.damping import operating_load_factor, operating_speed_rad_s
 from gearcli.model.modes import campbell_data, modal_analysis
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study, same_rtol
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
 from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
-from gearcli.report.result import AccuracyStudy, Report
+from gearcli.report.result import AccuracyStudy, Report, TheoryPoint
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
 from gearcli.simulate.results import SimulationResult
@@ -97,11 +98,27 @@ def build_report(
               *([dg.warning(dg.ACCURACY, study_failed_text(failure), failed=True)] if failure else []))
     warnings = _merge(design.warnings, sim.warnings, dg.messages(checks))
     diagnostics = (*getattr(design, "diagnostics", ()), *sim.diagnostics, *checks)
-    return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim),
+    point = theory_point(model.layout, design) if model is not None else None
+    return Report(title=design.title, design=design, simulation=sim, comparison=comparison_rows(design, sim, point),
                   stages=stages, accuracy=study, warnings=warnings, diagnostics=diagnostics,
                   rating=rating_comparison(design, sim),
                   modes=modes[0] if modes else None, campbell=modes[1] if modes else None,
-                  accuracy_failure=failure)
+                  accuracy_failure=failure, theory_point=point)
+
+
+def theory_point(lay, design: DesignResult) -> TheoryPoint | None:
+    """The operating point the comparison's theory is taken at where the drive does not prescribe the speed (a
+    motor, a torque drive) and the train settles away from the design's nominal speed or load; None where it
+    settles there (a speed drive, a torque drive against a constant load, a motor with no crossing)."""
+    if lay.speed_drive or lay.drive.speed_rad_s <= 0.0:
+        return None
+    factor = operating_speed_rad_s(lay) / lay.drive.speed_rad_s
+    load = operating_load_factor(lay)
+    if factor == 1.0 and load == 1.0:
+        return None
+    return TheoryPoint(drive="motor" if lay.motor_drive else "torque",
+                       input_speed_deg_s=factor * design.input_speed_deg_s,
+                       nominal_input_speed_deg_s=design.input_speed_deg_s, load_factor=load)
 
 
 def study_failed_text(failure: str) -> str:

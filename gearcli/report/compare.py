@@ -14,7 +14,7 @@ import numpy as np
 
 from gearcli.core.channels import Channel
 from gearcli.rating.dynamic import stage_simulated_k_v  # one formula, shared with the simulated rating
-from gearcli.report.result import ComparisonRow, RatingComparison, StageReport
+from gearcli.report.result import ComparisonRow, RatingComparison, StageReport, TheoryPoint
 from gearcli.report.spectrum import force_spectrum, window_mask
 from gearcli.results import DesignResult
 from gearcli.simulate.results import SimulationResult
@@ -57,13 +57,17 @@ def shaft_mean_speeds_deg_s(sim: SimulationResult, n_shafts: int) -> list[float]
     return means
 
 
-def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[ComparisonRow, ...]:
-    """Train rows (ratio, input and output speed), then per stage: ratio, gear speed, F_t, F_r, F_a."""
+def comparison_rows(design: DesignResult, sim: SimulationResult,
+                    point: TheoryPoint | None = None) -> tuple[ComparisonRow, ...]:
+    """Train rows (ratio, input and output speed), then per stage: ratio, gear speed, F_t, F_r, F_a; the theory at
+    the operating point ``point`` where the drive does not prescribe the speed (None: the design's nominal)."""
     speeds = shaft_mean_speeds_deg_s(sim, len(design.shafts))
+    at_speed = 1.0 if point is None else point.speed_factor
+    at_load = 1.0 if point is None else point.load_factor
     rows = [
         _row(None, "ratio", design.total_ratio, sim.ratio),
-        _row(None, "input_speed_deg_s", design.input_speed_deg_s, sim.input_speed_deg_s),
-        _row(None, "output_speed_deg_s", design.output_speed_deg_s, sim.output_speed_deg_s),
+        _row(None, "input_speed_deg_s", at_speed * design.input_speed_deg_s, sim.input_speed_deg_s),
+        _row(None, "output_speed_deg_s", at_speed * design.output_speed_deg_s, sim.output_speed_deg_s),
     ]
     for st, dyn in zip(design.stages, sim.stages, strict=True):
         k = st.index
@@ -75,10 +79,10 @@ def comparison_rows(design: DesignResult, sim: SimulationResult) -> tuple[Compar
         if kind.model_signs_forces:  # F_t with the flank sign the model gives it
             sign = -1.0 if (dyn.static_tangential_N < 0) != (static.tangential < 0) else 1.0
         share = _planets_mean_over_planet_1(dyn)
-        sign *= driving_gear_factor(st, kind.model_signs_forces)
+        sign *= driving_gear_factor(st, kind.model_signs_forces) * at_load
         rows += [
             _row(k, "ratio", st.ratio, ratio_sim),
-            _row(k, "output_speed_deg_s", out_speed, gear_speed),
+            _row(k, "output_speed_deg_s", at_speed * out_speed, gear_speed),
             _row(k, "tangential_N", sign * static.tangential, share * dyn.tangential_N.mean),
             _row(k, "radial_N", sign * static.radial, share * dyn.radial_N.mean),
             _row(k, "axial_N", sign * static.axial, share * dyn.axial_N.mean),

@@ -36,6 +36,25 @@ class ComparisonRow:
 
 
 @record
+class TheoryPoint:
+    """Where the comparison's theory is taken when the drive does not prescribe the speed: the train's steady
+    operating point (a motor's stable crossing of its curve with the load reflected to it, a torque drive's balance
+    with a speed-dependent load, :func:`gearcli.model.damping.operating_speed_rad_s`), not the design's nominal
+    speed. The theory speeds are the design's scaled to it, the theory forces the design's times ``load_factor``
+    (the load law's torque there over its nominal torque): what the train settles at, so the error column shows
+    the simulation's departure from the steady state, not the motor's slip off its nameplate."""
+
+    drive: str  # "motor" | "torque"
+    input_speed_deg_s: float  # the operating point's input speed
+    nominal_input_speed_deg_s: float  # the design's (the file's [input] speed)
+    load_factor: float  # T_L at the operating point / its nominal torque (1 without a speed law)
+
+    @property
+    def speed_factor(self) -> float:
+        return self.input_speed_deg_s / self.nominal_input_speed_deg_s if self.nominal_input_speed_deg_s else 1.0
+
+
+@record
 class MeshOrder:
     """The amplitude of one mesh order (h x the mesh frequency) in a stage's F_t and DTE over the window."""
 
@@ -205,6 +224,7 @@ class Report:
     modes: ModalAnalysis | None = None  # at the drive's boundary (None: not computed, e.g. a stand-in simulation)
     campbell: CampbellData | None = None  # for the Campbell figure
     accuracy_failure: str | None = None  # why the accuracy study failed (``accuracy`` is then None)
+    theory_point: TheoryPoint | None = None  # the operating point the theory is taken at (None: the nominal one)
 
     @property
     def natural_frequencies_Hz(self) -> tuple[float, ...]:
