@@ -127,12 +127,26 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
         axes[-2][k].xaxis.set_tick_params(labelbottom=True)
     handles, labels = axes[0][0].get_legend_handles_labels()
     if len(labels) > LEGEND_INSIDE:  # a grid's curves: a legend inside a 2-inch panel hid its title and its data
-        fig.legend(handles, labels, loc="outside lower center", ncol=2 * n_stages, fontsize=7)
-        fig.set_figheight(fig.get_figheight() + 0.16 * -(-len(labels) // (2 * n_stages)) + 0.2)
+        _legend_below(fig, handles, labels, 2 * n_stages)
     else:
         axes[0][0].legend(fontsize=7, loc="best")
     fig.suptitle(f"sweep response against {key}", fontsize=11)
     return fig
+
+
+def _legend_below(fig, handles: list, labels: list[str], most: int) -> None:
+    """The legend below the panels in as many columns (at most ``most``) as fit the figure's width: a key with a
+    long path (``stage[0].mesh.transmission_error_um.0=2``) made two columns wider than a one-stage figure, whose
+    legend then lost its labels' ends on both sides. One column wider than the figure widens the figure."""
+    renderer = fig.canvas.get_renderer()
+    for ncol in range(min(most, len(labels)), 0, -1):
+        legend = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=7)
+        width = legend.get_window_extent(renderer).width / fig.dpi  # inches
+        if width <= fig.get_figwidth() - 0.2 or ncol == 1:
+            break
+        legend.remove()
+    fig.set_figwidth(max(fig.get_figwidth(), width + 0.2))
+    fig.set_figheight(fig.get_figheight() + 0.16 * -(-len(labels) // ncol) + 0.2)
 
 
 def _pin_roundoff(ax, rows: Sequence[dict], cols: Sequence[str]) -> None:
@@ -166,14 +180,25 @@ def _roundoff_limits(rows: Sequence[dict], cols: Sequence[str]) -> tuple[float, 
     return bottom, mid + half
 
 
-def _looks(groups: dict[tuple, list[dict]]) -> dict[tuple, tuple[str, str]]:
+def _looks(groups: dict[tuple, list[dict]]) -> dict[tuple, tuple[Any, str]]:
     """Each curve's (colour, marker). One curve per direction: the direction's colour. Curves that differ in the
     other varied keys' values (a grid): a colour per combination of those values, the direction by its marker
     (up ^, down v), so that no two curves of one plot look alike."""
     combos = list(dict.fromkeys(g[1:] for g in groups))
     if len(combos) <= 1:
         return {g: (COLOURS.get(str(g[0]), "k"), ".") for g in groups}
-    return {g: (f"C{combos.index(g[1:]) % 10}", MARKERS.get(str(g[0]), ".")) for g in groups}
+    colours = _distinct_colours(len(combos))
+    return {g: (colours[combos.index(g[1:])], MARKERS.get(str(g[0]), ".")) for g in groups}
+
+
+def _distinct_colours(n: int) -> list:
+    """``n`` colours, no two alike: the ten of matplotlib's cycle while they last; beyond them a sequential map
+    in the combinations' order (the cycle's C0 ... C9 repeat: an 11-speed grid drew its 1st and 11th curves
+    alike)."""
+    if n <= 10:
+        return [f"C{i}" for i in range(n)]
+    from matplotlib import colormaps  # lazy: matplotlib, the optional plot extra (imported by the figure)
+    return [tuple(c) for c in colormaps["viridis"](np.linspace(0.0, 0.9, n))]
 
 
 def _label(group: tuple, others: Sequence[str]) -> str:
