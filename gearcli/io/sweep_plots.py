@@ -5,7 +5,8 @@
   combination of the other varied keys' values in its own colour, the direction by its marker (up ^, down v).
 - ``campbell.png`` when the input speed is swept: the Campbell diagram of ``gearcli modes --plots``
   (:mod:`gearcli.io.campbell`) over the swept range, the swept speeds marked.
-- ``distributions.png`` for ``--random`` samples: histogram and empirical CDF of the main statistics.
+- ``distributions.png`` for ``--random`` samples: histogram and empirical CDF of the main statistics, one
+  distribution per point of a ``--vary`` grid.
 """
 
 from __future__ import annotations
@@ -73,7 +74,7 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     if campbell is not None:
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
-        figs.append(("distributions.png", _distributions(ok, n_stages)))
+        figs.append(("distributions.png", _distributions(ok, n_stages, [a.column for a in session.spec.axes])))
     out.mkdir(parents=True, exist_ok=True)
     for name, fig in figs:
         if fig is not None:
@@ -234,23 +235,33 @@ def _pinned_bar(x: np.ndarray, limits: tuple[float, float]) -> dict:
     return {"bins": 1, "range": (mid - width, mid + width)}
 
 
-def _distributions(rows: Sequence[dict], n_stages: int):
+def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()):
+    """Histograms and ECDFs of the random samples' statistics. With ``--vary`` keys too (``grid``: their columns)
+    each point of the grid (and each direction) has its own distribution, drawn in its own colour: pooled, two operating speeds' samples made one two-humped histogram that no tolerance gives."""
     stats = [(c, t) for c, t in DISTRIBUTION_STATS if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1))]
     if not rows or not stats:
         return None
+    groups: dict[tuple, list[dict]] = {}
+    for r in rows:
+        groups.setdefault(tuple(str(r.get(k)) for k in grid) + ((str(r.get("direction")),) if grid else ()),
+                          []).append(r)
+    labels = {g: _group_label(g, grid) for g in groups}
+    curves = [(g, k) for g in groups for k in range(1, n_stages + 1)]
+    colours = dict(zip(curves, _distinct_colours(len(curves)), strict=True))
     fig, axes = _figure(len(stats), 2, height=2.3, width=9.0)
     for i, (c, title) in enumerate(stats):
         # a statistic every sample shares to roundoff (an unexcited scene's std 0 and dynamic factor 1) is one bar
         # at its constant on an axis of ±5 % of its scale, as the response plot draws it, not its last bits
         pinned = _roundoff_limits(rows, [f"stage{k}_{c}" for k in range(1, n_stages + 1)])
-        for k in range(1, n_stages + 1):
-            x = np.array([_num(r.get(f"stage{k}_{c}")) for r in rows])
+        for g, k in curves:
+            x = np.array([_num(r.get(f"stage{k}_{c}")) for r in groups[g]])
             x = np.sort(x[np.isfinite(x)])
             if not x.size:
                 continue
             bins = _bins(x) if pinned is None else _pinned_bar(x, pinned)
-            axes[i][0].hist(x, **bins, alpha=0.5, color=f"C{k - 1}", label=f"stage {k}")
-            axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=f"C{k - 1}", label=f"stage {k}")
+            label = ", ".join(p for p in (f"stage {k}" if n_stages > 1 or not labels[g] else "", labels[g]) if p)
+            axes[i][0].hist(x, **bins, alpha=0.5, color=colours[(g, k)], label=label)
+            axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=colours[(g, k)], label=label)
         axes[i][0].set_xlabel(title)
         axes[i][0].set_ylabel("count")
         axes[i][1].set_xlabel(title)
@@ -260,6 +271,20 @@ def _distributions(rows: Sequence[dict], n_stages: int):
             if pinned is not None:
                 a.set_xlim(*pinned)
                 a.ticklabel_format(axis="x", useOffset=False, style="plain")
-    axes[0][0].legend(fontsize=7)
-    fig.suptitle(f"distributions over {len(rows)} random samples", fontsize=11)
+    if len(curves) > LEGEND_INSIDE:
+        handles, names = axes[0][0].get_legend_handles_labels()
+        _legend_below(fig, handles, names, 2)
+    else:
+        axes[0][0].legend(fontsize=7)
+    per = max(len(rs) for rs in groups.values())
+    fig.suptitle(f"distributions over {len(rows)} random samples" if len(groups) == 1 else
+                 f"distributions over {per} random samples at each of {len(groups)} grid points", fontsize=11)
     return fig
+
+
+def _group_label(group: tuple, grid: Sequence[str]) -> str:
+    """A grid point's legend in the distributions: ``input.speed_rpm=1200`` (and its direction, where continued)."""
+    parts = [f"{k}={v}" for k, v in zip(grid, group, strict=False)]
+    direction = group[len(grid)] if len(group) > len(grid) else "none"
+    return ", ".join(parts + ([direction] if direction not in ("none", "None") else []))
+

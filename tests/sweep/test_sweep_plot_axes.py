@@ -166,3 +166,32 @@ def test_a_grid_of_more_than_ten_curves_gives_each_its_own_colour():
     curves = fig.axes[-1].get_lines()  # the output-speed panel: one line per curve
     assert len(curves) == 11
     assert len({to_rgba(line.get_color()) for line in curves}) == 11
+
+
+def test_a_grids_tolerance_distributions_are_one_per_grid_point():
+    """--vary input.speed_rpm=1000,1200 with --samples 4: each speed's four samples are its tolerance distribution.
+    Pooled, the two speeds' F_t std (about 311 N and 568 N on tr18c's stage) made one two-humped histogram and an
+    ECDF that climbed to 0.5 at the first speed's samples. Each speed has its own ECDF (its samples' i/4 steps to
+    1) and histogram (four counts), in its own colour."""
+    from matplotlib.colors import to_rgba
+
+    from gearcli.io.sweep_plots import _distributions
+
+    stds = {"1000": [309.0, 311.0, 312.0, 314.0], "1200": [560.0, 566.0, 568.0, 571.0]}
+    rows = [{"input.speed_rpm": n, "direction": "none", "status": "ok", "stage1_tangential_N_std": s,
+             "stage1_tangential_N_mean": F_T, "stage1_tangential_N_max": F_T + 2 * s,
+             "stage1_dynamic_factor": 1 + 2 * s / F_T, "stage1_dte_um_mean": DTE, "stage1_dte_um_rms": s / 690}
+            for n, ss in stds.items() for s in ss]
+    fig = _distributions(rows, 1, ["input.speed_rpm"])
+    ecdfs = _panel(fig, "F_t std (N)", 1).get_lines()
+    assert len(ecdfs) == 2 and len({to_rgba(line.get_color()) for line in ecdfs}) == 2
+    for line, ss in zip(ecdfs, stds.values(), strict=True):
+        assert list(line.get_xdata()) == ss and list(line.get_ydata()) == [0.25, 0.5, 0.75, 1.0]
+    hist = _panel(fig, "F_t std (N)", 0)
+    by_colour: dict = {}
+    for bar in hist.patches:
+        by_colour[to_rgba(bar.get_facecolor())] = by_colour.get(to_rgba(bar.get_facecolor()), 0) + bar.get_height()
+    assert sorted(by_colour.values()) == [4, 4]
+    legend = _panel(fig, "peak F_t in window (N)", 0).get_legend()  # on the first panel
+    assert [t.get_text() for t in legend.get_texts()] == ["input.speed_rpm=1000", "input.speed_rpm=1200"]
+    assert "4 random samples at each of 2 grid points" in fig._suptitle.get_text()
