@@ -20,7 +20,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import BinaryIO, Union, get_args, get_origin
 
-from pydantic import ValidationError
+from pydantic import BaseModel, ValidationError
 
 from gearcli.config import overrides as _overrides
 from gearcli.config.keys import format_path
@@ -119,17 +119,32 @@ def check_override_keys(raw: bytes, source: str, overrides: Sequence[str]) -> No
 def integer_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[str]:
     """Those of ``keys`` (``--set`` key paths) that take no real number (a tooth or planet count, a choice among
     whole numbers such as ``speed_exponent``, a flag), in the file ``raw`` with ``sets`` applied."""
-    data = copy.deepcopy(_parsed(raw, source))
-    _overrides.apply_all(data, sets)
-    return [k for k in keys if not _takes_real(_overrides.leaf_type(data, k))]
+    return [k for k, tp in _leaf_types(raw, source, sets, keys) if not _takes_real(tp)]
 
 
 def list_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[str]:
     """Those of ``keys`` (``--set`` key paths) that name a whole list (``transmission_error_um``, a list of
     harmonics), whose entries ``KEY.0``, ``KEY.1`` ... are the numbers."""
+    return [k for k, tp in _leaf_types(raw, source, sets, keys) if _is_list(tp)]
+
+
+def table_keys(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[str]:
+    """Those of ``keys`` (``--set`` key paths) that name a whole table (``stage.0.mesh``, ``contact``,
+    ``materials``), whose keys ``KEY.NAME`` are the numbers."""
+    return [k for k, tp in _leaf_types(raw, source, sets, keys) if _is_table(tp)]
+
+
+def _leaf_types(raw: bytes, source: str, sets: Sequence[str], keys: Sequence[str]) -> list[tuple[str, object]]:
+    """Each of ``keys`` with its schema type in the file ``raw`` with ``sets`` applied."""
     data = copy.deepcopy(_parsed(raw, source))
     _overrides.apply_all(data, sets)
-    return [k for k in keys if _is_list(_overrides.leaf_type(data, k))]
+    return [(k, _overrides.leaf_type(data, k)) for k in keys]
+
+
+def _is_table(tp: object) -> bool:
+    if get_origin(tp) in (Union, types.UnionType):
+        return any(_is_table(a) for a in get_args(tp) if a is not type(None))
+    return get_origin(tp) is dict or tp is dict or (isinstance(tp, type) and issubclass(tp, BaseModel))
 
 
 def _is_list(tp: object) -> bool:

@@ -5,7 +5,8 @@
   combination of the other varied keys' values in its own colour, the direction by its marker (up ^, down v).
 - ``campbell.png`` when the input speed is swept: the Campbell diagram of ``gearcli modes --plots``
   (:mod:`gearcli.io.campbell`) over the swept range, the swept speeds marked.
-- ``distributions.png`` for ``--random`` samples: histogram and empirical CDF of the main statistics.
+- ``distributions.png`` for ``--random`` samples: histogram and empirical CDF of the main statistics, one
+  distribution per point of a ``--vary`` grid.
 """
 
 from __future__ import annotations
@@ -73,7 +74,7 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     if campbell is not None:
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
-        figs.append(("distributions.png", _distributions(ok, n_stages)))
+        figs.append(("distributions.png", _distributions(ok, n_stages, [a.column for a in session.spec.axes])))
     out.mkdir(parents=True, exist_ok=True)
     for name, fig in figs:
         if fig is not None:
@@ -127,12 +128,26 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
         axes[-2][k].xaxis.set_tick_params(labelbottom=True)
     handles, labels = axes[0][0].get_legend_handles_labels()
     if len(labels) > LEGEND_INSIDE:  # a grid's curves: a legend inside a 2-inch panel hid its title and its data
-        fig.legend(handles, labels, loc="outside lower center", ncol=2 * n_stages, fontsize=7)
-        fig.set_figheight(fig.get_figheight() + 0.16 * -(-len(labels) // (2 * n_stages)) + 0.2)
+        _legend_below(fig, handles, labels, 2 * n_stages)
     else:
         axes[0][0].legend(fontsize=7, loc="best")
     fig.suptitle(f"sweep response against {key}", fontsize=11)
     return fig
+
+
+def _legend_below(fig, handles: list, labels: list[str], most: int) -> None:
+    """The legend below the panels in as many columns (at most ``most``) as fit the figure's width: a key with a
+    long path (``stage[0].mesh.transmission_error_um.0=2``) made two columns wider than a one-stage figure, whose
+    legend then lost its labels' ends on both sides. One column wider than the figure widens the figure."""
+    renderer = fig.canvas.get_renderer()
+    for ncol in range(min(most, len(labels)), 0, -1):
+        legend = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=7)
+        width = legend.get_window_extent(renderer).width / fig.dpi  # inches
+        if width <= fig.get_figwidth() - 0.2 or ncol == 1:
+            break
+        legend.remove()
+    fig.set_figwidth(max(fig.get_figwidth(), width + 0.2))
+    fig.set_figheight(fig.get_figheight() + 0.16 * -(-len(labels) // ncol) + 0.2)
 
 
 def _pin_roundoff(ax, rows: Sequence[dict], cols: Sequence[str]) -> None:
@@ -166,14 +181,25 @@ def _roundoff_limits(rows: Sequence[dict], cols: Sequence[str]) -> tuple[float, 
     return bottom, mid + half
 
 
-def _looks(groups: dict[tuple, list[dict]]) -> dict[tuple, tuple[str, str]]:
+def _looks(groups: dict[tuple, list[dict]]) -> dict[tuple, tuple[Any, str]]:
     """Each curve's (colour, marker). One curve per direction: the direction's colour. Curves that differ in the
     other varied keys' values (a grid): a colour per combination of those values, the direction by its marker
     (up ^, down v), so that no two curves of one plot look alike."""
     combos = list(dict.fromkeys(g[1:] for g in groups))
     if len(combos) <= 1:
         return {g: (COLOURS.get(str(g[0]), "k"), ".") for g in groups}
-    return {g: (f"C{combos.index(g[1:]) % 10}", MARKERS.get(str(g[0]), ".")) for g in groups}
+    colours = _distinct_colours(len(combos))
+    return {g: (colours[combos.index(g[1:])], MARKERS.get(str(g[0]), ".")) for g in groups}
+
+
+def _distinct_colours(n: int) -> list:
+    """``n`` colours, no two alike: the ten of matplotlib's cycle while they last; beyond them a sequential map
+    in the combinations' order (the cycle's C0 ... C9 repeat: an 11-speed grid drew its 1st and 11th curves
+    alike)."""
+    if n <= 10:
+        return [f"C{i}" for i in range(n)]
+    from matplotlib import colormaps  # lazy: matplotlib, the optional plot extra (imported by the figure)
+    return [tuple(c) for c in colormaps["viridis"](np.linspace(0.0, 0.9, n))]
 
 
 def _label(group: tuple, others: Sequence[str]) -> str:
@@ -209,23 +235,33 @@ def _pinned_bar(x: np.ndarray, limits: tuple[float, float]) -> dict:
     return {"bins": 1, "range": (mid - width, mid + width)}
 
 
-def _distributions(rows: Sequence[dict], n_stages: int):
+def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()):
+    """Histograms and ECDFs of the random samples' statistics. With ``--vary`` keys too (``grid``: their columns)
+    each point of the grid (and each direction) has its own distribution, drawn in its own colour: pooled, two operating speeds' samples made one two-humped histogram that no tolerance gives."""
     stats = [(c, t) for c, t in DISTRIBUTION_STATS if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1))]
     if not rows or not stats:
         return None
+    groups: dict[tuple, list[dict]] = {}
+    for r in rows:
+        groups.setdefault(tuple(str(r.get(k)) for k in grid) + ((str(r.get("direction")),) if grid else ()),
+                          []).append(r)
+    labels = {g: _group_label(g, grid) for g in groups}
+    curves = [(g, k) for g in groups for k in range(1, n_stages + 1)]
+    colours = dict(zip(curves, _distinct_colours(len(curves)), strict=True))
     fig, axes = _figure(len(stats), 2, height=2.3, width=9.0)
     for i, (c, title) in enumerate(stats):
         # a statistic every sample shares to roundoff (an unexcited scene's std 0 and dynamic factor 1) is one bar
         # at its constant on an axis of ±5 % of its scale, as the response plot draws it, not its last bits
         pinned = _roundoff_limits(rows, [f"stage{k}_{c}" for k in range(1, n_stages + 1)])
-        for k in range(1, n_stages + 1):
-            x = np.array([_num(r.get(f"stage{k}_{c}")) for r in rows])
+        for g, k in curves:
+            x = np.array([_num(r.get(f"stage{k}_{c}")) for r in groups[g]])
             x = np.sort(x[np.isfinite(x)])
             if not x.size:
                 continue
             bins = _bins(x) if pinned is None else _pinned_bar(x, pinned)
-            axes[i][0].hist(x, **bins, alpha=0.5, color=f"C{k - 1}", label=f"stage {k}")
-            axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=f"C{k - 1}", label=f"stage {k}")
+            label = ", ".join(p for p in (f"stage {k}" if n_stages > 1 or not labels[g] else "", labels[g]) if p)
+            axes[i][0].hist(x, **bins, alpha=0.5, color=colours[(g, k)], label=label)
+            axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=colours[(g, k)], label=label)
         axes[i][0].set_xlabel(title)
         axes[i][0].set_ylabel("count")
         axes[i][1].set_xlabel(title)
@@ -235,6 +271,20 @@ def _distributions(rows: Sequence[dict], n_stages: int):
             if pinned is not None:
                 a.set_xlim(*pinned)
                 a.ticklabel_format(axis="x", useOffset=False, style="plain")
-    axes[0][0].legend(fontsize=7)
-    fig.suptitle(f"distributions over {len(rows)} random samples", fontsize=11)
+    if len(curves) > LEGEND_INSIDE:
+        handles, names = axes[0][0].get_legend_handles_labels()
+        _legend_below(fig, handles, names, 2)
+    else:
+        axes[0][0].legend(fontsize=7)
+    per = max(len(rs) for rs in groups.values())
+    fig.suptitle(f"distributions over {len(rows)} random samples" if len(groups) == 1 else
+                 f"distributions over {per} random samples at each of {len(groups)} grid points", fontsize=11)
     return fig
+
+
+def _group_label(group: tuple, grid: Sequence[str]) -> str:
+    """A grid point's legend in the distributions: ``input.speed_rpm=1200`` (and its direction, where continued)."""
+    parts = [f"{k}={v}" for k, v in zip(grid, group, strict=False)]
+    direction = group[len(grid)] if len(group) > len(grid) else "none"
+    return ", ".join(parts + ([direction] if direction not in ("none", "None") else []))
+

@@ -21,7 +21,7 @@ from typing import Protocol
 from gearcli import __version__, engine
 from gearcli.config import DesignFile, LoadedDesign
 from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
-from gearcli.config.load import integer_keys, list_keys
+from gearcli.config.load import integer_keys, list_keys, table_keys
 from gearcli.config.overrides import SOURCE
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError
@@ -148,6 +148,9 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
             raise SweepUsageError(f"{d.column} is a list, {d.kind}(...) draws one number: draw its entries by index, "
                                   f"--random '{d.column}.0={d.kind}(...)' (the first; .1 the second ...; in a list of "
                                   f"tables the entry's key: {d.column}.0.KEY)", source="--random")
+        if table_keys(scene.raw, scene.source, scene.sets, [d.key]):
+            raise SweepUsageError(f"{d.column} is a table, {d.kind}(...) draws one number: draw one of its keys, "
+                                  f"--random '{d.column}.KEY={d.kind}(...)'", source="--random")
         raise SweepUsageError(f"{d.column} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
                               "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")

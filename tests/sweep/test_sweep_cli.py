@@ -77,6 +77,9 @@ def test_all_points_ok_is_exit_0_and_stdout_is_csv():
     # a list (a TE's harmonics) is drawn entry by entry: the message shows how, not "a whole number"
     (["--samples", "3", "--set", "contact.transmission_error_um=[1.0, 0.5]",
       "--random", "contact.transmission_error_um=normal(1,0.1)"], "'contact.transmission_error_um.0=normal(...)'"),
+    # a table is neither a whole number nor a choice: the message says to draw one of its keys
+    (["--samples", "3", "--random", "stage.0.mesh=uniform(0,1)"], "stage.0.mesh is a table"),
+    (["--samples", "3", "--random", "contact=normal(1,0.1)"], "--random 'contact.KEY=normal(...)'"),
 ])
 def test_bad_usage_is_exit_2_one_line(args, needle):
     res = sweep(*args)

@@ -130,3 +130,68 @@ def test_a_grids_many_curves_legend_hides_no_panel_title_and_no_data():
             assert not box.overlaps(ax.title.get_window_extent(renderer)), ax.get_title()
     assert not box.overlaps(fig._suptitle.get_window_extent(renderer))
     assert fig.bbox.x0 - 0.5 <= box.x0 and box.x1 <= fig.bbox.x1 + 0.5 and box.y0 >= fig.bbox.y0 - 0.5  # inside it
+
+
+def _grid_figure(axis_values: str, other: str):
+    spec = spec_from_options([axis_values, other], [], None, "lhs", None, None)
+    rows = [{**dict(p.cells()), "direction": p.direction, "status": "ok", "stage1_tangential_N_mean": F_T + i,
+             "stage1_tangential_N_min": F_T - 100.0, "stage1_tangential_N_max": F_T + 100.0 + i,
+             "output_speed_rpm": 20.0} for i, p in enumerate(p for branch in spec.branches() for p in branch)]
+    return _response(rows, spec.axes[0].column, spec, 1)
+
+
+def test_a_long_keys_legend_keeps_every_label_inside_the_figure():
+    """A one-stage figure is 5.2 inches wide; the legend below it had two columns of labels such as
+    "(stage[0].mesh.transmission_error_um.0=2) mean", 6.5 inches together: both columns lost their ends outside
+    the figure ("tage[0]...", "...error_um.0=4"). Every legend text lies wholly inside the saved figure."""
+    fig = _grid_figure("input.speed_rpm=800,1200,1600", "stage[0].mesh.transmission_error_um.0=0,2,4")
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    (legend,) = fig.legends
+    texts = legend.get_texts()
+    assert len(texts) == 9 and texts[0].get_text() == "(stage[0].mesh.transmission_error_um.0=0) mean"
+    for text in texts:
+        box = text.get_window_extent(renderer)
+        assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1, text.get_text()
+        assert fig.bbox.y0 <= box.y0, text.get_text()
+
+
+def test_a_grid_of_more_than_ten_curves_gives_each_its_own_colour():
+    """An 11 x 2 grid drawn against its second key has 11 curves (one per speed): matplotlib's cycle C0 ... C9 gave
+    the 1st (800 rpm) and the 11th (1800 rpm) the same blue, indistinguishable in one panel."""
+    from matplotlib.colors import to_rgba
+
+    speeds = ",".join(str(800 + 100 * i) for i in range(11))
+    fig = _grid_figure("stage.0.backlash_mm=0.05,0.1", f"input.speed_rpm={speeds}")
+    curves = fig.axes[-1].get_lines()  # the output-speed panel: one line per curve
+    assert len(curves) == 11
+    assert len({to_rgba(line.get_color()) for line in curves}) == 11
+
+
+def test_a_grids_tolerance_distributions_are_one_per_grid_point():
+    """--vary input.speed_rpm=1000,1200 with --samples 4: each speed's four samples are its tolerance distribution.
+    Pooled, the two speeds' F_t std (about 311 N and 568 N on tr18c's stage) made one two-humped histogram and an
+    ECDF that climbed to 0.5 at the first speed's samples. Each speed has its own ECDF (its samples' i/4 steps to
+    1) and histogram (four counts), in its own colour."""
+    from matplotlib.colors import to_rgba
+
+    from gearcli.io.sweep_plots import _distributions
+
+    stds = {"1000": [309.0, 311.0, 312.0, 314.0], "1200": [560.0, 566.0, 568.0, 571.0]}
+    rows = [{"input.speed_rpm": n, "direction": "none", "status": "ok", "stage1_tangential_N_std": s,
+             "stage1_tangential_N_mean": F_T, "stage1_tangential_N_max": F_T + 2 * s,
+             "stage1_dynamic_factor": 1 + 2 * s / F_T, "stage1_dte_um_mean": DTE, "stage1_dte_um_rms": s / 690}
+            for n, ss in stds.items() for s in ss]
+    fig = _distributions(rows, 1, ["input.speed_rpm"])
+    ecdfs = _panel(fig, "F_t std (N)", 1).get_lines()
+    assert len(ecdfs) == 2 and len({to_rgba(line.get_color()) for line in ecdfs}) == 2
+    for line, ss in zip(ecdfs, stds.values(), strict=True):
+        assert list(line.get_xdata()) == ss and list(line.get_ydata()) == [0.25, 0.5, 0.75, 1.0]
+    hist = _panel(fig, "F_t std (N)", 0)
+    by_colour: dict = {}
+    for bar in hist.patches:
+        by_colour[to_rgba(bar.get_facecolor())] = by_colour.get(to_rgba(bar.get_facecolor()), 0) + bar.get_height()
+    assert sorted(by_colour.values()) == [4, 4]
+    legend = _panel(fig, "peak F_t in window (N)", 0).get_legend()  # on the first panel
+    assert [t.get_text() for t in legend.get_texts()] == ["input.speed_rpm=1000", "input.speed_rpm=1200"]
+    assert "4 random samples at each of 2 grid points" in fig._suptitle.get_text()
