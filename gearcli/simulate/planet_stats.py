@@ -53,7 +53,11 @@ def planet_contact_warnings(model: TorsionalModel, s: Sampled, mask: np.ndarray)
         if m.static_tangential_N == 0 or not pen.size or not np.any(lost):
             continue
         where = f"stage {x.index + 1} planet {x.planet + 1} {x.gear} mesh"
-        if np.all(lost) and m.backlash_m > 0:
+        if np.all(loaded * pen < 0.0):  # held on its back flank: a position error, no vibration, does that
+            words = ("presses its back flank throughout the steady window: the planet is loaded backwards and the "
+                     "others carry more than the whole load (a planet.position_error_um beyond the loaded planets' "
+                     "mesh deflection and the backlash)")
+        elif np.all(lost):
             words = ("never touches its loaded flank in the steady window: the planet carries no load and the other "
                      "planets carry its share (a planet.position_error_um larger than the loaded planets' mesh "
                      "deflection leaves it inside the backlash)")

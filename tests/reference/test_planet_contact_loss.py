@@ -22,9 +22,10 @@ from tests.reference.test_planetary_worst_planet import SCENE, N, series_stiffne
 E_UM, BACKLASH_MM = -20.0, 0.05
 
 
-def scene(errors_um: list[float]) -> str:
-    """The worst-planet test's settled linear planetary (ring held, sun in, 3 planets, ζ = 0.2, rtol 1e-9) with backlash and these errors."""
-    out = SCENE.replace('type = "planetary"', f'type = "planetary"\nbacklash_mm = {BACKLASH_MM}')
+def scene(errors_um: list[float], backlash_mm: float = BACKLASH_MM) -> str:
+    """The worst-planet test's settled linear planetary (ring held, sun in, 3 planets, ζ = 0.2, rtol 1e-9) with
+    backlash and these errors."""
+    out = SCENE.replace('type = "planetary"', f'type = "planetary"\nbacklash_mm = {backlash_mm}')
     return out.replace("position_error_um = [0.0, 5.0, 0.0]", f"position_error_um = {errors_um}")
 
 
@@ -49,3 +50,21 @@ def test_a_planet_left_in_the_backlash_is_named(tmp_path, idle):
     # every warning names the idle planet and one of its meshes; none blames the load or the vibration
     assert sorted((d.data["planet"], d.data["mesh"]) for d in lost) == [(idle + 1, "planet_ring"), (idle + 1, "sun_planet")]
     assert all(d.data["fraction"] == 1.0 and "carries no load" in d.message for d in lost)
+
+
+def test_a_planet_pressed_onto_its_back_flank_is_named(tmp_path):
+    """Without backlash every planet stays in contact, F_j = F_mean + k_eq (e_j - mean(e)) (the moment balance sums
+    them to N F_mean): a planet whose error takes more than F_mean / k_eq off its approach is loaded backwards."""
+    errors = [0.0, 0.0, E_UM]
+    path = tmp_path / "planetary.toml"
+    path.write_text(scene(errors, 0.0))
+    loaded, design = api.load_and_design(str(path))
+    result = api.simulate(loaded.design, design)
+    st, ds = result.stages[0], design.stages[0]
+    k_eq, f_mean = series_stiffness(ds)
+    hand = [1 + k_eq * (e - sum(errors) / N) * 1e-6 / f_mean for e in errors]
+    assert hand[2] < -0.5  # the check has teeth: planet 3 carries a sizeable backward load
+    assert_allclose([p.sun.tangential_N.mean / ds.static_force_N.tangential for p in st.planets], hand, rtol=1e-3)
+    lost = [d for d in result.diagnostics if d.code == "contact_loss"]
+    assert sorted((d.data["planet"], d.data["mesh"]) for d in lost) == [(3, "planet_ring"), (3, "sun_planet")]
+    assert all("back flank" in d.message and "vibration" not in d.message for d in lost)
