@@ -54,6 +54,21 @@ def static_forces(lay: Layout) -> np.ndarray:
     return kept.copy()
 
 
+def operating_forces(lay: Layout) -> np.ndarray:
+    """:func:`static_forces` at the settled operating point: planets with position errors at the shares those give
+    (:mod:`gearcli.model.planet_statics`; equal shares otherwise), where the model is linearised (modes, the run's
+    natural frequencies). A copy each time."""
+    kept = lay.__dict__.get("_operating_forces")
+    if kept is None:
+        kept = static_forces(lay)
+        if any(x.initial_deflection for x in lay.connectors):
+            from gearcli.model.planet_statics import operating_forces as settled  # lazy: planets with errors only
+
+            kept = settled(lay, kept)
+        lay.__dict__["_operating_forces"] = kept
+    return kept.copy()
+
+
 def _static_forces(lay: Layout) -> np.ndarray:
     rho = np.array([b.ratio for b in lay.bodies])
     rho_b = np.array([rho[x.b] for x in lay.connectors])

@@ -51,7 +51,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_damping, body_matrices, lever_matrices, loss_factors, modal_damping_ratios
 from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, rigid_mode_count, soft_modes_refined
 from gearcli.model.elements.mesh import I_Z
-from gearcli.model.linear import peak_rigid_forces, speed_map, static_forces, tangent
+from gearcli.model.linear import operating_forces, peak_rigid_forces, speed_map, tangent
 from gearcli.model.planet_excitation import phased_participation, planet_phases, repeated_ranks
 
 if TYPE_CHECKING:
@@ -123,8 +123,8 @@ class ModalAnalysis:
 
 
 def _tangents(lay: Layout, duration_s: float) -> tuple[np.ndarray, np.ndarray]:
-    """Tangent stiffness and damping of every connector at full load."""
-    F = static_forces(lay)
+    """Tangent stiffness and damping of every connector at full load (planets at their settled shares)."""
+    F = operating_forces(lay)
     kc = np.array([tangent(lay, c, F[c])[:2] for c in range(lay.n_conn)])
     if np.any(kc[:, 0] == 0.0):  # an unloaded Hertzian mesh: the run-up load, stiffest phase (as the simulation)
         op = np.maximum(np.abs(F), peak_rigid_forces(lay, duration_s))

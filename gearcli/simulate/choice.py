@@ -47,7 +47,7 @@ from gearcli.core.records import record
 from gearcli.model import Layout, Linearisation, ModelSpec, linearise
 from gearcli.model.contact_lines import shortest_stretch
 from gearcli.model.elements import mesh
-from gearcli.model.linear import damped_eigenvalues, peak_rigid_forces, speed_map, static_forces
+from gearcli.model.linear import damped_eigenvalues, operating_forces, peak_rigid_forces, speed_map, static_forces
 
 DECAY_TIMES = 5.0  # a mode's vibration lasts 5 / sigma after it is excited
 SELF_EXCITING_SHARE = 0.01  # strain-energy share of a nonlinear/time-varying/backlash mesh that excites a mode
@@ -288,7 +288,7 @@ def _at_full_load(spec: ModelSpec, layout: Layout | None = None) -> tuple[Layout
         return _FULL_LOAD[0][1:]
     lay = layout if layout is not None and layout.spec is spec else Layout.of(spec)
     static = static_forces(lay)
-    entry = (spec, lay, static, linearise(lay, static))
+    entry = (spec, lay, static, linearise(lay, operating_forces(lay)))  # planets at their settled shares
     _FULL_LOAD[:] = [entry]
     return entry[1:]
 

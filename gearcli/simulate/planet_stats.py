@@ -8,11 +8,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli import diagnostics as dg
 from gearcli.model.outputs import tooth_forces
 from gearcli.simulate import stats
 from gearcli.simulate.results import DteStats
 
 if TYPE_CHECKING:
+    from gearcli.diagnostics import Diagnostic
     from gearcli.model import TorsionalModel
     from gearcli.model.outputs import Sampled
     from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics
@@ -31,6 +33,38 @@ def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str
         if x.load_body >= 0:
             ft = tooth_forces(lay, x.index, s.connectors[c].line_force_N)[0]
             out[(x.index, x.planet, x.gear)] = (ft, s.connectors[c].dte_m)
+    return out
+
+
+def planet_contact_warnings(model: TorsionalModel, s: Sampled, mask: np.ndarray) -> list[Diagnostic]:
+    """The contact-loss warning of every planet mesh (each planet's sun and ring mesh) whose loaded flank loses
+    contact in the steady window, the planet named: a stage's channel is planet 1's sun mesh alone, and a position
+    error can leave any planet inside the backlash, carrying nothing while the others take its share. The loaded
+    flank is the stage's (both meshes of every planet are signed as its sun's torque: docs/output.md)."""
+    lay, out = model.layout, []
+    sel = stats.window_slice(mask)
+    for c, x in enumerate(lay.connectors):
+        if x.load_body < 0:  # not a planet mesh
+            continue
+        m = lay.spec.meshes[x.index]
+        pen = s.connectors[c].penetration_m[sel]
+        loaded = 1.0 if m.static_tangential_N >= 0 else -1.0
+        lost = loaded * pen <= 0.0
+        if m.static_tangential_N == 0 or not pen.size or not np.any(lost):
+            continue
+        where = f"stage {x.index + 1} planet {x.planet + 1} {x.gear} mesh"
+        if np.all(loaded * pen < 0.0):  # held on its back flank: a position error, no vibration, does that
+            words = ("presses its back flank throughout the steady window: the planet is loaded backwards and the "
+                     "others carry more than the whole load (a planet.position_error_um beyond the loaded planets' "
+                     "mesh deflection and the backlash)")
+        elif np.all(lost):
+            words = ("never touches its loaded flank in the steady window: the planet carries no load and the other "
+                     "planets carry its share (a planet.position_error_um larger than the loaded planets' mesh "
+                     "deflection leaves it inside the backlash)")
+        else:
+            words = stats.contact_loss_words(loaded, m, lost)
+        out.append(dg.warning(dg.CONTACT_LOSS, f"{where}: {words}", stage=x.index + 1, planet=x.planet + 1,
+                              mesh="sun_planet" if x.gear == "sun" else "planet_ring", fraction=float(lost.mean())))
     return out
 
 

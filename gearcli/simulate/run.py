@@ -34,7 +34,7 @@ from gearcli.simulate.course import CourseChange, integrate_auto, pace_warnings,
 from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, run_up_end, scene_period
-from gearcli.simulate.planet_stats import peak_series, planet_series, planets_of, with_planets
+from gearcli.simulate.planet_stats import peak_series, planet_contact_warnings, planet_series, planets_of, with_planets
 from gearcli.simulate.results import (
     EnergyBalance,
     SimulationResult,
@@ -453,7 +453,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
-    diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m, reduced)
+    diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m, reduced,
+                                                     planet_contact_warnings(model, s, mask))
     toggled = None
     if model.layout.drive.motor is not None:
         from gearcli.simulate import motor as motor_side  # lazy: a motor drive's run only

@@ -329,7 +329,8 @@ def impact_damped(mesh: MeshSpec) -> bool:
 
 
 def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray | None],
-                     static_penetration_m: np.ndarray, reduced: Reduced | None = None) -> list[Diagnostic]:
+                     static_penetration_m: np.ndarray, reduced: Reduced | None = None,
+                     planets: Sequence[Diagnostic] = ()) -> list[Diagnostic]:
     """Penetration beyond the full-damping depth (IMPACT-damped meshes) or 10 % of the module; loss of contact on the loaded
     flank in the steady window (a loaded mesh that separates or crosses to its other flank rattles).
 
@@ -338,12 +339,16 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
     approach on purpose (configs/industrial_two_stage.toml). The warning is given only when the static
     penetration lies below d, i.e. when the law was set up in the seed's sense and a transient exceeds it.
 
+    ``planets``: the planet meshes' contact-loss warnings, with the planet named
+    (:func:`gearcli.simulate.planet_stats.planet_contact_warnings`), added to the list; a planetary stage among them
+    is not warned again for its channel, planet 1's sun mesh (one of theirs).
+
     ``reduced``: the window's reductions of the same stages (:func:`window_reductions`), where the caller has them:
     a loaded flank loses contact in the window exactly when the window's least (drive flank) or largest (back flank)
     penetration is on the other side of 0 (:meth:`Reduced.penetration`: a finite one's sign that of the metres its
     millimetres scale); the samples are read only for a warning's fraction.
     """
-    out = []
+    out, planet_stages = [], {d.data["stage"] for d in planets}
     sel = window_slice(mask) if reduced is None else None  # the window's samples read in place
     for k, (m, pen) in enumerate(zip(spec.meshes, penetration_m, strict=True)):
         if pen is None:  # a stage whose connector is no mesh (a belt's span): no contact to lose
@@ -359,19 +364,24 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
                                   f"({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity",
                                   stage=k + 1, penetration_m=deepest))
         loaded = math.copysign(1.0, m.static_tangential_N)  # the flank that carries the static load
-        if m.static_tangential_N == 0 or not _loses_contact(pen, mask, sel, loaded,
+        if k + 1 in planet_stages or m.static_tangential_N == 0 or not _loses_contact(pen, mask, sel, loaded,
                                                             None if reduced is None else reduced.penetration(k)):
             continue
         lost = loaded * pen[window_slice(mask) if sel is None else sel] <= 0.0
         if np.any(lost):
-            flank = "drive" if loaded > 0 else "back"
-            what = ("tooth impacts (rattle) — the load is too small for the vibration" if m.backlash_m > 0 else
-                    "without backlash the other flank takes the force at once, no gap to cross and no impact, but the "
-                    "mesh force reverses — the vibration's force exceeds the static load")
-            out.append(dg.warning(dg.CONTACT_LOSS, f"stage {k + 1}: the loaded ({flank}) flank loses contact in the "
-                                  f"steady window ({100.0 * lost.mean():.3g} % of the samples): {what}", stage=k + 1,
-                                  fraction=float(lost.mean())))
-    return out
+            out.append(dg.warning(dg.CONTACT_LOSS, f"stage {k + 1}: {contact_loss_words(loaded, m, lost)}",
+                                  stage=k + 1, fraction=float(lost.mean())))
+    return out + list(planets)
+
+
+def contact_loss_words(loaded: float, m: MeshSpec, lost: np.ndarray) -> str:
+    """The contact-loss warning's words for a mesh whose ``loaded`` flank (+1 drive, -1 back) loses contact at the
+    window's samples ``lost``."""
+    flank = "drive" if loaded > 0 else "back"
+    what = ("tooth impacts (rattle) — the load is too small for the vibration" if m.backlash_m > 0 else
+            "without backlash the other flank takes the force at once, no gap to cross and no impact, but the "
+            "mesh force reverses — the vibration's force exceeds the static load")
+    return f"the loaded ({flank}) flank loses contact in the steady window ({100.0 * lost.mean():.3g} % of the samples): {what}"
 
 
 def _loses_contact(pen: np.ndarray, mask: np.ndarray, sel: slice | np.ndarray | None, loaded: float,

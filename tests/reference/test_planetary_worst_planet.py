@@ -53,17 +53,21 @@ rtol = 1e-9
 """
 
 
+def series_stiffness(ds) -> tuple[float, float]:
+    """The hand model's k_eq (N/m) of a planet's sun and ring meshes in series, and the mean planet's line force F_mean
+    (N along the line of action) of SCENE's stage design ``ds`` (as tests/reference/test_planetary_dynamics.py)."""
+    k_sp = ds.iso6336_mesh_stiffness_N_mm_um * ds.face_width_mm * 1e6
+    k_rp = ds.planetary.planet_ring.iso6336_mesh_stiffness_N_mm_um * ds.planetary.planet_ring.face_width_mm * 1e6
+    return k_sp * k_rp / (k_sp + k_rp), T_LOAD / (1 + Z_R / Z_S) / (N * 0.5e-3 * ds.pinion.base_diameter_mm)
+
+
 def test_the_stage_dynamic_factor_is_the_most_loaded_planets(tmp_path):
     path = tmp_path / "planetary.toml"
     path.write_text(SCENE)
     loaded, design = api.load_and_design(str(path))
     result = api.simulate(loaded.design, design)
     st, ds = result.stages[0], design.stages[0]
-    # the hand model (as tests/reference/test_planetary_dynamics.py writes it out)
-    k_sp = ds.iso6336_mesh_stiffness_N_mm_um * ds.face_width_mm * 1e6
-    k_rp = ds.planetary.planet_ring.iso6336_mesh_stiffness_N_mm_um * ds.planetary.planet_ring.face_width_mm * 1e6
-    k_eq = k_sp * k_rp / (k_sp + k_rp)
-    f_mean = T_LOAD / (1 + Z_R / Z_S) / (N * 0.5e-3 * ds.pinion.base_diameter_mm)  # N along the line of action
+    k_eq, f_mean = series_stiffness(ds)  # the hand model
     most, planet_1 = 1 + k_eq * E_UM * 1e-6 * (1 - 1 / N) / f_mean, 1 - k_eq * E_UM * 1e-6 / (N * f_mean)
     assert most > 1.05 and planet_1 < 0.99  # the check has teeth: the planets differ by several per cent
     assert tomllib.loads(SCENE)["stage"][0]["planet"]["position_error_um"][1] == E_UM  # on planet 2, not 1
