@@ -174,35 +174,59 @@ def _speed_approach(t: np.ndarray, w: np.ndarray, eigenvalues: np.ndarray, windo
     creeps towards the operating point. For the slowest such mode not decayed since t = 0 that decays by at least
     :data:`SEEN_DECAY` within the window, the input speed is fitted by least squares with a constant plus its free
     decay, ``w_op + b e^(-sigma (t - t0))``: unsettled when |b| exceeds SETTLED_FRACTION of w_op, settled from
-    ``t0 + ln(|b| / (f w_op)) / sigma``. A slower one (a neutral rigid mode: a balanced torque drive) cannot be told
-    from the operating point within the window: unsettled only when the speed drifts across the window (its
-    least-squares line) by more than that fraction of its mean, with no settle time."""
+    ``t0 + ln(|b| / (f w_op)) / sigma``. A slower one cannot be told from the operating point within the window:
+    unsettled only when the speed drifts across the window (its least-squares line) by more than that fraction of its
+    mean, with no settle time. So is a neutral mode, an eigenvalue at the eigensolver's noise (:data:`NEUTRAL`: a
+    balanced torque drive's speed, a free train's angle), which has no time constant to state and no decay to fit:
+    taken for one, a numerical -4e-10 was printed as a 2.4e9 s mode, and it hid the 0.45 s mode the fit explains."""
     length = window_s[1] - window_s[0]
-    real = sorted(-float(z.real) for z in np.asarray(eigenvalues, dtype=complex)
-                  if z.imag == 0.0 and z.real < 0.0 and -z.real * window_s[0] < DECAYED)
+    lam = np.asarray(eigenvalues, dtype=complex)
+    real = sorted(-float(z.real) for z in lam if z.imag == 0.0 and z.real < 0.0 and -z.real * window_s[0] < DECAYED)
     if not real or t.size < 4 or length <= 0.0:
         return worst
-    mean, rpm = float(np.mean(w)), 30.0 / math.pi
-    seen = [x for x in real if x * length >= SEEN_DECAY]
-    if len(seen) < len(real) or not seen:  # a slower mode: the drift across the window
-        drift = abs(float(np.polyfit(t - t[0], w, 1)[0])) * length
-        if mean != 0.0 and drift / abs(mean) > SETTLED_FRACTION:
-            return Settling(False, drift / abs(mean), None, None, None,
-                            f"the input speed drifts across the window by {drift * rpm:.4g} rpm ({100 * drift / abs(mean):.2g} "
-                            f"% of its mean): the train's rigid-body mode (time constant {1.0 / real[0]:.3g} s, longer "
-                            "than the window) has not brought it to its operating point; lengthen simulation.duration_s")
+    noise = NEUTRAL * float(np.max(np.abs(lam)))
+    physical = [x for x in real if x > noise]
+    neutral = len(physical) < len(real)
+    seen = [x for x in physical if x * length >= SEEN_DECAY]
+    if len(seen) < len(physical) or not seen:  # a slower mode (or only neutral ones): the drift across the window
+        slow = f"time constant {1.0 / physical[0]:.3g} s, longer than the window" if len(seen) < len(physical) \
+            else "neutral: no torque restores its speed"
+        drifting = _drift(t, w, length, slow)
+        if drifting is not None:
+            return drifting
         if not seen:
             return worst
     sigma = seen[0]
     (w_op, b), *_ = np.linalg.lstsq(np.column_stack([np.ones_like(t), np.exp(-sigma * (t - t[0]))]), w, rcond=None)
     fraction = abs(float(b)) / abs(float(w_op)) if w_op != 0.0 else 0.0
     if fraction <= SETTLED_FRACTION:
-        return worst
+        drifting = _drift(t, w, length, "neutral: no torque restores its speed") if neutral else None
+        return worst if drifting is None else drifting
+    rpm = 30.0 / math.pi
     return Settling(False, fraction, None, None, float(t[0]) + math.log(fraction / SETTLED_FRACTION) / sigma,
                     f"the input speed still approaches its operating point, about {float(w_op) * rpm:.4g} rpm: the "
                     f"train's rigid-body mode (time constant {1.0 / sigma:.3g} s, from the load's and drive's dT/dw) "
                     f"carries {float(b) * rpm:+.4g} rpm at the window's start ({100 * fraction:.2g} % of it), so the "
                     "window's speeds and their means are not the operating point's")
+
+
+#: an eigenvalue within this share of the largest |eigenvalue| is the eigensolver's zero (a neutral mode): its
+#: absolute error is ~1e-16 of the largest, and a physical rigid mode this slow (tau > 1e10 / max|lambda|, days for a
+#: drivetrain) cannot be told from a neutral one within any window
+NEUTRAL = 1e-10
+
+
+def _drift(t: np.ndarray, w: np.ndarray, length: float, mode: str) -> Settling | None:
+    """Unsettled when the speed drifts across the window (its least-squares line) by more than SETTLED_FRACTION of its
+    mean, the slow or neutral rigid-body ``mode`` named; else None."""
+    mean, rpm = float(np.mean(w)), 30.0 / math.pi
+    drift = abs(float(np.polyfit(t - t[0], w, 1)[0])) * length
+    if mean == 0.0 or drift / abs(mean) <= SETTLED_FRACTION:
+        return None
+    return Settling(False, drift / abs(mean), None, None, None,
+                    f"the input speed drifts across the window by {drift * rpm:.4g} rpm ({100 * drift / abs(mean):.2g} "
+                    f"% of its mean): the train's rigid-body mode ({mode}) has not brought it to its operating point; "
+                    "lengthen simulation.duration_s")
 
 
 def _growth(forces: list[np.ndarray], refs: list[float], static_N: list[float], worst: Settling) -> Settling:
