@@ -93,3 +93,22 @@ def test_a_noise_eigenvalue_is_neutral_and_never_a_time_constant():
     # only the neutral mode, and no drift: settled
     got = _speed_approach(t, _approach(t, b=0.0), lam[[0, 2, 3]], (0.6, 3.0), Settling(True, 0.0))
     assert got.settled
+
+
+def test_reports_theory_is_the_torque_drives_balance(tmp_path):
+    """`report`'s theory for this torque drive (tr18a's theory point, its torque-drive half): the input speed at the
+    balance, 1654.49 rpm, and F_t = T_in / r_1 (at the balance the drive's torque is what the load takes), where the
+    nominal point's F_t is the load's 80 N m / (i eta) / r_1."""
+    from gearcli import api
+
+    path = tmp_path / "fan.toml"
+    path.write_text(SCENE, encoding="utf-8")
+    loaded = api.load(str(path), [])
+    rep = api.report_file(loaded, api.design(loaded), quick=True)
+    n, _ = _hand()
+    rows = {(r.stage, r.quantity): r for r in rep.comparison}
+    assert rep.theory_point is not None and rep.theory_point.drive == "torque"
+    assert abs(rows[(None, "input_speed_deg_s")].theory - 6.0 * n) <= 1e-6 * 6.0 * n
+    r1 = 21 * 3e-3 / math.cos(math.radians(14)) / 2
+    assert abs(rows[(1, "tangential_N")].theory - 25.0 / r1) <= 1e-7 * 25.0 / r1
+    assert abs(rows[(1, "tangential_N")].error_percent) < 0.1  # the lengthened, settled run meets it
