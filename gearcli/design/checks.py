@@ -1,6 +1,6 @@
-"""Design checks: errors that stop the design, warnings that do not (docs/physics.md, "Design calculations").
+"""Design checks: the warnings that do not stop the design (docs/physics.md, "Design calculations"); the errors that
+do are :mod:`gearcli.design.input_checks`.
 
-Errors raise ``DesignError`` with a 0-based key path (``stage[0].gear.hand``); the CLI adds the file.
 Warnings are one line each, name the stage (1-based, as an engineer counts) and carry the numbers.
 
 Choices where the contract is silent:
@@ -25,13 +25,10 @@ Choices where the contract is silent:
 
 from __future__ import annotations
 
-import json
 import math
-import re
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
-from gearcli.config.keys import suggest
 from gearcli.core.jsontypes import JsonObject
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
@@ -41,60 +38,21 @@ from gearcli.design.geometry import (
     undercut_limit_teeth,
     undercut_min_profile_shift,
 )
+from gearcli.design.input_checks import HANDS, OPPOSITE
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_orders
 from gearcli.design.stiffness import material_factor, smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
-from gearcli.errors import DesignError
 from gearcli.stages.design import design_kind, gear_pairs, member_name
 
 if TYPE_CHECKING:
-    from gearcli.config.schema import DesignFile, Material, Stage
+    from gearcli.config.schema import DesignFile, Stage
     from gearcli.diagnostics import Diagnostic
     from gearcli.results import GearResult, StageResult
 
-HANDS = ("left", "right")
-OPPOSITE = {"left": "right", "right": "left"}
 MIN_CONTACT_RATIO = 1.2
 FACE_RATIO_RANGE = (0.2, 1.5)  # b / d1
 MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a fan law: 0.5 % in speed)
-
-
-# ------------------------------------------------------------------------------------------ errors
-def check_material(name: str, materials: dict[str, Material], key: str) -> None:
-    """Refuse a member's material that ``[materials]`` does not define, suggesting the defined one it most likely
-    means (``stel`` -> ``steel``) and the table to add (its name quoted where TOML needs it: ``[materials."a.b"]``)."""
-    if name not in materials:
-        known = ", ".join(sorted(materials)) or "none"
-        hint = ("; the built-in steel applies only to a file without a [materials] table"
-                if name == "steel" and materials else "")
-        best = suggest(name, list(materials))
-        meant = f" (did you mean {best!r}?)" if best else ""
-        table = name if _BARE_KEY.fullmatch(name) else json.dumps(name, ensure_ascii=False)
-        raise DesignError(f"unknown material {name!r}{meant}: define [materials.{table}] (defined: {known}){hint}",
-                          key=key)
-
-_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")  # a TOML bare key; any other name is written quoted
-
-
-def check_hands(stage: Stage, k: int, names: tuple[str, str] = ("pinion", "gear")) -> None:
-    """A helical pair (β > 0) needs a hand on each gear, and opposite hands (external pair). ``names``: what the
-    design file calls the pair's members (a planetary's sun–planet pair: "sun", "planet"), for the messages."""
-    if stage.helix_angle_deg == 0.0:
-        return
-    name = dict(zip(("pinion", "gear"), names, strict=True))
-    hands = {"pinion": stage.pinion.hand or "", "gear": stage.gear.hand or ""}
-    for part, other in (("pinion", "gear"), ("gear", "pinion")):
-        if hands[part] not in HANDS:
-            need = f'"{OPPOSITE[hands[other]]}" (opposite to the {name[other]})' if hands[other] in HANDS \
-                else '"left" or "right"'
-            got = f'"{hands[part]}"' if hands[part] else "no hand"
-            raise DesignError(f"helix angle β = {stage.helix_angle_deg:g}° needs hand = {need}, got {got}",
-                              key=f"stage[{k}].{part}.hand")
-    if hands["pinion"] == hands["gear"]:
-        raise DesignError(f'an external helical pair needs opposite hands: the {name["pinion"]} is '
-                          f'"{hands["pinion"]}", so the {name["gear"]} must be "{OPPOSITE[hands["pinion"]]}"',
-                          key=f"stage[{k}].gear.hand")
 
 
 # ---------------------------------------------------------------------------------------- warnings

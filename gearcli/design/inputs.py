@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from gearcli.design.checks import check_hands, check_material
+from gearcli.design.input_checks import check_hands, check_material
 from gearcli.design.standards import standard_of
 from gearcli.errors import DesignError
 from gearcli.stages.design import design_kind, file_key, gear_pairs, pair_view

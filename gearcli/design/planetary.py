@@ -33,7 +33,7 @@ from gearcli.design import allowances_internal as ia
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import check_material, resonance_text
+from gearcli.design.checks import resonance_text
 from gearcli.design.geometry import (
     base_diameter_mm,
     base_helix_angle_rad,
@@ -46,6 +46,7 @@ from gearcli.design.geometry import (
     transverse_pressure_angle_rad,
 )
 from gearcli.design.inertia import annulus_inertia_kg_m2, mean_body_diameter_mm
+from gearcli.design.input_checks import check_material
 from gearcli.design.kinematics import Train, power_kW, speed_deg_s, speed_rpm
 from gearcli.design.rating_results import InternalRatingResult, RatingResult
 from gearcli.errors import DesignError
