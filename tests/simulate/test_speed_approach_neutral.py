@@ -22,20 +22,11 @@ from click.testing import CliRunner
 
 from gearcli.cli import cli
 from gearcli.simulate.settle import Settling, _speed_approach
+from tests.reference.test_report_motor_theory import SCENE as MOTOR_SCENE
 
-SCENE = """
-title = "torque drive on a fan load"
-materials.st = { density_kg_m3 = 7850, youngs_modulus_MPa = 2.1e5, poisson_ratio = 0.3 }
-simulation = { duration_s = 3.0, steps = 3000 }
-load = { torque_Nm = 80, speed_exponent = 2, inertia_kg_m2 = 1.5, coupling_stiffness_Nm_rad = 6e4, coupling_damping_Nms_rad = 20 }
-[[stage]]
-normal_module_mm = 3
-normal_pressure_angle_deg = 20
-helix_angle_deg = 14
-efficiency = 0.985
-pinion = { teeth = 21, face_width_mm = 45, hand = "left",  material = "st" }
-gear   = { teeth = 83, face_width_mm = 40, hand = "right", material = "st" }
-[input]
+# the motor-theory scene's stage, materials and load, its run 3 s long, on a torque drive and with a fan load
+SCENE = MOTOR_SCENE.split("[input]")[0].replace("duration_s = 1.2", "duration_s = 3.0").replace(
+    "load = { torque_Nm = 80,", "load = { torque_Nm = 80, speed_exponent = 2,") + """[input]
 drive = "torque"
 speed_rpm = 1500
 torque_Nm = 25
@@ -43,6 +34,7 @@ inertia_kg_m2 = 0.012
 coupling_stiffness_Nm_rad = 1.5e4
 coupling_damping_Nms_rad = 2
 """
+assert "speed_exponent = 2" in SCENE and "duration_s = 3.0" in SCENE
 
 I, ETA = 83 / 21, 0.985
 
