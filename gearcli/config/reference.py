@@ -9,6 +9,7 @@ Regenerate after a schema change (a test compares the committed file with this t
 from __future__ import annotations
 
 import json
+import math
 from typing import Any
 
 from gearcli.config.prescan import MAX_BYTES, MAX_KEY_DEPTH, MAX_KEYS, MAX_NESTING
@@ -42,10 +43,28 @@ _TABLES = [("", "DesignFile", "The top level"), ("[materials.NAME]", "Material",
            ("[[duty]]", "Duty", "Optional: one operating point of the duty cycle of `gearcli life` (docs/life.md)")]
 
 
+_TYPES = {"number": "number", "integer": "integer", "boolean": "true/false", "string": "string"}
+
+
 def _num(v: Any) -> str:
     if isinstance(v, float) and v.is_integer() and abs(v) < 1e7:
         return str(int(v))
     return f"{v:g}" if isinstance(v, float) else json.dumps(v)
+
+
+def _bound(v: Any, *, upper: bool) -> str:
+    """A range's bound as :func:`_num` prints it, rounded inward where that text is not the bound itself: an
+    upper bound down, a lower one up, so every value the reference shows inside the range validates (200000 rpm
+    is 20943.951... rad/s, printed 20943.9, never 20944, which validation refuses)."""
+    shown = _num(v)
+    if not isinstance(v, float) or not math.isfinite(v) or v == 0 or float(shown) == v:
+        return shown
+    for digits in range(6, 18):
+        scale = 10.0 ** (math.floor(math.log10(abs(v))) - digits + 1)
+        shown = f"{(math.floor if upper else math.ceil)(v / scale) * scale:.{digits}g}"
+        if (float(shown) <= v) if upper else (float(shown) >= v):
+            return shown
+    return repr(v)
 
 
 def _kind(prop: dict, defs: dict) -> tuple[str, str]:
@@ -56,8 +75,9 @@ def _kind(prop: dict, defs: dict) -> tuple[str, str]:
     if options:
         parts = [_kind(o, defs) for o in options if o.get("type") != "null"]
         return " or ".join(p[0] for p in parts), "; ".join(p[1] for p in parts if p[1])
-    if "enum" in prop:
-        return "string", ", ".join(json.dumps(v) for v in prop["enum"])
+    if "enum" in prop:  # the schema's type where it states one: speed_exponent is an integer 0, 1 or 2
+        kind = prop.get("type", "string")
+        return _TYPES.get(kind, kind), ", ".join(json.dumps(v) for v in prop["enum"])
     if "const" in prop:
         return "string", json.dumps(prop["const"])
     t = prop.get("type", "any")
@@ -79,13 +99,14 @@ def _kind(prop: dict, defs: dict) -> tuple[str, str]:
     if lo is not None or hi is not None:
         left = "(" if "exclusiveMinimum" in prop else "["
         right = ")" if "exclusiveMaximum" in prop else "]"
-        rng = f"{left}{_num(lo) if lo is not None else '-inf'}, {_num(hi) if hi is not None else 'inf'}{right}"
+        rng = (f"{left}{_bound(lo, upper=False) if lo is not None else '-inf'}, "
+               f"{_bound(hi, upper=True) if hi is not None else 'inf'}{right}")
     if "not" in prop:
         tiny = max(r["exclusiveMaximum"] for r in prop["not"]["anyOf"])
         rng += f"; 0 or magnitude ≥ {_num(tiny)}"
     if "maxLength" in prop:
         rng = f"at most {prop['maxLength']} characters"
-    return {"number": "number", "integer": "integer", "boolean": "true/false", "string": "string"}.get(t, t), rng
+    return _TYPES.get(t, t), rng
 
 
 def _table(title: str, name: str, what: str, defs: dict, root: dict) -> list[str]:
