@@ -6,7 +6,7 @@ from collections.abc import Sequence
 
 from rich.console import RenderableType
 
-from gearcli.io.table_kit import FittedTable, StageColumns, _g
+from gearcli.io.table_kit import FittedTable, StageColumns, _g, spread
 from gearcli.life.result import BearingLife
 from gearcli.optional_results import BearingResult
 from gearcli.simulate.results import BearingStats
@@ -82,7 +82,7 @@ def bearing_stats_table(window_s: tuple[float, float], bearings: Sequence[Bearin
             first = label.startswith("radial")
             place = f"planets {b['planet_stage']}" if b.get("planet_stage") else str(b["shaft"])
             rows.append([str(j + 1) if first else "", place if first else "", _g(b["position_mm"]) if first else "",
-                         label, _g(st.mean), _g(st.std, 3), _g(st.min), _g(st.max)])
+                         label, _g(st.mean), spread(st.std, st.mean), _g(st.min), _g(st.max)])
             ends.append(not first and "static_safety_min" not in b)
         if "static_safety_min" in b:  # ISO 76 at the window's peak P_0 (docs/bearings.md)
             rows.append(["", "", "", "static safety s_0 (min)", "", "", _g(b.get("static_safety_min"), 4), ""])

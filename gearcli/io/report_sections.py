@@ -12,6 +12,7 @@ import math
 
 from gearcli.core.records import record
 from gearcli.core.text import figure, shorten
+from gearcli.io.table_kit import spread_digits
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
 from gearcli.report.compare import reversed_lossy_stages
@@ -127,7 +128,7 @@ def fluctuation_section(r: Report) -> Section:
     rows = []
     for s in r.stages:
         for name, st in (("F_t [N]", s.tangential_N), ("F_r [N]", s.radial_N), ("F_a [N]", s.axial_N)):
-            rows.append((str(s.stage) if name.startswith("F_t") else "", name, g(st.mean), g(st.std, 3),
+            rows.append((str(s.stage) if name.startswith("F_t") else "", name, g(st.mean), g(st.std, spread_digits(st.std, st.mean)),
                          g(st.min), g(st.max)))
     return Section("Mesh force fluctuation over the steady window", ("stage", "force", "mean", "std", "min", "max"),
                    tuple(rows), "llrrrr")

@@ -26,6 +26,7 @@ from gearcli.io.table_kit import (
     _quantity_table,
     limits,
     output_width,
+    spread,
     text,
 )
 from gearcli.io.units import input_torque_window_means, of_result
@@ -246,7 +247,7 @@ def rating_table(stages: Sequence[_HasRating], title: str = "strength rating, {s
 
 
 def _stats_cells(st) -> list[str]:
-    return [_g(st.mean), _g(st.std, 3), _g(st.min), _g(st.max)]
+    return [_g(st.mean), spread(st.std, st.mean), _g(st.min), _g(st.max)]
 
 
 def simulation_tables(r: SimulationResult) -> list[RenderableType]:
@@ -275,7 +276,7 @@ def simulation_tables(r: SimulationResult) -> list[RenderableType]:
         ("dynamic factor (window max / static)", [_g(s.dynamic_factor, 4) for s in gear]),
         ("run-up factor (run peak / static)", [_g(s.runup_factor, 4) for s in gear]),
         ("DTE mean [µm]", [_g(s.dte_um.mean) if s.dte_um else "—" for s in gear]),
-        ("DTE rms about mean [µm]", [_g(s.dte_um.rms, 3) if s.dte_um else "—" for s in gear]),
+        ("DTE rms about mean [µm]", [spread(s.dte_um.rms, s.dte_um.mean) if s.dte_um else "—" for s in gear]),
         ("DTE min / max [µm]", [f"{_g(s.dte_um.min)} / {_g(s.dte_um.max)}" if s.dte_um else "—" for s in gear]),
         ("contact loss fraction", [_g(s.contact_loss_fraction, 3) for s in gear]),
         ("back flank fraction", [_g(s.back_flank_fraction, 3) for s in gear]),
@@ -361,7 +362,8 @@ def _planet_tables(r: SimulationResult) -> list[RenderableType]:
         for p in s.planets:
             for label, m in (("sun", p.sun), ("ring", p.ring)):
                 rows.append((str(p.index) if label == "sun" else "", label, _g(m.tangential_N.mean),
-                             _g(m.tangential_N.std, 3), _g(m.dte_um.mean), _g(m.dte_um.rms, 3)))
+                             spread(m.tangential_N.std, m.tangential_N.mean), _g(m.dte_um.mean),
+                             spread(m.dte_um.rms, m.dte_um.mean)))
                 ends.append(label == "ring")
         # a fitted table: a narrow terminal leaves columns out rather than splitting a number
         out.append(FittedTable(f"stage {s.index}: planets over the steady window (load-sharing factor "
