@@ -305,7 +305,12 @@ def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None
                           "file", source="--series")
     raw = read_bytes(file)
     loaded = load(file, overrides, stdin=io.BytesIO(raw))
-    return prepare(raw, loaded, design(loaded, overrides), overrides, series=series, classes=classes)
+    try:
+        return prepare(raw, loaded, design(loaded, overrides), overrides, series=series, classes=classes)
+    except ConfigError as exc:  # a duty rule a --set broke (every point's hours 0, a repeated name) names the --set
+        if exc.source != loaded.source or not blames_key(exc.key, overrides):
+            raise
+        raise ConfigError(exc.message, source=SOURCE, key=exc.key) from None
 
 
 def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
