@@ -294,3 +294,24 @@ def test_life_starts_in_their_own_classes_and_miner_by_hand(hand):
         assert_allclose(b["cycles_to_failure"], n, rtol=1e-9)
         assert_allclose(b["damage"], b["cycles"] / n, rtol=1e-9)
     assert_allclose(sun["damage"], sum(b["damage"] for b in sun["bins"]), rtol=1e-12)
+
+
+def test_motor_start_is_quiet_from_where_the_motor_stays_near_its_operating_speed(hand):
+    """``stepped_over.motor_quiet_since`` on made-up motor speed records: the first sample from which the motor stays
+    within 2 % of the hand operating speed; None while it is still outside at the end; a soft start's voltage ramp
+    (0.5 s) ends later than the speed settles, and rules."""
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+    from gearcli.scene import build_model
+    from gearcli.simulate.stepped_over import motor_quiet_since
+
+    def layout(*sets: str):
+        cfg = load_design(FILE, list(sets)).design
+        return build_model(cfg, compute_design(cfg)).layout
+
+    t = np.linspace(0.0, 1.0, 11)
+    w = hand.w_op * np.array([0.0, 0.5, 0.9, 0.99, 1.03, 0.97, 0.985, 1.01, 1.0, 1.0, 1.0])
+    assert motor_quiet_since(layout(), t, w) == pytest.approx(0.6)  # 0.97 at 0.5 s is the last one outside
+    assert motor_quiet_since(layout(), t, np.append(w[:-1], 0.9 * hand.w_op)) is None
+    soft = layout("input.starting=soft_start", "input.voltage_ramp_s=0.75")
+    assert motor_quiet_since(soft, t, w) == pytest.approx(0.75)
