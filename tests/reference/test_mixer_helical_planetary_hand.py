@@ -35,7 +35,7 @@ import pytest
 from click.testing import CliRunner
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from gearcli.cli import cli
 
@@ -238,7 +238,8 @@ def test_start_and_settled_run_match_the_hand_train(hand):
     and no ``statistics_unresolved`` stands beside it: the DOL start rings the 1860 Hz sun-mesh mode (damping ratio
     0.046), which has decayed by e^-550 at the window's start (Radau's and DOP853's window agree to 1e-6 of the
     mean; before, every motor start was warned "not estimable"). The rigid start's peak F_t per stage by Newton-Euler."""
-    doc = _run("simulate")
+    doc = _run("simulate", "--set", "simulation.duration_s=2", "--set", "simulation.steps=2000",
+               "--set", "simulation.window_start_s=1.2")  # the file's 6 s window, shortened: the same verdicts
     s = doc["summary"]
     assert_allclose(s["motor"]["operating_point_rpm"], hand.w_op * 30 / math.pi, rtol=1e-9)
     assert_allclose(s["input_speed_rpm"], hand.w_op * 30 / math.pi, rtol=1e-7)
@@ -252,9 +253,16 @@ def test_start_and_settled_run_match_the_hand_train(hand):
     assert not [w for w in doc["warnings"] if w["code"] == "statistics_unresolved"], doc["warnings"]
     sol = solve_ivp(lambda t, y: [hand.rigid(y[0])[0]], (0.0, 0.6), [0.0], method="DOP853", rtol=1e-10,
                     atol=1e-10, dense_output=True)
-    w = sol.sol(np.linspace(0.0, 0.6, 60001))[0]
-    forces = np.array([hand.rigid(x)[1:3] for x in w])
-    assert_allclose(s["start"]["rigid_peak_N"], [forces[:, 0].max() * cos_t1, forces[:, 1].max() * cos_t2], rtol=1e-5)
+    t = np.linspace(0.0, 0.6, 601)
+    peaks = []
+    for k, cos_t in ((1, cos_t1), (2, cos_t2)):  # the grid's largest, refined between its neighbours
+        f = np.array([hand.rigid(x)[k] for x in sol.sol(t)[0]])
+        i = int(np.argmax(f))
+        best = minimize_scalar(lambda x, k=k: -hand.rigid(float(sol.sol(x)[0]))[k], bounds=(t[i - 1], t[i + 1]),
+                               method="bounded", options={"xatol": 1e-9})
+        peaks.append(-best.fun * cos_t)
+    # 15027.65 and 11607.45 N by hand at 0.151 and 0.152 s; the tool's are 8.7e-6 and 9.6e-6 above
+    assert_allclose(s["start"]["rigid_peak_N"], peaks, rtol=2e-5)
 
 
 def test_planetary_moment_balance_with_losses(hand):
