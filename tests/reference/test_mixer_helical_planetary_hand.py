@@ -261,7 +261,9 @@ def test_start_and_settled_run_match_the_hand_train(hand):
         best = minimize_scalar(lambda x, k=k: -hand.rigid(float(sol.sol(x)[0]))[k], bounds=(t[i - 1], t[i + 1]),
                                method="bounded", options={"xatol": 1e-9})
         peaks.append(-best.fun * cos_t)
-    # 15027.65 and 11607.45 N by hand at 0.151 and 0.152 s; the tool's are 8.7e-6 and 9.6e-6 above
+    # 15027.65 and 11607.45 N by hand at 0.151 and 0.152 s; the tool's are 8.7e-6 and 9.6e-6 above: its estimate
+    # passes the planets' spin inertia torque through the stage's loss (docs/physics.md, "Rigid-body start"), this
+    # Newton-Euler through the sun mesh's eta_m (with both efficiencies 1 the two agree to 2e-13)
     assert_allclose(s["start"]["rigid_peak_N"], peaks, rtol=2e-5)
 
 
