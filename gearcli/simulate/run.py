@@ -235,7 +235,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     diags += resonance_warnings(model, choice) if diagnose else []
     ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s,
                               mixed=bool(changes)) if error_estimate else None
-    mode = (stepped_over.unresolved_mode(choice, run, duration_s, window[0])
+    mode = (stepped_over.unresolved_mode(choice, run, duration_s, window[0], s)
             or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
         if ref is not None and ref.errors else None
     nonsmooth = ref is not None and any(e.unresolved for e in ref.errors) and stats.leaves_flank(s, window)

@@ -32,6 +32,7 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.core.methods import method as method_info
 from gearcli.diagnostics import Diagnostic
+from gearcli.model.assembly import Layout
 from gearcli.model.outputs import Sampled, tooth_forces
 from gearcli.model.planet_spec import PlanetarySpec
 from gearcli.simulate.choice import Choice, excited_radians
@@ -45,18 +46,47 @@ MAX_BLOCKS = 200  # the record before the window is fitted in at most this many 
 MIN_STEPS_PER_PERIOD = 0.2  # an implicit run with fewer steps per period of such a mode damps it away (Radau's |R(i w h)| ~ 3/(w h): ~0.1 a step at 0.2 a period)
 
 
-def quiet_since(choice: Choice, duration_s: float) -> float | None:
+def quiet_since(choice: Choice, duration_s: float, sampled: Sampled | None = None) -> float | None:
     """The time from which nothing drives the chain's vibration, or None: the end of the drive's and the load's
     ramps in a scene of parallel (or quiet planetary, :func:`_quiet_stage`) stages without excitation (transmission error, stiffness harmonics, time-varying
-    contact, torque ripple, load fluctuation), without backlash (impacts) and with a speed or torque drive (a motor
-    start has no end known before the run); from there every mode's vibration decays at its own rate."""
+    contact, torque ripple, load fluctuation), without backlash (impacts) and with a speed or torque drive; from
+    there every mode's vibration decays at its own rate. A motor start has no end known before the run: with the
+    run's record (``sampled``) it is quiet from where its start ends (:func:`motor_quiet_since`), without it never."""
     lay = choice.layout
     spec = lay.spec
-    if spec.drive.kind == "motor" or spec.elements or not all(_quiet_stage(m) for m in spec.stage_models):
+    if spec.elements or not all(_quiet_stage(m) for m in spec.stage_models):
         return None
     if any(m.backlash_m > 0.0 for m in spec.meshes) or excited_radians(spec, lay, duration_s) > 0.0:
         return None
+    if spec.drive.kind == "motor":
+        started = None if sampled is None else motor_quiet_since(lay, sampled.time_s, sampled.omega_rad_s[0])
+        return None if started is None else max(started, spec.load.ramp_s)
     return max(spec.drive.ramp_s, spec.load.ramp_s)
+
+
+def motor_quiet_since(lay: Layout, t: np.ndarray, w: np.ndarray) -> float | None:
+    """When a motor start's drive stops exciting the chain, from the run's motor speed ``w``: the first sample
+    from which the motor stays within 2 % (:data:`gearcli.simulate.motor.START_FRACTION`) of its operating speed
+    (and, starting star-delta, above its switch-over speed), not before its supply's ramp ends (a soft start's
+    voltage, a VFD's speed); None where it never settles there (a stall, a motor still running up, one left in
+    star). Its torque is then its curve's near the operating point, a function of speed alone: the linearised
+    chain's slip damping, no forcing (a DOL mixer's 1860 Hz planet-mesh mode, excited by the start, has decayed by
+    e^-550 at the window's start: Radau's window and DOP853's agree to 1e-6 of the mean force)."""
+    from gearcli.simulate.motor import START_FRACTION, operating_point  # lazy: scipy.optimize, motor runs only
+
+    motor = lay.drive.motor
+    op = operating_point(lay)
+    if motor is None or not op.reaches or op.speed_rad_s is None or op.speed_rad_s <= 0.0:
+        return None
+    off = np.abs(w - op.speed_rad_s) > (1.0 - START_FRACTION) * op.speed_rad_s
+    if motor.starting == "star_delta":
+        off |= w < motor.start_parameters[0]
+    hit = np.nonzero(off)[0]
+    if hit.size and int(hit[-1]) == t.size - 1:
+        return None
+    settled = float(t[int(hit[-1]) + 1]) if hit.size else float(t[0])
+    ramp = motor.start_parameters[0] if motor.starting in ("soft_start", "vfd") else 0.0
+    return max(settled, ramp)
 
 
 def _quiet_stage(model: object) -> bool:
@@ -72,7 +102,7 @@ def _quiet_stage(model: object) -> bool:
 
 
 def unresolved_mode(choice: Choice, run: Integration, duration_s: float,
-                    window_start_s: float | None = None) -> tuple[float, float] | None:
+                    window_start_s: float | None = None, sampled: Sampled | None = None) -> tuple[float, float] | None:
     """(frequency Hz, damping ratio) of a lightly damped mode that an implicit run steps over, or None.
 
     An implicit method damps vibration it does not resolve, and a second pass of it does too, so the check
@@ -96,7 +126,7 @@ def unresolved_mode(choice: Choice, run: Integration, duration_s: float,
         return None
     zeta = -osc.real / np.abs(osc)
     light = osc[zeta < LIGHT_DAMPING]
-    quiet = quiet_since(choice, duration_s)
+    quiet = quiet_since(choice, duration_s, sampled)
     if quiet is not None and window_start_s is not None:  # a mode at rest in the window hides nothing
         light = light[-light.real * max(0.0, window_start_s - quiet) < FORGOTTEN]
     if light.size == 0:
@@ -197,7 +227,7 @@ def damped_ringing(choice: Choice, method: str, steps: int, sampled: Sampled, du
                    window: tuple[float, float]) -> tuple[float, float] | None:
     """(frequency Hz, damping ratio) of the lightly damped mode whose run-up vibration an implicit run damped away
     (module doc), or None."""
-    t_quiet = quiet_since(choice, duration_s)
+    t_quiet = quiet_since(choice, duration_s, sampled)
     if not method_info(method).implicit or t_quiet is None or window[0] < t_quiet or steps < 1:
         return None
     modes = light_modes(choice, t_quiet, window[0], duration_s / steps)
