@@ -366,6 +366,8 @@ def _all_series(lay: Layout, Y: np.ndarray, omega: np.ndarray, theta, kernel, en
     there; ``width`` samples, the last of ``Y``'s repeated after them (:func:`sample`'s ``constant_from``). Called
     with the signals held back."""
     kind, param, bodies, levers, ppr, flags, rows, channels = _series_rows(lay)
+    if theta is None and any(x.phased for x in lay.connectors):  # the kernel would read past its dummy angles
+        raise ValueError("a phased connector's mesh phase needs the bodies' angles (Layout.needs_angles)")
     F, U, ch, D = kernel.connectors_series(kind, param, bodies, levers, ppr, flags, rows,
                                            np.ascontiguousarray(Y, dtype=float), np.ascontiguousarray(omega),
                                            _NO_ANGLES if theta is None else np.ascontiguousarray(theta),
