@@ -92,6 +92,54 @@ def connector_series(kind, P, d, dd, phi, wphi, energy_from, channels):
     return F, U, ch
 
 @jit_alloc
+def connectors_series(kind, param, bodies, levers, ppr, flags, rows, Y, omega, theta, energy_from, channels, width):
+    """:func:`connector_series` of every connector at once, each one's law arguments made here as
+    :func:`gearcli.model.outputs.connector_series` makes them (the same operations in the same order): the
+    deflection ``Y[rows[c]]``, its rate sum_s lever_s omega[body_s] in slot order, the mesh phase
+    ``ppr[c] theta[bodies[c, 0]]`` where ``flags[c] & 1`` (phased, else 0) and its rate ``ppr[c] omega[bodies[c, 0]]``
+    where ``flags[c] & 2`` (excited, else 0). The samples of ``Y`` are evaluated; ``width`` columns are returned, the
+    last evaluated one repeated after them (a state held constant from there on: the equilibrium's statistics
+    period). Returns (force, stored energy, channels, deflection): connectors x samples, the channels connectors x
+    channel x samples (``channels[c]`` of them evaluated, zeros after)."""
+    nc = kind.shape[0]
+    n = Y.shape[1]
+    nch = 0
+    for c in range(nc):
+        nch = max(nch, conn_n_channels(kind[c]))
+    F = np.empty((nc, width))
+    U = np.empty((nc, width))
+    D = np.empty((nc, width))
+    ch = np.zeros((nc, nch, width))
+    for c in range(nc):
+        k = kind[c]
+        P = param[c]
+        m = min(channels[c], conn_n_channels(k))
+        a = bodies[c, 0]
+        r = rows[c]
+        for j in range(n):
+            d = Y[r, j]
+            dd = levers[c, 0] * omega[a, j]
+            for s in range(1, bodies.shape[1]):
+                b = bodies[c, s]
+                if b < 0:
+                    break
+                dd = dd + levers[c, s] * omega[b, j]
+            phi = ppr[c] * theta[a, j] if flags[c] & 1 else 0.0
+            wphi = ppr[c] * omega[a, j] if flags[c] & 2 else 0.0
+            D[c, j] = d
+            F[c, j] = conn_force(k, P, d, dd, phi, wphi)[0]
+            U[c, j] = conn_potential(k, P, d, phi) if j >= energy_from else np.nan
+            for i in range(m):
+                ch[c, i, j] = conn_channel(k, P, i, d, phi)
+        for j in range(n, width):
+            F[c, j] = F[c, n - 1]
+            U[c, j] = U[c, n - 1]
+            D[c, j] = D[c, n - 1]
+            for i in range(nch):
+                ch[c, i, j] = ch[c, i, n - 1]
+    return F, U, ch, D
+
+@jit_alloc
 def evaluate_jacobian(model, t, y):
     """One Jacobian evaluation (tests)."""
     n = y.size

@@ -279,6 +279,10 @@ def _warm_entry(kernel: Any, name: str) -> None:
     for c in range(2):
         kernel.connector_series(model.kind[c], model.param[c], np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2),
                                 np.int64(0), np.int64(8))
+    kernel.connectors_series(model.kind, model.param, model.bodies, model.levers, np.zeros(2),
+                             np.zeros(2, dtype=np.int64), np.arange(2, dtype=np.int64), np.zeros((3, 2)),
+                             np.zeros((3, 2)), np.zeros((1, 1)), np.int64(0), np.full(2, 8, dtype=np.int64),
+                             np.int64(3))
     kernel.window_statistics(np.zeros((5, 2)), np.zeros((1, 2)), np.arange(2.0), False, np.ones(1))
 
 

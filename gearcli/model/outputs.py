@@ -263,26 +263,52 @@ def _loaded_kernel():
     return _compiled[0] if _compiled else None
 
 
-def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, energy_from: int = 0) -> Sampled:
+def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, energy_from: int = 0,
+           constant_from: int | None = None) -> Sampled:
     """Everything the channels and the energy balance need, at the sample times ``t``. ``torques=False``: without
     the input and load torques (empty arrays; a caller that reads only the speeds, connector forces and energies:
     the energy watch, the settle test, the check pass). ``energy_from``: the connectors' stored energy
     (``potential_J``) from this sample on, NaN before it (not evaluated: an energy balance that starts there,
-    :func:`gearcli.simulate.equilibrium.sampled`; every other channel is sampled whole)."""
+    :func:`gearcli.simulate.equilibrium.sampled`; every other channel is sampled whole). ``constant_from``: the
+    state is constant from this sample on and so is every channel (the caller's word: a speed drive past its ramps,
+    no angle read, ``Y``'s dynamic states equal from there): the samples up to it are evaluated, its own repeated
+    after it (the same numbers as evaluating each)."""
     t = np.asarray(t, dtype=float)
-    omega, theta, a0 = body_motion(lay, t, Y)
     kernel = _loaded_kernel()
+    if constant_from is not None:  # the samples from there on are that sample's state: evaluated once, repeated
+        if kernel is None or not _compiled_all(lay, kernel):
+            return _held(sample(lay, t[:constant_from + 1], Y[:, :constant_from + 1], torques=torques,
+                                energy_from=energy_from), t, torques)
+        head = t[:constant_from + 1]
+        omega, theta, a0 = body_motion(lay, head, Y[:, :constant_from + 1])
+        with signals.deferred():  # a signal acted on after the compiled call
+            conns = _all_series(lay, Y[:, :constant_from + 1], omega, theta, kernel, energy_from, t.size)
+        omega = _widened(omega, t.size)
+        if not torques:
+            return Sampled(t, omega, None, np.empty(0), np.empty(0), conns, lay)
+        t_in, t_load = _torques(lay, head, omega[:, :head.size], theta, a0, conns, head.size)
+        return Sampled(t, omega, None, _widened(t_in, t.size), _widened(t_load, t.size), conns, lay)
+    omega, theta, a0 = body_motion(lay, t, Y)
     if kernel is None:
         conns = tuple(_connector_series(lay, c, Y, omega, theta, None, energy_from) for c in range(lay.n_conn))
     else:
         with signals.deferred():  # once for every connector (a signal acted on after the compiled calls)
-            conns = tuple(_connector_series(lay, c, Y, omega, theta, kernel, energy_from) for c in range(lay.n_conn))
+            conns = _all_series(lay, Y, omega, theta, kernel, energy_from, t.size) if _compiled_all(lay, kernel) \
+                else tuple(_connector_series(lay, c, Y, omega, theta, kernel, energy_from) for c in range(lay.n_conn))
     if not torques:
         return Sampled(t, omega, theta, np.empty(0), np.empty(0), conns, lay)
+    t_in, t_load = _torques(lay, t, omega, theta, a0, conns, t.size)
+    return Sampled(t, omega, theta, t_in, t_load, conns, lay)
+
+
+def _torques(lay: Layout, t: np.ndarray, omega: np.ndarray, theta, a0, conns: tuple[ConnectorSeries, ...],
+             n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The drive's input torque and the load's torque at the samples ``t`` (the first ``n`` of the connectors'
+    series)."""
     if lay.speed_drive:  # what the drive puts into body 0: its connectors' reactions and its inertia
         t_in = None
         for c, j in lay.acting_on(0):
-            term = _side_force(lay, c, j, conns[c].force, omega) * lay.connectors[c].levers[j]
+            term = _side_force(lay, c, j, conns[c].force[:n], omega) * lay.connectors[c].levers[j]
             t_in = term if t_in is None else t_in + term
         t_in = (0.0 if t_in is None else t_in) + lay.inertias[0] * a0
     elif lay.motor_drive:
@@ -299,7 +325,88 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, e
         t_load = t_load * np.array([torque.fluctuation(lay.fluctuation, float(tj) + lay.load.clock_s) for tj in t])
     if lay.load_law:
         t_load = t_load * np.array([machine.load_factor(lay.load_law, w)[0] for w in omega[-1].tolist()])
-    return Sampled(t, omega, theta, t_in, t_load, conns, lay)
+    return t_in, t_load
+
+
+def _compiled_all(lay: Layout, kernel) -> bool:
+    """Every connector's kind is one the compiled laws have (their series in one call, :func:`_all_series`)."""
+    return all(x.kind in kernel.KINDS for x in lay.connectors)
+
+
+def _series_rows(lay: Layout) -> tuple[np.ndarray, ...]:
+    """The compiled ``connectors_series``' description of the layout's connectors (its own, kept with it): kinds,
+    parameter rows, bodies and levers by slot (-1 / 0 padded), phase per radian, flags (1 phased, 2 excited), the
+    deflection's state row, how many leading channels are evaluated (:func:`_evaluated_channels`)."""
+    kept = lay.__dict__.get("_series_rows")
+    if kept is None:
+        conns = lay.connectors
+        nc = len(conns)
+        width = max((len(x.params) for x in conns), default=0)
+        param = np.zeros((nc, width))
+        bodies = np.full((nc, elements.MAX_BODIES), -1, dtype=np.int64)
+        levers = np.zeros((nc, elements.MAX_BODIES))
+        ppr = np.zeros(nc)
+        for c, x in enumerate(conns):
+            param[c, :len(x.params)] = x.params
+            bodies[c, :len(x.bodies)] = x.bodies
+            levers[c, :len(x.levers)] = x.levers
+            if x.phased or x.excited:
+                ppr[c] = x.element.phase_per_rad(x.params)
+        kept = (np.array([x.kind for x in conns], dtype=np.int64), param, bodies, levers, ppr,
+                np.array([int(x.phased) + 2 * int(x.excited) for x in conns], dtype=np.int64),
+                np.array([lay.state.delta(c) for c in range(nc)], dtype=np.int64),
+                np.array([_evaluated_channels(x) for x in conns], dtype=np.int64))
+        lay.__dict__["_series_rows"] = kept
+    return kept
+
+
+def _all_series(lay: Layout, Y: np.ndarray, omega: np.ndarray, theta, kernel, energy_from: int,
+                width: int) -> tuple[ConnectorSeries, ...]:
+    """Every connector's :func:`_connector_series` (the same numbers) in one compiled call, its law arguments made
+    there; ``width`` samples, the last of ``Y``'s repeated after them (:func:`sample`'s ``constant_from``). Called
+    with the signals held back."""
+    kind, param, bodies, levers, ppr, flags, rows, channels = _series_rows(lay)
+    if theta is None and any(x.phased for x in lay.connectors):  # the kernel would read past its dummy angles
+        raise ValueError("a phased connector's mesh phase needs the bodies' angles (Layout.needs_angles)")
+    F, U, ch, D = kernel.connectors_series(kind, param, bodies, levers, ppr, flags, rows,
+                                           np.ascontiguousarray(Y, dtype=float), np.ascontiguousarray(omega),
+                                           _NO_ANGLES if theta is None else np.ascontiguousarray(theta),
+                                           energy_from, channels, width)
+    out = []
+    for c, x in enumerate(lay.connectors):
+        names = x.element.CHANNELS
+        pen = ch[c, names.index("penetration_m")] if "penetration_m" in names else np.zeros(width)
+        q = ch[c, names.index("dte_m")] if x.excited and "dte_m" in names else D[c].copy()
+        out.append(ConnectorSeries(F[c], D[c], pen, U[c], q))
+    return tuple(out)
+
+
+_NO_ANGLES = np.zeros((1, 1))  # theta where the scene reads no angle (no connector is phased)
+
+
+def _widened(x: np.ndarray, width: int) -> np.ndarray:
+    """``x`` (its samples along the last axis; a constant broadcast) with its last sample repeated to ``width``."""
+    x = np.asarray(x, dtype=float)
+    out = np.empty((*x.shape[:-1], width) if x.ndim else (width,))
+    if x.ndim == 0:
+        out.fill(float(x))
+        return out
+    n = x.shape[-1]
+    out[..., :n] = x
+    out[..., n:] = x[..., n - 1:n]
+    return out
+
+
+def _held(head: Sampled, t: np.ndarray, torques: bool) -> Sampled:
+    """``head``'s samples with the last repeated to ``t``'s (:func:`sample`'s ``constant_from``, the laws in Python)."""
+    width = t.size
+    conns = tuple(ConnectorSeries(*(_widened(getattr(c, name), width) for name in _FIELDS)) for c in head.connectors)
+    return Sampled(t, _widened(head.omega_rad_s, width), None,
+                   _widened(head.input_torque_Nm, width) if torques else head.input_torque_Nm,
+                   _widened(head.load_torque_Nm, width) if torques else head.load_torque_Nm, conns, head.layout)
+
+
+_FIELDS = ("force", "deflection", "penetration_m", "potential_J", "dte_m")  # ConnectorSeries' fields, in order
 
 
 def _side_force(lay: Layout, c: int, j: int, force: np.ndarray, omega: np.ndarray) -> np.ndarray:

@@ -36,13 +36,13 @@ more than 1e-6 per period; an undamped scene's root is not).
 
 from __future__ import annotations
 
-from dataclasses import fields, replace
+from dataclasses import replace
 
 import numpy as np
 
 from gearcli import engine
 from gearcli.core.records import record
-from gearcli.model.outputs import ConnectorSeries, Sampled, sample
+from gearcli.model.outputs import Sampled, sample
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.solver import _packed
 
@@ -182,23 +182,7 @@ def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int, *, torques: bool =
             or Y.shape[1] != t.size or not bool((Y[:d, start:] == Y[:d, start:start + 1]).all())):
         return sample(layout, t, Y, torques=torques)
     # the balance reads the stored energy from start
-    head = sample(layout, t[:start + 1], Y[:, :start + 1], torques=torques, energy_from=start)
-    nb, w, m = head.omega_rad_s.shape[0], len(_SERIES), 2 if torques else 0
-    full = np.empty((nb + m + w * len(head.connectors), t.size))  # the speeds, the two torques, every series
-    part = full[:, :start + 1]
-    part[:nb] = head.omega_rad_s
-    if torques:
-        part[nb], part[nb + 1] = head.input_torque_Nm, head.load_torque_Nm  # (a constant torque broadcast)
-    for i, c in enumerate(head.connectors):
-        for j, name in enumerate(_SERIES):
-            part[nb + m + w * i + j] = getattr(c, name)
-    full[:, start + 1:] = full[:, start:start + 1]  # every row its last sample repeated
-    conns = tuple(ConnectorSeries(*full[nb + m + w * i: nb + m + w * (i + 1)]) for i in range(len(head.connectors)))
-    t_in, t_load = (full[nb], full[nb + 1]) if torques else (head.input_torque_Nm, head.load_torque_Nm)
-    return Sampled(np.asarray(t, dtype=float), full[:nb], None, t_in, t_load, conns, layout)
-
-
-_SERIES = tuple(f.name for f in fields(ConnectorSeries))  # a connector's series, in ConnectorSeries' field order
+    return sample(layout, t, Y, torques=torques, energy_from=start, constant_from=start)
 
 
 __all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]
