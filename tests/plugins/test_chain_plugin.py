@@ -345,6 +345,16 @@ BROKEN = {
                                "design", 1, "its table's speed_ratio is -2.0 for stage 2, not a finite number > 0"),
     "an efficiency above 1": ([("        return self.chain_efficiency", "        return 1.5")], "design", 1,
                               "its table's efficiency is 1.5 for stage 2, not a number in (0, 1]"),
+    # a table without what every stage table has: refused where it registers (its plug-in fails to load, named where
+    # a file names its kind), not an AttributeError of gearcli's own far from its cause ("internal error")
+    "a table without mesh": ([("    mesh: None = None\n", "")], "design", 2,
+                             "failed to load: PluginError: stage type \"test_chain\" (gearcli_test_chain): its table "
+                             "ChainStage has no mesh: every stage table has type: Literal[\"test_chain\"], the fields "
+                             "mesh and shaft"),
+    "a table without shaft nor efficiency": ([("    shaft: None = None\n", ""), ("    def efficiency(", "    def eta(")],
+                                             "simulate", 2, "its table ChainStage has no shaft, efficiency: every"),
+    "a table whose type names another kind": ([('type: Literal["test_chain"]', 'type: Literal["test_chains"]')],
+                                              "design", 2, "its table ChainStage has type typing.Literal['test_chains']"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
