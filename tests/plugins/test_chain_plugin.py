@@ -341,6 +341,12 @@ BROKEN = {
                                                  "        return [stage[\"index\"]]\n        return {\"index\": "
                                                  "stage[\"index\"], \"type\": KIND,")], "simulate", 1,
                                                "its io facet's json_simulated_stage returned [2], not a dict"),
+    "a stage JSON without index and type": ([("        return {\"index\": stage.pop(\"index\"), \"type\": stage.pop(\"type\"),",
+                                              "        return {")], "design-csv", 1,
+                                            "its io facet's json_stage returned {'index': 2, 'ratio': "),
+    "a simulated stage JSON without index": ([("        return {\"index\": stage[\"index\"], \"type\": KIND,",
+                                               "        return {\"type\": KIND,")], "simulate", 1,
+                                             "json_simulated_stage returned {'type': 'test_chain', 'chain_force_N': "),
     "a negative speed ratio": ([("        return self.driven_teeth / self.driver_teeth", "        return -2.0")],
                                "design", 1, "its table's speed_ratio is -2.0 for stage 2, not a finite number > 0"),
     "an efficiency above 1": ([("        return self.chain_efficiency", "        return 1.5")], "design", 1,
@@ -373,7 +379,8 @@ def test_a_broken_plug_in_is_one_line_with_its_exit_code(install, mixed, tmp_pat
     args = {"design": ["design", mixed], "design-rated": ["design", mixed, "--set", f"rating.standard={STD}"],
             "simulate": ["simulate", mixed, "-o", str(tmp_path / "run.json")],
             "design-set": ["design", mixed, "--set", "stage.1.pitch_mm=20"],
-            "design-table": ["design", mixed, "--format", "table"]}[command]
+            "design-table": ["design", mixed, "--format", "table"],
+            "design-csv": ["design", mixed, "--format", "csv"]}[command]
     r = _invoke(*args, "-q", *(() if "--format" in args else ("--format", "json")))
     assert r.exit_code == code, r.output
     assert message in r.output
