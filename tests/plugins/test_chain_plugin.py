@@ -347,6 +347,10 @@ BROKEN = {
     "a simulated stage JSON without index": ([("        return {\"index\": stage[\"index\"], \"type\": KIND,",
                                                "        return {\"type\": KIND,")], "simulate", 1,
                                              "json_simulated_stage returned {'type': 'test_chain', 'chain_force_N': "),
+    "diagnostics that are texts": ([("    def diagnostics(self, result):\n        return ()",
+                                     "    def diagnostics(self, result):\n        return ['chain slack']")], "design", 1,
+                                   "its design facet's diagnostics returned 'chain slack' for stage 2, not a "
+                                   "gearcli.diagnostics.Diagnostic"),
     "a negative speed ratio": ([("        return self.driven_teeth / self.driver_teeth", "        return -2.0")],
                                "design", 1, "its table's speed_ratio is -2.0 for stage 2, not a finite number > 0"),
     "an efficiency above 1": ([("        return self.chain_efficiency", "        return 1.5")], "design", 1,
