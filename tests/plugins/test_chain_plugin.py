@@ -351,6 +351,13 @@ BROKEN = {
                                      "    def diagnostics(self, result):\n        return ['chain slack']")], "design", 1,
                                    "its design facet's diagnostics returned 'chain slack' for stage 2, not a "
                                    "gearcli.diagnostics.Diagnostic"),
+    # no stage model: the chain's pair of its line, which loses nothing at MeshSpec's default efficiency 1 while the
+    # design loses 4 %: upstream T_in = T_out / (i eta) would be eta_design / eta_line = 0.96 x the design's
+    "no stage model and a lossless line": ([("        return ChainModel(mesh.base_radius_pinion_m,",
+                                             "        return None and ChainModel(mesh.base_radius_pinion_m,")],
+                                           "simulate", 1, "its stage model is None, so stage 2 is placed as a pair of "
+                                           "its line, whose efficiency 1 is not its design's 0.96: the simulated "
+                                           "forces before it would be 0.96 x the design's"),
     "a negative speed ratio": ([("        return self.driven_teeth / self.driver_teeth", "        return -2.0")],
                                "design", 1, "its table's speed_ratio is -2.0 for stage 2, not a finite number > 0"),
     "an efficiency above 1": ([("        return self.chain_efficiency", "        return 1.5")], "design", 1,
