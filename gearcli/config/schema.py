@@ -12,7 +12,7 @@ whole file (:class:`DesignFile`) and the small tables, with every table's name r
 """
 
 import math
-from typing import Annotated, Literal
+from typing import Annotated, Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, TypeAdapter, model_validator
 
@@ -68,13 +68,46 @@ from gearcli.config.stage_tables import (  # noqa: F401 (re-exported)
     only_kinds,
 )
 from gearcli.core.methods import NAMES as METHODS  # the one registry of integration methods
+from gearcli.errors import PluginError
 from gearcli.stages import kinds
+
+#: what every layer reads of any stage table (docs/plugins.md, "A stage kind"): its fields and its properties
+STAGE_TABLE_FIELDS = ("type", "mesh", "shaft")
+STAGE_TABLE_PROPERTIES = ("speed_ratio", "efficiency")
+
+
+def check_stage_table(kind: str, table: object) -> None:
+    """A :class:`~gearcli.errors.PluginError` naming the kind and what the table lacks where it is no pydantic
+    model class with the fields ``type`` (``Literal[kind]``), ``mesh`` and ``shaft`` and the properties
+    ``speed_ratio`` and ``efficiency``: the validation, the kinematics and the model read them of every stage, and
+    a table without them failed there as gearcli's internal error (an AttributeError far from its cause)."""
+    where = f'stage type "{kind}" ({getattr(table, "__module__", type(table).__module__)})'
+    if not (isinstance(table, type) and issubclass(table, BaseModel)):
+        raise PluginError(f"{where}: its table is {table!r}, not a pydantic model class (register_stage_table(kind, "
+                          'TableClass), a gearcli.config.bounds_types.StrictTable; docs/plugins.md, "A stage kind")')
+    fields = table.model_fields
+    lacks = [f for f in STAGE_TABLE_FIELDS if f not in fields]
+    lacks += [p for p in STAGE_TABLE_PROPERTIES if p not in fields and not hasattr(table, p)]
+    tag = get_args(fields["type"].annotation) if "type" in fields else (kind,)
+    if lacks or tag != (kind,):
+        what = ([f"no {', '.join(lacks)}"] if lacks else []) + ([f"type {fields['type'].annotation!r}"]
+                                                                 if tag != (kind,) else [])
+        raise PluginError(f"{where}: its table {table.__name__} has {' and '.join(what)}: every stage table has "
+                          f'type: Literal["{kind}"], the fields mesh and shaft (None = None without a contact law or '
+                          "a flexible output shaft) and the properties speed_ratio and efficiency (docs/plugins.md, "
+                          '"A stage kind")')
 
 
 def register_stage_table(kind: str, table: type[BaseModel]) -> None:
     """Register the schema table of stage ``type = kind`` (a plug-in kind) and rebuild the design file's
-    schema with it."""
+    schema with it; a table without what every stage table has is refused (:func:`check_stage_table`), after a
+    second registrant of the name (a conflict names both, docs/plugins.md, "Names")."""
     kinds.provide(kind, "table", table)
+    try:
+        check_stage_table(kind, table)
+    except PluginError:
+        kinds.withdraw(kind, "table")
+        raise
     _BY_KINDS.clear()
     DesignFile.model_rebuild(force=True)
 

@@ -40,7 +40,15 @@ from gearcli.results import (
 )
 from gearcli.stages import gear_design as _gear_design  # noqa: F401  # registers the built-in kinds' design facets
 from gearcli.stages import kinds
-from gearcli.stages.design import checked_figures, checked_result, design_kind, file_key, gear_pairs, pair_view
+from gearcli.stages.design import (
+    checked_diagnostics,
+    checked_figures,
+    checked_result,
+    design_kind,
+    file_key,
+    gear_pairs,
+    pair_view,
+)
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material, Stage
@@ -72,7 +80,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     for k, stage in enumerate(stages):
         _require_finite(stage, f"stage[{k}]")
     out = kin.shaft_speeds_rad_s[-1]
-    own = tuple(d for k, st in enumerate(stages) for d in kind[k].diagnostics(st))
+    own = tuple(d for k, st in enumerate(stages) for d in checked_diagnostics(st, kind[k].diagnostics(st)))
     jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
                            f"{st.backlash_circumferential_mm[1]:.4g} mm (< 0): at the upper tooth-thickness "
                            "allowances and the smallest centre distance the teeth jam"

@@ -32,6 +32,7 @@ from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
+from gearcli.rating.registry import ISO_TITLE
 from gearcli.stages import kinds
 from gearcli.stages.design import design_kind, gear_pairs, member_name
 
@@ -39,7 +40,7 @@ if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
     from gearcli.results import GearResult, StageResult
 
-STANDARD = "ISO 6336:2006 method B"
+STANDARD = ISO_TITLE  # "ISO 6336:2006 method B": the rating registry keeps it from any other standard
 STRESS_CORRECTION_TEST_GEAR = 2.0  # Y_ST (ISO 6336-3:2006)
 HB_PER_HV = 0.95  # Brinell from Vickers for steels below ~450 HV (ISO 18265, approximately)
 PITTING_LOW = "pitting_safety_low"

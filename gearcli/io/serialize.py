@@ -278,8 +278,9 @@ def design_csv(result: DesignResult) -> str:
     if any("type" in r for r in rows):  # a train of mixed kinds: every row names its kind (parallel rows too)
         for r, st in zip(rows, result.stages, strict=True):
             r.setdefault("type", st.type)
-    header = list(rows[0])
-    header += [h for r in rows[1:] for h in r if h not in header]  # a planetary stage's columns after
+    # every row's columns once, in order of first appearance: a later stage's own columns (a planetary's, a
+    # plug-in kind's, allowances the first stage lacks) after the first's, once however many stages have them
+    header = list(dict.fromkeys(h for r in rows for h in r))
     return csv_text(header, ([r.get(h, "") for h in header] for r in rows))
 
 

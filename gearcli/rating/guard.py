@@ -17,7 +17,7 @@ from gearcli.core import plugins
 from gearcli.core.text import shorten
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError, PluginError
-from gearcli.rating.sn import SNCurve
+from gearcli.rating.sn import SNCurve, curve_problem
 from gearcli.rating.standard import MODES
 from gearcli.stages import kinds
 
@@ -58,6 +58,9 @@ class Guarded:
         curve = self._call("sn_curve", self._method("sn_curve"), cfg, member, treatment, mode, variant)
         if not isinstance(curve, SNCurve):
             self._fail("sn_curve", f"returned {type(curve).__name__}, not a gearcli.rating.sn.SNCurve")
+        why = curve_problem(curve)
+        if why is not None:  # else life's arithmetic fails far from it (a division by zero, a NaN in the JSON)
+            self._fail("sn_curve", f"returned the {mode} curve {shorten(repr(curve.nodes), 120)} whose {why}")
         return curve
 
     def curve_name(self, mode: str) -> str:

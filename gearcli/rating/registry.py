@@ -9,13 +9,15 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from gearcli.core import plugins
-from gearcli.errors import ConfigError, PluginConflict
+from gearcli.errors import ConfigError, PluginConflict, PluginError
 
 if TYPE_CHECKING:
     from gearcli.rating.standard import RatedMesh, RatingStandard
 
 DEFAULT = "iso6336"
 BUILT_IN = (DEFAULT,)  # gearcli's own standards' names: no plug-in registers them (ISO 6336 registers lazily)
+ISO_TITLE = "ISO 6336:2006 method B"  # the title of gearcli's ISO 6336 (gearcli.design.rating.STANDARD)
+BUILT_IN_TITLES = {ISO_TITLE: DEFAULT}  # a built-in standard's title -> its name: no other standard takes it
 SEAM = "rating standard"
 _STANDARDS: dict[str, RatingStandard] = {}
 
@@ -27,6 +29,11 @@ def register(std: RatingStandard) -> RatingStandard:
     refused = plugins.claim(SEAM, std.name, std, built_in=BUILT_IN)
     if refused:
         raise PluginConflict(refused)
+    try:
+        _check_title(std)
+    except PluginError:
+        plugins.release(SEAM, std.name)
+        raise
     if plugins.origin(std).split(".")[0] == "gearcli":  # gearcli's own standards are kept as they are
         _STANDARDS[std.name] = std
     else:
@@ -34,6 +41,23 @@ def register(std: RatingStandard) -> RatingStandard:
 
         _STANDARDS[std.name] = Guarded(std)
     return std
+
+
+def _check_title(std: RatingStandard) -> None:
+    """A standard's ``title`` is a text no other standard has (a built-in one's included, registered or not): the
+    rating tables and ``gearcli life`` find a rating's standard by its title (:func:`for_rating`), so a plug-in
+    titled as ISO 6336 had its ratings read by ISO's table rows (an internal error) and its life by the first
+    registered. A :class:`~gearcli.errors.PluginError` (no text) or :class:`~gearcli.errors.PluginConflict`."""
+    title, where = getattr(std, "title", None), f'rating standard "{std.name}" ({plugins.origin(std)})'
+    if not isinstance(title, str) or not title.strip():
+        raise PluginError(f"{where}: its title is {title!r}, not a text (the standard its ratings carry, JSON "
+                          "rating.standard; docs/plugins.md, \"A rating standard\")")
+    holder = next((n for n, other in _STANDARDS.items() if n != std.name and other.title == title),
+                  BUILT_IN_TITLES.get(title, std.name))
+    if holder != std.name:
+        raise PluginConflict(f'{where} is titled {title!r}, the title of rating standard "{holder}": a title names '
+                             "one standard (the rating tables and gearcli life find a rating's standard by it); give "
+                             "it a title of its own (docs/plugins.md)")
 
 
 def withdraw(name: str) -> None:

@@ -35,6 +35,34 @@ OWN_CURVES = ("ISO 6336-6 Miner rule on the rating standard's own life-factor cu
               "past the knee; optimum: no damage below the endurance limit)")
 
 
+def curve_problem(curve: SNCurve) -> str | None:
+    """What makes ``curve`` no S–N curve life can use (a rating standard's, docs/plugins.md), or None: at least
+    three nodes (N, factor), N finite, > 0 and rising, factors finite, > 0 and not rising, the static node's above
+    the knee's (the finite-life slope), the knee (the second-last node) at factor 1, an endurance strength that is a
+    finite number > 0 and a Miner variant gearcli knows."""
+    nodes = curve.nodes
+    try:
+        pairs = [(float(n), float(y)) for n, y in nodes]
+    except (TypeError, ValueError):
+        return "nodes are no (N, factor) pairs of numbers"
+    if len(pairs) < 3:
+        return f"nodes are {len(pairs)}, not at least 3 (the static node, the knee at factor 1, a node beyond it)"
+    if not all(math.isfinite(n) and n > 0.0 and math.isfinite(y) and y > 0.0 for n, y in pairs):
+        return "nodes hold a number that is not finite and > 0"
+    if any(b[0] <= a[0] for a, b in zip(pairs, pairs[1:], strict=False)):
+        return "cycles N do not rise from node to node"
+    if any(b[1] > a[1] for a, b in zip(pairs, pairs[1:], strict=False)) or pairs[0][1] <= pairs[-2][1]:
+        return "factors rise somewhere, or the static node's is not above the knee's (no finite-life slope)"
+    if abs(pairs[-2][1] - 1.0) > 1e-9:
+        return f"knee (the second-last node) is at factor {pairs[-2][1]:.6g}, not 1"
+    e = curve.endurance_MPa
+    if isinstance(e, bool) or not isinstance(e, (int, float)) or not math.isfinite(e) or e <= 0.0:
+        return f"endurance_MPa is {e!r}, not a finite number > 0"
+    if curve.variant not in VARIANTS:
+        return f"variant is {curve.variant!r}, not one of {', '.join(VARIANTS)}"
+    return None
+
+
 def miner_name(variant: str, *, iso_curves: bool) -> str:
     """The Miner rule's name in life's output (JSON ``life.miner``): the ``"iso"`` variant follows the curve's own
     nodes past the knee, which are ISO 6336-2/-3's only for ISO 6336 (a plug-in standard has its own)."""
@@ -70,7 +98,8 @@ class SNCurve:
         for (na, ya), (nb, yb) in zip(self.nodes[1:], self.nodes[2:], strict=False):
             if self.optimum:
                 return [*segs, (na, ya, math.inf)]
-            segs.append((na, ya, math.log(nb / na) / math.log(ya / yb)))
+            # a flat segment (a standard's endurance limit written as nodes) is an infinite exponent
+            segs.append((na, ya, math.inf if ya == yb else math.log(nb / na) / math.log(ya / yb)))
         return segs
 
     def cycles_to_failure(self, stress_MPa: float) -> float:

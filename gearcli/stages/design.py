@@ -136,6 +136,21 @@ def checked_result(table: object, k: int, result: StageResult) -> StageResult:
                       f'ratio, efficiency, type (= "{kind}") and rating (docs/plugins.md, "A stage kind")')
 
 
+def checked_diagnostics(result: StageResult, diags: Iterable[object]) -> tuple[Diagnostic, ...]:
+    """The design facet's own warnings for stage ``result``, or a :class:`~gearcli.errors.PluginError` naming the
+    kind where one is no :class:`~gearcli.diagnostics.Diagnostic` (a text, say): every output reads its code and
+    message, and a text there failed as gearcli's internal error far from its cause."""
+    out = tuple(diags)
+    wrong = next((d for d in out if not isinstance(d, Diagnostic)), None)
+    if wrong is not None:
+        kind = kinds.kind_of(result)
+        origin = getattr(kinds.facet(kind, "design"), "origin", None)
+        raise PluginError(f'stage type "{kind}"' + (f" ({origin})" if origin else "") + f": its design facet's "
+                          f"diagnostics returned {wrong!r} for stage {result.index}, not a gearcli.diagnostics."
+                          'Diagnostic (gearcli.diagnostics.warning(code, message); docs/plugins.md, "A stage kind")')
+    return cast(tuple[Diagnostic, ...], out)
+
+
 def pair_view(cfg: DesignFile) -> DesignFile:
     """``cfg`` with every stage seen as the pair its kind designs (the pair's code and the rating read it)."""
     stages = [design_kind(s).pair(s) or s for s in cfg.stage]

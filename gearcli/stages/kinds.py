@@ -137,6 +137,14 @@ _RETURNS: dict[tuple[str, str], tuple[Callable[[object], bool], str]] = {
     ("design", "diagnostics"): (_sequence, "a list of gearcli.diagnostics.Diagnostic"),
     ("io", "design_tables"): (_sequence, "a list of rich renderables"),
     ("io", "simulation_tables"): (_sequence, "a list of rich renderables"),
-    ("io", "json_stage"): (lambda x: isinstance(x, dict), "a dict (the stage's JSON object)"),
-    ("io", "json_simulated_stage"): (lambda x: isinstance(x, dict), "a dict (the simulated stage's JSON object)"),
+    ("io", "json_stage"): (lambda x: _led_by(x, ("index", "type")),
+                           "a dict led by index and type (the stage's JSON object, as every stage's)"),
+    ("io", "json_simulated_stage"): (lambda x: _led_by(x, ("index",)),
+                                     "a dict led by index (the simulated stage's JSON object, as every stage's)"),
 }
+
+
+def _led_by(x: object, keys: tuple[str, ...]) -> bool:
+    """A stage's JSON object: a dict whose first keys are ``keys`` (the output contract's ``index`` and the kind's
+    ``type``; without them the CSV of a mixed train lost its ``index`` and ``type`` columns)."""
+    return isinstance(x, dict) and tuple(x)[:len(keys)] == keys

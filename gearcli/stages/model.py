@@ -43,6 +43,24 @@ def model_kind(stage: object) -> ModelKind:
     return cast(ModelKind, kinds.facet(kinds.kind_of(stage), "model"))
 
 
+def checked_line_losses(st: StageResult, k: int, line: MeshSpec, own: StageModel | None) -> StageModel | None:
+    """:func:`checked_losses`, and for a plug-in kind without a stage model of its own (``stage_model`` None: the
+    stage is placed as the chain's pair of its ``line``) a line whose ``efficiency`` is its design's, or a
+    :class:`~gearcli.errors.PluginError` naming the kind: the pair loses only its line's efficiency, so a line left
+    at 1 ran a lossy stage lossless (the simulated forces before the stage eta x the design's, silently)."""
+    facet = kinds.facet(kinds.kind_of(st), "model")
+    origin = str(getattr(facet, "origin", plugins.origin(facet)))
+    if own is None and origin.split(".")[0] != "gearcli":
+        design_eta = float(getattr(st, "efficiency", 1.0))
+        if not math.isclose(line.efficiency, design_eta, rel_tol=1e-9, abs_tol=1e-12):
+            raise PluginError(f'stage type "{kinds.kind_of(st)}" ({origin}): its stage model is None, so stage '
+                              f"{k + 1} is placed as a pair of its line, whose efficiency {line.efficiency:.6g} is not "
+                              f"its design's {design_eta:.6g}: the simulated forces before it would be "
+                              f"{design_eta / line.efficiency:.6g} x the design's; give its line MeshSpec.efficiency "
+                              "= the design's (docs/plugins.md, \"Losses\")")
+    return checked_losses(st, k, own)
+
+
 def checked_losses(st: StageResult, k: int, own: StageModel | None) -> StageModel | None:
     """A plug-in's stage model ``own`` of stage ``st`` (0-based ``k``) whose losses are its design's, or a
     :class:`~gearcli.errors.PluginError` naming the kind. The dynamics lose only what a connector's element loses
@@ -80,8 +98,8 @@ def checked_losses(st: StageResult, k: int, own: StageModel | None) -> StageMode
     if not math.isclose(eta, design_eta, rel_tol=1e-9, abs_tol=1e-12):
         raise PluginError(f"{where}'s connectors lose {1.0 - eta:.6g} of the power, its design {1.0 - design_eta:.6g} "
                           f"(efficiency {design_eta:.6g}): the simulated forces before stage {k + 1} would be "
-                          f"{eta / design_eta:.6g} x the design's; place a lossy element of the design's efficiency "
-                          "(the built-in mesh with MeshSpec.efficiency; docs/plugins.md)")
+                          f"{design_eta / eta:.6g} x the design's (T_in = T_out / (i eta)); place a lossy element of "
+                          "the design's efficiency (the built-in mesh with MeshSpec.efficiency; docs/plugins.md)")
     return own
 
 

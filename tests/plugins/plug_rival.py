@@ -6,7 +6,9 @@ silent "last one wins" would show in the numbers, not only in the message.
 - :func:`same_kind`: a schema table of stage ``type = "test_fixed_ratio"`` (the extras' kind);
 - :func:`iso6336`: a standard named ``"iso6336"``, gearcli's built-in name, with S_Hmin = 2.0;
 - :func:`planetary`: a model facet of gearcli's built-in ``"planetary"`` stages;
-- :func:`own_standard`: a standard of a name nobody else holds (``test_rival_only``), to trigger a load.
+- :func:`own_standard`: a standard of a name nobody else holds (``test_rival_only``), to trigger a load;
+- :func:`iso_title`, :func:`same_title`: standards of names of their own titled as ISO 6336 (gearcli's built-in
+  title) or as the extras' standard: a title names one standard (tables and life find a rating's standard by it).
 """
 
 from __future__ import annotations
@@ -44,6 +46,16 @@ class RivalOnly(RivalMarine):
     name = ONLY
 
 
+class RivalIsoTitle(RivalMarine):
+    name = "test_rival_iso_title"
+    title = "ISO 6336:2006 method B"  # gearcli's ISO 6336, written out: the plug-in's own copy of the text
+
+
+class RivalSameTitle(RivalMarine):
+    name = "test_rival_same_title"
+    title = px.TITLE
+
+
 class RivalFixedRatioStage(StrictTable):
     type: Literal["test_fixed_ratio"]
     ratio: float
@@ -71,3 +83,11 @@ def planetary() -> None:
 
 def own_standard() -> None:
     register_standard(RivalOnly())
+
+
+def iso_title() -> None:
+    register_standard(RivalIsoTitle())
+
+
+def same_title() -> None:
+    register_standard(RivalSameTitle())

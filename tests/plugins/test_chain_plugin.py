@@ -341,10 +341,37 @@ BROKEN = {
                                                  "        return [stage[\"index\"]]\n        return {\"index\": "
                                                  "stage[\"index\"], \"type\": KIND,")], "simulate", 1,
                                                "its io facet's json_simulated_stage returned [2], not a dict"),
+    "a stage JSON without index and type": ([("        return {\"index\": stage.pop(\"index\"), \"type\": stage.pop(\"type\"),",
+                                              "        return {")], "design-csv", 1,
+                                            "its io facet's json_stage returned {'index': 2, 'ratio': "),
+    "a simulated stage JSON without index": ([("        return {\"index\": stage[\"index\"], \"type\": KIND,",
+                                               "        return {\"type\": KIND,")], "simulate", 1,
+                                             "json_simulated_stage returned {'type': 'test_chain', 'chain_force_N': "),
+    "diagnostics that are texts": ([("    def diagnostics(self, result):\n        return ()",
+                                     "    def diagnostics(self, result):\n        return ['chain slack']")], "design", 1,
+                                   "its design facet's diagnostics returned 'chain slack' for stage 2, not a "
+                                   "gearcli.diagnostics.Diagnostic"),
+    # no stage model: the chain's pair of its line, which loses nothing at MeshSpec's default efficiency 1 while the
+    # design loses 4 %: upstream T_in = T_out / (i eta) would be eta_design / eta_line = 0.96 x the design's
+    "no stage model and a lossless line": ([("        return ChainModel(mesh.base_radius_pinion_m,",
+                                             "        return None and ChainModel(mesh.base_radius_pinion_m,")],
+                                           "simulate", 1, "its stage model is None, so stage 2 is placed as a pair of "
+                                           "its line, whose efficiency 1 is not its design's 0.96: the simulated "
+                                           "forces before it would be 0.96 x the design's"),
     "a negative speed ratio": ([("        return self.driven_teeth / self.driver_teeth", "        return -2.0")],
                                "design", 1, "its table's speed_ratio is -2.0 for stage 2, not a finite number > 0"),
     "an efficiency above 1": ([("        return self.chain_efficiency", "        return 1.5")], "design", 1,
                               "its table's efficiency is 1.5 for stage 2, not a number in (0, 1]"),
+    # a table without what every stage table has: refused where it registers (its plug-in fails to load, named where
+    # a file names its kind), not an AttributeError of gearcli's own far from its cause ("internal error")
+    "a table without mesh": ([("    mesh: None = None\n", "")], "design", 2,
+                             "failed to load: PluginError: stage type \"test_chain\" (gearcli_test_chain): its table "
+                             "ChainStage has no mesh: every stage table has type: Literal[\"test_chain\"], the fields "
+                             "mesh and shaft"),
+    "a table without shaft nor efficiency": ([("    shaft: None = None\n", ""), ("    def efficiency(", "    def eta(")],
+                                             "simulate", 2, "its table ChainStage has no shaft, efficiency: every"),
+    "a table whose type names another kind": ([('type: Literal["test_chain"]', 'type: Literal["test_chains"]')],
+                                              "design", 2, "its table ChainStage has type typing.Literal['test_chains']"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
@@ -363,7 +390,8 @@ def test_a_broken_plug_in_is_one_line_with_its_exit_code(install, mixed, tmp_pat
     args = {"design": ["design", mixed], "design-rated": ["design", mixed, "--set", f"rating.standard={STD}"],
             "simulate": ["simulate", mixed, "-o", str(tmp_path / "run.json")],
             "design-set": ["design", mixed, "--set", "stage.1.pitch_mm=20"],
-            "design-table": ["design", mixed, "--format", "table"]}[command]
+            "design-table": ["design", mixed, "--format", "table"],
+            "design-csv": ["design", mixed, "--format", "csv"]}[command]
     r = _invoke(*args, "-q", *(() if "--format" in args else ("--format", "json")))
     assert r.exit_code == code, r.output
     assert message in r.output

@@ -16,7 +16,7 @@ from numpy.testing import assert_allclose
 from test_entry_points import MARINE, ONLY_FIXED, RATED, _install, _invoke, _json, _write
 
 from gearcli.core import plugins
-from gearcli.errors import EXIT_FAILED, PluginConflict
+from gearcli.errors import EXIT_FAILED, PluginConflict, PluginError
 from gearcli.rating import registry
 from gearcli.stages import kinds
 
@@ -111,3 +111,27 @@ def test_a_script_registering_a_taken_name_gets_the_error_itself():
         px.withdraw()
     plug_rival.same_standard()  # withdrawn, the name is free for another registrant
     registry.withdraw(px.MARINE)
+
+
+@pytest.mark.parametrize("rival, holder, title", [("iso_title", "iso6336", "ISO 6336:2006 method B"),
+                                                  ("same_title", px.MARINE, px.TITLE)])
+def test_a_standard_titled_as_another_is_refused(install, rival, holder, title):
+    """A title names one standard: life and the rating tables find a rating's standard by it. A plug-in titled as
+    gearcli's ISO 6336 (registered or not yet) had its ratings read by ISO's table rows ("internal error:
+    AttributeError: ... no attribute 'K_A'"); one titled as another plug-in's, by whichever registered first."""
+    who = install(rival)
+    name = {"iso_title": plug_rival.RivalIsoTitle.name, "same_title": plug_rival.RivalSameTitle.name}[rival]
+    r = _invoke("design", RATED, *MARINE, "--format", "table")
+    _refused(r, f'rating standard "{name}" (plug_rival) is titled {title!r}, the title of rating standard "{holder}"')
+    assert name not in registry._STANDARDS and who
+
+
+def test_a_standard_without_a_title_is_refused_where_it_registers():
+    class Untitled(plug_rival.RivalOnly):
+        name, title = "test_untitled", None
+
+    with pytest.raises(PluginError, match='rating standard "test_untitled" .*: its title is None, not a text'):
+        registry.register(Untitled())
+    assert "test_untitled" not in registry._STANDARDS
+    registry.register(plug_rival.RivalOnly())  # the registry is left as it was: another registers freely
+    registry.withdraw(plug_rival.ONLY)
