@@ -19,7 +19,8 @@ the run's end). :func:`settled_run` repeats the run with its window from there
 :data:`MAX_DURATION_FACTOR` times the first run's duration; where that budget cannot settle it, the periodic
 steady state is sought (shooting where it applies, within the same duration) and taken when it converges; a
 window still unsettled then is reported (``steady.settled = false`` and the ``window_not_settled`` warning),
-never silently taken for steady.
+never silently taken for steady. The warning carries the fitted transients' share of that stage's window mean
+(``mean_bias_N``, :func:`gearcli.simulate.ringing.window_mean`) and names the mean where it exceeds ``MEAN_TARGET``.
 
 A periodic steady state (``steady = "periodic"``) is settled when it converged.
 """
@@ -39,6 +40,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
 from gearcli.simulate import ringing, sampling
+from gearcli.simulate.estimate import MEAN_TARGET
 from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
 
 if TYPE_CHECKING:
@@ -71,6 +73,10 @@ class Settling:
     settle_time_s: float | None = None
     cause: str = ""
     growing: bool = False  # the oscillation grows through the window (_growth), not a decaying transient
+    # the fitted start-up transients' share of the stage's window-mean F_t, relative to its reference force
+    # (ringing.window_mean, every mode fitted summed): the mean is named where it exceeds MEAN_TARGET
+    mean_bias: float = 0.0
+    mean_bias_N: float = 0.0
 
 
 def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
@@ -105,11 +111,14 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
             for ft, ref, floor in zip(forces_N, static_N, floors, strict=True)]
     fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []
     # every stage's fit at once (independent per stage: the same numbers as one fit per stage, one batched solve)
-    amps, sigs = ringing.fit_transients(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes, forced=forced) \
-        if fitted else (np.empty((0, 0)), np.empty((0, 0)))
+    terms, sigs = ringing.fit_transient_terms(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes,
+                                              forced=forced) if fitted else (np.empty((0, 0)), np.empty((0, 0)))
+    length = window_s[1] - window_s[0]
     for i, k in enumerate(fitted):
         ref = refs[k]
-        amplitudes, sigmas = [float(a) for a in amps[i]], [float(x) for x in sigs[i]]
+        amplitudes, sigmas = [float(abs(a)) for a in terms[i]], [float(x) for x in sigs[i]]
+        bias = sum(ringing.window_mean(complex(c), sg, m[1], length) for c, sg, m in zip(terms[i], sigmas, modes,
+                                                                                         strict=True))
         for j, a0 in enumerate(amplitudes):
             fraction = a0 / ref
             if fraction <= worst.transient_fraction:
@@ -121,7 +130,8 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
                              "" if fraction < SETTLED_FRACTION else
                              f"the {omega / (2 * math.pi):.3g} Hz mode rings from the start with ±{a0:.4g} N in stage "
                              f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of "
-                             f"{ringing.reference_words(ref, float(static_N[k]) != 0.0)})")
+                             f"{ringing.reference_words(ref, float(static_N[k]) != 0.0)})",
+                             mean_bias=bias / ref, mean_bias_N=bias)
     worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst, floors)
     if worst.settled:
         worst = _growth([ft[mask] for ft in forces_N], refs, static_N, worst)
@@ -314,8 +324,10 @@ def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str
         return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}; "
                 "its statistics, dynamic factor and load peaks grow with the window (more mesh damping, or stiffness "
                 "harmonics below the parametric-resonance threshold, bound it)")
+    mean = (f"mean (the fitted transients move it by {settling.mean_bias_N:+.4g} N, {settling.mean_bias:+.2g} of the "
+            f"reference, beyond the mean's target {MEAN_TARGET:g}), " if abs(settling.mean_bias) > MEAN_TARGET else "")
     return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}"
-            f"{when}; its max |F_t|, dynamic factor and load peaks include the start-up transient "
+            f"{when}; its {mean}max |F_t|, dynamic factor and load peaks include the start-up transient "
             "(or [simulation] steady = \"periodic\")")
 
 
@@ -348,7 +360,7 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
         diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
                                 transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
                                 else None, stage=found.stage, mode_frequency_Hz=found.frequency_Hz,
-                                settle_time_s=found.settle_time_s))
+                                settle_time_s=found.settle_time_s, mean_bias_N=found.mean_bias_N))
     fraction = found.transient_fraction if math.isfinite(found.transient_fraction) else None
     return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
 

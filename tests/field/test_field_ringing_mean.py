@@ -24,7 +24,9 @@ from gearcli.design import compute_design
 from gearcli.simulate import run_simulation
 from gearcli.simulate.ringing import window_mean
 
-SCENE = Path(__file__).resolve().parents[1] / "simulate" / "data" / "ringing_soft_shaft.toml"
+DATA = Path(__file__).resolve().parents[1] / "simulate" / "data"
+SCENE = DATA / "ringing_soft_shaft.toml"
+NOT_SETTLED = DATA / "not_settled_resonant_te.toml"
 
 
 def _static_stage1_N() -> float:
@@ -55,3 +57,20 @@ def test_ringing_warning_names_the_mean_it_moves():
     assert w.data["statistic"].startswith("mean, ")
     assert w.data["mean_bias_N"] == pytest.approx(offset, rel=0.02)
     assert "mean (the fitted run-up transients move it by" in w.message
+
+
+def test_not_settled_warning_names_the_mean_it_moves():
+    """tests/simulate/data/not_settled_resonant_te.toml: the drum's 25.4 Hz coupling mode (20 % damping) still carries
+    ±381 N at the window's start (22 % of the static force). Hand reference: the static F_t = T_L / r_2 (the gear's
+    pitch radius 67 x 5 / (2 cos 14 deg) = 172.62 mm) = 1737.9 N; the window mean lies 7.19 N (4.1e-3) below it (the
+    resonant mesh vibration has no mean of its own: the load balances the mean mesh torque)."""
+    cfg = load_design(str(NOT_SETTLED), []).design
+    sim = run_simulation(cfg, compute_design(cfg), want_series=False)
+    static = 300.0 / (67 * 5 / (2 * math.cos(math.radians(14))) / 1000)
+    assert sim.stages[0].static_tangential_N == pytest.approx(static, rel=1e-9)
+    offset = sim.stages[0].tangential_N.mean - static
+    assert abs(offset) > 1e-3 * static
+    (w,) = [w for w in sim.diagnostics if w.code == dg.WINDOW_NOT_SETTLED]
+    assert w.data["stage"] == 1
+    assert w.data["mean_bias_N"] == pytest.approx(offset, rel=0.02)
+    assert "its mean (the fitted transients move it by" in w.message
