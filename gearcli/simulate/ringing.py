@@ -80,6 +80,9 @@ class Ringing:
     # what the stage's fitted run-up transients (every slow mode fitted) add to its window-mean F_t: their integral
     # over the window / its length, in closed form (:func:`window_mean`)
     mean_bias_N: float = 0.0
+    # the other stages whose window mean the fitted transients move beyond MEAN_TARGET of their reference:
+    # (stage, share in N, share relative to the reference)
+    other_means: tuple[tuple[int, float, float], ...] = ()
 
     @property
     def fraction_end(self) -> float:
@@ -307,11 +310,14 @@ def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_
     if not stages:
         return []
     terms, sigmas = fit_transient_terms(tw, np.column_stack([forces_N[k][mask] for k in stages]), modes, forced=forced)
+    # each stage's window-mean share of every slow mode fitted, those decayed below MIN_FRACTION by the window's end too
+    biases = [sum(window_mean(complex(c), float(sg), m[1], length) for c, sg, m in zip(terms[i], sigmas[i], modes,
+                                                                                       strict=True))
+              for i in range(len(stages))]
+    moved = [(k + 1, b, b / refs[k]) for k, b in zip(stages, biases, strict=True) if abs(b) > MEAN_TARGET * refs[k]]
     for i, k in enumerate(stages):
-        ref = refs[k]
-        # the window mean's share of every slow mode fitted, those decayed below MIN_FRACTION by the window's end too
-        bias = sum(window_mean(complex(c), float(sg), m[1], length) for c, sg, m in zip(terms[i], sigmas[i], modes,
-                                                                                          strict=True))
+        ref, bias = refs[k], biases[i]
+        others = tuple(m for m in moved if m[0] != k + 1)
         for j, term in enumerate(terms[i]):
             sigma, omega = float(sigmas[i, j]), modes[j][1]
             a0 = float(abs(term))
@@ -320,7 +326,7 @@ def ringing(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_
                 continue
             settle = (window_s[0] + math.log(a0 / (MIN_FRACTION * ref)) / sigma) if sigma > 0 else math.inf
             r = Ringing(k + 1, omega / (2 * math.pi), 1.0 / sigma if sigma > 0 else math.inf,
-                        sigma / math.hypot(sigma, omega), a0, a1, ref, settle, float(static_N[k]) != 0.0, bias)
+                        sigma / math.hypot(sigma, omega), a0, a1, ref, settle, float(static_N[k]) != 0.0, bias, others)
             if j not in best or r.fraction_end > best[j].fraction_end:
                 best[j] = r
     return [best[j] for j in sorted(best)]
@@ -346,6 +352,13 @@ def _statistics_words(r: Ringing) -> str:
     return f"{mean}std, min, max and dynamic factor"
 
 
+def _other_means_words(r: Ringing) -> str:
+    if not r.other_means:
+        return ""
+    moved = " and ".join(f"of stage {k} by {b:+.4g} N ({rel:+.2g})" for k, b, rel in r.other_means)
+    return f"; they move the window mean {moved} too, beyond the mean's target"
+
+
 def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
     decay = f"decay time {r.decay_time_s:.3g} s" if math.isfinite(r.decay_time_s) else "undamped"
     later = (f"a window from about {r.settle_time_s:.3g} s on (simulation.duration_s beyond it, "
@@ -356,7 +369,7 @@ def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
             f"({decay}, {100 * r.damping_ratio:.2g} % of critical damping) carries a run-up vibration of "
             f"±{r.amplitude_start_N:.4g} N in stage {r.stage}'s F_t at the window's start and ±{r.amplitude_end_N:.4g} N "
             f"at its end ({100 * r.fraction_end:.2g} % of {reference_words(r.reference_N, r.loaded)}), so the window's "
-            f"{_statistics_words(r)} include an undecayed transient. To settle it: "
+            f"{_statistics_words(r)} include an undecayed transient{_other_means_words(r)}. To settle it: "
             f"{later}; more damping{dominated}; or [simulation] steady = \"periodic\"")
 
 
@@ -380,5 +393,6 @@ def ringing_warnings(model: TorsionalModel, choice: Choice, t: np.ndarray, mask:
                               amplitude_start_N=r.amplitude_start_N,
                               amplitude_end_N=r.amplitude_end_N, reference_N=r.reference_N,
                               settle_time_s=r.settle_time_s if math.isfinite(r.settle_time_s) else None,
-                              element=element, mean_bias_N=r.mean_bias_N))
+                              element=element, mean_bias_N=r.mean_bias_N,
+                              other_stages_mean_bias_N=[{"stage": k, "mean_bias_N": b} for k, b, _ in r.other_means]))
     return out

@@ -74,3 +74,24 @@ def test_not_settled_warning_names_the_mean_it_moves():
     assert w.data["stage"] == 1
     assert w.data["mean_bias_N"] == pytest.approx(offset, rel=0.02)
     assert "its mean (the fitted transients move it by" in w.message
+
+
+def test_ringing_warning_names_the_other_stages_means_it_moves():
+    """The seed (configs/concrete_mixer.toml) rings at 58 and 112 Hz through its 0.244-0.5 s window. Hand reference:
+    each stage's static F_t by the design's theory (T / r, no losses), against which the window means lie 7.71, 12.21
+    and 9.22 N low (4.2e-3, 3.3e-3, 1.2e-3): the warning names stage 1's mean and moves the others' too."""
+    cfg = load_design(str(Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer.toml"), []).design
+    sim = run_simulation(cfg, compute_design(cfg), want_series=False)
+    # hand: input torque 5.31e6 N mm on the 3600 deg/s pinion 1 back through the ratios 51/21, 50/17, 53/17
+    load_Nmm, ratios = 5.31e6, (51 / 21, 50 / 17, 53 / 17)
+    radii_mm = [z * m / (2 * math.cos(math.radians(b))) for z, m, b in ((21, 12, 12), (17, 18, 11), (17, 25, 9))]
+    statics = [load_Nmm / math.prod(ratios[k:]) / radii_mm[k] for k in range(3)]
+    offsets = [st.tangential_N.mean - f for st, f in zip(sim.stages, statics, strict=True)]
+    assert all(abs(o) > 1e-3 * f for o, f in zip(offsets, statics, strict=True))
+    rings = [w for w in sim.diagnostics if w.code == dg.WINDOW_RINGING]
+    assert rings and all(w.data["stage"] == 1 for w in rings)
+    for w in rings:
+        assert w.data["mean_bias_N"] == pytest.approx(offsets[0], rel=0.05)
+        others = {o["stage"]: o["mean_bias_N"] for o in w.data["other_stages_mean_bias_N"]}
+        assert set(others) == {2, 3}
+        assert others[2] == pytest.approx(offsets[1], rel=0.1) and others[3] == pytest.approx(offsets[2], rel=0.15)
