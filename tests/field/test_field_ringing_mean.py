@@ -95,3 +95,18 @@ def test_ringing_warning_names_the_other_stages_means_it_moves():
         others = {o["stage"]: o["mean_bias_N"] for o in w.data["other_stages_mean_bias_N"]}
         assert set(others) == {2, 3}
         assert others[2] == pytest.approx(offsets[1], rel=0.1) and others[3] == pytest.approx(offsets[2], rel=0.15)
+
+
+def test_not_settled_warning_lists_the_other_stages_means():
+    """configs/motor_duty_starts.toml: a DOL start leaves the 900 kg m^2 drum's 4.9 Hz mode at ±7703 N (84 %) in stage
+    1 at the window's start. Hand reference for stage 2: its pinion carries T_L / (i_2 eta_2) = 6860 N m / (92/18 x
+    0.985) on r = 18 x 7 / (2 cos 10 deg) mm: 21300.2 N; the window mean lies 156 N (7.3e-3) above it."""
+    cfg = load_design(str(Path(__file__).resolve().parents[2] / "configs" / "motor_duty_starts.toml"), []).design
+    sim = run_simulation(cfg, compute_design(cfg), want_series=False)
+    static2 = 6860.0 / (92 / 18 * 0.985) / (18 * 7 / (2 * math.cos(math.radians(10))) / 1000)
+    offset2 = sim.stages[1].tangential_N.mean - static2
+    assert abs(offset2) > 1e-3 * static2
+    (w,) = [w for w in sim.diagnostics if w.code == dg.WINDOW_NOT_SETTLED]
+    assert w.data["stage"] == 1
+    (other,) = w.data["other_stages_mean_bias_N"]
+    assert other["stage"] == 2 and other["mean_bias_N"] == pytest.approx(offset2, rel=0.05)
