@@ -19,7 +19,8 @@ the run's end). :func:`settled_run` repeats the run with its window from there
 :data:`MAX_DURATION_FACTOR` times the first run's duration; where that budget cannot settle it, the periodic
 steady state is sought (shooting where it applies, within the same duration) and taken when it converges; a
 window still unsettled then is reported (``steady.settled = false`` and the ``window_not_settled`` warning),
-never silently taken for steady.
+never silently taken for steady. The warning carries the fitted transients' share of that stage's window mean
+(``mean_bias_N``, :func:`gearcli.simulate.ringing.window_mean`) and names the mean where it exceeds ``MEAN_TARGET``.
 
 A periodic steady state (``steady = "periodic"``) is settled when it converged.
 """
@@ -39,6 +40,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
 from gearcli.simulate import ringing, sampling
+from gearcli.simulate.estimate import MEAN_TARGET
 from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
 
 if TYPE_CHECKING:
@@ -71,6 +73,12 @@ class Settling:
     settle_time_s: float | None = None
     cause: str = ""
     growing: bool = False  # the oscillation grows through the window (_growth), not a decaying transient
+    # the fitted start-up transients' share of the stage's window-mean F_t, relative to its reference force
+    # (ringing.window_mean, every mode fitted summed): the mean is named where it exceeds MEAN_TARGET
+    mean_bias: float = 0.0
+    mean_bias_N: float = 0.0
+    # the other stages whose window mean the fitted transients move beyond MEAN_TARGET: (stage, N, relative)
+    other_means: tuple[tuple[int, float, float], ...] = ()
 
 
 def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
@@ -105,11 +113,16 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
             for ft, ref, floor in zip(forces_N, static_N, floors, strict=True)]
     fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []
     # every stage's fit at once (independent per stage: the same numbers as one fit per stage, one batched solve)
-    amps, sigs = ringing.fit_transients(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes, forced=forced) \
-        if fitted else (np.empty((0, 0)), np.empty((0, 0)))
+    terms, sigs = ringing.fit_transient_terms(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes,
+                                              forced=forced) if fitted else (np.empty((0, 0)), np.empty((0, 0)))
+    length = window_s[1] - window_s[0]
+    biases: dict[int, tuple[float, float]] = {}  # stage (1-based): the fitted transients' share of its mean, its ref
     for i, k in enumerate(fitted):
         ref = refs[k]
-        amplitudes, sigmas = [float(a) for a in amps[i]], [float(x) for x in sigs[i]]
+        amplitudes, sigmas = [float(abs(a)) for a in terms[i]], [float(x) for x in sigs[i]]
+        bias = sum(ringing.window_mean(complex(c), sg, m[1], length) for c, sg, m in zip(terms[i], sigmas, modes,
+                                                                                         strict=True))
+        biases[k + 1] = (bias, ref)
         for j, a0 in enumerate(amplitudes):
             fraction = a0 / ref
             if fraction <= worst.transient_fraction:
@@ -131,10 +144,20 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
         worst = _speed_approach(tw, speed_rad_s[mask], eigenvalues, window_s, worst)
     if motor_start_s is not None and motor_start_s > window_s[0]:
         settle = max(motor_start_s, worst.settle_time_s or 0.0)
-        return Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
-                        f"the motor reaches 98 % of its operating speed at {motor_start_s:.4g} s, after the window "
-                        f"starts ({window_s[0]:.4g} s)")
-    return worst
+        worst = Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
+                         f"the motor reaches 98 % of its operating speed at {motor_start_s:.4g} s, after the window "
+                         f"starts ({window_s[0]:.4g} s)")
+    return _with_means(worst, biases)
+
+
+def _with_means(settling: Settling, biases: dict[int, tuple[float, float]]) -> Settling:
+    """An unsettled window's ``settling`` with the fitted transients' share of its stage's window mean and the other
+    stages' shares beyond MEAN_TARGET (``biases``: stage -> (share in N, reference force))."""
+    if settling.settled:
+        return settling
+    own, ref = biases.get(settling.stage or 0, (0.0, 0.0))
+    others = tuple((k, b, b / r) for k, (b, r) in biases.items() if k != settling.stage and abs(b) > MEAN_TARGET * r)
+    return replace(settling, mean_bias=own / ref if ref > 0.0 else 0.0, mean_bias_N=own, other_means=others)
 
 
 def _unseen_drift(t: np.ndarray, forces: list[np.ndarray], refs: list[float], static_N: list[float],
@@ -314,8 +337,13 @@ def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str
         return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}; "
                 "its statistics, dynamic factor and load peaks grow with the window (more mesh damping, or stiffness "
                 "harmonics below the parametric-resonance threshold, bound it)")
+    mean = (f"mean (the fitted transients move it by {settling.mean_bias_N:+.4g} N, {settling.mean_bias:+.2g} of the "
+            f"reference, beyond the mean's target {MEAN_TARGET:g}), " if abs(settling.mean_bias) > MEAN_TARGET else "")
+    others = (" (and the window mean " + " and ".join(f"of stage {k} by {b:+.4g} N ({rel:+.2g})"
+                                                      for k, b, rel in settling.other_means) + ")"
+              if settling.other_means else "")
     return (f"the statistics window {window_s[0]:.4g}–{window_s[1]:.4g} s is not settled{tried}: {settling.cause}"
-            f"{when}; its max |F_t|, dynamic factor and load peaks include the start-up transient "
+            f"{when}; its {mean}max |F_t|, dynamic factor and load peaks{others} include the start-up transient "
             "(or [simulation] steady = \"periodic\")")
 
 
@@ -348,7 +376,8 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
         diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
                                 transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
                                 else None, stage=found.stage, mode_frequency_Hz=found.frequency_Hz,
-                                settle_time_s=found.settle_time_s))
+                                settle_time_s=found.settle_time_s, mean_bias_N=found.mean_bias_N,
+                                other_stages_mean_bias_N=[{"stage": k, "mean_bias_N": b} for k, b, _ in found.other_means]))
     fraction = found.transient_fraction if math.isfinite(found.transient_fraction) else None
     return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
 
