@@ -1,22 +1,22 @@
 """``python -m gearcli`` and the ``gearcli`` console script.
 
 The command-line module is imported inside :func:`main` so that a Ctrl-C during the start-up imports
-(pydantic, numpy and scipy first where the command uses them, below; then click, rich) also ends with exit code 130
+(numpy, scipy and pydantic first where the command uses them, below; then click, rich) also ends with exit code 130
 and one line, never a traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The
 process then ends the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
 
 A command that reads a design file (:data:`NUMERIC`) imports the libraries it loads anyway right after that guard,
-before gearcli's own modules: pydantic's model machinery (``pydantic.main``, ``pydantic.types`` with
-annotated_types) and numpy; one that integrates (:data:`INTEGRATING`) also numpy's ``f2py`` and ``ma`` and
-scipy.integrate (scipy's array-API layer star-imports numpy, which loads numpy's lazy submodules: ``f2py``'s
-crackfortran compiles ~70 regular expressions at import, ``ma.core`` builds ~100 function wrappers). They load from
-a frame next to the entry point (5-27 frames deep) instead of from inside gearcli's import tree and scipy's (55-85).
-Python 3.11 keeps frames in 16 KiB chunks and frees a chunk whenever the frame at its start returns, so an
-import-time loop whose calls straddle a chunk's end maps and unmaps a chunk per call, a page fault each
-(docs/performance.md, "The one-shot commands, session 13"); the shallower such loops run, the fewer straddle one.
-The seed's ``simulate`` over 19 caller depths: 82-2,180 unmapped chunks (median 318) against 585-8,937 (median
-1,623) with numpy and scipy.integrate alone imported here and 1,658-14,300 from inside gearcli (docs/performance.md,
-"The one-shot simulate, session 17").
+before gearcli's own modules: numpy; for one that integrates (:data:`INTEGRATING`) numpy's ``f2py`` and ``ma`` and
+scipy.integrate next (scipy's array-API layer star-imports numpy, which loads numpy's lazy submodules: ``f2py``'s
+crackfortran compiles ~70 regular expressions at import, ``ma.core`` builds ~100 function wrappers); then pydantic's
+model machinery (``pydantic.main``, ``pydantic.types`` with annotated_types), last because the typing_extensions it
+imports makes every later generic alias dearer. They load from a frame next to the entry point (5-27 frames deep)
+instead of from inside gearcli's import tree and scipy's (55-85). Python 3.11 keeps frames in 16 KiB chunks and
+frees a chunk whenever the frame at its start returns, so an import-time loop whose calls straddle a chunk's end
+maps and unmaps a chunk per call, a page fault each (docs/performance.md, "The one-shot commands, session 13"); the
+shallower such loops run, the fewer straddle one. The seed's ``simulate`` over 19 caller depths: 82-2,180 unmapped
+chunks (median 319) against 585-8,937 (median 1,623) with numpy and scipy.integrate alone imported here and
+1,658-14,300 from inside gearcli (docs/performance.md, "The one-shot simulate, session 17").
 """
 
 import sys
@@ -25,9 +25,12 @@ INTERRUPTED = (129, 130, 143)  # SIGHUP, SIGINT, SIGTERM: gearcli has said so an
 #: the commands whose runs step scipy's solvers, and those that compute with numpy alone (module doc)
 INTEGRATING = frozenset({"simulate", "report", "sweep", "life"})
 NUMERIC = INTEGRATING | {"design", "modes", "schema"}
-#: the libraries those commands load anyway, imported first from the entry point (module doc)
-NUMERIC_FIRST = ("pydantic.main", "pydantic.types", "numpy")
+#: the libraries those commands load anyway, imported first from the entry point (module doc); pydantic's last:
+#: typing_extensions, which it imports, replaces ``typing._collect_parameters`` with a slower one for every generic
+#: alias numpy and scipy would make after it
+NUMERIC_FIRST = ("numpy",)
 INTEGRATING_FIRST = ("numpy.f2py", "numpy.ma", "scipy.integrate")
+MODELS_FIRST = ("pydantic.main", "pydantic.types")
 
 
 def command_word(argv: list[str]) -> str | None:
@@ -39,9 +42,9 @@ def command_word(argv: list[str]) -> str | None:
 def first_imports(word: str | None) -> tuple[str, ...]:
     """The modules a command imports first, in order: its libraries' heaviest import-time loops, run next to the
     entry point (module doc); none for another command or a request for help."""
-    if word in INTEGRATING:
-        return NUMERIC_FIRST + INTEGRATING_FIRST
-    return NUMERIC_FIRST if word in NUMERIC else ()
+    if word not in NUMERIC:
+        return ()
+    return NUMERIC_FIRST + (INTEGRATING_FIRST if word in INTEGRATING else ()) + MODELS_FIRST
 
 
 def _forget_handled_interrupt() -> None:

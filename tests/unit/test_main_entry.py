@@ -5,7 +5,15 @@ import subprocess
 import sys
 from pathlib import Path
 
-from gearcli.__main__ import INTEGRATING, INTEGRATING_FIRST, NUMERIC, NUMERIC_FIRST, command_word, first_imports
+from gearcli.__main__ import (
+    INTEGRATING,
+    INTEGRATING_FIRST,
+    MODELS_FIRST,
+    NUMERIC,
+    NUMERIC_FIRST,
+    command_word,
+    first_imports,
+)
 from gearcli.cli import cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -26,10 +34,23 @@ def test_the_numeric_commands_are_commands():
 
 
 def test_first_imports_by_command():
-    assert first_imports("simulate") == NUMERIC_FIRST + INTEGRATING_FIRST
-    assert first_imports("design") == NUMERIC_FIRST
+    assert first_imports("simulate") == NUMERIC_FIRST + INTEGRATING_FIRST + MODELS_FIRST
+    assert first_imports("design") == NUMERIC_FIRST + MODELS_FIRST
     assert first_imports("engine") == first_imports(None) == ()
-    assert first_imports("simulate")[-1] == "scipy.integrate"  # numpy's submodules before scipy reaches them
+    assert INTEGRATING_FIRST[-1] == "scipy.integrate"  # numpy's submodules before scipy reaches them
+
+
+def test_pydantic_comes_after_numpy_and_scipy():
+    """typing_extensions (pydantic imports it) replaces typing's parameter collection, which numpy's and scipy's
+    generic aliases would then go through: the entry point imports pydantic's modules after them."""
+    code = ("import sys, typing\nbefore = typing._collect_parameters\nimport numpy, scipy.integrate\n"
+            "print('typing_extensions' in sys.modules, typing._collect_parameters is before)\nimport pydantic.main\n"
+            "print(typing._collect_parameters is before)\n")
+    proc = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == ["False", "True", "False"]  # the replacement comes with pydantic, not before
+    order = first_imports("simulate")
+    assert max(order.index(m) for m in NUMERIC_FIRST + INTEGRATING_FIRST) < min(order.index(m) for m in MODELS_FIRST)
 
 
 def test_the_first_imports_are_modules_the_commands_load_anyway():
@@ -41,6 +62,6 @@ def test_the_first_imports_are_modules_the_commands_load_anyway():
     assert proc.returncode == 0, proc.stderr
     designing, running = (set(line.split()) for line in proc.stdout.splitlines())
     assert "gearcli.__main__" not in running
-    assert set(NUMERIC_FIRST) <= designing
+    assert set(NUMERIC_FIRST + MODELS_FIRST) <= designing
     assert not set(INTEGRATING_FIRST) & designing  # a design does not pay for scipy
     assert set(INTEGRATING_FIRST) <= running
