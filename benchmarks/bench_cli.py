@@ -9,8 +9,8 @@ side. Rows (issue 33's targets):
 
 - `design` on the seed against the floor (<= 1.5x);
 - `simulate` on the seed against the floor (<= 1.6x), as `python -m gearcli` and (`simulate-script`) as the
-  `gearcli` console script the README's commands run (the interpreter's own start differs between the two: Python
-  3.11 maps and frees more 16 KiB frame chunks under `-m`'s deeper start, docs/performance.md);
+  `gearcli` console script the README's commands run (the interpreter's own start differs between the two: `-m`
+  runs the package through runpy, two frames deeper; docs/performance.md, "The one-shot `simulate`, session 17");
 - `report` on the seed against the floor (<= 3x);
 - `report` on the excited conveyor (configs/conveyor.toml) against one `simulate` of it (<= 10x).
 

@@ -1,19 +1,22 @@
 """``python -m gearcli`` and the ``gearcli`` console script.
 
 The command-line module is imported inside :func:`main` so that a Ctrl-C during the start-up imports
-(numpy and scipy first where the command uses them, below; then click, pydantic, rich) also ends with exit code 130
+(numpy, scipy and pydantic first where the command uses them, below; then click, rich) also ends with exit code 130
 and one line, never a traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The
 process then ends the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
 
-A command that integrates (:data:`INTEGRATING`) imports numpy and scipy.integrate right after that guard, before
-gearcli's own modules, and one that computes with numpy alone (:data:`NUMERIC`) numpy: modules it would import
-anyway, from a frame next to the entry point instead of from inside gearcli's import tree and the command's body
-(25-50 frames deeper). Python 3.11 keeps frames in 16 KiB chunks and frees a chunk whenever the frame at its start
-returns, so an import-time loop whose calls straddle a chunk's end maps and unmaps a chunk per call
-(docs/performance.md, "The one-shot commands, session 13"); the shallower the imports, the fewer such loops. The
-seed's ``simulate`` over 19 caller depths: 129-3,144 unmapped chunks (median 1,041) against 1,658-14,300 (median
-4,805) from inside gearcli; ``python -m gearcli design`` 54 against 990 (docs/performance.md, "The one-shot
-simulate, session 15").
+A command that reads a design file (:data:`NUMERIC`) imports the libraries it loads anyway right after that guard,
+before gearcli's own modules: numpy; for one that integrates (:data:`INTEGRATING`) numpy's ``f2py`` and ``ma`` and
+scipy.integrate next (scipy's array-API layer star-imports numpy, which loads numpy's lazy submodules: ``f2py``'s
+crackfortran compiles ~70 regular expressions at import, ``ma.core`` builds ~100 function wrappers); then pydantic's
+model machinery (``pydantic.main``, ``pydantic.types`` with annotated_types), last because the typing_extensions it
+imports makes every later generic alias dearer. They load from a frame next to the entry point (5-27 frames deep)
+instead of from inside gearcli's import tree and scipy's (55-85). Python 3.11 keeps frames in 16 KiB chunks and
+frees a chunk whenever the frame at its start returns, so an import-time loop whose calls straddle a chunk's end
+maps and unmaps a chunk per call, a page fault each (docs/performance.md, "The one-shot commands, session 13"); the
+shallower such loops run, the fewer straddle one. The seed's ``simulate`` over 19 caller depths: 82-2,180 unmapped
+chunks (median 319) against 585-8,937 (median 1,623) with numpy and scipy.integrate alone imported here and
+1,658-14,300 from inside gearcli (docs/performance.md, "The one-shot simulate, session 17").
 """
 
 import sys
@@ -22,12 +25,26 @@ INTERRUPTED = (129, 130, 143)  # SIGHUP, SIGINT, SIGTERM: gearcli has said so an
 #: the commands whose runs step scipy's solvers, and those that compute with numpy alone (module doc)
 INTEGRATING = frozenset({"simulate", "report", "sweep", "life"})
 NUMERIC = INTEGRATING | {"design", "modes", "schema"}
+#: the libraries those commands load anyway, imported first from the entry point (module doc); pydantic's last:
+#: typing_extensions, which it imports, replaces ``typing._collect_parameters`` with a slower one for every generic
+#: alias numpy and scipy would make after it
+NUMERIC_FIRST = ("numpy",)
+INTEGRATING_FIRST = ("numpy.f2py", "numpy.ma", "scipy.integrate")
+MODELS_FIRST = ("pydantic.main", "pydantic.types")
 
 
 def command_word(argv: list[str]) -> str | None:
     """The command a command line names: its first argument that is not an option (gearcli's own options take no
     value), or None."""
     return next((a for a in argv if not a.startswith("-")), None)
+
+
+def first_imports(word: str | None) -> tuple[str, ...]:
+    """The modules a command imports first, in order: its libraries' heaviest import-time loops, run next to the
+    entry point (module doc); none for another command or a request for help."""
+    if word not in NUMERIC:
+        return ()
+    return NUMERIC_FIRST + (INTEGRATING_FIRST if word in INTEGRATING else ()) + MODELS_FIRST
 
 
 def _forget_handled_interrupt() -> None:
@@ -46,10 +63,8 @@ def main() -> None:
         streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
         argv = sys.argv[1:]
         word = command_word(argv) if "--help" not in argv and "-h" not in argv else None
-        if word in NUMERIC:
-            import numpy  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
-        if word in INTEGRATING:
-            import scipy.integrate  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
+        for name in first_imports(word):
+            __import__(name)  # lazy: a command's own libraries, imported first from here (module doc)
         # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
         from gearcli.cli import main as run
     except KeyboardInterrupt:
