@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import copy
 import math
+import tomllib
+from pathlib import Path
 
 import pytest
 
@@ -96,3 +98,19 @@ def test_stiffness_departure_just_over_25_percent_is_written_over_it():
     assert "+25.02 % from ISO" in message
     assert warnings_of(lambda d: d.update(contact={"stiffness": 1.2498 * k_n, "exponent": 1}),
                        "stiffness_not_iso") == []
+
+
+def _figure_after(message: str, lead: str) -> float:
+    return float(message.split(lead, 1)[1].split()[0])
+
+
+def test_a_safety_a_hair_below_its_minimum_is_written_below_it():
+    # a property of the message, whatever S_F is: with the minimum 1e-5 above it, a 3-digit S_F reads as the minimum
+    path = Path(__file__).resolve().parents[2] / "configs" / "industrial_two_stage_rated.toml"
+    doc = tomllib.loads(path.read_text())
+    s_f = compute_design(DesignFile.model_validate(doc)).stages[0].rating.pinion.S_F
+    doc["rating"]["min_safety_bending"] = minimum = round(s_f * (1.0 + 1e-5), 9)
+    (message,) = [d.message for d in compute_design(DesignFile.model_validate(doc)).diagnostics
+                  if d.data.get("mode") == "bending" and d.data.get("stage") == 1 and d.data.get("member") == "pinion"]
+    shown = _figure_after(message, "S_F = ")
+    assert shown < minimum and f"{shown:.3g}" == f"{minimum:.3g}"  # the 3-digit figure would have sat on it
