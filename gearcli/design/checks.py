@@ -34,6 +34,7 @@ from gearcli.core.text import beside
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
     normal_tip_thickness_mm,
+    pointed_tip_diameter_mm,
     rack_form_height_factor,
     tip_reach_mm,
     undercut_limit_teeth,
@@ -497,12 +498,26 @@ def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm
     limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
     if s_an >= limit:
         return None
-    what = "pointed tooth: the flanks meet below the tip circle" if s_an <= 0 else "thin tooth tip"
+    what = _pointed_text(stage, gear) if s_an <= 0 else "thin tooth tip"
     at_tip = f", d_a + A_dae = {tip:.4g} mm" if tip_allowance_mm else ""
     fix = "reduce the profile shift" if gear.generating_profile_shift is None else \
         "reduce the profile shift or the tooth-thickness / tip allowances"
     return (f"stage {stage.index}: {_name(stage, gear)} {what}, normal tip thickness s_an = {beside(s_an, limit)} mm "
             f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({_shift_text(gear)}{at_tip}); {fix}")
+
+
+def _pointed_text(stage: StageResult, gear: GearResult) -> str:
+    """Where a pointed tooth's flanks meet (``pointed_tip_diameter_mm``, at the cut shift) and the transverse contact
+    ratio with contact ending there (each member's tip taken at the lower of d_a and that diameter), not at d_a."""
+    def point(g: GearResult) -> float:
+        return pointed_tip_diameter_mm(g.teeth, stage.normal_module_mm, _cut_shift(g), math.radians(stage.helix_angle_deg),
+                                       math.radians(stage.normal_pressure_angle_deg))
+    reach = sum(tip_reach_mm(min(g.tip_diameter_mm, point(g)), g.base_diameter_mm) for g in (stage.pinion, stage.gear))
+    eps = (reach - stage.center_distance_mm * math.sin(math.radians(stage.working_pressure_angle_deg))) \
+        / stage.transverse_base_pitch_mm
+    return (f"pointed tooth: the flanks meet at d = {point(gear):.4g} mm, below the tip circle, where contact ends: the "
+            f"transverse contact ratio is {max(eps, 0.0):.3f}{_usable_margin(eps)}, not ε_α = "
+            f"{stage.contact_ratio_transverse:.3f}")
 
 
 def resonance_warning(stage: StageResult) -> str | None:

@@ -114,3 +114,28 @@ def test_a_safety_a_hair_below_its_minimum_is_written_below_it():
                   if d.data.get("mode") == "bending" and d.data.get("stage") == 1 and d.data.get("member") == "pinion"]
     shown = _figure_after(message, "S_F = ")
     assert shown < minimum and f"{shown:.3g}" == f"{minimum:.3g}"  # the 3-digit figure would have sat on it
+
+
+def test_a_pointed_tooth_names_where_its_flanks_meet_and_the_contact_ratio_there():
+    # z = 10, x = +1.3 against z = 60, x = −1.3 (a_w = a = 140 mm, α_w = 20°): the flanks meet where
+    # inv α_p = (π/2 + 2 x tan α)/z + inv α (ISO 21771 tooth thickness = 0), d_p = d_b / cos α_p = 55.86 mm, below
+    # d_a = 58.4 mm; contact ends there, so ε_α = (√(r_p² − r_b1²) + √(r_a2² − r_b2²) − a sin α) / p_b = 0.861, not the
+    # 1.004 the tip circle gives
+    def inv(a):
+        return math.tan(a) - a
+    alpha, target = math.radians(20.0), (math.pi / 2 + 2 * 1.3 * math.tan(math.radians(20.0))) / 10 + inv(math.radians(20.0))
+    lo, hi = 0.1, 1.5
+    for _ in range(200):  # bisection on the increasing inv α
+        lo, hi = (0.5 * (lo + hi), hi) if inv(0.5 * (lo + hi)) < target else (lo, 0.5 * (lo + hi))
+    d_p = 40.0 * math.cos(alpha) / math.cos(lo)
+    r_b1, r_b2, r_a2 = 20.0 * math.cos(alpha), 120.0 * math.cos(alpha), 0.5 * (240.0 + 2 * 4 * (1 - 1.3))
+    eps = ((math.sqrt((d_p / 2) ** 2 - r_b1 ** 2) + math.sqrt(r_a2 ** 2 - r_b2 ** 2) - 140.0 * math.sin(alpha))
+           / (4 * math.pi * math.cos(alpha)))
+    assert d_p == pytest.approx(55.86, abs=0.01) and eps == pytest.approx(0.861, abs=1e-3)
+
+    def edit(d):
+        d["stage"][0]["pinion"].update(teeth=10, profile_shift=1.3)
+        d["stage"][0]["gear"]["profile_shift"] = -1.3
+    (message,) = warnings_of(edit, "tip_thickness")
+    assert f"the flanks meet at d = {d_p:.4g} mm" in message
+    assert f"the transverse contact ratio is {eps:.3f} (< 1" in message
