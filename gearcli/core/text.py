@@ -11,6 +11,7 @@ markdown file, a CSV cell or an error message (docs/output.md, "Text fields"):
 - :func:`markdown_inline` also escapes the characters markdown would read as structure.
 - :func:`csv_text_cell` neutralises spreadsheet formulas in text (never numeric) CSV cells.
 - :func:`figure` writes a number to a few significant digits without an exponent for whole numbers.
+- :func:`beside` writes a number checked against a limit with the digits that keep it on its side of the limit.
 Rich markup is avoided at the source: writers hand rich ``Text`` objects, never markup strings.
 """
 
@@ -71,3 +72,22 @@ def figure(x: float, digits: int) -> str:
     if x == 0.0 or not math.isfinite(x) or abs(x) >= 1e9 or math.floor(math.log10(abs(x))) < digits - 1:
         return format(x, f".{digits}g")
     return f"{x:.0f}"
+
+
+_PRECISION = re.compile(r"\.(\d+)([fg])$")
+
+
+def beside(x: float, limit: float, spec: str = ".3g") -> str:
+    """``x`` as ``format(x, spec)`` (a precision and ``f`` or ``g``, e.g. ``"+.2f"``), with more digits where that
+    rounding would put the written number on the limit or across it: a warning's figure is read against the limit it
+    names, so b/d1 = 1.5004 beside the limit 1.5 is written ``1.5004``, never "1.5 > 1.5"; a 14.018 teeth undercut
+    limit beside z = 14, ``14.02``, never "14 < 14.0"."""
+    match = _PRECISION.search(spec)
+    if match is None or not math.isfinite(x) or not math.isfinite(limit) or x == limit:
+        return format(x, spec)
+    head, digits, kind = spec[: match.start()], int(match.group(1)), match.group(2)
+    for n in range(digits, 18):
+        text = format(x, f"{head}.{n}{kind}")
+        if (float(text) > limit) == (x > limit) and float(text) != limit:
+            return text
+    return repr(x)

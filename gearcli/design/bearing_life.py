@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from gearcli.core.text import beside
 from gearcli.design import iso281
 from gearcli.diagnostics import Diagnostic, warning
 from gearcli.errors import DesignError
@@ -98,7 +99,7 @@ def static_warning(cfg: DesignFile, j: int, kind: str, s0: float | None, where: 
     needed = min_static_safety_required(cfg, kind)
     if s0 is None or s0 >= needed:
         return None
-    return warning(STATIC_SAFETY_LOW, f"bearing {j + 1}: static safety s_0 = C_0/P_0 = {s0:.3g} {where} is below the "
+    return warning(STATIC_SAFETY_LOW, f"bearing {j + 1}: static safety s_0 = C_0/P_0 = {beside(s0, needed)} {where} is below the "
                    f"minimum {needed:.3g} (ISO 76; [rating] min_static_safety_bearing); choose a bearing with a "
                    "larger C_0", bearing=j + 1, s0=s0, s0_min=needed)
 
@@ -107,7 +108,7 @@ def kappa_warning(j: int, kappa: float, where: str = "") -> Diagnostic | None:
     """A warning when bearing j's kappa is below ISO 281's range (``where``: " (the lowest over the duty)", ...)."""
     if kappa >= iso281.KAPPA_MIN:
         return None
-    return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {kappa:.3g}{where} is below 0.1, "
+    return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {beside(kappa, iso281.KAPPA_MIN)}{where} is below 0.1, "
                    "where ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
 
 

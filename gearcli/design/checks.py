@@ -30,16 +30,18 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from gearcli.core.jsontypes import JsonObject
+from gearcli.core.text import beside
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
     normal_tip_thickness_mm,
+    pointed_tip_diameter_mm,
     rack_form_height_factor,
     tip_reach_mm,
     undercut_limit_teeth,
     undercut_min_profile_shift,
 )
 from gearcli.design.input_checks import HANDS, OPPOSITE
-from gearcli.design.resonance import MAIN_RESONANCE_UPPER, subharmonic_orders
+from gearcli.design.resonance import MAIN_RESONANCE_UPPER, SUBHARMONICS, subharmonic_orders
 from gearcli.design.stiffness import material_factor, smaller_wheel_first
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.stages.design import design_kind, gear_pairs, member_name
@@ -203,7 +205,7 @@ def target_speed_warning(cfg: DesignFile, output_speed_rpm: float) -> str | None
     # in the unit the target is given in (DESIGN §12): a target in °/s is not echoed back in rpm
     scale, unit = (6.0, "°/s") if cfg.target.output_speed_rpm is None else (1.0, "rpm")
     return (f"output speed {scale * output_speed_rpm:.4g} {unit} misses the target {scale * target:.4g} {unit} by "
-            f"{deviation:+.1f} % (tolerance ±{cfg.target.tolerance_percent:g} %)")
+            f"{beside(deviation, math.copysign(cfg.target.tolerance_percent, deviation), '+.1f')} % (tolerance ±{cfg.target.tolerance_percent:g} %)")
 
 
 def massless_rotor_warning(cfg: DesignFile) -> str | None:
@@ -325,9 +327,9 @@ def undercut_warning(stage: StageResult, gear: GearResult, stage_cfg: Stage) -> 
     if gear.teeth >= z_min:
         return None
     what = "a profile shift" if gear.generating_profile_shift is None else "a generating profile shift x_E,i"
-    return (f"stage {stage.index}: {_name(stage, gear)} z = {gear.teeth} < z_min = {z_min:.1f} "
+    return (f"stage {stage.index}: {_name(stage, gear)} z = {gear.teeth} < z_min = {beside(z_min, gear.teeth, '.1f')} "
             f"({_shift_text(gear)}, β = {stage.helix_angle_deg:g}°): undercut risk; "
-            f"use {what} ≥ {x_needed:+.2f} or more teeth")
+            f"use {what} ≥ {math.ceil(100.0 * x_needed) / 100.0:+.2f} or more teeth")
 
 
 #: contact may start this far (× m_n, along the line of action) below a form circle before it is called interference:
@@ -439,7 +441,7 @@ def contact_ratio_allowances_warning(stage: StageResult) -> str | None:
     eps = stage.contact_ratio_transverse_with_allowances
     if eps is None or min(eps) >= 1.0 or stage.contact_ratio_transverse < 1.0:
         return None
-    return (f"stage {stage.index}: transverse contact ratio with allowances ε_α,i = {min(eps):.3f} < 1 (nominal "
+    return (f"stage {stage.index}: transverse contact ratio with allowances ε_α,i = {beside(min(eps), 1.0, '.3f')} < 1 (nominal "
             f"{stage.contact_ratio_transverse:.3f}): at the lower tip diameters and the largest centre distance "
             "contact is interrupted in every transverse section; narrow the tip or centre-distance allowances")
 
@@ -448,10 +450,10 @@ def contact_ratio_warning(stage: StageResult) -> str | None:
     eps, total = stage.contact_ratio_transverse, stage.contact_ratio_total
     if eps < 1.0:
         overlap = "the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous"
-        return (f"stage {stage.index}: transverse contact ratio ε_α = {eps:.3f} < 1: contact is interrupted in "
+        return (f"stage {stage.index}: transverse contact ratio ε_α = {beside(eps, 1.0, '.3f')} < 1: contact is interrupted in "
                 f"every transverse section; total ε_γ = {total:.3f}, {overlap}")
     if eps < MIN_CONTACT_RATIO:
-        return (f"stage {stage.index}: transverse contact ratio ε_α = {eps:.3f} < {MIN_CONTACT_RATIO}: little "
+        return (f"stage {stage.index}: transverse contact ratio ε_α = {beside(eps, MIN_CONTACT_RATIO, '.3f')} < {MIN_CONTACT_RATIO}: little "
                 "margin for tip relief, pitch and centre-distance errors")
     return None
 
@@ -472,11 +474,11 @@ def face_width_warning(stage: StageResult) -> str | None:
         f"smaller wheel's (the {'driven gear' if gear == 'gear' else gear}'s)"
     if ratio > high:
         return (f"stage {stage.index}: face width / {which} pitch diameter b/d1 = {stage.face_width_mm:g}/"
-                f"{d1:.4g} = {ratio:.3g} > {high}: the load concentrates along the "
+                f"{d1:.4g} = {beside(ratio, high)} > {high}: the load concentrates along the "
                 "face (misalignment, shaft bending); usual b/d1 ≤ 1.1–1.6")
     if ratio < low:
         return (f"stage {stage.index}: face width / {which} pitch diameter b/d1 = {stage.face_width_mm:g}/"
-                f"{d1:.4g} = {ratio:.3g} < {low}: a very narrow face; a smaller "
+                f"{d1:.4g} = {beside(ratio, low)} < {low}: a very narrow face; a smaller "
                 "pinion or a wider face would use the material better")
     return None
 
@@ -496,20 +498,42 @@ def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm
     limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
     if s_an >= limit:
         return None
-    what = "pointed tooth: the flanks meet below the tip circle" if s_an <= 0 else "thin tooth tip"
+    what = _pointed_text(stage, gear) if s_an <= 0 else "thin tooth tip"
     at_tip = f", d_a + A_dae = {tip:.4g} mm" if tip_allowance_mm else ""
     fix = "reduce the profile shift" if gear.generating_profile_shift is None else \
         "reduce the profile shift or the tooth-thickness / tip allowances"
-    return (f"stage {stage.index}: {_name(stage, gear)} {what}, normal tip thickness s_an = {s_an:.3g} mm "
+    return (f"stage {stage.index}: {_name(stage, gear)} {what}, normal tip thickness s_an = {beside(s_an, limit)} mm "
             f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({_shift_text(gear)}{at_tip}); {fix}")
+
+
+def _pointed_text(stage: StageResult, gear: GearResult) -> str:
+    """Where a pointed tooth's flanks meet (``pointed_tip_diameter_mm``, at the cut shift) and the transverse contact
+    ratio with contact ending there (each member's tip taken at the lower of d_a and that diameter), not at d_a."""
+    def point(g: GearResult) -> float:
+        return pointed_tip_diameter_mm(g.teeth, stage.normal_module_mm, _cut_shift(g), math.radians(stage.helix_angle_deg),
+                                       math.radians(stage.normal_pressure_angle_deg))
+    reach = sum(tip_reach_mm(min(g.tip_diameter_mm, point(g)), g.base_diameter_mm) for g in (stage.pinion, stage.gear))
+    eps = (reach - stage.center_distance_mm * math.sin(math.radians(stage.working_pressure_angle_deg))) \
+        / stage.transverse_base_pitch_mm
+    return (f"pointed tooth: the flanks meet at d = {point(gear):.4g} mm, below the tip circle, where contact ends: the "
+            f"transverse contact ratio is {max(eps, 0.0):.3f}{_usable_margin(eps)}, not ε_α = "
+            f"{stage.contact_ratio_transverse:.3f}")
 
 
 def resonance_warning(stage: StageResult) -> str | None:
     """ISO 6336-1 speed ranges: the main resonance N_S < N ≤ 1.15, and the subcritical resonances near
     N = 1/2 and 1/3 (the main range's band divided by 2 and 3; ISO names the points, gearcli the band)."""
-    head = (f"stage {stage.index}: resonance ratio N = n1/n_E1 = {stage.resonance_ratio:.3f} (n_E1 = "
+    head = (f"stage {stage.index}: resonance ratio N = n1/n_E1 = "
+            f"{resonance_figure(stage.resonance_ratio, stage.resonance_lower_limit)} (n_E1 = "
             f"{stage.resonance_speed_rpm:.4g} rpm of the smaller wheel, ISO 6336-1)")
     return resonance_text(head, stage.resonance_ratio, stage.resonance_lower_limit, stage.resonance_range)
+
+
+def resonance_figure(n: float, lower: float) -> str:
+    """N to 3 decimals, or more where that would put it on or across the nearest edge of the ranges the warning
+    names (N_S and 1.15, over 1, 2 and 3)."""
+    edges = [edge / j for edge in (lower, MAIN_RESONANCE_UPPER) for j in (1, *SUBHARMONICS)]
+    return beside(n, min(edges, key=lambda edge: abs(edge - n)), ".3f")
 
 
 def resonance_text(head: str, n: float, lower: float, speed_range: str) -> str | None:
@@ -552,7 +576,7 @@ def stiffness_not_iso(stage: int, mesh: str, law) -> Diagnostic | None:
         return None
     where = f"stage {stage}" + ("" if mesh == "mesh" else f" {mesh.replace('_', '–')} mesh")
     message = (f"{where}: the mesh law ({law.law}, e = {law.exponent:g}) has a linearised stiffness of "
-               f"{law.linearised_N_mm:.4g} N/mm at the static load, {100 * law.departure:+.0f} % from ISO 6336-1's "
+               f"{law.linearised_N_mm:.4g} N/mm at the static load, {beside(100 * law.departure, math.copysign(100 * STIFFNESS_NOT_ISO_TOLERANCE, law.departure), '+.0f')} % from ISO 6336-1's "
                f"k_n = c_γα b / cos² β_b = {law.iso_N_mm:.4g} N/mm: natural frequencies and dynamic loads follow "
                "the law, not ISO's mesh stiffness (stiffness = \"iso6336\" calibrates the law's tangent to k_n)")
     return warning(STIFFNESS_NOT_ISO, message, stage=stage, mesh=mesh, law=law.law, exponent=law.exponent,

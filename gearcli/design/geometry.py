@@ -205,6 +205,17 @@ def form_point_from_base_tangent_mm(pitch_diameter: float, transverse_pressure_r
             - (form_height_factor - profile_shift) * normal_module_mm / math.sin(transverse_pressure_rad))
 
 
+def pointed_tip_diameter_mm(teeth: int, normal_module_mm: float, profile_shift: float, helix_rad: float,
+                            normal_pressure_rad: float) -> float:
+    """The diameter where the tooth's flanks meet, s_t = 0 (ISO 21771, 5.4): inv α_p = s_t/d + inv α_t with s_t =
+    m_t (π/2 + 2 x tan α_n) at the reference circle, d_p = d_b / cos α_p. A tip circle above it carries no tooth."""
+    m_t = transverse_module_mm(normal_module_mm, helix_rad)
+    alpha_t = transverse_pressure_angle_rad(normal_pressure_rad, helix_rad)
+    d = pitch_diameter_mm(teeth, m_t)
+    value = (HALF_PI + 2.0 * profile_shift * math.tan(normal_pressure_rad)) / teeth + involute(alpha_t)
+    return base_diameter_mm(d, alpha_t) / math.cos(inverse_involute(value)) if value > 0.0 else 0.0
+
+
 def tip_reach_mm(tip_diameter: float, base_diameter: float) -> float:
     """g = √(r_a² − r_b²): from a member's base tangent point to where its tip circle crosses the line of action."""
     return math.sqrt(max(0.25 * (tip_diameter ** 2 - base_diameter ** 2), 0.0))

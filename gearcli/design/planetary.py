@@ -33,7 +33,7 @@ from gearcli.design import allowances_internal as ia
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import resonance_text
+from gearcli.design.checks import resonance_figure, resonance_text
 from gearcli.design.geometry import (
     base_diameter_mm,
     base_helix_angle_rad,
@@ -390,7 +390,8 @@ def ring_resonance_warning(stage_result: StageResult) -> str | None:
     p = stage_result.planetary
     assert p is not None  # a planetary stage's result
     m = p.planet_ring
-    head = (f"stage {stage_result.index}: planet–ring mesh resonance ratio N = n_p/n_E1 = {m.resonance_ratio:.3f} "
+    n = resonance_figure(m.resonance_ratio, m.resonance_lower_limit)
+    head = (f"stage {stage_result.index}: planet–ring mesh resonance ratio N = n_p/n_E1 = {n} "
             f"(n_E1 = {m.resonance_speed_rpm:.4g} rpm of the planet relative to the carrier, ISO 6336-1)")
     return resonance_text(head, m.resonance_ratio, m.resonance_lower_limit, m.resonance_range)
 

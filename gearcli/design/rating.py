@@ -24,6 +24,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from gearcli.core.records import record
+from gearcli.core.text import beside
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design.allowances import manufactured_tooth_depth_mm
@@ -460,7 +461,7 @@ def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") ->
                 code = PITTING_LOW if mode == "pitting" else BENDING_LOW
                 what = "pitting (flank)" if mode == "pitting" else "tooth-root bending"
                 teeth = (st.pinion if part == "pinion" else st.gear).teeth
-                message = (f"stage {st.index} {member_name(st, part)} (z = {teeth}): {what} safety {symbol} = {value:.3g} is below the minimum "
+                message = (f"stage {st.index} {member_name(st, part)} (z = {teeth}): {what} safety {symbol} = {beside(value, minima[mode])} is below the minimum "
                            f"{minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} {r.K_v_source}{source}); widen the face, "
                            "raise the module or choose a stronger material")
                 out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,

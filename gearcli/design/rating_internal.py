@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, cast
 
+from gearcli.core.text import beside
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design import resonance as res
@@ -253,7 +254,7 @@ def planet_ring_safety_diagnostics(cfg: DesignFile, st: StageResult) -> list[Dia
             norm = "ISO 6336-2" if mode == "pitting" else "ISO 6336-3"  # as the external pairs' warnings name it
             out.append(warning(PITTING_LOW if mode == "pitting" else BENDING_LOW,
                                f"stage {st.index} planet–ring mesh, {member} (z = {teeth}): {what} safety {symbol} = "
-                               f"{value:.3g} is below the minimum {minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} "
+                               f"{beside(value, minima[mode])} is below the minimum {minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} "
                                f"{r.K_v_source}); widen the face, raise the module or choose a stronger material",
                                stage=st.index, member=member, mode=mode, S=value, S_min=minima[mode],
                                mesh="planet_ring"))

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from gearcli.core.text import beside
 from gearcli.diagnostics import (
     BEARING_LIFE_SHORT,
     DUTY,
@@ -64,8 +65,8 @@ def _mode_warning(stage: int, member: str, mode: str, ml: ModeLife, minimum: flo
     safety = "" if ml.stress_safety is None else (
         f" (spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress, load multiplier {ml.safety:.4g}; "
         f"minimum {minimum:g})")
-    if low:
-        text = (f"spectrum safety {_SYMBOL[mode]} = {ml.stress_safety:.4g} on stress (load multiplier {ml.safety:.4g}) "
+    if low and ml.stress_safety is not None:
+        text = (f"spectrum safety {_SYMBOL[mode]} = {beside(ml.stress_safety, minimum, '.4g')} on stress (load multiplier {ml.safety:.4g}) "
                 f"is below the minimum {minimum:g} ([rating] min_safety_{mode}); {damage}")
     elif ml.damage >= 1.0:
         text = f"{damage}: it fails within the duty{safety}"
