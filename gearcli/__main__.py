@@ -2,7 +2,12 @@
 
 The command-line module is imported inside :func:`main` so that a Ctrl-C during the start-up imports
 (numpy and scipy first where the command uses them, below; then click, pydantic, rich) also ends with exit code 130
-and one line, never a traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The
+and one line, never a traceback. numpy's and scipy's imports run with signals held back
+(:func:`gearcli.core.signals.deferred`; a signal is acted on once they return, within a second): a KeyboardInterrupt
+raised inside a C extension's initialisation is that extension's to handle, and scipy's pybind11 modules (HiGHS,
+imported by scipy.integrate through scipy.optimize) turned it into "ImportError: initialization failed" (exit 1, a
+traceback) or aborted the process ("terminate called after throwing an instance of 'pybind11::error_already_set'",
+exit 134), 1.4 s into a compiled ``simulate`` under load. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The
 process then ends the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
 
 A command that integrates (:data:`INTEGRATING`) imports numpy and scipy.integrate right after that guard, before
@@ -47,9 +52,13 @@ def main() -> None:
         argv = sys.argv[1:]
         word = command_word(argv) if "--help" not in argv and "-h" not in argv else None
         if word in NUMERIC:
-            import numpy  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
-        if word in INTEGRATING:
-            import scipy.integrate  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
+            from gearcli.core import signals  # lazy: inside main (docstring)
+
+            with signals.deferred():  # a signal is acted on once they are imported (module doc)
+                import numpy  # noqa: F401  # lazy: a command's own, imported first from here (module doc)
+
+                if word in INTEGRATING:
+                    import scipy.integrate  # noqa: F401  # lazy: a command's own, imported first from here
         # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
         from gearcli.cli import main as run
     except KeyboardInterrupt:
