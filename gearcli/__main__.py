@@ -2,8 +2,13 @@
 
 The command-line module is imported inside :func:`main` so that a Ctrl-C during the start-up imports
 (numpy, scipy and pydantic first where the command uses them, below; then click, rich) also ends with exit code 130
-and one line, never a traceback. Once running, :func:`gearcli.cli.guarded` maps interrupts the same way. The
-process then ends the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
+and one line, never a traceback. Those first imports run with signals held back
+(:func:`gearcli.core.signals.deferred`; a signal is acted on once they return, within a second): a KeyboardInterrupt
+raised inside a C extension's initialisation is that extension's to handle, and scipy's pybind11 modules (HiGHS,
+imported by scipy.integrate through scipy.optimize) turned it into "ImportError: initialization failed" (exit 1, a
+traceback) or aborted the process ("terminate called after throwing an instance of 'pybind11::error_already_set'",
+exit 134), 1.4 s into a compiled ``simulate`` under load. Once running, :func:`gearcli.cli.guarded` maps interrupts
+the same way. The process then ends the ordinary way (``SystemExit``): no forked helpers, no collector switches, no early exit.
 
 A command that reads a design file (:data:`NUMERIC`) imports the libraries it loads anyway right after that guard,
 before gearcli's own modules: numpy; for one that integrates (:data:`INTEGRATING`) numpy's ``f2py`` and ``ma`` and
@@ -63,8 +68,13 @@ def main() -> None:
         streams.guard()  # stdout or stderr closed (>&-): hold their descriptors before anything opens a file
         argv = sys.argv[1:]
         word = command_word(argv) if "--help" not in argv and "-h" not in argv else None
-        for name in first_imports(word):
-            __import__(name)  # lazy: a command's own libraries, imported first from here (module doc)
+        first = first_imports(word)
+        if first:
+            from gearcli.core import signals  # lazy: inside main (docstring)
+
+            with signals.deferred():  # a signal is acted on once they are imported (module doc)
+                for name in first:
+                    __import__(name)  # lazy: a command's own libraries, imported first from here (module doc)
         # lazy: inside main, so a Ctrl-C during the start-up imports exits 130 (docstring)
         from gearcli.cli import main as run
     except KeyboardInterrupt:

@@ -327,10 +327,18 @@ def available() -> bool:
 def import_problem() -> str | None:
     """Why numba, though installed, cannot be imported here (a numba built for another numpy, a broken install):
     one line, or None when it imports. Imports numba (once per process): called only where a run is about to use
-    the compiled engine, which imports it anyway."""
+    the compiled engine, which imports it anyway.
+
+    The import runs with signals held back (:func:`gearcli.core.signals.deferred`, a fraction of a second; a signal
+    is acted on once it returns): numba's C extension ``numba._dispatcher`` imports ``numba._devicearray`` from its
+    initialisation, and a KeyboardInterrupt raised there was printed by the extension (``PyErr_Print``: a
+    traceback ending in ``_find_and_load`` on the user's terminal) and turned into "ImportError: numba._devicearray
+    failed to import", a refusal of the compiled engine, or for ``engine = "auto"`` a run that went on in Python
+    with the Ctrl-C dropped."""
     if "import_problem" not in _state:
         try:
-            importlib.import_module("numba")
+            with signals.deferred():
+                importlib.import_module("numba")
             _state["import_problem"] = None
         except Exception as exc:  # noqa: BLE001 - whatever numba's import raises, the engine cannot run
             _state["import_problem"] = f"{type(exc).__name__}: {exc}".splitlines()[0]

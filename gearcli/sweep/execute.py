@@ -198,13 +198,19 @@ def _pool_round(tasks: Sequence[Task], jobs: int) -> Generator[Row, None, _Round
         # until each has started and is in the pool's table, where the handler below ends it; raised inside
         # Process.start it left a worker that read its start after we had gone (a FileNotFoundError traceback)
         futures: dict = {}
+        caught: list[tuple[int, Task]] = []  # submitted as the pool broke, without a future: it may have started
         with deferred():
             for i, t in enumerate(tasks):
                 try:
                     futures[pool.submit(_run_marked, i, t)] = (i, t)
-                except BrokenProcessPool as exc:  # a worker died while the round was still being submitted
-                    broken = exc
-                    unstarted.extend(tasks[i:])  # never submitted: they go on in a new pool
+                except (BrokenProcessPool, OSError) as exc:  # a worker died while the round was being submitted
+                    if not isinstance(exc, BrokenProcessPool) and not _is_broken(pool):
+                        raise
+                    # OSError: the break came while this submit launched a worker, after its check of the pool
+                    # (the pool's queue closed under the launch): the task is in the pool's table, maybe started
+                    broken = exc if isinstance(exc, BrokenProcessPool) else BrokenProcessPool(_is_broken(pool))
+                    caught = [] if isinstance(exc, BrokenProcessPool) else [(i, t)]
+                    unstarted.extend(tasks[i + len(caught):])  # never submitted: they go on in a new pool
                     break
         for fut in as_completed(futures):
             i, task = futures[fut]
@@ -217,6 +223,10 @@ def _pool_round(tasks: Sequence[Task], jobs: int) -> Generator[Row, None, _Round
             except Exception as exc:  # noqa: BLE001 - a task that failed outright: its points become failed rows
                 rows = _lost(task, exc)
             yield from rows
+        if _is_broken(pool):
+            _end_strays(pool)
+        for i, task in caught:
+            (started if marks[i] else unstarted).append(task)
     except BaseException:  # Ctrl-C, SIGTERM/SIGHUP, the consumer gone (GeneratorExit): no worker outlives us
         _stop_workers(pool)
         raise
@@ -265,6 +275,27 @@ def _start_forkserver_deaf() -> None:
         signal.signal(signal.SIGINT, previous)
 
 
+def _is_broken(pool) -> str:
+    """Why the pool is broken ('': it is not): a worker died and the pool's thread failed its futures."""
+    return getattr(pool, "_broken", "") or ""
+
+
+def _end_strays(pool) -> None:
+    """End the workers of a broken pool that are still alive. The pool's thread ends those in its table when a
+    worker dies, but a worker that ``submit`` was launching at that moment (CPython 3.11 launches them there, and
+    its thread fails the pool without the lock ``submit`` holds) enters the table after, is never told to stop, and
+    waits on its task queue for ever: ``shutdown(wait=True)`` then waited for the pool's thread, which waits to join that worker (a sweep
+    hung with its rows written). Called once every submit has returned: no worker is launched after it."""
+    _end([p for p in list((getattr(pool, "_processes", None) or {}).values()) if p.is_alive()])
+
+
+def _end(processes: list) -> None:
+    for proc in processes:
+        proc.terminate()
+    for proc in processes:
+        proc.join(timeout=10)
+
+
 def _stop_workers(pool) -> None:
     """End the pool's workers now (each is mid-point; its rows are lost, the rows already yielded are kept).
     ``ProcessPoolExecutor.terminate_workers`` exists from Python 3.14; before, the pool's own process table."""
@@ -276,10 +307,7 @@ def _stop_workers(pool) -> None:
     # left running, it reads its start from the parent after the parent has gone (its queues' semaphores
     # unlinked) and prints a FileNotFoundError traceback on the user's terminal
     processes += [p for p in multiprocessing.active_children() if p not in processes]
-    for proc in processes:
-        proc.terminate()
-    for proc in processes:
-        proc.join(timeout=10)
+    _end(processes)
     _release_result_reader(pool)
 
 
