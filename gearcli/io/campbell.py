@@ -95,9 +95,20 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
         ax.plot([x], [f], ls="none", label=label, **STYLES[s])
         if near_nominal(rpm, data.nominal_input_rpm) and s != "weakly":
             near.append(c)
+    # coincident orders (a stage's 3rd mesh harmonic on the next stage's 1st: z1 = 3 z3 / i1) cross a mode at one
+    # point: one label naming them all, not labels printed over each other
+    points: dict[tuple[int, float], list[str]] = {}
     for c in near:
-        ax.annotate(f"{c.crossing.excitation} × mode {c.mode}", (_speed(units, c.crossing.input_speed_rpm or 0.0),
-                                                               c.frequency_Hz),
+        at = (c.mode, round(c.crossing.input_speed_rpm or 0.0, 6))
+        points.setdefault(at, [])
+        if c.crossing.excitation not in points[at]:
+            points[at].append(c.crossing.excitation)
+    for c in near:
+        at = (c.mode, round(c.crossing.input_speed_rpm or 0.0, 6))
+        if at not in points:
+            continue
+        ax.annotate(f"{', '.join(points.pop(at))} × mode {c.mode}",
+                    (_speed(units, c.crossing.input_speed_rpm or 0.0), c.frequency_Hz),
                     xytext=(6, -12), textcoords="offset points", fontsize=7.5, color="darkred", zorder=8)
     if swept:
         xs = [_speed(units, v) for v in swept]

@@ -136,16 +136,21 @@ def _columns(tau: np.ndarray, sigma: np.ndarray, cos: np.ndarray, sin: np.ndarra
     return _design(np.exp(-sigma[:, :, None] * tau), cos, sin)
 
 
-def _design(env: np.ndarray, cos: np.ndarray, sin: np.ndarray, skip: int = -1) -> np.ndarray:
+def _design(env: np.ndarray, cos: np.ndarray, sin: np.ndarray, skip: int = -1,
+            extra: np.ndarray | None = None) -> np.ndarray:
     """:func:`_columns` from the modes' envelopes ``env`` (S, M, n) = e^(-sigma tau), without mode ``skip``'s
-    two columns (-1: all modes), written in place (the same numbers as stacking them)."""
+    two columns (-1: all modes), written in place (the same numbers as stacking them); ``extra`` (k, n): more
+    columns after the modes' (the steady forced lines fitted jointly, :func:`_forced_lines`)."""
     S, M, n = env.shape
     modes = [i for i in range(M) if i != skip]
-    out = np.empty((S, 1 + 2 * len(modes), n))
+    k = 0 if extra is None else extra.shape[0]
+    out = np.empty((S, 1 + 2 * len(modes) + k, n))
     out[:, 0] = 1.0
     for col, i in enumerate(modes):
         np.multiply(env[:, i], cos[i], out=out[:, 1 + 2 * col])
         np.multiply(env[:, i], sin[i], out=out[:, 2 + 2 * col])
+    if k:
+        out[:, 1 + 2 * len(modes):] = extra
     return out.transpose(0, 2, 1)
 
 
@@ -177,26 +182,54 @@ def forced_rad_s(layout) -> tuple[float, ...]:
                  for j in range(1, PARTIAL_HARMONICS + 1))
 
 
-def _without_forced(tau: np.ndarray, Y: np.ndarray, modes: np.ndarray, sigma: np.ndarray,
-                    forced: tuple[float, ...]) -> np.ndarray:
-    """``Y`` (S, n) less its least-squares steady lines at the ``forced`` angular frequencies: a resonant forced
-    response is no transient, and left in it leaks into the modes' columns (a spur chain at its 2840 Hz mesh
-    resonance, 878 N of F_t: its 112 Hz coupling transient, 4.5 N at the window start by a closed-form steady
-    state, was fitted at 12-27 N as the window start moved by 0.1-10 ms, settled and unsettled in turn). A line
-    within FORCED_GUARD half-bandwidths (sigma, or the window's resolution 2 pi / T) of a fitted mode, its alias
-    on the thinned samples included, cannot be told from that mode's transient and stays in the record."""
+SEPARABLE = 0.5  # a mode's decaying columns keep at least this fraction of their norm off a near forced line's
+
+
+def _forced_lines(tau: np.ndarray, modes: np.ndarray, sigma: np.ndarray,
+                  forced: tuple[float, ...]) -> np.ndarray | None:
+    """The columns (2k, n) of the steady forced lines at the ``forced`` angular frequencies that the fit takes with
+    the modes' free decays (None: none). A resonant forced response is no transient, and left in the record it
+    leaks into the modes' columns (a spur chain at its 2840 Hz mesh resonance, 878 N of F_t: its 112 Hz coupling
+    transient, 4.5 N at the window start by a closed-form steady state, was fitted at 12-27 N as the window start
+    moved by 0.1-10 ms, settled and unsettled in turn). The lines are fitted jointly with the modes, not taken out of
+    the record first: over a window of partial periods a large line leaks into the others and into the modes'
+    columns, which the record alone would keep (a two-stage chain at its 489 Hz resonance, a 3.7 kN line at 483 Hz:
+    its 161-644 Hz lines taken out of the record alone left 57 N rms of it, and the mode's run-up, 202 N at the
+    window's start by a fit of the whole record, came out at 117 N with a decay rate 4 times too slow). A line
+    within FORCED_GUARD half-bandwidths (sigma, or the window's resolution 2 pi / T) of a fitted mode, its alias on
+    the samples included, is taken only where the decay tells the two apart: every mode's columns keep at least
+    SEPARABLE of their norm off the near lines' (over sigma T = 10 a mode keeps 89 % off a line at its very
+    frequency; over sigma T = 1, 28 %: such a line cannot be told from the mode's transient and stays in the record,
+    where it counts as transient, the safe side)."""
     if not forced or tau.size < 2:
-        return Y
+        return None
+    unique: list[float] = []  # one line per frequency (a stage's 3rd mesh harmonic may be the next one's 1st)
+    for w in sorted(forced):
+        if not unique or w - unique[-1] > 1e-9 * w:
+            unique.append(w)
+    forced = tuple(unique)
     dt = float(tau[1] - tau[0])
     nyquist = math.pi / dt
     width = np.maximum(np.abs(sigma), 2 * math.pi / max(float(tau[-1]), dt))
-    lines = [w for w in forced
-             if np.all(np.abs(abs((w + nyquist) % (2 * nyquist) - nyquist) - modes) > FORCED_GUARD * width)]
-    if not lines:
-        return Y
-    w = np.array(lines)[:, None] * tau
-    q = _orthonormal(np.concatenate((np.cos(w), np.sin(w))).T)
-    return Y - (Y @ q) @ q.T
+    near = [bool(np.any(np.abs(abs((w + nyquist) % (2 * nyquist) - nyquist) - modes) <= FORCED_GUARD * width))
+            for w in forced]
+
+    def columns(lines: list[float]) -> np.ndarray:
+        w = np.array(lines)[:, None] * tau
+        return np.concatenate((np.cos(w), np.sin(w)))  # (2k, n)
+
+    lines = [w for w, n in zip(forced, near, strict=True) if not n]
+    close = [w for w, n in zip(forced, near, strict=True) if n]
+    if close:
+        cols = columns(close)
+        q = _orthonormal(np.column_stack([np.ones_like(tau), cols.T]))
+        env = np.exp(-np.abs(sigma)[:, None] * tau)
+        decays = np.concatenate((env * np.cos(modes[:, None] * tau), env * np.sin(modes[:, None] * tau)))
+        decays = decays - decays.mean(axis=1, keepdims=True)
+        left = np.linalg.norm(decays - (decays @ q) @ q.T, axis=1)
+        if np.all(left >= SEPARABLE * np.maximum(np.linalg.norm(decays, axis=1), np.finfo(float).tiny)):
+            lines += close
+    return columns(lines) if lines else None
 
 
 def fit_transients(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, float]], *,
@@ -229,7 +262,7 @@ def fit_transient_terms(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, f
     stride = max(1, min(t.size // FIT_SAMPLES, int(2 * math.pi / (fastest * dt * SAMPLES_PER_PERIOD)) if dt > 0 else 1))
     tau = t[::stride] - t[0]
     Y = X[::stride].T - X[::stride].mean(axis=0)[:, None]  # (S, n), centred: the constant column takes the rest
-    Y = _without_forced(tau, Y, base[:, 1], base[:, 0], forced)  # the steady forced lines are no transient
+    extra = _forced_lines(tau, base[:, 1], base[:, 0], forced)  # the steady forced lines: fitted with the modes
     cos, sin = np.cos(base[:, 1:2] * tau), np.sin(base[:, 1:2] * tau)  # (M, n)
     sigma = np.broadcast_to(base[:, 0], (S, M)).copy()
     factors = np.geomspace(0.25, 4.0, TRIALS)
@@ -243,7 +276,7 @@ def fit_transient_terms(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, f
             # the other columns, once per distinct set of decay rates: stages whose modes decay alike share the
             # basis, the projected trials and their Gram matrices (the same numbers as one per stage)
             reps, group = _distinct(np.delete(sigma, j, axis=1))
-            q = _orthonormal(_design(envelopes[reps], cos, sin, skip=j))  # (G, n, r)
+            q = _orthonormal(_design(envelopes[reps], cos, sin, skip=j, extra=extra))  # (G, n, r)
             env = np.exp(-(base[j, 0] * factors)[:, None] * tau)  # (TRIALS, n)
             np.multiply(env, cos[j], out=trial[:, 0])
             np.multiply(env, sin[j], out=trial[:, 1])
@@ -256,9 +289,10 @@ def fit_transient_terms(t: np.ndarray, X: np.ndarray, modes: list[tuple[float, f
             sigma[:, j] = base[j, 0] * factors[np.argmax(gain, axis=1)]  # the least residual: the most explained
             envelopes[:, j] = np.exp(-sigma[:, j, None] * tau)
     reps, group = _distinct(sigma)
-    q, r = np.linalg.qr(_design(envelopes[reps], cos, sin))
+    q, r = np.linalg.qr(_design(envelopes[reps], cos, sin, extra=extra))
     coef = np.stack([np.linalg.lstsq(r[group[i]], q[group[i]].T @ Y[i], rcond=None)[0] for i in range(S)])
-    return coef[:, 1::2] - 1j * coef[:, 2::2], sigma  # a cos + b sin = Re((a - i b) e^(i omega tau))
+    # a cos + b sin = Re((a - i b) e^(i omega tau)); the forced lines' columns after the modes' are not returned
+    return coef[:, 1:1 + 2 * M:2] - 1j * coef[:, 2:2 + 2 * M:2], sigma
 
 
 def _distinct(rows: np.ndarray) -> tuple[list[int], np.ndarray]:

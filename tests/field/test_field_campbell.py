@@ -118,3 +118,37 @@ def test_campbell_legend_hides_no_title(path):
     assert legend.x1 <= fig.bbox.x1 + 0.5
     left = ax._left_title.get_window_extent(renderer)
     assert left.x1 <= ax.get_window_extent(renderer).x1 + 0.5  # the wrapped key fits the axes' width
+
+
+COINCIDENT = ROOT / "tests" / "field" / "data" / "coincident_orders.toml"
+
+
+def test_coincident_orders_crossing_a_mode_get_one_label():
+    """tr19e: stage 1's mesh 1x (order 20 per input revolution) and stage 2's mesh 3x (3 x 20 / 3 = 20) are one line;
+    their crossings with mode 1 were labelled twice, one text printed over the other. The mode by hand: shafts 2
+    (J = 0.06) and 3 (J = 0.3) with the input held, transverse mesh stiffness k cos^2 beta_b on base radii
+    r_b = z m_n cos(alpha_t) / (2 cos beta)."""
+    import numpy as np
+
+    from gearcli.io.campbell import campbell_figure
+
+    path = COINCIDENT
+    beta, alpha_n = math.radians(15.0), math.radians(20.0)
+    alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))
+    k = 4e8 * (1.0 - (math.sin(beta) * math.cos(alpha_n)) ** 2)  # N/m along the transverse line of action
+
+    def rb(z: int, m: float) -> float:
+        return z * m * 1e-3 * math.cos(alpha_t) / (2 * math.cos(beta))
+
+    g1, p2, g2 = rb(60, 3.0), rb(20, 4.0), rb(50, 4.0)
+    K = np.array([[k * (g1 ** 2 + p2 ** 2), -k * p2 * g2], [-k * p2 * g2, k * g2 ** 2]])
+    f1 = math.sqrt(min(np.linalg.eigvals(np.linalg.solve(np.diag([0.06, 0.3]), K)).real)) / (2 * math.pi)
+    data = campbell_data(_layout(str(path)))
+    mode1 = min((m for m in data.modes if not m.rigid), key=lambda m: m.frequency_Hz)
+    assert mode1.frequency_Hz == pytest.approx(f1, rel=1e-9)  # 489.17 Hz
+    on_mode1 = {c.crossing.excitation: c.crossing.input_speed_rpm for c in data.crossings if c.mode == mode1.number}
+    for name in ("stage 1 mesh 1x", "stage 2 mesh 3x"):  # 60 f / 20 = 1467.5 rpm, near the nominal 1500
+        assert on_mode1[name] == pytest.approx(60 * f1 / 20, rel=1e-9)
+    fig = campbell_figure(data, OutputUnits("rpm", "Nm"), "coincident")
+    labels = [t.get_text() for t in fig.axes[0].texts if "× mode 1" in t.get_text()]
+    assert labels == ["stage 1 mesh 1x, stage 2 mesh 3x × mode 1"]
