@@ -66,7 +66,7 @@ STARTS_NOT_COUNTED = "starts_not_counted"  # --static: the duty's starts are cou
 STARTS_NOT_FROM_REST = "starts_not_from_rest"  # starts on a drive whose run does not start from rest
 BEYOND_STATIC_STRENGTH = "beyond_static_strength"  # load classes beyond the static strength (slope extrapolated)
 LIFE_SAFETY_LOW = "life_safety_low"  # a member's spectrum safety below the minimum, or D >= 1 within the duty
-BEARING_LIFE_SHORT = "bearing_life_short"  # a bearing's ISO 281 life over the duty shorter than the duty
+BEARING_LIFE_SHORT = "bearing_life_short"  # a bearing's ISO 281 life (over the duty, or at the design load) shorter than required
 OTHER = "other"
 
 

@@ -9,11 +9,11 @@ figures of the duty points and starts through :func:`duty_modified_life` and :fu
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from gearcli.core.text import beside
 from gearcli.design import iso281
-from gearcli.diagnostics import Diagnostic, warning
+from gearcli.diagnostics import BEARING_LIFE_SHORT, Diagnostic, warning
 from gearcli.errors import DesignError
 
 if TYPE_CHECKING:
@@ -24,6 +24,25 @@ STATIC_SAFETY_LOW = "bearing_static_safety_low"
 KAPPA_OUT_OF_RANGE = "bearing_kappa_below_range"
 AXIAL_NOT_RATED = "bearing_axial_not_rated"
 MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent")
+
+
+class RatedBearing(Protocol):
+    """What a life verdict reads of a bearing: design's BearingResult, life's BearingLife."""
+
+    @property
+    def shaft(self) -> int: ...
+    @property
+    def position_mm(self) -> float: ...
+    @property
+    def planet_stage(self) -> int | None: ...
+    @property
+    def equivalent_load_N(self) -> float: ...
+    @property
+    def dynamic_load_rating_kN(self) -> float: ...
+    @property
+    def L10_h(self) -> float | None: ...
+    @property
+    def L_nm_h(self) -> float | None: ...
 
 
 def wants_modified_life(cfg: DesignFile, j: int) -> bool:
@@ -104,12 +123,15 @@ def static_warning(cfg: DesignFile, j: int, kind: str, s0: float | None, where: 
                    "larger C_0", bearing=j + 1, s0=s0, s0_min=needed)
 
 
-def kappa_warning(j: int, kappa: float, where: str = "") -> Diagnostic | None:
-    """A warning when bearing j's kappa is below ISO 281's range (``where``: " (the lowest over the duty)", ...)."""
+def kappa_warning(j: int, kappa: float, where: str = "", points: Sequence[str] | None = None) -> Diagnostic | None:
+    """A warning when bearing j's kappa is below ISO 281's range (``where``: " (the lowest over the duty; ...)",
+    ...; ``points``: the duty points below it, in the data as ``points`` when given)."""
     if kappa >= iso281.KAPPA_MIN:
         return None
+    extra = {} if points is None else {"points": list(points)}
     return warning(KAPPA_OUT_OF_RANGE, f"bearing {j + 1}: viscosity ratio kappa = {beside(kappa, iso281.KAPPA_MIN)}{where} is below 0.1, "
-                   "where ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa)
+                   "where ISO 281's a_ISO does not apply; a_ISO is taken at kappa = 0.1", bearing=j + 1, kappa=kappa,
+                   **extra)
 
 
 def duty_modified_life(levels: Sequence[tuple[float, float | None, iso281.ModifiedLife]]
@@ -154,11 +176,32 @@ def axial_warning(cfg: DesignFile, j: int, b: BearingResult) -> Diagnostic | Non
 
 
 def bearing_diagnostics(cfg: DesignFile, bearings: Sequence[BearingResult]) -> list[Diagnostic]:
-    """The design's bearing warnings: s_0 below its minimum at the static load, kappa below ISO 281's range, an
-    axial force the equivalent loads ignore."""
+    """The design's bearing warnings: s_0 below its minimum at the static load, kappa below ISO 281's range (a
+    loaded bearing's: an unloaded one has no a_ISO), an axial force the equivalent loads ignore, a life shorter
+    than [rating] required_life_h."""
     out: list[Diagnostic] = []
+    required_h = cfg.rating.required_life_h if cfg.rating is not None else None
     for j, b in enumerate(bearings):
         found = [static_warning(cfg, j, b.kind, b.static_safety, "at the static load"),
-                 None if b.kappa is None else kappa_warning(j, b.kappa), axial_warning(cfg, j, b)]
+                 None if b.kappa is None or b.a_ISO is None else kappa_warning(j, b.kappa), axial_warning(cfg, j, b),
+                 life_short_warning(j, b, "at the design load", None, required_h)]
         out += [d for d in found if d is not None]
     return out
+
+
+def life_short_warning(j: int, b: RatedBearing, over: str, hours: float | None,
+                       required_h: float | None) -> Diagnostic | None:
+    """A warning when bearing j's ISO 281 life (L_nm where its catalogue data give it, else L10) is shorter than
+    ``hours`` (the duty's, ``gearcli life``) or than ``required_h`` ([rating] required_life_h); ``over``: where the
+    life is taken ("over the duty", "at the design load"). None for an unbounded life (an unloaded bearing)."""
+    name, life = ("L_nm", b.L_nm_h) if b.L_nm_h is not None else ("L10", b.L10_h)
+    short_of_duty = hours is not None and life is not None and life < hours
+    if life is None or not (short_of_duty or (required_h is not None and life < required_h)):
+        return None
+    target = (f"the duty's {hours:.6g} h" if short_of_duty else
+              f"the required {required_h:.6g} h ([rating] required_life_h)")
+    place = f"planet pin of stage {b.planet_stage}" if b.planet_stage else f"shaft {b.shaft}"
+    return warning(BEARING_LIFE_SHORT, f"bearing {j + 1} ({place}, x = {b.position_mm:g} mm): its ISO 281 "
+                   f"life {name} = {life:.4g} h {over} is shorter than {target} "
+                   f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN)",
+                   bearing=j + 1, life=name, life_h=life, hours=hours, required_life_h=required_h)

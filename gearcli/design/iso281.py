@@ -7,7 +7,7 @@
 - nu_1, the reference kinematic viscosity (ISO 281 6.5.2.4): 45000 n^-0.83 d_m^-0.5 below 1000 r/min,
   4500 n^-0.5 d_m^-0.5 from 1000 r/min on; kappa = nu / nu_1, nu the oil's viscosity at the operating
   temperature (ASTM D341 / Ubbelohde–Walther through its 40 °C and 100 °C values).
-- a_ISO (ISO 281 equations 8 to 13, radial bearings) from kappa and e_C C_u / P, at most 50; kappa is taken
+- a_ISO (ISO 281 equations 8 to 13, radial bearings) from kappa and e_C C_u / P, at most 50 (none at P = 0); kappa is taken
   as 4 above 4 and as 0.1 below 0.1 (where ISO 281 says the method does not apply: the caller warns).
 - L_nm = a_1 a_ISO L_10.
 - Static equivalent load P_0 = max(F_r, X_0 F_r + Y_0 F_a) (ISO 76, radial bearings) and s_0 = C_0 / P_0.
@@ -121,20 +121,23 @@ class Lubrication:
 
 @record
 class ModifiedLife:
-    """One load level's modified life: kappa, a_ISO, a_1 and L_nm (10^6 revolutions; None: unbounded)."""
+    """One load level's modified life: kappa, a_ISO, a_1 and L_nm (10^6 revolutions; None: unbounded). An
+    unloaded level (P = 0) has no a_ISO (None): ISO 281's e_C C_u / P is not defined, and its life is unbounded."""
 
     kappa: float
-    a_ISO: float
+    a_ISO: float | None
     a_1: float
     L_nm_Mrev: float | None
 
 
 def modified_life(l10_Mrev: float | None, load_N: float, speed_rpm: float, kind: str, fatigue_limit_N: float,
                   pitch_diameter_mm: float, reliability_percent: float, lub: Lubrication) -> ModifiedLife:
-    """kappa, a_ISO, a_1 and L_nm = a_1 a_ISO L_10 at one load level P and speed n."""
+    """kappa, a_ISO, a_1 and L_nm = a_1 a_ISO L_10 at one load level P and speed n; an unloaded level (P = 0)
+    has neither a_ISO nor L_nm (None, as its L_10)."""
     a1 = reliability_factor(reliability_percent)
     kappa = (lub.viscosity_mm2_s / reference_viscosity_mm2_s(speed_rpm, pitch_diameter_mm) if speed_rpm
              else KAPPA_MIN)  # a standing bearing builds no film
-    x = lub.e_c(pitch_diameter_mm) * fatigue_limit_N / load_N if load_N > 0.0 else math.inf
-    a_iso = life_modification_factor(kappa, x, kind)
+    if load_N <= 0.0:
+        return ModifiedLife(kappa, None, a1, None)
+    a_iso = life_modification_factor(kappa, lub.e_c(pitch_diameter_mm) * fatigue_limit_N / load_N, kind)
     return ModifiedLife(kappa, a_iso, a1, None if l10_Mrev is None else a1 * a_iso * l10_Mrev)

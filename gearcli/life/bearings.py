@@ -128,29 +128,40 @@ def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] 
 
 def bearing_warnings(points: Sequence[_PointData], lives: Sequence[BearingLife],
                      said: Sequence[str] = ()) -> list[Diagnostic]:
-    """s_0 below the minimum over the duty (and its starts); kappa below ISO 281's range at any of the duty's load
-    levels (a point's, or its starts' at their slower mean speed); an axial force the equivalent loads ignore. A
-    kappa or axial-force word the life output already carries for the same bearing (the base file's design
-    warning: the lowest kappa is the base file's own, the same F_a/F_r) is not said twice."""
+    """s_0 below the minimum over the duty (and its starts); kappa below ISO 281's range at any of the duty's
+    loaded levels (a point's, or its starts' at their slower mean speed), once per bearing naming the points (and
+    the starts) below it; an axial force the equivalent loads ignore. A kappa or axial-force word the life output
+    already carries for the same bearing (the base file's design warning: the lowest kappa is the base file's own
+    and no other point falls below, the same F_a/F_r) is not said twice."""
     cfg = points[0].cfg
     found = [static_warning(cfg, j, b.kind, b.static_safety, "at the largest peak load over the duty")
              for j, b in enumerate(lives)]
-    found += [None if b.kappa is None else kappa_warning(j, b.kappa, " (the lowest over the duty)")
-              for j, b in enumerate(lives)]
+    found += [_kappa_word(points, j, b) for j, b in enumerate(lives)]
     for j in range(len(lives)):  # an axial force without factors: the first point's word (its F_a/F_r is the train's)
         found.append(next((d for pd in points if (d := axial_warning(pd.cfg, j, pd.design.bearings[j])) is not None),
                           None))
     return [d for d in found if d is not None and not _said(d, said)]
 
 
+def _kappa_word(points: Sequence[_PointData], j: int, b: BearingLife) -> Diagnostic | None:
+    """Bearing j's kappa below ISO 281's range over the duty, said once: the lowest, and the duty points (those
+    that load it: an unloaded level has no a_ISO) and starts below the range (data ``points``)."""
+    if b.kappa is None or b.a_ISO is None or b.kappa_points is None or b.a_ISO_points is None:
+        return None
+    below = [pd.point.name for pd, k, a in zip(points, b.kappa_points, b.a_ISO_points, strict=True)
+             if k < iso281.KAPPA_MIN and a is not None]
+    starts = b.kappa < min(b.kappa_points)  # a start's slower mean speed set the lowest
+    named = ", ".join(below) + (" and " if below and starts else "") + ("its starts" if starts else "")
+    return kappa_warning(j, b.kappa, f" (the lowest over the duty; below 0.1 at {'duty point' if below else ''}"
+                         f"{'s' if len(below) > 1 else ''}{' ' if below else ''}{named})", below)
+
+
 def _said(d: Diagnostic, said: Sequence[str]) -> bool:
     """Whether the base file's design warnings (``said``) already carry ``d``'s word: the same F_a/F_r, or the
-    same kappa (the lowest over the duty is the base file's own)."""
+    same kappa (the lowest over the duty is the base file's own) with no other point below the range."""
     if d.code == AXIAL_NOT_RATED:
         return d.message in said
     if d.code == KAPPA_OUT_OF_RANGE:
         base = kappa_warning(int(d.data["bearing"]) - 1, float(d.data["kappa"]))  # type: ignore[arg-type]
-        return base is not None and base.message in said
+        return base is not None and base.message in said and len(d.data["points"]) <= 1  # type: ignore[arg-type]
     return False
-
-

@@ -111,7 +111,7 @@ class BearingLife:
     L_nm_Mrev: float | None = None  # Palmgren–Miner over the points' L_nm
     L_nm_h: float | None = None
     kappa_points: tuple[float, ...] | None = None  # per duty point
-    a_ISO_points: tuple[float, ...] | None = None
+    a_ISO_points: tuple[float | None, ...] | None = None  # None where the point leaves it unloaded
 
 
 @record

@@ -22,9 +22,10 @@ from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.memo import remember
 from gearcli.core.records import record
-from gearcli.design.bearing_life import AXIAL_NOT_RATED
+from gearcli.design.bearing_life import AXIAL_NOT_RATED, KAPPA_OUT_OF_RANGE
 from gearcli.design.standards import standard_of
 from gearcli.diagnostics import (
+    BEARING_LIFE_SHORT,
     BEYOND_STATIC_STRENGTH,
     DUTY,
     LOAD_SHARING,
@@ -68,6 +69,8 @@ from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
 MODES = ("pitting", "bending")
 PEAK_TOLERANCE = 1e-3  # relative error of the mesh-cycle peaks (from the output sampling) without a warning
 MEMBERS = ("pinion", "gear")
+# a point's design warnings the duty says once per bearing over all its points (_point_design_warnings)
+_DUTY_WORDS = frozenset({AXIAL_NOT_RATED, KAPPA_OUT_OF_RANGE, BEARING_LIFE_SHORT})
 
 
 @record
@@ -406,11 +409,12 @@ def _point_design_warnings(scene: Scene, point: DutyPoint, design_case: CaseDesi
     """What ``gearcli design`` says of the point (its torque, speed and ``set``: undercut, S_H below the
     minimum ...) beyond what it says of the base file, each naming the point. A bearing's axial force that its
     equivalent loads ignore is the duty's word, said once per bearing (a reversed point's F_a/F_r differs: the axial
-    force's moment loads the other bearing; it repeated per point)."""
+    force's moment loads the other bearing; it repeated per point), as are a kappa below ISO 281's range (naming
+    the points) and a life shorter than the required one (the duty's verdict, over all the points)."""
     if design is None:
         design = _point_design(scene, point, design_case).design
     return _of_point(point, [d for d in carrying(design.warnings, design.diagnostics)
-                             if d.message not in base_warnings and d.code != AXIAL_NOT_RATED])
+                             if d.message not in base_warnings and d.code not in _DUTY_WORDS])
 
 
 def _of_point(point: DutyPoint, diags: Sequence[Diagnostic]) -> list[Diagnostic]:

@@ -13,8 +13,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from gearcli.core.text import beside
+from gearcli.design.bearing_life import life_short_warning
 from gearcli.diagnostics import (
-    BEARING_LIFE_SHORT,
     DUTY,
     DYNAMIC_UNEXCITED,
     LIFE_SAFETY_LOW,
@@ -104,19 +104,8 @@ def bearing_life_warnings(bearings: Sequence[BearingLife], hours: float,
                           required_h: float | None = None) -> list[Diagnostic]:
     """Every bearing whose life over the duty (L_nm where its catalogue data give it, else L10) is shorter than the
     duty's hours or than ``required_h`` ([rating] required_life_h)."""
-    out = []
-    for j, b in enumerate(bearings):
-        name, life = ("L_nm", b.L_nm_h) if b.L_nm_h is not None else ("L10", b.L10_h)
-        if life is None or (life >= hours and not _short_of_required(life, required_h)):
-            continue
-        target = (f"the duty's {hours:.6g} h" if life < hours else
-                  f"the required {required_h:.6g} h ([rating] required_life_h)")
-        place = f"planet pin of stage {b.planet_stage}" if b.planet_stage else f"shaft {b.shaft}"
-        out.append(warning(BEARING_LIFE_SHORT, f"bearing {j + 1} ({place}, x = {b.position_mm:g} mm): its ISO 281 "
-                           f"life {name} = {life:.4g} h over the duty is shorter than {target} "
-                           f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN)",
-                           bearing=j + 1, life=name, life_h=life, hours=hours, required_life_h=required_h))
-    return out
+    found = [life_short_warning(j, b, "over the duty", hours, required_h) for j, b in enumerate(bearings)]
+    return [d for d in found if d is not None]
 
 
 def starts_warning(point: DutyPoint, start: StartData | None) -> list[Diagnostic]:

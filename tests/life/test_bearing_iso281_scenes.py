@@ -285,7 +285,7 @@ def test_a_start_below_the_kappa_range_warns(tmp_path, monkeypatch):
         assert min(b["kappa_points"]) > 0.1
         assert_allclose(b["kappa"], kappa, rtol=1e-12)
         assert any(w["message"].startswith(f"bearing {j + 1}: viscosity ratio kappa = {kappa:.3g} (the lowest over "
-                                           "the duty)") for w in doc["warnings"]), doc["warnings"]
+                                           "the duty; below 0.1 at its starts)") for w in doc["warnings"]), doc["warnings"]
 
 
 def test_an_oil_thicker_at_100_than_at_40_degrees_is_exit_2(tmp_path):

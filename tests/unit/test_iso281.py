@@ -141,3 +141,12 @@ def test_modified_life_by_hand():
     assert_allclose(m.a_ISO, _ball_by_hand(30.0 / nu1, 0.5 * 1.5 / 6.0), rtol=1e-13)
     assert m.a_1 == 0.25
     assert_allclose(m.L_nm_Mrev, 0.25 * m.a_ISO * 1000.0, rtol=1e-14)
+
+
+def test_an_unloaded_level_has_no_a_iso():
+    """P = 0: ISO 281's e_C C_u / P is not defined and L10 is unbounded, so there is no a_ISO (None, not the cap
+    50) and no L_nm; kappa = nu / nu_1 is the oil's and the speed's (nu_1 = 4500 n^-0.5 d_m^-0.5 at 1500 r/min)."""
+    lub = iso281.Lubrication(30.0, "normal", None)
+    m = iso281.modified_life(None, 0.0, 1500.0, "ball", 1.5e3, 60.0, 99.0, lub)
+    assert m.a_ISO is None and m.L_nm_Mrev is None and m.a_1 == 0.25
+    assert_allclose(m.kappa, 30.0 / (4500.0 / math.sqrt(1500.0) / math.sqrt(60.0)), rtol=1e-12)
