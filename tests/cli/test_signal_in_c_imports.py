@@ -41,6 +41,9 @@ def _child(module: str, body: str) -> str:
     return textwrap.dedent(f"""
         import atexit, os, signal, sys
 
+        # a foreground process's SIGINT: one started in the background by a non-interactive shell (a CI runner's
+        # `cmd &`) inherits SIGINT ignored, which Python and gearcli's start-up imports keep
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         SENT = []
 
 
