@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from contextlib import nullcontext
+from dataclasses import fields
 
 import numpy as np
 
@@ -406,7 +407,7 @@ def _held(head: Sampled, t: np.ndarray, torques: bool) -> Sampled:
                    _widened(head.load_torque_Nm, width) if torques else head.load_torque_Nm, conns, head.layout)
 
 
-_FIELDS = ("force", "deflection", "penetration_m", "potential_J", "dte_m")  # ConnectorSeries' fields, in order
+_FIELDS = tuple(f.name for f in fields(ConnectorSeries))  # a connector's series, in ConnectorSeries' field order
 
 
 def _side_force(lay: Layout, c: int, j: int, force: np.ndarray, omega: np.ndarray) -> np.ndarray:
