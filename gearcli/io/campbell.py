@@ -97,17 +97,13 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
             near.append(c)
     # coincident orders (a stage's 3rd mesh harmonic on the next stage's 1st: z1 = 3 z3 / i1) cross a mode at one
     # point: one label naming them all, not labels printed over each other
-    points: dict[tuple[int, float], list[str]] = {}
+    points: dict[tuple[int, float], tuple[Any, list[str]]] = {}  # (mode, speed): its first crossing, the orders
     for c in near:
-        at = (c.mode, round(c.crossing.input_speed_rpm or 0.0, 6))
-        points.setdefault(at, [])
-        if c.crossing.excitation not in points[at]:
-            points[at].append(c.crossing.excitation)
-    for c in near:
-        at = (c.mode, round(c.crossing.input_speed_rpm or 0.0, 6))
-        if at not in points:
-            continue
-        ax.annotate(f"{', '.join(points.pop(at))} × mode {c.mode}",
+        _, names = points.setdefault((c.mode, round(c.crossing.input_speed_rpm or 0.0, 6)), (c, []))
+        if c.crossing.excitation not in names:
+            names.append(c.crossing.excitation)
+    for c, names in points.values():
+        ax.annotate(f"{', '.join(names)} × mode {c.mode}",
                     (_speed(units, c.crossing.input_speed_rpm or 0.0), c.frequency_Hz),
                     xytext=(6, -12), textcoords="offset points", fontsize=7.5, color="darkred", zorder=8)
     if swept:
