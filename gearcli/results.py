@@ -11,7 +11,6 @@ indices in these objects are 1-based, as an engineer numbers them (stage 1 is th
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import field
 from typing import TYPE_CHECKING, Protocol
 
 from gearcli.core.jsontypes import JsonObject
@@ -143,7 +142,7 @@ class StageResult:
     # ISO 21771 / ISO 6336-1 completeness (issue 10): additive, with defaults for hand-made results
     tip_alteration_coefficient: float = 0.0  # k; tips shortened by k m_n (k <= 0)
     iso6336_mesh_stiffness_beta_N_mm_um: float = 0.0  # c_gamma_beta = 0.85 c_gamma_alpha
-    iso6336_factors: Iso6336Factors = field(default_factory=Iso6336Factors)
+    iso6336_factors: Iso6336Factors = Iso6336Factors()  # immutable: one shared default
     reduced_mass_kg_mm: float = 0.0  # m_red per mm of face width, smaller wheel = 1
     resonance_speed_rpm: float = 0.0  # n_E1 of the smaller wheel
     resonance_ratio: float = 0.0  # N = n_smaller_wheel / n_E1

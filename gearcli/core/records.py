@@ -17,14 +17,16 @@ class and equal compared fields), hash (of the hashed fields' tuple), repr (the 
 attribute added (``FrozenInstanceError``); a method the class body defines is kept
 (tests/unit/test_records.py checks each against ``dataclass(frozen=True)``). What differs: the dataclass
 parameters say ``frozen=False`` (so ``dataclass(frozen=True)`` cannot subclass a record; ``@record`` can), and
-constructing an instance costs ~0.1 us a field more (the Python ``__setattr__``).
+constructing an instance whose ``__init__`` is dataclass's own costs ~0.5 us a field more (the Python
+``__setattr__``); the plain ``__init__`` below sets its fields as a frozen dataclass's does.
 
 Nor is ``__init__`` (:func:`_plain_init`) where every field is plain (a positional ``__init__`` parameter without a
 default factory; no ``InitVar`` or ``ClassVar``) and the class has a docstring: Python 3.11's ``dataclasses``
 writes it as source and compiles it, one ``compile`` a class (~100 us for eight fields), where one code object
 compiled per field count and ``__post_init__`` (:func:`_init_template`), the field names put in
 (``CodeType.replace``), makes the same function for every class of that shape (~3 us a class once compiled): the
-same parameters, defaults and annotations, one ``self.name = name`` per field in field order, then
+same parameters, defaults and annotations, one ``object.__setattr__(self, "name", name)`` per field in field
+order (as ``dataclass(frozen=True)``'s, not through the class's ``__setattr__``), then
 ``self.__post_init__()`` if the class has one (74 classes, 28 shapes on a one-shot ``simulate``). Any other
 record's ``__init__`` is dataclass's own.
 """
@@ -37,7 +39,7 @@ import sys
 from collections.abc import Callable
 from functools import cache
 from operator import attrgetter
-from types import CodeType, FunctionType
+from types import CellType, CodeType, FunctionType
 from typing import Any, TypeVar, cast, dataclass_transform
 
 T = TypeVar("T")
@@ -133,14 +135,21 @@ def _plain(cls: type) -> bool:
 
 @cache
 def _init_template(n: int, post_init: bool) -> CodeType:
-    """The code of ``__init__(self, _0, ..., _{n-1})`` assigning ``self._i = _i`` in order, then calling
+    """The code of ``__init__(self, _0, ..., _{n-1})`` setting attribute ``"_i"`` to ``_i`` in order with
+    ``object.__setattr__`` (the closure's ``_set``, as a frozen dataclass's constructor does), then calling
     ``self.__post_init__()`` if asked: compiled once per shape, the names put in by :func:`_plain_init`."""
     params = "".join(f", _{i}" for i in range(n))
-    lines = [f"    self._{i} = _{i}" for i in range(n)] + (["    self.__post_init__()"] if post_init else [])
-    source = "\n".join([f"def __init__(self{params}):", *(lines or ["    pass"])]) + "\n"
+    lines = [f"        _set(self, '_{i}', _{i})" for i in range(n)]
+    lines += ["        self.__post_init__()"] if post_init else []
+    source = "\n".join(["def make(_set):", f"    def __init__(self{params}):", *(lines or ["        pass"]),
+                        "    return __init__"]) + "\n"
     namespace: dict[str, Any] = {}
     exec(compile(source, "<string>", "exec"), {}, namespace)  # noqa: S102 - our own template
-    return namespace["__init__"].__code__
+    return namespace["make"](object.__setattr__).__code__
+
+
+#: the template's closure: the one cell holding ``object.__setattr__``
+_SET = (CellType(object.__setattr__),)
 
 
 def _plain_init(cls: type, fields: tuple[dataclasses.Field, ...]) -> Callable[..., None]:
@@ -156,10 +165,11 @@ def _plain_init(cls: type, fields: tuple[dataclasses.Field, ...]) -> Callable[..
     names = {f"_{i}": f.name for i, f in enumerate(fields)}
     qualname = f"{cls.__qualname__}.__init__"
     code = code.replace(co_varnames=tuple(names.get(v, v) for v in code.co_varnames),
-                        co_names=tuple(names.get(v, v) for v in code.co_names), co_qualname=qualname)
+                        co_consts=tuple(names.get(c, c) if isinstance(c, str) else c for c in code.co_consts),
+                        co_qualname=qualname)
     module = sys.modules.get(cls.__module__)
     defaults = tuple(f.default for f in fields if f.default is not dataclasses.MISSING)
-    init = FunctionType(code, module.__dict__ if module is not None else {}, "__init__", defaults or None)
+    init = FunctionType(code, module.__dict__ if module is not None else {}, "__init__", defaults or None, _SET)
     init.__qualname__ = qualname
     init.__annotations__ = {**{f.name: f.type for f in fields}, "return": None}
     return init
