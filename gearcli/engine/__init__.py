@@ -46,6 +46,7 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     load,
     loaded_kernel,
     mark_ready,
+    nominal_load_s,
     point_functions,
     quiet_compilation,
     ready,
@@ -138,6 +139,7 @@ def _has_content(v) -> bool:
 # ------------------------------------------------------------------------------------------- auto
 # What a run costs on either engine: gearcli.core.cost (one price per evaluation and engine, measured).
 _runs = {"expected": 1, "active": 0}
+_fixed_share: list[float] = []  # a reproducible batch's price per run of loading the kernel (innermost last)
 
 
 def expect_runs(n: int) -> None:
@@ -148,18 +150,40 @@ def expect_runs(n: int) -> None:
 
 
 @contextmanager
-def batch(n: int) -> Iterator[None]:
-    """A batch of about ``n`` runs (a report's ladder, a sweep task), announced to ``auto`` (:func:`expect_runs`)."""
+def batch(n: int, load_share_s: float | None = None) -> Iterator[None]:
+    """A batch of about ``n`` runs (a report's ladder, a sweep task), announced to ``auto`` (:func:`expect_runs`).
+    ``load_share_s`` (a sweep's: :func:`sweep_load_share_s`): each run of the batch prices loading the kernel at
+    that, whether this process has loaded it yet or not, so that the engine a run takes, and so its numbers,
+    depend on neither which process ran it, nor what it ran before, nor the machine's load."""
     expect_runs(n)
     _runs["active"] += 1
+    if load_share_s is not None:
+        _fixed_share.append(load_share_s)
     try:
         yield
     finally:
         _runs["active"] -= 1
+        if load_share_s is not None:
+            _fixed_share.pop()
+
+
+def reproducible() -> bool:
+    """Whether a reproducible batch (a sweep's task: :func:`batch` with a load share) is running."""
+    return bool(_fixed_share)
+
+
+def sweep_load_share_s(points: int) -> float:
+    """A sweep's price per point of loading the kernel: its nominal load (:func:`~gearcli.engine.loader.
+    nominal_load_s`: not the last measured one) over all the sweep's points, whatever their split into tasks and
+    workers or a resume (:mod:`gearcli.sweep.execute` computes it once, in the parent)."""
+    return nominal_load_s() / max(1, points)
 
 
 def load_share_s() -> float:
-    """What loading the compiled engine still costs each announced run of this process (0 once loaded)."""
+    """What loading the compiled engine still costs each announced run of this process (0 once loaded; a
+    reproducible batch's fixed share, :func:`batch`)."""
+    if _fixed_share:
+        return _fixed_share[-1]
     return expected_load_s() / _runs["expected"]
 
 
@@ -224,7 +248,7 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
     if not have:
         return EngineChoice("python", requested, f"numba is not installed ({INSTALL_HINT} for the compiled engine)")
     python_s = predicted_wall_s("python", method, nfev_estimate, size=size)
-    if "loaded" not in _state and python_s < MIN_LOAD_S / _runs["expected"]:  # not worth even a look at the cache
+    if not _fixed_share and "loaded" not in _state and python_s < MIN_LOAD_S / _runs["expected"]:  # not worth even a look at the cache
         return EngineChoice("python", requested, f"~{nfev_estimate:.2g} evaluations take ~{python_s:.2g} s in Python, "
                             f"less than importing numba alone (~{MIN_LOAD_S:g} s)")
     load_s = load_share_s()

@@ -19,6 +19,7 @@ from gearcli.diagnostics import Diagnostic
 from gearcli.engine import EngineChoice
 from gearcli.engine import choose as choose_engine
 from gearcli.engine import options as engine_options
+from gearcli.engine import reproducible as reproducible_batch
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.damping import operating_load_factor
@@ -35,12 +36,7 @@ from gearcli.simulate.failures import check
 from gearcli.simulate.guards import force_noise_warnings, nfev_budget, require_feasible
 from gearcli.simulate.periodic import MAX_PERIODS, MAX_SUBHARMONIC, CommonPeriod, run_up_end, scene_period
 from gearcli.simulate.planet_stats import peak_series, planet_contact_warnings, planet_series, planets_of, with_planets
-from gearcli.simulate.results import (
-    EnergyBalance,
-    SimulationResult,
-    SolverStats,
-    SteadyState,
-)
+from gearcli.simulate.results import EnergyBalance, SimulationResult, SolverStats, SteadyState
 from gearcli.simulate.ringing import ringing_warnings
 from gearcli.simulate.solver import Integration
 
@@ -172,7 +168,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     prior = list(prior_diagnostics or [])
     replaced = () if getattr(model, "generated", True) else ("a right-hand side replaced in Python",)
     candidates = engine_options(engine, model.arrays, (EXPLICIT_METHOD, IMPLICIT_METHOD), replaced)
-    work = cost.CHECK_PASS_WORK if error_estimate and steady == "window" else 1.0  # the check pass integrates again
+    # the check pass integrates again; a sweep's checked point is priced as its family's (their method and engine)
+    work = cost.CHECK_PASS_WORK if error_estimate and steady == "window" and not reproducible_batch() else 1.0
     choice = choose_method(spec, duration_s, method, rtol, candidates, work, layout=model.layout)
     given_nfev = max_nfev
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now

@@ -119,7 +119,9 @@ def plan(spec: SweepSpec, scene: Scene, done: Mapping[tuple[str, ...], int], wor
     tasks += [Task(scene, tuple(part), False, evaluate, frozenset(again) & {p.index for p in part})
               for part in (single[i:i + size] for i in range(0, len(single), size))]
     share = math.ceil(todo / max(1, workers))  # each worker's part of the sweep (engine = "auto" amortises over it)
-    return [dataclasses.replace(t, runs_hint=share) for t in tasks], todo
+    # loading the kernel priced alike for every point, at any --jobs, after a resume, on any machine load
+    price = engine.sweep_load_share_s(sum(len(b) for b in spec.branches()))
+    return [dataclasses.replace(t, runs_hint=share, load_share_s=price) for t in tasks], todo
 
 
 def _take(left: Counter, ident: tuple[str, ...]) -> bool:

@@ -88,6 +88,9 @@ class Task:
     evaluate: PointEvaluator
     skip: frozenset[int] = field(default_factory=frozenset)  # indices already written: computed, not returned
     runs_hint: int = 0  # about how many points the worker running this task will do (engine = "auto")
+    # engine = "auto": each point's price of loading the kernel (gearcli.engine.sweep_load_share_s; None: the
+    # process's own expected load, which depends on what it ran before and on the machine's load)
+    load_share_s: float | None = None
 
 
 def _evaluate(evaluate: PointEvaluator, scene: Scene, point: Point, prev: Carried | None,
@@ -102,7 +105,7 @@ def iter_task(task: Task) -> Iterator[Row]:
     """The rows of a task's points as each finishes (those in ``task.skip`` are computed, not yielded). The task's
     points are one family whose error estimate is shared (:mod:`gearcli.sweep.family`)."""
     family = Family()
-    with engine.batch(max(len(task.points), task.runs_hint)):  # auto: the kernel's load is shared by the points
+    with engine.batch(max(len(task.points), task.runs_hint), task.load_share_s):  # auto: the kernel's load is shared by the points
         prev = None
         before: _Before | None = None  # the previous ok point of the branch
         for point in task.points:

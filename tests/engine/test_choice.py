@@ -71,6 +71,37 @@ def test_auto_weighs_the_load_cost_against_the_python_run(monkeypatch):
     assert engine.choose("python", arrays, "DOP853", 1e9).engine == "python"
 
 
+def test_a_sweeps_batch_prices_the_load_alike_whatever_the_process_has_loaded_or_measured(monkeypatch):
+    """A sweep's points (gearcli.sweep.execute) price loading the kernel at its nominal figure over all the sweep's
+    points, in every worker: 10^4 Radau evaluations (0.34 s in Python at ~34 us each, by gearcli.core.cost) against
+    the compiled ~0.01 s plus 0.6 s / 2 points = 0.31 s go compiled, and the same whether this process has loaded the
+    kernel (0 s left to load) or last measured a 3 s load, where the process's own figure would have decided each
+    differently (the rows of a sweep then differed with --jobs and with the machine's load)."""
+    from gearcli.core import cost
+
+    monkeypatch.setattr(engine, "available", lambda: True)
+    monkeypatch.setitem(engine._runs, "expected", 1)
+    monkeypatch.setattr(engine, "nominal_load_s", lambda: cost.DEFAULT_LOAD_S)
+    arrays = seed_arrays()
+    share = engine.sweep_load_share_s(2)
+    assert share == pytest.approx(0.3)  # 0.6 s over 2 points
+    python_s = cost.predicted_wall_s("python", "Radau", 1e4)
+    compiled_s = cost.predicted_wall_s("compiled", "Radau", 1e4, share)
+    assert compiled_s < python_s < compiled_s + 3.0 / 2  # the measured 3 s would have kept it on scipy
+    picks = set()
+    for measured in (0.0, 3.0):  # loaded already; or a slow last load measured
+        monkeypatch.setattr(engine, "expected_load_s", lambda m=measured: m)
+        with engine.batch(1):  # the process's own figure: the choices differ
+            picks.add(engine.choose("auto", arrays, "Radau", 1e4).engine)
+    assert picks == {"python", "compiled"}
+    for measured in (0.0, 3.0):
+        monkeypatch.setattr(engine, "expected_load_s", lambda m=measured: m)
+        with engine.batch(1, share):
+            assert engine.load_share_s() == share
+            assert engine.choose("auto", arrays, "Radau", 1e4).engine == "compiled"
+    assert engine.load_share_s() == engine.expected_load_s() / engine._runs["expected"]  # the batch's price is gone
+
+
 def test_compiled_without_numba_is_a_usage_error_naming_the_extra(monkeypatch):
     monkeypatch.setattr(engine, "available", lambda: False)
     with pytest.raises(ConfigError) as err:
