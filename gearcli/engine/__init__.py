@@ -176,7 +176,7 @@ def sweep_load_share_s(points: int) -> float:
     """A sweep's price per point of loading the kernel: its nominal load (:func:`~gearcli.engine.loader.
     nominal_load_s`: not the last measured one) over all the sweep's points, whatever their split into tasks and
     workers or a resume (:mod:`gearcli.sweep.execute` computes it once, in the parent)."""
-    return nominal_load_s() / max(1, points)
+    return nominal_load_s() / max(1, points) if available() else 0.0  # without numba: no engine to price
 
 
 def load_share_s() -> float:
