@@ -201,6 +201,7 @@ def test_every_task_prices_the_kernel_load_over_the_whole_sweep(workers, monkeyp
     from gearcli import engine
 
     monkeypatch.setattr(engine, "nominal_load_s", lambda: 0.6)
+    monkeypatch.setattr(engine, "available", lambda: True)  # numba installed
     n = 3 * CHECK_EVERY
     spec = spec_from_options([f"input.speed_rpm=100:{100 + n - 1}:{n}"], [], None, "lhs", None, None)
     points = [b[0] for b in spec.branches()]
