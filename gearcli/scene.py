@@ -129,7 +129,9 @@ def motor_spec(inp: Input) -> MotorSpec | None:
 def vfd_supply(spec: MotorSpec, shift_rad_s: float) -> MotorSpec:
     """A frequency converter's motor at a supply whose synchronous speed is ``shift_rad_s`` above the nameplate's:
     constant V/f keeps the curve's shape in slip speed (w_s - w), so the motor carries its rated torque at
-    ``[input] speed_rpm`` (a speed sweep's row runs at the speed it is designed at). Extended Kloss in slip speed
+    ``[input] speed_rpm`` (a speed sweep's row runs at the speed it is designed at) up to the base speed (the
+    nameplate's synchronous speed); above it the field weakens (the curve scaled by (w_B / w_s')^2, the motor's
+    ``base_speed_rad_s`` stays the nameplate's) and the rated torque slips further. Extended Kloss in slip speed
     Delta: T = 2 T_b (1 + a s_b) Delta Delta_b / (Delta^2 + Delta_b^2 + 2 a s_b Delta_b |Delta|), Delta_b = s_b w_s:
     unchanged with w_s' when s_b' = s_b w_s / w_s' and a' s_b' = a s_b."""
     if shift_rad_s == 0.0 or spec.table:

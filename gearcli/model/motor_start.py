@@ -103,14 +103,18 @@ def off_design_speed(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagnos
 
 def overloaded(motor: MotorSpec, torque_Nm: float, where: str) -> list[Diagnostic]:
     """``motor_overloaded``: the steady torque ``torque_Nm`` the motor carries (``where`` says whose figure it is)
-    beyond OVERLOAD_MARGIN above its nameplate's rated torque P_rated / w_rated (S1, continuous duty); nothing for
+    beyond OVERLOAD_MARGIN above its nameplate's rated torque P_rated / w_rated (S1, continuous duty; a converter's
+    supply above the base speed: P_rated over the speed, :attr:`MotorSpec.continuous_torque_Nm`); nothing for
     a motor without a rated point (a ``torque_speed`` table). A start's overshoot is no steady load: not judged."""
-    rated = motor.rated_torque_Nm
+    rated = motor.continuous_torque_Nm
     if not rated > 0.0 or not abs(torque_Nm) > (1.0 + OVERLOAD_MARGIN) * rated:
         return []
     ratio = abs(torque_Nm) / rated
+    what = ("rated_power_kW / rated_speed_rpm" if rated == motor.rated_torque_Nm else
+            f"rated_power_kW over {motor.rated_speed_rad_s * RAD_S_TO_RPM:.5g} rpm, where the converter's supply above "
+            "the base speed puts the rated slip: in field weakening the motor's rating is its power")
     return [dg.warning(dg.MOTOR_OVERLOADED, f"the motor carries {abs(torque_Nm):.4g} N·m in steady operation ({where}), {ratio:.3g}x "
-                       f"its rated torque {rated:.4g} N·m (rated_power_kW / rated_speed_rpm): beyond the "
+                       f"its rated torque {rated:.4g} N·m ({what}): beyond the "
                        f"{100 * OVERLOAD_MARGIN:g} % margin on its S1 (continuous duty) rating its winding runs hotter "
                        "than its insulation class allows; a larger motor (rated torque above the load) or a smaller "
                        "load", torque_Nm=abs(torque_Nm), rated_torque_Nm=rated, overload_ratio=ratio)]

@@ -19,7 +19,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Literal, Protocol
 
 from gearcli.core.records import record
-from gearcli.model.elements.machine import kloss_fit, motor_curve, motor_row, motor_torque
+from gearcli.model.elements.machine import field_weakening, kloss_fit, motor_curve, motor_row, motor_torque
 
 if TYPE_CHECKING:  # the parts a stage model places (model.parts builds on this module's specs)
     from gearcli.model.parts import Body, Connector
@@ -83,7 +83,9 @@ class MotorSpec:
     """An induction motor (:mod:`gearcli.model.elements.machine`): the extended Kloss curve (breakdown torque,
     breakdown slip, shape term a) or a table of (speed rad/s, torque N m), and its starting method with its two
     parameters: star_delta (switch-over speed rad/s, 0), soft_start (voltage ramp s, initial voltage
-    fraction), vfd (speed ramp s, torque limit N m or 0), direct (0, 0)."""
+    fraction), vfd (speed ramp s, torque limit N m or 0), direct (0, 0). ``base_speed_rad_s``: a nameplate's
+    synchronous speed at its rated voltage and frequency; a converter's supply above it weakens the field (the curve
+    scaled by (w_B / w_s)^2, :func:`gearcli.model.elements.machine.field_weakening`; 0: none, a table)."""
 
     synchronous_speed_rad_s: float
     starting: Literal["direct", "star_delta", "soft_start", "vfd"] = "direct"
@@ -94,6 +96,7 @@ class MotorSpec:
     rated_torque_Nm: float = 0.0  # nameplate (0 for a table)
     rated_speed_rad_s: float = 0.0
     table: tuple[tuple[float, float], ...] = ()
+    base_speed_rad_s: float = 0.0
 
     def __post_init__(self) -> None:
         if not (self.synchronous_speed_rad_s > 0 and math.isfinite(self.synchronous_speed_rad_s)):
@@ -110,7 +113,8 @@ class MotorSpec:
         t_r = rated_power_W / rated_speed_rad_s
         sb, a = kloss_fit(t_r, breakdown_ratio, locked_ratio, 1.0 - rated_speed_rad_s / synchronous_speed_rad_s)
         return cls(synchronous_speed_rad_s, breakdown_torque_Nm=breakdown_ratio * t_r, breakdown_slip=sb,
-                   kloss_a=a, rated_torque_Nm=t_r, rated_speed_rad_s=rated_speed_rad_s, **start)
+                   kloss_a=a, rated_torque_Nm=t_r, rated_speed_rad_s=rated_speed_rad_s,
+                   base_speed_rad_s=synchronous_speed_rad_s, **start)
 
     def torque(self, t: float, w: float) -> float:
         """The motor's torque (N m) at time t and speed w (rad/s), starting method included."""
@@ -125,7 +129,22 @@ class MotorSpec:
         """The curve's largest torque at or below synchronous speed (the breakdown torque)."""
         if self.table:
             return max(t for _, t in self.table)
-        return self.breakdown_torque_Nm
+        return self.breakdown_torque_Nm * self.field_weakening
+
+    @property
+    def field_weakening(self) -> float:
+        """(w_B / w_s)^2 of a converter's supply above the base speed, else 1: the curve's scale."""
+        return field_weakening(self.base_speed_rad_s, self.synchronous_speed_rad_s)
+
+    @property
+    def continuous_torque_Nm(self) -> float:
+        """The torque the motor carries continuously (S1): its rated torque P_r / w_r; a converter's supply above the
+        base speed, the rated power over the speed at which the supply puts the rated slip (the constant-power range
+        of field weakening, at rated current); 0 for a table."""
+        shift = self.synchronous_speed_rad_s - self.base_speed_rad_s
+        if self.base_speed_rad_s <= 0.0 or shift <= 0.0 or self.rated_speed_rad_s <= 0.0:
+            return self.rated_torque_Nm
+        return self.rated_torque_Nm * (self.rated_speed_rad_s - shift) / self.rated_speed_rad_s
 
 
 @record

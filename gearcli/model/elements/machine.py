@@ -20,7 +20,10 @@ below its first point and extrapolated along its last segment above the last one
   (``dw`` 1 % of the synchronous speed): star connection gives a third of the torque (voltage / sqrt 3);
 - soft start: ``u(t)^2 T``, ``u = u_0 + (1 - u_0) STEP(t, 0, 0, t_r, 1)`` (torque ~ voltage squared);
 - VFD: the synchronous speed follows ``w_s STEP(t, 0, 0, t_r, 1)``, and the curve moves with it at
-  constant slip speed (constant V/f: the torque depends on ``w_s(t) - w``); a torque limit ``L`` clamps
+  constant slip speed (constant V/f: the torque depends on ``w_s(t) - w``); above the base speed ``w_B`` (the
+  nameplate's synchronous speed: rated voltage at rated frequency) the converter's voltage stays at its rating
+  and the field weakens, the curve scaled by ``(w_B / w_s(t))^2`` (flux ~ V/f, torque ~ flux^2 at a given slip
+  speed; the breakdown slip speed unchanged, stator resistance neglected); a torque limit ``L`` clamps
   it smoothly, ``(T + L - sqrt((T - L)^2 + (0.02 L)^2)) / 2`` (within 0.01 % of L of min(T, L) away
   from the corner).
 
@@ -40,8 +43,8 @@ MAX_TABLE = 32  # points of a torque-speed table
 KLOSS, TABLE = 0.0, 1.0
 DIRECT, STAR_DELTA, SOFT_START, VFD = 0.0, 1.0, 2.0, 3.0
 STARTING = {"direct": DIRECT, "star_delta": STAR_DELTA, "soft_start": SOFT_START, "vfd": VFD}
-(M_KIND, M_WS, M_TB, M_SB, M_A, M_START, M_P1, M_P2, M_N) = range(9)
-M_TAB = 9  # then N speeds (rad/s), then N torques (N m)
+(M_KIND, M_WS, M_TB, M_SB, M_A, M_START, M_P1, M_P2, M_N, M_WB) = range(10)
+M_TAB = 10  # then N speeds (rad/s), then N torques (N m)
 STAR_DELTA_WIDTH = 0.01  # of the synchronous speed
 TORQUE_LIMIT_ROUNDING = 0.02  # of the limit
 
@@ -129,12 +132,24 @@ def _step01(t, T):
 
 
 def motor_curve(M, w, ws):
-    """(T, dT/dw) of the bare curve at speed w with the synchronous speed ``ws`` (the VFD's momentary one)."""
+    """(T, dT/dw) of the bare curve at speed w with the synchronous speed ``ws`` (the VFD's momentary one); a
+    Kloss curve above its base speed ``M[M_WB]`` in field weakening, scaled by (w_B / ws)^2."""
     if M[M_KIND] == KLOSS:
         w0 = M[M_WS]
         t, dts = _kloss_d((ws - w) / w0, M[M_TB], M[M_SB], M[M_A])
-        return t, -dts / w0
+        k = field_weakening(M[M_WB], ws)
+        return k * t, -k * dts / w0
     return _table_d(M, M_TAB, int(M[M_N]), w + (M[M_WS] - ws))
+
+
+def field_weakening(wb, ws):
+    """(w_B / ws)^2 above the base speed w_B, else 1 (w_B <= 0: none): a converter's voltage is capped at the
+    motor's rating, so above its rated frequency the flux, V/f, falls as 1/f and the torque at a given slip speed
+    as its square."""
+    if wb > 0.0 and ws > wb:
+        r = wb / ws
+        return r * r
+    return 1.0
 
 
 def motor_torque(M, t, w):
@@ -197,6 +212,7 @@ def motor_row(spec) -> tuple[float, ...]:
         return tuple(head) + tuple(float(w) for w, _ in spec.table) + tuple(float(t) for _, t in spec.table)
     head[M_KIND] = KLOSS
     head[M_TB], head[M_SB], head[M_A] = spec.breakdown_torque_Nm, spec.breakdown_slip, spec.kloss_a
+    head[M_WB] = spec.base_speed_rad_s
     return tuple(head)
 
 
