@@ -39,8 +39,9 @@ OVERLOAD_MARGIN = 0.05
 
 #: why a VFD runs off its speed_rpm, and what to give (a VFD's supply is set for the rated torque: docs/physics.md)
 VFD_OFF_SPEED = ("a VFD's supply is set so that the motor runs at speed_rpm at its rated torque (the rated slip speed "
-                 "above it): at another load it slips less or more (a converter with slip compensation would hold "
-                 "speed_rpm; the model's does not)")
+                 "above it; above the motor's base speed the field weakens and its rated torque slips further): at "
+                 "another load it slips less or more (a converter with slip compensation would hold speed_rpm; the "
+                 "model's does not)")
 
 
 def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagnostic]:
