@@ -121,6 +121,20 @@ def overloaded(motor: MotorSpec, torque_Nm: float, where: str) -> list[Diagnosti
                        "load", torque_Nm=abs(torque_Nm), rated_torque_Nm=rated, overload_ratio=ratio)]
 
 
+def field_weakening_advice(lay: Layout, motor: MotorSpec) -> str:
+    """Why a VFD above its motor's base speed cannot carry its load, in words ("" otherwise): the weakened breakdown
+    torque (w_B / w_s')^2 T_b at its supply below the load reflected to the motor at ``speed_rpm``."""
+    k = motor.field_weakening
+    load = reflected_load_Nm(lay, lay.drive.speed_rad_s)
+    if motor.starting != "vfd" or motor.table or not k < 1.0 or motor.peak_torque_Nm >= load:
+        return ""
+    rpm = RAD_S_TO_RPM
+    return (f"above its base speed {motor.base_speed_rad_s * rpm:.5g} rpm the converter weakens the field: at its "
+            f"supply's {motor.synchronous_speed_rad_s * rpm:.5g} rpm synchronous the breakdown torque is {k:.3g} x "
+            f"{motor.breakdown_torque_Nm:.4g} = {motor.peak_torque_Nm:.4g} N·m, below the load at speed_rpm "
+            f"({load:.4g} N·m): a lower speed_rpm, a motor of a higher base speed, ")
+
+
 def _as_design(diags: list[Diagnostic]) -> list[Diagnostic]:
     """``design``'s form of a motor warning: code ``design``, ``check`` the warning's own code."""
     return [dg.warning(dg.DESIGN, f"input: motor: {d.message}", check=d.code, **d.data) for d in diags]
@@ -166,7 +180,8 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
                  "its torque falls short of the load")
         found.append(dg.warning(
             dg.DESIGN, f'input: drive = "motor": the motor cannot start its load: it stalls {where}, against the load '
-            f"reflected to the motor (through the train's ratio and efficiencies) of {load:.4g} N·m; a larger motor, "
+            f"reflected to the motor (through the train's ratio and efficiencies) of {load:.4g} N·m; "
+            + field_weakening_advice(lay, motor) + "a larger motor, "
             + ("a direct start, " if start == "star_delta" else "") + "or a smaller load",
             check="motor_cannot_start", starting=start, stall_speed_rpm=stall * RAD_S_TO_RPM, motor_torque_Nm=t_m,
             load_torque_Nm=load, breakdown_speed_rpm=w_b * RAD_S_TO_RPM))

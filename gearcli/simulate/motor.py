@@ -25,7 +25,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
-from gearcli.model.motor_start import off_design_speed, overloaded
+from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
 from gearcli.model.spec import MotorSpec
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
@@ -123,7 +123,8 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
         back = _driven_back(t, w_motor, ws)
         diags.append(dg.warning(dg.MOTOR_STALLS, "the motor's curve cannot carry the load (reflected through the "
                                 f"reducer, losses included): it stalls {where}{aim}{back[0]}; "
-                                f"{_limit_advice(lay, motor, op.speed_rad_s or 0.0)}a larger motor or a smaller load",
+                                f"{_limit_advice(lay, motor, op.speed_rad_s or 0.0)}"
+                                f"{field_weakening_advice(lay, motor)}a larger motor or a smaller load",
                                 stall_speed_rpm=None if op.speed_rad_s is None else op.speed_rad_s * rpm,
                                 operating_point_rpm=None if aim_rad_s is None else aim_rad_s * rpm,
                                 reverse_speed_rpm=back[1]))

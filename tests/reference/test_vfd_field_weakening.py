@@ -127,5 +127,8 @@ def test_at_twice_its_base_speed_the_motor_cannot_carry_what_it_carries_at_base(
     load = 632.0 / (RATIO * ETA)
     assert (N_S / 2200.0) ** 2 * KB * T_R < load
     doc = _invoke("design", "input.speed_rpm=2185")
-    assert _checks(doc, "motor_cannot_start"), doc["warnings"]
+    found = _checks(doc, "motor_cannot_start")
+    assert len(found) == 1, doc["warnings"]
+    weakened = (N_S / 2200.0) ** 2 * KB * T_R  # 185.3 N m
+    assert "weakens the field" in found[0]["message"] and f"= {weakened:.4g} N·m" in found[0]["message"]
     assert not _checks(_invoke("design", "input.speed_rpm=1185"), "motor_cannot_start")
