@@ -30,6 +30,7 @@ from gearcli.stages.design import design_kind, pair_view
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, PlanetaryStage
     from gearcli.design.rating_results import InternalRatingResult, RatingResult
+    from gearcli.optional_results import InternalMeshResult
     from gearcli.rating.standard import RatedMember, RatedMesh
     from gearcli.results import DesignResult, StageResult
 
@@ -51,7 +52,7 @@ class Iso6336:
                     ) -> tuple[tuple[StageResult, ...], tuple[Diagnostic, ...]]:
         """Every gear pair (a stage that shares its load among planets: at K_γ times the mean planet's force, its
         planet–ring mesh too, with ISO's nominal σ_H0, σ_F0); a stage without a gear pair (a belt) as it is."""
-        rated, diags = iso.rate_design(pair_view(cfg), tuple(_shared(s) for s in stages))
+        rated, diags = iso.rate_design(pair_view(cfg), tuple(_shared(cfg, s) for s in stages))
         out = tuple(replace(s, rating=r.rating) if design_kind(s).gear_pair else s
                     for s, r in zip(stages, rated, strict=True))
         out = tuple(_nominal(_rate_planet_ring(cfg, k, s)) if _planets(s) else s for k, s in enumerate(out))
@@ -163,7 +164,7 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
             out.append(sd)
             continue
         k_v = stage_simulated_k_v(sd)
-        shared = _shared(design.stages[k])
+        shared = _shared(cfg, design.stages[k])
         rating = iso.rate_stage(pairs, k, shared, simulated_k_v=k_v)
         if _planets(shared):  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
             rating = pl.nominal_with_sharing(rating, pl.load_sharing_of(shared))
@@ -171,7 +172,7 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
         diags += iso.safety_diagnostics(pairs, rated)
         ring = None
         if _planets(rated) and sd.planets:
-            ring = rate_planet_ring(cfg, k, pl.with_load_sharing(design.stages[k]),
+            ring = rate_planet_ring(cfg, k, shared,
                                     simulated_k_v=ring_simulated_k_v(sd, design.stages[k]))
             if ring is not None:  # ISO's nominal σ_H0, σ_F0 and K_gamma listed, as the design's ring rating
                 ring = pl.nominal_with_sharing(ring, pl.load_sharing_of(shared))
@@ -184,23 +185,32 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
 
 def at_force(cfg: DesignFile, stage: StageResult, force_ratio: float) -> StageResult:
     """A parallel stage as the design computes it at ``force_ratio`` times its static tooth forces: the forces
-    scaled, and ISO 6336-1's load-dependent stiffness (c′ × (F_t K_A / b / 100)^0.25 below 100 N/mm, so c_γα and
-    c_γβ with it, n_E1 ∝ √c_γα) and the lower resonance limit N_S at the new line load."""
-    f, b, k_a = stage.static_force_N, stage.face_width_mm, cfg.load.application_factor
+    scaled, and ISO 6336-1's load-dependent stiffness and resonance figures at the new line load
+    (:func:`_stiffness_at`)."""
+    f = stage.static_force_N
     forces = replace(f, tangential=f.tangential * force_ratio, radial=f.radial * force_ratio,
                      axial=f.axial * force_ratio, normal=f.normal * force_ratio)
-    old, new = (stf.reference_tangential_force_N(ft, b) * k_a / b for ft in (f.tangential, forces.tangential))
+    return replace(_stiffness_at(cfg, stage, force_ratio), static_force_N=forces)
+
+
+M = TypeVar("M", "StageResult", "InternalMeshResult")  # a mesh's record: a stage's (its pair) or a planet–ring mesh
+
+
+def _stiffness_at(cfg: DesignFile, mesh: M, force_ratio: float) -> M:
+    """``mesh`` with ISO 6336-1's load-dependent figures at ``force_ratio`` times its static tangential force (its
+    forces as they are): c′ × (F_t K_A / b / 100)^0.25 below 100 N/mm, so c_γα and c_γβ with it, n_E1 ∝ √c_γα and
+    N = n1/n_E1, and the lower resonance limit N_S and the range at the new line load."""
+    f_t, b, k_a = mesh.static_force_N.tangential, mesh.face_width_mm, cfg.load.application_factor
+    old, new = (stf.reference_tangential_force_N(ft, b) * k_a / b for ft in (f_t, f_t * force_ratio))
     c = stf.low_load_factor(new) / stf.low_load_factor(old)
-    mesh = stage.iso6336_mesh_stiffness_N_mm_um * c
-    n_e1 = stage.resonance_speed_rpm * math.sqrt(c)
-    ratio = stage.resonance_ratio / math.sqrt(c)
+    stiffness = mesh.iso6336_mesh_stiffness_N_mm_um * c
+    ratio = mesh.resonance_ratio / math.sqrt(c)
     lower = res.lower_main_resonance_limit(new)
-    return replace(stage, static_force_N=forces,
-                   iso6336_single_pair_stiffness_N_mm_um=stage.iso6336_single_pair_stiffness_N_mm_um * c,
-                   iso6336_mesh_stiffness_N_mm_um=mesh,
-                   iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(mesh),
-                   resonance_speed_rpm=n_e1, resonance_ratio=ratio, resonance_lower_limit=lower,
-                   resonance_range=res.resonance_range(ratio, lower))
+    return replace(mesh, iso6336_single_pair_stiffness_N_mm_um=mesh.iso6336_single_pair_stiffness_N_mm_um * c,
+                   iso6336_mesh_stiffness_N_mm_um=stiffness,
+                   iso6336_mesh_stiffness_beta_N_mm_um=stf.mesh_stiffness_beta_N_mm_um(stiffness),
+                   resonance_speed_rpm=mesh.resonance_speed_rpm * math.sqrt(c), resonance_ratio=ratio,
+                   resonance_lower_limit=lower, resonance_range=res.resonance_range(ratio, lower))
 
 
 # ------------------------------------------------------------------ a planetary stage's planet–ring mesh
@@ -217,9 +227,19 @@ def _ring_unrated(stage: StageResult) -> bool:
     return stage.rating is not None and p.planet_ring.rating is None
 
 
-def _shared(stage: StageResult) -> StageResult:
-    """The stage as ISO rates it: a planetary stage's most loaded planet (K_γ times the mean planet's force)."""
-    return pl.with_load_sharing(stage) if _planets(stage) else stage
+def _shared(cfg: DesignFile, stage: StageResult) -> StageResult:
+    """The stage as ISO rates it: a planetary stage's most loaded planet, K_γ times the mean planet's force
+    (``pl.with_load_sharing``), and both its meshes' load-dependent ISO 6336-1 figures (c′, c_γα, c_γβ, N, N_S) at
+    that planet's load, as every other load factor of its rating reads it (the design's are the mean planet's)."""
+    if not _planets(stage):
+        return stage
+    k = pl.load_sharing_of(stage)
+    if k == 1.0:
+        return stage
+    p = stage.planetary
+    assert p is not None  # a stage with planets (``_planets``)
+    loaded = pl.with_load_sharing(_stiffness_at(cfg, stage, k))
+    return replace(loaded, planetary=replace(p, planet_ring=_stiffness_at(cfg, p.planet_ring, k)))
 
 
 def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResult:
@@ -227,7 +247,7 @@ def _rate_planet_ring(cfg: DesignFile, k: int, stage: StageResult) -> StageResul
     if stage.rating is None:
         return stage
     assert stage.planetary is not None  # a stage with planets (``_planets``)
-    ring_rating = rate_planet_ring(cfg, k, pl.with_load_sharing(stage))
+    ring_rating = rate_planet_ring(cfg, k, _shared(cfg, stage))
     mesh = replace(stage.planetary.planet_ring, rating=ring_rating)
     return replace(stage, planetary=replace(stage.planetary, planet_ring=mesh))
 
