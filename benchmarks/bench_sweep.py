@@ -17,7 +17,8 @@ on the machine not), in this process (--breakdown points, the compiled engine wh
 first), each part timed by patching the functions that do it (:func:`_parts`; a call's own time, less the
 patched calls inside it): the integration (every integration of the point: its run, the settle test's longer
 runs and the periodic search's shots, gearcli.simulate.settle), the check pass (on the points a sweep checks:
-every gearcli.sweep.family.CHECK_EVERY-th), the design and model set-up, the run's set-up (the equations' arrays,
+every gearcli.sweep.family.CHECK_EVERY-th), the design and model set-up (a continued point's model with the
+previous point's phases carried), the run's set-up (a continued point's start state, the equations' arrays,
 the method and engine choice, the steady-state search's own algebra such as the equilibrium's Newton, each
 integration's preparation) and the post-processing (output sampling and energy balance, statistics with the
 ringing fit and settle test, diagnostics and warnings, the simulated rating, and the untimed lines between the
@@ -28,6 +29,13 @@ _kernel_with_progress), as in `gearcli sweep --jobs 1`; a pool worker (--jobs 2 
 kernel directly. The thread's start and join count to the integration.
 
     python benchmarks/bench_sweep.py --points 1000 --loop 0 --no-dask     # the sweep against the floor only
+    python benchmarks/bench_sweep.py --points 2 --loop 0 --no-dask --breakdown 200 --continued --detail
+
+``--continued``: the breakdown's points continue one from the other as ``gearcli sweep`` runs a branch (its
+integrations start near the next equilibrium: shorter than a cold point's); ``--detail``: the post-processing's
+CPU function by function (each timed function's own time, the statistics' and output sampling's steps and the
+facade's and the run's own lines timed too, each counted to the part it runs in: the parts' sums stay theirs, the
+extra timers' own cost, ~1 us a call, with them).
 """
 
 from __future__ import annotations
@@ -108,9 +116,13 @@ def _parts():
         solver,
         stats,
     )
+    from gearcli.sweep import continuation
 
+    # a continued point's (--continued) model carries the previous point's mesh phases (carry_phases: its model
+    # spec) and its run starts from that point's state mapped onto it (continue_state: the run's initial state)
     whole = [(api, "design_case", "design and model"), (api, "spec_from_design", "design and model"),
-             (api, "TorsionalModel", "design and model"), (estimate, "check_pass", "check pass")]
+             (api, "TorsionalModel", "design and model"), (estimate, "check_pass", "check pass"),
+             (continuation, "carry_phases", "design and model"), (continuation, "continue_state", SETUP)]
     own = [(solver, "_integrate_compiled", "integration"), (solver, "_segment", "integration"),
            # set-up: what the run needs before (and around) its integrations: the memory and cost guard, the
            # equations' arrays, the method and engine choice and budget, the steady-state search's own algebra
@@ -136,33 +148,53 @@ def _parts():
     return [(m, a, p, True) for m, a, p in whole] + [(m, a, p, False) for m, a, p in own]
 
 
-def _patch(parts: dict[str, float]) -> list[tuple[object, str, object]]:
-    """Patch every function of :func:`_parts` (see there); returns what to restore. Each call's own CPU time, less
-    that of the patched calls inside it, goes to its part; an integration outside the check pass counts a run."""
-    stack: list[list] = []  # [part, start, time of the timed calls inside, absorbs]
+def _detail():
+    """(module or class, attribute) of the functions ``--detail`` times besides :func:`_parts`' (each counted to the
+    part it runs in): the statistics' and the output sampling's own steps, the facade's and the run's own lines."""
+    from gearcli import api
+    from gearcli.model import outputs
+    from gearcli.simulate import aliasing, estimate, planet_stats, run, settle, spent, stats
 
-    def timed(real, part: str, absorbs: bool):
+    return [(stats, "window_reductions"), (aliasing, "window_sampling"), (stats, "stages_dynamics"),
+            (run, "_series"), (run, "mesh_stiffness"), (run, "simulated_static_tangential_N"),
+            (estimate, "force_floors_N"), (stats, "window_mask"), (run, "_require_finite"), (run, "_atol_summary"),
+            (planet_stats, "planets_of"), (outputs, "_all_series"), (outputs, "body_motion"),
+            (run, "run_simulation"), (run, "simulate_model"), (api, "evaluate_point"), (settle, "periodic_state"),
+            (spent, "totalled")]
+
+
+def _patch(parts: dict[str, float], detail: dict[str, float] | None = None) -> list[tuple[object, str, object]]:
+    """Patch every function of :func:`_parts` (see there); returns what to restore. Each call's own CPU time, less
+    that of the patched calls inside it, goes to its part; an integration outside the check pass counts a run.
+    ``detail``: each function's own time also goes there, keyed "part: function" (with :data:`DETAIL`'s functions
+    patched too, each counted to the part of the function it runs in: the parts' sums are the same)."""
+    stack: list[list] = []  # [part, start, time of the timed calls inside, absorbs, function]
+
+    def timed(real, part: str | None, absorbs: bool, name: str):
         def wrapper(*a, **k):
             if any(e[3] for e in stack):
                 return real(*a, **k)
-            stack.append([part, time.process_time(), 0.0, absorbs])
+            stack.append([part if part is not None else stack[-1][0] if stack else "other", time.process_time(), 0.0,
+                          absorbs, name])
             try:
                 return real(*a, **k)
             finally:
-                p, t0, inner, _ = stack.pop()
+                p, t0, inner, _, fn = stack.pop()
                 took = time.process_time() - t0
                 parts[p] += took - inner
                 parts["runs"] += p == "integration"
+                if detail is not None:
+                    detail[f"{p}: {fn}"] = detail.get(f"{p}: {fn}", 0.0) + took - inner
                 if stack:
                     stack[-1][2] += took
         return wrapper
 
     saved = []
-    patches = _parts()  # (its imports first: the modules loaded lazily hold copies too)
+    patches = _parts() + ([(m, a, None, False) for m, a in _detail()] if detail is not None else [])
     mods = [m for name, m in list(sys.modules.items()) if name.startswith("gearcli") and m is not None]
     for owner, name, part, absorbs in patches:
         real = owner.__dict__[name]
-        fake = timed(real, part, absorbs)
+        fake = timed(real, part, absorbs, name)
         for holder in [owner] if isinstance(owner, type) or isinstance(real, type) else mods:
             for attr, value in list(vars(holder).items()):
                 if value is real:
@@ -171,7 +203,7 @@ def _patch(parts: dict[str, float]) -> list[tuple[object, str, object]]:
     return saved
 
 
-def breakdown(n: int) -> dict[str, float]:
+def breakdown(n: int, continued: bool = False, detail: dict[str, float] | None = None) -> dict[str, float]:
     """CPU seconds per point of a seed speed sweep in this process, by part (module text): the process's CPU
     time (the compiled kernel runs in a worker thread: counted), which other jobs on the machine do not inflate.
     "integration" is every integration of the point (the run, a settle test's longer runs, the periodic
@@ -181,7 +213,10 @@ def breakdown(n: int) -> dict[str, float]:
     integrations (the equations' arrays, built lazily on the run's first use; the method and engine choice; the
     steady-state search's own algebra: run-up start, the equilibrium's Newton, the shooting; an integration's
     preparation), and post-processing the rest (:data:`POST`: output sampling and energy balance, statistics,
-    diagnostics, the simulated rating, and the lines between the parts, ``other``). The parts sum to the point."""
+    diagnostics, the simulated rating, and the lines between the parts, ``other``). The parts sum to the point.
+    ``continued``: each point continued from the previous one's state, as ``gearcli sweep`` runs a branch
+    (:mod:`gearcli.sweep.continuation`; the first cold); else every point cold from rest. ``detail``: filled with each
+    timed function's own CPU seconds a point, keyed "part: function" (:func:`_patch`)."""
     from gearcli import api, engine
     from gearcli.sweep.family import CHECK_EVERY
     from gearcli.sweep.worker import Scene
@@ -192,20 +227,27 @@ def breakdown(n: int) -> dict[str, float]:
     api.evaluate_point(scene, ("input.speed_rpm=600",))  # warm: generated code, caches, the lazy imports
     names = ["point", "integration", "check pass", "design and model", SETUP, *POST, "runs"]
     parts = dict.fromkeys(names, 0.0)
-    saved = _patch(parts)
+    own: dict[str, float] | None = {} if detail is not None else None
+    saved = _patch(parts, own)
     engines = set()
     try:
         api.evaluate_point(scene, ("input.speed_rpm=600",))  # warm the patched calls
         parts.update(dict.fromkeys(parts, 0.0))
+        if own is not None:
+            own.clear()
+        ev = None
         for i, v in enumerate(_speeds(n)):
+            start = (ev.carried,) if continued and ev is not None and ev.carried is not None else ()
             t0 = time.process_time()
-            ev = api.evaluate_point(scene, (f"input.speed_rpm={v!r}",), check=i % CHECK_EVERY == 0)
+            ev = api.evaluate_point(scene, (f"input.speed_rpm={v!r}",), *start, check=i % CHECK_EVERY == 0)
             parts["point"] += time.process_time() - t0
             sv = ev.result.solver
             engines.add(f"{sv.method} ({sv.engine}), steady {ev.result.steady.mode if ev.result.steady else '-'}")
     finally:
         for holder, attr, real in reversed(saved):
             setattr(holder, attr, real)
+    if detail is not None and own is not None:
+        detail.update({k: v / n for k, v in own.items()})
     out = {k: v / n for k, v in parts.items()}
     timed = sum(out[k] for k in names[1:-1] if k != "other")
     out["other"] = out["point"] - timed  # the untimed lines: the facade's, the run's own between the parts
@@ -221,6 +263,9 @@ def main() -> None:
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--no-dask", action="store_true")
     ap.add_argument("--breakdown", type=int, default=100, help="points of the in-process breakdown (0: none)")
+    ap.add_argument("--continued", action="store_true",
+                    help="the breakdown's points continued one from the other (as gearcli sweep), not cold")
+    ap.add_argument("--detail", action="store_true", help="the breakdown's post-processing function by function")
     args = ap.parse_args()
     n, jobs = args.points, args.jobs
     rows = []
@@ -249,9 +294,10 @@ def main() -> None:
     for name, wall in rows:
         print(f"{name:<62} {wall:9.1f} {n / wall:9.2f} {base / wall:7.1f}x {wall / floor:7.1f}x")
     if args.breakdown:
-        b = breakdown(args.breakdown)
-        print(f"\nper point, in process, CPU ms ({args.breakdown} points; {b.pop('engines')}; "
-              f"{b['runs']:.1f} integrations a point):")
+        own: dict[str, float] | None = {} if args.detail else None
+        b = breakdown(args.breakdown, args.continued, own)
+        print(f"\nper point, in process, CPU ms ({args.breakdown} points, {'continued' if args.continued else 'cold'}; "
+              f"{b.pop('engines')}; {b['runs']:.1f} integrations a point):")
         for k in ("point", "integration", "check pass", "design and model", SETUP, "post-processing"):
             print(f"  {k:<18} {1e3 * b[k]:8.2f}")
             if k == "post-processing":
@@ -260,6 +306,11 @@ def main() -> None:
         integ = b["integration"]
         print(f"  post-processing / integration: {b['post-processing'] / integ:.2f} (target <= 0.20)")
         print(f"  (run set-up + post-processing) / integration: {(b[SETUP] + b['post-processing']) / integ:.2f}")
+        if own is not None:
+            print("  post-processing by function (own CPU ms; 'other: f' is a function among the untimed lines):")
+            for key, v in sorted(own.items(), key=lambda kv: -kv[1]):
+                if key.split(":")[0] in POST:
+                    print(f"    {key:<44} {1e3 * v:7.3f}")
 
 if __name__ == "__main__":
     main()
