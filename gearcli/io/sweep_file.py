@@ -55,9 +55,10 @@ def _unwritable(path: Path, exc: OSError) -> OutputError:
 
 
 def _replace(path: Path, text: str) -> None:
-    """The one place a whole sweep file is written (atomically); swap for the shared -o helper."""
+    """The one place a whole sweep file is written (atomically, flushed to the disk: a checkpoint a machine crash
+    must not empty); swap for the shared -o helper."""
     try:
-        write_atomic(path, text)
+        write_atomic(path, text, durable=True)
     except OSError as exc:
         raise _unwritable(path, exc) from None
 

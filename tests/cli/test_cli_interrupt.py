@@ -104,14 +104,14 @@ def test_sigterm_exits_143_and_leaves_no_file(tmp_path):
 
 
 def test_sigterm_during_the_write_removes_the_temporary_file(tmp_path, monkeypatch):
-    # the signal lands while the bytes are being written: the handler raises Terminated there
+    # the signal lands once the bytes are written, before the rename: the handler raises Terminated there
     from gearcli.errors import Terminated
     from gearcli.io import atomic
 
-    def terminated(fd):
+    def terminated(src, dst):
         raise Terminated()
 
-    monkeypatch.setattr(atomic.os, "fsync", terminated)
+    monkeypatch.setattr(atomic.os, "replace", terminated)
     (tmp_path / "OUT.csv").write_text("old\n")
     with pytest.raises(Terminated):
         atomic.write_atomic(tmp_path / "OUT.csv", "x" * 1_000_000)
