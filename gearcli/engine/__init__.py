@@ -24,7 +24,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from gearcli.core.cost import MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
+from gearcli.core.cost import COMPILE_S, MIN_LOAD_S, REFERENCE_KEEP_S, predicted_wall_s
 from gearcli.core.methods import METHODS
 from gearcli.core.records import record
 from gearcli.engine.loader import (  # noqa: F401 - the package's interface
@@ -38,6 +38,7 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     cache_dir,
     cache_problem,
     cache_root,
+    cached_or_loaded,
     compilation_pending,
     entry,
     expected_load_s,
@@ -46,7 +47,6 @@ from gearcli.engine.loader import (  # noqa: F401 - the package's interface
     load,
     loaded_kernel,
     mark_ready,
-    nominal_load_s,
     point_functions,
     quiet_compilation,
     ready,
@@ -173,10 +173,13 @@ def reproducible() -> bool:
 
 
 def sweep_load_share_s(points: int) -> float:
-    """A sweep's price per point of loading the kernel: its nominal load (:func:`~gearcli.engine.loader.
-    nominal_load_s`: not the last measured one) over all the sweep's points, whatever their split into tasks and
-    workers or a resume (:mod:`gearcli.sweep.execute` computes it once, in the parent)."""
-    return nominal_load_s() / max(1, points) if available() else 0.0  # without numba: no engine to price
+    """A sweep's price per point of loading the kernel, the same for every point whatever the sweep's split into
+    tasks and workers, a resume, or what a worker has loaded (:mod:`gearcli.sweep.execute` computes it once, in
+    the parent): nothing where the kernel is cached (each worker loads it once, ~0.1-0.6 s, ``DEFAULT_LOAD_S``,
+    against a sweep's many runs), a compilation's ``COMPILE_S`` over all the sweep's points where it is not."""
+    if not available():
+        return 0.0  # without numba: no engine to price
+    return 0.0 if cached_or_loaded() else COMPILE_S / max(1, points)
 
 
 def load_share_s() -> float:

@@ -382,13 +382,9 @@ def expected_load_s() -> float:
         return DEFAULT_LOAD_S
 
 
-def nominal_load_s() -> float:
-    """What loading the kernel is priced at where a choice must not depend on this machine's state (a sweep,
-    :func:`gearcli.engine.batch`): its nominal figure ``DEFAULT_LOAD_S`` when the kernel is cached (or loaded), a
-    compilation's when not; never the last measured load time, which the machine's load moves."""
-    if "loaded" in _state or _ready_here(cache_dir()):
-        return DEFAULT_LOAD_S
-    return COMPILE_S
+def cached_or_loaded() -> bool:
+    """Whether this process has the kernel loaded or can load it from the cache without compiling."""
+    return "loaded" in _state or _ready_here(cache_dir())
 
 
 # ------------------------------------------------------------------------------------------- warm-up

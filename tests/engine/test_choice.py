@@ -72,22 +72,25 @@ def test_auto_weighs_the_load_cost_against_the_python_run(monkeypatch):
 
 
 def test_a_sweeps_batch_prices_the_load_alike_whatever_the_process_has_loaded_or_measured(monkeypatch):
-    """A sweep's points (gearcli.sweep.execute) price loading the kernel at its nominal figure over all the sweep's
-    points, in every worker: 10^4 Radau evaluations (0.34 s in Python at ~34 us each, by gearcli.core.cost) against
-    the compiled ~0.01 s plus 0.6 s / 2 points = 0.31 s go compiled, and the same whether this process has loaded the
-    kernel (0 s left to load) or last measured a 3 s load, where the process's own figure would have decided each
-    differently (the rows of a sweep then differed with --jobs and with the machine's load)."""
+    """A sweep's points (gearcli.sweep.execute) price loading the kernel alike in every worker: nothing where it is
+    cached (each worker loads it once against the sweep's many runs), a compilation's 60 s over all the sweep's
+    points where it is not. 10^4 Radau evaluations (0.34 s in Python at ~34 us each, by gearcli.core.cost; ~0.01 s
+    compiled) then go compiled whether this process has loaded the kernel or last measured a 3 s load, where the
+    process's own figure decides each differently (the rows of a sweep then differed with --jobs and with the
+    machine's load)."""
     from gearcli.core import cost
 
     monkeypatch.setattr(engine, "available", lambda: True)
     monkeypatch.setitem(engine._runs, "expected", 1)
-    monkeypatch.setattr(engine, "nominal_load_s", lambda: cost.DEFAULT_LOAD_S)
-    arrays = seed_arrays()
+    monkeypatch.setattr(engine, "cached_or_loaded", lambda: False)
+    assert engine.sweep_load_share_s(600) == pytest.approx(0.1)  # 60 s of compilation over 600 points
+    monkeypatch.setattr(engine, "cached_or_loaded", lambda: True)
     share = engine.sweep_load_share_s(2)
-    assert share == pytest.approx(0.3)  # 0.6 s over 2 points
+    assert share == 0.0
+    arrays = seed_arrays()
     python_s = cost.predicted_wall_s("python", "Radau", 1e4)
     compiled_s = cost.predicted_wall_s("compiled", "Radau", 1e4, share)
-    assert compiled_s < python_s < compiled_s + 3.0 / 2  # the measured 3 s would have kept it on scipy
+    assert compiled_s < python_s < compiled_s + 3.0  # the measured 3 s would have kept it on scipy
     picks = set()
     for measured in (0.0, 3.0):  # loaded already; or a slow last load measured
         monkeypatch.setattr(engine, "expected_load_s", lambda m=measured: m)

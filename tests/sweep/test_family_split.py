@@ -194,13 +194,13 @@ def test_rows_are_the_same_however_the_points_are_split_and_resumed(tmp_path, mo
 
 @pytest.mark.parametrize("workers", [1, 2, 7])
 def test_every_task_prices_the_kernel_load_over_the_whole_sweep(workers, monkeypatch):
-    """engine = "auto" in a sweep: each point prices loading the kernel at the nominal load over all the sweep's
-    points (gearcli.engine.sweep_load_share_s), the same in every task at any --jobs and after a resume, so a
-    point's engine, and so its row, does not depend on how the sweep was split (it did: each worker priced its own
-    part of the sweep, at the load time its last process measured)."""
+    """engine = "auto" in a sweep: each point prices loading the kernel alike (gearcli.engine.sweep_load_share_s:
+    a compilation's 60 s over all the sweep's points where nothing is cached), the same in every task at any
+    --jobs and after a resume, so a point's engine, and so its row, does not depend on how the sweep was split (it
+    did: each worker priced its own part of the sweep, at the load time its last process measured)."""
     from gearcli import engine
 
-    monkeypatch.setattr(engine, "nominal_load_s", lambda: 0.6)
+    monkeypatch.setattr(engine, "cached_or_loaded", lambda: False)
     monkeypatch.setattr(engine, "available", lambda: True)  # numba installed
     n = 3 * CHECK_EVERY
     spec = spec_from_options([f"input.speed_rpm=100:{100 + n - 1}:{n}"], [], None, "lhs", None, None)
@@ -208,4 +208,4 @@ def test_every_task_prices_the_kernel_load_over_the_whole_sweep(workers, monkeyp
     scene = Scene(b"", "x.toml")
     for done in ({}, {p.ident: 1 for p in points[:CHECK_EVERY + 3]}):  # a fresh sweep; a resume
         tasks, _ = execute.plan(spec, scene, done, workers, None)
-        assert tasks and all(t.load_share_s == pytest.approx(0.6 / n) for t in tasks)
+        assert tasks and all(t.load_share_s == pytest.approx(60.0 / n) for t in tasks)
