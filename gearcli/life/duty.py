@@ -15,11 +15,17 @@ from dataclasses import replace
 from typing import Any
 
 from gearcli.config.duty import MAX_DUTY_HOURS
+from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
 from gearcli.design.kinematics import pinion_torque_Nmm
 from gearcli.errors import ConfigError
 
 MAX_SERIES_ROWS = 2_000_000
+#: a history's torque and speed cells within what the design file's load.torque_Nm and input.speed_rpm allow (in
+#: magnitude: a history may reverse), so the classing's sums stay finite (1e308 in a cell made a class's width or
+#: mean speed overflow: an internal error, or "got inf" for a value the file never held)
+SERIES_LIMITS = {"torque_Nm": (MAX_TORQUE_NMM / 1e3, "N m", "load.torque_Nm"),
+                 "speed_rpm": (MAX_SPEED_RPM, "rpm", "input.speed_rpm")}
 DEFAULT_CLASSES = 10
 
 
@@ -147,6 +153,10 @@ def _cell(row: Sequence[str], i: int, name: str, row_no: int, source: str) -> fl
         raise ConfigError(f"row {row_no}, column {name}: expected a number, got {text!r}", source=source) from None
     if not math.isfinite(value):
         raise ConfigError(f"row {row_no}, column {name}: not a finite number ({text!r})", source=source)
+    if name in SERIES_LIMITS and abs(value) > SERIES_LIMITS[name][0]:
+        limit, unit, key = SERIES_LIMITS[name]
+        raise ConfigError(f"row {row_no}, column {name}: {value:g} {unit} is beyond the ±{limit:g} {unit} a design "
+                          f"file's {key} allows (check the column's unit)", source=source)
     return value
 
 
