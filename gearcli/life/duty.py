@@ -15,11 +15,20 @@ from dataclasses import replace
 from typing import Any
 
 from gearcli.config.duty import MAX_DUTY_HOURS
+from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
 from gearcli.design.kinematics import pinion_torque_Nmm
 from gearcli.errors import ConfigError
 
 MAX_SERIES_ROWS = 2_000_000
+#: the shortest time step of a history (a 1 GHz logger's): 5e-324 s steps made a class's hours 0 (an internal
+#: error dividing by them) or subnormal
+MIN_SERIES_STEP_S = 1e-9
+#: a history's torque and speed cells within what the design file's load.torque_Nm and input.speed_rpm allow (in
+#: magnitude: a history may reverse), so the classing's sums stay finite (1e308 in a cell made a class's width or
+#: mean speed overflow: an internal error, or "got inf" for a value the file never held)
+SERIES_LIMITS = {"torque_Nm": (MAX_TORQUE_NMM / 1e3, "N m", "load.torque_Nm"),
+                 "speed_rpm": (MAX_SPEED_RPM, "rpm", "input.speed_rpm")}
 DEFAULT_CLASSES = 10
 
 
@@ -125,6 +134,10 @@ def _read_series(reader, source: str) -> tuple[list[float], list[float], list[fl
             raise ConfigError(f"row {rows[k]}, column time_s: {t[k]!r} s does not follow row {rows[k - 1]}'s "
                               f"{t[k - 1]!r} s (time_s must increase from row to row: sort the history and "
                               "drop repeated time stamps)", source=source)
+        if not t[k] - t[k - 1] >= MIN_SERIES_STEP_S:
+            raise ConfigError(f"row {rows[k]}, column time_s: {t[k]!r} s follows row {rows[k - 1]}'s {t[k - 1]!r} s "
+                              f"by {t[k] - t[k - 1]:.3g} s, less than the {MIN_SERIES_STEP_S:g} s a history's step "
+                              "may be (time_s is in seconds)", source=source)
     span = t[-1] - t[0]  # inf when it overflows (time stamps of either sign near 1e308)
     if not span <= MAX_DUTY_HOURS * 3600.0:
         raise ConfigError(f"row {rows[-1]}, column time_s: the history spans {span:.4g} s from row {rows[0]} "
@@ -147,6 +160,10 @@ def _cell(row: Sequence[str], i: int, name: str, row_no: int, source: str) -> fl
         raise ConfigError(f"row {row_no}, column {name}: expected a number, got {text!r}", source=source) from None
     if not math.isfinite(value):
         raise ConfigError(f"row {row_no}, column {name}: not a finite number ({text!r})", source=source)
+    if name in SERIES_LIMITS and abs(value) > SERIES_LIMITS[name][0]:
+        limit, unit, key = SERIES_LIMITS[name]
+        raise ConfigError(f"row {row_no}, column {name}: {value:g} {unit} is beyond the ±{limit:g} {unit} a design "
+                          f"file's {key} allows (check the column's unit)", source=source)
     return value
 
 

@@ -42,6 +42,7 @@ DIRECTIONS = ("up", "down", "both")
 NO_DIRECTION = "none"
 SAMPLINGS = ("lhs", "mc")
 MAX_POINTS = 1_000_000
+NORMAL_REACH = 9.0  # |z| of the farthest normal draw (8.3 at u = 1 - 2**-53), rounded up
 _RANGE = re.compile(r"^\s*([^:]+):([^:]+):\s*(\d+)\s*$")
 _DIST = re.compile(r"^\s*(normal|uniform)\s*\(\s*([^,()]+)\s*,\s*([^,()]+)\s*\)\s*$", re.IGNORECASE)
 
@@ -100,7 +101,7 @@ class Distribution:
     def ppf(self, u):
         """Inverse CDF on uniform draws in [0, 1)."""
         if self.kind == "uniform":
-            return self.a + (self.b - self.a) * u
+            return _between(self.a, self.b, u)
         from scipy.stats import norm  # lazy: scipy.stats, start-up time
 
         return norm.ppf(u, loc=self.a, scale=self.b)
@@ -114,6 +115,17 @@ def _number(text: str, option: str, what: str) -> float:
     if not math.isfinite(x):
         raise SweepUsageError(f"{what} must be finite, got {text.strip()!r}", source=option)
     return x
+
+
+def _between(a, b, num, den=1.0):
+    """The point ``num / den`` of the way from ``a`` to ``b``: ``a + (b - a) num / den`` as grids and uniform draws
+    have always been computed (the same bits), or, where ``b - a`` overflows (-1e308:1e308), ``a (1 - f) + b f``
+    with f = num / den, which stays finite (the overflowing form made nan and inf points: an empty key cell in
+    CSV, an internal error writing JSON)."""
+    if math.isfinite(b - a):
+        return a + (b - a) * num / den
+    f = num / den
+    return a * (1.0 - f) + b * f
 
 
 def _split(text: str, option: str, example: str) -> tuple[str, str, str]:
@@ -140,7 +152,7 @@ def parse_vary(text: str) -> Axis:
         if n > MAX_POINTS:  # before the values are built: 1:2:1000000000 would take minutes and gigabytes
             raise SweepUsageError(f"{key}: {n} values is more than the {MAX_POINTS} points a sweep may have",
                                   source=option)
-        values: tuple[float, ...] = (start,) if n == 1 else tuple(start + (stop - start) * i / (n - 1) for i in range(n))
+        values: tuple[float, ...] = (start,) if n == 1 else tuple(_between(start, stop, i, n - 1) for i in range(n))
         if all(re.fullmatch(r"\s*[+-]?\d+\s*", t) for t in (m[1], m[2])) and all(float(v).is_integer() for v in values):
             values = tuple(int(v) for v in values)  # 17:25:9 is teeth 17, 18, ..., 25 (integers)
         return Axis(canonical, values, key)
@@ -200,6 +212,11 @@ def parse_random(text: str) -> Distribution:
         raise SweepUsageError(f"{key}: normal(mu, sigma) needs sigma > 0, got {b:g}", source=option)
     if kind == "uniform" and not b > a:
         raise SweepUsageError(f"{key}: uniform(a, b) needs b > a, got ({a:g}, {b:g})", source=option)
+    if kind == "normal" and not math.isfinite(abs(a) + NORMAL_REACH * b):
+        # a draw reaches |z| ~ 8.3 (u = 1 - 2**-53): beyond the largest float it would be inf, a point no output
+        # format can write
+        raise SweepUsageError(f"{key}: normal(mu, sigma) draws up to mu ± {NORMAL_REACH:g} sigma, beyond the largest "
+                              f"number, got ({a:g}, {b:g})", source=option)
     return Distribution(canonical, kind, a, b, key)
 
 

@@ -23,6 +23,14 @@ HEADER = "time_s,torque_Nm,speed_rpm\n"
     ("0,1500,1500\n10,1500,fast\n20,1,1\n", "row 3", "column speed_rpm"),
     ("0,1500,1500\n10,1500,1500\n10,1200,1500\n20,1,1\n", "row 4", "column time_s"),  # a repeated stamp
     ("0,1500,1500\n\n20,1500,1500\n10,1200,1500\n30,1,1\n", "row 5", "column time_s"),  # unsorted, after a blank
+    # finite cells beyond the design file's bounds: the classing's width (1e308 - -1e308) and a class's mean
+    # speed (1e308 rpm x 10 s) overflowed: an internal error (exit 1), or "got inf" naming a class
+    ("0,-1e308,1500\n10,1e308,1500\n20,1,1\n", "row 2", "column torque_Nm"),
+    ("0,1500,1500\n10,1500,1e308\n20,1,1\n", "row 3", "column speed_rpm"),
+    ("0,1500,1500\n10,1500,-300000\n20,1,1\n", "row 3", "column speed_rpm"),  # reverse, in magnitude
+    # steps of 5e-324 s made the history's hours 0: an internal error (ZeroDivisionError) in its verdict
+    ("0,1500,1500\n5e-324,1500,1500\n1e-323,1,1\n", "row 3", "column time_s"),
+    ("0,1500,1500\n1,1500,1500\n1.0000000000000002,1,1\n", "row 4", "column time_s"),  # 2.2e-16 s
 ])
 def test_bad_row_names_file_row_and_column(tmp_path, body, row, column):
     path, csv, out = tmp_path / "s.toml", tmp_path / "h.csv", tmp_path / "out.json"

@@ -186,3 +186,15 @@ def test_plots_without_matplotlib_warn_and_exit_0(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "matplotlib.backends.backend_agg", None)
     res = sweep("--vary", "input.speed_rpm=500", "--jobs", "1", "--plots", str(tmp_path / "p"))
     assert res.exit_code == 0 and "pip install 'gearcli[plot]'" in res.stderr
+
+
+def test_a_grid_whose_span_overflows_is_written_as_json_rows(tmp_path):
+    """-1e308:1e308:3: the points -1e308, 0 and 1e308 (by hand) fail their key's bounds as rows of a valid JSON
+    file; the grid's nan and inf points were an internal error (exit 1, no file) writing JSON."""
+    out = tmp_path / "s.json"
+    res = sweep("--vary", "input.speed_rpm=-1e308:1e308:3", "--jobs", "1", "-o", str(out))
+    assert res.exit_code == 1 and "internal error" not in res.stderr, res.stderr
+    rows = json.loads(out.read_text())["rows"]
+    assert [r["input.speed_rpm"] for r in rows] == [-1e308, 0.0, 1e308]
+    assert [r["status"] for r in rows] == ["failed"] * 3
+    assert all("input.speed_rpm: must be" in r["message"] for r in rows)

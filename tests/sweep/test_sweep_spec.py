@@ -22,6 +22,23 @@ def test_range_is_inclusive_and_evenly_spaced():
     assert parse_vary("a.b=5:5:1").values == (5,)
 
 
+def test_range_whose_span_overflows_stays_finite():
+    """-1e308:1e308 spans 2e308, beyond the largest float: the grid is still the two ends and their midpoint 0 (by
+    hand), each point then refused by the key's own bounds as a failed row; (STOP - START) i / (N - 1) made the
+    points nan, inf, inf (an empty key cell in CSV, an internal error writing JSON)."""
+    assert parse_vary("input.speed_rpm=-1e308:1e308:3").values == (-1e308, 0.0, 1e308)
+    assert parse_vary("input.speed_rpm=1.7e308:-1.7e308:5").values == pytest.approx(
+        (1.7e308, 0.85e308, 0.0, -0.85e308, -1.7e308), rel=1e-15, abs=0.0)
+    # a span that fits keeps the grid's arithmetic bit for bit (a resumed -o file compares its values)
+    assert parse_vary("x.y=0.1:0.7:7").values == tuple(0.1 + (0.7 - 0.1) * i / 6 for i in range(7))
+
+
+def test_uniform_whose_span_overflows_draws_finite_values():
+    d = parse_random("k.x=uniform(-1e308,1e308)")
+    assert list(d.ppf(np.array([0.0, 0.25, 0.5]))) == [-1e308, -0.5e308, 0.0]  # a (1 - u) + b u, by hand
+    assert list(parse_random("k.x=uniform(1,3)").ppf(np.array([0.0, 0.25]))) == [1.0, 1.5]
+
+
 def test_value_lists_read_as_toml_values():
     assert parse_vary("stage.0.pinion.hand=left,right").values == ("left", "right")
     assert parse_vary("stage[0].backlash_mm=0.1, 0.25").values == (0.1, 0.25)
@@ -38,7 +55,7 @@ def test_bad_vary_is_a_usage_error(text):
 
 
 @pytest.mark.parametrize("text", ["k.x=normal(1)", "k.x=normal(1,0)", "k.x=uniform(2,1)", "k.x=gauss(1,2)",
-                                  "k.x=normal(a,1)"])
+                                  "k.x=normal(a,1)", "k.x=normal(1e308,1e308)", "k.x=normal(0,1e308)"])
 def test_bad_random_is_a_usage_error(text):
     with pytest.raises(SweepUsageError):
         parse_random(text)
