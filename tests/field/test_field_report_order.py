@@ -41,7 +41,7 @@ def test_design_section_has_the_geometry_by_hand(markdown):
 
 def test_modes_section_lists_the_seed_modes(markdown):
     modes = markdown.split("## Modes and resonances", 1)[1].split("## ", 1)[0]
-    for f in ("58.01", "112.4", "184.1"):  # README / the simulation's linearised frequencies
+    for f in ("58.01", "112.4", "184.1"):  # the hand linear model's 58.010, 112.441, 184.115 Hz (test_seed_modes_hand)
         assert f"| {f}" in modes
 
 
@@ -52,4 +52,4 @@ def test_json_keys_engineering_first():
     keys = [k for k in doc if k not in ("gearcli_version", "input_sha256")]
     assert keys.index("design") < keys.index("modes") < keys.index("comparison") < keys.index("accuracy")
     freqs = [m["frequency_Hz"] for m in doc["modes"]["modes"]]
-    assert freqs == pytest.approx([58.01, 112.4, 184.1], rel=5e-4)  # README's seed modes, 4 digits
+    assert freqs == pytest.approx([58.01, 112.4, 184.1], rel=5e-4)  # the hand model's (test_seed_modes_hand)
