@@ -30,7 +30,7 @@ class Method:
 _INF = float("inf")
 _BOTH = ("python", "compiled")  # scipy's, and gearcli.engine's port of it
 METHODS: dict[str, Method] = {m.name: m for m in (
-    Method("RK45", False, False, 2.0, 6, "DOP853", _BOTH, summary="explicit Runge-Kutta 5(4), Dormand-Prince"),
+    Method("RK45", False, False, 0.99, 6, "DOP853", _BOTH, summary="explicit Runge-Kutta 5(4), Dormand-Prince"),
     Method("DOP853", False, False, 6.0, 12, "RK45", _BOTH, summary="explicit Runge-Kutta 8(5,3), Dormand-Prince"),
     Method("Radau", True, True, _INF, 0, "BDF", _BOTH, summary="implicit Radau IIA order 5, L-stable"),
     Method("BDF", True, True, _INF, 0, "Radau", summary="implicit variable-order BDF"),
