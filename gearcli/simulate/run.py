@@ -235,7 +235,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     mode = (stepped_over.unresolved_mode(choice, run, duration_s, window[0], s)
             or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
         if ref is not None and ref.errors else None
-    nonsmooth = ref is not None and any(e.unresolved for e in ref.errors) and stats.leaves_flank(s, window)
+    nonsmooth = ref is not None and any(e.unresolved for e in ref.errors) and stats.leaves_flank(s, window, stats.gapless_meshes(spec))
     stat_diags = estimate.warnings(ref, run.method, _unloaded(spec), nonsmooth) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = stepped_over.mode_unresolved(ref, mode, run, duration_s)
@@ -436,7 +436,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
         s.time_s, mask, per_stage[:len(ks)], statics, periodic=periodic, reduced=reduced,
-        simulated_static_N=simulated_static, gapless=[m.backlash_m == 0.0 for m in spec.meshes],
+        simulated_static_N=simulated_static, gapless=stats.gapless_meshes(spec),
         error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
