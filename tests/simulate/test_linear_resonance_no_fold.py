@@ -14,36 +14,22 @@ Independent reference, the oscillator's closed form (m_e = J / r_b^2, c = 2 zeta
 
 from __future__ import annotations
 
-import cmath
 import json
-import math
 from pathlib import Path
 
 from click.testing import CliRunner
+from te_oscillator import orbit
 
 from gearcli.cli import cli
 
 SCENE = Path(__file__).parent / "data" / "linear_te_resonance.toml"
 
 
-def _closed_form() -> tuple[float, float, complex]:
-    """(static F_t, F_t amplitude, the multiplier exp(lambda T) with Im > 0) of the scene."""
-    alpha, r = math.radians(20.0), 25 * 3e-3 / 2
-    rb, J, k, zeta, e1 = r * math.cos(alpha), 0.0063, 2e8, 0.01, 5e-6
-    me = J / rb ** 2
-    c = 2 * zeta * math.sqrt(k * me)
-    omega = 25 * 2398.2 * 2 * math.pi / 60
-    q = me * omega ** 2 * e1 / math.hypot(k - me * omega ** 2, c * omega)
-    wn = math.sqrt(k / me)
-    lam = complex(-zeta * wn, wn * math.sqrt(1 - zeta ** 2))
-    return 350 / r, math.hypot(k, c * omega) * q * math.cos(alpha), cmath.exp(lam * 2 * math.pi / omega)
-
-
 def test_a_linear_resonance_is_no_fold():
     res = CliRunner().invoke(cli, ["simulate", str(SCENE), "--format", "json", "-q"])
     assert res.exit_code == 0, res.stderr
     doc = json.loads(res.stdout)
-    static, amplitude, mu = _closed_form()
+    static, amplitude, mu = orbit(0.01, 2398.2)
     ft = doc["summary"]["stages"][0]["tangential_N"]
     assert abs(ft["mean"] - static) <= 1e-4 * static  # the orbit is the closed form's ...
     assert abs(ft["max"] - (static + amplitude)) <= 1e-3 * static

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from te_oscillator import orbit
 
 from gearcli.cli import cli
 
@@ -35,14 +36,7 @@ def _run(*sets: str) -> dict:
 
 
 def _closed_form() -> dict[str, float]:
-    alpha, r = math.radians(20.0), 25 * 3e-3 / 2
-    rb, J, k, e1 = r * math.cos(alpha), 0.0063, 2e8, 5e-6
-    me = J / rb ** 2
-    c = 2 * ZETA * math.sqrt(k * me)
-    omega = 25 * RPM * 2 * math.pi / 60
-    q = me * omega ** 2 * e1 / math.hypot(k - me * omega ** 2, c * omega)
-    amplitude = math.hypot(k, c * omega) * q * math.cos(alpha)
-    mean = 350 / r
+    mean, amplitude, _ = orbit(ZETA, RPM)
     return {"mean": mean, "min": mean - amplitude, "max": mean + amplitude, "std": amplitude / math.sqrt(2)}
 
 
