@@ -76,7 +76,7 @@ from gearcli.model.outputs import (
 from gearcli.simulate.choice import Choice
 from gearcli.simulate.results import ChannelStats, StatisticsError
 from gearcli.simulate.solver import STATUS_FINISHED, Integration, integrate
-from gearcli.simulate.stats import leaves_flank, window_means
+from gearcli.simulate.stats import gapless_meshes, leaves_flank, window_means
 
 TARGET = 1e-3  # of the stage's mean force: min, max, std, the spectrum
 MEAN_TARGET = 1e-4  # of the stage's mean force: the mean (module doc, "Targets")
@@ -437,7 +437,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
     lay = model.layout
     t_eval = run.t
     p = plan(t_eval, run.rtol, choice, window, stability_limited(choice, run.method, run.steps), mixed,
-             sampled is not None and leaves_flank(sampled, window))
+             sampled is not None and leaves_flank(sampled, window, gapless_meshes(model.spec)))
     i_w, i_s, rtol, scale = p.i_w, p.i_s, p.rtol, p.scale
     t0 = time.perf_counter()
     tw = t_eval[i_w:]

@@ -28,7 +28,7 @@ from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, stage_rows, tangential_force_N
 from gearcli.results import DesignResult, MeshStiffness
 from gearcli.scene import spec_from_design
-from gearcli.simulate import aliasing, estimate, rigid_start, sampling, spent, stats, stepped_over
+from gearcli.simulate import aliasing, estimate, orbit_check, rigid_start, sampling, spent, stats, stepped_over
 from gearcli.simulate import settle as settle_mod
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, choose_method
 from gearcli.simulate.course import CourseChange, integrate_auto, pace_warnings, predicted_nfev, prediction
@@ -141,8 +141,8 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                    file_steps: int | None = None, summary_start: bool = True) -> SimulationResult:
     """The engine of :func:`run_simulation` on an assembled model (also used by tests with plain
     parameters); ``y0`` overrides the initial state (layout: :mod:`gearcli.model.assembly`);
-    ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; not with
-    ``steady = "periodic"``, whose statistics come from a converged period); ``prior_diagnostics`` (the
+    ``error_estimate`` runs the check pass over the fixed window (:mod:`gearcli.simulate.estimate`; a periodic orbit
+    found by shooting is found again at rtol / 10: :mod:`gearcli.simulate.orbit_check`); ``prior_diagnostics`` (the
     design's warnings) lead the result's warnings; ``engine`` "auto", "python" or "compiled"
     (:func:`gearcli.engine.choose`); ``progress`` is called with the fraction of the run done (a terminal's
     progress bar, :mod:`gearcli.io.progress`; both engines).
@@ -213,7 +213,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                           f"t = {changes[-1].at_s:.4g} s (solver.course_changes)")
         steady_state = window_steady(model)
     check(run, choice, duration_s)
-    error_estimate = error_estimate and steady != "periodic"
+    error_estimate = error_estimate and (steady != "periodic" or orbit_check.applies(steady_state))
     # the drive's and the load's torques are read by the series' channels and a motor's summary alone (a sweep point
     # without a motor samples neither)
     torques = want_series or model.layout.drive.motor is not None
@@ -230,12 +230,13 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if not (error_estimate and choice.requested == AUTO):  # auto's own choice: the error estimate measures the noise
         diags += force_noise_warnings(choice, rtol)
     diags += resonance_warnings(model, choice) if diagnose else []
-    ref = estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s,
-                              mixed=bool(changes)) if error_estimate else None
+    ref = (orbit_check.check_pass(model, run, window, found.period.period_s, _fastest_rad_s(choice), max_nfev)
+           if steady == "periodic" else estimate.check_pass(model, run, choice, window, max_nfev=max_nfev, sampled=s,
+                                                            mixed=bool(changes))) if error_estimate else None
     mode = (stepped_over.unresolved_mode(choice, run, duration_s, window[0], s)
             or stepped_over.damped_ringing(choice, run.method, run.steps, s, duration_s, window)) \
-        if ref is not None and ref.errors else None
-    nonsmooth = ref is not None and any(e.unresolved for e in ref.errors) and stats.leaves_flank(s, window)
+        if ref is not None and ref.errors and steady != "periodic" else None
+    nonsmooth = ref is not None and any(e.unresolved for e in ref.errors) and stats.leaves_flank(s, window, stats.gapless_meshes(spec))
     stat_diags = estimate.warnings(ref, run.method, _unloaded(spec), nonsmooth) if ref is not None else []
     if ref is not None and mode is not None:  # the check pass cannot see that mode: its warnings replace the estimate's
         ref, stat_diags = stepped_over.mode_unresolved(ref, mode, run, duration_s)
@@ -436,7 +437,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
         s.time_s, mask, per_stage[:len(ks)], statics, periodic=periodic, reduced=reduced,
-        simulated_static_N=simulated_static, gapless=[m.backlash_m == 0.0 for m in spec.meshes],
+        simulated_static_N=simulated_static, gapless=stats.gapless_meshes(spec),
         error_estimate=merged, sampling_error=samplings,
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))

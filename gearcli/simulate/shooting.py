@@ -35,7 +35,14 @@ the unit circle. A real multiplier near +1 (within :data:`NEAR`) means a fold ne
 back: a jump); near -1 a period doubling. A complex pair near the unit circle is not classified: a lightly
 damped slow mode puts one there without any bifurcation (the conveyor's drum mode: 0.989 per period); the
 spectral radius says how close it is. For a linear system ``y' = A y + f(t)`` the multipliers are
-``exp(lambda T)`` of the eigenvalues ``lambda`` of ``A`` (tests/unit/test_shooting.py checks it).
+``exp(lambda T)`` of the eigenvalues ``lambda`` of ``A`` (tests/unit/test_shooting.py checks it). Where the
+Jacobian is the same all along the orbit (the orbit stays where the equations are linear: a linear mesh without
+backlash forced by its transmission error; an equilibrium), only a real ``lambda`` can put a multiplier at +1 (a
+fold: a real eigenvalue crossing zero); a complex pair ``exp(lambda T)`` near +1 or -1 is a lightly damped mode
+whose damped frequency is a whole multiple of the excitation frequency (near -1: an odd multiple of half of it), a
+resonance with one response and no bifurcation (a linear oscillator at resonance with 1 % damping,
+multipliers 0.939 +- 0.0002i, was called a fold "the response may jump to another branch":
+tests/simulate/test_linear_resonance_no_fold.py).
 """
 
 from __future__ import annotations
@@ -62,6 +69,9 @@ RETRY_PERIODS = 10
 PREAMBLE_COLD = 3  # brute-force periods after the ramps before the first Newton step
 PREAMBLE_CONTINUED = 0  # ... when a sweep point starts from the previous point's orbit: Newton from it directly
 NEAR = 0.1  # a real multiplier this close to +1 or -1 marks a bifurcation nearby
+REAL_EXPONENT = 1e-12  # an eigenvalue lambda T with |Im| below this (relative) is real (LAPACK gives real ones Im 0)
+LINEAR_JACOBIAN = 1e-9  # Jacobian entries along an orbit within this of its largest entry: the same Jacobian
+JACOBIAN_SAMPLES = 16  # where along the orbit the Jacobian is compared
 STABLE_SLACK = 1e-3  # a spectral radius up to 1 + this counts as the unit circle (the monodromy's own error)
 VAR_ATOL_FACTOR = 1e3  # monodromy entries held to this x the state's own accuracy (Newton needs ~1e-3)
 FALLBACK_NOTE = "shooting did not converge"  # how a fallback's note starts (its warning's test)
@@ -92,8 +102,10 @@ def floquet(M: np.ndarray, near: float = NEAR, structural: int = 0) -> Floquet:
     return judged(np.linalg.eigvals(np.asarray(M, dtype=float)) if M.size else np.zeros(0, complex), near, structural)
 
 
-def judged(mu: np.ndarray, near: float = NEAR, structural: int = 0) -> Floquet:
-    """:func:`floquet` from the multipliers ``mu`` themselves."""
+def judged(mu: np.ndarray, near: float = NEAR, structural: int = 0, exponents: np.ndarray | None = None) -> Floquet:
+    """:func:`floquet` from the multipliers ``mu`` themselves. ``exponents``: where the Jacobian is the same all along
+    the orbit, ``lambda T`` of its eigenvalues ``lambda`` (the multipliers are their ``exp``): then only the real ones
+    are judged for a bifurcation (module text)."""
     if structural > 0:
         mu = np.delete(mu, np.argsort(np.abs(mu - 1.0), kind="stable")[:structural])
     mu = mu[np.argsort(-np.abs(mu), kind="stable")]
@@ -101,7 +113,13 @@ def judged(mu: np.ndarray, near: float = NEAR, structural: int = 0) -> Floquet:
     rho = float(np.max(np.abs(mu))) if mu.size else 0.0
     kind, critical = "none", (pairs[0] if pairs else None)
     best = math.inf
-    for m in mu:
+    judge = mu
+    if exponents is not None:
+        lam = np.asarray(exponents, dtype=complex)
+        if structural > 0:
+            lam = np.delete(lam, np.argsort(np.abs(np.exp(lam) - 1.0), kind="stable")[:structural])
+        judge = np.exp(lam[np.abs(lam.imag) <= REAL_EXPONENT * np.maximum(1.0, np.abs(lam))].real).astype(complex)
+    for m in judge:
         real = abs(m.imag) <= near * 0.5
         for name, target in (("fold", 1.0), ("period doubling", -1.0)):
             d = abs(m - target)
@@ -439,7 +457,8 @@ def _at_equilibrium(model, rtol: float, first, parts: list, period, patol: np.nd
         ledger.notes.append("no excitation, but Newton on the equations of motion found no equilibrium from the "
                             "state at the end of the ramps; shooting")
         return None
-    fl = judged(eq.multipliers(found.J, T), structural=structural)
+    fl = judged(eq.multipliers(found.J, T), structural=structural,
+                exponents=np.linalg.eigvals(found.J) * T if found.J.size else None)
     if not fl.stable:
         ledger.notes.append(f"no excitation, but the equilibrium is unstable (multiplier of modulus "
                             f"{fl.spectral_radius:.4g} over a period): the motion leaves it; shooting")
@@ -500,8 +519,41 @@ def _newton(sh: _Shooter, y: np.ndarray, cap: int) -> tuple[tuple[Shot, Floquet]
     return None, f"no convergence in {MAX_NEWTON} Newton steps (residual {shot.residual:.3g} x the tolerance)"
 
 
+def constant_jacobian(model, run, d: int, samples: int = JACOBIAN_SAMPLES) -> np.ndarray | None:
+    """The dynamic block (``d`` states) of the model's Jacobian where it is the same (within
+    :data:`LINEAR_JACOBIAN` of its largest entry) at ``samples`` states spread over the orbit ``run``, else None."""
+    J0, scale = None, 0.0
+    for i in np.unique(np.linspace(0, run.t.size - 1, samples).astype(int)):
+        J = np.asarray(model.jac(float(run.t[i]), run.y[:, i]), dtype=float)[:d, :d]
+        if not np.all(np.isfinite(J)):
+            return None
+        if J0 is None:
+            J0, scale = J, max(float(np.max(np.abs(J))) if J.size else 0.0, 1e-300)
+        elif np.max(np.abs(J - J0)) > LINEAR_JACOBIAN * scale:
+            return None
+    return J0
+
+
+def _linear_verdict(model, shot: Shot, fl: Floquet, ledger: Ledger, structural: int) -> Floquet:
+    """``fl`` judged again from the Jacobian's eigenvalues where it is the same all along the orbit (module text)."""
+    if fl.bifurcation == "none" or shot.M is None or shot.run.t.size < 2:
+        return fl
+    d = shot.M.shape[0]
+    J = constant_jacobian(model, shot.run, d)
+    if J is None:
+        return fl
+    T = float(shot.run.t[-1] - shot.run.t[0])
+    again = judged(np.linalg.eigvals(shot.M), structural=structural, exponents=np.linalg.eigvals(J) * T)
+    if again.bifurcation != fl.bifurcation:
+        ledger.notes.append(f"the Jacobian is the same all along the orbit: its multipliers are exp(lambda T), and the "
+                            f"one near {'+1' if fl.bifurcation == 'fold' else '-1'} is a lightly damped mode resonant "
+                            "with the excitation (a complex lambda), no bifurcation")
+    return again
+
+
 def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: Ledger, samples: int, cap: int,
             k: int = 1, method: str = "shooting"):
+    fl = _linear_verdict(model, shot, fl, ledger, structural_unit_multipliers(model.layout))
     fine = shot.run
     keep = first.t < fine.t[0]  # the run-up's last state is no sample of the orbit where the orbit starts there
     kept = window_slice(keep)  # (a slice of the leading samples: read in place, the same numbers as the mask's copy)

@@ -256,12 +256,22 @@ def _contact(tw: np.ndarray, f: np.ndarray, p: np.ndarray, static_tangential_N: 
             np.any(back, axis=1))
 
 
-def leaves_flank(s: Sampled, window: tuple[float, float]) -> bool:
+def leaves_flank(s: Sampled, window: tuple[float, float], gapless: Sequence[bool] = ()) -> bool:
     """Whether a mesh leaves its (mean) flank in the window: a gap or the other flank, penetration <= 0 at a sample.
     Such a response is not smooth: an error made in the run-up is not forgotten at the linear modes' decay rate, and
-    where responses coexist the run-up picks one (the check pass then starts at t = 0: gearcli/simulate/estimate.py)."""
+    where responses coexist the run-up picks one (the check pass then starts at t = 0: gearcli/simulate/estimate.py).
+    ``gapless``: per mesh, whether it has no backlash (:func:`gapless_meshes`; missing: it may). A gapless mesh whose
+    force reverses crosses no gap and strikes nothing (its law is continuous through zero penetration: a linear one is
+    the same line on both flanks), so it does not count: a linear gapless train is a linear system, whose response is
+    unique and converges with rtol like any other."""
     w = s.time_s >= window[0]
-    return any(bool(np.any(m.penetration_m[w] * np.sign(np.mean(m.penetration_m[w])) <= 0.0)) for m in s.meshes)
+    return any(bool(np.any(m.penetration_m[w] * np.sign(np.mean(m.penetration_m[w])) <= 0.0))
+               for k, m in enumerate(s.meshes) if not (k < len(gapless) and gapless[k]))
+
+
+def gapless_meshes(spec) -> list[bool]:
+    """Per stage mesh of the model ``spec``, whether it has no backlash (a force reversal crosses no gap)."""
+    return [m.backlash_m == 0.0 for m in spec.meshes]
 
 
 def _time_fractions(t: np.ndarray, flags: np.ndarray, periodic: bool) -> list[float]:
