@@ -75,6 +75,7 @@ JACOBIAN_SAMPLES = 16  # where along the orbit the Jacobian is compared
 STABLE_SLACK = 1e-3  # a spectral radius up to 1 + this counts as the unit circle (the monodromy's own error)
 VAR_ATOL_FACTOR = 1e3  # monodromy entries held to this x the state's own accuracy (Newton needs ~1e-3)
 FALLBACK_NOTE = "shooting did not converge"  # how a fallback's note starts (its warning's test)
+FLIP_NOTE = "the period-1 orbit is unstable through a multiplier below -1: shooting over 2 periods"  # a period-2 start
 FD_STEP = 1e-3  # finite-difference step, relative to the state's natural scale (its atol / rtol)
 
 
@@ -82,6 +83,13 @@ def fell_back(steady) -> bool:
     """A periodic state that is the brute-force search the shooting fell back to after failing (its note says why),
     not a search of a scene the shooting leaves to it (a torque drive, excitations without a common period)."""
     return steady.method == "brute force" and steady.note.startswith(FALLBACK_NOTE)
+
+
+def restarts(steady) -> int:
+    """How many of a periodic state's Newton starts followed a failed one (more brute-force periods first): its
+    ``attempts`` less the first start and less the period-2 start that a converged period-1 orbit's flip makes from
+    the same state (:data:`FLIP_NOTE`: no failure, the orbit doubled its period)."""
+    return max(0, (steady.attempts or 1) - 1 - (FLIP_NOTE in (steady.note or "")))
 
 
 @record
@@ -436,8 +444,7 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                    "the motion leaves it")
             if k == 1 and _flips(fl):  # a period doubling behind it: the period-2 orbit, from the same state
                 k = 2
-                ledger.notes.append("the period-1 orbit is unstable through a multiplier below -1: shooting over 2 "
-                                    "periods")
+                ledger.notes.append(FLIP_NOTE)
                 continue
             attempt += 1
             continue

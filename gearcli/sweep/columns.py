@@ -77,7 +77,7 @@ def columns(keys: Sequence[str], n_stages: int, planetary: Sequence[int] = ()) -
 
 
 def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: SimulationResult, wall_s: float,
-           n_stages: int, message: str = "") -> Row:
+           n_stages: int, message: str = "", extra_nfev: int = 0) -> Row:
     row: Row = {**dict(values), "direction": direction, "status": OK, "message": message}
     for k, st in enumerate(result.stages[:n_stages], start=1):
         for name, get in STAGE_STATISTICS.items():
@@ -86,7 +86,7 @@ def ok_row(values: Sequence[tuple[str, JsonScalar]], direction: str, result: Sim
             for name, get in PLANETARY_STATISTICS.items():
                 row[f"stage{k}_{name}"] = get(st)
     row["output_speed_rpm"] = result.output_speed_deg_s / 6.0
-    row["nfev"] = spent.whole(result)[0]  # the point's: every run it took and its check pass, as wall_s
+    row["nfev"] = spent.whole(result)[0] + extra_nfev  # every run it took (a jump's refinements: extra_nfev), as wall_s
     row["wall_s"] = wall_s
     return row
 

@@ -23,7 +23,7 @@ import numpy as np
 from gearcli.core.records import record
 from gearcli.model import TorsionalModel
 from gearcli.model.spec import ModelSpec
-from gearcli.simulate.shooting import fell_back
+from gearcli.simulate.shooting import fell_back, restarts
 
 #: ``--set`` overrides of a continued point: no start-up ramps
 NO_RAMPS = ("input.ramp_s=0.0", "load.ramp_s=0.0")
@@ -74,10 +74,11 @@ RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is roun
 
 def on_branch(prev, result) -> bool:
     """Whether ``result`` (a periodic point continued from ``prev``'s orbit) stayed on ``prev``'s branch: its
-    shooting converged from the continued orbit at the first start (or it is an equilibrium found directly, or
-    the motion itself was integrated on from that orbit: a settled window, a refinement point close to ``prev``,
-    or the brute-force search of a scene the shooting leaves to it, a torque drive or excitations without a
-    common period; not a brute-force search the shooting fell back to after failing from the continued orbit,
+    shooting converged from the continued orbit at the first start (the period-2 start that a flip of the period-1
+    orbit makes from the same state counts as that start: a period doubling does not end the branch), or it is an
+    equilibrium found directly, or the motion itself was integrated on from that orbit: a settled window, a
+    refinement point close to ``prev``, or the brute-force search of a scene the shooting leaves to it, a torque
+    drive or excitations without a common period; not a brute-force search the shooting fell back to after failing from the continued orbit,
     which is how a branch that ends at a fold shows), and no stage's DTE rms (force std when no DTE) changed by
     :data:`JUMP_CHANGE` or more of the larger one, or of :data:`RESOLVED` of the channel's mean where both are
     below it (an equilibrium's rms is rounding)."""
@@ -85,13 +86,21 @@ def on_branch(prev, result) -> bool:
     followed = st is not None and (st.mode == "window" and st.settled is True  # integrated on to a settled state
                                    or st.mode == "periodic" and st.method == "brute force"  # the motion, from prev,
                                    and not fell_back(st))  # where no shooting failed on it
-    if st is None or not followed and (st.method not in ("shooting", "equilibrium") or (st.attempts or 1) > 1):
+    if st is None or not followed and (st.method not in ("shooting", "equilibrium") or restarts(st) > 0):
         return False
     for a, b in zip(prev.stages, result.stages, strict=False):
         (x0, m0), (x1, m1) = _amplitude(a, b), _amplitude(b, a)
         if abs(x1 - x0) > JUMP_CHANGE * max(abs(x0), abs(x1), RESOLVED * max(m0, m1), 1e-300):
             return False
     return True
+
+
+def has_branch(result) -> bool:
+    """Whether a point's steady state is one a branch can be followed from: not a periodic search that found no
+    period (a chaotic or quasi-periodic motion, or one still settling, ``converged`` False): there is no orbit whose
+    end a bisection could locate, and its statistics are only its last period's."""
+    st = result.steady
+    return st is not None and not (st.mode == "periodic" and st.converged is False)
 
 
 def _amplitude(stage, other) -> tuple[float, float]:

@@ -26,9 +26,10 @@ from gearcli.config.overrides import SOURCE
 from gearcli.core.records import record
 from gearcli.errors import ConfigError, GearcliError, located
 from gearcli.results import DesignResult
+from gearcli.simulate import spent
 from gearcli.simulate.results import SimulationResult
 from gearcli.sweep.columns import Row, failed_row, ok_row, one_line
-from gearcli.sweep.continuation import Carried, jump_note, on_branch
+from gearcli.sweep.continuation import Carried, has_branch, jump_note, on_branch
 from gearcli.sweep.family import Family, marks
 from gearcli.sweep.load_law import LoadLaw, law_overrides
 from gearcli.sweep.spec import Point, canonical_key
@@ -119,7 +120,7 @@ def iter_task(task: Task) -> Iterator[Row]:
                 shared: tuple[str, ...] = ()
                 if task.continuation:  # a branch carries its verdict along itself; independent points: the Carrier
                     shared = family.checked(one_line(point.shown()), result) if check else family.carried(result)
-                jump = _jump(task, before, point, result) if task.continuation else ""
+                jump, refined = _jump(task, before, point, result) if task.continuation else ("", 0)
             except GearcliError as exc:
                 prev = before = None
                 row = failed_row(point.cells(), point.direction, _message(exc, task.scene, point),
@@ -130,7 +131,8 @@ def iter_task(task: Task) -> Iterator[Row]:
             else:
                 prev, before = carried, _Before(point, result, carried)
                 row = ok_row(point.cells(), point.direction, result, time.perf_counter() - t0, task.scene.n_stages,
-                             message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings) + shared)))
+                             message=one_line("\n".join(((jump,) if jump else ()) + tuple(result.warnings) + shared)),
+                             extra_nfev=refined)
             hidden = {} if task.continuation else marks(got, one_line(point.shown()) if check else None)
             if point.index not in task.skip:
                 yield {"_index": point.index, **row, **hidden}
@@ -144,19 +146,21 @@ class _Before(NamedTuple):
     carried: Carried | None
 
 
-def _jump(task: Task, before: _Before | None, point: Point, result: SimulationResult) -> str:
+def _jump(task: Task, before: _Before | None, point: Point, result: SimulationResult) -> tuple[str, int]:
     """A periodic point continued from ``before`` that left its branch: the row's jump mark, with the branch's
-    end closed in on by bisection of the one varied value (:func:`gearcli.sweep.continuation.jump_note`)."""
+    end closed in on by bisection of the one varied value (:func:`gearcli.sweep.continuation.jump_note`), and the
+    evaluations its refinement runs took (the row's ``nfev`` counts them, as its ``wall_s`` does)."""
     if before is None or result.steady is None or result.steady.mode != "periodic":
-        return ""
+        return "", 0
     p0, r0, c0 = before
-    if on_branch(r0, result):
-        return ""
+    if not has_branch(r0) or on_branch(r0, result):  # (no orbit before: no branch to follow, nothing to mark)
+        return "", 0
     changed = [(i, a, b) for i, ((_, a), (_, b)) in enumerate(zip(p0.values, point.values, strict=True)) if a != b]
     if len(changed) != 1 or not all(isinstance(v, (int, float)) for v in changed[0][1:]):
-        return f"jump: left the branch of the previous point ({one_line(p0.shown())})"
+        return f"jump: left the branch of the previous point ({one_line(p0.shown())})", 0
     at, v0, v1 = changed[0]
     carried = {id(r0): c0}
+    spent_nfev = [0]
 
     def refine(value: float, last: SimulationResult) -> SimulationResult | None:
         mid = Point(-1, tuple((k, value if i == at else v) for i, (k, v) in enumerate(point.values)), point.direction,
@@ -166,9 +170,11 @@ def _jump(task: Task, before: _Before | None, point: Point, result: SimulationRe
         except (GearcliError, *NUMERICAL):  # a refinement point that fails is off the branch; the row stands
             return None
         carried[id(got)] = c
+        spent_nfev[0] += spent.whole(got)[0]
         return got
 
-    return jump_note(point.cells()[at][0], float(cast(float, v0)), float(cast(float, v1)), r0, result, refine)  # numbers (above)
+    note = jump_note(point.cells()[at][0], float(cast(float, v0)), float(cast(float, v1)), r0, result, refine)  # numbers (above)
+    return note, spent_nfev[0]
 
 
 def run_task(task: Task) -> list[Row]:

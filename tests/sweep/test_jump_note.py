@@ -20,10 +20,12 @@ N_RES, ZETA = 467.0, 0.02  # the two-stage scene's coupling mode met by the stag
 
 
 def _result(rms: float, mode: str = "periodic", method: str | None = "shooting", settled: bool | None = None,
-            note: str = ""):
+            note: str = "", attempts: int = 1, converged: bool | None = True):
     stage = SimpleNamespace(dte_um=SimpleNamespace(rms=rms, mean=6.0), tangential_N=SimpleNamespace(std=rms, mean=2e3))
-    steady = SimpleNamespace(mode=mode, method=method, attempts=1, settled=settled, multipliers=None, note=note)
-    return SimpleNamespace(steady=steady, stages=(stage,))
+    steady = SimpleNamespace(mode=mode, method=method, attempts=attempts, settled=settled, multipliers=None, note=note,
+                             converged=converged)
+    solver = SimpleNamespace(total_nfev=1000, total_wall_s=0.0, runs=1, check_pass=None)
+    return SimpleNamespace(steady=steady, stages=(stage,), solver=solver)
 
 
 def linear_rms(rpm: float) -> float:
@@ -105,7 +107,8 @@ def test_a_refinement_point_that_raises_leaves_the_row_ok(monkeypatch):
     monkeypatch.setattr(worker, "_evaluate", evaluate)
     points = tuple(Point(i, (("input.speed_rpm", v),), "up") for i, v in enumerate((480.0, 500.0)))
     task = worker.Task(worker.Scene(b"", "scene.toml"), points, True, evaluate)
-    note = worker._jump(task, worker._Before(points[0], _result(10.0), object()), points[1], _result(2.0))
+    note, refined = worker._jump(task, worker._Before(points[0], _result(10.0), object()), points[1], _result(2.0))
+    assert refined == 0  # no refinement point ran to its end
     assert _ends(note) == pytest.approx((480.0, 480.0 + 20 / 1024), abs=1e-5)
 
 
@@ -124,3 +127,46 @@ def test_a_brute_force_search_the_shooting_fell_back_to_leaves_the_branch():
 
     fallen = _result(1.05, method="brute force", note=f"{FALLBACK_NOTE} (the Newton steps diverged); brute force")
     assert not on_branch(_result(1.0), fallen)
+
+
+# A two-stage train at light load (stage 1 helical, 5 um TE, rattling near its coupling mode, 467 Hz): continued
+# up in 50 rpm steps, a brute-force integration of the two free bodies (scipy's DOP853, rtol 1e-10, each speed run
+# 0.25 s from the previous one's final state and mesh phase) gives stage 1's DTE rms 5.363 um at 1300 rpm and 5.293 um
+# at 1350 rpm, both period-2 orbits: the motion goes on smoothly (1.3 %), with no jump between them.
+FLIP = "the period-1 orbit is unstable through a multiplier below -1: shooting over 2 periods"
+
+
+def test_a_period_2_orbit_shot_after_the_period_1_orbits_flip_stays_on_the_branch():
+    prev = _result(5.363, note=FLIP, attempts=2)
+    row = _result(5.293, note=FLIP, attempts=2)
+    assert on_branch(prev, row)  # the second start is the period-2 one, from the same state: no failure, no jump
+    assert not on_branch(prev, _result(5.293, note=FLIP, attempts=3))  # a restart after a failed start still counts
+    assert not on_branch(prev, _result(5.293, attempts=2))  # ... and so does a plain second start
+
+
+def test_a_point_after_one_without_a_periodic_orbit_is_not_marked(monkeypatch):
+    """A predecessor whose periodic search found no period (chaotic, quasi-periodic or still settling) has no branch:
+    the row is not followed by bisection (it cost up to 60 runs) nor marked as the end of one. The same train going
+    down: 1050 rpm not periodic (DTE rms 24.2 um over its last period), 1000 rpm the period-2 orbit, 7.72 um (the
+    brute-force reference: 7.720 um)."""
+    from gearcli.sweep import worker
+    from gearcli.sweep.spec import Point
+
+    calls = []
+
+    def evaluate(evaluator, scene, point, prev, check=False):
+        calls.append(point.index)
+        return None, _result(7.72), object()
+
+    monkeypatch.setattr(worker, "_evaluate", evaluate)
+    points = tuple(Point(i, (("input.speed_rpm", v),), "down") for i, v in enumerate((1050.0, 1000.0)))
+    task = worker.Task(worker.Scene(b"", "scene.toml"), points, True, evaluate)
+    chaotic = _result(24.2, method="brute force", converged=False,
+                      note="shooting did not converge (the periods allowed are used up); brute force")
+    assert worker._jump(task, worker._Before(points[0], chaotic, object()), points[1], _result(7.72)) == ("", 0)
+    assert calls == []
+    # a converged predecessor with the same jump is still followed and marked, and the row's nfev counts the
+    # refinement runs (each of the toy's costs 1000 evaluations), as its wall_s does
+    note, refined = worker._jump(task, worker._Before(points[0], _result(24.2), object()), points[1], _result(7.72))
+    assert note.startswith("jump: the branch of the previous point") and calls
+    assert refined == 1000 * len(calls)
