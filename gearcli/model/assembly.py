@@ -35,7 +35,7 @@ The static forces are still those of the chain (:mod:`gearcli.model.linear`).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import field, replace
 from functools import cached_property
 
@@ -53,6 +53,10 @@ from gearcli.model.elements import (
 from gearcli.model.layout import StateLayout
 from gearcli.model.parts import STAGE_ROLES, Body, Connector, _row
 from gearcli.model.spec import DriveSpec, LoadSpec, MeshSpec, ModelSpec
+
+#: a lossy element's power-flow sign is no wider than 1/SIGN_SHARPNESS of its nominal pitch-line speed, so that at that
+#: speed it is 1 to tanh(12) = 1 - 2 e^-24 = 1 - 7.6e-11 and a settled run loses (1 - eta) of its power as rated
+SIGN_SHARPNESS = 12.0
 
 
 @record
@@ -123,23 +127,42 @@ class _Pair:
 
 
 def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
-    """Connectors with the power scale of every lossy element's power-flow sign filled in (its loss hook's
-    ``with_loss_width``): ``LOSS_WIDTH`` x the static line force (at least 1 N) x the nominal pitch-line speed
-    of its driving side (``loss_sides``; floored at 1e-9 m/s)."""
+    """Connectors with the power scale W of every lossy element's power-flow sign filled in (its loss hook's
+    ``with_loss_width``): W = F x ``LOSS_WIDTH`` x the larger of the nominal pitch-line speed v of its driving side
+    and its vibration speed (:func:`loss_speeds`), the latter no more than v / :data:`SIGN_SHARPNESS` (floored at 1e-9
+    m/s). The nominal speed alone vanishes with the drive's: at 0.003 rpm the sign switched over 1e-8 m/s while the
+    run-up's vibration swung the pitch line through zero at ~0.1 m/s, each crossing a near-step of (1 - eta) of the
+    force (docs/numerics.md "Losses at crawl speeds")."""
     out = []
     for x in conns:
         if x.lossy:
-            if x.load_body >= 0:  # a planet mesh: the static force of its share of the output torque
-                F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
-            else:
-                F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
-            va = None
-            for body, k in x.loss_speeds[0]:
-                va = k * bodies[body].ratio if va is None else va + k * bodies[body].ratio
-            v = abs((va or 0.0) * spec.drive.speed_rad_s)
-            x = replace(x, params=_row(x.element.with_loss_width(x.params, x.element.LOSS_WIDTH * F * max(v, 1e-9))))
+            F, v, v_vib = loss_speeds(spec, bodies, x)
+            lw = x.element.LOSS_WIDTH
+            v = max(v, min(v_vib, v / (SIGN_SHARPNESS * lw)), 1e-9)
+            x = replace(x, params=_row(x.element.with_loss_width(x.params, lw * F * v)))
         out.append(x)
     return out
+
+
+def loss_speeds(spec: ModelSpec, bodies: Sequence[Body], x: Connector) -> tuple[float, float, float]:
+    """(F, v, v_vib) of a lossy element: its static line force (at least 1 N), the nominal pitch-line speed of its
+    driving side (``loss_sides``) and the speed of its own vibration: the static deflection its law's tangent gives
+    at F (a mesh's normal approach, cos beta_b times its transverse deflection: a scale) times its own
+    angular frequency sqrt(k / m_e) (k its tangent stiffness at F, ``m_e`` the equivalent mass of the bodies it
+    joins, a speed-driven input body infinitely heavy), the speed whose kinetic energy m_e v^2 equals k delta^2
+    (0 where it carries no load). Where v_vib > v the vibration reverses the power flow again and again."""
+    if x.load_body >= 0:  # a planet mesh: the static force of its share of the output torque
+        F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.load_body].ratio * x.load_lever), 1.0)
+    else:
+        F = max(abs(spec.load.torque_Nm * bodies[-1].ratio / bodies[x.b].ratio / x.rb), 1.0)
+    va = None
+    for body, k in x.loss_speeds[0]:
+        va = k * bodies[body].ratio if va is None else va + k * bodies[body].ratio
+    stiffness, _, delta = x.element.tangent(x.params, F, False)
+    mobility = _ordered_sum([0.0 if (j == 0 and spec.drive.kind == "speed") else lever**2 / bodies[j].inertia
+                             for j, lever in zip(x.bodies, x.radii, strict=True)])
+    v_vib = abs(delta) * math.sqrt(stiffness * mobility) if stiffness > 0.0 and mobility > 0.0 else 0.0
+    return F, abs((va or 0.0) * spec.drive.speed_rad_s), v_vib
 
 
 def _assembled(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:

@@ -23,7 +23,9 @@ What each method needs (the constants and their measurements: :mod:`gearcli.core
 Each is priced on the engine that would run it (the compiled engine's ~0.4 µs per evaluation, or scipy's
 ~10 µs, plus what loading the compiled engine still costs this process), and ``auto`` takes DOP853 unless
 Radau's predicted wall time is ``IMPLICIT_MARGIN`` times lower, both with the loading aside: each method is priced
-on the engine that would run it were the kernel loaded, so that the choice does not depend on the load.
+on the engine that would run it were the kernel loaded, so that the choice does not depend on the load. It takes
+Radau, and a course change never moves to DOP853, where a lossy mesh's power-flow sign flips with the run-up's
+vibration (:func:`sign_flips`: a crawl speed; docs/numerics.md "Losses at crawl speeds").
 """
 
 from __future__ import annotations
@@ -45,6 +47,7 @@ from gearcli.core.memo import remember
 from gearcli.core.methods import AUTO, EXPLICIT, EXPLICIT_METHOD, IMPLICIT_METHOD, method
 from gearcli.core.records import record
 from gearcli.model import Layout, Linearisation, ModelSpec, linearise
+from gearcli.model.assembly import loss_speeds
 from gearcli.model.contact_lines import shortest_stretch
 from gearcli.model.elements import mesh
 from gearcli.model.linear import damped_eigenvalues, operating_forces, peak_rigid_forces, speed_map, static_forces
@@ -74,6 +77,7 @@ class Choice:
     predicted_s: tuple[float, float] = (0.0, 0.0)  # (DOP853, Radau) predicted wall time on their engines
     engines: tuple[str, str] = ("python", "python")  # the engine each prediction is priced on
     size: ModelSize = ModelSize()  # what the price per evaluation depends on (gearcli.core.cost.PRICE_US)
+    explicit_barred: str = ""  # why auto offers no explicit method, neither at the start nor on a course change
 
     @property
     def reported(self) -> Linearisation:
@@ -214,6 +218,21 @@ def _model_size(lay: Layout, spec: ModelSpec) -> ModelSize:
                      time_varying=sum(bool(getattr(mesh(x), "time_varying", False)) for x in meshes),
                      harmonics=sum(harmonic(mesh(x)) for x in meshes),
                      motor=lay.drive.motor is not None)
+
+
+def sign_flips(lay: Layout) -> str:
+    """Why an explicit method cannot run the scene: a lossy element whose vibration speed exceeds its nominal
+    pitch-line speed (:func:`gearcli.model.assembly.loss_speeds`) has its power-flow sign reversed by the run-up's
+    vibration, each reversal a switch of (1 - eta) of its force within a small part of that speed, which an explicit
+    method resolves step by step at every crossing (a one-stage scene at 0.003 rpm: DOP853 stopped after 3.4e6
+    evaluations at 0.12 s of 0.3 s) while Radau steps through it on its Jacobian (1.5e4). "" when none does."""
+    for x in lay.connectors:
+        if x.lossy:
+            _, v, v_vib = loss_speeds(lay.spec, lay.bodies, x)
+            if v_vib > v:
+                return (f"the {x.label}'s power-flow sign flips with its vibration ({v_vib:.2g} m/s against its "
+                        f"{v:.2g} m/s pitch-line speed), every flip a step an explicit method must resolve")
+    return ""
 
 
 def _explicit_refused(indicator: float) -> bool:
@@ -388,13 +407,15 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     summary = f"max|λ|·T = {indicator:.3g}"
     costs = f"predicted DOP853 {_priced(nfev[0], walls[0], on[0], loads[0])}, Radau {_priced(nfev[1], walls[1], on[1], loads[1])}"
     why = f"{summary}, {vib:.3g} rad of excited vibration, {exc:.3g} rad of excitation: {costs}"
+    barred = sign_flips(lay)
     if requested != AUTO:
         chosen, reason = requested, f"as requested ({summary})"
-    elif walls[0] - loads[0] <= IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator):
+    elif walls[0] - loads[0] <= IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator) \
+            and not barred:
         chosen = EXPLICIT_METHOD
         reason = f"{why}: explicit {chosen}"
     else:
         chosen = IMPLICIT_METHOD
-        reason = f"{why}: implicit {chosen} with the analytic Jacobian"
+        reason = f"{why}: implicit {chosen} with the analytic Jacobian" + (f" ({barred})" if barred else "")
     return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay,
-                  vib, nfev, exc, walls, on, size)
+                  vib, nfev, exc, walls, on, size, barred if requested == AUTO else "")

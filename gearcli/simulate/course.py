@@ -181,7 +181,7 @@ def integrate_auto(model: TorsionalModel, t_eval: np.ndarray, choice: Choice, rt
     it goes on from its last output sample, also when it keeps its course."""
     method = choice.method
     changes: list[CourseChange] = []
-    left: set[str] = set()
+    left: set[str] = {EXPLICIT_METHOD} if choice.explicit_barred else set()  # abandoned, or never offered
     pieces: list[tuple[int, Integration]] = []
     k, y, used, t0 = 0, y0, 0, 0.0
     t_end = float(t_eval[-1])
