@@ -95,7 +95,8 @@ def _theory_point_note(r: Report) -> tuple[str, ...]:
     if p is None:
         return drive
     if not p.reached:
-        why = ("the motor cannot start its load, or nothing holds it (it runs away)" if p.drive == "motor" else
+        why = ("the motor's steady curve carries the load at no speed from rest (it cannot start, falls out of its "
+               "start, or nothing holds it: it runs away)" if p.drive == "motor" else
                "the torque drive's torque meets the load at no speed, so the train accelerates or decelerates "
                "for the whole run")
         return (f"NO steady operating point: {why}. The theory column is the design's nominal point, which the run "

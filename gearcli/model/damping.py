@@ -103,14 +103,29 @@ def settling_speed_rad_s(lay: Layout) -> float | None:
         return torque_drive_balance_rad_s(lay)
     if not lay.motor_drive or not lay.motor_row:
         return lay.drive.speed_rad_s
-    grid, f, _, net = net_torque_scan(lay, lay.motor_row)
-    if not f[0] > 0.0:
+    grid, f, w_b, net = net_torque_scan(lay, lay.motor_row)
+    if f[0] > 0.0:
+        down = next((i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1]), None)
+    elif vfd_ramp_starts(lay):  # the ramp from 0 Hz carries it past the full supply's standstill shortfall
+        down = next((i for i in range(grid.size - 2, -1, -1) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b), None)
+    else:
         return None
-    down = next((i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1]), None)
     if down is None:
         return None
     lo, hi = falling_zero(net, float(grid[down]), float(grid[down + 1]))
     return 0.5 * (lo + hi)
+
+
+def vfd_ramp_starts(lay: Layout) -> bool:
+    """Whether a VFD's speed ramp from 0 Hz starts the motor: at a low supply frequency (full flux, below the base
+    speed) its curve's largest torque is the nameplate breakdown torque at a small speed, so it starts wherever
+    that, and the converter's torque limit (if any), exceed the load reflected to it at standstill, though the full
+    supply's curve (field-weakened above the base speed) may be short of it there."""
+    motor = lay.drive.motor
+    if motor is None or motor.starting != "vfd" or motor.table:
+        return False
+    need, limit = reflected_load_Nm(lay, 0.0), motor.start_parameters[1]
+    return motor.breakdown_torque_Nm > need and (limit <= 0.0 or limit > need)
 
 
 def operating_load_factor(lay: Layout) -> float:

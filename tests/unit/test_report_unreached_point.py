@@ -127,3 +127,50 @@ def test_a_torque_drive_settles_where_its_torque_meets_the_load(exponent, torque
         assert w / RPM == pytest.approx(1460.0, rel=1e-12)
     else:
         assert w / RPM == pytest.approx(1460.0 * math.sqrt(torque / need), rel=1e-9)
+
+
+def _hand_vfd_stable_rpm(load_Nm: float, limit: float) -> float:
+    """The stable-branch crossing of the VFD's full curve at 1460 rpm (supply 1500 rpm, no field weakening) with a
+    constant load, the torque limit's smooth minimum included (docs/physics.md), by brentq above the breakdown."""
+    tr, kb, kl, sr = 15e3 / (1460 * RPM), 2.8, 2.3, 40 / 1500
+    tb = kb * tr
+
+    def kloss(s, a, sb):
+        return 2 * tb * (1 + a * sb) * s * sb / (s * s + sb * sb + 2 * a * sb * sb * abs(s))
+
+    def a_of(sb):
+        return (kl * tr * (1 + sb * sb) - 2 * tb * sb) / (2 * sb * sb * (tb - kl * tr))
+
+    sb = brentq(lambda x: kloss(sr, a_of(x), x) - tr, sr * (1 + 1e-9), 1 - 1e-9, xtol=1e-15)
+    a, ws = a_of(sb), 1500 * RPM
+
+    def net(w):
+        t = kloss((ws - w) / ws, a, sb)
+        return 0.5 * (t + limit - math.sqrt((t - limit) ** 2 + (0.02 * limit) ** 2)) - load_Nm / (I1 * I2) / ETA
+
+    return brentq(net, (1 - sb) * ws, ws, xtol=1e-13) / RPM
+
+
+def test_a_vfd_ramp_starts_a_load_its_full_curve_cannot_at_standstill():
+    # 3380 N m: 249.1 N m at the motor, above the full curve's 2.3 x 98.1 = 225.6 N m at standstill and below the
+    # 274.7 N m breakdown torque the ramp's low frequencies give: the ramp runs it up to the stable crossing. Was a
+    # stall warning ("never reaches its operating point 1263.4 rpm") and, after the first fix, no theory at all
+    loaded, design = _scene("load.torque_Nm=3380", "input.torque_limit_Nm=300")
+    n = _hand_vfd_stable_rpm(3380.0, 300.0)
+    lay = TorsionalModel(api.model_spec(loaded.design, design)).layout
+    assert settling_speed_rad_s(lay) / RPM == pytest.approx(n, rel=1e-9)
+    rep = api.report_file(loaded, design, quick=True)
+    assert not any(d.code == "motor_stalls" for d in rep.diagnostics)
+    rows = {(r.stage, r.quantity): r for r in rep.comparison}
+    assert rows[(None, "input_speed_deg_s")].theory / 6.0 == pytest.approx(n, rel=1e-9)
+    assert abs(rows[(None, "input_speed_deg_s")].error_percent) < 0.01
+
+
+def test_a_vfd_that_falls_out_of_its_ramp_is_not_said_to_stall_at_standstill():
+    # speed_rpm 3000, constant 1300 N m: the ramp runs the motor up at full flux; above ~2540 rpm of supply the
+    # weakened breakdown torque (1500 / w_s)^2 274.7 N m falls below the 95.8 N m load and the motor falls out
+    loaded, design = _scene("input.speed_rpm=3000")
+    rep = api.report_file(loaded, design, quick=True)
+    stall = [d.message for d in rep.diagnostics if d.code == "motor_stalls"]
+    assert len(stall) == 1 and "ran it up to" in stall[0] and "at standstill" not in stall[0]
+    assert rep.theory_point is not None and not rep.theory_point.reached
