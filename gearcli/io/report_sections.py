@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from gearcli import diagnostics as dg
 from gearcli.core.records import record
 from gearcli.core.text import figure, shorten
 from gearcli.io.table_kit import spread_digits
@@ -90,8 +91,17 @@ def comparison_section(r: Report) -> Section:
 def _theory_point_note(r: Report) -> tuple[str, ...]:
     """Where the theory is taken, when not at the design's nominal speed (:class:`TheoryPoint`)."""
     p = r.theory_point
+    drive = tuple(f"warning: {d.message}" for d in r.diagnostics if d.code in DRIVE_STATE_CODES)
     if p is None:
-        return ()
+        return drive
+    if not p.reached:
+        why = ("the motor's steady curve carries the load at no speed from rest (it cannot start, falls out of its "
+               "start, or nothing holds it: it runs away)" if p.drive == "motor" else
+               "the torque drive's torque meets the load at no speed, so the train accelerates or decelerates "
+               "for the whole run")
+        return (f"NO steady operating point: {why}. The theory column is the design's nominal point, which the run "
+                "never reaches, and the simulated means are a transient's over the window: no speed or force error "
+                "is given (only the ratios, kinematics, are compared)", *drive)
     u = of_result(r.simulation)
     unit, at, nominal = u.speed_label, u.speed_from_deg_s(p.input_speed_deg_s), u.speed_from_deg_s(
         p.nominal_input_speed_deg_s)
@@ -99,7 +109,12 @@ def _theory_point_note(r: Report) -> tuple[str, ...]:
              if p.drive == "motor" else "the torque drive's balance with the speed-dependent load")
     return (f"theory at {where}: input {at:.6g} {unit} (the design's nominal {nominal:.6g} {unit}), the speeds scaled "
             f"to it" + (f", the forces at the load there, {p.load_factor:.6g}x the nominal torque"
-                        if p.load_factor != 1.0 else ""),)
+                        if p.load_factor != 1.0 else ""), *drive)
+
+
+#: the run's warnings on where its drive settles, repeated under the comparison (whose theory they qualify)
+DRIVE_STATE_CODES = (dg.MOTOR_STALLS, dg.MOTOR_RUNS_AWAY, dg.MOTOR_ROLLS_BACK, dg.START_NOT_SETTLED,
+                     dg.WINDOW_NOT_SETTLED)
 
 
 FORCE_QUANTITIES = ("tangential_N", "radial_N", "axial_N")

@@ -30,6 +30,7 @@ import math
 import numpy as np
 
 from gearcli.core.memo import remember
+from gearcli.design.checks import TORQUE_BALANCE_TOLERANCE
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine
 
@@ -81,12 +82,50 @@ def operating_speed_rad_s(lay: Layout) -> float:
         return torque_drive_speed_rad_s(lay)
     if not lay.motor_drive or not lay.motor_row:
         return lay.drive.speed_rad_s
+    settles = settling_speed_rad_s(lay)
+    if settles is not None:  # where it runs, a stall's crossing below the breakdown speed too
+        return settles
     grid, f, w_b, net = net_torque_scan(lay, lay.motor_row)
     down = [i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b]
     if not down:
         return lay.drive.speed_rad_s
     lo, hi = falling_zero(net, float(grid[down[-1]]), float(grid[down[-1] + 1]))
     return 0.5 * (lo + hi)
+
+
+def settling_speed_rad_s(lay: Layout) -> float | None:
+    """The input body's speed where the train settles from rest, None where it settles nowhere: a motor's first
+    crossing of its curve with the reflected load (the speed it runs up to and stays at: on the stable branch or,
+    a stall, below the breakdown speed), None where it cannot start (its torque at standstill short of the load)
+    or nothing holds it (no crossing up to the generating scan's end); a torque drive's balance
+    (:func:`torque_drive_balance_rad_s`); a speed drive's nominal speed."""
+    if not lay.speed_drive and not lay.motor_drive:
+        return torque_drive_balance_rad_s(lay)
+    if not lay.motor_drive or not lay.motor_row:
+        return lay.drive.speed_rad_s
+    grid, f, w_b, net = net_torque_scan(lay, lay.motor_row)
+    if f[0] > 0.0:
+        down = next((i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1]), None)
+    elif vfd_ramp_starts(lay):  # the ramp from 0 Hz carries it past the full supply's standstill shortfall
+        down = next((i for i in range(grid.size - 2, -1, -1) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b), None)
+    else:
+        return None
+    if down is None:
+        return None
+    lo, hi = falling_zero(net, float(grid[down]), float(grid[down + 1]))
+    return 0.5 * (lo + hi)
+
+
+def vfd_ramp_starts(lay: Layout) -> bool:
+    """Whether a VFD's speed ramp from 0 Hz starts the motor: at a low supply frequency (full flux, below the base
+    speed) its curve's largest torque is the nameplate breakdown torque at a small speed, so it starts wherever
+    that, and the converter's torque limit (if any), exceed the load reflected to it at standstill, though the full
+    supply's curve (field-weakened above the base speed) may be short of it there."""
+    motor = lay.drive.motor
+    if motor is None or motor.starting != "vfd" or motor.table:
+        return False
+    need, limit = reflected_load_Nm(lay, 0.0), motor.start_parameters[1]
+    return motor.breakdown_torque_Nm > need and (limit <= 0.0 or limit > need)
 
 
 def operating_load_factor(lay: Layout) -> float:
@@ -102,9 +141,21 @@ def torque_drive_speed_rad_s(lay: Layout) -> float:
     ``T_in = T_L(w rho_N) rho_N / prod eta`` (for ``speed_exponent`` p: w_0 (T_in / T_req)^(1/p), as ``gearcli
     design`` warns). The nominal speed where nothing balances (a constant load: the train accelerates or
     decelerates for the whole run) or where the drive already balances the load there."""
+    settles = torque_drive_balance_rad_s(lay)
+    return lay.drive.speed_rad_s if settles is None else settles
+
+
+def torque_drive_balance_rad_s(lay: Layout) -> float | None:
+    """The input speed where a torque drive's torque meets the load reflected to it (:func:`torque_drive_speed_rad_s`),
+    None where nothing balances it: a constant load that differs from the drive's torque by more than the design
+    check's tolerance (``gearcli.design.checks.TORQUE_BALANCE_TOLERANCE``: the train accelerates or decelerates
+    for the whole run), or a speed law the drive meets at no speed."""
     w0, t_in = lay.drive.speed_rad_s, lay.drive.torque_Nm
-    if not lay.load_law or w0 <= 0.0 or t_in <= 0.0:
+    if w0 <= 0.0:
         return w0
+    if not lay.load_law or t_in <= 0.0:
+        need = reflected_load_Nm(lay, w0)
+        return w0 if t_in == need or (need != 0.0 and abs(t_in / need - 1.0) <= TORQUE_BALANCE_TOLERANCE) else None
 
     def net(w: float) -> float:
         return t_in - reflected_load_Nm(lay, w)
@@ -123,9 +174,9 @@ def torque_drive_speed_rad_s(lay: Layout) -> float:
             if net(lo) > 0.0:
                 break
     else:
-        return w0
+        return None
     if not net(lo) > 0.0 >= net(hi):
-        return w0
+        return None
     lo, hi = falling_zero(net, lo, hi)
     return 0.5 * (lo + hi)
 

@@ -300,15 +300,53 @@ def _reference(runner: _Runner, pair) -> ReferenceRun:
 
 def _notes(ref: ReferenceRun, runs: list[AccuracyRun], accuracy: float, slow: dict) -> list[str]:
     notes = []
+    flat = not_converging(runs, ref.uncertainty)
+    if flat:
+        notes.append(f"the error of {' and '.join(NOT_CONVERGING_NAMES[q] for q in flat)} does not fall with rtol on "
+                     f"any method (by less than {1 / CONVERGING_DROP:g}x over the ladder, far above the reference's "
+                     "uncertainty): it is no solver setting's error but the quantity's own spread, as in an impacting "
+                     "(chaotic) response whose trajectories part after a few impacts; no rtol and no tighter "
+                     "reference certifies it: judge statistics over a longer window, or conservation laws")
     if ref.uncertainty > accuracy:
         notes.append(f"the reference's own uncertainty {ref.uncertainty:.1e} exceeds the requested accuracy "
-                     f"{accuracy:.0e}: no setting can be certified; tighten the reference")
+                     f"{accuracy:.0e}: no setting can be certified; "
+                     + ("a tighter reference may not lower it (the note above)" if flat else
+                        "tighten the reference"))
     for method, wall in slow.items():
         notes.append(f"{method}: tighter rungs skipped after a run of {wall:.1f} s")
     for r in runs:
         if r.failure and not r.failure.startswith("skipped"):
             notes.append(f"{r.method} rtol {r.rtol:g} failed: {r.failure}")
     return notes
+
+
+#: a converging quantity's error falls by more than this factor over the ladder's rtols (>= 2 decades)
+CONVERGING_DROP = 0.1
+NOT_CONVERGING_NAMES = {"error_speed": "the output speed", "error_mean_force": "the mean F_t",
+                        "error_peak_force": "the peak F_t"}
+
+
+def not_converging(runs: Iterable[AccuracyRun], uncertainty: float) -> list[str]:
+    """The error fields (AccuracyRun.error_*) that fall with rtol on no method: on every method with rungs over two
+    decades or more, the tightest rung's error is above CONVERGING_DROP times the loosest's and ten times the
+    reference's uncertainty (a converging method of order p drops it ~10^p-fold there; an error at the
+    uncertainty is the reference's, not the rung's)."""
+    by_method: dict[str, list[AccuracyRun]] = {}
+    for r in runs:
+        if r.failure is None:
+            by_method.setdefault(r.method, []).append(r)
+    out = []
+    for q in NOT_CONVERGING_NAMES:
+        verdicts = []
+        for rungs in by_method.values():
+            rungs = sorted(rungs, key=lambda r: -r.rtol)
+            loose, tight = getattr(rungs[0], q), getattr(rungs[-1], q)
+            if len(rungs) < 3 or rungs[0].rtol < 100.0 * rungs[-1].rtol or loose is None or tight is None:
+                continue
+            verdicts.append(tight > CONVERGING_DROP * loose and tight > 10.0 * uncertainty)
+        if verdicts and all(verdicts):
+            out.append(q)
+    return out
 
 
 def struggling_runs(runs: Iterable[AccuracyRun], ladder: Iterable[AccuracyRun], factor: float = 5.0) -> list[str]:

@@ -14,7 +14,7 @@ from gearcli.core.records import record
 from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, SimulationError, StudyTooLong
 from gearcli.model import TorsionalModel
-from gearcli.model.damping import operating_load_factor, operating_speed_rad_s
+from gearcli.model.damping import operating_load_factor, settling_speed_rad_s
 from gearcli.model.modes import campbell_data, modal_analysis
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study, same_rtol
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
@@ -108,16 +108,22 @@ def build_report(
 
 def theory_point(lay, design: DesignResult) -> TheoryPoint | None:
     """The operating point the comparison's theory is taken at where the drive does not prescribe the speed (a
-    motor, a torque drive) and the train settles away from the design's nominal speed or load; None where it
-    settles there (a speed drive, a torque drive against a constant load, a motor with no crossing)."""
+    motor, a torque drive) and the train settles away from the design's nominal speed or load (where it runs: a
+    motor's first crossing from rest, a stall below its breakdown speed too); None where it settles there (a speed
+    drive, a torque drive against a constant load it balances). Where it settles nowhere (a motor that cannot
+    start or runs away, a torque drive nothing balances) the point is the nominal one with ``reached`` False."""
     if lay.speed_drive or lay.drive.speed_rad_s <= 0.0:
         return None
-    factor = operating_speed_rad_s(lay) / lay.drive.speed_rad_s
+    drive = "motor" if lay.motor_drive else "torque"
+    settles = settling_speed_rad_s(lay)
+    if settles is None:
+        return TheoryPoint(drive=drive, input_speed_deg_s=design.input_speed_deg_s,
+                           nominal_input_speed_deg_s=design.input_speed_deg_s, load_factor=1.0, reached=False)
+    factor = settles / lay.drive.speed_rad_s
     load = operating_load_factor(lay)
     if factor == 1.0 and load == 1.0:
         return None
-    return TheoryPoint(drive="motor" if lay.motor_drive else "torque",
-                       input_speed_deg_s=factor * design.input_speed_deg_s,
+    return TheoryPoint(drive=drive, input_speed_deg_s=factor * design.input_speed_deg_s,
                        nominal_input_speed_deg_s=design.input_speed_deg_s, load_factor=load)
 
 

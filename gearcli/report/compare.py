@@ -31,9 +31,10 @@ def relative_error_percent(simulated: float, theory: float) -> float | None:
     return 100.0 * (simulated - theory) / abs(theory)
 
 
-def _row(stage: int | None, quantity: str, theory: float, simulated: float) -> ComparisonRow:
+def _row(stage: int | None, quantity: str, theory: float, simulated: float, judged: bool = True) -> ComparisonRow:
+    """``judged`` False: the theory is a state the run never reaches, so no error is given."""
     return ComparisonRow(stage, quantity, float(theory), float(simulated),
-                         relative_error_percent(float(simulated), float(theory)))
+                         relative_error_percent(float(simulated), float(theory)) if judged else None)
 
 
 def shaft_mean_speeds_deg_s(sim: SimulationResult, n_shafts: int) -> list[float]:
@@ -64,10 +65,13 @@ def comparison_rows(design: DesignResult, sim: SimulationResult,
     speeds = shaft_mean_speeds_deg_s(sim, len(design.shafts))
     at_speed = 1.0 if point is None else point.speed_factor
     at_load = 1.0 if point is None else point.load_factor
+    # a run that settles nowhere (TheoryPoint.reached False): its speeds and forces are a transient's, the nominal
+    # point's theory no state of it; only the ratios (kinematics) are compared
+    ok = point is None or point.reached
     rows = [
         _row(None, "ratio", design.total_ratio, sim.ratio),
-        _row(None, "input_speed_deg_s", at_speed * design.input_speed_deg_s, sim.input_speed_deg_s),
-        _row(None, "output_speed_deg_s", at_speed * design.output_speed_deg_s, sim.output_speed_deg_s),
+        _row(None, "input_speed_deg_s", at_speed * design.input_speed_deg_s, sim.input_speed_deg_s, ok),
+        _row(None, "output_speed_deg_s", at_speed * design.output_speed_deg_s, sim.output_speed_deg_s, ok),
     ]
     for st, dyn in zip(design.stages, sim.stages, strict=True):
         k = st.index
@@ -82,10 +86,10 @@ def comparison_rows(design: DesignResult, sim: SimulationResult,
         sign *= driving_gear_factor(st, kind.model_signs_forces) * at_load
         rows += [
             _row(k, "ratio", st.ratio, ratio_sim),
-            _row(k, "output_speed_deg_s", at_speed * out_speed, gear_speed),
-            _row(k, "tangential_N", sign * static.tangential, share * dyn.tangential_N.mean),
-            _row(k, "radial_N", sign * static.radial, share * dyn.radial_N.mean),
-            _row(k, "axial_N", sign * static.axial, share * dyn.axial_N.mean),
+            _row(k, "output_speed_deg_s", at_speed * out_speed, gear_speed, ok),
+            _row(k, "tangential_N", sign * static.tangential, share * dyn.tangential_N.mean, ok),
+            _row(k, "radial_N", sign * static.radial, share * dyn.radial_N.mean, ok),
+            _row(k, "axial_N", sign * static.axial, share * dyn.axial_N.mean, ok),
         ]
     return tuple(r for r in rows if np.isfinite(r.simulated))
 

@@ -25,7 +25,8 @@ if TYPE_CHECKING:
 class ComparisonRow:
     """One design (static) value against the simulated mean over the steady window.
 
-    ``error_percent`` is signed, ``100 (simulated - theory) / |theory|``; ``None`` when theory is 0.
+    ``error_percent`` is signed, ``100 (simulated - theory) / |theory|``; ``None`` when theory is 0, or when it is a state the run
+    never reaches (:attr:`TheoryPoint.reached` False).
     """
 
     stage: int | None  # None: a train-level row
@@ -48,6 +49,9 @@ class TheoryPoint:
     input_speed_deg_s: float  # the operating point's input speed
     nominal_input_speed_deg_s: float  # the design's (the file's [input] speed)
     load_factor: float  # T_L at the operating point / its nominal torque (1 without a speed law)
+    # False: the train settles nowhere (a motor that cannot start or runs away, a torque drive nothing balances):
+    # the theory is the design's nominal point, which the run never reaches, and no speed or force error is given
+    reached: bool = True
 
     @property
     def speed_factor(self) -> float:

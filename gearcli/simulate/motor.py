@@ -22,7 +22,7 @@ from gearcli import diagnostics as dg
 from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan
+from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan, vfd_ramp_starts
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
 from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
@@ -57,6 +57,8 @@ def operating_point(lay: Layout, samples: int = SPEED_SAMPLES) -> OperatingPoint
                  for i in down]
     stable = [c for c in crossings if c >= w_b]
     first = None if f[0] <= 0.0 or not crossings else crossings[0]
+    if first is None and stable and vfd_ramp_starts(lay):  # the ramp from 0 Hz runs it up to its stable crossing
+        first = stable[-1]
     return OperatingPoint(first, stable[-1] if stable else None, w_b, ws)
 
 
@@ -118,6 +120,7 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                  "of it)")
         if motor.starting == "star_delta" and (op.speed_rad_s or 0.0) < motor.start_parameters[0]:
             where = _in_star(lay, motor, op.speed_rad_s)
+        where = _fell_out_of_ramp(motor, t, w_motor, op) or where
         aim_rad_s = _delta_point(lay, motor, op) if in_star else op.stable_rad_s
         aim = ("" if aim_rad_s is None else f", so it never reaches its operating point {aim_rad_s * rpm:.5g} rpm")
         back = _driven_back(t, w_motor, ws)
@@ -184,6 +187,20 @@ def _vfd_outrun(lay: Layout, motor: MotorSpec, t: np.ndarray, w_motor: np.ndarra
                        "out behind its supply and runs up only after the ramp (a real converter trips on current or "
                        "stretches the ramp); lengthen [input] ramp_s", slip_speed_rpm=ahead[i] * rpm,
                        breakdown_slip_speed_rpm=slip_b * rpm, at_s=float(t[i]))]
+
+
+def _fell_out_of_ramp(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray, op: OperatingPoint) -> str:
+    """A VFD whose full supply's curve carries the load at no speed (no crossing from rest, none on its stable
+    branch), but whose ramp ran the motor up at a lower supply frequency first: it did start, and fell out behind
+    its supply (a stall "at standstill" would misstate the run). "" otherwise."""
+    if motor.starting != "vfd" or op.speed_rad_s is not None or op.stable_rad_s is not None or not w_motor.size:
+        return ""
+    i = int(np.argmax(w_motor))
+    if not w_motor[i] > ROLLBACK * op.synchronous_rad_s:
+        return ""
+    weak = " as the field weakened above its base speed" if motor.field_weakening < 1.0 else ""
+    return (f"after the VFD's ramp ran it up to {w_motor[i] * RAD_S_TO_RPM:.5g} rpm (at {float(t[i]):.4g} s): it fell "
+            f"out behind its supply{weak}, and the full supply's curve carries the load at no speed")
 
 
 def _delta_point(lay: Layout, motor: MotorSpec, op: OperatingPoint) -> float | None:
