@@ -129,8 +129,8 @@ class _Pair:
 def _loss_widths(spec: ModelSpec, bodies: list[Body], conns: list[Connector]) -> list[Connector]:
     """Connectors with the power scale W of every lossy element's power-flow sign filled in (its loss hook's
     ``with_loss_width``): W = F x ``LOSS_WIDTH`` x the larger of the nominal pitch-line speed v of its driving side
-    and its vibration speed (:func:`loss_speeds`), the latter no more than v / :data:`SIGN_SHARPNESS` (floored at 1e-9
-    m/s). The nominal speed alone vanishes with the drive's: at 0.003 rpm the sign switched over 1e-8 m/s while the
+    and its vibration speed (:func:`loss_speeds`), the latter no more than v / (:data:`SIGN_SHARPNESS` x ``LOSS_WIDTH``)
+    so that W / F stays within v / SIGN_SHARPNESS (floored at 1e-9 m/s). The nominal speed alone vanishes with the drive's: at 0.003 rpm the sign switched over 1e-8 m/s while the
     run-up's vibration swung the pitch line through zero at ~0.1 m/s, each crossing a near-step of (1 - eta) of the
     force (docs/numerics.md "Losses at crawl speeds")."""
     out = []

@@ -74,18 +74,19 @@ def net_torque_scan(lay: Layout, row, samples: int = SPEED_SAMPLES):
 
 
 def operating_speed_rad_s(lay: Layout) -> float:
-    """The input body's speed at the operating point: a motor's stable crossing of its curve with the reflected
-    load (the crossing above the curve's largest torque, the highest one; the nominal speed when there is none);
+    """The input body's speed at the operating point: a motor's crossing of its curve with the reflected load where
+    it settles from rest (:func:`settling_speed_rad_s`: the stable one, or a stall's below the breakdown speed), else
+    its stable crossing (above the curve's largest torque, the highest one; the nominal speed when there is none);
     a torque drive's balance with a speed-dependent load (:func:`torque_drive_speed_rad_s`); a speed drive's
     nominal speed."""
     if not lay.speed_drive and not lay.motor_drive:
         return torque_drive_speed_rad_s(lay)
     if not lay.motor_drive or not lay.motor_row:
         return lay.drive.speed_rad_s
-    settles = settling_speed_rad_s(lay)
+    grid, f, w_b, net = scan = net_torque_scan(lay, lay.motor_row)
+    settles = _motor_settles(lay, *scan)
     if settles is not None:  # where it runs, a stall's crossing below the breakdown speed too
         return settles
-    grid, f, w_b, net = net_torque_scan(lay, lay.motor_row)
     down = [i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1] and grid[i + 1] >= w_b]
     if not down:
         return lay.drive.speed_rad_s
@@ -103,7 +104,11 @@ def settling_speed_rad_s(lay: Layout) -> float | None:
         return torque_drive_balance_rad_s(lay)
     if not lay.motor_drive or not lay.motor_row:
         return lay.drive.speed_rad_s
-    grid, f, w_b, net = net_torque_scan(lay, lay.motor_row)
+    return _motor_settles(lay, *net_torque_scan(lay, lay.motor_row))
+
+
+def _motor_settles(lay: Layout, grid, f, w_b: float, net) -> float | None:
+    """:func:`settling_speed_rad_s` of a motor drive, on its :func:`net_torque_scan` (``grid``, ``f``, ``w_b``, ``net``)."""
     if f[0] > 0.0:
         down = next((i for i in range(grid.size - 1) if f[i] > 0.0 >= f[i + 1]), None)
     elif vfd_ramp_starts(lay):  # the ramp from 0 Hz carries it past the full supply's standstill shortfall
