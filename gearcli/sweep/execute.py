@@ -168,7 +168,8 @@ def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
     """Every row of ``tasks`` on a pool of ``jobs`` worker processes. A worker that dies (killed, out of memory, a
     crash in compiled code) breaks a ``ProcessPoolExecutor`` for every task not yet finished, not only its own: the
     tasks that had not started go on in a new pool, and each that had started runs again alone, so that only the
-    dead worker's own task becomes ``failed`` rows (it dies alone too) and the others' points are computed."""
+    dead worker's own task becomes ``failed`` rows (it dies alone too, :func:`_alone`) and the others' points are
+    computed."""
     queue, idle_breaks = list(tasks), 0
     while queue:
         started, broken, queue = yield from _pool_round(queue, jobs)
@@ -178,9 +179,23 @@ def _pool(tasks: Sequence[Task], jobs: int) -> Iterator[Row]:
                 yield from _lost(task, cast(BaseException, broken))
             return
         for task in started:
-            _, lost, _ = yield from _pool_round([task], 1)
-            if lost is not None:
-                yield from _lost(task, lost)
+            yield from _alone(task)
+
+
+ALONE_TRIES = 2  # a task caught in a pool's break runs alone up to this many times before its points are failed
+
+
+def _alone(task: Task) -> Iterator[Row]:
+    """Run a task caught in a pool's break again on a pool of its own. A worker that dies under it alone is the
+    task's own death, but maybe not a lasting one (the out-of-memory killer, another process's burst): a task
+    interrupted by another's break before it reached its own transient death meets that death here for the first
+    time. It is tried again alone, and becomes ``failed`` rows only when its worker dies on every try."""
+    lost: BaseException | None = None
+    for _ in range(ALONE_TRIES):
+        _, lost, _ = yield from _pool_round([task], 1)
+        if lost is None:
+            return
+    yield from _lost(task, cast(BaseException, lost))
 
 
 def _pool_round(tasks: Sequence[Task], jobs: int) -> Generator[Row, None, _Round]:

@@ -4,8 +4,9 @@
 memory, a crash in compiled code). The sweep made all of them ``failed`` rows ("worker failed: BrokenProcessPool"),
 and a re-run with the same ``-o`` took those rows as done: one worker killed 10 s into an 80-point sweep left 60
 failed rows (6 of its 8 tasks), where docs/sweeps.md promises the dead worker's task's points only. Now the tasks
-that had not started go on in a new pool, and each that had started runs again alone: a task whose worker dies
-again, alone, is the culprit and becomes ``failed`` rows; a task that was only caught in the break is computed.
+that had not started go on in a new pool, and each that had started runs again alone (up to twice): a task whose
+worker dies alone on both tries is the culprit and becomes ``failed`` rows; a task that was only caught in the break
+is computed, even where its own transient death first comes on its run alone.
 
 The scenario runs in a child process with an injected evaluator (gearcli.api's is replaced, as in
 test_sweep_injection.py): a point that kills its worker every time (value 5), one that kills it only the first
@@ -74,6 +75,30 @@ def test_a_dead_worker_fails_its_own_task_and_the_others_run(tmp_path):
     # every other point ran, the transient death's task (points 8 and 9) on its second try
     assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
     assert (tmp_path / "died_once").exists()  # the transient death did happen
+
+
+# the transient death's task caught in the break before it reached its own death (CI met it under load: the pool
+# ended its worker between its start flag and point 8): its first run alone is where it dies, for the first time, and
+# it runs on its second try alone. Held here: point 8's first sight waits to be ended by the break, and point 5 waits
+# for it (at most 60 s) before it kills its worker
+CAUGHT = CHILD.replace("""    if value == 5:  # kills its worker every time""", """    held = MARK + ".held"
+    if value == 8 and not os.path.exists(held):  # caught in the break: ended by the pool before its own death
+        open(held, "w").close()
+        time.sleep(120)
+    if value == 5:
+        deadline = time.monotonic() + 60
+        while not os.path.exists(held) and time.monotonic() < deadline:
+            time.sleep(0.01)
+    if value == 5:  # kills its worker every time""", 1).replace("import json, os, sys", "import json, os, sys, time", 1)
+assert CAUGHT.count("held") == 5
+
+
+def test_a_task_caught_in_the_break_that_then_dies_alone_once_runs_on_its_second_try(tmp_path):
+    rows = _rows(tmp_path, CAUGHT)
+    lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
+    assert lost == [4, 5]
+    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
+    assert (tmp_path / "died_once").exists() and (tmp_path / "died_once.held").exists()
 
 
 # the same scenario with the break landing while the round is still being submitted: submit() waits, after the
