@@ -207,7 +207,9 @@ def spectrum_section(r: Report) -> Section:
     notes = []
     if r.stages:
         sp = r.stages[0].spectrum
-        notes.append(f"FFT of the detrended F_t over {sp.window_s[0]:.4g}–{sp.window_s[1]:.4g} s with a Hann window: "
+        how = ("less its mean, whole periods (every line on a bin, no window function: the amplitudes exact)"
+               if sp.whole_periods else "detrended, with a Hann window")
+        notes.append(f"FFT of F_t over {sp.window_s[0]:.4g}–{sp.window_s[1]:.4g} s, {how}: "
                      f"resolution 1/T = {sp.resolution_Hz:.3g} Hz, Nyquist {sp.nyquist_Hz:.4g} Hz")
     nat = r.natural_frequencies_Hz
     notes.append("linearised natural frequencies [Hz]: " + (", ".join(f"{f:.4g}" for f in nat) if nat else "none given"))
