@@ -240,9 +240,9 @@ def mesh_orders_section(r: Report) -> Section:
                 rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
                 continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
-    periodic = r.simulation.steady is not None and r.simulation.steady.mode == "periodic"
-    how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
-           if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
+    periodic = bool(r.stages) and r.stages[0].spectrum.whole_periods
+    how = ("the window holds whole periods of the repeating response: the discrete Fourier coefficient, exact for "
+           "each order" if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
     notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
     if aliased:
         notes.append(f"stage {', '.join(aliased)}: '> Nyquist', the order lies at or above the Nyquist frequency of the "

@@ -8,7 +8,8 @@ peak's amplitude is the maximum of the same windowed transform within half a bin
 (:func:`peak_line_amplitude`). The frequency resolution is 1 / T with T = n dt the record length; with a
 Hann window a spectral line spreads over about ±2 bins, which is also the tolerance used to name the peak.
 
-A window of whole periods (a periodic steady state, ``whole_periods``) is transformed as it is: the force less its
+A window of whole periods of a repeating response (a periodic steady state's orbit, ``whole_periods``) is
+transformed as it is: the force less its
 mean, without the window's closing sample (the first of the next period), with no window function. Every line of
 the periodic response is a harmonic of the window's period and so lies on a bin, whose amplitude 2 |X_k| / n is the
 line's exactly (a Hann window there would mix each bin with half of its neighbours': configs/periodic_linear_mesh.toml
