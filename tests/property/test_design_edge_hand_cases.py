@@ -109,3 +109,18 @@ def test_an_eight_tooth_pinion_meets_the_gear_tip_in_its_undercut(tmp_path):
     assert [w["member"] for w in hit] == ["pinion"]
     assert hit[0]["form_diameter_mm"] is None  # undercut: no involute form circle above the base circle
     assert_allclose([hit[0]["depth_mm"], hit[0]["contact_ratio_transverse_usable"]], [2.32242, 1.116894], rtol=1e-5)
+
+
+def test_the_design_table_shows_both_members_diameters(tmp_path):
+    """Spur 20/40, m = 3, x = 0: the gear's d_b2 = 120 cos 20° = 112.76, d_a2 = 120 + 2·3 = 126, d_f2 = 120 − 2.5·3 =
+    112.5 beside the pinion's 56.382, 66, 52.5 (the table printed the pinion's alone)."""
+    from gearcli.io.tables import design_tables
+
+    path = tmp_path / "edge.toml"
+    path.write_bytes(tomli_w.dumps({"title": "edge", "stage": [spur(20, 40, 3.0)], "input": {"speed_rpm": 1000.0},
+                                    "load": {"torque_Nm": 100.0}}).encode())
+    geometry = design_tables(api.design(api.load(str(path))))[0]
+    rows = {label.strip(): cells[0] for label, cells in geometry.rows}
+    assert [float(rows[k]) for k in ("pinion base d_b1 [mm]", "gear base d_b2 [mm]", "pinion tip d_a1 [mm]",
+                                     "gear tip d_a2 [mm]", "pinion root d_f1 [mm]", "gear root d_f2 [mm]")] \
+        == pytest.approx([56.382, 112.76, 66.0, 126.0, 52.5, 112.5], rel=1e-4)
