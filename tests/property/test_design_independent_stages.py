@@ -60,7 +60,7 @@ def stage(draw):
         if beta > 0:
             m["hand"] = h
         if draw(st.booleans()):
-            upper = clean(-m_n * draw(st.floats(0.0, 0.02)))
+            upper = clean(m_n * draw(st.floats(-0.03, 0.02)))  # thinned or thickened
             m["tooth_thickness_allowance_mm"] = [upper, upper - m_n * draw(st.floats(0.001, 0.02))]
         if draw(st.booleans()):
             upper = clean(m_n * draw(st.floats(-0.02, 0.6)))
@@ -68,12 +68,11 @@ def stage(draw):
         if draw(st.booleans()):  # a webbed body: rim s_R, web b_s (C_R clamps b_s/b to 0.2 … 1.2, s_R to ≥ m_n)
             d_f = m_n * z / cos(radians(beta)) - 2 * m_n * (ref_rack[1] - x)
             rim = m_n * draw(st.floats(0.5, 6.0))
-            m["bore_diameter_mm"] = clean(draw(st.floats(0.1, 0.9))) * (d_f - 2 * rim)
-            if m["bore_diameter_mm"] > 0.0:
+            inside = d_f - 2 * rim  # the rim's inner diameter: the bore lies within it
+            if inside > 1.0:
+                m["bore_diameter_mm"] = draw(st.floats(0.1, 0.9)) * inside
                 m["rim_thickness_mm"] = rim
                 m["web_thickness_mm"] = m["face_width_mm"] * draw(st.floats(0.1, 1.3))
-            else:
-                del m["bore_diameter_mm"]
         return m
     s = {"normal_module_mm": m_n, "normal_pressure_angle_deg": alpha_n, "helix_angle_deg": beta,
          "efficiency": draw(st.one_of(st.just(1.0), st.floats(0.9, 1.0))),
