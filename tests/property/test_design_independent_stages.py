@@ -115,7 +115,7 @@ def thick_enough(s: dict) -> bool:
 def design(draw):
     stages = draw(st.lists(stage().filter(thick_enough), min_size=1, max_size=4))
     return {"title": "random train", "materials": MATERIALS, "stage": stages,
-            "input": {"speed_rpm": draw(st.floats(10.0, 3000.0))},
+            "input": {"speed_rpm": draw(st.floats(10.0, 20000.0))},  # to the mesh resonances
             "load": {"torque_Nm": draw(st.sampled_from([1.0, -1.0])) * draw(st.floats(1.0, 5e4)),
                      "application_factor": draw(st.one_of(st.just(1.0), st.floats(1.0, 2.0)))}}
 
@@ -185,6 +185,10 @@ def compare_checks(k: int, s: Stage, warnings: list[dict]) -> None:
         assert (("undercut", name) in found) == (o["x_E_i"][j] < o["undercut_x_min"][j]), (k, name, "undercut")
         assert (("tip_thickness", name) in found) == (o["tip_thickness_cut"][j] < 0.2 * s.m_n), (k, name, "tip")
     assert any(c == "contact_ratio" for c, _ in found) == (o["geometry"]["eps_a"] < 1.2), (k, "contact_ratio")
+    n, n_s = o["N"], o["N_S"]  # ISO 6336-1's speed ranges; warned: the main range, and its 1/2 and 1/3 (subcritical)
+    bands = [n_s < n <= 1.15] + [n <= n_s and n_s / j < n <= 1.15 / j for j in (2, 3)]
+    if min(abs(n - edge) for edge in (n_s, 1.15, n_s / 2, 0.575, n_s / 3, 1.15 / 3)) > 1e-9 * n:
+        assert any(c == "iso6336_resonance" for c, _ in found) == any(bands), (k, "iso6336_resonance", n, n_s)
     inter = o["interference"]
     for j, name in enumerate(("pinion", "gear")):
         hit = [w for w in warnings if w.get("stage") == k + 1 and w.get("check") == "interference"
@@ -238,6 +242,10 @@ def compare_stage(k: int, s: Stage, res: dict, src: dict) -> None:
     }
     for key, want in pairs.items():
         close(res[key], want, tag + key)
+    n, n_s = o["N"], o["N_S"]
+    if min(abs(n - edge) for edge in (n_s, 1.15, 1.5)) > 1e-9 * n:
+        assert res["resonance_range"] == ("subcritical" if n <= n_s else "main resonance" if n <= 1.15
+                                          else "intermediate" if n < 1.5 else "supercritical"), tag + "range"
     close(res["tip_alteration_coefficient"], g["k"], tag + "k", rtol=0.0, atol=1e-9)
     close([res["iso6336_factors"][f] for f in ("C_M", "C_R", "C_B")],
           [o["iso"]["C_M"], o["iso"]["C_R"], o["iso"]["C_B"]], tag + "iso6336_factors")
