@@ -9,7 +9,8 @@ Every stage, member and shaft figure of the JSON is compared at 1e-9 relative; t
 tolerance instead. The design checks the reference can decide (undercut, tip thickness, ε_α < 1.2, interference,
 tip clearance, negative backlash, ε_α with allowances, axial forces adding on a shaft) must fire exactly when the
 reference says, outside a 1e-9 band (1e-3 m_n for interference, gearcli's stated tolerance) around their limits.
-The same test at the contract's limits (z 5-250, β to 44.9°, α_n 10-35°, x -1 … 1.5, 1,500 examples) passed too.
+The same test at the contract's limits (z 5-250, β to 44.9°, α_n 10-35°, x -1 … 1.5, 800-1,500 examples) passed too;
+40 examples here keep it in the fast tier (about 1.5 s).
 """
 
 from __future__ import annotations
@@ -131,7 +132,7 @@ def close(actual, expected, what: str, rtol: float = RTOL, atol: float = 0.0) ->
     assert_allclose(actual, expected, rtol=rtol, atol=atol, err_msg=what)
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
                                                                   HealthCheck.too_slow,
                                                                   HealthCheck.function_scoped_fixture])
 @given(doc=design())
