@@ -7,7 +7,8 @@ tooth-thickness, tip and centre-distance allowances (which may thin a tooth into
 Every stage, member and shaft figure of the JSON is compared at 1e-9 relative; the differences of near-equal numbers
 (the tip alteration k, the backlash as a pitch less two tooth thicknesses, the opposed axial forces) get an absolute
 tolerance instead. The design checks the reference can decide (undercut, tip thickness, ε_α < 1.2, interference,
-tip clearance, negative backlash, ε_α with allowances, axial forces adding on a shaft) must fire exactly when the
+tip clearance, negative backlash, ε_α with allowances, axial forces adding on a shaft, ISO 6336-1's resonance
+ranges) must fire exactly when the
 reference says, outside a 1e-9 band (1e-3 m_n for interference, gearcli's stated tolerance) around their limits.
 The same test at the contract's limits (z 5-250, β to 44.9°, α_n 10-35°, x -1 … 1.5, 800-1,500 examples) passed too;
 40 examples here keep it in the fast tier (about 1.5 s).
