@@ -218,15 +218,23 @@ def _campbell(campbell: SweepCampbell):
                                        swept=list(campbell.swept_rpm))
 
 
-def _bins(x: np.ndarray) -> dict:
+def _bins(x: np.ndarray, panel: float = 0.0) -> dict:
     """The histogram's bins: up to 30, at least 5; one bar around a value every sample shares to rounding (an
-    equilibrium's dynamic factor: 1 to the last bits, which no finite bins can split)."""
+    equilibrium's dynamic factor: 1 to the last bits, which no finite bins can split; a single sample), 4 % of
+    the ``panel``'s span of values wide where the other curves give it one: 2e-6 of the value, on a panel that
+    spans two stages' forces (4000 N to 10000 N), was a bar no pixel wide, an empty histogram."""
     width = float(x[-1] - x[0])
     scale = max(abs(float(x[0])), abs(float(x[-1])), 1e-300)
     if width <= 1e-9 * scale:
-        half = 1e-6 * scale
+        half = max(1e-6 * scale, 0.02 * panel)
         return {"bins": 1, "range": (float(x[0]) - half, float(x[-1]) + half)}
     return {"bins": min(30, max(5, x.size // 5))}
+
+
+def _ecdf(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The empirical CDF of the sorted ``x`` as a post-step line: 0 below the first sample, i/n from the i-th on.
+    It starts with the rise at the first sample (from 0 to 1/n), without which a single sample drew no line."""
+    return np.concatenate([x[:1], x]), np.arange(0, x.size + 1) / x.size
 
 
 def _pinned_bar(x: np.ndarray, limits: tuple[float, float]) -> dict:
@@ -253,15 +261,18 @@ def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()
         # a statistic every sample shares to roundoff (an unexcited scene's std 0 and dynamic factor 1) is one bar
         # at its constant on an axis of ±5 % of its scale, as the response plot draws it, not its last bits
         pinned = _roundoff_limits(rows, [f"stage{k}_{c}" for k in range(1, n_stages + 1)])
+        panel = np.array([_num(r.get(f"stage{k}_{c}")) for r in rows for k in range(1, n_stages + 1)])
+        panel = panel[np.isfinite(panel)]
+        span = float(np.ptp(panel)) if panel.size else 0.0
         for g, k in curves:
             x = np.array([_num(r.get(f"stage{k}_{c}")) for r in groups[g]])
             x = np.sort(x[np.isfinite(x)])
             if not x.size:
                 continue
-            bins = _bins(x) if pinned is None else _pinned_bar(x, pinned)
+            bins = _bins(x, span) if pinned is None else _pinned_bar(x, pinned)
             label = ", ".join(p for p in (f"stage {k}" if n_stages > 1 or not labels[g] else "", labels[g]) if p)
             axes[i][0].hist(x, **bins, alpha=0.5, color=colours[(g, k)], label=label)
-            axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=colours[(g, k)], label=label)
+            axes[i][1].step(*_ecdf(x), where="post", color=colours[(g, k)], label=label)
         axes[i][0].set_xlabel(title)
         axes[i][0].set_ylabel("count")
         axes[i][1].set_xlabel(title)

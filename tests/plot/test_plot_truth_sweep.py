@@ -1,0 +1,80 @@
+"""sweep --plots: what distributions.png shows is the samples, read back from the figure's artists.
+
+The histograms' bar heights of each curve sum to its number of samples, each bar holds the samples between its
+edges (counted here with numpy on the same edges), and the ECDF is the textbook one: 0 below the first sample, i/n
+from the i-th sample on. A tolerance study of a single sample (or a curve whose samples share one value, on a panel
+whose other curves spread over thousands of newtons) drew nothing: a bar 2e-6 of its value wide, an ECDF of one
+point (a step line of one vertex is no line).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("matplotlib")
+
+from matplotlib.colors import to_rgba  # noqa: E402
+
+from gearcli.io.sweep_plots import DISTRIBUTION_STATS, _distributions  # noqa: E402
+
+
+def _rows(values: dict[int, np.ndarray]) -> list[dict]:
+    """Sample rows of a two-stage scene; ``values[k]`` the stage's peak F_t, the other statistics from it."""
+    n = len(values[1])
+    return [{"status": "ok", "direction": "none",
+             **{f"stage{k}_{c}": float(v[i]) * f for k, v in values.items()
+                for c, f in (("tangential_N_max", 1.0), ("tangential_N_std", 0.2), ("dynamic_factor", 3e-4),
+                             ("dte_um_rms", 1e-4), ("tangential_N_mean", 0.6), ("dte_um_mean", 1e-3))}}
+            for i in range(n)]
+
+
+def _panels(fig, xlabel):
+    hist, ecdf = (ax for ax in fig.axes if ax.get_xlabel() == xlabel)
+    return hist, ecdf
+
+
+def _bars_by_colour(ax) -> dict:
+    out: dict = {}
+    for bar in ax.patches:
+        out.setdefault(to_rgba(bar.get_facecolor())[:3], []).append(bar)  # the colour without the alpha
+    return out
+
+
+def test_histogram_counts_and_ecdf_are_the_samples():
+    rng = np.random.default_rng(7)
+    values = {1: rng.normal(4400.0, 250.0, 37), 2: rng.normal(9800.0, 500.0, 37)}
+    fig = _distributions(_rows(values), 2)
+    hist, ecdf = _panels(fig, "peak F_t in window (N)")
+    bars = _bars_by_colour(hist)
+    assert len(bars) == 2
+    for (colour, patches), line in zip(bars.items(), ecdf.get_lines(), strict=True):
+        assert to_rgba(line.get_color())[:3] == colour
+        x = np.sort(np.asarray(line.get_xdata(), float)[1:])
+        k = 1 if np.allclose(x, np.sort(values[1])) else 2
+        assert np.allclose(x, np.sort(values[k]))
+        heights = [p.get_height() for p in patches]
+        assert sum(heights) == 37  # every sample counted once
+        # len(patches) equal bins from the smallest sample to the largest, counted by numpy
+        counts, edges = np.histogram(values[k], bins=len(patches))
+        assert list(counts) == heights
+        assert [p.get_x() for p in patches] == pytest.approx(list(edges[:-1]), abs=1e-9 * edges[-1])
+        # the ECDF: 0 below the first sample, i/37 from the i-th on
+        assert list(line.get_ydata()) == pytest.approx(np.arange(0, 38) / 37)
+        assert line.get_xdata()[0] == x[0] and line.get_drawstyle() == "steps-post"
+
+
+def test_a_single_sample_is_a_visible_bar_and_an_ecdf_rise_on_every_panel():
+    fig = _distributions(_rows({1: np.array([4421.0]), 2: np.array([9873.0])}), 2)
+    for _, xlabel in DISTRIBUTION_STATS:
+        hist, ecdf = _panels(fig, xlabel)
+        lo, hi = hist.get_xlim()
+        bars = _bars_by_colour(hist)
+        assert len(bars) == 2, xlabel
+        for patches in bars.values():
+            (bar,) = [p for p in patches if p.get_height() > 0]
+            assert bar.get_height() == 1
+            assert bar.get_width() >= 0.01 * (hi - lo), xlabel  # a bar you can see, not 2e-6 of its value
+        for line in ecdf.get_lines():
+            x, y = line.get_xdata(), line.get_ydata()
+            assert x[0] == x[-1] and list(y) == [0.0, 1.0], xlabel  # the one sample's rise from 0 to 1
