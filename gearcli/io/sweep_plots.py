@@ -75,10 +75,11 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
         figs.append(("distributions.png", _distributions(ok, n_stages, [a.column for a in session.spec.axes])))
-    out.mkdir(parents=True, exist_ok=True)
+    figs = [(name, fig) for name, fig in figs if fig is not None]
+    if figs:  # a sweep whose every point failed has nothing to draw: no empty directory either
+        out.mkdir(parents=True, exist_ok=True)
     for name, fig in figs:
-        if fig is not None:
-            paths.append(_save(fig, out / name))
+        paths.append(_save(fig, out / name))
     return paths
 
 

@@ -9,6 +9,9 @@ point (a step line of one vertex is no line).
 
 from __future__ import annotations
 
+import csv
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -16,7 +19,7 @@ pytest.importorskip("matplotlib")
 
 from matplotlib.colors import to_rgba  # noqa: E402
 
-from gearcli.io.sweep_plots import DISTRIBUTION_STATS, _distributions  # noqa: E402
+from gearcli.io.sweep_plots import DISTRIBUTION_STATS, FAMILIES, _distributions  # noqa: E402
 
 
 def _rows(values: dict[int, np.ndarray]) -> list[dict]:
@@ -78,3 +81,63 @@ def test_a_single_sample_is_a_visible_bar_and_an_ecdf_rise_on_every_panel():
         for line in ecdf.get_lines():
             x, y = line.get_xdata(), line.get_ydata()
             assert x[0] == x[-1] and list(y) == [0.0, 1.0], xlabel  # the one sample's rise from 0 to 1
+
+
+# ------------------------------------------------------------------ the CLI's figures against its own rows
+
+RATTLE = Path(__file__).parent / "data" / "rattle.toml"
+SPEEDS = (900.0, 1500.0, 2100.0)
+
+
+def _sweep(tmp_path, monkeypatch, *args):
+    """``gearcli sweep`` in-process: its result, the figures it saved (by file name)."""
+    from click.testing import CliRunner
+
+    from gearcli.cli import cli
+    from gearcli.io import sweep_plots
+
+    figs: dict = {}
+    real = sweep_plots._save
+    monkeypatch.setattr(sweep_plots, "_save", lambda fig, path: figs.setdefault(path.name, fig) and real(fig, path))
+    res = CliRunner().invoke(cli, ["sweep", str(RATTLE), "--jobs", "1", *args])
+    return res, figs
+
+
+def test_response_curves_are_the_sweeps_columns(tmp_path, monkeypatch):
+    """The rattling stage's speed sweep: every response panel's curves are the CSV's columns at the swept speeds
+    (contact loss included: 50-80 % of the window), the output speed the input over the ratio 50/20."""
+    out, plots = tmp_path / "r.csv", tmp_path / "plots"
+    res, figs = _sweep(tmp_path, monkeypatch, "--vary", f"input.speed_rpm={','.join(map(str, SPEEDS))}",
+                       "-o", str(out), "--plots", str(plots))
+    assert res.exit_code == 0, res.output
+    assert sorted(p.name for p in plots.iterdir()) == ["campbell.png", "response_input_speed_rpm.png"]
+    assert not list(tmp_path.glob("plots/.*"))  # no temporary file left
+    rows = list(csv.DictReader(line for line in out.read_text().splitlines() if not line.startswith("#")))
+    assert [float(r["input.speed_rpm"]) for r in rows] == list(SPEEDS) and {r["status"] for r in rows} == {"ok"}
+    fig = figs["response_input_speed_rpm.png"]
+    checked = 0
+    for title, cols in FAMILIES:
+        ax = next(a for a in fig.axes if a.get_title() == f"stage 1: {title}")
+        lines = ax.get_lines()
+        assert len(lines) == len(cols), title
+        for line, suffix in zip(lines, cols, strict=True):
+            if len(cols) > 1:  # mean, min, max by their legend label (a one-curve family has none)
+                assert line.get_label() == suffix.rsplit("_", 1)[-1], title
+            assert list(line.get_xdata()) == list(SPEEDS), title
+            column = f"stage1_{suffix}"
+            assert list(line.get_ydata()) == pytest.approx([float(r[column]) for r in rows], rel=1e-12), column
+            checked += 1
+    assert checked == 3 + 1 + 3 + 1 + 1 + 1 + 1  # F_t mean/min/max, std, DTE mean/min/max, rms, loss, K_v, run-up
+    loss = next(ax for ax in fig.axes if ax.get_title().startswith("stage 1: contact loss"))
+    assert min(loss.get_lines()[0].get_ydata()) > 0.3  # it rattles: the panel is not a flat zero
+    (speed,) = next(ax for ax in fig.axes if ax.get_title() == "output speed (rpm)").get_lines()
+    assert list(speed.get_ydata()) == pytest.approx([n * 20 / 50 for n in SPEEDS], rel=1e-3)  # the ratio 50/20
+
+
+def test_a_sweep_whose_every_point_failed_writes_no_figures_and_no_directory(tmp_path, monkeypatch):
+    plots = tmp_path / "plots"
+    res, figs = _sweep(tmp_path, monkeypatch, "--vary", "stage.0.pinion.teeth=3,4", "-o", str(tmp_path / "f.csv"),
+                       "--plots", str(plots))
+    assert res.exit_code == 1 and "2 failed" in res.stderr
+    assert "no figures" in res.stderr and "Traceback" not in res.output
+    assert figs == {} and not plots.exists()
