@@ -74,3 +74,38 @@ def test_order_lines_modes_and_crossings_against_the_teeth_and_the_json(tmp_path
     for text in ax.texts:
         extent = text.get_window_extent()
         assert box.x0 - 1 <= extent.x0 and extent.x1 <= box.x1 + 1, text.get_text()
+
+
+PLANETARY = Path(__file__).parent / "data" / "planetary_sun_input.toml"
+
+
+@pytest.mark.parametrize(("member", "speeds", "mesh_Hz"), [
+    ("sun", (1200.0, 1500.0), lambda n: 72 * n * 24 / 96 / 60),  # carrier at n 24/96, ring teeth x carrier speed
+    ("carrier", (250.0, 300.0), lambda n: 72 * n / 60),
+])
+def test_a_planetary_sweeps_campbell_marks_the_input_speeds(tmp_path, member, speeds, mesh_Hz):
+    """A planetary first stage's "pinion" is its sun, whose speed in the design is the mesh's, relative to the
+    carrier (1125 rpm of a sun driven at 1500): the sweep's Campbell diagram marked the swept speeds there and
+    ran its axis to them. The marks are the swept input speeds; the mesh frequencies ring teeth x carrier rpm / 60."""
+    from gearcli.api import design_case
+    from gearcli.io.sweep_plots import _campbell
+    from gearcli.sweep.modes import campbell, sweep_campbell
+    from gearcli.sweep.spec import spec_from_options
+    from gearcli.sweep.worker import Scene
+
+    text = PLANETARY.read_text(encoding="utf-8").replace('input = "sun"', f'input = "{member}"')
+    text = text.replace("speed_rpm = 1500", f"speed_rpm = {speeds[-1]:g}")
+    scene = Scene(text.encode(), "planetary.toml")
+    key = "input.speed_rpm"
+    points = campbell(scene, key, list(speeds), design_case)
+    assert [p.input_rpm for p in points] == pytest.approx(list(speeds), rel=1e-12)
+    assert [p.mesh_Hz[0] for p in points] == pytest.approx([mesh_Hz(n) for n in speeds], rel=1e-9)
+    spec = spec_from_options([f"{key}={','.join(f'{n:g}' for n in speeds)}"], (), None, "lhs", None, None)
+    got = sweep_campbell(spec, scene, design_case, lambda cfg: ("rpm", "Nm"))
+    assert got.swept_rpm == pytest.approx(speeds, rel=1e-12)
+    assert got.data.nominal_input_rpm == pytest.approx(speeds[-1], rel=1e-12)
+    assert got.data.max_input_rpm == pytest.approx(1.2 * speeds[-1], rel=1e-12)  # the range: 1.2 x nominal
+    ax = _campbell(got).axes[0]
+    (marks,) = [ln for ln in ax.get_lines() if ln.get_label() == "swept points"]
+    assert list(marks.get_xdata()) == pytest.approx(list(speeds), rel=1e-12)
+    assert ax.get_xlim()[1] == pytest.approx(1.2 * speeds[-1], rel=1e-12)
