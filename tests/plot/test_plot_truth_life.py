@@ -27,11 +27,19 @@ SCENE = Path(__file__).parent / "data" / "two_stage_duty.toml"
 NODES = {"pitting": ((1e5, 1.6), (5e7, 1.0), (1e10, 0.85)), "bending": ((1e3, 2.5), (3e6, 1.0), (1e10, 0.85))}
 
 
-def _factor(mode: str, n: float) -> float:
-    """The life factor at ``n`` cycles: a power law between the table's nodes, the last slope continued beyond."""
+def _factor(mode: str, n: float, variant: str = "iso") -> float:
+    """The life factor at ``n`` cycles: a power law between the table's nodes, the last slope continued beyond;
+    below the knee ISO 6336-6's Miner elementary continues the finite-life exponent k, Miner modified (Haibach)
+    takes 2k - 1."""
     (n0, y0), (n1, y1), (n2, y2) = NODES[mode]
-    (na, ya), (nb, yb) = ((n0, y0), (n1, y1)) if n < n1 else ((n1, y1), (n2, y2))
-    return ya * (na / n) ** (math.log(ya / yb) / math.log(nb / na))
+    k = math.log(n1 / n0) / math.log(y0 / y1)
+    if n < n1:
+        return y0 * (n0 / n) ** (1 / k)
+    if variant == "elementary":
+        return (n1 / n) ** (1 / k)
+    if variant == "modified":
+        return (n1 / n) ** (1 / (2 * k - 1))
+    return y1 * (n1 / n) ** (math.log(y1 / y2) / math.log(n2 / n1))
 
 
 @pytest.fixture(scope="module")
@@ -63,15 +71,18 @@ def _at(x, y, n):
     return float(np.exp(np.interp(np.log(n), np.log(x), np.log(y))))
 
 
-def test_sn_curves_are_the_iso_life_factor_curves(static_life, tmp_path, monkeypatch):
-    figs = _figures(static_life, tmp_path, monkeypatch)
+@pytest.mark.parametrize("variant", ["iso", "elementary", "modified"])
+def test_sn_curves_are_the_iso_life_factor_curves(static_life, tmp_path, monkeypatch, variant):
+    result = static_life if variant == "iso" else api.life(api.prepare_life(str(SCENE)), static=True, variant=variant)
+    figs = _figures(result, tmp_path, monkeypatch)
     for mode, probes in (("pitting", (2e5, 1e6, 3e7, 1e9, 1e11)), ("bending", (1e4, 1e5, 1e8, 1e9, 1e11))):
-        for ax, st in zip(figs[mode].axes, static_life.stages, strict=True):
+        for ax, st in zip(figs[mode].axes, result.stages, strict=True):
             for member in ("pinion", "gear"):
                 x, y = _line(ax, f"{member} S–N")
                 endurance = getattr(getattr(st, member), mode).bins[0].endurance_MPa  # the knee's stress
                 for n in probes:
-                    assert _at(x, y, n) == pytest.approx(endurance * _factor(mode, n), rel=2e-3), (mode, member, n)
+                    assert _at(x, y, n) == pytest.approx(endurance * _factor(mode, n, variant), rel=2e-3), \
+                        (mode, member, n)
 
 
 def test_the_spectrum_steps_are_the_cumulative_cycles_down_from_a_starts_peak(static_life, tmp_path, monkeypatch):
