@@ -83,3 +83,20 @@ def test_speeds_are_the_simulated_shaft_speeds_and_the_kinematic_design(run):
         assert np.asarray(sim.get_ydata()) == pytest.approx(series[f"shaft{i}_speed_rpm"], rel=1e-8, abs=1e-6)
         (line,) = [ln for ln in ax.get_lines() if ln.get_label().startswith("design ")]
         assert line.get_ydata()[0] == pytest.approx(design, rel=1e-12)
+
+
+def test_mesh_forces_static_lines_are_torque_over_radius(run):
+    """The dashed static F_t of mesh_forces.png, by hand: stage 1 the input torque 1500 N·m / i over the pinion's
+    pitch radius m_n z / (2 cos β) = 4 x 23 / (2 cos 15°) mm; stage 2 the output torque over the gear's 6 x 61 /
+    (2 cos 13°) mm (no losses in this file). The simulated trace is the CSV's F_t."""
+    series, _, figs = run
+    i = (67 / 23) * (61 / 19)
+    hand = {1: 1500.0 / i / (4 * 23 / (2 * np.cos(np.radians(15.0))) * 1e-3),
+            2: 1500.0 / (6 * 61 / (2 * np.cos(np.radians(13.0))) * 1e-3)}
+    fig = figs["mesh_forces.png"]
+    for k, force in hand.items():
+        ax = next(a for a in fig.axes if a.get_title(loc="left") == f"stage {k}: tangential mesh force")
+        (static,) = [ln for ln in ax.get_lines() if ln.get_label().startswith("static F_t")]
+        assert static.get_ydata()[0] == pytest.approx(force, rel=1e-9)
+        (sim,) = [ln for ln in ax.get_lines() if ln.get_label() == "F_t simulated"]
+        assert np.asarray(sim.get_ydata()) == pytest.approx(series[f"stage{k}_tangential_N"], rel=1e-8, abs=1e-6)
