@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from gearcli.errors import GearcliError
 from gearcli.io import campbell as campbell_io
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
@@ -24,6 +25,7 @@ from gearcli.io.units import OutputUnits
 from gearcli.sweep.columns import Row
 from gearcli.sweep.modes import SweepCampbell
 from gearcli.sweep.session import Session
+from gearcli.sweep.spec import canonical_key
 
 COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
 MARKERS = {"up": "^", "down": "v", "none": "."}
@@ -70,7 +72,7 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     paths: list[Path] = []
     figs = []
     for axis in session.spec.axes:
-        figs.append((f"response_{axis.key.replace('.', '_')}.png", _response(ok, axis.column, session.spec, n_stages)))
+        figs.append((response_name(axis.key), _response(ok, axis.column, session.spec, n_stages)))
     if campbell is not None:
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
@@ -81,6 +83,17 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     for name, fig in figs:
         paths.append(_save(fig, out / name))
     return paths
+
+
+def response_name(key: str) -> str:
+    """The response figure's file of a varied key in either spelling: ``stage[0].backlash_mm`` and
+    ``stage.0.backlash_mm`` are ``response_stage_0_backlash_mm.png`` (``--plots``' check before the sweep named
+    the first ``response_stage[0]_backlash_mm.png``, not the file written)."""
+    try:
+        key = canonical_key(key)
+    except GearcliError:  # a malformed key: --vary's own check names it
+        pass
+    return f"response_{key.replace('.', '_')}.png"
 
 
 def _groups(rows: Sequence[dict], key: str, keys: Sequence[str]) -> dict[tuple, list[dict]]:

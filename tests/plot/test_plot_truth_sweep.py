@@ -141,3 +141,18 @@ def test_a_sweep_whose_every_point_failed_writes_no_figures_and_no_directory(tmp
     assert res.exit_code == 1 and "2 failed" in res.stderr
     assert "no figures" in res.stderr and "Traceback" not in res.output
     assert figs == {} and not plots.exists()
+
+
+@pytest.mark.parametrize("spelling", ["stage[0].backlash_mm", "stage.0.backlash_mm"])
+def test_the_check_before_the_sweep_names_the_response_file_it_writes(tmp_path, monkeypatch, spelling):
+    """--plots is checked before any point runs: no figure may land on a directory. The check named
+    ``response_stage[0]_backlash_mm.png`` for the bracket spelling while the sweep writes
+    ``response_stage_0_backlash_mm.png``: a directory there passed the check, the whole sweep ran, and the figure's
+    write failed at the end (exit 1). Both spellings are refused up front (exit 2, no row written)."""
+    plots = tmp_path / "plots"
+    (plots / "response_stage_0_backlash_mm.png").mkdir(parents=True)
+    out = tmp_path / "rows.csv"
+    res, figs = _sweep(tmp_path, monkeypatch, "--vary", f"{spelling}=0.05,0.1", "-o", str(out), "--plots", str(plots))
+    assert res.exit_code == 2, res.output
+    assert "response_stage_0_backlash_mm.png" in res.stderr and "Traceback" not in res.output
+    assert not out.exists() and figs == {}
