@@ -18,7 +18,17 @@ from gearcli.life.miner import SNCurve
 from gearcli.life.result import LifeResult, member_label
 
 FIGURE_NAMES = ("pitting.png", "bending.png")
-COLORS = {"pinion": "tab:blue", "gear": "tab:orange", "ring": "tab:red", "planet_ring_side": "tab:green"}
+COLORS = {"pinion": "tab:blue", "gear": "tab:orange", "ring": "tab:red", "planet_ring_side": "tab:green",
+          "planet_root": "tab:purple"}
+
+
+def _mode_life(st, member: str, mode: str):
+    """The member's life in ``mode`` (None where it has none): ``planet_root`` is the planet's root bending over both
+    meshes (docs/life.md: the figure to judge a planet's root by), bending only."""
+    life = getattr(st, member)
+    if member == "planet_root":
+        return life if mode == "bending" else None
+    return None if life is None else getattr(life, mode)
 
 
 def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
@@ -31,11 +41,11 @@ def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
     for mode, name in zip(("pitting", "bending"), FIGURE_NAMES, strict=True):
         fig, axes = _figure(len(r.stages), 1, height=2.8)
         for ax, st in zip(axes[:, 0], r.stages, strict=True):
-            members = [m for m in COLORS if getattr(st, m) is not None]  # a planetary stage's ring mesh too
-            first = min(_first_cycles(getattr(getattr(st, m), mode).bins) for m in members)
+            members = [m for m in COLORS if _mode_life(st, m, mode) is not None]  # a planetary stage's ring mesh too
+            first = min(_first_cycles(_mode_life(st, m, mode).bins) for m in members)
             for member in members:
                 label = member_label(st, member)
-                ml = getattr(getattr(st, member), mode)
+                ml = _mode_life(st, member, mode)
                 curve: SNCurve = ml.sn
                 bins = sorted(ml.bins, key=lambda b: -b.stress_MPa)
                 cum = np.cumsum([b.cycles for b in bins])  # cycles at or above each class's stress

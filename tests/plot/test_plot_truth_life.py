@@ -104,3 +104,22 @@ def test_the_spectrum_steps_are_the_cumulative_cycles_down_from_a_starts_peak(st
     assert x[0] < x[1] and np.all(np.diff(x) >= 0)  # the top step runs forwards, up to its 43.6 cycles
     sn_x, _ = _line(figs["bending"].axes[0], "pinion S–N")
     assert sn_x[0] == pytest.approx(x[0])  # the curve is drawn over the same cycles
+
+
+def test_a_planetarys_bending_figure_shows_the_planet_root_over_both_meshes(tmp_path, monkeypatch):
+    """docs/life.md: ``planet_root`` (the planet's root bending over both meshes, the figure to judge its root by)
+    was missing from bending.png, which drew each mesh's root side apart. Its spectrum is the cumulative cycles of
+    its bins (numpy here), its curve the S–N curve; pitting.png has no such member."""
+    root = Path(__file__).resolve().parents[2]
+    result = api.life(api.prepare_life(str(root / "configs" / "planetary_duty.toml")), static=True)
+    st = result.stages[0]
+    assert st.planet_root is not None
+    figs = _figures(result, tmp_path, monkeypatch)
+    label = "planet root (both meshes)"
+    ax = figs["bending"].axes[0]
+    x, y = _line(ax, f"{label} spectrum (D = {st.planet_root.damage:.3g})")
+    ranked = sorted(st.planet_root.bins, key=lambda b: -b.stress_MPa)
+    assert list(x[1:]) == pytest.approx(list(np.cumsum([b.cycles for b in ranked])))
+    assert list(y[1:]) == pytest.approx([b.stress_MPa for b in ranked])
+    assert _line(ax, f"{label} S–N")[1].size > 0
+    assert not [ln for ln in figs["pitting"].axes[0].get_lines() if ln.get_label().startswith(label)]
