@@ -302,9 +302,13 @@ def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()
     else:
         axes[0][0].legend(fontsize=7)
     per = max(len(rs) for rs in groups.values())
-    fig.suptitle(f"distributions over {len(rows)} random samples" if len(groups) == 1 else
-                 f"distributions over {per} random samples at each of {len(groups)} grid points", fontsize=11)
+    fig.suptitle(f"distributions over {_samples(len(rows))}" if len(groups) == 1 else
+                 f"distributions over {_samples(per)} at each of {len(groups)} grid points", fontsize=11)
     return fig
+
+
+def _samples(n: int) -> str:
+    return f"{n} random sample{'' if n == 1 else 's'}"
 
 
 def _group_label(group: tuple, grid: Sequence[str]) -> str:

@@ -69,6 +69,7 @@ def test_histogram_counts_and_ecdf_are_the_samples():
 
 def test_a_single_sample_is_a_visible_bar_and_an_ecdf_rise_on_every_panel():
     fig = _distributions(_rows({1: np.array([4421.0]), 2: np.array([9873.0])}), 2)
+    assert fig._suptitle.get_text() == "distributions over 1 random sample"
     for _, xlabel in DISTRIBUTION_STATS:
         hist, ecdf = _panels(fig, xlabel)
         lo, hi = hist.get_xlim()
