@@ -58,7 +58,8 @@ def write_life_plots(r: LifeResult, plots_dir: str) -> list[Path]:
             ax.set_title(f"stage {st.index}: {mode}", fontsize=9)
             ax.set_ylabel("σ_H [MPa]" if mode == "pitting" else "σ_F [MPa]")
             ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7, loc="upper right")
+            # beside the axes: inside, up to ten entries (a planetary stage's) covered the S–N curves past the knee
+            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
         axes[-1, 0].set_xlabel("load cycles")
         paths.append(_save(fig, out_dir / name))
     return paths

@@ -123,3 +123,8 @@ def test_a_planetarys_bending_figure_shows_the_planet_root_over_both_meshes(tmp_
     assert list(y[1:]) == pytest.approx([b.stress_MPa for b in ranked])
     assert _line(ax, f"{label} S–N")[1].size > 0
     assert not [ln for ln in figs["pitting"].axes[0].get_lines() if ln.get_label().startswith(label)]
+    for fig in figs.values():  # the legend (ten entries) beside the axes, covering none of the curves
+        fig.canvas.draw()
+        for a in fig.axes:
+            legend = a.get_legend().get_window_extent()
+            assert not legend.overlaps(a.get_window_extent()) and legend.x1 <= fig.bbox.x1 + 0.5
