@@ -348,6 +348,9 @@ def write_figures(write, plots_dir: str, what: str) -> bool:
 def check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
     """As for report: no sweep figure may replace the input or the -o file."""
     names = ["campbell.png", "distributions.png"]
-    names += [f"response_{v.split('=', 1)[0].strip().replace('.', '_')}.png" for v in vary]
+    if vary:  # the sweep's (modes has none; the figure module imports the sweep's layers)
+        from gearcli.io.sweep_plots import response_name  # lazy: start-up time of --help
+
+        names += [response_name(v.split("=", 1)[0].strip()) for v in vary]
     check_plots_dir(plots_dir, names, target)
 

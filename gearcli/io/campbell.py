@@ -103,9 +103,11 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
         if c.crossing.excitation not in names:
             names.append(c.crossing.excitation)
     for c, names in points.values():
-        ax.annotate(f"{', '.join(names)} × mode {c.mode}",
-                    (_speed(units, c.crossing.input_speed_rpm or 0.0), c.frequency_Hz),
-                    xytext=(6, -12), textcoords="offset points", fontsize=7.5, color="darkred", zorder=8)
+        x = _speed(units, c.crossing.input_speed_rpm or 0.0)
+        right = x > 0.5 * top_speed  # a label right of a crossing in the right half ran out of the axes on to the
+        ax.annotate(f"{', '.join(names)} × mode {c.mode}", (x, c.frequency_Hz),  # legend: it ends at the crossing
+                    xytext=(-6 if right else 6, -12), textcoords="offset points", ha="right" if right else "left",
+                    fontsize=7.5, color="darkred", zorder=8)
     if swept:
         xs = [_speed(units, v) for v in swept]
         ax.plot(xs, [bottom if log else 0.0] * len(xs), "|", color="tab:purple", ms=10, clip_on=False,

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from gearcli.errors import GearcliError
 from gearcli.io import campbell as campbell_io
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
@@ -24,6 +25,7 @@ from gearcli.io.units import OutputUnits
 from gearcli.sweep.columns import Row
 from gearcli.sweep.modes import SweepCampbell
 from gearcli.sweep.session import Session
+from gearcli.sweep.spec import canonical_key
 
 COLOURS = {"up": "tab:blue", "down": "tab:red", "none": "tab:green"}
 MARKERS = {"up": "^", "down": "v", "none": "."}
@@ -70,16 +72,28 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     paths: list[Path] = []
     figs = []
     for axis in session.spec.axes:
-        figs.append((f"response_{axis.key.replace('.', '_')}.png", _response(ok, axis.column, session.spec, n_stages)))
+        figs.append((response_name(axis.key), _response(ok, axis.column, session.spec, n_stages)))
     if campbell is not None:
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
         figs.append(("distributions.png", _distributions(ok, n_stages, [a.column for a in session.spec.axes])))
-    out.mkdir(parents=True, exist_ok=True)
+    figs = [(name, fig) for name, fig in figs if fig is not None]
+    if figs:  # a sweep whose every point failed has nothing to draw: no empty directory either
+        out.mkdir(parents=True, exist_ok=True)
     for name, fig in figs:
-        if fig is not None:
-            paths.append(_save(fig, out / name))
+        paths.append(_save(fig, out / name))
     return paths
+
+
+def response_name(key: str) -> str:
+    """The response figure's file of a varied key in either spelling: ``stage[0].backlash_mm`` and
+    ``stage.0.backlash_mm`` are ``response_stage_0_backlash_mm.png`` (``--plots``' check before the sweep named
+    the first ``response_stage[0]_backlash_mm.png``, not the file written)."""
+    try:
+        key = canonical_key(key)
+    except GearcliError:  # a malformed key: --vary's own check names it
+        pass
+    return f"response_{key.replace('.', '_')}.png"
 
 
 def _groups(rows: Sequence[dict], key: str, keys: Sequence[str]) -> dict[tuple, list[dict]]:
@@ -218,15 +232,23 @@ def _campbell(campbell: SweepCampbell):
                                        swept=list(campbell.swept_rpm))
 
 
-def _bins(x: np.ndarray) -> dict:
+def _bins(x: np.ndarray, panel: float = 0.0) -> dict:
     """The histogram's bins: up to 30, at least 5; one bar around a value every sample shares to rounding (an
-    equilibrium's dynamic factor: 1 to the last bits, which no finite bins can split)."""
+    equilibrium's dynamic factor: 1 to the last bits, which no finite bins can split; a single sample), 4 % of
+    the ``panel``'s span of values wide where the other curves give it one: 2e-6 of the value, on a panel that
+    spans two stages' forces (4000 N to 10000 N), was a bar no pixel wide, an empty histogram."""
     width = float(x[-1] - x[0])
     scale = max(abs(float(x[0])), abs(float(x[-1])), 1e-300)
     if width <= 1e-9 * scale:
-        half = 1e-6 * scale
+        half = max(1e-6 * scale, 0.02 * panel)
         return {"bins": 1, "range": (float(x[0]) - half, float(x[-1]) + half)}
     return {"bins": min(30, max(5, x.size // 5))}
+
+
+def _ecdf(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The empirical CDF of the sorted ``x`` as a post-step line: 0 below the first sample, i/n from the i-th on.
+    It starts with the rise at the first sample (from 0 to 1/n), without which a single sample drew no line."""
+    return np.concatenate([x[:1], x]), np.arange(0, x.size + 1) / x.size
 
 
 def _pinned_bar(x: np.ndarray, limits: tuple[float, float]) -> dict:
@@ -253,15 +275,18 @@ def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()
         # a statistic every sample shares to roundoff (an unexcited scene's std 0 and dynamic factor 1) is one bar
         # at its constant on an axis of ±5 % of its scale, as the response plot draws it, not its last bits
         pinned = _roundoff_limits(rows, [f"stage{k}_{c}" for k in range(1, n_stages + 1)])
+        panel = np.array([_num(r.get(f"stage{k}_{c}")) for r in rows for k in range(1, n_stages + 1)])
+        panel = panel[np.isfinite(panel)]
+        span = float(np.ptp(panel)) if panel.size else 0.0
         for g, k in curves:
             x = np.array([_num(r.get(f"stage{k}_{c}")) for r in groups[g]])
             x = np.sort(x[np.isfinite(x)])
             if not x.size:
                 continue
-            bins = _bins(x) if pinned is None else _pinned_bar(x, pinned)
+            bins = _bins(x, span) if pinned is None else _pinned_bar(x, pinned)
             label = ", ".join(p for p in (f"stage {k}" if n_stages > 1 or not labels[g] else "", labels[g]) if p)
             axes[i][0].hist(x, **bins, alpha=0.5, color=colours[(g, k)], label=label)
-            axes[i][1].step(x, np.arange(1, x.size + 1) / x.size, where="post", color=colours[(g, k)], label=label)
+            axes[i][1].step(*_ecdf(x), where="post", color=colours[(g, k)], label=label)
         axes[i][0].set_xlabel(title)
         axes[i][0].set_ylabel("count")
         axes[i][1].set_xlabel(title)
@@ -277,9 +302,13 @@ def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()
     else:
         axes[0][0].legend(fontsize=7)
     per = max(len(rs) for rs in groups.values())
-    fig.suptitle(f"distributions over {len(rows)} random samples" if len(groups) == 1 else
-                 f"distributions over {per} random samples at each of {len(groups)} grid points", fontsize=11)
+    fig.suptitle(f"distributions over {_samples(len(rows))}" if len(groups) == 1 else
+                 f"distributions over {_samples(per)} at each of {len(groups)} grid points", fontsize=11)
     return fig
+
+
+def _samples(n: int) -> str:
+    return f"{n} random sample{'' if n == 1 else 's'}"
 
 
 def _group_label(group: tuple, grid: Sequence[str]) -> str:

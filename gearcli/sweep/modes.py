@@ -63,6 +63,13 @@ def _speed_point(key: str, value: JsonScalar) -> str:
     return f"{key}={_number(value)!r}"
 
 
+def _input_rpm(design: DesignResult) -> float:
+    """The input member's speed: the drive's, not the first stage's pinion's (a planetary first stage's "pinion" is
+    its sun, whose speed there is the mesh's, relative to the carrier: 1125 rpm of a sun driven at 1500 rpm, 900 rpm
+    of a carrier's 300; the Campbell diagram marked the swept speeds there and ran its axis to them)."""
+    return design.input_speed_deg_s / 6.0
+
+
 def campbell(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: CaseDesigner,
              fixed: Sequence[str] = ()) -> list[CampbellPoint]:
     """Natural and mesh frequencies at each swept input speed that designs (the other keys at ``fixed``
@@ -74,7 +81,7 @@ def campbell(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: 
         except GearcliError:  # a speed whose row failed (0 rpm, beyond the bounds): no modes there
             continue
         mesh = tuple(st.pinion.teeth * st.pinion.speed_rpm / 60.0 for st in design.stages)
-        out.append(CampbellPoint(design.stages[0].pinion.speed_rpm, natural_frequencies_Hz(cfg, design), mesh, v))
+        out.append(CampbellPoint(_input_rpm(design), natural_frequencies_Hz(cfg, design), mesh, v))
     return out
 
 
@@ -89,7 +96,7 @@ def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], desig
         return None
     cfg, design = design_case(scene, tuple(fixed))
     lay = Layout.of(spec_from_design(cfg, design))
-    nominal = design.stages[0].pinion.speed_rpm
+    nominal = _input_rpm(design)
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
                          max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
     units = units_of(design_case(scene, (*fixed, _speed_point(key, points[0].value))).cfg)  # the swept key's unit
