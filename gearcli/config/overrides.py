@@ -73,6 +73,16 @@ def parse_value(text: str) -> Any:
     return parsed["v"] if list(parsed) == ["v"] else text
 
 
+def toml_error(text: str) -> str | None:
+    """Why ``text`` is no TOML value (tomllib's reason, its place counted in ``text``), or None if it is one."""
+    try:
+        tomllib.loads("v = " + text)
+    except (ValueError, RecursionError) as exc:
+        where = lambda m: f"at character {int(m.group(1)) - 4} of the value"  # noqa: E731 - "v = " comes first
+        return re.sub(r"at line 1, column (\d+)", where, str(exc)).replace("end of document", "the end of the value")
+    return None
+
+
 def split_key(key: str) -> list[tuple[str, bool]]:
     """The key's segments, each with whether it was quoted: ``materials."4140".density_kg_m3`` (TOML's quoted
     key) names the material 4140, never an index, and may hold dots."""
@@ -235,6 +245,7 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
     last = _as_key(tp, ov.path[-1])
     path.append(last)
     leaf_tp = _step(ov, node, tp, last, len(ov.path) - 1)[0]  # checks the last key exists in the schema
+    _no_broken_array_or_table(ov, leaf_tp)
     if isinstance(node, dict):
         for group in EXCLUSIVE.get(tp, ()):
             if last in group:
@@ -244,6 +255,21 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
             _drop_other_starting_parameters(node, ov.value)
     node[last] = _as_text(leaf_tp, ov)
     return tuple(path[:created]) if created is not None else tuple(path)
+
+
+def _no_broken_array_or_table(ov: Override, leaf_tp: Any) -> None:
+    """A value written as an array or an inline table (``[`` or ``{`` first) that TOML cannot read, on a key that
+    holds one: TOML's reason, not the schema's "must be an array, got \"[-0.1 -0.2]\"" of the text taken as a word
+    (a bare word stays a string where the key takes one: ``--set title=[draft]``)."""
+    text = ov.value if isinstance(ov.value, str) else ""
+    if text[:1] not in ("[", "{") or not (is_model(leaf_tp) or container(leaf_tp)):
+        return
+    reason = toml_error(text)
+    if reason is not None:
+        what, form = (("an array", "[a, b, ...]") if text[0] == "[" else
+                      ("an inline table", "{ key = value, ... }, each key once"))
+        raise _fail(ov, f"{shorten(repr(text))} is not {what} TOML can read: {reason}; TOML writes {what} "
+                        f"{form}, with commas (quote the whole --set for the shell)")
 
 
 def _drop_other_starting_parameters(node: dict, method: Any) -> None:

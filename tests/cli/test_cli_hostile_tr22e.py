@@ -1,0 +1,138 @@
+"""Trial tr22e: hostile input on the fourth round's keys and files (tooth-thickness allowances, ISO 281/76 bearing
+fields, duty sets, `--series` histories, `--set` of arrays and tables, sweeps over them). Each test failed on the
+code the trial ran against (58e60ca) and passes now; the numbers are checked against hand formulas, not against
+gearcli's own output.
+
+In-process (click's CliRunner): every finding is about what one command does with its arguments and files.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from gearcli.cli import cli
+from gearcli.sweep import worker
+
+CONFIGS = Path(__file__).resolve().parents[2] / "configs"
+ALLOWANCES = CONFIGS / "wind_turbine_allowances.toml"  # z 24/95, m_n 14, alpha_n 20°, x 0.48/0.6691
+DUTY = CONFIGS / "mixer_duty.toml"
+HISTORY = "time_s,torque_Nm,speed_rpm\n0,300000,600\n3600,500000,600\n7200,0,600\n"
+
+
+def run(*args):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+def assert_usage_error(res, *needles: str) -> None:
+    """Exit 2, one clean message (no traceback) holding every needle."""
+    assert res.exit_code == 2, (res.exit_code, res.stderr, res.stdout[-500:])
+    assert "Traceback" not in res.stderr and "internal error" not in res.stderr, res.stderr
+    for n in needles:
+        assert n in res.stderr, (n, res.stderr)
+
+
+# --------------------------------------------------------------- sweep: a list or a table varied as a whole
+@pytest.mark.parametrize("vary, needles", [
+    # reals on a list were refused as if the key took whole numbers ("takes whole numbers, and -0.3 is one of
+    # its values"); whole values ran every point to a failed row ("must be an array"), exit 1
+    ("stage.0.pinion.tooth_thickness_allowance_mm=-0.3,-0.1",
+     ["stage.0.pinion.tooth_thickness_allowance_mm is a list",
+      "--vary 'stage.0.pinion.tooth_thickness_allowance_mm.0=v1,v2,...'"]),
+    ("stage.0.pinion.tooth_thickness_allowance_mm=0,1", ["is a list", ".0=v1,v2,..."]),
+    ("stage.0.center_distance_allowance_mm=-0.05:0.05:3", ["stage.0.center_distance_allowance_mm is a list"]),
+    ("contact=1,2", ["contact is a table", "--vary 'contact.KEY=v1,v2,...'"]),
+    ("lubricant=1.5,2.5", ["lubricant is a table"]),
+    ("stage.0.mesh=1,2", ["stage.0.mesh is a table"]),
+])
+def test_sweep_refuses_to_vary_a_whole_list_or_table_before_any_point(tmp_path, monkeypatch, vary, needles):
+    def no_point(*a, **k):
+        raise AssertionError("a point ran")
+
+    monkeypatch.setattr(worker, "_evaluate", no_point)
+    out = tmp_path / "s.csv"
+    res = run("sweep", ALLOWANCES, "--vary", vary, "--jobs", "1", "-o", out)
+    assert_usage_error(res, "--vary", *needles)
+    assert "whole numbers" not in res.stderr
+    assert not out.exists()
+
+
+def test_sweep_still_varies_a_list_entry_by_index(tmp_path, monkeypatch):
+    """The entry the message names is accepted: the sweep gets past its checks to its points."""
+    ran = []
+
+    def evaluate(evaluator, scene, point, prev, check=False):
+        ran.append(point)
+        raise KeyboardInterrupt  # stop at the first point: the checks before it are what this test is about
+
+    monkeypatch.setattr(worker, "_evaluate", evaluate)
+    res = run("sweep", ALLOWANCES, "--vary", "stage.0.pinion.tooth_thickness_allowance_mm.1=-0.3,-0.2",
+              "--jobs", "1", "-o", tmp_path / "s.csv")
+    assert ran, (res.exit_code, res.stderr)
+
+
+# --------------------------------------------------------------- life --series: a row longer than the header
+def _history(tmp_path: Path, text: str) -> Path:
+    p = tmp_path / "h.csv"
+    p.write_text(text)
+    return p
+
+
+def test_a_decimal_comma_history_is_refused_not_misread(tmp_path):
+    """0.5 s, 1234.5 N·m, 1480.2 rpm written with decimal commas: the csv module splits each number in two, and the
+    first three cells (0, 5, 1234) were read as the row: 5 N·m at 1234 rpm, in range, silently wrong."""
+    history = _history(tmp_path, "time_s,torque_Nm,speed_rpm\n0,5,1234,5,1480,2\n3600,5,1500,0,1480,2\n"
+                                 "7200,0,600\n")
+    out = tmp_path / "life.json"
+    res = run("life", DUTY, "--static", "--series", history, "-o", out)
+    assert_usage_error(res, str(history), "row 2", "6 cells, more than the header's 3", "decimal comma")
+    assert not out.exists()
+
+
+def test_a_row_with_a_stray_cell_is_refused_and_trailing_empty_cells_are_not(tmp_path):
+    res = run("life", DUTY, "--static", "--series", _history(tmp_path, HISTORY.replace("600\n3600", "600,7\n3600")))
+    assert_usage_error(res, "row 2", "4 cells")
+    # a spreadsheet's trailing separators leave empty cells: the row is the header's three numbers, whose
+    # damage is the history's without them (one class per level: 1 h at 300 kN·m, 1 h at 500 kN·m)
+    clean = run("life", DUTY, "--static", "--series", _history(tmp_path, HISTORY), "--format", "json")
+    trailing = run("life", DUTY, "--static", "--series",
+                   _history(tmp_path, HISTORY.replace("600\n", "600,,\n")), "--format", "json")
+    assert clean.exit_code == 0 and trailing.exit_code == 0, trailing.stderr
+    damage = [json.loads(r.stdout)["life"]["stages"][0]["pinion"]["pitting"]["damage"] for r in (clean, trailing)]
+    assert damage[0] == damage[1] > 0.0
+
+
+# --------------------------------------------------------------- --set: an array or a table TOML cannot read
+@pytest.mark.parametrize("setting, needles", [
+    # the text fell back to a word: "must be an array, got "[-0.1 -0.2]"" said nothing of the missing comma
+    ("stage.0.pinion.tooth_thickness_allowance_mm=[-0.13 -0.25]", ["is not an array TOML can read",
+                                                                  "Unclosed array (at character 8 of the value)"]),
+    ("stage.0.pinion.tooth_thickness_allowance_mm=[-0.13, -0.25", ["Unclosed array (at the end of the value)"]),
+    ("stage.0.pinion.tip_diameter_allowance_mm=[0; -0.1]", ["is not an array TOML can read"]),
+    ("lubricant={viscosity_40C_mm2_s: 220}", ["is not an inline table TOML can read", "Expected '='"]),
+    ("stage.0.mesh={damping_ratio=0.1, damping_ratio=0.2}", ["Duplicate inline table key 'damping_ratio'"]),
+    ("load.fluctuation=[{amplitude_percent=10 frequency_Hz=5}]", ["is not an array TOML can read"]),
+])
+@pytest.mark.parametrize("command", [["design"], ["life", "--static"], ["modes"]])
+def test_set_of_an_unreadable_array_or_table_says_why(tmp_path, setting, needles, command):
+    out = tmp_path / "out.json"
+    res = run(*command, ALLOWANCES, "--set", setting, "-o", out)
+    assert_usage_error(res, "--set", setting.partition("=")[0], *needles)
+    assert "must be an array, got" not in res.stderr and "must be a table, got" not in res.stderr
+    assert not out.exists()
+
+
+def test_set_of_a_readable_array_sets_the_allowance_the_hand_formula_reads():
+    """A valid array still applies: x_E = x + A_sn / (2 m_n tan alpha_n) (ISO 21771), here 0.48 + A/(28 tan 20°);
+    and a bracketed word stays a word where the key takes text."""
+    res = run("design", ALLOWANCES, "--set", "stage.0.pinion.tooth_thickness_allowance_mm=[-0.13, -0.25]",
+              "--set", "title=[draft] allowances", "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    d = json.loads(res.stdout)
+    x_e = [0.48 + a / (2 * 14 * math.tan(math.radians(20))) for a in (-0.13, -0.25)]
+    assert d["stages"][0]["pinion"]["generating_profile_shift"] == pytest.approx(x_e, rel=1e-12)
+    assert d["title"] == "[draft] allowances"
