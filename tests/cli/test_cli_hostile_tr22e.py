@@ -136,3 +136,17 @@ def test_set_of_a_readable_array_sets_the_allowance_the_hand_formula_reads():
     x_e = [0.48 + a / (2 * 14 * math.tan(math.radians(20))) for a in (-0.13, -0.25)]
     assert d["stages"][0]["pinion"]["generating_profile_shift"] == pytest.approx(x_e, rel=1e-12)
     assert d["title"] == "[draft] allowances"
+
+
+# --------------------------------------------------------------- --set into a duty point's set
+MOTOR_DUTY = CONFIGS / "motor_duty_starts.toml"
+
+
+def test_set_into_a_duty_points_set_says_to_quote_the_dotted_key():
+    """A point's ``set`` holds design-file keys written as --set writes them: ``duty.0.set.contact.exponent`` was
+    "duty[0].set.contact is a value, not a table"; the message now shows the quoted key, which works."""
+    res = run("life", MOTOR_DUTY, "--static", "--set", "duty.0.set.contact.exponent=2")
+    assert_usage_error(res, "duty[0].set takes a key of the design file",
+                       "--set 'duty.0.set.\"contact.exponent\"=VALUE'")
+    ok = run("life", MOTOR_DUTY, "--static", "--set", 'duty.0.set."contact.exponent"=2', "--format", "json")
+    assert ok.exit_code == 0, ok.stderr
