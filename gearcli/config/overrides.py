@@ -211,9 +211,9 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
     if last:
         return child_tp, None
     if container(tp) == "dict" and not (is_model(child_tp) or container(child_tp)):  # a [[duty]] set: dotted keys
-        rest = ".".join(map(str, ov.path[depth:]))
-        raise _fail(ov, f"{where} takes a key of the design file as --set writes it, {rest} here: quote it as one "
-                        f"key, --set '{'.'.join(map(str, ov.path[:depth]))}.\"{rest}\"=VALUE'")
+        key = ".".join(map(str, ov.path[depth:]))
+        raise _fail(ov, f"{where} takes a key of the design file as --set writes it, {key} here: quote it as one "
+                        f"key, --set '{'.'.join(map(str, ov.path[:depth]))}.\"{key}\"=VALUE'")
     if not (is_model(child_tp) or container(child_tp)):
         raise _fail(ov, f"{format_path(ov.path[: depth + 1])} is a value, not a table")
     if seg not in node:
