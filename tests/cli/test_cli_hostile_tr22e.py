@@ -150,3 +150,47 @@ def test_set_into_a_duty_points_set_says_to_quote_the_dotted_key():
                        "--set 'duty.0.set.\"contact.exponent\"=VALUE'")
     ok = run("life", MOTOR_DUTY, "--static", "--set", 'duty.0.set."contact.exponent"=2', "--format", "json")
     assert ok.exit_code == 0, ok.stderr
+
+
+# --------------------------------------------------------------- IMPACT damping keys a damping_ratio overrides
+def _modal_damping(*args) -> list[tuple[float, float]]:
+    res = run("modes", *args, "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    boundaries = json.loads(res.stdout)["boundaries"]
+    first = boundaries[0] if isinstance(boundaries, list) else next(iter(boundaries.values()))
+    modes = first["modes"] if isinstance(first, dict) else first
+    return [(m["frequency_Hz"], m["damping_ratio"]) for m in modes]
+
+
+def _ignored(*args) -> list[dict]:
+    res = run("design", *args, "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    return [w for w in json.loads(res.stdout)["warnings"] if w.get("check") == "damping_ignored"]
+
+
+@pytest.mark.parametrize("setting, stage, table", [
+    ("stage.1.mesh.damping_Ns_mm=10", 2, "stage 2: [stage.mesh] damping_Ns_mm = 10 has no effect"),
+    ("contact.full_damping_penetration_mm=0.3", None, "[contact] full_damping_penetration_mm = 0.3 has no effect"),
+])
+def test_an_impact_key_beside_a_damping_ratio_is_said_to_have_no_effect(setting, stage, table):
+    """The file's [contact] gives damping_ratio = 0.05, which damps every mesh viscously (DESIGN section 13): an
+    IMPACT key beside it changed nothing, without a word. Now a warning names the key, the ratio and where it was
+    given; and the modes are indeed those of the file without the key."""
+    found = _ignored(MOTOR_DUTY, "--set", setting)
+    assert len(found) == 1 and table in found[0]["message"], found
+    assert found[0]["damping_ratio"] == 0.05 and found[0]["damping_ratio_given_in"] == "[contact]"
+    assert found[0].get("stage") == stage
+    assert _modal_damping(MOTOR_DUTY, "--set", setting) == _modal_damping(MOTOR_DUTY)
+
+
+def test_an_impact_key_where_no_damping_ratio_is_given_takes_effect_without_the_note(tmp_path):
+    """Without damping_ratio in [contact] (the 0.05 default), a stage's IMPACT key makes that mesh IMPACT-damped:
+    no note, and its mesh mode's damping changes (the other modes barely)."""
+    text = MOTOR_DUTY.read_text()
+    assert "\ndamping_ratio = 0.05\n" in text
+    free = tmp_path / "no_ratio.toml"
+    free.write_text(text.replace("\ndamping_ratio = 0.05\n", "\n", 1))
+    assert _ignored(free, "--set", "stage.1.mesh.damping_Ns_mm=10") == []
+    viscous, ramp = _modal_damping(free), _modal_damping(free, "--set", "stage.1.mesh.damping_Ns_mm=10")
+    assert [f for f, _ in viscous] == pytest.approx([f for f, _ in ramp], rel=1e-6)  # damping, not stiffness
+    assert any(abs(a - b) > 0.01 for (_, a), (_, b) in zip(viscous, ramp, strict=True))
