@@ -26,6 +26,7 @@ from typing import Any, Union, get_args, get_origin
 from pydantic import BaseModel
 
 from gearcli.config.drive import START_PARAMETERS
+from gearcli.config.duty import DUTY_TORQUE_KEYS, Duty
 from gearcli.config.keys import (
     Segment,
     container,
@@ -37,7 +38,7 @@ from gearcli.config.keys import (
     unwrap,
 )
 from gearcli.config.messages import got
-from gearcli.config.schema import DesignFile, Input, Load, Target
+from gearcli.config.schema import DesignFile, Input, Load, Lubricant, Rating, Target
 from gearcli.core import plugins
 from gearcli.core.records import record
 from gearcli.core.text import shorten
@@ -46,11 +47,15 @@ from gearcli.stages import kinds
 
 SOURCE = "--set"
 
-#: Keys of which a table holds exactly one (or at most one): setting one replaces its siblings.
+#: Keys of which a table holds exactly one (or at most one): setting one replaces its siblings, so a --set can
+#: override the file's choice (a duty point's power for its torque, K_gamma for the file's load_sharing_factor).
 EXCLUSIVE: dict[type[BaseModel], tuple[tuple[str, ...], ...]] = {
     Input: (("speed_deg_s", "speed_rpm", "speed_rad_s"), ("torque_Nm", "torque_Nmm", "power_kW")),
-    Load: (("torque_Nmm", "torque_Nm", "power_kW", "torque_speed"),),  # a torque-speed table is the torque too  # a torque-speed table is the torque too
+    Load: (("torque_Nmm", "torque_Nm", "power_kW", "torque_speed"),),  # a torque-speed table is the torque too
     Target: (("output_speed_rpm", "output_speed_deg_s"),),
+    Duty: (DUTY_TORQUE_KEYS,),
+    Lubricant: (("contamination", "e_C"),),  # a cleanliness level, or its factor
+    Rating: (("load_sharing_factor", "K_gamma"),),  # one K_gamma under two names
 }
 
 

@@ -194,3 +194,50 @@ def test_an_impact_key_where_no_damping_ratio_is_given_takes_effect_without_the_
     viscous, ramp = _modal_damping(free), _modal_damping(free, "--set", "stage.1.mesh.damping_Ns_mm=10")
     assert [f for f, _ in viscous] == pytest.approx([f for f, _ in ramp], rel=1e-6)  # damping, not stiffness
     assert any(abs(a - b) > 0.01 for (_, a), (_, b) in zip(viscous, ramp, strict=True))
+
+
+# --------------------------------------------------------------- --set of one key of a pair the file chose the other of
+def _json(*args) -> dict:
+    res = run(*args, "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    return json.loads(res.stdout)
+
+
+def test_set_k_gamma_replaces_the_files_load_sharing_factor():
+    """K_gamma and load_sharing_factor are one factor under two names, one of them per file: --set of the other
+    name was exit 2 ("give one of") and no --set could remove the file's, so K_gamma could not be overridden. Now
+    the --set replaces it, and sigma_H = sigma_H0 sqrt(K_A K_gamma K_v K_Hbeta K_Halpha) (ISO 6336-2) carries 1.3."""
+    d = _json("design", CONFIGS / "planetary_stage.toml", "--set", "rating.K_gamma=1.3")  # the file: 1.1
+    for mesh in d["stages"][0]["meshes"]:
+        r = mesh["rating"]
+        assert r["K_gamma"] == 1.3
+        factors = r["K_A"] * 1.3 * r["K_v"] * r["K_Hbeta"] * r["K_Halpha"]
+        assert r["sigma_H_MPa"] == pytest.approx(r["sigma_H0_MPa"] * math.sqrt(factors), rel=1e-12)
+
+
+def test_set_a_duty_points_power_replaces_its_torque():
+    """A point's torque_Nm in the file, its power_kW by --set (exit 2 before: "give exactly one of"): the output
+    torque P / omega_out at the output speed 1480 rpm / ((74/19)(92/18))."""
+    d = _json("life", MOTOR_DUTY, "--static", "--set", "duty.2.power_kW=50")
+    n_out = 1480.0 / ((74 / 19) * (92 / 18))
+    assert d["life"]["points"][2]["torque_Nm"] == pytest.approx(50e3 / (n_out * math.pi / 30), rel=1e-12)
+
+
+def test_set_e_c_replaces_the_files_cleanliness_level_in_iso_281():
+    """[lubricant] contamination in the file, e_C by --set (exit 2 before): a_ISO of the ball bearing by ISO 281
+    eq. (10) at that e_C, kappa from ASTM D341 (220 / 19 mm²/s at 40 / 100 °C, 70 °C) and nu_1 = 4500 n^-0.5 d_m^-0.5."""
+    iso = ["--set", "bearing.0.fatigue_load_limit_kN=4.5", "--set", "bearing.0.pitch_diameter_mm=60",
+           "--set", "lubricant.temperature_C=70", "--set", "lubricant.viscosity_100C_mm2_s=19",
+           "--set", 'lubricant.contamination="normal"']
+    b = _json("design", MOTOR_DUTY, *iso, "--set", "lubricant.e_C=0.3")["bearings"][0]
+
+    def z(nu):
+        return math.log10(math.log10(nu + 0.7))
+
+    slope = (z(19.0) - z(220.0)) / (math.log10(373.15) - math.log10(313.15))
+    nu = 10 ** (10 ** (z(220.0) + slope * (math.log10(343.15) - math.log10(313.15)))) - 0.7
+    kappa = nu / (4500.0 * 1480.0 ** -0.5 * 60.0 ** -0.5)
+    assert 1.0 < kappa < 4.0 and b["kappa"] == pytest.approx(kappa, rel=1e-9)
+    x = 0.3 * 4500.0 / b["equivalent_load_N"]
+    a_iso = 0.1 * (1 - (2.5671 - 1.9987 / kappa ** 0.071739) ** 0.83 * x ** (1 / 3)) ** -9.3
+    assert b["a_ISO"] == pytest.approx(min(a_iso, 50.0), rel=1e-9)
