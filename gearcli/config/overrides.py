@@ -37,6 +37,7 @@ from gearcli.config.keys import (
     unknown_key_hint,
     unwrap,
 )
+from gearcli.config.machine import NAMEPLATE, Motor
 from gearcli.config.messages import got
 from gearcli.config.schema import DesignFile, Input, Load, Lubricant, Rating, Target
 from gearcli.core import plugins
@@ -262,6 +263,9 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
                     node.pop(sibling, None)
         if tp is Input and last == "starting":
             _drop_other_starting_parameters(node, ov.value)
+        if tp is Motor:  # a motor is its nameplate or its torque-speed table: the one set replaces the other
+            for key in NAMEPLATE if last == "torque_speed" else ("torque_speed",) if last in NAMEPLATE else ():
+                node.pop(key, None)
     node[last] = _as_text(leaf_tp, ov)
     return tuple(path[:created]) if created is not None else tuple(path)
 

@@ -241,3 +241,17 @@ def test_set_e_c_replaces_the_files_cleanliness_level_in_iso_281():
     x = 0.3 * 4500.0 / b["equivalent_load_N"]
     a_iso = 0.1 * (1 - (2.5671 - 1.9987 / kappa ** 0.071739) ** 0.83 * x ** (1 / 3)) ** -9.3
     assert b["a_ISO"] == pytest.approx(min(a_iso, 50.0), rel=1e-9)
+
+
+def test_set_a_motor_table_replaces_the_files_nameplate():
+    """A nameplate motor in the file, a torque-speed table by --set (exit 2 before: "the nameplate or torque_speed,
+    not both"): the table runs where its line from (1400 rpm, 700 N·m) to (1500 rpm, 0) meets the load reflected to
+    the motor, 6860 N·m / ((74/19)(92/18) 0.985²), which design's motor_speed_mismatch reports."""
+    d = _json("design", MOTOR_DUTY, "--set", "input.motor.torque_speed=[[0, 800], [1400, 700], [1500, 0]]")
+    reflected = 6860.0 / ((74 / 19) * (92 / 18) * 0.985 ** 2)
+    mismatch = [w for w in d["warnings"] if w.get("check") == "motor_speed_mismatch"]
+    assert len(mismatch) == 1
+    assert mismatch[0]["operating_speed_rpm"] == pytest.approx(1400.0 + (700.0 - reflected) / 700.0 * 100.0, rel=1e-9)
+    back = run("design", MOTOR_DUTY, "--set", "input.motor.torque_speed=[[0, 800], [1500, 0]]",
+               "--set", "input.motor.rated_power_kW=55")  # a nameplate key replaces the table: the other four missing
+    assert_usage_error(back, "missing rated_speed_rpm")
