@@ -255,3 +255,30 @@ def test_set_a_motor_table_replaces_the_files_nameplate():
     back = run("design", MOTOR_DUTY, "--set", "input.motor.torque_speed=[[0, 800], [1500, 0]]",
                "--set", "input.motor.rated_power_kW=55")  # a nameplate key replaces the table: the other four missing
     assert_usage_error(back, "missing rated_speed_rpm")
+
+
+# --------------------------------------------------------------- a [[duty]] point's set, checked by every command
+@pytest.mark.parametrize("point_set, key, needle", [
+    ('{ "contact.exponnt" = 2 }', "duty[0].set.contact.exponnt", "unknown key 'exponnt'"),
+    ('{ "input.motor.rated_power_kW" = -5 }', "duty[0].set.input.motor.rated_power_kW", "must be ≥ 0.001"),
+    ('{ "load.fluctuation.0.amplitude_percent" = 10 }', "duty[0].set.load.fluctuation.0.amplitude_percent",
+     "index 0 is out of range"),
+])
+@pytest.mark.parametrize("command", [["design"], ["modes"], ["life", "--static"]])
+def test_a_bad_duty_set_is_exit_2_for_every_command(tmp_path, point_set, key, needle, command):
+    """`life` refused a point's bad set, `design` and `modes` of the same file ran as if it were fine."""
+    path = tmp_path / "duty.toml"
+    path.write_text(MOTOR_DUTY.read_text().replace("starts = 1000 ", f"starts = 1000\nset = {point_set}\n#", 1))
+    out = tmp_path / "out.json"
+    res = run(*command, path, "-o", out)
+    assert_usage_error(res, f"{path}: {key}: {needle}")
+    assert not out.exists()
+
+
+def test_a_good_duty_set_passes_every_command(tmp_path):
+    path = tmp_path / "duty.toml"
+    path.write_text(MOTOR_DUTY.read_text().replace(
+        "starts = 1000 ", 'starts = 1000\nset = { "contact.damping_ratio" = 0.08, "lubricant.temperature_C" = 70 }\n#', 1))
+    for command in (["design"], ["modes"], ["life", "--static"]):
+        res = run(*command, path, "--format", "json")
+        assert res.exit_code == 0, (command, res.stderr)
