@@ -140,24 +140,34 @@ def _named_by_option(exc: ConfigError, spec: SweepSpec, sets: Sequence[str]) -> 
 
 
 def _no_whole_lists_or_tables(spec: SweepSpec, scene: Scene) -> None:
-    """A list (``tooth_thickness_allowance_mm``, ``transmission_error_um``) or a table (``contact``) varied or drawn
-    as a whole would get one number (or word) at every point, which no such key holds: every point would fail (a
-    ``--vary`` of reals was refused as if the key took whole numbers). Refused before any runs, naming the entries
-    or keys to vary instead."""
-    given = [("--vary", a.key, a.column, "=v1,v2,...") for a in spec.axes]
-    given += [("--random", d.key, d.column, f"={d.kind}(...)") for d in spec.randoms]
-    keys = [key for _, key, _, _ in given]
+    """A list (``tooth_thickness_allowance_mm``, ``transmission_error_um``) or a table (``contact``) drawn as a whole,
+    or varied over a value that is no array (no inline table), would get one number (or word) at a point, which no
+    such key holds: that point would fail (a ``--vary`` of reals was refused as if the key took whole numbers).
+    Refused before any runs, naming the entries or keys to vary instead. ``--vary KEY=[1, 0.5],[2, 0.1]`` varies a
+    list over whole arrays."""
+    given: list[tuple[str, str, str, str, tuple | None]] = [
+        ("--vary", a.key, a.column, "=v1,v2,...", a.values) for a in spec.axes]
+    given += [("--random", d.key, d.column, f"={d.kind}(...)", None) for d in spec.randoms]
+    keys = [key for _, key, _, _, _ in given]
     lists = set(list_keys(scene.raw, scene.source, scene.sets, keys))
     tables = set(table_keys(scene.raw, scene.source, scene.sets, keys))
-    for option, key, column, how in given:
-        one, verb = ("draws one number", "draw") if option == "--random" else ("gives each point one value", "vary")
+    for option, key, column, how, values in given:
+        if key not in lists and key not in tables:
+            continue
+        whole = list if key in lists else dict
+        odd = None if values is None else next((v for v in values if not isinstance(v, whole)), None)
+        if values is not None and odd is None:
+            continue  # whole arrays (inline tables), one a point
+        one = "draws one number" if values is None else f"gives a point {odd!r}"
+        verb = "draw" if values is None else "vary"
         if key in lists:
             raise SweepUsageError(f"{column} is a list, and {option} {one}: {verb} its entries by index, "
                                   f"{option} '{column}.0{how}' (the first; .1 the second ...; in a list of tables "
-                                  f"the entry's key: {column}.0.KEY)", source=option)
-        if key in tables:
-            raise SweepUsageError(f"{column} is a table, and {option} {one}: {verb} one of its keys, "
-                                  f"{option} '{column}.KEY{how}'", source=option)
+                                  f"the entry's key: {column}.0.KEY)"
+                                  + ("" if values is None else f", or whole arrays, {option} '{column}=[a, b],[c, d]'"),
+                                  source=option)
+        raise SweepUsageError(f"{column} is a table, and {option} {one}: {verb} one of its keys, "
+                              f"{option} '{column}.KEY{how}'", source=option)
 
 
 def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:

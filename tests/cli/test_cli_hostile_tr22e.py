@@ -61,6 +61,15 @@ def test_sweep_refuses_to_vary_a_whole_list_or_table_before_any_point(tmp_path, 
     assert not out.exists()
 
 
+def test_sweep_refuses_a_number_among_whole_arrays(tmp_path, monkeypatch):
+    """Whole arrays are values a list takes (``--vary KEY=[a, b],[c, d]``); a bare number among them is not."""
+    monkeypatch.setattr(worker, "_evaluate", lambda *a, **k: pytest.fail("a point ran"))
+    res = run("sweep", ALLOWANCES, "--vary", "stage.0.pinion.tooth_thickness_allowance_mm=[-0.1, -0.2],-0.3",
+              "--jobs", "1", "-o", tmp_path / "s.csv")
+    assert_usage_error(res, "is a list, and --vary gives a point -0.3",
+                       "--vary 'stage.0.pinion.tooth_thickness_allowance_mm=[a, b],[c, d]'")
+
+
 def test_sweep_still_varies_a_list_entry_by_index(tmp_path, monkeypatch):
     """The entry the message names is accepted: the sweep gets past its checks to its points."""
     ran = []
