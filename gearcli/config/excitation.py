@@ -24,13 +24,18 @@ _HARMONIC_KEYS = (("transmission_error_um", "transmission_error_phase_deg"),
                   ("stiffness_harmonics", "stiffness_harmonics_phase_deg"))
 
 
-def check_harmonics(law, where: str) -> None:
-    """Phases no more than amplitudes (ValueError naming the key); ``where`` prefixes the key path."""
+def check_harmonics(law, where: str, own: frozenset[str] | set[str] | None = None) -> None:
+    """Phases no more than amplitudes (ValueError naming the key); ``where`` prefixes the key path. ``own``: the keys
+    the table at ``where`` gives itself (a stage's ``[stage.mesh]``), the others named as inherited from
+    ``[contact]``."""
+    def named(key: str) -> str:
+        return key if own is None or key in own else f"{key} (inherited from [contact])"
+
     for amp, phase in _HARMONIC_KEYS:
         a, p = getattr(law, amp), getattr(law, phase)
         if p is not None and len(p) > len(a or []):
-            raise ValueError(f"{where}{phase} has {len(p)} entries for {len(a or [])} harmonics ({amp}): give at "
-                             "most one phase per harmonic")
+            raise ValueError(f"{where}{named(phase)} has {len(p)} entries for {len(a or [])} harmonics "
+                             f"({named(amp)}): give at most one phase per harmonic")
 
 
 def phases_fit(v: list[float] | None, info: ValidationInfo) -> list[float] | None:

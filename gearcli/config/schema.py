@@ -313,7 +313,7 @@ class DesignFile(_Table):
         """A stage's phases against the amplitudes it inherits from [contact]."""
         for k, stage in enumerate(self.stage):
             if stage.mesh is not None:
-                check_harmonics(self.contact_for(k), f"stage[{k}].mesh.")
+                check_harmonics(self.contact_for(k), f"stage[{k}].mesh.", stage.mesh.model_fields_set)
         return self
 
     def pair(self, k: int) -> Stage:

@@ -21,7 +21,7 @@ from gearcli.design import rating_factors as rf
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
 from gearcli.design.rating_internal import planet_ring_safety_diagnostics, rate_planet_ring
-from gearcli.diagnostics import Diagnostic, warning
+from gearcli.diagnostics import LOAD_SHARING, Diagnostic, warning
 from gearcli.rating import register
 from gearcli.rating.dynamic import ring_simulated_k_v, stage_simulated_k_v
 from gearcli.rating.sn import SNCurve
@@ -159,16 +159,27 @@ def simulated_ratings(cfg: DesignFile, design, stages) -> tuple[tuple, list[Diag
         return tuple(stages), []
     pairs = pair_view(cfg)  # a planetary stage is rated as its sun–planet mesh, its most loaded planet's
     out, diags = [], []
+    own_sharing = simulates_sharing(cfg, design.stages)
     for k, sd in enumerate(stages):
-        if not design_kind(design.stages[k]).gear_pair:  # no gear mesh to rate (a belt)
+        stage = design.stages[k]
+        if not design_kind(stage).gear_pair:  # no gear mesh to rate (a belt)
             out.append(sd)
             continue
         k_v = stage_simulated_k_v(sd)
-        shared = _shared(cfg, design.stages[k])
+        if own_sharing and _planets(stage) and pl.load_sharing_of(stage) != 1.0:
+            # the simulated K_v is the most loaded planet's (its position errors' share times its dynamics) over the
+            # mean planet's static force: K_gamma on top of it would count the unequal sharing twice
+            diags.append(warning(LOAD_SHARING, f"stage {k + 1}: [rating] dynamic_factor = \"simulated\" takes the "
+                                 "planets' load sharing from the simulation (stage"
+                                 f"[{k}].planet.position_error_um: K_v {k_v:.4g} is the most loaded planet's); "
+                                 f"[rating] load_sharing_factor = {pl.load_sharing_of(stage):g} is not applied",
+                                 stage=k + 1, load_sharing_factor=pl.load_sharing_of(stage)))
+            stage = pl.without_load_sharing(stage)
+        shared = _shared(cfg, stage)
         rating = iso.rate_stage(pairs, k, shared, simulated_k_v=k_v)
         if _planets(shared):  # ISO's nominal σ_H0, σ_F0; K_gamma among the load factors
             rating = pl.nominal_with_sharing(rating, pl.load_sharing_of(shared))
-        rated = replace(design.stages[k], rating=rating)
+        rated = replace(stage, rating=rating)
         diags += iso.safety_diagnostics(pairs, rated)
         ring = None
         if _planets(rated) and sd.planets:
@@ -214,6 +225,15 @@ def _stiffness_at(cfg: DesignFile, mesh: M, force_ratio: float) -> M:
 
 
 # ------------------------------------------------------------------ a planetary stage's planet–ring mesh
+def simulates_sharing(cfg: DesignFile, stages: Sequence[StageResult]) -> bool:
+    """Whether a run shares its planets' load itself: every stage with planets gives ``planet.position_error_um``
+    (then [rating] K_γ, ISO's allowance for the sharing a model of identical planets does not see, is 1 in a rating
+    from the run: the dynamic life's rule, docs/life.md "Load sharing", and the simulated K_v's)."""
+    sharing = [k for k, st in enumerate(stages) if _planets(st)]
+    return bool(sharing) and all(getattr(cfg.stage[k], "planet").position_error_um is not None  # noqa: B009
+                                 for k in sharing)
+
+
 def _planets(stage: StageResult) -> bool:
     """The stage's kind shares its load among planets (``gearcli.stages``): rated at K_γ, with its planet–ring
     mesh (``rating_internal``)."""

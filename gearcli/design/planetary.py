@@ -454,6 +454,12 @@ def with_load_sharing(stage: StageResult) -> StageResult:
                    gear=replace(stage.gear, torque_Nmm=k * stage.gear.torque_Nmm, torque_Nm=k * stage.gear.torque_Nm))
 
 
+def without_load_sharing(stage: StageResult) -> StageResult:
+    """A planetary stage's design with K_gamma = 1: a run whose planets' position errors share the load itself."""
+    assert stage.planetary is not None  # a planetary stage's result
+    return replace(stage, planetary=replace(stage.planetary, load_sharing_factor=1.0))
+
+
 def nominal_with_sharing(rating: R, k_gamma: float) -> R:
     """A rating made at K_gamma times the mean planet's force, with ISO's nominal stresses: σ_H0 and σ_F0 of the
     nominal (mean planet's) force, K_gamma listed as a load factor (σ_H = σ_H0 √(K_A K_gamma K_v K_Hβ K_Hα) and

@@ -145,7 +145,8 @@ def spectrum_figure(r: Report) -> Figure:
         sp = r.stages[0].spectrum
         axes[-1, 0].set_xlim(0, _spectrum_xmax(r))
         fig.suptitle(f"F_t spectrum over the steady window {sp.window_s[0]:.3g}–{sp.window_s[1]:.3g} s "
-                     f"(Hann, detrended; resolution {sp.resolution_Hz:.2g} Hz)", fontsize=11)
+                     f"({'whole periods, less the mean' if sp.whole_periods else 'Hann, detrended'}; "
+                     f"resolution {sp.resolution_Hz:.2g} Hz)", fontsize=11)
     axes[-1, 0].set_xlabel("frequency [Hz]")
     return fig
 

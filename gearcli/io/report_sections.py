@@ -207,7 +207,9 @@ def spectrum_section(r: Report) -> Section:
     notes = []
     if r.stages:
         sp = r.stages[0].spectrum
-        notes.append(f"FFT of the detrended F_t over {sp.window_s[0]:.4g}–{sp.window_s[1]:.4g} s with a Hann window: "
+        how = ("less its mean, whole periods (every line on a bin, no window function: the amplitudes exact)"
+               if sp.whole_periods else "detrended, with a Hann window")
+        notes.append(f"FFT of F_t over {sp.window_s[0]:.4g}–{sp.window_s[1]:.4g} s, {how}: "
                      f"resolution 1/T = {sp.resolution_Hz:.3g} Hz, Nyquist {sp.nyquist_Hz:.4g} Hz")
     nat = r.natural_frequencies_Hz
     notes.append("linearised natural frequencies [Hz]: " + (", ".join(f"{f:.4g}" for f in nat) if nat else "none given"))
@@ -238,9 +240,9 @@ def mesh_orders_section(r: Report) -> Section:
                 rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
                 continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
-    periodic = r.simulation.steady is not None and r.simulation.steady.mode == "periodic"
-    how = ("the window holds whole excitation periods: the discrete Fourier coefficient, exact for each order"
-           if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
+    periodic = bool(r.stages) and r.stages[0].spectrum.whole_periods
+    how = ("the window holds whole periods of the repeating response: the discrete Fourier coefficient, exact for "
+           "each order" if periodic else "Hann-weighted projection of the detrended window (not whole periods)")
     notes = [f"amplitude of h x the mesh frequency in F_t and in the dynamic transmission error; {how}"]
     if aliased:
         notes.append(f"stage {', '.join(aliased)}: '> Nyquist', the order lies at or above the Nyquist frequency of the "

@@ -122,6 +122,15 @@ def _planets_mean_over_planet_1(dyn) -> float:
     return float(np.mean([p.sun.tangential_N.mean for p in planets])) / dyn.tangential_N.mean
 
 
+def _whole_periods(sim: SimulationResult) -> bool:
+    """The window is whole periods of a response that repeats over them (a periodic steady state that found its
+    period-k orbit), so every line of the response lies on a bin of its DFT; not where the periodic search found no
+    repetition (``periodicity`` "none": excitations without a common period, a response that never repeats), whose
+    window's lines fall between the bins."""
+    steady = sim.steady
+    return steady is not None and steady.mode == "periodic" and steady.periodicity not in (None, "none")
+
+
 def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageReport, ...]:
     """Fluctuation, run-up peak, dynamic factor and the F_t spectrum of every mesh."""
     out = []
@@ -135,7 +144,7 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
         spectrum = force_spectrum(sim.time_s, series, sim.window_s, stage=st.index,
                                   mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural,
                                   dte_um=dte_m * 1e6 if dte_m is not None else None,
-                                  whole_periods=sim.steady is not None and sim.steady.mode == "periodic",
+                                  whole_periods=_whole_periods(sim),
                                   other_meshes_Hz=[m for m in meshes if m[0] != st.index],
                                   damped_modes=(sim.extra or {}).get("damped_modes", ()))
         out.append(StageReport(

@@ -70,7 +70,8 @@ class MeshOrder:
 
 @dataclass(frozen=True, eq=False)
 class Spectrum:
-    """Amplitude spectrum of one stage's detrended F_t over the steady window (Hann window).
+    """Amplitude spectrum of one stage's detrended F_t over the steady window (Hann window; over a periodic steady
+    state's whole periods the plain DFT of F_t less its mean, whose bins are the lines' exact amplitudes).
 
     ``amplitude_N`` is scaled so that a pure sine of amplitude A shows a peak of A (coherent gain of
     the Hann window removed). ``peak_frequency_Hz`` is the centre of the largest non-DC bin, good to
@@ -90,6 +91,7 @@ class Spectrum:
     mesh_frequency_Hz: float
     matches: str  # what the peak lies next to: "mesh frequency", "natural frequency 2", "none", ...
     mesh_orders: tuple[MeshOrder, ...] = ()  # amplitudes at 1x, 2x, 3x ... the mesh frequency
+    whole_periods: bool = False  # the window is whole periods: the plain DFT (no Hann window), every line on a bin
 
 
 @dataclass(frozen=True, eq=False)

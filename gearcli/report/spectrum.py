@@ -7,6 +7,14 @@ A at its own frequency; between two bins the FFT's largest bin shows up to 15 % 
 peak's amplitude is the maximum of the same windowed transform within half a bin of the largest
 (:func:`peak_line_amplitude`). The frequency resolution is 1 / T with T = n dt the record length; with a
 Hann window a spectral line spreads over about ±2 bins, which is also the tolerance used to name the peak.
+
+A window of whole periods of a repeating response (a periodic steady state's orbit, ``whole_periods``) is
+transformed as it is: the force less its
+mean, without the window's closing sample (the first of the next period), with no window function. Every line of
+the periodic response is a harmonic of the window's period and so lies on a bin, whose amplitude 2 |X_k| / n is the
+line's exactly (a Hann window there would mix each bin with half of its neighbours': configs/periodic_linear_mesh.toml
+showed its 51 Hz peak at 115 N beside the exact 135.9 N of the mesh-order table; a least-squares line would take a
+periodic record's own slope out as a trend).
 """
 
 from __future__ import annotations
@@ -128,11 +136,14 @@ def force_spectrum(
     other_meshes_Hz: Sequence[tuple[int, float]] = (),
     damped_modes: Sequence[tuple[float, float]] = (),
 ) -> Spectrum:
-    """Hann-windowed amplitude spectrum of the detrended force over ``window_s``; see the module doc. The
+    """Hann-windowed amplitude spectrum of the detrended force over ``window_s`` (``whole_periods``: the plain DFT
+    of the force less its mean over the window's whole periods); see the module doc. The
     mesh orders (:func:`mesh_orders`) are listed too, from ``dte_um`` as well when it is given.
     ``other_meshes_Hz``: (stage, mesh frequency) of the train's other stages, whose harmonics the peak may be
     (:func:`name_peak`)."""
     mask = window_mask(np.asarray(time_s, float), window_s)
+    if whole_periods:  # the closing sample is the next period's first
+        mask &= np.asarray(time_s, float) < window_s[1] - 1e-9 * max(1.0, abs(window_s[1]))
     t = np.asarray(time_s, float)[mask]
     f = np.asarray(force_N, float)[mask]
     n = t.size
@@ -143,21 +154,28 @@ def force_spectrum(
                         0.0, window_s, mesh_frequency_Hz, "too few samples in the window")
     dt = (t[-1] - t[0]) / (n - 1)
     x = t - t[0]
-    detrended = f - np.polyval(np.polyfit(x, f, 1), x)
-    w = np.hanning(n)
-    amplitude = np.abs(np.fft.rfft(detrended * w)) * 2.0 / w.sum()
+    if whole_periods:  # every line on a bin: the plain DFT's bins are the lines' amplitudes (module text)
+        fluctuation = f - np.mean(f)
+        amplitude = np.abs(np.fft.rfft(fluctuation)) * 2.0 / n
+        if n % 2 == 0:
+            amplitude[-1] /= 2.0  # the Nyquist bin has no mirror image
+    else:
+        fluctuation = f - np.polyval(np.polyfit(x, f, 1), x)
+        w = np.hanning(n)
+        amplitude = np.abs(np.fft.rfft(fluctuation * w)) * 2.0 / w.sum()
     freqs = np.fft.rfftfreq(n, dt)
     resolution = 1.0 / (n * dt)
-    if np.std(detrended) <= FLAT_RELATIVE * max(abs(float(np.mean(f))), 1.0):
+    if np.std(fluctuation) <= FLAT_RELATIVE * max(abs(float(np.mean(f))), 1.0):
         return Spectrum(stage, freqs, amplitude, None, 0.0, resolution, freqs[-1], window_s,
-                        mesh_frequency_Hz, "no fluctuation")
+                        mesh_frequency_Hz, "no fluctuation", whole_periods=whole_periods)
     k = 1 + int(np.argmax(amplitude[1:]))  # skip the DC bin
     peak = float(freqs[k])
-    peak_amplitude = peak_line_amplitude(x, detrended * w, float(w.sum()), freqs, k, float(amplitude[k]))
+    peak_amplitude = float(amplitude[k]) if whole_periods else peak_line_amplitude(
+        x, fluctuation * w, float(w.sum()), freqs, k, float(amplitude[k]))
     orders = mesh_orders(time_s, force_N, dte_um, window_s, mesh_frequency_Hz, whole_periods=whole_periods)
     return Spectrum(stage, freqs, amplitude, peak, peak_amplitude, resolution, float(freqs[-1]), window_s,
                     mesh_frequency_Hz, name_peak(peak, resolution, mesh_frequency_Hz, natural_frequencies_Hz,
-                                                 other_meshes_Hz, damped_modes), orders)
+                                                 other_meshes_Hz, damped_modes), orders, whole_periods)
 
 
 def name_peak(peak_Hz: float, resolution_Hz: float, mesh_Hz: float, natural_Hz: Sequence[float],

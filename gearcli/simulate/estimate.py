@@ -287,10 +287,11 @@ def worst_planet(stage: StatisticsError, planets: list[StatisticsError], rtol: f
 
 def _over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], suns: dict[int, list[np.ndarray]],
                   fine_suns: dict[int, list[np.ndarray]], tw: np.ndarray, n_check: int, rtol: float,
-                  scale: float) -> tuple[StatisticsError, ...]:
+                  scale: float, floors: list[float]) -> tuple[StatisticsError, ...]:
     """``errors`` with each planetary stage's replaced by :func:`worst_planet` over its planets' sun meshes: the
     run's F_t ``suns`` (every sample of the run) against the check's ``fine_suns`` (its ``n_check`` samples, the
-    window's ``tw`` last)."""
+    window's ``tw`` last), each referred to no less than the stage's ``floors`` (:func:`force_floors_N`: an
+    unloaded stage's planets at rest carry round-off, 1e-10 N, which no rtol resolves to 1e-3)."""
     n_w = tw.size
     out = []
     for e in errors:
@@ -300,7 +301,7 @@ def _over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], su
             continue
         static = model.spec.meshes[k].static_tangential_N
         n_run = suns[k][0].size
-        each = [stage_error(k, tw, a[n_run - n_w:], b[n_check - n_w:], static, rtol, scale)
+        each = [stage_error(k, tw, a[n_run - n_w:], b[n_check - n_w:], static, rtol, scale, floors[k])
                 for a, b in zip(suns[k], fine_suns[k], strict=True)]
         out.append(worst_planet(e, each, rtol))
     return tuple(out)
@@ -476,7 +477,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         fine_ft = [tooth_forces(lay, k, f)[0] for k, f in enumerate(fine_forces)]
         if suns:
             fine_suns = planet_suns(model, t_eval[idx], fine.y)
-            errors = _over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale)
+            errors = _over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale, floors)
             for k, j in worst.items():
                 fine_ft[k] = fine_suns[k][j]
         lead = 1 if idx.size > 1 and idx[1] != idx[0] + 1 else 0  # the span's first sample alone, then contiguous

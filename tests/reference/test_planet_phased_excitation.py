@@ -208,3 +208,24 @@ def test_a_repeated_mode_participation_does_not_depend_on_the_basis(tmp_path):
         assert 0.0 <= one <= base * (1 + 1e-9)
     assert not any(m.rigid for m in ana.modes)  # the hand model's modes, ascending, are the analysis's ranks
     assert base == pytest.approx(_hand_participation(zs, zp, zr, 1, pair, _gamma(lay)), rel=1e-6)
+
+
+def test_orders_that_cyclic_symmetry_cancels_cross_with_participation_zero_not_round_off(tmp_path):
+    """tr22b: a 21/29/79 star's rotational modes were listed as crossed by the 2x and 3x mesh orders "(2e-28 %,
+    2.8e-29)": the four planets' phased sum, sum_j exp(2 pi i h z_s j / N), is exactly 0 for h z_s / N = 10.5 and
+    15.75 (the hand sum below), and the docs promise 0 where the phases cancel. Here 20/31/82 with three planets:
+    h z_s / N = 20/3 and 40/3 leave the rotational modes unexcited at h = 1, 2, exactly."""
+    zs, zp, zr = 20, 31, 82
+    for h in (1, 2):
+        assert abs(sum(np.exp(2j * math.pi * h * zs * j / N) for j in range(N))) < 1e-12  # the cancellation
+    f_hand, *_ = _hand(zs, zp, zr)
+    f_planet = math.sqrt(2 * K_MESH * (zp * M / 2 * math.cos(ALPHA)) ** 2 / J_P) / (2 * math.pi)
+    lay = _layout(tmp_path, zs, zp, zr, 3000.0)
+    modes = _elastic(modes_mod.modal_analysis(lay))
+    rotational = [m for m in modes[2:] if abs(m.frequency_Hz - f_planet) > 1e-6 * f_planet]
+    assert len(rotational) == 2
+    for m in rotational:
+        for h in (1, 2):
+            c = _crossing(lay, m, h)
+            assert c.participation == 0.0 and c.amplification == 0.0
+        assert _crossing(lay, m, 3).participation > 0.1  # h z_s / N = 20: in phase, driven

@@ -50,6 +50,25 @@ def test_spectrum_peak_amplitude_is_the_sine_amplitude_between_bins(offset_bins)
     assert_allclose(sp.amplitude_N[k], amp * scalloped, rtol=2e-3)  # the spectrum itself stays the FFT's
 
 
+def test_spectrum_over_whole_periods_is_the_exact_line_amplitude():
+    # one period of a periodic steady state (closing sample included, as the run gives it), lines at 1x and 2x of
+    # 51 Hz only: every line on a bin. A Hann window mixes each bin with -1/2 of its neighbours' (here 136 - 30/2 x
+    # e^(i dphi)); the plain DFT of the record less its mean gives 136 and 30 exactly, the mesh-order table's figures
+    f0, n = 51.0, 2000
+    t = 0.3588 + np.arange(n + 1) / (n * f0)
+    force = 2981.7 + 136.0 * np.cos(2 * np.pi * f0 * (t - t[0]) + 0.4) + 30.0 * np.cos(4 * np.pi * f0 * (t - t[0]) - 2.5)
+    sp = force_spectrum(t, force, (t[0], t[-1]), stage=1, mesh_frequency_Hz=f0, whole_periods=True)
+    assert sp.whole_periods
+    assert_allclose(sp.resolution_Hz, f0, rtol=1e-9)
+    assert_allclose(sp.peak_frequency_Hz, f0, rtol=1e-9)
+    assert_allclose(sp.peak_amplitude_N, 136.0, rtol=1e-9)
+    assert_allclose(sp.amplitude_N[[1, 2, 3]], [136.0, 30.0, 0.0], atol=1e-9)
+    assert_allclose([o.tangential_N for o in sp.mesh_orders], [136.0, 30.0, 0.0], atol=1e-9)
+    assert sp.matches == "mesh frequency"
+    hann = force_spectrum(t, force, (t[0], t[-1]), stage=1, mesh_frequency_Hz=f0)  # the fixed window's estimate
+    assert abs(hann.peak_amplitude_N - 136.0) > 5.0  # is not exact here: why whole periods take the DFT
+
+
 def test_spectrum_of_a_constant_force_has_no_peak():
     t = np.linspace(0, 0.5, 2001)
     sp = force_spectrum(t, np.full_like(t, 1851.0), (0.25, 0.5), stage=1, mesh_frequency_Hz=210.0)
