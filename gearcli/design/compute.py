@@ -101,7 +101,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         if ignored else ()
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out), kin.shaft_torque_Nmm(0) / 1000.0,
                                        speed_rpm(kin.shaft_speeds_rad_s[0])), *own, *pins, *jammed,
-                   *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages), *_damping_notes(cfg),
+                   *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages, _law_keys(cfg)), *_damping_notes(cfg),
                    *rating_diagnostics, *_bearing_diagnostics(cfg, bearings), *drive_notes)
     return DesignResult(
         title=cfg.title,
@@ -119,6 +119,17 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         bearings=bearings,
         diagnostics=diagnostics,
     )
+
+
+def _law_keys(cfg: DesignFile) -> list[str]:
+    """Per stage, the key that chose its mesh law, as ``stiffness_not_iso`` names it: ``[stage.mesh] stiffness =
+    …`` where the stage overrides it, else ``[contact] stiffness = …`` (or its default)."""
+    def text(value) -> str:
+        return f'"{value}"' if isinstance(value, str) else f"{value:g}"
+
+    return [f"[stage.mesh] stiffness = {text(st.mesh.stiffness)}"
+            if st.mesh is not None and st.mesh.stiffness is not None else
+            f"[contact] stiffness = {text(cfg.contact.stiffness)}" for k, st in enumerate(cfg.stage)]
 
 
 def _damping_notes(cfg: DesignFile) -> tuple[Diagnostic, ...]:

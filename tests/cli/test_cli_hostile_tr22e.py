@@ -291,3 +291,23 @@ def test_a_good_duty_set_passes_every_command(tmp_path):
     for command in (["design"], ["modes"], ["life", "--static"]):
         res = run(*command, path, "--format", "json")
         assert res.exit_code == 0, (command, res.stderr)
+
+
+# --------------------------------------------------------------- a departure from the default mesh law names its key
+@pytest.mark.parametrize("setting, stage, key", [
+    ("stage.1.mesh.stiffness=1e5", 2, "[stage.mesh] stiffness = 100000"),
+    ('contact.stiffness="hertz"', 1, '[contact] stiffness = "hertz"'),
+])
+def test_stiffness_not_iso_names_the_key_that_chose_the_law(setting, stage, key):
+    """DESIGN section 13's stiffness_not_iso said "(stiffness = "iso6336" calibrates ...)" whichever table chose the
+    law; it now names the key and its table beside the default and its source (ISO 6336-1's k_n). The linear law
+    K = 1e5 N/mm has that stiffness at every load: its departure is 1e5 / k_n - 1 with k_n as reported."""
+    found = [w for w in _json("design", MOTOR_DUTY, "--set", setting)["warnings"]
+             if w["code"] == "stiffness_not_iso" and w["stage"] == stage]
+    assert len(found) == 1, found
+    w = found[0]
+    assert f"({key}; the default stiffness = \"iso6336\" calibrates" in w["message"]
+    assert "ISO 6336-1's k_n" in w["message"]
+    if "1e5" in setting:
+        assert w["linearised_N_mm"] == pytest.approx(1e5, rel=1e-12)
+        assert w["departure"] == pytest.approx(1e5 / w["iso_N_mm"] - 1.0, rel=1e-12)
