@@ -331,7 +331,7 @@ class DesignFile(_Table):
 
 #: the design file's validators of the tables a file gives (:func:`validate_design`), by its stage kinds (each with
 #: the table class registered for it when the validator was built) and optional tables
-_BY_KINDS: dict[tuple[frozenset[tuple[str, object]] | None, frozenset[str]], TypeAdapter] = {}
+_BY_KINDS: dict[tuple[bool, frozenset[tuple[str, object]], frozenset[str]], TypeAdapter] = {}
 
 
 def _given(data: dict) -> frozenset[str]:
@@ -360,9 +360,11 @@ def validate_design(data: dict) -> DesignFile:
     given = _given(data)
     if used is None and len(given) == len(OPTIONAL_TABLES):
         return DesignFile.model_validate(data)
-    # keyed by the kinds' table classes too: a table withdrawn and provided again (kinds.withdraw, kinds.provide:
-    # a test swapping a plug-in's table) is validated by the new class, as DesignFile's rebuilt validator does
-    key = (None if used is None else frozenset((k, kinds.facet(k, "table")) for k in used), given)
+    # keyed by the kinds' table classes too, every registered kind's where the validator holds them all: a table
+    # withdrawn or provided again (kinds.withdraw, kinds.provide: a test swapping or removing a plug-in's table) is
+    # validated, and an unknown kind's error names the kinds, as DesignFile's rebuilt validator does
+    named = used if used is not None else kinds.kinds("table")
+    key = (used is None, frozenset((k, kinds.facet(k, "table")) for k in named), given)
     adapter = _BY_KINDS.get(key)
     if adapter is None:
         adapter = TypeAdapter(DesignFile)  # a table's validator is deferred (STRICT): built now, of those tables

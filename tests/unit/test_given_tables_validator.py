@@ -80,7 +80,7 @@ def test_a_parallel_file_s_validator_holds_no_planetary_or_bearing_table_and_the
         from gearcli.config.schema import DesignFile, validate_design
         data = tomllib.loads(Path({str(SEED)!r}).read_text())
         validate_design(data)
-        adapter = schema._BY_KINDS[(frozenset({{("parallel", schema.Stage)}}), frozenset())]  # kind, its table
+        adapter = schema._BY_KINDS[(False, frozenset({{("parallel", schema.Stage)}}), frozenset())]  # kind, its table
         built = repr(adapter.core_schema)
         assert "PlanetaryStage" not in built and "Bearing" not in built and "Motor" not in built
         assert "Stage" in built and "PairGear" in built  # what the seed gives is validated
