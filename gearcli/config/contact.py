@@ -97,6 +97,20 @@ class Contact(_Table):
         """The mesh is damped by the IMPACT ramp (else viscously, by ``damping_ratio``)."""
         return self.damping_ratio is None
 
+    def ignored_impact_keys(self, override: ContactOverride | None = None) -> tuple[dict[str, float], str | None]:
+        """The IMPACT keys given for a mesh that have no effect, with their values, and where the ``damping_ratio``
+        that replaces them by viscous damping was given (``"[contact]"`` or ``"[stage.mesh]"``; None: none is
+        ignored). Without ``override``: ``[contact]``'s own keys beside its ``damping_ratio``; with it: the stage's
+        ``[stage.mesh]`` keys beside a ``damping_ratio`` there or in ``[contact]``."""
+        given = self.model_fields_set
+        if override is None:
+            keys = {k: getattr(self, k) for k in IMPACT_KEYS if k in given}
+            return (keys, "[contact]") if keys and "damping_ratio" in given else ({}, None)
+        keys = {k: getattr(override, k) for k in IMPACT_KEYS if getattr(override, k) is not None}
+        where = "[stage.mesh]" if override.damping_ratio is not None else "[contact]" if "damping_ratio" in given \
+            else None
+        return (keys, where) if keys and where else ({}, None)
+
     def merged(self, override: ContactOverride | None) -> "Contact":
         """This law with a stage's overrides applied (an override's IMPACT key turns the default viscous damping
         into the IMPACT ramp, as in ``[contact]``)."""

@@ -82,7 +82,36 @@ def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | N
     data = _parse(raw, source)
     paths = _overrides.apply_all(data, overrides)
     design = _validate(data, source, paths)
+    _check_duty_sets(data, design, source)
     return LoadedDesign(design=design, source=source, sha256=_digest(raw, overrides), raw=data)
+
+
+def _check_duty_sets(data: dict, design: DesignFile, source: str) -> None:
+    """Each ``[[duty]]`` point's ``set`` applied to the file and validated, by every command that loads it, as every
+    other key of the file is (``gearcli life`` designs each point with it; ``design`` or ``simulate`` passed a typo
+    there). A bad key or value is named ``duty[i].set.KEY`` as ``life`` names it; a value valid alone that breaks
+    another key names the point and that key."""
+    rest = {k: v for k, v in data.items() if k != "duty"}  # a set never writes the duty (Duty refuses duty.…)
+    for i, duty in enumerate(design.duty):
+        if not duty.set:
+            continue
+        variant = _copied(rest)  # without the other points: one point's check does not grow with their number
+        written = []
+        for key, value in duty.set.items():
+            ov = _overrides.parse(f"{key}=0")
+            written.append(ov.key)
+            try:
+                _overrides.apply(variant, _overrides.Override(f"{key}={value}", ov.key, ov.path, value))
+            except ConfigError as exc:
+                raise ConfigError(exc.message, source=source, key=f"duty[{i}].set.{exc.key}") from None
+        try:
+            validate_design(variant)
+        except ValidationError as exc:
+            path, text = translate(exc)[0]
+            key = format_path(path)
+            own = next((w for w in written if _overrides.parse(f"{w}=0").path == tuple(path)), None)
+            raise ConfigError(text if own else f"duty[{i}] ({duty.name}): {text}", source=source,
+                              key=f"duty[{i}].set.{own}" if own else key or None) from None
 
 
 @lru_cache(maxsize=8)

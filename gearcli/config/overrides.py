@@ -26,6 +26,7 @@ from typing import Any, Union, get_args, get_origin
 from pydantic import BaseModel
 
 from gearcli.config.drive import START_PARAMETERS
+from gearcli.config.duty import DUTY_TORQUE_KEYS, Duty
 from gearcli.config.keys import (
     Segment,
     container,
@@ -36,8 +37,9 @@ from gearcli.config.keys import (
     unknown_key_hint,
     unwrap,
 )
+from gearcli.config.machine import NAMEPLATE, Motor
 from gearcli.config.messages import got
-from gearcli.config.schema import DesignFile, Input, Load, Target
+from gearcli.config.schema import DesignFile, Input, Load, Lubricant, Rating, Target
 from gearcli.core import plugins
 from gearcli.core.records import record
 from gearcli.core.text import shorten
@@ -46,11 +48,15 @@ from gearcli.stages import kinds
 
 SOURCE = "--set"
 
-#: Keys of which a table holds exactly one (or at most one): setting one replaces its siblings.
+#: Keys of which a table holds exactly one (or at most one): setting one replaces its siblings, so a --set can
+#: override the file's choice (a duty point's power for its torque, K_gamma for the file's load_sharing_factor).
 EXCLUSIVE: dict[type[BaseModel], tuple[tuple[str, ...], ...]] = {
     Input: (("speed_deg_s", "speed_rpm", "speed_rad_s"), ("torque_Nm", "torque_Nmm", "power_kW")),
-    Load: (("torque_Nmm", "torque_Nm", "power_kW", "torque_speed"),),  # a torque-speed table is the torque too  # a torque-speed table is the torque too
+    Load: (("torque_Nmm", "torque_Nm", "power_kW", "torque_speed"),),  # a torque-speed table is the torque too
     Target: (("output_speed_rpm", "output_speed_deg_s"),),
+    Duty: (DUTY_TORQUE_KEYS,),
+    Lubricant: (("contamination", "e_C"),),  # a cleanliness level, or its factor
+    Rating: (("load_sharing_factor", "K_gamma"),),  # one K_gamma under two names
 }
 
 
@@ -71,6 +77,16 @@ def parse_value(text: str) -> Any:
     except (ValueError, RecursionError):  # TOMLDecodeError is a ValueError
         return text
     return parsed["v"] if list(parsed) == ["v"] else text
+
+
+def toml_error(text: str) -> str | None:
+    """Why ``text`` is no TOML value (tomllib's reason, its place counted in ``text``), or None if it is one."""
+    try:
+        tomllib.loads("v = " + text)
+    except (ValueError, RecursionError) as exc:
+        where = lambda m: f"at character {int(m.group(1)) - 4} of the value"  # noqa: E731 - "v = " comes first
+        return re.sub(r"at line 1, column (\d+)", where, str(exc)).replace("end of document", "the end of the value")
+    return None
 
 
 def split_key(key: str) -> list[tuple[str, bool]]:
@@ -200,6 +216,10 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
         raise _fail(ov, f"{where} is a value, not a table")
     if last:
         return child_tp, None
+    if container(tp) == "dict" and not (is_model(child_tp) or container(child_tp)):  # a [[duty]] set: dotted keys
+        key = ".".join(map(str, ov.path[depth:]))
+        raise _fail(ov, f"{where} takes a key of the design file as --set writes it, {key} here: quote it as one "
+                        f"key, --set '{'.'.join(map(str, ov.path[:depth]))}.\"{key}\"=VALUE'")
     if not (is_model(child_tp) or container(child_tp)):
         raise _fail(ov, f"{format_path(ov.path[: depth + 1])} is a value, not a table")
     if seg not in node:
@@ -235,6 +255,7 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
     last = _as_key(tp, ov.path[-1])
     path.append(last)
     leaf_tp = _step(ov, node, tp, last, len(ov.path) - 1)[0]  # checks the last key exists in the schema
+    _no_broken_array_or_table(ov, leaf_tp)
     if isinstance(node, dict):
         for group in EXCLUSIVE.get(tp, ()):
             if last in group:
@@ -242,8 +263,26 @@ def apply(data: dict, ov: Override) -> tuple[Segment, ...]:
                     node.pop(sibling, None)
         if tp is Input and last == "starting":
             _drop_other_starting_parameters(node, ov.value)
+        if tp is Motor:  # a motor is its nameplate or its torque-speed table: the one set replaces the other
+            for key in NAMEPLATE if last == "torque_speed" else ("torque_speed",) if last in NAMEPLATE else ():
+                node.pop(key, None)
     node[last] = _as_text(leaf_tp, ov)
     return tuple(path[:created]) if created is not None else tuple(path)
+
+
+def _no_broken_array_or_table(ov: Override, leaf_tp: Any) -> None:
+    """A value written as an array or an inline table (``[`` or ``{`` first) that TOML cannot read, on a key that
+    holds one: TOML's reason, not the schema's "must be an array, got \"[-0.1 -0.2]\"" of the text taken as a word
+    (a bare word stays a string where the key takes one: ``--set title=[draft]``)."""
+    text = ov.value if isinstance(ov.value, str) else ""
+    if text[:1] not in ("[", "{") or not (is_model(leaf_tp) or container(leaf_tp)):
+        return
+    reason = toml_error(text)
+    if reason is not None:
+        what, form = (("an array", "[a, b, ...]") if text[0] == "[" else
+                      ("an inline table", "{ key = value, ... }, each key once"))
+        raise _fail(ov, f"{shorten(repr(text))} is not {what} TOML can read: {reason}; TOML writes {what} "
+                        f"{form}, with commas (quote the whole --set for the shell)")
 
 
 def _drop_other_starting_parameters(node: dict, method: Any) -> None:

@@ -26,7 +26,7 @@ Choices where the contract is silent:
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
 
 from gearcli.core.jsontypes import JsonObject
@@ -569,23 +569,27 @@ def _name(stage: StageResult, gear: GearResult) -> str:
 STIFFNESS_NOT_ISO_TOLERANCE = 0.25
 
 
-def stiffness_not_iso(stage: int, mesh: str, law) -> Diagnostic | None:
+def stiffness_not_iso(stage: int, mesh: str, law, key: str = "stiffness") -> Diagnostic | None:
     """``stiffness_not_iso`` for a mesh whose law's linearised stiffness (``law``: a
-    :class:`~gearcli.results.MeshStiffness`) departs from ISO 6336-1's k_n by more than 25 %; None otherwise."""
+    :class:`~gearcli.results.MeshStiffness`) departs from ISO 6336-1's k_n by more than 25 %; None otherwise.
+    ``key``: the key that chose the law, as the message names it (``[stage.mesh] stiffness = 1e+05``)."""
     if law is None or law.departure is None or abs(law.departure) <= STIFFNESS_NOT_ISO_TOLERANCE:
         return None
     where = f"stage {stage}" + ("" if mesh == "mesh" else f" {mesh.replace('_', '–')} mesh")
     message = (f"{where}: the mesh law ({law.law}, e = {law.exponent:g}) has a linearised stiffness of "
                f"{law.linearised_N_mm:.4g} N/mm at the static load, {beside(100 * law.departure, math.copysign(100 * STIFFNESS_NOT_ISO_TOLERANCE, law.departure), '+.0f')} % from ISO 6336-1's "
                f"k_n = c_γα b / cos² β_b = {law.iso_N_mm:.4g} N/mm: natural frequencies and dynamic loads follow "
-               "the law, not ISO's mesh stiffness (stiffness = \"iso6336\" calibrates the law's tangent to k_n)")
+               f"the law, not ISO's mesh stiffness ({key}; the default stiffness = \"iso6336\" calibrates the law's "
+               "tangent to k_n)")
     return warning(STIFFNESS_NOT_ISO, message, stage=stage, mesh=mesh, law=law.law, exponent=law.exponent,
                    linearised_N_mm=law.linearised_N_mm, iso_N_mm=law.iso_N_mm, departure=law.departure)
 
 
-def stiffness_diagnostics(stages: Iterable[StageResult]) -> tuple[Diagnostic, ...]:
-    """``stiffness_not_iso`` of every mesh: a parallel stage's, a planetary stage's sun–planet and planet–ring."""
+def stiffness_diagnostics(stages: Iterable[StageResult], keys: Sequence[str] = ()) -> tuple[Diagnostic, ...]:
+    """``stiffness_not_iso`` of every mesh: a parallel stage's, a planetary stage's sun–planet and planet–ring;
+    ``keys[k]``: the key that chose stage k+1's law (its ``[stage.mesh]`` one, or ``[contact]``'s)."""
     found = []
-    for st in stages:
-        found += [stiffness_not_iso(st.index, name, law) for name, law in design_kind(st).meshes(st)]
+    for k, st in enumerate(stages):
+        key = keys[k] if k < len(keys) else "stiffness"
+        found += [stiffness_not_iso(st.index, name, law, key) for name, law in design_kind(st).meshes(st)]
     return tuple(d for d in found if d is not None)

@@ -101,8 +101,8 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         if ignored else ()
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out), kin.shaft_torque_Nmm(0) / 1000.0,
                                        speed_rpm(kin.shaft_speeds_rad_s[0])), *own, *pins, *jammed,
-                   *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages), *rating_diagnostics, *_bearing_diagnostics(cfg, bearings),
-                   *drive_notes)
+                   *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages, _law_keys(cfg)), *_damping_notes(cfg),
+                   *rating_diagnostics, *_bearing_diagnostics(cfg, bearings), *drive_notes)
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -119,6 +119,42 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         bearings=bearings,
         diagnostics=diagnostics,
     )
+
+
+def _law_keys(cfg: DesignFile) -> list[str]:
+    """Per stage, the key that chose its mesh law, as ``stiffness_not_iso`` names it: ``[stage.mesh] stiffness =
+    …`` where the stage overrides it, else ``[contact] stiffness = …`` (or its default)."""
+    def text(value) -> str:
+        return f'"{value}"' if isinstance(value, str) else f"{value:g}"
+
+    return [f"[stage.mesh] stiffness = {text(st.mesh.stiffness)}"
+            if st.mesh is not None and st.mesh.stiffness is not None else
+            f"[contact] stiffness = {text(cfg.contact.stiffness)}" for k, st in enumerate(cfg.stage)]
+
+
+def _damping_notes(cfg: DesignFile) -> tuple[Diagnostic, ...]:
+    """IMPACT damping keys a ``damping_ratio`` overrides (DESIGN section 13: viscous damping wherever a ratio
+    applies): said, never dropped without a word. ``[contact]``'s beside its own ratio, a ``[stage.mesh]``'s beside
+    a ratio there or in ``[contact]`` (which then applies to every mesh, so no stage can ask for the ramp)."""
+    tables = [(0, None), *((k + 1, st.mesh) for k, st in enumerate(cfg.stage) if st.mesh is not None)]
+    found = []
+    for stage, mesh in tables:
+        keys, where = cfg.contact.ignored_impact_keys(mesh)
+        if not keys:
+            continue
+        zeta = mesh.damping_ratio if where == "[stage.mesh]" and mesh is not None else cfg.contact.damping_ratio
+        given = ", ".join(f"{name} = {value:g}" for name, value in keys.items())
+        one = len(keys) == 1
+        fix = ("remove damping_ratio for the IMPACT ramp, or the IMPACT keys" if where == "[stage.mesh]"
+               or mesh is None else "for the ramp on this mesh, give damping_ratio in the other stages' "
+               "[stage.mesh] instead of in [contact]")
+        found.append(warning(DESIGN, f"{'[contact]' if mesh is None else f'stage {stage}: [stage.mesh]'} {given} "
+                             f"{'has' if one else 'have'} no effect: {'it sets' if one else 'they set'} the IMPACT "
+                             f"damping ramp, and damping_ratio = {zeta:g} given in {where} damps "
+                             f"{'every mesh' if mesh is None else 'this mesh'} viscously instead; {fix}",
+                             check="damping_ignored", keys=list(keys), damping_ratio=zeta,
+                             damping_ratio_given_in=where, **({"stage": stage} if stage else {})))
+    return tuple(found)
 
 
 def _not_rated(st: StageResult) -> Diagnostic:

@@ -123,6 +123,9 @@ def _read_series(reader, source: str) -> tuple[list[float], list[float], list[fl
             continue
         if row_no > MAX_SERIES_ROWS:
             raise ConfigError(f"more than {MAX_SERIES_ROWS} rows", source=source)
+        if any(c.strip() for c in row[len(header):]):
+            raise ConfigError(f"row {row_no}: {len(row)} cells, more than the header's {len(header)} (a decimal comma, "
+                              "or a cell without a column: which cell is which column is ambiguous)", source=source)
         for col, name, i in zip(cols, need, idx, strict=True):
             col.append(_cell(row, i, name, row_no, source))
         rows.append(row_no)

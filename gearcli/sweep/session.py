@@ -107,6 +107,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         check_keys(scene, spec.branches()[0][0])
     except ConfigError as exc:
         raise _named_by_option(exc, spec, sets) from None
+    _no_whole_lists_or_tables(spec, scene)
     _no_continuous_integers(spec, scene)
     _no_fractional_counts(spec, scene)
     check_motor_speed(spec.keys, loaded.design, loaded.source)
@@ -138,19 +139,44 @@ def _named_by_option(exc: ConfigError, spec: SweepSpec, sets: Sequence[str]) -> 
     return exc
 
 
+def _no_whole_lists_or_tables(spec: SweepSpec, scene: Scene) -> None:
+    """A list (``tooth_thickness_allowance_mm``, ``transmission_error_um``) or a table (``contact``) drawn as a whole,
+    or varied over a value that is no array (no inline table), would get one number (or word) at a point, which no
+    such key holds: that point would fail (a ``--vary`` of reals was refused as if the key took whole numbers).
+    Refused before any runs, naming the entries or keys to vary instead. ``--vary KEY=[1, 0.5],[2, 0.1]`` varies a
+    list over whole arrays."""
+    given: list[tuple[str, str, str, str, tuple | None]] = [
+        ("--vary", a.key, a.column, "=v1,v2,...", a.values) for a in spec.axes]
+    given += [("--random", d.key, d.column, f"={d.kind}(...)", None) for d in spec.randoms]
+    keys = [key for _, key, _, _, _ in given]
+    lists = set(list_keys(scene.raw, scene.source, scene.sets, keys))
+    tables = set(table_keys(scene.raw, scene.source, scene.sets, keys))
+    for option, key, column, how, values in given:
+        if key not in lists and key not in tables:
+            continue
+        whole = list if key in lists else dict
+        odd = None if values is None else next((v for v in values if not isinstance(v, whole)), None)
+        if values is not None and odd is None:
+            continue  # whole arrays (inline tables), one a point
+        one = "draws one number" if values is None else f"gives a point {odd!r}"
+        verb = "draw" if values is None else "vary"
+        if key in lists:
+            raise SweepUsageError(f"{column} is a list, and {option} {one}: {verb} its entries by index, "
+                                  f"{option} '{column}.0{how}' (the first; .1 the second ...; in a list of tables "
+                                  f"the entry's key: {column}.0.KEY)"
+                                  + ("" if values is None else f", or whole arrays, {option} '{column}=[a, b],[c, d]'"),
+                                  source=option)
+        raise SweepUsageError(f"{column} is a table, and {option} {one}: {verb} one of its keys, "
+                              f"{option} '{column}.KEY{how}'", source=option)
+
+
 def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
     """A key that takes no real number (a tooth or planet count, a whole-number choice) drawn from a continuous
-    distribution would fail at every point: refused before any runs."""
+    distribution would fail at every point: refused before any runs (a list or a table by
+    :func:`_no_whole_lists_or_tables` before)."""
     whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
     if whole:
         d = next(d for d in spec.randoms if d.key == whole[0])
-        if list_keys(scene.raw, scene.source, scene.sets, [d.key]):
-            raise SweepUsageError(f"{d.column} is a list, {d.kind}(...) draws one number: draw its entries by index, "
-                                  f"--random '{d.column}.0={d.kind}(...)' (the first; .1 the second ...; in a list of "
-                                  f"tables the entry's key: {d.column}.0.KEY)", source="--random")
-        if table_keys(scene.raw, scene.source, scene.sets, [d.key]):
-            raise SweepUsageError(f"{d.column} is a table, {d.kind}(...) draws one number: draw one of its keys, "
-                                  f"--random '{d.column}.KEY={d.kind}(...)'", source="--random")
         raise SweepUsageError(f"{d.column} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
                               "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")
