@@ -299,9 +299,10 @@ def law(P, q, qd, phi, wphi=0.0):
     damping power, power into a time-varying spring, 0). It is :func:`force` itself for a mesh without
     transmission error (q = delta; the generated code calls it directly there, one call fewer).
 
-    The flank test (:func:`_contact`) and the damping ramp (:func:`_damping`) are written out here, the same
+    The flank test (:func:`_contact`), the damping ramp (:func:`_damping`) and, for the default Hertzian law
+    (e = 1.5) at a constant stiffness, the elastic term (:func:`_elastic`) are written out here, the same
     operations in the same order: the Python right-hand side calls this law ~30,000 times in a one-shot run, and
-    the two calls were a fifth of its cost."""
+    the first two calls were a fifth of its cost, the third a sixth of what was left."""
     cb = P[I_CB]
     half = P[I_HALF]
     h = cb * q
@@ -314,8 +315,13 @@ def law(P, q, qd, phi, wphi=0.0):
         return cv * qd, 0.0, cv, 0.0, 0.0, cv * qd * qd, 0.0, 0.0
     else:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    fe, ke, fph, _ = _elastic(P, p, phi)
-    u = fe * pd if (P[I_TV] != 0.0 or P[I_NKS] != 0.0) else 0.0
+    if P[I_E] == 1.5 and P[I_TV] == 0.0 and P[I_NKS] == 0.0:  # Hertz at the mean stiffness: _elastic written out
+        kk = P[I_K]
+        rp = math.sqrt(p)
+        fe, ke, fph, u = kk * p * rp, 1.5 * kk * rp, 0.0 * (p * rp), 0.0
+    else:
+        fe, ke, fph, _ = _elastic(P, p, phi)
+        u = fe * pd if (P[I_TV] != 0.0 or P[I_NKS] != 0.0) else 0.0
     if P[I_VIS] != 0.0:
         cv = P[I_CV]
         return sc * fe + cv * qd, P[I_CB2] * ke, cv, sc * fph, 0.0, cv * qd * qd, u, 0.0
