@@ -93,13 +93,26 @@ def test_converged_run_carries_no_warning(rel):
 
 
 def test_suggested_rtol_resolves_the_warning():
-    """The rtol the warning names removes it (load_reversal: min of stages 1-3 at the default rtol)."""
+    """Following the rtol the warning names removes it (load_reversal at rtol 1e-5: stages 1-3 warned), within two
+    suggestions: the error of a sampled extreme is not monotonic in rtol (stage 2's min was 0.04 N off the rtol 1e-10
+    reference at 1e-6 and 7.4 N off at 1e-7, each within its run's estimate), so one suggestion may land on a run
+    that names a tighter one; and every run warns of what misses its target against that reference."""
     cfg, design = _scene("configs/extreme/load_reversal.toml")
-    sim = run_simulation(cfg, design, want_series=False)
+    ref = run_simulation(cfg, design, rtol=1e-10, want_series=False, error_estimate=False, max_nfev=5_000_000)
+    sim = run_simulation(cfg, design, rtol=1e-5, want_series=False)
     suggestions = [d.data["rtol"] for d in sim.diagnostics if d.code == dg.STATISTICS_UNRESOLVED]
-    assert suggestions, "the default run of this scene is expected to warn"
-    tighter = run_simulation(cfg, design, rtol=min(suggestions), want_series=False)
-    assert not dg.has(tighter.diagnostics, dg.STATISTICS_UNRESOLVED), tighter.warnings
+    assert suggestions, "this scene is expected to warn at rtol 1e-5"
+    for _ in range(3):
+        for s, r in zip(sim.stages, ref.stages, strict=True):  # what it misses beyond its target, it warns of
+            e, x = s.error_estimate, s.tangential_N
+            for q in ("min", "max", "std"):
+                if abs(getattr(x, q) - getattr(r.tangential_N, q)) > e.target_relative * abs(r.tangential_N.mean):
+                    assert q in e.unresolved, (s.index, q)
+        if not suggestions:
+            break
+        sim = run_simulation(cfg, design, rtol=min(suggestions), want_series=False)
+        suggestions = [d.data["rtol"] for d in sim.diagnostics if d.code == dg.STATISTICS_UNRESOLVED]
+    assert not suggestions, sim.warnings
 
 
 def test_estimate_off_leaves_no_estimate():

@@ -265,10 +265,19 @@ def test_unloaded_rattle_is_a_train_of_elastic_impacts(tmp_path):
 
     d = _simulate(tmp_path, RATTLE)
     st = d["summary"]["stages"][0]
-    assert_allclose(st["tangential_N"]["max"], peak_n * math.cos(ALPHA), rtol=1e-4)
-    assert_allclose(st["tangential_N"]["min"], -peak_n * math.cos(ALPHA), rtol=1e-4)
-    assert_allclose(st["penetration_mm"]["max"], V * math.sqrt(m_e / k) * 1e3, rtol=1e-4)
-    assert_allclose(st["dte_um"]["max"], (j / 2 + V * math.sqrt(m_e / k)) * 1e6, rtol=1e-4)  # gap included
+    # at the default rtol, the product's target: the extremes within 1e-3 of the stage's reference force (its rms,
+    # 3398 N) of the closed form. What is left is the step pattern's error through ~50 impacts, of either sign and
+    # converging with rtol, no bias: DOP853 step ceilings of 5.8..6.03 / max|lambda| (eight radii) left the peak
+    # -8.9e-5..+2.6e-4 of it off (1.7 N at most, half the target), 2.2e-5 at most at rtol 1e-7, 2.2e-6 at 1e-8
+    target_N = st["error_estimate"]["target_relative"] * st["error_estimate"]["reference_N"]
+    assert abs(st["tangential_N"]["max"] - peak_n * math.cos(ALPHA)) <= target_N
+    assert abs(st["tangential_N"]["min"] + peak_n * math.cos(ALPHA)) <= target_N
+    # the closed forms themselves, tightly, where the solver's share is small (rtol 1e-8)
+    tight = _simulate(tmp_path, RATTLE, "simulation.rtol=1e-8")["summary"]["stages"][0]
+    assert_allclose(tight["tangential_N"]["max"], peak_n * math.cos(ALPHA), rtol=1e-5)
+    assert_allclose(tight["tangential_N"]["min"], -peak_n * math.cos(ALPHA), rtol=1e-5)
+    assert_allclose(tight["penetration_mm"]["max"], V * math.sqrt(m_e / k) * 1e3, rtol=1e-5)
+    assert_allclose(tight["dte_um"]["max"], (j / 2 + V * math.sqrt(m_e / k)) * 1e6, rtol=1e-5)  # gap included
     # fractions of a window of ~21 cycles, not whole ones: one cycle's share of error at most
     cycle = t_gap + t_contact
     assert_allclose(st["contact_loss_fraction"], t_gap / cycle, atol=2e-3)

@@ -369,7 +369,11 @@ def _one_spur_reference(t: np.ndarray) -> np.ndarray:
 def test_error_estimate_against_an_independent_solve(tmp_path, rtol):
     """The check pass's estimate of the window min, max and std against their true error (the same samples of an
     independent solve at rtol 1e-11). The estimate is the difference to a pass at rtol/10: the run's error to first
-    order, 0.9x it when the error falls in proportion to rtol, so it is held to >= 0.85x the truth, not to a bound."""
+    order, 0.9x it when the error falls in proportion to rtol, so it is held to >= 0.85x the truth, not to a bound,
+    where the truth counts against the 1e-3 target (2.5 N): beyond 1 % of it. Below, an extreme's error is the step
+    pattern's, not in proportion to rtol, and the estimate can miss it by far more than it matters: at rtol 1e-6
+    the max is 0.008..0.036 N off (3e-6..1.5e-5 of the force, eight DOP853 step ceilings of 5.8..6.03 / max|lambda|),
+    estimated 0.21..1.46x that (0.21x at 5.95, 0.78x at 5.9)."""
     out = _run(tmp_path, ONE_SPUR, "simulate", "--series", "--set", f"simulation.rtol={rtol}")
     assert out["solver"]["method"] == "DOP853" and out["solver"]["rtol"] == rtol
     # a check pass at rtol/10, or at 2 rtol with twice the difference (docs/numerics.md)
@@ -382,10 +386,11 @@ def test_error_estimate_against_an_independent_solve(tmp_path, rtol):
     for name, f in (("min", np.min), ("max", np.max), ("std", np.std)):
         true = abs(st["tangential_N"][name] - f(F[window]))
         est = st["error_estimate"]["tangential_N"][name]
-        assert 0.85 * true <= est <= 10 * true + 1e-6 * 2500, (name, true, est)
+        assert 0.85 * true - 1e-2 * 1e-3 * 2500 <= est <= 10 * true + 1e-6 * 2500, (name, true, est)
     unresolved = [w for w in out["warnings"] if w["code"] == "statistics_unresolved"]
     true_max = max(abs(st["tangential_N"][n] - f(F[window])) for n, f in (("min", np.min), ("max", np.max)))
-    # warned exactly when the true error of min/max passes the 1e-3 target (2.5 N): 3.1 N at 1e-6, 1e-4 N at 1e-8
+    # warned exactly when the true error of min/max passes the 1e-3 target (2.5 N): 0.04 N at most at 1e-6, 1e-4 N
+    # at 1e-8
     assert bool(unresolved) == (true_max > 1e-3 * 2500)
     # the mean (the integral of the channel over the window) is resolved, and truly: its error (1.8e-5 N at rtol
     # 1e-6, of which the solver and sampling estimates say 1.3e-5) is far below the 1e-4 target

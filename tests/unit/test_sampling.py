@@ -11,6 +11,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from gearcli.simulate import sampling
+from gearcli.simulate.estimate import MEAN_TARGET
 from gearcli.simulate.sampling import SAFETY, extremes_error, max_excess, stage_sampling, suggested_steps
 
 A, MEAN = 300.0, 1000.0  # N
@@ -136,7 +137,15 @@ def test_scene_estimate_tracks_the_true_sampling_error_and_more_steps_resolve_it
     assert 0.5 * true <= e.max_N <= 3.0 * true
     assert e.min_N == 0.0  # the mesh loses contact: the min is 0 at a sample, exactly
     warned = [d for d in coarse.diagnostics if d.code == "statistics_undersampled"]
-    assert len(warned) == 1 and warned[0].data["statistics"] == ["max"] and e.suggested_steps
+    assert len(warned) == 1 and "max" in warned[0].data["statistics"] and e.suggested_steps
+    # the mean is resolved in truth, and named where its estimate passes the target: |T_h - T_2h| / 3 overstates
+    # this force's O(h) error 2-5x (gearcli.simulate.sampling), and the truth, 4.1e-5..5.3e-5 of the mean over eight
+    # DOP853 step ceilings of 5.8..6.03 / max|lambda|, is half the 1e-4 target, so the estimate (8.1e-5..1.8e-4
+    # there) falls either side of it with the step pattern
+    mean_true = abs(f.tangential_N.mean - c.tangential_N.mean)
+    assert mean_true <= MEAN_TARGET * e.reference_N
+    assert mean_true <= e.mean_N <= 5 * mean_true
+    assert ("mean" in warned[0].data["statistics"]) == (e.relative["mean"] > MEAN_TARGET)
     assert f"simulation.steps={e.suggested_steps}" in warned[0].message
     # the top is kinked (the contact length is piecewise linear in the mesh phase): its error falls as h^1.1 here,
     # slower than the h^2 the suggestion assumes, so the run at the suggestion may suggest once more (measured:
