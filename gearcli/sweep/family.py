@@ -76,7 +76,9 @@ class Family:
     def checked(self, values: str, result: SimulationResult) -> tuple[str, ...]:
         """A point that ran its check pass: its verdict is the family's from here (its own warnings are in its
         result: nothing to add)."""
-        unresolved = tuple(d.message for d in result.diagnostics if d.code == "statistics_unresolved")
+        # the solver's verdict only: a start-up transient left in the window (transient_N) is the point's own
+        unresolved = tuple(d.message for d in result.diagnostics
+                           if d.code == "statistics_unresolved" and "transient_N" not in d.data)
         sv = result.solver
         self.verdict = Verdict(values, sv.method, sv.engine, sv.rtol, _pace(result), unresolved)
         return ()
