@@ -499,8 +499,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     if not periodic and deferred is None and diagnose:
         diags += ringing_diags()
     if diagnose:
-        steady = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
-                                           motor_summary, diags, floors, s.omega_rad_s[first])
+        steady, stages = settle_mod.settled_steady(model, choice, s.time_s, mask, window, per_stage, stages, steady,
+                                                   motor_summary, diags, floors, s.omega_rad_s[first])
     if not periodic and deferred is not None:
         if steady.settled is False:
             deferred.append(True)

@@ -39,6 +39,7 @@ from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
+from gearcli.simulate import leftover as leftover_mod
 from gearcli.simulate import ringing, sampling
 from gearcli.simulate.estimate import MEAN_TARGET
 from gearcli.simulate.results import SimulationExtra, SimulationResult, SteadyState
@@ -79,6 +80,8 @@ class Settling:
     mean_bias_N: float = 0.0
     # the other stages whose window mean the fitted transients move beyond MEAN_TARGET: (stage, N, relative)
     other_means: tuple[tuple[int, float, float], ...] = ()
+    # every fitted stage's transient left in the window, settled or not (gearcli.simulate.leftover)
+    leftover: tuple[leftover_mod.Leftover, ...] = ()
 
 
 def candidate_modes(eigenvalues: np.ndarray, window_s: tuple[float, float],
@@ -117,9 +120,11 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
                                               forced=forced) if fitted else (np.empty((0, 0)), np.empty((0, 0)))
     length = window_s[1] - window_s[0]
     biases: dict[int, tuple[float, float]] = {}  # stage (1-based): the fitted transients' share of its mean, its ref
+    left = []
     for i, k in enumerate(fitted):
         ref = refs[k]
         amplitudes, sigmas = [float(abs(a)) for a in terms[i]], [float(x) for x in sigs[i]]
+        left.append(leftover_mod.of_fit(k + 1, tw, terms[i], sigmas, [m[1] for m in modes], ref))
         bias = sum(ringing.window_mean(complex(c), sg, m[1], length) for c, sg, m in zip(terms[i], sigmas, modes,
                                                                                          strict=True))
         biases[k + 1] = (bias, ref)
@@ -147,7 +152,7 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
         worst = Settling(False, worst.transient_fraction, worst.stage, worst.frequency_Hz, settle,
                          f"the motor reaches 98 % of its operating speed at {motor_start_s:.4g} s, after the window "
                          f"starts ({window_s[0]:.4g} s)")
-    return _with_means(worst, biases)
+    return replace(_with_means(worst, biases), leftover=tuple(left))
 
 
 def _with_means(settling: Settling, biases: dict[int, tuple[float, float]]) -> Settling:
@@ -349,16 +354,20 @@ def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str
 
 def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: np.ndarray, window, per_stage,
                    stages, steady: SteadyState, motor_summary, diags: list[Diagnostic],
-                   floors_N: list[float] | None = None, speeds_rad_s: np.ndarray | None = None) -> SteadyState:
+                   floors_N: list[float] | None = None, speeds_rad_s: np.ndarray | None = None,
+                   ) -> tuple[SteadyState, tuple]:
     """``steady`` with the settle test of the window (:mod:`gearcli.simulate.settle`; a periodic state: settled
     when it converged); an unsettled fixed window adds the ``window_not_settled`` warning to ``diags`` unless the
     ringing or the motor's start, stall or runaway warning already says so. ``speeds_rad_s``: the input shaft's
-    speed at the samples (a free one's approach to its operating point is tested too)."""
+    speed at the samples (a free one's approach to its operating point is tested too). With it, ``stages`` whose
+    error estimates add the transient the fit leaves in a settled window (:mod:`gearcli.simulate.leftover`; as they
+    were for a periodic state and an unsettled window, whose warning says its statistics carry the transient); where
+    it exceeds the statistics' target, its ``statistics_unresolved`` warnings are added to ``diags``."""
     if steady.mode == "periodic":
         attracting = reached(steady)
         if steady.converged and not attracting:
             diags.append(not_attracting(steady))
-        return replace(steady, settled=attracting)
+        return replace(steady, settled=attracting), tuple(stages)
     motor_start, reaches = None, False
     if motor_summary is not None and model.layout.motor_drive:
         motor_start = motor_summary.get("start_time_s")
@@ -372,6 +381,8 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
                          ringing.forced_rad_s(model.layout), free)
     # a stalled or runaway motor's warning says the run is no operating point: no later window would settle it
     said = (dg.WINDOW_RINGING, dg.START_NOT_SETTLED, dg.MOTOR_STALLS, dg.MOTOR_RUNS_AWAY)
+    if found.settled:  # an unsettled window's warning says its statistics carry the transient
+        diags += leftover_mod.warnings(found.leftover, stages, window)
     if not found.settled and not any(d.code in said for d in diags):
         diags.append(dg.warning(dg.WINDOW_NOT_SETTLED, message(found, window, steady.settle_runs),
                                 transient_fraction=found.transient_fraction if math.isfinite(found.transient_fraction)
@@ -379,7 +390,9 @@ def settled_steady(model: TorsionalModel, choice: Choice, t: np.ndarray, mask: n
                                 settle_time_s=found.settle_time_s, mean_bias_N=found.mean_bias_N,
                                 other_stages_mean_bias_N=[{"stage": k, "mean_bias_N": b} for k, b, _ in found.other_means]))
     fraction = found.transient_fraction if math.isfinite(found.transient_fraction) else None
-    return replace(steady, settled=found.settled, transient_fraction=fraction, settle_time_s=found.settle_time_s)
+    return replace(steady, settled=found.settled, transient_fraction=fraction,
+                   settle_time_s=found.settle_time_s), \
+        leftover_mod.with_errors(stages, found.leftover if found.settled else ())  # unsettled: its warning says so
 
 
 def reached(steady: SteadyState | None) -> TypeGuard[SteadyState]:

@@ -58,6 +58,13 @@ class Verdict:
     warnings: tuple[str, ...]  # its statistics_unresolved warnings (empty: resolved)
 
 
+def solvers_unresolved(result: SimulationResult) -> tuple[str, ...]:
+    """The messages of the solver's ``statistics_unresolved`` warnings: a neighbour's verdict (a start-up transient
+    left in the window, ``transient_N``: gearcli.simulate.leftover, is the point's own and no neighbour's)."""
+    return tuple(d.message for d in result.diagnostics
+                 if d.code == "statistics_unresolved" and "transient_N" not in getattr(d, "data", {}))
+
+
 def _pace(result: SimulationResult) -> float:
     span = result.final_time_s or 0.0
     return result.solver.nfev / span if span > 0 else float(result.solver.nfev)
@@ -76,7 +83,7 @@ class Family:
     def checked(self, values: str, result: SimulationResult) -> tuple[str, ...]:
         """A point that ran its check pass: its verdict is the family's from here (its own warnings are in its
         result: nothing to add)."""
-        unresolved = tuple(d.message for d in result.diagnostics if d.code == "statistics_unresolved")
+        unresolved = solvers_unresolved(result)
         sv = result.solver
         self.verdict = Verdict(values, sv.method, sv.engine, sv.rtol, _pace(result), unresolved)
         return ()
@@ -123,7 +130,7 @@ def marks(result: SimulationResult | None, checked: str | None) -> Row:
         out["_checked"] = True
         if result is not None:
             out["_checked_at"] = checked
-            out["_unresolved"] = SEPARATOR.join(d.message for d in result.diagnostics if d.code == "statistics_unresolved")
+            out["_unresolved"] = SEPARATOR.join(solvers_unresolved(result))
     return out
 
 

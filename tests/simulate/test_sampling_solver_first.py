@@ -4,7 +4,10 @@ A 2-DOF chain (a soft input coupling, a linear spur mesh of 2e5 N/mm, a 2 µm tr
 frequency) run by DOP853 at rtol 1e-3: its window min and max are off by more than the mean (statistics_unresolved,
 rtol 1e-7 named), and the parabola between the samples reads that noise as undersampling: it asked for
 simulation.steps=310000 (the window) and more for the run's peak. The same 20,000 samples at rtol 1e-7 are resolved
-(no sampling warning at all), so the steps asked for were the unresolved solution's, not the scene's.
+(no sampling warning at all), so the steps asked for were the unresolved solution's, not the scene's. Its window
+(0.16-0.6 s, settled with 0.23 % of the static force left) still holds the coupling mode's start-up: max 2037.97 N and
+min 1295.49 N against the periodic steady state's 2034.96 and 1298.55 N (1.8e-3 of the 1666.7 N mean), which that
+run warns as the transient's (``transient_N``; gearcli.simulate.leftover), not the solver's or the samples'.
 """
 
 from __future__ import annotations
@@ -52,7 +55,7 @@ def test_the_sampling_fix_of_an_unresolved_run_is_the_rtol(tmp_path):
     path = tmp_path / "chain.toml"
     path.write_text(SCENE, encoding="utf-8")
     loose = _run(path, 1e-3)
-    codes = {d.code: d for d in loose.diagnostics}
+    codes = {d.code: d for d in loose.diagnostics if "transient_N" not in d.data}  # the solver's, the samples'
     assert "statistics_unresolved" in codes and "peak_unresolved" in codes
     sampled = [d for d in loose.diagnostics if d.code in SAMPLING]
     assert {d.code for d in sampled} == set(SAMPLING)
@@ -63,5 +66,5 @@ def test_the_sampling_fix_of_an_unresolved_run_is_the_rtol(tmp_path):
     named = codes["statistics_unresolved"].data["rtol"]
     assert isinstance(named, float) and named <= 1e-6
     tight = _run(path, named)
-    assert not any(d.code in SAMPLING + ("statistics_unresolved",) for d in tight.diagnostics), \
-        [d.message for d in tight.diagnostics if d.code in SAMPLING]
+    assert not any(d.code in SAMPLING + ("statistics_unresolved",) and "transient_N" not in d.data
+                   for d in tight.diagnostics), [d.message for d in tight.diagnostics if d.code in SAMPLING]

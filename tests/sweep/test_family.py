@@ -56,3 +56,16 @@ def test_a_loose_sweep_carries_the_checked_points_warning_into_its_neighbours_ro
     for r in rows[1:]:
         # named as the user writes the point (`--set` form), not as a Python tuple
         assert "family's checked point input.speed_rpm=600.0)" in r["message"] and "((" not in r["message"]
+
+
+def test_a_transient_left_in_the_checked_window_is_not_carried():
+    """A settled window's start-up transient (gearcli.simulate.leftover: ``transient_N`` in its data) is the checked
+    point's own, not the solver's verdict on its neighbours."""
+    f = Family()
+    own = SimpleNamespace(code="statistics_unresolved", message="stage 1: F_t min, max not resolved by the window",
+                          data={"transient_N": 123.0})
+    solver = SimpleNamespace(code="statistics_unresolved", message="stage 1: F_t max not resolved", data={})
+    checked = _result(1000)
+    f.checked("speed 300", SimpleNamespace(**{**vars(checked), "diagnostics": (own, solver)}))
+    (msg,) = f.carried(_result(1000))
+    assert msg.startswith("stage 1: F_t max not resolved")
