@@ -593,8 +593,7 @@ def warnings(ref: CheckPass, method: str, unloaded: frozenset[int] = frozenset()
             dg.STATISTICS_UNRESOLVED,
             f"stage {e.stage}: F_t {names} not resolved by {method} at the run's rtol: estimated error up to "
             f"{absolute:.3g} N ({e.relative[worst]:.2g} of {reference_words(e.reference_N, e.stage in unloaded)}, "
-            f"target {target(worst):g}){moved}; "
-            f"{fix}",
+            f"target {target(worst):g}){moved}; {fix}",
             stage=e.stage, statistics=list(e.unresolved), estimated_error_N=float(absolute),
             relative_error=float(e.relative[worst]), rtol=e.suggested_rtol))
     return out
