@@ -96,10 +96,10 @@ def _check_duty_sets(data: dict, design: DesignFile, source: str) -> None:
         if not duty.set:
             continue
         variant = _copied(rest)  # without the other points: one point's check does not grow with their number
-        written = []
+        written = {}  # each key the point sets, by its path
         for key, value in duty.set.items():
             ov = _overrides.parse(f"{key}=0")
-            written.append(ov.key)
+            written[ov.path] = ov.key
             try:
                 _overrides.apply(variant, _overrides.Override(f"{key}={value}", ov.key, ov.path, value))
             except ConfigError as exc:
@@ -109,7 +109,7 @@ def _check_duty_sets(data: dict, design: DesignFile, source: str) -> None:
         except ValidationError as exc:
             path, text = translate(exc)[0]
             key = format_path(path)
-            own = next((w for w in written if _overrides.parse(f"{w}=0").path == tuple(path)), None)
+            own = written.get(tuple(path))
             raise ConfigError(text if own else f"duty[{i}] ({duty.name}): {text}", source=source,
                               key=f"duty[{i}].set.{own}" if own else key or None) from None
 

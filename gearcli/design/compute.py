@@ -129,7 +129,7 @@ def _law_keys(cfg: DesignFile) -> list[str]:
 
     return [f"[stage.mesh] stiffness = {text(st.mesh.stiffness)}"
             if st.mesh is not None and st.mesh.stiffness is not None else
-            f"[contact] stiffness = {text(cfg.contact.stiffness)}" for k, st in enumerate(cfg.stage)]
+            f"[contact] stiffness = {text(cfg.contact.stiffness)}" for st in cfg.stage]
 
 
 def _damping_notes(cfg: DesignFile) -> tuple[Diagnostic, ...]:
