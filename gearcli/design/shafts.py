@@ -419,11 +419,11 @@ def pin_bearing_warnings(cfg: DesignFile, stages: Sequence[StageResult]) -> list
         reach = PIN_REACH * max(planet.face_width_mm, planet.pitch_diameter_mm)
         distance = abs(b.position_mm - planet_cfg.axial_position_mm)
         if distance > reach:
-            out.append((f"bearing[{j}]: a planet pin bearing of stage {k} sits {distance:.4g} mm from its planet's "
+            out.append((f"bearing {j + 1}: a planet pin bearing of stage {k} sits {distance:.4g} mm from its planet's "
                         f"mid-face (planet.axial_position_mm = {planet_cfg.axial_position_mm:g} mm), more than "
                         f"{reach:.4g} mm ({PIN_REACH:g} x the planet's larger of face width and pitch diameter): a pin "
-                        "that long is implausible; check position_mm (measured from the same housing plane)",
-                        {"bearing": j, "stage": k, "distance_mm": distance, "limit_mm": reach}))
+                        f"that long is implausible; check bearing[{j}].position_mm (measured from the same housing plane)",
+                        {"bearing": j + 1, "stage": k, "distance_mm": distance, "limit_mm": reach}))
     return out
 
 

@@ -295,14 +295,15 @@ def simulation_bearings_csv(result: SimulationResult) -> str:
 
 
 def bearings_csv(docs: JsonValue) -> str:
-    """One row per ``[[bearing]]`` (``--table bearings``): ``bearing`` (j of ``bearing[j]``), then the bearing's
+    """One row per ``[[bearing]]`` (``--table bearings``): ``bearing`` (1-based in ``[[bearing]]`` order, the j of the
+    ``bearing{j}_radial_N`` channels and of the warnings' ``bearing``), then the bearing's
     JSON keys by their JSON names, objects flattened (``radial_N_max``), a list of per-duty-point values as one
     column per point, 1-based in the order of ``life.points`` (``kappa_points_2``); a key a bearing lacks (no C_0,
     no C_u) is an empty cell."""
     rows: list[dict[str, JsonScalar]] = []
     for j, doc in enumerate(docs if isinstance(docs, list) else []):
         assert isinstance(doc, dict)
-        row: dict[str, JsonScalar] = {"bearing": j}
+        row: dict[str, JsonScalar] = {"bearing": j + 1}
         for key, value in doc.items():
             if isinstance(value, dict):
                 row.update(flatten(value, key + "_"))

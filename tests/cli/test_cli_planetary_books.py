@@ -125,7 +125,9 @@ def test_planet_pin_bearings_far_from_the_planet_warn(tmp_path):
     assert res.exit_code == 0, res.stderr
     warnings = json.loads(res.stdout)["warnings"]
     far = [w for w in warnings if w.get("check") == "bearing_position"]
-    assert len(far) == 1 and far[0]["bearing"] == 6 and far[0]["distance_mm"] == pytest.approx(99800.0)
+    # the seventh [[bearing]] of the file, numbered from 1 as every warning's ``bearing`` and channel is
+    assert len(far) == 1 and far[0]["bearing"] == 7 and far[0]["distance_mm"] == pytest.approx(99800.0)
+    assert far[0]["message"].startswith("bearing 7: ") and "bearing[6].position_mm" in far[0]["message"]
 
 
 def test_pin_bearings_without_the_planets_axial_position_name_the_planet_key(tmp_path):

@@ -1,13 +1,15 @@
 """``--table bearings``: the bearings' figures as CSV, one row per [[bearing]], in ``design``, ``simulate`` and
 ``life`` (docs/bearings.md, "CSV"): every JSON figure of a bearing under its JSON name, the same number (the
 CSV writes a float's repr), the by-hand figures of ``test_bearing_modified`` in the design's row, empty cells
-where a bearing lacks C_0 / C_u, and exit 2 where the table cannot be written."""
+where a bearing lacks C_0 / C_u, and exit 2 where the table cannot be written. Its ``bearing`` column counts
+from 1 in ``[[bearing]]`` order, as the ``bearing{j}_radial_N`` channels and the warnings' ``bearing`` do."""
 
 from __future__ import annotations
 
 import csv
 import io
 import json
+import tomllib
 
 import pytest
 from numpy.testing import assert_allclose
@@ -40,11 +42,11 @@ def _same(row: dict[str, str], doc: dict, key: str) -> None:
 
 def test_design_rows_are_the_json_bearings(tmp_path):
     rows, doc = _csv(tmp_path, "design"), _json(tmp_path, "design")
-    assert [int(r["bearing"]) for r in rows] == list(range(len(doc["bearings"])))
+    assert [int(r["bearing"]) for r in rows] == list(range(1, len(doc["bearings"]) + 1))
     for row, b in zip(rows, doc["bearings"], strict=True):
         for key in b:
             _same(row, b, key)
-    # bearing 0 carries the new keys: its row holds the figures worked by hand from its reactions
+    # bearing 1 carries the new keys: its row holds the figures worked by hand from its reactions
     for key, value in _hand(doc["bearings"][0]).items():
         assert_allclose(float(rows[0][key]), value, rtol=1e-12, err_msg=key)
     # the others have no C_0, C_u: empty cells, not zeros
@@ -94,3 +96,30 @@ def test_the_table_needs_csv_and_bearings(tmp_path, command):
     res = _run(tmp_path, command, text, "--format", "csv", "--table", "bearings", *extra)
     assert res.exit_code == 2 and "no [[bearing]] table" in res.output and "scene.toml" in res.output
     assert "Traceback" not in res.output
+
+
+def test_bearing_numbers_count_from_one_as_the_channels_and_warnings_do(tmp_path):
+    """A script joins the bearings' table to the simulated channels and the warnings by the bearing's number: row
+    ``bearing`` j is the j-th ``[[bearing]]`` table of the file (read here with tomllib), the one whose window
+    statistics are the channel ``bearing{j}_radial_N`` and which a warning's ``bearing`` j names."""
+    tables = tomllib.loads(_with_keys())["bearing"]
+    design_rows, design = _csv(tmp_path, "design"), _json(tmp_path, "design")
+    for row in design_rows:
+        j = int(row["bearing"])
+        assert 1 <= j <= len(tables)
+        assert (int(row["shaft"]), float(row["position_mm"])) == (tables[j - 1]["shaft"], tables[j - 1]["position_mm"])
+    named = [w for w in design["warnings"] if "bearing" in w and "radial_N" in w]
+    assert named  # the scene's locating roller bearing carries F_a without factors
+    by_number = {int(r["bearing"]): r for r in design_rows}
+    for w in named:
+        assert float(by_number[w["bearing"]]["radial_N"]) == pytest.approx(w["radial_N"], rel=1e-12)
+    sim_rows = _csv(tmp_path, "simulate")
+    series = _run(tmp_path, "simulate", _with_keys(), "--format", "csv")
+    assert series.exit_code == 0, series.output
+    columns = list(csv.DictReader(io.StringIO(series.stdout)))
+    window = _json(tmp_path, "simulate")["summary"]["window_s"]
+    inside = [c for c in columns if window[0] - 1e-12 <= float(c["time_s"]) <= window[1] + 1e-12]
+    for row in sim_rows:
+        j = int(row["bearing"])
+        peak = max(float(c[f"bearing{j}_radial_N"]) for c in inside)
+        assert float(row["radial_N_max"]) == pytest.approx(peak, rel=1e-9), j
