@@ -187,12 +187,14 @@ def work_precision_figure(r: Report) -> Figure:
                                 xytext=(4, 3), fontsize=6.5, color=f"C{i}")
         ax.axhline(study.requested_accuracy, color="k", ls="--", lw=1.0,
                    label=f"target {study.requested_accuracy:g}")
-        ax.axhspan(low, unc, color="0.85", zorder=0, label=f"below reference resolution (< {unc:.1e})")
+        resolution = study.reference.resolution(q)  # this quantity's: its difference from the check run
+        ax.axhspan(low, max(resolution, low), color="0.85", zorder=0,
+                   label="below the reference's resolution of the quantity")
         _mark(ax, study.recommended, q, "*", "recommended (cheapest meeting the target)", 15)
         _mark(ax, study.file_run, q, "s", "the file's settings", 10)
         ax.set_ylim(low, high)
         log_ticks(ax)
-        ax.set_title(f"error of the {title}", fontsize=9)
+        ax.set_title(f"error of the {title} (resolution {resolution:.1e})", fontsize=9)
         ax.set_xlabel("wall time [s]")
         ax.grid(alpha=0.3, which="both")
     axes[0, 0].set_ylabel("relative error against the reference")

@@ -2,7 +2,7 @@
 
 Each section is a table (headers, rows of strings, column alignment) with notes under it; the two
 writers only differ in how they draw it. Errors below the reference's resolution are shown as
-``< u`` (u the reference's uncertainty), never as a number that would suggest a precision the study
+``< u`` (u the reference's resolution of that quantity, its difference from the check run), never as a number that would suggest a precision the study
 cannot resolve.
 """
 
@@ -17,7 +17,7 @@ from gearcli.io.table_kit import spread_digits
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
 from gearcli.report.compare import reversed_lossy_stages
-from gearcli.report.result import AccuracyRun, AccuracyStudy, Report
+from gearcli.report.result import AccuracyRun, AccuracyStudy, ReferenceRun, Report
 from gearcli.simulate.estimate import reference_words
 
 LABELS = {
@@ -260,12 +260,13 @@ def mesh_orders_section(r: Report) -> Section:
                                              "DTE amplitude [µm]"), tuple(rows), "lrrrr", tuple(notes))
 
 
-def error_cell(run: AccuracyRun, quantity: str, uncertainty: float) -> str:
+def error_cell(run: AccuracyRun, quantity: str, ref: ReferenceRun) -> str:
+    """A rung's error of one quantity, or ``< u`` with u the reference's resolution of that quantity."""
     e = run.error(quantity)
     if e is None:
         return "–"
     if run.below_reference_resolution.get(quantity):
-        return f"< {uncertainty:.1e}"
+        return f"< {ref.resolution(quantity):.1e}"
     return f"{e:.2e}"
 
 
@@ -285,7 +286,7 @@ def accuracy_section(study: AccuracyStudy) -> Section:
         if run.failure:
             rows.append((method, f"{run.rtol:.0e}", "–", "–", "–", "–", "–", run.failure[:60] + (" " + marks if marks else "")))
             continue
-        cells = [error_cell(run, q, ref.uncertainty) for q in ("speed", "mean_force", "peak_force")]
+        cells = [error_cell(run, q, ref) for q in ("speed", "mean_force", "peak_force")]
         rows.append((method, f"{run.rtol:.0e}", wall_text(run.wall_s), str(run.nfev), *cells,
                      ("yes" if run.meets_accuracy else "no") + (f"  {marks}" if marks else "")))
     return Section(f"Numerical accuracy: work against precision (target {study.requested_accuracy:g})",
@@ -298,7 +299,9 @@ def accuracy_notes(study: AccuracyStudy) -> list[str]:
     notes = [
         f"reference: {ref.method} at rtol {ref.rtol:g} ({ref.wall_s:.2f} s, nfev {ref.nfev}); checked against "
         f"{ref.check_method} at rtol {ref.check_rtol:g} ({ref.check_wall_s:.2f} s): uncertainty {ref.uncertainty:.1e} "
-        f"(largest relative difference); '< u' = below reference resolution",
+        f"(largest relative difference; ω_out {ref.resolution('speed'):.1e}, mean F_t "
+        f"{ref.resolution('mean_force'):.1e}, peak F_t {ref.resolution('peak_force'):.1e}); '< u' = below the "
+        "reference's resolution of that quantity, u",
         "★ cheapest meeting the target: " + (f"{rec.method} at rtol {rec.rtol:g} ({wall_text(rec.wall_s)} s, nfev {rec.nfev})"
                                              if rec else "none"),
     ]
@@ -455,8 +458,10 @@ def method_paragraph(study: AccuracyStudy, report_window_s: tuple[float, float] 
         f"Each run's error is relative to a reference run ({ref.method} at rtol {ref.rtol:g}). The reference was "
         f"checked by an independent run with a different method ({ref.check_method} at rtol {ref.check_rtol:g}); "
         f"the largest relative difference between the two over the compared quantities, {ref.uncertainty:.1e}, "
-        f"is the reference's own uncertainty, and errors below it are reported as below the reference resolution "
-        f"(\"< {ref.uncertainty:.1e}\"). Compared quantities: the mean output speed over {window}, the mean "
+        f"is the reference's own uncertainty; each quantity's own difference is the reference's resolution of it, "
+        f"and an error below its quantity's resolution is reported as below the reference resolution "
+        f"(\"< u\": ω_out {ref.resolution('speed'):.1e}, mean F_t {ref.resolution('mean_force'):.1e}, peak F_t "
+        f"{ref.resolution('peak_force'):.1e}). Compared quantities: the mean output speed over {window}, the mean "
         f"F_t (largest relative error over the stages) and the run-up peak |F_t| (largest over the stages). A "
         f"setting meets the target {study.requested_accuracy:g} when max(error, uncertainty) is within it for all "
         f"three; ★ marks the cheapest such setting, priced as its evaluations times its method's median "

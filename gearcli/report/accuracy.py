@@ -3,9 +3,10 @@
 The scene runs over a ladder of relative tolerances for several methods. Each run's error is
 measured against a reference run at a much tighter tolerance, and the reference is itself checked by
 a second tight run with a different method (explicit against implicit): the largest relative
-difference between the two is the reference's ``uncertainty``. An error below that cannot be
-resolved and is flagged ``below_reference_resolution`` (its number is kept, but it is only an upper
-bound of nothing: the true error may be anywhere below the uncertainty).
+difference between the two is the reference's ``uncertainty``; each quantity's own difference is the
+reference's resolution of it. An error below its quantity's resolution cannot be resolved and is flagged
+``below_reference_resolution`` (its number is kept, but it is only an upper bound of nothing: the true error
+may be anywhere below that resolution).
 
 A run meets a requested accuracy when ``max(error, uncertainty) <= accuracy`` for the three compared
 quantities (window-mean output speed, per-stage mean F_t, per-stage run-up peak |F_t|).
@@ -159,7 +160,7 @@ def measure(sim: SimulationResult, method: str, rtol: float, ref: ReferenceRun, 
         method=method, method_used=sim.solver.method, rtol=rtol, wall_s=sim.solver.wall_s, nfev=sim.solver.nfev,
         njev=sim.solver.njev, steps=sim.solver.steps, error_speed=errors["speed"],
         error_mean_force=errors["mean_force"], error_peak_force=errors["peak_force"],
-        below_reference_resolution={q: errors[q] < ref.uncertainty for q in QUANTITIES},
+        below_reference_resolution={q: errors[q] < ref.resolution(q) for q in QUANTITIES},
         meets_accuracy=meets(errors, ref.uncertainty, accuracy), file_settings=file_settings,
         engine=sim.solver.engine,
     )

@@ -138,7 +138,8 @@ class ReferenceRun:
     """The tight-tolerance reference and the independent check that bounds its own error.
 
     ``uncertainty`` is the largest relative difference between the two runs over the three compared
-    quantities (``differences`` gives each); errors below it cannot be resolved.
+    quantities; ``differences`` gives each, the reference's resolution of that quantity (``resolution``): an error
+    of a quantity below its own difference cannot be resolved.
     """
 
     method: str
@@ -153,6 +154,10 @@ class ReferenceRun:
     differences: dict[str, float]
     metrics: RunMetrics
     window_s: tuple[float, float] | None = None  # the study's statistics window: the file's, never moved by the settle test
+
+    def resolution(self, quantity: str) -> float:
+        """The reference's resolution of one compared quantity: its difference from the check run."""
+        return self.differences.get(quantity, self.uncertainty)
 
 
 @record

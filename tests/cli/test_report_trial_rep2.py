@@ -277,7 +277,8 @@ def test_study_reference_within_its_stated_uncertainty_of_an_independent_solve(s
 
 def test_study_verdicts_follow_their_numbers(spur_study):
     """--accuracy 1e-5: a rung meets the target iff max(error, u) ≤ 1e-5 for the three quantities, a "< u" flag
-    iff its error is below u, the recommendation is a rung that meets it, and the file's verdict is its rung's."""
+    iff its error is below that quantity's resolution (the reference's difference from its check in it; u is
+    their largest), the recommendation is a rung that meets it, and the file's verdict is its rung's."""
     acc = spur_study["accuracy"]
     assert acc["requested_accuracy"] == 1e-5
     u = acc["reference"]["uncertainty"]
@@ -287,7 +288,10 @@ def test_study_verdicts_follow_their_numbers(spur_study):
         errors = (r["error_speed"], r["error_mean_force"], r["error_peak_force"])
         assert r["meets_accuracy"] == all(max(e, u) <= 1e-5 for e in errors), r
         flags = r["below_reference_resolution"]
-        assert [flags["speed"], flags["mean_force"], flags["peak_force"]] == [e < u for e in errors], r
+        resolution = acc["reference"]["differences"]
+        assert u == max(resolution.values())
+        assert [flags["speed"], flags["mean_force"], flags["peak_force"]] == [
+            e < resolution[q] for e, q in zip(errors, ("speed", "mean_force", "peak_force"), strict=True)], r
         assert r["wall_s"] >= 0 and r["nfev"] > 0
     assert acc["recommended"]["meets_accuracy"]
     file_run = next(r for r in acc["runs"] if r["file_settings"])
