@@ -103,6 +103,9 @@ WARNING_SCHEMA: JsonObject = {
         "stage": {"anyOf": [{"type": "integer", "minimum": 1}, {"type": "null"}]},
         # a parallel stage's pinion/gear; a planetary stage's ring (its planet–ring mesh); life's members
         "member": {"enum": ["pinion", "gear", "sun", "planet", "ring", "planet_ring_side", "planet_root"]},
+        # the statistics a warning is about, comma-separated ("mean, std, min, max, dynamic_factor"); a warning
+        # that lists them (``statistics``: statistics_unresolved, statistics_undersampled) has both
+        "statistic": {"type": "string"},
     },
 }
 
@@ -123,6 +126,9 @@ def _json_value(v: object) -> JsonValue:
 def as_dict(d: Diagnostic) -> JsonObject:
     """One JSON ``warnings`` entry: ``code``, ``message``, then the diagnostic's data."""
     data = {k: _json_value(v) for k, v in d.data.items() if k not in ("code", "message")}
+    named = data.get("statistics")
+    if "statistic" not in data and isinstance(named, list):  # the contract's key beside the list (DESIGN §12)
+        data["statistic"] = ", ".join(str(s) for s in named)
     return {"code": d.code, "message": d.message, **data}
 
 
