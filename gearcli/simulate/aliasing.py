@@ -200,11 +200,16 @@ def warnings(samplings: list[SamplingError | None]) -> list[Diagnostic]:
 
 
 def peak_warnings(found: list[Diagnostic], samplings: list[SamplingError | None], t: np.ndarray,
-                  forces_N: list[np.ndarray]) -> list[Diagnostic]:
+                  forces_N: list[np.ndarray], steps: int = 1, fastest_Hz: float = 0.0) -> list[Diagnostic]:
     """``found`` (:func:`gearcli.simulate.sampling.peak_warnings`) with the run's peak of every stage whose window
     carries force above the samples' Nyquist frequency, more than the target of that peak, warned as not bounded
     by them (the whole run's F_t ``forces_N`` at the times ``t``; the frequency's suggestion), in place of its
-    estimate's warning."""
+    estimate's warning. A run of fewer than 3 samples (``simulation.steps = 1``, ``steps``), which gives the
+    estimate no sample between its ends, has every loaded stage's peak warned as not bounded, the suggestion
+    sampling the scene's fastest natural frequency ``fastest_Hz`` as an aliased peak's does."""
+    if t.size < 3:
+        return [_bare_peak_warning(k, np.abs(np.asarray(f, dtype=float)), t, steps, fastest_Hz)
+                for k, f in enumerate(forces_N) if np.size(f) and float(np.max(np.abs(f))) > 0.0]
     aliased = {k: s.aliased for k, s in enumerate(samplings) if s is not None and s.aliased is not None}
     if not aliased:
         return found
@@ -222,6 +227,23 @@ def peak_warnings(found: list[Diagnostic], samplings: list[SamplingError | None]
             stage=k + 1, peak_N=peak, estimated_error_N=None, relative_error=None, steps=a["steps"],
             steps_cap=MAX_STEPS, aliased=True, aliased_Hz=a["frequency_Hz"]))
     return sorted(out, key=_stage)
+
+
+def _bare_peak_warning(k: int, a: np.ndarray, t: np.ndarray, steps: int, fastest_Hz: float) -> Diagnostic:
+    """``peak_undersampled`` of a stage whose run has no sample between its ends: its peak |F_t| is one of its
+    end samples', and the run-up's peak between them is not seen (a run from rest at t = 0, at rest)."""
+    i, span = int(np.argmax(a)), float(t[-1] - t[0])
+    want = sampling.up_to_two_figures(max(2.0 * steps, span * fastest_Hz * sampling.GOOD_PER_PERIOD))
+    n = want if fastest_Hz > 0.0 and span > 0.0 and want <= MAX_STEPS else None
+    fix = (f"--set simulation.steps={n} samples the scene's fastest natural frequency {sampling.GOOD_PER_PERIOD:g} "
+           "times a period" if n is not None else "more output samples (simulation.steps) show it")
+    return dg.warning(
+        dg.PEAK_UNDERSAMPLED,
+        f"stage {k + 1}: the run's peak |F_t| {float(a[i]):.5g} N (at {float(t[i]):.3g} s) and its run-up factor are "
+        f"not resolved by the output samples, and no estimate from them bounds the error: the run has {t.size} "
+        f"samples, none between its ends, so they do not see the run-up's peak; {fix}",
+        stage=k + 1, peak_N=float(a[i]), estimated_error_N=None, relative_error=None, steps=n, steps_cap=MAX_STEPS,
+        aliased=False)
 
 
 def _carried(a: JsonObject) -> str:

@@ -487,10 +487,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
                                                  _unloaded(spec))
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
             peaks_N = peak_series(model, s, [p[0] for p in per_stage])
-            diags += aliasing.peak_warnings(sampling.peak_warnings(s.time_s, peaks_N, steps or s.time_s.size - 1,
-                                                                   max(choice.natural_frequencies_Hz, default=0.0),
-                                                                   diags),
-                                            samplings, s.time_s, peaks_N)
+            n_steps, fastest_Hz = steps or s.time_s.size - 1, max(choice.natural_frequencies_Hz, default=0.0)
+            diags += aliasing.peak_warnings(sampling.peak_warnings(s.time_s, peaks_N, n_steps, fastest_Hz, diags),
+                                            samplings, s.time_s, peaks_N, n_steps, fastest_Hz)
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
