@@ -204,7 +204,13 @@ class PlanetaryLayout:
     (s = +1/-1 the sense of the sun's external torque, which the planets' tangential forces on the sun
     oppose; h_p the planet's hand: an axial force on a gear is -h (F_tang . t_P) tan(b_w) x, t_P = x X (axis to
     contact point)). The sun takes the reverse of the first, the ring the reverse of the second, the carrier
-    (through the pins) the sum; a planet's pin bearings hold the planet against both."""
+    (through the pins) the sum; a planet's pin bearings hold the planet against both.
+
+    Losses: with a stage efficiency below 1 the member torques leave the lossless ratio 1 : u : -(1 + u), and
+    each member's forces are scaled so that they carry its own torque of the moment balance (``side_factors``,
+    per unit F_bt of the sun mesh): the sun |T_s| / (N r_b,s F_bt), the ring |T_r| / (N r_b,r F_bt), and the
+    planet, on both its meshes, |T_c| / (N (r_b,s + r_b,r) F_bt), so that its pin carries exactly the carrier's
+    torque (N F_bt (r_b,s + r_b,r) is the carrier torque of the forces above). All 1 without losses."""
 
     stage: int  # 0-based
     planets: int
@@ -223,26 +229,30 @@ class PlanetaryLayout:
     load_sharing_factor: float  # K_gamma: the most loaded planet's share over the mean (planet pins only)
     output_sense: int = 1  # the output member's sense of rotation against the input member's (Willis)
     input_share_sign: int = 1  # the sign of the input member's torque share (sun 1 : ring u : carrier -(1 + u))
+    side_factors: tuple[float, float, float] = (1.0, 1.0, 1.0)  # sun, planet, ring: the forces per unit F_bt (losses)
 
     @property
     def centre_distance_mm(self) -> float:
         return self.r_w_sun_mm + self.r_w_planet_sun_mm
 
-    def planet_loads(self, j: int, line_force_N: float, about_planet: bool = False) -> tuple[PointLoad, PointLoad]:
+    def planet_loads(self, j: int, line_force_N: float, about_planet: bool = False,
+                     sides: tuple[float, float] | None = None) -> tuple[PointLoad, PointLoad]:
         """The sun's and the ring's force on planet j for the sun mesh's line force F_bt (positive: the design's
         load direction), at the pitch points in the global frame (``about_planet``: relative to the planet's
-        axis, x along the pin)."""
+        axis, x along the pin); ``sides``: the factors on the sun mesh's and the ring mesh's F_bt (default: the
+        planet's, :attr:`side_factors`)."""
         psi = self.psi_rad[j]
         r = (0.0, math.cos(psi), math.sin(psi))
         t = (0.0, -math.sin(psi), math.cos(psi))
         s, h = self.torque_sense, self.planet_hand
-        f_ts = line_force_N * math.cos(self.alpha_w_sun_rad)  # tangential, each mesh at its own working circle
-        f_tr = line_force_N * math.cos(self.alpha_w_ring_rad)
-        radial_s = abs(line_force_N) * math.sin(self.alpha_w_sun_rad)
-        radial_r = abs(line_force_N) * math.sin(self.alpha_w_ring_rad)
+        f_sun, f_ring = ((self.side_factors[1],) * 2 if sides is None else sides)
+        f_ts = f_sun * line_force_N * math.cos(self.alpha_w_sun_rad)  # tangential, each mesh at its working circle
+        f_tr = f_ring * line_force_N * math.cos(self.alpha_w_ring_rad)
+        radial_s = f_sun * abs(line_force_N) * math.sin(self.alpha_w_sun_rad)
+        radial_r = f_ring * abs(line_force_N) * math.sin(self.alpha_w_ring_rad)
         axial = h * s * line_force_N * math.tan(self.base_helix_rad)  # F_bt tan(b_b) on each mesh, opposite senses
-        from_sun = (axial, s * f_ts * t[1] + radial_s * r[1], s * f_ts * t[2] + radial_s * r[2])
-        from_ring = (-axial, s * f_tr * t[1] - radial_r * r[1], s * f_tr * t[2] - radial_r * r[2])
+        from_sun = (f_sun * axial, s * f_ts * t[1] + radial_s * r[1], s * f_ts * t[2] + radial_s * r[2])
+        from_ring = (-f_ring * axial, s * f_tr * t[1] - radial_r * r[1], s * f_tr * t[2] - radial_r * r[2])
         x = self.axial_mm["planet"] or 0.0
         centre = 0.0 if about_planet else self.centre_distance_mm
         at_sun = centre - self.r_w_planet_sun_mm
@@ -254,8 +264,9 @@ class PlanetaryLayout:
         """The planets' forces on a central member (sun, ring, carrier) at their points, its own axial place."""
         out: list[PointLoad] = []
         x = self.axial_mm[member]
+        sides = {"sun": (self.side_factors[0],) * 2, "ring": (self.side_factors[2],) * 2}.get(member)
         for j in range(self.planets):
-            sun, ring = self.planet_loads(j, line_force_N)
+            sun, ring = self.planet_loads(j, line_force_N, sides=sides)
             if member == "sun":
                 out.append(PointLoad((x or 0.0, *sun.point_mm[1:]), _neg(sun.force_N)))
             elif member == "ring":
@@ -477,6 +488,7 @@ def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayou
     share = {"sun": 1.0, "ring": u, "carrier": -(1.0 + u)}[p.input]
     n = p.planet_count
     return PlanetaryLayout(
+        side_factors=_side_factors(st),
         stage=k, planets=n, psi_rad=tuple(math.radians(a) for a in p.planet_angles_deg or planet_angles_deg(n, None)),
         r_w_sun_mm=0.5 * p.sun.base_diameter_mm / math.cos(a_sp),
         r_w_planet_sun_mm=0.5 * p.planet.base_diameter_mm / math.cos(a_sp),
@@ -488,6 +500,21 @@ def planetary_layout(cfg: DesignFile, k: int, st: StageResult) -> PlanetaryLayou
                   "carrier": stage.planet.axial_position_mm, "planet": stage.planet.axial_position_mm},
         load_sharing_factor=p.load_sharing_factor, output_sense=1 if unit[p.output] > 0 else -1,
         input_share_sign=1 if share > 0 else -1)
+
+
+def _side_factors(st: StageResult) -> tuple[float, float, float]:
+    """The sun's, the planet's and the ring's forces per unit F_bt of the sun mesh that carry the moment balance's
+    torques (:class:`PlanetaryLayout`); exactly 1 without losses or without a load (no balance to scale by)."""
+    p = st.planetary
+    assert p is not None
+    f_bt = abs(line_forces_N([st])[0])
+    torques = {m: 1e3 * abs(v) for m, v in p.moment_balance_Nm.items()}
+    if p.mesh_efficiency >= 1.0 or f_bt == 0.0 or not all(math.isfinite(v) for v in torques.values()):
+        return (1.0, 1.0, 1.0)
+    r_bs, r_br = 0.5 * p.sun.base_diameter_mm, 0.5 * p.ring.base_diameter_mm
+    per_planet = p.planet_count * f_bt
+    return (torques["sun"] / (per_planet * r_bs), torques["carrier"] / (per_planet * (r_bs + r_br)),
+            torques["ring"] / (per_planet * r_br))
 
 
 def line_forces_N(stages: Sequence[StageResult]) -> list[float]:

@@ -175,7 +175,9 @@ def points_from_series(time_s: Sequence[float], torque_Nm: Sequence[float], spee
     """Time at level -> points: each row's torque and speed hold until the next row; the levels are put into
     ``classes`` torque classes of equal width. A class's point carries the largest torque of the class (the
     spectrum is not made milder by classing), its total time, and the speed that keeps its revolutions
-    (time-weighted mean), so each revolution at a level is a load cycle for the teeth."""
+    (time-weighted mean), so each revolution at a level is a load cycle for the teeth. A class that holds
+    torques of both signs is two points, ``class c (negative torque)`` and ``class c``: the sign chooses the
+    flank and the bearings' reaction directions, which one signed torque cannot stand for."""
     dt = [b - a for a, b in zip(time_s, time_s[1:], strict=False)]
     # a reverse row's revolutions are load cycles too (|speed|); the torque's sign says which flank they load
     levels = [(torque_Nm[i], abs(speed_rpm[i]), dt[i]) for i in range(len(dt)) if speed_rpm[i] != 0.0]
@@ -183,16 +185,18 @@ def points_from_series(time_s: Sequence[float], torque_Nm: Sequence[float], spee
         raise ConfigError("no row with a nonzero speed: nothing turns, nothing wears", source=source)
     lo, hi = min(q for q, _, _ in levels), max(q for q, _, _ in levels)
     width = (hi - lo) / classes if hi > lo else 1.0
-    groups: dict[int, list[tuple[float, float, float]]] = {}
-    for q, n, d in levels:
-        groups.setdefault(min(classes - 1, int((q - lo) / width)), []).append((q, n, d))
+    groups: dict[tuple[int, bool], list[tuple[float, float, float]]] = {}
+    for q, n, d in levels:  # by class, then by the torque's sign (negative first)
+        groups.setdefault((min(classes - 1, int((q - lo) / width)), q >= 0.0), []).append((q, n, d))
     points = []
-    for c in sorted(groups):
-        g = groups[c]
+    for c, positive in sorted(groups):
+        g = groups[(c, positive)]
         seconds = sum(d for _, _, d in g)
         speed = sum(n * d for _, n, d in g) / seconds
         torque = max(g, key=lambda x: abs(x[0]))[0]
-        points.append(DutyPoint(f"class {c + 1}", seconds / 3600.0, torque, speed, (), source))
+        split = not positive and (c, True) in groups
+        name = f"class {c + 1} (negative torque)" if split else f"class {c + 1}"
+        points.append(DutyPoint(name, seconds / 3600.0, torque, speed, (), source))
     return points
 
 

@@ -4,6 +4,8 @@ planets' mean force (docs/life.md, "Starts"; docs/bearings.md)."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from gearcli.config import DesignFile
@@ -12,7 +14,7 @@ from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
 from gearcli.errors import SimulationError
 from gearcli.life.bearings import PointBearings
 from gearcli.life.duty import DutyPoint
-from gearcli.life.starts import StartData, start_data
+from gearcli.life.starts import StartData, start_bearings, start_data
 from gearcli.results import DesignResult, StageResult
 from gearcli.simulate.bearings import peak_static_load_N, reaction_series
 from gearcli.simulate.results import SimulationResult
@@ -33,7 +35,29 @@ def start_of(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: Si
     if lay is None:
         return start_data(point.starts, result, design)
     series = with_planet_mean(design, dict(result.series))
-    return start_data(point.starts, result, design, reaction_series(lay, design, series), lay.specs)
+    start = start_data(point.starts, result, design, reaction_series(lay, design, series), lay.specs)
+    # a pin bearing carries its worst planet's force times K_gamma over the start as in the window
+    loads, peaks, static = (list(start.bearing_loads_N), list(start.bearing_peaks), list(start.bearing_peak_static_N))
+    for stage, each in planet_series(design, series).items():
+        pins = [j for j, spec in enumerate(lay.specs) if spec.planet_stage == stage]
+        figures = [start_bearings(result, reaction_series(lay, design, s), lay.specs) for s in each]
+        for j in pins:
+            loads[j] = max(f[0][j] for f in figures)
+            peaks[j] = max((f[1][j] for f in figures), key=lambda x: x["peak_radial_N"])
+            static[j] = max(f[2][j] for f in figures)
+    return replace(start, bearing_loads_N=tuple(loads), bearing_peaks=tuple(peaks), bearing_peak_static_N=tuple(static))
+
+
+def planet_series(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[int, list[dict[Channel, np.ndarray]]]:
+    """Per stage with planets (1-based), one series per planet whose stage force is that planet's sun-mesh force
+    times the design's K_gamma (1 where the simulated position errors share the load): a pin bearing's load."""
+    out: dict[int, list[dict[Channel, np.ndarray]]] = {}
+    for st in design.stages:
+        forces = life_kind(st).planet_forces(st, series)
+        if forces:
+            own = Channel("tangential_force", f"stage{st.index}")
+            out[st.index] = [{**series, own: f * k_gamma(st)} for f in forces]
+    return out
 
 
 def with_planet_mean(design: DesignResult, series: dict[Channel, np.ndarray]) -> dict[Channel, np.ndarray]:
@@ -67,15 +91,8 @@ def dynamic_bearing_loads(cfg: DesignFile, design: DesignResult, result: Simulat
     # a planetary stage: the central members carry the mean planet's force N times (their torque), each pin its
     # own planet's times the design's K_gamma (1 where the simulated position errors share the load); a pin bearing
     # reports the worst planet's
-    per_planet: dict[int, list[dict[Channel, np.ndarray]]] = {}
-    for st in design.stages:
-        forces = life_kind(st).planet_forces(st, series)
-        if not forces:
-            continue
-        own = Channel("tangential_force", f"stage{st.index}")
-        series[own] = np.mean(forces, axis=0)
-        forces = [f * k_gamma(st) for f in forces]
-        per_planet[st.index] = [{**series, own: f} for f in forces]
+    series = with_planet_mean(design, series)
+    per_planet = planet_series(design, series)
     r = reaction_series(lay, design, series)
     out = []
     for j, spec in enumerate(specs):

@@ -7,7 +7,8 @@ classed like the window's (:func:`gearcli.life.spectra.dynamic_loads` over the s
 and each member's classes count ``N`` times the member's load cycles of one start (its revolutions during the
 start, by the design's kinematics from the input shaft's, times its contacts per turn), in bins of their own
 (named ``"<point> (start)"``). The bearings take the start's ISO 281 equivalent load (P^p averaged over the
-start's revolutions) for ``N`` times the start's revolutions of their shaft. What runs after the start has
+start's revolutions) for ``N`` times the start's revolutions of their shaft (a planet pin's: the worst planet's
+force times the design's K_gamma, as in the window). What runs after the start has
 settled but before the window is counted with the start (conservative; a few settled cycles where the window
 follows the settling, all of it where a file's ``window_start_s`` puts the window later).
 """
@@ -77,9 +78,18 @@ def start_data(count: int, result: SimulationResult, design: DesignResult,
     peaks = tuple(float(np.max(stage_force_series(result, design, k)[mask])) for k in range(len(design.stages)))
     if bearing_series is None:
         return StartData(count, span, loads, revs, peaks)
+    b_loads, b_peaks, b_static = start_bearings(result, bearing_series, bearing_specs)
+    return StartData(count, span, loads, revs, peaks, tuple(b_loads), tuple(b_peaks), tuple(b_static))
+
+
+def start_bearings(result: SimulationResult, bearing_series: np.ndarray, bearing_specs
+                   ) -> tuple[list[float], list[dict[str, float]], list[float]]:
+    """Per bearing over the start ``[0, window start]``: the ISO 281 equivalent load (P^p averaged over the input
+    shaft's revolutions), the peak reactions and the peak ISO 76 P_0, from ``bearing_series`` (bearings x 3 (y, z,
+    axial) x samples)."""
+    mask = _mask(result.time_s, (float(result.time_s[0]), float(result.window_s[0])))
     w = np.abs(result.series[Channel("speed", "shaft1")][mask])
     b_loads, b_peaks, b_static = [], [], []
-
     for j, spec in enumerate(bearing_specs):
         r = bearing_series[j][:, mask]
         fr, fa = np.hypot(r[0], r[1]), r[2]
@@ -91,7 +101,7 @@ def start_data(count: int, result: SimulationResult, design: DesignResult,
         b_peaks.append({"peak_radial_N": float(fr[i]), "axial_at_peak_radial_N": float(abs(fa[i])),
                         "peak_axial_N": float(np.max(np.abs(fa)))})
         b_static.append(peak_static_load_N(spec, fr, fa))
-    return StartData(count, span, loads, revs, peaks, tuple(b_loads), tuple(b_peaks), tuple(b_static))
+    return b_loads, b_peaks, b_static
 
 
 def member_start_cycles(start: StartData, input_rpm: float, member_rpm: float, contacts: int) -> float:

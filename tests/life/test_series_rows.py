@@ -77,3 +77,25 @@ def test_classes_without_a_series_is_a_usage_error(tmp_path):
     res = CliRunner().invoke(cli, ["life", str(path), "--static", "--classes", "3", "-o", str(out)])
     assert res.exit_code == 2 and "--classes" in res.stderr and "--series" in res.stderr
     assert "Traceback" not in res.output and not out.exists()
+
+
+def test_a_class_spanning_zero_torque_is_split_by_the_torque_sign(tmp_path):
+    """The torque's sign chooses the flank (and the bearings' reaction directions), so one class must not mix the
+    two: a history of 1 h at -120 N·m (1000 rpm), 100 h at +100 N·m (1200 rpm) and 10 h at 900 N·m (1480 rpm) in 3
+    classes of width (900 + 120)/3 = 340 N·m puts -120 and +100 into class 1. Hand classing, split by sign: class 1's
+    negative part (-120 N·m, 1 h, 1000 rpm), its positive part (+100 N·m, 100 h, 1200 rpm), class 3 (900 N·m, 10 h,
+    1480 rpm). Unsplit, class 1 became one point of -120 N·m over 101 h: a 101 h load reversal on the back flanks
+    (and its reversed bearing loads) out of one hour of it."""
+    path, csv = tmp_path / "s.toml", tmp_path / "h.csv"
+    path.write_text(RATED)
+    csv.write_text(HEADER + f"0,-120,1000\n{3600.0},100,1200\n{101 * 3600.0},900,1480\n{111 * 3600.0},0,1480\n")
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--series", str(csv), "--classes", "3",
+                                   "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    points = sorted((p["torque_Nm"], p["hours"], p["speed_rpm"]) for p in doc["life"]["points"])
+    assert_allclose(points, [(-120.0, 1.0, 1000.0), (100.0, 100.0, 1200.0), (900.0, 10.0, 1480.0)], rtol=1e-12)
+    names = [p["name"] for p in doc["life"]["points"]]
+    assert len(set(names)) == 3 and all(n.startswith("class ") for n in names)
+    reversals = [w for w in doc["warnings"] if "load reversal" in w["message"]]
+    assert len(reversals) == 1 and "-120" in reversals[0]["message"]
