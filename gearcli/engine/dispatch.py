@@ -85,8 +85,8 @@ def source(elements: tuple[ElementType, ...]) -> str:
             if hasattr(et.law, fn):
                 lines += [f"    if kind == {et.kind}:", f"        return _{et.name}_{fn}({args})"]
         lines += [f"    return {default}", ""]
-    # at every sample, the chain outside the loop (the output sampling's: one law inlined, its other outputs unread,
-    # where the chain inside the loop called the law through it sample by sample)
+    # at every sample, the chain outside the loop (the output sampling's: the kind chosen once for all the samples,
+    # where a chain inside the loop was walked at each)
     for name, call in SAMPLE_FUNCTIONS:
         lines += ["", "@jit", f"def {name}(kind, P, {call[0]}, out):"]
         for k, et in enumerate(elements):

@@ -92,7 +92,7 @@ def connector_series(kind, P, d, dd, phi, wphi, energy_from, channels):
     U = np.empty(n)
     ch = np.zeros((conn_n_channels(kind), n))
     rows = min(channels, ch.shape[0])
-    conn_forces(kind, P, d, dd, phi, wphi, F)  # the law's force alone, its kind chosen once (not at every sample)
+    conn_forces(kind, P, d, dd, phi, wphi, F)  # the kind chosen once for all the samples (not at each)
     for j in range(n):
         U[j] = conn_potential(kind, P, d[j], phi[j]) if j >= energy_from else np.nan
     for i in range(rows):
@@ -135,8 +135,8 @@ def connectors_series(kind, param, bodies, levers, ppr, flags, rows, Y, omega, t
             dd_s[j] = dd
             phi_s[j] = ppr[c] * theta[a, j] if flags[c] & 1 else 0.0
             wphi_s[j] = ppr[c] * omega[a, j] if flags[c] & 2 else 0.0
-        # the forces and each channel in one call (the law's force alone, its kind chosen once: ~2x faster than
-        # every output of the law through the kind's chain at each sample), the stored energy sample by sample
+        # the forces and each channel in one call each (the kind chosen once for all the samples, not at each: the
+        # same law, the same numbers), the stored energy sample by sample
         conn_forces(k, P, Y[r], dd_s, phi_s, wphi_s, F[c])
         for i in range(m):
             conn_channels(k, P, i, Y[r], phi_s, ch[c, i])
