@@ -2,7 +2,8 @@
 
 numba cannot look a function up in a dict at run time, so the kernel calls ``conn_force(kind, ...)`` and
 friends (and the loss hook's ``conn_lossy``, ``conn_loss_factors``: a kind without the hook falls through to
-"never loses"), each an ``if kind == k`` chain over the element types registered with ``compiled=True``
+"never loses"; ``conn_forces``, ``conn_channels``: a law at many samples, the chain outside the loop), each an
+``if kind == k`` chain over the element types registered with ``compiled=True``
 (:func:`gearcli.model.elements.compiled_types`), calling that element's own law compiled from its module
 (:func:`jit_module`, never rewritten). The chain's source is generated here from the registry and written
 as a real file into the kernel's cache directory (:func:`gearcli.engine.cache_dir`, whose key hashes the
@@ -44,6 +45,13 @@ HOOK_FUNCTIONS = (
     ("conn_loss_factors", "loss_factors", "P, f, va, vb", "f, f, 1.0, 0.0, 1.0, 0.0"),
 )
 
+#: (kernel name, (arguments after ``kind`` before ``out``, the element's call at sample j)): a law at every sample
+#: of its argument arrays into ``out`` (``conn_forces``: the force, ``conn_channels``: channel ``i``)
+SAMPLE_FUNCTIONS = (
+    ("conn_forces", ("d, dd, phi, wphi", "force(P, d[j], dd[j], phi[j], wphi[j])[0]")),
+    ("conn_channels", ("i, d, phi", "channel(P, i, d[j], phi[j])")),
+)
+
 
 def jit_module(mod: types.ModuleType) -> dict:
     """numba-compiled copies of a module's own functions, each seeing the others' compiled copies (the
@@ -77,6 +85,16 @@ def source(elements: tuple[ElementType, ...]) -> str:
             if hasattr(et.law, fn):
                 lines += [f"    if kind == {et.kind}:", f"        return _{et.name}_{fn}({args})"]
         lines += [f"    return {default}", ""]
+    # at every sample, the chain outside the loop (the output sampling's: the kind chosen once for all the samples,
+    # where a chain inside the loop was walked at each)
+    for name, call in SAMPLE_FUNCTIONS:
+        lines += ["", "@jit", f"def {name}(kind, P, {call[0]}, out):"]
+        for k, et in enumerate(elements):
+            last = k == len(elements) - 1
+            pad = "" if last else "    "
+            loop = [f"{pad}    for j in range(d.size):", f"{pad}        out[j] = _{et.name}_{call[1]}"]
+            lines += loop if last else [f"    if kind == {et.kind}:", *loop, "        return"]
+        lines += [""]
     lines += ["", "@jit", "def conn_n_channels(kind):"]
     for et in elements:
         lines += [f"    if kind == {et.kind}:", f"        return {len(et.law.CHANNELS)}"]

@@ -29,7 +29,15 @@ from gearcli.engine import status as st
 from gearcli.engine import tableau as tb
 from gearcli.engine.assembly import stored_energy  # noqa: F401 - the energy watch's test reads it here
 from gearcli.engine.jacobian import jacobian
-from gearcli.engine.laws import KINDS, conn_channel, conn_force, conn_n_channels, conn_potential  # noqa: F401
+from gearcli.engine.laws import (  # noqa: F401 - the laws one sample at a time: tests
+    KINDS,
+    conn_channel,
+    conn_channels,
+    conn_force,
+    conn_forces,
+    conn_n_channels,
+    conn_potential,
+)
 from gearcli.engine.linalg import lu_factor, lu_solve  # noqa: F401 - the LU's tests call them here
 from gearcli.engine.numba_cache import jit_alloc
 from gearcli.engine.radau import radau  # noqa: F401 - an entry (gearcli.engine.loader.ENTRIES)
@@ -84,11 +92,11 @@ def connector_series(kind, P, d, dd, phi, wphi, energy_from, channels):
     U = np.empty(n)
     ch = np.zeros((conn_n_channels(kind), n))
     rows = min(channels, ch.shape[0])
+    conn_forces(kind, P, d, dd, phi, wphi, F)  # the kind chosen once for all the samples (not at each)
     for j in range(n):
-        F[j] = conn_force(kind, P, d[j], dd[j], phi[j], wphi[j])[0]
         U[j] = conn_potential(kind, P, d[j], phi[j]) if j >= energy_from else np.nan
-        for i in range(rows):
-            ch[i, j] = conn_channel(kind, P, i, d[j], phi[j])
+    for i in range(rows):
+        conn_channels(kind, P, i, d, phi, ch[i])
     return F, U, ch
 
 @jit_alloc
@@ -110,6 +118,7 @@ def connectors_series(kind, param, bodies, levers, ppr, flags, rows, Y, omega, t
     U = np.empty((nc, width))
     D = np.empty((nc, width))
     ch = np.zeros((nc, nch, width))
+    dd_s, phi_s, wphi_s = np.empty(n), np.empty(n), np.empty(n)  # a connector's law arguments at the samples
     for c in range(nc):
         k = kind[c]
         P = param[c]
@@ -117,20 +126,23 @@ def connectors_series(kind, param, bodies, levers, ppr, flags, rows, Y, omega, t
         a = bodies[c, 0]
         r = rows[c]
         for j in range(n):
-            d = Y[r, j]
             dd = levers[c, 0] * omega[a, j]
             for s in range(1, bodies.shape[1]):
                 b = bodies[c, s]
                 if b < 0:
                     break
                 dd = dd + levers[c, s] * omega[b, j]
-            phi = ppr[c] * theta[a, j] if flags[c] & 1 else 0.0
-            wphi = ppr[c] * omega[a, j] if flags[c] & 2 else 0.0
-            D[c, j] = d
-            F[c, j] = conn_force(k, P, d, dd, phi, wphi)[0]
-            U[c, j] = conn_potential(k, P, d, phi) if j >= energy_from else np.nan
-            for i in range(m):
-                ch[c, i, j] = conn_channel(k, P, i, d, phi)
+            dd_s[j] = dd
+            phi_s[j] = ppr[c] * theta[a, j] if flags[c] & 1 else 0.0
+            wphi_s[j] = ppr[c] * omega[a, j] if flags[c] & 2 else 0.0
+        # the forces and each channel in one call each (the kind chosen once for all the samples, not at each: the
+        # same law, the same numbers), the stored energy sample by sample
+        conn_forces(k, P, Y[r], dd_s, phi_s, wphi_s, F[c])
+        for i in range(m):
+            conn_channels(k, P, i, Y[r], phi_s, ch[c, i])
+        for j in range(n):
+            D[c, j] = Y[r, j]
+            U[c, j] = conn_potential(k, P, Y[r, j], phi_s[j]) if j >= energy_from else np.nan
         for j in range(n, width):
             F[c, j] = F[c, n - 1]
             U[c, j] = U[c, n - 1]

@@ -97,3 +97,33 @@ def test_a_constant_tail_evaluated_once_is_every_sample_evaluated(name, laws):
             for f in NAMES:
                 assert np.array_equal(getattr(a, f), getattr(b, f), equal_nan=True), f
                 assert getattr(a, f).shape == t.shape
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_a_law_at_every_sample_is_the_law_sample_by_sample(name, kernel):
+    """``conn_forces`` and ``conn_channels`` (the sampling's laws at every sample, the kind chosen once) against the
+    element's own scalar law in Python at each sample (the independent reference, to round-off) and, bit for bit,
+    against the one-sample dispatch ``conn_force`` / ``conn_channel`` the kernel called at each sample before."""
+    from gearcli.engine import kernel as k  # lazy: imports numba (the fixture has loaded it)
+
+    lay, t, Y = _scene(name, samples=150)
+    omega, theta, _ = outputs.body_motion(lay, t, Y)
+    seen, loaded = set(), False
+    for c, x in enumerate(lay.connectors):
+        d, dd, phi, wphi = (np.ascontiguousarray(v, dtype=float) for v in outputs._law_arguments(lay, c, Y, omega, theta))
+        P = np.asarray(x.params, dtype=float)
+        got = np.full(d.size, np.nan)
+        k.conn_forces(x.kind, P, d, dd, phi, wphi, got)
+        one = [k.conn_force(x.kind, P, d[j], dd[j], phi[j], wphi[j])[0] for j in range(d.size)]
+        assert np.array_equal(got, np.array(one)), c
+        ref = np.array([x.element.force(P, d[j], dd[j], phi[j], wphi[j])[0] for j in range(d.size)])
+        np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12 * max(1.0, float(np.max(np.abs(ref)))))
+        for i in range(len(x.element.CHANNELS)):
+            chan = np.full(d.size, np.nan)
+            k.conn_channels(x.kind, P, i, d, phi, chan)
+            assert np.array_equal(chan, np.array([k.conn_channel(x.kind, P, i, d[j], phi[j]) for j in range(d.size)]))
+            ref = np.array([x.element.channel(P, i, d[j], phi[j]) for j in range(d.size)])
+            np.testing.assert_allclose(chan, ref, rtol=1e-12, atol=1e-12 * max(1.0, float(np.max(np.abs(ref)))))
+        seen.add(x.kind)
+        loaded = loaded or bool(np.any(got != 0.0))
+    assert seen and loaded  # connectors checked, with forces that are not all zero
