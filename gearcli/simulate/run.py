@@ -39,6 +39,7 @@ from gearcli.simulate.planet_stats import peak_series, planet_contact_warnings, 
 from gearcli.simulate.results import EnergyBalance, SimulationResult, SolverStats, SteadyState
 from gearcli.simulate.ringing import ringing_warnings
 from gearcli.simulate.solver import Integration
+from gearcli.simulate.start_rings import peak_warnings as start_peak_warnings
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
@@ -488,8 +489,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         if diagnose and from_rest:  # the start's peak (a continued run has no start)
             peaks_N = peak_series(model, s, [p[0] for p in per_stage])
             n_steps, fastest_Hz = steps or s.time_s.size - 1, max(choice.natural_frequencies_Hz, default=0.0)
-            diags += aliasing.peak_warnings(sampling.peak_warnings(s.time_s, peaks_N, n_steps, fastest_Hz, diags),
-                                            samplings, s.time_s, peaks_N, n_steps, fastest_Hz)
+            found = aliasing.peak_warnings(sampling.peak_warnings(s.time_s, peaks_N, n_steps, fastest_Hz, diags),
+                                           samplings, s.time_s, peaks_N, n_steps, fastest_Hz)
+            diags += start_peak_warnings(found, model, choice.boundary, s.time_s, peaks_N, n_steps)
 
     def ringing_diags() -> list[Diagnostic]:
         return ringing_warnings(model, choice, s.time_s, mask, [p[0] for p in per_stage],
