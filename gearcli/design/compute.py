@@ -75,6 +75,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
             stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
             rating_diagnostics += tuple(_not_rated(st) for st in stages if not design_kind(st).gear_pair)
+            rating_diagnostics += _left_unrated(cfg.rating.standard, stages, rating_diagnostics)
     except DesignError as exc:
         raise DesignError(exc.message, key=file_key(cfg, exc.key), source=exc.source) from None
     for k, stage in enumerate(stages):
@@ -162,6 +163,29 @@ def _not_rated(st: StageResult) -> Diagnostic:
     kind = kinds.kind_of(st)
     return warning(DESIGN, f"stage {st.index}: a {kind} stage has no gear mesh to rate: [rating] leaves it unrated",
                    check="not_rated", stage=st.index, type=kind)
+
+
+def _left_unrated(standard: str, stages: tuple[StageResult, ...],
+                  said: tuple[Diagnostic, ...]) -> tuple[Diagnostic, ...]:
+    """A gear stage, or a planetary stage's planet–ring mesh, that the ``[rating]`` standard returned unrated (a
+    plug-in standard may rate some kinds only): said, naming the standard, never a stage silently without
+    safeties. A planet–ring mesh the standard's own warnings already name (ISO 6336's ``mesh_not_rated``, which says
+    which key is missing) is not said twice."""
+    out = []
+    for st in stages:
+        if not design_kind(st).gear_pair:
+            continue
+        kind = kinds.kind_of(st)
+        if st.rating is None:
+            out.append(warning(DESIGN, f'stage {st.index}: the rating standard "{standard}" left this {kind} stage '
+                               "unrated: it has no safeties", check="not_rated", stage=st.index, type=kind,
+                               standard=standard))
+        elif st.planetary is not None and st.planetary.planet_ring.rating is None and not any(
+                d.data.get("stage") == st.index and d.data.get("mesh") == "planet_ring" for d in said):
+            out.append(warning(DESIGN, f'stage {st.index}: the rating standard "{standard}" left the planet–ring '
+                               "mesh unrated: the ring and the planet's ring side have no safeties",
+                               check="not_rated", stage=st.index, type=kind, mesh="planet_ring", standard=standard))
+    return tuple(out)
 
 
 def _require_finite(obj, key: str) -> None:
