@@ -100,10 +100,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            f"drive = \"motor\"; drive = \"{cfg.input.drive}\" ignores "
                            f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
         if ignored else ()
+    reverse_notes = _reverse_efficiency_notes(cfg, kind, kin)
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out), kin.shaft_torque_Nmm(0) / 1000.0,
                                        speed_rpm(kin.shaft_speeds_rad_s[0])), *own, *pins, *jammed,
                    *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages, _law_keys(cfg)), *_damping_notes(cfg),
-                   *rating_diagnostics, *_bearing_diagnostics(cfg, bearings), *drive_notes)
+                   *rating_diagnostics, *_bearing_diagnostics(cfg, bearings), *drive_notes, *reverse_notes)
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -163,6 +164,26 @@ def _not_rated(st: StageResult) -> Diagnostic:
     kind = kinds.kind_of(st)
     return warning(DESIGN, f"stage {st.index}: a {kind} stage has no gear mesh to rate: [rating] leaves it unrated",
                    check="not_rated", stage=st.index, type=kind)
+
+
+def _reverse_efficiency_notes(cfg: DesignFile, kind: tuple, kin: Train) -> tuple[Diagnostic, ...]:
+    """A plug-in stage whose reverse efficiency differs from its forward one (a worm's), under a reversed load
+    (power from the load back through the train): the design takes its reverse efficiency, the dynamics its forward
+    one (a lossy element loses one efficiency whichever way the power flows, docs/plugins.md "Losses"), so the
+    simulated torques and forces before it are eta / eta_r x the design's: said, with the factor."""
+    out = []
+    for k, table in enumerate(cfg.stage):
+        back, eta = kind[k].reverse_efficiency(table, k), float(table.efficiency)
+        name = kinds.kind_of(table)
+        if (back is None or kin.stage_torques_Nmm[k][1] >= 0.0 or math.isclose(back, eta, rel_tol=1e-9)
+                or name in kinds.BUILT_IN):  # gearcli's own kinds model theirs (a planetary's planet meshes)
+            continue
+        out.append(warning(DESIGN, f"stage {k + 1}: a reversed load: the design takes this {name} stage's reverse "
+                           f"efficiency {back:.4g} (T_in = T_out eta_r / i), the dynamics its efficiency {eta:.4g} "
+                           "(its element loses one efficiency whichever way the power flows): simulate's torques "
+                           f"and forces before it are {eta / back:.4g}x the design's", check="reverse_efficiency",
+                           stage=k + 1, type=name, reverse_efficiency=back, efficiency=eta, factor=eta / back))
+    return tuple(out)
 
 
 def _left_unrated(standard: str, stages: tuple[StageResult, ...],
