@@ -26,9 +26,6 @@ from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
 from gearcli.cli import cli
-from gearcli.config.schema import DesignFile
-from gearcli.rating.registry import withdraw as withdraw_standard
-from gearcli.stages import kinds
 
 Z1, Z2, PITCH, ETA, K, J1, J2 = 17, 51, 19.05, 0.9, 2.0e7, 0.02, 0.2  # -, -, mm, -, N/m, kg m², kg m²
 N_IN, T_IN, T_L, T_LR, DURATION, STEPS = 600.0, 0.2, 600.0, 0.1, 0.3, 3000  # rpm, s, N m, s, s, -
@@ -38,10 +35,7 @@ N_IN, T_IN, T_L, T_LR, DURATION, STEPS = 600.0, 0.2, 600.0, 0.1, 0.3, 3000  # rp
 def chain():
     pc.register()
     yield
-    for facet in ("table", "design", "model", "io"):
-        kinds.withdraw(pc.KIND, facet)
-    withdraw_standard(pc.LEWIS)
-    DesignFile.model_rebuild(force=True)
+    pc.withdraw()
 
 
 def _step(t: float, span: float) -> float:
