@@ -42,6 +42,9 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # session 20, tr23d: a speed sweep's figures with a plug-in stage (matplotlib and two runs; its Campbell points
+    # stay in the default tier: test_the_campbell_points_of_a_train_with_a_plug_in_stage)
+    "tests/plugins/test_sweep_plots_plugin.py::test_sweep_plots_of_a_train_with_a_plug_in_stage",
     # round 4, fourteenth session: the README's command read 126 s on the merged suite (4,048 tests); the dearest
     # tests the session's merges brought or slowed, and a few costly duplicates of checks the default tier keeps
     "tests/extreme/test_rattle_span.py::test_a_rattling_window_is_checked_from_the_start",

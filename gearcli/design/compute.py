@@ -75,6 +75,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         if cfg.rating is not None:  # the [rating] standard's (gearcli.rating; ISO 6336 by default, docs/iso6336.md)
             stages, rating_diagnostics = standard_of(cfg).rate_design(cfg, stages)
             rating_diagnostics += tuple(_not_rated(st) for st in stages if not design_kind(st).gear_pair)
+            rating_diagnostics += _left_unrated(cfg.rating.standard, stages, rating_diagnostics)
     except DesignError as exc:
         raise DesignError(exc.message, key=file_key(cfg, exc.key), source=exc.source) from None
     for k, stage in enumerate(stages):
@@ -99,10 +100,11 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            f"drive = \"motor\"; drive = \"{cfg.input.drive}\" ignores "
                            f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
         if ignored else ()
+    reverse_notes = _reverse_efficiency_notes(cfg, kind, kin)
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out), kin.shaft_torque_Nmm(0) / 1000.0,
                                        speed_rpm(kin.shaft_speeds_rad_s[0])), *own, *pins, *jammed,
                    *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages, _law_keys(cfg)), *_damping_notes(cfg),
-                   *rating_diagnostics, *_bearing_diagnostics(cfg, bearings), *drive_notes)
+                   *rating_diagnostics, *_bearing_diagnostics(cfg, bearings), *drive_notes, *reverse_notes)
     return DesignResult(
         title=cfg.title,
         stages=stages,
@@ -162,6 +164,49 @@ def _not_rated(st: StageResult) -> Diagnostic:
     kind = kinds.kind_of(st)
     return warning(DESIGN, f"stage {st.index}: a {kind} stage has no gear mesh to rate: [rating] leaves it unrated",
                    check="not_rated", stage=st.index, type=kind)
+
+
+def _reverse_efficiency_notes(cfg: DesignFile, kind: tuple, kin: Train) -> tuple[Diagnostic, ...]:
+    """A plug-in stage whose reverse efficiency differs from its forward one (a worm's), under a reversed load
+    (power from the load back through the train): the design takes its reverse efficiency, the dynamics its forward
+    one (a lossy element loses one efficiency whichever way the power flows, docs/plugins.md "Losses"), so the
+    simulated torques and forces before it are eta / eta_r x the design's: said, with the factor."""
+    out = []
+    for k, table in enumerate(cfg.stage):
+        back, eta = kind[k].reverse_efficiency(table, k), float(table.efficiency)
+        name = kinds.kind_of(table)
+        if (back is None or kin.stage_torques_Nmm[k][1] >= 0.0 or math.isclose(back, eta, rel_tol=1e-9)
+                or name in kinds.BUILT_IN):  # gearcli's own kinds model theirs (a planetary's planet meshes)
+            continue
+        out.append(warning(DESIGN, f"stage {k + 1}: a reversed load: the design takes this {name} stage's reverse "
+                           f"efficiency {back:.4g} (T_in = T_out eta_r / i), the dynamics its efficiency {eta:.4g} "
+                           "(its element loses one efficiency whichever way the power flows): simulate's torques "
+                           f"and forces before it are {eta / back:.4g}x the design's", check="reverse_efficiency",
+                           stage=k + 1, type=name, reverse_efficiency=back, efficiency=eta, factor=eta / back))
+    return tuple(out)
+
+
+def _left_unrated(standard: str, stages: tuple[StageResult, ...],
+                  said: tuple[Diagnostic, ...]) -> tuple[Diagnostic, ...]:
+    """A gear stage, or a planetary stage's planet–ring mesh, that the ``[rating]`` standard returned unrated (a
+    plug-in standard may rate some kinds only): said, naming the standard, never a stage silently without
+    safeties. A planet–ring mesh the standard's own warnings already name (ISO 6336's ``mesh_not_rated``, which says
+    which key is missing) is not said twice."""
+    out = []
+    for st in stages:
+        if not design_kind(st).gear_pair:
+            continue
+        kind = kinds.kind_of(st)
+        if st.rating is None:
+            out.append(warning(DESIGN, f'stage {st.index}: the rating standard "{standard}" left this {kind} stage '
+                               "unrated: it has no safeties", check="not_rated", stage=st.index, type=kind,
+                               standard=standard))
+        elif st.planetary is not None and st.planetary.planet_ring.rating is None and not any(
+                d.data.get("stage") == st.index and d.data.get("mesh") == "planet_ring" for d in said):
+            out.append(warning(DESIGN, f'stage {st.index}: the rating standard "{standard}" left the planet–ring '
+                               "mesh unrated: the ring and the planet's ring side have no safeties",
+                               check="not_rated", stage=st.index, type=kind, mesh="planet_ring", standard=standard))
+    return tuple(out)
 
 
 def _require_finite(obj, key: str) -> None:

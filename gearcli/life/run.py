@@ -62,6 +62,7 @@ from gearcli.model.motor_start import VFD_OFF_SPEED
 from gearcli.rating.registry import DEFAULT as DEFAULT_STANDARD
 from gearcli.rating.sn import miner_name
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
+from gearcli.stages import kinds
 from gearcli.stages.design import design_kind
 from gearcli.stages.life import LifeKind, life_kind
 from gearcli.sweep.worker import Case, CaseDesigner, PointEvaluator, Scene
@@ -134,8 +135,13 @@ def _rating(stage: StageResult) -> RatedMesh:
 
 
 def _require_ring_rating(cfg: DesignFile, design: DesignResult, scene: Scene) -> None:
-    """Every member life rates has its rating (a planetary stage's planet–ring mesh too: its kind says)."""
+    """Every member life rates has its rating (a planetary stage's planet–ring mesh too: its kind says); a stage
+    the file's standard left unrated (a plug-in standard that rates some kinds only) names the standard."""
     for st, kind in zip(design.stages, _life_kinds(design, scene), strict=True):
+        if st.rating is None and cfg.rating is not None:
+            raise ConfigError(f'stage {st.index}: the rating standard "{cfg.rating.standard}" leaves this '
+                              f"{kinds.kind_of(st)} stage unrated, and gearcli life rates every gear stage's members:"
+                              " choose a standard that rates it", source=scene.source, key="rating.standard")
         kind.require_rated(cfg, st, scene.source)
 
 
@@ -162,7 +168,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
     """The point simulated and its spectra; its warnings, and notes that hold for every point (said once)."""
     extra: tuple[str, ...] = ("rating.dynamic_factor=1.0",)  # the spectrum replaces K_v
     cfg, design = _point_design(scene, point, design_case, extra)
-    _life_kinds(design, scene)
+    _require_ring_rating(cfg, design, scene)  # before its run: every member rated, as on the static route
     notes: list[Diagnostic] = []
     sharing = [st for st in design.stages if design_kind(st).shares_load]  # planets sharing the load
     given = cfg.rating is not None and cfg.rating.load_sharing_factor not in (None, 1.0)

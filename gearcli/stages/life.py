@@ -138,6 +138,11 @@ class PlanetaryLife:
         """The planet–ring mesh must be rated: its ring and the planet's ring side are members."""
         if st.planetary is None or st.planetary.planet_ring.rating is not None:
             return
+        standard = "iso6336" if cfg.rating is None else cfg.rating.standard
+        if standard != "iso6336":  # the keys below are ISO's; another standard may rate sun–planet meshes only
+            raise ConfigError(f'stage {st.index}: gearcli life rates the planet–ring mesh too (the ring is often the '
+                              f'weakest member), and the rating standard "{standard}" leaves it unrated: choose a '
+                              "standard that rates it", source=source, key="rating.standard")
         ring = cfg.stage[st.index - 1].ring  # type: ignore[union-attr]  # a planetary stage's table
         key = (f"stage[{st.index - 1}].ring.flank_roughness_Rz_um" if ring.flank_roughness_Rz_um is None
                else f"materials.{ring.material}")

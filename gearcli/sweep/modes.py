@@ -19,6 +19,7 @@ from gearcli.model.campbell import CampbellData
 from gearcli.model.modes import SPEED_RANGE, campbell_data, modal_analysis
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
+from gearcli.stages.design import design_kind
 from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec, toml_value
 from gearcli.sweep.worker import CaseDesigner, Scene
 
@@ -40,7 +41,7 @@ def natural_frequencies_Hz(cfg: DesignFile, design: DesignResult) -> tuple[float
 class CampbellPoint:
     input_rpm: float
     natural_Hz: tuple[float, ...]
-    mesh_Hz: tuple[float, ...]  # first-order mesh frequency of each stage
+    mesh_Hz: tuple[float, ...]  # first-order mesh frequency of each stage (0: a plug-in kind without a gear mesh)
     value: JsonScalar = None  # the swept key's value (in its own unit)
 
 
@@ -80,7 +81,8 @@ def campbell(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: 
             cfg, design = design_case(scene, (*fixed, _speed_point(key, v)))
         except GearcliError:  # a speed whose row failed (0 rpm, beyond the bounds): no modes there
             continue
-        mesh = tuple(st.pinion.teeth * st.pinion.speed_rpm / 60.0 for st in design.stages)
+        mesh = tuple(st.pinion.teeth * st.pinion.speed_rpm / 60.0 if design_kind(st).gear_pair else 0.0
+                     for st in design.stages)
         out.append(CampbellPoint(_input_rpm(design), natural_frequencies_Hz(cfg, design), mesh, v))
     return out
 

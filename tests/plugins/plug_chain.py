@@ -322,3 +322,14 @@ def register() -> None:
     kinds.provide(KIND, "model", ChainModelKind())
     kinds.provide(KIND, "io", ChainOutput())
     register_standard(ToyLewis())
+
+
+def withdraw() -> None:
+    """Undo :func:`register` in a test process (the registries are the process's)."""
+    from gearcli.config.schema import DesignFile
+    from gearcli.rating.registry import withdraw as withdraw_standard
+
+    for facet in ("table", "design", "model", "io"):
+        kinds.withdraw(KIND, facet)
+    withdraw_standard(LEWIS)
+    DesignFile.model_rebuild(force=True)

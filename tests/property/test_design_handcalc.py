@@ -262,7 +262,9 @@ def test_modes_equal_the_hand_assembled_chain(doc, zeta):
             if projected > 0.5 or lam.size == 0 or any(abs(o - w) < 0.1 * w for o in others):
                 continue  # heavily damped, or a close neighbour the damping couples it with: no single pair to match
             near = lam[np.argmin(np.abs(np.abs(lam) - w))]
-            assert_allclose(mode.damping_ratio, -near.real / abs(near), rtol=1e-6)
+            # atol: -Re(lambda)/|lambda| of a nearly undamped mode is a difference of round-offs (hypothesis found
+            # zeta 1.2328e-6 against 1.2328e-6 + 1.5e-12 on a chain whose inertias span ~1e9)
+            assert_allclose(mode.damping_ratio, -near.real / abs(near), rtol=1e-6, atol=1e-11)
 
 
 @settings(max_examples=40, deadline=None)
