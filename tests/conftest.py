@@ -216,6 +216,9 @@ SLOW = (
     "tests/reference/test_motor_trial_tr10f.py::test_report_on_the_four_pole_fan",
     "tests/cli/test_plots_mplbackend.py::test_modes_plots_whatever_mplbackend_says[TkAgg]",  # [nonsense], [None] stay
     "tests/reference/test_motor_poles_hand.py::test_six_pole_stall_threshold_is_the_locked_rotor_torque[3000.0-False]",
+    # session 20 (tr23a): two pool rounds and a worker death, ~5 s; its streaming sibling stays
+    "tests/sweep/test_sweep_pool_streams_branch_rows.py::"
+    "test_a_branch_whose_worker_dies_after_sending_rows_runs_again_without_sending_them_twice",
 )
 
 
