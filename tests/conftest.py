@@ -219,6 +219,9 @@ SLOW = (
     # session 20 (tr23a): two pool rounds and a worker death, ~5 s; its streaming sibling stays
     "tests/sweep/test_sweep_pool_streams_branch_rows.py::"
     "test_a_branch_whose_worker_dies_after_sending_rows_runs_again_without_sending_them_twice",
+    # three simulate runs and a solve_ivp reference, ~7 s; the closed-form tests of the module stay
+    "tests/simulate/test_contact_loss_crossings.py::"
+    "test_the_spur_oscillator_sampled_40_times_a_mesh_period_reads_its_continuous_loss_fraction",
 )
 
 
