@@ -222,6 +222,8 @@ SLOW = (
     # three simulate runs and a solve_ivp reference, ~7 s; the closed-form tests of the module stay
     "tests/simulate/test_contact_loss_crossings.py::"
     "test_the_spur_oscillator_sampled_40_times_a_mesh_period_reads_its_continuous_loss_fraction",
+    # two cold motor starts behind the continued points, ~5 s; the continuation's unit test stays
+    "tests/sweep/test_sweep_motor_continuation.py::test_a_continued_motor_point_starts_at_its_own_speed",
 )
 
 
