@@ -220,6 +220,14 @@ SLOW = (
     "tests/reference/test_motor_trial_tr10f.py::test_report_on_the_four_pole_fan",
     "tests/cli/test_plots_mplbackend.py::test_modes_plots_whatever_mplbackend_says[TkAgg]",  # [nonsense], [None] stay
     "tests/reference/test_motor_poles_hand.py::test_six_pole_stall_threshold_is_the_locked_rotor_torque[3000.0-False]",
+    # session 20 (tr23a): two pool rounds and a worker death, ~5 s; its streaming sibling stays
+    "tests/sweep/test_sweep_pool_streams_branch_rows.py::"
+    "test_a_branch_whose_worker_dies_after_sending_rows_runs_again_without_sending_them_twice",
+    # three simulate runs and a solve_ivp reference, ~7 s; the closed-form tests of the module stay
+    "tests/simulate/test_contact_loss_crossings.py::"
+    "test_the_spur_oscillator_sampled_40_times_a_mesh_period_reads_its_continuous_loss_fraction",
+    # two cold motor starts behind the continued points, ~5 s; the continuation's unit test stays
+    "tests/sweep/test_sweep_motor_continuation.py::test_a_continued_motor_point_starts_at_its_own_speed",
 )
 
 

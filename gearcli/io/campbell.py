@@ -42,10 +42,12 @@ def _speed(units: OutputUnits, rpm: Any) -> Any:
 
 def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
                     swept: Sequence[float] | None = None) -> Figure:
-    """The figure; ``swept``: input speeds (rpm) of a sweep's points, marked on the speed axis."""
+    """The figure; ``swept``: input speeds (rpm) of a sweep's points, marked on the speed axis, which then spans
+    them (from the slowest; a sweep of one speed: from 0)."""
     fig, axes = _figure(1, 1, height=5.6, width=11.0)
     ax = axes[0][0]
     top_speed = _speed(units, data.max_input_rpm)
+    low_speed = _speed(units, min(swept)) if swept and min(swept) < max(swept) else 0.0
     low_f = min([m.frequency_Hz for m in data.modes] + [data.top_Hz / 20.0])
     near_top = [m.frequency_Hz for m in data.modes if m.frequency_Hz <= 1.15 * data.top_Hz]
     top_f = 1.1 * max(data.top_Hz, (1 + RESONANCE_BAND) * max(near_top, default=0.0))
@@ -77,8 +79,9 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     for name, f in data.fixed:  # a load fluctuation: the same frequency at every speed
         ax.axhline(f, color="tab:olive", lw=1.2, ls=(0, (8, 3)), label=name, zorder=3)
     nominal = _speed(units, data.nominal_input_rpm)
-    ax.axvline(nominal, color="tab:purple", lw=1.5, ls="--", zorder=4,
-               label=f"nominal speed {nominal:.5g} {units.speed_label}")
+    if low_speed <= nominal <= top_speed:  # (a sweep's range may leave the file's speed out)
+        ax.axvline(nominal, color="tab:purple", lw=1.5, ls="--", zorder=4,
+                   label=f"nominal speed {nominal:.5g} {units.speed_label}")
     seen: set[str] = set()
     near = []
     for c in data.crossings:
@@ -104,7 +107,7 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
             names.append(c.crossing.excitation)
     for c, names in points.values():
         x = _speed(units, c.crossing.input_speed_rpm or 0.0)
-        right = x > 0.5 * top_speed  # a label right of a crossing in the right half ran out of the axes on to the
+        right = x > 0.5 * (low_speed + top_speed)  # a label right of a crossing in the right half ran out of the axes on to the
         ax.annotate(f"{', '.join(names)} × mode {c.mode}", (x, c.frequency_Hz),  # legend: it ends at the crossing
                     xytext=(-6 if right else 6, -12), textcoords="offset points", ha="right" if right else "left",
                     fontsize=7.5, color="darkred", zorder=8)
@@ -112,7 +115,7 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
         xs = [_speed(units, v) for v in swept]
         ax.plot(xs, [bottom if log else 0.0] * len(xs), "|", color="tab:purple", ms=10, clip_on=False,
                 label="swept points")
-    ax.set_xlim(0.0, top_speed)
+    ax.set_xlim(low_speed, top_speed)
     if log:
         ax.set_yscale("log")
     ax.set_ylim(bottom, top_f)

@@ -133,6 +133,12 @@ class TorsionalModel:
         return ramp_motion(t, lay.drive.ramp_s, lay.drive.speed_rad_s)[1] if lay.speed_drive \
             else lay.drive.speed_rad_s
 
+    def _operating_speed(self, t: float = 0.0) -> float:
+        """The input body's rigid-body speed at time t once running: :meth:`_input_speed`, but a motor drive's
+        nominal speed (its start from rest aside): where a continued sweep point moves the previous point's
+        speeds from and to."""
+        return self.layout.drive.speed_rad_s if self.layout.motor_drive else self._input_speed(t)
+
     def input_angle(self, t: float) -> float:
         """The speed-driven input body's angle at time t (its start angle included); a torque drive's
         angle is a state (ValueError)."""
@@ -165,10 +171,11 @@ class TorsionalModel:
         y = self.initial_state()
         y[lay.state.deflections] = y_prev[prev.state.deflections]
         t_end = max(prev.drive.ramp_s, prev.load.ramp_s) if t_prev is None else t_prev
-        w_prev_in = model_prev._input_speed(t_end)
+        w_prev_in = model_prev._operating_speed(t_end)
+        w_in = self._operating_speed()  # a motor's too: it starts from rest only when cold
         for i in lay.free_bodies:  # same vibration about the new rigid speed
             rigid_prev = prev.bodies[i].ratio * w_prev_in
-            y[lay.state.omega(i)] += y_prev[prev.state.omega(i)] - rigid_prev
+            y[lay.state.omega(i)] = lay.bodies[i].ratio * w_in + (y_prev[prev.state.omega(i)] - rigid_prev)
         if lay.state.i_theta is not None and prev.state.i_theta is not None:
             y[lay.state.i_theta] = y_prev[prev.state.i_theta]
         return y

@@ -1,6 +1,7 @@
 """Running the tasks: in this process, on a local process pool, or on a Dask distributed cluster.
 
-Rows come back in order of completion (per task on a pool or cluster, per point in this process).
+Rows come back in order of completion (per point in this process and on a pool, whose workers send each row as its
+point ends; per task on a cluster).
 Independent points are batched so that a task does real work (:func:`plan`); a continuation branch is
 always one task, run in order. Pool workers ignore SIGINT: Ctrl-C reaches only this process, which
 cancels what has not started and stops (the rows already yielded are kept by the caller).
@@ -18,10 +19,10 @@ import socket
 import threading
 from collections import Counter
 from collections.abc import Callable, Collection, Generator, Iterable, Iterator, Mapping, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from multiprocessing import forkserver
-from typing import NamedTuple, cast
+from typing import Any, NamedTuple, cast
 from urllib.parse import urlsplit
 
 from gearcli import engine
@@ -192,9 +193,12 @@ def _alone(task: Task) -> Iterator[Row]:
     time. It is tried again alone, and becomes ``failed`` rows only when its worker dies on every try."""
     lost: BaseException | None = None
     for _ in range(ALONE_TRIES):
-        _, lost, _ = yield from _pool_round([task], 1)
+        started, lost, _ = yield from _pool_round([task], 1)
         if lost is None:
             return
+        if not started:  # every row it had to send was sent before its worker died
+            return
+        task = started[0]
     yield from _lost(task, cast(BaseException, lost))
 
 
@@ -205,11 +209,13 @@ def _pool_round(tasks: Sequence[Task], jobs: int) -> Generator[Row, None, _Round
     ctx.set_forkserver_preload(["gearcli.sweep.worker", "gearcli.simulate", "gearcli.api"])
     _start_forkserver_deaf()
     marks = ctx.RawArray("b", len(tasks))  # a worker sets its task's flag as it starts it
+    sent = ctx.SimpleQueue()  # (task number, row) as each point ends: a branch's rows before the branch ends
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=ctx, initializer=_start_worker,
-                               initargs=(marks,))
-    started: list[Task] = []
-    unstarted: list[Task] = []
+                               initargs=(marks, sent))
+    started: list[tuple[int, Task]] = []  # (task number, what of it is left to run)
+    unstarted: list[tuple[int, Task]] = []
     broken: BaseException | None = None
+    got: dict[int, set[int]] = {i: set() for i in range(len(tasks))}  # the points each task's rows came for
     try:
         # submitting starts the workers (the first waits for the forkserver's preload): a signal meanwhile is held
         # until each has started and is in the pool's table, where the handler below ends it; raised inside
@@ -227,30 +233,64 @@ def _pool_round(tasks: Sequence[Task], jobs: int) -> Generator[Row, None, _Round
                     # (the pool's queue closed under the launch): the task is in the pool's table, maybe started
                     broken = exc if isinstance(exc, BrokenProcessPool) else BrokenProcessPool(_is_broken(pool))
                     caught = [] if isinstance(exc, BrokenProcessPool) else [(i, t)]
-                    unstarted.extend(tasks[i + len(caught):])  # never submitted: they go on in a new pool
+                    unstarted.extend((n, t) for n, t in enumerate(tasks) if n >= i + len(caught))  # never submitted
                     break
-        for fut in as_completed(futures):
-            i, task = futures[fut]
-            try:
-                rows = fut.result()
-            except BrokenProcessPool as exc:  # a worker died: this task's or another's
-                broken = exc
-                (started if marks[i] else unstarted).append(task)
-                continue
-            except Exception as exc:  # noqa: BLE001 - a task that failed outright: its points become failed rows
-                rows = _lost(task, exc)
-            yield from rows
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, timeout=ROW_POLL_S, return_when=FIRST_COMPLETED)
+            yield from _received(sent, got)  # a done task's rows were all sent before it returned
+            for fut in done:
+                i, task = futures[fut]
+                try:
+                    fut.result()
+                except BrokenProcessPool as exc:  # a worker died: this task's or another's
+                    broken = exc
+                    if marks[i]:
+                        started.extend((i, t) for t in _rest(task, got[i]))
+                    else:
+                        unstarted.append((i, task))
+                except Exception as exc:  # noqa: BLE001 - a task that failed outright: its points become failed rows
+                    yield from _lost(_without(task, got[i]), exc)
         if _is_broken(pool):
             _end_strays(pool)
         for i, task in caught:
-            (started if marks[i] else unstarted).append(task)
+            if marks[i]:
+                started.extend((i, t) for t in _rest(task, got[i]))
+            else:
+                unstarted.append((i, task))
     except BaseException:  # Ctrl-C, SIGTERM/SIGHUP, the consumer gone (GeneratorExit): no worker outlives us
         _stop_workers(pool)
         raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)  # joins the pool's thread: its queues and semaphores released
-    order = {id(t): n for n, t in enumerate(tasks)}
-    return _Round(sorted(started, key=lambda t: order[id(t)]), broken, sorted(unstarted, key=lambda t: order[id(t)]))
+        sent.close()
+    return _Round([t for _, t in sorted(started, key=lambda it: it[0])], broken,
+                  [t for _, t in sorted(unstarted, key=lambda it: it[0])])
+
+
+ROW_POLL_S = 0.05  # how often the parent looks for rows sent while no task ends
+
+
+def _received(sent, got: dict[int, set[int]]) -> Iterator[Row]:
+    """The rows the workers have sent so far, noting each task's points whose rows (or verdicts alone) came."""
+    while not sent.empty():
+        i, row = sent.get()
+        got[i].add(int(row["_index"]))
+        yield row
+
+
+def _without(task: Task, sent: set[int]) -> Task:
+    """``task`` with the points whose rows were sent not returned again: a branch computes them again for its
+    state (its ``skip``), independent points are left out."""
+    if task.continuation:
+        return dataclasses.replace(task, skip=task.skip | sent)
+    return dataclasses.replace(task, points=tuple(p for p in task.points if p.index not in sent))
+
+
+def _rest(task: Task, sent: set[int]) -> list[Task]:
+    """What of a task caught in a pool's break is left to run: none when every row it had to send came."""
+    left = _without(task, sent)
+    return [left] if any(p.index not in left.skip for p in left.points) else []
 
 
 class _Round(NamedTuple):
@@ -260,20 +300,24 @@ class _Round(NamedTuple):
 
 
 _MARKS = None  # a pool worker's view of its round's started-task flags (:func:`_start_worker`)
+_SENT: Any = None  # a pool worker's end of its round's row queue (a SimpleQueue)
 
 
-def _start_worker(marks) -> None:
-    """A pool worker's start: the round's started-task flags; Ctrl-C is the parent's (:func:`_ignore_sigint`)."""
-    global _MARKS
-    _MARKS = marks
+def _start_worker(marks, sent) -> None:
+    """A pool worker's start: the round's started-task flags and row queue; Ctrl-C is the parent's
+    (:func:`_ignore_sigint`)."""
+    global _MARKS, _SENT
+    _MARKS, _SENT = marks, sent
     _ignore_sigint()
 
 
-def _run_marked(index: int, task: Task) -> list[Row]:
-    """Run a task in a pool worker, first flagging it started (a worker that dies is then known to have held it)."""
+def _run_marked(index: int, task: Task) -> None:
+    """Run a task in a pool worker, first flagging it started (a worker that dies is then known to have held it),
+    and send each row to the parent as its point ends (a branch's too: a Ctrl-C keeps its finished points)."""
     if _MARKS is not None:
         _MARKS[index] = 1
-    return run_task(task)
+    for row in iter_task(task):
+        _SENT.put((index, row))
 
 
 def _start_forkserver_deaf() -> None:

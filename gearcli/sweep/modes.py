@@ -89,9 +89,9 @@ def campbell(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: 
 
 def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], design_case: CaseDesigner,
                      units_of: UnitsOf, fixed: Sequence[str] = ()) -> SweepCampbell | None:
-    """The modes and order lines of the scene at the file's own speed (the other keys at ``fixed``), over
-    0 .. the larger of 1.2 x that speed and the fastest swept point: the same drawing as ``gearcli modes
-    --plots``, with the swept speeds."""
+    """The modes and order lines of the scene at the file's own speed (the other keys at ``fixed``), over the
+    swept range (a sweep of one speed: 0 .. the larger of 1.2 x the file's speed and that one): the same drawing
+    as ``gearcli modes --plots``, with the swept speeds."""
     points = campbell(scene, key, values, design_case, fixed)
     swept = [p.input_rpm for p in points]
     if not points:  # every swept speed failed: no diagram
@@ -100,7 +100,7 @@ def campbell_diagram(scene: Scene, key: str, values: Sequence[JsonScalar], desig
     lay = Layout.of(spec_from_design(cfg, design))
     nominal = _input_rpm(design)
     data = campbell_data(lay, "clamped_input" if lay.speed_drive else "free", duration_s=cfg.simulation.duration_s,
-                         max_input_rpm=max([SPEED_RANGE * nominal, *swept]))
+                         max_input_rpm=max(swept) if min(swept) < max(swept) else max([SPEED_RANGE * nominal, *swept]))
     units = units_of(design_case(scene, (*fixed, _speed_point(key, points[0].value))).cfg)  # the swept key's unit
     return SweepCampbell(data, tuple(swept), units, tuple(fixed))
 

@@ -5,8 +5,9 @@ memory, a crash in compiled code). The sweep made all of them ``failed`` rows ("
 and a re-run with the same ``-o`` took those rows as done: one worker killed 10 s into an 80-point sweep left 60
 failed rows (6 of its 8 tasks), where docs/sweeps.md promises the dead worker's task's points only. Now the tasks
 that had not started go on in a new pool, and each that had started runs again alone (up to twice): a task whose
-worker dies alone on both tries is the culprit and becomes ``failed`` rows; a task that was only caught in the break
-is computed, even where its own transient death first comes on its run alone.
+worker dies alone on both tries is the culprit and its points not yet finished become ``failed`` rows (a pool worker
+sends each row as its point ends: the points before the killing one are kept); a task that was only caught in the
+break is computed, even where its own transient death first comes on its run alone.
 
 The scenario runs in a child process with an injected evaluator (gearcli.api's is replaced, as in
 test_sweep_injection.py): a point that kills its worker every time (value 5), one that kills it only the first
@@ -71,9 +72,11 @@ def test_a_dead_worker_fails_its_own_task_and_the_others_run(tmp_path):
     rows = _rows(tmp_path, CHILD)
     assert all(status == "failed" for _, status, _ in rows)  # the fake evaluator fails every point it runs
     lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
-    assert lost == [4, 5]  # the task of the point that kills its worker every time (points 4 and 5), nothing else
+    # the point that kills its worker every time, nothing else: its task's point 4 ran before it, and a pool worker
+    # sends each row as its point ends
+    assert lost == [5]
     # every other point ran, the transient death's task (points 8 and 9) on its second try
-    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
+    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v != 5}
     assert (tmp_path / "died_once").exists()  # the transient death did happen
 
 
@@ -96,8 +99,8 @@ assert CAUGHT.count("held") == 5
 def test_a_task_caught_in_the_break_that_then_dies_alone_once_runs_on_its_second_try(tmp_path):
     rows = _rows(tmp_path, CAUGHT)
     lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
-    assert lost == [4, 5]
-    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
+    assert lost == [5]
+    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v != 5}
     assert (tmp_path / "died_once").exists() and (tmp_path / "died_once.held").exists()
 
 
@@ -129,8 +132,8 @@ LATE_SUBMIT = CHILD.replace('if __name__ == "__main__":', textwrap.dedent('''
 def test_a_worker_dead_before_the_round_is_submitted_costs_its_own_task_only(tmp_path):
     rows = _rows(tmp_path, LATE_SUBMIT)
     lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
-    assert lost == [4, 5]
-    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
+    assert lost == [5]
+    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v != 5}
 
 
 # the break landing while submit() launches a worker (under load: CI hung on it, 2 runs in ~10). The round after the
@@ -193,7 +196,7 @@ def test_a_worker_dead_while_another_is_launched_costs_its_own_task_only(tmp_pat
     child = LATE_SUBMIT.replace('\nif __name__ == "__main__":', f"\nWHERE = {where!r}\n" + HOLD_LAUNCH, 1)
     rows = _rows(tmp_path, child)
     lost = [v for v, _, msg in rows if msg.startswith("worker failed: BrokenProcessPool")]
-    assert lost == [4, 5]
+    assert lost == [5]
     # the transient death's task (points 8 and 9) ran on its second try
-    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v not in (4, 5)}
+    assert {v: msg for v, _, msg in rows if v not in lost} == {v: f"ran {v}" for v in range(12) if v != 5}
     assert (tmp_path / "died_once").exists()
