@@ -700,3 +700,37 @@ def test_twin_branches_load_fluctuation_gain_is_the_frequency_response_peak(tmp_
     assert_allclose(peak, 12.55, rtol=1e-3)
     warned = [w for w in out["warnings"] if w["code"] == "resonance" and w["source"] == "load_fluctuation"]
     assert warned and max(w["amplification"] for w in warned) == pytest.approx(peak, rel=0.2)
+
+
+# --------------------------------------------------------------------------- 7. slip damping moves an eigenvalue
+def test_each_mode_tells_the_frequency_its_damping_ratio_rings_at(tmp_path):
+    """The fan scene (section 3) lossless, its motor's last segment steep (700 N m at 1400 rpm to 0 at 1440 rpm:
+    17.5 N m/rpm = 167.1 N m s/rad of slip damping), a 2 kg m^2 rotor on a 1e4 N m/rad coupling and a constant
+    1000 N m load. Free, the rotor's swing on its coupling is an 11.21 Hz undamped mode, but the slip damping is
+    far from proportional: the damped eigenvalue whose shape matches it rings at 8.11 Hz with zeta 0.485 (|lambda|
+    9.27 Hz). The row read "11.21 Hz, zeta 0.485", a frequency beside another eigenvalue's damping (an 11.21 Hz mode
+    of zeta 0.485 would ring at 9.8 Hz); `damped_frequency_Hz` (Im lambda / 2 pi) names the one the ratio belongs
+    to, `frequency_Hz` stays the undamped one. The operating point lies on the steep segment: 1000 N m x 22/67 =
+    328.4 N m at 1421 rpm."""
+    scene = (FAN.replace("efficiency = 0.95", "efficiency = 1.0").replace("[1500, 0]", "[1440, 0]")
+             .replace("inertia_kg_m2 = 0.5", "inertia_kg_m2 = 2.0").replace("stiffness_Nm_rad = 4.0e4", "stiffness_Nm_rad = 1.0e4")
+             .replace("LOAD", "1000.0").replace("EXPONENT", "0"))
+    assert 1400 < 1400 + (700 - 1000 * 22 / 67) / 17.5 < 1440
+    rows = _run(tmp_path, scene, "modes")["boundaries"]["free"]
+    rp, rg = _rb(22, 4, 0), _rb(67, 4, 0)
+    ch = Chain([2.0, 0.03, 1.2, 60.0])
+    ch.add(0, 1, 1.0, -1.0, 1e4, 4.0)
+    ch.add(1, 2, rp, -rg, 6e8, 2 * 0.04 * math.sqrt(6e8 / (rp**2 / 0.03 + rg**2 / 1.2)))
+    ch.add(2, 3, 1.0, -1.0, 3e5, 30.0)
+    ch.body_damping[0] = 17.5 * 30 / math.pi
+    J, K, C = ch.matrices(0)
+    f = np.sqrt(np.clip(scipy.linalg.eigh(K, np.diag(J), eigvals_only=True), 0.0, None)) / (2 * math.pi)
+    A = np.block([[np.zeros((4, 4)), np.eye(4)], [-K / J[:, None], -C / J[:, None]]])
+    lam = sorted((z for z in np.linalg.eigvals(A) if z.imag > 0.0), key=lambda z: z.imag)
+    assert len(lam) == 3  # an oscillating eigenvalue per elastic mode
+    assert_allclose([r["frequency_Hz"] for r in rows[1:]], f[1:], rtol=1e-9)  # undamped, as before
+    assert rows[0]["rigid"] and rows[0]["damped_frequency_Hz"] is None
+    assert_allclose([f[1], lam[0].imag / (2 * math.pi)], [11.21, 8.11], atol=0.01)  # rings 28 % below
+    for row, z in zip(rows[1:], lam, strict=True):
+        assert_allclose(row["damping_ratio"], -z.real / abs(z), rtol=1e-6)
+        assert_allclose(row["damped_frequency_Hz"], z.imag / (2 * math.pi), rtol=1e-6)
