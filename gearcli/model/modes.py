@@ -52,7 +52,7 @@ from gearcli.model.damping import body_damping, body_matrices, lever_matrices, l
 from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, rigid_mode_count, soft_modes_refined
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import operating_forces, peak_rigid_forces, speed_map, tangent
-from gearcli.model.planet_excitation import phased_participation, planet_phases, repeated_ranks
+from gearcli.model.planet_excitation import dominant_label, phased_participation, planet_phases, repeated_ranks
 
 if TYPE_CHECKING:
     from gearcli.model.campbell import CampbellData
@@ -338,7 +338,7 @@ def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank:
     rate = und.R @ phi[:, j]  # phi's scale cancels in the shares (mass-normalised for a lossless chain)
     strain = und.k * rate**2
     share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
-    dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
+    dominant = "" if rigid else dominant_label(lay, share)
     zeta, rings = (0.0, math.nan) if rigid else (float(zetas[0, j]), float(zetas[1, j]) / (2.0 * math.pi))
     found: tuple[Crossing, ...] = ()
     if crossings and not rigid:

@@ -734,3 +734,33 @@ def test_each_mode_tells_the_frequency_its_damping_ratio_rings_at(tmp_path):
     for row, z in zip(rows[1:], lam, strict=True):
         assert_allclose(row["damping_ratio"], -z.real / abs(z), rtol=1e-6)
         assert_allclose(row["damped_frequency_Hz"], z.imag / (2 * math.pi), rtol=1e-6)
+
+
+def test_symmetric_planetary_modes_name_every_planet(tmp_path):
+    """Cyclic symmetry (Lin & Parker, J. Vib. Acoust. 121, 1999): in a rotational mode of an equally spaced planetary
+    every planet moves alike, so its N sun meshes hold equal shares of the strain energy, as do its N ring meshes
+    (here, sun held and z_s = z_p with equal mesh stiffness, the clamped 1168 Hz mode loads all eight meshes alike).
+    Which planet's mesh came first among equals was round-off ("planet 2 ring mesh" for the clamped mode, "planet 1
+    sun mesh" for the free 2682 Hz one); the mode now names them all. A planet mode (at w^2 = 2 k r_bp^2 / J_p) whose
+    one planet's sun and ring meshes lead names that planet."""
+    out = _run(tmp_path, PLANETARY.replace("EFF", "1.0").replace("LOAD", "300.0"), "modes")
+    f_planet = math.sqrt(2 * 5e8 * _rb(24, 4, 0) ** 2 / 0.02) / (2 * math.pi)
+    named = 0
+    for boundary in ("clamped_input", "free"):
+        for m in out["boundaries"][boundary]:
+            if m["rigid"]:
+                continue
+            sun = [m["energy_share"][f"stage 1 planet {j} sun mesh"] for j in range(1, 5)]
+            ring = [m["energy_share"][f"stage 1 planet {j} ring mesh"] for j in range(1, 5)]
+            if abs(m["frequency_Hz"] - f_planet) > 1e-6 * f_planet:  # rotational: the planets alike
+                assert_allclose(sun, sun[0], rtol=1e-9)
+                assert_allclose(ring, ring[0], rtol=1e-9)
+                gears = " and ".join(g for g, s in (("sun", sun[0]), ("ring", ring[0]))
+                                     if s >= max(sun[0], ring[0]) * (1 - 1e-9))
+                assert m["dominant_element"] == f"stage 1 planets 1, 2, 3, 4 {gears} meshes", m
+                named += 1
+            else:
+                top = max(sun + ring)
+                lead = [j + 1 for j in range(4) if max(sun[j], ring[j]) >= top * (1 - 1e-9)]
+                assert any(f"planet {j} " in m["dominant_element"] for j in lead), m
+    assert named == 3  # clamped 1168 Hz (sun and ring), free 1379 Hz (ring) and 2682 Hz (sun)
