@@ -198,7 +198,16 @@ def falling_zero(net, lo: float, hi: float) -> tuple[float, float]:
 
 
 def body_damping(lay: Layout) -> np.ndarray:
-    """Per body, ``d = -dT/dw`` of the torques the drive and the load put on it at the operating point (N m s)."""
+    """Per body, ``d = -dT/dw`` of the torques the drive and the load put on it at the operating point (N m s); kept
+    with the layout (a motor's operating point is a scan of its curve, ~50 ms: a run's modes, resonance checks and
+    settle test all ask), a copy each time."""
+    kept = lay.__dict__.get("_body_damping")
+    if kept is None:
+        kept = lay.__dict__.setdefault("_body_damping", _body_damping(lay))
+    return kept.copy()
+
+
+def _body_damping(lay: Layout) -> np.ndarray:
     d = np.zeros(lay.n_bodies)
     w0 = operating_speed_rad_s(lay)
     if lay.motor_drive and lay.motor_row:

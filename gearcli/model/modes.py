@@ -417,7 +417,7 @@ def torque_crossing(lay: Layout, t: TorqueSource, f: float, shape: tuple[float, 
 class Resonance:
     """An excitation near a natural frequency at the operating speed, with its warning's message."""
 
-    mode: int
+    mode: int | None  # None: a damped mode no undamped mode stands for (gearcli.model.damped_resonance)
     frequency_Hz: float
     element: str
     share: float
@@ -488,7 +488,10 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                                  c.amplification, m.damping_ratio, c.strength,
                                  o.stage, c.source))
         out += _torque_resonances(lay, m, boundary, f_in)
-    return out
+    from gearcli.model.damped_resonance import unmatched_resonances  # lazy: it reads this module's sources
+    und = und if und is not None else _undamped(lay, boundary, duration_s, tangents)
+    return out + unmatched_resonances(lay, boundary, _damping(lay, und)[1][1], np.sqrt(np.clip(und.w2, 0.0, None)),
+                                      und.k, und.cd, und.first, f_in)
 
 
 def _participation_of_shares(o: OrderSource, share: np.ndarray | tuple[float, ...]) -> float:
