@@ -48,7 +48,7 @@ def modes_dict(analyses: list[ModalAnalysis], warnings: list[JsonObject] | None 
             "dominant_element": m.dominant,
             "shape": dict(zip(a.bodies, m.shape, strict=True)),
             "energy_share": dict(zip(a.connectors, m.energy_share, strict=True)),
-            "damping_ratio": m.damping_ratio,
+            "damping_ratio": m.damping_ratio, "damped_frequency_Hz": m.damped_frequency_Hz,
             "crossings": [{"excitation": c.excitation, "input_speed_rpm": c.input_speed_rpm,
                            "participation": c.participation, "amplification": c.amplification,
                            "strength": c.strength, "source": c.source, "order": c.order,
@@ -63,15 +63,15 @@ def modes_csv(analyses: list[ModalAnalysis]) -> str:
     """One row per mode and boundary: the JSON's scalars (frequency, modal damping ratio, dominant element), the
     shape per body, the strain-energy share per element and the crossings as text."""
     first = analyses[0]
-    header = (["boundary", "mode", "frequency_Hz", "damping_ratio", "dominant_element"]
+    header = (["boundary", "mode", "frequency_Hz", "damping_ratio", "damped_frequency_Hz", "dominant_element"]
               + [f"shape_{b.replace(' ', '_')}" for b in first.bodies]
               + [f"energy_share_{c.replace(' ', '_')}" for c in first.connectors] + ["crossings_rpm"])
     rows: list[list[JsonScalar]] = []
     for a in analyses:
         for m in a.modes:
             cross = "; ".join(f"{c.excitation} @ {_at(c, '.5g')}" for c in m.crossings)
-            rows.append([a.boundary, m.number, m.frequency_Hz, m.damping_ratio, m.dominant, *m.shape, *m.energy_share,
-                         cross])
+            rows.append([a.boundary, m.number, m.frequency_Hz, m.damping_ratio, m.damped_frequency_Hz, m.dominant,
+                         *m.shape, *m.energy_share, cross])
     return csv_text(header, rows)
 
 
@@ -106,13 +106,14 @@ def modes_tables(analyses: list[ModalAnalysis], units: OutputUnits | None = None
         t = Table(title=f"modes, {a.boundary} (linearised at full load; crossings for input 0 .. "
                         f"{in_speed_unit(a.speed_range_rpm[1], u):.5g} {u.speed_label}{also})", title_justify="left",
                   header_style="bold")
-        for col in ("mode", "f [Hz]", "ζ [%]", "dominant element (share)",
+        for col in ("mode", "f [Hz]", "ζ [%]", "rings at [Hz]", "dominant element (share)",
                     f"orders crossing [input {u.speed_label}] (exciting share, resonant gain s/2ζ)"):
             t.add_column(col)
         for m in a.modes:
             share = "rigid-body rotation" if m.rigid else f"{m.dominant} ({100 * max(m.energy_share):.0f} %)"
             cross = ", ".join(f"{c.excitation} @ {_at(c, 'table', u)} ({_strength(c)})" for c in m.crossings) or "-"
             t.add_row(str(m.number), figure(m.frequency_Hz, 4), "-" if m.rigid else figure(100 * m.damping_ratio, 2),
-                      Text(share), Text(cross))
+                      "-" if m.damped_frequency_Hz is None else figure(m.damped_frequency_Hz, 4), Text(share),
+                      Text(cross))
         out.append(t)
     return out

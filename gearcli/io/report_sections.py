@@ -400,7 +400,7 @@ def modes_section(r: Report) -> Section | None:
     rows = []
     for m in ana.modes:
         if m.rigid:
-            rows.append((str(m.number), "0", "–", "rigid-body rotation", "–"))
+            rows.append((str(m.number), "0", "–", "–", "rigid-body rotation", "–"))
             continue
         near = [c for c in m.crossings if c.input_speed_rpm is None  # a fixed frequency near the mode: at any speed
                 or near_nominal(c.input_speed_rpm, ana.nominal_input_rpm)]
@@ -409,11 +409,12 @@ def modes_section(r: Report) -> Section | None:
                                                    f"{u.speed_from_deg_s(6.0 * c.input_speed_rpm):.4g} "
                                                    f"{u.speed_label}") + f" ({c.strength})"
                           for c in near) or "none"
-        rows.append((str(m.number), g(m.frequency_Hz, 5), figure(100 * m.damping_ratio, 2),
+        rings = "–" if m.damped_frequency_Hz is None else g(m.damped_frequency_Hz, 5)  # where zeta's eigenvalue rings
+        rows.append((str(m.number), g(m.frequency_Hz, 5), figure(100 * m.damping_ratio, 2), rings,
                      f"{m.dominant} ({100 * max(m.energy_share):.0f} %)", cross))
-    return Section("Modes and resonances", ("mode", "f [Hz]", "ζ [%]", "dominant element (strain energy)",
+    return Section("Modes and resonances", ("mode", "f [Hz]", "ζ [%]", "rings at [Hz]", "dominant element (strain energy)",
                                             f"orders within ±{100 * RESONANCE_BAND:.0f} % of the mode at the nominal speed"),
-                   tuple(rows), "lrrll",
+                   tuple(rows), "lrrrll",
                    (f"linearised at full load, {ana.boundary.replace('_', ' ')}; "
                     "the Campbell diagram (all orders 0 … 1.2 × nominal) is campbell.png with --plots",))
 

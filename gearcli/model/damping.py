@@ -198,7 +198,16 @@ def falling_zero(net, lo: float, hi: float) -> tuple[float, float]:
 
 
 def body_damping(lay: Layout) -> np.ndarray:
-    """Per body, ``d = -dT/dw`` of the torques the drive and the load put on it at the operating point (N m s)."""
+    """Per body, ``d = -dT/dw`` of the torques the drive and the load put on it at the operating point (N m s); kept
+    with the layout (a motor's operating point is a scan of its curve, ~50 ms: a run's modes, resonance checks and
+    settle test all ask), a copy each time."""
+    kept = lay.__dict__.get("_body_damping")
+    if kept is None:
+        kept = lay.__dict__.setdefault("_body_damping", _body_damping(lay))
+    return kept.copy()
+
+
+def _body_damping(lay: Layout) -> np.ndarray:
     d = np.zeros(lay.n_bodies)
     w0 = operating_speed_rad_s(lay)
     if lay.motor_drive and lay.motor_row:
@@ -271,25 +280,37 @@ def modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np
     """The damping ratio of each undamped mode (``shapes`` its columns, body angles; ``omega`` rad/s, 0 for a
     rigid one: ratio 0): ``-Re lambda / |lambda|`` of the damped eigenvalue whose shape matches it best (modal
     assurance criterion, mass-weighted, above :data:`MIN_MAC`); a mode no oscillating eigenvalue matches (an
-    overdamped one) takes the modal projection ``phi^T C phi / (2 omega phi^T J phi)``. Kept for the last few
-    exact arguments: the points of a sweep over the speed share their chain's matrices and modes, whose damping
-    ratios are the same numbers (a copy each time)."""
+    overdamped one) takes the modal projection ``phi^T C phi / (2 omega phi^T J phi)`` (row 0 of
+    :func:`modal_damping`)."""
+    return modal_damping(J, K, C, shapes, omega)[0]
+
+
+def modal_damping(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np.ndarray,
+                  omega: np.ndarray) -> np.ndarray:
+    """Per undamped mode (columns of the result): row 0 its damping ratio (:func:`modal_damping_ratios`), row 1
+    the frequency ``Im lambda`` (rad/s) at which the damped eigenvalue that ratio is taken from rings, NaN where
+    none is (a rigid mode, an overdamped one's projection). Strong non-proportional damping (a motor's slip
+    damping) moves an eigenvalue far from the undamped mode it matches: a 11.2 Hz free mode whose eigenvalue rings
+    at 8.1 Hz with zeta 0.49, so the ratio is told with the frequency it belongs to. Kept for the last few exact
+    arguments: the points of a sweep over the speed share their chain's matrices and modes, whose damping is the
+    same numbers (a copy each time)."""
     key = tuple((a.shape, a.tobytes()) for a in (np.asarray(x, dtype=float) for x in (J, K, C, shapes, omega)))
     found = _RATIOS.get(key)
     if found is None:
-        found = remember(_RATIOS, key, _modal_damping_ratios(J, K, C, shapes, omega))
+        found = remember(_RATIOS, key, _modal_damping(J, K, C, shapes, omega))
     return found.copy()
 
 
-_RATIOS: dict[tuple, np.ndarray] = {}  # modal_damping_ratios by their exact arguments
+_RATIOS: dict[tuple, np.ndarray] = {}  # modal_damping by its exact arguments
 
 
-def _modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np.ndarray,
-                          omega: np.ndarray) -> np.ndarray:
+def _modal_damping(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np.ndarray,
+                   omega: np.ndarray) -> np.ndarray:
     lam, vec = np.linalg.eig(state_matrix(J, K, C))
     n = J.size
     osc = [i for i in range(lam.size) if lam[i].imag > 0.0]
     out = np.zeros(shapes.shape[1])
+    rings = np.full(shapes.shape[1], np.nan)
     pairs = []
     for j in range(shapes.shape[1]):
         if omega[j] <= 0.0:
@@ -310,12 +331,15 @@ def _modal_damping_ratios(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: n
         used_modes.add(j)
         used_eigs.add(i)
         out[j] = -lam[i].real / abs(lam[i])
+        rings[j] = lam[i].imag
     for j in range(shapes.shape[1]):
         if omega[j] > 0.0 and j not in used_modes:
             phi = shapes[:, j]
             out[j] = float(phi @ C @ phi) / (2.0 * omega[j] * float(phi @ (J * phi)))
-    out[2.0 * math.pi * np.abs(out) < UNDAMPED_PER_PERIOD] = 0.0  # roundoff of an undamped chain: undamped
-    return out
+    undamped = 2.0 * math.pi * np.abs(out) < UNDAMPED_PER_PERIOD  # roundoff of an undamped chain: undamped
+    out[undamped] = 0.0
+    rings[undamped & (omega > 0.0)] = omega[undamped & (omega > 0.0)]  # ... ringing at its own frequency
+    return np.vstack([out, rings])
 
 
 def decay_rate(eigenvalue: complex) -> float:

@@ -35,7 +35,7 @@ input body takes the ripple into the ground: participation 0).
 Damping. zeta_j linearises what the simulation integrates (:mod:`gearcli.model.damping`): every element's
 damping law at its static force, a motor's slip damping dT/dw and the load law's dT/dw at the operating point,
 and the meshes' losses; it is ``-Re lambda / |lambda|`` of the damped eigenvalue whose shape matches mode j
-(frequencies and shapes are the undamped ones).
+(frequencies and shapes are the undamped ones; :attr:`Mode.damped_frequency_Hz` is where that eigenvalue rings).
 """
 
 from __future__ import annotations
@@ -48,11 +48,11 @@ import numpy as np
 from gearcli.core.memo import remember
 from gearcli.core.records import record
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import body_damping, body_matrices, lever_matrices, loss_factors, modal_damping_ratios
+from gearcli.model.damping import body_damping, body_matrices, lever_matrices, loss_factors, modal_damping
 from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, rigid_mode_count, soft_modes_refined
 from gearcli.model.elements.mesh import I_Z
 from gearcli.model.linear import operating_forces, peak_rigid_forces, speed_map, tangent
-from gearcli.model.planet_excitation import phased_participation, planet_phases, repeated_ranks
+from gearcli.model.planet_excitation import dominant_label, phased_participation, planet_phases, repeated_ranks
 
 if TYPE_CHECKING:
     from gearcli.model.campbell import CampbellData
@@ -107,6 +107,7 @@ class Mode:
     dominant: str  # label of the connector with the largest share ("" for a rigid mode)
     crossings: tuple[Crossing, ...]
     damping_ratio: float = 0.0  # modal, from the linearised element damping (0 for a rigid mode)
+    damped_frequency_Hz: float | None = None  # Im lambda / 2 pi of damping_ratio's eigenvalue (None: rigid, overdamped)
 
 
 @record
@@ -219,11 +220,6 @@ def torque_sources(lay: Layout) -> list[TorqueSource]:
     return out
 
 
-def excitations(lay: Layout) -> list[tuple[str, float]]:
-    """(name, frequency over the input body's rotation frequency) of the mesh and shaft orders."""
-    return [(o.name, o.hz_per_input_hz) for o in excitation_sources(lay)]
-
-
 def _shape(v: np.ndarray) -> np.ndarray:
     j = int(np.argmax(np.abs(v)))
     return v / v[j] if v[j] != 0 else v
@@ -309,7 +305,8 @@ def _modal_analysis(lay: Layout, boundary: str, duration_s: float) -> ModalAnaly
 
 
 def _damping(lay: Layout, und: _Undamped, key: bytes | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """The body-angle shapes (mass-normalised) and every mode's damping ratio: kept with ``und`` (the chain's
+    """The body-angle shapes (mass-normalised) and every mode's damping ratio and damped frequency
+    (:func:`gearcli.model.damping.modal_damping`: rows 0 and 1): kept with ``und`` (the chain's
     eigenproblem, which a speed sweep's points share: :func:`_undamped`) for the bodies' own damping by the drive
     and the load (:func:`gearcli.model.damping.body_damping`, the one input of the ratios ``und``'s chain does not
     fix: a motor's slope and a load law's at the point's speed; ``key``: its bytes where the caller has them), read
@@ -329,7 +326,7 @@ def _damping_of(lay: Layout, und: _Undamped) -> tuple[np.ndarray, np.ndarray]:
     order, n_rigid = und.order, und.n_rigid
     omega = np.zeros(und.w2.size)
     omega[order[n_rigid:]] = np.sqrt(np.clip(und.w2[order[n_rigid:]], 0.0, None))
-    return phi, modal_damping_ratios(*body_matrices(lay, und.k, und.cd, und.first), phi, omega)
+    return phi, modal_damping(*body_matrices(lay, und.k, und.cd, und.first), phi, omega)
 
 
 def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank: int, j: int, f_in: float,
@@ -341,8 +338,8 @@ def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank:
     rate = und.R @ phi[:, j]  # phi's scale cancels in the shares (mass-normalised for a lossless chain)
     strain = und.k * rate**2
     share = np.zeros(lay.n_conn) if rigid or strain.sum() <= 0 else strain / strain.sum()
-    dominant = "" if rigid else lay.connectors[int(np.argmax(share))].label
-    zeta = 0.0 if rigid else float(zetas[j])
+    dominant = "" if rigid else dominant_label(lay, share)
+    zeta, rings = (0.0, math.nan) if rigid else (float(zetas[0, j]), float(zetas[1, j]) / (2.0 * math.pi))
     found: tuple[Crossing, ...] = ()
     if crossings and not rigid:
         found = tuple(_crossing(o, f, _participation(und, rank, o, share), zeta) for o in excitation_sources(lay)
@@ -350,7 +347,7 @@ def _mode(lay: Layout, und: _Undamped, phi: np.ndarray, zetas: np.ndarray, rank:
         found += tuple(torque_crossing(lay, t, f, shape, zeta) for t in torque_sources(lay)
                        if meets(t, f, 60.0 * SPEED_RANGE * f_in))
     return Mode(rank + 1, f, rigid, tuple(float(v) for v in shape), tuple(float(s) for s in share), dominant,
-                found, zeta)
+                found, zeta, rings if math.isfinite(rings) else None)
 
 
 def _crossing(o: OrderSource, f: float, s: float, zeta: float) -> Crossing:
@@ -420,7 +417,7 @@ def torque_crossing(lay: Layout, t: TorqueSource, f: float, shape: tuple[float, 
 class Resonance:
     """An excitation near a natural frequency at the operating speed, with its warning's message."""
 
-    mode: int
+    mode: int | None  # None: a damped mode no undamped mode stands for (gearcli.model.damped_resonance)
     frequency_Hz: float
     element: str
     share: float
@@ -491,7 +488,10 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                                  c.amplification, m.damping_ratio, c.strength,
                                  o.stage, c.source))
         out += _torque_resonances(lay, m, boundary, f_in)
-    return out
+    from gearcli.model.damped_resonance import unmatched_resonances  # lazy: it reads this module's sources
+    und = und if und is not None else _undamped(lay, boundary, duration_s, tangents)
+    return out + unmatched_resonances(lay, boundary, _damping(lay, und)[1][1], np.sqrt(np.clip(und.w2, 0.0, None)),
+                                      und.k, und.cd, und.first, f_in)
 
 
 def _participation_of_shares(o: OrderSource, share: np.ndarray | tuple[float, ...]) -> float:

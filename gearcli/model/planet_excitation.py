@@ -76,3 +76,21 @@ def phased_participation(k: np.ndarray, R: np.ndarray, inv_sqrt: np.ndarray, u: 
     strain = k @ (R @ (inv_sqrt[:, None] * basis)) ** 2
     mean = float(strain.mean())
     return float(np.sum(np.abs(projected) ** 2) / (total * mean)) if mean > 0.0 else 0.0
+
+
+TIED = 1e-9  # strain-energy shares within this fraction of the largest are equal (a symmetric mode's round-off)
+
+
+def dominant_label(lay: Layout, share: np.ndarray) -> str:
+    """The element with the largest share of a mode's strain energy: a connector's label, or, where planet meshes of
+    one stage hold equal largest shares (a symmetric mode: which one round-off puts first is arbitrary), all of them,
+    "stage 1 planets 1, 2, 3 sun meshes", "stage 1 planet 2 sun and ring meshes"; other ties name the first."""
+    top = float(np.max(share))
+    tied = [lay.connectors[c] for c in range(len(share)) if share[c] >= top * (1.0 - TIED)]
+    planets = sorted({x.planet for x in tied})
+    gears = [g for g in ("sun", "ring") if any(x.gear == g for x in tied)]
+    if (len(tied) == 1 or min(planets) < 0 or len({x.index for x in tied}) != 1
+            or len(tied) != len(planets) * len(gears)):  # not every planet's every tied mesh: no one name
+        return tied[0].label
+    return (f"stage {tied[0].index + 1} planet{'s' if len(planets) > 1 else ''} "
+            f"{', '.join(str(j + 1) for j in planets)} {' and '.join(gears)} meshes")

@@ -700,3 +700,101 @@ def test_twin_branches_load_fluctuation_gain_is_the_frequency_response_peak(tmp_
     assert_allclose(peak, 12.55, rtol=1e-3)
     warned = [w for w in out["warnings"] if w["code"] == "resonance" and w["source"] == "load_fluctuation"]
     assert warned and max(w["amplification"] for w in warned) == pytest.approx(peak, rel=0.2)
+
+
+# --------------------------------------------------------------------------- 7. slip damping moves an eigenvalue
+def _steep_fan(j_motor: float, slip_damping: float):
+    """The fan scene's hand chain (section 3) lossless, with a rotor of ``j_motor`` on a 1e4 N m/rad coupling and
+    ``slip_damping`` N m s/rad on it: J, K, C over (motor, pinion, gear, drum), its undamped free frequencies (Hz) and
+    the oscillating eigenvalues of its state matrix, slowest first."""
+    rp, rg = _rb(22, 4, 0), _rb(67, 4, 0)
+    ch = Chain([j_motor, 0.03, 1.2, 60.0])
+    ch.add(0, 1, 1.0, -1.0, 1e4, 4.0)
+    ch.add(1, 2, rp, -rg, 6e8, 2 * 0.04 * math.sqrt(6e8 / (rp**2 / 0.03 + rg**2 / 1.2)))
+    ch.add(2, 3, 1.0, -1.0, 3e5, 30.0)
+    ch.body_damping[0] = slip_damping
+    J, K, C = ch.matrices(0)
+    f = np.sqrt(np.clip(scipy.linalg.eigh(K, np.diag(J), eigvals_only=True), 0.0, None)) / (2 * math.pi)
+    A = np.block([[np.zeros((4, 4)), np.eye(4)], [-K / J[:, None], -C / J[:, None]]])
+    return J, K, C, f, sorted((z for z in np.linalg.eigvals(A) if z.imag > 0.0), key=lambda z: z.imag)
+
+
+def test_each_mode_tells_the_frequency_its_damping_ratio_rings_at(tmp_path):
+    """The fan scene (section 3) lossless, its motor's last segment steep (700 N m at 1400 rpm to 0 at 1440 rpm:
+    17.5 N m/rpm = 167.1 N m s/rad of slip damping), a 2 kg m^2 rotor on a 1e4 N m/rad coupling and a constant
+    1000 N m load. Free, the rotor's swing on its coupling is an 11.21 Hz undamped mode, but the slip damping is
+    far from proportional: the damped eigenvalue whose shape matches it rings at 8.11 Hz with zeta 0.485 (|lambda|
+    9.27 Hz). The row read "11.21 Hz, zeta 0.485", a frequency beside another eigenvalue's damping (an 11.21 Hz mode
+    of zeta 0.485 would ring at 9.8 Hz); `damped_frequency_Hz` (Im lambda / 2 pi) names the one the ratio belongs
+    to, `frequency_Hz` stays the undamped one. The operating point lies on the steep segment: 1000 N m x 22/67 =
+    328.4 N m at 1421 rpm."""
+    scene = (FAN.replace("efficiency = 0.95", "efficiency = 1.0").replace("[1500, 0]", "[1440, 0]")
+             .replace("inertia_kg_m2 = 0.5", "inertia_kg_m2 = 2.0").replace("stiffness_Nm_rad = 4.0e4", "stiffness_Nm_rad = 1.0e4")
+             .replace("LOAD", "1000.0").replace("EXPONENT", "0"))
+    assert 1400 < 1400 + (700 - 1000 * 22 / 67) / 17.5 < 1440
+    rows = _run(tmp_path, scene, "modes")["boundaries"]["free"]
+    f, lam = _steep_fan(2.0, 17.5 * 30 / math.pi)[3:]
+    assert len(lam) == 3  # an oscillating eigenvalue per elastic mode
+    assert_allclose([r["frequency_Hz"] for r in rows[1:]], f[1:], rtol=1e-9)  # undamped, as before
+    assert rows[0]["rigid"] and rows[0]["damped_frequency_Hz"] is None
+    assert_allclose([f[1], lam[0].imag / (2 * math.pi)], [11.21, 8.11], atol=0.01)  # rings 28 % below
+    for row, z in zip(rows[1:], lam, strict=True):
+        assert_allclose(row["damping_ratio"], -z.real / abs(z), rtol=1e-6)
+        assert_allclose(row["damped_frequency_Hz"], z.imag / (2 * math.pi), rtol=1e-6)
+
+
+def test_symmetric_planetary_modes_name_every_planet(tmp_path):
+    """Cyclic symmetry (Lin & Parker, J. Vib. Acoust. 121, 1999): in a rotational mode of an equally spaced planetary
+    every planet moves alike, so its N sun meshes hold equal shares of the strain energy, as do its N ring meshes
+    (here, sun held and z_s = z_p with equal mesh stiffness, the clamped 1168 Hz mode loads all eight meshes alike).
+    Which planet's mesh came first among equals was round-off ("planet 2 ring mesh" for the clamped mode, "planet 1
+    sun mesh" for the free 2682 Hz one); the mode now names them all. A planet mode (at w^2 = 2 k r_bp^2 / J_p) whose
+    one planet's sun and ring meshes lead names that planet."""
+    out = _run(tmp_path, PLANETARY.replace("EFF", "1.0").replace("LOAD", "300.0"), "modes")
+    f_planet = math.sqrt(2 * 5e8 * _rb(24, 4, 0) ** 2 / 0.02) / (2 * math.pi)
+    named = 0
+    for boundary in ("clamped_input", "free"):
+        for m in out["boundaries"][boundary]:
+            if m["rigid"]:
+                continue
+            sun = [m["energy_share"][f"stage 1 planet {j} sun mesh"] for j in range(1, 5)]
+            ring = [m["energy_share"][f"stage 1 planet {j} ring mesh"] for j in range(1, 5)]
+            if abs(m["frequency_Hz"] - f_planet) > 1e-6 * f_planet:  # rotational: the planets alike
+                assert_allclose(sun, sun[0], rtol=1e-9)
+                assert_allclose(ring, ring[0], rtol=1e-9)
+                gears = " and ".join(g for g, s in (("sun", sun[0]), ("ring", ring[0]))
+                                     if s >= max(sun[0], ring[0]) * (1 - 1e-9))
+                assert m["dominant_element"] == f"stage 1 planets 1, 2, 3, 4 {gears} meshes", m
+                named += 1
+            else:
+                top = max(sun + ring)
+                lead = [j + 1 for j in range(4) if max(sun[j], ring[j]) >= top * (1 - 1e-9)]
+                assert any(f"planet {j} " in m["dominant_element"] for j in lead), m
+    assert named == 3  # clamped 1168 Hz (sun and ring), free 1379 Hz (ring) and 2682 Hz (sun)
+
+
+def test_a_damped_mode_no_undamped_mode_stands_for_is_checked_for_resonance(tmp_path):
+    """The fan scene (section 3) lossless, its motor's last segment 70 N m/rpm steep (668 N m s/rad of slip damping
+    on a 0.5 kg m^2 rotor, 1e4 N m/rad coupling), a constant 1000 N m load (1405 rpm on that segment). The slip damping
+    holds the rotor: the free chain rings at 5.34 Hz (zeta 0.174), the drum against a train whose motor stands nearly
+    still, while its undamped modes are 0, 20.2, 83.4 and 1037 Hz, none within 10 % (that eigenvalue's shape is the
+    rigid rotation's, MAC 0.93, more than any elastic mode's). A load fluctuation at 5.34 Hz drives the drum's inertia
+    torque to 2.93x its amplitude (the hand chain's frequency response) and was warned about by nothing."""
+    J, K, C, f_free, lam = _steep_fan(0.5, 70.0 * 30 / math.pi)
+    z = lam[0]
+    w = z.imag
+    assert_allclose([w / (2 * math.pi), -z.real / abs(z)], [5.340, 0.174], atol=1e-3)
+    assert all(abs(f - w / (2 * math.pi)) > 0.1 * w / (2 * math.pi) for f in f_free)  # no undamped mode near
+    gain = J[3] * w * w * abs(np.linalg.solve(K - w * w * np.diag(J) + 1j * w * C, np.eye(4)[3])[3])
+    assert_allclose(gain, 2.93, atol=0.01)
+    scene = (FAN.replace("efficiency = 0.95", "efficiency = 1.0").replace("[1500, 0]", "[1410, 0]")
+             .replace("stiffness_Nm_rad = 4.0e4", "stiffness_Nm_rad = 1.0e4").replace("LOAD", "1000.0")
+             .replace("speed_exponent = EXPONENT", "fluctuation = [{ amplitude_percent = 10, frequency_Hz = 5.34 }]"))
+    assert 1400 < 1400 + (700 - 1000 * 22 / 67) / 70 < 1410
+    for command in ("modes", "design"):
+        warned = [x for x in _run(tmp_path, scene, command)["warnings"]
+                  if x["code"] == "resonance" and x["source"] == "load_fluctuation"]
+        assert len(warned) == 1, warned
+        assert warned[0]["mode"] is None and warned[0]["boundary"] == "free" and warned[0]["strength"] == "strongly"
+        assert_allclose([warned[0]["frequency_Hz"], warned[0]["damping_ratio"], warned[0]["amplification"]],
+                        [w / (2 * math.pi), -z.real / abs(z), gain], rtol=1e-6)
