@@ -63,15 +63,16 @@ def modes_csv(analyses: list[ModalAnalysis]) -> str:
     """One row per mode and boundary: the JSON's scalars (frequency, modal damping ratio, dominant element), the
     shape per body, the strain-energy share per element and the crossings as text."""
     first = analyses[0]
-    header = (["boundary", "mode", "frequency_Hz", "damping_ratio", "damped_frequency_Hz", "dominant_element"]
+    header = (["boundary", "mode", "frequency_Hz", "damping_ratio", "dominant_element"]
               + [f"shape_{b.replace(' ', '_')}" for b in first.bodies]
-              + [f"energy_share_{c.replace(' ', '_')}" for c in first.connectors] + ["crossings_rpm"])
+              + [f"energy_share_{c.replace(' ', '_')}" for c in first.connectors]
+              + ["crossings_rpm", "damped_frequency_Hz"])  # the last: added in round 4, earlier columns keep their places
     rows: list[list[JsonScalar]] = []
     for a in analyses:
         for m in a.modes:
             cross = "; ".join(f"{c.excitation} @ {_at(c, '.5g')}" for c in m.crossings)
-            rows.append([a.boundary, m.number, m.frequency_Hz, m.damping_ratio, m.damped_frequency_Hz, m.dominant,
-                         *m.shape, *m.energy_share, cross])
+            rows.append([a.boundary, m.number, m.frequency_Hz, m.damping_ratio, m.dominant,
+                         *m.shape, *m.energy_share, cross, m.damped_frequency_Hz])
     return csv_text(header, rows)
 
 
