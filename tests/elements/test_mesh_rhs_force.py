@@ -114,3 +114,23 @@ def test_an_element_without_the_hook_keeps_the_full_law():
     from gearcli.model.elements import spring
 
     assert not hasattr(spring, elements.RHS_HOOK)
+
+
+def test_the_generated_rhs_feeds_the_laws_floats(monkeypatch):
+    """scipy's stages pass the time as a numpy scalar: the rhs takes it as a float, so the drive's motion, the
+    deflection rates and the laws compute on floats (the same doubles, faster) rather than on numpy scalars."""
+    seen = []
+    real = mesh.rhs_force
+
+    def spy(P, d, dd):
+        seen.append((type(d), type(dd)))
+        return real(P, d, dd)
+
+    monkeypatch.setattr(mesh, "rhs_force", spy)
+    spec = ModelSpec((_mesh(), _mesh(base_radius_pinion_m=0.07)), (0.4, 6.0, 30.0), DriveSpec("speed", 50.0, 0.1, 0.0),
+                     LoadSpec(800.0, 0.05))
+    model = TorsionalModel(spec)
+    y = model.initial_state()
+    f = model.rhs(np.float64(0.05), y)  # in the drive's ramp: its speed and acceleration depend on t
+    assert len(seen) == 2 and all(a is float and b is float for a, b in seen)
+    np.testing.assert_array_equal(f, model.rhs(0.05, y))
