@@ -251,11 +251,11 @@ class DesignFile(_Table):
         default_factory=lambda: {"steel": Material(density_kg_m3=7800, youngs_modulus_MPa=2.07e5, poisson_ratio=0.29)}
     )
     stage: Annotated[list[AnyStage], Field(min_length=1, max_length=50)]
-    contact: Contact = Contact()
+    contact: Contact = Contact.model_construct()  # the defaults, valid: no validator built at import
     input: Input
     load: Load
     target: Target | None = None
-    simulation: Simulation = Simulation()
+    simulation: Simulation = Simulation.model_construct()  # the defaults (as contact)
     bearing: Annotated[list[Bearing], Field(max_length=200), IfGiven("bearing")] = []  # shaft statics, ISO 281
     duty: Annotated[list[Duty], Field(max_length=200), IfGiven("duty")] = []  # duty cycle of `gearcli life`
     lubricant: Annotated[Lubricant | None, IfGiven("lubricant")] = None

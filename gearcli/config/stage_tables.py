@@ -45,7 +45,7 @@ class Stage(_Table):
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
     mesh: Annotated[ContactOverride | None, IfGiven("stage.mesh")] = None
-    basic_rack: BasicRack = BasicRack()
+    basic_rack: BasicRack = BasicRack.model_construct()  # the defaults, valid: no validator built at import
     shaft: Annotated[ShaftSpring | None, IfGiven("stage.shaft")] = None
     center_angle_deg: CenterAngleDeg = 0.0  # line of centres pinion -> gear, from y, cw seen from the input end
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None  # ISO 1328-1 flank tolerance class (rating)
@@ -106,7 +106,7 @@ class PlanetaryStage(_Table):
     backlash_mm: Annotated[float, Field(ge=0, le=10), NotTiny(1e-6)] = 0.0
     efficiency: Annotated[float, Field(ge=0.1, le=1)] = 1.0
     mesh: Annotated[ContactOverride | None, IfGiven("stage.mesh")] = None
-    basic_rack: BasicRack = BasicRack()
+    basic_rack: BasicRack = BasicRack.model_construct()  # the defaults, valid: no validator built at import
     shaft: Annotated[ShaftSpring | None, IfGiven("stage.shaft")] = None
     accuracy_grade: Annotated[int, Field(ge=1, le=12)] | None = None
     tip_relief_um: Annotated[float, Field(ge=0, le=1000)] | None = None

@@ -30,6 +30,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from gearcli.model import elements
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import energy, machine, profile, torque
 from gearcli.model.layout import QUADRATURES
@@ -58,7 +59,10 @@ def _input_motion_lines(lay: Layout) -> list[str]:
 
 
 def _prologue(lay: Layout) -> list[str]:
-    lines = [f"    {', '.join(lay.state.names)}, = y.tolist()"]
+    # the state and the time as Python floats: scipy's stages pass t as a numpy scalar, and everything computed from
+    # it (the drive's motion, the deflection rates, every law they feed) ran on numpy scalars, a few times slower
+    # than on floats (the same IEEE operations, so the same doubles)
+    lines = [f"    {', '.join(lay.state.names)}, = y.tolist()", "    t = float(t)"]
     if lay.speed_drive:
         lines += _input_motion_lines(lay)
     elif lay.motor_drive:  # the motor's torque at its speed (gearcli.model.elements.machine), dTw = dTin/dw0
@@ -105,6 +109,13 @@ def _phase_rate(x: Connector) -> str:
     return f"{lit(x.element.phase_per_rad(x.params))} * w{x.a}"
 
 
+def _force_only(x: Connector) -> bool:
+    """The rhs calls the element's force-only hook (:data:`gearcli.model.elements.RHS_HOOK`) for the connector: it
+    has one and its row depends on no phase (so neither its time-varying spring's power nor a transmission error's,
+    the two other numbers the rhs may read, exists)."""
+    return not x.phased and hasattr(x.element, elements.RHS_HOOK)
+
+
 def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
     x = lay.connectors[c]
     args = f"(_P{c}, d{c}, dd{c}, {_phase(x)}, {_phase_rate(x)})"
@@ -113,6 +124,8 @@ def _connector_lines(lay: Layout, c: int, jacobian: bool) -> list[str]:
         sign = ("-" if s < 0 else "") if j == 0 else (" - " if s < 0 else " + ")
         rate += sign + _scaled(r, f"w{body}")  # delta' = sum_j s_j r_j w_j
     out = [f"    dd{c} = {rate}"]
+    if not jacobian and _force_only(x):  # the force and the damping power: all the rhs reads of the row
+        return out + [f"    f{c}, q{c} = _rhs{c}(_P{c}, d{c}, dd{c})  # {x.label}"] + _loss_lines(lay, c)
     if not jacobian:
         return out + [f"    f{c}, _, _, _, _, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}"] + _loss_lines(lay, c)
     out.append(f"    f{c}, kd{c}, kv{c}, kt{c}, kw{c}, q{c}, u{c}, te{c} = _force{c}{args}  # {x.label}")
@@ -440,6 +453,8 @@ def compile_function(lay: Layout, name: str) -> Callable:
         if x.lossy:  # the element's loss hook
             namespace[f"_loss{c}"] = x.element.loss_factors
         namespace[f"_force{c}"] = x.element.force if x.excited else getattr(x.element, "law", x.element.force)
+        if _force_only(x):
+            namespace[f"_rhs{c}"] = getattr(x.element, elements.RHS_HOOK)
         namespace[f"_power{c}"] = x.element.power_gradient
     template, constants = _template(_header(lay) + GENERATED[name](lay))
     exec(_compiled(template, len(constants), name), namespace)  # noqa: S102 - our own generated source

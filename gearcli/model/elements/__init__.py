@@ -45,6 +45,9 @@ An element may also provide the vectorised hook :data:`SERIES_HOOK`, ``series(P,
 the stored energy and the channels at many samples at once (numpy arrays), value for value what ``force``,
 ``potential`` and ``channel`` give sample by sample, or None for a row it does not cover. The outputs of a
 run on the Python engine use it where it answers (:func:`series_of`); without it they call the scalar laws.
+And the hook :data:`RHS_HOOK`, ``rhs_force(P, d, dd)``: the force and the damping power of a row that is not
+``phased``, value for value ``force``'s first and sixth numbers; the generated Python right-hand side, which reads
+no other number of such a row, calls it there instead of ``force`` (~40 % less time a call for the mesh).
 
 Torques on the end bodies (input torque ripple, load fluctuation) are laws of :mod:`.torque`.
 """
@@ -120,6 +123,10 @@ LOSS_HOOK = ("lossy", "efficiency", "loss_sides", "loss_factors", "with_loss_wid
 
 #: the optional vectorised hook (module text): ``series(P, d, dd, phi, wphi)``
 SERIES_HOOK = "series"
+
+
+#: the optional hook of the generated Python right-hand side (module text): ``rhs_force(P, d, dd)``
+RHS_HOOK = "rhs_force"
 
 
 def series_of(law: ModuleType, P, d, dd, phi, wphi) -> tuple | None:
