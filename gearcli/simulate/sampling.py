@@ -54,13 +54,13 @@ same parabola over the run's |F_t| (SAFETY x the excess) and warns ``peak_unders
 :data:`TARGET` of the peak, with the ``simulation.steps`` that resolves it (configs/motor_direct_start.toml: stage
 2's DOL peak sampled at 10527 N against 11445 N at 40000 steps, 8 %, estimated 3.8 %: a step response's sharp top
 is underestimated as a kinked one is, but seen; there the mesh mode rings above the samples' Nyquist frequency, and
-:mod:`gearcli.simulate.start_rings` warns that the samples bound nothing instead). A peak the samples alias (a mode rung faster than a sample or two a
-period) is not seen by the parabola, but the samples around it show it: they chatter, the peak sample's second
-difference exceeding :data:`ALIAS_CURVATURE` of it (a sinusoid sampled fewer than 6 times a period). Such a peak is
-warned as not bounded by the samples, with the ``simulation.steps`` that samples the scene's fastest natural
-frequency :data:`GOOD_PER_PERIOD` times a period (a 1e4x-ISO mesh closing its 0.1 mm backlash under 30 N m: a
-139 kHz impact pulse sampled every 100 us showed 3117 N, estimated 78 N short, where sampling it finely gives
-54,782 N).
+:mod:`gearcli.simulate.start_rings` warns that the samples bound nothing instead). A peak the samples alias (a mode
+rung faster than a sample or two a period) is not seen by the parabola, but the samples around it show it: they
+chatter, the peak sample's second difference exceeding :data:`ALIAS_CURVATURE` of it (a sinusoid sampled fewer than
+6 times a period). Such a peak is warned as not bounded by the samples, with the ``simulation.steps`` that samples
+the scene's fastest natural frequency :data:`GOOD_PER_PERIOD` times a period (a 1e4x-ISO mesh closing its 0.1 mm
+backlash under 30 N m: a 139 kHz impact pulse sampled every 100 us showed 3117 N, estimated 78 N short, where
+sampling it finely gives 54,782 N).
 
 The mean. The window mean is the trapezoid rule over the samples (the channel's integral over the window). It
 misses what the samples miss of the integral: little for a smooth force (the rule's error is O(h^2) at the window's
