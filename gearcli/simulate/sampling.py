@@ -44,9 +44,8 @@ Aliased excitation. The estimate needs the peaks to be sampled at all: an excita
 error or stiffness cycle, a torque ripple, a load fluctuation: :func:`gearcli.simulate.periodic.excitation_periods`,
 their fundamentals) with fewer than :data:`MIN_PER_PERIOD` window samples a period is aliased (below 2 a period) or
 nearly so, and its response looks smooth to the samples. Such a run is warned ``excitation_undersampled``, naming
-the excitation, its frequency, the samples a period and the ``simulation.steps`` that gives
-:data:`GOOD_PER_PERIOD` (configs/conveyor_motor.toml: the stage 1 mesh at 2.1 samples a period). A
-``steady = "periodic"`` window is sampled at 64 a period of its fastest excitation and needs no such check.
+the excitation, its frequency, the samples a period and the ``simulation.steps`` that gives :data:`GOOD_PER_PERIOD`
+(configs/conveyor_motor.toml: the stage 1 mesh at 2.1 a period). A periodic window has 64 samples a period.
 
 The run's peak. ``peak_tangential_N``, its time and the ``runup_factor`` are the largest |F_t| of the whole run's
 samples: a start's peak between two samples is missed the same way. :func:`peak_warnings` estimates it with the
