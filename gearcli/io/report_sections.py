@@ -366,6 +366,7 @@ def _driver(s):
 def design_section(r: Report) -> Section:
     """The geometry and loads of each stage: what the engineer checks first."""
     u = of_result(r.simulation)
+    speeds, torques = u.table_speeds(), u.table_torques()
     st = r.design.stages
     # a planetary stage's pinion is its sun in the carrier's frame (a relative speed, one planet's share of the
     # torque): its column shows the stage's input member in the housing's frame, as design's member table does
@@ -378,16 +379,20 @@ def design_section(r: Report) -> Section:
         ("centre distance a [mm]", *(g(s.center_distance_mm, 6) for s in st)),
         ("face width b [mm]", *(g(s.face_width_mm) for s in st)),
         ("contact ratios ε_α / ε_β", *(f"{s.contact_ratio_transverse:.3f} / {s.overlap_ratio:.3f}" for s in st)),
-        (f"{driver} speed [{u.speed_label}]", *(g(u.speed_from_deg_s(_driver(s).speed_deg_s), 6) for s in st)),
-        (f"{driver} torque [{u.torque_label}]", *(g(u.torque_from_Nmm(_driver(s).torque_Nmm), 6) for s in st)),
+        # the file's units, and as every table (docs/output.md, "Units") rpm beside °/s or rad/s, N·m beside N·mm
+        *((f"{driver} speed [{unit}]", *(g(f(_driver(s).speed_deg_s), 6) for s in st)) for unit, f in speeds),
+        *((f"{driver} torque [{unit}]", *(g(f(_driver(s).torque_Nmm), 6) for s in st)) for unit, f in torques),
         ("mesh frequency [Hz]", *(g(s.mesh_frequency_Hz) for s in st)),
         ("static F_t [N]", *(g(s.static_force_N.tangential) for s in st)),
         ("mesh stiffness c_γα [N/(mm·µm)]", *(g(s.iso6336_mesh_stiffness_N_mm_um, 4) for s in st)),
     ]
     d = r.design
-    notes = (f"total ratio {d.total_ratio:.6g}; input {g(u.speed_from_deg_s(d.input_speed_deg_s), 6)} {u.speed_label}, "
-             f"output {g(u.speed_from_deg_s(d.output_speed_deg_s), 6)} {u.speed_label}; input torque "
-             f"{g(u.torque_from_Nmm(d.input_torque_Nmm), 6)} {u.torque_label}, input power {d.input_power_kW:.5g} kW",)
+    def each(value: float, units) -> str:  # "8700 °/s = 1450 rpm"
+        return " = ".join(f"{g(f(value), 6)} {unit}" for unit, f in units)
+
+    notes = (f"total ratio {d.total_ratio:.6g}; input {each(d.input_speed_deg_s, speeds)}, "
+             f"output {each(d.output_speed_deg_s, speeds)}; input torque {each(d.input_torque_Nmm, torques)}, "
+             f"input power {d.input_power_kW:.5g} kW",)
     return Section("Design", ("quantity", *(f"stage {s.index}" for s in st)), tuple(rows),
                    "l" + "r" * len(st), notes)
 

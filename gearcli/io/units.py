@@ -10,7 +10,7 @@ arrays under the same names.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, TypeVar
 
 from gearcli.core.records import record
@@ -55,6 +55,25 @@ class OutputUnits:
 
     def torque_from_Nmm(self, v: Number) -> Number:
         return v if self.torque == "Nmm" else self.torque_from_Nm(v / 1000.0)
+
+    def table_speeds(self) -> list[tuple[str, Callable[[float], float]]]:
+        """(label, from °/s) of every speed a table prints (docs/output.md, "Units"): the file's unit, and for a
+        °/s or rad/s file rpm beside it."""
+        rpm = ("rpm", _rpm_from_deg_s)
+        return [rpm] if self.speed == "rpm" else [(self.speed_label, self.speed_from_deg_s), rpm]
+
+    def table_torques(self) -> list[tuple[str, Callable[[float], float]]]:
+        """(label, from N·mm) of every torque a table prints: the file's unit, and for an N·mm file N·m beside it."""
+        n_m = ("N·m", _nm_from_nmm)
+        return [(self.torque_label, self.torque_from_Nmm), n_m] if self.torque == "Nmm" else [n_m]
+
+
+def _rpm_from_deg_s(v: float) -> float:
+    return v / 6.0
+
+
+def _nm_from_nmm(v: float) -> float:
+    return v / 1000.0
 
 
 DEFAULT = OutputUnits()
