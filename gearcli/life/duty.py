@@ -226,7 +226,7 @@ def held_points(time_s: Sequence[float], torque_Nm: Sequence[float], speed_rpm: 
 
 def held_notes(points: Sequence[DutyPoint]) -> list[str]:
     """What a history's held rows became (docs/life.md, "A measured history")."""
-    return [f"{p.key}: rows at zero speed hold {p.torque_Nm:.6g} N·m at most ({p.hours:.4g} h, {p.name}): no "
+    return [f"{p.key}: rows at zero speed hold a torque ({p.name}: {p.hours:.4g} h, the largest {p.torque_Nm:.6g} N·m): no "
             "revolutions, so no load cycles and no damage; the held torque loads the bearings' static safety s_0 "
             "(ISO 76), not the teeth's static strength, which counts load cycles only" for p in points]
 
