@@ -54,12 +54,13 @@ def quantity_label(stage: int | None, quantity: str) -> str:
     return LABELS.get(quantity, quantity)
 
 
-def _in_units(r: Report, quantity: str, label: str, value: float | None) -> tuple[str, float | None]:
-    """A speed row in the design file's speed unit (the comparison is kept in °/s)."""
-    u = of_result(r.simulation)
-    if not quantity.endswith("_deg_s") or u.speed == "deg_s":
-        return label, value
-    return label.replace("[°/s]", f"[{u.speed_label}]"), None if value is None else u.speed_from_deg_s(value)
+def _in_units(r: Report, quantity: str, label: str, theory: float, simulated: float) -> list[tuple[str, float, float]]:
+    """A comparison row as the table prints it: a speed row (kept in °/s) in each of the design file's table units
+    (its own, and rpm beside °/s or rad/s: docs/output.md, "Units"), any other row as it is."""
+    if not quantity.endswith("_deg_s"):
+        return [(label, theory, simulated)]
+    return [(label.replace("[°/s]", f"[{unit}]"), f(theory), f(simulated))
+            for unit, f in of_result(r.simulation).table_speeds()]
 
 
 def comparison_section(r: Report) -> Section:
@@ -68,13 +69,13 @@ def comparison_section(r: Report) -> Section:
     mean_errors = _mean_force_errors_percent(r)
     unresolved = False
     for row in r.comparison:
-        label, theory = _in_units(r, row.quantity, quantity_label(row.stage, row.quantity), row.theory)
-        simulated = _in_units(r, row.quantity, label, row.simulated)[1]
         bound = mean_errors.get(row.stage) if row.stage is not None and row.quantity in FORCE_QUANTITIES else None
         below = bound is not None and row.error_percent is not None and abs(row.error_percent) < bound
         unresolved |= below
-        rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
-                     f"< {bound:.1g}" if below else percent(row.error_percent)))
+        for label, theory, simulated in _in_units(r, row.quantity, quantity_label(row.stage, row.quantity),
+                                                  row.theory, row.simulated):
+            rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
+                         f"< {bound:.1g}" if below else percent(row.error_percent)))
     notes = ("'< e' (forces): the difference is below e, the run's estimated error of its window mean (check pass "
              "and sampling), so the simulated mean meets the theory to within its own accuracy",) if unresolved else ()
     w0, w1 = r.simulation.window_s

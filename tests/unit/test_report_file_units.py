@@ -4,6 +4,8 @@ test_report_fakes (input 3600 °/s, stage ratios 2 and 3, input torque 1e5 N·mm
 
 - the JSON comparison keeps its °/s rows and, in an rpm or rad/s file, follows each with the same row in the file's
   unit (it gave only ``input_speed_deg_s``/``output_speed_deg_s`` while the tables printed rpm);
+- the comparison table prints a speed row in the file's unit and, beside °/s or rad/s, in rpm (a °/s file's
+  table gave °/s alone);
 - the design section adds rpm beside °/s or rad/s and N·m beside N·mm, as every table does (it printed the file's
   unit alone: "input torque 100000 N·mm").
 """
@@ -17,7 +19,7 @@ import pytest
 from test_report_fakes import fake_report
 
 from gearcli.io.report_json import report_dict
-from gearcli.io.report_sections import design_section
+from gearcli.io.report_sections import comparison_section, design_section
 
 
 @pytest.fixture(scope="module")
@@ -76,3 +78,18 @@ def test_design_section_of_an_rpm_Nm_file_is_in_its_units_alone(base):
     labels, notes = design_text(in_units(base, "rpm", "Nm"))
     assert "pinion speed [rpm]" in labels and "pinion speed [°/s]" not in labels
     assert "input 600 rpm, output 100 rpm; input torque 100 N·m," in notes
+
+
+@pytest.mark.parametrize(("speed", "units"), [("deg_s", {"°/s": 1.0, "rpm": 1 / 6}),
+                                              ("rad_s", {"rad/s": math.pi / 180, "rpm": 1 / 6}),
+                                              ("rpm", {"rpm": 1 / 6})])
+def test_comparison_table_speed_rows_in_the_table_units(base, speed, units):
+    sec = comparison_section(in_units(base, speed, "Nmm"))
+    printed = {(row[0], row[1]): float(row[2]) for row in sec.rows}
+    hand = {("train", "input speed"): 3600.0, ("train", "output speed"): 600.0, ("1", "stage output speed"): 1800.0,
+            ("2", "stage output speed"): 600.0}
+    for (stage, name), deg_s in hand.items():
+        for unit, factor in units.items():
+            assert printed[(stage, f"{name} [{unit}]")] == pytest.approx(deg_s * factor, rel=1e-5)  # 6 digits
+    assert not [label for _, label in printed if label.endswith("]") and "speed" in label
+                and label[label.rindex("[") + 1:-1] not in units]
