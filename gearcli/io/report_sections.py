@@ -332,10 +332,7 @@ def solver_lines(r: Report) -> list[str]:
 def _output_speed(sim) -> str:
     """The window-mean output speed in the design file's speed unit, as `simulate`'s footer (°/s files: also rpm;
     rad/s files: also rpm)."""
-    u, v = of_result(sim), sim.output_speed_deg_s
-    if u.speed == "deg_s":
-        return f"{v:.6g} °/s = {v / 6:.5g} rpm"
-    return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}" + (f" = {v / 6:.5g} rpm" if u.speed == "rad_s" else "")
+    return of_result(sim).speed_text(sim.output_speed_deg_s)
 
 
 def rating_section(r: Report) -> Section | None:

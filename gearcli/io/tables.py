@@ -368,14 +368,10 @@ def _planet_tables(r: SimulationResult) -> list[RenderableType]:
 
 
 def footer_speeds(r: SimulationResult) -> str:
-    """The dynamic ratio and the window-mean speeds in the design file's speed unit (°/s and rpm for °/s)."""
+    """The dynamic ratio and the window-mean speeds in the design file's speed unit (°/s and rad/s: also rpm)."""
     u = of_result(r)
-
-    def speed(v: float) -> str:
-        if u.speed == "deg_s":
-            return f"{v:.6g} °/s = {v / 6.0:.5g} rpm"
-        return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}"
-    return f"dynamic ratio {r.ratio:.6g}   output {speed(r.output_speed_deg_s)}   input {speed(r.input_speed_deg_s)}"
+    return (f"dynamic ratio {r.ratio:.6g}   output {u.speed_text(r.output_speed_deg_s)}   "
+            f"input {u.speed_text(r.input_speed_deg_s)}")
 
 
 def _resolved(s: StageDynamics) -> str:

@@ -56,6 +56,12 @@ class OutputUnits:
     def torque_from_Nmm(self, v: Number) -> Number:
         return v if self.torque == "Nmm" else self.torque_from_Nm(v / 1000.0)
 
+    def speed_text(self, deg_s: float) -> str:
+        """A speed as the footers print it: in the file's unit, then rpm beside °/s or rad/s ("8700 °/s = 1450
+        rpm"; 6 significant digits, rpm 5)."""
+        own = f"{self.speed_from_deg_s(deg_s):.6g} {self.speed_label}"
+        return own if self.speed == "rpm" else f"{own} = {deg_s / 6.0:.5g} rpm"
+
     def table_speeds(self) -> list[tuple[str, Callable[[float], float]]]:
         """(label, from °/s) of every speed a table prints (docs/output.md, "Units"): the file's unit, and for a
         °/s or rad/s file rpm beside it."""

@@ -6,6 +6,8 @@ test_report_fakes (input 3600 °/s, stage ratios 2 and 3, input torque 1e5 N·mm
   unit (it gave only ``input_speed_deg_s``/``output_speed_deg_s`` while the tables printed rpm);
 - the comparison table prints a speed row in the file's unit and, beside °/s or rad/s, in rpm (a °/s file's
   table gave °/s alone);
+- `simulate`'s footer of a rad/s file adds rpm, as the °/s file's and the report's solver line do (it gave rad/s
+  alone);
 - the design section adds rpm beside °/s or rad/s and N·m beside N·mm, as every table does (it printed the file's
   unit alone: "input torque 100000 N·mm").
 """
@@ -19,7 +21,8 @@ import pytest
 from test_report_fakes import fake_report
 
 from gearcli.io.report_json import report_dict
-from gearcli.io.report_sections import comparison_section, design_section
+from gearcli.io.report_sections import comparison_section, design_section, solver_lines
+from gearcli.io.tables import footer_speeds
 
 
 @pytest.fixture(scope="module")
@@ -93,3 +96,24 @@ def test_comparison_table_speed_rows_in_the_table_units(base, speed, units):
             assert printed[(stage, f"{name} [{unit}]")] == pytest.approx(deg_s * factor, rel=1e-5)  # 6 digits
     assert not [label for _, label in printed if label.endswith("]") and "speed" in label
                 and label[label.rindex("[") + 1:-1] not in units]
+
+
+def speed_words(deg_s: float, speed: str) -> str:
+    """By hand: 1 rpm = 6 °/s, 1 rad/s = 180/π °/s; the file's unit (6 digits), then rpm (5) unless it is rpm."""
+    rpm = f"{deg_s / 6:.5g} rpm"
+    if speed == "rpm":
+        return f"{deg_s / 6:.6g} rpm"
+    own = f"{deg_s:.6g} °/s" if speed == "deg_s" else f"{deg_s * math.pi / 180:.6g} rad/s"
+    return f"{own} = {rpm}"
+
+
+@pytest.mark.parametrize("speed", ["deg_s", "rad_s", "rpm"])
+def test_simulate_footer_and_report_solver_line(base, speed):
+    report = in_units(base, speed, "Nm")
+    sim = report.simulation
+    assert sim.input_speed_deg_s == pytest.approx(3600.0) and sim.output_speed_deg_s == pytest.approx(600.0, rel=1e-4)
+    output, input_ = speed_words(sim.output_speed_deg_s, speed), speed_words(sim.input_speed_deg_s, speed)
+    footer = footer_speeds(sim)
+    assert f"output {output}   input {input_}" in footer, footer
+    assert solver_lines(report)[-1].endswith(f"output {output}")
+    assert ("rpm" in footer.split("input")[1]) and (speed == "rpm" or " = " in footer)
