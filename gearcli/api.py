@@ -325,7 +325,7 @@ def life(session: LifeSession, *, static: bool = False, variant: str = "iso",
         raise ValueError(f"variant: must be one of {', '.join(VARIANTS)}, got {variant!r}")
     result = compute_life(session.scene, session.points, route="static" if static else "dynamic", variant=variant,
                           progress=progress, design_case=design_case, evaluate=evaluate_point, notes=session.warnings,
-                          base_warnings=session.design.warnings)
+                          base_warnings=session.design.warnings, held=session.held)
     return dataclasses.replace(result, units=key_units(session.loaded.design))  # tables in the file's units
 
 

@@ -124,8 +124,9 @@ def _json_value(v: object) -> JsonValue:
 
 
 def as_dict(d: Diagnostic) -> JsonObject:
-    """One JSON ``warnings`` entry: ``code``, ``message``, then the diagnostic's data."""
-    data = {k: _json_value(v) for k, v in d.data.items() if k not in ("code", "message")}
+    """One JSON ``warnings`` entry: ``code``, ``message``, then the diagnostic's data; ``stage`` is in every entry,
+    null for a warning about the train (one no stage's diagnostic carries: docs/output.md, "Warnings")."""
+    data = {"stage": None, **{k: _json_value(v) for k, v in d.data.items() if k not in ("code", "message")}}
     named = data.get("statistics")
     if "statistic" not in data and isinstance(named, list):  # the contract's key beside the list (DESIGN §12)
         data["statistic"] = ", ".join(str(s) for s in named)

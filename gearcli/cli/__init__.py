@@ -22,6 +22,7 @@ from gearcli.cli.common import (
     FORMATS,
     INPUT_PARAMS,
     SUFFIX_FORMAT,
+    Group,
     broken_pipe,
     check_plots_dir,
     check_target,
@@ -48,7 +49,7 @@ __all__ = ["FORMATS", "INPUT_PARAMS", "SUFFIX_FORMAT", "check_plots_dir", "check
            "emit_tables", "guarded", "io_options", "is_quiet", "main", "quiet_option", "warn"]
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]}, epilog="""\b
+@click.group(cls=Group, context_settings={"help_option_names": ["-h", "--help"]}, epilog="""\b
 Examples:
   gearcli init mixer.toml
   gearcli design mixer.toml

@@ -354,3 +354,38 @@ def check_sweep_plots_dir(plots_dir: str, file: str, target, vary) -> None:
         names += [response_name(v.split("=", 1)[0].strip()) for v in vary]
     check_plots_dir(plots_dir, names, target)
 
+
+
+class UsageError(click.UsageError):
+    """click's usage error in gearcli's words: the usage and the help hint as click prints them, then the message
+    with the ``gearcli:`` prefix every other error carries (click's was ``Error: ...``); exit 2 (DESIGN §5)."""
+
+    def show(self, file=None) -> None:
+        if self.ctx is not None:
+            help_names = self.ctx.command.get_help_option_names(self.ctx)
+            hint = (f"Try '{self.ctx.command_path} {max(help_names, key=len)}' for help.\n"
+                    if self.ctx.command.get_help_option(self.ctx) is not None and help_names else "")
+            click.echo(f"{self.ctx.get_usage()}\n{hint}", file=file, err=file is None, color=self.ctx.color)
+        for line in self.format_message().splitlines() or [""]:
+            click.echo(f"gearcli: {visible(line)}", file=file, err=file is None)
+
+
+class Group(click.Group):
+    """The command group whose usage errors, its own and its commands' (click's parsing and a command's
+    ``click.UsageError``), are :class:`UsageError`'s."""
+
+    def make_context(self, info_name, args, parent=None, **extra) -> click.Context:
+        try:
+            return super().make_context(info_name, args, parent, **extra)
+        except UsageError:
+            raise
+        except click.UsageError as exc:
+            raise UsageError(exc.format_message(), exc.ctx) from None
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except UsageError:
+            raise
+        except click.UsageError as exc:
+            raise UsageError(exc.format_message(), exc.ctx) from None

@@ -17,7 +17,7 @@ from gearcli.core.jsontypes import JsonObject, JsonValue
 from gearcli.diagnostics import warning_objects
 from gearcli.io.modes_out import modes_dict
 from gearcli.io.serialize import as_object, plain, simulation_dict
-from gearcli.io.units import OutputUnits
+from gearcli.io.units import OutputUnits, of_result
 from gearcli.report.result import AccuracyRun, AccuracyStudy, Report, StageReport
 from gearcli.results import DesignResult
 
@@ -143,7 +143,7 @@ def _report_dict(r: Report) -> JsonObject:
         "title": r.title,
         "design": design_summary(r.design),
         "modes": modes_summary(r),
-        "comparison": [plain(row) for row in r.comparison],
+        "comparison": comparison_rows(r),
         # where the theory is taken when the drive does not prescribe the speed (null: the design's nominal point)
         "theory_point": None if r.theory_point is None else {**plain(r.theory_point),  # type: ignore[dict-item]
                                                              "speed_factor": r.theory_point.speed_factor},
@@ -156,6 +156,20 @@ def _report_dict(r: Report) -> JsonObject:
         "accuracy_failure": r.accuracy_failure,  # why the study failed (accuracy null); null otherwise
         "warnings": warning_objects(r.warnings, r.diagnostics),
     }
+
+
+def comparison_rows(r: Report) -> list[JsonValue]:
+    """The theory-against-simulation rows; in a file whose speed key is not °/s, each speed row (kept in °/s under
+    its fixed name) is followed by the same row in the file's unit (``input_speed_rpm``, ...: DESIGN §12)."""
+    u = of_result(r.simulation)
+    rows: list[JsonValue] = []
+    for row in r.comparison:
+        rows.append(plain(row))
+        if row.quantity.endswith("_speed_deg_s") and u.speed != "deg_s":
+            rows.append(plain(dataclasses.replace(row, quantity=row.quantity[: -len("deg_s")] + u.speed,
+                                                  theory=u.speed_from_deg_s(row.theory),
+                                                  simulated=u.speed_from_deg_s(row.simulated))))
+    return rows
 
 
 def modes_summary(r: Report) -> JsonObject | None:

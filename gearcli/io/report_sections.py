@@ -54,12 +54,13 @@ def quantity_label(stage: int | None, quantity: str) -> str:
     return LABELS.get(quantity, quantity)
 
 
-def _in_units(r: Report, quantity: str, label: str, value: float | None) -> tuple[str, float | None]:
-    """A speed row in the design file's speed unit (the comparison is kept in °/s)."""
-    u = of_result(r.simulation)
-    if not quantity.endswith("_deg_s") or u.speed == "deg_s":
-        return label, value
-    return label.replace("[°/s]", f"[{u.speed_label}]"), None if value is None else u.speed_from_deg_s(value)
+def _in_units(r: Report, quantity: str, label: str, theory: float, simulated: float) -> list[tuple[str, float, float]]:
+    """A comparison row as the table prints it: a speed row (kept in °/s) in each of the design file's table units
+    (its own, and rpm beside °/s or rad/s: docs/output.md, "Units"), any other row as it is."""
+    if not quantity.endswith("_deg_s"):
+        return [(label, theory, simulated)]
+    return [(label.replace("[°/s]", f"[{unit}]"), f(theory), f(simulated))
+            for unit, f in of_result(r.simulation).table_speeds()]
 
 
 def comparison_section(r: Report) -> Section:
@@ -68,13 +69,13 @@ def comparison_section(r: Report) -> Section:
     mean_errors = _mean_force_errors_percent(r)
     unresolved = False
     for row in r.comparison:
-        label, theory = _in_units(r, row.quantity, quantity_label(row.stage, row.quantity), row.theory)
-        simulated = _in_units(r, row.quantity, label, row.simulated)[1]
         bound = mean_errors.get(row.stage) if row.stage is not None and row.quantity in FORCE_QUANTITIES else None
         below = bound is not None and row.error_percent is not None and abs(row.error_percent) < bound
         unresolved |= below
-        rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
-                     f"< {bound:.1g}" if below else percent(row.error_percent)))
+        for label, theory, simulated in _in_units(r, row.quantity, quantity_label(row.stage, row.quantity),
+                                                  row.theory, row.simulated):
+            rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
+                         f"< {bound:.1g}" if below else percent(row.error_percent)))
     notes = ("'< e' (forces): the difference is below e, the run's estimated error of its window mean (check pass "
              "and sampling), so the simulated mean meets the theory to within its own accuracy",) if unresolved else ()
     w0, w1 = r.simulation.window_s
@@ -331,10 +332,7 @@ def solver_lines(r: Report) -> list[str]:
 def _output_speed(sim) -> str:
     """The window-mean output speed in the design file's speed unit, as `simulate`'s footer (°/s files: also rpm;
     rad/s files: also rpm)."""
-    u, v = of_result(sim), sim.output_speed_deg_s
-    if u.speed == "deg_s":
-        return f"{v:.6g} °/s = {v / 6:.5g} rpm"
-    return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}" + (f" = {v / 6:.5g} rpm" if u.speed == "rad_s" else "")
+    return of_result(sim).speed_text(sim.output_speed_deg_s)
 
 
 def rating_section(r: Report) -> Section | None:
@@ -366,6 +364,7 @@ def _driver(s):
 def design_section(r: Report) -> Section:
     """The geometry and loads of each stage: what the engineer checks first."""
     u = of_result(r.simulation)
+    speeds, torques = u.table_speeds(), u.table_torques()
     st = r.design.stages
     # a planetary stage's pinion is its sun in the carrier's frame (a relative speed, one planet's share of the
     # torque): its column shows the stage's input member in the housing's frame, as design's member table does
@@ -378,16 +377,20 @@ def design_section(r: Report) -> Section:
         ("centre distance a [mm]", *(g(s.center_distance_mm, 6) for s in st)),
         ("face width b [mm]", *(g(s.face_width_mm) for s in st)),
         ("contact ratios ε_α / ε_β", *(f"{s.contact_ratio_transverse:.3f} / {s.overlap_ratio:.3f}" for s in st)),
-        (f"{driver} speed [{u.speed_label}]", *(g(u.speed_from_deg_s(_driver(s).speed_deg_s), 6) for s in st)),
-        (f"{driver} torque [{u.torque_label}]", *(g(u.torque_from_Nmm(_driver(s).torque_Nmm), 6) for s in st)),
+        # the file's units, and as every table (docs/output.md, "Units") rpm beside °/s or rad/s, N·m beside N·mm
+        *((f"{driver} speed [{unit}]", *(g(f(_driver(s).speed_deg_s), 6) for s in st)) for unit, f in speeds),
+        *((f"{driver} torque [{unit}]", *(g(f(_driver(s).torque_Nmm), 6) for s in st)) for unit, f in torques),
         ("mesh frequency [Hz]", *(g(s.mesh_frequency_Hz) for s in st)),
         ("static F_t [N]", *(g(s.static_force_N.tangential) for s in st)),
         ("mesh stiffness c_γα [N/(mm·µm)]", *(g(s.iso6336_mesh_stiffness_N_mm_um, 4) for s in st)),
     ]
     d = r.design
-    notes = (f"total ratio {d.total_ratio:.6g}; input {g(u.speed_from_deg_s(d.input_speed_deg_s), 6)} {u.speed_label}, "
-             f"output {g(u.speed_from_deg_s(d.output_speed_deg_s), 6)} {u.speed_label}; input torque "
-             f"{g(u.torque_from_Nmm(d.input_torque_Nmm), 6)} {u.torque_label}, input power {d.input_power_kW:.5g} kW",)
+    def each(value: float, units) -> str:  # "8700 °/s = 1450 rpm"
+        return " = ".join(f"{g(f(value), 6)} {unit}" for unit, f in units)
+
+    notes = (f"total ratio {d.total_ratio:.6g}; input {each(d.input_speed_deg_s, speeds)}, "
+             f"output {each(d.output_speed_deg_s, speeds)}; input torque {each(d.input_torque_Nmm, torques)}, "
+             f"input power {d.input_power_kW:.5g} kW",)
     return Section("Design", ("quantity", *(f"stage {s.index}" for s in st)), tuple(rows),
                    "l" + "r" * len(st), notes)
 

@@ -10,7 +10,6 @@ never rich markup, control characters escaped.
 from __future__ import annotations
 
 import io
-import math
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Protocol, cast
 
@@ -39,7 +38,6 @@ from gearcli.stages.design import gear_pairs
 if TYPE_CHECKING:
     from gearcli.life.result import LifeResult
 
-RAD_PER_DEG = math.pi / 180.0
 
 
 def design_tables(r: DesignResult) -> list[RenderableType]:
@@ -126,20 +124,13 @@ def design_tables(r: DesignResult) -> list[RenderableType]:
 def _speed_units(r: DesignResult) -> list[tuple[str, Callable[[float], float]]]:
     """The design file's speed unit for the table (DESIGN §12), from °/s: a °/s or rad/s file also in rpm, as the
     simulate and report footers give them."""
-    unit = of_result(r).speed
-    rpm = ("rpm", lambda v: v / 6.0)
-    if unit == "deg_s":
-        return [("°/s", lambda v: v), rpm]
-    if unit == "rad_s":
-        return [("rad/s", lambda v: v * RAD_PER_DEG), rpm]
-    return [rpm]
+    return of_result(r).table_speeds()
 
 
 def _torque_units(r: DesignResult) -> list[tuple[str, Callable[[float], float]]]:
     """The design file's torque unit for the table (DESIGN §12: torque_Nm → N·m everywhere), from N·mm: an N·mm
     file also in N·m."""
-    n_m = ("N·m", lambda v: v / 1000.0)
-    return [("N·mm", lambda v: v), n_m] if of_result(r).torque == "Nmm" else [n_m]
+    return of_result(r).table_torques()
 
 
 def _law_rows(stages: Sequence[StageResult]) -> list[tuple[str, list[str]]]:
@@ -377,14 +368,10 @@ def _planet_tables(r: SimulationResult) -> list[RenderableType]:
 
 
 def footer_speeds(r: SimulationResult) -> str:
-    """The dynamic ratio and the window-mean speeds in the design file's speed unit (°/s and rpm for °/s)."""
+    """The dynamic ratio and the window-mean speeds in the design file's speed unit (°/s and rad/s: also rpm)."""
     u = of_result(r)
-
-    def speed(v: float) -> str:
-        if u.speed == "deg_s":
-            return f"{v:.6g} °/s = {v / 6.0:.5g} rpm"
-        return f"{u.speed_from_deg_s(v):.6g} {u.speed_label}"
-    return f"dynamic ratio {r.ratio:.6g}   output {speed(r.output_speed_deg_s)}   input {speed(r.input_speed_deg_s)}"
+    return (f"dynamic ratio {r.ratio:.6g}   output {u.speed_text(r.output_speed_deg_s)}   "
+            f"input {u.speed_text(r.input_speed_deg_s)}")
 
 
 def _resolved(s: StageDynamics) -> str:

@@ -10,7 +10,7 @@ arrays under the same names.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, TypeVar
 
 from gearcli.core.records import record
@@ -55,6 +55,31 @@ class OutputUnits:
 
     def torque_from_Nmm(self, v: Number) -> Number:
         return v if self.torque == "Nmm" else self.torque_from_Nm(v / 1000.0)
+
+    def speed_text(self, deg_s: float) -> str:
+        """A speed as the footers print it: in the file's unit, then rpm beside °/s or rad/s ("8700 °/s = 1450
+        rpm"; 6 significant digits, rpm 5)."""
+        own = f"{self.speed_from_deg_s(deg_s):.6g} {self.speed_label}"
+        return own if self.speed == "rpm" else f"{own} = {deg_s / 6.0:.5g} rpm"
+
+    def table_speeds(self) -> list[tuple[str, Callable[[float], float]]]:
+        """(label, from °/s) of every speed a table prints (docs/output.md, "Units"): the file's unit, and for a
+        °/s or rad/s file rpm beside it."""
+        rpm = ("rpm", _rpm_from_deg_s)
+        return [rpm] if self.speed == "rpm" else [(self.speed_label, self.speed_from_deg_s), rpm]
+
+    def table_torques(self) -> list[tuple[str, Callable[[float], float]]]:
+        """(label, from N·mm) of every torque a table prints: the file's unit, and for an N·mm file N·m beside it."""
+        n_m = ("N·m", _nm_from_nmm)
+        return [(self.torque_label, self.torque_from_Nmm), n_m] if self.torque == "Nmm" else [n_m]
+
+
+def _rpm_from_deg_s(v: float) -> float:
+    return v / 6.0
+
+
+def _nm_from_nmm(v: float) -> float:
+    return v / 1000.0
 
 
 DEFAULT = OutputUnits()

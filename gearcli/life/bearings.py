@@ -98,19 +98,24 @@ def _modified(points: Sequence[_PointData], j: int, levels: Sequence[_Level]) ->
             "a_ISO_points": tuple(m.a_ISO for _, _, m in own_points)}
 
 
-def _static(points: Sequence[_PointData], j: int, starts: Sequence[StartBearings]) -> dict:
-    """P_0 and s_0 of bearing j at the largest peak of the duty points and their starts (empty without C_0)."""
+def _static(points: Sequence[_PointData], j: int, starts: Sequence[StartBearings],
+            held: Sequence[tuple[float, ...]] = ()) -> dict:
+    """P_0 and s_0 of bearing j at the largest peak of the duty points, their starts and the loads ``held`` at
+    standstill (each a P_0 per bearing; empty without C_0)."""
     b = points[0].design.bearings[j]
     if b.static_load_rating_kN is None:
         return {}
     peaks = [pd.bearings.peak_static_N[j] for pd in points] + [s.peak_static_N[j] for s in starts]
+    peaks += [h[j] for h in held]
     p0, s0 = min_static_safety(b.static_load_rating_kN * 1e3, peaks)
     return {"static_load_rating_kN": b.static_load_rating_kN, "static_equivalent_load_N": p0, "static_safety": s0,
             "static_safety_min": s0}
 
 
-def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] = ()) -> tuple[BearingLife, ...]:
-    """Every bearing over the duty ``points`` (the life run's evaluated points) and the points' ``starts``."""
+def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] = (),
+                  held: Sequence[tuple[float, ...]] = ()) -> tuple[BearingLife, ...]:
+    """Every bearing over the duty ``points`` (the life run's evaluated points) and the points' ``starts``; the
+    ``held`` loads (per held torque, each bearing's static equivalent load P_0) count in s_0 alone."""
     base = points[0].design.bearings
     out = []
     for j, b in enumerate(base):
@@ -122,7 +127,7 @@ def bearing_lives(points: Sequence[_PointData], starts: Sequence[StartBearings] 
         mean_rpm = sum(revs) / (60.0 * hours) if hours else 0.0
         out.append(BearingLife(b.shaft, b.position_mm, b.kind, b.dynamic_load_rating_kN, p_eq, sum(revs), l10,
                                life_hours(l10, mean_rpm), tuple(pd.bearings.equivalent_N[j] for pd in points),
-                               b.planet_stage or 0, **_static(points, j, starts), **_modified(points, j, levels)))
+                               b.planet_stage or 0, **_static(points, j, starts, held), **_modified(points, j, levels)))
     return tuple(out)
 
 

@@ -200,6 +200,37 @@ def points_from_series(time_s: Sequence[float], torque_Nm: Sequence[float], spee
     return points
 
 
+HELD_LABEL = "held at standstill"
+
+
+def held_points(time_s: Sequence[float], torque_Nm: Sequence[float], speed_rpm: Sequence[float],
+                source: str) -> list[DutyPoint]:
+    """A history's rows at zero speed that carry a torque (a brake or a stalled drive holding the load): no
+    revolutions, so no load cycles and no damage, but a load the bearings' ISO 76 static safety must see. One
+    point per sign of torque, at its largest magnitude, holding those rows' hours; its speed, which a held load
+    does not have, is the turning rows' time-weighted mean (the design's statics do not depend on it)."""
+    rows = range(len(time_s) - 1)
+    turning = [(abs(speed_rpm[i]), time_s[i + 1] - time_s[i]) for i in rows if speed_rpm[i] != 0.0]
+    seconds = sum(d for _, d in turning)
+    speed = sum(n * d for n, d in turning) / seconds if seconds > 0.0 else 0.0
+    out = []
+    for negative in (True, False):
+        held = [i for i in rows if speed_rpm[i] == 0.0 and torque_Nm[i] != 0.0 and (torque_Nm[i] < 0.0) == negative]
+        if held and speed > 0.0:
+            torque = max((torque_Nm[i] for i in held), key=abs)
+            hours = sum(time_s[i + 1] - time_s[i] for i in held) / 3600.0
+            name = f"{HELD_LABEL} (negative torque)" if negative else HELD_LABEL
+            out.append(DutyPoint(name, hours, torque, speed, (), source))
+    return out
+
+
+def held_notes(points: Sequence[DutyPoint]) -> list[str]:
+    """What a history's held rows became (docs/life.md, "A measured history")."""
+    return [f"{p.key}: rows at zero speed hold a torque ({p.name}: {p.hours:.4g} h, the largest {p.torque_Nm:.6g} N·m): no "
+            "revolutions, so no load cycles and no damage; the held torque loads the bearings' static safety s_0 "
+            "(ISO 76), not the teeth's static strength, which counts load cycles only" for p in points]
+
+
 def reversal_notes(points: Sequence[DutyPoint]) -> list[str]:
     """The warning docs/life.md promises for a load reversal: a point with a negative torque loads the back
     flanks, and is counted by magnitude on the S-N curves of the drive flanks."""

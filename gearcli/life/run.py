@@ -433,11 +433,12 @@ def _of_point(point: DutyPoint, diags: Sequence[Diagnostic]) -> list[Diagnostic]
 def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: CaseDesigner, evaluate: PointEvaluator,
                  route: str = "dynamic", variant: str = "iso",
                  progress: Callable[[str, int, int], None] | None = None, notes: Sequence[str] = (),
-                 base_warnings: Sequence[str] = ()) -> LifeResult:
+                 base_warnings: Sequence[str] = (), held: Sequence[DutyPoint] = ()) -> LifeResult:
     """The life of every member and bearing over the duty ``points`` of the design file ``scene``; each point
     designed by ``design_case`` (the static route) or simulated by ``evaluate`` (the dynamic route). ``notes``
     (about the duty) lead the warnings; a point's design warnings beyond ``base_warnings`` (the base file's)
-    follow, naming the point."""
+    follow, naming the point. ``held``: torques held at standstill (a history's zero-speed rows), designed for
+    their static bearing loads alone (the bearings' s_0; no revolutions, no damage)."""
     progress = progress or _no_progress
     if not points:
         raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
@@ -479,7 +480,9 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
         warnings.append(warning(STARTS_NOT_COUNTED, "the duty's starts ([[duty]] starts) are counted on the dynamic "
                                 "route only (each point's start simulated from rest); --static rates the steady "
                                 "points alone"))
-    bearings = bearing_lives(evaluated, start_bearings(evaluated))
+    held_peaks = [tuple(b.static_equivalent_load_N or 0.0 for b in _point_design(scene, p, design_case).design.bearings)
+                  for p in held]
+    bearings = bearing_lives(evaluated, start_bearings(evaluated), held_peaks)
     warnings += bearing_warnings(evaluated, bearings, base_warnings)
     from_series = {p.key for p in points if not p.key.startswith("duty[")}  # a history's classes carry its name
     warnings += _verdicts(evaluated[0].cfg, stages, bearings, hours, next(iter(from_series), None))

@@ -16,6 +16,8 @@ from gearcli.errors import ConfigError
 from gearcli.life.duty import (
     DEFAULT_CLASSES,
     DutyPoint,
+    held_notes,
+    held_points,
     points_from_config,
     points_from_series,
     read_series,
@@ -38,6 +40,7 @@ class Session:
     design: DesignResult  # its design
     points: tuple[DutyPoint, ...]
     warnings: tuple[str, ...] = ()  # about the duty itself: reverse rows of a series, load reversals
+    held: tuple[DutyPoint, ...] = ()  # a history's torques held at standstill: the bearings' s_0 alone
 
 
 def _series_text(path: str, stdin: BinaryIO | None = None) -> str:
@@ -105,13 +108,15 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         loaded = replace(loaded, sha256=input_digest(raw, sets, text.encode("utf-8")))
         points = points_from_series(*cols, source=source, classes=classes)
         notes = series_notes(*cols, source=source)
+        held = held_points(*cols, source=source)
+        notes += held_notes(held)
         starts = sum(d.starts for d in loaded.design.duty)
         if starts:  # the tables the history replaces carried start-ups: say that they are not counted
             notes.append(f"the history {source} replaces the file's [[duty]] tables, and with them their {starts} "
                          "starts ([[duty]] starts): a history's rows count no start-ups from rest, so no start is "
                          "counted; rate the starts with the [[duty]] tables")
     else:
-        points = points_from_config(loaded.design)
+        points, held = points_from_config(loaded.design), []
         _check_names(points, loaded.source)
         points, notes = _without_empty_points(points, loaded.source)
     notes += reversal_notes(points)
@@ -123,4 +128,4 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
                           "materials' treatment and fatigue limits, accuracy grades, roughness and [lubricant])"
                           + only, source=loaded.source, key="rating")
     return Session(Scene(raw, loaded.source, tuple(sets), len(design.stages)), loaded, design, tuple(points),
-                   tuple(notes))
+                   tuple(notes), tuple(with_drive(loaded.design, held)))
