@@ -159,16 +159,16 @@ def _report_dict(r: Report) -> JsonObject:
 
 
 def comparison_rows(r: Report) -> list[JsonValue]:
-    """The theory-against-simulation rows; in a file whose speed key is not °/s, each speed row (kept in °/s under
-    its fixed name) is followed by the same row in the file's unit (``input_speed_rpm``, ...: DESIGN §12)."""
+    """The theory-against-simulation rows; in a file whose speed key is not °/s, the speed rows (kept in °/s under
+    their fixed names, in their places) again in the file's unit after them all (``input_speed_rpm``, ...: DESIGN
+    §12), so a script that reads the rows by position finds the same rows where they were."""
     u = of_result(r.simulation)
-    rows: list[JsonValue] = []
-    for row in r.comparison:
-        rows.append(plain(row))
-        if row.quantity.endswith("_speed_deg_s") and u.speed != "deg_s":
-            rows.append(plain(dataclasses.replace(row, quantity=row.quantity[: -len("deg_s")] + u.speed,
-                                                  theory=u.speed_from_deg_s(row.theory),
-                                                  simulated=u.speed_from_deg_s(row.simulated))))
+    rows: list[JsonValue] = [plain(row) for row in r.comparison]
+    if u.speed != "deg_s":
+        rows += [plain(dataclasses.replace(row, quantity=row.quantity[: -len("deg_s")] + u.speed,
+                                           theory=u.speed_from_deg_s(row.theory),
+                                           simulated=u.speed_from_deg_s(row.simulated)))
+                 for row in r.comparison if row.quantity.endswith("_speed_deg_s")]
     return rows
 
 

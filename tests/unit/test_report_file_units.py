@@ -2,8 +2,9 @@
 test_report_fakes (input 3600 °/s, stage ratios 2 and 3, input torque 1e5 N·mm): by hand, 3600 °/s = 600 rpm =
 20π rad/s; the stages' gears turn at 1800 °/s = 300 rpm and 600 °/s = 100 rpm; 1e5 N·mm = 100 N·m.
 
-- the JSON comparison keeps its °/s rows and, in an rpm or rad/s file, follows each with the same row in the file's
-  unit (it gave only ``input_speed_deg_s``/``output_speed_deg_s`` while the tables printed rpm);
+- the JSON comparison keeps its °/s rows in their places and, in an rpm or rad/s file, gives the speed rows again in
+  the file's unit after them all (it gave only ``input_speed_deg_s``/``output_speed_deg_s`` while the tables printed
+  rpm);
 - the comparison table prints a speed row in the file's unit and, beside °/s or rad/s, in rpm (a °/s file's
   table gave °/s alone);
 - `simulate`'s footer of a rad/s file adds rpm, as the °/s file's and the report's solver line do (it gave rad/s
@@ -50,6 +51,12 @@ def test_comparison_speed_rows_in_the_file_unit(base, speed, factor):
         assert own["error_percent"] == fixed["error_percent"]
     assert by[(None, "input_speed_rpm" if speed == "rpm" else "input_speed_rad_s")]["theory"] == pytest.approx(
         600.0 if speed == "rpm" else 20 * math.pi, rel=1e-12)
+    # the rows a °/s file gives keep their places: the file-unit rows come after them all
+    own_doc, deg_doc = report_dict(in_units(base, speed, "Nm")), report_dict(in_units(base, "deg_s", "Nm"))
+    n = len(deg_doc["comparison"])
+    assert [(r["stage"], r["quantity"]) for r in own_doc["comparison"][:n]] == \
+        [(r["stage"], r["quantity"]) for r in deg_doc["comparison"]]
+    assert all(r["quantity"].endswith(f"_speed_{speed}") for r in own_doc["comparison"][n:])
 
 
 def test_comparison_of_a_deg_s_file_is_unchanged(base):
