@@ -79,10 +79,34 @@ class Iso6336:
         every load-dependent factor of ISO 6336-1 at that load, as ``gearcli design`` at the scaled torque rates it
         (K_Hβ, K_Hα, K_Fβ, K_Fα from the line load; c′, c_γα, c_γβ with their low-load factor, N and N_S; ISO
         6336-6: each load class at its own load, as its Annex C gives K_Hβ per bin). None for a stage this does not cover (a
-        stage that shares its load among planets: its classes keep the design's factors)."""
-        if not design_kind(stage).gear_pair or _planets(stage) or stage.rating is None:
+        stage that shares its load among planets: its two meshes are re-rated together, :meth:`rate_stage_at_force`)."""
+        if _planets(stage):
             return None
-        return iso.rate_stage(pair_view(cfg), stage.index - 1, at_force(cfg, stage, force_ratio))
+        rated = self.rate_stage_at_force(cfg, stage, force_ratio)
+        return None if rated is None else rated.rating
+
+    def rate_stage_at_force(self, cfg: DesignFile, stage: StageResult, force_ratio: float) -> StageResult | None:
+        """The stage rated with its tooth forces ``force_ratio`` times the design's, as ``gearcli design`` at the
+        scaled torque rates it: a gear pair's rating (:meth:`rate_at_force`); a stage that shares its load among
+        planets with both its meshes' (the sun–planet and the planet–ring mesh, each at K_γ times its mean planet's
+        scaled force, ISO's nominal σ_H0, σ_F0), as ISO 6336-6 rates each load level with its own factors. None for
+        a stage without a gear pair or a rating."""
+        if not design_kind(stage).gear_pair or stage.rating is None:
+            return None
+        k = stage.index - 1
+        scaled = at_force(cfg, stage, force_ratio)
+        if not _planets(stage):
+            return replace(scaled, rating=iso.rate_stage(pair_view(cfg), k, scaled))
+        p = scaled.planetary
+        assert p is not None  # a stage with planets (``_planets``)
+        ring = p.planet_ring
+        f = ring.static_force_N
+        ring = replace(_stiffness_at(cfg, ring, force_ratio), static_force_N=replace(
+            f, tangential=f.tangential * force_ratio, radial=f.radial * force_ratio, axial=f.axial * force_ratio,
+            normal=f.normal * force_ratio))
+        scaled = replace(scaled, planetary=replace(p, planet_ring=ring))
+        rated = replace(scaled, rating=iso.rate_stage(pair_view(cfg), k, _shared(cfg, scaled)))
+        return _nominal(_rate_planet_ring(cfg, k, rated))
 
     def curve_name(self, mode: str) -> str:
         return "Z_NT (ISO 6336-2:2006)" if mode == "pitting" else "Y_NT (ISO 6336-3:2006)"

@@ -66,6 +66,38 @@ def with_drive(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
     return out
 
 
+def with_load_table(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
+    """A table load (``[load] torque_speed``: the driven machine's torque against its speed) keeps its shape at
+    every point, scaled to the point's torque at the point's nominal output speed, as a speed law (``speed_exponent``)
+    keeps its exponent with the point's torque at that speed: the point's ``load.torque_Nm`` alone replaces the
+    table (one torque key) by a constant torque, which the start from rest and a motor's operating point would meet
+    instead of the machine's characteristic. A point of zero torque (idling), or where the table gives 0, keeps it."""
+    table = cfg.load.torque_speed
+    if table is None:
+        return list(points)
+    ratio = math.prod(stage_ratio(s) for s in cfg.stage)
+    out = []
+    for p in points:
+        ref = _table_at([(float(n), float(t)) for n, t in table], abs(p.speed_rpm) / ratio)
+        if p.torque_Nm == 0.0 or ref == 0.0:
+            out.append(p)
+            continue
+        scaled = [[float(n), float(t) * (p.torque_Nm / ref)] for n, t in table]
+        out.append(replace(p, sets=(f"load.torque_speed={toml_value(scaled)}", *p.sets)))
+    return out
+
+
+def _table_at(table: Sequence[tuple[float, float]], speed: float) -> float:
+    """The table's torque at ``speed``: linear between its points, its end values beyond them (the design's
+    reading of a load table at the nominal output speed)."""
+    if speed <= table[0][0]:
+        return table[0][1]
+    for (n0, t0), (n1, t1) in zip(table, table[1:], strict=False):
+        if speed <= n1:
+            return t0 + (t1 - t0) * (speed - n0) / (n1 - n0) if n1 > n0 else t1
+    return table[-1][1]
+
+
 def toml_value(value: Any) -> str:
     """A Python value of a TOML document written back as an inline TOML value (for ``--set``)."""
     if isinstance(value, bool):

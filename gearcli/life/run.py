@@ -313,24 +313,31 @@ def _stress(pd: _PointData, k: int, member: str, mode: str, force_N: float, stat
     ratio = force_N / abs(static_N) if static_N else 0.0
     rated = _rated_at(pd, k, ratio) if ratio > 0.0 and ratio != 1.0 else None
     if rated is not None:
-        return _member_rating(replace(st, rating=rated), member).stress_MPa(mode)
+        return _member_rating(rated, member).stress_MPa(mode)
     m = _member_rating(st, member)
     return m.stress_MPa(mode) * (math.sqrt(ratio) if mode == "pitting" else ratio)
 
 
-_RATED_AT: dict[tuple[int, int, float], tuple[DesignResult, RatedMesh | None]] = {}  # rated classes of the points lately rated
+_RATED_AT: dict[tuple[int, int, float], tuple[DesignResult, StageResult | None]] = {}  # rated classes of the points lately rated
 _RATED_AT_SIZE = 4096
 
 
-def _rated_at(pd: _PointData, k: int, ratio: float) -> RatedMesh | None:
+def _rated_at(pd: _PointData, k: int, ratio: float) -> StageResult | None:
     """Stage ``k`` of the point rated at ``ratio`` times its static force by the file's standard (None where it
-    does not re-rate), kept for the point's other members and modes (the same class forces)."""
+    does not re-rate): the whole stage where the standard re-rates it (``rate_stage_at_force``: a planetary stage's
+    two meshes), else the gear pair's rating (``rate_at_force``); kept for the point's other members and modes."""
     key = (id(pd.design), k, ratio)
     found = _RATED_AT.get(key)
     if found is not None and found[0] is pd.design:
         return found[1]
-    rerate = getattr(standard_of(pd.cfg), "rate_at_force", None)
-    rated = rerate(pd.cfg, pd.design.stages[k], ratio) if rerate is not None else None
+    std, st = standard_of(pd.cfg), pd.design.stages[k]
+    whole = getattr(std, "rate_stage_at_force", None)
+    if whole is not None:
+        rated = whole(pd.cfg, st, ratio)
+    else:
+        rerate = getattr(std, "rate_at_force", None)
+        mesh = rerate(pd.cfg, st, ratio) if rerate is not None else None
+        rated = None if mesh is None else replace(st, rating=mesh)
     return remember(_RATED_AT, key, (pd.design, rated), cap=_RATED_AT_SIZE)[1]
 
 

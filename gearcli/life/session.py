@@ -24,6 +24,7 @@ from gearcli.life.duty import (
     reversal_notes,
     series_notes,
     with_drive,
+    with_load_table,
 )
 from gearcli.life.starts import label
 from gearcli.results import DesignResult
@@ -120,7 +121,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         _check_names(points, loaded.source)
         points, notes = _without_empty_points(points, loaded.source)
     notes += reversal_notes(points)
-    points = with_drive(loaded.design, points)
+    points = with_load_table(loaded.design, with_drive(loaded.design, points))
     if loaded.design.rating is None:
         only = " (this file's [rating] sets only the bearings' min_static_safety_bearing)" \
             if loaded.design.min_static_safety_bearing is not None else ""

@@ -39,7 +39,15 @@ class Guarded:
         value = getattr(self.std, attr)
         if attr == "rate_at_force" and callable(value):
             return lambda cfg, stage, ratio: self._mesh(self._call(attr, value, cfg, stage, ratio), attr, None)
+        if attr == "rate_stage_at_force" and callable(value):
+            return lambda cfg, stage, ratio: self._stage_at_force(self._call(attr, value, cfg, stage, ratio), stage)
         return value
+
+    def _stage_at_force(self, out: Any, given: Any) -> Any:
+        """``rate_stage_at_force``'s stage: None, or the given stage's type with its ratings rated meshes."""
+        if out is None:
+            return out
+        return self._stages("rate_stage_at_force", ((out,), ()), (given,))[0][0]
 
     def check_inputs(self, cfg: Any) -> None:
         self._call("check_inputs", self._method("check_inputs"), cfg)
