@@ -14,6 +14,8 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from gearcli.config.duty import MAX_DUTY_HOURS
 from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
@@ -78,24 +80,14 @@ def with_load_table(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
     ratio = math.prod(stage_ratio(s) for s in cfg.stage)
     out = []
     for p in points:
-        ref = _table_at([(float(n), float(t)) for n, t in table], abs(p.speed_rpm) / ratio)
+        speeds, torques = zip(*((float(n), float(t)) for n, t in table), strict=True)
+        ref = float(np.interp(abs(p.speed_rpm) / ratio, speeds, torques))  # as the design reads it at its speed
         if p.torque_Nm == 0.0 or ref == 0.0:
             out.append(p)
             continue
         scaled = [[float(n), float(t) * (p.torque_Nm / ref)] for n, t in table]
         out.append(replace(p, sets=(f"load.torque_speed={toml_value(scaled)}", *p.sets)))
     return out
-
-
-def _table_at(table: Sequence[tuple[float, float]], speed: float) -> float:
-    """The table's torque at ``speed``: linear between its points, its end values beyond them (the design's
-    reading of a load table at the nominal output speed)."""
-    if speed <= table[0][0]:
-        return table[0][1]
-    for (n0, t0), (n1, t1) in zip(table, table[1:], strict=False):
-        if speed <= n1:
-            return t0 + (t1 - t0) * (speed - n0) / (n1 - n0) if n1 > n0 else t1
-    return table[-1][1]
 
 
 def toml_value(value: Any) -> str:
