@@ -24,6 +24,7 @@ chunks (median 319) against 585-8,937 (median 1,623) with numpy and scipy.integr
 1,658-14,300 from inside gearcli (docs/performance.md, "The one-shot simulate, session 17").
 """
 
+import os
 import sys
 
 INTERRUPTED = (129, 130, 143)  # SIGHUP, SIGINT, SIGTERM: gearcli has said so and removed its temporary files
@@ -70,8 +71,6 @@ BLAS_THREADS = ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")
 
 def one_blas_thread() -> None:
     """Run BLAS on one thread, as a Dask worker does (:data:`BLAS_THREADS`), unless the user chose a count."""
-    import os
-
     for name in BLAS_THREADS:
         os.environ.setdefault(name, "1")
 

@@ -24,7 +24,7 @@ from multiprocessing import forkserver
 from typing import NamedTuple, cast
 from urllib.parse import urlsplit
 
-from gearcli import engine
+from gearcli import __version__, engine
 from gearcli.core.signals import deferred
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError, SimulationError
@@ -412,9 +412,7 @@ def check_scheduler(address: str, timeout_s: float = SCHEDULER_TIMEOUT_S) -> Non
 def worker_gearcli() -> str:
     """What a Dask worker answers :func:`check_workers` with: its gearcli's version (a worker without gearcli
     cannot even load this function, and answers with that error)."""
-    from gearcli import __version__  # lazy: the worker's own gearcli, imported where it runs
-
-    return __version__
+    return __version__  # the worker's: it loads this module from its own gearcli
 
 
 def check_workers(address: str) -> None:
@@ -423,8 +421,6 @@ def check_workers(address: str) -> None:
     can, for ever) or another version than this one (its rows would not be this version's). A cluster with no
     worker yet passes: its tasks wait for workers as Dask's do."""
     from distributed import Client  # lazy: distributed, the optional dask extra
-
-    from gearcli import __version__
 
     try:
         client = Client(address, timeout=f"{SCHEDULER_TIMEOUT_S:g}s")
