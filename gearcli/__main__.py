@@ -24,6 +24,7 @@ chunks (median 319) against 585-8,937 (median 1,623) with numpy and scipy.integr
 1,658-14,300 from inside gearcli (docs/performance.md, "The one-shot simulate, session 17").
 """
 
+import os
 import sys
 
 INTERRUPTED = (129, 130, 143)  # SIGHUP, SIGINT, SIGTERM: gearcli has said so and removed its temporary files
@@ -61,7 +62,21 @@ def _forget_handled_interrupt() -> None:
     exec("pass", {})  # noqa: S102 - a constant string: resets the interpreter's unhandled-interrupt flag
 
 
+#: the BLAS thread counts a Dask worker's nanny sets to 1 before it starts (distributed's ``pre-spawn-environ``):
+#: scipy's Radau factorises through OpenBLAS, whose results depend on its thread count (a Python-engine Radau run
+#: of configs/planetary_stage.toml: 6,561 evaluations on 1 thread, 6,433 on 2, its mean F_t 8e-8 apart), so a sweep's
+#: rows on a cluster would differ from ``--jobs``' (docs/sweeps.md). Set before numpy loads; a value the user set wins.
+BLAS_THREADS = ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")
+
+
+def one_blas_thread() -> None:
+    """Run BLAS on one thread, as a Dask worker does (:data:`BLAS_THREADS`), unless the user chose a count."""
+    for name in BLAS_THREADS:
+        os.environ.setdefault(name, "1")
+
+
 def main() -> None:
+    one_blas_thread()  # before any import of numpy (the process's BLAS reads it once, when it loads)
     try:
         from gearcli.io import streams  # lazy: inside main, so a Ctrl-C during the start-up imports exits 130
 

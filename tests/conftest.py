@@ -143,6 +143,7 @@ SLOW = (
     "tests/cli/test_cli_hostile_retest.py::test_a_signalled_sweep_leaves_no_process_and_no_leaked_semaphore[15-143]",
     "tests/cli/test_cli_hostile_retest.py::test_a_signalled_sweep_leaves_no_process_and_no_leaked_semaphore[1-129]",
     "tests/cli/test_cli_hostile_round4.py::test_sweep_resumed_rows_equal_fresh_rows",
+    "tests/cli/test_cli_blas_threads.py::test_a_run_is_the_one_a_dask_worker_computes",  # two subprocess runs
     "tests/cli/test_cli_planetary.py::test_simulate_rates_planetary_stages_at_the_simulated_dynamic_factor",
     "tests/cli/test_cli_planetary.py::test_time_varying_stiffness_on_planet_meshes_runs",
     "tests/sweep/test_sweep_cli.py::test_dask_local_cluster_gives_the_rows_of_the_process_pool",

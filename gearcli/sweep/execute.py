@@ -25,7 +25,7 @@ from multiprocessing import forkserver
 from typing import Any, NamedTuple, cast
 from urllib.parse import urlsplit
 
-from gearcli import engine
+from gearcli import __version__, engine
 from gearcli.core.signals import deferred
 from gearcli.core.text import shorten
 from gearcli.errors import ConfigError, SimulationError
@@ -451,6 +451,45 @@ def check_scheduler(address: str, timeout_s: float = SCHEDULER_TIMEOUT_S) -> Non
                           "scheduler's address is tcp://HOST:8786 by default, not its dashboard)", source="--scheduler")
     if greeting.startswith((b"HTTP", b"<")) or int.from_bytes(greeting, "little") > MAX_GREETING_BYTES:
         raise ConfigError(f"{shown} is not a Dask scheduler: it speaks another protocol", source="--scheduler")
+
+
+def worker_gearcli() -> str:
+    """What a Dask worker answers :func:`check_workers` with: its gearcli's version (a worker without gearcli
+    cannot even load this function, and answers with that error)."""
+    return __version__  # the worker's: it loads this module from its own gearcli
+
+
+def check_workers(address: str) -> None:
+    """Exit 2 (ConfigError naming ``--scheduler``) before anything runs when a worker of the cluster at ``address``
+    cannot run the sweep's tasks: it has no gearcli (it could not load a task, and Dask would wait for a worker that
+    can, for ever) or another version than this one (its rows would not be this version's). A cluster with no
+    worker yet passes: its tasks wait for workers as Dask's do."""
+    from distributed import Client  # lazy: distributed, the optional dask extra
+
+    try:
+        client = Client(address, timeout=f"{SCHEDULER_TIMEOUT_S:g}s")
+    except (OSError, TimeoutError, ValueError, MemoryError) as exc:
+        raise ConfigError(f"cannot reach the Dask scheduler at {address}: {type(exc).__name__}: {exc}",
+                          source="--scheduler") from None
+    quiet = _quiet_dask_client()
+    try:
+        answers = client.run(worker_gearcli, on_error="return")
+    finally:
+        client.close()
+        quiet()
+    broken = {w: a for w, a in answers.items() if isinstance(a, BaseException)}
+    if broken:
+        worker, err = sorted(broken.items(), key=lambda kv: kv[0])[0]
+        what = str(err) if type(err) is Exception else f"{type(err).__name__}: {err}"  # distributed wraps a remote error
+        raise ConfigError(f"{len(broken)} of {len(answers)} Dask workers cannot run gearcli ({worker}: "
+                          f"{shorten(what)}): install gearcli {__version__} on every worker "
+                          f"(pip install 'gearcli[distributed]=={__version__}')", source="--scheduler")
+    other = {w: a for w, a in answers.items() if a != __version__}
+    if other:
+        worker, version = sorted(other.items())[0]
+        raise ConfigError(f"{len(other)} of {len(answers)} Dask workers run another gearcli ({worker}: "
+                          f"{shorten(str(version))}; this is {__version__}): install gearcli {__version__} on every "
+                          "worker, so that a point's row is the one this version computes", source="--scheduler")
 
 
 def _dask(tasks: Sequence[Task], address: str) -> Iterator[Row]:

@@ -28,7 +28,15 @@ from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
 from gearcli.stages.design import design_kind
 from gearcli.sweep.columns import FAILED, OK, Row, columns
-from gearcli.sweep.execute import check_scheduler, default_jobs, execute, jobs_cap, plan, require_distributed
+from gearcli.sweep.execute import (
+    check_scheduler,
+    check_workers,
+    default_jobs,
+    execute,
+    jobs_cap,
+    plan,
+    require_distributed,
+)
 from gearcli.sweep.family import Carrier, unresolved_row
 from gearcli.sweep.load_law import load_law_of
 from gearcli.sweep.resume import check_same, done_counts, identity, ordered, relabel, row_ident, seed_for
@@ -94,6 +102,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     if scheduler is not None:  # '' too: an empty address is a mistake, never a silent local run
         require_distributed()
         check_scheduler(scheduler)
+        check_workers(scheduler)
     stored: JsonObject | None = None
     previous: list[Row] = []
     if output:

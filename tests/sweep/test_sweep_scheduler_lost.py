@@ -64,6 +64,7 @@ def test_a_lost_scheduler_stops_the_sweep_and_a_rerun_finishes_it(tmp_path, monk
     monkeypatch.setattr(distributed, "as_completed", iter)
     monkeypatch.setattr(execute, "check_scheduler", lambda address: None)
     monkeypatch.setattr(importlib.import_module("gearcli.sweep.session"), "check_scheduler", lambda address: None)
+    monkeypatch.setattr(importlib.import_module("gearcli.sweep.session"), "check_workers", lambda address: None)
     out = tmp_path / "lost.csv"
     runner = CliRunner()
     res = runner.invoke(cli, ["sweep", SEED, *ARGS, "--scheduler", "tcp://127.0.0.1:1", "-o", str(out)])
