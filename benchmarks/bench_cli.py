@@ -16,7 +16,9 @@ side. Rows (issue 33's targets):
 
 The floor: `python -c "import click, pydantic, rich, numpy, scipy.integrate"`. Every command runs as
 `python -m gearcli ...` with this checkout first on PYTHONPATH, and with the bytecode cache on
-(PYTHONDONTWRITEBYTECODE is dropped from the children's environment).
+(PYTHONDONTWRITEBYTECODE is dropped from the children's environment). The CLI runs BLAS on one thread
+(`gearcli.__main__.BLAS_THREADS`, as a Dask worker does: docs/sweeps.md), which spares it OpenBLAS's thread start;
+every child here, the floor too, gets the same thread counts, so the floor pays no start the command is spared.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # without PYTHONDONTWRITEBYTECODE: the warm-up run writes this checkout's bytecode, as an installed package has it
 # (with it, every run compiles gearcli's ~150 modules from source: ~0.25 s of CPU more per command)
 ENV = {**{k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"},
+       **{name: os.environ.get(name, "1") for name in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")},
        "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
 SEED = ROOT / "configs" / "concrete_mixer.toml"
 CONVEYOR = ROOT / "configs" / "conveyor.toml"

@@ -50,7 +50,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED = ROOT / "configs" / "concrete_mixer.toml"
-ENV = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+# the BLAS thread counts the CLI sets for itself (gearcli.__main__.BLAS_THREADS), for the floor too (bench_cli.py)
+ENV = {**os.environ, **{name: os.environ.get(name, "1") for name in ("OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                                                                     "OPENBLAS_NUM_THREADS")},
+       "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
 os.environ["PYTHONPATH"] = ENV["PYTHONPATH"]  # the Dask workers started here import gearcli too
 sys.path.insert(0, str(ROOT))
 
