@@ -5,9 +5,10 @@ traceback, no output file and no temporary file left behind; an existing FILE is
 A real process and a real signal: the integration loop is Python code (scipy's solvers calling the
 generated right-hand side), so the signal surfaces as an exception between two evaluations, and the CLI
 maps it; `-o` is written atomically only after the run, so nothing is on disk yet. The run is the 10 s
-scene stretched to 600 s on the Python engine (~10 s of integration on an idle machine; `auto` would take
-the compiled kernel for so long a run and finish it in under a second: tests/engine/test_signals.py
-signals that one). Deterministic: stderr is a terminal (a pseudo-terminal, as for a user pressing Ctrl-C),
+scene stretched to 30 s with a 2 um transmission error on the Python engine (~45 s of integration on an idle
+machine: the excitation keeps Radau's steps short, where the unexcited scene stretched to 600 s settled and took
+long steps, done in ~1 s of computing, before its progress bar showed on an idle machine; `auto` would take the
+compiled kernel for so long a run and finish it in seconds: tests/engine/test_signals.py signals that one). Deterministic: stderr is a terminal (a pseudo-terminal, as for a user pressing Ctrl-C),
 so the run shows its progress bar, which appears only once the run has reported progress for a second
 (gearcli.io.progress.SHOW_AFTER_S); the signal is sent when the bar is on the screen, i.e. with the
 integration under way, never on a fixed sleep that a loaded machine can outlast (a signal sent 0.2 s after
@@ -82,7 +83,8 @@ def interrupt_run(cmd: list[str], cwd: Path, sig: int) -> subprocess.CompletedPr
 
 def interrupt_simulate(cwd: Path, sig: int = signal.SIGINT) -> subprocess.CompletedProcess:
     cmd = [sys.executable, "-m", "gearcli", "simulate", str(LONG_RUN), "-o", "OUT.csv",
-           "--set", "simulation.duration_s=600", "--set", "target.output_speed_rpm=1",
+           "--set", "simulation.duration_s=30", "--set", "contact.transmission_error_um=[2.0]",
+           "--set", "target.output_speed_rpm=1",
            "--set", "simulation.engine=python"]  # scipy's loop: auto may take the compiled kernel, done in < 1 s
     return interrupt_run(cmd, cwd, sig)
 
