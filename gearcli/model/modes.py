@@ -123,7 +123,7 @@ class ModalAnalysis:
     speed_range_rpm: tuple[float, float]
 
 
-def _tangents(lay: Layout, duration_s: float) -> tuple[np.ndarray, np.ndarray]:
+def connector_tangents(lay: Layout, duration_s: float) -> tuple[np.ndarray, np.ndarray]:
     """Tangent stiffness and damping of every connector at full load (planets at their settled shares)."""
     F = operating_forces(lay)
     kc = np.array([tangent(lay, c, F[c])[:2] for c in range(lay.n_conn)])
@@ -134,7 +134,7 @@ def _tangents(lay: Layout, duration_s: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _stiffness(lay: Layout, duration_s: float) -> np.ndarray:
-    return _tangents(lay, duration_s)[0]
+    return connector_tangents(lay, duration_s)[0]
 
 
 class OrderSource(NamedTuple):
@@ -257,11 +257,11 @@ class _Undamped:
 def _undamped(lay: Layout, boundary: str, duration_s: float,
               tangents: tuple[np.ndarray, np.ndarray] | None = None) -> _Undamped:
     """:class:`_Undamped` of a layout, boundary and run-up (kept with the layout until the analysis is made);
-    ``tangents``: :func:`_tangents` when the caller has them (:func:`resonances`)."""
+    ``tangents``: :func:`connector_tangents` when the caller has them (:func:`resonances`)."""
     cache = lay.__dict__.setdefault("_undamped_modes", {})
     key = (boundary, float(duration_s))
     if key not in cache:
-        k, cd = _tangents(lay, duration_s) if tangents is None else tangents
+        k, cd = connector_tangents(lay, duration_s) if tangents is None else tangents
         # the eigenproblem of these very tangents on this very chain: a speed sweep's points share it
         chain = (boundary, k.tobytes(), cd.tobytes(), lay.n_bodies, tuple(lay.inertias),
                  tuple((x.bodies, x.levers, x.radii) for x in lay.connectors), loss_factors(lay).tobytes())
@@ -451,7 +451,7 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
     torque ripple's orders and the load fluctuation's frequencies. ``full_load``: every connector's tangent
     stiffness and damping at the static forces when the caller has them (a run's method choice linearised the
     chain there: :func:`gearcli.model.linearise` takes the same tangents), used where none of them is 0 (an unloaded
-    Hertzian mesh's modes are those of the run-up load, :func:`_tangents`)."""
+    Hertzian mesh's modes are those of the run-up load, :func:`connector_tangents`)."""
     f_in = lay.drive.speed_rad_s / (2.0 * math.pi)
     out = []
     tangents = full_load if full_load is not None and not bool(np.any(np.asarray(full_load[0]) == 0.0)) else None

@@ -39,7 +39,7 @@ from gearcli.config.schema import MAX_STEPS
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.damping import body_matrices, lever_matrices, state_matrix
 from gearcli.model.elements import machine
-from gearcli.model.modes import _tangents
+from gearcli.model.modes import connector_tangents
 from gearcli.model.outputs import tangential_force_N
 from gearcli.simulate import rigid_start
 from gearcli.simulate.sampling import GOOD_PER_PERIOD, TARGET, up_to_two_figures
@@ -74,7 +74,7 @@ def start_swings(model: TorsionalModel, first: int, duration_s: float) -> list[t
     tau = start_torques(model)[first:]
     if not np.any(tau) or first >= lay.n_bodies:
         return []
-    k, cd = _tangents(lay, duration_s)
+    k, cd = connector_tangents(lay, duration_s)
     J, K, _ = body_matrices(lay, k, cd, first)
     R, L = lever_matrices(lay, first)
     C = L.T @ (cd[:, None] * R)  # the connectors' damping alone: a motor's or load law's slope is the operating point's

@@ -89,7 +89,7 @@ def test_the_resonance_check_on_the_choices_tangents_is_the_check_on_its_own(nam
     modes_mod._CHAINS.clear()
     fresh = _model(name, *sets).layout  # its own tangents, its own eigenproblem
     assert quick == modes_mod.resonances(fresh, ch.boundary)
-    k, cd = modes_mod._tangents(fresh, 1.0)
+    k, cd = modes_mod.connector_tangents(fresh, 1.0)
     if not np.any(full[0] == 0.0):  # the premise: the same tangents, bit for bit
         assert np.array_equal(k, full[0]) and np.array_equal(cd, full[1])
     else:  # an unloaded Hertzian mesh: the check takes the run-up's tangents of its own
