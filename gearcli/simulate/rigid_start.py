@@ -33,6 +33,7 @@ from dataclasses import replace
 import numpy as np
 
 from gearcli import diagnostics as dg
+from gearcli.core.memo import remember
 from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout, power_path_loss_factors
@@ -229,6 +230,12 @@ def integrate(lay: Layout, duration_s: float, samples: int = SAMPLES) -> RigidSt
     return _refined(*_on_grid(lay, duration_s, samples))
 
 
+def on_grid(lay: Layout, duration_s: float) -> RigidStart:
+    """The rigid start over [0, duration_s] on its grid, its peaks not refined (``peak_tangential_N`` empty): the
+    same integration :func:`start_summary` makes of a run, kept (:func:`_on_grid`)."""
+    return _on_grid(lay, duration_s)[1]
+
+
 def _refined(lay: Layout, rigid: RigidStart, state, times: np.ndarray, ft_all: np.ndarray,
              coefficients: tuple) -> RigidStart:
     """``rigid`` (:func:`_on_grid`) with its peaks refined on the continuous state (:func:`_peaks`)."""
@@ -258,7 +265,21 @@ def _speed_state(lay: Layout) -> Callable[[float], tuple[float, float]]:
 def _on_grid(lay: Layout, duration_s: float, samples: int = SAMPLES) -> tuple:
     """The rigid start on its grid, before its peaks are refined: (lay, the start without ``peak_tangential_N``,
     the continuous state ``state(t) -> (w, dw/dt)``, the times the peaks are sought about, F_t at them, the
-    coefficients of :func:`_tangential`): the arguments of :func:`_refined`."""
+    coefficients of :func:`_tangential`): the arguments of :func:`_refined`. Kept for the last layouts and durations
+    asked (a run's start summary and its start-ring bound, :mod:`gearcli.simulate.start_rings`, integrate the same
+    start; the kept tuple holds its layout, so an id is never another layout's while kept)."""
+    key = (id(lay), duration_s, samples)
+    found = _GRIDS.get(key)
+    if found is not None and found[0] is lay:
+        return found
+    return remember(_GRIDS, key, _integrate_on_grid(lay, duration_s, samples), cap=2)
+
+
+_GRIDS: dict[tuple[int, float, int], tuple] = {}  # _on_grid by layout (its id), duration and samples
+
+
+def _integrate_on_grid(lay: Layout, duration_s: float, samples: int) -> tuple:
+    """:func:`_on_grid`, computed."""
     from scipy.integrate import solve_ivp  # lazy: scipy, start-up time
 
     coefficients = _coefficients(lay)

@@ -111,7 +111,7 @@ def peak_warnings(found: list[Diagnostic], model: TorsionalModel, boundary: str,
     swings = [m for m in start_swings(model, first, span) if m[0] > nyquist_Hz]
     if not swings:
         return found
-    rigid = rigid_start.integrate(model.layout, span)
+    rigid = rigid_start.on_grid(model.layout, span)  # the start the run's start summary integrated (kept)
     aliased = {d.data.get("stage") for d in found if d.code == dg.PEAK_UNDERSAMPLED and d.data.get("aliased")}
     out = list(found)
     for k, ft in enumerate(forces_N):
