@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gearcli.core.memo import remember
 from gearcli.model.damping import body_matrices, decay_rate, lever_matrices, state_matrix
 
 if TYPE_CHECKING:
@@ -48,10 +49,13 @@ def unmatched_eigenvalues(J: np.ndarray, K: np.ndarray, C: np.ndarray, taken: np
 
 
 def unmatched_resonances(lay: Layout, boundary: str, taken: np.ndarray, natural: np.ndarray, k: np.ndarray,
-                         cd: np.ndarray, first: int, f_in: float) -> list[Resonance]:
+                         cd: np.ndarray, first: int, f_in: float, kept: dict | None = None,
+                         key: bytes | None = None) -> list[Resonance]:
     """The resonance warnings of the damped modes no mode stands for (module text): ``taken`` the modes' damped
     frequencies and ``natural`` their undamped ones (rad/s, NaN for none), ``k``, ``cd`` the connectors' tangents,
-    ``first`` the first free body, ``f_in`` the input body's rotation frequency (Hz)."""
+    ``first`` the first free body, ``f_in`` the input body's rotation frequency (Hz). ``kept``, ``key``: where the
+    chain's matrices and unmatched eigenvalues are kept and under what (the caller's memo of one chain, keyed by
+    the bodies' damping: a speed sweep's points share them; the speed enters only the excitations' frequencies)."""
     from gearcli.model.modes import (  # lazy: modes imports this module inside resonances()
         RESONANCE_BAND,
         WARN_AMPLIFICATION,
@@ -61,11 +65,18 @@ def unmatched_resonances(lay: Layout, boundary: str, taken: np.ndarray, natural:
         torque_sources,
     )
 
-    J, K, C = body_matrices(lay, k, cd, first)
-    R, L = lever_matrices(lay, first)
+    found = kept.get(key) if kept is not None and key is not None else None
+    if found is None:
+        J, K, C = body_matrices(lay, k, cd, first)
+        natural = np.asarray(natural, dtype=float)
+        found = (J, K, C, *lever_matrices(lay, first),
+                 unmatched_eigenvalues(J, K, C, np.asarray(taken, dtype=float), natural[natural > 0.0],
+                                       RESONANCE_BAND))
+        if kept is not None and key is not None:
+            remember(kept, key, found, cap=8)
+    J, K, C, R, L, eigenvalues = found
     out: list[Resonance] = []
-    natural = np.asarray(natural, dtype=float)
-    for z in unmatched_eigenvalues(J, K, C, np.asarray(taken, dtype=float), natural[natural > 0.0], RESONANCE_BAND):
+    for z in eigenvalues:
         w = z.imag
         f_d, zeta = w / (2.0 * math.pi), -z.real / abs(z)
         dynamic = K - w * w * np.diag(J) + 1j * w * C

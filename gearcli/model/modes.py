@@ -490,8 +490,9 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
         out += _torque_resonances(lay, m, boundary, f_in)
     from gearcli.model.damped_resonance import unmatched_resonances  # lazy: it reads this module's sources
     und = und if und is not None else _undamped(lay, boundary, duration_s, tangents)
-    return out + unmatched_resonances(lay, boundary, _damping(lay, und)[1][1], np.sqrt(np.clip(und.w2, 0.0, None)),
-                                      und.k, und.cd, und.first, f_in)
+    d = body_damping(lay).tobytes()  # with und's chain, what fixes the damped eigenvalues: their memo's key
+    return out + unmatched_resonances(lay, boundary, _damping(lay, und, d)[1][1], np.sqrt(np.clip(und.w2, 0.0, None)),
+                                      und.k, und.cd, und.first, f_in, und.__dict__.setdefault("_unmatched", {}), d)
 
 
 def _participation_of_shares(o: OrderSource, share: np.ndarray | tuple[float, ...]) -> float:

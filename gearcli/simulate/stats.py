@@ -234,7 +234,7 @@ def _reductions(tw: np.ndarray, W: np.ndarray, whole: np.ndarray, static_tangent
         stats, peaks_at, fractions, flags = kernel.window_statistics(W, whole, tw, bool(periodic), loaded)
         if np.isfinite(stats).all():
             # the flags as the compiled pass counts them; the fractions split at the crossings (contact_fractions)
-            contact = (*contact_fractions(tw, W[0::5], W[3::5], W[4::5], static_tangential_N, periodic),
+            contact = (*contact_fractions(tw, W[0::5], W[3::5], W[4::5], static_tangential_N, periodic, flags > 0),
                        flags[:, 0] > 0, flags[:, 1] > 0)
             return stats[:, 0], stats[:, 4], stats[:, 1], stats[:, 2], stats[:, 3], peaks_at, contact
     return (window_means(tw, W, periodic), W.mean(axis=1), W.min(axis=1), W.max(axis=1), W.std(axis=1),
@@ -254,11 +254,13 @@ def _contact(tw: np.ndarray, f: np.ndarray, p: np.ndarray, q: np.ndarray, static
     loaded = _loaded_signs(static_tangential_N)
     lost = (f == 0.0) | (p == 0.0)
     back = loaded[:, None] * p < 0.0
-    return (*contact_fractions(tw, f, p, q, static_tangential_N, periodic), np.any(lost, axis=1), np.any(back, axis=1))
+    flagged = np.stack([np.any(lost, axis=1), np.any(back, axis=1)], axis=1)
+    return (*contact_fractions(tw, f, p, q, static_tangential_N, periodic, flagged), flagged[:, 0], flagged[:, 1])
 
 
 def contact_fractions(tw: np.ndarray, f: np.ndarray, p: np.ndarray, q: np.ndarray,
-                      static_tangential_N: Sequence[float], periodic: bool) -> tuple[list[float], list[float]]:
+                      static_tangential_N: Sequence[float], periodic: bool,
+                      flagged: np.ndarray | None = None) -> tuple[list[float], list[float]]:
     """Per row of the window's F_t ``f``, signed penetration ``p`` and DTE ``q``: the time fractions without contact
     and on the back flank (:func:`mesh_response`), each sample interval where contact begins or ends split where the
     penetration crosses 0, not at its middle. In contact p = c_b q -+ h (the gap's half h along the normal, c_b its
@@ -267,15 +269,21 @@ def contact_fractions(tw: np.ndarray, f: np.ndarray, p: np.ndarray, q: np.ndarra
     error of order dt² where counting samples (the trapezoid rule of the flags) errs by up to a sample a crossing.
     That count aliased where the samples fall a whole number per mesh period: a spur oscillator sampled 40 times a
     period read 0.400 (80 times: 0.3875) against 0.388 of its continuous response. An interval of a zero force
-    pressed (the IMPACT law's clamp) or from flank to flank keeps the trapezoid's half."""
+    pressed (the IMPACT law's clamp) or from flank to flank keeps the trapezoid's half. ``flagged``: per row,
+    (no contact, back flank) whether any sample is so, where the caller counted it (a flag no sample raises is a
+    fraction of exactly 0, without its split)."""
     loaded = _loaded_signs(static_tangential_N)
     lost_out: list[float] = []
     back_out: list[float] = []
     for k in range(f.shape[0]):
-        lost = (f[k] == 0.0) | (p[k] == 0.0)
-        back = loaded[k] * p[k] < 0.0
-        lost_out.append(_split_fraction(tw, lost, p[k], q[k], periodic, False))
-        back_out.append(_split_fraction(tw, back, p[k], q[k], periodic, True))
+        if flagged is not None and not flagged[k, 0]:
+            lost_out.append(0.0)
+        else:
+            lost_out.append(_split_fraction(tw, (f[k] == 0.0) | (p[k] == 0.0), p[k], q[k], periodic, False))
+        if flagged is not None and not flagged[k, 1]:
+            back_out.append(0.0)
+        else:
+            back_out.append(_split_fraction(tw, loaded[k] * p[k] < 0.0, p[k], q[k], periodic, True))
     return lost_out, back_out
 
 

@@ -798,3 +798,33 @@ def test_a_damped_mode_no_undamped_mode_stands_for_is_checked_for_resonance(tmp_
         assert warned[0]["mode"] is None and warned[0]["boundary"] == "free" and warned[0]["strength"] == "strongly"
         assert_allclose([warned[0]["frequency_Hz"], warned[0]["damping_ratio"], warned[0]["amplification"]],
                         [w / (2 * math.pi), -z.real / abs(z), gain], rtol=1e-6)
+
+
+def test_the_chain_s_damped_eigenvalues_are_kept_per_body_damping(tmp_path):
+    """One process checks the fan chain (section 7's) under two motor slopes: the same meshes, inertias and static
+    loads (one undamped eigenproblem, shared) but 668 and 167 N m s/rad of slip damping on the rotor. The damped
+    eigenvalues a speed sweep's points share are kept per body damping: the steep motor's 5.34 Hz warning is the hand
+    chain's after the gentle motor's run, and the gentle motor's warnings are those of a process that never saw the
+    steep one (its memo of chains cleared)."""
+    from gearcli.model import modes
+
+    J, K, C, f_free, lam = _steep_fan(0.5, 70.0 * 30 / math.pi)
+    z = lam[0]
+    gain = J[3] * z.imag**2 * abs(np.linalg.solve(K - z.imag**2 * np.diag(J) + 1j * z.imag * C, np.eye(4)[3])[3])
+    base = (FAN.replace("efficiency = 0.95", "efficiency = 1.0").replace("stiffness_Nm_rad = 4.0e4",
+                                                                          "stiffness_Nm_rad = 1.0e4")
+            .replace("LOAD", "1000.0")
+            .replace("speed_exponent = EXPONENT", "fluctuation = [{ amplitude_percent = 10, frequency_Hz = 5.34 }]"))
+    steep, gentle = base.replace("[1500, 0]", "[1410, 0]"), base.replace("[1500, 0]", "[1440, 0]")
+
+    def warned(text: str) -> list[dict]:
+        return [x for x in _run(tmp_path, text, "modes")["warnings"] if x["code"] == "resonance"]
+
+    modes._CHAINS.clear()
+    alone = warned(gentle)
+    assert warned(steep) != alone  # the two slopes warn differently: a memo serving one to the other shows
+    assert warned(gentle) == alone
+    fluct = [x for x in warned(steep) if x["source"] == "load_fluctuation"]
+    assert len(fluct) == 1 and fluct[0]["mode"] is None
+    assert_allclose([fluct[0]["frequency_Hz"], fluct[0]["damping_ratio"], fluct[0]["amplification"]],
+                    [z.imag / (2 * math.pi), -z.real / abs(z), gain], rtol=1e-6)
