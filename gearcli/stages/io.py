@@ -138,6 +138,7 @@ def _planetary_design(stages: list[StageResult], u: OutputUnits) -> list[Rendera
         ("planet–ring ε_α", [_g(p.planet_ring.contact_ratio_transverse, 4) for p in ps]),
         ("planet–ring c′ / c_γα [N/(mm·µm)]", [f"{_g(p.planet_ring.iso6336_single_pair_stiffness_N_mm_um)} / "
                                               f"{_g(p.planet_ring.iso6336_mesh_stiffness_N_mm_um)}" for p in ps]),
+        ("planet–ring law K [N/mm^e] / tangent / ISO k_n [N/mm]", [_ring_law(p.planet_ring.mesh_stiffness) for p in ps]),
         ("F_t per planet: sun–planet / planet–ring [N]", [f"{_g(st.static_force_N.tangential)} / "
                                                         f"{_g(p.planet_ring.static_force_N.tangential)}"
                                                         for st, p in zip(s, ps, strict=True)]),
@@ -163,6 +164,16 @@ def _ring_allowance_rows(ps) -> list[tuple[str, list[str]]]:
             ("planet–ring backlash j_n max / min [mm]", [limits(p.planet_ring.backlash_normal_mm, 3) for p in ps]),
             ("planet–ring ε_α e / m / i", [limits(p.planet_ring.contact_ratio_transverse_with_allowances, 3)
                                            for p in ps])]
+
+
+def _ring_law(law) -> str:
+    """The planet–ring mesh's law (its ``mesh_stiffness``, DESIGN section 13; the stage's law, named in the loads table)
+    as the loads table gives the sun–planet mesh's: K, its tangent where the models linearise it, ISO's k_n beside it."""
+    from gearcli.io.table_kit import _g  # lazy: rich, only when tables are made
+
+    if law is None:
+        return "—"
+    return f"{_g(law.K, 4)} / {_g(law.linearised_N_mm, 4)} / {_g(law.iso_N_mm, 4)}"
 
 
 def _member_row(member: str, ps, u: OutputUnits) -> tuple[str, list[str]]:
