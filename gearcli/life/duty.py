@@ -19,8 +19,9 @@ import numpy as np
 from gearcli.config.duty import MAX_DUTY_HOURS
 from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
-from gearcli.design.kinematics import pinion_torque_Nmm
+from gearcli.design.kinematics import stage_torques_Nmm
 from gearcli.errors import ConfigError
+from gearcli.stages.design import design_kind
 
 MAX_SERIES_ROWS = 2_000_000
 #: the shortest time step of a history (a 1 GHz logger's): 5e-324 s steps made a class's hours 0 (an internal
@@ -54,16 +55,20 @@ class DutyPoint:
 
 def with_drive(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
     """A torque-driven input (``drive = "torque"``) gets each point's input torque too: the output torque
-    carried back through the stages (kinematics' pinion torque with the stage efficiencies), so that the
-    point runs at its speed instead of drifting from the file's input torque. A speed drive needs nothing."""
+    carried back through the stages as the design carries it (kinematics' stage torques with the stage
+    efficiencies, and a planetary stage's own efficiency where the load reverses), so that the point runs at its
+    speed instead of drifting from the file's input torque. A speed drive needs nothing. (A reversed point on a
+    ring-held planetary of efficiency 0.9 took the forward η: its input torque 0.28 % off the balance, its run
+    slowed from 1450 to a mean 1198 rpm and its window was not settled; tests/life/test_tr24a_torque_drive_reversed.py.)"""
     if cfg.input.drive != "torque":
         return list(points)
 
+    ratios = tuple(stage_ratio(s) for s in cfg.stage)
+    efficiencies = tuple(float(s.efficiency) for s in cfg.stage)
+    reverse = tuple(design_kind(s).reverse_efficiency(s, k) for k, s in enumerate(cfg.stage))
     out = []
     for p in points:
-        torque = p.torque_Nm * 1000.0
-        for stage in reversed(cfg.stage):
-            torque = pinion_torque_Nmm(torque, stage_ratio(stage), stage.efficiency)
+        torque = stage_torques_Nmm(p.torque_Nm * 1000.0, ratios, efficiencies, reverse)[0][0]
         out.append(replace(p, sets=(f"input.torque_Nm={torque / 1000.0!r}", *p.sets)))
     return out
 
