@@ -10,7 +10,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
@@ -53,21 +53,28 @@ class DutyPoint:
                 "load.application_factor=1.0", *self.sets)
 
 
-def with_drive(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
+def with_drive(cfg, points: Sequence[DutyPoint],
+               variant: Callable[[Sequence[str]], Any] | None = None) -> list[DutyPoint]:
     """A torque-driven input (``drive = "torque"``) gets each point's input torque too: the output torque
     carried back through the stages as the design carries it (kinematics' stage torques with the stage
     efficiencies, and a planetary stage's own efficiency where the load reverses), so that the point runs at its
-    speed instead of drifting from the file's input torque. A speed drive needs nothing. (A reversed point on a
-    ring-held planetary of efficiency 0.9 took the forward η: its input torque 0.28 % off the balance, its run
-    slowed from 1450 to a mean 1198 rpm and its window was not settled; tests/life/test_tr24a_torque_drive_reversed.py.)"""
+    speed instead of drifting from the file's input torque. A speed drive needs nothing. ``variant``: the design
+    file with a point's own ``set`` applied (a point may run under other stage efficiencies: an oil's, a worn
+    stage's); without it the base file's.
+
+    (Until 2026-11-30 a reversed point on a lossy planetary took the forward η, 0.28 % off the balance on a ring-held
+    stage of η 0.9, and a point's ``set`` of a stage's efficiency was not seen: 0.93 for 0.98 left 5 % of the input
+    torque unbalanced, the train stopped and the point failed with "no whole mesh cycle";
+    tests/life/test_tr24a_torque_drive_reversed.py.)"""
     if cfg.input.drive != "torque":
         return list(points)
 
-    ratios = tuple(stage_ratio(s) for s in cfg.stage)
-    efficiencies = tuple(float(s.efficiency) for s in cfg.stage)
-    reverse = tuple(design_kind(s).reverse_efficiency(s, k) for k, s in enumerate(cfg.stage))
     out = []
     for p in points:
+        own = variant(p.sets) if variant is not None and p.sets else cfg
+        ratios = tuple(stage_ratio(s) for s in own.stage)
+        efficiencies = tuple(float(s.efficiency) for s in own.stage)
+        reverse = tuple(design_kind(s).reverse_efficiency(s, k) for k, s in enumerate(own.stage))
         torque = stage_torques_Nmm(p.torque_Nm * 1000.0, ratios, efficiencies, reverse)[0][0]
         out.append(replace(p, sets=(f"input.torque_Nm={torque / 1000.0!r}", *p.sets)))
     return out
