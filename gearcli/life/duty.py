@@ -14,9 +14,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
-
 from gearcli.config.duty import MAX_DUTY_HOURS
+from gearcli.config.machine import table_value
 from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
 from gearcli.design.kinematics import stage_torques_Nmm
@@ -92,8 +91,7 @@ def with_load_table(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
     ratio = math.prod(stage_ratio(s) for s in cfg.stage)
     out = []
     for p in points:
-        speeds, torques = zip(*((float(n), float(t)) for n, t in table), strict=True)
-        ref = float(np.interp(abs(p.speed_rpm) / ratio, speeds, torques))  # as the design reads it at its speed
+        ref = table_value(table, abs(p.speed_rpm) / ratio)  # as the design and the model read it at its speed
         if p.torque_Nm == 0.0 or ref == 0.0:
             out.append(p)
             continue
