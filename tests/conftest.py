@@ -42,6 +42,10 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # session 21, tr24a: torque-driven points on a lossy planetary (reversed, own efficiency) simulated end to end (~6 s;
+    # their input torques against the hand balance stay in the default tier)
+    "tests/life/test_tr24a_torque_drive_reversed.py::test_the_points_run_at_their_speed",
+    "tests/life/test_tr24a_load_table_beyond.py::test_the_point_s_run_carries_the_point_s_torque",  # ~3 s
     # session 20, tr23d: a speed sweep's figures with a plug-in stage (matplotlib and two runs; its Campbell points
     # stay in the default tier: test_the_campbell_points_of_a_train_with_a_plug_in_stage)
     "tests/plugins/test_sweep_plots_plugin.py::test_sweep_plots_of_a_train_with_a_plug_in_stage",

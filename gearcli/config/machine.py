@@ -18,6 +18,17 @@ TablePoint = Annotated[list[Annotated[float, Field(ge=-MAX_TORQUE_NMM / 1e3, le=
 Table = Annotated[list[TablePoint], Field(min_length=2, max_length=MAX_TABLE)]
 
 
+def table_value(points, speed: float) -> float:
+    """A torque-speed table at ``speed`` as the model integrates it (``gearcli.model.elements.machine``): linear
+    between its points, constant below its first, its last segment extended above its last. The design reads a
+    load table's torque at the nominal output speed with it, so that the design's load is the model's there."""
+    xs, ys = [float(p[0]) for p in points], [float(p[1]) for p in points]
+    if speed <= xs[0]:
+        return ys[0]
+    j = next((i for i in range(len(xs) - 1) if speed <= xs[i + 1]), len(xs) - 2)
+    return ys[j] + (ys[j + 1] - ys[j]) * (speed - xs[j]) / (xs[j + 1] - xs[j])
+
+
 def increasing_speeds(points: list[list[float]], what: str, *, non_negative: bool = False) -> None:
     speeds = [p[0] for p in points]
     if any(b <= a for a, b in zip(speeds, speeds[1:], strict=False)):

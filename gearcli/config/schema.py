@@ -29,6 +29,7 @@ from gearcli.config.contact import (  # noqa: F401 (re-exported: the design file
 from gearcli.config.drive import Input, Load  # noqa: F401 (re-exported)
 from gearcli.config.duty import Bearing, Duty
 from gearcli.config.excitation import MAX_HARMONICS, check_harmonics  # noqa: F401 (MAX_HARMONICS re-exported)
+from gearcli.config.machine import table_value
 from gearcli.config.members import BasicRack, Carrier, Gear, Material, PairGear, Planet, Ring, Sun  # noqa: F401
 from gearcli.config.schema_rules import (  # noqa: F401 (re-exported)
     INPUT_TORQUE_KEYS,
@@ -288,12 +289,10 @@ class DesignFile(_Table):
             load._torque_from_power_Nm = self.load.power_kW * 1000.0 * ratio / self.input.speed_rad_s_value
             object.__setattr__(self, "load", load)
         elif self.load.torque_speed is not None:
-            import numpy as np  # lazy: numpy, start-up time of --help and init (config is numpy-free)
-
-            table = np.array(self.load.torque_speed, dtype=float)
             n_out = self.input.speed_rad_s_value / ratio * 60.0 / (2.0 * math.pi)
             load = self.load.model_copy()
-            load._torque_from_power_Nm = float(np.interp(n_out, table[:, 0], table[:, 1]))
+            # as the model takes the table (its last segment extended): the design's load is the run's at that speed
+            load._torque_from_power_Nm = table_value(self.load.torque_speed, n_out)
             if load._torque_from_power_Nm == 0.0:
                 raise ValueError(f"load.torque_speed: the table's torque at the nominal output speed ({n_out:.4g} rpm) "
                                  "is 0; the design needs a load there")

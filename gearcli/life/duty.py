@@ -10,17 +10,17 @@ from __future__ import annotations
 import csv
 import io
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
-
 from gearcli.config.duty import MAX_DUTY_HOURS
+from gearcli.config.machine import table_value
 from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
-from gearcli.design.kinematics import pinion_torque_Nmm
+from gearcli.design.kinematics import stage_torques_Nmm
 from gearcli.errors import ConfigError
+from gearcli.stages.design import design_kind
 
 MAX_SERIES_ROWS = 2_000_000
 #: the shortest time step of a history (a 1 GHz logger's): 5e-324 s steps made a class's hours 0 (an internal
@@ -52,18 +52,29 @@ class DutyPoint:
                 "load.application_factor=1.0", *self.sets)
 
 
-def with_drive(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
+def with_drive(cfg, points: Sequence[DutyPoint],
+               variant: Callable[[Sequence[str]], Any] | None = None) -> list[DutyPoint]:
     """A torque-driven input (``drive = "torque"``) gets each point's input torque too: the output torque
-    carried back through the stages (kinematics' pinion torque with the stage efficiencies), so that the
-    point runs at its speed instead of drifting from the file's input torque. A speed drive needs nothing."""
+    carried back through the stages as the design carries it (kinematics' stage torques with the stage
+    efficiencies, and a planetary stage's own efficiency where the load reverses), so that the point runs at its
+    speed instead of drifting from the file's input torque. A speed drive needs nothing. ``variant``: the design
+    file with a point's own ``set`` applied (a point may run under other stage efficiencies: an oil's, a worn
+    stage's); without it the base file's.
+
+    (Until 2026-11-30 a reversed point on a lossy planetary took the forward η, 0.28 % off the balance on a ring-held
+    stage of η 0.9, and a point's ``set`` of a stage's efficiency was not seen: 0.93 for 0.98 left 5 % of the input
+    torque unbalanced, the train stopped and the point failed with "no whole mesh cycle";
+    tests/life/test_tr24a_torque_drive_reversed.py.)"""
     if cfg.input.drive != "torque":
         return list(points)
 
     out = []
     for p in points:
-        torque = p.torque_Nm * 1000.0
-        for stage in reversed(cfg.stage):
-            torque = pinion_torque_Nmm(torque, stage_ratio(stage), stage.efficiency)
+        own = variant(p.sets) if variant is not None and p.sets else cfg
+        ratios = tuple(stage_ratio(s) for s in own.stage)
+        efficiencies = tuple(float(s.efficiency) for s in own.stage)
+        reverse = tuple(design_kind(s).reverse_efficiency(s, k) for k, s in enumerate(own.stage))
+        torque = stage_torques_Nmm(p.torque_Nm * 1000.0, ratios, efficiencies, reverse)[0][0]
         out.append(replace(p, sets=(f"input.torque_Nm={torque / 1000.0!r}", *p.sets)))
     return out
 
@@ -80,8 +91,7 @@ def with_load_table(cfg, points: Sequence[DutyPoint]) -> list[DutyPoint]:
     ratio = math.prod(stage_ratio(s) for s in cfg.stage)
     out = []
     for p in points:
-        speeds, torques = zip(*((float(n), float(t)) for n, t in table), strict=True)
-        ref = float(np.interp(abs(p.speed_rpm) / ratio, speeds, torques))  # as the design reads it at its speed
+        ref = table_value(table, abs(p.speed_rpm) / ratio)  # as the design and the model read it at its speed
         if p.torque_Nm == 0.0 or ref == 0.0:
             out.append(p)
             continue

@@ -10,7 +10,7 @@ from dataclasses import replace
 from typing import BinaryIO
 
 from gearcli.config import LoadedDesign
-from gearcli.config.load import STDIN, input_digest, read_input_file, read_stdin
+from gearcli.config.load import STDIN, input_digest, load_variant, read_input_file, read_stdin
 from gearcli.core.records import record
 from gearcli.errors import ConfigError
 from gearcli.life.duty import (
@@ -121,7 +121,10 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         _check_names(points, loaded.source)
         points, notes = _without_empty_points(points, loaded.source)
     notes += reversal_notes(points)
-    points = with_load_table(loaded.design, with_drive(loaded.design, points))
+    def variant(point_sets: Sequence[str]):  # the file as a point with its own set runs (its efficiencies)
+        return load_variant(raw, loaded.source, (*sets, *point_sets))
+
+    points = with_load_table(loaded.design, with_drive(loaded.design, points, variant))
     if loaded.design.rating is None:
         only = " (this file's [rating] sets only the bearings' min_static_safety_bearing)" \
             if loaded.design.min_static_safety_bearing is not None else ""
