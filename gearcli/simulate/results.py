@@ -63,8 +63,9 @@ class StatisticsError:
     sampling_relative: dict[str, float] = field(default_factory=dict)
     total_relative: dict[str, float] = field(default_factory=dict)
     suggested_steps: int | None = None
-    # the start-up transient the settle test fitted in the window (gearcli.simulate.leftover): its bound on the error
-    # of {min, max, std} in N and over reference_N, added to total_relative (empty: a periodic state, no fit)
+    # the start-up transient the settle test fitted in the window (gearcli.simulate.leftover): its error of the mean
+    # and bound on that of {min, max, std} in N and over reference_N, added to total_relative (empty: a periodic
+    # state, no fit)
     transient_N: dict[str, float] = field(default_factory=dict)
     transient_relative: dict[str, float] = field(default_factory=dict)
 

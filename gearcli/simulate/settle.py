@@ -124,9 +124,9 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
     for i, k in enumerate(fitted):
         ref = refs[k]
         amplitudes, sigmas = [float(abs(a)) for a in terms[i]], [float(x) for x in sigs[i]]
-        left.append(leftover_mod.of_fit(k + 1, tw, terms[i], sigmas, [m[1] for m in modes], ref))
         bias = sum(ringing.window_mean(complex(c), sg, m[1], length) for c, sg, m in zip(terms[i], sigmas, modes,
                                                                                          strict=True))
+        left.append(leftover_mod.of_fit(k + 1, tw, terms[i], sigmas, [m[1] for m in modes], ref, mean_N=bias))
         biases[k + 1] = (bias, ref)
         for j, a0 in enumerate(amplitudes):
             fraction = a0 / ref

@@ -103,3 +103,29 @@ def test_a_fan_loads_mesh_law_is_calibrated_at_each_points_own_load(tmp_path):
         h0_um = 1.5 * f_n / _iso_k_n_N_mm(f_t) * 1e3
         assert_allclose(float(r["stage1_dte_um_mean"]), h0_um, rtol=1e-5)
         assert abs((f_n / big_k0) ** (1 / 1.5) * 1e3 / h0_um - 1) > 0.05  # the test tells the two apart
+
+
+def test_a_load_varied_in_another_unit_or_with_its_exponent_stays_the_points_own(tmp_path):
+    """A point's load is the one its own keys give, whichever unit they use: a file that says `torque_Nm` swept with
+    `--vary load.torque_Nmm` (or `load.power_kW`) and the speed runs each point at T_0 (n/n_0)^p of the varied value
+    (field test: every row ran at the file's torque, the varied one silently replaced by the law's own key), and a
+    varied `load.speed_exponent` is the point's p (a fan's file swept at p = 0 is a constant torque; a constant
+    torque's file swept at p = 2 a fan). By hand: the settled equilibrium's F_t = T_L(n) / r_gear."""
+    rows = _sweep(tmp_path, "torque_Nm = 200", 2, "--vary", "load.torque_Nmm=1e5,3e5", "--vary",
+                  "input.speed_rpm=600,1800")
+    for r in rows:  # 100 and 300 N·m at 1200 rpm: 25, 225, 75, 675 N·m
+        t_load = float(r["load.torque_Nmm"]) * 1e-3 * (float(r["input.speed_rpm"]) / 1200.0) ** 2
+        assert_allclose(float(r["stage1_tangential_N_mean"]), t_load / R_GEAR, rtol=1e-5)
+    # 6.2832 kW at the file's 600 rpm output is 100 N·m there; a power key goes as n^(p+1), its torque as n^p
+    rows = _sweep(tmp_path, "torque_Nm = 200", 1, "--vary", "load.power_kW=6.283185307179586", "--vary",
+                  "input.speed_rpm=600,1800")
+    for r in rows:
+        assert_allclose(float(r["stage1_tangential_N_mean"]),
+                        100.0 * float(r["input.speed_rpm"]) / 1200.0 / R_GEAR, rtol=1e-5)
+    for p_file in (0, 2):
+        rows = _sweep(tmp_path, "torque_Nm = 200", p_file, "--vary", "load.speed_exponent=0,2", "--vary",
+                      "input.speed_rpm=600,1800")
+        for r in rows:
+            p = int(r["load.speed_exponent"])
+            assert_allclose(float(r["stage1_tangential_N_mean"]),
+                            200.0 * (float(r["input.speed_rpm"]) / 1200.0) ** p / R_GEAR, rtol=1e-5)
