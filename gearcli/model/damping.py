@@ -33,6 +33,7 @@ from gearcli.core.memo import remember
 from gearcli.design.checks import TORQUE_BALANCE_TOLERANCE
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine
+from gearcli.model.planet_excitation import REPEATED
 
 STEADY_T = 1e12  # s: a time past every start ramp (the motor's steady curve)
 SPEED_SAMPLES = 4000  # grid over 0 .. the synchronous speed on which the motor's crossings are bracketed
@@ -42,8 +43,6 @@ UNDAMPED_PER_PERIOD = 1e-6  # a mode decaying by less than this per period is un
 # solver's roundoff (zeta ~ 1e-17 .. 1e-30), which read as a decay time of 1e28 s and a resonance 1e16 x
 MIN_MAC = 0.5  # a damped eigenvector matches an undamped mode when their modal assurance criterion exceeds this
 MAX_FREQUENCY_RATIO = 2.0  # ... and its |lambda| lies within this factor of the mode's undamped frequency
-REPEATED_RTOL = 1e-7  # undamped modes whose frequencies agree to this are one eigenspace (a planetary's planet
-# modes agree to the eigensolver's round-off, ~1e-12)
 
 
 def reflected_load_Nm(lay: Layout, w: float) -> float:
@@ -370,11 +369,12 @@ def _mac(J: np.ndarray, phi: np.ndarray, v: np.ndarray) -> float:
 
 
 def _repeated(omega: np.ndarray) -> list[list[int]]:
-    """The oscillating modes (``omega`` > 0) grouped by their frequency: equal within :data:`REPEATED_RTOL`."""
+    """The oscillating modes (``omega`` > 0) grouped by their frequency: equal within ``REPEATED``, the fraction
+    within which the mesh orders' analysis takes modes as one repeated mode (:mod:`gearcli.model.planet_excitation`)."""
     live = sorted((j for j in range(omega.size) if omega[j] > 0.0), key=lambda j: omega[j])
     groups: list[list[int]] = []
     for j in live:
-        if groups and omega[j] - omega[groups[-1][0]] <= REPEATED_RTOL * omega[j]:
+        if groups and omega[j] - omega[groups[-1][0]] <= REPEATED * omega[j]:
             groups[-1].append(j)
         else:
             groups.append([j])

@@ -61,3 +61,34 @@ def test_every_repeated_planet_mode_rings_at_its_damped_frequency(tmp_path, boun
         assert m["damping_ratio"] == pytest.approx(zeta, rel=1e-9)
         assert m["damped_frequency_Hz"] is not None
         assert m["damped_frequency_Hz"] == pytest.approx(f_d, rel=1e-9)
+
+
+# Sequentially phased (39/21/81, five planets: h z_s / N = 7.8 at h = 1), the mesh order drives only the planet modes.
+SEQUENTIAL = dict(STAGE, sun=dict(STAGE["sun"], teeth=39), planet=dict(STAGE["planet"], teeth=21),
+                  ring=dict(STAGE["ring"], teeth=81))
+
+
+def test_a_repeated_planet_modes_resonance_names_every_planet_alike(tmp_path):
+    """The resonance warning of the planet modes' eigenspace names what holds its strain energy over the whole
+    space: with the same k on both meshes and every planet alike (cyclic symmetry), each of the 10 planet meshes holds
+    1/10 (k r_bp^2 theta_j^2 on either mesh of planet j, the planets equal over the space). One basis vector's shares
+    named whichever planet the eigensolver's basis favoured ("stage 1 planet 1 sun and ring meshes (50 % of its
+    strain energy)": a basis vector in which planet 1 alone swings)."""
+    cos_a = math.cos(math.radians(20))
+    r_bp = 21 * M / 2 * cos_a / 1e3
+    f_planet = math.sqrt(2.0 * K * r_bp**2 / J_P) / (2 * math.pi)
+    # the 1x mesh order (z_s |n_s - n_c|, n_c = n_s z_s / (z_s + z_r)) 2 % below the planet modes
+    n_s = 60.0 * f_planet / 1.02 / (39 * 81 / 120)
+    scene = tomli_w.dumps({"stage": [SEQUENTIAL], "input": {"speed_rpm": n_s}, "load": {"torque_Nm": 1500},
+                           "contact": {"stiffness": K / 1000, "exponent": 1, "damping_ratio": ZETA}})
+    path = tmp_path / "sequential.toml"
+    path.write_text(scene)
+    res = CliRunner().invoke(cli, ["-q", "modes", str(path), "--format", "json"])
+    assert res.exit_code == 0, res.output
+    found = [w for w in json.loads(res.stdout)["warnings"] if w["code"] == "resonance"
+             and w["frequency_Hz"] == pytest.approx(f_planet, rel=1e-9)]
+    assert found  # the planet modes, once per boundary
+    for w in found:
+        assert "(repeated)" in w["message"]
+        assert w["element"] == "stage 1 planets 1, 2, 3, 4, 5 sun and ring meshes"
+        assert "(10 % of its strain energy)" in w["message"]
