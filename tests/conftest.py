@@ -53,6 +53,7 @@ SLOW = (
     # tests the session's merges brought or slowed, and a few costly duplicates of checks the default tier keeps
     "tests/extreme/test_rattle_span.py::test_a_rattling_window_is_checked_from_the_start",
     "tests/life/test_planet_pin_starts.py::test_the_start_loads_the_pins_with_the_worst_planet_and_k_gamma",  # ~7 s
+    "tests/reference/test_planet_errors_start_at_rest.py::test_planet_errors_start_from_the_unloaded_equilibrium",  # ~5 s
     "tests/reference/test_mixer_helical_planetary_hand.py::test_life_starts_in_their_own_classes_and_miner_by_hand",
     "tests/cli/test_plots_mplbackend.py::test_modes_plots_whatever_mplbackend_says[nonsense]",
     "tests/reference/test_trial_tr13.py::test_set_starting_compares_starts_on_a_star_delta_file",

@@ -33,6 +33,7 @@ from gearcli.core.memo import remember
 from gearcli.design.checks import TORQUE_BALANCE_TOLERANCE
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine
+from gearcli.model.planet_excitation import REPEATED
 
 STEADY_T = 1e12  # s: a time past every start ramp (the motor's steady curve)
 SPEED_SAMPLES = 4000  # grid over 0 .. the synchronous speed on which the motor's crossings are bracketed
@@ -311,35 +312,73 @@ def _modal_damping(J: np.ndarray, K: np.ndarray, C: np.ndarray, shapes: np.ndarr
     osc = [i for i in range(lam.size) if lam[i].imag > 0.0]
     out = np.zeros(shapes.shape[1])
     rings = np.full(shapes.shape[1], np.nan)
-    pairs = []
-    for j in range(shapes.shape[1]):
-        if omega[j] <= 0.0:
-            continue
-        phi = shapes[:, j]
-        for i in osc:
-            if not 1.0 / MAX_FREQUENCY_RATIO <= abs(lam[i]) / omega[j] <= MAX_FREQUENCY_RATIO:
-                continue  # |lambda| is the mode's natural frequency (exactly for one degree of freedom): another mode's,
-                # or the round-off of an unresolved one (a chain with stiffness ratios of 1e12: eps x its largest)
-            v = vec[:n, i]
-            mac = abs(np.vdot(phi * J, v)) ** 2 / (float(phi @ (J * phi)) * float(np.real(np.vdot(v * J, v))))
-            pairs.append((mac, j, i))
-    used_modes: set[int] = set()
-    used_eigs: set[int] = set()
-    for mac, j, i in sorted(pairs, reverse=True):
-        if mac < MIN_MAC or j in used_modes or i in used_eigs:
-            continue
-        used_modes.add(j)
-        used_eigs.add(i)
+    taken = _match_eigenvalues(J, shapes, omega, lam, vec[:n], osc)
+    for j, i in taken.items():
         out[j] = -lam[i].real / abs(lam[i])
         rings[j] = lam[i].imag
     for j in range(shapes.shape[1]):
-        if omega[j] > 0.0 and j not in used_modes:
+        if omega[j] > 0.0 and j not in taken:
             phi = shapes[:, j]
             out[j] = float(phi @ C @ phi) / (2.0 * omega[j] * float(phi @ (J * phi)))
     undamped = 2.0 * math.pi * np.abs(out) < UNDAMPED_PER_PERIOD  # roundoff of an undamped chain: undamped
     out[undamped] = 0.0
     rings[undamped & (omega > 0.0)] = omega[undamped & (omega > 0.0)]  # ... ringing at its own frequency
     return np.vstack([out, rings])
+
+
+def _match_eigenvalues(J: np.ndarray, shapes: np.ndarray, omega: np.ndarray, lam: np.ndarray, vecs: np.ndarray,
+                       osc: list[int]) -> dict[int, int]:
+    """Undamped mode -> the oscillating eigenvalue it is matched to (modal assurance criterion above
+    :data:`MIN_MAC`, greedily by the largest). Modes of one frequency (a planetary's N - 1 planet modes) are matched
+    as their eigenspace: the undamped solver's basis of it and the damped eigenvectors are two arbitrary bases of the
+    same space, which need not match vector by vector (a 5-planet stage's four planet modes found one eigenvalue of
+    their four), so an eigenvector's criterion against a group is its share in the group's span, and the group
+    takes as many eigenvalues as it has modes, each mode then the eigenvalue nearest its own shape."""
+    groups = _repeated(omega)
+    pairs = []
+    for g, members in enumerate(groups):
+        span = shapes[:, members]
+        gram = np.linalg.inv(span.T @ (J[:, None] * span))
+        for i in osc:
+            if not 1.0 / MAX_FREQUENCY_RATIO <= abs(lam[i]) / omega[members[0]] <= MAX_FREQUENCY_RATIO:
+                continue  # |lambda| is the mode's natural frequency (exactly for one degree of freedom): another mode's,
+                # or the round-off of an unresolved one (a chain with stiffness ratios of 1e12: eps x its largest)
+            v = vecs[:, i]
+            p = span.T @ (J * v)
+            mac = float(np.real(np.vdot(p, gram @ p))) / float(np.real(np.vdot(v * J, v)))
+            pairs.append((mac, g, i))
+    eigs_of: dict[int, list[int]] = {}
+    used_eigs: set[int] = set()
+    for mac, g, i in sorted(pairs, reverse=True):
+        if mac < MIN_MAC or i in used_eigs or len(eigs_of.get(g, ())) == len(groups[g]):
+            continue
+        used_eigs.add(i)
+        eigs_of.setdefault(g, []).append(i)
+    taken: dict[int, int] = {}
+    for g, eigs in eigs_of.items():
+        within = sorted(((_mac(J, shapes[:, j], vecs[:, i]), j, i) for j in groups[g] for i in eigs), reverse=True)
+        for _, j, i in within:
+            if j not in taken and i not in taken.values():
+                taken[j] = i
+    return taken
+
+
+def _mac(J: np.ndarray, phi: np.ndarray, v: np.ndarray) -> float:
+    """The mass-weighted modal assurance criterion of a real shape and a complex eigenvector."""
+    return abs(np.vdot(phi * J, v)) ** 2 / (float(phi @ (J * phi)) * float(np.real(np.vdot(v * J, v))))
+
+
+def _repeated(omega: np.ndarray) -> list[list[int]]:
+    """The oscillating modes (``omega`` > 0) grouped by their frequency: equal within ``REPEATED``, the fraction
+    within which the mesh orders' analysis takes modes as one repeated mode (:mod:`gearcli.model.planet_excitation`)."""
+    live = sorted((j for j in range(omega.size) if omega[j] > 0.0), key=lambda j: omega[j])
+    groups: list[list[int]] = []
+    for j in live:
+        if groups and omega[j] - omega[groups[-1][0]] <= REPEATED * omega[j]:
+            groups[-1].append(j)
+        else:
+            groups.append([j])
+    return groups
 
 
 def decay_rate(eigenvalue: complex) -> float:

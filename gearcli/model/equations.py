@@ -153,8 +153,13 @@ class TorsionalModel:
         w_in = self._input_speed()
         for i in lay.free_bodies:
             y0[lay.state.omega(i)] = lay.bodies[i].ratio * w_in
+        rest: dict[int, float] = {}
+        if any(x.initial_deflection for x in lay.connectors):  # planets with position errors: at rest, unloaded
+            from gearcli.model.planet_statics import rest_deflections  # lazy: scipy, such scenes only
+
+            rest = rest_deflections(lay)
         for c, x in enumerate(lay.connectors):  # a planet's position error: delta = R theta + e
-            y0[lay.state.delta(c)] = x.initial_deflection
+            y0[lay.state.delta(c)] = rest.get(c, x.initial_deflection)
         return y0
 
     def continue_state(self, y_prev: np.ndarray, model_prev: TorsionalModel, t_prev: float | None = None) -> np.ndarray:

@@ -47,6 +47,7 @@ import numpy as np
 
 from gearcli.core.memo import remember
 from gearcli.core.records import record
+from gearcli.model import planet_excitation
 from gearcli.model.assembly import Layout
 from gearcli.model.damping import body_damping, body_matrices, lever_matrices, loss_factors, modal_damping
 from gearcli.model.eigen import orthonormal_clusters, real_eigenpairs, rigid_mode_count, soft_modes_refined
@@ -459,8 +460,8 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
     for m in _near_modes(lay, boundary, duration_s, f_in, tangents):
         if m.rigid:
             continue
-        share = max(m.energy_share)
         for o in excitation_sources(lay):
+            dominant, share = m.dominant, max(m.energy_share)
             name, fe = o.name, o.hz_per_input_hz * f_in
             if abs(fe - m.frequency_Hz) > RESONANCE_BAND * m.frequency_Hz:
                 continue
@@ -471,6 +472,8 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
                 if group[0] != m.number - 1:
                     continue  # a repeated mode is warned once, at its first mode
                 s = _phased(und, group, o)
+                dominant, share = planet_excitation.group_dominant(lay, und.k, und.R, und.inv_sqrt,
+                                                                   und.u[:, und.order[list(group)]])
             else:
                 s = _participation_of_shares(o, m.energy_share)
             c = _crossing(o, m.frequency_Hz, s, m.damping_ratio)
@@ -479,12 +482,13 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
             gain = (f"resonant response ≈ {c.amplification:.2g}x its blocked error force at "
                     f"{100 * m.damping_ratio:.2g} % modal damping" if c.amplification is not None
                     else "undamped: the response grows without bound")
+            named = planet_excitation.mode_name(m.number, group)
             msg = (f"resonance: the {name} order ({fe:.4g} Hz at the nominal input speed) lies within "
-                   f"{100 * abs(fe - m.frequency_Hz) / m.frequency_Hz:.2g} % of {_mode_name(m.number, group)} "
-                   f"({m.frequency_Hz:.4g} Hz, {boundary}), dominated by the {m.dominant} "
+                   f"{100 * abs(fe - m.frequency_Hz) / m.frequency_Hz:.2g} % of {named} "
+                   f"({m.frequency_Hz:.4g} Hz, {boundary}), dominated by the {dominant} "
                    f"({100 * share:.0f} % of its strain energy); {c.strength} excited: {_holder(lay, o)} "
                    f"{_percent(c.participation)} of the mode's strain energy ({gain})")
-            out.append(Resonance(m.number, m.frequency_Hz, m.dominant, share, name, fe, msg, c.participation,
+            out.append(Resonance(m.number, m.frequency_Hz, dominant, share, name, fe, msg, c.participation,
                                  c.amplification, m.damping_ratio, c.strength,
                                  o.stage, c.source))
         out += _torque_resonances(lay, m, boundary, f_in)
@@ -498,11 +502,6 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
 def _participation_of_shares(o: OrderSource, share: np.ndarray | tuple[float, ...]) -> float:
     """An unphased order's participation: the largest share of the mode's strain energy among its connectors."""
     return float(max((share[c] for c in o.via), default=0.0))
-
-
-def _mode_name(number: int, group: tuple[int, ...]) -> str:
-    """"mode 4", or a repeated mode's "modes 4-5 (repeated)"."""
-    return f"modes {group[0] + 1}-{group[-1] + 1} (repeated)" if len(group) > 1 else f"mode {number}"
 
 
 def _holder(lay: Layout, o: OrderSource) -> str:

@@ -94,3 +94,20 @@ def dominant_label(lay: Layout, share: np.ndarray) -> str:
         return tied[0].label
     return (f"stage {tied[0].index + 1} planet{'s' if len(planets) > 1 else ''} "
             f"{', '.join(str(j + 1) for j in planets)} {' and '.join(gears)} meshes")
+
+
+def group_dominant(lay: Layout, k: np.ndarray, R: np.ndarray, inv_sqrt: np.ndarray, u: np.ndarray) -> tuple[str, float]:
+    """The element holding the largest share of a repeated mode's strain energy, and that share, over its
+    eigenspace (``u``: its mass-weighted eigenvectors, any basis; ``k``, ``R``, ``inv_sqrt`` as
+    :func:`phased_participation`): each connector's strain energy summed over an orthonormal basis is the same for
+    every basis, so identical planets hold equal shares and are named together ("stage 1 planets 1, 2, 3, 4, 5 ring
+    meshes"), where one basis vector's shares name whichever planet the eigensolver's basis happens to favour."""
+    basis = np.linalg.qr(u)[0]
+    strain = (k[:, None] * (R @ (inv_sqrt[:, None] * basis)) ** 2).sum(axis=1)
+    share = strain / strain.sum()
+    return dominant_label(lay, share), float(share.max())
+
+
+def mode_name(number: int, group: tuple[int, ...]) -> str:
+    """"mode 4", or a repeated mode's "modes 4-5 (repeated)"."""
+    return f"modes {group[0] + 1}-{group[-1] + 1} (repeated)" if len(group) > 1 else f"mode {number}"

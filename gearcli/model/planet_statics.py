@@ -79,6 +79,50 @@ def _shares(lay: Layout, pairs: list[tuple[int, int]], sun0: float, ratio: float
     return [force(S + e, j) for j, e in enumerate(errors)]
 
 
+def rest_deflections(lay: Layout) -> dict[int, float]:
+    """Planet mesh connector -> its deflection at rest and unloaded, where a run from rest starts, for the stages
+    whose planets carry position errors: the module's statics with no load (the sun meshes' sum 0, a planet's two
+    meshes carrying the same force: nothing rolls, nothing is lost), S common to the stage. Without a gap the planets
+    preload each other (f_j = k (S + e_j) in series, summing to 0); with one, a planet inside its meshes' gaps carries
+    nothing and its S + e_j is split between them in proportion to their half gaps. delta = R theta + e then
+    holds with the central members turned by S (the carrier's start angle), not with every body at 0: there the
+    planets with the largest errors pressed their meshes, the carrier was kicked at t = 0 and the run's peak
+    force was that kick's (2819 N at 0 s against a settled 2738 N on a 5-planet stage)."""
+    out: dict[int, float] = {}
+    for pairs in planet_groups(lay).values():
+        out.update(_at_rest(lay, pairs))
+    return out
+
+
+def _at_rest(lay: Layout, pairs: list[tuple[int, int]]) -> dict[int, float]:
+    """:func:`rest_deflections` of one stage's planets (``pairs``: sun- and ring-mesh connectors)."""
+    rows = [(lay.connectors[s].params, lay.connectors[r].params) for s, r in pairs]
+    errors = [lay.connectors[s].initial_deflection for s, _ in pairs]
+
+    def series(f: float, j: int) -> float:  # delta_sp + delta_rp of planet j at force f on both meshes
+        return mesh.static_deflection(rows[j][0], f) + mesh.static_deflection(rows[j][1], f)
+
+    def force(d: float, j: int) -> float:  # planet j's force at delta_sp + delta_rp = d
+        if abs(series(math.copysign(1e-300, d), j)) >= abs(d):  # inside the gaps
+            return 0.0
+        hi = 1.0
+        while abs(series(math.copysign(hi, d), j)) < abs(d):
+            hi *= 2.0
+        return math.copysign(_bisect(lambda g: abs(series(math.copysign(g, d), j)) - abs(d), 0.0, hi), d)
+
+    S = _bisect(lambda x: sum(force(x + e, j) for j, e in enumerate(errors)), -max(errors), -min(errors))
+    out: dict[int, float] = {}
+    for j, ((s, r), e) in enumerate(zip(pairs, errors, strict=True)):
+        f = force(S + e, j)
+        if f != 0.0:
+            out[s] = mesh.static_deflection(rows[j][0], f)
+        else:
+            half = [row[mesh.I_HALF] / row[mesh.I_CB] for row in rows[j]]
+            out[s] = (S + e) * half[0] / sum(half) if sum(half) > 0.0 else 0.0
+        out[r] = S + e - out[s]  # the loop closes exactly
+    return out
+
+
 def _bisect(g, lo: float, hi: float) -> float:
     """A root of the increasing ``g`` on [lo, hi] (g(lo) <= 0 <= g(hi)) to the floats' resolution."""
     from scipy.optimize import brentq  # lazy: scipy, a scene with position errors only
