@@ -278,15 +278,45 @@ def test_sampling_check_names_lines_above_nyquist():
     design = fake_design()
     stages = stage_reports(design, fake_simulation(design))  # 2001 samples over 0.5 s: Nyquist 2000 Hz
     assert sampling_checks(stages, (160.0, 900.0)) == []
-    msg = sampling_checks(stages, (160.0, 4700.0))
+    msg = [w.message for w in sampling_checks(stages, (160.0, 4700.0))]
     assert len(msg) == 1 and "4700 Hz" in msg[0] and "simulation.steps" in msg[0]
     # with the run's steps, the value to use. The check's Nyquist is half the sample rate less one bin 1/T:
     # 2000 - 1/0.5 s = 1998 Hz, linear in the steps: 2000 x 1.25 x 4700 / 1998 = 5880.9 -> 5881, whose Nyquist
     # 5881 / (2 x 0.5 s) - 2 Hz = 5879 Hz holds 1.25 x 4700 = 5875 Hz
     (hint,) = sampling_checks(stages, (160.0, 4700.0), 2000)
-    assert "Nyquist frequency 1998 Hz" in hint and hint.endswith("--set simulation.steps=5881 would sample it"), hint
+    assert "Nyquist frequency 1998 Hz" in hint.message, hint
+    assert hint.message.endswith("--set simulation.steps=5881 would sample it"), hint
+    assert hint.data["steps"] == 5881 and hint.data["frequency_Hz"] == 4700.0
     (capped,) = sampling_checks(stages, (4.7e9,), 2000)  # 5.875e9 steps: beyond the schema's 2e6
-    assert "beyond the schema's maximum 2000000" in capped and "duration_s" in capped
+    assert "beyond the schema's maximum 2000000" in capped.message and "duration_s" in capped.message
+    assert capped.data["steps"] is None and capped.data["steps_cap"] == 2_000_000
+
+
+def test_sampling_warning_names_its_stage_and_numbers():
+    """DESIGN §12: a JSON warning carries the diagnostic's data, ``stage`` 1-based where it is about a stage. The
+    report's ``sampling`` warning of a mesh line above the Nyquist frequency named "stage 1" in its message and
+    had ``stage: null`` and no numbers (found by trial tr24h). By hand: the fake train's stage 1 pinion, 20 teeth
+    at 3600 deg/s = 10 rev/s, meshes at 200 Hz, its stage 2 pinion at 1800 deg/s at 100 Hz; 201 samples over
+    0.5 s are 400 samples/s, Nyquist 200 Hz less a bin: stage 1's line is above it, stage 2's below."""
+    from gearcli.diagnostics import SAMPLING, as_dict
+    from gearcli.report.checks import sampling_checks
+
+    design = fake_design()
+    stages = stage_reports(design, fake_simulation(design, n=201))
+    found = sampling_checks(stages, (160.0, 900.0), 200)
+    rows = [as_dict(w) for w in found]
+    assert [r["code"] for r in rows] == [SAMPLING, SAMPLING]
+    mesh, modes = rows
+    assert mesh["stage"] == 1 and mesh["excitation"] == "stage 1 mesh"
+    assert mesh["frequency_Hz"] == pytest.approx(20 * 3600 / 360, rel=1e-12)
+    fs = 200 / 0.5  # samples per second
+    half_bin = fs / 101 / 2  # half the resolution of the window's 101 samples (0.25 ... 0.5 s)
+    assert mesh["nyquist_Hz"] == pytest.approx(fs / 2 - half_bin, rel=1e-12)
+    # the suggested steps sample the line with its 1.25 margin: their Nyquist, about half a bin below fs / 2
+    assert mesh["steps"] / (2 * 0.5) - half_bin >= 1.25 * 200 and mesh["steps_cap"] == 2_000_000
+    assert f"--set simulation.steps={mesh['steps']}" in mesh["message"]
+    assert modes["stage"] is None and modes["natural_frequencies_Hz"] == [900.0] and modes["frequency_Hz"] == 900.0
+    assert modes["steps"] / (2 * 0.5) - half_bin >= 1.25 * 900
 
 
 def test_accuracy_check_says_what_to_use_instead():
