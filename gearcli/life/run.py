@@ -439,7 +439,7 @@ def _of_point(point: DutyPoint, diags: Sequence[Diagnostic]) -> list[Diagnostic]
 
 def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: CaseDesigner, evaluate: PointEvaluator,
                  route: str = "dynamic", variant: str = "iso",
-                 progress: Callable[[str, int, int], None] | None = None, notes: Sequence[str] = (),
+                 progress: Callable[[str, int, int], None] | None = None, notes: Sequence[str | Diagnostic] = (),
                  base_warnings: Sequence[str] = (), held: Sequence[DutyPoint] = ()) -> LifeResult:
     """The life of every member and bearing over the duty ``points`` of the design file ``scene``; each point
     designed by ``design_case`` (the static route) or simulated by ``evaluate`` (the dynamic route). ``notes``
@@ -451,7 +451,7 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
         raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
                           "--series FILE.csv", source=scene.source, key="duty")
     evaluated: list[_PointData] = []
-    warnings: list[Diagnostic] = [warning(DUTY, n) for n in notes]
+    warnings: list[Diagnostic] = [n if isinstance(n, Diagnostic) else warning(DUTY, n) for n in notes]
     if route == "static":
         for i, p in enumerate(points):
             progress(p.name, i, len(points))
