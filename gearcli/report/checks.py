@@ -4,7 +4,8 @@ Contact loss and penetration beyond the full-damping depth are the simulation's 
 (``gearcli.simulate.stats``, which knows which flank is loaded and when a full-damping depth below
 the static approach is deliberate); the report adds what only it can see: the energy balance
 against a limit, lines the output sampling cannot resolve, and the accuracy study's verdicts.
-Each check returns plain sentences, the sampling check its warnings with their data; nothing here prints.
+The energy check returns plain sentences, the sampling and accuracy checks their warnings with their data;
+nothing here prints.
 """
 
 from __future__ import annotations
@@ -14,8 +15,8 @@ from collections.abc import Sequence
 
 from gearcli.config.schema import MAX_STEPS
 from gearcli.core.jsontypes import JsonValue
-from gearcli.diagnostics import ENERGY_RESIDUAL, SAMPLING, Diagnostic, has, warning
-from gearcli.report.accuracy import struggling_runs
+from gearcli.diagnostics import ACCURACY, ENERGY_RESIDUAL, SAMPLING, Diagnostic, has, warning
+from gearcli.report.accuracy import struggling, struggling_text
 from gearcli.report.result import AccuracyStudy, StageReport
 from gearcli.simulate.results import SimulationResult
 
@@ -87,13 +88,20 @@ def sampling_checks(stages: Sequence[StageReport], natural_Hz: Sequence[float],
     return out
 
 
-def accuracy_checks(study: AccuracyStudy | None, file_method: str, file_rtol: float) -> list[str]:
+def accuracy_checks(study: AccuracyStudy | None, file_method: str, file_rtol: float) -> list[Diagnostic]:
+    """The accuracy study's verdicts as ``accuracy`` warnings with their numbers (docs/output.md, "Warnings"): a run
+    of the file's settings (or ``auto``) that struggles against the ladder's median, and file settings that miss the
+    requested accuracy, with the cheapest rung that meets it."""
     if study is None:
         return []
-    out = struggling_runs([r for r in study.runs if r.file_settings or r.method == "auto"], study.runs)
+    out = [warning(ACCURACY, struggling_text(r, median), method=r.method, method_used=r.method_used, rtol=r.rtol,
+                   nfev=r.nfev, median_nfev=median)
+           for r, median in struggling([r for r in study.runs if r.file_settings or r.method == "auto"], study.runs)]
     if not study.file_settings_meet_accuracy:
         rec = study.recommended
         hint = (f"; the cheapest that does: method = \"{rec.method}\", rtol = {rec.rtol:g}" if rec else "")
-        out.append(f"the file's [simulation] settings (method = \"{file_method}\", rtol = {file_rtol:g}) do not "
-                   f"meet the requested accuracy {study.requested_accuracy:g}{hint}")
+        out.append(warning(ACCURACY, f"the file's [simulation] settings (method = \"{file_method}\", rtol = "
+                           f"{file_rtol:g}) do not meet the requested accuracy {study.requested_accuracy:g}{hint}",
+                           method=file_method, rtol=file_rtol, requested_accuracy=study.requested_accuracy,
+                           recommended_method=rec.method if rec else None, recommended_rtol=rec.rtol if rec else None))
     return out

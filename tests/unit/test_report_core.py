@@ -228,6 +228,19 @@ def test_struggling_run_is_flagged_against_the_ladder_median():
     assert struggling_runs(runs, runs) == []
     heavy = runs[0].__class__(**{**runs[0].__dict__, "nfev": 100 * runs[0].nfev})
     assert "struggles" in struggling_runs([heavy], [heavy, *runs[1:]])[0]
+    # the report's warning carries the numbers (DESIGN §12): the file's heavy run against the median of the three
+    # runs at its rtol, by hand
+    import dataclasses
+
+    from gearcli.report.checks import accuracy_checks
+
+    mine = dataclasses.replace(heavy, file_settings=True)
+    ladder = [mine, *runs[1:]]
+    (w,) = [w for w in accuracy_checks(dataclasses.replace(study, runs=tuple(ladder)), "DOP853", 1e-6)
+            if "struggles" in w.message]
+    median = sorted(r.nfev for r in ladder)[1]
+    assert w.data == {"method": mine.method, "method_used": mine.method_used, "rtol": 1e-6, "nfev": mine.nfev,
+                      "median_nfev": median}
 
 
 def test_progress_counts_every_planned_run():
@@ -324,8 +337,14 @@ def test_accuracy_check_says_what_to_use_instead():
 
     study = accuracy_study(FakeSolver(fake_design()), file_method="Radau", file_rtol=1e-3,
                            spec=LadderSpec(rtols=(1e-3, 1e-5), methods=("DOP853", "Radau")))
-    msg = accuracy_checks(study, "Radau", 1e-3)
+    msg = [w.message for w in accuracy_checks(study, "Radau", 1e-3)]
     assert any('do not meet' in m and 'method = "DOP853", rtol = 1e-05' in m for m in msg), msg
+    # its JSON data (DESIGN §12): the file's settings, the accuracy asked, the rung that meets it. By the fake law
+    # error = C rtol^p: Radau at 1e-3 errs 30 x 1e-3 = 3e-2, DOP853 at 1e-5 3 x 1e-5 = 3e-5 (LAW above)
+    (miss,) = [w.data for w in accuracy_checks(study, "Radau", 1e-3) if "do not meet" in w.message]
+    assert miss == {"method": "Radau", "rtol": 1e-3, "requested_accuracy": study.requested_accuracy,
+                    "recommended_method": "DOP853", "recommended_rtol": 1e-5}
+    assert LAW["Radau"][0] * 1e-3 > study.requested_accuracy >= LAW["DOP853"][0] * 1e-5
 
 
 def test_a_failed_reference_is_an_error_not_a_study():
