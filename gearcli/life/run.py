@@ -486,7 +486,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
     if route == "static" and any(p.starts for p in points):
         warnings.append(warning(STARTS_NOT_COUNTED, "the duty's starts ([[duty]] starts) are counted on the dynamic "
                                 "route only (each point's start simulated from rest); --static rates the steady "
-                                "points alone"))
+                                "points alone", points=[p.name for p in points if p.starts],
+                                starts=sum(p.starts for p in points)))
     held_peaks = [tuple(b.static_equivalent_load_N or 0.0 for b in _point_design(scene, p, design_case).design.bearings)
                   for p in held]
     bearings = bearing_lives(evaluated, start_bearings(evaluated), held_peaks)
