@@ -19,6 +19,7 @@ from gearcli.config.machine import table_value
 from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
 from gearcli.design.kinematics import stage_torques_Nmm
+from gearcli.diagnostics import DUTY, Diagnostic, warning
 from gearcli.errors import ConfigError
 from gearcli.stages.design import design_kind
 
@@ -265,12 +266,15 @@ def held_notes(points: Sequence[DutyPoint]) -> list[str]:
             "(ISO 76), not the teeth's static strength, which counts load cycles only" for p in points]
 
 
-def reversal_notes(points: Sequence[DutyPoint]) -> list[str]:
+def reversal_notes(points: Sequence[DutyPoint]) -> list[Diagnostic]:
     """The warning docs/life.md promises for a load reversal: a point with a negative torque loads the back
-    flanks, and is counted by magnitude on the S-N curves of the drive flanks."""
-    return [f"duty point {p.name} ({p.key}): negative torque {p.torque_Nm:.6g} N·m, a load reversal: the back "
-            "flanks carry it; it is counted by magnitude on the drive flanks' S-N curves (mean stress and the back "
-            "flanks' own damage are not modelled, docs/life.md \"Limits\")" for p in points if p.torque_Nm < 0.0]
+    flanks, and is counted by magnitude on the S-N curves of the drive flanks. A duty point's warning: its data
+    carries the ``point`` (docs/output.md, "Warnings"), its ``key`` and ``torque_Nm``."""
+    return [warning(DUTY, f"duty point {p.name} ({p.key}): negative torque {p.torque_Nm:.6g} N·m, a load reversal: the "
+                    "back flanks carry it; it is counted by magnitude on the drive flanks' S-N curves (mean stress and "
+                    "the back flanks' own damage are not modelled, docs/life.md \"Limits\")",
+                    point=p.name, key=p.key, torque_Nm=p.torque_Nm)
+            for p in points if p.torque_Nm < 0.0]
 
 
 def series_notes(time_s: Sequence[float], torque_Nm: Sequence[float], speed_rpm: Sequence[float],

@@ -439,7 +439,7 @@ def _of_point(point: DutyPoint, diags: Sequence[Diagnostic]) -> list[Diagnostic]
 
 def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: CaseDesigner, evaluate: PointEvaluator,
                  route: str = "dynamic", variant: str = "iso",
-                 progress: Callable[[str, int, int], None] | None = None, notes: Sequence[str] = (),
+                 progress: Callable[[str, int, int], None] | None = None, notes: Sequence[str | Diagnostic] = (),
                  base_warnings: Sequence[str] = (), held: Sequence[DutyPoint] = ()) -> LifeResult:
     """The life of every member and bearing over the duty ``points`` of the design file ``scene``; each point
     designed by ``design_case`` (the static route) or simulated by ``evaluate`` (the dynamic route). ``notes``
@@ -451,7 +451,7 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
         raise ConfigError("no duty points: add [[duty]] tables (name, hours, torque_Nm, speed_rpm) or give "
                           "--series FILE.csv", source=scene.source, key="duty")
     evaluated: list[_PointData] = []
-    warnings: list[Diagnostic] = [warning(DUTY, n) for n in notes]
+    warnings: list[Diagnostic] = [n if isinstance(n, Diagnostic) else warning(DUTY, n) for n in notes]
     if route == "static":
         for i, p in enumerate(points):
             progress(p.name, i, len(points))
@@ -486,7 +486,8 @@ def compute_life(scene: Scene, points: Sequence[DutyPoint], *, design_case: Case
     if route == "static" and any(p.starts for p in points):
         warnings.append(warning(STARTS_NOT_COUNTED, "the duty's starts ([[duty]] starts) are counted on the dynamic "
                                 "route only (each point's start simulated from rest); --static rates the steady "
-                                "points alone"))
+                                "points alone", points=[p.name for p in points if p.starts],
+                                starts=sum(p.starts for p in points)))
     held_peaks = [tuple(b.static_equivalent_load_N or 0.0 for b in _point_design(scene, p, design_case).design.bearings)
                   for p in held]
     bearings = bearing_lives(evaluated, start_bearings(evaluated), held_peaks)

@@ -12,6 +12,7 @@ from typing import BinaryIO
 from gearcli.config import LoadedDesign
 from gearcli.config.load import STDIN, input_digest, load_variant, read_input_file, read_stdin
 from gearcli.core.records import record
+from gearcli.diagnostics import Diagnostic
 from gearcli.errors import ConfigError
 from gearcli.life.duty import (
     DEFAULT_CLASSES,
@@ -40,7 +41,7 @@ class Session:
     loaded: LoadedDesign  # the base file
     design: DesignResult  # its design
     points: tuple[DutyPoint, ...]
-    warnings: tuple[str, ...] = ()  # about the duty itself: reverse rows of a series, load reversals
+    warnings: tuple[str | Diagnostic, ...] = ()  # about the duty itself: reverse rows of a series, load reversals
     held: tuple[DutyPoint, ...] = ()  # a history's torques held at standstill: the bearings' s_0 alone
 
 
@@ -108,7 +109,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
         # the history is an input of the run: input_sha256 covers it (a run on another history is another run)
         loaded = replace(loaded, sha256=input_digest(raw, sets, text.encode("utf-8")))
         points = points_from_series(*cols, source=source, classes=classes)
-        notes = series_notes(*cols, source=source)
+        notes: list[str | Diagnostic] = [*series_notes(*cols, source=source)]
         held = held_points(*cols, source=source)
         notes += held_notes(held)
         starts = sum(d.starts for d in loaded.design.duty)
@@ -119,8 +120,10 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     else:
         points, held = points_from_config(loaded.design), []
         _check_names(points, loaded.source)
-        points, notes = _without_empty_points(points, loaded.source)
-    notes += reversal_notes(points)
+        points, empty = _without_empty_points(points, loaded.source)
+        notes = [*empty]
+    notes += reversal_notes(points)  # a duty point's warnings: their data name the point
+
     def variant(point_sets: Sequence[str]):  # the file as a point with its own set runs (its efficiencies)
         return load_variant(raw, loaded.source, (*sets, *point_sets))
 

@@ -350,15 +350,25 @@ def not_converging(runs: Iterable[AccuracyRun], uncertainty: float) -> list[str]
     return out
 
 
-def struggling_runs(runs: Iterable[AccuracyRun], ladder: Iterable[AccuracyRun], factor: float = 5.0) -> list[str]:
+def struggling(runs: Iterable[AccuracyRun], ladder: Iterable[AccuracyRun],
+               factor: float = 5.0) -> list[tuple[AccuracyRun, float]]:
     """Those of ``runs`` whose nfev is more than ``factor`` times the median nfev of the ``ladder``'s
-    runs at the same rtol."""
+    runs at the same rtol, each with that median."""
     ladder = [r for r in ladder if r.failure is None]
     out = []
     for r in (r for r in runs if r.failure is None):
         peers = [p.nfev for p in ladder if same_rtol(p.rtol, r.rtol)]
         if len(peers) >= 3 and r.nfev > factor * statistics.median(peers):
-            out.append(f"{r.method} at rtol {r.rtol:g} needed {r.nfev} function evaluations, "
-                       f"{r.nfev / statistics.median(peers):.0f}x the ladder's median at that rtol: "
-                       "the solver struggles (stiffness or a discontinuity)")
+            out.append((r, float(statistics.median(peers))))
     return out
+
+
+def struggling_text(run: AccuracyRun, median_nfev: float) -> str:
+    return (f"{run.method} at rtol {run.rtol:g} needed {run.nfev} function evaluations, "
+            f"{run.nfev / median_nfev:.0f}x the ladder's median at that rtol: "
+            "the solver struggles (stiffness or a discontinuity)")
+
+
+def struggling_runs(runs: Iterable[AccuracyRun], ladder: Iterable[AccuracyRun], factor: float = 5.0) -> list[str]:
+    """:func:`struggling`'s runs, as sentences."""
+    return [struggling_text(r, median) for r, median in struggling(runs, ladder, factor)]

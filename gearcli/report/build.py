@@ -93,8 +93,8 @@ def build_report(
         except SimulationError as exc:  # the reference failed or diverged, or the study's budget ran out
             failure = str(exc)  # (StudyTooLong): the engineering sections stand; the study's section says why
     checks = (*(dg.warning(dg.ENERGY_RESIDUAL, w, residual=sim.solver.energy_residual) for w in energy_check(sim)),
-              *(dg.warning(dg.SAMPLING, w) for w in sampling_checks(stages, sim.natural_frequencies_Hz, sim_cfg.steps)),
-              *(dg.warning(dg.ACCURACY, w) for w in accuracy_checks(study, sim_cfg.method, sim_cfg.rtol)),
+              *sampling_checks(stages, sim.natural_frequencies_Hz, sim_cfg.steps),
+              *accuracy_checks(study, sim_cfg.method, sim_cfg.rtol),
               *([dg.warning(dg.ACCURACY, study_failed_text(failure), failed=True)] if failure else []))
     warnings = _merge(design.warnings, sim.warnings, dg.messages(checks))
     diagnostics = (*getattr(design, "diagnostics", ()), *sim.diagnostics, *checks)

@@ -205,3 +205,23 @@ def test_the_mixer_duty_config(tmp_path):
             for mode in ("pitting", "bending"):
                 ml = st[member][mode]
                 assert len(ml["bins"]) == 3 and ml["damage"] > 0 and ml["safety"] > 1
+
+
+def test_a_load_reversal_warning_names_its_point(tmp_path):
+    """docs/output.md, "Warnings": a duty point's warnings carry its name as ``point`` (DESIGN §12: a warning's data
+    beside its message). The load-reversal warning named the point in its message only (trial tr24h). The point's
+    bins stand at its |torque| on the drive flanks, by hand: T_pinion = 350 / 3 N·m on the 20-tooth pinion's pitch
+    radius 20 x 4 / cos 15° / 2 mm, F_t = 2813.1 N."""
+    text = RATED + '\n[[duty]]\nname = "reverse"\nhours = 500\ntorque_Nm = -350\nspeed_rpm = 1500\n'
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    res = CliRunner().invoke(cli, ["life", str(path), "--static", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    (rev,) = [w for w in doc["warnings"] if w["code"] == "duty" and "load reversal" in w["message"]]
+    assert rev["point"] == "reverse" and rev["key"] == "duty[3]" and rev["torque_Nm"] == -350.0
+    assert rev["stage"] is None
+    assert f"warning: {rev['message']}" in res.stderr.splitlines()  # the same warning, in the stderr's words
+    r_pinion_mm = 20 * 4 / math.cos(math.radians(15)) / 2
+    (bin_,) = [b for b in doc["life"]["stages"][0]["pinion"]["pitting"]["bins"] if b["point"] == "reverse"]
+    assert_allclose(bin_["force_N"], 350e3 / 3 / r_pinion_mm, rtol=1e-9)

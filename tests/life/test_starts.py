@@ -121,7 +121,14 @@ def test_static_route_says_starts_are_not_counted():
     res = CliRunner().invoke(cli, ["life", str(CONFIG), "--static", "--format", "json", "-q"])
     assert res.exit_code == 0, res.output
     doc = json.loads(res.stdout)
-    assert [w["code"] for w in doc["warnings"] if "dynamic route only" in w["message"]] == ["starts_not_counted"]
+    (w,) = [w for w in doc["warnings"] if "dynamic route only" in w["message"]]
+    assert w["code"] == "starts_not_counted"
+    # its data (DESIGN §12): the points whose starts go uncounted and how many, the file's [[duty]] tables read here
+    import tomllib
+
+    duty = tomllib.loads(CONFIG.read_text())["duty"]
+    assert w["points"] == [d["name"] for d in duty if d.get("starts", 0)]
+    assert w["starts"] == sum(d.get("starts", 0) for d in duty) > 0
 
 
 def test_bearing_static_safety_over_the_duty_takes_the_starts_simulated_peak():

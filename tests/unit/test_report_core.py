@@ -228,6 +228,19 @@ def test_struggling_run_is_flagged_against_the_ladder_median():
     assert struggling_runs(runs, runs) == []
     heavy = runs[0].__class__(**{**runs[0].__dict__, "nfev": 100 * runs[0].nfev})
     assert "struggles" in struggling_runs([heavy], [heavy, *runs[1:]])[0]
+    # the report's warning carries the numbers (DESIGN §12): the file's heavy run against the median of the three
+    # runs at its rtol, by hand
+    import dataclasses
+
+    from gearcli.report.checks import accuracy_checks
+
+    mine = dataclasses.replace(heavy, file_settings=True)
+    ladder = [mine, *runs[1:]]
+    (w,) = [w for w in accuracy_checks(dataclasses.replace(study, runs=tuple(ladder)), "DOP853", 1e-6)
+            if "struggles" in w.message]
+    median = sorted(r.nfev for r in ladder)[1]
+    assert w.data == {"method": mine.method, "method_used": mine.method_used, "rtol": 1e-6, "nfev": mine.nfev,
+                      "median_nfev": median}
 
 
 def test_progress_counts_every_planned_run():
@@ -278,15 +291,45 @@ def test_sampling_check_names_lines_above_nyquist():
     design = fake_design()
     stages = stage_reports(design, fake_simulation(design))  # 2001 samples over 0.5 s: Nyquist 2000 Hz
     assert sampling_checks(stages, (160.0, 900.0)) == []
-    msg = sampling_checks(stages, (160.0, 4700.0))
+    msg = [w.message for w in sampling_checks(stages, (160.0, 4700.0))]
     assert len(msg) == 1 and "4700 Hz" in msg[0] and "simulation.steps" in msg[0]
     # with the run's steps, the value to use. The check's Nyquist is half the sample rate less one bin 1/T:
     # 2000 - 1/0.5 s = 1998 Hz, linear in the steps: 2000 x 1.25 x 4700 / 1998 = 5880.9 -> 5881, whose Nyquist
     # 5881 / (2 x 0.5 s) - 2 Hz = 5879 Hz holds 1.25 x 4700 = 5875 Hz
     (hint,) = sampling_checks(stages, (160.0, 4700.0), 2000)
-    assert "Nyquist frequency 1998 Hz" in hint and hint.endswith("--set simulation.steps=5881 would sample it"), hint
+    assert "Nyquist frequency 1998 Hz" in hint.message, hint
+    assert hint.message.endswith("--set simulation.steps=5881 would sample it"), hint
+    assert hint.data["steps"] == 5881 and hint.data["frequency_Hz"] == 4700.0
     (capped,) = sampling_checks(stages, (4.7e9,), 2000)  # 5.875e9 steps: beyond the schema's 2e6
-    assert "beyond the schema's maximum 2000000" in capped and "duration_s" in capped
+    assert "beyond the schema's maximum 2000000" in capped.message and "duration_s" in capped.message
+    assert capped.data["steps"] is None and capped.data["steps_cap"] == 2_000_000
+
+
+def test_sampling_warning_names_its_stage_and_numbers():
+    """DESIGN §12: a JSON warning carries the diagnostic's data, ``stage`` 1-based where it is about a stage. The
+    report's ``sampling`` warning of a mesh line above the Nyquist frequency named "stage 1" in its message and
+    had ``stage: null`` and no numbers (found by trial tr24h). By hand: the fake train's stage 1 pinion, 20 teeth
+    at 3600 deg/s = 10 rev/s, meshes at 200 Hz, its stage 2 pinion at 1800 deg/s at 100 Hz; 201 samples over
+    0.5 s are 400 samples/s, Nyquist 200 Hz less a bin: stage 1's line is above it, stage 2's below."""
+    from gearcli.diagnostics import SAMPLING, as_dict
+    from gearcli.report.checks import sampling_checks
+
+    design = fake_design()
+    stages = stage_reports(design, fake_simulation(design, n=201))
+    found = sampling_checks(stages, (160.0, 900.0), 200)
+    rows = [as_dict(w) for w in found]
+    assert [r["code"] for r in rows] == [SAMPLING, SAMPLING]
+    mesh, modes = rows
+    assert mesh["stage"] == 1 and mesh["excitation"] == "stage 1 mesh"
+    assert mesh["frequency_Hz"] == pytest.approx(20 * 3600 / 360, rel=1e-12)
+    fs = 200 / 0.5  # samples per second
+    half_bin = fs / 101 / 2  # half the resolution of the window's 101 samples (0.25 ... 0.5 s)
+    assert mesh["nyquist_Hz"] == pytest.approx(fs / 2 - half_bin, rel=1e-12)
+    # the suggested steps sample the line with its 1.25 margin: their Nyquist, about half a bin below fs / 2
+    assert mesh["steps"] / (2 * 0.5) - half_bin >= 1.25 * 200 and mesh["steps_cap"] == 2_000_000
+    assert f"--set simulation.steps={mesh['steps']}" in mesh["message"]
+    assert modes["stage"] is None and modes["natural_frequencies_Hz"] == [900.0] and modes["frequency_Hz"] == 900.0
+    assert modes["steps"] / (2 * 0.5) - half_bin >= 1.25 * 900
 
 
 def test_accuracy_check_says_what_to_use_instead():
@@ -294,8 +337,14 @@ def test_accuracy_check_says_what_to_use_instead():
 
     study = accuracy_study(FakeSolver(fake_design()), file_method="Radau", file_rtol=1e-3,
                            spec=LadderSpec(rtols=(1e-3, 1e-5), methods=("DOP853", "Radau")))
-    msg = accuracy_checks(study, "Radau", 1e-3)
+    msg = [w.message for w in accuracy_checks(study, "Radau", 1e-3)]
     assert any('do not meet' in m and 'method = "DOP853", rtol = 1e-05' in m for m in msg), msg
+    # its JSON data (DESIGN §12): the file's settings, the accuracy asked, the rung that meets it. By the fake law
+    # error = C rtol^p: Radau at 1e-3 errs 30 x 1e-3 = 3e-2, DOP853 at 1e-5 3 x 1e-5 = 3e-5 (LAW above)
+    (miss,) = [w.data for w in accuracy_checks(study, "Radau", 1e-3) if "do not meet" in w.message]
+    assert miss == {"method": "Radau", "rtol": 1e-3, "requested_accuracy": study.requested_accuracy,
+                    "recommended_method": "DOP853", "recommended_rtol": 1e-5}
+    assert LAW["Radau"][0] * 1e-3 > study.requested_accuracy >= LAW["DOP853"][0] * 1e-5
 
 
 def test_a_failed_reference_is_an_error_not_a_study():
