@@ -193,12 +193,17 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
     if start == "soft_start" and not cannot:
         u0 = motor.start_parameters[1]
         t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load_Nm(lay, 0.0)
-        if 0.0 < load and t0 < load:
+        # the load turns the train backwards only past what reaches the motor with the power flowing back (its
+        # torque times eta / i): between that and the forward load / (i eta) the train's losses hold it at rest
+        back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)
+        if 0.0 < load and t0 < back:
             found.append(dg.warning(
                 dg.DESIGN, f'input: drive = "motor": the soft start\'s initial voltage fraction {u0:g} gives {t0:.4g} '
-                f"N·m at standstill (u0² of the locked-rotor torque), below the load reflected to the motor, "
-                f"{load:.4g} N·m: the load turns the train backwards until the voltage has risen to "
+                f"N·m at standstill (u0² of the locked-rotor torque), below the load reflected to the motor as it "
+                f"drives the train backwards through its losses, {back:.4g} N·m (to start forward: {load:.4g} "
+                "N·m): the load turns the train backwards until the voltage has risen to "
                 f"{math.sqrt(load / t0) * u0 if t0 > 0.0 else 1.0:.3g} of full; a higher initial_voltage_fraction, or "
                 "a backstop or a brake holding the load until the motor's torque exceeds it",
-                check="soft_start_rolls_back", initial_voltage_fraction=u0, start_torque_Nm=t0, load_torque_Nm=load))
+                check="soft_start_rolls_back", initial_voltage_fraction=u0, start_torque_Nm=t0, load_torque_Nm=load,
+                back_driving_torque_Nm=back))
     return tuple(found)

@@ -41,6 +41,7 @@ from gearcli.model.elements import machine, mesh
 from gearcli.model.modes import modal_analysis
 from gearcli.model.outputs import tooth_forces
 from gearcli.model.step import ramp, ramp_rates
+from gearcli.simulate import rigid_flow
 from gearcli.simulate.results import StartSummary
 from gearcli.simulate.stats import window_slice
 
@@ -136,6 +137,10 @@ def _tangential(lay: Layout, t: np.ndarray, w: np.ndarray, a: np.ndarray,
         downstream = float(J[b:] @ rho[b:] ** 2) / rho[b]
         torque = downstream * a + load * rho[-1] / rho[b]
         forces[c] = f[c] * torque / x.rb
+    if (walks := rigid_flow.plan(lay, coefficients)) is not None:  # a mesh's power flow against the load's
+        load_b = np.broadcast_to(load, t.shape)
+        for i in np.flatnonzero(rigid_flow.needs_walk_mask(walks, w, a, load_b)):
+            forces[:, i] = rigid_flow.walk(walks, float(w[i]), float(a[i]), float(load_b[i]))[1]
     ft = np.array([tooth_forces(lay, k, forces[c])[0] for k, c in enumerate(lay.stage_conn)])
     return load, forces, ft
 
@@ -196,6 +201,13 @@ def _stage_force(lay: Layout, k: int, coefficients: tuple) -> Callable[[float, f
     b = x.b
     downstream = float(float(J[b:] @ rho[b:] ** 2) / rho[b])
     rho_b, fc, rb = float(rho[b]), float(f[c]), float(x.rb)
+    if (walks := rigid_flow.plan(lay, coefficients)) is not None:
+        def walked(t: float, w: float, a: float) -> float:
+            load = load_at(t, w * rho_n)
+            if rigid_flow.needs_walk(walks, w, a, load):
+                return rigid_flow.walk(walks, w, a, load)[1][c] * cos_a
+            return fc * (downstream * a + load * rho_n / rho_b) / rb * cos_a
+        return walked
     return lambda t, w, a: fc * (downstream * a + load_at(t, w * rho_n) * rho_n / rho_b) / rb * cos_a
 
 
@@ -300,9 +312,14 @@ def _integrate_on_grid(lay: Layout, duration_s: float, samples: int) -> tuple:
                 return machine.motor_torque(row, tt, w)[0]
             return float(ramp(tt, lay.drive.ramp_s, lay.drive.torque_Nm))
 
+        walks = rigid_flow.plan(lay, coefficients)  # a mesh's power flow may turn against the load's
+
         def rhs(tt: float, y: np.ndarray) -> list[float]:
             load = float(_load_torque(lay, tt, y[0] * rho[-1]))
-            return [(drive(tt, y[0]) - f0 * rho[-1] * load) / j_eff]
+            a0 = (drive(tt, y[0]) - f0 * rho[-1] * load) / j_eff
+            if walks is not None and rigid_flow.needs_walk(walks, float(y[0]), a0, load):
+                return [rigid_flow.acceleration(walks, float(y[0]), drive(tt, y[0]), load, a0)]
+            return [a0]
 
         w0 = 0.0 if lay.motor_drive else lay.drive.speed_rad_s  # as the simulation: a torque drive at its nominal speed
         sol = solve_ivp(rhs, (0.0, duration_s), [w0], method="LSODA", rtol=1e-9, atol=1e-9,

@@ -117,3 +117,23 @@ def test_a_speed_rpm_off_the_motors_operating_point_is_warned_before_any_run():
     assert "runs at 1460 rpm" in w["message"]
     assert not _mismatch(rated)  # speed_rpm where the curve carries the load
     assert not _mismatch(rated, "input.speed_rpm=1440")  # within 2 %
+
+
+@pytest.mark.parametrize(("start_Nm", "rolls"), [(85.0, True), (92.0, False)])
+def test_a_soft_start_held_by_the_train_s_losses_is_not_said_to_roll_back(start_Nm, rolls):
+    """The load turns the train backwards only where it overcomes the motor through the train with the power flowing
+    back: 1300 N m eta² / i = 88.36 N m at the motor; to start forward the motor needs 1300 / (i eta²) = 95.80 N m.
+    Between the two the losses hold the train at rest until the voltage rises (a soft start at 92 N m was warned as
+    rolling back; simulate shows it standing, no motor_rolls_back)."""
+    back, forward = 1300 * TRAIN / (75 / 19 * 68 / 19) ** 2, 1300 / TRAIN
+    assert back < 88.5 < 95.7 < forward and (start_Nm < back) is rolls
+    u0 = math.sqrt(start_Nm / T_LOCKED)
+    res = CliRunner().invoke(cli, ["design", str(CONFIG.with_name("motor_soft_start.toml")), "--format", "json", "-q",
+                                   "--set", f"input.initial_voltage_fraction={u0!r}"])
+    assert res.exit_code == 0, res.output
+    found = [w for w in json.loads(res.stdout)["warnings"] if w.get("check") == "soft_start_rolls_back"]
+    assert bool(found) is rolls
+    if rolls:
+        assert_allclose(found[0]["start_torque_Nm"], start_Nm, rtol=1e-9)
+        assert_allclose(found[0]["back_driving_torque_Nm"], back, rtol=1e-9)
+        assert_allclose(found[0]["load_torque_Nm"], forward, rtol=1e-9)
