@@ -18,6 +18,7 @@ from numpy.testing import assert_allclose
 
 from gearcli.config.schema import DesignFile
 from gearcli.design import compute_design
+from gearcli.design.rating_factors import contact_ratio_factor
 
 MN, Z1, Z2, X, B = 3.0, 90, 180, 0.1, 40.0
 E, NU = 206000.0, 0.3
@@ -102,3 +103,11 @@ def test_below_three_the_standard_formula_stands():
     r = compute_design(DesignFile.model_validate(_doc(20.0, 1.6))).stages[0].rating
     assert_allclose(r.Z_eps, math.sqrt((4 - hand["eps_a"]) / 3), rtol=1e-12)
     assert r.Z_eps > math.sqrt(1 / hand["eps_a"])
+
+
+@pytest.mark.parametrize(("eps_a", "eps_b"), [(0.6, 0.0), (0.5114523, 0.0185185), (0.9, 0.5), (1.5, 0.3), (2.95, 0.0)])
+def test_up_to_three_every_z_eps_is_the_standards(eps_a, eps_b):
+    """Below ε_α = 1 (a warned discontinuous mesh) 1/ε_α lies above ISO's term as well: the floor must not reach
+    there (it raised Z_ε 1.085 to 1.399 at ε_α 0.51 in a first version of this fix), nor anywhere up to 3."""
+    assert_allclose(contact_ratio_factor(eps_a, eps_b), math.sqrt((4 - eps_a) / 3 * (1 - eps_b) + eps_b / eps_a),
+                    rtol=1e-15)
