@@ -409,6 +409,11 @@ def _member(cfg: DesignFile, k: int, st: StageResult, mesh: _Mesh, lf: LoadFacto
                           f"{form['theta_residual']:.2g} rad; a small, far-shifted tooth at a low pressure angle): "
                           "change the profile shift, the tooth count or the pressure angle to rate it",
                           key=f"stage[{k}].{('pinion', 'gear')[i]}.profile_shift")
+    if form["rho_F"] == 0.0 and form["s_Fn"] > 0.0 and form["h_Fe"] > 0.0:
+        raise DesignError(f"the root fillet of this {g.teeth}-tooth member has no radius (ρ_F = 0: the basic rack's "
+                          "root_radius 0 with the tool's corner on the reference line, x = h_fP*): ISO 6336-3's notch "
+                          "parameter q_s = s_Fn/(2 ρ_F) and Y_S are unbounded; give basic_rack.root_radius > 0 (ISO 53: "
+                          "0.38) to rate it", key=f"stage[{k}].basic_rack.root_radius")
     if not (form["s_Fn"] > 0.0 and form["rho_F"] > 0.0 and form["h_Fe"] > 0.0):
         raise DesignError(f"the root of this {g.teeth}-tooth member is undercut so far that ISO 6336-3 (method B) "
                           f"finds no critical section (s_Fn = {form['s_Fn']:.3g} mm, ρ_F = {form['rho_F']:.3g} mm): "

@@ -244,10 +244,19 @@ def elasticity_factor(e1: float, nu1: float, e2: float, nu2: float) -> float:
 
 
 def contact_ratio_factor(eps_alpha: float, eps_beta: float) -> float:
-    """Z_ε (ISO 6336-2:2006, 8): √((4 − ε_α)/3 (1 − ε_β) + ε_β/ε_α) for ε_β < 1, √(1/ε_α) for ε_β ≥ 1."""
+    """Z_ε (ISO 6336-2:2006, 8): √((4 − ε_α)/3 (1 − ε_β) + ε_β/ε_α) for ε_β < 1, √(1/ε_α) for ε_β ≥ 1; beyond
+    ε_α = 3 never below √(1/ε_α), the load shared equally by ε_α pairs (the standard's own value for ε_β ≥ 1).
+
+    The floor acts only beyond ε_α = 3, where (4 − ε_α)/3 crosses 1/ε_α: ISO 6336-2's scope ends before that
+    (ε_αn < 2.5, the ``contact_ratio_virtual`` warning), and the spur term falls to 0 at ε_α = 4 and below 0 after
+    it (Z_ε 0.065 at ε_α 3.99, σ_H an eighth of the stress; a math domain error at 4). Up to ε_α = 3 every Z_ε is
+    the standard's (between 1 and 3 the ε_β < 1 form, a weighted mean of (4 − ε_α)/3 and 1/ε_α, is at least 1/ε_α;
+    below 1, a warned discontinuous mesh, 1/ε_α lies above it and the standard's value stands).
+    """
     if eps_beta >= 1.0:
         return math.sqrt(1.0 / eps_alpha)
-    return math.sqrt((4.0 - eps_alpha) / 3.0 * (1.0 - eps_beta) + eps_beta / eps_alpha)
+    value = (4.0 - eps_alpha) / 3.0 * (1.0 - eps_beta) + eps_beta / eps_alpha
+    return math.sqrt(max(value, 1.0 / eps_alpha) if eps_alpha > 3.0 else value)
 
 
 def helix_factor_pitting(helix_rad: float) -> float:

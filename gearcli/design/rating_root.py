@@ -95,10 +95,12 @@ def tooth_form(teeth: int, normal_module: float, normal_pressure_rad: float, hel
     h_fe = 0.5 * m * ((math.cos(gamma_e) - math.sin(gamma_e) * math.tan(alpha_fen)) * d_en / m
                       - z_n * math.cos(math.pi / 3.0 - theta) - g / math.cos(theta) + rho_fp / m)
     y_f = 6.0 * (h_fe / m) * math.cos(alpha_fen) / ((s_fn / m) ** 2 * math.cos(an))
-    ell = s_fn / h_fe
-    q_s = s_fn / (2.0 * rho_f)
+    ell = s_fn / h_fe if h_fe != 0.0 else math.nan
+    # a sharp root (ρ_F = 0: a rack without tip radius whose corner rolls on the reference line, G = 0): no notch
+    # parameter, as on the internal gear below
+    q_s = s_fn / (2.0 * rho_f) if rho_f > 0.0 else math.inf
     # no section (s_Fn, h_Fe or ρ_F ≤ 0, the caller's exit 2): Y_S is not defined there (a complex power)
-    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell)) if q_s > 0.0 and ell > 0.0 else math.nan
+    y_s = (1.2 + 0.13 * ell) * q_s ** (1.0 / (1.21 + 2.3 / ell)) if 0.0 < q_s < math.inf and ell > 0.0 else math.nan
     return {"Y_F": y_f, "Y_S": y_s, "s_Fn": s_fn, "h_Fe": h_fe, "rho_F": rho_f, "alpha_Fen": alpha_fen,
             "q_s": q_s, "d_en": d_en, "theta_residual": residual}
 
