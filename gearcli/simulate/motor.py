@@ -269,15 +269,18 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
     if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= load:
         return []
     turns = float(np.nonzero(w_motor < 0.0)[0].size) / max(w_motor.size, 1)
+    back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)  # what turns it back (design's check)
     consequence = ("the run's numbers are no forward operating point" if window_from_s is None else
                    "the start's time and peak forces include the roll-back; the motor then runs up, before the "
                    f"statistics window ({window_from_s:.4g} s on), whose numbers are the operating point's")
     return [dg.warning(dg.MOTOR_ROLLS_BACK, f"the load turns the train backwards during the start: the motor reaches "
                        f"{low * RAD_S_TO_RPM:.4g} rpm at {float(t[i]):.4g} s ({100 * turns:.2g} % of the run backwards): "
                        f"its {motor.starting} start gives {t0:.4g} N·m at standstill at t = 0, below the load reflected "
-                       f"to the motor, {load:.4g} N·m; {consequence}; it needs {STANDSTILL_CURE.get(motor.starting, '')}"
+                       f"to the motor as it drives the train backwards through its losses, {back:.4g} N·m (to start "
+                       f"forward: {load:.4g} N·m); {consequence}; it needs {STANDSTILL_CURE.get(motor.starting, '')}"
                        "a backstop or a brake holding the load until the motor's torque exceeds it",
-                       reverse_speed_rpm=low * RAD_S_TO_RPM, start_torque_Nm=t0, load_torque_Nm=load)]
+                       reverse_speed_rpm=low * RAD_S_TO_RPM, start_torque_Nm=t0, load_torque_Nm=load,
+                       back_driving_torque_Nm=back)]
 
 
 def _reswitches(motor: MotorSpec, t: np.ndarray, w_motor: np.ndarray) -> list[Diagnostic]:

@@ -37,6 +37,9 @@ def test_a_soft_start_below_the_load_at_standstill_is_warned_with_its_torques():
     assert_allclose(w["start_torque_Nm"], 0.5**2 * 2.3 * t_rated, rtol=1e-9)
     # the 1300 N m load reflected to the motor: / (75/19 · 68/19) / 0.98² (power flows forward through both stages)
     assert_allclose(w["load_torque_Nm"], 1300 / (75 / 19 * 68 / 19) / 0.98**2, rtol=1e-9)
+    # what turns the train back is the load reflected with the power flowing back: x 0.98² (the losses help hold it)
+    assert_allclose(w["back_driving_torque_Nm"], 1300 / (75 / 19 * 68 / 19) * 0.98**2, rtol=1e-9)
+    assert f"{w['back_driving_torque_Nm']:.4g} N·m (to start forward: {w['load_torque_Nm']:.4g} N·m)" in w["message"]
     # the net torque at standstill is negative, so the train must turn backwards: by more than 1 % of 1500 rpm
     assert w["reverse_speed_rpm"] < -15.0
 
