@@ -372,6 +372,15 @@ BROKEN = {
                                              "simulate", 2, "its table ChainStage has no shaft, efficiency: every"),
     "a table whose type names another kind": ([('type: Literal["test_chain"]', 'type: Literal["test_chains"]')],
                                               "design", 2, "its table ChainStage has type typing.Literal['test_chains']"),
+    # a line of numbers the model cannot integrate: named where the plug-in returns them, not a run whose chain
+    # carries nothing (a negative spring never pulls: exit 0, a 14 m "stretch") nor gearcli's "internal error"
+    "a line of negative stiffness": ([("stiffness_N_m_e=st.stiffness_N_m,", "stiffness_N_m_e=-st.stiffness_N_m,")],
+                                     "simulate", 1, "its model facet's line raised ValueError: "
+                                     "MeshSpec.stiffness_N_m_e must be a finite number > 0, got -20000000.0"),
+    "a line of a zero lever": ([("MeshSpec(base_radius_pinion_m=r1,", "MeshSpec(base_radius_pinion_m=0.0,")],
+                               "simulate", 1, "MeshSpec.base_radius_pinion_m must be a finite number > 0, got 0.0"),
+    "a line of a NaN static force": ([("static_tangential_N=st.chain_force_N,", "static_tangential_N=math.nan,")],
+                                     "simulate", 1, "MeshSpec.static_tangential_N must be a finite number, got nan"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
