@@ -21,6 +21,7 @@ from gearcli.config.schema_rules import MAX_SPEED_RPM, MAX_TORQUE_NMM
 from gearcli.core.records import record
 from gearcli.design.kinematics import pinion_torque_Nmm
 from gearcli.errors import ConfigError
+from gearcli.stages import kinds
 
 MAX_SERIES_ROWS = 2_000_000
 #: the shortest time step of a history (a 1 GHz logger's): 5e-324 s steps made a class's hours 0 (an internal
@@ -107,7 +108,7 @@ def toml_value(value: Any) -> str:
 
 def stage_ratio(stage) -> float:
     """|input speed / output speed| of a stage (its table's: z_gear / z_pinion, a planetary stage's Willis ratio)."""
-    return float(stage.speed_ratio)
+    return float(kinds.table_figure(stage, "speed_ratio"))
 
 
 def points_from_config(cfg) -> list[DutyPoint]:

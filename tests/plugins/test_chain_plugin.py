@@ -381,6 +381,24 @@ BROKEN = {
                                "simulate", 1, "MeshSpec.base_radius_pinion_m must be a finite number > 0, got 0.0"),
     "a line of a NaN static force": ([("static_tangential_N=st.chain_force_N,", "static_tangential_N=math.nan,")],
                                      "simulate", 1, "MeshSpec.static_tangential_N must be a finite number, got nan"),
+    # a plug-in's sys.exit() ended the command with its code and no word (exit 0, no output: a script read success);
+    # a table property that raises was gearcli's "internal error" (the schema's validation reads speed_ratio)
+    "sys.exit() in a facet": ([("    def diagnostics(self, result):\n        return ()",
+                                "    def diagnostics(self, result):\n        raise SystemExit(0)")], "design", 1,
+                              "its design facet's diagnostics raised SystemExit: 0"),
+    "sys.exit() on import": ([("KIND = ", "raise SystemExit(0)\nKIND = ")], "design", 2,
+                             "(gearcli_test_chain:register) failed to load: SystemExit: 0"),
+    "sys.exit() in a stage model's place": ([("        n = len(bodies)\n", "        raise SystemExit(0)\n")],
+                                            "simulate", 1, "its stage model's place raised SystemExit: 0"),
+    "sys.exit() in a standard": ([("    def check_inputs(self, cfg):\n", "    def check_inputs(self, cfg):\n"
+                                   "        raise SystemExit(0)\n")], "design-rated", 1,
+                                 f'rating standard "{STD}" (gearcli_test_chain): check_inputs raised SystemExit: 0'),
+    "a table's speed_ratio that raises": ([("        return self.driven_teeth / self.driver_teeth",
+                                            "        raise RuntimeError('no sprockets')")], "design", 1,
+                                          f'stage type "{KIND}" (gearcli_test_chain): its table\'s speed_ratio '
+                                          "raised RuntimeError: no sprockets"),
+    "a table's efficiency that raises": ([("        return self.chain_efficiency", "        raise RuntimeError('no eta')")],
+                                         "simulate", 1, "its table's efficiency raised RuntimeError: no eta"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
