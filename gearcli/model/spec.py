@@ -144,7 +144,14 @@ class MotorSpec:
         if not 0 < rated_speed_rad_s < synchronous_speed_rad_s:
             raise ValueError("the rated speed must lie between 0 and the synchronous speed")
         t_r = rated_power_W / rated_speed_rad_s
-        sb, a = kloss_fit(t_r, breakdown_ratio, locked_ratio, 1.0 - rated_speed_rad_s / synchronous_speed_rad_s)
+        slip = 1.0 - rated_speed_rad_s / synchronous_speed_rad_s
+        try:
+            sb, a = kloss_fit(t_r, breakdown_ratio, locked_ratio, slip)
+        except (ZeroDivisionError, OverflowError):  # k_lr -> 0: a -> -1/s_b, the curve (s - s_b)^2 = 0 everywhere
+            raise ValueError(f"no Kloss curve passes through these nameplate points (breakdown ratio "
+                             f"{breakdown_ratio:g}, locked-rotor ratio {locked_ratio:g}, rated slip {slip:.4g}: the "
+                             "curve degenerates; an induction motor's locked-rotor torque is some 0.5 to 3 x its "
+                             "rated torque)") from None
         return cls(synchronous_speed_rad_s, breakdown_torque_Nm=breakdown_ratio * t_r, breakdown_slip=sb,
                    kloss_a=a, rated_torque_Nm=t_r, rated_speed_rad_s=rated_speed_rad_s,
                    base_speed_rad_s=synchronous_speed_rad_s, **start)
