@@ -399,6 +399,10 @@ BROKEN = {
                                           "raised RuntimeError: no sprockets"),
     "a table's efficiency that raises": ([("        return self.chain_efficiency", "        raise RuntimeError('no eta')")],
                                          "simulate", 1, "its table's efficiency raised RuntimeError: no eta"),
+    # a non-finite figure in its result: the plug-in's (exit 1), not "check module, face width, density" (exit 2)
+    "a result holding NaN": ([("chain_force_N=t_in / r1,", "chain_force_N=math.nan,")], "design", 1,
+                             f'stage type "{KIND}" (gearcli_test_chain): its design facet\'s result for stage 2 has a '
+                             "non-finite chain_force_N (nan)"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
