@@ -43,7 +43,7 @@ from gearcli.model.assembly import Layout
 from gearcli.model.modes import BOUNDARIES, campbell_data, modal_analysis
 from gearcli.model.spec import ElementSpec, ModelSpec
 from gearcli.results import DesignResult
-from gearcli.scene import build_model, motor_start_warnings, resonance_diagnostics, spec_from_design
+from gearcli.scene import build_model, motor_spec, motor_start_warnings, resonance_diagnostics, spec_from_design
 
 if TYPE_CHECKING:
     from gearcli.diagnostics import Diagnostic
@@ -113,10 +113,15 @@ def design(loaded: LoadedDesign, overrides: Sequence[str] = ()) -> DesignResult:
     """The design calculations of a loaded file; an infeasible design raises
     :class:`~gearcli.errors.DesignError` naming the file, or the ``--set`` whose value it is about."""
     try:  # written in the units of the file's keys (docs/output.md, "Units")
-        return dataclasses.replace(design_layer.compute_design(loaded.design), units=key_units(loaded.design))
+        result = dataclasses.replace(design_layer.compute_design(loaded.design), units=key_units(loaded.design))
     except DesignError as exc:
         source = SOURCE if blames_key(exc.key, overrides) else loaded.source
         raise DesignError(exc.message, key=exc.key, source=source) from exc
+    try:  # a nameplate no Kloss curve passes through: named now, with its file, not by the model's first build
+        motor_spec(loaded.design.input)
+    except ConfigError as exc:
+        raise _located(exc, loaded, overrides) from None
+    return result
 
 
 def load_and_design(path: str, overrides: Sequence[str] = (), *,

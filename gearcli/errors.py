@@ -59,6 +59,12 @@ class PluginError(GearcliError):
     returned what its protocol does not allow: the message names the plug-in, what was asked and what it did."""
 
 
+#: what third-party code (a plug-in's facet, standard, table property or register) may raise that gearcli names as
+#: the plug-in's fault: any Exception, and SystemExit (a plug-in's ``sys.exit()`` ended the command silently, with
+#: its code: exit 0 and no output); KeyboardInterrupt stays the user's Ctrl-C
+PLUGIN_FAULTS: tuple[type[BaseException], ...] = (Exception, SystemExit)
+
+
 class PluginConflict(PluginError, NameConflict):
     """Two registrants of one stage type or rating standard name (two plug-ins, or a plug-in and gearcli's own
     built-in name): refused, naming both and the name (docs/plugins.md, "Names")."""

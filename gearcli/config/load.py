@@ -82,20 +82,22 @@ def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | N
     data = _parse(raw, source)
     paths = _overrides.apply_all(data, overrides)
     design = _validate(data, source, paths)
-    _check_duty_sets(data, design, source)
+    _check_duty_sets(data, design, source, paths)
     return LoadedDesign(design=design, source=source, sha256=_digest(raw, overrides), raw=data)
 
 
-def _check_duty_sets(data: dict, design: DesignFile, source: str) -> None:
+def _check_duty_sets(data: dict, design: DesignFile, source: str, paths: Sequence[tuple] = ()) -> None:
     """Each ``[[duty]]`` point's ``set`` applied to the file and validated, by every command that loads it, as every
     other key of the file is (``gearcli life`` designs each point with it; ``design`` or ``simulate`` passed a typo
     there). A bad key or value is named ``duty[i].set.KEY`` as ``life`` names it; a value valid alone that breaks
-    another key names the point and that key."""
+    another key names the point and that key; ``--set`` is the source where one wrote the point's set (``paths``:
+    the written paths) or, for a rule between keys, the key named."""
     rest = {k: v for k, v in data.items() if k != "duty"}  # a set never writes the duty (Duty refuses duty.…)
     for i, duty in enumerate(design.duty):
         if not duty.set:
             continue
         variant = _copied(rest)  # without the other points: one point's check does not grow with their number
+        set_source = _overrides.SOURCE if _overrides.blamed(("duty", i, "set"), paths) else source
         written = {}  # each key the point sets, by its path
         for key, value in duty.set.items():
             ov = _overrides.parse(f"{key}=0")
@@ -103,14 +105,16 @@ def _check_duty_sets(data: dict, design: DesignFile, source: str) -> None:
             try:
                 _overrides.apply(variant, _overrides.Override(f"{key}={value}", ov.key, ov.path, value))
             except ConfigError as exc:
-                raise ConfigError(exc.message, source=source, key=f"duty[{i}].set.{exc.key}") from None
+                raise ConfigError(exc.message, source=set_source, key=f"duty[{i}].set.{exc.key}") from None
         try:
             validate_design(variant)
         except ValidationError as exc:
             path, text = translate(exc)[0]
             key = format_path(path)
             own = written.get(tuple(path))
-            raise ConfigError(text if own else f"duty[{i}] ({duty.name}): {text}", source=source,
+            blame = set_source if own or set_source != source else \
+                (_overrides.SOURCE if _overrides.blamed(path, paths) else source)
+            raise ConfigError(text if own else f"duty[{i}] ({duty.name}): {text}", source=blame,
                               key=f"duty[{i}].set.{own}" if own else key or None) from None
 
 

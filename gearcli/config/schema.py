@@ -283,7 +283,7 @@ class DesignFile(_Table):
     def _load_power_to_torque(self) -> "DesignFile":
         """[load] power_kW becomes the output torque at the nominal output speed, ω_in / Π z_gear/z_pinion;
         a [load] torque_speed table gives its torque at that speed."""
-        ratio = math.prod(s.speed_ratio for s in self.stage)
+        ratio = math.prod(kinds.table_figure(s, "speed_ratio") for s in self.stage)
         if self.load.power_kW is not None:
             load = self.load.model_copy()  # never write into a Load another DesignFile may share
             load._torque_from_power_Nm = self.load.power_kW * 1000.0 * ratio / self.input.speed_rad_s_value

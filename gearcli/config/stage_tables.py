@@ -173,6 +173,8 @@ def kinds_named(data: dict) -> frozenset[str] | None:
         return None
     used = frozenset(_stage_tag(s) for s in stages)
     registered = set(kinds.kinds("table"))
+    if not used:  # `stage = []`: no kind named, and a union of none is no validator (its error is the list's length)
+        return frozenset((kinds.PARALLEL,))
     return used if used < registered else None
 
 

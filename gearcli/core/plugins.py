@@ -135,7 +135,8 @@ def _load_one(ep: EntryPoint) -> str:
             obj()
     except NameConflict:  # not this plug-in's failure alone: the load ends (module text)
         raise
-    except Exception as exc:  # any error of third-party code: reported with the name that needs it
+    except (Exception, SystemExit) as exc:  # any error of third-party code (its sys.exit() too: errors.PLUGIN_FAULTS),
+        # reported with the name that needs it
         text = " ".join(str(exc).split())[:300]
         return f"{ep.name!r} ({ep.value}) failed to load: {type(exc).__name__}: {text}"
     finally:

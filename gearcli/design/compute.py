@@ -28,7 +28,7 @@ from gearcli.design.inputs import check_inputs
 from gearcli.design.kinematics import Train, mesh_frequency_Hz, power_kW, speed_deg_s, speed_rpm, train_from_ratios
 from gearcli.design.standards import standard_of
 from gearcli.diagnostics import DESIGN, Diagnostic, warning
-from gearcli.errors import DesignError
+from gearcli.errors import DesignError, PluginError
 from gearcli.results import (
     DesignResult,
     GearResult,
@@ -79,7 +79,7 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     except DesignError as exc:
         raise DesignError(exc.message, key=file_key(cfg, exc.key), source=exc.source) from None
     for k, stage in enumerate(stages):
-        _require_finite(stage, f"stage[{k}]")
+        _require_finite(stage, f"stage[{k}]", kinds.kind_of(stage), getattr(kind[k], "origin", None))
     out = kin.shaft_speeds_rad_s[-1]
     own = tuple(d for k, st in enumerate(stages) for d in checked_diagnostics(st, kind[k].diagnostics(st)))
     jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
@@ -209,19 +209,34 @@ def _left_unrated(standard: str, stages: tuple[StageResult, ...],
     return tuple(out)
 
 
-def _require_finite(obj, key: str) -> None:
+def _require_finite(obj, key: str, kind: str = kinds.PARALLEL, origin: str | None = None) -> None:
     """Every number of a stage result must be finite; a value in range that still overflows (a huge
-    module with a huge density) is a bad design file, not a result (exit 2, never inf in the output)."""
+    module with a huge density) is a bad design file, not a result (exit 2, never inf in the output). A plug-in
+    kind's result (``origin`` its module) that holds one is the plug-in's fault (exit 1 naming it): its table's
+    bounds are its own, and the design file has no module or density to check."""
+    found = _non_finite(obj)
+    if found is None:
+        return
+    name, value = found
+    if origin is not None and origin.split(".")[0] != "gearcli":
+        raise PluginError(f'stage type "{kind}" ({origin}): its design facet\'s result for stage {obj.index} has a non-finite '
+                          f'{name} ({value}) (docs/plugins.md, "A stage kind")')
+    raise DesignError(f"the design gives a non-finite {name} ({value}): check the magnitudes of "
+                      "module, face width, density, speed and torque", key=key)
+
+
+def _non_finite(obj) -> tuple[str, float] | None:
+    """The first float field of ``obj`` (a dataclass, nested ones searched) that is not finite, with its value."""
     names, values = _dataclass_fields(type(obj)) or ((), _NO_FIELDS)
     for name, value in zip(names, values(obj), strict=True):
         if isinstance(value, float):
             if not math.isfinite(value):
-                raise DesignError(f"the design gives a non-finite {name} ({value}): check the magnitudes of "
-                                  "module, face width, density, speed and torque", key=key)
+                return name, value
         elif value.__class__ in _FIELDS and _FIELDS[value.__class__] is None:
             continue  # a class known not to be a dataclass (a str, an int, a tuple, None)
-        elif _dataclass_fields(type(value)) is not None:
-            _require_finite(value, key)
+        elif _dataclass_fields(type(value)) is not None and (found := _non_finite(value)) is not None:
+            return found
+    return None
 
 
 _NO_FIELDS = fields_getter(())

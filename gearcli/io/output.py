@@ -147,6 +147,14 @@ def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str =
         raise _refuse(given, f"no such directory: {missing}")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise _refuse(given, f"directory not writable: {shorten(str(Path(given).parent))}")
+    try:  # access() passes for root, and on a filesystem that takes no new entries (/proc): the atomic write's
+        # temporary file is made there, so try one now, not after the computing
+        fd, probe = tempfile.mkstemp(prefix=".gearcli-probe-", dir=parent)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        raise _refuse(given, f"cannot write in {shorten(str(Path(given).parent) or '.')}: "
+                             f"{exc.strerror or exc}") from None
     return target
 
 

@@ -21,6 +21,7 @@ from gearcli.core.records import record
 from gearcli.design.kinematics import stage_torques_Nmm
 from gearcli.diagnostics import DUTY, Diagnostic, warning
 from gearcli.errors import ConfigError
+from gearcli.stages import kinds
 from gearcli.stages.design import design_kind
 
 MAX_SERIES_ROWS = 2_000_000
@@ -118,7 +119,7 @@ def toml_value(value: Any) -> str:
 
 def stage_ratio(stage) -> float:
     """|input speed / output speed| of a stage (its table's: z_gear / z_pinion, a planetary stage's Willis ratio)."""
-    return float(stage.speed_ratio)
+    return float(kinds.table_figure(stage, "speed_ratio"))
 
 
 def points_from_config(cfg) -> list[DutyPoint]:

@@ -65,6 +65,9 @@ class MeshSpec:
     linearisation_line_force_N: float = 0.0
 
     def __post_init__(self) -> None:
+        problem = _mesh_problem(self)
+        if problem is not None:  # a plug-in's line (docs/plugins.md) or a script's spec: named, not NaN output
+            raise ValueError(f"MeshSpec.{problem}")
         if len(self.transmission_error_phase_rad) > len(self.transmission_error_m) or \
                 len(self.stiffness_harmonics_phase_rad) > len(self.stiffness_harmonics):
             raise ValueError("more harmonic phases than amplitudes")
@@ -76,6 +79,36 @@ class MeshSpec:
     @property
     def cos_beta_b(self) -> float:
         return math.cos(self.base_helix_angle_rad)
+
+
+#: MeshSpec's numbers and what each must be: (fields, test, wording); every one finite
+_MESH_RULES: tuple[tuple[tuple[str, ...], Callable[[float], bool], str], ...] = (
+    (("base_radius_pinion_m", "base_radius_gear_m", "stiffness_N_m_e", "full_damping_m", "contact_ratio"),
+     lambda v: v > 0, "a finite number > 0"),
+    (("base_helix_angle_rad", "transverse_pressure_angle_rad", "helix_angle_rad"),
+     lambda v: abs(v) < math.pi / 2, "a finite angle below pi/2 rad"),
+    (("exponent", "pinion_teeth"), lambda v: v >= 1, "a finite number >= 1"),
+    (("efficiency",), lambda v: 0 < v <= 1, "a number in (0, 1]"),
+    (("damping_Ns_m", "backlash_m", "overlap_ratio", "normal_module_m", "iso_normal_stiffness_N_m",
+      "linearisation_line_force_N"), lambda v: v >= 0, "a finite number >= 0"),
+    (("static_tangential_N", "contact_phase_cycles"), lambda v: True, "a finite number"),
+)
+
+
+def _mesh_problem(spec: MeshSpec) -> str | None:
+    """What of ``spec`` the model cannot integrate (a non-finite number, a lever or stiffness <= 0, ...), as
+    ``field must be ..., got value``; None when every field holds."""
+    for names, ok, wording in _MESH_RULES:
+        for name in names:
+            v = getattr(spec, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and ok(v)):
+                return f"{name} must be {wording}, got {v!r}"
+    for name in ("transmission_error_m", "transmission_error_phase_rad", "stiffness_harmonics",
+                 "stiffness_harmonics_phase_rad"):
+        values = getattr(spec, name)
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in values):
+            return f"{name} must hold finite numbers, got {values!r}"
+    return None
 
 
 @record
@@ -111,7 +144,14 @@ class MotorSpec:
         if not 0 < rated_speed_rad_s < synchronous_speed_rad_s:
             raise ValueError("the rated speed must lie between 0 and the synchronous speed")
         t_r = rated_power_W / rated_speed_rad_s
-        sb, a = kloss_fit(t_r, breakdown_ratio, locked_ratio, 1.0 - rated_speed_rad_s / synchronous_speed_rad_s)
+        slip = 1.0 - rated_speed_rad_s / synchronous_speed_rad_s
+        try:
+            sb, a = kloss_fit(t_r, breakdown_ratio, locked_ratio, slip)
+        except (ZeroDivisionError, OverflowError):  # k_lr -> 0: a -> -1/s_b, the curve (s - s_b)^2 = 0 everywhere
+            raise ValueError(f"no Kloss curve passes through these nameplate points (breakdown ratio "
+                             f"{breakdown_ratio:g}, locked-rotor ratio {locked_ratio:g}, rated slip {slip:.4g}: the "
+                             "curve degenerates; an induction motor's locked-rotor torque is some 0.5 to 3 x its "
+                             "rated torque)") from None
         return cls(synchronous_speed_rad_s, breakdown_torque_Nm=breakdown_ratio * t_r, breakdown_slip=sb,
                    kloss_a=a, rated_torque_Nm=t_r, rated_speed_rad_s=rated_speed_rad_s,
                    base_speed_rad_s=synchronous_speed_rad_s, **start)

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 from gearcli.core import plugins
 from gearcli.core.text import shorten
 from gearcli.diagnostics import Diagnostic
-from gearcli.errors import GearcliError, PluginError
+from gearcli.errors import PLUGIN_FAULTS, GearcliError, PluginError
 from gearcli.rating.sn import SNCurve, curve_problem
 from gearcli.rating.standard import MODES
 from gearcli.stages import kinds
@@ -95,7 +95,7 @@ class Guarded:
             return fn(*args)
         except GearcliError:
             raise
-        except Exception as exc:  # third-party code: named, with what it raised
+        except PLUGIN_FAULTS as exc:  # third-party code: named, with what it raised
             self._fail(what, f"raised {type(exc).__name__}: {shorten(' '.join(str(exc).split()), 300)}")
 
     def _method(self, what: str) -> Callable:

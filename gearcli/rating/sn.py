@@ -114,7 +114,10 @@ class SNCurve:
             if last or y >= y_end:  # type: ignore[operator]
                 if math.isinf(k):
                     return math.inf if y < ya else na
-                return na * (ya / y) ** k
+                try:
+                    return na * (ya / y) ** k
+                except OverflowError:  # a stress so far below the node that N passes every float: no damage
+                    return math.inf
         return math.inf  # pragma: no cover - the last branch always answers
 
     def stress_at(self, cycles: float) -> float:

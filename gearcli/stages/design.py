@@ -107,7 +107,7 @@ def checked_figures(table: object, k: int) -> tuple[float, float]:
     values = []
     for name, ok, what in (("speed_ratio", lambda v: v > 0.0, "a finite number > 0 (|ω_in / ω_out|)"),
                            ("efficiency", lambda v: 0.0 < v <= 1.0, "a number in (0, 1]")):
-        v = getattr(table, name)
+        v = kinds.table_figure(table, name)
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or not ok(v):
             raise PluginError(f'stage type "{kinds.kind_of(table)}" ({type(table).__module__}): its table\'s {name} '
                               f'is {v!r} for stage {k + 1}, not {what} (docs/plugins.md, "A stage kind")')

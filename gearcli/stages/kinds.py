@@ -15,7 +15,7 @@ from typing import Any
 
 from gearcli.core import plugins
 from gearcli.core.text import shorten
-from gearcli.errors import GearcliError, PluginConflict, PluginError
+from gearcli.errors import PLUGIN_FAULTS, GearcliError, PluginConflict, PluginError
 
 PARALLEL = "parallel"  # the kind of a stage table without ``type``
 BUILT_IN = (PARALLEL, "planetary")  # gearcli's own kinds: no plug-in provides a facet of theirs
@@ -62,6 +62,20 @@ def kinds(facet: str) -> tuple[str, ...]:
 def kind_of(stage: object) -> str:
     """The kind of a stage table or a stage result: its ``type``, "parallel" when it has none."""
     return str(getattr(stage, "type", None) or PARALLEL)
+
+
+def table_figure(table: object, name: str) -> Any:
+    """A stage table's property ``name`` (``speed_ratio``, ``efficiency``: a plug-in table's are its code, read by the
+    validation, the kinematics and life): what it raises is a :class:`~gearcli.errors.PluginError` naming the kind and
+    the property, never an internal error of the layer that read it."""
+    try:
+        return getattr(table, name)
+    except GearcliError:
+        raise
+    except PLUGIN_FAULTS as exc:  # third-party code: named, with what it raised
+        raise PluginError(f'stage type "{kind_of(table)}" ({type(table).__module__}): its table\'s {name} raised '
+                          f"{type(exc).__name__}: {shorten(' '.join(str(exc).split()), 300)} (docs/plugins.md, "
+                          '"A stage kind")') from exc
 
 
 class MissingFacet(PluginError, KeyError):
@@ -111,7 +125,7 @@ class Guarded:
                 out = value(*args, **kwargs)
             except GearcliError:
                 raise
-            except Exception as exc:  # third-party code: named, with what it raised
+            except PLUGIN_FAULTS as exc:  # third-party code: named, with what it raised
                 raise PluginError(f"{self._where} {attr} raised {type(exc).__name__}: "
                                   f"{shorten(' '.join(str(exc).split()), 300)}") from exc
             wanted = _RETURNS.get((self._facet, attr))

@@ -13,7 +13,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Protocol, cast
 
 from gearcli.core import plugins
-from gearcli.errors import GearcliError, PluginError
+from gearcli.errors import PLUGIN_FAULTS, GearcliError, PluginError
 from gearcli.model.parts import Body, Connector
 from gearcli.model.spec import MeshSpec, StageModel
 from gearcli.results import StageResult
@@ -86,7 +86,7 @@ def checked_losses(st: StageResult, k: int, own: StageModel | None) -> StageMode
         given = {n: float(getattr(own, n)) for n in ("efficiency", "reverse_efficiency")}
     except GearcliError:
         raise
-    except Exception as exc:  # third-party code: named, with what it raised
+    except PLUGIN_FAULTS as exc:  # third-party code: named, with what it raised
         raise PluginError(f"{where}'s place raised {type(exc).__name__}: {' '.join(str(exc).split())[:300]}") \
             from exc
     design_eta = float(getattr(st, "efficiency", 1.0))

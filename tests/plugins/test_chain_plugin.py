@@ -372,6 +372,37 @@ BROKEN = {
                                              "simulate", 2, "its table ChainStage has no shaft, efficiency: every"),
     "a table whose type names another kind": ([('type: Literal["test_chain"]', 'type: Literal["test_chains"]')],
                                               "design", 2, "its table ChainStage has type typing.Literal['test_chains']"),
+    # a line of numbers the model cannot integrate: named where the plug-in returns them, not a run whose chain
+    # carries nothing (a negative spring never pulls: exit 0, a 14 m "stretch") nor gearcli's "internal error"
+    "a line of negative stiffness": ([("stiffness_N_m_e=st.stiffness_N_m,", "stiffness_N_m_e=-st.stiffness_N_m,")],
+                                     "simulate", 1, "its model facet's line raised ValueError: "
+                                     "MeshSpec.stiffness_N_m_e must be a finite number > 0, got -20000000.0"),
+    "a line of a zero lever": ([("MeshSpec(base_radius_pinion_m=r1,", "MeshSpec(base_radius_pinion_m=0.0,")],
+                               "simulate", 1, "MeshSpec.base_radius_pinion_m must be a finite number > 0, got 0.0"),
+    "a line of a NaN static force": ([("static_tangential_N=st.chain_force_N,", "static_tangential_N=math.nan,")],
+                                     "simulate", 1, "MeshSpec.static_tangential_N must be a finite number, got nan"),
+    # a plug-in's sys.exit() ended the command with its code and no word (exit 0, no output: a script read success);
+    # a table property that raises was gearcli's "internal error" (the schema's validation reads speed_ratio)
+    "sys.exit() in a facet": ([("    def diagnostics(self, result):\n        return ()",
+                                "    def diagnostics(self, result):\n        raise SystemExit(0)")], "design", 1,
+                              "its design facet's diagnostics raised SystemExit: 0"),
+    "sys.exit() on import": ([("KIND = ", "raise SystemExit(0)\nKIND = ")], "design", 2,
+                             "(gearcli_test_chain:register) failed to load: SystemExit: 0"),
+    "sys.exit() in a stage model's place": ([("        n = len(bodies)\n", "        raise SystemExit(0)\n")],
+                                            "simulate", 1, "its stage model's place raised SystemExit: 0"),
+    "sys.exit() in a standard": ([("    def check_inputs(self, cfg):\n", "    def check_inputs(self, cfg):\n"
+                                   "        raise SystemExit(0)\n")], "design-rated", 1,
+                                 f'rating standard "{STD}" (gearcli_test_chain): check_inputs raised SystemExit: 0'),
+    "a table's speed_ratio that raises": ([("        return self.driven_teeth / self.driver_teeth",
+                                            "        raise RuntimeError('no sprockets')")], "design", 1,
+                                          f'stage type "{KIND}" (gearcli_test_chain): its table\'s speed_ratio '
+                                          "raised RuntimeError: no sprockets"),
+    "a table's efficiency that raises": ([("        return self.chain_efficiency", "        raise RuntimeError('no eta')")],
+                                         "simulate", 1, "its table's efficiency raised RuntimeError: no eta"),
+    # a non-finite figure in its result: the plug-in's (exit 1), not "check module, face width, density" (exit 2)
+    "a result holding NaN": ([("chain_force_N=t_in / r1,", "chain_force_N=math.nan,")], "design", 1,
+                             f'stage type "{KIND}" (gearcli_test_chain): its design facet\'s result for stage 2 has a '
+                             "non-finite chain_force_N (nan)"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
