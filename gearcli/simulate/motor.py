@@ -256,8 +256,9 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
                 window_from_s: float | None = None) -> list[Diagnostic]:
     """The load turns the train backwards during the start: the starting method's torque at standstill (a soft
     start's u0² of the locked-rotor torque, a star start's third, a VFD's 0 at 0 Hz) is below the load reflected to
-    the motor, though the full curve carries it. Named with how far back it ran and the torques at standstill at
-    t = 0. ``window_from_s``: the statistics window's start where the motor had reached its operating speed before
+    the motor as it drives the train backwards through its losses (T_L η / i, design's ``soft_start_rolls_back``),
+    though the full curve carries it. Named with how far back it ran and the torques at standstill at t = 0.
+    ``window_from_s``: the statistics window's start where the motor had reached its operating speed before
     it (the window's numbers are then an operating point's; only the start's include the roll-back)."""
     i = int(np.argmin(w_motor))
     low = float(w_motor[i])
@@ -265,11 +266,12 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
     assert motor is not None
     row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
     t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load(lay, 0.0)
-    # a short swing back on a coupling while a strong start winds it up is no roll-back: the start must be short
-    if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= load:
+    back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)  # what turns it back (design's check)
+    # a swing back on a coupling or a shaft is no roll-back where the start's torque at standstill exceeds what turns
+    # the train back: between that and the forward load the losses hold it (a load's step swings it, ±25 rpm)
+    if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= back:
         return []
     turns = float(np.nonzero(w_motor < 0.0)[0].size) / max(w_motor.size, 1)
-    back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)  # what turns it back (design's check)
     consequence = ("the run's numbers are no forward operating point" if window_from_s is None else
                    "the start's time and peak forces include the roll-back; the motor then runs up, before the "
                    f"statistics window ({window_from_s:.4g} s on), whose numbers are the operating point's")

@@ -48,3 +48,46 @@ def test_a_start_that_breaks_away_is_not_warned():
     # u0 = 0.8: 0.64 · 2.3 T_N = 144 N m > 95.8 N m at standstill
     doc = _run("input.initial_voltage_fraction=0.8")
     assert not [w for w in doc["warnings"] if w["code"] == "motor_rolls_back"], doc["warnings"]
+
+
+def _series(*sets: str) -> tuple[dict, list[float]]:
+    """The run's JSON and its motor speed series (rpm)."""
+    res = CliRunner().invoke(cli, ["simulate", str(CONFIG), *FAST, "--series",
+                                   *[a for s in sets for a in ("--set", s)]])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    return doc, list(doc["series"]["motor_speed_rpm"])
+
+
+# the same train with a flexible intermediate shaft (10 kN m/rad) and a 0.02 kg m² disc on the input pinion: the
+# 1300 N m load, applied at t = 0, sets the train swinging on that shaft and the motor's rotor with it
+FLEXIBLE = ("stage.0.pinion.inertia_kg_m2=0.02", "stage.0.shaft.stiffness_Nm_rad=1e4")
+T_RATED = 15e3 / (1460 * 2 * math.pi / 60)
+BACK = 1300 / (75 / 19 * 68 / 19) * 0.98**2  # 88.376 N m: the load turning the train back through its losses
+FORWARD = 1300 / (75 / 19 * 68 / 19) / 0.98**2  # 95.80 N m: the torque to start it forward
+
+
+def test_a_swing_back_while_the_losses_hold_the_load_is_no_roll_back():
+    """tr25e: a soft start of 88.6 N m at standstill, between the 88.38 N m that turns the train back and the
+    95.80 N m that starts it forward (by hand: the nameplate's 2.3 T_N u0², 1300 N m over i = 75/19 · 68/19 and
+    0.98² either way), holds the load (design says no `soft_start_rolls_back`); the load's step swings the motor
+    to about -25 rpm on the flexible shaft (beyond 1 % of 1500 rpm) and back within 0.15 s, then it runs up. Was:
+    `motor_rolls_back` with "88.6 N·m at standstill at t = 0, below ... 88.38 N·m": the gate took the forward
+    95.80 N m while its message and design's check take the back-driving one."""
+    start = 88.6
+    assert BACK < start < FORWARD
+    u0 = math.sqrt(start / (2.3 * T_RATED))
+    doc, speed = _series(*FLEXIBLE, f"input.initial_voltage_fraction={u0!r}")
+    assert min(speed) < -15.0  # the swing the gate sees: beyond 1 % of the synchronous speed
+    assert doc["summary"]["start_time_s"] < 1.0  # and the motor runs up, before the window
+    assert not [w for w in doc["warnings"] if w["code"] == "motor_rolls_back"], doc["warnings"]
+
+
+def test_the_flexible_train_below_the_back_driving_load_still_rolls_back():
+    # 80 N m at standstill < 88.38 N m: the load turns the train backwards, said with both torques
+    u0 = math.sqrt(80.0 / (2.3 * T_RATED))
+    doc, _ = _series(*FLEXIBLE, f"input.initial_voltage_fraction={u0!r}")
+    (w,) = [w for w in doc["warnings"] if w["code"] == "motor_rolls_back"]
+    assert_allclose(w["start_torque_Nm"], 80.0, rtol=1e-9)
+    assert_allclose(w["back_driving_torque_Nm"], BACK, rtol=1e-9)
+    assert w["start_torque_Nm"] < w["back_driving_torque_Nm"]
