@@ -256,7 +256,8 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
                 window_from_s: float | None = None) -> list[Diagnostic]:
     """The load turns the train backwards during the start: the starting method's torque at standstill (a soft
     start's u0² of the locked-rotor torque, a star start's third, a VFD's 0 at 0 Hz) is below the load reflected to
-    the motor, though the full curve carries it. Named with how far back it ran and the torques at standstill at
+    the motor as it drives the train backwards (T_L eta / i, the power flowing back), though the full curve carries
+    it. Named with how far back it ran and the torques at standstill at
     t = 0. ``window_from_s``: the statistics window's start where the motor had reached its operating speed before
     it (the window's numbers are then an operating point's; only the start's include the roll-back)."""
     i = int(np.argmin(w_motor))
@@ -265,11 +266,14 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
     assert motor is not None
     row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
     t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load(lay, 0.0)
-    # a short swing back on a coupling while a strong start winds it up is no roll-back: the start must be short
-    if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= load:
+    back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)  # what turns it back (design's check)
+    # the start must be short of what turns the train back, T_L eta / i with the power flowing back (design's
+    # soft_start_rolls_back): between that and the forward T_L / (i eta) the losses hold the train at rest, and a
+    # swing back there (a load applied at once winding up the driven machine's coupling) is no roll-back, as a
+    # strong start's swing on its coupling is not
+    if not low < -ROLLBACK * ws or back <= 0.0 or t0 >= back:
         return []
     turns = float(np.nonzero(w_motor < 0.0)[0].size) / max(w_motor.size, 1)
-    back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)  # what turns it back (design's check)
     consequence = ("the run's numbers are no forward operating point" if window_from_s is None else
                    "the start's time and peak forces include the roll-back; the motor then runs up, before the "
                    f"statistics window ({window_from_s:.4g} s on), whose numbers are the operating point's")
