@@ -27,6 +27,7 @@ from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
 from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
 from gearcli.model.spec import MotorSpec
+from gearcli.simulate.stats import window_means
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
 RAD_S_TO_RPM = 60.0 / (2.0 * math.pi)
@@ -82,8 +83,9 @@ def start_time(t: np.ndarray, w: np.ndarray, operating_rad_s: float | None) -> f
 
 
 def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray, mask: np.ndarray,
-            window: tuple[float, float]) -> tuple[dict[str, float | None], list[Diagnostic]]:
-    """The JSON ``summary.motor`` object and the motor's warnings of one run."""
+            window: tuple[float, float], periodic: bool = False) -> tuple[dict[str, float | None], list[Diagnostic]]:
+    """The JSON ``summary.motor`` object and the motor's warnings of one run; its window means (speed, torque) are
+    the integral over the window (trapezoid rule, DESIGN section 7) as every mean of simulate."""
     motor = lay.drive.motor
     assert motor is not None
     op = operating_point(lay)
@@ -147,17 +149,17 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
                                 "not steady; lengthen duration_s or set simulation.window_start_s", start_time_s=t_start))
     if reaches and op.speed_rad_s is not None:
         diags += off_design_speed(lay, motor, op.speed_rad_s)
-    w_mean = float(w_motor[mask].mean())
+    w_mean, t_mean = (float(x) for x in window_means(t[mask], np.vstack([w_motor[mask], t_motor[mask]]), periodic))
     if reaches and op.speed_rad_s is not None:  # a start's overshoot is not judged, only the steady torque
         settled = t_start is not None and t_start <= window[0]
-        diags += overloaded(motor, float(t_motor[mask].mean()) if settled else reflected_load(lay, op.speed_rad_s),
+        diags += overloaded(motor, t_mean if settled else reflected_load(lay, op.speed_rad_s),
                             "its mean torque over the steady window" if settled else "the load reflected to it at "
                             f"its operating point {op.speed_rad_s * rpm:.5g} rpm; the window is not steady yet")
     out: dict[str, float | None] = {"start_time_s": t_start, "operating_speed_rpm": w_mean * RAD_S_TO_RPM,
            "operating_slip": (ws - w_mean) / ws,
            "operating_point_rpm": None if op.speed_rad_s is None else op.speed_rad_s * RAD_S_TO_RPM,
            "synchronous_speed_rpm": ws * RAD_S_TO_RPM,
-           "mean_torque_Nm": float(t_motor[mask].mean())}
+           "mean_torque_Nm": t_mean}
     return out, diags
 
 

@@ -448,7 +448,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
     # the reducer's ratio: shaft 1 over the last shaft, not motor over drum (the window's samples read in place)
     first, last, sel = model.layout.shaft_body[0], model.layout.shaft_body[-1], stats.window_slice(mask)
-    w_in, w_out = float(s.omega_rad_s[first][sel].mean()), float(s.omega_rad_s[last][sel].mean())
+    # the window means as every mean of simulate: the integral over the window (trapezoid rule, DESIGN section 7);
+    # the samples' plain mean erred by (mean - (x_0 + x_N)/2) / N (1.5e-4 on a speed swinging 12 % over 240 samples)
+    w_in, w_out = (float(w) for w in stats.window_means(s.time_s[sel], s.omega_rad_s[[first, last]][:, sel], periodic))
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
@@ -469,7 +471,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     motor_summary = None
     if model.layout.drive.motor is not None and diagnose:
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
-                                                        mask, window)
+                                                        mask, window, periodic)
         diags += motor_diags
     if energy.residual_relative > stats.WARN_ENERGY_RESIDUAL:
         diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
