@@ -18,6 +18,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -79,3 +80,24 @@ def test_growth_under_light_damping_is_no_ringing_transient(tmp_path):
     (warning,) = [w for w in data["warnings"] if w["code"] == "window_not_settled"]
     assert "grows through the window" in warning["message"] and warning["stage"] == 1
     assert "would be settled" not in warning["message"]
+
+
+def test_periodic_search_names_the_unstable_orbit(tmp_path):
+    """steady = "periodic" on the same scene: the shooting finds the periodic orbit (the linear mesh has one) and
+    its multiplier outside the unit circle (below -1: it retries over two periods, then falls back to brute
+    force, which cannot converge on a growing motion). The fallback's warning names the multiplier, which equals
+    the Floquet multiplier over two mesh periods computed here, exp(2 sigma T). Before the fix the fallback
+    after the period-2 retry's note was not recognised (its note did not start with it): no warning, only
+    `not_periodic`'s "chaotic or quasi-periodic, or still settling; lengthen simulation.duration_s"."""
+    path = tmp_path / "mathieu.toml"
+    path.write_text(SCENE)
+    out = CliRunner().invoke(cli, ["simulate", str(path), *SETS, "--set", 'simulation.steady="periodic"',
+                                   "--format", "json"])
+    assert out.exit_code == 0, out.output
+    data = json.loads(out.stdout)
+    assert data["summary"]["steady"]["converged"] is False
+    (fallback,) = [w for w in data["warnings"] if w["code"] == "shooting_fallback"]
+    found = re.search(r"unstable \(Floquet multiplier of modulus ([0-9.]+)\)", fallback["message"])
+    assert found is not None, fallback["message"]
+    period = 60 / (25 * SPEED_RPM)
+    assert float(found.group(1)) == pytest.approx(math.exp(2 * floquet_rate() * period), abs=6e-4)  # 4 digits
