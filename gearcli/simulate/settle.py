@@ -141,8 +141,11 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
                              f"{k + 1}'s F_t at the window's start ({100 * fraction:.2g} % of "
                              f"{ringing.reference_words(ref, float(static_N[k]) != 0.0)})")
     worst = _envelope(tw, [np.abs(ft[mask]) for ft in forces_N], static_N, worst, floors)
-    if worst.settled:
-        worst = _growth([ft[mask] for ft in forces_N], refs, static_N, worst)
+    # a growth is tested after an unsettled fit too: the fit's modes only decay, so an oscillation that grows
+    # exponentially (a parametric instability) reads to it as a huge transient with a settle time; one that grows
+    # by the factor within the window's last half alone is no decaying transient, and the growth is the verdict
+    grown = _growth([ft[mask] for ft in forces_N], refs, static_N, worst, late=not worst.settled)
+    worst = grown if grown.growing else worst
     if worst.settled:
         worst = _unseen_drift(tw, [ft[mask] for ft in forces_N], refs, static_N, eigenvalues, window_s, worst)
     if worst.settled and speed_rad_s is not None:
@@ -257,12 +260,16 @@ def _drift(t: np.ndarray, w: np.ndarray, length: float, mode: str) -> Settling |
                     "lengthen simulation.duration_s")
 
 
-def _growth(forces: list[np.ndarray], refs: list[float], static_N: list[float], worst: Settling) -> Settling:
+def _growth(forces: list[np.ndarray], refs: list[float], static_N: list[float], worst: Settling,
+            late: bool = False) -> Settling:
     """The growing half of the model-free test: a stage's F_t oscillation (peak to peak in each of
     :data:`GROWTH_SEGMENTS` equal parts of the window, each holding at least two cycles about its own mean) that grows
     from part to part, by more than :data:`GROWTH_FACTOR` over the window and to more than SETTLED_FRACTION of the
     reference force, is no steady state: a build-up still under way, or an instability (a parametric resonance of
-    the stiffness harmonics: the response grows without bound on a linear mesh). No settle time is estimated."""
+    the stiffness harmonics: the response grows without bound on a linear mesh). No settle time is estimated.
+    ``late``: the growth must also reach the factor within the window's last half alone (where the transient fit
+    has found the window unsettled: a build-up it fits as a decaying transient slows down there, an exponential
+    growth does not)."""
     for k, (f, ref, static) in enumerate(zip(forces, refs, static_N, strict=True)):
         if ref <= 0.0 or f.size < 8 * GROWTH_SEGMENTS:
             continue
@@ -271,6 +278,8 @@ def _growth(forces: list[np.ndarray], refs: list[float], static_N: list[float], 
             continue  # not an oscillation the parts resolve (a slow swing, a drift: _unseen_drift's)
         ptp = np.array([float(np.ptp(p)) for p in parts])
         if not (np.all(np.diff(ptp) > 0.0) and ptp[-1] > GROWTH_FACTOR * ptp[0] and ptp[-1] > SETTLED_FRACTION * ref):
+            continue
+        if late and not ptp[-1] > GROWTH_FACTOR * ptp[GROWTH_SEGMENTS // 2]:
             continue
         return Settling(False, float(ptp[-1] / ref), k + 1, worst.frequency_Hz, None, growing=True, cause=
                         f"stage {k + 1}'s F_t oscillation grows through the window, from ±{ptp[0] / 2:.4g} N in its "

@@ -81,8 +81,9 @@ FD_STEP = 1e-3  # finite-difference step, relative to the state's natural scale 
 
 def fell_back(steady) -> bool:
     """A periodic state that is the brute-force search the shooting fell back to after failing (its note says why),
-    not a search of a scene the shooting leaves to it (a torque drive, excitations without a common period)."""
-    return steady.method == "brute force" and steady.note.startswith(FALLBACK_NOTE)
+    not a search of a scene the shooting leaves to it (a torque drive, excitations without a common period). The
+    fallback's note follows the notes of the search before it (:data:`FLIP_NOTE`'s period-2 start among them)."""
+    return steady.method == "brute force" and FALLBACK_NOTE in steady.note
 
 
 def restarts(steady) -> int:
