@@ -284,45 +284,8 @@ def test_a_rolled_back_start_loses_in_each_mesh_s_own_power_flow(tmp_path):
     (the load's sign): here its peaks were 4914 N and 8499 N against this model's 4716 N and 8357 N (4.2 % and
     1.7 % high) and against the stiff simulation's own 4715 N and 8356 N (peak_over_rigid 0.959 on a train with no
     dynamics to speak of); each mesh's loss follows its own power flow now, as in the simulation."""
-    from scipy.optimize import brentq
-
-    st, m = _stages(ROLLBACK_STAGES), ROLLBACK_MOTOR
-    torque_curve = _kloss(m)
-    rho = np.cumprod([1.0] + [s["z_p"] / s["z_g"] for s in st])
-    shafts = [m["J"] + st[0]["J_p"]] + [s["J_g"] + (st[k + 1]["J_p"] if k + 1 < len(st) else 0.0)
-                                        for k, s in enumerate(st)]
-    w_out = 1460 * math.pi / 30 * rho[-1]
-    width = 1e-4 * ROLLBACK_LOAD_NM * w_out  # the power over which a mesh's loss side changes (regularised sign)
-
-    def walk(t, w, accel):
-        """(the input torque needed, each pinion's F_t): from the load up, the gear of stage k needs its
-        shaft's inertia torque plus what that shaft passes on; the mesh's driven side gets eta of its force."""
-        torque = float(_step(t, ROLLBACK_LOAD_RAMP_S, ROLLBACK_LOAD_NM)) + shafts[-1] * rho[-1] * accel
-        forces = []
-        for k in range(len(st) - 1, -1, -1):
-            s = st[k]
-            f_gear = torque / s["r_g"]  # the gear's side of the mesh
-            sigma = math.tanh(torque * w * rho[k + 1] / width)  # + power from pinion to gear, - back
-            c = 0.5 * (1.0 - s["eta"])
-            f = f_gear / (1.0 - c * (1.0 + sigma))  # the pinion's force: over eta forward, the gear's backward
-            forces.insert(0, f)
-            torque = f * (1.0 - c * (1.0 - sigma)) * s["r_p"] + shafts[k] * rho[k] * accel
-        return torque, forces
-
-    def drive(t, w):
-        x = min(max(t / m["ramp_s"], 0.0), 1.0)
-        u = m["u0"] + (1.0 - m["u0"]) * x * x * (3.0 - 2.0 * x)
-        return u * u * torque_curve(w)
-
-    def accel(t, w):
-        return brentq(lambda a: walk(t, w, a)[0] - drive(t, w), -1e5, 1e5, xtol=1e-10)
-
-    sol = solve_ivp(lambda t, y: [accel(t, y[0])], (0.0, 0.7), [0.0], rtol=1e-9, atol=1e-9, dense_output=True)
-    assert sol.success
-    t = np.linspace(0.0, 0.7, 3501)
-    w = sol.sol(t)[0]
+    t, w, forces = _hand_rigid_start(ROLLBACK_STAGES, ROLLBACK_MOTOR, ROLLBACK_LOAD_NM, ROLLBACK_LOAD_RAMP_S, 0.7)
     assert w.min() < -5 * math.pi / 30  # it does roll back (the scene's point)
-    forces = np.array([walk(tt, ww, accel(tt, ww))[1] for tt, ww in zip(t, w, strict=True)]).T
     hand_peaks = [float(np.max(np.abs(f))) for f in forces]
     out = _run(tmp_path, lossy_train.scene(ROLLBACK_STAGES, ROLLBACK_DRIVE, MESH))
     start = out["summary"]["start"]
