@@ -29,6 +29,7 @@ import math
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
 
+from gearcli.config.machine import table_value
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.text import beside
 from gearcli.design.geometry import (
@@ -264,8 +265,7 @@ def _table_settle_rpm(table: list[list[float]], ratio: float, n0: float) -> floa
     xs, ys = [float(x) for x, _ in table], [float(y) for _, y in table]
 
     def y(n: float) -> float:
-        j = next((i for i in range(len(xs) - 1) if n <= xs[i + 1]), len(xs) - 2)
-        return ys[0] if n <= xs[0] else ys[j] + (ys[j + 1] - ys[j]) * (n - xs[j]) / (xs[j + 1] - xs[j])
+        return table_value(table, n)  # the design's and the model's reading of the table
 
     target, up = ratio * y(n0), ratio > 1.0
     slope = (ys[-1] - ys[-2]) / (xs[-1] - xs[-2])
