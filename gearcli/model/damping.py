@@ -55,6 +55,14 @@ def reflected_load_Nm(lay: Layout, w: float) -> float:
     return t / lay.train_efficiency() if t >= 0 else t * lay.train_efficiency(forward=False)
 
 
+def back_driving_Nm(lay: Layout, forward_Nm: float) -> float:
+    """What a load of ``forward_Nm`` at the input body (:func:`reflected_load_Nm`, power flowing forward) puts on it
+    as it drives the train backwards: through the losses both ways, T_L eta_back / i. A start's torque at standstill
+    below it lets the load turn the train back; between it and ``forward_Nm`` the losses hold the train at rest
+    (design's ``soft_start_rolls_back``, simulate's ``motor_rolls_back``)."""
+    return forward_Nm * lay.train_efficiency() * lay.train_efficiency(forward=False)
+
+
 def net_torque_scan(lay: Layout, row, samples: int = SPEED_SAMPLES):
     """The motor's steady net torque over the reflected load, f = T_m - T_load, on a grid from rest to the
     synchronous speed, continued to ``GENERATING_SCAN`` x it when the load still overhauls there (the generating

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import STEADY_T, falling_zero, net_torque_scan, reflected_load_Nm
+from gearcli.model.damping import STEADY_T, back_driving_Nm, falling_zero, net_torque_scan, reflected_load_Nm
 from gearcli.model.elements import machine
 
 if TYPE_CHECKING:
@@ -195,7 +195,7 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
         t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load_Nm(lay, 0.0)
         # the load turns the train backwards only past what reaches the motor with the power flowing back (its
         # torque times eta / i): between that and the forward load / (i eta) the train's losses hold it at rest
-        back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)
+        back = back_driving_Nm(lay, load)
         if 0.0 < load and t0 < back:
             found.append(dg.warning(
                 dg.DESIGN, f'input: drive = "motor": the soft start\'s initial voltage fraction {u0:g} gives {t0:.4g} '

@@ -22,7 +22,7 @@ from gearcli import diagnostics as dg
 from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, net_torque_scan, vfd_ramp_starts
+from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, back_driving_Nm, net_torque_scan, vfd_ramp_starts
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
 from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
@@ -268,7 +268,7 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
     assert motor is not None
     row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
     t0, load = machine.motor_torque(row, 0.0, 0.0)[0], reflected_load(lay, 0.0)
-    back = load * lay.train_efficiency() * lay.train_efficiency(forward=False)  # what turns it back (design's check)
+    back = back_driving_Nm(lay, load)  # what turns it back (design's check)
     # a swing back on a coupling or a shaft is no roll-back where the start's torque at standstill exceeds what turns
     # the train back: between that and the forward load the losses hold it (a load's step swings it, ±25 rpm)
     if not low < -ROLLBACK * ws or load <= 0.0 or t0 >= back:
