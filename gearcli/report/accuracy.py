@@ -367,8 +367,3 @@ def struggling_text(run: AccuracyRun, median_nfev: float) -> str:
     return (f"{run.method} at rtol {run.rtol:g} needed {run.nfev} function evaluations, "
             f"{run.nfev / median_nfev:.0f}x the ladder's median at that rtol: "
             "the solver struggles (stiffness or a discontinuity)")
-
-
-def struggling_runs(runs: Iterable[AccuracyRun], ladder: Iterable[AccuracyRun], factor: float = 5.0) -> list[str]:
-    """:func:`struggling`'s runs, as sentences."""
-    return [struggling_text(r, median) for r, median in struggling(runs, ladder, factor)]

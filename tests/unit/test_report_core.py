@@ -12,7 +12,7 @@ from numpy.testing import assert_allclose
 from test_report_fakes import LAW, FakeSolver, fake_design, fake_report, fake_simulation
 
 from gearcli.report import LadderSpec, accuracy_study, force_spectrum, relative_errors
-from gearcli.report.accuracy import ladder_methods, meets, struggling_runs
+from gearcli.report.accuracy import ladder_methods, meets, struggling, struggling_text
 from gearcli.report.compare import comparison_rows, relative_error_percent, stage_reports
 from gearcli.report.result import RunMetrics
 from gearcli.report.spectrum import name_peak
@@ -225,9 +225,9 @@ def test_struggling_run_is_flagged_against_the_ladder_median():
     study = accuracy_study(FakeSolver(design), file_method="DOP853", file_rtol=1e-6,
                            spec=LadderSpec(rtols=(1e-6,), methods=("DOP853", "RK45", "Radau")))
     runs = list(study.runs)
-    assert struggling_runs(runs, runs) == []
+    assert struggling(runs, runs) == []
     heavy = runs[0].__class__(**{**runs[0].__dict__, "nfev": 100 * runs[0].nfev})
-    assert "struggles" in struggling_runs([heavy], [heavy, *runs[1:]])[0]
+    assert "struggles" in struggling_text(*struggling([heavy], [heavy, *runs[1:]])[0])
     # the report's warning carries the numbers (DESIGN §12): the file's heavy run against the median of the three
     # runs at its rtol, by hand
     import dataclasses
