@@ -112,6 +112,7 @@ SLOW = (
     "tests/engine/test_step_for_step.py::test_same_steps_as_scipy[spur_oscillator_te]",
     "tests/extreme/test_guards.py::test_steps_at_the_cap_run_in_bounded_memory",
     "tests/extreme/test_guards.py::test_the_costliest_measured_combination_finishes_within_its_budget",
+    "tests/extreme/test_guards.py::test_a_fast_load_fluctuation_is_not_stopped_by_the_stiffness_budget",
     "tests/cli/test_cli_hostile_audit.py::test_mypy_reports_nothing",  # CI runs mypy itself first
     "tests/engine/test_radau.py::test_compiled_radau_error_same_order_as_scipy[extreme/unequal_inertias]",
     "tests/cli/test_cli_cost_budget.py::test_a_tiny_load_inertia_on_a_stiff_coupling_is_stopped_early_with_the_fix",

@@ -174,7 +174,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     choice = choose_method(spec, duration_s, method, rtol, candidates, work, layout=model.layout)
     given_nfev = max_nfev
     if max_nfev is None:  # the scene's own budget; an explicit method that cannot meet it is refused now
-        max_nfev = nfev_budget(choice.indicator, rtol)
+        max_nfev = nfev_budget(choice.indicator, rtol, predicted_nfev(choice, choice.method))
         require_feasible(choice, max_nfev)
     nfev_estimate = work * predicted_nfev(choice, choice.method)
     if steady == "periodic":  # auto prices the shooting's own span, the variational periods at their cost

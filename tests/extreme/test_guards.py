@@ -94,6 +94,32 @@ def test_budget_scales_with_the_scene_between_floor_and_cap():
     assert_allclose(nfev_budget(1e3, 1e-11) / nfev_budget(1e3, 1e-6), 10.0, rtol=1e-6)  # (1e5)^(1/5)
 
 
+def test_the_budget_is_ten_times_the_prediction_where_an_excitation_costs_more_than_the_stiffness():
+    # the stiffness term of 1e3 max|lambda| T at rtol 1e-6: 30 x 1e3; a prediction of 1e5 evaluations (an
+    # excitation to follow): 10 x 1e5; a prediction below the stiffness term leaves it; the cap holds
+    assert nfev_budget(1e3, 1e-6, predicted=1e5) == 10 * 1e5
+    assert nfev_budget(1e3, 1e-6, predicted=1e3) == 10 * 30 * 1e3
+    assert nfev_budget(1e3, 1e-6, predicted=1e7) == CAP
+
+
+def test_a_fast_load_fluctuation_is_not_stopped_by_the_stiffness_budget():
+    # a 100 kHz, 100 % load fluctuation over 0.3 s: 2 pi 1e5 x 0.3 = 1.9e5 rad of excitation to follow, ~7e5
+    # evaluations, over the 300 x max|lambda| T (2.0e3: 6.1e5) its stiffness alone allowed: the run stopped with
+    # "check the contact law"; its budget is now ten times its prediction. Over whole fluctuation periods the load
+    # averages to its nominal torque: stage 1's window-mean F_t is the static one, to the run's error estimate.
+    loaded = load_design(str(ROOT / "configs" / "industrial_two_stage_rated.toml"),
+                         ["simulation.duration_s=0.3", "stage.0.normal_module_mm=8",
+                          "load.fluctuation=[{amplitude_percent=100, frequency_Hz=1e5}]"])
+    design = compute_design(loaded.design)
+    sim = run_simulation(loaded.design, design, want_series=False)
+    assert sim.solver.status == 0
+    assert sim.solver.nfev > 300 * sim.extra["stiffness_indicator"]  # beyond the stiffness-only budget
+    st = sim.stages[0]
+    err = st.error_estimate.tangential_N.mean if st.error_estimate is not None else 0.0
+    static = design.stages[0].static_force_N.tangential
+    assert abs(st.tangential_N.mean - static) <= max(3 * err, 2e-3 * static)
+
+
 def test_every_catalogue_scene_stays_within_a_third_of_its_budget():
     # the budget must never stop a legitimate run: each scene's nfev ceiling (~3x its measured cost, and
     # enforced by the catalogue test) lies within the scene's budget
