@@ -48,7 +48,15 @@ from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model import TorsionalModel
 from gearcli.simulate.choice import Choice
-from gearcli.simulate.solver import STATUS_BUDGET, STATUS_SWITCH, CourseLimit, Integration, integrate
+from gearcli.simulate.solver import (
+    FINISHED_MESSAGE,
+    STATUS_BUDGET,
+    STATUS_FINISHED,
+    STATUS_SWITCH,
+    CourseLimit,
+    Integration,
+    integrate,
+)
 
 MAX_COURSE_CHANGES = 2
 
@@ -220,15 +228,17 @@ def integrate_auto(model: TorsionalModel, t_eval: np.ndarray, choice: Choice, rt
                 enabled = False  # keeps its course: on from the last sample, unlimited
         else:
             break
+        j = int(np.searchsorted(t_eval, t_at, side="right"))  # the first sample after the state reached
+        if j >= t_eval.size:  # the piece filled the last sample before its limit stopped it: the run is complete
+            pieces[-1] = (pieces[-1][0], replace(pieces[-1][1], status=STATUS_FINISHED, message=FINISHED_MESSAGE,
+                                                 t_fail=t_end, y_end=None))
+            break
         if why:
             changes.append(CourseChange(t_at, _label(method, engine), _label(m, e), why))
             if m != method:
                 left.add(method)
         method, engine = m, e
-        j = int(np.searchsorted(t_eval, t_at, side="right"))  # the first sample after the state reached
         pieces[-1] = (pieces[-1][0], _cut(pieces[-1][1], j - pieces[-1][0] - 1))
-        if j >= t_eval.size:
-            break
         k, y, t0 = j, np.array(y_at, dtype=float), t_at
         if float(t_eval[j - 1]) == t_at:  # stopped on a sample: the next piece starts there
             k, t0 = j - 1, t_at

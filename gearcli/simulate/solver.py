@@ -49,6 +49,7 @@ from gearcli.simulate.guards import ENERGY_MARGIN, EnergyReport, EnergyWatch, en
 STATUS_FINISHED, STATUS_FAILED, STATUS_BUDGET = st.FINISHED, st.FAILED, st.BUDGET
 STATUS_NONFINITE, STATUS_ENERGY, STATUS_PROJECTED = st.NONFINITE, st.ENERGY, st.PROJECTED
 STATUS_SWITCH = st.SWITCH
+FINISHED_MESSAGE = "reached the end of the run"
 
 
 @record
@@ -187,7 +188,7 @@ def integrate(model: TorsionalModel, t_eval: np.ndarray, method: str, rtol: floa
     out[:, t_eval <= t0] = y[:, None]
     done = int(np.searchsorted(t_eval, t0, side="right"))
     count = _Counters()
-    start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, "reached the end of the run"
+    start, t, status, message = time.perf_counter(), float(t0), STATUS_FINISHED, FINISHED_MESSAGE
     cpu_start = time.thread_time()
     for t_end in breakpoints(model, float(t_eval[-1]), t):
         solver = _solver(model, method, t, y, t_end, rtol, atol, max_step)
@@ -274,7 +275,7 @@ def _segment(solver: OdeSolver, t_eval: np.ndarray, out: np.ndarray, done: int, 
             report = watch.check(solver.t, solver.y)
             if report.diverging:
                 return STATUS_ENERGY, watch.message(report), done
-    return STATUS_FINISHED, "reached the end of the run", done
+    return STATUS_FINISHED, FINISHED_MESSAGE, done
 
 
 def _budget_stop(nfev: int, njev: int, nlu: int, steps: int, implicit: bool, t: float,
@@ -405,7 +406,7 @@ def _integrate_compiled(model: TorsionalModel, t_eval: np.ndarray, method: str, 
     nfev, steps, status = (int(v) for v in counters[:3])
     njev, nlu = (int(v) for v in counters[4:6]) if counters.size > 4 else (0, 0)
     t_end, created, scale = (float(v) for v in floats)
-    messages = {STATUS_FINISHED: "reached the end of the run",
+    messages = {STATUS_FINISHED: FINISHED_MESSAGE,
                 STATUS_FAILED: "Required step size is less than spacing between numbers.",
                 STATUS_NONFINITE: f"the state became non-finite at t = {t_end:.6g} s"}
     if status == STATUS_ENERGY and watch is not None:

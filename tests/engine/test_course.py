@@ -130,3 +130,32 @@ def test_decide_passes_over_an_option_its_budget_cannot_pay():
     assert got is not None and got[0] == "DOP853"
     # DOP853's need for the rest, 2.6 max|lambda| (T - t), over what the budget has left: not taken
     assert course.decide(model, ch, spent, t_end, set(), "python", nfev_left=10.0) is None
+
+
+def test_a_compiled_piece_stopped_by_its_limit_after_its_last_sample_is_a_finished_run(monkeypatch):
+    # The compiled kernel checks its evaluation limit after each step: a piece whose last step both filled the last
+    # output sample and crossed the limit returns the budget's status with every sample in place. The run is
+    # complete; it ended in "Radau stopped at t = 0.3 s of 0.3 s: more than 26774 right-hand-side evaluations"
+    # (exit 1; configs/extreme/rattle_zero_load.toml with the ISO law after a course change, found by a fuzz).
+    from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, Integration
+
+    cfg, design = _case()
+    model = TorsionalModel(spec_from_design(cfg, design))
+    ch = choice_mod.choose_method(model.spec, cfg.simulation.duration_s, "auto", layout=model.layout)
+    y0 = model.initial_state()
+    caps: list[int] = []
+
+    def kernel_like(model, t_piece, method, rtol, *, y0=None, t0=0.0, max_nfev, engine, course=None, progress=None):
+        caps.append(max_nfev)
+        y = np.repeat(np.asarray(y0, dtype=float)[:, None], t_piece.size, axis=1)  # every sample filled
+        return Integration(t_piece, y, method, rtol, np.full(y.shape[0], 1e-9), max_nfev + 1, 0, 0, 10, 0.0,
+                           STATUS_BUDGET, f"more than {max_nfev} right-hand-side evaluations", float(t_piece[-1]),
+                           engine="compiled")
+
+    monkeypatch.setattr(course, "integrate", kernel_like)
+    t_eval = np.linspace(0.0, cfg.simulation.duration_s, 11)
+    run, changes = course.integrate_auto(model, t_eval, ch, 1e-6, "compiled", requested_engine="auto", y0=y0,
+                                         max_nfev=10**7)
+    assert len(caps) == 1 and caps[0] < 10**7  # the piece ran under its course limit, not the run's budget
+    assert run.status == STATUS_FINISHED and changes == []  # nothing left to decide: no course change recorded
+    assert np.all(np.isfinite(run.y)) and run.t_fail == t_eval[-1]
