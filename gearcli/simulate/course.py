@@ -242,7 +242,10 @@ def integrate_auto(model: TorsionalModel, t_eval: np.ndarray, choice: Choice, rt
         k, y, t0 = j, np.array(y_at, dtype=float), t_at
         if float(t_eval[j - 1]) == t_at:  # stopped on a sample: the next piece starts there
             k, t0 = j - 1, t_at
-    return _merge(t_eval, pieces), changes
+    merged = _merge(t_eval, pieces)
+    if len(pieces) > 1 and merged.status == STATUS_BUDGET and used > max_nfev:  # the run's budget, not the piece's rest
+        merged = replace(merged, message=f"more than {max_nfev} right-hand-side evaluations")
+    return merged, changes
 
 
 def _samples(run: Integration, offset: int) -> Integration:

@@ -159,3 +159,32 @@ def test_a_compiled_piece_stopped_by_its_limit_after_its_last_sample_is_a_finish
     assert len(caps) == 1 and caps[0] < 10**7  # the piece ran under its course limit, not the run's budget
     assert run.status == STATUS_FINISHED and changes == []  # nothing left to decide: no course change recorded
     assert np.all(np.isfinite(run.y)) and run.t_fail == t_eval[-1]
+
+
+def test_a_run_that_spends_its_budget_over_several_pieces_names_the_whole_budget(monkeypatch):
+    # A run stopped at its course limit that goes on (or changes course) and then spends the rest of its budget
+    # said "more than 184713 right-hand-side evaluations" (the last piece's rest) after 5,000,023 in all
+    # (configs/extreme/load_reversal.toml with a 1e14 contact law, found by a fuzz): the message names the run's
+    # budget, which its evaluations exceed.
+    from gearcli.simulate.solver import STATUS_BUDGET, Integration
+
+    cfg, design = _case()
+    model = TorsionalModel(spec_from_design(cfg, design))
+    ch = choice_mod.choose_method(model.spec, cfg.simulation.duration_s, "auto", layout=model.layout)
+    y0 = model.initial_state()
+
+    def kernel_like(model, t_piece, method, rtol, *, y0=None, t0=0.0, max_nfev, engine, course=None, progress=None):
+        y = np.full((np.asarray(y0).size, t_piece.size), np.nan)
+        half = max(2, t_piece.size // 2) if t_piece.size > 2 else 1  # the first half filled, then the limit
+        y[:, :half] = np.asarray(y0, dtype=float)[:, None]
+        return Integration(t_piece, y, method, rtol, np.full(y.shape[0], 1e-9), max_nfev + 1, 0, 0, 10, 0.0,
+                           STATUS_BUDGET, f"more than {max_nfev} right-hand-side evaluations",
+                           float(t_piece[half - 1]), engine="compiled")
+
+    monkeypatch.setattr(course, "integrate", kernel_like)
+    t_eval = np.linspace(0.0, cfg.simulation.duration_s, 41)
+    budget = 10**6
+    run, _ = course.integrate_auto(model, t_eval, ch, 1e-6, "compiled", requested_engine="auto", y0=y0,
+                                   max_nfev=budget)
+    assert run.status == STATUS_BUDGET and run.nfev > budget
+    assert run.message == f"more than {budget} right-hand-side evaluations"

@@ -292,3 +292,28 @@ def test_steps_at_the_cap_run_in_bounded_memory():
     assert res.returncode == 0, res.stderr
     rss_gb = int(res.stderr.split("RSS_KB ")[1].split()[0]) / 1024**2
     assert rss_gb < 1.7, rss_gb
+
+
+def test_an_auto_run_stopped_on_a_stiff_scene_is_not_told_to_use_auto():
+    # auto took DOP853 on a 1e14 N/mm^1.5 law (max|lambda| T 4.9e5, predicted cheaper than Radau's 4.5e6) and
+    # spent its budget; the hint said 'use method = "Radau" (or "auto")' to a run that was auto and whose Radau
+    # spends the same budget as well (exit 1 at t = 0.14 s): it names Radau's prediction and the fixes that remain
+    from dataclasses import replace as _replace
+
+    from gearcli.simulate.solver import STATUS_BUDGET, Integration
+
+    cfg, design = scene("load_reversal", ["simulation.duration_s=0.3", "stage.0.backlash_mm=0",
+                                          "stage.0.gear.teeth=13", "contact.stiffness=1e14"])
+    model = TorsionalModel(spec_from_design(cfg, design))
+    auto = choose_method(model.spec, 0.3, "auto", layout=model.layout)
+    assert auto.method == "DOP853"  # the cost model's choice on this scene (1.6e6 against Radau's 4.5e6)
+    stopped = Integration(np.zeros(2), np.zeros((model.initial_state().size, 2)), "DOP853", 1e-6, np.ones(1), 5_000_023,
+                          0, 0, 10, 1.0, STATUS_BUDGET, "more than 5000000 right-hand-side evaluations", 0.15)
+    with pytest.raises(SimulationError) as got:
+        check(stopped, auto, 0.3)
+    msg = str(got.value)
+    assert 'or "auto"' not in msg and "shorten simulation.duration_s" in msg
+    assert f"Radau was predicted to need {auto.predicted_evals[1]:.2g} evaluations" in msg
+    requested = _replace(auto, requested="DOP853")
+    with pytest.raises(SimulationError, match=r'use method = "Radau" \(or "auto"\)'):
+        check(stopped, requested, 0.3)
