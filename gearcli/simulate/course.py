@@ -305,8 +305,11 @@ def pace_warnings(run: Integration, choice: Choice) -> list[Diagnostic]:
         explicit, implicit = choice.predicted_evals
         tail = (f'method = "{choice.requested}" was requested (the cost model predicts {explicit:.2g} evaluations '
                 f'for {EXPLICIT_METHOD}, {implicit:.2g} for {IMPLICIT_METHOD}; method = "auto" chooses between them)')
+    # a prediction of none (nothing to resolve where the cost model looks: an unloaded Hertzian mesh continued
+    # without ramps has no stiffness at its static load) is no ratio
+    over = f"{run.nfev / n:.2g}x the {n:.2g}" if n > 0 else "where"
     return [dg.warning(dg.SLOW_PACE, f"{run.method} ({run.engine} engine) took {run.nfev} evaluations, "
-                       f"{run.nfev / n:.2g}x the {n:.2g} {what} (~{took:.2g} s against "
+                       f"{over} {what} {'none ' if n <= 0 else ''}(~{took:.2g} s against "
                        f"~{cost.predicted_wall_s(run.engine, run.method, n, size=choice.size):.2g} s); {tail} "
                        '(docs/numerics.md, "Choosing the method: auto")',
                        nfev=run.nfev, predicted_nfev=n)]

@@ -188,3 +188,20 @@ def test_every_requested_method_is_judged_against_its_familys_prediction(method,
     monkeypatch.setattr(course_module, "predicted_nfev", real)
     quiet = run_simulation(cfg, design, want_series=False, error_estimate=False)
     assert not any(d.code == "slow_pace" for d in quiet.diagnostics)
+
+
+def test_a_run_the_cost_model_predicted_nothing_for_is_warned_without_dividing_by_zero(monkeypatch):
+    # an unloaded Hertzian train continued without ramps (a sweep's next point of configs/extreme/rattle_zero_load.toml
+    # at e = 1.5) has no stiffness at its static load and nothing to resolve where the cost model looks: DOP853's
+    # prediction is 0 evaluations, and the pace warning's ratio raised ZeroDivisionError (a failed sweep row). The
+    # seed's DOP853 run (5368 evaluations on either engine) judged against a prediction of none says so, no ratio.
+    cfg, design = _cfg("concrete_mixer.toml", ["simulation.engine=python", "simulation.method=DOP853"])
+    from gearcli.simulate import course as course_module
+    from gearcli.simulate import run_simulation
+
+    monkeypatch.setattr(course_module, "predicted_nfev", lambda choice, method: 0.0)
+    monkeypatch.setattr(cost, "PACE_MIN_S", 0.0)
+    got = run_simulation(cfg, design, want_series=False, error_estimate=False)
+    (warned,) = [d for d in got.diagnostics if d.code == "slow_pace"]
+    assert "took 5368 evaluations, where the cost model predicted none" in warned.message
+    assert warned.data["predicted_nfev"] == 0.0 and warned.data["nfev"] == 5368
