@@ -62,7 +62,7 @@ if TYPE_CHECKING:
     from gearcli.sweep.worker import Case, Evaluation, Scene
 
 __all__ = ["DesignFile", "ElementSpec", "LoadedDesign", "ModelSpec", "campbell", "check_budget", "design", "design_case",
-           "engine_build", "engine_cache_refusal", "evaluate_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
+           "engine_build", "engine_cache_refusal", "evaluate_point", "evaluate_sweep_point", "life", "load", "load_and_design", "model_source", "model_spec", "modes", "prepare_life",
            "prepare_sweep", "report", "report_file", "run_sweep", "simulate", "simulate_file", "simulate_spec",
            "sweep_campbell", "with_motor_start", "with_resonances", "design_file_schema", "plugin_failures", "starter_toml"]
 
@@ -275,7 +275,7 @@ def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), r
     loaded = load(file, sets, stdin=io.BytesIO(raw))
     return prepare(raw, loaded, design(loaded, sets), sets, vary=vary, randoms=randoms, samples=samples,
                    sampling=sampling, seed=seed, direction=direction, jobs=jobs, scheduler=scheduler, output=output,
-                   fmt=fmt, evaluate=evaluate_point, read_previous=read_identity)
+                   fmt=fmt, evaluate=evaluate_sweep_point, read_previous=read_identity)
 
 
 def run_sweep(session: Session, on_row: Callable[[bool], None] = lambda failed: None, *,
@@ -344,14 +344,18 @@ def design_case(scene: Scene, overrides: Sequence[str], /) -> Case:
 
 
 def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
-                   series: bool = False, check: bool | None = False, settle: bool | str = True) -> Evaluation:
+                   series: bool = False, check: bool | None = False, settle: bool | str = True,
+                   bearing_peaks: bool = False) -> Evaluation:
     """One variant of the scene's file loaded, designed and simulated (the sweep's and the life calculation's
     point, :class:`~gearcli.sweep.worker.PointEvaluator`). Continued from ``start`` (the previous point's final
     state, :mod:`gearcli.sweep.continuation`) when given: without the start-up ramps, from that state, the
     phases carried on; a point whose chain differs starts cold with the file's ramps. ``series`` keeps the time
     series; ``check`` runs the check pass (None: the file's ``simulation.error_estimate``); ``settle`` the window
     shown settled (:func:`gearcli.simulate.settle.settled_run`; ``"window"``: never the periodic state). The
-    result has the start's warnings but no ``summary.start`` (``extra["start"]``), which neither reads."""
+    result has the start's warnings but no ``summary.start`` (``extra["start"]``), which neither reads.
+    ``bearing_peaks`` (a sweep's row): bearings with a C_0 are checked at the window's peak as ``gearcli simulate``
+    checks them (ISO 76, :func:`gearcli.simulate.bearings.with_bearings`: its warning), from the series the run keeps
+    for it (dropped again unless ``series``); the life calculation checks them over the whole duty instead."""
     from gearcli.simulate import run_simulation  # lazy: the solver layers (scipy), start-up time of gearcli design
 
     # lazy: the sweep and life layers, start-up time of gearcli design
@@ -373,9 +377,24 @@ def evaluate_point(scene: Scene, overrides: Sequence[str], start: Carried | None
             spec = spec_from_design(*case)
         model = TorsionalModel(spec)
     # a sweep row and a duty point are dynamic verdicts: from a window shown settled (gearcli.simulate.settle)
-    result = run_simulation(case.cfg, case.design, want_series=series, y0=y0, model=model, error_estimate=check,
-                            settle=settle, summary_start=False)  # a row and a duty point read no summary.start
+    peaks = bearing_peaks and any(b.static_load_rating_kN is not None for b in case.cfg.bearing)
+    result = run_simulation(case.cfg, case.design, want_series=series or peaks, y0=y0, model=model,
+                            error_estimate=check, settle=settle, summary_start=False)  # no summary.start read
     result = with_simulated_rating(case.cfg, case.design, result)
+    if peaks:
+        from gearcli.simulate.bearings import with_bearings  # lazy: the shaft statics, start-up time without bearings
+
+        result = with_bearings(case.cfg, case.design, result)
+        if not series:  # the reactions' series served the check: a row keeps none
+            result = dataclasses.replace(result, time_s=result.time_s[:0], series={})
     if result.final_state is None or result.final_time_s is None:
         return Evaluation(case, result, None)
     return Evaluation(case, result, Carried(model, result.final_state, result.final_time_s))
+
+
+def evaluate_sweep_point(scene: Scene, overrides: Sequence[str], start: Carried | None = None, /, *,
+                         series: bool = False, check: bool | None = False, settle: bool | str = True) -> Evaluation:
+    """A sweep's point (the :class:`~gearcli.sweep.worker.PointEvaluator` ``gearcli sweep`` injects): :func:`evaluate_point`
+    with the bearings checked at the window's peak, so that a row's message holds the warnings ``gearcli simulate``
+    gives for the same point (docs/sweeps.md)."""
+    return evaluate_point(scene, overrides, start, series=series, check=check, settle=settle, bearing_peaks=True)

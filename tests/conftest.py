@@ -157,6 +157,7 @@ SLOW = (
     "tests/sweep/test_sweep_cli.py::test_ctrl_c_then_resume_gives_the_uninterrupted_file[.json]",  # [.csv] stays
     "tests/sweep/test_sweep_compile_once.py::test_a_sweep_compiles_each_model_structure_once",
     "tests/sweep/test_sweep_hysteresis.py::test_jump_up_and_jump_down_happen_at_different_speeds",
+    "tests/sweep/test_sweep_bearing_peak_warning.py::test_row_warns_of_the_bearing_overloaded_at_the_window_peak",  # 4.5 s: a sweep and a simulate
     "tests/extreme/test_honesty.py::test_every_statistic_resolved_or_warned[configs/extreme/five_stages.toml]",
     "tests/extreme/test_honesty.py::test_every_statistic_resolved_or_warned[configs/industrial_two_stage.toml]",
     "tests/extreme/test_guards.py::test_forced_methods_that_cannot_resolve_a_very_stiff_mesh_force_are_warned",
