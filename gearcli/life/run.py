@@ -215,7 +215,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
             raise
         raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
-    loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
+    loads = point_loads.window_loads(design, result)  # a periodic state: repeated; a stalled motor: refused
     loads = [spectra.referred(ld, spectra.resolved_force_N(result, k)) for k, ld in enumerate(loads)]
     bearing_loads = point_loads.dynamic_bearing_loads(cfg, design, result)
     start = point_loads.start_of(point, cfg, design, result) if point.starts else None
