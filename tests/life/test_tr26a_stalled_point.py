@@ -20,58 +20,17 @@ import math
 from click.testing import CliRunner
 
 from gearcli.cli import cli
+from tests.life.tr26a_scene import ETA, K_B, N_RATED, P_KW, Z1, Z2, scene
 
-Z1, Z2, ETA = 19, 80, 0.98
-P_KW, N_RATED, K_B, K_L = 15.0, 1470.0, 2.8, 2.0
 TABLE = [[0.0, 1200.0], [0.01, 1300.0], [349.125, 1300.0]]  # output rpm, N m: a breakaway load, flat when moving
 T_POINT = 2600.0  # N m at the point's nominal output speed 1470 * 19/80 = 349.125 rpm: the table times 2
 
-SCENE = f"""
-title = "a DOL motor that cannot drive its conveyor's breakaway load"
-
-[materials]
-steel = {{ treatment = "case_carburized", contact_fatigue_limit_MPa = 1500, bending_fatigue_limit_MPa = 500, density_kg_m3 = 7850, youngs_modulus_MPa = 206000, poisson_ratio = 0.3 }}
-
-[[stage]]
-normal_module_mm = 4
-normal_pressure_angle_deg = 20
-helix_angle_deg = 12
-accuracy_grade = 6
-efficiency = {ETA}
-pinion = {{ teeth = {Z1}, face_width_mm = 60, hand = "left", material = "steel", profile_shift = 0.3, flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10 }}
-gear   = {{ teeth = {Z2}, face_width_mm = 55, hand = "right", material = "steel", flank_roughness_Rz_um = 3, root_roughness_Rz_um = 10 }}
-
-[lubricant]
-viscosity_40C_mm2_s = 220
-
-[input]
-speed_rpm = {N_RATED}
-drive = "motor"
-motor = {{ rated_power_kW = {P_KW}, rated_speed_rpm = {N_RATED}, synchronous_speed_rpm = 1500, breakdown_torque_ratio = {K_B}, locked_rotor_torque_ratio = {K_L} }}
-starting = "direct"
-inertia_kg_m2 = 0.08
-coupling_stiffness_Nm_rad = 5.0e3
-coupling_damping_Nms_rad = 2
-
-[load]
-torque_speed = {TABLE}
-inertia_kg_m2 = 20
-coupling_stiffness_Nm_rad = 2.0e5
-coupling_damping_Nms_rad = 60
-
-[rating]
-required_life_h = 20000
-
-[simulation]
-duration_s = 0.3
-steps = 2000
-
+SCENE = scene("a DOL motor that cannot drive its conveyor's breakaway load", f"torque_speed = {TABLE}", 0.3, f"""
 [[duty]]
 name = "jammed"
 hours = 100
 speed_rpm = {N_RATED}
-torque_Nm = {T_POINT}  # the table scaled by 2: 2400 N m at standstill
-"""
+torque_Nm = {T_POINT}  # the table scaled by 2: 2400 N m at standstill""")
 
 
 def test_the_scene_is_a_stall_by_hand() -> None:
