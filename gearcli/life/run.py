@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from contextlib import suppress
 from dataclasses import replace
 from typing import cast
 
@@ -261,9 +262,11 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
                 f"sample finer: --set simulation.steps={4 * steps}", stage=k + 1, relative_error=ld.peak_error,
                 target_relative=PEAK_TOLERANCE, steps=4 * steps))
-    idle = not all(st.static_force_N.tangential for st in design.stages)  # its start's forces are rated from a reference
-    ref = _point_design(scene, replace(point, torque_Nm=REFERENCE_NM, sets=tuple(t for t in point.sets if not t.startswith(
-        "input.torque_Nm="))), design_case, extra) if idle else None
+    ref = None  # an idle point: its classes are rated from its design at a reference load (where that designs)
+    if not all(st.static_force_N.tangential for st in design.stages):
+        with suppress(ConfigError, DesignError):
+            ref = _point_design(scene, replace(point, torque_Nm=REFERENCE_NM, sets=tuple(
+                t for t in point.sets if not t.startswith("input.torque_Nm="))), design_case, extra)
     return _PointData(point, design, cfg, loads, bearing_loads, run, start, ref), tuple(warnings), tuple(notes)
 
 
