@@ -42,6 +42,10 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # session 22, tr26a: an idle point's DOL start run end to end and two designs at its class torques (~5 s under
+    # load); a motor that cannot drive its point's load, simulated until the refusal (~4 s)
+    "tests/life/test_tr26a_idle_starts.py::test_an_idle_points_start_classes_are_rated_at_their_own_load",
+    "tests/life/test_tr26a_stalled_point.py::test_a_point_whose_motor_stalls_is_refused_naming_the_stall",
     # session 21, tr24a: torque-driven points on a lossy planetary (reversed, own efficiency) simulated end to end (~6 s;
     # their input torques against the hand balance stay in the default tier)
     "tests/life/test_tr24a_torque_drive_reversed.py::test_the_points_run_at_their_speed",

@@ -11,7 +11,9 @@ import numpy as np
 from gearcli.config import DesignFile
 from gearcli.core.channels import Channel
 from gearcli.design.shafts import equivalent_load_N, life_exponent, stage_layout
-from gearcli.errors import SimulationError
+from gearcli.diagnostics import MOTOR_STALLS
+from gearcli.errors import ConfigError, SimulationError
+from gearcli.life import spectra
 from gearcli.life.bearings import PointBearings
 from gearcli.life.duty import DutyPoint
 from gearcli.life.starts import StartData, start_bearings, start_data
@@ -24,6 +26,23 @@ from gearcli.stages.life import life_kind
 def k_gamma(st: StageResult) -> float:
     """A stage's load-sharing factor K_gamma in its design (1 where nothing shares the load)."""
     return life_kind(st).k_gamma(st)
+
+
+def window_loads(design: DesignResult, result: SimulationResult) -> list[spectra.StageLoads]:
+    """The tooth-force classes of the point's steady window (a periodic state repeated, :mod:`gearcli.life.spectra`).
+    A window without a whole mesh cycle whose motor stalls (``simulate``'s ``motor_stalls``: its curve cannot carry the
+    load, which holds the train almost at rest) is refused naming the stall: a longer run, the remedy for a window
+    too short, would only count the stalled motor's creep at the point's speed_rpm."""
+    try:
+        return spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)
+    except ConfigError as exc:
+        stall = next((d for d in result.diagnostics if d.code == MOTOR_STALLS), None)
+        if stall is None:
+            raise
+        what = exc.message.partition(":")[0]
+        raise ConfigError(f"{what}: the steady window holds no whole mesh cycle, so there is no tooth load to count, "
+                          f"because the motor does not run: {stall.message} (a longer run would count its creep at "
+                          "the point's speed_rpm, no operating point)") from None
 
 
 def start_of(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:

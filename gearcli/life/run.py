@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from contextlib import suppress
 from dataclasses import replace
 from typing import cast
 
@@ -24,6 +25,7 @@ from gearcli.core.memo import remember
 from gearcli.core.records import record
 from gearcli.design.bearing_life import AXIAL_NOT_RATED, KAPPA_OUT_OF_RANGE
 from gearcli.design.standards import standard_of
+from gearcli.design.stiffness import MIN_LINE_LOAD_N_mm
 from gearcli.diagnostics import (
     BEARING_LIFE_SHORT,
     BEYOND_STATIC_STRENGTH,
@@ -85,6 +87,7 @@ class _PointData:
     bearings: PointBearings  # each bearing's ISO 281 equivalent load and peak ISO 76 P_0 at this point
     run: PointRun
     start: StartData | None = None  # the point's start from rest, counted ``starts`` times (dynamic route)
+    reference: Case | None = None  # an idle point's design at REFERENCE_NM: its classes' ratings scale from it
 
 
 def _named(scene: Scene, point: DutyPoint, exc: ConfigError | DesignError) -> ConfigError | DesignError:
@@ -215,7 +218,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
             raise
         raise _lengthened(exc, duration, design) from None
     _require_rating(cfg, scene)
-    loads = spectra.dynamic_loads(spectra.periodic_tiled(result, design), design)  # a periodic state: repeated
+    loads = point_loads.window_loads(design, result)  # a periodic state: repeated; a stalled motor: refused
     loads = [spectra.referred(ld, spectra.resolved_force_N(result, k)) for k, ld in enumerate(loads)]
     bearing_loads = point_loads.dynamic_bearing_loads(cfg, design, result)
     start = point_loads.start_of(point, cfg, design, result) if point.starts else None
@@ -259,7 +262,12 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
                 f"the force only (target {PEAK_TOLERANCE:g}; the damage goes with a high power of it); "
                 f"sample finer: --set simulation.steps={4 * steps}", stage=k + 1, relative_error=ld.peak_error,
                 target_relative=PEAK_TOLERANCE, steps=4 * steps))
-    return _PointData(point, design, cfg, loads, bearing_loads, run, start), tuple(warnings), tuple(notes)
+    ref = None  # an idle point: its classes are rated from its design at a reference load (where that designs)
+    if not all(st.static_force_N.tangential for st in design.stages):
+        with suppress(ConfigError, DesignError):
+            ref = _point_design(scene, replace(point, torque_Nm=REFERENCE_NM, sets=tuple(
+                t for t in point.sets if not t.startswith("input.torque_Nm="))), design_case, extra)
+    return _PointData(point, design, cfg, loads, bearing_loads, run, start, ref), tuple(warnings), tuple(notes)
 
 
 #: warnings of a point's run that concern its run-up peak alone: a point without starts counts the settled window,
@@ -310,6 +318,10 @@ def _stress(pd: _PointData, k: int, member: str, mode: str, force_N: float, stat
     point's load does not carry the idle load's K_Hβ, K_Hα); else the point's stress scaled from its static force
     (σ_H ∝ √F_t, σ_F ∝ F_t)."""
     st = pd.design.stages[k]
+    if not static_N and pd.reference is not None and force_N >= MIN_LINE_LOAD_N_mm * st.face_width_mm:
+        pd = replace(pd, cfg=pd.reference.cfg, design=pd.reference.design)  # an idle point's start: its own load
+        st = pd.design.stages[k]
+        static_N = life_kind(st).member_loads(spectra.static_loads(st.static_force_N.tangential), st, member, None).static_N
     ratio = force_N / abs(static_N) if static_N else 0.0
     rated = _rated_at(pd, k, ratio) if ratio > 0.0 and ratio != 1.0 else None
     if rated is not None:
@@ -318,6 +330,7 @@ def _stress(pd: _PointData, k: int, member: str, mode: str, force_N: float, stat
     return m.stress_MPa(mode) * (math.sqrt(ratio) if mode == "pitting" else ratio)
 
 
+REFERENCE_NM = 1000.0  # an idle point's reference torque (any load: the class's factors are evaluated at its own force)
 _RATED_AT: dict[tuple[int, int, float], tuple[DesignResult, StageResult | None]] = {}  # rated classes of the points lately rated
 _RATED_AT_SIZE = 4096
 
