@@ -571,7 +571,8 @@ def start_record(pd: _PointData, stages: Sequence[StageLife]) -> JsonObject:
     bearings: list[JsonObject] = []
     for j, b in enumerate(pd.design.bearings):
         if j < len(pd.start.bearing_peaks):
-            bearings.append({"shaft": b.shaft, "position_mm": b.position_mm, **pd.start.bearing_peaks[j],
+            bearings.append({"shaft": b.shaft, **({"planet_stage": b.planet_stage} if b.planet_stage else {}),
+                             "position_mm": b.position_mm, **pd.start.bearing_peaks[j],
                              "equivalent_load_N": pd.start.bearing_loads_N[j]})
     return {"count": pd.start.count, "span_s": list(pd.start.span_s),
             "input_revolutions": pd.start.input_revolutions,

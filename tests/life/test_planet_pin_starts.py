@@ -57,7 +57,11 @@ def test_the_start_loads_the_pins_with_the_worst_planet_and_k_gamma(tmp_path):
     peak_radial = K_GAMMA * f_peak * per_newton
     window_radial = life["bearings"][4]["loads_N"][0]
     assert peak_radial > 1.2 * window_radial  # the start decides the static safety
+    assert all("planet_stage" not in b for b in start["bearings"][:4])  # a shaft's bearing keeps its keys
     for j in (4, 5):  # the two pin bearings
+        # the start's record names a pin's bearing as life's bearings[j] does: planet_stage beside shaft 0
+        assert start["bearings"][j]["planet_stage"] == life["bearings"][j]["planet_stage"] == 1
+        assert start["bearings"][j]["shaft"] == 0
         assert_allclose(start["bearings"][j]["peak_radial_N"], peak_radial, rtol=1e-9)
         assert_allclose(life["bearings"][j]["static_equivalent_load_N"], peak_radial, rtol=1e-9)
         assert_allclose(life["bearings"][j]["static_safety"], C0_N / peak_radial, rtol=1e-9)
