@@ -517,7 +517,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
         compile_s=run.compile_s, prediction=prediction, course_changes=course_changes)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
-                            energy.potential_change_J, energy.residual_relative)
+                            energy.potential_change_J, energy.residual_relative, energy.parametric_work_J)
     return SimulationResult(
         time_s=s.time_s if want_series else np.empty(0), series=series if want_series else {},
         window_s=(float(window[0]), float(window[1])), ratio=ratio, output_speed_deg_s=w_out * RAD_TO_DEG,
