@@ -199,7 +199,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                                    fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
                                    continued=y0 is not None, run_up_samples=run_up_samples)
         if isinstance(found, Integration):
-            check(found, choice, duration_s)
+            check(found, choice, duration_s, model)
             raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
         run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
         energy_from = found.energy_from
@@ -213,7 +213,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
             eng = replace(eng, engine=run.engine, reason=f"{eng.reason}; then {changes[-1].to} from "
                           f"t = {changes[-1].at_s:.4g} s (solver.course_changes)")
         steady_state = window_steady(model)
-    check(run, choice, duration_s)
+    check(run, choice, duration_s, model)
     error_estimate = error_estimate and (steady != "periodic" or orbit_check.applies(steady_state))
     # the drive's and the load's torques are read by the series' channels and a motor's summary alone (a sweep point
     # without a motor samples neither)
