@@ -15,6 +15,7 @@ rigid train to its blow-up, so the run fails between the rigid train's passing 1
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from pathlib import Path
@@ -66,3 +67,19 @@ def test_a_train_that_runs_away_is_named_at_its_blow_up(tmp_path: Path) -> None:
     t_fail = float(message.split("stopped at t = ")[1].split(" s")[0])
     assert _rigid_time_s(10.0) < t_fail < _rigid_time_s(math.inf) * (1 + 1e-3), t_fail
     assert float(re.search(r"([0-9.e+]+)x its nominal", message).group(1)) > 10.0
+
+
+def test_design_warns_that_an_overhauling_fan_load_has_no_stable_balance(tmp_path: Path) -> None:
+    """Balanced at the nominal speed (the drive's torque the load's reflected through the reversed mesh, T_L eta / i =
+    -400 x 0.96 / 2 = -192 N m), the train still has no stable balance: d(T_L)/dn = 2 T n / n_0^2 < 0 pushes it away
+    from n_0 either way. `design` said nothing (the drive balanced within 1 %); it now warns."""
+    path = tmp_path / "balanced.toml"
+    path.write_text(SCENE.replace("torque_Nm = 10,", "torque_Nm = -192,"), encoding="utf-8")
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    assert math.isclose(doc["input_torque_Nm"], -400 * 0.96 / 2, rel_tol=1e-12)
+    found = [w for w in doc["warnings"] if w.get("check") == "torque_drive_balance"]
+    assert len(found) == 1, doc["warnings"]
+    assert math.isclose(found[0]["required_input_torque_Nm"], -192.0, rel_tol=1e-12)
+    assert "no speed is a stable balance" in found[0]["message"] and "in a finite time" in found[0]["message"]
