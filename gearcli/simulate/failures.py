@@ -80,11 +80,12 @@ def ran_away(model: TorsionalModel, run: Integration) -> str | None:
         return None
     factor, i, w, nominal = found
     rpm = 30.0 / np.pi
+    why = {"motor": "beyond what the motor's curve brakes (its generating breakdown torque), or"}.get(lay.drive.kind, "")
     return (f"the train ran away: {lay.bodies[i].label} turned at {w * rpm:.4g} rpm at t = {float(run.t[k]):.4g} s, "
             f"{factor:.3g}x its nominal {nominal * rpm:.4g} rpm, and kept accelerating: the drive does not hold the load "
-            "(a load that drives the train with a torque growing with speed, a negative [load] torque with speed_exponent "
-            "1 or 2, has no stable balance with a torque drive); no integrator setting helps: check the drive's and the "
-            "load's torques and their signs")
+            f"({why} a load that drives the train with a torque growing with speed, a negative [load] torque with "
+            "speed_exponent 1 or 2, has no stable balance with a torque drive); no integrator setting helps: check the "
+            "drive's and the load's torques and their signs")
 
 
 def _divergence_hint(choice: Choice, run: Integration) -> str:
