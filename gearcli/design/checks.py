@@ -232,6 +232,12 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
     t_in = cfg.input.torque_Nm_value
     if cfg.input.drive != "torque" or t_in is None:
         return None
+    p = cfg.load.speed_exponent if cfg.load.torque_speed is None else 0
+    if p > 0 and required_input_Nm < 0.0:  # the load drives the train, harder the faster it turns: no stable balance
+        return (f'input: drive = "torque" gives {t_in:.5g} N·m against a load that drives the train ({required_input_Nm:.5g} '
+                f"N·m at the input at {input_speed_rpm:.5g} rpm) harder the faster it turns (speed^{p}): no speed is a "
+                f"stable balance, the train runs away (without bound{', in a finite time' if p == 2 else ''}) or stops "
+                "and reverses at the slightest difference; drive it by speed or by a motor, whose curve brakes it")
     if required_input_Nm != 0.0 and abs(t_in / required_input_Nm - 1.0) <= TORQUE_BALANCE_TOLERANCE:
         return None
     if t_in == required_input_Nm:
@@ -239,7 +245,6 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
     excess = t_in - required_input_Nm
     lead = (f'input: drive = "torque" gives {t_in:.5g} N·m, the load needs {required_input_Nm:.5g} N·m at the input '
             f"at its nominal {input_speed_rpm:.5g} rpm (the load torque over the ratio, with the stage efficiencies)")
-    p = cfg.load.speed_exponent if cfg.load.torque_speed is None else 0
     ratio = t_in / required_input_Nm if required_input_Nm != 0.0 else 0.0
     table = cfg.load.torque_speed
     met = _table_settle_rpm(table, ratio, output_speed_rpm) if table is not None and output_speed_rpm > 0.0 else None

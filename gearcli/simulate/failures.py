@@ -1,12 +1,14 @@
 """Why a run did not finish: :func:`check` turns an integration's status into a SimulationError (or RunTooLong)
-naming the likely cause and the fix (the stiffness, a tolerance, a contact law, an inertia)."""
+naming the likely cause and the fix (the stiffness, a tolerance, a contact law, an inertia, or a train that ran away:
+a drive and load whose balance is unstable, which no integrator setting helps)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from gearcli.core.methods import AUTO, EXPLICIT, IMPLICIT_METHOD
+from gearcli.core.methods import AUTO, EXPLICIT, IMPLICIT, IMPLICIT_METHOD
 from gearcli.errors import RunTooLong, SimulationError
+from gearcli.model.equations import TorsionalModel
 from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
 from gearcli.simulate.solver import (
     STATUS_BUDGET,
@@ -18,14 +20,20 @@ from gearcli.simulate.solver import (
     Integration,
 )
 
+RUNAWAY_FACTOR = 10.0  # a body this many times faster than its nominal speed when the run fails: it ran away
 
-def check(run: Integration, choice: Choice, duration_s: float) -> None:
-    """Raise SimulationError naming the likely cause and the fix when the run did not finish."""
+
+def check(run: Integration, choice: Choice, duration_s: float, model: TorsionalModel | None = None) -> None:
+    """Raise SimulationError naming the likely cause and the fix when the run did not finish (with the ``model``,
+    a train that ran away before the failure is named as such)."""
     if run.status == STATUS_FINISHED:
         if not np.all(np.isfinite(run.y)):
             raise SimulationError(f"{run.method} returned non-finite values; {_stiffness_hint(choice)}")
         return
     where = f"{run.method} stopped at t = {run.t_fail:.4g} s of {duration_s:g} s"
+    away = ran_away(model, run) if model is not None and run.status != STATUS_PROJECTED else None
+    if away is not None:
+        raise SimulationError(f"{where}: {away}")
     if run.status == STATUS_PROJECTED:
         freqs = choice.at_operating_point.natural_frequencies_Hz
         fastest = f"; its fastest mode is {float(freqs[-1]):.3g} Hz" if freqs.size else ""
@@ -44,9 +52,40 @@ def check(run: Integration, choice: Choice, duration_s: float) -> None:
             else "the solution is unstable"
         raise SimulationError(f"{where}: {cause}: {run.message}. {_divergence_hint(choice, run)}")
     if run.status == STATUS_FAILED:
+        fix = "a looser rtol" if run.method in IMPLICIT else f'method = "{IMPLICIT_METHOD}" or a looser rtol'
         raise SimulationError(f"{where}: the step size collapsed (solver: {run.message}); likely a violent contact "
-                              "impact or a discontinuous stiffness — try method = \"Radau\" or a looser rtol")
+                              f"impact or a discontinuous stiffness — try {fix}")
     raise SimulationError(f"{where}: {run.message}")
+
+
+def ran_away(model: TorsionalModel, run: Integration) -> str | None:
+    """Why a failed run failed where a body ran away: at the last sample reached, the free body fastest against its
+    nominal speed turned more than :data:`RUNAWAY_FACTOR` times faster (the step size collapses as the speed grows
+    without bound: a load that drives the train with a torque growing with speed, a negative ``[load] torque`` with
+    ``speed_exponent`` 1 or 2, against a torque drive has no stable balance). None where nothing ran away."""
+    lay = model.layout
+    reached = np.nonzero(np.all(np.isfinite(run.y), axis=0))[0]
+    if reached.size == 0:
+        return None
+    k = int(reached[-1])
+    found = None
+    for i, nominal in zip(lay.free_bodies, model.speed_scales_rad_s(), strict=True):
+        j = lay.state.omega(i)
+        if j is None or nominal <= 0.0:
+            continue
+        factor = abs(float(run.y[j, k])) / nominal
+        if factor > RUNAWAY_FACTOR and (found is None or factor > found[0]):
+            found = (factor, i, float(run.y[j, k]), nominal)
+    if found is None:
+        return None
+    factor, i, w, nominal = found
+    rpm = 30.0 / np.pi
+    why = {"motor": "beyond what the motor's curve brakes (its generating breakdown torque), or"}.get(lay.drive.kind, "")
+    return (f"the train ran away: {lay.bodies[i].label} turned at {w * rpm:.4g} rpm at t = {float(run.t[k]):.4g} s, "
+            f"{factor:.3g}x its nominal {nominal * rpm:.4g} rpm, and kept accelerating: the drive does not hold the load "
+            f"({why} a load that drives the train with a torque growing with speed, a negative [load] torque with "
+            "speed_exponent 1 or 2, has no stable balance with a torque drive); no integrator setting helps: check the "
+            "drive's and the load's torques and their signs")
 
 
 def _divergence_hint(choice: Choice, run: Integration) -> str:

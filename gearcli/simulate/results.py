@@ -188,7 +188,9 @@ class SolverStats:
 
 @record
 class EnergyBalance:
-    """Energies in J over the run; residual = input - load - damping - kinetic - potential."""
+    """Energies in J over the run; residual = input - load - damping - kinetic - potential + parametric, the
+    parametric work the work a time-varying mesh stiffness does on its spring beyond its potential (K' p^2 / 2 for
+    a linear law; 0 without time-varying meshes), so that the record's terms close on their own."""
 
     input_work_J: float
     load_work_J: float
@@ -196,6 +198,7 @@ class EnergyBalance:
     kinetic_change_J: float
     potential_change_J: float
     residual_relative: float
+    parametric_work_J: float = 0.0
 
 
 @record

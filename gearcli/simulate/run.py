@@ -199,7 +199,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
                                    fastest_rad_s=_fastest_rad_s(choice), engine=eng.engine,
                                    continued=y0 is not None, run_up_samples=run_up_samples)
         if isinstance(found, Integration):
-            check(found, choice, duration_s)
+            check(found, choice, duration_s, model)
             raise SimulationError("the periodic search stopped without a result; this is a bug, please report it")
         run, window, mask_window, steady_state = found.run, found.window_s, found.mask_window_s, found.steady
         energy_from = found.energy_from
@@ -213,7 +213,7 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
             eng = replace(eng, engine=run.engine, reason=f"{eng.reason}; then {changes[-1].to} from "
                           f"t = {changes[-1].at_s:.4g} s (solver.course_changes)")
         steady_state = window_steady(model)
-    check(run, choice, duration_s)
+    check(run, choice, duration_s, model)
     error_estimate = error_estimate and (steady != "periodic" or orbit_check.applies(steady_state))
     # the drive's and the load's torques are read by the series' channels and a motor's summary alone (a sweep point
     # without a motor samples neither)
@@ -517,7 +517,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
         compile_s=run.compile_s, prediction=prediction, course_changes=course_changes)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
-                            energy.potential_change_J, energy.residual_relative)
+                            energy.potential_change_J, energy.residual_relative, energy.parametric_work_J)
     return SimulationResult(
         time_s=s.time_s if want_series else np.empty(0), series=series if want_series else {},
         window_s=(float(window[0]), float(window[1])), ratio=ratio, output_speed_deg_s=w_out * RAD_TO_DEG,
