@@ -382,11 +382,11 @@ def interference_warning(stage: StageResult, stage_cfg: Stage,
            f"deeper: a larger dedendum, a smaller root radius) or shorten the {other}'s tip" if form > 0.0 else
            f"give the {part} a larger profile shift (the {other} a smaller one) or more teeth")
     return (f"stage {stage.index}: tip interference: the {other}'s tip meets the {part} {depth:.3g} mm along the line "
-            f"of action {below}; the usable transverse contact ratio is {eps:.3f}{_usable_margin(eps)}, not ε_α = "
+            f"of action {below}; the usable transverse contact ratio is {eps:.3f}{usable_margin(eps)}, not ε_α = "
             f"{stage.contact_ratio_transverse:.3f} (which counts that path); {fix}"), data
 
 
-def _usable_margin(eps: float) -> str:
+def usable_margin(eps: float) -> str:
     """What a usable ε_α below the contact-ratio check's limits means (that check reads the nominal ε_α)."""
     if eps < 1.0:
         return " (< 1: contact is interrupted in every transverse section)"
@@ -516,7 +516,7 @@ def _pointed_text(stage: StageResult, gear: GearResult) -> str:
     eps = (reach - stage.center_distance_mm * math.sin(math.radians(stage.working_pressure_angle_deg))) \
         / stage.transverse_base_pitch_mm
     return (f"pointed tooth: the flanks meet at d = {point(gear):.4g} mm, below the tip circle, where contact ends: the "
-            f"transverse contact ratio is {max(eps, 0.0):.3f}{_usable_margin(eps)}, not ε_α = "
+            f"transverse contact ratio is {max(eps, 0.0):.3f}{usable_margin(eps)}, not ε_α = "
             f"{stage.contact_ratio_transverse:.3f}")
 
 

@@ -164,7 +164,7 @@ class PlanetaryDesign:
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
         from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
 
-        found = tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
+        found = tuple(warning(DESIGN, w, stage=result.index, **data) for w, data in pl.planetary_warnings(result))
         found += _planet_ring_allowance_diagnostics(result)
         ring = pl.ring_resonance_warning(result)
         if ring is None:
