@@ -91,7 +91,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                                                                      "min_teeth": z_min, "min_profile_shift": x_min}))
         for gear in (stage.pinion, stage.gear):
             found.append(interference_warning(stage, stage_cfg, gear))
-        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at,
+        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at, **mesh_data(stage),
                                                      "contact_ratio_transverse": stage.contact_ratio_transverse,
                                                      "contact_ratio_total": stage.contact_ratio_total}))
         for gear in (stage.pinion, stage.gear):
@@ -99,7 +99,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
             found.append((tip_clearance_warning(stage, gear, clearance, stage_cfg),
                           {"check": "tip_clearance", **at, "member": _part(stage, gear), "tip_clearance_mm": clearance}))
         found.append((contact_ratio_allowances_warning(stage),
-                      {"check": "contact_ratio_allowances", **at,
+                      {"check": "contact_ratio_allowances", **at, **mesh_data(stage),
                        "contact_ratio_transverse_with_allowances": stage.contact_ratio_transverse_with_allowances}))
         found.append((face_width_warning(stage), {"check": "face_width", **at,
                                                   "face_width_ratio": stage.face_width_mm
@@ -114,10 +114,10 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                            "min_tip_thickness_mm": MIN_TIP_THICKNESS_PER_MODULE * stage.normal_module_mm}))
         found.append(steel_stiffness_warning(cfg, stage.index, "mesh" if stage.planetary is None else "sun_planet",
                                              (stage_cfg.pinion.material, stage_cfg.gear.material)))
-        found.append((static_approach_warning(stage), {"check": "static_approach", **at,
+        found.append((static_approach_warning(stage), {"check": "static_approach", **at, **mesh_data(stage),
                                                        "static_approach_mm": stage.static_approach_mm,
                                                        "normal_module_mm": stage.normal_module_mm}))
-        found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at,
+        found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at, **mesh_data(stage),
                                                  "resonance_ratio": stage.resonance_ratio,
                                                  "resonance_speed_rpm": stage.resonance_speed_rpm,
                                                  "resonance_lower_limit": stage.resonance_lower_limit,
@@ -138,7 +138,7 @@ def static_approach_warning(stage: StageResult) -> str | None:
     h0, m_n = stage.static_approach_mm, stage.normal_module_mm
     if not (h0 > STATIC_APPROACH_MODULE_FRACTION * m_n):
         return None
-    return (f"stage {stage.index}: the static approach of the mesh is {h0:.3g} mm at the design load, more than 10 % "
+    return (f"{mesh_head(stage)}: the static approach of the mesh is {h0:.3g} mm at the design load, more than 10 % "
             f"of the normal module ({m_n:.3g} mm): the contact law is far outside its validity (a tooth pair "
             "deflects some micrometres at its rated load); check the load torque, [contact] stiffness and their units")
 
@@ -441,7 +441,7 @@ def contact_ratio_allowances_warning(stage: StageResult) -> str | None:
     eps = stage.contact_ratio_transverse_with_allowances
     if eps is None or min(eps) >= 1.0 or stage.contact_ratio_transverse < 1.0:
         return None
-    return (f"stage {stage.index}: transverse contact ratio with allowances ε_α,i = {beside(min(eps), 1.0, '.3f')} < 1 (nominal "
+    return (f"{mesh_head(stage)}: transverse contact ratio with allowances ε_α,i = {beside(min(eps), 1.0, '.3f')} < 1 (nominal "
             f"{stage.contact_ratio_transverse:.3f}): at the lower tip diameters and the largest centre distance "
             "contact is interrupted in every transverse section; narrow the tip or centre-distance allowances")
 
@@ -450,10 +450,10 @@ def contact_ratio_warning(stage: StageResult) -> str | None:
     eps, total = stage.contact_ratio_transverse, stage.contact_ratio_total
     if eps < 1.0:
         overlap = "the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous"
-        return (f"stage {stage.index}: transverse contact ratio ε_α = {beside(eps, 1.0, '.3f')} < 1: contact is interrupted in "
+        return (f"{mesh_head(stage)}: transverse contact ratio ε_α = {beside(eps, 1.0, '.3f')} < 1: contact is interrupted in "
                 f"every transverse section; total ε_γ = {total:.3f}, {overlap}")
     if eps < MIN_CONTACT_RATIO:
-        return (f"stage {stage.index}: transverse contact ratio ε_α = {beside(eps, MIN_CONTACT_RATIO, '.3f')} < {MIN_CONTACT_RATIO}: little "
+        return (f"{mesh_head(stage)}: transverse contact ratio ε_α = {beside(eps, MIN_CONTACT_RATIO, '.3f')} < {MIN_CONTACT_RATIO}: little "
                 "margin for tip relief, pitch and centre-distance errors")
     return None
 
@@ -523,7 +523,7 @@ def _pointed_text(stage: StageResult, gear: GearResult) -> str:
 def resonance_warning(stage: StageResult) -> str | None:
     """ISO 6336-1 speed ranges: the main resonance N_S < N ≤ 1.15, and the subcritical resonances near
     N = 1/2 and 1/3 (the main range's band divided by 2 and 3; ISO names the points, gearcli the band)."""
-    head = (f"stage {stage.index}: resonance ratio N = n1/n_E1 = "
+    head = (f"{mesh_head(stage)}: resonance ratio N = n1/n_E1 = "
             f"{resonance_figure(stage.resonance_ratio, stage.resonance_lower_limit)} (n_E1 = "
             f"{stage.resonance_speed_rpm:.4g} rpm of the smaller wheel, ISO 6336-1)")
     return resonance_text(head, stage.resonance_ratio, stage.resonance_lower_limit, stage.resonance_range)
@@ -546,13 +546,18 @@ def resonance_text(head: str, n: float, lower: float, speed_range: str) -> str |
     if not orders:
         return None
     near = " and ".join(f"N = 1/{j} ({lower / j:.3f} < N ≤ {MAIN_RESONANCE_UPPER / j:.3f})" for j in orders)
-    which = " and ".join(_ordinal(j) for j in orders)
+    which = " and ".join({2: "second", 3: "third"}.get(j, f"{j}th") for j in orders)
     return (f"{head} lies near {near} in the subcritical range: the mesh frequency's {which} "
             f"harmonic{'s' if len(orders) > 1 else ''} can excite the resonance")
 
 
-def _ordinal(n: int) -> str:
-    return {2: "second", 3: "third"}.get(n, f"{n}th")
+def mesh_head(stage: StageResult) -> str:
+    """A mesh warning's head: its stage, and which mesh on a planetary stage (the sun–planet; the planet–ring's own)."""
+    return f"stage {stage.index}" + ("" if stage.planetary is None else " sun–planet mesh")
+
+
+def mesh_data(stage: StageResult) -> JsonObject:
+    return {} if stage.planetary is None else {"mesh": "sun_planet"}
 
 
 def _part(stage: StageResult, gear: GearResult) -> str:

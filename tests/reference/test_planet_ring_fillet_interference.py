@@ -15,10 +15,12 @@ no warning while its ring's tip met the planet 1.2 mm (along the line of action)
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 from numpy.testing import assert_allclose
 
+from gearcli.api import design, load
 from tests.life.scenes import design_of
 from tests.reference.heavy_hand import inv as _inv
 from tests.reference.heavy_hand import inv_inverse as _inv_inverse
@@ -94,3 +96,23 @@ def test_a_ring_tip_clear_of_the_fillet_does_not_warn():
     assert ref["start"] > ref["q"]
     d = design_of(scene(0.5, -0.5))[1]
     assert not [dg for dg in d.diagnostics if dg.data.get("check") == "interference"]
+
+
+def test_the_sun_planet_contact_ratio_warning_names_its_mesh():
+    """configs/planetary_stage.toml (NREL 5 MW stage 1: 19/17/56, m_n 45, x 0.617/0.8021/−0.5013): the sun–planet
+    ε_α by hand (tip alteration k = (a_w − a)/m_n − Σx) is 1.115 < 1.2; the warning said "stage 1: transverse
+    contact ratio", which of a planetary stage's two meshes left unsaid (the planet–ring's says so)."""
+    a_t, z, x, m = math.radians(20.0), (19, 17), (0.617, 0.8021), 45.0
+    a = m * sum(z) / 2
+    a_wt = _inv_inverse(_inv(a_t) + 2 * math.tan(a_t) * sum(x) / sum(z))
+    a_w = a * math.cos(a_t) / math.cos(a_wt)
+    k = (a_w - a) / m - sum(x)
+    reach = sum(math.sqrt((zi * m / 2 + m * (1 + xi + k)) ** 2 - (zi * m / 2 * math.cos(a_t)) ** 2)
+                for zi, xi in zip(z, x, strict=True))
+    eps = (reach - a_w * math.sin(a_wt)) / (math.pi * m * math.cos(a_t))
+    d = design(load(str(Path(__file__).resolve().parents[2] / "configs" / "planetary_stage.toml")))
+    hits = [dg for dg in d.diagnostics if dg.data.get("check") == "contact_ratio"]
+    assert len(hits) == 1
+    assert_allclose(hits[0].data["contact_ratio_transverse"], eps, rtol=1e-9)
+    assert hits[0].data["mesh"] == "sun_planet"
+    assert hits[0].message.startswith(f"stage 1 sun–planet mesh: transverse contact ratio ε_α = {eps:.3f} < 1.2")
