@@ -136,3 +136,4 @@ class PlanetaryResult:
     # signed external torques on sun, carrier, ring (positive in the input member's running sense), N·m: sum 0
     moment_balance_Nm: dict[str, float] = field(default_factory=dict)
     planet_angles_deg: tuple[float, ...] = ()  # each planet's position on the carrier
+    ring_treatment: str | None = None  # the ring material's treatment (its tip thickness limit); not in the JSON

@@ -18,7 +18,7 @@ Choices where the contract is silent:
   transverse contact) as separate messages; b/d1 outside 0.2 … 1.5 (Niemann/Winter, Maschinenelemente II:
   b/d1 ≲ 1.1–1.6 for straddle-mounted pinions depending on hardening, 1.5 taken as the upper end;
   below 0.2 the face is so narrow that the module, not the width, carries the load); normal tip
-  thickness s_an < 0.2 m_n (pointed teeth, Niemann/Winter's minimum for through-hardened gears).
+  thickness s_an < 0.2 m_n, 0.4 m_n on surface-hardened members (pointed teeth, Niemann/Winter's minima).
 - An intermediate shaft whose gear and next pinion (both helical, parallel stages) have opposite hands: their axial
   forces add on its bearings (the countershaft rule says one hand on both, so they oppose): a warning.
 """
@@ -34,6 +34,8 @@ from gearcli.core.jsontypes import JsonObject
 from gearcli.core.text import beside
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
+    hardened_tip_text,
+    min_tip_thickness_per_module,
     normal_tip_thickness_mm,
     pointed_tip_diameter_mm,
     rack_form_height_factor,
@@ -54,7 +56,6 @@ if TYPE_CHECKING:
 
 MIN_CONTACT_RATIO = 1.2
 FACE_RATIO_RANGE = (0.2, 1.5)  # b / d1
-MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a fan law: 0.5 % in speed)
 
 
@@ -91,9 +92,8 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                                                                      "min_teeth": z_min, "min_profile_shift": x_min}))
         for gear in (stage.pinion, stage.gear):
             found.append(interference_warning(stage, stage_cfg, gear))
-        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at, **mesh_data(stage),
-                                                     "contact_ratio_transverse": stage.contact_ratio_transverse,
-                                                     "contact_ratio_total": stage.contact_ratio_total}))
+        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at, **mesh_data(stage), **{
+            key: getattr(stage, key) for key in ("contact_ratio_transverse", "contact_ratio_total")}}))
         for gear in (stage.pinion, stage.gear):
             clearance = tip_clearance_with_allowances_mm(stage, stage_cfg, gear)
             found.append((tip_clearance_warning(stage, gear, clearance, stage_cfg),
@@ -101,27 +101,26 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
         found.append((contact_ratio_allowances_warning(stage),
                       {"check": "contact_ratio_allowances", **at, **mesh_data(stage),
                        "contact_ratio_transverse_with_allowances": stage.contact_ratio_transverse_with_allowances}))
-        found.append((face_width_warning(stage), {"check": "face_width", **at,
-                                                  "face_width_ratio": stage.face_width_mm
-                                                  / smaller_pitch_diameter_mm(stage)}))
+        found.append((face_width_warning(stage), {"check": "face_width", **at, "face_width_ratio":
+                                                  stage.face_width_mm / smaller_pitch_diameter_mm(stage)}))
         for gear in (stage.pinion, stage.gear):
             tip_allowance = getattr(stage_cfg, _part(stage, gear)).tip_diameter_allowance_mm
             tip_mm = tip_allowance[0] if tip_allowance else 0.0
-            found.append((tip_thickness_warning(stage, gear, tip_mm),
+            treatment = cfg.materials[getattr(stage_cfg, _part(stage, gear)).material].treatment
+            found.append((tip_thickness_warning(stage, gear, tip_mm, treatment),
                           {"check": "tip_thickness", **at, "member": _part(stage, gear),
                            "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
-                           "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm),
-                           "min_tip_thickness_mm": MIN_TIP_THICKNESS_PER_MODULE * stage.normal_module_mm}))
+                           "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm), "treatment": treatment,
+                           "min_tip_thickness_mm": min_tip_thickness_per_module(treatment) * stage.normal_module_mm}))
         found.append(steel_stiffness_warning(cfg, stage.index, "mesh" if stage.planetary is None else "sun_planet",
                                              (stage_cfg.pinion.material, stage_cfg.gear.material)))
         found.append((static_approach_warning(stage), {"check": "static_approach", **at, **mesh_data(stage),
                                                        "static_approach_mm": stage.static_approach_mm,
                                                        "normal_module_mm": stage.normal_module_mm}))
         found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at, **mesh_data(stage),
-                                                 "resonance_ratio": stage.resonance_ratio,
-                                                 "resonance_speed_rpm": stage.resonance_speed_rpm,
-                                                 "resonance_lower_limit": stage.resonance_lower_limit,
-                                                 "resonance_range": stage.resonance_range}))
+                                                 **{key: getattr(stage, key) for key in (
+                                                     "resonance_ratio", "resonance_speed_rpm", "resonance_lower_limit",
+                                                     "resonance_range")}}))
     return tuple(warning(DESIGN, w, **data) for w, data in found if w)
 
 
@@ -490,12 +489,13 @@ def tip_thickness_mm(stage: StageResult, gear: GearResult, tip_allowance_mm: flo
                                    gear.tip_diameter_mm + tip_allowance_mm)
 
 
-def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0) -> str | None:
-    """s_an (``tip_thickness_mm``) below 0.2 m_n."""
-    m_n = stage.normal_module_mm
+def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0,
+                          treatment: str | None = None) -> str | None:
+    """s_an (``tip_thickness_mm``) below 0.2 m_n, 0.4 m_n on a surface-hardened member."""
+    m_n, factor = stage.normal_module_mm, min_tip_thickness_per_module(treatment)
     tip = gear.tip_diameter_mm + tip_allowance_mm
     s_an = tip_thickness_mm(stage, gear, tip_allowance_mm)
-    limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
+    limit = factor * m_n
     if s_an >= limit:
         return None
     what = _pointed_text(stage, gear) if s_an <= 0 else "thin tooth tip"
@@ -503,7 +503,7 @@ def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm
     fix = "reduce the profile shift" if gear.generating_profile_shift is None else \
         "reduce the profile shift or the tooth-thickness / tip allowances"
     return (f"stage {stage.index}: {_name(stage, gear)} {what}, normal tip thickness s_an = {beside(s_an, limit)} mm "
-            f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({_shift_text(gear)}{at_tip}); {fix}")
+            f"< {factor:g} m_n = {limit:.3g} mm{hardened_tip_text(treatment)} ({_shift_text(gear)}{at_tip}); {fix}")
 
 
 def _pointed_text(stage: StageResult, gear: GearResult) -> str:

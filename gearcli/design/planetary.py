@@ -266,7 +266,7 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
         tip_clearance_between_planets_mm=adjacency if math.isfinite(adjacency) else None,  # one planet: no neighbour
         concentricity_mm=geo.center_distance_mm - r_c, mesh_efficiency=eta_m,
         basic_efficiency=eta_m ** 2, moment_balance_Nm={m: v / 1000.0 for m, v in moments.items()},
-        planet_angles_deg=tuple(angles))
+        planet_angles_deg=tuple(angles), ring_treatment=ring_mat.treatment)
     return replace(mesh, ratio=kin.ratios[k], planetary=result, type="planetary")
 
 
