@@ -116,3 +116,27 @@ def test_the_sun_planet_contact_ratio_warning_names_its_mesh():
     assert_allclose(hits[0].data["contact_ratio_transverse"], eps, rtol=1e-9)
     assert hits[0].data["mesh"] == "sun_planet"
     assert hits[0].message.startswith(f"stage 1 sun–planet mesh: transverse contact ratio ε_α = {eps:.3f} < 1.2")
+
+
+def test_a_jammed_sun_planet_mesh_says_so_without_a_centre_distance_to_widen():
+    """Sun +0.05, planet +0.03 mm upper tooth-thickness allowances (spur): on the working circles of the nominal a_w
+    the pitch less both tooth thicknesses s_w = d_w (s_t/d + inv α_t − inv α_wt), s_t = m (π/2 + 2 x tan α_n) + A_sn,
+    is −0.0804 mm; a planetary stage has no centre-distance allowance (the carrier's radius), so the warning's advice
+    is the teeth, and it names the sun–planet mesh (it read "stage 1: … or widen the centre distance")."""
+    text = scene(0.1, -0.1).replace('profile_shift = 0.1, face', 'profile_shift = 0.1, tooth_thickness_allowance_mm = '
+                                    '[0.05, -0.05], face').replace(
+        "count = 4,", "count = 4, tooth_thickness_allowance_mm = [0.03, -0.05],")
+    a = math.radians(20.0)
+    a_wt = _inv_inverse(_inv(a) + 2 * math.tan(a) * 0.1 / (Z_S + Z_P))
+    widths = [Z * M_N * math.cos(a) / math.cos(a_wt) * ((M_N * (math.pi / 2 + 2 * x * math.tan(a)) + allowance)
+                                                         / (Z * M_N) + _inv(a) - _inv(a_wt))
+              for Z, x, allowance in ((Z_S, 0.1, 0.05), (Z_P, 0.0, 0.03))]
+    j_min = math.pi * Z_S * M_N * math.cos(a) / math.cos(a_wt) / Z_S - sum(widths)
+    d = design_of(text)[1]
+    found = [dg for dg in d.diagnostics if dg.data.get("check") == "backlash_negative"
+             and dg.data.get("mesh") == "sun_planet"]
+    assert len(found) == 1
+    assert_allclose(found[0].data["backlash_min_mm"], j_min, rtol=1e-9)
+    assert_allclose(j_min, -0.0804, atol=1e-4)
+    assert found[0].message.startswith("stage 1 sun–planet mesh: the minimum circumferential backlash")
+    assert "centre distance" not in found[0].message
