@@ -97,7 +97,8 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
         for gear in (stage.pinion, stage.gear):
             clearance = tip_clearance_with_allowances_mm(stage, stage_cfg, gear)
             found.append((tip_clearance_warning(stage, gear, clearance, stage_cfg),
-                          {"check": "tip_clearance", **at, "member": _part(stage, gear), "tip_clearance_mm": clearance}))
+                          {"check": "tip_clearance", **at, **mesh_data(stage), "member": _part(stage, gear),
+                           "tip_clearance_mm": clearance}))
         found.append((contact_ratio_allowances_warning(stage),
                       {"check": "contact_ratio_allowances", **at, **mesh_data(stage),
                        "contact_ratio_transverse_with_allowances": stage.contact_ratio_transverse_with_allowances}))
@@ -282,10 +283,9 @@ def spur_hand_warning(index: int, stage_cfg: Stage, names: tuple[str, str] = ("p
     """Hands on a spur pair; ``names``: the pair's members as the file names them (a planetary: sun, planet)."""
     given = [f'{name} "{getattr(stage_cfg, part).hand}"' for part, name in zip(("pinion", "gear"), names, strict=True)
              if getattr(stage_cfg, part).hand in HANDS]
-    if stage_cfg.helix_angle_deg != 0.0 or not given:
-        return None
-    return (f"stage {index}: hand given ({', '.join(given)}) but helix_angle_deg = 0, a spur pair; "
-            "the hands are ignored (forgot helix_angle_deg?)")
+    return None if stage_cfg.helix_angle_deg != 0.0 or not given else (
+        f"stage {index}: hand given ({', '.join(given)}) but helix_angle_deg = 0, a spur pair; the hands are ignored "
+        "(forgot helix_angle_deg?)")
 
 
 def _cut_shift(gear: GearResult) -> float:
@@ -357,7 +357,7 @@ def interference_warning(stage: StageResult, stage_cfg: Stage,
 
     start = line - tip_reach_mm(mate.tip_diameter_mm, mate.base_diameter_mm)
     form = lowest(gear)
-    data: JsonObject = {"check": "interference", "stage": stage.index, "member": _part(stage, gear)}
+    data: JsonObject = {"check": "interference", "stage": stage.index, "member": _part(stage, gear), **mesh_data(stage)}
     if start >= form - INTERFERENCE_TOLERANCE_PER_MODULE * m_n:
         return None, data
     # the usable path, measured from the pinion's T: from the higher of the gear's tip point and the pinion's lowest

@@ -140,3 +140,17 @@ def test_a_jammed_sun_planet_mesh_says_so_without_a_centre_distance_to_widen():
     assert_allclose(j_min, -0.0804, atol=1e-4)
     assert found[0].message.startswith("stage 1 sun–planet mesh: the minimum circumferential backlash")
     assert "centre distance" not in found[0].message
+
+
+def test_the_sun_planet_interference_carries_its_mesh():
+    """Sun 12 (undercut: z < 17.1), planets 24, ring 60, x = 0: the planet's tip starts contact a sin α −
+    √(r_ap² − r_bp²) = 54 sin 20° − √(39² − (36 cos 20°)²) = −0.937 mm beyond the sun's base tangent point."""
+    text = scene(0.0, 0.0).replace("teeth = 20,", "teeth = 12,", 1).replace("teeth = 20,", "teeth = 24,", 1).replace(
+        "count = 4", "count = 3")  # sun, then planet (Z_S = Z_P)
+    depth = math.sqrt(39.0**2 - (36 * math.cos(math.radians(20))) ** 2) - 54 * math.sin(math.radians(20))
+    d = design_of(text)[1]
+    found = [dg.data for dg in d.diagnostics if dg.data.get("check") == "interference"
+             and dg.data.get("mesh") == "sun_planet"]
+    assert len(found) == 1 and found[0]["member"] == "pinion"  # the pair's member: the sun
+    assert_allclose(found[0]["depth_mm"], depth, rtol=1e-9)
+    assert_allclose(depth, 0.937, atol=1e-3)
