@@ -106,6 +106,9 @@ class InternalMeshResult:
     # the smallest tip clearances with allowances (planet tip on the ring's root, ring tip on the planet's root) for
     # the ``tip_clearance`` warning; not in the JSON (as a parallel stage's, only the warning carries them)
     tip_clearance_with_allowances_mm: tuple[float, float] | None = None
+    # the planet's lowest involute point (its root form circle, cut by the stage's basic rack) from its base tangent
+    # point along the line of action, max(q, 0), for the ``interference`` warning; not in the JSON (as above)
+    planet_form_from_tangent_mm: float = 0.0
 
 
 @record
@@ -133,3 +136,4 @@ class PlanetaryResult:
     # signed external torques on sun, carrier, ring (positive in the input member's running sense), N·m: sum 0
     moment_balance_Nm: dict[str, float] = field(default_factory=dict)
     planet_angles_deg: tuple[float, ...] = ()  # each planet's position on the carrier
+    ring_treatment: str | None = None  # the ring material's treatment (its tip thickness limit); not in the JSON

@@ -18,7 +18,7 @@ Choices where the contract is silent:
   transverse contact) as separate messages; b/d1 outside 0.2 … 1.5 (Niemann/Winter, Maschinenelemente II:
   b/d1 ≲ 1.1–1.6 for straddle-mounted pinions depending on hardening, 1.5 taken as the upper end;
   below 0.2 the face is so narrow that the module, not the width, carries the load); normal tip
-  thickness s_an < 0.2 m_n (pointed teeth, Niemann/Winter's minimum for through-hardened gears).
+  thickness s_an < 0.2 m_n, 0.4 m_n on surface-hardened members (pointed teeth, Niemann/Winter's minima).
 - An intermediate shaft whose gear and next pinion (both helical, parallel stages) have opposite hands: their axial
   forces add on its bearings (the countershaft rule says one hand on both, so they oppose): a warning.
 """
@@ -34,6 +34,8 @@ from gearcli.core.jsontypes import JsonObject
 from gearcli.core.text import beside
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
+    hardened_tip_text,
+    min_tip_thickness_per_module,
     normal_tip_thickness_mm,
     pointed_tip_diameter_mm,
     rack_form_height_factor,
@@ -54,7 +56,6 @@ if TYPE_CHECKING:
 
 MIN_CONTACT_RATIO = 1.2
 FACE_RATIO_RANGE = (0.2, 1.5)  # b / d1
-MIN_TIP_THICKNESS_PER_MODULE = 0.2  # s_an / m_n
 TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a fan law: 0.5 % in speed)
 
 
@@ -91,37 +92,36 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                                                                      "min_teeth": z_min, "min_profile_shift": x_min}))
         for gear in (stage.pinion, stage.gear):
             found.append(interference_warning(stage, stage_cfg, gear))
-        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at,
-                                                     "contact_ratio_transverse": stage.contact_ratio_transverse,
-                                                     "contact_ratio_total": stage.contact_ratio_total}))
+        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at, **mesh_data(stage), **{
+            key: getattr(stage, key) for key in ("contact_ratio_transverse", "contact_ratio_total")}}))
         for gear in (stage.pinion, stage.gear):
             clearance = tip_clearance_with_allowances_mm(stage, stage_cfg, gear)
             found.append((tip_clearance_warning(stage, gear, clearance, stage_cfg),
-                          {"check": "tip_clearance", **at, "member": _part(stage, gear), "tip_clearance_mm": clearance}))
+                          {"check": "tip_clearance", **at, **mesh_data(stage), "member": _part(stage, gear),
+                           "tip_clearance_mm": clearance}))
         found.append((contact_ratio_allowances_warning(stage),
-                      {"check": "contact_ratio_allowances", **at,
+                      {"check": "contact_ratio_allowances", **at, **mesh_data(stage),
                        "contact_ratio_transverse_with_allowances": stage.contact_ratio_transverse_with_allowances}))
-        found.append((face_width_warning(stage), {"check": "face_width", **at,
-                                                  "face_width_ratio": stage.face_width_mm
-                                                  / smaller_pitch_diameter_mm(stage)}))
+        found.append((face_width_warning(stage), {"check": "face_width", **at, "face_width_ratio":
+                                                  stage.face_width_mm / smaller_pitch_diameter_mm(stage)}))
         for gear in (stage.pinion, stage.gear):
             tip_allowance = getattr(stage_cfg, _part(stage, gear)).tip_diameter_allowance_mm
             tip_mm = tip_allowance[0] if tip_allowance else 0.0
-            found.append((tip_thickness_warning(stage, gear, tip_mm),
+            treatment = cfg.materials[getattr(stage_cfg, _part(stage, gear)).material].treatment
+            found.append((tip_thickness_warning(stage, gear, tip_mm, treatment),
                           {"check": "tip_thickness", **at, "member": _part(stage, gear),
                            "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
-                           "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm),
-                           "min_tip_thickness_mm": MIN_TIP_THICKNESS_PER_MODULE * stage.normal_module_mm}))
+                           "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm), "treatment": treatment,
+                           "min_tip_thickness_mm": min_tip_thickness_per_module(treatment) * stage.normal_module_mm}))
         found.append(steel_stiffness_warning(cfg, stage.index, "mesh" if stage.planetary is None else "sun_planet",
                                              (stage_cfg.pinion.material, stage_cfg.gear.material)))
-        found.append((static_approach_warning(stage), {"check": "static_approach", **at,
+        found.append((static_approach_warning(stage), {"check": "static_approach", **at, **mesh_data(stage),
                                                        "static_approach_mm": stage.static_approach_mm,
                                                        "normal_module_mm": stage.normal_module_mm}))
-        found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at,
-                                                 "resonance_ratio": stage.resonance_ratio,
-                                                 "resonance_speed_rpm": stage.resonance_speed_rpm,
-                                                 "resonance_lower_limit": stage.resonance_lower_limit,
-                                                 "resonance_range": stage.resonance_range}))
+        found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at, **mesh_data(stage),
+                                                 **{key: getattr(stage, key) for key in (
+                                                     "resonance_ratio", "resonance_speed_rpm", "resonance_lower_limit",
+                                                     "resonance_range")}}))
     return tuple(warning(DESIGN, w, **data) for w, data in found if w)
 
 
@@ -138,7 +138,7 @@ def static_approach_warning(stage: StageResult) -> str | None:
     h0, m_n = stage.static_approach_mm, stage.normal_module_mm
     if not (h0 > STATIC_APPROACH_MODULE_FRACTION * m_n):
         return None
-    return (f"stage {stage.index}: the static approach of the mesh is {h0:.3g} mm at the design load, more than 10 % "
+    return (f"{mesh_head(stage)}: the static approach of the mesh is {h0:.3g} mm at the design load, more than 10 % "
             f"of the normal module ({m_n:.3g} mm): the contact law is far outside its validity (a tooth pair "
             "deflects some micrometres at its rated load); check the load torque, [contact] stiffness and their units")
 
@@ -288,10 +288,9 @@ def spur_hand_warning(index: int, stage_cfg: Stage, names: tuple[str, str] = ("p
     """Hands on a spur pair; ``names``: the pair's members as the file names them (a planetary: sun, planet)."""
     given = [f'{name} "{getattr(stage_cfg, part).hand}"' for part, name in zip(("pinion", "gear"), names, strict=True)
              if getattr(stage_cfg, part).hand in HANDS]
-    if stage_cfg.helix_angle_deg != 0.0 or not given:
-        return None
-    return (f"stage {index}: hand given ({', '.join(given)}) but helix_angle_deg = 0, a spur pair; "
-            "the hands are ignored (forgot helix_angle_deg?)")
+    return None if stage_cfg.helix_angle_deg != 0.0 or not given else (
+        f"stage {index}: hand given ({', '.join(given)}) but helix_angle_deg = 0, a spur pair; the hands are ignored "
+        "(forgot helix_angle_deg?)")
 
 
 def _cut_shift(gear: GearResult) -> float:
@@ -363,7 +362,7 @@ def interference_warning(stage: StageResult, stage_cfg: Stage,
 
     start = line - tip_reach_mm(mate.tip_diameter_mm, mate.base_diameter_mm)
     form = lowest(gear)
-    data: JsonObject = {"check": "interference", "stage": stage.index, "member": _part(stage, gear)}
+    data: JsonObject = {"check": "interference", "stage": stage.index, "member": _part(stage, gear), **mesh_data(stage)}
     if start >= form - INTERFERENCE_TOLERANCE_PER_MODULE * m_n:
         return None, data
     # the usable path, measured from the pinion's T: from the higher of the gear's tip point and the pinion's lowest
@@ -387,11 +386,11 @@ def interference_warning(stage: StageResult, stage_cfg: Stage,
            f"deeper: a larger dedendum, a smaller root radius) or shorten the {other}'s tip" if form > 0.0 else
            f"give the {part} a larger profile shift (the {other} a smaller one) or more teeth")
     return (f"stage {stage.index}: tip interference: the {other}'s tip meets the {part} {depth:.3g} mm along the line "
-            f"of action {below}; the usable transverse contact ratio is {eps:.3f}{_usable_margin(eps)}, not ε_α = "
+            f"of action {below}; the usable transverse contact ratio is {eps:.3f}{usable_margin(eps)}, not ε_α = "
             f"{stage.contact_ratio_transverse:.3f} (which counts that path); {fix}"), data
 
 
-def _usable_margin(eps: float) -> str:
+def usable_margin(eps: float) -> str:
     """What a usable ε_α below the contact-ratio check's limits means (that check reads the nominal ε_α)."""
     if eps < 1.0:
         return " (< 1: contact is interrupted in every transverse section)"
@@ -446,7 +445,7 @@ def contact_ratio_allowances_warning(stage: StageResult) -> str | None:
     eps = stage.contact_ratio_transverse_with_allowances
     if eps is None or min(eps) >= 1.0 or stage.contact_ratio_transverse < 1.0:
         return None
-    return (f"stage {stage.index}: transverse contact ratio with allowances ε_α,i = {beside(min(eps), 1.0, '.3f')} < 1 (nominal "
+    return (f"{mesh_head(stage)}: transverse contact ratio with allowances ε_α,i = {beside(min(eps), 1.0, '.3f')} < 1 (nominal "
             f"{stage.contact_ratio_transverse:.3f}): at the lower tip diameters and the largest centre distance "
             "contact is interrupted in every transverse section; narrow the tip or centre-distance allowances")
 
@@ -455,10 +454,10 @@ def contact_ratio_warning(stage: StageResult) -> str | None:
     eps, total = stage.contact_ratio_transverse, stage.contact_ratio_total
     if eps < 1.0:
         overlap = "the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous"
-        return (f"stage {stage.index}: transverse contact ratio ε_α = {beside(eps, 1.0, '.3f')} < 1: contact is interrupted in "
+        return (f"{mesh_head(stage)}: transverse contact ratio ε_α = {beside(eps, 1.0, '.3f')} < 1: contact is interrupted in "
                 f"every transverse section; total ε_γ = {total:.3f}, {overlap}")
     if eps < MIN_CONTACT_RATIO:
-        return (f"stage {stage.index}: transverse contact ratio ε_α = {beside(eps, MIN_CONTACT_RATIO, '.3f')} < {MIN_CONTACT_RATIO}: little "
+        return (f"{mesh_head(stage)}: transverse contact ratio ε_α = {beside(eps, MIN_CONTACT_RATIO, '.3f')} < {MIN_CONTACT_RATIO}: little "
                 "margin for tip relief, pitch and centre-distance errors")
     return None
 
@@ -495,12 +494,13 @@ def tip_thickness_mm(stage: StageResult, gear: GearResult, tip_allowance_mm: flo
                                    gear.tip_diameter_mm + tip_allowance_mm)
 
 
-def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0) -> str | None:
-    """s_an (``tip_thickness_mm``) below 0.2 m_n."""
-    m_n = stage.normal_module_mm
+def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm: float = 0.0,
+                          treatment: str | None = None) -> str | None:
+    """s_an (``tip_thickness_mm``) below 0.2 m_n, 0.4 m_n on a surface-hardened member."""
+    m_n, factor = stage.normal_module_mm, min_tip_thickness_per_module(treatment)
     tip = gear.tip_diameter_mm + tip_allowance_mm
     s_an = tip_thickness_mm(stage, gear, tip_allowance_mm)
-    limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
+    limit = factor * m_n
     if s_an >= limit:
         return None
     what = _pointed_text(stage, gear) if s_an <= 0 else "thin tooth tip"
@@ -508,7 +508,7 @@ def tip_thickness_warning(stage: StageResult, gear: GearResult, tip_allowance_mm
     fix = "reduce the profile shift" if gear.generating_profile_shift is None else \
         "reduce the profile shift or the tooth-thickness / tip allowances"
     return (f"stage {stage.index}: {_name(stage, gear)} {what}, normal tip thickness s_an = {beside(s_an, limit)} mm "
-            f"< {MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({_shift_text(gear)}{at_tip}); {fix}")
+            f"< {factor:g} m_n = {limit:.3g} mm{hardened_tip_text(treatment)} ({_shift_text(gear)}{at_tip}); {fix}")
 
 
 def _pointed_text(stage: StageResult, gear: GearResult) -> str:
@@ -521,14 +521,14 @@ def _pointed_text(stage: StageResult, gear: GearResult) -> str:
     eps = (reach - stage.center_distance_mm * math.sin(math.radians(stage.working_pressure_angle_deg))) \
         / stage.transverse_base_pitch_mm
     return (f"pointed tooth: the flanks meet at d = {point(gear):.4g} mm, below the tip circle, where contact ends: the "
-            f"transverse contact ratio is {max(eps, 0.0):.3f}{_usable_margin(eps)}, not ε_α = "
+            f"transverse contact ratio is {max(eps, 0.0):.3f}{usable_margin(eps)}, not ε_α = "
             f"{stage.contact_ratio_transverse:.3f}")
 
 
 def resonance_warning(stage: StageResult) -> str | None:
     """ISO 6336-1 speed ranges: the main resonance N_S < N ≤ 1.15, and the subcritical resonances near
     N = 1/2 and 1/3 (the main range's band divided by 2 and 3; ISO names the points, gearcli the band)."""
-    head = (f"stage {stage.index}: resonance ratio N = n1/n_E1 = "
+    head = (f"{mesh_head(stage)}: resonance ratio N = n1/n_E1 = "
             f"{resonance_figure(stage.resonance_ratio, stage.resonance_lower_limit)} (n_E1 = "
             f"{stage.resonance_speed_rpm:.4g} rpm of the smaller wheel, ISO 6336-1)")
     return resonance_text(head, stage.resonance_ratio, stage.resonance_lower_limit, stage.resonance_range)
@@ -551,13 +551,18 @@ def resonance_text(head: str, n: float, lower: float, speed_range: str) -> str |
     if not orders:
         return None
     near = " and ".join(f"N = 1/{j} ({lower / j:.3f} < N ≤ {MAIN_RESONANCE_UPPER / j:.3f})" for j in orders)
-    which = " and ".join(_ordinal(j) for j in orders)
+    which = " and ".join({2: "second", 3: "third"}.get(j, f"{j}th") for j in orders)
     return (f"{head} lies near {near} in the subcritical range: the mesh frequency's {which} "
             f"harmonic{'s' if len(orders) > 1 else ''} can excite the resonance")
 
 
-def _ordinal(n: int) -> str:
-    return {2: "second", 3: "third"}.get(n, f"{n}th")
+def mesh_head(stage: StageResult) -> str:
+    """A mesh warning's head: its stage, and which mesh on a planetary stage (the sun–planet; the planet–ring's own)."""
+    return f"stage {stage.index}" + ("" if stage.planetary is None else " sun–planet mesh")
+
+
+def mesh_data(stage: StageResult) -> JsonObject:
+    return {} if stage.planetary is None else {"mesh": "sun_planet"}
 
 
 def _part(stage: StageResult, gear: GearResult) -> str:

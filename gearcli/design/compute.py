@@ -14,7 +14,13 @@ from typing import TYPE_CHECKING
 from gearcli.core.records import fields_getter, record
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import design_diagnostics, planet_ring_steel_warnings, stiffness_diagnostics
+from gearcli.design.checks import (
+    design_diagnostics,
+    mesh_data,
+    mesh_head,
+    planet_ring_steel_warnings,
+    stiffness_diagnostics,
+)
 from gearcli.design.forces import static_forces
 from gearcli.design.geometry import BasicRackFactors, InfeasibleGeometry, PairGeometry, pair_geometry
 from gearcli.design.inertia import (
@@ -82,13 +88,16 @@ def compute_design(cfg: DesignFile) -> DesignResult:
         _require_finite(stage, f"stage[{k}]", kinds.kind_of(stage), getattr(kind[k], "origin", None))
     out = kin.shaft_speeds_rad_s[-1]
     own = tuple(d for k, st in enumerate(stages) for d in checked_diagnostics(st, kind[k].diagnostics(st)))
-    jammed = tuple(warning(DESIGN, f"stage {st.index}: the minimum circumferential backlash is "
+    jammed = tuple(warning(DESIGN, f"{mesh_head(st)}: the minimum circumferential backlash is "
                            f"{st.backlash_circumferential_mm[1]:.4g} mm (< 0): at the upper tooth-thickness "
-                           "allowances and the smallest centre distance the teeth jam"
+                           "allowances " + ("and the smallest centre distance" if st.planetary is None else
+                                            "of sun and planet, on the carrier's radius,") + " the teeth jam"
                            + (f" (the maximum, {st.backlash_circumferential_mm[0]:.4g} mm, too: every pair within the "
                               "tolerances jams)" if st.backlash_circumferential_mm[0] < 0.0 else "")
-                           + "; thin the teeth (tooth_thickness_allowance_mm) or widen the centre distance",
-                           check="backlash_negative", stage=st.index,
+                           + ("; thin the teeth (tooth_thickness_allowance_mm) or widen the centre distance"
+                              if st.planetary is None else
+                              "; thin the teeth (tooth_thickness_allowance_mm of the sun or the planet)"),
+                           check="backlash_negative", stage=st.index, **mesh_data(st),
                            backlash_min_mm=st.backlash_circumferential_mm[1],
                            backlash_max_mm=st.backlash_circumferential_mm[0])
                    for _, st in gear_pairs(stages) if st.backlash_circumferential_mm is not None

@@ -221,6 +221,21 @@ def tip_reach_mm(tip_diameter: float, base_diameter: float) -> float:
     return math.sqrt(max(0.25 * (tip_diameter ** 2 - base_diameter ** 2), 0.0))
 
 
+#: the smallest normal tip thickness s_an / m_n (Niemann/Winter, Maschinenelemente II; KISSsoft's defaults): 0.2 for
+#: through-hardened and softer members, 0.4 for surface-hardened ones (the hard case would run through a thinner tip and
+#: leave it brittle); ISO 6336-5's groups by the material's ``treatment``
+MIN_TIP_THICKNESS_PER_MODULE = 0.2
+SURFACE_HARDENED = ("case_carburized", "nitrided", "nitrocarburized", "induction_hardened", "flame_hardened")
+
+
+def min_tip_thickness_per_module(treatment: str | None) -> float:
+    return 2.0 * MIN_TIP_THICKNESS_PER_MODULE if treatment in SURFACE_HARDENED else MIN_TIP_THICKNESS_PER_MODULE
+
+
+def hardened_tip_text(treatment: str | None) -> str:
+    return f" ({treatment}: a surface-hardened tip needs 0.4 m_n)" if treatment in SURFACE_HARDENED else ""
+
+
 def normal_tip_thickness_mm(teeth: int, normal_module_mm: float, profile_shift: float, helix_rad: float,
                             normal_pressure_rad: float, tip_diameter: float) -> float:
     """Normal tooth thickness at the tip circle, s_an = s_at cos β_a (ISO 21771, 5.4).

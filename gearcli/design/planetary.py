@@ -28,19 +28,23 @@ import math
 from dataclasses import replace
 from typing import TYPE_CHECKING, TypeVar, cast
 
+from gearcli.core.jsontypes import JsonObject
 from gearcli.core.records import record
 from gearcli.design import allowances_internal as ia
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import resonance_figure, resonance_text
+from gearcli.design.checks import INTERFERENCE_TOLERANCE_PER_MODULE, resonance_figure, resonance_text, usable_margin
 from gearcli.design.geometry import (
     base_diameter_mm,
     base_helix_angle_rad,
+    form_point_from_base_tangent_mm,
     inverse_involute,
     involute,
     overlap_ratio,
     pitch_diameter_mm,
+    rack_form_height_factor,
+    tip_reach_mm,
     transverse_base_pitch_mm,
     transverse_module_mm,
     transverse_pressure_angle_rad,
@@ -262,7 +266,7 @@ def planetary_result(cfg: DesignFile, k: int, kin: Train, mesh: StageResult) -> 
         tip_clearance_between_planets_mm=adjacency if math.isfinite(adjacency) else None,  # one planet: no neighbour
         concentricity_mm=geo.center_distance_mm - r_c, mesh_efficiency=eta_m,
         basic_efficiency=eta_m ** 2, moment_balance_Nm={m: v / 1000.0 for m, v in moments.items()},
-        planet_angles_deg=tuple(angles))
+        planet_angles_deg=tuple(angles), ring_treatment=ring_mat.treatment)
     return replace(mesh, ratio=kin.ratios[k], planetary=result, type="planetary")
 
 
@@ -319,7 +323,11 @@ def _ring_mesh(cfg: DesignFile, k: int, stage: PlanetaryStage, geo: InternalGeom
         resonance_lower_limit=res.lower_main_resonance_limit(line_load),
         resonance_range=res.resonance_range(abs(planet.speed_rpm) / n_e1, res.lower_main_resonance_limit(line_load)),
         mesh_stiffness=at_load, static_approach_mm=at_load.static_approach_mm,
-        linearised_stiffness_N_mm=at_load.linearised_N_mm)
+        linearised_stiffness_N_mm=at_load.linearised_N_mm,
+        planet_form_from_tangent_mm=max(form_point_from_base_tangent_mm(
+            planet.pitch_diameter_mm, alpha_t, stage.normal_module_mm, stage.planet.profile_shift,
+            rack_form_height_factor(stage.basic_rack.dedendum, stage.basic_rack.root_radius,
+                                    math.radians(stage.normal_pressure_angle_deg))), 0.0))
 
 
 def _with_ring_allowances(k: int, stage: PlanetaryStage, geo: InternalGeometry, mesh: StageResult, ring: GearResult,
@@ -370,16 +378,20 @@ def _with_ring_allowances(k: int, stage: PlanetaryStage, geo: InternalGeometry, 
 
 
 # ---------------------------------------------------------------------------------- warnings
-def planetary_warnings(stage_result: StageResult) -> list[str]:
-    """The ring mesh's contact ratio and its involute interference (spacing, concentricity and adjacency are
-    errors: :func:`gearcli.design.planetary_balance.check_assembly`)."""
+def planetary_warnings(stage_result: StageResult) -> list[tuple[str, JsonObject]]:
+    """The ring mesh's contact ratio and its interference with the planet's flank (spacing, concentricity and
+    adjacency are errors: :func:`gearcli.design.planetary_balance.check_assembly`), each with its check's data."""
     p = stage_result.planetary
     if p is None:
         return []
-    i, out = stage_result.index, []
-    if p.planet_ring.contact_ratio_transverse < 1.2:
-        out.append(f"stage {i}: planet–ring transverse contact ratio {p.planet_ring.contact_ratio_transverse:.3f} "
-                   "< 1.2")
+    out: list[tuple[str, JsonObject]] = []
+    eps, total = p.planet_ring.contact_ratio_transverse, p.planet_ring.contact_ratio_total
+    if eps < 1.2:
+        head = f"stage {stage_result.index}: planet–ring transverse contact ratio ε_α = {eps:.3f}"
+        out.append((f"{head} < 1: contact is interrupted in every transverse section; total ε_γ = {total:.3f}, "
+                    + ("the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous")
+                    if eps < 1.0 else f"{head} < 1.2", {"check": "contact_ratio", "mesh": "planet_ring",
+                                                        "contact_ratio_transverse": eps, "contact_ratio_total": total}))
     interference = ring_interference_warning(stage_result)
     return out + ([interference] if interference else [])
 
@@ -396,28 +408,56 @@ def ring_resonance_warning(stage_result: StageResult) -> str | None:
     return resonance_text(head, m.resonance_ratio, m.resonance_lower_limit, m.resonance_range)
 
 
-def ring_tip_minimum_mm(ring_base_mm: float, center_distance_mm: float, working_pressure_deg: float) -> float:
-    """The smallest tip diameter of an internal gear free of involute interference: its tip meets the line of
-    action no nearer its own tangent point T2 than the pinion's tangent point T1 (T2T1 = a_w sin α_wt), so
-    d_a2,min = √(d_b2² + (2 a_w sin α_wt)²) (DIN 3960 / ISO 21771's internal pair)."""
-    return math.hypot(ring_base_mm, 2.0 * center_distance_mm * math.sin(math.radians(working_pressure_deg)))
+def ring_tip_minimum_mm(ring_base_mm: float, center_distance_mm: float, working_pressure_deg: float,
+                        planet_form_mm: float = 0.0) -> float:
+    """The smallest tip diameter of an internal gear free of interference: its tip meets the line of action no
+    nearer its own tangent point T2 than the pinion's lowest involute point, ``planet_form_mm`` (q ≥ 0) beyond the
+    pinion's tangent point T1 (T2T1 = a_w sin α_wt), so d_a2,min = √(d_b2² + (2 (a_w sin α_wt + q))²); q = 0 is
+    DIN 3960 / ISO 21771's involute interference limit (the tip inside the pinion's base circle)."""
+    reach = center_distance_mm * math.sin(math.radians(working_pressure_deg)) + planet_form_mm
+    return math.hypot(ring_base_mm, 2.0 * reach)
 
 
-def ring_interference_warning(stage_result: StageResult) -> str | None:
-    """The ring's tip reaching inside the planet's base-circle tangent point: its tip would cut the planet's flank
-    below the involute (involute interference of the internal pair), and ε_α of the planet–ring mesh counts a path
-    of approach that does not exist."""
+def ring_interference_warning(stage_result: StageResult) -> tuple[str, JsonObject] | None:
+    """The ring's tip meeting the planet's flank below the planet's lowest involute point, as an external pair's
+    ``interference`` (:func:`gearcli.design.checks.interference_warning`): along the line of action the ring's tip
+    point lies g_r = √(r_ar² − r_br²) from the ring's tangent point T2, i.e. g_r − a_w sin α_wt beyond the planet's
+    tangent point T1; the planet's rack-cut involute reaches down to q = r_p sin α_t − (h_FfP* − x_p) m_n / sin α_t
+    from T1 (its root form circle d_Ff). A tip point inside T1 is involute interference (the tip meets the planet
+    inside its base circle), one between T1 and q meets the planet's root fillet (DIN 3960: d_Nf < d_Ff); either
+    way ε_α counts a path that carries no involute contact, and the data give the usable one."""
     p = stage_result.planetary
     assert p is not None  # a planetary stage's result
-    mesh = p.planet_ring
-    d_min = ring_tip_minimum_mm(p.ring.base_diameter_mm, mesh.center_distance_mm, mesh.working_pressure_angle_deg)
-    if p.ring.tip_diameter_mm >= d_min:
+    mesh, ring, planet = p.planet_ring, p.ring, p.planet
+    m_n = stage_result.normal_module_mm
+    line = mesh.center_distance_mm * math.sin(math.radians(mesh.working_pressure_angle_deg))
+    start = tip_reach_mm(ring.tip_diameter_mm, ring.base_diameter_mm) - line  # from T1, towards the pitch point
+    form = mesh.planet_form_from_tangent_mm
+    if start >= form - INTERFERENCE_TOLERANCE_PER_MODULE * m_n:
         return None
-    return (f"stage {stage_result.index}: planet–ring involute interference: the ring's tip diameter d_a = "
-            f"{p.ring.tip_diameter_mm:.4g} mm is below d_a,min = √(d_b² + (2 a_w sin α_wt)²) = {d_min:.4g} mm, so its "
-            "tip meets the planet's flank inside the planet's base circle (the planet–ring ε_α "
-            f"{mesh.contact_ratio_transverse:.3f} is not valid); give the ring a more negative profile shift (with "
-            "the planet's and sun's to stay concentric) or fewer planet teeth")
+    usable = tip_reach_mm(planet.tip_diameter_mm, planet.base_diameter_mm) - max(start, form)
+    eps = max(usable, 0.0) / mesh.transverse_base_pitch_mm
+    d_min = ring_tip_minimum_mm(ring.base_diameter_mm, mesh.center_distance_mm, mesh.working_pressure_angle_deg, form)
+    d_ff = 2.0 * math.hypot(0.5 * planet.base_diameter_mm, form) if form > 0.0 else None
+    fillet = "" if d_ff is None else f" (its involute form circle d_Ff = {d_ff:.4g} mm)"
+    if start < 0.0:
+        d_base = ring_tip_minimum_mm(ring.base_diameter_mm, mesh.center_distance_mm, mesh.working_pressure_angle_deg)
+        head = (f"stage {stage_result.index}: planet–ring involute interference: the ring's tip diameter d_a = "
+                f"{ring.tip_diameter_mm:.4g} mm is below d_a,min = √(d_b² + (2 a_w sin α_wt)²) = {d_base:.4g} mm, so "
+                "its tip meets the planet's flank inside the planet's base circle"
+                + ("" if d_ff is None else f"; clear of the planet's root fillet{fillet} it needs d_a ≥ {d_min:.4g} mm"))
+    else:
+        head = (f"stage {stage_result.index}: planet–ring tip interference: the ring's tip meets the planet "
+                f"{form - start:.3g} mm along the line of action below its involute form circle d_Ff = {d_ff:.4g} mm, "
+                f"in its root fillet: the ring's tip diameter d_a = {ring.tip_diameter_mm:.4g} mm is below d_a,min = "
+                f"√(d_b² + (2 (a_w sin α_wt + q))²) = {d_min:.4g} mm")
+    message = (f"{head}; the usable transverse contact ratio is {eps:.3f}{usable_margin(eps)}, not ε_α = "
+               f"{mesh.contact_ratio_transverse:.3f} (which counts that path); give the ring a more negative profile "
+               "shift (a larger tip circle; with the planet's and sun's to stay concentric) or fewer planet teeth")
+    return message, {"check": "interference", "mesh": "planet_ring", "member": "planet", "form_diameter_mm": d_ff,
+                     "depth_mm": form - start, "tip_diameter_mm": ring.tip_diameter_mm, "min_tip_diameter_mm": d_min,
+                     "contact_ratio_transverse": mesh.contact_ratio_transverse,
+                     "contact_ratio_transverse_usable": eps}
 
 
 def check_stage_inputs(cfg: DesignFile, k: int) -> None:

@@ -57,9 +57,9 @@ def _planet_ring_allowance_diagnostics(result: StageResult) -> tuple[Diagnostic,
 
 def _ring_tip_thickness_diagnostics(result: StageResult) -> tuple[Diagnostic, ...]:
     """``tip_thickness`` of the ring: its normal tip thickness at the thinnest cut tooth (x_E,i of its allowance, or
-    x) below 0.2 m_n (pointed at ≤ 0), as an external member's."""
+    x) below 0.2 m_n, 0.4 m_n when surface-hardened (pointed at ≤ 0), as an external member's."""
     from gearcli.design.allowances_internal import internal_normal_tip_thickness_mm  # lazy: planetary files only
-    from gearcli.design.checks import MIN_TIP_THICKNESS_PER_MODULE  # lazy: as above; the external members' limit
+    from gearcli.design.geometry import hardened_tip_text, min_tip_thickness_per_module  # lazy: as above
 
     p = result.planetary
     assert p is not None  # a planetary stage's result
@@ -67,17 +67,19 @@ def _ring_tip_thickness_diagnostics(result: StageResult) -> tuple[Diagnostic, ..
     cut = ring.profile_shift if ring.generating_profile_shift is None else ring.generating_profile_shift[1]
     s_an = internal_normal_tip_thickness_mm(ring.teeth, m_n, cut, math.radians(result.helix_angle_deg),
                                             math.radians(result.normal_pressure_angle_deg), ring.tip_diameter_mm)
-    limit = MIN_TIP_THICKNESS_PER_MODULE * m_n
+    factor = min_tip_thickness_per_module(p.ring_treatment)
+    limit = factor * m_n
     if s_an >= limit:
         return ()
     what = "pointed tooth: the flanks meet before the tip circle" if s_an <= 0 else "thin tooth tip"
     shift = f"x = {ring.profile_shift:+.3f}" + (f", cut at x_E,i = {cut:+.3f} by the lower tooth-thickness allowance"
                                                 if cut != ring.profile_shift else "")
     return (warning(DESIGN, f"stage {result.index}: ring {what}, normal tip thickness s_an = {s_an:.3g} mm < "
-                    f"{MIN_TIP_THICKNESS_PER_MODULE} m_n = {limit:.3g} mm ({shift}); narrow the ring's "
+                    f"{factor:g} m_n = {limit:.3g} mm{hardened_tip_text(p.ring_treatment)} ({shift}); narrow the ring's "
                     "tooth-thickness allowance or shorten its teeth (basic_rack addendum)", check="tip_thickness",
                     stage=result.index,
                     member="ring", profile_shift=ring.profile_shift, tip_thickness_mm=s_an, min_tip_thickness_mm=limit,
+                    treatment=p.ring_treatment,
                     **({} if ring.generating_profile_shift is None else {"generating_profile_shift": cut})),)
 
 
@@ -164,7 +166,7 @@ class PlanetaryDesign:
     def diagnostics(self, result: StageResult) -> tuple[Diagnostic, ...]:
         from gearcli.design import planetary as pl  # lazy: a file without planetary stages never loads it
 
-        found = tuple(warning(DESIGN, w, check="planetary", stage=result.index) for w in pl.planetary_warnings(result))
+        found = tuple(warning(DESIGN, w, stage=result.index, **data) for w, data in pl.planetary_warnings(result))
         found += _planet_ring_allowance_diagnostics(result)
         ring = pl.ring_resonance_warning(result)
         if ring is None:

@@ -77,6 +77,8 @@ class PlanetaryOutput:
         stage.pop("gear")
         ring_mesh = p.pop("planet_ring")
         ring_mesh.pop("tip_clearance_with_allowances_mm", None)  # the warning's data only (docs/planetary.md)
+        ring_mesh.pop("planet_form_from_tangent_mm", None)  # as the tip clearances: the interference warning's data
+        p.pop("ring_treatment", None)  # the ring's tip_thickness warning's (its material's, in the file)
         ring_mesh = {"backlash_mm": stage.get("backlash_mm"), **ring_mesh}  # the stage's, which the model gives both
         planet = {**p.pop("planet"), "count": p["planet_count"], "mass_kg": p.pop("planet_mass_kg")}
         return {**head, "type": "planetary", "ratio": p.pop("ratio"), "sun": p.pop("sun"), "planet": planet,

@@ -277,7 +277,11 @@ def test_planetary_sun_planet_backlash_and_roots():
         y_f, y_s = _y_f_y_s(z, 3.0, ALPHA, 0.0, x_e[member], st[member]["tip_diameter_mm"],
                             mesh["contact_ratio_transverse"])
         assert_allclose([mesh["rating"][part]["Y_F"], mesh["rating"][part]["Y_S"]], [y_f, y_s], rtol=1e-9)
-    assert doc["warnings"] == []
+    # its one warning: the ring's tip (d_a = 243 − 6 × 1.25 = 235.5 mm) meets the planet (x = −0.25: its involute form
+    # circle high) 1.788 mm along the line of action inside its root fillet (tests/reference/
+    # test_planet_ring_fillet_interference.py has the hand formulas)
+    assert [(w["check"], w["mesh"]) for w in doc["warnings"]] == [("interference", "planet_ring")]
+    assert_allclose(doc["warnings"][0]["depth_mm"], 1.788, atol=1e-3)
 
 
 # ------------------------------------------------------------------------------------------- hostile inputs

@@ -250,8 +250,8 @@ def test_a_planet_tip_allowance_that_interrupts_the_ring_contact_warns(tmp_path)
     assert eps_i < 1.0
     mesh = data["stages"][0]["meshes"][1]
     assert_allclose(mesh["contact_ratio_transverse_with_allowances"][2], eps_i, rtol=1e-9)
-    found = [w for w in data["warnings"] if w.get("check") == "contact_ratio_allowances" and w.get("mesh")]
-    assert len(found) == 1 and found[0]["mesh"] == "planet_ring"
+    found = [w.get("mesh") for w in data["warnings"] if w.get("check") == "contact_ratio_allowances"]
+    assert found.count("planet_ring") == 1  # (the sun–planet mesh's, which the same tip interrupts, is "sun_planet")
 
 
 @pytest.mark.parametrize(("new", "key"), [
