@@ -281,7 +281,7 @@ def worst_planet(stage: StatisticsError, planets: list[StatisticsError], rtol: f
                              stage.check_dominant_frequency_Hz)
 
 
-def _over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], suns: dict[int, list[np.ndarray]],
+def over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], suns: dict[int, list[np.ndarray]],
                   fine_suns: dict[int, list[np.ndarray]], tw: np.ndarray, n_check: int, rtol: float,
                   scale: float, floors: list[float], rings: tuple = ({}, {})) -> tuple[StatisticsError, ...]:
     """``errors`` with each planetary stage's replaced by :func:`worst_planet` over its planets' sun meshes: the
@@ -477,7 +477,7 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         if suns:
             fine_suns = planet_suns(model, t_eval[idx], fine.y)
             rings = (planet_suns(model, t_eval, run.y, "ring"), planet_suns(model, t_eval[idx], fine.y, "ring"))
-            errors = _over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale, floors, rings)
+            errors = over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale, floors, rings)
             for k, j in worst.items():
                 fine_ft[k] = fine_suns[k][j]
         lead = 1 if idx.size > 1 and idx[1] != idx[0] + 1 else 0  # the span's first sample alone, then contiguous
