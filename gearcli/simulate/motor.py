@@ -27,6 +27,7 @@ from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
 from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
 from gearcli.model.spec import MotorSpec
+from gearcli.simulate.sampling import MAX_STEPS, TARGET, up_to_two_figures
 from gearcli.simulate.stats import window_means
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
@@ -112,9 +113,6 @@ def _start_undersampled(t: np.ndarray, w: np.ndarray, operating_rad_s: float | N
     """``statistics_undersampled`` for ``summary.start_time_s`` where its interpolation between the output samples
     (:func:`start_time_error`) may err by more than the sampling's 1e-3 of it, with the ``simulation.steps`` that
     brings it below half that (the error falls as h^2; 1.25 margin)."""
-    from gearcli.config.schema import MAX_STEPS  # lazy, as sampling's own constants
-    from gearcli.simulate.sampling import TARGET, up_to_two_figures
-
     err = start_time_error(t, w, operating_rad_s)
     if t_start is None or not t_start > 0.0 or err <= TARGET * t_start:
         return []
