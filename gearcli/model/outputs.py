@@ -205,12 +205,13 @@ def mesh_line_forces(lay: Layout, t: np.ndarray, Y: np.ndarray) -> list[np.ndarr
     return [_connector_force(lay, c, Y, omega, theta) for c in lay.stage_conn]
 
 
-def planet_sun_connectors(lay: Layout) -> dict[int, list[int]]:
+def planet_sun_connectors(lay: Layout, gear: str = "sun") -> dict[int, list[int]]:
     """Stage (0-based) -> its planets' sun-mesh connectors in planet order (planetary stages only): the meshes whose
-    largest force is the stage's dynamic and run-up factor (:mod:`gearcli.simulate.planet_stats`)."""
+    largest force is the stage's dynamic and run-up factor (:mod:`gearcli.simulate.planet_stats`); ``gear = "ring"``:
+    their planet-ring meshes instead."""
     out: dict[int, list[tuple[int, int]]] = {}
     for c, x in enumerate(lay.connectors):
-        if x.load_body >= 0 and x.gear == "sun":
+        if x.load_body >= 0 and x.gear == gear:
             out.setdefault(x.index, []).append((x.planet, c))
     return {k: [c for _, c in sorted(v)] for k, v in out.items()}
 

@@ -131,11 +131,13 @@ def found(t: np.ndarray, forces_N: list[np.ndarray], references_N: list[float], 
 def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solver_errors: list,
                     steps: int | None, periodic: bool, window_share: float, floors: list[float],
                     reduced: stats.Reduced | None = None, layout=None,
-                    eigenvalues: np.ndarray | None = None) -> list[SamplingError | None]:
+                    eigenvalues: np.ndarray | None = None, planets: dict | None = None) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
     judged with the solver's estimate where a check pass ran, and a fixed window's force above the samples' Nyquist
     frequency (``layout``, ``eigenvalues``: the scene's excitations and modes, read for a fixed window only; module
-    text); None for an empty window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`)."""
+    text); None for an empty window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`).
+    ``planets``: (stage, planet, "sun" | "ring") -> (F_t, ...) of every planet mesh
+    (:func:`gearcli.simulate.planet_stats.planet_series`): a planetary stage's estimate is its worst planet mesh's."""
     sel = stats.window_slice(mask)
     tw = t[sel]
     if tw.size == 0:
@@ -147,6 +149,13 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
                                 solver=solver_errors[k], window_share=window_share, floor_N=floors[k], dt=dt,
                                 reduced=None if reduced is None else reduced.force(k))
         for k, m in enumerate(spec.meshes)]
+    for (k, _, _), series in (planets or {}).items():  # every planet's sun and ring mesh prints its min and max too
+        se = out[k]
+        if se is not None and not sampling.too_few(se):
+            other = sampling.stage_sampling(tw, np.asarray(series[0])[sel], spec.meshes[k].static_tangential_N, basis,
+                                            periodic=periodic, solver=solver_errors[k], window_share=window_share,
+                                            floor_N=floors[k], dt=dt)
+            out[k] = worse(se, other)
     if periodic or layout is None or tw.size < sampling.MIN_WINDOW_SAMPLES or not float(tw[-1] - tw[0]) > 0.0:
         return out  # a periodic window: 64 samples a period of its fastest excitation
     nyquist = 0.5 * (tw.size - 1) / float(tw[-1] - tw[0])
@@ -156,6 +165,17 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
                  [se.reference_N if se is not None and ok else 0.0 for se, ok in zip(out, judged, strict=True)],
                  basis, lines)
     return [se if se is None else unbounded(se, hit) for se, hit in zip(out, hits, strict=True)]
+
+
+def worse(a: SamplingError, b: SamplingError) -> SamplingError:
+    """``a`` (a planetary stage's planet-1 estimate) with each error the larger of its and ``b``'s (another planet
+    mesh's), over ``a``'s reference force; unresolved where either is, suggesting the larger number of steps."""
+    err = {q: max(getattr(a, f"{q}_N"), getattr(b, f"{q}_N")) for q in ("min", "max", "mean")}
+    rel = {q: (v / a.reference_N if a.reference_N > 0 else max(a.relative[q], b.relative[q])) for q, v in err.items()}
+    steps = [x.suggested_steps for x in (a, b) if not x.resolved]
+    return replace(a, min_N=err["min"], max_N=err["max"], mean_N=err["mean"], relative=rel,
+                   resolved=a.resolved and b.resolved,
+                   suggested_steps=None if not steps or None in steps else max(x for x in steps if x is not None))
 
 
 def unbounded(se: SamplingError, alias: JsonObject | None) -> SamplingError:

@@ -13,12 +13,8 @@ what the window's speed change stores), an integral of the solution that converg
 so the check pass estimates it well (0.6-1.2x the true error on every scene of benchmarks/bench_auto.py whose mean is
 off by more than 1e-5, measured against DOP853 at rtol 1e-10; the exception, Radau stepping over an undamped mode, has
 its own warning: :func:`gearcli.simulate.stepped_over.unresolved_mode`) and resolving it to 1e-4 costs one decade of
-rtol where it is needed. Where it was needed (measured): a resonant, impacting mesh (benchmarks/bench_excitation.py's
-spur oscillator at 2800 rpm) under DOP853 at rtol 1e-6 settles on a periodic response whose window mean is 1.7e-4 off,
-although every step meets its tolerance: the steps that straddle a contact loss or a re-contact carry local errors of
-~0.7 of the tolerance against ~0.02 for the smooth steps, with the same sign every mesh period, and the damping's memory
-(a few periods) adds them up. The amplitude statistics of that run are within 2.4e-4, so the single 1e-3 target let it
-pass unwarned.
+rtol where it is needed (a resonant, impacting mesh whose window mean DOP853 at rtol 1e-6 left 1.7e-4 off with its
+amplitudes within 2.4e-4: docs/numerics.md, "Means to 1e-4").
 
 Span. The check pass starts from the run's own state at the window start when the scene forgets what happened before it;
 where errors made before the window survive into it (a lightly damped scene keeps its run-up vibration), it starts
@@ -46,12 +42,11 @@ Stability-limited runs. An explicit run whose steps are set by stability rather 
 ``STABILITY_LIMITED`` x max|lambda| T / R steps, R the method's stability radius) carries its stiff mode as noise that
 the step-size control sustains, and a loose pass of the same method carries noise of the same size: their statistics
 agree by chance. Such a run gets the tight pass whatever its span. Measured (a two-stage reducer under 90x its rated
-load, 1e5 N m, DOP853 at rtol 1e-5, 359 steps against 388 for stability): the loose pass estimated the window's min and
-max 4e-5 and 7e-5 of the mean where DOP853 at rtol 1e-10 finds 1.1e-3 and 1.4e-3 (unwarned); the tight pass estimates
-1.0e-3 and 1.4e-3 (tests/extreme/test_stability_limited.py). Its run-up carries the noise at the force's size, not the
-tolerance's: the pass starts ``FORGOTTEN`` / sigma before the window, not ``DECAY_SPANS`` / sigma
-(tests/extreme/test_stability_runup.py: min 0.039 N off, estimated 6.8e-6 N from 0.094 s, 0.052 N from 0). Radial and
-axial forces are the tangential one times constants of the stage, so they share its relative error."""
+load, DOP853 at rtol 1e-5): the loose pass estimated the window's min and max 4e-5 and 7e-5 of the mean where the truth
+is 1.1e-3 and 1.4e-3; the tight pass 1.0e-3 and 1.4e-3 (tests/extreme/test_stability_limited.py). Its run-up carries
+the noise at the force's size: the pass starts ``FORGOTTEN`` / sigma before the window, not ``DECAY_SPANS`` / sigma
+(tests/extreme/test_stability_runup.py). Radial and axial forces are the tangential one times constants of the stage,
+so they share its relative error. A planetary stage is checked over every planet's sun and ring meshes."""
 
 from __future__ import annotations
 
@@ -264,20 +259,21 @@ def _statistics_error(k: int, err: dict[str, float], reference: float, rtol: flo
         resolved=not unresolved)
 
 
-def planet_suns(model: TorsionalModel, t: np.ndarray, Y: np.ndarray) -> dict[int, list[np.ndarray]]:
+def planet_suns(model: TorsionalModel, t: np.ndarray, Y: np.ndarray, gear: str = "sun") -> dict[int, list]:
     """Stage (0-based) -> its planets' sun-mesh F_t (N) at ``t``, planet 1 first; {} without planetary stages. A
     planetary stage's dynamic and run-up factors are its most loaded planet's (:mod:`gearcli.simulate.planet_stats`),
-    its channels planet 1's: the check compares every planet, so the factors it prints are covered too."""
+    its channels planet 1's: the check compares every planet, so the factors it prints are covered too (``gear``
+    "ring": their ring meshes')."""
     lay = model.layout
     return {k: [tooth_forces(lay, k, f)[0] for f in connector_line_forces(lay, t, Y, conns)]
-            for k, conns in planet_sun_connectors(lay).items()}
+            for k, conns in planet_sun_connectors(lay, gear).items()}
 
 
-def worst_planet(stage: StatisticsError, planets: list[StatisticsError], rtol: float) -> StatisticsError:
-    """A planetary stage's estimate over its planets' sun meshes: each statistic's largest error (N) over them (planet
-    1's, the stage's channels, among them), over the mean of the planets' reference forces (a loaded stage's: the
-    static force per planet, which its dynamic and run-up factors refer to)."""
-    every = [stage, *planets]
+def worst_planet(stage: StatisticsError, planets: list[StatisticsError], rtol: float, rings: tuple = ()) -> StatisticsError:
+    """A planetary stage's estimate over its planets' sun meshes (and ``rings``, their ring meshes): each statistic's
+    largest error (N) over them (planet 1's, the stage's channels, among them), over the mean of the planets' sun-mesh
+    reference forces (a loaded stage's: the static force per planet, which its dynamic and run-up factors refer to)."""
+    every = [stage, *planets, *rings]
     err = {q: max(float(getattr(e.tangential_N, q)) for e in every) for q in ("mean", "min", "max", "std")}
     err["spectrum"] = max(e.spectrum_N for e in every)
     reference = float(np.mean([e.reference_N for e in planets])) if planets else stage.reference_N
@@ -285,13 +281,14 @@ def worst_planet(stage: StatisticsError, planets: list[StatisticsError], rtol: f
                              stage.check_dominant_frequency_Hz)
 
 
-def _over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], suns: dict[int, list[np.ndarray]],
+def over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], suns: dict[int, list[np.ndarray]],
                   fine_suns: dict[int, list[np.ndarray]], tw: np.ndarray, n_check: int, rtol: float,
-                  scale: float, floors: list[float]) -> tuple[StatisticsError, ...]:
+                  scale: float, floors: list[float], rings: tuple = ({}, {})) -> tuple[StatisticsError, ...]:
     """``errors`` with each planetary stage's replaced by :func:`worst_planet` over its planets' sun meshes: the
     run's F_t ``suns`` (every sample of the run) against the check's ``fine_suns`` (its ``n_check`` samples, the
     window's ``tw`` last), each referred to no less than the stage's ``floors`` (:func:`force_floors_N`: an
-    unloaded stage's planets at rest carry round-off, 1e-10 N, which no rtol resolves to 1e-3)."""
+    unloaded stage's planets at rest carry round-off, 1e-10 N, which no rtol resolves to 1e-3); ``rings``: the run's
+    and the check's ring-mesh F_t alike (printed too: tests/extreme/test_planet_ring_estimate.py)."""
     n_w = tw.size
     out = []
     for e in errors:
@@ -303,7 +300,9 @@ def _over_planets(model: TorsionalModel, errors: tuple[StatisticsError, ...], su
         n_run = suns[k][0].size
         each = [stage_error(k, tw, a[n_run - n_w:], b[n_check - n_w:], static, rtol, scale, floors[k])
                 for a, b in zip(suns[k], fine_suns[k], strict=True)]
-        out.append(worst_planet(e, each, rtol))
+        ring = tuple(stage_error(k, tw, a[n_run - n_w:], b[n_check - n_w:], static, rtol, scale, floors[k])
+                     for a, b in zip(rings[0].get(k, ()), rings[1].get(k, ()), strict=True))
+        out.append(worst_planet(e, each, rtol, ring))
     return tuple(out)
 
 
@@ -477,7 +476,8 @@ def check_pass(model: TorsionalModel, run: Integration, choice: Choice, window: 
         fine_ft = [tooth_forces(lay, k, f)[0] for k, f in enumerate(fine_forces)]
         if suns:
             fine_suns = planet_suns(model, t_eval[idx], fine.y)
-            errors = _over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale, floors)
+            rings = (planet_suns(model, t_eval, run.y, "ring"), planet_suns(model, t_eval[idx], fine.y, "ring"))
+            errors = over_planets(model, errors, suns, fine_suns, tw, idx.size, run.rtol, scale, floors, rings)
             for k, j in worst.items():
                 fine_ft[k] = fine_suns[k][j]
         lead = 1 if idx.size > 1 and idx[1] != idx[0] + 1 else 0  # the span's first sample alone, then contiguous

@@ -27,6 +27,7 @@ from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
 from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
 from gearcli.model.spec import MotorSpec
+from gearcli.simulate.sampling import MAX_STEPS, TARGET, up_to_two_figures
 from gearcli.simulate.stats import window_means
 
 START_FRACTION = 0.98  # start time: to 98 % of the operating speed
@@ -80,6 +81,49 @@ def start_time(t: np.ndarray, w: np.ndarray, operating_rad_s: float | None) -> f
         return float(t[0])
     w0, w1 = w[i - 1], w[i]  # linear between the samples
     return float(t[i - 1] + (t[i] - t[i - 1]) * (START_FRACTION * operating_rad_s - w0) / (w1 - w0))
+
+
+def start_time_error(t: np.ndarray, w: np.ndarray, operating_rad_s: float | None) -> float:
+    """The estimated error (s) of :func:`start_time`'s linear interpolation between two output samples: its largest
+    difference from the crossing of the parabola through those two samples and the one before or after (the linear
+    rule errs as h^2, the parabola's as h^3). A direct start of configs/motor_direct_start.toml sampled every 10 ms:
+    0.10294 s linear, 0.10183 s sampled every 25 us, estimated 1.3e-3 s (tests/simulate/test_start_time_sampling.py)."""
+    if operating_rad_s is None or operating_rad_s <= 0:
+        return 0.0
+    target = START_FRACTION * operating_rad_s
+    hit = np.nonzero(w >= target)[0]
+    if hit.size == 0 or int(hit[0]) == 0:
+        return 0.0
+    i = int(hit[0])
+    linear = start_time(t, w, operating_rad_s)
+    assert linear is not None
+    worst = 0.0
+    for a in ((i - 2, i - 1, i), (i - 1, i, i + 1)):
+        if a[0] < 0 or a[-1] >= t.size:
+            continue
+        roots = np.roots(np.polyfit(t[list(a)] - t[i - 1], w[list(a)] - target, 2)) + t[i - 1]
+        inside = [float(r.real) for r in roots if abs(r.imag) < 1e-12 and t[i - 1] <= r.real <= t[i]]
+        if inside:
+            worst = max(worst, min(abs(r - linear) for r in inside))
+    return worst
+
+
+def _start_undersampled(t: np.ndarray, w: np.ndarray, operating_rad_s: float | None,
+                        t_start: float | None) -> list[Diagnostic]:
+    """``statistics_undersampled`` for ``summary.start_time_s`` where its interpolation between the output samples
+    (:func:`start_time_error`) may err by more than the sampling's 1e-3 of it, with the ``simulation.steps`` that
+    brings it below half that (the error falls as h^2; 1.25 margin)."""
+    err = start_time_error(t, w, operating_rad_s)
+    if t_start is None or not t_start > 0.0 or err <= TARGET * t_start:
+        return []
+    steps = (t.size - 1) * math.sqrt(err / (0.5 * TARGET * t_start)) * 1.25
+    want = up_to_two_figures(steps) if steps <= MAX_STEPS else None
+    fix = (f"--set simulation.steps={want} resolves it" if want is not None else
+           f"no simulation.steps up to the schema's {MAX_STEPS} resolves it: shorten duration_s")
+    return [dg.warning(dg.STATISTICS_UNDERSAMPLED, f"the motor's start time {t_start:.5g} s is interpolated between "
+                       f"output samples {float(t[1] - t[0]):.3g} s apart and may be {err:.2g} s ({err / t_start:.1e}) "
+                       f"off; {fix}", statistic="start_time_s", estimated_error_s=err,
+                       relative_error=err / t_start, steps=want)]
 
 
 def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray, mask: np.ndarray,
@@ -136,6 +180,7 @@ def summary(lay: Layout, t: np.ndarray, w_motor: np.ndarray, t_motor: np.ndarray
     if not driven:
         diags += _runaway(t, w_motor, ws, op.stable_rad_s)
     t_start = start_time(t, w_motor, op.speed_rad_s)
+    diags += _start_undersampled(t, w_motor, op.speed_rad_s, t_start)
     if not any(d.code == dg.MOTOR_STALLS for d in diags):  # a motor that cannot start at all is said so already
         recovered = reaches and t_start is not None and t_start <= window[0]
         diags += _rolls_back(lay, t, w_motor, ws, window[0] if recovered else None)

@@ -422,10 +422,9 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     mask = stats.window_mask(s.time_s, mask_window)
     periodic = steady.mode == "periodic"
     series, per_stage, rows = _series(model, s, want_series)
-    errors = ref.errors if ref is not None else ()
     stiffness, simulated_static = mesh_stiffness(model, choice), simulated_static_tangential_N(model)
     ks = range(len(spec.meshes))
-    solver_errors = [errors[k] if k < len(errors) else None for k in ks]
+    solver_errors = [ref.errors[k] if ref is not None and k < len(ref.errors) else None for k in ks]
     run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
     share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
@@ -433,7 +432,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic, rows)  # both below
     # a periodic window is judged without the modes (its own grid): their eigenproblem is not solved for it
     samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
-                                         floors, reduced, model.layout, None if periodic else choice.run_eigenvalues)
+                                         floors, reduced, model.layout, None if periodic else choice.run_eigenvalues,
+                                         planet_series(model, s))
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
