@@ -80,12 +80,27 @@ def ran_away(model: TorsionalModel, run: Integration) -> str | None:
         return None
     factor, i, w, nominal = found
     rpm = 30.0 / np.pi
-    why = {"motor": "beyond what the motor's curve brakes (its generating breakdown torque), or"}.get(lay.drive.kind, "")
     return (f"the train ran away: {lay.bodies[i].label} turned at {w * rpm:.4g} rpm at t = {float(run.t[k]):.4g} s, "
-            f"{factor:.3g}x its nominal {nominal * rpm:.4g} rpm, and kept accelerating: the drive does not hold the load "
-            f"({why} a load that drives the train with a torque growing with speed, a negative [load] torque with "
-            "speed_exponent 1 or 2, has no stable balance with a torque drive); no integrator setting helps: check the "
-            "drive's and the load's torques and their signs")
+            f"{factor:.3g}x its nominal {nominal * rpm:.4g} rpm, and kept accelerating: {_runaway_cause(lay)}; no "
+            "integrator setting helps")
+
+
+def _runaway_cause(lay) -> str:
+    """What lets a train run away: under a speed drive (the input held at its speed) the response itself grew without
+    bound; under a torque or motor drive, a load that drives the train harder the faster it turns, or torques whose
+    signs do not balance."""
+    if lay.drive.kind == "speed":  # the drive holds the input: the energy came in through the train's own response
+        return ("with the input held at its speed, the train's own response grew without bound, an instability (a "
+                "time-varying mesh stiffness or an excitation pumping energy in against too little damping: "
+                "[contact] damping, stiffness_harmonics)")
+    load = lay.spec.load
+    brake = ("the motor's curve does not brake it (beyond its generating breakdown torque)" if lay.drive.kind == "motor"
+             else "a torque drive does not brake it")
+    if load.torque_Nm < 0.0 and (load.speed_exponent or load.table):
+        return (f"the drive does not hold the load: a load that drives the train with a torque growing with speed (a "
+                f"negative [load] torque on a speed law) has no stable balance, and {brake}; check the drive's and the "
+                "load's torques and their signs")
+    return f"the drive does not hold the load ({brake}): check the drive's and the load's torques and their signs"
 
 
 def _divergence_hint(choice: Choice, run: Integration) -> str:

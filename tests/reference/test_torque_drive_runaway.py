@@ -83,3 +83,44 @@ def test_design_warns_that_an_overhauling_fan_load_has_no_stable_balance(tmp_pat
     assert len(found) == 1, doc["warnings"]
     assert math.isclose(found[0]["required_input_torque_Nm"], -192.0, rel_tol=1e-12)
     assert "no speed is a stable balance" in found[0]["message"] and "in a finite time" in found[0]["message"]
+
+
+def _ran_away_text(path: Path, *sets: str) -> str:
+    """ran_away's text for a run of the file's model whose last sample has every free body at 20x its nominal speed."""
+    import numpy as np
+
+    from gearcli.config import load_design
+    from gearcli.design import compute_design
+    from gearcli.model import TorsionalModel
+    from gearcli.scene import spec_from_design
+    from gearcli.simulate.failures import ran_away
+    from gearcli.simulate.solver import STATUS_FAILED, Integration
+
+    cfg = load_design(str(path), list(sets)).design
+    model = TorsionalModel(spec_from_design(cfg, compute_design(cfg)))
+    y = np.zeros((model.initial_state().size, 2))
+    for i, w in zip(model.layout.free_bodies, model.speed_scales_rad_s(), strict=True):
+        j = model.layout.state.omega(i)
+        if j is not None:
+            y[j, 1] = 20.0 * w
+    run = Integration(np.array([0.0, 0.1]), y, "DOP853", 1e-6, np.ones(y.shape[0]), 100, 0, 0, 10, 0.0,
+                      STATUS_FAILED, "step size", 0.1)
+    text = ran_away(model, run)
+    assert text is not None and "20x its nominal" in text
+    return text
+
+
+def test_the_runaway_cause_follows_the_drive(tmp_path: Path) -> None:
+    # A speed drive holds the input: a body that ran away took its energy from the train's own response (the seed
+    # with no mesh damping and a 0.99 stiffness harmonic under 10 N m, found by a fuzz, was told "the drive does not
+    # hold the load ... a negative [load] torque ... torque drive"). The overhauling fan load keeps its cause; a
+    # torque drive against a constant load that it cannot hold is told to check the torques, not the speed law.
+    root = Path(__file__).resolve().parents[2]
+    seed = _ran_away_text(root / "configs" / "concrete_mixer.toml")
+    assert "with the input held at its speed" in seed and "negative [load] torque" not in seed
+    path = tmp_path / "runaway.toml"
+    path.write_text(SCENE, encoding="utf-8")
+    fan = _ran_away_text(path)
+    assert "negative [load] torque on a speed law" in fan and "a torque drive does not brake it" in fan
+    constant = _ran_away_text(path, "load.speed_exponent=0")
+    assert "negative [load] torque" not in constant and "check the drive's and the load's torques" in constant
