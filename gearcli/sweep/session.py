@@ -123,6 +123,9 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
+    sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
+    written = columns(spec.columns, len(design.stages), sharing)
+    previous = [r for r in previous if all(c in r for c in written)]  # another version's columns: computed again
     done = done_counts(previous, spec.columns)
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
     unresolved = {row_ident(r, spec.columns) for r in previous if unresolved_row(r)}  # verdicts a resume needs again
@@ -131,8 +134,7 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
-    sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
-    return Session(spec, scene, loaded.design, design, columns(spec.columns, len(design.stages), sharing), ident,
+    return Session(spec, scene, loaded.design, design, written, ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 
