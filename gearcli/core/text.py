@@ -9,7 +9,8 @@ markdown file, a CSV cell or an error message (docs/output.md, "Text fields"):
   reorder what is shown.
 - :func:`shorten` also caps the length (a 1 MB key name is shown as its start, its end and its length).
 - :func:`markdown_inline` also escapes the characters markdown would read as structure.
-- :func:`csv_text_cell` neutralises spreadsheet formulas in text (never numeric) CSV cells.
+- :func:`csv_text_cell` neutralises spreadsheet formulas in text (never numeric) CSV cells;
+  :func:`sweep_text_cell` also keeps ``#`` and line breaks out of a sweep file's cells.
 - :func:`figure` writes a number to a few significant digits without an exponent for whole numbers.
 - :func:`beside` writes a number checked against a limit with the digits that keep it on its side of the limit.
 Rich markup is avoided at the source: writers hand rich ``Text`` objects, never markup strings.
@@ -64,6 +65,14 @@ def csv_text_cell(text: str) -> str:
     (the OWASP advice for CSV injection); controls escaped. Numbers are never passed here."""
     shown = visible(text)
     return "'" + shown if text.startswith(_FORMULA_START) else shown
+
+
+def sweep_text_cell(text: str) -> str:
+    """A text cell of a sweep's CSV file: :func:`csv_text_cell` with no ``#`` (``No.``: a reader's comment
+    character, ``pandas.read_csv(comment="#")``) and no line break (``; ``). A cell written so is written so again
+    (the function is idempotent), so a resume compares a point's text value with the cell written for it by
+    passing both through it (gearcli.sweep.spec: a point's ident)."""
+    return csv_text_cell(text.replace("#", "No.").replace("\n", "; "))
 
 
 def figure(x: float, digits: int) -> str:

@@ -186,7 +186,8 @@ def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | Non
 
 def check_not_clobbering(paths: Iterable[Path], protected: Iterable[str | Path | None], option: str) -> None:
     """Refuse ``paths`` (files a command will write besides ``-o``, e.g. ``--plots``) that would replace a
-    protected file (the input, the ``-o`` file)."""
+    protected file (the input, the ``-o`` file), that are no regular file, or that are a symlink into a directory
+    that does not exist (as :func:`resolve_path` refuses ``-o``: before the run, not after ``-o`` is written)."""
     for path in paths:
         real = os.path.realpath(path)
         for other in protected:
@@ -194,6 +195,8 @@ def check_not_clobbering(paths: Iterable[Path], protected: Iterable[str | Path |
                 continue
             if real == os.path.realpath(other) or _same_file(Path(real), [str(other)]):
                 raise _refuse(str(path), f"{option} would overwrite {shorten(str(other))}; choose another directory")
+        if os.path.islink(path) and not os.path.isdir(os.path.dirname(real)):  # a dangling link, as -o refuses it
+            raise _refuse(str(path), f"no such directory: {shorten(os.path.dirname(real))} (the link's target)")
         if os.path.lexists(real):
             try:
                 mode = os.stat(real).st_mode

@@ -35,7 +35,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
 from gearcli.core.jsontypes import JsonObject, JsonScalar
-from gearcli.core.text import csv_text_cell, shorten
+from gearcli.core.text import shorten, sweep_text_cell
 from gearcli.errors import ConfigError, OutputError
 from gearcli.io.atomic import write_atomic
 from gearcli.io.output import write_stream
@@ -69,7 +69,7 @@ def _cell(v: JsonScalar) -> str:
     if isinstance(v, float):
         return repr(v) if math.isfinite(v) else ""
     if isinstance(v, str):  # text: controls escaped, no spreadsheet formula (as every gearcli CSV), no '#'
-        return csv_text_cell(v.replace("#", "No.").replace("\n", "; "))
+        return sweep_text_cell(v)
     return str(v)
 
 

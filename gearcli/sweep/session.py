@@ -123,16 +123,19 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
+    sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
+    written = columns(spec.columns, len(design.stages), sharing)
+    previous = [r for r in previous if all(c in r for c in written)]  # another version's columns: computed again
     done = done_counts(previous, spec.columns)
     workers, notes = capped_jobs(jobs, loaded.design, len(design.stages), scheduler)
+    notes += _life_only_keys(spec)
     unresolved = {row_ident(r, spec.columns) for r in previous if unresolved_row(r)}  # verdicts a resume needs again
     tasks, todo = plan(spec, scene, done, 1 if scheduler is None and workers == 1 else workers, evaluate, unresolved)
     if scheduler is None and workers > 1 and len(tasks) > 1:  # a pool: its workers stay quiet, the sweep says it once
 
         notes += tuple(n for n in (engine.compilation_pending(),) if n)
     previous = ordered(previous, spec)
-    sharing = [st.index for st in design.stages if design_kind(st).shares_load]  # their load-sharing columns
-    return Session(spec, scene, loaded.design, design, columns(spec.columns, len(design.stages), sharing), ident,
+    return Session(spec, scene, loaded.design, design, written, ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
 
 
@@ -233,6 +236,15 @@ def check_motor_speed(keys: Sequence[str], cfg: DesignFile, source: str) -> None
                           "(--set 'input.drive=\"speed\"'), "
                           "or vary the load (load.torque_Nm) or the motor (input.motor) instead",
                           source=source, key=varied[0])
+
+
+def _life_only_keys(spec: SweepSpec) -> tuple[str, ...]:
+    """A note per varied key of a ``[[duty]]`` table: the duty is ``gearcli life``'s, a sweep point runs the file's
+    ``[input]`` and ``[load]``, so every value of such a key gives the same run (the rows differ in that column only)."""
+    return tuple(f"--vary/--random {column}: [[duty]] is gearcli life's operating points; a sweep point runs the "
+                 "file's [input] and [load], so this key has no effect on its rows (vary input.speed_rpm or "
+                 "load.torque_Nm instead, or run gearcli life)"
+                 for key, column in zip(spec.keys, spec.columns, strict=True) if key.split(".")[0] == "duty")
 
 
 def capped_jobs(jobs: int | None, cfg: DesignFile, n_stages: int, scheduler: str | None) -> tuple[int, tuple[str, ...]]:

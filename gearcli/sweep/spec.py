@@ -32,6 +32,7 @@ import tomli_w
 from gearcli.config.overrides import EXCLUSIVE, parse, parse_value
 from gearcli.core.jsontypes import JsonObject, JsonScalar
 from gearcli.core.records import record
+from gearcli.core.text import sweep_text_cell
 from gearcli.errors import ConfigError
 
 # the input-speed keys of the design file (a speed axis: the Campbell diagram; a motor drive's refusal)
@@ -258,7 +259,12 @@ class Point:
 
 
 def _ident_value(v: JsonScalar) -> str:
-    return repr(float(v)) if isinstance(v, (int, float)) and not isinstance(v, bool) else str(v)
+    """A varied value as a point's ident holds it: a number by its float's repr, a text as a sweep's CSV file
+    writes it (``=b`` as ``'=b``, ``#1`` as ``No.1``), so the cell read back from a CSV file, the value a JSON
+    file holds and the value given to ``--vary`` all identify the same point; anything else by ``str``."""
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return repr(float(v))
+    return sweep_text_cell(v) if isinstance(v, str) else str(v)
 
 
 def toml_value(v: JsonScalar) -> str:
