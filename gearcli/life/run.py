@@ -60,7 +60,7 @@ from gearcli.life.result import (
 )
 from gearcli.life.spectra import StageLoads
 from gearcli.life.starts import StartData, label, member_start_cycles
-from gearcli.model.motor_start import VFD_OFF_SPEED
+from gearcli.model.motor_start import vfd_off_speed
 from gearcli.rating.registry import DEFAULT as DEFAULT_STANDARD
 from gearcli.rating.sn import miner_name
 from gearcli.results import DesignResult, RatedMember, RatedMesh, StageResult
@@ -251,7 +251,8 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
             warnings.append(warning(
                 MOTOR_SPEED_MISMATCH, f"the motor (starting = \"{cfg.input.starting}\") runs at {running:.5g} rpm, not "
                 f"the point's speed_rpm = {point.speed_rpm:.5g} its design and cycle counts assume: "
-                + (VFD_OFF_SPEED if cfg.input.starting == "vfd" else
+                + (vfd_off_speed(cfg.input.motor is not None and cfg.input.motor.torque_speed is not None)
+                   if cfg.input.starting == "vfd" else
                    "give the speed the motor runs at, or starting = \"vfd\" (the supply follows the point's speed)"),
                 operating_speed_rpm=running, speed_rpm=point.speed_rpm))
     warnings += run_notes

@@ -42,6 +42,16 @@ VFD_OFF_SPEED = ("a VFD's supply is set so that the motor runs at speed_rpm at i
                  "above it; above the motor's base speed the field weakens and its rated torque slips further): at "
                  "another load it slips less or more (a converter with slip compensation would hold speed_rpm; the "
                  "model's does not)")
+#: why a VFD on a torque_speed table runs off its speed_rpm: no rated point to set its supply by (docs/physics.md)
+TABLE_VFD_OFF_SPEED = ("a VFD's supply follows speed_rpm with a nameplate motor only (its rated slip speed sets the "
+                       "supply); this torque_speed table runs at its own synchronous speed: give speed_rpm the speed it "
+                       "runs at, or the motor's nameplate")
+
+
+def vfd_off_speed(table: bool) -> str:
+    """Why a VFD runs off its speed_rpm, and what to give: a nameplate motor's supply is set for its rated torque
+    (:data:`VFD_OFF_SPEED`), a ``torque_speed`` table's is its own synchronous speed (:data:`TABLE_VFD_OFF_SPEED`)."""
+    return TABLE_VFD_OFF_SPEED if table else VFD_OFF_SPEED
 
 
 def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagnostic]:
@@ -59,7 +69,7 @@ def _load_off_design(lay: Layout, w_op: float, vfd: bool = False) -> list[Diagno
         return []
     motor = lay.drive.motor
     limit = motor.start_parameters[1] if vfd and motor is not None else 0.0
-    why = (VFD_OFF_SPEED if vfd else
+    why = (vfd_off_speed(motor is not None and bool(motor.table)) if vfd else
            "give the speed the motor runs at (or starting = \"vfd\", whose supply follows speed_rpm)")
     if limit > 0.0 and nominal >= limit:  # not slip: the converter's torque limit holds the motor below speed_rpm
         why = (f"the VFD's torque_limit_Nm {limit:.4g} N·m is below the load reflected to the motor at speed_rpm, "
@@ -84,9 +94,7 @@ def _speed_off_design(lay: Layout, motor: MotorSpec, w_op: float) -> list[Diagno
         return []  # a nameplate VFD follows speed_rpm to within its rated slip speed (no slip compensation)
     rpm = RAD_S_TO_RPM
     nominal = reflected_load_Nm(lay, w_nom)
-    why = ("a VFD's supply follows speed_rpm with a nameplate motor only (its rated slip speed sets the supply); this "
-           "torque_speed table runs at its own synchronous speed: give speed_rpm the speed it runs at, or the motor's "
-           "nameplate" if vfd else
+    why = (TABLE_VFD_OFF_SPEED if vfd else
            "give [input] speed_rpm the speed the motor runs at (or starting = \"vfd\", whose supply follows it)")
     return [dg.warning(dg.MOTOR_SPEED_MISMATCH, f"the motor runs at {w_op * rpm:.5g} rpm, not [input] speed_rpm = "
                        f"{w_nom * rpm:.5g} ({100 * (w_op / w_nom - 1):+.3g} %): the design's speeds, mesh frequencies "
