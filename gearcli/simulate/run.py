@@ -471,7 +471,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     motor_summary = None
     if model.layout.drive.motor is not None and diagnose:
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
-                                                        mask, window, periodic)
+                                                        mask, window, periodic, omega=s.omega_rad_s)
         diags += motor_diags
     if energy.residual_relative > stats.WARN_ENERGY_RESIDUAL:
         diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
