@@ -22,7 +22,14 @@ from gearcli import diagnostics as dg
 from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import SPEED_SAMPLES, STEADY_T, back_driving_Nm, net_torque_scan, vfd_ramp_starts
+from gearcli.model.damping import (
+    SPEED_SAMPLES,
+    STEADY_T,
+    back_driving_Nm,
+    curve_peak,
+    net_torque_scan,
+    vfd_ramp_starts,
+)
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
 from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
@@ -254,7 +261,8 @@ def _vfd_outrun(lay: Layout, motor: MotorSpec, t: np.ndarray, w_motor: np.ndarra
     row = lay.motor_row if lay.motor_drive else machine.motor_row(motor)
     ws = row[machine.M_WS]
     grid = np.linspace(0.0, ws, 4001)
-    w_b = float(grid[int(np.argmax([machine.motor_curve(row, w, ws)[0] for w in grid]))])
+    w_b = curve_peak(lambda w: machine.motor_curve(row, w, ws)[0], grid,
+                     int(np.argmax([machine.motor_curve(row, w, ws)[0] for w in grid])))
     slip_b = ws - w_b
     x = np.clip(t / ramp, 0.0, 1.0)
     ahead = ws * x * x * (3.0 - 2.0 * x) - w_motor  # machine._step01, vectorised

@@ -285,7 +285,7 @@ def test_hostile_motors_exit_2_naming_file_and_key(tmp_path: Path, motor: str, w
 
 @pytest.mark.parametrize(("locked", "crawl_rpm", "words"), [
     (300.0, (300 - 480 / (I * ETA)) / 0.5, "where its curve dips below the load"),  # largest torque at standstill
-    (200.0, (200 - 480 / (I * ETA)) / 0.25, "below its breakdown speed 1000.1 rpm"),  # largest at 1000 rpm
+    (200.0, (200 - 480 / (I * ETA)) / 0.25, "below its breakdown speed 1000 rpm"),  # largest at 1000 rpm (its point; the grid read 1000.1)
 ])
 def test_table_motor_crawls_on_its_pull_up_dip(tmp_path: Path, locked: float, crawl_rpm: float, words: str) -> None:
     """A table with a pull-up dip to 100 N·m at 400 rpm against a constant 480 N·m (123.9 N·m at the motor): it
