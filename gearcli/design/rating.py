@@ -28,6 +28,7 @@ from gearcli.core.text import beside
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design.allowances import manufactured_tooth_depth_mm
+from gearcli.design.checks import mesh_data
 from gearcli.design.rating_load import LoadFactors, MeshLoad, resolve_load_factors
 from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
@@ -452,7 +453,8 @@ def _work_hardening(mats: tuple[Material, ...], treatments: tuple[str, ...]) -> 
 
 # ------------------------------------------------------------------------------------ warnings
 def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") -> list[Diagnostic]:
-    """A warning for every safety below its minimum, naming stage, member and failure mode."""
+    """A warning for every safety below its minimum, naming stage, member and failure mode (a planetary stage's
+    sun–planet mesh adds ``mesh`` "sun_planet", as its planet–ring mesh's warnings carry "planet_ring")."""
     r = st.rating
     if r is None or cfg.rating is None:
         return []
@@ -470,5 +472,5 @@ def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") ->
                            f"{minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} {r.K_v_source}{source}); widen the face, "
                            "raise the module or choose a stronger material")
                 out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,
-                                   S_min=minima[mode]))
+                                   S_min=minima[mode], **mesh_data(st)))
     return out

@@ -1,0 +1,67 @@
+"""A planetary stage's safety warnings say which mesh they rate: `mesh` "sun_planet" or "planet_ring".
+
+The planet–ring mesh's `pitting_safety_low` / `bending_safety_low` carried `mesh` "planet_ring" (member "planet" or
+"ring"), but the sun–planet mesh's carried no `mesh` (member "pinion"/"gear", the pair's), so a program reading the
+JSON warnings could not tell the planet's sun-side root failing (member "gear") from a parallel stage's wheel, nor
+find it beside the planet's ring-side warning, while every other sun–planet warning (`contact_ratio`,
+`iso6336_resonance`, ...) carries `mesh` "sun_planet" (docs/output.md).
+
+Scene: a spur star stage 40/17/74 (carrier held, three planets, m_n 3, x = 0, b = 30 mm), 4000 N·m on the ring:
+the sun mesh's nominal contact stress by hand, σ_H0 = Z_H Z_E Z_ε √(F_t/(d1 b) (u + 1)/u) with the planet as
+ISO's wheel 1 (17 < 40 teeth), and every warning's S the rating's of the member and mesh it names.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+from click.testing import CliRunner
+from numpy.testing import assert_allclose
+
+from gearcli.cli import cli
+
+CASE = ('case = { density_kg_m3 = 7830, youngs_modulus_MPa = 206000, poisson_ratio = 0.3, treatment = "case_carburized", '
+        'contact_fatigue_limit_MPa = 1500, bending_fatigue_limit_MPa = 430 }')
+ROUGH = 'material = "case", flank_roughness_Rz_um = 2, root_roughness_Rz_um = 8'
+SCENE = f"""
+lubricant = {{ viscosity_40C_mm2_s = 100 }}
+input = {{ speed_rpm = 1000 }}
+load = {{ torque_Nm = 4000 }}
+rating = {{ required_life_h = 10000 }}
+[materials]
+{CASE}
+[[stage]]
+type = "planetary"
+normal_module_mm = 3
+accuracy_grade = 5
+sun = {{ teeth = 40, face_width_mm = 30, {ROUGH} }}
+planet = {{ teeth = 17, face_width_mm = 30, count = 3, {ROUGH} }}
+ring = {{ teeth = 74, face_width_mm = 30, {ROUGH} }}
+fixed = "carrier"
+input = "sun"
+"""
+
+
+def test_sun_planet_safety_warnings_name_their_mesh(tmp_path):
+    path = tmp_path / "star.toml"
+    path.write_text(SCENE)
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    meshes = {m["name"]: m for m in out["stages"][0]["meshes"]}
+    # the sun mesh's nominal contact stress by hand: spur, x = 0, lossless; T_sun = T_ring z_s/z_r over 3 planets
+    m, alpha, b, u = 3.0, math.radians(20.0), 30.0, 40 / 17
+    roll = [math.sqrt((z * m / 2 + m) ** 2 - (z * m * math.cos(alpha) / 2) ** 2) for z in (40, 17)]
+    eps = (sum(roll) - 57 * m / 2 * math.sin(alpha)) / (math.pi * m * math.cos(alpha))  # ε_α 1.65
+    f_t = 4000e3 * 40 / 74 / 3 / (40 * m / 2)  # N per planet at the sun's reference circle
+    z_h_z_e = math.sqrt(2.0 / (math.cos(alpha) ** 2 * math.tan(alpha))) * math.sqrt(206000.0 / (2 * math.pi * 0.91))
+    sigma_h0 = z_h_z_e * math.sqrt((4 - eps) / 3) * math.sqrt(f_t / (17 * m * b) * (u + 1) / u)  # d1: the planet
+    assert_allclose(meshes["sun_planet"]["rating"]["sigma_H0_MPa"], sigma_h0, rtol=1e-9)
+    low = [w for w in out["warnings"] if w["code"] in ("pitting_safety_low", "bending_safety_low")]
+    tags = {(w["mesh"], w["member"], w["mode"]) for w in low}
+    assert ("sun_planet", "pinion", "pitting") in tags and ("planet_ring", "planet", "bending") in tags, tags
+    key = {"pinion": "pinion", "gear": "gear", "planet": "pinion", "ring": "gear"}
+    for w in low:
+        member = meshes[w["mesh"]]["rating"][key[w["member"]]]
+        assert w["S"] == member["S_H" if w["mode"] == "pitting" else "S_F"] < w["S_min"]
