@@ -40,6 +40,7 @@ from gearcli.stages.design import design_kind, gear_pairs, member_name
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
+    from gearcli.core.jsontypes import JsonValue
     from gearcli.results import GearResult, StageResult
 
 STANDARD = ISO_TITLE  # "ISO 6336:2006 method B": the rating registry keeps it from any other standard
@@ -207,7 +208,7 @@ def _rim_range_diagnostics(st: StageResult, part: str, rim_mm: float | None, g: 
 
 
 def virtual_contact_ratio_diagnostics(stage: int, eps_alpha: float, base_helix_deg: float,
-                                      **data: str) -> list[Diagnostic]:
+                                      **data: JsonValue) -> list[Diagnostic]:
     """``rating_out_of_range`` for a mesh whose virtual contact ratio ε_αn = ε_α / cos² β_b reaches 2.5: ISO
     6336-2:2006 (Scope) holds for teeth of other basic racks only while ε_αn < 2.5 (ISO 6336-3's Y_DT is its one
     factor beyond); ``data`` adds to the warning's data (``mesh`` of a planetary stage's planet–ring mesh)."""
@@ -232,18 +233,26 @@ def static_range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[D
     out = []
     stage = cfg.pair(k)
     for part in ("pinion", "gear"):
-        treatment = str(cfg.materials[getattr(stage, part).material].treatment)
-        cycles = getattr(r, part).load_cycles
-        modes = (("Z_NT", rf.znt_curve(treatment)[0][0], "Z_L Z_V Z_R"),
-                 ("Y_NT", rf.ynt_curve(treatment)[0][0], "Y_δrelT, Y_RrelT, Y_X"))
-        static = [(f"{name} (N_L ≤ {n:.0e})", factors) for name, n, factors in modes if cycles <= n]
-        if static:
-            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: N_L = {cycles:.3g} load cycles lie in the "
-                               f"static range of {' and '.join(m for m, _ in static)}: ISO 6336's static proof takes "
-                               f"static values of {'; '.join(f for _, f in static)}, which gearcli does not compute; "
-                               "this rating keeps their endurance values beside the static life factors",
-                               stage=st.index, member=part, quantity="load_cycles", value=cycles))
+        out += static_cycles_diagnostics(st.index, part, str(cfg.materials[getattr(stage, part).material].treatment),
+                                         getattr(r, part).load_cycles, label=member_name(st, part), **mesh_data(st))
     return out
+
+
+def static_cycles_diagnostics(stage: int, member: str, treatment: str, cycles: float, *, label: str | None = None,
+                              **data: JsonValue) -> list[Diagnostic]:
+    """``rating_out_of_range`` (``quantity`` "load_cycles") for one member whose N_L lies at or below the first node of
+    its Z_NT or Y_NT curve (:func:`static_range_diagnostics`); ``label`` names it in the message (the design file's
+    name, a planetary's "sun"), ``data`` adds ``mesh`` on a planetary stage."""
+    modes = (("Z_NT", rf.znt_curve(treatment)[0][0], "Z_L Z_V Z_R"),
+             ("Y_NT", rf.ynt_curve(treatment)[0][0], "Y_δrelT, Y_RrelT, Y_X"))
+    static = [(f"{name} (N_L ≤ {n:.0e})", factors) for name, n, factors in modes if cycles <= n]
+    if not static:
+        return []
+    return [warning(OUT_OF_RANGE, f"stage {stage} {label or member}: N_L = {cycles:.3g} load cycles lie in the static range of "
+                    f"{' and '.join(m for m, _ in static)}: ISO 6336's static proof takes static values of "
+                    f"{'; '.join(f for _, f in static)}, which gearcli does not compute; this rating keeps their "
+                    "endurance values beside the static life factors",
+                    stage=stage, member=member, quantity="load_cycles", value=cycles, **data)]
 
 
 @record

@@ -35,6 +35,7 @@ from gearcli.design.rating import (
     STRESS_CORRECTION_TEST_GEAR,
     member_tooth_depth_mm,
     root_shift,
+    static_cycles_diagnostics,
     virtual_contact_ratio_diagnostics,
 )
 from gearcli.design.rating_load import MeshLoad, resolve_load_factors
@@ -206,8 +207,9 @@ def _check_ring_root(form: dict[str, float], k: int, stage: PlanetaryStage) -> N
 
 def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
-    outside 1 … 8 (Y_S), its rim thinner than 1.75 normal modules (the internal gear's Y_B, held at that value); and
-    where the planet–ring mesh's ε_αn reaches 2.5 (ISO 6336-2's scope)."""
+    outside 1 … 8 (Y_S), its rim thinner than 1.75 normal modules (the internal gear's Y_B, held at that value), its
+    load cycles in the static range of its Z_NT or Y_NT curve; and where the planet–ring mesh's ε_αn reaches 2.5
+    (ISO 6336-2's scope)."""
     stage, p = cast("PlanetaryStage", cfg.stage[st.index - 1]), st.planetary
     assert p is not None  # a planetary stage's result
     ring, mesh = p.ring, p.planet_ring
@@ -233,6 +235,10 @@ def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic
                            f"({rr.internal_rim_factor(rim, m_n):.3g}), a thinner rim needs a finite element check",
                            stage=st.index, member="ring", quantity="rim_ratio", value=rim / m_n,
                            mesh="planet_ring"))
+    rated = mesh.rating
+    if rated is not None:  # the ring's own N_L (the planet's ring side counts the cycles its sun side warns of)
+        out += static_cycles_diagnostics(st.index, "ring", str(cfg.materials[stage.ring.material].treatment),
+                                         rated.gear.load_cycles, mesh="planet_ring")
     return out
 
 

@@ -65,3 +65,19 @@ def test_sun_planet_safety_warnings_name_their_mesh(tmp_path):
     for w in low:
         member = meshes[w["mesh"]]["rating"][key[w["member"]]]
         assert w["S"] == member["S_H" if w["mode"] == "pitting" else "S_F"] < w["S_min"]
+
+
+def test_a_ring_in_its_static_range_is_said(tmp_path):
+    """The same star over 0.9 h: the ring meets 3 planets per turn at n_r = 1000 · 40/74 rpm, N_L = 60 · 3 · 540.54 ·
+    0.9 = 87,568 ≤ 10⁵, the first node of its Z_NT curve (case-carburized), where the sun's 60 · 3 · 1000 · 0.9 =
+    162,000 and the planet's 60 · (1000 · 40/17) · 0.9 = 127,059 lie beyond: a `rating_out_of_range` (`quantity`
+    "load_cycles") names the ring (`mesh` "planet_ring") and no other member. The ring's was never checked, so a slow
+    ring (a slewing drive's) in the static range of its S-N curve was rated without a word."""
+    path = tmp_path / "star.toml"
+    path.write_text(SCENE.replace("required_life_h = 10000", "required_life_h = 0.9"))
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    found = [w for w in json.loads(res.stdout)["warnings"] if w.get("quantity") == "load_cycles"]
+    assert [(w["member"], w["mesh"]) for w in found] == [("ring", "planet_ring")], found
+    assert_allclose(found[0]["value"], 60 * 3 * 1000 * 40 / 74 * 0.9, rtol=1e-12)
+    assert "stage 1 ring: N_L = 8.76e+04 load cycles lie in the static range of Z_NT" in found[0]["message"]
