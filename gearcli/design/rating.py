@@ -149,7 +149,8 @@ def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:
 def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
     """Warnings where the stage lies outside what method B covers: a nominal F_t below the 1 N/mm floor the rating
     then uses (an unloaded stage), ε_α < 1 (no continuous mesh), ε_αn ≥ 2.5 (ISO 6336-2's scope), a notch parameter
-    q_s of the root outside 1 … 8 (Y_S's range) and a rim thinner than half the tooth depth (Y_B's range)."""
+    q_s of the root outside 1 … 8 (Y_S's range) and a rim thinner than half the tooth depth (Y_B's range); on a
+    planetary stage each carries ``mesh`` "sun_planet"."""
     out = []
     floor = reference_tangential_force_N(0.0, st.face_width_mm)
     if abs(st.static_force_N.tangential) < floor:
@@ -174,12 +175,13 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
                              st.contact_ratio_transverse, (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
                              virtual_tooth_count=cfg.rating.virtual_tooth_count)
         if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
-            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
+            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {member_name(st, part)}: the root's notch parameter q_s = "
                                f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
                                stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
         out.extend(_rim_range_diagnostics(st, part, getattr(stage, part).rim_thickness_mm, g))
         out.extend(_material_range_diagnostics(cfg, st, part, getattr(stage, part).material))
-    return out + static_range_diagnostics(cfg, k, st)
+    tag = mesh_data(st)  # a planetary stage's sun–planet mesh: "sun_planet", as its planet–ring warnings say theirs
+    return [replace(d, data={**d.data, **tag}) for d in out] + static_range_diagnostics(cfg, k, st)
 
 
 def _material_range_diagnostics(cfg: DesignFile, st: StageResult, part: str, name: str) -> list[Diagnostic]:
@@ -188,7 +190,7 @@ def _material_range_diagnostics(cfg: DesignFile, st: StageResult, part: str, nam
     modulus = cfg.materials[name].youngs_modulus_MPa
     if modulus >= ISO_MATERIAL_MODULUS_MIN_MPa:
         return []
-    return [warning(OUT_OF_RANGE, f"stage {st.index} {part}: its material {name!r} has E = {modulus:,.0f} N/mm², below "
+    return [warning(OUT_OF_RANGE, f"stage {st.index} {member_name(st, part)}: its material {name!r} has E = {modulus:,.0f} N/mm², below "
                     f"every ISO 6336 gear material (from {ISO_MATERIAL_MODULUS_MIN_MPa:,.0f} N/mm²: bronzes, cast irons, "
                     "steels): ISO 6336-5's strength values and S-N curves are steels' and cast irons', so the "
                     "safeties of this member are not a rating of it (polymer gears: VDI 2736)",
@@ -201,7 +203,7 @@ def _rim_range_diagnostics(st: StageResult, part: str, rim_mm: float | None, g: 
     depth = 0.5 * (g.tip_diameter_mm - g.root_diameter_mm)  # h_t as the rating's Y_B reads it
     if rim_mm is None or rim_mm / depth >= rr.RIM_RANGE[0]:
         return []
-    return [warning(OUT_OF_RANGE, f"stage {st.index} {part}: rim s_R/h_t = {rim_mm / depth:.3g} below 0.5, where "
+    return [warning(OUT_OF_RANGE, f"stage {st.index} {member_name(st, part)}: rim s_R/h_t = {rim_mm / depth:.3g} below 0.5, where "
                     "ISO 6336-3's rim factor of an external gear ends; Y_B is taken at 0.5 "
                     f"({rr.rim_factor(rim_mm, depth):.3g}), a thinner rim needs a finite element check",
                     stage=st.index, member=part, quantity="rim_ratio", value=rim_mm / depth)]

@@ -81,3 +81,20 @@ def test_a_ring_in_its_static_range_is_said(tmp_path):
     assert [(w["member"], w["mesh"]) for w in found] == [("ring", "planet_ring")], found
     assert_allclose(found[0]["value"], 60 * 3 * 1000 * 40 / 74 * 0.9, rtol=1e-12)
     assert "stage 1 ring: N_L = 8.76e+04 load cycles lie in the static range of Z_NT" in found[0]["message"]
+
+
+def test_a_thin_sun_rim_is_said_on_the_sun_planet_mesh(tmp_path):
+    """A 2 mm rim under the sun's teeth (x = 0: h_t = 2.25 m_n = 6.75 mm, s_R/h_t = 0.296 < 0.5): Y_B held at
+    1.6 ln(2.242/0.5) = 2.40082 and a `rim_ratio` warning naming the sun, `mesh` "sun_planet" (the ring's own range
+    warnings carry "planet_ring"; the sun mesh's carried no mesh)."""
+    path = tmp_path / "star.toml"
+    sun = "sun = { teeth = 40, face_width_mm = 30,"
+    path.write_text(SCENE.replace(sun, sun + " rim_thickness_mm = 2, web_thickness_mm = 30,"))
+    res = CliRunner().invoke(cli, ["design", str(path), "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    found = [w for w in out["warnings"] if w.get("quantity") == "rim_ratio"]
+    assert [(w["member"], w["mesh"]) for w in found] == [("pinion", "sun_planet")], found
+    assert_allclose(found[0]["value"], 2.0 / 6.75, rtol=1e-12)
+    assert found[0]["message"].startswith("stage 1 sun: rim s_R/h_t = 0.296 below 0.5")
+    assert_allclose(out["stages"][0]["meshes"][0]["rating"]["pinion"]["Y_B"], 1.6 * math.log(2.242 / 0.5), rtol=1e-12)
