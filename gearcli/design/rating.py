@@ -28,6 +28,7 @@ from gearcli.core.text import beside
 from gearcli.design import rating_factors as rf
 from gearcli.design import rating_root as rr
 from gearcli.design.allowances import manufactured_tooth_depth_mm
+from gearcli.design.checks import mesh_data
 from gearcli.design.rating_load import LoadFactors, MeshLoad, resolve_load_factors
 from gearcli.design.rating_results import MemberRating, RatingResult
 from gearcli.design.stiffness import reference_tangential_force_N, smaller_wheel_first
@@ -39,6 +40,7 @@ from gearcli.stages.design import design_kind, gear_pairs, member_name
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile, Gear, Material
+    from gearcli.core.jsontypes import JsonValue
     from gearcli.results import GearResult, StageResult
 
 STANDARD = ISO_TITLE  # "ISO 6336:2006 method B": the rating registry keeps it from any other standard
@@ -147,7 +149,8 @@ def not_iso_diagnostics(cfg: DesignFile) -> list[Diagnostic]:
 def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnostic]:
     """Warnings where the stage lies outside what method B covers: a nominal F_t below the 1 N/mm floor the rating
     then uses (an unloaded stage), ε_α < 1 (no continuous mesh), ε_αn ≥ 2.5 (ISO 6336-2's scope), a notch parameter
-    q_s of the root outside 1 … 8 (Y_S's range) and a rim thinner than half the tooth depth (Y_B's range)."""
+    q_s of the root outside 1 … 8 (Y_S's range) and a rim thinner than half the tooth depth (Y_B's range); on a
+    planetary stage each carries ``mesh`` "sun_planet"."""
     out = []
     floor = reference_tangential_force_N(0.0, st.face_width_mm)
     if abs(st.static_force_N.tangential) < floor:
@@ -172,12 +175,13 @@ def range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[Diagnost
                              st.contact_ratio_transverse, (stage.basic_rack.dedendum, stage.basic_rack.root_radius),
                              virtual_tooth_count=cfg.rating.virtual_tooth_count)
         if not Q_S_RANGE[0] <= form["q_s"] < Q_S_RANGE[1]:
-            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: the root's notch parameter q_s = "
+            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {member_name(st, part)}: the root's notch parameter q_s = "
                                f"{form['q_s']:.3g} lies outside 1 … 8, where ISO 6336-3's Y_S (method B) holds",
                                stage=st.index, member=part, quantity="q_s", value=form["q_s"]))
         out.extend(_rim_range_diagnostics(st, part, getattr(stage, part).rim_thickness_mm, g))
         out.extend(_material_range_diagnostics(cfg, st, part, getattr(stage, part).material))
-    return out + static_range_diagnostics(cfg, k, st)
+    tag = mesh_data(st)  # a planetary stage's sun–planet mesh: "sun_planet", as its planet–ring warnings say theirs
+    return [replace(d, data={**d.data, **tag}) for d in out] + static_range_diagnostics(cfg, k, st)
 
 
 def _material_range_diagnostics(cfg: DesignFile, st: StageResult, part: str, name: str) -> list[Diagnostic]:
@@ -186,7 +190,7 @@ def _material_range_diagnostics(cfg: DesignFile, st: StageResult, part: str, nam
     modulus = cfg.materials[name].youngs_modulus_MPa
     if modulus >= ISO_MATERIAL_MODULUS_MIN_MPa:
         return []
-    return [warning(OUT_OF_RANGE, f"stage {st.index} {part}: its material {name!r} has E = {modulus:,.0f} N/mm², below "
+    return [warning(OUT_OF_RANGE, f"stage {st.index} {member_name(st, part)}: its material {name!r} has E = {modulus:,.0f} N/mm², below "
                     f"every ISO 6336 gear material (from {ISO_MATERIAL_MODULUS_MIN_MPa:,.0f} N/mm²: bronzes, cast irons, "
                     "steels): ISO 6336-5's strength values and S-N curves are steels' and cast irons', so the "
                     "safeties of this member are not a rating of it (polymer gears: VDI 2736)",
@@ -199,14 +203,14 @@ def _rim_range_diagnostics(st: StageResult, part: str, rim_mm: float | None, g: 
     depth = 0.5 * (g.tip_diameter_mm - g.root_diameter_mm)  # h_t as the rating's Y_B reads it
     if rim_mm is None or rim_mm / depth >= rr.RIM_RANGE[0]:
         return []
-    return [warning(OUT_OF_RANGE, f"stage {st.index} {part}: rim s_R/h_t = {rim_mm / depth:.3g} below 0.5, where "
+    return [warning(OUT_OF_RANGE, f"stage {st.index} {member_name(st, part)}: rim s_R/h_t = {rim_mm / depth:.3g} below 0.5, where "
                     "ISO 6336-3's rim factor of an external gear ends; Y_B is taken at 0.5 "
                     f"({rr.rim_factor(rim_mm, depth):.3g}), a thinner rim needs a finite element check",
                     stage=st.index, member=part, quantity="rim_ratio", value=rim_mm / depth)]
 
 
 def virtual_contact_ratio_diagnostics(stage: int, eps_alpha: float, base_helix_deg: float,
-                                      **data: str) -> list[Diagnostic]:
+                                      **data: JsonValue) -> list[Diagnostic]:
     """``rating_out_of_range`` for a mesh whose virtual contact ratio ε_αn = ε_α / cos² β_b reaches 2.5: ISO
     6336-2:2006 (Scope) holds for teeth of other basic racks only while ε_αn < 2.5 (ISO 6336-3's Y_DT is its one
     factor beyond); ``data`` adds to the warning's data (``mesh`` of a planetary stage's planet–ring mesh)."""
@@ -231,18 +235,26 @@ def static_range_diagnostics(cfg: DesignFile, k: int, st: StageResult) -> list[D
     out = []
     stage = cfg.pair(k)
     for part in ("pinion", "gear"):
-        treatment = str(cfg.materials[getattr(stage, part).material].treatment)
-        cycles = getattr(r, part).load_cycles
-        modes = (("Z_NT", rf.znt_curve(treatment)[0][0], "Z_L Z_V Z_R"),
-                 ("Y_NT", rf.ynt_curve(treatment)[0][0], "Y_δrelT, Y_RrelT, Y_X"))
-        static = [(f"{name} (N_L ≤ {n:.0e})", factors) for name, n, factors in modes if cycles <= n]
-        if static:
-            out.append(warning(OUT_OF_RANGE, f"stage {st.index} {part}: N_L = {cycles:.3g} load cycles lie in the "
-                               f"static range of {' and '.join(m for m, _ in static)}: ISO 6336's static proof takes "
-                               f"static values of {'; '.join(f for _, f in static)}, which gearcli does not compute; "
-                               "this rating keeps their endurance values beside the static life factors",
-                               stage=st.index, member=part, quantity="load_cycles", value=cycles))
+        out += static_cycles_diagnostics(st.index, part, str(cfg.materials[getattr(stage, part).material].treatment),
+                                         getattr(r, part).load_cycles, label=member_name(st, part), **mesh_data(st))
     return out
+
+
+def static_cycles_diagnostics(stage: int, member: str, treatment: str, cycles: float, *, label: str | None = None,
+                              **data: JsonValue) -> list[Diagnostic]:
+    """``rating_out_of_range`` (``quantity`` "load_cycles") for one member whose N_L lies at or below the first node of
+    its Z_NT or Y_NT curve (:func:`static_range_diagnostics`); ``label`` names it in the message (the design file's
+    name, a planetary's "sun"), ``data`` adds ``mesh`` on a planetary stage."""
+    modes = (("Z_NT", rf.znt_curve(treatment)[0][0], "Z_L Z_V Z_R"),
+             ("Y_NT", rf.ynt_curve(treatment)[0][0], "Y_δrelT, Y_RrelT, Y_X"))
+    static = [(f"{name} (N_L ≤ {n:.0e})", factors) for name, n, factors in modes if cycles <= n]
+    if not static:
+        return []
+    return [warning(OUT_OF_RANGE, f"stage {stage} {label or member}: N_L = {cycles:.3g} load cycles lie in the static range of "
+                    f"{' and '.join(m for m, _ in static)}: ISO 6336's static proof takes static values of "
+                    f"{'; '.join(f for _, f in static)}, which gearcli does not compute; this rating keeps their "
+                    "endurance values beside the static life factors",
+                    stage=stage, member=member, quantity="load_cycles", value=cycles, **data)]
 
 
 @record
@@ -452,7 +464,8 @@ def _work_hardening(mats: tuple[Material, ...], treatments: tuple[str, ...]) -> 
 
 # ------------------------------------------------------------------------------------ warnings
 def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") -> list[Diagnostic]:
-    """A warning for every safety below its minimum, naming stage, member and failure mode."""
+    """A warning for every safety below its minimum, naming stage, member and failure mode (a planetary stage's
+    sun–planet mesh adds ``mesh`` "sun_planet", as its planet–ring mesh's warnings carry "planet_ring")."""
     r = st.rating
     if r is None or cfg.rating is None:
         return []
@@ -470,5 +483,5 @@ def safety_diagnostics(cfg: DesignFile, st: StageResult, *, source: str = "") ->
                            f"{minima[mode]:.3g} ({norm}, K_v = {r.K_v:.3g} {r.K_v_source}{source}); widen the face, "
                            "raise the module or choose a stronger material")
                 out.append(warning(code, message, stage=st.index, member=part, mode=mode, S=value,
-                                   S_min=minima[mode]))
+                                   S_min=minima[mode], **mesh_data(st)))
     return out

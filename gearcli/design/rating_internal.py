@@ -13,7 +13,7 @@ same; what differs for the internal pair:
   ratio (m_red = the planet's m*, the ring taken infinitely heavy; c′, c_γα, ε_γ of the internal mesh).
 - Load cycles: the planet 60 n_p,rel H (one mesh per relative turn), the ring 60 N |n_r − n_c| H (N planets).
 - The ring's root: ``rating_root.internal_tooth_form`` (60° tangent, the substitute rack's fillet ρ_F = ρ_fP),
-  Y_B of an internal gear from ``ring.rim_thickness_mm``; the planet's root carries Y_M = 0.7 (an idler).
+  Y_B of an internal gear from ``ring.rim_thickness_mm`` over m_n; the planet's root carries Y_M = 0.7 (an idler).
 """
 
 from __future__ import annotations
@@ -35,6 +35,7 @@ from gearcli.design.rating import (
     STRESS_CORRECTION_TEST_GEAR,
     member_tooth_depth_mm,
     root_shift,
+    static_cycles_diagnostics,
     virtual_contact_ratio_diagnostics,
 )
 from gearcli.design.rating_load import MeshLoad, resolve_load_factors
@@ -157,7 +158,7 @@ def rate_planet_ring(cfg: DesignFile, k: int, st: StageResult,
     _check_ring_root(forms[1], k, stage)
     y_beta = rr.helix_factor_bending(eps_b, st.helix_angle_deg)
     y_bs = (rr.rim_factor(stage.planet.rim_thickness_mm, 0.5 * (planet.tip_diameter_mm - planet.root_diameter_mm)),
-            rr.internal_rim_factor(stage.ring.rim_thickness_mm, 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)))
+            rr.internal_rim_factor(stage.ring.rim_thickness_mm, m_n))
     y_dt = rr.deep_tooth_factor(eps_a, beta_b, grade)
     parts, members = (stage.planet, stage.ring), (planet, ring)
     y_m = (rr.IDLER_MEAN_STRESS_FACTOR, 1.0)
@@ -206,8 +207,9 @@ def _check_ring_root(form: dict[str, float], k: int, stage: PlanetaryStage) -> N
 
 def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic]:
     """``rating_out_of_range`` where the ring's root lies outside what ISO 6336-3 covers: its notch parameter q_s
-    outside 1 … 8 (Y_S), its rim thinner than 1.75 tooth depths (the internal gear's Y_B, held at that value); and
-    where the planet–ring mesh's ε_αn reaches 2.5 (ISO 6336-2's scope)."""
+    outside 1 … 8 (Y_S), its rim thinner than 1.75 normal modules (the internal gear's Y_B, held at that value), its
+    load cycles in the static range of its Z_NT or Y_NT curve; and where the planet–ring mesh's ε_αn reaches 2.5
+    (ISO 6336-2's scope)."""
     stage, p = cast("PlanetaryStage", cfg.stage[st.index - 1]), st.planetary
     assert p is not None  # a planetary stage's result
     ring, mesh = p.ring, p.planet_ring
@@ -225,14 +227,18 @@ def _ring_range_diagnostics(cfg: DesignFile, st: StageResult) -> list[Diagnostic
                            member="ring", quantity="q_s", value=form["q_s"], mesh="planet_ring"))
     out.extend(virtual_contact_ratio_diagnostics(st.index, mesh.contact_ratio_transverse, st.base_helix_angle_deg,
                                                  mesh="planet_ring"))
-    depth = 0.5 * (ring.root_diameter_mm - ring.tip_diameter_mm)
+    m_n = st.normal_module_mm  # an internal gear's rim is measured in normal modules (ISO 6336-3:2006, 10)
     rim = stage.ring.rim_thickness_mm
-    if rim is not None and rim / depth < rr.INTERNAL_RIM_RANGE[0]:
-        out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: rim s_R/h_t = {rim / depth:.3g} below 1.75, where "
+    if rim is not None and rim / m_n < rr.INTERNAL_RIM_RANGE[0]:
+        out.append(warning(OUT_OF_RANGE, f"stage {st.index} ring: rim s_R/m_n = {rim / m_n:.3g} below 1.75, where "
                            "ISO 6336-3's rim factor of an internal gear ends; Y_B is taken at 1.75 "
-                           f"({rr.internal_rim_factor(rim, depth):.3g}), a thinner rim needs a finite element check",
-                           stage=st.index, member="ring", quantity="rim_ratio", value=rim / depth,
+                           f"({rr.internal_rim_factor(rim, m_n):.3g}), a thinner rim needs a finite element check",
+                           stage=st.index, member="ring", quantity="rim_ratio", value=rim / m_n,
                            mesh="planet_ring"))
+    rated = mesh.rating
+    if rated is not None:  # the ring's own N_L (the planet's ring side counts the cycles its sun side warns of)
+        out += static_cycles_diagnostics(st.index, "ring", str(cfg.materials[stage.ring.material].treatment),
+                                         rated.gear.load_cycles, mesh="planet_ring")
     return out
 
 

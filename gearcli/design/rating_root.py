@@ -230,14 +230,16 @@ def internal_tooth_form(teeth: int, normal_module: float, normal_pressure_rad: f
             "q_s": q_s, "d_en": d_en, "d_sFn": d_sfn}
 
 
-INTERNAL_RIM_RANGE = (1.75, 3.5)  # s_R/h_t where the internal gear's Y_B formula holds, and from where Y_B = 1
+INTERNAL_RIM_RANGE = (1.75, 3.5)  # s_R/m_n where the internal gear's Y_B formula holds, and from where Y_B = 1
 
 
-def internal_rim_factor(rim_thickness_mm: float | None, tooth_depth_mm: float) -> float:
-    """Y_B of an internal gear (ISO 6336-3:2006, 10): 1 for s_R/h_t ≥ 3.5 (or no rim given),
-    1.15 ln(8.324 h_t/s_R) for 1.75 < s_R/h_t < 3.5 (below 1.75 the standard does not apply and the 1.75 value
-    is used)."""
+def internal_rim_factor(rim_thickness_mm: float | None, normal_module_mm: float) -> float:
+    """Y_B of an internal gear (ISO 6336-3:2006, 10): 1 for s_R/m_n ≥ 3.5 (or no rim given),
+    1.15 ln(8.324 m_n/s_R) for 1.75 < s_R/m_n < 3.5 (below 1.75 the standard does not apply and the 1.75 value
+    is used). The internal gear's rim is measured in normal modules, not in tooth depths as an external gear's
+    (s_R/h_t): before 2026-12-01 gearcli took s_R/h_t here, 2.25x too thin a rim for the ISO 53 rack (the NREL 5 MW
+    ring, s_R = 157.5 mm = 3.5 m_n, Y_B 1.79 for 1.00)."""
     if rim_thickness_mm is None:
         return 1.0
-    ratio = max(rim_thickness_mm / tooth_depth_mm, INTERNAL_RIM_RANGE[0])
+    ratio = max(rim_thickness_mm / normal_module_mm, INTERNAL_RIM_RANGE[0])
     return 1.0 if ratio >= INTERNAL_RIM_RANGE[1] else 1.15 * math.log(8.324 / ratio)

@@ -13,8 +13,9 @@ S_Fmin 1.56.
 Tolerances: half a unit of the printed last digit, widened where stated beside the assertion. The planet's
 σ_FG carries Y_M = 0.7 (an idler), as the report's "Alternating bending factor YM 0.700" does. The ring's root:
 the report computes the internal gear's root geometry with its pinion-type cutter ("z0 = 36, x0 = 0,
-rofP* = 0.300") and the ring's own reference profile (ρ_fP* 0.30, profile B), and treats the ring's rim as absent
-(Y_B 1.00: "Outer diameter of gear rim 0.00"); a gearcli stage has one basic rack (here the sun's and planet's
+rofP* = 0.300") and the ring's own reference profile (ρ_fP* 0.30, profile B), and prints the ring's Y_B 1.00
+("Outer diameter of gear rim 0.00"), which the NREL design's rim, 157.5 mm = 3.5 m_n, also gives (ISO 6336-3's
+internal gear: Y_B = 1 from s_R/m_n = 3.5); a gearcli stage has one basic rack (here the sun's and planet's
 ρ_fP* 0.38) and no cutter key, so the ring's Y_F, Y_S are compared at the level of ``internal_tooth_form`` with the
 report's ring inputs, and end to end only the factors that do not depend on them.
 """
@@ -182,9 +183,10 @@ def test_ring_root_without_cutter_takes_the_substitute_racks_fillet():
 
 
 def test_internal_rim_factor_by_hand():
-    """Y_B of an internal gear: 1.15 ln(8.324 h_t/s_R) for 1.75 < s_R/h_t < 3.5, 1 from 3.5 (continuous there to
+    """Y_B of an internal gear: 1.15 ln(8.324 m_n/s_R) for 1.75 < s_R/m_n < 3.5, 1 from 3.5 (continuous there to
     3 decimals), held at its 1.75 value below; no rim given: 1 (the report's ring, Y_B 1.00)."""
-    assert rr.internal_rim_factor(None, 101.25) == 1.0
+    assert rr.internal_rim_factor(None, 45.0) == 1.0
+    assert rr.internal_rim_factor(157.5, 45.0) == 1.0  # the NREL ring: 3.5 m_n
     assert_allclose(rr.internal_rim_factor(2.5 * 100.0, 100.0), 1.15 * math.log(8.324 / 2.5), rtol=1e-12)
     assert_allclose(1.15 * math.log(8.324 / 3.5), 1.0, atol=5e-3)
     assert rr.internal_rim_factor(4.0 * 100.0, 100.0) == 1.0
@@ -193,14 +195,15 @@ def test_internal_rim_factor_by_hand():
 
 def test_ring_root_end_to_end():
     """The ring's root in the design: the factors independent of the cutter and of the ring's own rack match the
-    report (YRrelT 0.957, YX 0.850, YNT 0.907, YM 1.000, σ_F/σ_F0 = 153.89/95.32); the ring's rim (157.5 mm under
-    a 101.25 mm tooth, s_R/h_t 1.56) gives Y_B = 1.15 ln(8.324/1.75) where the report has no rim."""
+    report (YRrelT 0.957, YX 0.850, YNT 0.907, YM 1.000, σ_F/σ_F0 = 153.89/95.32); the ring's rim, 157.5 mm =
+    3.5 m_n, gives the report's Y_B 1.00 (before 2026-12-01 gearcli measured it in tooth depths, s_R/h_t = 1.56, and
+    held Y_B at 1.15 ln(8.324/1.75) = 1.79)."""
     st = _stage(_doc())
     r = st.planetary.planet_ring.rating
     planet, ring = r.pinion, r.gear
     assert ring.S_F is not None and ring.Y_M == 1.0
     assert_allclose([ring.Y_R_rel_T, ring.Y_X, ring.Y_NT], [0.957, 0.850, 0.907], atol=5e-4)
-    assert_allclose(ring.Y_B, 1.15 * math.log(8.324 / 1.75), rtol=1e-12)
+    assert ring.Y_B == 1.0
     # the mesh's load factors act on both roots alike: K_A K_v K_Fβ K_Fα = 153.89/95.32 = 1.61446 (±1e-4 from
     # the printed digits), the planet's 154.50/95.70
     assert_allclose(ring.sigma_F_MPa / ring.sigma_F0_MPa, 153.89 / 95.32, rtol=2e-4)
@@ -243,18 +246,23 @@ def test_internal_mesh_dynamic_factor_by_hand():
 
 
 def test_ring_rim_below_the_standards_range_is_a_warning():
-    """s_R/h_t = 157.5/101.25 = 1.556 < 1.75: outside ISO 6336-3's internal-gear Y_B, said as rating_out_of_range;
-    a rim of 3.5 tooth depths or more is inside (Y_B = 1) and quiet."""
+    """A 67.5 mm rim, s_R/m_n = 67.5/45 = 1.5 < 1.75: outside ISO 6336-3's internal-gear Y_B, said as
+    rating_out_of_range and Y_B held at 1.15 ln(8.324/1.75); the design's 157.5 mm, 3.5 m_n (s_R/h_t 1.56), is
+    inside (Y_B = 1) and quiet, and so is 2 m_n (90 mm, s_R/h_t 0.89), rated at 1.15 ln(8.324/2)."""
     def hits(doc):
         result = compute_design(DesignFile.model_validate(doc))
         return [d for d in result.diagnostics if d.code == "rating_out_of_range" and d.data.get("member") == "ring"]
 
-    found = hits(_doc())
-    assert [d.data["quantity"] for d in found] == ["rim_ratio"]
-    assert_allclose(found[0].data["value"], 157.5 / 101.25, rtol=1e-3)
+    assert hits(_doc()) == []
     doc = _doc()
-    doc["stage"][0]["ring"]["rim_thickness_mm"] = 3.5 * 101.25
+    doc["stage"][0]["ring"]["rim_thickness_mm"] = 67.5
+    found = hits(doc)
+    assert [d.data["quantity"] for d in found] == ["rim_ratio"]
+    assert_allclose(found[0].data["value"], 1.5, rtol=1e-12)
+    assert_allclose(_stage(doc).planetary.planet_ring.rating.gear.Y_B, 1.15 * math.log(8.324 / 1.75), rtol=1e-12)
+    doc["stage"][0]["ring"]["rim_thickness_mm"] = 90.0
     assert hits(doc) == []
+    assert_allclose(_stage(doc).planetary.planet_ring.rating.gear.Y_B, 1.15 * math.log(8.324 / 2.0), rtol=1e-12)
 
 
 def test_sun_counts_one_load_cycle_per_planet():

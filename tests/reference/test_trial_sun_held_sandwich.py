@@ -388,7 +388,7 @@ def test_planetary_safety_warnings_name_sun_and_planet(tmp_path):
     assert "stage 2 planet (z = 20): pitting (flank) safety S_H" in res.output
     assert "stage 2 pinion" not in res.output and "stage 2 gear" not in res.output
     warnings = json.loads((tmp_path / "d.json").read_text(encoding="utf-8"))["warnings"]
-    low = [w for w in warnings if w.get("stage") == 2 and w.get("mode") == "pitting" and w.get("mesh") is None]
+    low = [w for w in warnings if w.get("stage") == 2 and w.get("mode") == "pitting" and w.get("mesh") == "sun_planet"]
     assert {w["member"] for w in low} == {"pinion", "gear"}
 
 

@@ -1,7 +1,8 @@
 """A ring gear is a rim: `ring.rim_thickness_mm` alone (no web) is its body.
 
-ISO 6336-3:2006 rates an internal gear's root with the rim thickness s_R under it, Y_B = 1.15 ln(8.324 h_t/s_R) for
-1.75 < s_R/h_t < 3.5 (h_t = (d_f - d_a)/2 of the ring), and the ring's inertia is the annulus between its tip circle
+ISO 6336-3:2006 rates an internal gear's root with the rim thickness s_R under it, Y_B = 1.15 ln(8.324 m_n/s_R) for
+1.75 < s_R/m_n < 3.5 (in normal modules, where an external gear's Y_B takes s_R/h_t; before 2026-12-01 gearcli took
+the ring's tooth depth h_t = (d_f - d_a)/2 here, so an 8 mm rim under m_n 3, s_R/h_t 1.19, was held at 1.79), and the ring's inertia is the annulus between its tip circle
 and the rim's outside, J = rho pi b (D^4 - d_a^4)/32 with D = d_f + 2 s_R; its gear blank factor is the solid
 blank's C_R = 1 (ISO 6336-1: no web). The external members' rule (a web needs its rim and a rim its web, the
 webbed blank of C_R) was applied to the ring too, so a ring with its rim alone was exit 2 asking for a web it does
@@ -53,15 +54,16 @@ def run(tmp_path, text: str):
 
 
 def test_a_rim_alone_sets_the_rings_y_b_and_inertia(tmp_path):
-    s_r = 16.0
+    s_r = 8.0  # 2.67 m_n, 1.19 h_t
     res = run(tmp_path, scene(f", rim_thickness_mm = {s_r}"))
     assert res.exit_code == 0, res.output
     st = json.loads(res.stdout)["stages"][0]
     d = M_N * Z_R  # spur, x = 0: the ring's tip d - 2 m, root d + 2 h_fP* m (profile A: 1.25)
     d_a, d_f = d - 2.0 * M_N, d + 2.0 * 1.25 * M_N
     h_t = (d_f - d_a) / 2.0
-    assert 1.75 < s_r / h_t < 3.5
-    assert_allclose(st["meshes"][1]["rating"]["gear"]["Y_B"], 1.15 * math.log(8.324 * h_t / s_r), rtol=1e-12)
+    assert 1.75 < s_r / M_N < 3.5 and s_r / h_t < 1.75
+    assert_allclose(st["meshes"][1]["rating"]["gear"]["Y_B"], 1.15 * math.log(8.324 * M_N / s_r), rtol=1e-12)
+    assert_allclose(st["meshes"][1]["rating"]["gear"]["Y_B"], 1.3091, atol=5e-5)  # 1.15 ln(3.1215) = 1.15 · 1.13831
     outer = d_f + 2.0 * s_r
     inertia = RHO * math.pi * B * ((outer * 1e-3) ** 4 - (d_a * 1e-3) ** 4) / 32.0 * 1e-3
     assert_allclose(st["ring"]["inertia_kg_m2"], inertia, rtol=1e-12)
@@ -69,7 +71,7 @@ def test_a_rim_alone_sets_the_rings_y_b_and_inertia(tmp_path):
 
 
 def test_a_thick_rim_alone_has_y_b_one(tmp_path):
-    res = run(tmp_path, scene(", rim_thickness_mm = 30"))  # s_R/h_t = 4.4 >= 3.5
+    res = run(tmp_path, scene(", rim_thickness_mm = 10.5"))  # s_R/m_n = 3.5: Y_B = 1 (s_R/h_t = 1.56)
     assert res.exit_code == 0, res.output
     assert json.loads(res.stdout)["stages"][0]["meshes"][1]["rating"]["gear"]["Y_B"] == 1.0
 
