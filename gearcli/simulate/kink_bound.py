@@ -3,8 +3,8 @@
 The sampling estimate (:mod:`gearcli.simulate.sampling`) fits a parabola through a local extreme and its two
 neighbours. At a kink between samples (a viscous backlash mesh's force where the teeth come into or out of contact:
 the spring's term starts with a slope of K q', the damper's c q' goes on smoothly) three points straddle two arms of
-very different slope, and the parabola puts its vertex far beyond the peak: configs-like spur oscillator (2e5 N/mm,
-0.1 mm backlash, 5 um TE, 2300 rpm) sampled every 25 us estimated its F_t min 102 N beyond the samples where the
+very different slope, and the parabola puts its vertex far beyond the peak: configs/spur_oscillator_te.toml at 2300 rpm
+(2e5 N/mm, 0.1 mm backlash, 5 um TE) sampled every 25 us estimated its F_t min 102 N beyond the samples where the
 continuous response (an independent solve_ivp model with exact contact switching) lies 0.84 N beyond, and the
 suggested 110,000 steps estimated 7.2 N and asked for 390,000, as the estimate falls as h there, not h^2.
 
