@@ -14,17 +14,13 @@ peak; a pure sinusoid with N samples per period: within a few % from N = 16, tes
 Every peak of the window counts, not only the sampled max's: a neighbouring period's peak sampled at a worse
 phase may be the higher one.
 
-Bound. A concave peak between a sample and its neighbour exceeds the sample by at most the sample's rise over
-its other neighbour (the slope at the sample is below that secant's), so an interpolated excess beyond the
-larger of the two differences to the neighbours is cut to it: the parabola overshoots only where three
-points straddle a jump or a kink (a stiffness step of a time-varying mesh, an impact), and there the
-cut keeps the estimate at the size of the step between samples, the most the samples can have missed of a
-peak that is itself piecewise smooth. Zero is a floor: a mesh force is never tensile (the contact law clamps
-it), so a window whose sampled min is 0 (contact lost at a sample) has the true min 0, and no interpolated
-extreme crosses zero (configs/backlash_oscillator.toml: the parabola through a contact-loss sample put the min
-2.4e-3 of the mean below zero). A window edge has one neighbour: the edge sample is exact at the
-window's end, and a peak between it and its neighbour is interpolated by the parabola through the first three
-samples, counted only where its vertex lies between them. A constant window (an equilibrium) has none.
+Bound. A concave peak exceeds the sample by at most its step to the other neighbour, and the parabola's excess is
+cut to the larger step; it overshoots where three points straddle a kink (an impact, a viscous backlash mesh's
+contact), where five concave samples bound the peak by their secants (:mod:`gearcli.simulate.kink_bound`): the
+estimate is that bound at a kink, else the smaller of it and SAFETY x the excess. Zero is a floor for a clamped contact force: a
+sampled min of 0 is exact, and no interpolated extreme crosses zero (configs/backlash_oscillator.toml: 2.4e-3).
+A window edge has one neighbour: a peak between it and its neighbour is interpolated by the parabola through the
+first three samples, counted only where its vertex lies between them. A constant window has none.
 
 Periodic windows (``steady = "periodic"``: whole periods, uniformly sampled without their closing sample) wrap
 around: the first sample's left neighbour is the last one, a period earlier.
@@ -118,6 +114,7 @@ from gearcli.simulate.estimate import (
     solver_first,
 )
 from gearcli.simulate.estimate import target as target_of  # MEAN_TARGET for the mean, TARGET else
+from gearcli.simulate.kink_bound import peak_excess
 from gearcli.simulate.periodic import common_period, excitation_periods
 from gearcli.simulate.results import SamplingError, StatisticsError
 
@@ -189,15 +186,19 @@ def max_excess(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, zero_flo
         wrap = x[0] - x[-1]
         rise, fall = np.concatenate(([wrap], d)), np.concatenate((d, [wrap]))  # into and out of each sample
         sl, sr, xc = np.concatenate(([h_wrap], dt)), np.concatenate((dt, [h_wrap])), x
+        outer = tuple(np.roll(a, k) for a, k in ((rise, 1), (fall, -1), (sl, 1), (sr, -1)))
     else:
         rise, fall, sl, sr, xc = d[:-1], d[1:], dt[:-1], dt[1:], x[1:-1]
+        nan = [np.nan]  # an edge's neighbour has no outer neighbour: no secant bound there
+        outer = tuple(np.concatenate(p) for p in ((nan, d[:-2]), (d[2:], nan), (nan, dt[:-2]), (dt[2:], nan)))
     # a local max that could beat the sampled max: its excess is at most the larger step to a neighbour
     peak = np.flatnonzero((rise >= 0) & (fall <= 0) & (xc + np.maximum(rise, -fall) > top))
     best = top
     if peak.size:
         xp = xc[peak]
-        best = max(best, float(np.max(xp + _vertex_excess(xp - rise[peak], xp, xp + fall[peak], sl[peak],
-                                                          sr[peak]))))
+        excess = _vertex_excess(xp - rise[peak], xp, xp + fall[peak], sl[peak], sr[peak])  # or the secants':
+        best = max(best, float(np.max(xp + peak_excess(excess, SAFETY, xp, rise[peak], fall[peak], sl[peak], sr[peak],
+                                                       *(o[peak] for o in outer)))))
     if not periodic:
         for at_end in (False, True):
             j = n - 1 if at_end else 0
