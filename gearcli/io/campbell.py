@@ -54,11 +54,18 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     log = top_f / max(low_f, 1e-9) > 100.0
     bottom = low_f / 1.6 if log else 0.0
     shown = [m for m in data.modes if m.frequency_Hz <= top_f]
+    # a repeated mode (identical planets) is one line with one label, named by its first mode
+    group_of = {n: numbers for numbers, _ in data.repeated for n in numbers}
+    dominant = {numbers[0]: label for numbers, label in data.repeated}
     for m in shown:
         f = m.frequency_Hz
+        group = group_of.get(m.number, (m.number,))
+        if m.number != group[0]:
+            continue
         ax.axhspan(f * (1 - RESONANCE_BAND), f * (1 + RESONANCE_BAND), color="0.88", zorder=0, lw=0)
         ax.axhline(f, color="k", lw=1.4, zorder=2)
-        ax.annotate(f"mode {m.number}: {f:.4g} Hz ({m.dominant}, ζ {100 * m.damping_ratio:.2g} %)",
+        ax.annotate(f"{_mode_name(group)}: {f:.4g} Hz ({dominant.get(m.number, m.dominant)}, "
+                    f"ζ {100 * m.damping_ratio:.2g} %)",
                     (top_speed, f), xytext=(-4, 3), textcoords="offset points", ha="right", va="bottom",
                     fontsize=7.5, color="k", zorder=7)
     n = np.linspace(0.0, data.max_input_rpm, 200)
@@ -100,15 +107,18 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
             near.append(c)
     # coincident orders (a stage's 3rd mesh harmonic on the next stage's 1st: z1 = 3 z3 / i1) cross a mode at one
     # point: one label naming them all, not labels printed over each other
+    # (a repeated mode's modes: one point, one label)
     points: dict[tuple[int, float], tuple[Any, list[str]]] = {}  # (mode, speed): its first crossing, the orders
     for c in near:
-        _, names = points.setdefault((c.mode, round(c.crossing.input_speed_rpm or 0.0, 6)), (c, []))
+        first = group_of.get(c.mode, (c.mode,))[0]
+        _, names = points.setdefault((first, round(c.crossing.input_speed_rpm or 0.0, 6)), (c, []))
         if c.crossing.excitation not in names:
             names.append(c.crossing.excitation)
     for c, names in points.values():
         x = _speed(units, c.crossing.input_speed_rpm or 0.0)
         right = x > 0.5 * (low_speed + top_speed)  # a label right of a crossing in the right half ran out of the axes on to the
-        ax.annotate(f"{', '.join(names)} × mode {c.mode}", (x, c.frequency_Hz),  # legend: it ends at the crossing
+        mode = _mode_name(group_of.get(c.mode, (c.mode,)))
+        ax.annotate(f"{', '.join(names)} × {mode}", (x, c.frequency_Hz),  # legend: it ends at the crossing
                     xytext=(-6 if right else 6, -12), textcoords="offset points", ha="right" if right else "left",
                     fontsize=7.5, color="darkred", zorder=8)
     if swept:
@@ -135,6 +145,11 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     # never run under it as they did with a figure legend in the top right corner
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=7.5)
     return fig
+
+
+def _mode_name(numbers: Sequence[int]) -> str:
+    """"mode 4", or a repeated mode's "modes 4-5 (repeated)" (as the resonance warning names it)."""
+    return f"modes {numbers[0]}-{numbers[-1]} (repeated)" if len(numbers) > 1 else f"mode {numbers[0]}"
 
 
 def write_campbell(data: CampbellData, units: OutputUnits, directory: str | Path, title: str = "") -> Path:
