@@ -22,6 +22,7 @@ import numpy as np
 from gearcli.io.figures import check as _figure_check
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
+from gearcli.io.figures import suptitle as _suptitle
 from gearcli.io.units import OutputUnits
 from gearcli.model.campbell import CampbellData
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
@@ -134,7 +135,7 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     ax.grid(alpha=0.3, which="both")
     hidden = len(data.modes) - len(shown)
     note = f"; {hidden} mode{'s' if hidden > 1 else ''} above the highest order not shown" if hidden else ""
-    fig.suptitle(f"Campbell diagram{' — ' + title if title else ''}", fontsize=11)
+    _suptitle(fig, f"Campbell diagram{' — ' + title if title else ''}")
     head = (f"modes {data.boundary.replace('_', ' ')}, linearised at full load; grey bands: ±"
             f"{100 * RESONANCE_BAND:.0f} % resonance margin{note}")
     key = ("markers: crossings, by how strongly the order excites the mode (exciting meshes' strain-energy share / "
