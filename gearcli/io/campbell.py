@@ -35,6 +35,7 @@ STYLES = {"strongly": dict(marker="o", ms=8, mfc="tab:red", mec="darkred", zorde
           "moderately": dict(marker="o", ms=6.5, mfc="orange", mec="darkorange", zorder=5),
           "weakly": dict(marker="o", ms=3.5, mfc="none", mec="0.55", zorder=4)}
 ORDER_STYLES = {1: "-", 2: "--", 3: ":"}
+MODE_LABEL_PT = 7.5  # the mode labels' font size
 
 
 def _speed(units: OutputUnits, rpm: Any) -> Any:
@@ -58,6 +59,7 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     # a repeated mode (identical planets) is one line with one label, named by its first mode
     group_of = {n: numbers for numbers, _ in data.repeated for n in numbers}
     dominant = {numbers[0]: label for numbers, label in data.repeated}
+    labels: list[tuple[float, str]] = []  # (Hz, text) of each mode line, drawn once the axes are laid out
     for m in shown:
         f = m.frequency_Hz
         group = group_of.get(m.number, (m.number,))
@@ -65,10 +67,8 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
             continue
         ax.axhspan(f * (1 - RESONANCE_BAND), f * (1 + RESONANCE_BAND), color="0.88", zorder=0, lw=0)
         ax.axhline(f, color="k", lw=1.4, zorder=2)
-        ax.annotate(f"{_mode_name(group)}: {f:.4g} Hz ({dominant.get(m.number, m.dominant)}, "
-                    f"ζ {100 * m.damping_ratio:.2g} %)",
-                    (top_speed, f), xytext=(-4, 3), textcoords="offset points", ha="right", va="bottom",
-                    fontsize=7.5, color="k", zorder=7)
+        labels.append((f, f"{_mode_name(group)}: {f:.4g} Hz ({dominant.get(m.number, m.dominant)}, "
+                          f"ζ {100 * m.damping_ratio:.2g} %)"))
     n = np.linspace(0.0, data.max_input_rpm, 200)
     stages = sorted({name.split(" mesh")[0] for name, _ in data.orders if name.startswith("stage ")})
     for name, r in data.orders:
@@ -145,7 +145,28 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     # the legend beside the axes (a part of the axes' layout), so the figure title and the axes title, above,
     # never run under it as they did with a figure legend in the top right corner
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=7.5)
+    _mode_labels(fig, ax, labels, top_speed)
     return fig
+
+
+def _mode_labels(fig: Figure, ax: Any, labels: list[tuple[float, str]], x: float) -> None:
+    """Each mode's label above its line at the right edge. Labels less than a line of text apart (two modes 1 % apart
+    on a log axis: a sun-held planetary's planet modes and its in-phase one) share one text, the higher mode's label
+    on top, anchored at the highest of their lines, so that none is drawn over another."""
+    layout = fig.get_layout_engine()
+    if layout is not None:
+        layout.execute(fig)  # the axes' final place: where each frequency lands
+    line = MODE_LABEL_PT * 1.25 * fig.dpi / 72.0  # a line of the label's text, pixels
+    clusters: list[tuple[float, float, list[str]]] = []  # (anchor Hz, its pixel height, texts from the lowest)
+    for f, text in sorted(labels):
+        y = float(ax.transData.transform((x, f))[1])
+        if clusters and y < clusters[-1][1] + (len(clusters[-1][2]) + 0.5) * line:  # inside the text below
+            clusters[-1] = (f, y, [*clusters[-1][2], text])
+        else:
+            clusters.append((f, y, [text]))
+    for f, _, texts in clusters:
+        ax.annotate("\n".join(reversed(texts)), (x, f), xytext=(-4, 3), textcoords="offset points", ha="right",
+                    va="bottom", fontsize=MODE_LABEL_PT, color="k", zorder=7)
 
 
 def _mode_name(numbers: Sequence[int]) -> str:
