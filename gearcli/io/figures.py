@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import os
 import sys
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
@@ -48,8 +49,6 @@ def figure(rows: int, cols: int = 1, *, height: float = 2.3, width: float = 9.0,
 def suptitle(fig: Figure, text: str, fontsize: float = 11) -> None:
     """The figure's title, wrapped onto as many lines as keep it inside the figure: it may hold the design file's
     ``title``, of any length (a long one ran off both edges of the PNG)."""
-    import textwrap
-
     title = fig.suptitle(text, fontsize=fontsize)
     renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]  # the Agg canvas (:func:`figure`)
     room = 0.97 * fig.bbox.width
