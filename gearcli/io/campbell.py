@@ -22,6 +22,7 @@ import numpy as np
 from gearcli.io.figures import check as _figure_check
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
+from gearcli.io.figures import suptitle as _suptitle
 from gearcli.io.units import OutputUnits
 from gearcli.model.campbell import CampbellData
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
@@ -34,6 +35,7 @@ STYLES = {"strongly": dict(marker="o", ms=8, mfc="tab:red", mec="darkred", zorde
           "moderately": dict(marker="o", ms=6.5, mfc="orange", mec="darkorange", zorder=5),
           "weakly": dict(marker="o", ms=3.5, mfc="none", mec="0.55", zorder=4)}
 ORDER_STYLES = {1: "-", 2: "--", 3: ":"}
+MODE_LABEL_PT = 7.5  # the mode labels' font size
 
 
 def _speed(units: OutputUnits, rpm: Any) -> Any:
@@ -54,13 +56,19 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     log = top_f / max(low_f, 1e-9) > 100.0
     bottom = low_f / 1.6 if log else 0.0
     shown = [m for m in data.modes if m.frequency_Hz <= top_f]
+    # a repeated mode (identical planets) is one line with one label, named by its first mode
+    group_of = {n: numbers for numbers, _ in data.repeated for n in numbers}
+    dominant = {numbers[0]: label for numbers, label in data.repeated}
+    labels: list[tuple[float, str]] = []  # (Hz, text) of each mode line, drawn once the axes are laid out
     for m in shown:
         f = m.frequency_Hz
+        group = group_of.get(m.number, (m.number,))
+        if m.number != group[0]:
+            continue
         ax.axhspan(f * (1 - RESONANCE_BAND), f * (1 + RESONANCE_BAND), color="0.88", zorder=0, lw=0)
         ax.axhline(f, color="k", lw=1.4, zorder=2)
-        ax.annotate(f"mode {m.number}: {f:.4g} Hz ({m.dominant}, ζ {100 * m.damping_ratio:.2g} %)",
-                    (top_speed, f), xytext=(-4, 3), textcoords="offset points", ha="right", va="bottom",
-                    fontsize=7.5, color="k", zorder=7)
+        labels.append((f, f"{_mode_name(group)}: {f:.4g} Hz ({dominant.get(m.number, m.dominant)}, "
+                          f"ζ {100 * m.damping_ratio:.2g} %)"))
     n = np.linspace(0.0, data.max_input_rpm, 200)
     stages = sorted({name.split(" mesh")[0] for name, _ in data.orders if name.startswith("stage ")})
     for name, r in data.orders:
@@ -100,15 +108,18 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
             near.append(c)
     # coincident orders (a stage's 3rd mesh harmonic on the next stage's 1st: z1 = 3 z3 / i1) cross a mode at one
     # point: one label naming them all, not labels printed over each other
+    # (a repeated mode's modes: one point, one label)
     points: dict[tuple[int, float], tuple[Any, list[str]]] = {}  # (mode, speed): its first crossing, the orders
     for c in near:
-        _, names = points.setdefault((c.mode, round(c.crossing.input_speed_rpm or 0.0, 6)), (c, []))
+        first = group_of.get(c.mode, (c.mode,))[0]
+        _, names = points.setdefault((first, round(c.crossing.input_speed_rpm or 0.0, 6)), (c, []))
         if c.crossing.excitation not in names:
             names.append(c.crossing.excitation)
     for c, names in points.values():
         x = _speed(units, c.crossing.input_speed_rpm or 0.0)
         right = x > 0.5 * (low_speed + top_speed)  # a label right of a crossing in the right half ran out of the axes on to the
-        ax.annotate(f"{', '.join(names)} × mode {c.mode}", (x, c.frequency_Hz),  # legend: it ends at the crossing
+        mode = _mode_name(group_of.get(c.mode, (c.mode,)))
+        ax.annotate(f"{', '.join(names)} × {mode}", (x, c.frequency_Hz),  # legend: it ends at the crossing
                     xytext=(-6 if right else 6, -12), textcoords="offset points", ha="right" if right else "left",
                     fontsize=7.5, color="darkred", zorder=8)
     if swept:
@@ -124,7 +135,7 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     ax.grid(alpha=0.3, which="both")
     hidden = len(data.modes) - len(shown)
     note = f"; {hidden} mode{'s' if hidden > 1 else ''} above the highest order not shown" if hidden else ""
-    fig.suptitle(f"Campbell diagram{' — ' + title if title else ''}", fontsize=11)
+    _suptitle(fig, f"Campbell diagram{' — ' + title if title else ''}")
     head = (f"modes {data.boundary.replace('_', ' ')}, linearised at full load; grey bands: ±"
             f"{100 * RESONANCE_BAND:.0f} % resonance margin{note}")
     key = ("markers: crossings, by how strongly the order excites the mode (exciting meshes' strain-energy share / "
@@ -134,7 +145,33 @@ def campbell_figure(data: CampbellData, units: OutputUnits, title: str = "",
     # the legend beside the axes (a part of the axes' layout), so the figure title and the axes title, above,
     # never run under it as they did with a figure legend in the top right corner
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=7.5)
+    _mode_labels(fig, ax, labels, top_speed)
     return fig
+
+
+def _mode_labels(fig: Figure, ax: Any, labels: list[tuple[float, str]], x: float) -> None:
+    """Each mode's label above its line at the right edge. Labels less than a line of text apart (two modes 1 % apart
+    on a log axis: a sun-held planetary's planet modes and its in-phase one) share one text, the higher mode's label
+    on top, anchored at the highest of their lines, so that none is drawn over another."""
+    layout = fig.get_layout_engine()
+    if layout is not None:
+        layout.execute(fig)  # the axes' final place: where each frequency lands
+    line = MODE_LABEL_PT * 1.25 * fig.dpi / 72.0  # a line of the label's text, pixels
+    clusters: list[tuple[float, float, list[str]]] = []  # (anchor Hz, its pixel height, texts from the lowest)
+    for f, text in sorted(labels):
+        y = float(ax.transData.transform((x, f))[1])
+        if clusters and y < clusters[-1][1] + (len(clusters[-1][2]) + 0.5) * line:  # inside the text below
+            clusters[-1] = (f, y, [*clusters[-1][2], text])
+        else:
+            clusters.append((f, y, [text]))
+    for f, _, texts in clusters:
+        ax.annotate("\n".join(reversed(texts)), (x, f), xytext=(-4, 3), textcoords="offset points", ha="right",
+                    va="bottom", fontsize=MODE_LABEL_PT, color="k", zorder=7)
+
+
+def _mode_name(numbers: Sequence[int]) -> str:
+    """"mode 4", or a repeated mode's "modes 4-5 (repeated)" (as the resonance warning names it)."""
+    return f"modes {numbers[0]}-{numbers[-1]} (repeated)" if len(numbers) > 1 else f"mode {numbers[0]}"
 
 
 def write_campbell(data: CampbellData, units: OutputUnits, directory: str | Path, title: str = "") -> Path:

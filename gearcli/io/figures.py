@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import os
 import sys
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
@@ -43,6 +44,18 @@ def figure(rows: int, cols: int = 1, *, height: float = 2.3, width: float = 9.0,
     FigureCanvasAgg(fig)
     axes = fig.subplots(rows, cols, squeeze=False, width_ratios=width_ratios, sharex=sharex, sharey=sharey)
     return fig, axes
+
+
+def suptitle(fig: Figure, text: str, fontsize: float = 11) -> None:
+    """The figure's title, wrapped onto as many lines as keep it inside the figure: it may hold the design file's
+    ``title``, of any length (a long one ran off both edges of the PNG)."""
+    title = fig.suptitle(text, fontsize=fontsize)
+    renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]  # the Agg canvas (:func:`figure`)
+    room = 0.97 * fig.bbox.width
+    chars = len(text)
+    while chars > 20 and title.get_window_extent(renderer).width > room:
+        chars = min(chars - 1, int(chars * room / title.get_window_extent(renderer).width))
+        title.set_text("\n".join(textwrap.wrap(text, chars)))
 
 
 def save(fig: Figure, path: Path) -> Path:

@@ -18,6 +18,7 @@ from gearcli.io.channels import named
 from gearcli.io.figures import check as _figure_check
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
+from gearcli.io.figures import suptitle as _suptitle
 from gearcli.io.units import of_result
 from gearcli.report.compare import driving_gear_factor
 from gearcli.report.result import Report
@@ -70,7 +71,7 @@ def speeds_figure(r: Report) -> Figure:
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time [s]")
     axes[-1, 1].set_xlabel("time [s]")
-    fig.suptitle(f"Shaft speeds — {r.title or 'design'}", fontsize=11)
+    _suptitle(fig, f"Shaft speeds — {r.title or 'design'}")
     return fig
 
 

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from gearcli.core.records import record
 from gearcli.model.modes import (
     SPEED_RANGE,
@@ -17,6 +19,7 @@ from gearcli.model.modes import (
     torque_crossing,
     torque_sources,
 )
+from gearcli.model.planet_excitation import REPEATED, dominant_label
 
 if TYPE_CHECKING:
     from gearcli.model.assembly import Layout
@@ -44,6 +47,9 @@ class CampbellData:
     orders: tuple[tuple[str, float], ...]  # (name, Hz per input Hz): lines through the origin
     crossings: tuple[CampbellCrossing, ...]
     fixed: tuple[tuple[str, float], ...] = ()  # (name, Hz): speed-independent excitations (load fluctuation)
+    # repeated modes (a planetary's identical planets): (their numbers, the element holding the largest share of
+    # their eigenspace's strain energy), drawn as one line with one label
+    repeated: tuple[tuple[tuple[int, ...], str], ...] = ()
 
     @property
     def top_Hz(self) -> float:
@@ -71,7 +77,23 @@ def campbell_of(lay: Layout, boundary: str = "clamped_input", *, duration_s: flo
         crossings += [CampbellCrossing(m.number, m.frequency_Hz,
                                        torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio))
                       for t in torques if meets(t, m.frequency_Hz, top)]
+    elastic = [m for m in ana.modes if not m.rigid]
+    groups: list[list[Mode]] = []
+    for m in elastic:
+        if groups and abs(m.frequency_Hz - groups[-1][0].frequency_Hz) <= REPEATED * groups[-1][0].frequency_Hz:
+            groups[-1].append(m)
+        else:
+            groups.append([m])
     orders = [(o.name, o.hz_per_input_hz) for o in sources] + [(t.name, t.hz_per_input_hz) for t in torques if t.fixed_Hz is None]
     return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
                         tuple(orders), tuple(crossings),
-                        tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None))
+                        tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None),
+                        tuple((tuple(m.number for m in g), _group_dominant(lay, g)) for g in groups if len(g) > 1))
+
+
+def _group_dominant(lay: Layout, group: list[Mode]) -> str:
+    """The element holding the largest share of a repeated mode's strain energy over its eigenspace: the modes'
+    shapes are mass-orthogonal and each share is its connector's strain over the mode's ω², so the eigenspace's
+    shares are the modes' mean (the same for any basis; identical planets hold equal shares and are named
+    together, as :func:`gearcli.model.planet_excitation.group_dominant` names them in a resonance warning)."""
+    return dominant_label(lay, np.mean([m.energy_share for m in group], axis=0))

@@ -191,7 +191,7 @@ def _excitation_sources(lay: Layout) -> list[OrderSource]:
             out.append(OrderSource(f"stage {k + 1} mesh {h}x", h * x.params[I_Z] * abs(lay.bodies[x.a].ratio), (c,),
                                    "mesh", float(h), k + 1, phased))
     for i, b in enumerate(lay.shaft_body):
-        via = tuple(stages[j] for j in (i - 1, i) if 0 <= j < len(stages))
+        via = planet_excitation.shaft_meshes(lay, b, [stages[j] for j in (i - 1, i) if 0 <= j < len(stages)])
         for h in SHAFT_ORDERS:
             out.append(OrderSource(f"shaft {i + 1} {h}x", h * abs(lay.bodies[b].ratio), via, "shaft", float(h), None))
     return out

@@ -50,6 +50,22 @@ def planet_phases(lay: Layout) -> tuple[tuple[int, int, float], ...]:
     return tuple(out)
 
 
+def shaft_meshes(lay: Layout, body: int, stage_connectors: list[int]) -> tuple[int, ...]:
+    """The meshes a shaft order of ``body`` acts through (the meshes of the gears its shaft carries), from the stages
+    on either side of it (``stage_connectors``: each stage's connector, :attr:`Layout.stage_conn`): a parallel stage's
+    mesh; of a planetary stage, whose connector is planet 1's sun mesh, every planet mesh with a lever on ``body``
+    (a sun's sun meshes, a ring's ring meshes, a carrier's all of them)."""
+    out: list[int] = []
+    for c in stage_connectors:
+        x = lay.connectors[c]
+        if x.planet < 0:
+            out.append(c)
+            continue
+        out += [m for m, y in enumerate(lay.connectors) if y.planet >= 0 and y.index == x.index
+                and any(b == body and lever != 0.0 for b, lever in zip(y.bodies, y.levers, strict=True))]
+    return tuple(out)
+
+
 def repeated_ranks(hz: list[tuple[int, float]], n_rigid: int, rank: int) -> tuple[int, ...]:
     """The ranks of the elastic modes (``hz``: (eigenpair, Hz) in ascending order, the first ``n_rigid`` rigid)
     whose frequency equals mode ``rank``'s within ``REPEATED``: one repeated mode."""
