@@ -187,6 +187,10 @@ def _message(exc: GearcliError, scene: Scene, point: Point) -> str:
     rejects) is named by its key alone, as the row's design errors are: the point's overrides are checked as
     ``--set`` overrides, but the user gave no ``--set`` for it."""
     if isinstance(exc, ConfigError) and exc.source == SOURCE:
+        law = law_overrides(scene.load_law, point.values)  # the point's load on the file's speed law (load_law)
+        if exc.key and law and law[0].startswith(f"{exc.key}=") and not _varied(exc.key, point):
+            return located(f"{exc.message} (the file's load scaled to this point's speed on its speed law, "
+                           f"(n / n0)^p: {law[0]})", None, exc.key)
         named = exc.key or _leading_key(exc.message)  # a table-level check names its table in the message
         if named and _varied(named, point):
             return located(exc.message, None, exc.key)

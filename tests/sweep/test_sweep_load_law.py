@@ -129,3 +129,20 @@ def test_a_load_varied_in_another_unit_or_with_its_exponent_stays_the_points_own
             p = int(r["load.speed_exponent"])
             assert_allclose(float(r["stage1_tangential_N_mean"]),
                             200.0 * (float(r["input.speed_rpm"]) / 1200.0) ** p / R_GEAR, rtol=1e-5)
+
+
+def test_a_point_whose_law_puts_the_load_out_of_bounds_says_the_law_did(tmp_path):
+    # power_kW = 600 at 1200 rpm on a fan law (P ∝ n³): at 20000 rpm the law gives 600 x (20000/1200)³ = 2.78e6 kW,
+    # beyond the schema's 1e6. The row failed with "load.power_kW: must be ≤ 1000000, got 2777777.7", a key the user
+    # never set; it now says the file's load was scaled to the point's speed on its law, with the value it set.
+    path = tmp_path / "fan.toml"
+    path.write_text(SCENE.format(load="power_kW = 600", p=2))
+    res = CliRunner().invoke(cli, ["sweep", str(path), "--vary", "input.speed_rpm=20000", "--jobs", "1", "-q",
+                                   "-o", "-"])
+    assert res.exit_code == 1, res.output
+    (row,) = list(csv.DictReader(io.StringIO(res.stdout)))
+    assert row["status"] == "failed"
+    by_hand = 600.0 * (20000.0 / 1200.0) ** 3
+    assert row["message"].startswith("load.power_kW: must be ≤ 1000000")
+    assert "speed on its speed law" in row["message"]
+    assert_allclose(float(row["message"].rsplit("load.power_kW=", 1)[1].rstrip(")")), by_hand, rtol=1e-12)
