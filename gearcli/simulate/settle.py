@@ -116,8 +116,10 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
             for ft, ref, floor in zip(forces_N, static_N, floors, strict=True)]
     fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []
     # every stage's fit at once (independent per stage: the same numbers as one fit per stage, one batched solve)
-    terms, sigs = ringing.fit_transient_terms(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes,
-                                              forced=forced) if fitted else (np.empty((0, 0)), np.empty((0, 0)))
+    terms, sigs, omegas = ringing.fit_transient_terms(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes,
+                                                      forced=forced) if fitted else \
+        (np.empty((0, 0)), np.empty((0, 0)), np.array([m[1] for m in modes]))
+    modes = [(m[0], float(w)) for m, w in zip(modes, omegas, strict=True)]  # the frequencies the record rings at
     length = window_s[1] - window_s[0]
     biases: dict[int, tuple[float, float]] = {}  # stage (1-based): the fitted transients' share of its mean, its ref
     left = []
