@@ -57,3 +57,18 @@ def test_the_kloss_curve_past_standstill_is_below_its_locked_rotor_torque():
     assert_allclose(2 * t_b / (1 / s_b + s_b), T_LOCKED, rtol=1e-12)
     for s in (1.1, 1.47, 2.0):  # 1.47: -700 rpm on 1500 rpm synchronous
         assert 2 * t_b / (s / s_b + s_b / s) < T_LOCKED
+
+
+def test_the_run_turns_back_past_the_forward_voltage_and_names_the_holding_one():
+    # the simulation: the motor still runs backwards when the ramp u = 0.5 + 0.5 t / 0.8 passes U_FORWARD (t = 0.24 s),
+    # which the old design message gave as the roll-back's end; simulate's motor_rolls_back names U_HOLD as the cure
+    res = CliRunner().invoke(cli, ["simulate", str(CONFIG), "--set", "simulation.error_estimate=false", "--series",
+                                   "--format", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    t_forward = (U_FORWARD - 0.5) / 0.5 * 0.8
+    t, w = doc["series"]["time_s"], doc["series"]["motor_speed_rpm"]
+    i = min(range(len(t)), key=lambda k: abs(t[k] - t_forward))
+    assert w[i] < -100.0  # rpm: well into the roll-back
+    (warn,) = [x for x in doc["warnings"] if x["code"] == "motor_rolls_back"]
+    assert f"an initial_voltage_fraction of at least {U_HOLD:.3g}" in warn["message"]
