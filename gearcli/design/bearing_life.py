@@ -8,11 +8,10 @@ figures of the duty points and starts through :func:`duty_modified_life` and :fu
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
-from gearcli.core.text import beside
+from gearcli.core.text import beside, rounded_up
 from gearcli.design import iso281
 from gearcli.diagnostics import BEARING_LIFE_SHORT, Diagnostic, warning
 from gearcli.errors import DesignError
@@ -206,7 +205,7 @@ def life_short_warning(j: int, b: RatedBearing, over: str, hours: float | None,
               f"the required {required_h:.6g} h ([rating] required_life_h)")
     place = f"planet pin of stage {b.planet_stage}" if b.planet_stage else f"shaft {b.shaft}"
     p = 3.0 if b.kind == "ball" else ROLLER_EXPONENT
-    needed = _up_3(b.dynamic_load_rating_kN * (((hours if short_of_duty else required_h) or life) / life) ** (1 / p))
+    needed = rounded_up(b.dynamic_load_rating_kN * (((hours if short_of_duty else required_h) or life) / life) ** (1 / p))
     return warning(BEARING_LIFE_SHORT, f"bearing {j + 1} ({place}, x = {b.position_mm:g} mm): its ISO 281 "
                    f"life {name} = {life:.4g} h {over} is shorter than {target} "
                    f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN); a bearing of "
@@ -215,10 +214,3 @@ def life_short_warning(j: int, b: RatedBearing, over: str, hours: float | None,
                    bearing=j + 1, life=name, life_h=life, hours=hours, required_life_h=required_h,
                    required_dynamic_load_rating_kN=needed)
 
-
-def _up_3(x: float) -> float:
-    """``x`` rounded up to three significant digits (a rating that meets a bound, printed as it is given)."""
-    if x <= 0.0 or not math.isfinite(x):
-        return x
-    step = 10.0 ** (math.floor(math.log10(x)) - 2)
-    return round(math.ceil(x / step * (1 - 1e-12)) * step, 10)

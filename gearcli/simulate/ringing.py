@@ -41,6 +41,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.core.records import record
+from gearcli.core.text import rounded_up
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.damping import decay_rate
 from gearcli.model.modes import modal_analysis
@@ -439,8 +440,8 @@ def _other_means_words(r: Ringing) -> str:
 
 def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
     decay = f"decay time {r.decay_time_s:.3g} s" if math.isfinite(r.decay_time_s) else "undamped"
-    later = (f"a window from about {r.settle_time_s:.3g} s on (simulation.duration_s beyond it, "
-             f"simulation.window_start_s = {r.settle_time_s:.3g})" if math.isfinite(r.settle_time_s)
+    later = (f"a window from about {rounded_up(r.settle_time_s):g} s on (simulation.duration_s beyond it, "
+             f"simulation.window_start_s = {rounded_up(r.settle_time_s):g})" if math.isfinite(r.settle_time_s)
              else "a later window does not help (the mode is undamped)")
     dominated = f" on the {element}, which dominates the mode" if element else ""
     return (f"the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s still rings: the {r.frequency_Hz:.3g} Hz mode "

@@ -36,6 +36,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.core.records import record
+from gearcli.core.text import rounded_up
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
@@ -346,7 +347,7 @@ def next_window(settling: Settling, window_s: tuple[float, float], first_duratio
 def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str:
     """The ``window_not_settled`` warning."""
     tried = f" after {runs} longer run{'s' if runs > 1 else ''}" if runs else ""
-    when = (f"; it would be settled from about {settling.settle_time_s:.4g} s (simulation.window_start_s, "
+    when = (f"; it would be settled from about {rounded_up(settling.settle_time_s, 4):g} s (simulation.window_start_s, "
             "simulation.duration_s beyond it)" if settling.settle_time_s is not None
             and math.isfinite(settling.settle_time_s) else "")
     if settling.growing:
