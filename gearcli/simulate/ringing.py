@@ -326,14 +326,21 @@ def _refine_omega(tau: np.ndarray, base: np.ndarray, j: int, q: np.ndarray, grou
         return w0
     trials = w0 + np.linspace(-FREQUENCY_BAND * w0, FREQUENCY_BAND * w0, 2 * half + 1)
     others = np.delete(base[:, 1], j)
-    trials = np.array([w for w in trials if np.all(np.abs(w - others) >= math.pi / length)] or [w0])
+    keep = np.all(np.abs(trials[:, None] - others[None, :]) >= math.pi / length, axis=1)
+    trials = trials[keep] if keep.any() else np.array([w0])
     env = np.exp(-max(float(base[j, 0]), 0.0) * tau)
-    cols = np.stack([env * np.cos(trials[:, None] * tau), env * np.sin(trials[:, None] * tau)], axis=1)  # (K, 2, n)
-    K = trials.size
-    tp = _project_out(q, cols.reshape(-1, tau.size)).reshape(q.shape[0], K, 2, tau.size)[group]  # (S, K, 2, n)
-    g = tp @ tp.transpose(0, 1, 3, 2) + 1e-300 * np.eye(2)
-    b = tp @ yp[:, None, :, :].transpose(0, 1, 3, 2)  # (S, K, 2, 1)
-    gain = (b * np.linalg.solve(g, b)).sum(axis=(2, 3))  # (S, K): the record's share each trial explains
+    phase = trials[:, None] * tau
+    c, s = env * np.cos(phase), env * np.sin(phase)  # (K, n): each trial's two columns
+    # the projected columns' Gram matrix per basis group, <P x, P y> = <x, y> - <Q^T x, Q^T y>, and their products
+    # with the projected records, <P x, P r> = <x, P r> (P symmetric and idempotent): a closed-form 2 x 2 solve
+    qc, qs = c @ q, s @ q  # (G, K, r)
+    g00 = np.einsum("kn,kn->k", c, c)[None] - np.einsum("gkr,gkr->gk", qc, qc)
+    g11 = np.einsum("kn,kn->k", s, s)[None] - np.einsum("gkr,gkr->gk", qs, qs)
+    g01 = np.einsum("kn,kn->k", c, s)[None] - np.einsum("gkr,gkr->gk", qc, qs)
+    b0, b1 = yp[:, 0] @ c.T, yp[:, 0] @ s.T  # (S, K)
+    g00, g11, g01 = g00[group], g11[group], g01[group]
+    det = np.maximum(g00 * g11 - g01 * g01, 1e-300)
+    gain = (g11 * b0 * b0 - 2.0 * g01 * b0 * b1 + g00 * b1 * b1) / det  # (S, K): the record's share each explains
     norm = np.maximum((yp[:, 0] ** 2).sum(axis=1), np.finfo(float).tiny)
     return float(trials[int(np.argmax((gain / norm[:, None]).sum(axis=0)))])
 
