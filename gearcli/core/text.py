@@ -83,6 +83,16 @@ def figure(x: float, digits: int) -> str:
     return f"{x:.0f}"
 
 
+def rounded_up(x: float, digits: int = 3) -> float:
+    """``x`` rounded up to ``digits`` significant digits: a bound a warning advises (a window start after which a
+    transient has settled, a rating that lasts a life) printed as the user will type it, on the safe side of the
+    bound (2.1635 s to 2.17, not 2.16, which the next run finds a hair short)."""
+    if x <= 0.0 or not math.isfinite(x):
+        return x
+    step = 10.0 ** (math.floor(math.log10(x)) - digits + 1)
+    return float(format(math.ceil(x / step * (1 - 1e-12)) * step, f".{digits + 1}g"))
+
+
 _PRECISION = re.compile(r"\.(\d+)([fg])$")
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
-from gearcli.core.text import beside
+from gearcli.core.text import beside, rounded_up
 from gearcli.design import iso281
 from gearcli.diagnostics import BEARING_LIFE_SHORT, Diagnostic, warning
 from gearcli.errors import DesignError
@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 STATIC_SAFETY_LOW = "bearing_static_safety_low"
 KAPPA_OUT_OF_RANGE = "bearing_kappa_below_range"
 AXIAL_NOT_RATED = "bearing_axial_not_rated"
+ROLLER_EXPONENT = 10.0 / 3.0  # ISO 281's p for a roller bearing (3 for a ball bearing), as gearcli.design.shafts
 MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent")
 
 
@@ -43,6 +44,8 @@ class RatedBearing(Protocol):
     def L10_h(self) -> float | None: ...
     @property
     def L_nm_h(self) -> float | None: ...
+    @property
+    def kind(self) -> str: ...
 
 
 def wants_modified_life(cfg: DesignFile, j: int) -> bool:
@@ -201,7 +204,13 @@ def life_short_warning(j: int, b: RatedBearing, over: str, hours: float | None,
     target = (f"the duty's {hours:.6g} h" if short_of_duty else
               f"the required {required_h:.6g} h ([rating] required_life_h)")
     place = f"planet pin of stage {b.planet_stage}" if b.planet_stage else f"shaft {b.shaft}"
+    p = 3.0 if b.kind == "ball" else ROLLER_EXPONENT
+    needed = rounded_up(b.dynamic_load_rating_kN * (((hours if short_of_duty else required_h) or life) / life) ** (1 / p))
     return warning(BEARING_LIFE_SHORT, f"bearing {j + 1} ({place}, x = {b.position_mm:g} mm): its ISO 281 "
                    f"life {name} = {life:.4g} h {over} is shorter than {target} "
-                   f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN)",
-                   bearing=j + 1, life=name, life_h=life, hours=hours, required_life_h=required_h)
+                   f"(equivalent load {b.equivalent_load_N:.5g} N, C = {b.dynamic_load_rating_kN:g} kN); a bearing of "
+                   f"bearing[{j}].dynamic_load_rating_kN ≥ {needed:g} kN lasts it at the same loads (the life goes "
+                   f"as C^{p:.3g}, p = {'3 for a ball' if b.kind == 'ball' else '10/3 for a roller'} bearing)",
+                   bearing=j + 1, life=name, life_h=life, hours=hours, required_life_h=required_h,
+                   required_dynamic_load_rating_kN=needed)
+

@@ -46,6 +46,7 @@ from gearcli.design.geometry import (
 from gearcli.design.input_checks import HANDS, OPPOSITE
 from gearcli.design.resonance import MAIN_RESONANCE_UPPER, SUBHARMONICS, subharmonic_orders
 from gearcli.design.stiffness import material_factor, smaller_wheel_first
+from gearcli.design.target import target_speed_warning
 from gearcli.diagnostics import DESIGN, STIFFNESS_NOT_ISO, warning
 from gearcli.stages.design import design_kind, gear_pairs, member_name
 
@@ -194,19 +195,6 @@ def axial_hand_warnings(stages: tuple[StageResult, ...]) -> list[tuple[str | Non
                                 "axial_N": list(forces), "net_axial_N": sum(forces),
                                 "opposed_axial_N": abs(forces[0] - forces[1])}))
     return found
-
-
-def target_speed_warning(cfg: DesignFile, output_speed_rpm: float) -> str | None:
-    if cfg.target is None:
-        return None
-    target = cfg.target.output_speed_rpm_value
-    deviation = 100.0 * (output_speed_rpm - target) / target
-    if abs(deviation) <= cfg.target.tolerance_percent:
-        return None
-    # in the unit the target is given in (DESIGN §12): a target in °/s is not echoed back in rpm
-    scale, unit = (6.0, "°/s") if cfg.target.output_speed_rpm is None else (1.0, "rpm")
-    return (f"output speed {scale * output_speed_rpm:.4g} {unit} misses the target {scale * target:.4g} {unit} by "
-            f"{beside(deviation, math.copysign(cfg.target.tolerance_percent, deviation), '+.1f')} % (tolerance ±{cfg.target.tolerance_percent:g} %)")
 
 
 def massless_rotor_warning(cfg: DesignFile) -> str | None:

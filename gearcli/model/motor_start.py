@@ -156,6 +156,12 @@ def _first_crossing(grid, f, net) -> float | None:
     return None
 
 
+def _fraction(torque_Nm: float, t0_Nm: float, u0: float) -> float:
+    """The initial voltage fraction whose torque at standstill, u² of the locked-rotor torque (``t0_Nm`` at ``u0``),
+    equals ``torque_Nm`` (1 where the motor gives none)."""
+    return math.sqrt(torque_Nm / t0_Nm) * u0 if t0_Nm > 0.0 else 1.0
+
+
 def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
     """The design's warnings of a motor drive that cannot start its load (module text): code ``design``, check
     ``motor_cannot_start`` (with ``stall_speed_rpm``, 0 at standstill, and the motor's and the reflected load's
@@ -209,9 +215,11 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
                 dg.DESIGN, f'input: drive = "motor": the soft start\'s initial voltage fraction {u0:g} gives {t0:.4g} '
                 f"N·m at standstill (u0² of the locked-rotor torque), below the load reflected to the motor as it "
                 f"drives the train backwards through its losses, {back:.4g} N·m (to start forward: {load:.4g} "
-                "N·m): the load turns the train backwards until the voltage has risen to "
-                f"{math.sqrt(load / t0) * u0 if t0 > 0.0 else 1.0:.3g} of full; a higher initial_voltage_fraction, or "
-                "a backstop or a brake holding the load until the motor's torque exceeds it",
+                "N·m): the load turns the train backwards, and the motor's torque falls as it does (a slip above 1), "
+                "so it runs back well past the voltage whose torque at standstill would hold it; an "
+                f"initial_voltage_fraction of at least {_fraction(back, t0, u0):.3g} holds the train at rest "
+                f"({_fraction(load, t0, u0):.3g} starts it forward at once), or a backstop or a brake holding the load "
+                "until the motor's torque exceeds it",
                 check="soft_start_rolls_back", initial_voltage_fraction=u0, start_torque_Nm=t0, load_torque_Nm=load,
                 back_driving_torque_Nm=back))
     return tuple(found)

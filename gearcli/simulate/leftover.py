@@ -32,6 +32,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.core.records import record
+from gearcli.core.text import rounded_up
 from gearcli.diagnostics import Diagnostic
 from gearcli.simulate.estimate import MEAN_TARGET, TARGET
 
@@ -157,10 +158,11 @@ def warnings(leftover: Sequence[Leftover], stages: Sequence[Any], window_s: tupl
              if "mean" in bad else "")
         clear = left.clear_mean_s if "mean" in bad else left.clear_s
         if clear is not None:
-            start = window_s[0] + clear
-            steps = math.ceil((start + length) / left.dt_s) if left.dt_s > 0.0 else None
-            later = (f"a later window resolves it (--set simulation.window_start_s={start:.3g} "
-                     f"--set simulation.duration_s={start + length:.3g}"
+            start = rounded_up(window_s[0] + clear)  # printed as typed, on the settled side
+            end = rounded_up(start + length)
+            steps = math.ceil(end / left.dt_s) if left.dt_s > 0.0 else None
+            later = (f"a later window resolves it (--set simulation.window_start_s={start:g} "
+                     f"--set simulation.duration_s={end:g}"
                      + (f" --set simulation.steps={steps}" if steps is not None else "") + ", its length and sampling "
                      "kept), or ")
         else:

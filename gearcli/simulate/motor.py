@@ -341,6 +341,16 @@ STANDSTILL_CURE = {"soft_start": "a higher initial_voltage_fraction (u0² of the
                    "star_delta": "a direct start (the full locked-rotor torque), or "}
 
 
+def _cure(motor: MotorSpec, t0: float, back: float) -> str:
+    """What lifts the start's torque at standstill above what turns the train back: a soft start's initial voltage
+    fraction named by its figure, sqrt(back / T_lr) (design's ``soft_start_rolls_back`` names the same)."""
+    if motor.starting == "soft_start" and t0 > 0.0:
+        u0 = motor.start_parameters[1]
+        return (f"an initial_voltage_fraction of at least {math.sqrt(back / t0) * u0:.3g} (u0² of the locked-rotor "
+                "torque above the load turning it back), or ")
+    return STANDSTILL_CURE.get(motor.starting, "")
+
+
 def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
                 window_from_s: float | None = None) -> list[Diagnostic]:
     """The load turns the train backwards during the start: the starting method's torque at standstill (a soft
@@ -368,7 +378,7 @@ def _rolls_back(lay: Layout, t: np.ndarray, w_motor: np.ndarray, ws: float,
                        f"{low * RAD_S_TO_RPM:.4g} rpm at {float(t[i]):.4g} s ({100 * turns:.2g} % of the run backwards): "
                        f"its {motor.starting} start gives {t0:.4g} N·m at standstill at t = 0, below the load reflected "
                        f"to the motor as it drives the train backwards through its losses, {back:.4g} N·m (to start "
-                       f"forward: {load:.4g} N·m); {consequence}; it needs {STANDSTILL_CURE.get(motor.starting, '')}"
+                       f"forward: {load:.4g} N·m); {consequence}; it needs {_cure(motor, t0, back)}"
                        "a backstop or a brake holding the load until the motor's torque exceeds it",
                        reverse_speed_rpm=low * RAD_S_TO_RPM, start_torque_Nm=t0, load_torque_Nm=load,
                        back_driving_torque_Nm=back)]

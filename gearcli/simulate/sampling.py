@@ -479,17 +479,17 @@ def window_period_warnings(layout, t: np.ndarray, forces_N: list[np.ndarray], re
         if not bound > MEAN_TARGET * ref:
             continue
         (amplitude, worst), f, label = max(found[k], key=lambda item: item[0][1])
-        start = None
         if common is not None and common.exact and common.period_s <= span:
             whole = int(math.floor(span / common.period_s))
             start = float(t[-1]) - whole * common.period_s
             fix = (f"a window of whole periods of the excitations' common period {common.period_s:.4g} s (--set "
                    f"{_start_setting(start)}: its last {whole}) or ")
-        elif common is not None and common.exact:
-            fix = (f"a window of whole periods of the excitations' common period {common.period_s:.4g} s (a longer "
-                   "simulation.duration_s) or ")
+        elif common is not None and common.exact:  # longer than the window: one period from its start, sampled alike
+            start, end = None, float(t[0]) + common.period_s
+            fix = (f"a window of whole periods of the excitations' common period {common.period_s:.4g} s (--set "
+                   f"{_start_setting(float(t[0]), (end, math.ceil(end * (t.size - 1) / span)))}: one period) or ")
         else:
-            fix = "a longer window (the bias falls as 1 / its length) or "
+            start, fix = None, "a longer window (the bias falls as 1 / its length) or "
         out.append(dg.warning(
             dg.WINDOW_PARTIAL_PERIOD,
             f"stage {k + 1}: the steady window ({span:.4g} s) holds {f * span:.4g} periods of the {label} excitation "

@@ -36,6 +36,7 @@ import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.core.records import record
+from gearcli.core.text import rounded_up
 from gearcli.diagnostics import Diagnostic
 from gearcli.errors import GearcliError
 from gearcli.model.damping import decay_rate
@@ -116,8 +117,10 @@ def check(t: np.ndarray, mask: np.ndarray, forces_N: list[np.ndarray], static_N:
             for ft, ref, floor in zip(forces_N, static_N, floors, strict=True)]
     fitted = [k for k, ref in enumerate(refs) if ref > 0.0] if modes else []
     # every stage's fit at once (independent per stage: the same numbers as one fit per stage, one batched solve)
-    terms, sigs = ringing.fit_transient_terms(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes,
-                                              forced=forced) if fitted else (np.empty((0, 0)), np.empty((0, 0)))
+    terms, sigs, omegas = ringing.fit_transient_terms(tw, np.column_stack([forces_N[k][mask] for k in fitted]), modes,
+                                                      forced=forced) if fitted else \
+        (np.empty((0, 0)), np.empty((0, 0)), np.array([m[1] for m in modes]))
+    modes = [(m[0], float(w)) for m, w in zip(modes, omegas, strict=True)]  # the frequencies the record rings at
     length = window_s[1] - window_s[0]
     biases: dict[int, tuple[float, float]] = {}  # stage (1-based): the fitted transients' share of its mean, its ref
     left = []
@@ -344,7 +347,7 @@ def next_window(settling: Settling, window_s: tuple[float, float], first_duratio
 def message(settling: Settling, window_s: tuple[float, float], runs: int) -> str:
     """The ``window_not_settled`` warning."""
     tried = f" after {runs} longer run{'s' if runs > 1 else ''}" if runs else ""
-    when = (f"; it would be settled from about {settling.settle_time_s:.4g} s (simulation.window_start_s, "
+    when = (f"; it would be settled from about {rounded_up(settling.settle_time_s, 4):g} s (simulation.window_start_s, "
             "simulation.duration_s beyond it)" if settling.settle_time_s is not None
             and math.isfinite(settling.settle_time_s) else "")
     if settling.growing:

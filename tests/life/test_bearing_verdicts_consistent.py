@@ -89,7 +89,8 @@ def test_design_warns_a_bearing_life_shorter_than_required(tmp_path):
     short = _codes(design, SHORT)
     assert [w["bearing"] for w in short] == [1, 2], short
     for w in short:
-        assert set(w) - {"code", "message"} == {"stage", "bearing", "life", "life_h", "hours", "required_life_h"}
+        assert set(w) - {"code", "message"} == {"stage", "bearing", "life", "life_h", "hours", "required_life_h",
+                                                   "required_dynamic_load_rating_kN"}
         assert w["stage"] is None  # no stage's: null, as every warning about the train (docs/output.md)
         assert w["life"] == "L10" and w["required_life_h"] == 50000 and w["hours"] is None
         assert_allclose(w["life_h"], l10_h[w["bearing"] - 1], rtol=1e-9)

@@ -63,10 +63,10 @@ def stage(draw):
             m["hand"] = h
         if draw(st.booleans()):
             upper = clean(m_n * draw(st.floats(-0.03, 0.02)))  # thinned or thickened
-            m["tooth_thickness_allowance_mm"] = [upper, upper - m_n * draw(st.floats(0.001, 0.02))]
+            m["tooth_thickness_allowance_mm"] = [upper, clean(upper - m_n * draw(st.floats(0.001, 0.02)))]
         if draw(st.booleans()):
             upper = clean(m_n * draw(st.floats(-0.02, 0.6)))
-            m["tip_diameter_allowance_mm"] = [upper, upper - m_n * draw(st.floats(0.001, 0.05))]
+            m["tip_diameter_allowance_mm"] = [upper, clean(upper - m_n * draw(st.floats(0.001, 0.05)))]
         if draw(st.booleans()):  # a webbed body: rim s_R, web b_s (C_R clamps b_s/b to 0.2 … 1.2, s_R to ≥ m_n)
             d_f = m_n * z / cos(radians(beta)) - 2 * m_n * (ref_rack[1] - x)
             rim = m_n * draw(st.floats(0.5, 6.0))

@@ -83,7 +83,7 @@ def test_a_soft_start_below_the_load_at_standstill_is_warned_from_its_initial_vo
     assert_allclose(found[0]["start_torque_Nm"], 0.25 * T_LOCKED, rtol=1e-9)
     assert_allclose(found[0]["load_torque_Nm"], 1300 / TRAIN, rtol=1e-9)
     assert "sqrt" not in found[0]["message"]
-    assert f"{math.sqrt(1300 / TRAIN / T_LOCKED):.3g} of full" in found[0]["message"]  # u = sqrt(T_L / T_lr)
+    assert f"({math.sqrt(1300 / TRAIN / T_LOCKED):.3g} starts it forward at once)" in found[0]["message"]  # sqrt(T_L / T_lr)
 
 
 def test_the_stall_speed_is_where_simulate_finds_the_motor_settling():
