@@ -19,8 +19,7 @@ cut to the larger step; it overshoots where three points straddle a kink (an imp
 contact), where five concave samples bound the peak by their secants (:mod:`gearcli.simulate.kink_bound`): the
 estimate is that bound at a kink, else the smaller of it and SAFETY x the excess. Zero is a floor for a clamped contact force: a
 sampled min of 0 is exact, and no interpolated extreme crosses zero (configs/backlash_oscillator.toml: 2.4e-3).
-A window edge has one neighbour: a peak between it and its neighbour is interpolated by the parabola through the
-first three samples, counted only where its vertex lies between them. A constant window has none.
+A window edge's peak is the parabola's through its first three samples, its vertex between them; a constant has none.
 
 Periodic windows (``steady = "periodic"``: whole periods, uniformly sampled without their closing sample) wrap
 around: the first sample's left neighbour is the last one, a period earlier.
