@@ -450,7 +450,8 @@ def message(r: Ringing, window_s: tuple[float, float], element: str) -> str:
     later = (f"a window from about {rounded_up(r.settle_time_s):g} s on (simulation.duration_s beyond it, "
              f"simulation.window_start_s = {rounded_up(r.settle_time_s):g})" if math.isfinite(r.settle_time_s)
              else "a later window does not help (the mode is undamped)")
-    dominated = f" on the {element}, which dominates the mode" if element else ""
+    verb = "dominate" if element.endswith("meshes") else "dominates"  # a planetary's tied meshes name several
+    dominated = f" on the {element}, which {verb} the mode" if element else ""
     return (f"the steady window {window_s[0]:.4g}–{window_s[1]:.4g} s still rings: the {r.frequency_Hz:.3g} Hz mode "
             f"({decay}, {100 * r.damping_ratio:.2g} % of critical damping) carries a run-up vibration of "
             f"±{r.amplitude_start_N:.4g} N in stage {r.stage}'s F_t at the window's start and ±{r.amplitude_end_N:.4g} N "
