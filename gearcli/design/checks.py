@@ -439,13 +439,17 @@ def contact_ratio_allowances_warning(stage: StageResult) -> str | None:
 
 
 def contact_ratio_warning(stage: StageResult) -> str | None:
-    eps, total = stage.contact_ratio_transverse, stage.contact_ratio_total
+    return contact_ratio_text(mesh_head(stage), stage.contact_ratio_transverse, stage.contact_ratio_total)
+
+
+def contact_ratio_text(head: str, eps: float, total: float) -> str | None:
+    """ε_α below 1 (interrupted contact) or below MIN_CONTACT_RATIO, after ``head`` (the stage and its mesh)."""
     if eps < 1.0:
         overlap = "the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous"
-        return (f"{mesh_head(stage)}: transverse contact ratio ε_α = {beside(eps, 1.0, '.3f')} < 1: contact is interrupted in "
+        return (f"{head}: transverse contact ratio ε_α = {beside(eps, 1.0, '.3f')} < 1: contact is interrupted in "
                 f"every transverse section; total ε_γ = {total:.3f}, {overlap}")
     if eps < MIN_CONTACT_RATIO:
-        return (f"{mesh_head(stage)}: transverse contact ratio ε_α = {beside(eps, MIN_CONTACT_RATIO, '.3f')} < {MIN_CONTACT_RATIO}: little "
+        return (f"{head}: transverse contact ratio ε_α = {beside(eps, MIN_CONTACT_RATIO, '.3f')} < {MIN_CONTACT_RATIO}: little "
                 "margin for tip relief, pitch and centre-distance errors")
     return None
 

@@ -34,7 +34,13 @@ from gearcli.design import allowances_internal as ia
 from gearcli.design import planetary_balance as bal
 from gearcli.design import resonance as res
 from gearcli.design import stiffness as stf
-from gearcli.design.checks import INTERFERENCE_TOLERANCE_PER_MODULE, resonance_figure, resonance_text, usable_margin
+from gearcli.design.checks import (
+    INTERFERENCE_TOLERANCE_PER_MODULE,
+    contact_ratio_text,
+    resonance_figure,
+    resonance_text,
+    usable_margin,
+)
 from gearcli.design.geometry import (
     base_diameter_mm,
     base_helix_angle_rad,
@@ -386,12 +392,10 @@ def planetary_warnings(stage_result: StageResult) -> list[tuple[str, JsonObject]
         return []
     out: list[tuple[str, JsonObject]] = []
     eps, total = p.planet_ring.contact_ratio_transverse, p.planet_ring.contact_ratio_total
-    if eps < 1.2:
-        head = f"stage {stage_result.index}: planet–ring transverse contact ratio ε_α = {eps:.3f}"
-        out.append((f"{head} < 1: contact is interrupted in every transverse section; total ε_γ = {total:.3f}, "
-                    + ("the motion is not continuous" if total < 1.0 else "only the overlap keeps the motion continuous")
-                    if eps < 1.0 else f"{head} < 1.2", {"check": "contact_ratio", "mesh": "planet_ring",
-                                                        "contact_ratio_transverse": eps, "contact_ratio_total": total}))
+    text = contact_ratio_text(f"stage {stage_result.index} planet–ring mesh", eps, total)
+    if text:
+        out.append((text, {"check": "contact_ratio", "mesh": "planet_ring", "contact_ratio_transverse": eps,
+                           "contact_ratio_total": total}))
     interference = ring_interference_warning(stage_result)
     return out + ([interference] if interference else [])
 
