@@ -23,7 +23,6 @@ if TYPE_CHECKING:
 STATIC_SAFETY_LOW = "bearing_static_safety_low"
 KAPPA_OUT_OF_RANGE = "bearing_kappa_below_range"
 AXIAL_NOT_RATED = "bearing_axial_not_rated"
-ROLLER_EXPONENT = 10.0 / 3.0  # ISO 281's p for a roller bearing (3 for a ball bearing), as gearcli.design.shafts
 MODIFIED_KEYS = ("fatigue_load_limit_kN", "pitch_diameter_mm", "reliability_percent")
 
 
@@ -204,7 +203,7 @@ def life_short_warning(j: int, b: RatedBearing, over: str, hours: float | None,
     target = (f"the duty's {hours:.6g} h" if short_of_duty else
               f"the required {required_h:.6g} h ([rating] required_life_h)")
     place = f"planet pin of stage {b.planet_stage}" if b.planet_stage else f"shaft {b.shaft}"
-    p = 3.0 if b.kind == "ball" else ROLLER_EXPONENT
+    p = iso281.life_exponent(b.kind)
     needed = rounded_up(b.dynamic_load_rating_kN * (((hours if short_of_duty else required_h) or life) / life) ** (1 / p))
     return warning(BEARING_LIFE_SHORT, f"bearing {j + 1} ({place}, x = {b.position_mm:g} mm): its ISO 281 "
                    f"life {name} = {life:.4g} h {over} is shorter than {target} "

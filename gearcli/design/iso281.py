@@ -21,6 +21,15 @@ import math
 
 from gearcli.core.records import record
 
+BALL_EXPONENT = 3.0  # ISO 281: p = 3 for ball bearings
+ROLLER_EXPONENT = 10.0 / 3.0  # p = 10/3 for roller bearings
+
+
+def life_exponent(kind: str) -> float:
+    """ISO 281 life exponent p: 3 for ball, 10/3 for roller bearings."""
+    return BALL_EXPONENT if kind == "ball" else ROLLER_EXPONENT
+
+
 # ISO 281:2007 Table 12: reliability % -> a_1
 RELIABILITY_TABLE = {90.0: 1.0, 95.0: 0.64, 96.0: 0.55, 97.0: 0.47, 98.0: 0.37, 99.0: 0.25, 99.2: 0.22,
                      99.4: 0.19, 99.6: 0.16, 99.8: 0.12, 99.9: 0.093, 99.92: 0.087, 99.94: 0.08, 99.95: 0.077}

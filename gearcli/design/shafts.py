@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, cast
 
 from gearcli.core.records import record
 from gearcli.design.bearing_life import check_inputs, lubrication, static_figures
-from gearcli.design.iso281 import Lubrication, modified_life
+from gearcli.design.iso281 import Lubrication, life_exponent, modified_life
 from gearcli.design.planetary_balance import planet_angles_deg, willis_speeds
 from gearcli.errors import DesignError
 from gearcli.optional_results import BearingResult
@@ -37,14 +37,6 @@ if TYPE_CHECKING:
     from gearcli.results import StageResult
 
 Vec = tuple[float, float, float]
-BALL_EXPONENT = 3.0  # ISO 281: p = 3 for ball bearings
-ROLLER_EXPONENT = 10.0 / 3.0  # p = 10/3 for roller bearings
-
-
-def life_exponent(kind: str) -> float:
-    """ISO 281 life exponent p: 3 for ball, 10/3 for roller bearings."""
-    return BALL_EXPONENT if kind == "ball" else ROLLER_EXPONENT
-
 
 def equivalent_load_N(radial_N: float, axial_N: float, e: float, X: float, Y: float) -> float:
     """ISO 281 dynamic equivalent load: P = F_r when F_a / F_r <= e, else X F_r + Y F_a (magnitudes)."""
