@@ -156,7 +156,7 @@ def _first_crossing(grid, f, net) -> float | None:
     return None
 
 
-def _fraction(torque_Nm: float, t0_Nm: float, u0: float) -> float:
+def holding_fraction(torque_Nm: float, t0_Nm: float, u0: float) -> float:
     """The initial voltage fraction whose torque at standstill, u² of the locked-rotor torque (``t0_Nm`` at ``u0``),
     equals ``torque_Nm`` (1 where the motor gives none)."""
     return math.sqrt(torque_Nm / t0_Nm) * u0 if t0_Nm > 0.0 else 1.0
@@ -217,8 +217,8 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
                 f"drives the train backwards through its losses, {back:.4g} N·m (to start forward: {load:.4g} "
                 "N·m): the load turns the train backwards, and the motor's torque falls as it does (a slip above 1), "
                 "so it runs back well past the voltage whose torque at standstill would hold it; an "
-                f"initial_voltage_fraction of at least {_fraction(back, t0, u0):.3g} holds the train at rest "
-                f"({_fraction(load, t0, u0):.3g} starts it forward at once), or a backstop or a brake holding the load "
+                f"initial_voltage_fraction of at least {holding_fraction(back, t0, u0):.3g} holds the train at rest "
+                f"({holding_fraction(load, t0, u0):.3g} starts it forward at once), or a backstop or a brake holding the load "
                 "until the motor's torque exceeds it",
                 check="soft_start_rolls_back", initial_voltage_fraction=u0, start_torque_Nm=t0, load_torque_Nm=load,
                 back_driving_torque_Nm=back))

@@ -32,7 +32,7 @@ from gearcli.model.damping import (
 )
 from gearcli.model.damping import reflected_load_Nm as reflected_load
 from gearcli.model.elements import machine
-from gearcli.model.motor_start import field_weakening_advice, off_design_speed, overloaded
+from gearcli.model.motor_start import field_weakening_advice, holding_fraction, off_design_speed, overloaded
 from gearcli.model.spec import MotorSpec
 from gearcli.simulate.rigid_start import downstream_losses
 from gearcli.simulate.sampling import MAX_STEPS, TARGET, up_to_two_figures
@@ -345,9 +345,8 @@ def _cure(motor: MotorSpec, t0: float, back: float) -> str:
     """What lifts the start's torque at standstill above what turns the train back: a soft start's initial voltage
     fraction named by its figure, sqrt(back / T_lr) (design's ``soft_start_rolls_back`` names the same)."""
     if motor.starting == "soft_start" and t0 > 0.0:
-        u0 = motor.start_parameters[1]
-        return (f"an initial_voltage_fraction of at least {math.sqrt(back / t0) * u0:.3g} (u0² of the locked-rotor "
-                "torque above the load turning it back), or ")
+        return (f"an initial_voltage_fraction of at least {holding_fraction(back, t0, motor.start_parameters[1]):.3g} "
+                "(u0² of the locked-rotor torque above the load turning it back), or ")
     return STANDSTILL_CURE.get(motor.starting, "")
 
 
