@@ -19,7 +19,7 @@ from gearcli.model.modes import (
     torque_crossing,
     torque_sources,
 )
-from gearcli.model.planet_excitation import REPEATED, dominant_label
+from gearcli.model.planet_excitation import dominant_label, repeated_ranks
 
 if TYPE_CHECKING:
     from gearcli.model.assembly import Layout
@@ -77,18 +77,14 @@ def campbell_of(lay: Layout, boundary: str = "clamped_input", *, duration_s: flo
         crossings += [CampbellCrossing(m.number, m.frequency_Hz,
                                        torque_crossing(lay, t, m.frequency_Hz, m.shape, m.damping_ratio))
                       for t in torques if meets(t, m.frequency_Hz, top)]
-    elastic = [m for m in ana.modes if not m.rigid]
-    groups: list[list[Mode]] = []
-    for m in elastic:
-        if groups and abs(m.frequency_Hz - groups[-1][0].frequency_Hz) <= REPEATED * groups[-1][0].frequency_Hz:
-            groups[-1].append(m)
-        else:
-            groups.append([m])
+    elastic = tuple(m for m in ana.modes if not m.rigid)
+    hz = [(r, m.frequency_Hz) for r, m in enumerate(elastic)]
+    groups = sorted({repeated_ranks(hz, 0, r) for r in range(len(elastic))})  # the modes' repeated groups
     orders = [(o.name, o.hz_per_input_hz) for o in sources] + [(t.name, t.hz_per_input_hz) for t in torques if t.fixed_Hz is None]
-    return CampbellData(boundary, ana.nominal_input_rpm, top, tuple(m for m in ana.modes if not m.rigid),
-                        tuple(orders), tuple(crossings),
+    return CampbellData(boundary, ana.nominal_input_rpm, top, elastic, tuple(orders), tuple(crossings),
                         tuple((t.name, t.fixed_Hz) for t in torques if t.fixed_Hz is not None),
-                        tuple((tuple(m.number for m in g), _group_dominant(lay, g)) for g in groups if len(g) > 1))
+                        tuple((tuple(elastic[r].number for r in g), _group_dominant(lay, [elastic[r] for r in g]))
+                              for g in groups if len(g) > 1))
 
 
 def _group_dominant(lay: Layout, group: list[Mode]) -> str:
