@@ -42,13 +42,22 @@ def _crossing(xa: np.ndarray, sa: np.ndarray, xb: np.ndarray, sb: np.ndarray, ga
     return xa + sa * s
 
 
-def concave_bound(xc: np.ndarray, rise: np.ndarray, fall: np.ndarray, sl: np.ndarray, sr: np.ndarray,
-                  rise_out: np.ndarray, fall_out: np.ndarray, sl_out: np.ndarray, sr_out: np.ndarray) -> np.ndarray:
-    """The bound's excess over the centre samples ``xc`` (module doc; +inf where the five samples are not
-    concave). ``rise``/``fall``: the differences into and out of each centre sample over ``sl``/``sr``;
-    ``rise_out``: into its left neighbour over ``sl_out``; ``fall_out``: out of its right neighbour over ``sr_out``."""
+def _slopes(rise: np.ndarray, fall: np.ndarray, sl: np.ndarray, sr: np.ndarray, rise_out: np.ndarray,
+            fall_out: np.ndarray, sl_out: np.ndarray, sr_out: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The four secant slopes of the five samples about each centre sample, left to right. ``rise``/``fall``: the
+    differences into and out of each centre sample over ``sl``/``sr``; ``rise_out``: into its left neighbour over
+    ``sl_out``; ``fall_out``: out of its right neighbour over ``sr_out``."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        s0, s1, s2, s3 = rise_out / sl_out, rise / sl, fall / sr, fall_out / sr_out
+        return rise_out / sl_out, rise / sl, fall / sr, fall_out / sr_out
+
+
+def concave_bound(xc: np.ndarray, rise: np.ndarray, fall: np.ndarray, sl: np.ndarray, sr: np.ndarray,
+                  rise_out: np.ndarray, sl_out: np.ndarray, sr_out: np.ndarray,
+                  slopes: tuple[np.ndarray, ...]) -> np.ndarray:
+    """The bound's excess over the centre samples ``xc`` (module doc; +inf where the five samples are not
+    concave), from their secant ``slopes`` (:func:`_slopes`)."""
+    s0, s1, s2, s3 = slopes
+    with np.errstate(divide="ignore", invalid="ignore"):
         peak = (s1 >= 0.0) & (s2 <= 0.0) & (s1 - s3 > 0.0) & (s0 - s2 > 0.0)
         right = _crossing(xc - rise, s1, xc + fall, s3, sl + sr) - xc  # on (0, h): secants (-1, 0) and (1, 2)
         left = _crossing(xc - rise - rise_out, s0, xc, s2, sl + sl_out) - xc  # on (-h, 0): (-2, -1) and (0, 1)
@@ -59,13 +68,12 @@ def concave_bound(xc: np.ndarray, rise: np.ndarray, fall: np.ndarray, sl: np.nda
     return np.where(peak & np.isfinite(bound), bound, np.inf)
 
 
-def kinked(rise: np.ndarray, fall: np.ndarray, sl: np.ndarray, sr: np.ndarray, rise_out: np.ndarray,
-           fall_out: np.ndarray, sl_out: np.ndarray, sr_out: np.ndarray) -> np.ndarray:
-    """Where the largest of the three slope changes of the five samples is more than :data:`KINK` x the smaller of the
-    outer two and any rise of an arm's slopes (module doc, "Kinks": a kink between two samples leaves the change on the
-    far side ~0); a parabola's three are equal."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s0, s1, s2, s3 = rise_out / sl_out, rise / sl, fall / sr, fall_out / sr_out
+def kinked(slopes: tuple[np.ndarray, ...]) -> np.ndarray:
+    """Where the largest of the three slope changes of the five samples' secant ``slopes`` is more than :data:`KINK`
+    x the smaller of the outer two and any rise of an arm's slopes (module doc, "Kinks": a kink between two samples
+    leaves the change on the far side ~0); a parabola's three are equal."""
+    s0, s1, s2, s3 = slopes
+    with np.errstate(invalid="ignore"):
         d1, d2, d3 = np.abs(s0 - s1), np.abs(s1 - s2), np.abs(s2 - s3)
         convex = np.maximum(s1 - s0, 0.0) + np.maximum(s3 - s2, 0.0)  # samples chattering on an arm: no kink
         return np.nan_to_num(np.maximum(np.maximum(d1, d2), d3) - KINK * (np.minimum(d1, d3) + convex),
@@ -73,8 +81,10 @@ def kinked(rise: np.ndarray, fall: np.ndarray, sl: np.ndarray, sr: np.ndarray, r
 
 
 def peak_excess(excess: np.ndarray, safety: float, xc: np.ndarray, rise: np.ndarray, fall: np.ndarray,
-                sl: np.ndarray, sr: np.ndarray, *outer: np.ndarray) -> np.ndarray:
+                sl: np.ndarray, sr: np.ndarray, rise_out: np.ndarray, fall_out: np.ndarray, sl_out: np.ndarray,
+                sr_out: np.ndarray) -> np.ndarray:
     """The excess whose ``safety`` multiple is the estimate (module doc): at a kink the secants' bound, else the
     smaller of ``safety`` x the parabola's ``excess`` and that bound (where the samples allow one)."""
-    bound = concave_bound(xc, rise, fall, sl, sr, *outer) / safety
-    return np.where(kinked(rise, fall, sl, sr, *outer) & np.isfinite(bound), bound, np.minimum(excess, bound))
+    slopes = _slopes(rise, fall, sl, sr, rise_out, fall_out, sl_out, sr_out)
+    bound = concave_bound(xc, rise, fall, sl, sr, rise_out, sl_out, sr_out, slopes) / safety
+    return np.where(kinked(slopes) & np.isfinite(bound), bound, np.minimum(excess, bound))
