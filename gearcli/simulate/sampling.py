@@ -17,9 +17,8 @@ phase may be the higher one.
 Bound. A concave peak exceeds the sample by at most its step to the other neighbour, and the parabola's excess is
 cut to the larger step; it overshoots where three points straddle a kink (an impact, a viscous backlash mesh's
 contact), where five concave samples bound the peak by their secants (:mod:`gearcli.simulate.kink_bound`): the
-estimate is that bound at a kink, else the smaller of it and SAFETY x the excess; beside a step of the force (a
-spur mesh's varying contact lines) it is the upper arm continued over the step's interval. Zero is a floor for a clamped contact force: a
-sampled min of 0 is exact, and no interpolated extreme crosses zero (configs/backlash_oscillator.toml: 2.4e-3).
+estimate is that bound at a kink, else the smaller of it and SAFETY x the excess (beside a step: the upper arm
+continued over the step's interval). Zero is a floor for a clamped contact force: a sampled min of 0 is exact, and no interpolated extreme crosses zero (configs/backlash_oscillator.toml: 2.4e-3).
 A window edge's peak is the parabola's through its first three samples, its vertex between them; a constant has none.
 
 Periodic windows (``steady = "periodic"``: whole periods, uniformly sampled without their closing sample) wrap
