@@ -42,6 +42,10 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # session 23, tr28g: a motor-driven report with a transmission error (simulated and settled, ~9 s under load)
+    "tests/reference/test_report_motor_mesh_orders.py",
+    # session 23, tr28g: a motor-driven fan-load duty point simulated and settled end to end (~8 s under load)
+    "tests/life/test_tr28g_motor_k_v.py",
     # session 22, tr27f: a rattling viscous mesh against an independent solve_ivp model with exact contact switching
     # (~4 s; the kink bound's closed-form cases stay in the default tier: tests/unit/test_kink_bound.py)
     "tests/reference/test_viscous_rattle_sampling.py::test_a_rattling_viscous_mesh_s_min_is_estimated_near_its_miss",

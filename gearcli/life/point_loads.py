@@ -45,6 +45,17 @@ def window_loads(design: DesignResult, result: SimulationResult) -> list[spectra
                           "the point's speed_rpm, no operating point)") from None
 
 
+def k_v_factors(result: SimulationResult, loads: list[spectra.StageLoads]) -> tuple[float, ...]:
+    """Per stage the point's K_v: the largest class force over the static F_t of the load the run applies
+    (``simulated_static_tangential_N``, simulate's dynamic factor's reference, DESIGN §8), 1 for an unloaded stage.
+    A motor runs at its slip, not at the point's ``speed_rpm``, and a speed-dependent load carries its law's torque
+    there: over the point's design force, a DOL motor 0.4 % fast on a fan load read K_v 1.008 on a quiet window
+    (tests/life/test_tr28g_motor_k_v.py). The classes' stresses are rated at their own forces: only this ratio's
+    reference moves."""
+    refs = [abs(s.simulated_static_tangential_N or ld.static_N) for s, ld in zip(result.stages, loads, strict=True)]
+    return tuple(max(ld.forces_N) / ref if ld.static_N and ref else 1.0 for ld, ref in zip(loads, refs, strict=True))
+
+
 def start_of(point: DutyPoint, cfg: DesignFile, design: DesignResult, result: SimulationResult) -> StartData:
     """The point's start from rest (its run before the settled window), with the bearings' loads."""
     if result.window_s[0] <= result.time_s[0]:

@@ -236,7 +236,7 @@ def _dynamic_point(scene: Scene, point: DutyPoint, design_case: CaseDesigner,
               "statistics_resolved": not unresolved, "unresolved_stages": unresolved,
               "k_v_sampling_error": k_v_sampling,
               "energy_residual": sv.energy_residual}
-    k_v = tuple(max(ld.forces_N) / abs(ld.static_N) if ld.static_N else 1.0 for ld in loads)
+    k_v = point_loads.k_v_factors(result, loads)  # over the static force of the load the run applies
     settled = result.steady.settled if result.steady is not None else None
     run = PointRun(point.name, point.hours, point.torque_Nm, point.speed_rpm, k_v,
                    mesh_cycles=tuple(ld.mesh_cycles for ld in loads), solver=solver,

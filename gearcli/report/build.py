@@ -18,7 +18,7 @@ from gearcli.model.damping import operating_load_factor, settling_speed_rad_s
 from gearcli.model.modes import campbell_data, modal_analysis
 from gearcli.report.accuracy import LadderSpec, ProgressFn, accuracy_study, same_rtol
 from gearcli.report.checks import accuracy_checks, energy_check, sampling_checks
-from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports
+from gearcli.report.compare import comparison_rows, rating_comparison, stage_reports, window_speed_factor
 from gearcli.report.result import AccuracyStudy, Report, TheoryPoint
 from gearcli.results import DesignResult
 from gearcli.scene import spec_from_design
@@ -85,7 +85,8 @@ def build_report(
     own = simulate(cfg, design, want_series=True, settle="window") if model is not None else simulate(
         cfg, design, want_series=True)
     sim = with_simulated_rating(cfg, design, own)  # the rating at the run's K_v (simulate knows no standard)
-    stages = stage_reports(design, sim)
+    prescribed = model is None or model.layout.speed_drive  # a stand-in simulate: the design's speeds
+    stages = stage_reports(design, sim, window_speed_factor(design, sim, prescribed))
     study, failure = None, None
     if not quick:
         try:

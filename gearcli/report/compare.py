@@ -131,18 +131,20 @@ def _whole_periods(sim: SimulationResult) -> bool:
     return steady is not None and steady.mode == "periodic" and steady.periodicity not in (None, "none")
 
 
-def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageReport, ...]:
-    """Fluctuation, run-up peak, dynamic factor and the F_t spectrum of every mesh."""
+def stage_reports(design: DesignResult, sim: SimulationResult, speed_factor: float = 1.0) -> tuple[StageReport, ...]:
+    """Fluctuation, run-up peak, dynamic factor and the F_t spectrum of every mesh. ``speed_factor``: the window's
+    mean input speed over the design's (:func:`window_speed_factor`; 1 for a prescribed speed), so the mesh lines
+    and orders are taken where the run has them, not at the nominal speed a motor or torque drive does not run at."""
     out = []
     natural: Sequence[float] = tuple(sim.natural_frequencies_Hz)
-    meshes = [(st.index, float(st.mesh_frequency_Hz)) for st in design.stages]
+    meshes = [(st.index, speed_factor * float(st.mesh_frequency_Hz)) for st in design.stages]
     for st, dyn in zip(design.stages, sim.stages, strict=True):
         series = sim.series.get(Channel("tangential_force", f"stage{st.index}"))
         dte_m = sim.series.get(Channel("dte", f"stage{st.index}"))
         if series is None:
             series = np.zeros_like(sim.time_s)
         spectrum = force_spectrum(sim.time_s, series, sim.window_s, stage=st.index,
-                                  mesh_frequency_Hz=st.mesh_frequency_Hz, natural_frequencies_Hz=natural,
+                                  mesh_frequency_Hz=speed_factor * st.mesh_frequency_Hz, natural_frequencies_Hz=natural,
                                   dte_um=dte_m * 1e6 if dte_m is not None else None,
                                   whole_periods=_whole_periods(sim),
                                   other_meshes_Hz=[m for m in meshes if m[0] != st.index],
@@ -154,6 +156,17 @@ def stage_reports(design: DesignResult, sim: SimulationResult) -> tuple[StageRep
             runup_factor=dyn.runup_factor, simulated_static_tangential_N=dyn.simulated_static_tangential_N,
         ))
     return tuple(out)
+
+
+def window_speed_factor(design: DesignResult, sim: SimulationResult, speed_drive: bool) -> float:
+    """The steady window's mean input speed over the design's nominal one: 1 for a prescribed speed; a motor runs at
+    its slip and a torque drive at its balance, where the mesh phases (z_p θ_p) turn and so the mesh lines lie (a
+    30 kW motor at 1471.7 rpm, not its nameplate 1470: the 1x line at 466.04 Hz, not 465.5 Hz, 1.3 bins of a 2.4 s
+    window off, where the mesh order's projection read a third of its amplitude)."""
+    nominal, mean = float(design.input_speed_deg_s), float(sim.input_speed_deg_s)
+    if speed_drive or not nominal or not np.isfinite(mean) or mean <= 0.0:
+        return 1.0
+    return mean / nominal
 
 
 def _least(ratings, mode: str) -> float:
