@@ -12,7 +12,7 @@ import math
 
 from gearcli import diagnostics as dg
 from gearcli.core.records import record
-from gearcli.core.text import figure, shorten
+from gearcli.core.text import figure, rounded_up, shorten
 from gearcli.io.table_kit import spread_digits
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
@@ -42,6 +42,13 @@ class Section:
 
 def g(v: float | None, digits: int = 5) -> str:
     return "–" if v is None else f"{v + 0.0:.{digits}g}"  # + 0.0: no negative zero
+
+
+def bound_text(bound: float, digits: int, kind: str = "g") -> str:
+    """The bound e of a ``< e`` cell to ``digits`` significant digits, rounded up (:func:`rounded_up`): a figure
+    below e printed as ``< e`` must stay below the printed number (an error of 1.44 % under an estimate of 1.455 %
+    is ``< 2``, not ``< 1``)."""
+    return f"{rounded_up(bound, digits):.{digits - 1 if kind == 'e' else digits}{kind}}"
 
 
 def percent(v: float | None) -> str:
@@ -75,7 +82,7 @@ def comparison_section(r: Report) -> Section:
         for label, theory, simulated in _in_units(r, row.quantity, quantity_label(row.stage, row.quantity),
                                                   row.theory, row.simulated):
             rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
-                         f"< {bound:.1g}" if below else percent(row.error_percent)))
+                         f"< {bound_text(bound, 1)}" if below and bound is not None else percent(row.error_percent)))
     notes = ("'< e' (forces): the difference is below e, the run's estimated error of its window mean (check pass "
              "and sampling), so the simulated mean meets the theory to within its own accuracy",) if unresolved else ()
     w0, w1 = r.simulation.window_s
@@ -236,9 +243,9 @@ def mesh_orders_section(r: Report) -> Section:
                 continue
             if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
                 below = True
-                dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 and o.dte_um is not None \
+                dte = f"< {bound_text(err * o.dte_um / o.tangential_N, 2)}" if o.tangential_N > 0 and o.dte_um is not None \
                     else "–"
-                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
+                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {bound_text(err, 2)}", dte))
                 continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
     periodic = bool(r.stages) and r.stages[0].spectrum.whole_periods
@@ -267,7 +274,7 @@ def error_cell(run: AccuracyRun, quantity: str, ref: ReferenceRun) -> str:
     if e is None:
         return "–"
     if run.below_reference_resolution.get(quantity):
-        return f"< {ref.resolution(quantity):.1e}"
+        return f"< {bound_text(ref.resolution(quantity), 2, 'e')}"
     return f"{e:.2e}"
 
 
