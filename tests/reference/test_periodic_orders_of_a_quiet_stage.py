@@ -6,7 +6,7 @@ transmission error on stage 1 only, at 1470 rpm: the periodic orbit's period is 
 stage 2's mesh frequency, 127.53 Hz, is no harmonic of it. The linear response holds lines at 490 Hz and 980 Hz
 only; the report listed stage 2's 1x, 2x, 3x (127.5, 255, 382.6 Hz) at 525, 1223 and 1912 N, "exact for each order",
 the discrete Fourier coefficient of a one-period window at a frequency between its bins (leakage of the 490 Hz line).
-The reference: the steady harmonic response of the same linear model written here from DESIGN.md §4/§6
+The reference: the steady harmonic response of the same linear model written here from docs/physics.md ("Torsional model")
 (mesh forces F_bt = cos²β_b K q + c q̇ on the dynamic transmission error, c = 2 ζ √(K m_e)), solved per harmonic.
 """
 
