@@ -196,9 +196,14 @@ def sampling_notes(r: Report) -> list[str]:
     return out
 
 
-def peak_text(peak_Hz: float, resolution_Hz: float) -> str:
+def peak_text(peak_Hz: float, resolution_Hz: float, whole_periods: bool = False) -> str:
     """"f ± 1/T" with f printed to the decimal place of the resolution's second digit, no further: a bin's
-    centre is good to the resolution, so "0.6248 ± 0.62" claimed digits the FFT cannot give ("0.62 ± 0.62")."""
+    centre is good to the resolution, so "0.6248 ± 0.62" claimed digits the FFT cannot give ("0.62 ± 0.62").
+    ``whole_periods``: the window is whole periods of a repeating response, whose every line is a harmonic k/T of its
+    period and so lies on a bin exactly: f itself, without a ± (a one-period window of a 490 Hz orbit printed its
+    980 Hz line as "980 ± 4.9e+02", as if it might lie anywhere from 490 to 1470 Hz)."""
+    if whole_periods:
+        return f"{peak_Hz:.6g}"
     if not (resolution_Hz > 0 and math.isfinite(resolution_Hz)):
         return f"{peak_Hz:.4g} ± {resolution_Hz:.2g}"
     decimals = max(0, 1 - math.floor(math.log10(float(f"{resolution_Hz:.2g}"))))
@@ -209,13 +214,15 @@ def spectrum_section(r: Report) -> Section:
     rows = []
     for s in r.stages:
         sp = s.spectrum
-        peak = "–" if sp.peak_frequency_Hz is None else peak_text(sp.peak_frequency_Hz, sp.resolution_Hz)
+        peak = "–" if sp.peak_frequency_Hz is None else peak_text(sp.peak_frequency_Hz, sp.resolution_Hz,
+                                                                    sp.whole_periods)
         rows.append((str(s.stage), peak, "–" if sp.peak_frequency_Hz is None else figure(sp.peak_amplitude_N, 3),
                      g(sp.mesh_frequency_Hz, 4), sp.matches))
     notes = []
     if r.stages:
         sp = r.stages[0].spectrum
-        how = ("less its mean, whole periods (every line on a bin, no window function: the amplitudes exact)"
+        how = ("less its mean, whole periods (every line on a bin, a harmonic of the period, no window function: the "
+               "frequencies and amplitudes exact)"
                if sp.whole_periods else "detrended, with a Hann window")
         notes.append(f"FFT of F_t over {sp.window_s[0]:.4g}–{sp.window_s[1]:.4g} s, {how}: "
                      f"resolution 1/T = {sp.resolution_Hz:.3g} Hz, Nyquist {sp.nyquist_Hz:.4g} Hz")

@@ -20,6 +20,7 @@ import numpy as np
 from click.testing import CliRunner
 
 from gearcli.cli import cli
+from gearcli.io.report_sections import peak_text
 from gearcli.report.spectrum import order_amplitude
 
 SCENE = """title = "quiet stage 2 behind an excited stage 1"
@@ -108,3 +109,18 @@ def test_report_orders_of_a_quiet_stage_behind_an_excited_one(tmp_path: Path):
     for o in s2["mesh_orders"]:
         assert o["tangential_N"] < 1e-3 * hand[(2, 490.0)], o
     assert abs(s2["peak_amplitude_N"] / hand[(2, 490.0)] - 1) < 1e-3 and abs(s2["peak_frequency_Hz"] - 490.0) < 1e-6
+
+
+def test_a_whole_periods_peak_is_printed_as_the_harmonic_it_is(tmp_path: Path):
+    # by hand: stage 1's dominant line is its 2x mesh order, 2 x 20 teeth x 1470 rpm / 60 = 980 Hz, a harmonic of the
+    # 1/490 s orbit; the one-period window's bin is 490 Hz wide and the report printed "980 ± 4.9e+02"
+    assert peak_text(980.0000000000003, 490.0, whole_periods=True) == "980"
+    assert peak_text(978.76, 4.1649) == "978.8 ± 4.2"  # a fixed window's bin centre keeps its resolution
+    path = tmp_path / "quiet.toml"
+    path.write_text(SCENE)
+    res = CliRunner().invoke(cli, ["report", str(path), "--quick", "--format", "markdown", "-q"])
+    assert res.exit_code == 0, res.output
+    section = res.stdout.split("## Dominant frequency of each mesh force", 1)[1].split("\n## ", 1)[0]
+    rows = {r.split("|")[1].strip(): r.split("|")[2].strip() for r in section.splitlines() if r.startswith("| 1 ")
+            or r.startswith("| 2 ")}
+    assert rows == {"1": f"{2 * 20 * 1470 / 60:g}", "2": f"{20 * 1470 / 60:g}"}, rows  # stage 2: stage 1's 490 Hz
