@@ -12,7 +12,7 @@ import math
 
 from gearcli import diagnostics as dg
 from gearcli.core.records import record
-from gearcli.core.text import figure, shorten
+from gearcli.core.text import figure, rounded_up, shorten
 from gearcli.io.table_kit import spread_digits
 from gearcli.io.units import of_result
 from gearcli.model.modes import RESONANCE_BAND, near_nominal
@@ -42,6 +42,13 @@ class Section:
 
 def g(v: float | None, digits: int = 5) -> str:
     return "–" if v is None else f"{v + 0.0:.{digits}g}"  # + 0.0: no negative zero
+
+
+def bound_text(bound: float, digits: int, kind: str = "g") -> str:
+    """The bound e of a ``< e`` cell to ``digits`` significant digits, rounded up (:func:`rounded_up`): a figure
+    below e printed as ``< e`` must stay below the printed number (an error of 1.44 % under an estimate of 1.455 %
+    is ``< 2``, not ``< 1``)."""
+    return f"{rounded_up(bound, digits):.{digits - 1 if kind == 'e' else digits}{kind}}"
 
 
 def percent(v: float | None) -> str:
@@ -75,7 +82,7 @@ def comparison_section(r: Report) -> Section:
         for label, theory, simulated in _in_units(r, row.quantity, quantity_label(row.stage, row.quantity),
                                                   row.theory, row.simulated):
             rows.append(("train" if row.stage is None else str(row.stage), label, g(theory, 6), g(simulated, 6),
-                         f"< {bound:.1g}" if below else percent(row.error_percent)))
+                         f"< {bound_text(bound, 1)}" if below and bound is not None else percent(row.error_percent)))
     notes = ("'< e' (forces): the difference is below e, the run's estimated error of its window mean (check pass "
              "and sampling), so the simulated mean meets the theory to within its own accuracy",) if unresolved else ()
     w0, w1 = r.simulation.window_s
@@ -189,9 +196,14 @@ def sampling_notes(r: Report) -> list[str]:
     return out
 
 
-def peak_text(peak_Hz: float, resolution_Hz: float) -> str:
+def peak_text(peak_Hz: float, resolution_Hz: float, whole_periods: bool = False) -> str:
     """"f ± 1/T" with f printed to the decimal place of the resolution's second digit, no further: a bin's
-    centre is good to the resolution, so "0.6248 ± 0.62" claimed digits the FFT cannot give ("0.62 ± 0.62")."""
+    centre is good to the resolution, so "0.6248 ± 0.62" claimed digits the FFT cannot give ("0.62 ± 0.62").
+    ``whole_periods``: the window is whole periods of a repeating response, whose every line is a harmonic k/T of its
+    period and so lies on a bin exactly: f itself, without a ± (a one-period window of a 490 Hz orbit printed its
+    980 Hz line as "980 ± 4.9e+02", as if it might lie anywhere from 490 to 1470 Hz)."""
+    if whole_periods:
+        return f"{peak_Hz:.6g}"
     if not (resolution_Hz > 0 and math.isfinite(resolution_Hz)):
         return f"{peak_Hz:.4g} ± {resolution_Hz:.2g}"
     decimals = max(0, 1 - math.floor(math.log10(float(f"{resolution_Hz:.2g}"))))
@@ -202,13 +214,15 @@ def spectrum_section(r: Report) -> Section:
     rows = []
     for s in r.stages:
         sp = s.spectrum
-        peak = "–" if sp.peak_frequency_Hz is None else peak_text(sp.peak_frequency_Hz, sp.resolution_Hz)
+        peak = "–" if sp.peak_frequency_Hz is None else peak_text(sp.peak_frequency_Hz, sp.resolution_Hz,
+                                                                    sp.whole_periods)
         rows.append((str(s.stage), peak, "–" if sp.peak_frequency_Hz is None else figure(sp.peak_amplitude_N, 3),
                      g(sp.mesh_frequency_Hz, 4), sp.matches))
     notes = []
     if r.stages:
         sp = r.stages[0].spectrum
-        how = ("less its mean, whole periods (every line on a bin, no window function: the amplitudes exact)"
+        how = ("less its mean, whole periods (every line on a bin, a harmonic of the period, no window function: the "
+               "frequencies and amplitudes exact)"
                if sp.whole_periods else "detrended, with a Hann window")
         notes.append(f"FFT of F_t over {sp.window_s[0]:.4g}–{sp.window_s[1]:.4g} s, {how}: "
                      f"resolution 1/T = {sp.resolution_Hz:.3g} Hz, Nyquist {sp.nyquist_Hz:.4g} Hz")
@@ -236,9 +250,9 @@ def mesh_orders_section(r: Report) -> Section:
                 continue
             if err is not None and o.tangential_N < err:  # not resolved: only its bound is a number
                 below = True
-                dte = f"< {err * o.dte_um / o.tangential_N:.2g}" if o.tangential_N > 0 and o.dte_um is not None \
+                dte = f"< {bound_text(err * o.dte_um / o.tangential_N, 2)}" if o.tangential_N > 0 and o.dte_um is not None \
                     else "–"
-                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {err:.2g}", dte))
+                rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), f"< {bound_text(err, 2)}", dte))
                 continue
             rows.append((str(s.stage), f"{o.order}x", g(o.frequency_Hz, 5), g(o.tangential_N, 4), g(o.dte_um, 4)))
     periodic = bool(r.stages) and r.stages[0].spectrum.whole_periods
@@ -267,7 +281,7 @@ def error_cell(run: AccuracyRun, quantity: str, ref: ReferenceRun) -> str:
     if e is None:
         return "–"
     if run.below_reference_resolution.get(quantity):
-        return f"< {ref.resolution(quantity):.1e}"
+        return f"< {bound_text(ref.resolution(quantity), 2, 'e')}"
     return f"{e:.2e}"
 
 

@@ -35,6 +35,9 @@ MESH_ORDERS = (1, 2, 3)  # the mesh orders listed per stage
 #: this share of the largest bin may be the strongest line (margin for neighbouring lines' leakage)
 SCALLOP_FLOOR = 0.8
 MAX_CANDIDATES = 8  # the strongest local maxima above SCALLOP_FLOOR whose line amplitude is measured
+#: a frequency within this share of a bin of a harmonic of a whole-periods window is that harmonic (a mesh frequency
+#: from the same speeds as the orbit's period differs from it by round-off); farther off it is no line of the response
+ON_BIN = 1e-3
 
 
 def order_amplitude(time_s: np.ndarray, x: np.ndarray, frequency_Hz: float, *, whole_periods: bool) -> float:
@@ -42,7 +45,11 @@ def order_amplitude(time_s: np.ndarray, x: np.ndarray, frequency_Hz: float, *, w
 
     ``whole_periods``: the samples cover whole periods of the line on a uniform grid without their closing
     sample (a periodic steady state): the plain discrete Fourier coefficient ``2 |mean(x e^(-i w t))|``,
-    exact for every harmonic of the period. Otherwise the record is detrended and Hann-weighted,
+    exact for every harmonic of the period, and 0 at a frequency that is none (within :data:`ON_BIN` of a bin): a
+    periodic response has no line between its harmonics, where the coefficient would only measure the leakage of
+    those it has (a stage without excitation of its own behind an excited one: the orbit's period is the excited
+    mesh's, and the quiet stage's mesh frequency 127.5 Hz, 0.26 of the 490 Hz period's bin, showed 525 N where the
+    response has none). Otherwise the record is detrended and Hann-weighted,
     ``2 |sum(w x e^(-i w t))| / sum(w)``: no leakage from the record's ends, the other lines suppressed
     once they lie more than ~2 resolution bins away.
     """
@@ -52,6 +59,9 @@ def order_amplitude(time_s: np.ndarray, x: np.ndarray, frequency_Hz: float, *, w
         return 0.0
     phase = np.exp(-2j * np.pi * frequency_Hz * (t - t[0]))
     if whole_periods:
+        cycles = frequency_Hz * (t[-1] - t[0]) * t.size / (t.size - 1)  # over the window, its closing sample left out
+        if abs(cycles - round(cycles)) > ON_BIN:  # no harmonic of the period: the periodic response has no line there
+            return 0.0
         return float(2.0 * abs(np.mean((x - x.mean()) * phase)))
     u = t - t[0]
     detrended = x - np.polyval(np.polyfit(u, x, 1), u)

@@ -78,6 +78,8 @@ class Choice:
     engines: tuple[str, str] = ("python", "python")  # the engine each prediction is priced on
     size: ModelSize = ModelSize()  # what the price per evaluation depends on (gearcli.core.cost.PRICE_US)
     explicit_barred: str = ""  # why auto offers no explicit method, neither at the start nor on a course change
+    stiffest: str = ""  # the element with the highest own frequency, any connector (a mesh, a shaft, a coupling), in
+    # a message's words (:func:`connector_words`): what makes the scene stiff
 
     @property
     def reported(self) -> Linearisation:
@@ -117,6 +119,27 @@ def _stiffest_mesh(lin: Linearisation, lay: Layout) -> int:
             + x.rb**2 / lay.inertias[x.b]
         own.append(lin.stiffness[c] * mobility)
     return int(np.argmax(own))
+
+
+def mobility(lay: Layout, c: int) -> float:
+    """Sum of lever^2 / J over the free bodies connector ``c`` joins (a speed-driven body is held): its own
+    angular frequency squared is its stiffness times this, a damper's decay rate its damping times this."""
+    x = lay.connectors[c]
+    return sum(lever**2 / lay.inertias[b] for lever, b in zip(x.levers, x.bodies, strict=True)
+               if lay.state.omega(b) is not None)
+
+
+def connector_words(lay: Layout, c: int) -> str:
+    """Connector ``c`` in a message's words: "mesh stage 2", "the shaft 2", "the load coupling"."""
+    x = lay.connectors[c]
+    return f"mesh stage {x.index + 1}" if x.role == "mesh" else f"the {x.label}"
+
+
+def _stiffest(lin: Linearisation, lay: Layout) -> str:
+    """The connector of any kind whose own mode (its stiffness against the inertias it joins) is fastest, in words:
+    a stiff shaft on a light pinion, not the mesh beside it, is what a refusal or a divergence must name."""
+    own = [float(lin.stiffness[c]) * mobility(lay, c) for c in range(len(lay.connectors))]
+    return connector_words(lay, int(np.argmax(own))) if own else ""
 
 
 def _self_exciting(lay: Layout, spec: ModelSpec) -> np.ndarray:
@@ -418,4 +441,4 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
         chosen = IMPLICIT_METHOD
         reason = f"{why}: implicit {chosen} with the analytic Jacobian" + (f" ({barred})" if barred else "")
     return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay,
-                  vib, nfev, exc, walls, on, size, barred if requested == AUTO else "")
+                  vib, nfev, exc, walls, on, size, barred if requested == AUTO else "", _stiffest(lin, lay))

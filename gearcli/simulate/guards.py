@@ -51,7 +51,7 @@ from gearcli.errors import SimulationError
 from gearcli.model import Layout, TorsionalModel
 from gearcli.model.linear import Linearisation, static_forces
 from gearcli.model.outputs import stored_energy
-from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
+from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, connector_words, mobility
 
 # the prices and budgets live in gearcli.core.cost (one module for every cost constant)
 __all__ = ["CAP", "EXPLICIT_CAP", "FLOOR", "PRICE_S", "PROJECTION_AFTER_S", "PROJECTION_LIMIT", "WORK_CAP_S",
@@ -101,7 +101,7 @@ def require_feasible(choice: Choice, budget: int) -> None:
                  f"{abs(fastest) / (2.0 * math.pi * f) if f > 0 else math.inf:.2g}x its highest mode's 2 pi f): "
                  f"{_fastest_damper(lin, choice.layout)}'s damping against the light inertias it joins makes it")
     else:
-        cause = f"mesh stage {choice.stiffest_mesh + 1} makes it"
+        cause = f"{choice.stiffest or f'mesh stage {choice.stiffest_mesh + 1}'} makes it"
     raise SimulationError(
         f"method = \"{choice.method}\" cannot integrate this scene: {cause} "
         f"{choice.indicator / STIFFNESS_LIMIT:.2g}x stiffer than an explicit method affords (highest mode "
@@ -126,11 +126,8 @@ def _fastest_eigenvalue(choice: Choice) -> tuple[Linearisation, complex]:
 def _fastest_damper(lin: Linearisation, lay: Layout) -> str:
     """The connector whose damping against the inertias it joins decays fastest (its c times the sum of its levers
     squared over those inertias, the rate c / m of a damper on a free mass), in a message's words."""
-    rates = [float(lin.damping[c]) * sum(lever**2 / lay.inertias[b] for lever, b in zip(x.levers, x.bodies, strict=True)
-                                         if lay.state.omega(b) is not None)
-             for c, x in enumerate(lay.connectors)]
-    x = lay.connectors[int(np.argmax(rates))]
-    return f"mesh stage {x.index + 1}" if x.role == "mesh" else f"the {x.label}"
+    rates = [float(lin.damping[c]) * mobility(lay, c) for c in range(len(lay.connectors))]
+    return connector_words(lay, int(np.argmax(rates)))
 
 
 @record

@@ -3,7 +3,8 @@
 The seed reducer has no excitation: its F_t holds the run-up's ringing and almost nothing at the mesh orders, and
 the report printed 1x-3x amplitudes such as 8.4e-05 N (a crane hoist) four digits deep, where the run's own error
 estimate of its F_t spectrum (the check pass's largest amplitude difference) is ~0.5 N. An amplitude below that
-estimate is now printed as `< e`; one above it as its number. The reference is the run's error estimate in the
+estimate is now printed as `< e` (e rounded up, so that the amplitude stays below the printed number); one above it
+as its number. The reference is the run's error estimate in the
 same report's JSON."""
 
 from __future__ import annotations
@@ -37,7 +38,9 @@ def test_unresolved_mesh_orders_print_their_bound_and_resolved_ones_their_number
             cell = cells[(st["stage"], f"{o['order']}x")]
             if o["tangential_N"] < errors[st["stage"]]:
                 below += 1
-                assert cell == f"< {errors[st['stage']]:.2g}", (st["stage"], o, cell)
+                # the bound to two digits, rounded up: never printed below the estimate it states
+                assert cell.startswith("< ") and errors[st["stage"]] <= float(cell[2:]) <= 1.1 * errors[st["stage"]], \
+                    (st["stage"], o, cell)
             else:
                 above += 1
                 assert not cell.startswith("<") and abs(float(cell) / o["tangential_N"] - 1) < 1e-3, (o, cell)

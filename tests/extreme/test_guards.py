@@ -160,6 +160,14 @@ def test_explicit_method_on_an_extremely_stiff_scene_is_refused_before_it_starts
     assert err.value.exit_code == 1
 
 
+def _dop853_refusal(path) -> str:
+    """The message of DOP853's up-front refusal of the design file at ``path``."""
+    cfg = load_design(str(path)).design
+    with pytest.raises(SimulationError) as err:
+        run_simulation(cfg, compute_design(cfg), method="DOP853")
+    return str(err.value)
+
+
 def test_a_refusal_set_by_a_damper_on_a_light_body_names_the_damper_not_a_mesh(tmp_path):
     # a 2e-6 kg m^2 gear on a 5 N m s/rad load coupling to a 0.5 kg m^2 drum: the coupling's damper alone decays
     # the gear's motion at c / J = 2.5e6 1/s, four times faster than the mesh mode (1e5 N/mm against 1e-6 and
@@ -176,14 +184,41 @@ def test_a_refusal_set_by_a_damper_on_a_light_body_names_the_damper_not_a_mesh(t
         "load = { torque_Nm = 10, ramp_s = 0.01, inertia_kg_m2 = 0.5, coupling_stiffness_Nm_rad = 2e4, "
         "coupling_damping_Nms_rad = 5 }\n"
         "simulation = { duration_s = 0.3, steps = 3000 }\n")
-    cfg = load_design(str(path)).design
-    with pytest.raises(SimulationError) as err:
-        run_simulation(cfg, compute_design(cfg), method="DOP853")
-    msg = str(err.value)
+    msg = _dop853_refusal(path)
     assert "the load coupling's damping against the light inertias it joins makes it" in msg
     assert "mesh stage 1 makes it" not in msg
     rate = float(msg.split("a decay at ")[1].split(" 1/s")[0])
     assert abs(rate - 5.0 / 2e-6) <= 0.05 * 5.0 / 2e-6  # c / J of the gear, to the mesh's and drum's share
+
+
+def test_a_refusal_set_by_a_stiff_shaft_on_a_light_pinion_names_the_shaft_not_a_mesh(tmp_path):
+    # trial tr28b: stage 1's gear (0.25 kg m^2) joined to stage 2's pinion (1e-4 kg m^2) by a 2e10 N m/rad shaft.
+    # By hand the shaft's own mode is sqrt(k (1/J_g1 + 1/J_p2)) / 2 pi = 2.2512e6 Hz, the stage 2 mesh's
+    # sqrt(K cos^2 beta_b (r_b1^2/J_p2 + r_b2^2/J_g2)) / 2 pi ~ 1.8e4 Hz (K 5e8 N/m, r_b1 = 51.1 mm): the refusal said
+    # "mesh stage 2 makes it 7.1e+02x stiffer", the one element whose change would not cure it
+    path = tmp_path / "stiff_shaft.toml"
+    path.write_text(
+        'title = "stiff shaft on a light pinion"\n'
+        "[[stage]]\nnormal_module_mm = 4\nnormal_pressure_angle_deg = 20\nhelix_angle_deg = 10\n"
+        'pinion = { teeth = 22, face_width_mm = 50, hand = "left", inertia_kg_m2 = 0.003 }\n'
+        'gear = { teeth = 67, face_width_mm = 48, hand = "right", inertia_kg_m2 = 0.25 }\n'
+        "shaft = { stiffness_Nm_rad = 2.0e10, damping_Nms_rad = 5 }\n"
+        "[[stage]]\nnormal_module_mm = 6\nnormal_pressure_angle_deg = 20\nhelix_angle_deg = 8\n"
+        'pinion = { teeth = 18, face_width_mm = 80, hand = "right", inertia_kg_m2 = 1e-4 }\n'
+        'gear = { teeth = 59, face_width_mm = 76, hand = "left", inertia_kg_m2 = 2.5 }\n'
+        "[contact]\nstiffness = 5e5\nexponent = 1\ndamping_ratio = 0.05\n"
+        "[input]\nspeed_rpm = 980\nramp_s = 0.15\n[load]\ntorque_Nm = 4000\nramp_s = 0.15\n"
+        "[simulation]\nduration_s = 0.5\nsteps = 5000\n")
+    msg = _dop853_refusal(path)
+    assert "the shaft 2 makes it" in msg and "mesh stage 2 makes it" not in msg, msg
+    shaft_Hz = math.sqrt(2.0e10 * (1 / 0.25 + 1 / 1e-4)) / (2 * math.pi)
+    highest = float(msg.split("highest mode ")[1].split(" Hz")[0])
+    assert abs(highest / shaft_Hz - 1) < 0.01, (highest, shaft_Hz)  # the mode the refusal names is the shaft's
+    at = math.atan(math.tan(math.radians(20)) / math.cos(math.radians(8)))
+    rb1, rb2 = (z * 6 / math.cos(math.radians(8)) / 2 * math.cos(at) * 1e-3 for z in (18, 59))
+    cb = math.cos(math.atan(math.tan(math.radians(8)) * math.cos(at)))
+    mesh_Hz = math.sqrt(5e8 * cb**2 * (rb1**2 / 1e-4 + rb2**2 / 2.5)) / (2 * math.pi)
+    assert shaft_Hz > 100 * mesh_Hz  # by hand: the shaft, not the mesh, sets the explicit step
 
 
 def test_refusal_through_the_cli_is_exit_1_one_line_and_no_file(tmp_path):
