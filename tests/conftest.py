@@ -42,7 +42,9 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
-    # session 23, tr28e: a tolerance study's sweep SIGKILLed mid-run, its workers' end awaited, then resumed (~20 s)
+    # session 23, tr28e: a tolerance study's sweep SIGKILLed mid-run, its workers' end awaited, then resumed (~20 s);
+    # a sweep with a speed that is no number drawing its plots (~3 s; the Campbell data by hand stays in the test)
+    "tests/sweep/test_sweep_campbell_grid.py::test_a_speed_that_is_no_number_fails_its_row_and_the_plots_are_drawn",
     "tests/sweep/test_sweep_parent_killed.py::test_a_killed_sweep_leaves_no_worker_and_its_rerun_finishes_the_set",
     # session 22, tr27f: a rattling viscous mesh against an independent solve_ivp model with exact contact switching
     # (~4 s; the kink bound's closed-form cases stay in the default tier: tests/unit/test_kink_bound.py)

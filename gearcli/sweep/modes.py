@@ -126,7 +126,9 @@ def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner, uni
         drawn = [[f"{d.column}={toml_value(v)}" for d, v in zip(spec.randoms, sample, strict=True)]
                  for sample in spec.random_values()[:SAMPLES_TRIED]]
         fixed += next((s for s in drawn if _designs(scene, design_case, (*fixed, *s))), drawn[0])
-    return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, units_of, fixed)
+    # a value that is no number (``--vary input.speed_rpm=1000,fast``) is no speed: its row failed, no modes there
+    speeds = sorted((v for v in axis.values if isinstance(v, (int, float)) and not isinstance(v, bool)), key=_number)
+    return campbell_diagram(scene, axis.key, speeds, design_case, units_of, fixed) if speeds else None
 
 
 def _designs(scene: Scene, design_case: CaseDesigner, overrides: Sequence[str]) -> bool:

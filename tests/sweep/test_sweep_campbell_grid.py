@@ -150,3 +150,28 @@ def test_a_tolerance_studys_campbell_diagram_is_drawn_at_a_sample_and_says_so(tm
     np.testing.assert_allclose(drawn, hand_modes_Hz(c, b), rtol=1e-6)
     assert abs(drawn[0] / hand_modes_Hz(c_gamma_alpha(scene, 1340))[0] - 1.0) > 0.03  # not the file's 45 mm gear
     assert f"at stage[0].gear.face_width_mm={b!r}" in _campbell(got)._suptitle.get_text()
+
+
+def test_a_speed_that_is_no_number_fails_its_row_and_the_plots_are_drawn(tmp_path):
+    """``--vary input.speed_rpm=1000,fast`` (tr28e; a typo such as ``1000,1400:2`` makes a text too): the text's row
+    is a failed one and the sweep goes on (docs/sweeps.md), but ``--plots`` sorted the speeds as numbers and ended
+    the command with an internal error (ValueError: could not convert string to float), no figure written. The
+    Campbell diagram now leaves the text out, as it leaves out a speed whose design fails."""
+    pytest.importorskip("matplotlib")
+    from gearcli.api import design_case
+    from gearcli.sweep.modes import sweep_campbell
+    from gearcli.sweep.spec import spec_from_options
+    from gearcli.sweep.worker import Scene
+
+    scene, plots = tmp_path / "reducer.toml", tmp_path / "plots"
+    scene.write_text(SCENE, encoding="utf-8")
+    res = CliRunner().invoke(cli, ["-q", "sweep", str(scene), "--vary", "input.speed_rpm=1000,fast", "--jobs", "1",
+                                   "--set", "simulation.duration_s=0.03", "-o", str(tmp_path / "s.csv"),
+                                   "--plots", str(plots)])
+    assert res.exit_code == 1 and "internal error" not in res.output, res.output  # 1: a failed row
+    assert (plots / "campbell.png").exists() and (plots / "response_input_speed_rpm.png").exists()
+    got = sweep_campbell(spec_from_options(("input.speed_rpm=1000,fast",), (), None, "lhs", None, None),
+                         Scene(SCENE.encode(), "reducer.toml"), design_case, lambda cfg: ("rpm", "Nm"))
+    assert got is not None and got.swept_rpm == (1000.0,)
+    drawn = np.array(sorted(m.frequency_Hz for m in got.data.modes if not m.rigid))
+    np.testing.assert_allclose(drawn, hand_modes_Hz(c_gamma_alpha(scene, 1340)), rtol=1e-6)  # at the file's load
