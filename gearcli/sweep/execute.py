@@ -13,6 +13,7 @@ import dataclasses
 import logging
 import math
 import multiprocessing
+import multiprocessing.connection
 import os
 import signal
 import socket
@@ -309,6 +310,25 @@ def _start_worker(marks, sent) -> None:
     global _MARKS, _SENT
     _MARKS, _SENT = marks, sent
     _ignore_sigint()
+    _end_with_parent()
+
+
+def _end_with_parent() -> None:
+    """End this pool worker as soon as the sweep's process is gone. A parent that is killed outright (SIGKILL, the
+    out-of-memory killer, a job's time limit) ends no worker: each went on computing its task's points for nobody,
+    then waited for ever, blocked writing rows into a pipe no one reads or reading a task queue no one fills (every
+    worker holds both ends of the pool's queues, so neither ever sees an end of file), with its memory held and the
+    forkserver kept alive beside it. The parent's sentinel (the pipe it started the worker through) reads ready the
+    moment the parent's process ends, however it ends."""
+    parent = multiprocessing.parent_process()
+    if parent is None:
+        return
+
+    def watch() -> None:
+        multiprocessing.connection.wait([parent.sentinel])
+        os._exit(1)
+
+    threading.Thread(target=watch, name="gearcli-parent-watch", daemon=True).start()
 
 
 def _run_marked(index: int, task: Task) -> None:

@@ -23,6 +23,7 @@ from gearcli.stages.design import design_kind
 from gearcli.sweep.spec import SPEED_KEYS, Axis, SweepSpec, toml_value
 from gearcli.sweep.worker import CaseDesigner, Scene
 
+SAMPLES_TRIED = 64  # the --random samples tried for one that designs (each a design: a study of 1e6 stays quick)
 UnitsOf = Callable[[DesignFile], tuple[str, str]]  # a file's output units (io.units.key_units, injected by the facade)
 
 
@@ -112,7 +113,8 @@ def speed_axis(spec: SweepSpec) -> Axis | None:
 
 def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner, units_of: UnitsOf) -> SweepCampbell | None:
     """``gearcli sweep --plots``: the Campbell diagram over the swept input speed (each other axis at its first
-    value that designs); None when no input speed is swept, or none designs."""
+    value that designs, the ``--random`` keys at their first sample that designs: a point the rows ran at, named in
+    the title, not the file's values, which no sample need hold); None when no input speed is swept, or none designs."""
     axis = speed_axis(spec)
     if axis is None:
         return None
@@ -120,7 +122,13 @@ def sweep_campbell(spec: SweepSpec, scene: Scene, design_case: CaseDesigner, uni
     for other in (a for a in spec.axes if a.key != axis.key):  # its first value that designs (a failed row's not)
         sets = [f"{other.column}={toml_value(v)}" for v in other.values]  # as written: named in the title
         fixed.append(next((s for s in sets if _designs(scene, design_case, (*fixed, s))), sets[0]))
-    return campbell_diagram(scene, axis.key, sorted(axis.values, key=_number), design_case, units_of, fixed)
+    if spec.randoms:  # the --random keys at their first sample that designs (drawn together: one sample's values)
+        drawn = [[f"{d.column}={toml_value(v)}" for d, v in zip(spec.randoms, sample, strict=True)]
+                 for sample in spec.random_values()[:SAMPLES_TRIED]]
+        fixed += next((s for s in drawn if _designs(scene, design_case, (*fixed, *s))), drawn[0])
+    # a value that is no number (``--vary input.speed_rpm=1000,fast``) is no speed: its row failed, no modes there
+    speeds = sorted((v for v in axis.values if isinstance(v, (int, float)) and not isinstance(v, bool)), key=_number)
+    return campbell_diagram(scene, axis.key, speeds, design_case, units_of, fixed) if speeds else None
 
 
 def _designs(scene: Scene, design_case: CaseDesigner, overrides: Sequence[str]) -> bool:

@@ -339,7 +339,7 @@ class SweepSpec:
         branch per point (the grid product, first key slowest, then the samples); with one, a
         continuation branch per direction and combination of the other keys and samples, running
         along the first key (ascending for up, descending for down)."""
-        samples = self._random_values()
+        samples = self.random_values()
         grids = [tuple(a.values) for a in self.axes]
         if not self.direction:
             combos = [g + s for g in itertools.product(*grids) for s in samples]
@@ -358,7 +358,8 @@ class SweepSpec:
                     out.append(branch)
         return out
 
-    def _random_values(self) -> list[tuple[float, ...]]:
+    def random_values(self) -> list[tuple[float, ...]]:
+        """The ``--random`` keys' values of each sample, in sample order (``[()]`` without random keys)."""
         if not self.randoms:
             return [()]
         assert self.samples is not None and self.seed is not None

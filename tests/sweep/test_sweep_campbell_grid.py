@@ -57,8 +57,9 @@ steps = 500
 """
 
 
-def hand_modes_Hz(c_gamma_alpha_N_mm_um: tuple[float, float]) -> np.ndarray:
-    """Clamped-input natural frequencies of the two free shafts, by hand (module docstring)."""
+def hand_modes_Hz(c_gamma_alpha_N_mm_um: tuple[float, float], b1_mm: float = 45.0) -> np.ndarray:
+    """Clamped-input natural frequencies of the two free shafts, by hand (module docstring); ``b1_mm`` stage 1's
+    gear width (the mesh's face width while it is under the pinion's 50 mm, and the gear's disc inertia)."""
     rho, eta = 7850.0, 0.98
     cos_b = math.cos(math.radians(12.0))
     alpha_t = math.atan(math.tan(math.radians(20.0)) / cos_b)
@@ -69,9 +70,9 @@ def hand_modes_Hz(c_gamma_alpha_N_mm_um: tuple[float, float]) -> np.ndarray:
     def disc(mn: float, z: int, b_mm: float) -> float:
         return math.pi * rho * (b_mm / 1e3) * d_m(mn, z) ** 4 / 32.0
 
-    J2, J3 = disc(3, 75, 45) + disc(5, 19, 80), disc(5, 68, 75)
+    J2, J3 = disc(3, 75, b1_mm) + disc(5, 19, 80), disc(5, 68, 75)
     rg1, rp2, rg2 = (d_m(mn, z) / 2 * math.cos(alpha_t) for mn, z in ((3, 75), (5, 19), (5, 68)))
-    k1, k2 = (c * 1e3 * 1e3 * b for c, b in zip(c_gamma_alpha_N_mm_um, (45.0, 75.0), strict=True))  # N/m, b the narrower
+    k1, k2 = (c * 1e3 * 1e3 * b for c, b in zip(c_gamma_alpha_N_mm_um, (b1_mm, 75.0), strict=True))  # N/m, b the narrower
     G1, L1 = np.array([-rg1, 0.0]), np.array([eta * rg1, 0.0])
     G2, L2 = np.array([rp2, -rg2]), np.array([-rp2, eta * rg2])
     K = -(np.outer(L1, k1 * G1) + np.outer(L2, k2 * G2))
@@ -120,3 +121,57 @@ def test_a_speed_only_sweep_keeps_its_plain_title(vary):
                          design_case, lambda cfg: ("rpm", "Nm"))
     assert got is not None and got.at == ()
     assert _campbell(got)._suptitle.get_text() == "Campbell diagram"
+
+
+def test_a_tolerance_studys_campbell_diagram_is_drawn_at_a_sample_and_says_so(tmp_path):
+    """A speed sweep with --random keys (tr28e): the diagram was drawn at the file's values (gear 1 45 mm wide),
+    which no sample held (drawn from 20-30 mm), and its title named none of them; it is now drawn at the first
+    sample, as a grid's other keys are at their first value, and its title names the sample."""
+    from gearcli.api import design_case
+    from gearcli.io.sweep_plots import _campbell
+    from gearcli.sweep.modes import sweep_campbell
+    from gearcli.sweep.spec import spec_from_options
+    from gearcli.sweep.worker import Scene
+
+    scene = tmp_path / "reducer.toml"
+    scene.write_text(SCENE, encoding="utf-8")
+    spec = spec_from_options(("input.speed_rpm=1000,1400,1800",), ("stage[0].gear.face_width_mm=uniform(20,30)",),
+                             4, "lhs", 5, None)
+    b = spec.branches()[0][0].values[1][1]  # the first sample's gear width
+    assert isinstance(b, float) and 20.0 <= b < 30.0
+    got = sweep_campbell(spec, Scene(SCENE.encode(), "reducer.toml"), design_case, lambda cfg: ("rpm", "Nm"))
+    assert got is not None
+    assert got.at == (f"stage[0].gear.face_width_mm={b!r}",)
+    res = CliRunner().invoke(cli, ["design", str(scene), "--format", "json", "-q", "--set",
+                                   f"stage.0.gear.face_width_mm={b!r}"])
+    assert res.exit_code == 0, res.output
+    c = tuple(s["iso6336_mesh_stiffness_N_mm_um"] for s in json.loads(res.stdout)["stages"])
+    drawn = np.array(sorted(m.frequency_Hz for m in got.data.modes if not m.rigid))
+    np.testing.assert_allclose(drawn, hand_modes_Hz(c, b), rtol=1e-6)
+    assert abs(drawn[0] / hand_modes_Hz(c_gamma_alpha(scene, 1340))[0] - 1.0) > 0.03  # not the file's 45 mm gear
+    assert f"at stage[0].gear.face_width_mm={b!r}" in _campbell(got)._suptitle.get_text()
+
+
+def test_a_speed_that_is_no_number_fails_its_row_and_the_plots_are_drawn(tmp_path):
+    """``--vary input.speed_rpm=1000,fast`` (tr28e; a typo such as ``1000,1400:2`` makes a text too): the text's row
+    is a failed one and the sweep goes on (docs/sweeps.md), but ``--plots`` sorted the speeds as numbers and ended
+    the command with an internal error (ValueError: could not convert string to float), no figure written. The
+    Campbell diagram now leaves the text out, as it leaves out a speed whose design fails."""
+    pytest.importorskip("matplotlib")
+    from gearcli.api import design_case
+    from gearcli.sweep.modes import sweep_campbell
+    from gearcli.sweep.spec import spec_from_options
+    from gearcli.sweep.worker import Scene
+
+    scene, plots = tmp_path / "reducer.toml", tmp_path / "plots"
+    scene.write_text(SCENE, encoding="utf-8")
+    res = CliRunner().invoke(cli, ["-q", "sweep", str(scene), "--vary", "input.speed_rpm=1000,fast", "--jobs", "1",
+                                   "--set", "simulation.duration_s=0.03", "-o", str(tmp_path / "s.csv"),
+                                   "--plots", str(plots)])
+    assert res.exit_code == 1 and "internal error" not in res.output, res.output  # 1: a failed row
+    assert (plots / "campbell.png").exists() and (plots / "response_input_speed_rpm.png").exists()
+    got = sweep_campbell(spec_from_options(("input.speed_rpm=1000,fast",), (), None, "lhs", None, None),
+                         Scene(SCENE.encode(), "reducer.toml"), design_case, lambda cfg: ("rpm", "Nm"))
+    assert got is not None and got.swept_rpm == (1000.0,)
+    drawn = np.array(sorted(m.frequency_Hz for m in got.data.modes if not m.rigid))
+    np.testing.assert_allclose(drawn, hand_modes_Hz(c_gamma_alpha(scene, 1340)), rtol=1e-6)  # at the file's load

@@ -120,6 +120,18 @@ def test_latin_hypercube_puts_one_sample_in_each_stratum():
     assert x[:, 1].min() >= 500 and x[:, 1].max() < 700
 
 
+def test_latin_hypercube_is_scipys_drawn_with_rng_seed():
+    """docs/sweeps.md: a program draws a sweep's samples again with ``qmc.LatinHypercube(d=K, rng=S).random(N)``,
+    column j the j-th --random key, through its inverse CDF (scipy 1.17's older ``seed=S`` draws other numbers)."""
+    qmc = pytest.importorskip("scipy.stats.qmc")
+    try:
+        u = qmc.LatinHypercube(d=2, rng=29).random(20)
+    except TypeError:  # scipy before 1.15 has no rng keyword
+        pytest.skip("scipy without LatinHypercube(rng=...)")
+    expected = np.column_stack([norm.ppf(u[:, 0], loc=0.25, scale=0.02), 500.0 + 200.0 * u[:, 1]])
+    assert_allclose(_values(_random_spec(29, "lhs", 20)), expected, rtol=1e-15, atol=0)
+
+
 def test_monte_carlo_is_numpys_generator():
     u = unit_samples(5, 2, "mc", 11)
     assert_allclose(u, np.random.default_rng(11).random((5, 2)), rtol=0, atol=0)
