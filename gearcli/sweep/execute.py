@@ -326,7 +326,9 @@ def _end_with_parent() -> None:
 
     def watch() -> None:
         multiprocessing.connection.wait([parent.sentinel])
-        os._exit(1)
+        # killed as its parent was: no handler runs (a SIGTERM would unwind into a row written to a pipe no one
+        # reads, the very block this ends) and nothing is left for anyone to read
+        os.kill(os.getpid(), signal.SIGKILL)
 
     threading.Thread(target=watch, name="gearcli-parent-watch", daemon=True).start()
 
