@@ -14,7 +14,7 @@ chattering, a step size collapsing, or an explicit method grinding through a sti
 Explicit methods on stiff scenes. Stability alone costs an explicit method ``EVALS_PER_STEP / R
 max|lambda| T`` evaluations (R its stability radius along the imaginary axis). When that exceeds
 ``EXPLICIT_CAP`` (1e6 evaluations, ~10 s; Radau does such scenes in ~1e4) the run is refused before it
-starts, naming the mesh that makes the scene stiff and the fix. Below it the explicit run goes ahead,
+starts, naming the element (mesh, coupling or flexible shaft) that makes the scene stiff and the fix. Below it the explicit run goes ahead,
 with the stiffness warning of :mod:`gearcli.simulate.run`.
 
 Energy. With non-negative damping the model cannot create energy: kinetic plus stored elastic energy
@@ -51,7 +51,7 @@ from gearcli.errors import SimulationError
 from gearcli.model import Layout, TorsionalModel
 from gearcli.model.linear import Linearisation, static_forces
 from gearcli.model.outputs import stored_energy
-from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice
+from gearcli.simulate.choice import STIFFNESS_LIMIT, Choice, element_name
 
 # the prices and budgets live in gearcli.core.cost (one module for every cost constant)
 __all__ = ["CAP", "EXPLICIT_CAP", "FLOOR", "PRICE_S", "PROJECTION_AFTER_S", "PROJECTION_LIMIT", "WORK_CAP_S",
@@ -101,7 +101,7 @@ def require_feasible(choice: Choice, budget: int) -> None:
                  f"{abs(fastest) / (2.0 * math.pi * f) if f > 0 else math.inf:.2g}x its highest mode's 2 pi f): "
                  f"{_fastest_damper(lin, choice.layout)}'s damping against the light inertias it joins makes it")
     else:
-        cause = f"mesh stage {choice.stiffest_mesh + 1} makes it"
+        cause = f"{choice.stiff_element[0]} makes it"
     raise SimulationError(
         f"method = \"{choice.method}\" cannot integrate this scene: {cause} "
         f"{choice.indicator / STIFFNESS_LIMIT:.2g}x stiffer than an explicit method affords (highest mode "
@@ -129,8 +129,7 @@ def _fastest_damper(lin: Linearisation, lay: Layout) -> str:
     rates = [float(lin.damping[c]) * sum(lever**2 / lay.inertias[b] for lever, b in zip(x.levers, x.bodies, strict=True)
                                          if lay.state.omega(b) is not None)
              for c, x in enumerate(lay.connectors)]
-    x = lay.connectors[int(np.argmax(rates))]
-    return f"mesh stage {x.index + 1}" if x.role == "mesh" else f"the {x.label}"
+    return element_name(lay, int(np.argmax(rates)))
 
 
 @record

@@ -317,3 +317,62 @@ def test_an_auto_run_stopped_on_a_stiff_scene_is_not_told_to_use_auto():
     requested = _replace(auto, requested="DOP853")
     with pytest.raises(SimulationError, match=r'use method = "Radau" \(or "auto"\)'):
         check(stopped, requested, 0.3)
+
+
+def _chain_modes(J, rows):
+    """Hand-assembled undamped modes of a torsional chain: J the free bodies' inertias, rows (levers, k) per
+    connector; returns the frequencies (Hz, ascending) and each connector's share of each mode's strain energy."""
+    J = np.asarray(J, dtype=float)
+    L = np.array([r[0] for r in rows], dtype=float)
+    k = np.array([r[1] for r in rows], dtype=float)
+    S = 1.0 / np.sqrt(J)
+    w2, V = np.linalg.eigh(S[:, None] * (L.T @ np.diag(k) @ L) * S[None, :])
+    phi = S[:, None] * V  # body angles per mode
+    energy = k[:, None] * (L @ phi) ** 2
+    return np.sqrt(w2) / (2 * np.pi), energy / energy.sum(axis=0)
+
+
+@pytest.mark.parametrize("case", ["shaft", "input coupling"])
+def test_an_explicit_refusal_names_the_coupling_or_shaft_that_makes_the_scene_stiff(tmp_path, case):
+    # the refusal said "mesh stage 1 makes it ... stiffer" whatever element held the fastest mode: a 1e9 N m/rad
+    # shaft between two 4e5 N/mm spur meshes (its own mode 65.6 kHz), or a 1e11 N m/rad input coupling on a
+    # 1.25e-3 kg m^2 pinion (1.33 MHz), where no mesh change cures the stiffness
+    rb = [20 * 4 * math.cos(math.radians(20)) / 2e3, 60 * 4 * math.cos(math.radians(20)) / 2e3,
+          18 * 6 * math.cos(math.radians(20)) / 2e3, 72 * 6 * math.cos(math.radians(20)) / 2e3]
+    km = 4e8  # 4e5 N/mm, linear, spur: the transverse stiffness along delta
+    shaft = case == "shaft"
+    k_shaft, k_in = (1e9, 1e3) if shaft else (None, 1e11)
+    text = ('title = "stiff element"\n'
+            "[[stage]]\nnormal_module_mm = 4\npinion = { teeth = 20, face_width_mm = 40, inertia_kg_m2 = 1.25e-3 }\n"
+            "gear = { teeth = 60, face_width_mm = 40, inertia_kg_m2 = 0.1 }\n"
+            + (f"[stage.shaft]\nstiffness_Nm_rad = {k_shaft:g}\n" if shaft else "")
+            + "[[stage]]\nnormal_module_mm = 6\npinion = { teeth = 18, face_width_mm = 60, inertia_kg_m2 = 6.25e-3 }\n"
+            "gear = { teeth = 72, face_width_mm = 60, inertia_kg_m2 = 1.6 }\n"
+            "[contact]\nstiffness = 4e5\nexponent = 1\ndamping_ratio = 0.02\n"
+            f"[input]\nspeed_rpm = 1500\nramp_s = 0.1\ninertia_kg_m2 = 0.2\ncoupling_stiffness_Nm_rad = {k_in:g}\n"
+            "[load]\ntorque_Nm = 800\nramp_s = 0.1\ninertia_kg_m2 = 50\ncoupling_stiffness_Nm_rad = 2e4\n"
+            "[simulation]\nduration_s = 1.0\nsteps = 4000\n")
+    path = tmp_path / "stiff.toml"
+    path.write_text(text)
+    # the speed drive holds the motor: free bodies pinion 1, gear 1 (+ pinion 2 on a rigid shaft), pinion 2 on a
+    # flexible one, gear 2, drum; connectors along the chain (levers: base radii, 1 for a spring)
+    if shaft:
+        J = [1.25e-3, 0.1, 6.25e-3, 1.6, 50.0]
+        rows = [([-1, 0, 0, 0, 0], k_in), ([rb[0], -rb[1], 0, 0, 0], km), ([0, 1, -1, 0, 0], k_shaft),
+                ([0, 0, rb[2], -rb[3], 0], km), ([0, 0, 0, 1, -1], 2e4)]
+        stiff, name = 2, "shaft 2"
+    else:
+        J = [1.25e-3, 0.1 + 6.25e-3, 1.6, 50.0]
+        rows = [([-1, 0, 0, 0], k_in), ([rb[0], -rb[1], 0, 0], km), ([0, rb[2], -rb[3], 0], km), ([0, 0, 1, -1], 2e4)]
+        stiff, name = 0, "the input coupling"
+    f, share = _chain_modes(J, rows)
+    assert int(np.argmax(share[:, -1])) == stiff and share[stiff, -1] > 0.99  # the fastest mode is that element's
+    cfg = load_design(str(path)).design
+    method = "RK45" if shaft else "DOP853"
+    with pytest.raises(SimulationError) as err:
+        run_simulation(cfg, compute_design(cfg), method=method)
+    msg = str(err.value)
+    assert f'method = "{method}" cannot integrate this scene: {name} makes it' in msg
+    assert "mesh stage" not in msg
+    stated = float(msg.split("highest mode ")[1].split(" Hz")[0])
+    assert abs(stated - f[-1]) <= 5e-3 * f[-1]  # printed to 3 digits
