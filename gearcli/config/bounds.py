@@ -24,7 +24,7 @@ import math
 import os
 
 from gearcli.config.schema_rules import MIN_DURATION_S
-from gearcli.core.text import shorten
+from gearcli.core.text import rounded_down, shorten
 from gearcli.errors import ConfigError, ResourceError
 from gearcli.stages import kinds
 
@@ -135,7 +135,7 @@ def check_cost(cfg, design, *, source: str) -> None:
     if math.isfinite(total) and total <= ABSURD_EVALUATIONS:
         return
     fit = sim.duration_s * ABSURD_EVALUATIONS / total if math.isfinite(total) and total > 0 else 0.0
-    shorter = f"set simulation.duration_s ≤ {fit:.3g}, or check" if fit >= MIN_DURATION_S else \
+    shorter = f"set simulation.duration_s ≤ {rounded_down(fit):.3g}, or check" if fit >= MIN_DURATION_S else \
         f"no simulation.duration_s from its least {MIN_DURATION_S:g} s fits: check"  # a limit the schema refuses
     raise ResourceError(
         f"{source}: simulation.duration_s: this run would need about {total:.2g} right-hand-side evaluations "
