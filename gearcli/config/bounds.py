@@ -24,7 +24,7 @@ import math
 import os
 
 from gearcli.config.schema_rules import MIN_DURATION_S
-from gearcli.core.text import shorten
+from gearcli.core.text import rounded_down, shorten
 from gearcli.errors import ConfigError, ResourceError
 from gearcli.stages import kinds
 
@@ -82,6 +82,14 @@ def output_samples(sim) -> int:
     return sim.steps
 
 
+def steps_that_fit(sim, samples: int) -> int:
+    """The largest ``simulation.steps`` whose run holds at most ``samples`` output samples (the inverse of
+    :func:`output_samples`; 0 when none does: a periodic run holds its statistics samples whatever its steps)."""
+    if getattr(sim, "steady", "window") == "periodic":
+        return samples // 2 if samples >= 2 * PERIODIC_STATISTICS_SAMPLES else max(0, samples - PERIODIC_STATISTICS_SAMPLES)
+    return max(0, samples)
+
+
 def _gib(n: float) -> str:
     return f"{n / 2**30:.3g} GiB" if n >= 2**30 else f"{n / 2**20:.3g} MiB"
 
@@ -90,17 +98,22 @@ def check_memory(cfg, *, fmt: str, series: bool, source: str, steps: int | None 
     """The one memory rule of every run a command makes (simulate, report, each sweep point, each life
     point): its output samples (``steps``, default the file's) against :func:`memory_limit_bytes`."""
     limit = memory_limit_bytes()
-    steps, n = steps if steps is not None else output_samples(cfg.simulation), len(cfg.stage)
-    need = memory_estimate_bytes(steps, n, fmt, series)
+    given = steps is not None  # the caller's samples (a life duty point's), not the file's steps
+    samples, n = steps if steps is not None else output_samples(cfg.simulation), len(cfg.stage)
+    need = memory_estimate_bytes(samples, n, fmt, series)
     if need <= limit:
         return
-    fit = int(limit / memory_estimate_bytes(1, n, fmt, series))
+    most = int(limit // memory_estimate_bytes(0, n, fmt, series)) - 1  # samples: (samples + 1) x the bytes of one
+    fit = most if given else steps_that_fit(cfg.simulation, most)
     how = " or leave out --series" if fmt == "json" and series else ""
+    held = ("" if given or cfg.simulation.steady != "periodic" else
+            f" (steady = \"periodic\": the run-up's steps and {PERIODIC_STATISTICS_SAMPLES} statistics samples)")
     raise ResourceError(
-        f"{source}: simulation.steps: {steps} samples x {values_per_sample(n)} values would need about "
+        f"{source}: simulation.steps: {samples} samples{held} x {values_per_sample(n)} values would need about "
         f"{_gib(need)} of memory, over the limit of {_gib(limit)}; "
         + (f"set simulation.steps ≤ {fit}{how} (or raise {MEMORY_LIMIT_VARIABLE})" if fit >= 1 else
-           f"no run fits in it: raise {MEMORY_LIMIT_VARIABLE}"))
+           f"no run fits in it: raise {MEMORY_LIMIT_VARIABLE}"
+           + ("" if given or cfg.simulation.steady != "periodic" else ' or use steady = "window"')))
 
 
 def fastest_rad_s(cfg, design) -> float:
@@ -135,7 +148,7 @@ def check_cost(cfg, design, *, source: str) -> None:
     if math.isfinite(total) and total <= ABSURD_EVALUATIONS:
         return
     fit = sim.duration_s * ABSURD_EVALUATIONS / total if math.isfinite(total) and total > 0 else 0.0
-    shorter = f"set simulation.duration_s ≤ {fit:.3g}, or check" if fit >= MIN_DURATION_S else \
+    shorter = f"set simulation.duration_s ≤ {rounded_down(fit):.3g}, or check" if fit >= MIN_DURATION_S else \
         f"no simulation.duration_s from its least {MIN_DURATION_S:g} s fits: check"  # a limit the schema refuses
     raise ResourceError(
         f"{source}: simulation.duration_s: this run would need about {total:.2g} right-hand-side evaluations "

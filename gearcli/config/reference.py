@@ -156,7 +156,8 @@ def design_file_reference() -> str:
            f"most {MAX_KEY_DEPTH} parts; arrays and inline tables nested at most {MAX_NESTING} deep. These are "
            "checked on the raw text before the TOML parser runs.",
            "- a simulation whose output would need more memory than `GEARCLI_MEMORY_LIMIT_MB` (default 2048) is "
-           "refused with the estimate and the `simulation.steps` that fits; one whose cost estimate is absurd "
+           "refused with the estimate and the most `simulation.steps` that fit (a `steady = \"periodic\"` run holds its "
+           "100000 statistics samples besides its steps: below them, none fits); one whose cost estimate is absurd "
            "(over 5e8 right-hand-side evaluations) is refused with the `simulation.duration_s` that fits (or, where not "
            "even the least duration fits, with the speeds, stiffnesses and inertias to check). Each sweep point and life "
            "duty point is checked the same way with its own values: a refused sweep point is a `failed` row with that "

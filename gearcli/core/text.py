@@ -87,10 +87,20 @@ def rounded_up(x: float, digits: int = 3) -> float:
     """``x`` rounded up to ``digits`` significant digits: a bound a warning advises (a window start after which a
     transient has settled, a rating that lasts a life) printed as the user will type it, on the safe side of the
     bound (2.1635 s to 2.17, not 2.16, which the next run finds a hair short)."""
+    return _to_digits(x, digits, lambda q: math.ceil(q * (1 - 1e-12)))
+
+
+def rounded_down(x: float, digits: int = 3) -> float:
+    """``x`` rounded down to ``digits`` significant digits: a limit a refusal advises (the longest duration that fits a
+    budget) printed as the user will type it, on its safe side (746.6 s to 746, not 747, which the budget refuses)."""
+    return _to_digits(x, digits, math.floor)
+
+
+def _to_digits(x: float, digits: int, rounding) -> float:
     if x <= 0.0 or not math.isfinite(x):
         return x
     step = 10.0 ** (math.floor(math.log10(x)) - digits + 1)
-    return float(format(math.ceil(x / step * (1 - 1e-12)) * step, f".{digits + 1}g"))
+    return float(format(rounding(x / step) * step, f".{digits + 1}g"))
 
 
 _PRECISION = re.compile(r"\.(\d+)([fg])$")

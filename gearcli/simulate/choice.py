@@ -68,7 +68,6 @@ class Choice:
     stiffness_ratio: float  # max|lambda| / min|lambda|
     at_full_load: Linearisation
     at_operating_point: Linearisation
-    stiffest_mesh: int  # 0-based stage of the mesh with the highest single-mesh frequency
     spec: ModelSpec
     layout: Layout
     vibration_rad: float = 0.0  # P: radians of excited, persisting vibration (cost model)
@@ -78,8 +77,6 @@ class Choice:
     engines: tuple[str, str] = ("python", "python")  # the engine each prediction is priced on
     size: ModelSize = ModelSize()  # what the price per evaluation depends on (gearcli.core.cost.PRICE_US)
     explicit_barred: str = ""  # why auto offers no explicit method, neither at the start nor on a course change
-    stiffest: str = ""  # the element with the highest own frequency, any connector (a mesh, a shaft, a coupling), in
-    # a message's words (:func:`connector_words`): what makes the scene stiff
 
     @property
     def reported(self) -> Linearisation:
@@ -104,42 +101,56 @@ class Choice:
         """The boundary condition of the reported frequencies: a speed drive holds the input body."""
         return "clamped_input" if self.layout.speed_drive else "free"
 
+    @cached_property
+    def stiffest_connector(self) -> int:
+        """The connector that makes the scene stiff: the largest strain-energy share of the fastest mode, over the
+        linearisation with the larger max|lambda| (a coupling or a flexible shaft as well as a mesh)."""
+        lin = max((self.at_full_load, self.at_operating_point), key=lambda x: x.max_abs_eigenvalue)
+        return fastest_mode_connector(lin, self.layout)
+
+    @property
+    def stiff_element(self) -> tuple[str, str]:
+        """(the element that makes the scene stiff, in a message's words; what to check of it)."""
+        return element_name(self.layout, self.stiffest_connector), stiffness_keys(self.layout, self.stiffest_connector)
+
     def explicit_evaluations(self, name: str = EXPLICIT_METHOD) -> float:
         """Fewest right-hand-side evaluations an explicit method needs for stability alone."""
         m = method(name)
         return m.evals_per_step * self.indicator / m.stability_radius
 
 
-def _stiffest_mesh(lin: Linearisation, lay: Layout) -> int:
-    """The mesh whose own mode (its stiffness against the two inertias it joins) is fastest."""
-    own = []
-    for c in lay.stage_conn:
-        x = lay.connectors[c]
-        mobility = (x.ra**2 / lay.inertias[x.a] if lay.state.omega(x.a) is not None else 0.0) \
-            + x.rb**2 / lay.inertias[x.b]
-        own.append(lin.stiffness[c] * mobility)
-    return int(np.argmax(own))
+def fastest_mode_connector(lin: Linearisation, lay: Layout) -> int:
+    """The connector holding the largest share of the fastest undamped mode's strain energy. In connector space the
+    modes are the eigenvectors u of sqrt(k) R J^-1 R^T sqrt(k) (delta = u / sqrt(k)), so connector c's share of a
+    mode's strain energy k_c delta_c^2 / 2 is u_c^2."""
+    k = np.clip(np.asarray(lin.stiffness, dtype=float), 0.0, None)
+    R = speed_map(lay)
+    if not k.size or not R.size:
+        return 0
+    sq = np.sqrt(k)
+    M = R @ np.diag(1.0 / np.asarray(lay.inertias[lay.state.first_free:])) @ R.T
+    _, u = np.linalg.eigh(sq[:, None] * M * sq[None, :])
+    return int(np.argmax(u[:, -1] ** 2))
 
 
-def mobility(lay: Layout, c: int) -> float:
-    """Sum of lever^2 / J over the free bodies connector ``c`` joins (a speed-driven body is held): its own
-    angular frequency squared is its stiffness times this, a damper's decay rate its damping times this."""
+def element_name(lay: Layout, c: int) -> str:
+    """A connector in a message's words: "mesh stage k" for a stage's mesh, else "the <label>" ("the input
+    coupling", "shaft 2", "the stage 1 planet 2 ring mesh")."""
     x = lay.connectors[c]
-    return sum(lever**2 / lay.inertias[b] for lever, b in zip(x.levers, x.bodies, strict=True)
-               if lay.state.omega(b) is not None)
+    return f"mesh stage {x.index + 1}" if x.role == "mesh" else x.label if x.role == "shaft" else f"the {x.label}"
 
 
-def connector_words(lay: Layout, c: int) -> str:
-    """Connector ``c`` in a message's words: "mesh stage 2", "the shaft 2", "the load coupling"."""
+def stiffness_keys(lay: Layout, c: int) -> str:
+    """What sets a connector's stiffness, in the design file's words, for a message's "check ..."."""
     x = lay.connectors[c]
-    return f"mesh stage {x.index + 1}" if x.role == "mesh" else f"the {x.label}"
-
-
-def _stiffest(lin: Linearisation, lay: Layout) -> str:
-    """The connector of any kind whose own mode (its stiffness against the inertias it joins) is fastest, in words:
-    a stiff shaft on a light pinion, not the mesh beside it, is what a refusal or a divergence must name."""
-    own = [float(lin.stiffness[c]) * mobility(lay, c) for c in range(len(lay.connectors))]
-    return connector_words(lay, int(np.argmax(own))) if own else ""
+    if x.role == "shaft":
+        return f"the stiffness of shaft {x.index + 1} (stage[{x.index}].shaft.stiffness_Nm_rad)"
+    if x.label in ("input coupling", "load coupling"):
+        side = x.label.split()[0]
+        return f"the stiffness of the {x.label} ({side}.coupling_stiffness_Nm_rad)"
+    if x.role in ("mesh", "planet"):
+        return f"the contact law of mesh stage {x.index + 1} (stiffness, exponent)"
+    return f"the stiffness of the {x.label}"
 
 
 def _self_exciting(lay: Layout, spec: ModelSpec) -> np.ndarray:
@@ -440,5 +451,5 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     else:
         chosen = IMPLICIT_METHOD
         reason = f"{why}: implicit {chosen} with the analytic Jacobian" + (f" ({barred})" if barred else "")
-    return Choice(chosen, requested, reason, indicator, ratio, full, op, _stiffest_mesh(op, lay), spec, lay,
-                  vib, nfev, exc, walls, on, size, barred if requested == AUTO else "", _stiffest(lin, lay))
+    return Choice(chosen, requested, reason, indicator, ratio, full, op, spec, lay,
+                  vib, nfev, exc, walls, on, size, barred if requested == AUTO else "")

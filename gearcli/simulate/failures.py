@@ -107,25 +107,20 @@ def _divergence_hint(choice: Choice, run: Integration) -> str:
     """The fix for a diverging run: an implicit method for a stiff scene, else a tighter tolerance."""
     if run.method in EXPLICIT:
         return _stiffness_hint(choice)
-    return (f"tighten simulation.rtol (now {run.rtol:g}, try {run.rtol / 100:g}); if it persists, check the contact "
-            f"law of mesh stage {choice.stiffest_mesh + 1} (stiffness, exponent) and the inertias")
+    return (f"tighten simulation.rtol (now {run.rtol:g}, try {run.rtol / 100:g}); if it persists, check "
+            f"{choice.stiff_element[1]} and the inertias")
 
 
 def _stiffness_hint(choice: Choice) -> str:
-    k = choice.stiffest_mesh
+    name, keys = choice.stiff_element
     freqs = choice.at_operating_point.natural_frequencies_Hz
     f = float(freqs[-1]) if freqs.size else 0.0
     if choice.method in EXPLICIT and choice.indicator > STIFFNESS_LIMIT:
-        # the element of the fastest own mode, of any kind (a stiff shaft on a light pinion, not its mesh)
-        words = choice.stiffest or f"mesh stage {k + 1}"
-        check = (f"the contact law of {words} (stiffness, exponent)" if words.startswith("mesh stage")
-                 else f"{words}'s stiffness and the inertias it joins")
-        stiff = (f"{words} makes the scene stiff (highest mode {f:.3g} Hz, "
+        stiff = (f"{name} makes the scene stiff (highest mode {f:.3g} Hz, "
                  f"max|λ|·T = {choice.indicator:.3g}, {choice.indicator / STIFFNESS_LIMIT:.2g}x what an explicit "
                  "method affords here)")
         if choice.requested == AUTO:  # auto took the explicit method as the cheaper one, and found none cheaper after
             return (f"{stiff}; {IMPLICIT_METHOD} was predicted to need {choice.predicted_evals[1]:.2g} evaluations: "
-                    f"shorten simulation.duration_s, or check {check} for a unit mistake")
+                    f"shorten simulation.duration_s, or check {keys} for a unit mistake")
         return f'{stiff}: use method = "{IMPLICIT_METHOD}" (or "auto")'
-    return (f"check the contact law of mesh stage {k + 1} (stiffness, exponent) and the inertias; "
-            f'try method = "{IMPLICIT_METHOD}" with a tighter rtol')
+    return f'check {keys} and the inertias; try method = "{IMPLICIT_METHOD}" with a tighter rtol'
