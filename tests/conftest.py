@@ -42,6 +42,9 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # session 23, tr28c: a sweep in a fresh process whose numba cannot be imported (~8 s under load; the same refusal
+    # with numba missing stays in the default tier, in-process)
+    "tests/sweep/test_sweep_compiled_without_numba.py::test_numba_installed_but_not_importable_names_its_error",
     # session 22, tr27f: a rattling viscous mesh against an independent solve_ivp model with exact contact switching
     # (~4 s; the kink bound's closed-form cases stay in the default tier: tests/unit/test_kink_bound.py)
     "tests/reference/test_viscous_rattle_sampling.py::test_a_rattling_viscous_mesh_s_min_is_estimated_near_its_miss",
