@@ -53,6 +53,9 @@ SLOW = (
     # session 23, tr28f: DOP853 at its stability limit on an undamped chain against an exact linear solution (~3.5 s;
     # its refusal naming a shaft or coupling stays in the default tier)
     "tests/extreme/test_guards.py::test_an_explicit_run_at_its_stability_limit_is_not_warned_of_force_noise_it_does_not_make",
+    # session 23, tr28c: a sweep in a fresh process whose numba cannot be imported (~8 s under load; the same refusal
+    # with numba missing stays in the default tier, in-process)
+    "tests/sweep/test_sweep_compiled_without_numba.py::test_numba_installed_but_not_importable_names_its_error",
     # session 22, tr27f: a rattling viscous mesh against an independent solve_ivp model with exact contact switching
     # (~4 s; the kink bound's closed-form cases stay in the default tier: tests/unit/test_kink_bound.py)
     "tests/reference/test_viscous_rattle_sampling.py::test_a_rattling_viscous_mesh_s_min_is_estimated_near_its_miss",

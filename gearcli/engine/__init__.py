@@ -218,6 +218,19 @@ class EngineChoice:
     unsupported: tuple[str, ...] = ()
 
 
+def compiled_problem() -> str | None:
+    """Why ``engine = "compiled"`` cannot run in this process, in the words of its usage error (numba, the ``fast``
+    extra, not installed, or installed but not importable: the extra named), or None when it can (imports numba,
+    as a compiled run does anyway)."""
+    if not available():
+        return f'engine = "compiled" needs numba, the fast extra: {INSTALL_HINT}'
+    why = None if "loaded" in _state else import_problem()
+    if why is not None:
+        return (f'engine = "compiled" needs numba, the fast extra, and numba is installed but cannot be imported '
+                f"({why}): pip install --force-reinstall 'gearcli[fast]'")
+    return None
+
+
 def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tuple[str, ...] = (),
            size=None) -> EngineChoice:
     """The engine of one run. ``compiled`` without numba raises :class:`~gearcli.errors.ConfigError`
@@ -237,15 +250,13 @@ def choose(requested: str, arrays, method: str, nfev_estimate: float, also: tupl
         return EngineChoice("python", requested, "as requested")
     have = available()
     if requested == "compiled" and not have:
-        raise ConfigError(f'engine = "compiled" needs numba, the fast extra: {INSTALL_HINT}', key="simulation.engine")
+        raise ConfigError(str(compiled_problem()), key="simulation.engine")
     missing = tuple(unsupported(arrays, method)) + tuple(also)
     if missing:
         return EngineChoice("python", requested, "the compiled engine does not support " + "; ".join(missing),
                             missing)
-    why = None if "loaded" in _state else import_problem() if requested == "compiled" else None
-    if why is not None:
-        raise ConfigError(f'engine = "compiled" needs numba, the fast extra, and numba is installed but cannot be '
-                          f"imported ({why}): pip install --force-reinstall 'gearcli[fast]'", key="simulation.engine")
+    if requested == "compiled" and (problem := compiled_problem()) is not None:
+        raise ConfigError(problem, key="simulation.engine")
     if requested == "compiled":
         return EngineChoice("compiled", requested, "as requested")
     if not have:

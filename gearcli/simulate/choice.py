@@ -77,6 +77,7 @@ class Choice:
     engines: tuple[str, str] = ("python", "python")  # the engine each prediction is priced on
     size: ModelSize = ModelSize()  # what the price per evaluation depends on (gearcli.core.cost.PRICE_US)
     explicit_barred: str = ""  # why auto offers no explicit method, neither at the start nor on a course change
+    auto_method: str = EXPLICIT_METHOD  # what ``auto`` takes on this scene at these prices (a requested method too)
 
     @property
     def reported(self) -> Linearisation:
@@ -442,14 +443,14 @@ def choose_method(spec: ModelSpec, duration_s: float, requested: str, rtol: floa
     costs = f"predicted DOP853 {_priced(nfev[0], walls[0], on[0], loads[0])}, Radau {_priced(nfev[1], walls[1], on[1], loads[1])}"
     why = f"{summary}, {vib:.3g} rad of excited vibration, {exc:.3g} rad of excitation: {costs}"
     barred = sign_flips(lay)
+    explicit = walls[0] - loads[0] <= IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator) \
+        and not barred
+    pick = EXPLICIT_METHOD if explicit else IMPLICIT_METHOD  # auto's, whatever was requested
     if requested != AUTO:
         chosen, reason = requested, f"as requested ({summary})"
-    elif walls[0] - loads[0] <= IMPLICIT_MARGIN * (walls[1] - loads[1]) and not _explicit_refused(indicator) \
-            and not barred:
-        chosen = EXPLICIT_METHOD
-        reason = f"{why}: explicit {chosen}"
+    elif explicit:
+        chosen, reason = pick, f"{why}: explicit {pick}"
     else:
-        chosen = IMPLICIT_METHOD
-        reason = f"{why}: implicit {chosen} with the analytic Jacobian" + (f" ({barred})" if barred else "")
+        chosen, reason = pick, f"{why}: implicit {pick} with the analytic Jacobian" + (f" ({barred})" if barred else "")
     return Choice(chosen, requested, reason, indicator, ratio, full, op, spec, lay,
-                  vib, nfev, exc, walls, on, size, barred if requested == AUTO else "")
+                  vib, nfev, exc, walls, on, size, barred if requested == AUTO else "", pick)

@@ -22,7 +22,7 @@ from gearcli import __version__, engine
 from gearcli.config import DesignFile, LoadedDesign
 from gearcli.config.bounds import check_memory, memory_estimate_bytes, output_samples
 from gearcli.config.load import integer_keys, list_keys, table_keys
-from gearcli.config.overrides import SOURCE
+from gearcli.config.overrides import SOURCE, blames_key
 from gearcli.core.jsontypes import JsonObject
 from gearcli.errors import ConfigError
 from gearcli.results import DesignResult
@@ -88,6 +88,7 @@ class Session:
 
 #: the row formats a sweep writes (``--format``; ``gearcli.io.sweep_file``'s sinks)
 FORMATS = ("csv", "json")
+ENGINE_KEY = "simulation.engine"
 
 
 def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequence[str], *, vary: Sequence[str],
@@ -120,6 +121,8 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     _no_continuous_integers(spec, scene)
     _no_fractional_counts(spec, scene)
     check_motor_speed(spec.keys, loaded.design, loaded.source)
+    if scheduler is None:
+        _compiled_here(spec, loaded, sets)
     ident = identity(spec, loaded.sha256, __version__)
     if stored is not None and output:
         check_same(stored, ident, output)
@@ -137,6 +140,22 @@ def prepare(raw: bytes, loaded: LoadedDesign, design: DesignResult, sets: Sequen
     previous = ordered(previous, spec)
     return Session(spec, scene, loaded.design, design, written, ident,
                    previous, tasks, todo, len(previous), workers, scheduler, output, fmt, tuple(design.warnings), notes)
+
+
+def _compiled_here(spec: SweepSpec, loaded: LoadedDesign, sets: Sequence[str]) -> None:
+    """``engine = "compiled"`` (the file's, a ``--set``'s or a ``--vary`` value) where numba, the ``fast`` extra, is
+    missing or cannot be imported: the usage error ``simulate`` gives (exit 2, before any point runs), not a
+    ``failed`` row per point. A local sweep's workers are this machine's processes; a Dask cluster's workers have
+    their own installation, and their rows say it."""
+    varied = [(a.label or a.key, v) for a in spec.axes if a.key == ENGINE_KEY for v in a.values]
+    if not any(v == "compiled" for _, v in varied) and (varied or loaded.design.simulation.engine != "compiled"):
+        return
+    problem = engine.compiled_problem()
+    if problem is None:
+        return
+    if varied:
+        raise SweepUsageError(problem, source="--vary", key=varied[0][0])
+    raise ConfigError(problem, source=SOURCE if blames_key(ENGINE_KEY, sets) else loaded.source, key=ENGINE_KEY)
 
 
 def _named_by_option(exc: ConfigError, spec: SweepSpec, sets: Sequence[str]) -> ConfigError:
