@@ -244,7 +244,9 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
         fate = (f"; the load's torque_speed table meets it at {met:.5g} rpm of the output, so the train settles at "
                 f"{met * input_speed_rpm / output_speed_rpm:.5g} rpm, not at {input_speed_rpm:.5g} rpm")
     else:
-        way = "accelerates" if excess * (required_input_Nm or 1.0) > 0.0 else "decelerates (and reverses)"
+        # the net torque along the train's running direction (speeds positive there, a reversed load's negative
+        # requirement included): T_in - T_req > 0 speeds it up whatever the signs of either
+        way = "accelerates" if excess > 0.0 else "decelerates (and reverses)"
         fate = (f"; nothing balances the difference ({excess:+.4g} N·m), so the train {way} for the whole run and "
                 "its speeds and window statistics drift")
     return (lead + fate + f": set the drive's torque to {required_input_Nm:.5g} N·m for the nominal speed"

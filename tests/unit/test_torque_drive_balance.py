@@ -140,3 +140,27 @@ def test_a_table_load_that_meets_the_drive_names_where_the_train_settles(tmp_pat
     loaded, design = api.load_and_design(str(path), ["simulation.window_start_s=0.4"])
     result = api.simulate(loaded.design, design)
     assert_allclose(result.input_speed_deg_s / 6.0, 2000.0, rtol=1e-4)
+
+
+def test_a_reversed_constant_load_says_which_way_the_train_goes(tmp_path):
+    """Against a reversed (driving) constant load the train's fate follows the sign of the net torque T_in - T_req,
+    not the two magnitudes (was: "decelerates (and reverses)" for T_in = -40 N·m against T_req = -50 N·m, while
+    the train speeds up, and "accelerates" for -60 N·m, while it slows down and reverses). By hand, lossless,
+    T_req = T_L / u = -100 / 2 = -50 N·m at the input; the rigid train J_eff = 0.002 + 0.02 / 2^2 = 0.007 kg·m²
+    speeds up at a = (T_in - T_req) / J_eff, so over the window [t0, t1] its mean input speed is
+    w_0 + a (t0 + t1) / 2 (1500 rpm at t = 0, the torque drive's start)."""
+    rpm = math.pi / 30.0
+    for t_in, words in ((-40.0, "accelerates for the whole run"), (-60.0, "decelerates (and reverses)")):
+        path = tmp_path / "reversed.toml"
+        path.write_text(SCENE.format(t_in=t_in, p=0).replace("torque_Nm = 100\n", "torque_Nm = -100\n")
+                        .replace("duration_s = 0.6", "duration_s = 0.2"))
+        loaded, design = api.load_and_design(str(path), [])
+        found = [d for d in design.diagnostics if d.data.get("check") == "torque_drive_balance"]
+        assert len(found) == 1 and words in found[0].message, found[0].message
+        assert_allclose(found[0].data["required_input_torque_Nm"], -50.0, rtol=1e-12)
+        result = api.simulate(loaded.design, design)
+        t0, t1 = result.window_s
+        a = (t_in + 50.0) / (0.002 + 0.02 / 4.0)
+        hand = 1500.0 + a * 0.5 * (t0 + t1) / rpm
+        assert_allclose(result.input_speed_deg_s / 6.0, hand, rtol=2e-3)  # the mesh's compliance only
+        assert (result.input_speed_deg_s / 6.0 - 1500.0) * (t_in + 50.0) > 0.0
