@@ -42,6 +42,8 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # session 23, tr28d: a torque drive against an overhauling load table, run to its balance twice (~4 s)
+    "tests/unit/test_torque_drive_balance.py::test_the_dynamic_factor_refers_to_the_load_where_the_drive_settles_on_an_overhauling_table",
     # session 22, tr27f: a rattling viscous mesh against an independent solve_ivp model with exact contact switching
     # (~4 s; the kink bound's closed-form cases stay in the default tier: tests/unit/test_kink_bound.py)
     "tests/reference/test_viscous_rattle_sampling.py::test_a_rattling_viscous_mesh_s_min_is_estimated_near_its_miss",

@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from gearcli.core.memo import remember
-from gearcli.design.checks import TORQUE_BALANCE_TOLERANCE
+from gearcli.design.drive_balance import TORQUE_BALANCE_TOLERANCE
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine
 from gearcli.model.planet_excitation import REPEATED
@@ -184,12 +184,12 @@ def torque_drive_speed_rad_s(lay: Layout) -> float:
 def torque_drive_balance_rad_s(lay: Layout) -> float | None:
     """The input speed where a torque drive's torque meets the load reflected to it (:func:`torque_drive_speed_rad_s`),
     None where nothing balances it: a constant load that differs from the drive's torque by more than the design
-    check's tolerance (``gearcli.design.checks.TORQUE_BALANCE_TOLERANCE``: the train accelerates or decelerates
+    check's tolerance (``gearcli.design.drive_balance.TORQUE_BALANCE_TOLERANCE``: the train accelerates or decelerates
     for the whole run), or a speed law the drive meets at no speed."""
     w0, t_in = lay.drive.speed_rad_s, lay.drive.torque_Nm
     if w0 <= 0.0:
         return w0
-    if not lay.load_law or t_in <= 0.0:
+    if not lay.load_law:  # a constant load balances the drive only where it already does, at w0
         need = reflected_load_Nm(lay, w0)
         return w0 if t_in == need or (need != 0.0 and abs(t_in / need - 1.0) <= TORQUE_BALANCE_TOLERANCE) else None
 

@@ -23,7 +23,7 @@ from gearcli.engine import reproducible as reproducible_batch
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.damping import operating_load_factor
-from gearcli.model.linear import damped_modes, static_line_forces_N
+from gearcli.model.linear import damped_modes, operating_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, stage_rows, tangential_force_N
 from gearcli.results import DesignResult, MeshStiffness
@@ -550,8 +550,8 @@ def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     not at the nominal speed its ``torque_Nm`` is given for: a torque drive settling at 1.28x the nominal speed of
     a quadratic load carried 1.65x the nominal force, which read as a dynamic factor of 1.65 on a steady run."""
     lay = model.layout
-    scale = operating_load_factor(lay)
-    return [tangential_force_N(lay, k, f * scale) for k, f in enumerate(static_line_forces_N(lay).tolist())]
+    return [tangential_force_N(lay, k, f) for k, f in
+            enumerate(operating_line_forces_N(lay, operating_load_factor(lay)).tolist())]
 
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:

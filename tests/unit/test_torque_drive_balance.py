@@ -164,3 +164,56 @@ def test_a_reversed_constant_load_says_which_way_the_train_goes(tmp_path):
         hand = 1500.0 + a * 0.5 * (t0 + t1) / rpm
         assert_allclose(result.input_speed_deg_s / 6.0, hand, rtol=2e-3)  # the mesh's compliance only
         assert (result.input_speed_deg_s / 6.0 - 1500.0) * (t_in + 50.0) > 0.0
+
+
+OVERHAULING = [[0, -150], [1000, -40], [2000, 0]]  # output rpm, N·m: a load that drives the train below 2000 rpm
+
+
+def _overhauling(tmp_path, t_in, sets=()):
+    path = tmp_path / "overhauling.toml"
+    path.write_text(SCENE.format(t_in=t_in, p=0).replace("normal_pressure_angle_deg = 20\n",
+                                                         "normal_pressure_angle_deg = 20\nefficiency = 0.9\n")
+                    .replace("torque_Nm = 100\nspeed_exponent = 0", f"torque_speed = {OVERHAULING}"))
+    loaded, design = api.load_and_design(str(path), list(sets))
+    found = [d for d in design.diagnostics if d.data.get("check") == "torque_drive_balance"]
+    return loaded, design, found
+
+
+def test_a_torque_drive_against_an_overhauling_table_settles_where_the_losses_say(tmp_path):
+    """A table load that drives the train (negative torque) balances a torque drive where the table meets the drive's
+    torque carried through the losses in the power flow's direction, found in the way the train moves. By hand
+    (u = 2, eta = 0.9, nominal 750 rpm at the output where the table gives -67.5 N·m, so T_req = -67.5 eta / u =
+    -30.375 N·m): T_in = -10 N·m brakes the load's power flowing back, T_L = T_in u / eta = -22.22 N·m, met on the
+    second segment at 1444.4 rpm (input 2888.9 rpm), above the nominal speed since T_in > T_req; T_in = +10 N·m
+    drives the train forward, T_L = T_in u eta = +18 N·m, met on the last segment extended at 2450 rpm (input
+    4900). Was 1161.6 rpm (sought downwards, the first segment extended) and 2555.6 rpm (the load's scale taken
+    through the nominal losses), and the model took speed_rpm for a negative drive torque, so the run's static
+    F_t reference (dynamic factor) was the nominal load's: 0.33x where the drive ran at its balance."""
+    from gearcli.model.assembly import Layout
+    from gearcli.model.damping import operating_speed_rad_s
+    from gearcli.scene import spec_from_design
+    rpm = math.pi / 30.0
+    for t_in, n_out in ((-10.0, 1000.0 + 1000.0 * (40.0 - 10.0 * 2.0 / 0.9) / 40.0), (10.0, 2000.0 + 10.0 * 2.0 * 0.9 / 0.04)):
+        loaded, design, found = _overhauling(tmp_path, t_in)
+        assert len(found) == 1, [d.message for d in design.diagnostics]
+        assert_allclose(found[0].data["required_input_torque_Nm"], -67.5 * 0.9 / 2.0, rtol=1e-12)
+        assert f"meets it at {n_out:.5g} rpm of the output, so the train settles at {2.0 * n_out:.5g} rpm" \
+            in found[0].message, found[0].message
+        lay = Layout.of(spec_from_design(loaded.design, design))
+        assert_allclose(operating_speed_rad_s(lay) / rpm, 2.0 * n_out, rtol=1e-9)
+
+
+def test_the_dynamic_factor_refers_to_the_load_where_the_drive_settles_on_an_overhauling_table(tmp_path):
+    """The run's static F_t reference (``simulated_static_tangential_N``, the dynamic factor's) is the load where the
+    torque drive settles, with the losses in that load's power flow. By hand (r_p = 3 * 20 / 2 = 30 mm): T_in =
+    +10 N·m drives the train forward at its balance, F_t = T_in / r_p = 333.33 N (the nominal load, -67.5 N·m,
+    flows back: scaled with its losses the reference read eta x that, 300 N, a dynamic factor of 1.111 on a steady
+    run); T_in = -10 N·m brakes the power flowing back, the gear drives and the pinion gets eta of the law's force:
+    F_t = T_in / (eta r_p) = -370.37 N (was the nominal load's -1125 N, a dynamic factor of 0.33)."""
+    for t_in, hand in ((10.0, 10.0 / 0.030), (-10.0, -10.0 / (0.9 * 0.030))):
+        loaded, design, _ = _overhauling(tmp_path, t_in, ["simulation.duration_s=1.2", "simulation.steps=1200",
+                                                          "simulation.window_start_s=0.8"])
+        stage = api.simulate(loaded.design, design).stages[0]
+        assert_allclose(stage.simulated_static_tangential_N, hand, rtol=1e-9)
+        assert_allclose(stage.tangential_N.mean, hand, rtol=1e-4)  # settled: tau = J_eff / (dT/dw) ~ 0.08 s
+        assert_allclose(stage.dynamic_factor, 1.0, atol=1e-3)
