@@ -428,8 +428,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
     share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
-    statics = [m.static_tangential_N for m in spec.meshes]
-    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic, rows)  # both below
+    statics, flank = [m.static_tangential_N for m in spec.meshes], stats.loaded_flank(operating_load_factor(model.layout))
+    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], [flank * f for f in statics], periodic, rows)
     # a periodic window is judged without the modes (its own grid): their eigenproblem is not solved for it
     samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
                                          floors, reduced, model.layout, None if periodic else choice.run_eigenvalues,
@@ -455,7 +455,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
     diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m, reduced,
-                                                     planet_contact_warnings(model, s, mask))
+                                                     planet_contact_warnings(model, s, mask), flank)
     toggled = None
     if model.layout.drive.motor is not None:
         from gearcli.simulate import motor as motor_side  # lazy: a motor drive's run only

@@ -209,11 +209,17 @@ def test_the_dynamic_factor_refers_to_the_load_where_the_drive_settles_on_an_ove
     +10 N·m drives the train forward at its balance, F_t = T_in / r_p = 333.33 N (the nominal load, -67.5 N·m,
     flows back: scaled with its losses the reference read eta x that, 300 N, a dynamic factor of 1.111 on a steady
     run); T_in = -10 N·m brakes the power flowing back, the gear drives and the pinion gets eta of the law's force:
-    F_t = T_in / (eta r_p) = -370.37 N (was the nominal load's -1125 N, a dynamic factor of 0.33)."""
+    F_t = T_in / (eta r_p) = -370.37 N (was the nominal load's -1125 N, a dynamic factor of 0.33). The loaded flank
+    is the one the operating load presses: at +10 N·m the drive flank carries the whole window (F_t > 0 throughout),
+    which read as the nominal load's back flank lost in 100 % of the samples (``contact_loss``, back-flank fraction 1)."""
     for t_in, hand in ((10.0, 10.0 / 0.030), (-10.0, -10.0 / (0.9 * 0.030))):
         loaded, design, _ = _overhauling(tmp_path, t_in, ["simulation.duration_s=1.2", "simulation.steps=1200",
                                                           "simulation.window_start_s=0.8"])
-        stage = api.simulate(loaded.design, design).stages[0]
+        result = api.simulate(loaded.design, design)
+        stage = result.stages[0]
         assert_allclose(stage.simulated_static_tangential_N, hand, rtol=1e-9)
         assert_allclose(stage.tangential_N.mean, hand, rtol=1e-4)  # settled: tau = J_eff / (dT/dw) ~ 0.08 s
         assert_allclose(stage.dynamic_factor, 1.0, atol=1e-3)
+        assert stage.tangential_N.min * hand > 0.0 and stage.tangential_N.max * hand > 0.0  # one flank throughout
+        assert stage.back_flank_fraction == 0.0 and stage.contact_loss_fraction == 0.0
+        assert not [d for d in result.diagnostics if d.code == "contact_loss"]
