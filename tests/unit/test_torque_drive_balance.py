@@ -223,3 +223,12 @@ def test_the_dynamic_factor_refers_to_the_load_where_the_drive_settles_on_an_ove
         assert stage.tangential_N.min * hand > 0.0 and stage.tangential_N.max * hand > 0.0  # one flank throughout
         assert stage.back_flank_fraction == 0.0 and stage.contact_loss_fraction == 0.0
         assert not [d for d in result.diagnostics if d.code == "contact_loss"]
+        # report's theory at the operating point: F_t by hand, F_r = F_t tan 20° (spur) (was 300 N at +10 N·m: -11 %)
+        from gearcli.model.assembly import Layout
+        from gearcli.report.build import theory_point
+        from gearcli.report.compare import comparison_rows
+        from gearcli.scene import spec_from_design
+        rows = comparison_rows(design, result, theory_point(Layout.of(spec_from_design(loaded.design, design)), design))
+        theory = {r.quantity: r.theory for r in rows if r.stage == 1}
+        assert_allclose([theory["tangential_N"], theory["radial_N"]], [hand, hand * math.tan(math.radians(20.0))],
+                        rtol=1e-9)
