@@ -55,6 +55,19 @@ def reflected_load_Nm(lay: Layout, w: float) -> float:
     return t / lay.train_efficiency() if t >= 0 else t * lay.train_efficiency(forward=False)
 
 
+def breakaway_Nm(lay: Layout) -> float:
+    """A ``torque_speed`` load table's torque at standstill (its first point: the breakaway a start must exceed),
+    reflected to the input body through the train's ratio and efficiencies (power flowing forward); 0 for another
+    law or a table that does not resist there. The model's table turns with the rotation, tanh(w / w_eps) (w_eps 0.5 %
+    of the nominal output speed, docs/physics.md), which is 0 at rest: a table falling within a few w_eps of rest
+    (a breakaway falling to its running torque) there carries the model's train through a breakaway that holds it."""
+    law = lay.load_law
+    if not law or law[machine.L_KIND] != machine.TABLE:
+        return 0.0
+    t = lay.load.torque_Nm * law[machine.L_TAB + int(law[machine.L_N])] * lay.bodies[-1].ratio
+    return t / lay.train_efficiency() if t > 0.0 else 0.0
+
+
 def back_driving_Nm(lay: Layout, forward_Nm: float) -> float:
     """What a load of ``forward_Nm`` at the input body (:func:`reflected_load_Nm`, power flowing forward) puts on it
     as it drives the train backwards: through the losses both ways, T_L eta_back / i. A start's torque at standstill
