@@ -49,6 +49,15 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
         settle = input_speed_rpm * ratio ** (1.0 / p)
         fate = (f"; the load's torque grows with speed^{p}, so the train settles at {settle:.5g} rpm "
                 f"(n_0 (T_in / T_req)^(1/{p})), not at {input_speed_rpm:.5g} rpm")
+    elif p > 0 and t_in < 0.0:  # the law, odd in speed, brakes the train turning backwards: it settles there
+        settle = -input_speed_rpm * (-ratio) ** (1.0 / p)
+        fate = (f"; the drive turns the train backwards, where the load's torque (speed^{p}, odd in speed) brakes it: "
+                f"it stops, reverses and settles at {settle:.5g} rpm (-n_0 (|T_in| / T_req)^(1/{p})), not at "
+                f"{input_speed_rpm:.5g} rpm")
+    elif p > 0:  # no drive torque: the load's torque falls with the speed, so the train never quite stops
+        fate = (f"; without a drive torque the load brakes the train towards rest, ever more slowly (its torque falls "
+                f"with speed^{p}, so it stops in no finite time), for the whole run, and its speeds and window "
+                "statistics drift")
     elif met is not None:
         fate = (f"; the load's torque_speed table meets it at {met:.5g} rpm of the output, so the train settles at "
                 f"{met * input_speed_rpm / output_speed_rpm:.5g} rpm, not at {input_speed_rpm:.5g} rpm")

@@ -232,3 +232,16 @@ def test_the_dynamic_factor_refers_to_the_load_where_the_drive_settles_on_an_ove
         theory = {r.quantity: r.theory for r in rows if r.stage == 1}
         assert_allclose([theory["tangential_N"], theory["radial_N"]], [hand, hand * math.tan(math.radians(20.0))],
                         rtol=1e-9)
+
+
+def test_a_negative_drive_torque_against_a_speed_law_settles_backwards(tmp_path):
+    """A speed law odd in speed brakes the train turning backwards: T_in = -30 N·m against the fan's T_req = 50 N·m
+    (module scene) settles at -1500 sqrt(30 / 50) = -1161.9 rpm (p = 2), -1500 x 30 / 50 = -900 rpm (p = 1), by
+    hand (the rigid train's T_in = T_req (n / n_0) |n / n_0|^(p-1)); a zero drive torque lets the load brake it
+    towards rest, which a law falling with the speed never reaches. Was "decelerates (and reverses) for the whole
+    run" for all three."""
+    for t_in, p, words in ((-30.0, 2, f"settles at {-1500.0 * math.sqrt(0.6):.5g} rpm"), (-30.0, 1, "settles at -900 rpm"),
+                           (0.0, 2, "brakes the train towards rest")):
+        _, _, found = _balance(tmp_path, t_in, p)
+        assert len(found) == 1 and words in found[0].message and "reverses) for" not in found[0].message, \
+            found[0].message
