@@ -97,6 +97,12 @@ def operating_line_forces_N(lay: Layout, load_factor: float) -> np.ndarray:
     conns, meshes = list(lay.connectors), list(lay.stage_conn)
     nominal = np.asarray(power_path_loss_factors(lay.spec, conns))[meshes]
     turned = np.asarray(power_path_loss_factors(lay.spec, conns, forward=lay.load.torque_Nm < 0.0))[meshes]
+    for i, c in enumerate(meshes):  # a planet mesh's own loss is in its lever: its stage's factor of the other flow
+        x = conns[c]
+        model = lay.spec.stage_models[x.index] if x.load_body >= 0 else None
+        nominal_factor = getattr(model, f"{x.gear}_force_factor", 0.0)
+        if nominal_factor:  # a planetary's (a plug-in stage model without these keeps its nominal flow's)
+            turned[i] *= getattr(model, f"other_{x.gear}_force_factor", nominal_factor) / nominal_factor
     return forces * turned / nominal
 
 

@@ -455,7 +455,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
     diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m, reduced,
-                                                     planet_contact_warnings(model, s, mask), flank)
+                                                     planet_contact_warnings(model, s, mask, flank), flank)
     toggled = None
     if model.layout.drive.motor is not None:
         from gearcli.simulate import motor as motor_side  # lazy: a motor drive's run only

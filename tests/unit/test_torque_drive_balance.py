@@ -10,6 +10,7 @@ n* = 1500 √(60 / 50) = 1643.17 rpm. With a constant load (p = 0) nothing balan
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 from numpy.testing import assert_allclose
 
@@ -245,3 +246,26 @@ def test_a_negative_drive_torque_against_a_speed_law_settles_backwards(tmp_path)
         _, _, found = _balance(tmp_path, t_in, p)
         assert len(found) == 1 and words in found[0].message and "reverses) for" not in found[0].message, \
             found[0].message
+
+
+def test_a_planetary_stage_s_static_reference_takes_the_other_flow_s_losses(tmp_path):
+    """configs/mixer_planetary_motor.toml (planetary 18/45/108 x 3, ring held, sun in, eta 0.98; helical 17/121, eta
+    0.985) on a torque drive of 30 N·m against an overhauling table, -30 kN·m at rest to +2 kN·m at 40 rpm: the
+    nominal 29.8 rpm reads -3100 N·m (power flowing back), the balance (by hand, T_L = T_in i eta at 38.886 rpm) is
+    forward. The sun drives its three planets there: F_t = T_in / (3 r_s) = 30 / (3 x 0.027) = 370.37 N, which the
+    run's window mean gives (370.33 N over 10-12 s); the reference took the planet mesh's own loss for the nominal
+    reversed flow, 359.88 N (a dynamic factor of 1.029 on a steady run)."""
+    from gearcli.model import TorsionalModel
+    from gearcli.model.damping import operating_speed_rad_s
+    from gearcli.simulate.run import simulated_static_tangential_N
+    text = (Path(__file__).resolve().parents[2] / "configs" / "mixer_planetary_motor.toml").read_text()
+    path = tmp_path / "mixer.toml"
+    path.write_text(text.replace("speed_exponent = 1 ", "# "))
+    loaded, design = api.load_and_design(str(path), [
+        "input.drive=torque", "input.torque_Nm=30", "load.torque_speed=[[0, -30000], [20, -8000], [40, 2000]]"])
+    model = TorsionalModel(api.model_spec(loaded.design, design))
+    ratio = 7.0 * 121.0 / 17.0
+    n_out = 20.0 + 20.0 * (30.0 * ratio * 0.98 * 0.985 + 8000.0) / 10000.0  # the table's second segment
+    assert_allclose(operating_speed_rad_s(model.layout) / ratio * 30.0 / math.pi, n_out, rtol=1e-6)
+    sun, _ = simulated_static_tangential_N(model)
+    assert_allclose(sun, 30.0 / (3 * 0.027), rtol=2e-4)
