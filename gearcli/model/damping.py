@@ -179,10 +179,15 @@ def vfd_ramp_starts(lay: Layout) -> bool:
 
 def operating_load_factor(lay: Layout) -> float:
     """g of the load law T_L = T_ref g(w) at the output's speed in the steady state (:func:`operating_speed_rad_s`;
-    1 without a law): what the load torque the train carries there is of the nominal one."""
+    1 without a law): what the load torque the train carries there is of the nominal one. Kept with the layout (a
+    motor's operating point is a scan of its curve: a run's static reference and its loaded flank both ask)."""
     if not lay.load_law:
         return 1.0
-    return float(machine.load_factor(lay.load_law, operating_speed_rad_s(lay) * lay.bodies[-1].ratio)[0])
+    kept = lay.__dict__.get("_operating_load_factor")
+    if kept is None:
+        w = operating_speed_rad_s(lay) * lay.bodies[-1].ratio
+        kept = lay.__dict__.setdefault("_operating_load_factor", float(machine.load_factor(lay.load_law, w)[0]))
+    return kept
 
 
 def torque_drive_speed_rad_s(lay: Layout) -> float:
