@@ -85,7 +85,7 @@ def comparison_rows(design: DesignResult, sim: SimulationResult,
         share = _planets_mean_over_planet_1(dyn)
         sign *= driving_gear_factor(st, kind.model_signs_forces) * at_load
         reference = dyn.simulated_static_tangential_N
-        if at_load < 0.0 and not kind.model_signs_forces and static.tangential != 0.0 and reference is not None:
+        if at_load < 0.0 and static.tangential != 0.0 and reference is not None:  # a planetary's: its planets' mean
             # the load law's torque turned sign at the operating point, and the power flow with it: the losses act
             # the other way than in the design's statics; the run's static reference carries them (F_r, F_a pro rata)
             sign = reference / static.tangential
