@@ -43,8 +43,12 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
             f"at its nominal {input_speed_rpm:.5g} rpm (the load torque over the ratio, with the stage efficiencies)")
     ratio = t_in / required_input_Nm if required_input_Nm != 0.0 else 0.0
     table = cfg.load.torque_speed
-    met = (_table_settle_rpm(table, _balancing_load_Nm(t_in, ratio * table_value(table, output_speed_rpm), reflect),
-                             excess > 0.0, output_speed_rpm) if table is not None and output_speed_rpm > 0.0 else None)
+    target = _balancing_load_Nm(t_in, ratio * table_value(table, output_speed_rpm), reflect) if table else 0.0
+    met = (_table_settle_rpm(table, target, excess > 0.0, output_speed_rpm)
+           if table is not None and output_speed_rpm > 0.0 else None)
+    # a table resisting at rest (its first point, turning with the rotation) beyond the drive's torque holds the
+    # train there once the drive has let it slow down: it stops, it does not reverse
+    held = table is not None and met is None and excess < 0.0 and 0.0 <= target < table_value(table, 0.0)
     if p > 0 and ratio > 0.0:
         settle = input_speed_rpm * ratio ** (1.0 / p)
         fate = (f"; the load's torque grows with speed^{p}, so the train settles at {settle:.5g} rpm "
@@ -58,6 +62,10 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
         fate = (f"; without a drive torque the load brakes the train towards rest, ever more slowly (its torque falls "
                 f"with speed^{p}, so it stops in no finite time), for the whole run, and its speeds and window "
                 "statistics drift")
+    elif held:
+        fate = (f"; the train slows down to rest, where the load's torque_speed table holds it: its torque at "
+                f"standstill, {table_value(table, 0.0):.5g} N·m (its first point), exceeds the {target:.5g} N·m the drive "
+                "balances at the output, so it stays at rest (it does not reverse)")
     elif met is not None:
         fate = (f"; the load's torque_speed table meets it at {met:.5g} rpm of the output, so the train settles at "
                 f"{met * input_speed_rpm / output_speed_rpm:.5g} rpm, not at {input_speed_rpm:.5g} rpm")
@@ -68,7 +76,7 @@ def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_
         fate = (f"; nothing balances the difference ({excess:+.4g} N·m), so the train {way} for the whole run and "
                 "its speeds and window statistics drift")
     return (lead + fate + f": set the drive's torque to {required_input_Nm:.5g} N·m for the nominal speed"
-            + ("" if p > 0 or met is not None else " (or give the load a speed law, load.speed_exponent)"))
+            + ("" if p > 0 or met is not None or held else " (or give the load a speed law, load.speed_exponent)"))
 
 
 def _balancing_load_Nm(t_in: float, scaled: float, reflect: Callable[[float], float] | None) -> float:

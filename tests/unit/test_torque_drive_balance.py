@@ -125,11 +125,11 @@ def test_a_table_load_that_meets_the_drive_names_where_the_train_settles(tmp_pat
     difference ... accelerates for the whole run", while the run settled). By hand: T_L(n_out) = 20 + 0.1 n_out
     (95 N·m at the nominal 750 rpm, 47.5 N·m at the input); T_in = 60 N·m meets T_L = 120 N·m at n_out = 1000 rpm
     (input 2000 rpm), T_in = 30 N·m meets 60 N·m at 400 rpm (input 800); 5 N·m (10 N·m < the table's least 20)
-    meets it nowhere: the train decelerates."""
+    meets it nowhere: the train decelerates to rest, where the table's 20 N·m at standstill holds it."""
     path = tmp_path / "table.toml"
     for t_in, words in ((60.0, "meets it at 1000 rpm of the output, so the train settles at 2000 rpm"),
                         (30.0, "meets it at 400 rpm of the output, so the train settles at 800 rpm"),
-                        (5.0, "decelerates")):
+                        (5.0, "slows down to rest, where the load's torque_speed table holds it")):
         path.write_text(SCENE.format(t_in=t_in, p=0).replace("torque_Nm = 100\nspeed_exponent = 0",
                                                              "torque_speed = [[0, 20], [2000, 220]]"))
         _, design = api.load_and_design(str(path), [])
@@ -279,3 +279,20 @@ def test_a_planetary_stage_s_static_reference_takes_the_other_flow_s_losses(tmp_
     theory = {r.quantity: r.theory for r in rows if r.stage == 1}
     assert_allclose([theory["tangential_N"], theory["radial_N"]],
                     [30.0 / (3 * 0.027), 30.0 / (3 * 0.027) * math.tan(math.radians(20.0))], rtol=1e-9)
+
+
+def test_a_drive_below_a_table_s_breakaway_leaves_the_train_held_at_rest(tmp_path):
+    """A table that resists at rest (its first point, turning with the rotation) holds the train once a drive short
+    of the load has let it slow down: it stops and does not reverse. By hand (u = 2, eta = 0.9): the table 400 N·m
+    at rest, 212.5 N·m at the nominal 750 rpm (T_req = 212.5 / (u eta) = 118.06 N·m), never below 150 N·m; T_in =
+    50 N·m balances T_in u eta = 90 N·m at the output, which the table never comes down to: held at rest (the run
+    creeps at 1.8 rpm, the table's tanh over 0.5 % of the nominal speed). Was "decelerates (and reverses)"."""
+    path = tmp_path / "held.toml"
+    path.write_text(SCENE.format(t_in=50.0, p=0).replace("normal_pressure_angle_deg = 20\n",
+                                                          "normal_pressure_angle_deg = 20\nefficiency = 0.9\n")
+                    .replace("torque_Nm = 100\nspeed_exponent = 0", "torque_speed = [[0, 400], [1000, 150], [2000, 300]]"))
+    _, design = api.load_and_design(str(path), [])
+    found = [d for d in design.diagnostics if d.data.get("check") == "torque_drive_balance"]
+    assert len(found) == 1 and "reverses" not in found[0].message.replace("does not reverse", ""), found[0].message
+    assert_allclose(found[0].data["required_input_torque_Nm"], 212.5 / (2.0 * 0.9), rtol=1e-12)
+    assert "stays at rest" in found[0].message and f"{50.0 * 2.0 * 0.9:.5g} N·m the drive balances" in found[0].message
