@@ -56,6 +56,8 @@ SLOW = (
     # session 23, tr28c: a sweep in a fresh process whose numba cannot be imported (~8 s under load; the same refusal
     # with numba missing stays in the default tier, in-process)
     "tests/sweep/test_sweep_compiled_without_numba.py::test_numba_installed_but_not_importable_names_its_error",
+    # session 23, tr28d: a torque drive against an overhauling load table, run to its balance twice (~4 s)
+    "tests/unit/test_torque_drive_balance.py::test_the_dynamic_factor_refers_to_the_load_where_the_drive_settles_on_an_overhauling_table",
     # session 22, tr27f: a rattling viscous mesh against an independent solve_ivp model with exact contact switching
     # (~4 s; the kink bound's closed-form cases stay in the default tier: tests/unit/test_kink_bound.py)
     "tests/reference/test_viscous_rattle_sampling.py::test_a_rattling_viscous_mesh_s_min_is_estimated_near_its_miss",

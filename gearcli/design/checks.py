@@ -26,12 +26,12 @@ Choices where the contract is silent:
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING
 
-from gearcli.config.machine import table_value
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.text import beside
+from gearcli.design.drive_balance import torque_drive_warning
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
     hardened_tip_text,
@@ -57,15 +57,16 @@ if TYPE_CHECKING:
 
 MIN_CONTACT_RATIO = 1.2
 FACE_RATIO_RANGE = (0.2, 1.5)  # b / d1
-TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a fan law: 0.5 % in speed)
 
 
 # ---------------------------------------------------------------------------------------- warnings
 def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_speed_rpm: float,
-                       required_input_Nm: float, input_speed_rpm: float) -> tuple[Diagnostic, ...]:
+                       required_input_Nm: float, input_speed_rpm: float,
+                       reflect: Callable[[float], float] | None = None) -> tuple[Diagnostic, ...]:
     """The design's warnings as diagnostics (code ``design``; ``check`` names the check, with its stage,
     member and numbers): train-level first, then stage by stage. ``required_input_Nm`` is the input torque the
-    load needs at the nominal ``input_speed_rpm`` (for a torque drive's balance)."""
+    load needs at the nominal ``input_speed_rpm`` (for a torque drive's balance); ``reflect`` takes a load torque
+    (N·m, at the output) to the input torque that balances it, with the losses in its power flow's direction."""
     found: list[tuple[str | None, JsonObject]] = []
     if cfg.target is not None:
         found.append((target_speed_warning(cfg, output_speed_rpm),
@@ -73,7 +74,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                        "target_rpm": cfg.target.output_speed_rpm_value,
                        "tolerance_percent": cfg.target.tolerance_percent}))
     found.append((massless_rotor_warning(cfg), {"check": "motor_rotor_inertia"}))
-    found.append((torque_drive_warning(cfg, required_input_Nm, input_speed_rpm, output_speed_rpm),
+    found.append((torque_drive_warning(cfg, required_input_Nm, input_speed_rpm, output_speed_rpm, reflect),
                   {"check": "torque_drive_balance", "input_torque_Nm": cfg.input.torque_Nm_value,
                    "required_input_torque_Nm": required_input_Nm}))
     stages = tuple(stages)
@@ -206,70 +207,6 @@ def massless_rotor_warning(cfg: DesignFile) -> str | None:
     return ('input: drive = "motor" without input.inertia_kg_m2: the motor\'s rotor is taken as massless, so a '
             "start's acceleration, its time and its peak tooth loads follow the input pinion's inertia alone; give "
             "the rotor's inertia (the motor's catalogue) as input.inertia_kg_m2 with input.coupling_stiffness_Nm_rad")
-
-
-def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_rpm: float,
-                         output_speed_rpm: float = 0.0) -> str | None:
-    """A torque drive whose torque differs from the one the load needs at the nominal speed (the design's input
-    torque: load / ratio, with the stage efficiencies) by more than :data:`TORQUE_BALANCE_TOLERANCE`: the train does
-    not run at the nominal speed. A load torque T_L (n / n_0)^p (``speed_exponent`` p = 1, 2) balances the drive at
-    n* = n_0 (T_in / T_req)^(1/p) (the steady speed the run settles to), a ``torque_speed`` table where it meets
-    the drive's torque reflected to the output (:func:`_table_settle_rpm`, at the nominal ``output_speed_rpm``'s
-    scale); a constant load (p = 0), or a table the train never meets, does not: the train accelerates
-    (decelerates, reverses) for the whole run and every window statistic drifts."""
-    t_in = cfg.input.torque_Nm_value
-    if cfg.input.drive != "torque" or t_in is None:
-        return None
-    p = cfg.load.speed_exponent if cfg.load.torque_speed is None else 0
-    if p > 0 and required_input_Nm < 0.0:  # the load drives the train, harder the faster it turns: no stable balance
-        return (f'input: drive = "torque" gives {t_in:.5g} N·m against a load that drives the train ({required_input_Nm:.5g} '
-                f"N·m at the input at {input_speed_rpm:.5g} rpm) harder the faster it turns (speed^{p}): no speed is a "
-                f"stable balance, the train runs away (without bound{', in a finite time' if p == 2 else ''}) or stops "
-                "and reverses at the slightest difference; drive it by speed or by a motor, whose curve brakes it")
-    if required_input_Nm != 0.0 and abs(t_in / required_input_Nm - 1.0) <= TORQUE_BALANCE_TOLERANCE:
-        return None
-    if t_in == required_input_Nm:
-        return None
-    excess = t_in - required_input_Nm
-    lead = (f'input: drive = "torque" gives {t_in:.5g} N·m, the load needs {required_input_Nm:.5g} N·m at the input '
-            f"at its nominal {input_speed_rpm:.5g} rpm (the load torque over the ratio, with the stage efficiencies)")
-    ratio = t_in / required_input_Nm if required_input_Nm != 0.0 else 0.0
-    table = cfg.load.torque_speed
-    met = _table_settle_rpm(table, ratio, output_speed_rpm) if table is not None and output_speed_rpm > 0.0 else None
-    if p > 0 and ratio > 0.0:
-        settle = input_speed_rpm * ratio ** (1.0 / p)
-        fate = (f"; the load's torque grows with speed^{p}, so the train settles at {settle:.5g} rpm "
-                f"(n_0 (T_in / T_req)^(1/{p})), not at {input_speed_rpm:.5g} rpm")
-    elif met is not None:
-        fate = (f"; the load's torque_speed table meets it at {met:.5g} rpm of the output, so the train settles at "
-                f"{met * input_speed_rpm / output_speed_rpm:.5g} rpm, not at {input_speed_rpm:.5g} rpm")
-    else:
-        way = "accelerates" if excess * (required_input_Nm or 1.0) > 0.0 else "decelerates (and reverses)"
-        fate = (f"; nothing balances the difference ({excess:+.4g} N·m), so the train {way} for the whole run and "
-                "its speeds and window statistics drift")
-    return (lead + fate + f": set the drive's torque to {required_input_Nm:.5g} N·m for the nominal speed"
-            + ("" if p > 0 or met is not None else " (or give the load a speed law, load.speed_exponent)"))
-
-
-def _table_settle_rpm(table: list[list[float]], ratio: float, n0: float) -> float | None:
-    """The output speed at which the load table (rpm, N·m: linear between its points, constant below the first, its
-    last segment extended, as the model takes it) reaches ``ratio`` x its torque at the nominal output speed ``n0``,
-    first met from n0 in the way the train moves (up where the drive exceeds the load); None where it never is."""
-    xs, ys = [float(x) for x, _ in table], [float(y) for _, y in table]
-
-    def y(n: float) -> float:
-        return table_value(table, n)  # the design's and the model's reading of the table
-
-    target, up = ratio * y(n0), ratio > 1.0
-    slope = (ys[-1] - ys[-2]) / (xs[-1] - xs[-2])
-    ends = [x for x in xs if x > n0] + ([xs[-1] + (target - ys[-1]) / slope] if slope > 0.0 and ys[-1] < target
-                                       else []) if up else sorted((x for x in xs if x < n0), reverse=True)
-    a = n0
-    for b in ends:
-        if (y(b) >= target) if up else (y(b) <= target):
-            return a + (target - y(a)) * (b - a) / (y(b) - y(a)) if y(b) != y(a) else b
-        a = b
-    return None
 
 
 def spur_hand_warning(index: int, stage_cfg: Stage, names: tuple[str, str] = ("pinion", "gear")) -> str | None:

@@ -71,9 +71,9 @@ def compute_design(cfg: DesignFile) -> DesignResult:
     pairs = pair_view(cfg)
     check_inputs(cfg)
     figures = tuple(checked_figures(s, k) for k, s in enumerate(cfg.stage))
-    kin = train_from_ratios(tuple(f[0] for f in figures), tuple(f[1] for f in figures),
-                            cfg.input.speed_rad_s_value, cfg.load.torque_Nm_value * 1000.0,
-                            tuple(kind[k].reverse_efficiency(s, k) for k, s in enumerate(cfg.stage)))
+    efficiencies, back = tuple(f[1] for f in figures), tuple(kind[k].reverse_efficiency(s, k) for k, s in enumerate(cfg.stage))
+    kin = train_from_ratios(tuple(f[0] for f in figures), efficiencies, cfg.input.speed_rad_s_value,
+                            cfg.load.torque_Nm_value * 1000.0, back)
     try:  # a key of the pair view (stage[k].pinion.x) named as the file names it (a planetary's sun.x)
         stages = tuple(checked_result(cfg.stage[k], k, kind[k].result(cfg, pairs, k, kin, _stage_result))
                        for k in range(len(cfg.stage)))
@@ -110,8 +110,12 @@ def compute_design(cfg: DesignFile) -> DesignResult:
                            f"{'it' if len(ignored) == 1 else 'them'}", check="drive", keys=list(ignored)),) \
         if ignored else ()
     reverse_notes = _reverse_efficiency_notes(cfg, kind, kin)
+
+    def reflect(load_Nm: float) -> float:  # a load torque at the input, the losses in its power flow's direction
+        return train_from_ratios(kin.ratios, efficiencies, 0.0, load_Nm * 1000.0, back).shaft_torque_Nmm(0) / 1000.0
+
     diagnostics = (*design_diagnostics(pairs, stages, speed_rpm(out), kin.shaft_torque_Nmm(0) / 1000.0,
-                                       speed_rpm(kin.shaft_speeds_rad_s[0])), *own, *pins, *jammed,
+                                       speed_rpm(kin.shaft_speeds_rad_s[0]), reflect), *own, *pins, *jammed,
                    *planet_ring_steel_warnings(cfg, stages), *stiffness_diagnostics(stages, _law_keys(cfg)), *_damping_notes(cfg),
                    *rating_diagnostics, *_bearing_diagnostics(cfg, bearings), *drive_notes, *reverse_notes)
     return DesignResult(

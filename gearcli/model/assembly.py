@@ -201,14 +201,15 @@ def _linearisation_floor(spec: ModelSpec, x: Connector) -> float:
     return float(getattr(mesh, "linearisation_line_force_N", 0.0))
 
 
-def power_path_loss_factors(spec: ModelSpec, conns: list[Connector]) -> list[float]:
+def power_path_loss_factors(spec: ModelSpec, conns: list[Connector], forward: bool | None = None) -> list[float]:
     """Per connector, what the losses between it and the load multiply its static force by: the product of
     1/eta of the lossy connectors (and lossy stage models) after it on the power path, and its own (the force of a
     lossy mesh is its driving side's: the pinion's); for a reversed load, whose power flows from the output, eta of
     those after it and not its own (its driving side is then the gear, which gets the law's whole force: f_b = f
     at sigma = -1, docs/physics.md "Stage efficiency in the dynamics"). A planet mesh's own loss is in its share of the output torque; its stage's loss counts before the
-    stage. 1 everywhere when no connector loses (a stage model's own efficiency then counts nowhere either)."""
-    forward = spec.load.torque_Nm >= 0
+    stage. 1 everywhere when no connector loses (a stage model's own efficiency then counts nowhere either).
+    ``forward``: the power flow's direction where it is not the nominal load's (a load law that changes sign)."""
+    forward = spec.load.torque_Nm >= 0 if forward is None else forward
     out = [1.0] * len(conns)
     if not any(x.lossy for x in conns):
         return out

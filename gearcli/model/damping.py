@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from gearcli.core.memo import remember
-from gearcli.design.checks import TORQUE_BALANCE_TOLERANCE
+from gearcli.design.drive_balance import TORQUE_BALANCE_TOLERANCE
 from gearcli.model.assembly import Layout
 from gearcli.model.elements import machine
 from gearcli.model.planet_excitation import REPEATED
@@ -53,6 +53,19 @@ def reflected_load_Nm(lay: Layout, w: float) -> float:
     g = machine.load_factor(lay.load_law, w * rho)[0] if lay.load_law else 1.0
     t = lay.load.torque_Nm * g * rho
     return t / lay.train_efficiency() if t >= 0 else t * lay.train_efficiency(forward=False)
+
+
+def breakaway_Nm(lay: Layout) -> float:
+    """A ``torque_speed`` load table's torque at standstill (its first point: the breakaway a start must exceed),
+    reflected to the input body through the train's ratio and efficiencies (power flowing forward); 0 for another
+    law or a table that does not resist there. The model's table turns with the rotation, tanh(w / w_eps) (w_eps 0.5 %
+    of the nominal output speed, docs/physics.md), which is 0 at rest: a table falling within a few w_eps of rest
+    (a breakaway falling to its running torque) there carries the model's train through a breakaway that holds it."""
+    law = lay.load_law
+    if not law or law[machine.L_KIND] != machine.TABLE:
+        return 0.0
+    t = lay.load.torque_Nm * law[machine.L_TAB + int(law[machine.L_N])] * lay.bodies[-1].ratio
+    return t / lay.train_efficiency() if t > 0.0 else 0.0
 
 
 def back_driving_Nm(lay: Layout, forward_Nm: float) -> float:
@@ -166,10 +179,15 @@ def vfd_ramp_starts(lay: Layout) -> bool:
 
 def operating_load_factor(lay: Layout) -> float:
     """g of the load law T_L = T_ref g(w) at the output's speed in the steady state (:func:`operating_speed_rad_s`;
-    1 without a law): what the load torque the train carries there is of the nominal one."""
+    1 without a law): what the load torque the train carries there is of the nominal one. Kept with the layout (a
+    motor's operating point is a scan of its curve: a run's static reference and its loaded flank both ask)."""
     if not lay.load_law:
         return 1.0
-    return float(machine.load_factor(lay.load_law, operating_speed_rad_s(lay) * lay.bodies[-1].ratio)[0])
+    kept = lay.__dict__.get("_operating_load_factor")
+    if kept is None:
+        w = operating_speed_rad_s(lay) * lay.bodies[-1].ratio
+        kept = lay.__dict__.setdefault("_operating_load_factor", float(machine.load_factor(lay.load_law, w)[0]))
+    return kept
 
 
 def torque_drive_speed_rad_s(lay: Layout) -> float:
@@ -184,12 +202,12 @@ def torque_drive_speed_rad_s(lay: Layout) -> float:
 def torque_drive_balance_rad_s(lay: Layout) -> float | None:
     """The input speed where a torque drive's torque meets the load reflected to it (:func:`torque_drive_speed_rad_s`),
     None where nothing balances it: a constant load that differs from the drive's torque by more than the design
-    check's tolerance (``gearcli.design.checks.TORQUE_BALANCE_TOLERANCE``: the train accelerates or decelerates
+    check's tolerance (``gearcli.design.drive_balance.TORQUE_BALANCE_TOLERANCE``: the train accelerates or decelerates
     for the whole run), or a speed law the drive meets at no speed."""
     w0, t_in = lay.drive.speed_rad_s, lay.drive.torque_Nm
     if w0 <= 0.0:
         return w0
-    if not lay.load_law or t_in <= 0.0:
+    if not lay.load_law:  # a constant load balances the drive only where it already does, at w0
         need = reflected_load_Nm(lay, w0)
         return w0 if t_in == need or (need != 0.0 and abs(t_in / need - 1.0) <= TORQUE_BALANCE_TOLERANCE) else None
 

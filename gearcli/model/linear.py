@@ -87,6 +87,25 @@ def static_line_forces_N(spec: ModelSpec | Layout) -> np.ndarray:
     return static_forces(lay)[list(lay.stage_conn)]
 
 
+def operating_line_forces_N(lay: Layout, load_factor: float) -> np.ndarray:
+    """:func:`static_line_forces_N` under ``load_factor`` x the nominal load torque (a load law's g(w) at the
+    operating point), with the losses in that load's power flow: a law whose sign at the operating point is not the
+    nominal one's (a torque_speed table through 0) turns the flow, so each mesh's force is then the other side's."""
+    forces = static_line_forces_N(lay) * load_factor
+    if load_factor >= 0.0 or not any(x.lossy for x in lay.connectors):
+        return forces
+    conns, meshes = list(lay.connectors), list(lay.stage_conn)
+    nominal = np.asarray(power_path_loss_factors(lay.spec, conns))[meshes]
+    turned = np.asarray(power_path_loss_factors(lay.spec, conns, forward=lay.load.torque_Nm < 0.0))[meshes]
+    for i, c in enumerate(meshes):  # a planet mesh's own loss is in its lever: its stage's factor of the other flow
+        x = conns[c]
+        model = lay.spec.stage_models[x.index] if x.load_body >= 0 else None
+        nominal_factor = getattr(model, f"{x.gear}_force_factor", 0.0)
+        if nominal_factor:  # a planetary's (a plug-in stage model without these keeps its nominal flow's)
+            turned[i] *= getattr(model, f"other_{x.gear}_force_factor", nominal_factor) / nominal_factor
+    return forces * turned / nominal
+
+
 def rigid_forces(lay: Layout, t: np.ndarray) -> np.ndarray:
     """Force of every connector of the rigid chain at times t, shape (connectors, len(t))."""
     t = np.asarray(t, dtype=float)

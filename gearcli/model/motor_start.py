@@ -22,7 +22,14 @@ from typing import TYPE_CHECKING
 from gearcli import diagnostics as dg
 from gearcli.diagnostics import Diagnostic
 from gearcli.model.assembly import Layout
-from gearcli.model.damping import STEADY_T, back_driving_Nm, falling_zero, net_torque_scan, reflected_load_Nm
+from gearcli.model.damping import (
+    STEADY_T,
+    back_driving_Nm,
+    breakaway_Nm,
+    falling_zero,
+    net_torque_scan,
+    reflected_load_Nm,
+)
 from gearcli.model.elements import machine
 
 if TYPE_CHECKING:
@@ -180,13 +187,19 @@ def motor_start_diagnostics(lay: Layout) -> tuple[Diagnostic, ...]:
     found: list[Diagnostic] = []
     start = motor.starting
     switch = motor.start_parameters[0] if start == "star_delta" else 0.0
-    stall = 0.0 if f[0] <= 0.0 else _first_crossing(grid, f, net)
+    # a load table's breakaway (its torque at standstill) holds the train until the motor's torque there exceeds
+    # it; the model's table, turning with the rotation, is 0 at rest (a converter's start is simulate's to judge)
+    held = breakaway_Nm(lay) if start != "vfd" else 0.0
+    stuck = 0.0 < held and machine.motor_torque(row, STEADY_T, 0.0)[0] <= held
+    stall = 0.0 if f[0] <= 0.0 or stuck else _first_crossing(grid, f, net)
     cannot = stall is not None and (stall == 0.0 or stall < w_b or stall < switch)
     if cannot:
         assert stall is not None
         t_m = machine.motor_torque(row, STEADY_T, stall)[0]
-        load = reflected_load_Nm(lay, stall)
-        where = (f"at standstill: its {start} start gives {t_m:.4g} N·m there" if stall == 0.0 else
+        load = held if stuck else reflected_load_Nm(lay, stall)
+        where = (f"at standstill: its {start} start gives {t_m:.4g} N·m there"
+                 + (", not above the load table's breakaway torque (its first point, the torque at standstill)"
+                    if stuck else "") if stall == 0.0 else
                  f"at {stall * RAD_S_TO_RPM:.5g} rpm, in star below its switch-over speed "
                  f"{switch * RAD_S_TO_RPM:.5g} rpm (a third of its torque), so it never switches to delta"
                  if stall < switch else

@@ -55,6 +55,10 @@ class PlanetarySpec:
     ring_force_factor: float = 1.0
     efficiency: float = 1.0
     reverse_efficiency: float = 1.0
+    # the two force factors in the other power flow, of the other load sign (a load law whose torque turns sign
+    # at the operating point: gearcli.model.linear.operating_line_forces_N)
+    other_sun_force_factor: float = 1.0
+    other_ring_force_factor: float = 1.0
 
     def mesh_phase_cycles(self, j: int, gear: str) -> float:
         """Planet j's mesh phase against planet 1's, in mesh cycles (Parker & Lin 2004): z_s psi_j / 2 pi for

@@ -84,6 +84,11 @@ def comparison_rows(design: DesignResult, sim: SimulationResult,
             sign = -1.0 if (dyn.static_tangential_N < 0) != (static.tangential < 0) else 1.0
         share = _planets_mean_over_planet_1(dyn)
         sign *= driving_gear_factor(st, kind.model_signs_forces) * at_load
+        reference = dyn.simulated_static_tangential_N
+        if at_load < 0.0 and static.tangential != 0.0 and reference is not None:  # a planetary's: its planets' mean
+            # the load law's torque turned sign at the operating point, and the power flow with it: the losses act
+            # the other way than in the design's statics; the run's static reference carries them (F_r, F_a pro rata)
+            sign = reference / static.tangential
         rows += [
             _row(k, "ratio", st.ratio, ratio_sim),
             _row(k, "output_speed_deg_s", at_speed * out_speed, gear_speed, ok),

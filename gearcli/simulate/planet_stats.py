@@ -36,7 +36,7 @@ def planet_series(model: TorsionalModel, s: Sampled) -> dict[tuple[int, int, str
     return out
 
 
-def planet_contact_warnings(model: TorsionalModel, s: Sampled, mask: np.ndarray) -> list[Diagnostic]:
+def planet_contact_warnings(model: TorsionalModel, s: Sampled, mask: np.ndarray, flank: float = 1.0) -> list[Diagnostic]:
     """The contact-loss warning of every planet mesh (each planet's sun and ring mesh) whose loaded flank loses
     contact in the steady window, the planet named: a stage's channel is planet 1's sun mesh alone, and a position
     error can leave any planet inside the backlash, carrying nothing while the others take its share. The loaded
@@ -48,7 +48,7 @@ def planet_contact_warnings(model: TorsionalModel, s: Sampled, mask: np.ndarray)
             continue
         m = lay.spec.meshes[x.index]
         pen = s.connectors[c].penetration_m[sel]
-        loaded = 1.0 if m.static_tangential_N >= 0 else -1.0
+        loaded = flank * (1.0 if m.static_tangential_N >= 0 else -1.0)  # flank: gearcli.simulate.stats.loaded_flank
         lost = loaded * pen <= 0.0
         if m.static_tangential_N == 0 or not pen.size or not np.any(lost):
             continue

@@ -23,7 +23,7 @@ from gearcli.engine import reproducible as reproducible_batch
 from gearcli.errors import ConfigError, SimulationError
 from gearcli.model import TorsionalModel
 from gearcli.model.damping import operating_load_factor
-from gearcli.model.linear import damped_modes, static_line_forces_N
+from gearcli.model.linear import damped_modes, operating_line_forces_N
 from gearcli.model.modes import resonances
 from gearcli.model.outputs import Sampled, sample, stage_rows, tangential_force_N
 from gearcli.results import DesignResult, MeshStiffness
@@ -428,8 +428,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     run_s = float(s.time_s[-1] - s.time_s[0]) if s.time_s.size > 1 else 0.0
     share = (window[1] - window[0]) / run_s if run_s > 0 else 1.0  # the window's share of the samples
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
-    statics = [m.static_tangential_N for m in spec.meshes]
-    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], statics, periodic, rows)  # both below
+    statics, flank = [m.static_tangential_N for m in spec.meshes], stats.loaded_flank(operating_load_factor(model.layout))
+    reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], [flank * f for f in statics], periodic, rows)
     # a periodic window is judged without the modes (its own grid): their eigenproblem is not solved for it
     samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
                                          floors, reduced, model.layout, None if periodic else choice.run_eigenvalues,
@@ -455,7 +455,7 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
     diags += ratio_warnings + stats.contact_warnings(spec, mask, contacts, choice.at_full_load.penetration_m, reduced,
-                                                     planet_contact_warnings(model, s, mask))
+                                                     planet_contact_warnings(model, s, mask, flank), flank)
     toggled = None
     if model.layout.drive.motor is not None:
         from gearcli.simulate import motor as motor_side  # lazy: a motor drive's run only
@@ -550,8 +550,8 @@ def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
     not at the nominal speed its ``torque_Nm`` is given for: a torque drive settling at 1.28x the nominal speed of
     a quadratic load carried 1.65x the nominal force, which read as a dynamic factor of 1.65 on a steady run."""
     lay = model.layout
-    scale = operating_load_factor(lay)
-    return [tangential_force_N(lay, k, f * scale) for k, f in enumerate(static_line_forces_N(lay).tolist())]
+    return [tangential_force_N(lay, k, f) for k, f in
+            enumerate(operating_line_forces_N(lay, operating_load_factor(lay)).tolist())]
 
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:

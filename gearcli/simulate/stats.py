@@ -409,9 +409,16 @@ def impact_damped(mesh: MeshSpec) -> bool:
     return mesh.damping_ratio is None and mesh.damping_Ns_m > 0
 
 
+def loaded_flank(load_factor: float) -> float:
+    """-1 where the load law's torque at the operating point (``load_factor`` x the nominal one,
+    :func:`gearcli.model.damping.operating_load_factor`) has the other sign than the nominal one, whose static forces
+    name the loaded flank (a torque_speed table through 0: the train runs with its other flank loaded); else 1."""
+    return -1.0 if load_factor < 0.0 else 1.0
+
+
 def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.ndarray | None],
                      static_penetration_m: np.ndarray, reduced: Reduced | None = None,
-                     planets: Sequence[Diagnostic] = ()) -> list[Diagnostic]:
+                     planets: Sequence[Diagnostic] = (), flank: float = 1.0) -> list[Diagnostic]:
     """Penetration beyond the full-damping depth (IMPACT-damped meshes) or 10 % of the module; loss of contact on the loaded
     flank in the steady window (a loaded mesh that separates or crosses to its other flank rattles).
 
@@ -422,7 +429,7 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
 
     ``planets``: the planet meshes' contact-loss warnings, with the planet named
     (:func:`gearcli.simulate.planet_stats.planet_contact_warnings`), added to the list; a planetary stage among them
-    is not warned again for its channel, planet 1's sun mesh (one of theirs).
+    is not warned again for its channel, planet 1's sun mesh (one of theirs). ``flank``: :func:`loaded_flank`.
 
     ``reduced``: the window's reductions of the same stages (:func:`window_reductions`), where the caller has them:
     a loaded flank loses contact in the window exactly when the window's least (drive flank) or largest (back flank)
@@ -444,7 +451,7 @@ def contact_warnings(spec: ModelSpec, mask: np.ndarray, penetration_m: list[np.n
                                   f"{deepest * 1e3:.3g} mm, more than 10 % of the normal module "
                                   f"({m.normal_module_m * 1e3:.3g} mm): the contact law is far outside its validity",
                                   stage=k + 1, penetration_m=deepest))
-        loaded = math.copysign(1.0, m.static_tangential_N)  # the flank that carries the static load
+        loaded = flank * math.copysign(1.0, m.static_tangential_N)  # the flank that carries the static load
         if k + 1 in planet_stages or m.static_tangential_N == 0 or not _loses_contact(pen, mask, sel, loaded,
                                                             None if reduced is None else reduced.penetration(k)):
             continue

@@ -86,12 +86,19 @@ def _unequal(cfg: DesignFile, k: int) -> bool:
 def _loss_factors(p, eta_m: float, load_sign: float) -> dict[str, float]:
     """The planet meshes' static (driving-side) forces over the lossless ones, in the power flow of the load's
     sign, and the stage's efficiencies (:mod:`gearcli.design.planetary_balance`)."""
-    lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, load_sign)
-    lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, load_sign)
-    scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
-    back = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, -1.0)
-    return {"sun_force_factor": lossy.sun_mesh * scale, "ring_force_factor": lossy.ring_mesh * scale,
-            "efficiency": lossy.efficiency, "reverse_efficiency": back.efficiency}
+    def factors(sign: float) -> tuple[float, float, float]:
+        lossless = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, 1.0, sign)
+        lossy = balance(p.sun.teeth, p.ring.teeth, p.fixed, p.input, eta_m, sign)
+        scale = abs(lossless.torques[p.output]) / abs(lossy.torques[p.output])  # |T_sun| lossy / lossless, same T_out
+        return lossy.sun_mesh * scale, lossy.ring_mesh * scale, lossy.efficiency
+
+    sun, ring, _ = factors(load_sign)
+    other_sun, other_ring, _ = factors(-load_sign)
+    # the efficiencies forward and back whatever the nominal load's sign (was the nominal flow's as "efficiency":
+    # the reversed one under a reversed load, which a load law turning forward at its operating point then took)
+    forward, back = (factors(sign)[2] for sign in (1.0, -1.0))
+    return {"sun_force_factor": sun, "ring_force_factor": ring, "efficiency": forward, "reverse_efficiency": back,
+            "other_sun_force_factor": other_sun, "other_ring_force_factor": other_ring}
 
 
 def _ring_contact_phase(st: StageResult, unit: dict[str, float]) -> float:

@@ -137,3 +137,21 @@ def test_a_soft_start_held_by_the_train_s_losses_is_not_said_to_roll_back(start_
         assert_allclose(found[0]["start_torque_Nm"], start_Nm, rtol=1e-9)
         assert_allclose(found[0]["back_driving_torque_Nm"], back, rtol=1e-9)
         assert_allclose(found[0]["load_torque_Nm"], forward, rtol=1e-9)
+
+
+def test_a_load_table_s_breakaway_above_the_locked_rotor_torque_cannot_be_started():
+    """A `torque_speed` load table's first point is its torque at standstill, the breakaway a start must exceed. By
+    hand: a breakaway of 1.1 T_lr at the motor (T_lr i eta² at the output) falling to 0.3 T_lr at 5 rpm of the output,
+    a Stribeck drop: it holds the train, the direct start's 225.6 N m short of 248.2 N m. The model's table turns with
+    the rotation (tanh over 0.5 % of the nominal output speed, 0 at rest), and the drop within a few of those widths
+    lowered the regularised peak below the locked-rotor torque: no warning was given (the run starts in 0.3 s). At
+    0.9 T_lr the motor breaks the load away and nothing is warned."""
+    for share, warned in ((1.1, True), (0.9, False)):
+        table = [[0, share * T_LOCKED * TRAIN], [5, 0.3 * T_LOCKED * TRAIN], [60, 0.35 * T_LOCKED * TRAIN]]
+        found = _design(f"load.torque_speed={table!r}")
+        assert bool(found) == warned, found
+        if warned:
+            w = found[0]
+            assert w["stall_speed_rpm"] == 0.0 and "breakaway" in w["message"]
+            assert_allclose(w["motor_torque_Nm"], T_LOCKED, rtol=1e-9)
+            assert_allclose(w["load_torque_Nm"], share * T_LOCKED, rtol=1e-9)
