@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING
 
 from gearcli.core.jsontypes import JsonObject
 from gearcli.core.text import beside
-from gearcli.design.drive_balance import torque_drive_warning
+from gearcli.design.drive_balance import load_table_beyond_warning, torque_drive_warning
 from gearcli.design.geometry import (
     form_point_from_base_tangent_mm,
     hardened_tip_text,
@@ -74,6 +74,7 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                        "target_rpm": cfg.target.output_speed_rpm_value,
                        "tolerance_percent": cfg.target.tolerance_percent}))
     found.append((massless_rotor_warning(cfg), {"check": "motor_rotor_inertia"}))
+    found.append(load_table_beyond_warning(cfg, output_speed_rpm))
     found.append((torque_drive_warning(cfg, required_input_Nm, input_speed_rpm, output_speed_rpm, reflect),
                   {"check": "torque_drive_balance", "input_torque_Nm": cfg.input.torque_Nm_value,
                    "required_input_torque_Nm": required_input_Nm}))

@@ -1,5 +1,6 @@
-"""A torque drive against its load (``gearcli design``, check ``torque_drive_balance``): where the train settles
-when the drive's torque is not the one the load needs at the nominal speed, or that nothing balances it."""
+"""A drive against its load (``gearcli design``): a torque drive's balance (check ``torque_drive_balance``), where
+the train settles when the drive's torque is not the one the load needs at the nominal speed, or that nothing
+balances it; a load table read past its last point (check ``load_table_beyond``)."""
 
 from __future__ import annotations
 
@@ -7,11 +8,32 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from gearcli.config.machine import table_value
+from gearcli.core.jsontypes import JsonObject
 
 if TYPE_CHECKING:
     from gearcli.config.schema import DesignFile
 
 TORQUE_BALANCE_TOLERANCE = 0.01  # |T_in / T_req - 1| of a torque drive: 1 % (a fan law: 0.5 % in speed)
+
+
+def load_table_beyond_warning(cfg: DesignFile, output_speed_rpm: float) -> tuple[str | None, JsonObject]:
+    """A load ``torque_speed`` table whose last point lies below the nominal output speed: the design and the run
+    take its last segment extended (:func:`gearcli.config.machine.table_value`), a torque nobody measured (a table
+    ending at 20 rpm with 4500 N·m, run at 50 rpm, loads the train with ~7000 N·m, unwarned until 2026-12-01).
+    The nominal speed is where the design reads the load; a motor or torque drive settles where its curve meets
+    the table, which ``motor_speed_mismatch`` and ``torque_drive_balance`` name."""
+    table = cfg.load.torque_speed
+    n = abs(output_speed_rpm)
+    if table is None or n <= float(table[-1][0]):
+        return None, {}
+    last_rpm, last_Nm = float(table[-1][0]), float(table[-1][1])
+    torque = table_value(table, n)
+    data: JsonObject = {"check": "load_table_beyond", "output_speed_rpm": n, "table_last_rpm": last_rpm,
+                        "table_last_torque_Nm": last_Nm, "load_torque_Nm": torque}
+    share = f" ({torque / last_Nm:.3g}x the last point's)" if last_Nm != 0.0 else ""
+    return (f"load.torque_speed: the table ends at {last_rpm:.5g} rpm ({last_Nm:.5g} N·m), below the nominal output "
+            f"speed {n:.5g} rpm, where its last segment extended gives {torque:.5g} N·m{share}: a load nobody "
+            "measured; extend the table to the operating speed"), data
 
 
 def torque_drive_warning(cfg: DesignFile, required_input_Nm: float, input_speed_rpm: float,
