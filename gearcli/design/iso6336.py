@@ -160,8 +160,8 @@ def table_rows(ratings: Sequence, *, shared: bool) -> list[tuple[str, list[str]]
         one("helix factor Z_β", lambda r: r.Z_beta),
         one("nominal contact σ_H0 [MPa]", lambda r: r.sigma_H0_MPa),
         one("contact σ_H (pitch) [MPa]", lambda r: r.sigma_H_MPa),
-        two("single pair Z_B / Z_D", "Z_BD"),
-        two("contact σ_HB / σ_HD [MPa]", "sigma_H_MPa"),
+        two("single pair Z_B,D p / g", "Z_BD"),  # Z_B on the wheel with fewer teeth, either member
+        two("contact σ_HB,D [MPa] p / g", "sigma_H_MPa"),
         one("lubricant Z_L", lambda r: r.Z_L),
         one("velocity Z_V", lambda r: r.Z_V),
         one("roughness Z_R", lambda r: r.Z_R),
