@@ -39,7 +39,7 @@ from gearcli.model.spec import (
 from gearcli.results import DesignResult, StageResult
 from gearcli.stages import kinds
 from gearcli.stages.design import design_kind
-from gearcli.stages.model import checked_line_losses, model_kind
+from gearcli.stages.model import checked_line_losses, model_kind, placed
 
 if TYPE_CHECKING:  # the config layer is below this one; its pydantic models only name the types here
     from gearcli.config.schema import DesignFile, Input, Load
@@ -163,8 +163,8 @@ def load_spec(load_cfg: Load) -> LoadSpec:
 def spec_from_design(cfg: DesignFile, design: DesignResult) -> ModelSpec:
     """The model parameters of a validated ``DesignFile`` and its ``DesignResult``."""
     meshes = tuple(model_kind(st).line(cfg, st, k, _mesh) for k, st in enumerate(design.stages))
-    own = tuple(checked_line_losses(st, k, meshes[k], model_kind(st).stage_model(cfg, st, k, meshes[k]))
-                for k, st in enumerate(design.stages))
+    own = tuple(placed(m, checked_line_losses(st, k, m, model_kind(st).stage_model(cfg, st, k, m)),
+                       design_kind(st).gear_pair) for k, (st, m) in enumerate(zip(design.stages, meshes, strict=True)))
     inp = cfg.input
     drive = DriveSpec(kind=inp.drive, speed_rad_s=inp.speed_rad_s_value, ramp_s=inp.ramp_s,
                       torque_Nm=inp.torque_Nm_value or 0.0,

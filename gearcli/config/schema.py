@@ -68,6 +68,7 @@ from gearcli.config.stage_tables import (  # noqa: F401 (re-exported)
     kinds_named,
     only_kinds,
 )
+from gearcli.core import plugins
 from gearcli.core.methods import NAMES as METHODS  # the one registry of integration methods
 from gearcli.errors import PluginError
 from gearcli.stages import kinds
@@ -111,6 +112,16 @@ def register_stage_table(kind: str, table: type[BaseModel]) -> None:
         raise
     _BY_KINDS.clear()
     DesignFile.model_rebuild(force=True)
+
+
+def _rebuild_without(claims: list[tuple[str, str, str]]) -> None:
+    """The design file's schema without the tables of a plug-in that failed to load (withdrawn by the registry)."""
+    if any(what == kinds.SEAM and part == "table" for what, _, part in claims):
+        _BY_KINDS.clear()
+        DesignFile.model_rebuild(force=True)
+
+
+plugins.on_failure(_rebuild_without)
 
 
 class Target(_Table):

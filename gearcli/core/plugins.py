@@ -20,7 +20,7 @@ the two a file would get is undecidable).
 from __future__ import annotations
 
 import sys
-from collections.abc import Collection
+from collections.abc import Callable, Collection
 from importlib.metadata import EntryPoint, entry_points
 from types import FrameType
 
@@ -32,6 +32,8 @@ _conflict: Exception | None = None  # the NameConflict that ended the load, rais
 _loading: EntryPoint | None = None  # the entry point being loaded: the registrant of what registers meanwhile
 _group: dict[str, EntryPoint] = {}  # the group's entry points by their top-level package, while it loads
 _owners: dict[tuple[str, str, str], tuple[str, str]] = {}  # (what, name, part) -> (identity, label)
+#: the registries' withdrawals, each given the (what, name, part) a plug-in that failed to load had registered
+_undo: list[Callable[[list[tuple[str, str, str]]], None]] = []
 
 
 class NameConflict(Exception):  # noqa: N818 - a marker: gearcli.errors.PluginConflict is the error raised
@@ -90,6 +92,13 @@ def origin(implementation: object) -> str:
     return str((implementation if isinstance(implementation, type) else type(implementation)).__module__)
 
 
+def on_failure(undo: Callable[[list[tuple[str, str, str]]], None]) -> None:
+    """Have ``undo`` withdraw, from its registry, what a plug-in that then failed to load had registered (each
+    registry of names calls it once, when imported): a failed plug-in provides nothing, so a file naming its names
+    gets the unknown-name message that says which plug-in failed and what it raised (docs/plugins.md)."""
+    _undo.append(undo)
+
+
 def release(what: str, name: str, part: str = "") -> None:
     """Forget the registrant of ``name`` (its registration withdrawn)."""
     _owners.pop((what, name, part), None)
@@ -129,6 +138,7 @@ def reset() -> None:
 def _load_one(ep: EntryPoint) -> str:
     global _loading
     _loading = ep
+    before = dict(_owners)
     try:
         obj = ep.load()
         if callable(obj) and not isinstance(obj, type):
@@ -138,7 +148,18 @@ def _load_one(ep: EntryPoint) -> str:
     except (Exception, SystemExit) as exc:  # any error of third-party code (its sys.exit() too: errors.PLUGIN_FAULTS),
         # reported with the name that needs it
         text = " ".join(str(exc).split())[:300]
+        _withdraw_own(ep, before)
         return f"{ep.name!r} ({ep.value}) failed to load: {type(exc).__name__}: {text}"
     finally:
         _loading = None
     return ""
+
+
+def _withdraw_own(ep: EntryPoint, before: dict[tuple[str, str, str], tuple[str, str]]) -> None:
+    """Withdraw what entry point ``ep`` registered before it failed (a kind's table and design facet, say, and not
+    its model facet: a file naming the kind met "no model facet registered" and never the plug-in's error)."""
+    mine = [key for key, who in _owners.items() if who[0] == _package(ep) and before.get(key) != who]
+    for undo in _undo:
+        undo(mine)
+    for key in mine:
+        release(*key)

@@ -66,6 +66,15 @@ def withdraw(name: str) -> None:
     plugins.release(SEAM, name)
 
 
+def _withdraw_failed(claims: list[tuple[str, str, str]]) -> None:
+    for what, name, _ in claims:
+        if what == SEAM:
+            withdraw(name)
+
+
+plugins.on_failure(_withdraw_failed)
+
+
 def names() -> tuple[str, ...]:
     """The registered standards' names, sorted (ISO 6336 registers when a rated design first asks for its
     standard, ``gearcli.design.standards.standard_of``, or on importing ``gearcli.design.iso6336``)."""

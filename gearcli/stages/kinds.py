@@ -44,6 +44,15 @@ def withdraw(kind: str, facet: str) -> None:
     plugins.release(SEAM, kind, facet)
 
 
+def _withdraw_failed(claims: list[tuple[str, str, str]]) -> None:
+    for what, kind, part in claims:
+        if what == SEAM:
+            withdraw(kind, part)
+
+
+plugins.on_failure(_withdraw_failed)
+
+
 def facet(kind: str, facet: str) -> object:
     """The ``facet`` of stage kind ``kind``; a ``KeyError`` naming the kinds that have it when none is registered."""
     try:

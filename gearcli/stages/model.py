@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, cast
 
 from gearcli.core import plugins
 from gearcli.errors import PLUGIN_FAULTS, GearcliError, PluginError
+from gearcli.model import elements
 from gearcli.model.parts import Body, Connector
 from gearcli.model.spec import MeshSpec, StageModel
 from gearcli.results import StageResult
@@ -101,6 +102,34 @@ def checked_losses(st: StageResult, k: int, own: StageModel | None) -> StageMode
                           f"{design_eta / eta:.6g} x the design's (T_in = T_out / (i eta)); place a lossy element of "
                           "the design's efficiency (the built-in mesh with MeshSpec.efficiency; docs/plugins.md)")
     return own
+
+
+@dataclass(frozen=True)
+class LineStage:
+    """A stage of a kind that is no gear pair and has no model of its own (``stage_model`` None): its line placed
+    as the chain's pair, the built-in ``mesh`` element between its input body and a new body, as the stage's
+    connector of role ``"stage"`` (ARCHITECTURE.md: a mesh's role is a gear mesh's). As role ``"mesh"`` the stage
+    had a gear pair's mesh orders at its line's ``pinion_teeth`` (20 by default) in ``modes`` and the resonance
+    warnings of ``design`` and ``simulate``, for a belt or a chain drive placed so that has no teeth meshing."""
+
+    line: MeshSpec
+    efficiency: float = 1.0  # its losses are its connector's (MeshSpec.efficiency)
+    reverse_efficiency: float = 1.0
+
+    def place(self, k: int, bodies: list[Body], conns: list[Connector], body: Callable[..., None],
+              out_inertia: float) -> None:
+        kind = elements.kind_of("mesh")
+        n, m = len(bodies), self.line
+        conns.append(Connector(kind, (n - 1, n), (m.base_radius_pinion_m, m.base_radius_gear_m),
+                               tuple(float(v) for v in elements.law_of(kind).pack(m)),
+                               f"stage {k + 1} {m.law or 'line'}", k, "stage"))
+        body(out_inertia, f"shaft {k + 2}")
+
+
+def placed(line: MeshSpec, own: StageModel | None, gear_pair: bool) -> StageModel | None:
+    """A stage's model (its kind's ``own``, checked): a kind that is no gear pair and gives none is
+    its :class:`LineStage` (its line as the stage's connector, no gear mesh); a gear pair's None stays the pair."""
+    return LineStage(line) if own is None and not gear_pair else own
 
 
 class ParallelModel:

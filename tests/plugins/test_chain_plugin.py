@@ -403,6 +403,18 @@ BROKEN = {
     "a result holding NaN": ([("chain_force_N=t_in / r1,", "chain_force_N=math.nan,")], "design", 1,
                              f'stage type "{KIND}" (gearcli_test_chain): its design facet\'s result for stage 2 has a '
                              "non-finite chain_force_N (nan)"),
+    # a register that failed half-way left what it had registered: its table and design facet, so the file ran
+    # into "no model facet registered" (exit 1), never naming the plug-in's error; one that failed at its end ran
+    # with exit 0 and no word of the failure. A plug-in that fails to load provides nothing (docs/plugins.md)
+    "register raises half-way": ([('    kinds.provide(KIND, "model", ChainModelKind())\n',
+                                   '    raise RuntimeError("no licence")\n')], "simulate", 2,
+                                 f'stage[1].type: unknown stage type "{KIND}"; registered: "parallel", "planetary"; '
+                                 "plug-in 'gearcli_test_chain' (gearcli_test_chain:register) failed to load: "
+                                 "RuntimeError: no licence"),
+    "sys.exit() at the end of register": ([("    register_standard(ToyLewis())\n",
+                                            "    register_standard(ToyLewis())\n    raise SystemExit(0)\n")],
+                                          "design-rated", 2, "(gearcli_test_chain:register) failed to load: "
+                                          "SystemExit: 0"),
     "a lossless connector for a lossy stage": ([SPRING], "simulate", 1,
                                                "stage model's connectors lose 0 of the power, its design 0.04"),
     "a model efficiency no element loses": ([SPRING, MODEL_ETA], "simulate", 1,
