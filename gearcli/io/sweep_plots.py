@@ -78,7 +78,8 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     if campbell is not None:
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
-        figs.append(("distributions.png", _distributions(ok, n_stages, [a.column for a in session.spec.axes])))
+        grid = [a.column for a in session.spec.axes]
+        figs.append(("distributions.png", _distributions(ok, n_stages, grid, len(failed))))
     figs = [(name, fig) for name, fig in figs if fig is not None]
     if figs:  # a sweep whose every point failed has nothing to draw: no empty directory either
         out.mkdir(parents=True, exist_ok=True)
@@ -274,7 +275,7 @@ def _pinned_bar(x: np.ndarray, limits: tuple[float, float]) -> dict:
     return {"bins": 1, "range": (mid - width, mid + width)}
 
 
-def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()):
+def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = (), failed: int = 0):
     """Histograms and ECDFs of the random samples' statistics. With ``--vary`` keys too (``grid``: their columns)
     each point of the grid (and each direction) has its own distribution, drawn in its own colour: pooled, two operating speeds' samples made one two-humped histogram that no tolerance gives."""
     stats = [(c, t) for c, t in DISTRIBUTION_STATS if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1))]
@@ -319,8 +320,10 @@ def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()
     else:
         axes[0][0].legend(fontsize=7)
     per = max(len(rs) for rs in groups.values())
-    fig.suptitle(f"distributions over {_samples(len(rows))}" if len(groups) == 1 else
-                 f"distributions over {_samples(per)} at each of {len(groups)} grid points", fontsize=11)
+    title = (f"distributions over {_samples(len(rows))}" if len(groups) == 1 else
+             f"distributions over {_samples(per)} at each of {len(groups)} grid points")
+    # the samples that failed have no statistics: counted, so that "over 18 samples" of --samples 20 is explained
+    _suptitle(fig, title + (f" ({failed} failed, not drawn)" if failed else ""))
     return fig
 
 

@@ -50,3 +50,17 @@ def test_a_sweep_without_failed_points_draws_no_marks():
     fig = _response([_ok(19, 340.0), _ok(21, 376.1)], KEY, SimpleNamespace(columns=[KEY]), 1, [])
     assert not [line for ax in fig.axes for line in ax.get_lines() if line.get_marker() == "x"]
     assert fig._suptitle.get_text() == f"sweep response against {KEY}"
+
+
+def test_the_distributions_title_counts_the_samples_that_failed():
+    """--samples 5 of which 2 failed: three samples drawn (the histogram's bars hold 3), the title says 3 drawn and
+    2 failed, not drawn."""
+    from gearcli.io.sweep_plots import _distributions
+
+    rows = [{"status": "ok", "direction": "none", "stage1_tangential_N_max": v, "stage1_tangential_N_std": 0.1 * v}
+            for v in (4010.0, 4100.0, 4250.0)]
+    fig = _distributions(rows, 1, [], failed=2)
+    hist = next(ax for ax in fig.axes if ax.get_xlabel() == "peak F_t in window (N)" and ax.patches)
+    assert sum(bar.get_height() for bar in hist.patches) == 3
+    assert fig._suptitle.get_text().split() == "distributions over 3 random samples (2 failed, not drawn)".split()
+    assert _distributions(rows, 1, [])._suptitle.get_text() == "distributions over 3 random samples"
