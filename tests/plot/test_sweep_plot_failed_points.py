@@ -64,3 +64,16 @@ def test_the_distributions_title_counts_the_samples_that_failed():
     assert sum(bar.get_height() for bar in hist.patches) == 3
     assert fig._suptitle.get_text().split() == "distributions over 3 random samples (2 failed, not drawn)".split()
     assert _distributions(rows, 1, [])._suptitle.get_text() == "distributions over 3 random samples"
+
+
+def test_a_long_keys_title_stays_inside_a_one_stage_figure():
+    """The response figure of one stage is 5.2 in wide; "sweep response against stage.0.mesh.transmission_error_phase_deg.0"
+    at 11 pt is wider and ran off both edges of the PNG; it wraps, every word kept."""
+    key = "stage.0.mesh.transmission_error_phase_deg.0"
+    rows = [{**_ok(21, 376.1), key: v} for v in (0.0, 90.0)]
+    fig = _response(rows, key, SimpleNamespace(columns=[key]), 1)
+    fig.canvas.draw()
+    title = fig._suptitle
+    box = title.get_window_extent(fig.canvas.get_renderer())
+    assert 0.0 <= box.x0 and box.x1 <= fig.bbox.width
+    assert title.get_text().split() == f"sweep response against {key}".split()
