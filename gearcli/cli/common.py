@@ -130,12 +130,13 @@ def guarded(fn: Callable) -> Callable:
             from gearcli import api  # lazy: start-up time of --help
 
             api.check_environment()  # one rule for every command: a set GEARCLI_MEMORY_LIMIT_MB must be valid
-            with warnings_module.catch_warnings(record=True) as caught:
-                warnings_module.simplefilter("always", RuntimeWarning)
-                try:
+            caught: list[warnings_module.WarningMessage] = []
+            try:
+                with warnings_module.catch_warnings(record=True) as caught:
+                    warnings_module.simplefilter("always", RuntimeWarning)
                     return fn(*args, **kwargs)
-                finally:
-                    _report_numeric_warnings(caught)
+            finally:  # once the recording has ended: inside it, showing a warning appended it to the list being
+                _report_numeric_warnings(caught)  # shown, an endless loop (a CJK title's glyph warning: 2 GB, hung)
         except GearcliError as exc:
             if debug:  # the traceback, then the same one line and exit code (raised on, main() would print the line
                 traceback.print_exc()  # alone: it catches gearcli's errors for click's own output)
@@ -167,14 +168,17 @@ def _show_engine_builds() -> None:
 
 
 def _report_numeric_warnings(caught) -> None:
-    """numpy/scipy RuntimeWarnings as one line each (no source path, no repeated lines)."""
-    seen: list[str] = []
+    """The Python warnings of the run as plain warning lines, each message once and nothing with ``-q``: numpy/scipy
+    RuntimeWarnings as numerical warnings, any other (matplotlib's glyph missing from the fonts of a title) as its
+    message, without the source path and line Python's own display adds."""
+    numeric: list[str] = []
+    other: list[str] = []
     for w in caught:
-        if issubclass(w.category, RuntimeWarning) and str(w.message) not in seen:
+        seen = numeric if issubclass(w.category, RuntimeWarning) else other
+        if str(w.message) not in seen:
             seen.append(str(w.message))
-        elif not issubclass(w.category, RuntimeWarning):
-            warnings_module.showwarning(w.message, w.category, w.filename, w.lineno)
-    warn(f"numerical warning during the run: {shorten(m, 120)}" for m in seen)
+    warn(f"numerical warning during the run: {shorten(m, 120)}" for m in numeric)
+    warn(other)
 
 
 def quiet_option(fn: Callable) -> Callable:

@@ -48,8 +48,10 @@ def figure(rows: int, cols: int = 1, *, height: float = 2.3, width: float = 9.0,
 
 def suptitle(fig: Figure, text: str, fontsize: float = 11) -> None:
     """The figure's title, wrapped onto as many lines as keep it inside the figure: it may hold the design file's
-    ``title``, of any length (a long one ran off both edges of the PNG)."""
-    title = fig.suptitle(text, fontsize=fontsize)
+    ``title``, of any length (a long one ran off both edges of the PNG), and any characters: it is drawn as it is
+    written, never as mathtext (a title "costs $12 and $3" lost its dollars to italics, and "$\\frac{1}{$" ended the
+    command with an internal error)."""
+    title = fig.suptitle(text, fontsize=fontsize, parse_math=False)
     renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]  # the Agg canvas (:func:`figure`)
     room = 0.97 * fig.bbox.width
     chars = len(text)

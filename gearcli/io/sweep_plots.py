@@ -21,6 +21,7 @@ from gearcli.errors import GearcliError
 from gearcli.io import campbell as campbell_io
 from gearcli.io.figures import figure as _figure
 from gearcli.io.figures import save as _save
+from gearcli.io.figures import suptitle as _suptitle
 from gearcli.io.units import OutputUnits
 from gearcli.sweep.columns import Row
 from gearcli.sweep.modes import SweepCampbell
@@ -68,15 +69,17 @@ def write_sweep_plots(session: Session, rows: Sequence[Row], plots_dir: str,
     caller when an input speed is swept) gives ``campbell.png``."""
     out = Path(plots_dir)
     ok = [r for r in rows if r.get("status") == "ok"]
+    failed = [r for r in rows if r.get("status") == "failed"]
     n_stages = session.scene.n_stages
     paths: list[Path] = []
     figs = []
     for axis in session.spec.axes:
-        figs.append((response_name(axis.key), _response(ok, axis.column, session.spec, n_stages)))
+        figs.append((response_name(axis.key), _response(ok, axis.column, session.spec, n_stages, failed)))
     if campbell is not None:
         figs.append(("campbell.png", _campbell(campbell)))
     if session.spec.randoms:
-        figs.append(("distributions.png", _distributions(ok, n_stages, [a.column for a in session.spec.axes])))
+        grid = [a.column for a in session.spec.axes]
+        figs.append(("distributions.png", _distributions(ok, n_stages, grid, len(failed))))
     figs = [(name, fig) for name, fig in figs if fig is not None]
     if figs:  # a sweep whose every point failed has nothing to draw: no empty directory either
         out.mkdir(parents=True, exist_ok=True)
@@ -105,7 +108,7 @@ def _groups(rows: Sequence[dict], key: str, keys: Sequence[str]) -> dict[tuple, 
     return {g: sorted(rs, key=lambda r: _num(r.get(key))) for g, rs in groups.items()}
 
 
-def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
+def _response(rows: Sequence[dict], key: str, spec, n_stages: int, failed: Sequence[dict] = ()):
     families = [(t, cols) for t, cols in FAMILIES
                 if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1) for c in cols)]
     if not rows or not families:
@@ -136,6 +139,7 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
     ax.grid(alpha=0.3)
     for extra in axes[-1][1:]:
         extra.set_visible(False)
+    lost = _mark_failed(axes, failed, key)
     axes[-1][0].set_xlabel(key)
     for k in range(1, n_stages):
         axes[-2][k].set_xlabel(key)
@@ -145,8 +149,22 @@ def _response(rows: Sequence[dict], key: str, spec, n_stages: int):
         _legend_below(fig, handles, labels, 2 * n_stages)
     else:
         axes[0][0].legend(fontsize=7, loc="best")
-    fig.suptitle(f"sweep response against {key}", fontsize=11)
+    _suptitle(fig, f"sweep response against {key}" + (f" (× on the axis: {lost} failed point{'s' if lost > 1 else ''})"
+                                                      if lost else ""))
     return fig
+
+
+def _mark_failed(axes, failed: Sequence[dict], key: str) -> int:
+    """A × at the foot of every panel at each value of ``key`` where a point failed (it has no statistics to draw:
+    left out, a sweep over teeth 21 and 4 whose 4 failed drew an axis of 21 alone, as if nothing else was asked);
+    returns how many failed points have a numeric ``key``."""
+    xs = [x for r in failed if np.isfinite(x := _num(r.get(key)))]
+    if not xs:
+        return 0
+    for i, ax in enumerate(a for row in axes for a in row if a.get_visible()):
+        ax.plot(xs, [0.0] * len(xs), ls="none", marker="x", ms=7, mew=1.5, color="tab:red", clip_on=False,
+                transform=ax.get_xaxis_transform(), zorder=6, label="failed point" if i == 0 else None)
+    return len(xs)
 
 
 def _legend_below(fig, handles: list, labels: list[str], most: int) -> None:
@@ -257,7 +275,7 @@ def _pinned_bar(x: np.ndarray, limits: tuple[float, float]) -> dict:
     return {"bins": 1, "range": (mid - width, mid + width)}
 
 
-def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()):
+def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = (), failed: int = 0):
     """Histograms and ECDFs of the random samples' statistics. With ``--vary`` keys too (``grid``: their columns)
     each point of the grid (and each direction) has its own distribution, drawn in its own colour: pooled, two operating speeds' samples made one two-humped histogram that no tolerance gives."""
     stats = [(c, t) for c, t in DISTRIBUTION_STATS if any(_has(rows, f"stage{k}_{c}") for k in range(1, n_stages + 1))]
@@ -302,8 +320,10 @@ def _distributions(rows: Sequence[dict], n_stages: int, grid: Sequence[str] = ()
     else:
         axes[0][0].legend(fontsize=7)
     per = max(len(rs) for rs in groups.values())
-    fig.suptitle(f"distributions over {_samples(len(rows))}" if len(groups) == 1 else
-                 f"distributions over {_samples(per)} at each of {len(groups)} grid points", fontsize=11)
+    title = (f"distributions over {_samples(len(rows))}" if len(groups) == 1 else
+             f"distributions over {_samples(per)} at each of {len(groups)} grid points")
+    # the samples that failed have no statistics: counted, so that "over 18 samples" of --samples 20 is explained
+    _suptitle(fig, title + (f" ({failed} failed, not drawn)" if failed else ""))
     return fig
 
 
