@@ -163,14 +163,17 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
             out[k] = worse(se, other)
     if periodic or layout is None or tw.size < sampling.MIN_WINDOW_SAMPLES or not float(tw[-1] - tw[0]) > 0.0:
         return out  # a periodic window: 64 samples a period of its fastest excitation
+    forces = [np.asarray(per_stage[k][0])[sel] for k in range(len(out))]
+    lock = locked_to(layout, tw)
+    if lock is not None:  # the samples' own estimate of a locked stage's unresolved mean understates it (module text)
+        out = [se if se is None or sampling.too_few(se) else locked_mean(se, locked_bias_N(tw, forces[k]))
+               for k, se in enumerate(out)]
     nyquist = 0.5 * (tw.size - 1) / float(tw[-1] - tw[0])
     lines = candidates(layout, np.zeros(0) if eigenvalues is None else eigenvalues, nyquist, float(tw[-1] - tw[0]))
     judged = [se is not None and not sampling.too_few(se) for se in out]
-    forces = [np.asarray(per_stage[k][0])[sel] for k in range(len(out))]
     hits = found(tw, forces,
                  [se.reference_N if se is not None and ok else 0.0 for se, ok in zip(out, judged, strict=True)],
                  basis, lines)
-    lock = locked_to(layout, tw)
     if lock is not None:  # the samples sit at the same phases of that cycle: its folded harmonics bias the mean
         hits = [hit if hit is None else {**hit, "locked_to": lock,
                                          "mean_bias_N": max(_num(hit, "mean_bias_N"), locked_bias_N(tw, forces[k]))}
@@ -204,6 +207,17 @@ def locked_bias_N(t: np.ndarray, force_N: np.ndarray) -> float:
     samples, the trapezoid's error over the step is at most half its change times the step."""
     span = float(t[-1] - t[0])
     return float(np.einsum("i,i->", np.abs(np.diff(force_N)), np.diff(t))) / (2.0 * span) if span > 0.0 else 0.0
+
+
+def locked_mean(se: SamplingError, bound_N: float) -> SamplingError:
+    """``se`` with its mean's error the lock's bound ``bound_N`` (:func:`locked_bias_N`) where that is larger and
+    the samples' own estimate (Richardson's, which every other sample, locked too, cannot see past) already leaves
+    the mean unresolved; its suggestion kept (the bound, pessimistic for samples that do not lock, would ask for
+    more than the schema allows); a resolved mean is kept (locked samples integrate a smooth force well). tr29a: 1999 steps over 0.1 s of a
+    time-varying spur mesh at 2 kHz (9.995 samples a period) read 39.01 N against 41.67 N, estimated 0.097 N."""
+    if se.relative["mean"] <= sampling.MEAN_TARGET or not bound_N > se.mean_N or se.reference_N <= 0.0:
+        return se
+    return replace(se, mean_N=bound_N, relative={**se.relative, "mean": bound_N / se.reference_N})
 
 
 def worse(a: SamplingError, b: SamplingError) -> SamplingError:
