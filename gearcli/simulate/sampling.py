@@ -363,8 +363,8 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
         what = (f"the peaks between the {s.samples} window samples are estimated up to {absolute:.3g} N beyond them"
                 if worst != "mean" else
                 f"the window's mean (the integral over its {s.samples} samples) is estimated {absolute:.3g} N off "
-                "(a third of its change when every other sample is left out): the force has steps or vibration "
-                "the samples alias")
+                "(a third of its change when every other sample is left out, or half the force's change a step where "
+                "the samples lock to an excitation's period): the force has steps or vibration the samples alias")
         out.append(dg.warning(
             dg.STATISTICS_UNDERSAMPLED,
             f"stage {stage}: F_t {' and '.join(bad)} not resolved by the output samples: {what} "

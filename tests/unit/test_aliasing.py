@@ -47,6 +47,18 @@ def test_an_alias_on_a_resolved_line_is_not_judged():
     assert aliasing.found(t, [x], [1000.0], 2000, ([(3375.0, "on the line")], [625.0])) == [None]
 
 
+def test_a_locked_step_s_mean_miss_is_within_the_lock_bound():
+    """A force stepping between 30 and 60 N (60 N over the first 37 % of each 0.5 ms period: mean 41.1 N by hand),
+    sampled 10 times a period in lock with it: the samples see 60 N at 4 of their 10 phases, a trapezoid mean of
+    42 N, 0.9 N off, whatever the rate of the samples; half the change over each step, averaged, is 3 N."""
+    period, t = 5e-4, np.linspace(0.0, 0.05, 1001)
+    force = np.where(np.mod(t / period + 1e-9, 1.0) < 0.37, 60.0, 30.0)
+    mean = float(np.sum(0.5 * (force[1:] + force[:-1]) * np.diff(t))) / 0.05
+    miss = abs(mean - (30.0 + 30.0 * 0.37))
+    assert miss > 0.5  # the lock's miss: no sample between 0.3 and 0.37 of a period, ever
+    assert miss <= aliasing.locked_bias_N(t, force) == pytest.approx(3.0, rel=1e-2)
+
+
 def test_the_alias_folds_into_the_first_nyquist_band():
     assert_allclose(aliasing.alias_Hz(2500.0, FS), 1500.0, rtol=1e-12)
     assert_allclose(aliasing.alias_Hz(5100.0, FS), 1100.0, rtol=1e-12)

@@ -257,8 +257,10 @@ time_varying = true
 def test_a_stepped_force_the_samples_alias_warns_its_mean(tmp_path) -> None:
     """The mesh force steps with the contact line (333 Hz mesh), sampled 6 times a mesh period: the steps' harmonics
     alias into the window's mean, 352 N off the same run sampled 8x finer (the truth here). The run says so
-    (``statistics_undersampled`` with ``mean``), its estimate understated (a coherent O(h) error) but far beyond the
-    1e-4 target, and its suggestion raises the steps."""
+    (``statistics_undersampled`` with ``mean``), its estimate far beyond the 1e-4 target, and its suggestion raises
+    the steps. The samples lock to the mesh period (6 a period): Richardson's estimate understated the coherent O(h)
+    error (107 N), so the figure is the lock's bound, half the force's change a sample step (tr29a: 1604 N), which
+    must hold the miss."""
     from gearcli import api
     from gearcli.simulate import run_simulation
 
@@ -274,7 +276,7 @@ def test_a_stepped_force_the_samples_alias_warns_its_mean(tmp_path) -> None:
     true = abs(c.tangential_N.mean - fine.stages[0].tangential_N.mean)
     assert true > 1e-2 * abs(c.tangential_N.mean)  # unresolved in truth
     e = c.sampling_error
-    assert e is not None and 0.2 * true <= e.mean_N <= 3.0 * true
+    assert e is not None and true <= e.mean_N <= 5.0 * true
     warned = [d for d in coarse.diagnostics if d.code == "statistics_undersampled"]
     assert len(warned) == 1 and "mean" in warned[0].data["statistics"] and e.suggested_steps > 600
     assert "window's mean" in warned[0].message
