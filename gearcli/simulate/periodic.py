@@ -7,8 +7,8 @@ whose stiffness or transmission error varies with its phase ``phi = z_p theta_p`
 ``1 / (o n_in / 60)``; a load fluctuation of frequency f every ``1 / f``.
 :func:`excitation_periods` lists them from the scene's elements (each says whether it excites and the
 period of its cycle) and arrays (``drive_ripple``, ``load_fluct``), :func:`common_period` combines them: the least common period when the ratios of
-the periods are rational within a tolerance (with denominators up to :data:`MAX_DENOMINATOR`), else the
-slowest one, and it says which. A scene without any excitation has an equilibrium as its steady state;
+the periods are rational within a tolerance and their common period spans at most
+:data:`MAX_COMMON_OVER_SLOWEST` slowest periods, else the slowest one, and it says which. A scene without any excitation has an equilibrium as its steady state;
 its period is then the slowest mesh period (any period would do).
 
 Poincare map. Past the ramps the run is integrated period by period, continuing from the state at the
@@ -44,7 +44,6 @@ from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
 MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
 MAX_SUBHARMONIC = 8  # period-k responses looked for, k = 1 .. 8
-MAX_DENOMINATOR = 1000  # period ratios p/q with q up to this count as rational
 RATIO_RTOL = 1e-9  # relative tolerance of a rational period ratio
 MAX_COMMON_OVER_SLOWEST = 1000  # a least common period beyond this many slowest periods is not useful
 CONVERGED = 1.0  # residual (in units of the tolerance) at or below which two states are the same
@@ -136,19 +135,23 @@ def unexcited_period(layout) -> float:
 
 
 def _ratio(a: float, b: float) -> Fraction | None:
-    """a / b as p / q (q <= MAX_DENOMINATOR) when it is within RATIO_RTOL of one, else None."""
-    r = a / b
-    f = Fraction(r).limit_denominator(MAX_DENOMINATOR)
-    return f if abs(float(f) - r) <= RATIO_RTOL * r else None
+    """a / b (a <= b: a period over the slowest one) as p / q with p <= MAX_COMMON_OVER_SLOWEST when b / a is
+    within RATIO_RTOL of q / p, else None. The bound is on p, the slowest periods the pair's common period p b = q a
+    spans, not on q, the count of the faster periods in it: a 116.4 Hz mesh beside a 20.3 Hz load fluctuation
+    (p / q = 203 / 1164) repeat together every 10 s, 203 of the slower periods."""
+    x = b / a
+    f = Fraction(x).limit_denominator(MAX_COMMON_OVER_SLOWEST)
+    return 1 / f if abs(float(f) - x) <= RATIO_RTOL * x else None
 
 
 def common_period(excitations: list[Excitation]) -> CommonPeriod | None:
     """The least common period of ``excitations`` (see the module text); None when there are none.
 
     Each period is written as ``T_i = T_s p_i / q_i`` against the slowest one ``T_s``; the least common
-    period is ``T_s lcm(p_i) / gcd(q_i)``. When a ratio is not rational within tolerance, or the common
-    period would exceed :data:`MAX_COMMON_OVER_SLOWEST` slowest periods, the slowest period is returned
-    with ``exact = False`` and a source that says so.
+    period is ``T_s lcm(p_i) / gcd(q_i)``. When a pair has no common period within
+    :data:`MAX_COMMON_OVER_SLOWEST` slowest periods (its ratio is no fraction p / q with p up to that, within
+    RATIO_RTOL), or all of them together would exceed that many, the slowest period is returned with
+    ``exact = False`` and a source that says so.
     """
     if not excitations:
         return None
@@ -157,9 +160,10 @@ def common_period(excitations: list[Excitation]) -> CommonPeriod | None:
     for e in excitations:
         f = _ratio(e.period_s, slowest.period_s)
         if f is None:
-            return CommonPeriod(slowest.period_s, f"the slowest excitation ({slowest.label}): the period of "
-                                f"{e.label} is not a rational fraction of it, so the excitations have no common "
-                                "period", False)
+            return CommonPeriod(slowest.period_s, f"the slowest excitation ({slowest.label}): {e.label} has no common "
+                                f"period with it within {MAX_COMMON_OVER_SLOWEST} of its periods (period ratio "
+                                f"{e.period_s / slowest.period_s:.10g}, no fraction p / q with p up to "
+                                f"{MAX_COMMON_OVER_SLOWEST}), so the excitations have no usable common period", False)
         fractions.append(f)
     lcm_p = reduce(math.lcm, (f.numerator for f in fractions))
     gcd_q = reduce(math.gcd, (f.denominator for f in fractions))
