@@ -42,6 +42,8 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 # leaves them out so that the README's command stays well under two minutes. The extreme catalogue and the
 # golden files mark their slow scenes themselves. CONTRIBUTING.md, "Test tiers".
 SLOW = (
+    # session 23, tr29b: a torque drive's periodic run beside a 2 s scipy reference (~9 s under load)
+    "tests/reference/test_periodic_torque_drive_period.py",
     # session 23, tr28g: a motor-driven report with a transmission error (simulated and settled, ~9 s under load)
     "tests/reference/test_report_motor_mesh_orders.py",
     # session 23, tr28g: a motor-driven fan-load duty point simulated and settled end to end (~8 s under load)
