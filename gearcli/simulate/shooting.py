@@ -59,6 +59,7 @@ from gearcli.simulate import equilibrium as eq
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.periodic import CONVERGED, PeriodicRun, _joined, boundary_residual, scene_period
 from gearcli.simulate.results import SteadyState
+from gearcli.simulate.settle import NEUTRAL
 from gearcli.simulate.solver import integrate
 from gearcli.simulate.stats import window_slice
 
@@ -572,7 +573,8 @@ def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: 
                          cap_periods=cap,
                          method=method, iterations=ledger.iterations, attempts=ledger.attempts,
                          monodromy=ledger.monodromy,
-                         multipliers=fl.multipliers, spectral_radius=fl.spectral_radius, stable=fl.stable,
+                         multipliers=fl.multipliers, spectral_radius=fl.spectral_radius,  # stable: inside the
+                         stable=fl.stable and fl.spectral_radius <= 1.0 + NEUTRAL,  # circle, not STABLE_SLACK's
                          bifurcation=fl.bifurcation, note="; ".join(ledger.notes))
     t = fine.t
     return PeriodicRun(joined, (float(t[0]), float(t[-1])), (float(t[0]), float(t[-2])), steady, period,
