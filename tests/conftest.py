@@ -44,6 +44,8 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 SLOW = (
     # session 23, tr29b: a torque drive's periodic run beside a 2 s scipy reference (~9 s under load)
     "tests/reference/test_periodic_torque_drive_period.py",
+    # session 23, tr29b: a continued periodic sweep bisecting to a period doubling (~5 s under load)
+    "tests/sweep/test_jump_period_doubling.py",
     # session 23, tr28g: a motor-driven report with a transmission error (simulated and settled, ~9 s under load)
     "tests/reference/test_report_motor_mesh_orders.py",
     # session 23, tr28g: a motor-driven fan-load duty point simulated and settled end to end (~8 s under load)
