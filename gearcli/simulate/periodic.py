@@ -424,7 +424,7 @@ def search(model, method: str, rtol: float, parts: list, t_start: float, y_start
     y_n = states[n - k] if n >= k else states[-1]
     if T != period.period_s:
         period = replace(period, period_s=T, source=f"{period.source}, at the motion's mean input speed "
-                         f"({period.period_s / T:.9g} x the operating point's)")
+                         f"({period.period_s / T - 1.0:+.3g} relative to the operating point's)")
     total = statistics_grid(lay, T, k, steps)
     fine = t_n + k * T * np.arange(total + 1) / total
     stats_run = integrate(model, fine, method, rtol, y0=y_n, t0=t_n, engine=engine)
