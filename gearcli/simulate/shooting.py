@@ -402,9 +402,9 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                          shooting=ledger, cap_total=cap)
 
     if not lay.speed_drive:
-        return brute(t_start, first.y[:, -1], "a torque drive: the input body's angle and speed drift with the "
-                     "motion (a neutral rigid-body mode, multiplier 1), so the period map has no isolated fixed point "
-                     "in these states; brute force")
+        return brute(t_start, first.y[:, -1], f"{'a motor' if lay.motor_drive else 'a torque drive'}: the input's "
+                     "speed is the motion's own, so the period over which its angle's excitations repeat follows the "
+                     "motion's mean speed, which a period map of fixed length does not; brute force, timed by it")
     if cap < 1:
         return brute(t_start, first.y[:, -1], "no whole period fits before simulation.duration_s")
     if not period.exact:  # excitations without a common period: the response is quasi-periodic, no orbit exists

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -102,6 +103,10 @@ def test_the_period_is_one_input_revolution_at_the_motion_s_mean_speed(run, ref)
     assert not any(w["code"] == "not_periodic" for w in run["warnings"])
     assert steady["period_s"] == pytest.approx(ref["period_s"], rel=1e-7)  # 9.2e-5 off the rigid balance's
     assert 60 / steady["period_s"] == pytest.approx(run["summary"]["input_speed_rpm"], rel=1e-7)
+    # the source gives the mean speed's difference from the rigid balance: 0.04 s / T - 1 = -9.22e-5
+    said = re.search(r"at the motion's mean input speed \(([-+0-9.e]+) relative", steady["period_source"])
+    assert float(said.group(1)) == pytest.approx(0.04 / ref["period_s"] - 1.0, rel=1e-2)
+    assert steady["note"].startswith("a torque drive: ")
 
 
 def test_the_statistics_over_that_period_are_the_motion_s(run, ref):
