@@ -8,7 +8,7 @@ slower, so the state compared 0.04 s apart never repeated (the mesh phase drifts
 (chaotic or quasi-periodic)" after 81 periods. Every excitation is a function of the input angle, so the motion
 repeats over one input revolution: the search now times its period from the motion's mean input speed.
 
-Reference: the two-degree-of-freedom model written from DESIGN.md (angles and speeds of both wheels, q = r_b
+Reference: the two-degree-of-freedom model written from the contract's mesh law (docs/physics.md; angles and speeds of both wheels, q = r_b
 (theta_p - theta_g) - e(25 theta_p), F = k q + c q', c = 2 zeta sqrt(k m_e), m_e = J_p J_g / (J_p r_b^2 + J_g r_b^2))
 integrated with scipy's DOP853 for 2 s; the period is the time one input revolution takes there, the statistics
 those of F_t = F cos(alpha) over it.
