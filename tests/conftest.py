@@ -45,6 +45,10 @@ SLOW = (
     # session 23, tr29a: a servo mesh sampled 9.99 times a period, its mean's bound checked (~4 s CPU; the locked
     # 10-a-period run of the same file's other tests stays in the default tier)
     "tests/simulate/test_aliased_stage_names_mean.py::test_a_nearly_locked_stage_s_mean_estimate_bounds_its_miss",
+    # session 23, tr29b: a torque drive's periodic run beside a 2 s scipy reference (~9 s under load)
+    "tests/reference/test_periodic_torque_drive_period.py",
+    # session 23, tr29b: a continued periodic sweep bisecting to a period doubling (~5 s under load)
+    "tests/sweep/test_jump_period_doubling.py",
     # session 23, tr28g: a motor-driven report with a transmission error (simulated and settled, ~9 s under load)
     "tests/reference/test_report_motor_mesh_orders.py",
     # session 23, tr28g: a motor-driven fan-load duty point simulated and settled end to end (~8 s under load)

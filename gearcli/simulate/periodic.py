@@ -7,8 +7,8 @@ whose stiffness or transmission error varies with its phase ``phi = z_p theta_p`
 ``1 / (o n_in / 60)``; a load fluctuation of frequency f every ``1 / f``.
 :func:`excitation_periods` lists them from the scene's elements (each says whether it excites and the
 period of its cycle) and arrays (``drive_ripple``, ``load_fluct``), :func:`common_period` combines them: the least common period when the ratios of
-the periods are rational within a tolerance (with denominators up to :data:`MAX_DENOMINATOR`), else the
-slowest one, and it says which. A scene without any excitation has an equilibrium as its steady state;
+the periods are rational within a tolerance and their common period spans at most
+:data:`MAX_COMMON_OVER_SLOWEST` slowest periods, else the slowest one, and it says which. A scene without any excitation has an equilibrium as its steady state;
 its period is then the slowest mesh period (any period would do).
 
 Poincare map. Past the ramps the run is integrated period by period, continuing from the state at the
@@ -44,7 +44,6 @@ from gearcli.simulate.solver import STATUS_BUDGET, STATUS_FINISHED, integrate
 
 MAX_PERIODS = 2000  # cap on the excitation periods integrated past the ramps
 MAX_SUBHARMONIC = 8  # period-k responses looked for, k = 1 .. 8
-MAX_DENOMINATOR = 1000  # period ratios p/q with q up to this count as rational
 RATIO_RTOL = 1e-9  # relative tolerance of a rational period ratio
 MAX_COMMON_OVER_SLOWEST = 1000  # a least common period beyond this many slowest periods is not useful
 CONVERGED = 1.0  # residual (in units of the tolerance) at or below which two states are the same
@@ -136,19 +135,23 @@ def unexcited_period(layout) -> float:
 
 
 def _ratio(a: float, b: float) -> Fraction | None:
-    """a / b as p / q (q <= MAX_DENOMINATOR) when it is within RATIO_RTOL of one, else None."""
-    r = a / b
-    f = Fraction(r).limit_denominator(MAX_DENOMINATOR)
-    return f if abs(float(f) - r) <= RATIO_RTOL * r else None
+    """a / b (a <= b: a period over the slowest one) as p / q with p <= MAX_COMMON_OVER_SLOWEST when b / a is
+    within RATIO_RTOL of q / p, else None. The bound is on p, the slowest periods the pair's common period p b = q a
+    spans, not on q, the count of the faster periods in it: a 116.4 Hz mesh beside a 20.3 Hz load fluctuation
+    (p / q = 203 / 1164) repeat together every 10 s, 203 of the slower periods."""
+    x = b / a
+    f = Fraction(x).limit_denominator(MAX_COMMON_OVER_SLOWEST)
+    return 1 / f if abs(float(f) - x) <= RATIO_RTOL * x else None
 
 
 def common_period(excitations: list[Excitation]) -> CommonPeriod | None:
     """The least common period of ``excitations`` (see the module text); None when there are none.
 
     Each period is written as ``T_i = T_s p_i / q_i`` against the slowest one ``T_s``; the least common
-    period is ``T_s lcm(p_i) / gcd(q_i)``. When a ratio is not rational within tolerance, or the common
-    period would exceed :data:`MAX_COMMON_OVER_SLOWEST` slowest periods, the slowest period is returned
-    with ``exact = False`` and a source that says so.
+    period is ``T_s lcm(p_i) / gcd(q_i)``. When a pair has no common period within
+    :data:`MAX_COMMON_OVER_SLOWEST` slowest periods (its ratio is no fraction p / q with p up to that, within
+    RATIO_RTOL), or all of them together would exceed that many, the slowest period is returned with
+    ``exact = False`` and a source that says so.
     """
     if not excitations:
         return None
@@ -157,9 +160,10 @@ def common_period(excitations: list[Excitation]) -> CommonPeriod | None:
     for e in excitations:
         f = _ratio(e.period_s, slowest.period_s)
         if f is None:
-            return CommonPeriod(slowest.period_s, f"the slowest excitation ({slowest.label}): the period of "
-                                f"{e.label} is not a rational fraction of it, so the excitations have no common "
-                                "period", False)
+            return CommonPeriod(slowest.period_s, f"the slowest excitation ({slowest.label}): {e.label} has no common "
+                                f"period with it within {MAX_COMMON_OVER_SLOWEST} of its periods (period ratio "
+                                f"{e.period_s / slowest.period_s:.10g}, no fraction p / q with p up to "
+                                f"{MAX_COMMON_OVER_SLOWEST}), so the excitations have no usable common period", False)
         fractions.append(f)
     lcm_p = reduce(math.lcm, (f.numerator for f in fractions))
     gcd_q = reduce(math.gcd, (f.denominator for f in fractions))
@@ -383,14 +387,16 @@ def search(model, method: str, rtol: float, parts: list, t_start: float, y_start
     lay = model.layout
     T = period.period_s
     dyn = lay.state.n_mechanical
-    states = [y_start]
+    turn = _input_turn(lay, period)
+    states, times = [y_start], [t_start]
+    base = (t_start, 0)  # boundaries t0 + (n - n0) T since the period was last re-timed
     repeat, chunk, exhausted = Repeat(0, math.inf), FIRST_CHUNK, False
     while len(states) - 1 < cap and repeat.k == 0 and not exhausted:
         n = len(states) - 1
         m = min(chunk, cap - n)
-        t_n = t_start + n * T
-        r = integrate(model, t_start + T * np.arange(n, n + m + 1), method, rtol, y0=states[-1], t0=t_n,
-                      max_nfev=max(1, max_nfev - used), engine=engine)
+        t_n = times[-1]
+        r = integrate(model, base[0] + T * np.arange(n - base[1], n - base[1] + m + 1), method, rtol, y0=states[-1],
+                      t0=t_n, max_nfev=max(1, max_nfev - used), engine=engine)
         used += r.nfev
         parts.append(r)
         if r.status == STATUS_BUDGET:
@@ -401,15 +407,24 @@ def search(model, method: str, rtol: float, parts: list, t_start: float, y_start
             if not np.all(np.isfinite(r.y[:, j])):
                 break
             states.append(r.y[:, j])
+            times.append(float(r.t[j]))
             repeat = detect_period([s[:dyn] for s in states[-history_needed():]], rtol, atol)
             if repeat.k:
                 break
+        if turn is not None and len(states) >= 2:  # the period the input's mean speed over the last one gives
+            i, advance = turn
+            gone = float(states[-1][i] - states[-2][i])
+            if gone > 0.0 and abs(advance / gone - 1.0) < RETIME_LIMIT:
+                T, base = T * advance / gone, (times[-1], len(states) - 1)
         chunk = min(2 * chunk, LAST_CHUNK)
     n = len(states) - 1
     k = repeat.k or MAX_SUBHARMONIC
     k = min(k, n) if n > 0 else 1
-    t_n = t_start + (n - k) * T if n >= k else t_start + n * T
+    t_n = times[n - k] if n >= k else times[-1]
     y_n = states[n - k] if n >= k else states[-1]
+    if T != period.period_s:
+        period = replace(period, period_s=T, source=f"{period.source}, at the motion's mean input speed "
+                         f"({period.period_s / T - 1.0:+.3g} relative to the operating point's)")
     total = statistics_grid(lay, T, k, steps)
     fine = t_n + k * T * np.arange(total + 1) / total
     stats_run = integrate(model, fine, method, rtol, y0=y_n, t0=t_n, engine=engine)
@@ -421,6 +436,31 @@ def search(model, method: str, rtol: float, parts: list, t_start: float, y_start
     steady = _steady(period, repeat, n, k, total // k, exhausted, cap if cap_total is None else cap_total,
                      periods_before, shooting)
     return PeriodicRun(joined, (float(fine[0]), float(fine[-1])), (float(fine[0]), float(fine[-2])), steady, period)
+
+
+#: a re-timed period stays within this fraction of the operating point's (a start still far from it is not timed)
+RETIME_LIMIT = 0.05
+
+
+def _input_turn(layout, period: CommonPeriod) -> tuple[int, float] | None:
+    """``(i, advance)`` where the period follows the motion's own input speed, else None.
+
+    Without a prescribed speed (a torque drive, a motor) every excitation but a load fluctuation is a
+    function of the input angle (a mesh phase, a torque ripple), so the motion repeats over the input's angle
+    ``advance`` = the operating speed x the common period, and its period is that angle over the motion's mean
+    input speed, which the fluctuations and the mesh losses move off the rigid operating point: a spur mesh
+    with a 2 um transmission error and a 10 % torque ripple of order 2 (torque drive, quadratic load) runs at
+    1499.8615 rpm, not 1500, and its state, compared 0.04 s apart, never repeated (9.2e-5 short a period, the
+    mesh phase drifts). ``i`` is the input angle's state. None with a speed drive, a load fluctuation (a time
+    clock of its own), no angle state or no common period."""
+    st = layout.state
+    if layout.speed_drive or st.i_theta is None or not period.exact or not period.excited:
+        return None
+    fluct = np.array(layout.fluctuation, float).reshape(-1, 2)
+    if np.any((fluct[:, 0] != 0.0) & (fluct[:, 1] != 0.0)):
+        return None
+    w_in = steady_input_speed_rad_s(layout)
+    return (st.i_theta, abs(w_in) * period.period_s) if w_in != 0.0 else None
 
 
 def _fastest(layout, T: float) -> float:

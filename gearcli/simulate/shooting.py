@@ -59,6 +59,7 @@ from gearcli.simulate import equilibrium as eq
 from gearcli.simulate import periodic as pr
 from gearcli.simulate.periodic import CONVERGED, PeriodicRun, _joined, boundary_residual, scene_period
 from gearcli.simulate.results import SteadyState
+from gearcli.simulate.settle import NEUTRAL
 from gearcli.simulate.solver import integrate
 from gearcli.simulate.stats import window_slice
 
@@ -401,9 +402,9 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                          shooting=ledger, cap_total=cap)
 
     if not lay.speed_drive:
-        return brute(t_start, first.y[:, -1], "a torque drive: the input body's angle and speed drift with the "
-                     "motion (a neutral rigid-body mode, multiplier 1), so the period map has no isolated fixed point "
-                     "in these states; brute force")
+        return brute(t_start, first.y[:, -1], f"{'a motor' if lay.motor_drive else 'a torque drive'}: the input's "
+                     "speed is the motion's own, so the period over which its angle's excitations repeat follows the "
+                     "motion's mean speed, which a period map of fixed length does not; brute force, timed by it")
     if cap < 1:
         return brute(t_start, first.y[:, -1], "no whole period fits before simulation.duration_s")
     if not period.exact:  # excitations without a common period: the response is quasi-periodic, no orbit exists
@@ -572,7 +573,8 @@ def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: 
                          cap_periods=cap,
                          method=method, iterations=ledger.iterations, attempts=ledger.attempts,
                          monodromy=ledger.monodromy,
-                         multipliers=fl.multipliers, spectral_radius=fl.spectral_radius, stable=fl.stable,
+                         multipliers=fl.multipliers, spectral_radius=fl.spectral_radius,  # stable: inside the
+                         stable=fl.stable and fl.spectral_radius <= 1.0 + NEUTRAL,  # circle, not STABLE_SLACK's
                          bifurcation=fl.bifurcation, note="; ".join(ledger.notes))
     t = fine.t
     return PeriodicRun(joined, (float(t[0]), float(t[-1])), (float(t[0]), float(t[-2])), steady, period,

@@ -70,6 +70,7 @@ MAX_REFINEMENTS = 6 * FOLD_BISECTIONS  # evaluations spent following a branch to
 
 
 RESOLVED = 1e-6  # a vibration below this fraction of its channel's mean is rounding (an equilibrium's: none)
+FLIP_NEAR = 0.01  # a branch that ends with a real multiplier this close to -1 (or past it) ends at a period doubling
 
 
 def on_branch(prev, result) -> bool:
@@ -120,6 +121,12 @@ def _top_real(result) -> float | None:
     return re if abs(im) <= 1e-9 else None
 
 
+def _lowest_real(result) -> float | None:
+    """The lowest real Floquet multiplier of a periodic result; None without one."""
+    mus = result.steady.multipliers if result.steady is not None and result.steady.multipliers else ()
+    return min((re for re, im in mus if abs(im) <= 1e-9), default=None)
+
+
 def fold_estimate(v_a: float, mu_a: float, v_b: float, mu_b: float) -> float | None:
     """Where a real multiplier reaches +1, from two points of a branch approaching a fold (saddle-node: the
     distance to the fold goes as (1 - mu)^2, so (1 - mu)^2 is linear in the parameter near it); None when the
@@ -139,7 +146,8 @@ def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> s
     1/2^FOLD_BISECTIONS of the neighbours' distance that still leaves the branch (a smooth response changes less
     and less as the step shrinks, a discontinuity does not); where it ends, the Floquet multipliers say what it is: a
     real one heading to +1 is a fold, located where it reaches +1 (:func:`fold_estimate` from the last two
-    points of the branch)."""
+    points of the branch); a real one at -1 (within :data:`FLIP_NEAR`, or past it within the shooting's slack) a
+    period doubling (it was called "not near +1: a non-smooth end", quoting the multiplier of largest real part)."""
     last, last_v, hi = prev, v_prev, v
     before, before_v = None, None
     if refine is not None:
@@ -171,6 +179,15 @@ def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> s
             else None
         if at is not None and min(last_v, hi) - abs(hi - last_v) <= at <= max(last_v, hi) + abs(hi - last_v):
             fold += f", reaching it at {key} = {at:.6g} (extrapolated)"
+    elif (flip := min((m for m in mus if abs(m[1]) <= 1e-9 and m[0] < -0.5), default=None)) is not None \
+            and flip[0] <= -1.0 + FLIP_NEAR:
+        fold = (f"; there its Floquet multiplier {flip[0]:.5g} (real) reaches -1: a period doubling (the orbit of twice "
+                "the period takes over)")
+        mu_before = _lowest_real(before) if before is not None else None
+        at = None if mu_before is None or before_v is None or mu_before == flip[0] \
+            else last_v + (last_v - before_v) * (-1.0 - flip[0]) / (flip[0] - mu_before)  # crossing: linear in the key
+        if at is not None and min(v_prev, hi) <= at <= max(v_prev, hi):  # the shooting takes an orbit up to 1e-3 past
+            fold += f", at {key} = {at:.6g} (interpolated)"
     else:
         fold = (f"; there its largest Floquet multiplier {mu[0]:.3g}{mu[1]:+.3g}i is not near +1: a non-smooth end "
                 "(a contact starting to open, impacts) rather than a smooth fold")

@@ -236,7 +236,9 @@ def test_periodic_steady_state_at_the_motor_s_operating_speed(tmp_path: Path) ->
     s = json.loads(res.stdout)["summary"]
     steady = s["steady"]
     assert steady["converged"] is True and steady["periodicity"] == "period-1"
-    assert_allclose(steady["period_s"], 2 * math.pi * 13 / (23 * hand["wm"]), rtol=1e-9)
+    # the search times the period by the motion's own mean speed, which the TE's damping (a few 1e-6 more slip, see
+    # below) puts 4e-9 off the rigid operating point's
+    assert_allclose(steady["period_s"], 2 * math.pi * 13 / (23 * hand["wm"]), rtol=1e-7)
     assert s["window_s"][0] >= 1.0  # the search starts after the voltage ramp
     for st, Ft in zip(s["stages"], hand["Ft"], strict=True):
         # a transmission error adds no mean force; its damping draws a little more slip (a few 1e-6)

@@ -126,6 +126,33 @@ def test_common_period_of_the_seed_mesh_frequencies():
     assert_allclose(got.period_s, 1 / 1.4, rtol=1e-9)
 
 
+def test_a_common_period_of_few_slow_but_many_fast_periods_is_found():
+    # 20.3 Hz and 116.4 Hz: 203/10 and 1164/10 Hz with gcd(203, 1164) = 1 share 0.1 Hz, a 10 s common period holding
+    # 203 of the slower periods and 1164 of the faster ones. It was reported "not a rational fraction" (the bound of
+    # 1000 was put on the count of the faster periods, not on that of the slower ones the period spans).
+    assert math.gcd(203, 1164) == 1
+    got = common_period([Excitation("stage 1 mesh", 1 / 116.4), Excitation("load fluctuation 20.3 Hz", 1 / 20.3)])
+    assert got.exact
+    assert_allclose(got.period_s, 10.0, rtol=1e-9)
+    # three helical stages 19/75, 19/68, 23/71 at 1450 rpm: mesh frequencies f1, f1 19/75, f1 19 23 / (75 68); over
+    # 5100ths of f1 they are 5100, 1292 and 437 with gcd 1, so they share f1 / 5100: 437 periods of the slowest mesh
+    f1 = 19 * 1450 / 60
+    assert math.gcd(5100, 1292, 437) == 1
+    mesh_hz = [f1, f1 * 19 / 75, f1 * 19 * 23 / (75 * 68)]
+    got = common_period([Excitation(f"stage {k + 1} mesh", 1 / f) for k, f in enumerate(mesh_hz)])
+    assert got.exact
+    assert_allclose(got.period_s, 5100 / f1, rtol=1e-9)
+    assert_allclose(got.period_s / (1 / mesh_hz[2]), 437, rtol=1e-9)
+
+
+def test_a_common_period_beyond_1000_slowest_periods_is_not_used():
+    # 77.7 Hz beside 2875/3 Hz (25 teeth at 2300 rpm): 233.1/3 and 2875/3 share 0.1/3 Hz, 2331 periods of 77.7 Hz
+    got = common_period([Excitation("stage 1 mesh", 3 / 2875), Excitation("load fluctuation 77.7 Hz", 1 / 77.7)])
+    assert not got.exact
+    assert got.period_s == pytest.approx(1 / 77.7, rel=1e-15)
+    assert "no common period" in got.source
+
+
 def test_incommensurate_excitations_take_the_slowest_period_and_say_so():
     got = common_period([Excitation("stage 1 mesh", 1 / 51.0), Excitation("load fluctuation", 1 / (51.0 * math.sqrt(2)))])
     assert not got.exact
