@@ -11,6 +11,7 @@ from gearcli import engine
 from gearcli.core.cost import WORK_CAP_S, accuracy_factor, compiled_speedup, duration_text, priced_work_s
 from gearcli.core.methods import EXPLICIT_METHOD, METHODS
 from gearcli.core.records import record
+from gearcli.core.text import rounded_down
 from gearcli.design.standards import with_simulated_rating
 from gearcli.errors import ConfigError, SimulationError, StudyTooLong
 from gearcli.model import TorsionalModel
@@ -233,8 +234,10 @@ class ReportBudget:
         self.first = max(first_work_s, 1e-9)
 
     def _fit(self, total: float) -> str:
+        """The advice of a refusal: a duration whose work fits the budget, rounded down (rounded to nearest, 1.98e3 s
+        for 1977.8 would be refused again, as the run budget's advice was: core.text.rounded_down)."""
         fit = self.duration_s * REPORT_WORK_CAP_S / total if total > 0 else self.duration_s
-        return f"use --quick (one run), or set simulation.duration_s ≤ {fit:.3g} s"
+        return f"use --quick (one run), or set simulation.duration_s ≤ {rounded_down(fit):g} s"
 
     def check_projection(self, file_rtol: float, spec) -> None:
         base = accuracy_factor(file_rtol)
