@@ -208,7 +208,8 @@ def _no_continuous_integers(spec: SweepSpec, scene: Scene) -> None:
     whole = integer_keys(scene.raw, scene.source, scene.sets, [d.key for d in spec.randoms])
     if whole:
         d = next(d for d in spec.randoms if d.key == whole[0])
-        raise SweepUsageError(f"{d.column} is a whole number or a choice, {d.kind}(...) draws real numbers: every point "
+        raise SweepUsageError(f"{d.column} takes no real number (a whole number, a choice, a text or true/false), "
+                              f"{d.kind}(...) draws real numbers: every point "
                               "would fail; vary it over its values with --vary KEY=v1,v2,... or --vary KEY=START:STOP:N",
                               source="--random")
 
