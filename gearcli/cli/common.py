@@ -57,6 +57,11 @@ _SIGNALLED: list[int] = []  # the exit codes of the signals this process receive
 _SIGNAL_WORDS = {EXIT_INTERRUPTED: "interrupted", EXIT_TERMINATED: "terminated", EXIT_HANGUP: "hangup"}
 
 
+def interrupted() -> bool:
+    """A SIGINT reached this process (its handler ran): what an exit click gave it means (``Aborted!``, 1)."""
+    return EXIT_INTERRUPTED in _SIGNALLED
+
+
 def on_sigint(signum, frame) -> None:
     _SIGNALLED.append(EXIT_INTERRUPTED)
     raise KeyboardInterrupt
