@@ -73,7 +73,7 @@ def test_all_points_ok_is_exit_0_and_stdout_is_csv():
     ([], "nothing to sweep"),
     (["--random", "input.speed_rpm=uniform(1,2)"], "--samples"),
     (["--samples", "3", "--random", "input.speed_rpm=lognormal(1,2)"], "normal(mu,sigma)"),
-    (["--samples", "3", "--random", "stage.0.pinion.teeth=normal(21,1)"], "is a whole number"),
+    (["--samples", "3", "--random", "stage.0.pinion.teeth=normal(21,1)"], "takes no real number"),
     # a list (a TE's harmonics) is drawn entry by entry: the message shows how, not "a whole number"
     (["--samples", "3", "--set", "contact.transmission_error_um=[1.0, 0.5]",
       "--random", "contact.transmission_error_um=normal(1,0.1)"], "'contact.transmission_error_um.0=normal(...)'"),
