@@ -165,9 +165,9 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
         return out  # a periodic window: 64 samples a period of its fastest excitation
     forces = [np.asarray(per_stage[k][0])[sel] for k in range(len(out))]
     lock = locked_to(layout, tw)
+    biases = [locked_bias_N(tw, f) for f in forces] if lock is not None else []  # each stage's, once for both uses
     if lock is not None:  # the samples' own estimate of a locked stage's unresolved mean understates it (module text)
-        out = [se if se is None or sampling.too_few(se) else locked_mean(se, locked_bias_N(tw, forces[k]))
-               for k, se in enumerate(out)]
+        out = [se if se is None or sampling.too_few(se) else locked_mean(se, biases[k]) for k, se in enumerate(out)]
     nyquist = 0.5 * (tw.size - 1) / float(tw[-1] - tw[0])
     lines = candidates(layout, np.zeros(0) if eigenvalues is None else eigenvalues, nyquist, float(tw[-1] - tw[0]))
     judged = [se is not None and not sampling.too_few(se) for se in out]
@@ -176,7 +176,7 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
                  basis, lines)
     if lock is not None:  # the samples sit at the same phases of that cycle: its folded harmonics bias the mean
         hits = [hit if hit is None else {**hit, "locked_to": lock,
-                                         "mean_bias_N": max(_num(hit, "mean_bias_N"), locked_bias_N(tw, forces[k]))}
+                                         "mean_bias_N": max(_num(hit, "mean_bias_N"), biases[k])}
                 for k, hit in enumerate(hits)]
     return [se if se is None else unbounded(se, hit) for se, hit in zip(out, hits, strict=True)]
 
