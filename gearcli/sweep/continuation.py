@@ -112,19 +112,26 @@ def _amplitude(stage, other) -> tuple[float, float]:
     return stage.tangential_N.std, abs(stage.tangential_N.mean)
 
 
+REAL = 1e-9  # a Floquet multiplier whose imaginary part is at most this is real
+
+
+def _multipliers(result) -> tuple:
+    """A periodic result's Floquet multipliers as (re, im) pairs; () without them."""
+    return result.steady.multipliers if result.steady is not None and result.steady.multipliers else ()
+
+
 def _top_real(result) -> float | None:
     """The largest real Floquet multiplier of a periodic result; None when its largest-real-part one is complex."""
-    mus = result.steady.multipliers if result.steady is not None and result.steady.multipliers else ()
+    mus = _multipliers(result)
     if not mus:
         return None
     re, im = max(mus, key=lambda m: m[0])
-    return re if abs(im) <= 1e-9 else None
+    return re if abs(im) <= REAL else None
 
 
 def _lowest_real(result) -> float | None:
     """The lowest real Floquet multiplier of a periodic result; None without one."""
-    mus = result.steady.multipliers if result.steady is not None and result.steady.multipliers else ()
-    return min((re for re, im in mus if abs(im) <= 1e-9), default=None)
+    return min((re for re, im in _multipliers(result) if abs(im) <= REAL), default=None)
 
 
 def fold_estimate(v_a: float, mu_a: float, v_b: float, mu_b: float) -> float | None:
@@ -168,18 +175,18 @@ def jump_note(key: str, v_prev: float, v: float, prev, result, refine=None) -> s
                 break
         else:  # out of refinements: the branch is known to reach last_v, not where it ends
             hi = hi if (hi - last_v) * (v - v_prev) > 0 else v
-    mus = last.steady.multipliers if last.steady is not None and last.steady.multipliers else ()
+    mus = _multipliers(last)
     mu = max(mus, key=lambda m: m[0]) if mus else None
     if mu is None:
         fold = ""
-    elif abs(mu[1]) <= 1e-9 and mu[0] > 0.5:
+    elif abs(mu[1]) <= REAL and mu[0] > 0.5:
         fold = f"; there its Floquet multiplier {mu[0]:.3g} (real) heads to +1: a fold"
         mu_before = _top_real(before) if before is not None else None
         at = fold_estimate(before_v, mu_before, last_v, mu[0]) if mu_before is not None and before_v is not None \
             else None
         if at is not None and min(last_v, hi) - abs(hi - last_v) <= at <= max(last_v, hi) + abs(hi - last_v):
             fold += f", reaching it at {key} = {at:.6g} (extrapolated)"
-    elif (flip := min((m for m in mus if abs(m[1]) <= 1e-9 and m[0] < -0.5), default=None)) is not None \
+    elif (flip := min((m for m in mus if abs(m[1]) <= REAL and m[0] < -0.5), default=None)) is not None \
             and flip[0] <= -1.0 + FLIP_NEAR:
         fold = (f"; there its Floquet multiplier {flip[0]:.5g} (real) reaches -1: a period doubling (the orbit of twice "
                 "the period takes over)")
