@@ -117,8 +117,9 @@ def connectors_series(kind, param, bodies, levers, ppr, flags, rows, Y, omega, t
     F = np.empty((nc, width))
     U = np.empty((nc, width))
     D = np.empty((nc, width))
-    ch = np.zeros((nc, nch, width))
+    ch = np.empty((nc, nch, width))  # every row written below: evaluated and repeated, or zeros
     dd_s, phi_s, wphi_s = np.empty(n), np.empty(n), np.empty(n)  # a connector's law arguments at the samples
+    e0 = max(0, min(energy_from, n))  # the first sample whose stored energy is evaluated
     for c in range(nc):
         k = kind[c]
         P = param[c]
@@ -136,19 +137,20 @@ def connectors_series(kind, param, bodies, levers, ppr, flags, rows, Y, omega, t
             phi_s[j] = ppr[c] * theta[a, j] if flags[c] & 1 else 0.0
             wphi_s[j] = ppr[c] * omega[a, j] if flags[c] & 2 else 0.0
         # the forces and each channel in one call each (the kind chosen once for all the samples, not at each: the
-        # same law, the same numbers), the stored energy sample by sample
+        # same law, the same numbers), the stored energy sample by sample; each row's last evaluated sample then
+        # repeated to ``width`` by a slice (a loop over one row at a time: numba fills it as a block)
         conn_forces(k, P, Y[r], dd_s, phi_s, wphi_s, F[c])
         for i in range(m):
             conn_channels(k, P, i, Y[r], phi_s, ch[c, i])
-        for j in range(n):
-            D[c, j] = Y[r, j]
-            U[c, j] = conn_potential(k, P, Y[r, j], phi_s[j]) if j >= energy_from else np.nan
-        for j in range(n, width):
-            F[c, j] = F[c, n - 1]
-            U[c, j] = U[c, n - 1]
-            D[c, j] = D[c, n - 1]
-            for i in range(nch):
-                ch[c, i, j] = ch[c, i, n - 1]
+            ch[c, i, n:] = ch[c, i, n - 1]
+        ch[c, m:] = 0.0
+        D[c, :n] = Y[r]
+        U[c, :e0] = np.nan
+        for j in range(e0, n):
+            U[c, j] = conn_potential(k, P, Y[r, j], phi_s[j])
+        F[c, n:] = F[c, n - 1]
+        U[c, n:] = U[c, n - 1]
+        D[c, n:] = D[c, n - 1]
     return F, U, ch, D
 
 @jit_alloc
