@@ -22,7 +22,7 @@ import numpy as np
 from gearcli.core import signals
 from gearcli.core.records import record
 from gearcli.model import elements
-from gearcli.model.assembly import Layout
+from gearcli.model.assembly import Layout, ModelArrays
 from gearcli.model.elements import machine, torque
 from gearcli.model.step import ramp, ramp_motion, ramp_rates
 
@@ -266,7 +266,7 @@ def _loaded_kernel():
 
 
 def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, energy_from: int = 0,
-           constant_from: int | None = None) -> Sampled:
+           constant_from: int | None = None, arrays: ModelArrays | None = None) -> Sampled:
     """Everything the channels and the energy balance need, at the sample times ``t``. ``torques=False``: without
     the input and load torques (empty arrays; a caller that reads only the speeds, connector forces and energies:
     the energy watch, the settle test, the check pass). ``energy_from``: the connectors' stored energy
@@ -274,7 +274,9 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, e
     :func:`gearcli.simulate.equilibrium.sampled`; every other channel is sampled whole). ``constant_from``: the
     state is constant from this sample on and so is every channel (the caller's word: a speed drive past its ramps,
     no angle read, ``Y``'s dynamic states equal from there): the samples up to it are evaluated, its own repeated
-    after it (the same numbers as evaluating each)."""
+    after it (the same numbers as evaluating each). ``arrays``: the layout's ``Layout.arrays`` where the caller
+    has them (its model's, :attr:`gearcli.model.TorsionalModel.arrays`): the compiled call's connector rows read
+    from them (:func:`_series_rows`), not built again."""
     t = np.asarray(t, dtype=float)
     kernel = _loaded_kernel()
     if constant_from is not None:  # the samples from there on are that sample's state: evaluated once, repeated
@@ -284,7 +286,7 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, e
         head = t[:constant_from + 1]
         omega, theta, a0 = body_motion(lay, head, Y[:, :constant_from + 1])
         with signals.deferred():  # a signal acted on after the compiled call
-            conns = _all_series(lay, Y[:, :constant_from + 1], omega, theta, kernel, energy_from, t.size)
+            conns = _all_series(lay, Y[:, :constant_from + 1], omega, theta, kernel, energy_from, t.size, arrays)
         omega = _widened(omega, t.size)
         if not torques:
             return Sampled(t, omega, None, np.empty(0), np.empty(0), conns, lay)
@@ -295,7 +297,8 @@ def sample(lay: Layout, t: np.ndarray, Y: np.ndarray, *, torques: bool = True, e
         conns = tuple(_connector_series(lay, c, Y, omega, theta, None, energy_from) for c in range(lay.n_conn))
     else:
         with signals.deferred():  # once for every connector (a signal acted on after the compiled calls)
-            conns = _all_series(lay, Y, omega, theta, kernel, energy_from, t.size) if _compiled_all(lay, kernel) \
+            conns = _all_series(lay, Y, omega, theta, kernel, energy_from, t.size, arrays) \
+                if _compiled_all(lay, kernel) \
                 else tuple(_connector_series(lay, c, Y, omega, theta, kernel, energy_from) for c in range(lay.n_conn))
     if not torques:
         return Sampled(t, omega, theta, np.empty(0), np.empty(0), conns, lay)
@@ -335,26 +338,34 @@ def _compiled_all(lay: Layout, kernel) -> bool:
     return all(x.kind in kernel.KINDS for x in lay.connectors)
 
 
-def _series_rows(lay: Layout) -> tuple[np.ndarray, ...]:
+def _series_rows(lay: Layout, arrays: ModelArrays | None = None) -> tuple[np.ndarray, ...]:
     """The compiled ``connectors_series``' description of the layout's connectors (its own, kept with it): kinds,
     parameter rows, bodies and levers by slot (-1 / 0 padded), phase per radian, flags (1 phased, 2 excited), the
-    deflection's state row, how many leading channels are evaluated (:func:`_evaluated_channels`)."""
+    deflection's state row, how many leading channels are evaluated (:func:`_evaluated_channels`). ``arrays``: the
+    layout's :meth:`~gearcli.model.assembly.Layout.arrays` where the caller has them (a run's model built them for
+    its integration): their kinds, parameter rows, bodies and levers are those rows, built once (the parameter rows
+    zero-padded to ``N_PARAM``, as the integration reads them: the laws read their parameters by position)."""
     kept = lay.__dict__.get("_series_rows")
     if kept is None:
         conns = lay.connectors
         nc = len(conns)
-        width = max((len(x.params) for x in conns), default=0)
-        param = np.zeros((nc, width))
-        bodies = np.full((nc, elements.MAX_BODIES), -1, dtype=np.int64)
-        levers = np.zeros((nc, elements.MAX_BODIES))
+        if arrays is not None:
+            kind, param, bodies, levers = arrays.conn_kind, arrays.conn_param, arrays.conn_bodies, arrays.conn_levers
+        else:
+            width = max((len(x.params) for x in conns), default=0)
+            kind = np.array([x.kind for x in conns], dtype=np.int64)
+            param = np.zeros((nc, width))
+            bodies = np.full((nc, elements.MAX_BODIES), -1, dtype=np.int64)
+            levers = np.zeros((nc, elements.MAX_BODIES))
+            for c, x in enumerate(conns):
+                param[c, :len(x.params)] = x.params
+                bodies[c, :len(x.bodies)] = x.bodies
+                levers[c, :len(x.levers)] = x.levers
         ppr = np.zeros(nc)
         for c, x in enumerate(conns):
-            param[c, :len(x.params)] = x.params
-            bodies[c, :len(x.bodies)] = x.bodies
-            levers[c, :len(x.levers)] = x.levers
             if x.phased or x.excited:
                 ppr[c] = x.element.phase_per_rad(x.params)
-        kept = (np.array([x.kind for x in conns], dtype=np.int64), param, bodies, levers, ppr,
+        kept = (kind, param, bodies, levers, ppr,
                 np.array([int(x.phased) + 2 * int(x.excited) for x in conns], dtype=np.int64),
                 np.array([lay.state.delta(c) for c in range(nc)], dtype=np.int64),
                 np.array([_evaluated_channels(x) for x in conns], dtype=np.int64))
@@ -363,11 +374,11 @@ def _series_rows(lay: Layout) -> tuple[np.ndarray, ...]:
 
 
 def _all_series(lay: Layout, Y: np.ndarray, omega: np.ndarray, theta, kernel, energy_from: int,
-                width: int) -> tuple[ConnectorSeries, ...]:
+                width: int, arrays: ModelArrays | None = None) -> tuple[ConnectorSeries, ...]:
     """Every connector's :func:`_connector_series` (the same numbers) in one compiled call, its law arguments made
     there; ``width`` samples, the last of ``Y``'s repeated after them (:func:`sample`'s ``constant_from``). Called
-    with the signals held back."""
-    kind, param, bodies, levers, ppr, flags, rows, channels = _series_rows(lay)
+    with the signals held back; ``arrays``: :func:`_series_rows`'."""
+    kind, param, bodies, levers, ppr, flags, rows, channels = _series_rows(lay, arrays)
     if theta is None and any(x.phased for x in lay.connectors):  # the kernel would read past its dummy angles
         raise ValueError("a phased connector's mesh phase needs the bodies' angles (Layout.needs_angles)")
     F, U, ch, D = kernel.connectors_series(kind, param, bodies, levers, ppr, flags, rows,

@@ -168,21 +168,22 @@ def steady_period(first, rates: np.ndarray, y_eq: np.ndarray, t0: float, period_
     return replace(first, t=grid, y=y, nfev=0, njev=0, nlu=0, steps=0, wall_s=0.0, t_fail=float(grid[-1]))
 
 
-def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int, *, torques: bool = True) -> Sampled:
+def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int, *, torques: bool = True, arrays=None) -> Sampled:
     """:func:`gearcli.model.outputs.sample` of ``(t, Y)`` whose dynamic states are one constant state from sample
     ``start`` on (the equilibrium's statistics period, :func:`steady_period`), the same numbers with the constant
     part sampled once: every channel is a function of its own sample's state, speeds and the drive's and load's
     ramps, which are constant past the ramps, so the sample at ``start`` repeated is what sampling each would give.
     A scene whose mesh phases advance with the angles (or any other case) is sampled whole. ``torques=False``:
-    without the input and load torques (``sample``'s)."""
+    without the input and load torques; ``arrays``: the layout's ``Layout.arrays`` where the caller has them
+    (both ``sample``'s)."""
     d = layout.state.n_mechanical
     n = t.size - start - 1
     if (n < 1 or start < 0 or not layout.speed_drive or layout.needs_angles or layout.fluctuation
             or t[start] < max(layout.drive.ramp_s, layout.load.ramp_s)
             or Y.shape[1] != t.size or not bool((Y[:d, start:] == Y[:d, start:start + 1]).all())):
-        return sample(layout, t, Y, torques=torques)
+        return sample(layout, t, Y, torques=torques, arrays=arrays)
     # the balance reads the stored energy from start
-    return sample(layout, t, Y, torques=torques, energy_from=start, constant_from=start)
+    return sample(layout, t, Y, torques=torques, energy_from=start, constant_from=start, arrays=arrays)
 
 
 __all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]

@@ -221,9 +221,9 @@ def simulate_model(model: TorsionalModel, *, duration_s: float, steps: int, meth
     if getattr(steady_state, "method", None) == "equilibrium":
         from gearcli.simulate import equilibrium  # lazy: a settled run's equilibrium only
 
-        s = equilibrium.sampled(model.layout, run.t, run.y, energy_from, torques=torques)
-    else:
-        s = sample(model.layout, run.t, run.y, torques=torques)
+        s = equilibrium.sampled(model.layout, run.t, run.y, energy_from, torques=torques, arrays=model.arrays)
+    else:  # (the model's arrays, built for the engine's choice above: the compiled call's connector rows)
+        s = sample(model.layout, run.t, run.y, torques=torques, arrays=model.arrays)
     energy = model.energy(s, run.y, start=energy_from)
     diags = prior + diags + fallback + (pace_warnings(run, choice) if not changes else []) \
         + stats.model_warnings(spec) \

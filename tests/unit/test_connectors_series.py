@@ -68,6 +68,28 @@ def test_one_call_for_every_connector_is_each_connectors_own_call_bit_for_bit(na
 
 
 @pytest.mark.parametrize("name", SCENES)
+def test_the_models_arrays_as_the_connector_rows_give_the_same_series(name, kernel):
+    """``sample(..., arrays=model.arrays)``: the compiled call's rows read from the model's arrays (parameter rows
+    zero-padded to N_PARAM, a spring's shorter row too) give each connector's own call's numbers bit for bit, on a
+    fresh layout (no rows kept from a call without them); and on a second model in a row, its own numbers."""
+    lay, t, Y = _scene(name)
+    for model in (TorsionalModel(lay.spec), TorsionalModel(lay.spec)):
+        arrays = model.arrays
+        assert "_series_rows" not in model.layout.__dict__
+        got = sample(model.layout, t, Y, energy_from=5, arrays=arrays)
+        assert model.layout.__dict__["_series_rows"][1] is arrays.conn_param  # read, not built again
+        for c, (a, b) in enumerate(zip(got.connectors, _one_at_a_time(model.layout, t, Y, 5), strict=True)):
+            for f in NAMES:
+                assert np.array_equal(getattr(a, f), getattr(b, f), equal_nan=True), (c, f)
+    other, t2, Y2 = _scene("conveyor" if name != "conveyor" else "concrete_mixer_te")
+    model = TorsionalModel(other.spec)
+    got = sample(model.layout, t2, Y2, arrays=model.arrays)  # another scene's model next: its own rows
+    for c, (a, b) in enumerate(zip(got.connectors, _one_at_a_time(other, t2, Y2), strict=True)):
+        for f in NAMES:
+            assert np.array_equal(getattr(a, f), getattr(b, f), equal_nan=True), (c, f)
+
+
+@pytest.mark.parametrize("name", SCENES)
 def test_one_call_for_every_connector_is_the_elements_scalar_laws(name, kernel):
     """The independent reference: each element's force, energy and channels in Python, sample by sample."""
     lay, t, Y = _scene(name, samples=120)
