@@ -318,8 +318,8 @@ def _residual_text(residual: float | None) -> str:
 
 
 def _fastest_rad_s(choice: Choice) -> float:
-    freqs = choice.at_operating_point.natural_frequencies_Hz
-    return 2.0 * math.pi * float(np.max(freqs)) if np.size(freqs) else 0.0
+    freqs = choice.at_operating_point.natural_frequencies_Hz  # an array (the method: np.max's reduction, without
+    return 2.0 * math.pi * float(freqs.max()) if freqs.size else 0.0  # its dispatch)
 
 
 def window_steady(model: TorsionalModel) -> SteadyState:
