@@ -83,13 +83,16 @@ def peak_series(model: TorsionalModel, s: Sampled, stages_ft: list[np.ndarray]) 
     return out
 
 
-def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False
+def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False,
+               every: dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]] | None = None
                ) -> tuple[tuple[PlanetDynamics, ...], float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
     the mean planet's, the sun torque's share: |mean of the flank-signed means|; None for a parallel stage and for
     an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time (0, 0 for a parallel
+    stage). ``every``: :func:`planet_series` of ``model`` and ``s``, where the caller has it (made once for every
     stage)."""
-    series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
+    every = planet_series(model, s) if every is None else every
+    series = {key[1:]: v for key, v in every.items() if key[0] == k}
     if not series:
         return (), None, (0.0, 0.0)
     from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics  # lazy: a planetary stage only
