@@ -295,11 +295,11 @@ def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness
 def planet_ring_stiffness(model: TorsionalModel, choice: Choice) -> dict[int, MeshStiffness]:
     """Per planetary stage (0-based), its planet–ring mesh's law as :func:`mesh_stiffness` gives the sun–planet
     mesh's (planet 1's meshes stand for the stage; DESIGN section 13: every mesh's ``mesh_stiffness``)."""
-    out = {}
+    out, models = {}, model.spec.stage_models
     for c, x in enumerate(model.layout.connectors):
-        own = model.spec.stage_models[x.index] if 0 <= x.index < len(model.spec.stage_models) else None
-        ring = getattr(own, "ring_mesh", None)
-        if x.gear == "ring" and x.planet == 0 and ring is not None:
+        ring = (getattr(models[x.index], "ring_mesh", None)  # planet 1's ring mesh alone
+                if x.gear == "ring" and x.planet == 0 and 0 <= x.index < len(models) else None)
+        if ring is not None:
             out[x.index] = _law(ring, float(choice.at_full_load.deflection[c]))
     return out
 
@@ -475,10 +475,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
                                                         mask, window, periodic, omega=s.omega_rad_s)
         diags += motor_diags
-    if energy.residual_relative > stats.WARN_ENERGY_RESIDUAL:
-        diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
+    if (residual := energy.residual_relative) > stats.WARN_ENERGY_RESIDUAL:  # (a property: read once)
+        diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {residual:.2g} exceeds "
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
-                                residual=energy.residual_relative))
+                                residual=residual))
     diags += stat_diags or []
     diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
                                {e.stage: e for e in solver_errors if e is not None}, _unloaded(spec)) \
@@ -515,11 +515,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
         nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
-        energy_residual=energy.residual_relative, status=run.status, message=run.message,
+        energy_residual=residual, status=run.status, message=run.message,
         check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
         compile_s=run.compile_s, prediction=prediction, course_changes=course_changes)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
-                            energy.potential_change_J, energy.residual_relative, energy.parametric_work_J)
+                            energy.potential_change_J, residual, energy.parametric_work_J)
     return SimulationResult(
         time_s=s.time_s if want_series else np.empty(0), series=series if want_series else {},
         window_s=(float(window[0]), float(window[1])), ratio=ratio, output_speed_deg_s=w_out * RAD_TO_DEG,
