@@ -11,13 +11,13 @@ import numpy as np
 from gearcli import diagnostics as dg
 from gearcli.model.outputs import tooth_forces
 from gearcli.simulate import stats
-from gearcli.simulate.results import DteStats
+from gearcli.simulate.results import ChannelStats, DteStats
 
 if TYPE_CHECKING:
     from gearcli.diagnostics import Diagnostic
     from gearcli.model import TorsionalModel
     from gearcli.model.outputs import Sampled
-    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics
+    from gearcli.simulate.planet_results import PlanetDynamics
     from gearcli.simulate.results import StageDynamics
 
 
@@ -97,20 +97,25 @@ def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, peri
         return (), None, (0.0, 0.0)
     from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics  # lazy: a planetary stage only
 
-    def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
-        q = dte[mask] * 1e6  # um
-        mean = float(stats.window_means(s.time_s[mask], q, periodic)[0])
-        return PlanetMeshDynamics(stats.channel_stats(ft, mask, s.time_s, periodic=periodic),
-                                  DteStats(mean, float(q.std()), float(q.min()), float(q.max())))
-
     n = 1 + max(j for j, _ in series)
-    planets = tuple(PlanetDynamics(j + 1, mesh(*series[(j, "sun")]), mesh(*series[(j, "ring")])) for j in range(n))
+    meshes = [series[(j, gear)] for j in range(n) for gear in ("sun", "ring")]  # planet by planet, sun then ring
+    # every planet mesh's window, a row each (F_t, then DTE in um): each statistic one reduction along the rows, the
+    # numbers of the row alone (numpy reduces a contiguous row as the 1-D row: stats.stages_dynamics)
+    sel = stats.window_slice(mask)
+    tw, F = s.time_s[sel], np.stack([ft[sel] for ft, _ in meshes])
+    Q = np.stack([dte[sel] for _, dte in meshes]) * 1e6
+    f_mean, q_mean = (stats.window_means(tw, X, periodic).tolist() for X in (F, Q))
+    f_min, f_max, f_std, q_min, q_max, q_std = (r.tolist() for X in (F, Q) for r in (X.min(axis=1), X.max(axis=1),
+                                                                                     X.std(axis=1)))
+    rows = [PlanetMeshDynamics(ChannelStats(f_mean[r], f_min[r], f_max[r], f_std[r]),
+                               DteStats(q_mean[r], q_std[r], q_min[r], q_max[r])) for r in range(2 * n)]
+    planets = tuple(PlanetDynamics(j + 1, rows[2 * j], rows[2 * j + 1]) for j in range(n))
     # signed by the flank: a planet that a position error pushes onto its back flank takes load off the others, so
     # the mean planet is the sun torque's share, |mean of the signed means| (a mean of magnitudes counted it twice)
     signed = np.array([p.sun.tangential_N.mean for p in planets])
     means, share = np.abs(signed), abs(float(signed.mean()))
-    peaks = [(float(np.max(np.abs(series[(j, "sun")][0]))), int(np.argmax(np.abs(series[(j, "sun")][0]))))
-             for j in range(n)]
+    suns = np.abs(np.stack([series[(j, "sun")][0] for j in range(n)]))  # each sun mesh's |F_t| over the run
+    peaks = list(zip(suns.max(axis=1).tolist(), suns.argmax(axis=1).tolist(), strict=True))
     peak, at = max(peaks)
     # an unloaded stage's window means are round-off (~1e-10 N): their ratio is no load sharing (the report's
     # accuracy study takes the same line between a load and none: 1e-3 of the run-up peak)
