@@ -135,14 +135,15 @@ def found(t: np.ndarray, forces_N: list[np.ndarray], references_N: list[float], 
 
 def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solver_errors: list,
                     steps: int | None, periodic: bool, window_share: float, floors: list[float],
-                    reduced: stats.Reduced | None = None, layout=None,
-                    eigenvalues: np.ndarray | None = None, planets: dict | None = None) -> list[SamplingError | None]:
+                    reduced: stats.Reduced | None = None, layout=None, eigenvalues: np.ndarray | None = None,
+                    planets: dict | None = None, planet_reduced: dict | None = None) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
     judged with the solver's estimate where a check pass ran, and a fixed window's force above the samples' Nyquist
     frequency (``layout``, ``eigenvalues``: the scene's excitations and modes, read for a fixed window only; module
     text); None for an empty window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`).
     ``planets``: (stage, planet, "sun" | "ring") -> (F_t, ...) of every planet mesh
-    (:func:`gearcli.simulate.planet_stats.planet_series`): a planetary stage's estimate is its worst planet mesh's."""
+    (:func:`gearcli.simulate.planet_stats.planet_series`): a planetary stage's estimate is its worst planet mesh's;
+    ``planet_reduced``: their windows' reductions (:func:`gearcli.simulate.planet_stats.planet_windows`)."""
     sel = stats.window_slice(mask) if reduced is None else reduced.sel  # the reductions' window: the same slice
     tw = t[sel]
     if tw.size == 0:
@@ -154,12 +155,13 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
                                 solver=solver_errors[k], window_share=window_share, floor_N=floors[k], dt=dt,
                                 reduced=None if reduced is None else reduced.force(k))
         for k, m in enumerate(spec.meshes)]
-    for (k, _, _), series in (planets or {}).items():  # every planet's sun and ring mesh prints its min and max too
-        se = out[k]
+    for key, series in (planets or {}).items():  # every planet's sun and ring mesh prints its min and max too
+        k, se = key[0], out[key[0]]
         if se is not None and not sampling.too_few(se):
             other = sampling.stage_sampling(tw, np.asarray(series[0])[sel], spec.meshes[k].static_tangential_N, basis,
                                             periodic=periodic, solver=solver_errors[k], window_share=window_share,
-                                            floor_N=floors[k], dt=dt)
+                                            floor_N=floors[k], dt=dt,
+                                            reduced=None if planet_reduced is None else planet_reduced[key][1])
             out[k] = worse(se, other)
     if periodic or layout is None or tw.size < sampling.MIN_WINDOW_SAMPLES or not float(tw[-1] - tw[0]) > 0.0:
         return out  # a periodic window: 64 samples a period of its fastest excitation

@@ -4,14 +4,13 @@ load-sharing factor, and the stage's dynamic and run-up factors taken at its mos
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.model.outputs import tooth_forces
 from gearcli.simulate import stats
-from gearcli.simulate.results import ChannelStats, DteStats
 
 if TYPE_CHECKING:
     from gearcli.diagnostics import Diagnostic
@@ -84,32 +83,24 @@ def peak_series(model: TorsionalModel, s: Sampled, stages_ft: list[np.ndarray]) 
 
 
 def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False,
-               every: dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]] | None = None
+               every: dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]] | None = None,
+               windows: dict[tuple[int, int, str], tuple[Any, tuple]] | None = None
                ) -> tuple[tuple[PlanetDynamics, ...], float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
     the mean planet's, the sun torque's share: |mean of the flank-signed means|; None for a parallel stage and for
     an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time (0, 0 for a parallel
-    stage). ``every``: :func:`planet_series` of ``model`` and ``s``, where the caller has it (made once for every
-    stage)."""
+    stage). ``every``, ``windows``: :func:`planet_series` of ``model`` and ``s`` and
+    :func:`gearcli.simulate.stats.planet_windows` of its meshes over ``mask``, where the caller has them (made once
+    for every stage)."""
     every = planet_series(model, s) if every is None else every
     series = {key[1:]: v for key, v in every.items() if key[0] == k}
     if not series:
         return (), None, (0.0, 0.0)
-    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics  # lazy: a planetary stage only
+    from gearcli.simulate.planet_results import PlanetDynamics  # lazy: a planetary stage only
 
+    windows = stats.planet_windows(s.time_s, mask, every, periodic, k) if windows is None else windows
     n = 1 + max(j for j, _ in series)
-    meshes = [series[(j, gear)] for j in range(n) for gear in ("sun", "ring")]  # planet by planet, sun then ring
-    # every planet mesh's window, a row each (F_t, then DTE in um): each statistic one reduction along the rows, the
-    # numbers of the row alone (numpy reduces a contiguous row as the 1-D row: stats.stages_dynamics)
-    sel = stats.window_slice(mask)
-    tw, F = s.time_s[sel], np.stack([ft[sel] for ft, _ in meshes])
-    Q = np.stack([dte[sel] for _, dte in meshes]) * 1e6
-    f_mean, q_mean = (stats.window_means(tw, X, periodic).tolist() for X in (F, Q))
-    f_min, f_max, f_std, q_min, q_max, q_std = (r.tolist() for X in (F, Q) for r in (X.min(axis=1), X.max(axis=1),
-                                                                                     X.std(axis=1)))
-    rows = [PlanetMeshDynamics(ChannelStats(f_mean[r], f_min[r], f_max[r], f_std[r]),
-                               DteStats(q_mean[r], q_std[r], q_min[r], q_max[r])) for r in range(2 * n)]
-    planets = tuple(PlanetDynamics(j + 1, rows[2 * j], rows[2 * j + 1]) for j in range(n))
+    planets = tuple(PlanetDynamics(j + 1, windows[(k, j, "sun")][0], windows[(k, j, "ring")][0]) for j in range(n))
     # signed by the flank: a planet that a position error pushes onto its back flank takes load off the others, so
     # the mean planet is the sun torque's share, |mean of the signed means| (a mean of magnitudes counted it twice)
     signed = np.array([p.sun.tangential_N.mean for p in planets])

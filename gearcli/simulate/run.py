@@ -430,11 +430,12 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
     statics, flank = [m.static_tangential_N for m in spec.meshes], stats.loaded_flank(operating_load_factor(model.layout))
     reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], [flank * f for f in statics], periodic, rows)
-    # a periodic window is judged without the modes (its own grid); every planet mesh's series made once, read twice
+    # a periodic window is judged without the modes (its own grid); every planet mesh's series and window, made once
     planets = planet_series(model, s)
+    pw = stats.planet_windows(s.time_s, mask, planets, periodic)
     samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
                                          floors, reduced, model.layout, None if periodic else choice.run_eigenvalues,
-                                         planets)
+                                         planets, pw)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
@@ -444,7 +445,8 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
     peaks = [st.peak_tangential_N for st in stages] if len(stages) == len(per_stage) else None  # max |F_t|, each
-    stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic, planets)) for k, st in enumerate(stages))
+    stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic, planets, pw))
+                   for k, st in enumerate(stages))
     rings = planet_ring_stiffness(model, choice)
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
     # the reducer's ratio: shaft 1 over the last shaft, not motor over drum (the window's samples read in place)
@@ -562,9 +564,7 @@ def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
     out = {"deflection_m": min(each[c] for c in lay.stage_conn),
            "speed_rad_s": min(each[lay.state.speeds])}
     springs = [each[c] for c in range(lay.n_conn) if c not in meshes]
-    if springs:
-        out["twist_rad"] = min(springs)
-    return out
+    return {**out, "twist_rad": min(springs)} if springs else out
 
 
 def _choice_warnings(choice: Choice) -> list[Diagnostic]:

@@ -94,6 +94,29 @@ def window_means(tw: np.ndarray, W: np.ndarray, periodic: bool) -> np.ndarray:
     return np.sum(0.5 * (W[:, 1:] + W[:, :-1]) * dt[None, :], axis=1) / (tw[-1] - tw[0])
 
 
+def planet_windows(t: np.ndarray, mask: np.ndarray, every: dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]],
+                   periodic: bool, stage: int | None = None) -> dict[tuple[int, int, str], tuple[Any, tuple]]:
+    """Every planet mesh of ``every`` (:func:`gearcli.simulate.planet_stats.planet_series`; ``stage``: that stage's
+    alone) over the window ``mask`` of the times ``t``: its F_t and DTE (um) statistics (a PlanetMeshDynamics) and
+    its F_t's (plain mean, std, min, max), the sampling estimate's (:func:`gearcli.simulate.sampling.stage_sampling`'s
+    ``reduced``). Each statistic one numpy reduction along the rows of one array of every mesh's window: the numbers
+    of a mesh at a time (numpy reduces a contiguous row as the 1-D row alone, as :func:`stages_dynamics` reads)."""
+    from gearcli.simulate.planet_results import PlanetMeshDynamics  # lazy: a planetary stage only
+
+    keys = [key for key in every if stage is None or key[0] == stage]
+    if not keys:
+        return {}
+    sel = window_slice(mask)
+    tw, F = t[sel], np.stack([every[key][0][sel] for key in keys])
+    Q = np.stack([every[key][1][sel] for key in keys]) * 1e6
+    f_mean, q_mean = (window_means(tw, X, periodic).tolist() for X in (F, Q))
+    f_plain, f_min, f_max, f_std = (r.tolist() for r in (F.mean(axis=1), F.min(axis=1), F.max(axis=1), F.std(axis=1)))
+    q_min, q_max, q_std = (r.tolist() for r in (Q.min(axis=1), Q.max(axis=1), Q.std(axis=1)))
+    return {key: (PlanetMeshDynamics(ChannelStats(f_mean[r], f_min[r], f_max[r], f_std[r]),
+                                     DteStats(q_mean[r], q_std[r], q_min[r], q_max[r])),
+                  (f_plain[r], f_std[r], f_min[r], f_max[r])) for r, key in enumerate(keys)}
+
+
 def channel_stats(x: np.ndarray, mask: np.ndarray | slice, t: np.ndarray | None = None, *,
                   periodic: bool = False) -> ChannelStats:
     """mean, min, max, std of the channel ``x`` over the window ``mask``; the mean the integral's
