@@ -225,7 +225,7 @@ def locked_mean(se: SamplingError, bound_N: float) -> SamplingError:
 def worse(a: SamplingError, b: SamplingError) -> SamplingError:
     """``a`` (a planetary stage's planet-1 estimate) with each error the larger of its and ``b``'s (another planet
     mesh's), over ``a``'s reference force; unresolved where either is, suggesting the larger number of steps."""
-    err = {q: max(getattr(a, f"{q}_N"), getattr(b, f"{q}_N")) for q in ("min", "max", "mean")}
+    err = {"min": max(a.min_N, b.min_N), "max": max(a.max_N, b.max_N), "mean": max(a.mean_N, b.mean_N)}
     rel = {q: (v / a.reference_N if a.reference_N > 0 else max(a.relative[q], b.relative[q])) for q, v in err.items()}
     steps = [x.suggested_steps for x in (a, b) if not x.resolved]
     return replace(a, min_N=err["min"], max_N=err["max"], mean_N=err["mean"], relative=rel,

@@ -108,9 +108,11 @@ def planet_windows(t: np.ndarray, mask: np.ndarray, every: dict[tuple[int, int, 
         return {}
     sel = window_slice(mask)
     tw, F = t[sel], np.stack([every[key][0][sel] for key in keys])
-    Q = np.stack([every[key][1][sel] for key in keys]) * 1e6
+    Q = np.stack([every[key][1][sel] for key in keys])
+    Q *= 1e6  # um: the same products, in place
     f_mean, q_mean = (window_means(tw, X, periodic).tolist() for X in (F, Q))
-    f_plain, f_min, f_max, f_std = (r.tolist() for r in (F.mean(axis=1), F.min(axis=1), F.max(axis=1), F.std(axis=1)))
+    f_min, f_max, f_std = (r.tolist() for r in (F.min(axis=1), F.max(axis=1), F.std(axis=1)))
+    f_plain = f_mean if periodic else F.mean(axis=1).tolist()  # periodic: the window mean is numpy's plain mean
     q_min, q_max, q_std = (r.tolist() for r in (Q.min(axis=1), Q.max(axis=1), Q.std(axis=1)))
     return {key: (PlanetMeshDynamics(ChannelStats(f_mean[r], f_min[r], f_max[r], f_std[r]),
                                      DteStats(q_mean[r], q_std[r], q_min[r], q_max[r])),
