@@ -143,7 +143,7 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
     text); None for an empty window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`).
     ``planets``: (stage, planet, "sun" | "ring") -> (F_t, ...) of every planet mesh
     (:func:`gearcli.simulate.planet_stats.planet_series`): a planetary stage's estimate is its worst planet mesh's;
-    ``planet_reduced``: their windows' reductions (:func:`gearcli.simulate.planet_stats.planet_windows`)."""
+    ``planet_reduced``: their windows' reductions (:func:`gearcli.simulate.stats.planet_windows`)."""
     sel = stats.window_slice(mask) if reduced is None else reduced.sel  # the reductions' window: the same slice
     tw = t[sel]
     if tw.size == 0:
