@@ -135,15 +135,16 @@ def found(t: np.ndarray, forces_N: list[np.ndarray], references_N: list[float], 
 
 def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solver_errors: list,
                     steps: int | None, periodic: bool, window_share: float, floors: list[float],
-                    reduced: stats.Reduced | None = None, layout=None,
-                    eigenvalues: np.ndarray | None = None, planets: dict | None = None) -> list[SamplingError | None]:
+                    reduced: stats.Reduced | None = None, layout=None, eigenvalues: np.ndarray | None = None,
+                    planets: dict | None = None, planet_reduced: dict | None = None) -> list[SamplingError | None]:
     """Per stage, the output sampling's error of the window min and max of F_t (:mod:`gearcli.simulate.sampling`),
     judged with the solver's estimate where a check pass ran, and a fixed window's force above the samples' Nyquist
     frequency (``layout``, ``eigenvalues``: the scene's excitations and modes, read for a fixed window only; module
     text); None for an empty window. ``reduced``: the window's reductions (:func:`gearcli.simulate.stats.window_reductions`).
     ``planets``: (stage, planet, "sun" | "ring") -> (F_t, ...) of every planet mesh
-    (:func:`gearcli.simulate.planet_stats.planet_series`): a planetary stage's estimate is its worst planet mesh's."""
-    sel = stats.window_slice(mask)
+    (:func:`gearcli.simulate.planet_stats.planet_series`): a planetary stage's estimate is its worst planet mesh's;
+    ``planet_reduced``: their windows' reductions (:func:`gearcli.simulate.stats.planet_windows`)."""
+    sel = stats.window_slice(mask) if reduced is None else reduced.sel  # the reductions' window: the same slice
     tw = t[sel]
     if tw.size == 0:
         return [None] * len(spec.meshes)
@@ -154,12 +155,13 @@ def window_sampling(t: np.ndarray, mask: np.ndarray, per_stage: list, spec, solv
                                 solver=solver_errors[k], window_share=window_share, floor_N=floors[k], dt=dt,
                                 reduced=None if reduced is None else reduced.force(k))
         for k, m in enumerate(spec.meshes)]
-    for (k, _, _), series in (planets or {}).items():  # every planet's sun and ring mesh prints its min and max too
-        se = out[k]
+    for key, series in (planets or {}).items():  # every planet's sun and ring mesh prints its min and max too
+        k, se = key[0], out[key[0]]
         if se is not None and not sampling.too_few(se):
             other = sampling.stage_sampling(tw, np.asarray(series[0])[sel], spec.meshes[k].static_tangential_N, basis,
                                             periodic=periodic, solver=solver_errors[k], window_share=window_share,
-                                            floor_N=floors[k], dt=dt)
+                                            floor_N=floors[k], dt=dt,
+                                            reduced=None if planet_reduced is None else planet_reduced[key][1])
             out[k] = worse(se, other)
     if periodic or layout is None or tw.size < sampling.MIN_WINDOW_SAMPLES or not float(tw[-1] - tw[0]) > 0.0:
         return out  # a periodic window: 64 samples a period of its fastest excitation
@@ -223,7 +225,7 @@ def locked_mean(se: SamplingError, bound_N: float) -> SamplingError:
 def worse(a: SamplingError, b: SamplingError) -> SamplingError:
     """``a`` (a planetary stage's planet-1 estimate) with each error the larger of its and ``b``'s (another planet
     mesh's), over ``a``'s reference force; unresolved where either is, suggesting the larger number of steps."""
-    err = {q: max(getattr(a, f"{q}_N"), getattr(b, f"{q}_N")) for q in ("min", "max", "mean")}
+    err = {"min": max(a.min_N, b.min_N), "max": max(a.max_N, b.max_N), "mean": max(a.mean_N, b.mean_N)}
     rel = {q: (v / a.reference_N if a.reference_N > 0 else max(a.relative[q], b.relative[q])) for q, v in err.items()}
     steps = [x.suggested_steps for x in (a, b) if not x.resolved]
     return replace(a, min_N=err["min"], max_N=err["max"], mean_N=err["mean"], relative=rel,

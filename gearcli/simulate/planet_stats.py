@@ -4,20 +4,19 @@ load-sharing factor, and the stage's dynamic and run-up factors taken at its mos
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from gearcli import diagnostics as dg
 from gearcli.model.outputs import tooth_forces
 from gearcli.simulate import stats
-from gearcli.simulate.results import DteStats
 
 if TYPE_CHECKING:
     from gearcli.diagnostics import Diagnostic
     from gearcli.model import TorsionalModel
     from gearcli.model.outputs import Sampled
-    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics
+    from gearcli.simulate.planet_results import PlanetDynamics
     from gearcli.simulate.results import StageDynamics
 
 
@@ -83,31 +82,31 @@ def peak_series(model: TorsionalModel, s: Sampled, stages_ft: list[np.ndarray]) 
     return out
 
 
-def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False
+def planets_of(model: TorsionalModel, s: Sampled, mask: np.ndarray, k: int, periodic: bool = False,
+               every: dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]] | None = None,
+               windows: dict[tuple[int, int, str], tuple[Any, tuple]] | None = None
                ) -> tuple[tuple[PlanetDynamics, ...], float | None, tuple[float, float]]:
     """Stage k's planets over the window, the load-sharing factor (largest window-mean |F_t| of the sun meshes over
     the mean planet's, the sun torque's share: |mean of the flank-signed means|; None for a parallel stage and for
     an unloaded one) and the whole run's peak |F_t| over every planet's sun mesh with its time (0, 0 for a parallel
-    stage)."""
-    series = {key[1:]: v for key, v in planet_series(model, s).items() if key[0] == k}
+    stage). ``every``, ``windows``: :func:`planet_series` of ``model`` and ``s`` and
+    :func:`gearcli.simulate.stats.planet_windows` of its meshes over ``mask``, where the caller has them (made once
+    for every stage)."""
+    every = planet_series(model, s) if every is None else every
+    series = {key[1:]: v for key, v in every.items() if key[0] == k}
     if not series:
         return (), None, (0.0, 0.0)
-    from gearcli.simulate.planet_results import PlanetDynamics, PlanetMeshDynamics  # lazy: a planetary stage only
+    from gearcli.simulate.planet_results import PlanetDynamics  # lazy: a planetary stage only
 
-    def mesh(ft: np.ndarray, dte: np.ndarray) -> PlanetMeshDynamics:
-        q = dte[mask] * 1e6  # um
-        mean = float(stats.window_means(s.time_s[mask], q, periodic)[0])
-        return PlanetMeshDynamics(stats.channel_stats(ft, mask, s.time_s, periodic=periodic),
-                                  DteStats(mean, float(q.std()), float(q.min()), float(q.max())))
-
+    windows = stats.planet_windows(s.time_s, mask, every, periodic, k) if windows is None else windows
     n = 1 + max(j for j, _ in series)
-    planets = tuple(PlanetDynamics(j + 1, mesh(*series[(j, "sun")]), mesh(*series[(j, "ring")])) for j in range(n))
+    planets = tuple(PlanetDynamics(j + 1, windows[(k, j, "sun")][0], windows[(k, j, "ring")][0]) for j in range(n))
     # signed by the flank: a planet that a position error pushes onto its back flank takes load off the others, so
     # the mean planet is the sun torque's share, |mean of the signed means| (a mean of magnitudes counted it twice)
     signed = np.array([p.sun.tangential_N.mean for p in planets])
     means, share = np.abs(signed), abs(float(signed.mean()))
-    peaks = [(float(np.max(np.abs(series[(j, "sun")][0]))), int(np.argmax(np.abs(series[(j, "sun")][0]))))
-             for j in range(n)]
+    suns = np.abs(np.stack([series[(j, "sun")][0] for j in range(n)]))  # each sun mesh's |F_t| over the run
+    peaks = list(zip(suns.max(axis=1).tolist(), suns.argmax(axis=1).tolist(), strict=True))
     peak, at = max(peaks)
     # an unloaded stage's window means are round-off (~1e-10 N): their ratio is no load sharing (the report's
     # accuracy study takes the same line between a load and none: 1e-3 of the run-up peak)

@@ -289,17 +289,17 @@ def mesh_stiffness(model: TorsionalModel, choice: Choice) -> tuple[MeshStiffness
     """The contact law each mesh used, in the design file's units: K (N/mm^e), and its slope along the normal
     at the static approach h0 of the linearisation at full load, e K h0^(e-1) (N/mm; the design's
     ``linearised_stiffness_N_mm``; K itself for e = 1), with h0 (mm), the law's name and ISO 6336-1's k_n (N/mm)."""
-    return tuple(_law(m, float(choice.at_full_load.penetration_m[k])) for k, m in enumerate(model.spec.meshes))
+    return tuple(_law(m, h) for m, h in zip(model.spec.meshes, choice.at_full_load.penetration_m.tolist(), strict=True))
 
 
 def planet_ring_stiffness(model: TorsionalModel, choice: Choice) -> dict[int, MeshStiffness]:
     """Per planetary stage (0-based), its planet–ring mesh's law as :func:`mesh_stiffness` gives the sun–planet
     mesh's (planet 1's meshes stand for the stage; DESIGN section 13: every mesh's ``mesh_stiffness``)."""
-    out = {}
+    out, models = {}, model.spec.stage_models
     for c, x in enumerate(model.layout.connectors):
-        own = model.spec.stage_models[x.index] if 0 <= x.index < len(model.spec.stage_models) else None
-        ring = getattr(own, "ring_mesh", None)
-        if x.gear == "ring" and x.planet == 0 and ring is not None:
+        ring = (getattr(models[x.index], "ring_mesh", None)  # planet 1's ring mesh alone
+                if x.gear == "ring" and x.planet == 0 and 0 <= x.index < len(models) else None)
+        if ring is not None:
             out[x.index] = _law(ring, float(choice.at_full_load.deflection[c]))
     return out
 
@@ -371,7 +371,7 @@ def _series(model: TorsionalModel, s: Sampled, channels: bool = True) -> tuple[d
     stages' series alone (a run that keeps no series)."""
     lay = model.layout
     rows = stage_rows(lay, s.meshes)
-    per_stage: list[StageSeries] = [(r[0], r[1], r[2], r[3], r[4]) for r in (rows[5 * k:] for k in range(len(s.meshes)))]
+    per_stage: list[StageSeries] = list(zip(*[iter(rows)] * 5, strict=True))  # the rows' views, five a stage
     if not channels:
         return {}, per_stage, rows
     ch: dict[Channel, np.ndarray] = {Channel("speed", f"shaft{i + 1}"): s.omega_rad_s[b]
@@ -430,10 +430,12 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
     floors = estimate.force_floors_N(model, run.rtol)  # an unloaded stage's least reference force
     statics, flank = [m.static_tangential_N for m in spec.meshes], stats.loaded_flank(operating_load_factor(model.layout))
     reduced = stats.window_reductions(s.time_s, mask, per_stage[:len(ks)], [flank * f for f in statics], periodic, rows)
-    # a periodic window is judged without the modes (its own grid): their eigenproblem is not solved for it
+    # a periodic window is judged without the modes (its own grid); every planet mesh's series and window, made once
+    planets = planet_series(model, s)
+    pw = stats.planet_windows(s.time_s, mask, planets, periodic)
     samplings = aliasing.window_sampling(s.time_s, mask, per_stage, spec, solver_errors, steps, periodic, share,
                                          floors, reduced, model.layout, None if periodic else choice.run_eigenvalues,
-                                         planet_series(model, s))
+                                         planets, pw)
     merged = [sampling.merged(e, se) if e is not None and se is not None else e
               for e, se in zip(solver_errors, samplings, strict=True)]
     stages = tuple(stats.stages_dynamics(
@@ -443,14 +445,16 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         mesh_stiffness=[stiffness[k] if k < len(stiffness) else None for k in ks],
         type=[spec.stage_types[k] if k < len(spec.stage_types) else "parallel" for k in ks]))
     peaks = [st.peak_tangential_N for st in stages] if len(stages) == len(per_stage) else None  # max |F_t|, each
-    stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic)) for k, st in enumerate(stages))
+    stages = tuple(with_planets(st, *planets_of(model, s, mask, k, periodic, planets, pw))
+                   for k, st in enumerate(stages))
     rings = planet_ring_stiffness(model, choice)
     stages = tuple(replace(st, planet_ring_mesh_stiffness=rings[k]) if k in rings else st for k, st in enumerate(stages))
     # the reducer's ratio: shaft 1 over the last shaft, not motor over drum (the window's samples read in place)
-    first, last, sel = model.layout.shaft_body[0], model.layout.shaft_body[-1], stats.window_slice(mask)
+    shafts = model.layout.shaft_body
+    first, last, sel = shafts[0], shafts[-1], stats.window_slice(mask) if reduced is None else reduced.sel
     # the window means as every mean of simulate: the integral over the window (trapezoid rule, DESIGN section 7);
     # the samples' plain mean erred by (mean - (x_0 + x_N)/2) / N (1.5e-4 on a speed swinging 12 % over 240 samples)
-    w_in, w_out = (float(w) for w in stats.window_means(s.time_s[sel], s.omega_rad_s[[first, last]][:, sel], periodic))
+    w_in, w_out = (float(w) for w in stats.window_means(s.time_s[sel], s.omega_rad_s[:, sel][[first, last]], periodic))
     ratio, ratio_warnings = stats.ratio_of(w_in, w_out)
     contacts = [ms.penetration_m if model.layout.connectors[c].role == "mesh" else None
                 for c, ms in zip(model.layout.stage_conn, s.meshes, strict=True)]
@@ -473,10 +477,10 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         motor_summary, motor_diags = motor_side.summary(model.layout, s.time_s, s.omega_rad_s[0], s.input_torque_Nm,
                                                         mask, window, periodic, omega=s.omega_rad_s)
         diags += motor_diags
-    if energy.residual_relative > stats.WARN_ENERGY_RESIDUAL:
-        diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {energy.residual_relative:.2g} exceeds "
+    if (residual := energy.residual_relative) > stats.WARN_ENERGY_RESIDUAL:  # (a property: read once)
+        diags.append(dg.warning(dg.ENERGY_RESIDUAL, f"energy balance residual {residual:.2g} exceeds "
                                 f"{stats.WARN_ENERGY_RESIDUAL:g}: tighten simulation.rtol",
-                                residual=energy.residual_relative))
+                                residual=residual))
     diags += stat_diags or []
     diags += sampling.warnings([(k + 1, se) for k, se in enumerate(samplings) if se is not None],
                                {e.stage: e for e in solver_errors if e is not None}, _unloaded(spec)) \
@@ -513,11 +517,11 @@ def _summarise(model: TorsionalModel, s: Sampled, run: Integration, choice: Choi
         method=run.method, requested_method=choice.requested, choice_reason=choice.reason, rtol=run.rtol,
         atol=_atol_summary(model, run.atol),
         nfev=run.nfev, njev=run.njev, nlu=run.nlu, steps=run.steps, wall_s=run.wall_s,
-        energy_residual=energy.residual_relative, status=run.status, message=run.message,
+        energy_residual=residual, status=run.status, message=run.message,
         check_pass=ref.summary() if ref is not None else None, engine=run.engine, engine_reason=engine_reason,
         compile_s=run.compile_s, prediction=prediction, course_changes=course_changes)
     balance = EnergyBalance(energy.input_work_J, energy.load_work_J, energy.damping_loss_J, energy.kinetic_change_J,
-                            energy.potential_change_J, energy.residual_relative, energy.parametric_work_J)
+                            energy.potential_change_J, residual, energy.parametric_work_J)
     return SimulationResult(
         time_s=s.time_s if want_series else np.empty(0), series=series if want_series else {},
         window_s=(float(window[0]), float(window[1])), ratio=ratio, output_speed_deg_s=w_out * RAD_TO_DEG,
@@ -556,14 +560,11 @@ def simulated_static_tangential_N(model: TorsionalModel) -> list[float]:
 
 def _atol_summary(model: TorsionalModel, atol: np.ndarray) -> dict[str, float]:
     """The smallest absolute tolerance of each state group (deflections, speeds)."""
-    lay = model.layout
-    meshes = list(lay.stage_conn)
-    out = {"deflection_m": float(atol[meshes].min()),
-           "speed_rad_s": float(atol[lay.state.speeds].min())}
-    springs = [c for c in range(lay.n_conn) if c not in meshes]
-    if springs:
-        out["twist_rad"] = float(atol[springs].min())
-    return out
+    lay, meshes, each = model.layout, set(model.layout.stage_conn), atol.tolist()  # minima of floats: numpy's
+    out = {"deflection_m": min(each[c] for c in lay.stage_conn),
+           "speed_rad_s": min(each[lay.state.speeds])}
+    springs = [each[c] for c in range(lay.n_conn) if c not in meshes]
+    return {**out, "twist_rad": min(springs)} if springs else out
 
 
 def _choice_warnings(choice: Choice) -> list[Diagnostic]:

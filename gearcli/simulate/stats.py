@@ -85,11 +85,38 @@ def window_means(tw: np.ndarray, W: np.ndarray, periodic: bool) -> np.ndarray:
     mean, which is the trapezoid rule of the periodic signal. The plain mean of a window's samples counts both its
     ends in full and errs by (mean - (x_0 + x_N)/2) / N: a rattling mesh (F_t from 0 to 4.5x its mean) sampled
     1600 times was 6e-4 off, six times the mean's 1e-4 target, where the trapezoid rule is 1e-5 off."""
-    W = np.atleast_2d(W)
+    W = W if isinstance(W, np.ndarray) and W.ndim == 2 else np.atleast_2d(W)
     if periodic or W.shape[1] < 2 or tw[-1] <= tw[0]:
-        return W.mean(axis=1)
+        # numpy's mean of a float64 array is its sum along the rows divided by the count: the same division here,
+        # without np.mean's Python wrapper
+        return np.add.reduce(W, axis=1) / W.shape[1] if W.dtype == np.float64 and W.shape[1] else W.mean(axis=1)
     dt = np.diff(tw)
     return np.sum(0.5 * (W[:, 1:] + W[:, :-1]) * dt[None, :], axis=1) / (tw[-1] - tw[0])
+
+
+def planet_windows(t: np.ndarray, mask: np.ndarray, every: dict[tuple[int, int, str], tuple[np.ndarray, np.ndarray]],
+                   periodic: bool, stage: int | None = None) -> dict[tuple[int, int, str], tuple[Any, tuple]]:
+    """Every planet mesh of ``every`` (:func:`gearcli.simulate.planet_stats.planet_series`; ``stage``: that stage's
+    alone) over the window ``mask`` of the times ``t``: its F_t and DTE (um) statistics (a PlanetMeshDynamics) and
+    its F_t's (plain mean, std, min, max), the sampling estimate's (:func:`gearcli.simulate.sampling.stage_sampling`'s
+    ``reduced``). Each statistic one numpy reduction along the rows of one array of every mesh's window: the numbers
+    of a mesh at a time (numpy reduces a contiguous row as the 1-D row alone, as :func:`stages_dynamics` reads)."""
+    from gearcli.simulate.planet_results import PlanetMeshDynamics  # lazy: a planetary stage only
+
+    keys = [key for key in every if stage is None or key[0] == stage]
+    if not keys:
+        return {}
+    sel = window_slice(mask)
+    tw, F = t[sel], np.stack([every[key][0][sel] for key in keys])
+    Q = np.stack([every[key][1][sel] for key in keys])
+    Q *= 1e6  # um: the same products, in place
+    f_mean, q_mean = (window_means(tw, X, periodic).tolist() for X in (F, Q))
+    f_min, f_max, f_std = (r.tolist() for r in (F.min(axis=1), F.max(axis=1), F.std(axis=1)))
+    f_plain = f_mean if periodic else F.mean(axis=1).tolist()  # periodic: the window mean is numpy's plain mean
+    q_min, q_max, q_std = (r.tolist() for r in (Q.min(axis=1), Q.max(axis=1), Q.std(axis=1)))
+    return {key: (PlanetMeshDynamics(ChannelStats(f_mean[r], f_min[r], f_max[r], f_std[r]),
+                                     DteStats(q_mean[r], q_std[r], q_min[r], q_max[r])),
+                  (f_plain[r], f_std[r], f_min[r], f_max[r])) for r, key in enumerate(keys)}
 
 
 def channel_stats(x: np.ndarray, mask: np.ndarray | slice, t: np.ndarray | None = None, *,
@@ -141,6 +168,7 @@ class Reduced(NamedTuple):
     stds: np.ndarray  # about the plain mean
     peaks_at: np.ndarray  # a stage's index of its run's first largest |F_t|
     contact: tuple  # :func:`_contact`'s
+    sel: slice | np.ndarray  # the window's samples (:func:`window_slice` of the mask): read by the callers too
 
     def force(self, k: int) -> tuple[float, float, float, float]:
         """Stage ``k``'s (0-based) F_t over the window: (plain mean, std, min, max)."""
@@ -161,9 +189,11 @@ def window_reductions(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Seque
     empty window, a stage without its five series). ``rows``: an array whose leading rows are ``per_stage``'s series
     in order (:func:`gearcli.model.outputs.stage_rows`), where the caller made them so: the window's rows copied from
     it at once."""
-    if not per_stage or not np.any(mask) or any(len(p) != 5 for p in per_stage):
+    if not per_stage or any(len(p) != 5 for p in per_stage):
         return None
     sel = window_slice(mask)
+    if not isinstance(sel, slice) and not np.any(mask):  # (a slice is never empty: window_slice)
+        return None
     n = 5 * len(per_stage)
     if rows is not None and rows.dtype == np.float64 and rows.ndim == 2 and rows.shape[0] >= n:
         whole = np.ascontiguousarray(rows[0:n:5])  # F_t over the run: its peaks
@@ -171,7 +201,9 @@ def window_reductions(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Seque
     else:
         whole = np.stack([np.asarray(p[0], dtype=float) for p in per_stage])
         W = np.stack([np.asarray(x, dtype=float)[sel] for p in per_stage for x in p])
-    return Reduced(t[sel], W, whole, *_reductions(t[sel], W, whole, static_tangential_N, periodic))
+    tw = t[sel]
+    means, plain, mins, maxs, stds, peaks_at, contact = _reductions(tw, W, whole, static_tangential_N, periodic)
+    return Reduced(tw, W, whole, means, plain, mins, maxs, stds, peaks_at, contact, sel)
 
 
 def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequence[np.ndarray]],
@@ -195,7 +227,7 @@ def stages_dynamics(t: np.ndarray, mask: np.ndarray, per_stage: Sequence[Sequenc
                                        simulated_static_N=simulated[k], gapless=gaps[k]),
                         **{f: v[k] for f, v in fields.items()})
                 for k, p in enumerate(per_stage)]
-    tw, W, whole, means, _, mins, maxs, stds, peaks_at, contact = reduced
+    tw, W, whole, means, _, mins, maxs, stds, peaks_at, contact, _ = reduced
     window_max = np.maximum(np.abs(mins[0::5]), np.abs(maxs[0::5]))  # the window's max |F_t|: its min's or max's
     means, mins, maxs, stds = means.tolist(), mins.tolist(), maxs.tolist(), stds.tolist()  # float() of each, at once
     responses = _responses(tw, W[4::5], W[0::5], W[3::5], static_tangential_N, periodic,
@@ -234,8 +266,10 @@ def _reductions(tw: np.ndarray, W: np.ndarray, whole: np.ndarray, static_tangent
         stats, peaks_at, fractions, flags = kernel.window_statistics(W, whole, tw, bool(periodic), loaded)
         if np.isfinite(stats).all():
             # the flags as the compiled pass counts them; the fractions split at the crossings (contact_fractions)
-            contact = (*contact_fractions(tw, W[0::5], W[3::5], W[4::5], static_tangential_N, periodic, flags > 0),
-                       flags[:, 0] > 0, flags[:, 1] > 0)
+            on = flags > 0  # no flag raised (every mesh in contact on its loaded flank): contact_fractions' zeros
+            split = contact_fractions(tw, W[0::5], W[3::5], W[4::5], static_tangential_N, periodic, on) \
+                if on.any() else ([0.0] * len(on), [0.0] * len(on))
+            contact = (*split, on[:, 0], on[:, 1])
             return stats[:, 0], stats[:, 4], stats[:, 1], stats[:, 2], stats[:, 3], peaks_at, contact
     return (window_means(tw, W, periodic), W.mean(axis=1), W.min(axis=1), W.max(axis=1), W.std(axis=1),
             np.argmax(np.abs(whole), axis=1), _contact(tw, W[0::5], W[3::5], W[4::5], static_tangential_N, periodic))

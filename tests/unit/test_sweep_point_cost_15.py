@@ -92,11 +92,11 @@ def test_a_sweep_point_solves_the_damped_eigenproblem_only_where_its_window_read
     real = aliasing.window_sampling
 
     def handed(t, mask, per_stage, spec, errors, steps, periodic, share, floors, reduced=None, layout=None,
-               eigenvalues=None, planets=None):
+               eigenvalues=None, planets=None, planet_reduced=None):
         if eigenvalues is None:  # the plain path: the run's own eigenvalues, as before
             eigenvalues = choice_mod.damped_eigenvalues(layout, seen[-1].reported.forces)
         return real(t, mask, per_stage, spec, errors, steps, periodic, share, floors, reduced, layout, eigenvalues,
-                    planets)
+                    planets, planet_reduced)
 
     seen: list = []
     choose = choice_mod.choose_method
