@@ -118,9 +118,10 @@ def judged(mu: np.ndarray, near: float = NEAR, structural: int = 0, exponents: n
     are judged for a bifurcation (module text)."""
     if structural > 0:
         mu = np.delete(mu, np.argsort(np.abs(mu - 1.0), kind="stable")[:structural])
-    mu = mu[np.argsort(-np.abs(mu), kind="stable")]
-    pairs = tuple((float(m.real), float(m.imag)) for m in mu)
-    rho = float(np.max(np.abs(mu))) if mu.size else 0.0
+    size = np.abs(mu)  # (the moduli once: the order and the spectral radius read them)
+    mu = mu[np.argsort(-size, kind="stable")]
+    pairs = tuple(zip(mu.real.tolist(), mu.imag.tolist(), strict=True))
+    rho = float(size.max()) if mu.size else 0.0
     kind, critical = "none", (pairs[0] if pairs else None)
     best = math.inf
     judge = mu
