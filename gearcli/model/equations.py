@@ -173,7 +173,9 @@ class TorsionalModel:
         lay, prev = self.layout, model_prev.layout
         if (lay.n_conn, lay.n_bodies, lay.speed_drive) != (prev.n_conn, prev.n_bodies, prev.speed_drive):
             raise ValueError("continuation needs the same chain of bodies and connectors")
-        y = self.initial_state()
+        # (zeros, not initial_state(): every entry it sets, each deflection and each free body's speed, is set below,
+        # and it leaves the others 0; a planetary with position errors solved its rest deflections for nothing)
+        y = np.zeros(lay.state.n_states)
         y[lay.state.deflections] = y_prev[prev.state.deflections]
         t_end = max(prev.drive.ramp_s, prev.load.ramp_s) if t_prev is None else t_prev
         w_prev_in = model_prev._operating_speed(t_end)

@@ -1,6 +1,7 @@
 """A run's set-up computes the same numbers the long way does (issue 33): the rigid chain's peak forces of a model
 without ramps (a continued sweep point's) from one sample against the 801 samples, the linearisation's eigenvalue
-bounds kept against fresh ones, and a model's state scales kept against fresh ones, two models in a row."""
+bounds kept against fresh ones, a model's state scales kept against fresh ones, two models in a row, and a continued
+start state (set without the cold start it overwrites) against the rule by hand."""
 
 from __future__ import annotations
 
@@ -17,10 +18,10 @@ SEED = Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer.toml"
 NO_RAMPS = ("input.ramp_s=0.0", "load.ramp_s=0.0")
 
 
-def _model(*overrides: str) -> TorsionalModel:
+def _model(*overrides: str, path: Path = SEED) -> TorsionalModel:
     from gearcli import api
 
-    loaded, design = api.load_and_design(str(SEED), overrides)
+    loaded, design = api.load_and_design(str(path), overrides)
     return TorsionalModel(api.model_spec(loaded.design, design))
 
 
@@ -82,3 +83,30 @@ def test_the_tolerances_scale_each_models_own_states(models):
     lay = models["heavier"].layout
     heavier, lighter = models["heavier"].atol(1e-6), models["continued"].atol(1e-6)
     assert np.all(heavier[lay.state.deflections] > lighter[lay.state.deflections])  # more load, more deflection
+
+
+
+@pytest.mark.parametrize("scene", ["seed", "planetary"])
+def test_a_continued_state_keeps_the_deflections_and_moves_the_rigid_speeds(scene, tmp_path):
+    # the docstring's rule by hand: each deflection as the previous run left it, each free body's speed its new
+    # rigid speed plus its vibration about the old one, the quadratures 0; a planetary with a position error (whose
+    # cold start is its rest deflections, not 0) keeps the previous deflections too
+    if scene == "seed":
+        prev, new = _model(*NO_RAMPS), _model(*NO_RAMPS, "input.speed_rpm=1100")
+    else:
+        from tests.reference import test_planetary_worst_planet as worst  # a 5 um position error on planet 2
+
+        path = tmp_path / "planetary.toml"
+        path.write_text(worst.SCENE)
+        prev, new = _model(*NO_RAMPS, path=path), _model(*NO_RAMPS, "input.speed_rpm=450", path=path)
+        assert np.any(new.initial_state()[new.layout.state.deflections] != 0.0)  # the position error's rest state
+    lay, st = new.layout, new.layout.state
+    rng = np.random.default_rng(7)
+    y_prev = rng.uniform(-1.0, 1.0, st.n_states)
+    y = new.continue_state(y_prev, prev, 0.0)
+    assert np.array_equal(y[st.deflections], y_prev[st.deflections])
+    w_prev, w_new = prev.spec.drive.speed_rad_s, new.spec.drive.speed_rad_s
+    for i in lay.free_bodies:
+        ratio = lay.bodies[i].ratio
+        assert_allclose(y[st.omega(i)], ratio * w_new + (y_prev[st.omega(i)] - ratio * w_prev), rtol=0, atol=1e-12)
+    assert np.all(y[st.quadratures] == 0.0)
