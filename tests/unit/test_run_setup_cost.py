@@ -110,3 +110,30 @@ def test_a_continued_state_keeps_the_deflections_and_moves_the_rigid_speeds(scen
         ratio = lay.bodies[i].ratio
         assert_allclose(y[st.omega(i)], ratio * w_new + (y_prev[st.omega(i)] - ratio * w_prev), rtol=0, atol=1e-12)
     assert np.all(y[st.quadratures] == 0.0)
+
+
+def test_the_energy_scale_is_each_chains_own_and_follows_a_replaced_law(models, monkeypatch):
+    # the scale is the rigid chain's kinetic energy at speed plus each connector's energy at its static force; the
+    # latter is kept by the element's laws, parameters and force: computed afresh (memo emptied) and kept (filled by
+    # the other chains first) it is the same, chain by chain
+    from gearcli.simulate import guards
+
+    fresh = {}
+    for name in models:
+        guards._STATIC_POTENTIALS.clear()
+        fresh[name] = guards._nominal_scale(models[name].layout)
+    for name in ("heavier", "continued", "ramped", "heavier"):
+        assert guards._nominal_scale(models[name].layout) == fresh[name]
+    def kinetic(lay) -> float:  # of the rigid chain at its nominal speed, by hand
+        return 0.5 * sum(J * (b.ratio * lay.drive.speed_rad_s) ** 2 for J, b in zip(lay.inertias, lay.bodies,
+                                                                                strict=True))
+
+    elastic = {name: fresh[name] - kinetic(models[name].layout) for name in models}
+    assert elastic["heavier"] > 1.5 * elastic["continued"] > 0.0  # 9e6 against 5.31e6 N mm: more load, more energy
+    assert elastic["ramped"] == pytest.approx(elastic["continued"], rel=1e-12)  # the same load at another speed
+    # a law replaced (twice the potential) is another key: the elastic part doubles, the kinetic part stays
+    lay = models["continued"].layout
+    law = lay.connectors[0].element
+    potential = law.potential
+    monkeypatch.setattr(law, "potential", lambda P, d, phase: 2.0 * potential(P, d, phase))
+    assert_allclose(guards._nominal_scale(lay) - kinetic(lay), 2.0 * elastic["continued"], rtol=1e-9)
