@@ -145,7 +145,7 @@ def peak_rigid_forces(lay: Layout, duration_s: float, samples: int = 801) -> np.
     if key not in cache:
         # without a ramp (a continued sweep point's model) every force is one constant from t = 0: the peak of the
         # samples is the first sample's, each sample's value worked out by the same element-wise operations
-        ramped = max(lay.drive.ramp_s, lay.load.ramp_s) > 0.0
+        ramped = lay.drive.ramp_s > 0.0 or lay.load.ramp_s > 0.0
         peak = np.max(np.abs(rigid_forces(lay, np.linspace(0.0, end, samples) if ramped else np.zeros(1))), axis=1)
         peak.flags.writeable = False
         cache[key] = peak
