@@ -117,8 +117,8 @@ def _scene_unsupported(arrays) -> tuple[str, ...]:
     if kinds - set(known):
         out.append(f"connector kinds {sorted(kinds - set(known))}")
     param = np.asarray(arrays.conn_param)
-    for c, k in enumerate(np.asarray(arrays.conn_kind)):
-        if int(k) in known and np.any(param[c, known[int(k)]:] != 0.0):
+    for c, k in enumerate(np.asarray(arrays.conn_kind).tolist()):
+        if k in known and param[c, known[k]:].any():  # (an entry that is not 0.0: NaN too, as != 0.0)
             out.append(f"element parameters beyond the known ones on connector {c}")
             break
     for f in dataclasses.fields(arrays):

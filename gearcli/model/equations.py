@@ -173,7 +173,9 @@ class TorsionalModel:
         lay, prev = self.layout, model_prev.layout
         if (lay.n_conn, lay.n_bodies, lay.speed_drive) != (prev.n_conn, prev.n_bodies, prev.speed_drive):
             raise ValueError("continuation needs the same chain of bodies and connectors")
-        y = self.initial_state()
+        # (zeros, not initial_state(): every entry it sets, each deflection and each free body's speed, is set below,
+        # and it leaves the others 0; a planetary with position errors solved its rest deflections for nothing)
+        y = np.zeros(lay.state.n_states)
         y[lay.state.deflections] = y_prev[prev.state.deflections]
         t_end = max(prev.drive.ramp_s, prev.load.ramp_s) if t_prev is None else t_prev
         w_prev_in = model_prev._operating_speed(t_end)
@@ -208,12 +210,25 @@ class TorsionalModel:
         """Per-state absolute tolerance: rtol x the state's natural scale."""
         st = self.layout.state
         out = np.empty(st.n_states)
-        out[st.deflections] = rtol * self.deflection_scales()
-        out[st.speeds] = rtol * self.speed_scales_rad_s()
+        deflections, speeds = self._scales()
+        out[st.deflections] = rtol * deflections
+        out[st.speeds] = rtol * speeds
         if st.i_theta is not None:
             out[st.i_theta] = rtol * 2.0 * math.pi / max(m.pinion_teeth for m in self.spec.meshes)
         out[st.quadratures] = QUADRATURE_ATOL
         return out
+
+    def _scales(self) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`deflection_scales` and :meth:`speed_scales_rad_s`, read only: worked out once per model (keyed by
+        the model itself: its spec and layout, all they read, are fixed; a run's arrays at rtol 1e-6 and its
+        integration's tolerances at its own rtol both scale them)."""
+        kept = self.__dict__.get("_state_scales")
+        if kept is None:
+            kept = (self.deflection_scales(), self.speed_scales_rad_s())
+            for a in kept:
+                a.flags.writeable = False
+            self.__dict__["_state_scales"] = kept
+        return kept
 
     # ------------------------------------------------------------------------------------ energy
     def energy(self, s, Y: np.ndarray, start: int = 0) -> Energy:

@@ -23,6 +23,7 @@ method choice; the undamped natural frequencies are ``sqrt(eig(K^1/2 M K^1/2)) /
 from __future__ import annotations
 
 import math
+from functools import cached_property
 
 import numpy as np
 
@@ -142,7 +143,10 @@ def peak_rigid_forces(lay: Layout, duration_s: float, samples: int = 801) -> np.
     cache = lay.__dict__.setdefault("_peak_rigid_forces", {})
     key = (float(end), int(samples))
     if key not in cache:
-        peak = np.max(np.abs(rigid_forces(lay, np.linspace(0.0, end, samples))), axis=1)
+        # without a ramp (a continued sweep point's model) every force is one constant from t = 0: the peak of the
+        # samples is the first sample's, each sample's value worked out by the same element-wise operations
+        ramped = lay.drive.ramp_s > 0.0 or lay.load.ramp_s > 0.0
+        peak = np.max(np.abs(rigid_forces(lay, np.linspace(0.0, end, samples) if ramped else np.zeros(1))), axis=1)
         peak.flags.writeable = False
         cache[key] = peak
     return cache[key]
@@ -173,11 +177,13 @@ class Linearisation:
     def stiffness_N_m(self) -> np.ndarray:
         return self.stiffness[list(self.stage_conn)]
 
-    @property
+    # the two below: found once per linearisation, which is shared by the points that linearise the same chain
+    # (:func:`linearise`, its eigenvalues read-only: :func:`_read_only`), keyed by the object itself
+    @cached_property
     def max_abs_eigenvalue(self) -> float:
         return float(np.max(np.abs(self.eigenvalues))) if self.eigenvalues.size else 0.0
 
-    @property
+    @cached_property
     def min_abs_eigenvalue(self) -> float:
         nz = np.abs(self.eigenvalues)[np.abs(self.eigenvalues) > 0]
         return float(nz.min()) if nz.size else 0.0

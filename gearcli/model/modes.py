@@ -457,14 +457,16 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
     out = []
     tangents = full_load if full_load is not None and not bool(np.any(np.asarray(full_load[0]) == 0.0)) else None
     und: _Undamped | None = None  # the eigenproblem, for a planetary's phased mesh orders only
+    sources = excitation_sources(lay)  # (the layout's, the same list for every mode)
     for m in _near_modes(lay, boundary, duration_s, f_in, tangents):
         if m.rigid:
             continue
-        for o in excitation_sources(lay):
-            dominant, share = m.dominant, max(m.energy_share)
-            name, fe = o.name, o.hz_per_input_hz * f_in
-            if abs(fe - m.frequency_Hz) > RESONANCE_BAND * m.frequency_Hz:
+        band = RESONANCE_BAND * m.frequency_Hz
+        for o in sources:
+            fe = o.hz_per_input_hz * f_in
+            if abs(fe - m.frequency_Hz) > band:
                 continue
+            dominant, share, name = m.dominant, max(m.energy_share), o.name
             group: tuple[int, ...] = ()
             if o.phased:
                 und = und if und is not None else _undamped(lay, boundary, duration_s, tangents)

@@ -324,8 +324,9 @@ def predicted_costs(indicator: float, vibration_rad: float, excited_rad: float =
     walls, names, loads = [], [], []
     for name, n in zip((EXPLICIT_METHOD, IMPLICIT_METHOD), (x * work_factor for x in nfev), strict=True):
         options = (engines or {}).get(name) or {"python": 0.0}
-        best = min(options, key=lambda e: predicted_wall_s(e, name, n, 0.0, size))  # as if loaded: no load dependence
-        walls.append(predicted_wall_s(best, name, n, options[best], size))
+        loaded = {e: predicted_wall_s(e, name, n, 0.0, size) for e in options}  # as if loaded: no load dependence
+        best = min(options, key=loaded.__getitem__)
+        walls.append(loaded[best] if options[best] == 0.0 else predicted_wall_s(best, name, n, options[best], size))
         names.append(best)
         loads.append(options[best])
     return nfev, (walls[0], walls[1]), (names[0], names[1]), (loads[0], loads[1])

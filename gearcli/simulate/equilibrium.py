@@ -148,10 +148,10 @@ def root(model, t: float, y: np.ndarray, rtol: float, patol: np.ndarray, period_
     return None
 
 
-def multipliers(J: np.ndarray, period_s: float) -> np.ndarray:
-    """``exp(lambda T)`` of the eigenvalues ``lambda`` of ``J``: the eigenvalues of ``expm(J T)``, the monodromy of
-    the motion linearised at the equilibrium over one period."""
-    return np.exp(np.linalg.eigvals(J) * period_s) if J.size else np.zeros(0, complex)
+def exponents(J: np.ndarray, period_s: float) -> np.ndarray:
+    """``lambda T`` of the eigenvalues ``lambda`` of ``J``: their ``exp`` are the Floquet multipliers, the eigenvalues
+    of ``expm(J T)``, the monodromy of the motion linearised at the equilibrium over one period."""
+    return np.linalg.eigvals(J) * period_s if J.size else np.zeros(0, complex)
 
 
 def steady_period(first, rates: np.ndarray, y_eq: np.ndarray, t0: float, period_s: float, samples: int,
@@ -186,4 +186,4 @@ def sampled(layout, t: np.ndarray, Y: np.ndarray, start: int, *, torques: bool =
     return sample(layout, t, Y, torques=torques, energy_from=start, constant_from=start, arrays=arrays)
 
 
-__all__ = ["applies", "multipliers", "root", "sampled", "steady_period"]
+__all__ = ["applies", "exponents", "root", "sampled", "steady_period"]

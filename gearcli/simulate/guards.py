@@ -44,6 +44,7 @@ from gearcli.core.cost import (
     nfev_budget,
     priced_work_s,
 )
+from gearcli.core.memo import remember
 from gearcli.core.methods import IMPLICIT_METHOD, method
 from gearcli.core.records import record
 from gearcli.diagnostics import Diagnostic
@@ -195,9 +196,20 @@ def _nominal_scale(lay: Layout) -> float:
     ke = 0.5 * float(np.asarray(lay.inertias) @ (rho * lay.drive.speed_rad_s) ** 2)
     u = 0.0
     for x, f in zip(lay.connectors, np.abs(static_forces(lay)), strict=True):
-        P = x.element.linear_row(x.params, 1.0)
-        u += x.element.potential(P, x.element.static_deflection(P, f), 0.0)
+        el = x.element
+        # all it reads: the element's three laws, its parameters and the force (a sweep's points share their load)
+        key = (el.linear_row, el.static_deflection, el.potential, x.params, f)
+        found = _STATIC_POTENTIALS.get(key)
+        if found is None:
+            P = el.linear_row(x.params, 1.0)
+            found = remember(_STATIC_POTENTIALS, key, el.potential(P, el.static_deflection(P, f), 0.0), cap=64)
+        u += found
     return max(ke + u, np.finfo(float).tiny)
+
+
+#: a connector's stored energy at its static force (:func:`_nominal_scale`), by its element's laws (pure functions:
+#: a replaced one is another key), its parameter row and the force
+_STATIC_POTENTIALS: dict[tuple, float] = {}
 
 
 def energy_watch(model: TorsionalModel, y0: np.ndarray, t0: float = 0.0) -> EnergyWatch | None:

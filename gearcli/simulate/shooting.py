@@ -118,9 +118,10 @@ def judged(mu: np.ndarray, near: float = NEAR, structural: int = 0, exponents: n
     are judged for a bifurcation (module text)."""
     if structural > 0:
         mu = np.delete(mu, np.argsort(np.abs(mu - 1.0), kind="stable")[:structural])
-    mu = mu[np.argsort(-np.abs(mu), kind="stable")]
-    pairs = tuple((float(m.real), float(m.imag)) for m in mu)
-    rho = float(np.max(np.abs(mu))) if mu.size else 0.0
+    size = np.abs(mu)  # (the moduli once: the order and the spectral radius read them)
+    mu = mu[np.argsort(-size, kind="stable")]
+    pairs = tuple(zip(mu.real.tolist(), mu.imag.tolist(), strict=True))
+    rho = float(size.max()) if mu.size else 0.0
     kind, critical = "none", (pairs[0] if pairs else None)
     best = math.inf
     judge = mu
@@ -450,7 +451,7 @@ def integrate_shooting(model, method: str, rtol: float, *, steps: int, duration_
                 continue
             attempt += 1
             continue
-        return _result(model, parts, first, shot, fl, period, ledger, samples, cap, k)
+        return _result(model, parts, first, shot, fl, period, ledger, samples, cap, k, structural=shooter.structural)
     return brute(t_motion, y_motion, f"{FALLBACK_NOTE} ({why}); brute force from the motion's state")
 
 
@@ -466,8 +467,8 @@ def _at_equilibrium(model, rtol: float, first, parts: list, period, patol: np.nd
         ledger.notes.append("no excitation, but Newton on the equations of motion found no equilibrium from the "
                             "state at the end of the ramps; shooting")
         return None
-    fl = judged(eq.multipliers(found.J, T), structural=structural,
-                exponents=np.linalg.eigvals(found.J) * T if found.J.size else None)
+    exponents = eq.exponents(found.J, T)  # J's eigenvalues once: the multipliers are their exp
+    fl = judged(np.exp(exponents), structural=structural, exponents=exponents if found.J.size else None)
     if not fl.stable:
         ledger.notes.append(f"no excitation, but the equilibrium is unstable (multiplier of modulus "
                             f"{fl.spectral_radius:.4g} over a period): the motion leaves it; shooting")
@@ -484,7 +485,8 @@ def _at_equilibrium(model, rtol: float, first, parts: list, period, patol: np.nd
     ledger.notes.append(f"no excitation: the equilibrium, found by Newton on the equations of motion ({found.steps} "
                         "steps), its period exact")
     shot = Shot(run, found.y[:lay.state.n_mechanical].copy(), float(found.drift), None)
-    return _result(model, parts, first, shot, fl, period, ledger, samples, cap, method="equilibrium")
+    return _result(model, parts, first, shot, fl, period, ledger, samples, cap, method="equilibrium",
+                   structural=structural)
 
 
 def _flips(fl: Floquet) -> bool:
@@ -561,8 +563,11 @@ def _linear_verdict(model, shot: Shot, fl: Floquet, ledger: Ledger, structural: 
 
 
 def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: Ledger, samples: int, cap: int,
-            k: int = 1, method: str = "shooting"):
-    fl = _linear_verdict(model, shot, fl, ledger, structural_unit_multipliers(model.layout))
+            k: int = 1, method: str = "shooting", structural: int | None = None):
+    """The periodic run of the converged ``shot``; ``structural``: :func:`structural_unit_multipliers` of the model's
+    layout where the caller has it (the search found it before), else found here."""
+    structural = structural_unit_multipliers(model.layout) if structural is None else structural
+    fl = _linear_verdict(model, shot, fl, ledger, structural)
     fine = shot.run
     keep = first.t < fine.t[0]  # the run-up's last state is no sample of the orbit where the orbit starts there
     kept = window_slice(keep)  # (a slice of the leading samples: read in place, the same numbers as the mask's copy)
