@@ -114,6 +114,26 @@ def split_key(key: str) -> list[tuple[str, bool]]:
 
 def parse(text: str) -> Override:
     """``"stage.0.pinion.teeth=22"`` -> an :class:`Override` (the path is checked by :func:`apply`)."""
+    done = _PARSED.get(text)
+    if done is not None:
+        return done
+    ov = _parse(text)
+    if type(ov.value) in _IMMUTABLE:  # an array or a table, which the data would share and may change, never kept
+        if len(_PARSED) >= _PARSED_MAX:
+            _PARSED.clear()
+        _PARSED[text] = ov
+    return ov
+
+
+#: :func:`parse`'s overrides of one process, keyed by the text (a str: all that determines one), at most
+#: _PARSED_MAX of them; those whose value is immutable only (an Override is frozen): a sweep's or a duty's points
+#: apply the same --set and ramp overrides at every point
+_PARSED: dict[str, Override] = {}
+_PARSED_MAX = 256
+_IMMUTABLE = frozenset({int, float, bool, str})
+
+
+def _parse(text: str) -> Override:
     key, sep, value = text.partition("=")
     key = key.strip()
     if not sep or not key:

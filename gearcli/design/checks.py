@@ -86,8 +86,9 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
     for k, stage in gear_pairs(stages):
         stage_cfg = cfg.pair(k)
         at: JsonObject = {"stage": stage.index}
-        names = (_name(stage, stage.pinion), _name(stage, stage.gear))
-        if w := spur_hand_warning(stage.index, stage_cfg, names):
+        # a helical pair gives no spur-hand warning, which alone reads the members' names
+        if stage_cfg.helix_angle_deg == 0.0 and (w := spur_hand_warning(
+                stage.index, stage_cfg, (_name(stage, stage.pinion), _name(stage, stage.gear)))):
             found.append((w, {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):
             if w := undercut_warning(stage, gear, stage_cfg):
@@ -410,6 +411,8 @@ def face_width_warning(stage: StageResult) -> str | None:
     d1 = smaller_pitch_diameter_mm(stage)
     ratio = stage.face_width_mm / d1
     low, high = FACE_RATIO_RANGE
+    if low <= ratio <= high:
+        return None  # within the range: no warning, whose text alone names the members
     gear = _name(stage, stage.gear)  # a planetary's sun–planet pair: the planet
     which = _name(stage, stage.pinion) if d1 == stage.pinion.pitch_diameter_mm else \
         f"smaller wheel's (the {'driven gear' if gear == 'gear' else gear}'s)"

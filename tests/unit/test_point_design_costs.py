@@ -1,0 +1,113 @@
+"""A sweep point's design and model, made cheaper (session 24): each short cut gives what the long way gave.
+
+- ``--set`` texts parsed once per process (:func:`gearcli.config.overrides.parse`): two values of one key in a row
+  keep their own values, an array is never shared between two parses, a bad text fails every time;
+- the design file's subnormal rule (``StrictTable._no_subnormal``) answers a plain value without its search, and
+  refuses exactly the magnitudes in (0, 2.2250738585072014e-308);
+- ``design``'s warnings build a check's data only where it warns: a warned check's data hold the figures by hand.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from pathlib import Path
+
+import pytest
+from pydantic import ValidationError
+
+from gearcli.config.bounds_types import StrictTable
+from gearcli.config.load import load_variant
+from gearcli.config.overrides import parse
+from gearcli.config.schema import DesignFile
+from gearcli.design import compute_design
+from gearcli.errors import ConfigError
+
+SEED = Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer.toml"
+SMALLEST_NORMAL = 2.2250738585072014e-308  # IEEE 754 double's smallest normal number, 2^-1022
+
+
+def test_two_values_of_one_key_in_a_row_keep_their_own_values():
+    raw = SEED.read_bytes()
+    texts = [("input.speed_rpm=700", "load.ramp_s=0.0"), ("input.speed_rpm=900.5", "load.ramp_s=0.0"),
+             ("input.speed_rpm=700", "load.ramp_s=0.25")]
+    for _ in range(2):  # the second round from the parsed texts
+        got = [load_variant(raw, str(SEED), t) for t in texts]
+        assert [(c.input.speed_rpm, c.load.ramp_s) for c in got] == [(700, 0.0), (900.5, 0.0), (700, 0.25)]
+        assert all(c.input.speed_deg_s is None for c in got)  # the file's speed_deg_s replaced by each
+    assert parse("input.speed_rpm=700").value == 700 and parse("input.speed_rpm=700.0").value == 700.0
+    assert type(parse("input.speed_rpm=700").value) is int and type(parse("input.speed_rpm=700.0").value) is float
+
+
+def test_an_array_value_is_never_shared_between_two_parses():
+    text = "contact.transmission_error_um=[1.5, 2.5]"
+    first = parse(text)
+    first.value.append(99.0)  # what a caller may do to the data it was given
+    assert parse(text).value == [1.5, 2.5]
+    assert parse(text).value is not parse(text).value
+
+
+def test_a_bad_text_fails_every_time():
+    for _ in range(2):
+        with pytest.raises(ConfigError) as err:
+            parse("=5")
+        assert err.value.source == "--set" and "expected KEY=VALUE" in err.value.message
+        with pytest.raises(ConfigError) as err:
+            parse("input..speed_rpm=5")
+        assert err.value.key == "input..speed_rpm"
+
+
+class _Table(StrictTable):
+    x: float = 1.0
+    n: int = 1
+    name: str = ""
+    flag: bool = False
+    maybe: float | None = None
+    items: list[float] = []
+    rows: list[list[float]] = []
+    named: dict[str, float] = {}
+
+
+@pytest.mark.parametrize(("field", "value", "refused"), [
+    ("x", 0.0, False), ("x", -0.0, False), ("x", 1.5, False), ("x", -1e-300, False),
+    ("x", SMALLEST_NORMAL, False), ("x", -SMALLEST_NORMAL, False),
+    ("x", 5e-324, True), ("x", -1e-310, True), ("x", SMALLEST_NORMAL / 2, True),
+    ("n", 0, False), ("name", "5e-324", False), ("flag", True, False), ("maybe", None, False),
+    ("maybe", 1e-320, True), ("items", [1.0, 0.0], False), ("items", [1.0, 1e-320], True),
+    ("rows", [[1.0], [2.0, -5e-324]], True), ("named", {"a": 1.0}, False), ("named", {"a": 1e-315}, True),
+])
+def test_the_subnormal_rule_refuses_exactly_the_subnormal_magnitudes(field, value, refused):
+    if refused:
+        with pytest.raises(ValidationError) as err:
+            _Table.model_validate({field: value})
+        assert "a subnormal number is a mistake" in str(err.value)
+        assert err.value.errors()[0]["loc"][0] == field
+    else:
+        assert getattr(_Table.model_validate({field: value}), field) == value
+
+
+def test_warned_checks_keep_their_data_by_hand():
+    """Stage 1 of the seed made a narrow spur pair of 13 teeth, hands still given: the spur-hand, undercut and
+    face-width checks warn, each with the data its warning had before, the figures by hand."""
+    doc = tomllib.loads(SEED.read_text())
+    doc = copy.deepcopy(doc)
+    st = doc["stage"][0]
+    st["helix_angle_deg"] = 0.0
+    st["pinion"].update(teeth=13, face_width_mm=20)
+    st["gear"].update(face_width_mm=20)
+    design = compute_design(DesignFile.model_validate(doc))
+    data = {(d.data.get("check"), d.data.get("member")): d.data for d in design.diagnostics
+            if d.data.get("stage") == 1}
+    assert data[("spur_hand", None)] == {"check": "spur_hand", "stage": 1}
+    h_ff = 1.25 - 0.38 * (1.0 - math.sin(math.radians(20.0)))  # ISO 53 profile A's straight flank, 0.99997
+    sin2 = math.sin(math.radians(20.0)) ** 2  # spur: alpha_t = alpha_n
+    undercut = data[("undercut", "pinion")]
+    assert undercut["teeth"] == 13 and undercut["profile_shift"] == 0.0
+    assert undercut["min_teeth"] == pytest.approx(2.0 * h_ff / sin2, rel=1e-12)  # 17.097
+    assert undercut["min_profile_shift"] == pytest.approx(h_ff - 13 * sin2 / 2.0, rel=1e-12)  # 0.2396
+    assert ("undercut", "gear") not in data  # 51 teeth: no undercut
+    assert data[("face_width", None)]["face_width_ratio"] == pytest.approx(20.0 / (13 * 12.0), rel=1e-12)
+    warned = [w for w in design.warnings if w.startswith("stage 1:")]
+    assert any('hand given (pinion "left", gear "right")' in w for w in warned)
+    assert any("face width / pinion pitch diameter b/d1 = 20/156 = 0.128 < 0.2" in w for w in warned)
