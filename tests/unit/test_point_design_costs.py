@@ -4,16 +4,20 @@
   keep their own values, an array is never shared between two parses, a bad text fails every time;
 - the design file's subnormal rule (``StrictTable._no_subnormal``) answers a plain value without its search, and
   refuses exactly the magnitudes in (0, 2.2250738585072014e-308);
-- ``design``'s warnings build a check's data only where it warns: a warned check's data hold the figures by hand.
+- ``design``'s warnings build a check's data only where it warns: a warned check's data hold the figures by hand;
+- a result's finiteness check reads its floats by a plan per row of field types: the first non-finite number in
+  field order, whatever the rows before it.
 """
 
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import tomllib
 from pathlib import Path
 
+import numpy as np
 import pytest
 from pydantic import ValidationError
 
@@ -21,7 +25,7 @@ from gearcli.config.bounds_types import StrictTable
 from gearcli.config.load import load_variant
 from gearcli.config.overrides import parse
 from gearcli.config.schema import DesignFile
-from gearcli.design import compute_design
+from gearcli.design import compute, compute_design
 from gearcli.errors import ConfigError
 
 SEED = Path(__file__).resolve().parents[2] / "configs" / "concrete_mixer.toml"
@@ -111,3 +115,38 @@ def test_warned_checks_keep_their_data_by_hand():
     warned = [w for w in design.warnings if w.startswith("stage 1:")]
     assert any('hand given (pinion "left", gear "right")' in w for w in warned)
     assert any("face width / pinion pitch diameter b/d1 = 20/156 = 0.128 < 0.2" in w for w in warned)
+
+
+@dataclasses.dataclass(frozen=True)
+class _Inner:
+    a: float
+    b: float
+
+
+@dataclasses.dataclass(frozen=True)
+class _Outer:
+    x: float
+    inner: _Inner | None
+    y: float | None
+
+
+INF, NAN = float("inf"), float("nan")
+
+
+@pytest.mark.parametrize(("result", "expected"), [
+    (_Outer(1.0, _Inner(2.0, 3.0), 4.0), None),
+    (_Outer(1.0, _Inner(2.0, INF), 4.0), ("b", INF)),  # the same types as the row before: its own answer
+    (_Outer(1.0, None, -INF), ("y", -INF)),  # another row of types (an optional field None)
+    (_Outer(INF, _Inner(NAN, 1.0), 1.0), ("x", INF)),  # the first in field order, nested ones in their place
+    (_Outer(1.0, _Inner(NAN, 1.0), INF), ("a", NAN)),
+    (_Outer(1, _Inner(2.0, 3.0), None), None),  # whole numbers are no floats
+    (_Outer(1.0, _Inner(2.0, 3.0), np.float64("inf")), ("y", INF)),  # a float subclass is a float
+    (_Outer(1.0, _Inner(2.0, 3.0), 4.0), None),
+])
+def test_the_first_non_finite_number_of_a_result_in_field_order(result, expected):
+    found = compute._non_finite(result)
+    if expected is None:
+        assert found is None
+    else:
+        assert found is not None and found[0] == expected[0]
+        assert (math.isnan(found[1]) and math.isnan(expected[1])) or found[1] == expected[1]
