@@ -6,7 +6,9 @@
   refuses exactly the magnitudes in (0, 2.2250738585072014e-308);
 - ``design``'s warnings build a check's data only where it warns: a warned check's data hold the figures by hand;
 - a result's finiteness check reads its floats by a plan per row of field types: the first non-finite number in
-  field order, whatever the rows before it.
+  field order, whatever the rows before it;
+- a mesh spec's numbers are tested by their type first (a float): a flag, a NumPy integer or a non-finite number is
+  refused as before, an int and a float subclass taken.
 """
 
 from __future__ import annotations
@@ -150,3 +152,27 @@ def test_the_first_non_finite_number_of_a_result_in_field_order(result, expected
     else:
         assert found is not None and found[0] == expected[0]
         assert (math.isnan(found[1]) and math.isnan(expected[1])) or found[1] == expected[1]
+
+
+def _seed_mesh():
+    from gearcli.api import spec_from_design  # a model spec of the seed: its first mesh
+
+    cfg = load_variant(SEED.read_bytes(), str(SEED), ())
+    return spec_from_design(cfg, compute_design(cfg)).meshes[0]
+
+
+@pytest.mark.parametrize(("field", "value", "refused"), [
+    ("stiffness_N_m_e", True, "MeshSpec.stiffness_N_m_e must be a finite number > 0, got True"),  # a flag, no number
+    ("pinion_teeth", np.int64(21), "MeshSpec.pinion_teeth must be a finite number >= 1, got "),  # no int subclass
+    ("static_tangential_N", NAN, "MeshSpec.static_tangential_N must be a finite number, got nan"),
+    ("helix_angle_rad", 1.6, "MeshSpec.helix_angle_rad must be a finite angle below pi/2 rad, got 1.6"),
+    ("backlash_m", 0, None), ("pinion_teeth", 21, None), ("helix_angle_rad", np.float64(0.2), None),
+])
+def test_a_mesh_spec_takes_plain_numbers_and_floats(field, value, refused):
+    mesh = _seed_mesh()
+    if refused is None:
+        assert getattr(dataclasses.replace(mesh, **{field: value}), field) == value
+    else:
+        with pytest.raises(ValueError) as err:
+            dataclasses.replace(mesh, **{field: value})
+        assert str(err.value).startswith(refused)
