@@ -125,4 +125,14 @@ class StrictTable(BaseModel):
     @classmethod
     @_signature_once
     def _no_subnormal(cls, value: Any) -> Any:
-        return refuse_subnormal(value)
+        # called on every field of every table (~64 a seed file): a plain float, or a value that holds none (a
+        # whole number, a text, a flag, None, a table checked by its own model), is answered here as
+        # refuse_subnormal answers it, without its search
+        kind = type(value)
+        if kind is float:
+            return value if value == 0.0 or not abs(value) < SMALLEST_NORMAL else refuse_subnormal(value)
+        return value if kind in _NO_FLOATS or isinstance(value, BaseModel) else refuse_subnormal(value)
+
+
+#: the types of a design-file value that holds no float (refuse_subnormal returns it as it is)
+_NO_FLOATS = frozenset({int, bool, str, type(None)})

@@ -114,6 +114,26 @@ def split_key(key: str) -> list[tuple[str, bool]]:
 
 def parse(text: str) -> Override:
     """``"stage.0.pinion.teeth=22"`` -> an :class:`Override` (the path is checked by :func:`apply`)."""
+    done = _PARSED.get(text)
+    if done is not None:
+        return done
+    ov = _parse(text)
+    if type(ov.value) in _IMMUTABLE:  # an array or a table, which the data would share and may change, never kept
+        if len(_PARSED) >= _PARSED_MAX:
+            _PARSED.clear()
+        _PARSED[text] = ov
+    return ov
+
+
+#: :func:`parse`'s overrides of one process, keyed by the text (a str: all that determines one), at most
+#: _PARSED_MAX of them; those whose value is immutable only (an Override is frozen): a sweep's or a duty's points
+#: apply the same --set and ramp overrides at every point
+_PARSED: dict[str, Override] = {}
+_PARSED_MAX = 256
+_IMMUTABLE = frozenset({int, float, bool, str})
+
+
+def _parse(text: str) -> Override:
     key, sep, value = text.partition("=")
     key = key.strip()
     if not sep or not key:
@@ -171,10 +191,14 @@ def _holds_keys(tp: Any) -> bool:
     return is_model(tp) or container(tp) is not None or get_origin(tp) in (Union, types.UnionType)
 
 
+def _where(ov: Override, depth: int) -> str:
+    """The table ``ov.path[:depth]`` as a message names it (only a failed step's message reads it)."""
+    return format_path(ov.path[:depth]) or "the design file"
+
+
 def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[Any, Any]:
     """The schema type and the data one segment down from ``node``, created when absent.
     For the last segment only the schema is checked and the data is None."""
-    where = format_path(ov.path[:depth]) or "the design file"
     last = depth == len(ov.path) - 1
     if container(tp) == "list":
         if not isinstance(seg, int):
@@ -188,12 +212,12 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
             if signed:
                 n = len(node) if isinstance(node, list) else 0
                 span = f" (0–{n - 1} here)" if n else ""
-                raise _fail(ov, f"{where} is an array: an index is a whole number from 0{span}, without a sign "
-                                f"(no counting from the end), e.g. {example}")
-            raise _fail(ov, f"{where} is an array: give an index, e.g. {example}")
+                raise _fail(ov, f"{_where(ov, depth)} is an array: an index is a whole number from 0{span}, without a "
+                                f"sign (no counting from the end), e.g. {example}")
+            raise _fail(ov, f"{_where(ov, depth)} is an array: give an index, e.g. {example}")
         if seg >= len(node):
             n = len(node)
-            have = f"{n} {where} entr{'y' if n == 1 else 'ies'}" + (f" (0–{n - 1})" if n else "")
+            have = f"{n} {_where(ov, depth)} entr{'y' if n == 1 else 'ies'}" + (f" (0–{n - 1})" if n else "")
             raise _fail(ov, f"index {seg} is out of range: the file has {have}")
         child_tp = item_type(tp)
         if isinstance(node[seg], dict):  # a stage: the member of the stage union its ``type`` names
@@ -208,18 +232,19 @@ def _step(ov: Override, node: Any, tp: Any, seg: Segment, depth: int) -> tuple[A
         return (child_tp, None) if last else (child_tp, _descend(ov, node[seg], child_tp, depth))
     if is_model(tp):
         if not isinstance(seg, str) or seg not in tp.model_fields:
-            raise _fail(ov, f"unknown key '{shorten(str(seg))}' in {shorten(where)}{unknown_key_hint(str(seg), tp)}")
+            raise _fail(ov, f"unknown key '{shorten(str(seg))}' in {shorten(_where(ov, depth))}"
+                            f"{unknown_key_hint(str(seg), tp)}")
         child_tp = unwrap(tp.model_fields[seg].annotation)
     elif container(tp) == "dict":
         child_tp = item_type(tp)
     else:
-        raise _fail(ov, f"{where} is a value, not a table")
+        raise _fail(ov, f"{_where(ov, depth)} is a value, not a table")
     if last:
         return child_tp, None
     if container(tp) == "dict" and not (is_model(child_tp) or container(child_tp)):  # a [[duty]] set: dotted keys
         key = ".".join(map(str, ov.path[depth:]))
-        raise _fail(ov, f"{where} takes a key of the design file as --set writes it, {key} here: quote it as one "
-                        f"key, --set '{'.'.join(map(str, ov.path[:depth]))}.\"{key}\"=VALUE'")
+        raise _fail(ov, f"{_where(ov, depth)} takes a key of the design file as --set writes it, {key} here: quote it "
+                        f"as one key, --set '{'.'.join(map(str, ov.path[:depth]))}.\"{key}\"=VALUE'")
     if not (is_model(child_tp) or container(child_tp)):
         raise _fail(ov, f"{format_path(ov.path[: depth + 1])} is a value, not a table")
     if seg not in node:

@@ -80,51 +80,59 @@ def design_diagnostics(cfg: DesignFile, stages: Iterable[StageResult], output_sp
                    "required_input_torque_Nm": required_input_Nm}))
     stages = tuple(stages)
     found += axial_hand_warnings(stages)
+    # a check's data (its figures, some computed again) are built only where its warning is given: a diagnostic is
+    # made of a warning's text and data, and the data of a check that gives none is dropped unread (the warnings and
+    # their data in the same order, each as before; a sweep point designs every stage)
     for k, stage in gear_pairs(stages):
         stage_cfg = cfg.pair(k)
         at: JsonObject = {"stage": stage.index}
-        names = (_name(stage, stage.pinion), _name(stage, stage.gear))
-        found.append((spur_hand_warning(stage.index, stage_cfg, names), {"check": "spur_hand", **at}))
+        # a helical pair gives no spur-hand warning, which alone reads the members' names
+        if stage_cfg.helix_angle_deg == 0.0 and (w := spur_hand_warning(
+                stage.index, stage_cfg, (_name(stage, stage.pinion), _name(stage, stage.gear)))):
+            found.append((w, {"check": "spur_hand", **at}))
         for gear in (stage.pinion, stage.gear):
-            z_min, x_min = undercut_figures(stage, gear, stage_cfg)
-            found.append((undercut_warning(stage, gear, stage_cfg), {"check": "undercut", **at,
-                                                                     "member": _part(stage, gear),
-                                                                     "teeth": gear.teeth,
-                                                                     "profile_shift": gear.profile_shift,
-                                                                     **_cut_shift_data(gear),
-                                                                     "min_teeth": z_min, "min_profile_shift": x_min}))
+            if w := undercut_warning(stage, gear, stage_cfg):
+                z_min, x_min = undercut_figures(stage, gear, stage_cfg)
+                found.append((w, {"check": "undercut", **at, "member": _part(stage, gear), "teeth": gear.teeth,
+                                  "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
+                                  "min_teeth": z_min, "min_profile_shift": x_min}))
         for gear in (stage.pinion, stage.gear):
             found.append(interference_warning(stage, stage_cfg, gear))
-        found.append((contact_ratio_warning(stage), {"check": "contact_ratio", **at, **mesh_data(stage), **{
-            key: getattr(stage, key) for key in ("contact_ratio_transverse", "contact_ratio_total")}}))
+        if w := contact_ratio_warning(stage):
+            found.append((w, {"check": "contact_ratio", **at, **mesh_data(stage), **{
+                key: getattr(stage, key) for key in ("contact_ratio_transverse", "contact_ratio_total")}}))
         for gear in (stage.pinion, stage.gear):
             clearance = tip_clearance_with_allowances_mm(stage, stage_cfg, gear)
-            found.append((tip_clearance_warning(stage, gear, clearance, stage_cfg),
-                          {"check": "tip_clearance", **at, **mesh_data(stage), "member": _part(stage, gear),
-                           "tip_clearance_mm": clearance}))
-        found.append((contact_ratio_allowances_warning(stage),
-                      {"check": "contact_ratio_allowances", **at, **mesh_data(stage),
-                       "contact_ratio_transverse_with_allowances": stage.contact_ratio_transverse_with_allowances}))
-        found.append((face_width_warning(stage), {"check": "face_width", **at, "face_width_ratio":
-                                                  stage.face_width_mm / smaller_pitch_diameter_mm(stage)}))
+            if w := tip_clearance_warning(stage, gear, clearance, stage_cfg):
+                found.append((w, {"check": "tip_clearance", **at, **mesh_data(stage), "member": _part(stage, gear),
+                                  "tip_clearance_mm": clearance}))
+        if w := contact_ratio_allowances_warning(stage):
+            found.append((w, {"check": "contact_ratio_allowances", **at, **mesh_data(stage),
+                              "contact_ratio_transverse_with_allowances":
+                                  stage.contact_ratio_transverse_with_allowances}))
+        if w := face_width_warning(stage):
+            found.append((w, {"check": "face_width", **at,
+                              "face_width_ratio": stage.face_width_mm / smaller_pitch_diameter_mm(stage)}))
         for gear in (stage.pinion, stage.gear):
             tip_allowance = getattr(stage_cfg, _part(stage, gear)).tip_diameter_allowance_mm
             tip_mm = tip_allowance[0] if tip_allowance else 0.0
             treatment = cfg.materials[getattr(stage_cfg, _part(stage, gear)).material].treatment
-            found.append((tip_thickness_warning(stage, gear, tip_mm, treatment),
-                          {"check": "tip_thickness", **at, "member": _part(stage, gear),
-                           "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
-                           "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm), "treatment": treatment,
-                           "min_tip_thickness_mm": min_tip_thickness_per_module(treatment) * stage.normal_module_mm}))
+            if w := tip_thickness_warning(stage, gear, tip_mm, treatment):
+                found.append((w, {"check": "tip_thickness", **at, "member": _part(stage, gear),
+                                  "profile_shift": gear.profile_shift, **_cut_shift_data(gear),
+                                  "tip_thickness_mm": tip_thickness_mm(stage, gear, tip_mm), "treatment": treatment,
+                                  "min_tip_thickness_mm":
+                                      min_tip_thickness_per_module(treatment) * stage.normal_module_mm}))
         found.append(steel_stiffness_warning(cfg, stage.index, "mesh" if stage.planetary is None else "sun_planet",
                                              (stage_cfg.pinion.material, stage_cfg.gear.material)))
-        found.append((static_approach_warning(stage), {"check": "static_approach", **at, **mesh_data(stage),
-                                                       "static_approach_mm": stage.static_approach_mm,
-                                                       "normal_module_mm": stage.normal_module_mm}))
-        found.append((resonance_warning(stage), {"check": "iso6336_resonance", **at, **mesh_data(stage),
-                                                 **{key: getattr(stage, key) for key in (
-                                                     "resonance_ratio", "resonance_speed_rpm", "resonance_lower_limit",
-                                                     "resonance_range")}}))
+        if w := static_approach_warning(stage):
+            found.append((w, {"check": "static_approach", **at, **mesh_data(stage),
+                              "static_approach_mm": stage.static_approach_mm,
+                              "normal_module_mm": stage.normal_module_mm}))
+        if w := resonance_warning(stage):
+            found.append((w, {"check": "iso6336_resonance", **at, **mesh_data(stage),
+                              **{key: getattr(stage, key) for key in ("resonance_ratio", "resonance_speed_rpm",
+                                                                       "resonance_lower_limit", "resonance_range")}}))
     return tuple(warning(DESIGN, w, **data) for w, data in found if w)
 
 
@@ -288,9 +296,9 @@ def interference_warning(stage: StageResult, stage_cfg: Stage,
 
     start = line - tip_reach_mm(mate.tip_diameter_mm, mate.base_diameter_mm)
     form = lowest(gear)
-    data: JsonObject = {"check": "interference", "stage": stage.index, "member": _part(stage, gear), **mesh_data(stage)}
     if start >= form - INTERFERENCE_TOLERANCE_PER_MODULE * m_n:
-        return None, data
+        return None, {}  # no warning: its data unread (design_diagnostics keeps a check's data with its warning)
+    data: JsonObject = {"check": "interference", "stage": stage.index, "member": _part(stage, gear), **mesh_data(stage)}
     # the usable path, measured from the pinion's T: from the higher of the gear's tip point and the pinion's lowest
     # involute point, to the lower of the pinion's tip point and the gear's lowest involute point
     p, g = stage.pinion, stage.gear
@@ -403,6 +411,8 @@ def face_width_warning(stage: StageResult) -> str | None:
     d1 = smaller_pitch_diameter_mm(stage)
     ratio = stage.face_width_mm / d1
     low, high = FACE_RATIO_RANGE
+    if low <= ratio <= high:
+        return None  # within the range: no warning, whose text alone names the members
     gear = _name(stage, stage.gear)  # a planetary's sun–planet pair: the planet
     which = _name(stage, stage.pinion) if d1 == stage.pinion.pitch_diameter_mm else \
         f"smaller wheel's (the {'driven gear' if gear == 'gear' else gear}'s)"
@@ -458,6 +468,9 @@ def _pointed_text(stage: StageResult, gear: GearResult) -> str:
 def resonance_warning(stage: StageResult) -> str | None:
     """ISO 6336-1 speed ranges: the main resonance N_S < N ≤ 1.15, and the subcritical resonances near
     N = 1/2 and 1/3 (the main range's band divided by 2 and 3; ISO names the points, gearcli the band)."""
+    if stage.resonance_range != "main resonance" and not subharmonic_orders(stage.resonance_ratio,
+                                                                            stage.resonance_lower_limit):
+        return None  # what resonance_text says of it, without its head's figures (a sweep point's every stage)
     head = (f"{mesh_head(stage)}: resonance ratio N = n1/n_E1 = "
             f"{resonance_figure(stage.resonance_ratio, stage.resonance_lower_limit)} (n_E1 = "
             f"{stage.resonance_speed_rpm:.4g} rpm of the smaller wheel, ISO 6336-1)")

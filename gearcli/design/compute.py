@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import fields, is_dataclass, replace
+from operator import itemgetter
 from typing import TYPE_CHECKING
 
 from gearcli.core.records import fields_getter, record
@@ -241,7 +242,14 @@ def _require_finite(obj, key: str, kind: str = kinds.PARALLEL, origin: str | Non
 def _non_finite(obj) -> tuple[str, float] | None:
     """The first float field of ``obj`` (a dataclass, nested ones searched) that is not finite, with its value."""
     names, values = _dataclass_fields(type(obj)) or ((), _NO_FIELDS)
-    for name, value in zip(names, values(obj), strict=True):
+    row = values(obj)
+    floats, nested = _plan(tuple(map(type, row)))
+    if all(map(math.isfinite, floats(row))):  # its own floats finite (a design's every result): the first
+        for i in nested:  # non-finite number, if any, is in a dataclass it holds, in their order
+            if (found := _non_finite(row[i])) is not None:
+                return found
+        return None
+    for name, value in zip(names, row, strict=True):
         if isinstance(value, float):
             if not math.isfinite(value):
                 return name, value
@@ -254,6 +262,26 @@ def _non_finite(obj) -> tuple[str, float] | None:
 
 _NO_FIELDS = fields_getter(())
 _FIELDS: dict[type, tuple[tuple[str, ...], Callable[[object], tuple]] | None] = {}
+
+
+#: by the types of a row of field values: (its floats' getter, the indices of its dataclasses), at most
+#: _PLANS_MAX (a result class's rows take a few: an optional field None or a number); a type held alive as a key
+_PLANS: dict[tuple[type, ...], tuple[Callable[[tuple], tuple], tuple[int, ...]]] = {}
+_PLANS_MAX = 256
+
+
+def _plan(types: tuple[type, ...]) -> tuple[Callable[[tuple], tuple], tuple[int, ...]]:
+    """Where a row of values of these types holds floats (read by one getter) and dataclasses (as the loop of
+    :func:`_non_finite` tells them: a float first, then a dataclass), once per row of types."""
+    plan = _PLANS.get(types)
+    if plan is None:
+        if len(_PLANS) >= _PLANS_MAX:
+            _PLANS.clear()
+        at = [i for i, t in enumerate(types) if issubclass(t, float)]
+        floats = itemgetter(*at) if len(at) > 1 else (lambda row: (row[at[0]],)) if at else (lambda row: ())
+        plan = _PLANS[types] = (floats, tuple(i for i, t in enumerate(types)
+                                              if not issubclass(t, float) and _dataclass_fields(t) is not None))
+    return plan
 
 
 def _dataclass_fields(cls: type) -> tuple[tuple[str, ...], Callable[[object], tuple]] | None:

@@ -28,8 +28,14 @@ def check_inputs(cfg: DesignFile) -> None:
             stage = pairs.pair(k)
             for part in ("pinion", "gear"):
                 check_material(getattr(stage, part).material, pairs.materials, f"stage[{k}].{part}.material")
-            first, second = (str(file_key(cfg, f"stage[{k}].{part}.hand")).split(".")[-2] for part in ("pinion", "gear"))
-            check_hands(stage, k, (first, second))  # as the file names them (a planetary: sun, planet)
+            try:
+                check_hands(stage, k)
+            except DesignError:  # again, its members named as the file names them (a planetary: sun, planet),
+                # which only its message reads: the same check, the same error
+                first, second = (str(file_key(cfg, f"stage[{k}].{part}.hand")).split(".")[-2]
+                                 for part in ("pinion", "gear"))
+                check_hands(stage, k, (first, second))
+                raise
         if cfg.rating is not None:  # the [rating] standard's required keys (gearcli.rating)
             standard_of(cfg).check_inputs(cfg)
     except DesignError as exc:

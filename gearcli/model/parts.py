@@ -120,4 +120,4 @@ class Connector:
 
 
 def _row(values) -> tuple[float, ...]:
-    return tuple(float(v) for v in values)
+    return tuple(map(float, values))  # float(v) of each in order, in C (a point's model packs some 180 numbers)

@@ -101,7 +101,9 @@ def _mesh_problem(spec: MeshSpec) -> str | None:
     for names, ok, wording in _MESH_RULES:
         for name in names:
             v = getattr(spec, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and ok(v)):
+            # a float is a number (its type first: a sweep point builds every mesh's spec), an int too but a bool
+            if (type(v) is not float and (isinstance(v, bool) or not isinstance(v, (int, float)))) \
+                    or not (math.isfinite(v) and ok(v)):
                 return f"{name} must be {wording}, got {v!r}"
     for name in ("transmission_error_m", "transmission_error_phase_rad", "stiffness_harmonics",
                  "stiffness_harmonics_phase_rad"):
