@@ -307,12 +307,12 @@ def emit_as(fmt: str, dest: Destination, result, *, sha256: str, json_doc: Calla
 
 
 def warn(lines) -> None:
-    """Warnings on stderr, one line each, control characters escaped; nothing with ``-q``."""
+    """Warnings on stderr, one line each, control characters escaped (a newline too: a name that holds one, a duty
+    point's, stays inside its warning's line, so stderr lists the warnings the JSON does); nothing with ``-q``."""
     if is_quiet():
         return
     for line in lines:
-        for part in str(line).splitlines() or [""]:
-            click.echo(f"warning: {visible(part)}", err=True)
+        click.echo(f"warning: {visible(str(line))}", err=True)
 
 
 def load_and_design(path: str, overrides):
