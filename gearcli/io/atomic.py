@@ -92,7 +92,7 @@ def _link_fd(fd: int, name: str) -> None:
     that opened the file itself may since 6.10, root always), else the link of ``/proc/self/fd`` that older kernels
     take; :class:`OSError` where neither can."""
     try:
-        import ctypes
+        import ctypes  # lazy: ~1 ms, paid by a command that writes a file, not by --help or a pipe
 
         libc = ctypes.CDLL(None, use_errno=True)
         if libc.linkat(fd, b"", _AT_FDCWD, os.fsencode(name), _AT_EMPTY_PATH) == 0:
