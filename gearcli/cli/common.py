@@ -328,6 +328,11 @@ def check_plots_dir(plots_dir: str, names, target: outfiles.OutputTarget) -> Non
     no figure ``names`` may replace an input of the command or its -o file, nor land on a directory or device."""
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    if target.path is not None and (target.path == (real := Path(os.path.realpath(plots_dir)))
+                                    or target.path in real.parents):  # neither exists yet: the -o file, written
+        # first, would stand where the directory is to be made, and the run fail after all its work (exit 1)
+        raise OutputError(f"--plots needs a directory where -o writes its file ({shorten(target.shown)}); choose "
+                          "another directory or another -o", path=plots_dir)
     outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     outfiles.check_not_clobbering([Path(plots_dir) / name for name in names], [*context_inputs(), target.path],
                                   "--plots")
