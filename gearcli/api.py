@@ -24,7 +24,6 @@ hide no cycle: every one points down the layers (``lint-imports`` checks it).
 from __future__ import annotations
 
 import dataclasses
-import io
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, BinaryIO
 
@@ -272,7 +271,7 @@ def prepare_sweep(file: str, sets: Sequence[str], *, vary: Sequence[str] = (), r
     from gearcli.sweep.session import prepare  # lazy: the sweep and life layers, start-up time of gearcli design
 
     raw = read_bytes(file)
-    loaded = load(file, sets, stdin=io.BytesIO(raw))
+    loaded = load_design(file, sets, raw=raw)  # the bytes read once: a FIFO's (`<(cat f.toml)`) are gone after
     return prepare(raw, loaded, design(loaded, sets), sets, vary=vary, randoms=randoms, samples=samples,
                    sampling=sampling, seed=seed, direction=direction, jobs=jobs, scheduler=scheduler, output=output,
                    fmt=fmt, evaluate=evaluate_sweep_point, read_previous=read_identity)
@@ -309,7 +308,7 @@ def prepare_life(file: str, overrides: Sequence[str] = (), *, series: str | None
         raise ConfigError("'-' (standard input) already carries the design file; give the history as a "
                           "file", source="--series")
     raw = read_bytes(file)
-    loaded = load(file, overrides, stdin=io.BytesIO(raw))
+    loaded = load_design(file, overrides, raw=raw)  # the bytes read once (as prepare_sweep's)
     try:
         return prepare(raw, loaded, design(loaded, overrides), overrides, series=series, classes=classes)
     except ConfigError as exc:  # a duty rule a --set broke (every point's hours 0, a repeated name) names the --set

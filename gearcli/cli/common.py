@@ -307,12 +307,12 @@ def emit_as(fmt: str, dest: Destination, result, *, sha256: str, json_doc: Calla
 
 
 def warn(lines) -> None:
-    """Warnings on stderr, one line each, control characters escaped; nothing with ``-q``."""
+    """Warnings on stderr, one line each, control characters escaped (a newline too: a name that holds one, a duty
+    point's, stays inside its warning's line, so stderr lists the warnings the JSON does); nothing with ``-q``."""
     if is_quiet():
         return
     for line in lines:
-        for part in str(line).splitlines() or [""]:
-            click.echo(f"warning: {visible(part)}", err=True)
+        click.echo(f"warning: {visible(str(line))}", err=True)
 
 
 def load_and_design(path: str, overrides):
@@ -328,6 +328,11 @@ def check_plots_dir(plots_dir: str, names, target: outfiles.OutputTarget) -> Non
     no figure ``names`` may replace an input of the command or its -o file, nor land on a directory or device."""
     if os.path.lexists(plots_dir) and not os.path.isdir(plots_dir):
         raise OutputError("--plots needs a directory; this is a file", path=plots_dir)
+    if target.path is not None and (target.path == (real := Path(os.path.realpath(plots_dir)))
+                                    or target.path in real.parents):  # neither exists yet: the -o file, written
+        # first, would stand where the directory is to be made, and the run fail after all its work (exit 1)
+        raise OutputError(f"--plots needs a directory where -o writes its file ({shorten(target.shown)}); choose "
+                          "another directory or another -o", path=plots_dir)
     outfiles.check_writable_dir(plots_dir, "--plots")  # a read-only DIR fails now, not after the computing
     outfiles.check_not_clobbering([Path(plots_dir) / name for name in names], [*context_inputs(), target.path],
                                   "--plots")

@@ -74,11 +74,14 @@ class LoadedDesign:
     raw: dict
 
 
-def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None) -> LoadedDesign:
+def load_design(path: str, overrides: Sequence[str] = (), *, stdin: BinaryIO | None = None,
+                raw: bytes | None = None) -> LoadedDesign:
     """Read, parse, override and validate a design file; ``path == "-"`` reads ``stdin`` (default
-    ``sys.stdin.buffer``). Raises :class:`ConfigError` (or :class:`ConfigErrors`) on any problem."""
+    ``sys.stdin.buffer``); ``raw``: the bytes :func:`read_bytes` has already read from ``path``, which is not read
+    again (a FIFO, ``<(cat f.toml)``, holds them once; a file rewritten meanwhile would parse other bytes than
+    those hashed). Raises :class:`ConfigError` (or :class:`ConfigErrors`) on any problem."""
     source = STDIN if path == "-" else path
-    raw = read_bytes(path, stdin)
+    raw = read_bytes(path, stdin) if raw is None else raw
     data = _parse(raw, source)
     paths = _overrides.apply_all(data, overrides)
     design = _validate(data, source, paths)

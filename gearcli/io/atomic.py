@@ -9,11 +9,19 @@ before the rename (``durable``), so that it survives a machine crash too. A comm
 recomputed by running the command again, and the flush is a wait on the disk, not work (the seed's ``simulate -o``
 on ext4: ``fsync`` ~4 ms and the ``rename`` after it ~4 ms more, against ~0.2 ms for the rename alone;
 docs/performance.md, "The one-shot simulate, session 18").
+
+Where the system has them (Linux: ``O_TMPFILE``, and ``linkat`` to name it), the bytes go to an unnamed file in the
+target's directory, which gets its temporary name only once it is complete, just before the rename: a run killed
+outright while it writes (SIGKILL, the out-of-memory killer), whose cleanup never runs, leaves nothing behind, where
+a named temporary file would stay as a half-written ``.NAME.xxxx.tmp`` beside the output. Elsewhere (another system,
+a filesystem without ``O_TMPFILE``) the temporary file is named from the start, as before.
 """
 
 from __future__ import annotations
 
+import errno
 import os
+import secrets
 import tempfile
 from pathlib import Path
 
@@ -35,18 +43,97 @@ def write_atomic(path: str | os.PathLike, data: str | bytes, *, durable: bool = 
     if target.exists() and not target.is_file():
         raise IsADirectoryError(21, "not a regular file", str(path))
     payload = data.encode("utf-8") if isinstance(data, str) else data
+    mode = _final_mode(target)
+    if _write_unnamed(target, payload, mode, durable):
+        return
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
     try:
-        os.chmod(tmp, _final_mode(target))  # mkstemp makes 0600; a plain open() would honour the umask
+        os.chmod(tmp, mode)  # mkstemp makes 0600; a plain open() would honour the umask
         with os.fdopen(fd, "wb") as fh:
-            fh.write(payload)
-            if durable:
-                fh.flush()
-                os.fsync(fh.fileno())
+            _fill(fh, payload, durable)
         os.replace(tmp, target)
     except BaseException:  # includes KeyboardInterrupt: never leave the temp file behind
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
+        _discard(tmp)
         raise
+
+
+def _fill(fh, payload: bytes, durable: bool) -> None:
+    fh.write(payload)
+    fh.flush()
+    if durable:
+        os.fsync(fh.fileno())
+
+
+def _discard(tmp: str | None) -> None:
+    if tmp is None:
+        return
+    try:
+        os.unlink(tmp)
+    except FileNotFoundError:
+        pass
+
+
+def _unnamed_file(directory: Path) -> int | None:
+    """A file without a name in ``directory`` (``O_TMPFILE``), or None where the system or the filesystem has none."""
+    flag = getattr(os, "O_TMPFILE", 0)
+    if not flag:
+        return None
+    try:
+        return os.open(directory, flag | os.O_WRONLY | os.O_CLOEXEC, 0o600)
+    except OSError:  # not supported here (EOPNOTSUPP; EISDIR on an old kernel), or refused: the named file says why
+        return None
+
+
+_AT_FDCWD, _AT_EMPTY_PATH = -100, 0x1000  # Linux's <fcntl.h>
+
+
+def _link_fd(fd: int, name: str) -> None:
+    """``linkat(fd, "", AT_FDCWD, name, AT_EMPTY_PATH)``: the unnamed file ``fd`` gets ``name`` (Linux; a process
+    that opened the file itself may since 6.10, root always), else the link of ``/proc/self/fd`` that older kernels
+    take; :class:`OSError` where neither can."""
+    try:
+        import ctypes  # lazy: ~1 ms, paid by a command that writes a file, not by --help or a pipe
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        if libc.linkat(fd, b"", _AT_FDCWD, os.fsencode(name), _AT_EMPTY_PATH) == 0:
+            return
+        err = ctypes.get_errno()
+    except (ImportError, OSError, AttributeError):  # no C library to ask: try /proc
+        err = 0
+    if err == errno.EEXIST:
+        raise FileExistsError(err, os.strerror(err), name)
+    os.link(f"/proc/self/fd/{fd}", name, follow_symlinks=True)
+
+
+def _name_it(fd: int, target: Path) -> str | None:
+    """Give the complete unnamed file ``fd`` a temporary name beside ``target``; None where it cannot be linked."""
+    for _ in range(100):
+        tmp = str(target.parent / f".{target.name}.{secrets.token_hex(4)}.tmp")
+        try:
+            _link_fd(fd, tmp)
+        except FileExistsError:
+            continue
+        except OSError:
+            return None
+        return tmp
+    return None
+
+
+def _write_unnamed(target: Path, payload: bytes, mode: int, durable: bool) -> bool:
+    """The write through an unnamed file (module doc); False, nothing written, where it cannot be had."""
+    fd = _unnamed_file(target.parent)
+    if fd is None:
+        return False
+    tmp: str | None = None
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            os.fchmod(fh.fileno(), mode)  # O_TMPFILE's mode is 0600, as mkstemp's
+            _fill(fh, payload, durable)
+            tmp = _name_it(fh.fileno(), target)
+        if tmp is None:
+            return False
+        os.replace(tmp, target)
+    except BaseException:  # an interrupt between the name and the rename: the name goes again
+        _discard(tmp)
+        raise
+    return True

@@ -63,3 +63,56 @@ def test_a_sweep_file_is_written_as_a_durable_checkpoint(tmp_path, monkeypatch):
     sweep_file.JsonFile(str(tmp_path / "s.json"), ["a"], {"sweep": {}}, [])
     sweep_file.CsvFile(str(tmp_path / "s.csv"), ["a"], {"sweep": {}}, []).close()
     assert seen == [{"durable": True}, {"durable": True}]
+
+
+_KILLED_MID_WRITE = """
+import os, signal, sys
+from gearcli.io import atomic
+os.fsync = lambda fd: os.kill(os.getpid(), signal.SIGKILL)  # killed outright after the bytes, before any rename
+atomic.write_atomic(sys.argv[1], "new\\n" * 100000, durable=True)
+"""
+
+
+@pytest.mark.skipif(not hasattr(os, "O_TMPFILE"), reason="an unnamed temporary file needs Linux's O_TMPFILE")
+def test_a_run_killed_while_it_writes_leaves_no_temporary_file(tmp_path):
+    # SIGKILL runs no cleanup: a named temporary file stayed, half-written, as .a.csv.xxxx.tmp beside the output (tr30a)
+    import signal
+    import subprocess
+    import sys
+
+    target = tmp_path / "a.csv"
+    target.write_text("old\n")
+    proc = subprocess.run([sys.executable, "-c", _KILLED_MID_WRITE, str(target)], capture_output=True, timeout=60)
+    assert proc.returncode == -signal.SIGKILL
+    assert target.read_text() == "old\n"
+    assert [p.name for p in tmp_path.iterdir()] == ["a.csv"]
+
+
+def _write_and_list(tmp_path) -> list[str]:
+    link = tmp_path / "link.csv"
+    link.symlink_to("a.csv")
+    (tmp_path / "a.csv").write_text("old\n")
+    (tmp_path / "a.csv").chmod(0o640)
+    write_atomic(link, "new\n")
+    assert link.is_symlink() and (tmp_path / "a.csv").read_text() == "new\n"
+    assert stat.S_IMODE((tmp_path / "a.csv").stat().st_mode) == 0o640
+    return sorted(p.name for p in tmp_path.iterdir())
+
+
+def test_without_an_unnamed_file_a_named_temporary_file_does_the_write(tmp_path, monkeypatch):
+    from gearcli.io import atomic
+
+    monkeypatch.setattr(atomic, "_unnamed_file", lambda directory: None)  # another system, or a filesystem without
+    assert _write_and_list(tmp_path) == ["a.csv", "link.csv"]
+
+
+def test_an_unnamed_file_that_cannot_be_linked_falls_back_and_leaves_nothing(tmp_path, monkeypatch):
+    import errno
+
+    from gearcli.io import atomic
+
+    def refuse(fd, name):
+        raise OSError(errno.EXDEV, "Invalid cross-device link")
+
+    monkeypatch.setattr(atomic, "_link_fd", refuse)
+    assert _write_and_list(tmp_path) == ["a.csv", "link.csv"]
