@@ -10,7 +10,7 @@ recomputed by running the command again, and the flush is a wait on the disk, no
 on ext4: ``fsync`` ~4 ms and the ``rename`` after it ~4 ms more, against ~0.2 ms for the rename alone;
 docs/performance.md, "The one-shot simulate, session 18").
 
-Where the system has them (Linux: ``O_TMPFILE``, and ``linkat`` to name it), the bytes go to an unnamed file in the
+Where the system has them (Linux: ``O_TMPFILE``, named through ``/proc/self/fd``), the bytes go to an unnamed file in the
 target's directory, which gets its temporary name only once it is complete, just before the rename: a run killed
 outright while it writes (SIGKILL, the out-of-memory killer), whose cleanup never runs, leaves nothing behind, where
 a named temporary file would stay as a half-written ``.NAME.xxxx.tmp`` beside the output. Elsewhere (another system,
@@ -19,7 +19,6 @@ a filesystem without ``O_TMPFILE``) the temporary file is named from the start, 
 
 from __future__ import annotations
 
-import errno
 import os
 import secrets
 import tempfile
@@ -84,25 +83,13 @@ def _unnamed_file(directory: Path) -> int | None:
         return None
 
 
-_AT_FDCWD, _AT_EMPTY_PATH = -100, 0x1000  # Linux's <fcntl.h>
-
-
 def _link_fd(fd: int, name: str) -> None:
-    """``linkat(fd, "", AT_FDCWD, name, AT_EMPTY_PATH)``: the unnamed file ``fd`` gets ``name`` (Linux; a process
-    that opened the file itself may since 6.10, root always), else the link of ``/proc/self/fd`` that older kernels
-    take; :class:`OSError` where neither can."""
-    try:
-        import ctypes  # lazy: ~1 ms, paid by a command that writes a file, not by --help or a pipe
-
-        libc = ctypes.CDLL(None, use_errno=True)
-        if libc.linkat(fd, b"", _AT_FDCWD, os.fsencode(name), _AT_EMPTY_PATH) == 0:
-            return
-        err = ctypes.get_errno()
-    except (ImportError, OSError, AttributeError):  # no C library to ask: try /proc
-        err = 0
-    if err == errno.EEXIST:
-        raise FileExistsError(err, os.strerror(err), name)
-    os.link(f"/proc/self/fd/{fd}", name, follow_symlinks=True)
+    """The unnamed file ``fd`` gets ``name``: the link of its ``/proc/self/fd`` entry, followed (``open(2)``'s way to
+    name an ``O_TMPFILE`` file, open to any user); :class:`FileExistsError` where ``name`` exists, another
+    :class:`OSError` where it cannot be linked (no ``/proc``: the caller writes a named file instead)."""
+    # a dir fd makes Python call linkat(..., AT_SYMLINK_FOLLOW) (the path is absolute: the fd is not read); without
+    # one it calls link(), which links the /proc entry itself and fails across devices (EXDEV)
+    os.link(f"/proc/self/fd/{fd}", name, src_dir_fd=fd, follow_symlinks=True)
 
 
 def _name_it(fd: int, target: Path) -> str | None:
