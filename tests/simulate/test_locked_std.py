@@ -62,7 +62,7 @@ def test_a_locked_std_is_named_unresolved_and_a_fine_one_matches_the_closed_form
     assert miss > 1e-2 * static  # the samples' std is far off the force's ...
     assert stage["sampling_error"]["std_N"] >= miss  # ... the estimate covers it ...
     assert "std" in _named(locked) and "std" in stage["error_estimate"]["unresolved"]  # ... and says so
-    fine = _run(6400)  # 64 samples a period: the std is the force's, and not named
+    fine = _run(3200)  # 32 samples a period: the std is the force's, and not named
     stage = fine["summary"]["stages"][0]
     assert abs(stage["tangential_N"]["std"] - std) <= 1e-3 * static
     assert "std" not in _named(fine) and "std" not in stage["error_estimate"]["unresolved"]
