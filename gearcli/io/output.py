@@ -117,6 +117,23 @@ def _opened(given: str) -> os.stat_result | None:
         return None
 
 
+def _check_given_parent(given: str) -> None:
+    """Refuse a path whose directory part the system cannot walk: ``missing/../x.json`` or ``file/../x.json``.
+    The kernel resolves ``..`` after the component before it (``open`` there fails with ENOENT or ENOTDIR, as a
+    shell's ``>`` does), while ``realpath`` cancels the pair textually and would write ``./x.json``."""
+    parent = os.path.dirname(given)
+    if not parent:
+        return
+    try:
+        os.stat(parent)
+    except FileNotFoundError:
+        raise _refuse(given, f"no such directory: {shorten(parent)}") from None
+    except NotADirectoryError:
+        raise _refuse(given, f"not a directory: {shorten(parent)} (a part of it is a file)") from None
+    except (OSError, ValueError):  # other failures (permissions, loops) are reported by the checks that follow
+        return
+
+
 def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str = "-o -") -> Path:
     """The regular file ``given`` names after symlinks, checked writable; :class:`OutputError` otherwise."""
     if not given:
@@ -125,6 +142,7 @@ def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str =
         raise _refuse(repr(given), "not a valid file name")
     if given.endswith(("/", os.sep)) or given in (".", ".."):
         raise _refuse(given, "is a directory path; give a file name")
+    _check_given_parent(given)
     target = Path(os.path.realpath(given))
     st: os.stat_result | None
     try:

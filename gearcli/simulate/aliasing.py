@@ -225,10 +225,11 @@ def locked_mean(se: SamplingError, bound_N: float) -> SamplingError:
 def worse(a: SamplingError, b: SamplingError) -> SamplingError:
     """``a`` (a planetary stage's planet-1 estimate) with each error the larger of its and ``b``'s (another planet
     mesh's), over ``a``'s reference force; unresolved where either is, suggesting the larger number of steps."""
-    err = {"min": max(a.min_N, b.min_N), "max": max(a.max_N, b.max_N), "mean": max(a.mean_N, b.mean_N)}
+    err = {"min": max(a.min_N, b.min_N), "max": max(a.max_N, b.max_N), "mean": max(a.mean_N, b.mean_N),
+           "std": max(a.std_N, b.std_N)}
     rel = {q: (v / a.reference_N if a.reference_N > 0 else max(a.relative[q], b.relative[q])) for q, v in err.items()}
     steps = [x.suggested_steps for x in (a, b) if not x.resolved]
-    return replace(a, min_N=err["min"], max_N=err["max"], mean_N=err["mean"], relative=rel,
+    return replace(a, min_N=err["min"], max_N=err["max"], mean_N=err["mean"], std_N=err["std"], relative=rel,
                    resolved=a.resolved and b.resolved,
                    suggested_steps=None if not steps or None in steps else max(x for x in steps if x is not None))
 
@@ -260,7 +261,7 @@ def _unbounded_statistics(s: SamplingError) -> list[str]:
 
 def _mean_words(s: SamplingError, a: JsonObject) -> str:
     """The warning's words on the mean: the alias's partial-period bias where that is the larger estimate, else the
-    samples' own (Richardson's, :func:`gearcli.simulate.sampling.mean_error`)."""
+    samples' own (Richardson's, :func:`gearcli.simulate.sampled_moments.mean_error`)."""
     bias = _num(a, "mean_bias_N")
     if bias >= s.mean_N and a.get("locked_to"):
         return (f" (and the mean, by up to {bias:.3g} N: the samples lock to the {a['locked_to']}'s period, "

@@ -77,7 +77,7 @@ class SamplingError:
 
     min_N: float
     max_N: float
-    relative: dict[str, float]  # min, max, mean over reference_N
+    relative: dict[str, float]  # min, max, mean, std over reference_N
     reference_N: float  # as StatisticsError.reference_N: |mean F_t| (static |F_t| when the mean is 0)
     target_relative: float  # 1e-3 (with the solver's estimate where a check pass ran)
     samples: int  # window samples
@@ -85,6 +85,7 @@ class SamplingError:
     suggested_steps: int | None  # simulation.steps that resolves it (None: resolved, or beyond the schema's maximum)
     steps_cap: int  # the schema's maximum of simulation.steps
     mean_N: float = 0.0  # the mean's: |T_h - T_2h| / 3 of the trapezoid rule (0 for a periodic window)
+    std_N: float = 0.0  # the std's: its larger change over the even or odd samples (0 for a periodic window)
     # a mode or excitation line above the samples' Nyquist frequency that carries force in the window
     # (gearcli.simulate.aliasing): min_N and max_N are then no bound. None: none found
     aliased: JsonObject | None = None

@@ -1,4 +1,5 @@
-"""The sampling error of the window's min and max: what the output samples miss of the extremes between them.
+"""The sampling error of the window's min and max: what the output samples miss of the extremes between them (and,
+through :mod:`gearcli.simulate.sampled_moments`, of the mean and the std).
 
 The window statistics are taken over the output samples (``simulation.steps``). The solver's check pass
 (:mod:`gearcli.simulate.estimate`) compares two integrations on the same samples, so it sees the solver's
@@ -116,12 +117,12 @@ from gearcli.simulate.estimate import target as target_of  # MEAN_TARGET for the
 from gearcli.simulate.kink_bound import peak_excess
 from gearcli.simulate.periodic import common_period, excitation_periods
 from gearcli.simulate.results import SamplingError, StatisticsError
+from gearcli.simulate.sampled_moments import mean_error, std_error
 
 MARGIN = 1.25  # suggested_steps: the h^2 extrapolation's samples x this
 SAFETY = 2.0  # the estimate is this x the interpolated excess (module doc, "Safety")
-RICHARDSON = 3.0  # 2^2 - 1: the trapezoid rule's T_h - T_2h over its error where it is O(h^2) (module doc, "The mean")
 EXTREMES = ("min", "max")
-STATISTICS = ("mean", "min", "max")  # the statistics the samples can leave unresolved
+STATISTICS = ("mean", "min", "max", "std")  # the statistics the samples can leave unresolved
 # fewer window samples than this and no estimate can be made (the mean's Richardson step needs 5, the parabola through
 # a peak 3): a fixed window of 1 or 2 samples (simulation.steps = 1 .. 3) reported its one sample as mean = min = max
 # and std 0, "resolved", where a lightly damped reducer's window swings by +-9.5 % of the mean
@@ -223,22 +224,6 @@ def extremes_error(t: np.ndarray, x: np.ndarray, *, periodic: bool = False, dt: 
             max_excess(t, x, periodic=periodic, zero_floor=True, dt=dt, extremes=extremes))
 
 
-def mean_error(t: np.ndarray, x: np.ndarray) -> float:
-    """The sampling error of the trapezoid-rule mean of ``x`` over the window ``t`` (module doc, "The mean"):
-    Richardson's |T_h - T_2h| / 3, T_2h the rule with every other sample left out (the last sample kept); 0 on fewer
-    than 5 samples."""
-    n = x.size
-    if n < 5 or not float(t[-1] - t[0]) > 0.0:
-        return 0.0
-    keep = np.arange(0, n, 2)
-    if keep[-1] != n - 1:
-        keep = np.append(keep, n - 1)
-    span = float(t[-1] - t[0])
-    whole = float(np.trapezoid(x, t)) / span
-    coarse = float(np.trapezoid(x[keep], t[keep])) / span
-    return abs(whole - coarse) / RICHARDSON
-
-
 def suggested_steps_linear(steps: int, relative_error: float, goal: float, cap: int = MAX_STEPS) -> int | None:
     """``simulation.steps`` that brings a mean's sampling error of ``relative_error`` at ``steps`` below ``goal``
     (error ∝ h, times :data:`MARGIN`; module doc, "The mean"), as :func:`suggested_steps` rounds it."""
@@ -282,7 +267,8 @@ def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *
     else:
         mean, std = (float(ft.mean()), float(ft.std())) if reduced is None else reduced[:2]
         ref = force_reference(mean, std, static_N, floor_N)
-    err = {"min": SAFETY * lo, "max": SAFETY * hi, "mean": 0.0 if periodic else mean_error(t, ft)}
+    err = {"min": SAFETY * lo, "max": SAFETY * hi, "mean": 0.0 if periodic else mean_error(t, ft),
+           "std": 0.0 if periodic else std_error(ft, None if reduced is None else reduced[1])}
     rel = {q: (v / ref if ref > 0 else (0.0 if v == 0 else math.inf)) for q, v in err.items()}
     bad = [q for q in STATISTICS if _undersampled(rel[q], solver.relative[q] if solver is not None else 0.0, q)]
     suggestion = None
@@ -296,7 +282,7 @@ def stage_sampling(t: np.ndarray, ft: np.ndarray, static_N: float, steps: int, *
         suggestion = None if any(w is None for w in wanted) else max(w for w in wanted if w is not None)
     return SamplingError(min_N=err["min"], max_N=err["max"], relative=rel, reference_N=ref, target_relative=TARGET,
                          samples=int(t.size), resolved=not bad, suggested_steps=suggestion, steps_cap=MAX_STEPS,
-                         mean_N=err["mean"])
+                         mean_N=err["mean"], std_N=err["std"])
 
 
 def too_few(s: SamplingError) -> bool:
@@ -332,7 +318,8 @@ def merged(e: StatisticsError, s: SamplingError) -> StatisticsError:
     over = {q for q in STATISTICS if total[q] > target_of(q)} | (set(TOO_FEW) if too_few(s) else set()) \
         | (set(UNBOUNDED) if s.aliased else set())
     unresolved = tuple(q for q in ("mean", "min", "max", "std", "spectrum") if q in e.unresolved or q in over)
-    return replace(e, sampling_N={"min": s.min_N, "max": s.max_N, "mean": s.mean_N}, sampling_relative=dict(s.relative),
+    return replace(e, sampling_N={"min": s.min_N, "max": s.max_N, "mean": s.mean_N, "std": s.std_N},
+                   sampling_relative=dict(s.relative),
                    total_relative=total, suggested_steps=s.suggested_steps if not s.resolved else None,
                    unresolved=unresolved, resolved=not unresolved)
 
@@ -351,7 +338,7 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
         e = solver.get(stage)
         bad = [q for q in STATISTICS if _undersampled(s.relative[q], e.relative[q] if e is not None else 0.0, q)]
         worst = max(bad, key=lambda q: s.relative[q] / target_of(q))
-        absolute = {"min": s.min_N, "max": s.max_N, "mean": s.mean_N}[worst]
+        absolute = {"min": s.min_N, "max": s.max_N, "mean": s.mean_N, "std": s.std_N}[worst]
         with_solver = "" if e is None else f", the solver's estimate {e.relative[worst]:.2g} besides"
         if e is not None and e.relative[worst] > max(target_of(worst), s.relative[worst]):
             fix = solver_first(s.suggested_steps, MAX_STEPS)
@@ -360,11 +347,7 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
         else:
             fix = (f"the schema's maximum simulation.steps = {s.steps_cap} cannot resolve it: sample a shorter run "
                    "(simulation.duration_s) or fewer periods")
-        what = (f"the peaks between the {s.samples} window samples are estimated up to {absolute:.3g} N beyond them"
-                if worst != "mean" else
-                f"the window's mean (the integral over its {s.samples} samples) is estimated {absolute:.3g} N off "
-                "(a third of its change when every other sample is left out, or half the force's change a step where "
-                "the samples lock to an excitation's period): the force has steps or vibration the samples alias")
+        what = _what(worst, s.samples, absolute)
         out.append(dg.warning(
             dg.STATISTICS_UNDERSAMPLED,
             f"stage {stage}: F_t {' and '.join(bad)} not resolved by the output samples: {what} "
@@ -373,6 +356,18 @@ def warnings(stages: list[tuple[int, SamplingError]], solver: dict[int, Statisti
             stage=stage, statistics=bad, estimated_error_N=float(absolute), relative_error=float(s.relative[worst]),
             steps=s.suggested_steps, steps_cap=s.steps_cap))
     return out
+
+
+def _what(worst: str, samples: int, absolute: float) -> str:
+    """What the samples miss of the statistic ``worst``, in words (:func:`warnings`)."""
+    if worst == "mean":
+        return (f"the window's mean (the integral over its {samples} samples) is estimated {absolute:.3g} N off "
+                "(a third of its change when every other sample is left out, or half the force's change a step where "
+                "the samples lock to an excitation's period): the force has steps or vibration the samples alias")
+    if worst == "std":
+        return (f"the window's std over its {samples} samples changes by {absolute:.3g} N when every other sample is "
+                "left out: the samples see the force at few phases of its period (locked to it) or alias its harmonics")
+    return f"the peaks between the {samples} window samples are estimated up to {absolute:.3g} N beyond them"
 
 
 def _too_few_warning(stage: int, s: SamplingError) -> Diagnostic:

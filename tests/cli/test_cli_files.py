@@ -101,6 +101,19 @@ def test_missing_parent_directory_is_exit_2_and_names_the_path(work, command):
     assert listing(work) == ["in.toml"]
 
 
+@pytest.mark.parametrize(("given", "fragment"), [("missing/../x.json", "no such directory"),
+                                                 ("in.toml/../x.json", "not a directory")])
+def test_a_parent_the_system_cannot_walk_is_refused_though_dotdot_cancels_it_textually(work, given, fragment):
+    # the reference is the system's own open(): it walks 'missing' (or the file 'in.toml') before '..' and fails,
+    # as a shell's `> missing/../x.json` does; realpath() cancels the pair and gearcli wrote ./x.json before
+    with pytest.raises((FileNotFoundError, NotADirectoryError)):
+        open(given, "w").close()
+    for command in ("design", "simulate"):
+        res = run(command, "in.toml", "--format", "json", "-o", given)
+        assert_refused(res, fragment, given)
+        assert listing(work) == ["in.toml"]
+
+
 @pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0, reason="root may write a read-only directory")
 def test_read_only_directory_is_exit_2(work):
     ro = work / "ro"
