@@ -462,10 +462,8 @@ def resonances(lay: Layout, boundary: str = "clamped_input", *, duration_s: floa
         if m.rigid:
             continue
         band = RESONANCE_BAND * m.frequency_Hz
-        for o in sources:
+        for o in (o for o in sources if not abs(o.hz_per_input_hz * f_in - m.frequency_Hz) > band):
             fe = o.hz_per_input_hz * f_in
-            if abs(fe - m.frequency_Hz) > band:
-                continue
             dominant, share, name = m.dominant, max(m.energy_share), o.name
             group: tuple[int, ...] = ()
             if o.phased:

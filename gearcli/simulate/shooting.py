@@ -485,8 +485,7 @@ def _at_equilibrium(model, rtol: float, first, parts: list, period, patol: np.nd
     ledger.notes.append(f"no excitation: the equilibrium, found by Newton on the equations of motion ({found.steps} "
                         "steps), its period exact")
     shot = Shot(run, found.y[:lay.state.n_mechanical].copy(), float(found.drift), None)
-    return _result(model, parts, first, shot, fl, period, ledger, samples, cap, method="equilibrium",
-                   structural=structural)
+    return _result(model, parts, first, shot, fl, period, ledger, samples, cap, 1, "equilibrium", structural=structural)
 
 
 def _flips(fl: Floquet) -> bool:
@@ -563,10 +562,8 @@ def _linear_verdict(model, shot: Shot, fl: Floquet, ledger: Ledger, structural: 
 
 
 def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: Ledger, samples: int, cap: int,
-            k: int = 1, method: str = "shooting", structural: int | None = None):
-    """The periodic run of the converged ``shot``; ``structural``: :func:`structural_unit_multipliers` of the model's
-    layout where the caller has it (the search found it before), else found here."""
-    structural = structural_unit_multipliers(model.layout) if structural is None else structural
+            k: int = 1, method: str = "shooting", *, structural: int):
+    """The periodic run of the converged ``shot``; ``structural``: the layout's structural_unit_multipliers."""
     fl = _linear_verdict(model, shot, fl, ledger, structural)
     fine = shot.run
     keep = first.t < fine.t[0]  # the run-up's last state is no sample of the orbit where the orbit starts there
@@ -575,8 +572,7 @@ def _result(model, parts: list, first, shot: Shot, fl: Floquet, period, ledger: 
     steady = SteadyState(mode="periodic", period_s=period.period_s, periods_to_converge=ledger.periods,
                          periodicity=f"period-{k}", converged=True, residual=float(shot.residual),
                          period_source=period.source, window_periods=k, samples_per_period=samples // k,
-                         cap_periods=cap,
-                         method=method, iterations=ledger.iterations, attempts=ledger.attempts,
+                         cap_periods=cap, method=method, iterations=ledger.iterations, attempts=ledger.attempts,
                          monodromy=ledger.monodromy,
                          multipliers=fl.multipliers, spectral_radius=fl.spectral_radius,  # stable: inside the
                          stable=fl.stable and fl.spectral_radius <= 1.0 + NEUTRAL,  # circle, not STABLE_SLACK's
