@@ -222,23 +222,14 @@ def connector_line_forces(lay: Layout, t: np.ndarray, Y: np.ndarray, connectors:
     return [_connector_force(lay, c, Y, omega, theta) for c in connectors]
 
 
-def stored_energy(lay: Layout, t: float, y: np.ndarray, arrays: ModelArrays | None = None) -> float:
+def stored_energy(lay: Layout, t: float, y: np.ndarray) -> float:
     """Kinetic energy plus the elastic energy of the constant-stiffness connectors at one state ``y`` at time
     ``t``: what ``kinetic_energy`` and ``potential_energy(time_varying=False)`` of ``sample`` at that one state
-    give (the same laws, the same sum), without the torques (an energy watch asks every ~500 steps). With the
-    compiled laws for every connector, ``sample``'s own call at the one sample (:func:`_all_series`: one compiled
-    call for all the connectors, its signal block once); ``arrays``: ``sample``'s."""
+    give (the same laws, the same sum), without the forces and channels (an energy watch asks every ~500 steps)."""
     tt, Y = np.array([t]), y[:, None]
     omega, theta, _ = body_motion(lay, tt, Y)
     elastic = np.zeros_like(tt)
     kernel = _loaded_kernel()
-    if kernel is not None and _compiled_all(lay, kernel):
-        with signals.deferred():  # a signal acted on after the compiled call
-            conns = _all_series(lay, Y, omega, theta, kernel, 0, 1, arrays)
-        for x, cs in zip(lay.connectors, conns, strict=True):
-            if not x.time_varying:
-                elastic += cs.potential_J
-        return float(kinetic_energy(lay, omega)[0]) + float(elastic[0])
     with signals.deferred() if kernel is not None else nullcontext():  # once for the connectors' compiled calls
         for c, x in enumerate(lay.connectors):
             if not x.time_varying:  # the connector's own law at the one sample

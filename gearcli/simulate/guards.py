@@ -173,9 +173,7 @@ class EnergyWatch:
     def _stored(self, t: float, y: np.ndarray) -> float:
         """Kinetic energy + elastic energy of constant-stiffness meshes + work done on time-varying springs."""
         lay = self.model.layout
-        # the elements' own laws, one sample (the signals held once inside); the compiled call's rows from the
-        # model's arrays (gearcli.model.outputs.sample's)
-        stored = stored_energy(lay, t, y, self.model.arrays)
+        stored = stored_energy(lay, t, y)  # the elements' own laws, one sample (the signals held once inside)
         i_tv = lay.state.quadrature("elastic_work_tv_J")
         if i_tv is not None:
             stored += float(y[i_tv])
