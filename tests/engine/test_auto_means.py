@@ -78,10 +78,12 @@ def test_auto_repeats_the_run_at_the_rtol_that_resolves_its_means(reference):
     # the solver resolves every statistic; the impacts' sharp min and max fall between the output samples, and so
     # do the impacts' share of the window's integral (20 samples a mesh period: the mean of the same run at rtol
     # 1e-9 is 1880.53 N against 1879.42 N at 320 samples a period, 5.9e-4; measured), which the samples' own
-    # estimate says apart (statistics_undersampled, docs/numerics.md "The output sampling")
+    # estimate says apart (statistics_undersampled, docs/numerics.md "The output sampling"); its std estimate is an
+    # order, not a bound, and names std here too (2.72 N, 1.4e-3 of the mean, where the same run at 320 samples a
+    # period moves std by 0.65 N; measured)
     assert e.relative["mean"] <= MEAN_TARGET and all(e.relative[q] <= e.target_relative
                                                      for q in ("min", "max", "std", "spectrum"))
-    assert set(e.unresolved) <= {"min", "max", "mean"}
+    assert set(e.unresolved) <= {"min", "max", "mean", "std"}
     undersampled = [d for d in run.diagnostics if d.code == dg.STATISTICS_UNDERSAMPLED]
     assert e.resolved or undersampled
     assert set(e.unresolved) <= {q for d in undersampled for q in d.data["statistics"]}
