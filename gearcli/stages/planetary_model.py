@@ -71,10 +71,39 @@ def planetary_model(cfg: DesignFile, st: StageResult, k: int, sun_mesh: MeshSpec
         third_inertia_kg_m2=inertia[third], planet_inertia_kg_m2=p.planet.inertia_kg_m2, sun_mesh=sun_mesh,
         ring_mesh=ring_mesh, unit_speeds=(unit["sun"], unit["carrier"], unit["ring"]),
         planet_offsets_m=tuple(e * 1e-6 for e in _planet_errors_um(cfg, k)),
-        planet_angles_rad=tuple(math.radians(a - p.planet_angles_deg[0]) for a in p.planet_angles_deg)
-        if _unequal(cfg, k) else (),
+        planet_angles_rad=_running_angles_rad(cfg, k, p.planet_angles_deg, p.planet_count),
         ring_contact_phase_cycles=_ring_contact_phase(st, unit),
         **_loss_factors(p, eta_m, -1.0 if (cfg.load.torque_Nm_value or 0.0) < 0.0 else 1.0))
+
+
+def _running_angles_rad(cfg: DesignFile, k: int, angles_deg: tuple[float, ...] | list[float] | None,
+                        planets: int) -> tuple[float, ...]:
+    """Each planet's position from planet 1 in the stage's running direction, the sense of rotation its mesh phases
+    follow (Parker & Lin; :meth:`PlanetarySpec.mesh_phase_cycles`): the planets sit at ``angles_deg`` (declared, or
+    360 j / N) clockwise from the housing's y seen from the input end (the frame of ``[input] rotation`` and of the
+    shaft statics, :mod:`gearcli.design.shafts`), so in a stage whose input member turns counter-clockwise planet j
+    is ψ_1 − ψ_j ahead of planet 1, not ψ_j − ψ_1 (the mirror image of the clockwise train). Empty (2π j / N) for
+    equally spaced planets turning clockwise, as before."""
+    sense = _input_sense(cfg, k)
+    if not _unequal(cfg, k):
+        return () if sense > 0 else tuple(-2.0 * math.pi * j / planets for j in range(planets))
+    assert angles_deg is not None
+    return tuple(sense * math.radians(a - angles_deg[0]) for a in angles_deg)
+
+
+def _input_sense(cfg: DesignFile, k: int) -> int:
+    """The sense of rotation of stage k's input member, +1 clockwise seen from the input end (``[input] rotation``
+    for the first stage): a parallel stage reverses it, a planetary one turns its output member as Willis says
+    (the senses :func:`gearcli.design.shafts.layout` gives the shafts)."""
+    sense = 1 if cfg.input.rotation == "cw" else -1
+    for stage in cfg.stage[:k]:
+        if getattr(stage, "type", "parallel") != "planetary":
+            sense = -sense
+            continue
+        output = next(m for m in ("sun", "carrier", "ring") if m not in (stage.fixed, stage.input))  # type: ignore[union-attr]
+        if willis_speeds(stage.sun.teeth, stage.ring.teeth, stage.fixed, stage.input)[output] < 0:  # type: ignore[union-attr]
+            sense = -sense
+    return sense
 
 
 def _unequal(cfg: DesignFile, k: int) -> bool:
