@@ -22,6 +22,7 @@ import importlib.util
 import os
 import sys
 import tempfile
+import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -52,6 +53,10 @@ from gearcli.model.elements import machine
 ENTRIES = {"DOP853": "dop853", "RK45": "rk45", "Radau": "radau"}
 
 _state: dict = {}
+#: held while a thread loads the kernel, warms an entry or repairs the cache: loading pops the kernel's modules from
+#: ``sys.modules`` and imports them anew (:func:`import_kernel`), so two threads of one process loading at once broke
+#: each other's import (``KeyError: 'gearcli.engine.kernel'``); re-entrant (a repair loads again)
+_LOCK = threading.RLock()
 
 
 def ready(directory: Path) -> bool:
@@ -133,9 +138,17 @@ def import_kernel(directory: Path, strict: bool) -> tuple[Any, Any]:
 
 def load(quiet: bool = False) -> Loaded:
     """Import numba and the kernel, building the cache first when nothing is cached (a step with its measured
-    time on stderr, ``quiet`` silences it); once per process."""
-    if "loaded" in _state:
-        return _state["loaded"]
+    time on stderr, ``quiet`` silences it); once per process, whichever of its threads asks first (the others wait
+    for it: :data:`_LOCK`)."""
+    found = _state.get("loaded")
+    if found is not None:
+        return found
+    with _LOCK:
+        found = _state.get("loaded")
+        return found if found is not None else _load(quiet)
+
+
+def _load(quiet: bool) -> Loaded:
     t0 = time.perf_counter()
     problem = cache_problem()
     private = None
@@ -230,6 +243,15 @@ def entry(method: str) -> tuple[Any, float]:
     warm = _state.setdefault("warm", {})
     if name in warm:
         return getattr(loaded.kernel, name), 0.0
+    with _LOCK:  # one thread warms it (a repair imports the kernel anew), the others then find it warm
+        if name in warm:
+            return getattr(load().kernel, name), 0.0
+        return _warmed(name, loaded)
+
+
+def _warmed(name: str, loaded: Loaded) -> tuple[Any, float]:
+    """:func:`entry`'s first load of the entry ``name`` (under :data:`_LOCK`; ``loaded``: the kernel as it found it)."""
+    warm = _state["warm"]
     t0 = time.perf_counter()
     for attempt in range(3):  # another process sharing the cache may be repairing it too: a few rounds settle it
         try:
@@ -251,23 +273,31 @@ def point_functions() -> tuple[Any, Any]:
     """The kernel's ``evaluate(model, t, y)`` and ``evaluate_jacobian(model, t, y)`` (one right-hand side, one
     Jacobian at a state: the equilibrium's Newton), loaded from the cache the first time as :func:`entry` loads an
     integration entry."""
-    loaded = load()
     warm = _state.setdefault("warm", {})
     if "evaluate" not in warm:
-        t0 = time.perf_counter()
-        for attempt in range(3):
-            try:
-                with signals.deferred(), _strict():
-                    model, y0, _, _, _ = _tiny_args()
-                    loaded.kernel.evaluate(model, 0.0, y0)
-                    loaded.kernel.evaluate_jacobian(model, 0.0, y0)
-                break
-            except CacheDamaged as exc:
-                if attempt == 2:
-                    raise
-                _repair(exc)
-        warm["evaluate"] = time.perf_counter() - t0
+        with _LOCK:
+            if "evaluate" not in warm:
+                _warm_point_functions(warm)
+    loaded = load()
     return loaded.kernel.evaluate, loaded.kernel.evaluate_jacobian
+
+
+def _warm_point_functions(warm: dict) -> None:
+    """:func:`point_functions`' first load (under :data:`_LOCK`)."""
+    t0 = time.perf_counter()
+    for attempt in range(3):
+        try:
+            with signals.deferred(), _strict():
+                model, y0, _, _, _ = _tiny_args()
+                kernel = load().kernel  # the kernel anew after a repair
+                kernel.evaluate(model, 0.0, y0)
+                kernel.evaluate_jacobian(model, 0.0, y0)
+            break
+        except CacheDamaged as exc:
+            if attempt == 2:
+                raise
+            _repair(exc)
+    warm["evaluate"] = time.perf_counter() - t0
 
 
 def _warm_entry(kernel: Any, name: str) -> None:
