@@ -59,6 +59,39 @@ def test_spectrum_safety_closed_form():
     assert_allclose(s, exact, rtol=1e-10)
 
 
+def test_spectrum_safety_beyond_the_first_bracket():
+    """The load multiplier that makes D = 1 lies outside [1e-3, 1e3] for a gross overload or a very light spectrum:
+    the root find widens its bracket and finds it (by hand, the curve inverted), never stops at the bracket's end.
+    Before the fix a spectrum past D = 1 at s = 1e-3 was reported as s = 1e-3 (the 100 x overload of a 60 mm spur
+    pair, `gearcli life` at 5e7 N m: 0.001 for 6.0e-5, its stress safety 0.032 for 0.0078), and one below D = 1 at
+    s = 1e3 as unbounded (None)."""
+    el = SNCurve(ZNT_EH, 1000.0, "elementary")
+    # overload, pitting (stress ∝ sqrt(s)): one class 60 x the knee stress, 1e8 cycles on the finite-life slope
+    # extrapolated past the static node: sigma sqrt(s) = 1600 (1e5 / n)^(1/k)
+    sigma, n = 60_000.0, 1e8
+    exact = (1600.0 * (1e5 / n) ** (1 / K_FIN) / sigma) ** 2
+    assert exact < 1e-3  # 4.2e-4 (outside the first bracket)
+    s = spectrum_safety(lambda x: miner_damage([sigma * x**0.5], [n], [el]))
+    assert_allclose(s, exact, rtol=1e-10)
+    # overload, bending (stress ∝ s): the multiplier 1.9e-6, 500 x below the first bracket
+    sigma_f = 5e8
+    exact_f = 1600.0 * (1e5 / n) ** (1 / K_FIN) / sigma_f
+    assert exact_f < 1e-5
+    assert_allclose(spectrum_safety(lambda x: miner_damage([sigma_f * x], [n], [el])), exact_f, rtol=1e-10)
+    # a light spectrum on the optimum curve (flat at the knee): D = 1 once the stress reaches the knee's 1000
+    # with n above the knee's 5e7 cycles, so s = (1000 / sigma)^2 for pitting: 4e4 at 5 N/mm^2
+    opt = SNCurve(ZNT_EH, 1000.0, optimum=True)
+    s_opt = spectrum_safety(lambda x: miner_damage([5.0 * x**0.5], [1e9], [opt]))
+    assert s_opt is not None
+    assert_allclose(s_opt, (1000.0 / 5.0) ** 2, rtol=1e-9)
+    # and the normal curve's slope beyond 1e10 (k 32.6): sigma sqrt(s) = 850 (1e10 / n)^(1/K_LONG), n = 1e12
+    normal = SNCurve(ZNT_EH, 1000.0)
+    exact_n = (850.0 * (1e10 / 1e12) ** (1 / K_LONG) / 10.0) ** 2
+    assert exact_n > 1e3
+    assert_allclose(spectrum_safety(lambda x: miner_damage([10.0 * x**0.5], [1e12], [normal])), exact_n, rtol=1e-9)
+    # nothing to load: every class at zero stress stays unbounded
+    assert spectrum_safety(lambda x: miner_damage([0.0 * x], [1e9], [normal])) is None
+
 def test_miner_sum_of_a_published_example():
     """Palmgren–Miner example (Modarres, Amiri, Jackson, Probabilistic Physics of Failure Approach to
     Reliability, 2017, pp. 33-37, as reproduced in the `reliability` package docs): lives 50000, 6500 and
