@@ -3,7 +3,11 @@
 Each function composes the layers below it (ARCHITECTURE.md) and returns the layer's frozen result; none
 prints or writes a file except :func:`run_sweep`, whose sink is injected (:mod:`gearcli.io.sweep_file`
 gives the file and stdout sinks, a caller may pass its own). The CLI's commands call these, so a script
-gets exactly the numbers ``gearcli`` prints::
+gets the numbers ``gearcli`` prints, exactly where its BLAS runs on one thread as the console script's does
+(``OMP_NUM_THREADS=1`` and ``OPENBLAS_NUM_THREADS=1`` set before numpy is imported; with more threads an implicit
+method's LU solves may round differently: 390 against 399 Radau steps on a lossy reducer, agreeing to its
+tolerance). A script that runs a sweep with ``jobs > 1`` starts a process pool: its main code goes under
+``if __name__ == "__main__":``, as for any multiprocessing script::
 
     from gearcli import api
 
