@@ -29,12 +29,12 @@ def mean_error(t: np.ndarray, x: np.ndarray) -> float:
     Richardson's |T_h - T_2h| / 3, T_2h the rule with every other sample left out (the last sample kept); 0 on fewer
     than 5 samples."""
     n = x.size
-    if n < MIN_SAMPLES or not float(t[-1] - t[0]) > 0.0:
+    span = float(t[-1] - t[0]) if n else 0.0
+    if n < MIN_SAMPLES or not span > 0.0:
         return 0.0
     keep = np.arange(0, n, 2)
     if keep[-1] != n - 1:
         keep = np.append(keep, n - 1)
-    span = float(t[-1] - t[0])
     whole = float(np.trapezoid(x, t)) / span
     coarse = float(np.trapezoid(x[keep], t[keep])) / span
     return abs(whole - coarse) / RICHARDSON
