@@ -268,7 +268,7 @@ Destination = None | str | outfiles.OutputTarget
 def _target(dest: Destination) -> outfiles.OutputTarget:
     if isinstance(dest, outfiles.OutputTarget):
         return dest
-    if dest is None or dest == outfiles.STDOUT:
+    if dest is None or dest == outfiles.STDOUT or ("\0" not in dest and outfiles.open_descriptor(dest) == 1):
         return outfiles.OutputTarget(fmt="")
     return outfiles.OutputTarget(fmt="", path=outfiles.resolve_path(dest, context_inputs()), shown=dest)
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 import errno
 import io
 import os
+import re
 import stat
 import sys
 import tempfile
@@ -117,6 +118,26 @@ def _opened(given: str) -> os.stat_result | None:
         return None
 
 
+_DESCRIPTOR = re.compile(r"/(?:proc/(?:self|thread-self|\d+)|dev)/fd/(\d+)")
+
+
+def open_descriptor(given: str) -> int | None:
+    """The descriptor of this process that ``given`` names (``/dev/stdout``, ``/dev/fd/1``, ``/proc/self/fd/1``
+    and links to them), or None. Such a path is a stream the shell opened (``>> log``, ``| cmd``): replacing the
+    file behind it would discard what the shell appends to, so descriptor 1 is stdout and the others are refused."""
+    path = os.path.abspath(given)
+    for _ in range(40):  # the kernel's own limit on a chain of links
+        if (m := _DESCRIPTOR.fullmatch(path)) is not None and path.split("/")[2] in ("self", "thread-self", "fd",
+                                                                                    str(os.getpid())):
+            return int(m.group(1))
+        try:
+            link = os.readlink(path)
+        except (OSError, ValueError):
+            return None
+        path = os.path.normpath(os.path.join(os.path.dirname(path), link))
+    return None
+
+
 def _check_given_parent(given: str) -> None:
     """Refuse a path whose directory part the system cannot walk: ``missing/../x.json`` or ``file/../x.json``.
     The kernel resolves ``..`` after the component before it (``open`` there fails with ENOENT or ENOTDIR, as a
@@ -140,6 +161,9 @@ def resolve_path(given: str, inputs: Iterable[str | None] = (), stdout_as: str =
         raise _refuse("''", "an empty file name; give a file name, or '-' for stdout")
     if "\0" in given:
         raise _refuse(repr(given), "not a valid file name")
+    if (fd := open_descriptor(given)) is not None:
+        raise _refuse(given, f"names this command's open descriptor {fd}, not a file (use {stdout_as} and a shell "
+                             "redirection)")
     if given.endswith(("/", os.sep)) or given in (".", ".."):
         raise _refuse(given, "is a directory path; give a file name")
     _check_given_parent(given)
@@ -192,13 +216,17 @@ def check_output(output: str | None, *, formats: tuple[str, ...], fmt: str | Non
             raise StdoutClosed()
         chosen = fmt or (stdout_default() if stdout_default else file_default)
         return OutputTarget(fmt=chosen)
-    path = resolve_path(output, inputs, stdout_as)
+    to_stdout = output != STDOUT and "\0" not in output and open_descriptor(output) == 1
+    path = None if to_stdout else resolve_path(output, inputs, stdout_as)
     suffix = Path(output).suffix.lower()
     said = SUFFIX_FORMAT.get(suffix)
     if said is not None and said not in formats:
         raise _refuse(output, f"this command cannot write {said} ({suffix}); it writes {', '.join(formats)}")
     if said is not None and fmt is not None and fmt != said:
         raise _refuse(output, f"the suffix {suffix} says {said} but --format is {fmt}; make them agree")
+    if to_stdout and getattr(sys.stdout, "closed_stdout", False):
+        raise StdoutClosed()
+    # /dev/stdout is the stream the shell opened (`>> log` appends to it): written as stdout, in a file's format
     return OutputTarget(fmt=fmt or said or file_default, path=path, shown=output)
 
 

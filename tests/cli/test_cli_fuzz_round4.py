@@ -4,6 +4,7 @@ every command), one test per finding, through the real command line."""
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -102,15 +103,42 @@ def test_a_life_point_too_slow_to_simulate_says_the_duration_is_the_routes_and_n
 
 
 @pytest.mark.skipif(sys.platform != "linux", reason="/dev/stdout is a link into /proc/self/fd")
-def test_o_dev_stdout_on_a_pipe_is_refused_as_a_fifo():
-    # /dev/stdout on a pipe resolves to /proc/<pid>/fd/pipe:[n], which names no file: the check let it through and
-    # the write failed with "cannot write: No such file or directory". The link opens the pipe: a FIFO, refused
-    # with the hint (exit 2) like any other FIFO
+def test_o_dev_stdout_writes_the_stream_the_shell_opened(tmp_path):
+    # /dev/stdout names descriptor 1, the stream the shell opened. On a pipe it was refused as a FIFO; on
+    # `>> log` the atomic write replaced the log file behind the link, losing what it held. Both are stdout now:
+    # the pipe gets the JSON, the log keeps its first line and gets the JSON after it
     res = subprocess.run([sys.executable, "-m", "gearcli", "design", str(CONVEYOR), "--format", "json", "-o",
                           "/dev/stdout"], capture_output=True, text=True, timeout=120)
-    assert res.returncode == 2, res.stderr
-    assert "gearcli: /dev/stdout: is a FIFO" in res.stderr and "-o -" in res.stderr
-    assert res.stdout == ""
+    assert res.returncode == 0, res.stderr
+    assert json.loads(res.stdout)["stages"]
+    log = tmp_path / "log"
+    log.write_text("kept line\n")
+    with open(log, "a") as fh:
+        res = subprocess.run([sys.executable, "-m", "gearcli", "design", str(CONVEYOR), "--format", "json", "-o",
+                              "/dev/fd/1"], stdout=fh, stderr=subprocess.PIPE, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    head, body = log.read_text().split("\n", 1)
+    assert head == "kept line" and json.loads(body)["stages"]
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="/dev/stderr is a link into /proc/self/fd")
+def test_o_another_open_descriptor_is_refused_not_replaced(tmp_path):
+    # `-o /dev/stderr 2>> log` replaced the log with the data; another descriptor than stdout is refused (exit 2)
+    log = tmp_path / "log"
+    log.write_text("kept line\n")
+    with open(log, "a") as fh:
+        res = subprocess.run([sys.executable, "-m", "gearcli", "design", str(CONVEYOR), "--format", "json", "-o",
+                              "/dev/stderr"], stdout=subprocess.PIPE, stderr=fh, text=True, timeout=120)
+    assert res.returncode == 2 and res.stdout == ""
+    text = log.read_text()
+    assert text.startswith("kept line\n") and "open descriptor 2" in text and "Traceback" not in text
+
+
+def test_o_a_named_fifo_is_still_refused(tmp_path):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    res = run("design", CONVEYOR, "-o", fifo)
+    assert_clean_exit_2(res, "is a FIFO")
 
 
 def test_a_dangling_link_names_its_targets_missing_directory(tmp_path):
